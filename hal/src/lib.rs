@@ -1,0 +1,2 @@
+//! Hardware abstraction for the Festo Robotino (`no_std`).
+#![no_std]

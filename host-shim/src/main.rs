@@ -1,0 +1,28 @@
+//! `robotino-agent`: the host program around the fixed-memory engine.
+//!
+//! Each subcommand lives in its own module; this file only parses the command line.
+
+mod clips_cli;
+
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+#[derive(Parser)]
+#[command(name = "robotino-agent", version, about = "CLIPS-compatible deliberative agent for the Robotino")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// A CLIPS-like command line (`-f FILE`, `-f2 FILE`, `-l FILE`, or interactive).
+    Clips(clips_cli::Args),
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match cli.command {
+        Command::Clips(args) => clips_cli::main(args),
+    }
+}

@@ -1,0 +1,2 @@
+//! The LLSF agent rule base, embedded as CLIPS text (`no_std`).
+#![no_std]

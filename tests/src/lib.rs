@@ -1,0 +1,1 @@
+//! Workspace-level tools and tests: footprint and instruction-set gates.
