@@ -1,2 +1,83 @@
-//! A CLIPS-compatible rule and fact engine in fixed memory (`no_std`, no `alloc`).
+//! A CLIPS 6.30-compatible rule and fact engine in fixed memory.
+//!
+//! `#![no_std]`, no `alloc`: every byte lives in an [`Engine`] whose pools are inline
+//! arrays sized by const generics, so an engine can be a `static` and its size is
+//! known at compile time. Running out of a pool is a [`CapacityError`] naming the pool
+//! and its capacity; the failed operation is undone.
+//!
+//! # Layout
+//! - [`value`]: values (`Int`, `Float`, symbols, strings, fact addresses, multifield
+//!   spans) and CLIPS number printing; [`symbols`]: interned texts.
+//! - [`lexer`] and [`parser`]: CLIPS source to constructs and expression trees
+//!   ([`expr`], 8-byte nodes). Each construct is built inside a checkpoint and rolled
+//!   back completely on any error.
+//! - [`fact`], [`template`]: fact storage (a compacting value arena, a duplicate hash
+//!   index, a creation-ordered list), deftemplates, deffacts, globals, deffunctions.
+//! - [`rete`], [`agenda`], [`commands`]: matching, conflict resolution, run loop.
+//! - [`builtins`]: the function registry (one table per module), [`eval`]: evaluator.
+//! - [`engine`]: storage and `Core`, the non-generic view all algorithms run on, so
+//!   the code exists once whatever the capacities; [`api`]: the host API.
+//!
+//! # The Rete network
+//! - **Alpha nodes** ([`rete::AlphaNode`]): one per distinct pattern (template +
+//!   constant tests + tests between fields of the same fact + multislot layout). Rules
+//!   using an identical pattern share the node and its **alpha memory** (a list of
+//!   alpha-match tokens, newest first). A template lists its alpha nodes, so an
+//!   asserted fact is only tested against patterns of its own template. A pattern with
+//!   several multifield variables in one multislot yields one alpha match per
+//!   segmentation; the match records the multifield lengths ("marks").
+//! - **Joins** ([`rete::Join`]): each rule is a chain `Root -> CE1 -> ... -> CEn`.
+//!   The root holds one empty token. A join combines each token of its parent's output
+//!   memory (left) with the alpha matches of its pattern (right) under the join tests
+//!   (variables shared with earlier patterns) and keeps the results in its own output
+//!   memory. Kinds: `Positive`; `Negative` (`not`: a left token passes while its count
+//!   of matching right items is zero); `Exists` (passes while the count is positive);
+//!   `Test` (a leading `test` CE or an empty LHS). Tests following a `not`/`exists` are
+//!   post-tests on its output.
+//! - **Incremental**: an assert only visits the alpha nodes of its template; each new
+//!   alpha match right-activates the successor joins (newest rule first, as CLIPS
+//!   orders them), each new token left-activates the next join. A retract removes the
+//!   fact's alpha matches and, through child links kept in every token (left parent,
+//!   right alpha match), exactly the partial matches built on them; not/exists counts
+//!   are decremented. Nothing is rescanned.
+//! - **Tokens** ([`rete::Token`]): alpha matches and partial matches share one pool;
+//!   each partial match stores only its parent and its alpha match, so a match of n
+//!   patterns costs n tokens. A terminal token points to its activation.
+//! - **Agenda**: activations sorted by salience, then newest first (CLIPS's depth
+//!   strategy); a fired activation is gone for good (refraction), so a rule fires again
+//!   only for a new partial match (e.g. after `modify`, which retracts and re-asserts).
+//!
+//! # Not supported yet
+//! See the crate README section in `engine-interfaces.md`: COOL, modules other than
+//! MAIN, `not`/`exists` over several CEs, `logical` truth maintenance, strategies other
+//! than depth, multifield globals across commands.
 #![no_std]
+
+pub mod agenda;
+pub mod api;
+pub mod builtins;
+pub mod commands;
+pub mod engine;
+pub mod error;
+pub mod eval;
+pub mod expr;
+pub mod fact;
+pub mod host;
+pub mod lexer;
+pub mod parser;
+pub mod print;
+pub mod rete;
+pub mod rule;
+pub mod symbols;
+pub mod template;
+pub mod value;
+
+#[cfg(test)]
+pub mod testutil;
+
+pub use api::{ExternalFn, FactId};
+pub use builtins::{Args, BuiltinFn};
+pub use engine::{Core, DefaultEngine, Engine, SmallEngine, Stats};
+pub use error::{CapacityError, EngineError, EvalError, EvalErrorKind, HostIoError, LoadError, Pool};
+pub use host::{Host, NullHost};
+pub use value::{Value, ValueRef};

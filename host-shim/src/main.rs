@@ -2,13 +2,19 @@
 //!
 //! Each subcommand lives in its own module; this file only parses the command line.
 
+mod bench;
 mod clips_cli;
+mod run;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
 #[derive(Parser)]
-#[command(name = "robotino-agent", version, about = "CLIPS-compatible deliberative agent for the Robotino")]
+#[command(
+    name = "robotino-agent",
+    version,
+    about = "CLIPS-compatible deliberative agent for the Robotino"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -18,11 +24,17 @@ struct Cli {
 enum Command {
     /// A CLIPS-like command line (`-f FILE`, `-f2 FILE`, `-l FILE`, or interactive).
     Clips(clips_cli::Args),
+    /// One robot's agent loop over iceoryx2 (sensors, skills, safety, motor command).
+    Run(run::Args),
+    /// Benchmarks against CLIPS 6.30 and 6.4: prints ratios, regenerates BENCHMARKS.md.
+    Bench(bench::Args),
 }
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
         Command::Clips(args) => clips_cli::main(args),
+        Command::Run(args) => run::main(args),
+        Command::Bench(args) => bench::main(args),
     }
 }

@@ -1,2 +1,166 @@
 //! The LLSF agent rule base, embedded as CLIPS text (`no_std`).
+//!
+//! The `.clp` files next to this crate are the product: the agent (utilities,
+//! world model, execution monitoring, production), the referee (the game
+//! model), and the instant simulation.  This crate only embeds them as
+//! `&'static str` and says which to load in which order
+//! ([`agent_files`], [`game_files`]), plus [`setup`]: the deterministic
+//! per-seed game setups the host asserts as facts.  The fact interface
+//! between host, agent, referee and simulation is documented in README.md.
 #![no_std]
+
+pub mod setup;
+
+/// One embedded rule file: its path relative to `rules/` and its text.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RuleFile {
+    pub name: &'static str,
+    pub text: &'static str,
+}
+
+macro_rules! rule_file {
+    ($path:literal) => {
+        RuleFile {
+            name: $path,
+            text: include_str!(concat!("../", $path)),
+        }
+    };
+}
+
+/// Priorities (saliences) and helper functions; load first.
+pub const UTILS: RuleFile = rule_file!("utils.clp");
+/// Machine beliefs and their updates from perceived lights.
+pub const WORLD_MODEL: RuleFile = rule_file!("worldmodel.clp");
+/// Skill requests and outcomes, failure handling.
+pub const EXECUTION: RuleFile = rule_file!("execution.clp");
+/// Production steps all strategies share (fetch, deliver, discard).
+pub const PRODUCTION_COMMON: RuleFile = rule_file!("production-common.clp");
+/// The paper's candidate rules with machine priorities.
+pub const PRODUCTION: RuleFile = rule_file!("production.clp");
+/// The paper's commitment: first candidate in machine-name order.
+pub const SELECT_PAPER: RuleFile = rule_file!("select-paper.clp");
+/// Our commitment: nearest candidate, plus the S0 budget guard.
+pub const SELECT_TRAVEL: RuleFile = rule_file!("select-travel.clp");
+/// The naive baseline: fixed machine order, no priorities.
+pub const PRODUCTION_NAIVE: RuleFile = rule_file!("production-naive.clp");
+/// The game model: hidden types, lights, supply, clock, score.
+pub const REFEREE: RuleFile = rule_file!("referee.clp");
+/// Decision log and end of game, for any executor (sim or robot driver).
+pub const GAME_LOG: RuleFile = rule_file!("game-log.clp");
+/// Instant skill execution against the referee.
+pub const SIM: RuleFile = rule_file!("sim.clp");
+/// Real-CLIPS stand-ins for host functions (`distance`); our engine has
+/// them built in, so hosts running our engine do not load this.
+pub const CLIPS_STUBS: RuleFile = rule_file!("clips/stubs.clp");
+
+/// Which production strategy the agent plays.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Strategy {
+    /// Fixed exploration order, no priorities: the baseline.
+    Naive,
+    /// The paper's machine priorities, ties by machine name.
+    Paper,
+    /// The paper's priorities, ties by travel distance, S0 budget guard.
+    Travel,
+}
+
+impl Strategy {
+    pub const ALL: [Strategy; 3] = [Strategy::Naive, Strategy::Paper, Strategy::Travel];
+
+    /// The name hosts use on command lines.
+    pub fn name(self) -> &'static str {
+        match self {
+            Strategy::Naive => "naive",
+            Strategy::Paper => "paper",
+            Strategy::Travel => "travel",
+        }
+    }
+
+    /// Parses [`Strategy::name`] back.
+    pub fn from_name(name: &str) -> Option<Strategy> {
+        Strategy::ALL.into_iter().find(|s| s.name() == name)
+    }
+}
+
+const AGENT_NAIVE: [RuleFile; 5] = [
+    UTILS,
+    WORLD_MODEL,
+    EXECUTION,
+    PRODUCTION_COMMON,
+    PRODUCTION_NAIVE,
+];
+const AGENT_PAPER: [RuleFile; 6] = [
+    UTILS,
+    WORLD_MODEL,
+    EXECUTION,
+    PRODUCTION_COMMON,
+    PRODUCTION,
+    SELECT_PAPER,
+];
+const AGENT_TRAVEL: [RuleFile; 6] = [
+    UTILS,
+    WORLD_MODEL,
+    EXECUTION,
+    PRODUCTION_COMMON,
+    PRODUCTION,
+    SELECT_TRAVEL,
+];
+const GAME_NAIVE: [RuleFile; 8] = [
+    UTILS,
+    WORLD_MODEL,
+    EXECUTION,
+    PRODUCTION_COMMON,
+    PRODUCTION_NAIVE,
+    REFEREE,
+    GAME_LOG,
+    SIM,
+];
+const GAME_PAPER: [RuleFile; 9] = [
+    UTILS,
+    WORLD_MODEL,
+    EXECUTION,
+    PRODUCTION_COMMON,
+    PRODUCTION,
+    SELECT_PAPER,
+    REFEREE,
+    GAME_LOG,
+    SIM,
+];
+const GAME_TRAVEL: [RuleFile; 9] = [
+    UTILS,
+    WORLD_MODEL,
+    EXECUTION,
+    PRODUCTION_COMMON,
+    PRODUCTION,
+    SELECT_TRAVEL,
+    REFEREE,
+    GAME_LOG,
+    SIM,
+];
+
+/// The agent alone (for a robot driver), in load order.
+pub fn agent_files(strategy: Strategy) -> &'static [RuleFile] {
+    match strategy {
+        Strategy::Naive => &AGENT_NAIVE,
+        Strategy::Paper => &AGENT_PAPER,
+        Strategy::Travel => &AGENT_TRAVEL,
+    }
+}
+
+/// What a host driver that moves the robot itself loads after
+/// [`agent_files`]: the referee and the decision log (not the instant sim).
+pub const DRIVER_FILES: [RuleFile; 2] = [REFEREE, GAME_LOG];
+
+/// Agent, referee, log and simulation: a whole simulated game, in load order.
+/// Load these, then the setup text ([`setup::GameSetup::write_clips`]),
+/// then `(reset)` and `(run)`.
+pub fn game_files(strategy: Strategy) -> &'static [RuleFile] {
+    match strategy {
+        Strategy::Naive => &GAME_NAIVE,
+        Strategy::Paper => &GAME_PAPER,
+        Strategy::Travel => &GAME_TRAVEL,
+    }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,126 @@
+//! The agenda: activations ordered by salience, then by CLIPS's depth strategy (newer
+//! activations first). Refraction comes from the network: a fired activation is gone,
+//! and only a new partial match can activate the rule again.
+
+use crate::engine::{cap, watch, Core};
+use crate::error::{CapacityError, Pool};
+use crate::rule::Activation;
+use crate::value::NONE;
+
+impl Core<'_> {
+    pub(crate) fn add_activation(&mut self, rule: u16, token: u16) -> Result<(), CapacityError> {
+        let a = if self.st.act_free != NONE {
+            let a = self.st.act_free;
+            self.st.act_free = self.acts[a as usize].next;
+            a
+        } else {
+            let n = self.st.acts_used as usize;
+            if n >= self.acts.len() || n >= NONE as usize {
+                return Err(cap(Pool::Activations, self.acts.len()));
+            }
+            self.st.acts_used += 1;
+            n as u16
+        };
+        self.note_hw(Pool::Activations, self.st.acts_used as usize);
+        self.st.act_seq = self.st.act_seq.wrapping_add(1);
+        let salience = self.rules[rule as usize].salience;
+        self.acts[a as usize] = Activation { rule, token, salience, seq: self.st.act_seq, next: NONE, prev: NONE };
+        self.tokens[token as usize].extra = a;
+        self.agenda_insert(a);
+        if self.st.watch & watch::ACTIVATIONS != 0 {
+            self.print_activation_line("==> Activation ", a);
+        }
+        Ok(())
+    }
+
+    /// Inserts before the first activation of lower or equal salience.
+    fn agenda_insert(&mut self, a: u16) {
+        let sal = self.acts[a as usize].salience;
+        let mut prev = NONE;
+        let mut cur = self.st.agenda_head;
+        while cur != NONE && self.acts[cur as usize].salience > sal {
+            prev = cur;
+            cur = self.acts[cur as usize].next;
+        }
+        self.acts[a as usize].prev = prev;
+        self.acts[a as usize].next = cur;
+        if cur != NONE {
+            self.acts[cur as usize].prev = a;
+        }
+        if prev != NONE {
+            self.acts[prev as usize].next = a;
+        } else {
+            self.st.agenda_head = a;
+        }
+    }
+
+    fn agenda_unlink(&mut self, a: u16) {
+        let x = self.acts[a as usize];
+        if x.prev != NONE {
+            self.acts[x.prev as usize].next = x.next;
+        } else {
+            self.st.agenda_head = x.next;
+        }
+        if x.next != NONE {
+            self.acts[x.next as usize].prev = x.prev;
+        }
+    }
+
+    pub(crate) fn remove_activation(&mut self, a: u16) {
+        if self.st.watch & watch::ACTIVATIONS != 0 {
+            self.print_activation_line("<== Activation ", a);
+        }
+        self.agenda_unlink(a);
+        self.free_activation(a);
+    }
+
+    fn free_activation(&mut self, a: u16) {
+        let t = self.acts[a as usize].token;
+        if t != NONE && self.tokens[t as usize].extra == a {
+            self.tokens[t as usize].extra = NONE;
+        }
+        self.acts[a as usize] = Activation { next: self.st.act_free, ..Activation::EMPTY };
+        self.st.act_free = a;
+    }
+
+    /// Takes the top activation off the agenda (it fires; refraction keeps it gone).
+    pub(crate) fn pop_activation(&mut self) -> Option<(u16, u16)> {
+        let a = self.st.agenda_head;
+        if a == NONE {
+            return None;
+        }
+        let x = self.acts[a as usize];
+        self.agenda_unlink(a);
+        self.free_activation(a);
+        Some((x.rule, x.token))
+    }
+
+    /// Re-sorts the agenda after saliences changed (`refresh-agenda`).
+    pub fn reorder_agenda(&mut self) {
+        let mut list = self.st.agenda_head;
+        self.st.agenda_head = NONE;
+        // re-insert oldest first so newer stay ahead among equals
+        let mut tail = list;
+        while tail != NONE && self.acts[tail as usize].next != NONE {
+            tail = self.acts[tail as usize].next;
+        }
+        list = tail;
+        while list != NONE {
+            let prev = self.acts[list as usize].prev;
+            let rule = self.acts[list as usize].rule;
+            self.acts[list as usize].salience = self.rules[rule as usize].salience;
+            self.agenda_insert(list);
+            list = prev;
+        }
+    }
+
+    pub fn agenda_len(&self) -> usize {
+        let mut n = 0;
+        let mut a = self.st.agenda_head;
+        while a != NONE {
+            n += 1;
+            a = self.acts[a as usize].next;
+        }
+        n
+    }
+}

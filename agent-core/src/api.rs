@@ -1,0 +1,273 @@
+//! The public engine API (see `/work/brief/engine-api.md`).
+
+use crate::builtins::{BuiltinFn, ANY};
+use crate::engine::{cap, Engine, ExternalEntry, Stats};
+use crate::error::{EngineError, EvalError, EvalErrorKind, LoadError, Pool};
+use crate::fact::FactState;
+use crate::host::Host;
+use crate::parser::{Item, Parser};
+use crate::value::{Value, ValueRef, NONE};
+
+/// A fact's index (`f-N`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct FactId(pub u32);
+
+/// Host-facing result of `eval_str` and external functions.
+pub type ExternalFn = BuiltinFn;
+
+macro_rules! engine_impl {
+    ($($body:tt)*) => {
+        impl<
+            const FACTS: usize, const VALUES: usize, const SYMBOLS: usize, const SYMBYTES: usize,
+            const TEMPLATES: usize, const SLOTS: usize, const RULES: usize, const ALPHA: usize,
+            const JOINS: usize, const TOKENS: usize, const ACTS: usize, const FUNCS: usize,
+            const GLOBALS: usize, const EXPRS: usize, const STACK: usize, const SCRATCH: usize,
+            const DEFFACTS: usize, const EXTERNALS: usize,
+        > Engine<FACTS, VALUES, SYMBOLS, SYMBYTES, TEMPLATES, SLOTS, RULES, ALPHA, JOINS, TOKENS,
+            ACTS, FUNCS, GLOBALS, EXPRS, STACK, SCRATCH, DEFFACTS, EXTERNALS>
+        { $($body)* }
+    };
+}
+
+engine_impl! {
+    /// Loads constructs from text. Constructs before an error stay defined; the bad
+    /// one leaves nothing behind. Returns the number of constructs defined.
+    pub fn load_str(&mut self, host: &mut dyn Host, _source_name: &str, text: &str) -> Result<usize, LoadError> {
+        let mut cx = self.core(host);
+        cx.load_text(text, false)
+    }
+
+    /// Parses and evaluates one expression/command. A multifield result points into
+    /// scratch and is valid until the next call.
+    pub fn eval_str(&mut self, host: &mut dyn Host, command: &str) -> Result<Value, EvalError> {
+        let mut cx = self.core(host);
+        cx.st.scratch_top = 0;
+        cx.st.sp = 0;
+        cx.st.bp = 0;
+        let before = cx.st.nexprs;
+        let cp = cx.checkpoint();
+        let mut p = Parser::new(&mut cx, command);
+        let item = p.next_item();
+        let r = match item {
+            Ok(Item::Command(e)) => cx.eval(e),
+            Ok(Item::Construct) => Ok(Value::Void),
+            Ok(Item::End) => Ok(Value::Void),
+            Err(_) => Err(EvalError::other("syntax error")),
+        };
+        let now = cx.checkpoint();
+        if now.nrules == cp.nrules && now.nfuncs == cp.nfuncs && now.ntemplates == cp.ntemplates && now.nglobals == cp.nglobals && now.ndeffacts == cp.ndeffacts {
+            cx.st.nexprs = before;
+        }
+        cx.st.sp = 0;
+        r
+    }
+
+    /// Executes one complete command text as the CLIPS prompt does (prints results
+    /// and errors to the host). Returns false once `(exit)` was called.
+    pub fn exec_command(&mut self, host: &mut dyn Host, text: &str, source: &str) -> bool {
+        let mut cx = self.core(host);
+        cx.exec_command(text, source);
+        !cx.st.exit
+    }
+
+    /// Runs text as CLIPS's batch mode (`clips -f`): prompts and echo when `echo`.
+    /// Returns false once `(exit)` was called.
+    pub fn batch_str(&mut self, host: &mut dyn Host, text: &str, echo: bool) -> bool {
+        let mut cx = self.core(host);
+        let _ = cx.batch_text(text, echo);
+        !cx.st.exit
+    }
+
+    pub fn exited(&self) -> bool {
+        self.st.exit
+    }
+
+    pub fn reset(&mut self, host: &mut dyn Host) -> Result<(), EngineError> {
+        let mut cx = self.core(host);
+        cx.reset().map_err(EngineError::from)
+    }
+
+    pub fn clear(&mut self, host: &mut dyn Host) -> Result<(), EngineError> {
+        let mut cx = self.core(host);
+        cx.clear().map_err(EngineError::from)
+    }
+
+    /// Fires up to `limit` activations (all when None); returns how many fired.
+    pub fn run(&mut self, host: &mut dyn Host, limit: Option<u32>) -> Result<u32, EngineError> {
+        let mut cx = self.core(host);
+        let r = cx.run(limit.map(|l| l as i64).unwrap_or(-1));
+        cx.st.scratch_top = 0;
+        match r {
+            Err(e) if e.kind == EvalErrorKind::Exit => Ok(0),
+            r => r.map_err(EngineError::from),
+        }
+    }
+
+    /// Asserts one fact written in CLIPS syntax, e.g. `(pos (x 1) (y 2))`.
+    pub fn assert_str(&mut self, host: &mut dyn Host, fact: &str) -> Result<FactId, EngineError> {
+        let mut cx = self.core(host);
+        let before = cx.st.nexprs;
+        let cp = cx.checkpoint();
+        let mut p = Parser::new(&mut cx, fact);
+        p.scope = crate::parser::Scope::Lhs;
+        let spec = p.expect_lparen("'(' starting a fact").and_then(|_| p.fact_spec());
+        let spec = match spec {
+            Ok(s) => s,
+            Err(e) => {
+                cx.rollback(cp);
+                return Err(EngineError::Load(e));
+            }
+        };
+        let r = cx.assert_spec(spec);
+        cx.st.nexprs = before;
+        cx.st.scratch_top = 0;
+        cx.st.sp = 0;
+        match r {
+            Ok(Some(f)) => Ok(FactId(cx.facts[f as usize].num)),
+            Ok(None) => Err(EngineError::Duplicate),
+            Err(e) => Err(e.into()),
+        }
+    }
+
+    pub fn retract(&mut self, host: &mut dyn Host, id: FactId) -> Result<(), EngineError> {
+        let mut cx = self.core(host);
+        match cx.find_fact(id.0) {
+            Some(f) => {
+                cx.retract_fact(f);
+                Ok(())
+            }
+            None => Err(EngineError::NoSuchFact(id.0)),
+        }
+    }
+
+    /// Registers a host function callable from CLIPS code as `(name args...)`.
+    /// `max_args` None means unbounded. Registering a name again replaces it.
+    pub fn register_function(&mut self, name: &str, min_args: u8, max_args: Option<u8>, f: ExternalFn) -> Result<(), EngineError> {
+        let mut host = crate::host::NullHost;
+        let mut cx = self.core(&mut host);
+        let sym = cx.intern(name)?;
+        let existing = (0..cx.st.nexternals).find(|&x| cx.externals[x as usize].name == sym);
+        let i = match existing {
+            Some(i) => i as usize,
+            None => {
+                let n = cx.st.nexternals as usize;
+                if n >= cx.externals.len() {
+                    return Err(cap(Pool::ExternalFns, cx.externals.len()).into());
+                }
+                cx.st.nexternals += 1;
+                cx.note_hw(Pool::ExternalFns, n + 1);
+                n
+            }
+        };
+        cx.externals[i] = ExternalEntry { name: sym, min: min_args, max: max_args.unwrap_or(ANY), f: Some(f) };
+        cx.st.ext_syms = cx.st.nsyms;
+        Ok(())
+    }
+
+    /// Live facts in index order.
+    pub fn facts(&self) -> impl Iterator<Item = FactId> + '_ {
+        let mut f = self.st.fact_head;
+        core::iter::from_fn(move || {
+            if f == NONE {
+                return None;
+            }
+            let x = self.fact_at(f);
+            f = x.next;
+            Some(FactId(x.num))
+        })
+    }
+
+    pub fn fact_template_name(&self, id: FactId) -> Option<&str> {
+        let f = self.fact_slot_of(id)?;
+        let t = self.template_at(self.fact_at(f).tmpl);
+        Some(self.sym_str(t.name))
+    }
+
+    /// A slot of a fact (`implied` for ordered facts). Multislots read as `Multi(len)`;
+    /// elements via `fact_multislot_item`.
+    pub fn fact_slot(&self, id: FactId, slot: &str) -> Option<ValueRef<'_>> {
+        let (cell, multi) = self.slot_cell_of(id, slot)?;
+        match multi {
+            Some(n) => Some(ValueRef::Multi(n)),
+            None => Some(self.value_ref(self.value_at(cell))),
+        }
+    }
+
+    pub fn fact_multislot_item(&self, id: FactId, slot: &str, i: usize) -> Option<ValueRef<'_>> {
+        let (cell, multi) = self.slot_cell_of(id, slot)?;
+        let n = multi? as usize;
+        if i >= n {
+            return None;
+        }
+        Some(self.value_ref(self.value_at(cell + 1 + i)))
+    }
+
+    /// High-water marks and capacities of every pool.
+    pub fn stats(&self) -> Stats {
+        let mut s = self.st.hw;
+        let caps = [FACTS, VALUES, SYMBOLS, SYMBYTES, TEMPLATES, SLOTS, RULES, ALPHA, JOINS, TOKENS, ACTS, FUNCS, GLOBALS, EXPRS, STACK, SCRATCH, DEFFACTS, EXTERNALS];
+        for (i, c) in caps.iter().enumerate() {
+            s.capacity[i] = *c as u32;
+        }
+        s
+    }
+
+    /// Number of live facts and pending activations.
+    pub fn counts(&self) -> (usize, usize) {
+        (self.facts().count(), {
+            let mut n = 0;
+            let mut a = self.st.agenda_head;
+            while a != NONE {
+                n += 1;
+                a = self.act_at(a).next;
+            }
+            n
+        })
+    }
+
+    fn value_ref(&self, v: Value) -> ValueRef<'_> {
+        match v {
+            Value::Int(i) => ValueRef::Int(i),
+            Value::Float(f) => ValueRef::Float(f),
+            Value::Sym(s) => ValueRef::Symbol(self.sym_str(s)),
+            Value::Str(s) => ValueRef::String(self.sym_str(s)),
+            Value::Fact(r) => ValueRef::Fact(r.num),
+            Value::Multi(m) => ValueRef::Multi(m.len),
+            Value::Void => ValueRef::Void,
+        }
+    }
+
+    fn fact_slot_of(&self, id: FactId) -> Option<u16> {
+        let mut f = self.st.fact_head;
+        while f != NONE {
+            let x = self.fact_at(f);
+            if x.num == id.0 && x.state == FactState::Live {
+                return Some(f);
+            }
+            f = x.next;
+        }
+        None
+    }
+
+    fn slot_cell_of(&self, id: FactId, slot: &str) -> Option<(usize, Option<u16>)> {
+        let f = self.fact_slot_of(id)?;
+        let fact = self.fact_at(f);
+        let t = self.template_at(fact.tmpl);
+        let idx = if t.implied {
+            0
+        } else {
+            (0..t.nslots).find(|&i| self.sym_str(self.slot_at(t.first_slot + i).name) == slot)?
+        };
+        let mut c = fact.start as usize;
+        for _ in 0..idx {
+            match self.value_at(c) {
+                Value::Multi(m) => c += 1 + m.len as usize,
+                _ => c += 1,
+            }
+        }
+        match self.value_at(c) {
+            Value::Multi(m) => Some((c, Some(m.len))),
+            _ => Some((c, None)),
+        }
+    }
+}

@@ -1,0 +1,186 @@
+//! Arithmetic, comparison, equality, boolean connectives and `str-cat`.
+
+use super::{Args, Builtin, Num, ANY};
+use crate::engine::Core;
+use crate::error::{EvalError, EvalErrorKind};
+use crate::value::{TextBuf, Value, NONE};
+
+pub const FUNCS: &[Builtin] = &[
+    Builtin::eager("+", 2, ANY, add),
+    Builtin::eager("-", 2, ANY, sub),
+    Builtin::eager("*", 2, ANY, mul),
+    Builtin::eager("/", 2, ANY, div),
+    Builtin::eager("=", 2, ANY, num_eq),
+    Builtin::eager("<>", 2, ANY, num_ne),
+    Builtin::eager("<", 2, ANY, lt),
+    Builtin::eager("<=", 2, ANY, le),
+    Builtin::eager(">", 2, ANY, gt),
+    Builtin::eager(">=", 2, ANY, ge),
+    Builtin::eager("eq", 2, ANY, eq),
+    Builtin::eager("neq", 2, ANY, neq),
+    Builtin::lazy("and", 2, ANY, and),
+    Builtin::lazy("or", 2, ANY, or),
+    Builtin::eager("not", 1, 1, not),
+    Builtin::eager("str-cat", 1, ANY, str_cat),
+];
+
+fn fold(cx: &mut Core<'_>, a: Args, name: &'static str, fi: fn(i64, i64) -> i64, ff: fn(f64, f64) -> f64) -> Result<Value, EvalError> {
+    let mut acc = cx.arg_num(a, 0, name)?;
+    for i in 1..a.len as usize {
+        let x = cx.arg_num(a, i, name)?;
+        acc = match (acc, x) {
+            (Num::Int(p), Num::Int(q)) => Num::Int(fi(p, q)),
+            (p, q) => Num::Float(ff(p.as_f64(), q.as_f64())),
+        };
+    }
+    Ok(acc.value())
+}
+
+fn add(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    fold(cx, a, "+", i64::wrapping_add, |p, q| p + q)
+}
+fn sub(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    fold(cx, a, "-", i64::wrapping_sub, |p, q| p - q)
+}
+fn mul(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    fold(cx, a, "*", i64::wrapping_mul, |p, q| p * q)
+}
+
+/// CLIPS 6.30 `/` always yields a float.
+fn div(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let mut acc = cx.arg_num(a, 0, "/")?.as_f64();
+    for i in 1..a.len as usize {
+        let x = cx.arg_num(a, i, "/")?.as_f64();
+        if x == 0.0 {
+            return Err(EvalError::new(EvalErrorKind::DivideByZero { func: "/" }));
+        }
+        acc /= x;
+    }
+    Ok(Value::Float(acc))
+}
+
+fn cmp_num(p: Num, q: Num) -> core::cmp::Ordering {
+    match (p, q) {
+        (Num::Int(x), Num::Int(y)) => x.cmp(&y),
+        (x, y) => x.as_f64().partial_cmp(&y.as_f64()).unwrap_or(core::cmp::Ordering::Equal),
+    }
+}
+
+/// Chained numeric comparison: every neighbouring pair must satisfy `ok`.
+fn chain(cx: &mut Core<'_>, a: Args, name: &'static str, ok: fn(core::cmp::Ordering) -> bool) -> Result<Value, EvalError> {
+    let mut prev = cx.arg_num(a, 0, name)?;
+    for i in 1..a.len as usize {
+        let x = cx.arg_num(a, i, name)?;
+        if !ok(cmp_num(prev, x)) {
+            return Ok(Core::bool_value(false));
+        }
+        prev = x;
+    }
+    Ok(Core::bool_value(true))
+}
+
+fn num_eq(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let first = cx.arg_num(a, 0, "=")?;
+    for i in 1..a.len as usize {
+        if cmp_num(first, cx.arg_num(a, i, "=")?) != core::cmp::Ordering::Equal {
+            return Ok(Core::bool_value(false));
+        }
+    }
+    Ok(Core::bool_value(true))
+}
+/// `<>`: the first differs from every other.
+fn num_ne(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let first = cx.arg_num(a, 0, "<>")?;
+    for i in 1..a.len as usize {
+        if cmp_num(first, cx.arg_num(a, i, "<>")?) == core::cmp::Ordering::Equal {
+            return Ok(Core::bool_value(false));
+        }
+    }
+    Ok(Core::bool_value(true))
+}
+fn lt(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    chain(cx, a, "<", |o| o.is_lt())
+}
+fn le(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    chain(cx, a, "<=", |o| o.is_le())
+}
+fn gt(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    chain(cx, a, ">", |o| o.is_gt())
+}
+fn ge(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    chain(cx, a, ">=", |o| o.is_ge())
+}
+
+/// Strict equality including multifields element by element.
+pub fn values_same(cx: &Core<'_>, x: Value, y: Value) -> bool {
+    match (x, y) {
+        (Value::Multi(p), Value::Multi(q)) => {
+            p.len == q.len && (0..p.len as usize).all(|k| cx.mf_item(p, k).same(cx.mf_item(q, k)))
+        }
+        _ => x.same(y),
+    }
+}
+
+fn eq(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let first = cx.arg(a, 0);
+    Ok(Core::bool_value((1..a.len as usize).all(|i| values_same(cx, first, cx.arg(a, i)))))
+}
+/// `neq`: the first differs from every other.
+fn neq(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let first = cx.arg(a, 0);
+    Ok(Core::bool_value((1..a.len as usize).all(|i| !values_same(cx, first, cx.arg(a, i)))))
+}
+
+fn and(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
+    let mut e = cx.exprs[call as usize].first;
+    while e != NONE {
+        if !Core::is_true(cx.eval(e)?) {
+            return Ok(Core::bool_value(false));
+        }
+        e = cx.exprs[e as usize].next;
+    }
+    Ok(Core::bool_value(true))
+}
+fn or(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
+    let mut e = cx.exprs[call as usize].first;
+    while e != NONE {
+        if Core::is_true(cx.eval(e)?) {
+            return Ok(Core::bool_value(true));
+        }
+        e = cx.exprs[e as usize].next;
+    }
+    Ok(Core::bool_value(false))
+}
+fn not(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    Ok(Core::bool_value(!Core::is_true(cx.arg(a, 0))))
+}
+
+fn str_cat(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let mut b: TextBuf<1024> = TextBuf::new();
+    for i in 0..a.len as usize {
+        let v = cx.arg(a, i);
+        if v.is_multi() {
+            return Err(EvalError::wrong_type("str-cat", i as u8 + 1, "atom"));
+        }
+        cx.write_plain(&mut b, v).map_err(|_| EvalError::other("str-cat: result too long"))?;
+    }
+    Ok(cx.make_string(b.as_str())?)
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::testutil::eval_to_string;
+
+    #[test]
+    fn arithmetic_and_comparison() {
+        assert_eq!(eval_to_string("(+ 1 2)"), "3");
+        assert_eq!(eval_to_string("(* 2.0 3)"), "6.0");
+        assert_eq!(eval_to_string("(/ 1 3)"), "0.333333333333333");
+        assert_eq!(eval_to_string("(- 10 1 2)"), "7");
+        assert_eq!(eval_to_string("(= 1 1.0)"), "TRUE");
+        assert_eq!(eval_to_string("(eq 1 1.0)"), "FALSE");
+        assert_eq!(eval_to_string("(< 1 2 3)"), "TRUE");
+        assert_eq!(eval_to_string("(neq a b c)"), "TRUE");
+        assert_eq!(eval_to_string("(str-cat \"a\" b 1.5)"), "\"ab1.5\"");
+    }
+}

@@ -1,0 +1,225 @@
+//! Control forms (lazy builtins): progn, if, while, loop-for-count, progn$/foreach,
+//! switch, bind, return, break.
+
+use super::{Builtin, ANY, SYM_FALSE};
+use crate::engine::Core;
+use crate::error::{EvalError, EvalErrorKind};
+use crate::expr::Op;
+use crate::value::{Value, NONE};
+
+pub const FUNCS: &[Builtin] = &[
+    Builtin::lazy("progn", 0, ANY, progn),
+    Builtin::lazy("if", 2, 3, if_),
+    Builtin::lazy("while", 2, 2, while_),
+    Builtin::lazy("loop-for-count", 4, 4, loop_for_count),
+    Builtin::lazy("progn$", 3, 3, foreach),
+    Builtin::lazy("foreach", 3, 3, foreach),
+    Builtin::lazy("switch", 1, ANY, switch),
+    Builtin::lazy("bind", 1, ANY, bind),
+    Builtin::eager("return", 0, 1, return_),
+    Builtin::eager("break", 0, 0, break_),
+];
+
+fn kids<const N: usize>(cx: &Core<'_>, call: u16) -> [u16; N] {
+    let mut out = [NONE; N];
+    let mut c = cx.exprs[call as usize].first;
+    for o in out.iter_mut() {
+        if c == NONE {
+            break;
+        }
+        *o = c;
+        c = cx.exprs[c as usize].next;
+    }
+    out
+}
+
+fn progn(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
+    let first = cx.exprs[call as usize].first;
+    cx.eval_chain(first)
+}
+
+fn if_(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
+    let [c, t, e] = kids::<3>(cx, call);
+    if Core::is_true(cx.eval(c)?) {
+        cx.eval(t)
+    } else if e != NONE {
+        cx.eval(e)
+    } else {
+        Ok(Value::Sym(SYM_FALSE))
+    }
+}
+
+/// Resets scratch to `mark` unless a local variable still points above it.
+fn release_scratch(cx: &mut Core<'_>, mark: u16) {
+    let mut keep = mark;
+    for i in 0..cx.st.sp as usize {
+        if let Value::Multi(m) = cx.stack[i] {
+            keep = keep.max(m.start + m.len);
+        }
+    }
+    for g in 0..cx.st.nglobals as usize {
+        if let Value::Multi(m) = cx.globals[g].value {
+            keep = keep.max(m.start + m.len);
+        }
+    }
+    if keep < cx.st.scratch_top {
+        cx.st.scratch_top = keep;
+    }
+}
+
+fn while_(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
+    let [c, body] = kids::<2>(cx, call);
+    let mark = cx.st.scratch_top;
+    while Core::is_true(cx.eval(c)?) {
+        cx.eval(body)?;
+        release_scratch(cx, mark);
+        if cx.st.breaking {
+            cx.st.breaking = false;
+            break;
+        }
+        if cx.st.returning || cx.st.exit {
+            break;
+        }
+    }
+    Ok(Value::Sym(SYM_FALSE))
+}
+
+fn loop_for_count(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
+    let [var, s, e, body] = kids::<4>(cx, call);
+    let start = match cx.eval(s)? {
+        Value::Int(i) => i,
+        _ => return Err(EvalError::wrong_type("loop-for-count", 1, "integer")),
+    };
+    let end = match cx.eval(e)? {
+        Value::Int(i) => i,
+        _ => return Err(EvalError::wrong_type("loop-for-count", 2, "integer")),
+    };
+    let slot = if cx.exprs[var as usize].op == Op::Local { Some(cx.exprs[var as usize].data) } else { None };
+    let mark = cx.st.scratch_top;
+    let mut i = start;
+    while i <= end {
+        if let Some(sl) = slot {
+            let at = (cx.st.bp + sl) as usize;
+            cx.stack[at] = Value::Int(i);
+        }
+        cx.eval(body)?;
+        release_scratch(cx, mark);
+        if cx.st.breaking {
+            cx.st.breaking = false;
+            break;
+        }
+        if cx.st.returning || cx.st.exit {
+            break;
+        }
+        i += 1;
+    }
+    Ok(Value::Sym(SYM_FALSE))
+}
+
+fn foreach(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
+    let [var, list, body] = kids::<3>(cx, call);
+    let m = match cx.eval(list)? {
+        Value::Multi(m) => m,
+        _ => return Err(EvalError::wrong_type("progn$", 1, "multifield")),
+    };
+    let slot = cx.exprs[var as usize].data;
+    let mark = cx.st.scratch_top;
+    for k in 0..m.len as usize {
+        let at = (cx.st.bp + slot) as usize;
+        cx.stack[at] = cx.scratch[m.start as usize + k];
+        cx.stack[at + 1] = Value::Int(k as i64 + 1);
+        cx.eval(body)?;
+        release_scratch(cx, mark.max(m.start + m.len));
+        if cx.st.breaking {
+            cx.st.breaking = false;
+            break;
+        }
+        if cx.st.returning || cx.st.exit {
+            break;
+        }
+    }
+    Ok(Value::Sym(SYM_FALSE))
+}
+
+fn switch(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
+    let first = cx.exprs[call as usize].first;
+    let v = cx.eval(first)?;
+    let mut c = cx.exprs[first as usize].next;
+    while c != NONE {
+        let case = cx.exprs[c as usize];
+        if case.aux == 1 {
+            return cx.eval(case.first);
+        }
+        let cv = cx.eval(case.first)?;
+        if super::basic::values_same(cx, v, cv) {
+            let body = cx.exprs[case.first as usize].next;
+            return cx.eval(body);
+        }
+        c = case.next;
+    }
+    Ok(Value::Sym(SYM_FALSE))
+}
+
+fn bind(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
+    let target = cx.exprs[call as usize].first;
+    let mut a = cx.exprs[target as usize].next;
+    // several values (or one multifield expansion) make a multifield
+    let mut n = 0;
+    let mut only = Value::Void;
+    let start = cx.multi_begin();
+    let mut spliced = false;
+    while a != NONE {
+        let v = cx.eval(a)?;
+        match v {
+            Value::Multi(m) => {
+                for k in 0..m.len as usize {
+                    let item = cx.scratch[m.start as usize + k];
+                    cx.multi_push(item)?;
+                }
+                spliced = true;
+            }
+            _ => cx.multi_push(v)?,
+        }
+        only = v;
+        n += 1;
+        a = cx.exprs[a as usize].next;
+    }
+    let value = if n == 1 && !only.is_multi() {
+        cx.st.scratch_top = start;
+        only
+    } else if n == 1 && spliced {
+        cx.st.scratch_top = start;
+        only
+    } else if n == 0 {
+        Value::Void
+    } else {
+        cx.multi_finish(start)
+    };
+    let t = cx.exprs[target as usize];
+    match t.op {
+        Op::Local => {
+            let at = (cx.st.bp + t.data) as usize;
+            cx.stack[at] = value;
+        }
+        Op::Global => {
+            if value.is_multi() && cx.sym_text(cx.globals[t.data as usize].name).starts_with('?') {
+                // top-level variables hold multifields in scratch until the command ends
+            }
+            cx.globals[t.data as usize].value = value;
+        }
+        _ => return Err(EvalError::new(EvalErrorKind::UnboundVariable)),
+    }
+    Ok(if n == 0 { Value::Sym(SYM_FALSE) } else { value })
+}
+
+fn return_(cx: &mut Core<'_>, a: super::Args) -> Result<Value, EvalError> {
+    let v = if a.len > 0 { cx.arg(a, 0) } else { Value::Void };
+    cx.st.returning = true;
+    cx.st.return_value = v;
+    Ok(v)
+}
+
+fn break_(cx: &mut Core<'_>, _a: super::Args) -> Result<Value, EvalError> {
+    cx.st.breaking = true;
+    Ok(Value::Sym(SYM_FALSE))
+}

@@ -1,0 +1,311 @@
+//! Fact functions: assert, retract, modify, duplicate, fact-slot-value, fact-index.
+
+use super::{Args, Builtin, ANY, SYM_FALSE, SYM_NIL};
+use crate::engine::Core;
+use crate::error::{EvalError, EvalErrorKind};
+use crate::expr::Op;
+use crate::host::router;
+use crate::template::{types, DefaultKind};
+use crate::value::{FactRef, MfSpan, Value, NONE};
+
+pub const FUNCS: &[Builtin] = &[
+    Builtin::lazy("assert", 1, ANY, assert),
+    Builtin::eager("retract", 1, ANY, retract),
+    Builtin::lazy("modify", 1, ANY, modify),
+    Builtin::lazy("duplicate", 1, ANY, duplicate),
+    Builtin::eager("fact-slot-value", 2, 2, fact_slot_value),
+    Builtin::eager("fact-index", 1, 1, fact_index),
+    Builtin::eager("fact-existp", 1, 1, fact_existp),
+];
+
+fn type_bit(v: Value) -> u8 {
+    match v {
+        Value::Int(_) => types::INTEGER,
+        Value::Float(_) => types::FLOAT,
+        Value::Sym(_) => types::SYMBOL,
+        Value::Str(_) => types::STRING,
+        Value::Fact(_) => types::FACT_ADDRESS,
+        _ => 0,
+    }
+}
+
+fn same_class(a: Value, b: Value) -> bool {
+    matches!(
+        (a, b),
+        (Value::Sym(_), Value::Sym(_))
+            | (Value::Str(_), Value::Str(_))
+            | (Value::Int(_) | Value::Float(_), Value::Int(_) | Value::Float(_))
+    )
+}
+
+impl Core<'_> {
+    /// Checks one atom against a slot's type and allowed-value restrictions.
+    fn check_atom(&self, tmpl: u16, slot: u16, v: Value) -> Result<(), EvalError> {
+        let def = self.slot_def(tmpl, slot);
+        if def.types != 0 && def.types & type_bit(v) == 0 {
+            return Err(EvalError::new(EvalErrorKind::BadSlotValue { reason: "type restriction violated" }));
+        }
+        if def.allowed != NONE {
+            let mut c = def.allowed;
+            let mut restricted = false;
+            while c != NONE {
+                let a = self.const_value(c);
+                if same_class(a, v) {
+                    restricted = true;
+                    let eq = match (a, v) {
+                        (Value::Int(_) | Value::Float(_), Value::Int(_) | Value::Float(_)) => {
+                            a.as_number() == v.as_number()
+                        }
+                        _ => a.same(v),
+                    };
+                    if eq {
+                        return Ok(());
+                    }
+                }
+                c = self.exprs[c as usize].next;
+            }
+            if restricted {
+                return Err(EvalError::new(EvalErrorKind::BadSlotValue { reason: "allowed-values restriction violated" }));
+            }
+        }
+        Ok(())
+    }
+
+    fn check_slot_value(&self, tmpl: u16, slot: u16, v: Value) -> Result<(), EvalError> {
+        match v {
+            Value::Multi(m) => {
+                for k in 0..m.len as usize {
+                    self.check_atom(tmpl, slot, self.mf_item(m, k))?;
+                }
+                Ok(())
+            }
+            _ => self.check_atom(tmpl, slot, v),
+        }
+    }
+
+    /// Evaluates value expressions (a chain) into one slot value: a multifield for a
+    /// multislot (all values spliced), else the single value.
+    fn slot_value_from(&mut self, tmpl: u16, slot: u16, mut e: u16) -> Result<Value, EvalError> {
+        let multi = self.slot_def(tmpl, slot).multi;
+        if !multi {
+            let v = self.eval(e)?;
+            return match v {
+                Value::Multi(m) if m.len == 1 => Ok(self.mf_item(m, 0)),
+                Value::Multi(_) => Err(EvalError::new(EvalErrorKind::BadSlotValue {
+                    reason: "a single-field slot needs exactly one value",
+                })),
+                _ => Ok(v),
+            };
+        }
+        // evaluate first (values may build scratch), then gather
+        let base = self.st.sp;
+        while e != NONE {
+            let v = self.eval(e)?;
+            self.push_value(v)?;
+            e = self.exprs[e as usize].next;
+        }
+        let start = self.multi_begin();
+        for i in base..self.st.sp {
+            match self.stack[i as usize] {
+                Value::Multi(m) => {
+                    for k in 0..m.len as usize {
+                        let item = self.mf_item(m, k);
+                        self.multi_push(item)?;
+                    }
+                }
+                v => self.multi_push(v)?,
+            }
+        }
+        self.st.sp = base;
+        Ok(self.multi_finish(start))
+    }
+
+    /// The value a slot takes when an assert leaves it out.
+    fn default_value(&mut self, tmpl: u16, slot: u16) -> Result<Value, EvalError> {
+        let def = self.slot_def(tmpl, slot);
+        match def.default_kind {
+            DefaultKind::Static | DefaultKind::Dynamic if def.default != NONE => {
+                self.slot_value_from(tmpl, slot, def.default)
+            }
+            DefaultKind::Required => {
+                Err(EvalError::new(EvalErrorKind::BadSlotValue { reason: "slot has no default and needs a value" }))
+            }
+            _ => {
+                if def.multi {
+                    return Ok(Value::Multi(MfSpan { start: self.st.scratch_top, len: 0 }));
+                }
+                if def.allowed != NONE {
+                    return Ok(self.const_value(def.allowed));
+                }
+                Ok(match def.types {
+                    0 => Value::Sym(SYM_NIL),
+                    t if t & types::SYMBOL != 0 => Value::Sym(SYM_NIL),
+                    t if t & types::STRING != 0 => Value::Str(super::SYM_EMPTY_STR),
+                    t if t & types::INTEGER != 0 => Value::Int(0),
+                    t if t & types::FLOAT != 0 => Value::Float(0.0),
+                    _ => Value::Sym(SYM_NIL),
+                })
+            }
+        }
+    }
+
+    /// Asserts the fact described by a `FactSpec` node. `Ok(None)`: duplicate.
+    pub fn assert_spec(&mut self, spec: u16) -> Result<Option<u16>, EvalError> {
+        let tmpl = self.exprs[spec as usize].data;
+        let nslots = self.templates[tmpl as usize].nslots;
+        let base = self.st.sp;
+        for _ in 0..nslots {
+            self.push_value(Value::Void)?;
+        }
+        let r = self.assert_spec_inner(spec, tmpl, base);
+        self.st.sp = base;
+        r
+    }
+
+    fn assert_spec_inner(&mut self, spec: u16, tmpl: u16, base: u16) -> Result<Option<u16>, EvalError> {
+        let nslots = self.templates[tmpl as usize].nslots;
+        let mut given = [false; 64];
+        let mut sv = self.exprs[spec as usize].first;
+        while sv != NONE {
+            let slot = self.exprs[sv as usize].data;
+            let v = self.slot_value_from(tmpl, slot, self.exprs[sv as usize].first)?;
+            self.stack[(base + slot) as usize] = v;
+            if (slot as usize) < given.len() {
+                given[slot as usize] = true;
+            }
+            sv = self.exprs[sv as usize].next;
+        }
+        for s in 0..nslots {
+            if !given.get(s as usize).copied().unwrap_or(false) {
+                let v = self.default_value(tmpl, s)?;
+                self.stack[(base + s) as usize] = v;
+            }
+            self.check_slot_value(tmpl, s, self.stack[(base + s) as usize])?;
+        }
+        self.assert_slots(tmpl, base as usize)
+    }
+
+    /// Resolves a fact argument: an address or an index.
+    pub fn fact_arg(&self, v: Value) -> Option<u16> {
+        match v {
+            Value::Fact(r) if self.fact_alive(r) => Some(r.slot),
+            Value::Int(n) if n >= 0 => self.find_fact(n as u32),
+            _ => None,
+        }
+    }
+
+    fn modify_or_duplicate(&mut self, call: u16, retract_old: bool, name: &'static str) -> Result<Value, EvalError> {
+        let first = self.exprs[call as usize].first;
+        let fv = self.eval(first)?;
+        let old = match self.fact_arg(fv) {
+            Some(f) => f,
+            None => {
+                let n = match fv {
+                    Value::Fact(r) => r.num as i64,
+                    Value::Int(i) => i,
+                    _ => -1,
+                };
+                return Err(EvalError::new(EvalErrorKind::NoSuchFact(n)));
+            }
+        };
+        let tmpl = self.facts[old as usize].tmpl;
+        if self.templates[tmpl as usize].implied {
+            return Err(EvalError::wrong_type(name, 1, "deftemplate fact"));
+        }
+        let nslots = self.templates[tmpl as usize].nslots;
+        let base = self.st.sp;
+        for s in 0..nslots {
+            let v = self.fact_slot_value(old, s)?;
+            self.push_value(v)?;
+        }
+        let r = (|| {
+            let mut sv = self.exprs[first as usize].next;
+            while sv != NONE {
+                let sym = self.exprs[sv as usize].data;
+                let slot = self.find_slot(tmpl, sym).ok_or(EvalError::new(EvalErrorKind::NoSuchSlot))?;
+                let v = self.slot_value_from(tmpl, slot, self.exprs[sv as usize].first)?;
+                self.check_slot_value(tmpl, slot, v)?;
+                self.stack[(base + slot) as usize] = v;
+                sv = self.exprs[sv as usize].next;
+            }
+            if retract_old {
+                self.retract_fact(old);
+            }
+            self.assert_slots(tmpl, base as usize)
+        })();
+        self.st.sp = base;
+        Ok(match r? {
+            Some(f) => Value::Fact(self.fact_ref(f)),
+            None => Value::Sym(SYM_FALSE),
+        })
+    }
+}
+
+fn assert(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
+    let mut spec = cx.exprs[call as usize].first;
+    let mut last = Value::Sym(SYM_FALSE);
+    while spec != NONE {
+        if cx.exprs[spec as usize].op == Op::FactSpec {
+            last = match cx.assert_spec(spec)? {
+                Some(f) => Value::Fact(cx.fact_ref(f)),
+                None => Value::Sym(SYM_FALSE),
+            };
+        }
+        spec = cx.exprs[spec as usize].next;
+    }
+    Ok(last)
+}
+
+fn retract(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    for i in 0..a.len as usize {
+        let v = cx.arg(a, i);
+        match cx.fact_arg(v) {
+            Some(f) => cx.retract_fact(f),
+            None => {
+                let n = match v {
+                    Value::Fact(r) => r.num as i64,
+                    Value::Int(n) => n,
+                    _ => return Err(EvalError::wrong_type("retract", i as u8 + 1, "fact-address or integer")),
+                };
+                let mut b: crate::value::TextBuf<64> = crate::value::TextBuf::new();
+                let _ = core::fmt::Write::write_fmt(&mut b, format_args!("[PRNTUTIL1] Unable to find fact f-{n}.\n"));
+                cx.write(router::WERROR, b.as_str());
+            }
+        }
+    }
+    Ok(Value::Void)
+}
+
+fn modify(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
+    cx.modify_or_duplicate(call, true, "modify")
+}
+
+fn duplicate(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
+    cx.modify_or_duplicate(call, false, "duplicate")
+}
+
+fn fact_slot_value(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let f = cx.fact_arg(cx.arg(a, 0)).ok_or(EvalError::new(EvalErrorKind::NoSuchFact(-1)))?;
+    let name = cx.arg_lexeme(a, 1, "fact-slot-value")?;
+    let tmpl = cx.facts[f as usize].tmpl;
+    let slot = if cx.templates[tmpl as usize].implied {
+        0
+    } else {
+        cx.find_slot(tmpl, name).ok_or(EvalError::new(EvalErrorKind::NoSuchSlot))?
+    };
+    Ok(cx.fact_slot_value(f, slot)?)
+}
+
+fn fact_index(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    match cx.arg(a, 0) {
+        Value::Fact(r) => Ok(Value::Int(r.num as i64)),
+        _ => Err(EvalError::wrong_type("fact-index", 1, "fact-address")),
+    }
+}
+
+fn fact_existp(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    Ok(Core::bool_value(cx.fact_arg(cx.arg(a, 0)).is_some()))
+}
+
+#[allow(dead_code)]
+fn _r(_: FactRef) {}

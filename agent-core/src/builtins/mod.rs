@@ -1,0 +1,241 @@
+//! Built-in functions: the registry and the calling convention.
+//!
+//! A builtin is a plain `fn` in a table (`Builtin`). Eager builtins receive their
+//! arguments already evaluated, on the evaluation stack, through an [`Args`] handle;
+//! lazy builtins (control forms, fact-set queries) receive their call node and
+//! evaluate arguments themselves with [`Core::eval`]. Each module exports
+//! `pub const FUNCS: &[Builtin]`; [`TABLES`] lists the modules. A function is named by
+//! a `u16` id `table << 8 | index`, stored in the call's expression node.
+//! See `/work/brief/engine-interfaces.md` for how to add one.
+
+pub mod basic;
+pub mod commands;
+pub mod control;
+pub mod facts;
+pub mod format;
+pub mod geometry;
+pub mod math;
+pub mod multifield;
+pub mod predicates;
+pub mod queries;
+pub mod random;
+pub mod strings;
+
+use crate::engine::Core;
+use crate::error::{CapacityError, EvalError};
+use crate::value::{MfSpan, SymId, Value};
+
+/// Fixed symbol ids interned at start-up (and after `clear`) in this order.
+pub const SYM_FALSE: SymId = 0;
+pub const SYM_TRUE: SymId = 1;
+pub const SYM_NIL: SymId = 2;
+pub const SYM_INITIAL_FACT: SymId = 3;
+pub const SYM_IMPLIED: SymId = 4;
+pub const SYM_CRLF: SymId = 5;
+pub const SYM_T: SymId = 6;
+pub const SYM_EMPTY_STR: SymId = 7;
+pub const FIXED_SYMBOLS: [&str; 8] = ["FALSE", "TRUE", "nil", "initial-fact", "implied", "crlf", "t", ""];
+
+/// Evaluated arguments of an eager call: `len` values on the stack from `base`.
+#[derive(Clone, Copy, Debug)]
+pub struct Args {
+    pub base: u16,
+    pub len: u16,
+}
+
+/// An eager builtin (also the type of host-registered external functions).
+pub type BuiltinFn = fn(cx: &mut Core<'_>, args: Args) -> Result<Value, EvalError>;
+/// A lazy builtin: gets the call node; its arguments are the node's children.
+pub type LazyFn = fn(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError>;
+
+#[derive(Clone, Copy)]
+pub enum Imp {
+    Eager(BuiltinFn),
+    Lazy(LazyFn),
+}
+
+/// How the parser reads the call's arguments.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum Syntax {
+    /// Ordinary expressions.
+    Plain,
+    /// Fact-set query: first argument `((?v tmpl...)...)`; `?v:slot` allowed inside.
+    Query,
+}
+
+/// Unbounded arity marker for `Builtin::max`.
+pub const ANY: u8 = u8::MAX;
+
+#[derive(Clone, Copy)]
+pub struct Builtin {
+    pub name: &'static str,
+    pub min: u8,
+    pub max: u8,
+    pub imp: Imp,
+    pub syntax: Syntax,
+}
+
+impl Builtin {
+    pub const fn eager(name: &'static str, min: u8, max: u8, f: BuiltinFn) -> Builtin {
+        Builtin { name, min, max, imp: Imp::Eager(f), syntax: Syntax::Plain }
+    }
+    pub const fn lazy(name: &'static str, min: u8, max: u8, f: LazyFn) -> Builtin {
+        Builtin { name, min, max, imp: Imp::Lazy(f), syntax: Syntax::Plain }
+    }
+    pub const fn query(name: &'static str, min: u8, max: u8, f: LazyFn) -> Builtin {
+        Builtin { name, min, max, imp: Imp::Lazy(f), syntax: Syntax::Query }
+    }
+}
+
+/// Every builtin table; the position is the high byte of a function id.
+pub const TABLES: &[&[Builtin]] = &[
+    basic::FUNCS,
+    control::FUNCS,
+    facts::FUNCS,
+    commands::FUNCS,
+    math::FUNCS,
+    strings::FUNCS,
+    multifield::FUNCS,
+    predicates::FUNCS,
+    format::FUNCS,
+    queries::FUNCS,
+    random::FUNCS,
+    geometry::FUNCS,
+];
+
+/// Finds a builtin by name.
+pub fn lookup(name: &str) -> Option<(u16, &'static Builtin)> {
+    for (t, table) in TABLES.iter().enumerate() {
+        for (i, b) in table.iter().enumerate() {
+            if b.name == name {
+                return Some(((t as u16) << 8 | i as u16, b));
+            }
+        }
+    }
+    None
+}
+
+pub fn get(id: u16) -> &'static Builtin {
+    &TABLES[(id >> 8) as usize][(id & 0xFF) as usize]
+}
+
+/// Number argument, as CLIPS's arithmetic sees it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Num {
+    Int(i64),
+    Float(f64),
+}
+
+impl Num {
+    pub fn as_f64(self) -> f64 {
+        match self {
+            Num::Int(i) => i as f64,
+            Num::Float(f) => f,
+        }
+    }
+    pub fn value(self) -> Value {
+        match self {
+            Num::Int(i) => Value::Int(i),
+            Num::Float(f) => Value::Float(f),
+        }
+    }
+}
+
+/// Helpers for builtins: argument access and result construction.
+impl Core<'_> {
+    /// Argument `i` (0-based) of an eager call.
+    pub fn arg(&self, a: Args, i: usize) -> Value {
+        self.stack[a.base as usize + i]
+    }
+
+    pub fn arg_num(&self, a: Args, i: usize, func: &'static str) -> Result<Num, EvalError> {
+        match self.arg(a, i) {
+            Value::Int(x) => Ok(Num::Int(x)),
+            Value::Float(x) => Ok(Num::Float(x)),
+            _ => Err(EvalError::wrong_type(func, i as u8 + 1, "number")),
+        }
+    }
+
+    pub fn arg_int(&self, a: Args, i: usize, func: &'static str) -> Result<i64, EvalError> {
+        match self.arg(a, i) {
+            Value::Int(x) => Ok(x),
+            Value::Float(x) => Ok(x as i64),
+            _ => Err(EvalError::wrong_type(func, i as u8 + 1, "integer")),
+        }
+    }
+
+    /// Symbol or string argument: its symbol-table id.
+    pub fn arg_lexeme(&self, a: Args, i: usize, func: &'static str) -> Result<SymId, EvalError> {
+        match self.arg(a, i) {
+            Value::Sym(s) | Value::Str(s) => Ok(s),
+            _ => Err(EvalError::wrong_type(func, i as u8 + 1, "symbol or string")),
+        }
+    }
+
+    /// Multifield argument: its span in scratch.
+    pub fn arg_multi(&self, a: Args, i: usize, func: &'static str) -> Result<MfSpan, EvalError> {
+        match self.arg(a, i) {
+            Value::Multi(m) => Ok(m),
+            _ => Err(EvalError::wrong_type(func, i as u8 + 1, "multifield")),
+        }
+    }
+
+    /// Element `k` of a multifield value.
+    pub fn mf_item(&self, m: MfSpan, k: usize) -> Value {
+        self.scratch[m.start as usize + k]
+    }
+
+    pub fn bool_value(b: bool) -> Value {
+        Value::Sym(if b { SYM_TRUE } else { SYM_FALSE })
+    }
+
+    pub fn is_true(v: Value) -> bool {
+        v != Value::Sym(SYM_FALSE)
+    }
+
+    pub fn make_symbol(&mut self, s: &str) -> Result<Value, CapacityError> {
+        Ok(Value::Sym(self.intern(s)?))
+    }
+
+    pub fn make_string(&mut self, s: &str) -> Result<Value, CapacityError> {
+        Ok(Value::Str(self.intern(s)?))
+    }
+
+    /// A new multifield built from `items` (copied into scratch).
+    pub fn make_multi(&mut self, items: &[Value]) -> Result<Value, CapacityError> {
+        let s = self.scratch_alloc(items.len())?;
+        self.scratch[s as usize..s as usize + items.len()].copy_from_slice(items);
+        Ok(Value::Multi(MfSpan { start: s, len: items.len() as u16 }))
+    }
+
+    /// Starts building a multifield of unknown length: push elements with
+    /// `multi_push`, then `multi_finish(start)`.
+    pub fn multi_begin(&self) -> u16 {
+        self.st.scratch_top
+    }
+
+    pub fn multi_push(&mut self, v: Value) -> Result<(), CapacityError> {
+        let s = self.scratch_alloc(1)?;
+        self.scratch[s as usize] = v;
+        Ok(())
+    }
+
+    pub fn multi_finish(&self, start: u16) -> Value {
+        Value::Multi(MfSpan { start, len: self.st.scratch_top - start })
+    }
+
+    /// Writes a value's printed form (strings without quotes, as str-cat wants them)
+    /// into `out`.
+    pub fn write_plain(&self, out: &mut dyn core::fmt::Write, v: Value) -> core::fmt::Result {
+        let view = crate::print::View {
+            values: self.values,
+            scratch: self.scratch,
+            sym_entries: self.sym_entries,
+            sym_bytes: self.sym_bytes,
+            templates: self.templates,
+            slots: self.slots,
+            facts: self.facts,
+        };
+        view.write_flat(out, v, false)
+    }
+}

@@ -1,0 +1,5 @@
+//! Builtins: predicates (owned by the builtins helper; see /work/brief/engine-interfaces.md).
+
+use super::Builtin;
+
+pub const FUNCS: &[Builtin] = &[];

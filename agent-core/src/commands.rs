@@ -1,0 +1,473 @@
+//! Engine-level operations: start-up, reset, clear, run, undefrule, loading text,
+//! and CLIPS's batch command loop.
+
+use core::fmt::Write;
+
+use crate::builtins::{FIXED_SYMBOLS, SYM_INITIAL_FACT};
+use crate::engine::{watch, Core};
+use crate::error::{EvalError, EvalErrorKind, LoadDetail, LoadError};
+use crate::expr::Op;
+use crate::fact::FactState;
+use crate::host::router;
+use crate::lexer::{Lexer, Tok};
+use crate::parser::{Item, Parser};
+use crate::rete::{JoinKind, PatBinding, TokenKind};
+use crate::value::{TextBuf, Value, NONE};
+
+/// Byte length of the first complete top-level item in `s` (construct, call or atom),
+/// or None while more input is needed. Leading blanks and comments are included.
+pub fn command_complete(s: &str) -> Option<usize> {
+    let mut lx = Lexer::new(s);
+    let mut depth = 0usize;
+    loop {
+        let t = lx.next_token();
+        match t.tok {
+            Tok::Eof | Tok::Bad => return None,
+            Tok::LParen => depth += 1,
+            Tok::RParen => {
+                if depth == 0 {
+                    return Some(t.end);
+                }
+                depth -= 1;
+                if depth == 0 {
+                    return Some(t.end);
+                }
+            }
+            _ => {
+                if depth == 0 {
+                    // an atom is complete once a delimiter follows it
+                    return if t.end < s.len() { Some(t.end) } else { None };
+                }
+            }
+        }
+    }
+}
+
+impl Core<'_> {
+    /// CLIPS start-up state: fixed symbols, the initial-fact template, f-0.
+    pub fn startup(&mut self) -> Result<(), EvalError> {
+        for s in FIXED_SYMBOLS {
+            self.intern(s)?;
+        }
+        let t = self.implied_template(SYM_INITIAL_FACT)?;
+        self.st.initial_tmpl = t;
+        self.assert_initial_fact()
+    }
+
+    fn assert_initial_fact(&mut self) -> Result<(), EvalError> {
+        let base = self.st.sp;
+        let m = self.multi_begin();
+        self.push_value(self.multi_finish(m))?;
+        let r = self.assert_slots(self.st.initial_tmpl, base as usize);
+        self.st.sp = base;
+        r.map(|_| ())
+    }
+
+    /// `(reset)`.
+    pub fn reset(&mut self) -> Result<(), EvalError> {
+        // rules starting with not/exists/test lose their root token first
+        for r in 0..self.st.nrules {
+            let rule = self.rules[r as usize];
+            if rule.root_sensitive && !rule.deleted {
+                self.remove_rule_matches(r);
+            }
+        }
+        while self.st.fact_head != NONE {
+            let f = self.st.fact_head;
+            self.retract_fact(f);
+        }
+        self.free_pending();
+        self.st.values_top = 0;
+        self.st.next_fact_num = 0;
+        // globals back to their initial values
+        for g in 0..self.st.nglobals {
+            let init = self.globals[g as usize].init;
+            if init != NONE {
+                let v = self.eval(init)?;
+                self.globals[g as usize].value = v;
+            }
+        }
+        for r in 0..self.st.nrules {
+            let rule = self.rules[r as usize];
+            if rule.root_sensitive && !rule.deleted {
+                self.activate_root(r)?;
+            }
+        }
+        self.assert_initial_fact()?;
+        for d in 0..self.st.ndeffacts {
+            let mut spec = self.deffacts[d as usize].facts;
+            while spec != NONE {
+                if self.exprs[spec as usize].op == Op::FactSpec {
+                    self.assert_spec(spec)?;
+                }
+                spec = self.exprs[spec as usize].next;
+            }
+        }
+        self.st.scratch_top = 0;
+        Ok(())
+    }
+
+    /// `(clear)`: everything goes; the environment starts afresh (externals stay).
+    pub fn clear(&mut self) -> Result<(), EvalError> {
+        let w = self.st.watch;
+        let next = self.st.nexternals;
+        let ext_syms = self.st.ext_syms;
+        for f in self.facts.iter_mut() {
+            *f = crate::fact::Fact::EMPTY;
+        }
+        for b in self.fact_buckets.iter_mut() {
+            *b = NONE;
+        }
+        for t in self.tokens.iter_mut() {
+            *t = crate::rete::Token::EMPTY;
+        }
+        for a in self.acts.iter_mut() {
+            *a = crate::rule::Activation::EMPTY;
+        }
+        for j in self.joins.iter_mut() {
+            *j = crate::rete::Join::EMPTY;
+        }
+        for a in self.alphas.iter_mut() {
+            *a = crate::rete::AlphaNode::EMPTY;
+        }
+        for t in self.templates.iter_mut() {
+            *t = crate::template::Template::EMPTY;
+        }
+        let hw = self.st.hw;
+        let ctx = (self.st.sp, self.st.bp, self.st.scratch_top, self.st.eval_depth, self.st.firing, self.st.pm_rhs);
+        let rng = (self.st.rng, self.st.rng_glibc, self.st.rng_pos, self.st.rng_seeded);
+        *self.st = crate::engine::State::new();
+        self.st.hw = hw;
+        (self.st.sp, self.st.bp, self.st.scratch_top, self.st.eval_depth, self.st.firing, self.st.pm_rhs) = ctx;
+        (self.st.rng, self.st.rng_glibc, self.st.rng_pos, self.st.rng_seeded) = rng;
+        self.st.nexternals = next;
+        // keep the symbols naming external functions
+        for b in self.sym_buckets.iter_mut() {
+            *b = NONE;
+        }
+        let keep = ext_syms;
+        for i in 0..keep {
+            let e = self.sym_entries[i as usize];
+            let text_start = e.start as usize;
+            let h = crate::symbols::hash_bytes(&self.sym_bytes[text_start..text_start + e.len as usize]) as usize
+                % self.sym_buckets.len();
+            self.sym_entries[i as usize].next = self.sym_buckets[h];
+            self.sym_buckets[h] = i;
+        }
+        self.st.nsyms = keep;
+        self.st.sym_bytes =
+            if keep == 0 { 0 } else { self.sym_entries[keep as usize - 1].start + self.sym_entries[keep as usize - 1].len };
+        self.st.ext_syms = ext_syms;
+        // CLIPS prints `==> f-0 (initial-fact)` here when facts are watched
+        self.st.watch = w;
+        if keep == 0 {
+            self.startup()
+        } else {
+            self.startup_after_clear()
+        }
+    }
+
+    fn startup_after_clear(&mut self) -> Result<(), EvalError> {
+        // fixed symbols are already the first entries
+        let t = self.implied_template(SYM_INITIAL_FACT)?;
+        self.st.initial_tmpl = t;
+        self.assert_initial_fact()
+    }
+
+    /// Removes a rule: its partial matches and activations go, its joins are unlinked.
+    pub fn remove_rule(&mut self, r: u16) {
+        let mut rr = r;
+        while rr != NONE {
+            self.remove_rule_matches(rr);
+            let rule = self.rules[rr as usize];
+            let mut j = self.joins[rule.root as usize].child;
+            while j != NONE {
+                let a = self.joins[j as usize].alpha;
+                if a != NONE {
+                    // unlink j from the alpha successor list
+                    let mut p = self.alphas[a as usize].succ;
+                    if p == j {
+                        self.alphas[a as usize].succ = self.joins[j as usize].alpha_next;
+                    } else {
+                        while p != NONE {
+                            let n = self.joins[p as usize].alpha_next;
+                            if n == j {
+                                self.joins[p as usize].alpha_next = self.joins[j as usize].alpha_next;
+                                break;
+                            }
+                            p = n;
+                        }
+                    }
+                    if self.alphas[a as usize].succ == NONE {
+                        self.clear_alpha_memory(a);
+                        self.alphas[a as usize].live = false;
+                    }
+                }
+                j = self.joins[j as usize].child;
+            }
+            self.rules[rr as usize].deleted = true;
+            rr = rule.next_disjunct;
+        }
+    }
+
+    /// Copies a token's pattern bindings for the RHS.
+    fn bind_rhs(&mut self, mut t: u16) {
+        for b in self.st.rhs_pm.iter_mut() {
+            *b = PatBinding::EMPTY;
+        }
+        while t != NONE {
+            let tk = self.tokens[t as usize];
+            if tk.kind != TokenKind::Beta {
+                break;
+            }
+            let j = self.joins[tk.owner as usize];
+            if j.kind == JoinKind::Root {
+                break;
+            }
+            if tk.am != NONE {
+                let a = self.tokens[tk.am as usize];
+                self.st.rhs_pm[j.depth as usize] = PatBinding { fact: a.fact, marks: a.marks };
+            }
+            t = tk.parent;
+        }
+    }
+
+    /// `(run [limit])`: fires activations; returns how many fired.
+    pub fn run(&mut self, limit: i64) -> Result<u32, EvalError> {
+        self.st.halt = false;
+        let mut fired: u32 = 0;
+        let scratch_mark = self.st.scratch_top;
+        while limit < 0 || (fired as i64) < limit {
+            let (rule, token) = match self.pop_activation() {
+                Some(x) => x,
+                None => break,
+            };
+            fired += 1;
+            self.print_fire_line(fired, rule, token);
+            self.bind_rhs(token);
+            let saved = (self.st.firing, self.st.pm_rhs, self.st.bp, self.st.sp, self.st.current_rule);
+            self.st.firing = true;
+            self.st.pm_rhs = true;
+            self.st.current_rule = rule;
+            self.st.bp = self.st.sp;
+            let nlocals = self.rules[rule as usize].nlocals;
+            let mut r = Ok(Value::Void);
+            for _ in 0..nlocals {
+                if let Err(e) = self.push_value(Value::Void) {
+                    r = Err(e.into());
+                }
+            }
+            if r.is_ok() {
+                r = self.eval_chain(self.rules[rule as usize].rhs);
+            }
+            self.st.returning = false;
+            self.st.breaking = false;
+            (self.st.firing, self.st.pm_rhs, self.st.bp, self.st.sp, self.st.current_rule) = saved;
+            if !self.st.firing {
+                self.free_pending();
+                self.st.scratch_top = scratch_mark;
+            }
+            if let Err(e) = r {
+                if e.kind == EvalErrorKind::Exit {
+                    return Err(e);
+                }
+                self.report_rhs_error(rule, e);
+                break;
+            }
+            if self.st.halt {
+                break;
+            }
+        }
+        self.st.halt = false;
+        Ok(fired)
+    }
+
+    fn report_rhs_error(&mut self, rule: u16, e: EvalError) {
+        let mut b: TextBuf<256> = TextBuf::new();
+        let _ = writeln!(b, "[ERROR] {e}");
+        let _ = writeln!(b, "[PRCCODE4] Execution halted during the actions of defrule {}.", self.sym_text(self.rules[rule as usize].name));
+        self.write(router::WERROR, b.as_str());
+    }
+
+    /// Prints an evaluation error as CLIPS would report it at the prompt.
+    pub fn report_eval_error(&mut self, e: EvalError) {
+        let mut b: TextBuf<256> = TextBuf::new();
+        match e.kind {
+            EvalErrorKind::Arity { func } => {
+                let _ = writeln!(b, "[ARGACCES4] Function {func} called with the wrong number of arguments.");
+            }
+            EvalErrorKind::NoSuchFact(n) => {
+                let _ = writeln!(b, "[PRNTUTIL1] Unable to find fact f-{n}.");
+            }
+            _ => {
+                let _ = writeln!(b, "[ERROR] {e}");
+            }
+        }
+        self.write(router::WERROR, b.as_str());
+    }
+
+    /// Prints a load error in CLIPS's style plus the position line.
+    pub fn report_load_error(&mut self, source: &str, text: &str, e: &LoadError) {
+        let mut b: TextBuf<512> = TextBuf::new();
+        let tok = text.get(e.start as usize..e.end as usize).unwrap_or("");
+        if let Some(c) = e.capacity {
+            let _ = writeln!(b, "[MEMORY] {c}");
+        } else if let LoadDetail::Arity { func, min, max, got } = e.detail {
+            let _ = if min == max {
+                writeln!(b, "[ARGACCES4] Function {func} expected exactly {min} argument(s)")
+            } else if got < min as u16 {
+                writeln!(b, "[ARGACCES4] Function {func} expected at least {min} argument(s)")
+            } else {
+                writeln!(b, "[ARGACCES4] Function {func} expected no more than {max} argument(s)")
+            };
+        } else if e.detail == LoadDetail::MissingFunction {
+            let _ = writeln!(b, "\n[EXPRNPSR3] Missing function declaration for {tok}.");
+        } else if e.construct == "command" {
+            {
+                let _ = writeln!(b, "\n[PRNTUTIL2] Syntax Error:  Check appropriate syntax for the command.");
+            }
+        } else {
+            let _ = writeln!(b, "\n[PRNTUTIL2] Syntax Error:  Check appropriate syntax for {}.", e.construct);
+        }
+        let _ = writeln!(b, "--> {}:{}:{}: expected {}", source, e.line, e.col, e.expected);
+        self.write(router::WERROR, b.as_str());
+    }
+
+    /// Loads constructs from text (`load`): constructs before a bad one stay.
+    /// Returns the number of constructs defined.
+    pub fn load_text(&mut self, text: &str, verbose: bool) -> Result<usize, LoadError> {
+        let mut n = 0;
+        let mut p = Parser::new(self, text);
+        loop {
+            let start = p.offset();
+            match p.next_item() {
+                Ok(Item::End) => return Ok(n),
+                Ok(Item::Construct) => {
+                    n += 1;
+                    if verbose && p.cx.st.watch & watch::COMPILATIONS != 0 {
+                        let _ = start;
+                    }
+                }
+                Ok(Item::Command(_)) => {
+                    let t = p.peek();
+                    return Err(p.err(t, "a construct (load accepts constructs only)"));
+                }
+                Err(e) => return Err(e),
+            }
+        }
+    }
+
+    /// Runs commands from text as CLIPS's batch mode does: a prompt, the echoed input
+    /// lines up to a complete command, its result; the rest of that line is dropped.
+    pub fn batch_text(&mut self, text: &str, echo: bool) -> Result<(), EvalError> {
+        let mut pos = 0;
+        while pos < text.len() && !self.st.exit {
+            if echo {
+                self.write(router::STDOUT, "CLIPS> ");
+            }
+            let mut end = pos;
+            loop {
+                let line_end = match text[end..].find('\n') {
+                    Some(k) => end + k + 1,
+                    None => text.len(),
+                };
+                if echo {
+                    self.write(router::STDOUT, &text[end..line_end]);
+                }
+                end = line_end;
+                if let Some(k) = command_complete(&text[pos..end]) {
+                    self.exec_command(&text[pos..pos + k], "batch");
+                    break;
+                }
+                if end >= text.len() {
+                    break;
+                }
+            }
+            pos = end;
+        }
+        Ok(())
+    }
+
+    /// Executes one complete top-level item: defines a construct or evaluates a
+    /// command and prints its result (nothing for void).
+    pub fn exec_command(&mut self, text: &str, source: &str) {
+        let exprs_before = self.st.nexprs;
+        let cp = self.checkpoint();
+        let mut p = Parser::new(self, text);
+        let item = p.next_item();
+        match item {
+            Ok(Item::Command(e)) => {
+                let r = self.eval(e);
+                match r {
+                    Ok(v) => {
+                        if v != Value::Void {
+                            self.print_value(router::STDOUT, v, true);
+                            self.write(router::STDOUT, "\n");
+                        }
+                    }
+                    Err(err) if err.kind == EvalErrorKind::Exit => {}
+                    Err(err) => self.report_eval_error(err),
+                }
+                self.st.sp = 0;
+                self.st.bp = 0;
+                self.st.returning = false;
+                self.st.breaking = false;
+                self.st.scratch_top = 0;
+                self.drop_toplevel_multis();
+                // a plain command leaves no expressions behind
+                let now = self.checkpoint();
+                if now.nrules == cp.nrules
+                    && now.nfuncs == cp.nfuncs
+                    && now.ndeffacts == cp.ndeffacts
+                    && now.ntemplates == cp.ntemplates
+                    && now.nglobals == cp.nglobals
+                {
+                    self.st.nexprs = exprs_before;
+                }
+            }
+            Ok(_) => {}
+            Err(e) => self.report_load_error(source, text, &e),
+        }
+    }
+
+    /// Multifield values outlive a command only in facts; globals holding one are
+    /// emptied when scratch is reset (documented limitation).
+    fn drop_toplevel_multis(&mut self) {
+        for g in 0..self.st.nglobals as usize {
+            if let Value::Multi(_) = self.globals[g].value {
+                self.globals[g].value = Value::Multi(crate::value::MfSpan { start: 0, len: 0 });
+            }
+        }
+    }
+
+    /// `load-facts`: each top-level `(fact ...)` is asserted.
+    pub fn load_facts_text(&mut self, text: &str) -> Result<(), EvalError> {
+        let mut pos = 0;
+        while let Some(k) = command_complete(&text[pos..]) {
+            let chunk = &text[pos..pos + k];
+            pos += k;
+            let exprs_before = self.st.nexprs;
+            let mut p = Parser::new(self, chunk);
+            p.scope = crate::parser::Scope::Lhs;
+            if p.expect_lparen("a fact").is_err() {
+                continue;
+            }
+            let spec = match p.fact_spec() {
+                Ok(s) => s,
+                Err(_) => {
+                    self.st.nexprs = exprs_before;
+                    continue;
+                }
+            };
+            let r = self.assert_spec(spec);
+            self.st.nexprs = exprs_before;
+            r?;
+        }
+        Ok(())
+    }
+
+    /// Whether a fact slot is in use (live), for hosts.
+    pub fn fact_is_live(&self, slot: u16) -> bool {
+        self.facts[slot as usize].state == FactState::Live
+    }
+}

@@ -1,0 +1,677 @@
+//! The engine: inline storage sized by const generics, and `Core`, the non-generic view
+//! of that storage that all algorithms run on (one copy of the code for every size).
+
+use crate::builtins::BuiltinFn;
+use crate::error::{CapacityError, Pool};
+use crate::expr::{Expr, Op};
+use crate::fact::Fact;
+use crate::host::Host;
+use crate::rete::{AlphaNode, Join, PatBinding, Token, MAX_PATTERNS};
+use crate::rule::{Activation, Rule};
+use crate::symbols::{SymEntry, Symbols};
+use crate::template::{Deffacts, Deffunction, Global, SlotDef, Template};
+use crate::value::{SymId, Value, NONE};
+
+/// A host-registered function.
+#[derive(Clone, Copy)]
+pub struct ExternalEntry {
+    pub name: SymId,
+    pub min: u8,
+    /// `u8::MAX`: no upper bound.
+    pub max: u8,
+    pub f: Option<BuiltinFn>,
+}
+
+impl ExternalEntry {
+    pub const EMPTY: ExternalEntry = ExternalEntry { name: 0, min: 0, max: 0, f: None };
+}
+
+/// Watch flags.
+pub mod watch {
+    pub const FACTS: u8 = 1;
+    pub const RULES: u8 = 2;
+    pub const ACTIVATIONS: u8 = 4;
+    pub const COMPILATIONS: u8 = 8;
+    pub const STATISTICS: u8 = 16;
+}
+
+/// High-water marks (entries in use at most) of every pool.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Stats {
+    pub used: [u32; 18],
+    pub capacity: [u32; 18],
+}
+
+impl Stats {
+    pub const fn new() -> Stats {
+        Stats { used: [0; 18], capacity: [0; 18] }
+    }
+    pub fn get(&self, pool: Pool) -> (u32, u32) {
+        (self.used[pool as usize], self.capacity[pool as usize])
+    }
+}
+
+/// Marks of the append-only pools, to undo a construct that failed halfway.
+#[derive(Clone, Copy, Debug)]
+pub struct Checkpoint {
+    pub nsyms: u16,
+    pub sym_bytes: u16,
+    pub ntemplates: u16,
+    pub nslots: u16,
+    pub nrules: u16,
+    pub nalpha: u16,
+    pub njoins: u16,
+    pub nexprs: u16,
+    pub nfuncs: u16,
+    pub nglobals: u16,
+    pub ndeffacts: u16,
+}
+
+/// Scalar engine state (counters, list heads, flags).
+pub struct State {
+    pub nsyms: u16,
+    pub sym_bytes: u16,
+    pub ntemplates: u16,
+    pub nslots: u16,
+    pub nrules: u16,
+    pub nalpha: u16,
+    pub njoins: u16,
+    pub nexprs: u16,
+    pub nfuncs: u16,
+    pub nglobals: u16,
+    pub ndeffacts: u16,
+    pub nexternals: u16,
+    /// Symbols to keep across `clear` (fixed ones and external function names).
+    pub ext_syms: u16,
+    pub fact_free: u16,
+    pub token_free: u16,
+    pub act_free: u16,
+    pub facts_used: u16,
+    pub tokens_used: u16,
+    pub acts_used: u16,
+    /// Top of the fact value arena.
+    pub values_top: u16,
+    /// Live facts in creation (= number) order.
+    pub fact_head: u16,
+    pub fact_tail: u16,
+    /// Facts retracted during the current firing, freed when it ends.
+    pub pending: u16,
+    pub next_fact_num: u32,
+    pub agenda_head: u16,
+    pub act_seq: u32,
+    /// Evaluation stack pointer and current frame base.
+    pub sp: u16,
+    pub bp: u16,
+    pub scratch_top: u16,
+    pub watch: u8,
+    pub halt: bool,
+    pub exit: bool,
+    /// `return` / `break` unwinding in progress.
+    pub returning: bool,
+    pub breaking: bool,
+    pub return_value: Value,
+    pub firing: bool,
+    pub eval_depth: u16,
+    /// Template of `(initial-fact)`.
+    pub initial_tmpl: u16,
+    /// Pattern bindings for network tests (`lhs`) and the firing rule (`rhs`).
+    pub lhs_pm: [PatBinding; MAX_PATTERNS],
+    pub rhs_pm: [PatBinding; MAX_PATTERNS],
+    pub this_pm: PatBinding,
+    pub pm_rhs: bool,
+    /// Rule being fired (for messages), NONE outside a firing.
+    pub current_rule: u16,
+    pub hw: Stats,
+    /// Random generator state (`seed`/`random`).
+    pub rng: u64,
+    pub rng_glibc: [i32; 34],
+    pub rng_pos: u8,
+    pub rng_seeded: bool,
+}
+
+impl State {
+    pub const fn new() -> State {
+        State {
+            nsyms: 0,
+            sym_bytes: 0,
+            ntemplates: 0,
+            nslots: 0,
+            nrules: 0,
+            nalpha: 0,
+            njoins: 0,
+            nexprs: 0,
+            nfuncs: 0,
+            nglobals: 0,
+            ndeffacts: 0,
+            nexternals: 0,
+            ext_syms: 0,
+            fact_free: NONE,
+            token_free: NONE,
+            act_free: NONE,
+            facts_used: 0,
+            tokens_used: 0,
+            acts_used: 0,
+            values_top: 0,
+            fact_head: NONE,
+            fact_tail: NONE,
+            pending: NONE,
+            next_fact_num: 0,
+            agenda_head: NONE,
+            act_seq: 0,
+            sp: 0,
+            bp: 0,
+            scratch_top: 0,
+            watch: 0,
+            halt: false,
+            exit: false,
+            returning: false,
+            breaking: false,
+            return_value: Value::Void,
+            firing: false,
+            eval_depth: 0,
+            initial_tmpl: NONE,
+            lhs_pm: [PatBinding::EMPTY; MAX_PATTERNS],
+            rhs_pm: [PatBinding::EMPTY; MAX_PATTERNS],
+            this_pm: PatBinding::EMPTY,
+            pm_rhs: false,
+            current_rule: NONE,
+            hw: Stats::new(),
+            rng: 1,
+            rng_glibc: [0; 34],
+            rng_pos: 0,
+            rng_seeded: false,
+        }
+    }
+}
+
+impl Default for State {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// The CLIPS engine. Every pool is an inline array sized by a const generic, so an
+/// engine can be a `static` and its size is known at compile time.
+pub struct Engine<
+    const FACTS: usize,
+    const VALUES: usize,
+    const SYMBOLS: usize,
+    const SYMBYTES: usize,
+    const TEMPLATES: usize,
+    const SLOTS: usize,
+    const RULES: usize,
+    const ALPHA: usize,
+    const JOINS: usize,
+    const TOKENS: usize,
+    const ACTS: usize,
+    const FUNCS: usize,
+    const GLOBALS: usize,
+    const EXPRS: usize,
+    const STACK: usize,
+    const SCRATCH: usize,
+    const DEFFACTS: usize,
+    const EXTERNALS: usize,
+> {
+    pub(crate) st: State,
+    facts: [Fact; FACTS],
+    fact_buckets: [u16; FACTS],
+    values: [Value; VALUES],
+    sym_entries: [SymEntry; SYMBOLS],
+    sym_buckets: [u16; SYMBOLS],
+    sym_bytes: [u8; SYMBYTES],
+    templates: [Template; TEMPLATES],
+    slots: [SlotDef; SLOTS],
+    rules: [Rule; RULES],
+    alphas: [AlphaNode; ALPHA],
+    joins: [Join; JOINS],
+    tokens: [Token; TOKENS],
+    acts: [Activation; ACTS],
+    funcs: [Deffunction; FUNCS],
+    globals: [Global; GLOBALS],
+    exprs: [Expr; EXPRS],
+    stack: [Value; STACK],
+    scratch: [Value; SCRATCH],
+    deffacts: [Deffacts; DEFFACTS],
+    externals: [ExternalEntry; EXTERNALS],
+    started: bool,
+}
+
+/// Host defaults: roomy enough for the differential suite and the benchmarks.
+pub type DefaultEngine = Engine<
+    4096,  // facts
+    32768, // fact values
+    4096,  // symbols
+    49152, // symbol bytes
+    256,   // templates
+    1024,  // slot definitions
+    512,   // rules
+    1024,  // alpha nodes
+    2048,  // joins
+    16384, // tokens
+    8192,  // activations
+    256,   // deffunctions
+    128,   // globals
+    32768, // expression nodes
+    1024,  // evaluation stack
+    4096,  // multifield scratch
+    64,    // deffacts
+    32,    // external functions
+>;
+
+/// Small capacities for unit tests (fits a thread stack).
+pub type SmallEngine =
+    Engine<128, 1024, 256, 4096, 16, 64, 32, 64, 128, 512, 256, 16, 16, 2048, 128, 256, 8, 8>;
+
+/// The non-generic view every algorithm works on.
+pub struct Core<'a> {
+    pub st: &'a mut State,
+    pub host: &'a mut dyn Host,
+    pub facts: &'a mut [Fact],
+    pub fact_buckets: &'a mut [u16],
+    pub values: &'a mut [Value],
+    pub sym_entries: &'a mut [SymEntry],
+    pub sym_buckets: &'a mut [u16],
+    pub sym_bytes: &'a mut [u8],
+    pub templates: &'a mut [Template],
+    pub slots: &'a mut [SlotDef],
+    pub rules: &'a mut [Rule],
+    pub alphas: &'a mut [AlphaNode],
+    pub joins: &'a mut [Join],
+    pub tokens: &'a mut [Token],
+    pub acts: &'a mut [Activation],
+    pub funcs: &'a mut [Deffunction],
+    pub globals: &'a mut [Global],
+    pub exprs: &'a mut [Expr],
+    pub stack: &'a mut [Value],
+    pub scratch: &'a mut [Value],
+    pub deffacts: &'a mut [Deffacts],
+    pub externals: &'a mut [ExternalEntry],
+}
+
+impl<
+        const FACTS: usize,
+        const VALUES: usize,
+        const SYMBOLS: usize,
+        const SYMBYTES: usize,
+        const TEMPLATES: usize,
+        const SLOTS: usize,
+        const RULES: usize,
+        const ALPHA: usize,
+        const JOINS: usize,
+        const TOKENS: usize,
+        const ACTS: usize,
+        const FUNCS: usize,
+        const GLOBALS: usize,
+        const EXPRS: usize,
+        const STACK: usize,
+        const SCRATCH: usize,
+        const DEFFACTS: usize,
+        const EXTERNALS: usize,
+    >
+    Engine<
+        FACTS,
+        VALUES,
+        SYMBOLS,
+        SYMBYTES,
+        TEMPLATES,
+        SLOTS,
+        RULES,
+        ALPHA,
+        JOINS,
+        TOKENS,
+        ACTS,
+        FUNCS,
+        GLOBALS,
+        EXPRS,
+        STACK,
+        SCRATCH,
+        DEFFACTS,
+        EXTERNALS,
+    >
+{
+    /// An empty engine; `const` so it can initialise a `static`. The first API call
+    /// performs CLIPS's start-up (`(initial-fact)` asserted as f-0).
+    pub const fn new() -> Self {
+        Engine {
+            st: State::new(),
+            facts: [Fact::EMPTY; FACTS],
+            fact_buckets: [NONE; FACTS],
+            values: [Value::Void; VALUES],
+            sym_entries: [SymEntry::EMPTY; SYMBOLS],
+            sym_buckets: [NONE; SYMBOLS],
+            sym_bytes: [0; SYMBYTES],
+            templates: [Template::EMPTY; TEMPLATES],
+            slots: [SlotDef::EMPTY; SLOTS],
+            rules: [Rule::EMPTY; RULES],
+            alphas: [AlphaNode::EMPTY; ALPHA],
+            joins: [Join::EMPTY; JOINS],
+            tokens: [Token::EMPTY; TOKENS],
+            acts: [Activation::EMPTY; ACTS],
+            funcs: [Deffunction::EMPTY; FUNCS],
+            globals: [Global::EMPTY; GLOBALS],
+            exprs: [Expr::EMPTY; EXPRS],
+            stack: [Value::Void; STACK],
+            scratch: [Value::Void; SCRATCH],
+            deffacts: [Deffacts::EMPTY; DEFFACTS],
+            externals: [ExternalEntry::EMPTY; EXTERNALS],
+            started: false,
+        }
+    }
+
+    pub(crate) fn fact_at(&self, f: u16) -> Fact {
+        self.facts[f as usize]
+    }
+    pub(crate) fn template_at(&self, t: u16) -> Template {
+        self.templates[t as usize]
+    }
+    pub(crate) fn slot_at(&self, s: u16) -> SlotDef {
+        self.slots[s as usize]
+    }
+    pub(crate) fn value_at(&self, c: usize) -> Value {
+        self.values[c]
+    }
+    pub(crate) fn act_at(&self, a: u16) -> Activation {
+        self.acts[a as usize]
+    }
+    pub(crate) fn sym_str(&self, id: SymId) -> &str {
+        let e = self.sym_entries[id as usize];
+        core::str::from_utf8(&self.sym_bytes[e.start as usize..(e.start + e.len) as usize]).unwrap_or("")
+    }
+
+    /// The non-generic view of this engine, bound to `host` for output.
+    pub fn core<'a>(&'a mut self, host: &'a mut dyn Host) -> Core<'a> {
+        let mut core = Core {
+            st: &mut self.st,
+            host,
+            facts: &mut self.facts,
+            fact_buckets: &mut self.fact_buckets,
+            values: &mut self.values,
+            sym_entries: &mut self.sym_entries,
+            sym_buckets: &mut self.sym_buckets,
+            sym_bytes: &mut self.sym_bytes,
+            templates: &mut self.templates,
+            slots: &mut self.slots,
+            rules: &mut self.rules,
+            alphas: &mut self.alphas,
+            joins: &mut self.joins,
+            tokens: &mut self.tokens,
+            acts: &mut self.acts,
+            funcs: &mut self.funcs,
+            globals: &mut self.globals,
+            exprs: &mut self.exprs,
+            stack: &mut self.stack,
+            scratch: &mut self.scratch,
+            deffacts: &mut self.deffacts,
+            externals: &mut self.externals,
+        };
+        if !self.started {
+            self.started = true;
+            // Start-up as CLIPS: an empty environment holding (initial-fact) as f-0.
+            // Only fails if the pools are too small for one fact; then the first
+            // assert reports the capacity error instead.
+            let _ = core.startup();
+        }
+        core
+    }
+}
+
+impl<
+        const FACTS: usize,
+        const VALUES: usize,
+        const SYMBOLS: usize,
+        const SYMBYTES: usize,
+        const TEMPLATES: usize,
+        const SLOTS: usize,
+        const RULES: usize,
+        const ALPHA: usize,
+        const JOINS: usize,
+        const TOKENS: usize,
+        const ACTS: usize,
+        const FUNCS: usize,
+        const GLOBALS: usize,
+        const EXPRS: usize,
+        const STACK: usize,
+        const SCRATCH: usize,
+        const DEFFACTS: usize,
+        const EXTERNALS: usize,
+    > Default
+    for Engine<
+        FACTS,
+        VALUES,
+        SYMBOLS,
+        SYMBYTES,
+        TEMPLATES,
+        SLOTS,
+        RULES,
+        ALPHA,
+        JOINS,
+        TOKENS,
+        ACTS,
+        FUNCS,
+        GLOBALS,
+        EXPRS,
+        STACK,
+        SCRATCH,
+        DEFFACTS,
+        EXTERNALS,
+    >
+{
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+pub(crate) fn cap(pool: Pool, capacity: usize) -> CapacityError {
+    CapacityError { pool, capacity: capacity as u32 }
+}
+
+impl Core<'_> {
+    pub fn syms(&mut self) -> Symbols<'_> {
+        Symbols {
+            entries: self.sym_entries,
+            buckets: self.sym_buckets,
+            bytes: self.sym_bytes,
+            count: &mut self.st.nsyms,
+            bytes_used: &mut self.st.sym_bytes,
+        }
+    }
+
+    /// Text of a symbol or string.
+    pub fn sym_text(&self, id: SymId) -> &str {
+        let e = self.sym_entries[id as usize];
+        core::str::from_utf8(&self.sym_bytes[e.start as usize..(e.start + e.len) as usize]).unwrap_or("")
+    }
+
+    pub fn intern(&mut self, s: &str) -> Result<SymId, CapacityError> {
+        let r = self.syms().intern(s);
+        self.note_hw(Pool::Symbols, self.st.nsyms as usize);
+        self.note_hw(Pool::SymbolBytes, self.st.sym_bytes as usize);
+        r
+    }
+
+    pub fn find_sym(&mut self, s: &str) -> Option<SymId> {
+        self.syms().find(s)
+    }
+
+    pub fn note_hw(&mut self, pool: Pool, used: usize) {
+        let i = pool as usize;
+        if used as u32 > self.st.hw.used[i] {
+            self.st.hw.used[i] = used as u32;
+        }
+    }
+
+    /// Appends an expression node.
+    pub fn push_expr(&mut self, e: Expr) -> Result<u16, CapacityError> {
+        let n = self.st.nexprs as usize;
+        if n >= self.exprs.len() || n >= NONE as usize {
+            return Err(cap(Pool::Exprs, self.exprs.len()));
+        }
+        self.exprs[n] = e;
+        self.st.nexprs += 1;
+        self.note_hw(Pool::Exprs, n + 1);
+        Ok(n as u16)
+    }
+
+    /// Appends a constant node for `v` (atoms only).
+    pub fn push_const(&mut self, v: Value) -> Result<u16, CapacityError> {
+        match v {
+            Value::Int(i) if (i16::MIN as i64..=i16::MAX as i64).contains(&i) => {
+                let (h, t) = Expr::split_bits(Op::Int, i as u64);
+                let id = self.push_expr(h)?;
+                self.push_expr(t)?;
+                Ok(id)
+            }
+            Value::Int(i) => {
+                let (h, t) = Expr::split_bits(Op::Int, i as u64);
+                let id = self.push_expr(h)?;
+                self.push_expr(t)?;
+                Ok(id)
+            }
+            Value::Float(f) => {
+                let (h, t) = Expr::split_bits(Op::Float, f.to_bits());
+                let id = self.push_expr(h)?;
+                self.push_expr(t)?;
+                Ok(id)
+            }
+            Value::Sym(s) => self.push_expr(Expr::new(Op::Sym, 0, s)),
+            Value::Str(s) => self.push_expr(Expr::new(Op::Str, 0, s)),
+            _ => self.push_expr(Expr::new(Op::Sym, 0, 0)),
+        }
+    }
+
+    /// Value of a constant node (Int/Float/Sym/Str).
+    pub fn const_value(&self, e: u16) -> Value {
+        let x = self.exprs[e as usize];
+        match x.op {
+            Op::Int => Value::Int(Expr::join_bits(x, self.exprs[e as usize + 1]) as i64),
+            Op::Float => Value::Float(f64::from_bits(Expr::join_bits(x, self.exprs[e as usize + 1]))),
+            Op::Sym => Value::Sym(x.data),
+            Op::Str => Value::Str(x.data),
+            _ => Value::Void,
+        }
+    }
+
+    /// Links `child` as the last child of `parent`.
+    pub fn append_child(&mut self, parent: u16, child: u16) {
+        let mut c = self.exprs[parent as usize].first;
+        if c == NONE {
+            self.exprs[parent as usize].first = child;
+            return;
+        }
+        while self.exprs[c as usize].next != NONE {
+            c = self.exprs[c as usize].next;
+        }
+        self.exprs[c as usize].next = child;
+    }
+
+    pub fn checkpoint(&self) -> Checkpoint {
+        Checkpoint {
+            nsyms: self.st.nsyms,
+            sym_bytes: self.st.sym_bytes,
+            ntemplates: self.st.ntemplates,
+            nslots: self.st.nslots,
+            nrules: self.st.nrules,
+            nalpha: self.st.nalpha,
+            njoins: self.st.njoins,
+            nexprs: self.st.nexprs,
+            nfuncs: self.st.nfuncs,
+            nglobals: self.st.nglobals,
+            ndeffacts: self.st.ndeffacts,
+        }
+    }
+
+    /// Undoes every construct defined after `cp` (used when a construct fails halfway).
+    /// Tokens and activations of the removed rules are released first.
+    pub fn rollback(&mut self, cp: Checkpoint) {
+        for r in cp.nrules..self.st.nrules {
+            self.remove_rule_matches(r);
+        }
+        for a in cp.nalpha..self.st.nalpha {
+            self.clear_alpha_memory(a);
+        }
+        // unlink new joins from old alpha nodes' successor lists (new ones are at heads)
+        for a in 0..cp.nalpha.min(self.st.nalpha) {
+            while self.alphas[a as usize].succ != NONE && self.alphas[a as usize].succ >= cp.njoins {
+                let j = self.alphas[a as usize].succ;
+                self.alphas[a as usize].succ = self.joins[j as usize].alpha_next;
+            }
+        }
+        for t in 0..cp.ntemplates.min(self.st.ntemplates) {
+            while self.templates[t as usize].alpha_head != NONE && self.templates[t as usize].alpha_head >= cp.nalpha {
+                let a = self.templates[t as usize].alpha_head;
+                self.templates[t as usize].alpha_head = self.alphas[a as usize].next_in_tmpl;
+            }
+        }
+        for a in cp.nalpha..self.st.nalpha {
+            self.alphas[a as usize] = AlphaNode::EMPTY;
+        }
+        for j in cp.njoins..self.st.njoins {
+            self.joins[j as usize] = Join::EMPTY;
+        }
+        for r in cp.nrules..self.st.nrules {
+            self.rules[r as usize] = Rule::EMPTY;
+        }
+        self.st.nrules = cp.nrules;
+        self.st.nalpha = cp.nalpha;
+        self.st.njoins = cp.njoins;
+        self.st.nexprs = cp.nexprs;
+        self.st.ntemplates = cp.ntemplates;
+        self.st.nslots = cp.nslots;
+        self.st.nfuncs = cp.nfuncs;
+        self.st.nglobals = cp.nglobals;
+        self.st.ndeffacts = cp.ndeffacts;
+        self.syms().truncate(cp.nsyms, cp.sym_bytes);
+    }
+
+    /// Pushes a value on the evaluation stack.
+    pub fn push_value(&mut self, v: Value) -> Result<(), CapacityError> {
+        let sp = self.st.sp as usize;
+        if sp >= self.stack.len() {
+            return Err(cap(Pool::EvalStack, self.stack.len()));
+        }
+        self.stack[sp] = v;
+        self.st.sp += 1;
+        self.note_hw(Pool::EvalStack, sp + 1);
+        Ok(())
+    }
+
+    /// Allocates `n` cells of multifield scratch, returning the start.
+    pub fn scratch_alloc(&mut self, n: usize) -> Result<u16, CapacityError> {
+        let top = self.st.scratch_top as usize;
+        if top + n > self.scratch.len() || top + n > NONE as usize {
+            return Err(cap(Pool::Scratch, self.scratch.len()));
+        }
+        self.st.scratch_top += n as u16;
+        self.note_hw(Pool::Scratch, top + n);
+        Ok(top as u16)
+    }
+
+    /// Stats: high-water marks and capacities of every pool.
+    pub fn stats(&self) -> Stats {
+        let mut s = self.st.hw;
+        let caps = [
+            self.facts.len(),
+            self.values.len(),
+            self.sym_entries.len(),
+            self.sym_bytes.len(),
+            self.templates.len(),
+            self.slots.len(),
+            self.rules.len(),
+            self.alphas.len(),
+            self.joins.len(),
+            self.tokens.len(),
+            self.acts.len(),
+            self.funcs.len(),
+            self.globals.len(),
+            self.exprs.len(),
+            self.stack.len(),
+            self.scratch.len(),
+            self.deffacts.len(),
+            self.externals.len(),
+        ];
+        for (i, c) in caps.iter().enumerate() {
+            s.capacity[i] = *c as u32;
+        }
+        s
+    }
+}

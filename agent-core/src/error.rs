@@ -1,0 +1,241 @@
+//! Error values. Every failure is a value naming what ran out or what was wrong.
+
+use core::fmt;
+
+/// A fixed-capacity pool of the engine.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Pool {
+    Facts,
+    FactValues,
+    Symbols,
+    SymbolBytes,
+    Templates,
+    SlotDefs,
+    Rules,
+    AlphaNodes,
+    Joins,
+    Tokens,
+    Activations,
+    Functions,
+    Globals,
+    Exprs,
+    EvalStack,
+    Scratch,
+    Deffacts,
+    ExternalFns,
+}
+
+impl Pool {
+    pub const ALL: [Pool; 18] = [
+        Pool::Facts,
+        Pool::FactValues,
+        Pool::Symbols,
+        Pool::SymbolBytes,
+        Pool::Templates,
+        Pool::SlotDefs,
+        Pool::Rules,
+        Pool::AlphaNodes,
+        Pool::Joins,
+        Pool::Tokens,
+        Pool::Activations,
+        Pool::Functions,
+        Pool::Globals,
+        Pool::Exprs,
+        Pool::EvalStack,
+        Pool::Scratch,
+        Pool::Deffacts,
+        Pool::ExternalFns,
+    ];
+
+    pub const fn name(self) -> &'static str {
+        match self {
+            Pool::Facts => "facts",
+            Pool::FactValues => "fact values",
+            Pool::Symbols => "symbols",
+            Pool::SymbolBytes => "symbol bytes",
+            Pool::Templates => "templates",
+            Pool::SlotDefs => "slot definitions",
+            Pool::Rules => "rules",
+            Pool::AlphaNodes => "alpha nodes",
+            Pool::Joins => "joins",
+            Pool::Tokens => "tokens",
+            Pool::Activations => "activations",
+            Pool::Functions => "deffunctions",
+            Pool::Globals => "globals",
+            Pool::Exprs => "expression nodes",
+            Pool::EvalStack => "evaluation stack",
+            Pool::Scratch => "multifield scratch",
+            Pool::Deffacts => "deffacts",
+            Pool::ExternalFns => "external functions",
+        }
+    }
+}
+
+/// A pool ran out: which one, and how big it is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct CapacityError {
+    pub pool: Pool,
+    pub capacity: u32,
+}
+
+impl fmt::Display for CapacityError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "out of {} (capacity {})", self.pool.name(), self.capacity)
+    }
+}
+
+/// Why an evaluation failed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum EvalErrorKind {
+    Capacity(CapacityError),
+    /// A function got an argument of the wrong type; `arg` is 1-based.
+    WrongType { func: &'static str, arg: u8, expected: &'static str },
+    Arity { func: &'static str },
+    DivideByZero { func: &'static str },
+    UnboundVariable,
+    NoSuchFact(i64),
+    NoSuchFunction,
+    NoSuchTemplate,
+    NoSuchSlot,
+    BadSlotValue { reason: &'static str },
+    /// A host-registered function reported failure.
+    External,
+    /// `(halt)`/`(exit)` requested; not an error for callers of `run`.
+    Exit,
+    Other(&'static str),
+}
+
+/// An evaluation error.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct EvalError {
+    pub kind: EvalErrorKind,
+}
+
+impl EvalError {
+    pub const fn new(kind: EvalErrorKind) -> Self {
+        EvalError { kind }
+    }
+    pub const fn other(msg: &'static str) -> Self {
+        EvalError { kind: EvalErrorKind::Other(msg) }
+    }
+    pub const fn wrong_type(func: &'static str, arg: u8, expected: &'static str) -> Self {
+        EvalError { kind: EvalErrorKind::WrongType { func, arg, expected } }
+    }
+}
+
+impl From<CapacityError> for EvalError {
+    fn from(c: CapacityError) -> Self {
+        EvalError { kind: EvalErrorKind::Capacity(c) }
+    }
+}
+
+impl fmt::Display for EvalError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self.kind {
+            EvalErrorKind::Capacity(c) => write!(f, "{c}"),
+            EvalErrorKind::WrongType { func, arg, expected } => {
+                write!(f, "function {func} expected argument #{arg} to be of type {expected}")
+            }
+            EvalErrorKind::Arity { func } => write!(f, "function {func}: wrong number of arguments"),
+            EvalErrorKind::DivideByZero { func } => write!(f, "division by zero in function {func}"),
+            EvalErrorKind::UnboundVariable => write!(f, "unbound variable"),
+            EvalErrorKind::NoSuchFact(n) => write!(f, "unable to find fact f-{n}"),
+            EvalErrorKind::NoSuchFunction => write!(f, "no such function"),
+            EvalErrorKind::NoSuchTemplate => write!(f, "no such template"),
+            EvalErrorKind::NoSuchSlot => write!(f, "no such slot"),
+            EvalErrorKind::BadSlotValue { reason } => write!(f, "bad slot value: {reason}"),
+            EvalErrorKind::External => write!(f, "external function failed"),
+            EvalErrorKind::Exit => write!(f, "exit requested"),
+            EvalErrorKind::Other(m) => write!(f, "{m}"),
+        }
+    }
+}
+
+/// Where in the source a parse error happened and what the parser wanted there.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct LoadError {
+    /// 1-based line and column.
+    pub line: u32,
+    pub col: u32,
+    /// What the parser expected (e.g. "a slot name").
+    pub expected: &'static str,
+    /// The construct kind being parsed ("defrule", "deftemplate", ...), for CLIPS's message.
+    pub construct: &'static str,
+    /// Set when the error was a full pool rather than bad syntax.
+    pub capacity: Option<CapacityError>,
+    /// Byte range of the offending token in the parsed text (for quoting it).
+    pub start: u32,
+    pub end: u32,
+    /// Extra detail for CLIPS's message.
+    pub detail: LoadDetail,
+}
+
+/// Which CLIPS message a load error corresponds to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LoadDetail {
+    Syntax,
+    /// `[ARGACCES4]`: a call with the wrong number of arguments.
+    Arity { func: &'static str, min: u8, max: u8, got: u16 },
+    /// `[EXPRNPSR3]`: unknown function (its name is the offending token).
+    MissingFunction,
+}
+
+impl fmt::Display for LoadError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if let Some(c) = self.capacity {
+            write!(f, "{}:{}: {c}", self.line, self.col)
+        } else {
+            write!(f, "{}:{}: expected {}", self.line, self.col, self.expected)
+        }
+    }
+}
+
+/// Errors of engine-level operations (reset, run, assert from the host).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum EngineError {
+    Capacity(CapacityError),
+    Eval(EvalError),
+    Load(LoadError),
+    NoSuchFact(u32),
+    Duplicate,
+}
+
+impl From<CapacityError> for EngineError {
+    fn from(c: CapacityError) -> Self {
+        EngineError::Capacity(c)
+    }
+}
+impl From<EvalError> for EngineError {
+    fn from(e: EvalError) -> Self {
+        match e.kind {
+            EvalErrorKind::Capacity(c) => EngineError::Capacity(c),
+            _ => EngineError::Eval(e),
+        }
+    }
+}
+impl From<LoadError> for EngineError {
+    fn from(e: LoadError) -> Self {
+        EngineError::Load(e)
+    }
+}
+
+impl fmt::Display for EngineError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            EngineError::Capacity(c) => write!(f, "{c}"),
+            EngineError::Eval(e) => write!(f, "{e}"),
+            EngineError::Load(e) => write!(f, "{e}"),
+            EngineError::NoSuchFact(n) => write!(f, "unable to find fact f-{n}"),
+            EngineError::Duplicate => write!(f, "fact already exists"),
+        }
+    }
+}
+
+/// A file operation of the host failed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum HostIoError {
+    NotFound,
+    TooLarge,
+    Unsupported,
+    Other,
+}

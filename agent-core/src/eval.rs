@@ -1,0 +1,252 @@
+//! The expression evaluator.
+
+use crate::builtins::{self, Args, Imp, SYM_FALSE, SYM_TRUE};
+use crate::engine::Core;
+use crate::error::{EvalError, EvalErrorKind};
+use crate::expr::{loc, FnKind, Op};
+use crate::rete::{PatBinding, THIS_PATTERN};
+use crate::value::{MfSpan, Value, NONE};
+
+/// Deepest nesting of function calls (guards the Rust stack against runaway recursion).
+pub const MAX_EVAL_DEPTH: u16 = 200;
+
+impl Core<'_> {
+    /// Evaluates one expression node.
+    pub fn eval(&mut self, e: u16) -> Result<Value, EvalError> {
+        let x = self.exprs[e as usize];
+        match x.op {
+            Op::Int | Op::Float | Op::Sym | Op::Str => Ok(self.const_value(e)),
+            Op::Local => Ok(self.stack[(self.st.bp + x.data) as usize]),
+            Op::Global => Ok(self.globals[x.data as usize].value),
+            Op::PatVar => self.pattern_var(x.aux, x.data, x.first),
+            Op::Expand => self.eval(x.first),
+            Op::Eq2 => {
+                let a = self.eval(x.first)?;
+                let b = self.eval(self.exprs[x.first as usize].next)?;
+                Ok(Core::bool_value(builtins::basic::values_same(self, a, b)))
+            }
+            Op::And => {
+                let mut c = x.first;
+                while c != NONE {
+                    if !Core::is_true(self.eval(c)?) {
+                        return Ok(Value::Sym(SYM_FALSE));
+                    }
+                    c = self.exprs[c as usize].next;
+                }
+                Ok(Value::Sym(SYM_TRUE))
+            }
+            Op::Or => {
+                let mut c = x.first;
+                while c != NONE {
+                    if Core::is_true(self.eval(c)?) {
+                        return Ok(Value::Sym(SYM_TRUE));
+                    }
+                    c = self.exprs[c as usize].next;
+                }
+                Ok(Value::Sym(SYM_FALSE))
+            }
+            Op::Not => Ok(Core::bool_value(!Core::is_true(self.eval(x.first)?))),
+            Op::Call => self.call(e),
+            _ => Ok(Value::Void),
+        }
+    }
+
+    /// Evaluates a chain of actions; the value of the last one is the result.
+    /// Stops early while a `return`/`break` unwinds.
+    pub fn eval_chain(&mut self, mut e: u16) -> Result<Value, EvalError> {
+        let mut v = Value::Sym(SYM_FALSE);
+        while e != NONE {
+            v = self.eval(e)?;
+            if self.st.returning || self.st.breaking || self.st.halt_now() {
+                break;
+            }
+            e = self.exprs[e as usize].next;
+        }
+        Ok(v)
+    }
+
+    fn binding(&self, pat: u8) -> PatBinding {
+        if pat == THIS_PATTERN {
+            self.st.this_pm
+        } else if self.st.pm_rhs {
+            self.st.rhs_pm[pat as usize]
+        } else {
+            self.st.lhs_pm[pat as usize]
+        }
+    }
+
+    /// Value of an LHS variable: a field of the fact bound to pattern `pat`.
+    fn pattern_var(&mut self, pat: u8, locator: u16, desc_slot: u16) -> Result<Value, EvalError> {
+        let b = self.binding(pat);
+        if b.fact == NONE {
+            return Err(EvalError::new(EvalErrorKind::UnboundVariable));
+        }
+        if locator == loc::FACT {
+            return Ok(Value::Fact(self.fact_ref(b.fact)));
+        }
+        let slot = loc::slot(locator) as u16;
+        let elem = loc::elem(locator);
+        let (cell, mlen) = self.slot_cell(b.fact, slot);
+        let len = match mlen {
+            None => return Ok(self.values[cell]),
+            Some(l) => l as usize,
+        };
+        if elem == loc::SINGLE || desc_slot == NONE {
+            return Ok(self.copy_to_scratch(cell + 1, len)?);
+        }
+        // walk the slot's element list to find the element's offset and length
+        let ps = self.exprs[desc_slot as usize];
+        let first_mark = ps.aux as usize;
+        let (mut fixed, mut multis) = (0usize, 0usize);
+        let mut c = ps.first;
+        while c != NONE {
+            if self.exprs[c as usize].aux == 1 {
+                multis += 1;
+            } else {
+                fixed += 1;
+            }
+            c = self.exprs[c as usize].next;
+        }
+        let slack = len.saturating_sub(fixed);
+        let sum_marks: usize =
+            if multis >= 2 { b.marks[first_mark..first_mark + multis - 1].iter().map(|&m| m as usize).sum() } else { 0 };
+        let mlen_of = |mi: usize| -> usize {
+            if multis == 1 {
+                slack
+            } else if mi + 1 < multis {
+                b.marks[first_mark + mi] as usize
+            } else {
+                slack.saturating_sub(sum_marks)
+            }
+        };
+        let (mut pos, mut mi, mut i) = (0usize, 0usize, 0u8);
+        let mut c = ps.first;
+        while c != NONE {
+            let is_multi = self.exprs[c as usize].aux == 1;
+            if i == elem {
+                return if is_multi {
+                    Ok(self.copy_to_scratch(cell + 1 + pos, mlen_of(mi))?)
+                } else {
+                    Ok(self.values[cell + 1 + pos])
+                };
+            }
+            if is_multi {
+                pos += mlen_of(mi);
+                mi += 1;
+            } else {
+                pos += 1;
+            }
+            i += 1;
+            c = self.exprs[c as usize].next;
+        }
+        Err(EvalError::new(EvalErrorKind::UnboundVariable))
+    }
+
+    /// Evaluates a call's arguments onto the stack (splicing `$?x` expansions).
+    fn push_args(&mut self, mut a: u16) -> Result<Args, EvalError> {
+        let base = self.st.sp;
+        while a != NONE {
+            let v = self.eval(a)?;
+            if self.exprs[a as usize].op == Op::Expand {
+                if let Value::Multi(m) = v {
+                    for k in 0..m.len as usize {
+                        let item = self.scratch[m.start as usize + k];
+                        self.push_value(item)?;
+                    }
+                } else {
+                    self.push_value(v)?;
+                }
+            } else {
+                self.push_value(v)?;
+            }
+            a = self.exprs[a as usize].next;
+        }
+        Ok(Args { base, len: self.st.sp - base })
+    }
+
+    fn call(&mut self, e: u16) -> Result<Value, EvalError> {
+        if self.st.eval_depth >= MAX_EVAL_DEPTH {
+            return Err(EvalError::other("function calls nested too deeply"));
+        }
+        self.st.eval_depth += 1;
+        let sp = self.st.sp;
+        let r = self.call_inner(e);
+        self.st.sp = sp;
+        self.st.eval_depth -= 1;
+        r
+    }
+
+    fn call_inner(&mut self, e: u16) -> Result<Value, EvalError> {
+        let x = self.exprs[e as usize];
+        match x.aux {
+            k if k == FnKind::Builtin as u8 => {
+                let b = builtins::get(x.data);
+                match b.imp {
+                    Imp::Lazy(f) => f(self, e),
+                    Imp::Eager(f) => {
+                        let args = self.push_args(x.first)?;
+                        check_arity(b.name, b.min, b.max, args.len)?;
+                        f(self, args)
+                    }
+                }
+            }
+            k if k == FnKind::External as u8 => {
+                let ext = self.externals[x.data as usize];
+                let args = self.push_args(x.first)?;
+                check_arity("external", ext.min, ext.max, args.len)?;
+                match ext.f {
+                    Some(f) => f(self, args),
+                    None => Err(EvalError::new(EvalErrorKind::NoSuchFunction)),
+                }
+            }
+            _ => self.call_deffunction(x.data, x.first),
+        }
+    }
+
+    fn call_deffunction(&mut self, func: u16, first_arg: u16) -> Result<Value, EvalError> {
+        let df = self.funcs[func as usize];
+        let args = self.push_args(first_arg)?;
+        let n = args.len as usize;
+        let np = df.nparams as usize;
+        if n < np || (!df.rest && n > np) {
+            return Err(EvalError::new(EvalErrorKind::Arity { func: "deffunction" }));
+        }
+        if df.rest {
+            // collect the extra arguments into a multifield in the rest parameter's slot
+            let start = self.scratch_alloc(n - np)?;
+            for k in 0..n - np {
+                self.scratch[start as usize + k] = self.stack[args.base as usize + np + k];
+            }
+            self.st.sp = args.base + np as u16;
+            self.push_value(Value::Multi(MfSpan { start, len: (n - np) as u16 }))?;
+        }
+        let frame_args = np + usize::from(df.rest);
+        for _ in frame_args..df.nlocals as usize {
+            self.push_value(Value::Void)?;
+        }
+        let saved_bp = self.st.bp;
+        self.st.bp = args.base;
+        let r = self.eval_chain(df.body);
+        self.st.bp = saved_bp;
+        let v = if self.st.returning {
+            self.st.returning = false;
+            self.st.return_value
+        } else {
+            r?
+        };
+        r.map(|_| v)
+    }
+}
+
+pub(crate) fn check_arity(name: &'static str, min: u8, max: u8, n: u16) -> Result<(), EvalError> {
+    if n < min as u16 || (max != builtins::ANY && n > max as u16) {
+        return Err(EvalError::new(EvalErrorKind::Arity { func: name }));
+    }
+    Ok(())
+}
+
+impl crate::engine::State {
+    pub fn halt_now(&self) -> bool {
+        self.exit
+    }
+}

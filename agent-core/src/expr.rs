@@ -1,0 +1,109 @@
+//! Expression trees, stored as 8-byte nodes in the expression pool.
+//!
+//! A node has a first child and a next sibling, so argument lists are chains. 64-bit
+//! constants (`Int`, `Float`) keep their payload in the node right after them.
+
+use crate::value::NONE;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(u8)]
+pub enum Op {
+    /// Payload in the next node.
+    Int,
+    Float,
+    /// `data` is a symbol id.
+    Sym,
+    Str,
+    /// Function call: `aux` is a `FnKind`, `data` its index; args are children.
+    Call,
+    /// Local variable (rule RHS `bind`, deffunction parameter): `data` is the frame slot.
+    Local,
+    /// `data` is the global index.
+    Global,
+    /// LHS variable: `aux` pattern index, `data` a field locator (`loc`), `first` the
+    /// pattern's `PatSlot` node when the field is inside a multislot.
+    PatVar,
+    /// Strict equality of the two children (literal and variable constraints).
+    Eq2,
+    And,
+    Or,
+    Not,
+    /// Pattern descriptor: one constrained multislot; `data` slot index, `aux` the index
+    /// of its first segmentation mark; children are `PatElem`s.
+    PatSlot,
+    /// Pattern descriptor: one element of a multislot; `aux` 1 when multifield.
+    PatElem,
+    /// `(tmpl (slot v...))` in assert: `data` template; children are `SlotVal`s.
+    FactSpec,
+    /// `data` slot index; children are the values (several for a multislot).
+    SlotVal,
+    /// `$?x` in a function call: the child's multifield is spliced into the arguments.
+    Expand,
+    /// Second half of a 64-bit constant (never evaluated).
+    Payload,
+    /// A query variable of fact-set functions or a free node.
+    Nop,
+}
+
+/// What a `Call` node calls.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(u8)]
+pub enum FnKind {
+    Builtin = 0,
+    Deffunction = 1,
+    External = 2,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Expr {
+    pub op: Op,
+    pub aux: u8,
+    pub data: u16,
+    pub first: u16,
+    pub next: u16,
+}
+
+impl Expr {
+    pub const EMPTY: Expr = Expr { op: Op::Nop, aux: 0, data: 0, first: NONE, next: NONE };
+
+    pub const fn new(op: Op, aux: u8, data: u16) -> Expr {
+        Expr { op, aux, data, first: NONE, next: NONE }
+    }
+
+    /// Splits 64 bits between a constant's header node (low 16 bits in `data`) and
+    /// the payload node after it (upper 48 bits).
+    pub fn split_bits(op: Op, bits: u64) -> (Expr, Expr) {
+        let head = Expr::new(op, 0, bits as u16);
+        let tail = Expr {
+            op: Op::Payload,
+            aux: 0,
+            data: (bits >> 16) as u16,
+            first: (bits >> 32) as u16,
+            next: (bits >> 48) as u16,
+        };
+        (head, tail)
+    }
+
+    /// Inverse of `split_bits`.
+    pub fn join_bits(head: Expr, tail: Expr) -> u64 {
+        head.data as u64 | (tail.data as u64) << 16 | (tail.first as u64) << 32 | (tail.next as u64) << 48
+    }
+}
+
+/// A field locator inside a pattern: slot index and element index within a multislot.
+pub mod loc {
+    /// The fact address itself (`?f <- (...)`).
+    pub const FACT: u16 = 0xFFFF;
+    /// Element index for a single-field slot.
+    pub const SINGLE: u8 = 0xFF;
+
+    pub const fn new(slot: u8, elem: u8) -> u16 {
+        ((slot as u16) << 8) | elem as u16
+    }
+    pub const fn slot(l: u16) -> u8 {
+        (l >> 8) as u8
+    }
+    pub const fn elem(l: u16) -> u8 {
+        l as u8
+    }
+}

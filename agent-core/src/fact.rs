@@ -1,0 +1,403 @@
+//! Fact storage: slots in a pool, values in a compacting value arena, a hash index
+//! against duplicates, and a creation-ordered list (fact numbers only grow).
+
+use crate::value::NONE;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(u8)]
+pub enum FactState {
+    Free,
+    Live,
+    /// Retracted while a rule fires: values stay readable until the firing ends.
+    Pending,
+}
+
+#[derive(Clone, Copy, Debug)]
+pub struct Fact {
+    /// The fact index CLIPS prints as `f-N`.
+    pub num: u32,
+    pub tmpl: u16,
+    /// Cells in the value arena: single slots take one cell, a multislot a `Multi`
+    /// header cell followed by its elements.
+    pub start: u16,
+    pub len: u16,
+    /// Creation-ordered list of live facts (or free/pending list link).
+    pub next: u16,
+    pub prev: u16,
+    pub hash_next: u16,
+    /// First alpha match of this fact (chained through the tokens' `next_sib`).
+    pub first_am: u16,
+    pub state: FactState,
+}
+
+impl Fact {
+    pub const EMPTY: Fact = Fact {
+        num: 0,
+        tmpl: 0,
+        start: 0,
+        len: 0,
+        next: NONE,
+        prev: NONE,
+        hash_next: NONE,
+        first_am: NONE,
+        state: FactState::Free,
+    };
+}
+
+use crate::engine::{cap, Core};
+use crate::error::{CapacityError, EvalError, Pool};
+use crate::value::{FactRef, MfSpan, Value};
+
+fn mix(h: u32, x: u64) -> u32 {
+    let mut h = h ^ (x as u32) ^ ((x >> 32) as u32).rotate_left(13);
+    h = h.wrapping_mul(0x9E37_79B1);
+    h ^ (h >> 15)
+}
+
+pub(crate) fn value_hash(h: u32, v: Value) -> u32 {
+    match v {
+        Value::Void => mix(h, 0),
+        Value::Int(i) => mix(h ^ 1, i as u64),
+        Value::Float(f) => mix(h ^ 2, f.to_bits()),
+        Value::Sym(s) => mix(h ^ 3, s as u64),
+        Value::Str(s) => mix(h ^ 4, s as u64),
+        Value::Fact(r) => mix(h ^ 5, r.num as u64),
+        Value::Multi(m) => mix(h ^ 6, m.len as u64),
+    }
+}
+
+impl Core<'_> {
+    pub fn find_template(&self, name: SymId) -> Option<u16> {
+        (0..self.st.ntemplates).find(|&t| self.templates[t as usize].name == name)
+    }
+
+    /// The implied (ordered-fact) template for `name`, created on first use.
+    pub fn implied_template(&mut self, name: SymId) -> Result<u16, CapacityError> {
+        if let Some(t) = self.find_template(name) {
+            return Ok(t);
+        }
+        let n = self.st.ntemplates as usize;
+        if n >= self.templates.len() {
+            return Err(cap(Pool::Templates, self.templates.len()));
+        }
+        let s = self.st.nslots as usize;
+        if s >= self.slots.len() {
+            return Err(cap(Pool::SlotDefs, self.slots.len()));
+        }
+        let implied = self.intern("implied")?;
+        self.slots[s] = SlotDef { name: implied, multi: true, ..SlotDef::EMPTY };
+        self.st.nslots += 1;
+        self.templates[n] = Template { name, first_slot: s as u16, nslots: 1, implied: true, alpha_head: NONE };
+        self.st.ntemplates += 1;
+        self.note_hw(Pool::Templates, n + 1);
+        self.note_hw(Pool::SlotDefs, s + 1);
+        Ok(n as u16)
+    }
+
+    pub fn slot_def(&self, tmpl: u16, slot: u16) -> SlotDef {
+        self.slots[(self.templates[tmpl as usize].first_slot + slot) as usize]
+    }
+
+    pub fn find_slot(&self, tmpl: u16, name: SymId) -> Option<u16> {
+        let t = self.templates[tmpl as usize];
+        (0..t.nslots).find(|&i| self.slots[(t.first_slot + i) as usize].name == name)
+    }
+
+    /// Cell index of slot `slot` of a fact, and for a multislot its element count.
+    pub fn slot_cell(&self, fact: u16, slot: u16) -> (usize, Option<u16>) {
+        let f = self.facts[fact as usize];
+        let mut c = f.start as usize;
+        for _ in 0..slot {
+            match self.values[c] {
+                Value::Multi(m) => c += 1 + m.len as usize,
+                _ => c += 1,
+            }
+        }
+        match self.values[c] {
+            Value::Multi(m) => (c, Some(m.len)),
+            _ => (c, None),
+        }
+    }
+
+    /// Slot value of a fact as an evaluation value (multislots are copied to scratch).
+    pub fn fact_slot_value(&mut self, fact: u16, slot: u16) -> Result<Value, CapacityError> {
+        let (c, multi) = self.slot_cell(fact, slot);
+        match multi {
+            None => Ok(self.values[c]),
+            Some(n) => self.copy_to_scratch(c + 1, n as usize),
+        }
+    }
+
+    /// Copies `n` fact cells starting at `cell` into scratch as a multifield.
+    pub fn copy_to_scratch(&mut self, cell: usize, n: usize) -> Result<Value, CapacityError> {
+        let s = self.scratch_alloc(n)?;
+        for i in 0..n {
+            self.scratch[s as usize + i] = self.values[cell + i];
+        }
+        Ok(Value::Multi(MfSpan { start: s, len: n as u16 }))
+    }
+
+    pub fn fact_ref(&self, slot: u16) -> FactRef {
+        FactRef { slot, num: self.facts[slot as usize].num }
+    }
+
+    /// A fact address is usable if its slot still holds that fact (live or pending).
+    pub fn fact_alive(&self, r: FactRef) -> bool {
+        let f = &self.facts[r.slot as usize];
+        (r.slot as usize) < self.facts.len() && f.num == r.num && f.state == FactState::Live
+    }
+
+    /// Fact slot holding live fact number `num`.
+    pub fn find_fact(&self, num: u32) -> Option<u16> {
+        let mut f = self.st.fact_head;
+        while f != NONE {
+            let x = &self.facts[f as usize];
+            if x.num == num {
+                return Some(f);
+            }
+            if x.num > num {
+                return None;
+            }
+            f = x.next;
+        }
+        None
+    }
+
+    fn cells_hash(&self, tmpl: u16, start: usize, len: usize) -> u32 {
+        let mut h = mix(0x1234_5678, tmpl as u64);
+        for i in 0..len {
+            h = value_hash(h, self.values[start + i]);
+        }
+        h
+    }
+
+    fn cells_equal(&self, a: usize, b: usize, len: usize) -> bool {
+        (0..len).all(|i| self.values[a + i].same(self.values[b + i]))
+    }
+
+    /// Moves live and pending facts' values down to close gaps.
+    fn compact_values(&mut self) {
+        let mut dst = 0usize;
+        let mut live = self.st.fact_head;
+        loop {
+            // the pending fact with the lowest start below the next live one goes first
+            let live_start = if live == NONE { usize::MAX } else { self.facts[live as usize].start as usize };
+            let mut best = NONE;
+            let mut p = self.st.pending;
+            while p != NONE {
+                let s = self.facts[p as usize].start as usize;
+                if s >= dst && s < live_start && (best == NONE || s < self.facts[best as usize].start as usize) {
+                    best = p;
+                }
+                p = self.facts[p as usize].next;
+            }
+            let f = if best != NONE {
+                best
+            } else if live != NONE {
+                let f = live;
+                live = self.facts[live as usize].next;
+                f
+            } else {
+                break;
+            };
+            let (s, l) = (self.facts[f as usize].start as usize, self.facts[f as usize].len as usize);
+            if s != dst {
+                self.values.copy_within(s..s + l, dst);
+                self.facts[f as usize].start = dst as u16;
+            }
+            dst += l;
+        }
+        self.st.values_top = dst as u16;
+    }
+
+    /// Reserves `n` cells at the top of the value arena (compacting if needed).
+    fn reserve_cells(&mut self, n: usize) -> Result<usize, CapacityError> {
+        let cap_v = self.values.len().min(NONE as usize);
+        if self.st.values_top as usize + n > cap_v {
+            self.compact_values();
+            if self.st.values_top as usize + n > cap_v {
+                return Err(cap(Pool::FactValues, self.values.len()));
+            }
+        }
+        Ok(self.st.values_top as usize)
+    }
+
+    /// Creates a fact from per-slot values on the evaluation stack at `base` (a
+    /// multislot's value is a scratch `Multi`). Returns `None` for a duplicate.
+    /// Runs the network; on a full pool the fact is removed again and the error returned.
+    pub fn assert_slots(&mut self, tmpl: u16, base: usize) -> Result<Option<u16>, EvalError> {
+        let t = self.templates[tmpl as usize];
+        let mut need = 0usize;
+        for i in 0..t.nslots as usize {
+            need += match self.stack[base + i] {
+                Value::Multi(m) => 1 + m.len as usize,
+                _ => 1,
+            };
+        }
+        if self.st.fact_free == NONE && self.st.facts_used as usize >= self.facts.len().min(NONE as usize - 1) {
+            return Err(cap(Pool::Facts, self.facts.len()).into());
+        }
+        let start = self.reserve_cells(need)?;
+        let mut c = start;
+        for i in 0..t.nslots as usize {
+            match self.stack[base + i] {
+                Value::Multi(m) => {
+                    self.values[c] = Value::Multi(MfSpan { start: 0, len: m.len });
+                    c += 1;
+                    for k in 0..m.len as usize {
+                        self.values[c] = self.scratch[m.start as usize + k];
+                        c += 1;
+                    }
+                }
+                v => {
+                    self.values[c] = v;
+                    c += 1;
+                }
+            }
+        }
+        let h = self.cells_hash(tmpl, start, need);
+        let bucket = h as usize % self.fact_buckets.len();
+        let mut d = self.fact_buckets[bucket];
+        while d != NONE {
+            let df = self.facts[d as usize];
+            if df.tmpl == tmpl && df.len as usize == need && self.cells_equal(df.start as usize, start, need) {
+                return Ok(None);
+            }
+            d = df.hash_next;
+        }
+        // allocate the fact slot
+        let slot = if self.st.fact_free != NONE {
+            let s = self.st.fact_free;
+            self.st.fact_free = self.facts[s as usize].next;
+            s
+        } else {
+            self.st.facts_used += 1;
+            self.st.facts_used - 1
+        };
+        self.st.values_top = (start + need) as u16;
+        let num = self.st.next_fact_num;
+        self.st.next_fact_num += 1;
+        self.facts[slot as usize] = Fact {
+            num,
+            tmpl,
+            start: start as u16,
+            len: need as u16,
+            next: NONE,
+            prev: self.st.fact_tail,
+            hash_next: self.fact_buckets[bucket],
+            first_am: NONE,
+            state: FactState::Live,
+        };
+        self.fact_buckets[bucket] = slot;
+        if self.st.fact_tail != NONE {
+            self.facts[self.st.fact_tail as usize].next = slot;
+        } else {
+            self.st.fact_head = slot;
+        }
+        self.st.fact_tail = slot;
+        let live = self.count_live_facts_hint();
+        self.note_hw(Pool::Facts, live);
+        self.note_hw(Pool::FactValues, self.st.values_top as usize);
+        if self.st.watch & crate::engine::watch::FACTS != 0 {
+            self.print_fact_line("==> ", slot);
+        }
+        if let Err(e) = self.network_assert(slot) {
+            // Undo: remove what the fact built, then the fact itself, silently.
+            self.network_retract(slot);
+            self.unlink_fact(slot);
+            self.free_fact_slot(slot);
+            self.st.next_fact_num = num;
+            self.st.values_top = start as u16;
+            return Err(e.into());
+        }
+        Ok(Some(slot))
+    }
+
+    fn count_live_facts_hint(&self) -> usize {
+        // facts_used is the pool high mark; good enough as a high-water figure
+        self.st.facts_used as usize
+    }
+
+    fn unlink_fact(&mut self, slot: u16) {
+        let f = self.facts[slot as usize];
+        if f.prev != NONE {
+            self.facts[f.prev as usize].next = f.next;
+        } else {
+            self.st.fact_head = f.next;
+        }
+        if f.next != NONE {
+            self.facts[f.next as usize].prev = f.prev;
+        } else {
+            self.st.fact_tail = f.prev;
+        }
+        // hash chain
+        let h = self.cells_hash(f.tmpl, f.start as usize, f.len as usize);
+        let bucket = h as usize % self.fact_buckets.len();
+        let mut p = self.fact_buckets[bucket];
+        if p == slot {
+            self.fact_buckets[bucket] = f.hash_next;
+        } else {
+            while p != NONE {
+                let n = self.facts[p as usize].hash_next;
+                if n == slot {
+                    self.facts[p as usize].hash_next = f.hash_next;
+                    break;
+                }
+                p = n;
+            }
+        }
+    }
+
+    fn free_fact_slot(&mut self, slot: u16) {
+        self.facts[slot as usize].state = FactState::Free;
+        self.facts[slot as usize].next = self.st.fact_free;
+        self.st.fact_free = slot;
+    }
+
+    /// Retracts a live fact: watch line, network removal, then the slot is freed (or
+    /// kept readable until the current firing ends).
+    pub fn retract_fact(&mut self, slot: u16) {
+        if self.st.watch & crate::engine::watch::FACTS != 0 {
+            self.print_fact_line("<== ", slot);
+        }
+        self.network_retract(slot);
+        self.unlink_fact(slot);
+        if self.st.firing {
+            self.facts[slot as usize].state = FactState::Pending;
+            self.facts[slot as usize].next = self.st.pending;
+            self.st.pending = slot;
+        } else {
+            self.release_fact_values(slot);
+            self.free_fact_slot(slot);
+        }
+    }
+
+    fn release_fact_values(&mut self, slot: u16) {
+        let f = self.facts[slot as usize];
+        if f.start as usize + f.len as usize == self.st.values_top as usize {
+            self.st.values_top = f.start;
+        }
+    }
+
+    /// Frees facts retracted during a firing.
+    pub fn free_pending(&mut self) {
+        while self.st.pending != NONE {
+            let s = self.st.pending;
+            self.st.pending = self.facts[s as usize].next;
+            self.free_fact_slot(s);
+        }
+    }
+
+    pub fn live_fact_count(&self) -> usize {
+        let mut n = 0;
+        let mut f = self.st.fact_head;
+        while f != NONE {
+            n += 1;
+            f = self.facts[f as usize].next;
+        }
+        n
+    }
+}
+
+use crate::template::{SlotDef, Template};
+use crate::value::SymId;

@@ -1,0 +1,56 @@
+//! The engine's window to the outside: output routers, files, time.
+
+use crate::error::HostIoError;
+
+/// Router names the engine writes to.
+pub mod router {
+    /// `printout t`.
+    pub const STDOUT: &str = "stdout";
+    /// Watch traces (`==> f-1 ...`, `FIRE ...`).
+    pub const WTRACE: &str = "wtrace";
+    /// Listings (`facts`, `agenda`) and command results.
+    pub const WDISPLAY: &str = "wdisplay";
+    /// Error messages.
+    pub const WERROR: &str = "werror";
+    /// Warnings.
+    pub const WWARNING: &str = "wwarning";
+}
+
+/// Everything the engine needs from its environment. All methods but `write_str` have
+/// defaults so a minimal host is one function.
+pub trait Host {
+    /// Output to a router (see `router`); `printout` to other logical names passes them
+    /// through unchanged.
+    fn write_str(&mut self, router: &str, text: &str);
+    /// Reads a whole file into `buf`, returning its length.
+    fn read_file(&mut self, _path: &str, _buf: &mut [u8]) -> Result<usize, HostIoError> {
+        Err(HostIoError::Unsupported)
+    }
+    fn write_file(&mut self, _path: &str, _data: &[u8], _append: bool) -> Result<(), HostIoError> {
+        Err(HostIoError::Unsupported)
+    }
+    /// Seconds, for `(time)`.
+    fn time(&mut self) -> f64 {
+        0.0
+    }
+}
+
+/// A host that drops all output.
+pub struct NullHost;
+
+impl Host for NullHost {
+    fn write_str(&mut self, _router: &str, _text: &str) {}
+}
+
+/// Adapter so `core::fmt::Write` can target a router.
+pub struct RouterWriter<'h> {
+    pub host: &'h mut dyn Host,
+    pub router: &'static str,
+}
+
+impl core::fmt::Write for RouterWriter<'_> {
+    fn write_str(&mut self, s: &str) -> core::fmt::Result {
+        self.host.write_str(self.router, s);
+        Ok(())
+    }
+}

@@ -1,0 +1,290 @@
+//! Tokenizer for CLIPS source text, tracking 1-based line and column.
+
+/// A token kind; texts borrow from the source.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Tok<'a> {
+    LParen,
+    RParen,
+    Symbol(&'a str),
+    /// String contents without quotes, escapes still in place.
+    Str(&'a str),
+    Int(i64),
+    Float(f64),
+    /// `?name`
+    SfVar(&'a str),
+    /// `$?name`
+    MfVar(&'a str),
+    /// `?*name*`
+    Global(&'a str),
+    /// `?`
+    SfWild,
+    /// `$?`
+    MfWild,
+    Amp,
+    Bar,
+    Tilde,
+    Eof,
+    /// An unterminated string or other unreadable input.
+    Bad,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Token<'a> {
+    pub tok: Tok<'a>,
+    pub line: u32,
+    pub col: u32,
+    /// Byte offsets of the token in the source.
+    pub start: usize,
+    pub end: usize,
+}
+
+#[derive(Clone)]
+pub struct Lexer<'a> {
+    src: &'a str,
+    pos: usize,
+    line: u32,
+    col: u32,
+}
+
+fn is_delim(b: u8) -> bool {
+    matches!(b, b' ' | b'\t' | b'\r' | b'\n' | b'\x0c' | b'(' | b')' | b'"' | b';' | b'&' | b'|' | b'~')
+}
+
+impl<'a> Lexer<'a> {
+    pub fn new(src: &'a str) -> Self {
+        Lexer { src, pos: 0, line: 1, col: 1 }
+    }
+
+    pub fn source(&self) -> &'a str {
+        self.src
+    }
+
+    pub fn pos(&self) -> usize {
+        self.pos
+    }
+
+    fn bump(&mut self) -> Option<u8> {
+        let b = *self.src.as_bytes().get(self.pos)?;
+        self.pos += 1;
+        if b == b'\n' {
+            self.line += 1;
+            self.col = 1;
+        } else if (b & 0xC0) != 0x80 {
+            self.col += 1;
+        }
+        Some(b)
+    }
+
+    fn peek(&self) -> Option<u8> {
+        self.src.as_bytes().get(self.pos).copied()
+    }
+
+    fn peek2(&self) -> Option<u8> {
+        self.src.as_bytes().get(self.pos + 1).copied()
+    }
+
+    fn skip_space(&mut self) {
+        while let Some(b) = self.peek() {
+            if b == b';' {
+                while let Some(c) = self.peek() {
+                    if c == b'\n' {
+                        break;
+                    }
+                    self.bump();
+                }
+            } else if b.is_ascii_whitespace() {
+                self.bump();
+            } else {
+                break;
+            }
+        }
+    }
+
+    fn word(&mut self) -> &'a str {
+        let s = self.pos;
+        while let Some(b) = self.peek() {
+            if is_delim(b) {
+                break;
+            }
+            self.bump();
+        }
+        &self.src[s..self.pos]
+    }
+
+    pub fn next_token(&mut self) -> Token<'a> {
+        self.skip_space();
+        let (line, col, start) = (self.line, self.col, self.pos);
+        let tok = match self.peek() {
+            None => Tok::Eof,
+            Some(b'(') => {
+                self.bump();
+                Tok::LParen
+            }
+            Some(b')') => {
+                self.bump();
+                Tok::RParen
+            }
+            Some(b'&') => {
+                self.bump();
+                Tok::Amp
+            }
+            Some(b'|') => {
+                self.bump();
+                Tok::Bar
+            }
+            Some(b'~') => {
+                self.bump();
+                Tok::Tilde
+            }
+            Some(b'"') => self.string(),
+            Some(b'?') => {
+                self.bump();
+                self.variable(false)
+            }
+            Some(b'$') if self.peek2() == Some(b'?') => {
+                self.bump();
+                self.bump();
+                self.variable(true)
+            }
+            Some(_) => {
+                let w = self.word();
+                classify_word(w)
+            }
+        };
+        Token { tok, line, col, start, end: self.pos }
+    }
+
+    fn string(&mut self) -> Tok<'a> {
+        self.bump();
+        let s = self.pos;
+        loop {
+            match self.bump() {
+                None => return Tok::Bad,
+                Some(b'\\') => {
+                    self.bump();
+                }
+                Some(b'"') => return Tok::Str(&self.src[s..self.pos - 1]),
+                Some(_) => {}
+            }
+        }
+    }
+
+    fn variable(&mut self, multi: bool) -> Tok<'a> {
+        let name = match self.peek() {
+            Some(b) if !is_delim(b) => self.word(),
+            _ => "",
+        };
+        if name.is_empty() {
+            return if multi { Tok::MfWild } else { Tok::SfWild };
+        }
+        if !multi && name.len() >= 2 && name.starts_with('*') && name.ends_with('*') {
+            return Tok::Global(&name[1..name.len() - 1]);
+        }
+        if multi {
+            Tok::MfVar(name)
+        } else {
+            Tok::SfVar(name)
+        }
+    }
+}
+
+/// Numbers as CLIPS reads them; anything else is a symbol.
+pub fn classify_word(w: &str) -> Tok<'_> {
+    let b = w.as_bytes();
+    let digits_start = usize::from(matches!(b.first(), Some(b'+') | Some(b'-')));
+    let body = &b[digits_start..];
+    if body.is_empty() {
+        return Tok::Symbol(w);
+    }
+    if body.iter().all(|c| c.is_ascii_digit()) {
+        return match w.parse::<i64>() {
+            Ok(i) => Tok::Int(i),
+            Err(_) => match w.parse::<f64>() {
+                Ok(f) => Tok::Float(f),
+                Err(_) => Tok::Symbol(w),
+            },
+        };
+    }
+    // float: digits with one '.', optional exponent; must contain a digit
+    let mut seen_digit = false;
+    let mut i = 0;
+    while i < body.len() && body[i].is_ascii_digit() {
+        seen_digit = true;
+        i += 1;
+    }
+    if i < body.len() && body[i] == b'.' {
+        i += 1;
+        while i < body.len() && body[i].is_ascii_digit() {
+            seen_digit = true;
+            i += 1;
+        }
+    }
+    if !seen_digit {
+        return Tok::Symbol(w);
+    }
+    if i < body.len() && (body[i] == b'e' || body[i] == b'E') {
+        i += 1;
+        if i < body.len() && (body[i] == b'+' || body[i] == b'-') {
+            i += 1;
+        }
+        let s = i;
+        while i < body.len() && body[i].is_ascii_digit() {
+            i += 1;
+        }
+        if i == s {
+            return Tok::Symbol(w);
+        }
+    }
+    if i != body.len() {
+        return Tok::Symbol(w);
+    }
+    match w.parse::<f64>() {
+        Ok(f) => Tok::Float(f),
+        Err(_) => Tok::Symbol(w),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn toks(s: &str) -> [Tok<'_>; 8] {
+        let mut l = Lexer::new(s);
+        let mut out = [Tok::Eof; 8];
+        for t in out.iter_mut() {
+            *t = l.next_token().tok;
+        }
+        out
+    }
+
+    #[test]
+    fn lexes_constraints_and_numbers() {
+        let t = toks("(a ?y&~?x $?r 1.5e3 -7 \"s\\\"q\")");
+        assert_eq!(t[0], Tok::LParen);
+        assert_eq!(t[1], Tok::Symbol("a"));
+        assert_eq!(t[2], Tok::SfVar("y"));
+        assert_eq!(t[3], Tok::Amp);
+        assert_eq!(t[4], Tok::Tilde);
+        assert_eq!(t[5], Tok::SfVar("x"));
+        assert_eq!(t[6], Tok::MfVar("r"));
+        assert_eq!(t[7], Tok::Float(1500.0));
+        let t = toks("?*g* ? $? 1. .5 - e5 ;c\n x");
+        assert_eq!(t[0], Tok::Global("g"));
+        assert_eq!(t[1], Tok::SfWild);
+        assert_eq!(t[2], Tok::MfWild);
+        assert_eq!(t[3], Tok::Float(1.0));
+        assert_eq!(t[4], Tok::Float(0.5));
+        assert_eq!(t[5], Tok::Symbol("-"));
+        assert_eq!(t[6], Tok::Symbol("e5"));
+        assert_eq!(t[7], Tok::Symbol("x"));
+    }
+
+    #[test]
+    fn positions_are_one_based() {
+        let mut l = Lexer::new("(a\n  b)");
+        l.next_token();
+        l.next_token();
+        let b = l.next_token();
+        assert_eq!((b.line, b.col), (2, 3));
+    }
+}

@@ -1,0 +1,601 @@
+//! Expressions: constants, variables, function calls and the special forms.
+
+use super::{PResult, Parser, Scope, VarKind};
+use crate::builtins::{self, Syntax};
+use crate::expr::{Expr, FnKind, Op};
+use crate::lexer::{Tok, Token};
+use crate::value::{TextBuf, Value, NONE};
+
+impl<'s> Parser<'s, '_, '_> {
+    /// Interns a string literal's contents with `\"` and `\\` unescaped.
+    pub fn string_const(&mut self, raw: &str) -> PResult<u16> {
+        let mut b: TextBuf<1024> = TextBuf::new();
+        let mut esc = false;
+        for ch in raw.chars() {
+            if esc || ch != '\\' {
+                let mut tmp = [0u8; 4];
+                let _ = core::fmt::Write::write_str(&mut b, ch.encode_utf8(&mut tmp));
+                esc = false;
+            } else {
+                esc = true;
+            }
+        }
+        let id = self.cx.intern(b.as_str());
+        let id = cap!(self, id)?;
+        let e = self.cx.push_expr(Expr::new(Op::Str, 0, id));
+        cap!(self, e)
+    }
+
+    /// A constant node from a literal token, or None if the token is no literal.
+    pub fn literal(&mut self, t: Token<'s>) -> PResult<Option<u16>> {
+        let r = match t.tok {
+            Tok::Int(i) => self.cx.push_const(Value::Int(i)),
+            Tok::Float(f) => self.cx.push_const(Value::Float(f)),
+            Tok::Symbol(s) => match self.cx.intern(s) {
+                Ok(id) => self.cx.push_expr(Expr::new(Op::Sym, 0, id)),
+                Err(e) => Err(e),
+            },
+            Tok::Str(s) => return self.string_const(s).map(Some),
+            _ => return Ok(None),
+        };
+        cap!(self, r).map(Some)
+    }
+
+    /// Reads one expression.
+    pub fn parse_expr(&mut self) -> PResult<u16> {
+        let t = self.next();
+        if let Some(c) = self.literal(t)? {
+            return Ok(c);
+        }
+        match t.tok {
+            Tok::SfVar(name) => self.var_ref(t, name, false),
+            Tok::MfVar(name) => {
+                let v = self.var_ref(t, name, true)?;
+                let e = self.cx.push_expr(Expr { first: v, ..Expr::new(Op::Expand, 0, 0) });
+                cap!(self, e)
+            }
+            Tok::Global(name) => self.global_ref(t, name),
+            Tok::LParen => self.call(),
+            _ => Err(self.err(t, "an expression")),
+        }
+    }
+
+    pub fn global_ref(&mut self, t: Token<'s>, name: &str) -> PResult<u16> {
+        let id = self.cx.find_sym(name);
+        let g = id.and_then(|id| (0..self.cx.st.nglobals).find(|&g| self.cx.globals[g as usize].name == id));
+        match g {
+            Some(g) => {
+                let e = self.cx.push_expr(Expr::new(Op::Global, 0, g));
+                cap!(self, e)
+            }
+            None => Err(self.err(t, "a defined global variable")),
+        }
+    }
+
+    /// A variable reference node.
+    pub fn var_ref(&mut self, t: Token<'s>, name: &'s str, _multi: bool) -> PResult<u16> {
+        if let Some((var, slot)) = name.split_once(':') {
+            if self.find_var(var).is_some() && !slot.is_empty() {
+                return self.query_slot_ref(t, var, slot);
+            }
+        }
+        if let Some(v) = self.find_var(name) {
+            let e = match v.kind {
+                VarKind::Pat { pat, loc, desc } => Expr { first: desc, ..Expr::new(Op::PatVar, pat, loc) },
+                VarKind::Local(s) => Expr::new(Op::Local, 0, s),
+            };
+            let e = self.cx.push_expr(e);
+            return cap!(self, e);
+        }
+        match self.scope {
+            Scope::TopLevel => {
+                let g = self.toplevel_var(t, name)?;
+                let e = self.cx.push_expr(Expr::new(Op::Global, 0, g));
+                cap!(self, e)
+            }
+            _ => Err(self.err(t, "a bound variable")),
+        }
+    }
+
+    /// Top-level `?x` lives in a hidden global named `?x`.
+    fn toplevel_var(&mut self, t: Token<'s>, name: &str) -> PResult<u16> {
+        let mut b: TextBuf<128> = TextBuf::new();
+        let _ = core::fmt::Write::write_fmt(&mut b, format_args!("?{name}"));
+        let id = self.cx.intern(b.as_str());
+        let id = cap!(self, id)?;
+        if let Some(g) = (0..self.cx.st.nglobals).find(|&g| self.cx.globals[g as usize].name == id) {
+            return Ok(g);
+        }
+        let n = self.cx.st.nglobals as usize;
+        if n >= self.cx.globals.len() {
+            let c = crate::engine::cap(crate::error::Pool::Globals, self.cx.globals.len());
+            return Err(self.cap_err(t, c));
+        }
+        self.cx.globals[n] = crate::template::Global { name: id, value: Value::Sym(builtins::SYM_NIL), init: NONE };
+        self.cx.st.nglobals += 1;
+        Ok(n as u16)
+    }
+
+    fn push_call(&mut self, kind: FnKind, id: u16) -> PResult<u16> {
+        let e = self.cx.push_expr(Expr::new(Op::Call, kind as u8, id));
+        cap!(self, e)
+    }
+
+    /// Builtin call node by name (for desugaring special forms).
+    pub fn builtin_call(&mut self, name: &'static str) -> PResult<u16> {
+        let (id, _) = builtins::lookup(name).unwrap_or((0, &builtins::basic::FUNCS[0]));
+        self.push_call(FnKind::Builtin, id)
+    }
+
+    /// Parses arguments until `)`, appending them to `call`; returns their count.
+    pub fn args_until_rparen(&mut self, call: u16) -> PResult<u16> {
+        let mut n = 0;
+        loop {
+            let t = self.peek();
+            match t.tok {
+                Tok::RParen => {
+                    self.next();
+                    return Ok(n);
+                }
+                Tok::Eof | Tok::Bad => return Err(self.err(t, "')'")),
+                _ => {
+                    let a = self.parse_expr()?;
+                    self.cx.append_child(call, a);
+                    n += 1;
+                }
+            }
+        }
+    }
+
+    /// `(name args...)` after the `(`.
+    fn call(&mut self) -> PResult<u16> {
+        let nt = self.next();
+        let name = match nt.tok {
+            Tok::Symbol(s) => s,
+            _ => return Err(self.err(nt, "a function name")),
+        };
+        match name {
+            "if" => return self.parse_if(),
+            "while" => return self.parse_while(),
+            "bind" => return self.parse_bind(nt),
+            "loop-for-count" => return self.parse_loop_for_count(),
+            "progn$" => return self.parse_foreach("progn$"),
+            "foreach" => return self.parse_foreach("foreach"),
+            "switch" => return self.parse_switch(),
+            "assert" => return self.parse_assert(),
+            "modify" => return self.parse_modify("modify"),
+            "duplicate" => return self.parse_modify("duplicate"),
+            _ => {}
+        }
+        // deffunctions shadow nothing builtin in CLIPS; check user functions first
+        if let Some(sym) = self.cx.find_sym(name) {
+            if let Some(f) = (0..self.cx.st.nfuncs).find(|&f| self.cx.funcs[f as usize].name == sym) {
+                let call = self.push_call(FnKind::Deffunction, f)?;
+                let n = self.args_until_rparen(call)?;
+                let df = self.cx.funcs[f as usize];
+                if f != self.defining_fn && (n < df.nparams as u16 || (!df.rest && n > df.nparams as u16)) {
+                    return Err(self.err(nt, "the deffunction's number of arguments"));
+                }
+                return Ok(call);
+            }
+            if let Some(x) = (0..self.cx.st.nexternals).find(|&x| self.cx.externals[x as usize].name == sym) {
+                let call = self.push_call(FnKind::External, x)?;
+                let n = self.args_until_rparen(call)?;
+                let ext = self.cx.externals[x as usize];
+                if crate::eval::check_arity("external", ext.min, ext.max, n).is_err() {
+                    return Err(self.err(nt, "the function's number of arguments"));
+                }
+                return Ok(call);
+            }
+        }
+        match builtins::lookup(name) {
+            Some((id, b)) => {
+                let call = self.push_call(FnKind::Builtin, id)?;
+                let n = if b.syntax == Syntax::Query {
+                    self.query_args(call)?
+                } else {
+                    self.args_until_rparen(call)?
+                };
+                if crate::eval::check_arity(b.name, b.min, b.max, n).is_err() {
+                    let mut e = self.err(nt, arity_text(b.min, b.max));
+                    e.detail = crate::error::LoadDetail::Arity { func: b.name, min: b.min, max: b.max, got: n };
+                    return Err(e);
+                }
+                Ok(call)
+            }
+            None if self.defining_fn != NONE && self.is_defining(name) => {
+                let f = self.defining_fn;
+                let call = self.push_call(FnKind::Deffunction, f)?;
+                self.args_until_rparen(call)?;
+                Ok(call)
+            }
+            None => {
+                let mut e = self.err(nt, "a known function name");
+                e.detail = crate::error::LoadDetail::MissingFunction;
+                Err(e)
+            }
+        }
+    }
+
+    fn is_defining(&mut self, name: &str) -> bool {
+        let f = self.defining_fn;
+        self.cx.find_sym(name) == Some(self.cx.funcs[f as usize].name)
+    }
+
+    /// Actions until `)`, wrapped in a `progn` node.
+    pub fn action_block(&mut self) -> PResult<u16> {
+        let p = self.builtin_call("progn")?;
+        self.args_until_rparen(p)?;
+        Ok(p)
+    }
+
+    /// Actions until one of the keywords or `)`; the stopping token is not consumed.
+    fn actions_until(&mut self, stop: &[&str]) -> PResult<u16> {
+        let p = self.builtin_call("progn")?;
+        loop {
+            let t = self.peek();
+            match t.tok {
+                Tok::RParen => return Ok(p),
+                Tok::Symbol(s) if stop.contains(&s) => return Ok(p),
+                Tok::Eof | Tok::Bad => return Err(self.err(t, "')'")),
+                _ => {
+                    let a = self.parse_expr()?;
+                    self.cx.append_child(p, a);
+                }
+            }
+        }
+    }
+
+    fn parse_if(&mut self) -> PResult<u16> {
+        let node = self.builtin_call("if")?;
+        let cond = self.parse_expr()?;
+        self.cx.append_child(node, cond);
+        let t = self.next();
+        if t.tok != Tok::Symbol("then") {
+            return Err(self.err(t, "keyword then"));
+        }
+        let then = self.actions_until(&["else"])?;
+        self.cx.append_child(node, then);
+        let t = self.next();
+        match t.tok {
+            Tok::RParen => Ok(node),
+            Tok::Symbol("else") => {
+                let els = self.action_block()?;
+                self.cx.append_child(node, els);
+                Ok(node)
+            }
+            _ => Err(self.err(t, "else or ')'")),
+        }
+    }
+
+    fn parse_while(&mut self) -> PResult<u16> {
+        let node = self.builtin_call("while")?;
+        let cond = self.parse_expr()?;
+        self.cx.append_child(node, cond);
+        if self.peek().tok == Tok::Symbol("do") {
+            self.next();
+        }
+        let body = self.action_block()?;
+        self.cx.append_child(node, body);
+        Ok(node)
+    }
+
+    /// Node for assigning to variable `name`: a frame local (created if new) or, at
+    /// top level, a hidden global.
+    fn assign_target(&mut self, t: Token<'s>, name: &'s str) -> PResult<u16> {
+        if let Some(v) = self.find_var(name) {
+            if let VarKind::Local(s) = v.kind {
+                let e = self.cx.push_expr(Expr::new(Op::Local, 0, s));
+                return cap!(self, e);
+            }
+            return Err(self.err(t, "a variable not bound on the LHS"));
+        }
+        match self.scope {
+            Scope::TopLevel => {
+                let g = self.toplevel_var(t, name)?;
+                let e = self.cx.push_expr(Expr::new(Op::Global, 0, g));
+                cap!(self, e)
+            }
+            _ => {
+                let s = self.new_local(t, name, false)?;
+                let e = self.cx.push_expr(Expr::new(Op::Local, 0, s));
+                cap!(self, e)
+            }
+        }
+    }
+
+    fn parse_bind(&mut self, at: Token<'s>) -> PResult<u16> {
+        let node = self.builtin_call("bind")?;
+        let t = self.next();
+        let target = match t.tok {
+            Tok::SfVar(name) | Tok::MfVar(name) => self.assign_target(t, name)?,
+            Tok::Global(name) => self.global_ref(t, name)?,
+            _ => return Err(self.err(t, "a variable")),
+        };
+        self.cx.append_child(node, target);
+        self.args_until_rparen(node)?;
+        let _ = at;
+        Ok(node)
+    }
+
+    fn parse_loop_for_count(&mut self) -> PResult<u16> {
+        let node = self.builtin_call("loop-for-count")?;
+        let t = self.peek();
+        let (var, start, end);
+        if t.tok == Tok::LParen {
+            self.next();
+            let vt = self.next();
+            match vt.tok {
+                Tok::SfVar(name) => {
+                    let s = self.new_local(vt, name, false)?;
+                    var = cap!(self, self.cx.push_expr(Expr::new(Op::Local, 0, s)))?;
+                    let a = self.parse_expr()?;
+                    if self.peek().tok == Tok::RParen {
+                        start = cap!(self, self.cx.push_const(Value::Int(1)))?;
+                        end = a;
+                    } else {
+                        start = a;
+                        end = self.parse_expr()?;
+                    }
+                }
+                _ => {
+                    // (loop-for-count (expr) ...) is not CLIPS syntax; report
+                    return Err(self.err(vt, "a loop variable"));
+                }
+            }
+            self.expect_rparen("')' after the loop range")?;
+        } else {
+            var = cap!(self, self.cx.push_expr(Expr::new(Op::Nop, 0, 0)))?;
+            start = cap!(self, self.cx.push_const(Value::Int(1)))?;
+            end = self.parse_expr()?;
+        }
+        self.cx.append_child(node, var);
+        self.cx.append_child(node, start);
+        self.cx.append_child(node, end);
+        if self.peek().tok == Tok::Symbol("do") {
+            self.next();
+        }
+        let body = self.action_block()?;
+        self.cx.append_child(node, body);
+        Ok(node)
+    }
+
+    /// `(progn$ (?v list) body)`; `?v-index` is the next frame slot.
+    fn parse_foreach(&mut self, name: &'static str) -> PResult<u16> {
+        let node = self.builtin_call(name)?;
+        self.expect_lparen("'(' and a loop variable")?;
+        let vt = self.next();
+        let vname = match vt.tok {
+            Tok::SfVar(n) => n,
+            _ => return Err(self.err(vt, "a loop variable")),
+        };
+        let list = self.parse_expr()?;
+        self.expect_rparen("')' after the list expression")?;
+        let s = self.new_local(vt, vname, false)?;
+        // the index variable name is `<name>-index`, which lives in the source only as
+        // a reference; register it by matching references later
+        let idx_slot = self.nlocals;
+        self.nlocals += 1;
+        self.index_var(vt, vname, idx_slot)?;
+        let var = cap!(self, self.cx.push_expr(Expr::new(Op::Local, 0, s)))?;
+        self.cx.append_child(node, var);
+        self.cx.append_child(node, list);
+        if self.peek().tok == Tok::Symbol("do") {
+            self.next();
+        }
+        let body = self.action_block()?;
+        self.cx.append_child(node, body);
+        Ok(node)
+    }
+
+    /// Registers `?name-index` by scanning ahead for its spelling in the source.
+    fn index_var(&mut self, at: Token<'s>, vname: &'s str, slot: u16) -> PResult<()> {
+        let src = self.lex.source();
+        let pos = self.lex.pos();
+        let rest = &src[pos..];
+        let mut i = 0;
+        while let Some(k) = rest[i..].find(vname) {
+            let s = i + k;
+            let after = &rest[s + vname.len()..];
+            if s > 0 && rest.as_bytes()[s - 1] == b'?' && after.starts_with("-index") {
+                let name = &rest[s..s + vname.len() + 6];
+                return self.add_var(at, name, VarKind::Local(slot), false);
+            }
+            i = s + vname.len();
+        }
+        Ok(())
+    }
+
+    fn parse_switch(&mut self) -> PResult<u16> {
+        let node = self.builtin_call("switch")?;
+        let e = self.parse_expr()?;
+        self.cx.append_child(node, e);
+        loop {
+            let t = self.next();
+            match t.tok {
+                Tok::RParen => return Ok(node),
+                Tok::LParen => {
+                    let kw = self.next();
+                    match kw.tok {
+                        Tok::Symbol("case") => {
+                            let case = cap!(self, self.cx.push_expr(Expr::new(Op::Nop, 0, 0)))?;
+                            let v = self.parse_expr()?;
+                            self.cx.append_child(case, v);
+                            let th = self.next();
+                            if th.tok != Tok::Symbol("then") {
+                                return Err(self.err(th, "keyword then"));
+                            }
+                            let body = self.action_block()?;
+                            self.cx.append_child(case, body);
+                            self.cx.append_child(node, case);
+                        }
+                        Tok::Symbol("default") => {
+                            let case = cap!(self, self.cx.push_expr(Expr::new(Op::Nop, 1, 0)))?;
+                            let body = self.action_block()?;
+                            self.cx.append_child(case, body);
+                            self.cx.append_child(node, case);
+                        }
+                        _ => return Err(self.err(kw, "case or default")),
+                    }
+                }
+                _ => return Err(self.err(t, "a case")),
+            }
+        }
+    }
+
+    fn parse_assert(&mut self) -> PResult<u16> {
+        let node = self.builtin_call("assert")?;
+        let mut n = 0;
+        loop {
+            let t = self.next();
+            match t.tok {
+                Tok::RParen if n > 0 => return Ok(node),
+                Tok::LParen => {
+                    let spec = self.fact_spec()?;
+                    self.cx.append_child(node, spec);
+                    n += 1;
+                }
+                _ => return Err(self.err(t, "a fact to assert")),
+            }
+        }
+    }
+
+    /// `(name ...)` after the `(`: a `FactSpec` node.
+    pub fn fact_spec(&mut self) -> PResult<u16> {
+        let nt = self.next();
+        let name = match nt.tok {
+            Tok::Symbol(s) => s,
+            _ => return Err(self.err(nt, "a template or relation name")),
+        };
+        let sym = cap!(self, self.cx.intern(name))?;
+        let tmpl = match self.cx.find_template(sym) {
+            Some(t) => t,
+            None => cap!(self, self.cx.implied_template(sym))?,
+        };
+        let spec = cap!(self, self.cx.push_expr(Expr::new(Op::FactSpec, 0, tmpl)))?;
+        if self.cx.templates[tmpl as usize].implied {
+            let sv = cap!(self, self.cx.push_expr(Expr::new(Op::SlotVal, 0, 0)))?;
+            self.cx.append_child(spec, sv);
+            self.args_until_rparen(sv)?;
+            return Ok(spec);
+        }
+        loop {
+            let t = self.next();
+            match t.tok {
+                Tok::RParen => return Ok(spec),
+                Tok::LParen => {
+                    let st = self.next();
+                    let sname = match st.tok {
+                        Tok::Symbol(s) => s,
+                        _ => return Err(self.err(st, "a slot name")),
+                    };
+                    let ssym = cap!(self, self.cx.intern(sname))?;
+                    let slot = match self.cx.find_slot(tmpl, ssym) {
+                        Some(s) => s,
+                        None => return Err(self.err(st, "a slot of the template")),
+                    };
+                    let sv = cap!(self, self.cx.push_expr(Expr::new(Op::SlotVal, 0, slot)))?;
+                    let n = self.args_until_rparen(sv)?;
+                    if !self.cx.slot_def(tmpl, slot).multi && n != 1 {
+                        return Err(self.err(st, "exactly one value for a single-field slot"));
+                    }
+                    self.cx.append_child(spec, sv);
+                }
+                _ => return Err(self.err(t, "'(' and a slot name")),
+            }
+        }
+    }
+
+    /// `(modify ?f (slot v...)...)`: slot values carry the slot *name* symbol.
+    fn parse_modify(&mut self, name: &'static str) -> PResult<u16> {
+        let node = self.builtin_call(name)?;
+        let f = self.parse_expr()?;
+        self.cx.append_child(node, f);
+        loop {
+            let t = self.next();
+            match t.tok {
+                Tok::RParen => return Ok(node),
+                Tok::LParen => {
+                    let st = self.next();
+                    let sname = match st.tok {
+                        Tok::Symbol(s) => s,
+                        _ => return Err(self.err(st, "a slot name")),
+                    };
+                    let ssym = cap!(self, self.cx.intern(sname))?;
+                    let sv = cap!(self, self.cx.push_expr(Expr::new(Op::SlotVal, 0, ssym)))?;
+                    self.args_until_rparen(sv)?;
+                    self.cx.append_child(node, sv);
+                }
+                _ => return Err(self.err(t, "'(' and a slot name")),
+            }
+        }
+    }
+
+    /// Fact-set query arguments: `((?v tmpl...)...)` then ordinary expressions, where
+    /// `?v:slot` reads a slot of the bound fact.
+    fn query_args(&mut self, call: u16) -> PResult<u16> {
+        let decl = cap!(self, self.cx.push_expr(Expr::new(Op::Nop, 0, 0)))?;
+        self.cx.append_child(call, decl);
+        self.expect_lparen("'(' opening the query variables")?;
+        let saved_vars = self.nvars;
+        loop {
+            let t = self.next();
+            match t.tok {
+                Tok::RParen => break,
+                Tok::LParen => {
+                    let vt = self.next();
+                    let vname = match vt.tok {
+                        Tok::SfVar(n) => n,
+                        _ => return Err(self.err(vt, "a query variable")),
+                    };
+                    let slot = self.new_local(vt, vname, false)?;
+                    let var = cap!(self, self.cx.push_expr(Expr::new(Op::Local, 0, slot)))?;
+                    loop {
+                        let tt = self.next();
+                        match tt.tok {
+                            Tok::RParen => break,
+                            Tok::Symbol(tn) => {
+                                let sym = cap!(self, self.cx.intern(tn))?;
+                                if self.cx.find_template(sym).is_none() {
+                                    return Err(self.err(tt, "a deftemplate name"));
+                                }
+                                let te = cap!(self, self.cx.push_expr(Expr::new(Op::Sym, 0, sym)))?;
+                                self.cx.append_child(var, te);
+                            }
+                            _ => return Err(self.err(tt, "a template name")),
+                        }
+                    }
+                    self.cx.append_child(decl, var);
+                }
+                _ => return Err(self.err(t, "'(' and a query variable")),
+            }
+        }
+        let n = self.args_until_rparen(call)?;
+        self.nvars = saved_vars;
+        Ok(n + 1)
+    }
+
+    /// `?v:slot` inside a query: `(fact-slot-value ?v slot)`.
+    pub fn query_slot_ref(&mut self, t: Token<'s>, var: &'s str, slot: &'s str) -> PResult<u16> {
+        let v = self.var_ref(t, var, false)?;
+        let call = self.builtin_call("fact-slot-value")?;
+        self.cx.append_child(call, v);
+        let sym = cap!(self, self.cx.intern(slot))?;
+        let s = cap!(self, self.cx.push_expr(Expr::new(Op::Sym, 0, sym)))?;
+        self.cx.append_child(call, s);
+        Ok(call)
+    }
+}
+
+pub fn arity_text(min: u8, max: u8) -> &'static str {
+    if min == max {
+        "exactly the function's number of arguments"
+    } else if max == builtins::ANY {
+        "at least the function's minimum number of arguments"
+    } else {
+        "between the function's minimum and maximum number of arguments"
+    }
+}
+
+#[allow(dead_code)]
+fn _unused(_: Scope) {}

@@ -1,0 +1,312 @@
+//! The CLIPS reader: constructs and commands parsed straight into engine pools.
+//!
+//! Every construct is parsed and built inside a checkpoint; on any error the engine
+//! is rolled back to it, so a bad construct leaves nothing behind.
+
+/// Maps a pool error to a load error at the current position (two-step so the
+/// parser is not borrowed twice).
+macro_rules! cap {
+    ($p:ident, $e:expr) => {{
+        let r = $e;
+        $p.cap_res(r)
+    }};
+}
+
+mod construct;
+mod expr;
+mod rule;
+
+use crate::engine::Core;
+use crate::error::{CapacityError, LoadError};
+use crate::lexer::{Lexer, Tok, Token};
+use crate::value::NONE;
+
+/// Most variables visible at once while parsing one construct.
+pub const MAX_VARS: usize = 64;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum VarKind {
+    /// Bound by an LHS pattern: pattern index, field locator, multislot descriptor.
+    Pat { pat: u8, loc: u16, desc: u16 },
+    /// A frame slot (RHS `bind`, deffunction parameter, loop variable).
+    Local(u16),
+}
+
+#[derive(Clone, Copy, Debug)]
+pub struct VarEntry<'s> {
+    pub name: &'s str,
+    pub kind: VarKind,
+    pub multi: bool,
+}
+
+/// Where expressions are being parsed, which decides how unknown variables resolve.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Scope {
+    /// Top-level command: `?x` is a top-level variable (stored as a hidden global).
+    TopLevel,
+    /// Rule RHS or deffunction body: `bind` creates frame locals.
+    Frame,
+    /// LHS constraint expressions: only already bound variables.
+    Lhs,
+}
+
+pub struct Parser<'s, 'c, 'e> {
+    pub lex: Lexer<'s>,
+    peeked: Option<Token<'s>>,
+    pub cx: &'c mut Core<'e>,
+    pub vars: [VarEntry<'s>; MAX_VARS],
+    pub nvars: usize,
+    pub nlocals: u16,
+    pub scope: Scope,
+    /// Construct being parsed, for error messages.
+    pub construct: &'static str,
+    /// Deffunction being defined (for recursive calls), NONE otherwise.
+    pub defining_fn: u16,
+}
+
+pub type PResult<T> = Result<T, LoadError>;
+
+impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
+    pub fn new(cx: &'c mut Core<'e>, src: &'s str) -> Self {
+        Parser {
+            lex: Lexer::new(src),
+            peeked: None,
+            cx,
+            vars: [VarEntry { name: "", kind: VarKind::Local(0), multi: false }; MAX_VARS],
+            nvars: 0,
+            nlocals: 0,
+            scope: Scope::TopLevel,
+            construct: "",
+            defining_fn: NONE,
+        }
+    }
+
+    /// Reader position including a peeked token, for backtracking.
+    pub fn save(&self) -> (Lexer<'s>, Option<Token<'s>>) {
+        (self.lex.clone(), self.peeked)
+    }
+
+    pub fn restore(&mut self, st: (Lexer<'s>, Option<Token<'s>>)) {
+        self.lex = st.0;
+        self.peeked = st.1;
+    }
+
+    pub fn next(&mut self) -> Token<'s> {
+        match self.peeked.take() {
+            Some(t) => t,
+            None => self.lex.next_token(),
+        }
+    }
+
+    pub fn peek(&mut self) -> Token<'s> {
+        if self.peeked.is_none() {
+            self.peeked = Some(self.lex.next_token());
+        }
+        match self.peeked {
+            Some(t) => t,
+            None => self.lex.next_token(),
+        }
+    }
+
+    /// Byte offset where the next token starts (after skipping nothing).
+    pub fn offset(&mut self) -> usize {
+        self.peek().start
+    }
+
+    pub fn err(&self, at: Token<'s>, expected: &'static str) -> LoadError {
+        LoadError {
+            line: at.line,
+            col: at.col,
+            expected,
+            construct: self.construct,
+            capacity: None,
+            start: at.start as u32,
+            end: at.end as u32,
+            detail: crate::error::LoadDetail::Syntax,
+        }
+    }
+
+    pub fn cap_err(&self, at: Token<'s>, c: CapacityError) -> LoadError {
+        LoadError { capacity: Some(c), expected: "room in a pool", ..self.err(at, "") }
+    }
+
+    /// Maps a pool error at the current position.
+    pub fn cap_res<T>(&mut self, r: Result<T, CapacityError>) -> PResult<T> {
+        match r {
+            Ok(v) => Ok(v),
+            Err(c) => {
+                let at = self.peek();
+                Err(self.cap_err(at, c))
+            }
+        }
+    }
+
+    pub fn expect_lparen(&mut self, what: &'static str) -> PResult<Token<'s>> {
+        let t = self.next();
+        if t.tok == Tok::LParen {
+            Ok(t)
+        } else {
+            Err(self.err(t, what))
+        }
+    }
+
+    pub fn expect_rparen(&mut self, what: &'static str) -> PResult<()> {
+        let t = self.next();
+        if t.tok == Tok::RParen {
+            Ok(())
+        } else {
+            Err(self.err(t, what))
+        }
+    }
+
+    pub fn expect_symbol(&mut self, what: &'static str) -> PResult<&'s str> {
+        let t = self.next();
+        match t.tok {
+            Tok::Symbol(s) => Ok(s),
+            _ => Err(self.err(t, what)),
+        }
+    }
+
+    /// Skips one balanced expression (used for `or` branches not taken).
+    pub fn skip_balanced(&mut self) -> PResult<()> {
+        let t = self.next();
+        match t.tok {
+            Tok::LParen => {
+                let mut depth = 1;
+                while depth > 0 {
+                    let t = self.next();
+                    match t.tok {
+                        Tok::LParen => depth += 1,
+                        Tok::RParen => depth -= 1,
+                        Tok::Eof | Tok::Bad => return Err(self.err(t, "a closing parenthesis")),
+                        _ => {}
+                    }
+                }
+                Ok(())
+            }
+            Tok::RParen | Tok::Eof | Tok::Bad => Err(self.err(t, "an expression")),
+            _ => Ok(()),
+        }
+    }
+
+    pub fn find_var(&self, name: &str) -> Option<VarEntry<'s>> {
+        self.vars[..self.nvars].iter().rev().find(|v| v.name == name).copied()
+    }
+
+    pub fn add_var(&mut self, at: Token<'s>, name: &'s str, kind: VarKind, multi: bool) -> PResult<()> {
+        if self.nvars >= MAX_VARS {
+            return Err(self.err(at, "fewer variables in one construct"));
+        }
+        self.vars[self.nvars] = VarEntry { name, kind, multi };
+        self.nvars += 1;
+        Ok(())
+    }
+
+    /// A new frame local for `name`.
+    pub fn new_local(&mut self, at: Token<'s>, name: &'s str, multi: bool) -> PResult<u16> {
+        let slot = self.nlocals;
+        self.nlocals += 1;
+        self.add_var(at, name, VarKind::Local(slot), multi)?;
+        Ok(slot)
+    }
+}
+
+/// One top-level item read from source text.
+pub enum Item {
+    /// A construct was defined.
+    Construct,
+    /// A command/expression to evaluate: its root expression node.
+    Command(u16),
+    /// End of input.
+    End,
+}
+
+impl<'s> Parser<'s, '_, '_> {
+    /// Reads the next construct or command. Constructs are built right away (rolled
+    /// back on error); commands are returned for the caller to evaluate.
+    pub fn next_item(&mut self) -> PResult<Item> {
+        let t = self.peek();
+        match t.tok {
+            Tok::Eof => Ok(Item::End),
+            Tok::LParen => {
+                let save_lex = self.save();
+                self.next();
+                let head = self.peek();
+                let kw = match head.tok {
+                    Tok::Symbol(s) => s,
+                    _ => "",
+                };
+                let kw: &'static str = match kw {
+                    "deftemplate" => "deftemplate",
+                    "defrule" => "defrule",
+                    "deffacts" => "deffacts",
+                    "deffunction" => "deffunction",
+                    "defglobal" => "defglobal",
+                    "defmodule" => "defmodule",
+                    _ => "",
+                };
+                match kw {
+                    "deftemplate" | "defrule" | "deffacts" | "deffunction" | "defglobal" | "defmodule" => {
+                        self.next();
+                        let start = t.start;
+                        let cp = self.cx.checkpoint();
+                        let r = self.construct_body(kw, start);
+                        if r.is_err() {
+                            self.cx.rollback(cp);
+                        }
+                        r.map(|_| Item::Construct)
+                    }
+                    _ => {
+                        // a command: re-read it as an expression from the '('
+                        self.restore(save_lex);
+                        self.scope = Scope::TopLevel;
+                        self.construct = "command";
+                        let cp = self.cx.checkpoint();
+                        match self.parse_expr() {
+                            Ok(e) => Ok(Item::Command(e)),
+                            Err(err) => {
+                                self.cx.rollback(cp);
+                                Err(err)
+                            }
+                        }
+                    }
+                }
+            }
+            _ => {
+                self.scope = Scope::TopLevel;
+                self.construct = "command";
+                let e = self.parse_expr()?;
+                Ok(Item::Command(e))
+            }
+        }
+    }
+
+    fn construct_body(&mut self, kw: &'static str, start: usize) -> PResult<()> {
+        self.nvars = 0;
+        self.nlocals = 0;
+        self.construct = kw;
+        match kw {
+            "deftemplate" => self.deftemplate(),
+            "defrule" => self.defrule(start),
+            "deffacts" => self.deffacts(),
+            "deffunction" => self.deffunction(),
+            "defglobal" => self.defglobal(),
+            _ => {
+                // defmodule: only MAIN is supported; accept and ignore its body
+                let depth_tok = self.peek();
+                let _ = depth_tok;
+                loop {
+                    let t = self.peek();
+                    match t.tok {
+                        Tok::RParen => {
+                            self.next();
+                            return Ok(());
+                        }
+                        Tok::Eof => return Err(self.err(t, "')'")),
+                        _ => self.skip_balanced()?,
+                    }
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,265 @@
+//! Printing values, facts, activations and watch traces exactly as CLIPS 6.30 does.
+
+use core::fmt::{self, Write};
+
+use crate::engine::{watch, Core};
+use crate::fact::Fact;
+use crate::host::{router, Host, RouterWriter};
+use crate::rule::{Activation, Rule};
+use crate::symbols::SymEntry;
+use crate::template::{SlotDef, Template};
+use crate::value::{write_float, SymId, Value, NONE};
+
+/// Read-only view of what printing needs, borrowed next to the host.
+pub struct View<'a> {
+    pub values: &'a [Value],
+    pub scratch: &'a [Value],
+    pub sym_entries: &'a [SymEntry],
+    pub sym_bytes: &'a [u8],
+    pub templates: &'a [Template],
+    pub slots: &'a [SlotDef],
+    pub facts: &'a [Fact],
+}
+
+impl View<'_> {
+    pub fn sym(&self, id: SymId) -> &str {
+        let e = self.sym_entries[id as usize];
+        core::str::from_utf8(&self.sym_bytes[e.start as usize..(e.start + e.len) as usize]).unwrap_or("")
+    }
+
+    /// A value as CLIPS prints results: strings quoted, multifields in parentheses.
+    pub fn write_value(&self, out: &mut dyn Write, v: Value, quote: bool) -> fmt::Result {
+        match v {
+            Value::Void => Ok(()),
+            Value::Int(i) => write!(out, "{i}"),
+            Value::Float(f) => write_float(out, f),
+            Value::Sym(s) => out.write_str(self.sym(s)),
+            Value::Str(s) => {
+                if quote {
+                    write_quoted(out, self.sym(s))
+                } else {
+                    out.write_str(self.sym(s))
+                }
+            }
+            Value::Fact(r) => write!(out, "<Fact-{}>", r.num),
+            Value::Multi(m) => {
+                out.write_char('(')?;
+                for i in 0..m.len as usize {
+                    if i > 0 {
+                        out.write_char(' ')?;
+                    }
+                    self.write_value(out, self.scratch[m.start as usize + i], quote)?;
+                }
+                out.write_char(')')
+            }
+        }
+    }
+
+    /// Elements of a multifield separated by spaces, no parentheses (printout style).
+    pub fn write_flat(&self, out: &mut dyn Write, v: Value, quote: bool) -> fmt::Result {
+        match v {
+            Value::Multi(m) => {
+                for i in 0..m.len as usize {
+                    if i > 0 {
+                        out.write_char(' ')?;
+                    }
+                    self.write_value(out, self.scratch[m.start as usize + i], quote)?;
+                }
+                Ok(())
+            }
+            _ => self.write_value(out, v, quote),
+        }
+    }
+
+    /// `(name v...)` or `(name (slot v) (mslot a b))`.
+    pub fn write_fact(&self, out: &mut dyn Write, slot: u16) -> fmt::Result {
+        let f = self.facts[slot as usize];
+        let t = self.templates[f.tmpl as usize];
+        out.write_char('(')?;
+        out.write_str(self.sym(t.name))?;
+        let mut c = f.start as usize;
+        for s in 0..t.nslots {
+            let def = self.slots[(t.first_slot + s) as usize];
+            if !t.implied {
+                out.write_str(" (")?;
+                out.write_str(self.sym(def.name))?;
+            }
+            match self.values[c] {
+                Value::Multi(m) => {
+                    for k in 0..m.len as usize {
+                        out.write_char(' ')?;
+                        self.write_value(out, self.values[c + 1 + k], true)?;
+                    }
+                    c += 1 + m.len as usize;
+                }
+                v => {
+                    out.write_char(' ')?;
+                    self.write_value(out, v, true)?;
+                    c += 1;
+                }
+            }
+            if !t.implied {
+                out.write_char(')')?;
+            }
+        }
+        out.write_char(')')
+    }
+}
+
+fn write_quoted(out: &mut dyn Write, s: &str) -> fmt::Result {
+    out.write_char('"')?;
+    out.write_str(s)?;
+    out.write_char('"')
+}
+
+impl Core<'_> {
+    /// Splits into a printing view and the host.
+    pub fn split(&mut self) -> (View<'_>, &mut dyn Host) {
+        (
+            View {
+                values: self.values,
+                scratch: self.scratch,
+                sym_entries: self.sym_entries,
+                sym_bytes: self.sym_bytes,
+                templates: self.templates,
+                slots: self.slots,
+                facts: self.facts,
+            },
+            &mut *self.host,
+        )
+    }
+
+    pub fn write(&mut self, router: &str, text: &str) {
+        self.host.write_str(router, text);
+    }
+
+    /// Writes a value to a router (`quote`: strings in quotes).
+    pub fn print_value(&mut self, router: &'static str, v: Value, quote: bool) {
+        let (view, host) = self.split();
+        let mut w = RouterWriter { host, router };
+        let _ = view.write_value(&mut w, v, quote);
+    }
+
+    /// `f-N     ` prefix as CLIPS pads it.
+    fn write_fact_id(w: &mut dyn Write, num: u32) -> fmt::Result {
+        let mut b: crate::value::TextBuf<16> = crate::value::TextBuf::new();
+        write!(b, "f-{num}")?;
+        write!(w, "{:<7} ", b.as_str())
+    }
+
+    pub(crate) fn print_fact_line(&mut self, arrow: &str, slot: u16) {
+        let num = self.facts[slot as usize].num;
+        let (view, host) = self.split();
+        let mut w = RouterWriter { host, router: router::WTRACE };
+        let _ = w.write_str(arrow);
+        let _ = Self::write_fact_id(&mut w, num);
+        let _ = view.write_fact(&mut w, slot);
+        let _ = w.write_str("\n");
+    }
+
+    /// `(facts)` listing line.
+    pub(crate) fn print_fact_listing_line(&mut self, slot: u16) {
+        let num = self.facts[slot as usize].num;
+        let (view, host) = self.split();
+        let mut w = RouterWriter { host, router: router::WDISPLAY };
+        let _ = Self::write_fact_id(&mut w, num);
+        let _ = view.write_fact(&mut w, slot);
+        let _ = w.write_str("\n");
+    }
+
+    /// `f-1,f-3,*` for a partial match.
+    pub(crate) fn write_basis(&self, w: &mut dyn Write, token: u16) -> fmt::Result {
+        let mut ids = [u32::MAX; crate::rete::MAX_PATTERNS];
+        let mut n = 0;
+        let mut t = token;
+        while t != NONE {
+            let tk = self.tokens[t as usize];
+            let j = self.joins[tk.owner as usize];
+            if j.kind == crate::rete::JoinKind::Root {
+                break;
+            }
+            if (j.depth as usize) < ids.len() {
+                ids[j.depth as usize] =
+                    if tk.am != NONE { self.facts[self.tokens[tk.am as usize].fact as usize].num } else { u32::MAX };
+                n = n.max(j.depth as usize + 1);
+            }
+            t = tk.parent;
+        }
+        for (i, id) in ids[..n].iter().enumerate() {
+            if i > 0 {
+                w.write_char(',')?;
+            }
+            if *id == u32::MAX {
+                w.write_char('*')?;
+            } else {
+                write!(w, "f-{id}")?;
+            }
+        }
+        Ok(())
+    }
+
+    fn write_activation(&self, w: &mut dyn Write, a: Activation) -> fmt::Result {
+        let r: Rule = self.rules[a.rule as usize];
+        write!(w, "{:<6} {}: ", a.salience, self.sym_text(r.name))?;
+        self.write_basis(w, a.token)
+    }
+
+    pub(crate) fn print_activation_line(&mut self, prefix: &str, a: u16) {
+        let mut b: crate::value::TextBuf<512> = crate::value::TextBuf::new();
+        let _ = b.write_str(prefix);
+        let _ = self.write_activation(&mut b, self.acts[a as usize]);
+        let _ = b.write_str("\n");
+        self.host.write_str(router::WTRACE, b.as_str());
+    }
+
+    pub(crate) fn print_fire_line(&mut self, count: u32, rule: u16, token: u16) {
+        if self.st.watch & watch::RULES == 0 {
+            return;
+        }
+        let mut b: crate::value::TextBuf<512> = crate::value::TextBuf::new();
+        let _ = write!(b, "FIRE {count:>4} {}: ", self.sym_text(self.rules[rule as usize].name));
+        let _ = self.write_basis(&mut b, token);
+        let _ = b.write_str("\n");
+        self.host.write_str(router::WTRACE, b.as_str());
+    }
+
+    /// `(facts)`: all facts with number >= `start`, then the total.
+    pub fn list_facts(&mut self, start: i64, end: i64, max: i64) {
+        let mut f = self.st.fact_head;
+        let mut n = 0i64;
+        while f != NONE {
+            let num = self.facts[f as usize].num as i64;
+            if num >= start && (end < 0 || num <= end) && (max < 0 || n < max) {
+                self.print_fact_listing_line(f);
+                n += 1;
+            }
+            f = self.facts[f as usize].next;
+        }
+        if n > 0 {
+            self.print_total(n as usize, "fact");
+        }
+    }
+
+    fn print_total(&mut self, n: usize, what: &str) {
+        let mut b: crate::value::TextBuf<64> = crate::value::TextBuf::new();
+        let _ = write!(b, "For a total of {n} {what}{}.\n", if n == 1 { "" } else { "s" });
+        self.host.write_str(router::WDISPLAY, b.as_str());
+    }
+
+    /// `(agenda)` listing.
+    pub fn list_agenda(&mut self) {
+        let mut a = self.st.agenda_head;
+        let mut n = 0;
+        while a != NONE {
+            let mut b: crate::value::TextBuf<512> = crate::value::TextBuf::new();
+            let _ = self.write_activation(&mut b, self.acts[a as usize]);
+            let _ = b.write_str("\n");
+            self.host.write_str(router::WDISPLAY, b.as_str());
+            n += 1;
+            a = self.acts[a as usize].next;
+        }
+        if n > 0 {
+            self.print_total(n, "activation");
+        }
+    }
+}

@@ -1,0 +1,260 @@
+//! Alpha side: matching one fact against the patterns of its template, keeping alpha
+//! memories, and telling successor joins about new and removed alpha matches.
+
+use super::{JoinKind, PatBinding, Token, TokenKind, MAX_MARKS};
+use crate::engine::Core;
+use crate::error::EvalError;
+use crate::value::{Value, NONE};
+
+/// Segmentation layout of one constrained multislot of a pattern.
+#[derive(Clone, Copy)]
+struct SlotLayout {
+    slot: u16,
+    fixed: u16,
+    multis: u8,
+    first_mark: u8,
+}
+
+impl Core<'_> {
+    /// Adds a new fact to every alpha memory it matches and propagates.
+    pub(crate) fn network_assert(&mut self, fact: u16) -> Result<(), EvalError> {
+        let tmpl = self.facts[fact as usize].tmpl;
+        let mut a = self.templates[tmpl as usize].alpha_head;
+        while a != NONE {
+            self.match_alpha(a, fact)?;
+            a = self.alphas[a as usize].next_in_tmpl;
+        }
+        Ok(())
+    }
+
+    /// Removes everything a fact built in the network.
+    pub(crate) fn network_retract(&mut self, fact: u16) {
+        while self.facts[fact as usize].first_am != NONE {
+            let am = self.facts[fact as usize].first_am;
+            self.remove_alpha_match(am);
+        }
+    }
+
+    fn layouts(&self, alpha: u16, out: &mut [SlotLayout; 8]) -> usize {
+        let mut n = 0;
+        let mut marks = 0u8;
+        let mut s = self.alphas[alpha as usize].desc;
+        while s != NONE && n < out.len() {
+            let sd = self.exprs[s as usize];
+            let (mut fixed, mut multis) = (0u16, 0u8);
+            let mut e = sd.first;
+            while e != NONE {
+                if self.exprs[e as usize].aux == 1 {
+                    multis += 1;
+                } else {
+                    fixed += 1;
+                }
+                e = self.exprs[e as usize].next;
+            }
+            out[n] = SlotLayout { slot: sd.data, fixed, multis, first_mark: marks };
+            if multis >= 2 {
+                marks += multis - 1;
+            }
+            n += 1;
+            s = sd.next;
+        }
+        n
+    }
+
+    /// Runs one alpha node over one fact, creating an alpha match per segmentation.
+    pub(crate) fn match_alpha(&mut self, alpha: u16, fact: u16) -> Result<(), EvalError> {
+        let mut lay = [SlotLayout { slot: 0, fixed: 0, multis: 0, first_mark: 0 }; 8];
+        let n = self.layouts(alpha, &mut lay);
+        let mut slack = [0u16; 8];
+        for (i, l) in lay[..n].iter().enumerate() {
+            let len = match self.slot_cell(fact, l.slot).1 {
+                Some(len) => len,
+                None => 1,
+            };
+            if len < l.fixed || (l.multis == 0 && len != l.fixed) {
+                return Ok(());
+            }
+            slack[i] = len - l.fixed;
+        }
+        let nmarks = self.alphas[alpha as usize].nmarks as usize;
+        let mut marks = [0u8; MAX_MARKS];
+        loop {
+            if self.marks_fit(&lay[..n], &slack, &marks) && self.alpha_tests_pass(alpha, fact, marks)? {
+                self.add_alpha_match(alpha, fact, marks)?;
+            }
+            // odometer: last mark fastest
+            let mut i = nmarks;
+            loop {
+                if i == 0 {
+                    return Ok(());
+                }
+                i -= 1;
+                marks[i] = marks[i].saturating_add(1);
+                if marks[i] as u16 <= 255 && self.mark_can_grow(&lay[..n], &slack, &marks, i) {
+                    break;
+                }
+                marks[i] = 0;
+            }
+        }
+    }
+
+    /// Whether marks of the slot containing mark `i` still sum within its slack.
+    fn mark_can_grow(&self, lay: &[SlotLayout], slack: &[u16; 8], marks: &[u8; MAX_MARKS], i: usize) -> bool {
+        for (k, l) in lay.iter().enumerate() {
+            let f = l.first_mark as usize;
+            let cnt = if l.multis >= 2 { l.multis as usize - 1 } else { 0 };
+            if i >= f && i < f + cnt {
+                let sum: u16 = marks[f..f + cnt].iter().map(|&m| m as u16).sum();
+                return sum <= slack[k];
+            }
+        }
+        false
+    }
+
+    fn marks_fit(&self, lay: &[SlotLayout], slack: &[u16; 8], marks: &[u8; MAX_MARKS]) -> bool {
+        lay.iter().enumerate().all(|(k, l)| {
+            let f = l.first_mark as usize;
+            let cnt = if l.multis >= 2 { l.multis as usize - 1 } else { 0 };
+            marks[f..f + cnt].iter().map(|&m| m as u16).sum::<u16>() <= slack[k]
+        })
+    }
+
+    fn alpha_tests_pass(&mut self, alpha: u16, fact: u16, marks: [u8; MAX_MARKS]) -> Result<bool, EvalError> {
+        let tests = self.alphas[alpha as usize].tests;
+        if tests == NONE {
+            return Ok(true);
+        }
+        let saved = self.st.this_pm;
+        self.st.this_pm = PatBinding { fact, marks };
+        let r = self.eval_tests(tests);
+        self.st.this_pm = saved;
+        r
+    }
+
+    /// Evaluates a chain of tests; all must be non-FALSE. Scratch and stack are
+    /// restored afterwards, so tests leave nothing behind.
+    pub(crate) fn eval_tests(&mut self, mut t: u16) -> Result<bool, EvalError> {
+        let (scratch, sp) = (self.st.scratch_top, self.st.sp);
+        let mut ok = true;
+        while t != NONE {
+            let v = self.eval(t);
+            self.st.scratch_top = scratch;
+            self.st.sp = sp;
+            if v? == Value::Sym(crate::builtins::SYM_FALSE) {
+                ok = false;
+                break;
+            }
+            t = self.exprs[t as usize].next;
+        }
+        Ok(ok)
+    }
+
+    fn add_alpha_match(&mut self, alpha: u16, fact: u16, marks: [u8; MAX_MARKS]) -> Result<(), EvalError> {
+        let t = self.alloc_token()?;
+        let head = self.alphas[alpha as usize].mem;
+        let fam = self.facts[fact as usize].first_am;
+        self.tokens[t as usize] = Token {
+            kind: TokenKind::Alpha,
+            marks,
+            owner: alpha,
+            fact,
+            mem_next: head,
+            next_sib: fam,
+            extra: NONE,
+            ..Token::EMPTY
+        };
+        if head != NONE {
+            self.tokens[head as usize].mem_prev = t;
+        }
+        self.alphas[alpha as usize].mem = t;
+        if fam != NONE {
+            self.tokens[fam as usize].prev_sib = t;
+        }
+        self.facts[fact as usize].first_am = t;
+        let mut j = self.alphas[alpha as usize].succ;
+        while j != NONE {
+            // remember how far propagation got, so a rollback undoes only that
+            self.tokens[t as usize].extra = j;
+            self.right_activate(j, t)?;
+            j = self.joins[j as usize].alpha_next;
+        }
+        self.tokens[t as usize].extra = NONE;
+        Ok(())
+    }
+
+    /// Removes an alpha match: retracts what successor joins built from it.
+    pub(crate) fn remove_alpha_match(&mut self, am: u16) {
+        let alpha = self.tokens[am as usize].owner;
+        let stop = self.tokens[am as usize].extra;
+        let mut j = self.alphas[alpha as usize].succ;
+        while j != NONE {
+            match self.joins[j as usize].kind {
+                JoinKind::Negative => self.negative_right_remove(j, am),
+                JoinKind::Exists => self.exists_right_remove(j, am),
+                _ => self.delete_am_children_of(am, j),
+            }
+            if j == stop {
+                break;
+            }
+            j = self.joins[j as usize].alpha_next;
+        }
+        // leftovers (e.g. from a join that was removed meanwhile)
+        while self.tokens[am as usize].first_child != NONE {
+            let c = self.tokens[am as usize].first_child;
+            self.delete_token(c);
+        }
+        // unlink from alpha memory and the fact's list
+        let tk = self.tokens[am as usize];
+        if tk.mem_prev != NONE {
+            self.tokens[tk.mem_prev as usize].mem_next = tk.mem_next;
+        } else {
+            self.alphas[alpha as usize].mem = tk.mem_next;
+        }
+        if tk.mem_next != NONE {
+            self.tokens[tk.mem_next as usize].mem_prev = tk.mem_prev;
+        }
+        if tk.prev_sib != NONE {
+            self.tokens[tk.prev_sib as usize].next_sib = tk.next_sib;
+        } else {
+            self.facts[tk.fact as usize].first_am = tk.next_sib;
+        }
+        if tk.next_sib != NONE {
+            self.tokens[tk.next_sib as usize].prev_sib = tk.prev_sib;
+        }
+        self.free_token(am);
+    }
+
+    fn delete_am_children_of(&mut self, am: u16, join: u16) {
+        let mut c = self.tokens[am as usize].first_child;
+        while c != NONE {
+            let next = self.tokens[c as usize].am_next;
+            if self.tokens[c as usize].owner == join {
+                self.delete_token(c);
+            }
+            c = next;
+        }
+    }
+
+    /// Empties an alpha memory (used when a rule is removed or a load rolled back).
+    pub(crate) fn clear_alpha_memory(&mut self, alpha: u16) {
+        while self.alphas[alpha as usize].mem != NONE {
+            let am = self.alphas[alpha as usize].mem;
+            self.tokens[am as usize].extra = NONE;
+            self.remove_alpha_match(am);
+        }
+    }
+
+    /// Fills an alpha node's memory from existing facts (new rule while facts exist).
+    pub(crate) fn prime_alpha(&mut self, alpha: u16) -> Result<(), EvalError> {
+        let tmpl = self.alphas[alpha as usize].tmpl;
+        let mut f = self.st.fact_head;
+        while f != NONE {
+            let next = self.facts[f as usize].next;
+            if self.facts[f as usize].tmpl == tmpl {
+                self.match_alpha(alpha, f)?;
+            }
+            f = next;
+        }
+        Ok(())
+    }
+}

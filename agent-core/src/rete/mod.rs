@@ -1,0 +1,149 @@
+//! The Rete network. See the crate docs for the design.
+
+mod alpha;
+mod beta;
+
+
+use crate::value::NONE;
+
+/// Pattern index marking "the fact under test" in alpha tests (shared between rules).
+pub const THIS_PATTERN: u8 = 0xFE;
+/// Most multifield lengths an alpha match records (ambiguous segmentations).
+pub const MAX_MARKS: usize = 4;
+/// Most pattern-level CEs in one rule.
+pub const MAX_PATTERNS: usize = 32;
+
+/// One distinct pattern: a template plus the tests that need only the fact itself.
+/// Shared by every rule that uses an identical pattern.
+#[derive(Clone, Copy, Debug)]
+pub struct AlphaNode {
+    pub tmpl: u16,
+    /// Chain of `PatSlot` descriptor nodes (multislot segmentation), NONE if none.
+    pub desc: u16,
+    /// Chain of boolean tests, all must hold.
+    pub tests: u16,
+    pub next_in_tmpl: u16,
+    /// First successor join (chained by `Join::alpha_next`, newest first).
+    pub succ: u16,
+    /// Alpha memory: first alpha-match token (newest first).
+    pub mem: u16,
+    pub nmarks: u8,
+    pub live: bool,
+}
+
+impl AlphaNode {
+    pub const EMPTY: AlphaNode =
+        AlphaNode { tmpl: 0, desc: NONE, tests: NONE, next_in_tmpl: NONE, succ: NONE, mem: NONE, nmarks: 0, live: false };
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(u8)]
+pub enum JoinKind {
+    /// Holds the rule's root token.
+    Root,
+    Positive,
+    Negative,
+    Exists,
+    /// A `test` CE with no pattern before it.
+    Test,
+}
+
+#[derive(Clone, Copy, Debug)]
+pub struct Join {
+    pub kind: JoinKind,
+    /// Pattern index of the right input (the root has none).
+    pub depth: u8,
+    pub rule: u16,
+    pub parent: u16,
+    pub child: u16,
+    pub alpha: u16,
+    /// Chain of boolean tests needing earlier patterns.
+    pub tests: u16,
+    /// `test` CEs after a `not`/`exists`: checked on the left token before output.
+    pub post: u16,
+    /// Next join in the alpha node's successor list.
+    pub alpha_next: u16,
+    /// Output memory: first token (newest first).
+    pub mem: u16,
+}
+
+impl Join {
+    pub const EMPTY: Join = Join {
+        kind: JoinKind::Root,
+        depth: 0,
+        rule: NONE,
+        parent: NONE,
+        child: NONE,
+        alpha: NONE,
+        tests: NONE,
+        post: NONE,
+        alpha_next: NONE,
+        mem: NONE,
+    };
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(u8)]
+pub enum TokenKind {
+    Free,
+    /// An entry of an alpha memory.
+    Alpha,
+    /// A partial match in a join's output memory.
+    Beta,
+}
+
+/// Alpha matches and partial matches share this pool.
+#[derive(Clone, Copy, Debug)]
+pub struct Token {
+    pub kind: TokenKind,
+    pub marks: [u8; MAX_MARKS],
+    /// Alpha node (alpha match) or join (partial match).
+    pub owner: u16,
+    /// Alpha match: the fact slot.
+    pub fact: u16,
+    /// Partial match: the alpha match joined on the right (NONE for not/exists/test/root).
+    pub am: u16,
+    pub parent: u16,
+    /// Alpha match: first partial match built on it; partial match: first left child.
+    pub first_child: u16,
+    /// Partial match: siblings under `parent`; alpha match: other matches of the same fact.
+    pub next_sib: u16,
+    pub prev_sib: u16,
+    /// Partial match: siblings under `am`.
+    pub am_next: u16,
+    pub am_prev: u16,
+    pub mem_next: u16,
+    pub mem_prev: u16,
+    /// Terminal partial match: its activation. Input to a not/exists join: match count.
+    pub extra: u16,
+}
+
+impl Token {
+    pub const EMPTY: Token = Token {
+        kind: TokenKind::Free,
+        marks: [0; MAX_MARKS],
+        owner: NONE,
+        fact: NONE,
+        am: NONE,
+        parent: NONE,
+        first_child: NONE,
+        next_sib: NONE,
+        prev_sib: NONE,
+        am_next: NONE,
+        am_prev: NONE,
+        mem_next: NONE,
+        mem_prev: NONE,
+        extra: 0,
+    };
+}
+
+/// What a pattern variable resolves against: a fact slot plus its segmentation.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PatBinding {
+    pub fact: u16,
+    pub marks: [u8; MAX_MARKS],
+}
+
+impl PatBinding {
+    pub const EMPTY: PatBinding = PatBinding { fact: NONE, marks: [0; MAX_MARKS] };
+}

@@ -1,0 +1,56 @@
+//! Rules and agenda activations.
+
+use crate::value::{SymId, NONE};
+
+#[derive(Clone, Copy, Debug)]
+pub struct Rule {
+    pub name: SymId,
+    pub salience: i32,
+    /// Root join (holds the rule's empty root token) and terminal join.
+    pub root: u16,
+    pub terminal: u16,
+    /// RHS: chain of actions.
+    pub rhs: u16,
+    /// Pattern-level CEs (joins below the root).
+    pub npat: u8,
+    /// Frame size for RHS `bind` locals.
+    pub nlocals: u8,
+    /// Next disjunct of the same rule (an `or` LHS yields several).
+    pub next_disjunct: u16,
+    /// First CE is `not`/`exists`/`test`: the root token is rebuilt at `reset`.
+    pub root_sensitive: bool,
+    pub deleted: bool,
+    /// Source text of the construct in the symbol table (for `ppdefrule`), or NONE.
+    pub text: u16,
+}
+
+impl Rule {
+    pub const EMPTY: Rule = Rule {
+        name: 0,
+        salience: 0,
+        root: NONE,
+        terminal: NONE,
+        rhs: NONE,
+        npat: 0,
+        nlocals: 0,
+        next_disjunct: NONE,
+        root_sensitive: false,
+        deleted: false,
+        text: NONE,
+    };
+}
+
+#[derive(Clone, Copy, Debug)]
+pub struct Activation {
+    pub rule: u16,
+    pub token: u16,
+    pub salience: i32,
+    /// Creation order; the depth strategy puts newer activations first.
+    pub seq: u32,
+    pub next: u16,
+    pub prev: u16,
+}
+
+impl Activation {
+    pub const EMPTY: Activation = Activation { rule: NONE, token: NONE, salience: 0, seq: 0, next: NONE, prev: NONE };
+}

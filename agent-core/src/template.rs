@@ -1,0 +1,109 @@
+//! Deftemplates and their slot definitions. Ordered facts use an implied template with
+//! one multislot.
+
+use crate::value::{SymId, NONE};
+
+/// Type restriction bits of a slot (`(type ...)`); 0 means any type.
+pub mod types {
+    pub const SYMBOL: u8 = 1;
+    pub const STRING: u8 = 2;
+    pub const INTEGER: u8 = 4;
+    pub const FLOAT: u8 = 8;
+    pub const FACT_ADDRESS: u8 = 16;
+    pub const NUMBER: u8 = INTEGER | FLOAT;
+    pub const LEXEME: u8 = SYMBOL | STRING;
+}
+
+/// How a slot gets its value when an assert leaves it out.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(u8)]
+pub enum DefaultKind {
+    /// No `default`: derived from type/allowed values (`nil`, 0, "", first allowed).
+    Derived,
+    /// `(default expr...)`: evaluated once, when the template is defined.
+    Static,
+    /// `(default-dynamic expr...)`: evaluated at each assert.
+    Dynamic,
+    /// `(default ?NONE)`: the slot must be given.
+    Required,
+}
+
+#[derive(Clone, Copy, Debug)]
+pub struct SlotDef {
+    pub name: SymId,
+    pub multi: bool,
+    pub default_kind: DefaultKind,
+    /// Chain of expression nodes giving the default (NONE when derived).
+    pub default: u16,
+    pub types: u8,
+    /// Chain of constant expression nodes (allowed-values etc.), NONE when unrestricted.
+    pub allowed: u16,
+}
+
+impl SlotDef {
+    pub const EMPTY: SlotDef = SlotDef {
+        name: 0,
+        multi: false,
+        default_kind: DefaultKind::Derived,
+        default: NONE,
+        types: 0,
+        allowed: NONE,
+    };
+}
+
+#[derive(Clone, Copy, Debug)]
+pub struct Template {
+    pub name: SymId,
+    pub first_slot: u16,
+    pub nslots: u16,
+    pub implied: bool,
+    /// First alpha node testing facts of this template.
+    pub alpha_head: u16,
+}
+
+impl Template {
+    pub const EMPTY: Template =
+        Template { name: 0, first_slot: NONE, nslots: 0, implied: false, alpha_head: NONE };
+}
+
+/// A `deffacts`: a chain of `FactSpec` expressions.
+#[derive(Clone, Copy, Debug)]
+pub struct Deffacts {
+    pub name: SymId,
+    pub facts: u16,
+}
+
+impl Deffacts {
+    pub const EMPTY: Deffacts = Deffacts { name: 0, facts: NONE };
+}
+
+/// A `defglobal` variable.
+#[derive(Clone, Copy, Debug)]
+pub struct Global {
+    pub name: SymId,
+    pub value: crate::value::Value,
+    /// Initial-value expression, re-evaluated at `reset`.
+    pub init: u16,
+}
+
+impl Global {
+    pub const EMPTY: Global = Global { name: 0, value: crate::value::Value::Void, init: NONE };
+}
+
+/// A `deffunction`.
+#[derive(Clone, Copy, Debug)]
+pub struct Deffunction {
+    pub name: SymId,
+    /// Number of required parameters.
+    pub nparams: u8,
+    /// Whether the last parameter is a `$?rest` wildcard.
+    pub rest: bool,
+    /// Frame size: parameters plus `bind` locals.
+    pub nlocals: u8,
+    /// Body: chain of actions.
+    pub body: u16,
+}
+
+impl Deffunction {
+    pub const EMPTY: Deffunction = Deffunction { name: 0, nparams: 0, rest: false, nlocals: 0, body: NONE };
+}

@@ -1,0 +1,235 @@
+//! Runtime values: atoms and multifield spans, plus CLIPS-style number printing.
+
+use core::fmt::{self, Write};
+
+/// Index of a symbol or string in the symbol table.
+pub type SymId = u16;
+
+/// "No entry" marker for all `u16` pool links.
+pub const NONE: u16 = u16::MAX;
+
+/// A fact address: pool slot plus the fact number, so a stale address (the slot was
+/// reused) is detected by comparing numbers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FactRef {
+    pub slot: u16,
+    pub num: u32,
+}
+
+/// A contiguous run of atoms in the multifield scratch area (during evaluation) or,
+/// inside fact storage, a header announcing that `len` atoms follow.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct MfSpan {
+    pub start: u16,
+    pub len: u16,
+}
+
+/// One CLIPS value. `Multi` points into the scratch area during evaluation.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Value {
+    Void,
+    Int(i64),
+    Float(f64),
+    Sym(SymId),
+    Str(SymId),
+    Fact(FactRef),
+    Multi(MfSpan),
+}
+
+impl Value {
+    pub const EMPTY: Value = Value::Void;
+
+    pub fn as_number(self) -> Option<f64> {
+        match self {
+            Value::Int(i) => Some(i as f64),
+            Value::Float(f) => Some(f),
+            _ => None,
+        }
+    }
+
+    pub fn is_multi(self) -> bool {
+        matches!(self, Value::Multi(_))
+    }
+
+    /// CLIPS's `eq`: same type and same value (1 and 1.0 differ).
+    pub fn same(self, other: Value) -> bool {
+        match (self, other) {
+            (Value::Float(a), Value::Float(b)) => a == b,
+            _ => self == other,
+        }
+    }
+}
+
+/// A public, borrowed view of a value (for hosts reading facts).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ValueRef<'a> {
+    Int(i64),
+    Float(f64),
+    Symbol(&'a str),
+    String(&'a str),
+    Fact(u32),
+    /// A multifield; read elements with `Engine::fact_multislot_item`.
+    Multi(u16),
+    Void,
+}
+
+/// A fixed-size text buffer implementing `fmt::Write`; output beyond capacity is cut.
+pub struct TextBuf<const N: usize> {
+    buf: [u8; N],
+    len: usize,
+}
+
+impl<const N: usize> TextBuf<N> {
+    pub const fn new() -> Self {
+        TextBuf { buf: [0; N], len: 0 }
+    }
+    pub fn as_str(&self) -> &str {
+        // Only whole UTF-8 sequences are ever pushed (see write_str), so this cannot fail.
+        core::str::from_utf8(&self.buf[..self.len]).unwrap_or("")
+    }
+    pub fn clear(&mut self) {
+        self.len = 0;
+    }
+    pub fn len(&self) -> usize {
+        self.len
+    }
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+}
+
+impl<const N: usize> Default for TextBuf<N> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<const N: usize> Write for TextBuf<N> {
+    fn write_str(&mut self, s: &str) -> fmt::Result {
+        let room = N - self.len;
+        let mut take = s.len().min(room);
+        while take > 0 && !s.is_char_boundary(take) {
+            take -= 1;
+        }
+        self.buf[self.len..self.len + take].copy_from_slice(&s.as_bytes()[..take]);
+        self.len += take;
+        if take < s.len() {
+            Err(fmt::Error)
+        } else {
+            Ok(())
+        }
+    }
+}
+
+/// Writes a float as CLIPS 6.30 does: C's `%.15g`, plus `.0` when the text looks integral.
+pub fn write_float(out: &mut dyn Write, x: f64) -> fmt::Result {
+    if x.is_nan() {
+        return out.write_str("nan");
+    }
+    if x.is_infinite() {
+        return out.write_str(if x > 0.0 { "inf" } else { "-inf" });
+    }
+    let mut g: TextBuf<48> = TextBuf::new();
+    write_g15(&mut g, x)?;
+    let s = g.as_str();
+    out.write_str(s)?;
+    if !s.bytes().any(|b| b == b'.' || b == b'e' || b == b'n' || b == b'i') {
+        out.write_str(".0")?;
+    }
+    Ok(())
+}
+
+/// C's `%.15g`.
+fn write_g15(out: &mut dyn Write, x: f64) -> fmt::Result {
+    const P: i32 = 15;
+    if x == 0.0 {
+        return out.write_str(if x.is_sign_negative() { "-0" } else { "0" });
+    }
+    // Round to 15 significant digits via scientific formatting; it gives the exponent.
+    let mut sci: TextBuf<48> = TextBuf::new();
+    write!(sci, "{:.14e}", x)?;
+    let s = sci.as_str();
+    let (mant, exp) = match s.split_once('e') {
+        Some(p) => p,
+        None => return out.write_str(s),
+    };
+    let exp: i32 = exp.parse().map_err(|_| fmt::Error)?;
+    let (neg, mant) = match mant.strip_prefix('-') {
+        Some(m) => (true, m),
+        None => (false, mant),
+    };
+    // digits without the dot
+    let mut digits = [b'0'; 16];
+    let mut n = 0;
+    for b in mant.bytes() {
+        if b.is_ascii_digit() && n < 16 {
+            digits[n] = b;
+            n += 1;
+        }
+    }
+    // strip trailing zeros
+    while n > 1 && digits[n - 1] == b'0' {
+        n -= 1;
+    }
+    if neg {
+        out.write_char('-')?;
+    }
+    if exp < -4 || exp >= P {
+        out.write_char(digits[0] as char)?;
+        if n > 1 {
+            out.write_char('.')?;
+            for &d in &digits[1..n] {
+                out.write_char(d as char)?;
+            }
+        }
+        let (sign, e) = if exp < 0 { ('-', -exp) } else { ('+', exp) };
+        write!(out, "e{sign}{e:02}")
+    } else if exp >= 0 {
+        let int_len = exp as usize + 1;
+        for i in 0..int_len {
+            out.write_char(if i < n { digits[i] as char } else { '0' })?;
+        }
+        if n > int_len {
+            out.write_char('.')?;
+            for &d in &digits[int_len..n] {
+                out.write_char(d as char)?;
+            }
+        }
+        Ok(())
+    } else {
+        out.write_str("0.")?;
+        for _ in 0..(-exp - 1) {
+            out.write_char('0')?;
+        }
+        for &d in &digits[..n] {
+            out.write_char(d as char)?;
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn f(x: f64) -> TextBuf<64> {
+        let mut b = TextBuf::new();
+        write_float(&mut b, x).unwrap();
+        b
+    }
+
+    #[test]
+    fn floats_print_like_clips() {
+        assert_eq!(f(1.0 / 3.0).as_str(), "0.333333333333333");
+        assert_eq!(f(6.0).as_str(), "6.0");
+        assert_eq!(f(3.5).as_str(), "3.5");
+        assert_eq!(f(2.5e10).as_str(), "25000000000.0");
+        assert_eq!(f(1e15).as_str(), "1e+15");
+        assert_eq!(f(1.5e-7).as_str(), "1.5e-07");
+        assert_eq!(f(3e-5).as_str(), "3e-05");
+        assert_eq!(f(-0.0).as_str(), "-0.0");
+        assert_eq!(f(123456789012345678.0).as_str(), "1.23456789012346e+17");
+        assert_eq!(f(0.001).as_str(), "0.001");
+        assert_eq!(f(-2.25).as_str(), "-2.25");
+    }
+}

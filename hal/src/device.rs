@@ -1,0 +1,156 @@
+//! One small trait per device. Traits only move data; configuration (ports, rates,
+//! calibration) belongs to the implementation. Every method is fallible.
+
+use crate::error::ErrorType;
+use crate::ir::IrScan;
+use crate::kinematics::WheelSpeeds;
+use crate::light::LightSignal;
+use crate::odometry::Pose2;
+
+/// The ring of nine IR distance sensors.
+pub trait IrRing: ErrorType {
+    /// The latest distances in metres, 0 where a sensor saw nothing.
+    fn read_scan(&mut self) -> Result<IrScan, Self::Error>;
+}
+
+/// The contact strip around the base.
+pub trait Bumper: ErrorType {
+    fn is_pressed(&mut self) -> Result<bool, Self::Error>;
+}
+
+/// A gyro reading: absolute heading and turn rate, counter-clockwise positive.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct GyroSample {
+    pub angle_rad: f32,
+    pub rate_rad_s: f32,
+}
+
+pub trait Gyro: ErrorType {
+    fn read(&mut self) -> Result<GyroSample, Self::Error>;
+}
+
+/// The three-wheel omni drive: motor speeds in, measured motor speeds out.
+pub trait OmniDrive: ErrorType {
+    /// Commands the three motors. Implementations keep their own dead-man rule.
+    fn set_motor_speeds(&mut self, speeds: WheelSpeeds) -> Result<(), Self::Error>;
+    /// The motors' measured speeds.
+    fn motor_speeds(&mut self) -> Result<WheelSpeeds, Self::Error>;
+}
+
+/// A pose estimate with the driver's sequence number, so readers can tell fresh from stale.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct OdometrySample {
+    pub pose: Pose2,
+    pub sequence: u32,
+}
+
+pub trait Odometry: ErrorType {
+    fn read_pose(&mut self) -> Result<OdometrySample, Self::Error>;
+    /// Sets the pose the driver integrates from.
+    fn set_pose(&mut self, pose: Pose2) -> Result<(), Self::Error>;
+}
+
+/// The signal light of the machine in front of the robot.
+pub trait MachineLight: ErrorType {
+    /// `None` when no light is in view.
+    fn read_light(&mut self) -> Result<Option<LightSignal>, Self::Error>;
+}
+
+/// Whether a puck sits in the robot's gripper area (the front IR sensor on the 2012 robot).
+pub trait PuckSensor: ErrorType {
+    fn has_puck(&mut self) -> Result<bool, Self::Error>;
+}
+
+impl<T: IrRing + ?Sized> IrRing for &mut T {
+    fn read_scan(&mut self) -> Result<IrScan, Self::Error> {
+        T::read_scan(self)
+    }
+}
+
+impl<T: Bumper + ?Sized> Bumper for &mut T {
+    fn is_pressed(&mut self) -> Result<bool, Self::Error> {
+        T::is_pressed(self)
+    }
+}
+
+impl<T: Gyro + ?Sized> Gyro for &mut T {
+    fn read(&mut self) -> Result<GyroSample, Self::Error> {
+        T::read(self)
+    }
+}
+
+impl<T: OmniDrive + ?Sized> OmniDrive for &mut T {
+    fn set_motor_speeds(&mut self, speeds: WheelSpeeds) -> Result<(), Self::Error> {
+        T::set_motor_speeds(self, speeds)
+    }
+    fn motor_speeds(&mut self) -> Result<WheelSpeeds, Self::Error> {
+        T::motor_speeds(self)
+    }
+}
+
+impl<T: Odometry + ?Sized> Odometry for &mut T {
+    fn read_pose(&mut self) -> Result<OdometrySample, Self::Error> {
+        T::read_pose(self)
+    }
+    fn set_pose(&mut self, pose: Pose2) -> Result<(), Self::Error> {
+        T::set_pose(self, pose)
+    }
+}
+
+impl<T: MachineLight + ?Sized> MachineLight for &mut T {
+    fn read_light(&mut self) -> Result<Option<LightSignal>, Self::Error> {
+        T::read_light(self)
+    }
+}
+
+impl<T: PuckSensor + ?Sized> PuckSensor for &mut T {
+    fn has_puck(&mut self) -> Result<bool, Self::Error> {
+        T::has_puck(self)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::error::{Error, ErrorKind};
+
+    /// A bumper that fails after a number of reads, to show errors flow through `&mut T`.
+    struct FlakyBumper {
+        reads_left: u8,
+    }
+
+    #[derive(Debug)]
+    struct SerialTimeout;
+
+    impl Error for SerialTimeout {
+        fn kind(&self) -> ErrorKind {
+            ErrorKind::Timeout
+        }
+    }
+
+    impl ErrorType for FlakyBumper {
+        type Error = SerialTimeout;
+    }
+
+    impl Bumper for FlakyBumper {
+        fn is_pressed(&mut self) -> Result<bool, SerialTimeout> {
+            if self.reads_left == 0 {
+                return Err(SerialTimeout);
+            }
+            self.reads_left -= 1;
+            Ok(self.reads_left == 0)
+        }
+    }
+
+    fn generic_read<B: Bumper>(mut bumper: B) -> Result<bool, ErrorKind> {
+        bumper.is_pressed().map_err(|e| e.kind())
+    }
+
+    #[test]
+    fn forwarding_impl_reaches_the_device() {
+        let mut b = FlakyBumper { reads_left: 2 };
+        assert_eq!(generic_read(&mut b), Ok(false));
+        assert_eq!(generic_read(&mut b), Ok(true));
+        assert_eq!(generic_read(&mut b), Err(ErrorKind::Timeout));
+    }
+}

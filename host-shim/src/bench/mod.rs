@@ -1,0 +1,404 @@
+//! `robotino-agent bench`: our engine against CLIPS 6.30 (`clips`) and CLIPS 6.4 (clipspy).
+//!
+//! Writes the workload programs (Miss Manners, join-heavy and negation-heavy scaling), runs
+//! every available engine on the same files, checks their results agree, prints a ratio
+//! table and regenerates `BENCHMARKS.md`. Where ours plugs in: see [`ours`]. How the LLSF
+//! decision time will be measured: `DECISION_TIME.md` in this folder.
+
+mod batch_cli;
+mod clipspy;
+mod footprint;
+mod measure;
+mod ours;
+mod process;
+mod report;
+mod rng;
+mod workloads;
+
+use batch_cli::BatchCli;
+use clipspy::ClipsPy;
+use measure::{Contender, Measurement, Plan, ProgramFiles};
+use ours::OursInProcess;
+use report::{Machine, Report, Row};
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::time::{Duration, Instant};
+use workloads::{Kind, Workload};
+
+/// An error with the context needed to act on it.
+#[derive(Debug)]
+pub struct BenchError {
+    context: String,
+}
+
+impl BenchError {
+    pub fn new(context: String) -> Self {
+        Self { context }
+    }
+}
+
+impl std::fmt::Display for BenchError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.context)
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum WorkloadArg {
+    /// Miss Manners at each --manners-sizes guest count.
+    Manners,
+    /// Join-heavy scaling program at each --scale-sizes fact count.
+    Join,
+    /// Negation-heavy scaling program at each --scale-sizes fact count.
+    Negation,
+}
+
+#[derive(clap::Args, Debug)]
+pub struct Args {
+    /// Workloads to run (comma-separated).
+    #[arg(long, value_enum, value_delimiter = ',', default_values = ["manners", "join", "negation"])]
+    pub workloads: Vec<WorkloadArg>,
+    /// Guest counts for Miss Manners (even numbers).
+    #[arg(long, value_delimiter = ',', default_values_t = [16, 32, 64, 128])]
+    pub manners_sizes: Vec<usize>,
+    /// Fact counts for the join and negation programs.
+    #[arg(long, value_delimiter = ',', default_values_t = [100, 1000, 10000, 100000])]
+    pub scale_sizes: Vec<usize>,
+    /// Timed repetitions per measurement (wall times are medians).
+    #[arg(long, default_value_t = 5)]
+    pub reps: usize,
+    /// Skip the callgrind instruction counts.
+    #[arg(long)]
+    pub no_callgrind: bool,
+    /// Time-box for one callgrind run, in seconds.
+    #[arg(long, default_value_t = 300)]
+    pub callgrind_timeout: u64,
+    /// Deadline for one plain run, in seconds.
+    #[arg(long, default_value_t = 600)]
+    pub run_timeout: u64,
+    /// Leave out CLIPS 6.4 (clipspy).
+    #[arg(long)]
+    pub no_clipspy: bool,
+    /// Markdown report to regenerate.
+    #[arg(long, default_value = "BENCHMARKS.md")]
+    pub out: PathBuf,
+    /// Where the generated programs and scratch files go (default: a temp folder).
+    #[arg(long)]
+    pub work_dir: Option<PathBuf>,
+    /// Only write the programs into the work directory and list them.
+    #[arg(long)]
+    pub emit_only: bool,
+}
+
+impl Args {
+    fn selected_workloads(&self) -> Vec<Workload> {
+        let mut selected = Vec::new();
+        for arg in &self.workloads {
+            let (kind, sizes) = match arg {
+                WorkloadArg::Manners => (Kind::Manners, &self.manners_sizes),
+                WorkloadArg::Join => (Kind::Join, &self.scale_sizes),
+                WorkloadArg::Negation => (Kind::Negation, &self.scale_sizes),
+            };
+            selected.extend(sizes.iter().map(|&size| Workload { kind, size }));
+        }
+        selected
+    }
+}
+
+pub fn main(args: Args) -> ExitCode {
+    match run(&args) {
+        Ok(all_agree) if all_agree => ExitCode::SUCCESS,
+        Ok(_) => {
+            eprintln!("bench: some engines disagree on results (see the report)");
+            ExitCode::FAILURE
+        }
+        Err(error) => {
+            eprintln!("bench: {error}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// Runs the benchmark; returns whether every workload's results agree.
+fn run(args: &Args) -> Result<bool, BenchError> {
+    let workloads = args.selected_workloads();
+    for workload in &workloads {
+        workload.validate().map_err(BenchError::new)?;
+    }
+    let work_dir = args
+        .work_dir
+        .clone()
+        .unwrap_or_else(|| std::env::temp_dir().join("robotino-bench"));
+    let programs = workloads
+        .iter()
+        .map(|&w| ProgramFiles::write(&work_dir, w))
+        .collect::<Result<Vec<_>, _>>()?;
+    if args.emit_only {
+        for program in &programs {
+            println!(
+                "{}: {} (constructs {})",
+                program.workload.name(),
+                program.batch_full.display(),
+                program.constructs.display()
+            );
+        }
+        return Ok(true);
+    }
+
+    let plan = Plan {
+        reps: args.reps.max(1),
+        callgrind_limit: (!args.no_callgrind && process::valgrind_available())
+            .then(|| Duration::from_secs(args.callgrind_timeout)),
+        run_limit: Duration::from_secs(args.run_timeout),
+    };
+    if !args.no_callgrind && plan.callgrind_limit.is_none() {
+        eprintln!("bench: valgrind not found, instruction counts are skipped");
+    }
+    let contenders = contenders(args)?;
+    let probed: Vec<(String, Result<String, String>)> = contenders
+        .iter()
+        .map(|c| (c.name(), describe(c.as_ref(), &work_dir)))
+        .collect();
+    for (name, status) in &probed {
+        match status {
+            Ok(version) => eprintln!("bench: {name}: {version}"),
+            Err(reason) => eprintln!("bench: {name}: not measured: {reason}"),
+        }
+    }
+
+    let started = Instant::now();
+    let mut rows = Vec::new();
+    let mut all_agree = true;
+    for program in &programs {
+        let mut measured = Vec::new();
+        for (contender, (name, status)) in contenders.iter().zip(&probed) {
+            let measurement = match status {
+                Ok(_) => {
+                    eprintln!(
+                        "bench: [{:>5.0} s] {} on {}",
+                        started.elapsed().as_secs_f64(),
+                        name,
+                        program.workload.name()
+                    );
+                    contender.measure(program, &plan)
+                }
+                Err(reason) => Measurement::not_measured(reason),
+            };
+            measured.push(measurement);
+        }
+        let names: Vec<&str> = probed.iter().map(|(n, _)| n.as_str()).collect();
+        let (agree, agreement) = agreement(program.workload, &names, &measured);
+        all_agree &= agree;
+        rows.push(Row {
+            workload: program.workload,
+            measured,
+            agreement,
+        });
+    }
+
+    let mut footprints = footprint::clips_630();
+    if !args.no_clipspy {
+        footprints.extend(footprint::clipspy("python3"));
+    }
+    let report = Report {
+        command_line: std::iter::once("robotino-agent".to_string())
+            .chain(std::env::args().skip(1))
+            .collect::<Vec<_>>()
+            .join(" "),
+        machine: Machine::detect(),
+        plan,
+        contenders: probed,
+        rows,
+        footprints,
+    };
+    print!("{}", report.terminal_table());
+    std::fs::write(&args.out, report.markdown())
+        .map_err(|e| BenchError::new(format!("writing {}: {e}", args.out.display())))?;
+    eprintln!("bench: wrote {}", args.out.display());
+    Ok(all_agree)
+}
+
+/// The engines under test, in report column order: references first, then ours.
+fn contenders(args: &Args) -> Result<Vec<Box<dyn Contender>>, BenchError> {
+    let this_binary = std::env::current_exe()
+        .map_err(|e| BenchError::new(format!("locating robotino-agent itself: {e}")))?;
+    let mut list: Vec<Box<dyn Contender>> = vec![Box::new(BatchCli::clips_630())];
+    if !args.no_clipspy {
+        list.push(Box::new(ClipsPy::new()));
+    }
+    list.push(Box::new(BatchCli::ours_cli(this_binary)));
+    list.push(Box::new(OursInProcess::new()));
+    Ok(list)
+}
+
+/// A contender's version text when it runs here, else why not.
+fn describe(contender: &dyn Contender, scratch: &std::path::Path) -> Result<String, String> {
+    std::fs::create_dir_all(scratch).map_err(|e| format!("{}: {e}", scratch.display()))?;
+    contender.probe(scratch)?;
+    Ok(contender.version(scratch))
+}
+
+/// Whether the measured engines' results agree, and the text for the report. Manners
+/// results are compared as sets of seat lines (print order is not the result) and each is
+/// checked to be a valid seating of the generated guests.
+fn agreement(workload: Workload, names: &[&str], measured: &[Measurement]) -> (bool, String) {
+    let normalise = |lines: &Vec<String>| {
+        let mut lines = lines.clone();
+        if workload.kind == Kind::Manners {
+            lines.sort();
+        }
+        lines
+    };
+    let results: Vec<(&str, Vec<String>, Option<u64>)> = names
+        .iter()
+        .zip(measured)
+        .filter_map(|(name, m)| {
+            let lines = m.result_lines.as_ref().ok()?;
+            Some((*name, normalise(lines), m.fired.clone().ok()))
+        })
+        .collect();
+    let Some((reference, reference_lines, reference_fired)) = results.first() else {
+        return (false, "no engine produced results".to_string());
+    };
+    let mut problems = Vec::new();
+    if reference_lines.is_empty() {
+        problems.push(format!("{reference} printed no result lines"));
+    }
+    for (name, lines, fired) in &results[1..] {
+        if lines != reference_lines {
+            problems.push(format!("{name} results differ from {reference}"));
+        }
+        if fired != reference_fired {
+            problems.push(format!("{name} fired a different number of rules"));
+        }
+    }
+    if workload.kind == Kind::Manners {
+        let guests = workloads::manners_guests(workload.size);
+        for (name, lines, _) in &results {
+            if let Err(why) = workloads::check_seating(&guests, lines) {
+                problems.push(format!("{name} seating invalid: {why}"));
+            }
+        }
+    }
+    let who: Vec<&str> = results.iter().map(|(n, _, _)| *n).collect();
+    if problems.is_empty() {
+        let valid = if workload.kind == Kind::Manners {
+            "; valid seating"
+        } else {
+            ""
+        };
+        let text = if who.len() == 1 {
+            format!("only {} measured{valid}", who[0])
+        } else {
+            format!("agree: {}{valid}", who.join(" = "))
+        };
+        (true, text)
+    } else {
+        (false, format!("DIFFER: {}", problems.join("; ")))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn with_lines(lines: &[&str], fired: u64) -> Measurement {
+        let mut m = Measurement::not_measured("test");
+        m.result_lines = Ok(lines.iter().map(|l| l.to_string()).collect());
+        m.fired = Ok(fired);
+        m
+    }
+
+    #[test]
+    fn scaling_results_must_match_exactly() {
+        let workload = Workload {
+            kind: Kind::Join,
+            size: 100,
+        };
+        let same = [
+            with_lines(&["reach2 4 reach4 2"], 7),
+            with_lines(&["reach2 4 reach4 2"], 7),
+        ];
+        let (ok, text) = agreement(workload, &["a", "b"], &same);
+        assert!(ok, "{text}");
+        let different = [
+            with_lines(&["reach2 4 reach4 2"], 7),
+            with_lines(&["reach2 5 reach4 2"], 7),
+        ];
+        assert!(!agreement(workload, &["a", "b"], &different).0);
+        let fired = [
+            with_lines(&["reach2 4 reach4 2"], 7),
+            with_lines(&["reach2 4 reach4 2"], 8),
+        ];
+        assert!(!agreement(workload, &["a", "b"], &fired).0);
+        let absent = [
+            with_lines(&["reach2 4 reach4 2"], 7),
+            Measurement::not_measured("x"),
+        ];
+        assert!(agreement(workload, &["a", "b"], &absent).0);
+    }
+
+    #[test]
+    fn manners_results_compare_as_seatings_and_must_be_valid() {
+        let workload = Workload {
+            kind: Kind::Manners,
+            size: 4,
+        };
+        let guests = workloads::manners_guests(4);
+        let man: Vec<&str> = guests
+            .iter()
+            .filter(|g| g.sex == 'm')
+            .map(|g| g.name.as_str())
+            .collect();
+        let woman: Vec<&str> = guests
+            .iter()
+            .filter(|g| g.sex == 'f')
+            .map(|g| g.name.as_str())
+            .collect();
+        let seats = [
+            format!("seat 1 {}", man[0]),
+            format!("seat 2 {}", woman[0]),
+            format!("seat 3 {}", man[1]),
+            format!("seat 4 {}", woman[1]),
+        ];
+        let forward: Vec<&str> = seats.iter().map(String::as_str).collect();
+        let backward: Vec<&str> = seats.iter().rev().map(String::as_str).collect();
+        let (ok, text) = agreement(
+            workload,
+            &["a", "b"],
+            &[with_lines(&forward, 9), with_lines(&backward, 9)],
+        );
+        assert!(ok, "{text}");
+        assert!(text.contains("valid seating"));
+        let broken = [with_lines(&forward[..3], 9)];
+        assert!(!agreement(workload, &["a"], &broken).0);
+    }
+
+    #[test]
+    fn default_arguments_select_all_twelve_programs() {
+        use clap::Parser;
+        #[derive(clap::Parser)]
+        struct Wrapper {
+            #[command(flatten)]
+            args: Args,
+        }
+        let parsed = Wrapper::parse_from(["bench"]);
+        let names: Vec<String> = parsed
+            .args
+            .selected_workloads()
+            .iter()
+            .map(Workload::name)
+            .collect();
+        assert_eq!(names.len(), 12);
+        assert_eq!(names[0], "manners-16");
+        assert_eq!(names[11], "negation-100000");
+        let only = Wrapper::parse_from(["bench", "--workloads", "join", "--scale-sizes", "300"]);
+        assert_eq!(
+            only.args.selected_workloads(),
+            vec![Workload {
+                kind: Kind::Join,
+                size: 300
+            }]
+        );
+    }
+}

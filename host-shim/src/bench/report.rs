@@ -1,0 +1,419 @@
+//! The terminal table and the regenerated `BENCHMARKS.md`.
+
+use super::footprint::Footprint;
+use super::measure::{Measurement, Plan, Reading};
+use super::workloads::Workload;
+use std::fmt::Write as _;
+use std::process::Command;
+use std::time::Duration;
+
+/// The machine the numbers come from.
+#[derive(Clone, Debug)]
+pub struct Machine {
+    pub hostname: String,
+    pub cpu: String,
+    pub cores: usize,
+    pub date: String,
+}
+
+impl Machine {
+    pub fn detect() -> Self {
+        let cpuinfo = std::fs::read_to_string("/proc/cpuinfo").unwrap_or_default();
+        let (cpu, cores) = parse_cpuinfo(&cpuinfo);
+        let hostname = std::fs::read_to_string("/proc/sys/kernel/hostname")
+            .map(|h| h.trim().to_string())
+            .unwrap_or_else(|_| "unknown".to_string());
+        let date = Command::new("date")
+            .args(["-u", "+%Y-%m-%d %H:%M UTC"])
+            .output()
+            .ok()
+            .map(|out| String::from_utf8_lossy(&out.stdout).trim().to_string())
+            .filter(|d| !d.is_empty())
+            .unwrap_or_else(|| "unknown date".to_string());
+        Self {
+            hostname,
+            cpu,
+            cores,
+            date,
+        }
+    }
+}
+
+/// CPU model name and the number of logical processors in `/proc/cpuinfo` text.
+pub fn parse_cpuinfo(text: &str) -> (String, usize) {
+    let field = |line: &str, key: &str| -> Option<String> {
+        let (name, value) = line.split_once(':')?;
+        (name.trim() == key).then(|| value.trim().to_string())
+    };
+    let model = text
+        .lines()
+        .find_map(|line| field(line, "model name"))
+        .unwrap_or_else(|| "unknown CPU".to_string());
+    let cores = text
+        .lines()
+        .filter(|line| field(line, "processor").is_some())
+        .count();
+    (model, cores)
+}
+
+/// All engines' measurements of one workload.
+pub struct Row {
+    pub workload: Workload,
+    /// In contender order; the same order for every row.
+    pub measured: Vec<Measurement>,
+    /// Whether the engines' results agree (and how that was decided).
+    pub agreement: String,
+}
+
+pub struct Report {
+    pub command_line: String,
+    pub machine: Machine,
+    pub plan: Plan,
+    /// Contender names, then their version or the reason they were not measured.
+    pub contenders: Vec<(String, Result<String, String>)>,
+    pub rows: Vec<Row>,
+    pub footprints: Vec<Footprint>,
+}
+
+/// Index of the contenders that count as "ours" and as the CLIPS references.
+fn is_ours(name: &str) -> bool {
+    name.starts_with("ours")
+}
+
+fn best<T: Copy + Ord>(values: impl Iterator<Item = Option<T>>) -> Option<T> {
+    values.flatten().min()
+}
+
+/// `reference ÷ ours` to two decimals, i.e. how many times fewer ours needs.
+pub fn ratio_text(reference: Option<f64>, ours: Option<f64>) -> String {
+    match (reference, ours) {
+        (Some(r), Some(o)) if o > 0.0 => format!("{:.2}x", r / o),
+        (_, None) => "not measured".to_string(),
+        _ => "n/a".to_string(),
+    }
+}
+
+pub fn millions(count: u64) -> String {
+    format!("{:.2} M", count as f64 / 1e6)
+}
+
+pub fn duration_text(d: Duration) -> String {
+    let micros = d.as_secs_f64() * 1e6;
+    if micros < 1000.0 {
+        format!("{micros:.0} µs")
+    } else if micros < 1e6 {
+        format!("{:.2} ms", micros / 1e3)
+    } else {
+        format!("{:.3} s", micros / 1e6)
+    }
+}
+
+/// At most `limit` characters of `text`, marked when cut.
+fn shorten(text: &str, limit: usize) -> String {
+    match text.char_indices().nth(limit) {
+        Some((cut, _)) => format!("{}…", &text[..cut]),
+        None => text.to_string(),
+    }
+}
+
+/// A reading as table text: the value, or the reason it is missing.
+fn cell<T>(reading: &Reading<T>, show: impl Fn(&T) -> String) -> String {
+    match reading {
+        Ok(value) => show(value),
+        // The full reason for a missing engine is listed once under "Machine".
+        Err(reason) if reason.starts_with("not measured") => "not measured".to_string(),
+        Err(reason) => format!("failed: {}", shorten(reason, 60)),
+    }
+}
+
+impl Report {
+    fn names(&self) -> Vec<&str> {
+        self.contenders.iter().map(|(n, _)| n.as_str()).collect()
+    }
+
+    /// Best (lowest) CLIPS value and best ours value of one reading in a row.
+    fn best_pair<T: Copy + Ord>(
+        &self,
+        row: &Row,
+        pick: impl Fn(&Measurement) -> Option<T>,
+    ) -> (Option<T>, Option<T>) {
+        let names = self.names();
+        let of = |want_ours: bool| {
+            best(
+                row.measured
+                    .iter()
+                    .zip(&names)
+                    .filter(|(_, name)| is_ours(name) == want_ours)
+                    .map(|(m, _)| pick(m)),
+            )
+        };
+        (of(false), of(true))
+    }
+
+    fn ratio_row(&self, row: &Row) -> (String, String) {
+        let (clips_instr, ours_instr) = self.best_pair(row, |m| m.instr_run.clone().ok());
+        let (clips_wall, ours_wall) = self.best_pair(row, |m| m.wall_run.clone().ok());
+        (
+            ratio_text(clips_instr.map(|v| v as f64), ours_instr.map(|v| v as f64)),
+            ratio_text(
+                clips_wall.map(|d| d.as_secs_f64()),
+                ours_wall.map(|d| d.as_secs_f64()),
+            ),
+        )
+    }
+
+    /// The summary printed on the terminal.
+    pub fn terminal_table(&self) -> String {
+        let mut out = String::new();
+        let names = self.names();
+        let _ = write!(out, "{:<16} {:>7}", "workload", "fired");
+        for name in &names {
+            let _ = write!(out, " | {name:>18}");
+        }
+        let _ = writeln!(out, " | {:>12} | {:>12}", "instr ratio", "wall ratio");
+        let _ = writeln!(
+            out,
+            "{:<16} {:>7} {}  (run phase: instructions / median wall time; ratio = best CLIPS ÷ ours)",
+            "", "", ""
+        );
+        for row in &self.rows {
+            let fired = row
+                .measured
+                .first()
+                .and_then(|m| m.fired.clone().ok())
+                .map(|f| f.to_string())
+                .unwrap_or_else(|| "-".to_string());
+            let _ = write!(out, "{:<16} {:>7}", row.workload.name(), fired);
+            for m in &row.measured {
+                let instr = m.instr_run.clone().ok().map(millions);
+                let wall = m.wall_run.clone().ok().map(duration_text);
+                let text = match (instr, wall) {
+                    (None, None) => "-".to_string(),
+                    (i, w) => format!(
+                        "{} / {}",
+                        i.unwrap_or_else(|| "-".into()),
+                        w.unwrap_or_else(|| "-".into())
+                    ),
+                };
+                let _ = write!(out, " | {text:>18}");
+            }
+            let (instr_ratio, wall_ratio) = self.ratio_row(row);
+            let _ = writeln!(out, " | {instr_ratio:>12} | {wall_ratio:>12}");
+        }
+        out
+    }
+
+    fn table_header(out: &mut String, first: &[&str], names: &[&str], last: &[&str]) {
+        let columns: Vec<&str> = first.iter().chain(names).chain(last).copied().collect();
+        let _ = writeln!(out, "| {} |", columns.join(" | "));
+        let _ = writeln!(out, "|{}", "---|".repeat(columns.len()));
+    }
+
+    /// The whole `BENCHMARKS.md`.
+    pub fn markdown(&self) -> String {
+        let names = self.names();
+        let mut md = String::new();
+        let _ = writeln!(md, "# Benchmarks: robotino-agent engine against CLIPS\n");
+        let _ = writeln!(
+            md,
+            "Regenerated by `{}`; do not edit by hand. Numbers that could not be measured say \
+             why instead of showing a value.\n",
+            self.command_line
+        );
+        let _ = writeln!(md, "## Machine\n");
+        let m = &self.machine;
+        let _ = writeln!(md, "- Host: `{}`; run at {}", m.hostname, m.date);
+        let _ = writeln!(md, "- CPU: {} ({} logical processors)", m.cpu, m.cores);
+        for (name, version) in &self.contenders {
+            let text = match version {
+                Ok(v) => v.clone(),
+                Err(reason) => format!("not measured: {reason}"),
+            };
+            let _ = writeln!(md, "- {name}: {text}");
+        }
+        let callgrind = match self.plan.callgrind_limit {
+            Some(limit) => format!("on, time-boxed at {} s per run", limit.as_secs()),
+            None => "off (--no-callgrind)".to_string(),
+        };
+        let _ = writeln!(
+            md,
+            "- Repetitions per timing: {} (median); callgrind: {callgrind}\n",
+            self.plan.reps
+        );
+        md.push_str(METHOD);
+
+        let _ = writeln!(md, "## Rules fired and agreement\n");
+        Self::table_header(&mut md, &["workload"], &names, &["results"]);
+        for row in &self.rows {
+            let cells: Vec<String> = row
+                .measured
+                .iter()
+                .map(|m| cell(&m.fired, |f| f.to_string()))
+                .collect();
+            let _ = writeln!(
+                md,
+                "| {} | {} | {} |",
+                row.workload.name(),
+                cells.join(" | "),
+                row.agreement
+            );
+        }
+
+        let _ = writeln!(md, "\n## Instructions (callgrind)\n");
+        Self::table_header(
+            &mut md,
+            &["workload", "region"],
+            &names,
+            &["best CLIPS ÷ ours"],
+        );
+        for row in &self.rows {
+            for (region, pick) in [
+                (
+                    "run",
+                    (|m: &Measurement| m.instr_run.clone()) as fn(&Measurement) -> Reading<u64>,
+                ),
+                ("whole", |m: &Measurement| m.instr_whole.clone()),
+            ] {
+                let cells: Vec<String> = row
+                    .measured
+                    .iter()
+                    .map(|m| cell(&pick(m), |&v| millions(v)))
+                    .collect();
+                let (clips, ours) = self.best_pair(row, |m| pick(m).ok());
+                let ratio = ratio_text(clips.map(|v| v as f64), ours.map(|v| v as f64));
+                let _ = writeln!(
+                    md,
+                    "| {} | {region} | {} | {ratio} |",
+                    row.workload.name(),
+                    cells.join(" | ")
+                );
+            }
+        }
+
+        let _ = writeln!(md, "\n## Wall time (median of {})\n", self.plan.reps);
+        Self::table_header(
+            &mut md,
+            &["workload", "region"],
+            &names,
+            &["best CLIPS ÷ ours"],
+        );
+        for row in &self.rows {
+            for (region, pick) in [
+                (
+                    "run",
+                    (|m: &Measurement| m.wall_run.clone()) as fn(&Measurement) -> Reading<Duration>,
+                ),
+                ("whole", |m: &Measurement| m.wall_whole.clone()),
+            ] {
+                let cells: Vec<String> = row
+                    .measured
+                    .iter()
+                    .map(|m| cell(&pick(m), |&d| duration_text(d)))
+                    .collect();
+                let (clips, ours) = self.best_pair(row, |m| pick(m).ok());
+                let ratio = ratio_text(
+                    clips.map(|d| d.as_secs_f64()),
+                    ours.map(|d| d.as_secs_f64()),
+                );
+                let _ = writeln!(
+                    md,
+                    "| {} | {region} | {} | {ratio} |",
+                    row.workload.name(),
+                    cells.join(" | ")
+                );
+            }
+        }
+
+        let _ = writeln!(md, "\n## Memory\n");
+        let _ = writeln!(md, "Engine code and static data:\n");
+        let _ = writeln!(
+            md,
+            "| file | bytes on disk | text | data | bss |\n|---|---|---|---|---|"
+        );
+        for f in &self.footprints {
+            let (text, data, bss) = match f.sections {
+                Some(s) => (s.text.to_string(), s.data.to_string(), s.bss.to_string()),
+                None => ("?".into(), "?".into(), "?".into()),
+            };
+            let _ = writeln!(
+                md,
+                "| {} (`{}`) | {} | {text} | {data} | {bss} |",
+                f.label,
+                f.path.display(),
+                f.file_bytes
+            );
+        }
+        let _ = writeln!(
+            md,
+            "| ours: agent image sections | not measured: the image is not in this report yet | | | |\n"
+        );
+        let _ = writeln!(
+            md,
+            "Dynamic memory after the run: CLIPS `(mem-used)` in bytes; ours: arena \
+             high-water marks.\n"
+        );
+        Self::table_header(&mut md, &["workload"], &names, &[]);
+        for row in &self.rows {
+            let cells: Vec<String> = row
+                .measured
+                .iter()
+                .map(|m| cell(&m.mem_bytes, |b| b.to_string()))
+                .collect();
+            let _ = writeln!(md, "| {} | {} |", row.workload.name(), cells.join(" | "));
+        }
+        md.push_str(NOT_YET);
+        md
+    }
+}
+
+const METHOD: &str = "## Method\n
+Every engine loads the same generated files (written by `robotino-agent bench`, kept in the \
+work directory): `program.clp` holds the constructs and facts as `deffacts`; the batch file \
+does `(load* program.clp)`, `(watch statistics)`, `(reset)`, `(run)`, `(exit)`. \
+*Run* is the whole program minus the same program without its `(run)`, so start-up, parsing \
+and `(reset)` are out; *whole* is the complete process. CLIPS 6.30 is the Debian `clips` \
+command (`clips -f2 FILE`). CLIPS 6.4 is PyPI `clipspy`, driven by \
+`tests/bench/clipspy_run.py`: its wall times are `run()` and load+reset+run timed inside \
+Python, its instruction counts are of the whole Python process (so *whole* includes the \
+interpreter). Ours runs as `robotino-agent clips -f2 FILE` (CLI column) and in-process \
+through `bench::ours::InProcessEngine`. Rules fired come from `(watch statistics)` (CLI) or \
+the `run()` return value. Results agree when the programs' result lines are equal (Manners: \
+the same set of seat assignments, also checked to be a valid seating).\n\n";
+
+const NOT_YET: &str = "\n## Not measured yet\n
+- LLSF games (N seeded simulated games of the agent rule base): not measured, the rule base \
+and the game simulation are not in the benchmark yet.
+- Decision time (skill outcome asserted to next skill request): not measured; the method is \
+fixed in `host-shim/src/bench/DECISION_TIME.md`.
+";
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cpuinfo_gives_model_and_processor_count() {
+        let text = "processor\t: 0\nmodel name\t: AMD EPYC 7B13\nprocessor\t: 1\nmodel name\t: AMD EPYC 7B13\n";
+        assert_eq!(parse_cpuinfo(text), ("AMD EPYC 7B13".to_string(), 2));
+        assert_eq!(parse_cpuinfo(""), ("unknown CPU".to_string(), 0));
+    }
+
+    #[test]
+    fn ratios_and_units_are_formatted() {
+        assert_eq!(ratio_text(Some(10.0), Some(4.0)), "2.50x");
+        assert_eq!(ratio_text(Some(10.0), None), "not measured");
+        assert_eq!(ratio_text(None, Some(1.0)), "n/a");
+        assert_eq!(millions(12_345_678), "12.35 M");
+        assert_eq!(duration_text(Duration::from_micros(250)), "250 µs");
+        assert_eq!(duration_text(Duration::from_micros(2500)), "2.50 ms");
+        assert_eq!(duration_text(Duration::from_millis(3480)), "3.480 s");
+    }
+
+    #[test]
+    fn missing_readings_show_their_reason_not_a_number() {
+        let missing: Reading<u64> = Err("not measured: engine absent".to_string());
+        assert_eq!(cell(&missing, |v| v.to_string()), "not measured");
+        let failed: Reading<u64> = Err("exit status 1".to_string());
+        assert_eq!(cell(&failed, |v| v.to_string()), "failed: exit status 1");
+    }
+}

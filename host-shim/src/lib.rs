@@ -1,0 +1,4 @@
+//! Library part of `host-shim`, shared by the `robotino-agent` and `robotino-sim` binaries and
+//! by the integration tests.
+
+pub mod shim;

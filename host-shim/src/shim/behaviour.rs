@@ -1,0 +1,564 @@
+//! The behaviour layer: reactive skills as small state machines, stepped once per cycle with
+//! what the robot perceives, each returning the twist it wants and its outcome (RUNNING,
+//! FINAL, FAILED). Pure: no I/O, no clock; the safety layer clamps and may veto the twist.
+
+use super::planner;
+use hal::field::{gate_pose, input_storage_pose, machine_approach_pose, MachineId};
+use hal::ir::IrScan;
+use hal::skill::{FailReason, Perception, SkillOutcome, SkillRequest};
+use hal::{wrap_angle, LightSignal, Pose2, Twist};
+
+/// What the skills see each cycle.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Perceived {
+    pub pose: Pose2,
+    pub ir: IrScan,
+    pub has_puck: bool,
+    pub light: Option<(MachineId, LightSignal)>,
+}
+
+/// Controller gains and tolerances.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DriveTuning {
+    pub max_linear_m_s: f32,
+    pub max_angular_rad_s: f32,
+    pub robot_radius_m: f32,
+    /// Proportional gains: speed per metre and per radian of error.
+    pub gain_linear: f32,
+    pub gain_angular: f32,
+    pub goal_tolerance_m: f32,
+    pub heading_tolerance_rad: f32,
+    /// Obstacles nearer than this in the direction of motion slow the robot down.
+    pub slow_down_within_m: f32,
+    /// Fraction of the speed kept when an obstacle is at the IR's minimum range.
+    pub min_speed_factor: f32,
+    /// Cycles a drive may make no progress before it FAILS.
+    pub stuck_cycles: u32,
+}
+
+impl Default for DriveTuning {
+    fn default() -> Self {
+        Self {
+            max_linear_m_s: 0.5,
+            max_angular_rad_s: 0.78,
+            robot_radius_m: 0.185,
+            gain_linear: 1.5,
+            gain_angular: 2.0,
+            goal_tolerance_m: 0.03,
+            heading_tolerance_rad: 0.05,
+            slow_down_within_m: 0.3,
+            min_speed_factor: 0.25,
+            stuck_cycles: 15 * 10,
+        }
+    }
+}
+
+/// Result of one drive step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum DriveStep {
+    Driving(Twist),
+    Arrived,
+    Failed(FailReason),
+}
+
+/// Drives along planned waypoints to a pose, turning towards the goal heading on the way.
+#[derive(Debug, Clone)]
+pub struct DriveTo {
+    goal: Pose2,
+    waypoints: Vec<(f32, f32)>,
+    next: usize,
+    best_distance_m: f32,
+    cycles_without_progress: u32,
+}
+
+impl DriveTo {
+    /// Plans from `from`; `None` when the goal cannot be reached.
+    pub fn plan(from: Pose2, goal: Pose2, tuning: &DriveTuning) -> Option<Self> {
+        let waypoints = planner::plan(
+            (from.x_m, from.y_m),
+            (goal.x_m, goal.y_m),
+            tuning.robot_radius_m,
+        )?;
+        Some(Self {
+            goal,
+            waypoints,
+            next: 0,
+            best_distance_m: f32::INFINITY,
+            cycles_without_progress: 0,
+        })
+    }
+
+    /// A straight move without planning (short moves next to a machine).
+    pub fn straight(goal: Pose2) -> Self {
+        Self {
+            goal,
+            waypoints: vec![(goal.x_m, goal.y_m)],
+            next: 0,
+            best_distance_m: f32::INFINITY,
+            cycles_without_progress: 0,
+        }
+    }
+
+    pub fn step(&mut self, p: &Perceived, t: &DriveTuning) -> DriveStep {
+        let pose = p.pose;
+        let last = self.waypoints.len().saturating_sub(1);
+        let mut target = self
+            .waypoints
+            .get(self.next)
+            .copied()
+            .unwrap_or((self.goal.x_m, self.goal.y_m));
+        let mut dist = ((target.0 - pose.x_m).powi(2) + (target.1 - pose.y_m).powi(2)).sqrt();
+        // Intermediate waypoints are passed loosely; the final one exactly.
+        while self.next < last && dist < 0.1 {
+            self.next += 1;
+            target = self.waypoints[self.next];
+            dist = ((target.0 - pose.x_m).powi(2) + (target.1 - pose.y_m).powi(2)).sqrt();
+        }
+        let heading_error = wrap_angle(self.goal.phi_rad - pose.phi_rad);
+        if self.next == last
+            && dist <= t.goal_tolerance_m
+            && heading_error.abs() <= t.heading_tolerance_rad
+        {
+            return DriveStep::Arrived;
+        }
+
+        // Progress watchdog on the remaining distance along the plan.
+        let remaining = dist + self.remaining_after(self.next);
+        if remaining < self.best_distance_m - 0.005 {
+            self.best_distance_m = remaining;
+            self.cycles_without_progress = 0;
+        } else if heading_error.abs() <= t.heading_tolerance_rad {
+            self.cycles_without_progress += 1;
+            if self.cycles_without_progress > t.stuck_cycles {
+                return DriveStep::Failed(FailReason::DriveFailed);
+            }
+        }
+
+        let speed = (t.gain_linear * (dist + self.remaining_after(self.next)))
+            .min(t.max_linear_m_s)
+            .min(t.gain_linear * 4.0 * dist.max(0.0) + 0.02);
+        let (lx, ly) = pose.to_local(target.0, target.1);
+        let (mut vx, mut vy) = if dist > 1e-4 {
+            (lx / dist * speed, ly / dist * speed)
+        } else {
+            (0.0, 0.0)
+        };
+        // Slow down for obstacles ahead in the direction of motion.
+        if speed > 0.0 {
+            let motion = vy.atan2(vx);
+            if let Some(d) = p.ir.nearest_towards(motion, 25f32.to_radians()) {
+                let f = ((d - hal::ir::IR_MIN_RANGE_M)
+                    / (t.slow_down_within_m - hal::ir::IR_MIN_RANGE_M))
+                    .clamp(t.min_speed_factor, 1.0);
+                vx *= f;
+                vy *= f;
+            }
+        }
+        let omega =
+            (t.gain_angular * heading_error).clamp(-t.max_angular_rad_s, t.max_angular_rad_s);
+        DriveStep::Driving(Twist::new(vx, vy, omega))
+    }
+
+    fn remaining_after(&self, i: usize) -> f32 {
+        self.waypoints
+            .windows(2)
+            .skip(i)
+            .map(|w| ((w[1].0 - w[0].0).powi(2) + (w[1].1 - w[0].1).powi(2)).sqrt())
+            .sum()
+    }
+}
+
+/// A point `distance_m` behind a pose (to back away from a machine).
+fn backed_off(pose: Pose2, distance_m: f32) -> Pose2 {
+    Pose2::new(
+        pose.x_m - distance_m * pose.phi_rad.cos(),
+        pose.y_m - distance_m * pose.phi_rad.sin(),
+        pose.phi_rad,
+    )
+}
+
+/// Cycles to wait at the storage for a puck, and at a gate for it to take the puck.
+const WAIT_CYCLES: u32 = 30;
+/// Cycles to let a machine's light react to a placed puck before reading it.
+const LIGHT_SETTLE_CYCLES: u32 = 5;
+/// Longest wait at a machine: past the longest processing time (T3, 60 s).
+const PROCESSING_WAIT_CYCLES: u32 = 15 * 65;
+/// Within this distance of a station's pose, a puck leaving the robot was placed, not lost.
+const NEAR_STATION_M: f32 = 0.15;
+/// Distance to back away after working a station.
+const BACK_OFF_M: f32 = 0.1;
+
+#[derive(Debug, Clone)]
+enum Phase {
+    Approach(DriveTo),
+    /// Waiting at the station for the world to react, counting cycles.
+    Wait(u32),
+    Leave(DriveTo, Perception),
+}
+
+/// One running skill.
+#[derive(Debug, Clone)]
+pub struct Skill {
+    request: SkillRequest,
+    phase: Phase,
+    /// The light seen when the puck was brought (BringPuckTo).
+    light_before: Option<LightSignal>,
+    /// The light differed from `light_before` at some point while waiting.
+    light_changed: bool,
+}
+
+impl Skill {
+    /// Starts a skill; FAILED at once when the request makes no sense now.
+    pub fn start(
+        request: SkillRequest,
+        p: &Perceived,
+        t: &DriveTuning,
+    ) -> Result<Self, FailReason> {
+        let goal = match request {
+            SkillRequest::GetS0 if p.has_puck => return Err(FailReason::InvalidRequest),
+            SkillRequest::BringPuckTo(_) | SkillRequest::DeliverTo(_) if !p.has_puck => {
+                return Err(FailReason::InvalidRequest)
+            }
+            SkillRequest::GetS0 => input_storage_pose(),
+            SkillRequest::BringPuckTo(m) => machine_approach_pose(m),
+            SkillRequest::DeliverTo(g) => gate_pose(g),
+        };
+        let drive = DriveTo::plan(p.pose, goal, t).ok_or(FailReason::DriveFailed)?;
+        Ok(Self {
+            request,
+            phase: Phase::Approach(drive),
+            light_before: None,
+            light_changed: false,
+        })
+    }
+
+    pub fn request(&self) -> SkillRequest {
+        self.request
+    }
+
+    /// One cycle: the twist the skill wants and its outcome.
+    pub fn step(&mut self, p: &Perceived, t: &DriveTuning) -> (Twist, SkillOutcome) {
+        match &mut self.phase {
+            Phase::Approach(drive) => match drive.step(p, t) {
+                DriveStep::Driving(tw) => {
+                    if matches!(
+                        self.request,
+                        SkillRequest::BringPuckTo(_) | SkillRequest::DeliverTo(_)
+                    ) && !p.has_puck
+                    {
+                        // Next to the station the puck leaving is the placement itself.
+                        if p.pose.distance_to(&drive.goal) < NEAR_STATION_M {
+                            self.phase = Phase::Wait(0);
+                            return (Twist::ZERO, SkillOutcome::Running);
+                        }
+                        return (Twist::ZERO, SkillOutcome::Failed(FailReason::PuckLost));
+                    }
+                    if let (SkillRequest::BringPuckTo(m), Some((seen, l))) = (self.request, p.light)
+                    {
+                        if seen == m {
+                            self.light_before = Some(l);
+                        }
+                    }
+                    (tw, SkillOutcome::Running)
+                }
+                DriveStep::Failed(r) => (Twist::ZERO, SkillOutcome::Failed(r)),
+                DriveStep::Arrived => {
+                    self.phase = Phase::Wait(0);
+                    (Twist::ZERO, SkillOutcome::Running)
+                }
+            },
+            Phase::Wait(cycles) => {
+                *cycles += 1;
+                let waited = *cycles;
+                match self.react(p, waited) {
+                    Ok(Some(perception)) => {
+                        let leave = DriveTo::straight(backed_off(p.pose, BACK_OFF_M));
+                        self.phase = Phase::Leave(leave, perception);
+                        (Twist::ZERO, SkillOutcome::Running)
+                    }
+                    Ok(None) => (Twist::ZERO, SkillOutcome::Running),
+                    Err(r) => (Twist::ZERO, SkillOutcome::Failed(r)),
+                }
+            }
+            Phase::Leave(drive, perception) => match drive.step(p, t) {
+                DriveStep::Driving(tw) => (tw, SkillOutcome::Running),
+                // Leaving is best effort: what was perceived stands.
+                DriveStep::Arrived | DriveStep::Failed(_) => {
+                    (Twist::ZERO, SkillOutcome::Final(*perception))
+                }
+            },
+        }
+    }
+
+    /// What the world did while the robot waits at the station: `Ok(None)` keeps waiting.
+    fn react(&mut self, p: &Perceived, waited: u32) -> Result<Option<Perception>, FailReason> {
+        let timed_out = waited >= WAIT_CYCLES;
+        match self.request {
+            SkillRequest::GetS0 => match (p.has_puck, timed_out) {
+                (true, _) => Ok(Some(Perception::GotS0)),
+                (false, true) => Err(FailReason::StorageEmpty),
+                (false, false) => Ok(None),
+            },
+            SkillRequest::DeliverTo(_) => match (p.has_puck, timed_out) {
+                (false, _) => Ok(Some(Perception::Delivered)),
+                (true, true) => Err(FailReason::DriveFailed),
+                (true, false) => Ok(None),
+            },
+            SkillRequest::BringPuckTo(m) => {
+                let now = p.light.filter(|(seen, _)| *seen == m).map(|(_, l)| l);
+                if now.is_some() && now != self.light_before {
+                    self.light_changed = true;
+                }
+                if waited < LIGHT_SETTLE_CYCLES {
+                    return Ok(None);
+                }
+                let changed = self.light_changed;
+                match (now, p.has_puck) {
+                    // Input consumed, more needed: the puck stays in the machine.
+                    (Some(LightSignal::Yellow), false) => {
+                        Ok(Some(Perception::LightSeen(LightSignal::Yellow)))
+                    }
+                    // Yellow while the robot still has the puck: processing, keep waiting.
+                    (Some(LightSignal::Yellow), true) if waited < PROCESSING_WAIT_CYCLES => {
+                        Ok(None)
+                    }
+                    // Green after a change: the cycle completed, the output is in hand.
+                    (Some(LightSignal::Green), _) if changed => {
+                        Ok(Some(Perception::LightSeen(LightSignal::Green)))
+                    }
+                    (Some(l), _) if changed && l != LightSignal::Yellow => {
+                        Ok(Some(Perception::LightSeen(l)))
+                    }
+                    // Nothing happened at all: the machine did not react to the puck.
+                    _ if !changed && waited >= WAIT_CYCLES => Ok(Some(Perception::LightUnchanged)),
+                    _ if waited >= PROCESSING_WAIT_CYCLES => Ok(Some(Perception::LightUnchanged)),
+                    _ => Ok(None),
+                }
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use hal::field::GateId;
+
+    fn perceived(pose: Pose2, has_puck: bool) -> Perceived {
+        Perceived {
+            pose,
+            ir: IrScan::EMPTY,
+            has_puck,
+            light: None,
+        }
+    }
+
+    /// Moves a pose by a body twist for one 1/15 s cycle, exactly (no noise).
+    fn integrate(pose: Pose2, tw: Twist) -> Pose2 {
+        pose.advanced(tw, tw.omega_rad_s / 15.0, 1.0 / 15.0)
+    }
+
+    #[test]
+    fn drive_to_reaches_the_goal_around_machines() {
+        let t = DriveTuning::default();
+        let start = input_storage_pose();
+        let goal = machine_approach_pose(MachineId::new(5).unwrap_or_else(|| panic!()));
+        let mut drive = DriveTo::plan(start, goal, &t).unwrap_or_else(|| panic!("plan"));
+        let mut pose = start;
+        let mut arrived = false;
+        for _ in 0..15 * 60 {
+            match drive.step(&perceived(pose, false), &t) {
+                DriveStep::Driving(tw) => {
+                    let tw = hal::limits::MotionLimits::ROBOTINO2.clamp_speed(tw);
+                    pose = integrate(pose, tw);
+                    assert!(
+                        !hal::field::is_blocked(pose.x_m, pose.y_m, 0.15),
+                        "{pose:?}"
+                    );
+                }
+                DriveStep::Arrived => {
+                    arrived = true;
+                    break;
+                }
+                DriveStep::Failed(r) => panic!("{r:?}"),
+            }
+        }
+        assert!(arrived, "{pose:?}");
+        assert!(pose.distance_to(&goal) <= t.goal_tolerance_m);
+    }
+
+    #[test]
+    fn obstacle_ahead_slows_the_robot() {
+        let t = DriveTuning::default();
+        let start = Pose2::new(1.0, 0.6, 0.0);
+        let goal = Pose2::new(2.0, 0.6, 0.0);
+        let mut free = DriveTo::plan(start, goal, &t).unwrap_or_else(|| panic!());
+        let mut blocked = free.clone();
+        let open = perceived(start, false);
+        let mut near = open;
+        near.ir.distances_m[0] = 0.1;
+        let (DriveStep::Driving(a), DriveStep::Driving(b)) =
+            (free.step(&open, &t), blocked.step(&near, &t))
+        else {
+            panic!("both should drive");
+        };
+        assert!(b.vx_m_s < a.vx_m_s * 0.5 && b.vx_m_s > 0.0, "{a:?} {b:?}");
+        // A sensor at the side does not slow forward motion.
+        let mut side = open;
+        side.ir.distances_m[2] = 0.05;
+        let mut d = DriveTo::plan(start, goal, &t).unwrap_or_else(|| panic!());
+        assert_eq!(d.step(&side, &t), DriveStep::Driving(a));
+    }
+
+    #[test]
+    fn stuck_drive_fails() {
+        let t = DriveTuning {
+            stuck_cycles: 10,
+            ..DriveTuning::default()
+        };
+        let start = Pose2::new(1.0, 0.6, 0.0);
+        let mut d = DriveTo::straight(Pose2::new(2.0, 0.6, 0.0));
+        let mut last = DriveStep::Arrived;
+        for _ in 0..20 {
+            last = d.step(&perceived(start, false), &t);
+        }
+        assert_eq!(last, DriveStep::Failed(FailReason::DriveFailed));
+    }
+
+    /// Runs a skill against a tiny world: `world` may change the perception each cycle.
+    fn run(
+        request: SkillRequest,
+        start: Perceived,
+        mut world: impl FnMut(&mut Perceived),
+    ) -> SkillOutcome {
+        let t = DriveTuning::default();
+        let mut p = start;
+        let mut skill = match Skill::start(request, &p, &t) {
+            Ok(s) => s,
+            Err(r) => return SkillOutcome::Failed(r),
+        };
+        for _ in 0..15 * 90 {
+            let (tw, outcome) = skill.step(&p, &t);
+            if outcome.is_terminal() {
+                return outcome;
+            }
+            p.pose = integrate(p.pose, hal::limits::MotionLimits::ROBOTINO2.clamp_speed(tw));
+            world(&mut p);
+        }
+        SkillOutcome::Running
+    }
+
+    #[test]
+    fn get_s0_final_when_the_storage_hands_a_puck() {
+        let storage = input_storage_pose();
+        let outcome = run(
+            SkillRequest::GetS0,
+            perceived(Pose2::new(1.0, 0.6, 0.0), false),
+            |p| {
+                if p.pose.distance_to(&storage) < 0.05 {
+                    p.has_puck = true;
+                }
+            },
+        );
+        assert_eq!(outcome, SkillOutcome::Final(Perception::GotS0));
+    }
+
+    #[test]
+    fn get_s0_fails_on_an_empty_storage_and_when_holding() {
+        let start = perceived(Pose2::new(1.0, 0.6, 0.0), false);
+        assert_eq!(
+            run(SkillRequest::GetS0, start, |_| {}),
+            SkillOutcome::Failed(FailReason::StorageEmpty)
+        );
+        let holding = perceived(Pose2::new(1.0, 0.6, 0.0), true);
+        assert_eq!(
+            run(SkillRequest::GetS0, holding, |_| {}),
+            SkillOutcome::Failed(FailReason::InvalidRequest)
+        );
+    }
+
+    #[test]
+    fn bring_puck_reads_the_new_light() {
+        let m = MachineId::new(4).unwrap_or_else(|| panic!());
+        let target = machine_approach_pose(m);
+        let mut start = perceived(input_storage_pose(), true);
+        start.light = Some((m, LightSignal::Green));
+        let outcome = run(SkillRequest::BringPuckTo(m), start, |p| {
+            if p.has_puck && p.pose.distance_to(&target) < 0.05 {
+                p.has_puck = false;
+                p.light = Some((m, LightSignal::Yellow));
+            }
+        });
+        assert_eq!(
+            outcome,
+            SkillOutcome::Final(Perception::LightSeen(LightSignal::Yellow))
+        );
+    }
+
+    #[test]
+    fn bring_puck_waits_through_processing_for_green() {
+        let m = MachineId::new(5).unwrap_or_else(|| panic!());
+        let target = machine_approach_pose(m);
+        let mut start = perceived(input_storage_pose(), true);
+        start.light = Some((m, LightSignal::Green));
+        let mut processing = None;
+        let outcome = run(SkillRequest::BringPuckTo(m), start, |p| {
+            if processing.is_none() && p.pose.distance_to(&target) < 0.05 {
+                processing = Some(0);
+                p.light = Some((m, LightSignal::Yellow));
+            }
+            if let Some(c) = processing.as_mut() {
+                *c += 1;
+                if *c == 200 {
+                    p.light = Some((m, LightSignal::Green));
+                }
+            }
+        });
+        assert_eq!(
+            outcome,
+            SkillOutcome::Final(Perception::LightSeen(LightSignal::Green))
+        );
+    }
+
+    #[test]
+    fn bring_puck_reports_no_change_when_nothing_happens() {
+        let m = MachineId::new(5).unwrap_or_else(|| panic!());
+        let mut start = perceived(input_storage_pose(), true);
+        start.light = Some((m, LightSignal::Green));
+        let outcome = run(SkillRequest::BringPuckTo(m), start, |_| {});
+        assert_eq!(outcome, SkillOutcome::Final(Perception::LightUnchanged));
+    }
+
+    #[test]
+    fn bring_puck_fails_when_the_puck_is_lost_on_the_way() {
+        let m = MachineId::new(9).unwrap_or_else(|| panic!());
+        let mut cycles = 0;
+        let outcome = run(
+            SkillRequest::BringPuckTo(m),
+            perceived(input_storage_pose(), true),
+            |p| {
+                cycles += 1;
+                if cycles == 10 {
+                    p.has_puck = false;
+                }
+            },
+        );
+        assert_eq!(outcome, SkillOutcome::Failed(FailReason::PuckLost));
+    }
+
+    #[test]
+    fn deliver_final_when_the_gate_takes_the_puck() {
+        let g = GateId::new(1).unwrap_or_else(|| panic!());
+        let gate = gate_pose(g);
+        let outcome = run(
+            SkillRequest::DeliverTo(g),
+            perceived(Pose2::new(1.0, 0.6, 0.0), true),
+            |p| {
+                if p.pose.distance_to(&gate) < 0.05 {
+                    p.has_puck = false;
+                }
+            },
+        );
+        assert_eq!(outcome, SkillOutcome::Final(Perception::Delivered));
+    }
+}

@@ -1,0 +1,277 @@
+//! iceoryx2 plumbing: one publish-subscribe service per stream, named under a configurable
+//! prefix, with thin publisher/subscriber wrappers that count sequence numbers and keep the
+//! latest sample.
+//!
+//! Service names (`P` = prefix, `N` = robot number 1..=3):
+//!
+//! | service | payload | publisher | readers |
+//! |---|---|---|---|
+//! | `P/robotN/ir` | [`IrScanPayload`] | IR driver (sim) | agent |
+//! | `P/robotN/bumper` | [`BumperPayload`] | bumper driver (sim) | agent |
+//! | `P/robotN/gyro` | [`GyroPayload`] | gyro driver (sim) | agent |
+//! | `P/robotN/odometry` | [`OdometryPayload`] | drive driver (sim) | agent |
+//! | `P/robotN/puck` | [`PuckPayload`] | puck sensor (sim) | agent |
+//! | `P/robotN/light` | [`LightPayload`] | camera (sim) | agent |
+//! | `P/robotN/motor` | [`MotorCommandPayload`] | agent | drive driver (sim) |
+//! | `P/robotN/skill-request` | [`SkillRequestPayload`] | agent | monitors, other robots |
+//! | `P/robotN/skill-status` | [`SkillStatusPayload`] | agent | monitors, other robots |
+//! | `P/robotN/heartbeat` | [`HeartbeatPayload`] | every driver, agent | agent, sim |
+//! | `P/team/world-model` | [`WorldModelPayload`] | every agent | every agent |
+//! | `P/team/claims` | [`MachineClaimPayload`] | every agent | every agent |
+//!
+//! [`IrScanPayload`]: super::payloads::IrScanPayload
+//! [`BumperPayload`]: super::payloads::BumperPayload
+//! [`GyroPayload`]: super::payloads::GyroPayload
+//! [`OdometryPayload`]: super::payloads::OdometryPayload
+//! [`PuckPayload`]: super::payloads::PuckPayload
+//! [`LightPayload`]: super::payloads::LightPayload
+//! [`MotorCommandPayload`]: super::payloads::MotorCommandPayload
+//! [`SkillRequestPayload`]: super::payloads::SkillRequestPayload
+//! [`SkillStatusPayload`]: super::payloads::SkillStatusPayload
+//! [`HeartbeatPayload`]: super::payloads::HeartbeatPayload
+//! [`WorldModelPayload`]: super::payloads::WorldModelPayload
+//! [`MachineClaimPayload`]: super::payloads::MachineClaimPayload
+
+use iceoryx2::port::publisher::Publisher;
+use iceoryx2::port::subscriber::Subscriber;
+use iceoryx2::prelude::*;
+use std::fmt::{self, Debug};
+
+/// One stream of one robot.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum RobotStream {
+    Ir,
+    Bumper,
+    Gyro,
+    Odometry,
+    Puck,
+    Light,
+    Motor,
+    SkillRequest,
+    SkillStatus,
+    Heartbeat,
+}
+
+impl RobotStream {
+    pub const fn leaf(self) -> &'static str {
+        match self {
+            Self::Ir => "ir",
+            Self::Bumper => "bumper",
+            Self::Gyro => "gyro",
+            Self::Odometry => "odometry",
+            Self::Puck => "puck",
+            Self::Light => "light",
+            Self::Motor => "motor",
+            Self::SkillRequest => "skill-request",
+            Self::SkillStatus => "skill-status",
+            Self::Heartbeat => "heartbeat",
+        }
+    }
+}
+
+/// A stream shared by the whole team.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TeamStream {
+    WorldModel,
+    Claims,
+}
+
+/// Builds service names under a prefix.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct ServiceNames {
+    prefix: String,
+}
+
+impl ServiceNames {
+    pub fn new(prefix: &str) -> Self {
+        Self {
+            prefix: prefix.trim_end_matches('/').to_string(),
+        }
+    }
+
+    pub fn robot(&self, robot: u8, stream: RobotStream) -> String {
+        format!("{}/robot{robot}/{}", self.prefix, stream.leaf())
+    }
+
+    pub fn team(&self, stream: TeamStream) -> String {
+        let leaf = match stream {
+            TeamStream::WorldModel => "world-model",
+            TeamStream::Claims => "claims",
+        };
+        format!("{}/team/{leaf}", self.prefix)
+    }
+}
+
+/// A transport failure with what was being done.
+#[derive(Debug)]
+pub struct TransportError {
+    pub context: String,
+    pub detail: String,
+}
+
+impl fmt::Display for TransportError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}: {}", self.context, self.detail)
+    }
+}
+
+impl std::error::Error for TransportError {}
+
+fn err(context: impl Into<String>, detail: impl Debug) -> TransportError {
+    TransportError {
+        context: context.into(),
+        detail: format!("{detail:?}"),
+    }
+}
+
+/// The process's iceoryx2 node.
+pub struct Transport {
+    node: Node<ipc::Service>,
+    pub names: ServiceNames,
+}
+
+impl Transport {
+    /// Creates the node and removes what killed processes left behind, so a restarted
+    /// driver can take over its services.
+    pub fn open(prefix: &str, node_name: &str) -> Result<Self, TransportError> {
+        set_log_level(LogLevel::Error);
+        let name = NodeName::new(node_name).map_err(|e| err("node name", e))?;
+        let node = NodeBuilder::new()
+            .name(&name)
+            // Ctrl-C and SIGTERM end the loops through `Node::wait`; processes exit cleanly.
+            .signal_handling_mode(SignalHandlingMode::HandleTerminationRequests)
+            .create::<ipc::Service>()
+            .map_err(|e| err("create iceoryx2 node", e))?;
+        node.try_cleanup_dead_nodes();
+        Ok(Self {
+            node,
+            names: ServiceNames::new(prefix),
+        })
+    }
+
+    /// Sleeps for `d`; `false` when a termination signal arrived.
+    pub fn wait(&self, d: std::time::Duration) -> bool {
+        self.node.wait(d).is_ok()
+    }
+
+    fn service<T: Debug + ZeroCopySend + 'static>(
+        &self,
+        name: &str,
+    ) -> Result<
+        iceoryx2::service::port_factory::publish_subscribe::PortFactory<ipc::Service, T, ()>,
+        TransportError,
+    > {
+        let service_name =
+            ServiceName::new(name).map_err(|e| err(format!("service name {name}"), e))?;
+        // Every process asks for the same settings, so whoever comes first creates the
+        // service and the others open it.
+        self.node
+            .service_builder(&service_name)
+            .publish_subscribe::<T>()
+            .max_publishers(4)
+            .max_subscribers(8)
+            .subscriber_max_buffer_size(4)
+            .history_size(1)
+            .enable_safe_overflow(true)
+            .open_or_create()
+            .map_err(|e| err(format!("open service {name}"), e))
+    }
+
+    pub fn publisher<T: Debug + ZeroCopySend + Copy + 'static>(
+        &self,
+        name: &str,
+    ) -> Result<Pub<T>, TransportError> {
+        let publisher = self
+            .service::<T>(name)?
+            .publisher_builder()
+            .create()
+            .map_err(|e| err(format!("publisher on {name}"), e))?;
+        Ok(Pub {
+            publisher,
+            next_seq: 1,
+            name: name.to_string(),
+        })
+    }
+
+    pub fn subscriber<T: Debug + ZeroCopySend + Copy + 'static>(
+        &self,
+        name: &str,
+    ) -> Result<Sub<T>, TransportError> {
+        let subscriber = self
+            .service::<T>(name)?
+            .subscriber_builder()
+            .create()
+            .map_err(|e| err(format!("subscriber on {name}"), e))?;
+        Ok(Sub {
+            subscriber,
+            latest: None,
+            name: name.to_string(),
+        })
+    }
+}
+
+/// A publisher that numbers its samples 1, 2, 3, ...
+pub struct Pub<T: Debug + ZeroCopySend + 'static> {
+    publisher: Publisher<ipc::Service, T, ()>,
+    next_seq: u32,
+    name: String,
+}
+
+impl<T: Debug + ZeroCopySend + Copy + 'static> Pub<T> {
+    /// Builds the payload with the next sequence number and sends it; returns that number.
+    pub fn send(&mut self, build: impl FnOnce(u32) -> T) -> Result<u32, TransportError> {
+        let seq = self.next_seq;
+        self.publisher
+            .send_copy(build(seq))
+            .map_err(|e| err(format!("send on {}", self.name), e))?;
+        self.next_seq = self.next_seq.wrapping_add(1);
+        Ok(seq)
+    }
+}
+
+/// A subscriber that keeps the newest sample.
+pub struct Sub<T: Debug + ZeroCopySend + 'static> {
+    subscriber: Subscriber<ipc::Service, T, ()>,
+    latest: Option<T>,
+    name: String,
+}
+
+impl<T: Debug + ZeroCopySend + Copy + 'static> Sub<T> {
+    /// Drains everything received and returns the newest sample ever seen.
+    pub fn poll(&mut self) -> Result<Option<T>, TransportError> {
+        while let Some(sample) = self
+            .subscriber
+            .receive()
+            .map_err(|e| err(format!("receive on {}", self.name), e))?
+        {
+            self.latest = Some(*sample);
+        }
+        Ok(self.latest)
+    }
+
+    /// Drains and hands every received sample to `each` (for streams where every message
+    /// counts, such as claims).
+    pub fn drain(&mut self, mut each: impl FnMut(T)) -> Result<(), TransportError> {
+        while let Some(sample) = self
+            .subscriber
+            .receive()
+            .map_err(|e| err(format!("receive on {}", self.name), e))?
+        {
+            self.latest = Some(*sample);
+            each(*sample);
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_live_under_the_prefix() {
+        let n = ServiceNames::new("test/x/");
+        assert_eq!(n.robot(2, RobotStream::Motor), "test/x/robot2/motor");
+        assert_eq!(n.team(TeamStream::Claims), "test/x/team/claims");
+    }
+}

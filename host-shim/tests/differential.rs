@@ -1,0 +1,544 @@
+//! Differential suite: every program in `tests/clips/*.clp` runs in real CLIPS 6.30
+//! (`clips -f`) and in our CLI (`robotino-agent clips -f`); their stdout must be identical
+//! line by line, CLIPS's banner line aside (and the `--> FILE:LINE:COL: expected ...` lines
+//! our CLI adds after parse errors, which `parse_errors.rs` checks).
+//!
+//! Each program has its own `#[test]` (so `cargo test --test differential 031` runs one),
+//! and `all_programs_summary` runs the whole suite and prints "N passed, M failed".
+//! Real CLIPS is also checked against the golden transcript `tests/clips/NNN-*.out`
+//! (made by `tests/clips/regen.sh`), which catches a different CLIPS version on the machine.
+//!
+//! Real CLIPS is required: without a `clips` command on PATH the tests fail (CI installs the
+//! Debian package `clips`); they never skip silently.
+
+use std::fmt::Write as _;
+use std::io::Read;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::time::{Duration, Instant};
+
+/// Each run of a program (in either engine) gets this long before it is killed.
+const RUN_TIMEOUT: Duration = Duration::from_secs(10);
+/// Lines shown around the first difference.
+const DIFF_CONTEXT: usize = 3;
+
+fn programs_dir() -> PathBuf {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests/clips");
+    dir.canonicalize().unwrap_or(dir)
+}
+
+/// Output of one run.
+struct RunOutput {
+    stdout: String,
+    /// Kept for diagnostics only; never compared.
+    stderr: String,
+    timed_out: bool,
+    status: Option<i32>,
+}
+
+/// Runs `program args...` in `cwd` with stdin closed, killing it after `RUN_TIMEOUT`.
+fn run_with_timeout(program: &Path, args: &[&Path], cwd: &Path) -> Result<RunOutput, String> {
+    let mut child = Command::new(program)
+        .args(args)
+        .current_dir(cwd)
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .map_err(|e| format!("cannot start {}: {e}", program.display()))?;
+    let mut stdout_pipe = child
+        .stdout
+        .take()
+        .ok_or_else(|| "child has no stdout pipe".to_string())?;
+    let mut stderr_pipe = child
+        .stderr
+        .take()
+        .ok_or_else(|| "child has no stderr pipe".to_string())?;
+    // Read in threads so a chatty child never blocks on a full pipe while we wait.
+    let reader = std::thread::spawn(move || {
+        let mut bytes = Vec::new();
+        let _ = stdout_pipe.read_to_end(&mut bytes);
+        bytes
+    });
+    let err_reader = std::thread::spawn(move || {
+        let mut bytes = Vec::new();
+        let _ = stderr_pipe.read_to_end(&mut bytes);
+        bytes
+    });
+    let deadline = Instant::now() + RUN_TIMEOUT;
+    let mut timed_out = false;
+    let status = loop {
+        match child.try_wait() {
+            Ok(Some(status)) => break status.code(),
+            Ok(None) if Instant::now() >= deadline => {
+                timed_out = true;
+                let _ = child.kill();
+                break child.wait().ok().and_then(|s| s.code());
+            }
+            Ok(None) => std::thread::sleep(Duration::from_millis(5)),
+            Err(e) => return Err(format!("waiting for {}: {e}", program.display())),
+        }
+    };
+    let bytes = reader
+        .join()
+        .map_err(|_| "stdout reader thread panicked".to_string())?;
+    let err_bytes = err_reader
+        .join()
+        .map_err(|_| "stderr reader thread panicked".to_string())?;
+    Ok(RunOutput {
+        stdout: String::from_utf8_lossy(&bytes).into_owned(),
+        stderr: String::from_utf8_lossy(&err_bytes).into_owned(),
+        timed_out,
+        status,
+    })
+}
+
+/// A fresh, empty working directory, so programs that write files never see each other's.
+fn scratch_dir(program: &str, engine: &str) -> Result<PathBuf, String> {
+    // Unique per run: a program's own test and the summary test may run it concurrently.
+    static RUNS: AtomicUsize = AtomicUsize::new(0);
+    let dir = std::env::temp_dir().join(format!(
+        "robotino-difftest-{}-{}-{program}-{engine}",
+        std::process::id(),
+        RUNS.fetch_add(1, Ordering::Relaxed)
+    ));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+    Ok(dir)
+}
+
+fn clips_command() -> Result<PathBuf, String> {
+    let path = std::env::var_os("PATH").unwrap_or_default();
+    std::env::split_paths(&path)
+        .map(|dir| dir.join("clips"))
+        .find(|candidate| candidate.is_file())
+        .ok_or_else(|| {
+            "real CLIPS 6.30 is required for the differential suite but `clips` is not on PATH: \
+             install it (Debian/Ubuntu: `apt-get install clips`)"
+                .to_string()
+        })
+}
+
+/// A transcript (banner removed), the raw stdout, and a note about the run for reports.
+struct Transcript {
+    lines: Vec<String>,
+    raw: String,
+    note: String,
+}
+
+/// Our CLI, invoked as `EXE clips -f FILE`. `DIFFTEST_ENGINE` may name another executable
+/// taking the same arguments (used to check the harness itself, e.g. with a wrapper around
+/// real CLIPS, which must pass every program).
+fn our_engine() -> PathBuf {
+    std::env::var_os("DIFFTEST_ENGINE")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| PathBuf::from(env!("CARGO_BIN_EXE_robotino-agent")))
+}
+
+/// Runs one engine on one program and returns its transcript without the banner.
+fn transcript(engine: &str, exe: &Path, name: &str, file: &Path) -> Result<Transcript, String> {
+    let cwd = scratch_dir(name, engine)?;
+    let out = if engine == "clips" {
+        run_with_timeout(exe, &[Path::new("-f"), file], &cwd)?
+    } else {
+        run_with_timeout(exe, &[Path::new("clips"), Path::new("-f"), file], &cwd)?
+    };
+    let _ = std::fs::remove_dir_all(&cwd);
+    if out.timed_out {
+        return Err(format!(
+            "{engine} did not finish {name} within {RUN_TIMEOUT:?} (missing (exit)? endless loop?); \
+             output so far:\n{}",
+            out.stdout
+        ));
+    }
+    let mut note = format!("{engine} exit status: {:?}", out.status);
+    if !out.stderr.is_empty() {
+        let tail: Vec<&str> = out.stderr.lines().rev().take(10).collect();
+        let tail: Vec<&str> = tail.into_iter().rev().collect();
+        let _ = write!(
+            note,
+            "\n{engine} stderr (last lines):\n  {}",
+            tail.join("\n  ")
+        );
+    }
+    Ok(Transcript {
+        lines: without_banner(&out.stdout),
+        raw: out.stdout,
+        note,
+    })
+}
+
+/// CLIPS prints one banner line (`         CLIPS (6.30 3/17/15)`) before its first prompt;
+/// our CLI may print its own banner line or none. Only that one line is not compared: if the
+/// output does not start with a prompt, its first line is dropped.
+fn without_banner(stdout: &str) -> Vec<String> {
+    let mut lines = stdout.lines().map(str::to_string).peekable();
+    if lines
+        .peek()
+        .is_some_and(|first| !first.starts_with("CLIPS>"))
+    {
+        lines.next();
+    }
+    lines.collect()
+}
+
+/// Our CLI adds one line `--> FILE:LINE:COL: expected WHAT` after CLIPS's own text for a
+/// parse error (checked by `parse_errors.rs`); CLIPS never prints it, so it is not compared.
+fn without_position_lines(lines: &[String]) -> Vec<String> {
+    lines
+        .iter()
+        .filter(|line| !is_position_line(line))
+        .cloned()
+        .collect()
+}
+
+fn is_position_line(line: &str) -> bool {
+    let Some(rest) = line.strip_prefix("--> ") else {
+        return false;
+    };
+    let Some((location, _what)) = rest.split_once(": expected ") else {
+        return false;
+    };
+    let mut parts = location.rsplitn(3, ':');
+    let column = parts.next().map(|c| c.parse::<u32>().is_ok());
+    let line_no = parts.next().map(|l| l.parse::<u32>().is_ok());
+    column == Some(true) && line_no == Some(true) && parts.next().is_some()
+}
+
+/// `None` when equal, else a readable report of the first differing line with context.
+fn first_difference(
+    expected_label: &str,
+    expected: &[String],
+    actual_label: &str,
+    actual: &[String],
+) -> Option<String> {
+    let at = (0..expected.len().max(actual.len())).find(|&i| expected.get(i) != actual.get(i))?;
+    let mut report = String::new();
+    let _ = writeln!(
+        report,
+        "first difference at transcript line {} (banner excluded; {} has {} lines, {} has {})",
+        at + 1,
+        expected_label,
+        expected.len(),
+        actual_label,
+        actual.len()
+    );
+    let from = at.saturating_sub(DIFF_CONTEXT);
+    for (i, line) in expected.iter().enumerate().take(at).skip(from) {
+        let _ = writeln!(report, "  {:>4}   {line}", i + 1);
+    }
+    let show = |l: Option<&String>| match l {
+        Some(l) => format!("{l:?}"),
+        None => "<end of output>".to_string(),
+    };
+    let _ = writeln!(
+        report,
+        "  {:>4} - {expected_label}: {}",
+        at + 1,
+        show(expected.get(at))
+    );
+    let _ = writeln!(
+        report,
+        "  {:>4} + {actual_label}: {}",
+        at + 1,
+        show(actual.get(at))
+    );
+    for i in at + 1..=at + DIFF_CONTEXT {
+        match (expected.get(i), actual.get(i)) {
+            (None, None) => break,
+            (Some(same), Some(other)) if same == other => {
+                let _ = writeln!(report, "  {:>4}   {same}", i + 1);
+            }
+            (e, a) => {
+                let _ = writeln!(report, "  {:>4} - {expected_label}: {}", i + 1, show(e));
+                let _ = writeln!(report, "  {:>4} + {actual_label}: {}", i + 1, show(a));
+            }
+        }
+    }
+    Some(report)
+}
+
+/// Checks one program: CLIPS against its golden transcript, then our CLI against CLIPS.
+fn check_program(name: &str) -> Result<(), String> {
+    let clips = clips_command()?;
+    let ours = our_engine();
+    let file = programs_dir().join(format!("{name}.clp"));
+    let golden_file = programs_dir().join(format!("{name}.out"));
+    if !file.is_file() {
+        return Err(format!("program {} does not exist", file.display()));
+    }
+    let clips_run = transcript("clips", &clips, name, &file)?;
+    let clips_lines = clips_run.lines;
+    let golden = std::fs::read_to_string(&golden_file).map_err(|e| {
+        format!(
+            "golden transcript {} unreadable ({e}); run tests/clips/regen.sh",
+            golden_file.display()
+        )
+    })?;
+    // The golden transcripts keep CLIPS's banner: a different banner means a different
+    // CLIPS build, which explains any other difference.
+    let golden_banner = golden.lines().next().unwrap_or_default();
+    let clips_banner = clips_run.raw.lines().next().unwrap_or_default();
+    if golden_banner != clips_banner {
+        return Err(format!(
+            "{name}: the installed CLIPS prints banner {clips_banner:?} but the golden \
+             transcripts were made with {golden_banner:?}; the oracle is CLIPS 6.30 (Debian \
+             package `clips`)"
+        ));
+    }
+    if let Some(diff) = first_difference(
+        "golden .out",
+        &without_banner(&golden),
+        "clips now",
+        &clips_lines,
+    ) {
+        return Err(format!(
+            "{name}: real CLIPS no longer matches {} (different CLIPS version, or the program \
+             changed without tests/clips/regen.sh):\n{diff}",
+            golden_file.display()
+        ));
+    }
+    let our_run = transcript("robotino-agent", &ours, name, &file)?;
+    let our_lines = without_position_lines(&our_run.lines);
+    match first_difference("clips", &clips_lines, "ours", &our_lines) {
+        None => Ok(()),
+        Some(diff) => Err(format!(
+            "{name}: our CLI differs from CLIPS:\n{diff}{}",
+            our_run.note
+        )),
+    }
+}
+
+fn assert_program(name: &str) {
+    if let Err(report) = check_program(name) {
+        panic!("{report}");
+    }
+}
+
+/// Names (without `.clp`) of every program in `tests/clips`, sorted.
+fn programs_on_disk() -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(programs_dir())
+        .map(|entries| {
+            entries
+                .filter_map(|e| e.ok())
+                .filter_map(|e| {
+                    let name = e.file_name().to_string_lossy().into_owned();
+                    name.strip_suffix(".clp").map(str::to_string)
+                })
+                .collect()
+        })
+        .unwrap_or_default();
+    names.sort();
+    names
+}
+
+macro_rules! differential_programs {
+    ($($test:ident => $name:literal,)*) => {
+        $(
+            #[test]
+            fn $test() {
+                assert_program($name);
+            }
+        )*
+
+        /// Every program on disk has its own test above, and every test has its program.
+        #[test]
+        fn every_program_has_a_test() {
+            let listed: Vec<String> = [$($name),*].iter().map(|s| s.to_string()).collect();
+            let on_disk = programs_on_disk();
+            let missing: Vec<&String> = on_disk.iter().filter(|n| !listed.contains(n)).collect();
+            let stale: Vec<&String> = listed.iter().filter(|n| !on_disk.contains(n)).collect();
+            assert!(
+                missing.is_empty() && stale.is_empty(),
+                "differential_programs! list out of date: add {missing:?}, remove {stale:?}"
+            );
+        }
+    };
+}
+
+/// Runs every program on disk and prints one line per program plus "N passed, M failed".
+#[test]
+fn all_programs_summary() {
+    let names = programs_on_disk();
+    assert!(
+        names.len() >= 60,
+        "expected at least 60 differential programs in {}, found {}",
+        programs_dir().display(),
+        names.len()
+    );
+    let mut failed = Vec::new();
+    for name in &names {
+        match check_program(name) {
+            Ok(()) => println!("ok      {name}"),
+            Err(report) => {
+                println!("FAILED  {name}");
+                failed.push((name.clone(), report));
+            }
+        }
+    }
+    for (_, report) in &failed {
+        println!("\n{report}");
+    }
+    let summary = format!(
+        "{} passed, {} failed (of {} programs)",
+        names.len() - failed.len(),
+        failed.len(),
+        names.len()
+    );
+    println!("\n{summary}");
+    assert!(
+        failed.is_empty(),
+        "{summary}; failing: {:?}",
+        failed.iter().map(|(n, _)| n).collect::<Vec<_>>()
+    );
+}
+
+#[test]
+fn banner_is_the_only_line_ignored() {
+    let clips = "         CLIPS (6.30 3/17/15)\nCLIPS> (exit)\n";
+    assert_eq!(without_banner(clips), vec!["CLIPS> (exit)".to_string()]);
+    assert_eq!(
+        without_banner("CLIPS> (exit)\n"),
+        vec!["CLIPS> (exit)".to_string()]
+    );
+    // Anything else before the first prompt is compared.
+    assert_eq!(
+        without_banner("banner\nstray\nCLIPS> (exit)\n"),
+        vec!["stray".to_string(), "CLIPS> (exit)".to_string()]
+    );
+}
+
+#[test]
+fn only_position_lines_are_dropped_from_our_output() {
+    let ours: Vec<String> = [
+        "CLIPS> (foo)",
+        "[EXPRNPSR3] Missing function declaration for foo.",
+        "--> /x/prog.clp:3:2: expected a defined function",
+        "--> not a position line",
+        "CLIPS> (exit)",
+    ]
+    .iter()
+    .map(|s| s.to_string())
+    .collect();
+    let kept = without_position_lines(&ours);
+    assert_eq!(kept.len(), 4, "{kept:?}");
+    assert!(kept.iter().all(|l| !l.contains("expected a defined")));
+}
+
+#[test]
+fn difference_report_names_first_differing_line() {
+    let a: Vec<String> = ["x", "y", "z"].iter().map(|s| s.to_string()).collect();
+    let b: Vec<String> = ["x", "Y", "z"].iter().map(|s| s.to_string()).collect();
+    let report = first_difference("clips", &a, "ours", &b).unwrap_or_default();
+    assert!(report.contains("transcript line 2"), "{report}");
+    assert!(report.contains("- clips: \"y\""), "{report}");
+    assert!(report.contains("+ ours: \"Y\""), "{report}");
+    assert!(first_difference("clips", &a, "ours", &a).is_none());
+    let short: Vec<String> = vec!["x".to_string()];
+    let report = first_difference("clips", &a, "ours", &short).unwrap_or_default();
+    assert!(report.contains("<end of output>"), "{report}");
+}
+
+differential_programs! {
+    p001_assert_basic => "001-assert-basic",
+    p002_retract_basic => "002-retract-basic",
+    p003_reset_numbering => "003-reset-numbering",
+    p004_deffacts_multiple => "004-deffacts-multiple",
+    p005_template_defaults => "005-template-defaults",
+    p006_allowed_values_assert => "006-allowed-values-assert",
+    p007_modify_basic => "007-modify-basic",
+    p008_duplicate => "008-duplicate",
+    p009_facts_listing_range => "009-facts-listing-range",
+    p010_rhs_assert_several => "010-rhs-assert-several",
+    p011_agenda_one_fact_many_rules => "011-agenda-one-fact-many-rules",
+    p012_agenda_across_asserts => "012-agenda-across-asserts",
+    p013_agenda_after_modify => "013-agenda-after-modify",
+    p014_agenda_with_not => "014-agenda-with-not",
+    p015_agenda_join_order => "015-agenda-join-order",
+    p016_salience_ties => "016-salience-ties",
+    p017_salience_globals => "017-salience-globals",
+    p018_refraction => "018-refraction",
+    p019_retract_other_activations => "019-retract-other-activations",
+    p020_negation_toggle => "020-negation-toggle",
+    p021_exists => "021-exists",
+    p022_or_ce => "022-or-ce",
+    p023_and_not_nested => "023-and-not-nested",
+    p024_test_ce => "024-test-ce",
+    p025_connectives => "025-connectives",
+    p026_predicate_constraint => "026-predicate-constraint",
+    p027_return_value_constraint => "027-return-value-constraint",
+    p028_fact_address => "028-fact-address",
+    p029_multifield_anywhere => "029-multifield-anywhere",
+    p030_empty_multifield => "030-empty-multifield",
+    p031_variable_joins => "031-variable-joins",
+    p032_wildcards => "032-wildcards",
+    p033_modify_matched_by_others => "033-modify-matched-by-others",
+    p034_run_limit => "034-run-limit",
+    p035_halt => "035-halt",
+    p036_deffunction_basic => "036-deffunction-basic",
+    p037_deffunction_recursion => "037-deffunction-recursion",
+    p038_deffunction_rest => "038-deffunction-rest",
+    p039_defglobal => "039-defglobal",
+    p040_if_then_else => "040-if-then-else",
+    p041_while => "041-while",
+    p042_loop_for_count => "042-loop-for-count",
+    p043_progn_foreach => "043-progn-foreach",
+    p044_switch => "044-switch",
+    p045_printout => "045-printout",
+    p046_format => "046-format",
+    p047_arith_integers => "047-arith-integers",
+    p048_arith_floats => "048-arith-floats",
+    p049_comparisons => "049-comparisons",
+    p050_logic => "050-logic",
+    p051_type_predicates => "051-type-predicates",
+    p052_string_functions => "052-string-functions",
+    p053_multifield_functions_a => "053-multifield-functions-a",
+    p054_multifield_functions_b => "054-multifield-functions-b",
+    p055_implode_explode => "055-implode-explode",
+    p056_fact_queries_a => "056-fact-queries-a",
+    p057_fact_queries_b => "057-fact-queries-b",
+    p058_agenda_listing => "058-agenda-listing",
+    p059_watch_unwatch => "059-watch-unwatch",
+    p060_retract_several_rhs => "060-retract-several-rhs",
+    p061_clear => "061-clear",
+    p062_undefrule => "062-undefrule",
+    p063_list_defrules_ppdefrule => "063-list-defrules-ppdefrule",
+    p064_matches => "064-matches",
+    p065_refresh_agenda_strategy => "065-refresh-agenda-strategy",
+    p066_save_load_facts => "066-save-load-facts",
+    p067_batch_star => "067-batch-star",
+    p068_allowed_values_modify => "068-allowed-values-modify",
+    p069_slot_type_violation => "069-slot-type-violation",
+    p070_facts_display_values => "070-facts-display-values",
+    p071_no_lhs_initial_fact => "071-no-lhs-initial-fact",
+    p072_or_bindings_multiple => "072-or-bindings-multiple",
+    p073_modify_loop_guard => "073-modify-loop-guard",
+    p074_pattern_network_error => "074-pattern-network-error",
+    p075_agenda_retract_reassert => "075-agenda-retract-reassert",
+    p076_rhs_activation_order => "076-rhs-activation-order",
+    p077_negative_salience_chain => "077-negative-salience-chain",
+    p078_string_symbol_compare_match => "078-string-symbol-compare-match",
+    p079_rule_added_after_facts => "079-rule-added-after-facts",
+    p080_modify_with_not_order => "080-modify-with-not-order",
+    p081_deffacts_reset_fire_order => "081-deffacts-reset-fire-order",
+    p082_exists_modify_toggle => "082-exists-modify-toggle",
+    p083_startup_state => "083-startup-state",
+    p084_watch_compilations => "084-watch-compilations",
+    p085_string_edge => "085-string-edge",
+    p086_modify_into_duplicate => "086-modify-into-duplicate",
+    p087_return_in_loops => "087-return-in-loops",
+    p088_exists_multi_and_double_not => "088-exists-multi-and-double-not",
+    p089_rule_retracts_own_other_match => "089-rule-retracts-own-other-match",
+    p090_multifield_rhs_and_functions => "090-multifield-rhs-and-functions",
+    p091_mini_agent => "091-mini-agent",
+    p092_number_symbol_lexing => "092-number-symbol-lexing",
+    p093_fact_address_values => "093-fact-address-values",
+    p094_salience_mixed_order => "094-salience-mixed-order",
+    p095_agenda_mixed_rule_shapes => "095-agenda-mixed-rule-shapes",
+    p096_one_retract_unblocks_many => "096-one-retract-unblocks-many",
+    p097_shared_patterns_order => "097-shared-patterns-order",
+    p098_exists_not_same_fact => "098-exists-not-same-fact",
+    p099_alpha_network_order => "099-alpha-network-order",
+    p100_hashed_memory_order => "100-hashed-memory-order",
+}

@@ -1,0 +1,121 @@
+;;; execution.clp -- execution monitoring: skill requests and outcomes.
+;;;
+;;; Production commits by asserting an (intent). Execution turns it into a
+;;; numbered (skill-request) for the behaviour layer (the simulation or the
+;;; robot driver) and waits in state EXEC.  The executor answers with a
+;;; (skill-outcome) of the same id: FINAL (with the light seen at a
+;;; machine) or FAILED.  A failure aborts the step: the robot believes it
+;;; holds nothing and is IDLE again, ready for the next best action.
+
+(deftemplate intent
+  (slot action (type SYMBOL) (allowed-symbols get-s0 finish-puck-at deliver discard))
+  (slot target (type SYMBOL)))
+
+(deftemplate skill-request
+  (slot id (type INTEGER))
+  (slot name (type SYMBOL) (allowed-symbols get-s0 finish-puck-at deliver discard))
+  (slot target (type SYMBOL))
+  (slot puck (type SYMBOL) (default NONE)))
+
+(deftemplate skill-outcome
+  (slot id (type INTEGER))
+  (slot status (type SYMBOL) (allowed-symbols FINAL FAILED))
+  (slot light (type SYMBOL) (default none)
+    (allowed-symbols none green yellow yellow-flashing red off))
+  (slot info (type SYMBOL) (default none)))
+
+(defrule exec-request-skill
+  "Commit: number the intent and hand it to the behaviour layer."
+  (declare (salience ?*PRIORITY_EXEC*))
+  ?s <- (state IDLE)
+  ?i <- (intent (action ?a) (target ?t))
+  ?n <- (next-skill-id ?id)
+  (holding ?puck)
+  =>
+  (retract ?s ?i ?n)
+  (assert (state EXEC) (next-skill-id (+ ?id 1))
+          (skill-request (id ?id) (name ?a) (target ?t) (puck ?puck))))
+
+(defrule exec-get-s0-final
+  (declare (salience ?*PRIORITY_EXEC*))
+  ?s <- (state EXEC)
+  ?r <- (skill-request (id ?id) (name get-s0) (target ?t))
+  ?o <- (skill-outcome (id ?id) (status FINAL))
+  ?h <- (holding ?)
+  ?c <- (s0-taken ?n)
+  ?p <- (robot-at ?)
+  =>
+  (retract ?s ?r ?o ?h ?c ?p)
+  (assert (state IDLE) (holding S0) (s0-taken (+ ?n 1)) (robot-at ?t)))
+
+(defrule exec-get-s0-storage-empty
+  "The input storage has no more raw pucks."
+  (declare (salience ?*PRIORITY_EXEC*))
+  ?s <- (state EXEC)
+  ?r <- (skill-request (id ?id) (name get-s0) (target ?t))
+  ?o <- (skill-outcome (id ?id) (status FAILED) (info storage-empty))
+  ?p <- (robot-at ?)
+  =>
+  (retract ?s ?r ?o ?p)
+  (assert (state IDLE) (input-storage empty) (robot-at ?t)))
+
+(defrule exec-finish-puck-final
+  "Arrived with the puck: the world model reads the light."
+  (declare (salience ?*PRIORITY_EXEC*))
+  ?s <- (state EXEC)
+  ?r <- (skill-request (id ?id) (name finish-puck-at) (target ?m))
+  ?o <- (skill-outcome (id ?id) (status FINAL) (light ?l))
+  ?p <- (robot-at ?)
+  =>
+  (retract ?s ?r ?o ?p)
+  (assert (state GOTO-FINAL) (goto-target ?m) (light ?l) (robot-at ?m)))
+
+(defrule exec-puck-handed-over
+  "Delivered or discarded: the hands are empty."
+  (declare (salience ?*PRIORITY_EXEC*))
+  ?s <- (state EXEC)
+  ?r <- (skill-request (id ?id) (name deliver|discard) (target ?t))
+  ?o <- (skill-outcome (id ?id) (status FINAL))
+  ?h <- (holding ?)
+  ?p <- (robot-at ?)
+  =>
+  (retract ?s ?r ?o ?h ?p)
+  (assert (state IDLE) (holding NONE) (robot-at ?t)))
+
+(defrule exec-get-s0-failed
+  "Fetching failed: the puck may have been taken and lost on the way, so
+   the agent counts it as taken and holds nothing."
+  (declare (salience ?*PRIORITY_EXEC*))
+  ?s <- (state EXEC)
+  ?r <- (skill-request (id ?id) (name get-s0) (target ?t))
+  ?o <- (skill-outcome (id ?id) (status FAILED) (info ~storage-empty))
+  ?h <- (holding ?)
+  ?c <- (s0-taken ?n)
+  ?p <- (robot-at ?)
+  =>
+  (retract ?s ?r ?o ?h ?c ?p)
+  (assert (state IDLE) (holding NONE) (s0-taken (+ ?n 1)) (robot-at ?t)))
+
+(defrule exec-failed-abort
+  "The behaviour layer gave up carrying a puck: abort, believe the puck is
+   gone (machine beliefs stay: it was lost on the way), go idle."
+  (declare (salience ?*PRIORITY_EXEC*))
+  ?s <- (state EXEC)
+  ?r <- (skill-request (id ?id) (name ~get-s0) (target ?t))
+  ?o <- (skill-outcome (id ?id) (status FAILED))
+  ?h <- (holding ?)
+  ?p <- (robot-at ?)
+  =>
+  (retract ?s ?r ?o ?h ?p)
+  (assert (state IDLE) (holding NONE) (robot-at ?t)))
+
+(defrule exec-nothing-left
+  "Empty hands and an empty input storage: the agent is done."
+  (declare (salience ?*PRIORITY_DONE*))
+  ?s <- (state IDLE)
+  (holding NONE)
+  (input-storage empty)
+  (not (intent))
+  =>
+  (retract ?s)
+  (assert (state DONE)))

@@ -1,0 +1,25 @@
+//! Link arguments and the `freestanding` cfg for the agent image.
+//!
+//! They apply only when building for 32-bit x86 Linux (the LX800): there the image provides
+//! its own `_start`, memory functions and syscalls, so it links without libc or start files.
+//! On the host the same crate is an ordinary std program (for clippy and unit tests). The
+//! arguments go to bin targets only (`rustc-link-arg-bins`), never target-wide, so the i586
+//! std test binaries of the other crates keep linking against glibc.
+
+use std::env;
+
+fn main() {
+    println!("cargo::rustc-check-cfg=cfg(freestanding)");
+    println!("cargo::rerun-if-changed=build.rs");
+
+    let arch = env::var("CARGO_CFG_TARGET_ARCH").unwrap_or_default();
+    let os = env::var("CARGO_CFG_TARGET_OS").unwrap_or_default();
+    if arch == "x86" && os == "linux" {
+        println!("cargo::rustc-cfg=freestanding");
+        // No crt files, no libc, a fully static non-PIE executable: `_start` is ours and
+        // nothing relocates the image at run time.
+        for arg in ["-nostartfiles", "-nostdlib", "-static", "-no-pie"] {
+            println!("cargo::rustc-link-arg-bins={arg}");
+        }
+    }
+}

@@ -1,0 +1,254 @@
+;;; referee.clp -- the LLSF 2012 game model (ground truth), self-contained.
+;;;
+;;; Knows the hidden machine types, what each machine holds, the raw puck
+;;; supply, the clock and the score.  Whoever moves the robot (the instant
+;;; simulation in sim.clp, or a host driver) advances (game-clock) by the
+;;; travel time and asserts an (rf-action); the referee answers with an
+;;; (rf-result) of the same id, applies processing time to the clock and
+;;; scores.  Setup facts the host asserts before (run): (rf-machine (name)
+;;; (type)) x10, and optionally (rf-times ...), (s0-supply N),
+;;; (active-gate Dk), (game-clock ...); missing ones get defaults.
+
+(defglobal ?*RF_SALIENCE* = 500)
+
+(deftemplate rf-machine
+  (slot name (type SYMBOL))
+  (slot type (type SYMBOL) (allowed-symbols T1 T2 T3))
+  (multislot loaded-with (type SYMBOL) (allowed-symbols S0 S1 S2))
+  (slot junk (type INTEGER) (default 0))
+  (slot productions (type INTEGER) (default 0)))
+
+(deftemplate rf-times
+  "Seconds a machine works after the last input, per type, and per
+   consumed intermediate input."
+  (slot t1 (type NUMBER) (default 5.5))
+  (slot t2 (type NUMBER) (default 20.0))
+  (slot t3 (type NUMBER) (default 50.0))
+  (slot per-input (type NUMBER) (default 2.0)))
+
+(deftemplate rf-storage
+  (slot s0 (type INTEGER)))
+
+(deftemplate game-clock
+  (slot time (type NUMBER) (default 0.0))
+  (slot limit (type NUMBER) (default 900.0))
+  (slot enabled (type SYMBOL) (allowed-symbols TRUE FALSE) (default TRUE)))
+
+(deftemplate score
+  (slot points (type INTEGER) (default 0))
+  (slot s1 (type INTEGER) (default 0))
+  (slot s2 (type INTEGER) (default 0))
+  (slot p (type INTEGER) (default 0))
+  (slot delivered (type INTEGER) (default 0))
+  (slot wrong-gate (type INTEGER) (default 0))
+  (slot lost (type INTEGER) (default 0))
+  (slot discarded (type INTEGER) (default 0)))
+
+(deftemplate rf-action
+  (slot id (type INTEGER))
+  (slot kind (type SYMBOL) (allowed-symbols get-s0 load deliver discard lose))
+  (slot target (type SYMBOL))
+  (slot puck (type SYMBOL) (default NONE)))
+
+(deftemplate rf-result
+  (slot id (type INTEGER))
+  (slot status (type SYMBOL) (allowed-symbols ok empty late))
+  (slot light (type SYMBOL) (default none))
+  (slot puck (type SYMBOL) (default NONE))   ; what the robot holds after
+  (slot wait (type NUMBER) (default 0.0)))   ; processing time spent there
+
+(deftemplate game-over
+  (slot reason (type SYMBOL) (allowed-symbols time done deadlock))
+  (slot time (type NUMBER)))
+
+(deffacts referee-boot
+  (rf-boot)
+  (score))
+
+(deffunction rf-inputs (?type)
+  (switch ?type
+    (case T1 then (create$ S0))
+    (case T2 then (create$ S0 S1))
+    (case T3 then (create$ S0 S1 S2))
+    (default (create$))))
+
+(deffunction rf-output (?type)
+  (switch ?type (case T1 then S1) (case T2 then S2) (case T3 then P)
+    (default NONE)))
+
+(deffunction rf-process-time (?type ?t1 ?t2 ?t3)
+  (switch ?type (case T1 then ?t1) (case T2 then ?t2) (case T3 then ?t3)
+    (default 0.0)))
+
+(deffunction rf-output-points (?type)
+  "2012 points for producing: S2 +4, P +12."
+  (switch ?type (case T2 then 4) (case T3 then 12) (default 0)))
+
+;;; ---- defaults for setup facts the host left out ----------------------
+
+(defrule rf-default-times
+  (declare (salience (+ ?*RF_SALIENCE* 10)))
+  (rf-boot) (not (rf-times))
+  =>
+  (assert (rf-times)))
+
+(defrule rf-default-supply
+  (declare (salience (+ ?*RF_SALIENCE* 10)))
+  (rf-boot) (not (s0-supply ?))
+  =>
+  (assert (s0-supply 20)))
+
+(defrule rf-default-gate
+  (declare (salience (+ ?*RF_SALIENCE* 10)))
+  (rf-boot) (not (active-gate ?))
+  =>
+  (assert (active-gate D1)))
+
+(defrule rf-default-clock
+  (declare (salience (+ ?*RF_SALIENCE* 10)))
+  (rf-boot) (not (game-clock))
+  =>
+  (assert (game-clock)))
+
+(defrule rf-boot-done
+  "Fill the input storage once the setup is complete."
+  (declare (salience (+ ?*RF_SALIENCE* 5)))
+  ?b <- (rf-boot)
+  (s0-supply ?n)
+  =>
+  (retract ?b)
+  (assert (rf-storage (s0 ?n))))
+
+;;; ---- the input storage ------------------------------------------------
+
+(defrule rf-get-s0
+  (declare (salience ?*RF_SALIENCE*))
+  ?a <- (rf-action (id ?id) (kind get-s0))
+  ?s <- (rf-storage (s0 ?n&:(> ?n 0)))
+  =>
+  (retract ?a)
+  (modify ?s (s0 (- ?n 1)))
+  (assert (rf-result (id ?id) (status ok) (puck S0))))
+
+(defrule rf-get-s0-empty
+  (declare (salience ?*RF_SALIENCE*))
+  ?a <- (rf-action (id ?id) (kind get-s0))
+  (rf-storage (s0 0))
+  =>
+  (retract ?a)
+  (assert (rf-result (id ?id) (status empty))))
+
+;;; ---- production machines ------------------------------------------------
+
+(defrule rf-load-wrong-input
+  "Not an input of this type, or already there: yellow flashing, the robot
+   keeps its puck."
+  (declare (salience ?*RF_SALIENCE*))
+  ?a <- (rf-action (id ?id) (kind load) (target ?m) (puck ?x))
+  (rf-machine (name ?m) (type ?t) (loaded-with $?lw))
+  (test (or (not (member$ ?x (rf-inputs ?t))) (member$ ?x ?lw)))
+  =>
+  (retract ?a)
+  (assert (rf-result (id ?id) (status ok) (light yellow-flashing) (puck ?x))))
+
+(defrule rf-load-consume
+  "A needed input, but not the last: consumed (yellow) after per-input s."
+  (declare (salience ?*RF_SALIENCE*))
+  ?a <- (rf-action (id ?id) (kind load) (target ?m) (puck ?x))
+  ?f <- (rf-machine (name ?m) (type ?t) (loaded-with $?lw))
+  (test (and (member$ ?x (rf-inputs ?t)) (not (member$ ?x ?lw))
+             (< (+ 1 (length$ ?lw)) (length$ (rf-inputs ?t)))))
+  (rf-times (per-input ?w))
+  ?c <- (game-clock (time ?now) (limit ?lim) (enabled ?on))
+  =>
+  (retract ?a)
+  (if (and (eq ?on TRUE) (> (+ ?now ?w) ?lim))
+   then (assert (rf-result (id ?id) (status late) (puck ?x))
+                (game-over (reason time) (time ?lim)))
+   else (modify ?f (loaded-with ?lw ?x))
+        (modify ?c (time (+ ?now ?w)))
+        (assert (rf-result (id ?id) (status ok) (light yellow) (wait ?w)))))
+
+(defrule rf-load-complete
+  "The last missing input: after the processing time the machine converts
+   it to its output (green); the earlier inputs become junk."
+  (declare (salience ?*RF_SALIENCE*))
+  ?a <- (rf-action (id ?id) (kind load) (target ?m) (puck ?x))
+  ?f <- (rf-machine (name ?m) (type ?t) (loaded-with $?lw) (junk ?j)
+          (productions ?n))
+  (test (and (member$ ?x (rf-inputs ?t)) (not (member$ ?x ?lw))
+             (= (+ 1 (length$ ?lw)) (length$ (rf-inputs ?t)))))
+  (rf-times (t1 ?t1) (t2 ?t2) (t3 ?t3))
+  ?c <- (game-clock (time ?now) (limit ?lim) (enabled ?on))
+  ?s <- (score (points ?pts) (s1 ?s1) (s2 ?s2) (p ?p))
+  =>
+  (retract ?a)
+  (bind ?w (rf-process-time ?t ?t1 ?t2 ?t3))
+  (if (and (eq ?on TRUE) (> (+ ?now ?w) ?lim))
+   then (assert (rf-result (id ?id) (status late) (puck ?x))
+                (game-over (reason time) (time ?lim)))
+   else (bind ?out (rf-output ?t))
+        (modify ?f (loaded-with) (junk (+ ?j (length$ ?lw)))
+                (productions (+ ?n 1)))
+        (modify ?c (time (+ ?now ?w)))
+        (modify ?s (points (+ ?pts (rf-output-points ?t)))
+                (s1 (+ ?s1 (if (eq ?out S1) then 1 else 0)))
+                (s2 (+ ?s2 (if (eq ?out S2) then 1 else 0)))
+                (p (+ ?p (if (eq ?out P) then 1 else 0))))
+        (assert (rf-result (id ?id) (status ok) (light green) (puck ?out)
+                           (wait ?w)))))
+
+;;; ---- delivery, recycling, losses ----------------------------------------
+
+(defrule rf-deliver-active-gate
+  (declare (salience ?*RF_SALIENCE*))
+  ?a <- (rf-action (id ?id) (kind deliver) (target ?g) (puck P))
+  (active-gate ?g)
+  ?s <- (score (points ?pts) (delivered ?d))
+  =>
+  (retract ?a)
+  (modify ?s (points (+ ?pts 5)) (delivered (+ ?d 1)))
+  (assert (rf-result (id ?id) (status ok))))
+
+(defrule rf-deliver-other
+  "A gate that is not active, or a puck that is not a P: no points."
+  (declare (salience ?*RF_SALIENCE*))
+  ?a <- (rf-action (id ?id) (kind deliver) (target ?g) (puck ?x))
+  (active-gate ?active)
+  (test (or (neq ?g ?active) (neq ?x P)))
+  ?s <- (score (wrong-gate ?w))
+  =>
+  (retract ?a)
+  (modify ?s (wrong-gate (+ ?w 1)))
+  (assert (rf-result (id ?id) (status ok))))
+
+(defrule rf-discard
+  (declare (salience ?*RF_SALIENCE*))
+  ?a <- (rf-action (id ?id) (kind discard))
+  ?s <- (score (discarded ?d))
+  =>
+  (retract ?a)
+  (modify ?s (discarded (+ ?d 1)))
+  (assert (rf-result (id ?id) (status ok))))
+
+(defrule rf-lose-carried-puck
+  (declare (salience ?*RF_SALIENCE*))
+  ?a <- (rf-action (id ?id) (kind lose) (puck ?x&~NONE))
+  ?s <- (score (lost ?l))
+  =>
+  (retract ?a)
+  (modify ?s (lost (+ ?l 1)))
+  (assert (rf-result (id ?id) (status ok))))
+
+(defrule rf-lose-fetched-puck
+  "Lost right after taking it from the input storage."
+  (declare (salience ?*RF_SALIENCE*))
+  ?a <- (rf-action (id ?id) (kind lose) (puck NONE))
+  ?st <- (rf-storage (s0 ?n))
+  ?s <- (score (lost ?l))
+  =>
+  (retract ?a)
+  (if (> ?n 0)
+   then (modify ?st (s0 (- ?n 1)))
+        (modify ?s (lost (+ ?l 1))))
+  (assert (rf-result (id ?id) (status ok))))

@@ -1,0 +1,5 @@
+; expect: 6:1 expected ')'
+(defrule r
+   (a ?x)
+   =>
+   (printout t ?x crlf)

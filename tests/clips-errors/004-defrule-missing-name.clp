@@ -1,0 +1,3 @@
+; expect: 2:10 expected name
+(defrule (a ?x) => (printout t ?x crlf))
+(exit)

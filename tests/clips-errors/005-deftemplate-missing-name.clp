@@ -1,0 +1,3 @@
+; expect: 2:14 expected name
+(deftemplate (slot a))
+(exit)

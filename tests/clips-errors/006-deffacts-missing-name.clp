@@ -1,0 +1,3 @@
+; expect: 2:11 expected name
+(deffacts (a 1) (b 2))
+(exit)

@@ -1,0 +1,3 @@
+; expect: 2:22 expected parameter
+(deffunction add (?a b) (+ ?a b))
+(exit)

@@ -1,0 +1,3 @@
+; expect: 2:21 expected slot name
+(deftemplate t (slot))
+(exit)

@@ -1,0 +1,3 @@
+; expect: 2:25 expected attribute
+(deftemplate t (slot a (colour red)))
+(exit)

@@ -1,0 +1,3 @@
+; expect: 2:16 expected constraint
+(defrule r (a ~) => )
+(exit)

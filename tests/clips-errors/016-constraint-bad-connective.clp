@@ -1,0 +1,3 @@
+; expect: 2:18 expected constraint
+(defrule r (a ?x|&y) => )
+(exit)

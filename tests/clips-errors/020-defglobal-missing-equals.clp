@@ -1,0 +1,3 @@
+; expect: 2:17 expected '='
+(defglobal ?*x* 5)
+(exit)

@@ -1,0 +1,3 @@
+; expect: 2:12 expected global
+(defglobal ?x = 5)
+(exit)

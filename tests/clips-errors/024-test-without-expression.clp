@@ -1,0 +1,3 @@
+; expect: 2:24 expected expression
+(defrule r (a ?x) (test) => )
+(exit)

@@ -1,0 +1,3 @@
+; expect: 2:2 expected function
+(defrul r (a) => )
+(exit)

@@ -1,0 +1,3 @@
+; expect: 2:20 expected parameter
+(deffunction f (?a ?a) ?a)
+(exit)

@@ -1,0 +1,3 @@
+; expect: 2:28 expected variable
+(defrule r (a ?x) => (bind x 1))
+(exit)

@@ -1,0 +1,3 @@
+; expect: 2:35 expected single
+(deftemplate t (slot s (default a b)))
+(exit)

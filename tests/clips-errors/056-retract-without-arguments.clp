@@ -1,0 +1,3 @@
+; expect: 2:23 expected argument
+(defrule r (a ?x) => (retract))
+(exit)

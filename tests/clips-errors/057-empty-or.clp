@@ -1,0 +1,3 @@
+; expect: 2:22 expected pattern
+(defrule r (a ?x) (or) => )
+(exit)

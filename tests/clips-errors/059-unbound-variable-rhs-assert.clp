@@ -1,0 +1,3 @@
+; expect: 2:33 expected bound
+(defrule r (a ?x) => (assert (b ?z)))
+(exit)

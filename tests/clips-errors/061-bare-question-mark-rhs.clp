@@ -1,0 +1,3 @@
+; expect: 2:31 expected expression
+(defrule r (a) => (printout t ? crlf))
+(exit)

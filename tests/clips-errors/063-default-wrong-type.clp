@@ -1,0 +1,3 @@
+; expect: 2:48 expected type
+(deftemplate t (slot a (type INTEGER) (default 1.5)))
+(exit)

@@ -1,0 +1,3 @@
+; expect: 2:30 expected expression
+(defrule r (declare (salience)) (a) => )
+(exit)

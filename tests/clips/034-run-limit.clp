@@ -1,0 +1,17 @@
+(watch facts)
+(watch rules)
+(defrule count
+   ?f <- (n ?x&:(< ?x 10))
+   =>
+   (retract ?f)
+   (assert (n (+ ?x 1))))
+(reset)
+(assert (n 0))
+(run 3)
+(facts)
+(run 1)
+(run 0)
+(run)
+(facts)
+(run 5)
+(exit)

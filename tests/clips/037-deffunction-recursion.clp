@@ -1,0 +1,22 @@
+(watch facts)
+(watch rules)
+(deffunction fact (?n) (if (<= ?n 1) then 1 else (* ?n (fact (- ?n 1)))))
+(deffunction fib (?n) (if (< ?n 2) then ?n else (+ (fib (- ?n 1)) (fib (- ?n 2)))))
+(deffunction count-down (?n)
+   (if (> ?n 0) then
+      (printout t ?n " ")
+      (count-down (- ?n 1))
+    else
+      (printout t "liftoff" crlf)))
+; is-odd is declared first so is-even can call it, then redefined
+(deffunction is-odd (?n))
+(deffunction is-even (?n) (if (= ?n 0) then TRUE else (is-odd (- ?n 1))))
+(deffunction is-odd (?n) (if (= ?n 0) then FALSE else (is-even (- ?n 1))))
+(fact 10)
+(fact 20)
+(fib 15)
+(count-down 5)
+(is-even 10)
+(is-odd 7)
+(is-even 3)
+(exit)

@@ -1,0 +1,22 @@
+(watch facts)
+(watch rules)
+(deffunction collatz (?n)
+   (bind ?steps 0)
+   (while (<> ?n 1) do
+      (if (= (mod ?n 2) 0) then (bind ?n (div ?n 2)) else (bind ?n (+ (* 3 ?n) 1)))
+      (bind ?steps (+ ?steps 1)))
+   ?steps)
+(collatz 27)
+(collatz 1)
+(bind ?i 0)
+(while (< ?i 3) (printout t "i=" ?i crlf) (bind ?i (+ ?i 1)))
+(while FALSE do (printout t "never" crlf))
+(defrule loop-asserts
+   (make ?n)
+   =>
+   (bind ?k 1)
+   (while (<= ?k ?n) do (assert (made ?k)) (bind ?k (+ ?k 1))))
+(reset)
+(assert (make 3))
+(run)
+(exit)

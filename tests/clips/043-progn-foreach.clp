@@ -1,0 +1,18 @@
+(watch facts)
+(watch rules)
+(progn$ (?x (create$ a b c)) (printout t ?x "@" ?x-index " "))
+(printout t crlf)
+(foreach ?y (create$ 10 20 30) (printout t ?y "#" ?y-index " "))
+(printout t crlf)
+(progn$ (?x (create$)) (printout t "never" crlf))
+(foreach ?z (create$ 1 2 3) do (printout t (* ?z ?z) " "))
+(printout t crlf)
+(deftemplate basket (multislot fruit))
+(defrule list-fruit
+   (basket (fruit $?f))
+   =>
+   (progn$ (?item ?f) (assert (fruit ?item ?item-index))))
+(reset)
+(assert (basket (fruit apple pear apple)))
+(run)
+(exit)

@@ -1,0 +1,15 @@
+(watch facts)
+(watch rules)
+(watch activations)
+(defrule clean
+   ?a <- (junk 1)
+   ?b <- (junk 2)
+   =>
+   (retract ?a ?b 3))
+(defrule see-junk (junk ?n) => (printout t "junk " ?n crlf))
+(reset)
+(assert (junk 1) (junk 2) (junk 3) (junk 4))
+(agenda)
+(run)
+(facts)
+(exit)

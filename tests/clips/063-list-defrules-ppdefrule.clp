@@ -1,0 +1,17 @@
+(watch facts)
+(watch rules)
+(list-defrules)
+(defrule alpha (a ?x) => (printout t ?x crlf))
+(defrule beta
+   (declare (salience 5))
+   ?f <- (b ?y&:(> ?y 1))
+   (not (c ?y))
+   =>
+   (retract ?f)
+   (assert (c ?y)))
+(defrule gamma "with a comment" (exists (d)) => (halt))
+(list-defrules)
+(ppdefrule alpha)
+(ppdefrule beta)
+(ppdefrule gamma)
+(exit)

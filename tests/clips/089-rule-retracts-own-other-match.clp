@@ -1,0 +1,15 @@
+(watch facts)
+(watch rules)
+(watch activations)
+(defrule take-one
+   ?f <- (token ?n)
+   ?g <- (token ?m&~?n)
+   =>
+   (retract ?g)
+   (printout t "kept " ?n " dropped " ?m crlf))
+(reset)
+(assert (token 1) (token 2) (token 3))
+(agenda)
+(run)
+(facts)
+(exit)
