@@ -151,7 +151,7 @@ stage_clippy() {
 }
 
 stage_host_tests() {
-    cargo test --workspace
+    cargo test --workspace --no-fail-fast
 }
 
 # ---------------------------------------------------------------------------------------
@@ -170,7 +170,7 @@ stage_i586_tests() {
     env -u CARGO_TARGET_I586_UNKNOWN_LINUX_GNU_RUNNER \
         cargo test --target "$I586" -p agent-core -p hal -p rules --no-run || return 1
     env -u CARGO_TARGET_I586_UNKNOWN_LINUX_GNU_RUNNER \
-        cargo test -v --target "$I586" -p agent-core -p hal -p rules 2>&1 |
+        cargo test -v --no-fail-fast --target "$I586" -p agent-core -p hal -p rules 2>&1 |
         grep -vE '^ +Fresh '
 }
 

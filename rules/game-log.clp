@@ -32,13 +32,14 @@
   (multislot beliefs (type SYMBOL))
   (slot points (type INTEGER)))
 
-(deffunction log-beliefs ()
+(deffunction log-beliefs
   "The agent's machine beliefs, M1..M10, as symbols like T2_3+S0."
+  ()
   (bind ?out (create$))
   (loop-for-count (?i 1 10)
     (do-for-fact ((?m machine)) (= ?m:index ?i)
       (bind ?b ?m:mtype)
-      (progn$ (?l ?m:loaded-with) (bind ?b (sym-cat ?b + ?l)))
+      (progn$ (?l ?m:loaded-with) (bind ?b (sym-cat ?b "+" ?l)))
       (bind ?out (create$ ?out ?b))))
   ?out)
 

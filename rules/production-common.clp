@@ -11,8 +11,9 @@
   (multislot machines (type SYMBOL))
   (slot min-prio (type INTEGER) (default 0)))
 
-(deffunction nearest-of (?from $?places)
+(deffunction nearest-of
   "The place closest to ?from; earlier places win ties."
+  (?from $?places)
   (bind ?best nil)
   (bind ?best-d 0.0)
   (progn$ (?p ?places)

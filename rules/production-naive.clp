@@ -5,8 +5,9 @@
 ;;; has it as an input and it is not loaded there yet).  Same world model
 ;;; and execution monitoring as the paper's agent; only the choice differs.
 
-(deffunction naive-may-take (?belief ?puck $?loaded)
+(deffunction naive-may-take
   "TRUE if some type the belief allows consumes ?puck and it is not loaded."
+  (?belief ?puck $?loaded)
   (if (member$ ?puck ?loaded) then (return FALSE))
   (switch ?puck
     (case S0 then TRUE)
@@ -14,8 +15,9 @@
     (case S2 then (mtype-may-be ?belief T3))
     (default FALSE)))
 
-(deffunction naive-target (?puck)
+(deffunction naive-target
   "The first machine in name order that may take ?puck, or nil."
+  (?puck)
   (loop-for-count (?i 1 10)
     (bind ?found nil)
     (do-for-fact ((?m machine))

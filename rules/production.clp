@@ -8,11 +8,12 @@
 ;;; starting one, production above exploration.  A select-*.clp file then
 ;;; commits to one of the remaining candidates.
 
-(deffunction awaits-s1 (?mtype $?loaded)
+(deffunction awaits-s1
   "TRUE if a machine with this belief and load waits for an S1 that a T1
    could make: a T2 or T2_3 holding just an S0, or a started T3 without S1.
    (A pattern predicate, not a test CE, so it is re-evaluated whenever any
    machine belief changes.)"
+  (?mtype $?loaded)
   (and (not (member$ S1 ?loaded))
        (or (and (member$ ?mtype (create$ T2 T2_3))
                 (= (length$ ?loaded) 1) (member$ S0 ?loaded))

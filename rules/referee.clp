@@ -80,8 +80,9 @@
   (switch ?type (case T1 then ?t1) (case T2 then ?t2) (case T3 then ?t3)
     (default 0.0)))
 
-(deffunction rf-output-points (?type)
+(deffunction rf-output-points
   "2012 points for producing: S2 +4, P +12."
+  (?type)
   (switch ?type (case T2 then 4) (case T3 then 12) (default 0)))
 
 ;;; ---- defaults for setup facts the host left out ----------------------

@@ -2,8 +2,9 @@
 ;;; highest machine priority, take the first machine in name order
 ;;; (M1 < M2 < ... < M10), so ties never depend on agenda order.
 
-(deffunction first-by-index ($?names)
+(deffunction first-by-index
   "The machine among ?names with the smallest index."
+  ($?names)
   (bind ?best nil)
   (bind ?best-i 0)
   (progn$ (?n ?names)

@@ -2,8 +2,9 @@
 ;;; among the candidates of the highest machine priority, take the one
 ;;; nearest to the robot; equal distances fall back to name order.
 
-(deffunction nearest-machine (?from $?names)
+(deffunction nearest-machine
   "The machine among ?names closest to ?from; ties by smallest index."
+  (?from $?names)
   (bind ?best nil)
   (bind ?best-d 0.0)
   (bind ?best-i 0)

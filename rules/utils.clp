@@ -46,8 +46,9 @@
 
 ;;; A type belief is a symbol naming the types still possible:
 ;;; T1_2_3 (unknown), T1_2, T2_3, or a single type T1, T2, T3.
-(deffunction mtype-may-be (?belief ?type)
+(deffunction mtype-may-be
   "TRUE if the belief still allows the type (T1, T2 or T3)."
+  (?belief ?type)
   (neq (str-index (sub-string 2 2 ?type) ?belief) FALSE))
 
 (deffunction type-output (?type)
@@ -57,23 +58,26 @@
     (case T3 then P)
     (default NONE)))
 
-(deffunction type-for-input-count (?n)
+(deffunction type-for-input-count
   "Green after the n-th input: the machine consumed n inputs, so its type is Tn."
+  (?n)
   (switch ?n
     (case 1 then T1)
     (case 2 then T2)
     (case 3 then T3)
     (default NONE)))
 
-(deffunction merge (?min-prio ?prio ?name $?machines)
+(deffunction merge
   "Merge a candidate into the target list: a higher priority replaces the
    list, an equal one joins it."
+  (?min-prio ?prio ?name $?machines)
   (if (> ?prio ?min-prio)
    then (create$ ?name)
    else (create$ ?machines ?name)))
 
-(deffunction place-distance (?from ?to)
+(deffunction place-distance
   "Straight-line distance (m) between the approach poses of two places."
+  (?from ?to)
   (bind ?x1 nil) (bind ?y1 nil) (bind ?x2 nil) (bind ?y2 nil)
   (do-for-fact ((?p place)) (eq ?p:name ?from) (bind ?x1 ?p:x) (bind ?y1 ?p:y))
   (do-for-fact ((?p place)) (eq ?p:name ?to) (bind ?x2 ?p:x) (bind ?y2 ?p:y))

@@ -24,7 +24,9 @@ impl Core<'_> {
         self.note_hw(Pool::Activations, self.st.acts_used as usize);
         self.st.act_seq = self.st.act_seq.wrapping_add(1);
         let salience = self.rules[rule as usize].salience;
-        self.acts[a as usize] = Activation { rule, token, salience, seq: self.st.act_seq, next: NONE, prev: NONE };
+        let next_of_token = self.tokens[token as usize].extra;
+        self.acts[a as usize] =
+            Activation { rule, token, salience, seq: self.st.act_seq, next: NONE, prev: NONE, next_of_token };
         self.tokens[token as usize].extra = a;
         self.agenda_insert(a);
         if self.st.watch & watch::ACTIVATIONS != 0 {
@@ -75,9 +77,22 @@ impl Core<'_> {
     }
 
     fn free_activation(&mut self, a: u16) {
+        // unlink from the token's activation chain
         let t = self.acts[a as usize].token;
-        if t != NONE && self.tokens[t as usize].extra == a {
-            self.tokens[t as usize].extra = NONE;
+        if t != NONE {
+            let mut p = self.tokens[t as usize].extra;
+            if p == a {
+                self.tokens[t as usize].extra = self.acts[a as usize].next_of_token;
+            } else {
+                while p != NONE {
+                    let n = self.acts[p as usize].next_of_token;
+                    if n == a {
+                        self.acts[p as usize].next_of_token = self.acts[a as usize].next_of_token;
+                        break;
+                    }
+                    p = n;
+                }
+            }
         }
         self.acts[a as usize] = Activation { next: self.st.act_free, ..Activation::EMPTY };
         self.st.act_free = a;

@@ -51,6 +51,7 @@ impl Core<'_> {
         }
         let t = self.implied_template(SYM_INITIAL_FACT)?;
         self.st.initial_tmpl = t;
+        self.make_root()?;
         self.assert_initial_fact()
     }
 
@@ -65,12 +66,17 @@ impl Core<'_> {
 
     /// `(reset)`.
     pub fn reset(&mut self) -> Result<(), EvalError> {
-        // rules starting with not/exists/test lose their root token first
-        for r in 0..self.st.nrules {
-            let rule = self.rules[r as usize];
-            if rule.root_sensitive && !rule.deleted {
-                self.remove_rule_matches(r);
+        // rules starting with not/exists/test lose their root-based matches first
+        let root_token = self.joins[0].mem;
+        loop {
+            let mut c = self.tokens[root_token as usize].first_child;
+            while c != NONE && self.joins[self.tokens[c as usize].owner as usize].kind == JoinKind::Positive {
+                c = self.tokens[c as usize].next_sib;
             }
+            if c == NONE {
+                break;
+            }
+            self.delete_token(c);
         }
         while self.st.fact_head != NONE {
             let f = self.st.fact_head;
@@ -87,11 +93,12 @@ impl Core<'_> {
                 self.globals[g as usize].value = v;
             }
         }
-        for r in 0..self.st.nrules {
-            let rule = self.rules[r as usize];
-            if rule.root_sensitive && !rule.deleted {
-                self.activate_root(r)?;
+        let mut j = self.joins[0].first_child;
+        while j != NONE {
+            if self.joins[j as usize].kind != JoinKind::Positive {
+                self.left_activate(j, root_token)?;
             }
+            j = self.joins[j as usize].next_sibling;
         }
         self.assert_initial_fact()?;
         for d in 0..self.st.ndeffacts {
@@ -171,43 +178,93 @@ impl Core<'_> {
         // fixed symbols are already the first entries
         let t = self.implied_template(SYM_INITIAL_FACT)?;
         self.st.initial_tmpl = t;
+        self.make_root()?;
         self.assert_initial_fact()
     }
 
-    /// Removes a rule: its partial matches and activations go, its joins are unlinked.
+    /// Removes a rule (all its disjuncts): joins no other rule uses go, with their
+    /// partial matches and activations; unused alpha nodes are emptied.
     pub fn remove_rule(&mut self, r: u16) {
         let mut rr = r;
         while rr != NONE {
-            self.remove_rule_matches(rr);
             let rule = self.rules[rr as usize];
-            let mut j = self.joins[rule.root as usize].child;
-            while j != NONE {
-                let a = self.joins[j as usize].alpha;
-                if a != NONE {
-                    // unlink j from the alpha successor list
-                    let mut p = self.alphas[a as usize].succ;
-                    if p == j {
-                        self.alphas[a as usize].succ = self.joins[j as usize].alpha_next;
-                    } else {
-                        while p != NONE {
-                            let n = self.joins[p as usize].alpha_next;
-                            if n == j {
-                                self.joins[p as usize].alpha_next = self.joins[j as usize].alpha_next;
-                                break;
-                            }
-                            p = n;
-                        }
+            if rule.terminal != NONE {
+                let parent = self.joins[rule.terminal as usize].parent;
+                self.remove_rule_activations(rr, parent);
+            }
+            let mut j = rule.terminal;
+            while j != NONE && j != 0 {
+                let parent = self.joins[j as usize].parent;
+                self.joins[j as usize].refs = self.joins[j as usize].refs.saturating_sub(1);
+                if self.joins[j as usize].refs == 0 {
+                    if !self.joins[j as usize].is_terminal() {
+                        self.clear_join_memory(j);
                     }
-                    if self.alphas[a as usize].succ == NONE {
-                        self.clear_alpha_memory(a);
-                        self.alphas[a as usize].live = false;
-                    }
+                    self.unlink_join(j);
                 }
-                j = self.joins[j as usize].child;
+                j = parent;
             }
             self.rules[rr as usize].deleted = true;
             rr = rule.next_disjunct;
         }
+    }
+
+    pub(crate) fn remove_rule_activations_pub(&mut self, rule: u16, join: u16) {
+        self.remove_rule_activations(rule, join);
+    }
+
+    fn remove_rule_activations(&mut self, rule: u16, join: u16) {
+        let mut t = self.joins[join as usize].mem;
+        while t != NONE {
+            let mut a = self.tokens[t as usize].extra;
+            while a != NONE {
+                let next = self.acts[a as usize].next_of_token;
+                if self.acts[a as usize].rule == rule {
+                    self.remove_activation(a);
+                }
+                a = next;
+            }
+            t = self.tokens[t as usize].mem_next;
+        }
+    }
+
+    fn unlink_join(&mut self, j: u16) {
+        let a = self.joins[j as usize].alpha;
+        if a != NONE {
+            let mut p = self.alphas[a as usize].succ;
+            if p == j {
+                self.alphas[a as usize].succ = self.joins[j as usize].alpha_next;
+            } else {
+                while p != NONE {
+                    let n = self.joins[p as usize].alpha_next;
+                    if n == j {
+                        self.joins[p as usize].alpha_next = self.joins[j as usize].alpha_next;
+                        break;
+                    }
+                    p = n;
+                }
+            }
+            if self.alphas[a as usize].succ == NONE {
+                self.clear_alpha_memory(a);
+                self.alphas[a as usize].live = false;
+            }
+        }
+        let parent = self.joins[j as usize].parent;
+        let mut p = self.joins[parent as usize].first_child;
+        if p == j {
+            self.joins[parent as usize].first_child = self.joins[j as usize].next_sibling;
+        } else {
+            while p != NONE {
+                let n = self.joins[p as usize].next_sibling;
+                if n == j {
+                    self.joins[p as usize].next_sibling = self.joins[j as usize].next_sibling;
+                    break;
+                }
+                p = n;
+            }
+        }
+        self.joins[j as usize].alpha = NONE;
+        self.joins[j as usize].parent = 0;
     }
 
     /// Copies a token's pattern bindings for the RHS.
@@ -275,6 +332,9 @@ impl Core<'_> {
                 break;
             }
             if self.st.halt {
+                let mut b: TextBuf<160> = TextBuf::new();
+                let _ = writeln!(b, "[PRCCODE4] Execution halted during the actions of defrule {}.", self.sym_text(self.rules[rule as usize].name));
+                self.write(router::WERROR, b.as_str());
                 break;
             }
         }

@@ -88,6 +88,8 @@ pub struct State {
     pub act_free: u16,
     pub facts_used: u16,
     pub tokens_used: u16,
+    /// Tokens currently allocated (for the high-water mark).
+    pub tokens_live: u16,
     pub acts_used: u16,
     /// Top of the fact value arena.
     pub values_top: u16,
@@ -150,6 +152,7 @@ impl State {
             act_free: NONE,
             facts_used: 0,
             tokens_used: 0,
+            tokens_live: 0,
             acts_used: 0,
             values_top: 0,
             fact_head: NONE,
@@ -581,19 +584,45 @@ impl Core<'_> {
     }
 
     /// Undoes every construct defined after `cp` (used when a construct fails halfway).
-    /// Tokens and activations of the removed rules are released first.
+    /// Tokens and activations built by new joins are released first; shared old joins
+    /// get their reference counts back.
     pub fn rollback(&mut self, cp: Checkpoint) {
-        for r in cp.nrules..self.st.nrules {
-            self.remove_rule_matches(r);
+        for j in (cp.njoins..self.st.njoins).rev() {
+            if !self.joins[j as usize].is_terminal() {
+                self.clear_join_memory(j);
+            }
         }
         for a in cp.nalpha..self.st.nalpha {
             self.clear_alpha_memory(a);
         }
-        // unlink new joins from old alpha nodes' successor lists (new ones are at heads)
+        // activations of new rules (their end nodes may hang below old joins)
+        for r in cp.nrules..self.st.nrules {
+            let t = self.rules[r as usize].terminal;
+            if t != NONE && (t as usize) < self.joins.len() {
+                let parent = self.joins[t as usize].parent;
+                self.remove_rule_activations_pub(r, parent);
+            }
+        }
+        for r in cp.nrules..self.st.nrules {
+            let mut j = self.rules[r as usize].terminal;
+            while j != NONE && j != 0 {
+                if j < cp.njoins {
+                    self.joins[j as usize].refs = self.joins[j as usize].refs.saturating_sub(1);
+                }
+                j = self.joins[j as usize].parent;
+            }
+        }
+        // unlink new joins from old alpha nodes and old parent joins (new ones lead)
         for a in 0..cp.nalpha.min(self.st.nalpha) {
             while self.alphas[a as usize].succ != NONE && self.alphas[a as usize].succ >= cp.njoins {
                 let j = self.alphas[a as usize].succ;
                 self.alphas[a as usize].succ = self.joins[j as usize].alpha_next;
+            }
+        }
+        for p in 0..cp.njoins.min(self.st.njoins) {
+            while self.joins[p as usize].first_child != NONE && self.joins[p as usize].first_child >= cp.njoins {
+                let j = self.joins[p as usize].first_child;
+                self.joins[p as usize].first_child = self.joins[j as usize].next_sibling;
             }
         }
         for t in 0..cp.ntemplates.min(self.st.ntemplates) {

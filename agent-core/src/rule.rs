@@ -17,6 +17,8 @@ pub struct Rule {
     pub nlocals: u8,
     /// Next disjunct of the same rule (an `or` LHS yields several).
     pub next_disjunct: u16,
+    /// Next rule ending at the same (shared) terminal join, newest first.
+    pub next_at_join: u16,
     /// First CE is `not`/`exists`/`test`: the root token is rebuilt at `reset`.
     pub root_sensitive: bool,
     pub deleted: bool,
@@ -34,6 +36,7 @@ impl Rule {
         npat: 0,
         nlocals: 0,
         next_disjunct: NONE,
+        next_at_join: NONE,
         root_sensitive: false,
         deleted: false,
         text: NONE,
@@ -49,8 +52,11 @@ pub struct Activation {
     pub seq: u32,
     pub next: u16,
     pub prev: u16,
+    /// Next activation of the same partial match (rules sharing a terminal join).
+    pub next_of_token: u16,
 }
 
 impl Activation {
-    pub const EMPTY: Activation = Activation { rule: NONE, token: NONE, salience: 0, seq: 0, next: NONE, prev: NONE };
+    pub const EMPTY: Activation =
+        Activation { rule: NONE, token: NONE, salience: 0, seq: 0, next: NONE, prev: NONE, next_of_token: NONE };
 }

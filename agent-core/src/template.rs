@@ -38,6 +38,19 @@ pub struct SlotDef {
     pub types: u8,
     /// Chain of constant expression nodes (allowed-values etc.), NONE when unrestricted.
     pub allowed: u16,
+    /// Which `allowed-...` attribute gave `allowed` (see `allowed`).
+    pub allowed_kind: u8,
+}
+
+/// `SlotDef::allowed_kind` values: which values an `allowed-...` list restricts.
+pub mod allowed {
+    pub const VALUES: u8 = 0;
+    pub const SYMBOLS: u8 = 1;
+    pub const STRINGS: u8 = 2;
+    pub const LEXEMES: u8 = 3;
+    pub const INTEGERS: u8 = 4;
+    pub const FLOATS: u8 = 5;
+    pub const NUMBERS: u8 = 6;
 }
 
 impl SlotDef {
@@ -48,6 +61,7 @@ impl SlotDef {
         default: NONE,
         types: 0,
         allowed: NONE,
+        allowed_kind: 0,
     };
 }
 

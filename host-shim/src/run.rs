@@ -224,8 +224,13 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
         samples.read(&mut ports)?;
         let p = samples.perceived;
 
-        // Idle: ask for the next skill.
-        if running.is_none() {
+        // Idle: ask for the next skill, but only once every driver is fresh (a skill
+        // planned from a pose never received would start from the field's corner).
+        let drivers_fresh = samples.seq.iter().all(Option::is_some)
+            && Stream::ALL
+                .iter()
+                .all(|&s| monitor.staleness(s) < config.timing.sensor_deadline_cycles);
+        if running.is_none() && drivers_fresh {
             if let Some(request) = script.next(p.has_puck) {
                 let request_seq = ports
                     .request

@@ -70,7 +70,11 @@ fn agent_killed_mid_skill_the_sim_stops_the_wheels() {
                         "wheels turn after the dead-man: {r:?}"
                     );
                     // Position frozen; the heading jitters with the gyro's noise only.
-                    assert_eq!((r.pose.x_m, r.pose.y_m), (pose.x_m, pose.y_m), "robot moved");
+                    assert_eq!(
+                        (r.pose.x_m, r.pose.y_m),
+                        (pose.x_m, pose.y_m),
+                        "robot moved"
+                    );
                     assert!((r.pose.phi_rad - pose.phi_rad).abs() < 0.05, "robot turned");
                     still_samples += 1;
                 }
@@ -119,13 +123,21 @@ fn bumper_hit_gives_a_zero_command_and_fails_the_skill() {
         ],
     );
     let mut commands = 0;
-    wait_until("sim measures the bumper latency", WATCHDOG, &[&sim, &agent], || {
-        commands += usize::from(motor.poll().ok().flatten().is_some());
-        sim.line_with("bumper-latency").is_some()
-    });
+    wait_until(
+        "sim measures the bumper latency",
+        WATCHDOG,
+        &[&sim, &agent],
+        || {
+            commands += usize::from(motor.poll().ok().flatten().is_some());
+            sim.line_with("bumper-latency").is_some()
+        },
+    );
     assert!(commands > 0, "no motor command seen over iceoryx2");
     let line = sim.line_with("bumper-latency").unwrap_or_default();
-    assert!(line.contains("was_moving=true"), "the robot was not driving: {line}");
+    assert!(
+        line.contains("was_moving=true"),
+        "the robot was not driving: {line}"
+    );
     // The first command that answers the pressed sample is zero, and it arrives in the
     // next sim cycle: the agent zeroed in the very cycle it read the sample.
     assert!(line.contains("zero=true"), "{line}");

@@ -1,7 +1,8 @@
 ;;; report.clp -- CLIPS-only helpers for the drivers: print a game's result.
 
-(deffunction report-decisions ()
+(deffunction report-decisions
   "One line per logged decision, in order."
+  ()
   (bind ?n (length$ (find-all-facts ((?d decision)) TRUE)))
   (loop-for-count (?i 1 ?n)
     (do-for-fact ((?d decision)) (= ?d:n ?i)
@@ -9,8 +10,9 @@
         ?d:n ?d:time ?d:action ?d:target ?d:puck ?d:status ?d:light
         ?d:holding ?d:points (implode$ ?d:beliefs)))))
 
-(deffunction report-game ()
+(deffunction report-game
   "One summary line: points, products, end reason and time, decisions."
+  ()
   (bind ?reason none) (bind ?time 0.0)
   (do-for-fact ((?g game-over)) TRUE (bind ?reason ?g:reason) (bind ?time ?g:time))
   (bind ?decisions (length$ (find-all-facts ((?d decision)) TRUE)))

@@ -2,6 +2,7 @@
 ;;; Our engine provides `distance` natively (geometry built-in); CLIPS
 ;;; gets this deffunction with the same meaning.
 
-(deffunction distance (?x1 ?y1 ?x2 ?y2)
+(deffunction distance
   "Euclidean distance between (x1, y1) and (x2, y2)."
+  (?x1 ?y1 ?x2 ?y2)
   (sqrt (+ (* (- ?x2 ?x1) (- ?x2 ?x1)) (* (- ?y2 ?y1) (- ?y2 ?y1)))))

@@ -9,6 +9,7 @@
 //! between host, agent, referee and simulation is documented in README.md.
 #![no_std]
 
+pub mod facts;
 pub mod setup;
 
 /// One embedded rule file: its path relative to `rules/` and its text.

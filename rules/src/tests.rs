@@ -269,3 +269,52 @@ fn the_paper_example_rules_are_present() {
     assert!(!SIM.text.contains("(random"));
     assert!(!GAME_LOG.text.contains("(random"));
 }
+
+#[test]
+fn interface_symbols_round_trip() {
+    use crate::facts::*;
+    for l in Light::ALL {
+        assert_eq!(Light::from_symbol(l.as_str()), Some(*l));
+    }
+    for s in Skill::ALL {
+        assert_eq!(Skill::from_symbol(s.as_str()), Some(*s));
+        assert!(EXECUTION.text.contains(s.as_str()), "{}", s.as_str());
+    }
+    for t in TypeBelief::ALL {
+        assert!(WORLD_MODEL.text.contains(t.as_str()));
+    }
+    for e in GameEnd::ALL {
+        assert!(REFEREE.text.contains(e.as_str()));
+    }
+    assert_eq!(Light::from_symbol("orange"), None);
+    for name in [
+        names::SKILL_REQUEST,
+        names::SKILL_OUTCOME,
+        names::DECISION,
+        names::GAME_OVER,
+    ] {
+        let construct = game_files(Strategy::Paper)
+            .iter()
+            .any(|f| f.text.contains(name));
+        assert!(construct, "{name} not defined by the game files");
+    }
+}
+
+#[test]
+fn belief_symbols_parse() {
+    use crate::facts::*;
+    let b = MachineBelief::parse("T2_3+S0").expect("valid belief");
+    assert_eq!(b.mtype, TypeBelief::T2or3);
+    assert_eq!(b.loaded(), &[Puck::S0]);
+    assert!(!b.mtype.is_known());
+    let b = MachineBelief::parse("T3+S2+S0").expect("valid belief");
+    assert!(b.mtype.is_known());
+    assert_eq!(b.loaded(), &[Puck::S2, Puck::S0]);
+    assert_eq!(
+        MachineBelief::parse("T1_2_3").map(|b| b.loaded().len()),
+        Some(0)
+    );
+    assert_eq!(MachineBelief::parse("T4"), None);
+    assert_eq!(MachineBelief::parse("T3+NONE"), None);
+    assert_eq!(MachineBelief::parse("T3+S0+S1+S2+S0"), None);
+}

@@ -3,8 +3,9 @@
 
 ;;; ---- referee and whole-game checks (files with ";;; with: game") ----
 
-(deffunction t-quiet-agent ()
+(deffunction t-quiet-agent
   "Remove the agent's state so only the referee and sim act."
+  ()
   (do-for-all-facts ((?s state)) TRUE (retract ?s)))
 
 (deffunction t-expect-result (?label ?id ?status ?light ?puck)

@@ -10,8 +10,9 @@
    then (printout t "PASS " ?label crlf)
    else (printout t "FAIL " ?label ": " ?detail crlf)))
 
-(deffunction t-machine (?name ?mtype $?loaded)
+(deffunction t-machine
   "Set a machine belief: type class and loaded pucks."
+  (?name ?mtype $?loaded)
   (do-for-fact ((?m machine)) (eq ?m:name ?name)
     (modify ?m (mtype ?mtype) (loaded-with ?loaded))))
 
@@ -23,9 +24,10 @@
   (do-for-all-facts ((?r robot-at)) TRUE (retract ?r))
   (assert (robot-at ?place)))
 
-(deffunction t-outcome (?skill ?target ?status ?light)
+(deffunction t-outcome
   "The agent committed to ?skill at ?target (request id 1) and the
    behaviour layer answers with ?status and ?light."
+  (?skill ?target ?status ?light)
   (do-for-all-facts ((?s state)) TRUE (retract ?s))
   (do-for-all-facts ((?n next-skill-id)) TRUE (retract ?n))
   (bind ?puck NONE)
@@ -34,8 +36,9 @@
           (skill-request (id 1) (name ?skill) (target ?target) (puck ?puck))
           (skill-outcome (id 1) (status ?status) (light ?light))))
 
-(deffunction t-expect-request (?label ?skill ?target)
+(deffunction t-expect-request
   "The agent's next committed skill is ?skill at ?target."
+  (?label ?skill ?target)
   (bind ?got (create$))
   (do-for-all-facts ((?r skill-request)) TRUE
     (bind ?got (create$ ?got ?r:name ?r:target)))

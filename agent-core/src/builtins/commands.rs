@@ -51,6 +51,10 @@ fn clear(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
 
 fn run(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let limit = if a.len > 0 { cx.arg_int(a, 0, "run")? } else { -1 };
+    if limit == 0 {
+        cx.write(router::STDOUT, "rule firing limit reached\n");
+        return Ok(Value::Void);
+    }
     cx.run(limit)?;
     Ok(Value::Void)
 }
@@ -123,10 +127,10 @@ fn printout(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
                 let _ = b.write_char('\t');
             }
             _ => {
-                if cx.write_plain(&mut b, v).is_err() || b.len() > 900 {
+                if cx.write_printout(&mut b, v).is_err() || b.len() > 900 {
                     cx.write(routed, b.as_str());
                     b.clear();
-                    let _ = cx.write_plain(&mut b, v);
+                    let _ = cx.write_printout(&mut b, v);
                 }
             }
         }
@@ -228,9 +232,17 @@ fn matches(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let name = cx.arg_lexeme(a, 0, "matches")?;
     let r = find_rule(cx, name).ok_or(EvalError::other("no such defrule"))?;
     let rule = cx.rules[r as usize];
-    let mut j = cx.joins[rule.root as usize].child;
-    let mut i = 1;
-    while j != NONE {
+    let mut path = [NONE; crate::rete::MAX_PATTERNS];
+    let mut n = 0;
+    let mut j = rule.terminal;
+    while j != NONE && j != 0 && n < path.len() {
+        path[n] = j;
+        n += 1;
+        j = cx.joins[j as usize].parent;
+    }
+    path[..n].reverse();
+    for (i, &j) in path[..n].iter().enumerate() {
+        let i = i + 1;
         let mut b: TextBuf<64> = TextBuf::new();
         let _ = writeln!(b, "Partial matches for CEs 1 - {i}");
         cx.write(router::WDISPLAY, b.as_str());
@@ -247,8 +259,6 @@ fn matches(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         if n == 0 {
             cx.write(router::WDISPLAY, " None\n");
         }
-        i += 1;
-        j = cx.joins[j as usize].child;
     }
     Ok(Value::Void)
 }

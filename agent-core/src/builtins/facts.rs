@@ -5,7 +5,7 @@ use crate::engine::Core;
 use crate::error::{EvalError, EvalErrorKind};
 use crate::expr::Op;
 use crate::host::router;
-use crate::template::{types, DefaultKind};
+use crate::template::{allowed, types, DefaultKind};
 use crate::value::{FactRef, MfSpan, Value, NONE};
 
 pub const FUNCS: &[Builtin] = &[
@@ -45,12 +45,21 @@ impl Core<'_> {
         if def.types != 0 && def.types & type_bit(v) == 0 {
             return Err(EvalError::new(EvalErrorKind::BadSlotValue { reason: "type restriction violated" }));
         }
-        if def.allowed != NONE {
+        let applies = match def.allowed_kind {
+            allowed::SYMBOLS => matches!(v, Value::Sym(_)),
+            allowed::STRINGS => matches!(v, Value::Str(_)),
+            allowed::LEXEMES => matches!(v, Value::Sym(_) | Value::Str(_)),
+            allowed::INTEGERS => matches!(v, Value::Int(_)),
+            allowed::FLOATS => matches!(v, Value::Float(_)),
+            allowed::NUMBERS => matches!(v, Value::Int(_) | Value::Float(_)),
+            _ => true,
+        };
+        if def.allowed != NONE && applies {
             let mut c = def.allowed;
-            let mut restricted = false;
+            let mut restricted = def.allowed_kind != allowed::VALUES;
             while c != NONE {
                 let a = self.const_value(c);
-                if same_class(a, v) {
+                if same_class(a, v) || def.allowed_kind == allowed::VALUES {
                     restricted = true;
                     let eq = match (a, v) {
                         (Value::Int(_) | Value::Float(_), Value::Int(_) | Value::Float(_)) => {
@@ -134,7 +143,7 @@ impl Core<'_> {
                 if def.multi {
                     return Ok(Value::Multi(MfSpan { start: self.st.scratch_top, len: 0 }));
                 }
-                if def.allowed != NONE {
+                if def.allowed != NONE && def.allowed_kind == allowed::VALUES {
                     return Ok(self.const_value(def.allowed));
                 }
                 Ok(match def.types {
@@ -205,7 +214,10 @@ impl Core<'_> {
                     Value::Int(i) => i,
                     _ => -1,
                 };
-                return Err(EvalError::new(EvalErrorKind::NoSuchFact(n)));
+                let mut b: crate::value::TextBuf<64> = crate::value::TextBuf::new();
+                let _ = core::fmt::Write::write_fmt(&mut b, format_args!("[PRNTUTIL1] Unable to find fact f-{n}.\n"));
+                self.write(router::WERROR, b.as_str());
+                return Ok(Value::Sym(SYM_FALSE));
             }
         };
         let tmpl = self.facts[old as usize].tmpl;

@@ -224,6 +224,20 @@ impl Core<'_> {
         Value::Multi(MfSpan { start, len: self.st.scratch_top - start })
     }
 
+    /// A value as `printout` writes it: strings unquoted, multifields in parentheses.
+    pub fn write_printout(&self, out: &mut dyn core::fmt::Write, v: Value) -> core::fmt::Result {
+        let view = crate::print::View {
+            values: self.values,
+            scratch: self.scratch,
+            sym_entries: self.sym_entries,
+            sym_bytes: self.sym_bytes,
+            templates: self.templates,
+            slots: self.slots,
+            facts: self.facts,
+        };
+        view.write_value(out, v, false)
+    }
+
     /// Writes a value's printed form (strings without quotes, as str-cat wants them)
     /// into `out`.
     pub fn write_plain(&self, out: &mut dyn core::fmt::Write, v: Value) -> core::fmt::Result {

@@ -5,7 +5,7 @@ use crate::engine::cap;
 use crate::error::Pool;
 use crate::expr::Op;
 use crate::lexer::Tok;
-use crate::template::{types, Deffacts, Deffunction, DefaultKind, Global, SlotDef, Template};
+use crate::template::{allowed, types, Deffacts, Deffunction, DefaultKind, Global, SlotDef, Template};
 use crate::value::{Value, NONE};
 
 impl<'s> Parser<'s, '_, '_> {
@@ -154,6 +154,15 @@ impl<'s> Parser<'s, '_, '_> {
                             let first = self.cx.exprs[holder as usize].first;
                             if first != NONE {
                                 def.allowed = first;
+                                def.allowed_kind = match attr {
+                                    "allowed-symbols" => allowed::SYMBOLS,
+                                    "allowed-strings" => allowed::STRINGS,
+                                    "allowed-lexemes" => allowed::LEXEMES,
+                                    "allowed-integers" => allowed::INTEGERS,
+                                    "allowed-floats" => allowed::FLOATS,
+                                    "allowed-numbers" => allowed::NUMBERS,
+                                    _ => allowed::VALUES,
+                                };
                             }
                         }
                         "range" | "cardinality" | "visibility" | "storage" | "pattern-match" | "create-accessor"

@@ -56,6 +56,7 @@ impl<'s> Parser<'s, '_, '_> {
         let body_lex = self.save();
         let first_new_rule = self.cx.st.nrules;
         let first_new_alpha = self.cx.st.nalpha;
+        let first_new_join = self.cx.st.njoins;
         let mut b = Build {
             ces: [CE_EMPTY; MAX_PATTERNS],
             n: 0,
@@ -104,26 +105,40 @@ impl<'s> Parser<'s, '_, '_> {
                 self.cx.remove_rule(r);
             }
         }
-        // match the new rule(s) against existing facts
+        // match the new rule(s) against existing facts: fill new alpha memories
+        // (no successors yet), then hook the new joins up and feed them
         for a in first_new_alpha..self.cx.st.nalpha {
-            if let Err(e) = self.cx.prime_alpha(a) {
-                let c = match e.kind {
-                    crate::error::EvalErrorKind::Capacity(c) => c,
-                    _ => cap(Pool::Tokens, self.cx.tokens.len()),
-                };
-                return Err(self.cap_err(nt, c));
+            let r = self.cx.prime_alpha(a);
+            self.map_prime_err(r, nt)?;
+        }
+        for j in first_new_join..self.cx.st.njoins {
+            let a = self.cx.joins[j as usize].alpha;
+            if a != NONE {
+                self.cx.joins[j as usize].alpha_next = self.cx.alphas[a as usize].succ;
+                self.cx.alphas[a as usize].succ = j;
             }
         }
-        for r in first_new_rule..self.cx.st.nrules {
-            if let Err(e) = self.cx.activate_root(r) {
-                let c = match e.kind {
-                    crate::error::EvalErrorKind::Capacity(c) => c,
-                    _ => cap(Pool::Tokens, self.cx.tokens.len()),
-                };
-                return Err(self.cap_err(nt, c));
+        for j in first_new_join..self.cx.st.njoins {
+            if self.cx.joins[j as usize].parent < first_new_join {
+                let r = self.cx.prime_join(j);
+                self.map_prime_err(r, nt)?;
             }
         }
+
         Ok(())
+    }
+
+    fn map_prime_err(&self, r: Result<(), crate::error::EvalError>, at: Token<'s>) -> PResult<()> {
+        match r {
+            Ok(()) => Ok(()),
+            Err(e) => {
+                let c = match e.kind {
+                    crate::error::EvalErrorKind::Capacity(c) => c,
+                    _ => cap(Pool::Tokens, self.cx.tokens.len()),
+                };
+                Err(self.cap_err(at, c))
+            }
+        }
     }
 
     /// One disjunct: LHS (with the current or-choices), RHS, then the network.
@@ -650,6 +665,7 @@ impl<'s> Parser<'s, '_, '_> {
             next_in_tmpl: self.cx.templates[tmpl as usize].alpha_head,
             succ: NONE,
             mem: NONE,
+            mem_tail: NONE,
             nmarks: pb.marks,
             live: true,
         };
@@ -700,42 +716,76 @@ impl<'s> Parser<'s, '_, '_> {
             let c = cap(Pool::Joins, self.cx.joins.len());
             return Err(self.cap_err(at, c));
         }
-        let root = self.cx.st.njoins;
-        self.cx.joins[root as usize] = Join { kind: JoinKind::Root, rule: nr as u16, ..Join::EMPTY };
-        self.cx.st.njoins += 1;
-        let mut prev = root;
+        self.cx.rules[nr] = Rule::EMPTY;
+        let mut prev = 0u16;
         for (i, ce) in b.ces[..b.n].iter().enumerate() {
+            {
+                // share an identical join under the same parent (CLIPS does)
+                let mut c = self.cx.joins[prev as usize].first_child;
+                let mut found = NONE;
+                while c != NONE {
+                    let cj = self.cx.joins[c as usize];
+                    if cj.refs > 0
+                        && cj.kind == ce.kind
+                        && cj.alpha == ce.alpha
+                        && self.chain_eq(cj.tests, ce.jtests)
+                        && self.chain_eq(cj.post, ce.post)
+                    {
+                        found = c;
+                        break;
+                    }
+                    c = cj.next_sibling;
+                }
+                if found != NONE {
+                    self.cx.joins[found as usize].refs += 1;
+                    prev = found;
+                    continue;
+                }
+            }
             let j = self.cx.st.njoins;
             self.cx.st.njoins += 1;
-            let alpha_next = if ce.alpha != NONE { self.cx.alphas[ce.alpha as usize].succ } else { NONE };
             self.cx.joins[j as usize] = Join {
                 kind: ce.kind,
                 depth: i as u8,
-                rule: nr as u16,
+                rule: NONE,
                 parent: prev,
-                child: NONE,
+                first_child: NONE,
+                next_sibling: self.cx.joins[prev as usize].first_child,
+                refs: 1,
                 alpha: ce.alpha,
                 tests: ce.jtests,
                 post: ce.post,
-                alpha_next,
+                alpha_next: NONE,
                 mem: NONE,
             };
-            if ce.alpha != NONE {
-                self.cx.alphas[ce.alpha as usize].succ = j;
-            }
-            self.cx.joins[prev as usize].child = j;
+            self.cx.joins[prev as usize].first_child = j;
             prev = j;
         }
+        // the rule's end node
+        let term = self.cx.st.njoins;
+        self.cx.st.njoins += 1;
+        self.cx.joins[term as usize] = Join {
+            kind: JoinKind::Terminal,
+            depth: b.n as u8,
+            rule: nr as u16,
+            parent: prev,
+            next_sibling: self.cx.joins[prev as usize].first_child,
+            refs: 1,
+            ..Join::EMPTY
+        };
+        self.cx.joins[prev as usize].first_child = term;
+        let prev = term;
         self.cx.note_hw(Pool::Joins, self.cx.st.njoins as usize);
         self.cx.rules[nr] = Rule {
             name,
             salience,
-            root,
+            root: 0,
             terminal: prev,
             rhs: self.cx.exprs[rhs as usize].first,
             npat: b.n as u8,
             nlocals: self.nlocals.min(255) as u8,
             next_disjunct: NONE,
+            next_at_join: NONE,
             root_sensitive: b.ces[0].kind != JoinKind::Positive,
             deleted: false,
             text: NONE,

@@ -78,45 +78,43 @@ impl Core<'_> {
         }
         let nmarks = self.alphas[alpha as usize].nmarks as usize;
         let mut marks = [0u8; MAX_MARKS];
-        loop {
-            if self.marks_fit(&lay[..n], &slack, &marks) && self.alpha_tests_pass(alpha, fact, marks)? {
-                self.add_alpha_match(alpha, fact, marks)?;
-            }
-            // odometer: last mark fastest
-            let mut i = nmarks;
-            loop {
-                if i == 0 {
-                    return Ok(());
-                }
-                i -= 1;
-                marks[i] = marks[i].saturating_add(1);
-                if marks[i] as u16 <= 255 && self.mark_can_grow(&lay[..n], &slack, &marks, i) {
-                    break;
-                }
-                marks[i] = 0;
-            }
-        }
+        self.enumerate_marks(alpha, fact, &lay[..n], &slack, &mut marks, 0, nmarks)
     }
 
-    /// Whether marks of the slot containing mark `i` still sum within its slack.
-    fn mark_can_grow(&self, lay: &[SlotLayout], slack: &[u16; 8], marks: &[u8; MAX_MARKS], i: usize) -> bool {
+    /// Tries every segmentation; CLIPS tries longer leading multifields first.
+    #[allow(clippy::too_many_arguments)]
+    fn enumerate_marks(
+        &mut self,
+        alpha: u16,
+        fact: u16,
+        lay: &[SlotLayout],
+        slack: &[u16; 8],
+        marks: &mut [u8; MAX_MARKS],
+        i: usize,
+        nmarks: usize,
+    ) -> Result<(), EvalError> {
+        if i == nmarks {
+            if self.alpha_tests_pass(alpha, fact, *marks)? {
+                self.add_alpha_match(alpha, fact, *marks)?;
+            }
+            return Ok(());
+        }
+        // the slot this mark belongs to, and what earlier marks of it used
+        let mut room = 0u16;
         for (k, l) in lay.iter().enumerate() {
             let f = l.first_mark as usize;
             let cnt = if l.multis >= 2 { l.multis as usize - 1 } else { 0 };
             if i >= f && i < f + cnt {
-                let sum: u16 = marks[f..f + cnt].iter().map(|&m| m as u16).sum();
-                return sum <= slack[k];
+                let used: u16 = marks[f..i].iter().map(|&m| m as u16).sum();
+                room = slack[k].saturating_sub(used).min(255);
             }
         }
-        false
-    }
-
-    fn marks_fit(&self, lay: &[SlotLayout], slack: &[u16; 8], marks: &[u8; MAX_MARKS]) -> bool {
-        lay.iter().enumerate().all(|(k, l)| {
-            let f = l.first_mark as usize;
-            let cnt = if l.multis >= 2 { l.multis as usize - 1 } else { 0 };
-            marks[f..f + cnt].iter().map(|&m| m as u16).sum::<u16>() <= slack[k]
-        })
+        for m in (0..=room).rev() {
+            marks[i] = m as u8;
+            self.enumerate_marks(alpha, fact, lay, slack, marks, i + 1, nmarks)?;
+        }
+        marks[i] = 0;
+        Ok(())
     }
 
     fn alpha_tests_pass(&mut self, alpha: u16, fact: u16, marks: [u8; MAX_MARKS]) -> Result<bool, EvalError> {
@@ -151,22 +149,24 @@ impl Core<'_> {
 
     fn add_alpha_match(&mut self, alpha: u16, fact: u16, marks: [u8; MAX_MARKS]) -> Result<(), EvalError> {
         let t = self.alloc_token()?;
-        let head = self.alphas[alpha as usize].mem;
+        let tail = self.alphas[alpha as usize].mem_tail;
         let fam = self.facts[fact as usize].first_am;
         self.tokens[t as usize] = Token {
             kind: TokenKind::Alpha,
             marks,
             owner: alpha,
             fact,
-            mem_next: head,
+            mem_prev: tail,
             next_sib: fam,
             extra: NONE,
             ..Token::EMPTY
         };
-        if head != NONE {
-            self.tokens[head as usize].mem_prev = t;
+        if tail != NONE {
+            self.tokens[tail as usize].mem_next = t;
+        } else {
+            self.alphas[alpha as usize].mem = t;
         }
-        self.alphas[alpha as usize].mem = t;
+        self.alphas[alpha as usize].mem_tail = t;
         if fam != NONE {
             self.tokens[fam as usize].prev_sib = t;
         }
@@ -186,24 +186,23 @@ impl Core<'_> {
     pub(crate) fn remove_alpha_match(&mut self, am: u16) {
         let alpha = self.tokens[am as usize].owner;
         let stop = self.tokens[am as usize].extra;
+        // CLIPS first updates not/exists joins the match blocked or enabled, then
+        // removes the partial matches built on it.
         let mut j = self.alphas[alpha as usize].succ;
         while j != NONE {
-            match self.joins[j as usize].kind {
-                JoinKind::Negative => self.negative_right_remove(j, am),
-                JoinKind::Exists => self.exists_right_remove(j, am),
-                _ => self.delete_am_children_of(am, j),
+            if matches!(self.joins[j as usize].kind, JoinKind::Negative | JoinKind::Exists) {
+                self.counting_right_remove(j, am);
             }
             if j == stop {
                 break;
             }
             j = self.joins[j as usize].alpha_next;
         }
-        // leftovers (e.g. from a join that was removed meanwhile)
+        // partial matches built on it, newest first
         while self.tokens[am as usize].first_child != NONE {
             let c = self.tokens[am as usize].first_child;
             self.delete_token(c);
         }
-        // unlink from alpha memory and the fact's list
         let tk = self.tokens[am as usize];
         if tk.mem_prev != NONE {
             self.tokens[tk.mem_prev as usize].mem_next = tk.mem_next;
@@ -212,6 +211,8 @@ impl Core<'_> {
         }
         if tk.mem_next != NONE {
             self.tokens[tk.mem_next as usize].mem_prev = tk.mem_prev;
+        } else {
+            self.alphas[alpha as usize].mem_tail = tk.mem_prev;
         }
         if tk.prev_sib != NONE {
             self.tokens[tk.prev_sib as usize].next_sib = tk.next_sib;
@@ -222,17 +223,6 @@ impl Core<'_> {
             self.tokens[tk.next_sib as usize].prev_sib = tk.prev_sib;
         }
         self.free_token(am);
-    }
-
-    fn delete_am_children_of(&mut self, am: u16, join: u16) {
-        let mut c = self.tokens[am as usize].first_child;
-        while c != NONE {
-            let next = self.tokens[c as usize].am_next;
-            if self.tokens[c as usize].owner == join {
-                self.delete_token(c);
-            }
-            c = next;
-        }
     }
 
     /// Empties an alpha memory (used when a rule is removed or a load rolled back).

@@ -1,6 +1,11 @@
 //! Beta side: joins combining partial matches (left) with alpha matches (right),
 //! negation and existence counting, token deletion, and handing complete matches to
 //! the agenda.
+//!
+//! Joins with an identical prefix are shared between rules (as CLIPS does), so a
+//! token may feed several child joins. A `not`/`exists` join keeps one output token
+//! per left token, carrying the count of matching right items; it is *active* (passed
+//! on) while the count is zero (`not`) or positive (`exists`).
 
 use super::{JoinKind, PatBinding, Token, TokenKind};
 use crate::engine::{cap, Core};
@@ -21,17 +26,25 @@ impl Core<'_> {
             self.st.tokens_used += 1;
             n as u16
         };
-        self.st.hw.used[Pool::Tokens as usize] = self.st.hw.used[Pool::Tokens as usize].max(self.live_tokens_estimate());
+        self.st.tokens_live += 1;
+        self.note_hw(Pool::Tokens, self.st.tokens_live as usize);
         Ok(t)
-    }
-
-    fn live_tokens_estimate(&self) -> u32 {
-        self.st.tokens_used as u32
     }
 
     pub(crate) fn free_token(&mut self, t: u16) {
         self.tokens[t as usize] = Token { next_sib: self.st.token_free, ..Token::EMPTY };
         self.st.token_free = t;
+        self.st.tokens_live -= 1;
+    }
+
+    /// Whether a partial match is passed on to child joins / the agenda.
+    pub(crate) fn token_active(&self, t: u16) -> bool {
+        let tk = &self.tokens[t as usize];
+        match self.joins[tk.owner as usize].kind {
+            JoinKind::Negative => tk.count == 0,
+            JoinKind::Exists => tk.count > 0,
+            _ => true,
+        }
     }
 
     /// Fills `lhs_pm` with the pattern bindings along a token's ancestry.
@@ -52,6 +65,14 @@ impl Core<'_> {
         }
     }
 
+    fn eval_lhs_tests(&mut self, tests: u16) -> Result<bool, EvalError> {
+        let saved = self.st.pm_rhs;
+        self.st.pm_rhs = false;
+        let r = self.eval_tests(tests);
+        self.st.pm_rhs = saved;
+        r
+    }
+
     /// Evaluates a join's tests for left token `left` and alpha match `am`.
     fn join_test(&mut self, join: u16, left: u16, am: u16, left_bound: bool) -> Result<bool, EvalError> {
         let j = self.joins[join as usize];
@@ -67,63 +88,60 @@ impl Core<'_> {
         } else {
             PatBinding::EMPTY
         };
-        let saved = self.st.pm_rhs;
-        self.st.pm_rhs = false;
-        let r = self.eval_tests(j.tests);
-        self.st.pm_rhs = saved;
-        r
+        self.eval_lhs_tests(j.tests)
+    }
+
+    /// The output token of a not/exists `join` for left token `left`, if any.
+    fn output_of(&self, left: u16, join: u16) -> u16 {
+        let mut c = self.tokens[left as usize].first_child;
+        while c != NONE {
+            if self.tokens[c as usize].owner == join {
+                return c;
+            }
+            c = self.tokens[c as usize].next_sib;
+        }
+        NONE
     }
 
     /// A new alpha match arrives on the right of `join`.
     pub(crate) fn right_activate(&mut self, join: u16, am: u16) -> Result<(), EvalError> {
         let j = self.joins[join as usize];
         let mut l = self.joins[j.parent as usize].mem;
-        match j.kind {
-            JoinKind::Positive => {
-                while l != NONE {
-                    let next = self.tokens[l as usize].mem_next;
-                    if self.join_test(join, l, am, false)? {
-                        self.new_token(join, l, am)?;
+        while l != NONE {
+            let next = self.tokens[l as usize].mem_next;
+            if self.token_active(l) && self.join_test(join, l, am, false)? {
+                match j.kind {
+                    JoinKind::Positive => {
+                        let t = self.link_token(join, l, am)?;
+                        self.propagate(t)?;
                     }
-                    l = next;
-                }
-            }
-            JoinKind::Negative => {
-                while l != NONE {
-                    let next = self.tokens[l as usize].mem_next;
-                    if self.join_test(join, l, am, false)? {
-                        self.tokens[l as usize].extra = self.tokens[l as usize].extra.saturating_add(1);
-                        if self.tokens[l as usize].extra == 1 {
-                            self.delete_children(l);
+                    JoinKind::Negative => {
+                        let t = self.output_of(l, join);
+                        if t != NONE {
+                            self.tokens[t as usize].count = self.tokens[t as usize].count.saturating_add(1);
+                            if self.tokens[t as usize].count == 1 {
+                                self.deactivate(t);
+                            }
                         }
                     }
-                    l = next;
+                    JoinKind::Exists => {
+                        let t = self.output_of(l, join);
+                        if t != NONE {
+                            self.tokens[t as usize].count = self.tokens[t as usize].count.saturating_add(1);
+                            if self.tokens[t as usize].count == 1 {
+                                self.propagate(t)?;
+                            }
+                        }
+                    }
+                    JoinKind::Root | JoinKind::Test | JoinKind::Terminal => {}
                 }
             }
-            JoinKind::Exists => {
-                // count first (cannot fail), then create outputs, so a rollback is exact
-                while l != NONE {
-                    let next = self.tokens[l as usize].mem_next;
-                    if self.join_test(join, l, am, false)? {
-                        self.tokens[l as usize].extra = self.tokens[l as usize].extra.saturating_add(1);
-                    }
-                    l = next;
-                }
-                let mut l = self.joins[j.parent as usize].mem;
-                while l != NONE {
-                    let next = self.tokens[l as usize].mem_next;
-                    if self.tokens[l as usize].extra >= 1 && self.tokens[l as usize].first_child == NONE {
-                        self.emit(join, l)?;
-                    }
-                    l = next;
-                }
-            }
-            JoinKind::Root | JoinKind::Test => {}
+            l = next;
         }
         Ok(())
     }
 
-    /// A new partial match `left` arrives on the left of `join`.
+    /// A new active partial match `left` arrives on the left of `join`.
     pub(crate) fn left_activate(&mut self, join: u16, left: u16) -> Result<(), EvalError> {
         let j = self.joins[join as usize];
         match j.kind {
@@ -133,7 +151,8 @@ impl Core<'_> {
                 while a != NONE {
                     let next = self.tokens[a as usize].mem_next;
                     if self.join_test(join, left, a, bound)? {
-                        self.new_token(join, left, a)?;
+                        let t = self.link_token(join, left, a)?;
+                        self.propagate(t)?;
                         bound = false;
                     } else {
                         bound = true;
@@ -142,6 +161,12 @@ impl Core<'_> {
                 }
             }
             JoinKind::Negative | JoinKind::Exists => {
+                if j.post != NONE {
+                    self.bind_left(left);
+                    if !self.eval_lhs_tests(j.post)? {
+                        return Ok(());
+                    }
+                }
                 let mut a = self.alphas[j.alpha as usize].mem;
                 let mut count: u16 = 0;
                 let mut bound = false;
@@ -152,40 +177,30 @@ impl Core<'_> {
                     bound = true;
                     a = self.tokens[a as usize].mem_next;
                 }
-                self.tokens[left as usize].extra = count;
-                let pass = if j.kind == JoinKind::Negative { count == 0 } else { count > 0 };
-                if pass {
-                    self.emit(join, left)?;
+                let t = self.link_token(join, left, NONE)?;
+                self.tokens[t as usize].count = count;
+                if self.token_active(t) {
+                    self.propagate(t)?;
                 }
             }
             JoinKind::Test => {
                 if self.join_test(join, left, NONE, false)? {
-                    self.new_token(join, left, NONE)?;
+                    let t = self.link_token(join, left, NONE)?;
+                    self.propagate(t)?;
                 }
+            }
+            JoinKind::Terminal => {
+                let rule = j.rule;
+                self.add_activation(rule, left)?;
             }
             JoinKind::Root => {}
         }
         Ok(())
     }
 
-    /// Output of a not/exists join for `left`, if its post tests hold.
-    fn emit(&mut self, join: u16, left: u16) -> Result<(), EvalError> {
-        let post = self.joins[join as usize].post;
-        if post != NONE {
-            self.bind_left(left);
-            let saved = self.st.pm_rhs;
-            self.st.pm_rhs = false;
-            let ok = self.eval_tests(post);
-            self.st.pm_rhs = saved;
-            if !ok? {
-                return Ok(());
-            }
-        }
-        self.new_token(join, left, NONE).map(|_| ())
-    }
-
-    /// Creates a partial match in `join`'s memory and passes it on.
-    pub(crate) fn new_token(&mut self, join: u16, parent: u16, am: u16) -> Result<u16, EvalError> {
+    /// Creates a partial match in `join`'s memory (newest first) and links it under
+    /// its parents.
+    fn link_token(&mut self, join: u16, parent: u16, am: u16) -> Result<u16, EvalError> {
         let t = self.alloc_token()?;
         let head = self.joins[join as usize].mem;
         let psib = if parent != NONE { self.tokens[parent as usize].first_child } else { NONE };
@@ -198,7 +213,6 @@ impl Core<'_> {
             mem_next: head,
             next_sib: psib,
             am_next: asib,
-            extra: NONE,
             ..Token::EMPTY
         };
         if head != NONE {
@@ -217,15 +231,29 @@ impl Core<'_> {
             }
             self.tokens[am as usize].first_child = t;
         }
-        let child = self.joins[join as usize].child;
-        if child == NONE {
-            let rule = self.joins[join as usize].rule;
-            self.add_activation(rule, t)?;
-        } else {
-            self.tokens[t as usize].extra = 0;
-            self.left_activate(child, t)?;
-        }
         Ok(t)
+    }
+
+    /// Passes an active partial match on: an activation or the child joins.
+    /// Child joins and rule ends, newest first, as CLIPS does.
+    pub(crate) fn propagate(&mut self, t: u16) -> Result<(), EvalError> {
+        let join = self.tokens[t as usize].owner;
+        let mut c = self.joins[join as usize].first_child;
+        while c != NONE {
+            self.left_activate(c, t)?;
+            c = self.joins[c as usize].next_sibling;
+        }
+        Ok(())
+    }
+
+    /// Takes back what a token passed on: its activations, then its children
+    /// (newest first), as CLIPS orders the removals.
+    fn deactivate(&mut self, t: u16) {
+        while self.tokens[t as usize].extra != NONE && self.tokens[t as usize].kind == TokenKind::Beta {
+            let a = self.tokens[t as usize].extra;
+            self.remove_activation(a);
+        }
+        self.delete_children(t);
     }
 
     pub(crate) fn delete_children(&mut self, t: u16) {
@@ -237,12 +265,8 @@ impl Core<'_> {
 
     /// Deletes a partial match and everything built on it.
     pub(crate) fn delete_token(&mut self, t: u16) {
-        self.delete_children(t);
+        self.deactivate(t);
         let tk = self.tokens[t as usize];
-        let join = self.joins[tk.owner as usize];
-        if join.child == NONE && join.kind != JoinKind::Root && tk.extra != NONE {
-            self.remove_activation(tk.extra);
-        }
         if tk.parent != NONE {
             if tk.prev_sib != NONE {
                 self.tokens[tk.prev_sib as usize].next_sib = tk.next_sib;
@@ -274,60 +298,67 @@ impl Core<'_> {
         self.free_token(t);
     }
 
-    /// A blocking alpha match leaves a `not` join: unblock left tokens it was counted in.
-    pub(crate) fn negative_right_remove(&mut self, join: u16, am: u16) {
+    /// A right item leaves a not/exists join: adjust the counts it was part of.
+    pub(crate) fn counting_right_remove(&mut self, join: u16, am: u16) {
+        let kind = self.joins[join as usize].kind;
         let parent = self.joins[join as usize].parent;
         let mut l = self.joins[parent as usize].mem;
         while l != NONE {
             let next = self.tokens[l as usize].mem_next;
-            if self.join_test(join, l, am, false).unwrap_or(false) && self.tokens[l as usize].extra > 0 {
-                self.tokens[l as usize].extra -= 1;
-                if self.tokens[l as usize].extra == 0 {
-                    // Restoring a match that existed before; a full pool here is reported
-                    // by the next operation that needs the space.
-                    let _ = self.emit(join, l);
+            if self.token_active(l) && self.join_test(join, l, am, false).unwrap_or(false) {
+                let t = self.output_of(l, join);
+                if t != NONE && self.tokens[t as usize].count > 0 {
+                    self.tokens[t as usize].count -= 1;
+                    if self.tokens[t as usize].count == 0 {
+                        if kind == JoinKind::Negative {
+                            // Restores a match that existed before; a full pool here is
+                            // reported by the next operation that needs the space.
+                            let _ = self.propagate(t);
+                        } else {
+                            self.deactivate(t);
+                        }
+                    }
                 }
             }
             l = next;
         }
     }
 
-    pub(crate) fn exists_right_remove(&mut self, join: u16, am: u16) {
-        let parent = self.joins[join as usize].parent;
-        let mut l = self.joins[parent as usize].mem;
-        while l != NONE {
-            let next = self.tokens[l as usize].mem_next;
-            if self.join_test(join, l, am, false).unwrap_or(false) && self.tokens[l as usize].extra > 0 {
-                self.tokens[l as usize].extra -= 1;
-                if self.tokens[l as usize].extra == 0 {
-                    self.delete_children(l);
-                }
-            }
-            l = next;
-        }
-    }
-
-    /// Releases every token of a rule (root token cascade).
-    pub(crate) fn remove_rule_matches(&mut self, rule: u16) {
-        let root = self.rules[rule as usize].root;
-        if root == NONE {
-            return;
-        }
-        while self.joins[root as usize].mem != NONE {
-            let t = self.joins[root as usize].mem;
+    /// Deletes every token in a join's memory.
+    pub(crate) fn clear_join_memory(&mut self, join: u16) {
+        while self.joins[join as usize].mem != NONE {
+            let t = self.joins[join as usize].mem;
             self.delete_token(t);
         }
     }
 
-    /// Creates the rule's root token and matches the rule against existing facts.
-    pub(crate) fn activate_root(&mut self, rule: u16) -> Result<(), EvalError> {
-        let root = self.rules[rule as usize].root;
-        let t = self.alloc_token()?;
-        self.tokens[t as usize] = Token { kind: TokenKind::Beta, owner: root, extra: 0, ..Token::EMPTY };
-        self.joins[root as usize].mem = t;
-        let child = self.joins[root as usize].child;
-        if child != NONE {
-            self.left_activate(child, t)?;
+    /// The global root join and its empty token (join 0), made at start-up.
+    pub(crate) fn make_root(&mut self) -> Result<(), EvalError> {
+        if self.st.njoins == 0 {
+            if self.joins.is_empty() {
+                return Err(cap(Pool::Joins, 0).into());
+            }
+            self.joins[0] = super::Join { kind: JoinKind::Root, refs: 1, ..super::Join::EMPTY };
+            self.st.njoins = 1;
+        }
+        if self.joins[0].mem == NONE {
+            let t = self.alloc_token()?;
+            self.tokens[t as usize] = Token { kind: TokenKind::Beta, owner: 0, ..Token::EMPTY };
+            self.joins[0].mem = t;
+        }
+        Ok(())
+    }
+
+    /// Feeds the active tokens of `parent`'s memory into a new child join.
+    pub(crate) fn prime_join(&mut self, join: u16) -> Result<(), EvalError> {
+        let parent = self.joins[join as usize].parent;
+        let mut l = self.joins[parent as usize].mem;
+        while l != NONE {
+            let next = self.tokens[l as usize].mem_next;
+            if self.token_active(l) {
+                self.left_activate(join, l)?;
+            }
+            l = next;
         }
         Ok(())
     }

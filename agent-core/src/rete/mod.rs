@@ -25,27 +25,42 @@ pub struct AlphaNode {
     pub next_in_tmpl: u16,
     /// First successor join (chained by `Join::alpha_next`, newest first).
     pub succ: u16,
-    /// Alpha memory: first alpha-match token (newest first).
+    /// Alpha memory: alpha-match tokens, oldest first (CLIPS iterates them so).
     pub mem: u16,
+    pub mem_tail: u16,
     pub nmarks: u8,
     pub live: bool,
 }
 
 impl AlphaNode {
     pub const EMPTY: AlphaNode =
-        AlphaNode { tmpl: 0, desc: NONE, tests: NONE, next_in_tmpl: NONE, succ: NONE, mem: NONE, nmarks: 0, live: false };
+        AlphaNode {
+        tmpl: 0,
+        desc: NONE,
+        tests: NONE,
+        next_in_tmpl: NONE,
+        succ: NONE,
+        mem: NONE,
+        mem_tail: NONE,
+        nmarks: 0,
+        live: false,
+    };
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[repr(u8)]
 pub enum JoinKind {
-    /// Holds the rule's root token.
+    /// The one global root (join 0), holding the empty root token.
     Root,
     Positive,
     Negative,
     Exists,
     /// A `test` CE with no pattern before it.
     Test,
+    /// Where a rule ends: partial matches arriving here become its activations.
+    /// Listed among its parent's children, so rule activations and child joins are
+    /// visited in one newest-first order, as CLIPS does.
+    Terminal,
 }
 
 #[derive(Clone, Copy, Debug)]
@@ -53,9 +68,14 @@ pub struct Join {
     pub kind: JoinKind,
     /// Pattern index of the right input (the root has none).
     pub depth: u8,
+    /// Terminal node: its rule (NONE for other joins).
     pub rule: u16,
     pub parent: u16,
-    pub child: u16,
+    /// Child joins (newest first), chained by `next_sibling`.
+    pub first_child: u16,
+    pub next_sibling: u16,
+    /// Rules using this join (joins with the same prefix are shared).
+    pub refs: u16,
     pub alpha: u16,
     /// Chain of boolean tests needing earlier patterns.
     pub tests: u16,
@@ -68,12 +88,20 @@ pub struct Join {
 }
 
 impl Join {
+    pub fn is_terminal(&self) -> bool {
+        self.kind == JoinKind::Terminal
+    }
+}
+
+impl Join {
     pub const EMPTY: Join = Join {
         kind: JoinKind::Root,
         depth: 0,
         rule: NONE,
         parent: NONE,
-        child: NONE,
+        first_child: NONE,
+        next_sibling: NONE,
+        refs: 0,
         alpha: NONE,
         tests: NONE,
         post: NONE,
@@ -114,8 +142,10 @@ pub struct Token {
     pub am_prev: u16,
     pub mem_next: u16,
     pub mem_prev: u16,
-    /// Terminal partial match: its activation. Input to a not/exists join: match count.
+    /// Partial match: its first activation. Alpha match: propagation progress.
     pub extra: u16,
+    /// Output of a not/exists join: how many right items match.
+    pub count: u16,
 }
 
 impl Token {
@@ -133,7 +163,8 @@ impl Token {
         am_prev: NONE,
         mem_next: NONE,
         mem_prev: NONE,
-        extra: 0,
+        extra: NONE,
+        count: 0,
     };
 }
 

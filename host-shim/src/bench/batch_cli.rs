@@ -7,7 +7,7 @@ use super::measure::{
     parse_mem_used, parse_rules_fired, result_lines, Contender, Measurement, Plan, ProgramFiles,
     Reading,
 };
-use super::process::{callgrind_instructions, median, run_with_deadline, Finished};
+use super::process::{callgrind_fits, callgrind_instructions, median, run_with_deadline, Finished};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Duration;
@@ -159,7 +159,10 @@ impl Contender for BatchCli {
                 Err("not measured: --no-callgrind".to_string()),
             ),
             Some(limit) => {
-                let whole = self.callgrind(&program.batch_full, &program.dir, limit);
+                let whole = wall_whole
+                    .clone()
+                    .and_then(|native| callgrind_fits(native, Duration::ZERO, limit))
+                    .and_then(|()| self.callgrind(&program.batch_full, &program.dir, limit));
                 let run = match &whole {
                     Ok(whole) => self
                         .callgrind(&program.batch_norun, &program.dir, limit)

@@ -5,7 +5,7 @@
 //! difference to the same driver stopping after `(reset)`.
 
 use super::measure::{result_lines, Contender, Measurement, Plan, ProgramFiles, Reading};
-use super::process::{callgrind_instructions, median, run_with_deadline};
+use super::process::{callgrind_fits, callgrind_instructions, median, run_with_deadline};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Duration;
@@ -166,7 +166,17 @@ impl Contender for ClipsPy {
                 Err("not measured: --no-callgrind".to_string()),
                 Err("not measured: --no-callgrind".to_string()),
             ),
-            Some(limit) => self.callgrind_run_phase(&driver, program, limit),
+            Some(limit) => {
+                // Python itself takes about this long to start under valgrind.
+                let startup = Duration::from_secs(30);
+                let fits = median(&nanos(&report.whole_ns))
+                    .ok_or_else(|| "no run".to_string())
+                    .and_then(|native| callgrind_fits(native, startup, limit));
+                match fits {
+                    Ok(()) => self.callgrind_run_phase(&driver, program, limit),
+                    Err(reason) => (Err(reason.clone()), Err(reason)),
+                }
+            }
         };
         Measurement {
             fired,

@@ -77,7 +77,7 @@ pub fn median(samples: &[Duration]) -> Option<Duration> {
     let mid = sorted.len() / 2;
     match sorted.len() {
         0 => None,
-        n if n % 2 == 1 => Some(sorted[mid]),
+        n if !n.is_multiple_of(2) => Some(sorted[mid]),
         _ => Some((sorted[mid - 1] + sorted[mid]) / 2),
     }
 }
@@ -123,6 +123,27 @@ pub fn callgrind_instructions(
         .ok_or_else(|| "callgrind printed no 'Collected' line".to_string())
 }
 
+/// Typical slowdown of a program under callgrind; used to skip runs that cannot finish
+/// inside the time-box instead of burning the whole box on them.
+pub const CALLGRIND_SLOWDOWN: u32 = 50;
+
+/// `Ok` when a run of `native` wall time (plus `startup` under valgrind) should finish
+/// inside `limit` under callgrind, else the reason it is skipped.
+pub fn callgrind_fits(native: Duration, startup: Duration, limit: Duration) -> Result<(), String> {
+    let expected = startup + native * CALLGRIND_SLOWDOWN;
+    if expected <= limit {
+        Ok(())
+    } else {
+        Err(format!(
+            "skipped: about {} s expected under callgrind ({:.2} s native x {CALLGRIND_SLOWDOWN}), \
+             time-box {} s",
+            expected.as_secs(),
+            native.as_secs_f64(),
+            limit.as_secs()
+        ))
+    }
+}
+
 /// Reads the `==PID== Collected : N` summary line callgrind prints on exit.
 pub fn parse_collected(stderr: &str) -> Option<u64> {
     stderr.lines().find_map(|line| {
@@ -144,6 +165,15 @@ mod tests {
             Some(Duration::from_micros(2500))
         );
         assert_eq!(median(&[]), None);
+    }
+
+    #[test]
+    fn callgrind_runs_that_cannot_fit_the_time_box_are_skipped() {
+        let box_ = Duration::from_secs(100);
+        assert!(callgrind_fits(Duration::from_secs(1), Duration::ZERO, box_).is_ok());
+        let too_long = callgrind_fits(Duration::from_secs(3), Duration::ZERO, box_);
+        assert!(too_long.is_err_and(|why| why.contains("150 s expected")));
+        assert!(callgrind_fits(Duration::from_secs(1), Duration::from_secs(60), box_).is_err());
     }
 
     #[test]

@@ -122,6 +122,7 @@ fn cell<T>(reading: &Reading<T>, show: impl Fn(&T) -> String) -> String {
         Ok(value) => show(value),
         // The full reason for a missing engine is listed once under "Machine".
         Err(reason) if reason.starts_with("not measured") => "not measured".to_string(),
+        Err(reason) if reason.starts_with("skipped") => shorten(reason, 80),
         Err(reason) => format!("failed: {}", shorten(reason, 60)),
     }
 }
@@ -171,10 +172,8 @@ impl Report {
             let _ = write!(out, " | {name:>18}");
         }
         let _ = writeln!(out, " | {:>12} | {:>12}", "instr ratio", "wall ratio");
-        let _ = writeln!(
-            out,
-            "{:<16} {:>7} {}  (run phase: instructions / median wall time; ratio = best CLIPS ÷ ours)",
-            "", "", ""
+        out.push_str(
+            "(per engine, run phase: instructions / median wall time; ratio = best CLIPS ÷ ours)\n",
         );
         for row in &self.rows {
             let fired = row
@@ -224,6 +223,12 @@ impl Report {
         let m = &self.machine;
         let _ = writeln!(md, "- Host: `{}`; run at {}", m.hostname, m.date);
         let _ = writeln!(md, "- CPU: {} ({} logical processors)", m.cpu, m.cores);
+        if cfg!(debug_assertions) {
+            let _ = writeln!(
+                md,
+                "- **Debug build**: ours ran unoptimised; rerun from `cargo build --release`."
+            );
+        }
         for (name, version) in &self.contenders {
             let text = match version {
                 Ok(v) => v.clone(),

@@ -70,7 +70,7 @@ impl Workload {
     /// Checks the size is one the generator can make a solvable program for.
     pub fn validate(&self) -> Result<(), String> {
         match self.kind {
-            Kind::Manners if self.size < 2 || self.size % 2 != 0 => Err(format!(
+            Kind::Manners if self.size < 2 || !self.size.is_multiple_of(2) => Err(format!(
                 "{}: Manners needs an even number of guests, at least 2",
                 self.name()
             )),

@@ -69,6 +69,13 @@ impl Proc {
         let _ = self.child.wait();
     }
 
+    /// Asks the process to stop (SIGTERM), as an operator would.
+    pub fn terminate(&mut self) {
+        let _ = Command::new("kill")
+            .args(["-TERM", &self.child.id().to_string()])
+            .status();
+    }
+
     /// Waits for the process to exit by itself.
     pub fn wait_exit(&mut self, timeout: Duration) -> Option<std::process::ExitStatus> {
         let deadline = Instant::now() + timeout;

@@ -1,9 +1,10 @@
 //! What the image does, written once for the freestanding and the host build.
 //!
-//! Each fact is one line `agent-image: key=value ...`. Today `agent-core` has no engine and
-//! `rules` no rule base, so the image says so instead of pretending; the hooks below mark
-//! where they slot in. Lines other tools read:
+//! Each fact is one line `agent-image: key=value ...`. Today the image does not hold the
+//! engine yet and so loads no rules; it says so instead of pretending. The hooks below mark
+//! where the engine and the game slot in. Lines other tools read:
 //! - `engine=absent|present` and the exported symbol's name (footprint tool: arena share);
+//! - `rules=embedded loaded=no|yes` with the agent text size per strategy;
 //! - `score=<n>` once the image plays the seeded game (test script compares it with
 //!   `robotino-agent sim --seed 0`);
 //! - `stack_max_bytes=<n>` (printed by the entry point at exit, footprint tool).
@@ -26,8 +27,8 @@ pub const ENGINE_SYMBOL: &str = "AGENT_ENGINE";
 // (behind whatever interior-mutability wrapper the engine's API needs), then report
 // `engine=present bytes=<size_of::<Engine>()>` in `engine_line`.
 //
-// RULES HOOK: once `rules` exports the agent rule base as text constants, load them into the
-// engine here and report `rules=present bytes=<total text length>`.
+// RULES HOOK: with the engine in place, load `rules::agent_files(strategy)` (or
+// `rules::game_files` for the simulated game) into it here and report `loaded=yes`.
 //
 // SCORE HOOK: once the image plays the seeded game, print `agent-image: score=<n>`; the test
 // script then compares it with the score of `robotino-agent sim --seed 0`.
@@ -53,12 +54,9 @@ pub fn run(out: &mut impl Write, build: &str) -> Result<(), RunError> {
     writeln!(out, "agent-image: build={build} heap=none")?;
     writeln!(
         out,
-        "agent-image: engine=absent symbol={ENGINE_SYMBOL} reason=\"agent_core::Engine is not written yet\""
+        "agent-image: engine=absent symbol={ENGINE_SYMBOL} reason=\"the image does not instantiate agent_core::Engine yet\""
     )?;
-    writeln!(
-        out,
-        "agent-image: rules=absent reason=\"the rules crate exports no rule base yet\""
-    )?;
+    rules_line(out)?;
     match runtime_self_test() {
         Ok(checks) => writeln!(out, "agent-image: runtime_selftest=ok checks={checks}")?,
         Err(step) => {
@@ -72,6 +70,25 @@ pub fn run(out: &mut impl Write, build: &str) -> Result<(), RunError> {
         "agent-image: score=absent reason=\"needs the engine and the rule base\""
     )?;
     Ok(())
+}
+
+/// The agent rule base from the `rules` crate: which strategies exist and how much CLIPS
+/// text each agent has. Nothing is loaded while the image has no engine.
+fn rules_line(out: &mut impl Write) -> fmt::Result {
+    write!(
+        out,
+        "agent-image: rules=embedded loaded=no agent_text_bytes="
+    )?;
+    for (i, strategy) in rules::Strategy::ALL.iter().enumerate() {
+        let files = rules::agent_files(*strategy);
+        let bytes: usize = files.iter().map(|file| file.text.len()).sum();
+        let separator = if i == 0 { "" } else { "," };
+        write!(out, "{separator}{}:{bytes}", strategy.name())?;
+    }
+    writeln!(
+        out,
+        " reason=\"no engine in the image to load them into yet\""
+    )
 }
 
 /// Exercises what the freestanding build provides itself: memset, memcpy, memmove,
@@ -149,7 +166,17 @@ mod tests {
         run(&mut text, "host-std").expect("writing to a String cannot fail");
         assert!(text.starts_with("agent-image: build=host-std heap=none\n"));
         assert!(text.contains("engine=absent symbol=AGENT_ENGINE"));
-        assert!(text.contains("rules=absent"));
+        // The rule base's text sizes come from the `rules` crate, not from this file.
+        let travel: usize = rules::agent_files(rules::Strategy::Travel)
+            .iter()
+            .map(|f| f.text.len())
+            .sum();
+        assert!(travel > 0);
+        assert!(
+            text.contains(&format!("travel:{travel} ")),
+            "rule base sizes missing: {text}"
+        );
+        assert!(text.contains("rules=embedded loaded=no"));
         assert!(text.contains("runtime_selftest=ok checks=6"));
         assert!(text.contains("score=absent"));
         assert!(text.lines().all(|line| line.starts_with("agent-image: ")));

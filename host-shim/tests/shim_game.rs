@@ -1,0 +1,117 @@
+//! Whole runs across processes: a short game between `robotino-agent run` and
+//! `robotino-sim`, and the sim driver killed mid-game and restarted.
+
+mod shim_common;
+
+use host_shim::shim::payloads::MotorCommandPayload;
+use host_shim::shim::transport::{RobotStream, Transport};
+use shim_common::{unique_prefix, wait_until, Proc, AGENT, SIM};
+use std::time::Duration;
+
+const WATCHDOG: Duration = Duration::from_secs(120);
+
+#[test]
+fn short_game_in_lockstep() {
+    let prefix = unique_prefix("game");
+    let _cleanup = Transport::open(&prefix, "shim-test-game").unwrap_or_else(|e| panic!("{e}"));
+    // 100 simulated seconds: enough for fetching pucks and working machines.
+    let sim = Proc::start(
+        "sim",
+        SIM,
+        &["--prefix", &prefix, "--lockstep", "--game-seconds", "100"],
+    );
+    let mut agent = Proc::start("agent", AGENT, &["run", "--prefix", &prefix, "--lockstep"]);
+    wait_until("game over", WATCHDOG, &[&sim, &agent], || {
+        sim.line_with("robotino-sim: done").is_some()
+    });
+    agent.terminate();
+    wait_until("agent reports its cycle time", WATCHDOG, &[&agent], || {
+        agent.line_with("cycle_work_mean_us").is_some()
+    });
+    let lines = agent.lines();
+    let count = |needle: &str| lines.iter().filter(|l| l.contains(needle)).count();
+    assert!(count("end GetS0 Final(GotS0)") >= 1, "{}", agent.dump());
+    assert!(count("Final(LightSeen(") >= 1, "{}", agent.dump());
+    println!(
+        "{}",
+        sim.line_with("robotino-sim: done").unwrap_or_default()
+    );
+    println!(
+        "{}",
+        agent.line_with("cycle_work_mean_us").unwrap_or_default()
+    );
+}
+
+#[test]
+fn sim_killed_mid_game_stops_the_motors_and_the_game_resumes_with_a_new_driver() {
+    let prefix = unique_prefix("restart");
+    let t = Transport::open(&prefix, "shim-test-restart").unwrap_or_else(|e| panic!("{e}"));
+    let mut motor = t
+        .subscriber::<MotorCommandPayload>(&t.names.robot(1, RobotStream::Motor))
+        .unwrap_or_else(|e| panic!("{e}"));
+    let mut sim = Proc::start("sim", SIM, &["--prefix", &prefix, "--time-warp", "3"]);
+    let agent = Proc::start(
+        "agent",
+        AGENT,
+        &["run", "--prefix", &prefix, "--time-warp", "3"],
+    );
+
+    let mut moving = false;
+    wait_until("robot drives", WATCHDOG, &[&sim, &agent], || {
+        let _ = motor.drain(|p| moving |= p.decode().is_ok_and(|w| !w.is_zero()));
+        moving
+    });
+
+    sim.kill();
+    // Every command the agent sends from now on: it may still drive while the last samples
+    // are fresh, then at most the 3-cycle deadline, then zero for good.
+    let mut after_kill: Vec<bool> = Vec::new();
+    wait_until(
+        "motors zero after the deadline",
+        WATCHDOG,
+        &[&agent],
+        || {
+            let _ = motor.drain(|p| after_kill.push(p.decode().is_ok_and(|w| w.is_zero())));
+            after_kill.len() >= 20
+        },
+    );
+    let first_zero = after_kill.iter().position(|&z| z);
+    assert!(
+        first_zero.is_some_and(|i| i <= 3),
+        "zero command came too late: {after_kill:?}"
+    );
+    let from = first_zero.unwrap_or(0);
+    assert!(
+        after_kill[from..].iter().all(|&z| z),
+        "motion resumed without a driver: {after_kill:?}"
+    );
+    wait_until(
+        "skill failed on the sensor deadline",
+        WATCHDOG,
+        &[&agent],
+        || agent.line_with("Failed(SensorTimeout)").is_some(),
+    );
+
+    let starts_before = agent
+        .lines()
+        .iter()
+        .filter(|l| l.contains(" start "))
+        .count();
+    let sim2 = Proc::start("sim2", SIM, &["--prefix", &prefix, "--time-warp", "3"]);
+    let mut moving_again = false;
+    wait_until(
+        "robot drives with the new driver",
+        WATCHDOG,
+        &[&sim2, &agent],
+        || {
+            let _ = motor.drain(|p| moving_again |= p.decode().is_ok_and(|w| !w.is_zero()));
+            moving_again
+        },
+    );
+    let starts_after = agent
+        .lines()
+        .iter()
+        .filter(|l| l.contains(" start "))
+        .count();
+    assert!(starts_after > starts_before, "{}", agent.dump());
+}
