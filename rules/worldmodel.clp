@@ -195,6 +195,17 @@
   (retract ?w)
   (modify ?m (mtype T2)))
 
+(defrule wm-flash-s0-already-loaded
+  "Every type takes an S0, so rejecting one means an S0 is already there:
+   the beliefs had lost track of this machine (e.g. after a reset)."
+  (declare (salience ?*PRIORITY_WM*))
+  ?w <- (wm-eval (machine ?name) (light yellow-flashing) (was-holding S0))
+  ?m <- (machine (name ?name) (mtype ?t)
+          (loaded-with $?lw&:(not (member$ S0 ?lw))))
+  =>
+  (retract ?w)
+  (modify ?m (mtype (if (eq ?t T1_2_3) then T2_3 else ?t)) (loaded-with ?lw S0)))
+
 (defrule wm-flash-no-news
   "A rejection the beliefs already predicted (known type or puck already
    loaded) or cannot explain: nothing to learn."

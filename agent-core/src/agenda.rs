@@ -23,7 +23,7 @@ impl Core<'_> {
         };
         self.note_hw(Pool::Activations, self.st.acts_used as usize);
         self.st.act_seq = self.st.act_seq.wrapping_add(1);
-        let salience = self.rules[rule as usize].salience;
+        let salience = self.rule_salience(rule);
         let next_of_token = self.tokens[token as usize].extra;
         self.acts[a as usize] =
             Activation { rule, token, salience, seq: self.st.act_seq, next: NONE, prev: NONE, next_of_token };
@@ -33,6 +33,21 @@ impl Core<'_> {
             self.print_activation_line("==> Activation ", a);
         }
         Ok(())
+    }
+
+    /// A rule's salience now (global-based saliences are evaluated again).
+    pub(crate) fn rule_salience(&mut self, rule: u16) -> i32 {
+        let e = self.rules[rule as usize].salience_expr;
+        if e == NONE {
+            return self.rules[rule as usize].salience;
+        }
+        let (scratch, sp, pm) = (self.st.scratch_top, self.st.sp, self.st.pm_rhs);
+        let v = self.eval(e);
+        (self.st.scratch_top, self.st.sp, self.st.pm_rhs) = (scratch, sp, pm);
+        match v {
+            Ok(crate::value::Value::Int(i)) => i.clamp(-10000, 10000) as i32,
+            _ => self.rules[rule as usize].salience,
+        }
     }
 
     /// Inserts before the first activation of lower or equal salience.
@@ -123,7 +138,7 @@ impl Core<'_> {
         while list != NONE {
             let prev = self.acts[list as usize].prev;
             let rule = self.acts[list as usize].rule;
-            self.acts[list as usize].salience = self.rules[rule as usize].salience;
+            self.acts[list as usize].salience = self.rule_salience(rule);
             self.agenda_insert(list);
             list = prev;
         }

@@ -8,6 +8,23 @@ use crate::host::Host;
 use crate::parser::{Item, Parser};
 use crate::value::{Value, ValueRef, NONE};
 
+/// Construct-pool usage (see `Engine::usage`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Usage {
+    pub symbols: u16,
+    pub templates: u16,
+    pub slot_defs: u16,
+    pub rules: u16,
+    pub alpha_nodes: u16,
+    pub joins: u16,
+    pub exprs: u16,
+    pub functions: u16,
+    pub globals: u16,
+    pub deffacts: u16,
+    /// Tokens (alpha and partial matches) currently allocated.
+    pub tokens: u16,
+}
+
 /// A fact's index (`f-N`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub struct FactId(pub u32);
@@ -210,6 +227,38 @@ engine_impl! {
             s.capacity[i] = *c as u32;
         }
         s
+    }
+
+    /// Entries in use of the append-only pools (constructs and what they built):
+    /// a construct that fails to load leaves these unchanged.
+    pub fn usage(&self) -> Usage {
+        Usage {
+            symbols: self.st.nsyms,
+            templates: self.st.ntemplates,
+            slot_defs: self.st.nslots,
+            rules: self.st.nrules,
+            alpha_nodes: self.st.nalpha,
+            joins: self.st.njoins,
+            exprs: self.st.nexprs,
+            functions: self.st.nfuncs,
+            globals: self.st.nglobals,
+            deffacts: self.st.ndeffacts,
+            tokens: self.st.tokens_live,
+        }
+    }
+
+    /// Calls `f(rule, salience, basis)` for each activation in agenda order; `basis`
+    /// holds each pattern CE's fact index (None for not/exists/test CEs).
+    pub fn for_each_activation(&self, mut f: impl FnMut(&str, i32, &[Option<u32>])) {
+        let mut a = self.st.agenda_head;
+        while a != NONE {
+            let act = self.act_at(a);
+            let mut basis = [None; crate::rete::MAX_PATTERNS];
+            let n = self.basis_of(act.token, &mut basis);
+            let rule = self.rule_at(act.rule);
+            f(self.sym_str(rule.name), act.salience, &basis[..n]);
+            a = act.next;
+        }
     }
 
     /// Number of live facts and pending activations.

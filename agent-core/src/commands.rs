@@ -382,6 +382,15 @@ impl Core<'_> {
             };
         } else if e.detail == LoadDetail::MissingFunction {
             let _ = writeln!(b, "\n[EXPRNPSR3] Missing function declaration for {tok}.");
+        } else if let LoadDetail::Constraint { command, types, slot } = e.detail {
+            let what = if types { "types" } else { "values" };
+            let _ = writeln!(
+                b,
+                "\n[CSTRNCHK1] A literal slot value found in the {command} command\ndoes not match the allowed {what} for slot {}.",
+                self.sym_text(slot)
+            );
+            self.write(router::WERROR, b.as_str());
+            return;
         } else if e.construct == "command" {
             {
                 let _ = writeln!(b, "\n[PRNTUTIL2] Syntax Error:  Check appropriate syntax for the command.");
@@ -389,7 +398,7 @@ impl Core<'_> {
         } else {
             let _ = writeln!(b, "\n[PRNTUTIL2] Syntax Error:  Check appropriate syntax for {}.", e.construct);
         }
-        let _ = writeln!(b, "--> {}:{}:{}: expected {}", source, e.line, e.col, e.expected);
+        let _ = writeln!(b, "--> {}:{}:{}: expected {}", source, e.line + self.st.line_base, e.col, e.expected);
         self.write(router::WERROR, b.as_str());
     }
 
@@ -421,6 +430,7 @@ impl Core<'_> {
     /// lines up to a complete command, its result; the rest of that line is dropped.
     pub fn batch_text(&mut self, text: &str, echo: bool) -> Result<(), EvalError> {
         let mut pos = 0;
+        let mut line_base = 0u32;
         while pos < text.len() && !self.st.exit {
             if echo {
                 self.write(router::STDOUT, "CLIPS> ");
@@ -436,13 +446,16 @@ impl Core<'_> {
                 }
                 end = line_end;
                 if let Some(k) = command_complete(&text[pos..end]) {
+                    self.st.line_base = line_base;
                     self.exec_command(&text[pos..pos + k], "batch");
+                    self.st.line_base = 0;
                     break;
                 }
                 if end >= text.len() {
                     break;
                 }
             }
+            line_base += text[pos..end].bytes().filter(|&b| b == b'\n').count() as u32;
             pos = end;
         }
         Ok(())
@@ -455,9 +468,20 @@ impl Core<'_> {
         let cp = self.checkpoint();
         let mut p = Parser::new(self, text);
         let item = p.next_item();
+        let nlocals = p.nlocals;
         match item {
             Ok(Item::Command(e)) => {
-                let r = self.eval(e);
+                // a frame for loop/query variables of the command
+                self.st.bp = self.st.sp;
+                let mut r = Ok(Value::Void);
+                for _ in 0..nlocals {
+                    if let Err(c) = self.push_value(Value::Void) {
+                        r = Err(c.into());
+                    }
+                }
+                if r.is_ok() {
+                    r = self.eval(e);
+                }
                 match r {
                     Ok(v) => {
                         if v != Value::Void {

@@ -83,6 +83,10 @@ pub struct State {
     pub nexternals: u16,
     /// Symbols to keep across `clear` (fixed ones and external function names).
     pub ext_syms: u16,
+    /// Line of the current batch command's first line minus one (error positions).
+    pub line_base: u32,
+    /// Ids of pattern-network nodes (see `AlphaNode::key`).
+    pub trie_ids: u16,
     pub fact_free: u16,
     pub token_free: u16,
     pub act_free: u16,
@@ -147,6 +151,8 @@ impl State {
             ndeffacts: 0,
             nexternals: 0,
             ext_syms: 0,
+            trie_ids: 0,
+            line_base: 0,
             fact_free: NONE,
             token_free: NONE,
             act_free: NONE,
@@ -373,6 +379,30 @@ impl<
     pub(crate) fn value_at(&self, c: usize) -> Value {
         self.values[c]
     }
+    pub(crate) fn rule_at(&self, r: u16) -> Rule {
+        self.rules[r as usize]
+    }
+
+    /// Fact indices along a token's ancestry, by pattern position.
+    pub(crate) fn basis_of(&self, token: u16, out: &mut [Option<u32>; crate::rete::MAX_PATTERNS]) -> usize {
+        let mut n = 0;
+        let mut t = token;
+        while t != NONE {
+            let tk = self.tokens[t as usize];
+            let j = self.joins[tk.owner as usize];
+            if j.kind == crate::rete::JoinKind::Root {
+                break;
+            }
+            let d = j.depth as usize;
+            if d < out.len() {
+                out[d] = if tk.am != NONE { Some(self.facts[self.tokens[tk.am as usize].fact as usize].num) } else { None };
+                n = n.max(d + 1);
+            }
+            t = tk.parent;
+        }
+        n
+    }
+
     pub(crate) fn act_at(&self, a: u16) -> Activation {
         self.acts[a as usize]
     }

@@ -178,6 +178,9 @@ pub enum LoadDetail {
     Arity { func: &'static str, min: u8, max: u8, got: u16 },
     /// `[EXPRNPSR3]`: unknown function (its name is the offending token).
     MissingFunction,
+    /// `[CSTRNCHK1]`: a literal slot value violates the slot's type (`types`) or
+    /// allowed values.
+    Constraint { command: &'static str, types: bool, slot: u16 },
 }
 
 impl fmt::Display for LoadError {

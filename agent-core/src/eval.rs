@@ -212,13 +212,24 @@ impl Core<'_> {
             return Err(EvalError::new(EvalErrorKind::Arity { func: "deffunction" }));
         }
         if df.rest {
-            // collect the extra arguments into a multifield in the rest parameter's slot
-            let start = self.scratch_alloc(n - np)?;
+            // collect the extra arguments (multifields spliced) into the rest parameter
+            let start = self.st.scratch_top;
             for k in 0..n - np {
-                self.scratch[start as usize + k] = self.stack[args.base as usize + np + k];
+                match self.stack[args.base as usize + np + k] {
+                    Value::Multi(m) => {
+                        for i in 0..m.len as usize {
+                            let s = self.scratch_alloc(1)?;
+                            self.scratch[s as usize] = self.scratch[m.start as usize + i];
+                        }
+                    }
+                    v => {
+                        let s = self.scratch_alloc(1)?;
+                        self.scratch[s as usize] = v;
+                    }
+                }
             }
             self.st.sp = args.base + np as u16;
-            self.push_value(Value::Multi(MfSpan { start, len: (n - np) as u16 }))?;
+            self.push_value(Value::Multi(MfSpan { start, len: self.st.scratch_top - start }))?;
         }
         let frame_args = np + usize::from(df.rest);
         for _ in frame_args..df.nlocals as usize {

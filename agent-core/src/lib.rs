@@ -75,7 +75,7 @@ pub mod value;
 #[cfg(test)]
 pub mod testutil;
 
-pub use api::{ExternalFn, FactId};
+pub use api::{ExternalFn, FactId, Usage};
 pub use builtins::{Args, BuiltinFn};
 pub use engine::{Core, DefaultEngine, Engine, SmallEngine, Stats};
 pub use error::{CapacityError, EngineError, EvalError, EvalErrorKind, HostIoError, LoadError, Pool};

@@ -6,6 +6,9 @@ use crate::value::{SymId, NONE};
 pub struct Rule {
     pub name: SymId,
     pub salience: i32,
+    /// Salience expression when not a constant (re-evaluated per activation and by
+    /// `refresh-agenda`, as CLIPS does for global-based saliences), else NONE.
+    pub salience_expr: u16,
     /// Root join (holds the rule's empty root token) and terminal join.
     pub root: u16,
     pub terminal: u16,
@@ -30,6 +33,7 @@ impl Rule {
     pub const EMPTY: Rule = Rule {
         name: 0,
         salience: 0,
+        salience_expr: NONE,
         root: NONE,
         terminal: NONE,
         rhs: NONE,

@@ -5,6 +5,7 @@
 mod bench;
 mod clips_cli;
 mod run;
+mod sim;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -28,6 +29,10 @@ enum Command {
     Run(run::Args),
     /// Benchmarks against CLIPS 6.30 and 6.4: prints ratios, regenerates BENCHMARKS.md.
     Bench(bench::Args),
+    /// Plays one simulated LLSF game and prints a readable report.
+    Sim(sim::Args),
+    /// Plays every distinct machine assignment and summarises the results.
+    Sweep(sim::sweep::Args),
 }
 
 fn main() -> ExitCode {
@@ -36,5 +41,7 @@ fn main() -> ExitCode {
         Command::Clips(args) => clips_cli::main(args),
         Command::Run(args) => run::main(args),
         Command::Bench(args) => bench::main(args),
+        Command::Sim(args) => sim::main(args),
+        Command::Sweep(args) => sim::sweep::main(args),
     }
 }

@@ -4,19 +4,23 @@
 //! robot is idle it asks for the next skill: for now the clearly marked stand-in
 //! [`ScriptedAgent`]; the engine plugs in there.
 
+use hal::field::MachineId;
 use hal::ir::IrScan;
-use hal::skill::{SkillOutcome, SkillRequest};
+use hal::skill::Perception;
+use hal::skill::{FailReason, SkillOutcome, SkillRequest};
+use hal::LightSignal;
 use hal::{Pose2, Twist};
 use host_shim::shim::behaviour::{DriveTuning, Perceived, Skill};
 use host_shim::shim::config::Config;
 use host_shim::shim::payloads::{
     BumperPayload, DriverId, GyroPayload, HeartbeatPayload, IrScanPayload, LightPayload,
-    MotorCommandPayload, OdometryPayload, PuckPayload, SkillRequestPayload, SkillStatus,
-    SkillStatusPayload,
+    MachineClaimPayload, MotorCommandPayload, OdometryPayload, PuckPayload, SkillRequestPayload,
+    SkillStatus, SkillStatusPayload, WorldModelPayload,
 };
 use host_shim::shim::safety::{CycleInput, SafetyMonitor, Stream};
 use host_shim::shim::scripted::ScriptedAgent;
-use host_shim::shim::transport::{Pub, RobotStream, Sub, Transport, TransportError};
+use host_shim::shim::team::{Carried, TeamView};
+use host_shim::shim::transport::{Pub, RobotStream, Sub, TeamStream, Transport, TransportError};
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::{Duration, Instant};
@@ -69,6 +73,10 @@ struct AgentPorts {
     request: Pub<SkillRequestPayload>,
     status: Pub<SkillStatusPayload>,
     heartbeat: Pub<HeartbeatPayload>,
+    world_out: Pub<WorldModelPayload>,
+    world_in: Sub<WorldModelPayload>,
+    claims_out: Pub<MachineClaimPayload>,
+    claims_in: Sub<MachineClaimPayload>,
 }
 
 impl AgentPorts {
@@ -85,6 +93,10 @@ impl AgentPorts {
             request: t.publisher(&name(RobotStream::SkillRequest))?,
             status: t.publisher(&name(RobotStream::SkillStatus))?,
             heartbeat: t.publisher(&name(RobotStream::Heartbeat))?,
+            world_out: t.publisher(&t.names.team(TeamStream::WorldModel))?,
+            world_in: t.subscriber(&t.names.team(TeamStream::WorldModel))?,
+            claims_out: t.publisher(&t.names.team(TeamStream::Claims))?,
+            claims_in: t.subscriber(&t.names.team(TeamStream::Claims))?,
         })
     }
 }
@@ -171,7 +183,12 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
     }
     config.timing.lockstep |= args.lockstep;
     let robot = config.robot.number;
-    let mut script = ScriptedAgent::parse(&args.script)?;
+    let mut mind = Mind {
+        robot: config.robot.number,
+        script: ScriptedAgent::parse(&args.script)?,
+        team: TeamView::new(config.robot.number),
+        carried: None,
+    };
     let transport = Transport::open(&config.services.prefix, &format!("robotino-agent-{robot}"))?;
     let mut ports = AgentPorts::open(&transport, robot)?;
     let tuning = DriveTuning {
@@ -223,6 +240,20 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
         cycle += 1;
         samples.read(&mut ports)?;
         let p = samples.perceived;
+        mind.listen(&mut ports, cycle)?;
+        // Late joiners: repeat what we know now and then (the service keeps one sample).
+        if cycle.is_multiple_of(150) {
+            for m in MachineId::all() {
+                if mind
+                    .team
+                    .machine(m)
+                    .machine_type
+                    .is_some_and(|(_, by)| by == robot)
+                {
+                    mind.publish_belief(&mut ports, m)?;
+                }
+            }
+        }
 
         // Idle: ask for the next skill, but only once every driver is fresh (a skill
         // planned from a pose never received would start from the field's corner).
@@ -231,30 +262,44 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
                 .iter()
                 .all(|&s| monitor.staleness(s) < config.timing.sensor_deadline_cycles);
         if running.is_none() && drivers_fresh {
-            if let Some(request) = script.next(p.has_puck) {
+            mind.sync_with_puck_sensor(p.has_puck);
+            if let Some(choice) = mind.script.next(mind.carried, &mind.team) {
+                let request = choice.request;
+                if let Some((m, t, by)) = choice.shared_type {
+                    println!(
+                        "robotino-agent run: cycle={cycle} using shared type M{} T{t} from robot {by}",
+                        m.number()
+                    );
+                }
                 let request_seq = ports
                     .request
                     .send(|s| SkillRequestPayload::encode(s, robot, request))?;
                 monitor.skill_started();
+                if let SkillRequest::BringPuckTo(m) = request {
+                    mind.claim(&mut ports, m, true)?;
+                }
                 println!("robotino-agent run: cycle={cycle} start {request:?}");
                 match Skill::start(request, &p, &tuning) {
                     Ok(skill) => running = Some(Running { skill, request_seq }),
                     Err(reason) => {
-                        finish(
-                            &mut ports,
-                            &mut script,
-                            robot,
-                            request,
-                            request_seq,
-                            SkillOutcome::Failed(reason),
-                            cycle,
-                        )?;
+                        let outcome = SkillOutcome::Failed(reason);
+                        mind.finish(&mut ports, request, request_seq, outcome, cycle)?;
                     }
                 }
             }
         }
 
+        // Two robots claimed the same machine in the same moment: the lower number keeps it.
+        let lost_claim = running.as_ref().is_some_and(|r| match r.skill.request() {
+            SkillRequest::BringPuckTo(m) => mind
+                .team
+                .machine(m)
+                .claimed_by
+                .is_some_and(|other| other < robot),
+            _ => false,
+        });
         let (desired, mut outcome) = match running.as_mut() {
+            Some(_) if lost_claim => (Twist::ZERO, SkillOutcome::Failed(FailReason::Aborted)),
             Some(r) => r.skill.step(&p, &tuning),
             None => (Twist::ZERO, SkillOutcome::Running),
         };
@@ -278,15 +323,7 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
         if let Some(r) = running.as_ref() {
             let request = r.skill.request();
             if outcome.is_terminal() {
-                finish(
-                    &mut ports,
-                    &mut script,
-                    robot,
-                    request,
-                    r.request_seq,
-                    outcome,
-                    cycle,
-                )?;
+                mind.finish(&mut ports, request, r.request_seq, outcome, cycle)?;
                 running = None;
             } else {
                 let status = SkillStatus {
@@ -314,32 +351,136 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
     }
 }
 
-/// Publishes a skill's end and tells the (stand-in) agent.
-fn finish(
-    ports: &mut AgentPorts,
-    script: &mut ScriptedAgent,
+/// What the robot knows beyond its sensors: the (stand-in) agent, the team's shared picture
+/// and the puck it believes it carries.
+struct Mind {
     robot: u8,
-    request: SkillRequest,
-    request_seq: u32,
-    outcome: SkillOutcome,
-    cycle: u64,
-) -> Result<(), TransportError> {
-    let status = SkillStatus {
-        request_seq,
-        robot,
-        request,
-        outcome,
-    };
-    ports
-        .status
-        .send(|s| SkillStatusPayload::encode(s, &status))?;
-    let reason = match outcome {
-        SkillOutcome::Failed(r) => r.symbol(),
-        _ => "",
-    };
-    println!("robotino-agent run: cycle={cycle} end {request:?} {outcome:?} {reason}");
-    script.finished(request, outcome);
-    Ok(())
+    script: ScriptedAgent,
+    team: TeamView,
+    carried: Option<Carried>,
+}
+
+impl Mind {
+    /// The puck sensor is the truth about holding something; the kind is remembered.
+    fn sync_with_puck_sensor(&mut self, has_puck: bool) {
+        if !has_puck {
+            self.carried = None;
+        } else if self.carried.is_none() {
+            self.carried = Some(Carried::Unknown);
+        }
+    }
+
+    fn claim(
+        &mut self,
+        ports: &mut AgentPorts,
+        m: MachineId,
+        claimed: bool,
+    ) -> Result<(), TransportError> {
+        self.team.apply_claim(self.robot, m, claimed);
+        let robot = self.robot;
+        ports
+            .claims_out
+            .send(|s| MachineClaimPayload::encode(s, robot, m, claimed))?;
+        Ok(())
+    }
+
+    fn publish_belief(&self, ports: &mut AgentPorts, m: MachineId) -> Result<(), TransportError> {
+        let belief = self.team.belief(m);
+        ports
+            .world_out
+            .send(|s| WorldModelPayload::encode(s, &belief))?;
+        Ok(())
+    }
+
+    /// Takes teammates' world-model updates and claims.
+    fn listen(&mut self, ports: &mut AgentPorts, cycle: u64) -> Result<(), TransportError> {
+        let mut learned = Vec::new();
+        let team = &mut self.team;
+        ports.world_in.drain(|p| {
+            if let Ok(b) = p.decode() {
+                if team.apply_belief(&b) {
+                    learned.push(b);
+                }
+            }
+        })?;
+        for b in learned {
+            println!(
+                "robotino-agent run: cycle={cycle} belief from robot {}: M{} T{}",
+                b.robot,
+                b.machine.number(),
+                b.machine_type.unwrap_or(0)
+            );
+        }
+        ports.claims_in.drain(|p| {
+            if let Ok((robot, m, claimed)) = p.decode() {
+                if robot != team.me {
+                    team.apply_claim(robot, m, claimed);
+                }
+            }
+        })?;
+        Ok(())
+    }
+
+    /// Publishes a skill's end, updates what the robot carries and knows, releases the
+    /// machine's claim and tells the (stand-in) agent.
+    fn finish(
+        &mut self,
+        ports: &mut AgentPorts,
+        request: SkillRequest,
+        request_seq: u32,
+        outcome: SkillOutcome,
+        cycle: u64,
+    ) -> Result<(), TransportError> {
+        let status = SkillStatus {
+            request_seq,
+            robot: self.robot,
+            request,
+            outcome,
+        };
+        ports
+            .status
+            .send(|s| SkillStatusPayload::encode(s, &status))?;
+        let reason = match outcome {
+            SkillOutcome::Failed(r) => r.symbol(),
+            _ => "",
+        };
+        println!("robotino-agent run: cycle={cycle} end {request:?} {outcome:?} {reason}");
+        match (request, outcome) {
+            (SkillRequest::GetS0, SkillOutcome::Final(Perception::GotS0)) => {
+                self.carried = Some(Carried::S0);
+            }
+            (SkillRequest::BringPuckTo(m), SkillOutcome::Final(Perception::LightSeen(l))) => {
+                let carried = self.carried.unwrap_or(Carried::Unknown);
+                let learned_before = self.team.machine(m).machine_type;
+                match l {
+                    LightSignal::Green => {
+                        self.carried = self.team.learn_from_placement(m, carried, true);
+                    }
+                    LightSignal::Yellow => {
+                        self.carried = self.team.learn_from_placement(m, carried, false);
+                    }
+                    // Wrong input, out of order or offline: the robot keeps its puck.
+                    _ => {}
+                }
+                if let (None, Some((t, _))) = (learned_before, self.team.machine(m).machine_type) {
+                    println!(
+                        "robotino-agent run: cycle={cycle} learned M{} T{t}",
+                        m.number()
+                    );
+                }
+                self.publish_belief(ports, m)?;
+            }
+            (SkillRequest::DeliverTo(_), SkillOutcome::Final(Perception::Delivered)) => {
+                self.carried = None;
+            }
+            _ => {}
+        }
+        if let SkillRequest::BringPuckTo(m) = request {
+            self.claim(ports, m, false)?;
+        }
+        self.script.finished(request, outcome);
+        Ok(())
+    }
 }
 
 /// Time spent computing each cycle (excluding the wait for the next one).

@@ -111,3 +111,11 @@
 (t-outcome finish-puck-at M9 FINAL yellow)
 (run)
 (t-expect-machine "wm unexplained yellow at T1: belief reset" M9 T1_2_3)
+
+;; Flashing S0 at a machine believed empty: an S0 must already be there.
+(reset)
+(t-holding S0)
+(t-outcome finish-puck-at M10 FINAL yellow-flashing)
+(run)
+(t-expect-machine "wm flash S0: an S0 was already loaded" M10 T2_3 S0)
+(t-expect-holding "wm flash S0: keeps S0" S0)

@@ -222,7 +222,12 @@ fn undefrule(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
             cx.remove_rule(r);
             Ok(Value::Void)
         }
-        None => Err(EvalError::other("no such defrule")),
+        None => {
+            let mut b: TextBuf<160> = TextBuf::new();
+            let _ = writeln!(b, "[PRNTUTIL1] Unable to find defrule {}.", cx.sym_text(name));
+            cx.write(router::WERROR, b.as_str());
+            Ok(Value::Void)
+        }
     }
 }
 

@@ -138,7 +138,7 @@ fn foreach(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
             break;
         }
     }
-    Ok(Value::Sym(SYM_FALSE))
+    Ok(Value::Void)
 }
 
 fn switch(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {

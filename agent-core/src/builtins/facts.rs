@@ -40,7 +40,7 @@ fn same_class(a: Value, b: Value) -> bool {
 
 impl Core<'_> {
     /// Checks one atom against a slot's type and allowed-value restrictions.
-    fn check_atom(&self, tmpl: u16, slot: u16, v: Value) -> Result<(), EvalError> {
+    pub(crate) fn check_atom(&self, tmpl: u16, slot: u16, v: Value) -> Result<(), EvalError> {
         let def = self.slot_def(tmpl, slot);
         if def.types != 0 && def.types & type_bit(v) == 0 {
             return Err(EvalError::new(EvalErrorKind::BadSlotValue { reason: "type restriction violated" }));
@@ -273,6 +273,8 @@ fn retract(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         let v = cx.arg(a, i);
         match cx.fact_arg(v) {
             Some(f) => cx.retract_fact(f),
+            // a stale fact address was retracted already: nothing to do (as CLIPS)
+            None if matches!(v, Value::Fact(_)) => {}
             None => {
                 let n = match v {
                     Value::Fact(r) => r.num as i64,

@@ -1,5 +1,451 @@
-//! Builtins: format (owned by the builtins helper; see /work/brief/engine-interfaces.md).
+//! Builtin `format`: C-style formatting as CLIPS 6.30 does it.
+//!
+//! `(format <router> <control> <arg>*)` returns the formatted string and prints it to
+//! the router unless the router is `nil`. Directives: `%d %o %x %c` (integers; floats
+//! are truncated), `%f %e %g` (floats; integers converted), `%s` (symbols and strings),
+//! `%n` newline, `%t` tab, `%r` carriage return, `%%`. A directive may carry `-` (left
+//! justify), a width (a leading `0` pads with zeros) and `.precision`; CLIPS rejects
+//! the other C flags (`+`, space, `#`) and length modifiers with `[IOFUN3]`.
 
-use super::Builtin;
+use core::fmt::Write;
 
-pub const FUNCS: &[Builtin] = &[];
+use super::math::{c_trunc_to_i64, T_LEXEME, T_NUMBER};
+use super::strings::Text;
+use super::{Args, Builtin, ANY, SYM_NIL, SYM_T};
+use crate::engine::Core;
+use crate::error::EvalError;
+use crate::host::router;
+use crate::value::{TextBuf, Value};
+
+pub const FUNCS: &[Builtin] = &[Builtin::eager("format", 2, ANY, format)];
+
+const TOO_LONG: EvalError = EvalError::other("format: result longer than 2048 bytes");
+const BAD_FLAG: EvalError =
+    EvalError::other("[IOFUN3] Invalid format flag specified in format function.");
+
+/// One parsed `%` directive.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Spec {
+    left: bool,
+    zero: bool,
+    width: usize,
+    precision: Option<usize>,
+    conv: u8,
+}
+
+/// Conversions that consume an argument.
+fn takes_arg(conv: u8) -> bool {
+    matches!(conv, b'd' | b'o' | b'x' | b'c' | b'f' | b'e' | b'g' | b's')
+}
+
+/// Parses the directive after a `%` at `ctl[at..]`; returns it and the bytes used.
+/// `None` when the control string ends inside the directive (CLIPS then prints the
+/// rest literally).
+fn parse_spec(ctl: &[u8]) -> Option<(Spec, usize)> {
+    let mut i = 0;
+    let mut spec = Spec {
+        left: false,
+        zero: false,
+        width: 0,
+        precision: None,
+        conv: 0,
+    };
+    if ctl.first() == Some(&b'-') {
+        spec.left = true;
+        i += 1;
+    }
+    if ctl.get(i) == Some(&b'0') {
+        spec.zero = true;
+    }
+    while let Some(d) = ctl.get(i).filter(|b| b.is_ascii_digit()) {
+        spec.width = spec
+            .width
+            .saturating_mul(10)
+            .saturating_add((d - b'0') as usize);
+        i += 1;
+    }
+    if ctl.get(i) == Some(&b'.') {
+        i += 1;
+        let mut p = 0usize;
+        while let Some(d) = ctl.get(i).filter(|b| b.is_ascii_digit()) {
+            p = p.saturating_mul(10).saturating_add((d - b'0') as usize);
+            i += 1;
+        }
+        spec.precision = Some(p);
+    }
+    spec.conv = *ctl.get(i)?;
+    Some((spec, i + 1))
+}
+
+/// Number of arguments the control string asks for.
+fn count_args(ctl: &str) -> usize {
+    let b = ctl.as_bytes();
+    let (mut i, mut n) = (0, 0);
+    while i < b.len() {
+        if b[i] == b'%' {
+            match parse_spec(&b[i + 1..]) {
+                Some((spec, used)) => {
+                    // CLIPS counts every directive but %n %t %r %% (even invalid ones)
+                    n += usize::from(!matches!(spec.conv, b'n' | b't' | b'r' | b'%'));
+                    i += 1 + used;
+                }
+                None => break,
+            }
+        } else {
+            i += 1;
+        }
+    }
+    n
+}
+
+/// CLIPS's arity message names the exact count the control string needs.
+fn arity_error(expected: usize) -> EvalError {
+    const MSGS: [&str; 11] = [
+        "[ARGACCES4] Function format expected exactly 2 argument(s)",
+        "[ARGACCES4] Function format expected exactly 3 argument(s)",
+        "[ARGACCES4] Function format expected exactly 4 argument(s)",
+        "[ARGACCES4] Function format expected exactly 5 argument(s)",
+        "[ARGACCES4] Function format expected exactly 6 argument(s)",
+        "[ARGACCES4] Function format expected exactly 7 argument(s)",
+        "[ARGACCES4] Function format expected exactly 8 argument(s)",
+        "[ARGACCES4] Function format expected exactly 9 argument(s)",
+        "[ARGACCES4] Function format expected exactly 10 argument(s)",
+        "[ARGACCES4] Function format expected exactly 11 argument(s)",
+        "[ARGACCES4] Function format expected exactly 12 argument(s)",
+    ];
+    EvalError::other(
+        MSGS.get(expected.wrapping_sub(2))
+            .copied()
+            .unwrap_or("[ARGACCES4] Function format called with the wrong number of arguments."),
+    )
+}
+
+fn format(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let dest = match cx.arg(a, 0) {
+        Value::Sym(s) | Value::Str(s) => s,
+        _ => return Err(EvalError::wrong_type("format", 1, T_LEXEME)),
+    };
+    let ctl = match cx.arg(a, 1) {
+        Value::Str(s) => s,
+        _ => return Err(EvalError::wrong_type("format", 2, "string")),
+    };
+    let control = super::strings::copy_text(cx, ctl)?;
+    let needed = count_args(control.as_str());
+    if needed + 2 != a.len as usize {
+        return Err(arity_error(needed + 2));
+    }
+    let mut out = Text::new();
+    render(cx, a, control.as_str(), &mut out)?;
+    if dest != SYM_NIL {
+        if dest == SYM_T {
+            cx.write(router::STDOUT, out.as_str());
+        } else {
+            let name: TextBuf<64> = {
+                let mut n = TextBuf::new();
+                let _ = n.write_str(cx.sym_text(dest));
+                n
+            };
+            cx.write(name.as_str(), out.as_str());
+        }
+    }
+    Ok(cx.make_string(out.as_str())?)
+}
+
+/// Expands `ctl` with the call's arguments (from argument 3 on) into `out`.
+fn render(cx: &Core<'_>, a: Args, ctl: &str, out: &mut Text) -> Result<(), EvalError> {
+    let b = ctl.as_bytes();
+    let (mut i, mut lit, mut next_arg) = (0, 0, 2usize);
+    while i < b.len() {
+        if b[i] != b'%' {
+            i += 1;
+            continue;
+        }
+        out.write_str(&ctl[lit..i]).map_err(|_| TOO_LONG)?;
+        let (spec, used) = match parse_spec(&b[i + 1..]) {
+            Some(p) => p,
+            None => {
+                lit = i;
+                break;
+            }
+        };
+        i += 1 + used;
+        lit = i;
+        match spec.conv {
+            b'n' => out.write_char('\n'),
+            b't' => out.write_char('\t'),
+            b'r' => out.write_char('\r'),
+            b'%' if used == 1 => out.write_char('%'),
+            c if takes_arg(c) => {
+                let v = cx.arg(a, next_arg);
+                let argno = next_arg as u8 + 1;
+                next_arg += 1;
+                directive(cx, spec, v, argno, out)?;
+                Ok(())
+            }
+            _ => return Err(BAD_FLAG),
+        }
+        .map_err(|_| TOO_LONG)?;
+    }
+    out.write_str(&ctl[lit..]).map_err(|_| TOO_LONG)
+}
+
+/// Formats one argument-consuming directive.
+fn directive(
+    cx: &Core<'_>,
+    spec: Spec,
+    v: Value,
+    argno: u8,
+    out: &mut Text,
+) -> Result<(), EvalError> {
+    let mut body: TextBuf<400> = TextBuf::new();
+    let numeric = spec.conv != b's' && spec.conv != b'c';
+    match spec.conv {
+        b's' => {
+            let s = match v {
+                Value::Sym(s) | Value::Str(s) => cx.sym_text(s),
+                _ => return Err(EvalError::wrong_type("format", argno, "symbol or string")),
+            };
+            let s = match spec.precision {
+                // C counts bytes; cut at a character boundary so the text stays UTF-8.
+                Some(p) if p < s.len() => &s[..floor_boundary(s, p)],
+                _ => s,
+            };
+            body.write_str(s).map_err(|_| TOO_LONG)?;
+        }
+        b'd' | b'o' | b'x' | b'c' => {
+            let n = match v {
+                Value::Int(i) => i,
+                Value::Float(f) => c_trunc_to_i64(f),
+                _ => return Err(EvalError::wrong_type("format", argno, T_NUMBER)),
+            };
+            write_integer(&mut body, spec, n).map_err(|_| TOO_LONG)?;
+        }
+        _ => {
+            let x = match v {
+                Value::Int(i) => i as f64,
+                Value::Float(f) => f,
+                _ => return Err(EvalError::wrong_type("format", argno, T_NUMBER)),
+            };
+            write_float_spec(&mut body, spec, x).map_err(|_| TOO_LONG)?;
+        }
+    }
+    pad(out, spec, body.as_str(), numeric).map_err(|_| TOO_LONG)
+}
+
+fn floor_boundary(s: &str, mut at: usize) -> usize {
+    while at > 0 && !s.is_char_boundary(at) {
+        at -= 1;
+    }
+    at
+}
+
+/// Writes `body` justified in the directive's width (zero padding goes after the sign).
+fn pad(out: &mut dyn Write, spec: Spec, body: &str, numeric: bool) -> core::fmt::Result {
+    let len = body.chars().count();
+    let fill = spec.width.saturating_sub(len);
+    if spec.left {
+        out.write_str(body)?;
+        return spaces(out, fill, ' ');
+    }
+    let finite = !body.contains("inf") && !body.contains("nan");
+    if spec.zero && numeric && finite {
+        let (sign, digits) = match body.as_bytes().first() {
+            Some(b'-') => body.split_at(1),
+            _ => ("", body),
+        };
+        out.write_str(sign)?;
+        spaces(out, fill, '0')?;
+        return out.write_str(digits);
+    }
+    spaces(out, fill, ' ')?;
+    out.write_str(body)
+}
+
+fn spaces(out: &mut dyn Write, n: usize, c: char) -> core::fmt::Result {
+    for _ in 0..n {
+        out.write_char(c)?;
+    }
+    Ok(())
+}
+
+/// `%d %o %x %c` of a 64-bit integer (octal and hex of negatives as two's complement).
+fn write_integer(out: &mut dyn Write, spec: Spec, n: i64) -> core::fmt::Result {
+    let min_digits = spec.precision.unwrap_or(1);
+    match spec.conv {
+        b'c' => out.write_char(char::from(n as u8)),
+        b'o' => write!(out, "{:01$o}", n as u64, min_digits),
+        b'x' => write!(out, "{:01$x}", n as u64, min_digits),
+        _ => {
+            if n < 0 {
+                out.write_char('-')?;
+            }
+            write!(out, "{:01$}", n.unsigned_abs(), min_digits)
+        }
+    }
+}
+
+/// `%f %e %g` of a double with C's rules (default precision 6).
+fn write_float_spec(out: &mut dyn Write, spec: Spec, x: f64) -> core::fmt::Result {
+    if !x.is_finite() {
+        let s = if x.is_nan() { "nan" } else { "inf" };
+        if x.is_sign_negative() && !x.is_nan() {
+            out.write_char('-')?;
+        }
+        return out.write_str(s);
+    }
+    let p = spec.precision.unwrap_or(6);
+    match spec.conv {
+        b'f' => write!(out, "{x:.p$}"),
+        b'e' => write_exp(out, x, p),
+        _ => write_general(out, x, p),
+    }
+}
+
+/// C's `%.pe`: mantissa, `e`, sign, at least two exponent digits.
+fn write_exp(out: &mut dyn Write, x: f64, p: usize) -> core::fmt::Result {
+    let mut t: TextBuf<400> = TextBuf::new();
+    write!(t, "{x:.p$e}")?;
+    let (mant, exp) = t.as_str().split_once('e').unwrap_or((t.as_str(), "0"));
+    let e: i32 = exp.parse().map_err(|_| core::fmt::Error)?;
+    let sign = if e < 0 { '-' } else { '+' };
+    write!(out, "{mant}e{sign}{:02}", e.unsigned_abs())
+}
+
+/// C's `%.pg`: `%e` or `%f` by the exponent, trailing zeros removed.
+fn write_general(out: &mut dyn Write, x: f64, p: usize) -> core::fmt::Result {
+    let p = p.max(1);
+    let mut t: TextBuf<400> = TextBuf::new();
+    write!(t, "{x:.0$e}", p - 1)?;
+    let exp: i32 = t
+        .as_str()
+        .split_once('e')
+        .map_or(Ok(0), |(_, e)| e.parse())
+        .map_err(|_| core::fmt::Error)?;
+    t.clear();
+    if exp < -4 || exp >= p as i32 {
+        write_exp(&mut t, x, p - 1)?;
+        let s = t.as_str();
+        let (mant, e) = s.split_once('e').unwrap_or((s, ""));
+        out.write_str(strip_zeros(mant))?;
+        out.write_char('e')?;
+        out.write_str(e)
+    } else {
+        let decimals = (p as i32 - 1 - exp).max(0) as usize;
+        write!(t, "{x:.decimals$}")?;
+        out.write_str(strip_zeros(t.as_str()))
+    }
+}
+
+/// Drops trailing fractional zeros and a then-trailing point.
+fn strip_zeros(s: &str) -> &str {
+    if !s.contains('.') {
+        return s;
+    }
+    s.trim_end_matches('0').trim_end_matches('.')
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::testutil::{eval_to_string, run_program};
+
+    /// `(format nil ...)` results, checked against CLIPS 6.30's output (046 and probes).
+    #[test]
+    fn directives_match_clips() {
+        for (e, want) in [
+            ("(format nil \"%d-%d\" 1 2)", "\"1-2\""),
+            ("(format nil \"no args\")", "\"no args\""),
+            (
+                "(format nil \"[%5d] [%-5d] [%05d]\" 42 42 42)",
+                "\"[   42] [42   ] [00042]\"",
+            ),
+            (
+                "(format nil \"%f %e %g\" 3.14159 31415.9 0.0001)",
+                "\"3.141590 3.141590e+04 0.0001\"",
+            ),
+            (
+                "(format nil \"%.2f %8.3f %-8.1f|\" 2.71828 2.71828 2.71828)",
+                "\"2.72    2.718 2.7     |\"",
+            ),
+            ("(format nil \"%s and %s\" abc \"def\")", "\"abc and def\""),
+            (
+                "(format nil \"[%10s] [%-10s]\" right left)",
+                "\"[     right] [left      ]\"",
+            ),
+            ("(format nil \"100%%\")", "\"100%\""),
+            ("(format nil \"%d\" 3.7)", "\"3\""),
+            ("(format nil \"%g %g\" 100000000.0 1.5)", "\"1e+08 1.5\""),
+            (
+                "(format nil \"%g %g %g\" 1e-5 123456789.0 0.5)",
+                "\"1e-05 1.23457e+08 0.5\"",
+            ),
+            ("(format nil \"%10.3e|\" 12345.678)", "\" 1.235e+04|\""),
+            ("(format nil \"%c\" 65)", "\"A\""),
+            ("(format nil \"%5.1s|\" abc)", "\"    a|\""),
+            ("(format nil \"%e\" 0.0)", "\"0.000000e+00\""),
+            ("(format nil \"abc%\")", "\"abc%\""),
+            ("(format nil \"%5d|%-5s|\" -3 \"ab\")", "\"   -3|ab   |\""),
+            (
+                "(format nil \"%f\" 1e20)",
+                "\"100000000000000000000.000000\"",
+            ),
+            ("(format nil \"%.0f %.0f %.0f\" 0.5 1.5 2.5)", "\"0 2 2\""),
+            (
+                "(format nil \"%08.2f|%-8d|%08d|%-08d|%.3d\" -3.14159 5 -42 7 5)",
+                "\"-0003.14|5       |-0000042|7       |005\"",
+            ),
+            (
+                "(format nil \"%.0e|%.0g|%.10g\" 12345.0 0.0001234 0.1)",
+                "\"1e+04|0.0001|0.1\"",
+            ),
+            (
+                "(format nil \"%5c|%x|%o\" 97 -1 -1)",
+                "\"    a|ffffffffffffffff|1777777777777777777777\"",
+            ),
+            (
+                "(format nil \"%f %e %g\" 0.0 -0.0 -0.0)",
+                "\"0.000000 -0.000000e+00 -0\"",
+            ),
+            ("(format nil \"%d\" 1e30)", "\"-9223372036854775808\""),
+            ("(format nil \"%.20f\" 0.1)", "\"0.10000000000000000555\""),
+            (
+                "(format nil \"%g %g %g\" 123456.5 1234567.0 100000.0)",
+                "\"123456 1.23457e+06 100000\"",
+            ),
+            ("(format nil \"%.3g\" 0.00001234)", "\"1.23e-05\""),
+            ("(format nil \"%f %e\" 2 2)", "\"2.000000 2.000000e+00\""),
+            ("(format nil \"%s\" \"a\\\"b\")", "\"a\"b\""),
+        ] {
+            assert_eq!(eval_to_string(e), want, "{e}");
+        }
+    }
+
+    #[test]
+    fn escapes_and_errors() {
+        assert_eq!(eval_to_string("(format nil \"%t%r|\")"), "\"\t\r|\"");
+        let out = eval_to_string("(format nil \"%d %s\" 3.7 12)");
+        assert!(
+            out.contains("#4") && out.contains("symbol or string"),
+            "{out}"
+        );
+        assert!(
+            eval_to_string("(format nil \"%d\" a)").contains("#3 to be of type integer or float")
+        );
+        assert!(
+            eval_to_string("(format nil \"%s%s\" a)").contains("expected exactly 4 argument(s)")
+        );
+        assert!(
+            eval_to_string("(format nil \"%d\" 3 4)").contains("expected exactly 3 argument(s)")
+        );
+        assert!(eval_to_string("(format nil \"%X\" 3)").contains("[IOFUN3]"));
+        assert!(eval_to_string("(format nil \"%+d\" 3)").contains("[IOFUN3]"));
+    }
+
+    #[test]
+    fn router_t_prints_and_returns() {
+        let out = run_program("(format t \"%d items%n\" 5)\n(format nil \"quiet\")\n");
+        // run_program prints results like the CLIPS prompt: the string follows the text
+        assert_eq!(out, "5 items\n\"5 items\n\"\n\"quiet\"\n");
+        let out = run_program("(defrule fmt (p ?x ?y) => (format t \"point (%d, %d)%n\" ?x ?y))\n(assert (p 1 2))\n(run)\n");
+        assert!(out.contains("point (1, 2)\n"), "{out}");
+    }
+}

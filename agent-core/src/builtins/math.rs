@@ -1,5 +1,437 @@
-//! Builtins: math (owned by the builtins helper; see /work/brief/engine-interfaces.md).
+//! Builtins: integer and float arithmetic beyond `+ - * /` (div mod abs min max ** sqrt
+//! round integer float exp log log10, trigonometry), as CLIPS 6.30 computes them.
+//!
+//! Also the argument helpers the other builtin modules of this helper share: they
+//! produce CLIPS's own `[ARGACCES5]` type names ("integer or float", "symbol, string,
+//! or instance name", ...).
 
-use super::Builtin;
+use super::{Args, Builtin, Num, ANY};
+use crate::engine::Core;
+use crate::error::{EvalError, EvalErrorKind};
+use crate::value::{SymId, Value};
 
-pub const FUNCS: &[Builtin] = &[];
+pub const FUNCS: &[Builtin] = &[
+    Builtin::eager("div", 2, ANY, div),
+    Builtin::eager("mod", 2, 2, modulo),
+    Builtin::eager("abs", 1, 1, abs),
+    Builtin::eager("min", 2, ANY, min),
+    Builtin::eager("max", 2, ANY, max),
+    Builtin::eager("**", 2, 2, pow),
+    Builtin::eager("sqrt", 1, 1, sqrt),
+    Builtin::eager("round", 1, 1, round),
+    Builtin::eager("integer", 1, 1, integer),
+    Builtin::eager("float", 1, 1, float),
+    Builtin::eager("exp", 1, 1, exp),
+    Builtin::eager("log", 1, 1, log),
+    Builtin::eager("log10", 1, 1, log10),
+    Builtin::eager("pi", 0, 0, pi),
+    Builtin::eager("sin", 1, 1, sin),
+    Builtin::eager("cos", 1, 1, cos),
+    Builtin::eager("tan", 1, 1, tan),
+    Builtin::eager("asin", 1, 1, asin),
+    Builtin::eager("acos", 1, 1, acos),
+    Builtin::eager("atan", 1, 1, atan),
+    Builtin::eager("deg-rad", 1, 1, deg_rad),
+    Builtin::eager("rad-deg", 1, 1, rad_deg),
+];
+
+// ---- argument helpers shared by this helper's modules ----
+
+/// CLIPS's type names in `[ARGACCES5]` messages.
+pub(super) const T_NUMBER: &str = "integer or float";
+pub(super) const T_INTEGER: &str = "integer";
+pub(super) const T_LEXEME: &str = "symbol, string, or instance name";
+pub(super) const T_MULTI: &str = "multifield";
+pub(super) const T_ATOM: &str = "string, instance name, symbol, float, or integer";
+
+/// A number argument (1-based position `i + 1` in the error).
+pub(super) fn num_arg(
+    cx: &Core<'_>,
+    a: Args,
+    i: usize,
+    func: &'static str,
+) -> Result<Num, EvalError> {
+    match cx.arg(a, i) {
+        Value::Int(x) => Ok(Num::Int(x)),
+        Value::Float(x) => Ok(Num::Float(x)),
+        _ => Err(EvalError::wrong_type(func, i as u8 + 1, T_NUMBER)),
+    }
+}
+
+/// A strict integer argument: CLIPS rejects `1.0` where an index is expected.
+pub(super) fn int_arg(
+    cx: &Core<'_>,
+    a: Args,
+    i: usize,
+    func: &'static str,
+) -> Result<i64, EvalError> {
+    match cx.arg(a, i) {
+        Value::Int(x) => Ok(x),
+        _ => Err(EvalError::wrong_type(func, i as u8 + 1, T_INTEGER)),
+    }
+}
+
+/// A symbol or string argument.
+pub(super) fn lexeme_arg(
+    cx: &Core<'_>,
+    a: Args,
+    i: usize,
+    func: &'static str,
+) -> Result<SymId, EvalError> {
+    match cx.arg(a, i) {
+        Value::Sym(s) | Value::Str(s) => Ok(s),
+        _ => Err(EvalError::wrong_type(func, i as u8 + 1, T_LEXEME)),
+    }
+}
+
+/// `[EMATHFUN1]` for the named function.
+pub(super) fn domain_error(func: &'static str) -> EvalError {
+    EvalError::other(match func {
+        "sqrt" => "[EMATHFUN1] Domain error for sqrt function.",
+        "**" => "[EMATHFUN1] Domain error for ** function.",
+        "log" => "[EMATHFUN1] Domain error for log function.",
+        "log10" => "[EMATHFUN1] Domain error for log10 function.",
+        "asin" => "[EMATHFUN1] Domain error for asin function.",
+        "acos" => "[EMATHFUN1] Domain error for acos function.",
+        _ => "[EMATHFUN1] Domain error.",
+    })
+}
+
+/// `[EMATHFUN2]`: CLIPS's message for `log`/`log10` of zero.
+fn overflow_error(func: &'static str) -> EvalError {
+    EvalError::other(match func {
+        "log" => "[EMATHFUN2] Argument overflow for log function.",
+        _ => "[EMATHFUN2] Argument overflow for log10 function.",
+    })
+}
+
+fn divide_by_zero(func: &'static str) -> EvalError {
+    EvalError::new(EvalErrorKind::DivideByZero { func })
+}
+
+/// C's `(long long) x` on x86: out-of-range values and NaN become `i64::MIN` (the
+/// "integer indefinite" of both SSE `cvttsd2si` and x87 `fistp`), which is what CLIPS
+/// prints for `(integer 1e30)`. Rust's `as` would saturate instead.
+pub(super) fn c_trunc_to_i64(x: f64) -> i64 {
+    const LIMIT: f64 = 9_223_372_036_854_775_808.0; // 2^63
+    if x.is_nan() || !(-LIMIT..LIMIT).contains(&x) {
+        i64::MIN
+    } else {
+        x as i64
+    }
+}
+
+fn float_of(cx: &Core<'_>, a: Args, i: usize, func: &'static str) -> Result<f64, EvalError> {
+    Ok(num_arg(cx, a, i, func)?.as_f64())
+}
+
+// ---- the functions ----
+
+/// Integer division, truncating toward zero; float arguments are truncated first.
+fn div(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let as_int = |n: Num| match n {
+        Num::Int(i) => i,
+        Num::Float(f) => c_trunc_to_i64(f),
+    };
+    let mut acc = as_int(num_arg(cx, a, 0, "div")?);
+    for i in 1..a.len as usize {
+        let d = as_int(num_arg(cx, a, i, "div")?);
+        if d == 0 {
+            return Err(divide_by_zero("div"));
+        }
+        acc = acc.wrapping_div(d);
+    }
+    Ok(Value::Int(acc))
+}
+
+/// Remainder with C's sign rule (`(mod -7 3)` is -1); with a float argument
+/// `a - trunc(a / b) * b`.
+fn modulo(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let x = num_arg(cx, a, 0, "mod")?;
+    let y = num_arg(cx, a, 1, "mod")?;
+    Ok(match (x, y) {
+        (_, Num::Int(0)) => return Err(divide_by_zero("mod")),
+        (_, Num::Float(d)) if d == 0.0 => return Err(divide_by_zero("mod")),
+        (Num::Int(p), Num::Int(q)) => Value::Int(p.wrapping_rem(q)),
+        (p, q) => {
+            let (p, q) = (p.as_f64(), q.as_f64());
+            Value::Float(p - libm::trunc(p / q) * q)
+        }
+    })
+}
+
+fn abs(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    Ok(match num_arg(cx, a, 0, "abs")? {
+        Num::Int(i) => Value::Int(i.wrapping_abs()),
+        // CLIPS negates only values below zero, so -0.0 stays -0.0.
+        Num::Float(f) => Value::Float(if f < 0.0 { -f } else { f }),
+    })
+}
+
+/// Numeric order of two CLIPS numbers (ints compared exactly).
+fn less(p: Num, q: Num) -> bool {
+    match (p, q) {
+        (Num::Int(x), Num::Int(y)) => x < y,
+        (x, y) => x.as_f64() < y.as_f64(),
+    }
+}
+
+/// `min`/`max` return the winning argument with its own type; on ties the earlier one.
+fn extremum(
+    cx: &Core<'_>,
+    a: Args,
+    func: &'static str,
+    better: fn(Num, Num) -> bool,
+) -> Result<Value, EvalError> {
+    let mut best = num_arg(cx, a, 0, func)?;
+    for i in 1..a.len as usize {
+        let x = num_arg(cx, a, i, func)?;
+        if better(x, best) {
+            best = x;
+        }
+    }
+    Ok(best.value())
+}
+
+fn min(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    extremum(cx, a, "min", less)
+}
+
+fn max(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    extremum(cx, a, "max", |x, best| less(best, x))
+}
+
+/// `**` always yields a float; `0 ** y<=0` and a negative base with a fractional
+/// exponent are domain errors in CLIPS.
+fn pow(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let x = float_of(cx, a, 0, "**")?;
+    let y = float_of(cx, a, 1, "**")?;
+    if (x == 0.0 && y <= 0.0) || (x < 0.0 && libm::trunc(y) != y) {
+        return Err(domain_error("**"));
+    }
+    Ok(Value::Float(libm::pow(x, y)))
+}
+
+fn sqrt(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let x = float_of(cx, a, 0, "sqrt")?;
+    if x < 0.0 {
+        return Err(domain_error("sqrt"));
+    }
+    Ok(Value::Float(libm::sqrt(x)))
+}
+
+/// CLIPS 6.30 rounds halves toward negative infinity: `ceil(x - 0.5)`.
+fn round(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    Ok(Value::Int(match num_arg(cx, a, 0, "round")? {
+        Num::Int(i) => i,
+        Num::Float(f) => c_trunc_to_i64(libm::ceil(f - 0.5)),
+    }))
+}
+
+fn integer(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    Ok(Value::Int(match num_arg(cx, a, 0, "integer")? {
+        Num::Int(i) => i,
+        Num::Float(f) => c_trunc_to_i64(f),
+    }))
+}
+
+fn float(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    Ok(Value::Float(float_of(cx, a, 0, "float")?))
+}
+
+fn exp(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    Ok(Value::Float(libm::exp(float_of(cx, a, 0, "exp")?)))
+}
+
+/// Shared checks of `log`/`log10`: zero overflows, negatives are outside the domain.
+fn logarithm(
+    cx: &Core<'_>,
+    a: Args,
+    func: &'static str,
+    f: fn(f64) -> f64,
+) -> Result<Value, EvalError> {
+    let x = float_of(cx, a, 0, func)?;
+    if x < 0.0 {
+        return Err(domain_error(func));
+    }
+    if x == 0.0 {
+        return Err(overflow_error(func));
+    }
+    Ok(Value::Float(f(x)))
+}
+
+fn log(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    logarithm(cx, a, "log", libm::log)
+}
+
+fn log10(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    logarithm(cx, a, "log10", libm::log10)
+}
+
+fn pi(_cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
+    Ok(Value::Float(core::f64::consts::PI))
+}
+
+fn unary(
+    cx: &Core<'_>,
+    a: Args,
+    func: &'static str,
+    f: fn(f64) -> f64,
+) -> Result<Value, EvalError> {
+    Ok(Value::Float(f(float_of(cx, a, 0, func)?)))
+}
+
+fn sin(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    unary(cx, a, "sin", libm::sin)
+}
+fn cos(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    unary(cx, a, "cos", libm::cos)
+}
+fn tan(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    unary(cx, a, "tan", libm::tan)
+}
+fn atan(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    unary(cx, a, "atan", libm::atan)
+}
+
+/// `asin`/`acos` are defined on [-1, 1] only.
+fn arc(cx: &Core<'_>, a: Args, func: &'static str, f: fn(f64) -> f64) -> Result<Value, EvalError> {
+    let x = float_of(cx, a, 0, func)?;
+    if !(-1.0..=1.0).contains(&x) {
+        return Err(domain_error(func));
+    }
+    Ok(Value::Float(f(x)))
+}
+
+fn asin(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    arc(cx, a, "asin", libm::asin)
+}
+fn acos(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    arc(cx, a, "acos", libm::acos)
+}
+
+fn deg_rad(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    unary(cx, a, "deg-rad", |d| d * core::f64::consts::PI / 180.0)
+}
+fn rad_deg(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    unary(cx, a, "rad-deg", |r| r * 180.0 / core::f64::consts::PI)
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::testutil::eval_to_string;
+
+    /// Parses a printed float and checks it against `want` within `tol`.
+    fn close(expr: &str, want: f64, tol: f64) {
+        let got = eval_to_string(expr);
+        let x: f64 = got
+            .parse()
+            .unwrap_or_else(|_| panic!("{expr} printed {got:?}"));
+        assert!((x - want).abs() <= tol, "{expr} printed {got}, want {want}");
+    }
+
+    #[test]
+    fn div_truncates_toward_zero() {
+        // values from CLIPS 6.30 (tests/clips/047)
+        assert_eq!(eval_to_string("(div 7 2)"), "3");
+        assert_eq!(eval_to_string("(div -7 2)"), "-3");
+        assert_eq!(eval_to_string("(div 20 3 2)"), "3");
+        assert_eq!(eval_to_string("(div 7 2.5)"), "3");
+        assert_eq!(eval_to_string("(div 7.9 2.9)"), "3");
+        assert!(
+            eval_to_string("(div 7 0)").contains("divide")
+                || eval_to_string("(div 7 0)").contains("zero")
+        );
+        assert!(eval_to_string("(div 7 0.5)").contains("zero"));
+    }
+
+    #[test]
+    fn mod_follows_c() {
+        assert_eq!(eval_to_string("(mod 7 3)"), "1");
+        assert_eq!(eval_to_string("(mod -7 3)"), "-1");
+        assert_eq!(eval_to_string("(mod 7 -3)"), "1");
+        assert_eq!(eval_to_string("(mod 7.5 2)"), "1.5");
+        assert_eq!(eval_to_string("(mod 7 2.5)"), "2.0");
+        assert_eq!(eval_to_string("(mod -7.5 2)"), "-1.5");
+        assert_eq!(eval_to_string("(mod 7.0 2)"), "1.0");
+        assert!(eval_to_string("(mod 7 0.0)").contains("zero"));
+    }
+
+    #[test]
+    fn abs_min_max_keep_types() {
+        assert_eq!(eval_to_string("(abs -5)"), "5");
+        assert_eq!(eval_to_string("(abs -2.5)"), "2.5");
+        assert_eq!(eval_to_string("(abs -0.0)"), "-0.0");
+        assert_eq!(eval_to_string("(min 3 1 2)"), "1");
+        assert_eq!(eval_to_string("(max 3 1 2)"), "3");
+        assert_eq!(eval_to_string("(min 1 2.0)"), "1");
+        assert_eq!(eval_to_string("(max 1 2.0)"), "2.0");
+        assert_eq!(eval_to_string("(max 3 2.0)"), "3");
+        assert_eq!(eval_to_string("(min 2.0 2)"), "2.0");
+        assert_eq!(eval_to_string("(max 2 2.0)"), "2");
+        assert_eq!(eval_to_string("(max -1 -1.5 3 3.0)"), "3");
+    }
+
+    #[test]
+    fn wrong_types_name_the_argument() {
+        let out = eval_to_string("(max 1 (create$ x))");
+        assert!(
+            out.contains("max") && out.contains("#2") && out.contains("integer or float"),
+            "{out}"
+        );
+    }
+
+    #[test]
+    fn powers_and_roots_are_floats() {
+        assert_eq!(eval_to_string("(** 2 10)"), "1024.0");
+        assert_eq!(eval_to_string("(** -8 2)"), "64.0");
+        assert_eq!(eval_to_string("(** 2.0 -1)"), "0.5");
+        close("(** 2 0.5)", core::f64::consts::SQRT_2, 1e-12);
+        assert_eq!(eval_to_string("(sqrt 16)"), "4.0");
+        assert_eq!(eval_to_string("(sqrt 2.25)"), "1.5");
+        close("(sqrt 2)", core::f64::consts::SQRT_2, 1e-12);
+        assert!(eval_to_string("(sqrt -1)").contains("Domain error for sqrt"));
+        assert!(eval_to_string("(** 0 0)").contains("Domain error for **"));
+        assert!(eval_to_string("(** -2 0.5)").contains("Domain error for **"));
+    }
+
+    #[test]
+    fn round_halves_down_integer_truncates() {
+        for (e, want) in [
+            ("(round 2.5)", "2"),
+            ("(round 3.5)", "3"),
+            ("(round -2.5)", "-3"),
+            ("(round 0.5)", "0"),
+            ("(round -0.5)", "-1"),
+            ("(round 2.6)", "3"),
+            ("(round -2.6)", "-3"),
+            ("(round -0.4)", "0"),
+            ("(round 7)", "7"),
+            ("(integer 3.9)", "3"),
+            ("(integer -3.9)", "-3"),
+            ("(integer 1e30)", "-9223372036854775808"),
+            ("(float 3)", "3.0"),
+            ("(float 2.5)", "2.5"),
+        ] {
+            assert_eq!(eval_to_string(e), want, "{e}");
+        }
+    }
+
+    #[test]
+    fn exp_log_trig() {
+        close("(exp 1)", core::f64::consts::E, 1e-12);
+        assert_eq!(eval_to_string("(exp 0)"), "1.0");
+        close("(log 10)", core::f64::consts::LN_10, 1e-12);
+        assert_eq!(eval_to_string("(log10 1000)"), "3.0");
+        assert!(eval_to_string("(log 0)").contains("Argument overflow for log function"));
+        assert!(eval_to_string("(log10 -1)").contains("Domain error for log10"));
+        close("(pi)", core::f64::consts::PI, 1e-12);
+        close("(sin 1)", 0.841470984807897, 1e-12);
+        close("(cos 1)", 0.54030230586814, 1e-12);
+        close("(atan 1)", core::f64::consts::FRAC_PI_4, 1e-12);
+        close("(deg-rad 180)", core::f64::consts::PI, 1e-12);
+        close("(rad-deg 1)", 57.2957795130823, 1e-9);
+        assert_eq!(eval_to_string("(acos 1)"), "0.0");
+        assert!(eval_to_string("(acos 2)").contains("Domain error for acos"));
+    }
+}

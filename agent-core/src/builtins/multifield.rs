@@ -1,5 +1,405 @@
-//! Builtins: multifield (owned by the builtins helper; see /work/brief/engine-interfaces.md).
+//! Builtins: multifield functions (create$ length$ nth$ member$ subsetp insert$ delete$
+//! replace$ first$ rest$ subseq$ implode$ explode$).
+//!
+//! Results are new multifields in scratch; inputs are read before the result is built
+//! (their elements stay below the result, so copying element by element is safe).
 
-use super::Builtin;
+use super::math::{int_arg, T_MULTI};
+use super::strings::{scan_field, Text};
+use super::{Args, Builtin, ANY, SYM_FALSE, SYM_NIL};
+use crate::engine::Core;
+use crate::error::EvalError;
+use crate::lexer::Lexer;
+use crate::print::View;
+use crate::value::{MfSpan, Value};
 
-pub const FUNCS: &[Builtin] = &[];
+pub const FUNCS: &[Builtin] = &[
+    Builtin::eager("create$", 0, ANY, create),
+    Builtin::eager("length$", 1, 1, length),
+    Builtin::eager("nth$", 2, 2, nth),
+    Builtin::eager("member$", 2, 2, member),
+    Builtin::eager("subsetp", 2, 2, subsetp),
+    Builtin::eager("insert$", 3, ANY, insert),
+    Builtin::eager("delete$", 3, 3, delete),
+    Builtin::eager("replace$", 4, ANY, replace),
+    Builtin::eager("first$", 1, 1, first),
+    Builtin::eager("rest$", 1, 1, rest),
+    Builtin::eager("subseq$", 3, 3, subseq),
+    Builtin::eager("implode$", 1, 1, implode),
+    Builtin::eager("explode$", 1, 1, explode),
+];
+
+fn multi_arg(cx: &Core<'_>, a: Args, i: usize, func: &'static str) -> Result<MfSpan, EvalError> {
+    match cx.arg(a, i) {
+        Value::Multi(m) => Ok(m),
+        _ => Err(EvalError::wrong_type(func, i as u8 + 1, T_MULTI)),
+    }
+}
+
+/// Appends `v` to the multifield being built, splicing a multifield's elements.
+fn push_flat(cx: &mut Core<'_>, v: Value) -> Result<(), EvalError> {
+    match v {
+        Value::Multi(m) => {
+            for k in 0..m.len as usize {
+                let item = cx.mf_item(m, k);
+                cx.multi_push(item)?;
+            }
+        }
+        _ => cx.multi_push(v)?,
+    }
+    Ok(())
+}
+
+/// Appends elements `from..to` (0-based, exclusive) of `m`.
+fn push_range(cx: &mut Core<'_>, m: MfSpan, from: usize, to: usize) -> Result<(), EvalError> {
+    for k in from..to {
+        let item = cx.mf_item(m, k);
+        cx.multi_push(item)?;
+    }
+    Ok(())
+}
+
+/// A multifield holding elements `from..to` of `m` (a sub-span: no copy needed).
+fn slice(m: MfSpan, from: usize, to: usize) -> Value {
+    Value::Multi(MfSpan {
+        start: m.start + from as u16,
+        len: to.saturating_sub(from) as u16,
+    })
+}
+
+fn create(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let start = cx.multi_begin();
+    for i in 0..a.len as usize {
+        let v = cx.arg(a, i);
+        push_flat(cx, v)?;
+    }
+    Ok(cx.multi_finish(start))
+}
+
+/// Elements of a multifield; for a symbol or string CLIPS answers its length in bytes.
+fn length(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    Ok(Value::Int(match cx.arg(a, 0) {
+        Value::Multi(m) => m.len as i64,
+        Value::Sym(s) | Value::Str(s) => cx.sym_text(s).len() as i64,
+        _ => {
+            return Err(EvalError::wrong_type(
+                "length$",
+                1,
+                "multifield, symbol, or string",
+            ))
+        }
+    }))
+}
+
+/// `(nth$ i m)`: element `i` (1-based) or `nil` when out of range.
+fn nth(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let i = int_arg(cx, a, 0, "nth$")?;
+    let m = multi_arg(cx, a, 1, "nth$")?;
+    Ok(if i >= 1 && i <= m.len as i64 {
+        cx.mf_item(m, i as usize - 1)
+    } else {
+        Value::Sym(SYM_NIL)
+    })
+}
+
+/// Position of `needle`'s elements as a contiguous run inside `hay`, 0-based.
+fn find_run(cx: &Core<'_>, needle: MfSpan, hay: MfSpan) -> Option<usize> {
+    let (n, h) = (needle.len as usize, hay.len as usize);
+    (0..=h.checked_sub(n)?)
+        .find(|&at| (0..n).all(|k| cx.mf_item(needle, k).same(cx.mf_item(hay, at + k))))
+}
+
+/// `(member$ x m)`: 1-based index of the first element `eq` to `x`, or FALSE. A
+/// multifield `x` of two or more elements is searched as a run and answered with its
+/// `(start end)`; CLIPS answers an empty one with `(1 0)`.
+fn member(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let hay = multi_arg(cx, a, 1, "member$")?;
+    let found = match cx.arg(a, 0) {
+        Value::Multi(n) if n.len == 1 => find_run(cx, n, hay).map(|at| (at, 1)),
+        Value::Multi(n) => find_run(cx, n, hay).map(|at| (at, n.len as usize)),
+        x => (0..hay.len as usize)
+            .find(|&k| cx.mf_item(hay, k).same(x))
+            .map(|at| (at, 1)),
+    };
+    let single = !matches!(cx.arg(a, 0), Value::Multi(n) if n.len != 1);
+    Ok(match found {
+        None => Value::Sym(SYM_FALSE),
+        Some((at, _)) if single => Value::Int(at as i64 + 1),
+        Some((at, n)) => {
+            cx.make_multi(&[Value::Int(at as i64 + 1), Value::Int((at + n) as i64)])?
+        }
+    })
+}
+
+/// `(subsetp a b)`: every element of `a` occurs in `b` (`eq` comparison).
+fn subsetp(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let sub = multi_arg(cx, a, 0, "subsetp")?;
+    let sup = multi_arg(cx, a, 1, "subsetp")?;
+    let all = (0..sub.len as usize)
+        .all(|i| (0..sup.len as usize).any(|k| cx.mf_item(sub, i).same(cx.mf_item(sup, k))));
+    Ok(Core::bool_value(all))
+}
+
+/// `[MULTIFUN1]` messages. The text names the function, so each one is spelled out.
+fn index_error(func: &'static str, range: bool) -> EvalError {
+    EvalError::other(match (func, range) {
+        ("insert$", _) => "[MULTIFUN1] Multifield index out of range in function insert$.",
+        ("delete$", false) => "[MULTIFUN1] Multifield index out of range in function delete$.",
+        ("delete$", true) => "[MULTIFUN1] Multifield index range out of range in function delete$.",
+        (_, false) => "[MULTIFUN1] Multifield index out of range in function replace$.",
+        (_, true) => "[MULTIFUN1] Multifield index range out of range in function replace$.",
+    })
+}
+
+/// Checks a `delete$`/`replace$` range `s..e` (1-based, inclusive) against `len`.
+fn checked_range(
+    func: &'static str,
+    s: i64,
+    e: i64,
+    len: usize,
+) -> Result<(usize, usize), EvalError> {
+    if s < 1 || e > len as i64 || s > e {
+        return Err(index_error(func, s != e));
+    }
+    Ok((s as usize - 1, e as usize))
+}
+
+/// `(insert$ m i v...)`: values (multifields spliced) before position `i`; an index past
+/// the end appends, below 1 is an error.
+fn insert(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let m = multi_arg(cx, a, 0, "insert$")?;
+    let i = int_arg(cx, a, 1, "insert$")?;
+    if i < 1 {
+        return Err(index_error("insert$", false));
+    }
+    let at = (i as usize - 1).min(m.len as usize);
+    let start = cx.multi_begin();
+    push_range(cx, m, 0, at)?;
+    for k in 2..a.len as usize {
+        let v = cx.arg(a, k);
+        push_flat(cx, v)?;
+    }
+    push_range(cx, m, at, m.len as usize)?;
+    Ok(cx.multi_finish(start))
+}
+
+fn delete(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let m = multi_arg(cx, a, 0, "delete$")?;
+    let s = int_arg(cx, a, 1, "delete$")?;
+    let e = int_arg(cx, a, 2, "delete$")?;
+    let (from, to) = checked_range("delete$", s, e, m.len as usize)?;
+    let start = cx.multi_begin();
+    push_range(cx, m, 0, from)?;
+    push_range(cx, m, to, m.len as usize)?;
+    Ok(cx.multi_finish(start))
+}
+
+fn replace(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let m = multi_arg(cx, a, 0, "replace$")?;
+    let s = int_arg(cx, a, 1, "replace$")?;
+    let e = int_arg(cx, a, 2, "replace$")?;
+    let (from, to) = checked_range("replace$", s, e, m.len as usize)?;
+    let start = cx.multi_begin();
+    push_range(cx, m, 0, from)?;
+    for k in 3..a.len as usize {
+        let v = cx.arg(a, k);
+        push_flat(cx, v)?;
+    }
+    push_range(cx, m, to, m.len as usize)?;
+    Ok(cx.multi_finish(start))
+}
+
+fn first(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let m = multi_arg(cx, a, 0, "first$")?;
+    Ok(slice(m, 0, (m.len as usize).min(1)))
+}
+
+fn rest(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let m = multi_arg(cx, a, 0, "rest$")?;
+    let from = (m.len as usize).min(1);
+    Ok(slice(m, from, m.len as usize))
+}
+
+/// `(subseq$ m s e)`: indices clamped to the multifield; an empty range gives `()`.
+fn subseq(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let m = multi_arg(cx, a, 0, "subseq$")?;
+    let s = int_arg(cx, a, 1, "subseq$")?.max(1);
+    let e = int_arg(cx, a, 2, "subseq$")?.min(m.len as i64);
+    Ok(if s > e {
+        slice(m, 0, 0)
+    } else {
+        slice(m, s as usize - 1, e as usize)
+    })
+}
+
+/// Read-only printing view of the engine's storage.
+fn view<'v>(cx: &'v Core<'_>) -> View<'v> {
+    View {
+        values: cx.values,
+        scratch: cx.scratch,
+        sym_entries: cx.sym_entries,
+        sym_bytes: cx.sym_bytes,
+        templates: cx.templates,
+        slots: cx.slots,
+        facts: cx.facts,
+    }
+}
+
+/// `(implode$ m)`: elements as CLIPS prints them (strings in quotes, inner quotes not
+/// escaped), separated by single spaces, as one string.
+fn implode(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let m = multi_arg(cx, a, 0, "implode$")?;
+    let mut b = Text::new();
+    view(cx)
+        .write_flat(&mut b, Value::Multi(m), true)
+        .map_err(|_| EvalError::other("implode$: result longer than 2048 bytes"))?;
+    Ok(cx.make_string(b.as_str())?)
+}
+
+/// `(explode$ s)`: the fields of a string as CLIPS's scanner reads them.
+fn explode(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let s = match cx.arg(a, 0) {
+        Value::Str(s) => s,
+        _ => return Err(EvalError::wrong_type("explode$", 1, "string")),
+    };
+    let text = super::strings::copy_text(cx, s)?;
+    let mut lx = Lexer::new(text.as_str());
+    let start = cx.multi_begin();
+    while let Some(v) = scan_field(cx, &mut lx)? {
+        cx.multi_push(v)?;
+    }
+    Ok(cx.multi_finish(start))
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::testutil::{eval_to_string, run_program};
+
+    fn check(cases: &[(&str, &str)]) {
+        for (e, want) in cases {
+            assert_eq!(eval_to_string(e), *want, "{e}");
+        }
+    }
+
+    #[test]
+    fn create_length_nth() {
+        // expected values as printed by CLIPS 6.30 (tests/clips/053 and probes)
+        check(&[
+            ("(create$ a b c)", "(a b c)"),
+            ("(create$ 1 (create$ 2 3) 4)", "(1 2 3 4)"),
+            ("(create$)", "()"),
+            ("(create$ (create$))", "()"),
+            ("(create$ a \"b\" 1.0)", "(a \"b\" 1.0)"),
+            ("(length$ (create$ a b c))", "3"),
+            ("(length$ (create$))", "0"),
+            ("(length$ a)", "1"),
+            ("(length$ \"abc\")", "3"),
+            ("(length$ \"\u{e4}b\")", "3"),
+            ("(nth$ 2 (create$ a b c))", "b"),
+            ("(nth$ 1 (create$ a))", "a"),
+            ("(nth$ 5 (create$ a b c))", "nil"),
+            ("(nth$ 0 (create$ a))", "nil"),
+            ("(nth$ -1 (create$ a))", "nil"),
+        ]);
+        assert!(eval_to_string("(length$ 5)").contains("multifield, symbol, or string"));
+        assert!(eval_to_string("(nth$ (float 1) (create$ a))").contains("#1 to be of type integer"));
+    }
+
+    #[test]
+    fn member_and_subsetp() {
+        check(&[
+            ("(member$ b (create$ a b c))", "2"),
+            ("(member$ z (create$ a b c))", "FALSE"),
+            ("(member$ 1 (create$ 1.0 1))", "2"),
+            ("(member$ (create$ b c) (create$ a b c d))", "(2 3)"),
+            ("(member$ (create$ c b) (create$ a b c d))", "FALSE"),
+            ("(member$ (create$ a) (create$ a))", "1"),
+            ("(member$ (create$) (create$ a))", "(1 0)"),
+            ("(subsetp (create$ a c) (create$ a b c))", "TRUE"),
+            ("(subsetp (create$ a d) (create$ a b c))", "FALSE"),
+            ("(subsetp (create$) (create$ a))", "TRUE"),
+            ("(subsetp (create$ a a) (create$ a))", "TRUE"),
+            ("(subsetp (create$ 1) (create$ 1.0))", "FALSE"),
+        ]);
+        assert!(eval_to_string("(member$ a (sym-cat b))").contains("#2 to be of type multifield"));
+    }
+
+    #[test]
+    fn insert_delete_replace() {
+        // tests/clips/054 and probes
+        check(&[
+            ("(insert$ (create$ a b c) 2 x)", "(a x b c)"),
+            ("(insert$ (create$ a b c) 1 x y)", "(x y a b c)"),
+            ("(insert$ (create$ a b c) 4 (create$ x y))", "(a b c x y)"),
+            ("(insert$ (create$) 1 a)", "(a)"),
+            ("(insert$ (create$ a b) 4 x)", "(a b x)"),
+            ("(insert$ (create$ a b) 2 (create$ x y) z)", "(a x y z b)"),
+            ("(delete$ (create$ a b c d) 2 3)", "(a d)"),
+            ("(delete$ (create$ a b c) 1 1)", "(b c)"),
+            ("(delete$ (create$ a b c) 1 3)", "()"),
+            ("(replace$ (create$ a b c d) 2 3 x)", "(a x d)"),
+            ("(replace$ (create$ a b c) 1 1 x y z)", "(x y z b c)"),
+            ("(replace$ (create$ a b c) 3 3 (create$))", "(a b)"),
+            (
+                "(replace$ (create$ a b c) 2 2 (create$ x y) z)",
+                "(a x y z c)",
+            ),
+        ]);
+        assert!(eval_to_string("(insert$ (create$ a b) 0 x)").contains("[MULTIFUN1]"));
+        assert!(eval_to_string("(delete$ (create$ a b) 3 3)").contains("[MULTIFUN1]"));
+        assert!(eval_to_string("(delete$ (create$ a b) 2 1)").contains("[MULTIFUN1]"));
+        assert!(eval_to_string("(replace$ (create$ a b) 0 1 x)").contains("[MULTIFUN1]"));
+    }
+
+    #[test]
+    fn first_rest_subseq() {
+        check(&[
+            ("(first$ (create$ x y z))", "(x)"),
+            ("(first$ (create$))", "()"),
+            ("(rest$ (create$ x y z))", "(y z)"),
+            ("(rest$ (create$ x))", "()"),
+            ("(rest$ (create$))", "()"),
+            ("(subseq$ (create$ a b c d e) 2 4)", "(b c d)"),
+            ("(subseq$ (create$ a b c) 3 1)", "()"),
+            ("(subseq$ (create$ a b c) 2 9)", "(b c)"),
+            ("(subseq$ (create$ a b c) 0 2)", "(a b)"),
+            ("(subseq$ (create$ a b c) -1 2)", "(a b)"),
+            ("(subseq$ (create$ a b c) 2 2)", "(b)"),
+        ]);
+    }
+
+    #[test]
+    fn implode_explode() {
+        // tests/clips/055, 085
+        check(&[
+            ("(implode$ (create$ a b c))", "\"a b c\""),
+            (
+                "(implode$ (create$ \"str\" 1 2.5 sym))",
+                "\"\"str\" 1 2.5 sym\"",
+            ),
+            ("(implode$ (create$))", "\"\""),
+            ("(implode$ (create$ 1.0 \"a b\"))", "\"1.0 \"a b\"\""),
+            ("(explode$ \"a b c\")", "(a b c)"),
+            (
+                "(explode$ \"1 2.5 \\\"quoted text\\\" sym\")",
+                "(1 2.5 \"quoted text\" sym)",
+            ),
+            ("(explode$ \"\")", "()"),
+            ("(explode$ \"   spaced    out   \")", "(spaced out)"),
+            ("(length$ (explode$ \"x y z\"))", "3"),
+            ("(nth$ 2 (explode$ \"10 20 30\"))", "20"),
+            ("(integerp (nth$ 1 (explode$ \"7 eight\")))", "TRUE"),
+            ("(explode$ \"a (b) c\")", "(a \"(\" b \")\" c)"),
+            ("(explode$ \"a ?x $?y c\")", "(a \"?x\" \"$?y\" c)"),
+            ("(explode$ \"a & b | ~c\")", "(a \"&\" b \"|\" \"~\" c)"),
+            ("(explode$ \"1e3 +5 .5\")", "(1000.0 5 0.5)"),
+            ("(explode$ \"a;comment b\")", "(a)"),
+        ]);
+        assert!(eval_to_string("(explode$ abc)").contains("#1 to be of type string"));
+        let out = run_program("(printout t (explode$ \"x \\\"open\") crlf)\n");
+        assert!(
+            out.contains("[SCANNER1]") && out.contains("(x open)") || out.contains("x open"),
+            "{out}"
+        );
+    }
+}

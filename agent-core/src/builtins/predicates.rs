@@ -1,5 +1,96 @@
-//! Builtins: predicates (owned by the builtins helper; see /work/brief/engine-interfaces.md).
+//! Builtins: type predicates (numberp integerp floatp symbolp stringp lexemep
+//! multifieldp) and the integer predicates evenp / oddp.
 
-use super::Builtin;
+use super::math::int_arg;
+use super::{Args, Builtin};
+use crate::engine::Core;
+use crate::error::EvalError;
+use crate::value::Value;
 
-pub const FUNCS: &[Builtin] = &[];
+pub const FUNCS: &[Builtin] = &[
+    Builtin::eager("numberp", 1, 1, numberp),
+    Builtin::eager("integerp", 1, 1, integerp),
+    Builtin::eager("floatp", 1, 1, floatp),
+    Builtin::eager("symbolp", 1, 1, symbolp),
+    Builtin::eager("stringp", 1, 1, stringp),
+    Builtin::eager("lexemep", 1, 1, lexemep),
+    Builtin::eager("multifieldp", 1, 1, multifieldp),
+    Builtin::eager("evenp", 1, 1, evenp),
+    Builtin::eager("oddp", 1, 1, oddp),
+];
+
+fn test(cx: &Core<'_>, a: Args, pred: fn(Value) -> bool) -> Result<Value, EvalError> {
+    Ok(Core::bool_value(pred(cx.arg(a, 0))))
+}
+
+fn numberp(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    test(cx, a, |v| matches!(v, Value::Int(_) | Value::Float(_)))
+}
+fn integerp(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    test(cx, a, |v| matches!(v, Value::Int(_)))
+}
+fn floatp(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    test(cx, a, |v| matches!(v, Value::Float(_)))
+}
+fn symbolp(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    test(cx, a, |v| matches!(v, Value::Sym(_)))
+}
+fn stringp(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    test(cx, a, |v| matches!(v, Value::Str(_)))
+}
+fn lexemep(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    test(cx, a, |v| matches!(v, Value::Sym(_) | Value::Str(_)))
+}
+fn multifieldp(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    test(cx, a, |v| matches!(v, Value::Multi(_)))
+}
+
+/// `evenp`/`oddp` take integers only (CLIPS: "expected argument #1 to be of type integer").
+fn evenp(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    Ok(Core::bool_value(int_arg(cx, a, 0, "evenp")? % 2 == 0))
+}
+fn oddp(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    Ok(Core::bool_value(int_arg(cx, a, 0, "oddp")? % 2 != 0))
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::testutil::eval_to_string;
+
+    #[test]
+    fn type_predicates_match_clips() {
+        // expected values: tests/clips/051 as printed by CLIPS 6.30
+        for (e, want) in [
+            ("(numberp 1)", "TRUE"),
+            ("(numberp 1.5)", "TRUE"),
+            ("(numberp a)", "FALSE"),
+            ("(numberp \"1\")", "FALSE"),
+            ("(integerp 1)", "TRUE"),
+            ("(integerp 1.0)", "FALSE"),
+            ("(floatp 1.0)", "TRUE"),
+            ("(floatp 1)", "FALSE"),
+            ("(symbolp abc)", "TRUE"),
+            ("(symbolp \"abc\")", "FALSE"),
+            ("(symbolp TRUE)", "TRUE"),
+            ("(stringp \"abc\")", "TRUE"),
+            ("(stringp abc)", "FALSE"),
+            ("(lexemep abc)", "TRUE"),
+            ("(lexemep \"abc\")", "TRUE"),
+            ("(lexemep 3)", "FALSE"),
+            ("(multifieldp (create$ a))", "TRUE"),
+            ("(multifieldp (create$))", "TRUE"),
+            ("(multifieldp a)", "FALSE"),
+        ] {
+            assert_eq!(eval_to_string(e), want, "{e}");
+        }
+    }
+
+    #[test]
+    fn even_odd() {
+        assert_eq!(eval_to_string("(evenp 4)"), "TRUE");
+        assert_eq!(eval_to_string("(evenp -3)"), "FALSE");
+        assert_eq!(eval_to_string("(oddp -3)"), "TRUE");
+        assert_eq!(eval_to_string("(oddp 0)"), "FALSE");
+        assert!(eval_to_string("(evenp (float 2))").contains("integer"));
+    }
+}

@@ -1,5 +1,380 @@
-//! Builtins: queries (owned by the builtins helper; see /work/brief/engine-interfaces.md).
+//! Fact-set queries: any-factp find-fact find-all-facts do-for-fact do-for-all-facts.
+//!
+//! The parser hands over `((?v tmpl...)...)` as a `Nop` node whose children are one
+//! `Local` node per variable, each with `Sym` children naming its templates; then the
+//! query expression, then the actions. Tuples are visited as CLIPS 6.30 does: the first
+//! variable varies slowest; each variable walks its templates in the order written and,
+//! within one template, the facts in fact-index order. Facts retracted by the actions
+//! are skipped; facts asserted by them join the iteration (as in CLIPS).
 
-use super::Builtin;
+use super::{Builtin, ANY, SYM_FALSE};
+use crate::engine::Core;
+use crate::error::EvalError;
+use crate::value::{FactRef, Value, NONE};
 
-pub const FUNCS: &[Builtin] = &[];
+pub const FUNCS: &[Builtin] = &[
+    Builtin::query("any-factp", 2, 2, any_factp),
+    Builtin::query("find-fact", 2, 2, find_fact),
+    Builtin::query("find-all-facts", 2, 2, find_all_facts),
+    Builtin::query("do-for-fact", 2, ANY, do_for_fact),
+    Builtin::query("do-for-all-facts", 2, ANY, do_for_all_facts),
+];
+
+/// Most query variables in one fact-set query.
+const MAX_VARS: usize = 8;
+
+/// The parsed shape of one query call.
+struct Query {
+    /// `Local` nodes of the variables, in order.
+    vars: [u16; MAX_VARS],
+    nvars: usize,
+    /// The query expression and the first action (NONE when there are none).
+    test: u16,
+    actions: u16,
+}
+
+/// What to do with each tuple that satisfies the query.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Mode {
+    /// Stop at the first tuple (any-factp, find-fact, do-for-fact).
+    First,
+    /// Visit every tuple.
+    All,
+}
+
+/// Per-call iteration state: the current fact of each variable and the collector.
+struct Walk {
+    q: Query,
+    mode: Mode,
+    cursor: [FactRef; MAX_VARS],
+    /// find-all-facts/find-fact: append matching tuples to the multifield being built.
+    collect: bool,
+    /// do-for-*: evaluate the actions for matching tuples.
+    act: bool,
+    found: bool,
+    last: Value,
+}
+
+fn parse(cx: &Core<'_>, call: u16) -> Result<Query, EvalError> {
+    let decl = cx.exprs[call as usize].first;
+    let test = cx.exprs[decl as usize].next;
+    let actions = if test == NONE {
+        NONE
+    } else {
+        cx.exprs[test as usize].next
+    };
+    let mut q = Query {
+        vars: [NONE; MAX_VARS],
+        nvars: 0,
+        test,
+        actions,
+    };
+    let mut v = cx.exprs[decl as usize].first;
+    while v != NONE {
+        if q.nvars == MAX_VARS {
+            return Err(EvalError::other(
+                "fact-set query: more than 8 query variables",
+            ));
+        }
+        q.vars[q.nvars] = v;
+        q.nvars += 1;
+        v = cx.exprs[v as usize].next;
+    }
+    if test == NONE || q.nvars == 0 {
+        return Err(EvalError::other(
+            "fact-set query: missing query variables or query",
+        ));
+    }
+    Ok(q)
+}
+
+/// Does fact slot `f` belong to one of the templates listed under variable node `var`?
+fn fact_fits(cx: &Core<'_>, var: u16, f: u16) -> bool {
+    let tmpl = cx.facts[f as usize].tmpl;
+    let mut t = cx.exprs[var as usize].first;
+    while t != NONE {
+        if cx.find_template(cx.exprs[t as usize].data) == Some(tmpl) {
+            return true;
+        }
+        t = cx.exprs[t as usize].next;
+    }
+    false
+}
+
+/// The first live fact after fact number `after` (all facts when `None`) of template
+/// `tmpl`. Fact numbers grow along the list, so this resumes correctly even when the
+/// previous fact was retracted meanwhile.
+fn next_of_template(cx: &Core<'_>, tmpl: u16, after: Option<FactRef>) -> Option<u16> {
+    let mut f = match after {
+        // fast path: the previous fact is still linked, continue from its successor
+        Some(r) if cx.fact_alive(r) => cx.facts[r.slot as usize].next,
+        _ => cx.st.fact_head,
+    };
+    while f != NONE {
+        let fact = &cx.facts[f as usize];
+        let later = after.is_none_or(|r| fact.num > r.num);
+        if later && fact.tmpl == tmpl {
+            return Some(f);
+        }
+        f = fact.next;
+    }
+    None
+}
+
+/// Sets the frame slot of query variable `k` to fact slot `f`.
+fn bind(cx: &mut Core<'_>, w: &mut Walk, k: usize, f: u16) {
+    let r = cx.fact_ref(f);
+    w.cursor[k] = r;
+    let at = (cx.st.bp + cx.exprs[w.q.vars[k] as usize].data) as usize;
+    cx.stack[at] = Value::Fact(r);
+}
+
+/// Re-binds variables `0..k` (actions of an inner tuple may have bound other values
+/// to the same frame slots through nested queries).
+fn rebind_outer(cx: &mut Core<'_>, w: &Walk, k: usize) {
+    for (i, &var) in w.q.vars[..k].iter().enumerate() {
+        let at = (cx.st.bp + cx.exprs[var as usize].data) as usize;
+        cx.stack[at] = Value::Fact(w.cursor[i]);
+    }
+}
+
+/// Walks the tuples of variables `k..`; returns true to stop the whole walk.
+fn walk(cx: &mut Core<'_>, w: &mut Walk, k: usize) -> Result<bool, EvalError> {
+    let var = w.q.vars[k];
+    let mut tnode = cx.exprs[var as usize].first;
+    while tnode != NONE {
+        let tmpl = cx.find_template(cx.exprs[tnode as usize].data);
+        tnode = cx.exprs[tnode as usize].next;
+        let Some(tmpl) = tmpl else { continue };
+        let mut prev: Option<FactRef> = None;
+        while let Some(f) = next_of_template(cx, tmpl, prev) {
+            debug_assert!(fact_fits(cx, var, f));
+            rebind_outer(cx, w, k);
+            bind(cx, w, k, f);
+            prev = Some(w.cursor[k]);
+            let stop = if k + 1 < w.q.nvars {
+                walk(cx, w, k + 1)?
+            } else {
+                visit(cx, w)?
+            };
+            if stop || cx.st.returning || cx.st.breaking || cx.st.halt_now() {
+                return Ok(true);
+            }
+        }
+    }
+    Ok(false)
+}
+
+/// Tests the query for the bound tuple and acts on a match; true to stop.
+fn visit(cx: &mut Core<'_>, w: &mut Walk) -> Result<bool, EvalError> {
+    let mark = cx.st.scratch_top;
+    let ok = Core::is_true(cx.eval(w.q.test)?);
+    // the query's temporaries are dead; keep a collected result contiguous
+    release_scratch(cx, mark);
+    if !ok {
+        return Ok(false);
+    }
+    w.found = true;
+    if w.collect {
+        for i in 0..w.q.nvars {
+            cx.multi_push(Value::Fact(w.cursor[i]))?;
+        }
+    }
+    if w.act {
+        let mark = cx.st.scratch_top;
+        w.last = if w.q.actions == NONE {
+            Value::Sym(SYM_FALSE)
+        } else {
+            cx.eval_chain(w.q.actions)?
+        };
+        if w.mode == Mode::All {
+            release_scratch(cx, keep_value(mark, w.last));
+        }
+    }
+    Ok(w.mode == Mode::First)
+}
+
+/// Scratch mark that keeps a multifield result alive.
+fn keep_value(mark: u16, v: Value) -> u16 {
+    match v {
+        Value::Multi(m) => mark.max(m.start + m.len),
+        _ => mark,
+    }
+}
+
+/// Resets scratch to `mark` unless a variable (frame or global) still refers above it.
+fn release_scratch(cx: &mut Core<'_>, mark: u16) {
+    let mut keep = mark;
+    for v in cx.stack[..cx.st.sp as usize].iter() {
+        if let Value::Multi(m) = *v {
+            keep = keep.max(m.start + m.len);
+        }
+    }
+    for g in cx.globals[..cx.st.nglobals as usize].iter() {
+        if let Value::Multi(m) = g.value {
+            keep = keep.max(m.start + m.len);
+        }
+    }
+    if keep < cx.st.scratch_top {
+        cx.st.scratch_top = keep;
+    }
+}
+
+fn run(
+    cx: &mut Core<'_>,
+    call: u16,
+    mode: Mode,
+    collect: bool,
+    act: bool,
+) -> Result<Walk, EvalError> {
+    let q = parse(cx, call)?;
+    let mut w = Walk {
+        q,
+        mode,
+        cursor: [FactRef { slot: NONE, num: 0 }; MAX_VARS],
+        collect,
+        act,
+        found: false,
+        last: Value::Sym(SYM_FALSE),
+    };
+    walk(cx, &mut w, 0)?;
+    Ok(w)
+}
+
+fn any_factp(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
+    let w = run(cx, call, Mode::First, false, false)?;
+    Ok(Core::bool_value(w.found))
+}
+
+fn find_fact(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
+    let start = cx.multi_begin();
+    run(cx, call, Mode::First, true, false)?;
+    Ok(cx.multi_finish(start))
+}
+
+/// All matching tuples, flattened: `(<Fact-1> <Fact-2> <Fact-3> <Fact-2>)`.
+fn find_all_facts(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
+    let start = cx.multi_begin();
+    run(cx, call, Mode::All, true, false)?;
+    Ok(cx.multi_finish(start))
+}
+
+/// The value of the last action for the first matching tuple, FALSE without a match.
+fn do_for_fact(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
+    Ok(run(cx, call, Mode::First, false, true)?.last)
+}
+
+/// The value of the last action of the last matching tuple, FALSE without a match.
+fn do_for_all_facts(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
+    Ok(run(cx, call, Mode::All, false, true)?.last)
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use crate::testutil::run_program;
+
+    const MACHINES: &str = "(deftemplate machine (slot name) (slot state) (slot load (default 0)))
+(assert (machine (name m1) (state idle) (load 3)))
+(assert (machine (name m2) (state busy) (load 7)))
+(assert (machine (name m3) (state idle) (load 1)))
+";
+
+    /// Output lines of `queries` run after MACHINES (skipping the three assert results).
+    fn lines_after_setup(queries: &str) -> std::vec::Vec<std::string::String> {
+        let out = run_program(&std::format!("{MACHINES}{queries}"));
+        out.lines().skip(3).map(std::string::String::from).collect()
+    }
+
+    #[test]
+    fn any_find_and_find_all() {
+        // tests/clips/056 as printed by CLIPS 6.30
+        let got = lines_after_setup(
+            "(any-factp ((?m machine)) (eq ?m:state busy))
+(any-factp ((?m machine)) (eq ?m:state broken))
+(find-fact ((?m machine)) (eq ?m:state idle))
+(find-fact ((?m machine)) (> ?m:load 100))
+(find-all-facts ((?m machine)) (eq ?m:state idle))
+(find-all-facts ((?m machine)) TRUE)
+(length$ (find-all-facts ((?m machine)) (< ?m:load 5)))
+(any-factp ((?a machine) (?b machine)) (and (neq ?a ?b) (eq ?a:state ?b:state)))
+(find-all-facts ((?a machine) (?b machine)) (and (eq ?a:state idle) (eq ?b:state busy)))
+",
+        );
+        assert_eq!(
+            got,
+            [
+                "TRUE",
+                "FALSE",
+                "(<Fact-1>)",
+                "()",
+                "(<Fact-1> <Fact-3>)",
+                "(<Fact-1> <Fact-2> <Fact-3>)",
+                "2",
+                "TRUE",
+                "(<Fact-1> <Fact-2> <Fact-3> <Fact-2>)",
+            ]
+        );
+    }
+
+    #[test]
+    fn order_first_variable_slowest_templates_as_written() {
+        let out = run_program(
+            "(deftemplate a (slot x))
+(deftemplate b (slot y))
+(assert (a (x 1)) (b (y 2)) (a (x 3)) (b (y 4)))
+(do-for-all-facts ((?f b a)) TRUE (printout t ?f crlf) 8)
+(find-all-facts ((?f a) (?g b)) TRUE)
+(do-for-fact ((?f a b)) TRUE 7)
+(do-for-fact ((?f b a)) FALSE 8)
+(do-for-all-facts ((?f a)) TRUE)
+",
+        );
+        let want = "<Fact-4>
+<Fact-2>
+<Fact-4>
+<Fact-1>
+<Fact-3>
+8
+(<Fact-1> <Fact-2> <Fact-1> <Fact-4> <Fact-3> <Fact-2> <Fact-3> <Fact-4>)
+7
+FALSE
+FALSE
+";
+        assert_eq!(out, want);
+    }
+
+    #[test]
+    fn actions_may_retract_and_modify() {
+        // tests/clips/057: modify inside do-for-fact, retract inside do-for-all-facts
+        let out = run_program(
+            "(deftemplate task (slot id) (slot prio) (slot done (default no)))
+(assert (task (id t1) (prio 2)))
+(assert (task (id t2) (prio 5)))
+(assert (task (id t3) (prio 1)))
+(do-for-fact ((?t task)) (> ?t:prio 1) (printout t \"first match \" ?t:id crlf))
+(do-for-fact ((?t task)) (> ?t:prio 4) (modify ?t (done yes)))
+(do-for-all-facts ((?t task)) (eq ?t:done no) (retract ?t))
+(find-all-facts ((?t task)) TRUE)
+(do-for-all-facts ((?t task)) TRUE (printout t ?t:id \" \" ?t:done crlf))
+",
+        );
+        assert!(out.contains("first match t1\n"), "{out}");
+        assert!(out.contains("(<Fact-4>)\n"), "{out}");
+        assert!(out.ends_with("t2 yes\n"), "{out}");
+    }
+
+    #[test]
+    fn queries_in_rules_collect_multislots() {
+        let out = run_program(
+            "(deftemplate bag (multislot items))
+(assert (bag (items a b)) (bag (items c)))
+(defrule count => (bind ?n 0)
+  (do-for-all-facts ((?b bag)) (> (length$ ?b:items) 0) (bind ?n (+ ?n (length$ ?b:items))))
+  (printout t \"items \" ?n \" \" (find-all-facts ((?b bag)) (member$ c ?b:items)) crlf))
+(run)
+",
+        );
+        assert!(out.contains("items 3 (<Fact-2>)\n"), "{out}");
+    }
+}

@@ -1,5 +1,336 @@
-//! Builtins: strings (owned by the builtins helper; see /work/brief/engine-interfaces.md).
+//! Builtins: string functions (sym-cat str-length sub-string str-index upcase lowcase
+//! str-compare string-to-field), plus the field scanner `explode$` shares.
+//!
+//! Positions count characters (CLIPS 6.30 is UTF-8 aware in `str-length`,
+//! `sub-string` and `str-index`); `upcase`/`lowcase` change ASCII letters only, as
+//! C's `toupper` in the "C" locale does.
 
-use super::Builtin;
+use super::math::{int_arg, lexeme_arg, T_ATOM};
+use super::{Args, Builtin, SYM_FALSE};
+use crate::engine::Core;
+use crate::error::EvalError;
+use crate::host::router;
+use crate::lexer::{Lexer, Tok};
+use crate::value::{SymId, TextBuf, Value};
 
-pub const FUNCS: &[Builtin] = &[];
+pub const FUNCS: &[Builtin] = &[
+    Builtin::eager("sym-cat", 1, super::ANY, sym_cat),
+    Builtin::eager("str-length", 1, 1, str_length),
+    Builtin::eager("sub-string", 3, 3, sub_string),
+    Builtin::eager("str-index", 2, 2, str_index),
+    Builtin::eager("upcase", 1, 1, upcase),
+    Builtin::eager("lowcase", 1, 1, lowcase),
+    Builtin::eager("str-compare", 2, 3, str_compare),
+    Builtin::eager("string-to-field", 1, 1, string_to_field),
+];
+
+/// Longest text a string builtin builds (symbol texts longer than this are an error).
+pub(super) const TEXT_MAX: usize = 2048;
+pub(super) type Text = TextBuf<TEXT_MAX>;
+
+const TOO_LONG: EvalError = EvalError::other("string result longer than 2048 bytes");
+
+/// Copies a symbol's text out of the table, so the table can be written afterwards.
+pub(super) fn copy_text(cx: &Core<'_>, id: SymId) -> Result<Text, EvalError> {
+    let mut b = Text::new();
+    core::fmt::Write::write_str(&mut b, cx.sym_text(id)).map_err(|_| TOO_LONG)?;
+    Ok(b)
+}
+
+fn push_str(b: &mut Text, s: &str) -> Result<(), EvalError> {
+    core::fmt::Write::write_str(b, s).map_err(|_| TOO_LONG)
+}
+
+/// A value of the same kind (symbol or string) as `like`, with text `s`.
+fn same_kind(cx: &mut Core<'_>, like: Value, s: &str) -> Result<Value, EvalError> {
+    Ok(match like {
+        Value::Sym(_) => cx.make_symbol(s)?,
+        _ => cx.make_string(s)?,
+    })
+}
+
+/// Concatenates atoms as `str-cat` prints them; multifields are CLIPS's type error.
+pub(super) fn concat_args(cx: &Core<'_>, a: Args, func: &'static str) -> Result<Text, EvalError> {
+    let mut b = Text::new();
+    for i in 0..a.len as usize {
+        let v = cx.arg(a, i);
+        if v.is_multi() {
+            return Err(EvalError::wrong_type(func, i as u8 + 1, T_ATOM));
+        }
+        cx.write_plain(&mut b, v).map_err(|_| TOO_LONG)?;
+    }
+    Ok(b)
+}
+
+fn sym_cat(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let b = concat_args(cx, a, "sym-cat")?;
+    Ok(cx.make_symbol(b.as_str())?)
+}
+
+fn str_length(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let s = lexeme_arg(cx, a, 0, "str-length")?;
+    Ok(Value::Int(cx.sym_text(s).chars().count() as i64))
+}
+
+/// Byte offset of character `k` (0-based) of `s`, or `s.len()` past the end.
+fn char_offset(s: &str, k: usize) -> usize {
+    s.char_indices().nth(k).map_or(s.len(), |(i, _)| i)
+}
+
+/// `(sub-string start end s)`: 1-based inclusive character positions, clamped to the
+/// string; an empty range gives `""`.
+fn sub_string(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let start = int_arg(cx, a, 0, "sub-string")?;
+    let end = int_arg(cx, a, 1, "sub-string")?;
+    let s = lexeme_arg(cx, a, 2, "sub-string")?;
+    let text = copy_text(cx, s)?;
+    let t = text.as_str();
+    let nchars = t.chars().count() as i64;
+    let (from, to) = (start.max(1), end.min(nchars));
+    if from > to {
+        return Ok(cx.make_string("")?);
+    }
+    let (b0, b1) = (
+        char_offset(t, from as usize - 1),
+        char_offset(t, to as usize),
+    );
+    Ok(cx.make_string(&t[b0..b1])?)
+}
+
+/// `(str-index needle haystack)`: 1-based character position of the first occurrence,
+/// or FALSE. CLIPS answers an empty needle with one past the haystack's length.
+fn str_index(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let needle = lexeme_arg(cx, a, 0, "str-index")?;
+    let hay = lexeme_arg(cx, a, 1, "str-index")?;
+    let (n, h) = (cx.sym_text(needle), cx.sym_text(hay));
+    if n.is_empty() {
+        return Ok(Value::Int(h.chars().count() as i64 + 1));
+    }
+    Ok(match h.find(n) {
+        Some(at) => Value::Int(h[..at].chars().count() as i64 + 1),
+        None => Value::Sym(SYM_FALSE),
+    })
+}
+
+fn change_case(
+    cx: &mut Core<'_>,
+    a: Args,
+    func: &'static str,
+    upper: bool,
+) -> Result<Value, EvalError> {
+    let s = lexeme_arg(cx, a, 0, func)?;
+    let text = copy_text(cx, s)?;
+    let mut out = Text::new();
+    for ch in text.as_str().chars() {
+        let c = if upper {
+            ch.to_ascii_uppercase()
+        } else {
+            ch.to_ascii_lowercase()
+        };
+        let mut tmp = [0u8; 4];
+        push_str(&mut out, c.encode_utf8(&mut tmp))?;
+    }
+    let like = cx.arg(a, 0);
+    same_kind(cx, like, out.as_str())
+}
+
+fn upcase(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    change_case(cx, a, "upcase", true)
+}
+
+fn lowcase(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    change_case(cx, a, "lowcase", false)
+}
+
+/// `strcmp`/`strncmp` normalised to -1, 0, 1; a negative length compares everything
+/// (C converts it to a huge `size_t`).
+fn str_compare(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let x = lexeme_arg(cx, a, 0, "str-compare")?;
+    let y = lexeme_arg(cx, a, 1, "str-compare")?;
+    let limit = if a.len > 2 {
+        int_arg(cx, a, 2, "str-compare")?
+    } else {
+        -1
+    };
+    let (p, q) = (cx.sym_text(x).as_bytes(), cx.sym_text(y).as_bytes());
+    let (p, q) = if limit >= 0 {
+        let n = limit as usize;
+        (&p[..p.len().min(n)], &q[..q.len().min(n)])
+    } else {
+        (p, q)
+    };
+    Ok(Value::Int(match p.cmp(q) {
+        core::cmp::Ordering::Less => -1,
+        core::cmp::Ordering::Equal => 0,
+        core::cmp::Ordering::Greater => 1,
+    }))
+}
+
+/// The first field of a string as CLIPS's scanner reads it; an empty string gives the
+/// symbol `EOF`.
+fn string_to_field(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let s = lexeme_arg(cx, a, 0, "string-to-field")?;
+    let text = copy_text(cx, s)?;
+    let mut lx = Lexer::new(text.as_str());
+    match scan_field(cx, &mut lx)? {
+        Some(v) => Ok(v),
+        None => Ok(cx.make_symbol("EOF")?),
+    }
+}
+
+/// Reads the next field from `lx` as `explode$` and `string-to-field` see it: numbers,
+/// symbols and strings as themselves, every other token (parentheses, variables,
+/// connectives) as a string of its text. `None` at the end of the text. An unterminated
+/// string prints CLIPS's `[SCANNER1]` message and yields the rest of the text.
+pub(super) fn scan_field(
+    cx: &mut Core<'_>,
+    lx: &mut Lexer<'_>,
+) -> Result<Option<Value>, EvalError> {
+    let t = lx.next_token();
+    let src = lx.source();
+    Ok(Some(match t.tok {
+        Tok::Eof => return Ok(None),
+        Tok::Int(i) => Value::Int(i),
+        Tok::Float(f) => Value::Float(f),
+        Tok::Symbol(s) => cx.make_symbol(s)?,
+        Tok::Str(raw) => {
+            let body = unescape(raw)?;
+            cx.make_string(body.as_str())?
+        }
+        Tok::Bad if src[t.start..].starts_with('"') => {
+            cx.write(
+                router::WERROR,
+                "\n[SCANNER1] Encountered End-Of-File while scanning a string\n",
+            );
+            let body = unescape(&src[t.start + 1..t.end])?;
+            cx.make_string(body.as_str())?
+        }
+        _ => cx.make_string(&src[t.start..t.end])?,
+    }))
+}
+
+/// A string literal's contents with `\x` escapes resolved to `x`.
+fn unescape(raw: &str) -> Result<Text, EvalError> {
+    let mut b = Text::new();
+    let mut escaped = false;
+    for ch in raw.chars() {
+        if escaped || ch != '\\' {
+            let mut tmp = [0u8; 4];
+            push_str(&mut b, ch.encode_utf8(&mut tmp))?;
+            escaped = false;
+        } else {
+            escaped = true;
+        }
+    }
+    Ok(b)
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::testutil::{eval_to_string, run_program};
+
+    fn check(cases: &[(&str, &str)]) {
+        for (e, want) in cases {
+            assert_eq!(eval_to_string(e), *want, "{e}");
+        }
+    }
+
+    #[test]
+    fn sym_cat_and_lengths() {
+        // expected values as printed by CLIPS 6.30 (tests/clips/052, 085)
+        check(&[
+            ("(sym-cat a \"b\" 3)", "ab3"),
+            ("(sym-cat \"x\" 1.5)", "x1.5"),
+            ("(sym-cat 1.0 2)", "1.02"),
+            ("(symbolp (sym-cat \"has space\"))", "TRUE"),
+            ("(eq (sym-cat a b) ab)", "TRUE"),
+            ("(str-length \"hello\")", "5"),
+            ("(str-length \"\")", "0"),
+            ("(str-length abc)", "3"),
+            ("(str-length \"a\\\"b\")", "3"),
+            ("(str-length \"\u{e4}b\")", "2"),
+        ]);
+        let out = eval_to_string("(sym-cat (create$ a))");
+        assert!(
+            out.contains("sym-cat") && out.contains("#1") && out.contains("string, instance name"),
+            "{out}"
+        );
+        assert!(
+            eval_to_string("(str-length (create$ a))").contains("symbol, string, or instance name")
+        );
+    }
+
+    #[test]
+    fn sub_string_clamps() {
+        check(&[
+            ("(sub-string 2 4 \"abcdef\")", "\"bcd\""),
+            ("(sub-string 1 1 \"abc\")", "\"a\""),
+            ("(sub-string 3 10 \"abcdef\")", "\"cdef\""),
+            ("(sub-string 4 2 \"abcdef\")", "\"\""),
+            ("(sub-string 0 2 \"abc\")", "\"ab\""),
+            ("(sub-string -5 100 \"abc\")", "\"abc\""),
+            ("(sub-string 4 4 \"abc\")", "\"\""),
+            ("(sub-string 1 1 \"\u{e4}b\")", "\"\u{e4}\""),
+            ("(sub-string 1 2 sym)", "\"sy\""),
+        ]);
+        assert!(eval_to_string("(sub-string (float 1) 2 \"abc\")").contains("type integer"));
+    }
+
+    #[test]
+    fn str_index_positions() {
+        check(&[
+            ("(str-index \"cd\" \"abcdef\")", "3"),
+            ("(str-index \"z\" \"abcdef\")", "FALSE"),
+            ("(str-index \"a\" \"banana\")", "2"),
+            ("(str-index \"\" \"abc\")", "4"),
+            ("(str-index \"\" \"\")", "1"),
+            ("(str-index \"b\" \"\u{e4}b\")", "2"),
+        ]);
+    }
+
+    #[test]
+    fn case_changes_keep_the_type() {
+        check(&[
+            ("(upcase \"Hello World\")", "\"HELLO WORLD\""),
+            ("(upcase abc)", "ABC"),
+            ("(lowcase \"MiXeD\")", "\"mixed\""),
+            ("(lowcase XYZ)", "xyz"),
+            ("(upcase \"123 abc!\")", "\"123 ABC!\""),
+            ("(lowcase \"\")", "\"\""),
+            ("(upcase \"\u{e4}b\")", "\"\u{e4}B\""),
+        ]);
+    }
+
+    #[test]
+    fn str_compare_signs() {
+        check(&[
+            ("(str-compare \"a\" \"b\")", "-1"),
+            ("(str-compare \"b\" \"a\")", "1"),
+            ("(str-compare \"abc\" \"abc\")", "0"),
+            ("(str-compare \"a\" \"B\")", "1"),
+            ("(str-compare \"ab\" \"abc\")", "-1"),
+            ("(str-compare \"abc\" \"abd\" 2)", "0"),
+            ("(str-compare \"b\" \"abc\" 0)", "0"),
+            ("(str-compare \"b\" \"abc\" -1)", "1"),
+        ]);
+    }
+
+    #[test]
+    fn string_to_field_reads_one_token() {
+        check(&[
+            ("(string-to-field \"3.5 x\")", "3.5"),
+            ("(string-to-field \"abc\")", "abc"),
+            ("(string-to-field \"  12  \")", "12"),
+            ("(string-to-field \"\\\"q\\\"\")", "\"q\""),
+            ("(string-to-field \"\")", "EOF"),
+            ("(string-to-field \"(a b)\")", "\"(\""),
+            ("(string-to-field \"?x\")", "\"?x\""),
+        ]);
+        let out = run_program("(printout t (string-to-field \"\\\"open\") crlf)\n");
+        assert!(
+            out.contains("[SCANNER1] Encountered End-Of-File while scanning a string"),
+            "{out}"
+        );
+        assert!(out.contains("open\n"), "{out}");
+    }
+}

@@ -360,17 +360,23 @@ impl<'s> Parser<'s, '_, '_> {
         Ok(node)
     }
 
-    /// `(progn$ (?v list) body)`; `?v-index` is the next frame slot.
+    /// `(progn$ (?v list) body)` or `(foreach ?v list body)`; `?v-index` is the next
+    /// frame slot.
     fn parse_foreach(&mut self, name: &'static str) -> PResult<u16> {
         let node = self.builtin_call(name)?;
-        self.expect_lparen("'(' and a loop variable")?;
+        let paren = self.peek().tok == Tok::LParen;
+        if paren {
+            self.next();
+        }
         let vt = self.next();
         let vname = match vt.tok {
             Tok::SfVar(n) => n,
             _ => return Err(self.err(vt, "a loop variable")),
         };
         let list = self.parse_expr()?;
-        self.expect_rparen("')' after the list expression")?;
+        if paren {
+            self.expect_rparen("')' after the list expression")?;
+        }
         let s = self.new_local(vt, vname, false)?;
         // the index variable name is `<name>-index`, which lives in the source only as
         // a reference; register it by matching references later
@@ -496,6 +502,7 @@ impl<'s> Parser<'s, '_, '_> {
                     };
                     let sv = cap!(self, self.cx.push_expr(Expr::new(Op::SlotVal, 0, slot)))?;
                     let n = self.args_until_rparen(sv)?;
+                    self.check_literals(tmpl, slot, sv, st, "assert")?;
                     if !self.cx.slot_def(tmpl, slot).multi && n != 1 {
                         return Err(self.err(st, "exactly one value for a single-field slot"));
                     }
@@ -504,6 +511,28 @@ impl<'s> Parser<'s, '_, '_> {
                 _ => return Err(self.err(t, "'(' and a slot name")),
             }
         }
+    }
+
+    /// CLIPS rejects literal slot values that break a slot's restrictions at parse time.
+    fn check_literals(&mut self, tmpl: u16, slot: u16, sv: u16, at: Token<'s>, command: &'static str) -> PResult<()> {
+        let mut c = self.cx.exprs[sv as usize].first;
+        while c != NONE {
+            if matches!(self.cx.exprs[c as usize].op, Op::Int | Op::Float | Op::Sym | Op::Str) {
+                let v = self.cx.const_value(c);
+                if let Err(e) = self.cx.check_atom(tmpl, slot, v) {
+                    let types = matches!(
+                        e.kind,
+                        crate::error::EvalErrorKind::BadSlotValue { reason } if reason.starts_with("type")
+                    );
+                    let name = self.cx.slot_def(tmpl, slot).name;
+                    let mut err = self.err(at, "a slot value allowed by the slot's restrictions");
+                    err.detail = crate::error::LoadDetail::Constraint { command, types, slot: name };
+                    return Err(err);
+                }
+            }
+            c = self.cx.exprs[c as usize].next;
+        }
+        Ok(())
     }
 
     /// `(modify ?f (slot v...)...)`: slot values carry the slot *name* symbol.

@@ -5,7 +5,7 @@ use crate::engine::cap;
 use crate::error::Pool;
 use crate::expr::{loc, Expr, Op};
 use crate::lexer::{Tok, Token};
-use crate::rete::{AlphaNode, Join, JoinKind, MAX_MARKS, MAX_PATTERNS, THIS_PATTERN};
+use crate::rete::{AlphaNode, Join, JoinKind, EMPTY_PATH, MAX_MARKS, MAX_PATTERNS, PATH_LEN, THIS_PATTERN};
 use crate::rule::Rule;
 use crate::value::{SymId, Value, NONE};
 
@@ -143,7 +143,7 @@ impl<'s> Parser<'s, '_, '_> {
 
     /// One disjunct: LHS (with the current or-choices), RHS, then the network.
     fn rule_body(&mut self, name: SymId, b: &mut Build) -> PResult<u16> {
-        let mut salience = 0i32;
+        let mut salience = (0i32, NONE);
         // (declare (salience N))
         if self.peek().tok == Tok::LParen {
             let save = self.save();
@@ -187,12 +187,13 @@ impl<'s> Parser<'s, '_, '_> {
         self.build_rule(name, salience, b, rhs)
     }
 
-    fn declare(&mut self) -> PResult<i32> {
+    fn declare(&mut self) -> PResult<(i32, u16)> {
         let mut sal = 0;
+        let mut sal_expr = NONE;
         loop {
             let t = self.next();
             match t.tok {
-                Tok::RParen => return Ok(sal),
+                Tok::RParen => return Ok((sal, sal_expr)),
                 Tok::LParen => {
                     let kw = self.next();
                     match kw.tok {
@@ -201,6 +202,9 @@ impl<'s> Parser<'s, '_, '_> {
                             self.scope = Scope::Frame;
                             let e = self.parse_expr()?;
                             self.scope = save;
+                            if !matches!(self.cx.exprs[e as usize].op, Op::Int | Op::Float) {
+                                sal_expr = e;
+                            }
                             let v = self.cx.eval(e);
                             sal = match v {
                                 Ok(Value::Int(i)) if (-10000..=10000).contains(&i) => i as i32,
@@ -390,7 +394,17 @@ impl<'s> Parser<'s, '_, '_> {
             self.add_var(ft, fv, VarKind::Pat { pat: p, loc: loc::FACT, desc: NONE }, false)?;
         }
         self.scope = Scope::Lhs;
-        let mut pb = PatBuild { desc: NONE, dlast: NONE, atests: NONE, alast: NONE, jtests: NONE, jlast: NONE, marks: 0 };
+        let mut pb = PatBuild {
+            desc: NONE,
+            dlast: NONE,
+            atests: NONE,
+            alast: NONE,
+            jtests: NONE,
+            jlast: NONE,
+            marks: 0,
+            fields: [(0, NONE, false); MAX_FIELDS],
+            nfields: 0,
+        };
         if self.cx.templates[tmpl as usize].implied {
             self.multislot_fields(&mut pb, p, 0, nt)?;
         } else {
@@ -416,9 +430,11 @@ impl<'s> Parser<'s, '_, '_> {
                             if multi {
                                 return Err(self.err(st, "a single-field constraint for a single-field slot"));
                             }
-                            if let Some(e) = test {
-                                self.classify(&mut pb, p, e);
-                            }
+                            let at = match test {
+                                Some(e) => self.classify(&mut pb, p, e),
+                                None => NONE,
+                            };
+                            pb.record(loc::new(slot as u8, loc::SINGLE), at, false);
                             self.expect_rparen("')' closing the slot (one field in a single-field slot)")?;
                         }
                     }
@@ -458,9 +474,11 @@ impl<'s> Parser<'s, '_, '_> {
                     let (multi, test) = self.field(p, loc::new(slot, i), ps)?;
                     let el = cap!(self, self.cx.push_expr(Expr::new(Op::PatElem, u8::from(multi), i as u16)))?;
                     self.cx.append_child(ps, el);
-                    if let Some(e) = test {
-                        self.classify(pb, p, e);
-                    }
+                    let at = match test {
+                        Some(e) => self.classify(pb, p, e),
+                        None => NONE,
+                    };
+                    pb.record(loc::new(slot, i), at, multi);
                     multis += u8::from(multi);
                     i += 1;
                 }
@@ -482,18 +500,21 @@ impl<'s> Parser<'s, '_, '_> {
     }
 
     /// Puts a field test in the alpha node (if it needs only this pattern) or the join.
-    fn classify(&mut self, pb: &mut PatBuild, p: u8, e: u16) {
+    /// Returns the test if it went to the alpha node, else NONE.
+    fn classify(&mut self, pb: &mut PatBuild, p: u8, e: u16) -> u16 {
         if self.refs_earlier(e, p) {
             let (mut h, mut l) = (pb.jtests, pb.jlast);
             Self::chain_push(self, &mut h, &mut l, e);
             pb.jtests = h;
             pb.jlast = l;
+            NONE
         } else {
             self.retarget(e, p);
             let (mut h, mut l) = (pb.atests, pb.alast);
             Self::chain_push(self, &mut h, &mut l, e);
             pb.atests = h;
             pb.alast = l;
+            e
         }
     }
 
@@ -658,21 +679,143 @@ impl<'s> Parser<'s, '_, '_> {
             let c = cap(Pool::AlphaNodes, self.cx.alphas.len());
             return Err(self.cap_err(at, c));
         }
+        let (path_loc, path_test, plen) = self.pattern_path(tmpl, pb);
         self.cx.alphas[n] = AlphaNode {
             tmpl,
             desc: pb.desc,
             tests: pb.atests,
-            next_in_tmpl: self.cx.templates[tmpl as usize].alpha_head,
+            next_in_tmpl: NONE,
             succ: NONE,
             mem: NONE,
             mem_tail: NONE,
             nmarks: pb.marks,
             live: true,
+            path_loc,
+            path_test,
+            key: [0; PATH_LEN],
+            key_len: plen as u8,
         };
-        self.cx.templates[tmpl as usize].alpha_head = n as u16;
+        self.assign_trie_key(tmpl, n as u16);
+        self.insert_alpha_sorted(tmpl, n as u16);
         self.cx.st.nalpha += 1;
         self.cx.note_hw(Pool::AlphaNodes, n + 1);
         Ok(n as u16)
+    }
+
+    /// The pattern-network path of a pattern: its fields in slot order; trailing
+    /// untested single-field slots of a deftemplate pattern make no node (CLIPS
+    /// shares such patterns); an empty path gets one placeholder node.
+    fn pattern_path(&self, tmpl: u16, pb: &PatBuild) -> ([u16; PATH_LEN], [u16; PATH_LEN], usize) {
+        let mut f = pb.fields;
+        let nf = pb.nfields;
+        f[..nf].sort_unstable_by_key(|x| x.0);
+        let implied = self.cx.templates[tmpl as usize].implied;
+        let mut end = nf;
+        if !implied {
+            while end > 0 && f[end - 1].1 == NONE && loc::elem(f[end - 1].0) == loc::SINGLE {
+                end -= 1;
+            }
+        }
+        // single slots are one node each; a multislot's elements form one node
+        let mut locs = [0u16; PATH_LEN];
+        let mut tests = [0u16; PATH_LEN];
+        let mut len = 0;
+        let mut i = 0;
+        while i < end && len < PATH_LEN {
+            let slot = loc::slot(f[i].0);
+            if loc::elem(f[i].0) == loc::SINGLE {
+                locs[len] = f[i].0;
+                tests[len] = if f[i].1 == NONE { 0 } else { self.expr_hash(f[i].1) };
+                i += 1;
+            } else {
+                let mut h: u32 = 0x2545_f491;
+                while i < end && loc::slot(f[i].0) == slot {
+                    h = mix16(h, u32::from(f[i].2) + 2);
+                    h = mix16(h, if f[i].1 == NONE { 1 } else { self.expr_hash(f[i].1) as u32 });
+                    i += 1;
+                }
+                locs[len] = loc::new(slot, 0xFE);
+                tests[len] = (h ^ (h >> 16)) as u16;
+            }
+            len += 1;
+        }
+        if len == 0 {
+            locs[0] = EMPTY_PATH;
+            return (locs, tests, 1);
+        }
+        (locs, tests, len)
+    }
+
+    /// Gives each level of the new alpha node's path the id of the identical node of
+    /// an existing pattern (same prefix), or a new id.
+    fn assign_trie_key(&mut self, tmpl: u16, n: u16) {
+        let me = self.cx.alphas[n as usize];
+        let mut key = [0u16; PATH_LEN];
+        for lvl in 0..me.key_len as usize {
+            let mut id = 0;
+            let mut a = self.cx.templates[tmpl as usize].alpha_head;
+            while a != NONE {
+                let o = self.cx.alphas[a as usize];
+                if o.key_len as usize > lvl
+                    && o.key[..lvl] == key[..lvl]
+                    && o.path_loc[lvl] == me.path_loc[lvl]
+                    && o.path_test[lvl] == me.path_test[lvl]
+                {
+                    id = o.key[lvl];
+                    break;
+                }
+                a = o.next_in_tmpl;
+            }
+            if id == 0 {
+                self.cx.st.trie_ids = self.cx.st.trie_ids.wrapping_add(1).max(1);
+                id = self.cx.st.trie_ids;
+            }
+            key[lvl] = id;
+        }
+        self.cx.alphas[n as usize].key = key;
+    }
+
+    /// Structural hash of an expression tree (orders alpha nodes; never decides
+    /// sharing, which compares exactly).
+    fn expr_hash(&self, e: u16) -> u16 {
+        let x = self.cx.exprs[e as usize];
+        let mut h = mix16(0x9e37, x.op as u32);
+        h = mix16(h, x.aux as u32);
+        h = mix16(h, x.data as u32);
+        if matches!(x.op, Op::Int | Op::Float) {
+            let p = self.cx.exprs[e as usize + 1];
+            h = mix16(h, p.data as u32 | (p.first as u32) << 16);
+            h = mix16(h, p.next as u32);
+        } else if x.op != Op::PatVar {
+            let mut c = x.first;
+            while c != NONE {
+                h = mix16(h, self.expr_hash(c) as u32);
+                c = self.cx.exprs[c as usize].next;
+            }
+        }
+        ((h ^ (h >> 16)) as u16).max(2)
+    }
+
+    /// Keeps a template's alpha nodes in pattern-network order: depth first, newer
+    /// sibling nodes first, a pattern's own node before longer ones.
+    fn insert_alpha_sorted(&mut self, tmpl: u16, n: u16) {
+        let me = self.cx.alphas[n as usize];
+        let mut prev = NONE;
+        let mut a = self.cx.templates[tmpl as usize].alpha_head;
+        while a != NONE {
+            let o = self.cx.alphas[a as usize];
+            if key_before(&me.key[..me.key_len as usize], &o.key[..o.key_len as usize]) {
+                break;
+            }
+            prev = a;
+            a = o.next_in_tmpl;
+        }
+        self.cx.alphas[n as usize].next_in_tmpl = a;
+        if prev == NONE {
+            self.cx.templates[tmpl as usize].alpha_head = n;
+        } else {
+            self.cx.alphas[prev as usize].next_in_tmpl = n;
+        }
     }
 
     fn chain_eq(&self, mut a: u16, mut b: u16) -> bool {
@@ -705,7 +848,7 @@ impl<'s> Parser<'s, '_, '_> {
     }
 
     /// Creates the rule and its joins (the root token comes later, in `defrule`).
-    fn build_rule(&mut self, name: SymId, salience: i32, b: &Build, rhs: u16) -> PResult<u16> {
+    fn build_rule(&mut self, name: SymId, salience: (i32, u16), b: &Build, rhs: u16) -> PResult<u16> {
         let at = self.peek();
         let nr = self.cx.st.nrules as usize;
         if nr >= self.cx.rules.len() {
@@ -778,7 +921,8 @@ impl<'s> Parser<'s, '_, '_> {
         self.cx.note_hw(Pool::Joins, self.cx.st.njoins as usize);
         self.cx.rules[nr] = Rule {
             name,
-            salience,
+            salience: salience.0,
+            salience_expr: salience.1,
             root: 0,
             terminal: prev,
             rhs: self.cx.exprs[rhs as usize].first,
@@ -796,7 +940,14 @@ impl<'s> Parser<'s, '_, '_> {
     }
 }
 
+/// Fields of one pattern remembered for ordering alpha nodes like CLIPS's pattern
+/// network; more are accepted but not used for ordering.
+const MAX_FIELDS: usize = 16;
+
 struct PatBuild {
+    /// (locator, alpha test or NONE, multifield element) per field, in parse order.
+    fields: [(u16, u16, bool); MAX_FIELDS],
+    nfields: usize,
     desc: u16,
     dlast: u16,
     atests: u16,
@@ -804,4 +955,28 @@ struct PatBuild {
     jtests: u16,
     jlast: u16,
     marks: u8,
+}
+
+impl PatBuild {
+    fn record(&mut self, locv: u16, test: u16, multi: bool) {
+        if self.nfields < MAX_FIELDS {
+            self.fields[self.nfields] = (locv, test, multi);
+            self.nfields += 1;
+        }
+    }
+}
+
+/// Depth-first order of pattern-network paths: at the first differing level the
+/// newer node (higher id) goes first; a path goes before its extensions.
+fn key_before(a: &[u16], b: &[u16]) -> bool {
+    for (x, y) in a.iter().zip(b.iter()) {
+        if x != y {
+            return x > y;
+        }
+    }
+    a.len() < b.len()
+}
+
+fn mix16(h: u32, x: u32) -> u32 {
+    (h ^ x).wrapping_mul(0x0100_0193).rotate_left(7)
 }

@@ -185,23 +185,15 @@ impl Core<'_> {
     /// Removes an alpha match: retracts what successor joins built from it.
     pub(crate) fn remove_alpha_match(&mut self, am: u16) {
         let alpha = self.tokens[am as usize].owner;
-        let stop = self.tokens[am as usize].extra;
-        // CLIPS first updates not/exists joins the match blocked or enabled, then
-        // removes the partial matches built on it.
-        let mut j = self.alphas[alpha as usize].succ;
-        while j != NONE {
-            if matches!(self.joins[j as usize].kind, JoinKind::Negative | JoinKind::Exists) {
-                self.counting_right_remove(j, am);
-            }
-            if j == stop {
-                break;
-            }
-            j = self.joins[j as usize].alpha_next;
-        }
-        // partial matches built on it, newest first
+        // partial matches built on it and not/exists counts it took part in, newest
+        // first (CLIPS's order)
         while self.tokens[am as usize].first_child != NONE {
             let c = self.tokens[am as usize].first_child;
-            self.delete_token(c);
+            if self.tokens[c as usize].kind == TokenKind::Link {
+                self.remove_link(c);
+            } else {
+                self.delete_token(c);
+            }
         }
         let tk = self.tokens[am as usize];
         if tk.mem_prev != NONE {

@@ -118,7 +118,7 @@ impl Core<'_> {
                     JoinKind::Negative => {
                         let t = self.output_of(l, join);
                         if t != NONE {
-                            self.tokens[t as usize].count = self.tokens[t as usize].count.saturating_add(1);
+                            self.add_link(t, am)?;
                             if self.tokens[t as usize].count == 1 {
                                 self.deactivate(t);
                             }
@@ -127,7 +127,7 @@ impl Core<'_> {
                     JoinKind::Exists => {
                         let t = self.output_of(l, join);
                         if t != NONE {
-                            self.tokens[t as usize].count = self.tokens[t as usize].count.saturating_add(1);
+                            self.add_link(t, am)?;
                             if self.tokens[t as usize].count == 1 {
                                 self.propagate(t)?;
                             }
@@ -167,18 +167,16 @@ impl Core<'_> {
                         return Ok(());
                     }
                 }
+                let t = self.link_token(join, left, NONE)?;
                 let mut a = self.alphas[j.alpha as usize].mem;
-                let mut count: u16 = 0;
                 let mut bound = false;
                 while a != NONE {
                     if self.join_test(join, left, a, bound)? {
-                        count = count.saturating_add(1);
+                        self.add_link(t, a)?;
                     }
                     bound = true;
                     a = self.tokens[a as usize].mem_next;
                 }
-                let t = self.link_token(join, left, NONE)?;
-                self.tokens[t as usize].count = count;
                 if self.token_active(t) {
                     self.propagate(t)?;
                 }
@@ -234,6 +232,41 @@ impl Core<'_> {
         Ok(t)
     }
 
+    /// Records that alpha match `am` counts for not/exists output token `t`.
+    fn add_link(&mut self, t: u16, am: u16) -> Result<(), EvalError> {
+        let owner = self.tokens[t as usize].owner;
+        let k = self.link_token(owner, t, am)?;
+        // links are not members of the join's memory
+        let head = self.tokens[k as usize].mem_next;
+        self.joins[owner as usize].mem = head;
+        if head != NONE {
+            self.tokens[head as usize].mem_prev = NONE;
+        }
+        self.tokens[k as usize].mem_next = NONE;
+        self.tokens[k as usize].kind = TokenKind::Link;
+        self.tokens[t as usize].count = self.tokens[t as usize].count.saturating_add(1);
+        Ok(())
+    }
+
+    /// Removes a link; the counted token is unblocked (not) or loses its match
+    /// (exists) when its count drops to zero.
+    pub(crate) fn remove_link(&mut self, k: u16) {
+        let t = self.tokens[k as usize].parent;
+        self.unlink_and_free(k);
+        if self.tokens[t as usize].count > 0 {
+            self.tokens[t as usize].count -= 1;
+            if self.tokens[t as usize].count == 0 {
+                if self.joins[self.tokens[t as usize].owner as usize].kind == JoinKind::Negative {
+                    // Restores a match that existed before; a full pool here is
+                    // reported by the next operation that needs the space.
+                    let _ = self.propagate(t);
+                } else {
+                    self.deactivate(t);
+                }
+            }
+        }
+    }
+
     /// Passes an active partial match on: an activation or the child joins.
     /// Child joins and rule ends, newest first, as CLIPS does.
     pub(crate) fn propagate(&mut self, t: u16) -> Result<(), EvalError> {
@@ -246,14 +279,23 @@ impl Core<'_> {
         Ok(())
     }
 
-    /// Takes back what a token passed on: its activations, then its children
-    /// (newest first), as CLIPS orders the removals.
+    /// Takes back what a token passed on: its activations, then its child partial
+    /// matches (newest first), as CLIPS orders the removals. Its links stay.
     fn deactivate(&mut self, t: u16) {
         while self.tokens[t as usize].extra != NONE && self.tokens[t as usize].kind == TokenKind::Beta {
             let a = self.tokens[t as usize].extra;
             self.remove_activation(a);
         }
-        self.delete_children(t);
+        loop {
+            let mut c = self.tokens[t as usize].first_child;
+            while c != NONE && self.tokens[c as usize].kind == TokenKind::Link {
+                c = self.tokens[c as usize].next_sib;
+            }
+            if c == NONE {
+                break;
+            }
+            self.delete_token(c);
+        }
     }
 
     pub(crate) fn delete_children(&mut self, t: u16) {
@@ -263,9 +305,19 @@ impl Core<'_> {
         }
     }
 
-    /// Deletes a partial match and everything built on it.
+    /// Deletes a partial match and everything built on it (links included).
     pub(crate) fn delete_token(&mut self, t: u16) {
+        if self.tokens[t as usize].kind == TokenKind::Link {
+            self.unlink_and_free(t);
+            return;
+        }
         self.deactivate(t);
+        self.delete_children(t);
+        self.unlink_and_free(t);
+    }
+
+    /// Unlinks a token from its parent, alpha match and memory lists, then frees it.
+    fn unlink_and_free(&mut self, t: u16) {
         let tk = self.tokens[t as usize];
         if tk.parent != NONE {
             if tk.prev_sib != NONE {
@@ -287,41 +339,17 @@ impl Core<'_> {
                 self.tokens[tk.am_next as usize].am_prev = tk.am_prev;
             }
         }
-        if tk.mem_prev != NONE {
-            self.tokens[tk.mem_prev as usize].mem_next = tk.mem_next;
-        } else {
-            self.joins[tk.owner as usize].mem = tk.mem_next;
-        }
-        if tk.mem_next != NONE {
-            self.tokens[tk.mem_next as usize].mem_prev = tk.mem_prev;
+        if tk.kind != TokenKind::Link {
+            if tk.mem_prev != NONE {
+                self.tokens[tk.mem_prev as usize].mem_next = tk.mem_next;
+            } else {
+                self.joins[tk.owner as usize].mem = tk.mem_next;
+            }
+            if tk.mem_next != NONE {
+                self.tokens[tk.mem_next as usize].mem_prev = tk.mem_prev;
+            }
         }
         self.free_token(t);
-    }
-
-    /// A right item leaves a not/exists join: adjust the counts it was part of.
-    pub(crate) fn counting_right_remove(&mut self, join: u16, am: u16) {
-        let kind = self.joins[join as usize].kind;
-        let parent = self.joins[join as usize].parent;
-        let mut l = self.joins[parent as usize].mem;
-        while l != NONE {
-            let next = self.tokens[l as usize].mem_next;
-            if self.token_active(l) && self.join_test(join, l, am, false).unwrap_or(false) {
-                let t = self.output_of(l, join);
-                if t != NONE && self.tokens[t as usize].count > 0 {
-                    self.tokens[t as usize].count -= 1;
-                    if self.tokens[t as usize].count == 0 {
-                        if kind == JoinKind::Negative {
-                            // Restores a match that existed before; a full pool here is
-                            // reported by the next operation that needs the space.
-                            let _ = self.propagate(t);
-                        } else {
-                            self.deactivate(t);
-                        }
-                    }
-                }
-            }
-            l = next;
-        }
     }
 
     /// Deletes every token in a join's memory.

@@ -10,6 +10,10 @@ use crate::value::NONE;
 pub const THIS_PATTERN: u8 = 0xFE;
 /// Most multifield lengths an alpha match records (ambiguous segmentations).
 pub const MAX_MARKS: usize = 4;
+/// Levels of a pattern's network path used to order alpha nodes as CLIPS does.
+pub const PATH_LEN: usize = 6;
+/// Path locator of the placeholder node of a pattern without tested fields.
+pub const EMPTY_PATH: u16 = 0xFFFE;
 /// Most pattern-level CEs in one rule.
 pub const MAX_PATTERNS: usize = 32;
 
@@ -30,6 +34,13 @@ pub struct AlphaNode {
     pub mem_tail: u16,
     pub nmarks: u8,
     pub live: bool,
+    /// The pattern's path in CLIPS's pattern network (field locators and their alpha
+    /// tests) and the ids of those network nodes; they order the template's alpha
+    /// nodes so facts visit patterns in CLIPS's order.
+    pub path_loc: [u16; PATH_LEN],
+    pub path_test: [u16; PATH_LEN],
+    pub key: [u16; PATH_LEN],
+    pub key_len: u8,
 }
 
 impl AlphaNode {
@@ -44,6 +55,10 @@ impl AlphaNode {
         mem_tail: NONE,
         nmarks: 0,
         live: false,
+        path_loc: [0; PATH_LEN],
+        path_test: [NONE; PATH_LEN],
+        key: [0; PATH_LEN],
+        key_len: 0,
     };
 }
 
@@ -118,6 +133,10 @@ pub enum TokenKind {
     Alpha,
     /// A partial match in a join's output memory.
     Beta,
+    /// "Alpha match `am` is counted by not/exists output token `parent`": kept in
+    /// both the alpha match's and the output token's child lists, so a retract
+    /// visits blocks and partial matches in one creation order, as CLIPS does.
+    Link,
 }
 
 /// Alpha matches and partial matches share this pool.

@@ -9,4 +9,5 @@ pub mod planner;
 pub mod referee;
 pub mod safety;
 pub mod scripted;
+pub mod team;
 pub mod transport;

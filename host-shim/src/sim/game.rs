@@ -36,7 +36,9 @@ impl fmt::Display for SimError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             SimError::Load { file, message } => write!(f, "loading {file}: {message}"),
-            SimError::Engine { during, message } => write!(f, "engine error during {during}: {message}"),
+            SimError::Engine { during, message } => {
+                write!(f, "engine error during {during}: {message}")
+            }
             SimError::Facts(m) => write!(f, "unexpected result facts: {m}"),
             SimError::Input(m) => write!(f, "{m}"),
         }
@@ -80,7 +82,11 @@ impl Player {
         };
         // `distance` is a host function the rules call; our engine is meant to
         // have it built in. If it does not (yet), use the CLIPS stub and say so.
-        if player.engine.eval_str(&mut player.host, "(distance 0 0 3 4)").is_err() {
+        if player
+            .engine
+            .eval_str(&mut player.host, "(distance 0 0 3 4)")
+            .is_err()
+        {
             player.load(rules::CLIPS_STUBS.name, rules::CLIPS_STUBS.text)?;
             player.distance_stubbed = true;
         }
@@ -89,10 +95,6 @@ impl Player {
         }
         player.host.output.clear();
         Ok(player)
-    }
-
-    pub fn strategy(&self) -> Strategy {
-        self.strategy
     }
 
     fn load(&mut self, name: &str, text: &str) -> Result<(), SimError> {
@@ -109,31 +111,63 @@ impl Player {
         self.engine
             .eval_str(&mut self.host, command)
             .map(|_| ())
-            .map_err(|e| SimError::Engine { during: command.to_string(), message: e.to_string() })
+            .map_err(|e| SimError::Engine {
+                during: command.to_string(),
+                message: e.to_string(),
+            })
     }
 
-    /// Plays one game: (re)defines the `game-setup` deffacts, resets, runs
-    /// to the end and reads the decision log, score and end of game.
+    /// Plays one game: resets, asserts the setup facts, runs to the end and
+    /// reads the decision log, score and end of game. Asserting the setup
+    /// right after `(reset)` gives the same facts, fact numbers and agenda as
+    /// loading it as the last deffacts (what the CLIPS drivers do), and lets
+    /// one engine play many setups without redefining constructs.
     /// With `trace` the record's output holds the `(watch rules)` lines.
     pub fn play(&mut self, setup: &GameSetup, trace: bool) -> Result<GameRecord, SimError> {
         let mut text = String::new();
         setup
             .write_clips(&mut text)
             .map_err(|e| SimError::Input(format!("writing the setup: {e}")))?;
-        self.load("game-setup", &text)?;
-        self.eval(if trace { "(watch rules)" } else { "(unwatch rules)" })?;
-        self.engine.reset(&mut self.host).map_err(|e| SimError::Engine {
-            during: "(reset)".into(),
-            message: e.to_string(),
+        self.eval(if trace {
+            "(watch rules)"
+        } else {
+            "(unwatch rules)"
         })?;
+        self.engine
+            .reset(&mut self.host)
+            .map_err(|e| SimError::Engine {
+                during: "(reset)".into(),
+                message: e.to_string(),
+            })?;
+        for fact in setup_facts(&text) {
+            self.engine
+                .assert_str(&mut self.host, fact)
+                .map_err(|e| SimError::Engine {
+                    during: format!("asserting the setup fact {fact}"),
+                    message: e.to_string(),
+                })?;
+        }
         self.host.output.clear();
-        let fired = self.engine.run(&mut self.host, Some(FIRE_LIMIT)).map_err(|e| SimError::Engine {
-            during: "(run)".into(),
-            message: format!("{e} (output so far ends: {})", tail(&self.host.output, 400)),
-        })?;
+        let fired = self
+            .engine
+            .run(&mut self.host, Some(FIRE_LIMIT))
+            .map_err(|e| SimError::Engine {
+                during: "(run)".into(),
+                message: format!("{e} (output so far ends: {})", tail(&self.host.output, 400)),
+            })?;
         let output = std::mem::take(&mut self.host.output);
         read_record(&self.engine, setup.clone(), self.strategy, fired, output)
     }
+}
+
+/// The facts of a `(deffacts game-setup ...)` text written by
+/// `GameSetup::write_clips`: one fact per line between the header and the
+/// closing parenthesis.
+fn setup_facts(deffacts: &str) -> impl Iterator<Item = &str> {
+    deffacts
+        .lines()
+        .map(str::trim)
+        .filter(|l| l.starts_with('(') && !l.starts_with("(deffacts"))
 }
 
 /// The last `n` bytes of `s` (on a char boundary), for error context.

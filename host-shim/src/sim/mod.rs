@@ -54,18 +54,21 @@ pub struct Args {
 
 /// clap value parser for `--strategy`.
 pub fn parse_strategy(name: &str) -> Result<Strategy, String> {
-    Strategy::from_name(name).ok_or_else(|| format!("unknown strategy {name:?} (naive, paper or travel)"))
+    Strategy::from_name(name)
+        .ok_or_else(|| format!("unknown strategy {name:?} (naive, paper or travel)"))
 }
 
 /// The setup the options ask for and a title naming it.
 fn setup_from_args(args: &Args) -> Result<(GameSetup, String), SimError> {
     let seed = args.seed.unwrap_or(1);
     let (mut setup, title) = if let Some(text) = &args.assignment {
-        let assignment = replay::parse_assignment(text.split(',').map(str::trim)).map_err(SimError::Input)?;
+        let assignment =
+            replay::parse_assignment(text.split(',').map(str::trim)).map_err(SimError::Input)?;
         (GameSetup::new(assignment), format!("assignment {text}"))
     } else if let Some(index) = args.index {
-        let assignment = assignment_by_index(index)
-            .ok_or_else(|| SimError::Input(format!("--index {index}: must be below {ASSIGNMENT_COUNT}")))?;
+        let assignment = assignment_by_index(index).ok_or_else(|| {
+            SimError::Input(format!("--index {index}: must be below {ASSIGNMENT_COUNT}"))
+        })?;
         (GameSetup::new(assignment), format!("assignment #{index}"))
     } else {
         (GameSetup::for_seed(seed), format!("seed {seed}"))
@@ -108,7 +111,10 @@ fn run(args: Args) -> Result<String, SimError> {
                 ));
                 Ok(out)
             }
-            Err(diff) => Err(SimError::Input(format!("replay {}: MISMATCH, {diff}", path.display()))),
+            Err(diff) => Err(SimError::Input(format!(
+                "replay {}: MISMATCH, {diff}",
+                path.display()
+            ))),
         };
     }
     let (setup, title) = setup_from_args(&args)?;

@@ -129,7 +129,10 @@ impl GameRecord {
 fn slot_symbol(engine: &DefaultEngine, id: FactId, slot: &str) -> Result<String, SimError> {
     match engine.fact_slot(id, slot) {
         Some(ValueRef::Symbol(s)) | Some(ValueRef::String(s)) => Ok(s.to_string()),
-        other => Err(SimError::Facts(format!("slot {slot} of f-{}: expected a symbol, got {other:?}", id.0))),
+        other => Err(SimError::Facts(format!(
+            "slot {slot} of f-{}: expected a symbol, got {other:?}",
+            id.0
+        ))),
     }
 }
 
@@ -137,25 +140,37 @@ fn slot_number(engine: &DefaultEngine, id: FactId, slot: &str) -> Result<f64, Si
     match engine.fact_slot(id, slot) {
         Some(ValueRef::Int(i)) => Ok(i as f64),
         Some(ValueRef::Float(x)) => Ok(x),
-        other => Err(SimError::Facts(format!("slot {slot} of f-{}: expected a number, got {other:?}", id.0))),
+        other => Err(SimError::Facts(format!(
+            "slot {slot} of f-{}: expected a number, got {other:?}",
+            id.0
+        ))),
     }
 }
 
 fn slot_int(engine: &DefaultEngine, id: FactId, slot: &str) -> Result<i64, SimError> {
     match engine.fact_slot(id, slot) {
         Some(ValueRef::Int(i)) => Ok(i),
-        other => Err(SimError::Facts(format!("slot {slot} of f-{}: expected an integer, got {other:?}", id.0))),
+        other => Err(SimError::Facts(format!(
+            "slot {slot} of f-{}: expected an integer, got {other:?}",
+            id.0
+        ))),
     }
 }
 
 fn slot_symbols(engine: &DefaultEngine, id: FactId, slot: &str) -> Result<Vec<String>, SimError> {
     let Some(ValueRef::Multi(n)) = engine.fact_slot(id, slot) else {
-        return Err(SimError::Facts(format!("slot {slot} of f-{}: expected a multifield", id.0)));
+        return Err(SimError::Facts(format!(
+            "slot {slot} of f-{}: expected a multifield",
+            id.0
+        )));
     };
     (0..n as usize)
         .map(|i| match engine.fact_multislot_item(id, slot, i) {
             Some(ValueRef::Symbol(s)) => Ok(s.to_string()),
-            other => Err(SimError::Facts(format!("{slot}[{i}] of f-{}: got {other:?}", id.0))),
+            other => Err(SimError::Facts(format!(
+                "{slot}[{i}] of f-{}: got {other:?}",
+                id.0
+            ))),
         })
         .collect()
 }
@@ -163,7 +178,11 @@ fn slot_symbols(engine: &DefaultEngine, id: FactId, slot: &str) -> Result<Vec<St
 fn read_decision(engine: &DefaultEngine, id: FactId) -> Result<Decision, SimError> {
     let beliefs = slot_symbols(engine, id, "beliefs")?;
     if beliefs.len() != MACHINE_COUNT {
-        return Err(SimError::Facts(format!("decision f-{} has {} beliefs", id.0, beliefs.len())));
+        return Err(SimError::Facts(format!(
+            "decision f-{} has {} beliefs",
+            id.0,
+            beliefs.len()
+        )));
     }
     Ok(Decision {
         n: u32::try_from(slot_int(engine, id, "n")?)
@@ -227,5 +246,15 @@ pub fn read_record(
     decisions.sort_by_key(|d| d.n);
     let score = score.ok_or_else(|| SimError::Facts("no (score) fact after the game".into()))?;
     let (end, end_time) = end.unwrap_or((EndReason::Stalled, clock_time));
-    Ok(GameRecord { setup, strategy, decisions, score, end, end_time, travelled, fired, output })
+    Ok(GameRecord {
+        setup,
+        strategy,
+        decisions,
+        score,
+        end,
+        end_time,
+        travelled,
+        fired,
+        output,
+    })
 }

@@ -4,7 +4,9 @@
 
 use std::fmt::Write;
 
-use rules::setup::{Assignment, Fault, FaultKind, GameSetup, MachineType, ProcessingTimes, MACHINE_COUNT};
+use rules::setup::{
+    Assignment, Fault, FaultKind, GameSetup, MachineType, ProcessingTimes, MACHINE_COUNT,
+};
 use rules::Strategy;
 
 use super::game::SimError;
@@ -61,7 +63,11 @@ fn bad(line_no: usize, what: &str) -> SimError {
     SimError::Input(format!("game log line {line_no}: {what}"))
 }
 
-fn number<T: std::str::FromStr>(line_no: usize, word: Option<&str>, what: &str) -> Result<T, SimError> {
+fn number<T: std::str::FromStr>(
+    line_no: usize,
+    word: Option<&str>,
+    what: &str,
+) -> Result<T, SimError> {
     word.and_then(|w| w.parse().ok())
         .ok_or_else(|| bad(line_no, &format!("expected {what}")))
 }
@@ -80,11 +86,15 @@ pub fn parse_type(name: &str) -> Option<MachineType> {
 pub fn parse_assignment<'a>(words: impl Iterator<Item = &'a str>) -> Result<Assignment, String> {
     let types: Vec<&str> = words.collect();
     if types.len() != MACHINE_COUNT {
-        return Err(format!("an assignment names {MACHINE_COUNT} machine types, got {}", types.len()));
+        return Err(format!(
+            "an assignment names {MACHINE_COUNT} machine types, got {}",
+            types.len()
+        ));
     }
     let mut out = [MachineType::T1; MACHINE_COUNT];
     for (slot, name) in out.iter_mut().zip(types) {
-        *slot = parse_type(name).ok_or_else(|| format!("unknown machine type {name:?} (T1, T2 or T3)"))?;
+        *slot = parse_type(name)
+            .ok_or_else(|| format!("unknown machine type {name:?} (T1, T2 or T3)"))?;
     }
     Ok(out)
 }
@@ -94,7 +104,11 @@ pub fn parse_log(text: &str) -> Result<GameLog, SimError> {
     let mut lines = text.lines().enumerate().map(|(i, l)| (i + 1, l));
     match lines.next() {
         Some((_, HEADER)) => {}
-        _ => return Err(SimError::Input(format!("not a game log: the first line must be {HEADER:?}"))),
+        _ => {
+            return Err(SimError::Input(format!(
+                "not a game log: the first line must be {HEADER:?}"
+            )))
+        }
     }
     let mut strategy = None;
     let mut setup: Option<GameSetup> = None;
@@ -108,9 +122,15 @@ pub fn parse_log(text: &str) -> Result<GameLog, SimError> {
         let mut words = rest.split_whitespace();
         match key {
             "strategy" => {
-                strategy = Some(Strategy::from_name(rest.trim()).ok_or_else(|| bad(no, "unknown strategy"))?)
+                strategy = Some(
+                    Strategy::from_name(rest.trim()).ok_or_else(|| bad(no, "unknown strategy"))?,
+                )
             }
-            "assignment" => setup = Some(GameSetup::new(parse_assignment(words).map_err(|e| bad(no, &e))?)),
+            "assignment" => {
+                setup = Some(GameSetup::new(
+                    parse_assignment(words).map_err(|e| bad(no, &e))?,
+                ))
+            }
             "times-tenths" => {
                 times = ProcessingTimes {
                     t1_tenths: number(no, words.next(), "T1 tenths")?,
@@ -121,7 +141,13 @@ pub fn parse_log(text: &str) -> Result<GameLog, SimError> {
             }
             "s0" => s0 = number(no, words.next(), "the S0 supply")?,
             "gate" => gate = number(no, words.next(), "the gate number")?,
-            "clock" => clock = if rest.trim() == "off" { None } else { Some(number(no, words.next(), "seconds or off")?) },
+            "clock" => {
+                clock = if rest.trim() == "off" {
+                    None
+                } else {
+                    Some(number(no, words.next(), "seconds or off")?)
+                }
+            }
             "fault" => {
                 let at_decision = number(no, words.next(), "the decision number")?;
                 let kind = match words.next() {
@@ -138,17 +164,26 @@ pub fn parse_log(text: &str) -> Result<GameLog, SimError> {
             other => return Err(bad(no, &format!("unknown entry {other:?}"))),
         }
     }
-    let strategy = strategy.ok_or_else(|| SimError::Input("game log without a strategy line".into()))?;
-    let mut setup = setup.ok_or_else(|| SimError::Input("game log without an assignment line".into()))?;
+    let strategy =
+        strategy.ok_or_else(|| SimError::Input("game log without a strategy line".into()))?;
+    let mut setup =
+        setup.ok_or_else(|| SimError::Input("game log without an assignment line".into()))?;
     setup.times = times;
     setup.s0_supply = s0;
     setup.active_gate = gate;
     setup.clock_limit_s = clock;
     for f in faults {
-        setup.add_fault(f).map_err(|e| SimError::Input(e.to_string()))?;
+        setup
+            .add_fault(f)
+            .map_err(|e| SimError::Input(e.to_string()))?;
     }
     let result = result.ok_or_else(|| SimError::Input("game log without a result line".into()))?;
-    Ok(GameLog { strategy, setup, decisions, result })
+    Ok(GameLog {
+        strategy,
+        setup,
+        decisions,
+        result,
+    })
 }
 
 /// Compares a replayed game with its log: `Ok(())` when every decision and
@@ -157,7 +192,10 @@ pub fn verify(log: &GameLog, replayed: &GameRecord) -> Result<(), String> {
     let now: Vec<String> = replayed.decisions.iter().map(|d| d.log_line()).collect();
     for (i, (was, is)) in log.decisions.iter().zip(&now).enumerate() {
         if was != is {
-            return Err(format!("decision {} differs:\n  logged:   {was}\n  replayed: {is}", i + 1));
+            return Err(format!(
+                "decision {} differs:\n  logged:   {was}\n  replayed: {is}",
+                i + 1
+            ));
         }
     }
     if log.decisions.len() != now.len() {
@@ -169,7 +207,10 @@ pub fn verify(log: &GameLog, replayed: &GameRecord) -> Result<(), String> {
     }
     let result = replayed.result_line();
     if log.result != result {
-        return Err(format!("the result differs:\n  logged:   {}\n  replayed: {result}", log.result));
+        return Err(format!(
+            "the result differs:\n  logged:   {}\n  replayed: {result}",
+            log.result
+        ));
     }
     Ok(())
 }

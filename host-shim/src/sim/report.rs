@@ -31,7 +31,12 @@ pub fn types_learned(record: &GameRecord) -> Vec<Option<Learned>> {
             let exact = matches!(kind, "T1" | "T2" | "T3");
             if let Some(slot) = learned.get_mut(machine) {
                 if exact && slot.is_none() {
-                    *slot = Some(Learned { machine, belief: kind.to_string(), time: d.time, decision: d.n });
+                    *slot = Some(Learned {
+                        machine,
+                        belief: kind.to_string(),
+                        time: d.time,
+                        decision: d.n,
+                    });
                 }
             }
         }
@@ -47,7 +52,11 @@ fn type_name(t: MachineType) -> &'static str {
 pub fn render(record: &GameRecord, title: &str) -> String {
     let mut out = String::new();
     let setup = &record.setup;
-    let _ = writeln!(out, "robotino-agent sim: {title}, strategy {}", record.strategy.name());
+    let _ = writeln!(
+        out,
+        "robotino-agent sim: {title}, strategy {}",
+        record.strategy.name()
+    );
     let assignment: Vec<String> = setup
         .assignment
         .iter()
@@ -71,9 +80,17 @@ pub fn render(record: &GameRecord, title: &str) -> String {
         f64::from(t.per_input_tenths) / 10.0
     );
     for fault in setup.faults() {
-        let _ = writeln!(out, "fault: {} at decision {}", fault.kind.as_str(), fault.at_decision);
+        let _ = writeln!(
+            out,
+            "fault: {} at decision {}",
+            fault.kind.as_str(),
+            fault.at_decision
+        );
     }
-    let _ = writeln!(out, "\ndecisions (time = game seconds when the skill ended; beliefs M1..M10 afterwards):");
+    let _ = writeln!(
+        out,
+        "\ndecisions (time = game seconds when the skill ended; beliefs M1..M10 afterwards):"
+    );
     let _ = writeln!(
         out,
         "{:>4} {:>7}  {:<14} {:<6} {:<4} {:<6} {:<15} {:<7} {:>4}  beliefs",
@@ -97,10 +114,18 @@ pub fn render(record: &GameRecord, title: &str) -> String {
     }
     let _ = writeln!(out, "\nmachine types learned:");
     for (i, learned) in types_learned(record).iter().enumerate() {
-        let truth = setup.assignment.get(i).map(|t| type_name(*t)).unwrap_or("?");
+        let truth = setup
+            .assignment
+            .get(i)
+            .map(|t| type_name(*t))
+            .unwrap_or("?");
         match learned {
             Some(l) => {
-                let verdict = if l.belief == truth { String::new() } else { format!("  (WRONG: truth is {truth})") };
+                let verdict = if l.belief == truth {
+                    String::new()
+                } else {
+                    format!("  (WRONG: truth is {truth})")
+                };
                 let _ = writeln!(
                     out,
                     "  M{:<2} {} at {:>6.1} s (decision {}){verdict}",

@@ -1,0 +1,315 @@
+//! `robotino-agent sweep`: every distinct assignment (4200 for the 2012 mix),
+//! one engine per worker thread, with a summary of points, products,
+//! deadlocks and speed.
+
+use std::fmt::Write;
+use std::process::ExitCode;
+use std::sync::atomic::{AtomicU32, Ordering};
+use std::sync::Mutex;
+use std::time::Instant;
+
+use indicatif::{ProgressBar, ProgressStyle};
+use rules::setup::{assignment_by_index, GameSetup, ASSIGNMENT_COUNT};
+use rules::Strategy;
+
+use super::game::{Player, SimError, ENGINE_THREAD_STACK};
+use super::record::{EndReason, GameRecord};
+
+/// Options of `robotino-agent sweep`.
+#[derive(clap::Args, Debug, Clone)]
+pub struct Args {
+    /// Production strategy: naive, paper or travel.
+    #[arg(long, default_value = "paper", value_parser = super::parse_strategy)]
+    pub strategy: Strategy,
+    /// Play without the clock (reports P made per 20 S0).
+    #[arg(long)]
+    pub clock_off: bool,
+    /// Play only the first N assignments.
+    #[arg(long)]
+    pub limit: Option<u32>,
+    /// Worker threads (default: the available cores).
+    #[arg(long)]
+    pub threads: Option<usize>,
+    /// No progress bar (for scripts and tests).
+    #[arg(long)]
+    pub quiet: bool,
+}
+
+/// What the sweep keeps of one game.
+#[derive(Clone, Debug)]
+pub struct GameSummary {
+    pub index: u32,
+    pub points: i64,
+    pub s1: i64,
+    pub s2: i64,
+    pub p: i64,
+    pub decisions: usize,
+    pub end: EndReason,
+    pub end_time: f64,
+    pub travelled: f64,
+}
+
+impl GameSummary {
+    fn of(index: u32, r: &GameRecord) -> GameSummary {
+        GameSummary {
+            index,
+            points: r.score.points,
+            s1: r.score.s1,
+            s2: r.score.s2,
+            p: r.score.p,
+            decisions: r.decisions.len(),
+            end: r.end,
+            end_time: r.end_time,
+            travelled: r.travelled,
+        }
+    }
+}
+
+/// The setup of assignment `index` under the sweep's options.
+pub fn sweep_setup(index: u32, clock_off: bool) -> Option<GameSetup> {
+    let mut setup = GameSetup::new(assignment_by_index(index)?);
+    if clock_off {
+        setup.clock_limit_s = None;
+    }
+    Some(setup)
+}
+
+/// Plays assignments `0..count` on `threads` workers; `on_game` is called
+/// after every game (for the progress bar). Results are ordered by index.
+pub fn play_all(
+    strategy: Strategy,
+    clock_off: bool,
+    count: u32,
+    threads: usize,
+    on_game: &(dyn Fn() + Sync),
+) -> Result<Vec<GameSummary>, SimError> {
+    let next = AtomicU32::new(0);
+    let results: Mutex<Vec<GameSummary>> = Mutex::new(Vec::with_capacity(count as usize));
+    let first_error: Mutex<Option<SimError>> = Mutex::new(None);
+    let (next, results, first_error) = (&next, &results, &first_error);
+    std::thread::scope(|scope| {
+        for _ in 0..threads.max(1) {
+            let worker = || -> Result<(), SimError> {
+                let mut player = Player::new(strategy)?;
+                loop {
+                    let index = next.fetch_add(1, Ordering::Relaxed);
+                    if index >= count {
+                        return Ok(());
+                    }
+                    let setup = sweep_setup(index, clock_off)
+                        .ok_or_else(|| SimError::Input(format!("no assignment #{index}")))?;
+                    let record = player
+                        .play(&setup, false)
+                        .map_err(|e| SimError::Input(format!("assignment #{index}: {e}")))?;
+                    if let Ok(mut all) = results.lock() {
+                        all.push(GameSummary::of(index, &record));
+                    }
+                    on_game();
+                }
+            };
+            let spawned = std::thread::Builder::new()
+                .stack_size(ENGINE_THREAD_STACK)
+                .spawn_scoped(scope, move || {
+                    if let Err(e) = worker() {
+                        // Stop the other workers at their next game.
+                        next.store(count, Ordering::Relaxed);
+                        if let Ok(mut slot) = first_error.lock() {
+                            slot.get_or_insert(e);
+                        }
+                    }
+                });
+            if let Err(e) = spawned {
+                if let Ok(mut slot) = first_error.lock() {
+                    slot.get_or_insert(SimError::Input(format!("cannot start a worker: {e}")));
+                }
+            }
+        }
+    });
+    if let Some(e) = first_error.lock().ok().and_then(|mut slot| slot.take()) {
+        return Err(e);
+    }
+    let mut all = results
+        .lock()
+        .map(|mut all| std::mem::take(&mut *all))
+        .map_err(|_| SimError::Input("a worker panicked".into()))?;
+    all.sort_by_key(|g| g.index);
+    Ok(all)
+}
+
+fn mean(values: impl Iterator<Item = f64>) -> f64 {
+    let (sum, n) = values.fold((0.0, 0u32), |(s, n), v| (s + v, n + 1));
+    if n == 0 {
+        0.0
+    } else {
+        sum / f64::from(n)
+    }
+}
+
+/// `value:count` pairs of a small integer distribution.
+fn distribution(values: impl Iterator<Item = i64>) -> String {
+    let mut counts = std::collections::BTreeMap::new();
+    for v in values {
+        *counts.entry(v).or_insert(0u32) += 1;
+    }
+    counts
+        .iter()
+        .map(|(v, n)| format!("{v}:{n}"))
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+/// Points grouped in bins of 10.
+fn points_histogram(games: &[GameSummary]) -> String {
+    let mut counts = std::collections::BTreeMap::new();
+    for g in games {
+        *counts.entry(g.points.div_euclid(10) * 10).or_insert(0u32) += 1;
+    }
+    let widest = counts.values().copied().max().unwrap_or(1).max(1);
+    let mut out = String::new();
+    for (low, n) in counts {
+        let bar = "#".repeat(((n as usize) * 50).div_ceil(widest as usize));
+        let _ = writeln!(out, "  {:>4}-{:<4} {:>5} {bar}", low, low + 9, n);
+    }
+    out
+}
+
+/// The summary text of a sweep.
+pub fn summarize(
+    strategy: Strategy,
+    clock_off: bool,
+    games: &[GameSummary],
+    seconds: f64,
+) -> String {
+    let mut out = String::new();
+    let n = games.len();
+    let count = |f: &dyn Fn(&GameSummary) -> bool| games.iter().filter(|g| f(g)).count();
+    let min = games.iter().map(|g| g.points).min().unwrap_or(0);
+    let max = games.iter().map(|g| g.points).max().unwrap_or(0);
+    let _ = writeln!(
+        out,
+        "sweep: strategy {}, {} assignments, clock {}",
+        strategy.name(),
+        n,
+        if clock_off { "off" } else { "900 s" }
+    );
+    let _ = writeln!(
+        out,
+        "points: mean {:.2}, min {min}, max {max}",
+        mean(games.iter().map(|g| g.points as f64))
+    );
+    out.push_str(&points_histogram(games));
+    let _ = writeln!(
+        out,
+        "products per game: S1 {:.2}, S2 {:.2}, P {:.3}",
+        mean(games.iter().map(|g| g.s1 as f64)),
+        mean(games.iter().map(|g| g.s2 as f64)),
+        mean(games.iter().map(|g| g.p as f64))
+    );
+    let _ = writeln!(
+        out,
+        "P per game: {}",
+        distribution(games.iter().map(|g| g.p))
+    );
+    let _ = writeln!(
+        out,
+        "games with no production: {} (no P: {})",
+        count(&|g| g.s1 + g.s2 + g.p == 0),
+        count(&|g| g.p == 0)
+    );
+    let _ = writeln!(out, "deadlocks: {}", count(&|g| g.end.is_deadlock()));
+    let ends = distribution(games.iter().map(|g| match g.end {
+        EndReason::Time => 0,
+        EndReason::Done => 1,
+        EndReason::Deadlock => 2,
+        EndReason::Stalled => 3,
+    }));
+    let _ = writeln!(out, "ends (0 time, 1 done, 2 deadlock, 3 stalled): {ends}");
+    let _ = writeln!(
+        out,
+        "decisions per game: mean {:.1}, min {}, max {}",
+        mean(games.iter().map(|g| g.decisions as f64)),
+        games.iter().map(|g| g.decisions).min().unwrap_or(0),
+        games.iter().map(|g| g.decisions).max().unwrap_or(0)
+    );
+    let _ = writeln!(
+        out,
+        "mean game end {:.1} s, mean travel {:.1} m",
+        mean(games.iter().map(|g| g.end_time)),
+        mean(games.iter().map(|g| g.travelled))
+    );
+    if clock_off {
+        let _ = writeln!(
+            out,
+            "P made per 20 S0 (clock off): mean {:.3}, games with 5 P: {} of {n}",
+            mean(games.iter().map(|g| g.p as f64)),
+            count(&|g| g.p >= 5)
+        );
+    }
+    let _ = writeln!(
+        out,
+        "speed: {:.1} games/s ({:.1} s wall)",
+        if seconds > 0.0 {
+            n as f64 / seconds
+        } else {
+            0.0
+        },
+        seconds
+    );
+    out
+}
+
+/// Entry point of `robotino-agent sweep`.
+pub fn main(args: Args) -> ExitCode {
+    let count = args.limit.unwrap_or(ASSIGNMENT_COUNT).min(ASSIGNMENT_COUNT);
+    let threads = args.threads.unwrap_or_else(|| {
+        std::thread::available_parallelism()
+            .map(|n| n.get())
+            .unwrap_or(1)
+    });
+    let bar = if args.quiet {
+        ProgressBar::hidden()
+    } else {
+        ProgressBar::new(u64::from(count))
+    };
+    if let Ok(style) =
+        ProgressStyle::with_template("{bar:40} {pos}/{len} games  {per_sec}  eta {eta}")
+    {
+        bar.set_style(style);
+    }
+    let started = Instant::now();
+    let result = play_all(args.strategy, args.clock_off, count, threads, &|| {
+        bar.inc(1)
+    });
+    bar.finish_and_clear();
+    match result {
+        Ok(games) => {
+            print!(
+                "{}",
+                summarize(
+                    args.strategy,
+                    args.clock_off,
+                    &games,
+                    started.elapsed().as_secs_f64()
+                )
+            );
+            if games.iter().any(|g| g.end.is_deadlock()) {
+                let first: Vec<String> = games
+                    .iter()
+                    .filter(|g| g.end.is_deadlock())
+                    .take(10)
+                    .map(|g| format!("#{}", g.index))
+                    .collect();
+                eprintln!(
+                    "robotino-agent sweep: deadlocked assignments (first 10): {}",
+                    first.join(" ")
+                );
+                return ExitCode::FAILURE;
+            }
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("robotino-agent sweep: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
