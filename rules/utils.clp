@@ -76,7 +76,8 @@
    else (create$ ?machines ?name)))
 
 (deffunction place-distance
-  "Straight-line distance (m) between the approach poses of two places."
+  "Straight-line distance (m) between the approach poses of two places;
+   0.0 if either place is unknown."
   (?from ?to)
   (bind ?x1 nil) (bind ?y1 nil) (bind ?x2 nil) (bind ?y2 nil)
   (do-for-fact ((?p place)) (eq ?p:name ?from) (bind ?x1 ?p:x) (bind ?y1 ?p:y))

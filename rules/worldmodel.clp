@@ -46,7 +46,8 @@
   (place (name D1) (x 3.15) (y 0.26)) (place (name D2) (x 2.8) (y 0.26))
   (place (name D3) (x 2.45) (y 0.26))
   (place (name R1) (x 0.2) (y 0.2)) (place (name R2) (x 5.4) (y 5.4))
-  (place (name TST) (x 5.4) (y 0.2)))
+  (place (name TST) (x 5.4) (y 0.2))
+  )
 
 ;;; ---- the light -> what the robot holds now ----------------------------
 

@@ -23,10 +23,17 @@ impl Core<'_> {
         };
         self.note_hw(Pool::Activations, self.st.acts_used as usize);
         self.st.act_seq = self.st.act_seq.wrapping_add(1);
-        let salience = self.rule_salience(rule);
+        let salience = self.rules[rule as usize].salience;
         let next_of_token = self.tokens[token as usize].extra;
-        self.acts[a as usize] =
-            Activation { rule, token, salience, seq: self.st.act_seq, next: NONE, prev: NONE, next_of_token };
+        self.acts[a as usize] = Activation {
+            rule,
+            token,
+            salience,
+            seq: self.st.act_seq,
+            next: NONE,
+            prev: NONE,
+            next_of_token,
+        };
         self.tokens[token as usize].extra = a;
         self.agenda_insert(a);
         if self.st.watch & watch::ACTIVATIONS != 0 {
@@ -109,7 +116,10 @@ impl Core<'_> {
                 }
             }
         }
-        self.acts[a as usize] = Activation { next: self.st.act_free, ..Activation::EMPTY };
+        self.acts[a as usize] = Activation {
+            next: self.st.act_free,
+            ..Activation::EMPTY
+        };
         self.st.act_free = a;
     }
 
@@ -125,8 +135,15 @@ impl Core<'_> {
         Some((x.rule, x.token))
     }
 
-    /// Re-sorts the agenda after saliences changed (`refresh-agenda`).
+    /// `refresh-agenda`: global-based saliences are evaluated again (CLIPS's
+    /// when-defined evaluation otherwise keeps them), then the agenda is re-sorted.
     pub fn reorder_agenda(&mut self) {
+        for r in 0..self.st.nrules {
+            if self.rules[r as usize].salience_expr != NONE {
+                let s = self.rule_salience(r);
+                self.rules[r as usize].salience = s;
+            }
+        }
         let mut list = self.st.agenda_head;
         self.st.agenda_head = NONE;
         // re-insert oldest first so newer stay ahead among equals
@@ -138,7 +155,7 @@ impl Core<'_> {
         while list != NONE {
             let prev = self.acts[list as usize].prev;
             let rule = self.acts[list as usize].rule;
-            self.acts[list as usize].salience = self.rule_salience(rule);
+            self.acts[list as usize].salience = self.rules[rule as usize].salience;
             self.agenda_insert(list);
             list = prev;
         }

@@ -90,8 +90,13 @@ engine_impl! {
     /// Runs text as CLIPS's batch mode (`clips -f`): prompts and echo when `echo`.
     /// Returns false once `(exit)` was called.
     pub fn batch_str(&mut self, host: &mut dyn Host, text: &str, echo: bool) -> bool {
+        self.batch_file(host, "batch", text, echo)
+    }
+
+    /// `batch_str` with the file name used in error positions (`--> FILE:LINE:COL`).
+    pub fn batch_file(&mut self, host: &mut dyn Host, source_name: &str, text: &str, echo: bool) -> bool {
         let mut cx = self.core(host);
-        let _ = cx.batch_text(text, echo);
+        let _ = cx.batch_text_named(text, echo, source_name);
         !cx.st.exit
     }
 

@@ -14,6 +14,27 @@ use crate::parser::{Item, Parser};
 use crate::rete::{JoinKind, PatBinding, TokenKind};
 use crate::value::{TextBuf, Value, NONE};
 
+/// Whether text holds only blanks and comments.
+fn only_blank(s: &str) -> bool {
+    Lexer::new(s).next_token().tok == Tok::Eof
+}
+
+/// Name of the construct starting at `s` (`(defrule NAME ...`); for defglobal the
+/// first variable's name.
+fn construct_name(s: &str) -> &str {
+    let mut lx = Lexer::new(s);
+    lx.next_token();
+    lx.next_token();
+    loop {
+        match lx.next_token().tok {
+            Tok::Symbol(n) if n != "MAIN" => return n,
+            Tok::Global(n) => return n,
+            Tok::Eof | Tok::Bad => return "",
+            _ => {}
+        }
+    }
+}
+
 /// Byte length of the first complete top-level item in `s` (construct, call or atom),
 /// or None while more input is needed. Leading blanks and comments are included.
 pub fn command_complete(s: &str) -> Option<usize> {
@@ -70,7 +91,9 @@ impl Core<'_> {
         let root_token = self.joins[0].mem;
         loop {
             let mut c = self.tokens[root_token as usize].first_child;
-            while c != NONE && self.joins[self.tokens[c as usize].owner as usize].kind == JoinKind::Positive {
+            while c != NONE
+                && self.joins[self.tokens[c as usize].owner as usize].kind == JoinKind::Positive
+            {
                 c = self.tokens[c as usize].next_sib;
             }
             if c == NONE {
@@ -90,7 +113,7 @@ impl Core<'_> {
             let init = self.globals[g as usize].init;
             if init != NONE {
                 let v = self.eval(init)?;
-                self.globals[g as usize].value = v;
+                self.set_global(g, v)?;
             }
         }
         let mut j = self.joins[0].first_child;
@@ -141,12 +164,36 @@ impl Core<'_> {
             *t = crate::template::Template::EMPTY;
         }
         let hw = self.st.hw;
-        let ctx = (self.st.sp, self.st.bp, self.st.scratch_top, self.st.eval_depth, self.st.firing, self.st.pm_rhs);
-        let rng = (self.st.rng, self.st.rng_glibc, self.st.rng_pos, self.st.rng_seeded);
+        let ctx = (
+            self.st.sp,
+            self.st.bp,
+            self.st.scratch_top,
+            self.st.eval_depth,
+            self.st.firing,
+            self.st.pm_rhs,
+        );
+        let rng = (
+            self.st.rng,
+            self.st.rng_glibc,
+            self.st.rng_pos,
+            self.st.rng_seeded,
+        );
         *self.st = crate::engine::State::new();
         self.st.hw = hw;
-        (self.st.sp, self.st.bp, self.st.scratch_top, self.st.eval_depth, self.st.firing, self.st.pm_rhs) = ctx;
-        (self.st.rng, self.st.rng_glibc, self.st.rng_pos, self.st.rng_seeded) = rng;
+        (
+            self.st.sp,
+            self.st.bp,
+            self.st.scratch_top,
+            self.st.eval_depth,
+            self.st.firing,
+            self.st.pm_rhs,
+        ) = ctx;
+        (
+            self.st.rng,
+            self.st.rng_glibc,
+            self.st.rng_pos,
+            self.st.rng_seeded,
+        ) = rng;
         self.st.nexternals = next;
         // keep the symbols naming external functions
         for b in self.sym_buckets.iter_mut() {
@@ -156,14 +203,19 @@ impl Core<'_> {
         for i in 0..keep {
             let e = self.sym_entries[i as usize];
             let text_start = e.start as usize;
-            let h = crate::symbols::hash_bytes(&self.sym_bytes[text_start..text_start + e.len as usize]) as usize
+            let h = crate::symbols::hash_bytes(
+                &self.sym_bytes[text_start..text_start + e.len as usize],
+            ) as usize
                 % self.sym_buckets.len();
             self.sym_entries[i as usize].next = self.sym_buckets[h];
             self.sym_buckets[h] = i;
         }
         self.st.nsyms = keep;
-        self.st.sym_bytes =
-            if keep == 0 { 0 } else { self.sym_entries[keep as usize - 1].start + self.sym_entries[keep as usize - 1].len };
+        self.st.sym_bytes = if keep == 0 {
+            0
+        } else {
+            self.sym_entries[keep as usize - 1].start + self.sym_entries[keep as usize - 1].len
+        };
         self.st.ext_syms = ext_syms;
         // CLIPS prints `==> f-0 (initial-fact)` here when facts are watched
         self.st.watch = w;
@@ -283,7 +335,10 @@ impl Core<'_> {
             }
             if tk.am != NONE {
                 let a = self.tokens[tk.am as usize];
-                self.st.rhs_pm[j.depth as usize] = PatBinding { fact: a.fact, marks: a.marks };
+                self.st.rhs_pm[j.depth as usize] = PatBinding {
+                    fact: a.fact,
+                    marks: a.marks,
+                };
             }
             t = tk.parent;
         }
@@ -302,7 +357,13 @@ impl Core<'_> {
             fired += 1;
             self.print_fire_line(fired, rule, token);
             self.bind_rhs(token);
-            let saved = (self.st.firing, self.st.pm_rhs, self.st.bp, self.st.sp, self.st.current_rule);
+            let saved = (
+                self.st.firing,
+                self.st.pm_rhs,
+                self.st.bp,
+                self.st.sp,
+                self.st.current_rule,
+            );
             self.st.firing = true;
             self.st.pm_rhs = true;
             self.st.current_rule = rule;
@@ -319,7 +380,13 @@ impl Core<'_> {
             }
             self.st.returning = false;
             self.st.breaking = false;
-            (self.st.firing, self.st.pm_rhs, self.st.bp, self.st.sp, self.st.current_rule) = saved;
+            (
+                self.st.firing,
+                self.st.pm_rhs,
+                self.st.bp,
+                self.st.sp,
+                self.st.current_rule,
+            ) = saved;
             if !self.st.firing {
                 self.free_pending();
                 self.st.scratch_top = scratch_mark;
@@ -333,7 +400,11 @@ impl Core<'_> {
             }
             if self.st.halt {
                 let mut b: TextBuf<160> = TextBuf::new();
-                let _ = writeln!(b, "[PRCCODE4] Execution halted during the actions of defrule {}.", self.sym_text(self.rules[rule as usize].name));
+                let _ = writeln!(
+                    b,
+                    "[PRCCODE4] Execution halted during the actions of defrule {}.",
+                    self.sym_text(self.rules[rule as usize].name)
+                );
                 self.write(router::WERROR, b.as_str());
                 break;
             }
@@ -345,7 +416,11 @@ impl Core<'_> {
     fn report_rhs_error(&mut self, rule: u16, e: EvalError) {
         let mut b: TextBuf<256> = TextBuf::new();
         let _ = writeln!(b, "[ERROR] {e}");
-        let _ = writeln!(b, "[PRCCODE4] Execution halted during the actions of defrule {}.", self.sym_text(self.rules[rule as usize].name));
+        let _ = writeln!(
+            b,
+            "[PRCCODE4] Execution halted during the actions of defrule {}.",
+            self.sym_text(self.rules[rule as usize].name)
+        );
         self.write(router::WERROR, b.as_str());
     }
 
@@ -354,7 +429,20 @@ impl Core<'_> {
         let mut b: TextBuf<256> = TextBuf::new();
         match e.kind {
             EvalErrorKind::Arity { func } => {
-                let _ = writeln!(b, "[ARGACCES4] Function {func} called with the wrong number of arguments.");
+                let _ = writeln!(
+                    b,
+                    "[ARGACCES4] Function {func} called with the wrong number of arguments."
+                );
+            }
+            EvalErrorKind::WrongType {
+                func,
+                arg,
+                expected,
+            } => {
+                let _ = writeln!(
+                    b,
+                    "[ARGACCES5] Function {func} expected argument #{arg} to be of type {expected}"
+                );
             }
             EvalErrorKind::NoSuchFact(n) => {
                 let _ = writeln!(b, "[PRNTUTIL1] Unable to find fact f-{n}.");
@@ -372,33 +460,71 @@ impl Core<'_> {
         let tok = text.get(e.start as usize..e.end as usize).unwrap_or("");
         if let Some(c) = e.capacity {
             let _ = writeln!(b, "[MEMORY] {c}");
-        } else if let LoadDetail::Arity { func, min, max, got } = e.detail {
+        } else if let LoadDetail::Arity {
+            func,
+            min,
+            max,
+            got,
+        } = e.detail
+        {
             let _ = if min == max {
-                writeln!(b, "[ARGACCES4] Function {func} expected exactly {min} argument(s)")
+                writeln!(
+                    b,
+                    "[ARGACCES4] Function {func} expected exactly {min} argument(s)"
+                )
             } else if got < min as u16 {
-                writeln!(b, "[ARGACCES4] Function {func} expected at least {min} argument(s)")
+                writeln!(
+                    b,
+                    "[ARGACCES4] Function {func} expected at least {min} argument(s)"
+                )
             } else {
-                writeln!(b, "[ARGACCES4] Function {func} expected no more than {max} argument(s)")
+                writeln!(
+                    b,
+                    "[ARGACCES4] Function {func} expected no more than {max} argument(s)"
+                )
             };
+        } else if let LoadDetail::UnknownSlot { template } = e.detail {
+            let _ = writeln!(
+                b,
+                "\n[TMPLTDEF1] Invalid slot {tok} not defined in corresponding deftemplate {}.",
+                self.sym_text(template)
+            );
         } else if e.detail == LoadDetail::MissingFunction {
             let _ = writeln!(b, "\n[EXPRNPSR3] Missing function declaration for {tok}.");
-        } else if let LoadDetail::Constraint { command, types, slot } = e.detail {
+        } else if let LoadDetail::Constraint {
+            command,
+            types,
+            slot,
+        } = e.detail
+        {
             let what = if types { "types" } else { "values" };
             let _ = writeln!(
                 b,
                 "\n[CSTRNCHK1] A literal slot value found in the {command} command\ndoes not match the allowed {what} for slot {}.",
                 self.sym_text(slot)
             );
-            self.write(router::WERROR, b.as_str());
-            return;
         } else if e.construct == "command" {
             {
-                let _ = writeln!(b, "\n[PRNTUTIL2] Syntax Error:  Check appropriate syntax for the command.");
+                let _ = writeln!(
+                    b,
+                    "\n[PRNTUTIL2] Syntax Error:  Check appropriate syntax for the command."
+                );
             }
         } else {
-            let _ = writeln!(b, "\n[PRNTUTIL2] Syntax Error:  Check appropriate syntax for {}.", e.construct);
+            let _ = writeln!(
+                b,
+                "\n[PRNTUTIL2] Syntax Error:  Check appropriate syntax for {}.",
+                e.construct
+            );
         }
-        let _ = writeln!(b, "--> {}:{}:{}: expected {}", source, e.line + self.st.line_base, e.col, e.expected);
+        let _ = writeln!(
+            b,
+            "--> {}:{}:{}: expected {}",
+            source,
+            e.line + self.st.line_base,
+            e.col,
+            e.expected
+        );
         self.write(router::WERROR, b.as_str());
     }
 
@@ -406,15 +532,44 @@ impl Core<'_> {
     /// Returns the number of constructs defined.
     pub fn load_text(&mut self, text: &str, verbose: bool) -> Result<usize, LoadError> {
         let mut n = 0;
+        let mut progress = false;
         let mut p = Parser::new(self, text);
         loop {
             let start = p.offset();
             match p.next_item() {
-                Ok(Item::End) => return Ok(n),
+                Ok(Item::End) => {
+                    if progress {
+                        p.cx.write(router::STDOUT, "\n");
+                    }
+                    return Ok(n);
+                }
                 Ok(Item::Construct) => {
                     n += 1;
-                    if verbose && p.cx.st.watch & watch::COMPILATIONS != 0 {
-                        let _ = start;
+                    if verbose {
+                        let kw = p.construct;
+                        let mut b: TextBuf<256> = TextBuf::new();
+                        if p.cx.st.watch & watch::COMPILATIONS != 0 {
+                            let _ = write!(b, "Defining {kw}: {}", construct_name(&text[start..]));
+                            if kw == "defrule" {
+                                let _ = b.write_char(' ');
+                                for &m in &p.join_marks[..p.njm] {
+                                    let _ = write!(b, "{}j", m as char);
+                                }
+                            }
+                            let _ = b.write_char('\n');
+                        } else {
+                            // CLIPS's progress marks when compilations are not watched
+                            let _ = b.write_char(match kw {
+                                "deftemplate" => '%',
+                                "defrule" => '*',
+                                "deffunction" => '!',
+                                "defglobal" => ':',
+                                "deffacts" => '$',
+                                _ => '#',
+                            });
+                            progress = true;
+                        }
+                        p.cx.write(router::STDOUT, b.as_str());
                     }
                 }
                 Ok(Item::Command(_)) => {
@@ -429,6 +584,16 @@ impl Core<'_> {
     /// Runs commands from text as CLIPS's batch mode does: a prompt, the echoed input
     /// lines up to a complete command, its result; the rest of that line is dropped.
     pub fn batch_text(&mut self, text: &str, echo: bool) -> Result<(), EvalError> {
+        self.batch_text_named(text, echo, "batch")
+    }
+
+    /// `batch_text` naming the source in error positions.
+    pub fn batch_text_named(
+        &mut self,
+        text: &str,
+        echo: bool,
+        source: &str,
+    ) -> Result<(), EvalError> {
         let mut pos = 0;
         let mut line_base = 0u32;
         while pos < text.len() && !self.st.exit {
@@ -447,11 +612,17 @@ impl Core<'_> {
                 end = line_end;
                 if let Some(k) = command_complete(&text[pos..end]) {
                     self.st.line_base = line_base;
-                    self.exec_command(&text[pos..pos + k], "batch");
+                    self.exec_command(&text[pos..pos + k], source);
                     self.st.line_base = 0;
                     break;
                 }
                 if end >= text.len() {
+                    // input ends inside a command: report where it is incomplete
+                    if !only_blank(&text[pos..end]) {
+                        self.st.line_base = line_base;
+                        self.exec_command(&text[pos..end], source);
+                        self.st.line_base = 0;
+                    }
                     break;
                 }
             }
@@ -497,7 +668,6 @@ impl Core<'_> {
                 self.st.returning = false;
                 self.st.breaking = false;
                 self.st.scratch_top = 0;
-                self.drop_toplevel_multis();
                 // a plain command leaves no expressions behind
                 let now = self.checkpoint();
                 if now.nrules == cp.nrules
@@ -511,16 +681,6 @@ impl Core<'_> {
             }
             Ok(_) => {}
             Err(e) => self.report_load_error(source, text, &e),
-        }
-    }
-
-    /// Multifield values outlive a command only in facts; globals holding one are
-    /// emptied when scratch is reset (documented limitation).
-    fn drop_toplevel_multis(&mut self) {
-        for g in 0..self.st.nglobals as usize {
-            if let Value::Multi(_) = self.globals[g].value {
-                self.globals[g].value = Value::Multi(crate::value::MfSpan { start: 0, len: 0 });
-            }
         }
     }
 
@@ -553,5 +713,43 @@ impl Core<'_> {
     /// Whether a fact slot is in use (live), for hosts.
     pub fn fact_is_live(&self, slot: u16) -> bool {
         self.facts[slot as usize].state == FactState::Live
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use crate::testutil::run_program;
+
+    #[test]
+    fn globals_keep_multifields_across_commands() {
+        let out = run_program(
+            "(defglobal ?*l* = (create$ a b) ?*m* = 0)\n(bind ?*m* (create$ x y z))\n(bind ?*l* (create$ ?*l* c))\n(printout t ?*l* \" \" ?*m* crlf)\n(reset)\n(printout t ?*l* crlf)\n",
+        );
+        assert_eq!(out, "(x y z)\n(a b c)\n(a b c) (x y z)\n(a b)\n");
+    }
+
+    #[test]
+    fn modify_gives_a_new_index_and_refires() {
+        let out = run_program(
+            "(deftemplate p (slot n))\n(defrule r ?f <- (p (n ?n&:(< ?n 3))) => (modify ?f (n (+ ?n 1))))\n(watch facts)\n(reset)\n(assert (p (n 1)))\n(run)\n",
+        );
+        assert!(out.contains("==> f-1     (p (n 1))"), "{out}");
+        assert!(
+            out.contains("<== f-1     (p (n 1))\n==> f-2     (p (n 2))"),
+            "{out}"
+        );
+        assert!(out.contains("==> f-3     (p (n 3))"), "{out}");
+    }
+
+    #[test]
+    fn batch_echo_drops_the_rest_of_the_line() {
+        let mut e = std::boxed::Box::new(crate::engine::SmallEngine::new());
+        let mut h = crate::testutil::CaptureHost::default();
+        e.batch_str(&mut h, "(+ 1 2) (+ 3 4)\n; c\n(assert (a))\n", true);
+        assert_eq!(
+            h.out,
+            "CLIPS> (+ 1 2) (+ 3 4)\n3\nCLIPS> ; c\n(assert (a))\n<Fact-1>\n"
+        );
     }
 }

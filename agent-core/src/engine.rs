@@ -23,7 +23,12 @@ pub struct ExternalEntry {
 }
 
 impl ExternalEntry {
-    pub const EMPTY: ExternalEntry = ExternalEntry { name: 0, min: 0, max: 0, f: None };
+    pub const EMPTY: ExternalEntry = ExternalEntry {
+        name: 0,
+        min: 0,
+        max: 0,
+        f: None,
+    };
 }
 
 /// Watch flags.
@@ -44,7 +49,10 @@ pub struct Stats {
 
 impl Stats {
     pub const fn new() -> Stats {
-        Stats { used: [0; 18], capacity: [0; 18] }
+        Stats {
+            used: [0; 18],
+            capacity: [0; 18],
+        }
     }
     pub fn get(&self, pool: Pool) -> (u32, u32) {
         (self.used[pool as usize], self.capacity[pool as usize])
@@ -109,9 +117,13 @@ pub struct State {
     pub sp: u16,
     pub bp: u16,
     pub scratch_top: u16,
+    /// Cells at the top of scratch holding multifield values of globals.
+    pub gmf_used: u16,
     pub watch: u8,
     pub halt: bool,
     pub exit: bool,
+    /// A pattern test failed with an error during the current assert.
+    pub pattern_error: bool,
     /// `return` / `break` unwinding in progress.
     pub returning: bool,
     pub breaking: bool,
@@ -170,9 +182,12 @@ impl State {
             sp: 0,
             bp: 0,
             scratch_top: 0,
-            watch: 0,
+            gmf_used: 0,
+            // CLIPS starts with compilations watched
+            watch: watch::COMPILATIONS,
             halt: false,
             exit: false,
+            pattern_error: false,
             returning: false,
             breaking: false,
             return_value: Value::Void,
@@ -384,7 +399,11 @@ impl<
     }
 
     /// Fact indices along a token's ancestry, by pattern position.
-    pub(crate) fn basis_of(&self, token: u16, out: &mut [Option<u32>; crate::rete::MAX_PATTERNS]) -> usize {
+    pub(crate) fn basis_of(
+        &self,
+        token: u16,
+        out: &mut [Option<u32>; crate::rete::MAX_PATTERNS],
+    ) -> usize {
         let mut n = 0;
         let mut t = token;
         while t != NONE {
@@ -395,7 +414,11 @@ impl<
             }
             let d = j.depth as usize;
             if d < out.len() {
-                out[d] = if tk.am != NONE { Some(self.facts[self.tokens[tk.am as usize].fact as usize].num) } else { None };
+                out[d] = if tk.am != NONE {
+                    Some(self.facts[self.tokens[tk.am as usize].fact as usize].num)
+                } else {
+                    None
+                };
                 n = n.max(d + 1);
             }
             t = tk.parent;
@@ -408,7 +431,8 @@ impl<
     }
     pub(crate) fn sym_str(&self, id: SymId) -> &str {
         let e = self.sym_entries[id as usize];
-        core::str::from_utf8(&self.sym_bytes[e.start as usize..(e.start + e.len) as usize]).unwrap_or("")
+        core::str::from_utf8(&self.sym_bytes[e.start as usize..(e.start + e.len) as usize])
+            .unwrap_or("")
     }
 
     /// The non-generic view of this engine, bound to `host` for output.
@@ -495,7 +519,10 @@ impl<
 }
 
 pub(crate) fn cap(pool: Pool, capacity: usize) -> CapacityError {
-    CapacityError { pool, capacity: capacity as u32 }
+    CapacityError {
+        pool,
+        capacity: capacity as u32,
+    }
 }
 
 impl Core<'_> {
@@ -512,7 +539,8 @@ impl Core<'_> {
     /// Text of a symbol or string.
     pub fn sym_text(&self, id: SymId) -> &str {
         let e = self.sym_entries[id as usize];
-        core::str::from_utf8(&self.sym_bytes[e.start as usize..(e.start + e.len) as usize]).unwrap_or("")
+        core::str::from_utf8(&self.sym_bytes[e.start as usize..(e.start + e.len) as usize])
+            .unwrap_or("")
     }
 
     pub fn intern(&mut self, s: &str) -> Result<SymId, CapacityError> {
@@ -577,7 +605,10 @@ impl Core<'_> {
         let x = self.exprs[e as usize];
         match x.op {
             Op::Int => Value::Int(Expr::join_bits(x, self.exprs[e as usize + 1]) as i64),
-            Op::Float => Value::Float(f64::from_bits(Expr::join_bits(x, self.exprs[e as usize + 1]))),
+            Op::Float => Value::Float(f64::from_bits(Expr::join_bits(
+                x,
+                self.exprs[e as usize + 1],
+            ))),
             Op::Sym => Value::Sym(x.data),
             Op::Str => Value::Str(x.data),
             _ => Value::Void,
@@ -644,19 +675,24 @@ impl Core<'_> {
         }
         // unlink new joins from old alpha nodes and old parent joins (new ones lead)
         for a in 0..cp.nalpha.min(self.st.nalpha) {
-            while self.alphas[a as usize].succ != NONE && self.alphas[a as usize].succ >= cp.njoins {
+            while self.alphas[a as usize].succ != NONE && self.alphas[a as usize].succ >= cp.njoins
+            {
                 let j = self.alphas[a as usize].succ;
                 self.alphas[a as usize].succ = self.joins[j as usize].alpha_next;
             }
         }
         for p in 0..cp.njoins.min(self.st.njoins) {
-            while self.joins[p as usize].first_child != NONE && self.joins[p as usize].first_child >= cp.njoins {
+            while self.joins[p as usize].first_child != NONE
+                && self.joins[p as usize].first_child >= cp.njoins
+            {
                 let j = self.joins[p as usize].first_child;
                 self.joins[p as usize].first_child = self.joins[j as usize].next_sibling;
             }
         }
         for t in 0..cp.ntemplates.min(self.st.ntemplates) {
-            while self.templates[t as usize].alpha_head != NONE && self.templates[t as usize].alpha_head >= cp.nalpha {
+            while self.templates[t as usize].alpha_head != NONE
+                && self.templates[t as usize].alpha_head >= cp.nalpha
+            {
                 let a = self.templates[t as usize].alpha_head;
                 self.templates[t as usize].alpha_head = self.alphas[a as usize].next_in_tmpl;
             }
@@ -697,12 +733,110 @@ impl Core<'_> {
     /// Allocates `n` cells of multifield scratch, returning the start.
     pub fn scratch_alloc(&mut self, n: usize) -> Result<u16, CapacityError> {
         let top = self.st.scratch_top as usize;
-        if top + n > self.scratch.len() || top + n > NONE as usize {
+        let limit = self.scratch.len() - self.st.gmf_used as usize;
+        if top + n > limit || top + n > NONE as usize {
             return Err(cap(Pool::Scratch, self.scratch.len()));
         }
         self.st.scratch_top += n as u16;
         self.note_hw(Pool::Scratch, top + n);
         Ok(top as u16)
+    }
+
+    /// Makes `v` the value of global `g`; a multifield is copied into the globals'
+    /// region at the top of scratch (compacted on each store) so it outlives the
+    /// command that built it.
+    pub fn set_global(&mut self, g: u16, v: Value) -> Result<(), CapacityError> {
+        let len = self.scratch.len();
+        let region = len - self.st.gmf_used as usize;
+        let m = match v {
+            Value::Multi(m) if (m.start as usize) < region => m,
+            Value::Multi(m) => {
+                // a global's own cells: copy below the region first
+                let t = self.scratch_alloc(m.len as usize)?;
+                self.scratch
+                    .copy_within(m.start as usize..(m.start + m.len) as usize, t as usize);
+                return self.set_global(
+                    g,
+                    Value::Multi(crate::value::MfSpan {
+                        start: t,
+                        len: m.len,
+                    }),
+                );
+            }
+            _ => {
+                self.globals[g as usize].value = v;
+                return Ok(());
+            }
+        };
+        // copy the new value to a safe place first: the area just below the region
+        let n = m.len as usize;
+        let mut others = 0usize;
+        for (i, gl) in self.globals[..self.st.nglobals as usize].iter().enumerate() {
+            if let Value::Multi(x) = gl.value {
+                if i != g as usize && x.start as usize >= region {
+                    others += x.len as usize;
+                }
+            }
+        }
+        if self.st.scratch_top as usize + others + n > len {
+            return Err(cap(Pool::Scratch, len));
+        }
+        self.globals[g as usize].value = Value::Void;
+        // pack the other globals' multifields against the top, highest start first
+        let mut new_top = len;
+        loop {
+            let mut best: Option<usize> = None;
+            for (i, gl) in self.globals[..self.st.nglobals as usize].iter().enumerate() {
+                if let Value::Multi(x) = gl.value {
+                    let s = x.start as usize;
+                    if s >= region && s + (x.len as usize) <= new_top && s < new_top {
+                        match best {
+                            Some(b) => {
+                                if let Value::Multi(y) = self.globals[b].value {
+                                    if x.start > y.start {
+                                        best = Some(i);
+                                    }
+                                }
+                            }
+                            None => best = Some(i),
+                        }
+                    }
+                }
+            }
+            let Some(b) = best else { break };
+            let Value::Multi(x) = self.globals[b].value else {
+                break;
+            };
+            let (s, l) = (x.start as usize, x.len as usize);
+            let dst = new_top - l;
+            self.scratch.copy_within(s..s + l, dst);
+            // mark as packed by moving it out of the search window
+            self.globals[b].value = Value::Multi(crate::value::MfSpan {
+                start: dst as u16,
+                len: l as u16,
+            });
+            new_top = dst;
+            if l == 0 {
+                // an empty multifield needs no cells; park it out of the search window
+                self.globals[b].value = Value::Multi(crate::value::MfSpan {
+                    start: len as u16,
+                    len: 0,
+                });
+            }
+        }
+        let dst = new_top - n;
+        self.scratch
+            .copy_within(m.start as usize..m.start as usize + n, dst);
+        self.globals[g as usize].value = Value::Multi(crate::value::MfSpan {
+            start: dst as u16,
+            len: n as u16,
+        });
+        self.st.gmf_used = (len - dst) as u16;
+        self.note_hw(
+            Pool::Scratch,
+            self.st.scratch_top as usize + self.st.gmf_used as usize,
+        );
+        Ok(())
     }
 
     /// Stats: high-water marks and capacities of every pool.
@@ -732,5 +866,44 @@ impl Core<'_> {
             s.capacity[i] = *c as u32;
         }
         s
+    }
+}
+
+#[cfg(test)]
+mod size_tests {
+    extern crate std;
+    use super::*;
+    use core::mem::size_of;
+
+    /// Pins the per-entry sizes that decide the image's RAM (see the crate docs).
+    #[test]
+    fn entry_sizes_stay_small() {
+        assert!(size_of::<Token>() <= 32, "token {}", size_of::<Token>());
+        assert!(size_of::<Expr>() == 8);
+        assert!(size_of::<Fact>() <= 24);
+        assert!(size_of::<Activation>() <= 24);
+        assert!(size_of::<Value>() <= 16);
+        assert!(size_of::<Join>() <= 24);
+        std::println!(
+            "sizes: value {} fact {} sym {} template {} slot {} rule {} alpha {} join {} token {} act {} func {} global {} expr {} deffacts {} ext {} state {} | DefaultEngine {} SmallEngine {}",
+            size_of::<Value>(),
+            size_of::<Fact>(),
+            size_of::<SymEntry>(),
+            size_of::<Template>(),
+            size_of::<SlotDef>(),
+            size_of::<Rule>(),
+            size_of::<AlphaNode>(),
+            size_of::<Join>(),
+            size_of::<Token>(),
+            size_of::<Activation>(),
+            size_of::<Deffunction>(),
+            size_of::<Global>(),
+            size_of::<Expr>(),
+            size_of::<Deffacts>(),
+            size_of::<ExternalEntry>(),
+            size_of::<State>(),
+            size_of::<DefaultEngine>(),
+            size_of::<SmallEngine>(),
+        );
     }
 }

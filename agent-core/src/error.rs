@@ -80,7 +80,12 @@ pub struct CapacityError {
 
 impl fmt::Display for CapacityError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "out of {} (capacity {})", self.pool.name(), self.capacity)
+        write!(
+            f,
+            "out of {} (capacity {})",
+            self.pool.name(),
+            self.capacity
+        )
     }
 }
 
@@ -89,15 +94,25 @@ impl fmt::Display for CapacityError {
 pub enum EvalErrorKind {
     Capacity(CapacityError),
     /// A function got an argument of the wrong type; `arg` is 1-based.
-    WrongType { func: &'static str, arg: u8, expected: &'static str },
-    Arity { func: &'static str },
-    DivideByZero { func: &'static str },
+    WrongType {
+        func: &'static str,
+        arg: u8,
+        expected: &'static str,
+    },
+    Arity {
+        func: &'static str,
+    },
+    DivideByZero {
+        func: &'static str,
+    },
     UnboundVariable,
     NoSuchFact(i64),
     NoSuchFunction,
     NoSuchTemplate,
     NoSuchSlot,
-    BadSlotValue { reason: &'static str },
+    BadSlotValue {
+        reason: &'static str,
+    },
     /// A host-registered function reported failure.
     External,
     /// `(halt)`/`(exit)` requested; not an error for callers of `run`.
@@ -116,16 +131,26 @@ impl EvalError {
         EvalError { kind }
     }
     pub const fn other(msg: &'static str) -> Self {
-        EvalError { kind: EvalErrorKind::Other(msg) }
+        EvalError {
+            kind: EvalErrorKind::Other(msg),
+        }
     }
     pub const fn wrong_type(func: &'static str, arg: u8, expected: &'static str) -> Self {
-        EvalError { kind: EvalErrorKind::WrongType { func, arg, expected } }
+        EvalError {
+            kind: EvalErrorKind::WrongType {
+                func,
+                arg,
+                expected,
+            },
+        }
     }
 }
 
 impl From<CapacityError> for EvalError {
     fn from(c: CapacityError) -> Self {
-        EvalError { kind: EvalErrorKind::Capacity(c) }
+        EvalError {
+            kind: EvalErrorKind::Capacity(c),
+        }
     }
 }
 
@@ -133,11 +158,22 @@ impl fmt::Display for EvalError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self.kind {
             EvalErrorKind::Capacity(c) => write!(f, "{c}"),
-            EvalErrorKind::WrongType { func, arg, expected } => {
-                write!(f, "function {func} expected argument #{arg} to be of type {expected}")
+            EvalErrorKind::WrongType {
+                func,
+                arg,
+                expected,
+            } => {
+                write!(
+                    f,
+                    "function {func} expected argument #{arg} to be of type {expected}"
+                )
             }
-            EvalErrorKind::Arity { func } => write!(f, "function {func}: wrong number of arguments"),
-            EvalErrorKind::DivideByZero { func } => write!(f, "division by zero in function {func}"),
+            EvalErrorKind::Arity { func } => {
+                write!(f, "function {func}: wrong number of arguments")
+            }
+            EvalErrorKind::DivideByZero { func } => {
+                write!(f, "division by zero in function {func}")
+            }
             EvalErrorKind::UnboundVariable => write!(f, "unbound variable"),
             EvalErrorKind::NoSuchFact(n) => write!(f, "unable to find fact f-{n}"),
             EvalErrorKind::NoSuchFunction => write!(f, "no such function"),
@@ -175,12 +211,25 @@ pub struct LoadError {
 pub enum LoadDetail {
     Syntax,
     /// `[ARGACCES4]`: a call with the wrong number of arguments.
-    Arity { func: &'static str, min: u8, max: u8, got: u16 },
+    Arity {
+        func: &'static str,
+        min: u8,
+        max: u8,
+        got: u16,
+    },
     /// `[EXPRNPSR3]`: unknown function (its name is the offending token).
     MissingFunction,
     /// `[CSTRNCHK1]`: a literal slot value violates the slot's type (`types`) or
     /// allowed values.
-    Constraint { command: &'static str, types: bool, slot: u16 },
+    Constraint {
+        command: &'static str,
+        types: bool,
+        slot: u16,
+    },
+    /// `[TMPLTDEF1]`: a slot name the template does not have (the offending token).
+    UnknownSlot {
+        template: u16,
+    },
 }
 
 impl fmt::Display for LoadError {

@@ -108,8 +108,14 @@ impl Core<'_> {
             c = self.exprs[c as usize].next;
         }
         let slack = len.saturating_sub(fixed);
-        let sum_marks: usize =
-            if multis >= 2 { b.marks[first_mark..first_mark + multis - 1].iter().map(|&m| m as usize).sum() } else { 0 };
+        let sum_marks: usize = if multis >= 2 {
+            b.marks[first_mark..first_mark + multis - 1]
+                .iter()
+                .map(|&m| m as usize)
+                .sum()
+        } else {
+            0
+        };
         let mlen_of = |mi: usize| -> usize {
             if multis == 1 {
                 slack
@@ -161,7 +167,10 @@ impl Core<'_> {
             }
             a = self.exprs[a as usize].next;
         }
-        Ok(Args { base, len: self.st.sp - base })
+        Ok(Args {
+            base,
+            len: self.st.sp - base,
+        })
     }
 
     fn call(&mut self, e: u16) -> Result<Value, EvalError> {
@@ -209,7 +218,9 @@ impl Core<'_> {
         let n = args.len as usize;
         let np = df.nparams as usize;
         if n < np || (!df.rest && n > np) {
-            return Err(EvalError::new(EvalErrorKind::Arity { func: "deffunction" }));
+            return Err(EvalError::new(EvalErrorKind::Arity {
+                func: "deffunction",
+            }));
         }
         if df.rest {
             // collect the extra arguments (multifields spliced) into the rest parameter
@@ -229,7 +240,10 @@ impl Core<'_> {
                 }
             }
             self.st.sp = args.base + np as u16;
-            self.push_value(Value::Multi(MfSpan { start, len: self.st.scratch_top - start }))?;
+            self.push_value(Value::Multi(MfSpan {
+                start,
+                len: self.st.scratch_top - start,
+            }))?;
         }
         let frame_args = np + usize::from(df.rest);
         for _ in frame_args..df.nlocals as usize {

@@ -64,10 +64,22 @@ pub struct Expr {
 }
 
 impl Expr {
-    pub const EMPTY: Expr = Expr { op: Op::Nop, aux: 0, data: 0, first: NONE, next: NONE };
+    pub const EMPTY: Expr = Expr {
+        op: Op::Nop,
+        aux: 0,
+        data: 0,
+        first: NONE,
+        next: NONE,
+    };
 
     pub const fn new(op: Op, aux: u8, data: u16) -> Expr {
-        Expr { op, aux, data, first: NONE, next: NONE }
+        Expr {
+            op,
+            aux,
+            data,
+            first: NONE,
+            next: NONE,
+        }
     }
 
     /// Splits 64 bits between a constant's header node (low 16 bits in `data`) and
@@ -86,7 +98,10 @@ impl Expr {
 
     /// Inverse of `split_bits`.
     pub fn join_bits(head: Expr, tail: Expr) -> u64 {
-        head.data as u64 | (tail.data as u64) << 16 | (tail.first as u64) << 32 | (tail.next as u64) << 48
+        head.data as u64
+            | (tail.data as u64) << 16
+            | (tail.first as u64) << 32
+            | (tail.next as u64) << 48
     }
 }
 

@@ -85,9 +85,19 @@ impl Core<'_> {
             return Err(cap(Pool::SlotDefs, self.slots.len()));
         }
         let implied = self.intern("implied")?;
-        self.slots[s] = SlotDef { name: implied, multi: true, ..SlotDef::EMPTY };
+        self.slots[s] = SlotDef {
+            name: implied,
+            multi: true,
+            ..SlotDef::EMPTY
+        };
         self.st.nslots += 1;
-        self.templates[n] = Template { name, first_slot: s as u16, nslots: 1, implied: true, alpha_head: NONE };
+        self.templates[n] = Template {
+            name,
+            first_slot: s as u16,
+            nslots: 1,
+            implied: true,
+            alpha_head: NONE,
+        };
         self.st.ntemplates += 1;
         self.note_hw(Pool::Templates, n + 1);
         self.note_hw(Pool::SlotDefs, s + 1);
@@ -134,11 +144,17 @@ impl Core<'_> {
         for i in 0..n {
             self.scratch[s as usize + i] = self.values[cell + i];
         }
-        Ok(Value::Multi(MfSpan { start: s, len: n as u16 }))
+        Ok(Value::Multi(MfSpan {
+            start: s,
+            len: n as u16,
+        }))
     }
 
     pub fn fact_ref(&self, slot: u16) -> FactRef {
-        FactRef { slot, num: self.facts[slot as usize].num }
+        FactRef {
+            slot,
+            num: self.facts[slot as usize].num,
+        }
     }
 
     /// A fact address is usable if its slot still holds that fact (live or pending).
@@ -181,12 +197,19 @@ impl Core<'_> {
         let mut live = self.st.fact_head;
         loop {
             // the pending fact with the lowest start below the next live one goes first
-            let live_start = if live == NONE { usize::MAX } else { self.facts[live as usize].start as usize };
+            let live_start = if live == NONE {
+                usize::MAX
+            } else {
+                self.facts[live as usize].start as usize
+            };
             let mut best = NONE;
             let mut p = self.st.pending;
             while p != NONE {
                 let s = self.facts[p as usize].start as usize;
-                if s >= dst && s < live_start && (best == NONE || s < self.facts[best as usize].start as usize) {
+                if s >= dst
+                    && s < live_start
+                    && (best == NONE || s < self.facts[best as usize].start as usize)
+                {
                     best = p;
                 }
                 p = self.facts[p as usize].next;
@@ -200,7 +223,10 @@ impl Core<'_> {
             } else {
                 break;
             };
-            let (s, l) = (self.facts[f as usize].start as usize, self.facts[f as usize].len as usize);
+            let (s, l) = (
+                self.facts[f as usize].start as usize,
+                self.facts[f as usize].len as usize,
+            );
             if s != dst {
                 self.values.copy_within(s..s + l, dst);
                 self.facts[f as usize].start = dst as u16;
@@ -234,7 +260,9 @@ impl Core<'_> {
                 _ => 1,
             };
         }
-        if self.st.fact_free == NONE && self.st.facts_used as usize >= self.facts.len().min(NONE as usize - 1) {
+        if self.st.fact_free == NONE
+            && self.st.facts_used as usize >= self.facts.len().min(NONE as usize - 1)
+        {
             return Err(cap(Pool::Facts, self.facts.len()).into());
         }
         let start = self.reserve_cells(need)?;
@@ -242,7 +270,10 @@ impl Core<'_> {
         for i in 0..t.nslots as usize {
             match self.stack[base + i] {
                 Value::Multi(m) => {
-                    self.values[c] = Value::Multi(MfSpan { start: 0, len: m.len });
+                    self.values[c] = Value::Multi(MfSpan {
+                        start: 0,
+                        len: m.len,
+                    });
                     c += 1;
                     for k in 0..m.len as usize {
                         self.values[c] = self.scratch[m.start as usize + k];
@@ -260,7 +291,10 @@ impl Core<'_> {
         let mut d = self.fact_buckets[bucket];
         while d != NONE {
             let df = self.facts[d as usize];
-            if df.tmpl == tmpl && df.len as usize == need && self.cells_equal(df.start as usize, start, need) {
+            if df.tmpl == tmpl
+                && df.len as usize == need
+                && self.cells_equal(df.start as usize, start, need)
+            {
                 return Ok(None);
             }
             d = df.hash_next;
@@ -308,7 +342,7 @@ impl Core<'_> {
             self.free_fact_slot(slot);
             self.st.next_fact_num = num;
             self.st.values_top = start as u16;
-            return Err(e.into());
+            return Err(e);
         }
         Ok(Some(slot))
     }

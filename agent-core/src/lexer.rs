@@ -9,6 +9,8 @@ pub enum Tok<'a> {
     /// String contents without quotes, escapes still in place.
     Str(&'a str),
     Int(i64),
+    /// An integer literal beyond 64 bits: CLIPS warns and clamps it.
+    IntOverflow(i64),
     Float(f64),
     /// `?name`
     SfVar(&'a str),
@@ -47,12 +49,20 @@ pub struct Lexer<'a> {
 }
 
 fn is_delim(b: u8) -> bool {
-    matches!(b, b' ' | b'\t' | b'\r' | b'\n' | b'\x0c' | b'(' | b')' | b'"' | b';' | b'&' | b'|' | b'~')
+    matches!(
+        b,
+        b' ' | b'\t' | b'\r' | b'\n' | b'\x0c' | b'(' | b')' | b'"' | b';' | b'&' | b'|' | b'~'
+    )
 }
 
 impl<'a> Lexer<'a> {
     pub fn new(src: &'a str) -> Self {
-        Lexer { src, pos: 0, line: 1, col: 1 }
+        Lexer {
+            src,
+            pos: 0,
+            line: 1,
+            col: 1,
+        }
     }
 
     pub fn source(&self) -> &'a str {
@@ -151,7 +161,13 @@ impl<'a> Lexer<'a> {
                 classify_word(w)
             }
         };
-        Token { tok, line, col, start, end: self.pos }
+        Token {
+            tok,
+            line,
+            col,
+            start,
+            end: self.pos,
+        }
     }
 
     fn string(&mut self) -> Tok<'a> {
@@ -199,10 +215,11 @@ pub fn classify_word(w: &str) -> Tok<'_> {
     if body.iter().all(|c| c.is_ascii_digit()) {
         return match w.parse::<i64>() {
             Ok(i) => Tok::Int(i),
-            Err(_) => match w.parse::<f64>() {
-                Ok(f) => Tok::Float(f),
-                Err(_) => Tok::Symbol(w),
-            },
+            Err(_) => Tok::IntOverflow(if w.starts_with('-') {
+                i64::MIN
+            } else {
+                i64::MAX
+            }),
         };
     }
     // float: digits with one '.', optional exponent; must contain a digit

@@ -78,6 +78,8 @@ pub mod testutil;
 pub use api::{ExternalFn, FactId, Usage};
 pub use builtins::{Args, BuiltinFn};
 pub use engine::{Core, DefaultEngine, Engine, SmallEngine, Stats};
-pub use error::{CapacityError, EngineError, EvalError, EvalErrorKind, HostIoError, LoadError, Pool};
+pub use error::{
+    CapacityError, EngineError, EvalError, EvalErrorKind, HostIoError, LoadError, Pool,
+};
 pub use host::{Host, NullHost};
 pub use value::{Value, ValueRef};

@@ -24,7 +24,8 @@ pub struct View<'a> {
 impl View<'_> {
     pub fn sym(&self, id: SymId) -> &str {
         let e = self.sym_entries[id as usize];
-        core::str::from_utf8(&self.sym_bytes[e.start as usize..(e.start + e.len) as usize]).unwrap_or("")
+        core::str::from_utf8(&self.sym_bytes[e.start as usize..(e.start + e.len) as usize])
+            .unwrap_or("")
     }
 
     /// A value as CLIPS prints results: strings quoted, multifields in parentheses.
@@ -150,7 +151,10 @@ impl Core<'_> {
     pub(crate) fn print_fact_line(&mut self, arrow: &str, slot: u16) {
         let num = self.facts[slot as usize].num;
         let (view, host) = self.split();
-        let mut w = RouterWriter { host, router: router::WTRACE };
+        let mut w = RouterWriter {
+            host,
+            router: router::WTRACE,
+        };
         let _ = w.write_str(arrow);
         let _ = Self::write_fact_id(&mut w, num);
         let _ = view.write_fact(&mut w, slot);
@@ -161,7 +165,10 @@ impl Core<'_> {
     pub(crate) fn print_fact_listing_line(&mut self, slot: u16) {
         let num = self.facts[slot as usize].num;
         let (view, host) = self.split();
-        let mut w = RouterWriter { host, router: router::WDISPLAY };
+        let mut w = RouterWriter {
+            host,
+            router: router::WDISPLAY,
+        };
         let _ = Self::write_fact_id(&mut w, num);
         let _ = view.write_fact(&mut w, slot);
         let _ = w.write_str("\n");
@@ -179,8 +186,11 @@ impl Core<'_> {
                 break;
             }
             if (j.depth as usize) < ids.len() {
-                ids[j.depth as usize] =
-                    if tk.am != NONE { self.facts[self.tokens[tk.am as usize].fact as usize].num } else { u32::MAX };
+                ids[j.depth as usize] = if tk.am != NONE {
+                    self.facts[self.tokens[tk.am as usize].fact as usize].num
+                } else {
+                    u32::MAX
+                };
                 n = n.max(j.depth as usize + 1);
             }
             t = tk.parent;
@@ -217,7 +227,11 @@ impl Core<'_> {
             return;
         }
         let mut b: crate::value::TextBuf<512> = crate::value::TextBuf::new();
-        let _ = write!(b, "FIRE {count:>4} {}: ", self.sym_text(self.rules[rule as usize].name));
+        let _ = write!(
+            b,
+            "FIRE {count:>4} {}: ",
+            self.sym_text(self.rules[rule as usize].name)
+        );
         let _ = self.write_basis(&mut b, token);
         let _ = b.write_str("\n");
         self.host.write_str(router::WTRACE, b.as_str());
@@ -242,7 +256,11 @@ impl Core<'_> {
 
     fn print_total(&mut self, n: usize, what: &str) {
         let mut b: crate::value::TextBuf<64> = crate::value::TextBuf::new();
-        let _ = write!(b, "For a total of {n} {what}{}.\n", if n == 1 { "" } else { "s" });
+        let _ = writeln!(
+            b,
+            "For a total of {n} {what}{}.",
+            if n == 1 { "" } else { "s" }
+        );
         self.host.write_str(router::WDISPLAY, b.as_str());
     }
 

@@ -61,6 +61,13 @@ pub struct Activation {
 }
 
 impl Activation {
-    pub const EMPTY: Activation =
-        Activation { rule: NONE, token: NONE, salience: 0, seq: 0, next: NONE, prev: NONE, next_of_token: NONE };
+    pub const EMPTY: Activation = Activation {
+        rule: NONE,
+        token: NONE,
+        salience: 0,
+        seq: 0,
+        next: NONE,
+        prev: NONE,
+        next_of_token: NONE,
+    };
 }

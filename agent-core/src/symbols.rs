@@ -15,7 +15,11 @@ pub struct SymEntry {
 }
 
 impl SymEntry {
-    pub const EMPTY: SymEntry = SymEntry { start: 0, len: 0, next: NONE };
+    pub const EMPTY: SymEntry = SymEntry {
+        start: 0,
+        len: 0,
+        next: NONE,
+    };
 }
 
 /// FNV-1a over bytes; cheap and good enough for bucket spreading.
@@ -41,7 +45,8 @@ pub struct Symbols<'a> {
 impl Symbols<'_> {
     pub fn text(&self, id: SymId) -> &str {
         let e = self.entries[id as usize];
-        core::str::from_utf8(&self.bytes[e.start as usize..(e.start + e.len) as usize]).unwrap_or("")
+        core::str::from_utf8(&self.bytes[e.start as usize..(e.start + e.len) as usize])
+            .unwrap_or("")
     }
 
     pub fn find(&self, s: &str) -> Option<SymId> {
@@ -65,15 +70,25 @@ impl Symbols<'_> {
         }
         let n = *self.count as usize;
         if n >= self.entries.len() || n >= NONE as usize {
-            return Err(CapacityError { pool: Pool::Symbols, capacity: self.entries.len() as u32 });
+            return Err(CapacityError {
+                pool: Pool::Symbols,
+                capacity: self.entries.len() as u32,
+            });
         }
         let used = *self.bytes_used as usize;
         if used + s.len() > self.bytes.len() || used + s.len() > u16::MAX as usize {
-            return Err(CapacityError { pool: Pool::SymbolBytes, capacity: self.bytes.len() as u32 });
+            return Err(CapacityError {
+                pool: Pool::SymbolBytes,
+                capacity: self.bytes.len() as u32,
+            });
         }
         self.bytes[used..used + s.len()].copy_from_slice(s.as_bytes());
         let b = hash_bytes(s.as_bytes()) as usize % self.buckets.len();
-        self.entries[n] = SymEntry { start: used as u16, len: s.len() as u16, next: self.buckets[b] };
+        self.entries[n] = SymEntry {
+            start: used as u16,
+            len: s.len() as u16,
+            next: self.buckets[b],
+        };
         self.buckets[b] = n as u16;
         *self.count += 1;
         *self.bytes_used += s.len() as u16;

@@ -76,8 +76,13 @@ pub struct Template {
 }
 
 impl Template {
-    pub const EMPTY: Template =
-        Template { name: 0, first_slot: NONE, nslots: 0, implied: false, alpha_head: NONE };
+    pub const EMPTY: Template = Template {
+        name: 0,
+        first_slot: NONE,
+        nslots: 0,
+        implied: false,
+        alpha_head: NONE,
+    };
 }
 
 /// A `deffacts`: a chain of `FactSpec` expressions.
@@ -88,7 +93,10 @@ pub struct Deffacts {
 }
 
 impl Deffacts {
-    pub const EMPTY: Deffacts = Deffacts { name: 0, facts: NONE };
+    pub const EMPTY: Deffacts = Deffacts {
+        name: 0,
+        facts: NONE,
+    };
 }
 
 /// A `defglobal` variable.
@@ -101,7 +109,11 @@ pub struct Global {
 }
 
 impl Global {
-    pub const EMPTY: Global = Global { name: 0, value: crate::value::Value::Void, init: NONE };
+    pub const EMPTY: Global = Global {
+        name: 0,
+        value: crate::value::Value::Void,
+        init: NONE,
+    };
 }
 
 /// A `deffunction`.
@@ -119,5 +131,11 @@ pub struct Deffunction {
 }
 
 impl Deffunction {
-    pub const EMPTY: Deffunction = Deffunction { name: 0, nparams: 0, rest: false, nlocals: 0, body: NONE };
+    pub const EMPTY: Deffunction = Deffunction {
+        name: 0,
+        nparams: 0,
+        rest: false,
+        nlocals: 0,
+        body: NONE,
+    };
 }

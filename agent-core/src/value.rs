@@ -81,7 +81,10 @@ pub struct TextBuf<const N: usize> {
 
 impl<const N: usize> TextBuf<N> {
     pub const fn new() -> Self {
-        TextBuf { buf: [0; N], len: 0 }
+        TextBuf {
+            buf: [0; N],
+            len: 0,
+        }
     }
     pub fn as_str(&self) -> &str {
         // Only whole UTF-8 sequences are ever pushed (see write_str), so this cannot fail.
@@ -133,7 +136,10 @@ pub fn write_float(out: &mut dyn Write, x: f64) -> fmt::Result {
     write_g15(&mut g, x)?;
     let s = g.as_str();
     out.write_str(s)?;
-    if !s.bytes().any(|b| b == b'.' || b == b'e' || b == b'n' || b == b'i') {
+    if !s
+        .bytes()
+        .any(|b| b == b'.' || b == b'e' || b == b'n' || b == b'i')
+    {
         out.write_str(".0")?;
     }
     Ok(())
@@ -174,7 +180,7 @@ fn write_g15(out: &mut dyn Write, x: f64) -> fmt::Result {
     if neg {
         out.write_char('-')?;
     }
-    if exp < -4 || exp >= P {
+    if !(-4..P).contains(&exp) {
         out.write_char(digits[0] as char)?;
         if n > 1 {
             out.write_char('.')?;
@@ -187,7 +193,12 @@ fn write_g15(out: &mut dyn Write, x: f64) -> fmt::Result {
     } else if exp >= 0 {
         let int_len = exp as usize + 1;
         for i in 0..int_len {
-            out.write_char(if i < n { digits[i] as char } else { '0' })?;
+            let d = if i < n {
+                digits.get(i).copied().unwrap_or(b'0')
+            } else {
+                b'0'
+            };
+            out.write_char(d as char)?;
         }
         if n > int_len {
             out.write_char('.')?;

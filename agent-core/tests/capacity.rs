@@ -1,5 +1,7 @@
 //! Capacity tests: fill every pool; the error names it and its capacity; the failed
 //! operation leaves the engine as it was, and the engine keeps working.
+// The `engine!` macro's default capacities are shadowed by the overrides.
+#![allow(dead_code)]
 
 use agent_core::{CapacityError, Engine, EngineError, EvalErrorKind, FactId, Host, Pool};
 
@@ -31,9 +33,12 @@ macro_rules! engine {
             const SCRATCH: usize = 256;
             const DEFFACTS: usize = 8;
             const EXTERNALS: usize = 8;
-            $(const $name: usize = $v;)*
-            Box::new(Engine::<FACTS, VALUES, SYMBOLS, SYMBYTES, TEMPLATES, SLOTS, RULES, ALPHA, JOINS,
-                TOKENS, ACTS, FUNCS, GLOBALS, EXPRS, STACK, SCRATCH, DEFFACTS, EXTERNALS>::new())
+            {
+                // inner items shadow the defaults above
+                $(const $name: usize = $v;)*
+                Box::new(Engine::<FACTS, VALUES, SYMBOLS, SYMBYTES, TEMPLATES, SLOTS, RULES, ALPHA, JOINS,
+                    TOKENS, ACTS, FUNCS, GLOBALS, EXPRS, STACK, SCRATCH, DEFFACTS, EXTERNALS>::new())
+            }
         }
     }};
 }
@@ -59,7 +64,13 @@ fn facts_pool() {
     }
     let before: Vec<FactId> = e.facts().collect();
     let err = cap_of(e.assert_str(h, "(a 99)").unwrap_err());
-    assert_eq!(err, CapacityError { pool: Pool::Facts, capacity: 4 });
+    assert_eq!(
+        err,
+        CapacityError {
+            pool: Pool::Facts,
+            capacity: 4
+        }
+    );
     assert_eq!(e.facts().collect::<Vec<_>>(), before);
     e.retract(h, FactId(1)).unwrap();
     assert_eq!(e.assert_str(h, "(a 99)").unwrap(), FactId(4));
@@ -70,13 +81,17 @@ fn fact_values_pool() {
     let mut e = engine!(VALUES = 24);
     let h = &mut Quiet;
     e.assert_str(h, "(big 1 2 3 4 5 6 7 8 9 10)").unwrap();
-    let err = cap_of(e.assert_str(h, "(big 11 12 13 14 15 16 17 18 19 20 21 22 23)").unwrap_err());
+    let err = cap_of(
+        e.assert_str(h, "(big 11 12 13 14 15 16 17 18 19 20 21 22 23)")
+            .unwrap_err(),
+    );
     assert_eq!(err.pool, Pool::FactValues);
     assert_eq!(err.capacity, 24);
     assert_eq!(e.facts().count(), 2);
     // retract frees cells (after compaction) for a new fact
     e.retract(h, FactId(1)).unwrap();
-    e.assert_str(h, "(big 11 12 13 14 15 16 17 18 19 20 21 22 23)").unwrap();
+    e.assert_str(h, "(big 11 12 13 14 15 16 17 18 19 20 21 22 23)")
+        .unwrap();
 }
 
 #[test]
@@ -90,7 +105,13 @@ fn symbols_pool() {
             break;
         }
     }
-    assert_eq!(failed, Some(CapacityError { pool: Pool::Symbols, capacity: 16 }));
+    assert_eq!(
+        failed,
+        Some(CapacityError {
+            pool: Pool::Symbols,
+            capacity: 16
+        })
+    );
     // known symbols still work
     assert!(e.assert_str(h, "(s sym0 sym1)").is_ok());
 }
@@ -101,7 +122,13 @@ fn symbol_bytes_pool() {
     let h = &mut Quiet;
     let long = "x".repeat(80);
     let err = cap_of(e.assert_str(h, &format!("(s {long})")).unwrap_err());
-    assert_eq!(err, CapacityError { pool: Pool::SymbolBytes, capacity: 96 });
+    assert_eq!(
+        err,
+        CapacityError {
+            pool: Pool::SymbolBytes,
+            capacity: 96
+        }
+    );
     assert!(e.assert_str(h, "(s short)").is_ok());
 }
 
@@ -111,17 +138,32 @@ fn templates_and_slot_defs_pools() {
     let h = &mut Quiet;
     e.load_str(h, "t", "(deftemplate one (slot a))").unwrap();
     let before = e.usage();
-    let err = e.load_str(h, "t", "(deftemplate two (slot a)) (deftemplate three (slot b))").unwrap_err();
+    let err = e
+        .load_str(
+            h,
+            "t",
+            "(deftemplate two (slot a)) (deftemplate three (slot b))",
+        )
+        .unwrap_err();
     assert_eq!(err.capacity.map(|c| c.pool), Some(Pool::Templates));
     // `two` fitted and stays; `three` left nothing
     assert_eq!(e.usage().templates, before.templates + 1);
     e.assert_str(h, "(two (a 1))").unwrap();
 
     let mut e = engine!(SLOTS = 4);
-    e.load_str(h, "t", "(deftemplate one (slot a) (slot b))").unwrap();
+    e.load_str(h, "t", "(deftemplate one (slot a) (slot b))")
+        .unwrap();
     let before = e.usage();
-    let err = e.load_str(h, "t", "(deftemplate two (slot a) (slot b) (slot c))").unwrap_err();
-    assert_eq!(err.capacity, Some(CapacityError { pool: Pool::SlotDefs, capacity: 4 }));
+    let err = e
+        .load_str(h, "t", "(deftemplate two (slot a) (slot b) (slot c))")
+        .unwrap_err();
+    assert_eq!(
+        err.capacity,
+        Some(CapacityError {
+            pool: Pool::SlotDefs,
+            capacity: 4
+        })
+    );
     assert_eq!(e.usage(), before);
     e.assert_str(h, "(one (a 1))").unwrap();
 }
@@ -130,10 +172,17 @@ fn templates_and_slot_defs_pools() {
 fn rules_alpha_and_joins_pools() {
     let h = &mut Quiet;
     let mut e = engine!(RULES = 2);
-    e.load_str(h, "t", "(defrule r1 (a) =>) (defrule r2 (b) =>)").unwrap();
+    e.load_str(h, "t", "(defrule r1 (a) =>) (defrule r2 (b) =>)")
+        .unwrap();
     let before = e.usage();
     let err = e.load_str(h, "t", "(defrule r3 (c) =>)").unwrap_err();
-    assert_eq!(err.capacity, Some(CapacityError { pool: Pool::Rules, capacity: 2 }));
+    assert_eq!(
+        err.capacity,
+        Some(CapacityError {
+            pool: Pool::Rules,
+            capacity: 2
+        })
+    );
     assert_eq!(e.usage(), before);
     e.assert_str(h, "(a)").unwrap();
     assert_eq!(e.counts().1, 1);
@@ -142,15 +191,29 @@ fn rules_alpha_and_joins_pools() {
     e.load_str(h, "t", "(defrule r1 (a 1) (a 2) =>)").unwrap();
     let before = e.usage();
     let err = e.load_str(h, "t", "(defrule r2 (a 3) =>)").unwrap_err();
-    assert_eq!(err.capacity, Some(CapacityError { pool: Pool::AlphaNodes, capacity: 2 }));
+    assert_eq!(
+        err.capacity,
+        Some(CapacityError {
+            pool: Pool::AlphaNodes,
+            capacity: 2
+        })
+    );
     assert_eq!(e.usage(), before);
 
     // join 0 is the global root; r1 takes 3 (2 CEs + its end node)
     let mut e = engine!(JOINS = 5);
     e.load_str(h, "t", "(defrule r1 (a ?x) (b ?x) =>)").unwrap();
     let before = e.usage();
-    let err = e.load_str(h, "t", "(defrule r2 (c ?x) (d ?x) =>)").unwrap_err();
-    assert_eq!(err.capacity, Some(CapacityError { pool: Pool::Joins, capacity: 5 }));
+    let err = e
+        .load_str(h, "t", "(defrule r2 (c ?x) (d ?x) =>)")
+        .unwrap_err();
+    assert_eq!(
+        err.capacity,
+        Some(CapacityError {
+            pool: Pool::Joins,
+            capacity: 5
+        })
+    );
     assert_eq!(e.usage(), before);
     e.assert_str(h, "(a 1)").unwrap();
     e.assert_str(h, "(b 1)").unwrap();
@@ -161,13 +224,22 @@ fn rules_alpha_and_joins_pools() {
 fn tokens_pool_assert_is_undone() {
     let h = &mut Quiet;
     let mut e = engine!(TOKENS = 24);
-    e.load_str(h, "t", "(defrule cross (a ?x) (b ?y) => ) (defrule lonely (a ?x) (not (c ?x)) =>)").unwrap();
+    e.load_str(
+        h,
+        "t",
+        "(defrule cross (a ?x) (b ?y) => ) (defrule lonely (a ?x) (not (c ?x)) =>)",
+    )
+    .unwrap();
     let mut failed = None;
     for i in 0..20 {
         let before_facts: Vec<FactId> = e.facts().collect();
         let before_agenda = agenda(&e);
         let before_tokens = e.usage().tokens;
-        let fact = if i % 2 == 0 { format!("(a {i})") } else { format!("(b {i})") };
+        let fact = if i % 2 == 0 {
+            format!("(a {i})")
+        } else {
+            format!("(b {i})")
+        };
         match e.assert_str(h, &fact) {
             Ok(_) => {}
             Err(err) => {
@@ -179,7 +251,13 @@ fn tokens_pool_assert_is_undone() {
             }
         }
     }
-    assert_eq!(failed, Some(CapacityError { pool: Pool::Tokens, capacity: 24 }));
+    assert_eq!(
+        failed,
+        Some(CapacityError {
+            pool: Pool::Tokens,
+            capacity: 24
+        })
+    );
     // still works: free some room, then match again
     let first = e.facts().nth(1).unwrap();
     e.retract(h, first).unwrap();
@@ -187,9 +265,26 @@ fn tokens_pool_assert_is_undone() {
     assert!(e.run(h, None).unwrap() > 0);
 }
 
-fn agenda<const A: usize, const B: usize, const C: usize, const D: usize, const E: usize, const F: usize,
-    const G: usize, const H: usize, const I: usize, const J: usize, const K: usize, const L: usize,
-    const M: usize, const N: usize, const O: usize, const P: usize, const Q: usize, const R: usize>(
+fn agenda<
+    const A: usize,
+    const B: usize,
+    const C: usize,
+    const D: usize,
+    const E: usize,
+    const F: usize,
+    const G: usize,
+    const H: usize,
+    const I: usize,
+    const J: usize,
+    const K: usize,
+    const L: usize,
+    const M: usize,
+    const N: usize,
+    const O: usize,
+    const P: usize,
+    const Q: usize,
+    const R: usize,
+>(
     e: &Engine<A, B, C, D, E, F, G, H, I, J, K, L, M, N, O, P, Q, R>,
 ) -> Vec<String> {
     let mut v = Vec::new();
@@ -207,7 +302,13 @@ fn activations_pool() {
     }
     let before = agenda(&e);
     let err = cap_of(e.assert_str(h, "(a 3)").unwrap_err());
-    assert_eq!(err, CapacityError { pool: Pool::Activations, capacity: 3 });
+    assert_eq!(
+        err,
+        CapacityError {
+            pool: Pool::Activations,
+            capacity: 3
+        }
+    );
     assert_eq!(agenda(&e), before);
     assert_eq!(e.run(h, Some(1)).unwrap(), 1);
     e.assert_str(h, "(a 3)").unwrap();
@@ -220,20 +321,38 @@ fn functions_globals_deffacts_pools() {
     e.load_str(h, "t", "(deffunction f (?x) (* ?x 2))").unwrap();
     let before = e.usage();
     let err = e.load_str(h, "t", "(deffunction g (?x) ?x)").unwrap_err();
-    assert_eq!(err.capacity, Some(CapacityError { pool: Pool::Functions, capacity: 1 }));
+    assert_eq!(
+        err.capacity,
+        Some(CapacityError {
+            pool: Pool::Functions,
+            capacity: 1
+        })
+    );
     assert_eq!(e.usage(), before);
     assert_eq!(e.eval_str(h, "(f 21)").unwrap(), agent_core::Value::Int(42));
 
     let mut e = engine!(GLOBALS = 1);
     e.load_str(h, "t", "(defglobal ?*a* = 1)").unwrap();
     let err = e.load_str(h, "t", "(defglobal ?*b* = 2)").unwrap_err();
-    assert_eq!(err.capacity, Some(CapacityError { pool: Pool::Globals, capacity: 1 }));
+    assert_eq!(
+        err.capacity,
+        Some(CapacityError {
+            pool: Pool::Globals,
+            capacity: 1
+        })
+    );
     assert_eq!(e.eval_str(h, "?*a*").unwrap(), agent_core::Value::Int(1));
 
     let mut e = engine!(DEFFACTS = 1);
     e.load_str(h, "t", "(deffacts one (x 1))").unwrap();
     let err = e.load_str(h, "t", "(deffacts two (x 2))").unwrap_err();
-    assert_eq!(err.capacity, Some(CapacityError { pool: Pool::Deffacts, capacity: 1 }));
+    assert_eq!(
+        err.capacity,
+        Some(CapacityError {
+            pool: Pool::Deffacts,
+            capacity: 1
+        })
+    );
     e.reset(h).unwrap();
     assert_eq!(e.facts().count(), 2);
 }
@@ -242,7 +361,8 @@ fn functions_globals_deffacts_pools() {
 fn exprs_pool() {
     let h = &mut Quiet;
     let mut e = engine!(EXPRS = 40);
-    e.load_str(h, "t", "(defrule r (a ?x) => (printout t ?x crlf))").unwrap();
+    e.load_str(h, "t", "(defrule r (a ?x) => (printout t ?x crlf))")
+        .unwrap();
     let before = e.usage();
     let big = "(defrule big (b ?x) => (printout t (+ ?x 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20 21 22 23 24 25 26 27 28 29 30) crlf))";
     let err = e.load_str(h, "t", big).unwrap_err();
@@ -257,26 +377,55 @@ fn eval_stack_and_scratch_pools() {
     let h = &mut Quiet;
     let mut e = engine!(STACK = 8);
     let err = e.eval_str(h, "(+ 1 2 3 4 5 6 7 8 9 10)").unwrap_err();
-    assert_eq!(err.kind, EvalErrorKind::Capacity(CapacityError { pool: Pool::EvalStack, capacity: 8 }));
-    assert_eq!(e.eval_str(h, "(+ 1 2 3)").unwrap(), agent_core::Value::Int(6));
+    assert_eq!(
+        err.kind,
+        EvalErrorKind::Capacity(CapacityError {
+            pool: Pool::EvalStack,
+            capacity: 8
+        })
+    );
+    assert_eq!(
+        e.eval_str(h, "(+ 1 2 3)").unwrap(),
+        agent_core::Value::Int(6)
+    );
 
     let mut e = engine!(SCRATCH = 8);
-    e.load_str(h, "t", "(deffunction many () (bind ?x a b c d e f g h i j k) ?x)").unwrap();
+    e.load_str(
+        h,
+        "t",
+        "(deffunction many () (bind ?x a b c d e f g h i j k) ?x)",
+    )
+    .unwrap();
     let err = e.eval_str(h, "(many)").unwrap_err();
-    assert_eq!(err.kind, EvalErrorKind::Capacity(CapacityError { pool: Pool::Scratch, capacity: 8 }));
+    assert_eq!(
+        err.kind,
+        EvalErrorKind::Capacity(CapacityError {
+            pool: Pool::Scratch,
+            capacity: 8
+        })
+    );
     assert!(e.eval_str(h, "(+ 1 2)").is_ok());
 }
 
 #[test]
 fn external_functions_pool() {
-    fn one(_cx: &mut agent_core::Core<'_>, _a: agent_core::Args) -> Result<agent_core::Value, agent_core::EvalError> {
+    fn one(
+        _cx: &mut agent_core::Core<'_>,
+        _a: agent_core::Args,
+    ) -> Result<agent_core::Value, agent_core::EvalError> {
         Ok(agent_core::Value::Int(1))
     }
     let h = &mut Quiet;
     let mut e = engine!(EXTERNALS = 1);
     e.register_function("one", 0, Some(0), one).unwrap();
     let err = cap_of(e.register_function("two", 0, Some(0), one).unwrap_err());
-    assert_eq!(err, CapacityError { pool: Pool::ExternalFns, capacity: 1 });
+    assert_eq!(
+        err,
+        CapacityError {
+            pool: Pool::ExternalFns,
+            capacity: 1
+        }
+    );
     assert_eq!(e.eval_str(h, "(one)").unwrap(), agent_core::Value::Int(1));
 }
 

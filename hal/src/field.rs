@@ -139,6 +139,14 @@ pub fn input_storage_pose() -> Pose2 {
     Pose2::new(x, y, core::f32::consts::FRAC_PI_2)
 }
 
+/// Where robot `robot` (1..=3) picks raw pucks up: the storage is a strip along the top
+/// edge, and each robot uses its own spot so two robots never queue for one point.
+pub fn input_storage_pose_for(robot: u8) -> Pose2 {
+    let offset = [0.0, -1.2, 1.2][usize::from(robot.clamp(1, 3)) - 1];
+    let p = input_storage_pose();
+    Pose2::new(p.x_m + offset, p.y_m, p.phi_rad)
+}
+
 /// The pose in front of a delivery gate, facing it (-y, towards the bottom edge).
 pub fn gate_pose(gate: GateId) -> Pose2 {
     let (x, y) = gate.position();
@@ -184,8 +192,10 @@ mod tests {
             let p = machine_approach_pose(m);
             assert!(!is_blocked(p.x_m, p.y_m, 0.2), "{m:?} {p:?}");
         }
-        let s = input_storage_pose();
-        assert!(!is_blocked(s.x_m, s.y_m, 0.2));
+        for robot in 1..=3 {
+            let s = input_storage_pose_for(robot);
+            assert!(!is_blocked(s.x_m, s.y_m, 0.2), "robot {robot} {s:?}");
+        }
         for g in 1..=3 {
             let p = GateId::new(g).map(gate_pose).unwrap_or_default();
             assert!(!is_blocked(p.x_m, p.y_m, 0.2), "gate {g} {p:?}");

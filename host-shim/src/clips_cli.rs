@@ -65,10 +65,21 @@ fn parse_steps(options: &[String]) -> Result<Vec<Step>, String> {
     let mut steps = Vec::new();
     let mut it = options.iter();
     while let Some(o) = it.next() {
-        let path = || it.clone().next().cloned().ok_or_else(|| format!("option {o} needs a file name"));
+        let path = || {
+            it.clone()
+                .next()
+                .cloned()
+                .ok_or_else(|| format!("option {o} needs a file name"))
+        };
         let step = match o.as_str() {
-            "-f" => Step::Batch { path: path()?, echo: true },
-            "-f2" => Step::Batch { path: path()?, echo: false },
+            "-f" => Step::Batch {
+                path: path()?,
+                echo: true,
+            },
+            "-f2" => Step::Batch {
+                path: path()?,
+                echo: false,
+            },
             "-l" => Step::Load(path()?),
             _ => return Err(format!("unknown option {o} (expected -f, -f2 or -l)")),
         };
@@ -87,7 +98,9 @@ pub fn main(args: Args) -> ExitCode {
         }
     };
     // The default engine is a few MiB of inline arrays: give it a thread stack.
-    let worker = std::thread::Builder::new().stack_size(256 << 20).spawn(move || session(steps));
+    let worker = std::thread::Builder::new()
+        .stack_size(256 << 20)
+        .spawn(move || session(steps));
     match worker.map(|w| w.join()) {
         Ok(Ok(code)) => code,
         _ => ExitCode::FAILURE,
@@ -96,12 +109,17 @@ pub fn main(args: Args) -> ExitCode {
 
 fn session(steps: Vec<Step>) -> ExitCode {
     let mut engine = DefaultEngine::new();
-    let mut host = CliHost { out: std::io::BufWriter::new(std::io::stdout()) };
-    host.write_str("stdout", "         CLIPS (6.30 compatible: robotino-agent)\n");
+    let mut host = CliHost {
+        out: std::io::BufWriter::new(std::io::stdout()),
+    };
+    host.write_str(
+        "stdout",
+        "         CLIPS (6.30 compatible: robotino-agent)\n",
+    );
     for step in steps {
         let keep_going = match step {
             Step::Batch { path, echo } => match std::fs::read_to_string(&path) {
-                Ok(text) => engine.batch_str(&mut host, &text, echo),
+                Ok(text) => engine.batch_file(&mut host, &path, &text, echo),
                 Err(e) => {
                     let _ = host.out.flush();
                     eprintln!("robotino-agent clips: cannot read {path}: {e}");

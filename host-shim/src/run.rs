@@ -195,6 +195,7 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
         max_linear_m_s: config.limits.max_linear_m_s,
         max_angular_rad_s: config.limits.max_angular_rad_s,
         robot_radius_m: config.robot.radius_m,
+        robot_number: config.robot.number,
         ..DriveTuning::default()
     };
     let mut monitor = SafetyMonitor::new(

@@ -24,14 +24,19 @@ fn scratch_dir() -> PathBuf {
     dir
 }
 
-/// Fails (not skips) when real CLIPS is missing.
-fn require_clips() {
-    let probe = Command::new("clips")
-        .arg("-f2")
-        .arg("/dev/null")
+/// Fails (not skips) when real CLIPS is missing. The probe batch ends with
+/// `(exit)`: CLIPS spins at end of input otherwise.
+fn require_clips(dir: &Path) {
+    let probe = dir.join("probe.clp");
+    std::fs::write(&probe, "(printout t \"clips-ok\" crlf)\n(exit)\n").expect("writing the probe");
+    let found = Command::new("timeout")
+        .args([CLIPS_TIMEOUT_S, "clips", "-f2"])
+        .arg(&probe)
         .stdin(std::process::Stdio::null())
-        .output();
-    if probe.is_err() {
+        .output()
+        .map(|out| String::from_utf8_lossy(&out.stdout).contains("clips-ok"))
+        .unwrap_or(false);
+    if !found {
         panic!(
             "real CLIPS 6.30 (`clips` on PATH) is required for the parity test: install it \
              (e.g. `apt-get install clips`, or build CLIPS 6.30 from source and put `clips` on PATH)"
@@ -69,6 +74,26 @@ fn setup_of(case: Case) -> GameSetup {
     setup
 }
 
+/// Prints the decision log in the format of the game log's `decision` lines
+/// (`sim --log`), so both engines' beliefs after every decision compare too.
+const CLIPS_DECISION_PRINTER: &str = r#"
+(deffunction parity-decisions ()
+  (bind ?n (length$ (find-all-facts ((?d decision)) TRUE)))
+  (loop-for-count (?i 1 ?n)
+    (do-for-fact ((?d decision)) (= ?d:n ?i)
+      (format t "decision %d %.1f %s %s %s %s %s %s %d %s%n"
+        ?d:n ?d:time ?d:action ?d:target ?d:puck ?d:status ?d:light
+        ?d:holding ?d:points (implode$ ?d:beliefs)))))
+"#;
+
+/// The `decision ...` lines of CLIPS output or of a game log.
+fn decision_lines(text: &str) -> Vec<String> {
+    text.lines()
+        .filter(|l| l.starts_with("decision "))
+        .map(|l| l.trim_end().to_string())
+        .collect()
+}
+
 /// The FIRE lines and the RESULT line of a run's output.
 fn trace_and_result(output: &str) -> (Vec<String>, Option<String>) {
     let fires = output
@@ -100,13 +125,17 @@ fn play_in_clips(case: Case, dir: &Path) -> String {
         load(&mut batch, &rules.join(file.name));
     }
     load(&mut batch, &rules.join("clips/report.clp"));
+    let printer_path = dir.join("parity-decisions.clp");
+    std::fs::write(&printer_path, CLIPS_DECISION_PRINTER).expect("writing the printer");
+    load(&mut batch, &printer_path);
     load(&mut batch, &setup_path);
-    batch.push_str("(reset)\n(watch rules)\n(run)\n(report-game)\n(exit)\n");
+    batch.push_str("(reset)\n(watch rules)\n(run)\n(unwatch rules)\n(report-game)\n(parity-decisions)\n(exit)\n");
     let batch_path = dir.join(format!("play-{}.clp", case.seed));
     std::fs::write(&batch_path, batch).expect("writing the batch file");
     let out = Command::new("timeout")
         .args([CLIPS_TIMEOUT_S, "clips", "-f2"])
         .arg(&batch_path)
+        .stdin(std::process::Stdio::null())
         .output()
         .expect("running clips under timeout");
     assert!(
@@ -117,7 +146,9 @@ fn play_in_clips(case: Case, dir: &Path) -> String {
     String::from_utf8_lossy(&out.stdout).into_owned()
 }
 
-fn play_in_ours(case: Case) -> String {
+/// Our run's output and its game log.
+fn play_in_ours(case: Case, dir: &Path) -> (String, String) {
+    let log = dir.join(format!("ours-{}.log", case.seed));
     let mut cmd = Command::new(env!("CARGO_BIN_EXE_robotino-agent"));
     cmd.args([
         "sim",
@@ -127,6 +158,7 @@ fn play_in_ours(case: Case) -> String {
         "--strategy",
         case.strategy.name(),
     ]);
+    cmd.arg("--log").arg(&log);
     if case.hard {
         cmd.args(["--seeded-times", "--faults", "3"]);
     }
@@ -136,42 +168,56 @@ fn play_in_ours(case: Case) -> String {
         "robotino-agent sim failed on {case:?}: {}",
         String::from_utf8_lossy(&out.stderr)
     );
-    String::from_utf8_lossy(&out.stdout).into_owned()
+    let log_text = std::fs::read_to_string(&log).expect("sim --log wrote the game log");
+    (String::from_utf8_lossy(&out.stdout).into_owned(), log_text)
 }
 
-#[test]
-fn seeded_games_fire_the_same_rules_as_real_clips() {
-    require_clips();
-    let dir = scratch_dir();
-    let mut failures = Vec::new();
-    for case in cases() {
-        let (clips_fires, clips_result) = trace_and_result(&play_in_clips(case, &dir));
-        let (our_fires, our_result) = trace_and_result(&play_in_ours(case));
-        assert!(
-            clips_fires.len() > 100,
-            "CLIPS played no real game for {case:?}"
-        );
-        assert!(
-            clips_result.is_some(),
-            "CLIPS printed no RESULT for {case:?}"
-        );
-        if let Some(i) = (0..clips_fires.len().max(our_fires.len()))
-            .find(|&i| clips_fires.get(i) != our_fires.get(i))
-        {
-            failures.push(format!(
-                "{case:?}: traces differ at firing {} of {} (ours {}):\n  clips: {:?}\n  ours:  {:?}",
-                i + 1,
-                clips_fires.len(),
-                our_fires.len(),
-                clips_fires.get(i),
-                our_fires.get(i)
-            ));
-        } else if clips_result != our_result {
-            failures.push(format!(
-                "{case:?}: results differ:\n  clips: {clips_result:?}\n  ours:  {our_result:?}"
-            ));
-        }
+/// Both engines' traces, results and decision logs for one game.
+struct Played {
+    clips_fires: Vec<String>,
+    our_fires: Vec<String>,
+    clips_result: Option<String>,
+    our_result: Option<String>,
+    clips_decisions: Vec<String>,
+    our_decisions: Vec<String>,
+}
+
+fn play_both(case: Case, dir: &Path) -> Played {
+    let clips_out = play_in_clips(case, dir);
+    let (clips_fires, clips_result) = trace_and_result(&clips_out);
+    let (our_out, our_log) = play_in_ours(case, dir);
+    let (our_fires, our_result) = trace_and_result(&our_out);
+    assert!(
+        clips_fires.len() > 100,
+        "CLIPS played no real game for {case:?}"
+    );
+    assert!(
+        clips_result.is_some(),
+        "CLIPS printed no RESULT for {case:?}"
+    );
+    Played {
+        clips_fires,
+        our_fires,
+        clips_result,
+        our_result,
+        clips_decisions: decision_lines(&clips_out),
+        our_decisions: decision_lines(&our_log),
     }
+}
+
+/// Index of the first entry where two lists differ.
+fn first_difference(a: &[String], b: &[String]) -> Option<usize> {
+    (0..a.len().max(b.len())).find(|&i| a.get(i) != b.get(i))
+}
+
+/// Plays every case in both engines and collects what `check` finds.
+fn check_all(check: impl Fn(Case, &Played) -> Option<String>) {
+    let dir = scratch_dir();
+    require_clips(&dir);
+    let failures: Vec<String> = cases()
+        .into_iter()
+        .filter_map(|case| check(case, &play_both(case, &dir)))
+        .collect();
     let _ = std::fs::remove_dir_all(&dir);
     assert!(
         failures.is_empty(),
@@ -180,6 +226,47 @@ fn seeded_games_fire_the_same_rules_as_real_clips() {
         cases().len(),
         failures.join("\n")
     );
+}
+
+#[test]
+fn seeded_games_fire_the_same_rules_as_real_clips() {
+    check_all(|case, p| {
+        if let Some(i) = first_difference(&p.clips_fires, &p.our_fires) {
+            Some(format!(
+                "{case:?}: traces differ at firing {} of {} (ours {}):\n  clips: {:?}\n  ours:  {:?}",
+                i + 1,
+                p.clips_fires.len(),
+                p.our_fires.len(),
+                p.clips_fires.get(i),
+                p.our_fires.get(i)
+            ))
+        } else if p.clips_result != p.our_result {
+            Some(format!(
+                "{case:?}: results differ:\n  clips: {:?}\n  ours:  {:?}",
+                p.clips_result, p.our_result
+            ))
+        } else {
+            None
+        }
+    });
+}
+
+/// The decision log also holds the beliefs after every decision, built by
+/// `log-beliefs` (game-log.clp) as a multifield in a deffunction loop.
+#[test]
+#[ignore = "engine bug: a multifield bound in a loop is clobbered by a later progn$ \
+            (log-beliefs), so our beliefs differ; run with --ignored once fixed"]
+fn seeded_games_log_the_same_decisions_as_real_clips() {
+    check_all(|case, p| {
+        first_difference(&p.clips_decisions, &p.our_decisions).map(|i| {
+            format!(
+                "{case:?}: decision log differs at entry {}:\n  clips: {:?}\n  ours:  {:?}",
+                i + 1,
+                p.clips_decisions.get(i),
+                p.our_decisions.get(i)
+            )
+        })
+    });
 }
 
 #[test]

@@ -41,7 +41,7 @@ fn a_type_learned_by_one_robot_is_used_by_the_other() {
         &[&sim, &a1, &a2],
         || {
             for (me, other, agent) in [(1, 2, &a1), (2, 1, &a2)] {
-                if let Some(line) = agent.line_with(&format!("shared type")) {
+                if let Some(line) = agent.line_with("shared type") {
                     if line.ends_with(&format!("from robot {other}")) {
                         user = Some((me, line));
                     }

@@ -4,6 +4,7 @@
 # real-CLIPS process and summarise:
 # mean points, P per game, the P distribution, end reasons (deadlocks must
 # be 0).  Example: sweep.sh paper 0 4200 --clock-off
+# CLIPS=COMMAND runs another engine with the same batch options (default: clips).
 set -eu
 here=$(cd "$(dirname "$0")/.." && pwd)
 strategy=${1:?usage: sweep.sh STRATEGY [FROM TO] [setup options]}
@@ -19,7 +20,7 @@ trap 'rm -rf "$tmp"' EXIT
   (cd "$here" && cargo run -q -p rules --example setup -- --sweep "$from" "$to" "$@")
   echo "(exit)"
 } > "$tmp/sweep.clp"
-timeout 3000 clips -f2 "$tmp/sweep.clp" > "$tmp/out.txt"
+timeout 3000 ${CLIPS:-clips} -f2 "$tmp/sweep.clp" > "$tmp/out.txt"
 if [ -n "${KEEP:-}" ]; then cp "$tmp/out.txt" "$KEEP"; fi
 awk -v strategy="$strategy" '
   /^GAME/ {

@@ -40,7 +40,7 @@ pub const PRODUCTION_COMMON: RuleFile = rule_file!("production-common.clp");
 pub const PRODUCTION: RuleFile = rule_file!("production.clp");
 /// The paper's commitment: first candidate in machine-name order.
 pub const SELECT_PAPER: RuleFile = rule_file!("select-paper.clp");
-/// Our commitment: nearest candidate, plus the S0 budget guard.
+/// Our commitment: the nearest candidate (ties by machine name).
 pub const SELECT_TRAVEL: RuleFile = rule_file!("select-travel.clp");
 /// The naive baseline: fixed machine order, no priorities.
 pub const PRODUCTION_NAIVE: RuleFile = rule_file!("production-naive.clp");
@@ -61,7 +61,7 @@ pub enum Strategy {
     Naive,
     /// The paper's machine priorities, ties by machine name.
     Paper,
-    /// The paper's priorities, ties by travel distance, S0 budget guard.
+    /// The paper's priorities, equal-priority ties by travel distance.
     Travel,
 }
 

@@ -4,6 +4,7 @@
 # line; it is run with that agent, plus referee, game log and sim where the header
 # says ";;; with: game".  Passes when every file prints at least one PASS,
 # no FAIL, and CLIPS reports no error.
+# CLIPS=COMMAND runs another engine with the same batch options (default: clips).
 set -u
 here=$(cd "$(dirname "$0")/.." && pwd)
 . "$here/clips/strategy.sh"
@@ -26,7 +27,7 @@ for test in "$@"; do
     cat "$test"
     echo "(exit)"
   } > "$batch"
-  out=$(timeout 60 clips -f2 "$batch" 2>&1)
+  out=$(timeout 60 ${CLIPS:-clips} -f2 "$batch" 2>&1)
   rm -f "$batch"
   pass=$(printf '%s\n' "$out" | grep -c '^PASS')
   fail=$(printf '%s\n' "$out" | grep -c '^FAIL')

@@ -24,7 +24,13 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("str-cat", 1, ANY, str_cat),
 ];
 
-fn fold(cx: &mut Core<'_>, a: Args, name: &'static str, fi: fn(i64, i64) -> i64, ff: fn(f64, f64) -> f64) -> Result<Value, EvalError> {
+fn fold(
+    cx: &mut Core<'_>,
+    a: Args,
+    name: &'static str,
+    fi: fn(i64, i64) -> i64,
+    ff: fn(f64, f64) -> f64,
+) -> Result<Value, EvalError> {
     let mut acc = cx.arg_num(a, 0, name)?;
     for i in 1..a.len as usize {
         let x = cx.arg_num(a, i, name)?;
@@ -62,12 +68,20 @@ fn div(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 fn cmp_num(p: Num, q: Num) -> core::cmp::Ordering {
     match (p, q) {
         (Num::Int(x), Num::Int(y)) => x.cmp(&y),
-        (x, y) => x.as_f64().partial_cmp(&y.as_f64()).unwrap_or(core::cmp::Ordering::Equal),
+        (x, y) => x
+            .as_f64()
+            .partial_cmp(&y.as_f64())
+            .unwrap_or(core::cmp::Ordering::Equal),
     }
 }
 
 /// Chained numeric comparison: every neighbouring pair must satisfy `ok`.
-fn chain(cx: &mut Core<'_>, a: Args, name: &'static str, ok: fn(core::cmp::Ordering) -> bool) -> Result<Value, EvalError> {
+fn chain(
+    cx: &mut Core<'_>,
+    a: Args,
+    name: &'static str,
+    ok: fn(core::cmp::Ordering) -> bool,
+) -> Result<Value, EvalError> {
     let mut prev = cx.arg_num(a, 0, name)?;
     for i in 1..a.len as usize {
         let x = cx.arg_num(a, i, name)?;
@@ -123,12 +137,16 @@ pub fn values_same(cx: &Core<'_>, x: Value, y: Value) -> bool {
 
 fn eq(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let first = cx.arg(a, 0);
-    Ok(Core::bool_value((1..a.len as usize).all(|i| values_same(cx, first, cx.arg(a, i)))))
+    Ok(Core::bool_value(
+        (1..a.len as usize).all(|i| values_same(cx, first, cx.arg(a, i))),
+    ))
 }
 /// `neq`: the first differs from every other.
 fn neq(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let first = cx.arg(a, 0);
-    Ok(Core::bool_value((1..a.len as usize).all(|i| !values_same(cx, first, cx.arg(a, i)))))
+    Ok(Core::bool_value(
+        (1..a.len as usize).all(|i| !values_same(cx, first, cx.arg(a, i))),
+    ))
 }
 
 fn and(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
@@ -162,7 +180,8 @@ fn str_cat(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         if v.is_multi() {
             return Err(EvalError::wrong_type("str-cat", i as u8 + 1, "atom"));
         }
-        cx.write_plain(&mut b, v).map_err(|_| EvalError::other("str-cat: result too long"))?;
+        cx.write_plain(&mut b, v)
+            .map_err(|_| EvalError::other("str-cat: result too long"))?;
     }
     Ok(cx.make_string(b.as_str())?)
 }

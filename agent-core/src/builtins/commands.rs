@@ -50,7 +50,11 @@ fn clear(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
 }
 
 fn run(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    let limit = if a.len > 0 { cx.arg_int(a, 0, "run")? } else { -1 };
+    let limit = if a.len > 0 {
+        cx.arg_int(a, 0, "run")?
+    } else {
+        -1
+    };
     if limit == 0 {
         cx.write(router::STDOUT, "rule firing limit reached\n");
         return Ok(Value::Void);
@@ -115,7 +119,11 @@ fn printout(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     if cx.sym_text(r) == "nil" {
         return Ok(Value::Void);
     }
-    let routed: &'static str = if r == SYM_T { router::STDOUT } else { route_name(cx.sym_text(r)) };
+    let routed: &'static str = if r == SYM_T {
+        router::STDOUT
+    } else {
+        route_name(cx.sym_text(r))
+    };
     let mut b: TextBuf<1024> = TextBuf::new();
     for i in 1..a.len as usize {
         let v = cx.arg(a, i);
@@ -192,7 +200,11 @@ fn list_defrules(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
     }
     if n > 0 {
         let mut b: TextBuf<64> = TextBuf::new();
-        let _ = writeln!(b, "For a total of {n} defrule{}.", if n == 1 { "" } else { "s" });
+        let _ = writeln!(
+            b,
+            "For a total of {n} defrule{}.",
+            if n == 1 { "" } else { "s" }
+        );
         cx.write(router::WDISPLAY, b.as_str());
     }
     Ok(Value::Void)
@@ -224,7 +236,11 @@ fn undefrule(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         }
         None => {
             let mut b: TextBuf<160> = TextBuf::new();
-            let _ = writeln!(b, "[PRNTUTIL1] Unable to find defrule {}.", cx.sym_text(name));
+            let _ = writeln!(
+                b,
+                "[PRNTUTIL1] Unable to find defrule {}.",
+                cx.sym_text(name)
+            );
             cx.write(router::WERROR, b.as_str());
             Ok(Value::Void)
         }
@@ -271,11 +287,19 @@ fn matches(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 /// Size of the stack buffer a file is read into by `load`/`batch`/`load-facts`.
 pub const FILE_BUF: usize = 32 * 1024;
 
-fn read_file_arg<'b>(cx: &mut Core<'_>, a: Args, buf: &'b mut [u8], func: &'static str) -> Result<&'b str, EvalError> {
+fn read_file_arg<'b>(
+    cx: &mut Core<'_>,
+    a: Args,
+    buf: &'b mut [u8],
+    func: &'static str,
+) -> Result<&'b str, EvalError> {
     let p = cx.arg_lexeme(a, 0, func)?;
     let mut path: TextBuf<256> = TextBuf::new();
     let _ = path.write_str(cx.sym_text(p));
-    let n = cx.host.read_file(path.as_str(), buf).map_err(|_| EvalError::other("cannot read file"))?;
+    let n = cx
+        .host
+        .read_file(path.as_str(), buf)
+        .map_err(|_| EvalError::other("cannot read file"))?;
     core::str::from_utf8(&buf[..n]).map_err(|_| EvalError::other("file is not UTF-8"))
 }
 
@@ -283,7 +307,18 @@ fn load_impl(cx: &mut Core<'_>, a: Args, quiet: bool) -> Result<Value, EvalError
     let mut buf = [0u8; FILE_BUF];
     let text = match read_file_arg(cx, a, &mut buf, "load") {
         Ok(t) => t,
-        Err(_) => return Ok(Value::Sym(SYM_FALSE)),
+        Err(_) => {
+            let p = cx.arg_lexeme(a, 0, "load")?;
+            let mut b: TextBuf<300> = TextBuf::new();
+            let _ = writeln!(
+                b,
+                "[ARGACCES2] Function {} was unable to open file {}.",
+                if quiet { "load*" } else { "load" },
+                cx.sym_text(p)
+            );
+            cx.write(router::WERROR, b.as_str());
+            return Ok(Value::Sym(SYM_FALSE));
+        }
     };
     let ok = cx.load_text(text, !quiet).is_ok();
     Ok(Value::Sym(if ok { SYM_TRUE } else { SYM_FALSE }))
@@ -326,7 +361,11 @@ fn save_facts(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
             let _ = view.write_fact(&mut b, f);
         }
         let _ = b.write_char('\n');
-        if cx.host.write_file(path.as_str(), b.as_str().as_bytes(), !first).is_err() {
+        if cx
+            .host
+            .write_file(path.as_str(), b.as_str().as_bytes(), !first)
+            .is_err()
+        {
             return Ok(Value::Sym(SYM_FALSE));
         }
         first = false;
@@ -342,7 +381,17 @@ fn load_facts(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let mut buf = [0u8; FILE_BUF];
     let text = match read_file_arg(cx, a, &mut buf, "load-facts") {
         Ok(t) => t,
-        Err(_) => return Ok(Value::Sym(SYM_FALSE)),
+        Err(_) => {
+            let p = cx.arg_lexeme(a, 0, "load-facts")?;
+            let mut b: TextBuf<300> = TextBuf::new();
+            let _ = writeln!(
+                b,
+                "[ARGACCES2] Function load-facts was unable to open file {}.",
+                cx.sym_text(p)
+            );
+            cx.write(router::WERROR, b.as_str());
+            return Ok(Value::Sym(SYM_FALSE));
+        }
     };
     cx.load_facts_text(text)?;
     Ok(Value::Sym(SYM_TRUE))
@@ -365,7 +414,11 @@ fn list_deftemplates(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
         n += 1;
     }
     let mut b: TextBuf<64> = TextBuf::new();
-    let _ = writeln!(b, "For a total of {n} deftemplate{}.", if n == 1 { "" } else { "s" });
+    let _ = writeln!(
+        b,
+        "For a total of {n} deftemplate{}.",
+        if n == 1 { "" } else { "s" }
+    );
     cx.write(router::WDISPLAY, b.as_str());
     Ok(Value::Void)
 }
@@ -378,7 +431,11 @@ fn list_deffunctions(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
         cx.write(router::WDISPLAY, b.as_str());
     }
     let mut b: TextBuf<64> = TextBuf::new();
-    let _ = writeln!(b, "For a total of {n} deffunction{}.", if n == 1 { "" } else { "s" });
+    let _ = writeln!(
+        b,
+        "For a total of {n} deffunction{}.",
+        if n == 1 { "" } else { "s" }
+    );
     cx.write(router::WDISPLAY, b.as_str());
     Ok(Value::Void)
 }

@@ -94,7 +94,11 @@ fn loop_for_count(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
         Value::Int(i) => i,
         _ => return Err(EvalError::wrong_type("loop-for-count", 2, "integer")),
     };
-    let slot = if cx.exprs[var as usize].op == Op::Local { Some(cx.exprs[var as usize].data) } else { None };
+    let slot = if cx.exprs[var as usize].op == Op::Local {
+        Some(cx.exprs[var as usize].data)
+    } else {
+        None
+    };
     let mark = cx.st.scratch_top;
     let mut i = start;
     while i <= end {
@@ -124,11 +128,12 @@ fn foreach(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
     };
     let slot = cx.exprs[var as usize].data;
     let mark = cx.st.scratch_top;
+    let mut last = Value::Sym(SYM_FALSE);
     for k in 0..m.len as usize {
         let at = (cx.st.bp + slot) as usize;
         cx.stack[at] = cx.scratch[m.start as usize + k];
         cx.stack[at + 1] = Value::Int(k as i64 + 1);
-        cx.eval(body)?;
+        last = cx.eval(body)?;
         release_scratch(cx, mark.max(m.start + m.len));
         if cx.st.breaking {
             cx.st.breaking = false;
@@ -138,7 +143,11 @@ fn foreach(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
             break;
         }
     }
-    Ok(Value::Void)
+    Ok(if last.is_multi() {
+        Value::Sym(SYM_FALSE)
+    } else {
+        last
+    })
 }
 
 fn switch(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
@@ -184,10 +193,7 @@ fn bind(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
         n += 1;
         a = cx.exprs[a as usize].next;
     }
-    let value = if n == 1 && !only.is_multi() {
-        cx.st.scratch_top = start;
-        only
-    } else if n == 1 && spliced {
+    let value = if n == 1 && (!only.is_multi() || spliced) {
         cx.st.scratch_top = start;
         only
     } else if n == 0 {
@@ -201,12 +207,7 @@ fn bind(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
             let at = (cx.st.bp + t.data) as usize;
             cx.stack[at] = value;
         }
-        Op::Global => {
-            if value.is_multi() && cx.sym_text(cx.globals[t.data as usize].name).starts_with('?') {
-                // top-level variables hold multifields in scratch until the command ends
-            }
-            cx.globals[t.data as usize].value = value;
-        }
+        Op::Global => cx.set_global(t.data, value)?,
         _ => return Err(EvalError::new(EvalErrorKind::UnboundVariable)),
     }
     Ok(if n == 0 { Value::Sym(SYM_FALSE) } else { value })

@@ -34,7 +34,10 @@ fn same_class(a: Value, b: Value) -> bool {
         (a, b),
         (Value::Sym(_), Value::Sym(_))
             | (Value::Str(_), Value::Str(_))
-            | (Value::Int(_) | Value::Float(_), Value::Int(_) | Value::Float(_))
+            | (
+                Value::Int(_) | Value::Float(_),
+                Value::Int(_) | Value::Float(_)
+            )
     )
 }
 
@@ -43,7 +46,9 @@ impl Core<'_> {
     pub(crate) fn check_atom(&self, tmpl: u16, slot: u16, v: Value) -> Result<(), EvalError> {
         let def = self.slot_def(tmpl, slot);
         if def.types != 0 && def.types & type_bit(v) == 0 {
-            return Err(EvalError::new(EvalErrorKind::BadSlotValue { reason: "type restriction violated" }));
+            return Err(EvalError::new(EvalErrorKind::BadSlotValue {
+                reason: "type restriction violated",
+            }));
         }
         let applies = match def.allowed_kind {
             allowed::SYMBOLS => matches!(v, Value::Sym(_)),
@@ -74,7 +79,9 @@ impl Core<'_> {
                 c = self.exprs[c as usize].next;
             }
             if restricted {
-                return Err(EvalError::new(EvalErrorKind::BadSlotValue { reason: "allowed-values restriction violated" }));
+                return Err(EvalError::new(EvalErrorKind::BadSlotValue {
+                    reason: "allowed-values restriction violated",
+                }));
             }
         }
         Ok(())
@@ -136,12 +143,15 @@ impl Core<'_> {
             DefaultKind::Static | DefaultKind::Dynamic if def.default != NONE => {
                 self.slot_value_from(tmpl, slot, def.default)
             }
-            DefaultKind::Required => {
-                Err(EvalError::new(EvalErrorKind::BadSlotValue { reason: "slot has no default and needs a value" }))
-            }
+            DefaultKind::Required => Err(EvalError::new(EvalErrorKind::BadSlotValue {
+                reason: "slot has no default and needs a value",
+            })),
             _ => {
                 if def.multi {
-                    return Ok(Value::Multi(MfSpan { start: self.st.scratch_top, len: 0 }));
+                    return Ok(Value::Multi(MfSpan {
+                        start: self.st.scratch_top,
+                        len: 0,
+                    }));
                 }
                 if def.allowed != NONE && def.allowed_kind == allowed::VALUES {
                     return Ok(self.const_value(def.allowed));
@@ -171,7 +181,12 @@ impl Core<'_> {
         r
     }
 
-    fn assert_spec_inner(&mut self, spec: u16, tmpl: u16, base: u16) -> Result<Option<u16>, EvalError> {
+    fn assert_spec_inner(
+        &mut self,
+        spec: u16,
+        tmpl: u16,
+        base: u16,
+    ) -> Result<Option<u16>, EvalError> {
         let nslots = self.templates[tmpl as usize].nslots;
         let mut given = [false; 64];
         let mut sv = self.exprs[spec as usize].first;
@@ -203,7 +218,12 @@ impl Core<'_> {
         }
     }
 
-    fn modify_or_duplicate(&mut self, call: u16, retract_old: bool, name: &'static str) -> Result<Value, EvalError> {
+    fn modify_or_duplicate(
+        &mut self,
+        call: u16,
+        retract_old: bool,
+        name: &'static str,
+    ) -> Result<Value, EvalError> {
         let first = self.exprs[call as usize].first;
         let fv = self.eval(first)?;
         let old = match self.fact_arg(fv) {
@@ -215,7 +235,10 @@ impl Core<'_> {
                     _ => -1,
                 };
                 let mut b: crate::value::TextBuf<64> = crate::value::TextBuf::new();
-                let _ = core::fmt::Write::write_fmt(&mut b, format_args!("[PRNTUTIL1] Unable to find fact f-{n}.\n"));
+                let _ = core::fmt::Write::write_fmt(
+                    &mut b,
+                    format_args!("[PRNTUTIL1] Unable to find fact f-{n}.\n"),
+                );
                 self.write(router::WERROR, b.as_str());
                 return Ok(Value::Sym(SYM_FALSE));
             }
@@ -234,7 +257,9 @@ impl Core<'_> {
             let mut sv = self.exprs[first as usize].next;
             while sv != NONE {
                 let sym = self.exprs[sv as usize].data;
-                let slot = self.find_slot(tmpl, sym).ok_or(EvalError::new(EvalErrorKind::NoSuchSlot))?;
+                let slot = self
+                    .find_slot(tmpl, sym)
+                    .ok_or(EvalError::new(EvalErrorKind::NoSuchSlot))?;
                 let v = self.slot_value_from(tmpl, slot, self.exprs[sv as usize].first)?;
                 self.check_slot_value(tmpl, slot, v)?;
                 self.stack[(base + slot) as usize] = v;
@@ -256,6 +281,7 @@ impl Core<'_> {
 fn assert(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
     let mut spec = cx.exprs[call as usize].first;
     let mut last = Value::Sym(SYM_FALSE);
+    cx.st.pattern_error = false;
     while spec != NONE {
         if cx.exprs[spec as usize].op == Op::FactSpec {
             last = match cx.assert_spec(spec)? {
@@ -264,13 +290,28 @@ fn assert(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
             };
         }
         spec = cx.exprs[spec as usize].next;
+        // CLIPS stops a multi-fact assert after a pattern-network error
+        if cx.st.pattern_error && spec != NONE {
+            cx.st.pattern_error = false;
+            return Ok(Value::Sym(SYM_FALSE));
+        }
     }
+    cx.st.pattern_error = false;
     Ok(last)
 }
 
 fn retract(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     for i in 0..a.len as usize {
         let v = cx.arg(a, i);
+        if let Value::Sym(s) = v {
+            if cx.sym_text(s) == "*" {
+                while cx.st.fact_head != NONE {
+                    let f = cx.st.fact_head;
+                    cx.retract_fact(f);
+                }
+                continue;
+            }
+        }
         match cx.fact_arg(v) {
             Some(f) => cx.retract_fact(f),
             // a stale fact address was retracted already: nothing to do (as CLIPS)
@@ -279,10 +320,19 @@ fn retract(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
                 let n = match v {
                     Value::Fact(r) => r.num as i64,
                     Value::Int(n) => n,
-                    _ => return Err(EvalError::wrong_type("retract", i as u8 + 1, "fact-address or integer")),
+                    _ => {
+                        return Err(EvalError::wrong_type(
+                            "retract",
+                            i as u8 + 1,
+                            "fact-address or integer",
+                        ))
+                    }
                 };
                 let mut b: crate::value::TextBuf<64> = crate::value::TextBuf::new();
-                let _ = core::fmt::Write::write_fmt(&mut b, format_args!("[PRNTUTIL1] Unable to find fact f-{n}.\n"));
+                let _ = core::fmt::Write::write_fmt(
+                    &mut b,
+                    format_args!("[PRNTUTIL1] Unable to find fact f-{n}.\n"),
+                );
                 cx.write(router::WERROR, b.as_str());
             }
         }
@@ -299,13 +349,16 @@ fn duplicate(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
 }
 
 fn fact_slot_value(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    let f = cx.fact_arg(cx.arg(a, 0)).ok_or(EvalError::new(EvalErrorKind::NoSuchFact(-1)))?;
+    let f = cx
+        .fact_arg(cx.arg(a, 0))
+        .ok_or(EvalError::new(EvalErrorKind::NoSuchFact(-1)))?;
     let name = cx.arg_lexeme(a, 1, "fact-slot-value")?;
     let tmpl = cx.facts[f as usize].tmpl;
     let slot = if cx.templates[tmpl as usize].implied {
         0
     } else {
-        cx.find_slot(tmpl, name).ok_or(EvalError::new(EvalErrorKind::NoSuchSlot))?
+        cx.find_slot(tmpl, name)
+            .ok_or(EvalError::new(EvalErrorKind::NoSuchSlot))?
     };
     Ok(cx.fact_slot_value(f, slot)?)
 }

@@ -438,6 +438,12 @@ mod tests {
         );
         assert!(eval_to_string("(format nil \"%X\" 3)").contains("[IOFUN3]"));
         assert!(eval_to_string("(format nil \"%+d\" 3)").contains("[IOFUN3]"));
+        // a non-ASCII character after % is an invalid flag, not a panic
+        assert!(eval_to_string("(format nil \"%\u{e9}x\" 3)").contains("[IOFUN3]"));
+        assert_eq!(
+            eval_to_string("(format nil \"\u{e9}%d\u{e9}\" 3)"),
+            "\"\u{e9}3\u{e9}\""
+        );
     }
 
     #[test]

@@ -149,9 +149,10 @@ fn div(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 fn modulo(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let x = num_arg(cx, a, 0, "mod")?;
     let y = num_arg(cx, a, 1, "mod")?;
+    if y.as_f64() == 0.0 {
+        return Err(divide_by_zero("mod"));
+    }
     Ok(match (x, y) {
-        (_, Num::Int(0)) => return Err(divide_by_zero("mod")),
-        (_, Num::Float(d)) if d == 0.0 => return Err(divide_by_zero("mod")),
         (Num::Int(p), Num::Int(q)) => Value::Int(p.wrapping_rem(q)),
         (p, q) => {
             let (p, q) = (p.as_f64(), q.as_f64());

@@ -34,7 +34,16 @@ pub const SYM_IMPLIED: SymId = 4;
 pub const SYM_CRLF: SymId = 5;
 pub const SYM_T: SymId = 6;
 pub const SYM_EMPTY_STR: SymId = 7;
-pub const FIXED_SYMBOLS: [&str; 8] = ["FALSE", "TRUE", "nil", "initial-fact", "implied", "crlf", "t", ""];
+pub const FIXED_SYMBOLS: [&str; 8] = [
+    "FALSE",
+    "TRUE",
+    "nil",
+    "initial-fact",
+    "implied",
+    "crlf",
+    "t",
+    "",
+];
 
 /// Evaluated arguments of an eager call: `len` values on the stack from `base`.
 #[derive(Clone, Copy, Debug)]
@@ -77,13 +86,31 @@ pub struct Builtin {
 
 impl Builtin {
     pub const fn eager(name: &'static str, min: u8, max: u8, f: BuiltinFn) -> Builtin {
-        Builtin { name, min, max, imp: Imp::Eager(f), syntax: Syntax::Plain }
+        Builtin {
+            name,
+            min,
+            max,
+            imp: Imp::Eager(f),
+            syntax: Syntax::Plain,
+        }
     }
     pub const fn lazy(name: &'static str, min: u8, max: u8, f: LazyFn) -> Builtin {
-        Builtin { name, min, max, imp: Imp::Lazy(f), syntax: Syntax::Plain }
+        Builtin {
+            name,
+            min,
+            max,
+            imp: Imp::Lazy(f),
+            syntax: Syntax::Plain,
+        }
     }
     pub const fn query(name: &'static str, min: u8, max: u8, f: LazyFn) -> Builtin {
-        Builtin { name, min, max, imp: Imp::Lazy(f), syntax: Syntax::Query }
+        Builtin {
+            name,
+            min,
+            max,
+            imp: Imp::Lazy(f),
+            syntax: Syntax::Query,
+        }
     }
 }
 
@@ -152,7 +179,7 @@ impl Core<'_> {
         match self.arg(a, i) {
             Value::Int(x) => Ok(Num::Int(x)),
             Value::Float(x) => Ok(Num::Float(x)),
-            _ => Err(EvalError::wrong_type(func, i as u8 + 1, "number")),
+            _ => Err(EvalError::wrong_type(func, i as u8 + 1, "integer or float")),
         }
     }
 
@@ -205,7 +232,10 @@ impl Core<'_> {
     pub fn make_multi(&mut self, items: &[Value]) -> Result<Value, CapacityError> {
         let s = self.scratch_alloc(items.len())?;
         self.scratch[s as usize..s as usize + items.len()].copy_from_slice(items);
-        Ok(Value::Multi(MfSpan { start: s, len: items.len() as u16 }))
+        Ok(Value::Multi(MfSpan {
+            start: s,
+            len: items.len() as u16,
+        }))
     }
 
     /// Starts building a multifield of unknown length: push elements with
@@ -221,7 +251,10 @@ impl Core<'_> {
     }
 
     pub fn multi_finish(&self, start: u16) -> Value {
-        Value::Multi(MfSpan { start, len: self.st.scratch_top - start })
+        Value::Multi(MfSpan {
+            start,
+            len: self.st.scratch_top - start,
+        })
     }
 
     /// A value as `printout` writes it: strings unquoted, multifields in parentheses.

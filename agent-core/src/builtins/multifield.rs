@@ -10,12 +10,14 @@ use super::{Args, Builtin, ANY, SYM_FALSE, SYM_NIL};
 use crate::engine::Core;
 use crate::error::EvalError;
 use crate::lexer::Lexer;
-use crate::print::View;
 use crate::value::{MfSpan, Value};
+use core::fmt::Write;
 
 pub const FUNCS: &[Builtin] = &[
     Builtin::eager("create$", 0, ANY, create),
     Builtin::eager("length$", 1, 1, length),
+    // CLIPS 6.30 still accepts the old name
+    Builtin::eager("length", 1, 1, length_old),
     Builtin::eager("nth$", 2, 2, nth),
     Builtin::eager("member$", 2, 2, member),
     Builtin::eager("subsetp", 2, 2, subsetp),
@@ -26,6 +28,8 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("rest$", 1, 1, rest),
     Builtin::eager("subseq$", 3, 3, subseq),
     Builtin::eager("implode$", 1, 1, implode),
+    Builtin::eager("delete-member$", 2, ANY, delete_member),
+    Builtin::eager("replace-member$", 3, ANY, replace_member),
     Builtin::eager("explode$", 1, 1, explode),
 ];
 
@@ -91,6 +95,17 @@ fn length(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     }))
 }
 
+fn length_old(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    match cx.arg(a, 0) {
+        Value::Multi(_) | Value::Sym(_) | Value::Str(_) => length(cx, a),
+        _ => Err(EvalError::wrong_type(
+            "length",
+            1,
+            "multifield, symbol, or string",
+        )),
+    }
+}
+
 /// `(nth$ i m)`: element `i` (1-based) or `nil` when out of range.
 fn nth(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let i = int_arg(cx, a, 0, "nth$")?;
@@ -138,6 +153,71 @@ fn subsetp(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let all = (0..sub.len as usize)
         .all(|i| (0..sup.len as usize).any(|k| cx.mf_item(sub, i).same(cx.mf_item(sup, k))));
     Ok(Core::bool_value(all))
+}
+
+/// Length of the first of `members` (atoms, or multifields as runs) found at position
+/// `at` of `m`; empty multifields never match.
+fn member_at(
+    cx: &Core<'_>,
+    m: MfSpan,
+    at: usize,
+    a: Args,
+    members: core::ops::Range<usize>,
+) -> Option<usize> {
+    let rest = m.len as usize - at;
+    members.map(|i| cx.arg(a, i)).find_map(|x| match x {
+        Value::Multi(n) => {
+            let len = n.len as usize;
+            let hit = len > 0
+                && len <= rest
+                && (0..len).all(|k| cx.mf_item(n, k).same(cx.mf_item(m, at + k)));
+            hit.then_some(len)
+        }
+        x => cx.mf_item(m, at).same(x).then_some(1),
+    })
+}
+
+/// Copies `m` with every occurrence of the arguments from `first_member` on replaced
+/// by argument `with` (spliced), or dropped when `with` is `None`.
+fn substitute(
+    cx: &mut Core<'_>,
+    a: Args,
+    m: MfSpan,
+    with: Option<usize>,
+    first_member: usize,
+) -> Result<Value, EvalError> {
+    let start = cx.multi_begin();
+    let mut at = 0;
+    while at < m.len as usize {
+        match member_at(cx, m, at, a, first_member..a.len as usize) {
+            Some(len) => {
+                if let Some(w) = with {
+                    let v = cx.arg(a, w);
+                    push_flat(cx, v)?;
+                }
+                at += len;
+            }
+            None => {
+                let item = cx.mf_item(m, at);
+                cx.multi_push(item)?;
+                at += 1;
+            }
+        }
+    }
+    Ok(cx.multi_finish(start))
+}
+
+/// `(delete-member$ m x...)`: `m` without any occurrence of the `x`s (a multifield `x`
+/// is a run of elements).
+fn delete_member(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let m = multi_arg(cx, a, 0, "delete-member$")?;
+    substitute(cx, a, m, None, 1)
+}
+
+/// `(replace-member$ m new x...)`: every occurrence of the `x`s replaced by `new`.
+fn replace_member(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let m = multi_arg(cx, a, 0, "replace-member$")?;
+    substitute(cx, a, m, Some(1), 2)
 }
 
 /// `[MULTIFUN1]` messages. The text names the function, so each one is spelled out.
@@ -232,28 +312,37 @@ fn subseq(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     })
 }
 
-/// Read-only printing view of the engine's storage.
-fn view<'v>(cx: &'v Core<'_>) -> View<'v> {
-    View {
-        values: cx.values,
-        scratch: cx.scratch,
-        sym_entries: cx.sym_entries,
-        sym_bytes: cx.sym_bytes,
-        templates: cx.templates,
-        slots: cx.slots,
-        facts: cx.facts,
-    }
-}
-
-/// `(implode$ m)`: elements as CLIPS prints them (strings in quotes, inner quotes not
-/// escaped), separated by single spaces, as one string.
+/// `(implode$ m)`: elements as CLIPS prints them, separated by single spaces, as one
+/// string. Strings are written in quotes with inner `"` and `\\` escaped (CLIPS 6.30:
+/// `(implode$ (create$ "a\\b"))` has 6 characters).
 fn implode(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let m = multi_arg(cx, a, 0, "implode$")?;
     let mut b = Text::new();
-    view(cx)
-        .write_flat(&mut b, Value::Multi(m), true)
+    write_implode(cx, m, &mut b)
         .map_err(|_| EvalError::other("implode$: result longer than 2048 bytes"))?;
     Ok(cx.make_string(b.as_str())?)
+}
+
+fn write_implode(cx: &Core<'_>, m: MfSpan, b: &mut Text) -> core::fmt::Result {
+    for k in 0..m.len as usize {
+        if k > 0 {
+            b.write_char(' ')?;
+        }
+        match cx.mf_item(m, k) {
+            Value::Str(s) => {
+                b.write_char('"')?;
+                for ch in cx.sym_text(s).chars() {
+                    if ch == '"' || ch == '\\' {
+                        b.write_char('\\')?;
+                    }
+                    b.write_char(ch)?;
+                }
+                b.write_char('"')?;
+            }
+            v => cx.write_plain(b, v)?,
+        }
+    }
+    Ok(())
 }
 
 /// `(explode$ s)`: the fields of a string as CLIPS's scanner reads them.
@@ -292,6 +381,7 @@ mod tests {
             ("(create$ a \"b\" 1.0)", "(a \"b\" 1.0)"),
             ("(length$ (create$ a b c))", "3"),
             ("(length$ (create$))", "0"),
+            ("(length (create$ a b))", "2"),
             ("(length$ a)", "1"),
             ("(length$ \"abc\")", "3"),
             ("(length$ \"\u{e4}b\")", "3"),
@@ -352,6 +442,28 @@ mod tests {
     }
 
     #[test]
+    fn delete_and_replace_members() {
+        check(&[
+            ("(delete-member$ (create$ a b a c) a)", "(b c)"),
+            ("(delete-member$ (create$ a b a c) a c)", "(b)"),
+            ("(delete-member$ (create$ a b c d) (create$ b c))", "(a d)"),
+            ("(delete-member$ (create$ a b c) z)", "(a b c)"),
+            ("(replace-member$ (create$ a b a c) x a)", "(x b x c)"),
+            (
+                "(replace-member$ (create$ a b a c) (create$ x y) a c)",
+                "(x y b x y x y)",
+            ),
+            (
+                "(replace-member$ (create$ a b c d b c) z (create$ b c))",
+                "(a z d z)",
+            ),
+            ("(delete-member$ (create$ a b) (create$))", "(a b)"),
+        ]);
+        assert!(eval_to_string("(delete-member$ (sym-cat a) b)")
+            .contains("#1 to be of type multifield"));
+    }
+
+    #[test]
     fn first_rest_subseq() {
         check(&[
             ("(first$ (create$ x y z))", "(x)"),
@@ -379,6 +491,8 @@ mod tests {
             ),
             ("(implode$ (create$))", "\"\""),
             ("(implode$ (create$ 1.0 \"a b\"))", "\"1.0 \"a b\"\""),
+            ("(implode$ (create$ \"a\\\"b\"))", "\"\"a\\\"b\"\""),
+            ("(str-length (implode$ (create$ \"a\\\\b\")))", "6"),
             ("(explode$ \"a b c\")", "(a b c)"),
             (
                 "(explode$ \"1 2.5 \\\"quoted text\\\" sym\")",

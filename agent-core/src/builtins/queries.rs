@@ -5,7 +5,8 @@
 //! query expression, then the actions. Tuples are visited as CLIPS 6.30 does: the first
 //! variable varies slowest; each variable walks its templates in the order written and,
 //! within one template, the facts in fact-index order. Facts retracted by the actions
-//! are skipped; facts asserted by them join the iteration (as in CLIPS).
+//! are skipped; facts asserted by them join the iteration as CLIPS's template lists
+//! let them (see `next_of_template`).
 
 use super::{Builtin, ANY, SYM_FALSE};
 use crate::engine::Core;
@@ -18,6 +19,7 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::query("find-all-facts", 2, 2, find_all_facts),
     Builtin::query("do-for-fact", 2, ANY, do_for_fact),
     Builtin::query("do-for-all-facts", 2, ANY, do_for_all_facts),
+    Builtin::query("delayed-do-for-all-facts", 2, ANY, delayed_do_for_all_facts),
 ];
 
 /// Most query variables in one fact-set query.
@@ -101,19 +103,34 @@ fn fact_fits(cx: &Core<'_>, var: u16, f: u16) -> bool {
     false
 }
 
-/// The first live fact after fact number `after` (all facts when `None`) of template
-/// `tmpl`. Fact numbers grow along the list, so this resumes correctly even when the
-/// previous fact was retracted meanwhile.
-fn next_of_template(cx: &Core<'_>, tmpl: u16, after: Option<FactRef>) -> Option<u16> {
-    let mut f = match after {
-        // fast path: the previous fact is still linked, continue from its successor
-        Some(r) if cx.fact_alive(r) => cx.facts[r.slot as usize].next,
-        _ => cx.st.fact_head,
+/// Where the walk over one template stands: the fact just visited and the fact
+/// counter before its actions ran.
+#[derive(Clone, Copy)]
+struct Resume {
+    fact: FactRef,
+    counter: u32,
+}
+
+/// The next live fact of template `tmpl` (the first one when `after` is `None`).
+///
+/// CLIPS follows the visited fact's template-list link. If the actions retracted that
+/// fact, its link stays frozen as it was at the retraction, so facts the actions
+/// asserted after it (e.g. by `modify`) are not reached through it; we approximate the
+/// retraction time by the start of the actions (`counter`). A fact that is still live
+/// continues through its current link, so new facts join the iteration.
+fn next_of_template(cx: &Core<'_>, tmpl: u16, after: Option<Resume>) -> Option<u16> {
+    let (mut f, lo, hi) = match after {
+        None => (cx.st.fact_head, None, u32::MAX),
+        // fast path: still linked, continue from its successor
+        Some(r) if cx.fact_alive(r.fact) => (cx.facts[r.fact.slot as usize].next, None, u32::MAX),
+        Some(r) => (cx.st.fact_head, Some(r.fact.num), r.counter),
     };
     while f != NONE {
         let fact = &cx.facts[f as usize];
-        let later = after.is_none_or(|r| fact.num > r.num);
-        if later && fact.tmpl == tmpl {
+        if fact.num >= hi {
+            return None;
+        }
+        if lo.is_none_or(|n| fact.num > n) && fact.tmpl == tmpl {
             return Some(f);
         }
         f = fact.next;
@@ -146,12 +163,15 @@ fn walk(cx: &mut Core<'_>, w: &mut Walk, k: usize) -> Result<bool, EvalError> {
         let tmpl = cx.find_template(cx.exprs[tnode as usize].data);
         tnode = cx.exprs[tnode as usize].next;
         let Some(tmpl) = tmpl else { continue };
-        let mut prev: Option<FactRef> = None;
+        let mut prev: Option<Resume> = None;
         while let Some(f) = next_of_template(cx, tmpl, prev) {
             debug_assert!(fact_fits(cx, var, f));
             rebind_outer(cx, w, k);
             bind(cx, w, k, f);
-            prev = Some(w.cursor[k]);
+            prev = Some(Resume {
+                fact: w.cursor[k],
+                counter: cx.st.next_fact_num,
+            });
             let stop = if k + 1 < w.q.nvars {
                 walk(cx, w, k + 1)?
             } else {
@@ -269,6 +289,39 @@ fn do_for_all_facts(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
     Ok(run(cx, call, Mode::All, false, true)?.last)
 }
 
+/// Finds every matching tuple first, then runs the actions for each of them, even for
+/// facts the actions retracted meanwhile (as CLIPS 6.30 does). The value of the last
+/// action of the last tuple, FALSE without a match.
+fn delayed_do_for_all_facts(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
+    let start = cx.multi_begin();
+    let w = run(cx, call, Mode::All, true, false)?;
+    let tuples = match cx.multi_finish(start) {
+        Value::Multi(m) => m,
+        _ => return Ok(Value::Sym(SYM_FALSE)),
+    };
+    let n = w.q.nvars;
+    let mut last = Value::Sym(SYM_FALSE);
+    let mut t = 0;
+    while t + n <= tuples.len as usize {
+        for k in 0..n {
+            let at = (cx.st.bp + cx.exprs[w.q.vars[k] as usize].data) as usize;
+            cx.stack[at] = cx.mf_item(tuples, t + k);
+        }
+        let mark = cx.st.scratch_top;
+        last = if w.q.actions == NONE {
+            Value::Sym(SYM_FALSE)
+        } else {
+            cx.eval_chain(w.q.actions)?
+        };
+        release_scratch(cx, keep_value(mark, last));
+        if cx.st.returning || cx.st.breaking || cx.st.halt_now() {
+            break;
+        }
+        t += n;
+    }
+    Ok(last)
+}
+
 #[cfg(test)]
 mod tests {
     extern crate std;
@@ -362,6 +415,37 @@ FALSE
         assert!(out.contains("first match t1\n"), "{out}");
         assert!(out.contains("(<Fact-4>)\n"), "{out}");
         assert!(out.ends_with("t2 yes\n"), "{out}");
+    }
+
+    #[test]
+    fn modify_during_do_for_all_facts_follows_clips_links() {
+        // CLIPS 6.30: the modified copy of the LAST fact is not reached any more, so the
+        // walk ends with f-10 = (c 1) instead of counting every value down to 0.
+        let out = run_program(
+            "(deftemplate p (slot n) (slot v))
+(deftemplate q (slot n))
+(assert (p (n a) (v 1)) (q (n x)) (p (n b) (v 2)) (q (n y)) (p (n c) (v 3)))
+(do-for-all-facts ((?x p)) (= ?x:v 1) (retract 3))
+(do-for-all-facts ((?x p)) TRUE (assert (q (n ?x:n))))
+(do-for-all-facts ((?x p)) (> ?x:v 0) (modify ?x (v (- ?x:v 1))))
+(find-all-facts ((?x p)) TRUE)
+",
+        );
+        assert!(out.ends_with("<Fact-10>\n(<Fact-8> <Fact-10>)\n"), "{out}");
+    }
+
+    #[test]
+    fn delayed_variant_collects_first() {
+        // assertions made by the actions do not join the iteration
+        let out = run_program(
+            "(deftemplate p (slot v))
+(assert (p (v 1)) (p (v 2)) (p (v 3)))
+(delayed-do-for-all-facts ((?x p)) (> ?x:v 1) (printout t ?x crlf) (assert (p (v (+ ?x:v 10)))))
+(delayed-do-for-all-facts ((?x p)) FALSE 1)
+(delayed-do-for-all-facts ((?x p)) (= ?x:v 1) 5)
+",
+        );
+        assert_eq!(out, "<Fact-3>\n<Fact-2>\n<Fact-3>\n<Fact-5>\nFALSE\n5\n");
     }
 
     #[test]

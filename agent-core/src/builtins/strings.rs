@@ -54,7 +54,8 @@ pub(super) fn concat_args(cx: &Core<'_>, a: Args, func: &'static str) -> Result<
     let mut b = Text::new();
     for i in 0..a.len as usize {
         let v = cx.arg(a, i);
-        if v.is_multi() {
+        // CLIPS rejects multifields and fact addresses alike
+        if matches!(v, Value::Multi(_) | Value::Fact(_) | Value::Void) {
             return Err(EvalError::wrong_type(func, i as u8 + 1, T_ATOM));
         }
         cx.write_plain(&mut b, v).map_err(|_| TOO_LONG)?;
@@ -250,6 +251,11 @@ mod tests {
             ("(str-length \"a\\\"b\")", "3"),
             ("(str-length \"\u{e4}b\")", "2"),
         ]);
+        let out = run_program("(assert (a))\n(sym-cat (nth$ 1 (find-all-facts ((?x a)) TRUE)))\n");
+        assert!(
+            out.contains("sym-cat") && out.contains("string, instance name"),
+            "{out}"
+        );
         let out = eval_to_string("(sym-cat (create$ a))");
         assert!(
             out.contains("sym-cat") && out.contains("#1") && out.contains("string, instance name"),

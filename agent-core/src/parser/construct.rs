@@ -5,7 +5,9 @@ use crate::engine::cap;
 use crate::error::Pool;
 use crate::expr::Op;
 use crate::lexer::Tok;
-use crate::template::{allowed, types, Deffacts, Deffunction, DefaultKind, Global, SlotDef, Template};
+use crate::template::{
+    allowed, types, DefaultKind, Deffacts, Deffunction, Global, SlotDef, Template,
+};
 use crate::value::{Value, NONE};
 
 impl<'s> Parser<'s, '_, '_> {
@@ -24,7 +26,10 @@ impl<'s> Parser<'s, '_, '_> {
         };
         let sym = cap!(self, self.cx.intern(name))?;
         if self.cx.find_template(sym).is_some() {
-            return Err(self.err(nt, "a template name not yet defined"));
+            return Err(self.err(
+                nt,
+                "a deftemplate name not yet defined (cannot redefine a deftemplate)",
+            ));
         }
         self.skip_comment();
         let n = self.cx.st.ntemplates as usize;
@@ -51,7 +56,9 @@ impl<'s> Parser<'s, '_, '_> {
                         _ => return Err(self.err(st, "a slot name")),
                     };
                     let ssym = cap!(self, self.cx.intern(sname))?;
-                    if (first_slot..first_slot + nslots).any(|i| self.cx.slots[i as usize].name == ssym) {
+                    if (first_slot..first_slot + nslots)
+                        .any(|i| self.cx.slots[i as usize].name == ssym)
+                    {
                         return Err(self.err(st, "a slot name not used before in this template"));
                     }
                     let s = self.cx.st.nslots as usize;
@@ -59,7 +66,11 @@ impl<'s> Parser<'s, '_, '_> {
                         let c = cap(Pool::SlotDefs, self.cx.slots.len());
                         return Err(self.cap_err(st, c));
                     }
-                    let def = self.slot_attributes(SlotDef { name: ssym, multi, ..SlotDef::EMPTY })?;
+                    let def = self.slot_attributes(SlotDef {
+                        name: ssym,
+                        multi,
+                        ..SlotDef::EMPTY
+                    })?;
                     self.cx.slots[s] = def;
                     self.cx.st.nslots += 1;
                     self.cx.note_hw(Pool::SlotDefs, s + 1);
@@ -68,7 +79,13 @@ impl<'s> Parser<'s, '_, '_> {
                 _ => return Err(self.err(t, "'(' starting a slot or ')'")),
             }
         }
-        self.cx.templates[n] = Template { name: sym, first_slot, nslots, implied: false, alpha_head: NONE };
+        self.cx.templates[n] = Template {
+            name: sym,
+            first_slot,
+            nslots,
+            implied: false,
+            alpha_head: NONE,
+        };
         self.cx.st.ntemplates += 1;
         self.cx.note_hw(Pool::Templates, n + 1);
         Ok(())
@@ -93,22 +110,41 @@ impl<'s> Parser<'s, '_, '_> {
                             if let Tok::SfVar(v) = p.tok {
                                 if v == "NONE" || v == "DERIVE" {
                                     self.next();
-                                    def.default_kind =
-                                        if v == "NONE" { DefaultKind::Required } else { DefaultKind::Derived };
+                                    def.default_kind = if v == "NONE" {
+                                        DefaultKind::Required
+                                    } else {
+                                        DefaultKind::Derived
+                                    };
                                     self.expect_rparen("')' after the default")?;
                                     self.scope = save;
                                     continue;
                                 }
                             }
-                            let holder = cap!(self, self.cx.push_expr(crate::expr::Expr::new(Op::Nop, 0, 0)))?;
-                            let n = self.args_until_rparen(holder)?;
+                            let holder = cap!(
+                                self,
+                                self.cx.push_expr(crate::expr::Expr::new(Op::Nop, 0, 0))
+                            )?;
+                            if !def.multi {
+                                self.second_value_check(
+                                    holder,
+                                    "a single default value for a single-field slot",
+                                )?;
+                            }
+                            let n = self.args_until_rparen(holder)?
+                                + u16::from(
+                                    self.cx.exprs[holder as usize].first != NONE && !def.multi,
+                                );
                             self.scope = save;
                             if !def.multi && n != 1 {
-                                return Err(self.err(at, "exactly one default value for a single-field slot"));
+                                return Err(self
+                                    .err(at, "exactly one default value for a single-field slot"));
                             }
                             def.default = self.cx.exprs[holder as usize].first;
-                            def.default_kind =
-                                if attr == "default" { DefaultKind::Static } else { DefaultKind::Dynamic };
+                            def.default_kind = if attr == "default" {
+                                DefaultKind::Static
+                            } else {
+                                DefaultKind::Dynamic
+                            };
                         }
                         "type" => {
                             let mut mask = 0u8;
@@ -135,9 +171,13 @@ impl<'s> Parser<'s, '_, '_> {
                             }
                             def.types = if mask == 0xFF { 0 } else { mask };
                         }
-                        "allowed-values" | "allowed-symbols" | "allowed-strings" | "allowed-numbers"
-                        | "allowed-integers" | "allowed-floats" | "allowed-lexemes" => {
-                            let holder = cap!(self, self.cx.push_expr(crate::expr::Expr::new(Op::Nop, 0, 0)))?;
+                        "allowed-values" | "allowed-symbols" | "allowed-strings"
+                        | "allowed-numbers" | "allowed-integers" | "allowed-floats"
+                        | "allowed-lexemes" => {
+                            let holder = cap!(
+                                self,
+                                self.cx.push_expr(crate::expr::Expr::new(Op::Nop, 0, 0))
+                            )?;
                             loop {
                                 let tt = self.next();
                                 if tt.tok == Tok::RParen {
@@ -165,8 +205,9 @@ impl<'s> Parser<'s, '_, '_> {
                                 };
                             }
                         }
-                        "range" | "cardinality" | "visibility" | "storage" | "pattern-match" | "create-accessor"
-                        | "override-message" | "access" | "propagation" | "source" => {
+                        "range" | "cardinality" | "visibility" | "storage" | "pattern-match"
+                        | "create-accessor" | "override-message" | "access" | "propagation"
+                        | "source" => {
                             // accepted, not enforced
                             loop {
                                 let tt = self.next();
@@ -177,7 +218,10 @@ impl<'s> Parser<'s, '_, '_> {
                                 }
                             }
                         }
-                        _ => return Err(self.err(at, "a slot attribute (type, default, allowed-values, ...)")),
+                        _ => {
+                            return Err(self
+                                .err(at, "a slot attribute (type, default, allowed-values, ...)"))
+                        }
                     }
                 }
                 _ => return Err(self.err(t, "'(' starting a slot attribute or ')'")),
@@ -193,7 +237,10 @@ impl<'s> Parser<'s, '_, '_> {
         };
         let sym = cap!(self, self.cx.intern(name))?;
         self.skip_comment();
-        let holder = cap!(self, self.cx.push_expr(crate::expr::Expr::new(Op::Nop, 0, 0)))?;
+        let holder = cap!(
+            self,
+            self.cx.push_expr(crate::expr::Expr::new(Op::Nop, 0, 0))
+        )?;
         self.scope = Scope::Lhs;
         loop {
             let t = self.next();
@@ -207,7 +254,8 @@ impl<'s> Parser<'s, '_, '_> {
             }
         }
         // redefinition replaces
-        let existing = (0..self.cx.st.ndeffacts).find(|&d| self.cx.deffacts[d as usize].name == sym);
+        let existing =
+            (0..self.cx.st.ndeffacts).find(|&d| self.cx.deffacts[d as usize].name == sym);
         let facts = self.cx.exprs[holder as usize].first;
         match existing {
             Some(d) => self.cx.deffacts[d as usize].facts = facts,
@@ -231,7 +279,9 @@ impl<'s> Parser<'s, '_, '_> {
             Tok::Symbol(s) => s,
             _ => return Err(self.err(nt, "a deffunction name")),
         };
-        if crate::builtins::lookup(name).is_some() || matches!(name, "if" | "while" | "bind" | "assert" | "modify") {
+        if crate::builtins::lookup(name).is_some()
+            || matches!(name, "if" | "while" | "bind" | "assert" | "modify")
+        {
             return Err(self.err(nt, "a name that is not a builtin function"));
         }
         let sym = cap!(self, self.cx.intern(name))?;
@@ -260,6 +310,9 @@ impl<'s> Parser<'s, '_, '_> {
             let t = self.next();
             match t.tok {
                 Tok::RParen => break,
+                Tok::SfVar(v) | Tok::MfVar(v) if self.find_var(v).is_some() => {
+                    return Err(self.err(t, "a parameter name not used twice"));
+                }
                 Tok::SfVar(v) if !rest => {
                     self.new_local(t, v, false)?;
                     nparams += 1;
@@ -268,10 +321,25 @@ impl<'s> Parser<'s, '_, '_> {
                     self.new_local(t, v, true)?;
                     rest = true;
                 }
-                _ => return Err(self.err(t, if rest { "')' after the $? wildcard parameter" } else { "a parameter" })),
+                _ => {
+                    return Err(self.err(
+                        t,
+                        if rest {
+                            "the $? wildcard parameter to be last"
+                        } else {
+                            "a parameter"
+                        },
+                    ))
+                }
             }
         }
-        self.cx.funcs[f as usize] = Deffunction { name: sym, nparams, rest, nlocals: 0, body: NONE };
+        self.cx.funcs[f as usize] = Deffunction {
+            name: sym,
+            nparams,
+            rest,
+            nlocals: 0,
+            body: NONE,
+        };
         self.defining_fn = f;
         let body = self.action_block();
         self.defining_fn = NONE;
@@ -285,8 +353,13 @@ impl<'s> Parser<'s, '_, '_> {
             }
         };
         let nlocals = self.nlocals.min(255) as u8;
-        self.cx.funcs[f as usize] =
-            Deffunction { name: sym, nparams, rest, nlocals, body: self.cx.exprs[body as usize].first };
+        self.cx.funcs[f as usize] = Deffunction {
+            name: sym,
+            nparams,
+            rest,
+            nlocals,
+            body: self.cx.exprs[body as usize].first,
+        };
         Ok(())
     }
 
@@ -310,10 +383,8 @@ impl<'s> Parser<'s, '_, '_> {
                         Ok(v) => v,
                         Err(_) => return Err(self.err(eq, "an initial value that evaluates")),
                     };
-                    if v.is_multi() {
-                        return Err(self.err(eq, "a single-field initial value (multifield globals unsupported)"));
-                    }
-                    let existing = (0..self.cx.st.nglobals).find(|&g| self.cx.globals[g as usize].name == sym);
+                    let existing =
+                        (0..self.cx.st.nglobals).find(|&g| self.cx.globals[g as usize].name == sym);
                     let g = match existing {
                         Some(g) => g as usize,
                         None => {
@@ -327,7 +398,14 @@ impl<'s> Parser<'s, '_, '_> {
                             n
                         }
                     };
-                    self.cx.globals[g] = Global { name: sym, value: v, init };
+                    self.cx.globals[g] = Global {
+                        name: sym,
+                        value: Value::Void,
+                        init,
+                    };
+                    if let Err(c) = self.cx.set_global(g as u16, v) {
+                        return Err(self.cap_err(t, c));
+                    }
                 }
                 _ => return Err(self.err(t, "a global variable ?*name*")),
             }

@@ -30,6 +30,13 @@ impl<'s> Parser<'s, '_, '_> {
     pub fn literal(&mut self, t: Token<'s>) -> PResult<Option<u16>> {
         let r = match t.tok {
             Tok::Int(i) => self.cx.push_const(Value::Int(i)),
+            Tok::IntOverflow(i) => {
+                self.cx.write(
+                    crate::host::router::WWARNING,
+                    "[SCANNER1] WARNING: Over or underflow of long long integer.\n",
+                );
+                self.cx.push_const(Value::Int(i))
+            }
             Tok::Float(f) => self.cx.push_const(Value::Float(f)),
             Tok::Symbol(s) => match self.cx.intern(s) {
                 Ok(id) => self.cx.push_expr(Expr::new(Op::Sym, 0, id)),
@@ -51,7 +58,10 @@ impl<'s> Parser<'s, '_, '_> {
             Tok::SfVar(name) => self.var_ref(t, name, false),
             Tok::MfVar(name) => {
                 let v = self.var_ref(t, name, true)?;
-                let e = self.cx.push_expr(Expr { first: v, ..Expr::new(Op::Expand, 0, 0) });
+                let e = self.cx.push_expr(Expr {
+                    first: v,
+                    ..Expr::new(Op::Expand, 0, 0)
+                });
                 cap!(self, e)
             }
             Tok::Global(name) => self.global_ref(t, name),
@@ -62,7 +72,9 @@ impl<'s> Parser<'s, '_, '_> {
 
     pub fn global_ref(&mut self, t: Token<'s>, name: &str) -> PResult<u16> {
         let id = self.cx.find_sym(name);
-        let g = id.and_then(|id| (0..self.cx.st.nglobals).find(|&g| self.cx.globals[g as usize].name == id));
+        let g = id.and_then(|id| {
+            (0..self.cx.st.nglobals).find(|&g| self.cx.globals[g as usize].name == id)
+        });
         match g {
             Some(g) => {
                 let e = self.cx.push_expr(Expr::new(Op::Global, 0, g));
@@ -81,7 +93,10 @@ impl<'s> Parser<'s, '_, '_> {
         }
         if let Some(v) = self.find_var(name) {
             let e = match v.kind {
-                VarKind::Pat { pat, loc, desc } => Expr { first: desc, ..Expr::new(Op::PatVar, pat, loc) },
+                VarKind::Pat { pat, loc, desc } => Expr {
+                    first: desc,
+                    ..Expr::new(Op::PatVar, pat, loc)
+                },
                 VarKind::Local(s) => Expr::new(Op::Local, 0, s),
             };
             let e = self.cx.push_expr(e);
@@ -93,6 +108,9 @@ impl<'s> Parser<'s, '_, '_> {
                 let e = self.cx.push_expr(Expr::new(Op::Global, 0, g));
                 cap!(self, e)
             }
+            _ if self.construct == "deffacts" => {
+                Err(self.err(t, "a constant (deffacts take no variables)"))
+            }
             _ => Err(self.err(t, "a bound variable")),
         }
     }
@@ -103,7 +121,8 @@ impl<'s> Parser<'s, '_, '_> {
         let _ = core::fmt::Write::write_fmt(&mut b, format_args!("?{name}"));
         let id = self.cx.intern(b.as_str());
         let id = cap!(self, id)?;
-        if let Some(g) = (0..self.cx.st.nglobals).find(|&g| self.cx.globals[g as usize].name == id) {
+        if let Some(g) = (0..self.cx.st.nglobals).find(|&g| self.cx.globals[g as usize].name == id)
+        {
             return Ok(g);
         }
         let n = self.cx.st.nglobals as usize;
@@ -111,7 +130,11 @@ impl<'s> Parser<'s, '_, '_> {
             let c = crate::engine::cap(crate::error::Pool::Globals, self.cx.globals.len());
             return Err(self.cap_err(t, c));
         }
-        self.cx.globals[n] = crate::template::Global { name: id, value: Value::Sym(builtins::SYM_NIL), init: NONE };
+        self.cx.globals[n] = crate::template::Global {
+            name: id,
+            value: Value::Sym(builtins::SYM_NIL),
+            init: NONE,
+        };
         self.cx.st.nglobals += 1;
         Ok(n as u16)
     }
@@ -169,16 +192,21 @@ impl<'s> Parser<'s, '_, '_> {
         }
         // deffunctions shadow nothing builtin in CLIPS; check user functions first
         if let Some(sym) = self.cx.find_sym(name) {
-            if let Some(f) = (0..self.cx.st.nfuncs).find(|&f| self.cx.funcs[f as usize].name == sym) {
+            if let Some(f) = (0..self.cx.st.nfuncs).find(|&f| self.cx.funcs[f as usize].name == sym)
+            {
                 let call = self.push_call(FnKind::Deffunction, f)?;
                 let n = self.args_until_rparen(call)?;
                 let df = self.cx.funcs[f as usize];
-                if f != self.defining_fn && (n < df.nparams as u16 || (!df.rest && n > df.nparams as u16)) {
+                if f != self.defining_fn
+                    && (n < df.nparams as u16 || (!df.rest && n > df.nparams as u16))
+                {
                     return Err(self.err(nt, "the deffunction's number of arguments"));
                 }
                 return Ok(call);
             }
-            if let Some(x) = (0..self.cx.st.nexternals).find(|&x| self.cx.externals[x as usize].name == sym) {
+            if let Some(x) =
+                (0..self.cx.st.nexternals).find(|&x| self.cx.externals[x as usize].name == sym)
+            {
                 let call = self.push_call(FnKind::External, x)?;
                 let n = self.args_until_rparen(call)?;
                 let ext = self.cx.externals[x as usize];
@@ -198,7 +226,12 @@ impl<'s> Parser<'s, '_, '_> {
                 };
                 if crate::eval::check_arity(b.name, b.min, b.max, n).is_err() {
                     let mut e = self.err(nt, arity_text(b.min, b.max));
-                    e.detail = crate::error::LoadDetail::Arity { func: b.name, min: b.min, max: b.max, got: n };
+                    e.detail = crate::error::LoadDetail::Arity {
+                        func: b.name,
+                        min: b.min,
+                        max: b.max,
+                        got: n,
+                    };
                     return Err(e);
                 }
                 Ok(call)
@@ -252,7 +285,7 @@ impl<'s> Parser<'s, '_, '_> {
         self.cx.append_child(node, cond);
         let t = self.next();
         if t.tok != Tok::Symbol("then") {
-            return Err(self.err(t, "keyword then"));
+            return Err(self.err(t, "keyword 'then'"));
         }
         let then = self.actions_until(&["else"])?;
         self.cx.append_child(node, then);
@@ -429,7 +462,7 @@ impl<'s> Parser<'s, '_, '_> {
                             self.cx.append_child(case, v);
                             let th = self.next();
                             if th.tok != Tok::Symbol("then") {
-                                return Err(self.err(th, "keyword then"));
+                                return Err(self.err(th, "keyword 'then'"));
                             }
                             let body = self.action_block()?;
                             self.cx.append_child(case, body);
@@ -498,10 +531,28 @@ impl<'s> Parser<'s, '_, '_> {
                     let ssym = cap!(self, self.cx.intern(sname))?;
                     let slot = match self.cx.find_slot(tmpl, ssym) {
                         Some(s) => s,
-                        None => return Err(self.err(st, "a slot of the template")),
+                        None => {
+                            let mut e = self.err(st, "a slot of the template");
+                            e.detail = crate::error::LoadDetail::UnknownSlot {
+                                template: self.cx.templates[tmpl as usize].name,
+                            };
+                            return Err(e);
+                        }
                     };
+                    // a slot may be given only once
+                    let mut c = self.cx.exprs[spec as usize].first;
+                    while c != NONE {
+                        if self.cx.exprs[c as usize].data == slot {
+                            return Err(self.err(st, "a slot not given twice"));
+                        }
+                        c = self.cx.exprs[c as usize].next;
+                    }
                     let sv = cap!(self, self.cx.push_expr(Expr::new(Op::SlotVal, 0, slot)))?;
-                    let n = self.args_until_rparen(sv)?;
+                    if !self.cx.slot_def(tmpl, slot).multi {
+                        self.second_value_check(sv, "one value for the single-field slot")?;
+                    }
+                    let first_given = u16::from(self.cx.exprs[sv as usize].first != NONE);
+                    let n = self.args_until_rparen(sv)? + first_given;
                     self.check_literals(tmpl, slot, sv, st, "assert")?;
                     if !self.cx.slot_def(tmpl, slot).multi && n != 1 {
                         return Err(self.err(st, "exactly one value for a single-field slot"));
@@ -513,11 +564,35 @@ impl<'s> Parser<'s, '_, '_> {
         }
     }
 
+    /// Parses the first value into `holder`; a second value is an error at its position.
+    pub fn second_value_check(&mut self, holder: u16, what: &'static str) -> PResult<()> {
+        if self.peek().tok == Tok::RParen {
+            return Ok(());
+        }
+        let a = self.parse_expr()?;
+        self.cx.append_child(holder, a);
+        let t = self.peek();
+        if t.tok != Tok::RParen {
+            return Err(self.err(t, what));
+        }
+        Ok(())
+    }
+
     /// CLIPS rejects literal slot values that break a slot's restrictions at parse time.
-    fn check_literals(&mut self, tmpl: u16, slot: u16, sv: u16, at: Token<'s>, command: &'static str) -> PResult<()> {
+    fn check_literals(
+        &mut self,
+        tmpl: u16,
+        slot: u16,
+        sv: u16,
+        at: Token<'s>,
+        command: &'static str,
+    ) -> PResult<()> {
         let mut c = self.cx.exprs[sv as usize].first;
         while c != NONE {
-            if matches!(self.cx.exprs[c as usize].op, Op::Int | Op::Float | Op::Sym | Op::Str) {
+            if matches!(
+                self.cx.exprs[c as usize].op,
+                Op::Int | Op::Float | Op::Sym | Op::Str
+            ) {
                 let v = self.cx.const_value(c);
                 if let Err(e) = self.cx.check_atom(tmpl, slot, v) {
                     let types = matches!(
@@ -526,7 +601,11 @@ impl<'s> Parser<'s, '_, '_> {
                     );
                     let name = self.cx.slot_def(tmpl, slot).name;
                     let mut err = self.err(at, "a slot value allowed by the slot's restrictions");
-                    err.detail = crate::error::LoadDetail::Constraint { command, types, slot: name };
+                    err.detail = crate::error::LoadDetail::Constraint {
+                        command,
+                        types,
+                        slot: name,
+                    };
                     return Err(err);
                 }
             }

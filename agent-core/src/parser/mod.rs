@@ -62,6 +62,9 @@ pub struct Parser<'s, 'c, 'e> {
     pub construct: &'static str,
     /// Deffunction being defined (for recursive calls), NONE otherwise.
     pub defining_fn: u16,
+    /// `+j`/`=j` per join of the last defrule (new or shared), for `watch compilations`.
+    pub join_marks: [u8; 64],
+    pub njm: usize,
 }
 
 pub type PResult<T> = Result<T, LoadError>;
@@ -72,12 +75,18 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
             lex: Lexer::new(src),
             peeked: None,
             cx,
-            vars: [VarEntry { name: "", kind: VarKind::Local(0), multi: false }; MAX_VARS],
+            vars: [VarEntry {
+                name: "",
+                kind: VarKind::Local(0),
+                multi: false,
+            }; MAX_VARS],
             nvars: 0,
             nlocals: 0,
             scope: Scope::TopLevel,
             construct: "",
             defining_fn: NONE,
+            join_marks: [0; 64],
+            njm: 0,
         }
     }
 
@@ -91,6 +100,7 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
         self.peeked = st.1;
     }
 
+    #[allow(clippy::should_implement_trait)]
     pub fn next(&mut self) -> Token<'s> {
         match self.peeked.take() {
             Some(t) => t,
@@ -114,6 +124,11 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
     }
 
     pub fn err(&self, at: Token<'s>, expected: &'static str) -> LoadError {
+        let expected = match at.tok {
+            Tok::Eof => "')' (the input ended inside a construct)",
+            Tok::Bad => "a closing '\"' of the string",
+            _ => expected,
+        };
         LoadError {
             line: at.line,
             col: at.col,
@@ -127,7 +142,11 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
     }
 
     pub fn cap_err(&self, at: Token<'s>, c: CapacityError) -> LoadError {
-        LoadError { capacity: Some(c), expected: "room in a pool", ..self.err(at, "") }
+        LoadError {
+            capacity: Some(c),
+            expected: "room in a pool",
+            ..self.err(at, "")
+        }
     }
 
     /// Maps a pool error at the current position.
@@ -190,10 +209,20 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
     }
 
     pub fn find_var(&self, name: &str) -> Option<VarEntry<'s>> {
-        self.vars[..self.nvars].iter().rev().find(|v| v.name == name).copied()
+        self.vars[..self.nvars]
+            .iter()
+            .rev()
+            .find(|v| v.name == name)
+            .copied()
     }
 
-    pub fn add_var(&mut self, at: Token<'s>, name: &'s str, kind: VarKind, multi: bool) -> PResult<()> {
+    pub fn add_var(
+        &mut self,
+        at: Token<'s>,
+        name: &'s str,
+        kind: VarKind,
+        multi: bool,
+    ) -> PResult<()> {
         if self.nvars >= MAX_VARS {
             return Err(self.err(at, "fewer variables in one construct"));
         }
@@ -246,7 +275,8 @@ impl<'s> Parser<'s, '_, '_> {
                     _ => "",
                 };
                 match kw {
-                    "deftemplate" | "defrule" | "deffacts" | "deffunction" | "defglobal" | "defmodule" => {
+                    "deftemplate" | "defrule" | "deffacts" | "deffunction" | "defglobal"
+                    | "defmodule" => {
                         self.next();
                         let start = t.start;
                         let cp = self.cx.checkpoint();
@@ -281,7 +311,15 @@ impl<'s> Parser<'s, '_, '_> {
         }
     }
 
+    pub fn push_join_mark(&mut self, shared: bool) {
+        if self.njm < self.join_marks.len() {
+            self.join_marks[self.njm] = if shared { b'=' } else { b'+' };
+            self.njm += 1;
+        }
+    }
+
     fn construct_body(&mut self, kw: &'static str, start: usize) -> PResult<()> {
+        self.njm = 0;
         self.nvars = 0;
         self.nlocals = 0;
         self.construct = kw;

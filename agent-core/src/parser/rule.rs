@@ -5,7 +5,9 @@ use crate::engine::cap;
 use crate::error::Pool;
 use crate::expr::{loc, Expr, Op};
 use crate::lexer::{Tok, Token};
-use crate::rete::{AlphaNode, Join, JoinKind, EMPTY_PATH, MAX_MARKS, MAX_PATTERNS, PATH_LEN, THIS_PATTERN};
+use crate::rete::{
+    AlphaNode, Join, JoinKind, EMPTY_PATH, MAX_MARKS, MAX_PATTERNS, PATH_LEN, THIS_PATTERN,
+};
 use crate::rule::Rule;
 use crate::value::{SymId, Value, NONE};
 
@@ -23,7 +25,14 @@ struct Ce {
     plast: u16,
 }
 
-const CE_EMPTY: Ce = Ce { kind: JoinKind::Test, alpha: NONE, jtests: NONE, jlast: NONE, post: NONE, plast: NONE };
+const CE_EMPTY: Ce = Ce {
+    kind: JoinKind::Test,
+    alpha: NONE,
+    jtests: NONE,
+    jlast: NONE,
+    post: NONE,
+    plast: NONE,
+};
 
 struct Build {
     ces: [Ce; MAX_PATTERNS],
@@ -162,7 +171,9 @@ impl<'s> Parser<'s, '_, '_> {
                     self.next();
                     break;
                 }
-                Tok::Eof | Tok::Bad | Tok::RParen => return Err(self.err(t, "'=>' or a conditional element")),
+                Tok::Eof | Tok::Bad | Tok::RParen => {
+                    return Err(self.err(t, "'=>' or a conditional element"))
+                }
                 _ => self.ce(b, Ctx::Top)?,
             }
             if self.peek().tok == Tok::LParen {
@@ -190,6 +201,7 @@ impl<'s> Parser<'s, '_, '_> {
     fn declare(&mut self) -> PResult<(i32, u16)> {
         let mut sal = 0;
         let mut sal_expr = NONE;
+        let mut seen_salience = false;
         loop {
             let t = self.next();
             match t.tok {
@@ -197,9 +209,14 @@ impl<'s> Parser<'s, '_, '_> {
                 Tok::LParen => {
                     let kw = self.next();
                     match kw.tok {
+                        Tok::Symbol("salience") if seen_salience => {
+                            return Err(self.err(kw, "one salience declaration only"));
+                        }
                         Tok::Symbol("salience") => {
+                            seen_salience = true;
                             let save = self.scope;
                             self.scope = Scope::Frame;
+                            let vt = self.peek();
                             let e = self.parse_expr()?;
                             self.scope = save;
                             if !matches!(self.cx.exprs[e as usize].op, Op::Int | Op::Float) {
@@ -208,7 +225,10 @@ impl<'s> Parser<'s, '_, '_> {
                             let v = self.cx.eval(e);
                             sal = match v {
                                 Ok(Value::Int(i)) if (-10000..=10000).contains(&i) => i as i32,
-                                _ => return Err(self.err(kw, "an integer salience between -10000 and 10000")),
+                                _ => {
+                                    return Err(self
+                                        .err(vt, "an integer salience between -10000 and 10000"))
+                                }
                             };
                             self.expect_rparen("')' after the salience")?;
                         }
@@ -234,9 +254,17 @@ impl<'s> Parser<'s, '_, '_> {
                     return Err(self.err(arrow, "'<-' after a fact-address variable"));
                 }
                 if ctx != Ctx::Top {
-                    return Err(self.err(t, "a pattern (fact addresses cannot be bound inside not/exists)"));
+                    return Err(self.err(
+                        t,
+                        "a pattern (fact addresses cannot be bound inside not/exists)",
+                    ));
                 }
-                self.expect_lparen("'(' starting a pattern")?;
+                let lp = self.expect_lparen("'(' starting a pattern")?;
+                if let Tok::Symbol("not" | "and" | "or" | "exists" | "test" | "logical") =
+                    self.peek().tok
+                {
+                    return Err(self.err(lp, "a pattern after '<-' (not a conditional element)"));
+                }
                 self.pattern(b, ctx, Some((t, fv)))
             }
             Tok::LParen => {
@@ -245,7 +273,9 @@ impl<'s> Parser<'s, '_, '_> {
                     Tok::Symbol("not") => {
                         self.next();
                         if ctx != Ctx::Top {
-                            return Err(self.err(h, "a pattern (nested not/exists is not supported)"));
+                            return Err(
+                                self.err(h, "a pattern (nested not/exists is not supported)")
+                            );
                         }
                         let saved = self.nvars;
                         self.ce(b, Ctx::Not)?;
@@ -255,7 +285,9 @@ impl<'s> Parser<'s, '_, '_> {
                     Tok::Symbol("exists") => {
                         self.next();
                         if ctx != Ctx::Top {
-                            return Err(self.err(h, "a pattern (nested not/exists is not supported)"));
+                            return Err(
+                                self.err(h, "a pattern (nested not/exists is not supported)")
+                            );
                         }
                         let saved = self.nvars;
                         self.ce(b, Ctx::Exists)?;
@@ -290,7 +322,9 @@ impl<'s> Parser<'s, '_, '_> {
                     Tok::Symbol("or") => {
                         self.next();
                         if ctx != Ctx::Top {
-                            return Err(self.err(h, "a pattern (or inside not/exists is not supported)"));
+                            return Err(
+                                self.err(h, "a pattern (or inside not/exists is not supported)")
+                            );
                         }
                         let k = b.nor;
                         if k >= MAX_ORS {
@@ -298,12 +332,12 @@ impl<'s> Parser<'s, '_, '_> {
                         }
                         b.nor += 1;
                         let mut branch = 0u8;
-                        loop {
+                        let close = loop {
                             let p = self.peek();
                             match p.tok {
                                 Tok::RParen => {
                                     self.next();
-                                    break;
+                                    break p;
                                 }
                                 Tok::Eof | Tok::Bad => return Err(self.err(p, "')'")),
                                 _ => {
@@ -315,9 +349,9 @@ impl<'s> Parser<'s, '_, '_> {
                                     branch += 1;
                                 }
                             }
-                        }
+                        };
                         if branch == 0 {
-                            return Err(self.err(h, "at least one CE inside or"));
+                            return Err(self.err(close, "a pattern or CE inside or"));
                         }
                         b.counts[k] = branch;
                         Ok(())
@@ -375,10 +409,19 @@ impl<'s> Parser<'s, '_, '_> {
     }
 
     /// A pattern CE after its `(`.
-    fn pattern(&mut self, b: &mut Build, ctx: Ctx, factvar: Option<(Token<'s>, &'s str)>) -> PResult<()> {
+    fn pattern(
+        &mut self,
+        b: &mut Build,
+        ctx: Ctx,
+        factvar: Option<(Token<'s>, &'s str)>,
+    ) -> PResult<()> {
         let nt = self.next();
         let name = match nt.tok {
-            Tok::Symbol(s) if !matches!(s, "test" | "not" | "and" | "or" | "exists" | "logical") => s,
+            Tok::Symbol(s)
+                if !matches!(s, "test" | "not" | "and" | "or" | "exists" | "logical") =>
+            {
+                s
+            }
             _ => return Err(self.err(nt, "a template or relation name")),
         };
         if b.n >= MAX_PATTERNS {
@@ -388,10 +431,25 @@ impl<'s> Parser<'s, '_, '_> {
         let sym = cap!(self, self.cx.intern(name))?;
         let tmpl = match self.cx.find_template(sym) {
             Some(t) => t,
+            None if self.peek().tok == Tok::LParen => {
+                return Err(self.err(
+                    nt,
+                    "a deftemplate name (no such template for a slot pattern)",
+                ));
+            }
             None => cap!(self, self.cx.implied_template(sym))?,
         };
         if let Some((ft, fv)) = factvar {
-            self.add_var(ft, fv, VarKind::Pat { pat: p, loc: loc::FACT, desc: NONE }, false)?;
+            self.add_var(
+                ft,
+                fv,
+                VarKind::Pat {
+                    pat: p,
+                    loc: loc::FACT,
+                    desc: NONE,
+                },
+                false,
+            )?;
         }
         self.scope = Scope::Lhs;
         let mut pb = PatBuild {
@@ -426,16 +484,20 @@ impl<'s> Parser<'s, '_, '_> {
                         if self.cx.slot_def(tmpl, slot).multi {
                             self.multislot_fields(&mut pb, p, slot as u8, st)?;
                         } else {
-                            let (multi, test) = self.field(p, loc::new(slot as u8, loc::SINGLE), NONE)?;
+                            let (multi, test) =
+                                self.field(p, loc::new(slot as u8, loc::SINGLE), NONE)?;
                             if multi {
-                                return Err(self.err(st, "a single-field constraint for a single-field slot"));
+                                return Err(self
+                                    .err(st, "a single-field constraint for a single-field slot"));
                             }
                             let at = match test {
                                 Some(e) => self.classify(&mut pb, p, e),
                                 None => NONE,
                             };
                             pb.record(loc::new(slot as u8, loc::SINGLE), at, false);
-                            self.expect_rparen("')' closing the slot (one field in a single-field slot)")?;
+                            self.expect_rparen(
+                                "')' closing the slot (one field in a single-field slot)",
+                            )?;
                         }
                     }
                     _ => return Err(self.err(t, "'(' and a slot name, or ')'")),
@@ -449,14 +511,31 @@ impl<'s> Parser<'s, '_, '_> {
             Ctx::Not => JoinKind::Negative,
             Ctx::Exists => JoinKind::Exists,
         };
-        b.ces[b.n] = Ce { kind, alpha, jtests: pb.jtests, jlast: pb.jlast, post: NONE, plast: NONE };
+        b.ces[b.n] = Ce {
+            kind,
+            alpha,
+            jtests: pb.jtests,
+            jlast: pb.jlast,
+            post: NONE,
+            plast: NONE,
+        };
         b.n += 1;
         Ok(())
     }
 
     /// Elements of a multislot (or of an ordered fact) until `)`.
-    fn multislot_fields(&mut self, pb: &mut PatBuild, p: u8, slot: u8, at: Token<'s>) -> PResult<()> {
-        let ps = cap!(self, self.cx.push_expr(Expr::new(Op::PatSlot, pb.marks, slot as u16)))?;
+    fn multislot_fields(
+        &mut self,
+        pb: &mut PatBuild,
+        p: u8,
+        slot: u8,
+        at: Token<'s>,
+    ) -> PResult<()> {
+        let ps = cap!(
+            self,
+            self.cx
+                .push_expr(Expr::new(Op::PatSlot, pb.marks, slot as u16))
+        )?;
         let mut i = 0u8;
         let mut multis = 0u8;
         loop {
@@ -472,7 +551,11 @@ impl<'s> Parser<'s, '_, '_> {
                         return Err(self.err(t, "fewer fields in one slot"));
                     }
                     let (multi, test) = self.field(p, loc::new(slot, i), ps)?;
-                    let el = cap!(self, self.cx.push_expr(Expr::new(Op::PatElem, u8::from(multi), i as u16)))?;
+                    let el = cap!(
+                        self,
+                        self.cx
+                            .push_expr(Expr::new(Op::PatElem, u8::from(multi), i as u16))
+                    )?;
                     self.cx.append_child(ps, el);
                     let at = match test {
                         Some(e) => self.classify(pb, p, e),
@@ -523,7 +606,11 @@ impl<'s> Parser<'s, '_, '_> {
         if x.op == Op::PatVar {
             return x.aux != p && x.aux != THIS_PATTERN;
         }
-        let mut c = if matches!(x.op, Op::Int | Op::Float) { NONE } else { x.first };
+        let mut c = if matches!(x.op, Op::Int | Op::Float) {
+            NONE
+        } else {
+            x.first
+        };
         while c != NONE {
             if self.refs_earlier(c, p) {
                 return true;
@@ -541,7 +628,11 @@ impl<'s> Parser<'s, '_, '_> {
             }
             return;
         }
-        let mut c = if matches!(x.op, Op::Int | Op::Float) { NONE } else { x.first };
+        let mut c = if matches!(x.op, Op::Int | Op::Float) {
+            NONE
+        } else {
+            x.first
+        };
         while c != NONE {
             self.retarget(c, p);
             c = self.cx.exprs[c as usize].next;
@@ -549,7 +640,10 @@ impl<'s> Parser<'s, '_, '_> {
     }
 
     fn this_field(&mut self, p: u8, locv: u16, desc: u16) -> PResult<u16> {
-        let e = self.cx.push_expr(Expr { first: desc, ..Expr::new(Op::PatVar, p, locv) });
+        let e = self.cx.push_expr(Expr {
+            first: desc,
+            ..Expr::new(Op::PatVar, p, locv)
+        });
         cap!(self, e)
     }
 
@@ -571,7 +665,16 @@ impl<'s> Parser<'s, '_, '_> {
             Tok::SfVar(name) | Tok::MfVar(name) if self.find_var(name).is_none() => {
                 self.next();
                 multi = matches!(t.tok, Tok::MfVar(_));
-                self.add_var(t, name, VarKind::Pat { pat: p, loc: locv, desc }, multi)?;
+                self.add_var(
+                    t,
+                    name,
+                    VarKind::Pat {
+                        pat: p,
+                        loc: locv,
+                        desc,
+                    },
+                    multi,
+                )?;
                 bound_first = true;
             }
             Tok::SfWild | Tok::MfWild => {
@@ -582,6 +685,12 @@ impl<'s> Parser<'s, '_, '_> {
             _ => {}
         }
         if bound_first {
+            if self.peek().tok == Tok::Bar {
+                // `?x|...`: CLIPS reports the constraint after the bar
+                self.next();
+                self.or_constraint(p, locv, desc, &mut multi)?;
+                return Err(self.err(t, "a constraint ('|' cannot follow a binding variable)"));
+            }
             if self.peek().tok != Tok::Amp {
                 return Ok((multi, None));
             }
@@ -650,7 +759,12 @@ impl<'s> Parser<'s, '_, '_> {
                 }
                 let v = match self.find_var(name) {
                     Some(_) => self.var_ref(t, name, false)?,
-                    None => return Err(self.err(t, "a variable bound before (first use must lead the constraint)")),
+                    None => {
+                        return Err(self.err(
+                            t,
+                            "a variable bound before (first use must lead the constraint)",
+                        ))
+                    }
                 };
                 let this = self.this_field(p, locv, desc)?;
                 self.node2(Op::Eq2, this, v)
@@ -725,13 +839,24 @@ impl<'s> Parser<'s, '_, '_> {
             let slot = loc::slot(f[i].0);
             if loc::elem(f[i].0) == loc::SINGLE {
                 locs[len] = f[i].0;
-                tests[len] = if f[i].1 == NONE { 0 } else { self.expr_hash(f[i].1) };
+                tests[len] = if f[i].1 == NONE {
+                    0
+                } else {
+                    self.expr_hash(f[i].1)
+                };
                 i += 1;
             } else {
                 let mut h: u32 = 0x2545_f491;
                 while i < end && loc::slot(f[i].0) == slot {
                     h = mix16(h, u32::from(f[i].2) + 2);
-                    h = mix16(h, if f[i].1 == NONE { 1 } else { self.expr_hash(f[i].1) as u32 });
+                    h = mix16(
+                        h,
+                        if f[i].1 == NONE {
+                            1
+                        } else {
+                            self.expr_hash(f[i].1) as u32
+                        },
+                    );
                     i += 1;
                 }
                 locs[len] = loc::new(slot, 0xFE);
@@ -839,7 +964,10 @@ impl<'s> Parser<'s, '_, '_> {
             Op::PatVar => {
                 (x.first == NONE && y.first == NONE)
                     || (x.first != NONE && y.first != NONE && {
-                        let (p, q) = (self.cx.exprs[x.first as usize], self.cx.exprs[y.first as usize]);
+                        let (p, q) = (
+                            self.cx.exprs[x.first as usize],
+                            self.cx.exprs[y.first as usize],
+                        );
                         p.aux == q.aux && p.data == q.data && self.chain_eq(p.first, q.first)
                     })
             }
@@ -848,7 +976,13 @@ impl<'s> Parser<'s, '_, '_> {
     }
 
     /// Creates the rule and its joins (the root token comes later, in `defrule`).
-    fn build_rule(&mut self, name: SymId, salience: (i32, u16), b: &Build, rhs: u16) -> PResult<u16> {
+    fn build_rule(
+        &mut self,
+        name: SymId,
+        salience: (i32, u16),
+        b: &Build,
+        rhs: u16,
+    ) -> PResult<u16> {
         let at = self.peek();
         let nr = self.cx.st.nrules as usize;
         if nr >= self.cx.rules.len() {
@@ -881,10 +1015,12 @@ impl<'s> Parser<'s, '_, '_> {
                 }
                 if found != NONE {
                     self.cx.joins[found as usize].refs += 1;
+                    self.push_join_mark(true);
                     prev = found;
                     continue;
                 }
             }
+            self.push_join_mark(false);
             let j = self.cx.st.njoins;
             self.cx.st.njoins += 1;
             self.cx.joins[j as usize] = Join {
@@ -905,6 +1041,7 @@ impl<'s> Parser<'s, '_, '_> {
             prev = j;
         }
         // the rule's end node
+        self.push_join_mark(false);
         let term = self.cx.st.njoins;
         self.cx.st.njoins += 1;
         self.cx.joins[term as usize] = Join {

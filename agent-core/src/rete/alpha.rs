@@ -1,7 +1,7 @@
 //! Alpha side: matching one fact against the patterns of its template, keeping alpha
 //! memories, and telling successor joins about new and removed alpha matches.
 
-use super::{JoinKind, PatBinding, Token, TokenKind, MAX_MARKS};
+use super::{PatBinding, Token, TokenKind, MAX_MARKS};
 use crate::engine::Core;
 use crate::error::EvalError;
 use crate::value::{Value, NONE};
@@ -51,7 +51,12 @@ impl Core<'_> {
                 }
                 e = self.exprs[e as usize].next;
             }
-            out[n] = SlotLayout { slot: sd.data, fixed, multis, first_mark: marks };
+            out[n] = SlotLayout {
+                slot: sd.data,
+                fixed,
+                multis,
+                first_mark: marks,
+            };
             if multis >= 2 {
                 marks += multis - 1;
             }
@@ -63,14 +68,16 @@ impl Core<'_> {
 
     /// Runs one alpha node over one fact, creating an alpha match per segmentation.
     pub(crate) fn match_alpha(&mut self, alpha: u16, fact: u16) -> Result<(), EvalError> {
-        let mut lay = [SlotLayout { slot: 0, fixed: 0, multis: 0, first_mark: 0 }; 8];
+        let mut lay = [SlotLayout {
+            slot: 0,
+            fixed: 0,
+            multis: 0,
+            first_mark: 0,
+        }; 8];
         let n = self.layouts(alpha, &mut lay);
         let mut slack = [0u16; 8];
         for (i, l) in lay[..n].iter().enumerate() {
-            let len = match self.slot_cell(fact, l.slot).1 {
-                Some(len) => len,
-                None => 1,
-            };
+            let len = self.slot_cell(fact, l.slot).1.unwrap_or(1);
             if len < l.fixed || (l.multis == 0 && len != l.fixed) {
                 return Ok(());
             }
@@ -103,7 +110,11 @@ impl Core<'_> {
         let mut room = 0u16;
         for (k, l) in lay.iter().enumerate() {
             let f = l.first_mark as usize;
-            let cnt = if l.multis >= 2 { l.multis as usize - 1 } else { 0 };
+            let cnt = if l.multis >= 2 {
+                l.multis as usize - 1
+            } else {
+                0
+            };
             if i >= f && i < f + cnt {
                 let used: u16 = marks[f..i].iter().map(|&m| m as u16).sum();
                 room = slack[k].saturating_sub(used).min(255);
@@ -117,7 +128,12 @@ impl Core<'_> {
         Ok(())
     }
 
-    fn alpha_tests_pass(&mut self, alpha: u16, fact: u16, marks: [u8; MAX_MARKS]) -> Result<bool, EvalError> {
+    fn alpha_tests_pass(
+        &mut self,
+        alpha: u16,
+        fact: u16,
+        marks: [u8; MAX_MARKS],
+    ) -> Result<bool, EvalError> {
         let tests = self.alphas[alpha as usize].tests;
         if tests == NONE {
             return Ok(true);
@@ -126,7 +142,51 @@ impl Core<'_> {
         self.st.this_pm = PatBinding { fact, marks };
         let r = self.eval_tests(tests);
         self.st.this_pm = saved;
-        r
+        match r {
+            // CLIPS reports a failing pattern test and treats it as not matching
+            Err(e) if !matches!(e.kind, crate::error::EvalErrorKind::Capacity(_)) => {
+                self.report_pattern_error(alpha, fact, e);
+                Ok(false)
+            }
+            r => r,
+        }
+    }
+
+    /// `[FACTMCH1]`: an error while testing a fact in the pattern network.
+    fn report_pattern_error(&mut self, alpha: u16, fact: u16, e: EvalError) {
+        use core::fmt::Write;
+        self.st.pattern_error = true;
+        self.report_eval_error(e);
+        // a rule using the pattern, and the pattern's position in it
+        let mut j = self.alphas[alpha as usize].succ;
+        while j != NONE && self.joins[j as usize].alpha_next != NONE {
+            j = self.joins[j as usize].alpha_next;
+        }
+        let depth = if j != NONE {
+            self.joins[j as usize].depth as usize + 1
+        } else {
+            1
+        };
+        let mut t = j;
+        while t != NONE && !self.joins[t as usize].is_terminal() {
+            t = self.joins[t as usize].first_child;
+        }
+        let mut b: crate::value::TextBuf<512> = crate::value::TextBuf::new();
+        let _ = b.write_str("\n[FACTMCH1] This error occurred in the fact pattern network\n   Currently active fact: ");
+        {
+            let (view, _) = self.split();
+            let _ = view.write_fact(&mut b, fact);
+        }
+        let _ = writeln!(b, "\n   Problem resides in field #1");
+        if t != NONE {
+            let rule = self.joins[t as usize].rule;
+            let _ = writeln!(
+                b,
+                "      Of pattern #{depth} in rule {}\n",
+                self.sym_text(self.rules[rule as usize].name)
+            );
+        }
+        self.write(crate::host::router::WERROR, b.as_str());
     }
 
     /// Evaluates a chain of tests; all must be non-FALSE. Scratch and stack are
@@ -147,7 +207,12 @@ impl Core<'_> {
         Ok(ok)
     }
 
-    fn add_alpha_match(&mut self, alpha: u16, fact: u16, marks: [u8; MAX_MARKS]) -> Result<(), EvalError> {
+    fn add_alpha_match(
+        &mut self,
+        alpha: u16,
+        fact: u16,
+        marks: [u8; MAX_MARKS],
+    ) -> Result<(), EvalError> {
         let t = self.alloc_token()?;
         let tail = self.alphas[alpha as usize].mem_tail;
         let fam = self.facts[fact as usize].first_am;

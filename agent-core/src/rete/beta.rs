@@ -32,7 +32,10 @@ impl Core<'_> {
     }
 
     pub(crate) fn free_token(&mut self, t: u16) {
-        self.tokens[t as usize] = Token { next_sib: self.st.token_free, ..Token::EMPTY };
+        self.tokens[t as usize] = Token {
+            next_sib: self.st.token_free,
+            ..Token::EMPTY
+        };
         self.st.token_free = t;
         self.st.tokens_live -= 1;
     }
@@ -57,7 +60,10 @@ impl Core<'_> {
             }
             self.st.lhs_pm[j.depth as usize] = if tk.am != NONE {
                 let a = self.tokens[tk.am as usize];
-                PatBinding { fact: a.fact, marks: a.marks }
+                PatBinding {
+                    fact: a.fact,
+                    marks: a.marks,
+                }
             } else {
                 PatBinding::EMPTY
             };
@@ -74,7 +80,13 @@ impl Core<'_> {
     }
 
     /// Evaluates a join's tests for left token `left` and alpha match `am`.
-    fn join_test(&mut self, join: u16, left: u16, am: u16, left_bound: bool) -> Result<bool, EvalError> {
+    fn join_test(
+        &mut self,
+        join: u16,
+        left: u16,
+        am: u16,
+        left_bound: bool,
+    ) -> Result<bool, EvalError> {
         let j = self.joins[join as usize];
         if j.tests == NONE {
             return Ok(true);
@@ -84,7 +96,10 @@ impl Core<'_> {
         }
         self.st.lhs_pm[j.depth as usize] = if am != NONE {
             let a = self.tokens[am as usize];
-            PatBinding { fact: a.fact, marks: a.marks }
+            PatBinding {
+                fact: a.fact,
+                marks: a.marks,
+            }
         } else {
             PatBinding::EMPTY
         };
@@ -201,8 +216,16 @@ impl Core<'_> {
     fn link_token(&mut self, join: u16, parent: u16, am: u16) -> Result<u16, EvalError> {
         let t = self.alloc_token()?;
         let head = self.joins[join as usize].mem;
-        let psib = if parent != NONE { self.tokens[parent as usize].first_child } else { NONE };
-        let asib = if am != NONE { self.tokens[am as usize].first_child } else { NONE };
+        let psib = if parent != NONE {
+            self.tokens[parent as usize].first_child
+        } else {
+            NONE
+        };
+        let asib = if am != NONE {
+            self.tokens[am as usize].first_child
+        } else {
+            NONE
+        };
         self.tokens[t as usize] = Token {
             kind: TokenKind::Beta,
             owner: join,
@@ -282,7 +305,9 @@ impl Core<'_> {
     /// Takes back what a token passed on: its activations, then its child partial
     /// matches (newest first), as CLIPS orders the removals. Its links stay.
     fn deactivate(&mut self, t: u16) {
-        while self.tokens[t as usize].extra != NONE && self.tokens[t as usize].kind == TokenKind::Beta {
+        while self.tokens[t as usize].extra != NONE
+            && self.tokens[t as usize].kind == TokenKind::Beta
+        {
             let a = self.tokens[t as usize].extra;
             self.remove_activation(a);
         }
@@ -366,12 +391,20 @@ impl Core<'_> {
             if self.joins.is_empty() {
                 return Err(cap(Pool::Joins, 0).into());
             }
-            self.joins[0] = super::Join { kind: JoinKind::Root, refs: 1, ..super::Join::EMPTY };
+            self.joins[0] = super::Join {
+                kind: JoinKind::Root,
+                refs: 1,
+                ..super::Join::EMPTY
+            };
             self.st.njoins = 1;
         }
         if self.joins[0].mem == NONE {
             let t = self.alloc_token()?;
-            self.tokens[t as usize] = Token { kind: TokenKind::Beta, owner: 0, ..Token::EMPTY };
+            self.tokens[t as usize] = Token {
+                kind: TokenKind::Beta,
+                owner: 0,
+                ..Token::EMPTY
+            };
             self.joins[0].mem = t;
         }
         Ok(())

@@ -3,7 +3,6 @@
 mod alpha;
 mod beta;
 
-
 use crate::value::NONE;
 
 /// Pattern index marking "the fact under test" in alpha tests (shared between rules).
@@ -44,8 +43,7 @@ pub struct AlphaNode {
 }
 
 impl AlphaNode {
-    pub const EMPTY: AlphaNode =
-        AlphaNode {
+    pub const EMPTY: AlphaNode = AlphaNode {
         tmpl: 0,
         desc: NONE,
         tests: NONE,
@@ -195,5 +193,8 @@ pub struct PatBinding {
 }
 
 impl PatBinding {
-    pub const EMPTY: PatBinding = PatBinding { fact: NONE, marks: [0; MAX_MARKS] };
+    pub const EMPTY: PatBinding = PatBinding {
+        fact: NONE,
+        marks: [0; MAX_MARKS],
+    };
 }

@@ -150,7 +150,11 @@ impl Contender for BatchCli {
         }
         let wall_whole = median(&full_times).ok_or_else(|| "no timed run".to_string());
         let wall_run = match (&wall_whole, median(&norun_times)) {
-            (Ok(whole), Some(norun)) => Ok(whole.saturating_sub(norun)),
+            // Tiny programs: the run can vanish in process start-up jitter.
+            (Ok(whole), Some(norun)) if *whole <= norun => {
+                Err("skipped: below timing noise (whole <= no-run baseline)".to_string())
+            }
+            (Ok(whole), Some(norun)) => Ok(*whole - norun),
             _ => Err("baseline (no run) failed".to_string()),
         };
         let (instr_whole, instr_run) = match plan.callgrind_limit {

@@ -38,6 +38,17 @@ impl Measurement {
         Self::missing(reason.to_string())
     }
 
+    /// Replaces the time, instruction and memory readings with `reason`: used when the run
+    /// produced wrong results, so its costs must not enter any ratio.
+    pub fn withdraw_costs(&mut self, reason: &str) {
+        let why = format!("withdrawn: {reason}");
+        self.wall_whole = Err(why.clone());
+        self.wall_run = Err(why.clone());
+        self.instr_whole = Err(why.clone());
+        self.instr_run = Err(why.clone());
+        self.mem_bytes = Err(why);
+    }
+
     fn missing(why: String) -> Self {
         Self {
             fired: Err(why.clone()),

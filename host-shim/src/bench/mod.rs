@@ -213,12 +213,17 @@ fn run(args: &Args) -> Result<bool, BenchError> {
             measured.push(measurement);
         }
         let names: Vec<&str> = probed.iter().map(|(n, _)| n.as_str()).collect();
-        let (agree, agreement) = agreement(program.workload, &names, &measured);
-        all_agree &= agree;
+        let outcome = agreement(program.workload, &names, &measured);
+        all_agree &= outcome.all_agree;
+        for (m, name) in measured.iter_mut().zip(&names) {
+            if outcome.wrong.iter().any(|w| w == name) {
+                m.withdraw_costs("wrong results");
+            }
+        }
         rows.push(Row {
             workload: program.workload,
             measured,
-            agreement,
+            agreement: outcome.text,
         });
     }
 
@@ -267,7 +272,17 @@ fn describe(contender: &dyn Contender, scratch: &std::path::Path) -> Result<Stri
 /// Whether the measured engines' results agree, and the text for the report. Manners
 /// results are compared as sets of seat lines (print order is not the result) and each is
 /// checked to be a valid seating of the generated guests.
-fn agreement(workload: Workload, names: &[&str], measured: &[Measurement]) -> (bool, String) {
+/// The outcome of comparing the engines' results on one workload.
+struct Agreement {
+    all_agree: bool,
+    /// For the report's "results" column.
+    text: String,
+    /// Engines whose results are wrong: their speed and memory readings are withdrawn, since
+    /// a run that computed something else (or stopped early) is not comparable.
+    wrong: Vec<String>,
+}
+
+fn agreement(workload: Workload, names: &[&str], measured: &[Measurement]) -> Agreement {
     let normalise = |lines: &Vec<String>| {
         let mut lines = lines.clone();
         if workload.kind == Kind::Manners {
@@ -284,15 +299,21 @@ fn agreement(workload: Workload, names: &[&str], measured: &[Measurement]) -> (b
         })
         .collect();
     let Some((reference, reference_lines, reference_fired)) = results.first() else {
-        return (false, "no engine produced results".to_string());
+        return Agreement {
+            all_agree: false,
+            text: "no engine produced results".to_string(),
+            wrong: Vec::new(),
+        };
     };
     let mut problems = Vec::new();
+    let mut wrong = Vec::new();
     if reference_lines.is_empty() {
         problems.push(format!("{reference} printed no result lines"));
     }
     for (name, lines, fired) in &results[1..] {
         if lines != reference_lines {
             problems.push(format!("{name} results differ from {reference}"));
+            wrong.push(name.to_string());
         }
         // A count an engine did not report is shown as missing in its own column.
         if let (Some(fired), Some(reference_fired)) = (fired, reference_fired) {
@@ -300,6 +321,7 @@ fn agreement(workload: Workload, names: &[&str], measured: &[Measurement]) -> (b
                 problems.push(format!(
                     "{name} fired {fired} rules, {reference} {reference_fired}"
                 ));
+                wrong.push(name.to_string());
             }
         }
     }
@@ -308,6 +330,7 @@ fn agreement(workload: Workload, names: &[&str], measured: &[Measurement]) -> (b
         for (name, lines, _) in &results {
             if let Err(why) = workloads::check_seating(&guests, lines) {
                 problems.push(format!("{name} seating invalid: {why}"));
+                wrong.push(name.to_string());
             }
         }
     }
@@ -323,9 +346,18 @@ fn agreement(workload: Workload, names: &[&str], measured: &[Measurement]) -> (b
         } else {
             format!("agree: {}{valid}", who.join(" = "))
         };
-        (true, text)
+        Agreement {
+            all_agree: true,
+            text,
+            wrong,
+        }
     } else {
-        (false, format!("DIFFER: {}", problems.join("; ")))
+        wrong.dedup();
+        Agreement {
+            all_agree: false,
+            text: format!("DIFFER: {}", problems.join("; ")),
+            wrong,
+        }
     }
 }
 
@@ -350,27 +382,33 @@ mod tests {
             with_lines(&["reach2 4 reach4 2"], 7),
             with_lines(&["reach2 4 reach4 2"], 7),
         ];
-        let (ok, text) = agreement(workload, &["a", "b"], &same);
-        assert!(ok, "{text}");
+        let outcome = agreement(workload, &["a", "b"], &same);
+        assert!(
+            outcome.all_agree && outcome.wrong.is_empty(),
+            "{}",
+            outcome.text
+        );
         let different = [
             with_lines(&["reach2 4 reach4 2"], 7),
             with_lines(&["reach2 5 reach4 2"], 7),
         ];
-        assert!(!agreement(workload, &["a", "b"], &different).0);
+        let outcome = agreement(workload, &["a", "b"], &different);
+        assert!(!outcome.all_agree);
+        assert_eq!(outcome.wrong, vec!["b".to_string()]);
         let fired = [
             with_lines(&["reach2 4 reach4 2"], 7),
             with_lines(&["reach2 4 reach4 2"], 8),
         ];
-        assert!(!agreement(workload, &["a", "b"], &fired).0);
+        assert!(!agreement(workload, &["a", "b"], &fired).all_agree);
         let mut uncounted = with_lines(&["reach2 4 reach4 2"], 7);
         uncounted.fired = Err("no 'N rules fired' line".to_string());
         let counted_once = [with_lines(&["reach2 4 reach4 2"], 7), uncounted];
-        assert!(agreement(workload, &["a", "b"], &counted_once).0);
+        assert!(agreement(workload, &["a", "b"], &counted_once).all_agree);
         let absent = [
             with_lines(&["reach2 4 reach4 2"], 7),
             Measurement::not_measured("x"),
         ];
-        assert!(agreement(workload, &["a", "b"], &absent).0);
+        assert!(agreement(workload, &["a", "b"], &absent).all_agree);
     }
 
     #[test]
@@ -398,15 +436,15 @@ mod tests {
         ];
         let forward: Vec<&str> = seats.iter().map(String::as_str).collect();
         let backward: Vec<&str> = seats.iter().rev().map(String::as_str).collect();
-        let (ok, text) = agreement(
+        let outcome = agreement(
             workload,
             &["a", "b"],
             &[with_lines(&forward, 9), with_lines(&backward, 9)],
         );
-        assert!(ok, "{text}");
-        assert!(text.contains("valid seating"));
+        assert!(outcome.all_agree, "{}", outcome.text);
+        assert!(outcome.text.contains("valid seating"));
         let broken = [with_lines(&forward[..3], 9)];
-        assert!(!agreement(workload, &["a"], &broken).0);
+        assert!(!agreement(workload, &["a"], &broken).all_agree);
     }
 
     /// Runs the small programs in the real engines installed here (skips those absent):
@@ -445,8 +483,8 @@ mod tests {
                     "{m:?}"
                 );
             }
-            let (agree, text) = agreement(workload, &names, &measured);
-            assert!(agree, "{}: {text}", workload.name());
+            let outcome = agreement(workload, &names, &measured);
+            assert!(outcome.all_agree, "{}: {}", workload.name(), outcome.text);
         }
         let _ = std::fs::remove_dir_all(&dir);
     }

@@ -122,7 +122,9 @@ fn cell<T>(reading: &Reading<T>, show: impl Fn(&T) -> String) -> String {
         Ok(value) => show(value),
         // The full reason for a missing engine is listed once under "Machine".
         Err(reason) if reason.starts_with("not measured") => "not measured".to_string(),
-        Err(reason) if reason.starts_with("skipped") => shorten(reason, 80),
+        Err(reason) if reason.starts_with("skipped") || reason.starts_with("withdrawn") => {
+            shorten(reason, 80)
+        }
         Err(reason) => format!("failed: {}", shorten(reason, 60)),
     }
 }

@@ -3,7 +3,9 @@
 //! FINAL, FAILED). Pure: no I/O, no clock; the safety layer clamps and may veto the twist.
 
 use super::planner;
-use hal::field::{gate_pose, input_storage_pose, machine_approach_pose, MachineId};
+#[cfg(test)]
+use hal::field::input_storage_pose;
+use hal::field::{gate_pose, input_storage_pose_for, machine_approach_pose, MachineId};
 use hal::ir::IrScan;
 use hal::skill::{FailReason, Perception, SkillOutcome, SkillRequest};
 use hal::{wrap_angle, LightSignal, Pose2, Twist};
@@ -34,6 +36,8 @@ pub struct DriveTuning {
     pub min_speed_factor: f32,
     /// Cycles a drive may make no progress before it FAILS.
     pub stuck_cycles: u32,
+    /// Which robot of the team (1..=3): picks its own spot at the input storage.
+    pub robot_number: u8,
 }
 
 impl Default for DriveTuning {
@@ -49,6 +53,7 @@ impl Default for DriveTuning {
             slow_down_within_m: 0.3,
             min_speed_factor: 0.25,
             stuck_cycles: 15 * 10,
+            robot_number: 1,
         }
     }
 }
@@ -147,9 +152,16 @@ impl DriveTo {
         if speed > 0.0 {
             let motion = vy.atan2(vx);
             if let Some(d) = p.ir.nearest_towards(motion, 25f32.to_radians()) {
-                let f = ((d - hal::ir::IR_MIN_RANGE_M)
-                    / (t.slow_down_within_m - hal::ir::IR_MIN_RANGE_M))
-                    .clamp(t.min_speed_factor, 1.0);
+                // Something right ahead that is not the station we drive to (another robot):
+                // wait for it to move; the progress watchdog ends the wait.
+                let blocked = d <= STOP_WITHIN_M && remaining > d + 0.15;
+                let f = if blocked {
+                    0.0
+                } else {
+                    ((d - hal::ir::IR_MIN_RANGE_M)
+                        / (t.slow_down_within_m - hal::ir::IR_MIN_RANGE_M))
+                        .clamp(t.min_speed_factor, 1.0)
+                };
                 vx *= f;
                 vy *= f;
             }
@@ -167,6 +179,9 @@ impl DriveTo {
             .sum()
     }
 }
+
+/// Obstacles this close ahead stop the robot unless they are its goal.
+const STOP_WITHIN_M: f32 = 0.07;
 
 /// A point `distance_m` behind a pose (to back away from a machine).
 fn backed_off(pose: Pose2, distance_m: f32) -> Pose2 {
@@ -219,7 +234,7 @@ impl Skill {
             SkillRequest::BringPuckTo(_) | SkillRequest::DeliverTo(_) if !p.has_puck => {
                 return Err(FailReason::InvalidRequest)
             }
-            SkillRequest::GetS0 => input_storage_pose(),
+            SkillRequest::GetS0 => input_storage_pose_for(t.robot_number),
             SkillRequest::BringPuckTo(m) => machine_approach_pose(m),
             SkillRequest::DeliverTo(g) => gate_pose(g),
         };

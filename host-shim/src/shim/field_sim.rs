@@ -7,7 +7,7 @@ use super::config::Config;
 use super::referee::{Placement, PuckKind, Referee};
 use hal::device::GyroSample;
 use hal::field::{
-    gate_pose, input_storage_pose, machine_approach_pose, GateId, MachineId, FIELD_SIZE_M,
+    gate_pose, input_storage_pose_for, machine_approach_pose, GateId, MachineId, FIELD_SIZE_M,
     MACHINE_POSITIONS, MACHINE_SIZE_M,
 };
 use hal::ir::{sensor_angle_rad, IrScan, IR_MAX_RANGE_M, IR_MIN_RANGE_M, IR_SENSOR_COUNT};
@@ -235,7 +235,7 @@ impl<R: Referee> FieldSim<R> {
             pose.distance_to(&target) <= STATION_REACH_M
                 && wrap_angle(pose.phi_rad - target.phi_rad).abs() <= STATION_HEADING_RAD
         };
-        let station = if at(input_storage_pose()) {
+        let station = if at(input_storage_pose_for(self.robots[i].number)) {
             Some(Station::Storage)
         } else if let Some(m) = MachineId::all().find(|&m| at(machine_approach_pose(m))) {
             Some(Station::Machine(m))
@@ -488,7 +488,7 @@ mod tests {
     #[test]
     fn pucks_flow_through_storage_machine_and_gate() {
         let mut s = sim();
-        s.robots[0].true_pose = input_storage_pose();
+        s.robots[0].true_pose = input_storage_pose_for(1);
         s.step(&[None]);
         assert_eq!(s.robots[0].held, Some(PuckKind::S0));
         // Standing still does not take a second puck.

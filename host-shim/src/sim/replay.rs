@@ -214,3 +214,85 @@ pub fn verify(log: &GameLog, replayed: &GameRecord) -> Result<(), String> {
     }
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sim::record::{Decision, EndReason, Score};
+
+    fn record() -> GameRecord {
+        let mut setup = GameSetup::for_seed(3).with_seeded_times(3);
+        setup.clock_limit_s = None;
+        setup.active_gate = 3;
+        setup
+            .add_fault(Fault {
+                at_decision: 4,
+                kind: FaultKind::DriveFail,
+            })
+            .expect("room for a fault");
+        let decision = |n: u32, light: &str| Decision {
+            n,
+            time: 12.25 * f64::from(n),
+            action: "finish-puck-at".into(),
+            target: "M3".into(),
+            puck: "S0".into(),
+            status: "FINAL".into(),
+            light: light.into(),
+            holding: "NONE".into(),
+            beliefs: vec!["T1_2_3".to_string(); MACHINE_COUNT],
+            points: 0,
+        };
+        GameRecord {
+            setup,
+            strategy: Strategy::Travel,
+            decisions: vec![decision(1, "yellow"), decision(2, "green")],
+            score: Score {
+                points: 4,
+                s2: 1,
+                ..Score::default()
+            },
+            end: EndReason::Done,
+            end_time: 24.5,
+            travelled: 3.0,
+            fired: 40,
+            output: String::new(),
+        }
+    }
+
+    #[test]
+    fn a_written_log_parses_back_to_the_same_game() {
+        let r = record();
+        let log = parse_log(&write_log(&r)).expect("our own log parses");
+        assert_eq!(log.strategy, Strategy::Travel);
+        assert_eq!(log.setup, r.setup);
+        assert_eq!(log.decisions.len(), 2);
+        assert_eq!(verify(&log, &r), Ok(()));
+    }
+
+    #[test]
+    fn verify_names_the_first_different_decision() {
+        let r = record();
+        let log = parse_log(&write_log(&r)).expect("our own log parses");
+        let mut other = r.clone();
+        other.decisions[1].light = "yellow-flashing".into();
+        let diff = verify(&log, &other).expect_err("the light differs");
+        assert!(diff.starts_with("decision 2 differs"), "{diff}");
+        other.decisions.truncate(1);
+        other.decisions[0] = r.decisions[0].clone();
+        let diff = verify(&log, &other).expect_err("one decision is missing");
+        assert!(
+            diff.contains("has 2 decisions, the replay made 1"),
+            "{diff}"
+        );
+    }
+
+    #[test]
+    fn malformed_logs_are_errors_with_the_line() {
+        let text = write_log(&record()).replace("gate 3", "gate three");
+        let err = parse_log(&text)
+            .expect_err("the gate is not a number")
+            .to_string();
+        assert!(err.contains("line") && err.contains("gate number"), "{err}");
+        assert!(parse_assignment("T1 T2".split(' ')).is_err());
+    }
+}

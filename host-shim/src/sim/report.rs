@@ -159,3 +159,62 @@ pub fn render(record: &GameRecord, title: &str) -> String {
     let _ = writeln!(out, "{}", record.result_line());
     out
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sim::record::{Decision, EndReason, Score};
+    use rules::setup::{assignment_by_index, GameSetup};
+    use rules::Strategy;
+
+    fn decision(n: u32, time: f64, beliefs: &[&str]) -> Decision {
+        Decision {
+            n,
+            time,
+            action: "finish-puck-at".into(),
+            target: "M1".into(),
+            puck: "S0".into(),
+            status: "FINAL".into(),
+            light: "green".into(),
+            holding: "S1".into(),
+            beliefs: beliefs.iter().map(|b| b.to_string()).collect(),
+            points: 0,
+        }
+    }
+
+    #[test]
+    fn a_type_counts_as_learned_at_the_first_exact_belief() {
+        let setup = GameSetup::new(assignment_by_index(0).expect("index 0 exists"));
+        let mut first = vec!["T1_2_3"; 10];
+        first[0] = "T2_3+S0";
+        let mut second = first.clone();
+        second[0] = "T2";
+        second[1] = "T1";
+        let record = GameRecord {
+            setup,
+            strategy: Strategy::Paper,
+            decisions: vec![
+                decision(1, 10.0, &first),
+                decision(2, 30.5, &second),
+                decision(3, 50.0, &second),
+            ],
+            score: Score::default(),
+            end: EndReason::Done,
+            end_time: 50.0,
+            travelled: 0.0,
+            fired: 0,
+            output: String::new(),
+        };
+        let learned = types_learned(&record);
+        let m1 = learned[0].as_ref().expect("M1 became known");
+        assert_eq!((m1.belief.as_str(), m1.decision, m1.time), ("T2", 2, 30.5));
+        assert!(learned[2].is_none());
+        // Assignment #0 has T1 on M1..M4: the report flags the wrong T2 belief.
+        let text = render(&record, "test");
+        assert!(
+            text.contains("M1  T2 at   30.5 s (decision 2)  (WRONG: truth is T1)"),
+            "{text}"
+        );
+        assert!(text.contains("M2  T1 at   30.5 s (decision 2)\n"), "{text}");
+    }
+}

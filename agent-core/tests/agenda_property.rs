@@ -1,0 +1,173 @@
+//! Property test: random assert/retract/modify sequences; after every step the
+//! engine's agenda equals a naive full re-match of all rules, ordered by the same
+//! conflict resolution (salience, then newest first). Activations born in the same
+//! step are ordered by network details the naive matcher does not model, so the
+//! comparison is: same activations, and the engine's order is sorted by
+//! (salience desc, birth step desc).
+
+use std::collections::{BTreeMap, BTreeSet};
+
+use agent_core::{FactId, Host, SmallEngine};
+use proptest::prelude::*;
+
+struct Quiet;
+impl Host for Quiet {
+    fn write_str(&mut self, _router: &str, _text: &str) {}
+}
+
+const RULES: &str = "
+(deftemplate t (slot k) (slot v))
+(defrule r1 (a ?x) (b ?x) =>)
+(defrule r2 (declare (salience 5)) (a ?x) (not (c ?x)) =>)
+(defrule r3 (b ?y) =>)
+(defrule r4 (declare (salience -3)) (a ?x) (exists (b ?x)) =>)
+(defrule r5 (a ?x) (c ?y&:(> ?y ?x)) =>)
+(defrule r6 (declare (salience 2)) ?f <- (t (k ?k) (v ?v)) (a ?v) =>)
+(defrule r7 (t (k p) (v ?v)) (not (b ?v)) =>)
+";
+
+#[derive(Clone, Debug)]
+enum Op {
+    Assert(u8, i64),
+    AssertT(bool, i64),
+    Retract(usize),
+    Modify(usize, i64),
+}
+
+fn op() -> impl Strategy<Value = Op> {
+    prop_oneof![
+        3 => (0u8..3, 1i64..4).prop_map(|(r, n)| Op::Assert(r, n)),
+        1 => (any::<bool>(), 1i64..4).prop_map(|(k, v)| Op::AssertT(k, v)),
+        2 => (0usize..16).prop_map(Op::Retract),
+        1 => (0usize..16, 1i64..4).prop_map(|(i, v)| Op::Modify(i, v)),
+    ]
+}
+
+/// A fact of the naive model.
+#[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord)]
+enum F {
+    Rel(u8, i64),
+    T(bool, i64),
+}
+
+type Key = (String, Vec<Option<u32>>);
+
+fn naive(facts: &BTreeMap<u32, F>) -> BTreeMap<Key, i32> {
+    let mut out = BTreeMap::new();
+    let rel = |r: u8| {
+        facts.iter().filter_map(move |(n, f)| match f {
+            F::Rel(x, v) if *x == r => Some((*n, *v)),
+            _ => None,
+        })
+    };
+    let ts = || {
+        facts.iter().filter_map(|(n, f)| match f {
+            F::T(k, v) => Some((*n, *k, *v)),
+            _ => None,
+        })
+    };
+    for (na, x) in rel(0) {
+        for (nb, y) in rel(1) {
+            if x == y {
+                out.insert(("r1".into(), vec![Some(na), Some(nb)]), 0);
+            }
+        }
+        if !rel(2).any(|(_, z)| z == x) {
+            out.insert(("r2".into(), vec![Some(na), None]), 5);
+        }
+        if rel(1).any(|(_, y)| y == x) {
+            out.insert(("r4".into(), vec![Some(na), None]), -3);
+        }
+        for (nc, y) in rel(2) {
+            if y > x {
+                out.insert(("r5".into(), vec![Some(na), Some(nc)]), 0);
+            }
+        }
+    }
+    for (nb, _) in rel(1) {
+        out.insert(("r3".into(), vec![Some(nb)]), 0);
+    }
+    for (nt, k, v) in ts() {
+        for (na, x) in rel(0) {
+            if x == v {
+                out.insert(("r6".into(), vec![Some(nt), Some(na)]), 2);
+            }
+        }
+        if k && !rel(1).any(|(_, y)| y == v) {
+            out.insert(("r7".into(), vec![Some(nt), None]), 0);
+        }
+    }
+    out
+}
+
+fn text(f: &F) -> String {
+    match f {
+        F::Rel(r, v) => format!("({} {v})", ["a", "b", "c"][*r as usize]),
+        F::T(k, v) => format!("(t (k {}) (v {v}))", if *k { "p" } else { "q" }),
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 256, ..ProptestConfig::default() })]
+    #[test]
+    fn agenda_matches_naive_rematch(ops in proptest::collection::vec(op(), 1..40)) {
+        let mut e = Box::new(SmallEngine::new());
+        let h = &mut Quiet;
+        e.load_str(h, "rules", RULES).unwrap();
+        let mut facts: BTreeMap<u32, F> = BTreeMap::new();
+        let mut next = 1u32;
+        let mut birth: BTreeMap<Key, usize> = BTreeMap::new();
+        for (step, op) in ops.iter().enumerate() {
+            match op {
+                Op::Assert(..) | Op::AssertT(..) => {
+                    let f = match op { Op::Assert(r, v) => F::Rel(*r, *v), Op::AssertT(k, v) => F::T(*k, *v), _ => unreachable!() };
+                    let dup = facts.values().any(|g| *g == f);
+                    let r = e.assert_str(h, &text(&f));
+                    prop_assert_eq!(r.is_ok(), !dup);
+                    if !dup {
+                        prop_assert_eq!(r.unwrap(), FactId(next));
+                        facts.insert(next, f);
+                        next += 1;
+                    }
+                }
+                Op::Retract(i) => {
+                    if facts.is_empty() { continue; }
+                    let num = *facts.keys().nth(i % facts.len()).unwrap();
+                    e.retract(h, FactId(num)).unwrap();
+                    facts.remove(&num);
+                }
+                Op::Modify(i, v) => {
+                    let tnums: Vec<u32> = facts.iter().filter(|(_, f)| matches!(f, F::T(..))).map(|(n, _)| *n).collect();
+                    if tnums.is_empty() { continue; }
+                    let num = tnums[i % tnums.len()];
+                    let k = match facts[&num] { F::T(k, _) => k, _ => unreachable!() };
+                    e.eval_str(h, &format!("(modify {num} (v {v}))")).unwrap();
+                    facts.remove(&num);
+                    let nf = F::T(k, *v);
+                    if !facts.values().any(|g| *g == nf) {
+                        facts.insert(next, nf);
+                        next += 1;
+                    }
+                }
+            }
+            let want = naive(&facts);
+            birth.retain(|k, _| want.contains_key(k));
+            for k in want.keys() {
+                birth.entry(k.clone()).or_insert(step);
+            }
+            let mut got: Vec<(Key, i32)> = Vec::new();
+            e.for_each_activation(|r, s, b| got.push(((r.to_string(), b.to_vec()), s)));
+            let got_set: BTreeSet<&Key> = got.iter().map(|(k, _)| k).collect();
+            let want_set: BTreeSet<&Key> = want.keys().collect();
+            prop_assert_eq!(got_set, want_set, "after {:?}", op);
+            for (k, s) in &got {
+                prop_assert_eq!(*s, want[k]);
+            }
+            for w in got.windows(2) {
+                let a = (w[0].1, birth[&w[0].0]);
+                let b = (w[1].1, birth[&w[1].0]);
+                prop_assert!(a >= b, "order {:?} before {:?} after {:?}", w[0], w[1], op);
+            }
+        }
+    }
+}

@@ -1,0 +1,196 @@
+//! Parse-error tests: malformed programs give line, column and what was expected; the
+//! constructs before the bad one stay; the bad one leaves nothing behind.
+
+use agent_core::{Host, SmallEngine};
+
+struct Quiet;
+impl Host for Quiet {
+    fn write_str(&mut self, _router: &str, _text: &str) {}
+}
+
+/// A good prefix every case starts with (defines one template, rule, function).
+const GOOD: &str =
+    "(deftemplate good (slot a))\n(defrule keep (good (a ?x)) => (printout t ?x crlf))\n";
+
+/// (bad construct text, 1-based line, column — relative to the bad text, which
+/// follows GOOD's two lines — and a fragment of what was expected)
+const CASES: &[(&str, u32, u32, &str)] = &[
+    ("(defrule r1 (a ?x) => (printout t ?x crlf)", 1, 43, "')'"),
+    ("(defrule r2 (a ?x) =>\n  (foo ?x))", 2, 4, "known function"),
+    ("(defrule r3 (a \"unterminated) => )", 1, 16, ""),
+    ("(defrule)", 1, 9, "defrule name"),
+    ("(deftemplate)", 1, 13, "deftemplate name"),
+    ("(deftemplate t1 (slot))", 1, 22, "slot name"),
+    (
+        "(deftemplate t2 (slot a) (slot a))",
+        1,
+        32,
+        "not used before",
+    ),
+    ("(deftemplate t3 (slt a))", 1, 18, "slot or multislot"),
+    ("(deftemplate t4 (slot a (type FOO)))", 1, 31, "type name"),
+    (
+        "(deftemplate t5 (slot a (colour red)))",
+        1,
+        26,
+        "slot attribute",
+    ),
+    (
+        "(deftemplate t6 (slot a (default 1 2)))",
+        1,
+        36,
+        "single default value",
+    ),
+    ("(deftemplate good (slot b))", 1, 14, "not yet defined"),
+    (
+        "(defrule r4 (good (b 1)) =>)",
+        1,
+        20,
+        "slot of the template",
+    ),
+    (
+        "(defrule r5 (good (a 1 2)) =>)",
+        1,
+        24,
+        "')' closing the slot",
+    ),
+    (
+        "(defrule r6 (good (a $?x)) =>)",
+        1,
+        20,
+        "single-field constraint",
+    ),
+    ("(defrule r7 (a ?x) (b ?y&~) =>)", 1, 27, "constraint"),
+    (
+        "(defrule r8 (a ?x) => (printout t ?y crlf))",
+        1,
+        35,
+        "bound variable",
+    ),
+    ("(defrule r9 (a ?x) (test (> ?x)) =>)", 1, 27, "argument"),
+    (
+        "(defrule r10 (not (a) (b)) =>)",
+        1,
+        23,
+        "closing not (one CE only)",
+    ),
+    (
+        "(defrule r11 (declare (salience high)) (a) =>)",
+        1,
+        33,
+        "integer salience",
+    ),
+    (
+        "(defrule r12 (declare (salience 99999)) (a) =>)",
+        1,
+        33,
+        "between -10000 and 10000",
+    ),
+    ("(defrule r13 ?f (a) =>)", 1, 17, "'<-'"),
+    (
+        "(defrule r14 (a) (or) =>)",
+        1,
+        21,
+        "pattern or CE inside or",
+    ),
+    ("(defrule r15 (a ?x) => (bind))", 1, 29, "variable"),
+    (
+        "(defrule r16 (a) => (if (> 1 0) (printout t x)))",
+        1,
+        33,
+        "'then'",
+    ),
+    ("(deffunction)", 1, 13, "deffunction name"),
+    (
+        "(deffunction f1 ?x ?x)",
+        1,
+        17,
+        "'(' opening the parameter list",
+    ),
+    (
+        "(deffunction f2 ($?a ?b) ?b)",
+        1,
+        22,
+        "wildcard parameter to be last",
+    ),
+    ("(deffunction + (?a) ?a)", 1, 14, "not a builtin"),
+    ("(defglobal ?*g* 5)", 1, 17, "'='"),
+    (
+        "(defglobal ?*g* = (+ 1 a))",
+        1,
+        17,
+        "initial value that evaluates",
+    ),
+    ("(deffacts d1 (a 1) b)", 1, 20, "'(' starting a fact"),
+    ("(deffacts d2 (good (zz 1)))", 1, 21, "slot of the template"),
+    (
+        "(defrule r17 (a ?x) => (assert (good (a 1 2))))",
+        1,
+        43,
+        "one value for the single-field slot",
+    ),
+    (
+        "(defrule r18 (a ?x) => (switch ?x (cas 1 then 2)))",
+        1,
+        36,
+        "case or default",
+    ),
+    (
+        "(defrule r19 (a) => (loop-for-count (1 2) (printout t x)))",
+        1,
+        38,
+        "loop variable",
+    ),
+];
+
+#[test]
+fn malformed_programs_report_position_and_leave_nothing() {
+    assert!(CASES.len() >= 30);
+    let mut problems = Vec::new();
+    for &(bad, line, col, expected) in CASES {
+        let mut e = Box::new(SmallEngine::new());
+        let h = &mut Quiet;
+        e.load_str(h, "good", GOOD).unwrap();
+        let before = e.usage();
+        let err = match e.load_str(h, "bad", bad) {
+            Ok(n) => {
+                problems.push(format!("{bad:?}: loaded {n} constructs, no error"));
+                continue;
+            }
+            Err(err) => err,
+        };
+        if (err.line, err.col) != (line, col)
+            || !err
+                .expected
+                .to_lowercase()
+                .contains(&expected.to_lowercase())
+        {
+            problems.push(format!(
+                "{bad:?}: got {}:{} {:?}",
+                err.line, err.col, err.expected
+            ));
+            continue;
+        }
+        assert!(err.capacity.is_none());
+        let mut after = e.usage();
+        // symbols interned while reading the bad text are rolled back too
+        assert_eq!(after, before, "leftovers after {bad:?}");
+        after.tokens = 0;
+        // what was loaded before still works
+        e.assert_str(h, "(good (a 7))").unwrap();
+        assert_eq!(e.counts().1, 1, "rule `keep` still active after {bad:?}");
+    }
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+}
+
+#[test]
+fn constructs_before_an_error_in_the_same_text_stay() {
+    let mut e = Box::new(SmallEngine::new());
+    let h = &mut Quiet;
+    let text = "(deftemplate p (slot x))\n(defrule ok (p (x ?v)) => (printout t ?v crlf))\n(defrule broken (p (x ?v) =>)\n";
+    let err = e.load_str(h, "t", text).unwrap_err();
+    assert_eq!(err.line, 3);
+    assert_eq!(err.construct, "defrule");
+    e.assert_str(h, "(p (x 1))").unwrap();
+    assert_eq!(e.counts().1, 1);
+}
