@@ -254,8 +254,6 @@ fn seeded_games_fire_the_same_rules_as_real_clips() {
 /// The decision log also holds the beliefs after every decision, built by
 /// `log-beliefs` (game-log.clp) as a multifield in a deffunction loop.
 #[test]
-#[ignore = "engine bug: a multifield bound in a loop is clobbered by a later progn$ \
-            (log-beliefs), so our beliefs differ; run with --ignored once fixed"]
 fn seeded_games_log_the_same_decisions_as_real_clips() {
     check_all(|case, p| {
         first_difference(&p.clips_decisions, &p.our_decisions).map(|i| {

@@ -194,7 +194,12 @@ fn bind(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
         a = cx.exprs[a as usize].next;
     }
     let value = if n == 1 && (!only.is_multi() || spliced) {
-        cx.st.scratch_top = start;
+        // Drop the copies, but keep a multifield that the argument itself built above
+        // `start` (e.g. `(bind ?x (create$ a b))`): `only` still points into it.
+        cx.st.scratch_top = match only {
+            Value::Multi(m) if m.start >= start => m.start + m.len,
+            _ => start,
+        };
         only
     } else if n == 0 {
         Value::Void
@@ -223,4 +228,19 @@ fn return_(cx: &mut Core<'_>, a: super::Args) -> Result<Value, EvalError> {
 fn break_(cx: &mut Core<'_>, _a: super::Args) -> Result<Value, EvalError> {
     cx.st.breaking = true;
     Ok(Value::Sym(SYM_FALSE))
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::testutil::run_program;
+
+    #[test]
+    fn bound_multifield_survives_later_multifields() {
+        let out = run_program(
+            "(deffunction f3 () (bind ?out (create$ a b)) (bind ?t (create$ p q r)) ?out)\n\
+             (printout t (f3) crlf)\n",
+        );
+        assert!(out.contains("(a b)"), "got {out}");
+        assert!(!out.contains("(p q)"), "got {out}");
+    }
 }
