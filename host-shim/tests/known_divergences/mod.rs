@@ -33,3 +33,38 @@ pub fn judge(dir: &Path, name: &str, result: Result<(), String>) -> Result<(), S
         )),
     }
 }
+
+/// Checks every program, prints one line each and "N passed, M failed (of N <what>)",
+/// and fails when any program fails (known divergences count as passed, printed as such).
+pub fn summarize(
+    dir: &Path,
+    names: &[String],
+    what: &str,
+    check: impl Fn(&str) -> Result<(), String>,
+) {
+    let mut failed = Vec::new();
+    for name in names {
+        match judge(dir, name, check(name)) {
+            Ok(()) => println!("ok      {name}"),
+            Err(report) => {
+                println!("FAILED  {name}");
+                failed.push((name.clone(), report));
+            }
+        }
+    }
+    for (_, report) in &failed {
+        println!("\n{report}");
+    }
+    let summary = format!(
+        "{} passed, {} failed (of {} {what})",
+        names.len() - failed.len(),
+        failed.len(),
+        names.len()
+    );
+    println!("\n{summary}");
+    assert!(
+        failed.is_empty(),
+        "{summary}; failing: {:?}",
+        failed.iter().map(|(n, _)| n).collect::<Vec<_>>()
+    );
+}
