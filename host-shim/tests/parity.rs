@@ -18,8 +18,12 @@ fn rules_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../rules")
 }
 
+/// A scratch folder of its own per call: the tests run in parallel and each removes its
+/// folder when done.
 fn scratch_dir() -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("robotino-parity-{}", std::process::id()));
+    static NEXT: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+    let n = NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let dir = std::env::temp_dir().join(format!("robotino-parity-{}-{n}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("the temp dir is writable");
     dir
 }
