@@ -226,10 +226,7 @@ mod tests {
         let budgets = Budgets::parse(text).unwrap();
         // Issue 3's starting budgets; a budget that moved from them says so, with the
         // measurement behind it, in its reason.
-        for (name, start) in [
-            (BudgetName::Ram, 64 * 1024),
-            (BudgetName::Code, 256 * 1024),
-        ] {
+        for (name, start) in [(BudgetName::Ram, 64 * 1024), (BudgetName::Code, 256 * 1024)] {
             let budget = budgets.get(name);
             if budget.max_bytes != start {
                 assert!(
