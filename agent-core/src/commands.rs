@@ -528,6 +528,46 @@ impl Core<'_> {
                 "\n[CSTRNCHK1] A literal slot value found in the {command} command\ndoes not match the allowed {what} for slot {}.",
                 self.sym_text(slot)
             );
+        } else if let LoadDetail::DefaultConstraint {
+            attribute,
+            types,
+            slot,
+        } = e.detail
+        {
+            let what = if types { "types" } else { "values" };
+            let _ = writeln!(
+                b,
+                "\n[CSTRNCHK1] An expression found in the {attribute} attribute\ndoes not match the allowed {what} for slot {}.",
+                self.sym_text(slot)
+            );
+        } else if let LoadDetail::SingleSlot { slot } = e.detail {
+            let _ = writeln!(
+                b,
+                "\n[TMPLTDEF2] The single field slot {} can only contain a single field value.",
+                self.sym_text(slot)
+            );
+        } else if let LoadDetail::RequiredSlot { slot } = e.detail {
+            let _ = writeln!(
+                b,
+                "\n[TMPLTRHS1] Slot {} requires a value because of its (default ?NONE) attribute.",
+                self.sym_text(slot)
+            );
+        } else if let LoadDetail::ArgType {
+            func,
+            arg,
+            expected,
+        } = e.detail
+        {
+            let _ = writeln!(
+                b,
+                "[ARGACCES5] Function {func} expected argument #{arg} to be of type {expected}"
+            );
+        } else if e.detail == LoadDetail::MixedVariable {
+            let name = tok.trim_start_matches('$').trim_start_matches('?');
+            let _ = writeln!(
+                b,
+                "\n[ANALYSIS3] Variable ?{name} is used as both a single and multifield variable in the LHS"
+            );
         } else if e.construct == "command" {
             {
                 let _ = writeln!(
