@@ -3,16 +3,17 @@
 
 use core::fmt::Write;
 
+use crate::builtins::errors::Fallback;
 use crate::builtins::{FIXED_SYMBOLS, SYM_INITIAL_FACT};
 use crate::engine::{watch, Core};
 use crate::error::{EvalError, EvalErrorKind, LoadDetail, LoadError};
-use crate::expr::Op;
+use crate::expr::{FnKind, Op};
 use crate::fact::FactState;
 use crate::host::router;
 use crate::lexer::{Lexer, Tok};
 use crate::parser::{Item, Parser};
 use crate::rete::{JoinKind, PatBinding, TokenKind};
-use crate::value::{TextBuf, Value, NONE};
+use crate::value::{SymId, TextBuf, Value, NONE};
 
 /// Whether text holds only blanks and comments.
 fn only_blank(s: &str) -> bool {
@@ -414,20 +415,34 @@ impl Core<'_> {
     }
 
     fn report_rhs_error(&mut self, rule: u16, e: EvalError) {
+        self.write_error_message(e);
+        self.write_halted_in("defrule", self.rules[rule as usize].name);
+    }
+
+    /// `[PRCCODE4]`: which construct's actions an error stopped.
+    pub(crate) fn write_halted_in(&mut self, construct: &str, name: SymId) {
         let mut b: TextBuf<256> = TextBuf::new();
-        let _ = writeln!(b, "[ERROR] {e}");
         let _ = writeln!(
             b,
-            "[PRCCODE4] Execution halted during the actions of defrule {}.",
-            self.sym_text(self.rules[rule as usize].name)
+            "[PRCCODE4] Execution halted during the actions of {construct} {}.",
+            self.sym_text(name)
         );
         self.write(router::WERROR, b.as_str());
     }
 
     /// Prints an evaluation error as CLIPS would report it at the prompt.
     pub fn report_eval_error(&mut self, e: EvalError) {
+        self.write_error_message(e);
+    }
+
+    /// CLIPS's message for an evaluation error (nothing for one already reported).
+    pub fn write_error_message(&mut self, e: EvalError) {
+        if e.reported {
+            return;
+        }
         let mut b: TextBuf<256> = TextBuf::new();
         match e.kind {
+            EvalErrorKind::Reported | EvalErrorKind::Exit => return,
             EvalErrorKind::Arity { func } => {
                 let _ = writeln!(
                     b,
@@ -444,14 +459,64 @@ impl Core<'_> {
                     "[ARGACCES5] Function {func} expected argument #{arg} to be of type {expected}"
                 );
             }
+            EvalErrorKind::DivideByZero { func } => {
+                let _ = writeln!(
+                    b,
+                    "[PRNTUTIL7] Attempt to divide by zero in {func} function."
+                );
+            }
             EvalErrorKind::NoSuchFact(n) => {
                 let _ = writeln!(b, "[PRNTUTIL1] Unable to find fact f-{n}.");
+            }
+            // messages that already carry CLIPS's code, e.g. "[MULTIFUN1] ..."
+            EvalErrorKind::Other(m) if m.starts_with('[') => {
+                let _ = writeln!(b, "{m}");
             }
             _ => {
                 let _ = writeln!(b, "[ERROR] {e}");
             }
         }
         self.write(router::WERROR, b.as_str());
+    }
+
+    /// After a run-time error at the prompt CLIPS prints the value the top-level function
+    /// returned: its fallback (`builtins::errors`), `FALSE` for a deffunction.
+    fn print_fallback(&mut self, top: u16) {
+        if self.st.literal_error {
+            return;
+        }
+        if let Some(fb) = self.st.error_fallback.filter(|fb| fb.depth == 1) {
+            if let Some(func) = fb.divide_by_zero {
+                self.write_error_message(EvalError::new(EvalErrorKind::DivideByZero { func }));
+            }
+            self.print_value(router::STDOUT, fb.value, true);
+            self.write(router::STDOUT, "\n");
+            return;
+        }
+        let x = self.exprs[top as usize];
+        if x.op != Op::Call {
+            return;
+        }
+        let fb = if x.aux == FnKind::Builtin as u8 {
+            match crate::builtins::errors::fallback(crate::builtins::get(x.data).name) {
+                Some(f) => f,
+                None => return,
+            }
+        } else if x.aux == FnKind::Deffunction as u8 {
+            Fallback::Sym("FALSE")
+        } else {
+            return;
+        };
+        let mut text: TextBuf<32> = TextBuf::new();
+        let _ = match fb {
+            Fallback::Int(i) => write!(text, "{i}"),
+            Fallback::Float(f) => write!(text, "{f:.1}"),
+            Fallback::Sym(s) => write!(text, "{s}"),
+            Fallback::Str(s) => write!(text, "\"{s}\""),
+            Fallback::EmptyMulti => write!(text, "()"),
+        };
+        self.write(router::STDOUT, text.as_str());
+        self.write(router::STDOUT, "\n");
     }
 
     /// Prints a load error in CLIPS's style plus the position line.
@@ -650,6 +715,8 @@ impl Core<'_> {
                         r = Err(c.into());
                     }
                 }
+                self.st.literal_error = false;
+                self.st.error_fallback = None;
                 if r.is_ok() {
                     r = self.eval(e);
                 }
@@ -661,7 +728,12 @@ impl Core<'_> {
                         }
                     }
                     Err(err) if err.kind == EvalErrorKind::Exit => {}
-                    Err(err) => self.report_eval_error(err),
+                    Err(err) => {
+                        self.report_eval_error(err);
+                        if !matches!(err.kind, EvalErrorKind::Capacity(_)) {
+                            self.print_fallback(e);
+                        }
+                    }
                 }
                 self.st.sp = 0;
                 self.st.bp = 0;

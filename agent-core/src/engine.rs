@@ -130,6 +130,12 @@ pub struct State {
     pub return_value: Value,
     pub firing: bool,
     pub eval_depth: u16,
+    /// The last argument type error was about a literal argument: CLIPS reports those
+    /// while parsing, so the command line prints no fallback value after it.
+    pub literal_error: bool,
+    /// A builtin's fallback value after a run-time error, when it depends on the
+    /// arguments (see `builtins::errors::ErrorFallback`).
+    pub error_fallback: Option<crate::builtins::errors::ErrorFallback>,
     /// Template of `(initial-fact)`.
     pub initial_tmpl: u16,
     /// Pattern bindings for network tests (`lhs`) and the firing rule (`rhs`).
@@ -193,6 +199,8 @@ impl State {
             return_value: Value::Void,
             firing: false,
             eval_depth: 0,
+            literal_error: false,
+            error_fallback: None,
             initial_tmpl: NONE,
             lhs_pm: [PatBinding::EMPTY; MAX_PATTERNS],
             rhs_pm: [PatBinding::EMPTY; MAX_PATTERNS],

@@ -2,7 +2,7 @@
 //! refresh-agenda, set-strategy, list-defrules, ppdefrule, undefrule, matches, load,
 //! batch, save-facts, load-facts.
 
-use super::{Args, Builtin, ANY, SYM_CRLF, SYM_FALSE, SYM_T, SYM_TRUE};
+use super::{Args, Builtin, ANY, SYM_CRLF, SYM_FALSE, SYM_NIL, SYM_TRUE};
 use crate::engine::{watch, Core};
 use crate::error::{EvalError, EvalErrorKind};
 use crate::host::router;
@@ -115,14 +115,14 @@ fn unwatch(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 }
 
 fn printout(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    let r = cx.arg_lexeme(a, 0, "printout")?;
-    if cx.sym_text(r) == "nil" {
+    if cx.arg(a, 0) == Value::Sym(SYM_NIL) {
         return Ok(Value::Void);
     }
-    let routed: &'static str = if r == SYM_T {
-        router::STDOUT
-    } else {
-        route_name(cx.sym_text(r))
+    let routed = match resolve_router(cx, cx.arg(a, 0)) {
+        Ok(Some(r)) => r,
+        Ok(None) => return Ok(Value::Void),
+        // CLIPS's printout reports the name and carries on with nothing printed
+        Err(_) => return Ok(Value::Void),
     };
     let mut b: TextBuf<1024> = TextBuf::new();
     for i in 1..a.len as usize {
@@ -148,14 +148,28 @@ fn printout(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 }
 
 /// Maps a logical name to a router constant (unknown names go to stdout).
-fn route_name(s: &str) -> &'static str {
-    match s {
-        "wtrace" => router::WTRACE,
-        "wdisplay" => router::WDISPLAY,
-        "werror" => router::WERROR,
-        "wwarning" => router::WWARNING,
-        _ => router::STDOUT,
+/// The engine router for a CLIPS logical name: `Some(router)`, or `None` for `stdin`
+/// (output to it is dropped). Any other name is `[ROUTER1]` (printed here), as in the
+/// CLIPS command line, which has no other routers.
+pub(super) fn resolve_router(
+    cx: &mut Core<'_>,
+    name: Value,
+) -> Result<Option<&'static str>, EvalError> {
+    if let Value::Sym(s) | Value::Str(s) = name {
+        match cx.sym_text(s) {
+            "t" | "stdout" | "wclips" | "wdialog" => return Ok(Some(router::STDOUT)),
+            "wdisplay" => return Ok(Some(router::WDISPLAY)),
+            "wtrace" => return Ok(Some(router::WTRACE)),
+            "werror" => return Ok(Some(router::WERROR)),
+            "wwarning" => return Ok(Some(router::WWARNING)),
+            "stdin" => return Ok(None),
+            _ => {}
+        }
     }
+    cx.write(router::WERROR, "[ROUTER1] Logical name ");
+    cx.print_value(router::WERROR, name, false);
+    cx.write(router::WERROR, " was not recognized by any routers\n");
+    Err(EvalError::new(EvalErrorKind::Reported))
 }
 
 fn halt(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {

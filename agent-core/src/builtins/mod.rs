@@ -11,6 +11,7 @@
 pub mod basic;
 pub mod commands;
 pub mod control;
+pub mod errors;
 pub mod facts;
 pub mod format;
 pub mod geometry;
