@@ -4,6 +4,7 @@
 use core::fmt::Write;
 
 use crate::builtins::errors::Fallback;
+use crate::builtins::files::{FileItems, FILE_BUF};
 use crate::builtins::{FIXED_SYMBOLS, SYM_INITIAL_FACT};
 use crate::engine::{watch, Core};
 use crate::error::{EvalError, EvalErrorKind, LoadDetail, LoadError};
@@ -14,6 +15,9 @@ use crate::lexer::{Lexer, Tok};
 use crate::parser::{Item, Parser};
 use crate::rete::{JoinKind, PatBinding, TokenKind};
 use crate::value::{SymId, TextBuf, Value, NONE};
+
+/// How deep `batch` files may run inside each other (each level holds a file buffer).
+const MAX_BATCH_DEPTH: u8 = 8;
 
 /// Whether text holds only blanks and comments.
 fn only_blank(s: &str) -> bool {
@@ -596,16 +600,28 @@ impl Core<'_> {
     /// Loads constructs from text (`load`): constructs before a bad one stay.
     /// Returns the number of constructs defined.
     pub fn load_text(&mut self, text: &str, verbose: bool) -> Result<usize, LoadError> {
-        let mut n = 0;
         let mut progress = false;
+        let r = self.load_items(text, verbose, &mut progress);
+        if progress {
+            self.write(router::STDOUT, "\n");
+        }
+        r
+    }
+
+    /// `load_text` for one piece of a file: `progress` tells whether progress marks
+    /// (`*`, `%`, ...) were printed, so the caller ends their line once at the end.
+    pub fn load_items(
+        &mut self,
+        text: &str,
+        verbose: bool,
+        progress: &mut bool,
+    ) -> Result<usize, LoadError> {
+        let mut n = 0;
         let mut p = Parser::new(self, text);
         loop {
             let start = p.offset();
             match p.next_item() {
                 Ok(Item::End) => {
-                    if progress {
-                        p.cx.write(router::STDOUT, "\n");
-                    }
                     return Ok(n);
                 }
                 Ok(Item::Construct) => {
@@ -632,7 +648,7 @@ impl Core<'_> {
                                 "deffacts" => '$',
                                 _ => '#',
                             });
-                            progress = true;
+                            *progress = true;
                         }
                         p.cx.write(router::STDOUT, b.as_str());
                     }
@@ -662,7 +678,7 @@ impl Core<'_> {
         let mut pos = 0;
         let mut line_base = 0u32;
         while pos < text.len() && !self.st.exit {
-            if echo {
+            if echo && !core::mem::take(&mut self.st.prompt_shown) {
                 self.write(router::STDOUT, "CLIPS> ");
             }
             let mut end = pos;
@@ -697,9 +713,83 @@ impl Core<'_> {
         Ok(())
     }
 
+    /// Runs a command file streamed through a fixed buffer (`batch`, `batch*`): with
+    /// `echo` as CLIPS's batch mode (prompt, echoed lines, results), without it silently
+    /// but for errors and the commands' own output. Returns whether the file was read
+    /// to its end.
+    pub fn batch_file_stream(&mut self, path: &str, echo: bool) -> Result<bool, EvalError> {
+        let mut buf = [0u8; FILE_BUF];
+        let mut file = FileItems::new(path, &mut buf);
+        if file.open(self).is_err() {
+            self.report_unopened_file("batch", path);
+            return Ok(false);
+        }
+        if self.st.batch_depth >= MAX_BATCH_DEPTH {
+            self.write(
+                router::WERROR,
+                "[FILEIO] batch files nested too deeply (a file that runs itself?)\n",
+            );
+            return Ok(false);
+        }
+        self.st.batch_depth += 1;
+        let saved_quiet = self.st.quiet_results;
+        self.st.quiet_results = !echo;
+        let mut done = true;
+        while !self.st.exit {
+            let item = match file.next_command(self) {
+                Ok(Some(item)) => item,
+                Ok(None) => break,
+                Err(e) => {
+                    let mut p: TextBuf<256> = TextBuf::new();
+                    let _ = p.write_str(file.path());
+                    self.report_file_error("batch", p.as_str(), e);
+                    done = false;
+                    break;
+                }
+            };
+            let command = &item.text[..item.len];
+            if echo {
+                // a long comment block comes alone: echoed without a prompt of its own
+                let blank = only_blank(command);
+                if (!blank || item.last) && !core::mem::take(&mut self.st.prompt_shown) {
+                    self.write(router::STDOUT, "CLIPS> ");
+                }
+                self.write(router::STDOUT, item.text);
+                // CLIPS prompted for a command the file's end cut short: the next
+                // command read (from the outer input) goes without a prompt
+                if blank && item.last {
+                    self.st.prompt_shown = true;
+                }
+            }
+            if !only_blank(command) {
+                self.st.line_base = item.line_base;
+                self.exec_command(command, path);
+                self.st.line_base = 0;
+            }
+        }
+        self.st.quiet_results = saved_quiet;
+        self.st.batch_depth -= 1;
+        Ok(done)
+    }
+
+    /// Runs the file a `batch` command asked for, as the next input of the command loop.
+    pub fn run_pending_batch(&mut self) {
+        while !self.st.pending_batch.is_empty() && !self.st.exit {
+            let mut path: TextBuf<256> = TextBuf::new();
+            let _ = path.write_str(self.st.pending_batch.as_str());
+            self.st.pending_batch.clear();
+            let _ = self.batch_file_stream(path.as_str(), true);
+        }
+    }
+
     /// Executes one complete top-level item: defines a construct or evaluates a
     /// command and prints its result (nothing for void).
     pub fn exec_command(&mut self, text: &str, source: &str) {
+        self.exec_item(text, source);
+        self.run_pending_batch();
+    }
+
+    fn exec_item(&mut self, text: &str, source: &str) {
         let exprs_before = self.st.nexprs;
         let cp = self.checkpoint();
         let mut p = Parser::new(self, text);
@@ -722,7 +812,7 @@ impl Core<'_> {
                 }
                 match r {
                     Ok(v) => {
-                        if v != Value::Void {
+                        if v != Value::Void && !self.st.quiet_results {
                             self.print_value(router::STDOUT, v, true);
                             self.write(router::STDOUT, "\n");
                         }
@@ -730,7 +820,8 @@ impl Core<'_> {
                     Err(err) if err.kind == EvalErrorKind::Exit => {}
                     Err(err) => {
                         self.report_eval_error(err);
-                        if !matches!(err.kind, EvalErrorKind::Capacity(_)) {
+                        if !matches!(err.kind, EvalErrorKind::Capacity(_)) && !self.st.quiet_results
+                        {
                             self.print_fallback(e);
                         }
                     }

@@ -133,6 +133,14 @@ pub struct State {
     /// The last argument type error was about a literal argument: CLIPS reports those
     /// while parsing, so the command line prints no fallback value after it.
     pub literal_error: bool,
+    /// A file `batch` asked for, run by the command loop after the current command.
+    pub pending_batch: crate::value::TextBuf<256>,
+    /// How many batch files are running inside each other.
+    pub batch_depth: u8,
+    /// `batch*`: commands print no results.
+    pub quiet_results: bool,
+    /// A batch file ended after its prompt was printed; the next command read uses it.
+    pub prompt_shown: bool,
     /// A builtin's fallback value after a run-time error, when it depends on the
     /// arguments (see `builtins::errors::ErrorFallback`).
     pub error_fallback: Option<crate::builtins::errors::ErrorFallback>,
@@ -200,6 +208,10 @@ impl State {
             firing: false,
             eval_depth: 0,
             literal_error: false,
+            pending_batch: crate::value::TextBuf::new(),
+            batch_depth: 0,
+            quiet_results: false,
+            prompt_shown: false,
             error_fallback: None,
             initial_tmpl: NONE,
             lhs_pm: [PatBinding::EMPTY; MAX_PATTERNS],

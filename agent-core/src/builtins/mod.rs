@@ -13,6 +13,7 @@ pub mod commands;
 pub mod control;
 pub mod errors;
 pub mod facts;
+pub mod files;
 pub mod format;
 pub mod geometry;
 pub mod math;
