@@ -161,6 +161,20 @@ pub struct State {
     pub return_value: Value,
     pub firing: bool,
     pub eval_depth: u16,
+    /// The last argument type error was about a literal argument: CLIPS reports those
+    /// while parsing, so the command line prints no fallback value after it.
+    pub literal_error: bool,
+    /// A file `batch` asked for, run by the command loop after the current command.
+    pub pending_batch: crate::value::TextBuf<256>,
+    /// How many batch files are running inside each other.
+    pub batch_depth: u8,
+    /// `batch*`: commands print no results.
+    pub quiet_results: bool,
+    /// A batch file ended after its prompt was printed; the next command read uses it.
+    pub prompt_shown: bool,
+    /// A builtin's fallback value after a run-time error, when it depends on the
+    /// arguments (see `builtins::errors::ErrorFallback`).
+    pub error_fallback: Option<crate::builtins::errors::ErrorFallback>,
     /// Template of `(initial-fact)`.
     pub initial_tmpl: u16,
     /// Pattern bindings for network tests (`lhs`) and the firing rule (`rhs`).
@@ -227,6 +241,12 @@ impl State {
             return_value: Value::Void,
             firing: false,
             eval_depth: 0,
+            literal_error: false,
+            pending_batch: crate::value::TextBuf::new(),
+            batch_depth: 0,
+            quiet_results: false,
+            prompt_shown: false,
+            error_fallback: None,
             initial_tmpl: NONE,
             lhs_pm: [PatBinding::EMPTY; MAX_PATTERNS],
             rhs_pm: [PatBinding::EMPTY; MAX_PATTERNS],
