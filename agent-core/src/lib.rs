@@ -63,6 +63,7 @@ pub mod eval;
 pub mod expr;
 pub mod fact;
 pub mod host;
+pub mod invariants;
 pub mod lexer;
 pub mod parser;
 pub mod print;
@@ -82,4 +83,5 @@ pub use error::{
     CapacityError, EngineError, EvalError, EvalErrorKind, HostIoError, LoadError, Pool,
 };
 pub use host::{Host, NullHost};
+pub use invariants::Violation;
 pub use value::{Value, ValueRef};
