@@ -770,12 +770,23 @@ impl Core<'_> {
                 self.joins[p as usize].rsucc = self.joins[j as usize].alpha_next;
             }
         }
+        // a template's alpha nodes are kept in network order, so new ones can sit
+        // anywhere in its list, not only at the head
         for t in 0..cp.ntemplates.min(self.st.ntemplates) {
             while self.templates[t as usize].alpha_head != NONE
                 && self.templates[t as usize].alpha_head >= cp.nalpha
             {
                 let a = self.templates[t as usize].alpha_head;
                 self.templates[t as usize].alpha_head = self.alphas[a as usize].next_in_tmpl;
+            }
+            let mut a = self.templates[t as usize].alpha_head;
+            while a != NONE {
+                let mut n = self.alphas[a as usize].next_in_tmpl;
+                while n != NONE && n >= cp.nalpha {
+                    n = self.alphas[n as usize].next_in_tmpl;
+                }
+                self.alphas[a as usize].next_in_tmpl = n;
+                a = n;
             }
         }
         for a in cp.nalpha..self.st.nalpha {

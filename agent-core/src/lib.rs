@@ -87,6 +87,7 @@ pub mod eval;
 pub mod expr;
 pub mod fact;
 pub mod host;
+pub mod invariants;
 pub mod lexer;
 pub mod parser;
 pub mod print;
@@ -106,4 +107,5 @@ pub use error::{
     CapacityError, EngineError, EvalError, EvalErrorKind, HostIoError, LoadError, Pool,
 };
 pub use host::{Host, NullHost};
+pub use invariants::Violation;
 pub use value::{Value, ValueRef};
