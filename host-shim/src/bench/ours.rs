@@ -12,6 +12,7 @@
 
 use super::measure::{result_lines, Contender, Measurement, Plan, ProgramFiles};
 use super::process::median;
+use agent_core::Host;
 use std::path::Path;
 use std::time::{Duration, Instant};
 
@@ -29,14 +30,183 @@ pub trait InProcessEngine {
     fn memory_bytes(&self) -> Option<u64>;
 }
 
-/// THE SEAM: return a fresh engine once agent-core can run programs. Until then ours is
-/// reported as "not measured" for the in-process column.
-///
-/// Hint for the implementer: `Engine` keeps all storage inline, so build it straight in a
-/// `Box` (or a `static`) rather than on the stack, and give `Host::write_str` a `String`
-/// buffer that `take_output` drains.
+/// Capacities for the benchmark: every pool near the `u16` index limit (`NONE` is
+/// `u16::MAX`), so the scaling programs find the engine's real limits rather than the
+/// host defaults'. About 10 MiB; built on a big-stack thread, then boxed.
+pub type BenchEngine = agent_core::Engine<
+    60000, // facts
+    65000, // fact values
+    16384, // symbols
+    65000, // symbol bytes
+    256,   // templates
+    1024,  // slot definitions
+    512,   // rules
+    1024,  // alpha nodes
+    2048,  // joins
+    65000, // tokens
+    65000, // activations
+    256,   // deffunctions
+    128,   // globals
+    32768, // expression nodes
+    1024,  // evaluation stack
+    4096,  // multifield scratch
+    256,   // deffacts
+    32,    // external functions
+>;
+
+/// Collects what the engine prints to `t`; everything else (warnings, errors) is kept
+/// apart so a failing program can say why.
+#[derive(Default)]
+pub struct CaptureHost {
+    pub stdout: String,
+    pub other: String,
+}
+
+impl Host for CaptureHost {
+    fn write_str(&mut self, router: &str, text: &str) {
+        if router == agent_core::host::router::STDOUT {
+            self.stdout.push_str(text);
+        } else {
+            self.other.push_str(text);
+        }
+    }
+}
+
+/// Our engine in a box, driven through the public API.
+pub struct Ours<E> {
+    engine: Box<E>,
+    host: CaptureHost,
+}
+
+/// The engine operations the bench needs, over any capacities.
+pub trait EngineOps {
+    fn load(&mut self, host: &mut dyn Host, name: &str, text: &str) -> Result<usize, String>;
+    fn reset(&mut self, host: &mut dyn Host) -> Result<(), String>;
+    fn run(&mut self, host: &mut dyn Host) -> Result<u32, String>;
+    fn stats(&self) -> agent_core::Stats;
+}
+
+macro_rules! engine_ops {
+    ($ty:ty) => {
+        impl EngineOps for $ty {
+            fn load(
+                &mut self,
+                host: &mut dyn Host,
+                name: &str,
+                text: &str,
+            ) -> Result<usize, String> {
+                self.load_str(host, name, text).map_err(|e| e.to_string())
+            }
+            fn reset(&mut self, host: &mut dyn Host) -> Result<(), String> {
+                agent_core::Engine::reset(self, host).map_err(|e| e.to_string())
+            }
+            fn run(&mut self, host: &mut dyn Host) -> Result<u32, String> {
+                agent_core::Engine::run(self, host, None).map_err(|e| e.to_string())
+            }
+            fn stats(&self) -> agent_core::Stats {
+                agent_core::Engine::stats(self)
+            }
+        }
+    };
+}
+engine_ops!(BenchEngine);
+
+impl<E: EngineOps> InProcessEngine for Ours<E> {
+    fn load(&mut self, source_name: &str, text: &str) -> Result<(), String> {
+        self.engine
+            .load(&mut self.host, source_name, text)
+            .map(|_| ())
+            .map_err(|e| format!("{e}{}", context(&self.host)))
+    }
+
+    fn reset(&mut self) -> Result<(), String> {
+        self.engine
+            .reset(&mut self.host)
+            .map_err(|e| format!("(reset): {e}{}", context(&self.host)))
+    }
+
+    fn run(&mut self) -> Result<u64, String> {
+        let fired = self
+            .engine
+            .run(&mut self.host)
+            .map_err(|e| format!("(run): {e}{}", context(&self.host)))?;
+        // An error inside a rule's actions stops the run with a message, not an Err:
+        // a run that reported one did not compute the program's result.
+        if let Some(line) = first_error(&self.host.other) {
+            return Err(format!("(run) stopped after {fired} firings: {line}"));
+        }
+        Ok(u64::from(fired))
+    }
+
+    fn take_output(&mut self) -> String {
+        std::mem::take(&mut self.host.stdout)
+    }
+
+    fn memory_bytes(&self) -> Option<u64> {
+        Some(arena_bytes(&self.engine.stats()).0)
+    }
+}
+
+/// The first error line an engine printed (`[...]` messages other than the halt notice).
+fn first_error(other: &str) -> Option<&str> {
+    other
+        .lines()
+        .find(|l| l.starts_with('[') && !l.contains("Execution halted during the actions"))
+}
+
+fn context(host: &CaptureHost) -> String {
+    match host.other.lines().find(|l| !l.trim().is_empty()) {
+        Some(line) => format!(" (engine said: {line})"),
+        None => String::new(),
+    }
+}
+
+/// Bytes of each pool's entry type, in `Pool` order (fact and symbol entries count
+/// their hash bucket too). Used to turn high-water marks into bytes.
+pub fn entry_bytes() -> [usize; 18] {
+    use agent_core::{fact, rete, rule, symbols, template, Value};
+    use std::mem::size_of;
+    [
+        size_of::<fact::Fact>() + size_of::<u16>(),
+        size_of::<Value>(),
+        size_of::<symbols::SymEntry>() + size_of::<u16>(),
+        1,
+        size_of::<template::Template>(),
+        size_of::<template::SlotDef>(),
+        size_of::<rule::Rule>(),
+        size_of::<rete::AlphaNode>(),
+        size_of::<rete::Join>(),
+        size_of::<rete::Token>(),
+        size_of::<rule::Activation>(),
+        size_of::<template::Deffunction>(),
+        size_of::<template::Global>(),
+        size_of::<agent_core::expr::Expr>(),
+        size_of::<Value>(),
+        size_of::<Value>(),
+        size_of::<template::Deffacts>(),
+        size_of::<agent_core::engine::ExternalEntry>(),
+    ]
+}
+
+/// (bytes in use at the high-water marks, bytes of all pools at capacity).
+pub fn arena_bytes(stats: &agent_core::Stats) -> (u64, u64) {
+    let sizes = entry_bytes();
+    let mut used = 0u64;
+    let mut capacity = 0u64;
+    for (i, size) in sizes.iter().enumerate() {
+        used += u64::from(stats.used[i]) * *size as u64;
+        capacity += u64::from(stats.capacity[i]) * *size as u64;
+    }
+    (used, capacity)
+}
+
+/// A fresh bench engine. Builds several MiB of inline arrays: call on a thread with
+/// [`crate::sim::game::ENGINE_THREAD_STACK`] (the bench command runs on one).
 pub fn new_engine() -> Option<Box<dyn InProcessEngine>> {
-    None
+    Some(Box::new(Ours {
+        engine: Box::new(BenchEngine::new()),
+        host: CaptureHost::default(),
+    }))
 }
 
 /// Ours timed in-process through [`InProcessEngine`].
