@@ -45,6 +45,8 @@ impl std::fmt::Display for BenchError {
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum WorkloadArg {
+    /// --games seeded LLSF games of the agent rule base (paper strategy).
+    Llsf,
     /// Miss Manners at each --manners-sizes guest count.
     Manners,
     /// Join-heavy scaling program at each --scale-sizes fact count.
@@ -56,8 +58,11 @@ pub enum WorkloadArg {
 #[derive(clap::Args, Debug)]
 pub struct Args {
     /// Workloads to run (comma-separated).
-    #[arg(long, value_enum, value_delimiter = ',', default_values = ["manners", "join", "negation"])]
+    #[arg(long, value_enum, value_delimiter = ',', default_values = ["llsf", "manners", "join", "negation"])]
     pub workloads: Vec<WorkloadArg>,
+    /// Seeded LLSF games (seeds 0..N) played in one process per measurement.
+    #[arg(long, default_value_t = 10)]
+    pub games: usize,
     /// Guest counts for Miss Manners (even numbers).
     #[arg(long, value_delimiter = ',', default_values_t = [16, 32, 64, 128])]
     pub manners_sizes: Vec<usize>,
@@ -94,13 +99,15 @@ impl Args {
     fn selected_workloads(&self) -> Vec<Workload> {
         let mut selected = Vec::new();
         for arg in &self.workloads {
+            let games = [self.games];
             let (kind, sizes) = match arg {
-                WorkloadArg::Manners => (Kind::Manners, &self.manners_sizes),
-                WorkloadArg::Join => (Kind::Join, &self.scale_sizes),
-                WorkloadArg::Negation => (Kind::Negation, &self.scale_sizes),
+                WorkloadArg::Llsf => (Kind::Llsf, &games[..]),
+                WorkloadArg::Manners => (Kind::Manners, &self.manners_sizes[..]),
+                WorkloadArg::Join => (Kind::Join, &self.scale_sizes[..]),
+                WorkloadArg::Negation => (Kind::Negation, &self.scale_sizes[..]),
             };
             // Ascending, so an engine that fails at one size can skip the larger ones.
-            let mut sizes = sizes.clone();
+            let mut sizes = sizes.to_vec();
             sizes.sort_unstable();
             sizes.dedup();
             selected.extend(sizes.into_iter().map(|size| Workload { kind, size }));
@@ -542,7 +549,7 @@ mod tests {
     }
 
     #[test]
-    fn default_arguments_select_all_twelve_programs() {
+    fn default_arguments_select_all_thirteen_programs() {
         use clap::Parser;
         #[derive(clap::Parser)]
         struct Wrapper {
@@ -556,9 +563,10 @@ mod tests {
             .iter()
             .map(Workload::name)
             .collect();
-        assert_eq!(names.len(), 12);
-        assert_eq!(names[0], "manners-16");
-        assert_eq!(names[11], "negation-100000");
+        assert_eq!(names.len(), 13);
+        assert_eq!(names[0], "llsf-10");
+        assert_eq!(names[1], "manners-16");
+        assert_eq!(names[12], "negation-100000");
         let only = Wrapper::parse_from(["bench", "--workloads", "join", "--scale-sizes", "300"]);
         assert_eq!(
             only.args.selected_workloads(),

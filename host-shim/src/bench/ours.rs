@@ -12,6 +12,8 @@
 
 use super::measure::{result_lines, Contender, Measurement, Plan, ProgramFiles};
 use super::process::median;
+use super::workloads::{self, Kind};
+use crate::sim::game::Player;
 use agent_core::Host;
 use std::path::Path;
 use std::time::{Duration, Instant};
@@ -268,6 +270,9 @@ impl Contender for OursInProcess {
     }
 
     fn measure(&self, program: &ProgramFiles, plan: &Plan) -> Measurement {
+        if program.workload.kind == Kind::Llsf {
+            return measure_games(program.workload.size, plan);
+        }
         let text = match std::fs::read_to_string(&program.constructs) {
             Ok(text) => text,
             Err(e) => return Measurement::failed(&format!("reading program: {e}")),
@@ -302,6 +307,57 @@ impl Contender for OursInProcess {
                 .and_then(|s| s.memory)
                 .ok_or_else(|| "engine reported no memory figure".to_string()),
         }
+    }
+}
+
+/// LLSF games through the sim's [`Player`] (the `DefaultEngine` that `robotino-agent sim`
+/// uses): per repetition a fresh player (loading the rule base: *whole*) plays seeds
+/// 0..games one after another; *run* is the sum of the `play` calls (reset, setup facts,
+/// run, reading the record back).
+fn measure_games(games: usize, plan: &Plan) -> Measurement {
+    let setups = workloads::llsf_setups(games);
+    let mut wholes = Vec::new();
+    let mut runs = Vec::new();
+    let mut fired_per_rep = Vec::new();
+    let mut lines = Vec::new();
+    let mut memory = None;
+    for _ in 0..plan.reps.max(1) {
+        let start = Instant::now();
+        let mut player = match Player::new(workloads::LLSF_STRATEGY) {
+            Ok(player) => player,
+            Err(e) => return Measurement::failed(&format!("ours: {e}")),
+        };
+        let mut run = Duration::ZERO;
+        let mut fired = 0u64;
+        lines.clear();
+        for (seed, setup) in &setups {
+            let play_start = Instant::now();
+            let record = match player.play(setup, false) {
+                Ok(record) => record,
+                Err(e) => return Measurement::failed(&format!("ours, seed {seed}: {e}")),
+            };
+            run += play_start.elapsed();
+            fired += u64::from(record.fired);
+            lines.push(format!("GAME {seed} {}", record.result_line()));
+        }
+        wholes.push(start.elapsed());
+        runs.push(run);
+        fired_per_rep.push(fired);
+        memory = Some(arena_bytes(&player.stats()).0);
+    }
+    let fired = match fired_per_rep.as_slice() {
+        [first, rest @ ..] if rest.iter().all(|f| f == first) => Ok(*first),
+        _ => Err("rules fired differ between runs".to_string()),
+    };
+    let in_process_only = || Err("counted by the CLI column".to_string());
+    Measurement {
+        fired,
+        result_lines: Ok(lines),
+        wall_whole: median(&wholes).ok_or_else(|| "no run".to_string()),
+        wall_run: median(&runs).ok_or_else(|| "no run".to_string()),
+        instr_whole: in_process_only(),
+        instr_run: in_process_only(),
+        mem_bytes: memory.ok_or_else(|| "no run".to_string()),
     }
 }
 
