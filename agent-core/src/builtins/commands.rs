@@ -60,7 +60,14 @@ fn run(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         cx.write(router::STDOUT, "rule firing limit reached\n");
         return Ok(Value::Void);
     }
-    cx.run(limit)?;
+    let fired = cx.run(limit)?;
+    // `(watch statistics)`: the first line CLIPS prints after a run. The run-time and
+    // mean-count lines are not kept (no clock or fact averages are tracked).
+    if cx.st.watch & watch::STATISTICS != 0 {
+        let mut b: TextBuf<48> = TextBuf::new();
+        let _ = writeln!(b, "{fired} rules fired");
+        cx.write(router::STDOUT, b.as_str());
+    }
     Ok(Value::Void)
 }
 
