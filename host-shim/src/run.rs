@@ -17,7 +17,7 @@ use host_shim::shim::payloads::{
     MachineClaimPayload, MotorCommandPayload, OdometryPayload, PuckPayload, SkillRequestPayload,
     SkillStatus, SkillStatusPayload, WorldModelPayload,
 };
-use host_shim::shim::rule_engine::with_engine_stack;
+use host_shim::shim::rule_engine::exit_from_engine_stack;
 use host_shim::shim::safety::{CycleInput, SafetyMonitor, Stream};
 use host_shim::shim::team::TeamView;
 use host_shim::shim::transport::{Pub, RobotStream, Sub, TeamStream, Transport, TransportError};
@@ -56,13 +56,13 @@ pub struct Args {
 
 pub fn main(args: Args) -> ExitCode {
     // The engine's arrays pass through the stack on their way to the heap.
-    match with_engine_stack(move || run(&args).map_err(|e| e.to_string())) {
-        Ok(Ok(())) => ExitCode::SUCCESS,
-        Ok(Err(e)) | Err(e) => {
+    exit_from_engine_stack(move || match run(&args) {
+        Ok(()) => 0,
+        Err(e) => {
             eprintln!("robotino-agent run: {e}");
-            ExitCode::FAILURE
+            1
         }
-    }
+    })
 }
 
 /// The agent's ports for one robot.
