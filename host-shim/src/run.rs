@@ -9,7 +9,7 @@ use hal::field::MachineId;
 use hal::ir::IrScan;
 use hal::skill::{SkillOutcome, SkillRequest};
 use hal::{Pose2, Twist};
-use host_shim::shim::agent::{ChosenSkill, EngineAgent};
+use host_shim::shim::agent::{ChosenSkill, EngineAgent, MachineView};
 use host_shim::shim::behaviour::{DriveTuning, Perceived, Skill};
 use host_shim::shim::config::Config;
 use host_shim::shim::payloads::{
@@ -17,7 +17,7 @@ use host_shim::shim::payloads::{
     MachineClaimPayload, MotorCommandPayload, OdometryPayload, PuckPayload, SkillRequestPayload,
     SkillStatus, SkillStatusPayload, WorldModelPayload,
 };
-use host_shim::shim::rule_engine::with_engine_stack;
+use host_shim::shim::rule_engine::exit_from_engine_stack;
 use host_shim::shim::safety::{CycleInput, SafetyMonitor, Stream};
 use host_shim::shim::team::TeamView;
 use host_shim::shim::transport::{Pub, RobotStream, Sub, TeamStream, Transport, TransportError};
@@ -56,13 +56,13 @@ pub struct Args {
 
 pub fn main(args: Args) -> ExitCode {
     // The engine's arrays pass through the stack on their way to the heap.
-    match with_engine_stack(move || run(&args).map_err(|e| e.to_string())) {
-        Ok(Ok(())) => ExitCode::SUCCESS,
-        Ok(Err(e)) | Err(e) => {
+    exit_from_engine_stack(move || match run(&args) {
+        Ok(()) => 0,
+        Err(e) => {
             eprintln!("robotino-agent run: {e}");
-            ExitCode::FAILURE
+            1
         }
-    }
+    })
 }
 
 /// The agent's ports for one robot.
@@ -204,6 +204,7 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
         team: TeamView::new(robot),
         dirty: true,
         done_reported: false,
+        published: [MachineView::default(); hal::field::MACHINE_COUNT],
     };
     let transport = Transport::open(&config.services.prefix, &format!("robotino-agent-{robot}"))?;
     let mut ports = AgentPorts::open(&transport, robot)?;
@@ -419,6 +420,8 @@ struct Mind {
     team: TeamView,
     /// Facts changed since the rules last ran.
     dirty: bool,
+    /// The machine views last published (or taken from a teammate).
+    published: [MachineView; hal::field::MACHINE_COUNT],
     done_reported: bool,
 }
 
@@ -454,17 +457,22 @@ impl Mind {
         Ok(chosen)
     }
 
-    /// Publishes machine types the rules found out that the team did not know yet.
+    /// Publishes what the rules believe of a machine whenever it changed by their own
+    /// doing (a type found out, inputs loaded); logs types the team did not know yet.
     fn share_findings(&mut self, ports: &mut AgentPorts, cycle: u64) -> Result<(), TransportError> {
         for (m, view) in MachineId::all().zip(self.agent.machines()) {
+            if self.published[m.index()] == view {
+                continue;
+            }
+            self.published[m.index()] = view;
             if self.team.record_own(m, view.machine_type, view.loaded) {
                 println!(
                     "robotino-agent run: cycle={cycle} learned M{} T{}",
                     m.number(),
                     view.machine_type.unwrap_or(0)
                 );
-                self.publish_belief(ports, m)?;
             }
+            self.publish_belief(ports, m)?;
         }
         Ok(())
     }
@@ -509,12 +517,15 @@ impl Mind {
         })?;
         for b in learned {
             let t = b.machine_type.unwrap_or(0);
-            let adopted = self.agent.adopt_type(b.machine, t)?;
+            let adopted = self.agent.adopt(b.machine, b.machine_type, b.loaded)?;
             self.dirty |= adopted;
+            // What we took from a teammate is not news to repeat.
+            self.published[b.machine.index()] = self.agent.machines()[b.machine.index()];
             println!(
-                "robotino-agent run: cycle={cycle} belief from robot {}: M{} T{t} adopted={adopted}",
+                "robotino-agent run: cycle={cycle} belief from robot {}: M{} T{t} loaded={} adopted={adopted}",
                 b.robot,
                 b.machine.number(),
+                b.loaded
             );
         }
         ports.claims_in.drain(|p| {

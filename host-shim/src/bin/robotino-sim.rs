@@ -20,10 +20,9 @@ use host_shim::shim::payloads::{
     MotorCommandPayload, OdometryPayload, OdometryReading, PuckPayload,
 };
 use host_shim::shim::referee::{ClipsReferee, Referee};
-use host_shim::shim::rule_engine::with_engine_stack;
+use host_shim::shim::rule_engine::exit_from_engine_stack;
 use host_shim::shim::transport::{Pub, RobotStream, Sub, Transport, TransportError};
 use std::path::PathBuf;
-use std::process::ExitCode;
 use std::time::{Duration, Instant};
 
 #[derive(Parser)]
@@ -143,16 +142,16 @@ struct BumperLatency {
     result: Option<(u64, bool)>,
 }
 
-fn main() -> ExitCode {
+fn main() {
     let args = Args::parse();
     // The referee's engine passes its arrays through the stack on the way to the heap.
-    match with_engine_stack(move || run(&args).map_err(|e| e.to_string())) {
-        Ok(Ok(())) => ExitCode::SUCCESS,
-        Ok(Err(e)) | Err(e) => {
+    exit_from_engine_stack(move || match run(&args) {
+        Ok(()) => 0,
+        Err(e) => {
             eprintln!("robotino-sim: {e}");
-            ExitCode::FAILURE
+            1
         }
-    }
+    })
 }
 
 fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {

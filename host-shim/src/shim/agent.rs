@@ -161,15 +161,15 @@ impl EngineAgent {
         out
     }
 
-    /// A teammate found out machine `m`'s type: narrow our belief to it when it is one of
-    /// the types we still consider possible. Returns whether the belief changed.
-    pub fn adopt_type(&mut self, m: MachineId, machine_type: u8) -> Result<bool, RulesError> {
-        let t = match machine_type {
-            1 => "T1",
-            2 => "T2",
-            3 => "T3",
-            _ => return Ok(false),
-        };
+    /// A teammate's view of machine `m`: its type (narrows our belief when it is one we
+    /// still consider possible) and the inputs it holds now (replace ours: the teammate put
+    /// them there or saw the machine complete). Returns whether the belief changed.
+    pub fn adopt(
+        &mut self,
+        m: MachineId,
+        machine_type: Option<u8>,
+        loaded: u8,
+    ) -> Result<bool, RulesError> {
         let name = format!("M{}", m.number());
         let Some(f) = self
             .rules
@@ -180,18 +180,36 @@ impl EngineAgent {
         };
         // T1_2_3, T1_2, T2_3: the digits are the types still possible.
         let current = self.rules.symbol(f, "mtype").unwrap_or_default();
-        let digit = char::from(b'0' + machine_type);
-        if current == t || !current.contains(digit) {
+        let mtype = match machine_type {
+            Some(t @ 1..=3) if current.contains(char::from(b'0' + t)) => format!("T{t}"),
+            _ => current.clone(),
+        };
+        let old_loaded = self.rules.symbols(f, "loaded-with");
+        let new_loaded: Vec<&str> = [(LOADED_S0, "S0"), (LOADED_S1, "S1"), (LOADED_S2, "S2")]
+            .into_iter()
+            .filter(|&(bit, _)| loaded & bit != 0)
+            .map(|(_, p)| p)
+            .collect();
+        let same_loaded = {
+            let mut a: Vec<&str> = old_loaded.iter().map(String::as_str).collect();
+            a.sort_unstable();
+            a == new_loaded
+        };
+        if mtype == current && same_loaded {
             return Ok(false);
         }
-        // A modify, spelled out: the same fact with the narrowed type, as a new fact.
+        // A modify, spelled out: the same fact with the new slots, as a new fact.
         let index = self.rules.int(f, "index").unwrap_or(0);
-        let loaded = self.rules.symbols(f, "loaded-with").join(" ");
+        let loaded_text = if same_loaded {
+            old_loaded.join(" ")
+        } else {
+            new_loaded.join(" ")
+        };
         let junk = self.rules.int(f, "junk").unwrap_or(0);
         let productions = self.rules.int(f, "productions").unwrap_or(0);
         self.rules.retract(f)?;
         self.rules.assert(&format!(
-            "(machine (name {name}) (index {index}) (mtype {t}) (loaded-with {loaded}) (junk {junk}) (productions {productions}))"
+            "(machine (name {name}) (index {index}) (mtype {mtype}) (loaded-with {loaded_text}) (junk {junk}) (productions {productions}))"
         ))?;
         Ok(true)
     }
@@ -318,11 +336,21 @@ mod tests {
         on_engine_stack(|| {
             let mut a = EngineAgent::new(Strategy::Travel).unwrap_or_else(|e| panic!("{e}"));
             assert_eq!(a.machines()[4].machine_type, None);
-            assert_eq!(a.adopt_type(m(5), 3), Ok(true));
+            assert_eq!(a.adopt(m(5), Some(3), 0), Ok(true));
             assert_eq!(a.machines()[4].machine_type, Some(3));
-            assert_eq!(a.adopt_type(m(5), 3), Ok(false));
+            assert_eq!(a.adopt(m(5), Some(3), 0), Ok(false));
             // A type our belief already excludes is not taken.
-            assert_eq!(a.adopt_type(m(5), 1), Ok(false));
+            assert_eq!(a.adopt(m(5), Some(1), 0), Ok(false));
+            // Inputs a teammate put there.
+            assert_eq!(a.adopt(m(5), Some(3), LOADED_S0 | LOADED_S1), Ok(true));
+            assert_eq!(
+                a.machines()[4],
+                MachineView {
+                    machine_type: Some(3),
+                    loaded: LOADED_S0 | LOADED_S1
+                }
+            );
+            assert_eq!(a.adopt(m(5), None, LOADED_S0 | LOADED_S1), Ok(false));
         });
     }
 

@@ -79,11 +79,17 @@ pub struct DriveTo {
 impl DriveTo {
     /// Plans from `from`; `None` when the goal cannot be reached.
     pub fn plan(from: Pose2, goal: Pose2, tuning: &DriveTuning) -> Option<Self> {
-        let waypoints = planner::plan(
-            (from.x_m, from.y_m),
-            (goal.x_m, goal.y_m),
-            tuning.robot_radius_m,
-        )?;
+        let r = tuning.robot_radius_m;
+        // A robot touching an obstacle first moves clear of it: a plan from inside an
+        // obstacle's margin would drive straight back into it.
+        let escape = escape_point(from, r);
+        let start = escape.unwrap_or((from.x_m, from.y_m));
+        let to = (goal.x_m, goal.y_m);
+        // Keep a margin to what the path passes (the controller cuts corners a little);
+        // the lanes between machines are narrow, so fall back to the bare radius.
+        let path =
+            planner::plan(start, to, r + PATH_MARGIN_M).or_else(|| planner::plan(start, to, r))?;
+        let waypoints = escape.into_iter().chain(path).collect();
         Some(Self {
             goal,
             waypoints,
@@ -184,6 +190,23 @@ impl DriveTo {
 const STOP_WITHIN_M: f32 = 0.07;
 
 /// A point `distance_m` behind a pose (to back away from a machine).
+/// Extra clearance the planner keeps beyond the robot's radius where there is room.
+const PATH_MARGIN_M: f32 = 0.03;
+/// How far a robot in contact with an obstacle moves away before following its plan.
+const ESCAPE_M: f32 = 0.12;
+
+/// For a robot closer to an obstacle than its radius (plus a little), the nearest point
+/// [`ESCAPE_M`] away that is clear of everything, trying 16 directions.
+fn escape_point(from: Pose2, radius_m: f32) -> Option<(f32, f32)> {
+    if !hal::field::is_blocked(from.x_m, from.y_m, radius_m + 0.01) {
+        return None;
+    }
+    (0..16)
+        .map(|i| i as f32 * core::f32::consts::TAU / 16.0)
+        .map(|a| (from.x_m + ESCAPE_M * a.cos(), from.y_m + ESCAPE_M * a.sin()))
+        .find(|&(x, y)| !hal::field::is_blocked(x, y, radius_m + PATH_MARGIN_M))
+}
+
 /// Where to back away to after working a station: the longest back-off (up to
 /// [`BACK_OFF_M`]) that keeps the robot's radius clear of walls and machines, or `None`
 /// when there is no room behind (between two machine rows the lane is narrow).
@@ -494,6 +517,26 @@ mod tests {
         side.ir.distances_m[2] = 0.05;
         let mut d = DriveTo::plan(start, goal, &t).unwrap_or_else(|| panic!());
         assert_eq!(d.step(&side, &t), DriveStep::Driving(a));
+    }
+
+    #[test]
+    fn a_robot_touching_a_machine_first_moves_clear() {
+        let t = DriveTuning::default();
+        // Against M6's corner (square 3.62..4.22 x 2.5..3.1), as a robot ended up once.
+        let stuck = Pose2::new(4.40, 2.47, 2.8);
+        assert!(hal::field::is_blocked(
+            stuck.x_m,
+            stuck.y_m,
+            t.robot_radius_m
+        ));
+        let goal = machine_approach_pose(MachineId::new(8).unwrap_or_else(|| panic!()));
+        let d = DriveTo::plan(stuck, goal, &t).unwrap_or_else(|| panic!("plan"));
+        let (x, y) = d.waypoints[0];
+        assert!(
+            !hal::field::is_blocked(x, y, t.robot_radius_m),
+            "escape {x},{y}"
+        );
+        assert!((x - stuck.x_m).hypot(y - stuck.y_m) < 0.13);
     }
 
     #[test]

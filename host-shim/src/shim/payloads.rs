@@ -29,7 +29,15 @@ pub const MAX_ROBOTS: u8 = 3;
 pub enum DecodeError {
     NotFinite(&'static str),
     OutOfRange(&'static str),
-    UnknownCode { field: &'static str, code: u8 },
+    UnknownCode {
+        field: &'static str,
+        code: u8,
+    },
+    /// A byte buffer of the wrong size for the payload ([`Wire::from_bytes`]).
+    Length {
+        expected: usize,
+        got: usize,
+    },
 }
 
 impl fmt::Display for DecodeError {
@@ -39,6 +47,9 @@ impl fmt::Display for DecodeError {
             Self::OutOfRange(field) => write!(f, "field `{field}` is out of range"),
             Self::UnknownCode { field, code } => {
                 write!(f, "field `{field}` has unknown code {code}")
+            }
+            Self::Length { expected, got } => {
+                write!(f, "payload of {got} bytes, expected {expected}")
             }
         }
     }
@@ -667,6 +678,178 @@ impl MachineClaimPayload {
     }
 }
 
+/// The byte-level form of every payload: what a foreign publisher (or a fuzzer) hands over.
+/// `from_bytes` reads the fields in declaration order (native endianness, as the shared
+/// memory holds them) and validates them with the payload's own decoder; reserved bytes are
+/// not checked, so newer senders may use them.
+pub trait Wire: Sized {
+    /// Bytes of the `#[repr(C)]` layout (no padding: every payload is u32/f32 first, then u8).
+    const SIZE: usize;
+    fn from_bytes(bytes: &[u8]) -> Result<Self, DecodeError>;
+    fn to_bytes(&self) -> Vec<u8>;
+}
+
+/// Reads fields one after another from a byte slice.
+struct Reader<'a>(&'a [u8]);
+
+trait Field: Sized {
+    fn read(r: &mut Reader<'_>) -> Option<Self>;
+    fn write(&self, out: &mut Vec<u8>);
+}
+
+impl Reader<'_> {
+    fn take<const N: usize>(&mut self) -> Option<[u8; N]> {
+        let (head, rest) = self.0.split_first_chunk::<N>()?;
+        self.0 = rest;
+        Some(*head)
+    }
+}
+
+impl Field for u8 {
+    fn read(r: &mut Reader<'_>) -> Option<Self> {
+        r.take::<1>().map(|[b]| b)
+    }
+    fn write(&self, out: &mut Vec<u8>) {
+        out.push(*self);
+    }
+}
+
+impl Field for u32 {
+    fn read(r: &mut Reader<'_>) -> Option<Self> {
+        r.take().map(u32::from_ne_bytes)
+    }
+    fn write(&self, out: &mut Vec<u8>) {
+        out.extend_from_slice(&self.to_ne_bytes());
+    }
+}
+
+impl Field for f32 {
+    fn read(r: &mut Reader<'_>) -> Option<Self> {
+        r.take().map(f32::from_ne_bytes)
+    }
+    fn write(&self, out: &mut Vec<u8>) {
+        out.extend_from_slice(&self.to_ne_bytes());
+    }
+}
+
+impl<T: Field + Copy + Default, const N: usize> Field for [T; N] {
+    fn read(r: &mut Reader<'_>) -> Option<Self> {
+        let mut a = [T::default(); N];
+        for x in a.iter_mut() {
+            *x = T::read(r)?;
+        }
+        Some(a)
+    }
+    fn write(&self, out: &mut Vec<u8>) {
+        for x in self {
+            x.write(out);
+        }
+    }
+}
+
+/// Implements [`Wire`] for a payload from its field list (in declaration order).
+macro_rules! wire {
+    ($t:ident { $($f:ident),* $(,)? }) => {
+        impl Wire for $t {
+            const SIZE: usize = core::mem::size_of::<$t>();
+            fn from_bytes(bytes: &[u8]) -> Result<Self, DecodeError> {
+                let length = DecodeError::Length { expected: Self::SIZE, got: bytes.len() };
+                if bytes.len() != Self::SIZE {
+                    return Err(length);
+                }
+                let mut r = Reader(bytes);
+                let p = $t { $($f: Field::read(&mut r).ok_or(length)?),* };
+                if !r.0.is_empty() {
+                    return Err(length);
+                }
+                p.decode()?;
+                Ok(p)
+            }
+            fn to_bytes(&self) -> Vec<u8> {
+                let mut out = Vec::with_capacity(Self::SIZE);
+                $(self.$f.write(&mut out);)*
+                out
+            }
+        }
+    };
+}
+
+wire!(IrScanPayload { seq, distances_m });
+wire!(BumperPayload {
+    seq,
+    pressed,
+    reserved
+});
+wire!(GyroPayload {
+    seq,
+    angle_rad,
+    rate_rad_s
+});
+wire!(OdometryPayload {
+    seq,
+    x_m,
+    y_m,
+    phi_rad,
+    measured_rpm
+});
+wire!(MotorCommandPayload {
+    seq,
+    bumper_seq,
+    rpm,
+    release_puck,
+    reserved
+});
+wire!(LightPayload {
+    seq,
+    machine,
+    light,
+    active_gate,
+    reserved
+});
+wire!(PuckPayload {
+    seq,
+    present,
+    reserved
+});
+wire!(SkillRequestPayload {
+    seq,
+    robot,
+    kind,
+    target,
+    reserved
+});
+wire!(SkillStatusPayload {
+    seq,
+    request_seq,
+    robot,
+    kind,
+    target,
+    state,
+    detail,
+    light,
+    reserved
+});
+wire!(HeartbeatPayload {
+    seq,
+    cycle,
+    driver,
+    reserved
+});
+wire!(WorldModelPayload {
+    seq,
+    robot,
+    machine,
+    machine_type,
+    loaded
+});
+wire!(MachineClaimPayload {
+    seq,
+    robot,
+    machine,
+    claimed,
+    reserved
+});
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -754,6 +937,65 @@ mod tests {
                 code: 3
             })
         ));
+    }
+
+    /// Encodes, goes through bytes and back, and checks that a wrong length and a bad field
+    /// are rejected.
+    fn wire_round_trip<T: Wire + PartialEq + fmt::Debug>(p: T, corrupt: impl Fn(&mut Vec<u8>)) {
+        let bytes = p.to_bytes();
+        assert_eq!(bytes.len(), T::SIZE, "{p:?}: padding in the layout?");
+        assert_eq!(T::from_bytes(&bytes).as_ref(), Ok(&p));
+        assert!(matches!(
+            T::from_bytes(&bytes[1..]),
+            Err(DecodeError::Length { .. })
+        ));
+        let mut bad = bytes;
+        corrupt(&mut bad);
+        assert!(T::from_bytes(&bad).is_err(), "{p:?}: corruption accepted");
+    }
+
+    #[test]
+    fn every_payload_decodes_from_bytes_with_validation() {
+        let gyro = GyroSample {
+            angle_rad: 0.5,
+            rate_rad_s: 0.1,
+        };
+        let reading = OdometryReading {
+            pose: Pose2::new(1.0, 2.0, 0.5),
+            measured: WheelSpeeds::ZERO,
+        };
+        let nan = |b: &mut Vec<u8>| b[4..8].copy_from_slice(&f32::NAN.to_ne_bytes());
+        let byte = |i: usize, v: u8| move |b: &mut Vec<u8>| b[i] = v;
+        wire_round_trip(IrScanPayload::encode(1, &IrScan::EMPTY), nan);
+        wire_round_trip(BumperPayload::encode(2, true), byte(4, 2));
+        wire_round_trip(GyroPayload::encode(3, gyro), nan);
+        wire_round_trip(OdometryPayload::encode(4, &reading), nan);
+        let motor = MotorCommandPayload::encode(5, 1, WheelSpeeds::ZERO).with_release(true);
+        wire_round_trip(motor, byte(20, 7));
+        let light =
+            LightPayload::encode(6, Some((m(3), LightSignal::Green))).with_gate(GateId::new(1));
+        wire_round_trip(light, byte(6, 9));
+        wire_round_trip(PuckPayload::encode(7, false), byte(4, 5));
+        wire_round_trip(
+            SkillRequestPayload::encode(8, 1, SkillRequest::Discard),
+            byte(4, 0),
+        );
+        let status = SkillStatus {
+            request_seq: 3,
+            robot: 2,
+            request: SkillRequest::BringPuckTo(m(4)),
+            outcome: SkillOutcome::Final(Perception::Released),
+        };
+        wire_round_trip(SkillStatusPayload::encode(9, &status), byte(11, 9));
+        wire_round_trip(HeartbeatPayload::encode(10, 5, DriverId::Agent), byte(8, 0));
+        let belief = MachineBelief {
+            robot: 1,
+            machine: m(2),
+            machine_type: Some(3),
+            loaded: LOADED_S0,
+        };
+        wire_round_trip(WorldModelPayload::encode(11, &belief), byte(6, 4));
+        wire_round_trip(MachineClaimPayload::encode(12, 3, m(9), true), byte(5, 0));
     }
 
     #[test]

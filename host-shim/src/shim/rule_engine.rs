@@ -194,3 +194,18 @@ pub fn with_engine_stack<T: Send + 'static>(
         .join()
         .map_err(|_| "the engine thread panicked".to_string())
 }
+
+/// Runs a process's main work on a thread with [`ENGINE_THREAD_STACK`] and ends the process
+/// from that thread with the exit code `f` returns, so the thread's stack is never unmapped
+/// while the process lives: under qemu-user (the i586 tests) a process that handled SIGTERM
+/// crashed with SIGSEGV right after the big stack of a finished thread was unmapped.
+pub fn exit_from_engine_stack(f: impl FnOnce() -> i32 + Send + 'static) -> ! {
+    let outcome = with_engine_stack(move || -> () {
+        let code = f();
+        std::process::exit(code)
+    });
+    if let Err(e) = outcome {
+        eprintln!("{e}");
+    }
+    std::process::exit(1)
+}

@@ -36,20 +36,23 @@ impl TeamView {
         self.machines[m.index()]
     }
 
-    /// Takes another robot's update; `true` when it taught us a type we did not know.
+    /// Takes another robot's update; `true` when it taught us something: a type we did not
+    /// know, or other loaded inputs.
     pub fn apply_belief(&mut self, b: &MachineBelief) -> bool {
         if b.robot == self.me {
             return false;
         }
         let k = &mut self.machines[b.machine.index()];
+        let loaded_changed = k.loaded != b.loaded;
         k.loaded = b.loaded;
-        match (b.machine_type, k.machine_type) {
+        let new_type = match (b.machine_type, k.machine_type) {
             (Some(t), None) => {
                 k.machine_type = Some((t, b.robot));
                 true
             }
             _ => false,
-        }
+        };
+        new_type || loaded_changed
     }
 
     pub fn apply_claim(&mut self, robot: u8, m: MachineId, claimed: bool) {
