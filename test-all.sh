@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Runs ALL tests of robotino-agent: formatting, clippy, host tests, the i586 unit tests
 # under qemu, the no_std proof, the agent image under `qemu-i386 -cpu pentium`, the
-# footprint gate and the instruction-set gate. Every stage prints its time; a stage never
+# footprint gate, the instruction-set gate, and a short game between robotino-sim and
+# robotino-agent built for i586, both under `qemu-i386 -cpu pentium2`. Every stage prints its time; a stage never
 # skips silently; the run exits non-zero if any stage fails.
 #
 # Run as root on a fresh Debian machine, it installs what is missing (rustup targets and
@@ -251,6 +252,14 @@ stage_isa() {
 # ---------------------------------------------------------------------------------------
 
 total_start=$(date +%s)
+# ---------------------------------------------------------------------------------------
+# Stage 9: the robot's two programs built for i586 play a short game (120 simulated
+# seconds) against each other over iceoryx2, both under `qemu-i386 -cpu pentium2`.
+
+stage_i586_game() {
+    CARGO_TARGET_DIR="$TARGET_DIR" bash host-shim/tests/i586-game.sh 120
+}
+
 run_stage "0 prerequisites" stage_prerequisites
 if ((FAILED > 0)); then
     echo "prerequisites missing: no other stage can run" >&2
@@ -264,6 +273,7 @@ run_stage "5 no_std proof" stage_no_std
 run_stage "6 agent image (qemu)" stage_image
 run_stage "7 footprint gate" stage_footprint
 run_stage "8 instruction-set gate" stage_isa
+run_stage "9 i586 game (qemu)" stage_i586_game
 
 echo
 echo "==== summary ($(($(date +%s) - total_start)) s in total)"
