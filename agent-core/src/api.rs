@@ -74,8 +74,13 @@ engine_impl! {
         let cp = cx.checkpoint();
         let mut p = Parser::new(&mut cx, command);
         let item = p.next_item();
+        let nlocals = p.nlocals;
         let r = match item {
-            Ok(Item::Command(e)) => cx.eval(e),
+            // a frame for the command's loop and query variables, as the prompt makes
+            Ok(Item::Command(e)) => match (0..nlocals).try_for_each(|_| cx.push_value(Value::Void)) {
+                Ok(()) => cx.eval(e),
+                Err(full) => Err(full.into()),
+            },
             Ok(Item::Construct) => Ok(Value::Void),
             Ok(Item::End) => Ok(Value::Void),
             Err(_) => Err(EvalError::other("syntax error")),
