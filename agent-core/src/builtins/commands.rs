@@ -7,6 +7,7 @@ use super::{Args, Builtin, ANY, SYM_CRLF, SYM_FALSE, SYM_NIL, SYM_TRUE};
 use crate::engine::{watch, Core};
 use crate::error::{EvalError, EvalErrorKind};
 use crate::host::router;
+use crate::rete::JoinKind;
 use crate::value::{TextBuf, Value, NONE};
 use core::fmt::Write;
 
@@ -231,11 +232,20 @@ fn find_rule(cx: &Core<'_>, name: u16) -> Option<u16> {
 
 fn ppdefrule(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let name = cx.arg_lexeme(a, 0, "ppdefrule")?;
-    let r = find_rule(cx, name).ok_or(EvalError::other("no such defrule"))?;
+    let Some(r) = find_rule(cx, name) else {
+        let mut b: TextBuf<300> = TextBuf::new();
+        let _ = writeln!(
+            b,
+            "[PRNTUTIL1] Unable to find defrule {}.",
+            cx.sym_text(name)
+        );
+        cx.write(router::WERROR, b.as_str());
+        return Ok(Value::Void);
+    };
     let text = cx.rules[r as usize].text;
     if text != NONE {
-        let mut b: TextBuf<4096> = TextBuf::new();
-        let _ = b.write_str(cx.sym_text(text));
+        let mut b: TextBuf<8192> = TextBuf::new();
+        let _ = super::pretty::write_defrule(cx.sym_text(text), &mut b);
         let _ = b.write_char('\n');
         cx.write(router::WDISPLAY, b.as_str());
     }
@@ -264,39 +274,129 @@ fn undefrule(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 
 /// `(matches rule)`: prints the partial matches per join (a compact form of CLIPS's
 /// listing) and the activations.
+/// `(matches rule)`: CLIPS 6.30's listing of a rule's alpha matches per pattern, its
+/// partial matches from the second pattern on, and its activations; returns the three
+/// counts as a multifield.
 fn matches(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let name = cx.arg_lexeme(a, 0, "matches")?;
-    let r = find_rule(cx, name).ok_or(EvalError::other("no such defrule"))?;
+    let Some(r) = find_rule(cx, name) else {
+        let mut b: TextBuf<300> = TextBuf::new();
+        let _ = writeln!(
+            b,
+            "[PRNTUTIL1] Unable to find defrule {}.",
+            cx.sym_text(name)
+        );
+        cx.write(router::WERROR, b.as_str());
+        return Ok(Value::Sym(SYM_FALSE));
+    };
     let rule = cx.rules[r as usize];
-    let mut path = [NONE; crate::rete::MAX_PATTERNS];
+    // the rule's joins from the first pattern down to (without) the terminal
+    let mut path = [NONE; crate::rete::MAX_PATTERNS + 2];
     let mut n = 0;
-    let mut j = rule.terminal;
-    while j != NONE && j != 0 && n < path.len() {
+    let mut j = cx.joins[rule.terminal as usize].parent;
+    while j != NONE && n < path.len() && cx.joins[j as usize].kind != JoinKind::Root {
         path[n] = j;
         n += 1;
         j = cx.joins[j as usize].parent;
     }
     path[..n].reverse();
-    for (i, &j) in path[..n].iter().enumerate() {
-        let i = i + 1;
+    let (mut alpha_total, mut partial_total, mut act_total) = (0i64, 0i64, 0i64);
+    let mut pattern = 0;
+    for &j in &path[..n] {
+        let alpha = cx.joins[j as usize].alpha;
+        if alpha == NONE {
+            continue;
+        }
+        pattern += 1;
         let mut b: TextBuf<64> = TextBuf::new();
-        let _ = writeln!(b, "Partial matches for CEs 1 - {i}");
+        let _ = writeln!(b, "Matches for Pattern {pattern}");
         cx.write(router::WDISPLAY, b.as_str());
-        let mut t = cx.joins[j as usize].mem;
-        let mut n = 0;
+        let mut t = cx.alphas[alpha as usize].mem;
+        let mut count = 0;
         while t != NONE {
+            let fact = cx.tokens[t as usize].fact;
+            let mut b: TextBuf<32> = TextBuf::new();
+            let _ = writeln!(b, "f-{}", cx.facts[fact as usize].num);
+            cx.write(router::WDISPLAY, b.as_str());
+            count += 1;
+            t = cx.tokens[t as usize].mem_next;
+        }
+        if count == 0 {
+            cx.write(router::WDISPLAY, " None\n");
+        }
+        alpha_total += count;
+    }
+    if pattern == 0 {
+        // a rule without patterns: CLIPS shows its one (initial) match as `*`
+        cx.write(router::WDISPLAY, "Matches for Pattern 1\n*\n");
+        alpha_total += 1;
+    }
+    let mut pattern = 0;
+    for &j in &path[..n] {
+        if cx.joins[j as usize].alpha != NONE {
+            pattern += 1;
+        }
+        if pattern < 2 {
+            continue;
+        }
+        let mut b: TextBuf<64> = TextBuf::new();
+        let _ = writeln!(b, "Partial matches for CEs 1 - {pattern}");
+        cx.write(router::WDISPLAY, b.as_str());
+        let count = write_bases(cx, j);
+        if count == 0 {
+            cx.write(router::WDISPLAY, " None\n");
+        }
+        partial_total += count;
+    }
+    cx.write(router::WDISPLAY, "Activations\n");
+    let mut act = cx.st.agenda_head;
+    while act != NONE {
+        let x = cx.acts[act as usize];
+        if x.rule == r {
+            let mut b: TextBuf<512> = TextBuf::new();
+            let _ = cx.write_basis(&mut b, x.token);
+            if b.is_empty() {
+                let _ = b.write_char('*');
+            }
+            let _ = b.write_char('\n');
+            cx.write(router::WDISPLAY, b.as_str());
+            act_total += 1;
+        }
+        act = x.next;
+    }
+    if act_total == 0 {
+        cx.write(router::WDISPLAY, " None\n");
+    }
+    Ok(cx.make_multi(&[
+        Value::Int(alpha_total),
+        Value::Int(partial_total),
+        Value::Int(act_total),
+    ])?)
+}
+
+/// Prints the basis of each partial match in join `j`'s memory (`f-1,f-3,*`); returns
+/// how many. A not/exists join keeps blocked tokens too: only live ones count.
+fn write_bases(cx: &mut Core<'_>, j: u16) -> i64 {
+    let kind = cx.joins[j as usize].kind;
+    let mut t = cx.joins[j as usize].mem;
+    let mut count = 0;
+    while t != NONE {
+        let tk = cx.tokens[t as usize];
+        let live = match kind {
+            JoinKind::Negative => tk.count == 0,
+            JoinKind::Exists => tk.count > 0,
+            _ => true,
+        };
+        if live {
             let mut b: TextBuf<512> = TextBuf::new();
             let _ = cx.write_basis(&mut b, t);
             let _ = b.write_char('\n');
             cx.write(router::WDISPLAY, b.as_str());
-            n += 1;
-            t = cx.tokens[t as usize].mem_next;
+            count += 1;
         }
-        if n == 0 {
-            cx.write(router::WDISPLAY, " None\n");
-        }
+        t = tk.mem_next;
     }
-    Ok(Value::Void)
+    count
 }
 
 /// The file-name argument of a file function, copied out of the symbol table.

@@ -19,6 +19,7 @@ pub mod geometry;
 pub mod math;
 pub mod multifield;
 pub mod predicates;
+pub mod pretty;
 pub mod queries;
 pub mod random;
 pub mod strings;
