@@ -525,7 +525,7 @@ impl Core<'_> {
 
     /// Prints a load error in CLIPS's style plus the position line.
     pub fn report_load_error(&mut self, source: &str, text: &str, e: &LoadError) {
-        let mut b: TextBuf<512> = TextBuf::new();
+        let mut b: TextBuf<4096> = TextBuf::new();
         let tok = text.get(e.start as usize..e.end as usize).unwrap_or("");
         if let Some(c) = e.capacity {
             let _ = writeln!(b, "[MEMORY] {c}");
@@ -585,6 +585,19 @@ impl Core<'_> {
                 "\n[PRNTUTIL2] Syntax Error:  Check appropriate syntax for {}.",
                 e.construct
             );
+        }
+        // CLIPS checks modify/duplicate slot values once the whole rule is read, and then
+        // shows the rule it rejected
+        if let LoadDetail::Constraint {
+            command: "modify" | "duplicate",
+            ..
+        } = e.detail
+        {
+            if e.construct == "defrule" {
+                let _ = b.write_str("\nERROR:\n");
+                let _ = crate::builtins::pretty::write_defrule(text, &mut b);
+                let _ = b.write_char('\n');
+            }
         }
         let _ = writeln!(
             b,

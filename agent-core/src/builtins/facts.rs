@@ -87,18 +87,6 @@ impl Core<'_> {
         Ok(())
     }
 
-    fn check_slot_value(&self, tmpl: u16, slot: u16, v: Value) -> Result<(), EvalError> {
-        match v {
-            Value::Multi(m) => {
-                for k in 0..m.len as usize {
-                    self.check_atom(tmpl, slot, self.mf_item(m, k))?;
-                }
-                Ok(())
-            }
-            _ => self.check_atom(tmpl, slot, v),
-        }
-    }
-
     /// Evaluates value expressions (a chain) into one slot value: a multifield for a
     /// multislot (all values spliced), else the single value.
     fn slot_value_from(&mut self, tmpl: u16, slot: u16, mut e: u16) -> Result<Value, EvalError> {
@@ -204,8 +192,9 @@ impl Core<'_> {
                 let v = self.default_value(tmpl, s)?;
                 self.stack[(base + s) as usize] = v;
             }
-            self.check_slot_value(tmpl, s, self.stack[(base + s) as usize])?;
         }
+        // Values computed at run time are not checked against the slots' restrictions:
+        // CLIPS checks literals while parsing and leaves dynamic constraint checking off.
         self.assert_slots(tmpl, base as usize)
     }
 
@@ -260,8 +249,8 @@ impl Core<'_> {
                 let slot = self
                     .find_slot(tmpl, sym)
                     .ok_or(EvalError::new(EvalErrorKind::NoSuchSlot))?;
+                // unchecked, as in CLIPS (see assert)
                 let v = self.slot_value_from(tmpl, slot, self.exprs[sv as usize].first)?;
-                self.check_slot_value(tmpl, slot, v)?;
                 self.stack[(base + slot) as usize] = v;
                 sv = self.exprs[sv as usize].next;
             }
