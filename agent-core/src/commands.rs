@@ -16,6 +16,51 @@ use crate::parser::{Item, Parser};
 use crate::rete::{JoinKind, PatBinding, TokenKind};
 use crate::value::{SymId, TextBuf, Value, NONE};
 
+/// `(watch statistics)`: facts and activations sampled before the run and after each
+/// rule firing, reported after the run as CLIPS 6.30 does. Its Debian build prints no
+/// run time (nor rules per second), so neither is printed here.
+#[derive(Default)]
+struct RunStats {
+    samples: u64,
+    sum_facts: u64,
+    max_facts: u64,
+    sum_acts: u64,
+    max_acts: u64,
+}
+
+impl RunStats {
+    fn sample(&mut self, cx: &Core<'_>) {
+        let (f, a) = (cx.live_fact_count() as u64, cx.activation_count() as u64);
+        self.samples += 1;
+        self.sum_facts += f;
+        self.max_facts = self.max_facts.max(f);
+        self.sum_acts += a;
+        self.max_acts = self.max_acts.max(a);
+    }
+
+    fn print(&self, cx: &mut Core<'_>, fired: u32) {
+        // CLIPS rounds the means to the nearest integer
+        let mean = |sum: u64| (sum * 2 + self.samples) / (2 * self.samples.max(1));
+        let mut b: TextBuf<320> = TextBuf::new();
+        let _ = writeln!(b, "{fired} rules fired");
+        let _ = writeln!(
+            b,
+            "{} mean number of facts ({} maximum).",
+            mean(self.sum_facts),
+            self.max_facts
+        );
+        // CLIPS counts its one COOL instance (initial-object); this engine has no COOL
+        let _ = writeln!(b, "1 mean number of instances (1 maximum).");
+        let _ = writeln!(
+            b,
+            "{} mean number of activations ({} maximum).",
+            mean(self.sum_acts),
+            self.max_acts
+        );
+        cx.write(router::WDISPLAY, b.as_str());
+    }
+}
+
 /// How deep `batch` files may run inside each other (each level holds a file buffer).
 const MAX_BATCH_DEPTH: u8 = 8;
 
@@ -351,6 +396,20 @@ impl Core<'_> {
 
     /// `(run [limit])`: fires activations; returns how many fired.
     pub fn run(&mut self, limit: i64) -> Result<u32, EvalError> {
+        let mut stats = RunStats::default();
+        if self.st.watch & watch::STATISTICS != 0 {
+            stats.sample(self);
+        }
+        let r = self.run_rules(limit, &mut stats);
+        if let Ok(fired) = r {
+            if self.st.watch & watch::STATISTICS != 0 {
+                stats.print(self, fired);
+            }
+        }
+        r
+    }
+
+    fn run_rules(&mut self, limit: i64, stats: &mut RunStats) -> Result<u32, EvalError> {
         self.st.halt = false;
         let mut fired: u32 = 0;
         let scratch_mark = self.st.scratch_top;
@@ -395,6 +454,9 @@ impl Core<'_> {
             if !self.st.firing {
                 self.free_pending();
                 self.st.scratch_top = scratch_mark;
+            }
+            if self.st.watch & watch::STATISTICS != 0 {
+                stats.sample(self);
             }
             if let Err(e) = r {
                 if e.kind == EvalErrorKind::Exit {
@@ -799,7 +861,10 @@ impl Core<'_> {
     /// command and prints its result (nothing for void).
     pub fn exec_command(&mut self, text: &str, source: &str) {
         self.exec_item(text, source);
-        self.run_pending_batch();
+        // inside batch* a batch file waits for the command loop, as in CLIPS
+        if !self.st.quiet_results {
+            self.run_pending_batch();
+        }
     }
 
     fn exec_item(&mut self, text: &str, source: &str) {

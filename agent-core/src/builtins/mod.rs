@@ -17,6 +17,7 @@ pub mod files;
 pub mod format;
 pub mod geometry;
 pub mod math;
+pub mod memory;
 pub mod multifield;
 pub mod predicates;
 pub mod pretty;
@@ -131,6 +132,7 @@ pub const TABLES: &[&[Builtin]] = &[
     queries::FUNCS,
     random::FUNCS,
     geometry::FUNCS,
+    memory::FUNCS,
 ];
 
 /// Finds a builtin by name.
