@@ -76,7 +76,7 @@ fn f2_without_exit_then_prompts() {
         "f2-prompt",
         &[("p.clp", PROGRAM)],
         &["-f2", "p.clp"],
-        "(facts)\n(+ 2 3)\n",
+        "(facts)\n(+ 2 3)\n(exit)\n",
     );
 }
 
@@ -90,7 +90,7 @@ fn options_run_in_clips_order() {
             ("f2.clp", "(printout t \"in f2\" crlf)\n(+ 1 2)\n"),
         ],
         &["-f", "f.clp", "-l", "l.clp", "-f2", "f2.clp"],
-        "(list-defrules)\n",
+        "(list-defrules)\n(exit)\n",
     );
 }
 
