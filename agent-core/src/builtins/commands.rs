@@ -65,14 +65,24 @@ fn run(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     Ok(Value::Void)
 }
 
+/// `(facts [module] [start [end [max]]])`: the numbers must be integers >= 0.
 fn facts(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let mut nums = [-1i64; 3];
     let mut k = 0;
     for i in 0..a.len as usize {
-        if let Value::Int(n) = cx.arg(a, i) {
-            if k < 3 {
+        match cx.arg(a, i) {
+            Value::Sym(_) if i == 0 => {} // a module name: there is only MAIN
+            Value::Int(n) if n >= 0 && k < 3 => {
                 nums[k] = n;
                 k += 1;
+            }
+            _ => {
+                let expected = if i == 0 {
+                    "symbol or positive number"
+                } else {
+                    "positive number"
+                };
+                return Err(EvalError::wrong_type("facts", i as u8 + 1, expected));
             }
         }
     }
@@ -254,6 +264,16 @@ fn ppdefrule(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 
 fn undefrule(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let name = cx.arg_lexeme(a, 0, "undefrule")?;
+    if cx.sym_text(name) == "*" {
+        // every rule in definition order; `remove_rule` takes a rule's first disjunct
+        for r in 0..cx.st.nrules {
+            let rule = cx.rules[r as usize];
+            if !rule.deleted && find_rule(cx, rule.name) == Some(r) {
+                cx.remove_rule(r);
+            }
+        }
+        return Ok(Value::Void);
+    }
     match find_rule(cx, name) {
         Some(r) => {
             cx.remove_rule(r);
@@ -487,7 +507,7 @@ fn save_facts(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         let mut b: TextBuf<2048> = TextBuf::new();
         {
             let (view, _) = cx.split();
-            let _ = view.write_fact(&mut b, f);
+            let _ = view.write_fact_escaped(&mut b, f);
         }
         let _ = b.write_char('\n');
         if cx

@@ -273,7 +273,8 @@ impl Core<'_> {
             slots: self.slots,
             facts: self.facts,
         };
-        view.write_value(out, v, false)
+        // a string prints bare, but inside a multifield in quotes: (a "b c")
+        view.write_value(out, v, v.is_multi())
     }
 
     /// Writes a value's printed form (strings without quotes, as str-cat wants them)

@@ -511,8 +511,9 @@ mod tests {
         ]);
         assert!(eval_to_string("(explode$ abc)").contains("#1 to be of type string"));
         let out = run_program("(printout t (explode$ \"x \\\"open\") crlf)\n");
+        // as CLIPS 6.30 prints it: the string inside the multifield in quotes
         assert!(
-            out.contains("[SCANNER1]") && out.contains("(x open)") || out.contains("x open"),
+            out.contains("[SCANNER1]") && out.contains("(x \"open\")"),
             "{out}"
         );
     }
