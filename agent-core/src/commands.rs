@@ -85,6 +85,74 @@ fn construct_name(s: &str) -> &str {
     }
 }
 
+impl Parser<'_, '_, '_> {
+    /// `load`'s line for the construct just parsed: "Defining defrule: r +j" (or CLIPS's
+    /// redefinition warning) with compilations watched, else a progress mark. Called by
+    /// the parser once a construct is built (a rule before it is matched, as CLIPS
+    /// prints it before the activations), and after it by `load_items`; prints once.
+    pub(crate) fn announce(&mut self) {
+        let Some((start, existed)) = self.cx.st.announce.take() else {
+            return;
+        };
+        let kw = self.construct;
+        let text = self.lex.source().get(start..).unwrap_or("");
+        let mut b: TextBuf<256> = TextBuf::new();
+        if self.cx.st.watch & watch::COMPILATIONS != 0 {
+            let name = construct_name(text);
+            let _ = if existed {
+                write!(b, "\n[CSTRCPSR1] WARNING: Redefining {kw}: {name}")
+            } else {
+                write!(b, "Defining {kw}: {name}")
+            };
+            if kw == "defrule" {
+                let _ = b.write_char(' ');
+                for &m in &self.join_marks[..self.njm] {
+                    let _ = write!(b, "{}j", m as char);
+                }
+            }
+            let _ = b.write_char('\n');
+        } else {
+            // CLIPS's progress marks when compilations are not watched
+            let _ = b.write_char(match kw {
+                "deftemplate" => '%',
+                "defrule" => '*',
+                "deffunction" => '!',
+                "defglobal" => ':',
+                "deffacts" => '$',
+                _ => '#',
+            });
+            self.cx.st.progress_printed = true;
+        }
+        self.cx.write(router::STDOUT, b.as_str());
+    }
+}
+
+impl Core<'_> {
+    /// Whether the construct starting at `s` (`(defrule NAME ...`) redefines one that
+    /// exists (CLIPS's load then warns instead of saying "Defining").
+    fn construct_exists(&mut self, s: &str) -> bool {
+        let mut lx = Lexer::new(s);
+        lx.next_token();
+        let kw = match lx.next_token().tok {
+            Tok::Symbol(k) => k,
+            _ => return false,
+        };
+        let name = construct_name(s);
+        let name = name.strip_prefix("MAIN::").unwrap_or(name);
+        let Some(id) = self.find_sym(name) else {
+            return false;
+        };
+        match kw {
+            "defrule" => (0..self.st.nrules)
+                .any(|r| self.rules[r as usize].name == id && !self.rules[r as usize].deleted),
+            "deffacts" => (0..self.st.ndeffacts).any(|d| self.deffacts[d as usize].name == id),
+            "deffunction" => (0..self.st.nfuncs).any(|f| self.funcs[f as usize].name == id),
+            "deftemplate" => self.find_template(id).is_some(),
+            _ => false,
+        }
+    }
+}
+
 /// Byte length of the first complete top-level item in `s` (construct, call or atom),
 /// or None while more input is needed. Leading blanks and comments are included.
 pub fn command_complete(s: &str) -> Option<usize> {
@@ -692,49 +760,31 @@ impl Core<'_> {
         progress: &mut bool,
     ) -> Result<usize, LoadError> {
         let mut n = 0;
+        self.st.progress_printed = *progress;
         let mut p = Parser::new(self, text);
-        loop {
+        let r = loop {
             let start = p.offset();
+            let existed = p.cx.construct_exists(&text[start..]);
+            p.cx.st.announce = verbose.then_some((start, existed));
             match p.next_item() {
                 Ok(Item::End) => {
-                    return Ok(n);
+                    break Ok(n);
                 }
                 Ok(Item::Construct) => {
                     n += 1;
-                    if verbose {
-                        let kw = p.construct;
-                        let mut b: TextBuf<256> = TextBuf::new();
-                        if p.cx.st.watch & watch::COMPILATIONS != 0 {
-                            let _ = write!(b, "Defining {kw}: {}", construct_name(&text[start..]));
-                            if kw == "defrule" {
-                                let _ = b.write_char(' ');
-                                for &m in &p.join_marks[..p.njm] {
-                                    let _ = write!(b, "{}j", m as char);
-                                }
-                            }
-                            let _ = b.write_char('\n');
-                        } else {
-                            // CLIPS's progress marks when compilations are not watched
-                            let _ = b.write_char(match kw {
-                                "deftemplate" => '%',
-                                "defrule" => '*',
-                                "deffunction" => '!',
-                                "defglobal" => ':',
-                                "deffacts" => '$',
-                                _ => '#',
-                            });
-                            *progress = true;
-                        }
-                        p.cx.write(router::STDOUT, b.as_str());
-                    }
+                    // a defrule announced itself before it was matched
+                    p.announce();
                 }
                 Ok(Item::Command(_)) => {
                     let t = p.peek();
-                    return Err(p.err(t, "a construct (load accepts constructs only)"));
+                    break Err(p.err(t, "a construct (load accepts constructs only)"));
                 }
-                Err(e) => return Err(e),
+                Err(e) => break Err(e),
             }
-        }
+        };
+        self.st.announce = None;
+        *progress = self.st.progress_printed;
+        r
     }
 
     /// Runs commands from text as CLIPS's batch mode does: a prompt, the echoed input

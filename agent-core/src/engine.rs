@@ -172,6 +172,12 @@ pub struct State {
     pub quiet_results: bool,
     /// A batch file ended after its prompt was printed; the next command read uses it.
     pub prompt_shown: bool,
+    /// `load` of the construct being parsed: its start in the text and whether it
+    /// redefines one; the parser announces it (`Parser::announce`) once it is built,
+    /// before it is matched against the facts.
+    pub announce: Option<(usize, bool)>,
+    /// A progress mark (`*`, `%`, ...) was printed by this load.
+    pub progress_printed: bool,
     /// A builtin's fallback value after a run-time error, when it depends on the
     /// arguments (see `builtins::errors::ErrorFallback`).
     pub error_fallback: Option<crate::builtins::errors::ErrorFallback>,
@@ -246,6 +252,8 @@ impl State {
             batch_depth: 0,
             quiet_results: false,
             prompt_shown: false,
+            announce: None,
+            progress_printed: false,
             error_fallback: None,
             initial_tmpl: NONE,
             lhs_pm: [PatBinding::EMPTY; MAX_PATTERNS],

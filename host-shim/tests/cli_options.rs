@@ -106,3 +106,29 @@ fn batch_inside_a_batch_file() {
         "",
     );
 }
+
+/// `load*` and `batch*` from a rule's RHS: the new rule is matched against existing facts
+/// at once, the batch file's asserts land in the running engine; then load messages.
+#[test]
+fn load_and_batch_from_a_rule() {
+    compare(
+        "rhs-load",
+        &[
+            (
+                "late.clp",
+                "(defrule late (item ?x) => (printout t \"late sees \" ?x crlf))\n(deffacts more (item 9))\n",
+            ),
+            ("cmds.clp", "(printout t \"from batch\" crlf)\n(assert (item 5))\n"),
+            (
+                "main.clp",
+                "(watch facts)\n(watch rules)\n(watch activations)\n(assert (item 1) (item 2))\n\
+                 (defrule loader (go) => (printout t \"loading\" crlf) (load* \"late.clp\") (printout t \"loaded\" crlf))\n\
+                 (defrule batcher (go2) => (batch* \"cmds.clp\") (printout t \"batched\" crlf))\n\
+                 (assert (go))\n(run)\n(agenda)\n(assert (go2))\n(run)\n(reset)\n(run)\n\
+                 (unwatch compilations)\n(load \"late.clp\")\n(load \"missing.clp\")\n(exit)\n",
+            ),
+        ],
+        &["-f", "main.clp"],
+        "",
+    );
+}

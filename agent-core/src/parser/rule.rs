@@ -116,6 +116,8 @@ impl<'s> Parser<'s, '_, '_> {
                 self.cx.remove_rule(r);
             }
         }
+        // `load` prints "Defining defrule" before the new activations, as CLIPS does
+        self.announce();
         // match the new rule(s) against existing facts: fill new alpha memories
         // (no successors yet), then hook the new joins up and feed them
         for a in first_new_alpha..self.cx.st.nalpha {
