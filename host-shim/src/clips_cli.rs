@@ -36,6 +36,7 @@ enum Step {
 
 /// Host for the command line: every router goes to stdout; files via std::fs.
 struct CliHost {
+    started: std::time::Instant,
     out: std::io::BufWriter<std::io::Stdout>,
 }
 
@@ -87,11 +88,10 @@ impl Host for CliHost {
         f.write_all(data).map_err(|_| HostIoError::Other)
     }
 
+    /// Seconds since the command line started: CLIPS's `(time)` is a clock of the
+    /// session too (small numbers), not the date.
     fn time(&mut self) -> f64 {
-        std::time::SystemTime::now()
-            .duration_since(std::time::UNIX_EPOCH)
-            .map(|d| d.as_secs_f64())
-            .unwrap_or(0.0)
+        self.started.elapsed().as_secs_f64()
     }
 }
 
@@ -144,6 +144,7 @@ pub fn main(args: Args) -> ExitCode {
 fn session(steps: Vec<Step>) -> ExitCode {
     let mut engine = DefaultEngine::new();
     let mut host = CliHost {
+        started: std::time::Instant::now(),
         out: std::io::BufWriter::new(std::io::stdout()),
     };
     // As CLIPS: `-l` and `-f2` files run at start-up, before the banner; `-f` files are

@@ -532,4 +532,8 @@ differential_programs! {
     p130_progn_index => "130-progn-index",
     p131_runtime_errors => "131-runtime-errors",
     p132_matches_ppdefrule_more => "132-matches-ppdefrule-more",
+    p133_math_multifield_edges => "133-math-multifield-edges",
+    p134_multifield_index_errors => "134-multifield-index-errors",
+    p135_fact_functions_listings => "135-fact-functions-listings",
+    p136_globals_deffacts_modify_reset => "136-globals-deffacts-modify-reset",
 }

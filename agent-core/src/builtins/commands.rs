@@ -553,10 +553,8 @@ fn time(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
 fn list_deftemplates(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
     let mut n = 0;
     for t in 0..cx.st.ntemplates {
+        // implied (ordered-fact) templates are listed too, as CLIPS 6.30 does
         let tm = cx.templates[t as usize];
-        if tm.implied {
-            continue;
-        }
         let mut b: TextBuf<128> = TextBuf::new();
         let _ = writeln!(b, "{}", cx.sym_text(tm.name));
         cx.write(router::WDISPLAY, b.as_str());
@@ -574,6 +572,9 @@ fn list_deftemplates(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
 
 fn list_deffunctions(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
     let n = cx.st.nfuncs;
+    if n == 0 {
+        return Ok(Value::Void); // CLIPS lists nothing, not even the total
+    }
     for f in 0..n {
         let mut b: TextBuf<128> = TextBuf::new();
         let _ = writeln!(b, "{}", cx.sym_text(cx.funcs[f as usize].name));

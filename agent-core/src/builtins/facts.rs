@@ -217,9 +217,10 @@ impl Core<'_> {
         let fv = self.eval(first)?;
         let old = match self.fact_arg(fv) {
             Some(f) => f,
+            // a stale fact address: CLIPS says FALSE without a message
+            None if matches!(fv, Value::Fact(_)) => return Ok(Value::Sym(SYM_FALSE)),
             None => {
                 let n = match fv {
-                    Value::Fact(r) => r.num as i64,
                     Value::Int(i) => i,
                     _ => -1,
                 };
@@ -346,16 +347,40 @@ fn duplicate(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
 }
 
 fn fact_slot_value(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    let f = cx
-        .fact_arg(cx.arg(a, 0))
-        .ok_or(EvalError::new(EvalErrorKind::NoSuchFact(-1)))?;
+    let fv = cx.arg(a, 0);
+    let Some(f) = cx.fact_arg(fv) else {
+        // CLIPS: the missing fact's index, then FALSE (nothing for a stale address)
+        if let Value::Int(n) = fv {
+            let mut b: crate::value::TextBuf<64> = crate::value::TextBuf::new();
+            let _ = core::fmt::Write::write_fmt(
+                &mut b,
+                format_args!("[PRNTUTIL1] Unable to find fact f-{n}.\n"),
+            );
+            cx.write(router::WERROR, b.as_str());
+        }
+        return Ok(Value::Sym(SYM_FALSE));
+    };
     let name = cx.arg_lexeme(a, 1, "fact-slot-value")?;
     let tmpl = cx.facts[f as usize].tmpl;
     let slot = if cx.templates[tmpl as usize].implied {
         0
     } else {
-        cx.find_slot(tmpl, name)
-            .ok_or(EvalError::new(EvalErrorKind::NoSuchSlot))?
+        match cx.find_slot(tmpl, name) {
+            Some(s) => s,
+            None => {
+                let mut b: crate::value::TextBuf<256> = crate::value::TextBuf::new();
+                let _ = core::fmt::Write::write_fmt(
+                    &mut b,
+                    format_args!(
+                        "[TMPLTDEF1] Invalid slot {} not defined in corresponding deftemplate {}.\n",
+                        cx.sym_text(name),
+                        cx.sym_text(cx.templates[tmpl as usize].name)
+                    ),
+                );
+                cx.write(router::WERROR, b.as_str());
+                return Ok(Value::Sym(SYM_FALSE));
+            }
+        }
     };
     Ok(cx.fact_slot_value(f, slot)?)
 }
