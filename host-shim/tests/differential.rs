@@ -536,4 +536,5 @@ differential_programs! {
     p134_multifield_index_errors => "134-multifield-index-errors",
     p135_fact_functions_listings => "135-fact-functions-listings",
     p136_globals_deffacts_modify_reset => "136-globals-deffacts-modify-reset",
+    p137_eval_build_run_limits => "137-eval-build-run-limits",
 }

@@ -12,6 +12,7 @@ pub mod basic;
 pub mod commands;
 pub mod control;
 pub mod errors;
+pub mod evaluate;
 pub mod facts;
 pub mod files;
 pub mod format;
@@ -133,6 +134,7 @@ pub const TABLES: &[&[Builtin]] = &[
     random::FUNCS,
     geometry::FUNCS,
     memory::FUNCS,
+    evaluate::FUNCS,
 ];
 
 /// Finds a builtin by name.
