@@ -178,6 +178,9 @@ pub struct State {
     pub announce: Option<(usize, bool)>,
     /// A progress mark (`*`, `%`, ...) was printed by this load.
     pub progress_printed: bool,
+    /// A field of the fact being asserted failed to evaluate: CLIPS reports it, leaves
+    /// the field out, asserts the fact and then stops the actions (see `assert`).
+    pub field_error: Option<crate::error::EvalError>,
     /// A builtin's fallback value after a run-time error, when it depends on the
     /// arguments (see `builtins::errors::ErrorFallback`).
     pub error_fallback: Option<crate::builtins::errors::ErrorFallback>,
@@ -254,6 +257,7 @@ impl State {
             prompt_shown: false,
             announce: None,
             progress_printed: false,
+            field_error: None,
             error_fallback: None,
             initial_tmpl: NONE,
             lhs_pm: [PatBinding::EMPTY; MAX_PATTERNS],

@@ -104,7 +104,19 @@ impl Core<'_> {
         // evaluate first (values may build scratch), then gather
         let base = self.st.sp;
         while e != NONE {
-            let v = self.eval(e)?;
+            let v = match self.eval(e) {
+                Ok(v) => v,
+                Err(err)
+                    if !matches!(err.kind, EvalErrorKind::Capacity(_) | EvalErrorKind::Exit) =>
+                {
+                    // CLIPS reports it and goes on without this field
+                    self.write_error_message(err);
+                    self.st.field_error = Some(err);
+                    e = self.exprs[e as usize].next;
+                    continue;
+                }
+                Err(err) => return Err(err),
+            };
             self.push_value(v)?;
             e = self.exprs[e as usize].next;
         }
@@ -274,10 +286,17 @@ fn assert(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
     cx.st.pattern_error = false;
     while spec != NONE {
         if cx.exprs[spec as usize].op == Op::FactSpec {
+            cx.st.field_error = None;
             last = match cx.assert_spec(spec)? {
                 Some(f) => Value::Fact(cx.fact_ref(f)),
                 None => Value::Sym(SYM_FALSE),
             };
+            // a field failed: the fact stands without it, the actions stop here
+            if let Some(mut err) = cx.st.field_error.take() {
+                err.reported = true;
+                cx.set_error_fallback(last, None);
+                return Err(err);
+            }
         }
         spec = cx.exprs[spec as usize].next;
         // CLIPS stops a multi-fact assert after a pattern-network error
