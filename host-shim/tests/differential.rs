@@ -538,4 +538,5 @@ differential_programs! {
     p136_globals_deffacts_modify_reset => "136-globals-deffacts-modify-reset",
     p137_eval_build_run_limits => "137-eval-build-run-limits",
     p138_rhs_runtime_errors => "138-rhs-runtime-errors",
+    p139_watch_statistics => "139-watch-statistics",
 }
