@@ -362,20 +362,28 @@ impl Core<'_> {
                 let parent = self.joins[rule.terminal as usize].parent;
                 self.remove_rule_activations(rr, parent);
             }
-            let mut j = rule.terminal;
-            while j != NONE && j != 0 {
-                let parent = self.joins[j as usize].parent;
-                self.joins[j as usize].refs = self.joins[j as usize].refs.saturating_sub(1);
-                if self.joins[j as usize].refs == 0 {
-                    if !self.joins[j as usize].is_terminal() {
-                        self.clear_join_memory(j);
-                    }
-                    self.unlink_join(j);
-                }
-                j = parent;
-            }
+            self.release_chain(rule.terminal, 0);
             self.rules[rr as usize].deleted = true;
             rr = rule.next_disjunct;
+        }
+    }
+
+    /// Drops one reference to each join from `j` up to `stop` (and to the
+    /// subnetworks of joins from the right); unused joins go with their memories.
+    fn release_chain(&mut self, mut j: u16, stop: u16) {
+        while j != NONE && j != 0 && j != stop {
+            let jn = self.joins[j as usize];
+            self.joins[j as usize].refs = jn.refs.saturating_sub(1);
+            if self.joins[j as usize].refs == 0 {
+                if !jn.is_terminal() {
+                    self.clear_join_memory(j);
+                }
+                self.unlink_join(j);
+            }
+            if jn.rjoin != NONE {
+                self.release_chain(jn.rjoin, jn.parent);
+            }
+            j = jn.parent;
         }
     }
 
@@ -433,7 +441,24 @@ impl Core<'_> {
                 p = n;
             }
         }
+        let rj = self.joins[j as usize].rjoin;
+        if rj != NONE {
+            let mut p = self.joins[rj as usize].rsucc;
+            if p == j {
+                self.joins[rj as usize].rsucc = self.joins[j as usize].alpha_next;
+            } else {
+                while p != NONE {
+                    let n = self.joins[p as usize].alpha_next;
+                    if n == j {
+                        self.joins[p as usize].alpha_next = self.joins[j as usize].alpha_next;
+                        break;
+                    }
+                    p = n;
+                }
+            }
+        }
         self.joins[j as usize].alpha = NONE;
+        self.joins[j as usize].rjoin = NONE;
         self.joins[j as usize].parent = 0;
     }
 
@@ -701,6 +726,46 @@ impl Core<'_> {
                 b,
                 "\n[CSTRNCHK1] A literal slot value found in the {command} command\ndoes not match the allowed {what} for slot {}.",
                 self.sym_text(slot)
+            );
+        } else if let LoadDetail::DefaultConstraint {
+            attribute,
+            types,
+            slot,
+        } = e.detail
+        {
+            let what = if types { "types" } else { "values" };
+            let _ = writeln!(
+                b,
+                "\n[CSTRNCHK1] An expression found in the {attribute} attribute\ndoes not match the allowed {what} for slot {}.",
+                self.sym_text(slot)
+            );
+        } else if let LoadDetail::SingleSlot { slot } = e.detail {
+            let _ = writeln!(
+                b,
+                "\n[TMPLTDEF2] The single field slot {} can only contain a single field value.",
+                self.sym_text(slot)
+            );
+        } else if let LoadDetail::RequiredSlot { slot } = e.detail {
+            let _ = writeln!(
+                b,
+                "\n[TMPLTRHS1] Slot {} requires a value because of its (default ?NONE) attribute.",
+                self.sym_text(slot)
+            );
+        } else if let LoadDetail::ArgType {
+            func,
+            arg,
+            expected,
+        } = e.detail
+        {
+            let _ = writeln!(
+                b,
+                "[ARGACCES5] Function {func} expected argument #{arg} to be of type {expected}"
+            );
+        } else if e.detail == LoadDetail::MixedVariable {
+            let name = tok.trim_start_matches('$').trim_start_matches('?');
+            let _ = writeln!(
+                b,
+                "\n[ANALYSIS3] Variable ?{name} is used as both a single and multifield variable in the LHS"
             );
         } else if e.construct == "command" {
             {

@@ -243,6 +243,30 @@ pub enum LoadDetail {
     UnknownSlot {
         template: u16,
     },
+    /// `[CSTRNCHK1]`: a literal in a slot's `default`/`default-dynamic` (`attribute`)
+    /// violates the slot's type (`types`) or allowed values.
+    DefaultConstraint {
+        attribute: &'static str,
+        types: bool,
+        slot: u16,
+    },
+    /// `[TMPLTDEF2]`: a single-field slot given no value or several.
+    SingleSlot {
+        slot: u16,
+    },
+    /// `[TMPLTRHS1]`: an assert leaves out a slot declared `(default ?NONE)`.
+    RequiredSlot {
+        slot: u16,
+    },
+    /// `[ARGACCES5]`: a literal argument of a type the function does not take; `arg`
+    /// is 1-based, `expected` CLIPS's wording of the types.
+    ArgType {
+        func: &'static str,
+        arg: u16,
+        expected: &'static str,
+    },
+    /// `[ANALYSIS3]`: one LHS variable used both as `?x` and `$?x` (the offending token).
+    MixedVariable,
 }
 
 impl fmt::Display for LoadError {

@@ -61,6 +61,7 @@ fn run(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         cx.write(router::STDOUT, "rule firing limit reached\n");
         return Ok(Value::Void);
     }
+    // `(watch statistics)` lines are printed by `Core::run` (commands.rs)
     cx.run(limit)?;
     Ok(Value::Void)
 }
@@ -403,8 +404,8 @@ fn write_bases(cx: &mut Core<'_>, j: u16) -> i64 {
     while t != NONE {
         let tk = cx.tokens[t as usize];
         let live = match kind {
-            JoinKind::Negative => tk.count == 0,
-            JoinKind::Exists => tk.count > 0,
+            JoinKind::Negative => !tk.blocked,
+            JoinKind::Exists => tk.blocked,
             _ => true,
         };
         if live {

@@ -5,7 +5,7 @@ use crate::engine::Core;
 use crate::error::{EvalError, EvalErrorKind};
 use crate::expr::Op;
 use crate::host::router;
-use crate::template::{allowed, types, DefaultKind};
+use crate::template::{allowed, types, DefaultKind, SlotDef};
 use crate::value::{FactRef, MfSpan, Value, NONE};
 
 pub const FUNCS: &[Builtin] = &[
@@ -42,9 +42,9 @@ fn same_class(a: Value, b: Value) -> bool {
 }
 
 impl Core<'_> {
-    /// Checks one atom against a slot's type and allowed-value restrictions.
-    pub(crate) fn check_atom(&self, tmpl: u16, slot: u16, v: Value) -> Result<(), EvalError> {
-        let def = self.slot_def(tmpl, slot);
+    /// Checks one atom against a slot's type and allowed-value restrictions (the
+    /// parser's literal checks; also for a slot not yet stored in a template).
+    pub(crate) fn check_atom_def(&self, def: &SlotDef, v: Value) -> Result<(), EvalError> {
         if def.types != 0 && def.types & type_bit(v) == 0 {
             return Err(EvalError::new(EvalErrorKind::BadSlotValue {
                 reason: "type restriction violated",
