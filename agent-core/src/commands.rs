@@ -640,6 +640,7 @@ impl Core<'_> {
 
     /// After a run-time error at the prompt CLIPS prints the value the top-level function
     /// returned: its fallback (`builtins::errors`), `FALSE` for a deffunction.
+    #[inline(never)]
     fn print_fallback(&mut self, top: u16) {
         if self.st.literal_error {
             return;
@@ -974,6 +975,9 @@ impl Core<'_> {
 
     /// Executes one complete top-level item: defines a construct or evaluates a
     /// command and prints its result (nothing for void).
+    // one copy of the command loop's body: callers are many, and it matters for the
+    // image's code budget
+    #[inline(never)]
     pub fn exec_command(&mut self, text: &str, source: &str) {
         self.exec_item(text, source);
         // inside batch* a batch file waits for the command loop, as in CLIPS
@@ -982,6 +986,7 @@ impl Core<'_> {
         }
     }
 
+    #[inline(never)]
     fn exec_item(&mut self, text: &str, source: &str) {
         let exprs_before = self.st.nexprs;
         let cp = self.checkpoint();

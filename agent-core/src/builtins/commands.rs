@@ -168,15 +168,21 @@ pub(super) fn resolve_router(
     cx: &mut Core<'_>,
     name: Value,
 ) -> Result<Option<&'static str>, EvalError> {
+    const ROUTERS: [(&str, Option<&str>); 9] = [
+        ("t", Some(router::STDOUT)),
+        ("stdout", Some(router::STDOUT)),
+        ("wclips", Some(router::STDOUT)),
+        ("wdialog", Some(router::STDOUT)),
+        ("wdisplay", Some(router::WDISPLAY)),
+        ("wtrace", Some(router::WTRACE)),
+        ("werror", Some(router::WERROR)),
+        ("wwarning", Some(router::WWARNING)),
+        ("stdin", None),
+    ];
     if let Value::Sym(s) | Value::Str(s) = name {
-        match cx.sym_text(s) {
-            "t" | "stdout" | "wclips" | "wdialog" => return Ok(Some(router::STDOUT)),
-            "wdisplay" => return Ok(Some(router::WDISPLAY)),
-            "wtrace" => return Ok(Some(router::WTRACE)),
-            "werror" => return Ok(Some(router::WERROR)),
-            "wwarning" => return Ok(Some(router::WWARNING)),
-            "stdin" => return Ok(None),
-            _ => {}
+        let text = cx.sym_text(s);
+        if let Some(&(_, r)) = ROUTERS.iter().find(|(n, _)| *n == text) {
+            return Ok(r);
         }
     }
     cx.write(router::WERROR, "[ROUTER1] Logical name ");

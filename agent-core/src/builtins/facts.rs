@@ -370,12 +370,7 @@ fn fact_slot_value(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let Some(f) = cx.fact_arg(fv) else {
         // CLIPS: the missing fact's index, then FALSE (nothing for a stale address)
         if let Value::Int(n) = fv {
-            let mut b: crate::value::TextBuf<64> = crate::value::TextBuf::new();
-            let _ = core::fmt::Write::write_fmt(
-                &mut b,
-                format_args!("[PRNTUTIL1] Unable to find fact f-{n}.\n"),
-            );
-            cx.write(router::WERROR, b.as_str());
+            cx.write_error_message(EvalError::new(EvalErrorKind::NoSuchFact(n)));
         }
         return Ok(Value::Sym(SYM_FALSE));
     };

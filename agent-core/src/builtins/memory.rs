@@ -38,33 +38,36 @@ impl Core<'_> {
     /// Pool entries in use and their bytes: `(entries, bytes)`.
     pub fn pool_use(&self) -> (usize, usize) {
         let st = &*self.st;
-        let parts = [
-            entry_of(&self.facts[..0], self.live_fact_count()),
-            entry_of(&self.values[..0], st.values_top as usize),
-            entry_of(&self.sym_entries[..0], st.nsyms as usize),
-            (0, st.sym_bytes as usize),
-            entry_of(&self.templates[..0], st.ntemplates as usize),
-            entry_of(&self.slots[..0], st.nslots as usize),
-            entry_of(&self.rules[..0], st.nrules as usize),
-            entry_of(&self.alphas[..0], st.nalpha as usize),
-            entry_of(&self.joins[..0], st.njoins as usize),
-            entry_of(&self.tokens[..0], st.tokens_live as usize),
-            entry_of(&self.acts[..0], self.activation_count()),
-            entry_of(&self.funcs[..0], st.nfuncs as usize),
-            entry_of(&self.globals[..0], st.nglobals as usize),
-            entry_of(&self.exprs[..0], st.nexprs as usize),
-            entry_of(&self.deffacts[..0], st.ndeffacts as usize),
-            entry_of(&self.externals[..0], st.nexternals as usize),
+        let counts = [
+            (self.live_fact_count(), size_of_first(self.facts)),
+            (st.values_top as usize, size_of_first(self.values)),
+            (st.nsyms as usize, size_of_first(self.sym_entries)),
+            (st.ntemplates as usize, size_of_first(self.templates)),
+            (st.nslots as usize, size_of_first(self.slots)),
+            (st.nrules as usize, size_of_first(self.rules)),
+            (st.nalpha as usize, size_of_first(self.alphas)),
+            (st.njoins as usize, size_of_first(self.joins)),
+            (st.tokens_live as usize, size_of_first(self.tokens)),
+            (self.activation_count(), size_of_first(self.acts)),
+            (st.nfuncs as usize, size_of_first(self.funcs)),
+            (st.nglobals as usize, size_of_first(self.globals)),
+            (st.nexprs as usize, size_of_first(self.exprs)),
+            (st.ndeffacts as usize, size_of_first(self.deffacts)),
+            (st.nexternals as usize, size_of_first(self.externals)),
         ];
-        parts
-            .iter()
-            .fold((0, 0), |(n, b), &(pn, pb)| (n + pn, b + pb))
+        let mut entries = 0;
+        let mut bytes = st.sym_bytes as usize;
+        for (n, size) in counts {
+            entries += n;
+            bytes += n * size;
+        }
+        (entries, bytes)
     }
 }
 
-/// `n` entries of the slice's element type: `(n, bytes)`.
-fn entry_of<T>(_pool: &[T], n: usize) -> (usize, usize) {
-    (n, n * size_of::<T>())
+/// Size of one entry of a pool.
+fn size_of_first<T>(_pool: &[T]) -> usize {
+    size_of::<T>()
 }
 
 fn mem_used(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
