@@ -114,6 +114,25 @@ engine_impl! {
         !cx.st.exit
     }
 
+    /// `batch*` of a text: runs its commands without prompts, echo or results (what
+    /// `clips -f2 FILE` does). Returns false once `(exit)` ran.
+    pub fn batch_file_quiet(&mut self, host: &mut dyn Host, source_name: &str, text: &str) -> bool {
+        let mut cx = self.core(host);
+        let saved = cx.st.quiet_results;
+        cx.st.quiet_results = true;
+        let _ = cx.batch_text_named(text, false, source_name);
+        cx.st.quiet_results = saved;
+        !cx.st.exit
+    }
+
+    /// Runs a file a `batch` command left for the command loop (a `batch` inside
+    /// `batch*` or `-f2`). Returns false once `(exit)` ran.
+    pub fn run_pending_batch(&mut self, host: &mut dyn Host) -> bool {
+        let mut cx = self.core(host);
+        cx.run_pending_batch();
+        !cx.st.exit
+    }
+
     pub fn exited(&self) -> bool {
         self.st.exit
     }

@@ -16,6 +16,51 @@ use crate::parser::{Item, Parser};
 use crate::rete::{JoinKind, PatBinding, TokenKind};
 use crate::value::{SymId, TextBuf, Value, NONE};
 
+/// `(watch statistics)`: facts and activations sampled before the run and after each
+/// rule firing, reported after the run as CLIPS 6.30 does. Its Debian build prints no
+/// run time (nor rules per second), so neither is printed here.
+#[derive(Default)]
+struct RunStats {
+    samples: u64,
+    sum_facts: u64,
+    max_facts: u64,
+    sum_acts: u64,
+    max_acts: u64,
+}
+
+impl RunStats {
+    fn sample(&mut self, cx: &Core<'_>) {
+        let (f, a) = (cx.live_fact_count() as u64, cx.activation_count() as u64);
+        self.samples += 1;
+        self.sum_facts += f;
+        self.max_facts = self.max_facts.max(f);
+        self.sum_acts += a;
+        self.max_acts = self.max_acts.max(a);
+    }
+
+    fn print(&self, cx: &mut Core<'_>, fired: u32) {
+        // CLIPS rounds the means to the nearest integer
+        let mean = |sum: u64| (sum * 2 + self.samples) / (2 * self.samples.max(1));
+        let mut b: TextBuf<320> = TextBuf::new();
+        let _ = writeln!(b, "{fired} rules fired");
+        let _ = writeln!(
+            b,
+            "{} mean number of facts ({} maximum).",
+            mean(self.sum_facts),
+            self.max_facts
+        );
+        // CLIPS counts its one COOL instance (initial-object); this engine has no COOL
+        let _ = writeln!(b, "1 mean number of instances (1 maximum).");
+        let _ = writeln!(
+            b,
+            "{} mean number of activations ({} maximum).",
+            mean(self.sum_acts),
+            self.max_acts
+        );
+        cx.write(router::WDISPLAY, b.as_str());
+    }
+}
+
 /// How deep `batch` files may run inside each other (each level holds a file buffer).
 const MAX_BATCH_DEPTH: u8 = 8;
 
@@ -36,6 +81,74 @@ fn construct_name(s: &str) -> &str {
             Tok::Global(n) => return n,
             Tok::Eof | Tok::Bad => return "",
             _ => {}
+        }
+    }
+}
+
+impl Parser<'_, '_, '_> {
+    /// `load`'s line for the construct just parsed: "Defining defrule: r +j" (or CLIPS's
+    /// redefinition warning) with compilations watched, else a progress mark. Called by
+    /// the parser once a construct is built (a rule before it is matched, as CLIPS
+    /// prints it before the activations), and after it by `load_items`; prints once.
+    pub(crate) fn announce(&mut self) {
+        let Some((start, existed)) = self.cx.st.announce.take() else {
+            return;
+        };
+        let kw = self.construct;
+        let text = self.lex.source().get(start..).unwrap_or("");
+        let mut b: TextBuf<256> = TextBuf::new();
+        if self.cx.st.watch & watch::COMPILATIONS != 0 {
+            let name = construct_name(text);
+            let _ = if existed {
+                write!(b, "\n[CSTRCPSR1] WARNING: Redefining {kw}: {name}")
+            } else {
+                write!(b, "Defining {kw}: {name}")
+            };
+            if kw == "defrule" {
+                let _ = b.write_char(' ');
+                for &m in &self.join_marks[..self.njm] {
+                    let _ = write!(b, "{}j", m as char);
+                }
+            }
+            let _ = b.write_char('\n');
+        } else {
+            // CLIPS's progress marks when compilations are not watched
+            let _ = b.write_char(match kw {
+                "deftemplate" => '%',
+                "defrule" => '*',
+                "deffunction" => '!',
+                "defglobal" => ':',
+                "deffacts" => '$',
+                _ => '#',
+            });
+            self.cx.st.progress_printed = true;
+        }
+        self.cx.write(router::STDOUT, b.as_str());
+    }
+}
+
+impl Core<'_> {
+    /// Whether the construct starting at `s` (`(defrule NAME ...`) redefines one that
+    /// exists (CLIPS's load then warns instead of saying "Defining").
+    fn construct_exists(&mut self, s: &str) -> bool {
+        let mut lx = Lexer::new(s);
+        lx.next_token();
+        let kw = match lx.next_token().tok {
+            Tok::Symbol(k) => k,
+            _ => return false,
+        };
+        let name = construct_name(s);
+        let name = name.strip_prefix("MAIN::").unwrap_or(name);
+        let Some(id) = self.find_sym(name) else {
+            return false;
+        };
+        match kw {
+            "defrule" => (0..self.st.nrules)
+                .any(|r| self.rules[r as usize].name == id && !self.rules[r as usize].deleted),
+            "deffacts" => (0..self.st.ndeffacts).any(|d| self.deffacts[d as usize].name == id),
+            "deffunction" => (0..self.st.nfuncs).any(|f| self.funcs[f as usize].name == id),
+            "deftemplate" => self.find_template(id).is_some(),
+            _ => false,
         }
     }
 }
@@ -376,6 +489,20 @@ impl Core<'_> {
 
     /// `(run [limit])`: fires activations; returns how many fired.
     pub fn run(&mut self, limit: i64) -> Result<u32, EvalError> {
+        let mut stats = RunStats::default();
+        if self.st.watch & watch::STATISTICS != 0 {
+            stats.sample(self);
+        }
+        let r = self.run_rules(limit, &mut stats);
+        if let Ok(fired) = r {
+            if self.st.watch & watch::STATISTICS != 0 {
+                stats.print(self, fired);
+            }
+        }
+        r
+    }
+
+    fn run_rules(&mut self, limit: i64, stats: &mut RunStats) -> Result<u32, EvalError> {
         self.st.halt = false;
         let mut fired: u32 = 0;
         let scratch_mark = self.st.scratch_top;
@@ -420,6 +547,9 @@ impl Core<'_> {
             if !self.st.firing {
                 self.free_pending();
                 self.st.scratch_top = scratch_mark;
+            }
+            if self.st.watch & watch::STATISTICS != 0 {
+                stats.sample(self);
             }
             if let Err(e) = r {
                 if e.kind == EvalErrorKind::Exit {
@@ -510,6 +640,7 @@ impl Core<'_> {
 
     /// After a run-time error at the prompt CLIPS prints the value the top-level function
     /// returned: its fallback (`builtins::errors`), `FALSE` for a deffunction.
+    #[inline(never)]
     fn print_fallback(&mut self, top: u16) {
         if self.st.literal_error {
             return;
@@ -550,7 +681,7 @@ impl Core<'_> {
 
     /// Prints a load error in CLIPS's style plus the position line.
     pub fn report_load_error(&mut self, source: &str, text: &str, e: &LoadError) {
-        let mut b: TextBuf<512> = TextBuf::new();
+        let mut b: TextBuf<4096> = TextBuf::new();
         let tok = text.get(e.start as usize..e.end as usize).unwrap_or("");
         if let Some(c) = e.capacity {
             let _ = writeln!(b, "[MEMORY] {c}");
@@ -651,6 +782,19 @@ impl Core<'_> {
                 e.construct
             );
         }
+        // CLIPS checks modify/duplicate slot values once the whole rule is read, and then
+        // shows the rule it rejected
+        if let LoadDetail::Constraint {
+            command: "modify" | "duplicate",
+            ..
+        } = e.detail
+        {
+            if e.construct == "defrule" {
+                let _ = b.write_str("\nERROR:\n");
+                let _ = crate::builtins::pretty::write_defrule(text, &mut b);
+                let _ = b.write_char('\n');
+            }
+        }
         let _ = writeln!(
             b,
             "--> {}:{}:{}: expected {}",
@@ -682,49 +826,31 @@ impl Core<'_> {
         progress: &mut bool,
     ) -> Result<usize, LoadError> {
         let mut n = 0;
+        self.st.progress_printed = *progress;
         let mut p = Parser::new(self, text);
-        loop {
+        let r = loop {
             let start = p.offset();
+            let existed = p.cx.construct_exists(&text[start..]);
+            p.cx.st.announce = verbose.then_some((start, existed));
             match p.next_item() {
                 Ok(Item::End) => {
-                    return Ok(n);
+                    break Ok(n);
                 }
                 Ok(Item::Construct) => {
                     n += 1;
-                    if verbose {
-                        let kw = p.construct;
-                        let mut b: TextBuf<256> = TextBuf::new();
-                        if p.cx.st.watch & watch::COMPILATIONS != 0 {
-                            let _ = write!(b, "Defining {kw}: {}", construct_name(&text[start..]));
-                            if kw == "defrule" {
-                                let _ = b.write_char(' ');
-                                for &m in &p.join_marks[..p.njm] {
-                                    let _ = write!(b, "{}j", m as char);
-                                }
-                            }
-                            let _ = b.write_char('\n');
-                        } else {
-                            // CLIPS's progress marks when compilations are not watched
-                            let _ = b.write_char(match kw {
-                                "deftemplate" => '%',
-                                "defrule" => '*',
-                                "deffunction" => '!',
-                                "defglobal" => ':',
-                                "deffacts" => '$',
-                                _ => '#',
-                            });
-                            *progress = true;
-                        }
-                        p.cx.write(router::STDOUT, b.as_str());
-                    }
+                    // a defrule announced itself before it was matched
+                    p.announce();
                 }
                 Ok(Item::Command(_)) => {
                     let t = p.peek();
-                    return Err(p.err(t, "a construct (load accepts constructs only)"));
+                    break Err(p.err(t, "a construct (load accepts constructs only)"));
                 }
-                Err(e) => return Err(e),
+                Err(e) => break Err(e),
             }
-        }
+        };
+        self.st.announce = None;
+        *progress = self.st.progress_printed;
+        r
     }
 
     /// Runs commands from text as CLIPS's batch mode does: a prompt, the echoed input
@@ -849,11 +975,18 @@ impl Core<'_> {
 
     /// Executes one complete top-level item: defines a construct or evaluates a
     /// command and prints its result (nothing for void).
+    // one copy of the command loop's body: callers are many, and it matters for the
+    // image's code budget
+    #[inline(never)]
     pub fn exec_command(&mut self, text: &str, source: &str) {
         self.exec_item(text, source);
-        self.run_pending_batch();
+        // inside batch* a batch file waits for the command loop, as in CLIPS
+        if !self.st.quiet_results {
+            self.run_pending_batch();
+        }
     }
 
+    #[inline(never)]
     fn exec_item(&mut self, text: &str, source: &str) {
         let exprs_before = self.st.nexprs;
         let cp = self.checkpoint();

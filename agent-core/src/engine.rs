@@ -172,6 +172,15 @@ pub struct State {
     pub quiet_results: bool,
     /// A batch file ended after its prompt was printed; the next command read uses it.
     pub prompt_shown: bool,
+    /// `load` of the construct being parsed: its start in the text and whether it
+    /// redefines one; the parser announces it (`Parser::announce`) once it is built,
+    /// before it is matched against the facts.
+    pub announce: Option<(usize, bool)>,
+    /// A progress mark (`*`, `%`, ...) was printed by this load.
+    pub progress_printed: bool,
+    /// A field of the fact being asserted failed to evaluate: CLIPS reports it, leaves
+    /// the field out, asserts the fact and then stops the actions (see `assert`).
+    pub field_error: Option<crate::error::EvalError>,
     /// A builtin's fallback value after a run-time error, when it depends on the
     /// arguments (see `builtins::errors::ErrorFallback`).
     pub error_fallback: Option<crate::builtins::errors::ErrorFallback>,
@@ -246,6 +255,9 @@ impl State {
             batch_depth: 0,
             quiet_results: false,
             prompt_shown: false,
+            announce: None,
+            progress_printed: false,
+            field_error: None,
             error_fallback: None,
             initial_tmpl: NONE,
             lhs_pm: [PatBinding::EMPTY; MAX_PATTERNS],

@@ -148,23 +148,14 @@ impl Core<'_> {
         Err(EvalError::new(EvalErrorKind::UnboundVariable))
     }
 
-    /// Evaluates a call's arguments onto the stack (splicing `$?x` expansions).
+    /// Evaluates a call's arguments onto the stack.
     fn push_args(&mut self, mut a: u16) -> Result<Args, EvalError> {
         let base = self.st.sp;
         while a != NONE {
+            // `$?x` is passed as one multifield argument: CLIPS 6.30 does not expand it
+            // into separate arguments (`(length$ $?x)` is the length of ?x)
             let v = self.eval(a)?;
-            if self.exprs[a as usize].op == Op::Expand {
-                if let Value::Multi(m) = v {
-                    for k in 0..m.len as usize {
-                        let item = self.scratch[m.start as usize + k];
-                        self.push_value(item)?;
-                    }
-                } else {
-                    self.push_value(v)?;
-                }
-            } else {
-                self.push_value(v)?;
-            }
+            self.push_value(v)?;
             a = self.exprs[a as usize].next;
         }
         Ok(Args {
@@ -289,14 +280,10 @@ impl Core<'_> {
         else {
             return err;
         };
-        // find argument `arg` (1-based); unknown when a `$?x` expansion came first
+        // find argument `arg` (1-based)
         let mut node = first_arg;
         let mut k = 1;
         while node != NONE && k < arg {
-            if self.exprs[node as usize].op == Op::Expand {
-                node = NONE;
-                break;
-            }
             node = self.exprs[node as usize].next;
             k += 1;
         }

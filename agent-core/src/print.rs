@@ -74,6 +74,32 @@ impl View<'_> {
 
     /// `(name v...)` or `(name (slot v) (mslot a b))`.
     pub fn write_fact(&self, out: &mut dyn Write, slot: u16) -> fmt::Result {
+        self.write_fact_as(out, slot, false)
+    }
+
+    /// A fact as `save-facts` writes it: strings with `"` and `\` escaped, so that
+    /// `load-facts` reads them back unchanged (listings print them bare).
+    pub fn write_fact_escaped(&self, out: &mut dyn Write, slot: u16) -> fmt::Result {
+        self.write_fact_as(out, slot, true)
+    }
+
+    fn write_atom(&self, out: &mut dyn Write, v: Value, escape: bool) -> fmt::Result {
+        match v {
+            Value::Str(s) if escape => {
+                out.write_char('"')?;
+                for c in self.sym(s).chars() {
+                    if c == '"' || c == '\\' {
+                        out.write_char('\\')?;
+                    }
+                    out.write_char(c)?;
+                }
+                out.write_char('"')
+            }
+            _ => self.write_value(out, v, true),
+        }
+    }
+
+    fn write_fact_as(&self, out: &mut dyn Write, slot: u16, escape: bool) -> fmt::Result {
         let f = self.facts[slot as usize];
         let t = self.templates[f.tmpl as usize];
         out.write_char('(')?;
@@ -89,13 +115,13 @@ impl View<'_> {
                 Value::Multi(m) => {
                     for k in 0..m.len as usize {
                         out.write_char(' ')?;
-                        self.write_value(out, self.values[c + 1 + k], true)?;
+                        self.write_atom(out, self.values[c + 1 + k], escape)?;
                     }
                     c += 1 + m.len as usize;
                 }
                 v => {
                     out.write_char(' ')?;
-                    self.write_value(out, v, true)?;
+                    self.write_atom(out, v, escape)?;
                     c += 1;
                 }
             }

@@ -3,6 +3,9 @@
 //! Options as CLIPS takes them: `-f FILE` (batch with echo), `-f2 FILE` (batch without
 //! echo), `-l FILE` (load constructs); several may be given and run in order. After
 //! them (or without any) it reads commands from standard input with a `CLIPS> ` prompt.
+//! As in CLIPS, `-l` and `-f2` files run at start-up before the banner line (which is
+//! CLIPS's own), `-f` files after it through the command loop; `-f2` prints no prompts,
+//! echo or command results.
 
 use std::io::{BufRead, Write};
 use std::process::ExitCode;
@@ -17,14 +20,23 @@ pub struct Args {
     pub options: Vec<String>,
 }
 
+/// The banner line of the Debian build of CLIPS 6.30 this command line imitates.
+pub const BANNER: &str = "         CLIPS (6.30 3/17/15)\n";
+
 /// What to do with one file given on the command line.
 enum Step {
-    Batch { path: String, echo: bool },
+    Batch {
+        path: String,
+        echo: bool,
+    },
     Load(String),
+    /// The banner line, printed between the start-up files and the command loop.
+    Banner,
 }
 
 /// Host for the command line: every router goes to stdout; files via std::fs.
 struct CliHost {
+    started: std::time::Instant,
     out: std::io::BufWriter<std::io::Stdout>,
 }
 
@@ -76,11 +88,10 @@ impl Host for CliHost {
         f.write_all(data).map_err(|_| HostIoError::Other)
     }
 
+    /// Seconds since the command line started: CLIPS's `(time)` is a clock of the
+    /// session too (small numbers), not the date.
     fn time(&mut self) -> f64 {
-        std::time::SystemTime::now()
-            .duration_since(std::time::UNIX_EPOCH)
-            .map(|d| d.as_secs_f64())
-            .unwrap_or(0.0)
+        self.started.elapsed().as_secs_f64()
     }
 }
 
@@ -133,39 +144,20 @@ pub fn main(args: Args) -> ExitCode {
 fn session(steps: Vec<Step>) -> ExitCode {
     let mut engine = DefaultEngine::new();
     let mut host = CliHost {
+        started: std::time::Instant::now(),
         out: std::io::BufWriter::new(std::io::stdout()),
     };
-    host.write_str(
-        "stdout",
-        "         CLIPS (6.30 compatible: robotino-agent)\n",
-    );
-    for step in steps {
-        let keep_going = match step {
-            Step::Batch { path, echo } => match std::fs::read_to_string(&path) {
-                Ok(text) => engine.batch_file(&mut host, &path, &text, echo),
-                Err(e) => {
-                    let _ = host.out.flush();
-                    eprintln!("robotino-agent clips: cannot read {path}: {e}");
-                    true
-                }
-            },
-            Step::Load(path) => match std::fs::read_to_string(&path) {
-                Ok(text) => {
-                    if let Err(e) = engine.load_str(&mut host, &path, &text) {
-                        host.write_str(
-                            "werror",
-                            &format!("\n[PRNTUTIL2] Syntax Error:  Check appropriate syntax for {}.\n--> {path}:{}:{}: expected {}\n", e.construct, e.line, e.col, e.expected),
-                        );
-                    }
-                    true
-                }
-                Err(e) => {
-                    eprintln!("robotino-agent clips: cannot read {path}: {e}");
-                    true
-                }
-            },
-        };
-        if !keep_going {
+    // As CLIPS: `-l` and `-f2` files run at start-up, before the banner; `-f` files are
+    // read by the command loop after it, as if typed at the prompt.
+    let (startup, batches): (Vec<Step>, Vec<Step>) = steps
+        .into_iter()
+        .partition(|s| !matches!(s, Step::Batch { echo: true, .. }));
+    for step in startup
+        .into_iter()
+        .chain(std::iter::once(Step::Banner))
+        .chain(batches)
+    {
+        if !run_step(&mut engine, &mut host, step) {
             let _ = host.out.flush();
             return ExitCode::SUCCESS;
         }
@@ -173,6 +165,42 @@ fn session(steps: Vec<Step>) -> ExitCode {
     interactive(&mut engine, &mut host);
     let _ = host.out.flush();
     ExitCode::SUCCESS
+}
+
+/// Runs one step; false once `(exit)` ran.
+fn run_step(engine: &mut DefaultEngine, host: &mut CliHost, step: Step) -> bool {
+    match step {
+        Step::Banner => {
+            // CLIPS 6.30's own banner, so transcripts (and tools reading them) match
+            host.write_str("stdout", BANNER);
+            // a `batch` run by a start-up file is the command loop's first input
+            engine.run_pending_batch(host)
+        }
+        Step::Batch { path, echo } => match std::fs::read_to_string(&path) {
+            Ok(text) if echo => engine.batch_file(host, &path, &text, true),
+            Ok(text) => engine.batch_file_quiet(host, &path, &text),
+            Err(e) => {
+                let _ = host.out.flush();
+                eprintln!("robotino-agent clips: cannot read {path}: {e}");
+                true
+            }
+        },
+        Step::Load(path) => match std::fs::read_to_string(&path) {
+            Ok(text) => {
+                if let Err(e) = engine.load_str(host, &path, &text) {
+                    host.write_str(
+                        "werror",
+                        &format!("\n[PRNTUTIL2] Syntax Error:  Check appropriate syntax for {}.\n--> {path}:{}:{}: expected {}\n", e.construct, e.line, e.col, e.expected),
+                    );
+                }
+                true
+            }
+            Err(e) => {
+                eprintln!("robotino-agent clips: cannot read {path}: {e}");
+                true
+            }
+        },
+    }
 }
 
 /// The prompt loop on standard input.

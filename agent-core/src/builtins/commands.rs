@@ -7,6 +7,7 @@ use super::{Args, Builtin, ANY, SYM_CRLF, SYM_FALSE, SYM_NIL, SYM_TRUE};
 use crate::engine::{watch, Core};
 use crate::error::{EvalError, EvalErrorKind};
 use crate::host::router;
+use crate::rete::JoinKind;
 use crate::value::{TextBuf, Value, NONE};
 use core::fmt::Write;
 
@@ -60,25 +61,29 @@ fn run(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         cx.write(router::STDOUT, "rule firing limit reached\n");
         return Ok(Value::Void);
     }
-    let fired = cx.run(limit)?;
-    // `(watch statistics)`: the first line CLIPS prints after a run. The run-time and
-    // mean-count lines are not kept (no clock or fact averages are tracked).
-    if cx.st.watch & watch::STATISTICS != 0 {
-        let mut b: TextBuf<48> = TextBuf::new();
-        let _ = writeln!(b, "{fired} rules fired");
-        cx.write(router::STDOUT, b.as_str());
-    }
+    // `(watch statistics)` lines are printed by `Core::run` (commands.rs)
+    cx.run(limit)?;
     Ok(Value::Void)
 }
 
+/// `(facts [module] [start [end [max]]])`: the numbers must be integers >= 0.
 fn facts(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let mut nums = [-1i64; 3];
     let mut k = 0;
     for i in 0..a.len as usize {
-        if let Value::Int(n) = cx.arg(a, i) {
-            if k < 3 {
+        match cx.arg(a, i) {
+            Value::Sym(_) if i == 0 => {} // a module name: there is only MAIN
+            Value::Int(n) if n >= 0 && k < 3 => {
                 nums[k] = n;
                 k += 1;
+            }
+            _ => {
+                let expected = if i == 0 {
+                    "symbol or positive number"
+                } else {
+                    "positive number"
+                };
+                return Err(EvalError::wrong_type("facts", i as u8 + 1, expected));
             }
         }
     }
@@ -163,15 +168,21 @@ pub(super) fn resolve_router(
     cx: &mut Core<'_>,
     name: Value,
 ) -> Result<Option<&'static str>, EvalError> {
+    const ROUTERS: [(&str, Option<&str>); 9] = [
+        ("t", Some(router::STDOUT)),
+        ("stdout", Some(router::STDOUT)),
+        ("wclips", Some(router::STDOUT)),
+        ("wdialog", Some(router::STDOUT)),
+        ("wdisplay", Some(router::WDISPLAY)),
+        ("wtrace", Some(router::WTRACE)),
+        ("werror", Some(router::WERROR)),
+        ("wwarning", Some(router::WWARNING)),
+        ("stdin", None),
+    ];
     if let Value::Sym(s) | Value::Str(s) = name {
-        match cx.sym_text(s) {
-            "t" | "stdout" | "wclips" | "wdialog" => return Ok(Some(router::STDOUT)),
-            "wdisplay" => return Ok(Some(router::WDISPLAY)),
-            "wtrace" => return Ok(Some(router::WTRACE)),
-            "werror" => return Ok(Some(router::WERROR)),
-            "wwarning" => return Ok(Some(router::WWARNING)),
-            "stdin" => return Ok(None),
-            _ => {}
+        let text = cx.sym_text(s);
+        if let Some(&(_, r)) = ROUTERS.iter().find(|(n, _)| *n == text) {
+            return Ok(r);
         }
     }
     cx.write(router::WERROR, "[ROUTER1] Logical name ");
@@ -238,11 +249,20 @@ fn find_rule(cx: &Core<'_>, name: u16) -> Option<u16> {
 
 fn ppdefrule(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let name = cx.arg_lexeme(a, 0, "ppdefrule")?;
-    let r = find_rule(cx, name).ok_or(EvalError::other("no such defrule"))?;
+    let Some(r) = find_rule(cx, name) else {
+        let mut b: TextBuf<300> = TextBuf::new();
+        let _ = writeln!(
+            b,
+            "[PRNTUTIL1] Unable to find defrule {}.",
+            cx.sym_text(name)
+        );
+        cx.write(router::WERROR, b.as_str());
+        return Ok(Value::Void);
+    };
     let text = cx.rules[r as usize].text;
     if text != NONE {
-        let mut b: TextBuf<4096> = TextBuf::new();
-        let _ = b.write_str(cx.sym_text(text));
+        let mut b: TextBuf<8192> = TextBuf::new();
+        let _ = super::pretty::write_defrule(cx.sym_text(text), &mut b);
         let _ = b.write_char('\n');
         cx.write(router::WDISPLAY, b.as_str());
     }
@@ -251,6 +271,16 @@ fn ppdefrule(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 
 fn undefrule(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let name = cx.arg_lexeme(a, 0, "undefrule")?;
+    if cx.sym_text(name) == "*" {
+        // every rule in definition order; `remove_rule` takes a rule's first disjunct
+        for r in 0..cx.st.nrules {
+            let rule = cx.rules[r as usize];
+            if !rule.deleted && find_rule(cx, rule.name) == Some(r) {
+                cx.remove_rule(r);
+            }
+        }
+        return Ok(Value::Void);
+    }
     match find_rule(cx, name) {
         Some(r) => {
             cx.remove_rule(r);
@@ -271,39 +301,129 @@ fn undefrule(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 
 /// `(matches rule)`: prints the partial matches per join (a compact form of CLIPS's
 /// listing) and the activations.
+/// `(matches rule)`: CLIPS 6.30's listing of a rule's alpha matches per pattern, its
+/// partial matches from the second pattern on, and its activations; returns the three
+/// counts as a multifield.
 fn matches(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let name = cx.arg_lexeme(a, 0, "matches")?;
-    let r = find_rule(cx, name).ok_or(EvalError::other("no such defrule"))?;
+    let Some(r) = find_rule(cx, name) else {
+        let mut b: TextBuf<300> = TextBuf::new();
+        let _ = writeln!(
+            b,
+            "[PRNTUTIL1] Unable to find defrule {}.",
+            cx.sym_text(name)
+        );
+        cx.write(router::WERROR, b.as_str());
+        return Ok(Value::Sym(SYM_FALSE));
+    };
     let rule = cx.rules[r as usize];
-    let mut path = [NONE; crate::rete::MAX_PATTERNS];
+    // the rule's joins from the first pattern down to (without) the terminal
+    let mut path = [NONE; crate::rete::MAX_PATTERNS + 2];
     let mut n = 0;
-    let mut j = rule.terminal;
-    while j != NONE && j != 0 && n < path.len() {
+    let mut j = cx.joins[rule.terminal as usize].parent;
+    while j != NONE && n < path.len() && cx.joins[j as usize].kind != JoinKind::Root {
         path[n] = j;
         n += 1;
         j = cx.joins[j as usize].parent;
     }
     path[..n].reverse();
-    for (i, &j) in path[..n].iter().enumerate() {
-        let i = i + 1;
+    let (mut alpha_total, mut partial_total, mut act_total) = (0i64, 0i64, 0i64);
+    let mut pattern = 0;
+    for &j in &path[..n] {
+        let alpha = cx.joins[j as usize].alpha;
+        if alpha == NONE {
+            continue;
+        }
+        pattern += 1;
         let mut b: TextBuf<64> = TextBuf::new();
-        let _ = writeln!(b, "Partial matches for CEs 1 - {i}");
+        let _ = writeln!(b, "Matches for Pattern {pattern}");
         cx.write(router::WDISPLAY, b.as_str());
-        let mut t = cx.joins[j as usize].mem;
-        let mut n = 0;
+        let mut t = cx.alphas[alpha as usize].mem;
+        let mut count = 0;
         while t != NONE {
+            let fact = cx.tokens[t as usize].fact;
+            let mut b: TextBuf<32> = TextBuf::new();
+            let _ = writeln!(b, "f-{}", cx.facts[fact as usize].num);
+            cx.write(router::WDISPLAY, b.as_str());
+            count += 1;
+            t = cx.tokens[t as usize].mem_next;
+        }
+        if count == 0 {
+            cx.write(router::WDISPLAY, " None\n");
+        }
+        alpha_total += count;
+    }
+    if pattern == 0 {
+        // a rule without patterns: CLIPS shows its one (initial) match as `*`
+        cx.write(router::WDISPLAY, "Matches for Pattern 1\n*\n");
+        alpha_total += 1;
+    }
+    let mut pattern = 0;
+    for &j in &path[..n] {
+        if cx.joins[j as usize].alpha != NONE {
+            pattern += 1;
+        }
+        if pattern < 2 {
+            continue;
+        }
+        let mut b: TextBuf<64> = TextBuf::new();
+        let _ = writeln!(b, "Partial matches for CEs 1 - {pattern}");
+        cx.write(router::WDISPLAY, b.as_str());
+        let count = write_bases(cx, j);
+        if count == 0 {
+            cx.write(router::WDISPLAY, " None\n");
+        }
+        partial_total += count;
+    }
+    cx.write(router::WDISPLAY, "Activations\n");
+    let mut act = cx.st.agenda_head;
+    while act != NONE {
+        let x = cx.acts[act as usize];
+        if x.rule == r {
+            let mut b: TextBuf<512> = TextBuf::new();
+            let _ = cx.write_basis(&mut b, x.token);
+            if b.is_empty() {
+                let _ = b.write_char('*');
+            }
+            let _ = b.write_char('\n');
+            cx.write(router::WDISPLAY, b.as_str());
+            act_total += 1;
+        }
+        act = x.next;
+    }
+    if act_total == 0 {
+        cx.write(router::WDISPLAY, " None\n");
+    }
+    Ok(cx.make_multi(&[
+        Value::Int(alpha_total),
+        Value::Int(partial_total),
+        Value::Int(act_total),
+    ])?)
+}
+
+/// Prints the basis of each partial match in join `j`'s memory (`f-1,f-3,*`); returns
+/// how many. A not/exists join keeps blocked tokens too: only live ones count.
+fn write_bases(cx: &mut Core<'_>, j: u16) -> i64 {
+    let kind = cx.joins[j as usize].kind;
+    let mut t = cx.joins[j as usize].mem;
+    let mut count = 0;
+    while t != NONE {
+        let tk = cx.tokens[t as usize];
+        let live = match kind {
+            JoinKind::Negative => !tk.blocked,
+            JoinKind::Exists => tk.blocked,
+            _ => true,
+        };
+        if live {
             let mut b: TextBuf<512> = TextBuf::new();
             let _ = cx.write_basis(&mut b, t);
             let _ = b.write_char('\n');
             cx.write(router::WDISPLAY, b.as_str());
-            n += 1;
-            t = cx.tokens[t as usize].mem_next;
+            count += 1;
         }
-        if n == 0 {
-            cx.write(router::WDISPLAY, " None\n");
-        }
+        t = tk.mem_next;
     }
-    Ok(Value::Void)
+    count
 }
 
 /// The file-name argument of a file function, copied out of the symbol table.
@@ -394,7 +514,7 @@ fn save_facts(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         let mut b: TextBuf<2048> = TextBuf::new();
         {
             let (view, _) = cx.split();
-            let _ = view.write_fact(&mut b, f);
+            let _ = view.write_fact_escaped(&mut b, f);
         }
         let _ = b.write_char('\n');
         if cx
@@ -440,10 +560,8 @@ fn time(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
 fn list_deftemplates(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
     let mut n = 0;
     for t in 0..cx.st.ntemplates {
+        // implied (ordered-fact) templates are listed too, as CLIPS 6.30 does
         let tm = cx.templates[t as usize];
-        if tm.implied {
-            continue;
-        }
         let mut b: TextBuf<128> = TextBuf::new();
         let _ = writeln!(b, "{}", cx.sym_text(tm.name));
         cx.write(router::WDISPLAY, b.as_str());
@@ -461,6 +579,9 @@ fn list_deftemplates(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
 
 fn list_deffunctions(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
     let n = cx.st.nfuncs;
+    if n == 0 {
+        return Ok(Value::Void); // CLIPS lists nothing, not even the total
+    }
     for f in 0..n {
         let mut b: TextBuf<128> = TextBuf::new();
         let _ = writeln!(b, "{}", cx.sym_text(cx.funcs[f as usize].name));

@@ -136,7 +136,9 @@ fn foreach(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
         last = cx.eval(body)?;
         release_scratch(cx, mark.max(m.start + m.len));
         if cx.st.breaking {
+            // CLIPS's progn$ left by break has no value (loop-for-count's is FALSE)
             cx.st.breaking = false;
+            last = Value::Void;
             break;
         }
         if cx.st.returning || cx.st.exit {

@@ -47,27 +47,91 @@ pub enum Fallback {
     EmptyMulti,
 }
 
+/// Builtins by the constant CLIPS returns after a run-time error (lists, not a `match`
+/// on strings: they keep the code of the embedded image small).
+const FALSE_FNS: &[&str] = &[
+    "=",
+    "<>",
+    "<",
+    "<=",
+    ">",
+    ">=",
+    "eq",
+    "neq",
+    "and",
+    "or",
+    "not",
+    "str-index",
+    "member$",
+    "eval",
+    "progn",
+    "progn$",
+    "foreach",
+    "while",
+    "numberp",
+    "integerp",
+    "floatp",
+    "symbolp",
+    "stringp",
+    "lexemep",
+    "multifieldp",
+    "evenp",
+    "oddp",
+    "subsetp",
+];
+const ZERO_FNS: &[&str] = &["mod", "abs", "integer", "round", "str-compare"];
+const FLOAT_ZERO_FNS: &[&str] = &[
+    "sqrt", "float", "exp", "log", "log10", "**", "sin", "cos", "tan", "asin", "acos", "atan",
+    "deg-rad", "rad-deg",
+];
+const EMPTY_STRING_FNS: &[&str] = &[
+    "str-cat",
+    "sub-string",
+    "upcase",
+    "lowcase",
+    "implode$",
+    "format",
+];
+const EMPTY_MULTI_FNS: &[&str] = &[
+    "create$",
+    "subseq$",
+    "first$",
+    "rest$",
+    "explode$",
+    "insert$",
+    "delete$",
+    "replace$",
+    "delete-member$",
+    "replace-member$",
+];
+/// Functions whose string arguments CLIPS checks in the body as "symbol or string".
+const LEXEME_BODY_FNS: &[&str] = &[
+    "str-length",
+    "str-index",
+    "sub-string",
+    "upcase",
+    "lowcase",
+    "str-compare",
+    "string-to-field",
+];
+
 /// Fallback value of builtin `func` after a run-time error, when CLIPS's is a constant.
 /// `None`: CLIPS's value depends on the arguments already seen (`+`, `min`, ...) or the
 /// function is not one of those observed; nothing is printed then.
 pub fn fallback(func: &str) -> Option<Fallback> {
     use Fallback::*;
+    let is = |list: &[&str]| list.contains(&func);
     Some(match func {
         "/" => Float(1.0),
         "div" => Int(1),
-        "mod" | "abs" | "integer" | "round" | "str-compare" => Int(0),
-        "sqrt" | "float" | "exp" | "log" | "log10" | "**" | "sin" | "cos" | "tan" | "asin"
-        | "acos" | "atan" | "deg-rad" | "rad-deg" => Float(0.0),
         "str-length" | "fact-index" => Int(-1),
-        "str-cat" | "sub-string" | "upcase" | "lowcase" | "implode$" | "format" => Str(""),
         "string-to-field" => Str("*** ERROR ***"),
         "sym-cat" | "nth$" => Sym("nil"),
-        "=" | "<>" | "<" | "<=" | ">" | ">=" | "eq" | "neq" | "and" | "or" | "not"
-        | "str-index" | "member$" | "eval" | "progn" | "progn$" | "foreach" | "while"
-        | "numberp" | "integerp" | "floatp" | "symbolp" | "stringp" | "lexemep" | "multifieldp"
-        | "evenp" | "oddp" | "subsetp" => Sym("FALSE"),
-        "create$" | "subseq$" | "first$" | "rest$" | "explode$" | "insert$" | "delete$"
-        | "replace$" | "delete-member$" | "replace-member$" => EmptyMulti,
+        _ if is(FALSE_FNS) => Sym("FALSE"),
+        _ if is(ZERO_FNS) => Int(0),
+        _ if is(FLOAT_ZERO_FNS) => Float(0.0),
+        _ if is(EMPTY_STRING_FNS) => Str(""),
+        _ if is(EMPTY_MULTI_FNS) => EmptyMulti,
         _ => return None,
     })
 }
@@ -75,21 +139,14 @@ pub fn fallback(func: &str) -> Option<Fallback> {
 /// The type name CLIPS's function body prints for a computed argument of the wrong type,
 /// given the name its argument restriction uses for a literal one (`expected`).
 pub fn runtime_type_name(func: &str, expected: &'static str) -> &'static str {
-    match func {
-        "str-length" | "str-index" | "sub-string" | "upcase" | "lowcase" | "str-compare"
-        | "string-to-field"
-            if expected == T_LEXEME =>
-        {
-            "symbol or string"
-        }
-        "sqrt" | "float" | "exp" | "log" | "log10" | "**" | "sin" | "cos" | "tan" | "asin"
-        | "acos" | "atan" | "deg-rad" | "rad-deg"
-            if expected == T_NUMBER =>
-        {
-            "float"
-        }
-        "integer" if expected == T_NUMBER => "integer",
-        _ => expected,
+    if expected == T_LEXEME && LEXEME_BODY_FNS.contains(&func) {
+        "symbol or string"
+    } else if expected == T_NUMBER && FLOAT_ZERO_FNS.contains(&func) {
+        "float"
+    } else if expected == T_NUMBER && func == "integer" {
+        "integer"
+    } else {
+        expected
     }
 }
 

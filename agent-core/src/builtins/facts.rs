@@ -42,13 +42,8 @@ fn same_class(a: Value, b: Value) -> bool {
 }
 
 impl Core<'_> {
-    /// Checks one atom against a slot's type and allowed-value restrictions.
-    pub(crate) fn check_atom(&self, tmpl: u16, slot: u16, v: Value) -> Result<(), EvalError> {
-        self.check_atom_def(&self.slot_def(tmpl, slot), v)
-    }
-
-    /// `check_atom` for a slot definition not yet stored in a template (the parser
-    /// checks a slot's default before the template exists).
+    /// Checks one atom against a slot's type and allowed-value restrictions (the
+    /// parser's literal checks; also for a slot not yet stored in a template).
     pub(crate) fn check_atom_def(&self, def: &SlotDef, v: Value) -> Result<(), EvalError> {
         if def.types != 0 && def.types & type_bit(v) == 0 {
             return Err(EvalError::new(EvalErrorKind::BadSlotValue {
@@ -92,18 +87,6 @@ impl Core<'_> {
         Ok(())
     }
 
-    fn check_slot_value(&self, tmpl: u16, slot: u16, v: Value) -> Result<(), EvalError> {
-        match v {
-            Value::Multi(m) => {
-                for k in 0..m.len as usize {
-                    self.check_atom(tmpl, slot, self.mf_item(m, k))?;
-                }
-                Ok(())
-            }
-            _ => self.check_atom(tmpl, slot, v),
-        }
-    }
-
     /// Evaluates value expressions (a chain) into one slot value: a multifield for a
     /// multislot (all values spliced), else the single value.
     fn slot_value_from(&mut self, tmpl: u16, slot: u16, mut e: u16) -> Result<Value, EvalError> {
@@ -121,7 +104,19 @@ impl Core<'_> {
         // evaluate first (values may build scratch), then gather
         let base = self.st.sp;
         while e != NONE {
-            let v = self.eval(e)?;
+            let v = match self.eval(e) {
+                Ok(v) => v,
+                Err(err)
+                    if !matches!(err.kind, EvalErrorKind::Capacity(_) | EvalErrorKind::Exit) =>
+                {
+                    // CLIPS reports it and goes on without this field
+                    self.write_error_message(err);
+                    self.st.field_error = Some(err);
+                    e = self.exprs[e as usize].next;
+                    continue;
+                }
+                Err(err) => return Err(err),
+            };
             self.push_value(v)?;
             e = self.exprs[e as usize].next;
         }
@@ -209,8 +204,9 @@ impl Core<'_> {
                 let v = self.default_value(tmpl, s)?;
                 self.stack[(base + s) as usize] = v;
             }
-            self.check_slot_value(tmpl, s, self.stack[(base + s) as usize])?;
         }
+        // Values computed at run time are not checked against the slots' restrictions:
+        // CLIPS checks literals while parsing and leaves dynamic constraint checking off.
         self.assert_slots(tmpl, base as usize)
     }
 
@@ -233,9 +229,10 @@ impl Core<'_> {
         let fv = self.eval(first)?;
         let old = match self.fact_arg(fv) {
             Some(f) => f,
+            // a stale fact address: CLIPS says FALSE without a message
+            None if matches!(fv, Value::Fact(_)) => return Ok(Value::Sym(SYM_FALSE)),
             None => {
                 let n = match fv {
-                    Value::Fact(r) => r.num as i64,
                     Value::Int(i) => i,
                     _ => -1,
                 };
@@ -265,8 +262,8 @@ impl Core<'_> {
                 let slot = self
                     .find_slot(tmpl, sym)
                     .ok_or(EvalError::new(EvalErrorKind::NoSuchSlot))?;
+                // unchecked, as in CLIPS (see assert)
                 let v = self.slot_value_from(tmpl, slot, self.exprs[sv as usize].first)?;
-                self.check_slot_value(tmpl, slot, v)?;
                 self.stack[(base + slot) as usize] = v;
                 sv = self.exprs[sv as usize].next;
             }
@@ -289,10 +286,17 @@ fn assert(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
     cx.st.pattern_error = false;
     while spec != NONE {
         if cx.exprs[spec as usize].op == Op::FactSpec {
+            cx.st.field_error = None;
             last = match cx.assert_spec(spec)? {
                 Some(f) => Value::Fact(cx.fact_ref(f)),
                 None => Value::Sym(SYM_FALSE),
             };
+            // a field failed: the fact stands without it, the actions stop here
+            if let Some(mut err) = cx.st.field_error.take() {
+                err.reported = true;
+                cx.set_error_fallback(last, None);
+                return Err(err);
+            }
         }
         spec = cx.exprs[spec as usize].next;
         // CLIPS stops a multi-fact assert after a pattern-network error
@@ -362,16 +366,35 @@ fn duplicate(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
 }
 
 fn fact_slot_value(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    let f = cx
-        .fact_arg(cx.arg(a, 0))
-        .ok_or(EvalError::new(EvalErrorKind::NoSuchFact(-1)))?;
+    let fv = cx.arg(a, 0);
+    let Some(f) = cx.fact_arg(fv) else {
+        // CLIPS: the missing fact's index, then FALSE (nothing for a stale address)
+        if let Value::Int(n) = fv {
+            cx.write_error_message(EvalError::new(EvalErrorKind::NoSuchFact(n)));
+        }
+        return Ok(Value::Sym(SYM_FALSE));
+    };
     let name = cx.arg_lexeme(a, 1, "fact-slot-value")?;
     let tmpl = cx.facts[f as usize].tmpl;
     let slot = if cx.templates[tmpl as usize].implied {
         0
     } else {
-        cx.find_slot(tmpl, name)
-            .ok_or(EvalError::new(EvalErrorKind::NoSuchSlot))?
+        match cx.find_slot(tmpl, name) {
+            Some(s) => s,
+            None => {
+                let mut b: crate::value::TextBuf<256> = crate::value::TextBuf::new();
+                let _ = core::fmt::Write::write_fmt(
+                    &mut b,
+                    format_args!(
+                        "[TMPLTDEF1] Invalid slot {} not defined in corresponding deftemplate {}.\n",
+                        cx.sym_text(name),
+                        cx.sym_text(cx.templates[tmpl as usize].name)
+                    ),
+                );
+                cx.write(router::WERROR, b.as_str());
+                return Ok(Value::Sym(SYM_FALSE));
+            }
+        }
     };
     Ok(cx.fact_slot_value(f, slot)?)
 }

@@ -192,26 +192,24 @@ impl Core<'_> {
 
     /// A file that stopped being readable part way (CLIPS has no such message: its
     /// reader has no size limit).
+    #[cold]
     pub fn report_file_error(&mut self, func: &str, path: &str, e: FileError) {
         let mut b: TextBuf<400> = TextBuf::new();
+        let _ = write!(b, "[FILEIO] Function {func}: file {path}: ");
         let _ = match e {
-            FileError::Io(HostIoError::TooLarge) => writeln!(
-                b,
-                "[FILEIO] Function {func}: file {path} is larger than the host can read at once ({FILE_BUF}-byte buffer)."
-            ),
-            FileError::Io(_) => writeln!(b, "[FILEIO] Function {func}: reading file {path} failed."),
+            FileError::Io(HostIoError::TooLarge) => {
+                writeln!(b, "larger than the host reads at once ({FILE_BUF} bytes).")
+            }
+            FileError::Io(_) => writeln!(b, "reading failed."),
             FileError::ItemTooLarge {
                 offset,
                 line,
                 limit,
             } => writeln!(
                 b,
-                "[FILEIO] Function {func}: the item at line {line} (byte {offset}) of {path} is longer than the {limit}-byte buffer."
+                "the item at line {line} (byte {offset}) is longer than the {limit}-byte buffer."
             ),
-            FileError::NotUtf8 { offset } => writeln!(
-                b,
-                "[FILEIO] Function {func}: file {path} is not UTF-8 text (byte {offset})."
-            ),
+            FileError::NotUtf8 { offset } => writeln!(b, "not UTF-8 text (byte {offset})."),
         };
         self.write(router::WERROR, b.as_str());
     }

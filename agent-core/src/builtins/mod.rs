@@ -12,13 +12,16 @@ pub mod basic;
 pub mod commands;
 pub mod control;
 pub mod errors;
+pub mod evaluate;
 pub mod facts;
 pub mod files;
 pub mod format;
 pub mod geometry;
 pub mod math;
+pub mod memory;
 pub mod multifield;
 pub mod predicates;
+pub mod pretty;
 pub mod queries;
 pub mod random;
 pub mod strings;
@@ -130,6 +133,8 @@ pub const TABLES: &[&[Builtin]] = &[
     queries::FUNCS,
     random::FUNCS,
     geometry::FUNCS,
+    memory::FUNCS,
+    evaluate::FUNCS,
 ];
 
 /// Finds a builtin by name.
@@ -270,7 +275,8 @@ impl Core<'_> {
             slots: self.slots,
             facts: self.facts,
         };
-        view.write_value(out, v, false)
+        // a string prints bare, but inside a multifield in quotes: (a "b c")
+        view.write_value(out, v, v.is_multi())
     }
 
     /// Writes a value's printed form (strings without quotes, as str-cat wants them)

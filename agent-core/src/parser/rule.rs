@@ -150,6 +150,8 @@ impl<'s> Parser<'s, '_, '_> {
                 self.cx.remove_rule(r);
             }
         }
+        // `load` prints "Defining defrule" before the new activations, as CLIPS does
+        self.announce();
         // match the new rule(s) against existing facts as CLIPS's incremental reset
         // does: hook the new joins up, prime those fed by old joins (each rule from its
         // end upwards), then drive the facts, oldest first, through the new patterns

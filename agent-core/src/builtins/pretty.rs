@@ -1,0 +1,339 @@
+//! CLIPS 6.30's pretty-printed form of a defrule (`ppdefrule`), rebuilt from its source.
+//!
+//! CLIPS re-spaces the tokens it read: one CE per line indented by 3, connective CEs
+//! (`and`/`or`/`not`) with their first CE on the same line and the others aligned below
+//! it, `exists`/`logical` with every CE on a new line, one action per line, and the
+//! bodies of `if`/`while`/`loop-for-count`/`progn$`/`switch` indented by 3 more.
+//! Comments are dropped and numbers printed as CLIPS prints them (`2.50` -> `2.5`).
+
+use core::fmt::{self, Write};
+
+use crate::lexer::{Lexer, Tok, Token};
+use crate::value::write_float;
+
+/// Tokens of one construct with one token of lookahead.
+struct Cursor<'a> {
+    src: &'a str,
+    lx: Lexer<'a>,
+    peeked: [Option<Token<'a>>; 2],
+}
+
+impl<'a> Cursor<'a> {
+    fn new(src: &'a str) -> Self {
+        Cursor {
+            src,
+            lx: Lexer::new(src),
+            peeked: [None, None],
+        }
+    }
+
+    fn fill(&mut self, k: usize) {
+        for i in 0..=k {
+            if self.peeked[i].is_none() {
+                self.peeked[i] = Some(self.lx.next_token());
+            }
+        }
+    }
+
+    /// The token `k` ahead (0 or 1).
+    fn peek(&mut self, k: usize) -> Token<'a> {
+        self.fill(k);
+        self.peeked[k].unwrap_or_else(|| self.lx.next_token())
+    }
+
+    fn next(&mut self) -> Token<'a> {
+        self.fill(0);
+        let t = self.peek(0);
+        self.peeked = [self.peeked[1], None];
+        t
+    }
+
+    fn text(&self, t: Token<'a>) -> &'a str {
+        self.src.get(t.start..t.end).unwrap_or("")
+    }
+}
+
+fn spaces(w: &mut dyn Write, n: usize) -> fmt::Result {
+    for _ in 0..n {
+        w.write_char(' ')?;
+    }
+    Ok(())
+}
+
+fn is_sym(t: Token<'_>, s: &str) -> bool {
+    t.tok == Tok::Symbol(s)
+}
+
+/// One token as CLIPS prints it.
+fn write_token(c: &Cursor<'_>, w: &mut dyn Write, t: Token<'_>) -> fmt::Result {
+    match t.tok {
+        Tok::Int(i) | Tok::IntOverflow(i) => write!(w, "{i}"),
+        Tok::Float(f) => write_float(w, f),
+        _ => w.write_str(c.text(t)),
+    }
+}
+
+/// One expression (an atom or a parenthesised list, nested lists included) on one line.
+fn flat(c: &mut Cursor<'_>, w: &mut dyn Write) -> fmt::Result {
+    let first = c.next();
+    write_token(c, w, first)?;
+    if first.tok != Tok::LParen {
+        return Ok(());
+    }
+    let mut depth = 1;
+    let mut prev = first;
+    while depth > 0 {
+        let t = c.next();
+        match t.tok {
+            Tok::Eof | Tok::Bad => return Ok(()),
+            Tok::LParen => depth += 1,
+            Tok::RParen => depth -= 1,
+            _ => {}
+        }
+        // constraint syntax stays glued: ?x&~3|4, ?y&:(> ?y 1), =(+ 1 2)
+        let glued = matches!(t.tok, Tok::RParen | Tok::Amp | Tok::Bar)
+            || matches!(prev.tok, Tok::LParen | Tok::Amp | Tok::Bar | Tok::Tilde)
+            || (matches!(prev.tok, Tok::Symbol(":") | Tok::Symbol("="))
+                && t.tok == Tok::LParen
+                && t.start == prev.end);
+        if !glued {
+            w.write_char(' ')?;
+        }
+        write_token(c, w, t)?;
+        prev = t;
+    }
+    Ok(())
+}
+
+/// A conditional element starting at column `col`.
+fn ce(c: &mut Cursor<'_>, w: &mut dyn Write, col: usize) -> fmt::Result {
+    let t0 = c.peek(0);
+    if matches!(t0.tok, Tok::SfVar(_)) && is_sym(c.peek(1), "<-") {
+        // ?f <- (pattern)
+        let v = c.next();
+        write_token(c, w, v)?;
+        c.next();
+        w.write_str(" <- ")?;
+        return flat(c, w);
+    }
+    let kw = match c.peek(1).tok {
+        Tok::Symbol(k) if t0.tok == Tok::LParen => k,
+        _ => return flat(c, w),
+    };
+    let same_line = match kw {
+        "and" | "or" | "not" => true,
+        "exists" | "logical" | "forall" => false,
+        _ => return flat(c, w),
+    };
+    c.next();
+    c.next();
+    write!(w, "({kw}")?;
+    let inner = col + 5;
+    let mut first = true;
+    loop {
+        let t = c.peek(0);
+        match t.tok {
+            Tok::RParen => {
+                c.next();
+                break;
+            }
+            Tok::Eof | Tok::Bad => break,
+            _ => {}
+        }
+        if first && same_line {
+            spaces(w, inner - col - 1 - kw.len())?;
+        } else {
+            w.write_char('\n')?;
+            spaces(w, inner)?;
+        }
+        first = false;
+        ce(c, w, inner)?;
+    }
+    w.write_char(')')
+}
+
+/// Actions up to the closing parenthesis of their list (not consumed), one per line at
+/// column `col`.
+fn action_lines(c: &mut Cursor<'_>, w: &mut dyn Write, col: usize, stop: &[&str]) -> fmt::Result {
+    loop {
+        let t = c.peek(0);
+        if matches!(t.tok, Tok::RParen | Tok::Eof | Tok::Bad) {
+            return Ok(());
+        }
+        if let Tok::Symbol(s) = t.tok {
+            if stop.contains(&s) {
+                return Ok(());
+            }
+        }
+        w.write_char('\n')?;
+        spaces(w, col)?;
+        action(c, w, col)?;
+    }
+}
+
+/// Consumes a `)` if it is next and writes it.
+fn close(c: &mut Cursor<'_>, w: &mut dyn Write) -> fmt::Result {
+    if c.peek(0).tok == Tok::RParen {
+        c.next();
+        w.write_char(')')?;
+    }
+    Ok(())
+}
+
+/// One RHS action starting at column `col`.
+fn action(c: &mut Cursor<'_>, w: &mut dyn Write, col: usize) -> fmt::Result {
+    let kw = match (c.peek(0).tok, c.peek(1).tok) {
+        (Tok::LParen, Tok::Symbol(k)) => k,
+        _ => return flat(c, w),
+    };
+    let body = col + 3;
+    match kw {
+        "if" => {
+            c.next();
+            c.next();
+            w.write_str("(if ")?;
+            flat(c, w)?;
+            for part in ["then", "else"] {
+                if is_sym(c.peek(0), part) {
+                    c.next();
+                    w.write_char('\n')?;
+                    spaces(w, body)?;
+                    w.write_str(part)?;
+                    action_lines(c, w, body, &["else"])?;
+                }
+            }
+            close(c, w)
+        }
+        "while" | "loop-for-count" | "progn$" | "foreach" => {
+            c.next();
+            c.next();
+            write!(w, "({kw} ")?;
+            if kw == "foreach" {
+                let v = c.next();
+                write_token(c, w, v)?;
+                w.write_char(' ')?;
+            }
+            flat(c, w)?;
+            if kw != "while" {
+                w.write_char(' ')?;
+            }
+            if is_sym(c.peek(0), "do") {
+                c.next();
+                w.write_str(" do")?;
+            }
+            action_lines(c, w, body, &[])?;
+            close(c, w)
+        }
+        "switch" => {
+            c.next();
+            c.next();
+            w.write_str("(switch ")?;
+            flat(c, w)?;
+            while c.peek(0).tok == Tok::LParen {
+                w.write_char('\n')?;
+                spaces(w, body)?;
+                c.next();
+                let k = c.next();
+                write!(w, "(")?;
+                write_token(c, w, k)?;
+                w.write_char(' ')?;
+                if is_sym(k, "case") {
+                    flat(c, w)?;
+                    if is_sym(c.peek(0), "then") {
+                        c.next();
+                        w.write_str(" then")?;
+                    }
+                }
+                action_lines(c, w, body + 3, &[])?;
+                close(c, w)?;
+            }
+            close(c, w)
+        }
+        _ => flat(c, w),
+    }
+}
+
+/// Writes the pretty-printed form of the defrule whose source is `src`.
+pub fn write_defrule(src: &str, w: &mut dyn Write) -> fmt::Result {
+    let mut c = Cursor::new(src);
+    c.next(); // (
+    c.next(); // defrule
+    let name = c.next();
+    let name = c.text(name);
+    let name = name.strip_prefix("MAIN::").unwrap_or(name);
+    write!(w, "(defrule MAIN::{name}")?;
+    if let Tok::Str(_) = c.peek(0).tok {
+        let t = c.next();
+        w.write_char(' ')?;
+        write_token(&c, w, t)?;
+    }
+    loop {
+        let t = c.peek(0);
+        match t.tok {
+            Tok::Eof | Tok::Bad | Tok::RParen => break,
+            Tok::Symbol("=>") => break,
+            _ => {}
+        }
+        w.write_str("\n   ")?;
+        ce(&mut c, w, 3)?;
+    }
+    w.write_str("\n   =>")?;
+    if is_sym(c.peek(0), "=>") {
+        c.next();
+    }
+    action_lines(&mut c, w, 3, &[])?;
+    w.write_char(')')
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::*;
+    use std::string::String;
+
+    fn pp(src: &str) -> String {
+        let mut s = String::new();
+        write_defrule(src, &mut s).unwrap();
+        s
+    }
+
+    #[test]
+    fn patterns_and_actions_one_per_line() {
+        assert_eq!(
+            pp("(defrule alpha (a ?x) => (printout t ?x crlf))"),
+            "(defrule MAIN::alpha\n   (a ?x)\n   =>\n   (printout t ?x crlf))"
+        );
+        assert_eq!(pp("(defrule r4 => )"), "(defrule MAIN::r4\n   =>)");
+    }
+
+    #[test]
+    fn connectives_align_their_ces() {
+        assert_eq!(
+            pp("(defrule g \"c\" (exists (d)) (or (a ?x) (b ?x)) (not (and (e) (f))) => (halt))"),
+            "(defrule MAIN::g \"c\"\n   (exists\n        (d))\n   (or  (a ?x)\n        (b ?x))\n   (not (and (e)\n             (f)))\n   =>\n   (halt))"
+        );
+    }
+
+    #[test]
+    fn constraints_stay_glued_and_numbers_reprinted() {
+        assert_eq!(
+            pp("(defrule r ?f <- (a  ?x&~3|4  $?rest) (c ?y&:(> ?y 1)&~5) => (printout t 2.50 crlf))"),
+            "(defrule MAIN::r\n   ?f <- (a ?x&~3|4 $?rest)\n   (c ?y&:(> ?y 1)&~5)\n   =>\n   (printout t 2.5 crlf))"
+        );
+    }
+
+    /// Transcribed from CLIPS 6.30's `ppdefrule` of the same source.
+    #[test]
+    fn control_actions_indent_their_bodies() {
+        let src = "(defrule r1 (or (a ?x) (b ?x)) (and (c) (d)) (not (and (e) (f))) (test (> 1 0)) => (if (> 1 0) then (printout t \"yes\"   crlf) (assert (g)) else (printout t no crlf)) (while (> 0 1) do (bind ?x 1)) (bind ?y (+ 1 2)))";
+        assert_eq!(
+            pp(src),
+            "(defrule MAIN::r1\n   (or  (a ?x)\n        (b ?x))\n   (and (c)\n        (d))\n   (not (and (e)\n             (f)))\n   (test (> 1 0))\n   =>\n   (if (> 1 0)\n      then\n      (printout t \"yes\" crlf)\n      (assert (g))\n      else\n      (printout t no crlf))\n   (while (> 0 1) do\n      (bind ?x 1))\n   (bind ?y (+ 1 2)))"
+        );
+        let src = "(defrule r2\n  ?f <- (a  ?x&~3|4  $?rest)   ; comment\n  (exists (b ?x) (c ?x))\n  (c ?y&:(> ?y 1)&~5)\n  (not (d))\n=>\n  (modify ?f (a 1))\n  (loop-for-count (?i 1 3) do (printout t ?i crlf))\n  (progn$ (?v $?rest) (printout t ?v))\n  (switch ?x (case 1 then (printout t one)) (default (printout t other))))";
+        assert_eq!(
+            pp(src),
+            "(defrule MAIN::r2\n   ?f <- (a ?x&~3|4 $?rest)\n   (exists\n        (b ?x)\n        (c ?x))\n   (c ?y&:(> ?y 1)&~5)\n   (not (d))\n   =>\n   (modify ?f (a 1))\n   (loop-for-count (?i 1 3)  do\n      (printout t ?i crlf))\n   (progn$ (?v $?rest) \n      (printout t ?v))\n   (switch ?x\n      (case 1 then\n         (printout t one))\n      (default \n         (printout t other))))"
+        );
+    }
+}

@@ -1,0 +1,134 @@
+//! The command line's options against real CLIPS 6.30: `robotino-agent clips OPTIONS`
+//! must print exactly what `clips OPTIONS` prints (banner included) for the same files
+//! and standard input. Covers `-f2` (start-up batch without echo or results, before the
+//! banner), `-l` (start-up load), `-f` (batch through the command loop) and their order.
+
+use std::io::Write;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!(
+        "robotino-cli-options-{}-{name}",
+        std::process::id()
+    ));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("scratch dir");
+    dir
+}
+
+/// Runs `exe args...` in `dir` with `stdin` as input, under a 10 s timeout.
+fn run(exe: &[&str], args: &[&str], dir: &Path, stdin: &str) -> String {
+    let mut child = Command::new("timeout")
+        .arg("10")
+        .args(exe)
+        .args(args)
+        .current_dir(dir)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::null())
+        .spawn()
+        .expect("cannot start timeout/engine");
+    if let Some(mut i) = child.stdin.take() {
+        let _ = i.write_all(stdin.as_bytes());
+    }
+    let out = child.wait_with_output().expect("engine output");
+    String::from_utf8_lossy(&out.stdout).into_owned()
+}
+
+fn compare(name: &str, files: &[(&str, &str)], args: &[&str], stdin: &str) {
+    let dir = scratch(name);
+    for (f, text) in files {
+        std::fs::write(dir.join(f), text).expect("write program");
+    }
+    let ours = env!("CARGO_BIN_EXE_robotino-agent");
+    let has_clips = std::env::split_paths(&std::env::var_os("PATH").unwrap_or_default())
+        .any(|d| d.join("clips").is_file());
+    assert!(
+        has_clips,
+        "real CLIPS 6.30 is required: apt-get install clips"
+    );
+    let theirs = run(&["clips"], args, &dir, stdin);
+    let mine = run(&[ours, "clips"], args, &dir, stdin);
+    let _ = std::fs::remove_dir_all(&dir);
+    assert_eq!(
+        mine, theirs,
+        "{name}: our output (left) differs from CLIPS (right)"
+    );
+}
+
+const PROGRAM: &str = "(printout t \"hello\" crlf)\n(+ 1 2)\n(assert (a 1))\n\
+    (defrule r (a ?x) => (printout t \"fired \" ?x crlf))\n(run)\n(facts)\n";
+
+#[test]
+fn f2_runs_silently_before_the_banner() {
+    compare(
+        "f2",
+        &[("p.clp", &format!("{PROGRAM}(exit)\n"))],
+        &["-f2", "p.clp"],
+        "",
+    );
+}
+
+#[test]
+fn f2_without_exit_then_prompts() {
+    compare(
+        "f2-prompt",
+        &[("p.clp", PROGRAM)],
+        &["-f2", "p.clp"],
+        "(facts)\n(+ 2 3)\n(exit)\n",
+    );
+}
+
+#[test]
+fn options_run_in_clips_order() {
+    compare(
+        "order",
+        &[
+            ("f.clp", "(printout t \"in f\" crlf)\n(* 2 3)\n"),
+            ("l.clp", "(defrule lr (a) => )\n(deffacts d (a))\n"),
+            ("f2.clp", "(printout t \"in f2\" crlf)\n(+ 1 2)\n"),
+        ],
+        &["-f", "f.clp", "-l", "l.clp", "-f2", "f2.clp"],
+        "(list-defrules)\n(exit)\n",
+    );
+}
+
+#[test]
+fn batch_inside_a_batch_file() {
+    compare(
+        "batch",
+        &[
+            ("outer.clp", "(batch \"inner.clp\")\n(printout t \"after\" crlf)\n(batch* \"inner.clp\")\n(exit)\n"),
+            ("inner.clp", "(printout t \"inner\" crlf)\n(+ 4 5)\n\n"),
+        ],
+        &["-f", "outer.clp"],
+        "",
+    );
+}
+
+/// `load*` and `batch*` from a rule's RHS: the new rule is matched against existing facts
+/// at once, the batch file's asserts land in the running engine; then load messages.
+#[test]
+fn load_and_batch_from_a_rule() {
+    compare(
+        "rhs-load",
+        &[
+            (
+                "late.clp",
+                "(defrule late (item ?x) => (printout t \"late sees \" ?x crlf))\n(deffacts more (item 9))\n",
+            ),
+            ("cmds.clp", "(printout t \"from batch\" crlf)\n(assert (item 5))\n"),
+            (
+                "main.clp",
+                "(watch facts)\n(watch rules)\n(watch activations)\n(assert (item 1) (item 2))\n\
+                 (defrule loader (go) => (printout t \"loading\" crlf) (load* \"late.clp\") (printout t \"loaded\" crlf))\n\
+                 (defrule batcher (go2) => (batch* \"cmds.clp\") (printout t \"batched\" crlf))\n\
+                 (assert (go))\n(run)\n(agenda)\n(assert (go2))\n(run)\n(reset)\n(run)\n\
+                 (unwatch compilations)\n(load \"late.clp\")\n(load \"missing.clp\")\n(exit)\n",
+            ),
+        ],
+        &["-f", "main.clp"],
+        "",
+    );
+}
