@@ -515,6 +515,13 @@ impl Core<'_> {
                 "\n[CSTRNCHK1] An expression found in the {attribute} attribute\ndoes not match the allowed {what} for slot {}.",
                 self.sym_text(slot)
             );
+        } else if let LoadDetail::PatternConstraint { ce, types, slot } = e.detail {
+            let what = if types { "types" } else { "values" };
+            let _ = writeln!(
+                b,
+                "\n[CSTRNCHK1] A literal restriction value found in CE #{ce}\ndoes not match the allowed {what} for slot {}.",
+                self.sym_text(slot)
+            );
         } else if let LoadDetail::SingleSlot { slot } = e.detail {
             let _ = writeln!(
                 b,
@@ -536,6 +543,11 @@ impl Core<'_> {
             let _ = writeln!(
                 b,
                 "[ARGACCES5] Function {func} expected argument #{arg} to be of type {expected}"
+            );
+        } else if let LoadDetail::InUse { construct } = e.detail {
+            let _ = writeln!(
+                b,
+                "\n[CSTRCPSR4] Cannot redefine {construct} {tok} while it is in use."
             );
         } else if e.detail == LoadDetail::MixedVariable {
             let name = tok.trim_start_matches('$').trim_start_matches('?');

@@ -237,6 +237,13 @@ pub enum LoadDetail {
         types: bool,
         slot: u16,
     },
+    /// `[CSTRNCHK1]`: a literal in a pattern's slot constraint (CE number `ce`)
+    /// violates the slot's type (`types`) or allowed values.
+    PatternConstraint {
+        ce: u8,
+        types: bool,
+        slot: u16,
+    },
     /// `[TMPLTDEF2]`: a single-field slot given no value or several.
     SingleSlot {
         slot: u16,
@@ -251,6 +258,10 @@ pub enum LoadDetail {
         func: &'static str,
         arg: u16,
         expected: &'static str,
+    },
+    /// `[CSTRCPSR4]`: redefining a construct that is in use (its name is the token).
+    InUse {
+        construct: &'static str,
     },
     /// `[ANALYSIS3]`: one LHS variable used both as `?x` and `$?x` (the offending token).
     MixedVariable,

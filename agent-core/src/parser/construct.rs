@@ -27,11 +27,17 @@ impl<'s> Parser<'s, '_, '_> {
             _ => return Err(self.err(nt, "a deftemplate name")),
         };
         let sym = cap!(self, self.cx.intern(name))?;
-        if self.cx.find_template(sym).is_some() {
-            return Err(self.err(
+        // CLIPS replaces a deftemplate nothing uses yet, and refuses otherwise
+        let replaces = self.cx.find_template(sym);
+        if replaces.is_some_and(|t| self.cx.template_in_use(t)) {
+            let mut e = self.err(
                 nt,
-                "a deftemplate name not yet defined (cannot redefine a deftemplate)",
-            ));
+                "a deftemplate name not in use (a deftemplate with facts or constructs using it cannot be redefined)",
+            );
+            e.detail = LoadDetail::InUse {
+                construct: "deftemplate",
+            };
+            return Err(e);
         }
         self.skip_comment();
         let n = self.cx.st.ntemplates as usize;
@@ -90,6 +96,16 @@ impl<'s> Parser<'s, '_, '_> {
         };
         self.cx.st.ntemplates += 1;
         self.cx.note_hw(Pool::Templates, n + 1);
+        if let Some(old) = replaces {
+            // Nothing refers to the old entry, so it is retired where it is (indices of
+            // later templates stay valid): no name can find it and listings skip it as
+            // they skip ordered-fact templates. The new one is listed last, as in CLIPS.
+            self.cx.templates[old as usize] = Template {
+                name: NONE,
+                implied: true,
+                ..self.cx.templates[old as usize]
+            };
+        }
         Ok(())
     }
 
@@ -318,12 +334,17 @@ impl<'s> Parser<'s, '_, '_> {
                 _ => return Err(self.err(t, "'(' starting a fact or ')'")),
             }
         }
-        // redefinition replaces
+        // a redefinition replaces the old deffacts and, as in CLIPS, moves it last
+        // (which orders the facts `reset` asserts)
         let existing =
             (0..self.cx.st.ndeffacts).find(|&d| self.cx.deffacts[d as usize].name == sym);
         let facts = self.cx.exprs[holder as usize].first;
         match existing {
-            Some(d) => self.cx.deffacts[d as usize].facts = facts,
+            Some(d) => {
+                let n = self.cx.st.ndeffacts as usize;
+                self.cx.deffacts.copy_within(d as usize + 1..n, d as usize);
+                self.cx.deffacts[n - 1] = Deffacts { name: sym, facts };
+            }
             None => {
                 let n = self.cx.st.ndeffacts as usize;
                 if n >= self.cx.deffacts.len() {

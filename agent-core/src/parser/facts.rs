@@ -86,7 +86,7 @@ impl<'s> Parser<'s, '_, '_> {
     }
 
     /// The index of the slot named by token `st` in deftemplate `tmpl`.
-    fn slot_of(&mut self, tmpl: u16, st: Token<'s>) -> PResult<u16> {
+    pub(super) fn slot_of(&mut self, tmpl: u16, st: Token<'s>) -> PResult<u16> {
         let sname = match st.tok {
             Tok::Symbol(s) => s,
             _ => return Err(self.err(st, "a slot name")),

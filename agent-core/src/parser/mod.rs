@@ -16,6 +16,7 @@ pub mod argtypes;
 mod construct;
 mod expr;
 mod facts;
+mod in_use;
 mod rule;
 
 use crate::engine::Core;
@@ -71,6 +72,9 @@ pub struct Parser<'s, 'c, 'e> {
     /// Deftemplate of each LHS pattern of the rule being parsed (NONE when unknown),
     /// so `modify ?f` on the RHS can check slots at parse time.
     pub pat_tmpl: [u16; MAX_PATTERNS],
+    /// The deftemplate slot whose LHS constraint is being parsed (None for ordered
+    /// facts): literals in it must fit its type and allowed values.
+    pub lhs_slot: Option<crate::template::SlotDef>,
 }
 
 pub type PResult<T> = Result<T, LoadError>;
@@ -94,6 +98,7 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
             join_marks: [0; 64],
             njm: 0,
             pat_tmpl: [NONE; MAX_PATTERNS],
+            lhs_slot: None,
         }
     }
 

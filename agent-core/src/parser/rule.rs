@@ -1,5 +1,6 @@
 //! defrule: LHS conditional elements compiled into alpha nodes and joins, RHS actions.
 
+use super::facts::Violation;
 use super::{PResult, Parser, Scope, VarKind};
 use crate::engine::cap;
 use crate::error::Pool;
@@ -465,6 +466,7 @@ impl<'s> Parser<'s, '_, '_> {
             nfields: 0,
         };
         if self.cx.templates[tmpl as usize].implied {
+            self.lhs_slot = None;
             self.multislot_fields(&mut pb, p, 0, nt)?;
         } else {
             loop {
@@ -473,16 +475,11 @@ impl<'s> Parser<'s, '_, '_> {
                     Tok::RParen => break,
                     Tok::LParen => {
                         let st = self.next();
-                        let sname = match st.tok {
-                            Tok::Symbol(s) => s,
-                            _ => return Err(self.err(st, "a slot name")),
-                        };
-                        let ssym = cap!(self, self.cx.intern(sname))?;
-                        let slot = match self.cx.find_slot(tmpl, ssym) {
-                            Some(s) => s,
-                            None => return Err(self.err(st, "a slot of the template")),
-                        };
-                        if self.cx.slot_def(tmpl, slot).multi {
+                        let slot = self.slot_of(tmpl, st)?;
+                        let def = self.cx.slot_def(tmpl, slot);
+                        // literals in this slot's constraints must fit the slot
+                        self.lhs_slot = Some(def);
+                        if def.multi {
                             self.multislot_fields(&mut pb, p, slot as u8, st)?;
                         } else {
                             let (multi, test) =
@@ -505,6 +502,7 @@ impl<'s> Parser<'s, '_, '_> {
                 }
             }
         }
+        self.lhs_slot = None;
         // share an identical alpha node or make a new one
         let alpha = self.find_or_make_alpha(tmpl, &pb, nt)?;
         let kind = match ctx {
@@ -781,6 +779,17 @@ impl<'s> Parser<'s, '_, '_> {
             }
             _ => match self.literal(t)? {
                 Some(c) => {
+                    if let Some(def) = self.lhs_slot {
+                        if let Some(violation) = self.literal_violation(&def, c) {
+                            let mut e = self.err(t, violation.expected());
+                            e.detail = crate::error::LoadDetail::PatternConstraint {
+                                ce: p + 1,
+                                types: violation == Violation::Type,
+                                slot: def.name,
+                            };
+                            return Err(e);
+                        }
+                    }
                     let this = self.this_field(p, locv, desc)?;
                     self.node2(Op::Eq2, this, c)
                 }
