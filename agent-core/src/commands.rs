@@ -415,7 +415,10 @@ impl Core<'_> {
 
     fn report_rhs_error(&mut self, rule: u16, e: EvalError) {
         let mut b: TextBuf<256> = TextBuf::new();
-        let _ = writeln!(b, "[ERROR] {e}");
+        // a deffunction frame may have printed the error already (see eval.rs)
+        if !core::mem::take(&mut self.st.error_printed) {
+            let _ = writeln!(b, "[ERROR] {e}");
+        }
         let _ = writeln!(
             b,
             "[PRCCODE4] Execution halted during the actions of defrule {}.",
@@ -426,6 +429,10 @@ impl Core<'_> {
 
     /// Prints an evaluation error as CLIPS would report it at the prompt.
     pub fn report_eval_error(&mut self, e: EvalError) {
+        // a deffunction frame may have printed the error already (see eval.rs)
+        if core::mem::take(&mut self.st.error_printed) {
+            return;
+        }
         let mut b: TextBuf<256> = TextBuf::new();
         match e.kind {
             EvalErrorKind::Arity { func } => {

@@ -130,6 +130,14 @@ pub struct State {
     pub return_value: Value,
     pub firing: bool,
     pub eval_depth: u16,
+    /// A run-time error's message was already printed by the deffunction frame it
+    /// unwound first (CLIPS prints it there, before the frames' `[PRCCODE4]` lines);
+    /// the top-level reporter then prints only its own line. Cleared when the report
+    /// is made and when a new top-level evaluation starts.
+    pub error_printed: bool,
+    /// Deffunction named by the last `[PRCCODE4]` line of the error unwinding (an
+    /// evaluation-depth error names only the innermost one, not one per frame).
+    pub error_last_fn: u16,
     /// Template of `(initial-fact)`.
     pub initial_tmpl: u16,
     /// Pattern bindings for network tests (`lhs`) and the firing rule (`rhs`).
@@ -193,6 +201,8 @@ impl State {
             return_value: Value::Void,
             firing: false,
             eval_depth: 0,
+            error_printed: false,
+            error_last_fn: NONE,
             initial_tmpl: NONE,
             lhs_pm: [PatBinding::EMPTY; MAX_PATTERNS],
             rhs_pm: [PatBinding::EMPTY; MAX_PATTERNS],

@@ -106,6 +106,11 @@ pub enum EvalErrorKind {
         func: &'static str,
     },
     UnboundVariable,
+    /// Function calls nested deeper than the evaluator allows (`limit`, the
+    /// `eval::MAX_EVAL_DEPTH`): a runaway recursion, stopped before the Rust stack is.
+    TooDeep {
+        limit: u16,
+    },
     NoSuchFact(i64),
     NoSuchFunction,
     NoSuchTemplate,
@@ -175,6 +180,10 @@ impl fmt::Display for EvalError {
                 write!(f, "division by zero in function {func}")
             }
             EvalErrorKind::UnboundVariable => write!(f, "unbound variable"),
+            EvalErrorKind::TooDeep { limit } => write!(
+                f,
+                "function calls nested deeper than the evaluation depth limit ({limit})"
+            ),
             EvalErrorKind::NoSuchFact(n) => write!(f, "unable to find fact f-{n}"),
             EvalErrorKind::NoSuchFunction => write!(f, "no such function"),
             EvalErrorKind::NoSuchTemplate => write!(f, "no such template"),

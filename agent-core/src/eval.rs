@@ -174,8 +174,15 @@ impl Core<'_> {
     }
 
     fn call(&mut self, e: u16) -> Result<Value, EvalError> {
+        if self.st.eval_depth == 0 {
+            // a new top-level evaluation: no error of it has been printed yet
+            self.st.error_printed = false;
+            self.st.error_last_fn = NONE;
+        }
         if self.st.eval_depth >= MAX_EVAL_DEPTH {
-            return Err(EvalError::other("function calls nested too deeply"));
+            return Err(EvalError::new(EvalErrorKind::TooDeep {
+                limit: MAX_EVAL_DEPTH,
+            }));
         }
         self.st.eval_depth += 1;
         let sp = self.st.sp;
@@ -257,9 +264,42 @@ impl Core<'_> {
             self.st.returning = false;
             self.st.return_value
         } else {
-            r?
+            match r {
+                Ok(v) => v,
+                Err(e) => {
+                    self.report_deffunction_error(func, e);
+                    return Err(e);
+                }
+            }
         };
         r.map(|_| v)
+    }
+
+    /// As CLIPS does, the first frame an error unwinds prints the error, and every
+    /// deffunction frame says it halted; the caller's report adds the rule or command.
+    fn report_deffunction_error(&mut self, func: u16, e: EvalError) {
+        if e.kind == EvalErrorKind::Exit {
+            return;
+        }
+        if !self.st.error_printed {
+            self.report_eval_error(e);
+            self.st.error_printed = true;
+        }
+        // a runaway recursion names the function where the limit was hit, once
+        let deep = matches!(e.kind, EvalErrorKind::TooDeep { .. });
+        if deep && self.st.error_last_fn != NONE {
+            return;
+        }
+        self.st.error_last_fn = func;
+        let mut b: crate::value::TextBuf<160> = crate::value::TextBuf::new();
+        let _ = core::fmt::Write::write_fmt(
+            &mut b,
+            format_args!(
+                "[PRCCODE4] Execution halted during the actions of deffunction {}.\n",
+                self.sym_text(self.funcs[func as usize].name)
+            ),
+        );
+        self.write(crate::host::router::WERROR, b.as_str());
     }
 }
 

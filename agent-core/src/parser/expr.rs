@@ -50,6 +50,10 @@ impl<'s> Parser<'s, '_, '_> {
 
     /// Reads one expression.
     pub fn parse_expr(&mut self) -> PResult<u16> {
+        self.nested(|p| p.parse_expr_inner())
+    }
+
+    fn parse_expr_inner(&mut self) -> PResult<u16> {
         let t = self.next();
         if let Some(c) = self.literal(t)? {
             return Ok(c);

@@ -247,6 +247,10 @@ impl<'s> Parser<'s, '_, '_> {
 
     /// One conditional element.
     fn ce(&mut self, b: &mut Build, ctx: Ctx) -> PResult<()> {
+        self.nested(|p| p.ce_inner(b, ctx))
+    }
+
+    fn ce_inner(&mut self, b: &mut Build, ctx: Ctx) -> PResult<()> {
         let t = self.next();
         match t.tok {
             Tok::SfVar(fv) => {
@@ -732,6 +736,10 @@ impl<'s> Parser<'s, '_, '_> {
     }
 
     fn term(&mut self, p: u8, locv: u16, desc: u16, multi: &mut bool) -> PResult<u16> {
+        self.nested(|parser| parser.term_inner(p, locv, desc, multi))
+    }
+
+    fn term_inner(&mut self, p: u8, locv: u16, desc: u16, multi: &mut bool) -> PResult<u16> {
         let t = self.next();
         match t.tok {
             Tok::Tilde => {
