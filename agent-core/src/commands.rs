@@ -556,6 +556,11 @@ impl Core<'_> {
                 b,
                 "\n[CSTRCPSR4] Cannot redefine {construct} {tok} while it is in use."
             );
+        } else if e.detail == LoadDetail::ReplacesBuiltin {
+            let _ = writeln!(
+                b,
+                "[DFFNXPSR2] Deffunctions are not allowed to replace external functions."
+            );
         } else if e.detail == LoadDetail::MixedVariable {
             let name = tok.trim_start_matches('$').trim_start_matches('?');
             let _ = writeln!(

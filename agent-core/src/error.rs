@@ -272,6 +272,8 @@ pub enum LoadDetail {
     InUse {
         construct: &'static str,
     },
+    /// `[DFFNXPSR2]`: a deffunction named like a builtin function.
+    ReplacesBuiltin,
     /// `[ANALYSIS3]`: one LHS variable used both as `?x` and `$?x` (the offending token).
     MixedVariable,
 }

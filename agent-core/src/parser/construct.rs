@@ -368,7 +368,9 @@ impl<'s> Parser<'s, '_, '_> {
         if crate::builtins::lookup(name).is_some()
             || matches!(name, "if" | "while" | "bind" | "assert" | "modify")
         {
-            return Err(self.err(nt, "a name that is not a builtin function"));
+            let mut e = self.err(nt, "a name that is not a builtin function");
+            e.detail = LoadDetail::ReplacesBuiltin;
+            return Err(e);
         }
         let sym = cap!(self, self.cx.intern(name))?;
         self.skip_comment();
