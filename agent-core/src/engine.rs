@@ -57,6 +57,37 @@ impl Stats {
     pub fn get(&self, pool: Pool) -> (u32, u32) {
         (self.used[pool as usize], self.capacity[pool as usize])
     }
+
+    /// Bytes the pool's storage takes in the engine (capacity times entry size).
+    pub fn bytes(&self, pool: Pool) -> usize {
+        self.capacity[pool as usize] as usize * entry_bytes(pool)
+    }
+}
+
+/// Bytes one entry of `pool` occupies in an engine, its hash-bucket index included, so
+/// hosts can turn capacities and high-water marks into RAM figures.
+pub const fn entry_bytes(pool: Pool) -> usize {
+    use core::mem::size_of;
+    match pool {
+        // a fact and its duplicate-index bucket head
+        Pool::Facts => size_of::<Fact>() + size_of::<u16>(),
+        Pool::FactValues | Pool::EvalStack | Pool::Scratch => size_of::<Value>(),
+        // a symbol entry and its hash bucket head
+        Pool::Symbols => size_of::<SymEntry>() + size_of::<u16>(),
+        Pool::SymbolBytes => 1,
+        Pool::Templates => size_of::<Template>(),
+        Pool::SlotDefs => size_of::<SlotDef>(),
+        Pool::Rules => size_of::<Rule>(),
+        Pool::AlphaNodes => size_of::<AlphaNode>(),
+        Pool::Joins => size_of::<Join>(),
+        Pool::Tokens => size_of::<Token>(),
+        Pool::Activations => size_of::<Activation>(),
+        Pool::Functions => size_of::<Deffunction>(),
+        Pool::Globals => size_of::<Global>(),
+        Pool::Exprs => size_of::<Expr>(),
+        Pool::Deffacts => size_of::<Deffacts>(),
+        Pool::ExternalFns => size_of::<ExternalEntry>(),
+    }
 }
 
 /// Marks of the append-only pools, to undo a construct that failed halfway.
@@ -153,6 +184,9 @@ pub struct State {
     pub rng_glibc: [i32; 34],
     pub rng_pos: u8,
     pub rng_seeded: bool,
+    /// Keep each rule's source text for `ppdefrule` (CLIPS's pretty-print forms). A
+    /// robot image that never lists its rules turns this off to save the symbol bytes.
+    pub keep_pp_forms: bool,
 }
 
 impl State {
@@ -214,6 +248,7 @@ impl State {
             rng_glibc: [0; 34],
             rng_pos: 0,
             rng_seeded: false,
+            keep_pp_forms: true,
         }
     }
 }
@@ -884,6 +919,22 @@ mod size_tests {
     extern crate std;
     use super::*;
     use core::mem::size_of;
+
+    /// The pools' bytes as `Stats::bytes` reports them account for the whole engine but
+    /// its scalar state (and padding): hosts size their RAM from these figures.
+    #[test]
+    fn pool_bytes_account_for_the_engine() {
+        let engine = std::boxed::Box::new(SmallEngine::new());
+        let stats = engine.stats();
+        let pools: usize = Pool::ALL.iter().map(|&p| stats.bytes(p)).sum();
+        let whole = size_of::<SmallEngine>();
+        assert!(pools <= whole, "pools {pools} > engine {whole}");
+        assert!(
+            whole - pools <= size_of::<State>() + 16,
+            "engine {whole} B, pools {pools} B: {} B unaccounted",
+            whole - pools - size_of::<State>()
+        );
+    }
 
     /// Pins the per-entry sizes that decide the image's RAM (see the crate docs).
     #[test]

@@ -77,7 +77,7 @@ pub mod testutil;
 
 pub use api::{ExternalFn, FactId, Usage};
 pub use builtins::{Args, BuiltinFn};
-pub use engine::{Core, DefaultEngine, Engine, SmallEngine, Stats};
+pub use engine::{entry_bytes, Core, DefaultEngine, Engine, SmallEngine, Stats};
 pub use error::{
     CapacityError, EngineError, EvalError, EvalErrorKind, HostIoError, LoadError, Pool,
 };

@@ -103,11 +103,13 @@ impl<'s> Parser<'s, '_, '_> {
                 break;
             }
         }
-        // source text for ppdefrule
-        let end = self.lex.pos();
-        let text = &self.lex.source()[start..end];
-        if let Ok(id) = self.cx.intern(text) {
-            self.cx.rules[first_new_rule as usize].text = id;
+        // source text for ppdefrule, unless the host chose to drop pretty-print forms
+        if self.cx.st.keep_pp_forms {
+            let end = self.lex.pos();
+            let text = &self.lex.source()[start..end];
+            if let Ok(id) = self.cx.intern(text) {
+                self.cx.rules[first_new_rule as usize].text = id;
+            }
         }
         // a redefinition replaces the old rule
         for r in 0..first_new_rule {
