@@ -19,6 +19,67 @@ fn only_blank(s: &str) -> bool {
     Lexer::new(s).next_token().tok == Tok::Eof
 }
 
+/// Prints CLIPS's line for a construct being defined: `Defining KIND: NAME` (with the
+/// join marks of a defrule) when compilations are watched, else a progress mark.
+/// A construct that failed gets the line without marks, as CLIPS prints it before the
+/// error. Returns whether a progress mark was printed.
+fn announce_construct(p: &mut Parser<'_, '_, '_>, text: &str, defined: bool) -> bool {
+    let kw = p.construct;
+    let mut b: TextBuf<256> = TextBuf::new();
+    let mut progress = false;
+    if p.cx.st.watch & watch::COMPILATIONS != 0 {
+        let _ = write!(b, "Defining {kw}: {}", construct_name(text));
+        if kw == "defrule" {
+            let _ = b.write_char(' ');
+            if defined {
+                for &m in &p.join_marks[..p.njm] {
+                    let _ = write!(b, "{}j", m as char);
+                }
+            }
+        }
+        let _ = b.write_char('\n');
+    } else if defined {
+        // CLIPS's progress marks when compilations are not watched
+        let _ = b.write_char(match kw {
+            "deftemplate" => '%',
+            "defrule" => '*',
+            "deffunction" => '!',
+            "defglobal" => ':',
+            "deffacts" => '$',
+            _ => '#',
+        });
+        progress = true;
+    }
+    p.cx.write(router::STDOUT, b.as_str());
+    progress
+}
+
+/// After a bad construct, skips to the next `(` that starts a construct (as CLIPS's
+/// loader does), or to the end. Always moves past `failed_at`, where the bad item began.
+fn skip_to_next_construct(p: &mut Parser<'_, '_, '_>, failed_at: usize) {
+    loop {
+        let before = p.save();
+        let t = p.next();
+        match t.tok {
+            Tok::Eof => {
+                p.restore(before);
+                return;
+            }
+            Tok::LParen if t.start > failed_at => {
+                if let Tok::Symbol(
+                    "deftemplate" | "defrule" | "deffacts" | "deffunction" | "defglobal"
+                    | "defmodule",
+                ) = p.peek().tok
+                {
+                    p.restore(before);
+                    return;
+                }
+            }
+            _ => {}
+        }
+    }
+}
+
 /// Name of the construct starting at `s` (`(defrule NAME ...`); for defglobal the
 /// first variable's name.
 fn construct_name(s: &str) -> &str {
@@ -595,52 +656,72 @@ impl Core<'_> {
     /// Loads constructs from text (`load`): constructs before a bad one stay.
     /// Returns the number of constructs defined.
     pub fn load_text(&mut self, text: &str, verbose: bool) -> Result<usize, LoadError> {
+        self.load_constructs(text, verbose, None)
+    }
+
+    /// `load` as CLIPS does it: each bad construct is reported (CLIPS's message and
+    /// `--> SOURCE:LINE:COL: expected ...`), leaves nothing behind, and loading goes on
+    /// at the next construct. Returns whether every construct loaded.
+    pub fn load_text_reporting(&mut self, text: &str, verbose: bool, source: &str) -> bool {
+        self.load_constructs(text, verbose, Some(source)).is_ok()
+    }
+
+    /// Loads constructs until the end of `text`. Without a `source` the first error
+    /// ends the load and is returned; with one, errors are reported and skipped, and
+    /// the first is returned at the end.
+    fn load_constructs(
+        &mut self,
+        text: &str,
+        verbose: bool,
+        source: Option<&str>,
+    ) -> Result<usize, LoadError> {
         let mut n = 0;
         let mut progress = false;
+        let mut first_error = None;
         let mut p = Parser::new(self, text);
         loop {
             let start = p.offset();
-            match p.next_item() {
+            let cp = p.cx.checkpoint();
+            let item = match p.next_item() {
+                Ok(Item::Command(_)) => {
+                    // not a construct: drop what its parse built
+                    p.cx.rollback(cp);
+                    let t = p.peek();
+                    Err(p.err(t, "a construct (load accepts constructs only)"))
+                }
+                item => item,
+            };
+            match item {
                 Ok(Item::End) => {
                     if progress {
                         p.cx.write(router::STDOUT, "\n");
                     }
-                    return Ok(n);
+                    return match first_error {
+                        Some(e) => Err(e),
+                        None => Ok(n),
+                    };
                 }
                 Ok(Item::Construct) => {
                     n += 1;
                     if verbose {
-                        let kw = p.construct;
-                        let mut b: TextBuf<256> = TextBuf::new();
-                        if p.cx.st.watch & watch::COMPILATIONS != 0 {
-                            let _ = write!(b, "Defining {kw}: {}", construct_name(&text[start..]));
-                            if kw == "defrule" {
-                                let _ = b.write_char(' ');
-                                for &m in &p.join_marks[..p.njm] {
-                                    let _ = write!(b, "{}j", m as char);
-                                }
-                            }
-                            let _ = b.write_char('\n');
-                        } else {
-                            // CLIPS's progress marks when compilations are not watched
-                            let _ = b.write_char(match kw {
-                                "deftemplate" => '%',
-                                "defrule" => '*',
-                                "deffunction" => '!',
-                                "defglobal" => ':',
-                                "deffacts" => '$',
-                                _ => '#',
-                            });
-                            progress = true;
-                        }
-                        p.cx.write(router::STDOUT, b.as_str());
+                        progress |= announce_construct(&mut p, &text[start..], true);
                     }
                 }
-                Ok(Item::Command(_)) => {
-                    let t = p.peek();
-                    return Err(p.err(t, "a construct (load accepts constructs only)"));
+                Ok(Item::Command(_)) => {}
+                Err(e) => {
+                    let Some(source) = source else {
+                        return Err(e);
+                    };
+                    if verbose && p.construct != "command" {
+                        progress |= announce_construct(&mut p, &text[start..], false);
+                    }
+                    // positions are within `text`, whatever batch line called `load`
+                    let line_base = core::mem::take(&mut p.cx.st.line_base);
+                    p.cx.report_load_error(source, text, &e);
+                    p.cx.st.line_base = line_base;
+                    first_error.get_or_insert(e);
+                    skip_to_next_construct(&mut p, start);
                 }
-                Err(e) => return Err(e),
             }
         }
     }

@@ -512,3 +512,77 @@ fn recursion_that_fills_the_evaluation_stack_names_the_pool() {
         agent_core::Value::Int(3)
     );
 }
+
+/// A host with one file, for `(load ...)`.
+struct OneFile {
+    name: &'static str,
+    text: &'static str,
+    out: String,
+}
+
+impl Host for OneFile {
+    fn write_str(&mut self, _router: &str, text: &str) {
+        self.out.push_str(text);
+    }
+    fn read_file(&mut self, path: &str, buf: &mut [u8]) -> Result<usize, agent_core::HostIoError> {
+        if path != self.name || self.text.len() > buf.len() {
+            return Err(agent_core::HostIoError::NotFound);
+        }
+        buf[..self.text.len()].copy_from_slice(self.text.as_bytes());
+        Ok(self.text.len())
+    }
+}
+
+/// `(load FILE)` as in CLIPS: every bad construct is reported with the file, line and
+/// column, leaves nothing behind, and loading goes on with the next construct.
+#[test]
+fn load_reports_every_bad_construct_and_goes_on() {
+    let mut e = Box::new(SmallEngine::new());
+    let h = &mut OneFile {
+        name: "robots.clp",
+        text: "(deftemplate robot (slot speed (type INTEGER)))\n\
+               (defrule ok => )\n\
+               (defrule bad\n  (robot (speed fast))\n  =>)\n\
+               (defrule after => )\n\
+               (defrule bad2 (robot (sped 1)) =>)\n\
+               (deffunction twice (?x) (* 2 ?x))\n",
+        out: String::new(),
+    };
+    e.exec_command(h, "(load robots.clp)", "cmd");
+    assert!(
+        h.out
+            .contains("--> robots.clp:4:17: expected a value of the slot's type")
+            && h.out
+                .contains("--> robots.clp:7:23: expected a slot of the template"),
+        "{}",
+        h.out
+    );
+    assert!(h.out.trim_end().ends_with("FALSE"), "{}", h.out);
+    h.out.clear();
+    e.exec_command(h, "(list-defrules)", "cmd");
+    assert_eq!(h.out, "ok\nafter\nFor a total of 2 defrules.\n");
+    assert_eq!(
+        e.eval_str(h, "(twice 21)")
+            .expect("the construct after the errors loaded"),
+        agent_core::Value::Int(42)
+    );
+}
+
+/// Our geometry builtins go beyond CLIPS, so a CLIPS program may define a deffunction
+/// of the same name (`rules/clips/stubs.clp` does); CLIPS's own functions stay
+/// reserved.
+#[test]
+fn a_deffunction_may_take_the_name_of_an_extension_but_not_of_a_clips_function() {
+    let mut e = Box::new(SmallEngine::new());
+    let h = &mut Capture::default();
+    e.load_str(h, "stub.clp", "(deffunction distance (?a ?b ?c ?d) 7)")
+        .expect("distance is not a CLIPS function");
+    assert_eq!(
+        e.eval_str(h, "(distance 0 0 3 4)").expect("eval"),
+        agent_core::Value::Int(7)
+    );
+    let err = e
+        .load_str(h, "max.clp", "(deffunction max (?a ?b) ?a)")
+        .unwrap_err();
+    assert_eq!((err.line, err.col), (1, 14));
+}

@@ -320,7 +320,10 @@ fn load_impl(cx: &mut Core<'_>, a: Args, quiet: bool) -> Result<Value, EvalError
             return Ok(Value::Sym(SYM_FALSE));
         }
     };
-    let ok = cx.load_text(text, !quiet).is_ok();
+    let p = cx.arg_lexeme(a, 0, "load")?;
+    let mut path: TextBuf<256> = TextBuf::new();
+    let _ = path.write_str(cx.sym_text(p));
+    let ok = cx.load_text_reporting(text, !quiet, path.as_str());
     Ok(Value::Sym(if ok { SYM_TRUE } else { SYM_FALSE }))
 }
 

@@ -365,7 +365,13 @@ impl<'s> Parser<'s, '_, '_> {
             Tok::Symbol(s) => s,
             _ => return Err(self.err(nt, "a deffunction name")),
         };
-        if crate::builtins::lookup(name).is_some()
+        // CLIPS's own functions cannot be replaced; our geometry extensions can, since a
+        // CLIPS program may define a deffunction of that name (rules/clips/stubs.clp
+        // does), and a deffunction is looked up before a builtin
+        let extension = crate::builtins::geometry::FUNCS
+            .iter()
+            .any(|b| b.name == name);
+        if (crate::builtins::lookup(name).is_some() && !extension)
             || matches!(name, "if" | "while" | "bind" | "assert" | "modify")
         {
             let mut e = self.err(nt, "a name that is not a builtin function");
