@@ -519,4 +519,6 @@ differential_programs! {
     p098_exists_not_same_fact => "098-exists-not-same-fact",
     p099_alpha_network_order => "099-alpha-network-order",
     p100_hashed_memory_order => "100-hashed-memory-order",
+    p150_bind_lhs_variable => "150-bind-lhs-variable",
+    p151_redefinitions => "151-redefinitions",
 }
