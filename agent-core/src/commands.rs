@@ -617,6 +617,31 @@ impl Core<'_> {
                 b,
                 "\n[CSTRCPSR4] Cannot redefine {construct} {tok} while it is in use."
             );
+        } else if let LoadDetail::AttributeTwice { attribute } = e.detail {
+            let _ = writeln!(
+                b,
+                "\n[PRNTUTIL5] The {attribute} attribute has already been parsed."
+            );
+        } else if let LoadDetail::AllowedCombined { first, second } = e.detail {
+            let _ = writeln!(
+                b,
+                "\n[CSTRNPSR3] The {second} attribute cannot be used\nin conjunction with the {first} attribute."
+            );
+        } else if let LoadDetail::AllowedValueType { attribute } = e.detail {
+            let _ = writeln!(
+                b,
+                "\n[CSTRNPSR4] Value does not match the expected type for the {attribute} attribute"
+            );
+        } else if let LoadDetail::TypeConflict { attribute } = e.detail {
+            let _ = writeln!(
+                b,
+                "\n[CSTRNPSR1] The type attribute conflicts with the {attribute} attribute."
+            );
+        } else if let LoadDetail::FactIndexInRule { command } = e.detail {
+            let _ = writeln!(
+                b,
+                "\n[TMPLTFUN1] Fact-indexes can only be used by {command} as a top level command."
+            );
         } else if e.detail == LoadDetail::ReplacesBuiltin {
             let _ = writeln!(
                 b,

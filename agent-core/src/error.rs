@@ -272,6 +272,28 @@ pub enum LoadDetail {
     InUse {
         construct: &'static str,
     },
+    /// `[PRNTUTIL5]`: a slot attribute given twice (at its second name).
+    AttributeTwice {
+        attribute: &'static str,
+    },
+    /// `[CSTRNPSR3]`: `allowed-values` combined with another `allowed-...` attribute.
+    AllowedCombined {
+        first: &'static str,
+        second: &'static str,
+    },
+    /// `[CSTRNPSR4]`: a value of another type in an `allowed-...` attribute.
+    AllowedValueType {
+        attribute: &'static str,
+    },
+    /// `[CSTRNPSR1]`: the slot's `type` excludes an allowed value (at the value).
+    TypeConflict {
+        attribute: &'static str,
+    },
+    /// `[TMPLTFUN1]`: `modify`/`duplicate` (`command`) of a fact index inside a rule or
+    /// deffunction.
+    FactIndexInRule {
+        command: &'static str,
+    },
     /// `[DFFNXPSR2]`: a deffunction named like a builtin function.
     ReplacesBuiltin,
     /// `[ANALYSIS3]`: one LHS variable used both as `?x` and `$?x` (the offending token).

@@ -555,4 +555,9 @@ malformed_programs! {
     e072_deffunction_named_like_builtin => "072-deffunction-named-like-builtin",
     e073_default_dynamic_wrong_type => "073-default-dynamic-wrong-type",
     e074_deffunction_literal_argument_type => "074-deffunction-literal-argument-type",
+    e075_slot_attribute_twice => "075-slot-attribute-twice",
+    e076_type_conflicts_with_allowed_values => "076-type-conflicts-with-allowed-values",
+    e077_allowed_symbols_with_a_number => "077-allowed-symbols-with-a-number",
+    e078_allowed_values_combined => "078-allowed-values-combined",
+    e079_modify_fact_index_in_rule => "079-modify-fact-index-in-rule",
 }

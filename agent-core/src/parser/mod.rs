@@ -18,6 +18,7 @@ mod expr;
 mod facts;
 mod in_use;
 mod rule;
+mod slot;
 
 use crate::engine::Core;
 use crate::error::{CapacityError, LoadError};
