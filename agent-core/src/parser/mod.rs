@@ -84,6 +84,9 @@ pub struct Parser<'s, 'c, 'e> {
     pub lhs_slot: Option<crate::template::SlotDef>,
     /// Current recursion depth of the reader (see `MAX_NESTING`).
     depth: u16,
+    /// Conditional elements of the rule so far, numbered as CLIPS numbers them in its
+    /// messages (`CE #N`: patterns and tests in text order, all `or` branches).
+    pub ce_count: u8,
 }
 
 pub type PResult<T> = Result<T, LoadError>;
@@ -109,6 +112,7 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
             pat_tmpl: [NONE; MAX_PATTERNS],
             lhs_slot: None,
             depth: 0,
+            ce_count: 0,
         }
     }
 

@@ -155,6 +155,7 @@ impl<'s> Parser<'s, '_, '_> {
 
     /// One disjunct: LHS (with the current or-choices), RHS, then the network.
     fn rule_body(&mut self, name: SymId, b: &mut Build) -> PResult<u16> {
+        self.ce_count = 0;
         let mut salience = (0i32, NONE);
         // (declare (salience N))
         if self.peek().tok == Tok::LParen {
@@ -352,6 +353,8 @@ impl<'s> Parser<'s, '_, '_> {
                                         self.ce(b, ctx)?;
                                     } else {
                                         self.skip_balanced()?;
+                                        // CLIPS numbers the CEs of every branch
+                                        self.ce_count = self.ce_count.saturating_add(1);
                                     }
                                     branch += 1;
                                 }
@@ -365,6 +368,7 @@ impl<'s> Parser<'s, '_, '_> {
                     }
                     Tok::Symbol("test") => {
                         self.next();
+                        self.ce_count = self.ce_count.saturating_add(1);
                         self.scope = Scope::Lhs;
                         let e = self.parse_expr()?;
                         self.expect_rparen("')' closing test")?;
@@ -447,6 +451,7 @@ impl<'s> Parser<'s, '_, '_> {
             None => cap!(self, self.cx.implied_template(sym))?,
         };
         self.pat_tmpl[p as usize] = tmpl;
+        self.ce_count = self.ce_count.saturating_add(1);
         if let Some((ft, fv)) = factvar {
             self.add_var(
                 ft,
@@ -793,7 +798,7 @@ impl<'s> Parser<'s, '_, '_> {
                         if let Some(violation) = self.literal_violation(&def, c) {
                             let mut e = self.err(t, violation.expected());
                             e.detail = crate::error::LoadDetail::PatternConstraint {
-                                ce: p + 1,
+                                ce: self.ce_count,
                                 types: violation == Violation::Type,
                                 slot: def.name,
                             };
