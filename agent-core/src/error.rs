@@ -122,6 +122,9 @@ pub enum EvalErrorKind {
     External,
     /// `(halt)`/`(exit)` requested; not an error for callers of `run`.
     Exit,
+    /// The message is already printed (a builtin whose CLIPS message names run-time
+    /// details, or a deffunction that added its `[PRCCODE4]` line): evaluation just stops.
+    Reported,
     Other(&'static str),
 }
 
@@ -129,15 +132,22 @@ pub enum EvalErrorKind {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct EvalError {
     pub kind: EvalErrorKind,
+    /// CLIPS's message for it is printed already (by a deffunction it went through, which
+    /// added its `[PRCCODE4]` line); callers only stop.
+    pub reported: bool,
 }
 
 impl EvalError {
     pub const fn new(kind: EvalErrorKind) -> Self {
-        EvalError { kind }
+        EvalError {
+            kind,
+            reported: false,
+        }
     }
     pub const fn other(msg: &'static str) -> Self {
         EvalError {
             kind: EvalErrorKind::Other(msg),
+            reported: false,
         }
     }
     pub const fn wrong_type(func: &'static str, arg: u8, expected: &'static str) -> Self {
@@ -147,6 +157,7 @@ impl EvalError {
                 arg,
                 expected,
             },
+            reported: false,
         }
     }
 }
@@ -155,6 +166,7 @@ impl From<CapacityError> for EvalError {
     fn from(c: CapacityError) -> Self {
         EvalError {
             kind: EvalErrorKind::Capacity(c),
+            reported: false,
         }
     }
 }
@@ -191,6 +203,7 @@ impl fmt::Display for EvalError {
             EvalErrorKind::BadSlotValue { reason } => write!(f, "bad slot value: {reason}"),
             EvalErrorKind::External => write!(f, "external function failed"),
             EvalErrorKind::Exit => write!(f, "exit requested"),
+            EvalErrorKind::Reported => write!(f, "error (already reported)"),
             EvalErrorKind::Other(m) => write!(f, "{m}"),
         }
     }

@@ -174,11 +174,6 @@ impl Core<'_> {
     }
 
     fn call(&mut self, e: u16) -> Result<Value, EvalError> {
-        if self.st.eval_depth == 0 {
-            // a new top-level evaluation: no error of it has been printed yet
-            self.st.error_printed = false;
-            self.st.error_last_fn = NONE;
-        }
         if self.st.eval_depth >= MAX_EVAL_DEPTH {
             return Err(EvalError::new(EvalErrorKind::TooDeep {
                 limit: MAX_EVAL_DEPTH,
@@ -202,7 +197,7 @@ impl Core<'_> {
                     Imp::Eager(f) => {
                         let args = self.push_args(x.first)?;
                         check_arity(b.name, b.min, b.max, args.len)?;
-                        f(self, args)
+                        f(self, args).map_err(|err| self.classify_type_error(x.first, err))
                     }
                 }
             }
@@ -260,46 +255,74 @@ impl Core<'_> {
         self.st.bp = args.base;
         let r = self.eval_chain(df.body);
         self.st.bp = saved_bp;
+        // CLIPS reports an error inside a deffunction where it happens and adds which
+        // deffunction it halted, at every level of nesting.
+        let r = match r {
+            // a runaway recursion names the function where the limit was hit, once,
+            // not once per frame
+            Err(err) if matches!(err.kind, EvalErrorKind::TooDeep { .. }) && err.reported => {
+                Err(err)
+            }
+            Err(mut err)
+                if !matches!(err.kind, EvalErrorKind::Exit | EvalErrorKind::Capacity(_)) =>
+            {
+                self.write_error_message(err);
+                self.write_halted_in("deffunction", df.name);
+                err.reported = true;
+                Err(err)
+            }
+            r => r,
+        };
         let v = if self.st.returning {
             self.st.returning = false;
             self.st.return_value
         } else {
-            match r {
-                Ok(v) => v,
-                Err(e) => {
-                    self.report_deffunction_error(func, e);
-                    return Err(e);
-                }
-            }
+            r?
         };
         r.map(|_| v)
     }
+}
 
-    /// As CLIPS does, the first frame an error unwinds prints the error, and every
-    /// deffunction frame says it halted; the caller's report adds the rule or command.
-    fn report_deffunction_error(&mut self, func: u16, e: EvalError) {
-        if e.kind == EvalErrorKind::Exit {
-            return;
+impl Core<'_> {
+    /// An argument type error of a builtin: CLIPS checks literal arguments while parsing
+    /// (remembered in `literal_error`) and computed ones in the function body, sometimes
+    /// with other type names (`builtins::errors`).
+    fn classify_type_error(&mut self, first_arg: u16, err: EvalError) -> EvalError {
+        let EvalErrorKind::WrongType {
+            func,
+            arg,
+            expected,
+        } = err.kind
+        else {
+            return err;
+        };
+        // find argument `arg` (1-based); unknown when a `$?x` expansion came first
+        let mut node = first_arg;
+        let mut k = 1;
+        while node != NONE && k < arg {
+            if self.exprs[node as usize].op == Op::Expand {
+                node = NONE;
+                break;
+            }
+            node = self.exprs[node as usize].next;
+            k += 1;
         }
-        if !self.st.error_printed {
-            self.report_eval_error(e);
-            self.st.error_printed = true;
+        // format checks its directives' arguments in its body, literal or not
+        let literal = node != NONE
+            && !(func == "format" && arg > 2)
+            && matches!(
+                self.exprs[node as usize].op,
+                Op::Int | Op::Float | Op::Sym | Op::Str
+            );
+        self.st.literal_error = literal;
+        if literal {
+            return err;
         }
-        // a runaway recursion names the function where the limit was hit, once
-        let deep = matches!(e.kind, EvalErrorKind::TooDeep { .. });
-        if deep && self.st.error_last_fn != NONE {
-            return;
-        }
-        self.st.error_last_fn = func;
-        let mut b: crate::value::TextBuf<160> = crate::value::TextBuf::new();
-        let _ = core::fmt::Write::write_fmt(
-            &mut b,
-            format_args!(
-                "[PRCCODE4] Execution halted during the actions of deffunction {}.\n",
-                self.sym_text(self.funcs[func as usize].name)
-            ),
-        );
-        self.write(crate::host::router::WERROR, b.as_str());
+        EvalError::wrong_type(
+            func,
+            arg,
+            builtins::errors::runtime_type_name(func, expected),
+        )
     }
 }
 

@@ -506,7 +506,18 @@ fn recursion_that_fills_the_evaluation_stack_names_the_pool() {
         }
         other => panic!("expected the evaluation stack to run out, got {other:?}"),
     }
-    assert!(h.0.contains("deffunction wide"), "{}", h.0);
+    // at the prompt the report names the pool and its capacity
+    h.0.clear();
+    e.exec_command(
+        h,
+        "(wide 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20)",
+        "cmd",
+    );
+    assert!(
+        h.0.contains("evaluation stack") && h.0.contains("128"),
+        "{}",
+        h.0
+    );
     assert_eq!(
         e.eval_str(h, "(+ 1 2)").expect("still evaluates"),
         agent_core::Value::Int(3)

@@ -325,11 +325,19 @@ fn retract(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
                 let n = match v {
                     Value::Fact(r) => r.num as i64,
                     Value::Int(n) => n,
+                    // CLIPS's restriction names these for a float or a string
+                    Value::Sym(_) => {
+                        return Err(EvalError::wrong_type(
+                            "retract",
+                            i as u8 + 1,
+                            "fact-address, fact-index, or the symbol *",
+                        ))
+                    }
                     _ => {
                         return Err(EvalError::wrong_type(
                             "retract",
                             i as u8 + 1,
-                            "fact-address or integer",
+                            "fact-address, integer, or symbol",
                         ))
                     }
                 };

@@ -97,6 +97,11 @@ impl Player {
         Ok(player)
     }
 
+    /// The engine's pool high-water marks and capacities (for the benchmark).
+    pub fn stats(&self) -> agent_core::Stats {
+        self.engine.stats()
+    }
+
     fn load(&mut self, name: &str, text: &str) -> Result<(), SimError> {
         self.engine
             .load_str(&mut self.host, name, text)

@@ -4,8 +4,9 @@
 //! the end, the result read back from the facts. The same steps as the host's `sim`
 //! (host-shim `sim::game`), so the score must be the same; CI compares them.
 
+use agent_core::host::{router, RouterWriter};
 use agent_core::value::TextBuf;
-use agent_core::{Engine, EngineError, Host, Pool, Stats, ValueRef};
+use agent_core::{Engine, Host, Pool, Stats, ValueRef};
 use core::fmt::{self, Write};
 use rules::setup::{fact_lines, GameSetup};
 use rules::Strategy;
@@ -115,23 +116,13 @@ impl EndReason {
     }
 }
 
-/// A step of the game that failed, with the engine's error.
+/// A step of the game that failed. The engine's own message went to the host's error
+/// router, as CLIPS prints its errors; [`QuietHost`] keeps its start.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct GameError {
     pub step: &'static str,
     /// The file being loaded, for load errors.
     pub file: &'static str,
-    /// `None` when the setup text did not fit its buffer.
-    pub cause: Option<EngineError>,
-}
-
-impl GameError {
-    fn new(step: &'static str, file: &'static str, cause: impl Into<EngineError>) -> GameError {
-        GameError {
-            step,
-            file,
-            cause: Some(cause.into()),
-        }
-    }
 }
 
 impl fmt::Display for GameError {
@@ -140,11 +131,24 @@ impl fmt::Display for GameError {
         if !self.file.is_empty() {
             write!(f, " {}", self.file)?;
         }
-        match &self.cause {
-            Some(cause) => write!(f, ": {cause}"),
-            None => write!(f, ": the setup text does not fit its buffer"),
-        }
+        Ok(())
     }
+}
+
+/// Reports `cause` on the host's error router and names the failed step.
+fn fail(
+    host: &mut QuietHost,
+    step: &'static str,
+    file: &'static str,
+    cause: &dyn fmt::Display,
+) -> GameError {
+    let mut errors = RouterWriter {
+        host,
+        router: router::WERROR,
+    };
+    // RouterWriter never fails.
+    let _ = writeln!(errors, "{cause}");
+    GameError { step, file }
 }
 
 /// Plays the seeded game in `engine` (fresh from `ImageEngine::new()`).
@@ -153,27 +157,23 @@ pub fn play(engine: &mut ImageEngine, host: &mut QuietHost) -> Result<GameResult
     for file in rules::game_files(STRATEGY) {
         engine
             .load_str(host, file.name, file.text)
-            .map_err(|e| GameError::new("load", file.name, e))?;
+            .map_err(|e| fail(host, "load", file.name, &e))?;
     }
     let mut setup_text: TextBuf<2048> = TextBuf::new();
     GameSetup::for_seed(SEED)
         .write_clips(&mut setup_text)
-        .map_err(|_| GameError {
-            step: "setup",
-            file: "",
-            cause: None,
-        })?;
+        .map_err(|_| fail(host, "setup", "", &"the setup text does not fit 2048 bytes"))?;
     engine
         .reset(host)
-        .map_err(|e| GameError::new("reset", "", e))?;
+        .map_err(|e| fail(host, "reset", "", &e))?;
     for fact in fact_lines(setup_text.as_str()) {
         engine
             .assert_str(host, fact)
-            .map_err(|e| GameError::new("assert setup", "", e))?;
+            .map_err(|e| fail(host, "assert setup", "", &e))?;
     }
     let fired = engine
         .run(host, Some(FIRE_LIMIT))
-        .map_err(|e| GameError::new("run", "", e))?;
+        .map_err(|e| fail(host, "run", "", &e))?;
     Ok(read_result(engine, fired))
 }
 
