@@ -726,14 +726,14 @@ impl Core<'_> {
         let mut n = 0;
         let mut p = Parser::new(self, text);
         loop {
-            let start = p.offset();
+            let first = p.peek();
+            let start = first.start;
             let cp = p.cx.checkpoint();
             let item = match p.next_item() {
                 Ok(Item::Command(_)) => {
-                    // not a construct: drop what its parse built
+                    // not a construct: drop what its parse built, report where it began
                     p.cx.rollback(cp);
-                    let t = p.peek();
-                    Err(p.err(t, "a construct (load accepts constructs only)"))
+                    Err(p.err(first, "a construct (load accepts constructs only)"))
                 }
                 item => item,
             };

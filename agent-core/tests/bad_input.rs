@@ -90,6 +90,13 @@ const CASES: &[(&str, &str, u32, u32, &str)] = &[
         216,
         "at most 200 levels of nesting",
     ),
+    (
+        "a command where a construct belongs",
+        "; robots to start with\n(assert (robot (name r9)))\n",
+        2,
+        1,
+        "a construct",
+    ),
     // unknown template or slot
     (
         "unknown template",
