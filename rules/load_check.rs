@@ -6,7 +6,7 @@
 //! `tests/load_check.rs`, which shows that broken texts are caught. It runs on the host
 //! with std; the `rules` crate itself stays `no_std` and does not contain it.
 
-use agent_core::{DefaultEngine, Host};
+use agent_core::{DefaultEngine, EvalError, Host, Value};
 use std::fmt;
 
 /// The engine is about 2 MB and `DefaultEngine::new` may build it on the stack before
@@ -42,13 +42,26 @@ impl Host for Silent {
     fn write_str(&mut self, _router: &str, _text: &str) {}
 }
 
+/// A host function the rule files may call: name, least and most arguments (None:
+/// any number).
+pub type HostFunction = (&'static str, u8, Option<u8>);
+
 /// Loads `files` (name, text) into one fresh engine in the given order, as a host
 /// does; the first file that does not load is the error.
 pub fn check_load(files: &[(String, String)]) -> Result<(), BadRuleFile> {
+    check_load_with(files, &[])
+}
+
+/// `check_load` with stand-ins registered for the host's functions first, so calls
+/// of them parse (and are checked for their number of arguments).
+pub fn check_load_with(
+    files: &[(String, String)],
+    host_functions: &[HostFunction],
+) -> Result<(), BadRuleFile> {
     std::thread::scope(|scope| {
         let worker = std::thread::Builder::new()
             .stack_size(ENGINE_STACK)
-            .spawn_scoped(scope, || load_all(files))
+            .spawn_scoped(scope, || load_all(files, host_functions))
             .map_err(|e| no_position(format!("cannot start the checking thread: {e}")))?;
         worker
             .join()
@@ -65,9 +78,22 @@ fn no_position(message: String) -> BadRuleFile {
     }
 }
 
-fn load_all(files: &[(String, String)]) -> Result<(), BadRuleFile> {
+/// What a stand-in returns: loading never calls it.
+fn stand_in(_cx: &mut agent_core::Core<'_>, _args: agent_core::Args) -> Result<Value, EvalError> {
+    Ok(Value::Void)
+}
+
+fn load_all(
+    files: &[(String, String)],
+    host_functions: &[HostFunction],
+) -> Result<(), BadRuleFile> {
     let mut engine = Box::new(DefaultEngine::new());
     let host = &mut Silent;
+    for &(name, min, max) in host_functions {
+        engine
+            .register_function(name, min, max, stand_in)
+            .map_err(|e| no_position(format!("cannot register host function {name}: {e}")))?;
+    }
     for (name, text) in files {
         if let Err(e) = engine.load_str(host, name, text) {
             let message = match e.capacity {

@@ -740,6 +740,13 @@ impl Core<'_> {
                 "\n[CSTRNCHK1] An expression found in the {attribute} attribute\ndoes not match the allowed {what} for slot {}.",
                 self.sym_text(slot)
             );
+        } else if let LoadDetail::PatternConstraint { ce, types, slot } = e.detail {
+            let what = if types { "types" } else { "values" };
+            let _ = writeln!(
+                b,
+                "\n[CSTRNCHK1] A literal restriction value found in CE #{ce}\ndoes not match the allowed {what} for slot {}.",
+                self.sym_text(slot)
+            );
         } else if let LoadDetail::SingleSlot { slot } = e.detail {
             let _ = writeln!(
                 b,
@@ -761,6 +768,41 @@ impl Core<'_> {
             let _ = writeln!(
                 b,
                 "[ARGACCES5] Function {func} expected argument #{arg} to be of type {expected}"
+            );
+        } else if let LoadDetail::InUse { construct } = e.detail {
+            let _ = writeln!(
+                b,
+                "\n[CSTRCPSR4] Cannot redefine {construct} {tok} while it is in use."
+            );
+        } else if let LoadDetail::AttributeTwice { attribute } = e.detail {
+            let _ = writeln!(
+                b,
+                "\n[PRNTUTIL5] The {attribute} attribute has already been parsed."
+            );
+        } else if let LoadDetail::AllowedCombined { first, second } = e.detail {
+            let _ = writeln!(
+                b,
+                "\n[CSTRNPSR3] The {second} attribute cannot be used\nin conjunction with the {first} attribute."
+            );
+        } else if let LoadDetail::AllowedValueType { attribute } = e.detail {
+            let _ = writeln!(
+                b,
+                "\n[CSTRNPSR4] Value does not match the expected type for the {attribute} attribute"
+            );
+        } else if let LoadDetail::TypeConflict { attribute } = e.detail {
+            let _ = writeln!(
+                b,
+                "\n[CSTRNPSR1] The type attribute conflicts with the {attribute} attribute."
+            );
+        } else if let LoadDetail::FactIndexInRule { command } = e.detail {
+            let _ = writeln!(
+                b,
+                "\n[TMPLTFUN1] Fact-indexes can only be used by {command} as a top level command."
+            );
+        } else if e.detail == LoadDetail::ReplacesBuiltin {
+            let _ = writeln!(
+                b,
+                "[DFFNXPSR2] Deffunctions are not allowed to replace external functions."
             );
         } else if e.detail == LoadDetail::MixedVariable {
             let name = tok.trim_start_matches('$').trim_start_matches('?');
@@ -829,10 +871,20 @@ impl Core<'_> {
         self.st.progress_printed = *progress;
         let mut p = Parser::new(self, text);
         let r = loop {
-            let start = p.offset();
+            let first = p.peek();
+            let start = first.start;
             let existed = p.cx.construct_exists(&text[start..]);
             p.cx.st.announce = verbose.then_some((start, existed));
-            match p.next_item() {
+            let cp = p.cx.checkpoint();
+            let item = match p.next_item() {
+                Ok(Item::Command(_)) => {
+                    // not a construct: drop what its parse built, report where it began
+                    p.cx.rollback(cp);
+                    Err(p.err(first, "a construct (load accepts constructs only)"))
+                }
+                item => item,
+            };
+            match item {
                 Ok(Item::End) => {
                     break Ok(n);
                 }
@@ -841,10 +893,7 @@ impl Core<'_> {
                     // a defrule announced itself before it was matched
                     p.announce();
                 }
-                Ok(Item::Command(_)) => {
-                    let t = p.peek();
-                    break Err(p.err(t, "a construct (load accepts constructs only)"));
-                }
+                Ok(Item::Command(_)) => {}
                 Err(e) => break Err(e),
             }
         };

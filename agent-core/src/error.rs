@@ -106,6 +106,11 @@ pub enum EvalErrorKind {
         func: &'static str,
     },
     UnboundVariable,
+    /// Function calls nested deeper than the evaluator allows (`limit`, the
+    /// `eval::MAX_EVAL_DEPTH`): a runaway recursion, stopped before the Rust stack is.
+    TooDeep {
+        limit: u16,
+    },
     NoSuchFact(i64),
     NoSuchFunction,
     NoSuchTemplate,
@@ -187,6 +192,10 @@ impl fmt::Display for EvalError {
                 write!(f, "division by zero in function {func}")
             }
             EvalErrorKind::UnboundVariable => write!(f, "unbound variable"),
+            EvalErrorKind::TooDeep { limit } => write!(
+                f,
+                "function calls nested deeper than the evaluation depth limit ({limit})"
+            ),
             EvalErrorKind::NoSuchFact(n) => write!(f, "unable to find fact f-{n}"),
             EvalErrorKind::NoSuchFunction => write!(f, "no such function"),
             EvalErrorKind::NoSuchTemplate => write!(f, "no such template"),
@@ -250,6 +259,13 @@ pub enum LoadDetail {
         types: bool,
         slot: u16,
     },
+    /// `[CSTRNCHK1]`: a literal in a pattern's slot constraint (CE number `ce`)
+    /// violates the slot's type (`types`) or allowed values.
+    PatternConstraint {
+        ce: u8,
+        types: bool,
+        slot: u16,
+    },
     /// `[TMPLTDEF2]`: a single-field slot given no value or several.
     SingleSlot {
         slot: u16,
@@ -265,6 +281,34 @@ pub enum LoadDetail {
         arg: u16,
         expected: &'static str,
     },
+    /// `[CSTRCPSR4]`: redefining a construct that is in use (its name is the token).
+    InUse {
+        construct: &'static str,
+    },
+    /// `[PRNTUTIL5]`: a slot attribute given twice (at its second name).
+    AttributeTwice {
+        attribute: &'static str,
+    },
+    /// `[CSTRNPSR3]`: `allowed-values` combined with another `allowed-...` attribute.
+    AllowedCombined {
+        first: &'static str,
+        second: &'static str,
+    },
+    /// `[CSTRNPSR4]`: a value of another type in an `allowed-...` attribute.
+    AllowedValueType {
+        attribute: &'static str,
+    },
+    /// `[CSTRNPSR1]`: the slot's `type` excludes an allowed value (at the value).
+    TypeConflict {
+        attribute: &'static str,
+    },
+    /// `[TMPLTFUN1]`: `modify`/`duplicate` (`command`) of a fact index inside a rule or
+    /// deffunction.
+    FactIndexInRule {
+        command: &'static str,
+    },
+    /// `[DFFNXPSR2]`: a deffunction named like a builtin function.
+    ReplacesBuiltin,
     /// `[ANALYSIS3]`: one LHS variable used both as `?x` and `$?x` (the offending token).
     MixedVariable,
 }

@@ -166,7 +166,9 @@ impl Core<'_> {
 
     fn call(&mut self, e: u16) -> Result<Value, EvalError> {
         if self.st.eval_depth >= MAX_EVAL_DEPTH {
-            return Err(EvalError::other("function calls nested too deeply"));
+            return Err(EvalError::new(EvalErrorKind::TooDeep {
+                limit: MAX_EVAL_DEPTH,
+            }));
         }
         self.st.eval_depth += 1;
         let sp = self.st.sp;
@@ -247,6 +249,11 @@ impl Core<'_> {
         // CLIPS reports an error inside a deffunction where it happens and adds which
         // deffunction it halted, at every level of nesting.
         let r = match r {
+            // a runaway recursion names the function where the limit was hit, once,
+            // not once per frame
+            Err(err) if matches!(err.kind, EvalErrorKind::TooDeep { .. }) && err.reported => {
+                Err(err)
+            }
             Err(mut err)
                 if !matches!(err.kind, EvalErrorKind::Exit | EvalErrorKind::Capacity(_)) =>
             {

@@ -40,7 +40,7 @@ const CASES: &[(&str, u32, u32, &str)] = &[
         36,
         "single default value",
     ),
-    ("(deftemplate good (slot b))", 1, 14, "not yet defined"),
+    ("(deftemplate good (slot b))", 1, 14, "not in use"),
     (
         "(defrule r4 (good (b 1)) =>)",
         1,

@@ -539,4 +539,6 @@ differential_programs! {
     p137_eval_build_run_limits => "137-eval-build-run-limits",
     p138_rhs_runtime_errors => "138-rhs-runtime-errors",
     p139_watch_statistics => "139-watch-statistics",
+    p150_bind_lhs_variable => "150-bind-lhs-variable",
+    p151_redefinitions => "151-redefinitions",
 }

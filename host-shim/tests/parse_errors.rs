@@ -370,6 +370,56 @@ fn keeps_and_lacks_agree_with_clips_transcripts() {
     }
 }
 
+/// Run-time errors (`tests/clips-errors/runtime/*.clp`): each program's `; prints:` lines
+/// must appear in its output in that order (the error, the deffunction frames, the
+/// rule), and the program must run to its end: no crash, whatever the recursion.
+#[test]
+fn runtime_errors_name_the_limit_function_and_rule() {
+    let dir = programs_dir().join("runtime");
+    let mut names: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .map(|entries| {
+            entries
+                .filter_map(|e| e.ok())
+                .map(|e| e.path())
+                .filter(|p| p.extension().is_some_and(|x| x == "clp"))
+                .collect()
+        })
+        .unwrap_or_default();
+    names.sort();
+    assert!(
+        names.len() >= 2,
+        "no run-time programs in {}",
+        dir.display()
+    );
+    for file in names {
+        let name = file
+            .file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_default();
+        let source = std::fs::read_to_string(&file).unwrap_or_default();
+        let wanted: Vec<&str> = source
+            .lines()
+            .filter_map(|l| l.strip_prefix("; prints: "))
+            .collect();
+        assert!(!wanted.is_empty(), "{name}: no `; prints:` lines");
+        let output = match run_our_cli(&file, &name) {
+            Ok(o) => o,
+            Err(e) => panic!("{name}: {e}"),
+        };
+        let mut lines = output.lines().map(str::trim_end);
+        for w in &wanted {
+            assert!(
+                lines.any(|l| l == *w),
+                "{name}: missing (or out of order) {w:?} in:\n{output}"
+            );
+        }
+        assert!(
+            output.contains("CLIPS> (exit)"),
+            "{name}: did not run to its end:\n{output}"
+        );
+    }
+}
+
 #[test]
 fn expectation_header_parses() {
     let source =
@@ -496,4 +546,18 @@ malformed_programs! {
     e063_default_wrong_type => "063-default-wrong-type",
     e064_empty_salience => "064-empty-salience",
     e065_bind_unknown_global => "065-bind-unknown-global",
+    e066_pattern_literal_wrong_type => "066-pattern-literal-wrong-type",
+    e067_pattern_literal_not_allowed => "067-pattern-literal-not-allowed",
+    e068_redefine_deftemplate_used_by_deffunction => "068-redefine-deftemplate-used-by-deffunction",
+    e069_modify_single_slot_two_values => "069-modify-single-slot-two-values",
+    e070_modify_slot_given_twice => "070-modify-slot-given-twice",
+    e071_rhs_assert_wrong_type => "071-rhs-assert-wrong-type",
+    e072_deffunction_named_like_builtin => "072-deffunction-named-like-builtin",
+    e073_default_dynamic_wrong_type => "073-default-dynamic-wrong-type",
+    e074_deffunction_literal_argument_type => "074-deffunction-literal-argument-type",
+    e075_slot_attribute_twice => "075-slot-attribute-twice",
+    e076_type_conflicts_with_allowed_values => "076-type-conflicts-with-allowed-values",
+    e077_allowed_symbols_with_a_number => "077-allowed-symbols-with-a-number",
+    e078_allowed_values_combined => "078-allowed-values-combined",
+    e079_modify_fact_index_in_rule => "079-modify-fact-index-in-rule",
 }

@@ -42,3 +42,11 @@ pub const AGENTS: [(&str, &[&str]); 3] = [
     ("paper", AGENT_PAPER),
     ("travel", AGENT_TRAVEL),
 ];
+
+/// Functions a host registers (`Engine::register_function`) before loading the rule
+/// files, with their least and most number of arguments (None: any number). The rule
+/// files may call them; `build.rs` registers stand-ins of these names and arities, so
+/// a call with an unknown name or a wrong number of arguments still fails the build.
+/// Our engine has the geometry functions (`distance`, ...) built in, so none is needed
+/// today.
+pub const HOST_FUNCTIONS: &[(&str, u8, Option<u8>)] = &[];

@@ -5,7 +5,7 @@
 #[path = "../load_check.rs"]
 mod load_check;
 
-use load_check::{check_load, BadRuleFile};
+use load_check::{check_load, check_load_with, BadRuleFile};
 use rules::{agent_files, game_files, RuleFile, Strategy, DRIVER_FILES};
 
 fn owned(files: &[RuleFile]) -> Vec<(String, String)> {
@@ -103,4 +103,21 @@ fn a_semantic_error_in_a_real_file_is_rejected_at_the_offending_token() {
         ("rules/utils.clp", line, 4)
     );
     assert!(bad.message.contains("known function"), "{bad}");
+}
+
+#[test]
+fn host_functions_need_their_stand_ins_with_the_right_arity() {
+    let file = [pair(
+        "rules/skills.clp",
+        "(defrule go\n  (robot (name ?n))\n  =>\n  (skill-call goto ?n))\n",
+    )];
+    let template = pair("rules/a.clp", "(deftemplate robot (slot name))\n");
+    let files = [template.clone(), file[0].clone()];
+    let unknown = check_load(&files).unwrap_err();
+    assert_eq!((unknown.line, unknown.col), (4, 4), "{unknown}");
+    assert!(unknown.message.contains("known function"), "{unknown}");
+    assert_eq!(check_load_with(&files, &[("skill-call", 1, None)]), Ok(()));
+    let arity = check_load_with(&files, &[("skill-call", 3, Some(3))]).unwrap_err();
+    assert_eq!((arity.line, arity.col), (4, 4), "{arity}");
+    assert!(arity.message.contains("number of arguments"), "{arity}");
 }

@@ -1,15 +1,12 @@
 //! deftemplate, deffacts, deffunction, defglobal.
 
-use super::facts::Violation;
 use super::{PResult, Parser, Scope};
 use crate::engine::cap;
 use crate::error::LoadDetail;
 use crate::error::Pool;
 use crate::expr::Op;
-use crate::lexer::{Lexer, Tok, Token};
-use crate::template::{
-    allowed, types, DefaultKind, Deffacts, Deffunction, Global, SlotDef, Template,
-};
+use crate::lexer::Tok;
+use crate::template::{Deffacts, Deffunction, Global, SlotDef, Template};
 use crate::value::{Value, NONE};
 
 impl<'s> Parser<'s, '_, '_> {
@@ -27,11 +24,17 @@ impl<'s> Parser<'s, '_, '_> {
             _ => return Err(self.err(nt, "a deftemplate name")),
         };
         let sym = cap!(self, self.cx.intern(name))?;
-        if self.cx.find_template(sym).is_some() {
-            return Err(self.err(
+        // CLIPS replaces a deftemplate nothing uses yet, and refuses otherwise
+        let replaces = self.cx.find_template(sym);
+        if replaces.is_some_and(|t| self.cx.template_in_use(t)) {
+            let mut e = self.err(
                 nt,
-                "a deftemplate name not yet defined (cannot redefine a deftemplate)",
-            ));
+                "a deftemplate name not in use (a deftemplate with facts or constructs using it cannot be redefined)",
+            );
+            e.detail = LoadDetail::InUse {
+                construct: "deftemplate",
+            };
+            return Err(e);
         }
         self.skip_comment();
         let n = self.cx.st.ntemplates as usize;
@@ -90,206 +93,15 @@ impl<'s> Parser<'s, '_, '_> {
         };
         self.cx.st.ntemplates += 1;
         self.cx.note_hw(Pool::Templates, n + 1);
-        Ok(())
-    }
-
-    fn slot_attributes(&mut self, mut def: SlotDef) -> PResult<SlotDef> {
-        // reader position of the default's values and the attribute's name
-        let mut default_at = None;
-        loop {
-            let t = self.next();
-            match t.tok {
-                Tok::RParen => {
-                    if let Some((values_at, attribute)) = default_at {
-                        self.check_default(&def, values_at, attribute)?;
-                    }
-                    return Ok(def);
-                }
-                Tok::LParen => {
-                    let at = self.next();
-                    let attr = match at.tok {
-                        Tok::Symbol(s) => s,
-                        _ => return Err(self.err(at, "a slot attribute")),
-                    };
-                    match attr {
-                        "default" | "default-dynamic" => {
-                            let save = self.scope;
-                            self.scope = Scope::Frame;
-                            let p = self.peek();
-                            if let Tok::SfVar(v) = p.tok {
-                                if v == "NONE" || v == "DERIVE" {
-                                    self.next();
-                                    def.default_kind = if v == "NONE" {
-                                        DefaultKind::Required
-                                    } else {
-                                        DefaultKind::Derived
-                                    };
-                                    self.expect_rparen("')' after the default")?;
-                                    self.scope = save;
-                                    continue;
-                                }
-                            }
-                            let holder = cap!(
-                                self,
-                                self.cx.push_expr(crate::expr::Expr::new(Op::Nop, 0, 0))
-                            )?;
-                            // where the values start, to point at a bad one later
-                            let values_at = self.save();
-                            let mut n = 0u16;
-                            loop {
-                                let t = self.peek();
-                                match t.tok {
-                                    Tok::RParen => {
-                                        self.next();
-                                        break;
-                                    }
-                                    Tok::Eof | Tok::Bad => return Err(self.err(t, "')'")),
-                                    _ if !def.multi && n == 1 => {
-                                        return Err(self.err(
-                                            t,
-                                            "a single default value for a single-field slot",
-                                        ))
-                                    }
-                                    _ => {
-                                        let a = self.parse_expr()?;
-                                        self.cx.append_child(holder, a);
-                                        n += 1;
-                                    }
-                                }
-                            }
-                            self.scope = save;
-                            if !def.multi && n != 1 {
-                                return Err(self
-                                    .err(at, "exactly one default value for a single-field slot"));
-                            }
-                            default_at = Some((
-                                values_at,
-                                if attr == "default" {
-                                    "default"
-                                } else {
-                                    "default-dynamic"
-                                },
-                            ));
-                            def.default = self.cx.exprs[holder as usize].first;
-                            def.default_kind = if attr == "default" {
-                                DefaultKind::Static
-                            } else {
-                                DefaultKind::Dynamic
-                            };
-                        }
-                        "type" => {
-                            let mut mask = 0u8;
-                            loop {
-                                let tt = self.next();
-                                match tt.tok {
-                                    Tok::RParen => break,
-                                    Tok::Symbol(ty) => {
-                                        mask |= match ty {
-                                            "SYMBOL" => types::SYMBOL,
-                                            "STRING" => types::STRING,
-                                            "LEXEME" => types::LEXEME,
-                                            "INTEGER" => types::INTEGER,
-                                            "FLOAT" => types::FLOAT,
-                                            "NUMBER" => types::NUMBER,
-                                            "FACT-ADDRESS" => types::FACT_ADDRESS,
-                                            "?VARIABLE" => 0xFF,
-                                            _ => return Err(self.err(tt, "a type name")),
-                                        }
-                                    }
-                                    Tok::SfVar("VARIABLE") => mask = 0xFF,
-                                    _ => return Err(self.err(tt, "a type name")),
-                                }
-                            }
-                            def.types = if mask == 0xFF { 0 } else { mask };
-                        }
-                        "allowed-values" | "allowed-symbols" | "allowed-strings"
-                        | "allowed-numbers" | "allowed-integers" | "allowed-floats"
-                        | "allowed-lexemes" => {
-                            let holder = cap!(
-                                self,
-                                self.cx.push_expr(crate::expr::Expr::new(Op::Nop, 0, 0))
-                            )?;
-                            loop {
-                                let tt = self.next();
-                                if tt.tok == Tok::RParen {
-                                    break;
-                                }
-                                if tt.tok == Tok::SfVar("VARIABLE") {
-                                    continue;
-                                }
-                                match self.literal(tt)? {
-                                    Some(c) => self.cx.append_child(holder, c),
-                                    None => return Err(self.err(tt, "a constant allowed value")),
-                                }
-                            }
-                            let first = self.cx.exprs[holder as usize].first;
-                            if first != NONE {
-                                def.allowed = first;
-                                def.allowed_kind = match attr {
-                                    "allowed-symbols" => allowed::SYMBOLS,
-                                    "allowed-strings" => allowed::STRINGS,
-                                    "allowed-lexemes" => allowed::LEXEMES,
-                                    "allowed-integers" => allowed::INTEGERS,
-                                    "allowed-floats" => allowed::FLOATS,
-                                    "allowed-numbers" => allowed::NUMBERS,
-                                    _ => allowed::VALUES,
-                                };
-                            }
-                        }
-                        "range" | "cardinality" | "visibility" | "storage" | "pattern-match"
-                        | "create-accessor" | "override-message" | "access" | "propagation"
-                        | "source" => {
-                            // accepted, not enforced
-                            loop {
-                                let tt = self.next();
-                                match tt.tok {
-                                    Tok::RParen => break,
-                                    Tok::Eof | Tok::Bad => return Err(self.err(tt, "')'")),
-                                    _ => {}
-                                }
-                            }
-                        }
-                        _ => {
-                            return Err(self
-                                .err(at, "a slot attribute (type, default, allowed-values, ...)"))
-                        }
-                    }
-                }
-                _ => return Err(self.err(t, "'(' starting a slot attribute or ')'")),
-            }
-        }
-    }
-
-    /// CLIPS rejects a default whose literal values break the slot's type or allowed
-    /// values (whichever attribute came first); the error points at the value.
-    fn check_default(
-        &mut self,
-        def: &SlotDef,
-        values_at: (Lexer<'s>, Option<Token<'s>>),
-        attribute: &'static str,
-    ) -> PResult<()> {
-        let mut c = def.default;
-        let mut k = 0;
-        while c != NONE {
-            if let Some(violation) = self.literal_violation(def, c) {
-                // re-read the default's values up to the k-th to find its position
-                let resume = self.save();
-                self.restore(values_at);
-                for _ in 0..k {
-                    self.skip_balanced()?;
-                }
-                let at = self.peek();
-                self.restore(resume);
-                let mut e = self.err(at, violation.expected());
-                e.detail = LoadDetail::DefaultConstraint {
-                    attribute,
-                    types: violation == Violation::Type,
-                    slot: def.name,
-                };
-                return Err(e);
-            }
-            c = self.cx.exprs[c as usize].next;
-            k += 1;
+        if let Some(old) = replaces {
+            // Nothing refers to the old entry, so it is retired where it is (indices of
+            // later templates stay valid): no name can find it and listings skip it as
+            // they skip ordered-fact templates. The new one is listed last, as in CLIPS.
+            self.cx.templates[old as usize] = Template {
+                name: NONE,
+                implied: true,
+                ..self.cx.templates[old as usize]
+            };
         }
         Ok(())
     }
@@ -318,12 +130,17 @@ impl<'s> Parser<'s, '_, '_> {
                 _ => return Err(self.err(t, "'(' starting a fact or ')'")),
             }
         }
-        // redefinition replaces
+        // a redefinition replaces the old deffacts and, as in CLIPS, moves it last
+        // (which orders the facts `reset` asserts)
         let existing =
             (0..self.cx.st.ndeffacts).find(|&d| self.cx.deffacts[d as usize].name == sym);
         let facts = self.cx.exprs[holder as usize].first;
         match existing {
-            Some(d) => self.cx.deffacts[d as usize].facts = facts,
+            Some(d) => {
+                let n = self.cx.st.ndeffacts as usize;
+                self.cx.deffacts.copy_within(d as usize + 1..n, d as usize);
+                self.cx.deffacts[n - 1] = Deffacts { name: sym, facts };
+            }
             None => {
                 let n = self.cx.st.ndeffacts as usize;
                 if n >= self.cx.deffacts.len() {
@@ -344,10 +161,18 @@ impl<'s> Parser<'s, '_, '_> {
             Tok::Symbol(s) => s,
             _ => return Err(self.err(nt, "a deffunction name")),
         };
-        if crate::builtins::lookup(name).is_some()
+        // CLIPS's own functions cannot be replaced; our geometry extensions can, since a
+        // CLIPS program may define a deffunction of that name (rules/clips/stubs.clp
+        // does), and a deffunction is looked up before a builtin
+        let extension = crate::builtins::geometry::FUNCS
+            .iter()
+            .any(|b| b.name == name);
+        if (crate::builtins::lookup(name).is_some() && !extension)
             || matches!(name, "if" | "while" | "bind" | "assert" | "modify")
         {
-            return Err(self.err(nt, "a name that is not a builtin function"));
+            let mut e = self.err(nt, "a name that is not a builtin function");
+            e.detail = LoadDetail::ReplacesBuiltin;
+            return Err(e);
         }
         let sym = cap!(self, self.cx.intern(name))?;
         self.skip_comment();

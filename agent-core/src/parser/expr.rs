@@ -50,6 +50,10 @@ impl<'s> Parser<'s, '_, '_> {
 
     /// Reads one expression.
     pub fn parse_expr(&mut self) -> PResult<u16> {
+        self.nested(|p| p.parse_expr_inner())
+    }
+
+    fn parse_expr_inner(&mut self) -> PResult<u16> {
         let t = self.next();
         if let Some(c) = self.literal(t)? {
             return Ok(c);
@@ -180,7 +184,7 @@ impl<'s> Parser<'s, '_, '_> {
         match name {
             "if" => return self.parse_if(),
             "while" => return self.parse_while(),
-            "bind" => return self.parse_bind(nt),
+            "bind" => return self.parse_bind(),
             "loop-for-count" => return self.parse_loop_for_count(),
             "progn$" => return self.parse_foreach("progn$"),
             "foreach" => return self.parse_foreach("foreach"),
@@ -363,7 +367,8 @@ impl<'s> Parser<'s, '_, '_> {
                 let e = self.cx.push_expr(Expr::new(Op::Local, 0, s));
                 return cap!(self, e);
             }
-            return Err(self.err(t, "a variable not bound on the LHS"));
+            // an LHS variable: as in CLIPS, from here on the name is a local of the
+            // RHS holding the new value (a new entry shadows the LHS one)
         }
         match self.scope {
             Scope::TopLevel => {
@@ -379,17 +384,34 @@ impl<'s> Parser<'s, '_, '_> {
         }
     }
 
-    fn parse_bind(&mut self, at: Token<'s>) -> PResult<u16> {
+    fn parse_bind(&mut self) -> PResult<u16> {
         let node = self.builtin_call("bind")?;
         let t = self.next();
-        let target = match t.tok {
-            Tok::SfVar(name) | Tok::MfVar(name) => self.assign_target(t, name)?,
-            Tok::Global(name) => self.global_ref(t, name)?,
+        let name = match t.tok {
+            Tok::SfVar(name) | Tok::MfVar(name) => name,
+            Tok::Global(name) => {
+                let target = self.global_ref(t, name)?;
+                self.cx.append_child(node, target);
+                self.args_until_rparen(node)?;
+                return Ok(node);
+            }
             _ => return Err(self.err(t, "a variable")),
         };
+        if !matches!(self.find_var(name), Some(v) if matches!(v.kind, VarKind::Pat { .. })) {
+            // a new or existing local: CLIPS knows it in the value too (unbound there
+            // it is a run-time error, as in CLIPS)
+            let target = self.assign_target(t, name)?;
+            self.cx.append_child(node, target);
+            self.args_until_rparen(node)?;
+            return Ok(node);
+        }
+        // rebinding an LHS variable: the value's `?x` is still the LHS one
+        // (`(bind ?x (+ ?x 1))`); the RHS local that shadows it starts after
+        let values = cap!(self, self.cx.push_expr(Expr::new(Op::Nop, 0, 0)))?;
+        self.args_until_rparen(values)?;
+        let target = self.assign_target(t, name)?;
         self.cx.append_child(node, target);
-        self.args_until_rparen(node)?;
-        let _ = at;
+        self.cx.exprs[target as usize].next = self.cx.exprs[values as usize].first;
         Ok(node)
     }
 

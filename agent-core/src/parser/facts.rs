@@ -3,7 +3,7 @@
 //! given once, one value in a single-field slot, literals that fit the slot's type and
 //! allowed values, and every `(default ?NONE)` slot given.
 
-use super::{PResult, Parser};
+use super::{PResult, Parser, Scope};
 use crate::error::{EvalErrorKind, LoadDetail};
 use crate::expr::{loc, Expr, Op};
 use crate::lexer::{Tok, Token};
@@ -86,7 +86,7 @@ impl<'s> Parser<'s, '_, '_> {
     }
 
     /// The index of the slot named by token `st` in deftemplate `tmpl`.
-    fn slot_of(&mut self, tmpl: u16, st: Token<'s>) -> PResult<u16> {
+    pub(super) fn slot_of(&mut self, tmpl: u16, st: Token<'s>) -> PResult<u16> {
         let sname = match st.tok {
             Tok::Symbol(s) => s,
             _ => return Err(self.err(st, "a slot name")),
@@ -205,7 +205,15 @@ impl<'s> Parser<'s, '_, '_> {
     /// deftemplate pattern, slots and literal values are checked now, as CLIPS does.
     pub(super) fn parse_modify(&mut self, name: &'static str) -> PResult<u16> {
         let node = self.builtin_call(name)?;
+        let target_at = self.peek();
         let f = self.parse_expr()?;
+        if self.scope != Scope::TopLevel && self.cx.exprs[f as usize].op == Op::Int {
+            // `(modify 3 ...)` names a fact by its index: CLIPS allows that only at top
+            // level
+            let mut e = self.err(target_at, "a fact-address (fact indexes only at top level)");
+            e.detail = LoadDetail::FactIndexInRule { command: name };
+            return Err(e);
+        }
         self.cx.append_child(node, f);
         let tmpl = self.target_template(f);
         loop {

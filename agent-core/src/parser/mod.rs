@@ -16,7 +16,9 @@ pub mod argtypes;
 mod construct;
 mod expr;
 mod facts;
+mod in_use;
 mod rule;
+mod slot;
 
 use crate::engine::Core;
 use crate::error::{CapacityError, LoadError};
@@ -26,6 +28,12 @@ use crate::value::NONE;
 
 /// Most variables visible at once while parsing one construct.
 pub const MAX_VARS: usize = 64;
+
+/// Deepest nesting the reader follows (expressions, conditional elements, `~`
+/// chains): the reader recurses per level, so input must not decide how deep. An
+/// expression nested deeper than the evaluator's call limit could not run anyway.
+pub const MAX_NESTING: u16 = crate::eval::MAX_EVAL_DEPTH;
+const _: () = assert!(MAX_NESTING == 200, "update the text of the nesting error");
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum VarKind {
@@ -71,6 +79,14 @@ pub struct Parser<'s, 'c, 'e> {
     /// Deftemplate of each LHS pattern of the rule being parsed (NONE when unknown),
     /// so `modify ?f` on the RHS can check slots at parse time.
     pub pat_tmpl: [u16; MAX_PATTERNS],
+    /// The deftemplate slot whose LHS constraint is being parsed (None for ordered
+    /// facts): literals in it must fit its type and allowed values.
+    pub lhs_slot: Option<crate::template::SlotDef>,
+    /// Current recursion depth of the reader (see `MAX_NESTING`).
+    depth: u16,
+    /// Conditional elements of the rule so far, numbered as CLIPS numbers them in its
+    /// messages (`CE #N`: patterns and tests in text order, all `or` branches).
+    pub ce_count: u8,
 }
 
 pub type PResult<T> = Result<T, LoadError>;
@@ -94,6 +110,9 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
             join_marks: [0; 64],
             njm: 0,
             pat_tmpl: [NONE; MAX_PATTERNS],
+            lhs_slot: None,
+            depth: 0,
+            ce_count: 0,
         }
     }
 
@@ -213,6 +232,19 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
             Tok::RParen | Tok::Eof | Tok::Bad => Err(self.err(t, "an expression")),
             _ => Ok(()),
         }
+    }
+
+    /// Runs one recursive step of the reader, refusing input nested deeper than
+    /// `MAX_NESTING` (an error at the token where the limit is reached).
+    pub fn nested<T>(&mut self, step: impl FnOnce(&mut Self) -> PResult<T>) -> PResult<T> {
+        if self.depth >= MAX_NESTING {
+            let at = self.peek();
+            return Err(self.err(at, "at most 200 levels of nesting"));
+        }
+        self.depth += 1;
+        let r = step(self);
+        self.depth -= 1;
+        r
     }
 
     pub fn find_var(&self, name: &str) -> Option<VarEntry<'s>> {

@@ -1,5 +1,6 @@
 //! defrule: LHS conditional elements compiled into alpha nodes and joins, RHS actions.
 
+use super::facts::Violation;
 use super::{PResult, Parser, Scope, VarKind};
 use crate::engine::cap;
 use crate::error::Pool;
@@ -220,6 +221,7 @@ impl<'s> Parser<'s, '_, '_> {
 
     /// One disjunct: LHS (with the current or-choices), RHS, then the network.
     fn rule_body(&mut self, name: SymId, b: &mut Build) -> PResult<u16> {
+        self.ce_count = 0;
         let mut salience = (0i32, NONE);
         // (declare (salience N))
         if self.peek().tok == Tok::LParen {
@@ -316,6 +318,10 @@ impl<'s> Parser<'s, '_, '_> {
 
     /// One conditional element.
     fn ce(&mut self, b: &mut Build, ctx: Ctx) -> PResult<()> {
+        self.nested(|p| p.ce_inner(b, ctx))
+    }
+
+    fn ce_inner(&mut self, b: &mut Build, ctx: Ctx) -> PResult<()> {
         let t = self.next();
         match t.tok {
             Tok::SfVar(fv) => {
@@ -405,6 +411,8 @@ impl<'s> Parser<'s, '_, '_> {
                                         self.ce(b, ctx)?;
                                     } else {
                                         self.skip_balanced()?;
+                                        // CLIPS numbers the CEs of every branch
+                                        self.ce_count = self.ce_count.saturating_add(1);
                                     }
                                     branch += 1;
                                 }
@@ -418,6 +426,7 @@ impl<'s> Parser<'s, '_, '_> {
                     }
                     Tok::Symbol("test") => {
                         self.next();
+                        self.ce_count = self.ce_count.saturating_add(1);
                         self.scope = Scope::Lhs;
                         let e = self.parse_expr()?;
                         self.expect_rparen("')' closing test")?;
@@ -596,6 +605,7 @@ impl<'s> Parser<'s, '_, '_> {
             None => cap!(self, self.cx.implied_template(sym))?,
         };
         self.pat_tmpl[p as usize] = tmpl;
+        self.ce_count = self.ce_count.saturating_add(1);
         if let Some((ft, fv)) = factvar {
             self.add_var(
                 ft,
@@ -623,6 +633,7 @@ impl<'s> Parser<'s, '_, '_> {
             nfields: 0,
         };
         if self.cx.templates[tmpl as usize].implied {
+            self.lhs_slot = None;
             self.multislot_fields(&mut pb, p, 0, nt)?;
         } else {
             loop {
@@ -631,16 +642,11 @@ impl<'s> Parser<'s, '_, '_> {
                     Tok::RParen => break,
                     Tok::LParen => {
                         let st = self.next();
-                        let sname = match st.tok {
-                            Tok::Symbol(s) => s,
-                            _ => return Err(self.err(st, "a slot name")),
-                        };
-                        let ssym = cap!(self, self.cx.intern(sname))?;
-                        let slot = match self.cx.find_slot(tmpl, ssym) {
-                            Some(s) => s,
-                            None => return Err(self.err(st, "a slot of the template")),
-                        };
-                        if self.cx.slot_def(tmpl, slot).multi {
+                        let slot = self.slot_of(tmpl, st)?;
+                        let def = self.cx.slot_def(tmpl, slot);
+                        // literals in this slot's constraints must fit the slot
+                        self.lhs_slot = Some(def);
+                        if def.multi {
                             self.multislot_fields(&mut pb, p, slot as u8, st)?;
                         } else {
                             let (multi, test) =
@@ -663,6 +669,7 @@ impl<'s> Parser<'s, '_, '_> {
                 }
             }
         }
+        self.lhs_slot = None;
         // share an identical alpha node or make a new one
         self.right_hash(&mut pb, p);
         let alpha = self.find_or_make_alpha(tmpl, &pb, nt)?;
@@ -899,6 +906,10 @@ impl<'s> Parser<'s, '_, '_> {
     }
 
     fn term(&mut self, p: u8, locv: u16, desc: u16, multi: &mut bool) -> PResult<u16> {
+        self.nested(|parser| parser.term_inner(p, locv, desc, multi))
+    }
+
+    fn term_inner(&mut self, p: u8, locv: u16, desc: u16, multi: &mut bool) -> PResult<u16> {
         let t = self.next();
         match t.tok {
             Tok::Tilde => {
@@ -946,6 +957,17 @@ impl<'s> Parser<'s, '_, '_> {
             }
             _ => match self.literal(t)? {
                 Some(c) => {
+                    if let Some(def) = self.lhs_slot {
+                        if let Some(violation) = self.literal_violation(&def, c) {
+                            let mut e = self.err(t, violation.expected());
+                            e.detail = crate::error::LoadDetail::PatternConstraint {
+                                ce: self.ce_count,
+                                types: violation == Violation::Type,
+                                slot: def.name,
+                            };
+                            return Err(e);
+                        }
+                    }
                     let this = self.this_field(p, locv, desc)?;
                     self.node2(Op::Eq2, this, c)
                 }

@@ -1,0 +1,3 @@
+; expect: 2:56 expected type
+(deftemplate t (slot a (type INTEGER) (default-dynamic x)))
+(exit)
