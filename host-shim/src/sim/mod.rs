@@ -41,6 +41,10 @@ pub struct Args {
     /// Inject N faults among the first 40 decisions (drawn from the seed).
     #[arg(long, default_value_t = 0)]
     pub faults: usize,
+    /// Disturb each decision with probability PCT % (lost puck, failed grab,
+    /// failed goto, wrong light), drawn from the seed (or the index).
+    #[arg(long, value_name = "PCT", default_value_t = 0, value_parser = clap::value_parser!(u32).range(0..=100))]
+    pub fault_rate: u32,
     /// Print the engine's `(watch rules)` trace before the report.
     #[arg(long)]
     pub trace: bool,
@@ -78,6 +82,10 @@ fn setup_from_args(args: &Args) -> Result<(GameSetup, String), SimError> {
     }
     if args.faults > 0 {
         setup = setup.with_seeded_faults(seed, args.faults, 40);
+    }
+    if args.fault_rate > 0 {
+        let key = args.index.map(u64::from).unwrap_or(seed);
+        setup = setup.with_fault_rate(args.fault_rate, key);
     }
     if args.clock_off {
         setup.clock_limit_s = None;
