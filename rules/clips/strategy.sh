@@ -10,7 +10,7 @@ load_lines() {
     *) echo "unknown strategy $2" >&2; return 1 ;;
   esac
   for f in clips/stubs.clp utils.clp worldmodel.clp execution.clp \
-           production-common.clp $prod referee.clp game-log.clp sim.clp \
+           production-common.clp $prod referee.clp game-log.clp sim.clp snapshot.clp \
            clips/report.clp; do
     echo "(load* \"$dir/$f\")"
   done

@@ -50,6 +50,8 @@ pub const REFEREE: RuleFile = rule_file!("referee.clp");
 pub const GAME_LOG: RuleFile = rule_file!("game-log.clp");
 /// Instant skill execution against the referee.
 pub const SIM: RuleFile = rule_file!("sim.clp");
+/// A snapshot of the fact base after every decision (with a snapshot-file fact).
+pub const SNAPSHOT: RuleFile = rule_file!("snapshot.clp");
 /// Real-CLIPS stand-ins for host functions (`distance`); our engine has
 /// them built in, so hosts running our engine do not load this.
 pub const CLIPS_STUBS: RuleFile = rule_file!("clips/stubs.clp");
@@ -106,7 +108,7 @@ const AGENT_TRAVEL: [RuleFile; 6] = [
     PRODUCTION,
     SELECT_TRAVEL,
 ];
-const GAME_NAIVE: [RuleFile; 8] = [
+const GAME_NAIVE: [RuleFile; 9] = [
     UTILS,
     WORLD_MODEL,
     EXECUTION,
@@ -115,8 +117,9 @@ const GAME_NAIVE: [RuleFile; 8] = [
     REFEREE,
     GAME_LOG,
     SIM,
+    SNAPSHOT,
 ];
-const GAME_PAPER: [RuleFile; 9] = [
+const GAME_PAPER: [RuleFile; 10] = [
     UTILS,
     WORLD_MODEL,
     EXECUTION,
@@ -126,8 +129,9 @@ const GAME_PAPER: [RuleFile; 9] = [
     REFEREE,
     GAME_LOG,
     SIM,
+    SNAPSHOT,
 ];
-const GAME_TRAVEL: [RuleFile; 9] = [
+const GAME_TRAVEL: [RuleFile; 10] = [
     UTILS,
     WORLD_MODEL,
     EXECUTION,
@@ -137,6 +141,7 @@ const GAME_TRAVEL: [RuleFile; 9] = [
     REFEREE,
     GAME_LOG,
     SIM,
+    SNAPSHOT,
 ];
 
 /// The agent alone (for a robot driver), in load order.

@@ -253,7 +253,7 @@ fn strategies_load_utilities_first_and_their_own_production() {
         assert_eq!(agent[0], UTILS);
         let game = game_files(strategy);
         assert_eq!(&game[..agent.len()], agent);
-        assert_eq!(&game[agent.len()..], &[REFEREE, GAME_LOG, SIM]);
+        assert_eq!(&game[agent.len()..], &[REFEREE, GAME_LOG, SIM, SNAPSHOT]);
         assert_eq!(&game[agent.len()..agent.len() + 2], &DRIVER_FILES);
     }
     assert!(agent_files(Strategy::Naive).contains(&PRODUCTION_NAIVE));
@@ -270,6 +270,7 @@ fn the_paper_example_rules_are_present() {
     assert!(!REFEREE.text.contains("(random"));
     assert!(!SIM.text.contains("(random"));
     assert!(!GAME_LOG.text.contains("(random"));
+    assert!(!SNAPSHOT.text.contains("(random"));
 }
 
 #[test]
