@@ -89,18 +89,17 @@
                    (light yellow-flashing))))
 
 (deffunction light-from-belief
-  "The light the beliefs predict for bringing ?x to a machine believed
-   ?belief holding ?lw, if certain: yellow-flashing when every allowed
-   type rejects ?x or ?x is there already, green when the known type's last
-   missing input is ?x; unknown otherwise."
+  "Green or flashing -- the two lights that leave a puck in the gripper --
+   for bringing ?x to a machine believed ?belief holding ?lw, if the
+   beliefs settle it: flashing when ?x is there already or every allowed
+   type rejects it, green when every allowed type takes it (so it cannot
+   have been rejected); unknown otherwise."
   (?belief ?lw ?x)
   (if (or (member$ ?x ?lw)
           (and (eq ?x S1) (eq ?belief T1))
           (and (eq ?x S2) (member$ ?belief (create$ T1 T2 T1_2))))
    then (return yellow-flashing))
-  (bind ?inputs (switch ?belief (case T1 then 1) (case T2 then 2) (case T3 then 3)
-                  (default 0)))
-  (if (and (> ?inputs 0) (= (+ 1 (length$ ?lw)) ?inputs))
+  (if (every-type-takes ?belief ?x)
    then green
    else unknown))
 
@@ -121,15 +120,16 @@
   "The camera's light contradicts the gripper and two lights fit (see
    exec-seen-light): the held puck's kind and the machine's contents are
    unknown.  Believe the machine empty (a later rejection shows what it
-   holds) and get rid of the puck; the type belief stays."
+   holds) and get rid of the puck; the type belief stays, but an empty
+   T2_3 is unknown again (the candidate rules expect a T2_3 to hold a puck)."
   (declare (salience ?*PRIORITY_WM_LIGHT*))
   (state GOTO-FINAL) (goto-target ?name)
   ?h <- (holding ?)
   ?l <- (light unknown)
-  ?m <- (machine (name ?name))
+  ?m <- (machine (name ?name) (mtype ?t))
   =>
   (retract ?l ?h)
-  (modify ?m (loaded-with))
+  (modify ?m (mtype (if (eq ?t T2_3) then T1_2_3 else ?t)) (loaded-with))
   (assert (holding UNKNOWN)))
 
 ;;; ---- green: the type is the number of inputs consumed ------------------

@@ -162,14 +162,31 @@
 (t-expect-holding "wm misread yellow, S2 completes a T3: holding P" P)
 (t-expect-machine "wm misread yellow, S2 completes a T3: emptied" M4 T3)
 
-;; ... and where the belief cannot settle it: contents and puck unknown, discard.
+;; A T2_3 holding an S1 takes an S0 whatever it is: the puck held is an output (green).
 (reset)
 (t-holding S0)
 (t-machine M4 T2_3 S1)
 (t-outcome-sensed finish-puck-at M4 FINAL yellow puck-held)
 (run)
-(t-expect-machine "wm misread yellow, unsettled: contents forgotten, type kept" M4 T2_3)
+(t-expect-machine "wm misread yellow, S0 cannot be rejected: green, a T2" M4 T2)
+(t-expect-holding "wm misread yellow, S0 cannot be rejected: holding S2" S2)
+
+;; ... and where the belief cannot settle it: contents and puck unknown, discard.
+(reset)
+(t-holding S1)
+(t-machine M4 T1_2)
+(t-outcome-sensed finish-puck-at M4 FINAL yellow puck-held)
+(run)
+(t-expect-machine "wm misread yellow, unsettled: contents forgotten, type kept" M4 T1_2)
 (t-expect-request "wm misread yellow, unsettled: discard the unknown puck" discard R1)
+
+(reset)
+(t-holding S1)
+(t-machine M4 T2_3 S0)
+(t-machine M5 T1)
+(t-outcome-sensed finish-puck-at M4 FINAL yellow puck-held)
+(run)
+(t-expect-holding "wm misread yellow, S1 at T2_3+S0 cannot be rejected: S2" S2)
 
 ;; Flashing S1 at a known T2 believed empty: the S1 is already there.
 (reset)

@@ -256,9 +256,13 @@ pub fn summarize(config: SweepConfig, games: &[GameSummary], seconds: f64) -> St
         n,
         if clock_off { "off" } else { "900 s" }
     );
+    let worst = games
+        .iter()
+        .min_by_key(|g| (g.points, g.index))
+        .map_or(String::new(), |g| format!(" (assignment #{})", g.index));
     let _ = writeln!(
         out,
-        "points: mean {:.2}, min {min}, max {max}",
+        "points: mean {:.2}, min {min}{worst}, max {max}",
         mean(games.iter().map(|g| g.points as f64))
     );
     out.push_str(&points_histogram(games));
