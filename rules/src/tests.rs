@@ -323,6 +323,29 @@ fn belief_symbols_parse() {
 }
 
 #[test]
+fn fact_lines_are_the_facts_of_the_deffacts() {
+    let setup = GameSetup::for_seed(3);
+    let mut buf = Buffer::new();
+    setup.write_clips(&mut buf).expect("fits the buffer");
+    let text = buf.as_str();
+    let mut n = 0;
+    for line in fact_lines(text) {
+        n += 1;
+        assert!(line.starts_with('(') && line.ends_with(')'), "{line:?}");
+        assert!(!line.contains("deffacts"), "{line:?}");
+        assert!(balanced(line), "{line:?}");
+    }
+    // every line of the deffacts but its header and closing parenthesis
+    assert_eq!(n, text.lines().count() - 2);
+    assert_eq!(
+        fact_lines(text)
+            .filter(|l| l.starts_with("(rf-machine"))
+            .count(),
+        MACHINE_COUNT
+    );
+}
+
+#[test]
 fn fault_rates_draw_a_fixed_plan_per_seed() {
     let setup = |percent, seed| GameSetup::for_seed(seed).with_fault_rate(percent, seed);
     assert_eq!(setup(0, 5).all_faults().count(), 0);
