@@ -59,16 +59,36 @@
   (retract ?s ?r ?o ?p)
   (assert (state IDLE) (input-storage empty) (robot-at ?t)))
 
+(deffunction exec-seen-light
+  "The light to believe after a transport step, from the camera's light and
+   the gripper's puck sensor (info puck-held or no-puck; none: no reading).
+   Only yellow leaves the gripper empty: an empty gripper with another
+   light means the camera erred and the machine consumed the puck (yellow).
+   A held puck with yellow means the camera erred too, but green (holding
+   the output) and flashing (holding the input) both fit: unknown."
+  (?machine ?light ?info)
+  (if (and (eq ?info no-puck) (neq ?light yellow))
+   then (printout t "WARN light " ?light " at " ?machine
+                    " but the gripper is empty: read as yellow" crlf)
+        (return yellow))
+  (if (and (eq ?info puck-held) (eq ?light yellow))
+   then (printout t "WARN light yellow at " ?machine
+                    " but the gripper holds a puck: light unknown" crlf)
+        (return unknown))
+  ?light)
+
 (defrule exec-finish-puck-final
-  "Arrived with the puck: the world model reads the light."
+  "Arrived with the puck: the world model reads the light (checked against
+   the gripper's puck sensor)."
   (declare (salience ?*PRIORITY_EXEC*))
   ?s <- (state EXEC)
   ?r <- (skill-request (id ?id) (name finish-puck-at) (target ?m))
-  ?o <- (skill-outcome (id ?id) (status FINAL) (light ?l))
+  ?o <- (skill-outcome (id ?id) (status FINAL) (light ?l) (info ?info))
   ?p <- (robot-at ?)
   =>
   (retract ?s ?r ?o ?p)
-  (assert (state GOTO-FINAL) (goto-target ?m) (light ?l) (robot-at ?m)))
+  (assert (state GOTO-FINAL) (goto-target ?m) (light (exec-seen-light ?m ?l ?info))
+          (robot-at ?m)))
 
 (defrule exec-puck-handed-over
   "Delivered or discarded: the hands are empty."

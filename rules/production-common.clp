@@ -62,3 +62,14 @@
   =>
   (retract ?g)
   (assert (intent (action discard) (target (nearest-of ?here R1 R2)))))
+
+(defrule prod-discard-unknown-puck
+  "A puck of unknown kind (a misread light, see wm-light-unknown): drop it
+   at the nearest recycling unit."
+  (declare (salience ?*PRIORITY_CANDIDATE*))
+  (state IDLE)
+  (holding UNKNOWN)
+  (not (intent))
+  (robot-at ?here)
+  =>
+  (assert (intent (action discard) (target (nearest-of ?here R1 R2)))))

@@ -67,6 +67,39 @@
     (case 3 then T3)
     (default NONE)))
 
+(deffunction green-output
+  "What the robot holds after green at a machine believed ?belief with
+   ?loaded pucks believed loaded: a known type makes its output; otherwise
+   the n-th input makes the output of Tn, if the belief allows Tn.  UNKNOWN
+   when the belief contradicts the light (it lost track of the machine)."
+  (?belief ?loaded)
+  (if (member$ ?belief (create$ T1 T2 T3))
+   then (return (type-output ?belief)))
+  (bind ?type (type-for-input-count (+ 1 ?loaded)))
+  (if (and (neq ?type NONE) (mtype-may-be ?belief ?type))
+   then (type-output ?type)
+   else UNKNOWN))
+
+(deffunction every-type-takes
+  "TRUE if every type the belief allows takes puck ?x as an input."
+  (?belief ?x)
+  (switch ?x
+    (case S0 then TRUE)
+    (case S1 then (not (mtype-may-be ?belief T1)))
+    (case S2 then (and (not (mtype-may-be ?belief T1))
+                       (not (mtype-may-be ?belief T2))))
+    (default FALSE)))
+
+(deffunction loaded-after
+  "The loaded pucks after ?x is consumed without output at a machine of
+   type belief ?belief: a T2 holds at most one, a T3 two; more (or ?x
+   already there) means the old list was wrong, and only ?x is certain."
+  (?belief ?lw ?x)
+  (bind ?cap (if (eq ?belief T2) then 1 else 2))
+  (if (or (>= (length$ ?lw) ?cap) (member$ ?x ?lw))
+   then (create$ ?x)
+   else (create$ ?lw ?x)))
+
 (deffunction merge
   "Merge a candidate into the target list: a higher priority replaces the
    list, an equal one joins it."

@@ -56,10 +56,10 @@
   (declare (salience ?*PRIORITY_WM_LIGHT*))
   (state GOTO-FINAL) (goto-target ?name)
   ?h <- (holding ?was)
-  (machine (name ?name) (loaded-with $?lw))
+  (machine (name ?name) (mtype ?t) (loaded-with $?lw))
   ?l <- (light green)
   =>
-  (bind ?now (type-output (type-for-input-count (+ 1 (length$ ?lw)))))
+  (bind ?now (green-output ?t (length$ ?lw)))
   (retract ?l ?h)
   (assert (holding ?now)
           (wm-eval (machine ?name) (was-holding ?was) (now-holding ?now)
@@ -87,6 +87,50 @@
   (retract ?l)
   (assert (wm-eval (machine ?name) (was-holding ?was) (now-holding ?was)
                    (light yellow-flashing))))
+
+(deffunction light-from-belief
+  "Green or flashing -- the two lights that leave a puck in the gripper --
+   for bringing ?x to a machine believed ?belief holding ?lw, if the
+   beliefs settle it: flashing when ?x is there already or every allowed
+   type rejects it, green when every allowed type takes it (so it cannot
+   have been rejected); unknown otherwise."
+  (?belief ?lw ?x)
+  (if (or (member$ ?x ?lw)
+          (and (eq ?x S1) (eq ?belief T1))
+          (and (eq ?x S2) (member$ ?belief (create$ T1 T2 T1_2))))
+   then (return yellow-flashing))
+  (if (every-type-takes ?belief ?x)
+   then green
+   else unknown))
+
+(defrule wm-light-unknown-from-belief
+  "The camera's light contradicts the gripper (see exec-seen-light), but
+   the beliefs predict green or flashing for sure: believe them."
+  (declare (salience (+ ?*PRIORITY_WM_LIGHT* 10)))
+  (state GOTO-FINAL) (goto-target ?name)
+  (holding ?x)
+  ?l <- (light unknown)
+  (machine (name ?name) (mtype ?t) (loaded-with $?lw))
+  (test (neq (light-from-belief ?t ?lw ?x) unknown))
+  =>
+  (retract ?l)
+  (assert (light (light-from-belief ?t ?lw ?x))))
+
+(defrule wm-light-unknown
+  "The camera's light contradicts the gripper and two lights fit (see
+   exec-seen-light): the held puck's kind and the machine's contents are
+   unknown.  Believe the machine empty (a later rejection shows what it
+   holds) and get rid of the puck; the type belief stays, but an empty
+   T2_3 is unknown again (the candidate rules expect a T2_3 to hold a puck)."
+  (declare (salience ?*PRIORITY_WM_LIGHT*))
+  (state GOTO-FINAL) (goto-target ?name)
+  ?h <- (holding ?)
+  ?l <- (light unknown)
+  ?m <- (machine (name ?name) (mtype ?t))
+  =>
+  (retract ?l ?h)
+  (modify ?m (mtype (if (eq ?t T2_3) then T1_2_3 else ?t)) (loaded-with))
+  (assert (holding UNKNOWN)))
 
 ;;; ---- green: the type is the number of inputs consumed ------------------
 
@@ -128,16 +172,17 @@
   ?m <- (machine (name ?name) (loaded-with $?lw))
   =>
   (retract ?w)
-  (modify ?m (mtype T3) (loaded-with ?lw S2)))
+  (modify ?m (mtype T3) (loaded-with (loaded-after T3 ?lw S2))))
 
 (defrule wm-yellow-second-input-is-t3
   "A second input that still leaves the machine waiting: a T2 would be done."
   (declare (salience ?*PRIORITY_WM*))
   ?w <- (wm-eval (machine ?name) (light yellow) (was-holding ?x&S0|S1))
-  ?m <- (machine (name ?name) (loaded-with $?lw&:(> (length$ ?lw) 0)))
+  ?m <- (machine (name ?name) (mtype ?t&:(mtype-may-be ?t T3))
+          (loaded-with $?lw&:(> (length$ ?lw) 0)))
   =>
   (retract ?w)
-  (modify ?m (mtype T3) (loaded-with ?lw ?x)))
+  (modify ?m (mtype T3) (loaded-with (loaded-after T3 ?lw ?x))))
 
 (defrule wm-yellow-first-input-unknown-is-t23
   "The first S0 or S1 consumed without output: T2 or T3."
@@ -165,6 +210,22 @@
   =>
   (retract ?w)
   (modify ?m (loaded-with ?x)))
+
+(defrule wm-yellow-contradicts-belief
+  "Yellow for an S0/S1 where the belief says no: a T1 never waits, and a
+   loaded machine that cannot be a T3 would have completed.  The belief was
+   built on a misread light: the machine is a T2 (or T2/T3) holding ?x."
+  (declare (salience ?*PRIORITY_WM*))
+  ?w <- (wm-eval (machine ?name) (light yellow) (was-holding ?x&S0|S1))
+  ?m <- (machine (name ?name) (mtype ?t) (loaded-with $?lw))
+  (test (or (eq ?t T1)
+            (and (> (length$ ?lw) 0) (not (mtype-may-be ?t T3)))))
+  =>
+  (retract ?w)
+  (printout t "WARN yellow at " ?name " contradicts " ?t ": now "
+              (if (mtype-may-be ?t T2) then T2 else T2_3) crlf)
+  (modify ?m (mtype (if (mtype-may-be ?t T2) then T2 else T2_3))
+          (loaded-with ?x)))
 
 ;;; ---- yellow flashing: the machine rejects the puck ------------------------
 
@@ -196,16 +257,21 @@
   (retract ?w)
   (modify ?m (mtype T2)))
 
-(defrule wm-flash-s0-already-loaded
-  "Every type takes an S0, so rejecting one means an S0 is already there:
-   the beliefs had lost track of this machine (e.g. after a reset)."
+(defrule wm-flash-input-already-loaded
+  "Every type the belief allows takes the puck (any type takes an S0), so
+   rejecting it means that puck is already there: the beliefs had lost
+   track of this machine (a reset, a misread light).  Only a T2 or T3 keeps
+   pucks loaded."
   (declare (salience ?*PRIORITY_WM*))
-  ?w <- (wm-eval (machine ?name) (light yellow-flashing) (was-holding S0))
+  ?w <- (wm-eval (machine ?name) (light yellow-flashing) (was-holding ?x&S0|S1|S2))
   ?m <- (machine (name ?name) (mtype ?t)
-          (loaded-with $?lw&:(not (member$ S0 ?lw))))
+          (loaded-with $?lw&:(not (member$ ?x ?lw))))
+  (test (every-type-takes ?t ?x))
   =>
   (retract ?w)
-  (modify ?m (mtype (if (eq ?t T1_2_3) then T2_3 else ?t)) (loaded-with ?lw S0)))
+  (bind ?holder (switch ?t (case T2 then T2) (case T3 then T3) (case T1_2 then T2)
+                  (default T2_3)))
+  (modify ?m (mtype ?holder) (loaded-with (loaded-after ?holder ?lw ?x))))
 
 (defrule wm-flash-no-news
   "A rejection the beliefs already predicted (known type or puck already

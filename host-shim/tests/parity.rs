@@ -56,16 +56,27 @@ struct Case {
     strategy: Strategy,
     /// `--seeded-times --faults 3`: exercises the failure handling.
     hard: bool,
+    /// `--fault-rate PCT`: lost pucks, failed grabs and gotos, wrong lights.
+    fault_rate: u32,
 }
 
+/// Fault rates of the faulty games, in turn.
+const PARITY_FAULT_RATES: [u32; 3] = [10, 20, 30];
+
 fn cases() -> Vec<Case> {
-    (1..=24u64)
-        .map(|seed| Case {
-            seed,
-            strategy: Strategy::ALL[(seed % 3) as usize],
-            hard: seed % 4 == 0,
-        })
-        .collect()
+    let clean = (1..=24u64).map(|seed| Case {
+        seed,
+        strategy: Strategy::ALL[(seed % 3) as usize],
+        hard: seed % 4 == 0,
+        fault_rate: 0,
+    });
+    let faulty = (25..=36u64).map(|seed| Case {
+        seed,
+        strategy: Strategy::ALL[(seed % 3) as usize],
+        hard: false,
+        fault_rate: PARITY_FAULT_RATES[(seed % 3) as usize],
+    });
+    clean.chain(faulty).collect()
 }
 
 fn setup_of(case: Case) -> GameSetup {
@@ -75,7 +86,7 @@ fn setup_of(case: Case) -> GameSetup {
             .with_seeded_times(case.seed)
             .with_seeded_faults(case.seed, 3, 40);
     }
-    setup
+    setup.with_fault_rate(case.fault_rate, case.seed)
 }
 
 /// Prints the decision log in the format of the game log's `decision` lines
@@ -166,6 +177,7 @@ fn play_in_ours(case: Case, dir: &Path) -> (String, String) {
     if case.hard {
         cmd.args(["--seeded-times", "--faults", "3"]);
     }
+    cmd.args(["--fault-rate", &case.fault_rate.to_string()]);
     let out = cmd.output().expect("running robotino-agent sim");
     assert!(
         out.status.success(),
@@ -284,4 +296,12 @@ fn the_parity_set_covers_every_strategy_and_the_fault_paths() {
     assert!(cases
         .iter()
         .any(|c| c.hard && setup_of(*c).faults().count() == 3));
+    for strategy in Strategy::ALL {
+        assert!(
+            cases
+                .iter()
+                .any(|c| c.strategy == strategy && c.fault_rate >= 10),
+            "{strategy:?} in a faulty game"
+        );
+    }
 }

@@ -70,3 +70,49 @@ fn one_thread_and_two_threads_give_the_same_numbers() {
     let (_, two, _) = sweep(&["--limit", "6", "--threads", "2", "--quiet"]);
     assert_eq!(strip_speed(one), strip_speed(two));
 }
+
+#[test]
+fn faulty_games_go_on_without_deadlock_stall_or_panic() {
+    for strategy in ["naive", "paper", "travel"] {
+        let (ok, out, err) = sweep(&[
+            "--strategy",
+            strategy,
+            "--fault-rate",
+            "20",
+            "--limit",
+            "12",
+            "--threads",
+            "2",
+            "--quiet",
+        ]);
+        assert!(ok, "{strategy}: {err}\n{out}");
+        assert!(line(&out, "sweep:").contains("faults 20 %"), "{out}");
+        assert_eq!(line(&out, "deadlocks:"), "deadlocks: 0");
+        assert_eq!(line(&out, "stalls:"), "stalls: 0, panics: 0");
+        // Faults cost pucks: some are lost.
+        let lost: f64 = line(&out, "pucks lost per game")
+            .split_whitespace()
+            .nth(4)
+            .and_then(|w| w.trim_end_matches(',').parse().ok())
+            .unwrap_or_else(|| panic!("no lost count in {out}"));
+        assert!(lost > 0.0, "{out}");
+    }
+}
+
+#[test]
+fn the_fault_table_has_a_row_per_strategy_and_rate() {
+    let (ok, out, err) = sweep(&["--fault-table", "--limit", "3", "--threads", "2", "--quiet"]);
+    assert!(ok, "{err}\n{out}");
+    let rows: Vec<&str> = out
+        .lines()
+        .filter(|l| l.starts_with("| paper") || l.starts_with("| travel"))
+        .collect();
+    assert_eq!(rows.len(), 8, "{out}");
+    for row in rows {
+        let cells: Vec<&str> = row.split('|').map(str::trim).collect();
+        // deadlocks, stalls, panics
+        assert_eq!(&cells[10..13], ["0", "0", "0"], "{row}");
+    }
+    // Without faults the paper's agent makes its 105 points in each game.
+    assert!(out.contains("| paper | 0 | 3 | 105.00 | 105 |"), "{out}");
+}

@@ -14,7 +14,7 @@ load_lines() {
   stubs=clips/stubs.clp
   case "${CLIPS:-clips}" in *robotino-agent*) stubs= ;; esac
   for f in $stubs utils.clp worldmodel.clp execution.clp \
-           production-common.clp $prod referee.clp game-log.clp sim.clp \
+           production-common.clp $prod referee.clp game-log.clp sim.clp snapshot.clp \
            clips/report.clp; do
     echo "(load* \"$dir/$f\")"
   done

@@ -1,6 +1,6 @@
 //! Writes a game setup as CLIPS text, for the CLIPS drivers in rules/clips.
 //!
-//! setup SEED [--index] [--clock-off] [--seeded-times] [--faults N] [--s0 N]
+//! setup SEED [--index] [--clock-off] [--seeded-times] [--faults N] [--fault-rate PCT] [--s0 N]
 //!   SEED is a seed, or with --index an assignment index 0..4200.
 //! setup --sweep FROM TO [--seeds] [other options]
 //!   A batch for one CLIPS process: for every index (with --seeds: seed)
@@ -15,6 +15,7 @@ struct Options {
     clock_off: bool,
     seeded_times: bool,
     faults: usize,
+    fault_rate: u32,
     s0: Option<u32>,
     positional: Vec<u64>,
     sweep: bool,
@@ -27,6 +28,7 @@ fn parse(args: &[String]) -> Result<Options, String> {
         clock_off: false,
         seeded_times: false,
         faults: 0,
+        fault_rate: 0,
         s0: None,
         positional: Vec::new(),
         sweep: false,
@@ -45,6 +47,7 @@ fn parse(args: &[String]) -> Result<Options, String> {
             "--sweep" => o.sweep = true,
             "--seeds" => o.sweep_seeds = true,
             "--faults" => o.faults = value("--faults")? as usize,
+            "--fault-rate" => o.fault_rate = value("--fault-rate")? as u32,
             "--s0" => o.s0 = Some(value("--s0")? as u32),
             other => o
                 .positional
@@ -68,6 +71,9 @@ fn build(o: &Options, key: u64, by_index: bool) -> Result<GameSetup, String> {
     }
     if o.faults > 0 {
         setup = setup.with_seeded_faults(key, o.faults, 40);
+    }
+    if o.fault_rate > 0 {
+        setup = setup.with_fault_rate(o.fault_rate, key);
     }
     if o.clock_off {
         setup.clock_limit_s = None;
@@ -95,7 +101,7 @@ fn run(args: &[String]) -> Result<String, String> {
     } else {
         let [key] = o.positional[..] else {
             return Err(
-                "usage: setup SEED [--index] [--clock-off] [--seeded-times] [--faults N] [--s0 N]"
+                "usage: setup SEED [--index] [--clock-off] [--seeded-times] [--faults N] [--fault-rate PCT] [--s0 N]"
                     .into(),
             );
         };

@@ -51,6 +51,8 @@ pub const REFEREE: RuleFile = rule_file!("referee.clp");
 pub const GAME_LOG: RuleFile = rule_file!("game-log.clp");
 /// Instant skill execution against the referee.
 pub const SIM: RuleFile = rule_file!("sim.clp");
+/// A snapshot of the fact base after every decision (with a snapshot-file fact).
+pub const SNAPSHOT: RuleFile = rule_file!("snapshot.clp");
 /// Real-CLIPS stand-ins for host functions (`distance`); our engine has
 /// them built in, so hosts running our engine do not load this.
 pub const CLIPS_STUBS: RuleFile = rule_file!("clips/stubs.clp");
@@ -85,7 +87,7 @@ impl Strategy {
 }
 
 /// Every embedded file, to look the names of [`order`] up.
-const ALL: [RuleFile; 12] = [
+const ALL: [RuleFile; 13] = [
     UTILS,
     WORLD_MODEL,
     EXECUTION,
@@ -97,6 +99,7 @@ const ALL: [RuleFile; 12] = [
     REFEREE,
     GAME_LOG,
     SIM,
+    SNAPSHOT,
     CLIPS_STUBS,
 ];
 
@@ -150,9 +153,9 @@ const fn load<const N: usize>(parts: &[&[&str]]) -> [RuleFile; N] {
 const AGENT_NAIVE: [RuleFile; 5] = load(&[order::AGENT_NAIVE]);
 const AGENT_PAPER: [RuleFile; 6] = load(&[order::AGENT_PAPER]);
 const AGENT_TRAVEL: [RuleFile; 6] = load(&[order::AGENT_TRAVEL]);
-const GAME_NAIVE: [RuleFile; 8] = load(&[order::AGENT_NAIVE, order::DRIVER, order::SIM]);
-const GAME_PAPER: [RuleFile; 9] = load(&[order::AGENT_PAPER, order::DRIVER, order::SIM]);
-const GAME_TRAVEL: [RuleFile; 9] = load(&[order::AGENT_TRAVEL, order::DRIVER, order::SIM]);
+const GAME_NAIVE: [RuleFile; 9] = load(&[order::AGENT_NAIVE, order::DRIVER, order::SIM]);
+const GAME_PAPER: [RuleFile; 10] = load(&[order::AGENT_PAPER, order::DRIVER, order::SIM]);
+const GAME_TRAVEL: [RuleFile; 10] = load(&[order::AGENT_TRAVEL, order::DRIVER, order::SIM]);
 
 /// The agent alone (for a robot driver), in load order.
 pub fn agent_files(strategy: Strategy) -> &'static [RuleFile] {

@@ -33,8 +33,9 @@ pub const AGENT_TRAVEL: &[&str] = &[
 ];
 /// What a host driver loads after the agent: the referee and the decision log.
 pub const DRIVER: &[&str] = &["referee.clp", "game-log.clp"];
-/// What a simulated game loads after the driver files: the instant simulation.
-pub const SIM: &[&str] = &["sim.clp"];
+/// What a simulated game loads after the driver files: the instant simulation and
+/// the snapshots after every decision.
+pub const SIM: &[&str] = &["sim.clp", "snapshot.clp"];
 
 /// Every agent, by strategy name (as `Strategy::name` spells it).
 pub const AGENTS: [(&str, &[&str]); 3] = [

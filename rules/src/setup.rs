@@ -83,6 +83,7 @@ const STREAM_ASSIGNMENT: u64 = 0x4153_5349_474E; // "ASSIGN"
 const STREAM_TIMES: u64 = 0x0054_494D_4553; // "TIMES"
 const STREAM_GATE: u64 = 0x4741_5445; // "GATE"
 const STREAM_FAULTS: u64 = 0x4641_554C_5453; // "FAULTS"
+const STREAM_FAULT_RATE: u64 = 0x0052_4154_4546; // "RATEF"
 
 fn stream(seed: u64, salt: u64) -> SplitMix64 {
     let mut mixer = SplitMix64::new(seed ^ salt.rotate_left(17));
@@ -248,11 +249,20 @@ impl ProcessingTimes {
     }
 }
 
-/// How an injected fault makes a skill fail (see sim.clp).
+/// How an injected fault disturbs a skill (see sim.clp).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum FaultKind {
+    /// The carried puck is lost in transit (a fetched one right after taking it).
     LosePuck,
+    /// The goto fails: the robot never gets there; a carried puck is left behind.
     DriveFail,
+    /// Fetching: the grab at the input storage fails, nothing is taken.
+    GrabFail,
+    /// At a machine: the camera reports a wrong light (the machine acts as usual).
+    WrongLight,
+    /// Chosen by the simulation among the kinds that fit the skill, from the
+    /// fault's draw (rate-based faults: the host cannot know the skill ahead).
+    Drawn,
 }
 
 impl FaultKind {
@@ -260,15 +270,64 @@ impl FaultKind {
         match self {
             FaultKind::LosePuck => "lose-puck",
             FaultKind::DriveFail => "drive-fail",
+            FaultKind::GrabFail => "grab-fail",
+            FaultKind::WrongLight => "wrong-light",
+            FaultKind::Drawn => "drawn",
         }
+    }
+
+    /// Parses [`FaultKind::as_str`] back.
+    pub fn from_name(name: &str) -> Option<FaultKind> {
+        [
+            FaultKind::LosePuck,
+            FaultKind::DriveFail,
+            FaultKind::GrabFail,
+            FaultKind::WrongLight,
+            FaultKind::Drawn,
+        ]
+        .into_iter()
+        .find(|k| k.as_str() == name)
     }
 }
 
-/// The skill request with id `at_decision` fails.
+/// The skill request with id `at_decision` is disturbed; `draw` picks the
+/// kind of a [`FaultKind::Drawn`] fault and which wrong light is reported.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Fault {
     pub at_decision: u32,
     pub kind: FaultKind,
+    pub draw: u32,
+}
+
+/// Decisions a rate-based fault plan covers: more than any game takes.
+pub const FAULT_HORIZON: u32 = 300;
+/// Range of a fault's draw (sim.clp takes it modulo the fitting kinds).
+pub const FAULT_DRAW_RANGE: u32 = 1000;
+
+/// Seeded faults at a rate: each decision 1..=[`FAULT_HORIZON`] fails with
+/// probability `percent` %, independently, with a [`FaultKind::Drawn`] kind.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FaultRate {
+    pub percent: u32,
+    pub seed: u64,
+}
+
+impl FaultRate {
+    /// The plan's faults in decision order (a pure function of the seed).
+    pub fn faults(self) -> impl Iterator<Item = Fault> {
+        let mut rng = stream(self.seed, STREAM_FAULT_RATE);
+        (1..=FAULT_HORIZON).filter_map(move |at_decision| {
+            // Two draws per decision whatever the outcome, so decision n's
+            // fault does not depend on the rate of earlier ones.
+            let roll = rng.below(100) as u32;
+            let draw = rng.below(u64::from(FAULT_DRAW_RANGE)) as u32;
+            (roll < self.percent).then_some(Fault {
+                at_decision,
+                kind: FaultKind::Drawn,
+                draw,
+            })
+        })
+    }
 }
 
 /// Everything the host asserts before a game.
@@ -282,6 +341,8 @@ pub struct GameSetup {
     /// Game length in seconds; `None` plays with the clock off.
     pub clock_limit_s: Option<u32>,
     faults: [Option<Fault>; MAX_FAULTS],
+    /// Rate-based faults on top of the explicit ones (which win on a clash).
+    pub fault_rate: Option<FaultRate>,
 }
 
 /// Why a fault could not be added.
@@ -305,6 +366,7 @@ impl GameSetup {
             active_gate: 1,
             clock_limit_s: Some(900),
             faults: [None; MAX_FAULTS],
+            fault_rate: None,
         }
     }
 
@@ -349,7 +411,12 @@ impl GameSetup {
             } else {
                 FaultKind::DriveFail
             };
-            if self.add_fault(Fault { at_decision, kind }).is_err() {
+            let fault = Fault {
+                at_decision,
+                kind,
+                draw: 0,
+            };
+            if self.add_fault(fault).is_err() {
                 break;
             }
             added += 1;
@@ -357,8 +424,30 @@ impl GameSetup {
         self
     }
 
+    /// Faults at a rate (`percent` 0..=100) drawn from `seed`.
+    pub fn with_fault_rate(mut self, percent: u32, seed: u64) -> GameSetup {
+        self.fault_rate = (percent > 0).then_some(FaultRate {
+            percent: percent.min(100),
+            seed,
+        });
+        self
+    }
+
+    /// The explicit faults ([`GameSetup::add_fault`], `with_seeded_faults`).
     pub fn faults(&self) -> impl Iterator<Item = Fault> + '_ {
         self.faults.iter().flatten().copied()
+    }
+
+    /// Every fault of the game: the explicit ones, then the rate-based ones
+    /// at decisions no explicit fault names.
+    pub fn all_faults(&self) -> impl Iterator<Item = Fault> + '_ {
+        let explicit = self.faults();
+        let drawn = self
+            .fault_rate
+            .into_iter()
+            .flat_map(FaultRate::faults)
+            .filter(|f| !self.faults().any(|e| e.at_decision == f.at_decision));
+        explicit.chain(drawn)
     }
 
     /// Writes the setup as one CLIPS construct, `(deffacts game-setup ...)`:
@@ -388,13 +477,17 @@ impl GameSetup {
             Some(limit) => writeln!(out, "  (game-clock (limit {limit}.0) (enabled TRUE))")?,
             None => writeln!(out, "  (game-clock (limit 900.0) (enabled FALSE))")?,
         }
-        for fault in self.faults() {
-            writeln!(
+        for fault in self.all_faults() {
+            write!(
                 out,
-                "  (fault (at-decision {}) (kind {}))",
+                "  (fault (at-decision {}) (kind {})",
                 fault.at_decision,
                 fault.kind.as_str()
             )?;
+            if fault.draw != 0 {
+                write!(out, " (draw {})", fault.draw)?;
+            }
+            writeln!(out, ")")?;
         }
         writeln!(out, ")")
     }

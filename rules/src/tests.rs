@@ -147,6 +147,7 @@ fn seeded_faults_are_distinct_and_bounded() {
     let extra = Fault {
         at_decision: 1,
         kind: FaultKind::LosePuck,
+        draw: 0,
     };
     assert_eq!(full.add_fault(extra), Err(FaultsFull));
 }
@@ -161,6 +162,7 @@ fn setup_text_lists_every_fact() {
         .add_fault(Fault {
             at_decision: 4,
             kind: FaultKind::DriveFail,
+            draw: 0,
         })
         .expect("room for a fault");
     let mut buf = Buffer::new();
@@ -251,7 +253,7 @@ fn strategies_load_utilities_first_and_their_own_production() {
         assert_eq!(agent[0], UTILS);
         let game = game_files(strategy);
         assert_eq!(&game[..agent.len()], agent);
-        assert_eq!(&game[agent.len()..], &[REFEREE, GAME_LOG, SIM]);
+        assert_eq!(&game[agent.len()..], &[REFEREE, GAME_LOG, SIM, SNAPSHOT]);
         assert_eq!(&game[agent.len()..agent.len() + 2], &DRIVER_FILES);
     }
     assert!(agent_files(Strategy::Naive).contains(&PRODUCTION_NAIVE));
@@ -268,6 +270,7 @@ fn the_paper_example_rules_are_present() {
     assert!(!REFEREE.text.contains("(random"));
     assert!(!SIM.text.contains("(random"));
     assert!(!GAME_LOG.text.contains("(random"));
+    assert!(!SNAPSHOT.text.contains("(random"));
 }
 
 #[test]
@@ -339,5 +342,41 @@ fn fact_lines_are_the_facts_of_the_deffacts() {
             .filter(|l| l.starts_with("(rf-machine"))
             .count(),
         MACHINE_COUNT
+    );
+}
+
+#[test]
+fn fault_rates_draw_a_fixed_plan_per_seed() {
+    let setup = |percent, seed| GameSetup::for_seed(seed).with_fault_rate(percent, seed);
+    assert_eq!(setup(0, 5).all_faults().count(), 0);
+    assert_eq!(setup(100, 5).all_faults().count(), FAULT_HORIZON as usize);
+    let twenty = setup(20, 5);
+    // About a fifth of the decisions, each with a drawn kind.
+    let n = twenty.all_faults().count();
+    assert!((30..=90).contains(&n), "{n}");
+    assert!(twenty
+        .all_faults()
+        .all(|f| f.kind == FaultKind::Drawn && f.draw < FAULT_DRAW_RANGE));
+    assert!(twenty.all_faults().eq(setup(20, 5).all_faults()));
+    assert!(!twenty.all_faults().eq(setup(20, 6).all_faults()));
+    // A higher rate keeps the faults of a lower one (same rolls per decision).
+    assert!(setup(10, 5)
+        .all_faults()
+        .all(|f| twenty.all_faults().any(|g| g == f)));
+    // Explicit faults win at their decision.
+    let mut mixed = setup(100, 5);
+    mixed
+        .add_fault(Fault {
+            at_decision: 2,
+            kind: FaultKind::GrabFail,
+            draw: 0,
+        })
+        .expect("room for a fault");
+    let mut at_two = mixed.all_faults().filter(|f| f.at_decision == 2);
+    assert_eq!(at_two.next().map(|f| f.kind), Some(FaultKind::GrabFail));
+    assert_eq!(at_two.next(), None);
+    assert_eq!(
+        FaultKind::from_name("wrong-light"),
+        Some(FaultKind::WrongLight)
     );
 }

@@ -36,6 +36,14 @@
           (skill-request (id 1) (name ?skill) (target ?target) (puck ?puck))
           (skill-outcome (id 1) (status ?status) (light ?light))))
 
+(deffunction t-outcome-sensed
+  "Like t-outcome, with the gripper's puck sensor in info (puck-held or
+   no-puck)."
+  (?skill ?target ?status ?light ?info)
+  (t-outcome ?skill ?target ?status ?light)
+  (do-for-all-facts ((?o skill-outcome)) TRUE
+    (modify ?o (info ?info))))
+
 (deffunction t-expect-request
   "The agent's next committed skill is ?skill at ?target."
   (?label ?skill ?target)

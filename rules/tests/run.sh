@@ -15,12 +15,13 @@ for test in "$@"; do
   strategy=$(sed -n 's/^;;; strategy: *//p' "$test" | head -1)
   batch=$(mktemp)
   {
-    load_lines "$here" "${strategy:-paper}" | grep -v -e referee.clp -e game-log.clp -e sim.clp -e report.clp
+    load_lines "$here" "${strategy:-paper}" | grep -v -e referee.clp -e game-log.clp -e sim.clp -e snapshot.clp -e report.clp
     echo "(load* \"$here/tests/lib.clp\")"
     if grep -q '^;;; with: game' "$test"; then
       echo "(load* \"$here/referee.clp\")"
       echo "(load* \"$here/game-log.clp\")"
       echo "(load* \"$here/sim.clp\")"
+      echo "(load* \"$here/snapshot.clp\")"
       echo "(load* \"$here/clips/report.clp\")"
       echo "(load* \"$here/tests/lib-game.clp\")"
     fi

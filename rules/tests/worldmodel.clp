@@ -104,13 +104,105 @@
 (t-expect-machine "wm flash predicted: belief unchanged" M8 T2 S0)
 (t-expect-holding "wm flash predicted: keeps S0" S0)
 
-;; A light the beliefs cannot explain: forget the machine's contents.
+;; Yellow at a believed T1: a T1 never waits, the belief was wrong.
 (reset)
 (t-holding S0)
 (t-machine M9 T1)
 (t-outcome finish-puck-at M9 FINAL yellow)
 (run)
-(t-expect-machine "wm unexplained yellow at T1: belief reset" M9 T1_2_3)
+(t-expect-machine "wm yellow at T1 contradicts: T2_3 holding the S0" M9 T2_3 S0)
+
+;; Yellow for a second input at a believed T2: it was empty after all.
+(reset)
+(t-holding S1)
+(t-machine M9 T2 S1)
+(t-outcome finish-puck-at M9 FINAL yellow)
+(run)
+(t-expect-machine "wm yellow at loaded T2 contradicts: T2 holding the S1" M9 T2 S1)
+
+;; A light the beliefs cannot explain: forget the machine's contents.
+(reset)
+(t-holding S0)
+(t-machine M9 T2_3)
+(t-outcome finish-puck-at M9 FINAL green)
+(run)
+(t-expect-machine "wm unexplained green at empty T2_3: belief reset" M9 T1_2_3)
+(t-expect-holding "wm unexplained green: puck kind unknown" UNKNOWN)
+
+;; Green at a known type with stale contents: the type says the output.
+(reset)
+(t-holding S1)
+(t-machine M9 T3)
+(t-outcome finish-puck-at M9 FINAL green)
+(run)
+(t-expect-holding "wm green at a known T3: holding P whatever was loaded" P)
+
+;; The camera says flashing but the gripper is empty: the machine took it (yellow).
+(reset)
+(t-holding S0)
+(t-outcome-sensed finish-puck-at M4 FINAL yellow-flashing no-puck)
+(run)
+(t-expect-machine "wm misread flashing, empty gripper: read as yellow" M4 T2_3 S0)
+(t-expect-holding "wm misread flashing, empty gripper: holds nothing" NONE)
+
+;; The camera says yellow but the gripper holds a puck; the belief settles it.
+(reset)
+(t-holding S1)
+(t-machine M4 T1)
+(t-outcome-sensed finish-puck-at M4 FINAL yellow puck-held)
+(run)
+(t-expect-machine "wm misread yellow, T1 rejects S1: belief unchanged" M4 T1)
+(t-expect-holding "wm misread yellow, T1 rejects S1: keeps S1" S1)
+
+(reset)
+(t-holding S2)
+(t-machine M4 T3 S0 S1)
+(t-outcome-sensed finish-puck-at M4 FINAL yellow puck-held)
+(run)
+(t-expect-holding "wm misread yellow, S2 completes a T3: holding P" P)
+(t-expect-machine "wm misread yellow, S2 completes a T3: emptied" M4 T3)
+
+;; A T2_3 holding an S1 takes an S0 whatever it is: the puck held is an output (green).
+(reset)
+(t-holding S0)
+(t-machine M4 T2_3 S1)
+(t-outcome-sensed finish-puck-at M4 FINAL yellow puck-held)
+(run)
+(t-expect-machine "wm misread yellow, S0 cannot be rejected: green, a T2" M4 T2)
+(t-expect-holding "wm misread yellow, S0 cannot be rejected: holding S2" S2)
+
+;; ... and where the belief cannot settle it: contents and puck unknown, discard.
+(reset)
+(t-holding S1)
+(t-machine M4 T1_2)
+(t-outcome-sensed finish-puck-at M4 FINAL yellow puck-held)
+(run)
+(t-expect-machine "wm misread yellow, unsettled: contents forgotten, type kept" M4 T1_2)
+(t-expect-request "wm misread yellow, unsettled: discard the unknown puck" discard R1)
+
+(reset)
+(t-holding S1)
+(t-machine M4 T2_3 S0)
+(t-machine M5 T1)
+(t-outcome-sensed finish-puck-at M4 FINAL yellow puck-held)
+(run)
+(t-expect-holding "wm misread yellow, S1 at T2_3+S0 cannot be rejected: S2" S2)
+
+;; Flashing S1 at a known T2 believed empty: the S1 is already there.
+(reset)
+(t-holding S1)
+(t-machine M5 T2)
+(t-outcome finish-puck-at M5 FINAL yellow-flashing)
+(run)
+(t-expect-machine "wm flash S1 at empty T2: S1 already loaded" M5 T2 S1)
+
+;; Flashing S0 at a believed T1: a T1 never keeps pucks, so it is a T2/T3.
+(reset)
+(t-holding S0)
+(t-machine M5 T1)
+(t-outcome finish-puck-at M5 FINAL yellow-flashing)
+(run)
+(t-expect-machine "wm flash S0 at T1 contradicts: T2_3 holding S0" M5 T2_3 S0)
 
 ;; Flashing S0 at a machine believed empty: an S0 must already be there.
 (reset)

@@ -5,11 +5,12 @@
 
 use std::fmt;
 
-use agent_core::{DefaultEngine, Host};
+use agent_core::{DefaultEngine, Host, HostIoError};
 use rules::setup::GameSetup;
 use rules::Strategy;
 
 use super::record::{read_record, GameRecord};
+use super::snapshot::{self, Snapshot, SnapshotSink};
 
 /// Most rule firings one game may take; a real game fires about a thousand,
 /// so hitting this means the rules loop (reported as a stall).
@@ -48,15 +49,40 @@ impl fmt::Display for SimError {
 impl std::error::Error for SimError {}
 
 /// Collects what the engine prints: `printout` output and, when tracing,
-/// the `(watch rules)` lines, in the order they were written.
+/// the `(watch rules)` lines, in the order they were written; with a
+/// snapshot sink, takes `save-facts` output and the snapshot marker lines.
 #[derive(Default)]
 pub struct GameHost {
     pub output: String,
+    pub snapshot: Option<SnapshotSink>,
 }
 
 impl Host for GameHost {
     fn write_str(&mut self, _router: &str, text: &str) {
         self.output.push_str(text);
+        let Some(sink) = self.snapshot.as_mut() else {
+            return;
+        };
+        if !text.ends_with('\n') {
+            return;
+        }
+        // The line just completed: a snapshot marker is the host's, not output.
+        let body = &self.output[..self.output.len() - 1];
+        let start = body.rfind('\n').map_or(0, |i| i + 1);
+        if self.output[start..].starts_with(snapshot::MARKER) {
+            self.output.truncate(start);
+            sink.commit();
+        }
+    }
+
+    fn write_file(&mut self, path: &str, data: &[u8], append: bool) -> Result<(), HostIoError> {
+        match self.snapshot.as_mut() {
+            Some(sink) if sink.accepts(path) => {
+                sink.write(data, append);
+                Ok(())
+            }
+            _ => Err(HostIoError::Other),
+        }
     }
 }
 
@@ -112,6 +138,127 @@ impl Player {
             })
     }
 
+    /// Snapshots after every decision into `sink` (None: no snapshots).
+    pub fn set_snapshot(&mut self, sink: Option<SnapshotSink>) {
+        self.host.snapshot = sink;
+    }
+
+    fn assert_fact(&mut self, fact: &str, what: &str) -> Result<(), SimError> {
+        self.engine
+            .assert_str(&mut self.host, fact)
+            .map(|_| ())
+            .map_err(|e| SimError::Engine {
+                during: format!("asserting {what} {fact}"),
+                message: e.to_string(),
+            })
+    }
+
+    /// The facts that switch snapshots on, if a sink is set.
+    fn assert_snapshot_facts(&mut self) -> Result<(), SimError> {
+        if let Some(fact) = self.host.snapshot.as_ref().map(SnapshotSink::fact) {
+            let strategy = format!("(agent-strategy {})", self.strategy.name());
+            self.assert_fact(&strategy, "the snapshot fact")?;
+            self.assert_fact(&fact, "the snapshot fact")?;
+        }
+        Ok(())
+    }
+
+    fn run_to_end(&mut self, setup: GameSetup) -> Result<GameRecord, SimError> {
+        self.host.output.clear();
+        let fired = self
+            .engine
+            .run(&mut self.host, Some(FIRE_LIMIT))
+            .map_err(|e| SimError::Engine {
+                during: "(run)".into(),
+                message: format!("{e} (output so far ends: {})", tail(&self.host.output, 400)),
+            })?;
+        if let Some(e) = self.host.snapshot.as_mut().and_then(|s| s.error.take()) {
+            return Err(SimError::Input(e));
+        }
+        let output = std::mem::take(&mut self.host.output);
+        read_record(&self.engine, setup, self.strategy, fired, output)
+    }
+
+    /// Resumes a game from a snapshot (see [`snapshot`]): the facts of
+    /// `(reset)` are replaced by the snapshot's, in their saved order, so the
+    /// agent and the referee go on from the saved decision. The player must
+    /// have been created for the snapshot's strategy. Returns the record and
+    /// the machine beliefs as the resumed engine holds them before running.
+    pub fn resume(
+        &mut self,
+        snapshot: &Snapshot,
+        trace: bool,
+    ) -> Result<(GameRecord, Vec<String>), SimError> {
+        if snapshot.strategy != self.strategy {
+            return Err(SimError::Input(format!(
+                "the snapshot is of strategy {}, the player of {}",
+                snapshot.strategy.name(),
+                self.strategy.name()
+            )));
+        }
+        self.eval(if trace {
+            "(watch rules)"
+        } else {
+            "(unwatch rules)"
+        })?;
+        self.engine
+            .reset(&mut self.host)
+            .map_err(|e| SimError::Engine {
+                during: "(reset)".into(),
+                message: e.to_string(),
+            })?;
+        self.eval("(retract *)")?;
+        for fact in snapshot
+            .facts
+            .iter()
+            .filter(|f| !f.starts_with("(snapshot-file ") && !f.starts_with("(agent-strategy "))
+        {
+            self.assert_fact(fact, "the snapshot fact")?;
+        }
+        self.assert_snapshot_facts()?;
+        let beliefs = self.machine_beliefs();
+        let record = self.run_to_end(snapshot.setup.clone())?;
+        Ok((record, beliefs))
+    }
+
+    /// The engine's machine beliefs M1..M10 as `T2_3+S0` symbols.
+    pub fn machine_beliefs(&self) -> Vec<String> {
+        let mut beliefs = vec![String::new(); rules::setup::MACHINE_COUNT];
+        for id in self.engine.facts() {
+            if self.engine.fact_template_name(id) != Some("machine") {
+                continue;
+            }
+            let index = match self.engine.fact_slot(id, "index") {
+                Some(agent_core::ValueRef::Int(i)) => i,
+                _ => continue,
+            };
+            let Some(slot) = usize::try_from(index - 1)
+                .ok()
+                .and_then(|i| beliefs.get_mut(i))
+            else {
+                continue;
+            };
+            let mut belief = match self.engine.fact_slot(id, "mtype") {
+                Some(agent_core::ValueRef::Symbol(s)) => s.to_string(),
+                _ => continue,
+            };
+            let n = match self.engine.fact_slot(id, "loaded-with") {
+                Some(agent_core::ValueRef::Multi(n)) => n as usize,
+                _ => 0,
+            };
+            for i in 0..n {
+                if let Some(agent_core::ValueRef::Symbol(p)) =
+                    self.engine.fact_multislot_item(id, "loaded-with", i)
+                {
+                    belief.push('+');
+                    belief.push_str(p);
+                }
+            }
+            *slot = belief;
+        }
+        beliefs
+    }
+
     fn eval(&mut self, command: &str) -> Result<(), SimError> {
         self.engine
             .eval_str(&mut self.host, command)
@@ -145,23 +292,10 @@ impl Player {
                 message: e.to_string(),
             })?;
         for fact in rules::setup::fact_lines(&text) {
-            self.engine
-                .assert_str(&mut self.host, fact)
-                .map_err(|e| SimError::Engine {
-                    during: format!("asserting the setup fact {fact}"),
-                    message: e.to_string(),
-                })?;
+            self.assert_fact(fact, "the setup fact")?;
         }
-        self.host.output.clear();
-        let fired = self
-            .engine
-            .run(&mut self.host, Some(FIRE_LIMIT))
-            .map_err(|e| SimError::Engine {
-                during: "(run)".into(),
-                message: format!("{e} (output so far ends: {})", tail(&self.host.output, 400)),
-            })?;
-        let output = std::mem::take(&mut self.host.output);
-        read_record(&self.engine, setup.clone(), self.strategy, fired, output)
+        self.assert_snapshot_facts()?;
+        self.run_to_end(setup.clone())
     }
 }
 

@@ -8,6 +8,7 @@ pub mod game;
 pub mod record;
 pub mod replay;
 pub mod report;
+pub mod snapshot;
 pub mod sweep;
 
 use std::process::ExitCode;
@@ -41,12 +42,28 @@ pub struct Args {
     /// Inject N faults among the first 40 decisions (drawn from the seed).
     #[arg(long, default_value_t = 0)]
     pub faults: usize,
+    /// Disturb each decision with probability PCT % (lost puck, failed grab,
+    /// failed goto, wrong light), drawn from the seed (or the index).
+    #[arg(long, value_name = "PCT", default_value_t = 0, value_parser = clap::value_parser!(u32).range(0..=100))]
+    pub fault_rate: u32,
     /// Print the engine's `(watch rules)` trace before the report.
     #[arg(long)]
     pub trace: bool,
     /// Write a game log (setup and decisions) to FILE.
     #[arg(long, value_name = "FILE")]
     pub log: Option<std::path::PathBuf>,
+    /// Save the whole fact base (agent beliefs, referee, log) to FILE after
+    /// every decision; the file is replaced atomically.
+    #[arg(long, value_name = "FILE")]
+    pub snapshot: Option<std::path::PathBuf>,
+    /// Go on with the game saved in FILE by --snapshot (e.g. after the process
+    /// was killed); keeps snapshotting into FILE unless --snapshot names another.
+    #[arg(long, value_name = "FILE", conflicts_with_all = ["seed", "assignment", "index", "replay", "strategy", "fault_rate", "faults"])]
+    pub resume: Option<std::path::PathBuf>,
+    /// Pause N ms of wall-clock time after each snapshot (lets a test kill
+    /// the process in the middle of a game).
+    #[arg(long, value_name = "N", default_value_t = 0)]
+    pub pace_ms: u64,
     /// Play the game in FILE again and check that the decisions are the same.
     #[arg(long, value_name = "FILE", conflicts_with_all = ["seed", "assignment", "index", "log"])]
     pub replay: Option<std::path::PathBuf>,
@@ -79,6 +96,10 @@ fn setup_from_args(args: &Args) -> Result<(GameSetup, String), SimError> {
     if args.faults > 0 {
         setup = setup.with_seeded_faults(seed, args.faults, 40);
     }
+    if args.fault_rate > 0 {
+        let key = args.index.map(u64::from).unwrap_or(seed);
+        setup = setup.with_fault_rate(args.fault_rate, key);
+    }
     if args.clock_off {
         setup.clock_limit_s = None;
     }
@@ -89,7 +110,62 @@ fn setup_from_args(args: &Args) -> Result<(GameSetup, String), SimError> {
     Ok((setup, title))
 }
 
+fn sink_for(
+    args: &Args,
+    path: Option<&std::path::Path>,
+) -> Result<Option<snapshot::SnapshotSink>, SimError> {
+    path.map(|p| snapshot::SnapshotSink::new(p, std::time::Duration::from_millis(args.pace_ms)))
+        .transpose()
+}
+
+/// `sim --resume FILE`: the snapshot's game, played to its end.
+fn resume(args: &Args, path: &std::path::Path) -> Result<String, SimError> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| SimError::Input(format!("cannot read {}: {e}", path.display())))?;
+    let snap = snapshot::parse(&text)?;
+    let mut player = Player::new(snap.strategy)?;
+    warn_stub(&player);
+    player.set_snapshot(sink_for(
+        args,
+        Some(args.snapshot.as_deref().unwrap_or(path)),
+    )?);
+    let (record, beliefs) = player.resume(&snap, args.trace)?;
+    // The resumed engine must know exactly what the snapshot says.
+    let saved = snapshot::machine_beliefs(&snap.facts);
+    if beliefs != saved {
+        return Err(SimError::Facts(format!(
+            "resumed beliefs {beliefs:?} differ from the snapshot's {saved:?}"
+        )));
+    }
+    let mut out = String::new();
+    if args.trace || !record.output.is_empty() {
+        out.push_str(&record.output);
+        if !record.output.ends_with('\n') {
+            out.push('\n');
+        }
+    }
+    out.push_str(&format!(
+        "resumed from {} after decision {}; machine beliefs M1..M10: {}\n",
+        path.display(),
+        snap.decision,
+        beliefs.join(" ")
+    ));
+    out.push_str(&report::render(
+        &record,
+        &format!("resumed {}", path.display()),
+    ));
+    if let Some(log) = &args.log {
+        std::fs::write(log, replay::write_log(&record))
+            .map_err(|e| SimError::Input(format!("cannot write {}: {e}", log.display())))?;
+        out.push_str(&format!("game log written to {}\n", log.display()));
+    }
+    Ok(out)
+}
+
 fn run(args: Args) -> Result<String, SimError> {
+    if let Some(path) = &args.resume {
+        return resume(&args, path);
+    }
     if let Some(path) = &args.replay {
         let text = std::fs::read_to_string(path)
             .map_err(|e| SimError::Input(format!("cannot read {}: {e}", path.display())))?;
@@ -120,6 +196,7 @@ fn run(args: Args) -> Result<String, SimError> {
     let (setup, title) = setup_from_args(&args)?;
     let mut player = Player::new(args.strategy)?;
     warn_stub(&player);
+    player.set_snapshot(sink_for(&args, args.snapshot.as_deref())?);
     let record = player.play(&setup, args.trace)?;
     let mut out = String::new();
     if args.trace || !record.output.is_empty() {

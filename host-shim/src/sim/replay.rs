@@ -50,7 +50,16 @@ pub fn write_log(record: &GameRecord) -> String {
         }
     }
     for f in s.faults() {
-        let _ = writeln!(out, "fault {} {}", f.at_decision, f.kind.as_str());
+        let _ = writeln!(
+            out,
+            "fault {} {} {}",
+            f.at_decision,
+            f.kind.as_str(),
+            f.draw
+        );
+    }
+    if let Some(rate) = s.fault_rate {
+        let _ = writeln!(out, "fault-rate {} {}", rate.percent, rate.seed);
     }
     for d in &record.decisions {
         let _ = writeln!(out, "decision {}", d.log_line());
@@ -115,6 +124,7 @@ pub fn parse_log(text: &str) -> Result<GameLog, SimError> {
     let mut times = ProcessingTimes::MIDPOINTS;
     let (mut s0, mut gate, mut clock) = (20, 1, Some(900));
     let mut faults = Vec::new();
+    let mut fault_rate: Option<(u32, u64)> = None;
     let mut decisions = Vec::new();
     let mut result = None;
     for (no, line) in lines {
@@ -150,12 +160,26 @@ pub fn parse_log(text: &str) -> Result<GameLog, SimError> {
             }
             "fault" => {
                 let at_decision = number(no, words.next(), "the decision number")?;
-                let kind = match words.next() {
-                    Some("lose-puck") => FaultKind::LosePuck,
-                    Some("drive-fail") => FaultKind::DriveFail,
-                    _ => return Err(bad(no, "expected lose-puck or drive-fail")),
+                let kind = words
+                    .next()
+                    .and_then(FaultKind::from_name)
+                    .ok_or_else(|| bad(no, "expected a fault kind (lose-puck, drive-fail, grab-fail, wrong-light, drawn)"))?;
+                // Logs before draws existed end here: draw 0.
+                let draw = match words.next() {
+                    Some(w) => number(no, Some(w), "the fault's draw")?,
+                    None => 0,
                 };
-                faults.push(Fault { at_decision, kind });
+                faults.push(Fault {
+                    at_decision,
+                    kind,
+                    draw,
+                });
+            }
+            "fault-rate" => {
+                fault_rate = Some((
+                    number(no, words.next(), "the fault rate in %")?,
+                    number(no, words.next(), "the fault seed")?,
+                ))
             }
             "decision" => decisions.push(rest.to_string()),
             "result" => result = Some(rest.to_string()),
@@ -176,6 +200,9 @@ pub fn parse_log(text: &str) -> Result<GameLog, SimError> {
         setup
             .add_fault(f)
             .map_err(|e| SimError::Input(e.to_string()))?;
+    }
+    if let Some((percent, seed)) = fault_rate {
+        setup = setup.with_fault_rate(percent, seed);
     }
     let result = result.ok_or_else(|| SimError::Input("game log without a result line".into()))?;
     Ok(GameLog {
@@ -221,13 +248,16 @@ mod tests {
     use crate::sim::record::{Decision, EndReason, Score};
 
     fn record() -> GameRecord {
-        let mut setup = GameSetup::for_seed(3).with_seeded_times(3);
+        let mut setup = GameSetup::for_seed(3)
+            .with_seeded_times(3)
+            .with_fault_rate(10, 3);
         setup.clock_limit_s = None;
         setup.active_gate = 3;
         setup
             .add_fault(Fault {
                 at_decision: 4,
                 kind: FaultKind::DriveFail,
+                draw: 0,
             })
             .expect("room for a fault");
         let decision = |n: u32, light: &str| Decision {

@@ -87,6 +87,24 @@ pub fn render(record: &GameRecord, title: &str) -> String {
             fault.at_decision
         );
     }
+    if let Some(rate) = setup.fault_rate {
+        let hits: Vec<String> = setup
+            .all_faults()
+            .filter(|f| f.at_decision as usize <= record.decisions.len())
+            .map(|f| f.at_decision.to_string())
+            .collect();
+        let _ = writeln!(
+            out,
+            "faults: {} % per decision (seed {}); decisions hit: {}",
+            rate.percent,
+            rate.seed,
+            if hits.is_empty() {
+                "none".to_string()
+            } else {
+                hits.join(" ")
+            }
+        );
+    }
     let _ = writeln!(
         out,
         "\ndecisions (time = game seconds when the skill ended; beliefs M1..M10 afterwards):"

@@ -33,7 +33,30 @@ pub struct Args {
     /// No progress bar (for scripts and tests).
     #[arg(long)]
     pub quiet: bool,
+    /// Disturb each decision with probability PCT % (lost puck, failed grab,
+    /// failed goto, wrong light); game N's faults are drawn from seed N.
+    #[arg(long, value_name = "PCT", default_value_t = 0, value_parser = clap::value_parser!(u32).range(0..=100))]
+    pub fault_rate: u32,
+    /// Points against fault rate: the paper and travel strategies at 0, 5,
+    /// 10 and 20 % faults, one table row each (ignores --strategy and
+    /// --fault-rate).
+    #[arg(long, conflicts_with = "fault_rate")]
+    pub fault_table: bool,
 }
+
+/// What a sweep plays: strategy, clock and faults.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SweepConfig {
+    pub strategy: Strategy,
+    pub clock_off: bool,
+    /// Faults per decision in %, seeded by the assignment index.
+    pub fault_rate: u32,
+}
+
+/// Fault rates of `sweep --fault-table`.
+pub const TABLE_FAULT_RATES: [u32; 4] = [0, 5, 10, 20];
+/// Strategies of `sweep --fault-table`.
+pub const TABLE_STRATEGIES: [Strategy; 2] = [Strategy::Paper, Strategy::Travel];
 
 /// What the sweep keeps of one game.
 #[derive(Clone, Debug)]
@@ -47,6 +70,10 @@ pub struct GameSummary {
     pub end: EndReason,
     pub end_time: f64,
     pub travelled: f64,
+    pub lost: i64,
+    pub discarded: i64,
+    /// The engine thread panicked during this game (always a bug).
+    pub panicked: bool,
 }
 
 impl GameSummary {
@@ -61,15 +88,38 @@ impl GameSummary {
             end: r.end,
             end_time: r.end_time,
             travelled: r.travelled,
+            lost: r.score.lost,
+            discarded: r.score.discarded,
+            panicked: false,
+        }
+    }
+
+    fn panicked(index: u32) -> GameSummary {
+        GameSummary {
+            index,
+            points: 0,
+            s1: 0,
+            s2: 0,
+            p: 0,
+            decisions: 0,
+            end: EndReason::Stalled,
+            end_time: 0.0,
+            travelled: 0.0,
+            lost: 0,
+            discarded: 0,
+            panicked: true,
         }
     }
 }
 
 /// The setup of assignment `index` under the sweep's options.
-pub fn sweep_setup(index: u32, clock_off: bool) -> Option<GameSetup> {
+pub fn sweep_setup(index: u32, config: SweepConfig) -> Option<GameSetup> {
     let mut setup = GameSetup::new(assignment_by_index(index)?);
-    if clock_off {
+    if config.clock_off {
         setup.clock_limit_s = None;
+    }
+    if config.fault_rate > 0 {
+        setup = setup.with_fault_rate(config.fault_rate, u64::from(index));
     }
     Some(setup)
 }
@@ -77,8 +127,7 @@ pub fn sweep_setup(index: u32, clock_off: bool) -> Option<GameSetup> {
 /// Plays assignments `0..count` on `threads` workers; `on_game` is called
 /// after every game (for the progress bar). Results are ordered by index.
 pub fn play_all(
-    strategy: Strategy,
-    clock_off: bool,
+    config: SweepConfig,
     count: u32,
     threads: usize,
     on_game: &(dyn Fn() + Sync),
@@ -90,19 +139,34 @@ pub fn play_all(
     std::thread::scope(|scope| {
         for _ in 0..threads.max(1) {
             let worker = || -> Result<(), SimError> {
-                let mut player = Player::new(strategy)?;
+                let mut player = Player::new(config.strategy)?;
                 loop {
                     let index = next.fetch_add(1, Ordering::Relaxed);
                     if index >= count {
                         return Ok(());
                     }
-                    let setup = sweep_setup(index, clock_off)
+                    let setup = sweep_setup(index, config)
                         .ok_or_else(|| SimError::Input(format!("no assignment #{index}")))?;
-                    let record = player
-                        .play(&setup, false)
-                        .map_err(|e| SimError::Input(format!("assignment #{index}: {e}")))?;
+                    // A panic is counted, not fatal: the sweep must say how
+                    // many games panic (0 is the requirement).
+                    let played = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                        player.play(&setup, false)
+                    }));
+                    let summary = match played {
+                        Ok(record) => GameSummary::of(
+                            index,
+                            &record.map_err(|e| {
+                                SimError::Input(format!("assignment #{index}: {e}"))
+                            })?,
+                        ),
+                        Err(_) => {
+                            // The engine may be half-way through an operation.
+                            player = Player::new(config.strategy)?;
+                            GameSummary::panicked(index)
+                        }
+                    };
                     if let Ok(mut all) = results.lock() {
-                        all.push(GameSummary::of(index, &record));
+                        all.push(summary);
                     }
                     on_game();
                 }
@@ -174,12 +238,12 @@ fn points_histogram(games: &[GameSummary]) -> String {
 }
 
 /// The summary text of a sweep.
-pub fn summarize(
-    strategy: Strategy,
-    clock_off: bool,
-    games: &[GameSummary],
-    seconds: f64,
-) -> String {
+pub fn summarize(config: SweepConfig, games: &[GameSummary], seconds: f64) -> String {
+    let SweepConfig {
+        strategy,
+        clock_off,
+        fault_rate,
+    } = config;
     let mut out = String::new();
     let n = games.len();
     let count = |f: &dyn Fn(&GameSummary) -> bool| games.iter().filter(|g| f(g)).count();
@@ -187,14 +251,18 @@ pub fn summarize(
     let max = games.iter().map(|g| g.points).max().unwrap_or(0);
     let _ = writeln!(
         out,
-        "sweep: strategy {}, {} assignments, clock {}",
+        "sweep: strategy {}, {} assignments, clock {}, faults {fault_rate} %",
         strategy.name(),
         n,
         if clock_off { "off" } else { "900 s" }
     );
+    let worst = games
+        .iter()
+        .min_by_key(|g| (g.points, g.index))
+        .map_or(String::new(), |g| format!(" (assignment #{})", g.index));
     let _ = writeln!(
         out,
-        "points: mean {:.2}, min {min}, max {max}",
+        "points: mean {:.2}, min {min}{worst}, max {max}",
         mean(games.iter().map(|g| g.points as f64))
     );
     out.push_str(&points_histogram(games));
@@ -216,7 +284,25 @@ pub fn summarize(
         count(&|g| g.s1 + g.s2 + g.p == 0),
         count(&|g| g.p == 0)
     );
-    let _ = writeln!(out, "deadlocks: {}", count(&|g| g.end.is_deadlock()));
+    let _ = writeln!(
+        out,
+        "deadlocks: {}",
+        count(&|g| g.end == EndReason::Deadlock)
+    );
+    let _ = writeln!(
+        out,
+        "stalls: {}, panics: {}",
+        count(&|g| g.end == EndReason::Stalled && !g.panicked),
+        count(&|g| g.panicked)
+    );
+    if fault_rate > 0 {
+        let _ = writeln!(
+            out,
+            "pucks lost per game {:.2}, discarded {:.2}",
+            mean(games.iter().map(|g| g.lost as f64)),
+            mean(games.iter().map(|g| g.discarded as f64))
+        );
+    }
     let ends = distribution(games.iter().map(|g| match g.end {
         EndReason::Time => 0,
         EndReason::Done => 1,
@@ -258,6 +344,40 @@ pub fn summarize(
     out
 }
 
+/// One row of the fault table (markdown).
+pub fn table_row(config: SweepConfig, games: &[GameSummary], seconds: f64) -> String {
+    let count = |f: &dyn Fn(&GameSummary) -> bool| games.iter().filter(|g| f(g)).count();
+    format!(
+        "| {} | {} | {} | {:.2} | {} | {:.2} | {:.2} | {:.2} | {:.2} | {} | {} | {} | {:.0} |",
+        config.strategy.name(),
+        config.fault_rate,
+        games.len(),
+        mean(games.iter().map(|g| g.points as f64)),
+        games.iter().map(|g| g.points).min().unwrap_or(0),
+        mean(games.iter().map(|g| g.p as f64)),
+        mean(games.iter().map(|g| g.s2 as f64)),
+        mean(games.iter().map(|g| g.lost as f64)),
+        mean(games.iter().map(|g| g.discarded as f64)),
+        count(&|g| g.end == EndReason::Deadlock),
+        count(&|g| g.end == EndReason::Stalled && !g.panicked),
+        count(&|g| g.panicked),
+        seconds
+    )
+}
+
+/// Header of [`table_row`].
+pub const TABLE_HEADER: &str = "| strategy | faults % | games | mean points | min points | P | S2 | lost | discarded | deadlocks | stalls | panics | wall s |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|";
+
+/// Games that must not happen: deadlocked, stalled or panicked.
+fn bad_games(games: &[GameSummary]) -> Vec<String> {
+    games
+        .iter()
+        .filter(|g| g.end.is_deadlock() || g.panicked)
+        .take(10)
+        .map(|g| format!("#{}", g.index))
+        .collect()
+}
+
 /// Entry point of `robotino-agent sweep`.
 pub fn main(args: Args) -> ExitCode {
     let count = args.limit.unwrap_or(ASSIGNMENT_COUNT).min(ASSIGNMENT_COUNT);
@@ -266,50 +386,71 @@ pub fn main(args: Args) -> ExitCode {
             .map(|n| n.get())
             .unwrap_or(1)
     });
-    let bar = if args.quiet {
-        ProgressBar::hidden()
-    } else {
-        ProgressBar::new(u64::from(count))
-    };
-    if let Ok(style) =
-        ProgressStyle::with_template("{bar:40} {pos}/{len} games  {per_sec}  eta {eta}")
-    {
-        bar.set_style(style);
-    }
-    let started = Instant::now();
-    let result = play_all(args.strategy, args.clock_off, count, threads, &|| {
-        bar.inc(1)
-    });
-    bar.finish_and_clear();
-    match result {
-        Ok(games) => {
-            print!(
-                "{}",
-                summarize(
-                    args.strategy,
-                    args.clock_off,
-                    &games,
-                    started.elapsed().as_secs_f64()
-                )
-            );
-            if games.iter().any(|g| g.end.is_deadlock()) {
-                let first: Vec<String> = games
+    let configs: Vec<SweepConfig> = if args.fault_table {
+        TABLE_STRATEGIES
+            .iter()
+            .flat_map(|&strategy| {
+                TABLE_FAULT_RATES
                     .iter()
-                    .filter(|g| g.end.is_deadlock())
-                    .take(10)
-                    .map(|g| format!("#{}", g.index))
-                    .collect();
-                eprintln!(
-                    "robotino-agent sweep: deadlocked assignments (first 10): {}",
-                    first.join(" ")
-                );
+                    .map(move |&fault_rate| SweepConfig {
+                        strategy,
+                        clock_off: args.clock_off,
+                        fault_rate,
+                    })
+            })
+            .collect()
+    } else {
+        vec![SweepConfig {
+            strategy: args.strategy,
+            clock_off: args.clock_off,
+            fault_rate: args.fault_rate,
+        }]
+    };
+    if args.fault_table {
+        println!("{TABLE_HEADER}");
+    }
+    let mut failed = false;
+    for config in configs {
+        let bar = if args.quiet {
+            ProgressBar::hidden()
+        } else {
+            ProgressBar::new(u64::from(count))
+        };
+        if let Ok(style) =
+            ProgressStyle::with_template("{bar:40} {pos}/{len} games  {per_sec}  eta {eta}")
+        {
+            bar.set_style(style);
+        }
+        let started = Instant::now();
+        let result = play_all(config, count, threads, &|| bar.inc(1));
+        bar.finish_and_clear();
+        let games = match result {
+            Ok(games) => games,
+            Err(e) => {
+                eprintln!("robotino-agent sweep: {e}");
                 return ExitCode::FAILURE;
             }
-            ExitCode::SUCCESS
+        };
+        let seconds = started.elapsed().as_secs_f64();
+        if args.fault_table {
+            println!("{}", table_row(config, &games, seconds));
+        } else {
+            print!("{}", summarize(config, &games, seconds));
         }
-        Err(e) => {
-            eprintln!("robotino-agent sweep: {e}");
-            ExitCode::FAILURE
+        let bad = bad_games(&games);
+        if !bad.is_empty() {
+            eprintln!(
+                "robotino-agent sweep: {} faults {} %: deadlocked, stalled or panicked assignments (first 10): {}",
+                config.strategy.name(),
+                config.fault_rate,
+                bad.join(" ")
+            );
+            failed = true;
         }
+    }
+    if failed {
+        ExitCode::FAILURE
+    } else {
+        ExitCode::SUCCESS
     }
 }
