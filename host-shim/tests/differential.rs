@@ -519,4 +519,7 @@ differential_programs! {
     p098_exists_not_same_fact => "098-exists-not-same-fact",
     p099_alpha_network_order => "099-alpha-network-order",
     p100_hashed_memory_order => "100-hashed-memory-order",
+    p101_not_and_outer_vars_toggle => "101-not-and-outer-vars-toggle",
+    p102_nested_not_exists => "102-nested-not-exists",
+    p103_group_rule_added_later => "103-group-rule-added-later",
 }

@@ -381,42 +381,52 @@ impl Core<'_> {
         }
     }
 
-    /// Passes an active partial match on: child joins and rule ends (newest first,
-    /// as CLIPS does), then joins taking it from the right.
+    /// Passes an active partial match on to its join's successors, newest first as
+    /// CLIPS does: child joins and rule ends (left), joins taking it from the right.
     pub(crate) fn propagate(&mut self, t: u16) -> Result<(), EvalError> {
         let join = self.tokens[t as usize].owner;
-        let mut c = self.joins[join as usize].first_child;
-        while c != NONE {
-            self.left_activate(c, t)?;
-            c = self.joins[c as usize].next_sibling;
-        }
-        let mut n = self.joins[join as usize].rsucc;
-        while n != NONE {
-            self.right_activate_beta(n, t)?;
-            n = self.joins[n as usize].alpha_next;
+        let mut it = Successors::of(self, join);
+        while let Some((c, from_right)) = it.next(self) {
+            if from_right {
+                self.right_activate_beta(c, t)?;
+            } else {
+                self.left_activate(c, t)?;
+            }
         }
         Ok(())
     }
 
     /// Takes back what a token passed on, successor by successor in the order
     /// CLIPS created its copies (oldest successor first): a rule end loses the
-    /// activation, a child join the partial matches built on the token. Then the
-    /// outputs it blocks look for another blocker. Its own links stay.
+    /// activation, a child join the partial matches built on the token, a join from
+    /// the right the output it blocks (which looks for another blocker). Its own
+    /// links stay.
     fn deactivate(&mut self, t: u16) {
         let join = self.tokens[t as usize].owner;
         let mut n = 0;
-        let mut c = self.joins[join as usize].first_child;
-        while c != NONE {
+        let mut it = Successors::of(self, join);
+        while it.next(self).is_some() {
             n += 1;
-            c = self.joins[c as usize].next_sibling;
         }
         for i in (0..n).rev() {
-            let mut c = self.joins[join as usize].first_child;
+            let mut it = Successors::of(self, join);
             for _ in 0..i {
-                c = self.joins[c as usize].next_sibling;
+                it.next(self);
             }
+            let Some((c, from_right)) = it.next(self) else {
+                break;
+            };
             let cj = self.joins[c as usize];
-            if cj.is_terminal() {
+            if from_right {
+                let mut k = self.tokens[t as usize].blocks;
+                while k != NONE {
+                    let next = self.tokens[k as usize].am_next;
+                    if self.tokens[k as usize].owner == c {
+                        self.remove_link(k);
+                    }
+                    k = next;
+                }
+            } else if cj.is_terminal() {
                 if self.tokens[t as usize].kind == TokenKind::Beta {
                     let mut a = self.tokens[t as usize].extra;
                     while a != NONE {
@@ -547,5 +557,52 @@ impl Core<'_> {
             l = next;
         }
         Ok(())
+    }
+}
+
+/// Walks a join's successors newest first: its child list (where a join from the
+/// right sits just after its subnetwork's first join) merged with the joins taking
+/// its tokens from the right, by creation.
+struct Successors {
+    left: u16,
+    right: u16,
+    /// Key of the last child taken from the child list.
+    last_key: u32,
+}
+
+impl Successors {
+    fn of(cx: &Core<'_>, join: u16) -> Successors {
+        Successors {
+            left: cx.joins[join as usize].first_child,
+            right: cx.joins[join as usize].rsucc,
+            last_key: u32::MAX,
+        }
+    }
+
+    fn left_key(&self, cx: &Core<'_>) -> u32 {
+        if cx.joins[self.left as usize].rjoin != NONE {
+            self.last_key.saturating_sub(1)
+        } else {
+            2 * u32::from(self.left)
+        }
+    }
+
+    fn next(&mut self, cx: &Core<'_>) -> Option<(u16, bool)> {
+        let take_left = match (self.left != NONE, self.right != NONE) {
+            (false, false) => return None,
+            (true, false) => true,
+            (false, true) => false,
+            (true, true) => self.left_key(cx) > 2 * u32::from(self.right),
+        };
+        if take_left {
+            let c = self.left;
+            self.last_key = self.left_key(cx);
+            self.left = cx.joins[c as usize].next_sibling;
+            Some((c, false))
+        } else {
+            let c = self.right;
+            self.right = cx.joins[c as usize].alpha_next;
+            Some((c, true))
+        }
     }
 }
