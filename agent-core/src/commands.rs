@@ -151,6 +151,9 @@ impl Core<'_> {
         for t in self.tokens.iter_mut() {
             *t = crate::rete::Token::EMPTY;
         }
+        for b in self.amem_buckets.iter_mut() {
+            *b = NONE;
+        }
         for a in self.acts.iter_mut() {
             *a = crate::rule::Activation::EMPTY;
         }

@@ -249,6 +249,9 @@ pub struct Engine<
     alphas: [AlphaNode; ALPHA],
     joins: [Join; JOINS],
     tokens: [Token; TOKENS],
+    /// Alpha-memory index: bucket heads, keyed by alpha node and the values of its
+    /// right-hash fields (see `rete::alpha`).
+    amem_buckets: [u16; TOKENS],
     acts: [Activation; ACTS],
     funcs: [Deffunction; FUNCS],
     globals: [Global; GLOBALS],
@@ -271,7 +274,7 @@ pub type DefaultEngine = Engine<
     512,   // rules
     1024,  // alpha nodes
     2048,  // joins
-    16384, // tokens
+    32768, // tokens
     8192,  // activations
     256,   // deffunctions
     128,   // globals
@@ -302,6 +305,7 @@ pub struct Core<'a> {
     pub alphas: &'a mut [AlphaNode],
     pub joins: &'a mut [Join],
     pub tokens: &'a mut [Token],
+    pub amem_buckets: &'a mut [u16],
     pub acts: &'a mut [Activation],
     pub funcs: &'a mut [Deffunction],
     pub globals: &'a mut [Global],
@@ -370,6 +374,7 @@ impl<
             alphas: [AlphaNode::EMPTY; ALPHA],
             joins: [Join::EMPTY; JOINS],
             tokens: [Token::EMPTY; TOKENS],
+            amem_buckets: [NONE; TOKENS],
             acts: [Activation::EMPTY; ACTS],
             funcs: [Deffunction::EMPTY; FUNCS],
             globals: [Global::EMPTY; GLOBALS],
@@ -452,6 +457,7 @@ impl<
             alphas: &mut self.alphas,
             joins: &mut self.joins,
             tokens: &mut self.tokens,
+            amem_buckets: &mut self.amem_buckets,
             acts: &mut self.acts,
             funcs: &mut self.funcs,
             globals: &mut self.globals,

@@ -194,13 +194,15 @@ impl Core<'_> {
     }
 
     /// The first right item blocking the output of not/exists `join` for left token
-    /// `left`: alpha matches from `from` on (memory order), or active partial matches
+    /// `left`: alpha matches from `from` on (memory order; `hashed`: along its index
+    /// bucket), or active partial matches
     /// of the subnetwork extending `left` (skipping `skip`).
     fn find_blocker(
         &mut self,
         join: u16,
         left: u16,
         from: u16,
+        hashed: bool,
         skip: u16,
     ) -> Result<u16, EvalError> {
         let j = self.joins[join as usize];
@@ -212,7 +214,7 @@ impl Core<'_> {
                     return Ok(a);
                 }
                 bound = true;
-                a = self.tokens[a as usize].mem_next;
+                a = self.next_candidate(a, hashed);
             }
         } else {
             let mut r = self.joins[j.rjoin as usize].mem;
@@ -231,10 +233,10 @@ impl Core<'_> {
         let j = self.joins[join as usize];
         match j.kind {
             JoinKind::Positive => {
-                let mut a = self.alphas[j.alpha as usize].mem;
-                let mut bound = false;
+                let (mut a, hashed) = self.first_candidate(join, left);
+                let mut bound = hashed;
                 while a != NONE {
-                    let next = self.tokens[a as usize].mem_next;
+                    let next = self.next_candidate(a, hashed);
                     if self.join_test(join, left, a, bound)? {
                         let t = self.link_token(join, left, a)?;
                         self.propagate(t)?;
@@ -253,12 +255,12 @@ impl Core<'_> {
                     }
                 }
                 let t = self.link_token(join, left, NONE)?;
-                let from = if j.rjoin == NONE {
-                    self.alphas[j.alpha as usize].mem
+                let (from, hashed) = if j.rjoin == NONE {
+                    self.first_candidate(join, left)
                 } else {
-                    NONE
+                    (NONE, false)
                 };
-                let b = self.find_blocker(join, left, from, NONE)?;
+                let b = self.find_blocker(join, left, from, hashed, NONE)?;
                 if b != NONE {
                     self.add_link(t, b)?;
                 }
@@ -362,13 +364,18 @@ impl Core<'_> {
         self.tokens[t as usize].blocked = false;
         let join = self.tokens[t as usize].owner;
         let left = self.tokens[t as usize].parent;
-        let from = if self.tokens[blocker as usize].kind == TokenKind::Alpha {
-            self.tokens[blocker as usize].mem_next
+        let (from, hashed) = if self.tokens[blocker as usize].kind == TokenKind::Alpha {
+            // the blocker is the first match in memory order: search on after it,
+            // along its index bucket when its node has one (same key as `left`)
+            let hashed = self.alphas[self.tokens[blocker as usize].owner as usize].nrhash > 0;
+            (self.next_candidate(blocker, hashed), hashed)
         } else {
-            NONE
+            (NONE, false)
         };
         // an evaluation error while searching counts as no further blocker
-        let next = self.find_blocker(join, left, from, blocker).unwrap_or(NONE);
+        let next = self
+            .find_blocker(join, left, from, hashed, blocker)
+            .unwrap_or(NONE);
         if next != NONE && self.add_link(t, next).is_ok() {
             return;
         }

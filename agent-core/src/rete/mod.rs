@@ -2,6 +2,7 @@
 
 mod alpha;
 mod beta;
+mod index;
 
 use crate::value::NONE;
 
