@@ -326,6 +326,10 @@ impl Core<'_> {
                 p = n;
             }
         }
+        let parent = self.joins[j as usize].parent;
+        if self.joins[parent as usize].index_child == j {
+            self.drop_beta_index(parent);
+        }
         let rj = self.joins[j as usize].rjoin;
         if rj != NONE {
             let mut p = self.joins[rj as usize].rsucc;

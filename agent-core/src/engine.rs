@@ -715,6 +715,11 @@ impl Core<'_> {
                 self.joins[c as usize].next_sibling = n;
                 c = n;
             }
+            if self.joins[p as usize].index_child != NONE
+                && self.joins[p as usize].index_child >= cp.njoins
+            {
+                self.drop_beta_index(p);
+            }
             while self.joins[p as usize].rsucc != NONE && self.joins[p as usize].rsucc >= cp.njoins
             {
                 let j = self.joins[p as usize].rsucc;
@@ -915,7 +920,7 @@ mod size_tests {
         assert!(size_of::<Fact>() <= 24);
         assert!(size_of::<Activation>() <= 24);
         assert!(size_of::<Value>() <= 16);
-        assert!(size_of::<Join>() <= 28);
+        assert!(size_of::<Join>() <= 32);
         std::println!(
             "sizes: value {} fact {} sym {} template {} slot {} rule {} alpha {} join {} token {} act {} func {} global {} expr {} deffacts {} ext {} state {} | DefaultEngine {} SmallEngine {}",
             size_of::<Value>(),

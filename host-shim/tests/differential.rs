@@ -522,4 +522,5 @@ differential_programs! {
     p101_not_and_outer_vars_toggle => "101-not-and-outer-vars-toggle",
     p102_nested_not_exists => "102-nested-not-exists",
     p103_group_rule_added_later => "103-group-rule-added-later",
+    p104_unblocked_not_order => "104-unblocked-not-order",
 }

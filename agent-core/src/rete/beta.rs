@@ -123,9 +123,9 @@ impl Core<'_> {
     /// A new alpha match arrives on the right of `join`.
     pub(crate) fn right_activate(&mut self, join: u16, am: u16) -> Result<(), EvalError> {
         let j = self.joins[join as usize];
-        let mut l = self.joins[j.parent as usize].mem;
+        let (mut l, hashed) = self.first_left(join, am);
         while l != NONE {
-            let next = self.tokens[l as usize].mem_next;
+            let next = self.next_left(l, hashed);
             if self.token_active(l) {
                 match j.kind {
                     JoinKind::Positive => {
@@ -174,8 +174,34 @@ impl Core<'_> {
             self.deactivate(t);
             Ok(())
         } else {
+            self.move_to_front(t);
             self.propagate(t)
         }
+    }
+
+    /// A not/exists output that becomes active goes to the front of its memory: CLIPS
+    /// copies it into its successors' memories only now, so they meet it as newest.
+    fn move_to_front(&mut self, t: u16) {
+        let join = self.tokens[t as usize].owner;
+        if self.joins[join as usize].mem == t {
+            return;
+        }
+        self.beta_index_remove(t);
+        let tk = self.tokens[t as usize];
+        if tk.mem_prev != NONE {
+            self.tokens[tk.mem_prev as usize].mem_next = tk.mem_next;
+        }
+        if tk.mem_next != NONE {
+            self.tokens[tk.mem_next as usize].mem_prev = tk.mem_prev;
+        }
+        let head = self.joins[join as usize].mem;
+        self.tokens[t as usize].mem_prev = NONE;
+        self.tokens[t as usize].mem_next = head;
+        if head != NONE {
+            self.tokens[head as usize].mem_prev = t;
+        }
+        self.joins[join as usize].mem = t;
+        self.beta_index_insert(t);
     }
 
     /// The ancestor of `t` in the memory of `join` (NONE if it has none there).
@@ -312,6 +338,7 @@ impl Core<'_> {
             self.tokens[head as usize].mem_prev = t;
         }
         self.joins[join as usize].mem = t;
+        self.beta_index_insert(t);
         if parent != NONE {
             if psib != NONE {
                 self.tokens[psib as usize].prev_sib = t;
@@ -382,6 +409,7 @@ impl Core<'_> {
         if self.joins[join as usize].kind == JoinKind::Negative {
             // Restores a match that existed before; a full pool here is
             // reported by the next operation that needs the space.
+            self.move_to_front(t);
             let _ = self.propagate(t);
         } else {
             self.deactivate(t);
@@ -507,6 +535,7 @@ impl Core<'_> {
             }
         }
         if tk.kind != TokenKind::Link {
+            self.beta_index_remove(t);
             if tk.mem_prev != NONE {
                 self.tokens[tk.mem_prev as usize].mem_next = tk.mem_next;
             } else {
