@@ -136,6 +136,9 @@ pub struct State {
     pub lhs_pm: [PatBinding; MAX_PATTERNS],
     pub rhs_pm: [PatBinding; MAX_PATTERNS],
     pub this_pm: PatBinding,
+    /// Last beta-index key computed: (token, index child join, key). The token's
+    /// left activation of that child, which follows at once, reuses it.
+    pub key_cache: (u16, u16, u32),
     pub pm_rhs: bool,
     /// Rule being fired (for messages), NONE outside a firing.
     pub current_rule: u16,
@@ -197,6 +200,7 @@ impl State {
             lhs_pm: [PatBinding::EMPTY; MAX_PATTERNS],
             rhs_pm: [PatBinding::EMPTY; MAX_PATTERNS],
             this_pm: PatBinding::EMPTY,
+            key_cache: (NONE, NONE, 0),
             pm_rhs: false,
             current_rule: NONE,
             hw: Stats::new(),

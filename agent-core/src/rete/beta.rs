@@ -259,8 +259,7 @@ impl Core<'_> {
         let j = self.joins[join as usize];
         match j.kind {
             JoinKind::Positive => {
-                let (mut a, hashed) = self.first_candidate(join, left);
-                let mut bound = hashed;
+                let (mut a, hashed, mut bound) = self.first_candidate(join, left);
                 while a != NONE {
                     let next = self.next_candidate(a, hashed);
                     if self.join_test(join, left, a, bound)? {
@@ -282,7 +281,8 @@ impl Core<'_> {
                 }
                 let t = self.link_token(join, left, NONE)?;
                 let (from, hashed) = if j.rjoin == NONE {
-                    self.first_candidate(join, left)
+                    let (a, hashed, _) = self.first_candidate(join, left);
+                    (a, hashed)
                 } else {
                     (NONE, false)
                 };

@@ -167,20 +167,27 @@ impl Core<'_> {
 
     /// Where a left token of alpha-fed `join` starts looking for right partners:
     /// the first match of its bucket (then `next_candidate` with `hashed`), or the
-    /// whole memory. Binds the left token into `lhs_pm`.
-    pub(crate) fn first_candidate(&mut self, join: u16, left: u16) -> (u16, bool) {
+    /// whole memory. The last flag tells whether `lhs_pm` now holds the left token.
+    pub(crate) fn first_candidate(&mut self, join: u16, left: u16) -> (u16, bool, bool) {
         let j = self.joins[join as usize];
         debug_assert!(j.kind != JoinKind::Root);
         let alpha = j.alpha;
         if self.alphas[alpha as usize].nrhash > 0 {
-            self.bind_left(left);
-            if let Some(key) = self.left_key(join) {
+            let (ct, cj, ck) = self.st.key_cache;
+            let key = if ct == left && cj == join {
+                Some((ck, false))
+            } else {
+                self.bind_left(left);
+                self.left_key(join).map(|k| (k, true))
+            };
+            if let Some((key, bound)) = key {
                 let b = self.bucket(alpha, key);
                 let a = self.amem_buckets[b as usize];
-                return (self.skip_foreign(a, alpha), true);
+                return (self.skip_foreign(a, alpha), true, bound);
             }
+            return (self.alphas[alpha as usize].mem, false, true);
         }
-        (self.alphas[alpha as usize].mem, false)
+        (self.alphas[alpha as usize].mem, false, false)
     }
 
     /// The candidate after `a` (same chain kind as `first_candidate` gave).
@@ -278,6 +285,7 @@ impl Core<'_> {
         self.bind_left(t);
         // an unreadable value: bucket of key 0 (the child then scans, see below)
         let key = self.left_key(child).unwrap_or(0);
+        self.st.key_cache = (t, child, key);
         self.st.lhs_pm[depth] = saved;
         self.st.pm_rhs = pm;
         let b = self.beta_bucket(join, key);
