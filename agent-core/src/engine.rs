@@ -57,6 +57,37 @@ impl Stats {
     pub fn get(&self, pool: Pool) -> (u32, u32) {
         (self.used[pool as usize], self.capacity[pool as usize])
     }
+
+    /// Bytes the pool's storage takes in the engine (capacity times entry size).
+    pub fn bytes(&self, pool: Pool) -> usize {
+        self.capacity[pool as usize] as usize * entry_bytes(pool)
+    }
+}
+
+/// Bytes one entry of `pool` occupies in an engine, its hash-bucket index included, so
+/// hosts can turn capacities and high-water marks into RAM figures.
+pub const fn entry_bytes(pool: Pool) -> usize {
+    use core::mem::size_of;
+    match pool {
+        // a fact and its duplicate-index bucket head
+        Pool::Facts => size_of::<Fact>() + size_of::<u16>(),
+        Pool::FactValues | Pool::EvalStack | Pool::Scratch => size_of::<Value>(),
+        // a symbol entry and its hash bucket head
+        Pool::Symbols => size_of::<SymEntry>() + size_of::<u16>(),
+        Pool::SymbolBytes => 1,
+        Pool::Templates => size_of::<Template>(),
+        Pool::SlotDefs => size_of::<SlotDef>(),
+        Pool::Rules => size_of::<Rule>(),
+        Pool::AlphaNodes => size_of::<AlphaNode>(),
+        Pool::Joins => size_of::<Join>(),
+        Pool::Tokens => size_of::<Token>(),
+        Pool::Activations => size_of::<Activation>(),
+        Pool::Functions => size_of::<Deffunction>(),
+        Pool::Globals => size_of::<Global>(),
+        Pool::Exprs => size_of::<Expr>(),
+        Pool::Deffacts => size_of::<Deffacts>(),
+        Pool::ExternalFns => size_of::<ExternalEntry>(),
+    }
 }
 
 /// Marks of the append-only pools, to undo a construct that failed halfway.
@@ -130,6 +161,20 @@ pub struct State {
     pub return_value: Value,
     pub firing: bool,
     pub eval_depth: u16,
+    /// The last argument type error was about a literal argument: CLIPS reports those
+    /// while parsing, so the command line prints no fallback value after it.
+    pub literal_error: bool,
+    /// A file `batch` asked for, run by the command loop after the current command.
+    pub pending_batch: crate::value::TextBuf<256>,
+    /// How many batch files are running inside each other.
+    pub batch_depth: u8,
+    /// `batch*`: commands print no results.
+    pub quiet_results: bool,
+    /// A batch file ended after its prompt was printed; the next command read uses it.
+    pub prompt_shown: bool,
+    /// A builtin's fallback value after a run-time error, when it depends on the
+    /// arguments (see `builtins::errors::ErrorFallback`).
+    pub error_fallback: Option<crate::builtins::errors::ErrorFallback>,
     /// Template of `(initial-fact)`.
     pub initial_tmpl: u16,
     /// Pattern bindings for network tests (`lhs`) and the firing rule (`rhs`).
@@ -148,6 +193,9 @@ pub struct State {
     pub rng_glibc: [i32; 34],
     pub rng_pos: u8,
     pub rng_seeded: bool,
+    /// Keep each rule's source text for `ppdefrule` (CLIPS's pretty-print forms). A
+    /// robot image that never lists its rules turns this off to save the symbol bytes.
+    pub keep_pp_forms: bool,
 }
 
 impl State {
@@ -196,6 +244,12 @@ impl State {
             return_value: Value::Void,
             firing: false,
             eval_depth: 0,
+            literal_error: false,
+            pending_batch: crate::value::TextBuf::new(),
+            batch_depth: 0,
+            quiet_results: false,
+            prompt_shown: false,
+            error_fallback: None,
             initial_tmpl: NONE,
             lhs_pm: [PatBinding::EMPTY; MAX_PATTERNS],
             rhs_pm: [PatBinding::EMPTY; MAX_PATTERNS],
@@ -208,6 +262,7 @@ impl State {
             rng_glibc: [0; 34],
             rng_pos: 0,
             rng_seeded: false,
+            keep_pp_forms: true,
         }
     }
 }
@@ -730,12 +785,23 @@ impl Core<'_> {
                 self.joins[p as usize].rsucc = self.joins[j as usize].alpha_next;
             }
         }
+        // a template's alpha nodes are kept in network order, so new ones can sit
+        // anywhere in its list, not only at the head
         for t in 0..cp.ntemplates.min(self.st.ntemplates) {
             while self.templates[t as usize].alpha_head != NONE
                 && self.templates[t as usize].alpha_head >= cp.nalpha
             {
                 let a = self.templates[t as usize].alpha_head;
                 self.templates[t as usize].alpha_head = self.alphas[a as usize].next_in_tmpl;
+            }
+            let mut a = self.templates[t as usize].alpha_head;
+            while a != NONE {
+                let mut n = self.alphas[a as usize].next_in_tmpl;
+                while n != NONE && n >= cp.nalpha {
+                    n = self.alphas[n as usize].next_in_tmpl;
+                }
+                self.alphas[a as usize].next_in_tmpl = n;
+                a = n;
             }
         }
         for a in cp.nalpha..self.st.nalpha {
@@ -915,6 +981,22 @@ mod size_tests {
     extern crate std;
     use super::*;
     use core::mem::size_of;
+
+    /// The pools' bytes as `Stats::bytes` reports them account for the whole engine but
+    /// its scalar state (and padding): hosts size their RAM from these figures.
+    #[test]
+    fn pool_bytes_account_for_the_engine() {
+        let engine = std::boxed::Box::new(SmallEngine::new());
+        let stats = engine.stats();
+        let pools: usize = Pool::ALL.iter().map(|&p| stats.bytes(p)).sum();
+        let whole = size_of::<SmallEngine>();
+        assert!(pools <= whole, "pools {pools} > engine {whole}");
+        assert!(
+            whole - pools <= size_of::<State>() + 16,
+            "engine {whole} B, pools {pools} B: {} B unaccounted",
+            whole - pools - size_of::<State>()
+        );
+    }
 
     /// Pins the per-entry sizes that decide the image's RAM (see the crate docs).
     #[test]

@@ -179,7 +179,7 @@ impl Core<'_> {
         None
     }
 
-    fn cells_hash(&self, tmpl: u16, start: usize, len: usize) -> u32 {
+    pub(crate) fn cells_hash(&self, tmpl: u16, start: usize, len: usize) -> u32 {
         let mut h = mix(0x1234_5678, tmpl as u64);
         for i in 0..len {
             h = value_hash(h, self.values[start + i]);

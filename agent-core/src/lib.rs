@@ -96,6 +96,7 @@ pub mod eval;
 pub mod expr;
 pub mod fact;
 pub mod host;
+pub mod invariants;
 pub mod lexer;
 pub mod parser;
 pub mod print;
@@ -110,9 +111,10 @@ pub mod testutil;
 
 pub use api::{ExternalFn, FactId, Usage};
 pub use builtins::{Args, BuiltinFn};
-pub use engine::{Core, DefaultEngine, Engine, SmallEngine, Stats};
+pub use engine::{entry_bytes, Core, DefaultEngine, Engine, SmallEngine, Stats};
 pub use error::{
     CapacityError, EngineError, EvalError, EvalErrorKind, HostIoError, LoadError, Pool,
 };
 pub use host::{Host, NullHost};
+pub use invariants::Violation;
 pub use value::{Value, ValueRef};

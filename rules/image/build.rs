@@ -26,8 +26,27 @@ fn main() {
             "-static",
             "-no-pie",
             "-Wl,-z,norelro",
+            "-Wl,--no-eh-frame-hdr",
         ] {
             println!("cargo::rustc-link-arg-bins={arg}");
         }
+        // The image aborts on panic and never unwinds, but the prebuilt `core` carries
+        // unwind tables (`.eh_frame`, 40+ KB): a linker-script fragment, added to the
+        // default script, discards them.
+        let out_dir = env::var("OUT_DIR").unwrap_or_default();
+        let script = std::path::Path::new(&out_dir).join("discard-unwind-tables.ld");
+        if let Err(e) = std::fs::write(&script, DISCARD_UNWIND_TABLES) {
+            panic!("cannot write {}: {e}", script.display());
+        }
+        println!("cargo::rustc-link-arg-bins=-Wl,-T,{}", script.display());
     }
 }
+
+/// Linker-script fragment: `INSERT` keeps the default script and adds this to it.
+const DISCARD_UNWIND_TABLES: &str = "\
+SECTIONS
+{
+  /DISCARD/ : { *(.eh_frame) *(.eh_frame_hdr) }
+}
+INSERT AFTER .text;
+";

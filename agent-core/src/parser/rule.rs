@@ -136,11 +136,13 @@ impl<'s> Parser<'s, '_, '_> {
                 break;
             }
         }
-        // source text for ppdefrule
-        let end = self.lex.pos();
-        let text = &self.lex.source()[start..end];
-        if let Ok(id) = self.cx.intern(text) {
-            self.cx.rules[first_new_rule as usize].text = id;
+        // source text for ppdefrule, unless the host chose to drop pretty-print forms
+        if self.cx.st.keep_pp_forms {
+            let end = self.lex.pos();
+            let text = &self.lex.source()[start..end];
+            if let Ok(id) = self.cx.intern(text) {
+                self.cx.rules[first_new_rule as usize].text = id;
+            }
         }
         // a redefinition replaces the old rule
         for r in 0..first_new_rule {
@@ -591,6 +593,7 @@ impl<'s> Parser<'s, '_, '_> {
             }
             None => cap!(self, self.cx.implied_template(sym))?,
         };
+        self.pat_tmpl[p as usize] = tmpl;
         if let Some((ft, fv)) = factvar {
             self.add_var(
                 ft,
@@ -915,10 +918,19 @@ impl<'s> Parser<'s, '_, '_> {
                 self.node2(Op::Eq2, this, e)
             }
             Tok::SfVar(name) | Tok::MfVar(name) => {
-                if matches!(t.tok, Tok::MfVar(_)) {
+                let is_mf = matches!(t.tok, Tok::MfVar(_));
+                if is_mf {
                     *multi = true;
                 }
                 let v = match self.find_var(name) {
+                    Some(var) if var.multi != is_mf && matches!(var.kind, VarKind::Pat { .. }) => {
+                        let mut e = self.err(
+                            t,
+                            "a variable used as single-field (?x) or multifield ($?x), not both",
+                        );
+                        e.detail = crate::error::LoadDetail::MixedVariable;
+                        return Err(e);
+                    }
                     Some(_) => self.var_ref(t, name, false)?,
                     None => {
                         return Err(self.err(

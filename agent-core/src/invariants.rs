@@ -1,0 +1,1114 @@
+//! Invariant mode: a consistency check of the whole engine, meant to run after every
+//! operation in tests and fuzzing (`Engine::check_invariants`).
+//!
+//! The engine links everything through `u16` indices in fixed pools, so a bug shows up
+//! as a broken link long before it shows up as a wrong answer. This module walks every
+//! list with a bounded walk (a cycle is a violation, not a hang) and checks:
+//! - pool accounting: free list + live entries = entries handed out, for facts, tokens
+//!   and activations; the value arena top covers exactly the live and pending facts;
+//! - facts: the creation-ordered list, the duplicate hash index, the cell layout of
+//!   each fact against its template;
+//! - tokens: every alpha match is in its alpha memory and its fact's list, and the fact
+//!   is live; every partial match is in its join's memory, under its parent and its
+//!   alpha match (no dangling partial match after a retract), and not/exists counts
+//!   equal their links;
+//! - the agenda: doubly linked, sorted by salience then newest first (depth strategy),
+//!   every activation belongs to a live rule, sits on an active partial match of that
+//!   rule's last join, and all the facts it matched are live;
+//! - the symbol table: texts packed in order, hash chains complete, no duplicates;
+//! - the construct pools and the evaluation state at rest.
+//!
+//! It only reads; it costs O(pool sizes) (O(n^2) for the fact cell overlap check), so
+//! it is for debugging, not for the robot's control loop.
+
+use core::fmt;
+
+use crate::engine::{Core, Engine};
+use crate::fact::FactState;
+use crate::host::NullHost;
+use crate::rete::{JoinKind, TokenKind};
+use crate::value::{Value, NONE};
+
+/// A broken invariant: what is wrong and at which pool entry.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Violation {
+    pub what: &'static str,
+    /// Index of the offending entry in its pool (or a count), for debugging.
+    pub at: u32,
+}
+
+impl fmt::Display for Violation {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "engine invariant broken: {} (entry {})",
+            self.what, self.at
+        )
+    }
+}
+
+fn fail<T>(what: &'static str, at: usize) -> Result<T, Violation> {
+    Err(Violation {
+        what,
+        at: at as u32,
+    })
+}
+
+macro_rules! ensure {
+    ($cond:expr, $what:expr, $at:expr) => {
+        if !$cond {
+            return fail($what, $at as usize);
+        }
+    };
+}
+
+impl<
+        const FACTS: usize,
+        const VALUES: usize,
+        const SYMBOLS: usize,
+        const SYMBYTES: usize,
+        const TEMPLATES: usize,
+        const SLOTS: usize,
+        const RULES: usize,
+        const ALPHA: usize,
+        const JOINS: usize,
+        const TOKENS: usize,
+        const ACTS: usize,
+        const FUNCS: usize,
+        const GLOBALS: usize,
+        const EXPRS: usize,
+        const STACK: usize,
+        const SCRATCH: usize,
+        const DEFFACTS: usize,
+        const EXTERNALS: usize,
+    >
+    Engine<
+        FACTS,
+        VALUES,
+        SYMBOLS,
+        SYMBYTES,
+        TEMPLATES,
+        SLOTS,
+        RULES,
+        ALPHA,
+        JOINS,
+        TOKENS,
+        ACTS,
+        FUNCS,
+        GLOBALS,
+        EXPRS,
+        STACK,
+        SCRATCH,
+        DEFFACTS,
+        EXTERNALS,
+    >
+{
+    /// Checks every engine invariant (see the module docs). Call it between API
+    /// operations (not from inside a host function). `&mut` only because the engine's
+    /// view is built that way; nothing is changed (a never-used engine is started).
+    pub fn check_invariants(&mut self) -> Result<(), Violation> {
+        let mut host = NullHost;
+        let cx = self.core(&mut host);
+        cx.check_invariants()
+    }
+}
+
+impl Core<'_> {
+    /// See [`Engine::check_invariants`].
+    pub fn check_invariants(&self) -> Result<(), Violation> {
+        self.check_rest_state()?;
+        self.check_symbols()?;
+        self.check_constructs()?;
+        self.check_facts()?;
+        self.check_values()?;
+        self.check_tokens()?;
+        self.check_agenda()?;
+        Ok(())
+    }
+
+    /// Between operations nothing is half done.
+    fn check_rest_state(&self) -> Result<(), Violation> {
+        let st = &self.st;
+        ensure!(!st.firing, "firing flag set between operations", 0);
+        ensure!(
+            st.pending == NONE,
+            "retracted facts still pending",
+            st.pending
+        );
+        ensure!(
+            st.eval_depth == 0,
+            "evaluation depth not back to 0",
+            st.eval_depth
+        );
+        ensure!(
+            (st.sp as usize) <= self.stack.len(),
+            "evaluation stack pointer past the stack",
+            st.sp
+        );
+        ensure!(
+            st.scratch_top as usize + st.gmf_used as usize <= self.scratch.len(),
+            "scratch and globals' multifields overlap",
+            st.scratch_top
+        );
+        Ok(())
+    }
+
+    fn check_symbols(&self) -> Result<(), Violation> {
+        let n = self.st.nsyms as usize;
+        ensure!(n <= self.sym_entries.len(), "more symbols than capacity", n);
+        ensure!(
+            self.st.sym_bytes as usize <= self.sym_bytes.len(),
+            "symbol bytes past capacity",
+            self.st.sym_bytes
+        );
+        // texts are appended, so entry i starts where entry i-1 ended
+        let mut end = 0usize;
+        for i in 0..n {
+            let e = self.sym_entries[i];
+            ensure!(e.start as usize == end, "symbol text not packed", i);
+            end += e.len as usize;
+            ensure!(
+                end <= self.st.sym_bytes as usize,
+                "symbol text past the used bytes",
+                i
+            );
+            ensure!(
+                core::str::from_utf8(&self.sym_bytes[e.start as usize..end]).is_ok(),
+                "symbol text is not UTF-8",
+                i
+            );
+        }
+        ensure!(
+            end == self.st.sym_bytes as usize,
+            "used symbol bytes do not match the entries",
+            end
+        );
+        // every entry is in the chain of its bucket, exactly once overall
+        let mut chained = 0usize;
+        for (b, &head) in self.sym_buckets.iter().enumerate() {
+            let mut i = head;
+            let mut steps = 0usize;
+            while i != NONE {
+                ensure!((i as usize) < n, "symbol chain links a dropped entry", b);
+                let e = self.sym_entries[i as usize];
+                let text = &self.sym_bytes[e.start as usize..(e.start + e.len) as usize];
+                let home = crate::symbols::hash_bytes(text) as usize % self.sym_buckets.len();
+                ensure!(home == b, "symbol in the wrong hash bucket", i);
+                chained += 1;
+                steps += 1;
+                ensure!(steps <= n, "symbol hash chain has a cycle", b);
+                i = e.next;
+            }
+        }
+        ensure!(
+            chained == n,
+            "symbols missing from the hash chains",
+            chained
+        );
+        // no text twice: the first match of each text's lookup is the entry itself
+        for i in 0..n {
+            let e = self.sym_entries[i];
+            let text = &self.sym_bytes[e.start as usize..(e.start + e.len) as usize];
+            let b = crate::symbols::hash_bytes(text) as usize % self.sym_buckets.len();
+            let mut j = self.sym_buckets[b];
+            while j != NONE {
+                let f = self.sym_entries[j as usize];
+                if &self.sym_bytes[f.start as usize..(f.start + f.len) as usize] == text {
+                    break;
+                }
+                j = f.next;
+            }
+            ensure!(j as usize == i, "symbol text interned twice", i);
+        }
+        Ok(())
+    }
+
+    fn check_constructs(&self) -> Result<(), Violation> {
+        let st = &self.st;
+        ensure!(
+            (st.ntemplates as usize) <= self.templates.len(),
+            "templates past capacity",
+            st.ntemplates
+        );
+        ensure!(
+            (st.nslots as usize) <= self.slots.len(),
+            "slots past capacity",
+            st.nslots
+        );
+        ensure!(
+            (st.nrules as usize) <= self.rules.len(),
+            "rules past capacity",
+            st.nrules
+        );
+        ensure!(
+            (st.nalpha as usize) <= self.alphas.len(),
+            "alpha nodes past capacity",
+            st.nalpha
+        );
+        ensure!(
+            (st.njoins as usize) <= self.joins.len(),
+            "joins past capacity",
+            st.njoins
+        );
+        ensure!(
+            (st.nexprs as usize) <= self.exprs.len(),
+            "expressions past capacity",
+            st.nexprs
+        );
+        ensure!(
+            (st.nfuncs as usize) <= self.funcs.len(),
+            "deffunctions past capacity",
+            st.nfuncs
+        );
+        ensure!(
+            (st.nglobals as usize) <= self.globals.len(),
+            "globals past capacity",
+            st.nglobals
+        );
+        ensure!(
+            (st.ndeffacts as usize) <= self.deffacts.len(),
+            "deffacts past capacity",
+            st.ndeffacts
+        );
+        ensure!(
+            (st.nexternals as usize) <= self.externals.len(),
+            "external functions past capacity",
+            st.nexternals
+        );
+        for t in 0..st.ntemplates as usize {
+            let tp = self.templates[t];
+            ensure!(
+                (tp.name as usize) < st.nsyms as usize,
+                "template name is not a symbol",
+                t
+            );
+            ensure!(
+                tp.first_slot as usize + tp.nslots as usize <= st.nslots as usize,
+                "template slots past the slot pool",
+                t
+            );
+            // its alpha nodes test its facts
+            let mut a = tp.alpha_head;
+            let mut steps = 0usize;
+            while a != NONE {
+                ensure!(a < st.nalpha, "template lists a dropped alpha node", t);
+                ensure!(
+                    self.alphas[a as usize].tmpl as usize == t,
+                    "alpha node listed under another template",
+                    a
+                );
+                steps += 1;
+                ensure!(steps <= st.nalpha as usize, "alpha list has a cycle", t);
+                a = self.alphas[a as usize].next_in_tmpl;
+            }
+        }
+        // joins: the root, then live joins hang under live parents and their alpha node
+        ensure!(
+            st.njoins >= 1 && self.joins[0].kind == JoinKind::Root,
+            "join 0 is not the root",
+            0
+        );
+        for j in 1..st.njoins {
+            let jn = self.joins[j as usize];
+            if jn.refs == 0 {
+                ensure!(
+                    jn.mem == NONE,
+                    "removed join still holds partial matches",
+                    j
+                );
+                continue;
+            }
+            ensure!(jn.kind != JoinKind::Root, "second root join", j);
+            ensure!(jn.parent < st.njoins, "join parent past the pool", j);
+            ensure!(
+                self.joins[jn.parent as usize].refs > 0,
+                "live join under a removed parent",
+                j
+            );
+            ensure!(
+                self.child_listed(jn.parent, j),
+                "join missing from its parent's children",
+                j
+            );
+            match jn.kind {
+                JoinKind::Positive | JoinKind::Negative | JoinKind::Exists => {
+                    ensure!(jn.alpha < st.nalpha, "join without its alpha node", j);
+                    ensure!(
+                        self.succ_listed(jn.alpha, j),
+                        "join missing from its alpha node's successors",
+                        j
+                    );
+                }
+                JoinKind::Terminal => {
+                    ensure!(jn.mem == NONE, "terminal join holds partial matches", j);
+                    ensure!(jn.rule < st.nrules, "terminal join without a rule", j);
+                }
+                _ => {}
+            }
+        }
+        for r in 0..st.nrules {
+            let rule = self.rules[r as usize];
+            if rule.deleted || rule.terminal == NONE {
+                continue;
+            }
+            ensure!(rule.terminal < st.njoins, "rule end past the join pool", r);
+            let t = self.joins[rule.terminal as usize];
+            ensure!(
+                t.kind == JoinKind::Terminal && t.refs > 0,
+                "rule end is not a live terminal join",
+                r
+            );
+        }
+        // globals' multifields live in the reserved top of scratch
+        let region = self.scratch.len() - st.gmf_used as usize;
+        for g in 0..st.nglobals as usize {
+            if let Value::Multi(m) = self.globals[g].value {
+                if m.len > 0 {
+                    ensure!(
+                        m.start as usize >= region
+                            && m.start as usize + m.len as usize <= self.scratch.len(),
+                        "global multifield outside the globals' region",
+                        g
+                    );
+                }
+            }
+        }
+        Ok(())
+    }
+
+    fn child_listed(&self, parent: u16, child: u16) -> bool {
+        let mut c = self.joins[parent as usize].first_child;
+        let mut steps = 0usize;
+        while c != NONE && steps <= self.st.njoins as usize {
+            if c == child {
+                return true;
+            }
+            c = self.joins[c as usize].next_sibling;
+            steps += 1;
+        }
+        false
+    }
+
+    fn succ_listed(&self, alpha: u16, join: u16) -> bool {
+        let mut c = self.alphas[alpha as usize].succ;
+        let mut steps = 0usize;
+        while c != NONE && steps <= self.st.njoins as usize {
+            if c == join {
+                return true;
+            }
+            c = self.joins[c as usize].alpha_next;
+            steps += 1;
+        }
+        false
+    }
+
+    /// Counts a singly linked list, failing on a cycle (more steps than `bound`).
+    fn walk(
+        &self,
+        head: u16,
+        bound: usize,
+        next: impl Fn(u16) -> u16,
+        what: &'static str,
+    ) -> Result<usize, Violation> {
+        let mut n = 0usize;
+        let mut i = head;
+        while i != NONE {
+            if (i as usize) >= bound || n >= bound {
+                return Err(Violation { what, at: i as u32 });
+            }
+            n += 1;
+            i = next(i);
+        }
+        Ok(n)
+    }
+
+    fn check_facts(&self) -> Result<(), Violation> {
+        let used = self.st.facts_used as usize;
+        ensure!(
+            used <= self.facts.len(),
+            "facts handed out past capacity",
+            used
+        );
+        // live list: doubly linked, numbers growing, tail at the end
+        let mut prev = NONE;
+        let mut f = self.st.fact_head;
+        let mut live = 0usize;
+        let mut last_num: Option<u32> = None;
+        while f != NONE {
+            ensure!((f as usize) < used, "live fact list leaves the pool", f);
+            let x = self.facts[f as usize];
+            ensure!(x.state == FactState::Live, "listed fact is not live", f);
+            ensure!(x.prev == prev, "fact list back link broken", f);
+            if let Some(n) = last_num {
+                ensure!(x.num > n, "fact numbers not increasing", f);
+            }
+            ensure!(
+                x.num < self.st.next_fact_num,
+                "fact number not yet handed out",
+                f
+            );
+            last_num = Some(x.num);
+            live += 1;
+            ensure!(live <= used, "live fact list has a cycle", f);
+            prev = f;
+            f = x.next;
+        }
+        ensure!(self.st.fact_tail == prev, "fact list tail wrong", prev);
+        let free = self.walk(
+            self.st.fact_free,
+            used,
+            |i| self.facts[i as usize].next,
+            "fact free list broken",
+        )?;
+        let mut states = [0usize; 3];
+        for (i, x) in self.facts.iter().enumerate() {
+            if i >= used {
+                ensure!(x.state == FactState::Free, "fact beyond the used mark", i);
+                continue;
+            }
+            states[x.state as usize] += 1;
+            if x.state != FactState::Live {
+                ensure!(x.first_am == NONE, "dead fact keeps alpha matches", i);
+            }
+        }
+        ensure!(
+            states[FactState::Live as usize] == live,
+            "live facts not all listed",
+            live
+        );
+        ensure!(
+            states[FactState::Pending as usize] == 0,
+            "fact left pending",
+            0
+        );
+        ensure!(
+            states[FactState::Free as usize] == free,
+            "free facts not all on the free list",
+            free
+        );
+        ensure!(live + free == used, "fact accounting does not add up", used);
+        let mut g = self.st.fact_free;
+        while g != NONE {
+            ensure!(
+                self.facts[g as usize].state == FactState::Free,
+                "fact on the free list is in use",
+                g
+            );
+            g = self.facts[g as usize].next;
+        }
+        // duplicate index: each bucket chain holds live facts hashed there; all listed
+        let mut hashed = 0usize;
+        for (b, &head) in self.fact_buckets.iter().enumerate() {
+            let mut d = head;
+            let mut steps = 0usize;
+            while d != NONE {
+                ensure!((d as usize) < used, "fact hash chain leaves the pool", b);
+                let x = self.facts[d as usize];
+                ensure!(x.state == FactState::Live, "dead fact in the hash index", d);
+                let h = self.cells_hash(x.tmpl, x.start as usize, x.len as usize);
+                ensure!(
+                    h as usize % self.fact_buckets.len() == b,
+                    "fact in the wrong hash bucket",
+                    d
+                );
+                hashed += 1;
+                steps += 1;
+                ensure!(steps <= used, "fact hash chain has a cycle", b);
+                d = x.hash_next;
+            }
+        }
+        ensure!(
+            hashed == live,
+            "live facts missing from the hash index",
+            hashed
+        );
+        // each live fact: template, cell layout, and no equal twin
+        let mut f = self.st.fact_head;
+        while f != NONE {
+            let x = self.facts[f as usize];
+            ensure!(
+                x.tmpl < self.st.ntemplates,
+                "fact of an unknown template",
+                f
+            );
+            let t = self.templates[x.tmpl as usize];
+            let mut c = x.start as usize;
+            let end = x.start as usize + x.len as usize;
+            ensure!(
+                end <= self.st.values_top as usize,
+                "fact cells past the arena top",
+                f
+            );
+            for s in 0..t.nslots {
+                ensure!(c < end, "fact has fewer cells than slots", f);
+                let multi = self.slots[(t.first_slot + s) as usize].multi;
+                let cells = match self.values[c] {
+                    Value::Multi(m) => {
+                        ensure!(multi, "multifield in a single-field slot", f);
+                        1 + m.len as usize
+                    }
+                    Value::Void => return fail("fact slot holds no value", f as usize),
+                    _ => {
+                        ensure!(!multi, "multislot without its header cell", f);
+                        1
+                    }
+                };
+                for k in c + usize::from(multi)..c + cells {
+                    ensure!(k < end, "multislot runs past the fact", f);
+                    match self.values[k] {
+                        Value::Sym(id) | Value::Str(id) => {
+                            ensure!(id < self.st.nsyms, "fact holds a dropped symbol", f)
+                        }
+                        Value::Multi(_) | Value::Void => {
+                            return fail("fact field is not an atom", f as usize)
+                        }
+                        _ => {}
+                    }
+                }
+                c += cells;
+            }
+            ensure!(c == end, "fact length does not match its slots", f);
+            let mut other = x.next;
+            while other != NONE {
+                let y = self.facts[other as usize];
+                let same = y.tmpl == x.tmpl
+                    && y.len == x.len
+                    && (0..x.len as usize).all(|i| {
+                        self.values[x.start as usize + i].same(self.values[y.start as usize + i])
+                    });
+                ensure!(!same, "two equal live facts", other);
+                other = y.next;
+            }
+            f = x.next;
+        }
+        Ok(())
+    }
+
+    /// Live facts' cells do not overlap and lie below the arena top.
+    fn check_values(&self) -> Result<(), Violation> {
+        ensure!(
+            self.st.values_top as usize <= self.values.len(),
+            "value arena top past capacity",
+            self.st.values_top
+        );
+        let mut f = self.st.fact_head;
+        while f != NONE {
+            let a = self.facts[f as usize];
+            let mut g = a.next;
+            while g != NONE {
+                let b = self.facts[g as usize];
+                let apart = a.start + a.len <= b.start || b.start + b.len <= a.start;
+                ensure!(
+                    apart || a.len == 0 || b.len == 0,
+                    "facts share value cells",
+                    g
+                );
+                g = b.next;
+            }
+            f = a.next;
+        }
+        Ok(())
+    }
+
+    fn check_tokens(&self) -> Result<(), Violation> {
+        let used = self.st.tokens_used as usize;
+        ensure!(
+            used <= self.tokens.len(),
+            "tokens handed out past capacity",
+            used
+        );
+        let free = self.walk(
+            self.st.token_free,
+            used,
+            |i| self.tokens[i as usize].next_sib,
+            "token free list broken",
+        )?;
+        let mut counts = [0usize; 4];
+        for (i, t) in self.tokens.iter().enumerate() {
+            if i >= used {
+                ensure!(t.kind == TokenKind::Free, "token beyond the used mark", i);
+                continue;
+            }
+            counts[t.kind as usize] += 1;
+        }
+        let (nfree, nalpha, nbeta, nlink) = (
+            counts[TokenKind::Free as usize],
+            counts[TokenKind::Alpha as usize],
+            counts[TokenKind::Beta as usize],
+            counts[TokenKind::Link as usize],
+        );
+        ensure!(nfree == free, "free tokens not all on the free list", free);
+        ensure!(
+            nalpha + nbeta + nlink == self.st.tokens_live as usize,
+            "live token count wrong",
+            self.st.tokens_live
+        );
+        ensure!(
+            free + self.st.tokens_live as usize == used,
+            "token accounting does not add up",
+            used
+        );
+
+        // alpha memories and each fact's alpha matches hold exactly the alpha tokens
+        let mut in_mem = 0usize;
+        for a in 0..self.st.nalpha {
+            let node = self.alphas[a as usize];
+            let mut prev = NONE;
+            let mut t = node.mem;
+            while t != NONE {
+                ensure!((t as usize) < used, "alpha memory leaves the pool", a);
+                let tk = self.tokens[t as usize];
+                ensure!(
+                    tk.kind == TokenKind::Alpha,
+                    "non-alpha token in an alpha memory",
+                    t
+                );
+                ensure!(tk.owner == a, "alpha match in another node's memory", t);
+                ensure!(tk.mem_prev == prev, "alpha memory back link broken", t);
+                ensure!(tk.extra == NONE, "alpha match left mid-propagation", t);
+                let f = tk.fact;
+                ensure!(
+                    (f as usize) < self.facts.len()
+                        && self.facts[f as usize].state == FactState::Live,
+                    "alpha match of a dead fact",
+                    t
+                );
+                ensure!(
+                    self.facts[f as usize].tmpl == node.tmpl,
+                    "alpha match of another template's fact",
+                    t
+                );
+                in_mem += 1;
+                ensure!(in_mem <= nalpha, "alpha memory has a cycle", a);
+                prev = t;
+                t = tk.mem_next;
+            }
+            ensure!(node.mem_tail == prev, "alpha memory tail wrong", a);
+        }
+        ensure!(in_mem == nalpha, "alpha matches outside any memory", in_mem);
+        let mut of_facts = 0usize;
+        let mut f = self.st.fact_head;
+        while f != NONE {
+            let mut prev = NONE;
+            let mut t = self.facts[f as usize].first_am;
+            while t != NONE {
+                let tk = self.tokens[t as usize];
+                ensure!(
+                    tk.kind == TokenKind::Alpha,
+                    "fact lists a non-alpha token",
+                    t
+                );
+                ensure!(tk.fact == f, "fact lists another fact's alpha match", t);
+                ensure!(
+                    tk.prev_sib == prev,
+                    "fact's alpha match back link broken",
+                    t
+                );
+                of_facts += 1;
+                ensure!(of_facts <= nalpha, "fact's alpha matches have a cycle", f);
+                prev = t;
+                t = tk.next_sib;
+            }
+            f = self.facts[f as usize].next;
+        }
+        ensure!(
+            of_facts == nalpha,
+            "alpha matches missing from their facts",
+            of_facts
+        );
+
+        // join memories hold exactly the partial matches
+        let mut in_joins = 0usize;
+        for j in 0..self.st.njoins {
+            let mut prev = NONE;
+            let mut t = self.joins[j as usize].mem;
+            while t != NONE {
+                ensure!((t as usize) < used, "join memory leaves the pool", j);
+                let tk = self.tokens[t as usize];
+                ensure!(
+                    tk.kind == TokenKind::Beta,
+                    "non-partial match in a join memory",
+                    t
+                );
+                ensure!(tk.owner == j, "partial match in another join's memory", t);
+                ensure!(tk.mem_prev == prev, "join memory back link broken", t);
+                in_joins += 1;
+                ensure!(in_joins <= nbeta, "join memory has a cycle", j);
+                prev = t;
+                t = tk.mem_next;
+            }
+        }
+        ensure!(
+            in_joins == nbeta,
+            "partial matches outside any join memory",
+            in_joins
+        );
+
+        // each partial match and link: parents, alpha match, child lists, counts
+        let mut parented = 0usize;
+        let mut with_am = 0usize;
+        let mut with_blocker = 0usize;
+        for (i, tk) in self.tokens[..used].iter().enumerate() {
+            match tk.kind {
+                TokenKind::Beta => {
+                    let j = self.joins[tk.owner as usize];
+                    if j.kind == JoinKind::Root {
+                        ensure!(
+                            tk.parent == NONE && tk.am == NONE,
+                            "root token with parents",
+                            i
+                        );
+                    } else {
+                        ensure!(j.refs > 0, "partial match of a removed join", i);
+                        self.check_parent(i, j.parent)?;
+                        match j.kind {
+                            JoinKind::Positive => {
+                                self.check_am(i, j.alpha)?;
+                                with_am += 1;
+                            }
+                            _ => ensure!(tk.am == NONE, "unexpected alpha match", i),
+                        }
+                        if matches!(j.kind, JoinKind::Negative | JoinKind::Exists) {
+                            let links = self.children(i as u16, TokenKind::Link)?;
+                            ensure!(
+                                links == usize::from(tk.blocked),
+                                "not/exists blocker links != blocked flag",
+                                i
+                            );
+                        }
+                        if !self.token_active(i as u16) {
+                            ensure!(
+                                self.children(i as u16, TokenKind::Beta)? == 0,
+                                "inactive not/exists match has children",
+                                i
+                            );
+                            ensure!(tk.extra == NONE, "inactive match has activations", i);
+                        }
+                    }
+                    if tk.parent != NONE {
+                        parented += 1;
+                    }
+                    // every activation of this match is on the agenda and points back
+                    let mut a = tk.extra;
+                    let mut steps = 0usize;
+                    while a != NONE {
+                        ensure!(
+                            (a as usize) < self.st.acts_used as usize,
+                            "match lists an activation outside the pool",
+                            i
+                        );
+                        ensure!(
+                            self.acts[a as usize].token as usize == i,
+                            "match lists another match's activation",
+                            a
+                        );
+                        steps += 1;
+                        ensure!(steps <= self.acts.len(), "activation chain has a cycle", i);
+                        a = self.acts[a as usize].next_of_token;
+                    }
+                }
+                TokenKind::Link => {
+                    ensure!(tk.parent != NONE && tk.am != NONE, "link without ends", i);
+                    let p = self.tokens[tk.parent as usize];
+                    ensure!(
+                        p.kind == TokenKind::Beta,
+                        "link under a non-partial match",
+                        i
+                    );
+                    ensure!(p.owner == tk.owner, "link owned by another join", i);
+                    let j = self.joins[tk.owner as usize];
+                    ensure!(
+                        matches!(j.kind, JoinKind::Negative | JoinKind::Exists),
+                        "link at a join without not/exists",
+                        i
+                    );
+                    // the blocker: an alpha match of the join's pattern, or a partial
+                    // match of the subnetwork of a not/exists over several CEs
+                    let b = self.tokens[tk.am as usize];
+                    match b.kind {
+                        TokenKind::Alpha => self.check_am(i, j.alpha)?,
+                        TokenKind::Beta => {}
+                        _ => ensure!(false, "link blocked by a free or link token", i),
+                    }
+                    parented += 1;
+                    with_blocker += 1;
+                }
+                _ => {}
+            }
+        }
+        // blocker lists: every link is listed once under the token that blocks
+        let mut listed_b = 0usize;
+        for (i, tk) in self.tokens[..used].iter().enumerate() {
+            if !matches!(tk.kind, TokenKind::Alpha | TokenKind::Beta) {
+                continue;
+            }
+            let mut prev = NONE;
+            let mut k = tk.blocks;
+            while k != NONE {
+                let lk = self.tokens[k as usize];
+                ensure!(
+                    lk.kind == TokenKind::Link,
+                    "blocker list holds a non-link",
+                    k
+                );
+                ensure!(lk.am as usize == i, "link does not point to its blocker", k);
+                ensure!(lk.am_prev == prev, "blocker list back link broken", k);
+                listed_b += 1;
+                ensure!(listed_b <= with_blocker, "blocker list has a cycle", i);
+                prev = k;
+                k = lk.am_next;
+            }
+        }
+        ensure!(
+            listed_b == with_blocker,
+            "links missing from their blockers' lists",
+            listed_b
+        );
+        // child lists: every child points back and every parented token is listed
+        let mut listed_p = 0usize;
+        let mut listed_a = 0usize;
+        for (i, tk) in self.tokens[..used].iter().enumerate() {
+            match tk.kind {
+                TokenKind::Beta => {
+                    let mut prev = NONE;
+                    let mut c = tk.first_child;
+                    while c != NONE {
+                        let ck = self.tokens[c as usize];
+                        ensure!(
+                            ck.parent as usize == i,
+                            "child does not point to its parent",
+                            c
+                        );
+                        ensure!(ck.prev_sib == prev, "child list back link broken", c);
+                        listed_p += 1;
+                        ensure!(listed_p <= parented, "child list has a cycle", i);
+                        prev = c;
+                        c = ck.next_sib;
+                    }
+                }
+                TokenKind::Alpha => {
+                    let mut prev = NONE;
+                    let mut c = tk.first_child;
+                    while c != NONE {
+                        let ck = self.tokens[c as usize];
+                        ensure!(
+                            ck.am as usize == i,
+                            "match does not point to its alpha match",
+                            c
+                        );
+                        ensure!(ck.am_prev == prev, "alpha child list back link broken", c);
+                        listed_a += 1;
+                        ensure!(listed_a <= with_am, "alpha child list has a cycle", i);
+                        prev = c;
+                        c = ck.am_next;
+                    }
+                }
+                _ => {}
+            }
+        }
+        ensure!(
+            listed_p == parented,
+            "partial matches missing from parents",
+            listed_p
+        );
+        ensure!(
+            listed_a == with_am,
+            "partial matches missing from alpha matches",
+            listed_a
+        );
+        Ok(())
+    }
+
+    /// A partial match's parent is a live partial match of the parent join.
+    fn check_parent(&self, t: usize, parent_join: u16) -> Result<(), Violation> {
+        let p = self.tokens[t].parent;
+        ensure!(
+            p != NONE && (p as usize) < self.st.tokens_used as usize,
+            "partial match without its parent",
+            t
+        );
+        let pk = self.tokens[p as usize];
+        ensure!(
+            pk.kind == TokenKind::Beta,
+            "parent of a match is not a partial match",
+            t
+        );
+        ensure!(
+            pk.owner == parent_join,
+            "parent of a match at the wrong join",
+            t
+        );
+        Ok(())
+    }
+
+    /// A partial match's alpha match is live and of the join's alpha node.
+    fn check_am(&self, t: usize, alpha: u16) -> Result<(), Violation> {
+        let am = self.tokens[t].am;
+        ensure!(
+            am != NONE && (am as usize) < self.st.tokens_used as usize,
+            "partial match without its alpha match (dangling)",
+            t
+        );
+        let ak = self.tokens[am as usize];
+        ensure!(
+            ak.kind == TokenKind::Alpha,
+            "alpha match of a match was freed",
+            t
+        );
+        ensure!(ak.owner == alpha, "alpha match of another pattern", t);
+        Ok(())
+    }
+
+    fn children(&self, t: u16, kind: TokenKind) -> Result<usize, Violation> {
+        let mut n = 0usize;
+        let mut c = self.tokens[t as usize].first_child;
+        let mut steps = 0usize;
+        while c != NONE {
+            if self.tokens[c as usize].kind == kind {
+                n += 1;
+            }
+            steps += 1;
+            ensure!(steps <= self.tokens.len(), "child list has a cycle", t);
+            c = self.tokens[c as usize].next_sib;
+        }
+        Ok(n)
+    }
+
+    fn check_agenda(&self) -> Result<(), Violation> {
+        let used = self.st.acts_used as usize;
+        ensure!(used <= self.acts.len(), "activations past capacity", used);
+        let free = self.walk(
+            self.st.act_free,
+            used,
+            |i| self.acts[i as usize].next,
+            "activation free list broken",
+        )?;
+        let mut prev = NONE;
+        let mut a = self.st.agenda_head;
+        let mut on_agenda = 0usize;
+        while a != NONE {
+            ensure!((a as usize) < used, "agenda leaves the pool", a);
+            let x = self.acts[a as usize];
+            ensure!(x.prev == prev, "agenda back link broken", a);
+            if prev != NONE {
+                let p = self.acts[prev as usize];
+                ensure!(p.salience >= x.salience, "agenda not sorted by salience", a);
+                ensure!(
+                    p.salience > x.salience || p.seq > x.seq,
+                    "agenda not newest first among equal salience",
+                    a
+                );
+            }
+            ensure!(x.rule < self.st.nrules, "activation of an unknown rule", a);
+            let rule = self.rules[x.rule as usize];
+            ensure!(!rule.deleted, "activation of a removed rule", a);
+            ensure!(
+                (x.token as usize) < self.st.tokens_used as usize,
+                "activation without its match",
+                a
+            );
+            let tk = self.tokens[x.token as usize];
+            ensure!(tk.kind == TokenKind::Beta, "activation of a freed match", a);
+            ensure!(
+                rule.terminal != NONE && self.joins[rule.terminal as usize].parent == tk.owner,
+                "activation's match is not at its rule's last join",
+                a
+            );
+            ensure!(
+                self.token_active(x.token),
+                "activation of an inactive match",
+                a
+            );
+            if rule.salience_expr == NONE {
+                ensure!(
+                    x.salience == rule.salience,
+                    "activation salience is stale",
+                    a
+                );
+            }
+            // the activation is in its match's list
+            let mut k = tk.extra;
+            while k != NONE && k != a {
+                k = self.acts[k as usize].next_of_token;
+            }
+            ensure!(k == a, "activation missing from its match's list", a);
+            // every fact it matched is live
+            let mut t = x.token;
+            let mut depth = 0usize;
+            while t != NONE {
+                let tk = self.tokens[t as usize];
+                if tk.am != NONE {
+                    let f = self.tokens[tk.am as usize].fact;
+                    ensure!(
+                        self.facts[f as usize].state == FactState::Live,
+                        "activation of a retracted fact",
+                        a
+                    );
+                }
+                depth += 1;
+                ensure!(depth <= self.tokens.len(), "match ancestry has a cycle", a);
+                t = tk.parent;
+            }
+            on_agenda += 1;
+            ensure!(on_agenda <= used, "agenda has a cycle", a);
+            prev = a;
+            a = x.next;
+        }
+        ensure!(
+            on_agenda + free == used,
+            "activation accounting does not add up",
+            used
+        );
+        // and every activation listed under a match is on the agenda (counted above)
+        let mut listed = 0usize;
+        for tk in self.tokens[..self.st.tokens_used as usize].iter() {
+            if tk.kind == TokenKind::Beta {
+                let mut k = tk.extra;
+                while k != NONE {
+                    listed += 1;
+                    ensure!(listed <= on_agenda, "activations listed off the agenda", k);
+                    k = self.acts[k as usize].next_of_token;
+                }
+            }
+        }
+        ensure!(
+            listed == on_agenda,
+            "activations missing from their matches",
+            listed
+        );
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use crate::engine::SmallEngine;
+    use crate::host::NullHost;
+    use std::boxed::Box;
+
+    #[test]
+    fn fresh_and_busy_engines_are_consistent() {
+        let mut e = Box::new(SmallEngine::new());
+        e.check_invariants().unwrap();
+        let h = &mut NullHost;
+        e.load_str(
+            h,
+            "t",
+            "(deftemplate p (slot x) (multislot m))
+             (defrule a (p (x ?x) (m $? ?y $?)) (not (q ?x)) => (assert (q ?x)))
+             (defrule b (exists (q ?)) (p (x ?x)) => (retract ?x))",
+        )
+        .unwrap();
+        e.check_invariants().unwrap();
+        e.assert_str(h, "(p (x 1) (m a b c))").unwrap();
+        e.assert_str(h, "(p (x 2) (m))").unwrap();
+        e.check_invariants().unwrap();
+        e.run(h, Some(2)).unwrap();
+        e.check_invariants().unwrap();
+        e.reset(h).unwrap();
+        e.check_invariants().unwrap();
+        e.clear(h).unwrap();
+        e.check_invariants().unwrap();
+    }
+}

@@ -1,0 +1,272 @@
+//! Random command streams for the engine, decoded from bytes: shared by the invariant
+//! property test (`tests/invariants_property.rs`) and the `engine_commands` fuzz target
+//! (`fuzz/fuzz_targets/engine_commands.rs`, which includes this file by path).
+//!
+//! The engine is small so pools run out during the stream; after every command the
+//! invariants must hold, and a failed assert must leave facts and agenda unchanged.
+
+#![allow(dead_code)]
+
+use agent_core::{Engine, EngineError, FactId, Host};
+
+/// Small pools, so random streams reach every "full" path.
+pub type StreamEngine =
+    Engine<24, 192, 128, 2048, 8, 32, 16, 48, 96, 160, 40, 4, 4, 1400, 64, 96, 2, 2>;
+
+/// Rules with not/exists, multifield patterns, shared prefixes, modify and retract on
+/// the right-hand side, salience, a `test` CE and a global.
+pub const RULE_BASE: &str = "
+(deftemplate item (slot id) (slot state (allowed-symbols new seen done) (default new))
+  (multislot tags))
+(deftemplate link (slot from) (slot to))
+(defglobal ?*n* = 0)
+(defrule take-tag
+  ?f <- (item (id ?i) (state new) (tags ?t $?rest))
+  (not (link (from ?i)))
+  => (modify ?f (state seen) (tags $?rest)))
+(defrule pair
+  (item (id ?a) (state seen))
+  (item (id ?b&~?a) (state seen))
+  (not (link (from ?a) (to ?b)))
+  => (assert (link (from ?a) (to ?b))))
+(defrule drop-links
+  (exists (item (state done)))
+  ?l <- (link (from ?a))
+  => (retract ?l))
+(defrule finish
+  (declare (salience 5))
+  ?f <- (item (id ?i) (state seen) (tags $? x $?))
+  => (modify ?f (state done)))
+(defrule count
+  (declare (salience -5))
+  (tick ?n $?)
+  (test (> ?n 2))
+  => (bind ?*n* (+ ?*n* 1)))
+(defrule split
+  (tick $?a ?x $?b)
+  (item (id ?x))
+  (not (hit ?x))
+  => (assert (hit ?x (length$ ?a) (length$ ?b))))
+(defrule unhit
+  ?h <- (hit ?x $?)
+  (not (item (id ?x)))
+  => (retract ?h))
+";
+
+/// Extra rules loaded (and redefined) during a stream: rule removal paths.
+const EXTRA_RULES: [&str; 4] = [
+    "(defrule extra-0 (item (id ?i)) (link (from ?i) (to ?j)) =>)",
+    "(defrule extra-1 (declare (salience 3)) (exists (link)) (tick $?) => (assert (seen-tick)))",
+    "(defrule extra-0 (item (id ?i) (tags $?t&:(> (length$ ?t) 1))) => (assert (long ?i)))",
+    "(defrule extra-2 ?f <- (seen-tick) (not (item)) => (retract ?f))",
+];
+
+const STATES: [&str; 3] = ["new", "seen", "done"];
+const TAGS: [&str; 3] = ["x", "y", "z"];
+
+/// One step of a stream.
+#[derive(Clone, Debug)]
+pub enum Cmd {
+    AssertItem {
+        id: u8,
+        state: u8,
+        tags: Vec<u8>,
+    },
+    AssertLink {
+        from: u8,
+        to: u8,
+    },
+    AssertTick(Vec<u8>),
+    /// Retract the n-th live fact (modulo the fact count).
+    Retract(u8),
+    /// Modify the n-th live fact: a new state and/or id.
+    Modify {
+        nth: u8,
+        state: u8,
+        id: u8,
+    },
+    Run(u8),
+    Reset,
+    LoadExtra(u8),
+    Undefrule(u8),
+    Clear,
+}
+
+/// Decodes bytes into commands (every byte string is a valid stream).
+pub fn decode(data: &[u8]) -> Vec<Cmd> {
+    let mut cmds = Vec::new();
+    let mut i = 0;
+    let take = |i: &mut usize| {
+        let b = data.get(*i).copied().unwrap_or(0);
+        *i += 1;
+        b
+    };
+    while i < data.len() {
+        let op = take(&mut i);
+        let cmd = match op % 16 {
+            0..=3 => {
+                let a = take(&mut i);
+                let b = take(&mut i);
+                let tags = (0..(b >> 4) % 4).map(|k| (b >> k) % 3).collect();
+                Cmd::AssertItem {
+                    id: a % 6,
+                    state: (a >> 4) % 3,
+                    tags,
+                }
+            }
+            4 | 5 => {
+                let a = take(&mut i);
+                Cmd::AssertLink {
+                    from: a % 6,
+                    to: (a >> 4) % 6,
+                }
+            }
+            6 => {
+                let a = take(&mut i);
+                Cmd::AssertTick((0..a % 5).map(|k| (a >> k) % 6).collect())
+            }
+            7 | 8 => Cmd::Retract(take(&mut i)),
+            9 | 10 => {
+                let a = take(&mut i);
+                Cmd::Modify {
+                    nth: a,
+                    state: take(&mut i) % 4,
+                    id: take(&mut i) % 8,
+                }
+            }
+            11 | 12 => Cmd::Run(take(&mut i) % 24),
+            13 => Cmd::Reset,
+            14 => {
+                let a = take(&mut i);
+                if a >= 250 {
+                    Cmd::Clear
+                } else if a % 2 == 0 {
+                    Cmd::LoadExtra(a / 2)
+                } else {
+                    Cmd::Undefrule(a / 2)
+                }
+            }
+            _ => Cmd::LoadExtra(take(&mut i)),
+        };
+        cmds.push(cmd);
+    }
+    cmds
+}
+
+struct Quiet;
+impl Host for Quiet {
+    fn write_str(&mut self, _router: &str, _text: &str) {}
+}
+
+fn agenda(e: &StreamEngine) -> Vec<String> {
+    let mut v = Vec::new();
+    e.for_each_activation(|r, s, b| v.push(format!("{s} {r} {b:?}")));
+    v
+}
+
+/// A fresh engine with the rule base loaded and reset.
+pub fn new_engine() -> Box<StreamEngine> {
+    let mut e = Box::new(StreamEngine::new());
+    setup(&mut e);
+    e
+}
+
+fn setup(e: &mut StreamEngine) {
+    let h = &mut Quiet;
+    if let Err(err) = e.load_str(h, "rules", RULE_BASE) {
+        panic!("rule base does not load: {err}");
+    }
+    let _ = e.reset(h);
+}
+
+fn nth_fact(e: &StreamEngine, n: u8) -> Option<FactId> {
+    let count = e.facts().count();
+    if count == 0 {
+        return None;
+    }
+    e.facts().nth(n as usize % count)
+}
+
+/// Applies one command; panics when an invariant breaks or a failed assert left a
+/// trace. Returns what happened, for debugging.
+pub fn apply(e: &mut StreamEngine, cmd: &Cmd) -> String {
+    let h = &mut Quiet;
+    let outcome = match cmd {
+        Cmd::AssertItem { id, state, tags } => {
+            let tags: Vec<&str> = tags.iter().map(|&t| TAGS[t as usize]).collect();
+            let text = format!(
+                "(item (id {id}) (state {}) (tags {}))",
+                STATES[*state as usize],
+                tags.join(" ")
+            );
+            assert_leaving_no_trace(e, &text)
+        }
+        Cmd::AssertLink { from, to } => {
+            assert_leaving_no_trace(e, &format!("(link (from {from}) (to {to}))"))
+        }
+        Cmd::AssertTick(v) => {
+            let v: Vec<String> = v.iter().map(|x| x.to_string()).collect();
+            assert_leaving_no_trace(e, &format!("(tick {})", v.join(" ")))
+        }
+        Cmd::Retract(n) => match nth_fact(e, *n) {
+            Some(id) => format!("retract {:?}", e.retract(h, id)),
+            None => "retract: no facts".into(),
+        },
+        Cmd::Modify { nth, state, id } => match nth_fact(e, *nth) {
+            Some(f) => {
+                let text = if *state == 3 {
+                    format!("(modify {} (id {id}))", f.0)
+                } else {
+                    format!("(modify {} (state {}))", f.0, STATES[*state as usize])
+                };
+                format!("{text}: {:?}", e.eval_str(h, &text))
+            }
+            None => "modify: no facts".into(),
+        },
+        Cmd::Run(n) => format!("run {n}: {:?}", e.run(h, Some(*n as u32))),
+        Cmd::Reset => format!("reset: {:?}", e.reset(h)),
+        Cmd::LoadExtra(k) => {
+            let text = EXTRA_RULES[*k as usize % EXTRA_RULES.len()];
+            format!("load: {:?}", e.load_str(h, "extra", text))
+        }
+        Cmd::Undefrule(k) => {
+            let text = format!("(undefrule extra-{})", k % 3);
+            format!("{text}: {:?}", e.eval_str(h, &text))
+        }
+        Cmd::Clear => {
+            let r = e.clear(h);
+            setup(e);
+            format!("clear: {r:?}")
+        }
+    };
+    if let Err(v) = e.check_invariants() {
+        panic!("after {cmd:?} ({outcome}): {v}");
+    }
+    outcome
+}
+
+/// Asserts; a failure other than a duplicate must leave facts and agenda as they were.
+fn assert_leaving_no_trace(e: &mut StreamEngine, text: &str) -> String {
+    let h = &mut Quiet;
+    let facts: Vec<FactId> = e.facts().collect();
+    let acts = agenda(e);
+    let usage = e.usage();
+    let r = e.assert_str(h, text);
+    match r {
+        Ok(_) | Err(EngineError::Duplicate) => {}
+        Err(ref err) => {
+            assert_eq!(e.facts().collect::<Vec<_>>(), facts, "{text}: {err}");
+            assert_eq!(agenda(e), acts, "{text}: {err}");
+            assert_eq!(e.usage(), usage, "{text}: {err}");
+        }
+    }
+    format!("{text}: {r:?}")
+}
+
+/// Runs a whole stream on a fresh engine.
+pub fn run_stream(data: &[u8]) {
+    let mut e = new_engine();
+    for cmd in decode(data).iter().take(400) {
+        apply(&mut e, cmd);
+    }
+}
