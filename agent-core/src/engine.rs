@@ -80,7 +80,8 @@ pub const fn entry_bytes(pool: Pool) -> usize {
         Pool::Rules => size_of::<Rule>(),
         Pool::AlphaNodes => size_of::<AlphaNode>(),
         Pool::Joins => size_of::<Join>(),
-        Pool::Tokens => size_of::<Token>(),
+        // a token and its alpha/beta memory index bucket head
+        Pool::Tokens => size_of::<Token>() + size_of::<u16>(),
         Pool::Activations => size_of::<Activation>(),
         Pool::Functions => size_of::<Deffunction>(),
         Pool::Globals => size_of::<Global>(),
