@@ -269,6 +269,9 @@ impl Core<'_> {
         for t in self.tokens.iter_mut() {
             *t = crate::rete::Token::EMPTY;
         }
+        for b in self.amem_buckets.iter_mut() {
+            *b = NONE;
+        }
         for a in self.acts.iter_mut() {
             *a = crate::rule::Activation::EMPTY;
         }
@@ -440,6 +443,10 @@ impl Core<'_> {
                 }
                 p = n;
             }
+        }
+        let parent = self.joins[j as usize].parent;
+        if self.joins[parent as usize].index_child == j {
+            self.drop_beta_index(parent);
         }
         let rj = self.joins[j as usize].rjoin;
         if rj != NONE {

@@ -80,7 +80,8 @@ pub const fn entry_bytes(pool: Pool) -> usize {
         Pool::Rules => size_of::<Rule>(),
         Pool::AlphaNodes => size_of::<AlphaNode>(),
         Pool::Joins => size_of::<Join>(),
-        Pool::Tokens => size_of::<Token>(),
+        // a token and its alpha/beta memory index bucket head
+        Pool::Tokens => size_of::<Token>() + size_of::<u16>(),
         Pool::Activations => size_of::<Activation>(),
         Pool::Functions => size_of::<Deffunction>(),
         Pool::Globals => size_of::<Global>(),
@@ -190,6 +191,9 @@ pub struct State {
     pub lhs_pm: [PatBinding; MAX_PATTERNS],
     pub rhs_pm: [PatBinding; MAX_PATTERNS],
     pub this_pm: PatBinding,
+    /// Last beta-index key computed: (token, index child join, key). The token's
+    /// left activation of that child, which follows at once, reuses it.
+    pub key_cache: (u16, u16, u32),
     pub pm_rhs: bool,
     /// Rule being fired (for messages), NONE outside a firing.
     pub current_rule: u16,
@@ -263,6 +267,7 @@ impl State {
             lhs_pm: [PatBinding::EMPTY; MAX_PATTERNS],
             rhs_pm: [PatBinding::EMPTY; MAX_PATTERNS],
             this_pm: PatBinding::EMPTY,
+            key_cache: (NONE, NONE, 0),
             pm_rhs: false,
             current_rule: NONE,
             hw: Stats::new(),
@@ -316,6 +321,9 @@ pub struct Engine<
     alphas: [AlphaNode; ALPHA],
     joins: [Join; JOINS],
     tokens: [Token; TOKENS],
+    /// Alpha-memory index: bucket heads, keyed by alpha node and the values of its
+    /// right-hash fields (see `rete::alpha`).
+    amem_buckets: [u16; TOKENS],
     acts: [Activation; ACTS],
     funcs: [Deffunction; FUNCS],
     globals: [Global; GLOBALS],
@@ -338,7 +346,7 @@ pub type DefaultEngine = Engine<
     512,   // rules
     1024,  // alpha nodes
     2048,  // joins
-    16384, // tokens
+    32768, // tokens
     8192,  // activations
     256,   // deffunctions
     128,   // globals
@@ -369,6 +377,7 @@ pub struct Core<'a> {
     pub alphas: &'a mut [AlphaNode],
     pub joins: &'a mut [Join],
     pub tokens: &'a mut [Token],
+    pub amem_buckets: &'a mut [u16],
     pub acts: &'a mut [Activation],
     pub funcs: &'a mut [Deffunction],
     pub globals: &'a mut [Global],
@@ -437,6 +446,7 @@ impl<
             alphas: [AlphaNode::EMPTY; ALPHA],
             joins: [Join::EMPTY; JOINS],
             tokens: [Token::EMPTY; TOKENS],
+            amem_buckets: [NONE; TOKENS],
             acts: [Activation::EMPTY; ACTS],
             funcs: [Deffunction::EMPTY; FUNCS],
             globals: [Global::EMPTY; GLOBALS],
@@ -519,6 +529,7 @@ impl<
             alphas: &mut self.alphas,
             joins: &mut self.joins,
             tokens: &mut self.tokens,
+            amem_buckets: &mut self.amem_buckets,
             acts: &mut self.acts,
             funcs: &mut self.funcs,
             globals: &mut self.globals,
@@ -776,6 +787,11 @@ impl Core<'_> {
                 self.joins[c as usize].next_sibling = n;
                 c = n;
             }
+            if self.joins[p as usize].index_child != NONE
+                && self.joins[p as usize].index_child >= cp.njoins
+            {
+                self.drop_beta_index(p);
+            }
             while self.joins[p as usize].rsucc != NONE && self.joins[p as usize].rsucc >= cp.njoins
             {
                 let j = self.joins[p as usize].rsucc;
@@ -1003,7 +1019,7 @@ mod size_tests {
         assert!(size_of::<Fact>() <= 24);
         assert!(size_of::<Activation>() <= 24);
         assert!(size_of::<Value>() <= 16);
-        assert!(size_of::<Join>() <= 28);
+        assert!(size_of::<Join>() <= 32);
         std::println!(
             "sizes: value {} fact {} sym {} template {} slot {} rule {} alpha {} join {} token {} act {} func {} global {} expr {} deffacts {} ext {} state {} | DefaultEngine {} SmallEngine {}",
             size_of::<Value>(),

@@ -76,7 +76,12 @@ impl Core<'_> {
     }
 
     /// Value of an LHS variable: a field of the fact bound to pattern `pat`.
-    fn pattern_var(&mut self, pat: u8, locator: u16, desc_slot: u16) -> Result<Value, EvalError> {
+    pub(crate) fn pattern_var(
+        &mut self,
+        pat: u8,
+        locator: u16,
+        desc_slot: u16,
+    ) -> Result<Value, EvalError> {
         let b = self.binding(pat);
         if b.fact == NONE {
             return Err(EvalError::new(EvalErrorKind::UnboundVariable));

@@ -63,6 +63,15 @@
 //!   old ones are primed from the left (each rule from its end upwards, a subnetwork
 //!   after the join taking it), then the existing facts, oldest first, are driven
 //!   through the rule's new alpha nodes.
+//! - **Indexes** ([`rete`]`::index`): the alpha matches of a node with a right hash
+//!   are also chained in buckets of one fixed table (`Engine::amem_buckets`, as many
+//!   buckets as tokens), keyed by the node and the right-hash values; a join's output
+//!   memory is likewise indexed for one child join fed by such a node (the first one,
+//!   chosen while the memory is empty), keyed by the values that child's equality
+//!   tests read from the left. A left (right) activation visits only the bucket of
+//!   its values. Buckets keep memory order, so orders are those of a full scan; join
+//!   tests still run on every candidate. The chains live in token fields the token's
+//!   kind leaves unused: no allocation, no extra bytes, nothing that can run out.
 //! - **Tokens** ([`rete::Token`]): alpha matches and partial matches share one pool;
 //!   each partial match stores only its parent and its alpha match, so a match of n
 //!   patterns costs n tokens. A terminal token points to its activation.

@@ -24,6 +24,11 @@ const RULES: &str = "
 (defrule r5 (a ?x) (c ?y&:(> ?y ?x)) =>)
 (defrule r6 (declare (salience 2)) ?f <- (t (k ?k) (v ?v)) (a ?v) =>)
 (defrule r7 (t (k p) (v ?v)) (not (b ?v)) =>)
+(defrule r8 (a ?x) (not (and (b ?x) (c ?y&:(> ?y ?x)))) =>)
+(defrule r9 (declare (salience 1)) (exists (a ?x) (b ?x)) =>)
+(defrule r10 (not (and (a ?x) (not (b ?x)))) =>)
+(defrule r11 (t (k ?k) (v ?v)) (exists (a ?v) (not (c ?v))) =>)
+(defrule r12 (a ?x) (not (not (c ?x))) =>)
 ";
 
 #[derive(Clone, Debug)]
@@ -86,6 +91,26 @@ fn naive(facts: &BTreeMap<u32, F>) -> BTreeMap<Key, i32> {
     }
     for (nb, _) in rel(1) {
         out.insert(("r3".into(), vec![Some(nb)]), 0);
+    }
+    // not/exists over several CEs (joins from the right), nested not, double not
+    for (na, x) in rel(0) {
+        if !rel(1).any(|(_, y)| y == x && rel(2).any(|(_, z)| z > x)) {
+            out.insert(("r8".into(), vec![Some(na), None]), 0);
+        }
+        if rel(2).any(|(_, z)| z == x) {
+            out.insert(("r12".into(), vec![Some(na), None]), 0);
+        }
+    }
+    if rel(0).any(|(_, x)| rel(1).any(|(_, y)| y == x)) {
+        out.insert(("r9".into(), vec![None]), 1);
+    }
+    if rel(0).all(|(_, x)| rel(1).any(|(_, y)| y == x)) {
+        out.insert(("r10".into(), vec![None]), 0);
+    }
+    for (nt, _, v) in ts() {
+        if rel(0).any(|(_, x)| x == v && !rel(2).any(|(_, z)| z == v)) {
+            out.insert(("r11".into(), vec![Some(nt), None]), 0);
+        }
     }
     for (nt, k, v) in ts() {
         for (na, x) in rel(0) {

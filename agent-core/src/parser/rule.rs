@@ -1305,6 +1305,7 @@ impl<'s> Parser<'s, '_, '_> {
                 mem: NONE,
                 rjoin,
                 rsucc: NONE,
+                index_child: NONE,
             };
             // a join from the right comes right after its subnetwork's first join
             // among the parent's children: the subnetwork sees a new left token first
@@ -1324,6 +1325,7 @@ impl<'s> Parser<'s, '_, '_> {
                 self.cx.joins[j as usize].alpha_next = self.cx.joins[rjoin as usize].rsucc;
                 self.cx.joins[rjoin as usize].rsucc = j;
             }
+            self.cx.choose_index_child(parent, j);
             jid[i] = j;
         }
         let prev = jid[b.cur as usize];

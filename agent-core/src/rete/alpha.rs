@@ -236,6 +236,7 @@ impl Core<'_> {
             self.tokens[fam as usize].prev_sib = t;
         }
         self.facts[fact as usize].first_am = t;
+        self.index_insert(t);
         let mut j = self.alphas[alpha as usize].succ;
         while j != NONE {
             // remember how far propagation got, so a rollback undoes only that
@@ -260,6 +261,7 @@ impl Core<'_> {
             let k = self.tokens[am as usize].blocks;
             self.remove_link(k);
         }
+        self.index_remove(am);
         let tk = self.tokens[am as usize];
         if tk.mem_prev != NONE {
             self.tokens[tk.mem_prev as usize].mem_next = tk.mem_next;

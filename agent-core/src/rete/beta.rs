@@ -123,9 +123,9 @@ impl Core<'_> {
     /// A new alpha match arrives on the right of `join`.
     pub(crate) fn right_activate(&mut self, join: u16, am: u16) -> Result<(), EvalError> {
         let j = self.joins[join as usize];
-        let mut l = self.joins[j.parent as usize].mem;
+        let (mut l, hashed) = self.first_left(join, am);
         while l != NONE {
-            let next = self.tokens[l as usize].mem_next;
+            let next = self.next_left(l, hashed);
             if self.token_active(l) {
                 match j.kind {
                     JoinKind::Positive => {
@@ -174,8 +174,34 @@ impl Core<'_> {
             self.deactivate(t);
             Ok(())
         } else {
+            self.move_to_front(t);
             self.propagate(t)
         }
+    }
+
+    /// A not/exists output that becomes active goes to the front of its memory: CLIPS
+    /// copies it into its successors' memories only now, so they meet it as newest.
+    fn move_to_front(&mut self, t: u16) {
+        let join = self.tokens[t as usize].owner;
+        if self.joins[join as usize].mem == t {
+            return;
+        }
+        self.beta_index_remove(t);
+        let tk = self.tokens[t as usize];
+        if tk.mem_prev != NONE {
+            self.tokens[tk.mem_prev as usize].mem_next = tk.mem_next;
+        }
+        if tk.mem_next != NONE {
+            self.tokens[tk.mem_next as usize].mem_prev = tk.mem_prev;
+        }
+        let head = self.joins[join as usize].mem;
+        self.tokens[t as usize].mem_prev = NONE;
+        self.tokens[t as usize].mem_next = head;
+        if head != NONE {
+            self.tokens[head as usize].mem_prev = t;
+        }
+        self.joins[join as usize].mem = t;
+        self.beta_index_insert(t);
     }
 
     /// The ancestor of `t` in the memory of `join` (NONE if it has none there).
@@ -194,13 +220,15 @@ impl Core<'_> {
     }
 
     /// The first right item blocking the output of not/exists `join` for left token
-    /// `left`: alpha matches from `from` on (memory order), or active partial matches
+    /// `left`: alpha matches from `from` on (memory order; `hashed`: along its index
+    /// bucket), or active partial matches
     /// of the subnetwork extending `left` (skipping `skip`).
     fn find_blocker(
         &mut self,
         join: u16,
         left: u16,
         from: u16,
+        hashed: bool,
         skip: u16,
     ) -> Result<u16, EvalError> {
         let j = self.joins[join as usize];
@@ -212,7 +240,7 @@ impl Core<'_> {
                     return Ok(a);
                 }
                 bound = true;
-                a = self.tokens[a as usize].mem_next;
+                a = self.next_candidate(a, hashed);
             }
         } else {
             let mut r = self.joins[j.rjoin as usize].mem;
@@ -231,10 +259,9 @@ impl Core<'_> {
         let j = self.joins[join as usize];
         match j.kind {
             JoinKind::Positive => {
-                let mut a = self.alphas[j.alpha as usize].mem;
-                let mut bound = false;
+                let (mut a, hashed, mut bound) = self.first_candidate(join, left);
                 while a != NONE {
-                    let next = self.tokens[a as usize].mem_next;
+                    let next = self.next_candidate(a, hashed);
                     if self.join_test(join, left, a, bound)? {
                         let t = self.link_token(join, left, a)?;
                         self.propagate(t)?;
@@ -253,12 +280,13 @@ impl Core<'_> {
                     }
                 }
                 let t = self.link_token(join, left, NONE)?;
-                let from = if j.rjoin == NONE {
-                    self.alphas[j.alpha as usize].mem
+                let (from, hashed) = if j.rjoin == NONE {
+                    let (a, hashed, _) = self.first_candidate(join, left);
+                    (a, hashed)
                 } else {
-                    NONE
+                    (NONE, false)
                 };
-                let b = self.find_blocker(join, left, from, NONE)?;
+                let b = self.find_blocker(join, left, from, hashed, NONE)?;
                 if b != NONE {
                     self.add_link(t, b)?;
                 }
@@ -310,6 +338,7 @@ impl Core<'_> {
             self.tokens[head as usize].mem_prev = t;
         }
         self.joins[join as usize].mem = t;
+        self.beta_index_insert(t);
         if parent != NONE {
             if psib != NONE {
                 self.tokens[psib as usize].prev_sib = t;
@@ -362,61 +391,77 @@ impl Core<'_> {
         self.tokens[t as usize].blocked = false;
         let join = self.tokens[t as usize].owner;
         let left = self.tokens[t as usize].parent;
-        let from = if self.tokens[blocker as usize].kind == TokenKind::Alpha {
-            self.tokens[blocker as usize].mem_next
+        let (from, hashed) = if self.tokens[blocker as usize].kind == TokenKind::Alpha {
+            // the blocker is the first match in memory order: search on after it,
+            // along its index bucket when its node has one (same key as `left`)
+            let hashed = self.alphas[self.tokens[blocker as usize].owner as usize].nrhash > 0;
+            (self.next_candidate(blocker, hashed), hashed)
         } else {
-            NONE
+            (NONE, false)
         };
         // an evaluation error while searching counts as no further blocker
-        let next = self.find_blocker(join, left, from, blocker).unwrap_or(NONE);
+        let next = self
+            .find_blocker(join, left, from, hashed, blocker)
+            .unwrap_or(NONE);
         if next != NONE && self.add_link(t, next).is_ok() {
             return;
         }
         if self.joins[join as usize].kind == JoinKind::Negative {
             // Restores a match that existed before; a full pool here is
             // reported by the next operation that needs the space.
+            self.move_to_front(t);
             let _ = self.propagate(t);
         } else {
             self.deactivate(t);
         }
     }
 
-    /// Passes an active partial match on: child joins and rule ends (newest first,
-    /// as CLIPS does), then joins taking it from the right.
+    /// Passes an active partial match on to its join's successors, newest first as
+    /// CLIPS does: child joins and rule ends (left), joins taking it from the right.
     pub(crate) fn propagate(&mut self, t: u16) -> Result<(), EvalError> {
         let join = self.tokens[t as usize].owner;
-        let mut c = self.joins[join as usize].first_child;
-        while c != NONE {
-            self.left_activate(c, t)?;
-            c = self.joins[c as usize].next_sibling;
-        }
-        let mut n = self.joins[join as usize].rsucc;
-        while n != NONE {
-            self.right_activate_beta(n, t)?;
-            n = self.joins[n as usize].alpha_next;
+        let mut it = Successors::of(self, join);
+        while let Some((c, from_right)) = it.next(self) {
+            if from_right {
+                self.right_activate_beta(c, t)?;
+            } else {
+                self.left_activate(c, t)?;
+            }
         }
         Ok(())
     }
 
     /// Takes back what a token passed on, successor by successor in the order
     /// CLIPS created its copies (oldest successor first): a rule end loses the
-    /// activation, a child join the partial matches built on the token. Then the
-    /// outputs it blocks look for another blocker. Its own links stay.
+    /// activation, a child join the partial matches built on the token, a join from
+    /// the right the output it blocks (which looks for another blocker). Its own
+    /// links stay.
     fn deactivate(&mut self, t: u16) {
         let join = self.tokens[t as usize].owner;
         let mut n = 0;
-        let mut c = self.joins[join as usize].first_child;
-        while c != NONE {
+        let mut it = Successors::of(self, join);
+        while it.next(self).is_some() {
             n += 1;
-            c = self.joins[c as usize].next_sibling;
         }
         for i in (0..n).rev() {
-            let mut c = self.joins[join as usize].first_child;
+            let mut it = Successors::of(self, join);
             for _ in 0..i {
-                c = self.joins[c as usize].next_sibling;
+                it.next(self);
             }
+            let Some((c, from_right)) = it.next(self) else {
+                break;
+            };
             let cj = self.joins[c as usize];
-            if cj.is_terminal() {
+            if from_right {
+                let mut k = self.tokens[t as usize].blocks;
+                while k != NONE {
+                    let next = self.tokens[k as usize].am_next;
+                    if self.tokens[k as usize].owner == c {
+                        self.remove_link(k);
+                    }
+                    k = next;
+                }
+            } else if cj.is_terminal() {
                 if self.tokens[t as usize].kind == TokenKind::Beta {
                     let mut a = self.tokens[t as usize].extra;
                     while a != NONE {
@@ -490,6 +535,7 @@ impl Core<'_> {
             }
         }
         if tk.kind != TokenKind::Link {
+            self.beta_index_remove(t);
             if tk.mem_prev != NONE {
                 self.tokens[tk.mem_prev as usize].mem_next = tk.mem_next;
             } else {
@@ -547,5 +593,52 @@ impl Core<'_> {
             l = next;
         }
         Ok(())
+    }
+}
+
+/// Walks a join's successors newest first: its child list (where a join from the
+/// right sits just after its subnetwork's first join) merged with the joins taking
+/// its tokens from the right, by creation.
+struct Successors {
+    left: u16,
+    right: u16,
+    /// Key of the last child taken from the child list.
+    last_key: u32,
+}
+
+impl Successors {
+    fn of(cx: &Core<'_>, join: u16) -> Successors {
+        Successors {
+            left: cx.joins[join as usize].first_child,
+            right: cx.joins[join as usize].rsucc,
+            last_key: u32::MAX,
+        }
+    }
+
+    fn left_key(&self, cx: &Core<'_>) -> u32 {
+        if cx.joins[self.left as usize].rjoin != NONE {
+            self.last_key.saturating_sub(1)
+        } else {
+            2 * u32::from(self.left)
+        }
+    }
+
+    fn next(&mut self, cx: &Core<'_>) -> Option<(u16, bool)> {
+        let take_left = match (self.left != NONE, self.right != NONE) {
+            (false, false) => return None,
+            (true, false) => true,
+            (false, true) => false,
+            (true, true) => self.left_key(cx) > 2 * u32::from(self.right),
+        };
+        if take_left {
+            let c = self.left;
+            self.last_key = self.left_key(cx);
+            self.left = cx.joins[c as usize].next_sibling;
+            Some((c, false))
+        } else {
+            let c = self.right;
+            self.right = cx.joins[c as usize].alpha_next;
+            Some((c, true))
+        }
     }
 }

@@ -2,6 +2,7 @@
 
 mod alpha;
 mod beta;
+mod index;
 
 use crate::value::NONE;
 
@@ -113,6 +114,9 @@ pub struct Join {
     pub rjoin: u16,
     /// First join having this one as its right input (chained by `alpha_next`).
     pub rsucc: u16,
+    /// The child join whose equality tests key the index of this join's output
+    /// memory (see `rete::index`), NONE if the memory is not indexed.
+    pub index_child: u16,
 }
 
 impl Join {
@@ -137,6 +141,7 @@ impl Join {
         mem: NONE,
         rjoin: NONE,
         rsucc: NONE,
+        index_child: NONE,
     };
 }
 

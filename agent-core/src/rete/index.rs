@@ -1,0 +1,382 @@
+//! Alpha-memory index: the alpha matches of a node whose joins compare fields for
+//! equality with earlier variables (its right hash, as in CLIPS) are also chained in
+//! buckets of one engine-wide table, keyed by the node and the values of those
+//! fields. A join then visits only the bucket of its left token's values instead of
+//! the whole memory. Within a bucket matches keep memory order (oldest first), so the
+//! visiting order, and with it every activation order, is that of a full scan; the
+//! join tests still run on every candidate, so collisions cost time, never results.
+//!
+//! Alpha tokens use fields they otherwise leave empty: `am_next`/`am_prev` chain the
+//! bucket (the head's `am_prev` is the tail, so appending is O(1)), `parent` keeps the
+//! bucket number. No allocation, no extra bytes per token.
+
+use super::{JoinKind, PatBinding, TokenKind, THIS_PATTERN};
+use crate::engine::Core;
+use crate::expr::Op;
+use crate::value::{Value, NONE};
+
+fn mix(h: u32, x: u32) -> u32 {
+    (h ^ x).wrapping_mul(0x9E37_79B1).rotate_left(13)
+}
+
+impl Core<'_> {
+    /// A hash of a value consistent with `values_same` (the join tests' equality).
+    fn value_hash(&self, v: Value) -> u32 {
+        match v {
+            Value::Void => 1,
+            Value::Int(i) => mix(2, i as u32 ^ (i >> 32) as u32),
+            Value::Float(f) => {
+                let bits = if f == 0.0 { 0 } else { f.to_bits() };
+                mix(3, bits as u32 ^ (bits >> 32) as u32)
+            }
+            Value::Sym(s) => mix(4, u32::from(s)),
+            Value::Str(s) => mix(5, u32::from(s)),
+            Value::Fact(r) => mix(6, r.num),
+            Value::Multi(p) => {
+                let mut h = mix(7, u32::from(p.len));
+                for k in 0..p.len as usize {
+                    h = mix(h, self.value_hash(self.mf_item(p, k)));
+                }
+                h
+            }
+        }
+    }
+
+    /// Alpha buckets are the table's first half, beta buckets the rest, so every
+    /// chain holds one kind of token (they link through different fields).
+    fn bucket(&self, alpha: u16, key: u32) -> u16 {
+        let half = (self.amem_buckets.len() / 2).max(1);
+        (mix(key, u32::from(alpha)) as usize % half) as u16
+    }
+
+    /// The key of an alpha match of `alpha` (a node with a right hash): its
+    /// right-hash field values.
+    fn alpha_key(&mut self, alpha: u16, b: PatBinding) -> u32 {
+        let (scratch, sp) = (self.st.scratch_top, self.st.sp);
+        let saved = self.st.this_pm;
+        self.st.this_pm = b;
+        let n = self.alphas[alpha as usize];
+        let mut key = 0x5bd1_e995u32;
+        for &e in &n.rhash[..n.nrhash as usize] {
+            let x = self.exprs[e as usize];
+            // an unreadable field hashes as nothing; the join tests decide anyway
+            let v = self
+                .pattern_var(THIS_PATTERN, x.data, x.first)
+                .unwrap_or(Value::Void);
+            key = mix(key, self.value_hash(v));
+        }
+        self.st.this_pm = saved;
+        (self.st.scratch_top, self.st.sp) = (scratch, sp);
+        key
+    }
+
+    /// The key of a left token of `join` (its alpha node must have a right hash):
+    /// the earlier variables the join's equality tests compare with; `lhs_pm` must
+    /// hold the left token's bindings. None when a value cannot be read: then the
+    /// whole memory is scanned.
+    fn left_key(&mut self, join: u16) -> Option<u32> {
+        let j = self.joins[join as usize];
+        let n = self.alphas[j.alpha as usize];
+        let (scratch, sp, pm) = (self.st.scratch_top, self.st.sp, self.st.pm_rhs);
+        self.st.pm_rhs = false;
+        let mut key = 0x5bd1_e995u32;
+        let mut found = 0;
+        let mut t = j.tests;
+        let mut ok = true;
+        while t != NONE && found < n.nrhash {
+            let x = self.exprs[t as usize];
+            if x.op == Op::Eq2 && x.first != NONE {
+                let this = self.exprs[x.first as usize];
+                let other = this.next;
+                if this.op == Op::PatVar
+                    && this.aux == j.depth
+                    && other != NONE
+                    && self.exprs[other as usize].op == Op::PatVar
+                    && self.exprs[other as usize].aux != j.depth
+                {
+                    match self.eval(other) {
+                        Ok(v) => key = mix(key, self.value_hash(v)),
+                        Err(_) => ok = false,
+                    }
+                    found += 1;
+                }
+            }
+            t = x.next;
+        }
+        (self.st.scratch_top, self.st.sp, self.st.pm_rhs) = (scratch, sp, pm);
+        if !ok || found != n.nrhash {
+            return None;
+        }
+        Some(key)
+    }
+
+    /// Adds a new alpha match (already in its node's memory) to the index.
+    pub(crate) fn index_insert(&mut self, am: u16) {
+        let alpha = self.tokens[am as usize].owner;
+        if self.alphas[alpha as usize].nrhash == 0 {
+            return;
+        }
+        let tk = self.tokens[am as usize];
+        let key = self.alpha_key(
+            alpha,
+            PatBinding {
+                fact: tk.fact,
+                marks: tk.marks,
+            },
+        );
+        let b = self.bucket(alpha, key);
+        let head = self.amem_buckets[b as usize];
+        self.tokens[am as usize].parent = b;
+        self.tokens[am as usize].am_next = NONE;
+        if head == NONE {
+            self.tokens[am as usize].am_prev = am;
+            self.amem_buckets[b as usize] = am;
+        } else {
+            let tail = self.tokens[head as usize].am_prev;
+            self.tokens[tail as usize].am_next = am;
+            self.tokens[am as usize].am_prev = tail;
+            self.tokens[head as usize].am_prev = am;
+        }
+    }
+
+    /// Takes an alpha match out of the index.
+    pub(crate) fn index_remove(&mut self, am: u16) {
+        let tk = self.tokens[am as usize];
+        if tk.kind != TokenKind::Alpha || self.alphas[tk.owner as usize].nrhash == 0 {
+            return;
+        }
+        let b = tk.parent as usize;
+        let head = self.amem_buckets[b];
+        if head == am {
+            self.amem_buckets[b] = tk.am_next;
+            if tk.am_next != NONE {
+                self.tokens[tk.am_next as usize].am_prev = tk.am_prev;
+            }
+        } else {
+            self.tokens[tk.am_prev as usize].am_next = tk.am_next;
+            if tk.am_next != NONE {
+                self.tokens[tk.am_next as usize].am_prev = tk.am_prev;
+            } else {
+                self.tokens[head as usize].am_prev = tk.am_prev;
+            }
+        }
+        self.tokens[am as usize].am_next = NONE;
+        self.tokens[am as usize].am_prev = NONE;
+        self.tokens[am as usize].parent = NONE;
+    }
+
+    /// Where a left token of alpha-fed `join` starts looking for right partners:
+    /// the first match of its bucket (then `next_candidate` with `hashed`), or the
+    /// whole memory. The last flag tells whether `lhs_pm` now holds the left token.
+    pub(crate) fn first_candidate(&mut self, join: u16, left: u16) -> (u16, bool, bool) {
+        let j = self.joins[join as usize];
+        debug_assert!(j.kind != JoinKind::Root);
+        let alpha = j.alpha;
+        if self.alphas[alpha as usize].nrhash > 0 {
+            let (ct, cj, ck) = self.st.key_cache;
+            let key = if ct == left && cj == join {
+                Some((ck, false))
+            } else {
+                self.bind_left(left);
+                self.left_key(join).map(|k| (k, true))
+            };
+            if let Some((key, bound)) = key {
+                let b = self.bucket(alpha, key);
+                let a = self.amem_buckets[b as usize];
+                return (self.skip_foreign(a, alpha), true, bound);
+            }
+            return (self.alphas[alpha as usize].mem, false, true);
+        }
+        (self.alphas[alpha as usize].mem, false, false)
+    }
+
+    /// The candidate after `a` (same chain kind as `first_candidate` gave).
+    pub(crate) fn next_candidate(&self, a: u16, hashed: bool) -> u16 {
+        if hashed {
+            let alpha = self.tokens[a as usize].owner;
+            self.skip_foreign(self.tokens[a as usize].am_next, alpha)
+        } else {
+            self.tokens[a as usize].mem_next
+        }
+    }
+
+    /// Skips bucket entries of other alpha nodes.
+    fn skip_foreign(&self, mut a: u16, alpha: u16) -> u16 {
+        while a != NONE && self.tokens[a as usize].owner != alpha {
+            a = self.tokens[a as usize].am_next;
+        }
+        a
+    }
+
+    // ---- beta memories ----
+    //
+    // A join's output memory is indexed for one child join (`Join::index_child`,
+    // the first child fed by an alpha node with a right hash, chosen while the
+    // memory is empty): each partial match sits in the bucket of the values that
+    // child's equality tests read from it, so a new alpha match right-activating
+    // the child visits only its bucket (newest first, as the memory). Beta tokens
+    // keep the bucket links in fields only alpha matches use: `fact` (next),
+    // `marks[0..2]` (previous; the head's is the tail), `marks[2..4]` (bucket).
+
+    fn bnext(&self, t: u16) -> u16 {
+        self.tokens[t as usize].fact
+    }
+
+    fn set_bnext(&mut self, t: u16, n: u16) {
+        self.tokens[t as usize].fact = n;
+    }
+
+    fn bprev(&self, t: u16) -> u16 {
+        let m = self.tokens[t as usize].marks;
+        u16::from_le_bytes([m[0], m[1]])
+    }
+
+    fn set_bprev(&mut self, t: u16, p: u16) {
+        let b = p.to_le_bytes();
+        self.tokens[t as usize].marks[0] = b[0];
+        self.tokens[t as usize].marks[1] = b[1];
+    }
+
+    fn bbucket(&self, t: u16) -> u16 {
+        let m = self.tokens[t as usize].marks;
+        u16::from_le_bytes([m[2], m[3]])
+    }
+
+    fn set_bbucket(&mut self, t: u16, b: u16) {
+        let x = b.to_le_bytes();
+        self.tokens[t as usize].marks[2] = x[0];
+        self.tokens[t as usize].marks[3] = x[1];
+    }
+
+    fn beta_bucket(&self, join: u16, key: u32) -> u16 {
+        let n = self.amem_buckets.len();
+        let half = n / 2;
+        (half + mix(key, 0x8000_0000 | u32::from(join)) as usize % (n - half).max(1)) as u16
+    }
+
+    /// Makes `child` the join whose tests key `parent`'s memory, if the memory is
+    /// empty and not indexed yet and `child` is fed by a node with a right hash.
+    pub(crate) fn choose_index_child(&mut self, parent: u16, child: u16) {
+        let p = self.joins[parent as usize];
+        let c = self.joins[child as usize];
+        if parent != 0
+            && p.index_child == NONE
+            && p.mem == NONE
+            && c.alpha != NONE
+            && c.rjoin == NONE
+            && self.alphas[c.alpha as usize].nrhash > 0
+        {
+            self.joins[parent as usize].index_child = child;
+        }
+    }
+
+    /// Adds a new partial match (already at the head of its memory) to the index.
+    pub(crate) fn beta_index_insert(&mut self, t: u16) {
+        let join = self.tokens[t as usize].owner;
+        let child = self.joins[join as usize].index_child;
+        self.set_bnext(t, NONE);
+        self.set_bprev(t, NONE);
+        self.set_bbucket(t, NONE);
+        if child == NONE {
+            return;
+        }
+        let (pm, depth) = (self.st.pm_rhs, self.joins[child as usize].depth as usize);
+        let saved = self.st.lhs_pm[depth];
+        self.bind_left(t);
+        // an unreadable value: bucket of key 0 (the child then scans, see below)
+        let key = self.left_key(child).unwrap_or(0);
+        self.st.key_cache = (t, child, key);
+        self.st.lhs_pm[depth] = saved;
+        self.st.pm_rhs = pm;
+        let b = self.beta_bucket(join, key);
+        let head = self.amem_buckets[b as usize];
+        self.set_bbucket(t, b);
+        self.set_bnext(t, head);
+        if head == NONE {
+            self.set_bprev(t, t);
+        } else {
+            let tail = self.bprev(head);
+            self.set_bprev(t, tail);
+            self.set_bprev(head, t);
+        }
+        self.amem_buckets[b as usize] = t;
+    }
+
+    /// Takes a partial match out of its memory's index.
+    pub(crate) fn beta_index_remove(&mut self, t: u16) {
+        let owner = self.tokens[t as usize].owner;
+        if self.tokens[t as usize].kind != TokenKind::Beta
+            || self.joins[owner as usize].index_child == NONE
+        {
+            return;
+        }
+        let b = self.bbucket(t);
+        if b == NONE || b as usize >= self.amem_buckets.len() {
+            return;
+        }
+        let (next, prev) = (self.bnext(t), self.bprev(t));
+        let head = self.amem_buckets[b as usize];
+        if head == t {
+            self.amem_buckets[b as usize] = next;
+            if next != NONE {
+                self.set_bprev(next, prev);
+            }
+        } else {
+            self.set_bnext(prev, next);
+            if next != NONE {
+                self.set_bprev(next, prev);
+            } else {
+                self.set_bprev(head, prev);
+            }
+        }
+        self.set_bbucket(t, NONE);
+    }
+
+    /// Where a new alpha match `am` right-activating `join` starts among the
+    /// parent's partial matches: its bucket when the parent's memory is indexed for
+    /// `join` (then `next_left` with `hashed`), else the whole memory.
+    pub(crate) fn first_left(&mut self, join: u16, am: u16) -> (u16, bool) {
+        let j = self.joins[join as usize];
+        if self.joins[j.parent as usize].index_child == join {
+            let tk = self.tokens[am as usize];
+            let key = self.alpha_key(
+                j.alpha,
+                PatBinding {
+                    fact: tk.fact,
+                    marks: tk.marks,
+                },
+            );
+            let b = self.beta_bucket(j.parent, key);
+            let first = self.skip_other_beta(self.amem_buckets[b as usize], j.parent);
+            return (first, true);
+        }
+        (self.joins[j.parent as usize].mem, false)
+    }
+
+    /// The partial match after `l` (same chain kind as `first_left` gave).
+    pub(crate) fn next_left(&self, l: u16, hashed: bool) -> u16 {
+        if hashed {
+            let owner = self.tokens[l as usize].owner;
+            self.skip_other_beta(self.bnext(l), owner)
+        } else {
+            self.tokens[l as usize].mem_next
+        }
+    }
+
+    fn skip_other_beta(&self, mut l: u16, join: u16) -> u16 {
+        while l != NONE && self.tokens[l as usize].owner != join {
+            l = self.bnext(l);
+        }
+        l
+    }
+
+    /// Stops indexing `join`'s memory (its index child goes away).
+    pub(crate) fn drop_beta_index(&mut self, join: u16) {
+        let mut t = self.joins[join as usize].mem;
+        while t != NONE {
+            self.beta_index_remove(t);
+            t = self.tokens[t as usize].mem_next;
+        }
+        self.joins[join as usize].index_child = NONE;
+    }
+}
