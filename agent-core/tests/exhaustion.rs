@@ -783,3 +783,42 @@ fn every_pool_is_covered() {
         assert!(covered.contains(&p), "no exhaustion case for {p:?}");
     }
 }
+
+/// Found by the `engine_commands` fuzz target: an assert that blocks a `not` CE and
+/// then runs out of tokens is undone, but undoing unblocks the `not` and re-creates its
+/// rule's activation as the newest one, so the agenda order differs from before the
+/// failed assert (an older activation now fires first). Same activations, other order.
+/// Fix belongs in the Rete/agenda undo path (restore the activation's old timestamp).
+#[test]
+#[ignore = "known: undone assert reorders re-created not-activations (Rete/agenda undo)"]
+fn failed_assert_keeps_the_agenda_order_of_blocked_not_rules() {
+    let h = &mut Capture::default();
+    let mut e = engine!(TOKENS = 40);
+    e.load_str(
+        h,
+        "t",
+        "(defrule use (item ?x) (o ?x) =>)
+         (defrule unhit (hit ?x) (not (item ?x)) =>)
+         (defrule other (o ?x) =>)
+         (defrule pad (pad ?x) =>)",
+    )
+    .unwrap();
+    e.assert_str(h, "(hit 1)").unwrap();
+    e.assert_str(h, "(o 1)").unwrap();
+    let mut i = 0;
+    while e.assert_str(h, &format!("(pad {i})")).is_ok() {
+        i += 1;
+    }
+    let pad = e.facts().last().unwrap();
+    e.retract(h, pad).unwrap();
+    let before = e.snapshot();
+    let err = e.assert_str(h, "(item 1)").unwrap_err();
+    assert_eq!(cap_of(&err), full(Pool::Tokens, 40));
+    e.consistent();
+    let mut sorted_before = before.agenda.clone();
+    let mut sorted_after = e.snapshot().agenda;
+    sorted_before.sort();
+    sorted_after.sort();
+    assert_eq!(sorted_after, sorted_before, "same activations");
+    assert_eq!(e.snapshot(), before, "same order");
+}

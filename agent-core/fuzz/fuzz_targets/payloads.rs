@@ -67,7 +67,11 @@ fuzz_target!(|data: &[u8]| {
                 |p| p.decode(),
                 |v| GyroPayload::encode(seq, *v),
             ) {
-                assert!(in_range(g.rate_rad_s, -MAX_GYRO_RATE_RAD_S, MAX_GYRO_RATE_RAD_S));
+                assert!(in_range(
+                    g.rate_rad_s,
+                    -MAX_GYRO_RATE_RAD_S,
+                    MAX_GYRO_RATE_RAD_S
+                ));
                 assert!(g.angle_rad.is_finite());
             }
         }
@@ -92,7 +96,10 @@ fuzz_target!(|data: &[u8]| {
                 |p| p.decode(),
                 |v| MotorCommandPayload::encode(seq, p.bumper_seq, *v),
             ) {
-                assert!(w.rpm.iter().all(|r| in_range(*r, -MAX_WIRE_RPM, MAX_WIRE_RPM)));
+                assert!(w
+                    .rpm
+                    .iter()
+                    .all(|r| in_range(*r, -MAX_WIRE_RPM, MAX_WIRE_RPM)));
             }
         }
         5 => {
@@ -140,7 +147,9 @@ fuzz_target!(|data: &[u8]| {
                 |p| p.decode(),
                 |v| WorldModelPayload::encode(seq, v),
             ) {
-                assert!(b.machine_type.is_none_or(|t| (1..=MACHINE_TYPE_MAX).contains(&t)));
+                assert!(b
+                    .machine_type
+                    .is_none_or(|t| (1..=MACHINE_TYPE_MAX).contains(&t)));
             }
         }
         11 => {
