@@ -614,6 +614,9 @@ impl Core<'_> {
                     self.st.line_base = line_base;
                     self.exec_command(&text[pos..pos + k], source);
                     self.st.line_base = 0;
+                    if !self.st.firing && self.st.eval_depth == 0 {
+                        self.debug_check("after a batch command");
+                    }
                     break;
                 }
                 if end >= text.len() {

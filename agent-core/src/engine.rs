@@ -468,6 +468,8 @@ impl<
             // assert reports the capacity error instead.
             let _ = core.startup();
         }
+        // invariant mode: every operation starts from a consistent engine
+        core.debug_check("at the start of an engine operation");
         core
     }
 }
