@@ -4,8 +4,14 @@
 #   agent-core/fuzz/run.sh SECONDS [TARGET...]
 # Needs the nightly toolchain and cargo-fuzz (`cargo install cargo-fuzz`). Not part of
 # CI's default run. Crashes land in agent-core/fuzz/artifacts/TARGET/; reproduce one
-# with `cargo +nightly fuzz run TARGET agent-core/fuzz/artifacts/TARGET/crash-...`
+# with `cargo +nightly fuzz run -O -s none --no-trace-compares TARGET \
+#   fuzz/artifacts/TARGET/crash-...`
 # (from agent-core/), then turn it into a regression test.
+#
+# Build flags, the same for every target so they share one build: no sanitizer (the
+# code under test is safe Rust; the one `unsafe`, building payloads from bytes, reads
+# plain-old-data) and no comparison tracing (the engine target checks invariants after
+# every command, and traced comparisons made it ~10x slower); debug assertions stay on.
 set -uo pipefail
 
 secs=${1:-60}
@@ -53,7 +59,7 @@ for t in "${targets[@]}"; do
     log="$here/artifacts/$t.log"
     mkdir -p "$here/artifacts/$t"
     before=$(ls "$here/artifacts/$t" | grep -c -E '^(crash|oom|timeout|leak)-' || true)
-    cargo +nightly fuzz run -O "$t" "$here/corpus/$t" -- \
+    cargo +nightly fuzz run -O -s none --no-trace-compares "$t" "$here/corpus/$t" -- \
         -max_total_time="$secs" -timeout=10 -print_final_stats=1 "${extra[@]}" > "$log" 2>&1
     rc=$?
     after=$(ls "$here/artifacts/$t" | grep -c -E '^(crash|oom|timeout|leak)-' || true)

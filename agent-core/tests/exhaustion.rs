@@ -822,3 +822,47 @@ fn failed_assert_keeps_the_agenda_order_of_blocked_not_rules() {
     assert_eq!(sorted_after, sorted_before, "same activations");
     assert_eq!(e.snapshot(), before, "same order");
 }
+
+/// A retract that unblocks a `not` must rebuild the matches below it; with the token
+/// pool full there is no room, and `retract` (which cannot fail) drops them silently:
+/// the rule never fires for that fact, and nothing reports it. Found while completing
+/// the matrix (`remove_link` ignores the error of `propagate`). Fix belongs in the Rete
+/// (report the error from retract, or reserve room).
+#[test]
+#[ignore = "known: retract with a full token pool silently loses unblocked not-matches (Rete)"]
+fn retract_unblocking_a_not_with_full_tokens_is_not_silent() {
+    let h = &mut Capture::default();
+    let mut e = engine!(TOKENS = 40);
+    e.load_str(
+        h,
+        "t",
+        "(defrule a (p ?x) (not (r ?x)) (q ?x ?) =>)
+         (defrule pad (pad ?x) =>)",
+    )
+    .unwrap();
+    e.assert_str(h, "(p 1)").unwrap();
+    for k in 0..6 {
+        e.assert_str(h, &format!("(q 1 {k})")).unwrap();
+    }
+    let blocker = e.assert_str(h, "(r 1)").unwrap();
+    let mut i = 0;
+    while e.assert_str(h, &format!("(pad {i})")).is_ok() {
+        i += 1;
+    }
+    assert_eq!(e.counts().1, i, "only the pads are activated");
+    e.retract(h, blocker).unwrap();
+    e.consistent();
+    // unblocking needs six partial matches (one per q fact); the retract freed two;
+    // free room, then see whether rule a is activated for (p 1) and the q facts
+    let pads: Vec<FactId> = e.facts().skip(8).take(6).collect();
+    for f in pads {
+        e.retract(h, f).unwrap();
+    }
+    let mut rules = Vec::new();
+    e.for_each_activation(|r, _, _| rules.push(r.to_string()));
+    assert_eq!(
+        rules.iter().filter(|r| *r == "a").count(),
+        6,
+        "unblocked matches of rule a were lost: {rules:?}"
+    );
+}
