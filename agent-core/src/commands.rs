@@ -280,7 +280,7 @@ impl Core<'_> {
         }
     }
 
-    fn unlink_join(&mut self, j: u16) {
+    pub(crate) fn unlink_join(&mut self, j: u16) {
         let a = self.joins[j as usize].alpha;
         if a != NONE {
             let mut p = self.alphas[a as usize].succ;

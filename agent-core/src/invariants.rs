@@ -328,6 +328,16 @@ impl Core<'_> {
                     "removed join still holds partial matches",
                     j
                 );
+                ensure!(
+                    !self.child_listed(jn.parent, j),
+                    "removed join still under its parent",
+                    j
+                );
+                ensure!(
+                    jn.alpha == NONE || !self.succ_listed(jn.alpha, j),
+                    "removed join still fed by its alpha node",
+                    j
+                );
                 continue;
             }
             ensure!(jn.kind != JoinKind::Root, "second root join", j);
