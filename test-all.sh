@@ -215,25 +215,25 @@ stage_image() {
     check_score "$out"
 }
 
-# SCORE HOOK: once the image plays the seeded game it prints `agent-image: score=<n>`;
-# this compares it with the score of `robotino-agent sim --seed 0` (a line containing
-# `score=<n>` or `score: <n>`; the last such line counts). Until then the comparison is
-# reported as pending, in the stage line and in the summary.
+# The image plays the seeded game of `robotino-agent sim --seed 0`: its score, decisions and
+# rules fired must be the sim's (the `RESULT ...` line and "(N rules fired)").
 check_score() {
-    local out="$1" image_score sim_score
-    image_score=$(sed -n 's/^agent-image: score=\(-\{0,1\}[0-9][0-9]*\).*/\1/p' "$out" | tail -n 1)
-    if [[ -z "$image_score" ]]; then
-        echo "score check: PENDING: the image prints no score yet (engine and rule base not in it); nothing compared"
-        STAGE_NOTE="score comparison with sim pending: image prints no score yet"
-        return 0
-    fi
-    sim_score=$(cargo run -q --release -p host-shim --bin robotino-agent -- sim --seed 0 |
-        grep -oE 'score[=:] *-?[0-9]+' | tail -n 1 | grep -oE -- '-?[0-9]+') || {
-        echo "score check: robotino-agent sim --seed 0 failed or printed no score" >&2
+    local out="$1" image sim sim_out
+    image=$(sed -n 's/^agent-image: game .* fired=\([0-9]*\) decisions=\([0-9]*\) .*/fired \1 decisions \2/p' "$out")
+    image="$image points $(sed -n 's/^agent-image: score=\(-\{0,1\}[0-9][0-9]*\)$/\1/p' "$out")"
+    sim_out=$(cargo run -q --release -p host-shim --bin robotino-agent -- sim --seed 0) || {
+        echo "score check: robotino-agent sim --seed 0 failed" >&2
         return 1
     }
-    echo "score check: image $image_score, sim --seed 0 $sim_score"
-    [[ "$image_score" == "$sim_score" ]]
+    sim="fired $(sed -n 's/.*after [0-9]* decisions (\([0-9]*\) rules fired).*/\1/p' <<<"$sim_out")"
+    sim="$sim decisions $(sed -n 's/^RESULT .* decisions \([0-9]*\) .*/\1/p' <<<"$sim_out")"
+    sim="$sim points $(sed -n 's/^RESULT points \(-\{0,1\}[0-9]*\) .*/\1/p' <<<"$sim_out")"
+    echo "score check: image: $image; sim --seed 0: $sim"
+    if [[ "$image" != "$sim" || "$image" != *" points "[0-9-]* ]]; then
+        echo "score check: the image's game differs from sim --seed 0" >&2
+        return 1
+    fi
+    STAGE_NOTE="image game = sim --seed 0 ($image)"
 }
 
 # ---------------------------------------------------------------------------------------

@@ -54,6 +54,15 @@ engine_impl! {
         cx.load_text(text, false)
     }
 
+    /// Whether rules loaded from now on keep their source text for `ppdefrule` (default:
+    /// yes, as CLIPS does). Without it `ppdefrule` prints nothing for them, and the
+    /// symbol table does not hold a second copy of the rule base's text: a robot image
+    /// that never lists its rules saves that RAM (CLIPS's run-time images drop their
+    /// pretty-print forms the same way).
+    pub fn set_pretty_print_forms(&mut self, keep: bool) {
+        self.st.keep_pp_forms = keep;
+    }
+
     /// Parses and evaluates one expression/command. A multifield result points into
     /// scratch and is valid until the next call.
     pub fn eval_str(&mut self, host: &mut dyn Host, command: &str) -> Result<Value, EvalError> {

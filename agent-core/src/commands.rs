@@ -3,16 +3,21 @@
 
 use core::fmt::Write;
 
+use crate::builtins::errors::Fallback;
+use crate::builtins::files::{FileItems, FILE_BUF};
 use crate::builtins::{FIXED_SYMBOLS, SYM_INITIAL_FACT};
 use crate::engine::{watch, Core};
 use crate::error::{EvalError, EvalErrorKind, LoadDetail, LoadError};
-use crate::expr::Op;
+use crate::expr::{FnKind, Op};
 use crate::fact::FactState;
 use crate::host::router;
 use crate::lexer::{Lexer, Tok};
 use crate::parser::{Item, Parser};
 use crate::rete::{JoinKind, PatBinding, TokenKind};
-use crate::value::{TextBuf, Value, NONE};
+use crate::value::{SymId, TextBuf, Value, NONE};
+
+/// How deep `batch` files may run inside each other (each level holds a file buffer).
+const MAX_BATCH_DEPTH: u8 = 8;
 
 /// Whether text holds only blanks and comments.
 fn only_blank(s: &str) -> bool {
@@ -244,20 +249,28 @@ impl Core<'_> {
                 let parent = self.joins[rule.terminal as usize].parent;
                 self.remove_rule_activations(rr, parent);
             }
-            let mut j = rule.terminal;
-            while j != NONE && j != 0 {
-                let parent = self.joins[j as usize].parent;
-                self.joins[j as usize].refs = self.joins[j as usize].refs.saturating_sub(1);
-                if self.joins[j as usize].refs == 0 {
-                    if !self.joins[j as usize].is_terminal() {
-                        self.clear_join_memory(j);
-                    }
-                    self.unlink_join(j);
-                }
-                j = parent;
-            }
+            self.release_chain(rule.terminal, 0);
             self.rules[rr as usize].deleted = true;
             rr = rule.next_disjunct;
+        }
+    }
+
+    /// Drops one reference to each join from `j` up to `stop` (and to the
+    /// subnetworks of joins from the right); unused joins go with their memories.
+    fn release_chain(&mut self, mut j: u16, stop: u16) {
+        while j != NONE && j != 0 && j != stop {
+            let jn = self.joins[j as usize];
+            self.joins[j as usize].refs = jn.refs.saturating_sub(1);
+            if self.joins[j as usize].refs == 0 {
+                if !jn.is_terminal() {
+                    self.clear_join_memory(j);
+                }
+                self.unlink_join(j);
+            }
+            if jn.rjoin != NONE {
+                self.release_chain(jn.rjoin, jn.parent);
+            }
+            j = jn.parent;
         }
     }
 
@@ -315,7 +328,24 @@ impl Core<'_> {
                 p = n;
             }
         }
+        let rj = self.joins[j as usize].rjoin;
+        if rj != NONE {
+            let mut p = self.joins[rj as usize].rsucc;
+            if p == j {
+                self.joins[rj as usize].rsucc = self.joins[j as usize].alpha_next;
+            } else {
+                while p != NONE {
+                    let n = self.joins[p as usize].alpha_next;
+                    if n == j {
+                        self.joins[p as usize].alpha_next = self.joins[j as usize].alpha_next;
+                        break;
+                    }
+                    p = n;
+                }
+            }
+        }
         self.joins[j as usize].alpha = NONE;
+        self.joins[j as usize].rjoin = NONE;
         self.joins[j as usize].parent = 0;
     }
 
@@ -414,20 +444,34 @@ impl Core<'_> {
     }
 
     fn report_rhs_error(&mut self, rule: u16, e: EvalError) {
+        self.write_error_message(e);
+        self.write_halted_in("defrule", self.rules[rule as usize].name);
+    }
+
+    /// `[PRCCODE4]`: which construct's actions an error stopped.
+    pub(crate) fn write_halted_in(&mut self, construct: &str, name: SymId) {
         let mut b: TextBuf<256> = TextBuf::new();
-        let _ = writeln!(b, "[ERROR] {e}");
         let _ = writeln!(
             b,
-            "[PRCCODE4] Execution halted during the actions of defrule {}.",
-            self.sym_text(self.rules[rule as usize].name)
+            "[PRCCODE4] Execution halted during the actions of {construct} {}.",
+            self.sym_text(name)
         );
         self.write(router::WERROR, b.as_str());
     }
 
     /// Prints an evaluation error as CLIPS would report it at the prompt.
     pub fn report_eval_error(&mut self, e: EvalError) {
+        self.write_error_message(e);
+    }
+
+    /// CLIPS's message for an evaluation error (nothing for one already reported).
+    pub fn write_error_message(&mut self, e: EvalError) {
+        if e.reported {
+            return;
+        }
         let mut b: TextBuf<256> = TextBuf::new();
         match e.kind {
+            EvalErrorKind::Reported | EvalErrorKind::Exit => return,
             EvalErrorKind::Arity { func } => {
                 let _ = writeln!(
                     b,
@@ -444,14 +488,64 @@ impl Core<'_> {
                     "[ARGACCES5] Function {func} expected argument #{arg} to be of type {expected}"
                 );
             }
+            EvalErrorKind::DivideByZero { func } => {
+                let _ = writeln!(
+                    b,
+                    "[PRNTUTIL7] Attempt to divide by zero in {func} function."
+                );
+            }
             EvalErrorKind::NoSuchFact(n) => {
                 let _ = writeln!(b, "[PRNTUTIL1] Unable to find fact f-{n}.");
+            }
+            // messages that already carry CLIPS's code, e.g. "[MULTIFUN1] ..."
+            EvalErrorKind::Other(m) if m.starts_with('[') => {
+                let _ = writeln!(b, "{m}");
             }
             _ => {
                 let _ = writeln!(b, "[ERROR] {e}");
             }
         }
         self.write(router::WERROR, b.as_str());
+    }
+
+    /// After a run-time error at the prompt CLIPS prints the value the top-level function
+    /// returned: its fallback (`builtins::errors`), `FALSE` for a deffunction.
+    fn print_fallback(&mut self, top: u16) {
+        if self.st.literal_error {
+            return;
+        }
+        if let Some(fb) = self.st.error_fallback.filter(|fb| fb.depth == 1) {
+            if let Some(func) = fb.divide_by_zero {
+                self.write_error_message(EvalError::new(EvalErrorKind::DivideByZero { func }));
+            }
+            self.print_value(router::STDOUT, fb.value, true);
+            self.write(router::STDOUT, "\n");
+            return;
+        }
+        let x = self.exprs[top as usize];
+        if x.op != Op::Call {
+            return;
+        }
+        let fb = if x.aux == FnKind::Builtin as u8 {
+            match crate::builtins::errors::fallback(crate::builtins::get(x.data).name) {
+                Some(f) => f,
+                None => return,
+            }
+        } else if x.aux == FnKind::Deffunction as u8 {
+            Fallback::Sym("FALSE")
+        } else {
+            return;
+        };
+        let mut text: TextBuf<32> = TextBuf::new();
+        let _ = match fb {
+            Fallback::Int(i) => write!(text, "{i}"),
+            Fallback::Float(f) => write!(text, "{f:.1}"),
+            Fallback::Sym(s) => write!(text, "{s}"),
+            Fallback::Str(s) => write!(text, "\"{s}\""),
+            Fallback::EmptyMulti => write!(text, "()"),
+        };
+        self.write(router::STDOUT, text.as_str());
+        self.write(router::STDOUT, "\n");
     }
 
     /// Prints a load error in CLIPS's style plus the position line.
@@ -503,6 +597,46 @@ impl Core<'_> {
                 "\n[CSTRNCHK1] A literal slot value found in the {command} command\ndoes not match the allowed {what} for slot {}.",
                 self.sym_text(slot)
             );
+        } else if let LoadDetail::DefaultConstraint {
+            attribute,
+            types,
+            slot,
+        } = e.detail
+        {
+            let what = if types { "types" } else { "values" };
+            let _ = writeln!(
+                b,
+                "\n[CSTRNCHK1] An expression found in the {attribute} attribute\ndoes not match the allowed {what} for slot {}.",
+                self.sym_text(slot)
+            );
+        } else if let LoadDetail::SingleSlot { slot } = e.detail {
+            let _ = writeln!(
+                b,
+                "\n[TMPLTDEF2] The single field slot {} can only contain a single field value.",
+                self.sym_text(slot)
+            );
+        } else if let LoadDetail::RequiredSlot { slot } = e.detail {
+            let _ = writeln!(
+                b,
+                "\n[TMPLTRHS1] Slot {} requires a value because of its (default ?NONE) attribute.",
+                self.sym_text(slot)
+            );
+        } else if let LoadDetail::ArgType {
+            func,
+            arg,
+            expected,
+        } = e.detail
+        {
+            let _ = writeln!(
+                b,
+                "[ARGACCES5] Function {func} expected argument #{arg} to be of type {expected}"
+            );
+        } else if e.detail == LoadDetail::MixedVariable {
+            let name = tok.trim_start_matches('$').trim_start_matches('?');
+            let _ = writeln!(
+                b,
+                "\n[ANALYSIS3] Variable ?{name} is used as both a single and multifield variable in the LHS"
+            );
         } else if e.construct == "command" {
             {
                 let _ = writeln!(
@@ -531,16 +665,28 @@ impl Core<'_> {
     /// Loads constructs from text (`load`): constructs before a bad one stay.
     /// Returns the number of constructs defined.
     pub fn load_text(&mut self, text: &str, verbose: bool) -> Result<usize, LoadError> {
-        let mut n = 0;
         let mut progress = false;
+        let r = self.load_items(text, verbose, &mut progress);
+        if progress {
+            self.write(router::STDOUT, "\n");
+        }
+        r
+    }
+
+    /// `load_text` for one piece of a file: `progress` tells whether progress marks
+    /// (`*`, `%`, ...) were printed, so the caller ends their line once at the end.
+    pub fn load_items(
+        &mut self,
+        text: &str,
+        verbose: bool,
+        progress: &mut bool,
+    ) -> Result<usize, LoadError> {
+        let mut n = 0;
         let mut p = Parser::new(self, text);
         loop {
             let start = p.offset();
             match p.next_item() {
                 Ok(Item::End) => {
-                    if progress {
-                        p.cx.write(router::STDOUT, "\n");
-                    }
                     return Ok(n);
                 }
                 Ok(Item::Construct) => {
@@ -567,7 +713,7 @@ impl Core<'_> {
                                 "deffacts" => '$',
                                 _ => '#',
                             });
-                            progress = true;
+                            *progress = true;
                         }
                         p.cx.write(router::STDOUT, b.as_str());
                     }
@@ -597,7 +743,7 @@ impl Core<'_> {
         let mut pos = 0;
         let mut line_base = 0u32;
         while pos < text.len() && !self.st.exit {
-            if echo {
+            if echo && !core::mem::take(&mut self.st.prompt_shown) {
                 self.write(router::STDOUT, "CLIPS> ");
             }
             let mut end = pos;
@@ -635,9 +781,83 @@ impl Core<'_> {
         Ok(())
     }
 
+    /// Runs a command file streamed through a fixed buffer (`batch`, `batch*`): with
+    /// `echo` as CLIPS's batch mode (prompt, echoed lines, results), without it silently
+    /// but for errors and the commands' own output. Returns whether the file was read
+    /// to its end.
+    pub fn batch_file_stream(&mut self, path: &str, echo: bool) -> Result<bool, EvalError> {
+        let mut buf = [0u8; FILE_BUF];
+        let mut file = FileItems::new(path, &mut buf);
+        if file.open(self).is_err() {
+            self.report_unopened_file("batch", path);
+            return Ok(false);
+        }
+        if self.st.batch_depth >= MAX_BATCH_DEPTH {
+            self.write(
+                router::WERROR,
+                "[FILEIO] batch files nested too deeply (a file that runs itself?)\n",
+            );
+            return Ok(false);
+        }
+        self.st.batch_depth += 1;
+        let saved_quiet = self.st.quiet_results;
+        self.st.quiet_results = !echo;
+        let mut done = true;
+        while !self.st.exit {
+            let item = match file.next_command(self) {
+                Ok(Some(item)) => item,
+                Ok(None) => break,
+                Err(e) => {
+                    let mut p: TextBuf<256> = TextBuf::new();
+                    let _ = p.write_str(file.path());
+                    self.report_file_error("batch", p.as_str(), e);
+                    done = false;
+                    break;
+                }
+            };
+            let command = &item.text[..item.len];
+            if echo {
+                // a long comment block comes alone: echoed without a prompt of its own
+                let blank = only_blank(command);
+                if (!blank || item.last) && !core::mem::take(&mut self.st.prompt_shown) {
+                    self.write(router::STDOUT, "CLIPS> ");
+                }
+                self.write(router::STDOUT, item.text);
+                // CLIPS prompted for a command the file's end cut short: the next
+                // command read (from the outer input) goes without a prompt
+                if blank && item.last {
+                    self.st.prompt_shown = true;
+                }
+            }
+            if !only_blank(command) {
+                self.st.line_base = item.line_base;
+                self.exec_command(command, path);
+                self.st.line_base = 0;
+            }
+        }
+        self.st.quiet_results = saved_quiet;
+        self.st.batch_depth -= 1;
+        Ok(done)
+    }
+
+    /// Runs the file a `batch` command asked for, as the next input of the command loop.
+    pub fn run_pending_batch(&mut self) {
+        while !self.st.pending_batch.is_empty() && !self.st.exit {
+            let mut path: TextBuf<256> = TextBuf::new();
+            let _ = path.write_str(self.st.pending_batch.as_str());
+            self.st.pending_batch.clear();
+            let _ = self.batch_file_stream(path.as_str(), true);
+        }
+    }
+
     /// Executes one complete top-level item: defines a construct or evaluates a
     /// command and prints its result (nothing for void).
     pub fn exec_command(&mut self, text: &str, source: &str) {
+        self.exec_item(text, source);
+        self.run_pending_batch();
+    }
+
+    fn exec_item(&mut self, text: &str, source: &str) {
         let exprs_before = self.st.nexprs;
         let cp = self.checkpoint();
         let mut p = Parser::new(self, text);
@@ -653,18 +873,26 @@ impl Core<'_> {
                         r = Err(c.into());
                     }
                 }
+                self.st.literal_error = false;
+                self.st.error_fallback = None;
                 if r.is_ok() {
                     r = self.eval(e);
                 }
                 match r {
                     Ok(v) => {
-                        if v != Value::Void {
+                        if v != Value::Void && !self.st.quiet_results {
                             self.print_value(router::STDOUT, v, true);
                             self.write(router::STDOUT, "\n");
                         }
                     }
                     Err(err) if err.kind == EvalErrorKind::Exit => {}
-                    Err(err) => self.report_eval_error(err),
+                    Err(err) => {
+                        self.report_eval_error(err);
+                        if !matches!(err.kind, EvalErrorKind::Capacity(_)) && !self.st.quiet_results
+                        {
+                            self.print_fallback(e);
+                        }
+                    }
                 }
                 self.st.sp = 0;
                 self.st.bp = 0;

@@ -57,6 +57,37 @@ impl Stats {
     pub fn get(&self, pool: Pool) -> (u32, u32) {
         (self.used[pool as usize], self.capacity[pool as usize])
     }
+
+    /// Bytes the pool's storage takes in the engine (capacity times entry size).
+    pub fn bytes(&self, pool: Pool) -> usize {
+        self.capacity[pool as usize] as usize * entry_bytes(pool)
+    }
+}
+
+/// Bytes one entry of `pool` occupies in an engine, its hash-bucket index included, so
+/// hosts can turn capacities and high-water marks into RAM figures.
+pub const fn entry_bytes(pool: Pool) -> usize {
+    use core::mem::size_of;
+    match pool {
+        // a fact and its duplicate-index bucket head
+        Pool::Facts => size_of::<Fact>() + size_of::<u16>(),
+        Pool::FactValues | Pool::EvalStack | Pool::Scratch => size_of::<Value>(),
+        // a symbol entry and its hash bucket head
+        Pool::Symbols => size_of::<SymEntry>() + size_of::<u16>(),
+        Pool::SymbolBytes => 1,
+        Pool::Templates => size_of::<Template>(),
+        Pool::SlotDefs => size_of::<SlotDef>(),
+        Pool::Rules => size_of::<Rule>(),
+        Pool::AlphaNodes => size_of::<AlphaNode>(),
+        Pool::Joins => size_of::<Join>(),
+        Pool::Tokens => size_of::<Token>(),
+        Pool::Activations => size_of::<Activation>(),
+        Pool::Functions => size_of::<Deffunction>(),
+        Pool::Globals => size_of::<Global>(),
+        Pool::Exprs => size_of::<Expr>(),
+        Pool::Deffacts => size_of::<Deffacts>(),
+        Pool::ExternalFns => size_of::<ExternalEntry>(),
+    }
 }
 
 /// Marks of the append-only pools, to undo a construct that failed halfway.
@@ -130,6 +161,20 @@ pub struct State {
     pub return_value: Value,
     pub firing: bool,
     pub eval_depth: u16,
+    /// The last argument type error was about a literal argument: CLIPS reports those
+    /// while parsing, so the command line prints no fallback value after it.
+    pub literal_error: bool,
+    /// A file `batch` asked for, run by the command loop after the current command.
+    pub pending_batch: crate::value::TextBuf<256>,
+    /// How many batch files are running inside each other.
+    pub batch_depth: u8,
+    /// `batch*`: commands print no results.
+    pub quiet_results: bool,
+    /// A batch file ended after its prompt was printed; the next command read uses it.
+    pub prompt_shown: bool,
+    /// A builtin's fallback value after a run-time error, when it depends on the
+    /// arguments (see `builtins::errors::ErrorFallback`).
+    pub error_fallback: Option<crate::builtins::errors::ErrorFallback>,
     /// Template of `(initial-fact)`.
     pub initial_tmpl: u16,
     /// Pattern bindings for network tests (`lhs`) and the firing rule (`rhs`).
@@ -145,6 +190,9 @@ pub struct State {
     pub rng_glibc: [i32; 34],
     pub rng_pos: u8,
     pub rng_seeded: bool,
+    /// Keep each rule's source text for `ppdefrule` (CLIPS's pretty-print forms). A
+    /// robot image that never lists its rules turns this off to save the symbol bytes.
+    pub keep_pp_forms: bool,
 }
 
 impl State {
@@ -193,6 +241,12 @@ impl State {
             return_value: Value::Void,
             firing: false,
             eval_depth: 0,
+            literal_error: false,
+            pending_batch: crate::value::TextBuf::new(),
+            batch_depth: 0,
+            quiet_results: false,
+            prompt_shown: false,
+            error_fallback: None,
             initial_tmpl: NONE,
             lhs_pm: [PatBinding::EMPTY; MAX_PATTERNS],
             rhs_pm: [PatBinding::EMPTY; MAX_PATTERNS],
@@ -204,6 +258,7 @@ impl State {
             rng_glibc: [0; 34],
             rng_pos: 0,
             rng_seeded: false,
+            keep_pp_forms: true,
         }
     }
 }
@@ -646,6 +701,21 @@ impl Core<'_> {
         }
     }
 
+    /// Gives back the references a new rule took on old joins (below `first_new`),
+    /// from `j` up to `stop`, subnetworks included.
+    fn release_old_refs(&mut self, mut j: u16, stop: u16, first_new: u16) {
+        while j != NONE && j != 0 && j != stop && (j as usize) < self.joins.len() {
+            let jn = self.joins[j as usize];
+            if j < first_new {
+                self.joins[j as usize].refs = jn.refs.saturating_sub(1);
+            }
+            if jn.rjoin != NONE {
+                self.release_old_refs(jn.rjoin, jn.parent, first_new);
+            }
+            j = jn.parent;
+        }
+    }
+
     /// Undoes every construct defined after `cp` (used when a construct fails halfway).
     /// Tokens and activations built by new joins are released first; shared old joins
     /// get their reference counts back.
@@ -667,13 +737,8 @@ impl Core<'_> {
             }
         }
         for r in cp.nrules..self.st.nrules {
-            let mut j = self.rules[r as usize].terminal;
-            while j != NONE && j != 0 {
-                if j < cp.njoins {
-                    self.joins[j as usize].refs = self.joins[j as usize].refs.saturating_sub(1);
-                }
-                j = self.joins[j as usize].parent;
-            }
+            let t = self.rules[r as usize].terminal;
+            self.release_old_refs(t, 0, cp.njoins);
         }
         // unlink new joins from old alpha nodes and old parent joins (new ones lead)
         for a in 0..cp.nalpha.min(self.st.nalpha) {
@@ -684,11 +749,27 @@ impl Core<'_> {
             }
         }
         for p in 0..cp.njoins.min(self.st.njoins) {
+            // new children lead the list, except joins from the right (placed after
+            // their subnetwork's first join): drop new ones wherever they are
             while self.joins[p as usize].first_child != NONE
                 && self.joins[p as usize].first_child >= cp.njoins
             {
                 let j = self.joins[p as usize].first_child;
                 self.joins[p as usize].first_child = self.joins[j as usize].next_sibling;
+            }
+            let mut c = self.joins[p as usize].first_child;
+            while c != NONE {
+                let mut n = self.joins[c as usize].next_sibling;
+                while n != NONE && n >= cp.njoins {
+                    n = self.joins[n as usize].next_sibling;
+                }
+                self.joins[c as usize].next_sibling = n;
+                c = n;
+            }
+            while self.joins[p as usize].rsucc != NONE && self.joins[p as usize].rsucc >= cp.njoins
+            {
+                let j = self.joins[p as usize].rsucc;
+                self.joins[p as usize].rsucc = self.joins[j as usize].alpha_next;
             }
         }
         // a template's alpha nodes are kept in network order, so new ones can sit
@@ -899,6 +980,22 @@ mod size_tests {
     use super::*;
     use core::mem::size_of;
 
+    /// The pools' bytes as `Stats::bytes` reports them account for the whole engine but
+    /// its scalar state (and padding): hosts size their RAM from these figures.
+    #[test]
+    fn pool_bytes_account_for_the_engine() {
+        let engine = std::boxed::Box::new(SmallEngine::new());
+        let stats = engine.stats();
+        let pools: usize = Pool::ALL.iter().map(|&p| stats.bytes(p)).sum();
+        let whole = size_of::<SmallEngine>();
+        assert!(pools <= whole, "pools {pools} > engine {whole}");
+        assert!(
+            whole - pools <= size_of::<State>() + 16,
+            "engine {whole} B, pools {pools} B: {} B unaccounted",
+            whole - pools - size_of::<State>()
+        );
+    }
+
     /// Pins the per-entry sizes that decide the image's RAM (see the crate docs).
     #[test]
     fn entry_sizes_stay_small() {
@@ -907,7 +1004,7 @@ mod size_tests {
         assert!(size_of::<Fact>() <= 24);
         assert!(size_of::<Activation>() <= 24);
         assert!(size_of::<Value>() <= 16);
-        assert!(size_of::<Join>() <= 24);
+        assert!(size_of::<Join>() <= 28);
         std::println!(
             "sizes: value {} fact {} sym {} template {} slot {} rule {} alpha {} join {} token {} act {} func {} global {} expr {} deffacts {} ext {} state {} | DefaultEngine {} SmallEngine {}",
             size_of::<Value>(),

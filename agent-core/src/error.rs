@@ -117,6 +117,9 @@ pub enum EvalErrorKind {
     External,
     /// `(halt)`/`(exit)` requested; not an error for callers of `run`.
     Exit,
+    /// The message is already printed (a builtin whose CLIPS message names run-time
+    /// details, or a deffunction that added its `[PRCCODE4]` line): evaluation just stops.
+    Reported,
     Other(&'static str),
 }
 
@@ -124,15 +127,22 @@ pub enum EvalErrorKind {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct EvalError {
     pub kind: EvalErrorKind,
+    /// CLIPS's message for it is printed already (by a deffunction it went through, which
+    /// added its `[PRCCODE4]` line); callers only stop.
+    pub reported: bool,
 }
 
 impl EvalError {
     pub const fn new(kind: EvalErrorKind) -> Self {
-        EvalError { kind }
+        EvalError {
+            kind,
+            reported: false,
+        }
     }
     pub const fn other(msg: &'static str) -> Self {
         EvalError {
             kind: EvalErrorKind::Other(msg),
+            reported: false,
         }
     }
     pub const fn wrong_type(func: &'static str, arg: u8, expected: &'static str) -> Self {
@@ -142,6 +152,7 @@ impl EvalError {
                 arg,
                 expected,
             },
+            reported: false,
         }
     }
 }
@@ -150,6 +161,7 @@ impl From<CapacityError> for EvalError {
     fn from(c: CapacityError) -> Self {
         EvalError {
             kind: EvalErrorKind::Capacity(c),
+            reported: false,
         }
     }
 }
@@ -182,6 +194,7 @@ impl fmt::Display for EvalError {
             EvalErrorKind::BadSlotValue { reason } => write!(f, "bad slot value: {reason}"),
             EvalErrorKind::External => write!(f, "external function failed"),
             EvalErrorKind::Exit => write!(f, "exit requested"),
+            EvalErrorKind::Reported => write!(f, "error (already reported)"),
             EvalErrorKind::Other(m) => write!(f, "{m}"),
         }
     }
@@ -230,6 +243,30 @@ pub enum LoadDetail {
     UnknownSlot {
         template: u16,
     },
+    /// `[CSTRNCHK1]`: a literal in a slot's `default`/`default-dynamic` (`attribute`)
+    /// violates the slot's type (`types`) or allowed values.
+    DefaultConstraint {
+        attribute: &'static str,
+        types: bool,
+        slot: u16,
+    },
+    /// `[TMPLTDEF2]`: a single-field slot given no value or several.
+    SingleSlot {
+        slot: u16,
+    },
+    /// `[TMPLTRHS1]`: an assert leaves out a slot declared `(default ?NONE)`.
+    RequiredSlot {
+        slot: u16,
+    },
+    /// `[ARGACCES5]`: a literal argument of a type the function does not take; `arg`
+    /// is 1-based, `expected` CLIPS's wording of the types.
+    ArgType {
+        func: &'static str,
+        arg: u16,
+        expected: &'static str,
+    },
+    /// `[ANALYSIS3]`: one LHS variable used both as `?x` and `$?x` (the offending token).
+    MixedVariable,
 }
 
 impl fmt::Display for LoadError {

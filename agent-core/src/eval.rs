@@ -195,7 +195,7 @@ impl Core<'_> {
                     Imp::Eager(f) => {
                         let args = self.push_args(x.first)?;
                         check_arity(b.name, b.min, b.max, args.len)?;
-                        f(self, args)
+                        f(self, args).map_err(|err| self.classify_type_error(x.first, err))
                     }
                 }
             }
@@ -253,6 +253,19 @@ impl Core<'_> {
         self.st.bp = args.base;
         let r = self.eval_chain(df.body);
         self.st.bp = saved_bp;
+        // CLIPS reports an error inside a deffunction where it happens and adds which
+        // deffunction it halted, at every level of nesting.
+        let r = match r {
+            Err(mut err)
+                if !matches!(err.kind, EvalErrorKind::Exit | EvalErrorKind::Capacity(_)) =>
+            {
+                self.write_error_message(err);
+                self.write_halted_in("deffunction", df.name);
+                err.reported = true;
+                Err(err)
+            }
+            r => r,
+        };
         let v = if self.st.returning {
             self.st.returning = false;
             self.st.return_value
@@ -260,6 +273,49 @@ impl Core<'_> {
             r?
         };
         r.map(|_| v)
+    }
+}
+
+impl Core<'_> {
+    /// An argument type error of a builtin: CLIPS checks literal arguments while parsing
+    /// (remembered in `literal_error`) and computed ones in the function body, sometimes
+    /// with other type names (`builtins::errors`).
+    fn classify_type_error(&mut self, first_arg: u16, err: EvalError) -> EvalError {
+        let EvalErrorKind::WrongType {
+            func,
+            arg,
+            expected,
+        } = err.kind
+        else {
+            return err;
+        };
+        // find argument `arg` (1-based); unknown when a `$?x` expansion came first
+        let mut node = first_arg;
+        let mut k = 1;
+        while node != NONE && k < arg {
+            if self.exprs[node as usize].op == Op::Expand {
+                node = NONE;
+                break;
+            }
+            node = self.exprs[node as usize].next;
+            k += 1;
+        }
+        // format checks its directives' arguments in its body, literal or not
+        let literal = node != NONE
+            && !(func == "format" && arg > 2)
+            && matches!(
+                self.exprs[node as usize].op,
+                Op::Int | Op::Float | Op::Sym | Op::Str
+            );
+        self.st.literal_error = literal;
+        if literal {
+            return err;
+        }
+        EvalError::wrong_type(
+            func,
+            arg,
+            builtins::errors::runtime_type_name(func, expected),
+        )
     }
 }
 

@@ -22,9 +22,26 @@ pub trait Host {
     /// Output to a router (see `router`); `printout` to other logical names passes them
     /// through unchanged.
     fn write_str(&mut self, router: &str, text: &str);
-    /// Reads a whole file into `buf`, returning its length.
+    /// Reads a whole file into `buf`, returning its length (`TooLarge` when it does not
+    /// fit).
     fn read_file(&mut self, _path: &str, _buf: &mut [u8]) -> Result<usize, HostIoError> {
         Err(HostIoError::Unsupported)
+    }
+    /// Reads up to `buf.len()` bytes of a file from byte `offset` on, returning how many
+    /// (0 at the end). The engine streams files through a fixed buffer with this, so a
+    /// host that implements it can have files of any size loaded. The default serves
+    /// files that fit the buffer whole through `read_file`.
+    fn read_file_at(
+        &mut self,
+        path: &str,
+        offset: u64,
+        buf: &mut [u8],
+    ) -> Result<usize, HostIoError> {
+        if offset == 0 {
+            self.read_file(path, buf)
+        } else {
+            Ok(0)
+        }
     }
     fn write_file(&mut self, _path: &str, _data: &[u8], _append: bool) -> Result<(), HostIoError> {
         Err(HostIoError::Unsupported)

@@ -769,6 +769,7 @@ impl Core<'_> {
         // each partial match and link: parents, alpha match, child lists, counts
         let mut parented = 0usize;
         let mut with_am = 0usize;
+        let mut with_blocker = 0usize;
         for (i, tk) in self.tokens[..used].iter().enumerate() {
             match tk.kind {
                 TokenKind::Beta => {
@@ -791,7 +792,11 @@ impl Core<'_> {
                         }
                         if matches!(j.kind, JoinKind::Negative | JoinKind::Exists) {
                             let links = self.children(i as u16, TokenKind::Link)?;
-                            ensure!(links == tk.count as usize, "not/exists count != links", i);
+                            ensure!(
+                                links == usize::from(tk.blocked),
+                                "not/exists blocker links != blocked flag",
+                                i
+                            );
                         }
                         if !self.token_active(i as u16) {
                             ensure!(
@@ -839,13 +844,48 @@ impl Core<'_> {
                         "link at a join without not/exists",
                         i
                     );
-                    self.check_am(i, j.alpha)?;
+                    // the blocker: an alpha match of the join's pattern, or a partial
+                    // match of the subnetwork of a not/exists over several CEs
+                    let b = self.tokens[tk.am as usize];
+                    match b.kind {
+                        TokenKind::Alpha => self.check_am(i, j.alpha)?,
+                        TokenKind::Beta => {}
+                        _ => ensure!(false, "link blocked by a free or link token", i),
+                    }
                     parented += 1;
-                    with_am += 1;
+                    with_blocker += 1;
                 }
                 _ => {}
             }
         }
+        // blocker lists: every link is listed once under the token that blocks
+        let mut listed_b = 0usize;
+        for (i, tk) in self.tokens[..used].iter().enumerate() {
+            if !matches!(tk.kind, TokenKind::Alpha | TokenKind::Beta) {
+                continue;
+            }
+            let mut prev = NONE;
+            let mut k = tk.blocks;
+            while k != NONE {
+                let lk = self.tokens[k as usize];
+                ensure!(
+                    lk.kind == TokenKind::Link,
+                    "blocker list holds a non-link",
+                    k
+                );
+                ensure!(lk.am as usize == i, "link does not point to its blocker", k);
+                ensure!(lk.am_prev == prev, "blocker list back link broken", k);
+                listed_b += 1;
+                ensure!(listed_b <= with_blocker, "blocker list has a cycle", i);
+                prev = k;
+                k = lk.am_next;
+            }
+        }
+        ensure!(
+            listed_b == with_blocker,
+            "links missing from their blockers' lists",
+            listed_b
+        );
         // child lists: every child points back and every parented token is listed
         let mut listed_p = 0usize;
         let mut listed_a = 0usize;

@@ -22,24 +22,47 @@
 //! - **Alpha nodes** ([`rete::AlphaNode`]): one per distinct pattern (template +
 //!   constant tests + tests between fields of the same fact + multislot layout). Rules
 //!   using an identical pattern share the node and its **alpha memory** (a list of
-//!   alpha-match tokens, newest first). A template lists its alpha nodes, so an
+//!   alpha-match tokens, oldest first). A template lists its alpha nodes, so an
 //!   asserted fact is only tested against patterns of its own template. A pattern with
 //!   several multifield variables in one multislot yields one alpha match per
 //!   segmentation; the match records the multifield lengths ("marks").
+//!   As in CLIPS, the fields a join compares for equality with earlier variables
+//!   (the "right hash") are part of the node's identity: `(a ?x)` as a first pattern
+//!   and `(a ?x)` joined on `?x` are different nodes. Nodes of a template are kept in
+//!   CLIPS's pattern-network order (newer sibling nodes first), which is the order a
+//!   fact visits them.
 //! - **Joins** ([`rete::Join`]): each rule is a chain `Root -> CE1 -> ... -> CEn`.
 //!   The root holds one empty token. A join combines each token of its parent's output
 //!   memory (left) with the alpha matches of its pattern (right) under the join tests
 //!   (variables shared with earlier patterns) and keeps the results in its own output
-//!   memory. Kinds: `Positive`; `Negative` (`not`: a left token passes while its count
-//!   of matching right items is zero); `Exists` (passes while the count is positive);
-//!   `Test` (a leading `test` CE or an empty LHS). Tests following a `not`/`exists` are
-//!   post-tests on its output.
+//!   memory. Kinds: `Positive`; `Negative` (`not`: a left token passes while no right
+//!   item blocks it); `Exists` (passes while one does); `Test` (a leading `test` CE or
+//!   an empty LHS); `Terminal` (a rule's end: its left tokens become activations).
+//!   Tests following a `not`/`exists` are post-tests on its output. Joins are shared
+//!   between rules with an identical prefix; a rule's terminal never is.
+//! - **Blockers**: a not/exists output token is blocked by at most one right item,
+//!   the first that matches (a `Link` token in the blocker's `blocks` list). When the
+//!   blocker goes, the next matching item in memory order takes over, and only if
+//!   there is none the output changes: CLIPS's order of (de)activations.
+//! - **Joins from the right**: `not`/`exists` over several CEs (and nested
+//!   `not`/`exists`) compile, as in CLIPS, into a subnetwork that starts from the
+//!   same left input, plus a not/exists join whose right input is the subnetwork's
+//!   last join (`Join::rjoin`; the subnetwork lists it in `rsucc`). A subnetwork
+//!   token blocks the output of the left token it extends. The join from the right
+//!   sits after the subnetwork's first join among its parent's children, so a new
+//!   left token runs through the subnetwork first. The group is one pattern slot
+//!   (`*`); `(not (not P))` is compiled as `(exists P)`.
 //! - **Incremental**: an assert only visits the alpha nodes of its template; each new
 //!   alpha match right-activates the successor joins (newest rule first, as CLIPS
 //!   orders them), each new token left-activates the next join. A retract removes the
 //!   fact's alpha matches and, through child links kept in every token (left parent,
-//!   right alpha match), exactly the partial matches built on them; not/exists counts
-//!   are decremented. Nothing is rescanned.
+//!   right alpha match), exactly the partial matches built on them, successor by
+//!   successor, oldest first (the order CLIPS made its per-successor copies); then the
+//!   not/exists outputs it blocked look for another blocker.
+//! - **Rule added while facts exist** (CLIPS's incremental reset): new joins fed by
+//!   old ones are primed from the left (each rule from its end upwards, a subnetwork
+//!   after the join taking it), then the existing facts, oldest first, are driven
+//!   through the rule's new alpha nodes.
 //! - **Tokens** ([`rete::Token`]): alpha matches and partial matches share one pool;
 //!   each partial match stores only its parent and its alpha match, so a match of n
 //!   patterns costs n tokens. A terminal token points to its activation.
@@ -49,7 +72,8 @@
 //!
 //! # Not supported yet
 //! See the crate README section in `engine-interfaces.md`: COOL, modules other than
-//! MAIN, `not`/`exists` over several CEs, `logical` truth maintenance, strategies other
+//! MAIN, `or` and fact addresses inside `not`/`exists`, `logical` truth maintenance,
+//! strategies other
 //! than depth, multifield globals across commands.
 #![no_std]
 
@@ -78,7 +102,7 @@ pub mod testutil;
 
 pub use api::{ExternalFn, FactId, Usage};
 pub use builtins::{Args, BuiltinFn};
-pub use engine::{Core, DefaultEngine, Engine, SmallEngine, Stats};
+pub use engine::{entry_bytes, Core, DefaultEngine, Engine, SmallEngine, Stats};
 pub use error::{
     CapacityError, EngineError, EvalError, EvalErrorKind, HostIoError, LoadError, Pool,
 };

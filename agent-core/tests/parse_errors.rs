@@ -8,9 +8,8 @@ impl Host for Quiet {
     fn write_str(&mut self, _router: &str, _text: &str) {}
 }
 
-/// A good prefix every case starts with (defines one template, rule, function).
-const GOOD: &str =
-    "(deftemplate good (slot a))\n(defrule keep (good (a ?x)) => (printout t ?x crlf))\n";
+/// A good prefix every case starts with (defines templates and a rule).
+const GOOD: &str = "(deftemplate good (slot a))\n(defrule keep (good (a ?x)) => (printout t ?x crlf))\n(deftemplate req (slot id (default ?NONE)))\n";
 
 /// (bad construct text, 1-based line, column — relative to the bad text, which
 /// follows GOOD's two lines — and a fragment of what was expected)
@@ -116,10 +115,42 @@ const CASES: &[(&str, u32, u32, &str)] = &[
     ("(deffunction + (?a) ?a)", 1, 14, "not a builtin"),
     ("(defglobal ?*g* 5)", 1, 17, "'='"),
     (
-        "(defglobal ?*g* = (+ 1 a))",
+        "(defglobal ?*g* = (/ 1 0))",
         1,
         17,
         "initial value that evaluates",
+    ),
+    (
+        "(defglobal ?*g* = (+ 1 a))",
+        1,
+        24,
+        "argument of type integer or float",
+    ),
+    (
+        "(defrule r20 ?f <- (good) => (modify ?f (zz 1)))",
+        1,
+        42,
+        "slot of the template",
+    ),
+    (
+        "(deftemplate t7 (slot a (type INTEGER) (default x)))",
+        1,
+        49,
+        "slot's type",
+    ),
+    (
+        "(deftemplate t8 (multislot a (default x y z) (allowed-symbols x y)))",
+        1,
+        43,
+        "allowed values",
+    ),
+    ("(deffacts d3 (req))", 1, 15, "(default ?NONE)"),
+    ("(defrule r21 (a $?x) (b ?x) =>)", 1, 25, "not both"),
+    (
+        "(defrule r22 => (printout t (sub-string 1 x \"abc\") crlf))",
+        1,
+        43,
+        "type integer",
     ),
     ("(deffacts d1 (a 1) b)", 1, 20, "'(' starting a fact"),
     ("(deffacts d2 (good (zz 1)))", 1, 21, "slot of the template"),

@@ -14,6 +14,9 @@ pub enum SkillRequest {
     BringPuckTo(MachineId),
     /// Deliver the held puck (a product P) to a delivery gate.
     DeliverTo(GateId),
+    /// Release the held puck where the robot stands and back away from it: the agent's
+    /// `discard`, and how the behaviour layer gets rid of a puck the agent believes lost.
+    Discard,
 }
 
 impl SkillRequest {
@@ -23,6 +26,7 @@ impl SkillRequest {
             Self::GetS0 => "get_s0",
             Self::BringPuckTo(_) => "finish_puck_at",
             Self::DeliverTo(_) => "deliver",
+            Self::Discard => "discard",
         }
     }
 }
@@ -38,6 +42,8 @@ pub enum Perception {
     LightUnchanged,
     /// The puck was delivered through the gate.
     Delivered,
+    /// The robot released its puck and no longer holds one.
+    Released,
 }
 
 /// Why a skill failed. Codes are stable for payloads.

@@ -42,6 +42,29 @@ impl Host for CliHost {
         Ok(data.len())
     }
 
+    /// Streams files of any size to the engine, one buffer at a time.
+    fn read_file_at(
+        &mut self,
+        path: &str,
+        offset: u64,
+        buf: &mut [u8],
+    ) -> Result<usize, HostIoError> {
+        use std::io::{Read, Seek, SeekFrom};
+        let mut f = std::fs::File::open(path).map_err(|_| HostIoError::NotFound)?;
+        f.seek(SeekFrom::Start(offset))
+            .map_err(|_| HostIoError::Other)?;
+        let mut n = 0;
+        while n < buf.len() {
+            match f.read(&mut buf[n..]) {
+                Ok(0) => break,
+                Ok(k) => n += k,
+                Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
+                Err(_) => return Err(HostIoError::Other),
+            }
+        }
+        Ok(n)
+    }
+
     fn write_file(&mut self, path: &str, data: &[u8], append: bool) -> Result<(), HostIoError> {
         let mut f = std::fs::OpenOptions::new()
             .create(true)

@@ -4,6 +4,7 @@
 
 mod bench;
 mod clips_cli;
+mod game;
 mod run;
 mod sim;
 
@@ -27,6 +28,8 @@ enum Command {
     Clips(clips_cli::Args),
     /// One robot's agent loop over iceoryx2 (sensors, skills, safety, motor command).
     Run(run::Args),
+    /// A whole game across processes: robotino-sim and one `run` per robot, in lockstep.
+    Game(game::Args),
     /// Benchmarks against CLIPS 6.30 and 6.4: prints ratios, regenerates BENCHMARKS.md.
     Bench(bench::Args),
     /// Plays one simulated LLSF game and prints a readable report.
@@ -40,6 +43,7 @@ fn main() -> ExitCode {
     match cli.command {
         Command::Clips(args) => clips_cli::main(args),
         Command::Run(args) => run::main(args),
+        Command::Game(args) => game::main(args),
         Command::Bench(args) => bench::main(args),
         Command::Sim(args) => sim::main(args),
         Command::Sweep(args) => sim::sweep::main(args),

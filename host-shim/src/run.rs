@@ -1,15 +1,15 @@
 //! `robotino-agent run`: one robot's agent loop. Each cycle it reads the newest sensor
 //! samples over iceoryx2, advances the running skill, passes the skill's twist through the
-//! safety monitor and publishes the motor command, then reports the skill's status. When the
-//! robot is idle it asks for the next skill: for now the clearly marked stand-in
-//! [`ScriptedAgent`]; the engine plugs in there.
+//! safety monitor and publishes the motor command, then reports the skill's status. Skill
+//! outcomes and perceptions become facts of the agent's rule base (our engine); whenever
+//! the robot is idle and something changed, the engine runs to quiescence and the skill it
+//! chose starts.
 
 use hal::field::MachineId;
 use hal::ir::IrScan;
-use hal::skill::Perception;
-use hal::skill::{FailReason, SkillOutcome, SkillRequest};
-use hal::LightSignal;
+use hal::skill::{SkillOutcome, SkillRequest};
 use hal::{Pose2, Twist};
+use host_shim::shim::agent::{ChosenSkill, EngineAgent};
 use host_shim::shim::behaviour::{DriveTuning, Perceived, Skill};
 use host_shim::shim::config::Config;
 use host_shim::shim::payloads::{
@@ -17,10 +17,11 @@ use host_shim::shim::payloads::{
     MachineClaimPayload, MotorCommandPayload, OdometryPayload, PuckPayload, SkillRequestPayload,
     SkillStatus, SkillStatusPayload, WorldModelPayload,
 };
+use host_shim::shim::rule_engine::with_engine_stack;
 use host_shim::shim::safety::{CycleInput, SafetyMonitor, Stream};
-use host_shim::shim::scripted::ScriptedAgent;
-use host_shim::shim::team::{Carried, TeamView};
+use host_shim::shim::team::TeamView;
 use host_shim::shim::transport::{Pub, RobotStream, Sub, TeamStream, Transport, TransportError};
+use rules::Strategy;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::{Duration, Instant};
@@ -45,16 +46,19 @@ pub struct Args {
     /// Simulated seconds per wall-clock second (overrides the file).
     #[arg(long)]
     pub time_warp: Option<f32>,
-    /// STAND-IN for the engine: skills to run, e.g. `get_s0,bring:4,deliver:1`; empty
-    /// loops get_s0 and bring to machines in turn.
-    #[arg(long, default_value = "")]
-    pub script: String,
+    /// Production strategy of the agent's rules: naive, paper or travel.
+    #[arg(long, default_value = "paper", value_parser = crate::sim::parse_strategy)]
+    pub strategy: Strategy,
+    /// Also print every cycle's and every decision's time (one `stat` line each).
+    #[arg(long)]
+    pub stats: bool,
 }
 
 pub fn main(args: Args) -> ExitCode {
-    match run(&args) {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
+    // The engine's arrays pass through the stack on their way to the heap.
+    match with_engine_stack(move || run(&args).map_err(|e| e.to_string())) {
+        Ok(Ok(())) => ExitCode::SUCCESS,
+        Ok(Err(e)) | Err(e) => {
             eprintln!("robotino-agent run: {e}");
             ExitCode::FAILURE
         }
@@ -105,8 +109,12 @@ impl AgentPorts {
 struct Samples {
     seq: [Option<u32>; Stream::COUNT],
     bumper_pressed: bool,
+    /// When a pressed bumper sample following a released one was received, and in which
+    /// cycle (the loop's count at receipt): the start of the bumper-latency measurement.
+    bumper_hit: Option<(Instant, u64)>,
     perceived: Perceived,
     odometry_seq: Option<u32>,
+    gate: Option<hal::field::GateId>,
 }
 
 impl Samples {
@@ -114,6 +122,7 @@ impl Samples {
         Self {
             seq: [None; Stream::COUNT],
             bumper_pressed: false,
+            bumper_hit: None,
             perceived: Perceived {
                 pose: Pose2::default(),
                 ir: IrScan::EMPTY,
@@ -121,10 +130,11 @@ impl Samples {
                 light: None,
             },
             odometry_seq: None,
+            gate: None,
         }
     }
 
-    fn read(&mut self, p: &mut AgentPorts) -> Result<(), TransportError> {
+    fn read(&mut self, p: &mut AgentPorts, cycle: u64) -> Result<(), TransportError> {
         if let Some(s) = p.ir.poll()? {
             if let Ok(scan) = s.decode() {
                 self.perceived.ir = scan;
@@ -133,6 +143,9 @@ impl Samples {
         }
         if let Some(s) = p.bumper.poll()? {
             if let Ok(pressed) = s.decode() {
+                if pressed && !self.bumper_pressed {
+                    self.bumper_hit = Some((Instant::now(), cycle));
+                }
                 self.bumper_pressed = pressed;
                 self.seq[Stream::Bumper as usize] = Some(s.seq);
             }
@@ -157,8 +170,9 @@ impl Samples {
             }
         }
         if let Some(s) = p.light.poll()? {
-            if let Ok(light) = s.decode() {
+            if let (Ok(light), Ok(gate)) = (s.decode(), s.active_gate()) {
                 self.perceived.light = light;
+                self.gate = gate.or(self.gate);
             }
         }
         Ok(())
@@ -167,6 +181,7 @@ impl Samples {
 
 struct Running {
     skill: Skill,
+    chosen: ChosenSkill,
     request_seq: u32,
 }
 
@@ -184,10 +199,11 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
     config.timing.lockstep |= args.lockstep;
     let robot = config.robot.number;
     let mut mind = Mind {
-        robot: config.robot.number,
-        script: ScriptedAgent::parse(&args.script)?,
-        team: TeamView::new(config.robot.number),
-        carried: None,
+        robot,
+        agent: EngineAgent::new(args.strategy)?,
+        team: TeamView::new(robot),
+        dirty: true,
+        done_reported: false,
     };
     let transport = Transport::open(&config.services.prefix, &format!("robotino-agent-{robot}"))?;
     let mut ports = AgentPorts::open(&transport, robot)?;
@@ -207,15 +223,16 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
     );
     let mut samples = Samples::new();
     let mut running: Option<Running> = None;
-    let mut stats = CycleStats::default();
+    let mut stats = LoopStats::default();
     let wall_cycle = config.wall_cycle();
     let grace = Duration::from_millis(config.timing.lockstep_grace_ms);
     let poll = Duration::from_micros(200);
     let start = Instant::now();
     let mut cycle: u64 = 0;
     println!(
-        "robotino-agent run: robot={robot} prefix={}",
-        config.services.prefix
+        "robotino-agent run: robot={robot} prefix={} strategy={} engine=rules",
+        config.services.prefix,
+        args.strategy.name()
     );
 
     loop {
@@ -224,7 +241,7 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
         let last_odometry = samples.odometry_seq;
         loop {
             let due = if config.timing.lockstep {
-                samples.read(&mut ports)?;
+                samples.read(&mut ports, cycle + 1)?;
                 samples.odometry_seq != last_odometry || wait_start.elapsed() >= grace
             } else {
                 start.elapsed() >= wall_cycle * (cycle as u32 + 1)
@@ -233,16 +250,22 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
                 break;
             }
             if !transport.wait(poll) {
-                stats.report(cycle);
+                stats.report(cycle, &mind.agent);
                 return Ok(());
             }
         }
         let work_start = Instant::now();
         cycle += 1;
-        samples.read(&mut ports)?;
+        samples.read(&mut ports, cycle)?;
         let p = samples.perceived;
         mind.listen(&mut ports, cycle)?;
-        // Late joiners: repeat what we know now and then (the service keeps one sample).
+        if let Some(g) = samples.gate {
+            if !mind.agent.knows_gate() {
+                mind.agent.see_active_gate(g)?;
+                mind.dirty = true;
+            }
+        }
+        // Late joiners: repeat what we found out now and then (the service keeps one sample).
         if cycle.is_multiple_of(150) {
             for m in MachineId::all() {
                 if mind
@@ -256,22 +279,20 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
             }
         }
 
-        // Idle: ask for the next skill, but only once every driver is fresh (a skill
-        // planned from a pose never received would start from the field's corner).
+        // Idle: let the rules decide, but only once every driver is fresh (a skill planned
+        // from a pose never received would start from the field's corner) and the gate's
+        // light was seen (the rules deliver to it).
         let drivers_fresh = samples.seq.iter().all(Option::is_some)
             && Stream::ALL
                 .iter()
                 .all(|&s| monitor.staleness(s) < config.timing.sensor_deadline_cycles);
-        if running.is_none() && drivers_fresh {
-            mind.sync_with_puck_sensor(p.has_puck);
-            if let Some(choice) = mind.script.next(mind.carried, &mind.team) {
-                let request = choice.request;
-                if let Some((m, t, by)) = choice.shared_type {
-                    println!(
-                        "robotino-agent run: cycle={cycle} using shared type M{} T{t} from robot {by}",
-                        m.number()
-                    );
-                }
+        let mut decided = None;
+        if running.is_none() && drivers_fresh && mind.agent.knows_gate() && mind.dirty {
+            let t0 = Instant::now();
+            let chosen = mind.decide(&mut ports, cycle)?;
+            decided = Some(t0.elapsed());
+            if let Some(chosen) = chosen {
+                let request = chosen.request;
                 let request_seq = ports
                     .request
                     .send(|s| SkillRequestPayload::encode(s, robot, request))?;
@@ -279,18 +300,28 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
                 if let SkillRequest::BringPuckTo(m) = request {
                     mind.claim(&mut ports, m, true)?;
                 }
-                println!("robotino-agent run: cycle={cycle} start {request:?}");
+                println!(
+                    "robotino-agent run: cycle={cycle} start {request:?} (skill-request {} {} {} holding {})",
+                    chosen.id, chosen.name, chosen.target, chosen.puck
+                );
                 match Skill::start(request, &p, &tuning) {
-                    Ok(skill) => running = Some(Running { skill, request_seq }),
+                    Ok(skill) => {
+                        running = Some(Running {
+                            skill,
+                            chosen,
+                            request_seq,
+                        })
+                    }
                     Err(reason) => {
                         let outcome = SkillOutcome::Failed(reason);
-                        mind.finish(&mut ports, request, request_seq, outcome, cycle)?;
+                        mind.finish(&mut ports, &chosen, request_seq, outcome, cycle)?;
                     }
                 }
             }
         }
 
-        // Two robots claimed the same machine in the same moment: the lower number keeps it.
+        // Two robots claimed the same machine in the same moment: the lower number goes
+        // first, the other waits where it is until the machine is free.
         let lost_claim = running.as_ref().is_some_and(|r| match r.skill.request() {
             SkillRequest::BringPuckTo(m) => mind
                 .team
@@ -300,7 +331,7 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
             _ => false,
         });
         let (desired, mut outcome) = match running.as_mut() {
-            Some(_) if lost_claim => (Twist::ZERO, SkillOutcome::Failed(FailReason::Aborted)),
+            Some(_) if lost_claim => (Twist::ZERO, SkillOutcome::Running),
             Some(r) => r.skill.step(&p, &tuning),
             None => (Twist::ZERO, SkillOutcome::Running),
         };
@@ -311,12 +342,25 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
             skill_running: running.is_some() && !outcome.is_terminal(),
         });
         if let Some(reason) = decision.fail_skill {
-            outcome = SkillOutcome::Failed(reason);
+            // A stop while only backing away from the station does not undo the work.
+            outcome = match running.as_ref().and_then(|r| r.skill.done_perception()) {
+                Some(p) => SkillOutcome::Final(p),
+                None => SkillOutcome::Failed(reason),
+            };
         }
+        let release = running
+            .as_ref()
+            .is_some_and(|r| r.skill.releasing() && !outcome.is_terminal());
         let bumper_seq = samples.seq[Stream::Bumper as usize].unwrap_or(0);
-        ports
-            .motor
-            .send(|s| MotorCommandPayload::encode(s, bumper_seq, decision.wheels))?;
+        ports.motor.send(|s| {
+            MotorCommandPayload::encode(s, bumper_seq, decision.wheels).with_release(release)
+        })?;
+        if let Some((received, at_cycle)) = samples.bumper_hit {
+            if decision.wheels.is_zero() {
+                stats.bumper(received.elapsed(), cycle - at_cycle.min(cycle));
+                samples.bumper_hit = None;
+            }
+        }
         ports
             .heartbeat
             .send(|s| HeartbeatPayload::encode(s, cycle as u32, DriverId::Agent))?;
@@ -324,8 +368,10 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
         if let Some(r) = running.as_ref() {
             let request = r.skill.request();
             if outcome.is_terminal() {
-                mind.finish(&mut ports, request, r.request_seq, outcome, cycle)?;
+                let chosen = r.chosen.clone();
+                let request_seq = r.request_seq;
                 running = None;
+                mind.finish(&mut ports, &chosen, request_seq, outcome, cycle)?;
             } else {
                 let status = SkillStatus {
                     request_seq: r.request_seq,
@@ -338,37 +384,89 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
                     .send(|s| SkillStatusPayload::encode(s, &status))?;
             }
         }
-        stats.record(work_start.elapsed());
+        let work = work_start.elapsed();
+        stats.record(work, decided);
+        if args.stats {
+            println!(
+                "robotino-agent run: stat cycle={cycle} work_us={} decision_us={}",
+                work.as_micros(),
+                decided.map_or(0, |d| d.as_micros())
+            );
+        }
         if cycle.is_multiple_of(150) {
             println!(
-                "robotino-agent run: cycle={cycle} pose=({:.2},{:.2},{:.2}) puck={} hold={:?}",
-                p.pose.x_m, p.pose.y_m, p.pose.phi_rad, p.has_puck, decision.hold
+                "robotino-agent run: cycle={cycle} pose=({:.2},{:.2},{:.2}) puck={} hold={:?} state={}",
+                p.pose.x_m,
+                p.pose.y_m,
+                p.pose.phi_rad,
+                p.has_puck,
+                decision.hold,
+                mind.agent.state().unwrap_or_default()
             );
         }
         if args.cycles > 0 && cycle >= args.cycles {
-            stats.report(cycle);
+            stats.report(cycle, &mind.agent);
             return Ok(());
         }
     }
 }
 
-/// What the robot knows beyond its sensors: the (stand-in) agent, the team's shared picture
-/// and the puck it believes it carries.
+/// What the robot knows beyond its sensors: the agent's rules and the team's shared
+/// picture.
 struct Mind {
     robot: u8,
-    script: ScriptedAgent,
+    agent: EngineAgent,
     team: TeamView,
-    carried: Option<Carried>,
+    /// Facts changed since the rules last ran.
+    dirty: bool,
+    done_reported: bool,
 }
 
 impl Mind {
-    /// The puck sensor is the truth about holding something; the kind is remembered.
-    fn sync_with_puck_sensor(&mut self, has_puck: bool) {
-        if !has_puck {
-            self.carried = None;
-        } else if self.carried.is_none() {
-            self.carried = Some(Carried::Unknown);
+    /// Runs the rules, publishes what they found out, and returns the skill they chose.
+    fn decide(
+        &mut self,
+        ports: &mut AgentPorts,
+        cycle: u64,
+    ) -> Result<Option<ChosenSkill>, Box<dyn std::error::Error>> {
+        let chosen = self.agent.decide()?;
+        self.dirty = false;
+        let printed = self.agent.take_output();
+        if !printed.is_empty() {
+            print!("{printed}");
         }
+        self.share_findings(ports, cycle)?;
+        if let Some(c) = &chosen {
+            if let SkillRequest::BringPuckTo(m) = c.request {
+                if let Some((t, by)) = self.team.machine(m).machine_type {
+                    if by != self.robot {
+                        println!(
+                            "robotino-agent run: cycle={cycle} using shared type M{} T{t} from robot {by}",
+                            m.number()
+                        );
+                    }
+                }
+            }
+        } else if self.agent.is_done() && !self.done_reported {
+            self.done_reported = true;
+            println!("robotino-agent run: cycle={cycle} agent DONE (storage empty, hands empty)");
+        }
+        Ok(chosen)
+    }
+
+    /// Publishes machine types the rules found out that the team did not know yet.
+    fn share_findings(&mut self, ports: &mut AgentPorts, cycle: u64) -> Result<(), TransportError> {
+        for (m, view) in MachineId::all().zip(self.agent.machines()) {
+            if self.team.record_own(m, view.machine_type, view.loaded) {
+                println!(
+                    "robotino-agent run: cycle={cycle} learned M{} T{}",
+                    m.number(),
+                    view.machine_type.unwrap_or(0)
+                );
+                self.publish_belief(ports, m)?;
+            }
+        }
+        Ok(())
     }
 
     fn claim(
@@ -393,8 +491,13 @@ impl Mind {
         Ok(())
     }
 
-    /// Takes teammates' world-model updates and claims.
-    fn listen(&mut self, ports: &mut AgentPorts, cycle: u64) -> Result<(), TransportError> {
+    /// Takes teammates' world-model updates (a type they found out narrows our rules'
+    /// belief) and claims.
+    fn listen(
+        &mut self,
+        ports: &mut AgentPorts,
+        cycle: u64,
+    ) -> Result<(), Box<dyn std::error::Error>> {
         let mut learned = Vec::new();
         let team = &mut self.team;
         ports.world_in.drain(|p| {
@@ -405,11 +508,13 @@ impl Mind {
             }
         })?;
         for b in learned {
+            let t = b.machine_type.unwrap_or(0);
+            let adopted = self.agent.adopt_type(b.machine, t)?;
+            self.dirty |= adopted;
             println!(
-                "robotino-agent run: cycle={cycle} belief from robot {}: M{} T{}",
+                "robotino-agent run: cycle={cycle} belief from robot {}: M{} T{t} adopted={adopted}",
                 b.robot,
                 b.machine.number(),
-                b.machine_type.unwrap_or(0)
             );
         }
         ports.claims_in.drain(|p| {
@@ -422,16 +527,17 @@ impl Mind {
         Ok(())
     }
 
-    /// Publishes a skill's end, updates what the robot carries and knows, releases the
-    /// machine's claim and tells the (stand-in) agent.
+    /// Publishes a skill's end, tells the rules (a `skill-outcome` fact) and releases the
+    /// machine's claim.
     fn finish(
         &mut self,
         ports: &mut AgentPorts,
-        request: SkillRequest,
+        chosen: &ChosenSkill,
         request_seq: u32,
         outcome: SkillOutcome,
         cycle: u64,
-    ) -> Result<(), TransportError> {
+    ) -> Result<(), Box<dyn std::error::Error>> {
+        let request = chosen.request;
         let status = SkillStatus {
             request_seq,
             robot: self.robot,
@@ -446,68 +552,68 @@ impl Mind {
             _ => "",
         };
         println!("robotino-agent run: cycle={cycle} end {request:?} {outcome:?} {reason}");
-        match (request, outcome) {
-            (SkillRequest::GetS0, SkillOutcome::Final(Perception::GotS0)) => {
-                self.carried = Some(Carried::S0);
-            }
-            (SkillRequest::BringPuckTo(m), SkillOutcome::Final(Perception::LightSeen(l))) => {
-                let carried = self.carried.unwrap_or(Carried::Unknown);
-                let learned_before = self.team.machine(m).machine_type;
-                match l {
-                    LightSignal::Green => {
-                        self.carried = self.team.learn_from_placement(m, carried, true);
-                    }
-                    LightSignal::Yellow => {
-                        self.carried = self.team.learn_from_placement(m, carried, false);
-                    }
-                    // Wrong input, out of order or offline: the robot keeps its puck.
-                    _ => {}
-                }
-                if let (None, Some((t, _))) = (learned_before, self.team.machine(m).machine_type) {
-                    println!(
-                        "robotino-agent run: cycle={cycle} learned M{} T{t}",
-                        m.number()
-                    );
-                }
-                self.publish_belief(ports, m)?;
-            }
-            (SkillRequest::DeliverTo(_), SkillOutcome::Final(Perception::Delivered)) => {
-                self.carried = None;
-            }
-            _ => {}
-        }
+        self.agent.report(chosen.id, outcome)?;
+        self.dirty = true;
         if let SkillRequest::BringPuckTo(m) = request {
             self.claim(ports, m, false)?;
         }
-        self.script.finished(request, outcome);
         Ok(())
     }
 }
 
-/// Time spent computing each cycle (excluding the wait for the next one).
+/// The loop's own counters: time spent computing each cycle (excluding the wait for the
+/// next one), the cycles in which the rules ran and how long they took, and the bumper
+/// latency from a pressed sample's receipt to the zero motor command's publish.
 #[derive(Default)]
-struct CycleStats {
-    count: u64,
-    total: Duration,
-    max: Duration,
+struct LoopStats {
+    cycle_us: Vec<u32>,
+    decision_cycle_us: Vec<u32>,
+    decide_us: Vec<u32>,
+    bumper_us: Vec<u32>,
+    bumper_cycles: Vec<u64>,
 }
 
-impl CycleStats {
-    fn record(&mut self, d: Duration) {
-        self.count += 1;
-        self.total += d;
-        self.max = self.max.max(d);
+fn micros(d: Duration) -> u32 {
+    u32::try_from(d.as_micros()).unwrap_or(u32::MAX)
+}
+
+/// Median and maximum (0 for no samples).
+fn median_max(v: &[u32]) -> (u32, u32) {
+    let mut s = v.to_vec();
+    s.sort_unstable();
+    (
+        s.get(s.len() / 2).copied().unwrap_or(0),
+        s.last().copied().unwrap_or(0),
+    )
+}
+
+impl LoopStats {
+    fn record(&mut self, work: Duration, decided: Option<Duration>) {
+        self.cycle_us.push(micros(work));
+        if let Some(d) = decided {
+            self.decision_cycle_us.push(micros(work));
+            self.decide_us.push(micros(d));
+        }
     }
 
-    fn report(&self, cycle: u64) {
-        let mean_us = if self.count > 0 {
-            self.total.as_micros() / u128::from(self.count)
-        } else {
-            0
-        };
+    fn bumper(&mut self, latency: Duration, cycles: u64) {
+        self.bumper_us.push(micros(latency));
+        self.bumper_cycles.push(cycles);
+    }
+
+    fn report(&self, cycle: u64, agent: &EngineAgent) {
+        let (c_med, c_max) = median_max(&self.cycle_us);
+        let (d_med, d_max) = median_max(&self.decision_cycle_us);
+        let (e_med, e_max) = median_max(&self.decide_us);
+        let (b_med, b_max) = median_max(&self.bumper_us);
+        let b_cycles = self.bumper_cycles.iter().max().copied().unwrap_or(0);
+        let s = agent.engine_stats();
         println!(
-            "robotino-agent run: done cycles={cycle} cycle_work_mean_us={mean_us} cycle_work_max_us={}",
-            self.max.as_micros()
+            "robotino-agent run: done cycles={cycle} cycle_work_median_us={c_med} cycle_work_max_us={c_max} decision_cycles={} decision_cycle_median_us={d_med} decision_cycle_max_us={d_max} engine_run_median_us={e_med} engine_run_max_us={e_max} bumper_hits={} bumper_latency_cycles_max={b_cycles} bumper_latency_median_us={b_med} bumper_latency_max_us={b_max} state={}",
+            self.decision_cycle_us.len(),
+            self.bumper_us.len(),
+            agent.state().unwrap_or_default()
         );
+        println!("robotino-agent run: engine {s:?}");
     }
 }

@@ -22,15 +22,7 @@ fn agent_killed_mid_skill_the_sim_stops_the_wheels() {
     let mut agent = Proc::start(
         "agent",
         AGENT,
-        &[
-            "run",
-            "--prefix",
-            &prefix,
-            "--time-warp",
-            "3",
-            "--script",
-            "get_s0",
-        ],
+        &["run", "--prefix", &prefix, "--time-warp", "3"],
     );
 
     let mut moving = || {
@@ -111,16 +103,7 @@ fn bumper_hit_gives_a_zero_command_and_fails_the_skill() {
     let agent = Proc::start(
         "agent",
         AGENT,
-        &[
-            "run",
-            "--prefix",
-            &prefix,
-            "--lockstep",
-            "--script",
-            "get_s0",
-            "--cycles",
-            "150",
-        ],
+        &["run", "--prefix", &prefix, "--lockstep", "--cycles", "150"],
     );
     let mut commands = 0;
     wait_until(
@@ -145,4 +128,17 @@ fn bumper_hit_gives_a_zero_command_and_fails_the_skill() {
     wait_until("agent fails the skill", WATCHDOG, &[&sim, &agent], || {
         agent.line_with("end GetS0 Failed(Bumper)").is_some()
     });
+    // The agent's own measurement: zero command in the cycle that read the sample.
+    wait_until(
+        "agent reports its loop counters",
+        WATCHDOG,
+        &[&agent],
+        || agent.line_with("robotino-agent run: done").is_some(),
+    );
+    let done = agent
+        .line_with("robotino-agent run: done")
+        .unwrap_or_default();
+    assert!(done.contains(" bumper_hits=1 "), "{done}");
+    assert!(done.contains(" bumper_latency_cycles_max=0 "), "{done}");
+    println!("{line}\n{done}");
 }

@@ -10,6 +10,7 @@
 #![no_std]
 
 pub mod facts;
+pub mod order;
 pub mod setup;
 
 /// One embedded rule file: its path relative to `rules/` and its text.
@@ -83,61 +84,75 @@ impl Strategy {
     }
 }
 
-const AGENT_NAIVE: [RuleFile; 5] = [
-    UTILS,
-    WORLD_MODEL,
-    EXECUTION,
-    PRODUCTION_COMMON,
-    PRODUCTION_NAIVE,
-];
-const AGENT_PAPER: [RuleFile; 6] = [
+/// Every embedded file, to look the names of [`order`] up.
+const ALL: [RuleFile; 12] = [
     UTILS,
     WORLD_MODEL,
     EXECUTION,
     PRODUCTION_COMMON,
     PRODUCTION,
     SELECT_PAPER,
-];
-const AGENT_TRAVEL: [RuleFile; 6] = [
-    UTILS,
-    WORLD_MODEL,
-    EXECUTION,
-    PRODUCTION_COMMON,
-    PRODUCTION,
     SELECT_TRAVEL,
-];
-const GAME_NAIVE: [RuleFile; 8] = [
-    UTILS,
-    WORLD_MODEL,
-    EXECUTION,
-    PRODUCTION_COMMON,
     PRODUCTION_NAIVE,
     REFEREE,
     GAME_LOG,
     SIM,
+    CLIPS_STUBS,
 ];
-const GAME_PAPER: [RuleFile; 9] = [
-    UTILS,
-    WORLD_MODEL,
-    EXECUTION,
-    PRODUCTION_COMMON,
-    PRODUCTION,
-    SELECT_PAPER,
-    REFEREE,
-    GAME_LOG,
-    SIM,
-];
-const GAME_TRAVEL: [RuleFile; 9] = [
-    UTILS,
-    WORLD_MODEL,
-    EXECUTION,
-    PRODUCTION_COMMON,
-    PRODUCTION,
-    SELECT_TRAVEL,
-    REFEREE,
-    GAME_LOG,
-    SIM,
-];
+
+const fn same_text(a: &str, b: &str) -> bool {
+    let (a, b) = (a.as_bytes(), b.as_bytes());
+    if a.len() != b.len() {
+        return false;
+    }
+    let mut i = 0;
+    while i < a.len() {
+        if a[i] != b[i] {
+            return false;
+        }
+        i += 1;
+    }
+    true
+}
+
+/// The embedded file called `name`; an unknown name stops the compilation.
+const fn by_name(name: &str) -> RuleFile {
+    let mut i = 0;
+    while i < ALL.len() {
+        if same_text(ALL[i].name, name) {
+            return ALL[i];
+        }
+        i += 1;
+    }
+    panic!("rules/src/order.rs names a file that lib.rs does not embed")
+}
+
+/// The files named by `parts`, one after the other; `N` must be their total count
+/// (checked at compile time).
+const fn load<const N: usize>(parts: &[&[&str]]) -> [RuleFile; N] {
+    let mut out = [UTILS; N];
+    let mut k = 0;
+    let mut p = 0;
+    while p < parts.len() {
+        let mut i = 0;
+        while i < parts[p].len() {
+            assert!(k < N, "load order longer than its array");
+            out[k] = by_name(parts[p][i]);
+            k += 1;
+            i += 1;
+        }
+        p += 1;
+    }
+    assert!(k == N, "load order shorter than its array");
+    out
+}
+
+const AGENT_NAIVE: [RuleFile; 5] = load(&[order::AGENT_NAIVE]);
+const AGENT_PAPER: [RuleFile; 6] = load(&[order::AGENT_PAPER]);
+const AGENT_TRAVEL: [RuleFile; 6] = load(&[order::AGENT_TRAVEL]);
+const GAME_NAIVE: [RuleFile; 8] = load(&[order::AGENT_NAIVE, order::DRIVER, order::SIM]);
+const GAME_PAPER: [RuleFile; 9] = load(&[order::AGENT_PAPER, order::DRIVER, order::SIM]);
+const GAME_TRAVEL: [RuleFile; 9] = load(&[order::AGENT_TRAVEL, order::DRIVER, order::SIM]);
 
 /// The agent alone (for a robot driver), in load order.
 pub fn agent_files(strategy: Strategy) -> &'static [RuleFile] {
@@ -150,7 +165,7 @@ pub fn agent_files(strategy: Strategy) -> &'static [RuleFile] {
 
 /// What a host driver that moves the robot itself loads after
 /// [`agent_files`]: the referee and the decision log (not the instant sim).
-pub const DRIVER_FILES: [RuleFile; 2] = [REFEREE, GAME_LOG];
+pub const DRIVER_FILES: [RuleFile; 2] = load(&[order::DRIVER]);
 
 /// Agent, referee, log and simulation: a whole simulated game, in load order.
 /// Load these, then the setup text ([`setup::GameSetup::write_clips`]),

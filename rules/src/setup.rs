@@ -408,3 +408,14 @@ impl fmt::Display for Tenths {
         write!(f, "{}.{}", self.0 / 10, self.0 % 10)
     }
 }
+
+/// The facts of a `(deffacts game-setup ...)` text written by
+/// [`GameSetup::write_clips`], one per line. Asserting them right after `(reset)`
+/// gives the same facts, fact numbers and agenda as loading the deffacts before the
+/// reset, and lets one engine play many setups without redefining constructs.
+pub fn fact_lines(deffacts: &str) -> impl Iterator<Item = &str> {
+    deffacts
+        .lines()
+        .map(str::trim)
+        .filter(|l| l.starts_with('(') && !l.starts_with("(deffacts"))
+}

@@ -318,3 +318,26 @@ fn belief_symbols_parse() {
     assert_eq!(MachineBelief::parse("T3+NONE"), None);
     assert_eq!(MachineBelief::parse("T3+S0+S1+S2+S0"), None);
 }
+
+#[test]
+fn fact_lines_are_the_facts_of_the_deffacts() {
+    let setup = GameSetup::for_seed(3);
+    let mut buf = Buffer::new();
+    setup.write_clips(&mut buf).expect("fits the buffer");
+    let text = buf.as_str();
+    let mut n = 0;
+    for line in fact_lines(text) {
+        n += 1;
+        assert!(line.starts_with('(') && line.ends_with(')'), "{line:?}");
+        assert!(!line.contains("deffacts"), "{line:?}");
+        assert!(balanced(line), "{line:?}");
+    }
+    // every line of the deffacts but its header and closing parenthesis
+    assert_eq!(n, text.lines().count() - 2);
+    assert_eq!(
+        fact_lines(text)
+            .filter(|l| l.starts_with("(rf-machine"))
+            .count(),
+        MACHINE_COUNT
+    );
+}

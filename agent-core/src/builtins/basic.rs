@@ -31,9 +31,19 @@ fn fold(
     fi: fn(i64, i64) -> i64,
     ff: fn(f64, f64) -> f64,
 ) -> Result<Value, EvalError> {
-    let mut acc = cx.arg_num(a, 0, name)?;
+    let mut acc = cx.arg_num(a, 0, name).inspect_err(|_| {
+        cx.set_error_fallback(Value::Int(0), None);
+    })?;
     for i in 1..a.len as usize {
-        let x = cx.arg_num(a, i, name)?;
+        // CLIPS returns what it has so far (`*` returns 0)
+        let x = cx.arg_num(a, i, name).inspect_err(|_| {
+            let v = if name == "*" {
+                Value::Int(0)
+            } else {
+                acc.value()
+            };
+            cx.set_error_fallback(v, None);
+        })?;
         acc = match (acc, x) {
             (Num::Int(p), Num::Int(q)) => Num::Int(fi(p, q)),
             (p, q) => Num::Float(ff(p.as_f64(), q.as_f64())),
@@ -56,7 +66,11 @@ fn mul(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 fn div(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let mut acc = cx.arg_num(a, 0, "/")?.as_f64();
     for i in 1..a.len as usize {
-        let x = cx.arg_num(a, i, "/")?.as_f64();
+        // CLIPS goes on with 0 for a bad divisor and so also divides by zero
+        let x = cx
+            .arg_num(a, i, "/")
+            .inspect_err(|_| cx.set_error_fallback(Value::Float(1.0), Some("/")))?
+            .as_f64();
         if x == 0.0 {
             return Err(EvalError::new(EvalErrorKind::DivideByZero { func: "/" }));
         }
@@ -178,7 +192,11 @@ fn str_cat(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     for i in 0..a.len as usize {
         let v = cx.arg(a, i);
         if v.is_multi() {
-            return Err(EvalError::wrong_type("str-cat", i as u8 + 1, "atom"));
+            return Err(EvalError::wrong_type(
+                "str-cat",
+                i as u8 + 1,
+                super::math::T_ATOM,
+            ));
         }
         cx.write_plain(&mut b, v)
             .map_err(|_| EvalError::other("str-cat: result too long"))?;

@@ -2,7 +2,8 @@
 //! refresh-agenda, set-strategy, list-defrules, ppdefrule, undefrule, matches, load,
 //! batch, save-facts, load-facts.
 
-use super::{Args, Builtin, ANY, SYM_CRLF, SYM_FALSE, SYM_T, SYM_TRUE};
+use super::files::{FileItems, FILE_BUF};
+use super::{Args, Builtin, ANY, SYM_CRLF, SYM_FALSE, SYM_NIL, SYM_TRUE};
 use crate::engine::{watch, Core};
 use crate::error::{EvalError, EvalErrorKind};
 use crate::host::router;
@@ -59,7 +60,14 @@ fn run(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         cx.write(router::STDOUT, "rule firing limit reached\n");
         return Ok(Value::Void);
     }
-    cx.run(limit)?;
+    let fired = cx.run(limit)?;
+    // `(watch statistics)`: the first line CLIPS prints after a run. The run-time and
+    // mean-count lines are not kept (no clock or fact averages are tracked).
+    if cx.st.watch & watch::STATISTICS != 0 {
+        let mut b: TextBuf<48> = TextBuf::new();
+        let _ = writeln!(b, "{fired} rules fired");
+        cx.write(router::STDOUT, b.as_str());
+    }
     Ok(Value::Void)
 }
 
@@ -115,14 +123,14 @@ fn unwatch(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 }
 
 fn printout(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    let r = cx.arg_lexeme(a, 0, "printout")?;
-    if cx.sym_text(r) == "nil" {
+    if cx.arg(a, 0) == Value::Sym(SYM_NIL) {
         return Ok(Value::Void);
     }
-    let routed: &'static str = if r == SYM_T {
-        router::STDOUT
-    } else {
-        route_name(cx.sym_text(r))
+    let routed = match resolve_router(cx, cx.arg(a, 0)) {
+        Ok(Some(r)) => r,
+        Ok(None) => return Ok(Value::Void),
+        // CLIPS's printout reports the name and carries on with nothing printed
+        Err(_) => return Ok(Value::Void),
     };
     let mut b: TextBuf<1024> = TextBuf::new();
     for i in 1..a.len as usize {
@@ -148,14 +156,28 @@ fn printout(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 }
 
 /// Maps a logical name to a router constant (unknown names go to stdout).
-fn route_name(s: &str) -> &'static str {
-    match s {
-        "wtrace" => router::WTRACE,
-        "wdisplay" => router::WDISPLAY,
-        "werror" => router::WERROR,
-        "wwarning" => router::WWARNING,
-        _ => router::STDOUT,
+/// The engine router for a CLIPS logical name: `Some(router)`, or `None` for `stdin`
+/// (output to it is dropped). Any other name is `[ROUTER1]` (printed here), as in the
+/// CLIPS command line, which has no other routers.
+pub(super) fn resolve_router(
+    cx: &mut Core<'_>,
+    name: Value,
+) -> Result<Option<&'static str>, EvalError> {
+    if let Value::Sym(s) | Value::Str(s) = name {
+        match cx.sym_text(s) {
+            "t" | "stdout" | "wclips" | "wdialog" => return Ok(Some(router::STDOUT)),
+            "wdisplay" => return Ok(Some(router::WDISPLAY)),
+            "wtrace" => return Ok(Some(router::WTRACE)),
+            "werror" => return Ok(Some(router::WERROR)),
+            "wwarning" => return Ok(Some(router::WWARNING)),
+            "stdin" => return Ok(None),
+            _ => {}
+        }
     }
+    cx.write(router::WERROR, "[ROUTER1] Logical name ");
+    cx.print_value(router::WERROR, name, false);
+    cx.write(router::WERROR, " was not recognized by any routers\n");
+    Err(EvalError::new(EvalErrorKind::Reported))
 }
 
 fn halt(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
@@ -284,43 +306,48 @@ fn matches(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     Ok(Value::Void)
 }
 
-/// Size of the stack buffer a file is read into by `load`/`batch`/`load-facts`.
-pub const FILE_BUF: usize = 32 * 1024;
-
-fn read_file_arg<'b>(
-    cx: &mut Core<'_>,
-    a: Args,
-    buf: &'b mut [u8],
-    func: &'static str,
-) -> Result<&'b str, EvalError> {
+/// The file-name argument of a file function, copied out of the symbol table.
+fn path_arg(cx: &Core<'_>, a: Args, func: &'static str) -> Result<TextBuf<256>, EvalError> {
     let p = cx.arg_lexeme(a, 0, func)?;
     let mut path: TextBuf<256> = TextBuf::new();
     let _ = path.write_str(cx.sym_text(p));
-    let n = cx
-        .host
-        .read_file(path.as_str(), buf)
-        .map_err(|_| EvalError::other("cannot read file"))?;
-    core::str::from_utf8(&buf[..n]).map_err(|_| EvalError::other("file is not UTF-8"))
+    Ok(path)
 }
 
+/// `load`/`load*`: defines the constructs of a file, streamed item by item; a bad
+/// construct is reported and the rest still loaded (as CLIPS does), the result is then
+/// FALSE.
 fn load_impl(cx: &mut Core<'_>, a: Args, quiet: bool) -> Result<Value, EvalError> {
+    let func = if quiet { "load*" } else { "load" };
+    let path = path_arg(cx, a, func)?;
     let mut buf = [0u8; FILE_BUF];
-    let text = match read_file_arg(cx, a, &mut buf, "load") {
-        Ok(t) => t,
-        Err(_) => {
-            let p = cx.arg_lexeme(a, 0, "load")?;
-            let mut b: TextBuf<300> = TextBuf::new();
-            let _ = writeln!(
-                b,
-                "[ARGACCES2] Function {} was unable to open file {}.",
-                if quiet { "load*" } else { "load" },
-                cx.sym_text(p)
-            );
-            cx.write(router::WERROR, b.as_str());
-            return Ok(Value::Sym(SYM_FALSE));
+    let mut file = FileItems::new(path.as_str(), &mut buf);
+    if file.open(cx).is_err() {
+        cx.report_unopened_file(func, path.as_str());
+        return Ok(Value::Sym(SYM_FALSE));
+    }
+    let mut ok = true;
+    let mut progress = false;
+    loop {
+        let item = match file.next_item(cx) {
+            Ok(Some(item)) => item,
+            Ok(None) => break,
+            Err(e) => {
+                cx.report_file_error(func, path.as_str(), e);
+                ok = false;
+                break;
+            }
+        };
+        if let Err(e) = cx.load_items(item.text, !quiet, &mut progress) {
+            cx.st.line_base = item.line_base;
+            cx.report_load_error(path.as_str(), item.text, &e);
+            cx.st.line_base = 0;
+            ok = false;
         }
-    };
-    let ok = cx.load_text(text, !quiet).is_ok();
+    }
+    if progress {
+        cx.write(router::STDOUT, "\n");
+    }
     Ok(Value::Sym(if ok { SYM_TRUE } else { SYM_FALSE }))
 }
 
@@ -331,21 +358,30 @@ fn load_quiet(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     load_impl(cx, a, true)
 }
 
-fn batch_impl(cx: &mut Core<'_>, a: Args, echo: bool) -> Result<Value, EvalError> {
-    let mut buf = [0u8; FILE_BUF];
-    let text = match read_file_arg(cx, a, &mut buf, "batch") {
-        Ok(t) => t,
-        Err(_) => return Ok(Value::Sym(SYM_FALSE)),
-    };
-    cx.batch_text(text, echo)?;
+/// `batch`: CLIPS makes the file its next input source, so its commands run (echoed,
+/// with prompts) after the current command has finished and printed its TRUE. The path
+/// is remembered here and run by the command loop (`Core::run_pending_batch`).
+fn batch(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let path = path_arg(cx, a, "batch")?;
+    let mut probe = [0u8; 1];
+    match cx.host.read_file_at(path.as_str(), 0, &mut probe) {
+        // `TooLarge`: a host without read_file_at, and the file exists
+        Ok(_) | Err(crate::error::HostIoError::TooLarge) => {}
+        Err(_) => {
+            cx.report_unopened_file("batch", path.as_str());
+            return Ok(Value::Sym(SYM_FALSE));
+        }
+    }
+    cx.st.pending_batch.clear();
+    let _ = cx.st.pending_batch.write_str(path.as_str());
     Ok(Value::Sym(SYM_TRUE))
 }
 
-fn batch(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    batch_impl(cx, a, true)
-}
+/// `batch*`: runs the file's commands at once, without prompts, echo or results.
 fn batch_quiet(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    batch_impl(cx, a, false)
+    let path = path_arg(cx, a, "batch")?;
+    let ok = cx.batch_file_stream(path.as_str(), false)?;
+    Ok(Value::Sym(if ok { SYM_TRUE } else { SYM_FALSE }))
 }
 
 fn save_facts(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
@@ -378,23 +414,23 @@ fn save_facts(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 }
 
 fn load_facts(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let path = path_arg(cx, a, "load-facts")?;
     let mut buf = [0u8; FILE_BUF];
-    let text = match read_file_arg(cx, a, &mut buf, "load-facts") {
-        Ok(t) => t,
-        Err(_) => {
-            let p = cx.arg_lexeme(a, 0, "load-facts")?;
-            let mut b: TextBuf<300> = TextBuf::new();
-            let _ = writeln!(
-                b,
-                "[ARGACCES2] Function load-facts was unable to open file {}.",
-                cx.sym_text(p)
-            );
-            cx.write(router::WERROR, b.as_str());
-            return Ok(Value::Sym(SYM_FALSE));
+    let mut file = FileItems::new(path.as_str(), &mut buf);
+    if file.open(cx).is_err() {
+        cx.report_unopened_file("load-facts", path.as_str());
+        return Ok(Value::Sym(SYM_FALSE));
+    }
+    loop {
+        match file.next_item(cx) {
+            Ok(Some(item)) => cx.load_facts_text(item.text)?,
+            Ok(None) => return Ok(Value::Sym(SYM_TRUE)),
+            Err(e) => {
+                cx.report_file_error("load-facts", path.as_str(), e);
+                return Ok(Value::Sym(SYM_FALSE));
+            }
         }
-    };
-    cx.load_facts_text(text)?;
-    Ok(Value::Sym(SYM_TRUE))
+    }
 }
 
 fn time(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {

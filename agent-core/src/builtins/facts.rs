@@ -5,7 +5,7 @@ use crate::engine::Core;
 use crate::error::{EvalError, EvalErrorKind};
 use crate::expr::Op;
 use crate::host::router;
-use crate::template::{allowed, types, DefaultKind};
+use crate::template::{allowed, types, DefaultKind, SlotDef};
 use crate::value::{FactRef, MfSpan, Value, NONE};
 
 pub const FUNCS: &[Builtin] = &[
@@ -44,7 +44,12 @@ fn same_class(a: Value, b: Value) -> bool {
 impl Core<'_> {
     /// Checks one atom against a slot's type and allowed-value restrictions.
     pub(crate) fn check_atom(&self, tmpl: u16, slot: u16, v: Value) -> Result<(), EvalError> {
-        let def = self.slot_def(tmpl, slot);
+        self.check_atom_def(&self.slot_def(tmpl, slot), v)
+    }
+
+    /// `check_atom` for a slot definition not yet stored in a template (the parser
+    /// checks a slot's default before the template exists).
+    pub(crate) fn check_atom_def(&self, def: &SlotDef, v: Value) -> Result<(), EvalError> {
         if def.types != 0 && def.types & type_bit(v) == 0 {
             return Err(EvalError::new(EvalErrorKind::BadSlotValue {
                 reason: "type restriction violated",
@@ -320,11 +325,19 @@ fn retract(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
                 let n = match v {
                     Value::Fact(r) => r.num as i64,
                     Value::Int(n) => n,
+                    // CLIPS's restriction names these for a float or a string
+                    Value::Sym(_) => {
+                        return Err(EvalError::wrong_type(
+                            "retract",
+                            i as u8 + 1,
+                            "fact-address, fact-index, or the symbol *",
+                        ))
+                    }
                     _ => {
                         return Err(EvalError::wrong_type(
                             "retract",
                             i as u8 + 1,
-                            "fact-address or integer",
+                            "fact-address, integer, or symbol",
                         ))
                     }
                 };

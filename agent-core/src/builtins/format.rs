@@ -9,19 +9,17 @@
 
 use core::fmt::Write;
 
-use super::math::{c_trunc_to_i64, T_LEXEME, T_NUMBER};
+use super::math::{c_trunc_to_i64, T_NUMBER};
 use super::strings::Text;
-use super::{Args, Builtin, ANY, SYM_NIL, SYM_T};
+use super::{Args, Builtin, ANY, SYM_NIL};
 use crate::engine::Core;
-use crate::error::EvalError;
+use crate::error::{EvalError, EvalErrorKind};
 use crate::host::router;
 use crate::value::{TextBuf, Value};
 
 pub const FUNCS: &[Builtin] = &[Builtin::eager("format", 2, ANY, format)];
 
 const TOO_LONG: EvalError = EvalError::other("format: result longer than 2048 bytes");
-const BAD_FLAG: EvalError =
-    EvalError::other("[IOFUN3] Invalid format flag specified in format function.");
 
 /// One parsed `%` directive.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -121,38 +119,67 @@ fn arity_error(expected: usize) -> EvalError {
 }
 
 fn format(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    let dest = match cx.arg(a, 0) {
-        Value::Sym(s) | Value::Str(s) => s,
-        _ => return Err(EvalError::wrong_type("format", 1, T_LEXEME)),
-    };
     let ctl = match cx.arg(a, 1) {
         Value::Str(s) => s,
         _ => return Err(EvalError::wrong_type("format", 2, "string")),
     };
     let control = super::strings::copy_text(cx, ctl)?;
+    // CLIPS checks the router before the arguments
+    let dest = match cx.arg(a, 0) {
+        Value::Sym(SYM_NIL) => None,
+        name => match super::commands::resolve_router(cx, name)? {
+            Some(r) => Some(r),
+            None => return Ok(cx.make_string("")?),
+        },
+    };
     let needed = count_args(control.as_str());
     if needed + 2 != a.len as usize {
         return Err(arity_error(needed + 2));
     }
     let mut out = Text::new();
-    render(cx, a, control.as_str(), &mut out)?;
-    if dest != SYM_NIL {
-        if dest == SYM_T {
-            cx.write(router::STDOUT, out.as_str());
-        } else {
-            let name: TextBuf<64> = {
-                let mut n = TextBuf::new();
-                let _ = n.write_str(cx.sym_text(dest));
-                n
-            };
-            cx.write(name.as_str(), out.as_str());
+    if let Err(bad) = render(cx, a, control.as_str(), &mut out) {
+        if let RenderError::BadFlag(flag) = bad {
+            let mut m: TextBuf<128> = TextBuf::new();
+            let _ = writeln!(
+                m,
+                "[IOFUN3] Invalid format flag \"{}\" specified in format function.",
+                control.as_str().get(flag.0..flag.1).unwrap_or("%")
+            );
+            cx.write(router::WERROR, m.as_str());
         }
+        return Err(bad.into());
+    }
+    if let Some(r) = dest {
+        cx.write(r, out.as_str());
     }
     Ok(cx.make_string(out.as_str())?)
 }
 
+/// Why rendering a control string stopped.
+enum RenderError {
+    Eval(EvalError),
+    /// An invalid directive: its byte range in the control string (reported by the caller,
+    /// whose message quotes it).
+    BadFlag((usize, usize)),
+}
+
+impl From<EvalError> for RenderError {
+    fn from(e: EvalError) -> Self {
+        RenderError::Eval(e)
+    }
+}
+
+impl From<RenderError> for EvalError {
+    fn from(e: RenderError) -> Self {
+        match e {
+            RenderError::Eval(e) => e,
+            RenderError::BadFlag(_) => EvalError::new(EvalErrorKind::Reported),
+        }
+    }
+}
+
 /// Expands `ctl` with the call's arguments (from argument 3 on) into `out`.
-fn render(cx: &Core<'_>, a: Args, ctl: &str, out: &mut Text) -> Result<(), EvalError> {
+fn render(cx: &Core<'_>, a: Args, ctl: &str, out: &mut Text) -> Result<(), RenderError> {
     let b = ctl.as_bytes();
     let (mut i, mut lit, mut next_arg) = (0, 0, 2usize);
     while i < b.len() {
@@ -168,6 +195,7 @@ fn render(cx: &Core<'_>, a: Args, ctl: &str, out: &mut Text) -> Result<(), EvalE
                 break;
             }
         };
+        let start = i;
         i += 1 + used;
         lit = i;
         match spec.conv {
@@ -182,11 +210,12 @@ fn render(cx: &Core<'_>, a: Args, ctl: &str, out: &mut Text) -> Result<(), EvalE
                 directive(cx, spec, v, argno, out)?;
                 Ok(())
             }
-            _ => return Err(BAD_FLAG),
+            // CLIPS quotes the directive up to the character it rejected
+            _ => return Err(RenderError::BadFlag((start, i))),
         }
         .map_err(|_| TOO_LONG)?;
     }
-    out.write_str(&ctl[lit..]).map_err(|_| TOO_LONG)
+    out.write_str(&ctl[lit..]).map_err(|_| TOO_LONG.into())
 }
 
 /// Formats one argument-consuming directive.

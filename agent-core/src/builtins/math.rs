@@ -133,9 +133,15 @@ fn div(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         Num::Int(i) => i,
         Num::Float(f) => c_trunc_to_i64(f),
     };
-    let mut acc = as_int(num_arg(cx, a, 0, "div")?);
+    let mut acc = as_int(num_arg(cx, a, 0, "div").inspect_err(|_| {
+        cx.set_error_fallback(Value::Int(0), None);
+    })?);
     for i in 1..a.len as usize {
-        let d = as_int(num_arg(cx, a, i, "div")?);
+        // CLIPS goes on with 0 for a bad divisor and so also divides by zero
+        let d = as_int(
+            num_arg(cx, a, i, "div")
+                .inspect_err(|_| cx.set_error_fallback(Value::Int(1), Some("div")))?,
+        );
         if d == 0 {
             return Err(divide_by_zero("div"));
         }
@@ -179,14 +185,19 @@ fn less(p: Num, q: Num) -> bool {
 
 /// `min`/`max` return the winning argument with its own type; on ties the earlier one.
 fn extremum(
-    cx: &Core<'_>,
+    cx: &mut Core<'_>,
     a: Args,
     func: &'static str,
     better: fn(Num, Num) -> bool,
 ) -> Result<Value, EvalError> {
-    let mut best = num_arg(cx, a, 0, func)?;
+    let mut best = num_arg(cx, a, 0, func).inspect_err(|_| {
+        cx.set_error_fallback(Value::Int(0), None);
+    })?;
     for i in 1..a.len as usize {
-        let x = num_arg(cx, a, i, func)?;
+        // CLIPS returns the best so far
+        let x = num_arg(cx, a, i, func).inspect_err(|_| {
+            cx.set_error_fallback(best.value(), None);
+        })?;
         if better(x, best) {
             best = x;
         }

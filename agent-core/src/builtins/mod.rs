@@ -11,7 +11,9 @@
 pub mod basic;
 pub mod commands;
 pub mod control;
+pub mod errors;
 pub mod facts;
+pub mod files;
 pub mod format;
 pub mod geometry;
 pub mod math;

@@ -261,9 +261,19 @@ mod tests {
             out.contains("sym-cat") && out.contains("#1") && out.contains("string, instance name"),
             "{out}"
         );
-        assert!(
-            eval_to_string("(str-length (create$ a))").contains("symbol, string, or instance name")
+        // a computed argument is checked in the body: other type names, fallback -1
+        assert_eq!(
+            eval_to_string("(str-length (create$ a))"),
+            "[ARGACCES5] Function str-length expected argument #1 to be of type symbol or string\n-1"
         );
+        // a literal one by the argument restriction at parse time, as in CLIPS: the
+        // message (then our position line), and no value
+        let out = eval_to_string("(str-length 1)");
+        assert!(
+            out.starts_with("[ARGACCES5] Function str-length expected argument #1 to be of type symbol, string, or instance name"),
+            "{out}"
+        );
+        assert!(!out.contains("-1"), "{out}");
     }
 
     #[test]

@@ -1,10 +1,12 @@
 //! deftemplate, deffacts, deffunction, defglobal.
 
+use super::facts::Violation;
 use super::{PResult, Parser, Scope};
 use crate::engine::cap;
+use crate::error::LoadDetail;
 use crate::error::Pool;
 use crate::expr::Op;
-use crate::lexer::Tok;
+use crate::lexer::{Lexer, Tok, Token};
 use crate::template::{
     allowed, types, DefaultKind, Deffacts, Deffunction, Global, SlotDef, Template,
 };
@@ -92,10 +94,17 @@ impl<'s> Parser<'s, '_, '_> {
     }
 
     fn slot_attributes(&mut self, mut def: SlotDef) -> PResult<SlotDef> {
+        // reader position of the default's values and the attribute's name
+        let mut default_at = None;
         loop {
             let t = self.next();
             match t.tok {
-                Tok::RParen => return Ok(def),
+                Tok::RParen => {
+                    if let Some((values_at, attribute)) = default_at {
+                        self.check_default(&def, values_at, attribute)?;
+                    }
+                    return Ok(def);
+                }
                 Tok::LParen => {
                     let at = self.next();
                     let attr = match at.tok {
@@ -124,21 +133,43 @@ impl<'s> Parser<'s, '_, '_> {
                                 self,
                                 self.cx.push_expr(crate::expr::Expr::new(Op::Nop, 0, 0))
                             )?;
-                            if !def.multi {
-                                self.second_value_check(
-                                    holder,
-                                    "a single default value for a single-field slot",
-                                )?;
+                            // where the values start, to point at a bad one later
+                            let values_at = self.save();
+                            let mut n = 0u16;
+                            loop {
+                                let t = self.peek();
+                                match t.tok {
+                                    Tok::RParen => {
+                                        self.next();
+                                        break;
+                                    }
+                                    Tok::Eof | Tok::Bad => return Err(self.err(t, "')'")),
+                                    _ if !def.multi && n == 1 => {
+                                        return Err(self.err(
+                                            t,
+                                            "a single default value for a single-field slot",
+                                        ))
+                                    }
+                                    _ => {
+                                        let a = self.parse_expr()?;
+                                        self.cx.append_child(holder, a);
+                                        n += 1;
+                                    }
+                                }
                             }
-                            let n = self.args_until_rparen(holder)?
-                                + u16::from(
-                                    self.cx.exprs[holder as usize].first != NONE && !def.multi,
-                                );
                             self.scope = save;
                             if !def.multi && n != 1 {
                                 return Err(self
                                     .err(at, "exactly one default value for a single-field slot"));
                             }
+                            default_at = Some((
+                                values_at,
+                                if attr == "default" {
+                                    "default"
+                                } else {
+                                    "default-dynamic"
+                                },
+                            ));
                             def.default = self.cx.exprs[holder as usize].first;
                             def.default_kind = if attr == "default" {
                                 DefaultKind::Static
@@ -227,6 +258,40 @@ impl<'s> Parser<'s, '_, '_> {
                 _ => return Err(self.err(t, "'(' starting a slot attribute or ')'")),
             }
         }
+    }
+
+    /// CLIPS rejects a default whose literal values break the slot's type or allowed
+    /// values (whichever attribute came first); the error points at the value.
+    fn check_default(
+        &mut self,
+        def: &SlotDef,
+        values_at: (Lexer<'s>, Option<Token<'s>>),
+        attribute: &'static str,
+    ) -> PResult<()> {
+        let mut c = def.default;
+        let mut k = 0;
+        while c != NONE {
+            if let Some(violation) = self.literal_violation(def, c) {
+                // re-read the default's values up to the k-th to find its position
+                let resume = self.save();
+                self.restore(values_at);
+                for _ in 0..k {
+                    self.skip_balanced()?;
+                }
+                let at = self.peek();
+                self.restore(resume);
+                let mut e = self.err(at, violation.expected());
+                e.detail = LoadDetail::DefaultConstraint {
+                    attribute,
+                    types: violation == Violation::Type,
+                    slot: def.name,
+                };
+                return Err(e);
+            }
+            c = self.cx.exprs[c as usize].next;
+            k += 1;
+        }
+        Ok(())
     }
 
     pub(super) fn deffacts(&mut self) -> PResult<()> {

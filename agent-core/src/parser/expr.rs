@@ -1,9 +1,9 @@
 //! Expressions: constants, variables, function calls and the special forms.
 
-use super::{PResult, Parser, Scope, VarKind};
+use super::{argtypes, PResult, Parser, Scope, VarKind};
 use crate::builtins::{self, Syntax};
 use crate::expr::{Expr, FnKind, Op};
-use crate::lexer::{Tok, Token};
+use crate::lexer::{Lexer, Tok, Token};
 use crate::value::{TextBuf, Value, NONE};
 
 impl<'s> Parser<'s, '_, '_> {
@@ -219,6 +219,7 @@ impl<'s> Parser<'s, '_, '_> {
         match builtins::lookup(name) {
             Some((id, b)) => {
                 let call = self.push_call(FnKind::Builtin, id)?;
+                let args_at = self.save();
                 let n = if b.syntax == Syntax::Query {
                     self.query_args(call)?
                 } else {
@@ -234,6 +235,9 @@ impl<'s> Parser<'s, '_, '_> {
                     };
                     return Err(e);
                 }
+                if b.syntax == Syntax::Plain {
+                    self.check_literal_args(b.name, call, args_at)?;
+                }
                 Ok(call)
             }
             None if self.defining_fn != NONE && self.is_defining(name) => {
@@ -248,6 +252,44 @@ impl<'s> Parser<'s, '_, '_> {
                 Err(e)
             }
         }
+    }
+
+    /// CLIPS rejects a literal argument of a type the builtin never takes when it
+    /// parses the call; the error points at the argument (`args_at`: where the
+    /// arguments start, to find it again).
+    fn check_literal_args(
+        &mut self,
+        func: &'static str,
+        call: u16,
+        args_at: (Lexer<'s>, Option<Token<'s>>),
+    ) -> PResult<()> {
+        let mut c = self.cx.exprs[call as usize].first;
+        let mut k = 0;
+        while c != NONE {
+            let op = self.cx.exprs[c as usize].op;
+            let ty = argtypes::arg_type(func, k);
+            if matches!(op, Op::Int | Op::Float | Op::Sym | Op::Str)
+                && !ty.admits(self.cx.const_value(c))
+            {
+                let resume = self.save();
+                self.restore(args_at);
+                for _ in 0..k {
+                    self.skip_balanced()?;
+                }
+                let at = self.peek();
+                self.restore(resume);
+                let mut e = self.err(at, ty.expected());
+                e.detail = crate::error::LoadDetail::ArgType {
+                    func,
+                    arg: k as u16 + 1,
+                    expected: ty.clips_name(),
+                };
+                return Err(e);
+            }
+            c = self.cx.exprs[c as usize].next;
+            k += 1;
+        }
+        Ok(())
     }
 
     fn is_defining(&mut self, name: &str) -> bool {
@@ -478,163 +520,6 @@ impl<'s> Parser<'s, '_, '_> {
                     }
                 }
                 _ => return Err(self.err(t, "a case")),
-            }
-        }
-    }
-
-    fn parse_assert(&mut self) -> PResult<u16> {
-        let node = self.builtin_call("assert")?;
-        let mut n = 0;
-        loop {
-            let t = self.next();
-            match t.tok {
-                Tok::RParen if n > 0 => return Ok(node),
-                Tok::LParen => {
-                    let spec = self.fact_spec()?;
-                    self.cx.append_child(node, spec);
-                    n += 1;
-                }
-                _ => return Err(self.err(t, "a fact to assert")),
-            }
-        }
-    }
-
-    /// `(name ...)` after the `(`: a `FactSpec` node.
-    pub fn fact_spec(&mut self) -> PResult<u16> {
-        let nt = self.next();
-        let name = match nt.tok {
-            Tok::Symbol(s) => s,
-            _ => return Err(self.err(nt, "a template or relation name")),
-        };
-        let sym = cap!(self, self.cx.intern(name))?;
-        let tmpl = match self.cx.find_template(sym) {
-            Some(t) => t,
-            None => cap!(self, self.cx.implied_template(sym))?,
-        };
-        let spec = cap!(self, self.cx.push_expr(Expr::new(Op::FactSpec, 0, tmpl)))?;
-        if self.cx.templates[tmpl as usize].implied {
-            let sv = cap!(self, self.cx.push_expr(Expr::new(Op::SlotVal, 0, 0)))?;
-            self.cx.append_child(spec, sv);
-            self.args_until_rparen(sv)?;
-            return Ok(spec);
-        }
-        loop {
-            let t = self.next();
-            match t.tok {
-                Tok::RParen => return Ok(spec),
-                Tok::LParen => {
-                    let st = self.next();
-                    let sname = match st.tok {
-                        Tok::Symbol(s) => s,
-                        _ => return Err(self.err(st, "a slot name")),
-                    };
-                    let ssym = cap!(self, self.cx.intern(sname))?;
-                    let slot = match self.cx.find_slot(tmpl, ssym) {
-                        Some(s) => s,
-                        None => {
-                            let mut e = self.err(st, "a slot of the template");
-                            e.detail = crate::error::LoadDetail::UnknownSlot {
-                                template: self.cx.templates[tmpl as usize].name,
-                            };
-                            return Err(e);
-                        }
-                    };
-                    // a slot may be given only once
-                    let mut c = self.cx.exprs[spec as usize].first;
-                    while c != NONE {
-                        if self.cx.exprs[c as usize].data == slot {
-                            return Err(self.err(st, "a slot not given twice"));
-                        }
-                        c = self.cx.exprs[c as usize].next;
-                    }
-                    let sv = cap!(self, self.cx.push_expr(Expr::new(Op::SlotVal, 0, slot)))?;
-                    if !self.cx.slot_def(tmpl, slot).multi {
-                        self.second_value_check(sv, "one value for the single-field slot")?;
-                    }
-                    let first_given = u16::from(self.cx.exprs[sv as usize].first != NONE);
-                    let n = self.args_until_rparen(sv)? + first_given;
-                    self.check_literals(tmpl, slot, sv, st, "assert")?;
-                    if !self.cx.slot_def(tmpl, slot).multi && n != 1 {
-                        return Err(self.err(st, "exactly one value for a single-field slot"));
-                    }
-                    self.cx.append_child(spec, sv);
-                }
-                _ => return Err(self.err(t, "'(' and a slot name")),
-            }
-        }
-    }
-
-    /// Parses the first value into `holder`; a second value is an error at its position.
-    pub fn second_value_check(&mut self, holder: u16, what: &'static str) -> PResult<()> {
-        if self.peek().tok == Tok::RParen {
-            return Ok(());
-        }
-        let a = self.parse_expr()?;
-        self.cx.append_child(holder, a);
-        let t = self.peek();
-        if t.tok != Tok::RParen {
-            return Err(self.err(t, what));
-        }
-        Ok(())
-    }
-
-    /// CLIPS rejects literal slot values that break a slot's restrictions at parse time.
-    fn check_literals(
-        &mut self,
-        tmpl: u16,
-        slot: u16,
-        sv: u16,
-        at: Token<'s>,
-        command: &'static str,
-    ) -> PResult<()> {
-        let mut c = self.cx.exprs[sv as usize].first;
-        while c != NONE {
-            if matches!(
-                self.cx.exprs[c as usize].op,
-                Op::Int | Op::Float | Op::Sym | Op::Str
-            ) {
-                let v = self.cx.const_value(c);
-                if let Err(e) = self.cx.check_atom(tmpl, slot, v) {
-                    let types = matches!(
-                        e.kind,
-                        crate::error::EvalErrorKind::BadSlotValue { reason } if reason.starts_with("type")
-                    );
-                    let name = self.cx.slot_def(tmpl, slot).name;
-                    let mut err = self.err(at, "a slot value allowed by the slot's restrictions");
-                    err.detail = crate::error::LoadDetail::Constraint {
-                        command,
-                        types,
-                        slot: name,
-                    };
-                    return Err(err);
-                }
-            }
-            c = self.cx.exprs[c as usize].next;
-        }
-        Ok(())
-    }
-
-    /// `(modify ?f (slot v...)...)`: slot values carry the slot *name* symbol.
-    fn parse_modify(&mut self, name: &'static str) -> PResult<u16> {
-        let node = self.builtin_call(name)?;
-        let f = self.parse_expr()?;
-        self.cx.append_child(node, f);
-        loop {
-            let t = self.next();
-            match t.tok {
-                Tok::RParen => return Ok(node),
-                Tok::LParen => {
-                    let st = self.next();
-                    let sname = match st.tok {
-                        Tok::Symbol(s) => s,
-                        _ => return Err(self.err(st, "a slot name")),
-                    };
-                    let ssym = cap!(self, self.cx.intern(sname))?;
-                    let sv = cap!(self, self.cx.push_expr(Expr::new(Op::SlotVal, 0, ssym)))?;
-                    self.args_until_rparen(sv)?;
-                    self.cx.append_child(node, sv);
-                }
-                _ => return Err(self.err(t, "'(' and a slot name")),
             }
         }
     }

@@ -12,13 +12,16 @@ macro_rules! cap {
     }};
 }
 
+pub mod argtypes;
 mod construct;
 mod expr;
+mod facts;
 mod rule;
 
 use crate::engine::Core;
 use crate::error::{CapacityError, LoadError};
 use crate::lexer::{Lexer, Tok, Token};
+use crate::rete::MAX_PATTERNS;
 use crate::value::NONE;
 
 /// Most variables visible at once while parsing one construct.
@@ -65,6 +68,9 @@ pub struct Parser<'s, 'c, 'e> {
     /// `+j`/`=j` per join of the last defrule (new or shared), for `watch compilations`.
     pub join_marks: [u8; 64],
     pub njm: usize,
+    /// Deftemplate of each LHS pattern of the rule being parsed (NONE when unknown),
+    /// so `modify ?f` on the RHS can check slots at parse time.
+    pub pat_tmpl: [u16; MAX_PATTERNS],
 }
 
 pub type PResult<T> = Result<T, LoadError>;
@@ -87,6 +93,7 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
             defining_fn: NONE,
             join_marks: [0; 64],
             njm: 0,
+            pat_tmpl: [NONE; MAX_PATTERNS],
         }
     }
 
@@ -320,6 +327,7 @@ impl<'s> Parser<'s, '_, '_> {
 
     fn construct_body(&mut self, kw: &'static str, start: usize) -> PResult<()> {
         self.njm = 0;
+        self.pat_tmpl = [NONE; MAX_PATTERNS];
         self.nvars = 0;
         self.nlocals = 0;
         self.construct = kw;

@@ -6,7 +6,8 @@ use crate::error::Pool;
 use crate::expr::{loc, Expr, Op};
 use crate::lexer::{Tok, Token};
 use crate::rete::{
-    AlphaNode, Join, JoinKind, EMPTY_PATH, MAX_MARKS, MAX_PATTERNS, PATH_LEN, THIS_PATTERN,
+    AlphaNode, Join, JoinKind, EMPTY_PATH, MAX_MARKS, MAX_PATTERNS, MAX_RHASH, PATH_LEN,
+    THIS_PATTERN,
 };
 use crate::rule::Rule;
 use crate::value::{SymId, Value, NONE};
@@ -14,6 +15,12 @@ use crate::value::{SymId, Value, NONE};
 /// Most `or` CEs in one rule.
 const MAX_ORS: usize = 8;
 
+/// CE index meaning "the root" (as a parent) or "none" (as a right input).
+const CE_ROOT: u8 = 0xFF;
+
+/// One join to build. CEs are listed in creation order; a `not`/`exists` over
+/// several CEs lists its subnetwork first, then the join taking the subnetwork's
+/// end from the right.
 #[derive(Clone, Copy)]
 struct Ce {
     kind: JoinKind,
@@ -23,6 +30,14 @@ struct Ce {
     jlast: u16,
     post: u16,
     plast: u16,
+    /// Pattern index (binding slot) of the CE in its chain.
+    depth: u8,
+    /// Left input: index of the CE before it in its chain, or CE_ROOT.
+    parent: u8,
+    /// Join from the right: index of the subnetwork's last CE (else CE_ROOT) and
+    /// of its first one.
+    right: u8,
+    first_sub: u8,
 }
 
 const CE_EMPTY: Ce = Ce {
@@ -32,11 +47,22 @@ const CE_EMPTY: Ce = Ce {
     jlast: NONE,
     post: NONE,
     plast: NONE,
+    depth: 0,
+    parent: CE_ROOT,
+    right: CE_ROOT,
+    first_sub: CE_ROOT,
 };
 
 struct Build {
     ces: [Ce; MAX_PATTERNS],
     n: usize,
+    /// Last CE of the chain being built (CE_ROOT before the first) and the next
+    /// pattern index in it.
+    cur: u8,
+    depth: u8,
+    /// Nesting of not/exists groups, and the first CE of the innermost one.
+    groups: u8,
+    group_first: u8,
     /// `or` branch choice per `or` met, and how many branches each had.
     choice: [u8; MAX_ORS],
     counts: [u8; MAX_ORS],
@@ -69,6 +95,10 @@ impl<'s> Parser<'s, '_, '_> {
         let mut b = Build {
             ces: [CE_EMPTY; MAX_PATTERNS],
             n: 0,
+            cur: CE_ROOT,
+            depth: 0,
+            groups: 0,
+            group_first: CE_ROOT,
             choice: [0; MAX_ORS],
             counts: [0; MAX_ORS],
             nor: 0,
@@ -79,6 +109,10 @@ impl<'s> Parser<'s, '_, '_> {
             self.nvars = 0;
             self.nlocals = 0;
             b.n = 0;
+            b.cur = CE_ROOT;
+            b.depth = 0;
+            b.groups = 0;
+            b.group_first = CE_ROOT;
             b.nor = 0;
             let r = self.rule_body(sym, &mut b)?;
             if prev_rule != NONE {
@@ -102,11 +136,13 @@ impl<'s> Parser<'s, '_, '_> {
                 break;
             }
         }
-        // source text for ppdefrule
-        let end = self.lex.pos();
-        let text = &self.lex.source()[start..end];
-        if let Ok(id) = self.cx.intern(text) {
-            self.cx.rules[first_new_rule as usize].text = id;
+        // source text for ppdefrule, unless the host chose to drop pretty-print forms
+        if self.cx.st.keep_pp_forms {
+            let end = self.lex.pos();
+            let text = &self.lex.source()[start..end];
+            if let Ok(id) = self.cx.intern(text) {
+                self.cx.rules[first_new_rule as usize].text = id;
+            }
         }
         // a redefinition replaces the old rule
         for r in 0..first_new_rule {
@@ -114,12 +150,9 @@ impl<'s> Parser<'s, '_, '_> {
                 self.cx.remove_rule(r);
             }
         }
-        // match the new rule(s) against existing facts: fill new alpha memories
-        // (no successors yet), then hook the new joins up and feed them
-        for a in first_new_alpha..self.cx.st.nalpha {
-            let r = self.cx.prime_alpha(a);
-            self.map_prime_err(r, nt)?;
-        }
+        // match the new rule(s) against existing facts as CLIPS's incremental reset
+        // does: hook the new joins up, prime those fed by old joins (each rule from its
+        // end upwards), then drive the facts, oldest first, through the new patterns
         for j in first_new_join..self.cx.st.njoins {
             let a = self.cx.joins[j as usize].alpha;
             if a != NONE {
@@ -127,13 +160,46 @@ impl<'s> Parser<'s, '_, '_> {
                 self.cx.alphas[a as usize].succ = j;
             }
         }
-        for j in first_new_join..self.cx.st.njoins {
-            if self.cx.joins[j as usize].parent < first_new_join {
-                let r = self.cx.prime_join(j);
-                self.map_prime_err(r, nt)?;
-            }
+        let mut primed = Primed {
+            ids: [NONE; 64],
+            n: 0,
+        };
+        for r in first_new_rule..self.cx.st.nrules {
+            let t = self.cx.rules[r as usize].terminal;
+            let res = self.prime_chain(t, first_new_join, 0, &mut primed);
+            self.map_prime_err(res, nt)?;
+        }
+        if first_new_alpha < self.cx.st.nalpha {
+            let res = self.cx.prime_alphas(first_new_alpha);
+            self.map_prime_err(res, nt)?;
         }
 
+        Ok(())
+    }
+
+    /// Primes the new joins of a chain whose left input is an old join, walking
+    /// from `j` up to `stop`; a subnetwork is primed after the join taking it.
+    fn prime_chain(
+        &mut self,
+        mut j: u16,
+        first_new: u16,
+        stop: u16,
+        primed: &mut Primed,
+    ) -> Result<(), crate::error::EvalError> {
+        while j != NONE && j != 0 && j != stop {
+            let jn = self.cx.joins[j as usize];
+            if j >= first_new && jn.parent < first_new && !primed.ids[..primed.n].contains(&j) {
+                if primed.n < primed.ids.len() {
+                    primed.ids[primed.n] = j;
+                    primed.n += 1;
+                }
+                self.cx.prime_join(j)?;
+            }
+            if jn.rjoin != NONE {
+                self.prime_chain(jn.rjoin, first_new, jn.parent, primed)?;
+            }
+            j = jn.parent;
+        }
         Ok(())
     }
 
@@ -192,6 +258,8 @@ impl<'s> Parser<'s, '_, '_> {
             // empty LHS: a test join with no tests (CLIPS shows it as `*`)
             b.ces[0] = CE_EMPTY;
             b.n = 1;
+            b.cur = 0;
+            b.depth = 1;
         }
         self.scope = Scope::Frame;
         let rhs = self.action_block()?;
@@ -253,7 +321,7 @@ impl<'s> Parser<'s, '_, '_> {
                 if arrow.tok != Tok::Symbol("<-") {
                     return Err(self.err(arrow, "'<-' after a fact-address variable"));
                 }
-                if ctx != Ctx::Top {
+                if ctx != Ctx::Top || b.groups > 0 {
                     return Err(self.err(
                         t,
                         "a pattern (fact addresses cannot be bound inside not/exists)",
@@ -270,29 +338,30 @@ impl<'s> Parser<'s, '_, '_> {
             Tok::LParen => {
                 let h = self.peek();
                 match h.tok {
-                    Tok::Symbol("not") => {
+                    Tok::Symbol(kw @ ("not" | "exists")) => {
                         self.next();
-                        if ctx != Ctx::Top {
-                            return Err(
-                                self.err(h, "a pattern (nested not/exists is not supported)")
-                            );
-                        }
+                        let negated = kw == "not";
                         let saved = self.nvars;
-                        self.ce(b, Ctx::Not)?;
+                        let r = if self.one_pattern_follows()? {
+                            // one pattern: a not/exists join on its alpha node
+                            let inner = if negated { Ctx::Not } else { Ctx::Exists };
+                            self.ce(b, inner)
+                        } else if negated && self.not_of_one_pattern_follows()? {
+                            // (not (not P)) is (exists P), as CLIPS compiles it
+                            self.next();
+                            self.next();
+                            self.ce(b, Ctx::Exists)
+                                .and_then(|()| self.expect_rparen("')' closing not (one CE only)"))
+                        } else {
+                            self.group(b, negated, h)
+                        };
                         self.nvars = saved;
-                        self.expect_rparen("')' closing not (one CE only)")
-                    }
-                    Tok::Symbol("exists") => {
-                        self.next();
-                        if ctx != Ctx::Top {
-                            return Err(
-                                self.err(h, "a pattern (nested not/exists is not supported)")
-                            );
-                        }
-                        let saved = self.nvars;
-                        self.ce(b, Ctx::Exists)?;
-                        self.nvars = saved;
-                        self.expect_rparen("')' closing exists (one pattern supported)")
+                        r?;
+                        self.expect_rparen(if negated {
+                            "')' closing not (one CE only)"
+                        } else {
+                            "')' closing exists"
+                        })
                     }
                     Tok::Symbol("and") | Tok::Symbol("logical") => {
                         self.next();
@@ -304,24 +373,13 @@ impl<'s> Parser<'s, '_, '_> {
                                     return Ok(());
                                 }
                                 Tok::Eof | Tok::Bad => return Err(self.err(p, "')'")),
-                                _ => {
-                                    if ctx != Ctx::Top {
-                                        // only a single CE inside not/exists
-                                        self.ce(b, ctx)?;
-                                        let q = self.peek();
-                                        if q.tok != Tok::RParen {
-                                            return Err(self.err(q, "')' (not/exists over several CEs is not supported)"));
-                                        }
-                                    } else {
-                                        self.ce(b, ctx)?;
-                                    }
-                                }
+                                _ => self.ce(b, ctx)?,
                             }
                         }
                     }
                     Tok::Symbol("or") => {
                         self.next();
-                        if ctx != Ctx::Top {
+                        if ctx != Ctx::Top || b.groups > 0 {
                             return Err(
                                 self.err(h, "a pattern (or inside not/exists is not supported)")
                             );
@@ -370,17 +428,113 @@ impl<'s> Parser<'s, '_, '_> {
         }
     }
 
+    /// Whether the next CE is one pattern closing the enclosing CE.
+    fn one_pattern_follows(&mut self) -> PResult<bool> {
+        let save = self.save();
+        let r =
+            self.pattern_starts() && self.skip_balanced().is_ok() && self.peek().tok == Tok::RParen;
+        self.restore(save);
+        Ok(r)
+    }
+
+    /// Whether the next CE is `(not PATTERN)` closing the enclosing CE.
+    fn not_of_one_pattern_follows(&mut self) -> PResult<bool> {
+        let save = self.save();
+        let mut r = false;
+        if self.next().tok == Tok::LParen && self.next().tok == Tok::Symbol("not") {
+            r = self.pattern_starts()
+                && self.skip_balanced().is_ok()
+                && self.next().tok == Tok::RParen
+                && self.peek().tok == Tok::RParen;
+        }
+        self.restore(save);
+        Ok(r)
+    }
+
+    /// Whether a pattern CE (not another CE keyword) starts here.
+    fn pattern_starts(&mut self) -> bool {
+        let save = self.save();
+        let r = match self.next().tok {
+            Tok::SfVar(_) => true,
+            Tok::LParen => !matches!(
+                self.next().tok,
+                Tok::Symbol("not" | "and" | "or" | "exists" | "test" | "logical")
+            ),
+            _ => false,
+        };
+        self.restore(save);
+        r
+    }
+
+    /// `not`/`exists` over several CEs (or a nested CE): the CEs form a subnetwork
+    /// starting from the current chain, and a join takes its end from the right.
+    /// The group is one pattern slot (`*`) of the enclosing chain.
+    fn group(&mut self, b: &mut Build, negated: bool, at: Token<'s>) -> PResult<()> {
+        let (outer, d, gf) = (b.cur, b.depth, b.group_first);
+        let first = b.n;
+        b.groups += 1;
+        b.group_first = first as u8;
+        let r = (|| {
+            if negated {
+                // exactly one CE: (and ...), (not ...), (exists ...)
+                self.ce(b, Ctx::Top)
+            } else {
+                loop {
+                    let p = self.peek();
+                    match p.tok {
+                        Tok::RParen => return Ok(()),
+                        Tok::Eof | Tok::Bad => return Err(self.err(p, "')'")),
+                        _ => self.ce(b, Ctx::Top)?,
+                    }
+                }
+            }
+        })();
+        b.groups -= 1;
+        b.group_first = gf;
+        r?;
+        if b.n == first {
+            return Err(self.err(at, "a conditional element inside not/exists"));
+        }
+        if b.n >= MAX_PATTERNS {
+            return Err(self.err(at, "fewer conditional elements"));
+        }
+        b.ces[b.n] = Ce {
+            kind: if negated {
+                JoinKind::Negative
+            } else {
+                JoinKind::Exists
+            },
+            depth: d,
+            parent: outer,
+            right: b.cur,
+            first_sub: first as u8,
+            ..CE_EMPTY
+        };
+        b.cur = b.n as u8;
+        b.n += 1;
+        b.depth = d + 1;
+        Ok(())
+    }
+
     fn attach_test_ce(&mut self, b: &mut Build, e: u16, at: Token<'s>) -> PResult<()> {
-        if b.n == 0 {
-            if b.n >= MAX_PATTERNS {
+        if b.cur == CE_ROOT || (b.groups > 0 && b.n == b.group_first as usize) {
+            // a leading test: a test join of its own (a pattern slot shown as `*`)
+            if b.n >= MAX_PATTERNS || b.depth as usize >= MAX_PATTERNS {
                 return Err(self.err(at, "fewer conditional elements"));
             }
-            b.ces[0] = CE_EMPTY;
-            b.n = 1;
-            Self::chain_push(self, &mut b.ces[0].jtests, &mut b.ces[0].jlast, e);
+            let i = b.n;
+            b.ces[i] = Ce {
+                parent: b.cur,
+                depth: b.depth,
+                ..CE_EMPTY
+            };
+            Self::chain_push(self, &mut b.ces[i].jtests, &mut b.ces[i].jlast, e);
+            b.n += 1;
+            b.cur = i as u8;
+            b.depth += 1;
             return Ok(());
         }
-        let last = b.n - 1;
+        let last = b.cur as usize;
         let ce = &mut b.ces[last];
         match ce.kind {
             JoinKind::Negative | JoinKind::Exists => {
@@ -424,10 +578,10 @@ impl<'s> Parser<'s, '_, '_> {
             }
             _ => return Err(self.err(nt, "a template or relation name")),
         };
-        if b.n >= MAX_PATTERNS {
+        if b.n >= MAX_PATTERNS || b.depth as usize >= MAX_PATTERNS {
             return Err(self.err(nt, "fewer conditional elements"));
         }
-        let p = b.n as u8;
+        let p = b.depth;
         let sym = cap!(self, self.cx.intern(name))?;
         let tmpl = match self.cx.find_template(sym) {
             Some(t) => t,
@@ -439,6 +593,7 @@ impl<'s> Parser<'s, '_, '_> {
             }
             None => cap!(self, self.cx.implied_template(sym))?,
         };
+        self.pat_tmpl[p as usize] = tmpl;
         if let Some((ft, fv)) = factvar {
             self.add_var(
                 ft,
@@ -460,6 +615,8 @@ impl<'s> Parser<'s, '_, '_> {
             jtests: NONE,
             jlast: NONE,
             marks: 0,
+            rhash: [NONE; MAX_RHASH],
+            nrhash: 0,
             fields: [(0, NONE, false); MAX_FIELDS],
             nfields: 0,
         };
@@ -505,6 +662,7 @@ impl<'s> Parser<'s, '_, '_> {
             }
         }
         // share an identical alpha node or make a new one
+        self.right_hash(&mut pb, p);
         let alpha = self.find_or_make_alpha(tmpl, &pb, nt)?;
         let kind = match ctx {
             Ctx::Top => JoinKind::Positive,
@@ -518,8 +676,14 @@ impl<'s> Parser<'s, '_, '_> {
             jlast: pb.jlast,
             post: NONE,
             plast: NONE,
+            depth: b.depth,
+            parent: b.cur,
+            right: CE_ROOT,
+            first_sub: CE_ROOT,
         };
+        b.cur = b.n as u8;
         b.n += 1;
+        b.depth += 1;
         Ok(())
     }
 
@@ -754,10 +918,19 @@ impl<'s> Parser<'s, '_, '_> {
                 self.node2(Op::Eq2, this, e)
             }
             Tok::SfVar(name) | Tok::MfVar(name) => {
-                if matches!(t.tok, Tok::MfVar(_)) {
+                let is_mf = matches!(t.tok, Tok::MfVar(_));
+                if is_mf {
                     *multi = true;
                 }
                 let v = match self.find_var(name) {
+                    Some(var) if var.multi != is_mf && matches!(var.kind, VarKind::Pat { .. }) => {
+                        let mut e = self.err(
+                            t,
+                            "a variable used as single-field (?x) or multifield ($?x), not both",
+                        );
+                        e.detail = crate::error::LoadDetail::MixedVariable;
+                        return Err(e);
+                    }
                     Some(_) => self.var_ref(t, name, false)?,
                     None => {
                         return Err(self.err(
@@ -783,7 +956,12 @@ impl<'s> Parser<'s, '_, '_> {
         let mut a = self.cx.templates[tmpl as usize].alpha_head;
         while a != NONE {
             let n = self.cx.alphas[a as usize];
-            if n.live && self.chain_eq(n.desc, pb.desc) && self.chain_eq(n.tests, pb.atests) {
+            if n.live
+                && self.chain_eq(n.desc, pb.desc)
+                && self.chain_eq(n.tests, pb.atests)
+                && n.nrhash as usize == pb.nrhash
+                && (0..pb.nrhash).all(|i| self.same_field(n.rhash[i], pb.rhash[i]))
+            {
                 return Ok(a);
             }
             a = n.next_in_tmpl;
@@ -793,7 +971,20 @@ impl<'s> Parser<'s, '_, '_> {
             let c = cap(Pool::AlphaNodes, self.cx.alphas.len());
             return Err(self.cap_err(at, c));
         }
-        let (path_loc, path_test, plen) = self.pattern_path(tmpl, pb);
+        let (path_loc, mut path_test, plen) = self.pattern_path(tmpl, pb);
+        if pb.nrhash > 0 {
+            // the last pattern node carries the right hash: a node of its own
+            let mut h: u32 = 0x7f4a_7c15;
+            for &e in &pb.rhash[..pb.nrhash] {
+                let x = self.cx.exprs[e as usize];
+                h = mix16(h, u32::from(x.data));
+                if x.first != NONE {
+                    let d = self.cx.exprs[x.first as usize];
+                    h = mix16(h, u32::from(d.data) | u32::from(d.aux) << 16);
+                }
+            }
+            path_test[plen - 1] = mix16(u32::from(path_test[plen - 1]), h) as u16 | 1;
+        }
         self.cx.alphas[n] = AlphaNode {
             tmpl,
             desc: pb.desc,
@@ -808,6 +999,8 @@ impl<'s> Parser<'s, '_, '_> {
             path_test,
             key: [0; PATH_LEN],
             key_len: plen as u8,
+            rhash: pb.rhash,
+            nrhash: pb.nrhash as u8,
         };
         self.assign_trie_key(tmpl, n as u16);
         self.insert_alpha_sorted(tmpl, n as u16);
@@ -943,6 +1136,43 @@ impl<'s> Parser<'s, '_, '_> {
         }
     }
 
+    /// Records the fields of pattern `p` that its join tests compare for equality
+    /// with a variable bound earlier (`?x` used again): CLIPS's right hash.
+    fn right_hash(&mut self, pb: &mut PatBuild, p: u8) {
+        let mut t = pb.jtests;
+        while t != NONE && pb.nrhash < MAX_RHASH {
+            let x = self.cx.exprs[t as usize];
+            if x.op == Op::Eq2 && x.first != NONE {
+                let this = self.cx.exprs[x.first as usize];
+                let other = this.next;
+                if this.op == Op::PatVar
+                    && this.aux == p
+                    && other != NONE
+                    && self.cx.exprs[other as usize].op == Op::PatVar
+                    && self.cx.exprs[other as usize].aux != p
+                {
+                    pb.rhash[pb.nrhash] = x.first;
+                    pb.nrhash += 1;
+                }
+            }
+            t = x.next;
+        }
+    }
+
+    /// Whether two pattern-variable expressions name the same field (any pattern).
+    fn same_field(&self, a: u16, b: u16) -> bool {
+        let (x, y) = (self.cx.exprs[a as usize], self.cx.exprs[b as usize]);
+        x.data == y.data
+            && ((x.first == NONE && y.first == NONE)
+                || (x.first != NONE && y.first != NONE && {
+                    let (p, q) = (
+                        self.cx.exprs[x.first as usize],
+                        self.cx.exprs[y.first as usize],
+                    );
+                    p.aux == q.aux && p.data == q.data && self.chain_eq(p.first, q.first)
+                }))
+    }
+
     fn chain_eq(&self, mut a: u16, mut b: u16) -> bool {
         while a != NONE && b != NONE {
             if !self.expr_eq(a, b) {
@@ -994,17 +1224,30 @@ impl<'s> Parser<'s, '_, '_> {
             return Err(self.cap_err(at, c));
         }
         self.cx.rules[nr] = Rule::EMPTY;
-        let mut prev = 0u16;
+        // the join built for each CE
+        let mut jid = [0u16; MAX_PATTERNS];
         for (i, ce) in b.ces[..b.n].iter().enumerate() {
+            let parent = if ce.parent == CE_ROOT {
+                0
+            } else {
+                jid[ce.parent as usize]
+            };
+            let rjoin = if ce.right == CE_ROOT {
+                NONE
+            } else {
+                jid[ce.right as usize]
+            };
             {
                 // share an identical join under the same parent (CLIPS does)
-                let mut c = self.cx.joins[prev as usize].first_child;
+                let mut c = self.cx.joins[parent as usize].first_child;
                 let mut found = NONE;
                 while c != NONE {
                     let cj = self.cx.joins[c as usize];
                     if cj.refs > 0
                         && cj.kind == ce.kind
                         && cj.alpha == ce.alpha
+                        && cj.rjoin == rjoin
+                        && cj.depth == ce.depth
                         && self.chain_eq(cj.tests, ce.jtests)
                         && self.chain_eq(cj.post, ce.post)
                     {
@@ -1016,7 +1259,7 @@ impl<'s> Parser<'s, '_, '_> {
                 if found != NONE {
                     self.cx.joins[found as usize].refs += 1;
                     self.push_join_mark(true);
-                    prev = found;
+                    jid[i] = found;
                     continue;
                 }
             }
@@ -1025,20 +1268,45 @@ impl<'s> Parser<'s, '_, '_> {
             self.cx.st.njoins += 1;
             self.cx.joins[j as usize] = Join {
                 kind: ce.kind,
-                depth: i as u8,
+                depth: ce.depth,
                 rule: NONE,
-                parent: prev,
+                parent,
                 first_child: NONE,
-                next_sibling: self.cx.joins[prev as usize].first_child,
+                next_sibling: NONE,
                 refs: 1,
                 alpha: ce.alpha,
                 tests: ce.jtests,
                 post: ce.post,
                 alpha_next: NONE,
                 mem: NONE,
+                rjoin,
+                rsucc: NONE,
             };
-            self.cx.joins[prev as usize].first_child = j;
-            prev = j;
+            // a join from the right comes right after its subnetwork's first join
+            // among the parent's children: the subnetwork sees a new left token first
+            let after = if rjoin != NONE {
+                jid[ce.first_sub as usize]
+            } else {
+                NONE
+            };
+            if after != NONE && self.cx.joins[after as usize].parent == parent {
+                self.cx.joins[j as usize].next_sibling = self.cx.joins[after as usize].next_sibling;
+                self.cx.joins[after as usize].next_sibling = j;
+            } else {
+                self.cx.joins[j as usize].next_sibling = self.cx.joins[parent as usize].first_child;
+                self.cx.joins[parent as usize].first_child = j;
+            }
+            if rjoin != NONE {
+                self.cx.joins[j as usize].alpha_next = self.cx.joins[rjoin as usize].rsucc;
+                self.cx.joins[rjoin as usize].rsucc = j;
+            }
+            jid[i] = j;
+        }
+        let prev = jid[b.cur as usize];
+        // the first CE of the rule's own chain decides whether reset rebuilds it
+        let mut first = b.cur;
+        while b.ces[first as usize].parent != CE_ROOT {
+            first = b.ces[first as usize].parent;
         }
         // the rule's end node
         self.push_join_mark(false);
@@ -1046,7 +1314,7 @@ impl<'s> Parser<'s, '_, '_> {
         self.cx.st.njoins += 1;
         self.cx.joins[term as usize] = Join {
             kind: JoinKind::Terminal,
-            depth: b.n as u8,
+            depth: b.depth,
             rule: nr as u16,
             parent: prev,
             next_sibling: self.cx.joins[prev as usize].first_child,
@@ -1063,11 +1331,11 @@ impl<'s> Parser<'s, '_, '_> {
             root: 0,
             terminal: prev,
             rhs: self.cx.exprs[rhs as usize].first,
-            npat: b.n as u8,
+            npat: b.depth,
             nlocals: self.nlocals.min(255) as u8,
             next_disjunct: NONE,
             next_at_join: NONE,
-            root_sensitive: b.ces[0].kind != JoinKind::Positive,
+            root_sensitive: b.ces[first as usize].kind != JoinKind::Positive,
             deleted: false,
             text: NONE,
         };
@@ -1075,6 +1343,12 @@ impl<'s> Parser<'s, '_, '_> {
         self.cx.note_hw(Pool::Rules, nr + 1);
         Ok(nr as u16)
     }
+}
+
+/// New joins already primed while defining a rule (disjuncts share joins).
+struct Primed {
+    ids: [u16; 64],
+    n: usize,
 }
 
 /// Fields of one pattern remembered for ordering alpha nodes like CLIPS's pattern
@@ -1092,6 +1366,8 @@ struct PatBuild {
     jtests: u16,
     jlast: u16,
     marks: u8,
+    rhash: [u16; MAX_RHASH],
+    nrhash: usize,
 }
 
 impl PatBuild {

@@ -250,15 +250,15 @@ impl Core<'_> {
     /// Removes an alpha match: retracts what successor joins built from it.
     pub(crate) fn remove_alpha_match(&mut self, am: u16) {
         let alpha = self.tokens[am as usize].owner;
-        // partial matches built on it and not/exists counts it took part in, newest
-        // first (CLIPS's order)
+        // partial matches built on it (newest first), then the not/exists outputs it
+        // blocks, which look for another blocker: CLIPS's order
         while self.tokens[am as usize].first_child != NONE {
             let c = self.tokens[am as usize].first_child;
-            if self.tokens[c as usize].kind == TokenKind::Link {
-                self.remove_link(c);
-            } else {
-                self.delete_token(c);
-            }
+            self.delete_token(c);
+        }
+        while self.tokens[am as usize].blocks != NONE {
+            let k = self.tokens[am as usize].blocks;
+            self.remove_link(k);
         }
         let tk = self.tokens[am as usize];
         if tk.mem_prev != NONE {
@@ -291,14 +291,19 @@ impl Core<'_> {
         }
     }
 
-    /// Fills an alpha node's memory from existing facts (new rule while facts exist).
-    pub(crate) fn prime_alpha(&mut self, alpha: u16) -> Result<(), EvalError> {
-        let tmpl = self.alphas[alpha as usize].tmpl;
+    /// Drives the existing facts, oldest first, through the alpha nodes numbered
+    /// `first` and up (a new rule's patterns), in network order per fact.
+    pub(crate) fn prime_alphas(&mut self, first: u16) -> Result<(), EvalError> {
         let mut f = self.st.fact_head;
         while f != NONE {
             let next = self.facts[f as usize].next;
-            if self.facts[f as usize].tmpl == tmpl {
-                self.match_alpha(alpha, f)?;
+            let tmpl = self.facts[f as usize].tmpl;
+            let mut a = self.templates[tmpl as usize].alpha_head;
+            while a != NONE {
+                if a >= first {
+                    self.match_alpha(a, f)?;
+                }
+                a = self.alphas[a as usize].next_in_tmpl;
             }
             f = next;
         }

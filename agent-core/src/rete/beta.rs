@@ -1,11 +1,13 @@
 //! Beta side: joins combining partial matches (left) with alpha matches (right),
-//! negation and existence counting, token deletion, and handing complete matches to
+//! negation and existence (one blocker per output, as CLIPS), joins from the right
+//! for not/exists over several CEs, token deletion, and handing complete matches to
 //! the agenda.
 //!
 //! Joins with an identical prefix are shared between rules (as CLIPS does), so a
 //! token may feed several child joins. A `not`/`exists` join keeps one output token
-//! per left token, carrying the count of matching right items; it is *active* (passed
-//! on) while the count is zero (`not`) or positive (`exists`).
+//! per left token, blocked by the first matching right item (a link token); it is
+//! *active* (passed on) while unblocked (`not`) or blocked (`exists`). When the
+//! blocker goes, the next matching right item takes over before anything changes.
 
 use super::{JoinKind, PatBinding, Token, TokenKind};
 use crate::engine::{cap, Core};
@@ -44,8 +46,8 @@ impl Core<'_> {
     pub(crate) fn token_active(&self, t: u16) -> bool {
         let tk = &self.tokens[t as usize];
         match self.joins[tk.owner as usize].kind {
-            JoinKind::Negative => tk.count == 0,
-            JoinKind::Exists => tk.count > 0,
+            JoinKind::Negative => !tk.blocked,
+            JoinKind::Exists => tk.blocked,
             _ => true,
         }
     }
@@ -124,28 +126,22 @@ impl Core<'_> {
         let mut l = self.joins[j.parent as usize].mem;
         while l != NONE {
             let next = self.tokens[l as usize].mem_next;
-            if self.token_active(l) && self.join_test(join, l, am, false)? {
+            if self.token_active(l) {
                 match j.kind {
                     JoinKind::Positive => {
-                        let t = self.link_token(join, l, am)?;
-                        self.propagate(t)?;
-                    }
-                    JoinKind::Negative => {
-                        let t = self.output_of(l, join);
-                        if t != NONE {
-                            self.add_link(t, am)?;
-                            if self.tokens[t as usize].count == 1 {
-                                self.deactivate(t);
-                            }
+                        if self.join_test(join, l, am, false)? {
+                            let t = self.link_token(join, l, am)?;
+                            self.propagate(t)?;
                         }
                     }
-                    JoinKind::Exists => {
+                    JoinKind::Negative | JoinKind::Exists => {
                         let t = self.output_of(l, join);
-                        if t != NONE {
-                            self.add_link(t, am)?;
-                            if self.tokens[t as usize].count == 1 {
-                                self.propagate(t)?;
-                            }
+                        // a blocked output keeps its one blocker (CLIPS's order)
+                        if t != NONE
+                            && !self.tokens[t as usize].blocked
+                            && self.join_test(join, l, am, false)?
+                        {
+                            self.block(t, am)?;
                         }
                     }
                     JoinKind::Root | JoinKind::Test | JoinKind::Terminal => {}
@@ -154,6 +150,80 @@ impl Core<'_> {
             l = next;
         }
         Ok(())
+    }
+
+    /// A partial match `r` of a subnetwork became active: it blocks the output of
+    /// the not/exists join `join` for the left token it extends.
+    fn right_activate_beta(&mut self, join: u16, r: u16) -> Result<(), EvalError> {
+        let parent = self.joins[join as usize].parent;
+        let l = self.ancestor_in(r, parent);
+        if l == NONE {
+            return Ok(());
+        }
+        let t = self.output_of(l, join);
+        if t != NONE && !self.tokens[t as usize].blocked {
+            self.block(t, r)?;
+        }
+        Ok(())
+    }
+
+    /// Links `blocker` to not/exists output `t` and passes on or takes back.
+    fn block(&mut self, t: u16, blocker: u16) -> Result<(), EvalError> {
+        self.add_link(t, blocker)?;
+        if self.joins[self.tokens[t as usize].owner as usize].kind == JoinKind::Negative {
+            self.deactivate(t);
+            Ok(())
+        } else {
+            self.propagate(t)
+        }
+    }
+
+    /// The ancestor of `t` in the memory of `join` (NONE if it has none there).
+    fn ancestor_in(&self, mut t: u16, join: u16) -> u16 {
+        while t != NONE {
+            let tk = &self.tokens[t as usize];
+            if tk.owner == join {
+                return t;
+            }
+            if tk.owner == 0 {
+                break;
+            }
+            t = tk.parent;
+        }
+        NONE
+    }
+
+    /// The first right item blocking the output of not/exists `join` for left token
+    /// `left`: alpha matches from `from` on (memory order), or active partial matches
+    /// of the subnetwork extending `left` (skipping `skip`).
+    fn find_blocker(
+        &mut self,
+        join: u16,
+        left: u16,
+        from: u16,
+        skip: u16,
+    ) -> Result<u16, EvalError> {
+        let j = self.joins[join as usize];
+        if j.rjoin == NONE {
+            let mut a = from;
+            let mut bound = false;
+            while a != NONE {
+                if self.join_test(join, left, a, bound)? {
+                    return Ok(a);
+                }
+                bound = true;
+                a = self.tokens[a as usize].mem_next;
+            }
+        } else {
+            let mut r = self.joins[j.rjoin as usize].mem;
+            while r != NONE {
+                if r != skip && self.token_active(r) && self.ancestor_in(r, j.parent) == left {
+                    return Ok(r);
+                }
+                r = self.tokens[r as usize].mem_next;
+            }
+        }
+        Ok(NONE)
     }
 
     /// A new active partial match `left` arrives on the left of `join`.
@@ -183,14 +253,14 @@ impl Core<'_> {
                     }
                 }
                 let t = self.link_token(join, left, NONE)?;
-                let mut a = self.alphas[j.alpha as usize].mem;
-                let mut bound = false;
-                while a != NONE {
-                    if self.join_test(join, left, a, bound)? {
-                        self.add_link(t, a)?;
-                    }
-                    bound = true;
-                    a = self.tokens[a as usize].mem_next;
+                let from = if j.rjoin == NONE {
+                    self.alphas[j.alpha as usize].mem
+                } else {
+                    NONE
+                };
+                let b = self.find_blocker(join, left, from, NONE)?;
+                if b != NONE {
+                    self.add_link(t, b)?;
                 }
                 if self.token_active(t) {
                     self.propagate(t)?;
@@ -255,43 +325,64 @@ impl Core<'_> {
         Ok(t)
     }
 
-    /// Records that alpha match `am` counts for not/exists output token `t`.
-    fn add_link(&mut self, t: u16, am: u16) -> Result<(), EvalError> {
+    /// Records that `blocker` (an alpha match or a subnetwork's partial match)
+    /// blocks not/exists output token `t`.
+    fn add_link(&mut self, t: u16, blocker: u16) -> Result<(), EvalError> {
         let owner = self.tokens[t as usize].owner;
-        let k = self.link_token(owner, t, am)?;
-        // links are not members of the join's memory
-        let head = self.tokens[k as usize].mem_next;
-        self.joins[owner as usize].mem = head;
-        if head != NONE {
-            self.tokens[head as usize].mem_prev = NONE;
+        let k = self.alloc_token()?;
+        let psib = self.tokens[t as usize].first_child;
+        let bsib = self.tokens[blocker as usize].blocks;
+        self.tokens[k as usize] = Token {
+            kind: TokenKind::Link,
+            owner,
+            am: blocker,
+            parent: t,
+            next_sib: psib,
+            am_next: bsib,
+            ..Token::EMPTY
+        };
+        if psib != NONE {
+            self.tokens[psib as usize].prev_sib = k;
         }
-        self.tokens[k as usize].mem_next = NONE;
-        self.tokens[k as usize].kind = TokenKind::Link;
-        self.tokens[t as usize].count = self.tokens[t as usize].count.saturating_add(1);
+        self.tokens[t as usize].first_child = k;
+        if bsib != NONE {
+            self.tokens[bsib as usize].am_prev = k;
+        }
+        self.tokens[blocker as usize].blocks = k;
+        self.tokens[t as usize].blocked = true;
         Ok(())
     }
 
-    /// Removes a link; the counted token is unblocked (not) or loses its match
-    /// (exists) when its count drops to zero.
+    /// The blocker of link `k` goes away: the counted token gets the next blocker,
+    /// or is unblocked (not) or loses its match (exists), as CLIPS does.
     pub(crate) fn remove_link(&mut self, k: u16) {
         let t = self.tokens[k as usize].parent;
+        let blocker = self.tokens[k as usize].am;
         self.unlink_and_free(k);
-        if self.tokens[t as usize].count > 0 {
-            self.tokens[t as usize].count -= 1;
-            if self.tokens[t as usize].count == 0 {
-                if self.joins[self.tokens[t as usize].owner as usize].kind == JoinKind::Negative {
-                    // Restores a match that existed before; a full pool here is
-                    // reported by the next operation that needs the space.
-                    let _ = self.propagate(t);
-                } else {
-                    self.deactivate(t);
-                }
-            }
+        self.tokens[t as usize].blocked = false;
+        let join = self.tokens[t as usize].owner;
+        let left = self.tokens[t as usize].parent;
+        let from = if self.tokens[blocker as usize].kind == TokenKind::Alpha {
+            self.tokens[blocker as usize].mem_next
+        } else {
+            NONE
+        };
+        // an evaluation error while searching counts as no further blocker
+        let next = self.find_blocker(join, left, from, blocker).unwrap_or(NONE);
+        if next != NONE && self.add_link(t, next).is_ok() {
+            return;
+        }
+        if self.joins[join as usize].kind == JoinKind::Negative {
+            // Restores a match that existed before; a full pool here is
+            // reported by the next operation that needs the space.
+            let _ = self.propagate(t);
+        } else {
+            self.deactivate(t);
         }
     }
 
-    /// Passes an active partial match on: an activation or the child joins.
-    /// Child joins and rule ends, newest first, as CLIPS does.
+    /// Passes an active partial match on: child joins and rule ends (newest first,
+    /// as CLIPS does), then joins taking it from the right.
     pub(crate) fn propagate(&mut self, t: u16) -> Result<(), EvalError> {
         let join = self.tokens[t as usize].owner;
         let mut c = self.joins[join as usize].first_child;
@@ -299,27 +390,59 @@ impl Core<'_> {
             self.left_activate(c, t)?;
             c = self.joins[c as usize].next_sibling;
         }
+        let mut n = self.joins[join as usize].rsucc;
+        while n != NONE {
+            self.right_activate_beta(n, t)?;
+            n = self.joins[n as usize].alpha_next;
+        }
         Ok(())
     }
 
-    /// Takes back what a token passed on: its activations, then its child partial
-    /// matches (newest first), as CLIPS orders the removals. Its links stay.
+    /// Takes back what a token passed on, successor by successor in the order
+    /// CLIPS created its copies (oldest successor first): a rule end loses the
+    /// activation, a child join the partial matches built on the token. Then the
+    /// outputs it blocks look for another blocker. Its own links stay.
     fn deactivate(&mut self, t: u16) {
-        while self.tokens[t as usize].extra != NONE
-            && self.tokens[t as usize].kind == TokenKind::Beta
-        {
-            let a = self.tokens[t as usize].extra;
-            self.remove_activation(a);
+        let join = self.tokens[t as usize].owner;
+        let mut n = 0;
+        let mut c = self.joins[join as usize].first_child;
+        while c != NONE {
+            n += 1;
+            c = self.joins[c as usize].next_sibling;
         }
-        loop {
-            let mut c = self.tokens[t as usize].first_child;
-            while c != NONE && self.tokens[c as usize].kind == TokenKind::Link {
-                c = self.tokens[c as usize].next_sib;
+        for i in (0..n).rev() {
+            let mut c = self.joins[join as usize].first_child;
+            for _ in 0..i {
+                c = self.joins[c as usize].next_sibling;
             }
-            if c == NONE {
-                break;
+            let cj = self.joins[c as usize];
+            if cj.is_terminal() {
+                if self.tokens[t as usize].kind == TokenKind::Beta {
+                    let mut a = self.tokens[t as usize].extra;
+                    while a != NONE {
+                        let next = self.acts[a as usize].next_of_token;
+                        if self.acts[a as usize].rule == cj.rule {
+                            self.remove_activation(a);
+                        }
+                        a = next;
+                    }
+                }
+            } else {
+                let mut k = self.tokens[t as usize].first_child;
+                while k != NONE {
+                    let next = self.tokens[k as usize].next_sib;
+                    if self.tokens[k as usize].owner == c
+                        && self.tokens[k as usize].kind != TokenKind::Link
+                    {
+                        self.delete_token(k);
+                    }
+                    k = next;
+                }
             }
-            self.delete_token(c);
+        }
+        while self.tokens[t as usize].blocks != NONE {
+            let k = self.tokens[t as usize].blocks;
+            self.remove_link(k);
         }
     }
 
@@ -357,6 +480,8 @@ impl Core<'_> {
         if tk.am != NONE {
             if tk.am_prev != NONE {
                 self.tokens[tk.am_prev as usize].am_next = tk.am_next;
+            } else if tk.kind == TokenKind::Link {
+                self.tokens[tk.am as usize].blocks = tk.am_next;
             } else {
                 self.tokens[tk.am as usize].first_child = tk.am_next;
             }

@@ -15,6 +15,9 @@ pub const PATH_LEN: usize = 6;
 pub const EMPTY_PATH: u16 = 0xFFFE;
 /// Most pattern-level CEs in one rule.
 pub const MAX_PATTERNS: usize = 32;
+/// Most fields of one pattern compared for equality with earlier variables that
+/// key its alpha node (CLIPS's "right hash"); further ones are plain join tests.
+pub const MAX_RHASH: usize = 4;
 
 /// One distinct pattern: a template plus the tests that need only the fact itself.
 /// Shared by every rule that uses an identical pattern.
@@ -40,6 +43,11 @@ pub struct AlphaNode {
     pub path_test: [u16; PATH_LEN],
     pub key: [u16; PATH_LEN],
     pub key_len: u8,
+    /// Fields of this pattern that joins compare for equality with variables bound
+    /// earlier (expressions of the defining pattern). CLIPS keeps patterns that differ
+    /// only here apart, which decides the order facts visit them.
+    pub rhash: [u16; MAX_RHASH],
+    pub nrhash: u8,
 }
 
 impl AlphaNode {
@@ -57,6 +65,8 @@ impl AlphaNode {
         path_test: [NONE; PATH_LEN],
         key: [0; PATH_LEN],
         key_len: 0,
+        rhash: [NONE; MAX_RHASH],
+        nrhash: 0,
     };
 }
 
@@ -98,6 +108,11 @@ pub struct Join {
     pub alpha_next: u16,
     /// Output memory: first token (newest first).
     pub mem: u16,
+    /// `not`/`exists` over several CEs: the join ending the subnetwork whose partial
+    /// matches are this join's right input ("join from the right"), NONE otherwise.
+    pub rjoin: u16,
+    /// First join having this one as its right input (chained by `alpha_next`).
+    pub rsucc: u16,
 }
 
 impl Join {
@@ -120,6 +135,8 @@ impl Join {
         post: NONE,
         alpha_next: NONE,
         mem: NONE,
+        rjoin: NONE,
+        rsucc: NONE,
     };
 }
 
@@ -131,9 +148,9 @@ pub enum TokenKind {
     Alpha,
     /// A partial match in a join's output memory.
     Beta,
-    /// "Alpha match `am` is counted by not/exists output token `parent`": kept in
-    /// both the alpha match's and the output token's child lists, so a retract
-    /// visits blocks and partial matches in one creation order, as CLIPS does.
+    /// "Token `am` (an alpha match, or a partial match of a subnetwork) blocks
+    /// not/exists output token `parent`": kept in the output token's child list and
+    /// the blocker's `blocks` list.
     Link,
 }
 
@@ -141,6 +158,9 @@ pub enum TokenKind {
 #[derive(Clone, Copy, Debug)]
 pub struct Token {
     pub kind: TokenKind,
+    /// Output of a not/exists join: a right item (its one blocker, as in CLIPS)
+    /// matches.
+    pub blocked: bool,
     pub marks: [u8; MAX_MARKS],
     /// Alpha node (alpha match) or join (partial match).
     pub owner: u16,
@@ -161,13 +181,15 @@ pub struct Token {
     pub mem_prev: u16,
     /// Partial match: its first activation. Alpha match: propagation progress.
     pub extra: u16,
-    /// Output of a not/exists join: how many right items match.
-    pub count: u16,
+    /// Links naming this token as the blocker of not/exists outputs (chained by
+    /// `am_next`), so removing it visits exactly the outputs it decided.
+    pub blocks: u16,
 }
 
 impl Token {
     pub const EMPTY: Token = Token {
         kind: TokenKind::Free,
+        blocked: false,
         marks: [0; MAX_MARKS],
         owner: NONE,
         fact: NONE,
@@ -181,7 +203,7 @@ impl Token {
         mem_next: NONE,
         mem_prev: NONE,
         extra: NONE,
-        count: 0,
+        blocks: NONE,
     };
 }
 

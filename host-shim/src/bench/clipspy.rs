@@ -6,6 +6,7 @@
 
 use super::measure::{result_lines, Contender, Measurement, Plan, ProgramFiles, Reading};
 use super::process::{callgrind_fits, callgrind_instructions, median, run_with_deadline};
+use super::workloads::Kind;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Duration;
@@ -71,6 +72,33 @@ impl ClipsPy {
         ]
     }
 
+    /// The driver's arguments for one workload: constructs (the driver does reset and
+    /// run), or for LLSF games the batch files, `phase` "full" or "norun". `timed` adds
+    /// the no-run batch as the baseline the driver subtracts itself.
+    fn workload_args(
+        driver: &Path,
+        program: &ProgramFiles,
+        reps: usize,
+        phase: &str,
+        timed: bool,
+    ) -> Vec<String> {
+        if program.workload.kind != Kind::Llsf {
+            return Self::driver_args(driver, &program.constructs, reps, phase);
+        }
+        let batch = if phase == "full" {
+            &program.batch_full
+        } else {
+            &program.batch_norun
+        };
+        let mut args = Self::driver_args(driver, batch, reps, "full");
+        args.push("--batch".to_string());
+        if timed {
+            args.push("--baseline".to_string());
+            args.push(program.batch_norun.display().to_string());
+        }
+        args
+    }
+
     fn run_driver(&self, args: &[String], limit: Duration) -> Result<DriverReport, String> {
         let finished = run_with_deadline(
             Command::new(&self.python)
@@ -114,7 +142,7 @@ impl ClipsPy {
         limit: Duration,
     ) -> (Reading<u64>, Reading<u64>) {
         let count = |phase: &str| {
-            let args = Self::driver_args(driver, &program.constructs, 1, phase);
+            let args = Self::workload_args(driver, program, 1, phase, false);
             let args: Vec<&str> = args.iter().map(String::as_str).collect();
             callgrind_instructions(&self.python, &args, &program.dir, limit)
         };
@@ -146,7 +174,7 @@ impl Contender for ClipsPy {
             Ok(driver) => driver,
             Err(reason) => return Measurement::failed(&reason),
         };
-        let args = Self::driver_args(&driver, &program.constructs, plan.reps.max(1), "full");
+        let args = Self::workload_args(&driver, program, plan.reps.max(1), "full", true);
         // Every repetition loads and runs afresh; allow the plain-run deadline for each.
         let limit = plan.run_limit * plan.reps.max(1) as u32;
         let report = match self.run_driver(&args, limit) {

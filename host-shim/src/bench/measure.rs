@@ -1,6 +1,6 @@
 //! What a measurement holds and the trait every engine under test implements.
 
-use super::workloads::Workload;
+use super::workloads::{self, Kind, Workload};
 use super::BenchError;
 use std::path::{Path, PathBuf};
 use std::time::Duration;
@@ -106,6 +106,10 @@ impl ProgramFiles {
             constructs,
             dir,
         };
+        if workload.kind == Kind::Llsf {
+            files.write_llsf()?;
+            return Ok(files);
+        }
         write_file(&files.constructs, &workload.constructs_text())?;
         let full = format!("{load}(watch statistics)\n(reset)\n(run)\n(exit)\n");
         write_file(&files.batch_full, &full)?;
@@ -115,6 +119,33 @@ impl ProgramFiles {
             format!("{load}(reset)\n(run)\n(printout t \"mem-used \" (mem-used) crlf)\n(exit)\n");
         write_file(&files.batch_mem, &mem)?;
         Ok(files)
+    }
+
+    /// LLSF games: the rule base's files copied into the folder and loaded one by one;
+    /// `constructs` is their concatenation (for reading, not loaded by the batches).
+    fn write_llsf(&self) -> Result<(), BenchError> {
+        let games = self.workload.size;
+        let mut load = String::new();
+        let mut all = String::new();
+        for file in workloads::llsf_files() {
+            let path = self.dir.join(file.name.replace('/', "-"));
+            write_file(&path, file.text)?;
+            load.push_str(&format!("(load* {})\n", clips_string(&path)?));
+            all.push_str(file.text);
+            all.push('\n');
+        }
+        write_file(&self.constructs, &all)?;
+        let games_text =
+            |with_run| workloads::llsf_games_batch(games, with_run).map_err(BenchError::new);
+        let full = format!("{load}(watch statistics)\n{}(exit)\n", games_text(true)?);
+        write_file(&self.batch_full, &full)?;
+        let norun = format!("{load}(watch statistics)\n{}(exit)\n", games_text(false)?);
+        write_file(&self.batch_norun, &norun)?;
+        let mem = format!(
+            "{load}{}(printout t \"mem-used \" (mem-used) crlf)\n(exit)\n",
+            games_text(true)?
+        );
+        write_file(&self.batch_mem, &mem)
     }
 }
 
@@ -160,12 +191,16 @@ pub fn result_lines(stdout: &str, prefix: &str) -> Vec<String> {
         .collect()
 }
 
-/// The count from CLIPS's `(watch statistics)` line `N rules fired` (the last one).
+/// The sum of CLIPS's `(watch statistics)` lines `N rules fired` (one per `(run)`).
 pub fn parse_rules_fired(stdout: &str) -> Option<u64> {
-    stdout.lines().rev().find_map(|line| {
-        let (count, _) = line.trim_start().split_once(" rules fired")?;
-        count.trim().parse().ok()
-    })
+    let counts: Vec<u64> = stdout
+        .lines()
+        .filter_map(|line| {
+            let (count, _) = line.trim_start().split_once(" rules fired")?;
+            count.trim().parse().ok()
+        })
+        .collect();
+    (!counts.is_empty()).then(|| counts.iter().sum())
 }
 
 /// The number after `mem-used ` printed by the memory variant.
@@ -178,7 +213,6 @@ pub fn parse_mem_used(stdout: &str) -> Option<u64> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::bench::workloads::Kind;
 
     #[test]
     fn statistics_and_results_are_parsed_from_clips_output() {

@@ -45,6 +45,8 @@ impl std::fmt::Display for BenchError {
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum WorkloadArg {
+    /// --games seeded LLSF games of the agent rule base (paper strategy).
+    Llsf,
     /// Miss Manners at each --manners-sizes guest count.
     Manners,
     /// Join-heavy scaling program at each --scale-sizes fact count.
@@ -56,8 +58,11 @@ pub enum WorkloadArg {
 #[derive(clap::Args, Debug)]
 pub struct Args {
     /// Workloads to run (comma-separated).
-    #[arg(long, value_enum, value_delimiter = ',', default_values = ["manners", "join", "negation"])]
+    #[arg(long, value_enum, value_delimiter = ',', default_values = ["llsf", "manners", "join", "negation"])]
     pub workloads: Vec<WorkloadArg>,
+    /// Seeded LLSF games (seeds 0..N) played in one process per measurement.
+    #[arg(long, default_value_t = 10)]
+    pub games: usize,
     /// Guest counts for Miss Manners (even numbers).
     #[arg(long, value_delimiter = ',', default_values_t = [16, 32, 64, 128])]
     pub manners_sizes: Vec<usize>,
@@ -94,13 +99,15 @@ impl Args {
     fn selected_workloads(&self) -> Vec<Workload> {
         let mut selected = Vec::new();
         for arg in &self.workloads {
+            let games = [self.games];
             let (kind, sizes) = match arg {
-                WorkloadArg::Manners => (Kind::Manners, &self.manners_sizes),
-                WorkloadArg::Join => (Kind::Join, &self.scale_sizes),
-                WorkloadArg::Negation => (Kind::Negation, &self.scale_sizes),
+                WorkloadArg::Llsf => (Kind::Llsf, &games[..]),
+                WorkloadArg::Manners => (Kind::Manners, &self.manners_sizes[..]),
+                WorkloadArg::Join => (Kind::Join, &self.scale_sizes[..]),
+                WorkloadArg::Negation => (Kind::Negation, &self.scale_sizes[..]),
             };
             // Ascending, so an engine that fails at one size can skip the larger ones.
-            let mut sizes = sizes.clone();
+            let mut sizes = sizes.to_vec();
             sizes.sort_unstable();
             sizes.dedup();
             selected.extend(sizes.into_iter().map(|size| Workload { kind, size }));
@@ -110,7 +117,12 @@ impl Args {
 }
 
 pub fn main(args: Args) -> ExitCode {
-    match run(&args) {
+    // Our engines keep all storage inline: build them on a thread with a big stack.
+    let outcome = match crate::sim::game::with_engine_stack(move || run(&args)) {
+        Ok(outcome) => outcome,
+        Err(e) => Err(BenchError::new(e.to_string())),
+    };
+    match outcome {
         Ok(all_agree) if all_agree => ExitCode::SUCCESS,
         Ok(_) => {
             eprintln!("bench: some engines disagree on results (see the report)");
@@ -312,8 +324,10 @@ fn agreement(workload: Workload, names: &[&str], measured: &[Measurement]) -> Ag
     }
     for (name, lines, fired) in &results[1..] {
         if lines != reference_lines {
+            // Same firings, other output (e.g. another activation order among equals):
+            // the row fails, but the costs stay visible as the work done was comparable.
+            // A different number of firings withdraws them (below).
             problems.push(format!("{name} results differ from {reference}"));
-            wrong.push(name.to_string());
         }
         // A count an engine did not report is shown as missing in its own column.
         if let (Some(fired), Some(reference_fired)) = (fired, reference_fired) {
@@ -394,12 +408,17 @@ mod tests {
         ];
         let outcome = agreement(workload, &["a", "b"], &different);
         assert!(!outcome.all_agree);
-        assert_eq!(outcome.wrong, vec!["b".to_string()]);
+        assert!(
+            outcome.wrong.is_empty(),
+            "same firings: costs stay comparable"
+        );
         let fired = [
             with_lines(&["reach2 4 reach4 2"], 7),
             with_lines(&["reach2 4 reach4 2"], 8),
         ];
-        assert!(!agreement(workload, &["a", "b"], &fired).all_agree);
+        let outcome = agreement(workload, &["a", "b"], &fired);
+        assert!(!outcome.all_agree);
+        assert_eq!(outcome.wrong, vec!["b".to_string()]);
         let mut uncounted = with_lines(&["reach2 4 reach4 2"], 7);
         uncounted.fired = Err("no 'N rules fired' line".to_string());
         let counted_once = [with_lines(&["reach2 4 reach4 2"], 7), uncounted];
@@ -489,8 +508,48 @@ mod tests {
         let _ = std::fs::remove_dir_all(&dir);
     }
 
+    /// Ours in-process fires as many rules as CLIPS 6.30 on the small programs and prints
+    /// the same results where the activation order is CLIPS's (Manners, join).
     #[test]
-    fn default_arguments_select_all_twelve_programs() {
+    fn ours_in_process_fires_like_clips() {
+        let dir = std::env::temp_dir().join(format!("bench-ours-clips-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).expect("temp dir is writable");
+        let clips = BatchCli::clips_630();
+        if clips.probe(&dir).is_err() {
+            eprintln!("clips not installed: nothing to compare");
+            return;
+        }
+        let plan = Plan {
+            reps: 1,
+            callgrind_limit: None,
+            run_limit: Duration::from_secs(60),
+        };
+        for (kind, size, same_output) in [
+            (Kind::Manners, 16, true),
+            (Kind::Join, 100, true),
+            (Kind::Negation, 100, false),
+        ] {
+            let workload = Workload { kind, size };
+            let files = ProgramFiles::write(&dir, workload).expect("temp dir is writable");
+            let reference = clips.measure(&files, &plan);
+            let in_thread = files.clone();
+            let in_plan = plan.clone();
+            let ours = crate::sim::game::with_engine_stack(move || {
+                OursInProcess::new().measure(&in_thread, &in_plan)
+            })
+            .expect("engine thread runs");
+            assert_eq!(ours.fired, reference.fired, "{}", workload.name());
+            let outcome = agreement(workload, &["clips", "ours"], &[reference, ours]);
+            assert!(outcome.wrong.is_empty(), "{}", outcome.text);
+            if same_output {
+                assert!(outcome.all_agree, "{}: {}", workload.name(), outcome.text);
+            }
+        }
+        let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn default_arguments_select_all_thirteen_programs() {
         use clap::Parser;
         #[derive(clap::Parser)]
         struct Wrapper {
@@ -504,9 +563,10 @@ mod tests {
             .iter()
             .map(Workload::name)
             .collect();
-        assert_eq!(names.len(), 12);
-        assert_eq!(names[0], "manners-16");
-        assert_eq!(names[11], "negation-100000");
+        assert_eq!(names.len(), 13);
+        assert_eq!(names[0], "llsf-10");
+        assert_eq!(names[1], "manners-16");
+        assert_eq!(names[12], "negation-100000");
         let only = Wrapper::parse_from(["bench", "--workloads", "join", "--scale-sizes", "300"]);
         assert_eq!(
             only.args.selected_workloads(),

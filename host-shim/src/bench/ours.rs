@@ -12,6 +12,9 @@
 
 use super::measure::{result_lines, Contender, Measurement, Plan, ProgramFiles};
 use super::process::median;
+use super::workloads::{self, Kind};
+use crate::sim::game::Player;
+use agent_core::Host;
 use std::path::Path;
 use std::time::{Duration, Instant};
 
@@ -29,14 +32,183 @@ pub trait InProcessEngine {
     fn memory_bytes(&self) -> Option<u64>;
 }
 
-/// THE SEAM: return a fresh engine once agent-core can run programs. Until then ours is
-/// reported as "not measured" for the in-process column.
-///
-/// Hint for the implementer: `Engine` keeps all storage inline, so build it straight in a
-/// `Box` (or a `static`) rather than on the stack, and give `Host::write_str` a `String`
-/// buffer that `take_output` drains.
+/// Capacities for the benchmark: every pool near the `u16` index limit (`NONE` is
+/// `u16::MAX`), so the scaling programs find the engine's real limits rather than the
+/// host defaults'. About 10 MiB; built on a big-stack thread, then boxed.
+pub type BenchEngine = agent_core::Engine<
+    60000, // facts
+    65000, // fact values
+    16384, // symbols
+    65000, // symbol bytes
+    256,   // templates
+    1024,  // slot definitions
+    512,   // rules
+    1024,  // alpha nodes
+    2048,  // joins
+    65000, // tokens
+    65000, // activations
+    256,   // deffunctions
+    128,   // globals
+    32768, // expression nodes
+    1024,  // evaluation stack
+    4096,  // multifield scratch
+    256,   // deffacts
+    32,    // external functions
+>;
+
+/// Collects what the engine prints to `t`; everything else (warnings, errors) is kept
+/// apart so a failing program can say why.
+#[derive(Default)]
+pub struct CaptureHost {
+    pub stdout: String,
+    pub other: String,
+}
+
+impl Host for CaptureHost {
+    fn write_str(&mut self, router: &str, text: &str) {
+        if router == agent_core::host::router::STDOUT {
+            self.stdout.push_str(text);
+        } else {
+            self.other.push_str(text);
+        }
+    }
+}
+
+/// Our engine in a box, driven through the public API.
+pub struct Ours<E> {
+    engine: Box<E>,
+    host: CaptureHost,
+}
+
+/// The engine operations the bench needs, over any capacities.
+pub trait EngineOps {
+    fn load(&mut self, host: &mut dyn Host, name: &str, text: &str) -> Result<usize, String>;
+    fn reset(&mut self, host: &mut dyn Host) -> Result<(), String>;
+    fn run(&mut self, host: &mut dyn Host) -> Result<u32, String>;
+    fn stats(&self) -> agent_core::Stats;
+}
+
+macro_rules! engine_ops {
+    ($ty:ty) => {
+        impl EngineOps for $ty {
+            fn load(
+                &mut self,
+                host: &mut dyn Host,
+                name: &str,
+                text: &str,
+            ) -> Result<usize, String> {
+                self.load_str(host, name, text).map_err(|e| e.to_string())
+            }
+            fn reset(&mut self, host: &mut dyn Host) -> Result<(), String> {
+                agent_core::Engine::reset(self, host).map_err(|e| e.to_string())
+            }
+            fn run(&mut self, host: &mut dyn Host) -> Result<u32, String> {
+                agent_core::Engine::run(self, host, None).map_err(|e| e.to_string())
+            }
+            fn stats(&self) -> agent_core::Stats {
+                agent_core::Engine::stats(self)
+            }
+        }
+    };
+}
+engine_ops!(BenchEngine);
+
+impl<E: EngineOps> InProcessEngine for Ours<E> {
+    fn load(&mut self, source_name: &str, text: &str) -> Result<(), String> {
+        self.engine
+            .load(&mut self.host, source_name, text)
+            .map(|_| ())
+            .map_err(|e| format!("{e}{}", context(&self.host)))
+    }
+
+    fn reset(&mut self) -> Result<(), String> {
+        self.engine
+            .reset(&mut self.host)
+            .map_err(|e| format!("(reset): {e}{}", context(&self.host)))
+    }
+
+    fn run(&mut self) -> Result<u64, String> {
+        let fired = self
+            .engine
+            .run(&mut self.host)
+            .map_err(|e| format!("(run): {e}{}", context(&self.host)))?;
+        // An error inside a rule's actions stops the run with a message, not an Err:
+        // a run that reported one did not compute the program's result.
+        if let Some(line) = first_error(&self.host.other) {
+            return Err(format!("(run) stopped after {fired} firings: {line}"));
+        }
+        Ok(u64::from(fired))
+    }
+
+    fn take_output(&mut self) -> String {
+        std::mem::take(&mut self.host.stdout)
+    }
+
+    fn memory_bytes(&self) -> Option<u64> {
+        Some(arena_bytes(&self.engine.stats()).0)
+    }
+}
+
+/// The first error line an engine printed (`[...]` messages other than the halt notice).
+fn first_error(other: &str) -> Option<&str> {
+    other
+        .lines()
+        .find(|l| l.starts_with('[') && !l.contains("Execution halted during the actions"))
+}
+
+fn context(host: &CaptureHost) -> String {
+    match host.other.lines().find(|l| !l.trim().is_empty()) {
+        Some(line) => format!(" (engine said: {line})"),
+        None => String::new(),
+    }
+}
+
+/// Bytes of each pool's entry type, in `Pool` order (fact and symbol entries count
+/// their hash bucket too). Used to turn high-water marks into bytes.
+pub fn entry_bytes() -> [usize; 18] {
+    use agent_core::{fact, rete, rule, symbols, template, Value};
+    use std::mem::size_of;
+    [
+        size_of::<fact::Fact>() + size_of::<u16>(),
+        size_of::<Value>(),
+        size_of::<symbols::SymEntry>() + size_of::<u16>(),
+        1,
+        size_of::<template::Template>(),
+        size_of::<template::SlotDef>(),
+        size_of::<rule::Rule>(),
+        size_of::<rete::AlphaNode>(),
+        size_of::<rete::Join>(),
+        size_of::<rete::Token>(),
+        size_of::<rule::Activation>(),
+        size_of::<template::Deffunction>(),
+        size_of::<template::Global>(),
+        size_of::<agent_core::expr::Expr>(),
+        size_of::<Value>(),
+        size_of::<Value>(),
+        size_of::<template::Deffacts>(),
+        size_of::<agent_core::engine::ExternalEntry>(),
+    ]
+}
+
+/// (bytes in use at the high-water marks, bytes of all pools at capacity).
+pub fn arena_bytes(stats: &agent_core::Stats) -> (u64, u64) {
+    let sizes = entry_bytes();
+    let mut used = 0u64;
+    let mut capacity = 0u64;
+    for (i, size) in sizes.iter().enumerate() {
+        used += u64::from(stats.used[i]) * *size as u64;
+        capacity += u64::from(stats.capacity[i]) * *size as u64;
+    }
+    (used, capacity)
+}
+
+/// A fresh bench engine. Builds several MiB of inline arrays: call on a thread with
+/// [`crate::sim::game::ENGINE_THREAD_STACK`] (the bench command runs on one).
 pub fn new_engine() -> Option<Box<dyn InProcessEngine>> {
-    None
+    Some(Box::new(Ours {
+        engine: Box::new(BenchEngine::new()),
+        host: CaptureHost::default(),
+    }))
 }
 
 /// Ours timed in-process through [`InProcessEngine`].
@@ -98,6 +270,9 @@ impl Contender for OursInProcess {
     }
 
     fn measure(&self, program: &ProgramFiles, plan: &Plan) -> Measurement {
+        if program.workload.kind == Kind::Llsf {
+            return measure_games(program.workload.size, plan);
+        }
         let text = match std::fs::read_to_string(&program.constructs) {
             Ok(text) => text,
             Err(e) => return Measurement::failed(&format!("reading program: {e}")),
@@ -132,6 +307,57 @@ impl Contender for OursInProcess {
                 .and_then(|s| s.memory)
                 .ok_or_else(|| "engine reported no memory figure".to_string()),
         }
+    }
+}
+
+/// LLSF games through the sim's [`Player`] (the `DefaultEngine` that `robotino-agent sim`
+/// uses): per repetition a fresh player (loading the rule base: *whole*) plays seeds
+/// 0..games one after another; *run* is the sum of the `play` calls (reset, setup facts,
+/// run, reading the record back).
+fn measure_games(games: usize, plan: &Plan) -> Measurement {
+    let setups = workloads::llsf_setups(games);
+    let mut wholes = Vec::new();
+    let mut runs = Vec::new();
+    let mut fired_per_rep = Vec::new();
+    let mut lines = Vec::new();
+    let mut memory = None;
+    for _ in 0..plan.reps.max(1) {
+        let start = Instant::now();
+        let mut player = match Player::new(workloads::LLSF_STRATEGY) {
+            Ok(player) => player,
+            Err(e) => return Measurement::failed(&format!("ours: {e}")),
+        };
+        let mut run = Duration::ZERO;
+        let mut fired = 0u64;
+        lines.clear();
+        for (seed, setup) in &setups {
+            let play_start = Instant::now();
+            let record = match player.play(setup, false) {
+                Ok(record) => record,
+                Err(e) => return Measurement::failed(&format!("ours, seed {seed}: {e}")),
+            };
+            run += play_start.elapsed();
+            fired += u64::from(record.fired);
+            lines.push(format!("GAME {seed} {}", record.result_line()));
+        }
+        wholes.push(start.elapsed());
+        runs.push(run);
+        fired_per_rep.push(fired);
+        memory = Some(arena_bytes(&player.stats()).0);
+    }
+    let fired = match fired_per_rep.as_slice() {
+        [first, rest @ ..] if rest.iter().all(|f| f == first) => Ok(*first),
+        _ => Err("rules fired differ between runs".to_string()),
+    };
+    let in_process_only = || Err("counted by the CLI column".to_string());
+    Measurement {
+        fired,
+        result_lines: Ok(lines),
+        wall_whole: median(&wholes).ok_or_else(|| "no run".to_string()),
+        wall_run: median(&runs).ok_or_else(|| "no run".to_string()),
+        instr_whole: in_process_only(),
+        instr_run: in_process_only(),
+        mem_bytes: memory.ok_or_else(|| "no run".to_string()),
     }
 }
 

@@ -25,6 +25,8 @@ pub enum Kind {
     Manners,
     Join,
     Negation,
+    /// Seeded simulated LLSF games of the agent rule base (size = number of games).
+    Llsf,
 }
 
 impl Kind {
@@ -33,14 +35,17 @@ impl Kind {
             Kind::Manners => "manners",
             Kind::Join => "join",
             Kind::Negation => "negation",
+            Kind::Llsf => "llsf",
         }
     }
 
+    /// The rule text of the single-file workloads (LLSF games load the rule base's files).
     fn rules(self) -> &'static str {
         match self {
             Kind::Manners => MANNERS_RULES,
             Kind::Join => JOIN_RULES,
             Kind::Negation => NEGATION_RULES,
+            Kind::Llsf => "",
         }
     }
 
@@ -51,6 +56,7 @@ impl Kind {
             Kind::Manners => "seat ",
             Kind::Join => "reach2 ",
             Kind::Negation => "started ",
+            Kind::Llsf => "GAME ",
         }
     }
 }
@@ -74,6 +80,8 @@ impl Workload {
                 "{}: Manners needs an even number of guests, at least 2",
                 self.name()
             )),
+            Kind::Llsf if self.size == 0 => Err(format!("{}: at least one game", self.name())),
+            Kind::Llsf => Ok(()),
             _ if self.size < 2 => Err(format!("{}: size must be at least 2", self.name())),
             _ => Ok(()),
         }
@@ -85,6 +93,8 @@ impl Workload {
             Kind::Manners => manners_facts(&manners_guests(self.size)),
             Kind::Join => join_facts(self.size),
             Kind::Negation => negation_facts(self.size),
+            // Each game's setup is its own deffacts (see `llsf_games_batch`).
+            Kind::Llsf => Vec::new(),
         }
     }
 
@@ -258,6 +268,50 @@ pub fn check_seating(guests: &[Guest], result_lines: &[String]) -> Result<(), St
         }
     }
     Ok(())
+}
+
+/// The strategy the LLSF games row plays (the paper's).
+pub const LLSF_STRATEGY: rules::Strategy = rules::Strategy::Paper;
+
+/// CLIPS-only driver helpers (`report-game`), loaded by both engines' batch files.
+pub const LLSF_REPORT: rules::RuleFile = rules::RuleFile {
+    name: "clips/report.clp",
+    text: include_str!("../../../rules/clips/report.clp"),
+};
+
+/// The files an LLSF batch loads, in order: the `distance` stub, the game files of
+/// [`LLSF_STRATEGY`], the report helpers. Written as-is into the work folder so both
+/// engines read identical `.clp` text (as `rules/clips/play.sh` does for CLIPS).
+pub fn llsf_files() -> Vec<rules::RuleFile> {
+    let mut files = vec![rules::CLIPS_STUBS];
+    files.extend_from_slice(rules::game_files(LLSF_STRATEGY));
+    files.push(LLSF_REPORT);
+    files
+}
+
+/// The seeds of the games row: 0..games.
+pub fn llsf_setups(games: usize) -> Vec<(u64, rules::setup::GameSetup)> {
+    (0..games as u64)
+        .map(|seed| (seed, rules::setup::GameSetup::for_seed(seed)))
+        .collect()
+}
+
+/// The batch commands after loading: per game its setup deffacts, `(reset)`, `(run)`
+/// (left out when `with_run` is false: the baseline) and a `GAME seed RESULT ...` line,
+/// as `rules/examples/setup.rs --sweep` writes them for `rules/clips/sweep.sh`.
+pub fn llsf_games_batch(games: usize, with_run: bool) -> Result<String, String> {
+    let mut text = String::new();
+    for (seed, setup) in llsf_setups(games) {
+        setup
+            .write_clips(&mut text)
+            .map_err(|e| format!("writing the setup of seed {seed}: {e}"))?;
+        text.push_str("(reset)\n");
+        if with_run {
+            text.push_str("(run)\n");
+        }
+        let _ = writeln!(text, "(printout t \"GAME {seed} \")\n(report-game)");
+    }
+    Ok(text)
 }
 
 #[cfg(test)]

@@ -2,19 +2,25 @@
 //! same services one driver per device would on a real robot (IR, bumper, gyro, odometry,
 //! puck sensor, camera light, heartbeat) and reads the motor command, for up to three robots.
 //!
+//! The game (hidden machine types, lights, pucks, clock, score) is the rules issue's CLIPS
+//! referee (`rules/referee.clp`) run by our engine ([`ClipsReferee`]); the setup is drawn
+//! from `--seed` like `robotino-agent sim --seed`.
+//!
 //! Cycles: in real time (`time_warp` 1) a cycle every 1/15 s; with `time_warp` W, W times as
 //! fast; in lockstep, a cycle as soon as every robot's agent sent a fresh motor command (or
 //! after `lockstep_grace_ms`, so a dead agent still trips the dead-man rule).
 
 use clap::Parser;
+use hal::field::GateId;
 use hal::WheelSpeeds;
 use host_shim::shim::config::Config;
-use host_shim::shim::field_sim::{FieldSim, SensorFrame};
+use host_shim::shim::field_sim::{Command, FieldSim, SensorFrame};
 use host_shim::shim::payloads::{
     BumperPayload, DriverId, GyroPayload, HeartbeatPayload, IrScanPayload, LightPayload,
     MotorCommandPayload, OdometryPayload, OdometryReading, PuckPayload,
 };
-use host_shim::shim::referee::{Referee, StandInReferee};
+use host_shim::shim::referee::{ClipsReferee, Referee};
+use host_shim::shim::rule_engine::with_engine_stack;
 use host_shim::shim::transport::{Pub, RobotStream, Sub, Transport, TransportError};
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -50,6 +56,9 @@ struct Args {
     /// Raw pucks in the input storage.
     #[arg(long, default_value_t = 20)]
     raw_pucks: u32,
+    /// Seed of the game setup: hidden machine types and the active gate.
+    #[arg(long, default_value_t = 0)]
+    seed: u64,
     /// Test hook: press robot 1's bumper in this cycle and report the latency, in cycles,
     /// until a zero motor command answering that sample arrives.
     #[arg(long)]
@@ -84,7 +93,12 @@ impl DriverPorts {
     }
 
     /// Publishes a frame; returns the bumper sample's sequence number.
-    fn publish(&mut self, f: &SensorFrame, cycle: u32) -> Result<u32, TransportError> {
+    fn publish(
+        &mut self,
+        f: &SensorFrame,
+        gate: Option<GateId>,
+        cycle: u32,
+    ) -> Result<u32, TransportError> {
         self.ir.send(|s| IrScanPayload::encode(s, &f.ir))?;
         let bumper_seq = self.bumper.send(|s| BumperPayload::encode(s, f.bumper))?;
         self.gyro.send(|s| GyroPayload::encode(s, f.gyro))?;
@@ -95,19 +109,28 @@ impl DriverPorts {
         self.odometry
             .send(|s| OdometryPayload::encode(s, &reading))?;
         self.puck.send(|s| PuckPayload::encode(s, f.has_puck))?;
-        self.light.send(|s| LightPayload::encode(s, f.light))?;
+        self.light
+            .send(|s| LightPayload::encode(s, f.light).with_gate(gate))?;
         self.heartbeat
             .send(|s| HeartbeatPayload::encode(s, cycle, DriverId::Sim))?;
         Ok(bumper_seq)
     }
 
-    /// The newest valid motor command with its sequence number. An invalid one is dropped
-    /// (and so is not fresh: the dead-man rule counts it as missing).
-    fn command(&mut self) -> Result<Option<(u32, WheelSpeeds, u32)>, TransportError> {
-        Ok(self
-            .motor
-            .poll()?
-            .and_then(|p| p.decode().ok().map(|w| (p.seq, w, p.bumper_seq))))
+    /// The newest valid motor command and the bumper sample it answers. An invalid one is
+    /// dropped (and so is not fresh: the dead-man rule counts it as missing).
+    fn command(&mut self) -> Result<Option<(Command, u32)>, TransportError> {
+        Ok(self.motor.poll()?.and_then(|p| {
+            let wheels: WheelSpeeds = p.decode().ok()?;
+            let release = p.release().ok()?;
+            Some((
+                Command {
+                    seq: p.seq,
+                    wheels,
+                    release,
+                },
+                p.bumper_seq,
+            ))
+        }))
     }
 }
 
@@ -122,9 +145,10 @@ struct BumperLatency {
 
 fn main() -> ExitCode {
     let args = Args::parse();
-    match run(&args) {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
+    // The referee's engine passes its arrays through the stack on the way to the heap.
+    match with_engine_stack(move || run(&args).map_err(|e| e.to_string())) {
+        Ok(Ok(())) => ExitCode::SUCCESS,
+        Ok(Err(e)) | Err(e) => {
             eprintln!("robotino-sim: {e}");
             ExitCode::FAILURE
         }
@@ -145,7 +169,12 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
     let mut ports = (1..=robots)
         .map(|r| DriverPorts::open(&transport, r))
         .collect::<Result<Vec<_>, _>>()?;
-    let referee = StandInReferee::new(config.noise.seed, args.raw_pucks, args.game_seconds);
+    let mut setup = rules::setup::GameSetup::for_seed(args.seed);
+    setup.s0_supply = args.raw_pucks;
+    // The referee's clock counts whole seconds; the field's clock ends the game on time.
+    setup.clock_limit_s = Some(args.game_seconds.ceil() as u32);
+    let referee = ClipsReferee::new(&setup)?;
+    let gate = referee.active_gate();
     let mut field = FieldSim::new(&config, robots, referee);
 
     let wall_cycle = config.wall_cycle();
@@ -156,16 +185,18 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
     let start = Instant::now();
 
     for (i, p) in ports.iter_mut().enumerate() {
-        p.publish(&field.sense(i), 0)?;
+        p.publish(&field.sense(i), gate, 0)?;
     }
     println!(
-        "robotino-sim: ready prefix={} robots={robots}",
-        config.services.prefix
+        "robotino-sim: ready prefix={} robots={robots} seed={} gate=D{} referee=rules/referee.clp",
+        config.services.prefix,
+        args.seed,
+        gate.map_or(0, GateId::number)
     );
     loop {
         // Wait for the next cycle.
         let cycle_start = Instant::now();
-        let mut commands: Vec<Option<(u32, WheelSpeeds, u32)>> = vec![None; ports.len()];
+        let mut commands: Vec<Option<(Command, u32)>> = vec![None; ports.len()];
         loop {
             for (c, p) in commands.iter_mut().zip(ports.iter_mut()) {
                 *c = p.command()?;
@@ -173,7 +204,7 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
             let all_fresh = commands
                 .iter()
                 .zip(last_seq.iter())
-                .all(|(c, last)| c.is_some_and(|(s, _, _)| Some(s) != *last));
+                .all(|(c, last)| c.is_some_and(|(c, _)| Some(c.seq) != *last));
             let due = if config.timing.lockstep {
                 all_fresh || cycle_start.elapsed() >= grace
             } else {
@@ -188,10 +219,12 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
             }
         }
         for (last, c) in last_seq.iter_mut().zip(commands.iter()) {
-            *last = c.map(|(s, _, _)| s);
+            *last = c.map(|(c, _)| c.seq);
         }
 
-        if let (Some(l), Some(Some((_, wheels, bumper_seq)))) = (&mut latency, commands.first()) {
+        if let (Some(l), Some(Some((Command { wheels, .. }, bumper_seq)))) =
+            (&mut latency, commands.first())
+        {
             if l.result.is_none() && *bumper_seq >= l.pressed_seq {
                 let cycles = field.cycle() + 1 - l.published_cycle;
                 l.result = Some((cycles, wheels.is_zero()));
@@ -203,9 +236,11 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
             }
         }
 
-        let step: Vec<Option<(u32, WheelSpeeds)>> =
-            commands.iter().map(|c| c.map(|(s, w, _)| (s, w))).collect();
+        let step: Vec<Option<Command>> = commands.iter().map(|c| c.map(|(c, _)| c)).collect();
         field.step(&step);
+        for line in field.referee.take_log() {
+            println!("robotino-sim: cycle={} {line}", field.cycle());
+        }
         let cycle = field.cycle();
         let bump_now = args.bump_at_cycle == Some(cycle);
         if bump_now {
@@ -213,7 +248,7 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
         }
         for (i, p) in ports.iter_mut().enumerate() {
             let frame = field.sense(i);
-            let bumper_seq = p.publish(&frame, cycle as u32)?;
+            let bumper_seq = p.publish(&frame, gate, cycle as u32)?;
             if bump_now && i == 0 {
                 latency = Some(BumperLatency {
                     pressed_seq: bumper_seq,
@@ -247,10 +282,18 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
         }
         let finished = (args.cycles > 0 && cycle >= args.cycles) || field.referee.game_over();
         if finished {
+            if let Some(e) = &field.referee.fault {
+                return Err(format!("the referee stopped: {e}").into());
+            }
             println!(
-                "robotino-sim: done cycles={cycle} score={} wall_ms={}",
+                "robotino-sim: done cycles={cycle} game_time_s={:.1} score={} wall_ms={}",
+                field.referee.clock_s(),
                 field.referee.score(),
                 start.elapsed().as_millis()
+            );
+            println!(
+                "robotino-sim: referee engine {:?}",
+                field.referee.engine_stats()
             );
             return Ok(());
         }

@@ -184,6 +184,17 @@ impl DriveTo {
 const STOP_WITHIN_M: f32 = 0.07;
 
 /// A point `distance_m` behind a pose (to back away from a machine).
+/// Where to back away to after working a station: the longest back-off (up to
+/// [`BACK_OFF_M`]) that keeps the robot's radius clear of walls and machines, or `None`
+/// when there is no room behind (between two machine rows the lane is narrow).
+fn leave_pose(pose: Pose2, t: &DriveTuning) -> Option<Pose2> {
+    let clearance = t.robot_radius_m + 0.01;
+    [BACK_OFF_M, BACK_OFF_M / 2.0, BACK_OFF_M / 5.0]
+        .into_iter()
+        .map(|d| backed_off(pose, d))
+        .find(|to| planner::segment_is_free((pose.x_m, pose.y_m), (to.x_m, to.y_m), clearance))
+}
+
 fn backed_off(pose: Pose2, distance_m: f32) -> Pose2 {
     Pose2::new(
         pose.x_m - distance_m * pose.phi_rad.cos(),
@@ -205,6 +216,12 @@ const BACK_OFF_M: f32 = 0.1;
 
 #[derive(Debug, Clone)]
 enum Phase {
+    /// Letting go of a puck the agent does not want (counting cycles); then `then` starts,
+    /// planned from wherever the robot is (`None`: the release was the whole skill).
+    Release {
+        waited: u32,
+        then: Option<Pose2>,
+    },
     Approach(DriveTo),
     /// Waiting at the station for the world to react, counting cycles.
     Wait(u32),
@@ -223,28 +240,50 @@ pub struct Skill {
 }
 
 impl Skill {
-    /// Starts a skill; FAILED at once when the request makes no sense now.
+    /// Starts a skill; FAILED at once when the request makes no sense now. A robot asked to
+    /// fetch a puck while it still holds one (the agent believes that puck lost after a
+    /// failure) first releases it.
     pub fn start(
         request: SkillRequest,
         p: &Perceived,
         t: &DriveTuning,
     ) -> Result<Self, FailReason> {
         let goal = match request {
-            SkillRequest::GetS0 if p.has_puck => return Err(FailReason::InvalidRequest),
-            SkillRequest::BringPuckTo(_) | SkillRequest::DeliverTo(_) if !p.has_puck => {
+            SkillRequest::BringPuckTo(_) | SkillRequest::DeliverTo(_) | SkillRequest::Discard
+                if !p.has_puck =>
+            {
                 return Err(FailReason::InvalidRequest)
             }
-            SkillRequest::GetS0 => input_storage_pose_for(t.robot_number),
-            SkillRequest::BringPuckTo(m) => machine_approach_pose(m),
-            SkillRequest::DeliverTo(g) => gate_pose(g),
+            SkillRequest::Discard => None,
+            SkillRequest::GetS0 => Some(input_storage_pose_for(t.robot_number)),
+            SkillRequest::BringPuckTo(m) => Some(machine_approach_pose(m)),
+            SkillRequest::DeliverTo(g) => Some(gate_pose(g)),
         };
-        let drive = DriveTo::plan(p.pose, goal, t).ok_or(FailReason::DriveFailed)?;
+        let phase = match goal {
+            Some(goal) if !(request == SkillRequest::GetS0 && p.has_puck) => {
+                Phase::Approach(DriveTo::plan(p.pose, goal, t).ok_or(FailReason::DriveFailed)?)
+            }
+            then => Phase::Release { waited: 0, then },
+        };
         Ok(Self {
             request,
-            phase: Phase::Approach(drive),
+            phase,
             light_before: None,
             light_changed: false,
         })
+    }
+
+    /// True while the skill asks the drive to let go of the puck.
+    pub fn releasing(&self) -> bool {
+        matches!(self.phase, Phase::Release { .. })
+    }
+
+    /// What the skill perceived, once it is only leaving the station: the work is done.
+    pub fn done_perception(&self) -> Option<Perception> {
+        match self.phase {
+            Phase::Leave(_, p) => Some(p),
+            _ => None,
+        }
     }
 
     pub fn request(&self) -> SkillRequest {
@@ -254,6 +293,28 @@ impl Skill {
     /// One cycle: the twist the skill wants and its outcome.
     pub fn step(&mut self, p: &Perceived, t: &DriveTuning) -> (Twist, SkillOutcome) {
         match &mut self.phase {
+            Phase::Release { waited, then } => {
+                *waited += 1;
+                if p.has_puck {
+                    if *waited >= WAIT_CYCLES {
+                        return (Twist::ZERO, SkillOutcome::Failed(FailReason::DriveFailed));
+                    }
+                    return (Twist::ZERO, SkillOutcome::Running);
+                }
+                self.phase = match then {
+                    Some(goal) => match DriveTo::plan(p.pose, *goal, t) {
+                        Some(drive) => Phase::Approach(drive),
+                        None => {
+                            return (Twist::ZERO, SkillOutcome::Failed(FailReason::DriveFailed))
+                        }
+                    },
+                    None => match leave_pose(p.pose, t) {
+                        Some(goal) => Phase::Leave(DriveTo::straight(goal), Perception::Released),
+                        None => return (Twist::ZERO, SkillOutcome::Final(Perception::Released)),
+                    },
+                };
+                (Twist::ZERO, SkillOutcome::Running)
+            }
             Phase::Approach(drive) => match drive.step(p, t) {
                 DriveStep::Driving(tw) => {
                     if matches!(
@@ -286,11 +347,14 @@ impl Skill {
                 *cycles += 1;
                 let waited = *cycles;
                 match self.react(p, waited) {
-                    Ok(Some(perception)) => {
-                        let leave = DriveTo::straight(backed_off(p.pose, BACK_OFF_M));
-                        self.phase = Phase::Leave(leave, perception);
-                        (Twist::ZERO, SkillOutcome::Running)
-                    }
+                    Ok(Some(perception)) => match leave_pose(p.pose, t) {
+                        Some(goal) => {
+                            self.phase = Phase::Leave(DriveTo::straight(goal), perception);
+                            (Twist::ZERO, SkillOutcome::Running)
+                        }
+                        // No room behind: the work is done, stay where we are.
+                        None => (Twist::ZERO, SkillOutcome::Final(perception)),
+                    },
                     Ok(None) => (Twist::ZERO, SkillOutcome::Running),
                     Err(r) => (Twist::ZERO, SkillOutcome::Failed(r)),
                 }
@@ -314,6 +378,8 @@ impl Skill {
                 (false, true) => Err(FailReason::StorageEmpty),
                 (false, false) => Ok(None),
             },
+            // Discard never waits at a station (it releases in place).
+            SkillRequest::Discard => Ok(Some(Perception::Released)),
             SkillRequest::DeliverTo(_) => match (p.has_puck, timed_out) {
                 (false, _) => Ok(Some(Perception::Delivered)),
                 (true, true) => Err(FailReason::DriveFailed),
@@ -343,6 +409,11 @@ impl Skill {
                     }
                     (Some(l), _) if changed && l != LightSignal::Yellow => {
                         Ok(Some(Perception::LightSeen(l)))
+                    }
+                    // Flashing before and after, puck still held: a wrong input again (the
+                    // light had no way to change).
+                    (Some(LightSignal::YellowFlashing), true) if waited >= WAIT_CYCLES => {
+                        Ok(Some(Perception::LightSeen(LightSignal::YellowFlashing)))
                     }
                     // Nothing happened at all: the machine did not react to the puck.
                     _ if !changed && waited >= WAIT_CYCLES => Ok(Some(Perception::LightUnchanged)),
@@ -485,10 +556,52 @@ mod tests {
             run(SkillRequest::GetS0, start, |_| {}),
             SkillOutcome::Failed(FailReason::StorageEmpty)
         );
+        // Holding a puck the drive never lets go of: the release times out.
         let holding = perceived(Pose2::new(1.0, 0.6, 0.0), true);
         assert_eq!(
             run(SkillRequest::GetS0, holding, |_| {}),
-            SkillOutcome::Failed(FailReason::InvalidRequest)
+            SkillOutcome::Failed(FailReason::DriveFailed)
+        );
+    }
+
+    #[test]
+    fn get_s0_releases_an_unwanted_puck_first_and_discard_releases_in_place() {
+        let t = DriveTuning::default();
+        let mut p = perceived(Pose2::new(1.0, 0.6, 0.0), true);
+        let mut skill =
+            Skill::start(SkillRequest::GetS0, &p, &t).unwrap_or_else(|r| panic!("{r:?}"));
+        assert!(skill.releasing());
+        assert_eq!(skill.step(&p, &t), (Twist::ZERO, SkillOutcome::Running));
+        p.has_puck = false;
+        let _ = skill.step(&p, &t);
+        assert!(
+            !skill.releasing(),
+            "drives to the storage once the puck is gone"
+        );
+        let (tw, outcome) = skill.step(&p, &t);
+        assert_eq!(outcome, SkillOutcome::Running);
+        assert_ne!(tw, Twist::ZERO);
+
+        let mut p = perceived(Pose2::new(1.0, 0.6, 0.0), true);
+        let mut discard =
+            Skill::start(SkillRequest::Discard, &p, &t).unwrap_or_else(|r| panic!("{r:?}"));
+        assert!(discard.releasing());
+        let _ = discard.step(&p, &t);
+        p.has_puck = false;
+        let mut outcome = SkillOutcome::Running;
+        for _ in 0..100 {
+            let (tw, o) = discard.step(&p, &t);
+            outcome = o;
+            if o.is_terminal() {
+                break;
+            }
+            p.pose = integrate(p.pose, tw);
+        }
+        assert_eq!(outcome, SkillOutcome::Final(Perception::Released));
+        let empty = perceived(Pose2::new(1.0, 0.6, 0.0), false);
+        assert_eq!(
+            Skill::start(SkillRequest::Discard, &empty, &t).err(),
+            Some(FailReason::InvalidRequest)
         );
     }
 

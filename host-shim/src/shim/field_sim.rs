@@ -69,6 +69,25 @@ pub struct SensorFrame {
     pub light: Option<(MachineId, LightSignal)>,
 }
 
+/// One motor command as the drive driver received it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Command {
+    pub seq: u32,
+    pub wheels: WheelSpeeds,
+    /// Let go of the puck in front of the robot.
+    pub release: bool,
+}
+
+impl Command {
+    pub fn drive(seq: u32, wheels: WheelSpeeds) -> Self {
+        Self {
+            seq,
+            wheels,
+            release: false,
+        }
+    }
+}
+
 /// One simulated robot.
 #[derive(Debug, Clone)]
 pub struct SimRobot {
@@ -160,29 +179,35 @@ impl<R: Referee> FieldSim<R> {
         self.cycle
     }
 
-    /// Advances one cycle. `commands[i]` is robot i+1's newest motor command with its
-    /// sequence number (`None`: never received). A command counts as fresh when its sequence
-    /// number changed; after `motor_deadline_cycles` cycles without one the wheels stop.
-    pub fn step(&mut self, commands: &[Option<(u32, WheelSpeeds)>]) {
+    /// Advances one cycle. `commands[i]` is robot i+1's newest motor command (`None`: never
+    /// received). A command counts as fresh when its sequence number changed; after
+    /// `motor_deadline_cycles` cycles without one the wheels stop.
+    pub fn step(&mut self, commands: &[Option<Command>]) {
         self.cycle += 1;
         self.referee.tick(self.dt_s);
         for i in 0..self.robots.len() {
             let command = commands.get(i).copied().flatten();
             self.apply_command(i, command);
+            if command.is_some_and(|c| c.release) {
+                let r = &mut self.robots[i];
+                if let Some(puck) = r.held.take() {
+                    self.referee.discard(r.number, puck);
+                }
+            }
             self.move_robot(i);
             self.sense_motion(i);
             self.work_stations(i);
         }
     }
 
-    fn apply_command(&mut self, i: usize, command: Option<(u32, WheelSpeeds)>) {
+    fn apply_command(&mut self, i: usize, command: Option<Command>) {
         let deadline = self.motor_deadline_cycles;
         let r = &mut self.robots[i];
         match command {
-            Some((seq, wheels)) if Some(seq) != r.last_command_seq => {
-                r.last_command_seq = Some(seq);
+            Some(c) if Some(c.seq) != r.last_command_seq => {
+                r.last_command_seq = Some(c.seq);
                 r.cycles_without_command = 0;
-                r.applied = wheels;
+                r.applied = c.wheels;
             }
             _ => {
                 r.cycles_without_command = r.cycles_without_command.saturating_add(1);
@@ -400,9 +425,11 @@ fn ray_box(x: f32, y: f32, dx: f32, dy: f32, x0: f32, y0: f32, x1: f32, y1: f32)
 
 #[cfg(test)]
 mod tests {
-    use super::super::referee::StandInReferee;
+    use super::super::referee::ClipsReferee;
+    use super::super::rule_engine::with_engine_stack;
     use super::*;
     use hal::Twist;
+    use rules::setup::{GameSetup, MachineType};
 
     fn quiet_config() -> Config {
         let mut c = Config::default();
@@ -412,8 +439,18 @@ mod tests {
         c
     }
 
-    fn sim() -> FieldSim<StandInReferee> {
-        FieldSim::new(&quiet_config(), 1, StandInReferee::new(1, 20, 900.0))
+    const SEED: u64 = 1;
+
+    /// A field with the CLIPS referee; call on a thread from [`with_engine_stack`].
+    fn sim() -> FieldSim<ClipsReferee> {
+        let referee =
+            ClipsReferee::new(&GameSetup::for_seed(SEED)).unwrap_or_else(|e| panic!("{e}"));
+        FieldSim::new(&quiet_config(), 1, referee)
+    }
+
+    /// Runs a test body on a thread big enough for the engine.
+    fn on_engine_stack(f: impl FnOnce() + Send + 'static) {
+        with_engine_stack(f).unwrap_or_else(|e| panic!("{e}"));
     }
 
     fn forward(speed: f32) -> WheelSpeeds {
@@ -422,97 +459,122 @@ mod tests {
 
     #[test]
     fn commands_move_the_robot_and_odometry_follows() {
-        let mut s = sim();
-        for seq in 1..=15 {
-            s.step(&[Some((seq, forward(0.3)))]);
-        }
-        let r = &s.robots[0];
-        // Facing +y at 0.3 m/s for one second from (1.0, 0.8).
-        assert!((r.true_pose.y_m - 1.1).abs() < 1e-3, "{:?}", r.true_pose);
-        let f = s.sense(0);
-        assert!((f.odometry.y_m - 1.1).abs() < 1e-3, "{:?}", f.odometry);
-        assert!(!f.bumper);
+        on_engine_stack(|| {
+            let mut s = sim();
+            for seq in 1..=15 {
+                s.step(&[Some(Command::drive(seq, forward(0.3)))]);
+            }
+            let r = &s.robots[0];
+            // Facing +y at 0.3 m/s for one second from (1.0, 0.8).
+            assert!((r.true_pose.y_m - 1.1).abs() < 1e-3, "{:?}", r.true_pose);
+            let f = s.sense(0);
+            assert!((f.odometry.y_m - 1.1).abs() < 1e-3, "{:?}", f.odometry);
+            assert!(!f.bumper);
+        });
     }
 
     #[test]
     fn dead_man_stops_the_wheels_after_the_deadline() {
-        let mut s = sim();
-        s.step(&[Some((1, forward(0.2)))]);
-        // The same command (same sequence number) is not fresh.
-        for missed in 1..=3u32 {
-            s.step(&[Some((1, forward(0.2)))]);
-            assert_eq!(
-                s.robots[0].wheels().is_zero(),
-                missed >= 3,
-                "missed {missed}"
-            );
-        }
-        // A fresh command drives again.
-        s.step(&[Some((2, forward(0.2)))]);
-        assert!(!s.robots[0].wheels().is_zero());
+        on_engine_stack(|| {
+            let mut s = sim();
+            s.step(&[Some(Command::drive(1, forward(0.2)))]);
+            // The same command (same sequence number) is not fresh.
+            for missed in 1..=3u32 {
+                s.step(&[Some(Command::drive(1, forward(0.2)))]);
+                assert_eq!(
+                    s.robots[0].wheels().is_zero(),
+                    missed >= 3,
+                    "missed {missed}"
+                );
+            }
+            // A fresh command drives again.
+            s.step(&[Some(Command::drive(2, forward(0.2)))]);
+            assert!(!s.robots[0].wheels().is_zero());
+        });
     }
 
     #[test]
     fn driving_into_a_machine_presses_the_bumper_and_stops() {
-        let mut s = sim();
-        // Robot 1 starts at (1.0, 0.8) facing +y; M3's square spans x 0.26..0.86 and
-        // y 2.5..3.1, so driving straight ahead clips its corner.
-        let mut bumped_at = None;
-        for seq in 1..=100 {
-            s.step(&[Some((seq, forward(0.4)))]);
-            if s.robots[0].bumper() {
-                bumped_at = Some(seq);
-                break;
+        on_engine_stack(|| {
+            let mut s = sim();
+            // Robot 1 starts at (1.0, 0.8) facing +y; M3's square spans x 0.26..0.86 and
+            // y 2.5..3.1, so driving straight ahead clips its corner.
+            let mut bumped_at = None;
+            for seq in 1..=100 {
+                s.step(&[Some(Command::drive(seq, forward(0.4)))]);
+                if s.robots[0].bumper() {
+                    bumped_at = Some(seq);
+                    break;
+                }
             }
-        }
-        assert!(bumped_at.is_some(), "{:?}", s.robots[0].true_pose);
-        let f = s.sense(0);
-        assert!(f.bumper);
-        // The robot stopped outside the machine and odometry saw no motion in that cycle.
-        let p = s.robots[0].true_pose;
-        assert!(p.y_m < 2.5 && p.y_m > 2.3, "{p:?}");
-        assert!(f.measured.is_zero());
+            assert!(bumped_at.is_some(), "{:?}", s.robots[0].true_pose);
+            let f = s.sense(0);
+            assert!(f.bumper);
+            // The robot stopped outside the machine and odometry saw no motion in that cycle.
+            let p = s.robots[0].true_pose;
+            assert!(p.y_m < 2.5 && p.y_m > 2.3, "{p:?}");
+            assert!(f.measured.is_zero());
+        });
     }
 
     #[test]
     fn ir_sees_a_wall_at_the_right_distance() {
-        let mut s = sim();
-        // Put the robot 0.2 m + radius from the bottom wall, facing it.
-        s.robots[0].true_pose = Pose2::new(3.0, 0.185 + 0.2, -core::f32::consts::FRAC_PI_2);
-        let f = s.sense(0);
-        assert!((f.ir.distances_m[0] - 0.2).abs() < 1e-4, "{:?}", f.ir);
-        // Sensor 4 (160 deg) looks into the open field: nothing within range.
-        assert_eq!(f.ir.distances_m[4], 0.0);
+        on_engine_stack(|| {
+            let mut s = sim();
+            // Put the robot 0.2 m + radius from the bottom wall, facing it.
+            s.robots[0].true_pose = Pose2::new(3.0, 0.185 + 0.2, -core::f32::consts::FRAC_PI_2);
+            let f = s.sense(0);
+            assert!((f.ir.distances_m[0] - 0.2).abs() < 1e-4, "{:?}", f.ir);
+            // Sensor 4 (160 deg) looks into the open field: nothing within range.
+            assert_eq!(f.ir.distances_m[4], 0.0);
+        });
     }
 
     #[test]
     fn pucks_flow_through_storage_machine_and_gate() {
-        let mut s = sim();
-        s.robots[0].true_pose = input_storage_pose_for(1);
-        s.step(&[None]);
-        assert_eq!(s.robots[0].held, Some(PuckKind::S0));
-        // Standing still does not take a second puck.
-        s.step(&[None]);
-        assert_eq!(s.robots[0].held, Some(PuckKind::S0));
-        let t1 = MachineId::all()
-            .find(|&m| s.referee.machine_type(m) == super::super::referee::MachineType::T1)
-            .unwrap_or_else(|| panic!());
-        s.robots[0].true_pose = machine_approach_pose(t1);
-        s.step(&[None]);
-        assert_eq!(s.robots[0].held, Some(PuckKind::S1));
-        // Processing (3 s for T1): yellow while the robot already holds the output.
-        let f = s.sense(0);
-        assert_eq!(f.light, Some((t1, LightSignal::Yellow)));
-        assert!(f.has_puck);
-        for _ in 0..46 {
+        on_engine_stack(|| {
+            let mut s = sim();
+            s.robots[0].true_pose = input_storage_pose_for(1);
             s.step(&[None]);
-        }
-        assert_eq!(s.sense(0).light, Some((t1, LightSignal::Green)));
-        assert_eq!(s.robots[0].held, Some(PuckKind::S1));
-        let g = GateId::new(1).unwrap_or_else(|| panic!());
-        s.robots[0].true_pose = gate_pose(g);
-        s.step(&[None]);
-        assert_eq!(s.robots[0].held, None);
+            assert_eq!(s.robots[0].held, Some(PuckKind::S0));
+            // Standing still does not take a second puck.
+            s.step(&[None]);
+            assert_eq!(s.robots[0].held, Some(PuckKind::S0));
+            let setup = GameSetup::for_seed(SEED);
+            let t1 = MachineId::all()
+                .find(|&m| setup.assignment[m.index()] == MachineType::T1)
+                .unwrap_or_else(|| panic!());
+            s.robots[0].true_pose = machine_approach_pose(t1);
+            s.step(&[None]);
+            assert_eq!(s.robots[0].held, Some(PuckKind::S1));
+            // Processing (5.5 s for T1): yellow while the robot already holds the output.
+            let f = s.sense(0);
+            assert_eq!(f.light, Some((t1, LightSignal::Yellow)));
+            assert!(f.has_puck);
+            for _ in 0..15 * 6 {
+                s.step(&[None]);
+            }
+            assert_eq!(s.sense(0).light, Some((t1, LightSignal::Green)));
+            assert_eq!(s.robots[0].held, Some(PuckKind::S1));
+            // Released on the field: the referee counts it discarded.
+            let release = Command {
+                seq: 1,
+                wheels: WheelSpeeds::ZERO,
+                release: true,
+            };
+            s.step(&[Some(release)]);
+            assert_eq!(s.robots[0].held, None);
+            let log = s.referee.take_log();
+            assert!(log.last().is_some_and(|l| l.contains("discard")), "{log:?}");
+            // The next S0 into the gate: it takes any puck.
+            s.robots[0].true_pose = input_storage_pose_for(1);
+            s.step(&[None]);
+            assert_eq!(s.robots[0].held, Some(PuckKind::S0));
+            let g = GateId::new(1).unwrap_or_else(|| panic!());
+            s.robots[0].true_pose = gate_pose(g);
+            s.step(&[None]);
+            assert_eq!(s.robots[0].held, None);
+        });
     }
 
     #[test]

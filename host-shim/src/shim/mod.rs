@@ -1,13 +1,15 @@
 //! The robot's body over iceoryx2: payloads, configuration, transport, the safety layer,
-//! the behaviour layer (skills) and the simulated field.
+//! the behaviour layer (skills), the agent's rule engine and the simulated field with the
+//! CLIPS referee.
 
+pub mod agent;
 pub mod behaviour;
 pub mod config;
 pub mod field_sim;
 pub mod payloads;
 pub mod planner;
 pub mod referee;
+pub mod rule_engine;
 pub mod safety;
-pub mod scripted;
 pub mod team;
 pub mod transport;

@@ -227,6 +227,8 @@ impl OdometryPayload {
 
 /// The motor command. `bumper_seq` names the newest bumper sample the sender had read when
 /// it computed the command, so the driver can measure bumper-to-stop latency in cycles.
+/// `release_puck` = 1 asks the drive to let go of the puck in front of the robot (the
+/// behaviour layer's discard).
 #[derive(Debug, Clone, Copy, PartialEq, ZeroCopySend)]
 #[type_name("robotino::MotorCommand")]
 #[repr(C)]
@@ -234,6 +236,8 @@ pub struct MotorCommandPayload {
     pub seq: u32,
     pub bumper_seq: u32,
     pub rpm: [f32; 3],
+    pub release_puck: u8,
+    pub reserved: [u8; 3],
 }
 
 impl MotorCommandPayload {
@@ -242,19 +246,36 @@ impl MotorCommandPayload {
             seq,
             bumper_seq,
             rpm: wheels.rpm,
+            release_puck: 0,
+            reserved: [0; 3],
         }
     }
 
+    /// The same command, asking (or not) to release the puck.
+    pub fn with_release(mut self, release: bool) -> Self {
+        self.release_puck = u8::from(release);
+        self
+    }
+
+    /// The wheel speeds; every field is validated (an unknown release flag is an error too).
     pub fn decode(&self) -> Result<WheelSpeeds, DecodeError> {
         let mut wheels = WheelSpeeds::ZERO;
         for (out, &r) in wheels.rpm.iter_mut().zip(self.rpm.iter()) {
             *out = within(r, -MAX_WIRE_RPM, MAX_WIRE_RPM, "rpm")?;
         }
+        flag(self.release_puck, "release_puck")?;
         Ok(wheels)
+    }
+
+    /// Whether the command asks to release the puck.
+    pub fn release(&self) -> Result<bool, DecodeError> {
+        flag(self.release_puck, "release_puck")
     }
 }
 
 /// The light of the machine in front of the robot; `machine` 0 = none in view.
+/// `active_gate` is the delivery gate whose light is on (1..=3; 0 = not known yet): the
+/// gate lights are visible from the whole field.
 #[derive(Debug, Clone, Copy, PartialEq, ZeroCopySend)]
 #[type_name("robotino::LightSignal")]
 #[repr(C)]
@@ -262,7 +283,8 @@ pub struct LightPayload {
     pub seq: u32,
     pub machine: u8,
     pub light: u8,
-    pub reserved: [u8; 2],
+    pub active_gate: u8,
+    pub reserved: u8,
 }
 
 impl LightPayload {
@@ -272,11 +294,20 @@ impl LightPayload {
             seq,
             machine,
             light,
-            reserved: [0; 2],
+            active_gate: 0,
+            reserved: 0,
         }
     }
 
+    /// The same sample with the active delivery gate.
+    pub fn with_gate(mut self, gate: Option<GateId>) -> Self {
+        self.active_gate = gate.map_or(0, GateId::number);
+        self
+    }
+
+    /// The machine light in view; every field is validated (the gate code too).
     pub fn decode(&self) -> Result<Option<(MachineId, LightSignal)>, DecodeError> {
+        self.active_gate()?;
         if self.machine == 0 {
             return Ok(None);
         }
@@ -285,6 +316,17 @@ impl LightPayload {
             code: self.light,
         })?;
         Ok(Some((machine(self.machine)?, light)))
+    }
+
+    /// The active delivery gate, when the sender knows it.
+    pub fn active_gate(&self) -> Result<Option<GateId>, DecodeError> {
+        match self.active_gate {
+            0 => Ok(None),
+            code => GateId::new(code).map(Some).ok_or(DecodeError::UnknownCode {
+                field: "active_gate",
+                code,
+            }),
+        }
     }
 }
 
@@ -315,18 +357,21 @@ impl PuckPayload {
 const SKILL_GET_S0: u8 = 1;
 const SKILL_BRING_PUCK: u8 = 2;
 const SKILL_DELIVER: u8 = 3;
+const SKILL_DISCARD: u8 = 4;
 
 fn encode_request(request: SkillRequest) -> (u8, u8) {
     match request {
         SkillRequest::GetS0 => (SKILL_GET_S0, 0),
         SkillRequest::BringPuckTo(m) => (SKILL_BRING_PUCK, m.number()),
         SkillRequest::DeliverTo(g) => (SKILL_DELIVER, g.number()),
+        SkillRequest::Discard => (SKILL_DISCARD, 0),
     }
 }
 
 fn decode_request(kind: u8, target: u8) -> Result<SkillRequest, DecodeError> {
     match kind {
         SKILL_GET_S0 => Ok(SkillRequest::GetS0),
+        SKILL_DISCARD => Ok(SkillRequest::Discard),
         SKILL_BRING_PUCK => Ok(SkillRequest::BringPuckTo(machine(target)?)),
         SKILL_DELIVER => {
             GateId::new(target)
@@ -380,6 +425,7 @@ const PERCEPTION_GOT_S0: u8 = 1;
 const PERCEPTION_LIGHT: u8 = 2;
 const PERCEPTION_LIGHT_UNCHANGED: u8 = 3;
 const PERCEPTION_DELIVERED: u8 = 4;
+const PERCEPTION_RELEASED: u8 = 5;
 
 /// A skill's state for monitoring. `detail` is the perception code (FINAL) or the fail
 /// reason (FAILED); `light` carries the seen light for `PERCEPTION_LIGHT`.
@@ -419,6 +465,7 @@ impl SkillStatusPayload {
                 Perception::LightSeen(l) => (STATE_FINAL, PERCEPTION_LIGHT, l.code()),
                 Perception::LightUnchanged => (STATE_FINAL, PERCEPTION_LIGHT_UNCHANGED, 0),
                 Perception::Delivered => (STATE_FINAL, PERCEPTION_DELIVERED, 0),
+                Perception::Released => (STATE_FINAL, PERCEPTION_RELEASED, 0),
             },
         };
         Self {
@@ -448,6 +495,7 @@ impl SkillStatusPayload {
                 ),
                 PERCEPTION_LIGHT_UNCHANGED => Perception::LightUnchanged,
                 PERCEPTION_DELIVERED => Perception::Delivered,
+                PERCEPTION_RELEASED => Perception::Released,
                 code => return Err(unknown("detail", code)),
             }),
             code => return Err(unknown("state", code)),
@@ -694,6 +742,35 @@ mod tests {
         assert_eq!(bad.decode(), Err(DecodeError::NotFinite("rpm")));
         bad.rpm[1] = 1e9;
         assert_eq!(bad.decode(), Err(DecodeError::OutOfRange("rpm")));
+        let release = cmd.with_release(true);
+        assert_eq!(release.release(), Ok(true));
+        assert_eq!(cmd.release(), Ok(false));
+        let mut bad = release;
+        bad.release_puck = 3;
+        assert!(matches!(
+            bad.decode(),
+            Err(DecodeError::UnknownCode {
+                field: "release_puck",
+                code: 3
+            })
+        ));
+    }
+
+    #[test]
+    fn light_carries_the_active_gate() {
+        let g = GateId::new(2);
+        let p = LightPayload::encode(1, None).with_gate(g);
+        assert_eq!(p.active_gate(), Ok(g));
+        assert_eq!(LightPayload::encode(1, None).active_gate(), Ok(None));
+        let mut bad = p;
+        bad.active_gate = 4;
+        assert!(matches!(
+            bad.decode(),
+            Err(DecodeError::UnknownCode {
+                field: "active_gate",
+                code: 4
+            })
+        ));
     }
 
     #[test]
@@ -724,6 +801,7 @@ mod tests {
             SkillRequest::GetS0,
             SkillRequest::BringPuckTo(m(10)),
             SkillRequest::DeliverTo(GateId::new(2).unwrap_or_else(|| panic!("gate"))),
+            SkillRequest::Discard,
         ] {
             assert_eq!(
                 SkillRequestPayload::encode(1, 2, req).decode(),
@@ -736,6 +814,7 @@ mod tests {
                 SkillOutcome::Final(Perception::LightSeen(LightSignal::Yellow)),
                 SkillOutcome::Final(Perception::LightUnchanged),
                 SkillOutcome::Final(Perception::Delivered),
+                SkillOutcome::Final(Perception::Released),
             ] {
                 let s = SkillStatus {
                     request_seq: 5,

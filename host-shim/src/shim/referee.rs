@@ -1,10 +1,17 @@
-//! Where the game plugs into the simulated field. The real referee is the rules issue's
-//! CLIPS program run by our engine; [`Referee`] is the interface it implements.
-//! [`StandInReferee`] is a deliberately small placeholder (instant processing, one active
-//! gate) so the field can be exercised before that lands.
+//! Where the game plugs into the simulated field. [`Referee`] is what the field asks when a
+//! robot works a station; [`ClipsReferee`] answers with the rules issue's CLIPS referee
+//! (`rules/referee.clp`: hidden types, inputs, outputs, supply, clock, score) run by our
+//! engine. Rust moves the robots; it does not re-implement the game: the referee's
+//! `rf-result` facts decide what a robot holds afterwards and which light it sees.
+//!
+//! The one thing Rust adds is time on the field: the referee answers at once and names the
+//! processing time (`wait`); the field shows the machine yellow for that long before it
+//! shows the referee's light (green), as a real machine would.
 
+use super::rule_engine::{Rules, RulesError};
 use hal::field::{GateId, MachineId, MACHINE_COUNT};
 use hal::LightSignal;
+use rules::setup::GameSetup;
 
 /// The kinds of puck in the 2012 game.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -13,7 +20,23 @@ pub enum PuckKind {
     S1,
     S2,
     P,
-    Junk,
+}
+
+impl PuckKind {
+    pub const fn symbol(self) -> &'static str {
+        match self {
+            Self::S0 => "S0",
+            Self::S1 => "S1",
+            Self::S2 => "S2",
+            Self::P => "P",
+        }
+    }
+
+    pub fn from_symbol(s: &str) -> Option<Self> {
+        [Self::S0, Self::S1, Self::S2, Self::P]
+            .into_iter()
+            .find(|k| k.symbol() == s)
+    }
 }
 
 /// What happened to a puck put into a machine.
@@ -21,9 +44,9 @@ pub enum PuckKind {
 pub enum Placement {
     /// Taken as an input; more are needed (light yellow), the robot holds nothing.
     Consumed,
-    /// Wrong input (light yellow-flashing): the robot keeps its puck.
+    /// Wrong input (light yellow-flashing) or too late: the robot keeps its puck.
     Rejected,
-    /// The cycle completed (light green): the robot now holds the output.
+    /// The cycle completed (light green once processed): the robot holds the output.
     Produced(PuckKind),
 }
 
@@ -35,166 +58,253 @@ pub trait Referee {
     fn place_at_machine(&mut self, robot: u8, machine: MachineId, puck: PuckKind) -> Placement;
     /// A robot drives `puck` into a delivery gate; `true` when the gate took it.
     fn deliver(&mut self, robot: u8, gate: GateId, puck: PuckKind) -> bool;
+    /// A robot lets go of `puck` on the field (the agent's discard).
+    fn discard(&mut self, robot: u8, puck: PuckKind);
     /// The light a camera would see at `machine` now.
     fn light(&self, machine: MachineId) -> LightSignal;
+    /// The delivery gate whose light is on.
+    fn active_gate(&self) -> Option<GateId>;
     /// Advances the game clock by one cycle.
     fn tick(&mut self, dt_s: f32);
     fn score(&self) -> i32;
     fn game_over(&self) -> bool;
 }
 
-/// Machine type T1..T3 and what it needs.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum MachineType {
-    T1,
-    T2,
-    T3,
+/// One answer of the CLIPS referee.
+#[derive(Debug, Clone, PartialEq)]
+struct RfResult {
+    status: String,
+    light: Option<LightSignal>,
+    puck: Option<PuckKind>,
+    wait_s: f64,
 }
 
-impl MachineType {
-    fn inputs(self) -> &'static [PuckKind] {
-        match self {
-            Self::T1 => &[PuckKind::S0],
-            Self::T2 => &[PuckKind::S0, PuckKind::S1],
-            Self::T3 => &[PuckKind::S0, PuckKind::S1, PuckKind::S2],
-        }
-    }
-
-    /// The rulebook's shortest processing time after the last input.
-    fn processing_s(self) -> f32 {
-        match self {
-            Self::T1 => 3.0,
-            Self::T2 => 15.0,
-            Self::T3 => 40.0,
-        }
-    }
-
-    fn output(self) -> PuckKind {
-        match self {
-            Self::T1 => PuckKind::S1,
-            Self::T2 => PuckKind::S2,
-            Self::T3 => PuckKind::P,
-        }
-    }
-
-    /// 1..=3, as in the world-model payload.
-    pub fn code(self) -> u8 {
-        match self {
-            Self::T1 => 1,
-            Self::T2 => 2,
-            Self::T3 => 3,
-        }
-    }
-}
-
-/// The placeholder referee: seeded machine types (4 x T1, 3 x T2, 3 x T3), inputs taken in
-/// any order; when the last input arrives the robot holds the output at once and the light
-/// stays yellow for the processing time (the rulebook's lower bounds: 3, 15, 40 s), then
-/// turns green. Gate 1 is active; 2012 scoring.
-#[derive(Debug, Clone)]
-pub struct StandInReferee {
-    types: [MachineType; MACHINE_COUNT],
-    loaded: [Vec<PuckKind>; MACHINE_COUNT],
+/// The CLIPS referee in our engine. Build it on a thread with
+/// [`super::rule_engine::ENGINE_THREAD_STACK`].
+pub struct ClipsReferee {
+    rules: Rules,
+    clock_s: f64,
+    limit_s: Option<f64>,
+    next_action: u32,
     lights: [LightSignal; MACHINE_COUNT],
-    /// Seconds of processing left per machine; the light turns green at zero.
-    processing_left_s: [f32; MACHINE_COUNT],
-    storage_left: u32,
+    /// Seconds of processing left per machine and the light shown when it ends.
+    processing: [Option<(f32, LightSignal)>; MACHINE_COUNT],
+    gate: Option<GateId>,
     score: i32,
-    elapsed_s: f32,
-    game_length_s: f32,
+    over: bool,
+    /// The first engine error: the game stops there (reported by the sim).
+    pub fault: Option<RulesError>,
+    log: Vec<String>,
 }
 
-impl StandInReferee {
-    pub fn new(seed: u64, raw_pucks: u32, game_length_s: f32) -> Self {
-        use MachineType::*;
-        let mut types = [T1, T1, T1, T1, T2, T2, T2, T3, T3, T3];
-        // Fisher-Yates with a small LCG: the assignment is a function of the seed.
-        let mut state = seed.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1);
-        for i in (1..types.len()).rev() {
-            state = state
-                .wrapping_mul(6_364_136_223_846_793_005)
-                .wrapping_add(1_442_695_040_888_963_407);
-            let j = (state >> 33) as usize % (i + 1);
-            types.swap(i, j);
+impl ClipsReferee {
+    /// Loads `referee.clp`, asserts the setup's facts (hidden types, times, supply, gate,
+    /// clock) and lets the referee fill its defaults.
+    pub fn new(setup: &GameSetup) -> Result<Self, RulesError> {
+        let mut rules = Rules::load(&[rules::REFEREE])?;
+        rules.reset()?;
+        let mut text = String::new();
+        setup
+            .write_clips(&mut text)
+            .map_err(|e| RulesError::new("writing the setup", e))?;
+        for fact in text
+            .lines()
+            .map(str::trim)
+            .filter(|l| l.starts_with('(') && !l.starts_with("(deffacts"))
+        {
+            rules.assert(fact)?;
         }
-        Self {
-            types,
-            loaded: Default::default(),
+        rules.run()?;
+        let gate = rules
+            .ordered_symbol("active-gate")
+            .and_then(|g| g.strip_prefix('D').and_then(|n| n.parse().ok()))
+            .and_then(GateId::new);
+        let mut referee = Self {
+            rules,
+            clock_s: 0.0,
+            limit_s: setup.clock_limit_s.map(f64::from),
+            next_action: 1,
             lights: [LightSignal::Green; MACHINE_COUNT],
-            processing_left_s: [0.0; MACHINE_COUNT],
-            storage_left: raw_pucks,
+            processing: [None; MACHINE_COUNT],
+            gate,
             score: 0,
-            elapsed_s: 0.0,
-            game_length_s,
+            over: false,
+            fault: None,
+            log: Vec::new(),
+        };
+        referee.read_score();
+        Ok(referee)
+    }
+
+    /// What the referee did since the last call, one line per action.
+    pub fn take_log(&mut self) -> Vec<String> {
+        std::mem::take(&mut self.log)
+    }
+
+    /// The game time in seconds.
+    pub fn clock_s(&self) -> f64 {
+        self.clock_s
+    }
+
+    /// The engine's pool statistics (high-water marks), for the sim's closing report.
+    pub fn engine_stats(&self) -> agent_core::Stats {
+        self.rules.engine.stats()
+    }
+
+    fn read_score(&mut self) {
+        if let Some(id) = self.rules.facts_of("score").next() {
+            self.score = self
+                .rules
+                .int(id, "points")
+                .and_then(|p| i32::try_from(p).ok())
+                .unwrap_or(self.score);
+        }
+        if self.rules.facts_of("game-over").next().is_some() {
+            self.over = true;
         }
     }
 
-    pub fn machine_type(&self, machine: MachineId) -> MachineType {
-        self.types[machine.index()]
-    }
-}
-
-impl Referee for StandInReferee {
-    fn take_from_storage(&mut self, _robot: u8) -> Option<PuckKind> {
-        if self.storage_left == 0 || self.game_over() {
+    /// Sets the referee's clock to the field's time, asserts the action, runs the referee
+    /// and takes its answer.
+    fn act(&mut self, robot: u8, kind: &str, target: &str, puck: &str) -> Option<RfResult> {
+        if self.over {
             return None;
         }
-        self.storage_left -= 1;
-        Some(PuckKind::S0)
+        match self.try_act(kind, target, puck) {
+            Ok(r) => {
+                self.log.push(format!(
+                    "referee t={:.1} robot={robot} {kind} {target} {puck} -> {} light={} puck={} wait={:.1} score={}",
+                    self.clock_s,
+                    r.status,
+                    r.light.map_or("none", LightSignal::symbol),
+                    r.puck.map_or("NONE", PuckKind::symbol),
+                    r.wait_s,
+                    self.score
+                ));
+                Some(r)
+            }
+            Err(e) => {
+                self.fault = Some(e);
+                self.over = true;
+                None
+            }
+        }
     }
 
-    fn place_at_machine(&mut self, _robot: u8, machine: MachineId, puck: PuckKind) -> Placement {
-        let i = machine.index();
-        let kind = self.types[i];
-        let wanted = kind.inputs().contains(&puck) && !self.loaded[i].contains(&puck);
-        if !wanted || self.game_over() {
-            self.lights[i] = LightSignal::YellowFlashing;
-            return Placement::Rejected;
+    fn try_act(&mut self, kind: &str, target: &str, puck: &str) -> Result<RfResult, RulesError> {
+        let id = self.next_action;
+        self.next_action += 1;
+        // The field's clock is the game's: the referee judges lateness against it.
+        let clock: Vec<_> = self.rules.facts_of("game-clock").collect();
+        for c in clock {
+            let limit = self.rules.number(c, "limit").unwrap_or(900.0);
+            let enabled = self
+                .rules
+                .symbol(c, "enabled")
+                .unwrap_or_else(|| "TRUE".into());
+            self.rules.retract(c)?;
+            self.rules.assert(&format!(
+                "(game-clock (time {:.3}) (limit {limit:.3}) (enabled {enabled}))",
+                self.clock_s
+            ))?;
         }
-        self.loaded[i].push(puck);
-        if self.loaded[i].len() < kind.inputs().len() {
-            self.lights[i] = LightSignal::Yellow;
-            return Placement::Consumed;
-        }
-        self.loaded[i].clear();
-        self.lights[i] = LightSignal::Yellow;
-        self.processing_left_s[i] = kind.processing_s();
-        self.score += match kind {
-            MachineType::T1 => 0,
-            MachineType::T2 => 4,
-            MachineType::T3 => 12,
+        self.rules.assert(&format!(
+            "(rf-action (id {id}) (kind {kind}) (target {target}) (puck {puck}))"
+        ))?;
+        self.rules.run()?;
+        let answer = self
+            .rules
+            .facts_of("rf-result")
+            .find(|&f| self.rules.int(f, "id") == Some(i64::from(id)))
+            .ok_or_else(|| {
+                RulesError::new(
+                    format!("rf-action {id} {kind} {target} {puck}"),
+                    "the referee gave no rf-result",
+                )
+            })?;
+        let result = RfResult {
+            status: self.rules.symbol(answer, "status").unwrap_or_default(),
+            light: self
+                .rules
+                .symbol(answer, "light")
+                .and_then(|l| LightSignal::from_symbol(&l)),
+            puck: self
+                .rules
+                .symbol(answer, "puck")
+                .and_then(|p| PuckKind::from_symbol(&p)),
+            wait_s: self.rules.number(answer, "wait").unwrap_or(0.0),
         };
-        Placement::Produced(kind.output())
+        self.rules.retract(answer)?;
+        self.read_score();
+        Ok(result)
+    }
+}
+
+impl Referee for ClipsReferee {
+    fn take_from_storage(&mut self, robot: u8) -> Option<PuckKind> {
+        let r = self.act(robot, "get-s0", "INS", "NONE")?;
+        (r.status == "ok").then_some(r.puck).flatten()
     }
 
-    fn deliver(&mut self, _robot: u8, gate: GateId, puck: PuckKind) -> bool {
-        if gate.number() != 1 || self.game_over() {
-            return false;
+    fn place_at_machine(&mut self, robot: u8, machine: MachineId, puck: PuckKind) -> Placement {
+        let name = format!("M{}", machine.number());
+        let Some(r) = self.act(robot, "load", &name, puck.symbol()) else {
+            return Placement::Rejected;
+        };
+        let i = machine.index();
+        match (r.status.as_str(), r.light) {
+            ("ok", Some(LightSignal::Green)) => {
+                // Processing: yellow, then the referee's green.
+                self.lights[i] = LightSignal::Yellow;
+                self.processing[i] = Some((r.wait_s as f32, LightSignal::Green));
+                r.puck.map_or(Placement::Consumed, Placement::Produced)
+            }
+            ("ok", Some(LightSignal::Yellow)) => {
+                self.lights[i] = LightSignal::Yellow;
+                self.processing[i] = None;
+                Placement::Consumed
+            }
+            ("ok", Some(light)) => {
+                self.lights[i] = light;
+                self.processing[i] = None;
+                Placement::Rejected
+            }
+            // `late`: the processing would end after the clock; the game is over.
+            _ => Placement::Rejected,
         }
-        if puck == PuckKind::P {
-            self.score += 5;
-        }
-        true
+    }
+
+    fn deliver(&mut self, robot: u8, gate: GateId, puck: PuckKind) -> bool {
+        let name = format!("D{}", gate.number());
+        self.act(robot, "deliver", &name, puck.symbol())
+            .is_some_and(|r| r.status == "ok")
+    }
+
+    fn discard(&mut self, robot: u8, puck: PuckKind) {
+        let _ = self.act(robot, "discard", "FIELD", puck.symbol());
     }
 
     fn light(&self, machine: MachineId) -> LightSignal {
         self.lights[machine.index()]
     }
 
+    fn active_gate(&self) -> Option<GateId> {
+        self.gate
+    }
+
     fn tick(&mut self, dt_s: f32) {
-        self.elapsed_s += dt_s;
-        for (left, light) in self
-            .processing_left_s
-            .iter_mut()
-            .zip(self.lights.iter_mut())
-        {
-            if *left > 0.0 {
+        self.clock_s += f64::from(dt_s);
+        for (p, light) in self.processing.iter_mut().zip(self.lights.iter_mut()) {
+            if let Some((left, after)) = p {
                 *left -= dt_s;
                 if *left <= 0.0 {
-                    *left = 0.0;
-                    *light = LightSignal::Green;
+                    *light = *after;
+                    *p = None;
                 }
             }
+        }
+        if self.limit_s.is_some_and(|l| self.clock_s >= l) {
+            self.over = true;
         }
     }
 
@@ -203,69 +313,79 @@ impl Referee for StandInReferee {
     }
 
     fn game_over(&self) -> bool {
-        self.elapsed_s >= self.game_length_s
+        self.over
     }
 }
 
 #[cfg(test)]
 mod tests {
+    use super::super::rule_engine::with_engine_stack;
     use super::*;
+    use rules::setup::MachineType;
 
-    fn machine_of(r: &StandInReferee, t: MachineType) -> MachineId {
-        MachineId::all()
-            .find(|&m| r.machine_type(m) == t)
+    fn machine_of(setup: &GameSetup, t: MachineType) -> MachineId {
+        (1..=10u8)
+            .filter_map(MachineId::new)
+            .find(|m| setup.assignment[m.index()] == t)
             .unwrap_or_else(|| panic!("no {t:?}"))
     }
 
     #[test]
-    fn type_counts_follow_the_rulebook_and_depend_on_the_seed() {
-        let a = StandInReferee::new(1, 20, 900.0);
-        let b = StandInReferee::new(2, 20, 900.0);
-        let count =
-            |r: &StandInReferee, t| MachineId::all().filter(|&m| r.machine_type(m) == t).count();
-        assert_eq!(count(&a, MachineType::T1), 4);
-        assert_eq!(count(&a, MachineType::T2), 3);
-        assert_eq!(count(&a, MachineType::T3), 3);
-        assert_ne!(a.types, b.types);
+    fn the_clips_referee_plays_a_production_chain() {
+        let out = with_engine_stack(|| {
+            let setup = GameSetup::for_seed(7);
+            let mut r = ClipsReferee::new(&setup).unwrap_or_else(|e| panic!("{e}"));
+            assert_eq!(r.active_gate().map(|g| g.number()), Some(setup.active_gate));
+            let t1 = machine_of(&setup, MachineType::T1);
+            let t2 = machine_of(&setup, MachineType::T2);
+            assert_eq!(r.take_from_storage(1), Some(PuckKind::S0));
+            // A T1 turns S0 into S1: yellow while processing, then green.
+            assert_eq!(
+                r.place_at_machine(1, t1, PuckKind::S0),
+                Placement::Produced(PuckKind::S1)
+            );
+            assert_eq!(r.light(t1), LightSignal::Yellow);
+            for _ in 0..15 * 10 {
+                r.tick(1.0 / 15.0);
+            }
+            assert_eq!(r.light(t1), LightSignal::Green);
+            // An S1 is no input of a T1: flashing, the robot keeps it.
+            assert_eq!(r.place_at_machine(1, t1, PuckKind::S1), Placement::Rejected);
+            assert_eq!(r.light(t1), LightSignal::YellowFlashing);
+            // T2: S1 consumed, then S0 completes an S2 (+4).
+            assert_eq!(r.place_at_machine(1, t2, PuckKind::S1), Placement::Consumed);
+            assert_eq!(r.take_from_storage(1), Some(PuckKind::S0));
+            assert_eq!(
+                r.place_at_machine(1, t2, PuckKind::S0),
+                Placement::Produced(PuckKind::S2)
+            );
+            assert_eq!(r.score(), 4);
+            assert!(r.fault.is_none());
+            assert!(!r.game_over());
+            r.take_log().len()
+        })
+        .unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(out, 6);
     }
 
     #[test]
-    fn production_chain_scores() {
-        let mut r = StandInReferee::new(7, 20, 900.0);
-        let t1 = machine_of(&r, MachineType::T1);
-        let t2 = machine_of(&r, MachineType::T2);
-        assert_eq!(r.take_from_storage(1), Some(PuckKind::S0));
-        assert_eq!(
-            r.place_at_machine(1, t1, PuckKind::S0),
-            Placement::Produced(PuckKind::S1)
-        );
-        assert_eq!(r.light(t1), LightSignal::Yellow);
-        r.tick(2.9);
-        assert_eq!(r.light(t1), LightSignal::Yellow);
-        r.tick(0.2);
-        assert_eq!(r.light(t1), LightSignal::Green);
-        assert_eq!(r.place_at_machine(1, t2, PuckKind::S1), Placement::Consumed);
-        assert_eq!(r.light(t2), LightSignal::Yellow);
-        assert_eq!(r.place_at_machine(1, t2, PuckKind::S1), Placement::Rejected);
-        assert_eq!(r.light(t2), LightSignal::YellowFlashing);
-        assert_eq!(
-            r.place_at_machine(1, t2, PuckKind::S0),
-            Placement::Produced(PuckKind::S2)
-        );
-        assert_eq!(r.score(), 4);
-        let gate = GateId::new(1).unwrap_or_else(|| panic!());
-        assert!(r.deliver(1, gate, PuckKind::P));
-        assert_eq!(r.score(), 9);
-    }
-
-    #[test]
-    fn storage_runs_out_and_the_clock_ends_the_game() {
-        let mut r = StandInReferee::new(1, 1, 1.0);
-        assert!(r.take_from_storage(1).is_some());
-        assert!(r.take_from_storage(1).is_none());
-        r.tick(0.6);
-        assert!(!r.game_over());
-        r.tick(0.6);
-        assert!(r.game_over());
+    fn the_storage_runs_empty_and_the_clock_ends_the_game() {
+        with_engine_stack(|| {
+            let mut setup = GameSetup::for_seed(3);
+            setup.s0_supply = 1;
+            setup.clock_limit_s = Some(2);
+            let mut r = ClipsReferee::new(&setup).unwrap_or_else(|e| panic!("{e}"));
+            assert_eq!(r.take_from_storage(1), Some(PuckKind::S0));
+            assert_eq!(r.take_from_storage(1), None);
+            for _ in 0..29 {
+                r.tick(1.0 / 15.0);
+            }
+            assert!(!r.game_over());
+            for _ in 0..2 {
+                r.tick(1.0 / 15.0);
+            }
+            assert!(r.game_over());
+        })
+        .unwrap_or_else(|e| panic!("{e}"));
     }
 }

@@ -2,30 +2,10 @@
 //! updates), and claims on machines so two robots never work the same machine at once.
 //! Pure bookkeeping; `robotino-agent run` moves it over the `team/*` services.
 
-use super::payloads::{MachineBelief, LOADED_S0, LOADED_S1, LOADED_S2};
+use super::payloads::MachineBelief;
+#[cfg(test)]
+use super::payloads::LOADED_S0;
 use hal::field::{MachineId, MACHINE_COUNT};
-
-/// A puck the agent believes it carries.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Carried {
-    S0,
-    S1,
-    S2,
-    P,
-    /// An output whose kind the agent could not infer.
-    Unknown,
-}
-
-impl Carried {
-    fn loaded_bit(self) -> u8 {
-        match self {
-            Self::S0 => LOADED_S0,
-            Self::S1 => LOADED_S1,
-            Self::S2 => LOADED_S2,
-            Self::P | Self::Unknown => 0,
-        }
-    }
-}
 
 /// One machine as the team knows it.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -98,39 +78,20 @@ impl TeamView {
         }
     }
 
-    /// What placing `carried` at `m` and seeing `green` (cycle complete) or not (consumed)
-    /// tells us: updates loaded inputs and, where the inputs pin it down, the type. Returns
-    /// what the robot carries afterwards. The rules: a machine completes when it has all of
-    /// its inputs, T1 = {S0}, T2 = {S0, S1}, T3 = {S0, S1, S2}.
-    pub fn learn_from_placement(
-        &mut self,
-        m: MachineId,
-        carried: Carried,
-        green: bool,
-    ) -> Option<Carried> {
+    /// Our own agent's view of machine `m` (its rules' definite type, 1..=3, and the inputs
+    /// it believes loaded). Returns `true` when the team did not know the type before: the
+    /// robot found it out and should tell the others.
+    pub fn record_own(&mut self, m: MachineId, machine_type: Option<u8>, loaded: u8) -> bool {
         let me = self.me;
         let k = &mut self.machines[m.index()];
-        let inputs = k.loaded | carried.loaded_bit();
-        if !green {
-            k.loaded = inputs;
-            return None;
+        k.loaded = loaded;
+        match (machine_type, k.machine_type) {
+            (Some(t), None) => {
+                k.machine_type = Some((t, me));
+                true
+            }
+            _ => false,
         }
-        k.loaded = 0;
-        let inferred = match inputs {
-            x if x == LOADED_S0 => Some(1),
-            x if x == LOADED_S0 | LOADED_S1 => Some(2),
-            x if x == LOADED_S0 | LOADED_S1 | LOADED_S2 => Some(3),
-            _ => None,
-        };
-        if k.machine_type.is_none() {
-            k.machine_type = inferred.map(|t| (t, me));
-        }
-        Some(match k.machine_type.map(|(t, _)| t) {
-            Some(1) => Carried::S1,
-            Some(2) => Carried::S2,
-            Some(3) => Carried::P,
-            _ => Carried::Unknown,
-        })
     }
 
     /// Machines of a known type, with who found it out.
@@ -151,26 +112,14 @@ mod tests {
     }
 
     #[test]
-    fn single_s0_completing_is_a_t1() {
+    fn own_findings_are_new_once_and_keep_who_found_them() {
         let mut v = TeamView::new(1);
-        assert_eq!(
-            v.learn_from_placement(m(3), Carried::S0, true),
-            Some(Carried::S1)
-        );
-        assert_eq!(v.machine(m(3)).machine_type, Some((1, 1)));
-    }
-
-    #[test]
-    fn consumed_inputs_accumulate_until_the_type_shows() {
-        let mut v = TeamView::new(1);
-        assert_eq!(v.learn_from_placement(m(2), Carried::S0, false), None);
+        assert!(!v.record_own(m(2), None, LOADED_S0));
         assert_eq!(v.machine(m(2)).loaded, LOADED_S0);
-        assert_eq!(
-            v.learn_from_placement(m(2), Carried::S1, true),
-            Some(Carried::S2)
-        );
+        assert!(v.record_own(m(2), Some(2), 0));
+        assert!(!v.record_own(m(2), Some(2), 0));
         assert_eq!(v.machine(m(2)).machine_type, Some((2, 1)));
-        assert_eq!(v.machine(m(2)).loaded, 0);
+        assert_eq!(v.belief(m(2)).machine_type, Some(2));
     }
 
     #[test]

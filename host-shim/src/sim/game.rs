@@ -97,6 +97,11 @@ impl Player {
         Ok(player)
     }
 
+    /// The engine's pool high-water marks and capacities (for the benchmark).
+    pub fn stats(&self) -> agent_core::Stats {
+        self.engine.stats()
+    }
+
     fn load(&mut self, name: &str, text: &str) -> Result<(), SimError> {
         self.engine
             .load_str(&mut self.host, name, text)
@@ -139,7 +144,7 @@ impl Player {
                 during: "(reset)".into(),
                 message: e.to_string(),
             })?;
-        for fact in setup_facts(&text) {
+        for fact in rules::setup::fact_lines(&text) {
             self.engine
                 .assert_str(&mut self.host, fact)
                 .map_err(|e| SimError::Engine {
@@ -158,16 +163,6 @@ impl Player {
         let output = std::mem::take(&mut self.host.output);
         read_record(&self.engine, setup.clone(), self.strategy, fired, output)
     }
-}
-
-/// The facts of a `(deffacts game-setup ...)` text written by
-/// `GameSetup::write_clips`: one fact per line between the header and the
-/// closing parenthesis.
-fn setup_facts(deffacts: &str) -> impl Iterator<Item = &str> {
-    deffacts
-        .lines()
-        .map(str::trim)
-        .filter(|l| l.starts_with('(') && !l.starts_with("(deffacts"))
 }
 
 /// The last `n` bytes of `s` (on a char boundary), for error context.

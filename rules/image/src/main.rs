@@ -22,6 +22,7 @@ compile_error!(
     "agent-image for i586 is freestanding and needs panic = \"abort\": build it with `--profile image`"
 );
 
+mod game;
 mod report;
 // Only the freestanding build paints its stack; host tests cover the measuring logic.
 #[cfg(any(freestanding, test))]
@@ -36,7 +37,7 @@ fn main() -> std::process::ExitCode {
     use std::io::Write as _;
 
     let mut text = String::new();
-    let outcome = report::run(&mut text, "host-std");
+    let outcome = report::run(&mut text, "host-std", game::AGENT_ENGINE.try_take());
     let stack_line =
         "agent-image: stack_max_bytes=unmeasured reason=\"host build does not paint its stack\"";
     let mut stdout = std::io::stdout().lock();

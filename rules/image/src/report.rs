@@ -1,37 +1,19 @@
 //! What the image does, written once for the freestanding and the host build.
 //!
-//! Each fact is one line `agent-image: key=value ...`. Today the image does not hold the
-//! engine yet and so loads no rules; it says so instead of pretending. The hooks below mark
-//! where the engine and the game slot in. Lines other tools read:
-//! - `engine=absent|present` and the exported symbol's name (footprint tool: arena share);
-//! - `rules=embedded loaded=no|yes` with the agent text size per strategy;
-//! - `score=<n>` once the image plays the seeded game (test script compares it with
+//! Each fact is one line `agent-image: key=value ...`. Lines other tools read:
+//! - `engine=present symbol=AGENT_ENGINE bytes=<n>` (footprint tool: arena share);
+//! - `pool name=... high_water=... capacity=... bytes=...` per engine pool;
+//! - `score=<n>` of the seeded game (the test script compares it with
 //!   `robotino-agent sim --seed 0`);
 //! - `stack_max_bytes=<n>` (printed by the entry point at exit, footprint tool).
 
+use crate::game::{self, ImageEngine, QuietHost};
 use core::fmt::{self, Write};
 use core::hint::black_box;
 
 /// Name under which the image exports its engine static. The footprint tool reports this
-/// symbol's size as the engine arena's share of RAM, and the arena as absent while the
-/// symbol is missing.
+/// symbol's size as the engine arena's share of RAM.
 pub const ENGINE_SYMBOL: &str = "AGENT_ENGINE";
-
-// ENGINE HOOK: once `agent_core::Engine` exists (a `const fn new()` type that owns its arena),
-// export it here under the fixed name, so it lands in .bss/.data and the footprint tool can
-// measure it:
-//
-//     #[no_mangle]
-//     static AGENT_ENGINE: agent_core::Engine = agent_core::Engine::new();
-//
-// (behind whatever interior-mutability wrapper the engine's API needs), then report
-// `engine=present bytes=<size_of::<Engine>()>` in `engine_line`.
-//
-// RULES HOOK: with the engine in place, load `rules::agent_files(strategy)` (or
-// `rules::game_files` for the simulated game) into it here and report `loaded=yes`.
-//
-// SCORE HOOK: once the image plays the seeded game, print `agent-image: score=<n>`; the test
-// script then compares it with the score of `robotino-agent sim --seed 0`.
 
 /// Why a run failed.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -40,6 +22,10 @@ pub enum RunError {
     Output,
     /// The freestanding runtime (memory functions, 64-bit arithmetic) misbehaved.
     SelfTest(&'static str),
+    /// The engine was already taken (the image runs its game once).
+    EngineTaken,
+    /// The game could not be loaded or played; the line before says why.
+    Game(&'static str),
 }
 
 impl From<fmt::Error> for RunError {
@@ -49,14 +35,13 @@ impl From<fmt::Error> for RunError {
 }
 
 /// Runs the image's work and reports it line by line on `out`. `build` names the build
-/// (`i586-freestanding` or `host-std`).
-pub fn run(out: &mut impl Write, build: &str) -> Result<(), RunError> {
+/// (`i586-freestanding` or `host-std`); `engine` is the image's engine, fresh.
+pub fn run(
+    out: &mut impl Write,
+    build: &str,
+    engine: Option<&mut ImageEngine>,
+) -> Result<(), RunError> {
     writeln!(out, "agent-image: build={build} heap=none")?;
-    writeln!(
-        out,
-        "agent-image: engine=absent symbol={ENGINE_SYMBOL} reason=\"the image does not instantiate agent_core::Engine yet\""
-    )?;
-    rules_line(out)?;
     match runtime_self_test() {
         Ok(checks) => writeln!(out, "agent-image: runtime_selftest=ok checks={checks}")?,
         Err(step) => {
@@ -65,29 +50,57 @@ pub fn run(out: &mut impl Write, build: &str) -> Result<(), RunError> {
         }
     }
     ballast::report(out)?;
+    let Some(engine) = engine else {
+        writeln!(out, "agent-image: engine=taken symbol={ENGINE_SYMBOL}")?;
+        return Err(RunError::EngineTaken);
+    };
     writeln!(
         out,
-        "agent-image: score=absent reason=\"needs the engine and the rule base\""
+        "agent-image: engine=present symbol={ENGINE_SYMBOL} bytes={}",
+        core::mem::size_of::<ImageEngine>()
     )?;
-    Ok(())
+    rules_line(out)?;
+    let mut host = QuietHost::new();
+    let played = game::play(engine, &mut host);
+    if host.bytes > 0 {
+        writeln!(
+            out,
+            "agent-image: engine_output_bytes={} first={:?}",
+            host.bytes,
+            host.first.as_str()
+        )?;
+    }
+    game::write_pools(out, &engine.stats())?;
+    match played {
+        Ok(result) => {
+            writeln!(
+                out,
+                "agent-image: game seed={} strategy={} fired={} decisions={} end={}",
+                game::SEED,
+                game::STRATEGY.name(),
+                result.fired,
+                result.decisions,
+                result.end.map_or("none", |e| e.as_str())
+            )?;
+            writeln!(out, "agent-image: score={}", result.score)?;
+            Ok(())
+        }
+        Err(error) => {
+            writeln!(out, "agent-image: game=failed error=\"{error}\"")?;
+            Err(RunError::Game(error.step))
+        }
+    }
 }
 
-/// The agent rule base from the `rules` crate: which strategies exist and how much CLIPS
-/// text each agent has. Nothing is loaded while the image has no engine.
+/// The game's rule base from the `rules` crate: files and CLIPS text size.
 fn rules_line(out: &mut impl Write) -> fmt::Result {
-    write!(
-        out,
-        "agent-image: rules=embedded loaded=no agent_text_bytes="
-    )?;
-    for (i, strategy) in rules::Strategy::ALL.iter().enumerate() {
-        let files = rules::agent_files(*strategy);
-        let bytes: usize = files.iter().map(|file| file.text.len()).sum();
-        let separator = if i == 0 { "" } else { "," };
-        write!(out, "{separator}{}:{bytes}", strategy.name())?;
-    }
+    let files = rules::game_files(game::STRATEGY);
+    let bytes: usize = files.iter().map(|file| file.text.len()).sum();
     writeln!(
         out,
-        " reason=\"no engine in the image to load them into yet\""
+        "agent-image: rules=embedded strategy={} files={} text_bytes={bytes}",
+        game::STRATEGY.name(),
+        files.len()
     )
 }
 
@@ -159,27 +172,51 @@ mod ballast {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::boxed::Box;
+    use std::string::String;
+
+    fn fresh_engine() -> Box<ImageEngine> {
+        Box::new(ImageEngine::new())
+    }
 
     #[test]
-    fn reports_every_component_and_its_state() {
+    fn plays_the_seeded_game_and_reports_it() {
+        let mut engine = fresh_engine();
         let mut text = String::new();
-        run(&mut text, "host-std").expect("writing to a String cannot fail");
+        run(&mut text, "host-std", Some(&mut engine)).expect("the game plays");
         assert!(text.starts_with("agent-image: build=host-std heap=none\n"));
-        assert!(text.contains("engine=absent symbol=AGENT_ENGINE"));
-        // The rule base's text sizes come from the `rules` crate, not from this file.
-        let travel: usize = rules::agent_files(rules::Strategy::Travel)
-            .iter()
-            .map(|f| f.text.len())
-            .sum();
-        assert!(travel > 0);
-        assert!(
-            text.contains(&format!("travel:{travel} ")),
-            "rule base sizes missing: {text}"
-        );
-        assert!(text.contains("rules=embedded loaded=no"));
+        assert!(text.contains("engine=present symbol=AGENT_ENGINE"));
         assert!(text.contains("runtime_selftest=ok checks=6"));
-        assert!(text.contains("score=absent"));
+        // every pool reported, none over its capacity
+        let pools: std::vec::Vec<&str> = text.lines().filter(|l| l.contains(" pool ")).collect();
+        assert_eq!(pools.len(), agent_core::Pool::ALL.len());
+        let score = text
+            .lines()
+            .find_map(|l| l.strip_prefix("agent-image: score="))
+            .expect("a score line");
+        assert!(score.parse::<i64>().expect("a number") > 0, "{text}");
+        assert!(
+            text.contains(" end=done") || text.contains(" end=time"),
+            "{text}"
+        );
+        assert!(
+            !text.contains("engine_output_bytes"),
+            "the game printed: {text}"
+        );
         assert!(text.lines().all(|line| line.starts_with("agent-image: ")));
+    }
+
+    #[test]
+    fn without_the_engine_it_says_so() {
+        let mut text = String::new();
+        assert_eq!(run(&mut text, "host-std", None), Err(RunError::EngineTaken));
+        assert!(text.contains("engine=taken"));
+    }
+
+    #[test]
+    fn the_static_engine_is_handed_out_once() {
+        assert!(game::AGENT_ENGINE.try_take().is_some());
+        assert!(game::AGENT_ENGINE.try_take().is_none());
     }
 
     /// A sink that fails after `left` writes, to show errors propagate instead of vanishing.
@@ -199,8 +236,9 @@ mod tests {
 
     #[test]
     fn a_refusing_sink_is_an_error() {
+        let mut engine = fresh_engine();
         assert_eq!(
-            run(&mut FailingSink { left: 3 }, "host-std"),
+            run(&mut FailingSink { left: 3 }, "host-std", Some(&mut engine)),
             Err(RunError::Output)
         );
     }

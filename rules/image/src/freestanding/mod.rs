@@ -5,7 +5,7 @@
 mod mem;
 mod syscall;
 
-use crate::{report, stack_paint};
+use crate::{game, report, stack_paint};
 use core::fmt::Write;
 use core::panic::PanicInfo;
 
@@ -40,10 +40,12 @@ core::arch::global_asm!(
 /// Rust side of `_start`: runs the report, measures the stack, exits. Never returns.
 extern "C" fn image_entry(entry_sp: usize) -> ! {
     let mut out = syscall::Fd::STDOUT;
-    let status = match report::run(&mut out, "i586-freestanding") {
+    let status = match report::run(&mut out, "i586-freestanding", game::AGENT_ENGINE.try_take()) {
         Ok(()) => 0,
         Err(report::RunError::Output) => 2,
         Err(report::RunError::SelfTest(_)) => 3,
+        Err(report::RunError::EngineTaken) => 4,
+        Err(report::RunError::Game(_)) => 5,
     };
     let stack = measure_stack(entry_sp);
     let written = writeln!(

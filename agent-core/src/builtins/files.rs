@@ -1,0 +1,325 @@
+//! Reading command and construct files (`load`, `load*`, `batch`, `batch*`,
+//! `load-facts`) through a fixed buffer, one top-level item at a time.
+//!
+//! The engine has no heap, so a file is streamed through a buffer of [`FILE_BUF`] bytes
+//! with [`Host::read_file_at`](crate::host::Host::read_file_at): any file size works as
+//! long as each single top-level item (a construct or a command) fits the buffer. An
+//! item that does not is an error naming the limit, never silently cut.
+
+use core::fmt::Write;
+
+use crate::commands::command_complete;
+use crate::engine::Core;
+use crate::error::HostIoError;
+use crate::host::router;
+use crate::lexer::Lexer;
+use crate::value::TextBuf;
+
+/// Size of the stack buffer a file is streamed through; also the largest single item.
+pub const FILE_BUF: usize = 32 * 1024;
+
+/// Why a file could not be read to its end.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FileError {
+    /// The host could not open or read it.
+    Io(HostIoError),
+    /// One item is longer than the buffer: where it starts (byte offset, 1-based line).
+    ItemTooLarge {
+        offset: u64,
+        line: u32,
+        limit: usize,
+    },
+    /// Bytes that are not UTF-8, at this byte offset.
+    NotUtf8 { offset: u64 },
+}
+
+/// Top-level items of one file, read through `buf`.
+pub struct FileItems<'b> {
+    path: TextBuf<256>,
+    buf: &'b mut [u8],
+    /// Unconsumed bytes are `buf[start..end]`.
+    start: usize,
+    end: usize,
+    /// File offset of `buf[end]`.
+    offset: u64,
+    eof: bool,
+    /// Newlines before `buf[start]`.
+    lines: u32,
+}
+
+/// One item: its text, the item's own length in it, and the number of newlines in the
+/// file before it.
+pub struct Item<'s> {
+    pub text: &'s str,
+    pub len: usize,
+    pub line_base: u32,
+    /// The rest of the file, holding no complete item.
+    pub last: bool,
+}
+
+impl<'b> FileItems<'b> {
+    pub fn new(path: &str, buf: &'b mut [u8]) -> Self {
+        let mut p = TextBuf::new();
+        let _ = p.write_str(path);
+        FileItems {
+            path: p,
+            buf,
+            start: 0,
+            end: 0,
+            offset: 0,
+            eof: false,
+            lines: 0,
+        }
+    }
+
+    pub fn path(&self) -> &str {
+        self.path.as_str()
+    }
+
+    /// Reads the first bytes, so a missing file is reported before anything runs.
+    pub fn open(&mut self, cx: &mut Core<'_>) -> Result<(), FileError> {
+        self.fill(cx)
+    }
+
+    /// The next complete item (leading blanks and comments included); at the end of the
+    /// file whatever is left (possibly an incomplete command), then `None`.
+    pub fn next_item(&mut self, cx: &mut Core<'_>) -> Result<Option<Item<'_>>, FileError> {
+        self.next(cx, false)
+    }
+
+    /// Like `next_item`, but the text runs on to the end of the line the item ends on
+    /// (CLIPS's batch mode echoes that rest of the line and ignores it); `Item::len` is
+    /// the item's own length.
+    pub fn next_command(&mut self, cx: &mut Core<'_>) -> Result<Option<Item<'_>>, FileError> {
+        self.next(cx, true)
+    }
+
+    fn next(
+        &mut self,
+        cx: &mut Core<'_>,
+        whole_lines: bool,
+    ) -> Result<Option<Item<'_>>, FileError> {
+        let mut last = false;
+        let (a, b, len) = loop {
+            let avail = &self.buf[self.start..self.end];
+            let valid = match core::str::from_utf8(avail) {
+                Ok(s) => s,
+                Err(e) if e.error_len().is_none() && !self.eof => {
+                    // a character cut by the buffer's end: valid prefix only
+                    core::str::from_utf8(&avail[..e.valid_up_to()]).unwrap_or("")
+                }
+                Err(e) => {
+                    return Err(FileError::NotUtf8 {
+                        offset: self.offset - (self.end - self.start - e.valid_up_to()) as u64,
+                    })
+                }
+            };
+            if let Some(k) = command_complete(valid) {
+                if !whole_lines {
+                    break (self.start, self.start + k, k);
+                }
+                match valid[k..].find('\n') {
+                    Some(nl) => break (self.start, self.start + k + nl + 1, k),
+                    None if self.eof => break (self.start, self.end, k),
+                    None => {} // read on to the end of the line
+                }
+            } else if self.eof {
+                if self.start == self.end {
+                    return Ok(None);
+                }
+                last = true;
+                break (self.start, self.end, self.end - self.start);
+            }
+            if self.start > 0 {
+                self.buf.copy_within(self.start..self.end, 0);
+                self.end -= self.start;
+                self.start = 0;
+            }
+            if self.end == self.buf.len() {
+                // a long run of comments and blank lines is handed out on its own
+                let valid = core::str::from_utf8(&self.buf[..self.end]).unwrap_or_else(|e| {
+                    core::str::from_utf8(&self.buf[..e.valid_up_to()]).unwrap_or("")
+                });
+                let lead = Lexer::new(valid).next_token().start;
+                let cut = valid[..lead].rfind('\n').map_or(lead, |k| k + 1);
+                if cut > 0 {
+                    break (0, cut, cut);
+                }
+                return Err(FileError::ItemTooLarge {
+                    offset: self.offset - self.end as u64,
+                    line: self.lines + 1,
+                    limit: self.buf.len(),
+                });
+            }
+            self.fill(cx)?;
+        };
+        self.start = b;
+        let line_base = self.lines;
+        let text = core::str::from_utf8(&self.buf[a..b]).unwrap_or("");
+        self.lines += text.bytes().filter(|&c| c == b'\n').count() as u32;
+        Ok(Some(Item {
+            text,
+            len,
+            line_base,
+            last,
+        }))
+    }
+
+    fn fill(&mut self, cx: &mut Core<'_>) -> Result<(), FileError> {
+        let n = cx
+            .host
+            .read_file_at(self.path.as_str(), self.offset, &mut self.buf[self.end..])
+            .map_err(FileError::Io)?;
+        if n == 0 {
+            self.eof = true;
+        }
+        self.end += n;
+        self.offset += n as u64;
+        Ok(())
+    }
+}
+
+impl Core<'_> {
+    /// `[ARGACCES2]`: CLIPS's message for a file `func` cannot open.
+    pub fn report_unopened_file(&mut self, func: &str, path: &str) {
+        let mut b: TextBuf<320> = TextBuf::new();
+        let _ = writeln!(
+            b,
+            "[ARGACCES2] Function {func} was unable to open file {path}."
+        );
+        self.write(router::WERROR, b.as_str());
+    }
+
+    /// A file that stopped being readable part way (CLIPS has no such message: its
+    /// reader has no size limit).
+    pub fn report_file_error(&mut self, func: &str, path: &str, e: FileError) {
+        let mut b: TextBuf<400> = TextBuf::new();
+        let _ = match e {
+            FileError::Io(HostIoError::TooLarge) => writeln!(
+                b,
+                "[FILEIO] Function {func}: file {path} is larger than the host can read at once ({FILE_BUF}-byte buffer)."
+            ),
+            FileError::Io(_) => writeln!(b, "[FILEIO] Function {func}: reading file {path} failed."),
+            FileError::ItemTooLarge {
+                offset,
+                line,
+                limit,
+            } => writeln!(
+                b,
+                "[FILEIO] Function {func}: the item at line {line} (byte {offset}) of {path} is longer than the {limit}-byte buffer."
+            ),
+            FileError::NotUtf8 { offset } => writeln!(
+                b,
+                "[FILEIO] Function {func}: file {path} is not UTF-8 text (byte {offset})."
+            ),
+        };
+        self.write(router::WERROR, b.as_str());
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::*;
+    use crate::engine::SmallEngine;
+    use crate::host::Host;
+    use std::string::String;
+
+    /// A host whose one file is `text`.
+    struct OneFile {
+        text: String,
+    }
+
+    impl Host for OneFile {
+        fn write_str(&mut self, _router: &str, _text: &str) {}
+        fn read_file_at(
+            &mut self,
+            _path: &str,
+            offset: u64,
+            buf: &mut [u8],
+        ) -> Result<usize, HostIoError> {
+            let b = self.text.as_bytes();
+            let from = (offset as usize).min(b.len());
+            let n = buf.len().min(b.len() - from);
+            buf[..n].copy_from_slice(&b[from..from + n]);
+            Ok(n)
+        }
+    }
+
+    fn items(text: &str, bufsize: usize) -> Result<std::vec::Vec<(String, u32)>, FileError> {
+        let mut e = std::boxed::Box::new(SmallEngine::new());
+        let mut h = OneFile { text: text.into() };
+        let mut cx = e.core(&mut h);
+        let mut buf = std::vec![0u8; bufsize];
+        let mut f = FileItems::new("x", &mut buf);
+        let mut out = std::vec::Vec::new();
+        while let Some(it) = f.next_item(&mut cx)? {
+            out.push((String::from(it.text), it.line_base));
+        }
+        Ok(out)
+    }
+
+    /// The items without comment-only pieces, trimmed.
+    fn commands(got: &[(String, u32)]) -> std::vec::Vec<String> {
+        got.iter()
+            .map(|(t, _)| {
+                let code: std::vec::Vec<&str> = t
+                    .lines()
+                    .map(str::trim)
+                    .filter(|l| !l.is_empty() && !l.starts_with(';'))
+                    .collect();
+                code.join("\n")
+            })
+            .filter(|c| !c.is_empty())
+            .collect()
+    }
+
+    #[test]
+    fn items_come_whole_across_buffer_refills() {
+        let text = "(a 1)\n; c\n(b \"x y\")\n(cé\n d)\n";
+        for size in [12, 16, 4096] {
+            let got = items(text, size).unwrap();
+            let joined: String = got.iter().map(|(t, _)| t.as_str()).collect();
+            assert_eq!(joined, text, "buffer {size}");
+            assert_eq!(
+                commands(&got),
+                ["(a 1)", "(b \"x y\")", "(cé\nd)"],
+                "buffer {size}"
+            );
+            let c = got.iter().find(|(t, _)| t.contains("(cé")).unwrap();
+            assert_eq!(
+                c.1 + c
+                    .0
+                    .find("(cé")
+                    .map_or(0, |k| c.0[..k].matches('\n').count() as u32),
+                3
+            );
+        }
+    }
+
+    #[test]
+    fn long_comment_runs_come_in_pieces() {
+        let mut text = String::new();
+        for _ in 0..10 {
+            text.push_str("; a comment line\n");
+        }
+        text.push_str("(a 1)");
+        let got = items(&text, 40).unwrap();
+        let joined: String = got.iter().map(|(t, _)| t.as_str()).collect();
+        assert_eq!(joined, text);
+        assert_eq!(commands(&got), ["(a 1)"]);
+    }
+
+    #[test]
+    fn an_item_longer_than_the_buffer_is_an_error_with_the_limit() {
+        let e = items("(a)\n(bbbbbbbbbbbbbbbbbbbbbbbb)", 10).unwrap_err();
+        assert_eq!(
+            e,
+            FileError::ItemTooLarge {
+                offset: 4,
+                line: 2,
+                limit: 10
+            }
+        );
+    }
+}

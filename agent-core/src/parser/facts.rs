@@ -1,0 +1,252 @@
+//! Fact specifications (`assert`, `deffacts`) and `modify`/`duplicate`, with the checks
+//! CLIPS makes when it parses them rather than when it runs them: known slots, a slot
+//! given once, one value in a single-field slot, literals that fit the slot's type and
+//! allowed values, and every `(default ?NONE)` slot given.
+
+use super::{PResult, Parser};
+use crate::error::{EvalErrorKind, LoadDetail};
+use crate::expr::{loc, Expr, Op};
+use crate::lexer::{Tok, Token};
+use crate::template::{DefaultKind, SlotDef};
+use crate::value::NONE;
+
+/// Which check a literal failed.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub(super) enum Violation {
+    Type,
+    AllowedValues,
+}
+
+impl<'s> Parser<'s, '_, '_> {
+    pub(super) fn parse_assert(&mut self) -> PResult<u16> {
+        let node = self.builtin_call("assert")?;
+        let mut n = 0;
+        loop {
+            let t = self.next();
+            match t.tok {
+                Tok::RParen if n > 0 => return Ok(node),
+                Tok::LParen => {
+                    let spec = self.fact_spec()?;
+                    self.cx.append_child(node, spec);
+                    n += 1;
+                }
+                _ => return Err(self.err(t, "a fact to assert")),
+            }
+        }
+    }
+
+    /// `(name ...)` after the `(`: a `FactSpec` node.
+    pub fn fact_spec(&mut self) -> PResult<u16> {
+        let nt = self.next();
+        let name = match nt.tok {
+            Tok::Symbol(s) => s,
+            _ => return Err(self.err(nt, "a template or relation name")),
+        };
+        let sym = cap!(self, self.cx.intern(name))?;
+        let tmpl = match self.cx.find_template(sym) {
+            Some(t) => t,
+            None => cap!(self, self.cx.implied_template(sym))?,
+        };
+        let spec = cap!(self, self.cx.push_expr(Expr::new(Op::FactSpec, 0, tmpl)))?;
+        if self.cx.templates[tmpl as usize].implied {
+            let sv = cap!(self, self.cx.push_expr(Expr::new(Op::SlotVal, 0, 0)))?;
+            self.cx.append_child(spec, sv);
+            self.args_until_rparen(sv)?;
+            return Ok(spec);
+        }
+        loop {
+            let t = self.next();
+            match t.tok {
+                Tok::RParen => break,
+                Tok::LParen => {
+                    let st = self.next();
+                    let slot = self.slot_of(tmpl, st)?;
+                    if self.slot_given(spec, slot) {
+                        return Err(self.err(st, "a slot not given twice"));
+                    }
+                    let sv = cap!(self, self.cx.push_expr(Expr::new(Op::SlotVal, 0, slot)))?;
+                    let def = self.cx.slot_def(tmpl, slot);
+                    self.slot_values(sv, &def, st, "assert")?;
+                    self.cx.append_child(spec, sv);
+                }
+                _ => return Err(self.err(t, "'(' and a slot name")),
+            }
+        }
+        // CLIPS reports a missing required slot at the template name
+        let t = self.cx.templates[tmpl as usize];
+        for slot in 0..t.nslots {
+            let def = self.cx.slot_def(tmpl, slot);
+            if def.default_kind == DefaultKind::Required && !self.slot_given(spec, slot) {
+                let mut e = self.err(nt, "a value for every slot declared (default ?NONE)");
+                e.detail = LoadDetail::RequiredSlot { slot: def.name };
+                return Err(e);
+            }
+        }
+        Ok(spec)
+    }
+
+    /// The index of the slot named by token `st` in deftemplate `tmpl`.
+    fn slot_of(&mut self, tmpl: u16, st: Token<'s>) -> PResult<u16> {
+        let sname = match st.tok {
+            Tok::Symbol(s) => s,
+            _ => return Err(self.err(st, "a slot name")),
+        };
+        let ssym = cap!(self, self.cx.intern(sname))?;
+        match self.cx.find_slot(tmpl, ssym) {
+            Some(s) => Ok(s),
+            None => {
+                let mut e = self.err(st, "a slot of the template");
+                e.detail = LoadDetail::UnknownSlot {
+                    template: self.cx.templates[tmpl as usize].name,
+                };
+                Err(e)
+            }
+        }
+    }
+
+    /// Whether a `SlotVal` child of `node` already has `data == key`.
+    fn slot_given(&self, node: u16, key: u16) -> bool {
+        let mut c = self.cx.exprs[node as usize].first;
+        while c != NONE {
+            let x = self.cx.exprs[c as usize];
+            if x.op == Op::SlotVal && x.data == key {
+                return true;
+            }
+            c = x.next;
+        }
+        false
+    }
+
+    /// The values of one slot up to its `)`, appended to `sv`. A single-field slot takes
+    /// exactly one (a second is reported where it starts); each literal must fit the
+    /// slot's type and allowed values (reported at the literal).
+    fn slot_values(
+        &mut self,
+        sv: u16,
+        def: &SlotDef,
+        st: Token<'s>,
+        command: &'static str,
+    ) -> PResult<()> {
+        let mut n = 0u16;
+        loop {
+            let t = self.peek();
+            match t.tok {
+                Tok::RParen => {
+                    self.next();
+                    break;
+                }
+                Tok::Eof | Tok::Bad => return Err(self.err(t, "')'")),
+                _ if !def.multi && n == 1 => {
+                    let mut e = self.err(t, "one value for the single-field slot");
+                    e.detail = LoadDetail::SingleSlot { slot: def.name };
+                    return Err(e);
+                }
+                _ => {
+                    let v = self.parse_expr()?;
+                    if let Some(violation) = self.literal_violation(def, v) {
+                        let mut e = self.err(t, violation.expected());
+                        e.detail = LoadDetail::Constraint {
+                            command,
+                            types: violation == Violation::Type,
+                            slot: def.name,
+                        };
+                        return Err(e);
+                    }
+                    self.cx.append_child(sv, v);
+                    n += 1;
+                }
+            }
+        }
+        if !def.multi && n != 1 {
+            let mut e = self.err(st, "exactly one value for a single-field slot");
+            e.detail = LoadDetail::SingleSlot { slot: def.name };
+            return Err(e);
+        }
+        Ok(())
+    }
+
+    /// How a literal expression node breaks a slot's restrictions (None for a literal
+    /// that fits, and for anything that is not a literal: checked when it runs).
+    pub(super) fn literal_violation(&self, def: &SlotDef, e: u16) -> Option<Violation> {
+        if !matches!(
+            self.cx.exprs[e as usize].op,
+            Op::Int | Op::Float | Op::Sym | Op::Str
+        ) {
+            return None;
+        }
+        let v = self.cx.const_value(e);
+        match self.cx.check_atom_def(def, v) {
+            Ok(()) => None,
+            Err(err) => Some(match err.kind {
+                EvalErrorKind::BadSlotValue { reason } if reason.starts_with("type") => {
+                    Violation::Type
+                }
+                _ => Violation::AllowedValues,
+            }),
+        }
+    }
+
+    /// The deftemplate of the fact a `modify`/`duplicate` target expression names, when
+    /// the parser knows it: a fact-address variable bound to a deftemplate pattern.
+    fn target_template(&self, target: u16) -> Option<u16> {
+        let x = self.cx.exprs[target as usize];
+        if x.op != Op::PatVar || x.data != loc::FACT {
+            return None;
+        }
+        let tmpl = *self.pat_tmpl.get(x.aux as usize)?;
+        if tmpl == NONE || self.cx.templates[tmpl as usize].implied {
+            return None;
+        }
+        Some(tmpl)
+    }
+
+    /// `(modify ?f (slot v...)...)`: slot values carry the slot *name* symbol (the
+    /// template is known only at run time in general). When `?f` is bound to a
+    /// deftemplate pattern, slots and literal values are checked now, as CLIPS does.
+    pub(super) fn parse_modify(&mut self, name: &'static str) -> PResult<u16> {
+        let node = self.builtin_call(name)?;
+        let f = self.parse_expr()?;
+        self.cx.append_child(node, f);
+        let tmpl = self.target_template(f);
+        loop {
+            let t = self.next();
+            match t.tok {
+                Tok::RParen => return Ok(node),
+                Tok::LParen => {
+                    let st = self.next();
+                    let sname = match st.tok {
+                        Tok::Symbol(s) => s,
+                        _ => return Err(self.err(st, "a slot name")),
+                    };
+                    let ssym = cap!(self, self.cx.intern(sname))?;
+                    if self.slot_given(node, ssym) {
+                        return Err(self.err(st, "a slot not given twice"));
+                    }
+                    let sv = cap!(self, self.cx.push_expr(Expr::new(Op::SlotVal, 0, ssym)))?;
+                    match tmpl {
+                        Some(tmpl) => {
+                            let slot = self.slot_of(tmpl, st)?;
+                            let def = self.cx.slot_def(tmpl, slot);
+                            self.slot_values(sv, &def, st, name)?;
+                        }
+                        None => {
+                            self.args_until_rparen(sv)?;
+                        }
+                    }
+                    self.cx.append_child(node, sv);
+                }
+                _ => return Err(self.err(t, "'(' and a slot name")),
+            }
+        }
+    }
+}
+
+impl Violation {
+    /// The position line's "expected ..." text.
+    pub(super) fn expected(self) -> &'static str {
+        match self {
+            Violation::Type => "a value of the slot's type",
+            Violation::AllowedValues => "one of the slot's allowed values",
+        }
+    }
+}

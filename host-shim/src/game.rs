@@ -1,0 +1,230 @@
+//! `robotino-agent game`: one whole LLSF game across processes. Starts `robotino-sim` (the
+//! drivers, the field and the CLIPS referee) and one `robotino-agent run` per robot under a
+//! fresh service prefix, in lockstep (the sim advances a cycle per agent command, so a
+//! 15-minute game takes seconds), waits for the referee's end of game, stops the agents
+//! and prints the score and the agents' loop statistics.
+
+use std::io::{BufRead, BufReader};
+use std::path::{Path, PathBuf};
+use std::process::{Child, Command, ExitCode, Stdio};
+use std::sync::mpsc;
+use std::time::{Duration, Instant};
+
+use rules::Strategy;
+
+#[derive(clap::Args)]
+pub struct Args {
+    /// Seed of the game setup (hidden machine types, active gate).
+    #[arg(long, default_value_t = 0)]
+    pub seed: u64,
+    /// Production strategy of the agents' rules: naive, paper or travel.
+    #[arg(long, default_value = "paper", value_parser = crate::sim::parse_strategy)]
+    pub strategy: Strategy,
+    /// Game length in simulated seconds.
+    #[arg(long, default_value_t = 900.0)]
+    pub game_seconds: f32,
+    /// Robots on the field (1..=3), one agent process each.
+    #[arg(long, default_value_t = 1)]
+    pub robots: u8,
+    /// Directory holding `robotino-sim` (default: next to this program).
+    #[arg(long)]
+    pub bin_dir: Option<PathBuf>,
+    /// Echo every line the processes print.
+    #[arg(long)]
+    pub verbose: bool,
+    /// Give up after this many wall-clock seconds.
+    #[arg(long, default_value_t = 600)]
+    pub timeout_s: u64,
+}
+
+pub fn main(args: Args) -> ExitCode {
+    match play(&args) {
+        Ok(score) => {
+            println!("robotino-agent game: score={score}");
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("robotino-agent game: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+/// A child process whose stdout lines arrive on a channel.
+struct Proc {
+    name: String,
+    child: Child,
+    lines: mpsc::Receiver<String>,
+    seen: Vec<String>,
+}
+
+impl Proc {
+    fn start(name: &str, program: &Path, args: &[String]) -> Result<Proc, String> {
+        let mut child = Command::new(program)
+            .args(args)
+            .stdout(Stdio::piped())
+            .stderr(Stdio::inherit())
+            .spawn()
+            .map_err(|e| format!("cannot start {}: {e}", program.display()))?;
+        let (tx, lines) = mpsc::channel();
+        if let Some(out) = child.stdout.take() {
+            std::thread::spawn(move || {
+                for line in BufReader::new(out).lines().map_while(Result::ok) {
+                    if tx.send(line).is_err() {
+                        break;
+                    }
+                }
+            });
+        }
+        Ok(Proc {
+            name: name.to_string(),
+            child,
+            lines,
+            seen: Vec::new(),
+        })
+    }
+
+    /// Takes the lines printed so far, echoing them when asked.
+    fn collect(&mut self, verbose: bool) {
+        while let Ok(line) = self.lines.try_recv() {
+            if verbose {
+                println!("[{}] {line}", self.name);
+            }
+            self.seen.push(line);
+        }
+    }
+
+    fn line_with(&self, needle: &str) -> Option<&String> {
+        self.seen.iter().find(|l| l.contains(needle))
+    }
+
+    /// SIGTERM: the process ends its loop and prints its statistics.
+    fn terminate(&self) {
+        let _ = Command::new("kill")
+            .args(["-TERM", &self.child.id().to_string()])
+            .status();
+    }
+
+    /// Waits for the exit and the last lines (the reader ends at end of file).
+    fn finish(&mut self, timeout: Duration, verbose: bool) -> Option<std::process::ExitStatus> {
+        let deadline = Instant::now() + timeout;
+        while Instant::now() < deadline {
+            if let Ok(Some(status)) = self.child.try_wait() {
+                // Drain what is still in the pipe.
+                while let Ok(line) = self.lines.recv_timeout(Duration::from_millis(200)) {
+                    if verbose {
+                        println!("[{}] {line}", self.name);
+                    }
+                    self.seen.push(line);
+                }
+                return Some(status);
+            }
+            self.collect(verbose);
+            std::thread::sleep(Duration::from_millis(5));
+        }
+        None
+    }
+}
+
+impl Drop for Proc {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+/// The value of `key=` in a line.
+fn field<'a>(line: &'a str, key: &str) -> Option<&'a str> {
+    line.split_whitespace()
+        .find_map(|w| w.strip_prefix(key)?.strip_prefix('='))
+}
+
+fn play(args: &Args) -> Result<i64, String> {
+    let me = std::env::current_exe().map_err(|e| format!("where am I: {e}"))?;
+    let dir = match &args.bin_dir {
+        Some(d) => d.clone(),
+        None => me
+            .parent()
+            .map(Path::to_path_buf)
+            .ok_or("this program has no directory")?,
+    };
+    let sim_path = dir.join("robotino-sim");
+    let robots = args.robots.clamp(1, 3);
+    let nanos = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map(|d| d.subsec_nanos())
+        .unwrap_or(0);
+    let prefix = format!("game/{}-{nanos}", std::process::id());
+    let s = |x: &str| x.to_string();
+    let mut sim = Proc::start(
+        "sim",
+        &sim_path,
+        &[
+            s("--prefix"),
+            prefix.clone(),
+            s("--lockstep"),
+            s("--robots"),
+            robots.to_string(),
+            s("--seed"),
+            args.seed.to_string(),
+            s("--game-seconds"),
+            args.game_seconds.to_string(),
+        ],
+    )?;
+    let mut agents = (1..=robots)
+        .map(|r| {
+            Proc::start(
+                &format!("agent{r}"),
+                &me,
+                &[
+                    s("run"),
+                    s("--prefix"),
+                    prefix.clone(),
+                    s("--lockstep"),
+                    s("--robot"),
+                    r.to_string(),
+                    s("--strategy"),
+                    s(args.strategy.name()),
+                ],
+            )
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    println!(
+        "robotino-agent game: prefix={prefix} seed={} strategy={} robots={robots} game_seconds={}",
+        args.seed,
+        args.strategy.name(),
+        args.game_seconds
+    );
+    let started = Instant::now();
+    let status = sim
+        .finish(Duration::from_secs(args.timeout_s), args.verbose)
+        .ok_or_else(|| format!("no end of game within {} s", args.timeout_s))?;
+    for a in &agents {
+        a.terminate();
+    }
+    for a in &mut agents {
+        a.finish(Duration::from_secs(30), args.verbose);
+    }
+    if !status.success() {
+        return Err(format!("robotino-sim failed ({status})"));
+    }
+    let done = sim
+        .line_with("robotino-sim: done")
+        .ok_or("robotino-sim ended without its `done` line")?
+        .clone();
+    println!("{done}");
+    for a in &agents {
+        let decisions = a.seen.iter().filter(|l| l.contains(" start ")).count();
+        println!("robotino-agent game: {} skills={decisions}", a.name);
+        if let Some(stats) = a.line_with("robotino-agent run: done") {
+            println!("{stats}");
+        }
+    }
+    println!(
+        "robotino-agent game: wall_ms={}",
+        started.elapsed().as_millis()
+    );
+    field(&done, "score")
+        .and_then(|v| v.parse().ok())
+        .ok_or_else(|| format!("no score in `{done}`"))
+}

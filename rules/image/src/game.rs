@@ -1,0 +1,220 @@
+//! The seeded game, played inside the image: the engine in its static arena, the game's
+//! rule files (agent, referee, instant simulation and decision log: `rules::game_files`),
+//! the setup of `robotino-agent sim --seed 0` asserted as facts after `(reset)`, run to
+//! the end, the result read back from the facts. The same steps as the host's `sim`
+//! (host-shim `sim::game`), so the score must be the same; CI compares them.
+
+use agent_core::host::{router, RouterWriter};
+use agent_core::value::TextBuf;
+use agent_core::{Engine, Host, Pool, Stats, ValueRef};
+use core::fmt::{self, Write};
+use rules::setup::{fact_lines, GameSetup};
+use rules::Strategy;
+use static_cell::ConstStaticCell;
+
+/// The seed and strategy `robotino-agent sim` plays by default.
+pub const SEED: u64 = 0;
+pub const STRATEGY: Strategy = Strategy::Paper;
+
+/// Most rule firings a game may take (the host's `sim` uses the same bound): a seeded
+/// game fires under a thousand, so reaching it means the rules loop.
+const FIRE_LIMIT: u32 = 500_000;
+
+/// The image's engine. Capacities are the high-water marks of the seed-0 game (shown in
+/// the comments, from the image's own `pool` lines) plus room for the rule base to grow;
+/// the fact-value arena compacts when full, so it needs the live values at the game's
+/// peak (between 1,536 and 1,792 cells), not all values ever written. Rules keep no
+/// pretty-print text here, which is what keeps the symbol bytes small.
+pub type ImageEngine = Engine<
+    224,  // facts (183)
+    2048, // fact values (live peak <= 1,792)
+    320,  // symbols (259)
+    4096, // symbol bytes (2,607)
+    40,   // templates (32)
+    112,  // slot definitions (93)
+    80,   // rules (68)
+    120,  // alpha nodes (104)
+    256,  // joins (232)
+    384,  // tokens (322)
+    48,   // activations (16)
+    20,   // deffunctions (14)
+    32,   // globals (25)
+    3328, // expression nodes (3,020)
+    64,   // evaluation stack (19)
+    160,  // multifield scratch (72)
+    6,    // deffacts (3)
+    2,    // external functions (0: `distance` is built in)
+>;
+
+/// The engine arena, exported under a fixed name (`report::ENGINE_SYMBOL`) so the
+/// footprint tool can show its share of RAM. `try_take` hands it out once, as
+/// `&'static mut`.
+#[no_mangle]
+pub static AGENT_ENGINE: ConstStaticCell<ImageEngine> = ConstStaticCell::new(ImageEngine::new());
+
+/// What the engine printed during the game: normally nothing (the game's rules only print
+/// on trouble), so the byte count and the first line are enough to diagnose a failure.
+pub struct QuietHost {
+    pub bytes: usize,
+    pub first: TextBuf<160>,
+}
+
+impl QuietHost {
+    pub const fn new() -> QuietHost {
+        QuietHost {
+            bytes: 0,
+            first: TextBuf::new(),
+        }
+    }
+}
+
+impl Host for QuietHost {
+    fn write_str(&mut self, _router: &str, text: &str) {
+        self.bytes += text.len();
+        // Cut at the capacity on purpose: the rest only counts.
+        let _ = self.first.write_str(text);
+    }
+}
+
+/// The result of a game, read back from the facts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct GameResult {
+    pub score: i64,
+    pub fired: u32,
+    pub decisions: u32,
+    /// `reason` of the `(game-over)` fact, if the game ended.
+    pub end: Option<EndReason>,
+}
+
+/// Why the game ended, as the decision-log rules say.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum EndReason {
+    Done,
+    /// The game clock ran out.
+    Time,
+    Deadlock,
+    Other,
+}
+
+impl EndReason {
+    fn from_symbol(s: &str) -> EndReason {
+        match s {
+            "done" => EndReason::Done,
+            "time" => EndReason::Time,
+            "deadlock" => EndReason::Deadlock,
+            _ => EndReason::Other,
+        }
+    }
+
+    pub fn as_str(self) -> &'static str {
+        match self {
+            EndReason::Done => "done",
+            EndReason::Time => "time",
+            EndReason::Deadlock => "deadlock",
+            EndReason::Other => "other",
+        }
+    }
+}
+
+/// A step of the game that failed. The engine's own message went to the host's error
+/// router, as CLIPS prints its errors; [`QuietHost`] keeps its start.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct GameError {
+    pub step: &'static str,
+    /// The file being loaded, for load errors.
+    pub file: &'static str,
+}
+
+impl fmt::Display for GameError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}", self.step)?;
+        if !self.file.is_empty() {
+            write!(f, " {}", self.file)?;
+        }
+        Ok(())
+    }
+}
+
+/// Reports `cause` on the host's error router and names the failed step.
+fn fail(
+    host: &mut QuietHost,
+    step: &'static str,
+    file: &'static str,
+    cause: &dyn fmt::Display,
+) -> GameError {
+    let mut errors = RouterWriter {
+        host,
+        router: router::WERROR,
+    };
+    // RouterWriter never fails.
+    let _ = writeln!(errors, "{cause}");
+    GameError { step, file }
+}
+
+/// Plays the seeded game in `engine` (fresh from `ImageEngine::new()`).
+pub fn play(engine: &mut ImageEngine, host: &mut QuietHost) -> Result<GameResult, GameError> {
+    engine.set_pretty_print_forms(false);
+    for file in rules::game_files(STRATEGY) {
+        engine
+            .load_str(host, file.name, file.text)
+            .map_err(|e| fail(host, "load", file.name, &e))?;
+    }
+    let mut setup_text: TextBuf<2048> = TextBuf::new();
+    GameSetup::for_seed(SEED)
+        .write_clips(&mut setup_text)
+        .map_err(|_| fail(host, "setup", "", &"the setup text does not fit 2048 bytes"))?;
+    engine
+        .reset(host)
+        .map_err(|e| fail(host, "reset", "", &e))?;
+    for fact in fact_lines(setup_text.as_str()) {
+        engine
+            .assert_str(host, fact)
+            .map_err(|e| fail(host, "assert setup", "", &e))?;
+    }
+    let fired = engine
+        .run(host, Some(FIRE_LIMIT))
+        .map_err(|e| fail(host, "run", "", &e))?;
+    Ok(read_result(engine, fired))
+}
+
+fn read_result(engine: &ImageEngine, fired: u32) -> GameResult {
+    let mut result = GameResult {
+        score: 0,
+        fired,
+        decisions: 0,
+        end: None,
+    };
+    for fact in engine.facts() {
+        match engine.fact_template_name(fact) {
+            Some("score") => {
+                if let Some(ValueRef::Int(points)) = engine.fact_slot(fact, "points") {
+                    result.score = points;
+                }
+            }
+            Some("decision") => result.decisions += 1,
+            Some("game-over") => {
+                if let Some(ValueRef::Symbol(reason)) = engine.fact_slot(fact, "reason") {
+                    result.end = Some(EndReason::from_symbol(reason));
+                }
+            }
+            _ => {}
+        }
+    }
+    result
+}
+
+/// One line per pool: high-water mark, capacity and bytes, so capacities can be sized
+/// from a run (the fact-value arena compacts, so its high-water mark is its capacity once
+/// it has compacted).
+pub fn write_pools(out: &mut impl Write, stats: &Stats) -> fmt::Result {
+    for pool in Pool::ALL {
+        let (used, capacity) = stats.get(pool);
+        writeln!(
+            out,
+            "agent-image: pool name=\"{}\" high_water={used} capacity={capacity} bytes={}",
+            pool.name(),
+            stats.bytes(pool)
+        )?;
+    }
+    Ok(())
+}

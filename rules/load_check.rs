@@ -1,0 +1,93 @@
+//! Loads rule files into a fresh engine, in order, and reports the first one that does
+//! not load: which file, line and column, and what the engine's parser expected there.
+//!
+//! Shared (`#[path]`) by `build.rs`, which runs it on every load order of
+//! `src/order.rs` so a broken rule file fails `cargo build -p rules`, and by
+//! `tests/load_check.rs`, which shows that broken texts are caught. It runs on the host
+//! with std; the `rules` crate itself stays `no_std` and does not contain it.
+
+use agent_core::{DefaultEngine, Host};
+use std::fmt;
+
+/// The engine is about 2 MB and `DefaultEngine::new` may build it on the stack before
+/// it is boxed (unoptimised build scripts do), so loads run on a thread this big.
+const ENGINE_STACK: usize = 64 << 20;
+
+/// A rule file that does not load.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct BadRuleFile {
+    /// The file's name as given to [`check_load`] (e.g. `rules/utils.clp`).
+    pub file: String,
+    /// 1-based position of the offending token.
+    pub line: u32,
+    pub col: u32,
+    /// "expected ..." (plus the token found), or the pool that ran out.
+    pub message: String,
+}
+
+impl fmt::Display for BadRuleFile {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "{}:{}:{}: {}",
+            self.file, self.line, self.col, self.message
+        )
+    }
+}
+
+/// Drops the engine's output: loading constructs prints nothing we need.
+struct Silent;
+
+impl Host for Silent {
+    fn write_str(&mut self, _router: &str, _text: &str) {}
+}
+
+/// Loads `files` (name, text) into one fresh engine in the given order, as a host
+/// does; the first file that does not load is the error.
+pub fn check_load(files: &[(String, String)]) -> Result<(), BadRuleFile> {
+    std::thread::scope(|scope| {
+        let worker = std::thread::Builder::new()
+            .stack_size(ENGINE_STACK)
+            .spawn_scoped(scope, || load_all(files))
+            .map_err(|e| no_position(format!("cannot start the checking thread: {e}")))?;
+        worker
+            .join()
+            .map_err(|_| no_position("the engine panicked while loading".to_string()))?
+    })
+}
+
+fn no_position(message: String) -> BadRuleFile {
+    BadRuleFile {
+        file: "rules".to_string(),
+        line: 0,
+        col: 0,
+        message,
+    }
+}
+
+fn load_all(files: &[(String, String)]) -> Result<(), BadRuleFile> {
+    let mut engine = Box::new(DefaultEngine::new());
+    let host = &mut Silent;
+    for (name, text) in files {
+        if let Err(e) = engine.load_str(host, name, text) {
+            let message = match e.capacity {
+                Some(c) => c.to_string(),
+                None => {
+                    let found = text.get(e.start as usize..e.end as usize).unwrap_or("");
+                    if found.is_empty() {
+                        format!("expected {}", e.expected)
+                    } else {
+                        format!("expected {}, found `{found}`", e.expected)
+                    }
+                }
+            };
+            return Err(BadRuleFile {
+                file: name.clone(),
+                line: e.line,
+                col: e.col,
+                message,
+            });
+        }
+    }
+    Ok(())
+}

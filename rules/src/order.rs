@@ -1,0 +1,44 @@
+//! Which rule files each load consists of, by name, in load order.
+//!
+//! The single source of the load orders: `lib.rs` turns these names into the embedded
+//! files ([`crate::agent_files`], [`crate::game_files`]), and `build.rs` includes this
+//! module (`#[path]`) to load the same files in the same order into the engine and
+//! reject a rule file that does not parse.
+
+/// The agent with the naive baseline strategy.
+pub const AGENT_NAIVE: &[&str] = &[
+    "utils.clp",
+    "worldmodel.clp",
+    "execution.clp",
+    "production-common.clp",
+    "production-naive.clp",
+];
+/// The agent with the paper's strategy.
+pub const AGENT_PAPER: &[&str] = &[
+    "utils.clp",
+    "worldmodel.clp",
+    "execution.clp",
+    "production-common.clp",
+    "production.clp",
+    "select-paper.clp",
+];
+/// The agent with our travel-aware strategy.
+pub const AGENT_TRAVEL: &[&str] = &[
+    "utils.clp",
+    "worldmodel.clp",
+    "execution.clp",
+    "production-common.clp",
+    "production.clp",
+    "select-travel.clp",
+];
+/// What a host driver loads after the agent: the referee and the decision log.
+pub const DRIVER: &[&str] = &["referee.clp", "game-log.clp"];
+/// What a simulated game loads after the driver files: the instant simulation.
+pub const SIM: &[&str] = &["sim.clp"];
+
+/// Every agent, by strategy name (as `Strategy::name` spells it).
+pub const AGENTS: [(&str, &[&str]); 3] = [
+    ("naive", AGENT_NAIVE),
+    ("paper", AGENT_PAPER),
+    ("travel", AGENT_TRAVEL),
+];
