@@ -1219,11 +1219,11 @@ mod tests {
                 }
                 cx.tokens[t].next_sib = free;
             }),
-            ("not/exists count != links", |cx| {
+            ("not/exists blocker links != blocked flag", |cx| {
                 let t = (0..cx.st.tokens_used as usize)
-                    .find(|&t| cx.tokens[t].kind == TokenKind::Beta && cx.tokens[t].count > 0)
+                    .find(|&t| cx.tokens[t].kind == TokenKind::Beta && cx.tokens[t].blocked)
                     .unwrap();
-                cx.tokens[t].count += 1;
+                cx.tokens[t].blocked = false;
             }),
         ];
         let mut wrong = std::vec::Vec::new();
