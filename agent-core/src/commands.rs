@@ -409,7 +409,7 @@ impl Core<'_> {
         }
     }
 
-    fn unlink_join(&mut self, j: u16) {
+    pub(crate) fn unlink_join(&mut self, j: u16) {
         let a = self.joins[j as usize].alpha;
         if a != NONE {
             let mut p = self.alphas[a as usize].succ;
@@ -942,6 +942,9 @@ impl Core<'_> {
                     self.st.line_base = line_base;
                     self.exec_command(&text[pos..pos + k], source);
                     self.st.line_base = 0;
+                    if !self.st.firing && self.st.eval_depth == 0 {
+                        self.debug_check("after a batch command");
+                    }
                     break;
                 }
                 if end >= text.len() {

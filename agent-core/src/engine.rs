@@ -546,6 +546,8 @@ impl<
             // assert reports the capacity error instead.
             let _ = core.startup();
         }
+        // invariant mode: every operation starts from a consistent engine
+        core.debug_check("at the start of an engine operation");
         core
     }
 }
@@ -825,6 +827,17 @@ impl Core<'_> {
         }
         for r in cp.nrules..self.st.nrules {
             self.rules[r as usize] = Rule::EMPTY;
+        }
+        // An old join whose last user was the new rule (its previous users were removed
+        // meanwhile, e.g. by a redefinition of the same rule) is now unused: remove it
+        // as `remove_rule` would, or it keeps its partial matches and eats tokens.
+        for j in 1..cp.njoins.min(self.st.njoins) {
+            if self.joins[j as usize].refs == 0 {
+                if !self.joins[j as usize].is_terminal() {
+                    self.clear_join_memory(j);
+                }
+                self.unlink_join(j);
+            }
         }
         self.st.nrules = cp.nrules;
         self.st.nalpha = cp.nalpha;

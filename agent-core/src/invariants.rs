@@ -114,6 +114,18 @@ impl<
 }
 
 impl Core<'_> {
+    /// Invariant mode (feature `check-invariants`): panics with the violation when an
+    /// invariant is broken; a no-op without the feature. Only call it between
+    /// top-level operations (not while a rule fires or a function evaluates).
+    #[inline]
+    pub(crate) fn debug_check(&self, when: &str) {
+        #[cfg(feature = "check-invariants")]
+        if let Err(v) = self.check_invariants() {
+            panic!("{v} ({when})");
+        }
+        let _ = when;
+    }
+
     /// See [`Engine::check_invariants`].
     pub fn check_invariants(&self) -> Result<(), Violation> {
         self.check_rest_state()?;
@@ -314,6 +326,16 @@ impl Core<'_> {
                 ensure!(
                     jn.mem == NONE,
                     "removed join still holds partial matches",
+                    j
+                );
+                ensure!(
+                    !self.child_listed(jn.parent, j),
+                    "removed join still under its parent",
+                    j
+                );
+                ensure!(
+                    jn.alpha == NONE || !self.succ_listed(jn.alpha, j),
+                    "removed join still fed by its alpha node",
                     j
                 );
                 continue;
@@ -1085,6 +1107,8 @@ mod tests {
     extern crate std;
     use crate::engine::SmallEngine;
     use crate::host::NullHost;
+    use crate::rete::TokenKind;
+    use crate::value::NONE;
     use std::boxed::Box;
 
     #[test]
@@ -1110,5 +1134,109 @@ mod tests {
         e.check_invariants().unwrap();
         e.clear(h).unwrap();
         e.check_invariants().unwrap();
+    }
+
+    /// A busy engine for the corruption tests: facts, partial matches, not/exists
+    /// counts and an agenda of several activations with equal salience.
+    fn busy() -> Box<SmallEngine> {
+        let mut e = Box::new(SmallEngine::new());
+        let h = &mut NullHost;
+        e.load_str(
+            h,
+            "t",
+            "(defrule a (p ?x) (q ?x) (not (r ?x)) =>) (defrule b (exists (q ?)) (p ?x) =>)",
+        )
+        .unwrap();
+        for i in 0..3 {
+            e.assert_str(h, &std::format!("(p {i})")).unwrap();
+            e.assert_str(h, &std::format!("(q {i})")).unwrap();
+        }
+        e.assert_str(h, "(r 1)").unwrap();
+        e.check_invariants().unwrap();
+        e
+    }
+
+    /// The checker must see each kind of damage (a checker that never fails proves
+    /// nothing): corrupt one link at a time and expect the named violation.
+    #[test]
+    fn corruption_is_detected() {
+        type Damage = fn(&mut crate::engine::Core<'_>);
+        let cases: [(&str, Damage); 9] = [
+            ("free tokens not all on the free list", |cx| {
+                cx.st.tokens_used += 1
+            }),
+            ("live token count wrong", |cx| cx.st.tokens_live += 1),
+            ("fact list tail wrong", |cx| {
+                cx.st.fact_tail = cx.st.fact_head
+            }),
+            ("live facts missing from the hash index", |cx| {
+                for b in cx.fact_buckets.iter_mut() {
+                    *b = NONE;
+                }
+            }),
+            ("symbols missing from the hash chains", |cx| {
+                let b = cx.sym_buckets.iter().position(|&b| b != NONE).unwrap();
+                cx.sym_buckets[b] = NONE;
+            }),
+            ("agenda not newest first among equal salience", |cx| {
+                let a = cx.st.agenda_head;
+                cx.acts[a as usize].seq = 0;
+            }),
+            ("activation accounting does not add up", |cx| {
+                cx.st.acts_used += 1
+            }),
+            ("alpha match of a match was freed", |cx| {
+                // free an alpha match that partial matches are built on (dangling)
+                let t = (0..cx.st.tokens_used as usize)
+                    .find(|&t| {
+                        cx.tokens[t].kind == TokenKind::Alpha && cx.tokens[t].first_child != NONE
+                    })
+                    .unwrap();
+                cx.tokens[t].kind = TokenKind::Free;
+                cx.st.tokens_live -= 1;
+                let free = cx.st.token_free;
+                cx.st.token_free = t as u16;
+                // take it out of its fact's and memory's lists as a buggy free would
+                let tk = cx.tokens[t];
+                let a = tk.owner as usize;
+                if tk.mem_prev != NONE {
+                    cx.tokens[tk.mem_prev as usize].mem_next = tk.mem_next;
+                } else {
+                    cx.alphas[a].mem = tk.mem_next;
+                }
+                if tk.mem_next != NONE {
+                    cx.tokens[tk.mem_next as usize].mem_prev = tk.mem_prev;
+                } else {
+                    cx.alphas[a].mem_tail = tk.mem_prev;
+                }
+                if tk.prev_sib != NONE {
+                    cx.tokens[tk.prev_sib as usize].next_sib = tk.next_sib;
+                } else {
+                    cx.facts[tk.fact as usize].first_am = tk.next_sib;
+                }
+                if tk.next_sib != NONE {
+                    cx.tokens[tk.next_sib as usize].prev_sib = tk.prev_sib;
+                }
+                cx.tokens[t].next_sib = free;
+            }),
+            ("not/exists blocker links != blocked flag", |cx| {
+                let t = (0..cx.st.tokens_used as usize)
+                    .find(|&t| cx.tokens[t].kind == TokenKind::Beta && cx.tokens[t].blocked)
+                    .unwrap();
+                cx.tokens[t].blocked = false;
+            }),
+        ];
+        let mut wrong = std::vec::Vec::new();
+        for (what, damage) in cases {
+            let mut e = busy();
+            let h = &mut NullHost;
+            let mut cx = e.core(h);
+            damage(&mut cx);
+            match cx.check_invariants() {
+                Err(v) if v.what == what => {}
+                other => wrong.push(std::format!("{what}: got {other:?}")),
+            }
+        }
+        assert!(wrong.is_empty(), "{wrong:#?}");
     }
 }

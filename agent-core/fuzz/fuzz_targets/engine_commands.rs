@@ -1,0 +1,15 @@
+//! The engine fed random command streams (assert/retract/modify/run/reset/rule
+//! redefinition/undefrule/clear, decoded from bytes) against a small rule base with
+//! not/exists/multifield patterns; invariants are checked after every command and a
+//! failed assert must leave no trace. Same decoder as the property test in
+//! agent-core/tests/invariants_property.rs.
+#![no_main]
+
+#[path = "../../tests/common/command_stream.rs"]
+mod command_stream;
+
+use libfuzzer_sys::fuzz_target;
+
+fuzz_target!(|data: &[u8]| {
+    command_stream::run_stream(data);
+});

@@ -1,0 +1,868 @@
+//! Exhaustion matrix: every pool of `Pool::ALL`, filled in each place it can fill — at
+//! assert, during `run`, at modify, at load (or reset, for deffacts) — on engines with
+//! one shrunken pool. Each case checks that
+//! - the error names the pool and its capacity (returned, or printed by `run`, which
+//!   reports a failing right-hand side and stops as CLIPS does);
+//! - the engine is consistent afterwards (`check_invariants`);
+//! - the failed operation left no trace (facts, agenda, construct pools unchanged);
+//! - after retracting facts (or clearing) the same kind of operation works again.
+//!
+//! `capacity.rs` holds the first, per-pool capacity tests; this file completes the
+//! matrix and adds the invariant checks. `every_pool_is_covered` keeps the list honest.
+
+#![allow(dead_code)]
+
+use agent_core::{
+    CapacityError, Engine, EngineError, EvalErrorKind, FactId, Host, LoadError, Pool, Usage,
+};
+
+#[derive(Default)]
+struct Capture {
+    out: String,
+}
+impl Host for Capture {
+    fn write_str(&mut self, _router: &str, text: &str) {
+        self.out.push_str(text);
+    }
+}
+
+/// An engine with roomy pools except those overridden (positional consts).
+macro_rules! engine {
+    ($($name:ident = $v:expr),*) => {{
+        #[allow(non_snake_case, unused_variables)]
+        {
+            const FACTS: usize = 64;
+            const VALUES: usize = 512;
+            const SYMBOLS: usize = 256;
+            const SYMBYTES: usize = 4096;
+            const TEMPLATES: usize = 16;
+            const SLOTS: usize = 64;
+            const RULES: usize = 32;
+            const ALPHA: usize = 64;
+            const JOINS: usize = 128;
+            const TOKENS: usize = 512;
+            const ACTS: usize = 256;
+            const FUNCS: usize = 16;
+            const GLOBALS: usize = 16;
+            const EXPRS: usize = 2048;
+            const STACK: usize = 128;
+            const SCRATCH: usize = 256;
+            const DEFFACTS: usize = 8;
+            const EXTERNALS: usize = 8;
+            {
+                $(const $name: usize = $v;)*
+                Box::new(Engine::<FACTS, VALUES, SYMBOLS, SYMBYTES, TEMPLATES, SLOTS, RULES, ALPHA, JOINS,
+                    TOKENS, ACTS, FUNCS, GLOBALS, EXPRS, STACK, SCRATCH, DEFFACTS, EXTERNALS>::new())
+            }
+        }
+    }};
+}
+
+/// Facts, agenda and construct usage: what a failed operation must not change.
+#[derive(Debug, PartialEq)]
+struct Snapshot {
+    facts: Vec<FactId>,
+    agenda: Vec<String>,
+    usage: Usage,
+}
+
+/// The engine operations the checks need, for every capacity combination.
+trait Probe {
+    fn snapshot(&self) -> Snapshot;
+    fn consistent(&mut self);
+}
+
+impl<
+        const A: usize,
+        const B: usize,
+        const C: usize,
+        const D: usize,
+        const E: usize,
+        const F: usize,
+        const G: usize,
+        const H: usize,
+        const I: usize,
+        const J: usize,
+        const K: usize,
+        const L: usize,
+        const M: usize,
+        const N: usize,
+        const O: usize,
+        const P: usize,
+        const Q: usize,
+        const R: usize,
+    > Probe for Engine<A, B, C, D, E, F, G, H, I, J, K, L, M, N, O, P, Q, R>
+{
+    fn snapshot(&self) -> Snapshot {
+        let mut agenda = Vec::new();
+        self.for_each_activation(|r, s, b| agenda.push(format!("{s} {r} {b:?}")));
+        Snapshot {
+            facts: self.facts().collect(),
+            agenda,
+            usage: self.usage(),
+        }
+    }
+    fn consistent(&mut self) {
+        if let Err(v) = self.check_invariants() {
+            panic!("{v}");
+        }
+    }
+}
+
+fn cap_of(e: &EngineError) -> CapacityError {
+    match e {
+        EngineError::Capacity(c) => *c,
+        EngineError::Load(l) => l.capacity.expect("a capacity error"),
+        EngineError::Eval(v) => match v.kind {
+            EvalErrorKind::Capacity(c) => c,
+            k => panic!("not a capacity error: {k:?}"),
+        },
+        other => panic!("not a capacity error: {other:?}"),
+    }
+}
+
+fn load_cap(e: &LoadError) -> CapacityError {
+    e.capacity
+        .unwrap_or_else(|| panic!("not a capacity error: {e:?}"))
+}
+
+fn full(pool: Pool, capacity: u32) -> CapacityError {
+    CapacityError { pool, capacity }
+}
+
+/// The message `run` prints for a right-hand side that ran out of `pool`.
+fn run_message(pool: Pool, capacity: u32) -> String {
+    format!("{}", full(pool, capacity))
+}
+
+/// Asserts facts from `make(i)` until one fails; returns the error, after checking the
+/// failure left no trace and the engine is consistent.
+fn assert_until_full<E: Probe + ?Sized>(
+    e: &mut E,
+    mut assert: impl FnMut(&mut E, usize) -> Result<FactId, EngineError>,
+) -> CapacityError {
+    for i in 0..10_000 {
+        let before = e.snapshot();
+        match assert(e, i) {
+            Ok(_) | Err(EngineError::Duplicate) => e.consistent(),
+            Err(err) => {
+                let c = cap_of(&err);
+                assert_eq!(e.snapshot(), before, "failed assert left a trace: {err}");
+                e.consistent();
+                return c;
+            }
+        }
+    }
+    panic!("never filled");
+}
+
+/// Loads constructs from `make(i)` until one fails; the failure leaves no trace.
+fn load_until_full<E: Probe + ?Sized>(
+    e: &mut E,
+    mut load: impl FnMut(&mut E, usize) -> Result<usize, LoadError>,
+) -> CapacityError {
+    for i in 0..10_000 {
+        let before = e.snapshot();
+        match load(e, i) {
+            Ok(_) => e.consistent(),
+            Err(err) => {
+                let c = load_cap(&err);
+                assert_eq!(e.snapshot(), before, "failed load left a trace: {err}");
+                e.consistent();
+                return c;
+            }
+        }
+    }
+    panic!("never filled");
+}
+
+// ---------------------------------------------------------------- facts
+
+#[test]
+fn facts_at_assert_run_modify_and_reset() {
+    let h = &mut Capture::default();
+    // assert
+    let mut e = engine!(FACTS = 6);
+    let c = assert_until_full(&mut *e, |e, i| e.assert_str(h, &format!("(a {i})")));
+    assert_eq!(c, full(Pool::Facts, 6));
+    let first = e.facts().nth(1).unwrap();
+    e.retract(h, first).unwrap();
+    e.assert_str(h, "(a again)").unwrap();
+    e.consistent();
+
+    // run: a rule counting upwards fills the pool; the failed assert adds nothing
+    let mut e = engine!(FACTS = 6);
+    let h = &mut Capture::default();
+    e.load_str(
+        h,
+        "t",
+        "(defrule up (n ?x&:(< ?x 100)) => (assert (n (+ ?x 1))))",
+    )
+    .unwrap();
+    e.assert_str(h, "(n 0)").unwrap();
+    let fired = e.run(h, None).unwrap();
+    assert!(h.out.contains(&run_message(Pool::Facts, 6)), "{}", h.out);
+    assert_eq!(fired, 5);
+    assert_eq!(e.facts().count(), 6);
+    e.consistent();
+    let _ = e.eval_str(h, "(retract 1 2 3)");
+    e.consistent();
+    // (n 5)'s activation fired and failed; a new start point fires again
+    e.assert_str(h, "(n 50)").unwrap();
+    assert!(e.run(h, None).unwrap() > 0);
+    e.consistent();
+
+    // modify while the pool is full: the retracted fact stays readable until the
+    // firing ends, so the new one has no slot
+    let mut e = engine!(FACTS = 4);
+    let h = &mut Capture::default();
+    e.load_str(
+        h,
+        "t",
+        "(deftemplate c (slot v)) (defrule bump ?f <- (c (v ?v&:(< ?v 3))) => (modify ?f (v (+ ?v 1))))",
+    )
+    .unwrap();
+    e.assert_str(h, "(c (v 0))").unwrap();
+    e.assert_str(h, "(x 1)").unwrap();
+    e.assert_str(h, "(x 2)").unwrap();
+    let before = e.snapshot();
+    e.run(h, None).unwrap();
+    assert!(h.out.contains(&run_message(Pool::Facts, 4)), "{}", h.out);
+    e.consistent();
+    failed_modify_dropped_only_the_old_fact(&before, &e.snapshot(), FactId(1));
+    e.retract(h, FactId(2)).unwrap();
+    e.consistent();
+    h.out.clear();
+    e.assert_str(h, "(c (v 1))").ok();
+    e.run(h, None).unwrap();
+    assert!(!h.out.contains("out of"), "{}", h.out);
+    e.consistent();
+
+    // reset with more deffacts than room
+    let mut e = engine!(FACTS = 4);
+    let h = &mut Capture::default();
+    e.load_str(h, "t", "(deffacts many (a 1) (a 2) (a 3) (a 4) (a 5))")
+        .unwrap();
+    let err = e.reset(h).unwrap_err();
+    assert_eq!(cap_of(&err), full(Pool::Facts, 4));
+    e.consistent();
+    e.clear(h).unwrap();
+    e.load_str(h, "t", "(deffacts few (a 1) (a 2))").unwrap();
+    e.reset(h).unwrap();
+    assert_eq!(e.facts().count(), 3);
+    e.consistent();
+}
+
+// ---------------------------------------------------------------- fact values
+
+#[test]
+fn fact_values_at_assert_run_modify_and_reset() {
+    let h = &mut Capture::default();
+    let mut e = engine!(VALUES = 24);
+    let c = assert_until_full(&mut *e, |e, i| {
+        e.assert_str(h, &format!("(big {i} 1 2 3 4 5 6)"))
+    });
+    assert_eq!(c, full(Pool::FactValues, 24));
+    let second = e.facts().nth(1).unwrap();
+    e.retract(h, second).unwrap();
+    e.assert_str(h, "(big again 1 2 3 4 5)").unwrap();
+    e.consistent();
+
+    // run: growing multifields
+    let mut e = engine!(VALUES = 40);
+    let h = &mut Capture::default();
+    e.load_str(h, "t", "(defrule grow (l $?x) => (assert (l $?x $?x 1)))")
+        .unwrap();
+    e.assert_str(h, "(l 1)").unwrap();
+    e.run(h, None).unwrap();
+    assert!(
+        h.out.contains(&run_message(Pool::FactValues, 40)),
+        "{}",
+        h.out
+    );
+    e.consistent();
+    let last = e.facts().last().unwrap();
+    e.retract(h, last).unwrap();
+    e.assert_str(h, "(l 9 9)").unwrap();
+    e.consistent();
+
+    // modify to a longer multislot than fits
+    let mut e = engine!(VALUES = 20);
+    let h = &mut Capture::default();
+    e.load_str(h, "t", "(deftemplate m (multislot xs))")
+        .unwrap();
+    e.assert_str(h, "(m (xs 1 2))").unwrap();
+    e.assert_str(h, "(pad 1 2 3 4 5 6 7 8 9)").unwrap();
+    let before = e.snapshot();
+    let r = e.eval_str(h, "(modify 1 (xs 1 2 3 4 5 6 7 8 9 10 11 12))");
+    assert_eq!(
+        r.map_err(|e| e.kind),
+        Err(EvalErrorKind::Capacity(full(Pool::FactValues, 20)))
+    );
+    e.consistent();
+    failed_modify_dropped_only_the_old_fact(&before, &e.snapshot(), FactId(1));
+    e.retract(h, FactId(2)).unwrap();
+    e.consistent();
+
+    // reset with big deffacts
+    let mut e = engine!(VALUES = 16);
+    let h = &mut Capture::default();
+    e.load_str(
+        h,
+        "t",
+        "(deffacts big (a 1 2 3 4 5 6) (b 1 2 3 4 5 6 7 8 9))",
+    )
+    .unwrap();
+    let err = e.reset(h).unwrap_err();
+    assert_eq!(cap_of(&err), full(Pool::FactValues, 16));
+    e.consistent();
+    e.clear(h).unwrap();
+    e.consistent();
+    e.assert_str(h, "(a 1 2 3 4 5 6)").unwrap();
+}
+
+/// A modify that ran out of room. CLIPS's modify is a retract followed by an assert;
+/// when the assert runs out of room the retract has happened: the old fact is gone
+/// (with what its retract caused), nothing of the new fact exists, the construct pools
+/// are unchanged and the engine is consistent. (Known limitation: not "no trace" for
+/// the modified fact itself; see the fuzz helper's report.)
+fn failed_modify_dropped_only_the_old_fact(before: &Snapshot, after: &Snapshot, old: FactId) {
+    let expected: Vec<FactId> = before.facts.iter().copied().filter(|&f| f != old).collect();
+    assert_eq!(after.facts, expected, "modify left more than the retract");
+    assert_eq!(after.usage.templates, before.usage.templates);
+    assert_eq!(after.usage.rules, before.usage.rules);
+    assert_eq!(after.usage.exprs, before.usage.exprs);
+}
+
+// ---------------------------------------------------------------- symbols
+
+#[test]
+fn symbols_and_bytes_at_assert_run_modify_and_load() {
+    for (pool, cap) in [(Pool::Symbols, 48u32), (Pool::SymbolBytes, 600)] {
+        // assert new symbols
+        let h = &mut Capture::default();
+        let mut e = engine!(SYMBOLS = 48, SYMBYTES = 600);
+        let long = "s".repeat(if pool == Pool::SymbolBytes { 40 } else { 1 });
+        let c = assert_until_full(&mut *e, |e, i| e.assert_str(h, &format!("(s {long}{i})")));
+        assert_eq!(c, full(pool, cap));
+        // known symbols still work after retracting
+        let f = e.facts().nth(1).unwrap();
+        e.retract(h, f).unwrap();
+        e.assert_str(h, "(s nil)").unwrap();
+        e.consistent();
+
+        // load: new template names
+        let mut e = engine!(SYMBOLS = 48, SYMBYTES = 600, TEMPLATES = 64, SLOTS = 128);
+        let c = load_until_full(&mut *e, |e, i| {
+            e.load_str(h, "t", &format!("(deftemplate {long}t{i} (slot v))"))
+        });
+        assert_eq!(c, full(pool, cap));
+        e.assert_str(h, &format!("({long}t0 (v 1))")).unwrap();
+        e.consistent();
+
+        // run: the right-hand side makes new symbols; modify does too
+        let mut e = engine!(SYMBOLS = 48, SYMBYTES = 600);
+        let h = &mut Capture::default();
+        e.load_str(
+            h,
+            "t",
+            &format!(
+                "(deftemplate k (slot v) (slot n))
+                 (defrule mint ?f <- (k (n ?n&:(< ?n 500))) => (modify ?f (n (+ ?n 1)) (v (sym-cat {long} ?n))))"
+            ),
+        )
+        .unwrap();
+        e.assert_str(h, "(k (n 0))").unwrap();
+        e.run(h, None).unwrap();
+        assert!(h.out.contains(&run_message(pool, cap)), "{}", h.out);
+        e.consistent();
+        assert_eq!(e.facts().count(), 2, "the modified fact is kept");
+    }
+}
+
+// ---------------------------------------------------------------- templates, slots
+
+#[test]
+fn templates_and_slot_defs_at_load_and_assert() {
+    let h = &mut Capture::default();
+    // initial-fact takes one template and one slot
+    let mut e = engine!(TEMPLATES = 4);
+    let c = load_until_full(&mut *e, |e, i| {
+        e.load_str(h, "t", &format!("(deftemplate t{i} (slot v))"))
+    });
+    assert_eq!(c, full(Pool::Templates, 4));
+    // an ordered fact of a new relation needs an implied template
+    let c = assert_until_full(&mut *e, |e, i| e.assert_str(h, &format!("(rel{i} 1)")));
+    assert_eq!(c, full(Pool::Templates, 4));
+    e.assert_str(h, "(t0 (v 1))").unwrap();
+    e.clear(h).unwrap();
+    e.assert_str(h, "(rel 1)").unwrap();
+    e.consistent();
+
+    let mut e = engine!(SLOTS = 6);
+    let c = load_until_full(&mut *e, |e, i| {
+        e.load_str(h, "t", &format!("(deftemplate t{i} (slot a) (slot b))"))
+    });
+    assert_eq!(c, full(Pool::SlotDefs, 6));
+    let c = assert_until_full(&mut *e, |e, i| e.assert_str(h, &format!("(rel{i} 1)")));
+    assert_eq!(c, full(Pool::SlotDefs, 6));
+    e.clear(h).unwrap();
+    e.assert_str(h, "(rel 1)").unwrap();
+    e.consistent();
+}
+
+// ---------------------------------------------------------------- rules, alpha, joins
+
+/// Fills one construct pool by loading rules against existing facts (so new rules are
+/// primed and a rollback has matches to undo), then checks recovery after `clear`.
+macro_rules! rule_pool_case {
+    ($pool:expr, $cap:expr, $e:expr) => {{
+        let (pool, cap) = ($pool, $cap);
+        let h = &mut Capture::default();
+        let mut e = $e;
+        e.load_str(h, "t", "(deftemplate p (slot x) (slot y))")
+            .unwrap();
+        for i in 0..4 {
+            e.assert_str(h, &format!("(p (x {i}) (y {}))", i % 2))
+                .unwrap();
+        }
+        let c = load_until_full(&mut *e, |e, i| {
+            let text = match pool {
+                Pool::Rules => format!("(defrule r{i} (p (x ?x)) =>)"),
+                Pool::AlphaNodes => format!("(defrule r{i} (p (x {i}) (y ?y)) =>)"),
+                _ => format!("(defrule r{i} (p (x ?x)) (p (y ?x)) (q {i}) =>)"),
+            };
+            e.load_str(h, "t", &text)
+        });
+        assert_eq!(c, full(pool, cap));
+        // still matches and fires
+        e.assert_str(h, "(p (x 0) (y 9))").unwrap();
+        e.assert_str(h, "(q 0)").unwrap();
+        assert!(e.run(h, None).unwrap() > 0);
+        e.consistent();
+        // clearing gives the room back
+        e.clear(h).unwrap();
+        e.load_str(h, "t", "(defrule again (p ?x) =>)").unwrap();
+        e.consistent();
+    }};
+}
+
+#[test]
+fn rules_alpha_nodes_and_joins_at_load() {
+    rule_pool_case!(Pool::Rules, 6, engine!(RULES = 6));
+    rule_pool_case!(Pool::AlphaNodes, 8, engine!(ALPHA = 8));
+    rule_pool_case!(Pool::Joins, 14, engine!(JOINS = 14));
+}
+
+/// Regression (found by the invariant property test): a load that failed after
+/// creating an alpha node sorted into the middle of its template's list left the node
+/// linked there, pointing at a dropped pool entry.
+#[test]
+fn failed_load_unlinks_alpha_nodes_from_the_middle_of_a_template_list() {
+    let h = &mut Capture::default();
+    let mut e = engine!(RULES = 2);
+    e.load_str(
+        h,
+        "t",
+        "(deftemplate item (slot id) (slot state) (multislot tags))
+         (defrule a (item (id ?i) (state seen)) =>)
+         (defrule b (item (state done)) =>)",
+    )
+    .unwrap();
+    let before = e.snapshot();
+    let err = e
+        .load_str(
+            h,
+            "t",
+            "(defrule c (item (id ?i) (tags $?t&:(> (length$ ?t) 1))) =>)",
+        )
+        .unwrap_err();
+    assert_eq!(load_cap(&err), full(Pool::Rules, 2));
+    assert_eq!(e.snapshot(), before);
+    e.consistent();
+    e.assert_str(h, "(item (id 1) (state seen) (tags a b))")
+        .unwrap();
+    e.consistent();
+}
+
+// ---------------------------------------------------------------- tokens, activations
+
+const CROSS: &str = "(defrule cross (a ?x) (b ?y) (not (c ?x ?y)) => (assert (c ?x ?y)))";
+
+/// Tokens and activations fill at assert (a growing cross product), during `run`
+/// (right-hand sides asserting), at modify and at load (a new rule primed against
+/// existing facts); `$mk` makes an engine with the one pool shrunk.
+macro_rules! match_pool_case {
+    ($pool:expr, $cap:expr, $mk:expr) => {{
+        let (pool, cap): (Pool, u32) = ($pool, $cap);
+        // assert: the cross product grows until a pool is full; the failed assert
+        // is undone completely
+        let h = &mut Capture::default();
+        let mut e = $mk;
+        e.load_str(h, "t", CROSS).unwrap();
+        let c = assert_until_full(&mut *e, |e, i| {
+            e.assert_str(h, &format!("({} {i})", if i % 2 == 0 { "a" } else { "b" }))
+        });
+        assert_eq!(c, full(pool, cap), "assert");
+        let f = e.facts().nth(1).unwrap();
+        e.retract(h, f).unwrap();
+        e.consistent();
+        assert!(e.assert_str(h, "(a new)").is_ok());
+        e.consistent();
+
+        // run: firing asserts (c x y) facts, each dropping an activation but adding
+        // tokens; in the activation case more pairs are asserted from the RHS
+        let mut e = $mk;
+        let h = &mut Capture::default();
+        e.load_str(
+            h,
+            "t",
+            "(defrule spawn (go ?n&:(< ?n 40)) => (assert (a ?n) (b ?n) (go (+ ?n 1))))",
+        )
+        .unwrap();
+        e.load_str(h, "t", CROSS).unwrap();
+        e.assert_str(h, "(go 0)").unwrap();
+        e.run(h, None).unwrap();
+        assert!(h.out.contains(&run_message(pool, cap)), "run: {}", h.out);
+        e.consistent();
+        let _ = e.eval_str(h, "(retract *)");
+        e.consistent();
+        h.out.clear();
+        e.assert_str(h, "(a 1)").unwrap();
+        e.assert_str(h, "(b 1)").unwrap();
+        assert_eq!(e.run(h, None).unwrap(), 1);
+        e.consistent();
+
+        // modify: changing a fact to one that matches many
+        let mut e = $mk;
+        let h = &mut Capture::default();
+        e.load_str(
+            h,
+            "t",
+            "(deftemplate k (slot v)) (defrule many (k (v 1)) (a ?x) (b ?y) =>)",
+        )
+        .unwrap();
+        for i in 0..6 {
+            e.assert_str(h, &format!("(a {i})")).unwrap();
+            e.assert_str(h, &format!("(b {i})")).unwrap();
+        }
+        e.assert_str(h, "(k (v 0))").unwrap();
+        let fact = e.facts().last().unwrap();
+        let before = e.snapshot();
+        // (k (v 1)) matches 36 pairs: more activations and tokens than room
+        let r = e.eval_str(h, &format!("(modify {} (v 1))", fact.0));
+        assert_eq!(
+            r.map_err(|e| e.kind),
+            Err(EvalErrorKind::Capacity(full(pool, cap))),
+            "modify"
+        );
+        e.consistent();
+        failed_modify_dropped_only_the_old_fact(&before, &e.snapshot(), fact);
+        e.retract(h, FactId(1)).unwrap();
+        e.assert_str(h, "(k (v 2))").unwrap();
+        e.consistent();
+
+        // load: a new rule primed against existing facts runs out; rollback
+        let mut e = $mk;
+        let h = &mut Capture::default();
+        for i in 0..5 {
+            e.assert_str(h, &format!("(a {i})")).unwrap();
+            e.assert_str(h, &format!("(b {i})")).unwrap();
+        }
+        let before = e.snapshot();
+        let err = e
+            .load_str(h, "t", "(defrule late (a ?x) (b ?y) =>)")
+            .unwrap_err();
+        assert_eq!(load_cap(&err), full(pool, cap), "load");
+        assert_eq!(e.snapshot(), before);
+        e.consistent();
+        for i in 0..4 {
+            e.retract(h, FactId(1 + 2 * i)).unwrap();
+        }
+        e.load_str(h, "t", "(defrule late (a ?x) (b ?y) =>)")
+            .unwrap();
+        e.consistent();
+    }};
+}
+
+#[test]
+fn tokens_and_activations_at_assert_run_modify_and_load() {
+    match_pool_case!(Pool::Tokens, 40, engine!(TOKENS = 40));
+    match_pool_case!(Pool::Activations, 6, engine!(ACTS = 6));
+}
+
+// ---------------------------------------------------------------- constructs
+
+#[test]
+fn functions_globals_and_deffacts_at_load() {
+    let h = &mut Capture::default();
+    let mut e = engine!(FUNCS = 2);
+    let c = load_until_full(&mut *e, |e, i| {
+        e.load_str(h, "t", &format!("(deffunction f{i} (?x) (* ?x {i}))"))
+    });
+    assert_eq!(c, full(Pool::Functions, 2));
+    assert_eq!(e.eval_str(h, "(f1 3)").unwrap(), agent_core::Value::Int(3));
+    e.clear(h).unwrap();
+    e.load_str(h, "t", "(deffunction g () 1)").unwrap();
+    e.consistent();
+
+    let mut e = engine!(GLOBALS = 2);
+    let c = load_until_full(&mut *e, |e, i| {
+        e.load_str(h, "t", &format!("(defglobal ?*g{i}* = (create$ {i} {i}))"))
+    });
+    assert_eq!(c, full(Pool::Globals, 2));
+    e.reset(h).unwrap();
+    e.consistent();
+    e.clear(h).unwrap();
+    e.load_str(h, "t", "(defglobal ?*x* = 1)").unwrap();
+    e.consistent();
+
+    let mut e = engine!(DEFFACTS = 2);
+    let c = load_until_full(&mut *e, |e, i| {
+        e.load_str(h, "t", &format!("(deffacts d{i} (d {i}))"))
+    });
+    assert_eq!(c, full(Pool::Deffacts, 2));
+    e.reset(h).unwrap();
+    assert_eq!(e.facts().count(), 3);
+    e.consistent();
+    e.clear(h).unwrap();
+    e.load_str(h, "t", "(deffacts again (d 9))").unwrap();
+    e.consistent();
+}
+
+#[test]
+fn expression_nodes_at_load_and_assert() {
+    let h = &mut Capture::default();
+    let mut e = engine!(EXPRS = 200);
+    let c = load_until_full(&mut *e, |e, i| {
+        e.load_str(
+            h,
+            "t",
+            &format!("(defrule r{i} (a ?x) => (printout t (+ ?x {i} 1 2 3) crlf))"),
+        )
+    });
+    assert_eq!(c, full(Pool::Exprs, 200));
+    // an assert's fact spec is parsed into temporary nodes: a big one does not fit
+    let values: Vec<String> = (0..120).map(|i| i.to_string()).collect();
+    let before = e.snapshot();
+    let err = e
+        .assert_str(h, &format!("(big {})", values.join(" ")))
+        .unwrap_err();
+    assert_eq!(cap_of(&err), full(Pool::Exprs, 200));
+    assert_eq!(e.snapshot(), before);
+    e.consistent();
+    e.assert_str(h, "(a 1)").unwrap();
+    assert!(e.run(h, None).unwrap() > 0);
+    e.clear(h).unwrap();
+    e.load_str(h, "t", "(defrule small (a ?x) =>)").unwrap();
+    e.consistent();
+}
+
+#[test]
+fn eval_stack_at_run_assert_and_eval() {
+    let h = &mut Capture::default();
+    // run: a recursive deffunction on the right-hand side
+    let mut e = engine!(STACK = 24);
+    e.load_str(
+        h,
+        "t",
+        "(deffunction down (?n) (if (> ?n 0) then (+ 1 (down (- ?n 1))) else 0))
+         (defrule deep (depth ?n) => (assert (got (down ?n))))",
+    )
+    .unwrap();
+    e.assert_str(h, "(depth 100)").unwrap();
+    e.run(h, None).unwrap();
+    assert!(
+        h.out.contains(&run_message(Pool::EvalStack, 24)),
+        "{}",
+        h.out
+    );
+    e.consistent();
+    assert!(e.facts().all(|f| e.fact_template_name(f) != Some("got")));
+    e.assert_str(h, "(depth 3)").unwrap();
+    h.out.clear();
+    e.run(h, None).unwrap();
+    assert!(h.out.is_empty(), "{}", h.out);
+    e.consistent();
+
+    // assert: a template with more slots than the stack holds
+    let mut e = engine!(STACK = 4);
+    e.load_str(
+        h,
+        "t",
+        "(deftemplate wide (slot a) (slot b) (slot c) (slot d) (slot e))",
+    )
+    .unwrap();
+    let before = e.snapshot();
+    let err = e.assert_str(h, "(wide (a 1))").unwrap_err();
+    assert_eq!(cap_of(&err), full(Pool::EvalStack, 4));
+    assert_eq!(e.snapshot(), before);
+    e.consistent();
+    e.assert_str(h, "(narrow 1)").unwrap();
+    e.consistent();
+}
+
+#[test]
+fn scratch_at_run_assert_and_modify() {
+    let h = &mut Capture::default();
+    let mut e = engine!(SCRATCH = 12);
+    e.load_str(
+        h,
+        "t",
+        "(deftemplate m (multislot xs))
+         (defrule dup ?f <- (m (xs $?x&:(< (length$ ?x) 40))) => (modify ?f (xs $?x $?x 1)))",
+    )
+    .unwrap();
+    e.assert_str(h, "(m (xs 1))").unwrap();
+    e.run(h, None).unwrap();
+    assert!(h.out.contains(&run_message(Pool::Scratch, 12)), "{}", h.out);
+    e.consistent();
+    assert_eq!(e.facts().count(), 2, "the modified fact is kept");
+
+    // assert: a multislot longer than scratch
+    let values: Vec<String> = (0..20).map(|i| i.to_string()).collect();
+    let before = e.snapshot();
+    let err = e
+        .assert_str(h, &format!("(m (xs {}))", values.join(" ")))
+        .unwrap_err();
+    assert_eq!(cap_of(&err), full(Pool::Scratch, 12));
+    assert_eq!(e.snapshot(), before);
+    e.consistent();
+    e.assert_str(h, "(m (xs a b c))").unwrap();
+    e.consistent();
+}
+
+#[test]
+fn external_functions_at_registration() {
+    fn one(
+        _cx: &mut agent_core::Core<'_>,
+        _a: agent_core::Args,
+    ) -> Result<agent_core::Value, agent_core::EvalError> {
+        Ok(agent_core::Value::Int(1))
+    }
+    let h = &mut Capture::default();
+    let mut e = engine!(EXTERNALS = 2);
+    e.register_function("one", 0, Some(0), one).unwrap();
+    e.register_function("two", 0, Some(0), one).unwrap();
+    let before = e.snapshot();
+    let err = e.register_function("three", 0, Some(0), one).unwrap_err();
+    assert_eq!(cap_of(&err), full(Pool::ExternalFns, 2));
+    assert_eq!(e.snapshot().facts, before.facts);
+    e.consistent();
+    // replacing an existing one still works, and clear keeps them
+    e.register_function("two", 0, Some(0), one).unwrap();
+    e.clear(h).unwrap();
+    assert_eq!(e.eval_str(h, "(two)").unwrap(), agent_core::Value::Int(1));
+    e.consistent();
+}
+
+/// Every pool has a case above (names listed by hand; a new pool fails this test).
+#[test]
+fn every_pool_is_covered() {
+    let covered = [
+        Pool::Facts,
+        Pool::FactValues,
+        Pool::Symbols,
+        Pool::SymbolBytes,
+        Pool::Templates,
+        Pool::SlotDefs,
+        Pool::Rules,
+        Pool::AlphaNodes,
+        Pool::Joins,
+        Pool::Tokens,
+        Pool::Activations,
+        Pool::Functions,
+        Pool::Globals,
+        Pool::Exprs,
+        Pool::EvalStack,
+        Pool::Scratch,
+        Pool::Deffacts,
+        Pool::ExternalFns,
+    ];
+    for p in Pool::ALL {
+        assert!(covered.contains(&p), "no exhaustion case for {p:?}");
+    }
+}
+
+/// Found by the `engine_commands` fuzz target: an assert that blocks a `not` CE and
+/// then runs out of tokens is undone, but undoing unblocks the `not` and re-creates its
+/// rule's activation as the newest one, so the agenda order differs from before the
+/// failed assert (an older activation now fires first). Same activations, other order.
+/// Fix belongs in the Rete/agenda undo path (restore the activation's old timestamp).
+#[test]
+#[ignore = "known: undone assert reorders re-created not-activations (Rete/agenda undo)"]
+fn failed_assert_keeps_the_agenda_order_of_blocked_not_rules() {
+    let h = &mut Capture::default();
+    let mut e = engine!(TOKENS = 40);
+    e.load_str(
+        h,
+        "t",
+        "(defrule use (item ?x) (o ?x) =>)
+         (defrule unhit (hit ?x) (not (item ?x)) =>)
+         (defrule other (o ?x) =>)
+         (defrule pad (pad ?x) =>)",
+    )
+    .unwrap();
+    e.assert_str(h, "(hit 1)").unwrap();
+    e.assert_str(h, "(o 1)").unwrap();
+    let mut i = 0;
+    while e.assert_str(h, &format!("(pad {i})")).is_ok() {
+        i += 1;
+    }
+    let pad = e.facts().last().unwrap();
+    e.retract(h, pad).unwrap();
+    let before = e.snapshot();
+    let err = e.assert_str(h, "(item 1)").unwrap_err();
+    assert_eq!(cap_of(&err), full(Pool::Tokens, 40));
+    e.consistent();
+    let mut sorted_before = before.agenda.clone();
+    let mut sorted_after = e.snapshot().agenda;
+    sorted_before.sort();
+    sorted_after.sort();
+    assert_eq!(sorted_after, sorted_before, "same activations");
+    assert_eq!(e.snapshot(), before, "same order");
+}
+
+/// A retract that unblocks a `not` must rebuild the matches below it; with the token
+/// pool full there is no room, and `retract` (which cannot fail) drops them silently:
+/// the rule never fires for that fact, and nothing reports it. Found while completing
+/// the matrix (`remove_link` ignores the error of `propagate`). Fix belongs in the Rete
+/// (report the error from retract, or reserve room).
+#[test]
+#[ignore = "known: retract with a full token pool silently loses unblocked not-matches (Rete)"]
+fn retract_unblocking_a_not_with_full_tokens_is_not_silent() {
+    let h = &mut Capture::default();
+    let mut e = engine!(TOKENS = 40);
+    e.load_str(
+        h,
+        "t",
+        "(defrule a (p ?x) (not (r ?x)) (q ?x ?) =>)
+         (defrule pad (pad ?x) =>)",
+    )
+    .unwrap();
+    e.assert_str(h, "(p 1)").unwrap();
+    for k in 0..6 {
+        e.assert_str(h, &format!("(q 1 {k})")).unwrap();
+    }
+    let blocker = e.assert_str(h, "(r 1)").unwrap();
+    let mut i = 0;
+    while e.assert_str(h, &format!("(pad {i})")).is_ok() {
+        i += 1;
+    }
+    assert_eq!(e.counts().1, i, "only the pads are activated");
+    e.retract(h, blocker).unwrap();
+    e.consistent();
+    // unblocking needs six partial matches (one per q fact); the retract freed two;
+    // free room, then see whether rule a is activated for (p 1) and the q facts
+    let pads: Vec<FactId> = e.facts().skip(8).take(6).collect();
+    for f in pads {
+        e.retract(h, f).unwrap();
+    }
+    let mut rules = Vec::new();
+    e.for_each_activation(|r, _, _| rules.push(r.to_string()));
+    assert_eq!(
+        rules.iter().filter(|r| *r == "a").count(),
+        6,
+        "unblocked matches of rule a were lost: {rules:?}"
+    );
+}
