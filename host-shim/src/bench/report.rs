@@ -1,5 +1,6 @@
 //! The terminal table and the regenerated `BENCHMARKS.md`.
 
+use super::decision::DecisionReport;
 use super::footprint::Footprint;
 use super::measure::{Measurement, Plan, Reading};
 use super::workloads::Workload;
@@ -73,6 +74,7 @@ pub struct Report {
     pub contenders: Vec<(String, Result<String, String>)>,
     pub rows: Vec<Row>,
     pub footprints: Vec<Footprint>,
+    pub decisions: Result<DecisionReport, String>,
 }
 
 /// Index of the contenders that count as "ours" and as the CLIPS references.
@@ -200,6 +202,29 @@ impl Report {
             }
             let (instr_ratio, wall_ratio) = self.ratio_row(row);
             let _ = writeln!(out, " | {instr_ratio:>12} | {wall_ratio:>12}");
+        }
+        match &self.decisions {
+            Ok(d) => {
+                let instr = match &d.instructions {
+                    Ok(i) => format!(
+                        "{} instr median (LX800 {} at IPC 1, {} at IPC 0.5)",
+                        i.median,
+                        duration_text(lx800_time(i.median, 1.0)),
+                        duration_text(lx800_time(i.median, 0.5))
+                    ),
+                    Err(reason) => format!("instructions {reason}"),
+                };
+                let _ = writeln!(
+                    out,
+                    "decision time: {} decisions, median {} (p90 {}), {instr}",
+                    d.decisions,
+                    duration_text(d.wall_median),
+                    duration_text(d.wall_p90)
+                );
+            }
+            Err(reason) => {
+                let _ = writeln!(out, "decision time: {reason}");
+            }
         }
         out
     }
@@ -368,7 +393,7 @@ impl Report {
                 .collect();
             let _ = writeln!(md, "| {} | {} |", row.workload.name(), cells.join(" | "));
         }
-        md.push_str(NOT_YET);
+        md.push_str(&decision_markdown(&self.decisions, &self.machine.cpu));
         md
     }
 }
@@ -387,12 +412,75 @@ through `bench::ours::InProcessEngine`. Rules fired come from `(watch statistics
 the `run()` return value. Results agree when the programs' result lines are equal (Manners: \
 the same set of seat assignments, also checked to be a valid seating).\n\n";
 
-const NOT_YET: &str = "\n## Not measured yet\n
-- LLSF games (N seeded simulated games of the agent rule base): not measured, the rule base \
-and the game simulation are not in the benchmark yet.
-- Decision time (skill outcome asserted to next skill request): not measured; the method is \
-fixed in `host-shim/src/bench/DECISION_TIME.md`.
-";
+/// Time on the 500 MHz AMD Geode LX800 for `instructions` at `ipc` instructions per cycle.
+pub fn lx800_time(instructions: u64, ipc: f64) -> Duration {
+    Duration::from_secs_f64(instructions as f64 / (ipc * 500e6))
+}
+
+/// The decision-time section (markdown) or the reason it is missing.
+pub fn decision_markdown(decisions: &Result<DecisionReport, String>, cpu: &str) -> String {
+    let mut md = String::from("\n## Decision time of the LLSF agent\n\n");
+    let d = match decisions {
+        Ok(d) => d,
+        Err(reason) => {
+            let _ = writeln!(md, "{reason}");
+            return md;
+        }
+    };
+    let _ = writeln!(
+        md,
+        "From asserting a skill outcome (e.g. the light seen at a machine) to the agent's next \
+         skill request: {} decisions of {} seeded games (seeds 0..{}, paper strategy), the \
+         agent alone in a `DefaultEngine` replaying the outcomes recorded from the whole game \
+         (every replayed request checked against the game's). One decision fires {} rules \
+         (median; at most {}). Method: `host-shim/src/bench/DECISION_TIME.md`.\n",
+        d.decisions, d.games, d.games, d.fired_median, d.fired_max
+    );
+    let _ = writeln!(
+        md,
+        "| measure | median | p90 | max | target |\n|---|---|---|---|---|"
+    );
+    let target_met = if d.wall_median < Duration::from_micros(50) {
+        "< 50 µs: met"
+    } else {
+        "< 50 µs: MISSED"
+    };
+    let _ = writeln!(
+        md,
+        "| wall time on this host ({cpu}; {} timed replays after a warm-up) | {} | {} | {} | {target_met} |",
+        d.reps,
+        duration_text(d.wall_median),
+        duration_text(d.wall_p90),
+        duration_text(d.wall_max)
+    );
+    match &d.instructions {
+        Ok(i) => {
+            let _ = writeln!(
+                md,
+                "| instructions (x86_64, callgrind; mean {}) | {} | {} | {} | |",
+                i.mean, i.median, i.p90, i.max
+            );
+            for ipc in [1.0, 0.5] {
+                let _ = writeln!(
+                    md,
+                    "| LX800 500 MHz at IPC {ipc} (estimate) | {} | {} | {} | |",
+                    duration_text(lx800_time(i.median, ipc)),
+                    duration_text(lx800_time(i.p90, ipc)),
+                    duration_text(lx800_time(i.max, ipc))
+                );
+            }
+            md.push_str(
+                "\nThe LX800 estimate is instructions ÷ (IPC × 500 MHz) from the x86_64 count; \
+                 an i586 build executes somewhat different instructions (32-bit pointers, no \
+                 CMOV), so it is an estimate, not a measurement.\n",
+            );
+        }
+        Err(reason) => {
+            let _ = writeln!(md, "| instructions | {reason} | | | |");
+        }
+    }
+    md
+}
 
 #[cfg(test)]
 mod tests {
