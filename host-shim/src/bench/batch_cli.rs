@@ -176,11 +176,15 @@ impl Contender for BatchCli {
                 (whole, run)
             }
         };
-        let mem_bytes = self
-            .run_once(&program.batch_mem, plan.run_limit)
-            .and_then(|run| {
-                parse_mem_used(&run.stdout).ok_or_else(|| "no 'mem-used' line".to_string())
-            });
+        // Ours has no `(mem-used)`: its memory is the in-process column's arena figure.
+        let mem_bytes = if self.label.starts_with("ours") {
+            Err("not measured: see the in-process column".to_string())
+        } else {
+            self.run_once(&program.batch_mem, plan.run_limit)
+                .and_then(|run| {
+                    parse_mem_used(&run.stdout).ok_or_else(|| "no 'mem-used' line".to_string())
+                })
+        };
         Measurement {
             fired,
             result_lines: lines,

@@ -94,6 +94,10 @@ pub struct Args {
     /// Only write the programs into the work directory and list them.
     #[arg(long)]
     pub emit_only: bool,
+    /// The footprint tool's JSON for the memory row (default:
+    /// `$CARGO_TARGET_DIR/footprint.json`, else `target/footprint.json`).
+    #[arg(long)]
+    pub footprint_json: Option<PathBuf>,
     /// Leave out the LLSF decision-time measurement.
     #[arg(long)]
     pub no_decision: bool,
@@ -282,12 +286,22 @@ fn run(args: &Args) -> Result<bool, BenchError> {
         rows,
         footprints,
         decisions,
+        image: footprint::image_footprint(&footprint_json_path(args)),
     };
     print!("{}", report.terminal_table());
     std::fs::write(&args.out, report.markdown())
         .map_err(|e| BenchError::new(format!("writing {}: {e}", args.out.display())))?;
     eprintln!("bench: wrote {}", args.out.display());
     Ok(all_agree)
+}
+
+fn footprint_json_path(args: &Args) -> PathBuf {
+    args.footprint_json.clone().unwrap_or_else(|| {
+        let target = std::env::var_os("CARGO_TARGET_DIR")
+            .map(PathBuf::from)
+            .unwrap_or_else(|| PathBuf::from("target"));
+        target.join("footprint.json")
+    })
 }
 
 /// The engines under test, in report column order: references first, then ours.

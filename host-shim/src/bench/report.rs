@@ -1,8 +1,9 @@
 //! The terminal table and the regenerated `BENCHMARKS.md`.
 
 use super::decision::DecisionReport;
-use super::footprint::Footprint;
+use super::footprint::{Footprint, ImageFootprint};
 use super::measure::{Measurement, Plan, Reading};
+use super::workloads::Kind;
 use super::workloads::Workload;
 use std::fmt::Write as _;
 use std::process::Command;
@@ -75,6 +76,8 @@ pub struct Report {
     pub rows: Vec<Row>,
     pub footprints: Vec<Footprint>,
     pub decisions: Result<DecisionReport, String>,
+    /// The footprint tool's JSON for the agent image, or why it is missing.
+    pub image: Result<ImageFootprint, String>,
 }
 
 /// Index of the contenders that count as "ours" and as the CLIPS references.
@@ -235,6 +238,76 @@ impl Report {
         let _ = writeln!(out, "|{}", "---|".repeat(columns.len()));
     }
 
+    /// The agent program's memory: CLIPS `(mem-used)` after the LLSF games against our
+    /// image RAM (when the image holds the engine) and our arena high-water marks.
+    fn agent_memory_markdown(&self) -> String {
+        let mut md = String::new();
+        let names = self.names();
+        let Some(row) = self.rows.iter().find(|r| r.workload.kind == Kind::Llsf) else {
+            return "Agent memory: not measured (the LLSF games row was not run).\n\n".to_string();
+        };
+        let mem_of = |want: &str| {
+            names
+                .iter()
+                .zip(&row.measured)
+                .find(|(n, _)| **n == want)
+                .and_then(|(_, m)| m.mem_bytes.clone().ok())
+        };
+        let clips = mem_of("CLIPS 6.30");
+        let clips64 = mem_of("CLIPS 6.4");
+        let ours_hw = mem_of("ours (in-process)");
+        let _ = writeln!(
+            md,
+            "Agent program ({}, the same `.clp` files): memory after the games.\n",
+            row.workload.name()
+        );
+        let _ = writeln!(md, "| engine | bytes | CLIPS 6.30 ÷ this |\n|---|---|---|");
+        let show = |v: Option<u64>| {
+            v.map(|b| b.to_string())
+                .unwrap_or_else(|| "not measured".into())
+        };
+        let ratio = |v: Option<u64>| ratio_text(clips.map(|c| c as f64), v.map(|b| b as f64));
+        let _ = writeln!(md, "| CLIPS 6.30 `(mem-used)` | {} | 1.00x |", show(clips));
+        let _ = writeln!(
+            md,
+            "| CLIPS 6.4 `(mem-used)` | {} | {} |",
+            show(clips64),
+            ratio(clips64)
+        );
+        let _ = writeln!(
+            md,
+            "| ours: `DefaultEngine` pools at their high-water marks (host, same games) | {} | {} |",
+            show(ours_hw),
+            ratio(ours_hw)
+        );
+        match &self.image {
+            Ok(image) => match image.arena_bytes {
+                Some(arena) => {
+                    let ram = image.ram_bytes;
+                    let _ = writeln!(
+                        md,
+                        "| ours: agent image RAM (statics incl. the engine arena of {arena} B, plus stack) | {ram} | {} |",
+                        ratio(Some(ram))
+                    );
+                }
+                None => {
+                    let _ = writeln!(
+                        md,
+                        "| ours: agent image RAM | {} (engine not in the image yet: not comparable) | n/a |",
+                        image.ram_bytes
+                    );
+                }
+            },
+            Err(reason) => {
+                let _ = writeln!(md, "| ours: agent image RAM | {reason} | n/a |");
+            }
+        }
+        md.push_str(
+            "\nTarget: agent image RAM at least 10x below CLIPS's memory for the same agent.\n\n",
+        );
+        md
+    }
+
     /// The whole `BENCHMARKS.md`.
     pub fn markdown(&self) -> String {
         let names = self.names();
@@ -375,10 +448,8 @@ impl Report {
                 f.file_bytes
             );
         }
-        let _ = writeln!(
-            md,
-            "| ours: agent image sections | not measured: the image is not in this report yet | | | |\n"
-        );
+        md.push_str(&image_markdown(&self.image));
+        md.push_str(&self.agent_memory_markdown());
         let _ = writeln!(
             md,
             "Dynamic memory after the run: CLIPS `(mem-used)` in bytes; ours: arena \
@@ -411,6 +482,24 @@ interpreter). Ours runs as `robotino-agent clips -f2 FILE` (CLI column) and in-p
 through `bench::ours::InProcessEngine`. Rules fired come from `(watch statistics)` (CLI) or \
 the `run()` return value. Results agree when the programs' result lines are equal (Manners: \
 the same set of seat assignments, also checked to be a valid seating).\n\n";
+
+/// The agent image line(s) from the footprint tool's JSON.
+pub fn image_markdown(image: &Result<ImageFootprint, String>) -> String {
+    match image {
+        Ok(i) => {
+            let arena = match i.arena_bytes {
+                Some(b) => format!("engine arena `AGENT_ENGINE` {b} B"),
+                None => "engine arena absent (the engine is not in the image yet)".to_string(),
+            };
+            format!(
+                "| ours: agent image i586 (`{}`; footprint tool) | – | code {} | RAM statics {} | stack high-water {} |\n\n\
+                 Agent image: code {} B, RAM {} B ({arena}).\n\n",
+                i.path, i.code_bytes, i.static_bytes, i.stack_bytes, i.code_bytes, i.ram_bytes
+            )
+        }
+        Err(reason) => format!("| ours: agent image | {reason} | | | |\n\n"),
+    }
+}
 
 /// Time on the 500 MHz AMD Geode LX800 for `instructions` at `ipc` instructions per cycle.
 pub fn lx800_time(instructions: u64, ipc: f64) -> Duration {
