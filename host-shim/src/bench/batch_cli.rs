@@ -58,6 +58,12 @@ impl BatchCli {
             let first_error = finished.stderr.lines().next().unwrap_or("").to_string();
             return Err(format!("{}: {first_error}", finished.status));
         }
+        // Our engine reports an exhausted pool and stops the run: not a result.
+        for text in [&finished.stdout, &finished.stderr] {
+            if let Some(pool) = super::ours::capacity_exceeded(text) {
+                return Err(format!("capacity exceeded: {pool}"));
+            }
+        }
         Ok(finished)
     }
 
@@ -139,6 +145,9 @@ impl Contender for BatchCli {
                     fired = this_fired;
                     lines = Ok(result_lines(&run.stdout, prefix));
                     full_times.push(run.elapsed);
+                }
+                Err(reason) if reason.starts_with("capacity exceeded") => {
+                    return Measurement::failed(&reason);
                 }
                 Err(reason) => {
                     return Measurement::failed(&format!("{}: {reason}", self.label));

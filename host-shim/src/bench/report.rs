@@ -127,7 +127,11 @@ fn cell<T>(reading: &Reading<T>, show: impl Fn(&T) -> String) -> String {
         Ok(value) => show(value),
         // The full reason for a missing engine is listed once under "Machine".
         Err(reason) if reason.starts_with("not measured") => "not measured".to_string(),
-        Err(reason) if reason.starts_with("skipped") || reason.starts_with("withdrawn") => {
+        Err(reason)
+            if reason.starts_with("skipped")
+                || reason.starts_with("withdrawn")
+                || reason.starts_with("capacity exceeded") =>
+        {
             shorten(reason, 80)
         }
         Err(reason) => format!("failed: {}", shorten(reason, 60)),
