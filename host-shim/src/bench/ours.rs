@@ -132,7 +132,7 @@ impl<E: EngineOps> InProcessEngine for Ours<E> {
         // Chunks of firings so a program that outgrows the deadline is stopped (a thread
         // cannot be killed). A chunk that fires fewer than asked ended the run: the
         // agenda is empty or `(halt)` was called.
-        const CHUNK: u32 = 50_000;
+        const CHUNK: u32 = 200;
         let mut fired = 0u64;
         loop {
             let now = self
