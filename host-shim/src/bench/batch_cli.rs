@@ -58,6 +58,12 @@ impl BatchCli {
             let first_error = finished.stderr.lines().next().unwrap_or("").to_string();
             return Err(format!("{}: {first_error}", finished.status));
         }
+        // Our engine reports an exhausted pool and stops the run: not a result.
+        for text in [&finished.stdout, &finished.stderr] {
+            if let Some(pool) = super::ours::capacity_exceeded(text) {
+                return Err(format!("capacity exceeded: {pool}"));
+            }
+        }
         Ok(finished)
     }
 
@@ -140,6 +146,9 @@ impl Contender for BatchCli {
                     lines = Ok(result_lines(&run.stdout, prefix));
                     full_times.push(run.elapsed);
                 }
+                Err(reason) if reason.starts_with("capacity exceeded") => {
+                    return Measurement::failed(&reason);
+                }
                 Err(reason) => {
                     return Measurement::failed(&format!("{}: {reason}", self.label));
                 }
@@ -176,11 +185,15 @@ impl Contender for BatchCli {
                 (whole, run)
             }
         };
-        let mem_bytes = self
-            .run_once(&program.batch_mem, plan.run_limit)
-            .and_then(|run| {
-                parse_mem_used(&run.stdout).ok_or_else(|| "no 'mem-used' line".to_string())
-            });
+        // Ours has no `(mem-used)`: its memory is the in-process column's arena figure.
+        let mem_bytes = if self.label.starts_with("ours") {
+            Err("not measured: see the in-process column".to_string())
+        } else {
+            self.run_once(&program.batch_mem, plan.run_limit)
+                .and_then(|run| {
+                    parse_mem_used(&run.stdout).ok_or_else(|| "no 'mem-used' line".to_string())
+                })
+        };
         Measurement {
             fired,
             result_lines: lines,

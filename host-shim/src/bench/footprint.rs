@@ -97,8 +97,60 @@ pub fn clipspy(python: &str) -> Option<Footprint> {
     footprint("clipspy _clips (6.4 library)", Path::new(&path))
 }
 
+/// What the footprint tool (`cargo run -p tests --bin footprint -- --json-out F`)
+/// reports about the agent image.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ImageFootprint {
+    pub path: String,
+    pub code_bytes: u64,
+    /// Statics plus measured stack.
+    pub ram_bytes: u64,
+    pub static_bytes: u64,
+    pub stack_bytes: u64,
+    /// The engine static, once the image holds it.
+    pub arena_bytes: Option<u64>,
+}
+
+/// Reads the footprint tool's JSON.
+pub fn image_footprint(path: &Path) -> Result<ImageFootprint, String> {
+    let text = std::fs::read_to_string(path).map_err(|e| {
+        format!(
+            "not measured: {} ({e}); run `cargo run -p tests --bin footprint -- --json-out {}` first",
+            path.display(),
+            path.display()
+        )
+    })?;
+    parse_image_footprint(&text)
+        .ok_or_else(|| format!("{}: not the footprint tool's JSON", path.display()))
+}
+
+pub fn parse_image_footprint(text: &str) -> Option<ImageFootprint> {
+    let json: serde_json::Value = serde_json::from_str(text).ok()?;
+    let ram = &json["ram"];
+    Some(ImageFootprint {
+        path: json["image"].as_str()?.to_string(),
+        code_bytes: json["code"]["bytes"].as_u64()?,
+        ram_bytes: ram["bytes"].as_u64()?,
+        static_bytes: ram["static_bytes"].as_u64()?,
+        stack_bytes: ram["stack_max_bytes"].as_u64().unwrap_or(0),
+        arena_bytes: ram["engine_arena"]["bytes"].as_u64(),
+    })
+}
+
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn footprint_json_is_read() {
+        let json = r#"{"code": {"bytes": 36355}, "image": "/x/agent-image",
+            "ram": {"bytes": 920, "static_bytes": 388, "stack_max_bytes": 532,
+                    "engine_arena": {"bytes": null, "present": false}}}"#;
+        let image = super::parse_image_footprint(json).expect("valid");
+        assert_eq!(image.code_bytes, 36355);
+        assert_eq!(image.ram_bytes, 920);
+        assert_eq!(image.arena_bytes, None);
+        assert!(super::parse_image_footprint("{}").is_none());
+    }
+
     use super::*;
 
     #[test]

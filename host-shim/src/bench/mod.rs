@@ -7,6 +7,7 @@
 
 mod batch_cli;
 mod clipspy;
+mod decision;
 mod footprint;
 mod measure;
 mod ours;
@@ -93,6 +94,16 @@ pub struct Args {
     /// Only write the programs into the work directory and list them.
     #[arg(long)]
     pub emit_only: bool,
+    /// The footprint tool's JSON for the memory row (default:
+    /// `$CARGO_TARGET_DIR/footprint.json`, else `target/footprint.json`).
+    #[arg(long)]
+    pub footprint_json: Option<PathBuf>,
+    /// Leave out the LLSF decision-time measurement.
+    #[arg(long)]
+    pub no_decision: bool,
+    /// Internal: the decision-time child process counted under callgrind (GAMES).
+    #[arg(long, hide = true)]
+    pub decision_child: Option<usize>,
 }
 
 impl Args {
@@ -137,6 +148,10 @@ pub fn main(args: Args) -> ExitCode {
 
 /// Runs the benchmark; returns whether every workload's results agree.
 fn run(args: &Args) -> Result<bool, BenchError> {
+    if let Some(games) = args.decision_child {
+        decision::child_main(games).map_err(BenchError::new)?;
+        return Ok(true);
+    }
     let workloads = args.selected_workloads();
     for workload in &workloads {
         workload.validate().map_err(BenchError::new)?;
@@ -239,6 +254,23 @@ fn run(args: &Args) -> Result<bool, BenchError> {
         });
     }
 
+    let decisions = if args.no_decision {
+        Err("not measured: --no-decision".to_string())
+    } else {
+        eprintln!(
+            "bench: [{:>5.0} s] decision time over {} games",
+            started.elapsed().as_secs_f64(),
+            args.games
+        );
+        let callgrind = plan
+            .callgrind_limit
+            .map(|limit| (limit, work_dir.as_path()));
+        decision::measure(args.games, plan.reps, callgrind)
+    };
+    if let Err(reason) = &decisions {
+        eprintln!("bench: decision time: {reason}");
+    }
+
     let mut footprints = footprint::clips_630();
     if !args.no_clipspy {
         footprints.extend(footprint::clipspy("python3"));
@@ -253,12 +285,23 @@ fn run(args: &Args) -> Result<bool, BenchError> {
         contenders: probed,
         rows,
         footprints,
+        decisions,
+        image: footprint::image_footprint(&footprint_json_path(args)),
     };
     print!("{}", report.terminal_table());
     std::fs::write(&args.out, report.markdown())
         .map_err(|e| BenchError::new(format!("writing {}: {e}", args.out.display())))?;
     eprintln!("bench: wrote {}", args.out.display());
     Ok(all_agree)
+}
+
+fn footprint_json_path(args: &Args) -> PathBuf {
+    args.footprint_json.clone().unwrap_or_else(|| {
+        let target = std::env::var_os("CARGO_TARGET_DIR")
+            .map(PathBuf::from)
+            .unwrap_or_else(|| PathBuf::from("target"));
+        target.join("footprint.json")
+    })
 }
 
 /// The engines under test, in report column order: references first, then ours.

@@ -24,8 +24,9 @@ pub trait InProcessEngine {
     fn load(&mut self, source_name: &str, text: &str) -> Result<(), String>;
     /// `(reset)`: asserts the deffacts.
     fn reset(&mut self) -> Result<(), String>;
-    /// `(run)` to completion or `(halt)`; returns the number of rules fired.
-    fn run(&mut self) -> Result<u64, String>;
+    /// `(run)` to completion or `(halt)`; returns the number of rules fired. Gives up
+    /// with an error once `deadline` has passed (checked between chunks of firings).
+    fn run(&mut self, deadline: Instant) -> Result<u64, String>;
     /// Everything printed to `t` (stdout) so far, drained.
     fn take_output(&mut self) -> String;
     /// Bytes of engine storage in use at its high-water marks (sum over the pools).
@@ -84,7 +85,7 @@ pub struct Ours<E> {
 pub trait EngineOps {
     fn load(&mut self, host: &mut dyn Host, name: &str, text: &str) -> Result<usize, String>;
     fn reset(&mut self, host: &mut dyn Host) -> Result<(), String>;
-    fn run(&mut self, host: &mut dyn Host) -> Result<u32, String>;
+    fn run(&mut self, host: &mut dyn Host, limit: Option<u32>) -> Result<u32, String>;
     fn stats(&self) -> agent_core::Stats;
 }
 
@@ -102,8 +103,8 @@ macro_rules! engine_ops {
             fn reset(&mut self, host: &mut dyn Host) -> Result<(), String> {
                 agent_core::Engine::reset(self, host).map_err(|e| e.to_string())
             }
-            fn run(&mut self, host: &mut dyn Host) -> Result<u32, String> {
-                agent_core::Engine::run(self, host, None).map_err(|e| e.to_string())
+            fn run(&mut self, host: &mut dyn Host, limit: Option<u32>) -> Result<u32, String> {
+                agent_core::Engine::run(self, host, limit).map_err(|e| e.to_string())
             }
             fn stats(&self) -> agent_core::Stats {
                 agent_core::Engine::stats(self)
@@ -127,17 +128,33 @@ impl<E: EngineOps> InProcessEngine for Ours<E> {
             .map_err(|e| format!("(reset): {e}{}", context(&self.host)))
     }
 
-    fn run(&mut self) -> Result<u64, String> {
-        let fired = self
-            .engine
-            .run(&mut self.host)
-            .map_err(|e| format!("(run): {e}{}", context(&self.host)))?;
-        // An error inside a rule's actions stops the run with a message, not an Err:
-        // a run that reported one did not compute the program's result.
-        if let Some(line) = first_error(&self.host.other) {
-            return Err(format!("(run) stopped after {fired} firings: {line}"));
+    fn run(&mut self, deadline: Instant) -> Result<u64, String> {
+        // Chunks of firings so a program that outgrows the deadline is stopped (a thread
+        // cannot be killed). A chunk that fires fewer than asked ended the run: the
+        // agenda is empty or `(halt)` was called.
+        const CHUNK: u32 = 200;
+        let mut fired = 0u64;
+        loop {
+            let now = self
+                .engine
+                .run(&mut self.host, Some(CHUNK))
+                .map_err(|e| format!("(run): {e}{}", context(&self.host)))?;
+            fired += u64::from(now);
+            // An error inside a rule's actions stops the run with a message, not an
+            // Err: a run that reported one did not compute the program's result.
+            if let Some(line) = first_error(&self.host.other) {
+                if let Some(pool) = capacity_exceeded(line) {
+                    return Err(format!("capacity exceeded: {pool} after {fired} firings"));
+                }
+                return Err(format!("(run) stopped after {fired} firings: {line}"));
+            }
+            if now < CHUNK {
+                return Ok(fired);
+            }
+            if Instant::now() > deadline {
+                return Err(format!("run exceeded the deadline after {fired} firings"));
+            }
         }
-        Ok(u64::from(fired))
     }
 
     fn take_output(&mut self) -> String {
@@ -147,6 +164,16 @@ impl<E: EngineOps> InProcessEngine for Ours<E> {
     fn memory_bytes(&self) -> Option<u64> {
         Some(arena_bytes(&self.engine.stats()).0)
     }
+}
+
+/// `out of POOL (capacity N)` when `text` reports an exhausted pool of our engine.
+pub fn capacity_exceeded(text: &str) -> Option<&str> {
+    text.lines().find_map(|line| {
+        let start = line.find("out of ")?;
+        let rest = &line[start..];
+        let end = rest.find(')')?;
+        rest.contains("(capacity ").then(|| &rest[..=end])
+    })
 }
 
 /// The first error line an engine printed (`[...]` messages other than the halt notice).
@@ -230,13 +257,13 @@ impl OursInProcess {
     }
 
     /// One repetition: (load, reset, timed run) on a fresh engine.
-    fn once(&self, name: &str, text: &str) -> Result<Sample, String> {
+    fn once(&self, name: &str, text: &str, limit: Duration) -> Result<Sample, String> {
         let mut engine = (self.factory)().ok_or_else(not_built)?;
         let start = Instant::now();
         engine.load(name, text)?;
         engine.reset()?;
         let run_start = Instant::now();
-        let fired = engine.run()?;
+        let fired = engine.run(start + limit)?;
         let run = run_start.elapsed();
         Ok(Sample {
             fired,
@@ -280,8 +307,17 @@ impl Contender for OursInProcess {
         let name = program.constructs.display().to_string();
         let mut samples = Vec::new();
         for _ in 0..plan.reps.max(1) {
-            match self.once(&name, &text) {
+            match self.once(&name, &text, plan.run_limit) {
+                // A run that takes a good part of the deadline is not repeated: the
+                // time-box of the whole bench matters more than a median of long runs.
+                Ok(sample) if sample.whole > plan.run_limit / 4 => {
+                    samples.push(sample);
+                    break;
+                }
                 Ok(sample) => samples.push(sample),
+                Err(reason) if reason.starts_with("capacity exceeded") => {
+                    return Measurement::failed(&reason)
+                }
                 Err(reason) => return Measurement::failed(&format!("ours: {reason}")),
             }
         }
@@ -382,7 +418,7 @@ mod tests {
         fn reset(&mut self) -> Result<(), String> {
             Ok(())
         }
-        fn run(&mut self) -> Result<u64, String> {
+        fn run(&mut self, _deadline: Instant) -> Result<u64, String> {
             self.output = format!("started {}\n", self.facts);
             Ok(self.facts)
         }
@@ -420,6 +456,15 @@ mod tests {
         assert_eq!(measured.mem_bytes, Ok(64 * 20));
         assert!(measured.wall_run.is_ok() && measured.instr_run.is_err());
         let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    #[test]
+    fn exhausted_pools_are_recognised() {
+        assert_eq!(
+            capacity_exceeded("x\n[ERROR] out of tokens (capacity 16384)\n"),
+            Some("out of tokens (capacity 16384)")
+        );
+        assert_eq!(capacity_exceeded("[ERROR] something else"), None);
     }
 
     #[test]

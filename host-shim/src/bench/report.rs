@@ -1,7 +1,9 @@
 //! The terminal table and the regenerated `BENCHMARKS.md`.
 
-use super::footprint::Footprint;
+use super::decision::DecisionReport;
+use super::footprint::{Footprint, ImageFootprint};
 use super::measure::{Measurement, Plan, Reading};
+use super::workloads::Kind;
 use super::workloads::Workload;
 use std::fmt::Write as _;
 use std::process::Command;
@@ -73,6 +75,9 @@ pub struct Report {
     pub contenders: Vec<(String, Result<String, String>)>,
     pub rows: Vec<Row>,
     pub footprints: Vec<Footprint>,
+    pub decisions: Result<DecisionReport, String>,
+    /// The footprint tool's JSON for the agent image, or why it is missing.
+    pub image: Result<ImageFootprint, String>,
 }
 
 /// Index of the contenders that count as "ours" and as the CLIPS references.
@@ -122,7 +127,11 @@ fn cell<T>(reading: &Reading<T>, show: impl Fn(&T) -> String) -> String {
         Ok(value) => show(value),
         // The full reason for a missing engine is listed once under "Machine".
         Err(reason) if reason.starts_with("not measured") => "not measured".to_string(),
-        Err(reason) if reason.starts_with("skipped") || reason.starts_with("withdrawn") => {
+        Err(reason)
+            if reason.starts_with("skipped")
+                || reason.starts_with("withdrawn")
+                || reason.starts_with("capacity exceeded") =>
+        {
             shorten(reason, 80)
         }
         Err(reason) => format!("failed: {}", shorten(reason, 60)),
@@ -201,6 +210,29 @@ impl Report {
             let (instr_ratio, wall_ratio) = self.ratio_row(row);
             let _ = writeln!(out, " | {instr_ratio:>12} | {wall_ratio:>12}");
         }
+        match &self.decisions {
+            Ok(d) => {
+                let instr = match &d.instructions {
+                    Ok(i) => format!(
+                        "{} instr median (LX800 {} at IPC 1, {} at IPC 0.5)",
+                        i.median,
+                        duration_text(lx800_time(i.median, 1.0)),
+                        duration_text(lx800_time(i.median, 0.5))
+                    ),
+                    Err(reason) => format!("instructions {reason}"),
+                };
+                let _ = writeln!(
+                    out,
+                    "decision time: {} decisions, median {} (p90 {}), {instr}",
+                    d.decisions,
+                    duration_text(d.wall_median),
+                    duration_text(d.wall_p90)
+                );
+            }
+            Err(reason) => {
+                let _ = writeln!(out, "decision time: {reason}");
+            }
+        }
         out
     }
 
@@ -208,6 +240,76 @@ impl Report {
         let columns: Vec<&str> = first.iter().chain(names).chain(last).copied().collect();
         let _ = writeln!(out, "| {} |", columns.join(" | "));
         let _ = writeln!(out, "|{}", "---|".repeat(columns.len()));
+    }
+
+    /// The agent program's memory: CLIPS `(mem-used)` after the LLSF games against our
+    /// image RAM (when the image holds the engine) and our arena high-water marks.
+    fn agent_memory_markdown(&self) -> String {
+        let mut md = String::new();
+        let names = self.names();
+        let Some(row) = self.rows.iter().find(|r| r.workload.kind == Kind::Llsf) else {
+            return "Agent memory: not measured (the LLSF games row was not run).\n\n".to_string();
+        };
+        let mem_of = |want: &str| {
+            names
+                .iter()
+                .zip(&row.measured)
+                .find(|(n, _)| **n == want)
+                .and_then(|(_, m)| m.mem_bytes.clone().ok())
+        };
+        let clips = mem_of("CLIPS 6.30");
+        let clips64 = mem_of("CLIPS 6.4");
+        let ours_hw = mem_of("ours (in-process)");
+        let _ = writeln!(
+            md,
+            "Agent program ({}, the same `.clp` files): memory after the games.\n",
+            row.workload.name()
+        );
+        let _ = writeln!(md, "| engine | bytes | CLIPS 6.30 ÷ this |\n|---|---|---|");
+        let show = |v: Option<u64>| {
+            v.map(|b| b.to_string())
+                .unwrap_or_else(|| "not measured".into())
+        };
+        let ratio = |v: Option<u64>| ratio_text(clips.map(|c| c as f64), v.map(|b| b as f64));
+        let _ = writeln!(md, "| CLIPS 6.30 `(mem-used)` | {} | 1.00x |", show(clips));
+        let _ = writeln!(
+            md,
+            "| CLIPS 6.4 `(mem-used)` | {} | {} |",
+            show(clips64),
+            ratio(clips64)
+        );
+        let _ = writeln!(
+            md,
+            "| ours: `DefaultEngine` pools at their high-water marks (host, same games) | {} | {} |",
+            show(ours_hw),
+            ratio(ours_hw)
+        );
+        match &self.image {
+            Ok(image) => match image.arena_bytes {
+                Some(arena) => {
+                    let ram = image.ram_bytes;
+                    let _ = writeln!(
+                        md,
+                        "| ours: agent image RAM (statics incl. the engine arena of {arena} B, plus stack) | {ram} | {} |",
+                        ratio(Some(ram))
+                    );
+                }
+                None => {
+                    let _ = writeln!(
+                        md,
+                        "| ours: agent image RAM | {} (engine not in the image yet: not comparable) | n/a |",
+                        image.ram_bytes
+                    );
+                }
+            },
+            Err(reason) => {
+                let _ = writeln!(md, "| ours: agent image RAM | {reason} | n/a |");
+            }
+        }
+        md.push_str(
+            "\nTarget: agent image RAM at least 10x below CLIPS's memory for the same agent.\n\n",
+        );
+        md
     }
 
     /// The whole `BENCHMARKS.md`.
@@ -350,10 +452,8 @@ impl Report {
                 f.file_bytes
             );
         }
-        let _ = writeln!(
-            md,
-            "| ours: agent image sections | not measured: the image is not in this report yet | | | |\n"
-        );
+        md.push_str(&image_markdown(&self.image));
+        md.push_str(&self.agent_memory_markdown());
         let _ = writeln!(
             md,
             "Dynamic memory after the run: CLIPS `(mem-used)` in bytes; ours: arena \
@@ -368,7 +468,7 @@ impl Report {
                 .collect();
             let _ = writeln!(md, "| {} | {} |", row.workload.name(), cells.join(" | "));
         }
-        md.push_str(NOT_YET);
+        md.push_str(&decision_markdown(&self.decisions, &self.machine.cpu));
         md
     }
 }
@@ -387,12 +487,93 @@ through `bench::ours::InProcessEngine`. Rules fired come from `(watch statistics
 the `run()` return value. Results agree when the programs' result lines are equal (Manners: \
 the same set of seat assignments, also checked to be a valid seating).\n\n";
 
-const NOT_YET: &str = "\n## Not measured yet\n
-- LLSF games (N seeded simulated games of the agent rule base): not measured, the rule base \
-and the game simulation are not in the benchmark yet.
-- Decision time (skill outcome asserted to next skill request): not measured; the method is \
-fixed in `host-shim/src/bench/DECISION_TIME.md`.
-";
+/// The agent image line(s) from the footprint tool's JSON.
+pub fn image_markdown(image: &Result<ImageFootprint, String>) -> String {
+    match image {
+        Ok(i) => {
+            let arena = match i.arena_bytes {
+                Some(b) => format!("engine arena `AGENT_ENGINE` {b} B"),
+                None => "engine arena absent (the engine is not in the image yet)".to_string(),
+            };
+            format!(
+                "| ours: agent image i586 (`{}`; footprint tool) | – | code {} | RAM statics {} | stack high-water {} |\n\n\
+                 Agent image: code {} B, RAM {} B ({arena}).\n\n",
+                i.path, i.code_bytes, i.static_bytes, i.stack_bytes, i.code_bytes, i.ram_bytes
+            )
+        }
+        Err(reason) => format!("| ours: agent image | {reason} | | | |\n\n"),
+    }
+}
+
+/// Time on the 500 MHz AMD Geode LX800 for `instructions` at `ipc` instructions per cycle.
+pub fn lx800_time(instructions: u64, ipc: f64) -> Duration {
+    Duration::from_secs_f64(instructions as f64 / (ipc * 500e6))
+}
+
+/// The decision-time section (markdown) or the reason it is missing.
+pub fn decision_markdown(decisions: &Result<DecisionReport, String>, cpu: &str) -> String {
+    let mut md = String::from("\n## Decision time of the LLSF agent\n\n");
+    let d = match decisions {
+        Ok(d) => d,
+        Err(reason) => {
+            let _ = writeln!(md, "{reason}");
+            return md;
+        }
+    };
+    let _ = writeln!(
+        md,
+        "From asserting a skill outcome (e.g. the light seen at a machine) to the agent's next \
+         skill request: {} decisions of {} seeded games (seeds 0..{}, paper strategy), the \
+         agent alone in a `DefaultEngine` replaying the outcomes recorded from the whole game \
+         (every replayed request checked against the game's). One decision fires {} rules \
+         (median; at most {}). Method: `host-shim/src/bench/DECISION_TIME.md`.\n",
+        d.decisions, d.games, d.games, d.fired_median, d.fired_max
+    );
+    let _ = writeln!(
+        md,
+        "| measure | median | p90 | max | target |\n|---|---|---|---|---|"
+    );
+    let target_met = if d.wall_median < Duration::from_micros(50) {
+        "< 50 µs: met"
+    } else {
+        "< 50 µs: MISSED"
+    };
+    let _ = writeln!(
+        md,
+        "| wall time on this host ({cpu}; {} timed replays after a warm-up) | {} | {} | {} | {target_met} |",
+        d.reps,
+        duration_text(d.wall_median),
+        duration_text(d.wall_p90),
+        duration_text(d.wall_max)
+    );
+    match &d.instructions {
+        Ok(i) => {
+            let _ = writeln!(
+                md,
+                "| instructions (x86_64, callgrind; mean {}) | {} | {} | {} | |",
+                i.mean, i.median, i.p90, i.max
+            );
+            for ipc in [1.0, 0.5] {
+                let _ = writeln!(
+                    md,
+                    "| LX800 500 MHz at IPC {ipc} (estimate) | {} | {} | {} | |",
+                    duration_text(lx800_time(i.median, ipc)),
+                    duration_text(lx800_time(i.p90, ipc)),
+                    duration_text(lx800_time(i.max, ipc))
+                );
+            }
+            md.push_str(
+                "\nThe LX800 estimate is instructions ÷ (IPC × 500 MHz) from the x86_64 count; \
+                 an i586 build executes somewhat different instructions (32-bit pointers, no \
+                 CMOV), so it is an estimate, not a measurement.\n",
+            );
+        }
+        Err(reason) => {
+            let _ = writeln!(md, "| instructions | {reason} | | | |");
+        }
+    }
+    md
+}
 
 #[cfg(test)]
 mod tests {
