@@ -566,6 +566,10 @@ impl Core<'_> {
                 break;
             }
             if self.st.halt {
+                // CLIPS names the halted rule only while rules are watched
+                if self.st.watch & watch::RULES == 0 {
+                    break;
+                }
                 let mut b: TextBuf<160> = TextBuf::new();
                 let _ = writeln!(
                     b,

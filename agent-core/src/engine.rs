@@ -618,8 +618,13 @@ impl Core<'_> {
 
     /// Text of a symbol or string.
     pub fn sym_text(&self, id: SymId) -> &str {
-        let e = self.sym_entries[id as usize];
-        core::str::from_utf8(&self.sym_bytes[e.start as usize..(e.start + e.len) as usize])
+        // NONE (a retired construct's name) and any id out of range read as ""
+        let Some(e) = self.sym_entries.get(id as usize) else {
+            return "";
+        };
+        self.sym_bytes
+            .get(e.start as usize..e.start as usize + e.len as usize)
+            .and_then(|b| core::str::from_utf8(b).ok())
             .unwrap_or("")
     }
 

@@ -545,4 +545,5 @@ differential_programs! {
     p139_watch_statistics => "139-watch-statistics",
     p150_bind_lhs_variable => "150-bind-lhs-variable",
     p151_redefinitions => "151-redefinitions",
+    p152_halt_watched_or_not => "152-halt-watched-or-not",
 }

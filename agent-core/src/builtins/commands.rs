@@ -560,8 +560,12 @@ fn time(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
 fn list_deftemplates(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
     let mut n = 0;
     for t in 0..cx.st.ntemplates {
-        // implied (ordered-fact) templates are listed too, as CLIPS 6.30 does
+        // implied (ordered-fact) templates are listed too, as CLIPS 6.30 does; a
+        // template retired by a redefinition has no name and is gone
         let tm = cx.templates[t as usize];
+        if tm.name == NONE {
+            continue;
+        }
         let mut b: TextBuf<128> = TextBuf::new();
         let _ = writeln!(b, "{}", cx.sym_text(tm.name));
         cx.write(router::WDISPLAY, b.as_str());
