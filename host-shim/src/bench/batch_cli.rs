@@ -58,6 +58,15 @@ impl BatchCli {
             let first_error = finished.stderr.lines().next().unwrap_or("").to_string();
             return Err(format!("{}: {first_error}", finished.status));
         }
+        // A program that did not load is not a measurement (ours reads files into a
+        // fixed buffer, so a large program fails here).
+        if let Some(line) = finished
+            .stdout
+            .lines()
+            .find(|l| l.contains("was unable to open file"))
+        {
+            return Err(format!("program not loaded: {}", line.trim()));
+        }
         // Our engine reports an exhausted pool and stops the run: not a result.
         for text in [&finished.stdout, &finished.stderr] {
             if let Some(pool) = super::ours::capacity_exceeded(text) {

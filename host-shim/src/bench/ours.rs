@@ -329,7 +329,7 @@ impl Contender for OursInProcess {
         let wholes: Vec<Duration> = samples.iter().map(|s| s.whole).collect();
         let last = samples.last();
         let prefix = program.workload.kind.result_prefix();
-        let in_process_only = || Err("counted by the CLI column".to_string());
+        let in_process_only = || Err("not measured: counted by the CLI column".to_string());
         Measurement {
             fired,
             result_lines: Ok(last
@@ -385,7 +385,7 @@ fn measure_games(games: usize, plan: &Plan) -> Measurement {
         [first, rest @ ..] if rest.iter().all(|f| f == first) => Ok(*first),
         _ => Err("rules fired differ between runs".to_string()),
     };
-    let in_process_only = || Err("counted by the CLI column".to_string());
+    let in_process_only = || Err("not measured: counted by the CLI column".to_string());
     Measurement {
         fired,
         result_lines: Ok(lines),
