@@ -6,7 +6,9 @@
 
 mod common;
 
-use common::command_stream::{apply, decode, new_engine, run_stream};
+use common::command_stream::{
+    apply, decode, new_engine, run_stream, run_stream_with, RULE_BASE_NOT_AND,
+};
 use proptest::prelude::*;
 
 proptest! {
@@ -15,6 +17,11 @@ proptest! {
     #[test]
     fn random_command_streams_keep_the_engine_consistent(data in proptest::collection::vec(any::<u8>(), 0..240)) {
         run_stream(&data);
+    }
+
+    #[test]
+    fn random_streams_with_not_over_several_ces(data in proptest::collection::vec(any::<u8>(), 0..240)) {
+        run_stream_with(RULE_BASE_NOT_AND, &data);
     }
 }
 
