@@ -180,7 +180,12 @@ engine_impl! {
         match r {
             Ok(Some(f)) => Ok(FactId(cx.facts[f as usize].num)),
             Ok(None) => Err(EngineError::Duplicate),
-            Err(e) => Err(e.into()),
+            Err(e) => {
+                // leave no trace: symbols (and an implied template) the failed
+                // fact's text created go too
+                cx.rollback(cp);
+                Err(e.into())
+            }
         }
     }
 

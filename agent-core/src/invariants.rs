@@ -353,6 +353,17 @@ impl Core<'_> {
                 j
             );
             match jn.kind {
+                JoinKind::Negative | JoinKind::Exists if jn.rjoin != NONE => {
+                    // not/exists over several CEs: fed by a subnetwork's last join
+                    ensure!(jn.rjoin < st.njoins, "join from the right past the pool", j);
+                    let mut r = self.joins[jn.rjoin as usize].rsucc;
+                    let mut steps = 0usize;
+                    while r != NONE && r != j && steps <= st.njoins as usize {
+                        r = self.joins[r as usize].alpha_next;
+                        steps += 1;
+                    }
+                    ensure!(r == j, "join missing from its right input's successors", j);
+                }
                 JoinKind::Positive | JoinKind::Negative | JoinKind::Exists => {
                     ensure!(jn.alpha < st.nalpha, "join without its alpha node", j);
                     ensure!(

@@ -866,3 +866,21 @@ fn retract_unblocking_a_not_with_full_tokens_is_not_silent() {
         "unblocked matches of rule a were lost: {rules:?}"
     );
 }
+
+/// Found by the invariant property test: an assert that failed on a full pool kept the
+/// symbols (and the implied template) its text had created. Now rolled back.
+#[test]
+fn failed_assert_keeps_no_new_symbols_or_templates() {
+    let h = &mut Capture::default();
+    let mut e = engine!(FACTS = 3);
+    e.assert_str(h, "(a 1)").unwrap();
+    e.assert_str(h, "(a 2)").unwrap();
+    let before = e.snapshot();
+    let err = e.assert_str(h, "(brand-new never-seen)").unwrap_err();
+    assert_eq!(cap_of(&err), full(Pool::Facts, 3));
+    assert_eq!(e.snapshot(), before);
+    e.consistent();
+    e.retract(h, FactId(1)).unwrap();
+    e.assert_str(h, "(brand-new never-seen)").unwrap();
+    e.consistent();
+}

@@ -14,8 +14,11 @@ pub type StreamEngine =
     Engine<24, 192, 128, 2048, 8, 32, 16, 48, 96, 160, 40, 4, 4, 1400, 64, 96, 2, 2>;
 
 /// Rules with not/exists, multifield patterns, shared prefixes, modify and retract on
-/// the right-hand side, salience, a `test` CE and a global.
-pub const RULE_BASE: &str = "
+/// the right-hand side, salience, a `test` CE and a global. (A macro so the extended
+/// base below can append to it; the fuzz-found streams replay against this one.)
+macro_rules! rule_base {
+    () => {
+        "
 (deftemplate item (slot id) (slot state (allowed-symbols new seen done) (default new))
   (multislot tags))
 (deftemplate link (slot from) (slot to))
@@ -51,7 +54,21 @@ pub const RULE_BASE: &str = "
   ?h <- (hit ?x $?)
   (not (item (id ?x)))
   => (retract ?h))
-";
+"
+    };
+}
+pub const RULE_BASE: &str = rule_base!();
+
+/// The rule base plus a `not` over several CEs (a subnetwork joined from the right).
+pub const RULE_BASE_NOT_AND: &str = concat!(
+    rule_base!(),
+    "(defrule lonely
+  (item (id ?i))
+  (not (and (link (from ?i) (to ?j)) (item (id ?j) (state done))))
+  (exists (tick $?))
+  =>)
+"
+);
 
 /// Extra rules loaded (and redefined) during a stream: rule removal paths.
 const EXTRA_RULES: [&str; 4] = [
@@ -166,14 +183,18 @@ fn agenda(e: &StreamEngine) -> Vec<String> {
 
 /// A fresh engine with the rule base loaded and reset.
 pub fn new_engine() -> Box<StreamEngine> {
+    new_engine_with(RULE_BASE)
+}
+
+pub fn new_engine_with(rules: &str) -> Box<StreamEngine> {
     let mut e = Box::new(StreamEngine::new());
-    setup(&mut e);
+    setup(&mut e, rules);
     e
 }
 
-fn setup(e: &mut StreamEngine) {
+fn setup(e: &mut StreamEngine, rules: &str) {
     let h = &mut Quiet;
-    if let Err(err) = e.load_str(h, "rules", RULE_BASE) {
+    if let Err(err) = e.load_str(h, "rules", rules) {
         panic!("rule base does not load: {err}");
     }
     let _ = e.reset(h);
@@ -190,6 +211,11 @@ fn nth_fact(e: &StreamEngine, n: u8) -> Option<FactId> {
 /// Applies one command; panics when an invariant breaks or a failed assert left a
 /// trace. Returns what happened, for debugging.
 pub fn apply(e: &mut StreamEngine, cmd: &Cmd) -> String {
+    apply_with(e, cmd, RULE_BASE)
+}
+
+/// `apply` with the rule base `clear` reloads.
+pub fn apply_with(e: &mut StreamEngine, cmd: &Cmd, rules: &str) -> String {
     let h = &mut Quiet;
     let outcome = match cmd {
         Cmd::AssertItem { id, state, tags } => {
@@ -235,7 +261,7 @@ pub fn apply(e: &mut StreamEngine, cmd: &Cmd) -> String {
         }
         Cmd::Clear => {
             let r = e.clear(h);
-            setup(e);
+            setup(e, rules);
             format!("clear: {r:?}")
         }
     };
@@ -271,8 +297,12 @@ fn assert_leaving_no_trace(e: &mut StreamEngine, text: &str) -> String {
 
 /// Runs a whole stream on a fresh engine.
 pub fn run_stream(data: &[u8]) {
-    let mut e = new_engine();
+    run_stream_with(RULE_BASE, data)
+}
+
+pub fn run_stream_with(rules: &str, data: &[u8]) {
+    let mut e = new_engine_with(rules);
     for cmd in decode(data).iter().take(400) {
-        apply(&mut e, cmd);
+        apply_with(&mut e, cmd, rules);
     }
 }
