@@ -248,26 +248,26 @@ impl Core<'_> {
         Ok(self.st.values_top as usize)
     }
 
-    /// Creates a fact from per-slot values on the evaluation stack at `base` (a
-    /// multislot's value is a scratch `Multi`). Returns `None` for a duplicate.
-    /// Runs the network; on a full pool the fact is removed again and the error returned.
-    pub fn assert_slots(&mut self, tmpl: u16, base: usize) -> Result<Option<u16>, EvalError> {
-        let t = self.templates[tmpl as usize];
-        let mut need = 0usize;
-        for i in 0..t.nslots as usize {
-            need += match self.stack[base + i] {
+    /// Value cells a fact made from per-slot values on the stack at `base` takes.
+    fn cells_needed(&self, tmpl: u16, base: usize) -> usize {
+        let n = self.templates[tmpl as usize].nslots as usize;
+        (0..n)
+            .map(|i| match self.stack[base + i] {
                 Value::Multi(m) => 1 + m.len as usize,
                 _ => 1,
-            };
-        }
-        if self.st.fact_free == NONE
-            && self.st.facts_used as usize >= self.facts.len().min(NONE as usize - 1)
-        {
-            return Err(cap(Pool::Facts, self.facts.len()).into());
-        }
-        let start = self.reserve_cells(need)?;
+            })
+            .sum()
+    }
+
+    /// Whether every fact slot has been handed out (the free list aside).
+    fn fact_slots_exhausted(&self) -> bool {
+        self.st.facts_used as usize >= self.facts.len().min(NONE as usize - 1)
+    }
+
+    /// Writes per-slot values from the stack at `base` into cells from `start`.
+    fn write_cells(&mut self, tmpl: u16, base: usize, start: usize) {
         let mut c = start;
-        for i in 0..t.nslots as usize {
+        for i in 0..self.templates[tmpl as usize].nslots as usize {
             match self.stack[base + i] {
                 Value::Multi(m) => {
                     self.values[c] = Value::Multi(MfSpan {
@@ -286,6 +286,131 @@ impl Core<'_> {
                 }
             }
         }
+    }
+
+    /// Checks, before a modify retracts `old`, that the new fact (values on the stack
+    /// at `base`) will find a fact slot and value cells, so a full pool fails with
+    /// nothing changed. During a firing the retracted fact stays readable (pending):
+    /// its slot and cells are not given back until the firing ends.
+    pub(crate) fn modify_fits(
+        &mut self,
+        old: u16,
+        tmpl: u16,
+        base: usize,
+    ) -> Result<(), CapacityError> {
+        let freed = !self.st.firing;
+        if self.st.fact_free == NONE && self.fact_slots_exhausted() && !freed {
+            return Err(cap(Pool::Facts, self.facts.len()));
+        }
+        let need = self.cells_needed(tmpl, base);
+        let cap_v = self.values.len().min(NONE as usize);
+        if self.st.values_top as usize + need <= cap_v {
+            return Ok(());
+        }
+        // what compaction would leave: the cells of live and pending facts
+        let mut used = 0usize;
+        for list in [self.st.fact_head, self.st.pending] {
+            let mut f = list;
+            while f != NONE {
+                used += self.facts[f as usize].len as usize;
+                f = self.facts[f as usize].next;
+            }
+        }
+        if freed {
+            used -= self.facts[old as usize].len as usize;
+        }
+        if used + need > cap_v {
+            return Err(cap(Pool::FactValues, self.values.len()));
+        }
+        Ok(())
+    }
+
+    /// Puts back a fact a failed modify retracted: the same slot, number and values,
+    /// at its place in the creation-ordered list, with its matches built again. `saved`
+    /// is the fact as it was; `base` holds its slot values on the stack (needed when
+    /// the retract freed its cells, i.e. outside a firing).
+    pub(crate) fn restore_fact(
+        &mut self,
+        slot: u16,
+        saved: Fact,
+        base: usize,
+    ) -> Result<(), EvalError> {
+        let (start, len) = match self.facts[slot as usize].state {
+            FactState::Pending => {
+                remove_from_list(self.facts, &mut self.st.pending, slot);
+                let f = self.facts[slot as usize];
+                (f.start, f.len)
+            }
+            FactState::Free => {
+                remove_from_list(self.facts, &mut self.st.fact_free, slot);
+                let need = self.cells_needed(saved.tmpl, base);
+                let start = match self.reserve_cells(need) {
+                    Ok(s) => s,
+                    Err(e) => {
+                        self.free_fact_slot(slot);
+                        return Err(e.into());
+                    }
+                };
+                self.write_cells(saved.tmpl, base, start);
+                self.st.values_top = (start + need) as u16;
+                (start as u16, need as u16)
+            }
+            // still there: nothing was retracted
+            FactState::Live => return Ok(()),
+        };
+        // the creation-ordered list: after the last fact with a smaller number
+        let mut prev = self.st.fact_tail;
+        while prev != NONE && self.facts[prev as usize].num > saved.num {
+            prev = self.facts[prev as usize].prev;
+        }
+        let next = if prev == NONE {
+            self.st.fact_head
+        } else {
+            self.facts[prev as usize].next
+        };
+        let h = self.cells_hash(saved.tmpl, start as usize, len as usize);
+        let bucket = h as usize % self.fact_buckets.len();
+        self.facts[slot as usize] = Fact {
+            start,
+            len,
+            next,
+            prev,
+            hash_next: self.fact_buckets[bucket],
+            first_am: NONE,
+            state: FactState::Live,
+            ..saved
+        };
+        self.fact_buckets[bucket] = slot;
+        if prev == NONE {
+            self.st.fact_head = slot;
+        } else {
+            self.facts[prev as usize].next = slot;
+        }
+        if next == NONE {
+            self.st.fact_tail = slot;
+        } else {
+            self.facts[next as usize].prev = slot;
+        }
+        if let Err(e) = self.network_assert(slot) {
+            self.network_retract(slot);
+            self.unlink_fact(slot);
+            self.release_fact_values(slot);
+            self.free_fact_slot(slot);
+            return Err(e);
+        }
+        Ok(())
+    }
+
+    /// Creates a fact from per-slot values on the evaluation stack at `base` (a
+    /// multislot's value is a scratch `Multi`). Returns `None` for a duplicate.
+    /// Runs the network; on a full pool the fact is removed again and the error returned.
+    pub fn assert_slots(&mut self, tmpl: u16, base: usize) -> Result<Option<u16>, EvalError> {
+        let need = self.cells_needed(tmpl, base);
+        if self.st.fact_free == NONE && self.fact_slots_exhausted() {
+            return Err(cap(Pool::Facts, self.facts.len()).into());
+        }
+        let start = self.reserve_cells(need)?;
+        self.write_cells(tmpl, base, start);
         let h = self.cells_hash(tmpl, start, need);
         let bucket = h as usize % self.fact_buckets.len();
         let mut d = self.fact_buckets[bucket];
@@ -435,3 +560,21 @@ impl Core<'_> {
 
 use crate::template::{SlotDef, Template};
 use crate::value::SymId;
+
+/// Unlinks `slot` from a singly linked list of fact slots chained through `next`
+/// (the free list or the pending list).
+fn remove_from_list(facts: &mut [Fact], head: &mut u16, slot: u16) {
+    if *head == slot {
+        *head = facts[slot as usize].next;
+        return;
+    }
+    let mut p = *head;
+    while p != NONE {
+        let n = facts[p as usize].next;
+        if n == slot {
+            facts[p as usize].next = facts[slot as usize].next;
+            return;
+        }
+        p = n;
+    }
+}

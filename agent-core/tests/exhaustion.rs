@@ -109,6 +109,39 @@ impl<
     }
 }
 
+/// The `(facts)` listing of an engine, for every capacity combination.
+trait EvalFacts {
+    fn fact_listing(&mut self) -> String;
+}
+
+impl<
+        const A: usize,
+        const B: usize,
+        const C: usize,
+        const D: usize,
+        const E: usize,
+        const F: usize,
+        const G: usize,
+        const H: usize,
+        const I: usize,
+        const J: usize,
+        const K: usize,
+        const L: usize,
+        const M: usize,
+        const N: usize,
+        const O: usize,
+        const P: usize,
+        const Q: usize,
+        const R: usize,
+    > EvalFacts for Engine<A, B, C, D, E, F, G, H, I, J, K, L, M, N, O, P, Q, R>
+{
+    fn fact_listing(&mut self) -> String {
+        let mut h = Capture::default();
+        self.eval_str(&mut h, "(facts)").unwrap();
+        h.out
+    }
+}
+
 fn cap_of(e: &EngineError) -> CapacityError {
     match e {
         EngineError::Capacity(c) => *c,
@@ -226,16 +259,29 @@ fn facts_at_assert_run_modify_and_reset() {
     e.assert_str(h, "(x 1)").unwrap();
     e.assert_str(h, "(x 2)").unwrap();
     let before = e.snapshot();
+    let before_listing = listing(&mut *e);
     e.run(h, None).unwrap();
     assert!(h.out.contains(&run_message(Pool::Facts, 4)), "{}", h.out);
+    failed_modify_kept_the_facts(&mut *e, &before, &before_listing);
+    // the same modify at the prompt: the retract frees the slot the new fact takes
+    let before = e.snapshot();
+    let r = e.eval_str(h, "(modify 1 (v 1))").unwrap();
+    assert_ne!(r, agent_core::Value::Sym(0), "{r:?}");
+    assert_eq!(
+        e.facts().collect::<Vec<_>>(),
+        [FactId(0), FactId(2), FactId(3), FactId(4)]
+    );
+    assert_eq!(before.facts.len(), 4);
     e.consistent();
-    failed_modify_dropped_only_the_old_fact(&before, &e.snapshot(), FactId(1));
+    // with a slot free the rule modifies on
     e.retract(h, FactId(2)).unwrap();
-    e.consistent();
     h.out.clear();
-    e.assert_str(h, "(c (v 1))").ok();
     e.run(h, None).unwrap();
     assert!(!h.out.contains("out of"), "{}", h.out);
+    assert_eq!(
+        e.fact_slot(FactId(6), "v").map(|v| format!("{v:?}")),
+        Some("Int(3)".into())
+    );
     e.consistent();
 
     // reset with more deffacts than room
@@ -294,13 +340,21 @@ fn fact_values_at_assert_run_modify_and_reset() {
     e.assert_str(h, "(m (xs 1 2))").unwrap();
     e.assert_str(h, "(pad 1 2 3 4 5 6 7 8 9)").unwrap();
     let before = e.snapshot();
+    let before_listing = listing(&mut *e);
     let r = e.eval_str(h, "(modify 1 (xs 1 2 3 4 5 6 7 8 9 10 11 12))");
     assert_eq!(
         r.map_err(|e| e.kind),
         Err(EvalErrorKind::Capacity(full(Pool::FactValues, 20)))
     );
+    failed_modify_kept_the_facts(&mut *e, &before, &before_listing);
+    assert_eq!(e.snapshot(), before);
+    // the retracted fact's cells count: a modify that fills the pool exactly fits
+    e.eval_str(h, "(modify 1 (xs 1 2 3 4 5 6 7 8))").unwrap();
+    assert_eq!(
+        e.facts().collect::<Vec<_>>(),
+        [FactId(0), FactId(2), FactId(3)]
+    );
     e.consistent();
-    failed_modify_dropped_only_the_old_fact(&before, &e.snapshot(), FactId(1));
     e.retract(h, FactId(2)).unwrap();
     e.consistent();
 
@@ -321,17 +375,25 @@ fn fact_values_at_assert_run_modify_and_reset() {
     e.assert_str(h, "(a 1 2 3 4 5 6)").unwrap();
 }
 
-/// A modify that ran out of room. CLIPS's modify is a retract followed by an assert;
-/// when the assert runs out of room the retract has happened: the old fact is gone
-/// (with what its retract caused), nothing of the new fact exists, the construct pools
-/// are unchanged and the engine is consistent. (Known limitation: not "no trace" for
-/// the modified fact itself; see the fuzz helper's report.)
-fn failed_modify_dropped_only_the_old_fact(before: &Snapshot, after: &Snapshot, old: FactId) {
-    let expected: Vec<FactId> = before.facts.iter().copied().filter(|&f| f != old).collect();
-    assert_eq!(after.facts, expected, "modify left more than the retract");
-    assert_eq!(after.usage.templates, before.usage.templates);
-    assert_eq!(after.usage.rules, before.usage.rules);
-    assert_eq!(after.usage.exprs, before.usage.exprs);
+/// The fact listing `(facts)` prints: numbers and values.
+fn listing<E: EvalFacts + ?Sized>(e: &mut E) -> String {
+    e.fact_listing()
+}
+
+/// A modify that ran out of room left its facts as they were: the old fact with its
+/// number, place and values, no new fact, no fact number used up, the construct pools
+/// and tokens unchanged, and the engine consistent. (The agenda is compared by the
+/// callers that do not fire a rule on the way.)
+fn failed_modify_kept_the_facts<E: Probe + EvalFacts + ?Sized>(
+    e: &mut E,
+    before: &Snapshot,
+    before_listing: &str,
+) {
+    e.consistent();
+    let after = e.snapshot();
+    assert_eq!(after.facts, before.facts, "modify lost or added facts");
+    assert_eq!(listing(e), before_listing, "modify changed fact values");
+    assert_eq!(after.usage, before.usage, "modify left pool usage");
 }
 
 // ---------------------------------------------------------------- symbols
@@ -549,6 +611,7 @@ macro_rules! match_pool_case {
         e.assert_str(h, "(k (v 0))").unwrap();
         let fact = e.facts().last().unwrap();
         let before = e.snapshot();
+        let before_listing = listing(&mut *e);
         // (k (v 1)) matches 36 pairs: more activations and tokens than room
         let r = e.eval_str(h, &format!("(modify {} (v 1))", fact.0));
         assert_eq!(
@@ -556,10 +619,14 @@ macro_rules! match_pool_case {
             Err(EvalErrorKind::Capacity(full(pool, cap))),
             "modify"
         );
-        e.consistent();
-        failed_modify_dropped_only_the_old_fact(&before, &e.snapshot(), fact);
+        failed_modify_kept_the_facts(&mut *e, &before, &before_listing);
+        assert_eq!(e.snapshot(), before);
+        // the old fact still matches, and the next fact gets the next number
+        let r = e.eval_str(h, &format!("(modify {} (v 2))", fact.0));
+        assert!(r.is_ok(), "{r:?}");
+        assert_eq!(e.facts().last(), Some(FactId(fact.0 + 1)));
         e.retract(h, FactId(1)).unwrap();
-        e.assert_str(h, "(k (v 2))").unwrap();
+        e.assert_str(h, "(k (v 3))").unwrap();
         e.consistent();
 
         // load: a new rule primed against existing facts runs out; rollback

@@ -250,12 +250,18 @@ impl Core<'_> {
             return Err(EvalError::wrong_type(name, 1, "deftemplate fact"));
         }
         let nslots = self.templates[tmpl as usize].nslots;
-        let base = self.st.sp;
-        for s in 0..nslots {
-            let v = self.fact_slot_value(old, s)?;
-            self.push_value(v)?;
-        }
+        // the old values at `saved`, the new fact's built from a copy at `base`: a
+        // modify that fails after the retract puts the old fact back from them
+        let saved = self.st.sp;
+        let base = saved + nslots;
         let r = (|| {
+            for s in 0..nslots {
+                let v = self.fact_slot_value(old, s)?;
+                self.push_value(v)?;
+            }
+            for s in 0..nslots {
+                self.push_value(self.stack[(saved + s) as usize])?;
+            }
             let mut sv = self.exprs[first as usize].next;
             while sv != NONE {
                 let sym = self.exprs[sv as usize].data;
@@ -267,12 +273,23 @@ impl Core<'_> {
                 self.stack[(base + slot) as usize] = v;
                 sv = self.exprs[sv as usize].next;
             }
-            if retract_old {
-                self.retract_fact(old);
+            if !retract_old {
+                return self.assert_slots(tmpl, base as usize);
             }
-            self.assert_slots(tmpl, base as usize)
+            // no room for the new fact: fail before anything changed
+            self.modify_fits(old, tmpl, base as usize)?;
+            let old_fact = self.facts[old as usize];
+            self.retract_fact(old);
+            let r = self.assert_slots(tmpl, base as usize);
+            if r.is_err() {
+                // the network ran out of room (tokens, activations): the new fact is
+                // gone again; the old one comes back (if that fails too, it stays
+                // retracted and the first error is reported)
+                let _ = self.restore_fact(old, old_fact, saved as usize);
+            }
+            r
         })();
-        self.st.sp = base;
+        self.st.sp = saved;
         Ok(match r? {
             Some(f) => Value::Fact(self.fact_ref(f)),
             None => Value::Sym(SYM_FALSE),
