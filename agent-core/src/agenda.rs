@@ -7,6 +7,45 @@ use crate::error::{CapacityError, Pool};
 use crate::rule::Activation;
 use crate::value::NONE;
 
+/// How many removed activations one modify can put back in place.
+pub const JOURNAL_LEN: usize = 16;
+
+/// An activation a modify's retract removed: what it was, and what followed it on
+/// the agenda then (identified by creation number, as slots get reused).
+#[derive(Clone, Copy, Debug)]
+pub struct JournalEntry {
+    pub rule: u16,
+    /// Hash of the fact numbers the activation matched.
+    pub basis: u32,
+    pub seq: u32,
+    /// The next activation's `seq`, `None` for the end of the agenda.
+    pub next_seq: Option<u32>,
+}
+
+/// The activations removed while `on` (see `JournalEntry`); `overflow` once more than
+/// `JOURNAL_LEN` were.
+#[derive(Clone, Copy, Debug)]
+pub struct ActJournal {
+    pub on: bool,
+    pub overflow: bool,
+    pub len: u8,
+    pub entries: [JournalEntry; JOURNAL_LEN],
+}
+
+impl ActJournal {
+    pub const EMPTY: ActJournal = ActJournal {
+        on: false,
+        overflow: false,
+        len: 0,
+        entries: [JournalEntry {
+            rule: NONE,
+            basis: 0,
+            seq: 0,
+            next_seq: None,
+        }; JOURNAL_LEN],
+    };
+}
+
 impl Core<'_> {
     pub(crate) fn add_activation(&mut self, rule: u16, token: u16) -> Result<(), CapacityError> {
         let a = if self.st.act_free != NONE {
@@ -91,6 +130,9 @@ impl Core<'_> {
     }
 
     pub(crate) fn remove_activation(&mut self, a: u16) {
+        if self.st.act_journal.on {
+            self.journal_activation(a);
+        }
         if self.st.watch & watch::ACTIVATIONS != 0 {
             self.print_activation_line("<== Activation ", a);
         }
@@ -169,5 +211,131 @@ impl Core<'_> {
             a = self.acts[a as usize].next;
         }
         n
+    }
+
+    /// Hash of the fact numbers an activation matched (its identity across a rebuild).
+    fn activation_basis(&self, a: u16) -> u32 {
+        // walks the partial match up to the root: (depth, fact number) pairs
+        let mut h = 0x9E37_79B9u32;
+        let mut t = self.acts[a as usize].token;
+        while t != NONE {
+            let tk = self.tokens[t as usize];
+            let j = self.joins[tk.owner as usize];
+            if j.kind == crate::rete::JoinKind::Root {
+                break;
+            }
+            let num = if tk.am != NONE {
+                self.facts[self.tokens[tk.am as usize].fact as usize].num
+            } else {
+                u32::MAX
+            };
+            h = (h ^ j.depth as u32).wrapping_mul(0x0100_0193);
+            h = (h ^ num).wrapping_mul(0x0100_0193).rotate_left(5);
+            t = tk.parent;
+        }
+        h
+    }
+
+    fn journal_activation(&mut self, a: u16) {
+        let j = &self.st.act_journal;
+        if j.len as usize >= JOURNAL_LEN {
+            self.st.act_journal.overflow = true;
+            return;
+        }
+        let x = self.acts[a as usize];
+        let entry = JournalEntry {
+            rule: x.rule,
+            basis: self.activation_basis(a),
+            seq: x.seq,
+            next_seq: (x.next != NONE).then(|| self.acts[x.next as usize].seq),
+        };
+        let j = &mut self.st.act_journal;
+        j.entries[j.len as usize] = entry;
+        j.len += 1;
+    }
+
+    /// Starts recording the activations removed from now on (see `JournalEntry`).
+    pub(crate) fn journal_start(&mut self) {
+        self.st.act_journal = ActJournal {
+            on: true,
+            ..ActJournal::EMPTY
+        };
+    }
+
+    pub(crate) fn journal_stop(&mut self) {
+        self.st.act_journal.on = false;
+    }
+
+    /// After a failed modify rebuilt the old fact's matches: gives each activation
+    /// created since `mark` that the journal recorded its creation number back and
+    /// puts it where it was, before the activation that followed it. Latest removed
+    /// first, so a follower that was itself removed is already back in place.
+    /// Activations that cannot be matched up stay where the rebuild put them.
+    pub(crate) fn journal_restore(&mut self, mark: u32) {
+        let j = self.st.act_journal;
+        if j.overflow {
+            return;
+        }
+        for e in j.entries[..j.len as usize].iter().rev() {
+            let mut a = self.st.agenda_head;
+            while a != NONE {
+                let x = self.acts[a as usize];
+                if x.seq.wrapping_sub(mark) as i32 > 0
+                    && x.rule == e.rule
+                    && self.activation_basis(a) == e.basis
+                {
+                    break;
+                }
+                a = x.next;
+            }
+            if a == NONE {
+                continue;
+            }
+            // the follower, or the last activation for the end of the agenda
+            let mut after = NONE;
+            let mut before = NONE;
+            let mut c = self.st.agenda_head;
+            let mut found = e.next_seq.is_none();
+            while c != NONE {
+                if c != a && Some(self.acts[c as usize].seq) == e.next_seq {
+                    before = c;
+                    found = true;
+                    break;
+                }
+                if c != a {
+                    after = c;
+                }
+                c = self.acts[c as usize].next;
+            }
+            if !found {
+                continue;
+            }
+            self.acts[a as usize].seq = e.seq;
+            self.agenda_unlink(a);
+            // between `after` (last one before the follower, or the tail) and `before`
+            let prev = if before != NONE {
+                self.acts[before as usize].prev
+            } else {
+                after
+            };
+            let sal = self.acts[a as usize].salience;
+            if (prev != NONE && self.acts[prev as usize].salience < sal)
+                || (before != NONE && self.acts[before as usize].salience > sal)
+            {
+                // salience changed meanwhile: the old place is no longer valid
+                self.agenda_insert(a);
+                continue;
+            }
+            self.acts[a as usize].prev = prev;
+            self.acts[a as usize].next = before;
+            if prev != NONE {
+                self.acts[prev as usize].next = a;
+            } else {
+                self.st.agenda_head = a;
+            }
+            if before != NONE {
+                self.acts[before as usize].prev = a;
+            }
+        }
     }
 }

@@ -145,6 +145,9 @@ pub struct State {
     pub next_fact_num: u32,
     pub agenda_head: u16,
     pub act_seq: u32,
+    /// Activations the retract of a modify removed, to put back in place if the
+    /// modify fails.
+    pub act_journal: crate::agenda::ActJournal,
     /// Evaluation stack pointer and current frame base.
     pub sp: u16,
     pub bp: u16,
@@ -240,6 +243,7 @@ impl State {
             next_fact_num: 0,
             agenda_head: NONE,
             act_seq: 0,
+            act_journal: crate::agenda::ActJournal::EMPTY,
             sp: 0,
             bp: 0,
             scratch_top: 0,

@@ -951,3 +951,100 @@ fn failed_assert_keeps_no_new_symbols_or_templates() {
     e.assert_str(h, "(brand-new never-seen)").unwrap();
     e.consistent();
 }
+
+/// A modify whose new fact runs out of tokens or activations in the network puts the
+/// old fact back: its number, values and matches, and its activations at their old
+/// agenda places (between activations of other facts).
+macro_rules! agenda_order_case {
+    ($pool:expr, $cap:expr, $mk:expr) => {{
+        let (pool, cap): (Pool, u32) = ($pool, $cap);
+        let h = &mut Capture::default();
+        let mut e = $mk;
+        e.load_str(
+            h,
+            "t",
+            "(deftemplate k (slot v))
+             (defrule many (k (v 1)) (a ?x) (b ?y) =>)
+             (defrule seen (k (v ?v)) =>)
+             (defrule pair (k (v ?v)) (o ?x) =>)
+             (defrule other (o ?x) =>)
+             (defrule late (declare (salience -5)) (k (v ?v)) =>)",
+        )
+        .unwrap();
+        e.assert_str(h, "(o 1)").unwrap();
+        let k = e.assert_str(h, "(k (v 0))").unwrap();
+        e.assert_str(h, "(o 2)").unwrap();
+        for i in 0..3 {
+            e.assert_str(h, &format!("(a {i})")).unwrap();
+            e.assert_str(h, &format!("(b {i})")).unwrap();
+        }
+        let before = e.snapshot();
+        let before_listing = listing(&mut *e);
+        assert_eq!(before.agenda.len(), 6, "{:?}", before.agenda);
+        let r = e.eval_str(h, &format!("(modify {} (v 1))", k.0));
+        assert_eq!(
+            r.map_err(|e| e.kind),
+            Err(EvalErrorKind::Capacity(full(pool, cap))),
+            "{pool:?} {:?}",
+            e.usage()
+        );
+        failed_modify_kept_the_facts(&mut *e, &before, &before_listing);
+        assert_eq!(e.snapshot(), before, "{pool:?}");
+        // the next fact gets the next number; the old fact still modifies
+        let r = e.eval_str(h, &format!("(modify {} (v 2))", k.0));
+        assert!(r.is_ok(), "{r:?}");
+        assert_eq!(e.facts().last(), Some(FactId(10)));
+        assert_eq!(e.run(h, None).unwrap(), 6);
+        e.consistent();
+    }};
+}
+
+/// A modify whose new fact runs out of tokens or activations in the network puts the
+/// old fact back: its number, values and matches, and its activations at their old
+/// agenda places (between activations of other facts, and in another salience).
+#[test]
+fn failed_modify_keeps_the_agenda_order() {
+    agenda_order_case!(Pool::Tokens, 24, engine!(TOKENS = 24));
+    agenda_order_case!(Pool::Activations, 12, engine!(ACTS = 12));
+}
+
+/// The same during a firing: the retracted fact was pending (readable until the
+/// firing ends) and comes back from there.
+#[test]
+fn failed_modify_in_a_firing_keeps_the_old_fact() {
+    let h = &mut Capture::default();
+    let mut e = engine!(TOKENS = 40);
+    e.load_str(
+        h,
+        "t",
+        "(deftemplate k (slot v))
+         (defrule many (k (v 1)) (a ?x) (b ?y) =>)
+         (defrule go ?f <- (go) ?k <- (k (v 0)) => (retract ?f) (modify ?k (v 1)))",
+    )
+    .unwrap();
+    for i in 0..6 {
+        e.assert_str(h, &format!("(a {i})")).unwrap();
+        e.assert_str(h, &format!("(b {i})")).unwrap();
+    }
+    let k = e.assert_str(h, "(k (v 0))").unwrap();
+    e.assert_str(h, "(go)").unwrap();
+    let before_listing = listing(&mut *e);
+    e.run(h, None).unwrap();
+    assert!(h.out.contains(&run_message(Pool::Tokens, 40)), "{}", h.out);
+    e.consistent();
+    // (go) was retracted before the modify failed; (k (v 0)) is still there
+    let expected: String = before_listing
+        .lines()
+        .filter(|l| !l.contains("(go)") && !l.starts_with("For a total"))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    let after = listing(&mut *e);
+    assert!(after.starts_with(&expected), "{after}");
+    assert_eq!(
+        e.fact_slot(k, "v").map(|v| format!("{v:?}")),
+        Some("Int(0)".into())
+    );
+    // the fact is usable: a modify to a value that matches little works
+    e.eval_str(h, &format!("(modify {} (v 2))", k.0)).unwrap();
+    e.consistent();
+}

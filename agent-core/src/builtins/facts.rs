@@ -279,13 +279,20 @@ impl Core<'_> {
             // no room for the new fact: fail before anything changed
             self.modify_fits(old, tmpl, base as usize)?;
             let old_fact = self.facts[old as usize];
+            // the activations the retract removes are noted, to put them back in
+            // their agenda places should the assert fail
+            self.journal_start();
             self.retract_fact(old);
+            self.journal_stop();
             let r = self.assert_slots(tmpl, base as usize);
             if r.is_err() {
                 // the network ran out of room (tokens, activations): the new fact is
                 // gone again; the old one comes back (if that fails too, it stays
                 // retracted and the first error is reported)
-                let _ = self.restore_fact(old, old_fact, saved as usize);
+                let mark = self.st.act_seq;
+                if self.restore_fact(old, old_fact, saved as usize).is_ok() {
+                    self.journal_restore(mark);
+                }
             }
             r
         })();
