@@ -560,4 +560,5 @@ malformed_programs! {
     e077_allowed_symbols_with_a_number => "077-allowed-symbols-with-a-number",
     e078_allowed_values_combined => "078-allowed-values-combined",
     e079_modify_fact_index_in_rule => "079-modify-fact-index-in-rule",
+    e080_declare_after_a_ce => "080-declare-after-a-ce",
 }

@@ -244,18 +244,9 @@ impl<'s> Parser<'s, '_, '_> {
                 Tok::Eof | Tok::Bad | Tok::RParen => {
                     return Err(self.err(t, "'=>' or a conditional element"))
                 }
+                // a `(declare ...)` after a CE is an ordinary pattern for CLIPS 6.30, whose
+                // nested `(` is then a syntax error: declare comes first or not at all
                 _ => self.ce(b, Ctx::Top)?,
-            }
-            if self.peek().tok == Tok::LParen {
-                // a declare after the first CE is also allowed by CLIPS
-                let save = self.save();
-                self.next();
-                if self.peek().tok == Tok::Symbol("declare") {
-                    self.next();
-                    salience = self.declare()?;
-                } else {
-                    self.restore(save);
-                }
             }
         }
         if b.n == 0 {
