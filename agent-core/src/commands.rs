@@ -13,7 +13,7 @@ use crate::fact::FactState;
 use crate::host::router;
 use crate::lexer::{Lexer, Tok};
 use crate::parser::{Item, Parser};
-use crate::rete::{JoinKind, PatBinding, TokenKind};
+use crate::rete::{Join, JoinKind, PatBinding, TokenKind};
 use crate::value::{SymId, TextBuf, Value, NONE};
 
 /// `(watch statistics)`: facts and activations sampled before the run and after each
@@ -412,61 +412,47 @@ impl Core<'_> {
     pub(crate) fn unlink_join(&mut self, j: u16) {
         let a = self.joins[j as usize].alpha;
         if a != NONE {
-            let mut p = self.alphas[a as usize].succ;
-            if p == j {
-                self.alphas[a as usize].succ = self.joins[j as usize].alpha_next;
-            } else {
-                while p != NONE {
-                    let n = self.joins[p as usize].alpha_next;
-                    if n == j {
-                        self.joins[p as usize].alpha_next = self.joins[j as usize].alpha_next;
-                        break;
-                    }
-                    p = n;
-                }
-            }
+            let head = self.alphas[a as usize].succ;
+            self.alphas[a as usize].succ = self.unlink_from_list(head, j, |x| &mut x.alpha_next);
             if self.alphas[a as usize].succ == NONE {
                 self.clear_alpha_memory(a);
                 self.alphas[a as usize].live = false;
             }
         }
         let parent = self.joins[j as usize].parent;
-        let mut p = self.joins[parent as usize].first_child;
-        if p == j {
-            self.joins[parent as usize].first_child = self.joins[j as usize].next_sibling;
-        } else {
-            while p != NONE {
-                let n = self.joins[p as usize].next_sibling;
-                if n == j {
-                    self.joins[p as usize].next_sibling = self.joins[j as usize].next_sibling;
-                    break;
-                }
-                p = n;
-            }
-        }
-        let parent = self.joins[j as usize].parent;
+        let head = self.joins[parent as usize].first_child;
+        self.joins[parent as usize].first_child =
+            self.unlink_from_list(head, j, |x| &mut x.next_sibling);
         if self.joins[parent as usize].index_child == j {
             self.drop_beta_index(parent);
         }
         let rj = self.joins[j as usize].rjoin;
         if rj != NONE {
-            let mut p = self.joins[rj as usize].rsucc;
-            if p == j {
-                self.joins[rj as usize].rsucc = self.joins[j as usize].alpha_next;
-            } else {
-                while p != NONE {
-                    let n = self.joins[p as usize].alpha_next;
-                    if n == j {
-                        self.joins[p as usize].alpha_next = self.joins[j as usize].alpha_next;
-                        break;
-                    }
-                    p = n;
-                }
-            }
+            let head = self.joins[rj as usize].rsucc;
+            self.joins[rj as usize].rsucc = self.unlink_from_list(head, j, |x| &mut x.alpha_next);
         }
         self.joins[j as usize].alpha = NONE;
         self.joins[j as usize].rjoin = NONE;
         self.joins[j as usize].parent = 0;
+    }
+
+    /// Removes join `j` from a singly linked list of joins that starts at `head` and
+    /// chains through the field `next` selects; returns the list's new head.
+    fn unlink_from_list(&mut self, head: u16, j: u16, next: fn(&mut Join) -> &mut u16) -> u16 {
+        let after = *next(&mut self.joins[j as usize]);
+        if head == j {
+            return after;
+        }
+        let mut p = head;
+        while p != NONE {
+            let n = *next(&mut self.joins[p as usize]);
+            if n == j {
+                *next(&mut self.joins[p as usize]) = after;
+                break;
+            }
+            p = n;
+        }
+        head
     }
 
     /// Copies a token's pattern bindings for the RHS.
