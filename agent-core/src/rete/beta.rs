@@ -82,19 +82,31 @@ impl Core<'_> {
     }
 
     /// Evaluates a join's tests for left token `left` and alpha match `am`.
+    /// `left_bound`: whether `lhs_pm` holds `left`'s ancestry (set once bound here).
     fn join_test(
         &mut self,
         join: u16,
         left: u16,
         am: u16,
-        left_bound: bool,
+        left_bound: &mut bool,
     ) -> Result<bool, EvalError> {
-        let j = self.joins[join as usize];
-        if j.tests == NONE {
+        let j = &self.joins[join as usize];
+        let (tests, depth) = (j.tests, j.depth);
+        if tests == NONE {
             return Ok(true);
         }
-        if !left_bound {
+        let right_fact = if am != NONE {
+            self.tokens[am as usize].fact
+        } else {
+            NONE
+        };
+        if let Some(r) = self.quick_join_test(tests, left, depth, right_fact) {
+            return Ok(r);
+        }
+        let j = self.joins[join as usize];
+        if !*left_bound {
             self.bind_left(left);
+            *left_bound = true;
         }
         self.st.lhs_pm[j.depth as usize] = if am != NONE {
             let a = self.tokens[am as usize];
@@ -129,7 +141,7 @@ impl Core<'_> {
             if self.token_active(l) {
                 match j.kind {
                     JoinKind::Positive => {
-                        if self.join_test(join, l, am, false)? {
+                        if self.join_test(join, l, am, &mut false)? {
                             let t = self.link_token(join, l, am)?;
                             self.propagate(t)?;
                         }
@@ -139,7 +151,7 @@ impl Core<'_> {
                         // a blocked output keeps its one blocker (CLIPS's order)
                         if t != NONE
                             && !self.tokens[t as usize].blocked
-                            && self.join_test(join, l, am, false)?
+                            && self.join_test(join, l, am, &mut false)?
                         {
                             self.block(t, am)?;
                         }
@@ -236,10 +248,9 @@ impl Core<'_> {
             let mut a = from;
             let mut bound = false;
             while a != NONE {
-                if self.join_test(join, left, a, bound)? {
+                if self.join_test(join, left, a, &mut bound)? {
                     return Ok(a);
                 }
-                bound = true;
                 a = self.next_candidate(a, hashed);
             }
         } else {
@@ -262,12 +273,11 @@ impl Core<'_> {
                 let (mut a, hashed, mut bound) = self.first_candidate(join, left);
                 while a != NONE {
                     let next = self.next_candidate(a, hashed);
-                    if self.join_test(join, left, a, bound)? {
+                    if self.join_test(join, left, a, &mut bound)? {
                         let t = self.link_token(join, left, a)?;
                         self.propagate(t)?;
+                        // deeper joins rebind `lhs_pm`
                         bound = false;
-                    } else {
-                        bound = true;
                     }
                     a = next;
                 }
@@ -279,13 +289,15 @@ impl Core<'_> {
                         return Ok(());
                     }
                 }
-                let t = self.link_token(join, left, NONE)?;
+                // the bucket is looked up before the output token exists: its
+                // index insert would evict `left`'s key from the key cache
                 let (from, hashed) = if j.rjoin == NONE {
                     let (a, hashed, _) = self.first_candidate(join, left);
                     (a, hashed)
                 } else {
                     (NONE, false)
                 };
+                let t = self.link_token(join, left, NONE)?;
                 let b = self.find_blocker(join, left, from, hashed, NONE)?;
                 if b != NONE {
                     self.add_link(t, b)?;
@@ -295,7 +307,7 @@ impl Core<'_> {
                 }
             }
             JoinKind::Test => {
-                if self.join_test(join, left, NONE, false)? {
+                if self.join_test(join, left, NONE, &mut false)? {
                     let t = self.link_token(join, left, NONE)?;
                     self.propagate(t)?;
                 }
@@ -437,19 +449,38 @@ impl Core<'_> {
     /// the right the output it blocks (which looks for another blocker). Its own
     /// links stay.
     fn deactivate(&mut self, t: u16) {
-        let join = self.tokens[t as usize].owner;
+        let tk = &self.tokens[t as usize];
+        if tk.first_child == NONE
+            && tk.blocks == NONE
+            && (tk.kind != TokenKind::Beta || tk.extra == NONE)
+        {
+            // passed nothing on (no partial matches, activations or blocks)
+            return;
+        }
+        let join = tk.owner;
+        // the successors in walking order; the first few kept, as most joins have
+        // one or two, the rest walked to again
+        let mut first = [(NONE, false); 8];
         let mut n = 0;
         let mut it = Successors::of(self, join);
-        while it.next(self).is_some() {
+        while let Some(s) = it.next(self) {
+            if n < first.len() {
+                first[n] = s;
+            }
             n += 1;
         }
         for i in (0..n).rev() {
-            let mut it = Successors::of(self, join);
-            for _ in 0..i {
-                it.next(self);
-            }
-            let Some((c, from_right)) = it.next(self) else {
-                break;
+            let (c, from_right) = if i < first.len() {
+                first[i]
+            } else {
+                let mut it = Successors::of(self, join);
+                for _ in 0..i {
+                    it.next(self);
+                }
+                let Some(s) = it.next(self) else {
+                    break;
+                };
+                s
             };
             let cj = self.joins[c as usize];
             if from_right {

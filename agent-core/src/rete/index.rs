@@ -52,6 +52,9 @@ impl Core<'_> {
     /// The key of an alpha match of `alpha` (a node with a right hash): its
     /// right-hash field values.
     fn alpha_key(&mut self, alpha: u16, b: PatBinding) -> u32 {
+        if let Some(key) = self.quick_alpha_key(alpha, b.fact) {
+            return key;
+        }
         let (scratch, sp) = (self.st.scratch_top, self.st.sp);
         let saved = self.st.this_pm;
         self.st.this_pm = b;
@@ -106,6 +109,51 @@ impl Core<'_> {
         (self.st.scratch_top, self.st.sp, self.st.pm_rhs) = (scratch, sp, pm);
         if !ok || found != n.nrhash {
             return None;
+        }
+        Some(key)
+    }
+
+    /// `left_key` read straight from the facts of `left`'s ancestry (no `lhs_pm`,
+    /// no evaluator); None when a compared field is not a plain single-field slot.
+    fn quick_left_key(&self, join: u16, left: u16) -> Option<u32> {
+        let j = &self.joins[join as usize];
+        let nrhash = self.alphas[j.alpha as usize].nrhash;
+        let mut key = 0x5bd1_e995u32;
+        let mut found = 0;
+        let mut t = j.tests;
+        while t != NONE && found < nrhash {
+            let x = self.exprs[t as usize];
+            if x.op == Op::Eq2 && x.first != NONE {
+                let this = self.exprs[x.first as usize];
+                let other = this.next;
+                if this.op == Op::PatVar && this.aux == j.depth && other != NONE {
+                    let o = self.exprs[other as usize];
+                    if o.op == Op::PatVar && o.aux != j.depth {
+                        if o.aux > j.depth {
+                            return None;
+                        }
+                        let v = self.plain_slot_value(self.fact_at(left, o.aux), &o)?;
+                        key = mix(key, self.value_hash(v));
+                        found += 1;
+                    }
+                }
+            }
+            t = x.next;
+        }
+        if found != nrhash {
+            return None;
+        }
+        Some(key)
+    }
+
+    /// `alpha_key` for a match whose right-hash fields are all plain single-field
+    /// slots, read straight from the fact.
+    fn quick_alpha_key(&self, alpha: u16, fact: u16) -> Option<u32> {
+        let n = &self.alphas[alpha as usize];
+        let mut key = 0x5bd1_e995u32;
+        for &e in &n.rhash[..n.nrhash as usize] {
+            let v = self.plain_slot_value(fact, &self.exprs[e as usize])?;
+            key = mix(key, self.value_hash(v));
         }
         Some(key)
     }
@@ -176,6 +224,8 @@ impl Core<'_> {
             let (ct, cj, ck) = self.st.key_cache;
             let key = if ct == left && cj == join {
                 Some((ck, false))
+            } else if let Some(k) = self.quick_left_key(join, left) {
+                Some((k, false))
             } else {
                 self.bind_left(left);
                 self.left_key(join).map(|k| (k, true))
@@ -280,14 +330,20 @@ impl Core<'_> {
         if child == NONE {
             return;
         }
-        let (pm, depth) = (self.st.pm_rhs, self.joins[child as usize].depth as usize);
-        let saved = self.st.lhs_pm[depth];
-        self.bind_left(t);
-        // an unreadable value: bucket of key 0 (the child then scans, see below)
-        let key = self.left_key(child).unwrap_or(0);
+        let key = match self.quick_left_key(child, t) {
+            Some(key) => key,
+            None => {
+                let (pm, depth) = (self.st.pm_rhs, self.joins[child as usize].depth as usize);
+                let saved = self.st.lhs_pm[depth];
+                self.bind_left(t);
+                // an unreadable value: bucket of key 0 (the child then scans, see below)
+                let key = self.left_key(child).unwrap_or(0);
+                self.st.lhs_pm[depth] = saved;
+                self.st.pm_rhs = pm;
+                key
+            }
+        };
         self.st.key_cache = (t, child, key);
-        self.st.lhs_pm[depth] = saved;
-        self.st.pm_rhs = pm;
         let b = self.beta_bucket(join, key);
         let head = self.amem_buckets[b as usize];
         self.set_bbucket(t, b);

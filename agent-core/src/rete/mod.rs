@@ -3,6 +3,7 @@
 mod alpha;
 mod beta;
 mod index;
+mod quick;
 
 use crate::value::NONE;
 
