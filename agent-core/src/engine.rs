@@ -192,6 +192,9 @@ pub struct State {
     pub initial_tmpl: u16,
     /// Pattern bindings for network tests (`lhs`) and the firing rule (`rhs`).
     pub lhs_pm: [PatBinding; MAX_PATTERNS],
+    /// The partial match whose whole ancestry `lhs_pm` holds (NONE if none): then
+    /// binding it again is free and quick join tests read facts from `lhs_pm`.
+    pub lhs_of: u16,
     pub rhs_pm: [PatBinding; MAX_PATTERNS],
     pub this_pm: PatBinding,
     /// Last beta-index key computed: (token, index child join, key). The token's
@@ -269,6 +272,7 @@ impl State {
             error_fallback: None,
             initial_tmpl: NONE,
             lhs_pm: [PatBinding::EMPTY; MAX_PATTERNS],
+            lhs_of: NONE,
             rhs_pm: [PatBinding::EMPTY; MAX_PATTERNS],
             this_pm: PatBinding::EMPTY,
             key_cache: (NONE, NONE, 0),

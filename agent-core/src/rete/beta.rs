@@ -34,6 +34,9 @@ impl Core<'_> {
     }
 
     pub(crate) fn free_token(&mut self, t: u16) {
+        if self.st.lhs_of == t {
+            self.st.lhs_of = NONE;
+        }
         self.tokens[t as usize] = Token {
             next_sib: self.st.token_free,
             ..Token::EMPTY
@@ -52,8 +55,19 @@ impl Core<'_> {
         }
     }
 
-    /// Fills `lhs_pm` with the pattern bindings along a token's ancestry.
+    /// Fills `lhs_pm` with the pattern bindings along a token's ancestry (pattern
+    /// depths along an ancestry are contiguous from 0, so every entry up to the
+    /// token's depth is written).
     pub(crate) fn bind_left(&mut self, mut t: u16) {
+        let cur = self.st.lhs_of;
+        if cur == t {
+            return;
+        }
+        if cur != NONE && t != NONE && self.bound_by(t, cur) {
+            self.st.lhs_of = t;
+            return;
+        }
+        self.st.lhs_of = t;
         while t != NONE {
             let tk = self.tokens[t as usize];
             let j = self.joins[tk.owner as usize];
@@ -73,6 +87,41 @@ impl Core<'_> {
         }
     }
 
+    /// Whether `lhs_pm`, holding the ancestry of `cur`, holds that of `t` after
+    /// at most writing `t`'s own level: `cur` is `t`'s parent (one level added)
+    /// or `cur` descends from `t` (its entries up to `t`'s depth are `t`'s).
+    fn bound_by(&mut self, t: u16, cur: u16) -> bool {
+        let tk = self.tokens[t as usize];
+        let j = self.joins[tk.owner as usize];
+        if j.kind == JoinKind::Root {
+            return false;
+        }
+        if tk.parent == cur {
+            self.st.lhs_pm[j.depth as usize] = if tk.am != NONE {
+                let a = self.tokens[tk.am as usize];
+                PatBinding {
+                    fact: a.fact,
+                    marks: a.marks,
+                }
+            } else {
+                PatBinding::EMPTY
+            };
+            return true;
+        }
+        let mut c = cur;
+        loop {
+            if c == t {
+                return true;
+            }
+            let ck = &self.tokens[c as usize];
+            let cj = &self.joins[ck.owner as usize];
+            if cj.kind == JoinKind::Root || cj.depth <= j.depth {
+                return false;
+            }
+            c = ck.parent;
+        }
+    }
+
     fn eval_lhs_tests(&mut self, tests: u16) -> Result<bool, EvalError> {
         let saved = self.st.pm_rhs;
         self.st.pm_rhs = false;
@@ -82,32 +131,24 @@ impl Core<'_> {
     }
 
     /// Evaluates a join's tests for left token `left` and alpha match `am`.
-    /// `left_bound`: whether `lhs_pm` holds `left`'s ancestry (set once bound here).
-    fn join_test(
-        &mut self,
-        join: u16,
-        left: u16,
-        am: u16,
-        left_bound: &mut bool,
-    ) -> Result<bool, EvalError> {
+    fn join_test(&mut self, join: u16, left: u16, am: u16) -> Result<bool, EvalError> {
         let j = &self.joins[join as usize];
         let (tests, depth) = (j.tests, j.depth);
         if tests == NONE {
             return Ok(true);
         }
+        // one walk up the ancestry per left token, not one per candidate
+        self.bind_left(left);
         let right_fact = if am != NONE {
             self.tokens[am as usize].fact
         } else {
             NONE
         };
-        if let Some(r) = self.quick_join_test(tests, left, depth, right_fact) {
+        if let Some(r) = self.quick_join_test(tests, depth, right_fact) {
             return Ok(r);
         }
         let j = self.joins[join as usize];
-        if !*left_bound {
-            self.bind_left(left);
-            *left_bound = true;
-        }
+        // the join's own depth lies below `left`'s ancestry: `left` stays bound
         self.st.lhs_pm[j.depth as usize] = if am != NONE {
             let a = self.tokens[am as usize];
             PatBinding {
@@ -141,7 +182,7 @@ impl Core<'_> {
             if self.token_active(l) {
                 match j.kind {
                     JoinKind::Positive => {
-                        if self.join_test(join, l, am, &mut false)? {
+                        if self.join_test(join, l, am)? {
                             let t = self.link_token(join, l, am)?;
                             self.propagate(t)?;
                         }
@@ -151,7 +192,7 @@ impl Core<'_> {
                         // a blocked output keeps its one blocker (CLIPS's order)
                         if t != NONE
                             && !self.tokens[t as usize].blocked
-                            && self.join_test(join, l, am, &mut false)?
+                            && self.join_test(join, l, am)?
                         {
                             self.block(t, am)?;
                         }
@@ -246,9 +287,8 @@ impl Core<'_> {
         let j = self.joins[join as usize];
         if j.rjoin == NONE {
             let mut a = from;
-            let mut bound = false;
             while a != NONE {
-                if self.join_test(join, left, a, &mut bound)? {
+                if self.join_test(join, left, a)? {
                     return Ok(a);
                 }
                 a = self.next_candidate(a, hashed);
@@ -270,14 +310,12 @@ impl Core<'_> {
         let j = self.joins[join as usize];
         match j.kind {
             JoinKind::Positive => {
-                let (mut a, hashed, mut bound) = self.first_candidate(join, left);
+                let (mut a, hashed) = self.first_candidate(join, left);
                 while a != NONE {
                     let next = self.next_candidate(a, hashed);
-                    if self.join_test(join, left, a, &mut bound)? {
+                    if self.join_test(join, left, a)? {
                         let t = self.link_token(join, left, a)?;
                         self.propagate(t)?;
-                        // deeper joins rebind `lhs_pm`
-                        bound = false;
                     }
                     a = next;
                 }
@@ -292,8 +330,7 @@ impl Core<'_> {
                 // the bucket is looked up before the output token exists: its
                 // index insert would evict `left`'s key from the key cache
                 let (from, hashed) = if j.rjoin == NONE {
-                    let (a, hashed, _) = self.first_candidate(join, left);
-                    (a, hashed)
+                    self.first_candidate(join, left)
                 } else {
                     (NONE, false)
                 };
@@ -307,7 +344,7 @@ impl Core<'_> {
                 }
             }
             JoinKind::Test => {
-                if self.join_test(join, left, NONE, &mut false)? {
+                if self.join_test(join, left, NONE)? {
                     let t = self.link_token(join, left, NONE)?;
                     self.propagate(t)?;
                 }
@@ -458,6 +495,24 @@ impl Core<'_> {
             return;
         }
         let join = tk.owner;
+        let jn = &self.joins[join as usize];
+        if jn.rsucc == NONE
+            && jn.first_child != NONE
+            && self.joins[jn.first_child as usize].next_sibling == NONE
+        {
+            // the common case: one successor, a child join or rule end
+            self.take_back(t, jn.first_child, false);
+        } else {
+            self.take_back_all(t, join);
+        }
+        while self.tokens[t as usize].blocks != NONE {
+            let k = self.tokens[t as usize].blocks;
+            self.remove_link(k);
+        }
+    }
+
+    /// `deactivate` for every successor of `join`, oldest first.
+    fn take_back_all(&mut self, t: u16, join: u16) {
         // the successors in walking order; the first few kept, as most joins have
         // one or two, the rest walked to again
         let mut first = [(NONE, false); 8];
@@ -482,43 +537,44 @@ impl Core<'_> {
                 };
                 s
             };
-            let cj = self.joins[c as usize];
-            if from_right {
-                let mut k = self.tokens[t as usize].blocks;
-                while k != NONE {
-                    let next = self.tokens[k as usize].am_next;
-                    if self.tokens[k as usize].owner == c {
-                        self.remove_link(k);
-                    }
-                    k = next;
+            self.take_back(t, c, from_right);
+        }
+    }
+
+    /// Takes back what token `t` passed on to successor `c` (see `deactivate`).
+    fn take_back(&mut self, t: u16, c: u16, from_right: bool) {
+        let cj = self.joins[c as usize];
+        if from_right {
+            let mut k = self.tokens[t as usize].blocks;
+            while k != NONE {
+                let next = self.tokens[k as usize].am_next;
+                if self.tokens[k as usize].owner == c {
+                    self.remove_link(k);
                 }
-            } else if cj.is_terminal() {
-                if self.tokens[t as usize].kind == TokenKind::Beta {
-                    let mut a = self.tokens[t as usize].extra;
-                    while a != NONE {
-                        let next = self.acts[a as usize].next_of_token;
-                        if self.acts[a as usize].rule == cj.rule {
-                            self.remove_activation(a);
-                        }
-                        a = next;
+                k = next;
+            }
+        } else if cj.is_terminal() {
+            if self.tokens[t as usize].kind == TokenKind::Beta {
+                let mut a = self.tokens[t as usize].extra;
+                while a != NONE {
+                    let next = self.acts[a as usize].next_of_token;
+                    if self.acts[a as usize].rule == cj.rule {
+                        self.remove_activation(a);
                     }
-                }
-            } else {
-                let mut k = self.tokens[t as usize].first_child;
-                while k != NONE {
-                    let next = self.tokens[k as usize].next_sib;
-                    if self.tokens[k as usize].owner == c
-                        && self.tokens[k as usize].kind != TokenKind::Link
-                    {
-                        self.delete_token(k);
-                    }
-                    k = next;
+                    a = next;
                 }
             }
-        }
-        while self.tokens[t as usize].blocks != NONE {
-            let k = self.tokens[t as usize].blocks;
-            self.remove_link(k);
+        } else {
+            let mut k = self.tokens[t as usize].first_child;
+            while k != NONE {
+                let next = self.tokens[k as usize].next_sib;
+                if self.tokens[k as usize].owner == c
+                    && self.tokens[k as usize].kind != TokenKind::Link
+                {
+                    self.delete_token(k);
+                }
+                k = next;
+            }
         }
     }
 

@@ -113,9 +113,10 @@ impl Core<'_> {
         Some(key)
     }
 
-    /// `left_key` read straight from the facts of `left`'s ancestry (no `lhs_pm`,
-    /// no evaluator); None when a compared field is not a plain single-field slot.
-    fn quick_left_key(&self, join: u16, left: u16) -> Option<u32> {
+    /// `left_key` without the evaluator: `lhs_pm` must hold the left token's
+    /// bindings; the compared fields are read straight from the facts. None when
+    /// one is not a plain single-field slot.
+    fn quick_left_key(&self, join: u16) -> Option<u32> {
         let j = &self.joins[join as usize];
         let nrhash = self.alphas[j.alpha as usize].nrhash;
         let mut key = 0x5bd1_e995u32;
@@ -125,15 +126,14 @@ impl Core<'_> {
             let x = self.exprs[t as usize];
             if x.op == Op::Eq2 && x.first != NONE {
                 let this = self.exprs[x.first as usize];
-                let other = this.next;
-                if this.op == Op::PatVar && this.aux == j.depth && other != NONE {
-                    let o = self.exprs[other as usize];
+                if this.op == Op::PatVar && this.aux == j.depth && this.next != NONE {
+                    let o = self.exprs[this.next as usize];
                     if o.op == Op::PatVar && o.aux != j.depth {
                         if o.aux > j.depth {
                             return None;
                         }
-                        let v = self.plain_slot_value(self.fact_at(left, o.aux), &o)?;
-                        key = mix(key, self.value_hash(v));
+                        let fact = self.st.lhs_pm[o.aux as usize].fact;
+                        key = mix(key, self.value_hash(self.plain_slot_value(fact, &o)?));
                         found += 1;
                     }
                 }
@@ -215,29 +215,29 @@ impl Core<'_> {
 
     /// Where a left token of alpha-fed `join` starts looking for right partners:
     /// the first match of its bucket (then `next_candidate` with `hashed`), or the
-    /// whole memory. The last flag tells whether `lhs_pm` now holds the left token.
-    pub(crate) fn first_candidate(&mut self, join: u16, left: u16) -> (u16, bool, bool) {
+    /// whole memory.
+    pub(crate) fn first_candidate(&mut self, join: u16, left: u16) -> (u16, bool) {
         let j = self.joins[join as usize];
         debug_assert!(j.kind != JoinKind::Root);
         let alpha = j.alpha;
         if self.alphas[alpha as usize].nrhash > 0 {
             let (ct, cj, ck) = self.st.key_cache;
             let key = if ct == left && cj == join {
-                Some((ck, false))
-            } else if let Some(k) = self.quick_left_key(join, left) {
-                Some((k, false))
+                Some(ck)
             } else {
                 self.bind_left(left);
-                self.left_key(join).map(|k| (k, true))
+                match self.quick_left_key(join) {
+                    Some(k) => Some(k),
+                    None => self.left_key(join),
+                }
             };
-            if let Some((key, bound)) = key {
+            if let Some(key) = key {
                 let b = self.bucket(alpha, key);
                 let a = self.amem_buckets[b as usize];
-                return (self.skip_foreign(a, alpha), true, bound);
+                return (self.skip_foreign(a, alpha), true);
             }
-            return (self.alphas[alpha as usize].mem, false, true);
         }
-        (self.alphas[alpha as usize].mem, false, false)
+        (self.alphas[alpha as usize].mem, false)
     }
 
     /// The candidate after `a` (same chain kind as `first_candidate` gave).
@@ -330,12 +330,13 @@ impl Core<'_> {
         if child == NONE {
             return;
         }
-        let key = match self.quick_left_key(child, t) {
+        // usually one level more than the left token just bound by the join test
+        self.bind_left(t);
+        let key = match self.quick_left_key(child) {
             Some(key) => key,
             None => {
                 let (pm, depth) = (self.st.pm_rhs, self.joins[child as usize].depth as usize);
                 let saved = self.st.lhs_pm[depth];
-                self.bind_left(t);
                 // an unreadable value: bucket of key 0 (the child then scans, see below)
                 let key = self.left_key(child).unwrap_or(0);
                 self.st.lhs_pm[depth] = saved;

@@ -9,73 +9,51 @@
 //! general path, which gives the same results and reports the same errors, so the
 //! quick path never changes behaviour, only cost.
 
-use super::Token;
 use crate::engine::Core;
 use crate::expr::{loc, Expr, Op};
 use crate::value::{Value, NONE};
 
 impl Core<'_> {
-    /// The fact matched by pattern `pat` along partial match `t`'s ancestry (what
-    /// `bind_left` puts in `lhs_pm[pat]`), NONE if no ancestor holds one.
-    pub(crate) fn fact_at(&self, mut t: u16, pat: u8) -> u16 {
-        while t != NONE {
-            let tk: &Token = &self.tokens[t as usize];
-            let j = &self.joins[tk.owner as usize];
-            if j.kind == super::JoinKind::Root || j.depth < pat {
-                // pattern depths fall strictly along an ancestry: not there
-                return NONE;
-            }
-            if j.depth == pat {
-                return if tk.am != NONE {
-                    self.tokens[tk.am as usize].fact
-                } else {
-                    NONE
-                };
-            }
-            t = tk.parent;
-        }
-        NONE
-    }
-
     /// The value of pattern variable `x` read from `fact`, when it is a plain
     /// single-field slot (no multislot element, not the fact address).
     pub(crate) fn plain_slot_value(&self, fact: u16, x: &Expr) -> Option<Value> {
         if fact == NONE || x.first != NONE || x.data == loc::FACT {
             return None;
         }
-        let (cell, mlen) = self.slot_cell(fact, u16::from(loc::slot(x.data)));
-        match mlen {
-            None => Some(self.values[cell]),
-            Some(_) => None,
+        let slot = u16::from(loc::slot(x.data));
+        let f = &self.facts[fact as usize];
+        let v = if f.len == self.templates[f.tmpl as usize].nslots {
+            // one cell per slot (no multislot holds elements): index directly
+            self.values[(f.start + slot) as usize]
+        } else {
+            self.values[self.slot_cell(fact, slot).0]
+        };
+        match v {
+            Value::Multi(_) => None,
+            v => Some(v),
         }
     }
 
     /// A pattern variable of a join test of the join at `depth`: the right input's
-    /// fact (`right_fact`) for `depth`, else the left token's ancestry.
-    fn join_var(&self, x: &Expr, left: u16, depth: u8, right_fact: u16) -> Option<Value> {
+    /// fact (`right_fact`) for `depth`, else the bound left token's (`lhs_pm`).
+    fn join_var(&self, x: &Expr, depth: u8, right_fact: u16) -> Option<Value> {
         if x.op != Op::PatVar {
             return None;
         }
         let fact = if x.aux == depth {
             right_fact
         } else if x.aux < depth {
-            self.fact_at(left, x.aux)
+            self.st.lhs_pm[x.aux as usize].fact
         } else {
             return None;
         };
         self.plain_slot_value(fact, x)
     }
 
-    /// The join tests `tests` of the join at `depth` for left token `left` and
-    /// right fact `right_fact`, if every test is `?a = ?b` or `~` of it over plain
-    /// single-field slots; None when the evaluator must decide.
-    pub(crate) fn quick_join_test(
-        &self,
-        tests: u16,
-        left: u16,
-        depth: u8,
-        right_fact: u16,
-    ) -> Option<bool> {
+    /// The join tests `tests` of the join at `depth` for the left token bound in
+    /// `lhs_pm` and right fact `right_fact`, if every test is `?a = ?b` or `~` of
+    /// it over plain single-field slots; None when the evaluator must decide.
+    pub(crate) fn quick_join_test(&self, tests: u16, depth: u8, right_fact: u16) -> Option<bool> {
         let mut t = tests;
         while t != NONE {
             let x = self.exprs[t as usize];
@@ -92,8 +70,8 @@ impl Core<'_> {
                 return None;
             }
             let b = self.exprs[a.next as usize];
-            let va = self.join_var(&a, left, depth, right_fact)?;
-            let vb = self.join_var(&b, left, depth, right_fact)?;
+            let va = self.join_var(&a, depth, right_fact)?;
+            let vb = self.join_var(&b, depth, right_fact)?;
             // single-field values: `values_same` is `same`
             if va.same(vb) == negated {
                 return Some(false);
