@@ -200,6 +200,8 @@ pub struct State {
     /// Last beta-index key computed: (token, index child join, key). The token's
     /// left activation of that child, which follows at once, reuses it.
     pub key_cache: (u16, u16, u32),
+    /// Recently used joins' key plans (`rete::index`), direct-mapped by join.
+    pub key_plans: [crate::rete::KeyPlan; crate::rete::KEY_PLANS],
     pub pm_rhs: bool,
     /// Rule being fired (for messages), NONE outside a firing.
     pub current_rule: u16,
@@ -276,6 +278,7 @@ impl State {
             rhs_pm: [PatBinding::EMPTY; MAX_PATTERNS],
             this_pm: PatBinding::EMPTY,
             key_cache: (NONE, NONE, 0),
+            key_plans: [crate::rete::KeyPlan::NONE; crate::rete::KEY_PLANS],
             pm_rhs: false,
             current_rule: NONE,
             hw: Stats::new(),

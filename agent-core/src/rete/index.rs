@@ -10,10 +10,34 @@
 //! bucket (the head's `am_prev` is the tail, so appending is O(1)), `parent` keeps the
 //! bucket number. No allocation, no extra bytes per token.
 
-use super::{JoinKind, PatBinding, TokenKind, THIS_PATTERN};
+use super::{JoinKind, PatBinding, TokenKind, MAX_RHASH, THIS_PATTERN};
 use crate::engine::Core;
-use crate::expr::Op;
+use crate::expr::{loc, Op};
 use crate::value::{Value, NONE};
+
+/// Entries of the key-plan cache (`State::key_plans`, direct-mapped by join).
+pub const KEY_PLANS: usize = 8;
+
+/// The fields a join's left key reads, worked out once from its tests: pattern
+/// index and slot of each earlier variable its equality tests compare with.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct KeyPlan {
+    pub join: u16,
+    /// The join's test chain (a reused join id has another one).
+    pub tests: u16,
+    /// Number of fields; `KeyPlan::NONE.n` when the evaluator must compute the key.
+    pub n: u8,
+    pub vars: [(u8, u8); MAX_RHASH],
+}
+
+impl KeyPlan {
+    pub const NONE: KeyPlan = KeyPlan {
+        join: NONE,
+        tests: NONE,
+        n: u8::MAX,
+        vars: [(0, 0); MAX_RHASH],
+    };
+}
 
 fn mix(h: u32, x: u32) -> u32 {
     (h ^ x).wrapping_mul(0x9E37_79B1).rotate_left(13)
@@ -21,6 +45,7 @@ fn mix(h: u32, x: u32) -> u32 {
 
 impl Core<'_> {
     /// A hash of a value consistent with `values_same` (the join tests' equality).
+    #[inline(always)]
     fn value_hash(&self, v: Value) -> u32 {
         match v {
             Value::Void => 1,
@@ -114,36 +139,75 @@ impl Core<'_> {
     }
 
     /// `left_key` without the evaluator: `lhs_pm` must hold the left token's
-    /// bindings; the compared fields are read straight from the facts. None when
-    /// one is not a plain single-field slot.
-    fn quick_left_key(&self, join: u16) -> Option<u32> {
+    /// bindings; the compared fields are read straight from the facts, as the
+    /// join's key plan says. None when one is not a plain single-field slot.
+    fn quick_left_key(&mut self, join: u16) -> Option<u32> {
+        let tests = self.joins[join as usize].tests;
+        let i = join as usize % KEY_PLANS;
+        let cached = self.st.key_plans[i];
+        let plan = if cached.join == join && cached.tests == tests {
+            cached
+        } else {
+            let p = self.key_plan(join);
+            self.st.key_plans[i] = p;
+            p
+        };
+        if plan.n == KeyPlan::NONE.n {
+            return None;
+        }
+        let mut key = 0x5bd1_e995u32;
+        for &(pat, slot) in &plan.vars[..plan.n as usize] {
+            let fact = self.st.lhs_pm[pat as usize].fact;
+            if fact == NONE {
+                return None;
+            }
+            key = mix(
+                key,
+                self.value_hash(self.plain_slot(fact, u16::from(slot))?),
+            );
+        }
+        Some(key)
+    }
+
+    /// Which fields `left_key` reads for `join`: the earlier variables its
+    /// equality tests compare with, in test order, when all are plain single-field
+    /// slot reads (else a plan with `n == KeyPlan::NONE.n`).
+    fn key_plan(&self, join: u16) -> KeyPlan {
         let j = &self.joins[join as usize];
         let nrhash = self.alphas[j.alpha as usize].nrhash;
-        let mut key = 0x5bd1_e995u32;
-        let mut found = 0;
+        let mut plan = KeyPlan {
+            join,
+            tests: j.tests,
+            n: 0,
+            vars: [(0, 0); MAX_RHASH],
+        };
+        let unplanned = KeyPlan {
+            join,
+            tests: j.tests,
+            ..KeyPlan::NONE
+        };
         let mut t = j.tests;
-        while t != NONE && found < nrhash {
+        while t != NONE && plan.n < nrhash {
             let x = self.exprs[t as usize];
             if x.op == Op::Eq2 && x.first != NONE {
                 let this = self.exprs[x.first as usize];
                 if this.op == Op::PatVar && this.aux == j.depth && this.next != NONE {
                     let o = self.exprs[this.next as usize];
                     if o.op == Op::PatVar && o.aux != j.depth {
-                        if o.aux > j.depth {
-                            return None;
+                        if o.aux > j.depth || o.first != NONE || o.data == loc::FACT {
+                            return unplanned;
                         }
-                        let fact = self.st.lhs_pm[o.aux as usize].fact;
-                        key = mix(key, self.value_hash(self.plain_slot_value(fact, &o)?));
-                        found += 1;
+                        plan.vars[plan.n as usize] = (o.aux, loc::slot(o.data));
+                        plan.n += 1;
                     }
                 }
             }
             t = x.next;
         }
-        if found != nrhash {
-            return None;
+        if plan.n != nrhash {
+            return unplanned;
         }
-        Some(key)
+        plan
     }
 
     /// `alpha_key` for a match whose right-hash fields are all plain single-field
@@ -307,6 +371,8 @@ impl Core<'_> {
     /// Makes `child` the join whose tests key `parent`'s memory, if the memory is
     /// empty and not indexed yet and `child` is fed by a node with a right hash.
     pub(crate) fn choose_index_child(&mut self, parent: u16, child: u16) {
+        // called for every new join: a reused join id must not keep an old plan
+        self.st.key_plans = [KeyPlan::NONE; KEY_PLANS];
         let p = self.joins[parent as usize];
         let c = self.joins[child as usize];
         if parent != 0

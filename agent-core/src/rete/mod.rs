@@ -3,6 +3,7 @@
 mod alpha;
 mod beta;
 mod index;
+pub use index::{KeyPlan, KEY_PLANS};
 mod quick;
 
 use crate::value::NONE;

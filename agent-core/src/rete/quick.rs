@@ -16,11 +16,17 @@ use crate::value::{Value, NONE};
 impl Core<'_> {
     /// The value of pattern variable `x` read from `fact`, when it is a plain
     /// single-field slot (no multislot element, not the fact address).
+    #[inline(always)]
     pub(crate) fn plain_slot_value(&self, fact: u16, x: &Expr) -> Option<Value> {
         if fact == NONE || x.first != NONE || x.data == loc::FACT {
             return None;
         }
-        let slot = u16::from(loc::slot(x.data));
+        self.plain_slot(fact, u16::from(loc::slot(x.data)))
+    }
+
+    /// Slot `slot` of `fact` when it holds a single field (not a multislot).
+    #[inline(always)]
+    pub(crate) fn plain_slot(&self, fact: u16, slot: u16) -> Option<Value> {
         let f = &self.facts[fact as usize];
         let v = if f.len == self.templates[f.tmpl as usize].nslots {
             // one cell per slot (no multislot holds elements): index directly
