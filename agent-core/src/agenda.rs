@@ -5,6 +5,7 @@
 use crate::engine::{cap, watch, Core};
 use crate::error::{CapacityError, Pool};
 use crate::rule::Activation;
+use crate::value::Ix;
 use crate::value::NONE;
 
 /// How many removed activations one modify can put back in place.
@@ -14,7 +15,7 @@ pub const JOURNAL_LEN: usize = 16;
 /// the agenda then (identified by creation number, as slots get reused).
 #[derive(Clone, Copy, Debug)]
 pub struct JournalEntry {
-    pub rule: u16,
+    pub rule: Ix,
     /// Hash of the fact numbers the activation matched.
     pub basis: u32,
     pub seq: u32,
@@ -47,7 +48,7 @@ impl ActJournal {
 }
 
 impl Core<'_> {
-    pub(crate) fn add_activation(&mut self, rule: u16, token: u16) -> Result<(), CapacityError> {
+    pub(crate) fn add_activation(&mut self, rule: Ix, token: Ix) -> Result<(), CapacityError> {
         let a = if self.st.act_free != NONE {
             let a = self.st.act_free;
             self.st.act_free = self.acts[a as usize].next;
@@ -58,7 +59,7 @@ impl Core<'_> {
                 return Err(cap(Pool::Activations, self.acts.len()));
             }
             self.st.acts_used += 1;
-            n as u16
+            n as Ix
         };
         self.note_hw(Pool::Activations, self.st.acts_used as usize);
         self.st.act_seq = self.st.act_seq.wrapping_add(1);
@@ -82,7 +83,7 @@ impl Core<'_> {
     }
 
     /// A rule's salience now (global-based saliences are evaluated again).
-    pub(crate) fn rule_salience(&mut self, rule: u16) -> i32 {
+    pub(crate) fn rule_salience(&mut self, rule: Ix) -> i32 {
         let e = self.rules[rule as usize].salience_expr;
         if e == NONE {
             return self.rules[rule as usize].salience;
@@ -97,7 +98,7 @@ impl Core<'_> {
     }
 
     /// Inserts before the first activation of lower or equal salience.
-    fn agenda_insert(&mut self, a: u16) {
+    fn agenda_insert(&mut self, a: Ix) {
         let sal = self.acts[a as usize].salience;
         let mut prev = NONE;
         let mut cur = self.st.agenda_head;
@@ -117,7 +118,7 @@ impl Core<'_> {
         }
     }
 
-    fn agenda_unlink(&mut self, a: u16) {
+    fn agenda_unlink(&mut self, a: Ix) {
         let x = self.acts[a as usize];
         if x.prev != NONE {
             self.acts[x.prev as usize].next = x.next;
@@ -129,7 +130,7 @@ impl Core<'_> {
         }
     }
 
-    pub(crate) fn remove_activation(&mut self, a: u16) {
+    pub(crate) fn remove_activation(&mut self, a: Ix) {
         if self.st.act_journal.on {
             self.journal_activation(a);
         }
@@ -140,7 +141,7 @@ impl Core<'_> {
         self.free_activation(a);
     }
 
-    fn free_activation(&mut self, a: u16) {
+    fn free_activation(&mut self, a: Ix) {
         // unlink from the token's activation chain
         let t = self.acts[a as usize].token;
         if t != NONE {
@@ -166,7 +167,7 @@ impl Core<'_> {
     }
 
     /// Takes the top activation off the agenda (it fires; refraction keeps it gone).
-    pub(crate) fn pop_activation(&mut self) -> Option<(u16, u16)> {
+    pub(crate) fn pop_activation(&mut self) -> Option<(Ix, Ix)> {
         let a = self.st.agenda_head;
         if a == NONE {
             return None;
@@ -214,7 +215,7 @@ impl Core<'_> {
     }
 
     /// Hash of the fact numbers an activation matched (its identity across a rebuild).
-    fn activation_basis(&self, a: u16) -> u32 {
+    fn activation_basis(&self, a: Ix) -> u32 {
         // walks the partial match up to the root: (depth, fact number) pairs
         let mut h = 0x9E37_79B9u32;
         let mut t = self.acts[a as usize].token;
@@ -236,7 +237,7 @@ impl Core<'_> {
         h
     }
 
-    fn journal_activation(&mut self, a: u16) {
+    fn journal_activation(&mut self, a: Ix) {
         let j = &self.st.act_journal;
         if j.len as usize >= JOURNAL_LEN {
             self.st.act_journal.overflow = true;
