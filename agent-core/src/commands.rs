@@ -247,7 +247,11 @@ impl Core<'_> {
             let mut spec = self.deffacts[d as usize].facts;
             while spec != NONE {
                 if self.exprs[spec as usize].op == Op::FactSpec {
+                    // a multislot's value is built in the scratch area; once asserted
+                    // the fact holds its own copy, so a deffacts of any size fits
+                    let mark = self.st.scratch_top;
                     self.assert_spec(spec)?;
+                    self.st.scratch_top = mark;
                 }
                 spec = self.exprs[spec as usize].next;
             }
