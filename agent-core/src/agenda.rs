@@ -22,6 +22,16 @@ pub struct JournalEntry {
     pub next_seq: Option<u32>,
 }
 
+/// Where a (possibly nested) journal recording began: the journal as it was then,
+/// and the last activation number then (later ones are the operation's own).
+#[derive(Clone, Copy, Debug)]
+pub struct JournalMark {
+    pub len: u8,
+    pub on: bool,
+    pub overflow: bool,
+    pub seq: u32,
+}
+
 /// The activations removed while `on` (see `JournalEntry`); `overflow` once more than
 /// `JOURNAL_LEN` were.
 #[derive(Clone, Copy, Debug)]
@@ -254,33 +264,54 @@ impl Core<'_> {
         j.len += 1;
     }
 
-    /// Starts recording the activations removed from now on (see `JournalEntry`).
-    pub(crate) fn journal_start(&mut self) {
-        self.st.act_journal = ActJournal {
-            on: true,
-            ..ActJournal::EMPTY
+    /// Starts (or nests) recording the activations removed from now on (see
+    /// `JournalEntry`): an assert inside a modify records after the modify's entries.
+    pub(crate) fn journal_begin(&mut self) -> JournalMark {
+        let j = &mut self.st.act_journal;
+        let m = JournalMark {
+            len: j.len,
+            on: j.on,
+            overflow: j.overflow,
+            seq: self.st.act_seq,
         };
+        j.on = true;
+        m
     }
 
-    pub(crate) fn journal_stop(&mut self) {
+    /// Stops recording; the entries stay for `journal_restore`.
+    pub(crate) fn journal_pause(&mut self) {
         self.st.act_journal.on = false;
     }
 
-    /// After a failed modify rebuilt the old fact's matches: gives each activation
-    /// created since `mark` that the journal recorded its creation number back and
-    /// puts it where it was, before the activation that followed it. Latest removed
-    /// first, so a follower that was itself removed is already back in place.
-    /// Activations that cannot be matched up stay where the rebuild put them.
-    pub(crate) fn journal_restore(&mut self, mark: u32) {
+    /// Drops the entries recorded since `m` and recording goes back to what it was.
+    pub(crate) fn journal_end(&mut self, m: JournalMark) {
+        let j = &mut self.st.act_journal;
+        j.len = m.len;
+        j.on = m.on;
+        j.overflow = m.overflow;
+    }
+
+    /// After a failed operation (begun at `m`) was undone, rebuilding the matches
+    /// it had removed: gives each activation created since `rebuilt` that the
+    /// journal recorded since `m` its creation number back and puts it where it was,
+    /// before the activation that followed it. Latest removed first, so a follower
+    /// that was itself removed is already back in place. Activations the operation
+    /// itself created (and removed) are skipped; activations that cannot be matched
+    /// up (journal overflow) stay where the rebuild put them.
+    pub(crate) fn journal_restore(&mut self, m: JournalMark, rebuilt: u32) {
         let j = self.st.act_journal;
         if j.overflow {
             return;
         }
-        for e in j.entries[..j.len as usize].iter().rev() {
+        let recorded = j.entries.get(m.len as usize..j.len as usize).unwrap_or(&[]);
+        for e in recorded.iter().rev() {
+            if e.seq.wrapping_sub(m.seq) as i32 > 0 {
+                continue;
+            }
             let mut a = self.st.agenda_head;
             while a != NONE {
                 let x = self.acts[a as usize];
-                if x.seq.wrapping_sub(mark) as i32 > 0
+                if x.seq.wrapping_sub(rebuilt) as i32 > 0
                     && x.rule == e.rule
                     && self.activation_basis(a) == e.basis
                 {

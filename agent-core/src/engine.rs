@@ -148,6 +148,11 @@ pub struct State {
     /// Activations the retract of a modify removed, to put back in place if the
     /// modify fails.
     pub act_journal: crate::agenda::ActJournal,
+    /// Not outputs a removal unblocked on a full token pool, waiting for their
+    /// propagation (see `Core::pay_owed`); chained through the tokens.
+    pub owed: u16,
+    /// Watch traces of an assert/modify held back until it cannot be undone.
+    pub hold: crate::hold::TraceHold,
     /// Evaluation stack pointer and current frame base.
     pub sp: u16,
     pub bp: u16,
@@ -244,6 +249,8 @@ impl State {
             agenda_head: NONE,
             act_seq: 0,
             act_journal: crate::agenda::ActJournal::EMPTY,
+            owed: NONE,
+            hold: crate::hold::TraceHold::EMPTY,
             sp: 0,
             bp: 0,
             scratch_top: 0,

@@ -281,19 +281,23 @@ impl Core<'_> {
             let old_fact = self.facts[old as usize];
             // the activations the retract removes are noted, to put them back in
             // their agenda places should the assert fail
-            self.journal_start();
+            // a modify that is undone prints nothing (see `hold`)
+            self.hold_traces();
+            let mark = self.journal_begin();
             self.retract_fact(old);
-            self.journal_stop();
+            self.journal_pause();
             let r = self.assert_slots(tmpl, base as usize);
             if r.is_err() {
                 // the network ran out of room (tokens, activations): the new fact is
                 // gone again; the old one comes back (if that fails too, it stays
                 // retracted and the first error is reported)
-                let mark = self.st.act_seq;
+                let rebuilt = self.st.act_seq;
                 if self.restore_fact(old, old_fact, saved as usize).is_ok() {
-                    self.journal_restore(mark);
+                    self.journal_restore(mark, rebuilt);
                 }
             }
+            self.journal_end(mark);
+            self.release_traces(r.is_ok());
             r
         })();
         self.st.sp = saved;
@@ -378,6 +382,9 @@ fn retract(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
             }
         }
     }
+    // matches the retracts unblocked but found no room for are owed (see
+    // `Core::pay_owed`): reported here, as the right-hand side's error
+    cx.pay_owed()?;
     Ok(Value::Void)
 }
 
