@@ -151,6 +151,8 @@ pub struct State {
     /// Not outputs a removal unblocked on a full token pool, waiting for their
     /// propagation (see `Core::pay_owed`); chained through the tokens.
     pub owed: u16,
+    /// Not outputs a modify's retract unblocked (see `Core::owe_unblocked`).
+    pub unblocked: crate::rete::UnblockLog,
     /// Watch traces of an assert/modify held back until it cannot be undone.
     pub hold: crate::hold::TraceHold,
     /// Evaluation stack pointer and current frame base.
@@ -250,6 +252,7 @@ impl State {
             act_seq: 0,
             act_journal: crate::agenda::ActJournal::EMPTY,
             owed: NONE,
+            unblocked: crate::rete::UnblockLog::EMPTY,
             hold: crate::hold::TraceHold::EMPTY,
             sp: 0,
             bp: 0,

@@ -413,6 +413,7 @@ impl Core<'_> {
         }
         if self.joins[join as usize].kind == JoinKind::Negative {
             self.move_to_front(t);
+            self.log_unblocked(t);
             self.propagate_or_owe(t);
         } else {
             self.deactivate(t);
@@ -488,6 +489,45 @@ impl Core<'_> {
         }
         self.tokens[t as usize].am_next = NONE;
         self.tokens[t as usize].am_prev = NONE;
+    }
+
+    /// Notes a not output a modify's retract unblocked (see `UnblockLog`).
+    fn log_unblocked(&mut self, t: u16) {
+        let log = &mut self.st.unblocked;
+        if !log.on {
+            return;
+        }
+        if log.len as usize >= log.entries.len() {
+            log.overflow = true;
+            return;
+        }
+        let tk = &self.tokens[t as usize];
+        log.entries[log.len as usize] = (t, tk.owner, tk.parent);
+        log.len += 1;
+    }
+
+    /// Before a failed modify re-asserts its old fact: takes back what the modify's
+    /// retract rebuilt below the not outputs it unblocked and leaves them owed, so
+    /// the re-assert (which blocks them again) needs no more room than the retract
+    /// freed. Otherwise the re-assert could meet a full pool before it reaches the
+    /// patterns that free that room, and lose the fact. An entry whose token was
+    /// deleted since (and maybe reused) is recognised by its join and parent: a left
+    /// token has one output per join. Returns false if the log overflowed.
+    pub(crate) fn owe_unblocked(&mut self) -> bool {
+        let log = self.st.unblocked;
+        for &(t, owner, parent) in &log.entries[..log.len as usize] {
+            let tk = self.tokens[t as usize];
+            if tk.kind == TokenKind::Beta
+                && tk.owner == owner
+                && tk.parent == parent
+                && self.joins[owner as usize].kind == JoinKind::Negative
+                && self.token_active(t)
+            {
+                self.deactivate(t);
+                self.owe(t, false);
+            }
+        }
+        !log.overflow
     }
 
     /// Propagates the owed not outputs, oldest first. On a full pool the one that
