@@ -195,7 +195,10 @@ engine_impl! {
         match cx.find_fact(id.0) {
             Some(f) => {
                 cx.retract_fact(f);
-                Ok(())
+                // The fact is gone either way (CLIPS's retract cannot fail), but
+                // matches it unblocked that found no room are owed, not lost: say so.
+                // They are built once room is made; until then assert and run fail.
+                cx.pay_owed().map_err(EngineError::from)
             }
             None => Err(EngineError::NoSuchFact(id.0)),
         }

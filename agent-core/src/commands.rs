@@ -505,6 +505,9 @@ impl Core<'_> {
         let mut fired: u32 = 0;
         let scratch_mark = self.st.scratch_top;
         while limit < 0 || (fired as i64) < limit {
+            // the agenda is complete only once owed matches are built: fire nothing
+            // before (the error stops the run; retracting facts makes room)
+            self.pay_owed()?;
             let (rule, token) = match self.pop_activation() {
                 Some(x) => x,
                 None => break,

@@ -149,6 +149,13 @@ pub struct State {
     /// Activations the retract of a modify removed, to put back in place if the
     /// modify fails.
     pub act_journal: crate::agenda::ActJournal,
+    /// Not outputs a removal unblocked on a full token pool, waiting for their
+    /// propagation (see `Core::pay_owed`); chained through the tokens.
+    pub owed: Ix,
+    /// Not outputs a modify's retract unblocked (see `Core::owe_unblocked`).
+    pub unblocked: crate::rete::UnblockLog,
+    /// Watch traces of an assert/modify held back until it cannot be undone.
+    pub hold: crate::hold::TraceHold,
     /// Evaluation stack pointer and current frame base.
     pub sp: Ix,
     pub bp: Ix,
@@ -245,6 +252,9 @@ impl State {
             agenda_head: NONE,
             act_seq: 0,
             act_journal: crate::agenda::ActJournal::EMPTY,
+            owed: NONE,
+            unblocked: crate::rete::UnblockLog::EMPTY,
+            hold: crate::hold::TraceHold::EMPTY,
             sp: 0,
             bp: 0,
             scratch_top: 0,

@@ -406,6 +406,9 @@ impl Core<'_> {
     /// multislot's value is a scratch `Multi`). Returns `None` for a duplicate.
     /// Runs the network; on a full pool the fact is removed again and the error returned.
     pub fn assert_slots(&mut self, tmpl: Ix, base: usize) -> Result<Option<Ix>, EvalError> {
+        // matches an earlier removal still owes come first: without room for them
+        // the assert fails with nothing changed
+        self.pay_owed()?;
         let need = self.cells_needed(tmpl, base);
         if self.st.fact_free == NONE && self.fact_slots_exhausted() {
             return Err(cap(Pool::Facts, self.facts.len()).into());
@@ -458,18 +461,34 @@ impl Core<'_> {
         let live = self.count_live_facts_hint();
         self.note_hw(Pool::Facts, live);
         self.note_hw(Pool::FactValues, self.st.values_top as usize);
+        // an undone assert prints nothing (see `hold`)
+        self.hold_traces();
         if self.st.watch & crate::engine::watch::FACTS != 0 {
             self.print_fact_line("==> ", slot);
         }
-        if let Err(e) = self.network_assert(slot) {
-            // Undo: remove what the fact built, then the fact itself, silently.
+        // the activations the new fact's blockers remove are noted, to put them back
+        // in their agenda places should the assert fail
+        let mark = self.journal_begin();
+        let r = self.network_assert(slot);
+        self.journal_pause();
+        if let Err(e) = r {
+            // Undo: remove what the fact built, then the fact itself, silently. The
+            // removal rebuilds what the fact had blocked from the tokens it frees
+            // (anything that does not fit at once is owed and paid right after).
+            let rebuilt = self.st.act_seq;
             self.network_retract(slot);
             self.unlink_fact(slot);
             self.free_fact_slot(slot);
             self.st.next_fact_num = num;
             self.st.values_top = start as Ix;
+            let _ = self.pay_owed();
+            self.journal_restore(mark, rebuilt);
+            self.journal_end(mark);
+            self.release_traces(false);
             return Err(e);
         }
+        self.journal_end(mark);
+        self.release_traces(true);
         Ok(Some(slot))
     }
 
@@ -521,6 +540,11 @@ impl Core<'_> {
             self.print_fact_line("<== ", slot);
         }
         self.network_retract(slot);
+        // what the retract unblocked and could not rebuild on a full pool is owed:
+        // the tokens the fact itself freed may be enough now
+        if self.st.owed != NONE {
+            let _ = self.pay_owed();
+        }
         self.unlink_fact(slot);
         if self.st.firing {
             self.facts[slot as usize].state = FactState::Pending;

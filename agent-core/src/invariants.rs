@@ -135,7 +135,46 @@ impl Core<'_> {
         self.check_facts()?;
         self.check_values()?;
         self.check_tokens()?;
+        self.check_owed()?;
         self.check_agenda()?;
+        Ok(())
+    }
+
+    /// The owed list (see `Core::pay_owed`): unblocked not outputs, each once, their
+    /// back links consistent (the head's names the tail), and no other token marked.
+    fn check_owed(&self) -> Result<(), Violation> {
+        let used = self.st.tokens_used as usize;
+        let marked = (0..used).filter(|&t| self.is_owed(t as Ix)).count();
+        let (mut n, mut prev, mut t) = (0usize, NONE, self.st.owed);
+        while t != NONE {
+            ensure!(
+                (t as usize) < used,
+                "owed list names a token outside the pool",
+                t
+            );
+            let tk = self.tokens[t as usize];
+            ensure!(self.is_owed(t), "owed list holds an unmarked token", t);
+            ensure!(
+                self.joins[tk.owner as usize].kind == JoinKind::Negative && !tk.blocked,
+                "owed token is not an unblocked not output",
+                t
+            );
+            if prev != NONE {
+                ensure!(tk.am_prev == prev, "owed list back link broken", t);
+            }
+            n += 1;
+            ensure!(n <= marked, "owed list has a cycle or misses marks", t);
+            prev = t;
+            t = tk.am_next;
+        }
+        ensure!(n == marked, "owed marks outside the owed list", marked);
+        if self.st.owed != NONE {
+            ensure!(
+                self.tokens[self.st.owed as usize].am_prev == prev,
+                "owed list head does not name the tail",
+                self.st.owed
+            );
+        }
         Ok(())
     }
 

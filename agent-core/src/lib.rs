@@ -101,6 +101,7 @@ pub mod error;
 pub mod eval;
 pub mod expr;
 pub mod fact;
+pub mod hold;
 pub mod host;
 pub mod invariants;
 pub mod lexer;

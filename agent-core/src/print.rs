@@ -158,7 +158,27 @@ impl Core<'_> {
     }
 
     pub fn write(&mut self, router: &str, text: &str) {
+        self.spill_traces();
         self.host.write_str(router, text);
+    }
+
+    /// Splits into a printing view and a writer for watch traces (see `hold`).
+    fn split_trace(&mut self) -> (View<'_>, crate::hold::TraceWriter<'_>) {
+        (
+            View {
+                values: self.values,
+                scratch: self.scratch,
+                sym_entries: self.sym_entries,
+                sym_bytes: self.sym_bytes,
+                templates: self.templates,
+                slots: self.slots,
+                facts: self.facts,
+            },
+            crate::hold::TraceWriter {
+                host: &mut *self.host,
+                hold: &mut self.st.hold,
+            },
+        )
     }
 
     /// Writes a value to a router (`quote`: strings in quotes).
@@ -177,11 +197,7 @@ impl Core<'_> {
 
     pub(crate) fn print_fact_line(&mut self, arrow: &str, slot: Ix) {
         let num = self.facts[slot as usize].num;
-        let (view, host) = self.split();
-        let mut w = RouterWriter {
-            host,
-            router: router::WTRACE,
-        };
+        let (view, mut w) = self.split_trace();
         let _ = w.write_str(arrow);
         let _ = Self::write_fact_id(&mut w, num);
         let _ = view.write_fact(&mut w, slot);
@@ -246,7 +262,8 @@ impl Core<'_> {
         let _ = b.write_str(prefix);
         let _ = self.write_activation(&mut b, self.acts[a as usize]);
         let _ = b.write_str("\n");
-        self.host.write_str(router::WTRACE, b.as_str());
+        let (_, mut w) = self.split_trace();
+        let _ = w.write_str(b.as_str());
     }
 
     pub(crate) fn print_fire_line(&mut self, count: u32, rule: Ix, token: Ix) {

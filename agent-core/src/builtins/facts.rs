@@ -246,6 +246,9 @@ impl Core<'_> {
             return Err(EvalError::wrong_type(name, 1, "deftemplate fact"));
         }
         let nslots = self.templates[tmpl as usize].nslots;
+        // matches an earlier retract owes come first: the retract below must free
+        // room for the old fact's return, not for old debts
+        self.pay_owed()?;
         // the old values at `saved`, the new fact's built from a copy at `base`: a
         // modify that fails after the retract puts the old fact back from them
         let saved = self.st.sp;
@@ -277,19 +280,31 @@ impl Core<'_> {
             let old_fact = self.facts[old as usize];
             // the activations the retract removes are noted, to put them back in
             // their agenda places should the assert fail
-            self.journal_start();
+            // a modify that is undone prints nothing (see `hold`)
+            self.hold_traces();
+            let mark = self.journal_begin();
+            self.st.unblocked = crate::rete::UnblockLog {
+                on: true,
+                ..crate::rete::UnblockLog::EMPTY
+            };
             self.retract_fact(old);
-            self.journal_stop();
+            self.st.unblocked.on = false;
+            self.journal_pause();
             let r = self.assert_slots(tmpl, base as usize);
             if r.is_err() {
                 // the network ran out of room (tokens, activations): the new fact is
-                // gone again; the old one comes back (if that fails too, it stays
-                // retracted and the first error is reported)
-                let mark = self.st.act_seq;
+                // gone again; the old one comes back with the room its retract freed
+                // (if that fails too, it stays retracted and the first error is
+                // reported; only possible after an unblock log overflow)
+                let rebuilt = self.st.act_seq;
+                self.owe_unblocked();
                 if self.restore_fact(old, old_fact, saved as usize).is_ok() {
-                    self.journal_restore(mark);
+                    let _ = self.pay_owed();
+                    self.journal_restore(mark, rebuilt);
                 }
             }
+            self.journal_end(mark);
+            self.release_traces(r.is_ok());
             r
         })();
         self.st.sp = saved;
@@ -374,6 +389,9 @@ fn retract(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
             }
         }
     }
+    // matches the retracts unblocked but found no room for are owed (see
+    // `Core::pay_owed`): reported here, as the right-hand side's error
+    cx.pay_owed()?;
     Ok(Value::Void)
 }
 

@@ -11,7 +11,7 @@
 
 use super::{JoinKind, PatBinding, Token, TokenKind};
 use crate::engine::{cap, Core};
-use crate::error::{CapacityError, EvalError, Pool};
+use crate::error::{CapacityError, EvalError, EvalErrorKind, Pool};
 use crate::value::Ix;
 use crate::value::NONE;
 
@@ -47,7 +47,8 @@ impl Core<'_> {
     pub(crate) fn token_active(&self, t: Ix) -> bool {
         let tk = &self.tokens[t as usize];
         match self.joins[tk.owner as usize].kind {
-            JoinKind::Negative => !tk.blocked,
+            // an owed output (see `owe`) passes nothing on until it is paid
+            JoinKind::Negative => !tk.blocked && tk.am_prev == NONE,
             JoinKind::Exists => tk.blocked,
             _ => true,
         }
@@ -172,6 +173,10 @@ impl Core<'_> {
     fn block(&mut self, t: Ix, blocker: Ix) -> Result<(), EvalError> {
         self.add_link(t, blocker)?;
         if self.joins[self.tokens[t as usize].owner as usize].kind == JoinKind::Negative {
+            // blocked again before its propagation was paid: nothing is owed any more
+            if self.is_owed(t) {
+                self.unowe(t);
+            }
             self.deactivate(t);
             Ok(())
         } else {
@@ -408,13 +413,140 @@ impl Core<'_> {
             return;
         }
         if self.joins[join as usize].kind == JoinKind::Negative {
-            // Restores a match that existed before; a full pool here is
-            // reported by the next operation that needs the space.
             self.move_to_front(t);
-            let _ = self.propagate(t);
+            self.log_unblocked(t);
+            self.propagate_or_owe(t);
         } else {
             self.deactivate(t);
         }
+    }
+
+    /// Passes on a not output that a removal unblocked. Removals (retract, and the
+    /// undo of a failed assert) cannot fail, but what unblocking rebuilds is not
+    /// bounded by what the removal freed (one retracted blocker can release any
+    /// number of matches). So on a full pool the part built is taken back and the
+    /// output is *owed*: it passes nothing on (inactive, as if blocked), and
+    /// `pay_owed` propagates it once there is room. Every operation pays first
+    /// (assert fails unchanged if it cannot; `run` fires nothing; retract reports
+    /// the error), so no match is lost and no rule fires on an incomplete agenda.
+    fn propagate_or_owe(&mut self, t: Ix) {
+        if let Err(e) = self.propagate(t) {
+            // an evaluation error in a join test counts as no match (as before);
+            // only a full pool leaves matches to build later
+            if matches!(e.kind, EvalErrorKind::Capacity(_)) {
+                self.deactivate(t);
+                self.owe(t, false);
+            }
+        }
+    }
+
+    /// Whether not output `t` is owed its propagation. Not outputs have no alpha
+    /// match, so their alpha-sibling links are free: they chain the owed list (the
+    /// head's `am_prev` is the tail), and a non-NONE `am_prev` marks membership.
+    pub(crate) fn is_owed(&self, t: Ix) -> bool {
+        let tk = &self.tokens[t as usize];
+        tk.kind == TokenKind::Beta && tk.am == NONE && tk.am_prev != NONE
+    }
+
+    /// Puts `t` on the owed list: at the end, or at the front (kept its turn).
+    fn owe(&mut self, t: Ix, front: bool) {
+        let head = self.st.owed;
+        if head == NONE {
+            self.tokens[t as usize].am_next = NONE;
+            self.tokens[t as usize].am_prev = t;
+            self.st.owed = t;
+            return;
+        }
+        let tail = self.tokens[head as usize].am_prev;
+        if front {
+            self.tokens[t as usize].am_next = head;
+            self.tokens[t as usize].am_prev = tail;
+            self.tokens[head as usize].am_prev = t;
+            self.st.owed = t;
+        } else {
+            self.tokens[t as usize].am_next = NONE;
+            self.tokens[t as usize].am_prev = tail;
+            self.tokens[tail as usize].am_next = t;
+            self.tokens[head as usize].am_prev = t;
+        }
+    }
+
+    fn unowe(&mut self, t: Ix) {
+        let tk = self.tokens[t as usize];
+        let head = self.st.owed;
+        if t == head {
+            self.st.owed = tk.am_next;
+            if tk.am_next != NONE {
+                // the new head keeps the tail
+                self.tokens[tk.am_next as usize].am_prev = tk.am_prev;
+            }
+        } else {
+            self.tokens[tk.am_prev as usize].am_next = tk.am_next;
+            if tk.am_next != NONE {
+                self.tokens[tk.am_next as usize].am_prev = tk.am_prev;
+            } else {
+                self.tokens[head as usize].am_prev = tk.am_prev;
+            }
+        }
+        self.tokens[t as usize].am_next = NONE;
+        self.tokens[t as usize].am_prev = NONE;
+    }
+
+    /// Notes a not output a modify's retract unblocked (see `UnblockLog`).
+    fn log_unblocked(&mut self, t: Ix) {
+        let log = &mut self.st.unblocked;
+        if !log.on {
+            return;
+        }
+        if log.len as usize >= log.entries.len() {
+            log.overflow = true;
+            return;
+        }
+        let tk = &self.tokens[t as usize];
+        log.entries[log.len as usize] = (t, tk.owner, tk.parent);
+        log.len += 1;
+    }
+
+    /// Before a failed modify re-asserts its old fact: takes back what the modify's
+    /// retract rebuilt below the not outputs it unblocked and leaves them owed, so
+    /// the re-assert (which blocks them again) needs no more room than the retract
+    /// freed. Otherwise the re-assert could meet a full pool before it reaches the
+    /// patterns that free that room, and lose the fact. An entry whose token was
+    /// deleted since (and maybe reused) is recognised by its join and parent: a left
+    /// token has one output per join. Returns false if the log overflowed.
+    pub(crate) fn owe_unblocked(&mut self) -> bool {
+        let log = self.st.unblocked;
+        for &(t, owner, parent) in &log.entries[..log.len as usize] {
+            let tk = self.tokens[t as usize];
+            if tk.kind == TokenKind::Beta
+                && tk.owner == owner
+                && tk.parent == parent
+                && self.joins[owner as usize].kind == JoinKind::Negative
+                && self.token_active(t)
+            {
+                self.deactivate(t);
+                self.owe(t, false);
+            }
+        }
+        !log.overflow
+    }
+
+    /// Propagates the owed not outputs, oldest first. On a full pool the one that
+    /// failed is taken back, keeps its turn and the error is returned: the network
+    /// stays complete up to what is still owed.
+    pub(crate) fn pay_owed(&mut self) -> Result<(), EvalError> {
+        while self.st.owed != NONE {
+            let t = self.st.owed;
+            self.unowe(t);
+            if let Err(e) = self.propagate(t) {
+                if matches!(e.kind, EvalErrorKind::Capacity(_)) {
+                    self.deactivate(t);
+                    self.owe(t, true);
+                    return Err(e);
+                }
+            }
+        }
+        Ok(())
     }
 
     /// Passes an active partial match on to its join's successors, newest first as
@@ -512,6 +644,9 @@ impl Core<'_> {
 
     /// Unlinks a token from its parent, alpha match and memory lists, then frees it.
     fn unlink_and_free(&mut self, t: Ix) {
+        if self.is_owed(t) {
+            self.unowe(t);
+        }
         let tk = self.tokens[t as usize];
         if tk.parent != NONE {
             if tk.prev_sib != NONE {

@@ -232,3 +232,25 @@ impl PatBinding {
         marks: [0; MAX_MARKS],
     };
 }
+
+/// How many unblocked not outputs one modify can take back before re-asserting its
+/// old fact (see `Core::owe_unblocked`).
+pub const UNBLOCK_LOG_LEN: usize = 16;
+
+/// The not outputs a modify's retract unblocked, as (token, join, left parent).
+#[derive(Clone, Copy, Debug)]
+pub struct UnblockLog {
+    pub on: bool,
+    pub overflow: bool,
+    pub len: u8,
+    pub entries: [(Ix, Ix, Ix); UNBLOCK_LOG_LEN],
+}
+
+impl UnblockLog {
+    pub const EMPTY: UnblockLog = UnblockLog {
+        on: false,
+        overflow: false,
+        len: 0,
+        entries: [(NONE, NONE, NONE); UNBLOCK_LOG_LEN],
+    };
+}
