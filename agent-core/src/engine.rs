@@ -139,6 +139,8 @@ pub struct State {
     pub values_top: u16,
     /// Live facts in creation (= number) order.
     pub fact_head: u16,
+    /// How many facts that list holds (`watch statistics` samples it per firing).
+    pub facts_live: u16,
     pub fact_tail: u16,
     /// Facts retracted during the current firing, freed when it ends.
     pub pending: u16,
@@ -238,6 +240,7 @@ impl State {
             acts_used: 0,
             values_top: 0,
             fact_head: NONE,
+            facts_live: 0,
             fact_tail: NONE,
             pending: NONE,
             next_fact_num: 0,

@@ -224,6 +224,10 @@ fn keep_value(mark: u16, v: Value) -> u16 {
 
 /// Resets scratch to `mark` unless a variable (frame or global) still refers above it.
 fn release_scratch(cx: &mut Core<'_>, mark: u16) {
+    // nothing above the mark (the usual query test): nothing to scan for
+    if cx.st.scratch_top <= mark {
+        return;
+    }
     let mut keep = mark;
     for v in cx.stack[..cx.st.sp as usize].iter() {
         if let Value::Multi(m) = *v {
