@@ -49,8 +49,12 @@ fn if_(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
     }
 }
 
-/// Resets scratch to `mark` unless a local variable still points above it.
-fn release_scratch(cx: &mut Core<'_>, mark: u16) {
+/// Resets scratch to `mark` unless a variable (frame or global) still points above it.
+pub(super) fn release_scratch(cx: &mut Core<'_>, mark: u16) {
+    // nothing above the mark (the usual loop body or query test): nothing to scan for
+    if cx.st.scratch_top <= mark {
+        return;
+    }
     let mut keep = mark;
     for i in 0..cx.st.sp as usize {
         if let Value::Multi(m) = cx.stack[i] {
