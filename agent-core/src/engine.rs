@@ -140,6 +140,8 @@ pub struct State {
     pub values_top: Ix,
     /// Live facts in creation (= number) order.
     pub fact_head: Ix,
+    /// How many facts that list holds (`watch statistics` samples it per firing).
+    pub facts_live: Ix,
     pub fact_tail: Ix,
     /// Facts retracted during the current firing, freed when it ends.
     pub pending: Ix,
@@ -246,6 +248,7 @@ impl State {
             acts_used: 0,
             values_top: 0,
             fact_head: NONE,
+            facts_live: 0,
             fact_tail: NONE,
             pending: NONE,
             next_fact_num: 0,

@@ -22,8 +22,8 @@ impl Core<'_> {
             Op::PatVar => self.pattern_var(x.aux, x.data, x.first),
             Op::Expand => self.eval(x.first),
             Op::Eq2 => {
-                let a = self.eval(x.first)?;
-                let b = self.eval(self.exprs[x.first as usize].next)?;
+                let a = self.eval_operand(x.first)?;
+                let b = self.eval_operand(self.exprs[x.first as usize].next)?;
                 Ok(Core::bool_value(builtins::basic::values_same(self, a, b)))
             }
             Op::And => {
@@ -49,6 +49,21 @@ impl Core<'_> {
             Op::Not => Ok(Core::bool_value(!Core::is_true(self.eval(x.first)?))),
             Op::Call => self.call(e),
             _ => Ok(Value::Void),
+        }
+    }
+
+    /// Evaluates an operand (a call argument or an `Eq2` side): leaves (constants,
+    /// variables) are read in place, without a recursive `eval` call, which is where
+    /// most operands end and most of the evaluator's time went.
+    #[inline(always)]
+    fn eval_operand(&mut self, e: Ix) -> Result<Value, EvalError> {
+        let x = self.exprs[e as usize];
+        match x.op {
+            Op::Sym => Ok(Value::Sym(x.data)),
+            Op::Str => Ok(Value::Str(x.data)),
+            Op::Local => Ok(self.stack[(self.st.bp + x.data) as usize]),
+            Op::PatVar => self.pattern_var(x.aux, x.data, x.first),
+            _ => self.eval(e),
         }
     }
 
@@ -160,7 +175,7 @@ impl Core<'_> {
         while a != NONE {
             // `$?x` is passed as one multifield argument: CLIPS 6.30 does not expand it
             // into separate arguments (`(length$ $?x)` is the length of ?x)
-            let v = self.eval(a)?;
+            let v = self.eval_operand(a)?;
             self.push_value(v)?;
             a = self.exprs[a as usize].next;
         }

@@ -382,6 +382,7 @@ impl Core<'_> {
             ..saved
         };
         self.fact_buckets[bucket] = slot;
+        self.st.facts_live += 1;
         if prev == NONE {
             self.st.fact_head = slot;
         } else {
@@ -452,6 +453,7 @@ impl Core<'_> {
             state: FactState::Live,
         };
         self.fact_buckets[bucket] = slot;
+        self.st.facts_live += 1;
         if self.st.fact_tail != NONE {
             self.facts[self.st.fact_tail as usize].next = slot;
         } else {
@@ -499,6 +501,7 @@ impl Core<'_> {
 
     fn unlink_fact(&mut self, slot: Ix) {
         let f = self.facts[slot as usize];
+        self.st.facts_live -= 1;
         if f.prev != NONE {
             self.facts[f.prev as usize].next = f.next;
         } else {
@@ -572,14 +575,9 @@ impl Core<'_> {
         }
     }
 
+    /// Facts on the live list (kept as a count: `watch statistics` asks per firing).
     pub fn live_fact_count(&self) -> usize {
-        let mut n = 0;
-        let mut f = self.st.fact_head;
-        while f != NONE {
-            n += 1;
-            f = self.facts[f as usize].next;
-        }
-        n
+        self.st.facts_live as usize
     }
 }
 

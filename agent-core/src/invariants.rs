@@ -527,6 +527,11 @@ impl Core<'_> {
             f = x.next;
         }
         ensure!(self.st.fact_tail == prev, "fact list tail wrong", prev);
+        ensure!(
+            live == self.st.facts_live as usize,
+            "live fact count wrong",
+            self.st.facts_live
+        );
         let free = self.walk(
             self.st.fact_free,
             used,

@@ -141,6 +141,7 @@ fn ge(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 }
 
 /// Strict equality including multifields element by element.
+#[inline]
 pub fn values_same(cx: &Core<'_>, x: Value, y: Value) -> bool {
     match (x, y) {
         (Value::Multi(p), Value::Multi(q)) => {

@@ -50,8 +50,12 @@ fn if_(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     }
 }
 
-/// Resets scratch to `mark` unless a local variable still points above it.
-fn release_scratch(cx: &mut Core<'_>, mark: Ix) {
+/// Resets scratch to `mark` unless a variable (frame or global) still points above it.
+pub(super) fn release_scratch(cx: &mut Core<'_>, mark: Ix) {
+    // nothing above the mark (the usual loop body or query test): nothing to scan for
+    if cx.st.scratch_top <= mark {
+        return;
+    }
     let mut keep = mark;
     for i in 0..cx.st.sp as usize {
         if let Value::Multi(m) = cx.stack[i] {

@@ -8,6 +8,7 @@
 //! are skipped; facts asserted by them join the iteration as CLIPS's template lists
 //! let them (see `next_of_template`).
 
+use super::control::release_scratch;
 use super::{Builtin, ANY, SYM_FALSE};
 use crate::engine::Core;
 use crate::error::EvalError;
@@ -126,6 +127,17 @@ fn next_of_template(cx: &Core<'_>, tmpl: Ix, after: Option<Resume>) -> Option<Ix
         Some(r) if cx.fact_alive(r.fact) => (cx.facts[r.fact.slot as usize].next, None, u32::MAX),
         Some(r) => (cx.st.fact_head, Some(r.fact.num), r.counter),
     };
+    if lo.is_none() && hi == u32::MAX {
+        // the usual case: the next fact of the template, no number bounds to check
+        while f != NONE {
+            let fact = &cx.facts[f as usize];
+            if fact.tmpl == tmpl {
+                return Some(f);
+            }
+            f = fact.next;
+        }
+        return None;
+    }
     while f != NONE {
         let fact = &cx.facts[f as usize];
         if fact.num >= hi {
@@ -220,24 +232,6 @@ fn keep_value(mark: Ix, v: Value) -> Ix {
     match v {
         Value::Multi(m) => mark.max(m.start + m.len),
         _ => mark,
-    }
-}
-
-/// Resets scratch to `mark` unless a variable (frame or global) still refers above it.
-fn release_scratch(cx: &mut Core<'_>, mark: Ix) {
-    let mut keep = mark;
-    for v in cx.stack[..cx.st.sp as usize].iter() {
-        if let Value::Multi(m) = *v {
-            keep = keep.max(m.start + m.len);
-        }
-    }
-    for g in cx.globals[..cx.st.nglobals as usize].iter() {
-        if let Value::Multi(m) = g.value {
-            keep = keep.max(m.start + m.len);
-        }
-    }
-    if keep < cx.st.scratch_top {
-        cx.st.scratch_top = keep;
     }
 }
 
