@@ -11,22 +11,22 @@
 
 use crate::engine::Core;
 use crate::expr::{loc, Expr, Op};
-use crate::value::{Value, NONE};
+use crate::value::{Ix, Value, NONE};
 
 impl Core<'_> {
     /// The value of pattern variable `x` read from `fact`, when it is a plain
     /// single-field slot (no multislot element, not the fact address).
     #[inline(always)]
-    pub(crate) fn plain_slot_value(&self, fact: u16, x: &Expr) -> Option<Value> {
+    pub(crate) fn plain_slot_value(&self, fact: Ix, x: &Expr) -> Option<Value> {
         if fact == NONE || x.first != NONE || x.data == loc::FACT {
             return None;
         }
-        self.plain_slot(fact, u16::from(loc::slot(x.data)))
+        self.plain_slot(fact, Ix::from(loc::slot(x.data)))
     }
 
     /// Slot `slot` of `fact` when it holds a single field (not a multislot).
     #[inline(always)]
-    pub(crate) fn plain_slot(&self, fact: u16, slot: u16) -> Option<Value> {
+    pub(crate) fn plain_slot(&self, fact: Ix, slot: Ix) -> Option<Value> {
         let f = &self.facts[fact as usize];
         let v = if f.len == self.templates[f.tmpl as usize].nslots {
             // one cell per slot (no multislot holds elements): index directly
@@ -42,7 +42,7 @@ impl Core<'_> {
 
     /// A pattern variable of a join test of the join at `depth`: the right input's
     /// fact (`right_fact`) for `depth`, else the bound left token's (`lhs_pm`).
-    fn join_var(&self, x: &Expr, depth: u8, right_fact: u16) -> Option<Value> {
+    fn join_var(&self, x: &Expr, depth: u8, right_fact: Ix) -> Option<Value> {
         if x.op != Op::PatVar {
             return None;
         }
@@ -59,7 +59,7 @@ impl Core<'_> {
     /// The join tests `tests` of the join at `depth` for the left token bound in
     /// `lhs_pm` and right fact `right_fact`, if every test is `?a = ?b` or `~` of
     /// it over plain single-field slots; None when the evaluator must decide.
-    pub(crate) fn quick_join_test(&self, tests: u16, depth: u8, right_fact: u16) -> Option<bool> {
+    pub(crate) fn quick_join_test(&self, tests: Ix, depth: u8, right_fact: Ix) -> Option<bool> {
         let mut t = tests;
         while t != NONE {
             let x = self.exprs[t as usize];
