@@ -5,30 +5,44 @@
 use crate::engine::{cap, watch, Core};
 use crate::error::{CapacityError, Pool};
 use crate::rule::Activation;
+use crate::value::Ix;
 use crate::value::NONE;
 
-/// How many removed activations one modify can put back in place.
-pub const JOURNAL_LEN: usize = 16;
+/// How many removed activations one assert or modify can put back in place.
+pub const JOURNAL_LEN: usize = 24;
 
-/// An activation a modify's retract removed: what it was, and what followed it on
-/// the agenda then (identified by creation number, as slots get reused).
+/// An activation an assert or modify removed (one that existed before it began): its
+/// rule, what it matched and its creation number, which is its agenda place.
 #[derive(Clone, Copy, Debug)]
 pub struct JournalEntry {
-    pub rule: u16,
+    pub rule: Ix,
     /// Hash of the fact numbers the activation matched.
     pub basis: u32,
     pub seq: u32,
-    /// The next activation's `seq`, `None` for the end of the agenda.
-    pub next_seq: Option<u32>,
+}
+
+/// Where a (possibly nested) journal recording began: the journal as it was then,
+/// and the last activation number then (later ones are the operation's own).
+#[derive(Clone, Copy, Debug)]
+pub struct JournalMark {
+    pub len: u8,
+    pub on: bool,
+    pub overflow: bool,
+    /// The journal's `base` then.
+    pub base: u32,
+    pub seq: u32,
 }
 
 /// The activations removed while `on` (see `JournalEntry`); `overflow` once more than
-/// `JOURNAL_LEN` were.
+/// `JOURNAL_LEN` were. Activations numbered after `base` (the start of the innermost
+/// recording) are the operation's own: the undo removes them for good, so they are
+/// not recorded.
 #[derive(Clone, Copy, Debug)]
 pub struct ActJournal {
     pub on: bool,
     pub overflow: bool,
     pub len: u8,
+    pub base: u32,
     pub entries: [JournalEntry; JOURNAL_LEN],
 }
 
@@ -37,17 +51,17 @@ impl ActJournal {
         on: false,
         overflow: false,
         len: 0,
+        base: 0,
         entries: [JournalEntry {
             rule: NONE,
             basis: 0,
             seq: 0,
-            next_seq: None,
         }; JOURNAL_LEN],
     };
 }
 
 impl Core<'_> {
-    pub(crate) fn add_activation(&mut self, rule: u16, token: u16) -> Result<(), CapacityError> {
+    pub(crate) fn add_activation(&mut self, rule: Ix, token: Ix) -> Result<(), CapacityError> {
         let a = if self.st.act_free != NONE {
             let a = self.st.act_free;
             self.st.act_free = self.acts[a as usize].next;
@@ -58,7 +72,7 @@ impl Core<'_> {
                 return Err(cap(Pool::Activations, self.acts.len()));
             }
             self.st.acts_used += 1;
-            n as u16
+            n as Ix
         };
         self.note_hw(Pool::Activations, self.st.acts_used as usize);
         self.st.act_seq = self.st.act_seq.wrapping_add(1);
@@ -82,7 +96,7 @@ impl Core<'_> {
     }
 
     /// A rule's salience now (global-based saliences are evaluated again).
-    pub(crate) fn rule_salience(&mut self, rule: u16) -> i32 {
+    pub(crate) fn rule_salience(&mut self, rule: Ix) -> i32 {
         let e = self.rules[rule as usize].salience_expr;
         if e == NONE {
             return self.rules[rule as usize].salience;
@@ -97,7 +111,7 @@ impl Core<'_> {
     }
 
     /// Inserts before the first activation of lower or equal salience.
-    fn agenda_insert(&mut self, a: u16) {
+    fn agenda_insert(&mut self, a: Ix) {
         let sal = self.acts[a as usize].salience;
         let mut prev = NONE;
         let mut cur = self.st.agenda_head;
@@ -117,7 +131,7 @@ impl Core<'_> {
         }
     }
 
-    fn agenda_unlink(&mut self, a: u16) {
+    fn agenda_unlink(&mut self, a: Ix) {
         let x = self.acts[a as usize];
         if x.prev != NONE {
             self.acts[x.prev as usize].next = x.next;
@@ -129,7 +143,7 @@ impl Core<'_> {
         }
     }
 
-    pub(crate) fn remove_activation(&mut self, a: u16) {
+    pub(crate) fn remove_activation(&mut self, a: Ix) {
         if self.st.act_journal.on {
             self.journal_activation(a);
         }
@@ -140,7 +154,7 @@ impl Core<'_> {
         self.free_activation(a);
     }
 
-    fn free_activation(&mut self, a: u16) {
+    fn free_activation(&mut self, a: Ix) {
         // unlink from the token's activation chain
         let t = self.acts[a as usize].token;
         if t != NONE {
@@ -166,7 +180,7 @@ impl Core<'_> {
     }
 
     /// Takes the top activation off the agenda (it fires; refraction keeps it gone).
-    pub(crate) fn pop_activation(&mut self) -> Option<(u16, u16)> {
+    pub(crate) fn pop_activation(&mut self) -> Option<(Ix, Ix)> {
         let a = self.st.agenda_head;
         if a == NONE {
             return None;
@@ -214,7 +228,7 @@ impl Core<'_> {
     }
 
     /// Hash of the fact numbers an activation matched (its identity across a rebuild).
-    fn activation_basis(&self, a: u16) -> u32 {
+    fn activation_basis(&self, a: Ix) -> u32 {
         // walks the partial match up to the root: (depth, fact number) pairs
         let mut h = 0x9E37_79B9u32;
         let mut t = self.acts[a as usize].token;
@@ -236,8 +250,11 @@ impl Core<'_> {
         h
     }
 
-    fn journal_activation(&mut self, a: u16) {
+    fn journal_activation(&mut self, a: Ix) {
         let j = &self.st.act_journal;
+        if self.acts[a as usize].seq.wrapping_sub(j.base) as i32 > 0 {
+            return;
+        }
         if j.len as usize >= JOURNAL_LEN {
             self.st.act_journal.overflow = true;
             return;
@@ -247,40 +264,61 @@ impl Core<'_> {
             rule: x.rule,
             basis: self.activation_basis(a),
             seq: x.seq,
-            next_seq: (x.next != NONE).then(|| self.acts[x.next as usize].seq),
         };
         let j = &mut self.st.act_journal;
         j.entries[j.len as usize] = entry;
         j.len += 1;
     }
 
-    /// Starts recording the activations removed from now on (see `JournalEntry`).
-    pub(crate) fn journal_start(&mut self) {
-        self.st.act_journal = ActJournal {
-            on: true,
-            ..ActJournal::EMPTY
+    /// Starts (or nests) recording the activations removed from now on (see
+    /// `JournalEntry`): an assert inside a modify records after the modify's entries.
+    pub(crate) fn journal_begin(&mut self) -> JournalMark {
+        let j = &mut self.st.act_journal;
+        let m = JournalMark {
+            len: j.len,
+            on: j.on,
+            overflow: j.overflow,
+            base: j.base,
+            seq: self.st.act_seq,
         };
+        j.on = true;
+        j.base = self.st.act_seq;
+        m
     }
 
-    pub(crate) fn journal_stop(&mut self) {
+    /// Stops recording; the entries stay for `journal_restore`.
+    pub(crate) fn journal_pause(&mut self) {
         self.st.act_journal.on = false;
     }
 
-    /// After a failed modify rebuilt the old fact's matches: gives each activation
-    /// created since `mark` that the journal recorded its creation number back and
-    /// puts it where it was, before the activation that followed it. Latest removed
-    /// first, so a follower that was itself removed is already back in place.
-    /// Activations that cannot be matched up stay where the rebuild put them.
-    pub(crate) fn journal_restore(&mut self, mark: u32) {
+    /// Drops the entries recorded since `m` and recording goes back to what it was.
+    pub(crate) fn journal_end(&mut self, m: JournalMark) {
+        let j = &mut self.st.act_journal;
+        j.len = m.len;
+        j.on = m.on;
+        j.overflow = m.overflow;
+        j.base = m.base;
+    }
+
+    /// After a failed operation (begun at `m`) was undone, rebuilding the matches
+    /// it had removed: gives each activation created since `rebuilt` that the
+    /// journal recorded since `m` its creation number back, which puts it exactly
+    /// where it was (see `agenda_insert_at_seq`). Activations that cannot be matched
+    /// up (journal overflow) stay where the rebuild put them, as the newest.
+    pub(crate) fn journal_restore(&mut self, m: JournalMark, rebuilt: u32) {
         let j = self.st.act_journal;
         if j.overflow {
             return;
         }
-        for e in j.entries[..j.len as usize].iter().rev() {
+        let recorded = j.entries.get(m.len as usize..j.len as usize).unwrap_or(&[]);
+        for e in recorded {
+            if e.seq.wrapping_sub(m.seq) as i32 > 0 {
+                continue;
+            }
             let mut a = self.st.agenda_head;
             while a != NONE {
                 let x = self.acts[a as usize];
-                if x.seq.wrapping_sub(mark) as i32 > 0
+                if x.seq.wrapping_sub(rebuilt) as i32 > 0
                     && x.rule == e.rule
                     && self.activation_basis(a) == e.basis
                 {
@@ -288,54 +326,38 @@ impl Core<'_> {
                 }
                 a = x.next;
             }
-            if a == NONE {
-                continue;
+            if a != NONE {
+                self.agenda_unlink(a);
+                self.acts[a as usize].seq = e.seq;
+                self.agenda_insert_at_seq(a);
             }
-            // the follower, or the last activation for the end of the agenda
-            let mut after = NONE;
-            let mut before = NONE;
-            let mut c = self.st.agenda_head;
-            let mut found = e.next_seq.is_none();
-            while c != NONE {
-                if c != a && Some(self.acts[c as usize].seq) == e.next_seq {
-                    before = c;
-                    found = true;
-                    break;
-                }
-                if c != a {
-                    after = c;
-                }
-                c = self.acts[c as usize].next;
+        }
+    }
+
+    /// Inserts where its creation number puts it: the agenda is sorted by salience,
+    /// then newest first (the invariant mode checks it), so an activation given its
+    /// old number back goes exactly where it was.
+    fn agenda_insert_at_seq(&mut self, a: Ix) {
+        let (sal, seq) = (self.acts[a as usize].salience, self.acts[a as usize].seq);
+        let mut prev = NONE;
+        let mut cur = self.st.agenda_head;
+        while cur != NONE {
+            let c = self.acts[cur as usize];
+            if c.salience < sal || (c.salience == sal && (c.seq.wrapping_sub(seq) as i32) < 0) {
+                break;
             }
-            if !found {
-                continue;
-            }
-            self.acts[a as usize].seq = e.seq;
-            self.agenda_unlink(a);
-            // between `after` (last one before the follower, or the tail) and `before`
-            let prev = if before != NONE {
-                self.acts[before as usize].prev
-            } else {
-                after
-            };
-            let sal = self.acts[a as usize].salience;
-            if (prev != NONE && self.acts[prev as usize].salience < sal)
-                || (before != NONE && self.acts[before as usize].salience > sal)
-            {
-                // salience changed meanwhile: the old place is no longer valid
-                self.agenda_insert(a);
-                continue;
-            }
-            self.acts[a as usize].prev = prev;
-            self.acts[a as usize].next = before;
-            if prev != NONE {
-                self.acts[prev as usize].next = a;
-            } else {
-                self.st.agenda_head = a;
-            }
-            if before != NONE {
-                self.acts[before as usize].prev = a;
-            }
+            prev = cur;
+            cur = c.next;
+        }
+        self.acts[a as usize].prev = prev;
+        self.acts[a as usize].next = cur;
+        if cur != NONE {
+            self.acts[cur as usize].prev = a;
+        }
+        if prev != NONE {
+            self.acts[prev as usize].next = a;
+        } else {
+            self.st.agenda_head = a;
         }
     }
 }

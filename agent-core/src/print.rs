@@ -1,5 +1,6 @@
 //! Printing values, facts, activations and watch traces exactly as CLIPS 6.30 does.
 
+use crate::value::Ix;
 use core::fmt::{self, Write};
 
 use crate::engine::{watch, Core};
@@ -73,13 +74,13 @@ impl View<'_> {
     }
 
     /// `(name v...)` or `(name (slot v) (mslot a b))`.
-    pub fn write_fact(&self, out: &mut dyn Write, slot: u16) -> fmt::Result {
+    pub fn write_fact(&self, out: &mut dyn Write, slot: Ix) -> fmt::Result {
         self.write_fact_as(out, slot, false)
     }
 
     /// A fact as `save-facts` writes it: strings with `"` and `\` escaped, so that
     /// `load-facts` reads them back unchanged (listings print them bare).
-    pub fn write_fact_escaped(&self, out: &mut dyn Write, slot: u16) -> fmt::Result {
+    pub fn write_fact_escaped(&self, out: &mut dyn Write, slot: Ix) -> fmt::Result {
         self.write_fact_as(out, slot, true)
     }
 
@@ -99,7 +100,7 @@ impl View<'_> {
         }
     }
 
-    fn write_fact_as(&self, out: &mut dyn Write, slot: u16, escape: bool) -> fmt::Result {
+    fn write_fact_as(&self, out: &mut dyn Write, slot: Ix, escape: bool) -> fmt::Result {
         let f = self.facts[slot as usize];
         let t = self.templates[f.tmpl as usize];
         out.write_char('(')?;
@@ -157,7 +158,27 @@ impl Core<'_> {
     }
 
     pub fn write(&mut self, router: &str, text: &str) {
+        self.spill_traces();
         self.host.write_str(router, text);
+    }
+
+    /// Splits into a printing view and a writer for watch traces (see `hold`).
+    fn split_trace(&mut self) -> (View<'_>, crate::hold::TraceWriter<'_>) {
+        (
+            View {
+                values: self.values,
+                scratch: self.scratch,
+                sym_entries: self.sym_entries,
+                sym_bytes: self.sym_bytes,
+                templates: self.templates,
+                slots: self.slots,
+                facts: self.facts,
+            },
+            crate::hold::TraceWriter {
+                host: &mut *self.host,
+                hold: &mut self.st.hold,
+            },
+        )
     }
 
     /// Writes a value to a router (`quote`: strings in quotes).
@@ -174,13 +195,9 @@ impl Core<'_> {
         write!(w, "{:<7} ", b.as_str())
     }
 
-    pub(crate) fn print_fact_line(&mut self, arrow: &str, slot: u16) {
+    pub(crate) fn print_fact_line(&mut self, arrow: &str, slot: Ix) {
         let num = self.facts[slot as usize].num;
-        let (view, host) = self.split();
-        let mut w = RouterWriter {
-            host,
-            router: router::WTRACE,
-        };
+        let (view, mut w) = self.split_trace();
         let _ = w.write_str(arrow);
         let _ = Self::write_fact_id(&mut w, num);
         let _ = view.write_fact(&mut w, slot);
@@ -188,7 +205,7 @@ impl Core<'_> {
     }
 
     /// `(facts)` listing line.
-    pub(crate) fn print_fact_listing_line(&mut self, slot: u16) {
+    pub(crate) fn print_fact_listing_line(&mut self, slot: Ix) {
         let num = self.facts[slot as usize].num;
         let (view, host) = self.split();
         let mut w = RouterWriter {
@@ -201,7 +218,7 @@ impl Core<'_> {
     }
 
     /// `f-1,f-3,*` for a partial match.
-    pub(crate) fn write_basis(&self, w: &mut dyn Write, token: u16) -> fmt::Result {
+    pub(crate) fn write_basis(&self, w: &mut dyn Write, token: Ix) -> fmt::Result {
         let mut ids = [u32::MAX; crate::rete::MAX_PATTERNS];
         let mut n = 0;
         let mut t = token;
@@ -240,15 +257,16 @@ impl Core<'_> {
         self.write_basis(w, a.token)
     }
 
-    pub(crate) fn print_activation_line(&mut self, prefix: &str, a: u16) {
+    pub(crate) fn print_activation_line(&mut self, prefix: &str, a: Ix) {
         let mut b: crate::value::TextBuf<512> = crate::value::TextBuf::new();
         let _ = b.write_str(prefix);
         let _ = self.write_activation(&mut b, self.acts[a as usize]);
         let _ = b.write_str("\n");
-        self.host.write_str(router::WTRACE, b.as_str());
+        let (_, mut w) = self.split_trace();
+        let _ = w.write_str(b.as_str());
     }
 
-    pub(crate) fn print_fire_line(&mut self, count: u32, rule: u16, token: u16) {
+    pub(crate) fn print_fire_line(&mut self, count: u32, rule: Ix, token: Ix) {
         if self.st.watch & watch::RULES == 0 {
             return;
         }

@@ -3,17 +3,26 @@
 use core::fmt::{self, Write};
 use core::mem::MaybeUninit;
 
-/// Index of a symbol or string in the symbol table.
-pub type SymId = u16;
+/// Index into an engine pool (and link between pool entries). The agent image keeps
+/// `u16`: half the bytes per link, and no pool there comes near 65,535 entries.
+#[cfg(not(feature = "wide-pools"))]
+pub type Ix = u16;
+/// `u32` pool indices for host engines with more than 65,535 entries per pool (feature
+/// `wide-pools`); the agent image keeps `u16`.
+#[cfg(feature = "wide-pools")]
+pub type Ix = u32;
 
-/// "No entry" marker for all `u16` pool links.
-pub const NONE: u16 = u16::MAX;
+/// Index of a symbol or string in the symbol table.
+pub type SymId = Ix;
+
+/// "No entry" marker for all `Ix` pool links.
+pub const NONE: Ix = Ix::MAX;
 
 /// A fact address: pool slot plus the fact number, so a stale address (the slot was
 /// reused) is detected by comparing numbers.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct FactRef {
-    pub slot: u16,
+    pub slot: Ix,
     pub num: u32,
 }
 
@@ -21,8 +30,8 @@ pub struct FactRef {
 /// inside fact storage, a header announcing that `len` atoms follow.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct MfSpan {
-    pub start: u16,
-    pub len: u16,
+    pub start: Ix,
+    pub len: Ix,
 }
 
 /// One CLIPS value. `Multi` points into the scratch area during evaluation.
@@ -70,7 +79,7 @@ pub enum ValueRef<'a> {
     String(&'a str),
     Fact(u32),
     /// A multifield; read elements with `Engine::fact_multislot_item`.
-    Multi(u16),
+    Multi(Ix),
     Void,
 }
 

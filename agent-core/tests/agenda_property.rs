@@ -4,10 +4,15 @@
 //! step are ordered by network details the naive matcher does not model, so the
 //! comparison is: same activations, and the engine's order is sorted by
 //! (salience desc, birth step desc).
+//!
+//! The second property runs the same sequences on an engine whose token and
+//! activation pools run out: a failed assert or modify leaves the agenda exactly as it
+//! was (same activations, same order), and a retract never loses a match (one it
+//! reports as owed appears at the next operation that succeeds).
 
 use std::collections::{BTreeMap, BTreeSet};
 
-use agent_core::{FactId, Host, SmallEngine};
+use agent_core::{Engine, EngineError, FactId, Host, SmallEngine};
 use proptest::prelude::*;
 
 struct Quiet;
@@ -29,6 +34,7 @@ const RULES: &str = "
 (defrule r10 (not (and (a ?x) (not (b ?x)))) =>)
 (defrule r11 (t (k ?k) (v ?v)) (exists (a ?v) (not (c ?v))) =>)
 (defrule r12 (a ?x) (not (not (c ?x))) =>)
+(defrule r13 (c ?x) (not (b ?x)) (a ?y) (t (k ?k)) =>)
 ";
 
 #[derive(Clone, Debug)]
@@ -99,6 +105,16 @@ fn naive(facts: &BTreeMap<u32, F>) -> BTreeMap<Key, i32> {
         }
         if rel(2).any(|(_, z)| z == x) {
             out.insert(("r12".into(), vec![Some(na), None]), 0);
+        }
+    }
+    // a retract of a b fact unblocks a match per a fact (fan-out)
+    for (nc, x) in rel(2) {
+        if !rel(1).any(|(_, y)| y == x) {
+            for (na, _) in rel(0) {
+                for (nt, _, _) in ts() {
+                    out.insert(("r13".into(), vec![Some(nc), None, Some(na), Some(nt)]), 0);
+                }
+            }
         }
     }
     if rel(0).any(|(_, x)| rel(1).any(|(_, y)| y == x)) {
@@ -195,4 +211,206 @@ proptest! {
             }
         }
     }
+}
+
+/// SmallEngine with 64 tokens and 12 activations: the sequences run them out.
+type TightEngine =
+    Engine<128, 1024, 256, 4096, 16, 64, 32, 64, 128, 64, 12, 16, 16, 2048, 128, 256, 8, 8>;
+
+fn agenda_of(e: &TightEngine) -> Vec<(Key, i32)> {
+    let mut got = Vec::new();
+    e.for_each_activation(|r, s, b| got.push(((r.to_string(), b.to_vec()), s)));
+    got
+}
+
+fn is_full(r: &Result<impl std::fmt::Debug, EngineError>) -> bool {
+    matches!(r, Err(EngineError::Capacity(_)))
+}
+
+/// Runs `ops` on a `TightEngine` against the naive model (see the module docs).
+fn check_full_pools(ops: &[Op]) -> Result<(), TestCaseError> {
+    let mut e = Box::new(TightEngine::new());
+    let h = &mut Quiet;
+    e.load_str(h, "rules", RULES).unwrap();
+    let mut facts: BTreeMap<u32, F> = BTreeMap::new();
+    let mut next = 1u32;
+    let mut birth: BTreeMap<Key, usize> = BTreeMap::new();
+    // a retract reported matches it could not build yet
+    let mut owed = false;
+    for (step, op) in ops.iter().enumerate() {
+        let before = agenda_of(&e);
+        let mut failed = false;
+        match op {
+            Op::Assert(..) | Op::AssertT(..) => {
+                let f = match op {
+                    Op::Assert(r, v) => F::Rel(*r, *v),
+                    Op::AssertT(k, v) => F::T(*k, *v),
+                    _ => unreachable!(),
+                };
+                let dup = facts.values().any(|g| *g == f);
+                let r = e.assert_str(h, &text(&f));
+                if is_full(&r) {
+                    failed = true;
+                } else {
+                    prop_assert_eq!(r.is_ok(), !dup, "{:?}", r);
+                    owed = false;
+                    if !dup {
+                        prop_assert_eq!(r.unwrap(), FactId(next));
+                        facts.insert(next, f);
+                        next += 1;
+                    }
+                }
+            }
+            Op::Retract(i) => {
+                if facts.is_empty() {
+                    continue;
+                }
+                let num = *facts.keys().nth(i % facts.len()).unwrap();
+                let r = e.retract(h, FactId(num));
+                prop_assert!(r.is_ok() || is_full(&r), "{:?}", r);
+                owed = r.is_err();
+                facts.remove(&num);
+            }
+            Op::Modify(i, v) => {
+                let tnums: Vec<u32> = facts
+                    .iter()
+                    .filter(|(_, f)| matches!(f, F::T(..)))
+                    .map(|(n, _)| *n)
+                    .collect();
+                if tnums.is_empty() {
+                    continue;
+                }
+                let num = tnums[i % tnums.len()];
+                let k = match facts[&num] {
+                    F::T(k, _) => k,
+                    _ => unreachable!(),
+                };
+                let r = e.eval_str(h, &format!("(modify {num} (v {v}))"));
+                match r {
+                    Err(ref err) if matches!(err.kind, agent_core::EvalErrorKind::Capacity(_)) => {
+                        failed = true
+                    }
+                    _ => {
+                        prop_assert!(r.is_ok(), "{:?}", r);
+                        owed = false;
+                        facts.remove(&num);
+                        let nf = F::T(k, *v);
+                        if !facts.values().any(|g| *g == nf) {
+                            facts.insert(next, nf);
+                        }
+                        // a duplicate new fact takes no number
+                        next = e.facts().map(|f| f.0 + 1).max().unwrap_or(next).max(next);
+                    }
+                }
+            }
+        }
+        if let Err(v) = e.check_invariants() {
+            panic!("after {op:?}: {v}");
+        }
+        let got = agenda_of(&e);
+        if failed {
+            prop_assert_eq!(&got, &before, "a failed {:?} changed the agenda", op);
+            continue;
+        }
+        let want = naive(&facts);
+        let got_set: BTreeSet<&Key> = got.iter().map(|(k, _)| k).collect();
+        let want_set: BTreeSet<&Key> = want.keys().collect();
+        if owed {
+            prop_assert!(got_set.is_subset(&want_set), "after {:?}", op);
+        } else {
+            prop_assert_eq!(got_set, want_set, "after {:?}", op);
+        }
+        birth.retain(|k, _| got.iter().any(|(g, _)| g == k));
+        for (k, _) in &got {
+            birth.entry(k.clone()).or_insert(step);
+        }
+        for (k, s) in &got {
+            prop_assert_eq!(*s, want[k]);
+        }
+        for w in got.windows(2) {
+            let a = (w[0].1, birth[&w[0].0]);
+            let b = (w[1].1, birth[&w[1].0]);
+            prop_assert!(a >= b, "order {:?} before {:?} after {:?}", w[0], w[1], op);
+        }
+    }
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 256, ..ProptestConfig::default() })]
+    #[test]
+    fn full_pools_lose_no_match_and_keep_the_order(ops in proptest::collection::vec(op(), 1..60)) {
+        check_full_pools(&ops)?;
+    }
+}
+
+/// Found by the property above: an assert of `(b 1)` blocked rule r8's `not (and ...)`
+/// and removed its activation, then ran out of tokens; the undo re-created it, but the
+/// journal had noted as its agenda follower an activation the assert itself had
+/// created (and the undo removed), so it could not be put back and came back as the
+/// newest. Now an activation goes back by its creation number.
+#[test]
+fn undone_assert_restores_an_activation_whose_follower_was_new() {
+    use Op::*;
+    let ops = [
+        Assert(0, 1),
+        Assert(0, 2),
+        Assert(1, 1),
+        Retract(0),
+        Retract(0),
+        AssertT(true, 1),
+        Assert(0, 2),
+        Assert(1, 3),
+        Retract(4),
+        Assert(0, 1),
+        Assert(2, 3),
+        Modify(0, 2),
+        Retract(5),
+        Retract(0),
+        Assert(2, 2),
+        Assert(1, 1),
+    ];
+    check_full_pools(&ops).unwrap();
+}
+
+/// Found by the property above: a modify whose retract unblocked a `not` (the rebuilt
+/// matches taking the room the retract freed) ran out of activations; putting the old
+/// fact back then met a full pool before reaching the pattern that blocks the `not`
+/// again, and the old fact was lost. Now the matches rebuilt below unblocked outputs
+/// are taken back (owed) before the old fact returns.
+#[test]
+fn undone_modify_keeps_its_fact_when_its_retract_unblocked_a_not() {
+    use Op::*;
+    let ops = [
+        Assert(0, 1),
+        Assert(1, 1),
+        Retract(6),
+        Assert(0, 1),
+        Assert(0, 2),
+        Retract(1),
+        Assert(2, 1),
+        AssertT(false, 1),
+        Assert(1, 2),
+        Retract(1),
+        Retract(7),
+        Assert(0, 3),
+        Modify(0, 3),
+        Assert(0, 1),
+        AssertT(false, 1),
+        Retract(1),
+        Retract(7),
+        Retract(10),
+        Assert(1, 2),
+        Modify(0, 1),
+        Retract(6),
+        Assert(1, 2),
+        Assert(0, 2),
+        Assert(0, 1),
+        Assert(2, 3),
+        Assert(2, 1),
+        Modify(0, 3),
+        Retract(7),
+        Modify(0, 2),
+    ];
+    check_full_pools(&ops).unwrap();
 }

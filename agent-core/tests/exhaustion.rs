@@ -823,12 +823,11 @@ fn every_pool_is_covered() {
 }
 
 /// Found by the `engine_commands` fuzz target: an assert that blocks a `not` CE and
-/// then runs out of tokens is undone, but undoing unblocks the `not` and re-creates its
-/// rule's activation as the newest one, so the agenda order differs from before the
-/// failed assert (an older activation now fires first). Same activations, other order.
-/// Fix belongs in the Rete/agenda undo path (restore the activation's old timestamp).
+/// then runs out of tokens is undone; undoing unblocks the `not` and re-creates its
+/// rule's activation, which used to come back as the newest one (an older activation
+/// then fired first). The assert now journals the activations it removes and the undo
+/// gives the re-created ones their old places and numbers.
 #[test]
-#[ignore = "known: undone assert reorders re-created not-activations (Rete/agenda undo)"]
 fn failed_assert_keeps_the_agenda_order_of_blocked_not_rules() {
     let h = &mut Capture::default();
     let mut e = engine!(TOKENS = 40);
@@ -862,12 +861,13 @@ fn failed_assert_keeps_the_agenda_order_of_blocked_not_rules() {
 }
 
 /// A retract that unblocks a `not` must rebuild the matches below it; with the token
-/// pool full there is no room, and `retract` (which cannot fail) drops them silently:
-/// the rule never fires for that fact, and nothing reports it. Found while completing
-/// the matrix (`remove_link` ignores the error of `propagate`). Fix belongs in the Rete
-/// (report the error from retract, or reserve room).
+/// pool full there may be no room (the retract freed two tokens, the six matches need
+/// six), and `retract` used to drop them silently (`remove_link` ignored the error of
+/// `propagate`): the rule never fired for those facts. Now the unblocked output is
+/// owed: the retract happens (CLIPS's retract cannot fail) and reports the full pool,
+/// nothing fires and nothing can be asserted while the matches are owed, and the first
+/// operation with room builds them.
 #[test]
-#[ignore = "known: retract with a full token pool silently loses unblocked not-matches (Rete)"]
 fn retract_unblocking_a_not_with_full_tokens_is_not_silent() {
     let h = &mut Capture::default();
     let mut e = engine!(TOKENS = 40);
@@ -888,13 +888,24 @@ fn retract_unblocking_a_not_with_full_tokens_is_not_silent() {
         i += 1;
     }
     assert_eq!(e.counts().1, i, "only the pads are activated");
-    e.retract(h, blocker).unwrap();
+    let err = e.retract(h, blocker).unwrap_err();
+    assert_eq!(cap_of(&err), full(Pool::Tokens, 40));
     e.consistent();
-    // unblocking needs six partial matches (one per q fact); the retract freed two;
-    // free room, then see whether rule a is activated for (p 1) and the q facts
+    assert!(!e.facts().any(|f| f == blocker), "the retract happened");
+    // owed matches first: no assert, no firing until they are built
+    let before = e.snapshot();
+    let err = e.assert_str(h, "(other 1)").unwrap_err();
+    assert_eq!(cap_of(&err), full(Pool::Tokens, 40));
+    assert_eq!(e.snapshot(), before, "the assert left no trace");
+    let err = e.run(h, None).unwrap_err();
+    assert_eq!(cap_of(&err), full(Pool::Tokens, 40));
+    assert_eq!(e.snapshot(), before, "nothing fired");
+    e.consistent();
+    // free room: the retracts build the owed matches of rule a for (p 1) and the q facts
     let pads: Vec<FactId> = e.facts().skip(8).take(6).collect();
     for f in pads {
-        e.retract(h, f).unwrap();
+        let _ = e.retract(h, f);
+        e.consistent();
     }
     let mut rules = Vec::new();
     e.for_each_activation(|r, _, _| rules.push(r.to_string()));
@@ -903,6 +914,9 @@ fn retract_unblocking_a_not_with_full_tokens_is_not_silent() {
         6,
         "unblocked matches of rule a were lost: {rules:?}"
     );
+    assert!(e.retract(h, e.facts().last().unwrap()).is_ok());
+    e.assert_str(h, "(other 1)").unwrap();
+    e.consistent();
 }
 
 /// Found by the invariant property test: an assert that failed on a full pool kept the
@@ -1017,5 +1031,84 @@ fn failed_modify_in_a_firing_keeps_the_old_fact() {
     );
     // the fact is usable: a modify to a value that matches little works
     e.eval_str(h, &format!("(modify {} (v 2))", k.0)).unwrap();
+    e.consistent();
+}
+
+/// A modify or assert that runs out of room is undone, so it prints no watch traces:
+/// no `<== f-1` for a retract that was taken back, no `==> f-N` for a fact that never
+/// came, no activation lines of either (they are held back until the operation
+/// cannot fail any more, see `hold.rs`). A successful modify prints CLIPS's lines, in
+/// CLIPS's order (checked against `clips -f` 6.30).
+#[test]
+fn failed_modify_and_assert_print_no_watch_traces() {
+    let h = &mut Capture::default();
+    let mut e = engine!(TOKENS = 40);
+    e.load_str(
+        h,
+        "t",
+        "(deftemplate k (slot v))
+         (defrule zero (k (v 0)) =>)
+         (defrule many (k (v 1)) (a ?x) (b ?y) =>)
+         (defrule pad (pad ?x) =>)",
+    )
+    .unwrap();
+    for i in 0..3 {
+        e.assert_str(h, &format!("(a {i})")).unwrap();
+    }
+    for i in 0..2 {
+        e.assert_str(h, &format!("(b {i})")).unwrap();
+    }
+    let k = e.assert_str(h, "(k (v 0))").unwrap();
+    let mut pads = Vec::new();
+    while let Ok(f) = e.assert_str(h, &format!("(pad {})", pads.len())) {
+        pads.push(f);
+    }
+    e.eval_str(h, "(watch facts)").unwrap();
+    e.eval_str(h, "(watch activations)").unwrap();
+    h.out.clear();
+    let before = e.snapshot();
+    let err = e
+        .eval_str(h, &format!("(modify {} (v 1))", k.0))
+        .unwrap_err();
+    assert_eq!(cap_of(&err.into()), full(Pool::Tokens, 40));
+    assert!(
+        !h.out.contains("==>") && !h.out.contains("<=="),
+        "a failed modify printed traces: {}",
+        h.out
+    );
+    assert_eq!(e.snapshot(), before);
+    e.consistent();
+    let err = e.assert_str(h, "(k (v 1))").unwrap_err();
+    assert_eq!(cap_of(&err), full(Pool::Tokens, 40));
+    assert!(
+        !h.out.contains("==>") && !h.out.contains("<=="),
+        "a failed assert printed traces: {}",
+        h.out
+    );
+    assert_eq!(e.snapshot(), before);
+    e.consistent();
+    // with room, the same modify prints what CLIPS prints
+    e.eval_str(h, "(unwatch all)").unwrap();
+    for f in pads.drain(..) {
+        e.retract(h, f).unwrap();
+    }
+    e.eval_str(h, "(watch facts)").unwrap();
+    e.eval_str(h, "(watch activations)").unwrap();
+    h.out.clear();
+    e.eval_str(h, &format!("(modify {} (v 1))", k.0)).unwrap();
+    let n = e.facts().last().unwrap().0;
+    let expected = format!(
+        "<== f-6     (k (v 0))\n\
+         <== Activation 0      zero: f-6\n\
+         ==> {:<8}(k (v 1))\n\
+         ==> Activation 0      many: f-{n},f-1,f-4\n\
+         ==> Activation 0      many: f-{n},f-1,f-5\n\
+         ==> Activation 0      many: f-{n},f-2,f-4\n\
+         ==> Activation 0      many: f-{n},f-2,f-5\n\
+         ==> Activation 0      many: f-{n},f-3,f-4\n\
+         ==> Activation 0      many: f-{n},f-3,f-5\n",
+        format!("f-{n}")
+    );
+    assert_eq!(h.out, expected);
     e.consistent();
 }

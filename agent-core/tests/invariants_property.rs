@@ -77,7 +77,6 @@ fn fuzz_found_streams() {
 /// `propagate`; cf. exhaustion.rs `retract_unblocking_a_not_with_full_tokens_...`).
 /// The stream stops with the assert's "no trace" check failing. Fix belongs in the Rete.
 #[test]
-#[ignore = "known: undone assert loses an unblocked not-activation when pools are full (Rete)"]
 fn fuzz_found_undone_assert_loses_an_activation() {
     run_stream(include_bytes!(
         "fuzz_regressions/engine_commands-undone-assert-loses-activation.bin"
@@ -89,7 +88,6 @@ fn fuzz_found_undone_assert_loses_an_activation() {
 /// not have before (the undo re-propagated a match; whether the earlier state had lost
 /// it, as in the case above, or the undo invented it is for the Rete to settle).
 #[test]
-#[ignore = "known: undone assert changes not-(and) activations when pools are full (Rete)"]
 fn fuzz_found_undone_assert_changes_not_and_activations() {
     run_stream_with(
         RULE_BASE_NOT_AND,

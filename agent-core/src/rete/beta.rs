@@ -11,11 +11,12 @@
 
 use super::{JoinKind, PatBinding, Token, TokenKind};
 use crate::engine::{cap, Core};
-use crate::error::{CapacityError, EvalError, Pool};
+use crate::error::{CapacityError, EvalError, EvalErrorKind, Pool};
+use crate::value::Ix;
 use crate::value::NONE;
 
 impl Core<'_> {
-    pub(crate) fn alloc_token(&mut self) -> Result<u16, CapacityError> {
+    pub(crate) fn alloc_token(&mut self) -> Result<Ix, CapacityError> {
         let t = if self.st.token_free != NONE {
             let t = self.st.token_free;
             self.st.token_free = self.tokens[t as usize].next_sib;
@@ -26,14 +27,14 @@ impl Core<'_> {
                 return Err(cap(Pool::Tokens, self.tokens.len()));
             }
             self.st.tokens_used += 1;
-            n as u16
+            n as Ix
         };
         self.st.tokens_live += 1;
         self.note_hw(Pool::Tokens, self.st.tokens_live as usize);
         Ok(t)
     }
 
-    pub(crate) fn free_token(&mut self, t: u16) {
+    pub(crate) fn free_token(&mut self, t: Ix) {
         self.tokens[t as usize] = Token {
             next_sib: self.st.token_free,
             ..Token::EMPTY
@@ -43,17 +44,18 @@ impl Core<'_> {
     }
 
     /// Whether a partial match is passed on to child joins / the agenda.
-    pub(crate) fn token_active(&self, t: u16) -> bool {
+    pub(crate) fn token_active(&self, t: Ix) -> bool {
         let tk = &self.tokens[t as usize];
         match self.joins[tk.owner as usize].kind {
-            JoinKind::Negative => !tk.blocked,
+            // an owed output (see `owe`) passes nothing on until it is paid
+            JoinKind::Negative => !tk.blocked && tk.am_prev == NONE,
             JoinKind::Exists => tk.blocked,
             _ => true,
         }
     }
 
     /// Fills `lhs_pm` with the pattern bindings along a token's ancestry.
-    pub(crate) fn bind_left(&mut self, mut t: u16) {
+    pub(crate) fn bind_left(&mut self, mut t: Ix) {
         while t != NONE {
             let tk = self.tokens[t as usize];
             let j = self.joins[tk.owner as usize];
@@ -73,7 +75,7 @@ impl Core<'_> {
         }
     }
 
-    fn eval_lhs_tests(&mut self, tests: u16) -> Result<bool, EvalError> {
+    fn eval_lhs_tests(&mut self, tests: Ix) -> Result<bool, EvalError> {
         let saved = self.st.pm_rhs;
         self.st.pm_rhs = false;
         let r = self.eval_tests(tests);
@@ -84,9 +86,9 @@ impl Core<'_> {
     /// Evaluates a join's tests for left token `left` and alpha match `am`.
     fn join_test(
         &mut self,
-        join: u16,
-        left: u16,
-        am: u16,
+        join: Ix,
+        left: Ix,
+        am: Ix,
         left_bound: bool,
     ) -> Result<bool, EvalError> {
         let j = self.joins[join as usize];
@@ -109,7 +111,7 @@ impl Core<'_> {
     }
 
     /// The output token of a not/exists `join` for left token `left`, if any.
-    fn output_of(&self, left: u16, join: u16) -> u16 {
+    fn output_of(&self, left: Ix, join: Ix) -> Ix {
         let mut c = self.tokens[left as usize].first_child;
         while c != NONE {
             if self.tokens[c as usize].owner == join {
@@ -121,7 +123,7 @@ impl Core<'_> {
     }
 
     /// A new alpha match arrives on the right of `join`.
-    pub(crate) fn right_activate(&mut self, join: u16, am: u16) -> Result<(), EvalError> {
+    pub(crate) fn right_activate(&mut self, join: Ix, am: Ix) -> Result<(), EvalError> {
         let j = self.joins[join as usize];
         let (mut l, hashed) = self.first_left(join, am);
         while l != NONE {
@@ -154,7 +156,7 @@ impl Core<'_> {
 
     /// A partial match `r` of a subnetwork became active: it blocks the output of
     /// the not/exists join `join` for the left token it extends.
-    fn right_activate_beta(&mut self, join: u16, r: u16) -> Result<(), EvalError> {
+    fn right_activate_beta(&mut self, join: Ix, r: Ix) -> Result<(), EvalError> {
         let parent = self.joins[join as usize].parent;
         let l = self.ancestor_in(r, parent);
         if l == NONE {
@@ -168,9 +170,13 @@ impl Core<'_> {
     }
 
     /// Links `blocker` to not/exists output `t` and passes on or takes back.
-    fn block(&mut self, t: u16, blocker: u16) -> Result<(), EvalError> {
+    fn block(&mut self, t: Ix, blocker: Ix) -> Result<(), EvalError> {
         self.add_link(t, blocker)?;
         if self.joins[self.tokens[t as usize].owner as usize].kind == JoinKind::Negative {
+            // blocked again before its propagation was paid: nothing is owed any more
+            if self.is_owed(t) {
+                self.unowe(t);
+            }
             self.deactivate(t);
             Ok(())
         } else {
@@ -181,7 +187,7 @@ impl Core<'_> {
 
     /// A not/exists output that becomes active goes to the front of its memory: CLIPS
     /// copies it into its successors' memories only now, so they meet it as newest.
-    fn move_to_front(&mut self, t: u16) {
+    fn move_to_front(&mut self, t: Ix) {
         let join = self.tokens[t as usize].owner;
         if self.joins[join as usize].mem == t {
             return;
@@ -205,7 +211,7 @@ impl Core<'_> {
     }
 
     /// The ancestor of `t` in the memory of `join` (NONE if it has none there).
-    fn ancestor_in(&self, mut t: u16, join: u16) -> u16 {
+    fn ancestor_in(&self, mut t: Ix, join: Ix) -> Ix {
         while t != NONE {
             let tk = &self.tokens[t as usize];
             if tk.owner == join {
@@ -225,12 +231,12 @@ impl Core<'_> {
     /// of the subnetwork extending `left` (skipping `skip`).
     fn find_blocker(
         &mut self,
-        join: u16,
-        left: u16,
-        from: u16,
+        join: Ix,
+        left: Ix,
+        from: Ix,
         hashed: bool,
-        skip: u16,
-    ) -> Result<u16, EvalError> {
+        skip: Ix,
+    ) -> Result<Ix, EvalError> {
         let j = self.joins[join as usize];
         if j.rjoin == NONE {
             let mut a = from;
@@ -255,7 +261,7 @@ impl Core<'_> {
     }
 
     /// A new active partial match `left` arrives on the left of `join`.
-    pub(crate) fn left_activate(&mut self, join: u16, left: u16) -> Result<(), EvalError> {
+    pub(crate) fn left_activate(&mut self, join: Ix, left: Ix) -> Result<(), EvalError> {
         let j = self.joins[join as usize];
         match j.kind {
             JoinKind::Positive => {
@@ -311,7 +317,7 @@ impl Core<'_> {
 
     /// Creates a partial match in `join`'s memory (newest first) and links it under
     /// its parents.
-    fn link_token(&mut self, join: u16, parent: u16, am: u16) -> Result<u16, EvalError> {
+    fn link_token(&mut self, join: Ix, parent: Ix, am: Ix) -> Result<Ix, EvalError> {
         let t = self.alloc_token()?;
         let head = self.joins[join as usize].mem;
         let psib = if parent != NONE {
@@ -356,7 +362,7 @@ impl Core<'_> {
 
     /// Records that `blocker` (an alpha match or a subnetwork's partial match)
     /// blocks not/exists output token `t`.
-    fn add_link(&mut self, t: u16, blocker: u16) -> Result<(), EvalError> {
+    fn add_link(&mut self, t: Ix, blocker: Ix) -> Result<(), EvalError> {
         let owner = self.tokens[t as usize].owner;
         let k = self.alloc_token()?;
         let psib = self.tokens[t as usize].first_child;
@@ -384,7 +390,7 @@ impl Core<'_> {
 
     /// The blocker of link `k` goes away: the counted token gets the next blocker,
     /// or is unblocked (not) or loses its match (exists), as CLIPS does.
-    pub(crate) fn remove_link(&mut self, k: u16) {
+    pub(crate) fn remove_link(&mut self, k: Ix) {
         let t = self.tokens[k as usize].parent;
         let blocker = self.tokens[k as usize].am;
         self.unlink_and_free(k);
@@ -407,18 +413,145 @@ impl Core<'_> {
             return;
         }
         if self.joins[join as usize].kind == JoinKind::Negative {
-            // Restores a match that existed before; a full pool here is
-            // reported by the next operation that needs the space.
             self.move_to_front(t);
-            let _ = self.propagate(t);
+            self.log_unblocked(t);
+            self.propagate_or_owe(t);
         } else {
             self.deactivate(t);
         }
     }
 
+    /// Passes on a not output that a removal unblocked. Removals (retract, and the
+    /// undo of a failed assert) cannot fail, but what unblocking rebuilds is not
+    /// bounded by what the removal freed (one retracted blocker can release any
+    /// number of matches). So on a full pool the part built is taken back and the
+    /// output is *owed*: it passes nothing on (inactive, as if blocked), and
+    /// `pay_owed` propagates it once there is room. Every operation pays first
+    /// (assert fails unchanged if it cannot; `run` fires nothing; retract reports
+    /// the error), so no match is lost and no rule fires on an incomplete agenda.
+    fn propagate_or_owe(&mut self, t: Ix) {
+        if let Err(e) = self.propagate(t) {
+            // an evaluation error in a join test counts as no match (as before);
+            // only a full pool leaves matches to build later
+            if matches!(e.kind, EvalErrorKind::Capacity(_)) {
+                self.deactivate(t);
+                self.owe(t, false);
+            }
+        }
+    }
+
+    /// Whether not output `t` is owed its propagation. Not outputs have no alpha
+    /// match, so their alpha-sibling links are free: they chain the owed list (the
+    /// head's `am_prev` is the tail), and a non-NONE `am_prev` marks membership.
+    pub(crate) fn is_owed(&self, t: Ix) -> bool {
+        let tk = &self.tokens[t as usize];
+        tk.kind == TokenKind::Beta && tk.am == NONE && tk.am_prev != NONE
+    }
+
+    /// Puts `t` on the owed list: at the end, or at the front (kept its turn).
+    fn owe(&mut self, t: Ix, front: bool) {
+        let head = self.st.owed;
+        if head == NONE {
+            self.tokens[t as usize].am_next = NONE;
+            self.tokens[t as usize].am_prev = t;
+            self.st.owed = t;
+            return;
+        }
+        let tail = self.tokens[head as usize].am_prev;
+        if front {
+            self.tokens[t as usize].am_next = head;
+            self.tokens[t as usize].am_prev = tail;
+            self.tokens[head as usize].am_prev = t;
+            self.st.owed = t;
+        } else {
+            self.tokens[t as usize].am_next = NONE;
+            self.tokens[t as usize].am_prev = tail;
+            self.tokens[tail as usize].am_next = t;
+            self.tokens[head as usize].am_prev = t;
+        }
+    }
+
+    fn unowe(&mut self, t: Ix) {
+        let tk = self.tokens[t as usize];
+        let head = self.st.owed;
+        if t == head {
+            self.st.owed = tk.am_next;
+            if tk.am_next != NONE {
+                // the new head keeps the tail
+                self.tokens[tk.am_next as usize].am_prev = tk.am_prev;
+            }
+        } else {
+            self.tokens[tk.am_prev as usize].am_next = tk.am_next;
+            if tk.am_next != NONE {
+                self.tokens[tk.am_next as usize].am_prev = tk.am_prev;
+            } else {
+                self.tokens[head as usize].am_prev = tk.am_prev;
+            }
+        }
+        self.tokens[t as usize].am_next = NONE;
+        self.tokens[t as usize].am_prev = NONE;
+    }
+
+    /// Notes a not output a modify's retract unblocked (see `UnblockLog`).
+    fn log_unblocked(&mut self, t: Ix) {
+        let log = &mut self.st.unblocked;
+        if !log.on {
+            return;
+        }
+        if log.len as usize >= log.entries.len() {
+            log.overflow = true;
+            return;
+        }
+        let tk = &self.tokens[t as usize];
+        log.entries[log.len as usize] = (t, tk.owner, tk.parent);
+        log.len += 1;
+    }
+
+    /// Before a failed modify re-asserts its old fact: takes back what the modify's
+    /// retract rebuilt below the not outputs it unblocked and leaves them owed, so
+    /// the re-assert (which blocks them again) needs no more room than the retract
+    /// freed. Otherwise the re-assert could meet a full pool before it reaches the
+    /// patterns that free that room, and lose the fact. An entry whose token was
+    /// deleted since (and maybe reused) is recognised by its join and parent: a left
+    /// token has one output per join. Returns false if the log overflowed.
+    pub(crate) fn owe_unblocked(&mut self) -> bool {
+        let log = self.st.unblocked;
+        for &(t, owner, parent) in &log.entries[..log.len as usize] {
+            let tk = self.tokens[t as usize];
+            if tk.kind == TokenKind::Beta
+                && tk.owner == owner
+                && tk.parent == parent
+                && self.joins[owner as usize].kind == JoinKind::Negative
+                && self.token_active(t)
+            {
+                self.deactivate(t);
+                self.owe(t, false);
+            }
+        }
+        !log.overflow
+    }
+
+    /// Propagates the owed not outputs, oldest first. On a full pool the one that
+    /// failed is taken back, keeps its turn and the error is returned: the network
+    /// stays complete up to what is still owed.
+    pub(crate) fn pay_owed(&mut self) -> Result<(), EvalError> {
+        while self.st.owed != NONE {
+            let t = self.st.owed;
+            self.unowe(t);
+            if let Err(e) = self.propagate(t) {
+                if matches!(e.kind, EvalErrorKind::Capacity(_)) {
+                    self.deactivate(t);
+                    self.owe(t, true);
+                    return Err(e);
+                }
+            }
+        }
+        Ok(())
+    }
+
     /// Passes an active partial match on to its join's successors, newest first as
     /// CLIPS does: child joins and rule ends (left), joins taking it from the right.
-    pub(crate) fn propagate(&mut self, t: u16) -> Result<(), EvalError> {
+    pub(crate) fn propagate(&mut self, t: Ix) -> Result<(), EvalError> {
         let join = self.tokens[t as usize].owner;
         let mut it = Successors::of(self, join);
         while let Some((c, from_right)) = it.next(self) {
@@ -436,7 +569,7 @@ impl Core<'_> {
     /// activation, a child join the partial matches built on the token, a join from
     /// the right the output it blocks (which looks for another blocker). Its own
     /// links stay.
-    fn deactivate(&mut self, t: u16) {
+    fn deactivate(&mut self, t: Ix) {
         let join = self.tokens[t as usize].owner;
         let mut n = 0;
         let mut it = Successors::of(self, join);
@@ -491,7 +624,7 @@ impl Core<'_> {
         }
     }
 
-    pub(crate) fn delete_children(&mut self, t: u16) {
+    pub(crate) fn delete_children(&mut self, t: Ix) {
         while self.tokens[t as usize].first_child != NONE {
             let c = self.tokens[t as usize].first_child;
             self.delete_token(c);
@@ -499,7 +632,7 @@ impl Core<'_> {
     }
 
     /// Deletes a partial match and everything built on it (links included).
-    pub(crate) fn delete_token(&mut self, t: u16) {
+    pub(crate) fn delete_token(&mut self, t: Ix) {
         if self.tokens[t as usize].kind == TokenKind::Link {
             self.unlink_and_free(t);
             return;
@@ -510,7 +643,10 @@ impl Core<'_> {
     }
 
     /// Unlinks a token from its parent, alpha match and memory lists, then frees it.
-    fn unlink_and_free(&mut self, t: u16) {
+    fn unlink_and_free(&mut self, t: Ix) {
+        if self.is_owed(t) {
+            self.unowe(t);
+        }
         let tk = self.tokens[t as usize];
         if tk.parent != NONE {
             if tk.prev_sib != NONE {
@@ -549,7 +685,7 @@ impl Core<'_> {
     }
 
     /// Deletes every token in a join's memory.
-    pub(crate) fn clear_join_memory(&mut self, join: u16) {
+    pub(crate) fn clear_join_memory(&mut self, join: Ix) {
         while self.joins[join as usize].mem != NONE {
             let t = self.joins[join as usize].mem;
             self.delete_token(t);
@@ -582,7 +718,7 @@ impl Core<'_> {
     }
 
     /// Feeds the active tokens of `parent`'s memory into a new child join.
-    pub(crate) fn prime_join(&mut self, join: u16) -> Result<(), EvalError> {
+    pub(crate) fn prime_join(&mut self, join: Ix) -> Result<(), EvalError> {
         let parent = self.joins[join as usize].parent;
         let mut l = self.joins[parent as usize].mem;
         while l != NONE {
@@ -600,14 +736,14 @@ impl Core<'_> {
 /// right sits just after its subnetwork's first join) merged with the joins taking
 /// its tokens from the right, by creation.
 struct Successors {
-    left: u16,
-    right: u16,
+    left: Ix,
+    right: Ix,
     /// Key of the last child taken from the child list.
     last_key: u32,
 }
 
 impl Successors {
-    fn of(cx: &Core<'_>, join: u16) -> Successors {
+    fn of(cx: &Core<'_>, join: Ix) -> Successors {
         Successors {
             left: cx.joins[join as usize].first_child,
             right: cx.joins[join as usize].rsucc,
@@ -623,7 +759,7 @@ impl Successors {
         }
     }
 
-    fn next(&mut self, cx: &Core<'_>) -> Option<(u16, bool)> {
+    fn next(&mut self, cx: &Core<'_>) -> Option<(Ix, bool)> {
         let take_left = match (self.left != NONE, self.right != NONE) {
             (false, false) => return None,
             (true, false) => true,

@@ -282,13 +282,9 @@ fn assert_leaving_no_trace(e: &mut StreamEngine, text: &str) -> String {
         Ok(_) | Err(EngineError::Duplicate) => {}
         Err(ref err) => {
             assert_eq!(e.facts().collect::<Vec<_>>(), facts, "{text}: {err}");
-            // same activations; their order may differ (known: undoing an assert that
-            // blocked a `not` re-creates that rule's activation as the newest, see
-            // exhaustion.rs `failed_assert_keeps_the_agenda_order_of_blocked_not_rules`)
-            let (mut now, mut was) = (agenda(e), acts);
-            now.sort();
-            was.sort();
-            assert_eq!(now, was, "{text}: {err}");
+            // same activations in the same order (exhaustion.rs
+            // `failed_assert_keeps_the_agenda_order_of_blocked_not_rules`)
+            assert_eq!(agenda(e), acts, "{text}: {err}");
             assert_eq!(e.usage(), usage, "{text}: {err}");
         }
     }
