@@ -302,8 +302,9 @@ impl Core<'_> {
     /// After a failed operation (begun at `m`) was undone, rebuilding the matches
     /// it had removed: gives each activation created since `rebuilt` that the
     /// journal recorded since `m` its creation number back, which puts it exactly
-    /// where it was (see `agenda_insert_at_seq`). Activations that cannot be matched
-    /// up (journal overflow) stay where the rebuild put them, as the newest.
+    /// where it was (see `agenda_insert_at_seq`); rebuilt activations it does not
+    /// know had fired before, and are removed. After a journal overflow nothing is
+    /// touched: rebuilt activations stay where the rebuild put them, as the newest.
     pub(crate) fn journal_restore(&mut self, m: JournalMark, rebuilt: u32) {
         let j = self.st.act_journal;
         if j.overflow {
@@ -330,6 +331,17 @@ impl Core<'_> {
                 self.acts[a as usize].seq = e.seq;
                 self.agenda_insert_at_seq(a);
             }
+        }
+        // Rebuilt activations the journal does not know were not on the agenda before
+        // the operation: their rule had fired for that match (refraction), so they go
+        // again. (The matched ones now carry old numbers, at most `m.seq`.)
+        let mut a = self.st.agenda_head;
+        while a != NONE {
+            let next = self.acts[a as usize].next;
+            if self.acts[a as usize].seq.wrapping_sub(rebuilt) as i32 > 0 {
+                self.remove_activation(a);
+            }
+            a = next;
         }
     }
 

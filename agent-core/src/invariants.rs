@@ -192,6 +192,16 @@ impl Core<'_> {
             st.eval_depth
         );
         ensure!(
+            st.hold.depth == 0 && st.hold.buf.is_empty(),
+            "watch traces still held",
+            st.hold.depth
+        );
+        ensure!(
+            !st.act_journal.on && !st.unblocked.on,
+            "undo journal still recording",
+            0
+        );
+        ensure!(
             (st.sp as usize) <= self.stack.len(),
             "evaluation stack pointer past the stack",
             st.sp

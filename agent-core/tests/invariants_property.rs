@@ -96,3 +96,17 @@ fn fuzz_found_undone_assert_changes_not_and_activations() {
         ),
     );
 }
+
+/// Found by `engine_commands` after the owed/journal rework: a modify that ran out of
+/// tokens put its old fact back, and rebuilding its matches re-created an activation
+/// of `extra-0` that had already fired (refraction lost: it would fire twice). The undo
+/// now removes rebuilt activations its journal does not know.
+#[test]
+fn fuzz_found_undone_modify_revives_a_fired_activation() {
+    run_stream_with(
+        RULE_BASE_NOT_AND,
+        include_bytes!(
+            "fuzz_regressions/engine_commands-undone-modify-revives-a-fired-activation.bin"
+        ),
+    );
+}

@@ -282,9 +282,10 @@ impl Core<'_> {
             // no room for the new fact: fail before anything changed
             self.modify_fits(old, tmpl, base as usize)?;
             let old_fact = self.facts[old as usize];
-            // the activations the retract removes are noted, to put them back in
-            // their agenda places should the assert fail
-            // a modify that is undone prints nothing (see `hold`)
+            // a modify that is undone prints nothing (see `hold`); the activations
+            // its retract removes are noted, to put them back in their agenda places,
+            // and the not outputs it unblocks, to take back what they rebuilt, should
+            // the assert fail
             self.hold_traces();
             let mark = self.journal_begin();
             self.st.unblocked = crate::rete::UnblockLog {
