@@ -135,7 +135,20 @@ impl Core<'_> {
         self.check_values()?;
         self.check_tokens()?;
         self.check_owed()?;
+        self.check_dead_alphas()?;
         self.check_agenda()?;
+        Ok(())
+    }
+
+    /// An alpha node whose rules are gone keeps no matches (new facts skip it).
+    fn check_dead_alphas(&self) -> Result<(), Violation> {
+        for (i, n) in self.alphas[..self.st.nalpha as usize].iter().enumerate() {
+            ensure!(
+                n.live || n.mem == NONE,
+                "removed alpha node holds matches",
+                i
+            );
+        }
         Ok(())
     }
 
@@ -197,7 +210,7 @@ impl Core<'_> {
             st.hold.depth
         );
         ensure!(
-            !st.act_journal.on && !st.unblocked.on,
+            !st.act_journal.on && !st.unblocked.on && !st.defer_nots,
             "undo journal still recording",
             0
         );

@@ -301,11 +301,10 @@ impl Core<'_> {
                 // gone again; the old one comes back with the room its retract freed
                 // (if that fails too, it stays retracted and the first error is
                 // reported; only possible after an unblock log overflow)
-                let rebuilt = self.st.act_seq;
                 self.owe_unblocked();
+                self.journal_replay(mark);
                 if self.restore_fact(old, old_fact, saved as usize).is_ok() {
                     let _ = self.pay_owed();
-                    self.journal_restore(mark, rebuilt);
                 }
             }
             self.journal_end(mark);
