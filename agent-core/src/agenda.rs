@@ -5,6 +5,7 @@
 use crate::engine::{cap, watch, Core};
 use crate::error::{CapacityError, Pool};
 use crate::rule::Activation;
+use crate::value::Ix;
 use crate::value::NONE;
 
 /// How many removed activations one assert or modify can put back in place.
@@ -14,7 +15,7 @@ pub const JOURNAL_LEN: usize = 24;
 /// rule, what it matched and its creation number, which is its agenda place.
 #[derive(Clone, Copy, Debug)]
 pub struct JournalEntry {
-    pub rule: u16,
+    pub rule: Ix,
     /// Hash of the fact numbers the activation matched.
     pub basis: u32,
     pub seq: u32,
@@ -66,7 +67,7 @@ impl ActJournal {
 }
 
 impl Core<'_> {
-    pub(crate) fn add_activation(&mut self, rule: u16, token: u16) -> Result<(), CapacityError> {
+    pub(crate) fn add_activation(&mut self, rule: Ix, token: Ix) -> Result<(), CapacityError> {
         let mut replayed = None;
         if self.st.act_journal.replay && !self.st.act_journal.overflow {
             match self.journal_take(rule, token) {
@@ -86,7 +87,7 @@ impl Core<'_> {
                 return Err(cap(Pool::Activations, self.acts.len()));
             }
             self.st.acts_used += 1;
-            n as u16
+            n as Ix
         };
         self.note_hw(Pool::Activations, self.st.acts_used as usize);
         let seq = match replayed {
@@ -120,7 +121,7 @@ impl Core<'_> {
     }
 
     /// A rule's salience now (global-based saliences are evaluated again).
-    pub(crate) fn rule_salience(&mut self, rule: u16) -> i32 {
+    pub(crate) fn rule_salience(&mut self, rule: Ix) -> i32 {
         let e = self.rules[rule as usize].salience_expr;
         if e == NONE {
             return self.rules[rule as usize].salience;
@@ -135,7 +136,7 @@ impl Core<'_> {
     }
 
     /// Inserts before the first activation of lower or equal salience.
-    fn agenda_insert(&mut self, a: u16) {
+    fn agenda_insert(&mut self, a: Ix) {
         let sal = self.acts[a as usize].salience;
         let mut prev = NONE;
         let mut cur = self.st.agenda_head;
@@ -155,7 +156,7 @@ impl Core<'_> {
         }
     }
 
-    fn agenda_unlink(&mut self, a: u16) {
+    fn agenda_unlink(&mut self, a: Ix) {
         let x = self.acts[a as usize];
         if x.prev != NONE {
             self.acts[x.prev as usize].next = x.next;
@@ -167,7 +168,7 @@ impl Core<'_> {
         }
     }
 
-    pub(crate) fn remove_activation(&mut self, a: u16) {
+    pub(crate) fn remove_activation(&mut self, a: Ix) {
         if self.st.act_journal.on {
             self.journal_activation(a);
         }
@@ -178,7 +179,7 @@ impl Core<'_> {
         self.free_activation(a);
     }
 
-    fn free_activation(&mut self, a: u16) {
+    fn free_activation(&mut self, a: Ix) {
         // unlink from the token's activation chain
         let t = self.acts[a as usize].token;
         if t != NONE {
@@ -204,7 +205,7 @@ impl Core<'_> {
     }
 
     /// Takes the top activation off the agenda (it fires; refraction keeps it gone).
-    pub(crate) fn pop_activation(&mut self) -> Option<(u16, u16)> {
+    pub(crate) fn pop_activation(&mut self) -> Option<(Ix, Ix)> {
         let a = self.st.agenda_head;
         if a == NONE {
             return None;
@@ -253,7 +254,7 @@ impl Core<'_> {
 
     /// Hash of the fact numbers a partial match holds (an activation's identity across
     /// a rebuild).
-    fn token_basis(&self, token: u16) -> u32 {
+    fn token_basis(&self, token: Ix) -> u32 {
         // walks the partial match up to the root: (depth, fact number) pairs
         let mut h = 0x9E37_79B9u32;
         let mut t = token;
@@ -275,7 +276,7 @@ impl Core<'_> {
         h
     }
 
-    fn journal_activation(&mut self, a: u16) {
+    fn journal_activation(&mut self, a: Ix) {
         let j = &self.st.act_journal;
         if self.acts[a as usize].seq.wrapping_sub(j.base) as i32 > 0 {
             return;
@@ -340,7 +341,7 @@ impl Core<'_> {
 
     /// The recorded number of the activation of `rule` for partial match `token`,
     /// used up (each entry is one activation), or None if none was recorded.
-    fn journal_take(&mut self, rule: u16, token: u16) -> Option<u32> {
+    fn journal_take(&mut self, rule: Ix, token: Ix) -> Option<u32> {
         let basis = self.token_basis(token);
         let j = &mut self.st.act_journal;
         let recorded = j
@@ -357,7 +358,7 @@ impl Core<'_> {
     /// Inserts where its creation number puts it: the agenda is sorted by salience,
     /// then newest first (the invariant mode checks it), so an activation given its
     /// old number back goes exactly where it was.
-    fn agenda_insert_at_seq(&mut self, a: u16) {
+    fn agenda_insert_at_seq(&mut self, a: Ix) {
         let (sal, seq) = (self.acts[a as usize].salience, self.acts[a as usize].seq);
         let mut prev = NONE;
         let mut cur = self.st.agenda_head;

@@ -6,23 +6,24 @@ use crate::error::{EngineError, EvalError, EvalErrorKind, LoadError, Pool};
 use crate::fact::FactState;
 use crate::host::Host;
 use crate::parser::{Item, Parser};
+use crate::value::Ix;
 use crate::value::{Value, ValueRef, NONE};
 
 /// Construct-pool usage (see `Engine::usage`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Usage {
-    pub symbols: u16,
-    pub templates: u16,
-    pub slot_defs: u16,
-    pub rules: u16,
-    pub alpha_nodes: u16,
-    pub joins: u16,
-    pub exprs: u16,
-    pub functions: u16,
-    pub globals: u16,
-    pub deffacts: u16,
+    pub symbols: Ix,
+    pub templates: Ix,
+    pub slot_defs: Ix,
+    pub rules: Ix,
+    pub alpha_nodes: Ix,
+    pub joins: Ix,
+    pub exprs: Ix,
+    pub functions: Ix,
+    pub globals: Ix,
+    pub deffacts: Ix,
     /// Tokens (alpha and partial matches) currently allocated.
-    pub tokens: u16,
+    pub tokens: Ix,
 }
 
 /// A fact's index (`f-N`).
@@ -332,7 +333,7 @@ engine_impl! {
         }
     }
 
-    fn fact_slot_of(&self, id: FactId) -> Option<u16> {
+    fn fact_slot_of(&self, id: FactId) -> Option<Ix> {
         let mut f = self.st.fact_head;
         while f != NONE {
             let x = self.fact_at(f);
@@ -344,7 +345,7 @@ engine_impl! {
         None
     }
 
-    fn slot_cell_of(&self, id: FactId, slot: &str) -> Option<(usize, Option<u16>)> {
+    fn slot_cell_of(&self, id: FactId, slot: &str) -> Option<(usize, Option<Ix>)> {
         let f = self.fact_slot_of(id)?;
         let fact = self.fact_at(f);
         let t = self.template_at(fact.tmpl);

@@ -1,6 +1,7 @@
 //! Engine-level operations: start-up, reset, clear, run, undefrule, loading text,
 //! and CLIPS's batch command loop.
 
+use crate::value::Ix;
 use core::fmt::Write;
 
 use crate::builtins::errors::Fallback;
@@ -246,7 +247,11 @@ impl Core<'_> {
             let mut spec = self.deffacts[d as usize].facts;
             while spec != NONE {
                 if self.exprs[spec as usize].op == Op::FactSpec {
+                    // a multislot's value is built in the scratch area; once asserted
+                    // the fact holds its own copy, so a deffacts of any size fits
+                    let mark = self.st.scratch_top;
                     self.assert_spec(spec)?;
+                    self.st.scratch_top = mark;
                 }
                 spec = self.exprs[spec as usize].next;
             }
@@ -357,7 +362,7 @@ impl Core<'_> {
 
     /// Removes a rule (all its disjuncts): joins no other rule uses go, with their
     /// partial matches and activations; unused alpha nodes are emptied.
-    pub fn remove_rule(&mut self, r: u16) {
+    pub fn remove_rule(&mut self, r: Ix) {
         let mut rr = r;
         while rr != NONE {
             let rule = self.rules[rr as usize];
@@ -373,7 +378,7 @@ impl Core<'_> {
 
     /// Drops one reference to each join from `j` up to `stop` (and to the
     /// subnetworks of joins from the right); unused joins go with their memories.
-    fn release_chain(&mut self, mut j: u16, stop: u16) {
+    fn release_chain(&mut self, mut j: Ix, stop: Ix) {
         while j != NONE && j != 0 && j != stop {
             let jn = self.joins[j as usize];
             self.joins[j as usize].refs = jn.refs.saturating_sub(1);
@@ -390,11 +395,11 @@ impl Core<'_> {
         }
     }
 
-    pub(crate) fn remove_rule_activations_pub(&mut self, rule: u16, join: u16) {
+    pub(crate) fn remove_rule_activations_pub(&mut self, rule: Ix, join: Ix) {
         self.remove_rule_activations(rule, join);
     }
 
-    fn remove_rule_activations(&mut self, rule: u16, join: u16) {
+    fn remove_rule_activations(&mut self, rule: Ix, join: Ix) {
         let mut t = self.joins[join as usize].mem;
         while t != NONE {
             let mut a = self.tokens[t as usize].extra;
@@ -409,7 +414,7 @@ impl Core<'_> {
         }
     }
 
-    pub(crate) fn unlink_join(&mut self, j: u16) {
+    pub(crate) fn unlink_join(&mut self, j: Ix) {
         let a = self.joins[j as usize].alpha;
         if a != NONE {
             let head = self.alphas[a as usize].succ;
@@ -438,7 +443,7 @@ impl Core<'_> {
 
     /// Removes join `j` from a singly linked list of joins that starts at `head` and
     /// chains through the field `next` selects; returns the list's new head.
-    fn unlink_from_list(&mut self, head: u16, j: u16, next: fn(&mut Join) -> &mut u16) -> u16 {
+    fn unlink_from_list(&mut self, head: Ix, j: Ix, next: fn(&mut Join) -> &mut Ix) -> Ix {
         let after = *next(&mut self.joins[j as usize]);
         if head == j {
             return after;
@@ -456,7 +461,7 @@ impl Core<'_> {
     }
 
     /// Copies a token's pattern bindings for the RHS.
-    fn bind_rhs(&mut self, mut t: u16) {
+    fn bind_rhs(&mut self, mut t: Ix) {
         for b in self.st.rhs_pm.iter_mut() {
             *b = PatBinding::EMPTY;
         }
@@ -573,7 +578,7 @@ impl Core<'_> {
         Ok(fired)
     }
 
-    fn report_rhs_error(&mut self, rule: u16, e: EvalError) {
+    fn report_rhs_error(&mut self, rule: Ix, e: EvalError) {
         self.write_error_message(e);
         self.write_halted_in("defrule", self.rules[rule as usize].name);
     }
@@ -641,7 +646,7 @@ impl Core<'_> {
     /// After a run-time error at the prompt CLIPS prints the value the top-level function
     /// returned: its fallback (`builtins::errors`), `FALSE` for a deffunction.
     #[inline(never)]
-    fn print_fallback(&mut self, top: u16) {
+    fn print_fallback(&mut self, top: Ix) {
         if self.st.literal_error {
             return;
         }
@@ -697,7 +702,7 @@ impl Core<'_> {
                     b,
                     "[ARGACCES4] Function {func} expected exactly {min} argument(s)"
                 )
-            } else if got < min as u16 {
+            } else if got < min as Ix {
                 writeln!(
                     b,
                     "[ARGACCES4] Function {func} expected at least {min} argument(s)"
@@ -1124,7 +1129,7 @@ impl Core<'_> {
     }
 
     /// Whether a fact slot is in use (live), for hosts.
-    pub fn fact_is_live(&self, slot: u16) -> bool {
+    pub fn fact_is_live(&self, slot: Ix) -> bool {
         self.facts[slot as usize].state == FactState::Live
     }
 }

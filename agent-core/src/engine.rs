@@ -10,6 +10,7 @@ use crate::rete::{AlphaNode, Join, PatBinding, Token, MAX_PATTERNS};
 use crate::rule::{Activation, Rule};
 use crate::symbols::{SymEntry, Symbols};
 use crate::template::{Deffacts, Deffunction, Global, SlotDef, Template};
+use crate::value::Ix;
 use crate::value::{SymId, Value, NONE};
 
 /// A host-registered function.
@@ -70,10 +71,10 @@ pub const fn entry_bytes(pool: Pool) -> usize {
     use core::mem::size_of;
     match pool {
         // a fact and its duplicate-index bucket head
-        Pool::Facts => size_of::<Fact>() + size_of::<u16>(),
+        Pool::Facts => size_of::<Fact>() + size_of::<Ix>(),
         Pool::FactValues | Pool::EvalStack | Pool::Scratch => size_of::<Value>(),
         // a symbol entry and its hash bucket head
-        Pool::Symbols => size_of::<SymEntry>() + size_of::<u16>(),
+        Pool::Symbols => size_of::<SymEntry>() + size_of::<Ix>(),
         Pool::SymbolBytes => 1,
         Pool::Templates => size_of::<Template>(),
         Pool::SlotDefs => size_of::<SlotDef>(),
@@ -81,7 +82,7 @@ pub const fn entry_bytes(pool: Pool) -> usize {
         Pool::AlphaNodes => size_of::<AlphaNode>(),
         Pool::Joins => size_of::<Join>(),
         // a token and its alpha/beta memory index bucket head
-        Pool::Tokens => size_of::<Token>() + size_of::<u16>(),
+        Pool::Tokens => size_of::<Token>() + size_of::<Ix>(),
         Pool::Activations => size_of::<Activation>(),
         Pool::Functions => size_of::<Deffunction>(),
         Pool::Globals => size_of::<Global>(),
@@ -94,63 +95,65 @@ pub const fn entry_bytes(pool: Pool) -> usize {
 /// Marks of the append-only pools, to undo a construct that failed halfway.
 #[derive(Clone, Copy, Debug)]
 pub struct Checkpoint {
-    pub nsyms: u16,
-    pub sym_bytes: u16,
-    pub ntemplates: u16,
-    pub nslots: u16,
-    pub nrules: u16,
-    pub nalpha: u16,
-    pub njoins: u16,
-    pub nexprs: u16,
-    pub nfuncs: u16,
-    pub nglobals: u16,
-    pub ndeffacts: u16,
+    pub nsyms: Ix,
+    pub sym_bytes: Ix,
+    pub ntemplates: Ix,
+    pub nslots: Ix,
+    pub nrules: Ix,
+    pub nalpha: Ix,
+    pub njoins: Ix,
+    pub nexprs: Ix,
+    pub nfuncs: Ix,
+    pub nglobals: Ix,
+    pub ndeffacts: Ix,
 }
 
 /// Scalar engine state (counters, list heads, flags).
 pub struct State {
-    pub nsyms: u16,
-    pub sym_bytes: u16,
-    pub ntemplates: u16,
-    pub nslots: u16,
-    pub nrules: u16,
-    pub nalpha: u16,
-    pub njoins: u16,
-    pub nexprs: u16,
-    pub nfuncs: u16,
-    pub nglobals: u16,
-    pub ndeffacts: u16,
-    pub nexternals: u16,
+    pub nsyms: Ix,
+    pub sym_bytes: Ix,
+    pub ntemplates: Ix,
+    pub nslots: Ix,
+    pub nrules: Ix,
+    pub nalpha: Ix,
+    pub njoins: Ix,
+    pub nexprs: Ix,
+    pub nfuncs: Ix,
+    pub nglobals: Ix,
+    pub ndeffacts: Ix,
+    pub nexternals: Ix,
     /// Symbols to keep across `clear` (fixed ones and external function names).
-    pub ext_syms: u16,
+    pub ext_syms: Ix,
     /// Line of the current batch command's first line minus one (error positions).
     pub line_base: u32,
     /// Ids of pattern-network nodes (see `AlphaNode::key`).
-    pub trie_ids: u16,
-    pub fact_free: u16,
-    pub token_free: u16,
-    pub act_free: u16,
-    pub facts_used: u16,
-    pub tokens_used: u16,
+    pub trie_ids: Ix,
+    pub fact_free: Ix,
+    pub token_free: Ix,
+    pub act_free: Ix,
+    pub facts_used: Ix,
+    pub tokens_used: Ix,
     /// Tokens currently allocated (for the high-water mark).
-    pub tokens_live: u16,
-    pub acts_used: u16,
+    pub tokens_live: Ix,
+    pub acts_used: Ix,
     /// Top of the fact value arena.
-    pub values_top: u16,
+    pub values_top: Ix,
     /// Live facts in creation (= number) order.
-    pub fact_head: u16,
-    pub fact_tail: u16,
+    pub fact_head: Ix,
+    /// How many facts that list holds (`watch statistics` samples it per firing).
+    pub facts_live: Ix,
+    pub fact_tail: Ix,
     /// Facts retracted during the current firing, freed when it ends.
-    pub pending: u16,
+    pub pending: Ix,
     pub next_fact_num: u32,
-    pub agenda_head: u16,
+    pub agenda_head: Ix,
     pub act_seq: u32,
     /// Activations the retract of a modify removed, to put back in place if the
     /// modify fails.
     pub act_journal: crate::agenda::ActJournal,
     /// Not outputs a removal unblocked on a full token pool, waiting for their
     /// propagation (see `Core::pay_owed`); chained through the tokens.
-    pub owed: u16,
+    pub owed: Ix,
     /// Putting a fact back (a failed modify's old fact): a not output that becomes
     /// active is owed instead of passed on, and paid once the fact is complete. A
     /// fact's assert may pass a `not` on and block it again with a later pattern of
@@ -161,11 +164,11 @@ pub struct State {
     /// Watch traces of an assert/modify held back until it cannot be undone.
     pub hold: crate::hold::TraceHold,
     /// Evaluation stack pointer and current frame base.
-    pub sp: u16,
-    pub bp: u16,
-    pub scratch_top: u16,
+    pub sp: Ix,
+    pub bp: Ix,
+    pub scratch_top: Ix,
     /// Cells at the top of scratch holding multifield values of globals.
-    pub gmf_used: u16,
+    pub gmf_used: Ix,
     pub watch: u8,
     pub halt: bool,
     pub exit: bool,
@@ -201,17 +204,17 @@ pub struct State {
     /// arguments (see `builtins::errors::ErrorFallback`).
     pub error_fallback: Option<crate::builtins::errors::ErrorFallback>,
     /// Template of `(initial-fact)`.
-    pub initial_tmpl: u16,
+    pub initial_tmpl: Ix,
     /// Pattern bindings for network tests (`lhs`) and the firing rule (`rhs`).
     pub lhs_pm: [PatBinding; MAX_PATTERNS],
     pub rhs_pm: [PatBinding; MAX_PATTERNS],
     pub this_pm: PatBinding,
     /// Last beta-index key computed: (token, index child join, key). The token's
     /// left activation of that child, which follows at once, reuses it.
-    pub key_cache: (u16, u16, u32),
+    pub key_cache: (Ix, Ix, u32),
     pub pm_rhs: bool,
     /// Rule being fired (for messages), NONE outside a firing.
-    pub current_rule: u16,
+    pub current_rule: Ix,
     pub hw: Stats,
     /// Random generator state (`seed`/`random`).
     pub rng: u64,
@@ -250,6 +253,7 @@ impl State {
             acts_used: 0,
             values_top: 0,
             fact_head: NONE,
+            facts_live: 0,
             fact_tail: NONE,
             pending: NONE,
             next_fact_num: 0,
@@ -330,10 +334,10 @@ pub struct Engine<
 > {
     pub(crate) st: State,
     facts: [Fact; FACTS],
-    fact_buckets: [u16; FACTS],
+    fact_buckets: [Ix; FACTS],
     values: [Value; VALUES],
     sym_entries: [SymEntry; SYMBOLS],
-    sym_buckets: [u16; SYMBOLS],
+    sym_buckets: [Ix; SYMBOLS],
     sym_bytes: [u8; SYMBYTES],
     templates: [Template; TEMPLATES],
     slots: [SlotDef; SLOTS],
@@ -343,7 +347,7 @@ pub struct Engine<
     tokens: [Token; TOKENS],
     /// Alpha-memory index: bucket heads, keyed by alpha node and the values of its
     /// right-hash fields (see `rete::alpha`).
-    amem_buckets: [u16; TOKENS],
+    amem_buckets: [Ix; TOKENS],
     acts: [Activation; ACTS],
     funcs: [Deffunction; FUNCS],
     globals: [Global; GLOBALS],
@@ -386,10 +390,10 @@ pub struct Core<'a> {
     pub st: &'a mut State,
     pub host: &'a mut dyn Host,
     pub facts: &'a mut [Fact],
-    pub fact_buckets: &'a mut [u16],
+    pub fact_buckets: &'a mut [Ix],
     pub values: &'a mut [Value],
     pub sym_entries: &'a mut [SymEntry],
-    pub sym_buckets: &'a mut [u16],
+    pub sym_buckets: &'a mut [Ix],
     pub sym_bytes: &'a mut [u8],
     pub templates: &'a mut [Template],
     pub slots: &'a mut [SlotDef],
@@ -397,7 +401,7 @@ pub struct Core<'a> {
     pub alphas: &'a mut [AlphaNode],
     pub joins: &'a mut [Join],
     pub tokens: &'a mut [Token],
-    pub amem_buckets: &'a mut [u16],
+    pub amem_buckets: &'a mut [Ix],
     pub acts: &'a mut [Activation],
     pub funcs: &'a mut [Deffunction],
     pub globals: &'a mut [Global],
@@ -451,7 +455,31 @@ impl<
 {
     /// An empty engine; `const` so it can initialise a `static`. The first API call
     /// performs CLIPS's start-up (`(initial-fact)` asserted as f-0).
+    ///
+    /// A pool larger than the index type [`crate::Ix`] can address does not compile:
+    /// ```compile_fail
+    /// const TOO_MANY: usize = agent_core::NONE as usize + 1;
+    /// type Big = agent_core::Engine<4, 4, 4, TOO_MANY, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4>;
+    /// let _ = Big::new();
+    /// ```
     pub const fn new() -> Self {
+        // Every pool entry must be addressable by an `Ix` other than `NONE`: a
+        // capacity the index type cannot hold fails to compile (enable the
+        // `wide-pools` feature for pools beyond 65,535 entries).
+        const {
+            let capacities = [
+                FACTS, VALUES, SYMBOLS, SYMBYTES, TEMPLATES, SLOTS, RULES, ALPHA, JOINS, TOKENS,
+                ACTS, FUNCS, GLOBALS, EXPRS, STACK, SCRATCH, DEFFACTS, EXTERNALS,
+            ];
+            let mut i = 0;
+            while i < capacities.len() {
+                assert!(
+                    capacities[i] <= NONE as usize,
+                    "an engine pool is larger than its index type allows (feature wide-pools)"
+                );
+                i += 1;
+            }
+        }
         Engine {
             st: State::new(),
             facts: [Fact::EMPTY; FACTS],
@@ -479,26 +507,26 @@ impl<
         }
     }
 
-    pub(crate) fn fact_at(&self, f: u16) -> Fact {
+    pub(crate) fn fact_at(&self, f: Ix) -> Fact {
         self.facts[f as usize]
     }
-    pub(crate) fn template_at(&self, t: u16) -> Template {
+    pub(crate) fn template_at(&self, t: Ix) -> Template {
         self.templates[t as usize]
     }
-    pub(crate) fn slot_at(&self, s: u16) -> SlotDef {
+    pub(crate) fn slot_at(&self, s: Ix) -> SlotDef {
         self.slots[s as usize]
     }
     pub(crate) fn value_at(&self, c: usize) -> Value {
         self.values[c]
     }
-    pub(crate) fn rule_at(&self, r: u16) -> Rule {
+    pub(crate) fn rule_at(&self, r: Ix) -> Rule {
         self.rules[r as usize]
     }
 
     /// Fact indices along a token's ancestry, by pattern position.
     pub(crate) fn basis_of(
         &self,
-        token: u16,
+        token: Ix,
         out: &mut [Option<u32>; crate::rete::MAX_PATTERNS],
     ) -> usize {
         let mut n = 0;
@@ -523,7 +551,7 @@ impl<
         n
     }
 
-    pub(crate) fn act_at(&self, a: u16) -> Activation {
+    pub(crate) fn act_at(&self, a: Ix) -> Activation {
         self.acts[a as usize]
     }
     pub(crate) fn sym_str(&self, id: SymId) -> &str {
@@ -667,7 +695,7 @@ impl Core<'_> {
     }
 
     /// Appends an expression node.
-    pub fn push_expr(&mut self, e: Expr) -> Result<u16, CapacityError> {
+    pub fn push_expr(&mut self, e: Expr) -> Result<Ix, CapacityError> {
         let n = self.st.nexprs as usize;
         if n >= self.exprs.len() || n >= NONE as usize {
             return Err(cap(Pool::Exprs, self.exprs.len()));
@@ -675,11 +703,11 @@ impl Core<'_> {
         self.exprs[n] = e;
         self.st.nexprs += 1;
         self.note_hw(Pool::Exprs, n + 1);
-        Ok(n as u16)
+        Ok(n as Ix)
     }
 
     /// Appends a constant node for `v` (atoms only).
-    pub fn push_const(&mut self, v: Value) -> Result<u16, CapacityError> {
+    pub fn push_const(&mut self, v: Value) -> Result<Ix, CapacityError> {
         match v {
             Value::Int(i) if (i16::MIN as i64..=i16::MAX as i64).contains(&i) => {
                 let (h, t) = Expr::split_bits(Op::Int, i as u64);
@@ -706,7 +734,7 @@ impl Core<'_> {
     }
 
     /// Value of a constant node (Int/Float/Sym/Str).
-    pub fn const_value(&self, e: u16) -> Value {
+    pub fn const_value(&self, e: Ix) -> Value {
         let x = self.exprs[e as usize];
         match x.op {
             Op::Int => Value::Int(Expr::join_bits(x, self.exprs[e as usize + 1]) as i64),
@@ -721,7 +749,7 @@ impl Core<'_> {
     }
 
     /// Links `child` as the last child of `parent`.
-    pub fn append_child(&mut self, parent: u16, child: u16) {
+    pub fn append_child(&mut self, parent: Ix, child: Ix) {
         let mut c = self.exprs[parent as usize].first;
         if c == NONE {
             self.exprs[parent as usize].first = child;
@@ -751,7 +779,7 @@ impl Core<'_> {
 
     /// Gives back the references a new rule took on old joins (below `first_new`),
     /// from `j` up to `stop`, subnetworks included.
-    fn release_old_refs(&mut self, mut j: u16, stop: u16, first_new: u16) {
+    fn release_old_refs(&mut self, mut j: Ix, stop: Ix, first_new: Ix) {
         while j != NONE && j != 0 && j != stop && (j as usize) < self.joins.len() {
             let jn = self.joins[j as usize];
             if j < first_new {
@@ -889,21 +917,21 @@ impl Core<'_> {
     }
 
     /// Allocates `n` cells of multifield scratch, returning the start.
-    pub fn scratch_alloc(&mut self, n: usize) -> Result<u16, CapacityError> {
+    pub fn scratch_alloc(&mut self, n: usize) -> Result<Ix, CapacityError> {
         let top = self.st.scratch_top as usize;
         let limit = self.scratch.len() - self.st.gmf_used as usize;
         if top + n > limit || top + n > NONE as usize {
             return Err(cap(Pool::Scratch, self.scratch.len()));
         }
-        self.st.scratch_top += n as u16;
+        self.st.scratch_top += n as Ix;
         self.note_hw(Pool::Scratch, top + n);
-        Ok(top as u16)
+        Ok(top as Ix)
     }
 
     /// Makes `v` the value of global `g`; a multifield is copied into the globals'
     /// region at the top of scratch (compacted on each store) so it outlives the
     /// command that built it.
-    pub fn set_global(&mut self, g: u16, v: Value) -> Result<(), CapacityError> {
+    pub fn set_global(&mut self, g: Ix, v: Value) -> Result<(), CapacityError> {
         let len = self.scratch.len();
         let region = len - self.st.gmf_used as usize;
         let m = match v {
@@ -970,14 +998,14 @@ impl Core<'_> {
             self.scratch.copy_within(s..s + l, dst);
             // mark as packed by moving it out of the search window
             self.globals[b].value = Value::Multi(crate::value::MfSpan {
-                start: dst as u16,
-                len: l as u16,
+                start: dst as Ix,
+                len: l as Ix,
             });
             new_top = dst;
             if l == 0 {
                 // an empty multifield needs no cells; park it out of the search window
                 self.globals[b].value = Value::Multi(crate::value::MfSpan {
-                    start: len as u16,
+                    start: len as Ix,
                     len: 0,
                 });
             }
@@ -986,10 +1014,10 @@ impl Core<'_> {
         self.scratch
             .copy_within(m.start as usize..m.start as usize + n, dst);
         self.globals[g as usize].value = Value::Multi(crate::value::MfSpan {
-            start: dst as u16,
-            len: n as u16,
+            start: dst as Ix,
+            len: n as Ix,
         });
-        self.st.gmf_used = (len - dst) as u16;
+        self.st.gmf_used = (len - dst) as Ix;
         self.note_hw(
             Pool::Scratch,
             self.st.scratch_top as usize + self.st.gmf_used as usize,
@@ -1049,8 +1077,10 @@ mod size_tests {
         );
     }
 
-    /// Pins the per-entry sizes that decide the image's RAM (see the crate docs).
+    /// Pins the per-entry sizes that decide the image's RAM (see the crate docs); the
+    /// image keeps `u16` indices, so `u32` ones (a host feature) are not pinned.
     #[test]
+    #[cfg_attr(feature = "wide-pools", ignore = "pins the sizes with u16 indices")]
     fn entry_sizes_stay_small() {
         assert!(size_of::<Token>() <= 32, "token {}", size_of::<Token>());
         assert!(size_of::<Expr>() == 8);

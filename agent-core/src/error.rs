@@ -1,5 +1,6 @@
 //! Error values. Every failure is a value naming what ran out or what was wrong.
 
+use crate::value::Ix;
 use core::fmt;
 
 /// A fixed-capacity pool of the engine.
@@ -228,57 +229,59 @@ pub struct LoadError {
     pub detail: LoadDetail,
 }
 
-/// Which CLIPS message a load error corresponds to.
+/// Which CLIPS message a load error corresponds to. (`Ix` fields come before the
+/// others: derived `PartialEq` compares fields spelled as primitive types first, so
+/// this keeps the comparison, and the image's code, as it was with `u16` fields.)
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum LoadDetail {
     Syntax,
     /// `[ARGACCES4]`: a call with the wrong number of arguments.
     Arity {
+        got: Ix,
         func: &'static str,
         min: u8,
         max: u8,
-        got: u16,
     },
     /// `[EXPRNPSR3]`: unknown function (its name is the offending token).
     MissingFunction,
     /// `[CSTRNCHK1]`: a literal slot value violates the slot's type (`types`) or
     /// allowed values.
     Constraint {
+        slot: Ix,
         command: &'static str,
         types: bool,
-        slot: u16,
     },
     /// `[TMPLTDEF1]`: a slot name the template does not have (the offending token).
     UnknownSlot {
-        template: u16,
+        template: Ix,
     },
     /// `[CSTRNCHK1]`: a literal in a slot's `default`/`default-dynamic` (`attribute`)
     /// violates the slot's type (`types`) or allowed values.
     DefaultConstraint {
+        slot: Ix,
         attribute: &'static str,
         types: bool,
-        slot: u16,
     },
     /// `[CSTRNCHK1]`: a literal in a pattern's slot constraint (CE number `ce`)
     /// violates the slot's type (`types`) or allowed values.
     PatternConstraint {
         ce: u8,
         types: bool,
-        slot: u16,
+        slot: Ix,
     },
     /// `[TMPLTDEF2]`: a single-field slot given no value or several.
     SingleSlot {
-        slot: u16,
+        slot: Ix,
     },
     /// `[TMPLTRHS1]`: an assert leaves out a slot declared `(default ?NONE)`.
     RequiredSlot {
-        slot: u16,
+        slot: Ix,
     },
     /// `[ARGACCES5]`: a literal argument of a type the function does not take; `arg`
     /// is 1-based, `expected` CLIPS's wording of the types.
     ArgType {
+        arg: Ix,
         func: &'static str,
-        arg: u16,
         expected: &'static str,
     },
     /// `[CSTRCPSR4]`: redefining a construct that is in use (its name is the token).

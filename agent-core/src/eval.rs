@@ -5,6 +5,7 @@ use crate::engine::Core;
 use crate::error::{EvalError, EvalErrorKind};
 use crate::expr::{loc, FnKind, Op};
 use crate::rete::{PatBinding, THIS_PATTERN};
+use crate::value::Ix;
 use crate::value::{MfSpan, Value, NONE};
 
 /// Deepest nesting of function calls (guards the Rust stack against runaway recursion).
@@ -12,7 +13,7 @@ pub const MAX_EVAL_DEPTH: u16 = 200;
 
 impl Core<'_> {
     /// Evaluates one expression node.
-    pub fn eval(&mut self, e: u16) -> Result<Value, EvalError> {
+    pub fn eval(&mut self, e: Ix) -> Result<Value, EvalError> {
         let x = self.exprs[e as usize];
         match x.op {
             Op::Int | Op::Float | Op::Sym | Op::Str => Ok(self.const_value(e)),
@@ -21,8 +22,8 @@ impl Core<'_> {
             Op::PatVar => self.pattern_var(x.aux, x.data, x.first),
             Op::Expand => self.eval(x.first),
             Op::Eq2 => {
-                let a = self.eval(x.first)?;
-                let b = self.eval(self.exprs[x.first as usize].next)?;
+                let a = self.eval_operand(x.first)?;
+                let b = self.eval_operand(self.exprs[x.first as usize].next)?;
                 Ok(Core::bool_value(builtins::basic::values_same(self, a, b)))
             }
             Op::And => {
@@ -51,9 +52,24 @@ impl Core<'_> {
         }
     }
 
+    /// Evaluates an operand (a call argument or an `Eq2` side): leaves (constants,
+    /// variables) are read in place, without a recursive `eval` call, which is where
+    /// most operands end and most of the evaluator's time went.
+    #[inline(always)]
+    fn eval_operand(&mut self, e: Ix) -> Result<Value, EvalError> {
+        let x = self.exprs[e as usize];
+        match x.op {
+            Op::Sym => Ok(Value::Sym(x.data)),
+            Op::Str => Ok(Value::Str(x.data)),
+            Op::Local => Ok(self.stack[(self.st.bp + x.data) as usize]),
+            Op::PatVar => self.pattern_var(x.aux, x.data, x.first),
+            _ => self.eval(e),
+        }
+    }
+
     /// Evaluates a chain of actions; the value of the last one is the result.
     /// Stops early while a `return`/`break` unwinds.
-    pub fn eval_chain(&mut self, mut e: u16) -> Result<Value, EvalError> {
+    pub fn eval_chain(&mut self, mut e: Ix) -> Result<Value, EvalError> {
         let mut v = Value::Sym(SYM_FALSE);
         while e != NONE {
             v = self.eval(e)?;
@@ -79,8 +95,8 @@ impl Core<'_> {
     pub(crate) fn pattern_var(
         &mut self,
         pat: u8,
-        locator: u16,
-        desc_slot: u16,
+        locator: Ix,
+        desc_slot: Ix,
     ) -> Result<Value, EvalError> {
         let b = self.binding(pat);
         if b.fact == NONE {
@@ -89,7 +105,7 @@ impl Core<'_> {
         if locator == loc::FACT {
             return Ok(Value::Fact(self.fact_ref(b.fact)));
         }
-        let slot = loc::slot(locator) as u16;
+        let slot = loc::slot(locator) as Ix;
         let elem = loc::elem(locator);
         let (cell, mlen) = self.slot_cell(b.fact, slot);
         let len = match mlen {
@@ -154,12 +170,12 @@ impl Core<'_> {
     }
 
     /// Evaluates a call's arguments onto the stack.
-    fn push_args(&mut self, mut a: u16) -> Result<Args, EvalError> {
+    fn push_args(&mut self, mut a: Ix) -> Result<Args, EvalError> {
         let base = self.st.sp;
         while a != NONE {
             // `$?x` is passed as one multifield argument: CLIPS 6.30 does not expand it
             // into separate arguments (`(length$ $?x)` is the length of ?x)
-            let v = self.eval(a)?;
+            let v = self.eval_operand(a)?;
             self.push_value(v)?;
             a = self.exprs[a as usize].next;
         }
@@ -169,7 +185,7 @@ impl Core<'_> {
         })
     }
 
-    fn call(&mut self, e: u16) -> Result<Value, EvalError> {
+    fn call(&mut self, e: Ix) -> Result<Value, EvalError> {
         if self.st.eval_depth >= MAX_EVAL_DEPTH {
             return Err(EvalError::new(EvalErrorKind::TooDeep {
                 limit: MAX_EVAL_DEPTH,
@@ -183,7 +199,7 @@ impl Core<'_> {
         r
     }
 
-    fn call_inner(&mut self, e: u16) -> Result<Value, EvalError> {
+    fn call_inner(&mut self, e: Ix) -> Result<Value, EvalError> {
         let x = self.exprs[e as usize];
         match x.aux {
             k if k == FnKind::Builtin as u8 => {
@@ -210,7 +226,7 @@ impl Core<'_> {
         }
     }
 
-    fn call_deffunction(&mut self, func: u16, first_arg: u16) -> Result<Value, EvalError> {
+    fn call_deffunction(&mut self, func: Ix, first_arg: Ix) -> Result<Value, EvalError> {
         let df = self.funcs[func as usize];
         let args = self.push_args(first_arg)?;
         let n = args.len as usize;
@@ -237,7 +253,7 @@ impl Core<'_> {
                     }
                 }
             }
-            self.st.sp = args.base + np as u16;
+            self.st.sp = args.base + np as Ix;
             self.push_value(Value::Multi(MfSpan {
                 start,
                 len: self.st.scratch_top - start,
@@ -283,7 +299,7 @@ impl Core<'_> {
     /// An argument type error of a builtin: CLIPS checks literal arguments while parsing
     /// (remembered in `literal_error`) and computed ones in the function body, sometimes
     /// with other type names (`builtins::errors`).
-    fn classify_type_error(&mut self, first_arg: u16, err: EvalError) -> EvalError {
+    fn classify_type_error(&mut self, first_arg: Ix, err: EvalError) -> EvalError {
         let EvalErrorKind::WrongType {
             func,
             arg,
@@ -318,8 +334,8 @@ impl Core<'_> {
     }
 }
 
-pub(crate) fn check_arity(name: &'static str, min: u8, max: u8, n: u16) -> Result<(), EvalError> {
-    if n < min as u16 || (max != builtins::ANY && n > max as u16) {
+pub(crate) fn check_arity(name: &'static str, min: u8, max: u8, n: Ix) -> Result<(), EvalError> {
+    if n < min as Ix || (max != builtins::ANY && n > max as Ix) {
         return Err(EvalError::new(EvalErrorKind::Arity { func: name }));
     }
     Ok(())

@@ -3,6 +3,7 @@
 //! A node has a first child and a next sibling, so argument lists are chains. 64-bit
 //! constants (`Int`, `Float`) keep their payload in the node right after them.
 
+use crate::value::Ix;
 use crate::value::NONE;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -58,9 +59,9 @@ pub enum FnKind {
 pub struct Expr {
     pub op: Op,
     pub aux: u8,
-    pub data: u16,
-    pub first: u16,
-    pub next: u16,
+    pub data: Ix,
+    pub first: Ix,
+    pub next: Ix,
 }
 
 impl Expr {
@@ -72,7 +73,7 @@ impl Expr {
         next: NONE,
     };
 
-    pub const fn new(op: Op, aux: u8, data: u16) -> Expr {
+    pub const fn new(op: Op, aux: u8, data: Ix) -> Expr {
         Expr {
             op,
             aux,
@@ -83,15 +84,16 @@ impl Expr {
     }
 
     /// Splits 64 bits between a constant's header node (low 16 bits in `data`) and
-    /// the payload node after it (upper 48 bits).
+    /// the payload node after it (upper 48 bits), 16 bits per field whatever `Ix` is.
     pub fn split_bits(op: Op, bits: u64) -> (Expr, Expr) {
-        let head = Expr::new(op, 0, bits as u16);
+        let chunk = |shift: u32| ((bits >> shift) & 0xFFFF) as Ix;
+        let head = Expr::new(op, 0, chunk(0));
         let tail = Expr {
             op: Op::Payload,
             aux: 0,
-            data: (bits >> 16) as u16,
-            first: (bits >> 32) as u16,
-            next: (bits >> 48) as u16,
+            data: chunk(16),
+            first: chunk(32),
+            next: chunk(48),
         };
         (head, tail)
     }
@@ -107,18 +109,20 @@ impl Expr {
 
 /// A field locator inside a pattern: slot index and element index within a multislot.
 pub mod loc {
+    use crate::value::Ix;
+
     /// The fact address itself (`?f <- (...)`).
-    pub const FACT: u16 = 0xFFFF;
+    pub const FACT: Ix = 0xFFFF;
     /// Element index for a single-field slot.
     pub const SINGLE: u8 = 0xFF;
 
-    pub const fn new(slot: u8, elem: u8) -> u16 {
-        ((slot as u16) << 8) | elem as u16
+    pub const fn new(slot: u8, elem: u8) -> Ix {
+        ((slot as Ix) << 8) | elem as Ix
     }
-    pub const fn slot(l: u16) -> u8 {
+    pub const fn slot(l: Ix) -> u8 {
         (l >> 8) as u8
     }
-    pub const fn elem(l: u16) -> u8 {
+    pub const fn elem(l: Ix) -> u8 {
         l as u8
     }
 }

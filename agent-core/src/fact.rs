@@ -1,6 +1,7 @@
 //! Fact storage: slots in a pool, values in a compacting value arena, a hash index
 //! against duplicates, and a creation-ordered list (fact numbers only grow).
 
+use crate::value::Ix;
 use crate::value::NONE;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -16,17 +17,17 @@ pub enum FactState {
 pub struct Fact {
     /// The fact index CLIPS prints as `f-N`.
     pub num: u32,
-    pub tmpl: u16,
+    pub tmpl: Ix,
     /// Cells in the value arena: single slots take one cell, a multislot a `Multi`
     /// header cell followed by its elements.
-    pub start: u16,
-    pub len: u16,
+    pub start: Ix,
+    pub len: Ix,
     /// Creation-ordered list of live facts (or free/pending list link).
-    pub next: u16,
-    pub prev: u16,
-    pub hash_next: u16,
+    pub next: Ix,
+    pub prev: Ix,
+    pub hash_next: Ix,
     /// First alpha match of this fact (chained through the tokens' `next_sib`).
-    pub first_am: u16,
+    pub first_am: Ix,
     pub state: FactState,
 }
 
@@ -67,12 +68,12 @@ pub(crate) fn value_hash(h: u32, v: Value) -> u32 {
 }
 
 impl Core<'_> {
-    pub fn find_template(&self, name: SymId) -> Option<u16> {
+    pub fn find_template(&self, name: SymId) -> Option<Ix> {
         (0..self.st.ntemplates).find(|&t| self.templates[t as usize].name == name)
     }
 
     /// The implied (ordered-fact) template for `name`, created on first use.
-    pub fn implied_template(&mut self, name: SymId) -> Result<u16, CapacityError> {
+    pub fn implied_template(&mut self, name: SymId) -> Result<Ix, CapacityError> {
         if let Some(t) = self.find_template(name) {
             return Ok(t);
         }
@@ -93,7 +94,7 @@ impl Core<'_> {
         self.st.nslots += 1;
         self.templates[n] = Template {
             name,
-            first_slot: s as u16,
+            first_slot: s as Ix,
             nslots: 1,
             implied: true,
             alpha_head: NONE,
@@ -101,20 +102,20 @@ impl Core<'_> {
         self.st.ntemplates += 1;
         self.note_hw(Pool::Templates, n + 1);
         self.note_hw(Pool::SlotDefs, s + 1);
-        Ok(n as u16)
+        Ok(n as Ix)
     }
 
-    pub fn slot_def(&self, tmpl: u16, slot: u16) -> SlotDef {
+    pub fn slot_def(&self, tmpl: Ix, slot: Ix) -> SlotDef {
         self.slots[(self.templates[tmpl as usize].first_slot + slot) as usize]
     }
 
-    pub fn find_slot(&self, tmpl: u16, name: SymId) -> Option<u16> {
+    pub fn find_slot(&self, tmpl: Ix, name: SymId) -> Option<Ix> {
         let t = self.templates[tmpl as usize];
         (0..t.nslots).find(|&i| self.slots[(t.first_slot + i) as usize].name == name)
     }
 
     /// Cell index of slot `slot` of a fact, and for a multislot its element count.
-    pub fn slot_cell(&self, fact: u16, slot: u16) -> (usize, Option<u16>) {
+    pub fn slot_cell(&self, fact: Ix, slot: Ix) -> (usize, Option<Ix>) {
         let f = self.facts[fact as usize];
         let mut c = f.start as usize;
         for _ in 0..slot {
@@ -130,7 +131,7 @@ impl Core<'_> {
     }
 
     /// Slot value of a fact as an evaluation value (multislots are copied to scratch).
-    pub fn fact_slot_value(&mut self, fact: u16, slot: u16) -> Result<Value, CapacityError> {
+    pub fn fact_slot_value(&mut self, fact: Ix, slot: Ix) -> Result<Value, CapacityError> {
         let (c, multi) = self.slot_cell(fact, slot);
         match multi {
             None => Ok(self.values[c]),
@@ -146,11 +147,11 @@ impl Core<'_> {
         }
         Ok(Value::Multi(MfSpan {
             start: s,
-            len: n as u16,
+            len: n as Ix,
         }))
     }
 
-    pub fn fact_ref(&self, slot: u16) -> FactRef {
+    pub fn fact_ref(&self, slot: Ix) -> FactRef {
         FactRef {
             slot,
             num: self.facts[slot as usize].num,
@@ -164,7 +165,7 @@ impl Core<'_> {
     }
 
     /// Fact slot holding live fact number `num`.
-    pub fn find_fact(&self, num: u32) -> Option<u16> {
+    pub fn find_fact(&self, num: u32) -> Option<Ix> {
         let mut f = self.st.fact_head;
         while f != NONE {
             let x = &self.facts[f as usize];
@@ -179,7 +180,7 @@ impl Core<'_> {
         None
     }
 
-    pub(crate) fn cells_hash(&self, tmpl: u16, start: usize, len: usize) -> u32 {
+    pub(crate) fn cells_hash(&self, tmpl: Ix, start: usize, len: usize) -> u32 {
         let mut h = mix(0x1234_5678, tmpl as u64);
         for i in 0..len {
             h = value_hash(h, self.values[start + i]);
@@ -229,11 +230,11 @@ impl Core<'_> {
             );
             if s != dst {
                 self.values.copy_within(s..s + l, dst);
-                self.facts[f as usize].start = dst as u16;
+                self.facts[f as usize].start = dst as Ix;
             }
             dst += l;
         }
-        self.st.values_top = dst as u16;
+        self.st.values_top = dst as Ix;
     }
 
     /// Reserves `n` cells at the top of the value arena (compacting if needed).
@@ -249,7 +250,7 @@ impl Core<'_> {
     }
 
     /// Value cells a fact made from per-slot values on the stack at `base` takes.
-    fn cells_needed(&self, tmpl: u16, base: usize) -> usize {
+    fn cells_needed(&self, tmpl: Ix, base: usize) -> usize {
         let n = self.templates[tmpl as usize].nslots as usize;
         (0..n)
             .map(|i| match self.stack[base + i] {
@@ -265,7 +266,7 @@ impl Core<'_> {
     }
 
     /// Writes per-slot values from the stack at `base` into cells from `start`.
-    fn write_cells(&mut self, tmpl: u16, base: usize, start: usize) {
+    fn write_cells(&mut self, tmpl: Ix, base: usize, start: usize) {
         let mut c = start;
         for i in 0..self.templates[tmpl as usize].nslots as usize {
             match self.stack[base + i] {
@@ -294,8 +295,8 @@ impl Core<'_> {
     /// its slot and cells are not given back until the firing ends.
     pub(crate) fn modify_fits(
         &mut self,
-        old: u16,
-        tmpl: u16,
+        old: Ix,
+        tmpl: Ix,
         base: usize,
     ) -> Result<(), CapacityError> {
         let freed = !self.st.firing;
@@ -331,7 +332,7 @@ impl Core<'_> {
     /// the retract freed its cells, i.e. outside a firing).
     pub(crate) fn restore_fact(
         &mut self,
-        slot: u16,
+        slot: Ix,
         saved: Fact,
         base: usize,
     ) -> Result<(), EvalError> {
@@ -352,8 +353,8 @@ impl Core<'_> {
                     }
                 };
                 self.write_cells(saved.tmpl, base, start);
-                self.st.values_top = (start + need) as u16;
-                (start as u16, need as u16)
+                self.st.values_top = (start + need) as Ix;
+                (start as Ix, need as Ix)
             }
             // still there: nothing was retracted
             FactState::Live => return Ok(()),
@@ -381,6 +382,7 @@ impl Core<'_> {
             ..saved
         };
         self.fact_buckets[bucket] = slot;
+        self.st.facts_live += 1;
         if prev == NONE {
             self.st.fact_head = slot;
         } else {
@@ -409,7 +411,7 @@ impl Core<'_> {
     /// Creates a fact from per-slot values on the evaluation stack at `base` (a
     /// multislot's value is a scratch `Multi`). Returns `None` for a duplicate.
     /// Runs the network; on a full pool the fact is removed again and the error returned.
-    pub fn assert_slots(&mut self, tmpl: u16, base: usize) -> Result<Option<u16>, EvalError> {
+    pub fn assert_slots(&mut self, tmpl: Ix, base: usize) -> Result<Option<Ix>, EvalError> {
         // matches an earlier removal still owes come first: without room for them
         // the assert fails with nothing changed
         self.pay_owed()?;
@@ -441,14 +443,14 @@ impl Core<'_> {
             self.st.facts_used += 1;
             self.st.facts_used - 1
         };
-        self.st.values_top = (start + need) as u16;
+        self.st.values_top = (start + need) as Ix;
         let num = self.st.next_fact_num;
         self.st.next_fact_num += 1;
         self.facts[slot as usize] = Fact {
             num,
             tmpl,
-            start: start as u16,
-            len: need as u16,
+            start: start as Ix,
+            len: need as Ix,
             next: NONE,
             prev: self.st.fact_tail,
             hash_next: self.fact_buckets[bucket],
@@ -456,6 +458,7 @@ impl Core<'_> {
             state: FactState::Live,
         };
         self.fact_buckets[bucket] = slot;
+        self.st.facts_live += 1;
         if self.st.fact_tail != NONE {
             self.facts[self.st.fact_tail as usize].next = slot;
         } else {
@@ -473,7 +476,9 @@ impl Core<'_> {
         // the activations the new fact's blockers remove are noted, to put them back
         // in their agenda places should the assert fail
         let mark = self.journal_begin();
-        let r = self.network_assert(slot);
+        // a `not` the fact unblocked on the way (a blocker of a nested `not` taken
+        // back) may have found no room: the assert is complete only once it is built
+        let r = self.network_assert(slot).and_then(|()| self.pay_owed());
         self.journal_pause();
         if let Err(e) = r {
             // Undo: remove what the fact built, then the fact itself, silently. The
@@ -484,7 +489,7 @@ impl Core<'_> {
             self.unlink_fact(slot);
             self.free_fact_slot(slot);
             self.st.next_fact_num = num;
-            self.st.values_top = start as u16;
+            self.st.values_top = start as Ix;
             let _ = self.pay_owed();
             self.journal_end(mark);
             self.release_traces(false);
@@ -500,8 +505,9 @@ impl Core<'_> {
         self.st.facts_used as usize
     }
 
-    fn unlink_fact(&mut self, slot: u16) {
+    fn unlink_fact(&mut self, slot: Ix) {
         let f = self.facts[slot as usize];
+        self.st.facts_live -= 1;
         if f.prev != NONE {
             self.facts[f.prev as usize].next = f.next;
         } else {
@@ -530,7 +536,7 @@ impl Core<'_> {
         }
     }
 
-    fn free_fact_slot(&mut self, slot: u16) {
+    fn free_fact_slot(&mut self, slot: Ix) {
         self.facts[slot as usize].state = FactState::Free;
         self.facts[slot as usize].next = self.st.fact_free;
         self.st.fact_free = slot;
@@ -538,7 +544,7 @@ impl Core<'_> {
 
     /// Retracts a live fact: watch line, network removal, then the slot is freed (or
     /// kept readable until the current firing ends).
-    pub fn retract_fact(&mut self, slot: u16) {
+    pub fn retract_fact(&mut self, slot: Ix) {
         if self.st.watch & crate::engine::watch::FACTS != 0 {
             self.print_fact_line("<== ", slot);
         }
@@ -559,7 +565,7 @@ impl Core<'_> {
         }
     }
 
-    fn release_fact_values(&mut self, slot: u16) {
+    fn release_fact_values(&mut self, slot: Ix) {
         let f = self.facts[slot as usize];
         if f.start as usize + f.len as usize == self.st.values_top as usize {
             self.st.values_top = f.start;
@@ -575,14 +581,9 @@ impl Core<'_> {
         }
     }
 
+    /// Facts on the live list (kept as a count: `watch statistics` asks per firing).
     pub fn live_fact_count(&self) -> usize {
-        let mut n = 0;
-        let mut f = self.st.fact_head;
-        while f != NONE {
-            n += 1;
-            f = self.facts[f as usize].next;
-        }
-        n
+        self.st.facts_live as usize
     }
 }
 
@@ -591,7 +592,7 @@ use crate::value::SymId;
 
 /// Unlinks `slot` from a singly linked list of fact slots chained through `next`
 /// (the free list or the pending list).
-fn remove_from_list(facts: &mut [Fact], head: &mut u16, slot: u16) {
+fn remove_from_list(facts: &mut [Fact], head: &mut Ix, slot: Ix) {
     if *head == slot {
         *head = facts[slot as usize].next;
         return;

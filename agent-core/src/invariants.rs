@@ -1,7 +1,7 @@
 //! Invariant mode: a consistency check of the whole engine, meant to run after every
 //! operation in tests and fuzzing (`Engine::check_invariants`).
 //!
-//! The engine links everything through `u16` indices in fixed pools, so a bug shows up
+//! The engine links everything through `Ix` indices in fixed pools, so a bug shows up
 //! as a broken link long before it shows up as a wrong answer. This module walks every
 //! list with a bounded walk (a cycle is a violation, not a hang) and checks:
 //! - pool accounting: free list + live entries = entries handed out, for facts, tokens
@@ -21,6 +21,7 @@
 //! It only reads; it costs O(pool sizes) (O(n^2) for the fact cell overlap check), so
 //! it is for debugging, not for the robot's control loop.
 
+use crate::value::Ix;
 use core::fmt;
 
 use crate::engine::{Core, Engine};
@@ -156,7 +157,7 @@ impl Core<'_> {
     /// back links consistent (the head's names the tail), and no other token marked.
     fn check_owed(&self) -> Result<(), Violation> {
         let used = self.st.tokens_used as usize;
-        let marked = (0..used).filter(|&t| self.is_owed(t as u16)).count();
+        let marked = (0..used).filter(|&t| self.is_owed(t as Ix)).count();
         let (mut n, mut prev, mut t) = (0usize, NONE, self.st.owed);
         while t != NONE {
             ensure!(
@@ -471,7 +472,7 @@ impl Core<'_> {
         Ok(())
     }
 
-    fn child_listed(&self, parent: u16, child: u16) -> bool {
+    fn child_listed(&self, parent: Ix, child: Ix) -> bool {
         let mut c = self.joins[parent as usize].first_child;
         let mut steps = 0usize;
         while c != NONE && steps <= self.st.njoins as usize {
@@ -484,7 +485,7 @@ impl Core<'_> {
         false
     }
 
-    fn succ_listed(&self, alpha: u16, join: u16) -> bool {
+    fn succ_listed(&self, alpha: Ix, join: Ix) -> bool {
         let mut c = self.alphas[alpha as usize].succ;
         let mut steps = 0usize;
         while c != NONE && steps <= self.st.njoins as usize {
@@ -500,9 +501,9 @@ impl Core<'_> {
     /// Counts a singly linked list, failing on a cycle (more steps than `bound`).
     fn walk(
         &self,
-        head: u16,
+        head: Ix,
         bound: usize,
-        next: impl Fn(u16) -> u16,
+        next: impl Fn(Ix) -> Ix,
         what: &'static str,
     ) -> Result<usize, Violation> {
         let mut n = 0usize;
@@ -549,6 +550,11 @@ impl Core<'_> {
             f = x.next;
         }
         ensure!(self.st.fact_tail == prev, "fact list tail wrong", prev);
+        ensure!(
+            live == self.st.facts_live as usize,
+            "live fact count wrong",
+            self.st.facts_live
+        );
         let free = self.walk(
             self.st.fact_free,
             used,
@@ -864,16 +870,16 @@ impl Core<'_> {
                             _ => ensure!(tk.am == NONE, "unexpected alpha match", i),
                         }
                         if matches!(j.kind, JoinKind::Negative | JoinKind::Exists) {
-                            let links = self.children(i as u16, TokenKind::Link)?;
+                            let links = self.children(i as Ix, TokenKind::Link)?;
                             ensure!(
                                 links == usize::from(tk.blocked),
                                 "not/exists blocker links != blocked flag",
                                 i
                             );
                         }
-                        if !self.token_active(i as u16) {
+                        if !self.token_active(i as Ix) {
                             ensure!(
-                                self.children(i as u16, TokenKind::Beta)? == 0,
+                                self.children(i as Ix, TokenKind::Beta)? == 0,
                                 "inactive not/exists match has children",
                                 i
                             );
@@ -1015,7 +1021,7 @@ impl Core<'_> {
     }
 
     /// A partial match's parent is a live partial match of the parent join.
-    fn check_parent(&self, t: usize, parent_join: u16) -> Result<(), Violation> {
+    fn check_parent(&self, t: usize, parent_join: Ix) -> Result<(), Violation> {
         let p = self.tokens[t].parent;
         ensure!(
             p != NONE && (p as usize) < self.st.tokens_used as usize,
@@ -1037,7 +1043,7 @@ impl Core<'_> {
     }
 
     /// A partial match's alpha match is live and of the join's alpha node.
-    fn check_am(&self, t: usize, alpha: u16) -> Result<(), Violation> {
+    fn check_am(&self, t: usize, alpha: Ix) -> Result<(), Violation> {
         let am = self.tokens[t].am;
         ensure!(
             am != NONE && (am as usize) < self.st.tokens_used as usize,
@@ -1054,7 +1060,7 @@ impl Core<'_> {
         Ok(())
     }
 
-    fn children(&self, t: u16, kind: TokenKind) -> Result<usize, Violation> {
+    fn children(&self, t: Ix, kind: TokenKind) -> Result<usize, Violation> {
         let mut n = 0usize;
         let mut c = self.tokens[t as usize].first_child;
         let mut steps = 0usize;
@@ -1181,7 +1187,7 @@ mod tests {
     use crate::engine::SmallEngine;
     use crate::host::NullHost;
     use crate::rete::TokenKind;
-    use crate::value::NONE;
+    use crate::value::{Ix, NONE};
     use std::boxed::Box;
 
     #[test]
@@ -1268,7 +1274,7 @@ mod tests {
                 cx.tokens[t].kind = TokenKind::Free;
                 cx.st.tokens_live -= 1;
                 let free = cx.st.token_free;
-                cx.st.token_free = t as u16;
+                cx.st.token_free = t as Ix;
                 // take it out of its fact's and memory's lists as a buggy free would
                 let tk = cx.tokens[t];
                 let a = tk.owner as usize;

@@ -92,6 +92,12 @@
 //! strategies other
 //! than depth, multifield globals across commands.
 #![no_std]
+// With `u32` indices (`value::Ix`) the widening casts and conversions written for `u16`
+// indices (`x as u32`, `u32::from(x)`) become identities; they stay for the `u16` build.
+#![cfg_attr(
+    feature = "wide-pools",
+    allow(clippy::unnecessary_cast, clippy::useless_conversion)
+)]
 
 pub mod agenda;
 pub mod api;
@@ -125,4 +131,4 @@ pub use error::{
 };
 pub use host::{Host, NullHost};
 pub use invariants::Violation;
-pub use value::{Value, ValueRef};
+pub use value::{Ix, Value, ValueRef, NONE};

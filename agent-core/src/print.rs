@@ -1,5 +1,6 @@
 //! Printing values, facts, activations and watch traces exactly as CLIPS 6.30 does.
 
+use crate::value::Ix;
 use core::fmt::{self, Write};
 
 use crate::engine::{watch, Core};
@@ -73,13 +74,13 @@ impl View<'_> {
     }
 
     /// `(name v...)` or `(name (slot v) (mslot a b))`.
-    pub fn write_fact(&self, out: &mut dyn Write, slot: u16) -> fmt::Result {
+    pub fn write_fact(&self, out: &mut dyn Write, slot: Ix) -> fmt::Result {
         self.write_fact_as(out, slot, false)
     }
 
     /// A fact as `save-facts` writes it: strings with `"` and `\` escaped, so that
     /// `load-facts` reads them back unchanged (listings print them bare).
-    pub fn write_fact_escaped(&self, out: &mut dyn Write, slot: u16) -> fmt::Result {
+    pub fn write_fact_escaped(&self, out: &mut dyn Write, slot: Ix) -> fmt::Result {
         self.write_fact_as(out, slot, true)
     }
 
@@ -99,7 +100,7 @@ impl View<'_> {
         }
     }
 
-    fn write_fact_as(&self, out: &mut dyn Write, slot: u16, escape: bool) -> fmt::Result {
+    fn write_fact_as(&self, out: &mut dyn Write, slot: Ix, escape: bool) -> fmt::Result {
         let f = self.facts[slot as usize];
         let t = self.templates[f.tmpl as usize];
         out.write_char('(')?;
@@ -194,7 +195,7 @@ impl Core<'_> {
         write!(w, "{:<7} ", b.as_str())
     }
 
-    pub(crate) fn print_fact_line(&mut self, arrow: &str, slot: u16) {
+    pub(crate) fn print_fact_line(&mut self, arrow: &str, slot: Ix) {
         let num = self.facts[slot as usize].num;
         let (view, mut w) = self.split_trace();
         let _ = w.write_str(arrow);
@@ -204,7 +205,7 @@ impl Core<'_> {
     }
 
     /// `(facts)` listing line.
-    pub(crate) fn print_fact_listing_line(&mut self, slot: u16) {
+    pub(crate) fn print_fact_listing_line(&mut self, slot: Ix) {
         let num = self.facts[slot as usize].num;
         let (view, host) = self.split();
         let mut w = RouterWriter {
@@ -217,7 +218,7 @@ impl Core<'_> {
     }
 
     /// `f-1,f-3,*` for a partial match.
-    pub(crate) fn write_basis(&self, w: &mut dyn Write, token: u16) -> fmt::Result {
+    pub(crate) fn write_basis(&self, w: &mut dyn Write, token: Ix) -> fmt::Result {
         let mut ids = [u32::MAX; crate::rete::MAX_PATTERNS];
         let mut n = 0;
         let mut t = token;
@@ -256,7 +257,7 @@ impl Core<'_> {
         self.write_basis(w, a.token)
     }
 
-    pub(crate) fn print_activation_line(&mut self, prefix: &str, a: u16) {
+    pub(crate) fn print_activation_line(&mut self, prefix: &str, a: Ix) {
         let mut b: crate::value::TextBuf<512> = crate::value::TextBuf::new();
         let _ = b.write_str(prefix);
         let _ = self.write_activation(&mut b, self.acts[a as usize]);
@@ -265,7 +266,7 @@ impl Core<'_> {
         let _ = w.write_str(b.as_str());
     }
 
-    pub(crate) fn print_fire_line(&mut self, count: u32, rule: u16, token: u16) {
+    pub(crate) fn print_fire_line(&mut self, count: u32, rule: Ix, token: Ix) {
         if self.st.watch & watch::RULES == 0 {
             return;
         }

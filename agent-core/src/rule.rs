@@ -1,5 +1,6 @@
 //! Rules and agenda activations.
 
+use crate::value::Ix;
 use crate::value::{SymId, NONE};
 
 #[derive(Clone, Copy, Debug)]
@@ -8,25 +9,25 @@ pub struct Rule {
     pub salience: i32,
     /// Salience expression when not a constant (re-evaluated per activation and by
     /// `refresh-agenda`, as CLIPS does for global-based saliences), else NONE.
-    pub salience_expr: u16,
+    pub salience_expr: Ix,
     /// Root join (holds the rule's empty root token) and terminal join.
-    pub root: u16,
-    pub terminal: u16,
+    pub root: Ix,
+    pub terminal: Ix,
     /// RHS: chain of actions.
-    pub rhs: u16,
+    pub rhs: Ix,
     /// Pattern-level CEs (joins below the root).
     pub npat: u8,
     /// Frame size for RHS `bind` locals.
     pub nlocals: u8,
     /// Next disjunct of the same rule (an `or` LHS yields several).
-    pub next_disjunct: u16,
+    pub next_disjunct: Ix,
     /// Next rule ending at the same (shared) terminal join, newest first.
-    pub next_at_join: u16,
+    pub next_at_join: Ix,
     /// First CE is `not`/`exists`/`test`: the root token is rebuilt at `reset`.
     pub root_sensitive: bool,
     pub deleted: bool,
     /// Source text of the construct in the symbol table (for `ppdefrule`), or NONE.
-    pub text: u16,
+    pub text: Ix,
 }
 
 impl Rule {
@@ -49,15 +50,15 @@ impl Rule {
 
 #[derive(Clone, Copy, Debug)]
 pub struct Activation {
-    pub rule: u16,
-    pub token: u16,
+    pub rule: Ix,
+    pub token: Ix,
     pub salience: i32,
     /// Creation order; the depth strategy puts newer activations first.
     pub seq: u32,
-    pub next: u16,
-    pub prev: u16,
+    pub next: Ix,
+    pub prev: Ix,
     /// Next activation of the same partial match (rules sharing a terminal join).
-    pub next_of_token: u16,
+    pub next_of_token: Ix,
 }
 
 impl Activation {

@@ -4,14 +4,15 @@
 //! appended; a failed load truncates back to a mark (`truncate`).
 
 use crate::error::{CapacityError, Pool};
+use crate::value::Ix;
 use crate::value::{SymId, NONE};
 
 #[derive(Clone, Copy, Debug)]
 pub struct SymEntry {
-    pub start: u16,
-    pub len: u16,
+    pub start: Ix,
+    pub len: Ix,
     /// Next entry in the same hash bucket.
-    pub next: u16,
+    pub next: Ix,
 }
 
 impl SymEntry {
@@ -36,10 +37,10 @@ pub fn hash_bytes(b: &[u8]) -> u32 {
 pub struct Symbols<'a> {
     pub entries: &'a mut [SymEntry],
     /// Bucket heads; same length as `entries`.
-    pub buckets: &'a mut [u16],
+    pub buckets: &'a mut [Ix],
     pub bytes: &'a mut [u8],
-    pub count: &'a mut u16,
-    pub bytes_used: &'a mut u16,
+    pub count: &'a mut Ix,
+    pub bytes_used: &'a mut Ix,
 }
 
 impl Symbols<'_> {
@@ -76,7 +77,7 @@ impl Symbols<'_> {
             });
         }
         let used = *self.bytes_used as usize;
-        if used + s.len() > self.bytes.len() || used + s.len() > u16::MAX as usize {
+        if used + s.len() > self.bytes.len() || used + s.len() > Ix::MAX as usize {
             return Err(CapacityError {
                 pool: Pool::SymbolBytes,
                 capacity: self.bytes.len() as u32,
@@ -85,18 +86,18 @@ impl Symbols<'_> {
         self.bytes[used..used + s.len()].copy_from_slice(s.as_bytes());
         let b = hash_bytes(s.as_bytes()) as usize % self.buckets.len();
         self.entries[n] = SymEntry {
-            start: used as u16,
-            len: s.len() as u16,
+            start: used as Ix,
+            len: s.len() as Ix,
             next: self.buckets[b],
         };
-        self.buckets[b] = n as u16;
+        self.buckets[b] = n as Ix;
         *self.count += 1;
-        *self.bytes_used += s.len() as u16;
+        *self.bytes_used += s.len() as Ix;
         Ok(n as SymId)
     }
 
     /// Drops every entry with id >= `count` (newest entries sit at bucket heads).
-    pub fn truncate(&mut self, count: u16, bytes_used: u16) {
+    pub fn truncate(&mut self, count: Ix, bytes_used: Ix) {
         if count >= *self.count {
             return;
         }

@@ -1,6 +1,7 @@
 //! Deftemplates and their slot definitions. Ordered facts use an implied template with
 //! one multislot.
 
+use crate::value::Ix;
 use crate::value::{SymId, NONE};
 
 /// Type restriction bits of a slot (`(type ...)`); 0 means any type.
@@ -34,10 +35,10 @@ pub struct SlotDef {
     pub multi: bool,
     pub default_kind: DefaultKind,
     /// Chain of expression nodes giving the default (NONE when derived).
-    pub default: u16,
+    pub default: Ix,
     pub types: u8,
     /// Chain of constant expression nodes (allowed-values etc.), NONE when unrestricted.
-    pub allowed: u16,
+    pub allowed: Ix,
     /// Which `allowed-...` attribute gave `allowed` (see `allowed`).
     pub allowed_kind: u8,
 }
@@ -68,11 +69,11 @@ impl SlotDef {
 #[derive(Clone, Copy, Debug)]
 pub struct Template {
     pub name: SymId,
-    pub first_slot: u16,
-    pub nslots: u16,
+    pub first_slot: Ix,
+    pub nslots: Ix,
     pub implied: bool,
     /// First alpha node testing facts of this template.
-    pub alpha_head: u16,
+    pub alpha_head: Ix,
 }
 
 impl Template {
@@ -89,7 +90,7 @@ impl Template {
 #[derive(Clone, Copy, Debug)]
 pub struct Deffacts {
     pub name: SymId,
-    pub facts: u16,
+    pub facts: Ix,
 }
 
 impl Deffacts {
@@ -105,7 +106,7 @@ pub struct Global {
     pub name: SymId,
     pub value: crate::value::Value,
     /// Initial-value expression, re-evaluated at `reset`.
-    pub init: u16,
+    pub init: Ix,
 }
 
 impl Global {
@@ -127,7 +128,7 @@ pub struct Deffunction {
     /// Frame size: parameters plus `bind` locals.
     pub nlocals: u8,
     /// Body: chain of actions.
-    pub body: u16,
+    pub body: Ix,
 }
 
 impl Deffunction {

@@ -1,18 +1,28 @@
 //! Runtime values: atoms and multifield spans, plus CLIPS-style number printing.
 
 use core::fmt::{self, Write};
+use core::mem::MaybeUninit;
+
+/// Index into an engine pool (and link between pool entries). The agent image keeps
+/// `u16`: half the bytes per link, and no pool there comes near 65,535 entries.
+#[cfg(not(feature = "wide-pools"))]
+pub type Ix = u16;
+/// `u32` pool indices for host engines with more than 65,535 entries per pool (feature
+/// `wide-pools`); the agent image keeps `u16`.
+#[cfg(feature = "wide-pools")]
+pub type Ix = u32;
 
 /// Index of a symbol or string in the symbol table.
-pub type SymId = u16;
+pub type SymId = Ix;
 
-/// "No entry" marker for all `u16` pool links.
-pub const NONE: u16 = u16::MAX;
+/// "No entry" marker for all `Ix` pool links.
+pub const NONE: Ix = Ix::MAX;
 
 /// A fact address: pool slot plus the fact number, so a stale address (the slot was
 /// reused) is detected by comparing numbers.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct FactRef {
-    pub slot: u16,
+    pub slot: Ix,
     pub num: u32,
 }
 
@@ -20,8 +30,8 @@ pub struct FactRef {
 /// inside fact storage, a header announcing that `len` atoms follow.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct MfSpan {
-    pub start: u16,
-    pub len: u16,
+    pub start: Ix,
+    pub len: Ix,
 }
 
 /// One CLIPS value. `Multi` points into the scratch area during evaluation.
@@ -69,26 +79,35 @@ pub enum ValueRef<'a> {
     String(&'a str),
     Fact(u32),
     /// A multifield; read elements with `Engine::fact_multislot_item`.
-    Multi(u16),
+    Multi(Ix),
     Void,
 }
 
 /// A fixed-size text buffer implementing `fmt::Write`; output beyond capacity is cut.
+///
+/// The buffer is left uninitialised: string builtins create 2 KiB ones per call, and
+/// zeroing them cost more than the work done in them.
 pub struct TextBuf<const N: usize> {
-    buf: [u8; N],
+    buf: [MaybeUninit<u8>; N],
+    /// Bytes `..len` are initialised and hold whole UTF-8 sequences.
     len: usize,
 }
 
 impl<const N: usize> TextBuf<N> {
     pub const fn new() -> Self {
         TextBuf {
-            buf: [0; N],
+            buf: [const { MaybeUninit::uninit() }; N],
             len: 0,
         }
     }
     pub fn as_str(&self) -> &str {
+        // SAFETY: `write_str` initialises `buf[..len]` before it raises `len`, and
+        // nothing else raises it (`clear` only lowers it), so the first `len` bytes
+        // are initialised; `len <= N`, so the slice stays inside `buf`.
+        let bytes =
+            unsafe { core::slice::from_raw_parts(self.buf.as_ptr().cast::<u8>(), self.len) };
         // Only whole UTF-8 sequences are ever pushed (see write_str), so this cannot fail.
-        core::str::from_utf8(&self.buf[..self.len]).unwrap_or("")
+        core::str::from_utf8(bytes).unwrap_or("")
     }
     pub fn clear(&mut self) {
         self.len = 0;
@@ -114,7 +133,12 @@ impl<const N: usize> Write for TextBuf<N> {
         while take > 0 && !s.is_char_boundary(take) {
             take -= 1;
         }
-        self.buf[self.len..self.len + take].copy_from_slice(&s.as_bytes()[..take]);
+        for (d, &b) in self.buf[self.len..self.len + take]
+            .iter_mut()
+            .zip(&s.as_bytes()[..take])
+        {
+            *d = MaybeUninit::new(b);
+        }
         self.len += take;
         if take < s.len() {
             Err(fmt::Error)

@@ -413,3 +413,16 @@ fn stats_report_high_water_marks() {
     assert!(s.get(Pool::Activations).0 >= 5);
     assert!(s.get(Pool::Tokens).0 >= 10);
 }
+
+/// `reset` builds each deffacts fact's values in the scratch area and frees them once
+/// the fact is asserted: a deffacts larger than the scratch area resets.
+#[test]
+fn deffacts_larger_than_the_scratch_area_reset() {
+    let mut e = engine!(SCRATCH = 16, FACTS = 256, VALUES = 1024);
+    let h = &mut Quiet;
+    let facts: String = (0..200).map(|i| format!("(item {i} x)\n")).collect();
+    e.load_str(h, "f", &format!("(deffacts many {facts})"))
+        .unwrap();
+    e.reset(h).unwrap();
+    assert_eq!(e.facts().count(), 201);
+}

@@ -3,6 +3,7 @@
 use super::{Args, Builtin, Num, ANY};
 use crate::engine::Core;
 use crate::error::{EvalError, EvalErrorKind};
+use crate::value::Ix;
 use crate::value::{TextBuf, Value, NONE};
 
 pub const FUNCS: &[Builtin] = &[
@@ -140,6 +141,7 @@ fn ge(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 }
 
 /// Strict equality including multifields element by element.
+#[inline]
 pub fn values_same(cx: &Core<'_>, x: Value, y: Value) -> bool {
     match (x, y) {
         (Value::Multi(p), Value::Multi(q)) => {
@@ -163,7 +165,7 @@ fn neq(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     ))
 }
 
-fn and(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
+fn and(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     let mut e = cx.exprs[call as usize].first;
     while e != NONE {
         if !Core::is_true(cx.eval(e)?) {
@@ -173,7 +175,7 @@ fn and(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
     }
     Ok(Core::bool_value(true))
 }
-fn or(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
+fn or(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     let mut e = cx.exprs[call as usize].first;
     while e != NONE {
         if Core::is_true(cx.eval(e)?) {

@@ -8,6 +8,7 @@ use crate::engine::{watch, Core};
 use crate::error::{EvalError, EvalErrorKind};
 use crate::host::router;
 use crate::rete::JoinKind;
+use crate::value::Ix;
 use crate::value::{TextBuf, Value, NONE};
 use core::fmt::Write;
 
@@ -243,7 +244,7 @@ fn list_defrules(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
     Ok(Value::Void)
 }
 
-fn find_rule(cx: &Core<'_>, name: u16) -> Option<u16> {
+fn find_rule(cx: &Core<'_>, name: Ix) -> Option<Ix> {
     (0..cx.st.nrules).find(|&r| cx.rules[r as usize].name == name && !cx.rules[r as usize].deleted)
 }
 
@@ -403,7 +404,7 @@ fn matches(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 
 /// Prints the basis of each partial match in join `j`'s memory (`f-1,f-3,*`); returns
 /// how many. A not/exists join keeps blocked tokens too: only live ones count.
-fn write_bases(cx: &mut Core<'_>, j: u16) -> i64 {
+fn write_bases(cx: &mut Core<'_>, j: Ix) -> i64 {
     let kind = cx.joins[j as usize].kind;
     let mut t = cx.joins[j as usize].mem;
     let mut count = 0;

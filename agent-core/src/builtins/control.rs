@@ -5,6 +5,7 @@ use super::{Builtin, ANY, SYM_FALSE};
 use crate::engine::Core;
 use crate::error::{EvalError, EvalErrorKind};
 use crate::expr::Op;
+use crate::value::Ix;
 use crate::value::{Value, NONE};
 
 pub const FUNCS: &[Builtin] = &[
@@ -20,7 +21,7 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("break", 0, 0, break_),
 ];
 
-fn kids<const N: usize>(cx: &Core<'_>, call: u16) -> [u16; N] {
+fn kids<const N: usize>(cx: &Core<'_>, call: Ix) -> [Ix; N] {
     let mut out = [NONE; N];
     let mut c = cx.exprs[call as usize].first;
     for o in out.iter_mut() {
@@ -33,12 +34,12 @@ fn kids<const N: usize>(cx: &Core<'_>, call: u16) -> [u16; N] {
     out
 }
 
-fn progn(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
+fn progn(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     let first = cx.exprs[call as usize].first;
     cx.eval_chain(first)
 }
 
-fn if_(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
+fn if_(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     let [c, t, e] = kids::<3>(cx, call);
     if Core::is_true(cx.eval(c)?) {
         cx.eval(t)
@@ -49,8 +50,12 @@ fn if_(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
     }
 }
 
-/// Resets scratch to `mark` unless a local variable still points above it.
-fn release_scratch(cx: &mut Core<'_>, mark: u16) {
+/// Resets scratch to `mark` unless a variable (frame or global) still points above it.
+pub(super) fn release_scratch(cx: &mut Core<'_>, mark: Ix) {
+    // nothing above the mark (the usual loop body or query test): nothing to scan for
+    if cx.st.scratch_top <= mark {
+        return;
+    }
     let mut keep = mark;
     for i in 0..cx.st.sp as usize {
         if let Value::Multi(m) = cx.stack[i] {
@@ -67,7 +72,7 @@ fn release_scratch(cx: &mut Core<'_>, mark: u16) {
     }
 }
 
-fn while_(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
+fn while_(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     let [c, body] = kids::<2>(cx, call);
     let mark = cx.st.scratch_top;
     while Core::is_true(cx.eval(c)?) {
@@ -84,7 +89,7 @@ fn while_(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
     Ok(Value::Sym(SYM_FALSE))
 }
 
-fn loop_for_count(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
+fn loop_for_count(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     let [var, s, e, body] = kids::<4>(cx, call);
     let start = match cx.eval(s)? {
         Value::Int(i) => i,
@@ -120,7 +125,7 @@ fn loop_for_count(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
     Ok(Value::Sym(SYM_FALSE))
 }
 
-fn foreach(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
+fn foreach(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     let [var, list, body] = kids::<3>(cx, call);
     let m = match cx.eval(list)? {
         Value::Multi(m) => m,
@@ -152,7 +157,7 @@ fn foreach(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
     })
 }
 
-fn switch(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
+fn switch(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     let first = cx.exprs[call as usize].first;
     let v = cx.eval(first)?;
     let mut c = cx.exprs[first as usize].next;
@@ -171,7 +176,7 @@ fn switch(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
     Ok(Value::Sym(SYM_FALSE))
 }
 
-fn bind(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
+fn bind(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     let target = cx.exprs[call as usize].first;
     let mut a = cx.exprs[target as usize].next;
     // several values (or one multifield expansion) make a multifield

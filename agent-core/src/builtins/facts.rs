@@ -6,6 +6,7 @@ use crate::error::{EvalError, EvalErrorKind};
 use crate::expr::Op;
 use crate::host::router;
 use crate::template::{allowed, types, DefaultKind, SlotDef};
+use crate::value::Ix;
 use crate::value::{FactRef, MfSpan, Value, NONE};
 
 pub const FUNCS: &[Builtin] = &[
@@ -89,7 +90,7 @@ impl Core<'_> {
 
     /// Evaluates value expressions (a chain) into one slot value: a multifield for a
     /// multislot (all values spliced), else the single value.
-    fn slot_value_from(&mut self, tmpl: u16, slot: u16, mut e: u16) -> Result<Value, EvalError> {
+    fn slot_value_from(&mut self, tmpl: Ix, slot: Ix, mut e: Ix) -> Result<Value, EvalError> {
         let multi = self.slot_def(tmpl, slot).multi;
         if !multi {
             let v = self.eval(e)?;
@@ -137,7 +138,7 @@ impl Core<'_> {
     }
 
     /// The value a slot takes when an assert leaves it out.
-    fn default_value(&mut self, tmpl: u16, slot: u16) -> Result<Value, EvalError> {
+    fn default_value(&mut self, tmpl: Ix, slot: Ix) -> Result<Value, EvalError> {
         let def = self.slot_def(tmpl, slot);
         match def.default_kind {
             DefaultKind::Static | DefaultKind::Dynamic if def.default != NONE => {
@@ -169,7 +170,7 @@ impl Core<'_> {
     }
 
     /// Asserts the fact described by a `FactSpec` node. `Ok(None)`: duplicate.
-    pub fn assert_spec(&mut self, spec: u16) -> Result<Option<u16>, EvalError> {
+    pub fn assert_spec(&mut self, spec: Ix) -> Result<Option<Ix>, EvalError> {
         let tmpl = self.exprs[spec as usize].data;
         let nslots = self.templates[tmpl as usize].nslots;
         let base = self.st.sp;
@@ -181,12 +182,7 @@ impl Core<'_> {
         r
     }
 
-    fn assert_spec_inner(
-        &mut self,
-        spec: u16,
-        tmpl: u16,
-        base: u16,
-    ) -> Result<Option<u16>, EvalError> {
+    fn assert_spec_inner(&mut self, spec: Ix, tmpl: Ix, base: Ix) -> Result<Option<Ix>, EvalError> {
         let nslots = self.templates[tmpl as usize].nslots;
         let mut given = [false; 64];
         let mut sv = self.exprs[spec as usize].first;
@@ -211,7 +207,7 @@ impl Core<'_> {
     }
 
     /// Resolves a fact argument: an address or an index.
-    pub fn fact_arg(&self, v: Value) -> Option<u16> {
+    pub fn fact_arg(&self, v: Value) -> Option<Ix> {
         match v {
             Value::Fact(r) if self.fact_alive(r) => Some(r.slot),
             Value::Int(n) if n >= 0 => self.find_fact(n as u32),
@@ -221,7 +217,7 @@ impl Core<'_> {
 
     fn modify_or_duplicate(
         &mut self,
-        call: u16,
+        call: Ix,
         retract_old: bool,
         name: &'static str,
     ) -> Result<Value, EvalError> {
@@ -319,7 +315,7 @@ impl Core<'_> {
     }
 }
 
-fn assert(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
+fn assert(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     let mut spec = cx.exprs[call as usize].first;
     let mut last = Value::Sym(SYM_FALSE);
     cx.st.pattern_error = false;
@@ -399,11 +395,11 @@ fn retract(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     Ok(Value::Void)
 }
 
-fn modify(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
+fn modify(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     cx.modify_or_duplicate(call, true, "modify")
 }
 
-fn duplicate(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
+fn duplicate(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     cx.modify_or_duplicate(call, false, "duplicate")
 }
 

@@ -5,7 +5,7 @@
 //! lazy builtins (control forms, fact-set queries) receive their call node and
 //! evaluate arguments themselves with [`Core::eval`]. Each module exports
 //! `pub const FUNCS: &[Builtin]`; [`TABLES`] lists the modules. A function is named by
-//! a `u16` id `table << 8 | index`, stored in the call's expression node.
+//! a `Ix` id `table << 8 | index`, stored in the call's expression node.
 //! See `/work/brief/engine-interfaces.md` for how to add one.
 
 pub mod basic;
@@ -28,6 +28,7 @@ pub mod strings;
 
 use crate::engine::Core;
 use crate::error::{CapacityError, EvalError};
+use crate::value::Ix;
 use crate::value::{MfSpan, SymId, Value};
 
 /// Fixed symbol ids interned at start-up (and after `clear`) in this order.
@@ -53,14 +54,14 @@ pub const FIXED_SYMBOLS: [&str; 8] = [
 /// Evaluated arguments of an eager call: `len` values on the stack from `base`.
 #[derive(Clone, Copy, Debug)]
 pub struct Args {
-    pub base: u16,
-    pub len: u16,
+    pub base: Ix,
+    pub len: Ix,
 }
 
 /// An eager builtin (also the type of host-registered external functions).
 pub type BuiltinFn = fn(cx: &mut Core<'_>, args: Args) -> Result<Value, EvalError>;
 /// A lazy builtin: gets the call node; its arguments are the node's children.
-pub type LazyFn = fn(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError>;
+pub type LazyFn = fn(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError>;
 
 #[derive(Clone, Copy)]
 pub enum Imp {
@@ -138,18 +139,18 @@ pub const TABLES: &[&[Builtin]] = &[
 ];
 
 /// Finds a builtin by name.
-pub fn lookup(name: &str) -> Option<(u16, &'static Builtin)> {
+pub fn lookup(name: &str) -> Option<(Ix, &'static Builtin)> {
     for (t, table) in TABLES.iter().enumerate() {
         for (i, b) in table.iter().enumerate() {
             if b.name == name {
-                return Some(((t as u16) << 8 | i as u16, b));
+                return Some(((t as Ix) << 8 | i as Ix, b));
             }
         }
     }
     None
 }
 
-pub fn get(id: u16) -> &'static Builtin {
+pub fn get(id: Ix) -> &'static Builtin {
     &TABLES[(id >> 8) as usize][(id & 0xFF) as usize]
 }
 
@@ -241,13 +242,13 @@ impl Core<'_> {
         self.scratch[s as usize..s as usize + items.len()].copy_from_slice(items);
         Ok(Value::Multi(MfSpan {
             start: s,
-            len: items.len() as u16,
+            len: items.len() as Ix,
         }))
     }
 
     /// Starts building a multifield of unknown length: push elements with
     /// `multi_push`, then `multi_finish(start)`.
-    pub fn multi_begin(&self) -> u16 {
+    pub fn multi_begin(&self) -> Ix {
         self.st.scratch_top
     }
 
@@ -257,7 +258,7 @@ impl Core<'_> {
         Ok(())
     }
 
-    pub fn multi_finish(&self, start: u16) -> Value {
+    pub fn multi_finish(&self, start: Ix) -> Value {
         Value::Multi(MfSpan {
             start,
             len: self.st.scratch_top - start,

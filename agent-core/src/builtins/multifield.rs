@@ -11,6 +11,7 @@ use crate::engine::Core;
 use crate::error::{EvalError, EvalErrorKind};
 use crate::host::router;
 use crate::lexer::Lexer;
+use crate::value::Ix;
 use crate::value::{MfSpan, TextBuf, Value};
 use core::fmt::Write;
 
@@ -67,8 +68,8 @@ fn push_range(cx: &mut Core<'_>, m: MfSpan, from: usize, to: usize) -> Result<()
 /// A multifield holding elements `from..to` of `m` (a sub-span: no copy needed).
 fn slice(m: MfSpan, from: usize, to: usize) -> Value {
     Value::Multi(MfSpan {
-        start: m.start + from as u16,
-        len: to.saturating_sub(from) as u16,
+        start: m.start + from as Ix,
+        len: to.saturating_sub(from) as Ix,
     })
 }
 

@@ -8,9 +8,11 @@
 //! are skipped; facts asserted by them join the iteration as CLIPS's template lists
 //! let them (see `next_of_template`).
 
+use super::control::release_scratch;
 use super::{Builtin, ANY, SYM_FALSE};
 use crate::engine::Core;
 use crate::error::EvalError;
+use crate::value::Ix;
 use crate::value::{FactRef, Value, NONE};
 
 pub const FUNCS: &[Builtin] = &[
@@ -28,11 +30,11 @@ const MAX_VARS: usize = 8;
 /// The parsed shape of one query call.
 struct Query {
     /// `Local` nodes of the variables, in order.
-    vars: [u16; MAX_VARS],
+    vars: [Ix; MAX_VARS],
     nvars: usize,
     /// The query expression and the first action (NONE when there are none).
-    test: u16,
-    actions: u16,
+    test: Ix,
+    actions: Ix,
 }
 
 /// What to do with each tuple that satisfies the query.
@@ -57,7 +59,7 @@ struct Walk {
     last: Value,
 }
 
-fn parse(cx: &Core<'_>, call: u16) -> Result<Query, EvalError> {
+fn parse(cx: &Core<'_>, call: Ix) -> Result<Query, EvalError> {
     let decl = cx.exprs[call as usize].first;
     let test = cx.exprs[decl as usize].next;
     let actions = if test == NONE {
@@ -91,7 +93,7 @@ fn parse(cx: &Core<'_>, call: u16) -> Result<Query, EvalError> {
 }
 
 /// Does fact slot `f` belong to one of the templates listed under variable node `var`?
-fn fact_fits(cx: &Core<'_>, var: u16, f: u16) -> bool {
+fn fact_fits(cx: &Core<'_>, var: Ix, f: Ix) -> bool {
     let tmpl = cx.facts[f as usize].tmpl;
     let mut t = cx.exprs[var as usize].first;
     while t != NONE {
@@ -118,13 +120,24 @@ struct Resume {
 /// asserted after it (e.g. by `modify`) are not reached through it; we approximate the
 /// retraction time by the start of the actions (`counter`). A fact that is still live
 /// continues through its current link, so new facts join the iteration.
-fn next_of_template(cx: &Core<'_>, tmpl: u16, after: Option<Resume>) -> Option<u16> {
+fn next_of_template(cx: &Core<'_>, tmpl: Ix, after: Option<Resume>) -> Option<Ix> {
     let (mut f, lo, hi) = match after {
         None => (cx.st.fact_head, None, u32::MAX),
         // fast path: still linked, continue from its successor
         Some(r) if cx.fact_alive(r.fact) => (cx.facts[r.fact.slot as usize].next, None, u32::MAX),
         Some(r) => (cx.st.fact_head, Some(r.fact.num), r.counter),
     };
+    if lo.is_none() && hi == u32::MAX {
+        // the usual case: the next fact of the template, no number bounds to check
+        while f != NONE {
+            let fact = &cx.facts[f as usize];
+            if fact.tmpl == tmpl {
+                return Some(f);
+            }
+            f = fact.next;
+        }
+        return None;
+    }
     while f != NONE {
         let fact = &cx.facts[f as usize];
         if fact.num >= hi {
@@ -139,7 +152,7 @@ fn next_of_template(cx: &Core<'_>, tmpl: u16, after: Option<Resume>) -> Option<u
 }
 
 /// Sets the frame slot of query variable `k` to fact slot `f`.
-fn bind(cx: &mut Core<'_>, w: &mut Walk, k: usize, f: u16) {
+fn bind(cx: &mut Core<'_>, w: &mut Walk, k: usize, f: Ix) {
     let r = cx.fact_ref(f);
     w.cursor[k] = r;
     let at = (cx.st.bp + cx.exprs[w.q.vars[k] as usize].data) as usize;
@@ -215,34 +228,16 @@ fn visit(cx: &mut Core<'_>, w: &mut Walk) -> Result<bool, EvalError> {
 }
 
 /// Scratch mark that keeps a multifield result alive.
-fn keep_value(mark: u16, v: Value) -> u16 {
+fn keep_value(mark: Ix, v: Value) -> Ix {
     match v {
         Value::Multi(m) => mark.max(m.start + m.len),
         _ => mark,
     }
 }
 
-/// Resets scratch to `mark` unless a variable (frame or global) still refers above it.
-fn release_scratch(cx: &mut Core<'_>, mark: u16) {
-    let mut keep = mark;
-    for v in cx.stack[..cx.st.sp as usize].iter() {
-        if let Value::Multi(m) = *v {
-            keep = keep.max(m.start + m.len);
-        }
-    }
-    for g in cx.globals[..cx.st.nglobals as usize].iter() {
-        if let Value::Multi(m) = g.value {
-            keep = keep.max(m.start + m.len);
-        }
-    }
-    if keep < cx.st.scratch_top {
-        cx.st.scratch_top = keep;
-    }
-}
-
 fn run(
     cx: &mut Core<'_>,
-    call: u16,
+    call: Ix,
     mode: Mode,
     collect: bool,
     act: bool,
@@ -261,38 +256,38 @@ fn run(
     Ok(w)
 }
 
-fn any_factp(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
+fn any_factp(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     let w = run(cx, call, Mode::First, false, false)?;
     Ok(Core::bool_value(w.found))
 }
 
-fn find_fact(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
+fn find_fact(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     let start = cx.multi_begin();
     run(cx, call, Mode::First, true, false)?;
     Ok(cx.multi_finish(start))
 }
 
 /// All matching tuples, flattened: `(<Fact-1> <Fact-2> <Fact-3> <Fact-2>)`.
-fn find_all_facts(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
+fn find_all_facts(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     let start = cx.multi_begin();
     run(cx, call, Mode::All, true, false)?;
     Ok(cx.multi_finish(start))
 }
 
 /// The value of the last action for the first matching tuple, FALSE without a match.
-fn do_for_fact(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
+fn do_for_fact(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     Ok(run(cx, call, Mode::First, false, true)?.last)
 }
 
 /// The value of the last action of the last matching tuple, FALSE without a match.
-fn do_for_all_facts(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
+fn do_for_all_facts(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     Ok(run(cx, call, Mode::All, false, true)?.last)
 }
 
 /// Finds every matching tuple first, then runs the actions for each of them, even for
 /// facts the actions retracted meanwhile (as CLIPS 6.30 does). The value of the last
 /// action of the last tuple, FALSE without a match.
-fn delayed_do_for_all_facts(cx: &mut Core<'_>, call: u16) -> Result<Value, EvalError> {
+fn delayed_do_for_all_facts(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     let start = cx.multi_begin();
     let w = run(cx, call, Mode::All, true, false)?;
     let tuples = match cx.multi_finish(start) {

@@ -7,6 +7,7 @@ use crate::error::Pool;
 use crate::expr::Op;
 use crate::lexer::Tok;
 use crate::template::{Deffacts, Deffunction, Global, SlotDef, Template};
+use crate::value::Ix;
 use crate::value::{Value, NONE};
 
 impl<'s> Parser<'s, '_, '_> {
@@ -43,7 +44,7 @@ impl<'s> Parser<'s, '_, '_> {
             return Err(self.cap_err(nt, c));
         }
         let first_slot = self.cx.st.nslots;
-        let mut nslots = 0u16;
+        let mut nslots = 0 as Ix;
         loop {
             let t = self.next();
             match t.tok {
@@ -188,7 +189,7 @@ impl<'s> Parser<'s, '_, '_> {
                 }
                 self.cx.st.nfuncs += 1;
                 self.cx.note_hw(Pool::Functions, n + 1);
-                n as u16
+                n as Ix
             }
         };
         let old = self.cx.funcs[f as usize];
@@ -293,7 +294,7 @@ impl<'s> Parser<'s, '_, '_> {
                         value: Value::Void,
                         init,
                     };
-                    if let Err(c) = self.cx.set_global(g as u16, v) {
+                    if let Err(c) = self.cx.set_global(g as Ix, v) {
                         return Err(self.cap_err(t, c));
                     }
                 }

@@ -4,11 +4,12 @@ use super::{argtypes, PResult, Parser, Scope, VarKind};
 use crate::builtins::{self, Syntax};
 use crate::expr::{Expr, FnKind, Op};
 use crate::lexer::{Lexer, Tok, Token};
+use crate::value::Ix;
 use crate::value::{TextBuf, Value, NONE};
 
 impl<'s> Parser<'s, '_, '_> {
     /// Interns a string literal's contents with `\"` and `\\` unescaped.
-    pub fn string_const(&mut self, raw: &str) -> PResult<u16> {
+    pub fn string_const(&mut self, raw: &str) -> PResult<Ix> {
         let mut b: TextBuf<1024> = TextBuf::new();
         let mut esc = false;
         for ch in raw.chars() {
@@ -27,7 +28,7 @@ impl<'s> Parser<'s, '_, '_> {
     }
 
     /// A constant node from a literal token, or None if the token is no literal.
-    pub fn literal(&mut self, t: Token<'s>) -> PResult<Option<u16>> {
+    pub fn literal(&mut self, t: Token<'s>) -> PResult<Option<Ix>> {
         let r = match t.tok {
             Tok::Int(i) => self.cx.push_const(Value::Int(i)),
             Tok::IntOverflow(i) => {
@@ -49,11 +50,11 @@ impl<'s> Parser<'s, '_, '_> {
     }
 
     /// Reads one expression.
-    pub fn parse_expr(&mut self) -> PResult<u16> {
+    pub fn parse_expr(&mut self) -> PResult<Ix> {
         self.nested(|p| p.parse_expr_inner())
     }
 
-    fn parse_expr_inner(&mut self) -> PResult<u16> {
+    fn parse_expr_inner(&mut self) -> PResult<Ix> {
         let t = self.next();
         if let Some(c) = self.literal(t)? {
             return Ok(c);
@@ -74,7 +75,7 @@ impl<'s> Parser<'s, '_, '_> {
         }
     }
 
-    pub fn global_ref(&mut self, t: Token<'s>, name: &str) -> PResult<u16> {
+    pub fn global_ref(&mut self, t: Token<'s>, name: &str) -> PResult<Ix> {
         let id = self.cx.find_sym(name);
         let g = id.and_then(|id| {
             (0..self.cx.st.nglobals).find(|&g| self.cx.globals[g as usize].name == id)
@@ -89,7 +90,7 @@ impl<'s> Parser<'s, '_, '_> {
     }
 
     /// A variable reference node.
-    pub fn var_ref(&mut self, t: Token<'s>, name: &'s str, _multi: bool) -> PResult<u16> {
+    pub fn var_ref(&mut self, t: Token<'s>, name: &'s str, _multi: bool) -> PResult<Ix> {
         if let Some((var, slot)) = name.split_once(':') {
             if self.find_var(var).is_some() && !slot.is_empty() {
                 return self.query_slot_ref(t, var, slot);
@@ -120,7 +121,7 @@ impl<'s> Parser<'s, '_, '_> {
     }
 
     /// Top-level `?x` lives in a hidden global named `?x`.
-    fn toplevel_var(&mut self, t: Token<'s>, name: &str) -> PResult<u16> {
+    fn toplevel_var(&mut self, t: Token<'s>, name: &str) -> PResult<Ix> {
         let mut b: TextBuf<128> = TextBuf::new();
         let _ = core::fmt::Write::write_fmt(&mut b, format_args!("?{name}"));
         let id = self.cx.intern(b.as_str());
@@ -140,22 +141,22 @@ impl<'s> Parser<'s, '_, '_> {
             init: NONE,
         };
         self.cx.st.nglobals += 1;
-        Ok(n as u16)
+        Ok(n as Ix)
     }
 
-    fn push_call(&mut self, kind: FnKind, id: u16) -> PResult<u16> {
+    fn push_call(&mut self, kind: FnKind, id: Ix) -> PResult<Ix> {
         let e = self.cx.push_expr(Expr::new(Op::Call, kind as u8, id));
         cap!(self, e)
     }
 
     /// Builtin call node by name (for desugaring special forms).
-    pub fn builtin_call(&mut self, name: &'static str) -> PResult<u16> {
+    pub fn builtin_call(&mut self, name: &'static str) -> PResult<Ix> {
         let (id, _) = builtins::lookup(name).unwrap_or((0, &builtins::basic::FUNCS[0]));
         self.push_call(FnKind::Builtin, id)
     }
 
     /// Parses arguments until `)`, appending them to `call`; returns their count.
-    pub fn args_until_rparen(&mut self, call: u16) -> PResult<u16> {
+    pub fn args_until_rparen(&mut self, call: Ix) -> PResult<Ix> {
         let mut n = 0;
         loop {
             let t = self.peek();
@@ -175,7 +176,7 @@ impl<'s> Parser<'s, '_, '_> {
     }
 
     /// `(name args...)` after the `(`.
-    fn call(&mut self) -> PResult<u16> {
+    fn call(&mut self) -> PResult<Ix> {
         let nt = self.next();
         let name = match nt.tok {
             Tok::Symbol(s) => s,
@@ -202,7 +203,7 @@ impl<'s> Parser<'s, '_, '_> {
                 let n = self.args_until_rparen(call)?;
                 let df = self.cx.funcs[f as usize];
                 if f != self.defining_fn
-                    && (n < df.nparams as u16 || (!df.rest && n > df.nparams as u16))
+                    && (n < df.nparams as Ix || (!df.rest && n > df.nparams as Ix))
                 {
                     return Err(self.err(nt, "the deffunction's number of arguments"));
                 }
@@ -264,7 +265,7 @@ impl<'s> Parser<'s, '_, '_> {
     fn check_literal_args(
         &mut self,
         func: &'static str,
-        call: u16,
+        call: Ix,
         args_at: (Lexer<'s>, Option<Token<'s>>),
     ) -> PResult<()> {
         let mut c = self.cx.exprs[call as usize].first;
@@ -285,7 +286,7 @@ impl<'s> Parser<'s, '_, '_> {
                 let mut e = self.err(at, ty.expected());
                 e.detail = crate::error::LoadDetail::ArgType {
                     func,
-                    arg: k as u16 + 1,
+                    arg: k as Ix + 1,
                     expected: ty.clips_name(),
                 };
                 return Err(e);
@@ -302,14 +303,14 @@ impl<'s> Parser<'s, '_, '_> {
     }
 
     /// Actions until `)`, wrapped in a `progn` node.
-    pub fn action_block(&mut self) -> PResult<u16> {
+    pub fn action_block(&mut self) -> PResult<Ix> {
         let p = self.builtin_call("progn")?;
         self.args_until_rparen(p)?;
         Ok(p)
     }
 
     /// Actions until one of the keywords or `)`; the stopping token is not consumed.
-    fn actions_until(&mut self, stop: &[&str]) -> PResult<u16> {
+    fn actions_until(&mut self, stop: &[&str]) -> PResult<Ix> {
         let p = self.builtin_call("progn")?;
         loop {
             let t = self.peek();
@@ -325,7 +326,7 @@ impl<'s> Parser<'s, '_, '_> {
         }
     }
 
-    fn parse_if(&mut self) -> PResult<u16> {
+    fn parse_if(&mut self) -> PResult<Ix> {
         let node = self.builtin_call("if")?;
         let cond = self.parse_expr()?;
         self.cx.append_child(node, cond);
@@ -347,7 +348,7 @@ impl<'s> Parser<'s, '_, '_> {
         }
     }
 
-    fn parse_while(&mut self) -> PResult<u16> {
+    fn parse_while(&mut self) -> PResult<Ix> {
         let node = self.builtin_call("while")?;
         let cond = self.parse_expr()?;
         self.cx.append_child(node, cond);
@@ -361,7 +362,7 @@ impl<'s> Parser<'s, '_, '_> {
 
     /// Node for assigning to variable `name`: a frame local (created if new) or, at
     /// top level, a hidden global.
-    fn assign_target(&mut self, t: Token<'s>, name: &'s str) -> PResult<u16> {
+    fn assign_target(&mut self, t: Token<'s>, name: &'s str) -> PResult<Ix> {
         if let Some(v) = self.find_var(name) {
             if let VarKind::Local(s) = v.kind {
                 let e = self.cx.push_expr(Expr::new(Op::Local, 0, s));
@@ -384,7 +385,7 @@ impl<'s> Parser<'s, '_, '_> {
         }
     }
 
-    fn parse_bind(&mut self) -> PResult<u16> {
+    fn parse_bind(&mut self) -> PResult<Ix> {
         let node = self.builtin_call("bind")?;
         let t = self.next();
         let name = match t.tok {
@@ -415,7 +416,7 @@ impl<'s> Parser<'s, '_, '_> {
         Ok(node)
     }
 
-    fn parse_loop_for_count(&mut self) -> PResult<u16> {
+    fn parse_loop_for_count(&mut self) -> PResult<Ix> {
         let node = self.builtin_call("loop-for-count")?;
         let t = self.peek();
         let (var, start, end);
@@ -459,7 +460,7 @@ impl<'s> Parser<'s, '_, '_> {
 
     /// `(progn$ (?v list) body)` or `(foreach ?v list body)`; `?v-index` is the next
     /// frame slot.
-    fn parse_foreach(&mut self, name: &'static str) -> PResult<u16> {
+    fn parse_foreach(&mut self, name: &'static str) -> PResult<Ix> {
         let node = self.builtin_call(name)?;
         let paren = self.peek().tok == Tok::LParen;
         if paren {
@@ -492,7 +493,7 @@ impl<'s> Parser<'s, '_, '_> {
     }
 
     /// Registers `?name-index` by scanning ahead for its spelling in the source.
-    fn index_var(&mut self, at: Token<'s>, vname: &'s str, slot: u16) -> PResult<()> {
+    fn index_var(&mut self, at: Token<'s>, vname: &'s str, slot: Ix) -> PResult<()> {
         let src = self.lex.source();
         let pos = self.lex.pos();
         let rest = &src[pos..];
@@ -509,7 +510,7 @@ impl<'s> Parser<'s, '_, '_> {
         Ok(())
     }
 
-    fn parse_switch(&mut self) -> PResult<u16> {
+    fn parse_switch(&mut self) -> PResult<Ix> {
         let node = self.builtin_call("switch")?;
         let e = self.parse_expr()?;
         self.cx.append_child(node, e);
@@ -548,7 +549,7 @@ impl<'s> Parser<'s, '_, '_> {
 
     /// Fact-set query arguments: `((?v tmpl...)...)` then ordinary expressions, where
     /// `?v:slot` reads a slot of the bound fact.
-    fn query_args(&mut self, call: u16) -> PResult<u16> {
+    fn query_args(&mut self, call: Ix) -> PResult<Ix> {
         let decl = cap!(self, self.cx.push_expr(Expr::new(Op::Nop, 0, 0)))?;
         self.cx.append_child(call, decl);
         self.expect_lparen("'(' opening the query variables")?;
@@ -591,7 +592,7 @@ impl<'s> Parser<'s, '_, '_> {
     }
 
     /// `?v:slot` inside a query: `(fact-slot-value ?v slot)`.
-    pub fn query_slot_ref(&mut self, t: Token<'s>, var: &'s str, slot: &'s str) -> PResult<u16> {
+    pub fn query_slot_ref(&mut self, t: Token<'s>, var: &'s str, slot: &'s str) -> PResult<Ix> {
         let v = self.var_ref(t, var, false)?;
         let call = self.builtin_call("fact-slot-value")?;
         self.cx.append_child(call, v);

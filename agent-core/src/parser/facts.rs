@@ -8,6 +8,7 @@ use crate::error::{EvalErrorKind, LoadDetail};
 use crate::expr::{loc, Expr, Op};
 use crate::lexer::{Tok, Token};
 use crate::template::{DefaultKind, SlotDef};
+use crate::value::Ix;
 use crate::value::NONE;
 
 /// Which check a literal failed.
@@ -18,7 +19,7 @@ pub(super) enum Violation {
 }
 
 impl<'s> Parser<'s, '_, '_> {
-    pub(super) fn parse_assert(&mut self) -> PResult<u16> {
+    pub(super) fn parse_assert(&mut self) -> PResult<Ix> {
         let node = self.builtin_call("assert")?;
         let mut n = 0;
         loop {
@@ -36,7 +37,7 @@ impl<'s> Parser<'s, '_, '_> {
     }
 
     /// `(name ...)` after the `(`: a `FactSpec` node.
-    pub fn fact_spec(&mut self) -> PResult<u16> {
+    pub fn fact_spec(&mut self) -> PResult<Ix> {
         let nt = self.next();
         let name = match nt.tok {
             Tok::Symbol(s) => s,
@@ -86,7 +87,7 @@ impl<'s> Parser<'s, '_, '_> {
     }
 
     /// The index of the slot named by token `st` in deftemplate `tmpl`.
-    pub(super) fn slot_of(&mut self, tmpl: u16, st: Token<'s>) -> PResult<u16> {
+    pub(super) fn slot_of(&mut self, tmpl: Ix, st: Token<'s>) -> PResult<Ix> {
         let sname = match st.tok {
             Tok::Symbol(s) => s,
             _ => return Err(self.err(st, "a slot name")),
@@ -105,7 +106,7 @@ impl<'s> Parser<'s, '_, '_> {
     }
 
     /// Whether a `SlotVal` child of `node` already has `data == key`.
-    fn slot_given(&self, node: u16, key: u16) -> bool {
+    fn slot_given(&self, node: Ix, key: Ix) -> bool {
         let mut c = self.cx.exprs[node as usize].first;
         while c != NONE {
             let x = self.cx.exprs[c as usize];
@@ -122,12 +123,12 @@ impl<'s> Parser<'s, '_, '_> {
     /// slot's type and allowed values (reported at the literal).
     fn slot_values(
         &mut self,
-        sv: u16,
+        sv: Ix,
         def: &SlotDef,
         st: Token<'s>,
         command: &'static str,
     ) -> PResult<()> {
-        let mut n = 0u16;
+        let mut n = 0 as Ix;
         loop {
             let t = self.peek();
             match t.tok {
@@ -167,7 +168,7 @@ impl<'s> Parser<'s, '_, '_> {
 
     /// How a literal expression node breaks a slot's restrictions (None for a literal
     /// that fits, and for anything that is not a literal: checked when it runs).
-    pub(super) fn literal_violation(&self, def: &SlotDef, e: u16) -> Option<Violation> {
+    pub(super) fn literal_violation(&self, def: &SlotDef, e: Ix) -> Option<Violation> {
         if !matches!(
             self.cx.exprs[e as usize].op,
             Op::Int | Op::Float | Op::Sym | Op::Str
@@ -188,7 +189,7 @@ impl<'s> Parser<'s, '_, '_> {
 
     /// The deftemplate of the fact a `modify`/`duplicate` target expression names, when
     /// the parser knows it: a fact-address variable bound to a deftemplate pattern.
-    fn target_template(&self, target: u16) -> Option<u16> {
+    fn target_template(&self, target: Ix) -> Option<Ix> {
         let x = self.cx.exprs[target as usize];
         if x.op != Op::PatVar || x.data != loc::FACT {
             return None;
@@ -203,7 +204,7 @@ impl<'s> Parser<'s, '_, '_> {
     /// `(modify ?f (slot v...)...)`: slot values carry the slot *name* symbol (the
     /// template is known only at run time in general). When `?f` is bound to a
     /// deftemplate pattern, slots and literal values are checked now, as CLIPS does.
-    pub(super) fn parse_modify(&mut self, name: &'static str) -> PResult<u16> {
+    pub(super) fn parse_modify(&mut self, name: &'static str) -> PResult<Ix> {
         let node = self.builtin_call(name)?;
         let target_at = self.peek();
         let f = self.parse_expr()?;

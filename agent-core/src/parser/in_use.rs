@@ -7,10 +7,11 @@ use crate::builtins::{self, Syntax};
 use crate::engine::Core;
 use crate::expr::{FnKind, Op};
 use crate::fact::FactState;
+use crate::value::Ix;
 use crate::value::{SymId, NONE};
 
 impl Core<'_> {
-    pub(crate) fn template_in_use(&self, tmpl: u16) -> bool {
+    pub(crate) fn template_in_use(&self, tmpl: Ix) -> bool {
         let name = self.templates[tmpl as usize].name;
         if self
             .facts
@@ -43,7 +44,7 @@ impl Core<'_> {
                 j = join.parent;
             }
         }
-        let uses = |e: u16| self.chain_uses(e, tmpl, name);
+        let uses = |e: Ix| self.chain_uses(e, tmpl, name);
         self.funcs[..self.st.nfuncs as usize]
             .iter()
             .any(|f| uses(f.body))
@@ -60,7 +61,7 @@ impl Core<'_> {
 
     /// Whether an expression chain (a node and its next siblings) refers to the
     /// template: a fact spec of it, or a fact-set query over it.
-    fn chain_uses(&self, mut e: u16, tmpl: u16, name: SymId) -> bool {
+    fn chain_uses(&self, mut e: Ix, tmpl: Ix, name: SymId) -> bool {
         while e != NONE {
             if self.expr_uses(e, tmpl, name) {
                 return true;
@@ -70,7 +71,7 @@ impl Core<'_> {
         false
     }
 
-    fn expr_uses(&self, e: u16, tmpl: u16, name: SymId) -> bool {
+    fn expr_uses(&self, e: Ix, tmpl: Ix, name: SymId) -> bool {
         let x = self.exprs[e as usize];
         match x.op {
             // constants keep their payload, pattern variables their descriptor, in

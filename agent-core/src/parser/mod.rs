@@ -24,6 +24,7 @@ use crate::engine::Core;
 use crate::error::{CapacityError, LoadError};
 use crate::lexer::{Lexer, Tok, Token};
 use crate::rete::MAX_PATTERNS;
+use crate::value::Ix;
 use crate::value::NONE;
 
 /// Most variables visible at once while parsing one construct.
@@ -38,9 +39,9 @@ const _: () = assert!(MAX_NESTING == 200, "update the text of the nesting error"
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum VarKind {
     /// Bound by an LHS pattern: pattern index, field locator, multislot descriptor.
-    Pat { pat: u8, loc: u16, desc: u16 },
+    Pat { pat: u8, loc: Ix, desc: Ix },
     /// A frame slot (RHS `bind`, deffunction parameter, loop variable).
-    Local(u16),
+    Local(Ix),
 }
 
 #[derive(Clone, Copy, Debug)]
@@ -67,18 +68,18 @@ pub struct Parser<'s, 'c, 'e> {
     pub cx: &'c mut Core<'e>,
     pub vars: [VarEntry<'s>; MAX_VARS],
     pub nvars: usize,
-    pub nlocals: u16,
+    pub nlocals: Ix,
     pub scope: Scope,
     /// Construct being parsed, for error messages.
     pub construct: &'static str,
     /// Deffunction being defined (for recursive calls), NONE otherwise.
-    pub defining_fn: u16,
+    pub defining_fn: Ix,
     /// `+j`/`=j` per join of the last defrule (new or shared), for `watch compilations`.
     pub join_marks: [u8; 64],
     pub njm: usize,
     /// Deftemplate of each LHS pattern of the rule being parsed (NONE when unknown),
     /// so `modify ?f` on the RHS can check slots at parse time.
-    pub pat_tmpl: [u16; MAX_PATTERNS],
+    pub pat_tmpl: [Ix; MAX_PATTERNS],
     /// The deftemplate slot whose LHS constraint is being parsed (None for ordered
     /// facts): literals in it must fit its type and allowed values.
     pub lhs_slot: Option<crate::template::SlotDef>,
@@ -271,7 +272,7 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
     }
 
     /// A new frame local for `name`.
-    pub fn new_local(&mut self, at: Token<'s>, name: &'s str, multi: bool) -> PResult<u16> {
+    pub fn new_local(&mut self, at: Token<'s>, name: &'s str, multi: bool) -> PResult<Ix> {
         let slot = self.nlocals;
         self.nlocals += 1;
         self.add_var(at, name, VarKind::Local(slot), multi)?;
@@ -284,7 +285,7 @@ pub enum Item {
     /// A construct was defined.
     Construct,
     /// A command/expression to evaluate: its root expression node.
-    Command(u16),
+    Command(Ix),
     /// End of input.
     End,
 }

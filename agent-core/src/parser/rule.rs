@@ -11,6 +11,7 @@ use crate::rete::{
     THIS_PATTERN,
 };
 use crate::rule::Rule;
+use crate::value::Ix;
 use crate::value::{SymId, Value, NONE};
 
 /// Most `or` CEs in one rule.
@@ -25,12 +26,12 @@ const CE_ROOT: u8 = 0xFF;
 #[derive(Clone, Copy)]
 struct Ce {
     kind: JoinKind,
-    alpha: u16,
+    alpha: Ix,
     /// Join tests (chain) and post tests (after not/exists).
-    jtests: u16,
-    jlast: u16,
-    post: u16,
-    plast: u16,
+    jtests: Ix,
+    jlast: Ix,
+    post: Ix,
+    plast: Ix,
     /// Pattern index (binding slot) of the CE in its chain.
     depth: u8,
     /// Left input: index of the CE before it in its chain, or CE_ROOT.
@@ -184,9 +185,9 @@ impl<'s> Parser<'s, '_, '_> {
     /// from `j` up to `stop`; a subnetwork is primed after the join taking it.
     fn prime_chain(
         &mut self,
-        mut j: u16,
-        first_new: u16,
-        stop: u16,
+        mut j: Ix,
+        first_new: Ix,
+        stop: Ix,
         primed: &mut Primed,
     ) -> Result<(), crate::error::EvalError> {
         while j != NONE && j != 0 && j != stop {
@@ -220,7 +221,7 @@ impl<'s> Parser<'s, '_, '_> {
     }
 
     /// One disjunct: LHS (with the current or-choices), RHS, then the network.
-    fn rule_body(&mut self, name: SymId, b: &mut Build) -> PResult<u16> {
+    fn rule_body(&mut self, name: SymId, b: &mut Build) -> PResult<Ix> {
         self.ce_count = 0;
         let mut salience = (0i32, NONE);
         // (declare (salience N))
@@ -261,7 +262,7 @@ impl<'s> Parser<'s, '_, '_> {
         self.build_rule(name, salience, b, rhs)
     }
 
-    fn declare(&mut self) -> PResult<(i32, u16)> {
+    fn declare(&mut self) -> PResult<(i32, Ix)> {
         let mut sal = 0;
         let mut sal_expr = NONE;
         let mut seen_salience = false;
@@ -518,7 +519,7 @@ impl<'s> Parser<'s, '_, '_> {
         Ok(())
     }
 
-    fn attach_test_ce(&mut self, b: &mut Build, e: u16, at: Token<'s>) -> PResult<()> {
+    fn attach_test_ce(&mut self, b: &mut Build, e: Ix, at: Token<'s>) -> PResult<()> {
         if b.cur == CE_ROOT || (b.groups > 0 && b.n == b.group_first as usize) {
             // a leading test: a test join of its own (a pattern slot shown as `*`)
             if b.n >= MAX_PATTERNS || b.depth as usize >= MAX_PATTERNS {
@@ -555,7 +556,7 @@ impl<'s> Parser<'s, '_, '_> {
         Ok(())
     }
 
-    fn chain_push(&mut self, head: &mut u16, last: &mut u16, e: u16) {
+    fn chain_push(&mut self, head: &mut Ix, last: &mut Ix, e: Ix) {
         if *head == NONE {
             *head = e;
         } else {
@@ -698,7 +699,7 @@ impl<'s> Parser<'s, '_, '_> {
         let ps = cap!(
             self,
             self.cx
-                .push_expr(Expr::new(Op::PatSlot, pb.marks, slot as u16))
+                .push_expr(Expr::new(Op::PatSlot, pb.marks, slot as Ix))
         )?;
         let mut i = 0u8;
         let mut multis = 0u8;
@@ -718,7 +719,7 @@ impl<'s> Parser<'s, '_, '_> {
                     let el = cap!(
                         self,
                         self.cx
-                            .push_expr(Expr::new(Op::PatElem, u8::from(multi), i as u16))
+                            .push_expr(Expr::new(Op::PatElem, u8::from(multi), i as Ix))
                     )?;
                     self.cx.append_child(ps, el);
                     let at = match test {
@@ -748,7 +749,7 @@ impl<'s> Parser<'s, '_, '_> {
 
     /// Puts a field test in the alpha node (if it needs only this pattern) or the join.
     /// Returns the test if it went to the alpha node, else NONE.
-    fn classify(&mut self, pb: &mut PatBuild, p: u8, e: u16) -> u16 {
+    fn classify(&mut self, pb: &mut PatBuild, p: u8, e: Ix) -> Ix {
         if self.refs_earlier(e, p) {
             let (mut h, mut l) = (pb.jtests, pb.jlast);
             Self::chain_push(self, &mut h, &mut l, e);
@@ -765,7 +766,7 @@ impl<'s> Parser<'s, '_, '_> {
         }
     }
 
-    fn refs_earlier(&self, e: u16, p: u8) -> bool {
+    fn refs_earlier(&self, e: Ix, p: u8) -> bool {
         let x = self.cx.exprs[e as usize];
         if x.op == Op::PatVar {
             return x.aux != p && x.aux != THIS_PATTERN;
@@ -784,7 +785,7 @@ impl<'s> Parser<'s, '_, '_> {
         false
     }
 
-    fn retarget(&mut self, e: u16, p: u8) {
+    fn retarget(&mut self, e: Ix, p: u8) {
         let x = self.cx.exprs[e as usize];
         if x.op == Op::PatVar {
             if x.aux == p {
@@ -803,7 +804,7 @@ impl<'s> Parser<'s, '_, '_> {
         }
     }
 
-    fn this_field(&mut self, p: u8, locv: u16, desc: u16) -> PResult<u16> {
+    fn this_field(&mut self, p: u8, locv: Ix, desc: Ix) -> PResult<Ix> {
         let e = self.cx.push_expr(Expr {
             first: desc,
             ..Expr::new(Op::PatVar, p, locv)
@@ -811,7 +812,7 @@ impl<'s> Parser<'s, '_, '_> {
         cap!(self, e)
     }
 
-    fn node2(&mut self, op: Op, a: u16, b: u16) -> PResult<u16> {
+    fn node2(&mut self, op: Op, a: Ix, b: Ix) -> PResult<Ix> {
         let n = cap!(self, self.cx.push_expr(Expr::new(op, 0, 0)))?;
         self.cx.exprs[n as usize].first = a;
         if b != NONE {
@@ -821,7 +822,7 @@ impl<'s> Parser<'s, '_, '_> {
     }
 
     /// One field constraint: returns (is multifield, test expression).
-    fn field(&mut self, p: u8, locv: u16, desc: u16) -> PResult<(bool, Option<u16>)> {
+    fn field(&mut self, p: u8, locv: Ix, desc: Ix) -> PResult<(bool, Option<Ix>)> {
         let t = self.peek();
         let mut multi = false;
         let mut bound_first = false;
@@ -866,7 +867,7 @@ impl<'s> Parser<'s, '_, '_> {
         Ok((multi, Some(e)))
     }
 
-    fn or_constraint(&mut self, p: u8, locv: u16, desc: u16, multi: &mut bool) -> PResult<u16> {
+    fn or_constraint(&mut self, p: u8, locv: Ix, desc: Ix, multi: &mut bool) -> PResult<Ix> {
         let first = self.and_constraint(p, locv, desc, multi)?;
         if self.peek().tok != Tok::Bar {
             return Ok(first);
@@ -881,7 +882,7 @@ impl<'s> Parser<'s, '_, '_> {
         Ok(or)
     }
 
-    fn and_constraint(&mut self, p: u8, locv: u16, desc: u16, multi: &mut bool) -> PResult<u16> {
+    fn and_constraint(&mut self, p: u8, locv: Ix, desc: Ix, multi: &mut bool) -> PResult<Ix> {
         let first = self.term(p, locv, desc, multi)?;
         if self.peek().tok != Tok::Amp {
             return Ok(first);
@@ -896,11 +897,11 @@ impl<'s> Parser<'s, '_, '_> {
         Ok(and)
     }
 
-    fn term(&mut self, p: u8, locv: u16, desc: u16, multi: &mut bool) -> PResult<u16> {
+    fn term(&mut self, p: u8, locv: Ix, desc: Ix, multi: &mut bool) -> PResult<Ix> {
         self.nested(|parser| parser.term_inner(p, locv, desc, multi))
     }
 
-    fn term_inner(&mut self, p: u8, locv: u16, desc: u16, multi: &mut bool) -> PResult<u16> {
+    fn term_inner(&mut self, p: u8, locv: Ix, desc: Ix, multi: &mut bool) -> PResult<Ix> {
         let t = self.next();
         match t.tok {
             Tok::Tilde => {
@@ -967,7 +968,7 @@ impl<'s> Parser<'s, '_, '_> {
         }
     }
 
-    fn find_or_make_alpha(&mut self, tmpl: u16, pb: &PatBuild, at: Token<'s>) -> PResult<u16> {
+    fn find_or_make_alpha(&mut self, tmpl: Ix, pb: &PatBuild, at: Token<'s>) -> PResult<Ix> {
         let mut a = self.cx.templates[tmpl as usize].alpha_head;
         while a != NONE {
             let n = self.cx.alphas[a as usize];
@@ -998,7 +999,7 @@ impl<'s> Parser<'s, '_, '_> {
                     h = mix16(h, u32::from(d.data) | u32::from(d.aux) << 16);
                 }
             }
-            path_test[plen - 1] = mix16(u32::from(path_test[plen - 1]), h) as u16 | 1;
+            path_test[plen - 1] = (mix16(u32::from(path_test[plen - 1]), h) & 0xFFFF) as Ix | 1;
         }
         self.cx.alphas[n] = AlphaNode {
             tmpl,
@@ -1017,17 +1018,17 @@ impl<'s> Parser<'s, '_, '_> {
             rhash: pb.rhash,
             nrhash: pb.nrhash as u8,
         };
-        self.assign_trie_key(tmpl, n as u16);
-        self.insert_alpha_sorted(tmpl, n as u16);
+        self.assign_trie_key(tmpl, n as Ix);
+        self.insert_alpha_sorted(tmpl, n as Ix);
         self.cx.st.nalpha += 1;
         self.cx.note_hw(Pool::AlphaNodes, n + 1);
-        Ok(n as u16)
+        Ok(n as Ix)
     }
 
     /// The pattern-network path of a pattern: its fields in slot order; trailing
     /// untested single-field slots of a deftemplate pattern make no node (CLIPS
     /// shares such patterns); an empty path gets one placeholder node.
-    fn pattern_path(&self, tmpl: u16, pb: &PatBuild) -> ([u16; PATH_LEN], [u16; PATH_LEN], usize) {
+    fn pattern_path(&self, tmpl: Ix, pb: &PatBuild) -> ([Ix; PATH_LEN], [Ix; PATH_LEN], usize) {
         let mut f = pb.fields;
         let nf = pb.nfields;
         f[..nf].sort_unstable_by_key(|x| x.0);
@@ -1039,8 +1040,8 @@ impl<'s> Parser<'s, '_, '_> {
             }
         }
         // single slots are one node each; a multislot's elements form one node
-        let mut locs = [0u16; PATH_LEN];
-        let mut tests = [0u16; PATH_LEN];
+        let mut locs = [0 as Ix; PATH_LEN];
+        let mut tests = [0 as Ix; PATH_LEN];
         let mut len = 0;
         let mut i = 0;
         while i < end && len < PATH_LEN {
@@ -1068,7 +1069,7 @@ impl<'s> Parser<'s, '_, '_> {
                     i += 1;
                 }
                 locs[len] = loc::new(slot, 0xFE);
-                tests[len] = (h ^ (h >> 16)) as u16;
+                tests[len] = ((h ^ (h >> 16)) & 0xFFFF) as Ix;
             }
             len += 1;
         }
@@ -1081,9 +1082,9 @@ impl<'s> Parser<'s, '_, '_> {
 
     /// Gives each level of the new alpha node's path the id of the identical node of
     /// an existing pattern (same prefix), or a new id.
-    fn assign_trie_key(&mut self, tmpl: u16, n: u16) {
+    fn assign_trie_key(&mut self, tmpl: Ix, n: Ix) {
         let me = self.cx.alphas[n as usize];
-        let mut key = [0u16; PATH_LEN];
+        let mut key = [0 as Ix; PATH_LEN];
         for lvl in 0..me.key_len as usize {
             let mut id = 0;
             let mut a = self.cx.templates[tmpl as usize].alpha_head;
@@ -1110,7 +1111,7 @@ impl<'s> Parser<'s, '_, '_> {
 
     /// Structural hash of an expression tree (orders alpha nodes; never decides
     /// sharing, which compares exactly).
-    fn expr_hash(&self, e: u16) -> u16 {
+    fn expr_hash(&self, e: Ix) -> Ix {
         let x = self.cx.exprs[e as usize];
         let mut h = mix16(0x9e37, x.op as u32);
         h = mix16(h, x.aux as u32);
@@ -1126,12 +1127,12 @@ impl<'s> Parser<'s, '_, '_> {
                 c = self.cx.exprs[c as usize].next;
             }
         }
-        ((h ^ (h >> 16)) as u16).max(2)
+        (((h ^ (h >> 16)) & 0xFFFF) as Ix).max(2)
     }
 
     /// Keeps a template's alpha nodes in pattern-network order: depth first, newer
     /// sibling nodes first, a pattern's own node before longer ones.
-    fn insert_alpha_sorted(&mut self, tmpl: u16, n: u16) {
+    fn insert_alpha_sorted(&mut self, tmpl: Ix, n: Ix) {
         let me = self.cx.alphas[n as usize];
         let mut prev = NONE;
         let mut a = self.cx.templates[tmpl as usize].alpha_head;
@@ -1175,7 +1176,7 @@ impl<'s> Parser<'s, '_, '_> {
     }
 
     /// Whether two pattern-variable expressions name the same field (any pattern).
-    fn same_field(&self, a: u16, b: u16) -> bool {
+    fn same_field(&self, a: Ix, b: Ix) -> bool {
         let (x, y) = (self.cx.exprs[a as usize], self.cx.exprs[b as usize]);
         x.data == y.data
             && ((x.first == NONE && y.first == NONE)
@@ -1188,7 +1189,7 @@ impl<'s> Parser<'s, '_, '_> {
                 }))
     }
 
-    fn chain_eq(&self, mut a: u16, mut b: u16) -> bool {
+    fn chain_eq(&self, mut a: Ix, mut b: Ix) -> bool {
         while a != NONE && b != NONE {
             if !self.expr_eq(a, b) {
                 return false;
@@ -1199,7 +1200,7 @@ impl<'s> Parser<'s, '_, '_> {
         a == NONE && b == NONE
     }
 
-    fn expr_eq(&self, a: u16, b: u16) -> bool {
+    fn expr_eq(&self, a: Ix, b: Ix) -> bool {
         let (x, y) = (self.cx.exprs[a as usize], self.cx.exprs[b as usize]);
         if x.op != y.op || x.aux != y.aux || x.data != y.data {
             return false;
@@ -1221,13 +1222,7 @@ impl<'s> Parser<'s, '_, '_> {
     }
 
     /// Creates the rule and its joins (the root token comes later, in `defrule`).
-    fn build_rule(
-        &mut self,
-        name: SymId,
-        salience: (i32, u16),
-        b: &Build,
-        rhs: u16,
-    ) -> PResult<u16> {
+    fn build_rule(&mut self, name: SymId, salience: (i32, Ix), b: &Build, rhs: Ix) -> PResult<Ix> {
         let at = self.peek();
         let nr = self.cx.st.nrules as usize;
         if nr >= self.cx.rules.len() {
@@ -1240,7 +1235,7 @@ impl<'s> Parser<'s, '_, '_> {
         }
         self.cx.rules[nr] = Rule::EMPTY;
         // the join built for each CE
-        let mut jid = [0u16; MAX_PATTERNS];
+        let mut jid = [0 as Ix; MAX_PATTERNS];
         for (i, ce) in b.ces[..b.n].iter().enumerate() {
             let parent = if ce.parent == CE_ROOT {
                 0
@@ -1332,7 +1327,7 @@ impl<'s> Parser<'s, '_, '_> {
         self.cx.joins[term as usize] = Join {
             kind: JoinKind::Terminal,
             depth: b.depth,
-            rule: nr as u16,
+            rule: nr as Ix,
             parent: prev,
             next_sibling: self.cx.joins[prev as usize].first_child,
             refs: 1,
@@ -1358,13 +1353,13 @@ impl<'s> Parser<'s, '_, '_> {
         };
         self.cx.st.nrules += 1;
         self.cx.note_hw(Pool::Rules, nr + 1);
-        Ok(nr as u16)
+        Ok(nr as Ix)
     }
 }
 
 /// New joins already primed while defining a rule (disjuncts share joins).
 struct Primed {
-    ids: [u16; 64],
+    ids: [Ix; 64],
     n: usize,
 }
 
@@ -1374,21 +1369,21 @@ const MAX_FIELDS: usize = 16;
 
 struct PatBuild {
     /// (locator, alpha test or NONE, multifield element) per field, in parse order.
-    fields: [(u16, u16, bool); MAX_FIELDS],
+    fields: [(Ix, Ix, bool); MAX_FIELDS],
     nfields: usize,
-    desc: u16,
-    dlast: u16,
-    atests: u16,
-    alast: u16,
-    jtests: u16,
-    jlast: u16,
+    desc: Ix,
+    dlast: Ix,
+    atests: Ix,
+    alast: Ix,
+    jtests: Ix,
+    jlast: Ix,
     marks: u8,
-    rhash: [u16; MAX_RHASH],
+    rhash: [Ix; MAX_RHASH],
     nrhash: usize,
 }
 
 impl PatBuild {
-    fn record(&mut self, locv: u16, test: u16, multi: bool) {
+    fn record(&mut self, locv: Ix, test: Ix, multi: bool) {
         if self.nfields < MAX_FIELDS {
             self.fields[self.nfields] = (locv, test, multi);
             self.nfields += 1;
@@ -1398,7 +1393,7 @@ impl PatBuild {
 
 /// Depth-first order of pattern-network paths: at the first differing level the
 /// newer node (higher id) goes first; a path goes before its extensions.
-fn key_before(a: &[u16], b: &[u16]) -> bool {
+fn key_before(a: &[Ix], b: &[Ix]) -> bool {
     for (x, y) in a.iter().zip(b.iter()) {
         if x != y {
             return x > y;

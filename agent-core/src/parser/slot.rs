@@ -10,6 +10,7 @@ use crate::error::LoadDetail;
 use crate::expr::{Expr, Op};
 use crate::lexer::{Lexer, Tok, Token};
 use crate::template::{allowed, types, DefaultKind, SlotDef};
+use crate::value::Ix;
 use crate::value::{Value, NONE};
 
 /// Reader position of the first value of an attribute, to point at a bad one later.
@@ -183,7 +184,7 @@ impl<'s> Parser<'s, '_, '_> {
         self.scope = Scope::Frame;
         let holder = cap!(self, self.cx.push_expr(Expr::new(Op::Nop, 0, 0)))?;
         let values_at = self.save();
-        let mut n = 0u16;
+        let mut n = 0 as Ix;
         loop {
             let t = self.peek();
             match t.tok {

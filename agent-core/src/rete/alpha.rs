@@ -4,20 +4,21 @@
 use super::{PatBinding, Token, TokenKind, MAX_MARKS};
 use crate::engine::Core;
 use crate::error::EvalError;
+use crate::value::Ix;
 use crate::value::{Value, NONE};
 
 /// Segmentation layout of one constrained multislot of a pattern.
 #[derive(Clone, Copy)]
 struct SlotLayout {
-    slot: u16,
-    fixed: u16,
+    slot: Ix,
+    fixed: Ix,
     multis: u8,
     first_mark: u8,
 }
 
 impl Core<'_> {
     /// Adds a new fact to every alpha memory it matches and propagates.
-    pub(crate) fn network_assert(&mut self, fact: u16) -> Result<(), EvalError> {
+    pub(crate) fn network_assert(&mut self, fact: Ix) -> Result<(), EvalError> {
         let tmpl = self.facts[fact as usize].tmpl;
         let mut a = self.templates[tmpl as usize].alpha_head;
         while a != NONE {
@@ -33,20 +34,20 @@ impl Core<'_> {
     }
 
     /// Removes everything a fact built in the network.
-    pub(crate) fn network_retract(&mut self, fact: u16) {
+    pub(crate) fn network_retract(&mut self, fact: Ix) {
         while self.facts[fact as usize].first_am != NONE {
             let am = self.facts[fact as usize].first_am;
             self.remove_alpha_match(am);
         }
     }
 
-    fn layouts(&self, alpha: u16, out: &mut [SlotLayout; 8]) -> usize {
+    fn layouts(&self, alpha: Ix, out: &mut [SlotLayout; 8]) -> usize {
         let mut n = 0;
         let mut marks = 0u8;
         let mut s = self.alphas[alpha as usize].desc;
         while s != NONE && n < out.len() {
             let sd = self.exprs[s as usize];
-            let (mut fixed, mut multis) = (0u16, 0u8);
+            let (mut fixed, mut multis) = (0 as Ix, 0u8);
             let mut e = sd.first;
             while e != NONE {
                 if self.exprs[e as usize].aux == 1 {
@@ -72,7 +73,7 @@ impl Core<'_> {
     }
 
     /// Runs one alpha node over one fact, creating an alpha match per segmentation.
-    pub(crate) fn match_alpha(&mut self, alpha: u16, fact: u16) -> Result<(), EvalError> {
+    pub(crate) fn match_alpha(&mut self, alpha: Ix, fact: Ix) -> Result<(), EvalError> {
         let mut lay = [SlotLayout {
             slot: 0,
             fixed: 0,
@@ -80,7 +81,7 @@ impl Core<'_> {
             first_mark: 0,
         }; 8];
         let n = self.layouts(alpha, &mut lay);
-        let mut slack = [0u16; 8];
+        let mut slack = [0 as Ix; 8];
         for (i, l) in lay[..n].iter().enumerate() {
             let len = self.slot_cell(fact, l.slot).1.unwrap_or(1);
             if len < l.fixed || (l.multis == 0 && len != l.fixed) {
@@ -97,10 +98,10 @@ impl Core<'_> {
     #[allow(clippy::too_many_arguments)]
     fn enumerate_marks(
         &mut self,
-        alpha: u16,
-        fact: u16,
+        alpha: Ix,
+        fact: Ix,
         lay: &[SlotLayout],
-        slack: &[u16; 8],
+        slack: &[Ix; 8],
         marks: &mut [u8; MAX_MARKS],
         i: usize,
         nmarks: usize,
@@ -112,7 +113,7 @@ impl Core<'_> {
             return Ok(());
         }
         // the slot this mark belongs to, and what earlier marks of it used
-        let mut room = 0u16;
+        let mut room = 0 as Ix;
         for (k, l) in lay.iter().enumerate() {
             let f = l.first_mark as usize;
             let cnt = if l.multis >= 2 {
@@ -121,7 +122,7 @@ impl Core<'_> {
                 0
             };
             if i >= f && i < f + cnt {
-                let used: u16 = marks[f..i].iter().map(|&m| m as u16).sum();
+                let used: Ix = marks[f..i].iter().map(|&m| m as Ix).sum();
                 room = slack[k].saturating_sub(used).min(255);
             }
         }
@@ -135,8 +136,8 @@ impl Core<'_> {
 
     fn alpha_tests_pass(
         &mut self,
-        alpha: u16,
-        fact: u16,
+        alpha: Ix,
+        fact: Ix,
         marks: [u8; MAX_MARKS],
     ) -> Result<bool, EvalError> {
         let tests = self.alphas[alpha as usize].tests;
@@ -158,7 +159,7 @@ impl Core<'_> {
     }
 
     /// `[FACTMCH1]`: an error while testing a fact in the pattern network.
-    fn report_pattern_error(&mut self, alpha: u16, fact: u16, e: EvalError) {
+    fn report_pattern_error(&mut self, alpha: Ix, fact: Ix, e: EvalError) {
         use core::fmt::Write;
         self.st.pattern_error = true;
         self.report_eval_error(e);
@@ -196,7 +197,7 @@ impl Core<'_> {
 
     /// Evaluates a chain of tests; all must be non-FALSE. Scratch and stack are
     /// restored afterwards, so tests leave nothing behind.
-    pub(crate) fn eval_tests(&mut self, mut t: u16) -> Result<bool, EvalError> {
+    pub(crate) fn eval_tests(&mut self, mut t: Ix) -> Result<bool, EvalError> {
         let (scratch, sp) = (self.st.scratch_top, self.st.sp);
         let mut ok = true;
         while t != NONE {
@@ -214,8 +215,8 @@ impl Core<'_> {
 
     fn add_alpha_match(
         &mut self,
-        alpha: u16,
-        fact: u16,
+        alpha: Ix,
+        fact: Ix,
         marks: [u8; MAX_MARKS],
     ) -> Result<(), EvalError> {
         let t = self.alloc_token()?;
@@ -254,7 +255,7 @@ impl Core<'_> {
     }
 
     /// Removes an alpha match: retracts what successor joins built from it.
-    pub(crate) fn remove_alpha_match(&mut self, am: u16) {
+    pub(crate) fn remove_alpha_match(&mut self, am: Ix) {
         let alpha = self.tokens[am as usize].owner;
         // partial matches built on it (newest first), then the not/exists outputs it
         // blocks, which look for another blocker: CLIPS's order
@@ -290,7 +291,7 @@ impl Core<'_> {
     }
 
     /// Empties an alpha memory (used when a rule is removed or a load rolled back).
-    pub(crate) fn clear_alpha_memory(&mut self, alpha: u16) {
+    pub(crate) fn clear_alpha_memory(&mut self, alpha: Ix) {
         while self.alphas[alpha as usize].mem != NONE {
             let am = self.alphas[alpha as usize].mem;
             self.tokens[am as usize].extra = NONE;
@@ -300,7 +301,7 @@ impl Core<'_> {
 
     /// Drives the existing facts, oldest first, through the alpha nodes numbered
     /// `first` and up (a new rule's patterns), in network order per fact.
-    pub(crate) fn prime_alphas(&mut self, first: u16) -> Result<(), EvalError> {
+    pub(crate) fn prime_alphas(&mut self, first: Ix) -> Result<(), EvalError> {
         let mut f = self.st.fact_head;
         while f != NONE {
             let next = self.facts[f as usize].next;

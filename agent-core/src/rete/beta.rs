@@ -12,10 +12,11 @@
 use super::{JoinKind, PatBinding, Token, TokenKind};
 use crate::engine::{cap, Core};
 use crate::error::{CapacityError, EvalError, EvalErrorKind, Pool};
+use crate::value::Ix;
 use crate::value::NONE;
 
 impl Core<'_> {
-    pub(crate) fn alloc_token(&mut self) -> Result<u16, CapacityError> {
+    pub(crate) fn alloc_token(&mut self) -> Result<Ix, CapacityError> {
         let t = if self.st.token_free != NONE {
             let t = self.st.token_free;
             self.st.token_free = self.tokens[t as usize].next_sib;
@@ -26,14 +27,14 @@ impl Core<'_> {
                 return Err(cap(Pool::Tokens, self.tokens.len()));
             }
             self.st.tokens_used += 1;
-            n as u16
+            n as Ix
         };
         self.st.tokens_live += 1;
         self.note_hw(Pool::Tokens, self.st.tokens_live as usize);
         Ok(t)
     }
 
-    pub(crate) fn free_token(&mut self, t: u16) {
+    pub(crate) fn free_token(&mut self, t: Ix) {
         self.tokens[t as usize] = Token {
             next_sib: self.st.token_free,
             ..Token::EMPTY
@@ -43,7 +44,7 @@ impl Core<'_> {
     }
 
     /// Whether a partial match is passed on to child joins / the agenda.
-    pub(crate) fn token_active(&self, t: u16) -> bool {
+    pub(crate) fn token_active(&self, t: Ix) -> bool {
         let tk = &self.tokens[t as usize];
         match self.joins[tk.owner as usize].kind {
             // an owed output (see `owe`) passes nothing on until it is paid
@@ -54,7 +55,7 @@ impl Core<'_> {
     }
 
     /// Fills `lhs_pm` with the pattern bindings along a token's ancestry.
-    pub(crate) fn bind_left(&mut self, mut t: u16) {
+    pub(crate) fn bind_left(&mut self, mut t: Ix) {
         while t != NONE {
             let tk = self.tokens[t as usize];
             let j = self.joins[tk.owner as usize];
@@ -74,7 +75,7 @@ impl Core<'_> {
         }
     }
 
-    fn eval_lhs_tests(&mut self, tests: u16) -> Result<bool, EvalError> {
+    fn eval_lhs_tests(&mut self, tests: Ix) -> Result<bool, EvalError> {
         let saved = self.st.pm_rhs;
         self.st.pm_rhs = false;
         let r = self.eval_tests(tests);
@@ -85,9 +86,9 @@ impl Core<'_> {
     /// Evaluates a join's tests for left token `left` and alpha match `am`.
     fn join_test(
         &mut self,
-        join: u16,
-        left: u16,
-        am: u16,
+        join: Ix,
+        left: Ix,
+        am: Ix,
         left_bound: bool,
     ) -> Result<bool, EvalError> {
         let j = self.joins[join as usize];
@@ -110,7 +111,7 @@ impl Core<'_> {
     }
 
     /// The output token of a not/exists `join` for left token `left`, if any.
-    fn output_of(&self, left: u16, join: u16) -> u16 {
+    fn output_of(&self, left: Ix, join: Ix) -> Ix {
         let mut c = self.tokens[left as usize].first_child;
         while c != NONE {
             if self.tokens[c as usize].owner == join {
@@ -122,7 +123,7 @@ impl Core<'_> {
     }
 
     /// A new alpha match arrives on the right of `join`.
-    pub(crate) fn right_activate(&mut self, join: u16, am: u16) -> Result<(), EvalError> {
+    pub(crate) fn right_activate(&mut self, join: Ix, am: Ix) -> Result<(), EvalError> {
         let j = self.joins[join as usize];
         let (mut l, hashed) = self.first_left(join, am);
         while l != NONE {
@@ -155,7 +156,7 @@ impl Core<'_> {
 
     /// A partial match `r` of a subnetwork became active: it blocks the output of
     /// the not/exists join `join` for the left token it extends.
-    fn right_activate_beta(&mut self, join: u16, r: u16) -> Result<(), EvalError> {
+    fn right_activate_beta(&mut self, join: Ix, r: Ix) -> Result<(), EvalError> {
         let parent = self.joins[join as usize].parent;
         let l = self.ancestor_in(r, parent);
         if l == NONE {
@@ -169,7 +170,7 @@ impl Core<'_> {
     }
 
     /// Links `blocker` to not/exists output `t` and passes on or takes back.
-    fn block(&mut self, t: u16, blocker: u16) -> Result<(), EvalError> {
+    fn block(&mut self, t: Ix, blocker: Ix) -> Result<(), EvalError> {
         self.add_link(t, blocker)?;
         if self.joins[self.tokens[t as usize].owner as usize].kind == JoinKind::Negative {
             // blocked again before its propagation was paid: nothing is owed any more
@@ -186,7 +187,7 @@ impl Core<'_> {
 
     /// A not/exists output that becomes active goes to the front of its memory: CLIPS
     /// copies it into its successors' memories only now, so they meet it as newest.
-    fn move_to_front(&mut self, t: u16) {
+    fn move_to_front(&mut self, t: Ix) {
         let join = self.tokens[t as usize].owner;
         if self.joins[join as usize].mem == t {
             return;
@@ -210,7 +211,7 @@ impl Core<'_> {
     }
 
     /// The ancestor of `t` in the memory of `join` (NONE if it has none there).
-    fn ancestor_in(&self, mut t: u16, join: u16) -> u16 {
+    fn ancestor_in(&self, mut t: Ix, join: Ix) -> Ix {
         while t != NONE {
             let tk = &self.tokens[t as usize];
             if tk.owner == join {
@@ -230,12 +231,12 @@ impl Core<'_> {
     /// of the subnetwork extending `left` (skipping `skip`).
     fn find_blocker(
         &mut self,
-        join: u16,
-        left: u16,
-        from: u16,
+        join: Ix,
+        left: Ix,
+        from: Ix,
         hashed: bool,
-        skip: u16,
-    ) -> Result<u16, EvalError> {
+        skip: Ix,
+    ) -> Result<Ix, EvalError> {
         let j = self.joins[join as usize];
         if j.rjoin == NONE {
             let mut a = from;
@@ -260,7 +261,7 @@ impl Core<'_> {
     }
 
     /// A new active partial match `left` arrives on the left of `join`.
-    pub(crate) fn left_activate(&mut self, join: u16, left: u16) -> Result<(), EvalError> {
+    pub(crate) fn left_activate(&mut self, join: Ix, left: Ix) -> Result<(), EvalError> {
         let j = self.joins[join as usize];
         match j.kind {
             JoinKind::Positive => {
@@ -321,7 +322,7 @@ impl Core<'_> {
 
     /// Creates a partial match in `join`'s memory (newest first) and links it under
     /// its parents.
-    fn link_token(&mut self, join: u16, parent: u16, am: u16) -> Result<u16, EvalError> {
+    fn link_token(&mut self, join: Ix, parent: Ix, am: Ix) -> Result<Ix, EvalError> {
         let t = self.alloc_token()?;
         let head = self.joins[join as usize].mem;
         let psib = if parent != NONE {
@@ -366,7 +367,7 @@ impl Core<'_> {
 
     /// Records that `blocker` (an alpha match or a subnetwork's partial match)
     /// blocks not/exists output token `t`.
-    fn add_link(&mut self, t: u16, blocker: u16) -> Result<(), EvalError> {
+    fn add_link(&mut self, t: Ix, blocker: Ix) -> Result<(), EvalError> {
         let owner = self.tokens[t as usize].owner;
         let k = self.alloc_token()?;
         let psib = self.tokens[t as usize].first_child;
@@ -394,7 +395,7 @@ impl Core<'_> {
 
     /// The blocker of link `k` goes away: the counted token gets the next blocker,
     /// or is unblocked (not) or loses its match (exists), as CLIPS does.
-    pub(crate) fn remove_link(&mut self, k: u16) {
+    pub(crate) fn remove_link(&mut self, k: Ix) {
         let t = self.tokens[k as usize].parent;
         let blocker = self.tokens[k as usize].am;
         self.unlink_and_free(k);
@@ -433,7 +434,7 @@ impl Core<'_> {
     /// `pay_owed` propagates it once there is room. Every operation pays first
     /// (assert fails unchanged if it cannot; `run` fires nothing; retract reports
     /// the error), so no match is lost and no rule fires on an incomplete agenda.
-    fn propagate_or_owe(&mut self, t: u16) {
+    fn propagate_or_owe(&mut self, t: Ix) {
         if self.st.defer_nots {
             self.owe(t, false);
             return;
@@ -451,13 +452,13 @@ impl Core<'_> {
     /// Whether not output `t` is owed its propagation. Not outputs have no alpha
     /// match, so their alpha-sibling links are free: they chain the owed list (the
     /// head's `am_prev` is the tail), and a non-NONE `am_prev` marks membership.
-    pub(crate) fn is_owed(&self, t: u16) -> bool {
+    pub(crate) fn is_owed(&self, t: Ix) -> bool {
         let tk = &self.tokens[t as usize];
         tk.kind == TokenKind::Beta && tk.am == NONE && tk.am_prev != NONE
     }
 
     /// Puts `t` on the owed list: at the end, or at the front (kept its turn).
-    fn owe(&mut self, t: u16, front: bool) {
+    fn owe(&mut self, t: Ix, front: bool) {
         let head = self.st.owed;
         if head == NONE {
             self.tokens[t as usize].am_next = NONE;
@@ -479,7 +480,7 @@ impl Core<'_> {
         }
     }
 
-    fn unowe(&mut self, t: u16) {
+    fn unowe(&mut self, t: Ix) {
         let tk = self.tokens[t as usize];
         let head = self.st.owed;
         if t == head {
@@ -501,7 +502,7 @@ impl Core<'_> {
     }
 
     /// Notes a not output a modify's retract unblocked (see `UnblockLog`).
-    fn log_unblocked(&mut self, t: u16) {
+    fn log_unblocked(&mut self, t: Ix) {
         let log = &mut self.st.unblocked;
         if !log.on {
             return;
@@ -559,7 +560,7 @@ impl Core<'_> {
 
     /// Passes an active partial match on to its join's successors, newest first as
     /// CLIPS does: child joins and rule ends (left), joins taking it from the right.
-    pub(crate) fn propagate(&mut self, t: u16) -> Result<(), EvalError> {
+    pub(crate) fn propagate(&mut self, t: Ix) -> Result<(), EvalError> {
         let join = self.tokens[t as usize].owner;
         let mut it = Successors::of(self, join);
         while let Some((c, from_right)) = it.next(self) {
@@ -577,7 +578,7 @@ impl Core<'_> {
     /// activation, a child join the partial matches built on the token, a join from
     /// the right the output it blocks (which looks for another blocker). Its own
     /// links stay.
-    fn deactivate(&mut self, t: u16) {
+    fn deactivate(&mut self, t: Ix) {
         let join = self.tokens[t as usize].owner;
         let mut n = 0;
         let mut it = Successors::of(self, join);
@@ -632,7 +633,7 @@ impl Core<'_> {
         }
     }
 
-    pub(crate) fn delete_children(&mut self, t: u16) {
+    pub(crate) fn delete_children(&mut self, t: Ix) {
         while self.tokens[t as usize].first_child != NONE {
             let c = self.tokens[t as usize].first_child;
             self.delete_token(c);
@@ -640,7 +641,7 @@ impl Core<'_> {
     }
 
     /// Deletes a partial match and everything built on it (links included).
-    pub(crate) fn delete_token(&mut self, t: u16) {
+    pub(crate) fn delete_token(&mut self, t: Ix) {
         if self.tokens[t as usize].kind == TokenKind::Link {
             self.unlink_and_free(t);
             return;
@@ -651,7 +652,7 @@ impl Core<'_> {
     }
 
     /// Unlinks a token from its parent, alpha match and memory lists, then frees it.
-    fn unlink_and_free(&mut self, t: u16) {
+    fn unlink_and_free(&mut self, t: Ix) {
         if self.is_owed(t) {
             self.unowe(t);
         }
@@ -693,7 +694,7 @@ impl Core<'_> {
     }
 
     /// Deletes every token in a join's memory.
-    pub(crate) fn clear_join_memory(&mut self, join: u16) {
+    pub(crate) fn clear_join_memory(&mut self, join: Ix) {
         while self.joins[join as usize].mem != NONE {
             let t = self.joins[join as usize].mem;
             self.delete_token(t);
@@ -726,7 +727,7 @@ impl Core<'_> {
     }
 
     /// Feeds the active tokens of `parent`'s memory into a new child join.
-    pub(crate) fn prime_join(&mut self, join: u16) -> Result<(), EvalError> {
+    pub(crate) fn prime_join(&mut self, join: Ix) -> Result<(), EvalError> {
         let parent = self.joins[join as usize].parent;
         let mut l = self.joins[parent as usize].mem;
         while l != NONE {
@@ -744,14 +745,14 @@ impl Core<'_> {
 /// right sits just after its subnetwork's first join) merged with the joins taking
 /// its tokens from the right, by creation.
 struct Successors {
-    left: u16,
-    right: u16,
+    left: Ix,
+    right: Ix,
     /// Key of the last child taken from the child list.
     last_key: u32,
 }
 
 impl Successors {
-    fn of(cx: &Core<'_>, join: u16) -> Successors {
+    fn of(cx: &Core<'_>, join: Ix) -> Successors {
         Successors {
             left: cx.joins[join as usize].first_child,
             right: cx.joins[join as usize].rsucc,
@@ -767,7 +768,7 @@ impl Successors {
         }
     }
 
-    fn next(&mut self, cx: &Core<'_>) -> Option<(u16, bool)> {
+    fn next(&mut self, cx: &Core<'_>) -> Option<(Ix, bool)> {
         let take_left = match (self.left != NONE, self.right != NONE) {
             (false, false) => return None,
             (true, false) => true,

@@ -13,6 +13,7 @@
 use super::{JoinKind, PatBinding, TokenKind, THIS_PATTERN};
 use crate::engine::Core;
 use crate::expr::Op;
+use crate::value::Ix;
 use crate::value::{Value, NONE};
 
 fn mix(h: u32, x: u32) -> u32 {
@@ -44,14 +45,14 @@ impl Core<'_> {
 
     /// Alpha buckets are the table's first half, beta buckets the rest, so every
     /// chain holds one kind of token (they link through different fields).
-    fn bucket(&self, alpha: u16, key: u32) -> u16 {
+    fn bucket(&self, alpha: Ix, key: u32) -> Ix {
         let half = (self.amem_buckets.len() / 2).max(1);
-        (mix(key, u32::from(alpha)) as usize % half) as u16
+        (mix(key, u32::from(alpha)) as usize % half) as Ix
     }
 
     /// The key of an alpha match of `alpha` (a node with a right hash): its
     /// right-hash field values.
-    fn alpha_key(&mut self, alpha: u16, b: PatBinding) -> u32 {
+    fn alpha_key(&mut self, alpha: Ix, b: PatBinding) -> u32 {
         let (scratch, sp) = (self.st.scratch_top, self.st.sp);
         let saved = self.st.this_pm;
         self.st.this_pm = b;
@@ -74,7 +75,7 @@ impl Core<'_> {
     /// the earlier variables the join's equality tests compare with; `lhs_pm` must
     /// hold the left token's bindings. None when a value cannot be read: then the
     /// whole memory is scanned.
-    fn left_key(&mut self, join: u16) -> Option<u32> {
+    fn left_key(&mut self, join: Ix) -> Option<u32> {
         let j = self.joins[join as usize];
         let n = self.alphas[j.alpha as usize];
         let (scratch, sp, pm) = (self.st.scratch_top, self.st.sp, self.st.pm_rhs);
@@ -111,7 +112,7 @@ impl Core<'_> {
     }
 
     /// Adds a new alpha match (already in its node's memory) to the index.
-    pub(crate) fn index_insert(&mut self, am: u16) {
+    pub(crate) fn index_insert(&mut self, am: Ix) {
         let alpha = self.tokens[am as usize].owner;
         if self.alphas[alpha as usize].nrhash == 0 {
             return;
@@ -140,7 +141,7 @@ impl Core<'_> {
     }
 
     /// Takes an alpha match out of the index.
-    pub(crate) fn index_remove(&mut self, am: u16) {
+    pub(crate) fn index_remove(&mut self, am: Ix) {
         let tk = self.tokens[am as usize];
         if tk.kind != TokenKind::Alpha || self.alphas[tk.owner as usize].nrhash == 0 {
             return;
@@ -168,7 +169,7 @@ impl Core<'_> {
     /// Where a left token of alpha-fed `join` starts looking for right partners:
     /// the first match of its bucket (then `next_candidate` with `hashed`), or the
     /// whole memory. The last flag tells whether `lhs_pm` now holds the left token.
-    pub(crate) fn first_candidate(&mut self, join: u16, left: u16) -> (u16, bool, bool) {
+    pub(crate) fn first_candidate(&mut self, join: Ix, left: Ix) -> (Ix, bool, bool) {
         let j = self.joins[join as usize];
         debug_assert!(j.kind != JoinKind::Root);
         let alpha = j.alpha;
@@ -191,7 +192,7 @@ impl Core<'_> {
     }
 
     /// The candidate after `a` (same chain kind as `first_candidate` gave).
-    pub(crate) fn next_candidate(&self, a: u16, hashed: bool) -> u16 {
+    pub(crate) fn next_candidate(&self, a: Ix, hashed: bool) -> Ix {
         if hashed {
             let alpha = self.tokens[a as usize].owner;
             self.skip_foreign(self.tokens[a as usize].am_next, alpha)
@@ -201,7 +202,7 @@ impl Core<'_> {
     }
 
     /// Skips bucket entries of other alpha nodes.
-    fn skip_foreign(&self, mut a: u16, alpha: u16) -> u16 {
+    fn skip_foreign(&self, mut a: Ix, alpha: Ix) -> Ix {
         while a != NONE && self.tokens[a as usize].owner != alpha {
             a = self.tokens[a as usize].am_next;
         }
@@ -218,45 +219,70 @@ impl Core<'_> {
     // keep the bucket links in fields only alpha matches use: `fact` (next),
     // `marks[0..2]` (previous; the head's is the tail), `marks[2..4]` (bucket).
 
-    fn bnext(&self, t: u16) -> u16 {
+    fn bnext(&self, t: Ix) -> Ix {
         self.tokens[t as usize].fact
     }
 
-    fn set_bnext(&mut self, t: u16, n: u16) {
+    fn set_bnext(&mut self, t: Ix, n: Ix) {
         self.tokens[t as usize].fact = n;
     }
 
-    fn bprev(&self, t: u16) -> u16 {
+    #[cfg(not(feature = "wide-pools"))]
+    fn bprev(&self, t: Ix) -> Ix {
         let m = self.tokens[t as usize].marks;
-        u16::from_le_bytes([m[0], m[1]])
+        Ix::from_le_bytes([m[0], m[1]])
     }
 
-    fn set_bprev(&mut self, t: u16, p: u16) {
+    #[cfg(not(feature = "wide-pools"))]
+    fn set_bprev(&mut self, t: Ix, p: Ix) {
         let b = p.to_le_bytes();
         self.tokens[t as usize].marks[0] = b[0];
         self.tokens[t as usize].marks[1] = b[1];
     }
 
-    fn bbucket(&self, t: u16) -> u16 {
+    #[cfg(not(feature = "wide-pools"))]
+    fn bbucket(&self, t: Ix) -> Ix {
         let m = self.tokens[t as usize].marks;
-        u16::from_le_bytes([m[2], m[3]])
+        Ix::from_le_bytes([m[2], m[3]])
     }
 
-    fn set_bbucket(&mut self, t: u16, b: u16) {
+    #[cfg(not(feature = "wide-pools"))]
+    fn set_bbucket(&mut self, t: Ix, b: Ix) {
         let x = b.to_le_bytes();
         self.tokens[t as usize].marks[2] = x[0];
         self.tokens[t as usize].marks[3] = x[1];
     }
 
-    fn beta_bucket(&self, join: u16, key: u32) -> u16 {
+    // With `u32` indices two links do not fit in `marks`: the token has a field for them.
+    #[cfg(feature = "wide-pools")]
+    fn bprev(&self, t: Ix) -> Ix {
+        self.tokens[t as usize].beta_links[0]
+    }
+
+    #[cfg(feature = "wide-pools")]
+    fn set_bprev(&mut self, t: Ix, p: Ix) {
+        self.tokens[t as usize].beta_links[0] = p;
+    }
+
+    #[cfg(feature = "wide-pools")]
+    fn bbucket(&self, t: Ix) -> Ix {
+        self.tokens[t as usize].beta_links[1]
+    }
+
+    #[cfg(feature = "wide-pools")]
+    fn set_bbucket(&mut self, t: Ix, b: Ix) {
+        self.tokens[t as usize].beta_links[1] = b;
+    }
+
+    fn beta_bucket(&self, join: Ix, key: u32) -> Ix {
         let n = self.amem_buckets.len();
         let half = n / 2;
-        (half + mix(key, 0x8000_0000 | u32::from(join)) as usize % (n - half).max(1)) as u16
+        (half + mix(key, 0x8000_0000 | u32::from(join)) as usize % (n - half).max(1)) as Ix
     }
 
     /// Makes `child` the join whose tests key `parent`'s memory, if the memory is
     /// empty and not indexed yet and `child` is fed by a node with a right hash.
-    pub(crate) fn choose_index_child(&mut self, parent: u16, child: u16) {
+    pub(crate) fn choose_index_child(&mut self, parent: Ix, child: Ix) {
         let p = self.joins[parent as usize];
         let c = self.joins[child as usize];
         if parent != 0
@@ -271,7 +297,7 @@ impl Core<'_> {
     }
 
     /// Adds a new partial match (already at the head of its memory) to the index.
-    pub(crate) fn beta_index_insert(&mut self, t: u16) {
+    pub(crate) fn beta_index_insert(&mut self, t: Ix) {
         let join = self.tokens[t as usize].owner;
         let child = self.joins[join as usize].index_child;
         self.set_bnext(t, NONE);
@@ -303,7 +329,7 @@ impl Core<'_> {
     }
 
     /// Takes a partial match out of its memory's index.
-    pub(crate) fn beta_index_remove(&mut self, t: u16) {
+    pub(crate) fn beta_index_remove(&mut self, t: Ix) {
         let owner = self.tokens[t as usize].owner;
         if self.tokens[t as usize].kind != TokenKind::Beta
             || self.joins[owner as usize].index_child == NONE
@@ -335,7 +361,7 @@ impl Core<'_> {
     /// Where a new alpha match `am` right-activating `join` starts among the
     /// parent's partial matches: its bucket when the parent's memory is indexed for
     /// `join` (then `next_left` with `hashed`), else the whole memory.
-    pub(crate) fn first_left(&mut self, join: u16, am: u16) -> (u16, bool) {
+    pub(crate) fn first_left(&mut self, join: Ix, am: Ix) -> (Ix, bool) {
         let j = self.joins[join as usize];
         if self.joins[j.parent as usize].index_child == join {
             let tk = self.tokens[am as usize];
@@ -354,7 +380,7 @@ impl Core<'_> {
     }
 
     /// The partial match after `l` (same chain kind as `first_left` gave).
-    pub(crate) fn next_left(&self, l: u16, hashed: bool) -> u16 {
+    pub(crate) fn next_left(&self, l: Ix, hashed: bool) -> Ix {
         if hashed {
             let owner = self.tokens[l as usize].owner;
             self.skip_other_beta(self.bnext(l), owner)
@@ -363,7 +389,7 @@ impl Core<'_> {
         }
     }
 
-    fn skip_other_beta(&self, mut l: u16, join: u16) -> u16 {
+    fn skip_other_beta(&self, mut l: Ix, join: Ix) -> Ix {
         while l != NONE && self.tokens[l as usize].owner != join {
             l = self.bnext(l);
         }
@@ -371,7 +397,7 @@ impl Core<'_> {
     }
 
     /// Stops indexing `join`'s memory (its index child goes away).
-    pub(crate) fn drop_beta_index(&mut self, join: u16) {
+    pub(crate) fn drop_beta_index(&mut self, join: Ix) {
         let mut t = self.joins[join as usize].mem;
         while t != NONE {
             self.beta_index_remove(t);

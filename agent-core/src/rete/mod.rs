@@ -4,6 +4,7 @@ mod alpha;
 mod beta;
 mod index;
 
+use crate::value::Ix;
 use crate::value::NONE;
 
 /// Pattern index marking "the fact under test" in alpha tests (shared between rules).
@@ -13,7 +14,7 @@ pub const MAX_MARKS: usize = 4;
 /// Levels of a pattern's network path used to order alpha nodes as CLIPS does.
 pub const PATH_LEN: usize = 6;
 /// Path locator of the placeholder node of a pattern without tested fields.
-pub const EMPTY_PATH: u16 = 0xFFFE;
+pub const EMPTY_PATH: Ix = 0xFFFE;
 /// Most pattern-level CEs in one rule.
 pub const MAX_PATTERNS: usize = 32;
 /// Most fields of one pattern compared for equality with earlier variables that
@@ -24,30 +25,30 @@ pub const MAX_RHASH: usize = 4;
 /// Shared by every rule that uses an identical pattern.
 #[derive(Clone, Copy, Debug)]
 pub struct AlphaNode {
-    pub tmpl: u16,
+    pub tmpl: Ix,
     /// Chain of `PatSlot` descriptor nodes (multislot segmentation), NONE if none.
-    pub desc: u16,
+    pub desc: Ix,
     /// Chain of boolean tests, all must hold.
-    pub tests: u16,
-    pub next_in_tmpl: u16,
+    pub tests: Ix,
+    pub next_in_tmpl: Ix,
     /// First successor join (chained by `Join::alpha_next`, newest first).
-    pub succ: u16,
+    pub succ: Ix,
     /// Alpha memory: alpha-match tokens, oldest first (CLIPS iterates them so).
-    pub mem: u16,
-    pub mem_tail: u16,
+    pub mem: Ix,
+    pub mem_tail: Ix,
     pub nmarks: u8,
     pub live: bool,
     /// The pattern's path in CLIPS's pattern network (field locators and their alpha
     /// tests) and the ids of those network nodes; they order the template's alpha
     /// nodes so facts visit patterns in CLIPS's order.
-    pub path_loc: [u16; PATH_LEN],
-    pub path_test: [u16; PATH_LEN],
-    pub key: [u16; PATH_LEN],
+    pub path_loc: [Ix; PATH_LEN],
+    pub path_test: [Ix; PATH_LEN],
+    pub key: [Ix; PATH_LEN],
     pub key_len: u8,
     /// Fields of this pattern that joins compare for equality with variables bound
     /// earlier (expressions of the defining pattern). CLIPS keeps patterns that differ
     /// only here apart, which decides the order facts visit them.
-    pub rhash: [u16; MAX_RHASH],
+    pub rhash: [Ix; MAX_RHASH],
     pub nrhash: u8,
 }
 
@@ -93,30 +94,30 @@ pub struct Join {
     /// Pattern index of the right input (the root has none).
     pub depth: u8,
     /// Terminal node: its rule (NONE for other joins).
-    pub rule: u16,
-    pub parent: u16,
+    pub rule: Ix,
+    pub parent: Ix,
     /// Child joins (newest first), chained by `next_sibling`.
-    pub first_child: u16,
-    pub next_sibling: u16,
+    pub first_child: Ix,
+    pub next_sibling: Ix,
     /// Rules using this join (joins with the same prefix are shared).
-    pub refs: u16,
-    pub alpha: u16,
+    pub refs: Ix,
+    pub alpha: Ix,
     /// Chain of boolean tests needing earlier patterns.
-    pub tests: u16,
+    pub tests: Ix,
     /// `test` CEs after a `not`/`exists`: checked on the left token before output.
-    pub post: u16,
+    pub post: Ix,
     /// Next join in the alpha node's successor list.
-    pub alpha_next: u16,
+    pub alpha_next: Ix,
     /// Output memory: first token (newest first).
-    pub mem: u16,
+    pub mem: Ix,
     /// `not`/`exists` over several CEs: the join ending the subnetwork whose partial
     /// matches are this join's right input ("join from the right"), NONE otherwise.
-    pub rjoin: u16,
+    pub rjoin: Ix,
     /// First join having this one as its right input (chained by `alpha_next`).
-    pub rsucc: u16,
+    pub rsucc: Ix,
     /// The child join whose equality tests key the index of this join's output
     /// memory (see `rete::index`), NONE if the memory is not indexed.
-    pub index_child: u16,
+    pub index_child: Ix,
 }
 
 impl Join {
@@ -168,27 +169,31 @@ pub struct Token {
     pub blocked: bool,
     pub marks: [u8; MAX_MARKS],
     /// Alpha node (alpha match) or join (partial match).
-    pub owner: u16,
+    pub owner: Ix,
     /// Alpha match: the fact slot.
-    pub fact: u16,
+    pub fact: Ix,
     /// Partial match: the alpha match joined on the right (NONE for not/exists/test/root).
-    pub am: u16,
-    pub parent: u16,
+    pub am: Ix,
+    pub parent: Ix,
     /// Alpha match: first partial match built on it; partial match: first left child.
-    pub first_child: u16,
+    pub first_child: Ix,
     /// Partial match: siblings under `parent`; alpha match: other matches of the same fact.
-    pub next_sib: u16,
-    pub prev_sib: u16,
+    pub next_sib: Ix,
+    pub prev_sib: Ix,
     /// Partial match: siblings under `am`.
-    pub am_next: u16,
-    pub am_prev: u16,
-    pub mem_next: u16,
-    pub mem_prev: u16,
+    pub am_next: Ix,
+    pub am_prev: Ix,
+    pub mem_next: Ix,
+    pub mem_prev: Ix,
     /// Partial match: its first activation. Alpha match: propagation progress.
-    pub extra: u16,
+    pub extra: Ix,
     /// Links naming this token as the blocker of not/exists outputs (chained by
     /// `am_next`), so removing it visits exactly the outputs it decided.
-    pub blocks: u16,
+    pub blocks: Ix,
+    /// Beta-memory index links of a partial match (previous, bucket), kept in `marks`
+    /// when indices are `u16` (see `rete::index`).
+    #[cfg(feature = "wide-pools")]
+    pub beta_links: [Ix; 2],
 }
 
 impl Token {
@@ -209,13 +214,15 @@ impl Token {
         mem_prev: NONE,
         extra: NONE,
         blocks: NONE,
+        #[cfg(feature = "wide-pools")]
+        beta_links: [NONE; 2],
     };
 }
 
 /// What a pattern variable resolves against: a fact slot plus its segmentation.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct PatBinding {
-    pub fact: u16,
+    pub fact: Ix,
     pub marks: [u8; MAX_MARKS],
 }
 
@@ -236,7 +243,7 @@ pub struct UnblockLog {
     pub on: bool,
     pub overflow: bool,
     pub len: u8,
-    pub entries: [(u16, u16, u16); UNBLOCK_LOG_LEN],
+    pub entries: [(Ix, Ix, Ix); UNBLOCK_LOG_LEN],
 }
 
 impl UnblockLog {
