@@ -476,7 +476,9 @@ impl Core<'_> {
         // the activations the new fact's blockers remove are noted, to put them back
         // in their agenda places should the assert fail
         let mark = self.journal_begin();
-        let r = self.network_assert(slot);
+        // a `not` the fact unblocked on the way (a blocker of a nested `not` taken
+        // back) may have found no room: the assert is complete only once it is built
+        let r = self.network_assert(slot).and_then(|()| self.pay_owed());
         self.journal_pause();
         if let Err(e) = r {
             // Undo: remove what the fact built, then the fact itself, silently. The

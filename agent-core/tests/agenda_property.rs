@@ -436,3 +436,32 @@ fn undone_modify_keeps_its_fact_when_its_retract_unblocked_a_not() {
     ];
     check_full_pools(&ops).unwrap();
 }
+
+/// Found by the property above once it fired rules: an assert of `(b 1)` blocked the
+/// inner `not` of r10 (`not (and (a ?x) (not (b ?x)))`), which unblocked r10's output;
+/// its activation found the pool full and was owed, but the assert reported success
+/// with the match still owed. An assert now completes what it owes or fails (undone).
+#[test]
+fn an_assert_that_leaves_a_not_owed_fails() {
+    use Op::*;
+    let ops = [
+        Assert(1, 1),
+        Assert(0, 1),
+        Retract(0),
+        Assert(0, 2),
+        AssertT(false, 1),
+        Assert(0, 3),
+        Retract(4),
+        Assert(0, 1),
+        Retract(1),
+        Assert(1, 2),
+        Retract(1),
+        AssertT(true, 1),
+        Retract(9),
+        Assert(2, 2),
+        Assert(0, 1),
+        Run(1),
+        Assert(1, 1),
+    ];
+    check_full_pools(&ops).unwrap();
+}
