@@ -403,6 +403,7 @@ impl Core<'_> {
     pub(crate) fn choose_index_child(&mut self, parent: Ix, child: Ix) {
         // called for every new join: a reused join id must not keep an old plan
         self.st.key_plans = [KeyPlan::NONE; KEY_PLANS];
+        self.st.test_plans = [super::TestPlan::NONE; super::TEST_PLANS];
         let p = self.joins[parent as usize];
         let c = self.joins[child as usize];
         if parent != 0
