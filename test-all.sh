@@ -144,7 +144,11 @@ stage_fmt() {
 }
 
 stage_clippy() {
+    # the workspace build has agent-core's u32 pool indices (host-shim enables
+    # `wide-pools`); agent-core alone has the image's u16 ones: lint both
     cargo clippy --workspace --all-targets -- -D warnings || return 1
+    echo "-- clippy on agent-core alone (u16 pool indices)"
+    cargo clippy -p agent-core --all-targets -- -D warnings || return 1
     # The image's freestanding code (entry point, syscalls, mem functions) only exists
     # when built for i586: lint that build too.
     echo "-- clippy on the freestanding image build ($I586)"
@@ -152,7 +156,12 @@ stage_clippy() {
 }
 
 stage_host_tests() {
-    cargo test --workspace --no-fail-fast
+    # host-shim enables agent-core's `wide-pools` (u32 pool indices), and cargo unifies
+    # features across the workspace: this run tests agent-core with u32 indices ...
+    cargo test --workspace --no-fail-fast || return 1
+    # ... and this one with the u16 indices of the agent image, on the host.
+    echo "-- agent-core with u16 pool indices (no wide-pools)"
+    cargo test -p agent-core --no-fail-fast
 }
 
 # ---------------------------------------------------------------------------------------

@@ -43,6 +43,10 @@ pub struct ActJournal {
     pub overflow: bool,
     pub len: u8,
     pub base: u32,
+    /// An undo is rebuilding what the operation removed: new activations take their
+    /// recorded numbers from the entries from `replay_from` on (see `add_activation`).
+    pub replay: bool,
+    pub replay_from: u8,
     pub entries: [JournalEntry; JOURNAL_LEN],
 }
 
@@ -52,6 +56,8 @@ impl ActJournal {
         overflow: false,
         len: 0,
         base: 0,
+        replay: false,
+        replay_from: 0,
         entries: [JournalEntry {
             rule: NONE,
             basis: 0,
@@ -62,6 +68,15 @@ impl ActJournal {
 
 impl Core<'_> {
     pub(crate) fn add_activation(&mut self, rule: Ix, token: Ix) -> Result<(), CapacityError> {
+        let mut replayed = None;
+        if self.st.act_journal.replay && !self.st.act_journal.overflow {
+            match self.journal_take(rule, token) {
+                Some(seq) => replayed = Some(seq),
+                // not on the agenda before the operation: the rule had fired for this
+                // match (refraction), so the undo must not bring it back
+                None => return Ok(()),
+            }
+        }
         let a = if self.st.act_free != NONE {
             let a = self.st.act_free;
             self.st.act_free = self.acts[a as usize].next;
@@ -75,20 +90,30 @@ impl Core<'_> {
             n as Ix
         };
         self.note_hw(Pool::Activations, self.st.acts_used as usize);
-        self.st.act_seq = self.st.act_seq.wrapping_add(1);
+        let seq = match replayed {
+            Some(seq) => seq,
+            None => {
+                self.st.act_seq = self.st.act_seq.wrapping_add(1);
+                self.st.act_seq
+            }
+        };
         let salience = self.rules[rule as usize].salience;
         let next_of_token = self.tokens[token as usize].extra;
         self.acts[a as usize] = Activation {
             rule,
             token,
             salience,
-            seq: self.st.act_seq,
+            seq,
             next: NONE,
             prev: NONE,
             next_of_token,
         };
         self.tokens[token as usize].extra = a;
-        self.agenda_insert(a);
+        if replayed.is_some() {
+            self.agenda_insert_at_seq(a);
+        } else {
+            self.agenda_insert(a);
+        }
         if self.st.watch & watch::ACTIVATIONS != 0 {
             self.print_activation_line("==> Activation ", a);
         }
@@ -227,11 +252,12 @@ impl Core<'_> {
         n
     }
 
-    /// Hash of the fact numbers an activation matched (its identity across a rebuild).
-    fn activation_basis(&self, a: Ix) -> u32 {
+    /// Hash of the fact numbers a partial match holds (an activation's identity across
+    /// a rebuild).
+    fn token_basis(&self, token: Ix) -> u32 {
         // walks the partial match up to the root: (depth, fact number) pairs
         let mut h = 0x9E37_79B9u32;
-        let mut t = self.acts[a as usize].token;
+        let mut t = token;
         while t != NONE {
             let tk = self.tokens[t as usize];
             let j = self.joins[tk.owner as usize];
@@ -262,7 +288,7 @@ impl Core<'_> {
         let x = self.acts[a as usize];
         let entry = JournalEntry {
             rule: x.rule,
-            basis: self.activation_basis(a),
+            basis: self.token_basis(x.token),
             seq: x.seq,
         };
         let j = &mut self.st.act_journal;
@@ -286,7 +312,7 @@ impl Core<'_> {
         m
     }
 
-    /// Stops recording; the entries stay for `journal_restore`.
+    /// Stops recording; the entries stay for `journal_replay`.
     pub(crate) fn journal_pause(&mut self) {
         self.st.act_journal.on = false;
     }
@@ -298,40 +324,35 @@ impl Core<'_> {
         j.on = m.on;
         j.overflow = m.overflow;
         j.base = m.base;
+        j.replay = false;
     }
 
-    /// After a failed operation (begun at `m`) was undone, rebuilding the matches
-    /// it had removed: gives each activation created since `rebuilt` that the
-    /// journal recorded since `m` its creation number back, which puts it exactly
-    /// where it was (see `agenda_insert_at_seq`). Activations that cannot be matched
-    /// up (journal overflow) stay where the rebuild put them, as the newest.
-    pub(crate) fn journal_restore(&mut self, m: JournalMark, rebuilt: u32) {
-        let j = self.st.act_journal;
-        if j.overflow {
-            return;
-        }
-        let recorded = j.entries.get(m.len as usize..j.len as usize).unwrap_or(&[]);
-        for e in recorded {
-            if e.seq.wrapping_sub(m.seq) as i32 > 0 {
-                continue;
-            }
-            let mut a = self.st.agenda_head;
-            while a != NONE {
-                let x = self.acts[a as usize];
-                if x.seq.wrapping_sub(rebuilt) as i32 > 0
-                    && x.rule == e.rule
-                    && self.activation_basis(a) == e.basis
-                {
-                    break;
-                }
-                a = x.next;
-            }
-            if a != NONE {
-                self.agenda_unlink(a);
-                self.acts[a as usize].seq = e.seq;
-                self.agenda_insert_at_seq(a);
-            }
-        }
+    /// An undo of the operation begun at `m` starts: until `journal_end`, each
+    /// activation it rebuilds takes the number (hence the agenda place) the journal
+    /// recorded for it since `m`, and one the journal does not know is not made (its
+    /// rule had fired for that match). After a journal overflow nothing is known:
+    /// rebuilt activations come back as the newest.
+    pub(crate) fn journal_replay(&mut self, m: JournalMark) {
+        let j = &mut self.st.act_journal;
+        j.on = false;
+        j.replay = true;
+        j.replay_from = m.len;
+    }
+
+    /// The recorded number of the activation of `rule` for partial match `token`,
+    /// used up (each entry is one activation), or None if none was recorded.
+    fn journal_take(&mut self, rule: Ix, token: Ix) -> Option<u32> {
+        let basis = self.token_basis(token);
+        let j = &mut self.st.act_journal;
+        let recorded = j
+            .entries
+            .get_mut(j.replay_from as usize..j.len as usize)
+            .unwrap_or(&mut []);
+        let e = recorded
+            .iter_mut()
+            .find(|e| e.rule == rule && e.basis == basis)?;
+        e.rule = NONE;
+        Some(e.seq)
     }
 
     /// Inserts where its creation number puts it: the agenda is sorted by salience,

@@ -154,6 +154,11 @@ pub struct State {
     /// Not outputs a removal unblocked on a full token pool, waiting for their
     /// propagation (see `Core::pay_owed`); chained through the tokens.
     pub owed: Ix,
+    /// Putting a fact back (a failed modify's old fact): a not output that becomes
+    /// active is owed instead of passed on, and paid once the fact is complete. A
+    /// fact's assert may pass a `not` on and block it again with a later pattern of
+    /// its own; re-asserting into a full pool must not need that room for a moment.
+    pub defer_nots: bool,
     /// Not outputs a modify's retract unblocked (see `Core::owe_unblocked`).
     pub unblocked: crate::rete::UnblockLog,
     /// Watch traces of an assert/modify held back until it cannot be undone.
@@ -263,6 +268,7 @@ impl State {
             act_seq: 0,
             act_journal: crate::agenda::ActJournal::EMPTY,
             owed: NONE,
+            defer_nots: false,
             unblocked: crate::rete::UnblockLog::EMPTY,
             hold: crate::hold::TraceHold::EMPTY,
             sp: 0,

@@ -393,7 +393,12 @@ impl Core<'_> {
         } else {
             self.facts[next as usize].prev = slot;
         }
-        if let Err(e) = self.network_assert(slot) {
+        // it needs no more room than its retract freed: what a not output passes on
+        // waits until every pattern of the fact is in (see `State::defer_nots`)
+        self.st.defer_nots = true;
+        let r = self.network_assert(slot);
+        self.st.defer_nots = false;
+        if let Err(e) = r {
             self.network_retract(slot);
             self.unlink_fact(slot);
             self.release_fact_values(slot);
@@ -477,14 +482,13 @@ impl Core<'_> {
             // Undo: remove what the fact built, then the fact itself, silently. The
             // removal rebuilds what the fact had blocked from the tokens it frees
             // (anything that does not fit at once is owed and paid right after).
-            let rebuilt = self.st.act_seq;
+            self.journal_replay(mark);
             self.network_retract(slot);
             self.unlink_fact(slot);
             self.free_fact_slot(slot);
             self.st.next_fact_num = num;
             self.st.values_top = start as Ix;
             let _ = self.pay_owed();
-            self.journal_restore(mark, rebuilt);
             self.journal_end(mark);
             self.release_traces(false);
             return Err(e);

@@ -136,7 +136,20 @@ impl Core<'_> {
         self.check_values()?;
         self.check_tokens()?;
         self.check_owed()?;
+        self.check_dead_alphas()?;
         self.check_agenda()?;
+        Ok(())
+    }
+
+    /// An alpha node whose rules are gone keeps no matches (new facts skip it).
+    fn check_dead_alphas(&self) -> Result<(), Violation> {
+        for (i, n) in self.alphas[..self.st.nalpha as usize].iter().enumerate() {
+            ensure!(
+                n.live || n.mem == NONE,
+                "removed alpha node holds matches",
+                i
+            );
+        }
         Ok(())
     }
 
@@ -191,6 +204,16 @@ impl Core<'_> {
             st.eval_depth == 0,
             "evaluation depth not back to 0",
             st.eval_depth
+        );
+        ensure!(
+            st.hold.depth == 0 && st.hold.buf.is_empty(),
+            "watch traces still held",
+            st.hold.depth
+        );
+        ensure!(
+            !st.act_journal.on && !st.unblocked.on && !st.defer_nots,
+            "undo journal still recording",
+            0
         );
         ensure!(
             (st.sp as usize) <= self.stack.len(),

@@ -75,6 +75,13 @@
 //! - **Tokens** ([`rete::Token`]): alpha matches and partial matches share one pool;
 //!   each partial match stores only its parent and its alpha match, so a match of n
 //!   patterns costs n tokens. A terminal token points to its activation.
+//! - **Full pools**: an assert or modify that runs out is undone (its removed
+//!   activations are journaled and get their creation numbers, hence their agenda
+//!   places, back; its watch traces are held back, see [`hold`]). A retract cannot
+//!   fail; what it unblocks and cannot rebuild for lack of room is *owed* (an
+//!   inactive not output on a list, `Core::pay_owed`) and built by the first
+//!   operation with room; until then assert and modify fail unchanged and run fires
+//!   nothing.
 //! - **Agenda**: activations sorted by salience, then newest first (CLIPS's depth
 //!   strategy); a fired activation is gone for good (refraction), so a rule fires again
 //!   only for a new partial match (e.g. after `modify`, which retracts and re-asserts).

@@ -96,3 +96,33 @@ fn fuzz_found_undone_assert_changes_not_and_activations() {
         ),
     );
 }
+
+/// Found by `engine_commands` after the owed/journal rework: a modify that ran out of
+/// tokens put its old fact back, and rebuilding its matches re-created an activation
+/// of `extra-0` that had already fired (refraction lost: it would fire twice). The undo
+/// no longer makes rebuilt activations its journal does not know.
+#[test]
+fn fuzz_found_undone_modify_revives_a_fired_activation() {
+    run_stream_with(
+        RULE_BASE_NOT_AND,
+        include_bytes!(
+            "fuzz_regressions/engine_commands-undone-modify-revives-a-fired-activation.bin"
+        ),
+    );
+}
+
+/// Found by `engine_commands` next: a modify that ran out of tokens could not put its
+/// old fact back (the fact was lost), for three reasons: rebuilding its matches made,
+/// for a moment, activations of matches that had fired; a `not` the fact's first
+/// pattern passed on was blocked again by a later pattern of the same fact (room
+/// needed for a moment); and alpha nodes of removed rules still collected matches of
+/// new facts, so the old fact needed a token its retract had not freed. Now the undo
+/// makes only activations its journal knows, a restore owes such `not` outputs until
+/// the fact is complete, and removed nodes stay empty.
+#[test]
+fn fuzz_found_undone_modify_loses_its_fact() {
+    run_stream_with(
+        RULE_BASE_NOT_AND,
+        include_bytes!("fuzz_regressions/engine_commands-undone-modify-loses-its-fact.bin"),
+    );
+}

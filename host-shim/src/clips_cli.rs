@@ -6,15 +6,24 @@
 //! As in CLIPS, `-l` and `-f2` files run at start-up before the banner line (which is
 //! CLIPS's own), `-f` files after it through the command loop; `-f2` prints no prompts,
 //! echo or command results.
+//!
+//! `--large-pools` (before the CLIPS options; not a CLIPS option) runs the session on a
+//! [`LargeEngine`] instead of the `DefaultEngine`, for programs that outgrow its pools.
 
 use std::io::{BufRead, Write};
 use std::process::ExitCode;
 
 use agent_core::commands::command_complete;
-use agent_core::{DefaultEngine, Host, HostIoError};
+use agent_core::{DefaultEngine, Host, HostIoError, LoadError};
+
+use crate::large_engine::{LargeEngine, LARGE_ENGINE_THREAD_STACK};
 
 #[derive(clap::Args)]
 pub struct Args {
+    /// Run on an engine with large pools (hundreds of thousands of facts, millions of
+    /// tokens and expression nodes) instead of the default one. Not a CLIPS option.
+    #[arg(long)]
+    pub large_pools: bool,
     /// CLIPS options: -f FILE | -f2 FILE | -l FILE (in order).
     #[arg(allow_hyphen_values = true, trailing_var_arg = true, num_args = 0..)]
     pub options: Vec<String>,
@@ -131,18 +140,75 @@ pub fn main(args: Args) -> ExitCode {
             return ExitCode::FAILURE;
         }
     };
-    // The default engine is a few MiB of inline arrays: give it a thread stack.
+    // The default engine is a few MiB of inline arrays: give it a thread stack. The
+    // large one is boxed, but may pass through the stack on the way.
+    let large = args.large_pools;
+    let stack = if large {
+        LARGE_ENGINE_THREAD_STACK
+    } else {
+        256 << 20
+    };
     let worker = std::thread::Builder::new()
-        .stack_size(256 << 20)
-        .spawn(move || session(steps));
+        .stack_size(stack)
+        .spawn(move || {
+            if large {
+                session(&mut *Box::new(LargeEngine::new()), steps)
+            } else {
+                session(&mut DefaultEngine::new(), steps)
+            }
+        });
     match worker.map(|w| w.join()) {
         Ok(Ok(code)) => code,
         _ => ExitCode::FAILURE,
     }
 }
 
-fn session(steps: Vec<Step>) -> ExitCode {
-    let mut engine = DefaultEngine::new();
+/// The engine calls the command line makes, for either engine size.
+trait CliEngine {
+    fn run_pending_batch(&mut self, host: &mut dyn Host) -> bool;
+    fn batch_file(&mut self, host: &mut dyn Host, name: &str, text: &str, echo: bool) -> bool;
+    fn batch_file_quiet(&mut self, host: &mut dyn Host, name: &str, text: &str) -> bool;
+    fn load_str(&mut self, host: &mut dyn Host, name: &str, text: &str)
+        -> Result<usize, LoadError>;
+    fn exec_command(&mut self, host: &mut dyn Host, text: &str, source: &str) -> bool;
+}
+
+macro_rules! cli_engine {
+    ($ty:ty) => {
+        impl CliEngine for $ty {
+            fn run_pending_batch(&mut self, host: &mut dyn Host) -> bool {
+                <$ty>::run_pending_batch(self, host)
+            }
+            fn batch_file(
+                &mut self,
+                host: &mut dyn Host,
+                name: &str,
+                text: &str,
+                echo: bool,
+            ) -> bool {
+                <$ty>::batch_file(self, host, name, text, echo)
+            }
+            fn batch_file_quiet(&mut self, host: &mut dyn Host, name: &str, text: &str) -> bool {
+                <$ty>::batch_file_quiet(self, host, name, text)
+            }
+            fn load_str(
+                &mut self,
+                host: &mut dyn Host,
+                name: &str,
+                text: &str,
+            ) -> Result<usize, LoadError> {
+                <$ty>::load_str(self, host, name, text)
+            }
+            fn exec_command(&mut self, host: &mut dyn Host, text: &str, source: &str) -> bool {
+                <$ty>::exec_command(self, host, text, source)
+            }
+        }
+    };
+}
+cli_engine!(DefaultEngine);
+cli_engine!(LargeEngine);
+
+fn session(engine: &mut dyn CliEngine, steps: Vec<Step>) -> ExitCode {
     let mut host = CliHost {
         started: std::time::Instant::now(),
         out: std::io::BufWriter::new(std::io::stdout()),
@@ -157,18 +223,18 @@ fn session(steps: Vec<Step>) -> ExitCode {
         .chain(std::iter::once(Step::Banner))
         .chain(batches)
     {
-        if !run_step(&mut engine, &mut host, step) {
+        if !run_step(engine, &mut host, step) {
             let _ = host.out.flush();
             return ExitCode::SUCCESS;
         }
     }
-    interactive(&mut engine, &mut host);
+    interactive(engine, &mut host);
     let _ = host.out.flush();
     ExitCode::SUCCESS
 }
 
 /// Runs one step; false once `(exit)` ran.
-fn run_step(engine: &mut DefaultEngine, host: &mut CliHost, step: Step) -> bool {
+fn run_step(engine: &mut dyn CliEngine, host: &mut CliHost, step: Step) -> bool {
     match step {
         Step::Banner => {
             // CLIPS 6.30's own banner, so transcripts (and tools reading them) match
@@ -204,7 +270,7 @@ fn run_step(engine: &mut DefaultEngine, host: &mut CliHost, step: Step) -> bool 
 }
 
 /// The prompt loop on standard input.
-fn interactive(engine: &mut DefaultEngine, host: &mut CliHost) {
+fn interactive(engine: &mut dyn CliEngine, host: &mut CliHost) {
     let stdin = std::io::stdin();
     let mut lines = stdin.lock();
     let mut buf = String::new();

@@ -5,6 +5,7 @@
 mod bench;
 mod clips_cli;
 mod game;
+mod large_engine;
 mod run;
 mod sim;
 

@@ -19,8 +19,13 @@ fn scratch(name: &str) -> PathBuf {
 
 /// Runs `exe args...` in `dir` with `stdin` as input, under a 10 s timeout.
 fn run(exe: &[&str], args: &[&str], dir: &Path, stdin: &str) -> String {
+    run_within("10", exe, args, dir, stdin)
+}
+
+/// `run` under a timeout of `secs` seconds.
+fn run_within(secs: &str, exe: &[&str], args: &[&str], dir: &Path, stdin: &str) -> String {
     let mut child = Command::new("timeout")
-        .arg("10")
+        .arg(secs)
         .args(exe)
         .args(args)
         .current_dir(dir)
@@ -131,4 +136,50 @@ fn load_and_batch_from_a_rule() {
         &["-f", "main.clp"],
         "",
     );
+}
+
+/// `--large-pools` (ours only, before the CLIPS options): a program that outgrows the
+/// default engine (10,000 facts from 20 `deffacts`: more facts and expression nodes
+/// than its pools hold) runs as in CLIPS on the large-pool engine, and fails with a
+/// capacity error without the option.
+#[test]
+fn large_pools_hold_what_the_default_engine_cannot() {
+    let dir = scratch("large-pools");
+    let mut program = String::new();
+    for chunk in 0..20 {
+        program.push_str(&format!("(deffacts d{chunk}"));
+        for i in chunk * 500..(chunk + 1) * 500 {
+            program.push_str(&format!(" (n {i})"));
+        }
+        program.push_str(")\n");
+    }
+    program.push_str(
+        "(defglobal ?*sum* = 0 ?*count* = 0)\n\
+         (defrule add (n ?x) => (bind ?*sum* (+ ?*sum* ?x)) (bind ?*count* (+ ?*count* 1)))\n",
+    );
+    std::fs::write(dir.join("big.clp"), program).expect("write program");
+    std::fs::write(
+        dir.join("cmds.bat"),
+        "(reset)\n(run)\n(printout t \"sum \" ?*sum* \" count \" ?*count* crlf)\n(exit)\n",
+    )
+    .expect("write batch");
+    let ours = env!("CARGO_BIN_EXE_robotino-agent");
+    let args = ["-l", "big.clp", "-f2", "cmds.bat"];
+    let theirs = run(&["clips"], &args, &dir, "");
+    assert!(
+        theirs.contains("sum 49995000 count 10000"),
+        "CLIPS: {theirs}"
+    );
+    // a debug build fills a 109 MiB engine: more time than the other tests need
+    let large = run_within("120", &[ours, "clips", "--large-pools"], &args, &dir, "");
+    assert_eq!(
+        large, theirs,
+        "--large-pools (left) differs from CLIPS (right)"
+    );
+    let default = run_within("120", &[ours, "clips"], &args, &dir, "");
+    assert!(
+        default.contains("out of "),
+        "the default engine held it: {default}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -144,6 +144,9 @@ fn ge(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 #[inline]
 pub fn values_same(cx: &Core<'_>, x: Value, y: Value) -> bool {
     match (x, y) {
+        // the usual cases first: symbols and integers compare as plain numbers
+        (Value::Sym(p), Value::Sym(q)) => p == q,
+        (Value::Int(p), Value::Int(q)) => p == q,
         (Value::Multi(p), Value::Multi(q)) => {
             p.len == q.len && (0..p.len as usize).all(|k| cx.mf_item(p, k).same(cx.mf_item(q, k)))
         }

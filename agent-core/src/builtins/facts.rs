@@ -278,9 +278,10 @@ impl Core<'_> {
             // no room for the new fact: fail before anything changed
             self.modify_fits(old, tmpl, base as usize)?;
             let old_fact = self.facts[old as usize];
-            // the activations the retract removes are noted, to put them back in
-            // their agenda places should the assert fail
-            // a modify that is undone prints nothing (see `hold`)
+            // a modify that is undone prints nothing (see `hold`); the activations
+            // its retract removes are noted, to put them back in their agenda places,
+            // and the not outputs it unblocks, to take back what they rebuilt, should
+            // the assert fail
             self.hold_traces();
             let mark = self.journal_begin();
             self.st.unblocked = crate::rete::UnblockLog {
@@ -296,11 +297,10 @@ impl Core<'_> {
                 // gone again; the old one comes back with the room its retract freed
                 // (if that fails too, it stays retracted and the first error is
                 // reported; only possible after an unblock log overflow)
-                let rebuilt = self.st.act_seq;
                 self.owe_unblocked();
+                self.journal_replay(mark);
                 if self.restore_fact(old, old_fact, saved as usize).is_ok() {
                     let _ = self.pay_owed();
-                    self.journal_restore(mark, rebuilt);
                 }
             }
             self.journal_end(mark);

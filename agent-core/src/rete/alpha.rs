@@ -22,7 +22,12 @@ impl Core<'_> {
         let tmpl = self.facts[fact as usize].tmpl;
         let mut a = self.templates[tmpl as usize].alpha_head;
         while a != NONE {
-            self.match_alpha(a, fact)?;
+            // a node whose rules are gone stays listed (ids and order) but is empty
+            // and stays so: matches there would take tokens for nothing (and a
+            // modify's old fact would need more room to come back than it freed)
+            if self.alphas[a as usize].live {
+                self.match_alpha(a, fact)?;
+            }
             a = self.alphas[a as usize].next_in_tmpl;
         }
         Ok(())

@@ -344,7 +344,12 @@ impl Core<'_> {
                     self.add_link(t, b)?;
                 }
                 if self.token_active(t) {
-                    self.propagate(t)?;
+                    if self.st.defer_nots && j.kind == JoinKind::Negative {
+                        // see `defer_nots`: a later pattern of the same fact may block it
+                        self.owe(t, false);
+                    } else {
+                        self.propagate(t)?;
+                    }
                 }
             }
             JoinKind::Test => {
@@ -477,6 +482,10 @@ impl Core<'_> {
     /// (assert fails unchanged if it cannot; `run` fires nothing; retract reports
     /// the error), so no match is lost and no rule fires on an incomplete agenda.
     fn propagate_or_owe(&mut self, t: Ix) {
+        if self.st.defer_nots {
+            self.owe(t, false);
+            return;
+        }
         if let Err(e) = self.propagate(t) {
             // an evaluation error in a join test counts as no match (as before);
             // only a full pool leaves matches to build later

@@ -245,7 +245,17 @@ pub fn apply_with(e: &mut StreamEngine, cmd: &Cmd, rules: &str) -> String {
                 } else {
                     format!("(modify {} (state {}))", f.0, STATES[*state as usize])
                 };
-                format!("{text}: {:?}", e.eval_str(h, &text))
+                let facts: Vec<FactId> = e.facts().collect();
+                let acts = agenda(e);
+                let r = e.eval_str(h, &text);
+                if let Err(ref err) = r {
+                    if matches!(err.kind, agent_core::EvalErrorKind::Capacity(_)) {
+                        // a failed modify is undone: same facts, same agenda order
+                        assert_eq!(e.facts().collect::<Vec<_>>(), facts, "{text}: {err}");
+                        assert_eq!(agenda(e), acts, "{text}: {err}");
+                    }
+                }
+                format!("{text}: {r:?}")
             }
             None => "modify: no facts".into(),
         },

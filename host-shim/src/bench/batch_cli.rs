@@ -18,6 +18,9 @@ pub struct BatchCli {
     pub program: PathBuf,
     /// Arguments before `-f2`, e.g. `["clips"]` for `robotino-agent clips -f2 FILE`.
     pub prefix_args: Vec<String>,
+    /// Ours: the same command line on the large-pool engine, measured instead when a
+    /// program exhausts a pool of the default engine.
+    pub larger: Option<Box<BatchCli>>,
 }
 
 impl BatchCli {
@@ -26,15 +29,24 @@ impl BatchCli {
             label: "CLIPS 6.30".to_string(),
             program: PathBuf::from("clips"),
             prefix_args: Vec::new(),
+            larger: None,
         }
     }
 
     /// Ours, through this very binary's `clips` subcommand.
+    /// Programs that outgrow the default engine's pools run again with `--large-pools`.
     pub fn ours_cli(this_binary: PathBuf) -> Self {
+        let larger = Self {
+            label: "ours (CLI)".to_string(),
+            program: this_binary.clone(),
+            prefix_args: vec!["clips".to_string(), "--large-pools".to_string()],
+            larger: None,
+        };
         Self {
             label: "ours (CLI)".to_string(),
             program: this_binary,
             prefix_args: vec!["clips".to_string()],
+            larger: Some(Box::new(larger)),
         }
     }
 
@@ -156,7 +168,10 @@ impl Contender for BatchCli {
                     full_times.push(run.elapsed);
                 }
                 Err(reason) if reason.starts_with("capacity exceeded") => {
-                    return Measurement::failed(&reason);
+                    return match &self.larger {
+                        Some(larger) => larger.measure(program, plan),
+                        None => Measurement::failed(&reason),
+                    };
                 }
                 Err(reason) => {
                     return Measurement::failed(&format!("{}: {reason}", self.label));

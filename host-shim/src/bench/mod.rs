@@ -128,10 +128,17 @@ impl Args {
 }
 
 pub fn main(args: Args) -> ExitCode {
-    // Our engines keep all storage inline: build them on a thread with a big stack.
-    let outcome = match crate::sim::game::with_engine_stack(move || run(&args)) {
-        Ok(outcome) => outcome,
-        Err(e) => Err(BenchError::new(e.to_string())),
+    // Our engines keep all storage inline: build them on a thread with a big stack
+    // (room for the large engine of the in-process column).
+    let worker = std::thread::Builder::new()
+        .stack_size(crate::large_engine::LARGE_ENGINE_THREAD_STACK)
+        .spawn(move || run(&args));
+    let outcome = match worker.map(|w| w.join()) {
+        Ok(Ok(outcome)) => outcome,
+        Ok(Err(_)) => Err(BenchError::new("the bench thread panicked".to_string())),
+        Err(e) => Err(BenchError::new(format!(
+            "cannot start the bench thread: {e}"
+        ))),
     };
     match outcome {
         Ok(all_agree) if all_agree => ExitCode::SUCCESS,

@@ -482,8 +482,13 @@ and `(reset)` are out; *whole* is the complete process. CLIPS 6.30 is the Debian
 command (`clips -f2 FILE`). CLIPS 6.4 is PyPI `clipspy`, driven by \
 `tests/bench/clipspy_run.py`: its wall times are `run()` and load+reset+run timed inside \
 Python, its instruction counts are of the whole Python process (so *whole* includes the \
-interpreter). Ours runs as `robotino-agent clips -f2 FILE` (CLI column) and in-process \
-through `bench::ours::InProcessEngine`. Rules fired come from `(watch statistics)` (CLI) or \
+interpreter). Ours runs as `robotino-agent clips -f2 FILE` (CLI column; a program that \
+exhausts a pool of that default engine is measured again, in full, with \
+`robotino-agent clips --large-pools -f2 FILE`, whose pools hold the largest workloads) and \
+in-process through `bench::ours::InProcessEngine` (always the large-pool engine, built \
+before the clock starts). Both are host builds with `u32` pool indices (feature \
+`wide-pools`), so in-process memory counts 4-byte links; the agent image keeps 2-byte \
+ones. Rules fired come from `(watch statistics)` (CLI) or \
 the `run()` return value. Results agree when the programs' result lines are equal (Manners: \
 the same set of seat assignments, also checked to be a valid seating).\n\n";
 

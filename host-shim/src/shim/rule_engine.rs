@@ -173,7 +173,7 @@ impl Rules {
         let Some(ValueRef::Multi(n)) = self.engine.fact_slot(id, slot) else {
             return Vec::new();
         };
-        (0..usize::from(n))
+        (0..n as usize)
             .filter_map(|i| match self.engine.fact_multislot_item(id, slot, i) {
                 Some(ValueRef::Symbol(s)) => Some(s.to_string()),
                 _ => None,
