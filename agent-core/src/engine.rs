@@ -217,6 +217,8 @@ pub struct State {
     pub key_cache: (Ix, Ix, u32),
     /// Recently used joins' key plans (`rete::index`), direct-mapped by join.
     pub key_plans: [crate::rete::KeyPlan; crate::rete::KEY_PLANS],
+    /// Recently used joins' test plans (`rete::quick`), direct-mapped by join.
+    pub test_plans: [crate::rete::TestPlan; crate::rete::TEST_PLANS],
     pub pm_rhs: bool,
     /// Rule being fired (for messages), NONE outside a firing.
     pub current_rule: Ix,
@@ -299,6 +301,7 @@ impl State {
             this_pm: PatBinding::EMPTY,
             key_cache: (NONE, NONE, 0),
             key_plans: [crate::rete::KeyPlan::NONE; crate::rete::KEY_PLANS],
+            test_plans: [crate::rete::TestPlan::NONE; crate::rete::TEST_PLANS],
             pm_rhs: false,
             current_rule: NONE,
             hw: Stats::new(),

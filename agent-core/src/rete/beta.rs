@@ -134,9 +134,7 @@ impl Core<'_> {
 
     /// Evaluates a join's tests for left token `left` and alpha match `am`.
     fn join_test(&mut self, join: Ix, left: Ix, am: Ix) -> Result<bool, EvalError> {
-        let j = &self.joins[join as usize];
-        let (tests, depth) = (j.tests, j.depth);
-        if tests == NONE {
+        if self.joins[join as usize].tests == NONE {
             return Ok(true);
         }
         // one walk up the ancestry per left token, not one per candidate
@@ -146,7 +144,7 @@ impl Core<'_> {
         } else {
             NONE
         };
-        if let Some(r) = self.quick_join_test(tests, depth, right_fact) {
+        if let Some(r) = self.planned_join_test(join, right_fact) {
             return Ok(r);
         }
         let j = self.joins[join as usize];

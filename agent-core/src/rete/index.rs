@@ -15,6 +15,23 @@ use crate::engine::Core;
 use crate::expr::{loc, Op};
 use crate::value::{Ix, Value, NONE};
 
+/// `Core::value_hash` of a single-field value (no multifield to walk; callers
+/// pass multifields to `value_hash`, which hashes their items).
+#[inline(always)]
+fn atom_hash(v: Value) -> u32 {
+    match v {
+        Value::Void | Value::Multi(_) => 1,
+        Value::Int(i) => mix(2, i as u32 ^ (i >> 32) as u32),
+        Value::Float(f) => {
+            let bits = if f == 0.0 { 0 } else { f.to_bits() };
+            mix(3, bits as u32 ^ (bits >> 32) as u32)
+        }
+        Value::Sym(s) => mix(4, u32::from(s)),
+        Value::Str(s) => mix(5, u32::from(s)),
+        Value::Fact(r) => mix(6, r.num),
+    }
+}
+
 /// Entries of the key-plan cache (`State::key_plans`, direct-mapped by join).
 pub const KEY_PLANS: usize = 8;
 
@@ -45,18 +62,8 @@ fn mix(h: u32, x: u32) -> u32 {
 
 impl Core<'_> {
     /// A hash of a value consistent with `values_same` (the join tests' equality).
-    #[inline(always)]
     fn value_hash(&self, v: Value) -> u32 {
         match v {
-            Value::Void => 1,
-            Value::Int(i) => mix(2, i as u32 ^ (i >> 32) as u32),
-            Value::Float(f) => {
-                let bits = if f == 0.0 { 0 } else { f.to_bits() };
-                mix(3, bits as u32 ^ (bits >> 32) as u32)
-            }
-            Value::Sym(s) => mix(4, u32::from(s)),
-            Value::Str(s) => mix(5, u32::from(s)),
-            Value::Fact(r) => mix(6, r.num),
             Value::Multi(p) => {
                 let mut h = mix(7, u32::from(p.len));
                 for k in 0..p.len as usize {
@@ -64,6 +71,7 @@ impl Core<'_> {
                 }
                 h
             }
+            v => atom_hash(v),
         }
     }
 
@@ -161,7 +169,7 @@ impl Core<'_> {
             if fact == NONE {
                 return None;
             }
-            key = mix(key, self.value_hash(self.plain_slot(fact, Ix::from(slot))?));
+            key = mix(key, atom_hash(self.plain_slot(fact, Ix::from(slot))?));
         }
         Some(key)
     }
@@ -214,7 +222,7 @@ impl Core<'_> {
         let mut key = 0x5bd1_e995u32;
         for &e in &n.rhash[..n.nrhash as usize] {
             let v = self.plain_slot_value(fact, &self.exprs[e as usize])?;
-            key = mix(key, self.value_hash(v));
+            key = mix(key, atom_hash(v));
         }
         Some(key)
     }
@@ -395,6 +403,7 @@ impl Core<'_> {
     pub(crate) fn choose_index_child(&mut self, parent: Ix, child: Ix) {
         // called for every new join: a reused join id must not keep an old plan
         self.st.key_plans = [KeyPlan::NONE; KEY_PLANS];
+        self.st.test_plans = [super::TestPlan::NONE; super::TEST_PLANS];
         let p = self.joins[parent as usize];
         let c = self.joins[child as usize];
         if parent != 0
@@ -412,10 +421,10 @@ impl Core<'_> {
     pub(crate) fn beta_index_insert(&mut self, t: Ix) {
         let join = self.tokens[t as usize].owner;
         let child = self.joins[join as usize].index_child;
-        self.set_bnext(t, NONE);
-        self.set_bprev(t, NONE);
-        self.set_bbucket(t, NONE);
         if child == NONE {
+            self.set_bnext(t, NONE);
+            self.set_bprev(t, NONE);
+            self.set_bbucket(t, NONE);
             return;
         }
         // usually one level more than the left token just bound by the join test

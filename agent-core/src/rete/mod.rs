@@ -5,6 +5,7 @@ mod beta;
 mod index;
 pub use index::{KeyPlan, KEY_PLANS};
 mod quick;
+pub use quick::{TestOp, TestPlan, PLAN_TESTS, TEST_PLANS};
 
 use crate::value::Ix;
 use crate::value::NONE;

@@ -13,7 +13,129 @@ use crate::engine::Core;
 use crate::expr::{loc, Expr, Op};
 use crate::value::{Ix, Value, NONE};
 
+/// Entries of the join-test plan cache (`State::test_plans`, direct-mapped by join).
+pub const TEST_PLANS: usize = 8;
+/// Most tests a plan holds; joins with more use `quick_join_test` as it is.
+pub const PLAN_TESTS: usize = 4;
+
+/// One planned join test: `?a = ?b` (or `~`, `negated`) between pattern-index /
+/// slot pairs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TestOp {
+    pub negated: bool,
+    pub a: (u8, u8),
+    pub b: (u8, u8),
+}
+
+/// A join's tests worked out once into slot comparisons (`n` of `ops`), or
+/// `n == TestPlan::NONE.n` when they are not all of that shape.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TestPlan {
+    pub join: Ix,
+    /// The join's test chain (a reused join id has another one).
+    pub tests: Ix,
+    pub n: u8,
+    pub ops: [TestOp; PLAN_TESTS],
+}
+
+impl TestPlan {
+    pub const NONE: TestPlan = TestPlan {
+        join: NONE,
+        tests: NONE,
+        n: u8::MAX,
+        ops: [TestOp {
+            negated: false,
+            a: (0, 0),
+            b: (0, 0),
+        }; PLAN_TESTS],
+    };
+}
+
 impl Core<'_> {
+    /// `quick_join_test` for the tests of `join` through its cached plan.
+    pub(crate) fn planned_join_test(&mut self, join: Ix, right_fact: Ix) -> Option<bool> {
+        let (tests, depth) = {
+            let j = &self.joins[join as usize];
+            (j.tests, j.depth)
+        };
+        let i = join as usize % TEST_PLANS;
+        let cached = self.st.test_plans[i];
+        let plan = if cached.join == join && cached.tests == tests {
+            cached
+        } else {
+            let p = self.test_plan(join, tests, depth);
+            self.st.test_plans[i] = p;
+            p
+        };
+        if plan.n == TestPlan::NONE.n {
+            return self.quick_join_test(tests, depth, right_fact);
+        }
+        for op in &plan.ops[..plan.n as usize] {
+            let va = self.planned_var(op.a, depth, right_fact)?;
+            let vb = self.planned_var(op.b, depth, right_fact)?;
+            if va.same(vb) == op.negated {
+                return Some(false);
+            }
+        }
+        Some(true)
+    }
+
+    #[inline(always)]
+    fn planned_var(&self, (pat, slot): (u8, u8), depth: u8, right_fact: Ix) -> Option<Value> {
+        let fact = if pat == depth {
+            right_fact
+        } else {
+            self.st.lhs_pm[pat as usize].fact
+        };
+        if fact == NONE {
+            return None;
+        }
+        self.plain_slot(fact, Ix::from(slot))
+    }
+
+    /// The plan of a join's tests (see `TestPlan`).
+    fn test_plan(&self, join: Ix, tests: Ix, depth: u8) -> TestPlan {
+        let mut plan = TestPlan {
+            join,
+            tests,
+            n: 0,
+            ..TestPlan::NONE
+        };
+        let unplanned = TestPlan {
+            join,
+            tests,
+            ..TestPlan::NONE
+        };
+        let var = |x: &Expr| -> Option<(u8, u8)> {
+            (x.op == Op::PatVar && x.first == NONE && x.data != loc::FACT && x.aux <= depth)
+                .then(|| (x.aux, loc::slot(x.data)))
+        };
+        let mut t = tests;
+        while t != NONE {
+            let x = self.exprs[t as usize];
+            let (eq, negated) = match x.op {
+                Op::Eq2 => (x, false),
+                Op::Not if x.first != NONE => (self.exprs[x.first as usize], true),
+                _ => return unplanned,
+            };
+            if eq.op != Op::Eq2 || eq.first == NONE || plan.n as usize >= PLAN_TESTS {
+                return unplanned;
+            }
+            let a = self.exprs[eq.first as usize];
+            if a.next == NONE {
+                return unplanned;
+            }
+            let b = self.exprs[a.next as usize];
+            let (Some(a), Some(b)) = (var(&a), var(&b)) else {
+                return unplanned;
+            };
+            plan.ops[plan.n as usize] = TestOp { negated, a, b };
+            plan.n += 1;
+            t = x.next;
+        }
+        plan
+    }
+
     /// The value of pattern variable `x` read from `fact`, when it is a plain
     /// single-field slot (no multislot element, not the fact address).
     #[inline(always)]
