@@ -1,8 +1,8 @@
 //! The expression evaluator.
 
 use crate::builtins::{self, Args, Imp, SYM_FALSE, SYM_TRUE};
-use crate::engine::Core;
-use crate::error::{EvalError, EvalErrorKind};
+use crate::engine::{cap, Core};
+use crate::error::{EvalError, EvalErrorKind, Pool};
 use crate::expr::{loc, FnKind, Op};
 use crate::rete::{PatBinding, THIS_PATTERN};
 use crate::value::Ix;
@@ -175,10 +175,23 @@ impl Core<'_> {
         while a != NONE {
             // `$?x` is passed as one multifield argument: CLIPS 6.30 does not expand it
             // into separate arguments (`(length$ $?x)` is the length of ?x)
-            let v = self.eval_operand(a)?;
-            self.push_value(v)?;
+            let v = match self.eval_operand(a) {
+                Ok(v) => v,
+                Err(e) => {
+                    self.note_hw(Pool::EvalStack, self.st.sp as usize);
+                    return Err(e);
+                }
+            };
+            // `push_value` without its per-value high-water note (one note per call)
+            let sp = self.st.sp as usize;
+            if sp >= self.stack.len() {
+                return Err(cap(Pool::EvalStack, self.stack.len()).into());
+            }
+            self.stack[sp] = v;
+            self.st.sp += 1;
             a = self.exprs[a as usize].next;
         }
+        self.note_hw(Pool::EvalStack, self.st.sp as usize);
         Ok(Args {
             base,
             len: self.st.sp - base,
