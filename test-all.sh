@@ -159,9 +159,10 @@ stage_host_tests() {
     # host-shim enables agent-core's `wide-pools` (u32 pool indices), and cargo unifies
     # features across the workspace: this run tests agent-core with u32 indices ...
     cargo test --workspace --no-fail-fast || return 1
-    # ... and this one with the u16 indices of the agent image, on the host.
-    echo "-- agent-core with u16 pool indices (no wide-pools)"
-    cargo test -p agent-core --no-fail-fast
+    # ... and this one with the u16 indices of the agent image, on the host, with the
+    # invariants checked before and after every engine operation (`check-invariants`).
+    echo "-- agent-core with u16 pool indices (no wide-pools) and check-invariants"
+    cargo test -p agent-core --features check-invariants --no-fail-fast
 }
 
 # ---------------------------------------------------------------------------------------

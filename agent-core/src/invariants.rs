@@ -352,8 +352,9 @@ impl Core<'_> {
         );
         for t in 0..st.ntemplates as usize {
             let tp = self.templates[t];
+            // a template retired by a redefinition keeps its entry with no name
             ensure!(
-                (tp.name as usize) < st.nsyms as usize,
+                tp.name == NONE || (tp.name as usize) < st.nsyms as usize,
                 "template name is not a symbol",
                 t
             );
