@@ -161,16 +161,41 @@ impl Core<'_> {
         self.eval_lhs_tests(j.tests)
     }
 
-    /// The output token of a not/exists `join` for left token `left`, if any.
+    /// Whether child token `c` belongs to the front of its parent's child list: links
+    /// and not/exists outputs (at most one per child join, one link), see `link_token`.
+    fn in_front_run(&self, c: Ix) -> bool {
+        let tk = &self.tokens[c as usize];
+        tk.kind == TokenKind::Link
+            || matches!(
+                self.joins[tk.owner as usize].kind,
+                JoinKind::Negative | JoinKind::Exists
+            )
+    }
+
+    /// The output token of a not/exists `join` for left token `left`, if any. Only the
+    /// front run of the child list is walked: a left token can have any number of
+    /// positive children (the root token one per fact of a rule's first pattern), and
+    /// walking them made every right activation of a leading `not` linear.
     fn output_of(&self, left: Ix, join: Ix) -> Ix {
         let mut c = self.tokens[left as usize].first_child;
-        while c != NONE {
+        while c != NONE && self.in_front_run(c) {
             if self.tokens[c as usize].owner == join {
                 return c;
             }
             c = self.tokens[c as usize].next_sib;
         }
         NONE
+    }
+
+    /// The last token of `parent`'s front run of children (NONE if the run is empty).
+    fn front_run_end(&self, parent: Ix) -> Ix {
+        let mut last = NONE;
+        let mut c = self.tokens[parent as usize].first_child;
+        while c != NONE && self.in_front_run(c) {
+            last = c;
+            c = self.tokens[c as usize].next_sib;
+        }
+        last
     }
 
     /// A new alpha match arrives on the right of `join`.
@@ -372,7 +397,21 @@ impl Core<'_> {
     fn link_token(&mut self, join: Ix, parent: Ix, am: Ix) -> Result<Ix, EvalError> {
         let t = self.alloc_token()?;
         let head = self.joins[join as usize].mem;
-        let psib = if parent != NONE {
+        // links and not/exists outputs stay in front of the parent's other children
+        // (see `output_of`); the others keep newest-first order among themselves,
+        // which is all that the per-successor walks (`take_back`) rely on
+        let after = if parent != NONE
+            && !matches!(
+                self.joins[join as usize].kind,
+                JoinKind::Negative | JoinKind::Exists
+            ) {
+            self.front_run_end(parent)
+        } else {
+            NONE
+        };
+        let psib = if after != NONE {
+            self.tokens[after as usize].next_sib
+        } else if parent != NONE {
             self.tokens[parent as usize].first_child
         } else {
             NONE
@@ -389,6 +428,7 @@ impl Core<'_> {
             parent,
             mem_next: head,
             next_sib: psib,
+            prev_sib: after,
             am_next: asib,
             ..Token::EMPTY
         };
@@ -401,7 +441,11 @@ impl Core<'_> {
             if psib != NONE {
                 self.tokens[psib as usize].prev_sib = t;
             }
-            self.tokens[parent as usize].first_child = t;
+            if after != NONE {
+                self.tokens[after as usize].next_sib = t;
+            } else {
+                self.tokens[parent as usize].first_child = t;
+            }
         }
         if am != NONE {
             if asib != NONE {
