@@ -141,6 +141,10 @@ pub struct State {
     /// Live facts in creation (= number) order.
     pub fact_head: Ix,
     pub fact_tail: Ix,
+    /// Facts on that list and activations on the agenda: `(watch statistics)` samples
+    /// both after every firing, which must not walk the lists.
+    pub live_facts: Ix,
+    pub agenda_len: Ix,
     /// Facts retracted during the current firing, freed when it ends.
     pub pending: Ix,
     pub next_fact_num: u32,
@@ -240,6 +244,8 @@ impl State {
             values_top: 0,
             fact_head: NONE,
             fact_tail: NONE,
+            live_facts: 0,
+            agenda_len: 0,
             pending: NONE,
             next_fact_num: 0,
             agenda_head: NONE,

@@ -392,6 +392,7 @@ impl Core<'_> {
         } else {
             self.facts[next as usize].prev = slot;
         }
+        self.st.live_facts += 1;
         if let Err(e) = self.network_assert(slot) {
             self.network_retract(slot);
             self.unlink_fact(slot);
@@ -455,6 +456,7 @@ impl Core<'_> {
             self.st.fact_head = slot;
         }
         self.st.fact_tail = slot;
+        self.st.live_facts += 1;
         let live = self.count_live_facts_hint();
         self.note_hw(Pool::Facts, live);
         self.note_hw(Pool::FactValues, self.st.values_top as usize);
@@ -480,6 +482,7 @@ impl Core<'_> {
 
     fn unlink_fact(&mut self, slot: Ix) {
         let f = self.facts[slot as usize];
+        self.st.live_facts -= 1;
         if f.prev != NONE {
             self.facts[f.prev as usize].next = f.next;
         } else {
@@ -549,13 +552,7 @@ impl Core<'_> {
     }
 
     pub fn live_fact_count(&self) -> usize {
-        let mut n = 0;
-        let mut f = self.st.fact_head;
-        while f != NONE {
-            n += 1;
-            f = self.facts[f as usize].next;
-        }
-        n
+        self.st.live_facts as usize
     }
 }
 

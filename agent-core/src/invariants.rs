@@ -488,6 +488,11 @@ impl Core<'_> {
             f = x.next;
         }
         ensure!(self.st.fact_tail == prev, "fact list tail wrong", prev);
+        ensure!(
+            self.st.live_facts as usize == live,
+            "live fact count wrong",
+            self.st.live_facts
+        );
         let free = self.walk(
             self.st.fact_free,
             used,
@@ -1092,6 +1097,11 @@ impl Core<'_> {
             on_agenda + free == used,
             "activation accounting does not add up",
             used
+        );
+        ensure!(
+            self.st.agenda_len as usize == on_agenda,
+            "agenda length wrong",
+            self.st.agenda_len
         );
         // and every activation listed under a match is on the agenda (counted above)
         let mut listed = 0usize;
