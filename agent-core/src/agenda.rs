@@ -154,10 +154,12 @@ impl Core<'_> {
         } else {
             self.st.agenda_head = a;
         }
+        self.st.agenda_len += 1;
     }
 
     fn agenda_unlink(&mut self, a: Ix) {
         let x = self.acts[a as usize];
+        self.st.agenda_len -= 1;
         if x.prev != NONE {
             self.acts[x.prev as usize].next = x.next;
         } else {
@@ -227,6 +229,7 @@ impl Core<'_> {
         }
         let mut list = self.st.agenda_head;
         self.st.agenda_head = NONE;
+        self.st.agenda_len = 0;
         // re-insert oldest first so newer stay ahead among equals
         let mut tail = list;
         while tail != NONE && self.acts[tail as usize].next != NONE {
@@ -380,5 +383,6 @@ impl Core<'_> {
         } else {
             self.st.agenda_head = a;
         }
+        self.st.agenda_len += 1;
     }
 }

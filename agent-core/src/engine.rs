@@ -143,6 +143,9 @@ pub struct State {
     /// How many facts that list holds (`watch statistics` samples it per firing).
     pub facts_live: Ix,
     pub fact_tail: Ix,
+    /// Activations on the agenda: `(watch statistics)` samples it after every firing,
+    /// which must not walk the list.
+    pub agenda_len: Ix,
     /// Facts retracted during the current firing, freed when it ends.
     pub pending: Ix,
     pub next_fact_num: u32,
@@ -262,6 +265,7 @@ impl State {
             fact_head: NONE,
             facts_live: 0,
             fact_tail: NONE,
+            agenda_len: 0,
             pending: NONE,
             next_fact_num: 0,
             agenda_head: NONE,

@@ -1161,6 +1161,11 @@ impl Core<'_> {
             "activation accounting does not add up",
             used
         );
+        ensure!(
+            self.st.agenda_len as usize == on_agenda,
+            "agenda length wrong",
+            self.st.agenda_len
+        );
         // and every activation listed under a match is on the agenda (counted above)
         let mut listed = 0usize;
         for tk in self.tokens[..self.st.tokens_used as usize].iter() {

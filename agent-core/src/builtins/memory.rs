@@ -14,7 +14,7 @@ use core::mem::size_of;
 use super::{Args, Builtin};
 use crate::engine::Core;
 use crate::error::EvalError;
-use crate::value::{Value, NONE};
+use crate::value::Value;
 
 pub const FUNCS: &[Builtin] = &[
     Builtin::eager("mem-used", 0, 0, mem_used),
@@ -26,13 +26,7 @@ pub const FUNCS: &[Builtin] = &[
 impl Core<'_> {
     /// Activations on the agenda.
     pub fn activation_count(&self) -> usize {
-        let mut n = 0;
-        let mut a = self.st.agenda_head;
-        while a != NONE {
-            n += 1;
-            a = self.acts[a as usize].next;
-        }
-        n
+        self.st.agenda_len as usize
     }
 
     /// Pool entries in use and their bytes: `(entries, bytes)`.
