@@ -135,6 +135,9 @@ impl Core<'_> {
                         self.multi_push(item)?;
                     }
                 }
+                // a function without a value (`printout`) adds no field, as in CLIPS:
+                // `(deffacts d (a x (printout t)))` makes `(a x)`
+                Value::Void => {}
                 v => self.multi_push(v)?,
             }
         }
