@@ -508,6 +508,11 @@ impl Core<'_> {
             // the agenda is complete only once owed matches are built: fire nothing
             // before (the error stops the run; retracting facts makes room)
             self.pay_owed()?;
+            // the host may stop an endless run between firings (`Host::interrupt`)
+            if let Err(e) = self.poll_interrupt() {
+                self.st.halt = false;
+                return Err(e);
+            }
             let (rule, token) = match self.pop_activation() {
                 Some(x) => x,
                 None => break,
@@ -557,6 +562,14 @@ impl Core<'_> {
                     return Err(e);
                 }
                 self.report_rhs_error(rule, e);
+                if e.kind == EvalErrorKind::Interrupted {
+                    // the caller learns the run was stopped; the message is out
+                    self.st.halt = false;
+                    return Err(EvalError {
+                        reported: true,
+                        ..e
+                    });
+                }
                 break;
             }
             if self.st.halt {
@@ -631,6 +644,9 @@ impl Core<'_> {
             }
             EvalErrorKind::NoSuchFact(n) => {
                 let _ = writeln!(b, "[PRNTUTIL1] Unable to find fact f-{n}.");
+            }
+            EvalErrorKind::Interrupted => {
+                let _ = writeln!(b, "[INTERRUPT] Execution interrupted by the host.");
             }
             // messages that already carry CLIPS's code, e.g. "[MULTIFUN1] ..."
             EvalErrorKind::Other(m) if m.starts_with('[') => {
@@ -1075,7 +1091,10 @@ impl Core<'_> {
                     Err(err) if err.kind == EvalErrorKind::Exit => {}
                     Err(err) => {
                         self.report_eval_error(err);
-                        if !matches!(err.kind, EvalErrorKind::Capacity(_)) && !self.st.quiet_results
+                        if !matches!(
+                            err.kind,
+                            EvalErrorKind::Capacity(_) | EvalErrorKind::Interrupted
+                        ) && !self.st.quiet_results
                         {
                             self.print_fallback(e);
                         }

@@ -123,6 +123,8 @@ pub enum EvalErrorKind {
     External,
     /// `(halt)`/`(exit)` requested; not an error for callers of `run`.
     Exit,
+    /// The host's `interrupt` returned true: the running loop or rule firing stopped.
+    Interrupted,
     /// The message is already printed (a builtin whose CLIPS message names run-time
     /// details, or a deffunction that added its `[PRCCODE4]` line): evaluation just stops.
     Reported,
@@ -204,6 +206,7 @@ impl fmt::Display for EvalError {
             EvalErrorKind::BadSlotValue { reason } => write!(f, "bad slot value: {reason}"),
             EvalErrorKind::External => write!(f, "external function failed"),
             EvalErrorKind::Exit => write!(f, "exit requested"),
+            EvalErrorKind::Interrupted => write!(f, "execution interrupted by the host"),
             EvalErrorKind::Reported => write!(f, "error (already reported)"),
             EvalErrorKind::Other(m) => write!(f, "{m}"),
         }

@@ -354,6 +354,20 @@ pub(crate) fn check_arity(name: &'static str, min: u8, max: u8, n: Ix) -> Result
     Ok(())
 }
 
+impl Core<'_> {
+    /// Asks the host whether to stop (`Host::interrupt`); the loops and the run loop
+    /// call this once per step. A runaway program ends with `Interrupted`, unwinding
+    /// as any evaluation error does.
+    #[inline]
+    pub fn poll_interrupt(&mut self) -> Result<(), EvalError> {
+        if self.host.interrupt() {
+            Err(EvalError::new(EvalErrorKind::Interrupted))
+        } else {
+            Ok(())
+        }
+    }
+}
+
 impl crate::engine::State {
     pub fn halt_now(&self) -> bool {
         self.exit

@@ -50,6 +50,15 @@ pub trait Host {
     fn time(&mut self) -> f64 {
         0.0
     }
+    /// Polled once per iteration of `while`, `loop-for-count`, `progn$`/`foreach` and
+    /// once per rule firing of `run`: returning true stops the current execution (as
+    /// CLIPS's keyboard interrupt does) with `EvalErrorKind::Interrupted`. A robot's
+    /// watchdog or stop button, or a fuzzer's step budget, ends runaway programs with it.
+    /// The engine stays consistent; it polls again in the next loop, so a host that
+    /// keeps returning true stops every loop until it is rearmed.
+    fn interrupt(&mut self) -> bool {
+        false
+    }
 }
 
 /// A host that drops all output.

@@ -352,9 +352,11 @@ impl Core<'_> {
         );
         for t in 0..st.ntemplates as usize {
             let tp = self.templates[t];
-            // a template retired by a redefinition keeps its entry with no name
+            // a redefined template's old entry is retired in place: no name, listed
+            // nowhere, matched by nothing (`parser::construct::deftemplate`)
             ensure!(
-                tp.name == NONE || (tp.name as usize) < st.nsyms as usize,
+                (tp.name as usize) < st.nsyms as usize
+                    || (tp.name == NONE && tp.implied && tp.alpha_head == NONE),
                 "template name is not a symbol",
                 t
             );

@@ -76,6 +76,7 @@ fn while_(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     let [c, body] = kids::<2>(cx, call);
     let mark = cx.st.scratch_top;
     while Core::is_true(cx.eval(c)?) {
+        cx.poll_interrupt()?;
         cx.eval(body)?;
         release_scratch(cx, mark);
         if cx.st.breaking {
@@ -111,6 +112,7 @@ fn loop_for_count(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
             let at = (cx.st.bp + sl) as usize;
             cx.stack[at] = Value::Int(i);
         }
+        cx.poll_interrupt()?;
         cx.eval(body)?;
         release_scratch(cx, mark);
         if cx.st.breaking {
@@ -138,6 +140,7 @@ fn foreach(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
         let at = (cx.st.bp + slot) as usize;
         cx.stack[at] = cx.scratch[m.start as usize + k];
         cx.stack[at + 1] = Value::Int(k as i64 + 1);
+        cx.poll_interrupt()?;
         last = cx.eval(body)?;
         release_scratch(cx, mark.max(m.start + m.len));
         if cx.st.breaking {

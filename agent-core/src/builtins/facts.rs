@@ -108,7 +108,12 @@ impl Core<'_> {
             let v = match self.eval(e) {
                 Ok(v) => v,
                 Err(err)
-                    if !matches!(err.kind, EvalErrorKind::Capacity(_) | EvalErrorKind::Exit) =>
+                    if !matches!(
+                        err.kind,
+                        EvalErrorKind::Capacity(_)
+                            | EvalErrorKind::Exit
+                            | EvalErrorKind::Interrupted
+                    ) =>
                 {
                     // CLIPS reports it and goes on without this field
                     self.write_error_message(err);
@@ -130,6 +135,9 @@ impl Core<'_> {
                         self.multi_push(item)?;
                     }
                 }
+                // a function without a value (`printout`) adds no field, as in CLIPS:
+                // `(deffacts d (a x (printout t)))` makes `(a x)`
+                Value::Void => {}
                 v => self.multi_push(v)?,
             }
         }

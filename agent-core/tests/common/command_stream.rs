@@ -170,9 +170,19 @@ pub fn decode(data: &[u8]) -> Vec<Cmd> {
     cmds
 }
 
-struct Quiet;
+/// Drops output and interrupts once polled `POLL_BUDGET` times in one command (one
+/// poll per loop iteration or rule firing): a guard, should a rule base or command ever
+/// loop forever (the runs are bounded and the rule bases have no loops today).
+struct Quiet(u32);
+
+const POLL_BUDGET: u32 = 100_000;
+
 impl Host for Quiet {
     fn write_str(&mut self, _router: &str, _text: &str) {}
+    fn interrupt(&mut self) -> bool {
+        self.0 = self.0.saturating_add(1);
+        self.0 > POLL_BUDGET
+    }
 }
 
 fn agenda(e: &StreamEngine) -> Vec<String> {
@@ -193,7 +203,7 @@ pub fn new_engine_with(rules: &str) -> Box<StreamEngine> {
 }
 
 fn setup(e: &mut StreamEngine, rules: &str) {
-    let h = &mut Quiet;
+    let h = &mut Quiet(0);
     if let Err(err) = e.load_str(h, "rules", rules) {
         panic!("rule base does not load: {err}");
     }
@@ -216,7 +226,7 @@ pub fn apply(e: &mut StreamEngine, cmd: &Cmd) -> String {
 
 /// `apply` with the rule base `clear` reloads.
 pub fn apply_with(e: &mut StreamEngine, cmd: &Cmd, rules: &str) -> String {
-    let h = &mut Quiet;
+    let h = &mut Quiet(0);
     let outcome = match cmd {
         Cmd::AssertItem { id, state, tags } => {
             let tags: Vec<&str> = tags.iter().map(|&t| TAGS[t as usize]).collect();
@@ -283,7 +293,7 @@ pub fn apply_with(e: &mut StreamEngine, cmd: &Cmd, rules: &str) -> String {
 
 /// Asserts; a failure other than a duplicate must leave facts and agenda as they were.
 fn assert_leaving_no_trace(e: &mut StreamEngine, text: &str) -> String {
-    let h = &mut Quiet;
+    let h = &mut Quiet(0);
     let facts: Vec<FactId> = e.facts().collect();
     let acts = agenda(e);
     let usage = e.usage();

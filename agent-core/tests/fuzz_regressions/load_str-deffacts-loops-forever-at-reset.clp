@@ -1,0 +1,1 @@
+(deffacts start (go (while qoda * 1)))

@@ -1,0 +1,95 @@
+//! Inputs the `load_str` fuzz target (agent-core/fuzz/fuzz_targets/load_str.rs) found,
+//! replayed the way it runs them: load, check invariants, reset, check again, with a
+//! host that interrupts after the same poll budget.
+
+use agent_core::{Host, SmallEngine};
+
+struct Budget(u32);
+
+const POLL_BUDGET: u32 = 100_000;
+
+impl Host for Budget {
+    fn write_str(&mut self, _router: &str, _text: &str) {}
+    fn interrupt(&mut self) -> bool {
+        self.0 = self.0.saturating_add(1);
+        self.0 > POLL_BUDGET
+    }
+}
+
+fn replay(name: &str, data: &[u8]) {
+    let text = String::from_utf8_lossy(data);
+    let mut e = Box::new(SmallEngine::new());
+    let h = &mut Budget(0);
+    let r = e.load_str(h, "fuzz", &text);
+    if let Err(v) = e.check_invariants() {
+        panic!("{name}: after load_str ({r:?}): {v}");
+    }
+    let r = e.reset(h);
+    if let Err(v) = e.check_invariants() {
+        panic!("{name}: after reset ({r:?}): {v}");
+    }
+}
+
+/// A deffacts whose slot value loops forever: the reset used to never return (the
+/// fuzzer's timeout); now the host's poll budget ends it.
+#[test]
+fn deffacts_that_loops_forever_at_reset() {
+    replay(
+        "deffacts-loops-forever-at-reset",
+        include_bytes!("fuzz_regressions/load_str-deffacts-loops-forever-at-reset.clp"),
+    );
+}
+
+/// A deftemplate redefined: its old entry is retired with no name, which the
+/// invariant check took for a broken template.
+#[test]
+fn redefined_deftemplate_then_a_failed_construct() {
+    replay(
+        "failed-deffunction-after-template-redefinition",
+        include_bytes!(
+            "fuzz_regressions/load_str-failed-deffunction-after-template-redefinition.clp"
+        ),
+    );
+    replay(
+        "template-redefinition",
+        b"(deftemplate job )\n(deftemplate job (slot id))\n(assert (job (id 1)))",
+    );
+}
+
+/// Found by the 300 s `load_str` run: a deffacts field that calls a function without
+/// a value (minimised: `(deffacts d (a (printout t)))`) stored a void field in the fact
+/// at `reset` ("fact field is not an atom"). CLIPS 6.30 drops it: `(a)`.
+#[test]
+fn deffacts_field_without_a_value() {
+    replay(
+        "deffacts-with-void-field",
+        include_bytes!("fuzz_regressions/load_str-deffacts-with-variable-field.clp"),
+    );
+    replay("minimal", b"(deffacts d(a\"\"\"\"(printout t)))");
+    let mut e = Box::new(SmallEngine::new());
+    let h = &mut Budget(0);
+    e.load_str(h, "d", "(deffacts d (a x (printout t)))")
+        .expect("loads");
+    e.reset(h).expect("resets");
+    e.check_invariants().expect("invariants");
+    let v = e
+        .eval_str(h, "(length$ (fact-slot-value 1 implied))")
+        .expect("evaluates");
+    assert_eq!(
+        v,
+        agent_core::Value::Int(1),
+        "(a x): the void field is dropped"
+    );
+}
+
+/// Found by the last `load_str` run (after ~1.8 M executions): a load that fails in a
+/// defrule's salience leaves a fact of an unknown template ("fact of an unknown
+/// template"). Not minimised or fixed yet.
+#[test]
+#[ignore = "open finding of the load_str fuzz target"]
+fn failed_defrule_leaves_a_fact_of_an_unknown_template() {
+    replay(
+        "failed-defrule-fact-of-unknown-template",
+        include_bytes!("fuzz_regressions/load_str-failed-defrule-fact-of-unknown-template.clp"),
+    );
+}
