@@ -572,24 +572,7 @@ impl Core<'_> {
     }
 
     fn unowe(&mut self, t: Ix) {
-        let tk = self.tokens[t as usize];
-        let head = self.st.owed;
-        if t == head {
-            self.st.owed = tk.am_next;
-            if tk.am_next != NONE {
-                // the new head keeps the tail
-                self.tokens[tk.am_next as usize].am_prev = tk.am_prev;
-            }
-        } else {
-            self.tokens[tk.am_prev as usize].am_next = tk.am_next;
-            if tk.am_next != NONE {
-                self.tokens[tk.am_next as usize].am_prev = tk.am_prev;
-            } else {
-                self.tokens[head as usize].am_prev = tk.am_prev;
-            }
-        }
-        self.tokens[t as usize].am_next = NONE;
-        self.tokens[t as usize].am_prev = NONE;
+        self.st.owed = self.am_chain_remove(self.st.owed, t);
     }
 
     /// Notes a not output a modify's retract unblocked (see `UnblockLog`).

@@ -263,10 +263,19 @@ impl Core<'_> {
             return;
         }
         let b = tk.parent as usize;
-        let head = self.amem_buckets[b];
-        if head == am {
-            self.amem_buckets[b] = tk.am_next;
+        self.amem_buckets[b] = self.am_chain_remove(self.amem_buckets[b], am);
+        self.tokens[am as usize].parent = NONE;
+    }
+
+    /// Removes `t` from a chain linked through `am_next`/`am_prev` whose head's
+    /// `am_prev` is the tail (a bucket, or the owed list); returns the new head.
+    pub(crate) fn am_chain_remove(&mut self, head: Ix, t: Ix) -> Ix {
+        let tk = self.tokens[t as usize];
+        let mut new_head = head;
+        if t == head {
+            new_head = tk.am_next;
             if tk.am_next != NONE {
+                // the new head keeps the tail
                 self.tokens[tk.am_next as usize].am_prev = tk.am_prev;
             }
         } else {
@@ -277,9 +286,9 @@ impl Core<'_> {
                 self.tokens[head as usize].am_prev = tk.am_prev;
             }
         }
-        self.tokens[am as usize].am_next = NONE;
-        self.tokens[am as usize].am_prev = NONE;
-        self.tokens[am as usize].parent = NONE;
+        self.tokens[t as usize].am_next = NONE;
+        self.tokens[t as usize].am_prev = NONE;
+        new_head
     }
 
     /// Where a left token of alpha-fed `join` starts looking for right partners:
