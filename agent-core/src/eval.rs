@@ -20,6 +20,7 @@ impl Core<'_> {
             Op::Local => Ok(self.stack[(self.st.bp + x.data) as usize]),
             Op::Global => Ok(self.globals[x.data as usize].value),
             Op::PatVar => self.pattern_var(x.aux, x.data, x.first),
+            Op::QSlot => self.query_slot(x),
             Op::Expand => self.eval(x.first),
             Op::Eq2 => {
                 let a = self.eval_operand(x.first)?;
@@ -63,6 +64,7 @@ impl Core<'_> {
             Op::Str => Ok(Value::Str(x.data)),
             Op::Local => Ok(self.stack[(self.st.bp + x.data) as usize]),
             Op::PatVar => self.pattern_var(x.aux, x.data, x.first),
+            Op::QSlot => self.query_slot(x),
             _ => self.eval(e),
         }
     }
@@ -167,6 +169,13 @@ impl Core<'_> {
             c = self.exprs[c as usize].next;
         }
         Err(EvalError::new(EvalErrorKind::UnboundVariable))
+    }
+
+    /// `?v:slot` (an `Op::QSlot` node).
+    fn query_slot(&mut self, x: crate::expr::Expr) -> Result<Value, EvalError> {
+        let fv = self.stack[(self.st.bp + x.data) as usize];
+        let name = self.exprs[x.first as usize].data;
+        builtins::facts::slot_value_of(self, fv, name)
     }
 
     /// Evaluates a call's arguments onto the stack.
