@@ -420,12 +420,32 @@ fn fact_slot_value(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     slot_of_fact(cx, f, name)
 }
 
-/// `?v:slot`: `(fact-slot-value ?v slot)` with its arguments at hand.
-pub(crate) fn slot_value_of(cx: &mut Core<'_>, fv: Value, name: SymId) -> Result<Value, EvalError> {
-    match cx.fact_arg(fv) {
-        Some(f) => slot_of_fact(cx, f, name),
-        None => Ok(no_such_fact(cx, fv)),
+/// `?v:slot`: `(fact-slot-value ?v slot)` with its arguments at hand. `node` (the
+/// `QSlot` node) keeps in `aux` the slot index found last time plus one: checked by
+/// name against the fact's template, it saves the search by name in query loops.
+pub(crate) fn slot_value_of(
+    cx: &mut Core<'_>,
+    fv: Value,
+    name: SymId,
+    node: Ix,
+) -> Result<Value, EvalError> {
+    let Some(f) = cx.fact_arg(fv) else {
+        return Ok(no_such_fact(cx, fv));
+    };
+    let tmpl = cx.facts[f as usize].tmpl;
+    let t = cx.templates[tmpl as usize];
+    if !t.implied {
+        let k = cx.exprs[node as usize].aux as Ix;
+        if k != 0 && k <= t.nslots && cx.slots[(t.first_slot + k - 1) as usize].name == name {
+            return Ok(cx.fact_slot_value(f, k - 1)?);
+        }
+        if let Some(s) = cx.find_slot(tmpl, name) {
+            if s < u8::MAX as Ix {
+                cx.exprs[node as usize].aux = s as u8 + 1;
+            }
+        }
     }
+    slot_of_fact(cx, f, name)
 }
 
 /// fact-slot-value of a missing fact: CLIPS prints the missing fact's index, then
