@@ -3,7 +3,7 @@
 use crate::builtins::{self, Args, Imp, SYM_FALSE, SYM_TRUE};
 use crate::engine::{cap, Core};
 use crate::error::{EvalError, EvalErrorKind, Pool};
-use crate::expr::{loc, FnKind, Op};
+use crate::expr::{loc, Expr, FnKind, Op};
 use crate::rete::{PatBinding, THIS_PATTERN};
 use crate::value::Ix;
 use crate::value::{MfSpan, Value, NONE};
@@ -67,6 +67,9 @@ impl Core<'_> {
         match x.op {
             Op::Sym => Ok(Value::Sym(x.data)),
             Op::Str => Ok(Value::Str(x.data)),
+            Op::Int => Ok(Value::Int(
+                Expr::join_bits(x, self.exprs[e as usize + 1]) as i64
+            )),
             Op::Local => Ok(self.stack[(self.st.bp + x.data) as usize]),
             Op::PatVar => self.pattern_var(x.aux, x.data, x.first),
             Op::QSlot => self.query_slot(e, x),
@@ -192,7 +195,7 @@ impl Core<'_> {
     }
 
     /// `?v:slot` (an `Op::QSlot` node).
-    fn query_slot(&mut self, e: Ix, x: crate::expr::Expr) -> Result<Value, EvalError> {
+    fn query_slot(&mut self, e: Ix, x: Expr) -> Result<Value, EvalError> {
         let fv = self.stack[(self.st.bp + x.data) as usize];
         let name = self.exprs[x.first as usize].data;
         builtins::facts::slot_value_of(self, fv, name, e)
