@@ -3,7 +3,7 @@
 use crate::builtins::{self, Args, Imp, SYM_FALSE, SYM_TRUE};
 use crate::engine::{cap, Core};
 use crate::error::{EvalError, EvalErrorKind, Pool};
-use crate::expr::{loc, FnKind, Op};
+use crate::expr::{loc, Expr, FnKind, Op};
 use crate::rete::{PatBinding, THIS_PATTERN};
 use crate::value::Ix;
 use crate::value::{MfSpan, Value, NONE};
@@ -20,11 +20,17 @@ impl Core<'_> {
             Op::Local => Ok(self.stack[(self.st.bp + x.data) as usize]),
             Op::Global => Ok(self.globals[x.data as usize].value),
             Op::PatVar => self.pattern_var(x.aux, x.data, x.first),
+            Op::QSlot => self.query_slot(e, x),
             Op::Expand => self.eval(x.first),
             Op::Eq2 => {
                 let a = self.eval_operand(x.first)?;
                 let b = self.eval_operand(self.exprs[x.first as usize].next)?;
-                Ok(Core::bool_value(builtins::basic::values_same(self, a, b)))
+                // symbols, the usual pattern constants, compare without the call
+                let same = match (a, b) {
+                    (Value::Sym(p), Value::Sym(q)) => p == q,
+                    _ => builtins::basic::values_same(self, a, b),
+                };
+                Ok(Core::bool_value(same))
             }
             Op::And => {
                 let mut c = x.first;
@@ -61,8 +67,12 @@ impl Core<'_> {
         match x.op {
             Op::Sym => Ok(Value::Sym(x.data)),
             Op::Str => Ok(Value::Str(x.data)),
+            Op::Int => Ok(Value::Int(
+                Expr::join_bits(x, self.exprs[e as usize + 1]) as i64
+            )),
             Op::Local => Ok(self.stack[(self.st.bp + x.data) as usize]),
             Op::PatVar => self.pattern_var(x.aux, x.data, x.first),
+            Op::QSlot => self.query_slot(e, x),
             _ => self.eval(e),
         }
     }
@@ -115,8 +125,23 @@ impl Core<'_> {
         if elem == loc::SINGLE || desc_slot == NONE {
             return Ok(self.copy_to_scratch(cell + 1, len)?);
         }
-        // walk the slot's element list to find the element's offset and length
         let ps = self.exprs[desc_slot as usize];
+        // usual case: only single-field elements up to this one, so its offset is its
+        // index (ordered facts like `(state IDLE)` test their fields this way)
+        let mut c = ps.first;
+        let mut i = 0u8;
+        while c != NONE {
+            let ex = self.exprs[c as usize];
+            if ex.aux == 1 {
+                break;
+            }
+            if i == elem {
+                return Ok(self.values[cell + 1 + i as usize]);
+            }
+            i += 1;
+            c = ex.next;
+        }
+        // walk the slot's element list to find the element's offset and length
         let first_mark = ps.aux as usize;
         let (mut fixed, mut multis) = (0usize, 0usize);
         let mut c = ps.first;
@@ -167,6 +192,13 @@ impl Core<'_> {
             c = self.exprs[c as usize].next;
         }
         Err(EvalError::new(EvalErrorKind::UnboundVariable))
+    }
+
+    /// `?v:slot` (an `Op::QSlot` node).
+    fn query_slot(&mut self, e: Ix, x: Expr) -> Result<Value, EvalError> {
+        let fv = self.stack[(self.st.bp + x.data) as usize];
+        let name = self.exprs[x.first as usize].data;
+        builtins::facts::slot_value_of(self, fv, name, e)
     }
 
     /// Evaluates a call's arguments onto the stack.

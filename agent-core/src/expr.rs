@@ -42,6 +42,10 @@ pub enum Op {
     Expand,
     /// Second half of a 64-bit constant (never evaluated).
     Payload,
+    /// `?v:slot` of a local (query) variable: `data` its frame slot, `first` a `Sym`
+    /// node naming the slot, `aux` a cache (see `builtins::facts::slot_value_of`). Same result as `(fact-slot-value ?v slot)` without the
+    /// call's argument stack and dispatch (queries read slots in their inner loop).
+    QSlot,
     /// A query variable of fact-set functions or a free node.
     Nop,
 }

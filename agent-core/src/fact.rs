@@ -98,6 +98,7 @@ impl Core<'_> {
             nslots: 1,
             implied: true,
             alpha_head: NONE,
+            nfacts: 0,
         };
         self.st.ntemplates += 1;
         self.note_hw(Pool::Templates, n + 1);
@@ -383,6 +384,7 @@ impl Core<'_> {
         };
         self.fact_buckets[bucket] = slot;
         self.st.facts_live += 1;
+        self.templates[saved.tmpl as usize].nfacts += 1;
         if prev == NONE {
             self.st.fact_head = slot;
         } else {
@@ -459,6 +461,7 @@ impl Core<'_> {
         };
         self.fact_buckets[bucket] = slot;
         self.st.facts_live += 1;
+        self.templates[tmpl as usize].nfacts += 1;
         if self.st.fact_tail != NONE {
             self.facts[self.st.fact_tail as usize].next = slot;
         } else {
@@ -508,6 +511,8 @@ impl Core<'_> {
     fn unlink_fact(&mut self, slot: Ix) {
         let f = self.facts[slot as usize];
         self.st.facts_live -= 1;
+        let t = &mut self.templates[f.tmpl as usize];
+        t.nfacts = t.nfacts.saturating_sub(1);
         if f.prev != NONE {
             self.facts[f.prev as usize].next = f.next;
         } else {

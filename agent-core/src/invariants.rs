@@ -558,6 +558,14 @@ impl Core<'_> {
             "live fact count wrong",
             self.st.facts_live
         );
+        let per_template: usize = (0..self.st.ntemplates as usize)
+            .map(|t| self.templates[t].nfacts as usize)
+            .sum();
+        ensure!(
+            per_template == live,
+            "per-template fact counts wrong",
+            per_template
+        );
         let free = self.walk(
             self.st.fact_free,
             used,

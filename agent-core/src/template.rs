@@ -74,6 +74,9 @@ pub struct Template {
     pub implied: bool,
     /// First alpha node testing facts of this template.
     pub alpha_head: Ix,
+    /// Live facts of this template: a fact-set query over a template without facts
+    /// ends at once instead of walking the whole fact list.
+    pub nfacts: Ix,
 }
 
 impl Template {
@@ -83,6 +86,7 @@ impl Template {
         nslots: 0,
         implied: false,
         alpha_head: NONE,
+        nfacts: 0,
     };
 }
 

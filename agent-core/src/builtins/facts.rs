@@ -7,7 +7,7 @@ use crate::expr::Op;
 use crate::host::router;
 use crate::template::{allowed, types, DefaultKind, SlotDef};
 use crate::value::Ix;
-use crate::value::{FactRef, MfSpan, Value, NONE};
+use crate::value::{FactRef, MfSpan, SymId, Value, NONE};
 
 pub const FUNCS: &[Builtin] = &[
     Builtin::lazy("assert", 1, ANY, assert),
@@ -414,13 +414,50 @@ fn duplicate(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
 fn fact_slot_value(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let fv = cx.arg(a, 0);
     let Some(f) = cx.fact_arg(fv) else {
-        // CLIPS: the missing fact's index, then FALSE (nothing for a stale address)
-        if let Value::Int(n) = fv {
-            cx.write_error_message(EvalError::new(EvalErrorKind::NoSuchFact(n)));
-        }
-        return Ok(Value::Sym(SYM_FALSE));
+        return Ok(no_such_fact(cx, fv));
     };
     let name = cx.arg_lexeme(a, 1, "fact-slot-value")?;
+    slot_of_fact(cx, f, name)
+}
+
+/// `?v:slot`: `(fact-slot-value ?v slot)` with its arguments at hand. `node` (the
+/// `QSlot` node) keeps in `aux` the slot index found last time plus one: checked by
+/// name against the fact's template, it saves the search by name in query loops.
+pub(crate) fn slot_value_of(
+    cx: &mut Core<'_>,
+    fv: Value,
+    name: SymId,
+    node: Ix,
+) -> Result<Value, EvalError> {
+    let Some(f) = cx.fact_arg(fv) else {
+        return Ok(no_such_fact(cx, fv));
+    };
+    let tmpl = cx.facts[f as usize].tmpl;
+    let t = cx.templates[tmpl as usize];
+    if !t.implied {
+        let k = cx.exprs[node as usize].aux as Ix;
+        if k != 0 && k <= t.nslots && cx.slots[(t.first_slot + k - 1) as usize].name == name {
+            return Ok(cx.fact_slot_value(f, k - 1)?);
+        }
+        if let Some(s) = cx.find_slot(tmpl, name) {
+            if s < u8::MAX as Ix {
+                cx.exprs[node as usize].aux = s as u8 + 1;
+            }
+        }
+    }
+    slot_of_fact(cx, f, name)
+}
+
+/// fact-slot-value of a missing fact: CLIPS prints the missing fact's index, then
+/// returns FALSE (nothing printed for a stale address).
+fn no_such_fact(cx: &mut Core<'_>, fv: Value) -> Value {
+    if let Value::Int(n) = fv {
+        cx.write_error_message(EvalError::new(EvalErrorKind::NoSuchFact(n)));
+    }
+    Value::Sym(SYM_FALSE)
+}
+
+fn slot_of_fact(cx: &mut Core<'_>, f: Ix, name: SymId) -> Result<Value, EvalError> {
     let tmpl = cx.facts[f as usize].tmpl;
     let slot = if cx.templates[tmpl as usize].implied {
         0

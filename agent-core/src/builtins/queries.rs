@@ -121,6 +121,9 @@ struct Resume {
 /// retraction time by the start of the actions (`counter`). A fact that is still live
 /// continues through its current link, so new facts join the iteration.
 fn next_of_template(cx: &Core<'_>, tmpl: Ix, after: Option<Resume>) -> Option<Ix> {
+    if cx.templates[tmpl as usize].nfacts == 0 {
+        return None;
+    }
     let (mut f, lo, hi) = match after {
         None => (cx.st.fact_head, None, u32::MAX),
         // fast path: still linked, continue from its successor

@@ -91,6 +91,7 @@ impl<'s> Parser<'s, '_, '_> {
             nslots,
             implied: false,
             alpha_head: NONE,
+            nfacts: 0,
         };
         self.cx.st.ntemplates += 1;
         self.cx.note_hw(Pool::Templates, n + 1);

@@ -594,9 +594,17 @@ impl<'s> Parser<'s, '_, '_> {
     /// `?v:slot` inside a query: `(fact-slot-value ?v slot)`.
     pub fn query_slot_ref(&mut self, t: Token<'s>, var: &'s str, slot: &'s str) -> PResult<Ix> {
         let v = self.var_ref(t, var, false)?;
+        let sym = cap!(self, self.cx.intern(slot))?;
+        let vx = self.cx.exprs[v as usize];
+        if vx.op == Op::Local {
+            // reuse the variable's node: it becomes the slot read
+            self.cx.exprs[v as usize] = Expr::new(Op::QSlot, 0, vx.data);
+            let s = cap!(self, self.cx.push_expr(Expr::new(Op::Sym, 0, sym)))?;
+            self.cx.append_child(v, s);
+            return Ok(v);
+        }
         let call = self.builtin_call("fact-slot-value")?;
         self.cx.append_child(call, v);
-        let sym = cap!(self, self.cx.intern(slot))?;
         let s = cap!(self, self.cx.push_expr(Expr::new(Op::Sym, 0, sym)))?;
         self.cx.append_child(call, s);
         Ok(call)

@@ -1202,7 +1202,8 @@ impl<'s> Parser<'s, '_, '_> {
 
     fn expr_eq(&self, a: Ix, b: Ix) -> bool {
         let (x, y) = (self.cx.exprs[a as usize], self.cx.exprs[b as usize]);
-        if x.op != y.op || x.aux != y.aux || x.data != y.data {
+        // a query slot read keeps a lookup cache in `aux` (`slot_value_of`)
+        if x.op != y.op || (x.aux != y.aux && x.op != Op::QSlot) || x.data != y.data {
             return false;
         }
         match x.op {

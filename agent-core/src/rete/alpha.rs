@@ -74,6 +74,12 @@ impl Core<'_> {
 
     /// Runs one alpha node over one fact, creating an alpha match per segmentation.
     pub(crate) fn match_alpha(&mut self, alpha: Ix, fact: Ix) -> Result<(), EvalError> {
+        let node = &self.alphas[alpha as usize];
+        if node.desc == NONE && node.nmarks == 0 {
+            // no multislot constraints (most patterns): one segmentation, nothing to lay out
+            let mut marks = [0u8; MAX_MARKS];
+            return self.enumerate_marks(alpha, fact, &[], &[0; 8], &mut marks, 0, 0);
+        }
         let mut lay = [SlotLayout {
             slot: 0,
             fixed: 0,
