@@ -488,6 +488,7 @@ impl Core<'_> {
         self.st.values_top = (start + need) as Ix;
         let num = self.st.next_fact_num;
         self.st.next_fact_num += 1;
+        self.st.effects = self.st.effects.wrapping_add(1);
         self.facts[slot as usize] = Fact {
             num,
             tmpl,

@@ -201,7 +201,7 @@ impl Core<'_> {
             st.pending
         );
         ensure!(
-            st.eval_depth == 0,
+            st.eval_depth == 0 && st.in_use == 0 && !st.defining,
             "evaluation depth not back to 0",
             st.eval_depth
         );
