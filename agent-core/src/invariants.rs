@@ -663,9 +663,9 @@ impl Core<'_> {
                         Value::Sym(id) | Value::Str(id) => {
                             ensure!(id < self.st.nsyms, "fact holds a dropped symbol", f)
                         }
-                        Value::Multi(_) | Value::Void => {
-                            return fail("fact field is not an atom", f as usize)
-                        }
+                        // a void element stays (CLIPS keeps the one `insert$` of a
+                        // call without a value puts in, and prints nothing for it)
+                        Value::Multi(_) => return fail("fact field is not an atom", f as usize),
                         _ => {}
                     }
                 }
