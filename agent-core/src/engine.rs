@@ -93,7 +93,7 @@ pub const fn entry_bytes(pool: Pool) -> usize {
 }
 
 /// Marks of the append-only pools, to undo a construct that failed halfway.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug)]
 pub struct Checkpoint {
     pub nsyms: Ix,
     pub sym_bytes: Ix,
