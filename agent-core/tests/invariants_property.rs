@@ -145,3 +145,20 @@ fn fuzz_found_run_leaves_a_fact_in_the_wrong_hash_bucket() {
         include_bytes!("fuzz_regressions/engine_commands-run-leaves-fact-in-wrong-hash-bucket.bin"),
     );
 }
+
+/// Found by the second 300 s `engine_commands` run on 2b8c437 (2026-12-01): an
+/// `(item (id 0) (state new))` assert that ran out of activations (capacity 40) is
+/// undone, and afterwards the agenda holds a `pair` activation it did not hold before
+/// (the "no trace" check of the failed assert failed). Cause: an earlier retract had
+/// run out of activations, so the `pair` match it unblocked was owed; an `undefrule`
+/// then freed two, and the assert built the owed match first (`Core::pay_owed`), as
+/// it must, before running out itself. The match was due, so it stays: the contract
+/// (README, "Full pools") now says a failed assert or modify leaves no trace but owed
+/// matches it built, and the stream check allows exactly that (`Engine::owes`).
+#[test]
+fn fuzz_found_undone_assert_adds_a_pair_activation() {
+    run_stream_with(
+        RULE_BASE_NOT_AND,
+        include_bytes!("fuzz_regressions/engine_commands-undone-assert-adds-pair-activation.bin"),
+    );
+}
