@@ -276,6 +276,12 @@ engine_impl! {
         s
     }
 
+    /// Whether matches a retract unblocked wait for room (they are *owed*): until they
+    /// are built, assert and modify build them first and `run` fires nothing.
+    pub fn owes(&self) -> bool {
+        self.st.owed != NONE
+    }
+
     /// Entries in use of the append-only pools (constructs and what they built):
     /// a construct that fails to load leaves these unchanged.
     pub fn usage(&self) -> Usage {

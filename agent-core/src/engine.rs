@@ -183,6 +183,15 @@ pub struct State {
     pub return_value: Value,
     pub firing: bool,
     pub eval_depth: u16,
+    /// Deffunctions executing: `clear` refuses while any is, as in CLIPS.
+    pub in_use: u16,
+    /// A construct is being parsed: its parse-time expressions (salience, a global's
+    /// value) may not define other constructs or `clear`, which would change the pools
+    /// its rollback marks point into.
+    pub defining: bool,
+    /// Facts asserted and globals set (wrapping): a parse-time evaluation that moved
+    /// it left values that may use the construct's new symbols and templates.
+    pub effects: u32,
     /// The last argument type error was about a literal argument: CLIPS reports those
     /// while parsing, so the command line prints no fallback value after it.
     pub literal_error: bool,
@@ -289,6 +298,9 @@ impl State {
             return_value: Value::Void,
             firing: false,
             eval_depth: 0,
+            in_use: 0,
+            defining: false,
+            effects: 0,
             literal_error: false,
             pending_batch: crate::value::TextBuf::new(),
             batch_depth: 0,
@@ -946,6 +958,7 @@ impl Core<'_> {
     /// region at the top of scratch (compacted on each store) so it outlives the
     /// command that built it.
     pub fn set_global(&mut self, g: Ix, v: Value) -> Result<(), CapacityError> {
+        self.st.effects = self.st.effects.wrapping_add(1);
         let len = self.scratch.len();
         let region = len - self.st.gmf_used as usize;
         let m = match v {

@@ -310,7 +310,9 @@ impl Core<'_> {
         }
         let saved_bp = self.st.bp;
         self.st.bp = args.base;
+        self.st.in_use += 1;
         let r = self.eval_chain(df.body);
+        self.st.in_use -= 1;
         self.st.bp = saved_bp;
         // CLIPS reports an error inside a deffunction where it happens and adds which
         // deffunction it halted, at every level of nesting.

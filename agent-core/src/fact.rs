@@ -193,7 +193,9 @@ impl Core<'_> {
         (0..len).all(|i| self.values[a + i].same(self.values[b + i]))
     }
 
-    /// Moves live and pending facts' values down to close gaps.
+    /// Moves live and pending facts' values down to close gaps, in one pass: the live
+    /// list is in cell order (each fact's cells after the previous one's, checked by
+    /// `check_invariants`), and pending facts keep their place between live ones.
     fn compact_values(&mut self) {
         let mut dst = 0usize;
         let mut live = self.st.fact_head;
@@ -207,14 +209,17 @@ impl Core<'_> {
             let mut best = NONE;
             let mut p = self.st.pending;
             while p != NONE {
-                let s = self.facts[p as usize].start as usize;
-                if s >= dst
+                let x = self.facts[p as usize];
+                let s = x.start as usize;
+                // one without cells needs no room (and would be picked forever)
+                if x.len != 0
+                    && s >= dst
                     && s < live_start
                     && (best == NONE || s < self.facts[best as usize].start as usize)
                 {
                     best = p;
                 }
-                p = self.facts[p as usize].next;
+                p = x.next;
             }
             let f = if best != NONE {
                 best
@@ -328,38 +333,15 @@ impl Core<'_> {
     }
 
     /// Puts back a fact a failed modify retracted: the same slot, number and values,
-    /// at its place in the creation-ordered list, with its matches built again. `saved`
-    /// is the fact as it was; `base` holds its slot values on the stack (needed when
-    /// the retract freed its cells, i.e. outside a firing).
+    /// at its place in the creation-ordered list (its cells too), with its matches
+    /// built again. `saved` is the fact as it was; `base` holds its slot values on the
+    /// stack (needed when the retract freed its cells, i.e. outside a firing).
     pub(crate) fn restore_fact(
         &mut self,
         slot: Ix,
         saved: Fact,
         base: usize,
     ) -> Result<(), EvalError> {
-        let (start, len) = match self.facts[slot as usize].state {
-            FactState::Pending => {
-                remove_from_list(self.facts, &mut self.st.pending, slot);
-                let f = self.facts[slot as usize];
-                (f.start, f.len)
-            }
-            FactState::Free => {
-                remove_from_list(self.facts, &mut self.st.fact_free, slot);
-                let need = self.cells_needed(saved.tmpl, base);
-                let start = match self.reserve_cells(need) {
-                    Ok(s) => s,
-                    Err(e) => {
-                        self.free_fact_slot(slot);
-                        return Err(e.into());
-                    }
-                };
-                self.write_cells(saved.tmpl, base, start);
-                self.st.values_top = (start + need) as Ix;
-                (start as Ix, need as Ix)
-            }
-            // still there: nothing was retracted
-            FactState::Live => return Ok(()),
-        };
         // the creation-ordered list: after the last fact with a smaller number
         let mut prev = self.st.fact_tail;
         while prev != NONE && self.facts[prev as usize].num > saved.num {
@@ -369,6 +351,66 @@ impl Core<'_> {
             self.st.fact_head
         } else {
             self.facts[prev as usize].next
+        };
+        // where its cells belong in list order (compaction walks the list)
+        let lo = if prev == NONE {
+            0
+        } else {
+            let p = self.facts[prev as usize];
+            p.start as usize + p.len as usize
+        };
+        let hi = if next == NONE {
+            self.st.values_top as usize
+        } else {
+            self.facts[next as usize].start as usize
+        };
+        let (start, len) = match self.facts[slot as usize].state {
+            FactState::Pending => {
+                remove_from_list(self.facts, &mut self.st.pending, slot);
+                let f = self.facts[slot as usize];
+                // its cells stayed in order; a fact without cells may have been
+                // left behind by compaction
+                (if f.len == 0 { hi as Ix } else { f.start }, f.len)
+            }
+            FactState::Free => {
+                remove_from_list(self.facts, &mut self.st.fact_free, slot);
+                let need = self.cells_needed(saved.tmpl, base);
+                // its old cells, unless a compaction closed the gap meanwhile
+                let at = if self.st.pending == NONE && hi.saturating_sub(lo) >= need {
+                    lo
+                } else {
+                    let top = match self.reserve_cells(need) {
+                        Ok(s) => s,
+                        Err(e) => {
+                            self.free_fact_slot(slot);
+                            return Err(e.into());
+                        }
+                    };
+                    // room where the later facts' cells begin: those move up
+                    let at = if next == NONE {
+                        top
+                    } else {
+                        self.facts[next as usize].start as usize
+                    };
+                    self.values.copy_within(at..top, at + need);
+                    for list in [next, self.st.pending] {
+                        let mut f = list;
+                        while f != NONE {
+                            let x = &mut self.facts[f as usize];
+                            if x.start as usize >= at {
+                                x.start += need as Ix;
+                            }
+                            f = x.next;
+                        }
+                    }
+                    self.st.values_top = (top + need) as Ix;
+                    at
+                };
+                self.write_cells(saved.tmpl, base, at);
+                (at as Ix, need as Ix)
+            }
+            // still there: nothing was retracted
+            FactState::Live => return Ok(()),
         };
         let h = self.cells_hash(saved.tmpl, start as usize, len as usize);
         let bucket = h as usize % self.fact_buckets.len();
@@ -448,6 +490,7 @@ impl Core<'_> {
         self.st.values_top = (start + need) as Ix;
         let num = self.st.next_fact_num;
         self.st.next_fact_num += 1;
+        self.st.effects = self.st.effects.wrapping_add(1);
         self.facts[slot as usize] = Fact {
             num,
             tmpl,

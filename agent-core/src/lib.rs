@@ -80,8 +80,8 @@
 //!   places, back; its watch traces are held back, see [`hold`]). A retract cannot
 //!   fail; what it unblocks and cannot rebuild for lack of room is *owed* (an
 //!   inactive not output on a list, `Core::pay_owed`) and built by the first
-//!   operation with room; until then assert and modify fail unchanged and run fires
-//!   nothing.
+//!   operation with room; until then run fires nothing, and an assert or modify that
+//!   runs out fails with no trace but the owed matches it built first.
 //! - **Agenda**: activations sorted by salience, then newest first (CLIPS's depth
 //!   strategy); a fired activation is gone for good (refraction), so a rule fires again
 //!   only for a new partial match (e.g. after `modify`, which retracts and re-asserts).

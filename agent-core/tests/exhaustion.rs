@@ -1112,3 +1112,77 @@ fn failed_modify_and_assert_print_no_watch_traces() {
     assert_eq!(h.out, expected);
     e.consistent();
 }
+
+/// A failed modify of a fact that is not the newest puts its cells back in list order,
+/// the order compaction walks: a later compaction keeps every fact's values. (Found by
+/// `engine_commands`: the old fact came back at the top of the value arena, and the
+/// next compaction copied it over the cells of the first fact.)
+#[test]
+fn failed_modify_of_an_old_fact_then_compaction_keeps_every_fact() {
+    let h = &mut Capture::default();
+    // (initial-fact), (pad) and (k) take one cell each, (a i) and (b i) two: 28
+    let mut e = engine!(TOKENS = 40, VALUES = 28);
+    e.load_str(
+        h,
+        "t",
+        "(deftemplate k (slot v)) (defrule many (k (v 1)) (a ?x) (b ?y) =>)",
+    )
+    .unwrap();
+    let pad = e.assert_str(h, "(pad)").unwrap();
+    let k = e.assert_str(h, "(k (v 0))").unwrap();
+    let mut b5 = k;
+    for i in 0..6 {
+        e.assert_str(h, &format!("(a {i})")).unwrap();
+        b5 = e.assert_str(h, &format!("(b {i})")).unwrap();
+    }
+    e.retract(h, pad).unwrap();
+    e.assert_str(h, "(pad)").unwrap();
+    // the new (k (v 1)) compacts away the old one's cell, then runs out of tokens:
+    // the restore makes room below the (a)/(b) facts
+    let r = e.eval_str(h, &format!("(modify {} (v 1))", k.0));
+    assert_eq!(
+        r.map_err(|e| e.kind),
+        Err(EvalErrorKind::Capacity(full(Pool::Tokens, 40)))
+    );
+    e.consistent();
+    let before = listing(&mut *e);
+    // the arena is full again: this assert compacts the gap (b 5) leaves
+    e.retract(h, b5).unwrap();
+    e.assert_str(h, "(c 1)").unwrap();
+    e.consistent();
+    let after = listing(&mut *e);
+    let kept: String = before
+        .lines()
+        .filter(|l| !l.contains("(b 5)") && !l.starts_with("For a total"))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    assert!(after.starts_with(&kept), "{before}\n{after}");
+    assert_eq!(
+        e.fact_slot(k, "v").map(|v| format!("{v:?}")),
+        Some("Int(0)".into())
+    );
+}
+
+/// A fact without slots takes no value cells; retracted during a firing (pending) it
+/// must not stall the compaction an assert of the same firing runs.
+#[test]
+fn compaction_in_a_firing_passes_a_retracted_fact_without_slots() {
+    let h = &mut Capture::default();
+    let mut e = engine!(VALUES = 16);
+    e.load_str(
+        h,
+        "t",
+        "(deftemplate e) (defrule r ?f <- (e) => (retract ?f) (assert (b 1 2 3 4 5 6 7)))",
+    )
+    .unwrap();
+    let a = e.assert_str(h, "(a 1 2 3 4 5 6)").unwrap();
+    e.assert_str(h, "(pad 1)").unwrap();
+    e.retract(h, a).unwrap();
+    e.assert_str(h, "(e)").unwrap();
+    assert_eq!(e.run(h, None).unwrap(), 1);
+    e.consistent();
+    assert_eq!(
+        listing(&mut *e),
+        "f-0     (initial-fact)\nf-2     (pad 1)\nf-4     (b 1 2 3 4 5 6 7)\nFor a total of 3 facts.\n"
+    );
+}

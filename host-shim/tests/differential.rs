@@ -546,4 +546,5 @@ differential_programs! {
     p150_bind_lhs_variable => "150-bind-lhs-variable",
     p151_redefinitions => "151-redefinitions",
     p152_halt_watched_or_not => "152-halt-watched-or-not",
+    p153_parse_time_side_effects => "153-parse-time-side-effects",
 }

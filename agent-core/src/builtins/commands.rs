@@ -48,7 +48,16 @@ fn reset(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
 }
 
 fn clear(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
-    cx.clear()?;
+    // a firing rule, a running deffunction or a construct being parsed would go on
+    // with its pools wiped under it
+    if cx.st.firing || cx.st.in_use > 0 || cx.st.defining {
+        cx.write(
+            router::WERROR,
+            "[CONSTRCT1] Some constructs are still in use. Clear cannot continue.\n",
+        );
+    } else {
+        cx.clear()?;
+    }
     Ok(Value::Void)
 }
 

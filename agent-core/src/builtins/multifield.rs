@@ -76,8 +76,11 @@ fn slice(m: MfSpan, from: usize, to: usize) -> Value {
 fn create(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let start = cx.multi_begin();
     for i in 0..a.len as usize {
+        // a call without a value adds nothing (CLIPS; insert$ and replace$ keep it)
         let v = cx.arg(a, i);
-        push_flat(cx, v)?;
+        if !matches!(v, Value::Void) {
+            push_flat(cx, v)?;
+        }
     }
     Ok(cx.multi_finish(start))
 }

@@ -271,20 +271,21 @@ impl<'s> Parser<'s, '_, '_> {
                     }
                     let init = self.parse_expr()?;
                     let sym = cap!(self, self.cx.intern(name))?;
-                    let v = match self.cx.eval(init) {
+                    let existing =
+                        (0..self.cx.st.nglobals).find(|&g| self.cx.globals[g as usize].name == sym);
+                    // a full pool fails before the evaluation, whose effects would stay
+                    let n = self.cx.st.nglobals as usize;
+                    if existing.is_none() && n >= self.cx.globals.len() {
+                        let c = cap(Pool::Globals, self.cx.globals.len());
+                        return Err(self.cap_err(t, c));
+                    }
+                    let v = match self.eval_now(init) {
                         Ok(v) => v,
                         Err(_) => return Err(self.err(eq, "an initial value that evaluates")),
                     };
-                    let existing =
-                        (0..self.cx.st.nglobals).find(|&g| self.cx.globals[g as usize].name == sym);
                     let g = match existing {
                         Some(g) => g as usize,
                         None => {
-                            let n = self.cx.st.nglobals as usize;
-                            if n >= self.cx.globals.len() {
-                                let c = cap(Pool::Globals, self.cx.globals.len());
-                                return Err(self.cap_err(t, c));
-                            }
                             self.cx.st.nglobals += 1;
                             self.cx.note_hw(Pool::Globals, n + 1);
                             n
@@ -298,6 +299,9 @@ impl<'s> Parser<'s, '_, '_> {
                     if let Err(c) = self.cx.set_global(g as Ix, v) {
                         return Err(self.cap_err(t, c));
                     }
+                    // defined: a later error in the construct keeps it (as CLIPS does;
+                    // a redefined global must not keep an init that is rolled back)
+                    self.keep = Some(self.cx.checkpoint());
                 }
                 _ => return Err(self.err(t, "a global variable ?*name*")),
             }

@@ -88,6 +88,9 @@ pub struct Parser<'s, 'c, 'e> {
     /// Conditional elements of the rule so far, numbered as CLIPS numbers them in its
     /// messages (`CE #N`: patterns and tests in text order, all `or` branches).
     pub ce_count: u8,
+    /// Where a failure of the current construct rolls back to when not to its start:
+    /// past what its parse-time evaluations created (their effects stay, as in CLIPS).
+    pub keep: Option<crate::engine::Checkpoint>,
 }
 
 pub type PResult<T> = Result<T, LoadError>;
@@ -114,6 +117,7 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
             lhs_slot: None,
             depth: 0,
             ce_count: 0,
+            keep: None,
         }
     }
 
@@ -317,12 +321,22 @@ impl<'s> Parser<'s, '_, '_> {
                 match kw {
                     "deftemplate" | "defrule" | "deffacts" | "deffunction" | "defglobal"
                     | "defmodule" => {
-                        self.next();
+                        let kt = self.next();
+                        if self.cx.st.defining {
+                            // CLIPS 6.30 crashes on this one
+                            self.construct = kw;
+                            return Err(
+                                self.err(kt, "a construct outside another one's definition")
+                            );
+                        }
                         let start = t.start;
                         let cp = self.cx.checkpoint();
+                        self.keep = None;
+                        self.cx.st.defining = true;
                         let r = self.construct_body(kw, start);
+                        self.cx.st.defining = false;
                         if r.is_err() {
-                            self.cx.rollback(cp);
+                            self.cx.rollback(self.keep.unwrap_or(cp));
                         }
                         r.map(|_| Item::Construct)
                     }
@@ -349,6 +363,19 @@ impl<'s> Parser<'s, '_, '_> {
                 Ok(Item::Command(e))
             }
         }
+    }
+
+    /// Evaluates a parse-time expression (salience, a global's value). Facts it
+    /// asserts and globals it sets stay, as in CLIPS, and may use what the construct
+    /// created so far (symbols, the implied template of `(assert (new 1))` made while
+    /// parsing the call): should the construct fail, that stays too.
+    pub fn eval_now(&mut self, e: Ix) -> Result<crate::value::Value, crate::error::EvalError> {
+        let effects = self.cx.st.effects;
+        let r = self.cx.eval(e);
+        if self.cx.st.effects != effects {
+            self.keep = Some(self.cx.checkpoint());
+        }
+        r
     }
 
     pub fn push_join_mark(&mut self, shared: bool) {

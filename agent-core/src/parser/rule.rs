@@ -69,6 +69,8 @@ struct Build {
     choice: [u8; MAX_ORS],
     counts: [u8; MAX_ORS],
     nor: usize,
+    /// The salience, once the first disjunct evaluated it (CLIPS evaluates it once).
+    salience: Option<i32>,
 }
 
 /// Where a CE sits: at top level, or inside `not`/`exists`.
@@ -104,6 +106,7 @@ impl<'s> Parser<'s, '_, '_> {
             choice: [0; MAX_ORS],
             counts: [0; MAX_ORS],
             nor: 0,
+            salience: None,
         };
         let mut prev_rule = NONE;
         loop {
@@ -230,7 +233,7 @@ impl<'s> Parser<'s, '_, '_> {
             self.next();
             if self.peek().tok == Tok::Symbol("declare") {
                 self.next();
-                salience = self.declare()?;
+                salience = self.declare(b)?;
             } else {
                 self.restore(save);
             }
@@ -262,7 +265,7 @@ impl<'s> Parser<'s, '_, '_> {
         self.build_rule(name, salience, b, rhs)
     }
 
-    fn declare(&mut self) -> PResult<(i32, Ix)> {
+    fn declare(&mut self, b: &mut Build) -> PResult<(i32, Ix)> {
         let mut sal = 0;
         let mut sal_expr = NONE;
         let mut seen_salience = false;
@@ -286,7 +289,12 @@ impl<'s> Parser<'s, '_, '_> {
                             if !matches!(self.cx.exprs[e as usize].op, Op::Int | Op::Float) {
                                 sal_expr = e;
                             }
-                            let v = self.cx.eval(e);
+                            // later disjuncts are built after the first one's network:
+                            // their failure must not be kept (see `eval_now`)
+                            let v = match b.salience {
+                                Some(s) => Ok(Value::Int(s.into())),
+                                None => self.eval_now(e),
+                            };
                             sal = match v {
                                 Ok(Value::Int(i)) if (-10000..=10000).contains(&i) => i as i32,
                                 _ => {
@@ -294,6 +302,7 @@ impl<'s> Parser<'s, '_, '_> {
                                         .err(vt, "an integer salience between -10000 and 10000"))
                                 }
                             };
+                            b.salience = Some(sal);
                             self.expect_rparen("')' after the salience")?;
                         }
                         Tok::Symbol("auto-focus") => {

@@ -1,0 +1,17 @@
+; a salience is evaluated once, when the rule is parsed; what it does stays
+(defrule s (declare (salience (+ 1 (length$ (create$ (assert (side 1))))))) (or (a) (b)) =>)
+(facts)
+(assert (a))
+(agenda)
+; clear is refused while a deffunction runs or a rule fires, not at the top level
+(deffunction f () (clear) (printout t "f goes on" crlf))
+(f)
+(list-deffunctions)
+(defrule c (go) => (clear) (printout t "c goes on" crlf))
+(assert (go))
+(run)
+(list-defrules)
+(if TRUE then (clear))
+(list-defrules)
+(facts)
+(exit)
