@@ -137,16 +137,17 @@ impl Core<'_> {
         if self.joins[join as usize].tests == NONE {
             return Ok(true);
         }
-        // one walk up the ancestry per left token, not one per candidate
-        self.bind_left(left);
         let right_fact = if am != NONE {
             self.tokens[am as usize].fact
         } else {
             NONE
         };
-        if let Some(r) = self.planned_join_test(join, right_fact) {
+        self.bind_for_quick(left);
+        if let Some(r) = self.planned_join_test(join, left, right_fact) {
             return Ok(r);
         }
+        // one walk up the ancestry per left token, not one per candidate
+        self.bind_left(left);
         let j = self.joins[join as usize];
         // the join's own depth lies below `left`'s ancestry: `left` stays bound
         self.st.lhs_pm[j.depth as usize] = if am != NONE {
@@ -430,6 +431,8 @@ impl Core<'_> {
             next_sib: psib,
             prev_sib: after,
             am_next: asib,
+            #[cfg(feature = "wide-pools")]
+            binds: self.binds_of(join, parent, am),
             ..Token::EMPTY
         };
         if head != NONE {

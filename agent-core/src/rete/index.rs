@@ -146,10 +146,10 @@ impl Core<'_> {
         Some(key)
     }
 
-    /// `left_key` without the evaluator: `lhs_pm` must hold the left token's
-    /// bindings; the compared fields are read straight from the facts, as the
-    /// join's key plan says. None when one is not a plain single-field slot.
-    fn quick_left_key(&mut self, join: Ix) -> Option<u32> {
+    /// `left_key` without the evaluator, for left token `left` (after
+    /// `bind_for_quick`): the compared fields are read straight from the facts, as
+    /// the join's key plan says. None when one is not a plain single-field slot.
+    fn quick_left_key(&mut self, join: Ix, left: Ix) -> Option<u32> {
         let tests = self.joins[join as usize].tests;
         let i = join as usize % KEY_PLANS;
         let cached = self.st.key_plans[i];
@@ -165,7 +165,7 @@ impl Core<'_> {
         }
         let mut key = 0x5bd1_e995u32;
         for &(pat, slot) in &plan.vars[..plan.n as usize] {
-            let fact = self.st.lhs_pm[pat as usize].fact;
+            let fact = self.left_fact(left, pat);
             if fact == NONE {
                 return None;
             }
@@ -303,10 +303,13 @@ impl Core<'_> {
             let key = if ct == left && cj == join {
                 Some(ck)
             } else {
-                self.bind_left(left);
-                match self.quick_left_key(join) {
+                self.bind_for_quick(left);
+                match self.quick_left_key(join, left) {
                     Some(k) => Some(k),
-                    None => self.left_key(join),
+                    None => {
+                        self.bind_left(left);
+                        self.left_key(join)
+                    }
                 }
             };
             if let Some(key) = key {
@@ -437,10 +440,11 @@ impl Core<'_> {
             return;
         }
         // usually one level more than the left token just bound by the join test
-        self.bind_left(t);
-        let key = match self.quick_left_key(child) {
+        self.bind_for_quick(t);
+        let key = match self.quick_left_key(child, t) {
             Some(key) => key,
             None => {
+                self.bind_left(t);
                 let (pm, depth) = (self.st.pm_rhs, self.joins[child as usize].depth as usize);
                 let saved = self.st.lhs_pm[depth];
                 // an unreadable value: bucket of key 0 (the child then scans, see below)

@@ -20,6 +20,10 @@ pub const PATH_LEN: usize = 6;
 pub const EMPTY_PATH: Ix = 0xFFFE;
 /// Most pattern-level CEs in one rule.
 pub const MAX_PATTERNS: usize = 32;
+/// Pattern depths whose facts a partial match keeps a copy of on the host
+/// (`Token::binds`); deeper ones are read by walking the ancestry.
+#[cfg(feature = "wide-pools")]
+pub const BIND_W: usize = 8;
 /// Most fields of one pattern compared for equality with earlier variables that
 /// key its alpha node (CLIPS's "right hash"); further ones are plain join tests.
 pub const MAX_RHASH: usize = 4;
@@ -197,6 +201,12 @@ pub struct Token {
     /// when indices are `u16` (see `rete::index`).
     #[cfg(feature = "wide-pools")]
     pub beta_links: [Ix; 2],
+    /// Partial match: the fact bound at each pattern depth below `BIND_W` (NONE for
+    /// not/exists/test levels), copied from the parent when linked, so the quick
+    /// join tests and index keys read them without walking the ancestry. Host
+    /// only: it would cost the image 16 bytes per token.
+    #[cfg(feature = "wide-pools")]
+    pub binds: [Ix; BIND_W],
 }
 
 impl Token {
@@ -219,6 +229,8 @@ impl Token {
         blocks: NONE,
         #[cfg(feature = "wide-pools")]
         beta_links: [NONE; 2],
+        #[cfg(feature = "wide-pools")]
+        binds: [NONE; BIND_W],
     };
 }
 
