@@ -38,10 +38,11 @@ impl Core<'_> {
         if self.st.lhs_of == t {
             self.st.lhs_of = NONE;
         }
-        self.tokens[t as usize] = Token {
-            next_sib: self.st.token_free,
-            ..Token::EMPTY
-        };
+        // only the free-list link and the kind: every `alloc_token` caller writes
+        // the whole token
+        let tk = &mut self.tokens[t as usize];
+        tk.kind = TokenKind::Free;
+        tk.next_sib = self.st.token_free;
         self.st.token_free = t;
         self.st.tokens_live -= 1;
     }
@@ -133,6 +134,7 @@ impl Core<'_> {
     }
 
     /// Evaluates a join's tests for left token `left` and alpha match `am`.
+    #[cfg_attr(feature = "wide-pools", inline(always))]
     fn join_test(&mut self, join: Ix, left: Ix, am: Ix) -> Result<bool, EvalError> {
         if self.joins[join as usize].tests == NONE {
             return Ok(true);
@@ -146,6 +148,13 @@ impl Core<'_> {
         if let Some(r) = self.planned_join_test(join, left, right_fact) {
             return Ok(r);
         }
+        self.join_test_eval(join, left, am)
+    }
+
+    /// `join_test` through the evaluator (kept out of line: the planned test is
+    /// inlined into the join loops on the host).
+    #[inline(never)]
+    fn join_test_eval(&mut self, join: Ix, left: Ix, am: Ix) -> Result<bool, EvalError> {
         // one walk up the ancestry per left token, not one per candidate
         self.bind_left(left);
         let j = self.joins[join as usize];
@@ -395,6 +404,7 @@ impl Core<'_> {
 
     /// Creates a partial match in `join`'s memory (newest first) and links it under
     /// its parents.
+    #[cfg_attr(feature = "wide-pools", inline(always))]
     fn link_token(&mut self, join: Ix, parent: Ix, am: Ix) -> Result<Ix, EvalError> {
         let t = self.alloc_token()?;
         let head = self.joins[join as usize].mem;
@@ -767,6 +777,7 @@ impl Core<'_> {
     }
 
     /// Unlinks a token from its parent, alpha match and memory lists, then frees it.
+    #[cfg_attr(feature = "wide-pools", inline(always))]
     fn unlink_and_free(&mut self, t: Ix) {
         if self.is_owed(t) {
             self.unowe(t);

@@ -149,6 +149,7 @@ impl Core<'_> {
     /// `left_key` without the evaluator, for left token `left` (after
     /// `bind_for_quick`): the compared fields are read straight from the facts, as
     /// the join's key plan says. None when one is not a plain single-field slot.
+    #[cfg_attr(feature = "wide-pools", inline(always))]
     fn quick_left_key(&mut self, join: Ix, left: Ix) -> Option<u32> {
         let tests = self.joins[join as usize].tests;
         let i = join as usize % KEY_PLANS;
@@ -294,6 +295,7 @@ impl Core<'_> {
     /// Where a left token of alpha-fed `join` starts looking for right partners:
     /// the first match of its bucket (then `next_candidate` with `hashed`), or the
     /// whole memory.
+    #[cfg_attr(feature = "wide-pools", inline(always))]
     pub(crate) fn first_candidate(&mut self, join: Ix, left: Ix) -> (Ix, bool) {
         let j = self.joins[join as usize];
         debug_assert!(j.kind != JoinKind::Root);
@@ -430,6 +432,7 @@ impl Core<'_> {
     }
 
     /// Adds a new partial match (already at the head of its memory) to the index.
+    #[cfg_attr(feature = "wide-pools", inline(always))]
     pub(crate) fn beta_index_insert(&mut self, t: Ix) {
         let join = self.tokens[t as usize].owner;
         let child = self.joins[join as usize].index_child;
@@ -470,6 +473,7 @@ impl Core<'_> {
     }
 
     /// Takes a partial match out of its memory's index.
+    #[cfg_attr(feature = "wide-pools", inline(always))]
     pub(crate) fn beta_index_remove(&mut self, t: Ix) {
         let owner = self.tokens[t as usize].owner;
         if self.tokens[t as usize].kind != TokenKind::Beta

@@ -105,6 +105,7 @@ impl Core<'_> {
     }
 
     /// `quick_join_test` for the tests of `join` through its cached plan.
+    #[cfg_attr(feature = "wide-pools", inline(always))]
     pub(crate) fn planned_join_test(&mut self, join: Ix, left: Ix, right_fact: Ix) -> Option<bool> {
         let (tests, depth) = {
             let j = &self.joins[join as usize];
