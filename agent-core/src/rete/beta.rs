@@ -647,6 +647,7 @@ impl Core<'_> {
 
     /// Passes an active partial match on to its join's successors, newest first as
     /// CLIPS does: child joins and rule ends (left), joins taking it from the right.
+    #[cfg_attr(feature = "wide-pools", inline(always))]
     pub(crate) fn propagate(&mut self, t: Ix) -> Result<(), EvalError> {
         let join = self.tokens[t as usize].owner;
         let mut it = Successors::of(self, join);
@@ -665,6 +666,7 @@ impl Core<'_> {
     /// activation, a child join the partial matches built on the token, a join from
     /// the right the output it blocks (which looks for another blocker). Its own
     /// links stay.
+    #[cfg_attr(feature = "wide-pools", inline(always))]
     fn deactivate(&mut self, t: Ix) {
         let tk = &self.tokens[t as usize];
         if tk.first_child == NONE
@@ -722,6 +724,7 @@ impl Core<'_> {
     }
 
     /// Takes back what token `t` passed on to successor `c` (see `deactivate`).
+    #[cfg_attr(feature = "wide-pools", inline(always))]
     fn take_back(&mut self, t: Ix, c: Ix, from_right: bool) {
         let cj = self.joins[c as usize];
         if from_right {
@@ -758,6 +761,7 @@ impl Core<'_> {
         }
     }
 
+    #[cfg_attr(feature = "wide-pools", inline(always))]
     pub(crate) fn delete_children(&mut self, t: Ix) {
         while self.tokens[t as usize].first_child != NONE {
             let c = self.tokens[t as usize].first_child;

@@ -209,7 +209,7 @@ impl Core<'_> {
     #[inline(always)]
     pub(crate) fn plain_slot(&self, fact: Ix, slot: Ix) -> Option<Value> {
         let f = &self.facts[fact as usize];
-        let v = if f.len == self.templates[f.tmpl as usize].nslots {
+        let v = if f.flat {
             // one cell per slot (no multislot holds elements): index directly
             self.values[(f.start + slot) as usize]
         } else {
