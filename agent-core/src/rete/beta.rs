@@ -38,6 +38,10 @@ impl Core<'_> {
         if self.st.lhs_of == t {
             self.st.lhs_of = NONE;
         }
+        // a reused id must not find this match's key
+        if self.st.key_cache.0 == t {
+            self.st.key_cache.0 = NONE;
+        }
         // only the free-list link and the kind: every `alloc_token` caller writes
         // the whole token
         let tk = &mut self.tokens[t as usize];
@@ -650,6 +654,17 @@ impl Core<'_> {
     #[cfg_attr(feature = "wide-pools", inline(always))]
     pub(crate) fn propagate(&mut self, t: Ix) -> Result<(), EvalError> {
         let join = self.tokens[t as usize].owner;
+        if self.joins[join as usize].rsucc == NONE {
+            // the common case: no join takes these tokens from the right, so the
+            // successors are the child list as it is
+            let mut c = self.joins[join as usize].first_child;
+            while c != NONE {
+                let next = self.joins[c as usize].next_sibling;
+                self.left_activate(c, t)?;
+                c = next;
+            }
+            return Ok(());
+        }
         let mut it = Successors::of(self, join);
         while let Some((c, from_right)) = it.next(self) {
             if from_right {
@@ -815,6 +830,11 @@ impl Core<'_> {
                 self.tokens[tk.mem_prev as usize].mem_next = tk.mem_next;
             } else {
                 self.joins[tk.owner as usize].mem = tk.mem_next;
+                // an empty memory is trivially unindexed (see `Join::index_built`)
+                #[cfg(feature = "wide-pools")]
+                if tk.mem_next == NONE {
+                    self.joins[tk.owner as usize].index_built = false;
+                }
             }
             if tk.mem_next != NONE {
                 self.tokens[tk.mem_next as usize].mem_prev = tk.mem_prev;

@@ -306,13 +306,23 @@ impl Core<'_> {
                 Some(ck)
             } else {
                 self.bind_for_quick(left);
-                match self.quick_left_key(join, left) {
+                let key = match self.quick_left_key(join, left) {
                     Some(k) => Some(k),
                     None => {
                         self.bind_left(left);
                         self.left_key(join)
                     }
+                };
+                #[cfg(feature = "wide-pools")]
+                if let Some(k) = key {
+                    let owner = self.tokens[left as usize].owner;
+                    if self.joins[owner as usize].index_child == join {
+                        let tk = &mut self.tokens[left as usize];
+                        tk.key = k;
+                        tk.has_key = true;
+                    }
                 }
+                key
             };
             if let Some(key) = key {
                 let b = self.bucket(alpha, key);
@@ -436,15 +446,32 @@ impl Core<'_> {
     pub(crate) fn beta_index_insert(&mut self, t: Ix) {
         let join = self.tokens[t as usize].owner;
         let child = self.joins[join as usize].index_child;
-        if child == NONE {
+        #[cfg(feature = "wide-pools")]
+        let skip = child == NONE || !self.joins[join as usize].index_built;
+        #[cfg(not(feature = "wide-pools"))]
+        let skip = child == NONE;
+        if skip {
             self.set_bnext(t, NONE);
             self.set_bprev(t, NONE);
             self.set_bbucket(t, NONE);
             return;
         }
+        self.beta_index_link(t, join, child);
+    }
+
+    /// Puts partial match `t` of `join` at the head of its bucket for `child`.
+    #[cfg_attr(feature = "wide-pools", inline(always))]
+    fn beta_index_link(&mut self, t: Ix, join: Ix, child: Ix) {
+        #[cfg(feature = "wide-pools")]
+        let known = {
+            let tk = &self.tokens[t as usize];
+            tk.has_key.then_some(tk.key)
+        };
+        #[cfg(not(feature = "wide-pools"))]
+        let known = None;
         // usually one level more than the left token just bound by the join test
         self.bind_for_quick(t);
-        let key = match self.quick_left_key(child, t) {
+        let key = match known.or_else(|| self.quick_left_key(child, t)) {
             Some(key) => key,
             None => {
                 self.bind_left(t);
@@ -509,6 +536,10 @@ impl Core<'_> {
     pub(crate) fn first_left(&mut self, join: Ix, am: Ix) -> (Ix, bool) {
         let j = self.joins[join as usize];
         if self.joins[j.parent as usize].index_child == join {
+            #[cfg(feature = "wide-pools")]
+            if !self.joins[j.parent as usize].index_built {
+                self.build_beta_index(j.parent, join);
+            }
             let tk = self.tokens[am as usize];
             let key = self.alpha_key(
                 j.alpha,
@@ -541,6 +572,24 @@ impl Core<'_> {
         l
     }
 
+    /// Host: indexes `join`'s memory for `child` (see `Join::index_built`). Oldest
+    /// first, each at its bucket's head: the buckets get memory order, as if every
+    /// match had been indexed when it came.
+    #[cfg(feature = "wide-pools")]
+    fn build_beta_index(&mut self, join: Ix, child: Ix) {
+        let mut t = self.joins[join as usize].mem;
+        let mut last = NONE;
+        while t != NONE {
+            last = t;
+            t = self.tokens[t as usize].mem_next;
+        }
+        while last != NONE {
+            self.beta_index_link(last, join, child);
+            last = self.tokens[last as usize].mem_prev;
+        }
+        self.joins[join as usize].index_built = true;
+    }
+
     /// Stops indexing `join`'s memory (its index child goes away).
     pub(crate) fn drop_beta_index(&mut self, join: Ix) {
         let mut t = self.joins[join as usize].mem;
@@ -549,5 +598,9 @@ impl Core<'_> {
             t = self.tokens[t as usize].mem_next;
         }
         self.joins[join as usize].index_child = NONE;
+        #[cfg(feature = "wide-pools")]
+        {
+            self.joins[join as usize].index_built = false;
+        }
     }
 }

@@ -125,6 +125,12 @@ pub struct Join {
     /// The child join whose equality tests key the index of this join's output
     /// memory (see `rete::index`), NONE if the memory is not indexed.
     pub index_child: Ix,
+    /// Host: whether the output memory's partial matches are in their index buckets.
+    /// The index is built on the first right activation that uses it and dropped
+    /// when the memory empties, so memories that are filled and emptied again
+    /// without one (most, in Manners) never pay for it.
+    #[cfg(feature = "wide-pools")]
+    pub index_built: bool,
 }
 
 impl Join {
@@ -150,6 +156,8 @@ impl Join {
         rjoin: NONE,
         rsucc: NONE,
         index_child: NONE,
+        #[cfg(feature = "wide-pools")]
+        index_built: false,
     };
 }
 
@@ -207,6 +215,12 @@ pub struct Token {
     /// only: it would cost the image 16 bytes per token.
     #[cfg(feature = "wide-pools")]
     pub binds: [Ix; BIND_W],
+    /// Partial match: its key for its join's index child, once computed (by a left
+    /// activation of that child), for when the index is built (`Join::index_built`).
+    #[cfg(feature = "wide-pools")]
+    pub has_key: bool,
+    #[cfg(feature = "wide-pools")]
+    pub key: u32,
 }
 
 impl Token {
@@ -231,6 +245,10 @@ impl Token {
         beta_links: [NONE; 2],
         #[cfg(feature = "wide-pools")]
         binds: [NONE; BIND_W],
+        #[cfg(feature = "wide-pools")]
+        has_key: false,
+        #[cfg(feature = "wide-pools")]
+        key: 0,
     };
 }
 
