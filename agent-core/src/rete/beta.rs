@@ -411,32 +411,35 @@ impl Core<'_> {
     #[cfg_attr(feature = "wide-pools", inline(always))]
     fn link_token(&mut self, join: Ix, parent: Ix, am: Ix) -> Result<Ix, EvalError> {
         let t = self.alloc_token()?;
-        let head = self.joins[join as usize].mem;
+        let (kind, head) = {
+            let j = &self.joins[join as usize];
+            (j.kind, j.mem)
+        };
         // links and not/exists outputs stay in front of the parent's other children
         // (see `output_of`); the others keep newest-first order among themselves,
         // which is all that the per-successor walks (`take_back`) rely on
-        let after = if parent != NONE
-            && !matches!(
-                self.joins[join as usize].kind,
-                JoinKind::Negative | JoinKind::Exists
-            ) {
+        let after = if parent != NONE && !matches!(kind, JoinKind::Negative | JoinKind::Exists) {
             self.front_run_end(parent)
         } else {
             NONE
         };
+        #[cfg(feature = "wide-pools")]
+        let binds = self.binds_of(join, parent, am);
+        // one borrow of the pool for all the links (its bounds stay in registers)
+        let tokens = &mut *self.tokens;
         let psib = if after != NONE {
-            self.tokens[after as usize].next_sib
+            tokens[after as usize].next_sib
         } else if parent != NONE {
-            self.tokens[parent as usize].first_child
+            tokens[parent as usize].first_child
         } else {
             NONE
         };
         let asib = if am != NONE {
-            self.tokens[am as usize].first_child
+            tokens[am as usize].first_child
         } else {
             NONE
         };
-        self.tokens[t as usize] = Token {
+        tokens[t as usize] = Token {
             kind: TokenKind::Beta,
             owner: join,
             am,
@@ -446,30 +449,30 @@ impl Core<'_> {
             prev_sib: after,
             am_next: asib,
             #[cfg(feature = "wide-pools")]
-            binds: self.binds_of(join, parent, am),
+            binds,
             ..Token::EMPTY
         };
         if head != NONE {
-            self.tokens[head as usize].mem_prev = t;
+            tokens[head as usize].mem_prev = t;
         }
-        self.joins[join as usize].mem = t;
-        self.beta_index_insert(t);
         if parent != NONE {
             if psib != NONE {
-                self.tokens[psib as usize].prev_sib = t;
+                tokens[psib as usize].prev_sib = t;
             }
             if after != NONE {
-                self.tokens[after as usize].next_sib = t;
+                tokens[after as usize].next_sib = t;
             } else {
-                self.tokens[parent as usize].first_child = t;
+                tokens[parent as usize].first_child = t;
             }
         }
         if am != NONE {
             if asib != NONE {
-                self.tokens[asib as usize].am_prev = t;
+                tokens[asib as usize].am_prev = t;
             }
-            self.tokens[am as usize].first_child = t;
+            tokens[am as usize].first_child = t;
         }
+        self.joins[join as usize].mem = t;
+        self.beta_index_insert(t);
         Ok(t)
     }
 
@@ -659,8 +662,15 @@ impl Core<'_> {
             // successors are the child list as it is
             let mut c = self.joins[join as usize].first_child;
             while c != NONE {
-                let next = self.joins[c as usize].next_sibling;
-                self.left_activate(c, t)?;
+                let cj = &self.joins[c as usize];
+                let next = cj.next_sibling;
+                if cj.kind == JoinKind::Terminal {
+                    // a rule end: `left_activate` would only do this, in a big frame
+                    let rule = cj.rule;
+                    self.add_activation(rule, t)?;
+                } else {
+                    self.left_activate(c, t)?;
+                }
                 c = next;
             }
             return Ok(());
