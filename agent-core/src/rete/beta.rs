@@ -319,6 +319,7 @@ impl Core<'_> {
     /// `left`: alpha matches from `from` on (memory order; `hashed`: along its index
     /// bucket), or active partial matches
     /// of the subnetwork extending `left` (skipping `skip`).
+    #[cfg_attr(feature = "wide-pools", inline(always))]
     fn find_blocker(
         &mut self,
         join: Ix,
@@ -478,6 +479,7 @@ impl Core<'_> {
 
     /// Records that `blocker` (an alpha match or a subnetwork's partial match)
     /// blocks not/exists output token `t`.
+    #[cfg_attr(feature = "wide-pools", inline(always))]
     fn add_link(&mut self, t: Ix, blocker: Ix) -> Result<(), EvalError> {
         let owner = self.tokens[t as usize].owner;
         let k = self.alloc_token()?;

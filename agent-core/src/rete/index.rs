@@ -471,7 +471,11 @@ impl Core<'_> {
         let known = None;
         // usually one level more than the left token just bound by the join test
         self.bind_for_quick(t);
-        let key = match known.or_else(|| self.quick_left_key(child, t)) {
+        let known = match known {
+            Some(k) => Some(k),
+            None => self.quick_left_key(child, t),
+        };
+        let key = match known {
             Some(key) => key,
             None => {
                 self.bind_left(t);
