@@ -473,7 +473,7 @@ impl Core<'_> {
             tokens[am as usize].first_child = t;
         }
         self.joins[join as usize].mem = t;
-        self.beta_index_insert(t);
+        self.beta_index_insert_fresh(t);
         Ok(t)
     }
 

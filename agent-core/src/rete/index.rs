@@ -459,6 +459,24 @@ impl Core<'_> {
         self.beta_index_link(t, join, child);
     }
 
+    /// `beta_index_insert` for a token just written from `Token::EMPTY`: with
+    /// `u32` indices its bucket links are NONE already (in the image they live in
+    /// `marks`, which EMPTY zeroes, so they are written).
+    #[cfg(feature = "wide-pools")]
+    #[inline(always)]
+    pub(crate) fn beta_index_insert_fresh(&mut self, t: Ix) {
+        let join = self.tokens[t as usize].owner;
+        let child = self.joins[join as usize].index_child;
+        if child != NONE && self.joins[join as usize].index_built {
+            self.beta_index_link(t, join, child);
+        }
+    }
+
+    #[cfg(not(feature = "wide-pools"))]
+    pub(crate) fn beta_index_insert_fresh(&mut self, t: Ix) {
+        self.beta_index_insert(t);
+    }
+
     /// Puts partial match `t` of `join` at the head of its bucket for `child`.
     #[cfg_attr(feature = "wide-pools", inline(always))]
     fn beta_index_link(&mut self, t: Ix, join: Ix, child: Ix) {
