@@ -524,6 +524,12 @@ impl Core<'_> {
     /// Takes a partial match out of its memory's index.
     #[cfg_attr(feature = "wide-pools", inline(always))]
     pub(crate) fn beta_index_remove(&mut self, t: Ix) {
+        // host: only a linked partial match has a bucket (alpha matches and links
+        // keep `beta_links` NONE), so one load decides the common unindexed case
+        #[cfg(feature = "wide-pools")]
+        if self.bbucket(t) == NONE {
+            return;
+        }
         let owner = self.tokens[t as usize].owner;
         if self.tokens[t as usize].kind != TokenKind::Beta
             || self.joins[owner as usize].index_child == NONE
