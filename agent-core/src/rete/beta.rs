@@ -412,9 +412,9 @@ impl Core<'_> {
     #[cfg_attr(feature = "wide-pools", inline(always))]
     fn link_token(&mut self, join: Ix, parent: Ix, am: Ix) -> Result<Ix, EvalError> {
         let t = self.alloc_token()?;
-        let (kind, head) = {
+        let (kind, head, depth) = {
             let j = &self.joins[join as usize];
-            (j.kind, j.mem)
+            (j.kind, j.mem, j.depth)
         };
         // links and not/exists outputs stay in front of the parent's other children
         // (see `output_of`); the others keep newest-first order among themselves,
@@ -424,10 +424,23 @@ impl Core<'_> {
         } else {
             NONE
         };
-        #[cfg(feature = "wide-pools")]
-        let binds = self.binds_of(join, parent, am);
         // one borrow of the pool for all the links (its bounds stay in registers)
         let tokens = &mut *self.tokens;
+        // the bindings: the parent's, then the own level patched in place (building
+        // the array apart copied it twice through the stack)
+        #[cfg(feature = "wide-pools")]
+        let (binds, own) = (
+            if parent != NONE {
+                tokens[parent as usize].binds
+            } else {
+                [NONE; super::BIND_W]
+            },
+            if am != NONE {
+                tokens[am as usize].fact
+            } else {
+                NONE
+            },
+        );
         let psib = if after != NONE {
             tokens[after as usize].next_sib
         } else if parent != NONE {
@@ -453,6 +466,12 @@ impl Core<'_> {
             binds,
             ..Token::EMPTY
         };
+        #[cfg(feature = "wide-pools")]
+        if let Some(x) = tokens[t as usize].binds.get_mut(depth as usize) {
+            *x = own;
+        }
+        #[cfg(not(feature = "wide-pools"))]
+        let _ = depth;
         if head != NONE {
             tokens[head as usize].mem_prev = t;
         }

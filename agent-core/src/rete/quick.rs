@@ -13,9 +13,6 @@ use crate::engine::Core;
 use crate::expr::{loc, Expr, Op};
 use crate::value::{Ix, Value, NONE};
 
-#[cfg(feature = "wide-pools")]
-use super::BIND_W;
-
 /// Entries of the join-test plan cache (`State::test_plans`, direct-mapped by join).
 pub const TEST_PLANS: usize = 8;
 /// Most tests a plan holds; joins with more use `quick_join_test` as it is.
@@ -55,27 +52,6 @@ impl TestPlan {
 }
 
 impl Core<'_> {
-    /// The bindings of a new partial match of `join` on `parent` and alpha match
-    /// `am`: the parent's, plus the join's own depth.
-    #[cfg(feature = "wide-pools")]
-    #[inline(always)]
-    pub(crate) fn binds_of(&self, join: Ix, parent: Ix, am: Ix) -> [Ix; BIND_W] {
-        let mut b = if parent != NONE {
-            self.tokens[parent as usize].binds
-        } else {
-            [NONE; BIND_W]
-        };
-        let d = self.joins[join as usize].depth as usize;
-        if let Some(x) = b.get_mut(d) {
-            *x = if am != NONE {
-                self.tokens[am as usize].fact
-            } else {
-                NONE
-            };
-        }
-        b
-    }
-
     /// Makes the facts of `left`'s ancestry readable by `left_fact`: with
     /// `Token::binds` (host) they already are, else `lhs_pm` is filled.
     #[inline(always)]
