@@ -383,7 +383,9 @@ impl Core<'_> {
                 if b != NONE {
                     self.add_link(t, b)?;
                 }
-                if self.token_active(t) {
+                // `token_active` of the new output: it is owed nothing yet, so a
+                // not output is active unblocked, an exists output blocked
+                if (b == NONE) == (j.kind == JoinKind::Negative) {
                     if self.st.defer_nots && j.kind == JoinKind::Negative {
                         // see `defer_nots`: a later pattern of the same fact may block it
                         self.owe(t, false);
@@ -492,7 +494,7 @@ impl Core<'_> {
             tokens[am as usize].first_child = t;
         }
         self.joins[join as usize].mem = t;
-        self.beta_index_insert_fresh(t);
+        self.beta_index_insert_fresh(t, join);
         Ok(t)
     }
 

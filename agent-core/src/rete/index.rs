@@ -459,13 +459,12 @@ impl Core<'_> {
         self.beta_index_link(t, join, child);
     }
 
-    /// `beta_index_insert` for a token just written from `Token::EMPTY`: with
+    /// `beta_index_insert` for a token of `join` just written from `Token::EMPTY`: with
     /// `u32` indices its bucket links are NONE already (in the image they live in
     /// `marks`, which EMPTY zeroes, so they are written).
     #[cfg(feature = "wide-pools")]
     #[inline(always)]
-    pub(crate) fn beta_index_insert_fresh(&mut self, t: Ix) {
-        let join = self.tokens[t as usize].owner;
+    pub(crate) fn beta_index_insert_fresh(&mut self, t: Ix, join: Ix) {
         let child = self.joins[join as usize].index_child;
         if child != NONE && self.joins[join as usize].index_built {
             self.beta_index_link(t, join, child);
@@ -473,7 +472,7 @@ impl Core<'_> {
     }
 
     #[cfg(not(feature = "wide-pools"))]
-    pub(crate) fn beta_index_insert_fresh(&mut self, t: Ix) {
+    pub(crate) fn beta_index_insert_fresh(&mut self, t: Ix, _join: Ix) {
         self.beta_index_insert(t);
     }
 
