@@ -223,7 +223,7 @@ impl Core<'_> {
                     JoinKind::Positive => {
                         if self.join_test(join, l, am)? {
                             let t = self.link_token(join, l, am)?;
-                            self.propagate(t)?;
+                            self.propagate_in(t, join)?;
                         }
                     }
                     JoinKind::Negative | JoinKind::Exists => {
@@ -359,7 +359,7 @@ impl Core<'_> {
                     let next = self.next_candidate(a, hashed);
                     if self.join_test(join, left, a)? {
                         let t = self.link_token(join, left, a)?;
-                        self.propagate(t)?;
+                        self.propagate_in(t, join)?;
                     }
                     a = next;
                 }
@@ -390,14 +390,14 @@ impl Core<'_> {
                         // see `defer_nots`: a later pattern of the same fact may block it
                         self.owe(t, false);
                     } else {
-                        self.propagate(t)?;
+                        self.propagate_in(t, join)?;
                     }
                 }
             }
             JoinKind::Test => {
                 if self.join_test(join, left, NONE)? {
                     let t = self.link_token(join, left, NONE)?;
-                    self.propagate(t)?;
+                    self.propagate_in(t, join)?;
                 }
             }
             JoinKind::Terminal => {
@@ -680,6 +680,12 @@ impl Core<'_> {
     #[cfg_attr(feature = "wide-pools", inline(always))]
     pub(crate) fn propagate(&mut self, t: Ix) -> Result<(), EvalError> {
         let join = self.tokens[t as usize].owner;
+        self.propagate_in(t, join)
+    }
+
+    /// `propagate` of token `t` of `join` (callers that just made it know the join).
+    #[cfg_attr(feature = "wide-pools", inline(always))]
+    fn propagate_in(&mut self, t: Ix, join: Ix) -> Result<(), EvalError> {
         if self.joins[join as usize].rsucc == NONE {
             // the common case: no join takes these tokens from the right, so the
             // successors are the child list as it is
