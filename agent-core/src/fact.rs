@@ -29,6 +29,10 @@ pub struct Fact {
     /// First alpha match of this fact (chained through the tokens' `next_sib`).
     pub first_am: Ix,
     pub state: FactState,
+    /// One cell per slot (`len` is the template's slot count): slot `i` is cell
+    /// `start + i`. Kept here (in padding) so the join tests need not load the
+    /// template.
+    pub flat: bool,
 }
 
 impl Fact {
@@ -42,6 +46,7 @@ impl Fact {
         hash_next: NONE,
         first_am: NONE,
         state: FactState::Free,
+        flat: false,
     };
 }
 
@@ -422,6 +427,7 @@ impl Core<'_> {
             hash_next: self.fact_buckets[bucket],
             first_am: NONE,
             state: FactState::Live,
+            flat: len == self.templates[saved.tmpl as usize].nslots,
             ..saved
         };
         self.fact_buckets[bucket] = slot;
@@ -501,6 +507,7 @@ impl Core<'_> {
             hash_next: self.fact_buckets[bucket],
             first_am: NONE,
             state: FactState::Live,
+            flat: need == self.templates[tmpl as usize].nslots as usize,
         };
         self.fact_buckets[bucket] = slot;
         self.st.facts_live += 1;

@@ -870,6 +870,19 @@ impl Core<'_> {
                     } else {
                         ensure!(j.refs > 0, "partial match of a removed join", i);
                         self.check_parent(i, j.parent)?;
+                        #[cfg(feature = "wide-pools")]
+                        {
+                            // the binding copy: the parent's plus the own level
+                            let mut want = self.tokens[tk.parent as usize].binds;
+                            if let Some(x) = want.get_mut(j.depth as usize) {
+                                *x = if tk.am != NONE {
+                                    self.tokens[tk.am as usize].fact
+                                } else {
+                                    NONE
+                                };
+                            }
+                            ensure!(tk.binds == want, "partial match bindings stale", i);
+                        }
                         match j.kind {
                             JoinKind::Positive => {
                                 self.check_am(i, j.alpha)?;

@@ -1302,6 +1302,8 @@ impl<'s> Parser<'s, '_, '_> {
                 rjoin,
                 rsucc: NONE,
                 index_child: NONE,
+                #[cfg(feature = "wide-pools")]
+                index_built: false,
             };
             // a join from the right comes right after its subnetwork's first join
             // among the parent's children: the subnetwork sees a new left token first

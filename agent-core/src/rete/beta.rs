@@ -38,10 +38,15 @@ impl Core<'_> {
         if self.st.lhs_of == t {
             self.st.lhs_of = NONE;
         }
-        self.tokens[t as usize] = Token {
-            next_sib: self.st.token_free,
-            ..Token::EMPTY
-        };
+        // a reused id must not find this match's key
+        if self.st.key_cache.0 == t {
+            self.st.key_cache.0 = NONE;
+        }
+        // only the free-list link and the kind: every `alloc_token` caller writes
+        // the whole token
+        let tk = &mut self.tokens[t as usize];
+        tk.kind = TokenKind::Free;
+        tk.next_sib = self.st.token_free;
         self.st.token_free = t;
         self.st.tokens_live -= 1;
     }
@@ -133,20 +138,29 @@ impl Core<'_> {
     }
 
     /// Evaluates a join's tests for left token `left` and alpha match `am`.
+    #[cfg_attr(feature = "wide-pools", inline(always))]
     fn join_test(&mut self, join: Ix, left: Ix, am: Ix) -> Result<bool, EvalError> {
         if self.joins[join as usize].tests == NONE {
             return Ok(true);
         }
-        // one walk up the ancestry per left token, not one per candidate
-        self.bind_left(left);
         let right_fact = if am != NONE {
             self.tokens[am as usize].fact
         } else {
             NONE
         };
-        if let Some(r) = self.planned_join_test(join, right_fact) {
+        self.bind_for_quick(left);
+        if let Some(r) = self.planned_join_test(join, left, right_fact) {
             return Ok(r);
         }
+        self.join_test_eval(join, left, am)
+    }
+
+    /// `join_test` through the evaluator (kept out of line: the planned test is
+    /// inlined into the join loops on the host).
+    #[inline(never)]
+    fn join_test_eval(&mut self, join: Ix, left: Ix, am: Ix) -> Result<bool, EvalError> {
+        // one walk up the ancestry per left token, not one per candidate
+        self.bind_left(left);
         let j = self.joins[join as usize];
         // the join's own depth lies below `left`'s ancestry: `left` stays bound
         self.st.lhs_pm[j.depth as usize] = if am != NONE {
@@ -209,7 +223,7 @@ impl Core<'_> {
                     JoinKind::Positive => {
                         if self.join_test(join, l, am)? {
                             let t = self.link_token(join, l, am)?;
-                            self.propagate(t)?;
+                            self.propagate_in(t, join)?;
                         }
                     }
                     JoinKind::Negative | JoinKind::Exists => {
@@ -305,6 +319,7 @@ impl Core<'_> {
     /// `left`: alpha matches from `from` on (memory order; `hashed`: along its index
     /// bucket), or active partial matches
     /// of the subnetwork extending `left` (skipping `skip`).
+    #[cfg_attr(feature = "wide-pools", inline(always))]
     fn find_blocker(
         &mut self,
         join: Ix,
@@ -344,7 +359,7 @@ impl Core<'_> {
                     let next = self.next_candidate(a, hashed);
                     if self.join_test(join, left, a)? {
                         let t = self.link_token(join, left, a)?;
-                        self.propagate(t)?;
+                        self.propagate_in(t, join)?;
                     }
                     a = next;
                 }
@@ -368,19 +383,21 @@ impl Core<'_> {
                 if b != NONE {
                     self.add_link(t, b)?;
                 }
-                if self.token_active(t) {
+                // `token_active` of the new output: it is owed nothing yet, so a
+                // not output is active unblocked, an exists output blocked
+                if (b == NONE) == (j.kind == JoinKind::Negative) {
                     if self.st.defer_nots && j.kind == JoinKind::Negative {
                         // see `defer_nots`: a later pattern of the same fact may block it
                         self.owe(t, false);
                     } else {
-                        self.propagate(t)?;
+                        self.propagate_in(t, join)?;
                     }
                 }
             }
             JoinKind::Test => {
                 if self.join_test(join, left, NONE)? {
                     let t = self.link_token(join, left, NONE)?;
-                    self.propagate(t)?;
+                    self.propagate_in(t, join)?;
                 }
             }
             JoinKind::Terminal => {
@@ -394,34 +411,51 @@ impl Core<'_> {
 
     /// Creates a partial match in `join`'s memory (newest first) and links it under
     /// its parents.
+    #[cfg_attr(feature = "wide-pools", inline(always))]
     fn link_token(&mut self, join: Ix, parent: Ix, am: Ix) -> Result<Ix, EvalError> {
         let t = self.alloc_token()?;
-        let head = self.joins[join as usize].mem;
+        let (kind, head, depth) = {
+            let j = &self.joins[join as usize];
+            (j.kind, j.mem, j.depth)
+        };
         // links and not/exists outputs stay in front of the parent's other children
         // (see `output_of`); the others keep newest-first order among themselves,
         // which is all that the per-successor walks (`take_back`) rely on
-        let after = if parent != NONE
-            && !matches!(
-                self.joins[join as usize].kind,
-                JoinKind::Negative | JoinKind::Exists
-            ) {
+        let after = if parent != NONE && !matches!(kind, JoinKind::Negative | JoinKind::Exists) {
             self.front_run_end(parent)
         } else {
             NONE
         };
+        // one borrow of the pool for all the links (its bounds stay in registers)
+        let tokens = &mut *self.tokens;
+        // the bindings: the parent's, then the own level patched in place (building
+        // the array apart copied it twice through the stack)
+        #[cfg(feature = "wide-pools")]
+        let (binds, own) = (
+            if parent != NONE {
+                tokens[parent as usize].binds
+            } else {
+                [NONE; super::BIND_W]
+            },
+            if am != NONE {
+                tokens[am as usize].fact
+            } else {
+                NONE
+            },
+        );
         let psib = if after != NONE {
-            self.tokens[after as usize].next_sib
+            tokens[after as usize].next_sib
         } else if parent != NONE {
-            self.tokens[parent as usize].first_child
+            tokens[parent as usize].first_child
         } else {
             NONE
         };
         let asib = if am != NONE {
-            self.tokens[am as usize].first_child
+            tokens[am as usize].first_child
         } else {
             NONE
         };
-        self.tokens[t as usize] = Token {
+        tokens[t as usize] = Token {
             kind: TokenKind::Beta,
             owner: join,
             am,
@@ -430,34 +464,43 @@ impl Core<'_> {
             next_sib: psib,
             prev_sib: after,
             am_next: asib,
+            #[cfg(feature = "wide-pools")]
+            binds,
             ..Token::EMPTY
         };
-        if head != NONE {
-            self.tokens[head as usize].mem_prev = t;
+        #[cfg(feature = "wide-pools")]
+        if let Some(x) = tokens[t as usize].binds.get_mut(depth as usize) {
+            *x = own;
         }
-        self.joins[join as usize].mem = t;
-        self.beta_index_insert(t);
+        #[cfg(not(feature = "wide-pools"))]
+        let _ = depth;
+        if head != NONE {
+            tokens[head as usize].mem_prev = t;
+        }
         if parent != NONE {
             if psib != NONE {
-                self.tokens[psib as usize].prev_sib = t;
+                tokens[psib as usize].prev_sib = t;
             }
             if after != NONE {
-                self.tokens[after as usize].next_sib = t;
+                tokens[after as usize].next_sib = t;
             } else {
-                self.tokens[parent as usize].first_child = t;
+                tokens[parent as usize].first_child = t;
             }
         }
         if am != NONE {
             if asib != NONE {
-                self.tokens[asib as usize].am_prev = t;
+                tokens[asib as usize].am_prev = t;
             }
-            self.tokens[am as usize].first_child = t;
+            tokens[am as usize].first_child = t;
         }
+        self.joins[join as usize].mem = t;
+        self.beta_index_insert_fresh(t, join);
         Ok(t)
     }
 
     /// Records that `blocker` (an alpha match or a subnetwork's partial match)
     /// blocks not/exists output token `t`.
+    #[cfg_attr(feature = "wide-pools", inline(always))]
     fn add_link(&mut self, t: Ix, blocker: Ix) -> Result<(), EvalError> {
         let owner = self.tokens[t as usize].owner;
         let k = self.alloc_token()?;
@@ -634,8 +677,33 @@ impl Core<'_> {
 
     /// Passes an active partial match on to its join's successors, newest first as
     /// CLIPS does: child joins and rule ends (left), joins taking it from the right.
+    #[cfg_attr(feature = "wide-pools", inline(always))]
     pub(crate) fn propagate(&mut self, t: Ix) -> Result<(), EvalError> {
         let join = self.tokens[t as usize].owner;
+        self.propagate_in(t, join)
+    }
+
+    /// `propagate` of token `t` of `join` (callers that just made it know the join).
+    #[cfg_attr(feature = "wide-pools", inline(always))]
+    fn propagate_in(&mut self, t: Ix, join: Ix) -> Result<(), EvalError> {
+        if self.joins[join as usize].rsucc == NONE {
+            // the common case: no join takes these tokens from the right, so the
+            // successors are the child list as it is
+            let mut c = self.joins[join as usize].first_child;
+            while c != NONE {
+                let cj = &self.joins[c as usize];
+                let next = cj.next_sibling;
+                if cj.kind == JoinKind::Terminal {
+                    // a rule end: `left_activate` would only do this, in a big frame
+                    let rule = cj.rule;
+                    self.add_activation(rule, t)?;
+                } else {
+                    self.left_activate(c, t)?;
+                }
+                c = next;
+            }
+            return Ok(());
+        }
         let mut it = Successors::of(self, join);
         while let Some((c, from_right)) = it.next(self) {
             if from_right {
@@ -652,6 +720,7 @@ impl Core<'_> {
     /// activation, a child join the partial matches built on the token, a join from
     /// the right the output it blocks (which looks for another blocker). Its own
     /// links stay.
+    #[cfg_attr(feature = "wide-pools", inline(always))]
     fn deactivate(&mut self, t: Ix) {
         let tk = &self.tokens[t as usize];
         if tk.first_child == NONE
@@ -709,6 +778,7 @@ impl Core<'_> {
     }
 
     /// Takes back what token `t` passed on to successor `c` (see `deactivate`).
+    #[cfg_attr(feature = "wide-pools", inline(always))]
     fn take_back(&mut self, t: Ix, c: Ix, from_right: bool) {
         let cj = self.joins[c as usize];
         if from_right {
@@ -745,6 +815,7 @@ impl Core<'_> {
         }
     }
 
+    #[cfg_attr(feature = "wide-pools", inline(always))]
     pub(crate) fn delete_children(&mut self, t: Ix) {
         while self.tokens[t as usize].first_child != NONE {
             let c = self.tokens[t as usize].first_child;
@@ -764,6 +835,7 @@ impl Core<'_> {
     }
 
     /// Unlinks a token from its parent, alpha match and memory lists, then frees it.
+    #[cfg_attr(feature = "wide-pools", inline(always))]
     fn unlink_and_free(&mut self, t: Ix) {
         if self.is_owed(t) {
             self.unowe(t);
@@ -797,6 +869,11 @@ impl Core<'_> {
                 self.tokens[tk.mem_prev as usize].mem_next = tk.mem_next;
             } else {
                 self.joins[tk.owner as usize].mem = tk.mem_next;
+                // an empty memory is trivially unindexed (see `Join::index_built`)
+                #[cfg(feature = "wide-pools")]
+                if tk.mem_next == NONE {
+                    self.joins[tk.owner as usize].index_built = false;
+                }
             }
             if tk.mem_next != NONE {
                 self.tokens[tk.mem_next as usize].mem_prev = tk.mem_prev;

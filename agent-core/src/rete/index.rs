@@ -146,10 +146,11 @@ impl Core<'_> {
         Some(key)
     }
 
-    /// `left_key` without the evaluator: `lhs_pm` must hold the left token's
-    /// bindings; the compared fields are read straight from the facts, as the
-    /// join's key plan says. None when one is not a plain single-field slot.
-    fn quick_left_key(&mut self, join: Ix) -> Option<u32> {
+    /// `left_key` without the evaluator, for left token `left` (after
+    /// `bind_for_quick`): the compared fields are read straight from the facts, as
+    /// the join's key plan says. None when one is not a plain single-field slot.
+    #[cfg_attr(feature = "wide-pools", inline(always))]
+    fn quick_left_key(&mut self, join: Ix, left: Ix) -> Option<u32> {
         let tests = self.joins[join as usize].tests;
         let i = join as usize % KEY_PLANS;
         let cached = self.st.key_plans[i];
@@ -165,7 +166,7 @@ impl Core<'_> {
         }
         let mut key = 0x5bd1_e995u32;
         for &(pat, slot) in &plan.vars[..plan.n as usize] {
-            let fact = self.st.lhs_pm[pat as usize].fact;
+            let fact = self.left_fact(left, pat);
             if fact == NONE {
                 return None;
             }
@@ -294,6 +295,7 @@ impl Core<'_> {
     /// Where a left token of alpha-fed `join` starts looking for right partners:
     /// the first match of its bucket (then `next_candidate` with `hashed`), or the
     /// whole memory.
+    #[cfg_attr(feature = "wide-pools", inline(always))]
     pub(crate) fn first_candidate(&mut self, join: Ix, left: Ix) -> (Ix, bool) {
         let j = self.joins[join as usize];
         debug_assert!(j.kind != JoinKind::Root);
@@ -303,11 +305,24 @@ impl Core<'_> {
             let key = if ct == left && cj == join {
                 Some(ck)
             } else {
-                self.bind_left(left);
-                match self.quick_left_key(join) {
+                self.bind_for_quick(left);
+                let key = match self.quick_left_key(join, left) {
                     Some(k) => Some(k),
-                    None => self.left_key(join),
+                    None => {
+                        self.bind_left(left);
+                        self.left_key(join)
+                    }
+                };
+                #[cfg(feature = "wide-pools")]
+                if let Some(k) = key {
+                    let owner = self.tokens[left as usize].owner;
+                    if self.joins[owner as usize].index_child == join {
+                        let tk = &mut self.tokens[left as usize];
+                        tk.key = k;
+                        tk.has_key = true;
+                    }
                 }
+                key
             };
             if let Some(key) = key {
                 let b = self.bucket(alpha, key);
@@ -427,20 +442,60 @@ impl Core<'_> {
     }
 
     /// Adds a new partial match (already at the head of its memory) to the index.
+    #[cfg_attr(feature = "wide-pools", inline(always))]
     pub(crate) fn beta_index_insert(&mut self, t: Ix) {
         let join = self.tokens[t as usize].owner;
         let child = self.joins[join as usize].index_child;
-        if child == NONE {
+        #[cfg(feature = "wide-pools")]
+        let skip = child == NONE || !self.joins[join as usize].index_built;
+        #[cfg(not(feature = "wide-pools"))]
+        let skip = child == NONE;
+        if skip {
             self.set_bnext(t, NONE);
             self.set_bprev(t, NONE);
             self.set_bbucket(t, NONE);
             return;
         }
+        self.beta_index_link(t, join, child);
+    }
+
+    /// `beta_index_insert` for a token of `join` just written from `Token::EMPTY`: with
+    /// `u32` indices its bucket links are NONE already (in the image they live in
+    /// `marks`, which EMPTY zeroes, so they are written).
+    #[cfg(feature = "wide-pools")]
+    #[inline(always)]
+    pub(crate) fn beta_index_insert_fresh(&mut self, t: Ix, join: Ix) {
+        let child = self.joins[join as usize].index_child;
+        if child != NONE && self.joins[join as usize].index_built {
+            self.beta_index_link(t, join, child);
+        }
+    }
+
+    #[cfg(not(feature = "wide-pools"))]
+    pub(crate) fn beta_index_insert_fresh(&mut self, t: Ix, _join: Ix) {
+        self.beta_index_insert(t);
+    }
+
+    /// Puts partial match `t` of `join` at the head of its bucket for `child`.
+    #[cfg_attr(feature = "wide-pools", inline(always))]
+    fn beta_index_link(&mut self, t: Ix, join: Ix, child: Ix) {
+        #[cfg(feature = "wide-pools")]
+        let known = {
+            let tk = &self.tokens[t as usize];
+            tk.has_key.then_some(tk.key)
+        };
+        #[cfg(not(feature = "wide-pools"))]
+        let known = None;
         // usually one level more than the left token just bound by the join test
-        self.bind_left(t);
-        let key = match self.quick_left_key(child) {
+        self.bind_for_quick(t);
+        let known = match known {
+            Some(k) => Some(k),
+            None => self.quick_left_key(child, t),
+        };
+        let key = match known {
             Some(key) => key,
             None => {
+                self.bind_left(t);
                 let (pm, depth) = (self.st.pm_rhs, self.joins[child as usize].depth as usize);
                 let saved = self.st.lhs_pm[depth];
                 // an unreadable value: bucket of key 0 (the child then scans, see below)
@@ -466,7 +521,14 @@ impl Core<'_> {
     }
 
     /// Takes a partial match out of its memory's index.
+    #[cfg_attr(feature = "wide-pools", inline(always))]
     pub(crate) fn beta_index_remove(&mut self, t: Ix) {
+        // host: only a linked partial match has a bucket (alpha matches and links
+        // keep `beta_links` NONE), so one load decides the common unindexed case
+        #[cfg(feature = "wide-pools")]
+        if self.bbucket(t) == NONE {
+            return;
+        }
         let owner = self.tokens[t as usize].owner;
         if self.tokens[t as usize].kind != TokenKind::Beta
             || self.joins[owner as usize].index_child == NONE
@@ -501,6 +563,10 @@ impl Core<'_> {
     pub(crate) fn first_left(&mut self, join: Ix, am: Ix) -> (Ix, bool) {
         let j = self.joins[join as usize];
         if self.joins[j.parent as usize].index_child == join {
+            #[cfg(feature = "wide-pools")]
+            if !self.joins[j.parent as usize].index_built {
+                self.build_beta_index(j.parent, join);
+            }
             let tk = self.tokens[am as usize];
             let key = self.alpha_key(
                 j.alpha,
@@ -533,6 +599,24 @@ impl Core<'_> {
         l
     }
 
+    /// Host: indexes `join`'s memory for `child` (see `Join::index_built`). Oldest
+    /// first, each at its bucket's head: the buckets get memory order, as if every
+    /// match had been indexed when it came.
+    #[cfg(feature = "wide-pools")]
+    fn build_beta_index(&mut self, join: Ix, child: Ix) {
+        let mut t = self.joins[join as usize].mem;
+        let mut last = NONE;
+        while t != NONE {
+            last = t;
+            t = self.tokens[t as usize].mem_next;
+        }
+        while last != NONE {
+            self.beta_index_link(last, join, child);
+            last = self.tokens[last as usize].mem_prev;
+        }
+        self.joins[join as usize].index_built = true;
+    }
+
     /// Stops indexing `join`'s memory (its index child goes away).
     pub(crate) fn drop_beta_index(&mut self, join: Ix) {
         let mut t = self.joins[join as usize].mem;
@@ -541,5 +625,9 @@ impl Core<'_> {
             t = self.tokens[t as usize].mem_next;
         }
         self.joins[join as usize].index_child = NONE;
+        #[cfg(feature = "wide-pools")]
+        {
+            self.joins[join as usize].index_built = false;
+        }
     }
 }

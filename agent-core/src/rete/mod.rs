@@ -20,6 +20,10 @@ pub const PATH_LEN: usize = 6;
 pub const EMPTY_PATH: Ix = 0xFFFE;
 /// Most pattern-level CEs in one rule.
 pub const MAX_PATTERNS: usize = 32;
+/// Pattern depths whose facts a partial match keeps a copy of on the host
+/// (`Token::binds`); deeper ones are read by walking the ancestry.
+#[cfg(feature = "wide-pools")]
+pub const BIND_W: usize = 8;
 /// Most fields of one pattern compared for equality with earlier variables that
 /// key its alpha node (CLIPS's "right hash"); further ones are plain join tests.
 pub const MAX_RHASH: usize = 4;
@@ -121,6 +125,12 @@ pub struct Join {
     /// The child join whose equality tests key the index of this join's output
     /// memory (see `rete::index`), NONE if the memory is not indexed.
     pub index_child: Ix,
+    /// Host: whether the output memory's partial matches are in their index buckets.
+    /// The index is built on the first right activation that uses it and dropped
+    /// when the memory empties, so memories that are filled and emptied again
+    /// without one (most, in Manners) never pay for it.
+    #[cfg(feature = "wide-pools")]
+    pub index_built: bool,
 }
 
 impl Join {
@@ -146,6 +156,8 @@ impl Join {
         rjoin: NONE,
         rsucc: NONE,
         index_child: NONE,
+        #[cfg(feature = "wide-pools")]
+        index_built: false,
     };
 }
 
@@ -197,6 +209,18 @@ pub struct Token {
     /// when indices are `u16` (see `rete::index`).
     #[cfg(feature = "wide-pools")]
     pub beta_links: [Ix; 2],
+    /// Partial match: the fact bound at each pattern depth below `BIND_W` (NONE for
+    /// not/exists/test levels), copied from the parent when linked, so the quick
+    /// join tests and index keys read them without walking the ancestry. Host
+    /// only: it would cost the image 16 bytes per token.
+    #[cfg(feature = "wide-pools")]
+    pub binds: [Ix; BIND_W],
+    /// Partial match: its key for its join's index child, once computed (by a left
+    /// activation of that child), for when the index is built (`Join::index_built`).
+    #[cfg(feature = "wide-pools")]
+    pub has_key: bool,
+    #[cfg(feature = "wide-pools")]
+    pub key: u32,
 }
 
 impl Token {
@@ -219,6 +243,12 @@ impl Token {
         blocks: NONE,
         #[cfg(feature = "wide-pools")]
         beta_links: [NONE; 2],
+        #[cfg(feature = "wide-pools")]
+        binds: [NONE; BIND_W],
+        #[cfg(feature = "wide-pools")]
+        has_key: false,
+        #[cfg(feature = "wide-pools")]
+        key: 0,
     };
 }
 

@@ -52,8 +52,37 @@ impl TestPlan {
 }
 
 impl Core<'_> {
+    /// Makes the facts of `left`'s ancestry readable by `left_fact`: with
+    /// `Token::binds` (host) they already are, else `lhs_pm` is filled.
+    #[inline(always)]
+    pub(crate) fn bind_for_quick(&mut self, left: Ix) {
+        #[cfg(not(feature = "wide-pools"))]
+        self.bind_left(left);
+        #[cfg(feature = "wide-pools")]
+        let _ = left;
+    }
+
+    /// The fact bound at pattern `pat` of left token `left` (NONE if none or not
+    /// kept), after `bind_for_quick(left)`.
+    #[inline(always)]
+    pub(crate) fn left_fact(&self, left: Ix, pat: u8) -> Ix {
+        #[cfg(feature = "wide-pools")]
+        {
+            match self.tokens[left as usize].binds.get(pat as usize) {
+                Some(&f) => f,
+                None => NONE,
+            }
+        }
+        #[cfg(not(feature = "wide-pools"))]
+        {
+            let _ = left;
+            self.st.lhs_pm[pat as usize].fact
+        }
+    }
+
     /// `quick_join_test` for the tests of `join` through its cached plan.
-    pub(crate) fn planned_join_test(&mut self, join: Ix, right_fact: Ix) -> Option<bool> {
+    #[cfg_attr(feature = "wide-pools", inline(always))]
+    pub(crate) fn planned_join_test(&mut self, join: Ix, left: Ix, right_fact: Ix) -> Option<bool> {
         let (tests, depth) = {
             let j = &self.joins[join as usize];
             (j.tests, j.depth)
@@ -68,11 +97,11 @@ impl Core<'_> {
             p
         };
         if plan.n == TestPlan::NONE.n {
-            return self.quick_join_test(tests, depth, right_fact);
+            return self.quick_join_test(tests, depth, left, right_fact);
         }
         for op in &plan.ops[..plan.n as usize] {
-            let va = self.planned_var(op.a, depth, right_fact)?;
-            let vb = self.planned_var(op.b, depth, right_fact)?;
+            let va = self.planned_var(op.a, depth, left, right_fact)?;
+            let vb = self.planned_var(op.b, depth, left, right_fact)?;
             if va.same(vb) == op.negated {
                 return Some(false);
             }
@@ -81,11 +110,17 @@ impl Core<'_> {
     }
 
     #[inline(always)]
-    fn planned_var(&self, (pat, slot): (u8, u8), depth: u8, right_fact: Ix) -> Option<Value> {
+    fn planned_var(
+        &self,
+        (pat, slot): (u8, u8),
+        depth: u8,
+        left: Ix,
+        right_fact: Ix,
+    ) -> Option<Value> {
         let fact = if pat == depth {
             right_fact
         } else {
-            self.st.lhs_pm[pat as usize].fact
+            self.left_fact(left, pat)
         };
         if fact == NONE {
             return None;
@@ -150,7 +185,7 @@ impl Core<'_> {
     #[inline(always)]
     pub(crate) fn plain_slot(&self, fact: Ix, slot: Ix) -> Option<Value> {
         let f = &self.facts[fact as usize];
-        let v = if f.len == self.templates[f.tmpl as usize].nslots {
+        let v = if f.flat {
             // one cell per slot (no multislot holds elements): index directly
             self.values[(f.start + slot) as usize]
         } else {
@@ -163,25 +198,31 @@ impl Core<'_> {
     }
 
     /// A pattern variable of a join test of the join at `depth`: the right input's
-    /// fact (`right_fact`) for `depth`, else the bound left token's (`lhs_pm`).
-    fn join_var(&self, x: &Expr, depth: u8, right_fact: Ix) -> Option<Value> {
+    /// fact (`right_fact`) for `depth`, else left token `left`'s (`left_fact`).
+    fn join_var(&self, x: &Expr, depth: u8, left: Ix, right_fact: Ix) -> Option<Value> {
         if x.op != Op::PatVar {
             return None;
         }
         let fact = if x.aux == depth {
             right_fact
         } else if x.aux < depth {
-            self.st.lhs_pm[x.aux as usize].fact
+            self.left_fact(left, x.aux)
         } else {
             return None;
         };
         self.plain_slot_value(fact, x)
     }
 
-    /// The join tests `tests` of the join at `depth` for the left token bound in
-    /// `lhs_pm` and right fact `right_fact`, if every test is `?a = ?b` or `~` of
-    /// it over plain single-field slots; None when the evaluator must decide.
-    pub(crate) fn quick_join_test(&self, tests: Ix, depth: u8, right_fact: Ix) -> Option<bool> {
+    /// The join tests `tests` of the join at `depth` for left token `left` (after
+    /// `bind_for_quick`) and right fact `right_fact`, if every test is `?a = ?b` or
+    /// `~` of it over plain single-field slots; None when the evaluator must decide.
+    pub(crate) fn quick_join_test(
+        &self,
+        tests: Ix,
+        depth: u8,
+        left: Ix,
+        right_fact: Ix,
+    ) -> Option<bool> {
         let mut t = tests;
         while t != NONE {
             let x = self.exprs[t as usize];
@@ -198,8 +239,8 @@ impl Core<'_> {
                 return None;
             }
             let b = self.exprs[a.next as usize];
-            let va = self.join_var(&a, depth, right_fact)?;
-            let vb = self.join_var(&b, depth, right_fact)?;
+            let va = self.join_var(&a, depth, left, right_fact)?;
+            let vb = self.join_var(&b, depth, left, right_fact)?;
             // single-field values: `values_same` is `same`
             if va.same(vb) == negated {
                 return Some(false);
