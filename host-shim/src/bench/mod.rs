@@ -584,10 +584,14 @@ mod tests {
             let reference = clips.measure(&files, &plan);
             let in_thread = files.clone();
             let in_plan = plan.clone();
-            let ours = crate::sim::game::with_engine_stack(move || {
-                OursInProcess::new().measure(&in_thread, &in_plan)
-            })
-            .expect("engine thread runs");
+            // the bench engine passes through the stack on its way into the box (twice
+            // in a debug build): its own stack size, not the default engine's
+            let ours = std::thread::Builder::new()
+                .stack_size(crate::large_engine::LARGE_ENGINE_THREAD_STACK)
+                .spawn(move || OursInProcess::new().measure(&in_thread, &in_plan))
+                .expect("engine thread starts")
+                .join()
+                .expect("engine thread runs");
             assert_eq!(ours.fired, reference.fired, "{}", workload.name());
             let outcome = agreement(workload, &["clips", "ours"], &[reference, ours]);
             assert!(outcome.wrong.is_empty(), "{}", outcome.text);
