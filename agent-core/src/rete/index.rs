@@ -153,14 +153,12 @@ impl Core<'_> {
     fn quick_left_key(&mut self, join: Ix, left: Ix) -> Option<u32> {
         let tests = self.joins[join as usize].tests;
         let i = join as usize % KEY_PLANS;
-        let cached = self.st.key_plans[i];
-        let plan = if cached.join == join && cached.tests == tests {
-            cached
-        } else {
-            let p = self.key_plan(join);
-            self.st.key_plans[i] = p;
-            p
-        };
+        let cached = &self.st.key_plans[i];
+        if cached.join != join || cached.tests != tests {
+            self.st.key_plans[i] = self.key_plan(join);
+        }
+        // read in place (a copy of the whole plan costs more than the few fields used)
+        let plan = &self.st.key_plans[i];
         if plan.n == KeyPlan::NONE.n {
             return None;
         }

@@ -88,14 +88,12 @@ impl Core<'_> {
             (j.tests, j.depth)
         };
         let i = join as usize % TEST_PLANS;
-        let cached = self.st.test_plans[i];
-        let plan = if cached.join == join && cached.tests == tests {
-            cached
-        } else {
-            let p = self.test_plan(join, tests, depth);
-            self.st.test_plans[i] = p;
-            p
-        };
+        let cached = &self.st.test_plans[i];
+        if cached.join != join || cached.tests != tests {
+            self.st.test_plans[i] = self.test_plan(join, tests, depth);
+        }
+        // read in place (a copy of the whole plan costs more than the few ops used)
+        let plan = &self.st.test_plans[i];
         if plan.n == TestPlan::NONE.n {
             return self.quick_join_test(tests, depth, left, right_fact);
         }
