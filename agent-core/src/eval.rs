@@ -25,12 +25,7 @@ impl Core<'_> {
             Op::Eq2 => {
                 let a = self.eval_operand(x.first)?;
                 let b = self.eval_operand(self.exprs[x.first as usize].next)?;
-                // symbols, the usual pattern constants, compare without the call
-                let same = match (a, b) {
-                    (Value::Sym(p), Value::Sym(q)) => p == q,
-                    _ => builtins::basic::values_same(self, a, b),
-                };
-                Ok(Core::bool_value(same))
+                Ok(Core::bool_value(builtins::basic::values_same(self, a, b)))
             }
             Op::And => {
                 let mut c = x.first;

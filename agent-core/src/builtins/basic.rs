@@ -140,13 +140,21 @@ fn ge(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     chain(cx, a, ">=", |o| o.is_ge())
 }
 
-/// Strict equality including multifields element by element.
-#[inline]
+/// Strict equality including multifields element by element. The usual cases,
+/// symbols and integers, compare as plain numbers at the call site; the rest is one
+/// call away (`values_same_general`).
+#[inline(always)]
 pub fn values_same(cx: &Core<'_>, x: Value, y: Value) -> bool {
     match (x, y) {
-        // the usual cases first: symbols and integers compare as plain numbers
         (Value::Sym(p), Value::Sym(q)) => p == q,
         (Value::Int(p), Value::Int(q)) => p == q,
+        _ => values_same_general(cx, x, y),
+    }
+}
+
+#[inline(never)]
+fn values_same_general(cx: &Core<'_>, x: Value, y: Value) -> bool {
+    match (x, y) {
         (Value::Multi(p), Value::Multi(q)) => {
             p.len == q.len && (0..p.len as usize).all(|k| cx.mf_item(p, k).same(cx.mf_item(q, k)))
         }

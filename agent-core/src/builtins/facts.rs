@@ -439,10 +439,12 @@ pub(crate) fn slot_value_of(
         if k != 0 && k <= t.nslots && cx.slots[(t.first_slot + k - 1) as usize].name == name {
             return Ok(cx.fact_slot_value(f, k - 1)?);
         }
+        // a miss: search once, remember it, read it (an unknown slot reports below)
         if let Some(s) = cx.find_slot(tmpl, name) {
             if s < u8::MAX as Ix {
                 cx.exprs[node as usize].aux = s as u8 + 1;
             }
+            return Ok(cx.fact_slot_value(f, s)?);
         }
     }
     slot_of_fact(cx, f, name)
