@@ -732,7 +732,7 @@ impl Core<'_> {
             |i| self.tokens[i as usize].next_sib,
             "token free list broken",
         )?;
-        let mut counts = [0usize; 4];
+        let mut counts = [0usize; 3];
         for (i, t) in self.tokens.iter().enumerate() {
             if i >= used {
                 ensure!(t.kind == TokenKind::Free, "token beyond the used mark", i);
@@ -740,15 +740,14 @@ impl Core<'_> {
             }
             counts[t.kind as usize] += 1;
         }
-        let (nfree, nalpha, nbeta, nlink) = (
+        let (nfree, nalpha, nbeta) = (
             counts[TokenKind::Free as usize],
             counts[TokenKind::Alpha as usize],
             counts[TokenKind::Beta as usize],
-            counts[TokenKind::Link as usize],
         );
         ensure!(nfree == free, "free tokens not all on the free list", free);
         ensure!(
-            nalpha + nbeta + nlink == self.st.tokens_live as usize,
+            nalpha + nbeta == self.st.tokens_live as usize,
             "live token count wrong",
             self.st.tokens_live
         );
@@ -853,127 +852,110 @@ impl Core<'_> {
             in_joins
         );
 
-        // each partial match and link: parents, alpha match, child lists, counts
+        // each partial match: parents, alpha match, child lists, counts
         let mut parented = 0usize;
         let mut with_am = 0usize;
         let mut with_blocker = 0usize;
         for (i, tk) in self.tokens[..used].iter().enumerate() {
-            match tk.kind {
-                TokenKind::Beta => {
-                    let j = self.joins[tk.owner as usize];
-                    if j.kind == JoinKind::Root {
+            if tk.kind == TokenKind::Beta {
+                let j = self.joins[tk.owner as usize];
+                if j.kind == JoinKind::Root {
+                    ensure!(
+                        tk.parent == NONE && tk.am == NONE,
+                        "root token with parents",
+                        i
+                    );
+                } else {
+                    ensure!(j.refs > 0, "partial match of a removed join", i);
+                    self.check_parent(i, j.parent)?;
+                    #[cfg(feature = "wide-pools")]
+                    {
+                        // the binding copy: the parent's plus the own level
+                        let mut want = self.tokens[tk.parent as usize].binds;
+                        if let Some(x) = want.get_mut(j.depth as usize) {
+                            *x = if tk.am != NONE {
+                                self.tokens[tk.am as usize].fact
+                            } else {
+                                NONE
+                            };
+                        }
+                        ensure!(tk.binds == want, "partial match bindings stale", i);
+                    }
+                    match j.kind {
+                        JoinKind::Positive => {
+                            self.check_am(i, j.alpha)?;
+                            with_am += 1;
+                        }
+                        _ => ensure!(tk.am == NONE, "unexpected alpha match", i),
+                    }
+                    if tk.blocked {
                         ensure!(
-                            tk.parent == NONE && tk.am == NONE,
-                            "root token with parents",
+                            matches!(j.kind, JoinKind::Negative | JoinKind::Exists),
+                            "blocked match at a join without not/exists",
                             i
                         );
-                    } else {
-                        ensure!(j.refs > 0, "partial match of a removed join", i);
-                        self.check_parent(i, j.parent)?;
-                        #[cfg(feature = "wide-pools")]
-                        {
-                            // the binding copy: the parent's plus the own level
-                            let mut want = self.tokens[tk.parent as usize].binds;
-                            if let Some(x) = want.get_mut(j.depth as usize) {
-                                *x = if tk.am != NONE {
-                                    self.tokens[tk.am as usize].fact
-                                } else {
-                                    NONE
-                                };
-                            }
-                            ensure!(tk.binds == want, "partial match bindings stale", i);
-                        }
-                        match j.kind {
-                            JoinKind::Positive => {
-                                self.check_am(i, j.alpha)?;
-                                with_am += 1;
-                            }
-                            _ => ensure!(tk.am == NONE, "unexpected alpha match", i),
-                        }
-                        if matches!(j.kind, JoinKind::Negative | JoinKind::Exists) {
-                            let links = self.children(i as Ix, TokenKind::Link)?;
-                            ensure!(
-                                links == usize::from(tk.blocked),
-                                "not/exists blocker links != blocked flag",
-                                i
-                            );
-                        }
-                        if !self.token_active(i as Ix) {
-                            ensure!(
-                                self.children(i as Ix, TokenKind::Beta)? == 0,
-                                "inactive not/exists match has children",
-                                i
-                            );
-                            ensure!(tk.extra == NONE, "inactive match has activations", i);
-                        }
+                        with_blocker += 1;
                     }
-                    if tk.parent != NONE {
-                        parented += 1;
-                    }
-                    // every activation of this match is on the agenda and points back
-                    let mut a = tk.extra;
-                    let mut steps = 0usize;
-                    while a != NONE {
+                    if !self.token_active(i as Ix) {
                         ensure!(
-                            (a as usize) < self.st.acts_used as usize,
-                            "match lists an activation outside the pool",
+                            self.children(i as Ix, TokenKind::Beta)? == 0,
+                            "inactive not/exists match has children",
                             i
                         );
-                        ensure!(
-                            self.acts[a as usize].token as usize == i,
-                            "match lists another match's activation",
-                            a
-                        );
-                        steps += 1;
-                        ensure!(steps <= self.acts.len(), "activation chain has a cycle", i);
-                        a = self.acts[a as usize].next_of_token;
+                        ensure!(tk.extra == NONE, "inactive match has activations", i);
                     }
                 }
-                TokenKind::Link => {
-                    ensure!(tk.parent != NONE && tk.am != NONE, "link without ends", i);
-                    let p = self.tokens[tk.parent as usize];
-                    ensure!(
-                        p.kind == TokenKind::Beta,
-                        "link under a non-partial match",
-                        i
-                    );
-                    ensure!(p.owner == tk.owner, "link owned by another join", i);
-                    let j = self.joins[tk.owner as usize];
-                    ensure!(
-                        matches!(j.kind, JoinKind::Negative | JoinKind::Exists),
-                        "link at a join without not/exists",
-                        i
-                    );
-                    // the blocker: an alpha match of the join's pattern, or a partial
-                    // match of the subnetwork of a not/exists over several CEs
-                    let b = self.tokens[tk.am as usize];
-                    match b.kind {
-                        TokenKind::Alpha => self.check_am(i, j.alpha)?,
-                        TokenKind::Beta => {}
-                        _ => ensure!(false, "link blocked by a free or link token", i),
-                    }
+                if tk.parent != NONE {
                     parented += 1;
-                    with_blocker += 1;
                 }
-                _ => {}
+                // every activation of this match is on the agenda and points back
+                let mut a = tk.extra;
+                let mut steps = 0usize;
+                while a != NONE {
+                    ensure!(
+                        (a as usize) < self.st.acts_used as usize,
+                        "match lists an activation outside the pool",
+                        i
+                    );
+                    ensure!(
+                        self.acts[a as usize].token as usize == i,
+                        "match lists another match's activation",
+                        a
+                    );
+                    steps += 1;
+                    ensure!(steps <= self.acts.len(), "activation chain has a cycle", i);
+                    a = self.acts[a as usize].next_of_token;
+                }
             }
         }
-        // blocker lists: every link is listed once under the token that blocks
+        // blocker lists: every blocked output is listed once under the token that
+        // blocks it (an alpha match of the join's pattern, or a partial match of the
+        // subnetwork of a not/exists over several CEs); the head's back link names
+        // the blocker
         let mut listed_b = 0usize;
         for (i, tk) in self.tokens[..used].iter().enumerate() {
             if !matches!(tk.kind, TokenKind::Alpha | TokenKind::Beta) {
                 continue;
             }
-            let mut prev = NONE;
+            let mut prev = i as Ix;
             let mut k = tk.blocks;
             while k != NONE {
+                ensure!((k as usize) < used, "blocker list outside the pool", i);
                 let lk = self.tokens[k as usize];
                 ensure!(
-                    lk.kind == TokenKind::Link,
-                    "blocker list holds a non-link",
+                    lk.kind == TokenKind::Beta && lk.blocked,
+                    "blocker list holds an unblocked token",
                     k
                 );
-                ensure!(lk.am as usize == i, "link does not point to its blocker", k);
+                let j = self.joins[lk.owner as usize];
+                match tk.kind {
+                    TokenKind::Alpha => ensure!(
+                        tk.owner == j.alpha && j.rjoin == NONE,
+                        "blocker of another pattern",
+                        k
+                    ),
+                    _ => ensure!(j.rjoin != NONE, "partial match blocks an alpha-fed join", k),
+                }
                 ensure!(lk.am_prev == prev, "blocker list back link broken", k);
                 listed_b += 1;
                 ensure!(listed_b <= with_blocker, "blocker list has a cycle", i);
@@ -983,7 +965,7 @@ impl Core<'_> {
         }
         ensure!(
             listed_b == with_blocker,
-            "links missing from their blockers' lists",
+            "blocked matches missing from their blockers' lists",
             listed_b
         );
         // child lists: every child points back and every parented token is listed
@@ -1336,11 +1318,11 @@ mod tests {
                 }
                 cx.tokens[t].next_sib = free;
             }),
-            ("not/exists blocker links != blocked flag", |cx| {
+            ("blocked matches missing from their blockers' lists", |cx| {
                 let t = (0..cx.st.tokens_used as usize)
-                    .find(|&t| cx.tokens[t].kind == TokenKind::Beta && cx.tokens[t].blocked)
+                    .find(|&t| cx.tokens[t].kind != TokenKind::Free && cx.tokens[t].blocks != NONE)
                     .unwrap();
-                cx.tokens[t].blocked = false;
+                cx.tokens[t].blocks = NONE;
             }),
         ];
         let mut wrong = std::vec::Vec::new();

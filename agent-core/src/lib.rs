@@ -41,7 +41,7 @@
 //!   Tests following a `not`/`exists` are post-tests on its output. Joins are shared
 //!   between rules with an identical prefix; a rule's terminal never is.
 //! - **Blockers**: a not/exists output token is blocked by at most one right item,
-//!   the first that matches (a `Link` token in the blocker's `blocks` list). When the
+//!   the first that matches (the output is on the blocker's `blocks` list). When the
 //!   blocker goes, the next matching item in memory order takes over, and only if
 //!   there is none the output changes: CLIPS's order of (de)activations.
 //! - **Joins from the right**: `not`/`exists` over several CEs (and nested

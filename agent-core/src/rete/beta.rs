@@ -5,7 +5,8 @@
 //!
 //! Joins with an identical prefix are shared between rules (as CLIPS does), so a
 //! token may feed several child joins. A `not`/`exists` join keeps one output token
-//! per left token, blocked by the first matching right item (a link token); it is
+//! per left token, blocked by the first matching right item (listed in that item's
+//! `blocks`, through the output's own alpha-sibling links: no token more); it is
 //! *active* (passed on) while unblocked (`not`) or blocked (`exists`). When the
 //! blocker goes, the next matching right item takes over before anything changes.
 
@@ -175,15 +176,14 @@ impl Core<'_> {
         self.eval_lhs_tests(j.tests)
     }
 
-    /// Whether child token `c` belongs to the front of its parent's child list: links
-    /// and not/exists outputs (at most one per child join, one link), see `link_token`.
+    /// Whether child token `c` belongs to the front of its parent's child list:
+    /// not/exists outputs (at most one per child join), see `link_token`.
     fn in_front_run(&self, c: Ix) -> bool {
         let tk = &self.tokens[c as usize];
-        tk.kind == TokenKind::Link
-            || matches!(
-                self.joins[tk.owner as usize].kind,
-                JoinKind::Negative | JoinKind::Exists
-            )
+        matches!(
+            self.joins[tk.owner as usize].kind,
+            JoinKind::Negative | JoinKind::Exists
+        )
     }
 
     /// The output token of a not/exists `join` for left token `left`, if any. Only the
@@ -261,15 +261,17 @@ impl Core<'_> {
 
     /// Links `blocker` to not/exists output `t` and passes on or takes back.
     fn block(&mut self, t: Ix, blocker: Ix) -> Result<(), EvalError> {
-        self.add_link(t, blocker)?;
         if self.joins[self.tokens[t as usize].owner as usize].kind == JoinKind::Negative {
             // blocked again before its propagation was paid: nothing is owed any more
+            // (first: the owed list and the blocker list share the links)
             if self.is_owed(t) {
                 self.unowe(t);
             }
+            self.add_link(t, blocker);
             self.deactivate(t);
             Ok(())
         } else {
+            self.add_link(t, blocker);
             self.move_to_front(t);
             self.propagate(t)
         }
@@ -381,7 +383,7 @@ impl Core<'_> {
                 let t = self.link_token(join, left, NONE)?;
                 let b = self.find_blocker(join, left, from, hashed, NONE)?;
                 if b != NONE {
-                    self.add_link(t, b)?;
+                    self.add_link(t, b);
                 }
                 // `token_active` of the new output: it is owed nothing yet, so a
                 // not output is active unblocked, an exists output blocked
@@ -499,41 +501,65 @@ impl Core<'_> {
     }
 
     /// Records that `blocker` (an alpha match or a subnetwork's partial match)
-    /// blocks not/exists output token `t`.
+    /// blocks not/exists output token `t`: `t` goes to the front of the blocker's
+    /// `blocks` list, chained by its `am_next`/`am_prev` (free: the output has no
+    /// alpha match, and a blocked one is never owed); the head's `am_prev` names
+    /// the blocker. Allocates nothing, as CLIPS links the partial match itself.
     #[cfg_attr(feature = "wide-pools", inline(always))]
-    fn add_link(&mut self, t: Ix, blocker: Ix) -> Result<(), EvalError> {
-        let owner = self.tokens[t as usize].owner;
-        let k = self.alloc_token()?;
-        let psib = self.tokens[t as usize].first_child;
+    fn add_link(&mut self, t: Ix, blocker: Ix) {
         let bsib = self.tokens[blocker as usize].blocks;
-        self.tokens[k as usize] = Token {
-            kind: TokenKind::Link,
-            owner,
-            am: blocker,
-            parent: t,
-            next_sib: psib,
-            am_next: bsib,
-            ..Token::EMPTY
-        };
-        if psib != NONE {
-            self.tokens[psib as usize].prev_sib = k;
-        }
-        self.tokens[t as usize].first_child = k;
+        let tk = &mut self.tokens[t as usize];
+        tk.am_next = bsib;
+        tk.am_prev = blocker;
+        tk.blocked = true;
         if bsib != NONE {
-            self.tokens[bsib as usize].am_prev = k;
+            self.tokens[bsib as usize].am_prev = t;
         }
-        self.tokens[blocker as usize].blocks = k;
-        self.tokens[t as usize].blocked = true;
-        Ok(())
+        self.tokens[blocker as usize].blocks = t;
     }
 
-    /// The blocker of link `k` goes away: the counted token gets the next blocker,
-    /// or is unblocked (not) or loses its match (exists), as CLIPS does.
-    pub(crate) fn remove_link(&mut self, k: Ix) {
-        let t = self.tokens[k as usize].parent;
-        let blocker = self.tokens[k as usize].am;
-        self.unlink_and_free(k);
-        self.tokens[t as usize].blocked = false;
+    /// Takes blocked output `t` off its blocker's list. `am_prev` is the blocker
+    /// exactly when `t` heads the blocker's list (a token is on one list only).
+    #[cfg_attr(feature = "wide-pools", inline(always))]
+    fn unlink_blocked(&mut self, t: Ix) {
+        let tk = &mut self.tokens[t as usize];
+        let (p, n) = (tk.am_prev, tk.am_next);
+        tk.am_next = NONE;
+        tk.am_prev = NONE;
+        tk.blocked = false;
+        if self.tokens[p as usize].blocks == t {
+            self.tokens[p as usize].blocks = n;
+        } else {
+            self.tokens[p as usize].am_next = n;
+        }
+        if n != NONE {
+            self.tokens[n as usize].am_prev = p;
+        }
+    }
+
+    /// The blocker of blocked output `t`: back along the list to its head.
+    fn blocker_of(&self, t: Ix) -> Ix {
+        let mut c = t;
+        loop {
+            let p = self.tokens[c as usize].am_prev;
+            if self.tokens[p as usize].blocks == c {
+                return p;
+            }
+            c = p;
+        }
+    }
+
+    /// Blocked output `t` loses its blocker (`t` from the blocker's `blocks`
+    /// list; O(1) for its head, as retracts take them).
+    pub(crate) fn remove_link(&mut self, t: Ix) {
+        let blocker = self.blocker_of(t);
+        self.unblock(t, blocker);
+    }
+
+    /// The blocker of output `t` goes away: `t` gets the next blocker, or is
+    /// unblocked (not) or loses its match (exists), as CLIPS does.
+    fn unblock(&mut self, t: Ix, blocker: Ix) {
+        self.unlink_blocked(t);
         let join = self.tokens[t as usize].owner;
         let left = self.tokens[t as usize].parent;
         let (from, hashed) = if self.tokens[blocker as usize].kind == TokenKind::Alpha {
@@ -548,7 +574,8 @@ impl Core<'_> {
         let next = self
             .find_blocker(join, left, from, hashed, blocker)
             .unwrap_or(NONE);
-        if next != NONE && self.add_link(t, next).is_ok() {
+        if next != NONE {
+            self.add_link(t, next);
             return;
         }
         if self.joins[join as usize].kind == JoinKind::Negative {
@@ -588,7 +615,7 @@ impl Core<'_> {
     /// head's `am_prev` is the tail), and a non-NONE `am_prev` marks membership.
     pub(crate) fn is_owed(&self, t: Ix) -> bool {
         let tk = &self.tokens[t as usize];
-        tk.kind == TokenKind::Beta && tk.am == NONE && tk.am_prev != NONE
+        tk.kind == TokenKind::Beta && tk.am == NONE && !tk.blocked && tk.am_prev != NONE
     }
 
     /// Puts `t` on the owed list: at the end, or at the front (kept its turn).
@@ -743,7 +770,7 @@ impl Core<'_> {
         }
         while self.tokens[t as usize].blocks != NONE {
             let k = self.tokens[t as usize].blocks;
-            self.remove_link(k);
+            self.unblock(k, t);
         }
     }
 
@@ -786,7 +813,7 @@ impl Core<'_> {
             while k != NONE {
                 let next = self.tokens[k as usize].am_next;
                 if self.tokens[k as usize].owner == c {
-                    self.remove_link(k);
+                    self.unblock(k, t);
                 }
                 k = next;
             }
@@ -805,9 +832,7 @@ impl Core<'_> {
             let mut k = self.tokens[t as usize].first_child;
             while k != NONE {
                 let next = self.tokens[k as usize].next_sib;
-                if self.tokens[k as usize].owner == c
-                    && self.tokens[k as usize].kind != TokenKind::Link
-                {
+                if self.tokens[k as usize].owner == c {
                     self.delete_token(k);
                 }
                 k = next;
@@ -823,24 +848,26 @@ impl Core<'_> {
         }
     }
 
-    /// Deletes a partial match and everything built on it (links included).
+    /// Deletes a partial match and everything built on it.
     pub(crate) fn delete_token(&mut self, t: Ix) {
-        if self.tokens[t as usize].kind == TokenKind::Link {
-            self.unlink_and_free(t);
-            return;
-        }
         self.deactivate(t);
         self.delete_children(t);
         self.unlink_and_free(t);
     }
 
-    /// Unlinks a token from its parent, alpha match and memory lists, then frees it.
+    /// Unlinks a token from its parent, alpha match (or blocker, or owed list) and
+    /// memory lists, then frees it.
     #[cfg_attr(feature = "wide-pools", inline(always))]
     fn unlink_and_free(&mut self, t: Ix) {
-        if self.is_owed(t) {
-            self.unowe(t);
-        }
         let tk = self.tokens[t as usize];
+        if tk.am == NONE && tk.am_prev != NONE {
+            // a not/exists output: blocked, or owed (see `is_owed`)
+            if tk.blocked {
+                self.unlink_blocked(t);
+            } else {
+                self.unowe(t);
+            }
+        }
         if tk.parent != NONE {
             if tk.prev_sib != NONE {
                 self.tokens[tk.prev_sib as usize].next_sib = tk.next_sib;
@@ -854,8 +881,6 @@ impl Core<'_> {
         if tk.am != NONE {
             if tk.am_prev != NONE {
                 self.tokens[tk.am_prev as usize].am_next = tk.am_next;
-            } else if tk.kind == TokenKind::Link {
-                self.tokens[tk.am as usize].blocks = tk.am_next;
             } else {
                 self.tokens[tk.am as usize].first_child = tk.am_next;
             }
@@ -863,21 +888,19 @@ impl Core<'_> {
                 self.tokens[tk.am_next as usize].am_prev = tk.am_prev;
             }
         }
-        if tk.kind != TokenKind::Link {
-            self.beta_index_remove(t);
-            if tk.mem_prev != NONE {
-                self.tokens[tk.mem_prev as usize].mem_next = tk.mem_next;
-            } else {
-                self.joins[tk.owner as usize].mem = tk.mem_next;
-                // an empty memory is trivially unindexed (see `Join::index_built`)
-                #[cfg(feature = "wide-pools")]
-                if tk.mem_next == NONE {
-                    self.joins[tk.owner as usize].index_built = false;
-                }
+        self.beta_index_remove(t);
+        if tk.mem_prev != NONE {
+            self.tokens[tk.mem_prev as usize].mem_next = tk.mem_next;
+        } else {
+            self.joins[tk.owner as usize].mem = tk.mem_next;
+            // an empty memory is trivially unindexed (see `Join::index_built`)
+            #[cfg(feature = "wide-pools")]
+            if tk.mem_next == NONE {
+                self.joins[tk.owner as usize].index_built = false;
             }
-            if tk.mem_next != NONE {
-                self.tokens[tk.mem_next as usize].mem_prev = tk.mem_prev;
-            }
+        }
+        if tk.mem_next != NONE {
+            self.tokens[tk.mem_next as usize].mem_prev = tk.mem_prev;
         }
         self.free_token(t);
     }

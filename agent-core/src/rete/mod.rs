@@ -169,10 +169,6 @@ pub enum TokenKind {
     Alpha,
     /// A partial match in a join's output memory.
     Beta,
-    /// "Token `am` (an alpha match, or a partial match of a subnetwork) blocks
-    /// not/exists output token `parent`": kept in the output token's child list and
-    /// the blocker's `blocks` list.
-    Link,
 }
 
 /// Alpha matches and partial matches share this pool.
@@ -195,15 +191,17 @@ pub struct Token {
     /// Partial match: siblings under `parent`; alpha match: other matches of the same fact.
     pub next_sib: Ix,
     pub prev_sib: Ix,
-    /// Partial match: siblings under `am`.
+    /// Partial match: siblings under `am`. Not/exists output: the owed list (see
+    /// `Core::is_owed`), or while blocked its blocker's `blocks` list (the head's
+    /// `am_prev` is the blocker).
     pub am_next: Ix,
     pub am_prev: Ix,
     pub mem_next: Ix,
     pub mem_prev: Ix,
     /// Partial match: its first activation. Alpha match: propagation progress.
     pub extra: Ix,
-    /// Links naming this token as the blocker of not/exists outputs (chained by
-    /// `am_next`), so removing it visits exactly the outputs it decided.
+    /// The not/exists outputs this token blocks (chained by their `am_next`), so
+    /// removing it visits exactly the outputs it decided.
     pub blocks: Ix,
     /// Beta-memory index links of a partial match (previous, bucket), kept in `marks`
     /// when indices are `u16` (see `rete::index`).
