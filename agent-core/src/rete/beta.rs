@@ -330,8 +330,8 @@ impl Core<'_> {
         hashed: bool,
         skip: Ix,
     ) -> Result<Ix, EvalError> {
-        let j = self.joins[join as usize];
-        if j.rjoin == NONE {
+        let rjoin = self.joins[join as usize].rjoin;
+        if rjoin == NONE {
             let mut a = from;
             while a != NONE {
                 if self.join_test(join, left, a)? {
@@ -340,9 +340,10 @@ impl Core<'_> {
                 a = self.next_candidate(a, hashed);
             }
         } else {
-            let mut r = self.joins[j.rjoin as usize].mem;
+            let parent = self.joins[join as usize].parent;
+            let mut r = self.joins[rjoin as usize].mem;
             while r != NONE {
-                if r != skip && self.token_active(r) && self.ancestor_in(r, j.parent) == left {
+                if r != skip && self.token_active(r) && self.ancestor_in(r, parent) == left {
                     return Ok(r);
                 }
                 r = self.tokens[r as usize].mem_next;
@@ -353,8 +354,9 @@ impl Core<'_> {
 
     /// A new active partial match `left` arrives on the left of `join`.
     pub(crate) fn left_activate(&mut self, join: Ix, left: Ix) -> Result<(), EvalError> {
-        let j = self.joins[join as usize];
-        match j.kind {
+        // the fields, not a copy of the join (which lived on the stack across calls)
+        let kind = self.joins[join as usize].kind;
+        match kind {
             JoinKind::Positive => {
                 let (mut a, hashed) = self.first_candidate(join, left);
                 while a != NONE {
@@ -367,15 +369,16 @@ impl Core<'_> {
                 }
             }
             JoinKind::Negative | JoinKind::Exists => {
-                if j.post != NONE {
+                let post = self.joins[join as usize].post;
+                if post != NONE {
                     self.bind_left(left);
-                    if !self.eval_lhs_tests(j.post)? {
+                    if !self.eval_lhs_tests(post)? {
                         return Ok(());
                     }
                 }
                 // the bucket is looked up before the output token exists: its
                 // index insert would evict `left`'s key from the key cache
-                let (from, hashed) = if j.rjoin == NONE {
+                let (from, hashed) = if self.joins[join as usize].rjoin == NONE {
                     self.first_candidate(join, left)
                 } else {
                     (NONE, false)
@@ -387,8 +390,8 @@ impl Core<'_> {
                 }
                 // `token_active` of the new output: it is owed nothing yet, so a
                 // not output is active unblocked, an exists output blocked
-                if (b == NONE) == (j.kind == JoinKind::Negative) {
-                    if self.st.defer_nots && j.kind == JoinKind::Negative {
+                if (b == NONE) == (kind == JoinKind::Negative) {
+                    if self.st.defer_nots && kind == JoinKind::Negative {
                         // see `defer_nots`: a later pattern of the same fact may block it
                         self.owe(t, false);
                     } else {
@@ -403,7 +406,7 @@ impl Core<'_> {
                 }
             }
             JoinKind::Terminal => {
-                let rule = j.rule;
+                let rule = self.joins[join as usize].rule;
                 self.add_activation(rule, left)?;
             }
             JoinKind::Root => {}
@@ -416,9 +419,15 @@ impl Core<'_> {
     #[cfg_attr(feature = "wide-pools", inline(always))]
     fn link_token(&mut self, join: Ix, parent: Ix, am: Ix) -> Result<Ix, EvalError> {
         let t = self.alloc_token()?;
-        let (kind, head, depth) = {
+        // the index child too, while the join is at hand (read after the token
+        // stores it would be loaded again)
+        let (kind, head, depth, ichild) = {
             let j = &self.joins[join as usize];
-            (j.kind, j.mem, j.depth)
+            #[cfg(feature = "wide-pools")]
+            let ichild = if j.index_built { j.index_child } else { NONE };
+            #[cfg(not(feature = "wide-pools"))]
+            let ichild = NONE;
+            (j.kind, j.mem, j.depth, ichild)
         };
         // links and not/exists outputs stay in front of the parent's other children
         // (see `output_of`); the others keep newest-first order among themselves,
@@ -496,7 +505,7 @@ impl Core<'_> {
             tokens[am as usize].first_child = t;
         }
         self.joins[join as usize].mem = t;
-        self.beta_index_insert_fresh(t, join);
+        self.beta_index_insert_fresh(t, join, ichild);
         Ok(t)
     }
 
@@ -859,48 +868,57 @@ impl Core<'_> {
     /// memory lists, then frees it.
     #[cfg_attr(feature = "wide-pools", inline(always))]
     fn unlink_and_free(&mut self, t: Ix) {
-        let tk = self.tokens[t as usize];
-        if tk.am == NONE && tk.am_prev != NONE {
+        // fields read one by one: copying the whole (host: 104-byte) token cost
+        // more than the unlinking; one borrow of the pool per stretch keeps its
+        // bounds in registers across the stores
+        let tokens = &mut *self.tokens;
+        let tk = &tokens[t as usize];
+        let (am, am_prev, am_next) = (tk.am, tk.am_prev, tk.am_next);
+        let (parent, prev_sib, next_sib) = (tk.parent, tk.prev_sib, tk.next_sib);
+        if parent != NONE {
+            if prev_sib != NONE {
+                tokens[prev_sib as usize].next_sib = next_sib;
+            } else {
+                tokens[parent as usize].first_child = next_sib;
+            }
+            if next_sib != NONE {
+                tokens[next_sib as usize].prev_sib = prev_sib;
+            }
+        }
+        if am != NONE {
+            if am_prev != NONE {
+                tokens[am_prev as usize].am_next = am_next;
+            } else {
+                tokens[am as usize].first_child = am_next;
+            }
+            if am_next != NONE {
+                tokens[am_next as usize].am_prev = am_prev;
+            }
+        } else if am_prev != NONE {
             // a not/exists output: blocked, or owed (see `is_owed`)
-            if tk.blocked {
+            if tokens[t as usize].blocked {
                 self.unlink_blocked(t);
             } else {
                 self.unowe(t);
             }
         }
-        if tk.parent != NONE {
-            if tk.prev_sib != NONE {
-                self.tokens[tk.prev_sib as usize].next_sib = tk.next_sib;
-            } else {
-                self.tokens[tk.parent as usize].first_child = tk.next_sib;
-            }
-            if tk.next_sib != NONE {
-                self.tokens[tk.next_sib as usize].prev_sib = tk.prev_sib;
-            }
-        }
-        if tk.am != NONE {
-            if tk.am_prev != NONE {
-                self.tokens[tk.am_prev as usize].am_next = tk.am_next;
-            } else {
-                self.tokens[tk.am as usize].first_child = tk.am_next;
-            }
-            if tk.am_next != NONE {
-                self.tokens[tk.am_next as usize].am_prev = tk.am_prev;
-            }
-        }
         self.beta_index_remove(t);
-        if tk.mem_prev != NONE {
-            self.tokens[tk.mem_prev as usize].mem_next = tk.mem_next;
+        let tokens = &mut *self.tokens;
+        let tk = &tokens[t as usize];
+        let (owner, mem_prev, mem_next) = (tk.owner, tk.mem_prev, tk.mem_next);
+        if mem_prev != NONE {
+            tokens[mem_prev as usize].mem_next = mem_next;
         } else {
-            self.joins[tk.owner as usize].mem = tk.mem_next;
+            let j = &mut self.joins[owner as usize];
+            j.mem = mem_next;
             // an empty memory is trivially unindexed (see `Join::index_built`)
             #[cfg(feature = "wide-pools")]
-            if tk.mem_next == NONE {
-                self.joins[tk.owner as usize].index_built = false;
+            if mem_next == NONE {
+                j.index_built = false;
             }
         }
-        if tk.mem_next != NONE {
-            self.tokens[tk.mem_next as usize].mem_prev = tk.mem_prev;
+        if mem_next != NONE {
+            tokens[mem_next as usize].mem_prev = mem_prev;
         }
         self.free_token(t);
     }

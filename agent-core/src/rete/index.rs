@@ -295,9 +295,8 @@ impl Core<'_> {
     /// whole memory.
     #[cfg_attr(feature = "wide-pools", inline(always))]
     pub(crate) fn first_candidate(&mut self, join: Ix, left: Ix) -> (Ix, bool) {
-        let j = self.joins[join as usize];
-        debug_assert!(j.kind != JoinKind::Root);
-        let alpha = j.alpha;
+        debug_assert!(self.joins[join as usize].kind != JoinKind::Root);
+        let alpha = self.joins[join as usize].alpha;
         if self.alphas[alpha as usize].nrhash > 0 {
             let (ct, cj, ck) = self.st.key_cache;
             let key = if ct == left && cj == join {
@@ -460,17 +459,18 @@ impl Core<'_> {
     /// `beta_index_insert` for a token of `join` just written from `Token::EMPTY`: with
     /// `u32` indices its bucket links are NONE already (in the image they live in
     /// `marks`, which EMPTY zeroes, so they are written).
+    /// On the host `child` is the join's index child if its index is built (NONE
+    /// otherwise), read by the caller with the join's other fields.
     #[cfg(feature = "wide-pools")]
     #[inline(always)]
-    pub(crate) fn beta_index_insert_fresh(&mut self, t: Ix, join: Ix) {
-        let child = self.joins[join as usize].index_child;
-        if child != NONE && self.joins[join as usize].index_built {
+    pub(crate) fn beta_index_insert_fresh(&mut self, t: Ix, join: Ix, child: Ix) {
+        if child != NONE {
             self.beta_index_link(t, join, child);
         }
     }
 
     #[cfg(not(feature = "wide-pools"))]
-    pub(crate) fn beta_index_insert_fresh(&mut self, t: Ix, _join: Ix) {
+    pub(crate) fn beta_index_insert_fresh(&mut self, t: Ix, _join: Ix, _child: Ix) {
         self.beta_index_insert(t);
     }
 
