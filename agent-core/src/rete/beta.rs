@@ -419,16 +419,7 @@ impl Core<'_> {
     #[cfg_attr(feature = "wide-pools", inline(always))]
     fn link_token(&mut self, join: Ix, parent: Ix, am: Ix) -> Result<Ix, EvalError> {
         let t = self.alloc_token()?;
-        // the index child too, while the join is at hand (read after the token
-        // stores it would be loaded again)
-        let (kind, head, depth, ichild) = {
-            let j = &self.joins[join as usize];
-            #[cfg(feature = "wide-pools")]
-            let ichild = if j.index_built { j.index_child } else { NONE };
-            #[cfg(not(feature = "wide-pools"))]
-            let ichild = NONE;
-            (j.kind, j.mem, j.depth, ichild)
-        };
+        let kind = self.joins[join as usize].kind;
         // links and not/exists outputs stay in front of the parent's other children
         // (see `output_of`); the others keep newest-first order among themselves,
         // which is all that the per-successor walks (`take_back`) rely on
@@ -437,8 +428,16 @@ impl Core<'_> {
         } else {
             NONE
         };
-        // one borrow of the pool for all the links (its bounds stay in registers)
+        // one borrow of the pool and one of the join for all the links (their
+        // addresses stay in registers across the stores)
         let tokens = &mut *self.tokens;
+        let jn = &mut self.joins[join as usize];
+        // the index child too, while the join is at hand
+        let (head, depth) = (jn.mem, jn.depth);
+        #[cfg(feature = "wide-pools")]
+        let ichild = if jn.index_built { jn.index_child } else { NONE };
+        #[cfg(not(feature = "wide-pools"))]
+        let ichild = NONE;
         // the bindings: the parent's, then the own level patched in place (building
         // the array apart copied it twice through the stack)
         #[cfg(feature = "wide-pools")]
@@ -504,7 +503,7 @@ impl Core<'_> {
             }
             tokens[am as usize].first_child = t;
         }
-        self.joins[join as usize].mem = t;
+        jn.mem = t;
         self.beta_index_insert_fresh(t, join, ichild);
         Ok(t)
     }
@@ -859,9 +858,25 @@ impl Core<'_> {
 
     /// Deletes a partial match and everything built on it.
     pub(crate) fn delete_token(&mut self, t: Ix) {
-        self.deactivate(t);
+        if !self.only_child_join(t) {
+            self.deactivate(t);
+        }
         self.delete_children(t);
         self.unlink_and_free(t);
+    }
+
+    /// Whether `t`'s one successor is a child join (no rule end, no join from the
+    /// right): then its children are all that it passed on, in the child list, and
+    /// it blocks nothing (only right inputs block), so `delete_children` alone
+    /// takes back what `deactivate` would, in the same order.
+    #[cfg_attr(feature = "wide-pools", inline(always))]
+    fn only_child_join(&self, t: Ix) -> bool {
+        let jn = &self.joins[self.tokens[t as usize].owner as usize];
+        if jn.rsucc != NONE || jn.first_child == NONE {
+            return false;
+        }
+        let c = &self.joins[jn.first_child as usize];
+        c.next_sibling == NONE && c.kind != JoinKind::Terminal
     }
 
     /// Unlinks a token from its parent, alpha match (or blocker, or owed list) and
