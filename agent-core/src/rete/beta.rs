@@ -201,15 +201,22 @@ impl Core<'_> {
         NONE
     }
 
-    /// The last token of `parent`'s front run of children (NONE if the run is empty).
-    fn front_run_end(&self, parent: Ix) -> Ix {
+    /// The last token of `parent`'s front run of children (NONE if the run is
+    /// empty) and the child after it, for a new child of positive `join` (a child
+    /// of `join` itself ends the run without looking at its join).
+    #[cfg_attr(feature = "wide-pools", inline(always))]
+    fn front_run_end(&self, parent: Ix, join: Ix) -> (Ix, Ix) {
         let mut last = NONE;
         let mut c = self.tokens[parent as usize].first_child;
-        while c != NONE && self.in_front_run(c) {
+        while c != NONE {
+            let tk = &self.tokens[c as usize];
+            if tk.owner == join || !self.in_front_run(c) {
+                break;
+            }
             last = c;
-            c = self.tokens[c as usize].next_sib;
+            c = tk.next_sib;
         }
-        last
+        (last, c)
     }
 
     /// A new alpha match arrives on the right of `join`.
@@ -423,10 +430,12 @@ impl Core<'_> {
         // links and not/exists outputs stay in front of the parent's other children
         // (see `output_of`); the others keep newest-first order among themselves,
         // which is all that the per-successor walks (`take_back`) rely on
-        let after = if parent != NONE && !matches!(kind, JoinKind::Negative | JoinKind::Exists) {
-            self.front_run_end(parent)
+        let (after, psib) = if parent == NONE {
+            (NONE, NONE)
+        } else if matches!(kind, JoinKind::Negative | JoinKind::Exists) {
+            (NONE, self.tokens[parent as usize].first_child)
         } else {
-            NONE
+            self.front_run_end(parent, join)
         };
         // one borrow of the pool and one of the join for all the links (their
         // addresses stay in registers across the stores)
@@ -453,13 +462,6 @@ impl Core<'_> {
                 NONE
             },
         );
-        let psib = if after != NONE {
-            tokens[after as usize].next_sib
-        } else if parent != NONE {
-            tokens[parent as usize].first_child
-        } else {
-            NONE
-        };
         let asib = if am != NONE {
             tokens[am as usize].first_child
         } else {
@@ -858,25 +860,35 @@ impl Core<'_> {
 
     /// Deletes a partial match and everything built on it.
     pub(crate) fn delete_token(&mut self, t: Ix) {
-        if !self.only_child_join(t) {
-            self.deactivate(t);
+        match self.sole_successor(t) {
+            Some(JoinKind::Terminal) => {
+                // its activations are all of the one rule (in the order
+                // `take_back` removes them); a rule end builds no children
+                while self.tokens[t as usize].extra != NONE {
+                    let a = self.tokens[t as usize].extra;
+                    self.remove_activation(a);
+                }
+            }
+            Some(_) => {}
+            None => self.deactivate(t),
         }
         self.delete_children(t);
         self.unlink_and_free(t);
     }
 
-    /// Whether `t`'s one successor is a child join (no rule end, no join from the
-    /// right): then its children are all that it passed on, in the child list, and
-    /// it blocks nothing (only right inputs block), so `delete_children` alone
-    /// takes back what `deactivate` would, in the same order.
+    /// The kind of `t`'s one successor when it is a child join or rule end (no
+    /// join from the right, so `t` blocks nothing: only right inputs block). For
+    /// a child join its children are all that it passed on, in the child list, so
+    /// `delete_children` alone takes back what `deactivate` would, in the same
+    /// order.
     #[cfg_attr(feature = "wide-pools", inline(always))]
-    fn only_child_join(&self, t: Ix) -> bool {
+    fn sole_successor(&self, t: Ix) -> Option<JoinKind> {
         let jn = &self.joins[self.tokens[t as usize].owner as usize];
         if jn.rsucc != NONE || jn.first_child == NONE {
-            return false;
+            return None;
         }
         let c = &self.joins[jn.first_child as usize];
-        c.next_sibling == NONE && c.kind != JoinKind::Terminal
+        (c.next_sibling == NONE).then_some(c.kind)
     }
 
     /// Unlinks a token from its parent, alpha match (or blocker, or owed list) and
