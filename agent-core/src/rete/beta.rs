@@ -141,7 +141,11 @@ impl Core<'_> {
     /// Evaluates a join's tests for left token `left` and alpha match `am`.
     #[cfg_attr(feature = "wide-pools", inline(always))]
     fn join_test(&mut self, join: Ix, left: Ix, am: Ix) -> Result<bool, EvalError> {
-        if self.joins[join as usize].tests == NONE {
+        let (tests, depth) = {
+            let j = &self.joins[join as usize];
+            (j.tests, j.depth)
+        };
+        if tests == NONE {
             return Ok(true);
         }
         let right_fact = if am != NONE {
@@ -150,7 +154,7 @@ impl Core<'_> {
             NONE
         };
         self.bind_for_quick(left);
-        if let Some(r) = self.planned_join_test(join, left, right_fact) {
+        if let Some(r) = self.planned_join_test(join, tests, depth, left, right_fact) {
             return Ok(r);
         }
         self.join_test_eval(join, left, am)

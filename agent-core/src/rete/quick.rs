@@ -51,6 +51,17 @@ impl TestPlan {
     };
 }
 
+/// `Value::same` with the two kinds join keys mostly hold, symbols and integers,
+/// compared inline (the derived comparison dispatches on both kinds).
+#[inline(always)]
+fn same_atom(a: Value, b: Value) -> bool {
+    match (a, b) {
+        (Value::Sym(x), Value::Sym(y)) => x == y,
+        (Value::Int(x), Value::Int(y)) => x == y,
+        _ => a.same(b),
+    }
+}
+
 impl Core<'_> {
     /// Makes the facts of `left`'s ancestry readable by `left_fact`: with
     /// `Token::binds` (host) they already are, else `lhs_pm` is filled.
@@ -82,11 +93,15 @@ impl Core<'_> {
 
     /// `quick_join_test` for the tests of `join` through its cached plan.
     #[cfg_attr(feature = "wide-pools", inline(always))]
-    pub(crate) fn planned_join_test(&mut self, join: Ix, left: Ix, right_fact: Ix) -> Option<bool> {
-        let (tests, depth) = {
-            let j = &self.joins[join as usize];
-            (j.tests, j.depth)
-        };
+    /// `tests` and `depth` are the join's (read by the caller with its other fields).
+    pub(crate) fn planned_join_test(
+        &mut self,
+        join: Ix,
+        tests: Ix,
+        depth: u8,
+        left: Ix,
+        right_fact: Ix,
+    ) -> Option<bool> {
         let i = join as usize % TEST_PLANS;
         let cached = &self.st.test_plans[i];
         if cached.join != join || cached.tests != tests {
@@ -100,7 +115,7 @@ impl Core<'_> {
         for op in &plan.ops[..plan.n as usize] {
             let va = self.planned_var(op.a, depth, left, right_fact)?;
             let vb = self.planned_var(op.b, depth, left, right_fact)?;
-            if va.same(vb) == op.negated {
+            if same_atom(va, vb) == op.negated {
                 return Some(false);
             }
         }
@@ -240,7 +255,7 @@ impl Core<'_> {
             let va = self.join_var(&a, depth, left, right_fact)?;
             let vb = self.join_var(&b, depth, left, right_fact)?;
             // single-field values: `values_same` is `same`
-            if va.same(vb) == negated {
+            if same_atom(va, vb) == negated {
                 return Some(false);
             }
             t = x.next;
