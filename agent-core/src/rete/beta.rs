@@ -18,21 +18,23 @@ use crate::value::NONE;
 
 impl Core<'_> {
     pub(crate) fn alloc_token(&mut self) -> Result<Ix, CapacityError> {
-        let t = if self.st.token_free != NONE {
+        if self.st.token_free != NONE {
             let t = self.st.token_free;
             self.st.token_free = self.tokens[t as usize].next_sib;
-            t
-        } else {
-            let n = self.st.tokens_used as usize;
-            if n >= self.tokens.len() || n >= NONE as usize {
-                return Err(cap(Pool::Tokens, self.tokens.len()));
-            }
-            self.st.tokens_used += 1;
-            n as Ix
-        };
+            // no high-water mark to raise: with a free entry, live + 1 <= used,
+            // and the mark reached `used` when the last fresh entry was taken
+            // (`clear` keeps the mark)
+            self.st.tokens_live += 1;
+            return Ok(t);
+        }
+        let n = self.st.tokens_used as usize;
+        if n >= self.tokens.len() || n >= NONE as usize {
+            return Err(cap(Pool::Tokens, self.tokens.len()));
+        }
+        self.st.tokens_used += 1;
         self.st.tokens_live += 1;
         self.note_hw(Pool::Tokens, self.st.tokens_live as usize);
-        Ok(t)
+        Ok(n as Ix)
     }
 
     pub(crate) fn free_token(&mut self, t: Ix) {
@@ -906,6 +908,11 @@ impl Core<'_> {
         let tk = &tokens[t as usize];
         let (am, am_prev, am_next) = (tk.am, tk.am_prev, tk.am_next);
         let (parent, prev_sib, next_sib) = (tk.parent, tk.prev_sib, tk.next_sib);
+        // host: only a partial match in a bucket has one (see `beta_index_remove`)
+        #[cfg(feature = "wide-pools")]
+        let in_bucket = tk.beta_links[1] != NONE;
+        #[cfg(not(feature = "wide-pools"))]
+        let in_bucket = true;
         if parent != NONE {
             if prev_sib != NONE {
                 tokens[prev_sib as usize].next_sib = next_sib;
@@ -933,7 +940,9 @@ impl Core<'_> {
                 self.unowe(t);
             }
         }
-        self.beta_index_remove(t);
+        if in_bucket {
+            self.beta_index_remove(t);
+        }
         let tokens = &mut *self.tokens;
         let tk = &tokens[t as usize];
         let (owner, mem_prev, mem_next) = (tk.owner, tk.mem_prev, tk.mem_next);
