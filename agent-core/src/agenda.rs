@@ -88,9 +88,10 @@ impl Core<'_> {
                 return Err(cap(Pool::Activations, self.acts.len()));
             }
             self.st.acts_used += 1;
+            // the mark follows `acts_used`, which only a fresh entry raises
+            self.note_hw(Pool::Activations, self.st.acts_used as usize);
             n as Ix
         };
-        self.note_hw(Pool::Activations, self.st.acts_used as usize);
         let seq = match replayed {
             Some(seq) => seq,
             None => {

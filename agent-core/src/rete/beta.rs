@@ -866,35 +866,39 @@ impl Core<'_> {
 
     /// Deletes a partial match and everything built on it.
     pub(crate) fn delete_token(&mut self, t: Ix) {
-        match self.sole_successor(t) {
-            Some(JoinKind::Terminal) => {
-                // its activations are all of the one rule (in the order
-                // `take_back` removes them); a rule end builds no children
+        let tk = &self.tokens[t as usize];
+        let (owner, fc, extra) = (tk.owner, tk.first_child, tk.extra);
+        // What it passed on decides: nothing (a leaf, like most blocked not
+        // outputs); or with one successor in the child list (joins from the right
+        // take back only what it blocks), only children, all of that child join,
+        // which `delete_children` takes in `deactivate`'s order, or only
+        // activations, all of that one rule. Else `deactivate` walks every
+        // successor.
+        if tk.blocks != NONE || (fc != NONE && extra != NONE) {
+            self.deactivate(t);
+        } else if fc != NONE {
+            if !self.one_child(owner) {
+                self.deactivate(t);
+            }
+        } else if extra != NONE {
+            if self.one_child(owner) {
                 while self.tokens[t as usize].extra != NONE {
                     let a = self.tokens[t as usize].extra;
                     self.remove_activation(a);
                 }
+            } else {
+                self.deactivate(t);
             }
-            Some(_) => {}
-            None => self.deactivate(t),
         }
         self.delete_children(t);
         self.unlink_and_free(t);
     }
 
-    /// The kind of `t`'s one successor when it is a child join or rule end (no
-    /// join from the right, so `t` blocks nothing: only right inputs block). For
-    /// a child join its children are all that it passed on, in the child list, so
-    /// `delete_children` alone takes back what `deactivate` would, in the same
-    /// order.
+    /// Whether `join`'s child list (child joins and rule ends) has one entry.
     #[cfg_attr(feature = "wide-pools", inline(always))]
-    fn sole_successor(&self, t: Ix) -> Option<JoinKind> {
-        let jn = &self.joins[self.tokens[t as usize].owner as usize];
-        if jn.rsucc != NONE || jn.first_child == NONE {
-            return None;
-        }
-        let c = &self.joins[jn.first_child as usize];
-        (c.next_sibling == NONE).then_some(c.kind)
+    fn one_child(&self, join: Ix) -> bool {
+        let c = self.joins[join as usize].first_child;
+        c != NONE && self.joins[c as usize].next_sibling == NONE
     }
 
     /// Unlinks a token from its parent, alpha match (or blocker, or owed list) and
