@@ -228,10 +228,16 @@ impl Core<'_> {
     /// A new alpha match arrives on the right of `join`.
     pub(crate) fn right_activate(&mut self, join: Ix, am: Ix) -> Result<(), EvalError> {
         let j = self.joins[join as usize];
+        // the left tokens are all the parent join's: only not/exists outputs can
+        // be inactive
+        let all_active = !matches!(
+            self.joins[j.parent as usize].kind,
+            JoinKind::Negative | JoinKind::Exists
+        );
         let (mut l, hashed) = self.first_left(join, am);
         while l != NONE {
             let next = self.next_left(l, hashed);
-            if self.token_active(l) {
+            if all_active || self.token_active(l) {
                 match j.kind {
                     JoinKind::Positive => {
                         if self.join_test(join, l, am)? {
