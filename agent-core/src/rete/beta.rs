@@ -785,8 +785,17 @@ impl Core<'_> {
             && jn.first_child != NONE
             && self.joins[jn.first_child as usize].next_sibling == NONE
         {
-            // the common case: one successor, a child join or rule end
-            self.take_back(t, jn.first_child, false);
+            // the common case: one successor, a child join or rule end, so all
+            // the children or activations are its (`take_back` without the
+            // per-entry checks)
+            if self.joins[jn.first_child as usize].kind != JoinKind::Terminal {
+                self.delete_children(t);
+            } else if self.tokens[t as usize].kind == TokenKind::Beta {
+                while self.tokens[t as usize].extra != NONE {
+                    let a = self.tokens[t as usize].extra;
+                    self.remove_activation(a);
+                }
+            }
         } else {
             self.take_back_all(t, join);
         }
