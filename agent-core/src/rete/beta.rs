@@ -889,11 +889,22 @@ impl Core<'_> {
         // which `delete_children` takes in `deactivate`'s order, or only
         // activations, all of that one rule. Else `deactivate` walks every
         // successor.
+        // (`delete_children` only where there may be children: a leaf's list
+        // was just read)
         if tk.blocks != NONE || (fc != NONE && extra != NONE) {
             self.deactivate(t);
+            self.delete_children(t);
         } else if fc != NONE {
-            if !self.one_child(owner) {
+            if self.one_child(owner) {
+                // the children from the first, as `delete_children` takes them
+                let mut c = fc;
+                while c != NONE {
+                    self.delete_token(c);
+                    c = self.tokens[t as usize].first_child;
+                }
+            } else {
                 self.deactivate(t);
+                self.delete_children(t);
             }
         } else if extra != NONE {
             if self.one_child(owner) {
@@ -903,9 +914,9 @@ impl Core<'_> {
                 }
             } else {
                 self.deactivate(t);
+                self.delete_children(t);
             }
         }
-        self.delete_children(t);
         self.unlink_and_free(t);
     }
 
