@@ -80,7 +80,7 @@ fn div(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     Ok(Value::Float(acc))
 }
 
-fn cmp_num(p: Num, q: Num) -> core::cmp::Ordering {
+pub(crate) fn cmp_num(p: Num, q: Num) -> core::cmp::Ordering {
     match (p, q) {
         (Num::Int(x), Num::Int(y)) => x.cmp(&y),
         (x, y) => x
