@@ -32,8 +32,23 @@ impl Core<'_> {
             // a node whose rules are gone stays listed (ids and order) but is empty
             // and stays so: matches there would take tokens for nothing (and a
             // modify's old fact would need more room to come back than it freed)
-            if self.alphas[a as usize].live {
-                self.match_alpha(a, fact)?;
+            let node = &self.alphas[a as usize];
+            if node.live {
+                // the first test decided up front: most nodes a fact visits fail it,
+                // and then no segmentation work is done
+                let mut tests = node.tests;
+                let pass = tests == NONE
+                    || match self.quick_alpha_test(tests, fact) {
+                        Some(false) => false,
+                        Some(true) => {
+                            tests = self.exprs[tests as usize].next;
+                            true
+                        }
+                        None => true,
+                    };
+                if pass {
+                    self.match_alpha(a, fact, tests)?;
+                }
             }
             a = self.alphas[a as usize].next_in_tmpl;
         }
@@ -79,13 +94,15 @@ impl Core<'_> {
         n
     }
 
-    /// Runs one alpha node over one fact, creating an alpha match per segmentation.
-    pub(crate) fn match_alpha(&mut self, alpha: Ix, fact: Ix) -> Result<(), EvalError> {
+    /// Runs one alpha node over one fact, creating an alpha match per segmentation;
+    /// `tests` are the node's tests still to check (all, or those after the ones
+    /// the quick path found true).
+    pub(crate) fn match_alpha(&mut self, alpha: Ix, fact: Ix, tests: Ix) -> Result<(), EvalError> {
         let node = &self.alphas[alpha as usize];
         if node.desc == NONE && node.nmarks == 0 {
             // no multislot constraints (most patterns): one segmentation, nothing to lay out
             let mut marks = [0u8; MAX_MARKS];
-            return self.enumerate_marks(alpha, fact, &[], &[0; 8], &mut marks, 0, 0);
+            return self.enumerate_marks(alpha, fact, tests, &[], &[0; 8], &mut marks, 0, 0);
         }
         let mut lay = [SlotLayout {
             slot: 0,
@@ -104,7 +121,7 @@ impl Core<'_> {
         }
         let nmarks = self.alphas[alpha as usize].nmarks as usize;
         let mut marks = [0u8; MAX_MARKS];
-        self.enumerate_marks(alpha, fact, &lay[..n], &slack, &mut marks, 0, nmarks)
+        self.enumerate_marks(alpha, fact, tests, &lay[..n], &slack, &mut marks, 0, nmarks)
     }
 
     /// Tries every segmentation; CLIPS tries longer leading multifields first.
@@ -113,6 +130,7 @@ impl Core<'_> {
         &mut self,
         alpha: Ix,
         fact: Ix,
+        tests: Ix,
         lay: &[SlotLayout],
         slack: &[Ix; 8],
         marks: &mut [u8; MAX_MARKS],
@@ -120,7 +138,7 @@ impl Core<'_> {
         nmarks: usize,
     ) -> Result<(), EvalError> {
         if i == nmarks {
-            if self.alpha_tests_pass(alpha, fact, *marks)? {
+            if self.alpha_tests_pass(alpha, fact, tests, *marks)? {
                 self.add_alpha_match(alpha, fact, *marks)?;
             }
             return Ok(());
@@ -141,7 +159,7 @@ impl Core<'_> {
         }
         for m in (0..=room).rev() {
             marks[i] = m as u8;
-            self.enumerate_marks(alpha, fact, lay, slack, marks, i + 1, nmarks)?;
+            self.enumerate_marks(alpha, fact, tests, lay, slack, marks, i + 1, nmarks)?;
         }
         marks[i] = 0;
         Ok(())
@@ -151,9 +169,10 @@ impl Core<'_> {
         &mut self,
         alpha: Ix,
         fact: Ix,
+        tests: Ix,
         marks: [u8; MAX_MARKS],
     ) -> Result<bool, EvalError> {
-        let mut t = self.alphas[alpha as usize].tests;
+        let mut t = tests;
         // tests the quick path decides are skipped in order; the evaluator takes over
         // (for all the rest, as before) at the first one it cannot decide
         loop {
@@ -270,9 +289,10 @@ impl Core<'_> {
                     return None;
                 }
                 let (cell, mlen) = self.slot_cell(fact, slot);
-                mlen?;
                 // as `pattern_var`: only single-field elements up to this one, so its
-                // offset is its index (the alpha node checked the slot's length)
+                // offset is its index (within the slot: this may run before the alpha
+                // node checks the slot's length)
+                let len = mlen?;
                 let mut c = self.exprs[x.first as usize].first;
                 let mut i = 0u8;
                 loop {
@@ -284,6 +304,9 @@ impl Core<'_> {
                     }
                     i += 1;
                     c = self.exprs[c as usize].next;
+                }
+                if Ix::from(i) >= len {
+                    return None;
                 }
                 self.values[cell + 1 + i as usize]
             }
@@ -446,7 +469,7 @@ impl Core<'_> {
             let mut a = self.templates[tmpl as usize].alpha_head;
             while a != NONE {
                 if a >= first {
-                    self.match_alpha(a, f)?;
+                    self.match_alpha(a, f, self.alphas[a as usize].tests)?;
                 }
                 a = self.alphas[a as usize].next_in_tmpl;
             }
@@ -484,7 +507,8 @@ mod tests {
              (defrule r6 (state IDLE|BUSY) =>)
              (defrule r7 (state ~IDLE) =>)
              (defrule r8 (p (x ?x&:(< ?x 3))) =>)
-             (defrule r9 (p (m $? d)) =>)",
+             (defrule r9 (p (m $? d)) =>)
+             (defrule r10 (p (m c ?z&:(eq ?z 2))) =>)",
         )
         .unwrap();
         for f in [
@@ -496,6 +520,8 @@ mod tests {
             "(state IDLE)",
             "(state BUSY)",
             "(state GONE)",
+            "(state)",
+            "(p (x a) (y 2) (m c))",
         ] {
             e.assert_str(h, f).unwrap();
         }
@@ -522,8 +548,13 @@ mod tests {
                     })
                 };
                 let mut t = node.tests;
-                while fits && t != NONE {
+                while c.facts[f as usize].tmpl == node.tmpl && t != NONE {
+                    // network_assert asks before the layout check: must not fail
                     let quick = c.quick_alpha_test(t, f);
+                    if !fits {
+                        t = c.exprs[t as usize].next;
+                        continue;
+                    }
                     c.st.this_pm = PatBinding {
                         fact: f,
                         marks: [0; MAX_MARKS],
