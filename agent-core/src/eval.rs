@@ -72,6 +72,80 @@ impl Core<'_> {
         }
     }
 
+    /// A two-argument comparison (`=` .. `neq`, see `basic::CMP_FIRST`) of leaves
+    /// (constants and variables, which call nothing), the commonest calls in query
+    /// and `if` conditions: the operands are read in place and numbers or `eq` are
+    /// compared here, without the argument stack. It evaluates, reports errors and
+    /// records the stack's high-water mark as `push_args` and the builtin would;
+    /// None (nothing evaluated yet) when the call has another shape or the stack
+    /// is full.
+    // out of line in the image: inlined, it would grow `call_inner`'s frame, which
+    // every nested call pays in stack
+    #[cfg_attr(not(feature = "wide-pools"), inline(never))]
+    fn quick_compare(&mut self, x: Expr) -> Option<Result<Value, EvalError>> {
+        let leaf = |op: Op| {
+            matches!(
+                op,
+                Op::Sym
+                    | Op::Str
+                    | Op::Int
+                    | Op::Float
+                    | Op::Local
+                    | Op::Global
+                    | Op::PatVar
+                    | Op::QSlot
+            )
+        };
+        let a = x.first;
+        if a == NONE {
+            return None;
+        }
+        let b = self.exprs[a as usize].next;
+        if b == NONE
+            || self.exprs[b as usize].next != NONE
+            || !leaf(self.exprs[a as usize].op)
+            || !leaf(self.exprs[b as usize].op)
+        {
+            return None;
+        }
+        let sp = self.st.sp as usize;
+        if sp + 2 > self.stack.len() {
+            return None;
+        }
+        let va = match self.eval_operand(a) {
+            Ok(v) => v,
+            Err(err) => {
+                self.note_hw(Pool::EvalStack, sp);
+                return Some(Err(err));
+            }
+        };
+        let vb = match self.eval_operand(b) {
+            Ok(v) => v,
+            Err(err) => {
+                self.note_hw(Pool::EvalStack, sp + 1);
+                return Some(Err(err));
+            }
+        };
+        self.note_hw(Pool::EvalStack, sp + 2);
+        if let Some(r) = builtins::basic::compare(self, x.data, va, vb) {
+            return Some(Ok(Core::bool_value(r)));
+        }
+        // not numbers: the builtin itself reports it, from the argument stack (`call`
+        // pops it)
+        self.stack[sp] = va;
+        self.stack[sp + 1] = vb;
+        self.st.sp += 2;
+        let args = Args {
+            base: sp as Ix,
+            len: 2,
+        };
+        let r = match builtins::get(x.data).imp {
+            Imp::Eager(f) => f(self, args).map_err(|err| self.classify_type_error(x.first, err)),
+            Imp::Lazy(_) => Err(EvalError::new(EvalErrorKind::NoSuchFunction)),
+        };
+        Some(r)
+    }
+
     /// Evaluates a chain of actions; the value of the last one is the result.
     /// Stops early while a `return`/`break` unwinds.
     pub fn eval_chain(&mut self, mut e: Ix) -> Result<Value, EvalError> {
@@ -243,6 +317,11 @@ impl Core<'_> {
         let x = self.exprs[e as usize];
         match x.aux {
             k if k == FnKind::Builtin as u8 => {
+                if (builtins::basic::CMP_FIRST..=builtins::basic::CMP_LAST).contains(&x.data) {
+                    if let Some(r) = self.quick_compare(x) {
+                        return r;
+                    }
+                }
                 let b = builtins::get(x.data);
                 match b.imp {
                     Imp::Lazy(f) => f(self, e),

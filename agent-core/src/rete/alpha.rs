@@ -2,17 +2,12 @@
 //! memories, and telling successor joins about new and removed alpha matches.
 
 use super::{PatBinding, Token, TokenKind, MAX_MARKS, THIS_PATTERN};
-use crate::builtins::Num;
+use crate::builtins::basic::{CMP_FIRST, CMP_LAST};
 use crate::engine::Core;
 use crate::error::EvalError;
 use crate::expr::{loc, FnKind, Op};
 use crate::value::Ix;
 use crate::value::{Value, NONE};
-
-/// Function ids of the two-argument comparisons the quick alpha tests decide:
-/// `=`, `<>`, `<`, `<=`, `>`, `>=`, `eq`, `neq` (table 0, `builtins::basic`).
-const CMP_FIRST: Ix = 4;
-const CMP_LAST: Ix = 11;
 
 /// Segmentation layout of one constrained multislot of a pattern.
 #[derive(Clone, Copy)]
@@ -243,25 +238,7 @@ impl Core<'_> {
                 let a = self.quick_alpha_operand(x.first, fact)?;
                 let b = self.quick_alpha_operand(second, fact)?;
                 self.note_hw(crate::error::Pool::EvalStack, sp);
-                let op = x.data - CMP_FIRST;
-                if op >= 6 {
-                    // `eq`, `neq`
-                    return Some(a.same(b) == (op == 6));
-                }
-                let num = |v: Value| match v {
-                    Value::Int(i) => Some(Num::Int(i)),
-                    Value::Float(f) => Some(Num::Float(f)),
-                    _ => None,
-                };
-                let o = crate::builtins::basic::cmp_num(num(a)?, num(b)?);
-                Some(match op {
-                    0 => o.is_eq(),
-                    1 => o.is_ne(),
-                    2 => o.is_lt(),
-                    3 => o.is_le(),
-                    4 => o.is_gt(),
-                    _ => o.is_ge(),
-                })
+                crate::builtins::basic::compare(self, x.data, a, b)
             }
             _ => None,
         }
