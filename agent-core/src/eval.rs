@@ -48,7 +48,7 @@ impl Core<'_> {
                 Ok(Value::Sym(SYM_FALSE))
             }
             Op::Not => Ok(Core::bool_value(!Core::is_true(self.eval(x.first)?))),
-            Op::Call => self.call(e),
+            Op::Call => self.call(e, x),
             _ => Ok(Value::Void),
         }
     }
@@ -299,7 +299,8 @@ impl Core<'_> {
         })
     }
 
-    fn call(&mut self, e: Ix) -> Result<Value, EvalError> {
+    /// Calls the function of call node `e` (whose node `x` the caller has read).
+    fn call(&mut self, e: Ix, x: Expr) -> Result<Value, EvalError> {
         if self.st.eval_depth >= MAX_EVAL_DEPTH {
             return Err(EvalError::new(EvalErrorKind::TooDeep {
                 limit: MAX_EVAL_DEPTH,
@@ -307,14 +308,13 @@ impl Core<'_> {
         }
         self.st.eval_depth += 1;
         let sp = self.st.sp;
-        let r = self.call_inner(e);
+        let r = self.call_inner(e, x);
         self.st.sp = sp;
         self.st.eval_depth -= 1;
         r
     }
 
-    fn call_inner(&mut self, e: Ix) -> Result<Value, EvalError> {
-        let x = self.exprs[e as usize];
+    fn call_inner(&mut self, e: Ix, x: Expr) -> Result<Value, EvalError> {
         match x.aux {
             k if k == FnKind::Builtin as u8 => {
                 if (builtins::basic::CMP_FIRST..=builtins::basic::CMP_LAST).contains(&x.data) {
