@@ -186,6 +186,14 @@ impl Core<'_> {
         }
         let slot = loc::slot(locator) as Ix;
         let elem = loc::elem(locator);
+        let f = &self.facts[b.fact as usize];
+        if f.flat && elem == loc::SINGLE {
+            // one cell per slot: no walk over the slots before it
+            let v = self.values[(f.start + slot) as usize];
+            if !v.is_multi() {
+                return Ok(v);
+            }
+        }
         let (cell, mlen) = self.slot_cell(b.fact, slot);
         let len = match mlen {
             None => return Ok(self.values[cell]),
