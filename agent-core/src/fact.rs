@@ -144,6 +144,14 @@ impl Core<'_> {
 
     /// Slot value of a fact as an evaluation value (multislots are copied to scratch).
     pub fn fact_slot_value(&mut self, fact: Ix, slot: Ix) -> Result<Value, CapacityError> {
+        let f = &self.facts[fact as usize];
+        if f.flat {
+            // one cell per slot: no walk over the slots before it
+            let v = self.values[(f.start + slot) as usize];
+            if !v.is_multi() {
+                return Ok(v);
+            }
+        }
         let (c, multi) = self.slot_cell(fact, slot);
         match multi {
             None => Ok(self.values[c]),
