@@ -53,11 +53,11 @@ impl Core<'_> {
         }
     }
 
-    /// Evaluates an operand (a call argument or an `Eq2` side): leaves (constants,
+    /// Evaluates an operand (a call argument, an `Eq2` side, a slot value): leaves (constants,
     /// variables) are read in place, without a recursive `eval` call, which is where
     /// most operands end and most of the evaluator's time went.
     #[inline(always)]
-    fn eval_operand(&mut self, e: Ix) -> Result<Value, EvalError> {
+    pub(crate) fn eval_operand(&mut self, e: Ix) -> Result<Value, EvalError> {
         let x = self.exprs[e as usize];
         match x.op {
             Op::Sym => Ok(Value::Sym(x.data)),
