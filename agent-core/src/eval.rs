@@ -48,16 +48,16 @@ impl Core<'_> {
                 Ok(Value::Sym(SYM_FALSE))
             }
             Op::Not => Ok(Core::bool_value(!Core::is_true(self.eval(x.first)?))),
-            Op::Call => self.call(e),
+            Op::Call => self.call(e, x),
             _ => Ok(Value::Void),
         }
     }
 
-    /// Evaluates an operand (a call argument or an `Eq2` side): leaves (constants,
+    /// Evaluates an operand (a call argument, an `Eq2` side, a slot value): leaves (constants,
     /// variables) are read in place, without a recursive `eval` call, which is where
     /// most operands end and most of the evaluator's time went.
     #[inline(always)]
-    fn eval_operand(&mut self, e: Ix) -> Result<Value, EvalError> {
+    pub(crate) fn eval_operand(&mut self, e: Ix) -> Result<Value, EvalError> {
         let x = self.exprs[e as usize];
         match x.op {
             Op::Sym => Ok(Value::Sym(x.data)),
@@ -70,6 +70,80 @@ impl Core<'_> {
             Op::QSlot => self.query_slot(e, x),
             _ => self.eval(e),
         }
+    }
+
+    /// A two-argument comparison (`=` .. `neq`, see `basic::CMP_FIRST`) of leaves
+    /// (constants and variables, which call nothing), the commonest calls in query
+    /// and `if` conditions: the operands are read in place and numbers or `eq` are
+    /// compared here, without the argument stack. It evaluates, reports errors and
+    /// records the stack's high-water mark as `push_args` and the builtin would;
+    /// None (nothing evaluated yet) when the call has another shape or the stack
+    /// is full.
+    // out of line in the image: inlined, it would grow `call_inner`'s frame, which
+    // every nested call pays in stack
+    #[cfg_attr(not(feature = "wide-pools"), inline(never))]
+    fn quick_compare(&mut self, x: Expr) -> Option<Result<Value, EvalError>> {
+        let leaf = |op: Op| {
+            matches!(
+                op,
+                Op::Sym
+                    | Op::Str
+                    | Op::Int
+                    | Op::Float
+                    | Op::Local
+                    | Op::Global
+                    | Op::PatVar
+                    | Op::QSlot
+            )
+        };
+        let a = x.first;
+        if a == NONE {
+            return None;
+        }
+        let b = self.exprs[a as usize].next;
+        if b == NONE
+            || self.exprs[b as usize].next != NONE
+            || !leaf(self.exprs[a as usize].op)
+            || !leaf(self.exprs[b as usize].op)
+        {
+            return None;
+        }
+        let sp = self.st.sp as usize;
+        if sp + 2 > self.stack.len() {
+            return None;
+        }
+        let va = match self.eval_operand(a) {
+            Ok(v) => v,
+            Err(err) => {
+                self.note_hw(Pool::EvalStack, sp);
+                return Some(Err(err));
+            }
+        };
+        let vb = match self.eval_operand(b) {
+            Ok(v) => v,
+            Err(err) => {
+                self.note_hw(Pool::EvalStack, sp + 1);
+                return Some(Err(err));
+            }
+        };
+        self.note_hw(Pool::EvalStack, sp + 2);
+        if let Some(r) = builtins::basic::compare(self, x.data, va, vb) {
+            return Some(Ok(Core::bool_value(r)));
+        }
+        // not numbers: the builtin itself reports it, from the argument stack (`call`
+        // pops it)
+        self.stack[sp] = va;
+        self.stack[sp + 1] = vb;
+        self.st.sp += 2;
+        let args = Args {
+            base: sp as Ix,
+            len: 2,
+        };
+        let r = match builtins::get(x.data).imp {
+            Imp::Eager(f) => f(self, args).map_err(|err| self.classify_type_error(x.first, err)),
+            Imp::Lazy(_) => Err(EvalError::new(EvalErrorKind::NoSuchFunction)),
+        };
+        Some(r)
     }
 
     /// Evaluates a chain of actions; the value of the last one is the result.
@@ -112,6 +186,14 @@ impl Core<'_> {
         }
         let slot = loc::slot(locator) as Ix;
         let elem = loc::elem(locator);
+        let f = &self.facts[b.fact as usize];
+        if f.flat && elem == loc::SINGLE {
+            // one cell per slot: no walk over the slots before it
+            let v = self.values[(f.start + slot) as usize];
+            if !v.is_multi() {
+                return Ok(v);
+            }
+        }
         let (cell, mlen) = self.slot_cell(b.fact, slot);
         let len = match mlen {
             None => return Ok(self.values[cell]),
@@ -193,7 +275,35 @@ impl Core<'_> {
     fn query_slot(&mut self, e: Ix, x: Expr) -> Result<Value, EvalError> {
         let fv = self.stack[(self.st.bp + x.data) as usize];
         let name = self.exprs[x.first as usize].data;
+        if let Some(v) = self.cached_query_slot(fv, name, x.aux) {
+            return Ok(v);
+        }
         builtins::facts::slot_value_of(self, fv, name, e)
+    }
+
+    /// `?v:slot` in the usual case, read in place: a live fact, the slot cached in
+    /// `aux` (see `slot_value_of`) and one cell per slot; None for anything else.
+    #[cfg_attr(feature = "wide-pools", inline(always))]
+    fn cached_query_slot(&self, fv: Value, name: crate::value::SymId, aux: u8) -> Option<Value> {
+        let (Value::Fact(r), k) = (fv, Ix::from(aux)) else {
+            return None;
+        };
+        if k == 0 || !self.fact_alive(r) {
+            return None;
+        }
+        let f = &self.facts[r.slot as usize];
+        let t = &self.templates[f.tmpl as usize];
+        if !f.flat
+            || t.implied
+            || k > t.nslots
+            || self.slots[(t.first_slot + k - 1) as usize].name != name
+        {
+            return None;
+        }
+        match self.values[(f.start + k - 1) as usize] {
+            Value::Multi(_) => None,
+            v => Some(v),
+        }
     }
 
     /// Evaluates a call's arguments onto the stack.
@@ -225,7 +335,8 @@ impl Core<'_> {
         })
     }
 
-    fn call(&mut self, e: Ix) -> Result<Value, EvalError> {
+    /// Calls the function of call node `e` (whose node `x` the caller has read).
+    fn call(&mut self, e: Ix, x: Expr) -> Result<Value, EvalError> {
         if self.st.eval_depth >= MAX_EVAL_DEPTH {
             return Err(EvalError::new(EvalErrorKind::TooDeep {
                 limit: MAX_EVAL_DEPTH,
@@ -233,16 +344,20 @@ impl Core<'_> {
         }
         self.st.eval_depth += 1;
         let sp = self.st.sp;
-        let r = self.call_inner(e);
+        let r = self.call_inner(e, x);
         self.st.sp = sp;
         self.st.eval_depth -= 1;
         r
     }
 
-    fn call_inner(&mut self, e: Ix) -> Result<Value, EvalError> {
-        let x = self.exprs[e as usize];
+    fn call_inner(&mut self, e: Ix, x: Expr) -> Result<Value, EvalError> {
         match x.aux {
             k if k == FnKind::Builtin as u8 => {
+                if (builtins::basic::CMP_FIRST..=builtins::basic::CMP_LAST).contains(&x.data) {
+                    if let Some(r) = self.quick_compare(x) {
+                        return r;
+                    }
+                }
                 let b = builtins::get(x.data);
                 match b.imp {
                     Imp::Lazy(f) => f(self, e),
@@ -400,5 +515,41 @@ impl Core<'_> {
 impl crate::engine::State {
     pub fn halt_now(&self) -> bool {
         self.exit
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use crate::testutil::run_program;
+
+    /// `?f:slot` read in place (flat facts, slot cached) gives what `fact-slot-value`
+    /// gives, including where it must not: a multislot, a fact of another template
+    /// (the cached index names another slot there), an ordered fact, a retracted one.
+    #[test]
+    fn query_slots_agree_with_fact_slot_value() {
+        let out = run_program(
+            "(deftemplate a (slot x) (slot y) (multislot m))
+             (deftemplate b (slot y) (slot x))
+             (assert (a (x 1) (y p)) (a (x 2) (y q) (m u v)) (b (y 3) (x r)) (o 1 2))
+             (do-for-all-facts ((?f a b)) TRUE
+               (printout t ?f:x \" \" (fact-slot-value ?f x) \" \"
+                           ?f:y \" \" (fact-slot-value ?f y) crlf))
+             (do-for-all-facts ((?f a)) TRUE
+               (printout t ?f:m \" \" (fact-slot-value ?f m) crlf))
+             (do-for-all-facts ((?f o)) TRUE
+               (printout t ?f:implied \" \" (fact-slot-value ?f implied) crlf))
+             (do-for-fact ((?f a)) TRUE (retract ?f) (printout t ?f:x crlf))",
+        );
+        assert!(out.contains("1 1 p p\n2 2 q q\nr r 3 3\n"), "{out}");
+        assert!(out.contains("() ()\n(u v) (u v)\n(1 2) (1 2)\n"), "{out}");
+        // the retracted fact: the same error as through the general path
+        let general = run_program(
+            "(deftemplate a (slot x) (slot y) (multislot m))
+             (assert (a (x 1) (y p)))
+             (do-for-fact ((?f a)) TRUE (retract ?f) (printout t (fact-slot-value ?f x) crlf))",
+        );
+        let tail = |s: &str| s.lines().last().map(std::string::String::from);
+        assert_eq!(tail(&out), tail(&general), "{out}\n---\n{general}");
     }
 }

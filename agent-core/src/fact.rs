@@ -33,6 +33,10 @@ pub struct Fact {
     /// `start + i`. Kept here (in padding) so the join tests need not load the
     /// template.
     pub flat: bool,
+    /// Host: `cells_hash` of its cells, so a retract finds its bucket without
+    /// hashing them again (4 bytes per fact the image does without).
+    #[cfg(feature = "wide-pools")]
+    pub hash: u32,
 }
 
 impl Fact {
@@ -47,6 +51,8 @@ impl Fact {
         first_am: NONE,
         state: FactState::Free,
         flat: false,
+        #[cfg(feature = "wide-pools")]
+        hash: 0,
     };
 }
 
@@ -138,6 +144,14 @@ impl Core<'_> {
 
     /// Slot value of a fact as an evaluation value (multislots are copied to scratch).
     pub fn fact_slot_value(&mut self, fact: Ix, slot: Ix) -> Result<Value, CapacityError> {
+        let f = &self.facts[fact as usize];
+        if f.flat {
+            // one cell per slot: no walk over the slots before it
+            let v = self.values[(f.start + slot) as usize];
+            if !v.is_multi() {
+                return Ok(v);
+            }
+        }
         let (c, multi) = self.slot_cell(fact, slot);
         match multi {
             None => Ok(self.values[c]),
@@ -428,6 +442,8 @@ impl Core<'_> {
             first_am: NONE,
             state: FactState::Live,
             flat: len == self.templates[saved.tmpl as usize].nslots,
+            #[cfg(feature = "wide-pools")]
+            hash: h,
             ..saved
         };
         self.fact_buckets[bucket] = slot;
@@ -508,6 +524,8 @@ impl Core<'_> {
             first_am: NONE,
             state: FactState::Live,
             flat: need == self.templates[tmpl as usize].nslots as usize,
+            #[cfg(feature = "wide-pools")]
+            hash: h,
         };
         self.fact_buckets[bucket] = slot;
         self.st.facts_live += 1;
@@ -574,6 +592,9 @@ impl Core<'_> {
             self.st.fact_tail = f.prev;
         }
         // hash chain
+        #[cfg(feature = "wide-pools")]
+        let h = f.hash;
+        #[cfg(not(feature = "wide-pools"))]
         let h = self.cells_hash(f.tmpl, f.start as usize, f.len as usize);
         let bucket = h as usize % self.fact_buckets.len();
         let mut p = self.fact_buckets[bucket];

@@ -623,6 +623,8 @@ impl Core<'_> {
                     "fact in the wrong hash bucket",
                     d
                 );
+                #[cfg(feature = "wide-pools")]
+                ensure!(x.hash == h, "fact's stored hash is stale", d);
                 hashed += 1;
                 steps += 1;
                 ensure!(steps <= used, "fact hash chain has a cycle", b);

@@ -7,7 +7,7 @@
 /// again to spare. Measured (facts, fact values, tokens, activations, expression nodes,
 /// deffacts): join-100000 133,617 / 267,233 / 769,816 / 33,618 / 700,255 / 200;
 /// negation-100000 100,002 / 250,001 / 350,003 / 6,247 / 700,256 / 200; manners-128
-/// 8,829 / 28,384 / 82,482 / 7,968 / 2,412 / 1. About 143 MiB (u32 indices; host tokens
+/// 8,829 / 28,384 / 82,482 / 7,968 / 2,412 / 1. About 144 MiB (u32 indices; host tokens
 /// of 104 B, which keep their bindings: 1.1 M of them are 109 MiB), so it
 /// lives on the heap.
 pub type LargeEngine = agent_core::Engine<

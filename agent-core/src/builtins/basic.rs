@@ -6,6 +6,12 @@ use crate::error::{EvalError, EvalErrorKind};
 use crate::value::Ix;
 use crate::value::{TextBuf, Value, NONE};
 
+/// Function ids of the two-argument comparisons that `eval` and the quick alpha
+/// tests decide in place: `=`, `<>`, `<`, `<=`, `>`, `>=`, `eq`, `neq`, in this
+/// order (table 0 is this module's).
+pub const CMP_FIRST: Ix = 4;
+pub const CMP_LAST: Ix = 11;
+
 pub const FUNCS: &[Builtin] = &[
     Builtin::eager("+", 2, ANY, add),
     Builtin::eager("-", 2, ANY, sub),
@@ -78,6 +84,31 @@ fn div(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         acc /= x;
     }
     Ok(Value::Float(acc))
+}
+
+/// Comparison `id` (`CMP_FIRST..=CMP_LAST`) of two values as its builtin decides
+/// it; None when a numeric one gets a non-number (the builtin reports that).
+#[cfg_attr(feature = "wide-pools", inline(always))]
+pub(crate) fn compare(cx: &Core<'_>, id: Ix, a: Value, b: Value) -> Option<bool> {
+    let op = id - CMP_FIRST;
+    if op >= 6 {
+        // `eq`, `neq`
+        return Some(values_same(cx, a, b) == (op == 6));
+    }
+    let num = |v: Value| match v {
+        Value::Int(i) => Some(Num::Int(i)),
+        Value::Float(f) => Some(Num::Float(f)),
+        _ => None,
+    };
+    let o = cmp_num(num(a)?, num(b)?);
+    Some(match op {
+        0 => o.is_eq(),
+        1 => o.is_ne(),
+        2 => o.is_lt(),
+        3 => o.is_le(),
+        4 => o.is_gt(),
+        _ => o.is_ge(),
+    })
 }
 
 fn cmp_num(p: Num, q: Num) -> core::cmp::Ordering {
@@ -219,6 +250,7 @@ fn str_cat(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 
 #[cfg(test)]
 mod tests {
+    extern crate std;
     use crate::testutil::eval_to_string;
 
     #[test]
@@ -232,5 +264,55 @@ mod tests {
         assert_eq!(eval_to_string("(< 1 2 3)"), "TRUE");
         assert_eq!(eval_to_string("(neq a b c)"), "TRUE");
         assert_eq!(eval_to_string("(str-cat \"a\" b 1.5)"), "\"ab1.5\"");
+    }
+
+    /// `CMP_FIRST..=CMP_LAST` are the comparisons `eval` decides in place, all eager.
+    #[test]
+    fn comparison_ids() {
+        let names: std::vec::Vec<_> = (super::CMP_FIRST..=super::CMP_LAST)
+            .map(|id| {
+                let b = crate::builtins::get(id);
+                assert!(matches!(b.imp, crate::builtins::Imp::Eager(_)));
+                b.name
+            })
+            .collect();
+        assert_eq!(names, ["=", "<>", "<", "<=", ">", ">=", "eq", "neq"]);
+    }
+
+    /// A comparison of two variables (decided in `eval`) gives what the same call
+    /// through the general path gives (operands wrapped in `progn`), errors included.
+    #[test]
+    fn quick_comparisons_agree_with_calls() {
+        use crate::testutil::run_program;
+        let vals = [
+            "1",
+            "2",
+            "1.0",
+            "2.5",
+            "-3",
+            "a",
+            "b",
+            "\"a\"",
+            "(create$ 1 2)",
+            "(create$)",
+        ];
+        let mut quick = 0;
+        for op in ["=", "<>", "<", "<=", ">", ">=", "eq", "neq"] {
+            for x in vals {
+                for y in vals {
+                    let run = |body: &str| {
+                        run_program(&std::format!(
+                            "(deffunction f (?a ?b) {body})
+                             (printout t (f {x} {y}) crlf)"
+                        ))
+                    };
+                    let direct = run(&std::format!("({op} ?a ?b)"));
+                    let general = run(&std::format!("({op} (progn ?a) (progn ?b))"));
+                    assert_eq!(direct, general, "({op} {x} {y})");
+                    quick += 1;
+                }
+            }
+        }
+        assert_eq!(quick, 800);
     }
 }

@@ -93,6 +93,11 @@ impl Core<'_> {
     fn slot_value_from(&mut self, tmpl: Ix, slot: Ix, mut e: Ix) -> Result<Value, EvalError> {
         let multi = self.slot_def(tmpl, slot).multi;
         if !multi {
+            // most slot values are constants or variables: the host reads them in
+            // place (the image keeps the 370 B of code that inline copy costs)
+            #[cfg(feature = "wide-pools")]
+            let v = self.eval_operand(e)?;
+            #[cfg(not(feature = "wide-pools"))]
             let v = self.eval(e)?;
             return match v {
                 Value::Multi(m) if m.len == 1 => Ok(self.mf_item(m, 0)),

@@ -1,9 +1,11 @@
 //! Alpha side: matching one fact against the patterns of its template, keeping alpha
 //! memories, and telling successor joins about new and removed alpha matches.
 
-use super::{PatBinding, Token, TokenKind, MAX_MARKS};
+use super::{PatBinding, Token, TokenKind, MAX_MARKS, THIS_PATTERN};
+use crate::builtins::basic::{CMP_FIRST, CMP_LAST};
 use crate::engine::Core;
 use crate::error::EvalError;
+use crate::expr::{loc, FnKind, Op};
 use crate::value::Ix;
 use crate::value::{Value, NONE};
 
@@ -25,8 +27,23 @@ impl Core<'_> {
             // a node whose rules are gone stays listed (ids and order) but is empty
             // and stays so: matches there would take tokens for nothing (and a
             // modify's old fact would need more room to come back than it freed)
-            if self.alphas[a as usize].live {
-                self.match_alpha(a, fact)?;
+            let node = &self.alphas[a as usize];
+            if node.live {
+                // the first test decided up front: most nodes a fact visits fail it,
+                // and then no segmentation work is done
+                let mut tests = node.tests;
+                let pass = tests == NONE
+                    || match self.quick_first_test(tests, fact) {
+                        Some(false) => false,
+                        Some(true) => {
+                            tests = self.exprs[tests as usize].next;
+                            true
+                        }
+                        None => true,
+                    };
+                if pass {
+                    self.match_alpha(a, fact, tests)?;
+                }
             }
             a = self.alphas[a as usize].next_in_tmpl;
         }
@@ -72,13 +89,15 @@ impl Core<'_> {
         n
     }
 
-    /// Runs one alpha node over one fact, creating an alpha match per segmentation.
-    pub(crate) fn match_alpha(&mut self, alpha: Ix, fact: Ix) -> Result<(), EvalError> {
+    /// Runs one alpha node over one fact, creating an alpha match per segmentation;
+    /// `tests` are the node's tests still to check (all, or those after the ones
+    /// the quick path found true).
+    pub(crate) fn match_alpha(&mut self, alpha: Ix, fact: Ix, tests: Ix) -> Result<(), EvalError> {
         let node = &self.alphas[alpha as usize];
         if node.desc == NONE && node.nmarks == 0 {
             // no multislot constraints (most patterns): one segmentation, nothing to lay out
             let mut marks = [0u8; MAX_MARKS];
-            return self.enumerate_marks(alpha, fact, &[], &[0; 8], &mut marks, 0, 0);
+            return self.enumerate_marks(alpha, fact, tests, &[], &[0; 8], &mut marks, 0, 0);
         }
         let mut lay = [SlotLayout {
             slot: 0,
@@ -97,7 +116,7 @@ impl Core<'_> {
         }
         let nmarks = self.alphas[alpha as usize].nmarks as usize;
         let mut marks = [0u8; MAX_MARKS];
-        self.enumerate_marks(alpha, fact, &lay[..n], &slack, &mut marks, 0, nmarks)
+        self.enumerate_marks(alpha, fact, tests, &lay[..n], &slack, &mut marks, 0, nmarks)
     }
 
     /// Tries every segmentation; CLIPS tries longer leading multifields first.
@@ -106,6 +125,7 @@ impl Core<'_> {
         &mut self,
         alpha: Ix,
         fact: Ix,
+        tests: Ix,
         lay: &[SlotLayout],
         slack: &[Ix; 8],
         marks: &mut [u8; MAX_MARKS],
@@ -113,7 +133,7 @@ impl Core<'_> {
         nmarks: usize,
     ) -> Result<(), EvalError> {
         if i == nmarks {
-            if self.alpha_tests_pass(alpha, fact, *marks)? {
+            if self.alpha_tests_pass(alpha, fact, tests, *marks)? {
                 self.add_alpha_match(alpha, fact, *marks)?;
             }
             return Ok(());
@@ -134,7 +154,7 @@ impl Core<'_> {
         }
         for m in (0..=room).rev() {
             marks[i] = m as u8;
-            self.enumerate_marks(alpha, fact, lay, slack, marks, i + 1, nmarks)?;
+            self.enumerate_marks(alpha, fact, tests, lay, slack, marks, i + 1, nmarks)?;
         }
         marks[i] = 0;
         Ok(())
@@ -144,15 +164,25 @@ impl Core<'_> {
         &mut self,
         alpha: Ix,
         fact: Ix,
+        tests: Ix,
         marks: [u8; MAX_MARKS],
     ) -> Result<bool, EvalError> {
-        let tests = self.alphas[alpha as usize].tests;
-        if tests == NONE {
-            return Ok(true);
+        let mut t = tests;
+        // tests the quick path decides are skipped in order; the evaluator takes over
+        // (for all the rest, as before) at the first one it cannot decide
+        loop {
+            if t == NONE {
+                return Ok(true);
+            }
+            match self.quick_alpha_test(t, fact) {
+                Some(true) => t = self.exprs[t as usize].next,
+                Some(false) => return Ok(false),
+                None => break,
+            }
         }
         let saved = self.st.this_pm;
         self.st.this_pm = PatBinding { fact, marks };
-        let r = self.eval_tests(tests);
+        let r = self.eval_tests(t);
         self.st.this_pm = saved;
         match r {
             // CLIPS reports a failing pattern test and treats it as not matching
@@ -161,6 +191,139 @@ impl Core<'_> {
                 Ok(false)
             }
             r => r,
+        }
+    }
+
+    /// `quick_alpha_test` with its commonest case first: a field of the fact equal
+    /// to a symbol (`(state IDLE)`, `(x a)`), a couple of loads and no calls.
+    #[cfg_attr(feature = "wide-pools", inline(always))]
+    fn quick_first_test(&mut self, e: Ix, fact: Ix) -> Option<bool> {
+        let x = self.exprs[e as usize];
+        if x.op == Op::Eq2 {
+            let a = self.exprs[x.first as usize];
+            let b = self.exprs[a.next as usize];
+            if b.op == Op::Sym && a.op == Op::PatVar && a.aux == THIS_PATTERN {
+                let elem = loc::elem(a.data);
+                if elem == loc::SINGLE && a.first == NONE && a.data != loc::FACT {
+                    let v = self.plain_slot(fact, Ix::from(loc::slot(a.data)))?;
+                    return Some(matches!(v, Value::Sym(s) if s == b.data));
+                }
+                if elem == 0 && a.first != NONE {
+                    // the first element of a multislot (ordered facts: `(state IDLE)`),
+                    // when the pattern's first element is single-field
+                    let pe = self.exprs[a.first as usize].first;
+                    if pe != NONE && self.exprs[pe as usize].aux != 1 {
+                        let (cell, mlen) = self.slot_cell(fact, Ix::from(loc::slot(a.data)));
+                        let v = match mlen {
+                            Some(len) if len > 0 => self.values[cell + 1],
+                            _ => return None,
+                        };
+                        return Some(matches!(v, Value::Sym(s) if s == b.data));
+                    }
+                }
+            }
+        }
+        self.quick_alpha_test(e, fact)
+    }
+
+    /// Alpha test `e` on `fact` decided without the evaluator, when it is a
+    /// comparison (`Eq2`, or one of the builtins `=` .. `neq` with two arguments) of
+    /// constants, globals and single fields of the fact, or `Not`/`And`/`Or` of
+    /// such; None otherwise, and whenever the evaluator would fail or read a
+    /// multifield (it then decides, with the same result and errors). Side-effect
+    /// free, so a None after partial work loses nothing.
+    fn quick_alpha_test(&mut self, e: Ix, fact: Ix) -> Option<bool> {
+        let x = self.exprs[e as usize];
+        match x.op {
+            Op::Eq2 => {
+                let a = self.quick_alpha_operand(x.first, fact)?;
+                let b = self.quick_alpha_operand(self.exprs[x.first as usize].next, fact)?;
+                // neither is a multifield: `values_same` is `same`
+                Some(a.same(b))
+            }
+            Op::Not => Some(!self.quick_alpha_test(x.first, fact)?),
+            Op::And | Op::Or => {
+                let want = x.op == Op::Or;
+                let mut c = x.first;
+                while c != NONE {
+                    if self.quick_alpha_test(c, fact)? == want {
+                        return Some(want);
+                    }
+                    c = self.exprs[c as usize].next;
+                }
+                Some(!want)
+            }
+            Op::Call
+                if x.aux == FnKind::Builtin as u8
+                    && (CMP_FIRST..=CMP_LAST).contains(&x.data)
+                    && x.first != NONE =>
+            {
+                let second = self.exprs[x.first as usize].next;
+                if second == NONE || self.exprs[second as usize].next != NONE {
+                    return None;
+                }
+                // what `call` and `push_args` would refuse or record
+                let sp = self.st.sp as usize + 2;
+                if self.st.eval_depth >= crate::eval::MAX_EVAL_DEPTH || sp > self.stack.len() {
+                    return None;
+                }
+                let a = self.quick_alpha_operand(x.first, fact)?;
+                let b = self.quick_alpha_operand(second, fact)?;
+                self.note_hw(crate::error::Pool::EvalStack, sp);
+                crate::builtins::basic::compare(self, x.data, a, b)
+            }
+            _ => None,
+        }
+    }
+
+    /// An operand of a quick alpha test: a constant, a global or a single field of
+    /// `fact` that `pattern_var` reads without segmentation marks; None for anything
+    /// else and for multifield values.
+    // inlined on the host only: in the image the copies would cost 2 KB of code
+    #[cfg_attr(feature = "wide-pools", inline(always))]
+    fn quick_alpha_operand(&self, e: Ix, fact: Ix) -> Option<Value> {
+        let x = self.exprs[e as usize];
+        let v = match x.op {
+            Op::Sym => Value::Sym(x.data),
+            Op::Str => Value::Str(x.data),
+            Op::Int | Op::Float => self.const_value(e),
+            Op::Global => self.globals[x.data as usize].value,
+            Op::PatVar if x.aux == THIS_PATTERN && x.data != loc::FACT => {
+                let slot = Ix::from(loc::slot(x.data));
+                let elem = loc::elem(x.data);
+                if elem == loc::SINGLE {
+                    return self.plain_slot(fact, slot);
+                }
+                if x.first == NONE {
+                    return None;
+                }
+                let (cell, mlen) = self.slot_cell(fact, slot);
+                // as `pattern_var`: only single-field elements up to this one, so its
+                // offset is its index (within the slot: this may run before the alpha
+                // node checks the slot's length)
+                let len = mlen?;
+                let mut c = self.exprs[x.first as usize].first;
+                let mut i = 0u8;
+                loop {
+                    if c == NONE || self.exprs[c as usize].aux == 1 {
+                        return None;
+                    }
+                    if i == elem {
+                        break;
+                    }
+                    i += 1;
+                    c = self.exprs[c as usize].next;
+                }
+                if Ix::from(i) >= len {
+                    return None;
+                }
+                self.values[cell + 1 + i as usize]
+            }
+            _ => return None,
+        };
+        match v {
+            Value::Multi(_) => None,
+            v => Some(v),
         }
     }
 
@@ -315,12 +478,149 @@ impl Core<'_> {
             let mut a = self.templates[tmpl as usize].alpha_head;
             while a != NONE {
                 if a >= first {
-                    self.match_alpha(a, f)?;
+                    self.match_alpha(a, f, self.alphas[a as usize].tests)?;
                 }
                 a = self.alphas[a as usize].next_in_tmpl;
             }
             f = next;
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::*;
+    use crate::engine::SmallEngine;
+    use crate::host::NullHost;
+    use std::boxed::Box;
+
+    /// For every alpha test and fact of its template that the node's layout admits,
+    /// the quick path either declines or agrees with the evaluator; the forms it
+    /// must decline (function calls, multifields, type errors) do go to it.
+    #[test]
+    fn quick_alpha_tests_agree_with_the_evaluator() {
+        let mut e = Box::new(SmallEngine::new());
+        let h = &mut NullHost;
+        e.load_str(
+            h,
+            "t",
+            "(defglobal ?*lim* = 3 ?*mf* = (create$ 1 2))
+             (deftemplate p (slot x) (slot y) (multislot m))
+             (defrule r1 (p (x a) (y ~b)) =>)
+             (defrule r2 (p (x a|b|1) (y ?y&:(<= ?y ?*lim*))) =>)
+             (defrule r3 (p (y ?y&:(> ?y 2.5)&:(neq ?y 7)) (m $?m&:(> (length$ ?m) 0))) =>)
+             (defrule r4 (p (y ?y&:(eq ?y ?*mf*))) =>)
+             (defrule r5 (p (m c ?z&:(= ?z 2))) =>)
+             (defrule r6 (state IDLE|BUSY) =>)
+             (defrule r7 (state ~IDLE) =>)
+             (defrule r8 (p (x ?x&:(< ?x 3))) =>)
+             (defrule r9 (p (m $? d)) =>)
+             (defrule r10 (p (m c ?z&:(eq ?z 2))) =>)",
+        )
+        .unwrap();
+        for f in [
+            "(p (x a) (y b) (m))",
+            "(p (x a) (y 2) (m c 2))",
+            "(p (x b) (y 3.0) (m c 3))",
+            "(p (x 1) (y 7) (m x))",
+            "(p (x 2) (y zz) (m c 2 d))",
+            "(state IDLE)",
+            "(state BUSY)",
+            "(state GONE)",
+            "(state)",
+            "(p (x a) (y 2) (m c))",
+        ] {
+            e.assert_str(h, f).unwrap();
+        }
+        let mut c = e.core(h);
+        let (mut decided, mut declined, mut firsts) = (0, 0, 0);
+        for a in 0..c.alphas.len() {
+            let node = c.alphas[a];
+            if !node.live || node.nmarks != 0 {
+                continue;
+            }
+            let mut f = c.st.fact_head;
+            while f != NONE {
+                let fits = c.facts[f as usize].tmpl == node.tmpl && {
+                    let mut lay = [SlotLayout {
+                        slot: 0,
+                        fixed: 0,
+                        multis: 0,
+                        first_mark: 0,
+                    }; 8];
+                    let n = c.layouts(a as Ix, &mut lay);
+                    lay[..n].iter().all(|l| {
+                        let len = c.slot_cell(f, l.slot).1.unwrap_or(1);
+                        len >= l.fixed && (l.multis > 0 || len == l.fixed)
+                    })
+                };
+                let mut t = node.tests;
+                while c.facts[f as usize].tmpl == node.tmpl && t != NONE {
+                    // network_assert asks before the layout check: must not fail
+                    let quick = c.quick_alpha_test(t, f);
+                    let first = (t == node.tests).then(|| c.quick_first_test(t, f));
+                    if !fits {
+                        t = c.exprs[t as usize].next;
+                        continue;
+                    }
+                    c.st.this_pm = PatBinding {
+                        fact: f,
+                        marks: [0; MAX_MARKS],
+                    };
+                    let general = c
+                        .eval(t)
+                        .map(|v| v != Value::Sym(crate::builtins::SYM_FALSE));
+                    c.st.this_pm = PatBinding::EMPTY;
+                    if let Some(Some(q)) = first {
+                        assert_eq!(Ok(q), general, "first: alpha {a} test {t} fact {f}");
+                        firsts += 1;
+                    }
+                    match quick {
+                        Some(q) => {
+                            assert_eq!(Ok(q), general, "alpha {a} test {t} fact {f}");
+                            decided += 1;
+                        }
+                        None => declined += 1,
+                    }
+                    t = c.exprs[t as usize].next;
+                }
+                f = c.facts[f as usize].next;
+            }
+        }
+        assert!(
+            decided >= 30 && declined >= 10 && firsts >= 10,
+            "{decided} {declined} {firsts}"
+        );
+    }
+
+    /// The forms the quick path leaves to the evaluator.
+    #[test]
+    fn quick_alpha_tests_decline_what_they_cannot_decide() {
+        let mut e = Box::new(SmallEngine::new());
+        let h = &mut NullHost;
+        e.load_str(
+            h,
+            "t",
+            "(defglobal ?*mf* = (create$ 1 2))
+             (deftemplate p (slot x) (multislot m))
+             (defrule len (p (m $?m&:(> (length$ ?m) 0))) =>)
+             (defrule glob (p (x ?x&:(eq ?x ?*mf*))) =>)
+             (defrule typ (p (x ?x&:(< ?x 3))) =>)",
+        )
+        .unwrap();
+        e.assert_str(h, "(p (x sym) (m 1))").unwrap();
+        let mut c = e.core(h);
+        let f = c.st.fact_head;
+        let mut n = 0;
+        for a in 0..c.alphas.len() {
+            let node = c.alphas[a];
+            if node.live && node.tests != NONE {
+                assert_eq!(c.quick_alpha_test(node.tests, f), None, "alpha {a}");
+                n += 1;
+            }
+        }
+        assert_eq!(n, 3);
     }
 }
