@@ -168,7 +168,12 @@ impl Core<'_> {
             if fact == NONE {
                 return None;
             }
-            key = mix(key, atom_hash(self.plain_slot(fact, Ix::from(slot))?));
+            // hashed where it lies (a copy costs more than the hash)
+            let v = self.slot_ref(fact, Ix::from(slot));
+            if matches!(v, Value::Multi(_)) {
+                return None;
+            }
+            key = mix(key, atom_hash(*v));
         }
         Some(key)
     }

@@ -115,13 +115,21 @@ impl Core<'_> {
         for op in &plan.ops[..plan.n as usize] {
             let va = self.planned_var(op.a, depth, left, right_fact)?;
             let vb = self.planned_var(op.b, depth, left, right_fact)?;
-            if same_atom(va, vb) == op.negated {
+            // compared where they lie (copies of the two values cost more than the test)
+            let same = match (va, vb) {
+                (Value::Sym(x), Value::Sym(y)) => x == y,
+                (Value::Int(x), Value::Int(y)) => x == y,
+                (Value::Multi(_), _) | (_, Value::Multi(_)) => return None,
+                _ => va.same(*vb),
+            };
+            if same == op.negated {
                 return Some(false);
             }
         }
         Some(true)
     }
 
+    /// The cell of a planned variable (a multifield is the caller's to refuse).
     #[inline(always)]
     fn planned_var(
         &self,
@@ -129,7 +137,7 @@ impl Core<'_> {
         depth: u8,
         left: Ix,
         right_fact: Ix,
-    ) -> Option<Value> {
+    ) -> Option<&Value> {
         let fact = if pat == depth {
             right_fact
         } else {
@@ -138,7 +146,19 @@ impl Core<'_> {
         if fact == NONE {
             return None;
         }
-        self.plain_slot(fact, Ix::from(slot))
+        Some(self.slot_ref(fact, Ix::from(slot)))
+    }
+
+    /// The cell of slot `slot` of `fact` (a multislot's is its `Multi`).
+    #[inline(always)]
+    pub(crate) fn slot_ref(&self, fact: Ix, slot: Ix) -> &Value {
+        let f = &self.facts[fact as usize];
+        if f.flat {
+            // one cell per slot (no multislot holds elements): index directly
+            &self.values[(f.start + slot) as usize]
+        } else {
+            &self.values[self.slot_cell(fact, slot).0]
+        }
     }
 
     /// The plan of a join's tests (see `TestPlan`).
@@ -197,16 +217,9 @@ impl Core<'_> {
     /// Slot `slot` of `fact` when it holds a single field (not a multislot).
     #[inline(always)]
     pub(crate) fn plain_slot(&self, fact: Ix, slot: Ix) -> Option<Value> {
-        let f = &self.facts[fact as usize];
-        let v = if f.flat {
-            // one cell per slot (no multislot holds elements): index directly
-            self.values[(f.start + slot) as usize]
-        } else {
-            self.values[self.slot_cell(fact, slot).0]
-        };
-        match v {
+        match self.slot_ref(fact, slot) {
             Value::Multi(_) => None,
-            v => Some(v),
+            v => Some(*v),
         }
     }
 
