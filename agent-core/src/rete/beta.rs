@@ -459,21 +459,12 @@ impl Core<'_> {
         let ichild = if jn.index_built { jn.index_child } else { NONE };
         #[cfg(not(feature = "wide-pools"))]
         let ichild = NONE;
-        // the bindings: the parent's, then the own level patched in place (building
-        // the array apart copied it twice through the stack)
         #[cfg(feature = "wide-pools")]
-        let (binds, own) = (
-            if parent != NONE {
-                tokens[parent as usize].binds
-            } else {
-                [NONE; super::BIND_W]
-            },
-            if am != NONE {
-                tokens[am as usize].fact
-            } else {
-                NONE
-            },
-        );
+        let own = if am != NONE {
+            tokens[am as usize].fact
+        } else {
+            NONE
+        };
         let asib = if am != NONE {
             tokens[am as usize].first_child
         } else {
@@ -488,10 +479,14 @@ impl Core<'_> {
             next_sib: psib,
             prev_sib: after,
             am_next: asib,
-            #[cfg(feature = "wide-pools")]
-            binds,
             ..Token::EMPTY
         };
+        // the bindings: the parent's, copied after the token is written (read
+        // before, they went through the stack), then the own level patched in place
+        #[cfg(feature = "wide-pools")]
+        if parent != NONE {
+            tokens[t as usize].binds = tokens[parent as usize].binds;
+        }
         #[cfg(feature = "wide-pools")]
         if let Some(x) = tokens[t as usize].binds.get_mut(depth as usize) {
             *x = own;

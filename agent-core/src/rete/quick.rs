@@ -51,15 +51,17 @@ impl TestPlan {
     };
 }
 
-/// `Value::same` with the two kinds join keys mostly hold, symbols and integers,
-/// compared inline (the derived comparison dispatches on both kinds).
+/// `Value::same` of two cells, symbols and integers (what join keys mostly hold)
+/// compared inline, where they lie (copies of the two values cost more than the
+/// test); None if either is a multifield.
 #[inline(always)]
-fn same_atom(a: Value, b: Value) -> bool {
-    match (a, b) {
+fn same_cell(a: &Value, b: &Value) -> Option<bool> {
+    Some(match (a, b) {
         (Value::Sym(x), Value::Sym(y)) => x == y,
         (Value::Int(x), Value::Int(y)) => x == y,
-        _ => a.same(b),
-    }
+        (Value::Multi(_), _) | (_, Value::Multi(_)) => return None,
+        _ => a.same(*b),
+    })
 }
 
 impl Core<'_> {
@@ -225,8 +227,8 @@ impl Core<'_> {
 
     /// A pattern variable of a join test of the join at `depth`: the right input's
     /// fact (`right_fact`) for `depth`, else left token `left`'s (`left_fact`).
-    fn join_var(&self, x: &Expr, depth: u8, left: Ix, right_fact: Ix) -> Option<Value> {
-        if x.op != Op::PatVar {
+    fn join_var(&self, x: &Expr, depth: u8, left: Ix, right_fact: Ix) -> Option<&Value> {
+        if x.op != Op::PatVar || x.first != NONE || x.data == loc::FACT {
             return None;
         }
         let fact = if x.aux == depth {
@@ -236,7 +238,10 @@ impl Core<'_> {
         } else {
             return None;
         };
-        self.plain_slot_value(fact, x)
+        if fact == NONE {
+            return None;
+        }
+        Some(self.slot_ref(fact, Ix::from(loc::slot(x.data))))
     }
 
     /// The join tests `tests` of the join at `depth` for left token `left` (after
@@ -268,7 +273,7 @@ impl Core<'_> {
             let va = self.join_var(&a, depth, left, right_fact)?;
             let vb = self.join_var(&b, depth, left, right_fact)?;
             // single-field values: `values_same` is `same`
-            if same_atom(va, vb) == negated {
+            if same_cell(va, vb)? == negated {
                 return Some(false);
             }
             t = x.next;
