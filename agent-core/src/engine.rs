@@ -182,6 +182,9 @@ pub struct State {
     pub breaking: bool,
     pub return_value: Value,
     pub firing: bool,
+    /// Top-level fact-set queries running (outside a firing): a fact they retract
+    /// stays pending, its cells readable by `?f:slot`, until the tuple is done.
+    pub query_hold: u16,
     pub eval_depth: u16,
     /// Deffunctions executing: `clear` refuses while any is, as in CLIPS.
     pub in_use: u16,
@@ -297,6 +300,7 @@ impl State {
             breaking: false,
             return_value: Value::Void,
             firing: false,
+            query_hold: 0,
             eval_depth: 0,
             in_use: 0,
             defining: false,

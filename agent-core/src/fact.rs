@@ -184,6 +184,14 @@ impl Core<'_> {
         (r.slot as usize) < self.facts.len() && f.num == r.num && f.state == FactState::Live
     }
 
+    /// A fact address whose cells are still there: live, or retracted while a firing
+    /// or a top-level query holds it (pending). Query slot reads (`?f:x`) use it: CLIPS
+    /// reads a retracted query fact's old values there, `fact-slot-value` gives FALSE.
+    pub fn fact_readable(&self, r: FactRef) -> bool {
+        let f = &self.facts[r.slot as usize];
+        f.num == r.num && f.state != FactState::Free
+    }
+
     /// Fact slot holding live fact number `num`.
     pub fn find_fact(&self, num: u32) -> Option<Ix> {
         let mut f = self.st.fact_head;
@@ -324,7 +332,7 @@ impl Core<'_> {
         tmpl: Ix,
         base: usize,
     ) -> Result<(), CapacityError> {
-        let freed = !self.st.firing;
+        let freed = !self.st.firing && self.st.query_hold == 0;
         if self.st.fact_free == NONE && self.fact_slots_exhausted() && !freed {
             return Err(cap(Pool::Facts, self.facts.len()));
         }
@@ -612,7 +620,7 @@ impl Core<'_> {
         }
     }
 
-    fn free_fact_slot(&mut self, slot: Ix) {
+    pub(crate) fn free_fact_slot(&mut self, slot: Ix) {
         self.facts[slot as usize].state = FactState::Free;
         self.facts[slot as usize].next = self.st.fact_free;
         self.st.fact_free = slot;
@@ -631,7 +639,7 @@ impl Core<'_> {
             let _ = self.pay_owed();
         }
         self.unlink_fact(slot);
-        if self.st.firing {
+        if self.st.firing || self.st.query_hold > 0 {
             self.facts[slot as usize].state = FactState::Pending;
             self.facts[slot as usize].next = self.st.pending;
             self.st.pending = slot;

@@ -434,7 +434,12 @@ pub(crate) fn slot_value_of(
     name: SymId,
     node: Ix,
 ) -> Result<Value, EvalError> {
-    let Some(f) = cx.fact_arg(fv) else {
+    // a retracted fact the firing or query still holds reads its old values, as in CLIPS
+    let held = match fv {
+        Value::Fact(r) => cx.fact_readable(r).then_some(r.slot),
+        _ => cx.fact_arg(fv),
+    };
+    let Some(f) = held else {
         return Ok(no_such_fact(cx, fv));
     };
     let tmpl = cx.facts[f as usize].tmpl;

@@ -57,6 +57,9 @@ struct Walk {
     act: bool,
     found: bool,
     last: Value,
+    /// The outermost query outside a firing: it frees the facts its tuples retracted
+    /// (see `Core::query_hold`) once no variable is bound to them.
+    hold_top: bool,
 }
 
 fn parse(cx: &Core<'_>, call: Ix) -> Result<Query, EvalError> {
@@ -120,6 +123,7 @@ struct Resume {
 /// asserted after it (e.g. by `modify`) are not reached through it; we approximate the
 /// retraction time by the start of the actions (`counter`). A fact that is still live
 /// continues through its current link, so new facts join the iteration.
+#[cfg_attr(feature = "wide-pools", inline(always))]
 fn next_of_template(cx: &Core<'_>, tmpl: Ix, after: Option<Resume>) -> Option<Ix> {
     if cx.templates[tmpl as usize].nfacts == 0 {
         return None;
@@ -155,6 +159,7 @@ fn next_of_template(cx: &Core<'_>, tmpl: Ix, after: Option<Resume>) -> Option<Ix
 }
 
 /// Sets the frame slot of query variable `k` to fact slot `f`.
+#[cfg_attr(feature = "wide-pools", inline(always))]
 fn bind(cx: &mut Core<'_>, w: &mut Walk, k: usize, f: Ix) {
     let r = cx.fact_ref(f);
     w.cursor[k] = r;
@@ -164,6 +169,7 @@ fn bind(cx: &mut Core<'_>, w: &mut Walk, k: usize, f: Ix) {
 
 /// Re-binds variables `0..k` (actions of an inner tuple may have bound other values
 /// to the same frame slots through nested queries).
+#[cfg_attr(feature = "wide-pools", inline(always))]
 fn rebind_outer(cx: &mut Core<'_>, w: &Walk, k: usize) {
     for (i, &var) in w.q.vars[..k].iter().enumerate() {
         let at = (cx.st.bp + cx.exprs[var as usize].data) as usize;
@@ -171,8 +177,20 @@ fn rebind_outer(cx: &mut Core<'_>, w: &Walk, k: usize) {
     }
 }
 
+/// Whether this walk frees retracted facts per tuple (`Walk::hold_top`). The host
+/// compiles a walk for each case (`HOLD`), so a query in a firing pays nothing per
+/// tuple; the image has one walk that asks.
+#[inline(always)]
+fn holds<const HOLD: bool>(w: &Walk) -> bool {
+    if cfg!(feature = "wide-pools") {
+        HOLD
+    } else {
+        w.hold_top
+    }
+}
+
 /// Walks the tuples of variables `k..`; returns true to stop the whole walk.
-fn walk(cx: &mut Core<'_>, w: &mut Walk, k: usize) -> Result<bool, EvalError> {
+fn walk<const HOLD: bool>(cx: &mut Core<'_>, w: &mut Walk, k: usize) -> Result<bool, EvalError> {
     let var = w.q.vars[k];
     let mut tnode = cx.exprs[var as usize].first;
     while tnode != NONE {
@@ -189,9 +207,13 @@ fn walk(cx: &mut Core<'_>, w: &mut Walk, k: usize) -> Result<bool, EvalError> {
                 counter: cx.st.next_fact_num,
             });
             let stop = if k + 1 < w.q.nvars {
-                walk(cx, w, k + 1)?
+                walk::<HOLD>(cx, w, k + 1)?
             } else {
-                visit(cx, w)?
+                let stop = visit(cx, w)?;
+                if holds::<HOLD>(w) {
+                    release_held(cx, &w.cursor[..w.q.nvars], 0..0);
+                }
+                stop
             };
             if stop || cx.st.returning || cx.st.breaking || cx.st.halt_now() {
                 return Ok(true);
@@ -202,6 +224,7 @@ fn walk(cx: &mut Core<'_>, w: &mut Walk, k: usize) -> Result<bool, EvalError> {
 }
 
 /// Tests the query for the bound tuple and acts on a match; true to stop.
+#[cfg_attr(feature = "wide-pools", inline(always))]
 fn visit(cx: &mut Core<'_>, w: &mut Walk) -> Result<bool, EvalError> {
     let mark = cx.st.scratch_top;
     let ok = Core::is_true(cx.eval(w.q.test)?);
@@ -238,6 +261,45 @@ fn keep_value(mark: Ix, v: Value) -> Ix {
     }
 }
 
+/// Frees the pending facts (all retracted by the running top-level query) but those
+/// in `keep` or among the values in scratch cells `vals`: CLIPS keeps a retracted fact readable
+/// while a query variable is bound to it, and only that long, so a query retracting
+/// many facts holds no more cells than a few tuples take.
+fn release_held(cx: &mut Core<'_>, keep: &[FactRef], vals: core::ops::Range<usize>) {
+    let mut p = core::mem::replace(&mut cx.st.pending, NONE);
+    while p != NONE {
+        let f = cx.facts[p as usize];
+        let named = |v: &Value| matches!(*v, Value::Fact(x) if x.slot == p);
+        if keep.iter().any(|k| k.slot == p) || cx.scratch[vals.clone()].iter().any(named) {
+            cx.facts[p as usize].next = cx.st.pending;
+            cx.st.pending = p;
+        } else {
+            cx.free_fact_slot(p);
+        }
+        p = f.next;
+    }
+}
+
+/// Starts holding retracted facts (see `Core::query_hold`): the value to restore,
+/// and whether this is the outermost query outside a firing (it frees what is still
+/// held at the end).
+fn hold_begin(cx: &mut Core<'_>) -> (u16, bool) {
+    let saved = cx.st.query_hold;
+    if cx.st.firing {
+        return (saved, false);
+    }
+    cx.st.query_hold = saved.saturating_add(1);
+    (saved, saved == 0)
+}
+
+fn hold_end(cx: &mut Core<'_>, (saved, top): (u16, bool)) {
+    // restored, not decremented: a `clear` in the actions resets the state
+    cx.st.query_hold = saved;
+    if top {
+        cx.free_pending();
+    }
+}
+
 fn run(
     cx: &mut Core<'_>,
     call: Ix,
@@ -254,9 +316,27 @@ fn run(
         act,
         found: false,
         last: Value::Sym(SYM_FALSE),
+        hold_top: false,
     };
-    walk(cx, &mut w, 0)?;
+    if !cx.st.firing {
+        return run_held(cx, w);
+    }
+    walk::<false>(cx, &mut w, 0)?;
     Ok(w)
+}
+
+/// `run` outside a firing: retracted facts stay readable (`hold_begin`).
+#[inline(never)]
+fn run_held(cx: &mut Core<'_>, mut w: Walk) -> Result<Walk, EvalError> {
+    let hold = hold_begin(cx);
+    w.hold_top = hold.1;
+    let r = if cfg!(feature = "wide-pools") && w.hold_top {
+        walk::<true>(cx, &mut w, 0)
+    } else {
+        walk::<false>(cx, &mut w, 0)
+    };
+    hold_end(cx, hold);
+    r.map(|_| w)
 }
 
 fn any_factp(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
@@ -291,6 +371,13 @@ fn do_for_all_facts(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
 /// facts the actions retracted meanwhile (as CLIPS 6.30 does). The value of the last
 /// action of the last tuple, FALSE without a match.
 fn delayed_do_for_all_facts(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
+    let hold = hold_begin(cx);
+    let r = delayed(cx, call, hold.1);
+    hold_end(cx, hold);
+    r
+}
+
+fn delayed(cx: &mut Core<'_>, call: Ix, top: bool) -> Result<Value, EvalError> {
     let start = cx.multi_begin();
     let w = run(cx, call, Mode::All, true, false)?;
     let tuples = match cx.multi_finish(start) {
@@ -312,6 +399,11 @@ fn delayed_do_for_all_facts(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalEr
             cx.eval_chain(w.q.actions)?
         };
         release_scratch(cx, keep_value(mark, last));
+        if top && cx.st.pending != NONE {
+            // the tuples still to come may name a fact retracted now
+            let (s, e) = (tuples.start as usize, (tuples.start + tuples.len) as usize);
+            release_held(cx, &[], (s + t + n).min(e)..e);
+        }
         if cx.st.returning || cx.st.breaking || cx.st.halt_now() {
             break;
         }
