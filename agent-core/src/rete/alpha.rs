@@ -99,6 +99,36 @@ impl Core<'_> {
             let mut marks = [0u8; MAX_MARKS];
             return self.enumerate_marks(alpha, fact, tests, &[], &[0; 8], &mut marks, 0, 0);
         }
+        #[cfg(feature = "wide-pools")]
+        if node.nmarks == 0 {
+            // one segmentation (no multislot has two multifield variables): only the
+            // slots' lengths decide, checked as `layouts` lays them out (same slots,
+            // same limit), without building the layout
+            let mut s = node.desc;
+            let mut n = 0;
+            while s != NONE && n < 8 {
+                let sd = self.exprs[s as usize];
+                let (mut fixed, mut multi) = (0 as Ix, false);
+                let mut e = sd.first;
+                while e != NONE {
+                    let x = &self.exprs[e as usize];
+                    if x.aux == 1 {
+                        multi = true;
+                    } else {
+                        fixed += 1;
+                    }
+                    e = x.next;
+                }
+                let len = self.slot_cell(fact, sd.data).1.unwrap_or(1);
+                if len < fixed || (!multi && len != fixed) {
+                    return Ok(());
+                }
+                n += 1;
+                s = sd.next;
+            }
+            let mut marks = [0u8; MAX_MARKS];
+            return self.enumerate_marks(alpha, fact, tests, &[], &[0; 8], &mut marks, 0, 0);
+        }
         let mut lay = [SlotLayout {
             slot: 0,
             fixed: 0,
