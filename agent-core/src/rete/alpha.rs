@@ -276,7 +276,12 @@ impl Core<'_> {
                 let want = x.op == Op::Or;
                 let mut c = x.first;
                 while c != NONE {
-                    if self.quick_alpha_test(c, fact)? == want {
+                    // host: a field equal to a symbol (`S0|S1|S2`) decided in line
+                    #[cfg(feature = "wide-pools")]
+                    let r = self.quick_first_test(c, fact)?;
+                    #[cfg(not(feature = "wide-pools"))]
+                    let r = self.quick_alpha_test(c, fact)?;
+                    if r == want {
                         return Some(want);
                     }
                     c = self.exprs[c as usize].next;
