@@ -704,7 +704,18 @@ impl Core<'_> {
     /// Propagates the owed not outputs, oldest first. On a full pool the one that
     /// failed is taken back, keeps its turn and the error is returned: the network
     /// stays complete up to what is still owed.
+    #[cfg_attr(feature = "wide-pools", inline(always))]
     pub(crate) fn pay_owed(&mut self) -> Result<(), EvalError> {
+        // most operations owe nothing: no call for them on the host
+        if self.st.owed == NONE {
+            return Ok(());
+        }
+        self.pay_owed_list()
+    }
+
+    /// `pay_owed` of a non-empty owed list.
+    #[cfg_attr(feature = "wide-pools", inline(never))]
+    fn pay_owed_list(&mut self) -> Result<(), EvalError> {
         while self.st.owed != NONE {
             let t = self.st.owed;
             self.unowe(t);
