@@ -42,6 +42,14 @@ impl Core<'_> {
                         None => true,
                     };
                 if pass {
+                    // host: a node without multislot constraints (most) matches in
+                    // one call
+                    #[cfg(feature = "wide-pools")]
+                    if self.alphas[a as usize].desc == NONE && self.alphas[a as usize].nmarks == 0 {
+                        self.match_one(a, fact, tests, [0; MAX_MARKS])?;
+                        a = self.alphas[a as usize].next_in_tmpl;
+                        continue;
+                    }
                     self.match_alpha(a, fact, tests)?;
                 }
             }
@@ -163,10 +171,7 @@ impl Core<'_> {
         nmarks: usize,
     ) -> Result<(), EvalError> {
         if i == nmarks {
-            if self.alpha_tests_pass(alpha, fact, tests, *marks)? {
-                self.add_alpha_match(alpha, fact, *marks)?;
-            }
-            return Ok(());
+            return self.match_one(alpha, fact, tests, *marks);
         }
         // the slot this mark belongs to, and what earlier marks of it used
         let mut room = 0 as Ix;
@@ -187,6 +192,21 @@ impl Core<'_> {
             self.enumerate_marks(alpha, fact, tests, lay, slack, marks, i + 1, nmarks)?;
         }
         marks[i] = 0;
+        Ok(())
+    }
+
+    /// One segmentation of `fact` for `alpha`: an alpha match if the tests pass.
+    #[cfg_attr(feature = "wide-pools", inline(never))]
+    fn match_one(
+        &mut self,
+        alpha: Ix,
+        fact: Ix,
+        tests: Ix,
+        marks: [u8; MAX_MARKS],
+    ) -> Result<(), EvalError> {
+        if self.alpha_tests_pass(alpha, fact, tests, marks)? {
+            self.add_alpha_match(alpha, fact, marks)?;
+        }
         Ok(())
     }
 
