@@ -182,6 +182,10 @@ fn switch(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
 fn bind(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     let target = cx.exprs[call as usize].first;
     let mut a = cx.exprs[target as usize].next;
+    #[cfg(feature = "wide-pools")]
+    if a != NONE && cx.exprs[a as usize].next == NONE {
+        return bind_one(cx, target, a);
+    }
     // several values (or one multifield expansion) make a multifield
     let mut n = 0;
     let mut only = Value::Void;
@@ -226,6 +230,30 @@ fn bind(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
         _ => return Err(EvalError::new(EvalErrorKind::UnboundVariable)),
     }
     Ok(if n == 0 { Value::Sym(SYM_FALSE) } else { value })
+}
+
+/// `bind` of one value on the host: what the general path makes of it, without copying
+/// the value into scratch and dropping the copy again, and with a constant or variable
+/// read in place. A multifield the argument built above the scratch mark (e.g.
+/// `(bind ?x (create$ a b))`) is kept; the argument's other temporaries are dropped.
+#[cfg(feature = "wide-pools")]
+fn bind_one(cx: &mut Core<'_>, target: Ix, a: Ix) -> Result<Value, EvalError> {
+    let start = cx.multi_begin();
+    let value = cx.eval_operand(a)?;
+    cx.st.scratch_top = match value {
+        Value::Multi(m) if m.start >= start => m.start + m.len,
+        _ => start,
+    };
+    let t = cx.exprs[target as usize];
+    match t.op {
+        Op::Local => {
+            let at = (cx.st.bp + t.data) as usize;
+            cx.stack[at] = value;
+        }
+        Op::Global => cx.set_global(t.data, value)?,
+        _ => return Err(EvalError::new(EvalErrorKind::UnboundVariable)),
+    }
+    Ok(value)
 }
 
 fn return_(cx: &mut Core<'_>, a: super::Args) -> Result<Value, EvalError> {
