@@ -386,6 +386,10 @@ pub struct Engine<
     scratch: [Value; SCRATCH],
     deffacts: [Deffacts; DEFFACTS],
     externals: [ExternalEntry; EXTERNALS],
+    /// Host: per fact slot, the next and previous live fact of its template
+    /// (`Template::tfirst`), so a fact-set query walks only those.
+    #[cfg(feature = "wide-pools")]
+    fact_tlinks: [[Ix; 2]; FACTS],
     started: bool,
 }
 
@@ -440,6 +444,9 @@ pub struct Core<'a> {
     pub scratch: &'a mut [Value],
     pub deffacts: &'a mut [Deffacts],
     pub externals: &'a mut [ExternalEntry],
+    /// Host: see `Engine::fact_tlinks`.
+    #[cfg(feature = "wide-pools")]
+    pub fact_tlinks: &'a mut [[Ix; 2]],
 }
 
 impl<
@@ -533,6 +540,8 @@ impl<
             scratch: [Value::Void; SCRATCH],
             deffacts: [Deffacts::EMPTY; DEFFACTS],
             externals: [ExternalEntry::EMPTY; EXTERNALS],
+            #[cfg(feature = "wide-pools")]
+            fact_tlinks: [[NONE; 2]; FACTS],
             started: false,
         }
     }
@@ -616,6 +625,8 @@ impl<
             scratch: &mut self.scratch,
             deffacts: &mut self.deffacts,
             externals: &mut self.externals,
+            #[cfg(feature = "wide-pools")]
+            fact_tlinks: &mut self.fact_tlinks,
         };
         if !self.started {
             self.started = true;
