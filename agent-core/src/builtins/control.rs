@@ -50,7 +50,9 @@ fn if_(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     }
 }
 
-/// Resets scratch to `mark` unless a variable (frame or global) still points above it.
+/// Resets scratch to `mark` unless a frame variable still points above it. Globals
+/// need no look: their multifields live in their own region at the top of scratch
+/// (`Core::set_global`), above any temporary.
 pub(super) fn release_scratch(cx: &mut Core<'_>, mark: Ix) {
     // nothing above the mark (the usual loop body or query test): nothing to scan for
     if cx.st.scratch_top <= mark {
@@ -59,11 +61,6 @@ pub(super) fn release_scratch(cx: &mut Core<'_>, mark: Ix) {
     let mut keep = mark;
     for i in 0..cx.st.sp as usize {
         if let Value::Multi(m) = cx.stack[i] {
-            keep = keep.max(m.start + m.len);
-        }
-    }
-    for g in 0..cx.st.nglobals as usize {
-        if let Value::Multi(m) = cx.globals[g].value {
             keep = keep.max(m.start + m.len);
         }
     }
@@ -280,5 +277,24 @@ mod tests {
         );
         assert!(out.contains("(a b)"), "got {out}");
         assert!(!out.contains("(p q)"), "got {out}");
+    }
+
+    /// A loop frees its body's temporaries without looking at the globals: a global's
+    /// multifield, built in the body from temporaries, lives in its own region.
+    #[test]
+    fn global_multifield_survives_loop_temporaries() {
+        let out = run_program(
+            "(defglobal ?*g* = (create$ a b))\n\
+             (deffunction f () (loop-for-count (?i 1 3) (bind ?t (create$ x y z))\n\
+                 (bind ?*g* (create$ ?*g* ?i ?t)) (bind ?u (create$ p q))) ?*g*)\n\
+             (printout t (f) crlf)\n\
+             (deffunction h () (progn$ (?x (create$ 1 2)) (bind ?*g* (create$ ?*g* ?x))\n\
+                 (bind ?v (create$ r s))) ?*g*)\n\
+             (printout t (h) crlf)\n",
+        );
+        assert!(
+            out.contains("(a b 1 x y z 2 x y z 3 x y z)\n(a b 1 x y z 2 x y z 3 x y z 1 2)"),
+            "got {out}"
+        );
     }
 }
