@@ -70,8 +70,17 @@ impl Stats {
 pub const fn entry_bytes(pool: Pool) -> usize {
     use core::mem::size_of;
     match pool {
-        // a fact and its duplicate-index bucket head
-        Pool::Facts => size_of::<Fact>() + size_of::<Ix>(),
+        // a fact and its duplicate-index bucket head (and on the host its template
+        // list links, `Engine::fact_tlinks`)
+        Pool::Facts => {
+            size_of::<Fact>()
+                + size_of::<Ix>()
+                + if cfg!(feature = "wide-pools") {
+                    2 * size_of::<Ix>()
+                } else {
+                    0
+                }
+        }
         Pool::FactValues | Pool::EvalStack | Pool::Scratch => size_of::<Value>(),
         // a symbol entry and its hash bucket head
         Pool::Symbols => size_of::<SymEntry>() + size_of::<Ix>(),
