@@ -70,8 +70,17 @@ impl Stats {
 pub const fn entry_bytes(pool: Pool) -> usize {
     use core::mem::size_of;
     match pool {
-        // a fact and its duplicate-index bucket head
-        Pool::Facts => size_of::<Fact>() + size_of::<Ix>(),
+        // a fact and its duplicate-index bucket head (and on the host its template
+        // list links, `Engine::fact_tlinks`)
+        Pool::Facts => {
+            size_of::<Fact>()
+                + size_of::<Ix>()
+                + if cfg!(feature = "wide-pools") {
+                    2 * size_of::<Ix>()
+                } else {
+                    0
+                }
+        }
         Pool::FactValues | Pool::EvalStack | Pool::Scratch => size_of::<Value>(),
         // a symbol entry and its hash bucket head
         Pool::Symbols => size_of::<SymEntry>() + size_of::<Ix>(),
@@ -386,6 +395,10 @@ pub struct Engine<
     scratch: [Value; SCRATCH],
     deffacts: [Deffacts; DEFFACTS],
     externals: [ExternalEntry; EXTERNALS],
+    /// Host: per fact slot, the next and previous live fact of its template
+    /// (`Template::tfirst`), so a fact-set query walks only those.
+    #[cfg(feature = "wide-pools")]
+    fact_tlinks: [[Ix; 2]; FACTS],
     started: bool,
 }
 
@@ -440,6 +453,9 @@ pub struct Core<'a> {
     pub scratch: &'a mut [Value],
     pub deffacts: &'a mut [Deffacts],
     pub externals: &'a mut [ExternalEntry],
+    /// Host: see `Engine::fact_tlinks`.
+    #[cfg(feature = "wide-pools")]
+    pub fact_tlinks: &'a mut [[Ix; 2]],
 }
 
 impl<
@@ -533,6 +549,8 @@ impl<
             scratch: [Value::Void; SCRATCH],
             deffacts: [Deffacts::EMPTY; DEFFACTS],
             externals: [ExternalEntry::EMPTY; EXTERNALS],
+            #[cfg(feature = "wide-pools")]
+            fact_tlinks: [[NONE; 2]; FACTS],
             started: false,
         }
     }
@@ -616,6 +634,8 @@ impl<
             scratch: &mut self.scratch,
             deffacts: &mut self.deffacts,
             externals: &mut self.externals,
+            #[cfg(feature = "wide-pools")]
+            fact_tlinks: &mut self.fact_tlinks,
         };
         if !self.started {
             self.started = true;

@@ -306,7 +306,9 @@ impl Core<'_> {
         }
     }
 
-    /// Evaluates a call's arguments onto the stack.
+    /// Evaluates a call's arguments onto the stack (inlined into `call` on the host:
+    /// most calls have an argument or two, where the call's own cost showed).
+    #[cfg_attr(feature = "wide-pools", inline(always))]
     fn push_args(&mut self, mut a: Ix) -> Result<Args, EvalError> {
         let base = self.st.sp;
         while a != NONE {

@@ -110,6 +110,10 @@ impl Core<'_> {
             implied: true,
             alpha_head: NONE,
             nfacts: 0,
+            #[cfg(feature = "wide-pools")]
+            tfirst: NONE,
+            #[cfg(feature = "wide-pools")]
+            tlast: NONE,
         };
         self.st.ntemplates += 1;
         self.note_hw(Pool::Templates, n + 1);
@@ -467,6 +471,8 @@ impl Core<'_> {
         } else {
             self.facts[next as usize].prev = slot;
         }
+        #[cfg(feature = "wide-pools")]
+        self.tmpl_link(slot);
         // it needs no more room than its retract freed: what a not output passes on
         // waits until every pattern of the fact is in (see `State::defer_nots`)
         self.st.defer_nots = true;
@@ -544,6 +550,18 @@ impl Core<'_> {
             self.st.fact_head = slot;
         }
         self.st.fact_tail = slot;
+        // host: the newest fact, last in its template's list too
+        #[cfg(feature = "wide-pools")]
+        {
+            let t = &mut self.templates[tmpl as usize];
+            self.fact_tlinks[slot as usize] = [NONE, t.tlast];
+            if t.tlast == NONE {
+                t.tfirst = slot;
+            } else {
+                self.fact_tlinks[t.tlast as usize][0] = slot;
+            }
+            t.tlast = slot;
+        }
         let live = self.count_live_facts_hint();
         self.note_hw(Pool::Facts, live);
         self.note_hw(Pool::FactValues, self.st.values_top as usize);
@@ -579,6 +597,36 @@ impl Core<'_> {
         Ok(Some(slot))
     }
 
+    /// Host: links a restored fact into its template's list, after the last fact of
+    /// the template with a smaller number.
+    #[cfg(feature = "wide-pools")]
+    fn tmpl_link(&mut self, slot: Ix) {
+        let (tmpl, num) = (
+            self.facts[slot as usize].tmpl,
+            self.facts[slot as usize].num,
+        );
+        let mut p = self.templates[tmpl as usize].tlast;
+        while p != NONE && self.facts[p as usize].num > num {
+            p = self.fact_tlinks[p as usize][1];
+        }
+        let n = if p == NONE {
+            self.templates[tmpl as usize].tfirst
+        } else {
+            self.fact_tlinks[p as usize][0]
+        };
+        self.fact_tlinks[slot as usize] = [n, p];
+        if p == NONE {
+            self.templates[tmpl as usize].tfirst = slot;
+        } else {
+            self.fact_tlinks[p as usize][0] = slot;
+        }
+        if n == NONE {
+            self.templates[tmpl as usize].tlast = slot;
+        } else {
+            self.fact_tlinks[n as usize][1] = slot;
+        }
+    }
+
     fn count_live_facts_hint(&self) -> usize {
         // facts_used is the pool high mark; good enough as a high-water figure
         self.st.facts_used as usize
@@ -598,6 +646,21 @@ impl Core<'_> {
             self.facts[f.next as usize].prev = f.prev;
         } else {
             self.st.fact_tail = f.prev;
+        }
+        #[cfg(feature = "wide-pools")]
+        {
+            let [tnext, tprev] = self.fact_tlinks[slot as usize];
+            let t = &mut self.templates[f.tmpl as usize];
+            if tprev == NONE {
+                t.tfirst = tnext;
+            } else {
+                self.fact_tlinks[tprev as usize][0] = tnext;
+            }
+            if tnext == NONE {
+                t.tlast = tprev;
+            } else {
+                self.fact_tlinks[tnext as usize][1] = tprev;
+            }
         }
         // hash chain
         #[cfg(feature = "wide-pools")]

@@ -566,6 +566,41 @@ impl Core<'_> {
             "per-template fact counts wrong",
             per_template
         );
+        // host: each template's own list holds its live facts, numbers growing
+        #[cfg(feature = "wide-pools")]
+        for t in 0..self.st.ntemplates as usize {
+            let (mut prev, mut f, mut n) = (NONE, self.templates[t].tfirst, 0usize);
+            while f != NONE {
+                ensure!((f as usize) < used, "template fact list leaves the pool", f);
+                let x = self.facts[f as usize];
+                ensure!(
+                    x.state == FactState::Live && x.tmpl as usize == t,
+                    "template fact list holds another fact",
+                    f
+                );
+                let [next, back] = self.fact_tlinks[f as usize];
+                ensure!(back == prev, "template fact list back link broken", f);
+                ensure!(
+                    prev == NONE || self.facts[prev as usize].num < x.num,
+                    "template fact numbers not increasing",
+                    f
+                );
+                n += 1;
+                ensure!(n <= used, "template fact list has a cycle", f);
+                prev = f;
+                f = next;
+            }
+            ensure!(
+                self.templates[t].tlast == prev,
+                "template fact list tail wrong",
+                prev
+            );
+            ensure!(
+                n == self.templates[t].nfacts as usize,
+                "template fact list length wrong",
+                n
+            );
+        }
         let free = self.walk(
             self.st.fact_free,
             used,

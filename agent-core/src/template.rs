@@ -77,6 +77,11 @@ pub struct Template {
     /// Live facts of this template: a fact-set query over a template without facts
     /// ends at once instead of walking the whole fact list.
     pub nfacts: Ix,
+    /// Host: first and last live fact of this template, linked through `Core::fact_tlinks`.
+    #[cfg(feature = "wide-pools")]
+    pub tfirst: Ix,
+    #[cfg(feature = "wide-pools")]
+    pub tlast: Ix,
 }
 
 impl Template {
@@ -87,6 +92,10 @@ impl Template {
         implied: false,
         alpha_head: NONE,
         nfacts: 0,
+        #[cfg(feature = "wide-pools")]
+        tfirst: NONE,
+        #[cfg(feature = "wide-pools")]
+        tlast: NONE,
     };
 }
 

@@ -50,7 +50,9 @@ fn if_(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     }
 }
 
-/// Resets scratch to `mark` unless a variable (frame or global) still points above it.
+/// Resets scratch to `mark` unless a frame variable still points above it. Globals
+/// need no look: their multifields live in their own region at the top of scratch
+/// (`Core::set_global`), above any temporary.
 pub(super) fn release_scratch(cx: &mut Core<'_>, mark: Ix) {
     // nothing above the mark (the usual loop body or query test): nothing to scan for
     if cx.st.scratch_top <= mark {
@@ -59,11 +61,6 @@ pub(super) fn release_scratch(cx: &mut Core<'_>, mark: Ix) {
     let mut keep = mark;
     for i in 0..cx.st.sp as usize {
         if let Value::Multi(m) = cx.stack[i] {
-            keep = keep.max(m.start + m.len);
-        }
-    }
-    for g in 0..cx.st.nglobals as usize {
-        if let Value::Multi(m) = cx.globals[g].value {
             keep = keep.max(m.start + m.len);
         }
     }
@@ -182,6 +179,10 @@ fn switch(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
 fn bind(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     let target = cx.exprs[call as usize].first;
     let mut a = cx.exprs[target as usize].next;
+    #[cfg(feature = "wide-pools")]
+    if a != NONE && cx.exprs[a as usize].next == NONE {
+        return bind_one(cx, target, a);
+    }
     // several values (or one multifield expansion) make a multifield
     let mut n = 0;
     let mut only = Value::Void;
@@ -228,6 +229,30 @@ fn bind(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     Ok(if n == 0 { Value::Sym(SYM_FALSE) } else { value })
 }
 
+/// `bind` of one value on the host: what the general path makes of it, without copying
+/// the value into scratch and dropping the copy again, and with a constant or variable
+/// read in place. A multifield the argument built above the scratch mark (e.g.
+/// `(bind ?x (create$ a b))`) is kept; the argument's other temporaries are dropped.
+#[cfg(feature = "wide-pools")]
+fn bind_one(cx: &mut Core<'_>, target: Ix, a: Ix) -> Result<Value, EvalError> {
+    let start = cx.multi_begin();
+    let value = cx.eval_operand(a)?;
+    cx.st.scratch_top = match value {
+        Value::Multi(m) if m.start >= start => m.start + m.len,
+        _ => start,
+    };
+    let t = cx.exprs[target as usize];
+    match t.op {
+        Op::Local => {
+            let at = (cx.st.bp + t.data) as usize;
+            cx.stack[at] = value;
+        }
+        Op::Global => cx.set_global(t.data, value)?,
+        _ => return Err(EvalError::new(EvalErrorKind::UnboundVariable)),
+    }
+    Ok(value)
+}
+
 fn return_(cx: &mut Core<'_>, a: super::Args) -> Result<Value, EvalError> {
     let v = if a.len > 0 { cx.arg(a, 0) } else { Value::Void };
     cx.st.returning = true;
@@ -252,5 +277,24 @@ mod tests {
         );
         assert!(out.contains("(a b)"), "got {out}");
         assert!(!out.contains("(p q)"), "got {out}");
+    }
+
+    /// A loop frees its body's temporaries without looking at the globals: a global's
+    /// multifield, built in the body from temporaries, lives in its own region.
+    #[test]
+    fn global_multifield_survives_loop_temporaries() {
+        let out = run_program(
+            "(defglobal ?*g* = (create$ a b))\n\
+             (deffunction f () (loop-for-count (?i 1 3) (bind ?t (create$ x y z))\n\
+                 (bind ?*g* (create$ ?*g* ?i ?t)) (bind ?u (create$ p q))) ?*g*)\n\
+             (printout t (f) crlf)\n\
+             (deffunction h () (progn$ (?x (create$ 1 2)) (bind ?*g* (create$ ?*g* ?x))\n\
+                 (bind ?v (create$ r s))) ?*g*)\n\
+             (printout t (h) crlf)\n",
+        );
+        assert!(
+            out.contains("(a b 1 x y z 2 x y z 3 x y z)\n(a b 1 x y z 2 x y z 3 x y z 1 2)"),
+            "got {out}"
+        );
     }
 }

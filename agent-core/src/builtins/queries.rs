@@ -128,11 +128,19 @@ fn next_of_template(cx: &Core<'_>, tmpl: Ix, after: Option<Resume>) -> Option<Ix
     if cx.templates[tmpl as usize].nfacts == 0 {
         return None;
     }
+    // the host walks the template's own list (`Template::tfirst`), the image the list
+    // of all facts
+    #[cfg(feature = "wide-pools")]
+    let (head, link) = (cx.templates[tmpl as usize].tfirst, |f: Ix| {
+        cx.fact_tlinks[f as usize][0]
+    });
+    #[cfg(not(feature = "wide-pools"))]
+    let (head, link) = (cx.st.fact_head, |f: Ix| cx.facts[f as usize].next);
     let (mut f, lo, hi) = match after {
-        None => (cx.st.fact_head, None, u32::MAX),
+        None => (head, None, u32::MAX),
         // fast path: still linked, continue from its successor
-        Some(r) if cx.fact_alive(r.fact) => (cx.facts[r.fact.slot as usize].next, None, u32::MAX),
-        Some(r) => (cx.st.fact_head, Some(r.fact.num), r.counter),
+        Some(r) if cx.fact_alive(r.fact) => (link(r.fact.slot), None, u32::MAX),
+        Some(r) => (head, Some(r.fact.num), r.counter),
     };
     if lo.is_none() && hi == u32::MAX {
         // the usual case: the next fact of the template, no number bounds to check
@@ -141,7 +149,7 @@ fn next_of_template(cx: &Core<'_>, tmpl: Ix, after: Option<Resume>) -> Option<Ix
             if fact.tmpl == tmpl {
                 return Some(f);
             }
-            f = fact.next;
+            f = link(f);
         }
         return None;
     }
@@ -153,7 +161,7 @@ fn next_of_template(cx: &Core<'_>, tmpl: Ix, after: Option<Resume>) -> Option<Ix
         if lo.is_none_or(|n| fact.num > n) && fact.tmpl == tmpl {
             return Some(f);
         }
-        f = fact.next;
+        f = link(f);
     }
     None
 }

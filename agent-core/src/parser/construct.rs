@@ -92,6 +92,10 @@ impl<'s> Parser<'s, '_, '_> {
             implied: false,
             alpha_head: NONE,
             nfacts: 0,
+            #[cfg(feature = "wide-pools")]
+            tfirst: NONE,
+            #[cfg(feature = "wide-pools")]
+            tlast: NONE,
         };
         self.cx.st.ntemplates += 1;
         self.cx.note_hw(Pool::Templates, n + 1);
