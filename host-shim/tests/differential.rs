@@ -548,4 +548,5 @@ differential_programs! {
     p152_halt_watched_or_not => "152-halt-watched-or-not",
     p153_parse_time_side_effects => "153-parse-time-side-effects",
     p154_retracted_query_facts => "154-retracted-query-facts",
+    p155_progn_multifield_value => "155-progn-multifield-value",
 }

@@ -139,7 +139,11 @@ fn foreach(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
         cx.stack[at + 1] = Value::Int(k as i64 + 1);
         cx.poll_interrupt()?;
         last = cx.eval(body)?;
-        release_scratch(cx, mark.max(m.start + m.len));
+        // the last iteration's value is progn$'s (a multifield too, as in CLIPS), so its
+        // cells stay; earlier iterations' are freed, so a long loop holds one body's worth
+        let done = k + 1 == m.len as usize || cx.st.returning || cx.st.exit;
+        let base = mark.max(m.start + m.len);
+        release_scratch(cx, if done { keep_value(base, last) } else { base });
         if cx.st.breaking {
             // CLIPS's progn$ left by break has no value (loop-for-count's is FALSE)
             cx.st.breaking = false;
@@ -150,11 +154,15 @@ fn foreach(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
             break;
         }
     }
-    Ok(if last.is_multi() {
-        Value::Sym(SYM_FALSE)
-    } else {
-        last
-    })
+    Ok(last)
+}
+
+/// Scratch mark above `mark` that keeps multifield `v`'s cells alive.
+pub(super) fn keep_value(mark: Ix, v: Value) -> Ix {
+    match v {
+        Value::Multi(m) => mark.max(m.start + m.len),
+        _ => mark,
+    }
 }
 
 fn switch(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {

@@ -8,7 +8,7 @@
 //! are skipped; facts asserted by them join the iteration as CLIPS's template lists
 //! let them (see `next_of_template`).
 
-use super::control::release_scratch;
+use super::control::{keep_value, release_scratch};
 use super::{Builtin, ANY, SYM_FALSE};
 use crate::engine::Core;
 use crate::error::EvalError;
@@ -259,14 +259,6 @@ fn visit(cx: &mut Core<'_>, w: &mut Walk) -> Result<bool, EvalError> {
         }
     }
     Ok(w.mode == Mode::First)
-}
-
-/// Scratch mark that keeps a multifield result alive.
-fn keep_value(mark: Ix, v: Value) -> Ix {
-    match v {
-        Value::Multi(m) => mark.max(m.start + m.len),
-        _ => mark,
-    }
 }
 
 /// Frees the pending facts (all retracted by the running top-level query) but those

@@ -1,0 +1,17 @@
+; progn$ and foreach return their last action's value, a multifield included, at the
+; top level, in a deffunction and in a rule's actions; break leaves no value
+(printout t (progn$ (?x (create$ 1 2)) (printout t ?x crlf) (create$ r s)) crlf)
+(printout t (foreach ?x (create$ 1 2) (create$ r ?x)) crlf)
+(printout t (progn$ (?x (create$)) (create$ a)) crlf)
+(printout t (progn$ (?x (create$ 1 2 3)) ?x) crlf)
+(deffunction f (?n) (progn$ (?x (create$ 1 2 ?n)) (create$ ?x ?x)))
+(printout t (f 7) " " (length$ (f 8)) crlf)
+(deffunction g () (loop-for-count (?i 1 300) (bind ?r (progn$ (?x (create$ a b c)) (create$ ?x ?i)))) ?r)
+(printout t (g) crlf)
+(deffunction h () (progn$ (?x (create$ 1 2 3)) (if (= ?x 2) then (return (create$ ret ?x))) (create$ no ?x)))
+(printout t (h) crlf)
+(printout t (progn$ (?x (create$ 1 2 3)) (if (= ?x 2) then (break)) (create$ b ?x)) crlf)
+(defrule r => (bind ?v (progn$ (?x (create$ p q)) (create$ ?x z))) (printout t "rule " ?v crlf))
+(reset)
+(run)
+(exit)
