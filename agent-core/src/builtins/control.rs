@@ -225,15 +225,7 @@ fn bind(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     } else {
         cx.multi_finish(start)
     };
-    let t = cx.exprs[target as usize];
-    match t.op {
-        Op::Local => {
-            let at = (cx.st.bp + t.data) as usize;
-            cx.stack[at] = value;
-        }
-        Op::Global => cx.set_global(t.data, value)?,
-        _ => return Err(EvalError::new(EvalErrorKind::UnboundVariable)),
-    }
+    store_bound(cx, target, value)?;
     Ok(if n == 0 { Value::Sym(SYM_FALSE) } else { value })
 }
 
@@ -249,6 +241,13 @@ fn bind_one(cx: &mut Core<'_>, target: Ix, a: Ix) -> Result<Value, EvalError> {
         Value::Multi(m) if m.start >= start => m.start + m.len,
         _ => start,
     };
+    store_bound(cx, target, value)?;
+    Ok(value)
+}
+
+/// Stores `bind`'s value in its target, a local frame slot or a global.
+#[inline(always)]
+fn store_bound(cx: &mut Core<'_>, target: Ix, value: Value) -> Result<(), EvalError> {
     let t = cx.exprs[target as usize];
     match t.op {
         Op::Local => {
@@ -258,7 +257,7 @@ fn bind_one(cx: &mut Core<'_>, target: Ix, a: Ix) -> Result<Value, EvalError> {
         Op::Global => cx.set_global(t.data, value)?,
         _ => return Err(EvalError::new(EvalErrorKind::UnboundVariable)),
     }
-    Ok(value)
+    Ok(())
 }
 
 fn return_(cx: &mut Core<'_>, a: super::Args) -> Result<Value, EvalError> {
