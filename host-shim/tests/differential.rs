@@ -549,4 +549,5 @@ differential_programs! {
     p153_parse_time_side_effects => "153-parse-time-side-effects",
     p154_retracted_query_facts => "154-retracted-query-facts",
     p155_progn_multifield_value => "155-progn-multifield-value",
+    p156_bind_global_multifield => "156-bind-global-multifield",
 }

@@ -212,14 +212,9 @@ fn bind(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
         n += 1;
         a = cx.exprs[a as usize].next;
     }
+    // one value: bound as it is (a multifield's copies pushed above are not needed)
     let value = if n == 1 && (!only.is_multi() || spliced) {
-        // Drop the copies, but keep a multifield that the argument itself built above
-        // `start` (e.g. `(bind ?x (create$ a b))`): `only` still points into it.
-        cx.st.scratch_top = match only {
-            Value::Multi(m) if m.start >= start => m.start + m.len,
-            _ => start,
-        };
-        only
+        keep_bound(cx, start, only)?
     } else if n == 0 {
         Value::Void
     } else {
@@ -231,18 +226,41 @@ fn bind(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
 
 /// `bind` of one value on the host: what the general path makes of it, without copying
 /// the value into scratch and dropping the copy again, and with a constant or variable
-/// read in place. A multifield the argument built above the scratch mark (e.g.
-/// `(bind ?x (create$ a b))`) is kept; the argument's other temporaries are dropped.
+/// read in place.
 #[cfg(feature = "wide-pools")]
 fn bind_one(cx: &mut Core<'_>, target: Ix, a: Ix) -> Result<Value, EvalError> {
     let start = cx.multi_begin();
     let value = cx.eval_operand(a)?;
-    cx.st.scratch_top = match value {
-        Value::Multi(m) if m.start >= start => m.start + m.len,
-        _ => start,
-    };
+    let value = keep_bound(cx, start, value)?;
     store_bound(cx, target, value)?;
     Ok(value)
+}
+
+/// The value `bind` stores for argument value `v`, evaluated above scratch mark
+/// `start`: a multifield the argument built there (e.g. `(bind ?x (create$ a b))`)
+/// keeps its cells and the argument's other temporaries are dropped; a global's
+/// multifield is copied (its region is repacked on every global store, and a
+/// temporary's end there would hold the scratch top inside the region).
+fn keep_bound(cx: &mut Core<'_>, start: Ix, v: Value) -> Result<Value, EvalError> {
+    let top = cx.st.scratch_top;
+    let Value::Multi(m) = v else {
+        cx.st.scratch_top = start;
+        return Ok(v);
+    };
+    if m.start >= top {
+        cx.st.scratch_top = start;
+        for k in 0..m.len as usize {
+            let item = cx.scratch[m.start as usize + k];
+            cx.multi_push(item)?;
+        }
+        return Ok(cx.multi_finish(start));
+    }
+    cx.st.scratch_top = if m.start >= start {
+        m.start + m.len
+    } else {
+        start
+    };
+    Ok(v)
 }
 
 /// Stores `bind`'s value in its target, a local frame slot or a global.
