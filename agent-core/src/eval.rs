@@ -567,4 +567,20 @@ mod tests {
         );
         assert!(out.ends_with("100\n()\n"), "{out}");
     }
+
+    /// The delayed variant frees them when the slots run out: the same 100-for-100
+    /// swap fits (each tuple's fact is read after its retraction), twice over.
+    #[test]
+    fn delayed_query_frees_retracted_facts_when_slots_run_out() {
+        let out = run_program(
+            "(deftemplate a (slot x))
+             (deftemplate b (slot y))
+             (loop-for-count (?i 1 100) (assert (a (x ?i))))
+             (delayed-do-for-all-facts ((?f a)) TRUE (retract ?f) (assert (b (y ?f:x))))
+             (delayed-do-for-all-facts ((?f b)) TRUE (retract ?f) (assert (a (x ?f:y))))
+             (printout t (length$ (find-all-facts ((?g a)) (> ?g:x 0))) crlf)
+             (printout t (find-all-facts ((?g b)) TRUE) crlf)",
+        );
+        assert!(out.ends_with("100\n()\n"), "{out}");
+    }
 }

@@ -182,18 +182,20 @@ impl Core<'_> {
         }
     }
 
-    /// A fact address is usable if its slot still holds that fact (live or pending).
+    /// A fact address is usable if its slot still holds that fact, live.
     pub fn fact_alive(&self, r: FactRef) -> bool {
-        let f = &self.facts[r.slot as usize];
-        (r.slot as usize) < self.facts.len() && f.num == r.num && f.state == FactState::Live
+        self.facts
+            .get(r.slot as usize)
+            .is_some_and(|f| f.num == r.num && f.state == FactState::Live)
     }
 
     /// A fact address whose cells are still there: live, or retracted while a firing
     /// or a top-level query holds it (pending). Query slot reads (`?f:x`) use it: CLIPS
     /// reads a retracted query fact's old values there, `fact-slot-value` gives FALSE.
     pub fn fact_readable(&self, r: FactRef) -> bool {
-        let f = &self.facts[r.slot as usize];
-        f.num == r.num && f.state != FactState::Free
+        self.facts
+            .get(r.slot as usize)
+            .is_some_and(|f| f.num == r.num && f.state != FactState::Free)
     }
 
     /// Fact slot holding live fact number `num`.
@@ -302,6 +304,11 @@ impl Core<'_> {
         self.st.facts_used as usize >= self.facts.len().min(NONE as usize - 1)
     }
 
+    /// No fact slot is free to take: neither a freed one nor a never-used one.
+    pub(crate) fn fact_slots_full(&self) -> bool {
+        self.st.fact_free == NONE && self.fact_slots_exhausted()
+    }
+
     /// Writes per-slot values from the stack at `base` into cells from `start`.
     fn write_cells(&mut self, tmpl: Ix, base: usize, start: usize) {
         let mut c = start;
@@ -337,7 +344,7 @@ impl Core<'_> {
         base: usize,
     ) -> Result<(), CapacityError> {
         let freed = !self.st.firing && self.st.query_hold == 0;
-        if self.st.fact_free == NONE && self.fact_slots_exhausted() && !freed {
+        if self.fact_slots_full() && !freed {
             return Err(cap(Pool::Facts, self.facts.len()));
         }
         let need = self.cells_needed(tmpl, base);
@@ -496,7 +503,7 @@ impl Core<'_> {
         // the assert fails with nothing changed
         self.pay_owed()?;
         let need = self.cells_needed(tmpl, base);
-        if self.st.fact_free == NONE && self.fact_slots_exhausted() {
+        if self.fact_slots_full() {
             return Err(cap(Pool::Facts, self.facts.len()).into());
         }
         let start = self.reserve_cells(need)?;

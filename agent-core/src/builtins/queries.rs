@@ -185,20 +185,8 @@ fn rebind_outer(cx: &mut Core<'_>, w: &Walk, k: usize) {
     }
 }
 
-/// Whether this walk frees retracted facts per tuple (`Walk::hold_top`). The host
-/// compiles a walk for each case (`HOLD`), so a query in a firing pays nothing per
-/// tuple; the image has one walk that asks.
-#[inline(always)]
-fn holds<const HOLD: bool>(w: &Walk) -> bool {
-    if cfg!(feature = "wide-pools") {
-        HOLD
-    } else {
-        w.hold_top
-    }
-}
-
 /// Walks the tuples of variables `k..`; returns true to stop the whole walk.
-fn walk<const HOLD: bool>(cx: &mut Core<'_>, w: &mut Walk, k: usize) -> Result<bool, EvalError> {
+fn walk(cx: &mut Core<'_>, w: &mut Walk, k: usize) -> Result<bool, EvalError> {
     let var = w.q.vars[k];
     let mut tnode = cx.exprs[var as usize].first;
     while tnode != NONE {
@@ -215,10 +203,10 @@ fn walk<const HOLD: bool>(cx: &mut Core<'_>, w: &mut Walk, k: usize) -> Result<b
                 counter: cx.st.next_fact_num,
             });
             let stop = if k + 1 < w.q.nvars {
-                walk::<HOLD>(cx, w, k + 1)?
+                walk(cx, w, k + 1)?
             } else {
                 let stop = visit(cx, w)?;
-                if holds::<HOLD>(w) {
+                if w.hold_top && cx.st.pending != NONE {
                     release_held(cx, &w.cursor[..w.q.nvars], 0..0);
                 }
                 stop
@@ -318,23 +306,10 @@ fn run(
         last: Value::Sym(SYM_FALSE),
         hold_top: false,
     };
-    if !cx.st.firing {
-        return run_held(cx, w);
-    }
-    walk::<false>(cx, &mut w, 0)?;
-    Ok(w)
-}
-
-/// `run` outside a firing: retracted facts stay readable (`hold_begin`).
-#[inline(never)]
-fn run_held(cx: &mut Core<'_>, mut w: Walk) -> Result<Walk, EvalError> {
+    // outside a firing, retracted facts stay readable (`hold_begin`)
     let hold = hold_begin(cx);
     w.hold_top = hold.1;
-    let r = if cfg!(feature = "wide-pools") && w.hold_top {
-        walk::<true>(cx, &mut w, 0)
-    } else {
-        walk::<false>(cx, &mut w, 0)
-    };
+    let r = walk(cx, &mut w, 0);
     hold_end(cx, hold);
     r.map(|_| w)
 }
@@ -399,8 +374,10 @@ fn delayed(cx: &mut Core<'_>, call: Ix, top: bool) -> Result<Value, EvalError> {
             cx.eval_chain(w.q.actions)?
         };
         release_scratch(cx, keep_value(mark, last));
-        if top && cx.st.pending != NONE {
-            // the tuples still to come may name a fact retracted now
+        if top && cx.st.pending != NONE && cx.fact_slots_full() {
+            // the tuples still to come may name a fact retracted now; freed only when
+            // the slots are needed, as the check scans those tuples (per tuple, it
+            // made a query retracting all its facts quadratic)
             let (s, e) = (tuples.start as usize, (tuples.start + tuples.len) as usize);
             release_held(cx, &[], (s + t + n).min(e)..e);
         }

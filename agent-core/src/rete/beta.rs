@@ -439,7 +439,7 @@ impl Core<'_> {
     fn link_token(&mut self, join: Ix, parent: Ix, am: Ix) -> Result<Ix, EvalError> {
         let t = self.alloc_token()?;
         let kind = self.joins[join as usize].kind;
-        // links and not/exists outputs stay in front of the parent's other children
+        // not/exists outputs stay in front of the parent's other children
         // (see `output_of`); the others keep newest-first order among themselves,
         // which is all that the per-successor walks (`take_back`) rely on
         let (after, psib) = if parent == NONE {
@@ -773,8 +773,7 @@ impl Core<'_> {
     /// Takes back what a token passed on, successor by successor in the order
     /// CLIPS created its copies (oldest successor first): a rule end loses the
     /// activation, a child join the partial matches built on the token, a join from
-    /// the right the output it blocks (which looks for another blocker). Its own
-    /// links stay.
+    /// the right the output it blocks (which looks for another blocker).
     #[cfg_attr(feature = "wide-pools", inline(always))]
     fn deactivate(&mut self, t: Ix) {
         let tk = &self.tokens[t as usize];

@@ -94,8 +94,8 @@ impl Core<'_> {
     }
 
     /// `quick_join_test` for the tests of `join` through its cached plan.
-    #[cfg_attr(feature = "wide-pools", inline(always))]
     /// `tests` and `depth` are the join's (read by the caller with its other fields).
+    #[cfg_attr(feature = "wide-pools", inline(always))]
     pub(crate) fn planned_join_test(
         &mut self,
         join: Ix,
@@ -117,14 +117,7 @@ impl Core<'_> {
         for op in &plan.ops[..plan.n as usize] {
             let va = self.planned_var(op.a, depth, left, right_fact)?;
             let vb = self.planned_var(op.b, depth, left, right_fact)?;
-            // compared where they lie (copies of the two values cost more than the test)
-            let same = match (va, vb) {
-                (Value::Sym(x), Value::Sym(y)) => x == y,
-                (Value::Int(x), Value::Int(y)) => x == y,
-                (Value::Multi(_), _) | (_, Value::Multi(_)) => return None,
-                _ => va.same(*vb),
-            };
-            if same == op.negated {
+            if same_cell(va, vb)? == op.negated {
                 return Some(false);
             }
         }
