@@ -568,6 +568,25 @@ mod tests {
         assert!(out.ends_with("100\n()\n"), "{out}");
     }
 
+    /// A modify inside a top-level query on a full fact pool: the old fact is freed at
+    /// once instead of held, so the modify finds a slot (it failed while the query held
+    /// it); `?f:slot` then reads FALSE. With room to spare the old values are read.
+    #[test]
+    fn top_level_query_modify_fits_a_full_fact_pool() {
+        let out = run_program(
+            "(deftemplate a (slot x))
+             (loop-for-count (?i 1 126) (assert (a (x ?i))))
+             (do-for-fact ((?f a)) (= ?f:x 1) (modify ?f (x 0)) (printout t ?f:x crlf))
+             (assert (a (x 128)))
+             (printout t (length$ (find-all-facts ((?g a)) TRUE)) crlf)
+             (do-for-fact ((?f a)) (= ?f:x 2) (modify ?f (x -2)) (printout t ?f:x crlf))
+             (printout t (length$ (find-all-facts ((?g a)) TRUE)) \" \"
+                         (length$ (find-all-facts ((?g a)) (<= ?g:x 0))) crlf)",
+        );
+        // 126 + (initial-fact) leave one slot: the first modify holds the old fact
+        assert!(out.ends_with("1\n<Fact-128>\n127\nFALSE\n127 2\n"), "{out}");
+    }
+
     /// The delayed variant frees them when the slots run out: the same 100-for-100
     /// swap fits (each tuple's fact is read after its retraction), twice over.
     #[test]

@@ -336,21 +336,26 @@ impl Core<'_> {
     /// Checks, before a modify retracts `old`, that the new fact (values on the stack
     /// at `base`) will find a fact slot and value cells, so a full pool fails with
     /// nothing changed. During a firing the retracted fact stays readable (pending):
-    /// its slot and cells are not given back until the firing ends.
+    /// its slot and cells are not given back until the firing ends. A top-level query
+    /// holds it too, but only so that `?f:slot` reads the old values: on a full pool
+    /// the modify matters more, so the old fact is freed at once (`?f:slot` then reads
+    /// FALSE). Returns whether the retract must free it so.
     pub(crate) fn modify_fits(
         &mut self,
         old: Ix,
         tmpl: Ix,
         base: usize,
-    ) -> Result<(), CapacityError> {
-        let freed = !self.st.firing && self.st.query_hold == 0;
-        if self.fact_slots_full() && !freed {
+    ) -> Result<bool, CapacityError> {
+        let slots_full = self.fact_slots_full();
+        if slots_full && self.st.firing {
             return Err(cap(Pool::Facts, self.facts.len()));
         }
+        let free_now = slots_full && self.st.query_hold > 0;
+        let freed = !self.st.firing && (self.st.query_hold == 0 || free_now);
         let need = self.cells_needed(tmpl, base);
         let cap_v = self.values.len().min(NONE as usize);
         if self.st.values_top as usize + need <= cap_v {
-            return Ok(());
+            return Ok(free_now);
         }
         // what compaction would leave: the cells of live and pending facts
         let mut used = 0usize;
@@ -367,7 +372,7 @@ impl Core<'_> {
         if used + need > cap_v {
             return Err(cap(Pool::FactValues, self.values.len()));
         }
-        Ok(())
+        Ok(free_now)
     }
 
     /// Puts back a fact a failed modify retracted: the same slot, number and values,
@@ -697,8 +702,13 @@ impl Core<'_> {
     }
 
     /// Retracts a live fact: watch line, network removal, then the slot is freed (or
-    /// kept readable until the current firing ends).
+    /// kept readable until the current firing or top-level query tuple ends).
     pub fn retract_fact(&mut self, slot: Ix) {
+        self.retract_fact_held(slot, self.st.firing || self.st.query_hold > 0);
+    }
+
+    /// Retracts a live fact; `hold` keeps its slot and cells readable (pending).
+    pub(crate) fn retract_fact_held(&mut self, slot: Ix, hold: bool) {
         if self.st.watch & crate::engine::watch::FACTS != 0 {
             self.print_fact_line("<== ", slot);
         }
@@ -709,7 +719,7 @@ impl Core<'_> {
             let _ = self.pay_owed();
         }
         self.unlink_fact(slot);
-        if self.st.firing || self.st.query_hold > 0 {
+        if hold {
             self.facts[slot as usize].state = FactState::Pending;
             self.facts[slot as usize].next = self.st.pending;
             self.st.pending = slot;
