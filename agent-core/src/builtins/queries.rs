@@ -57,6 +57,9 @@ struct Walk {
     act: bool,
     found: bool,
     last: Value,
+    /// do-for-all-facts: the scratch top before the first tuple's actions; each tuple's
+    /// value supersedes the one before, whose cells are freed down to here.
+    act_mark: Option<Ix>,
     /// The outermost query outside a firing: it frees the facts its tuples retracted
     /// (see `Core::query_hold`) once no variable is bound to them.
     hold_top: bool,
@@ -236,6 +239,13 @@ fn visit(cx: &mut Core<'_>, w: &mut Walk) -> Result<bool, EvalError> {
         }
     }
     if w.act {
+        if w.mode == Mode::All {
+            let base = *w.act_mark.get_or_insert(cx.st.scratch_top);
+            if matches!(w.last, Value::Multi(_)) {
+                w.last = Value::Sym(SYM_FALSE);
+                release_scratch(cx, base);
+            }
+        }
         let mark = cx.st.scratch_top;
         w.last = if w.q.actions == NONE {
             Value::Sym(SYM_FALSE)
@@ -304,6 +314,7 @@ fn run(
         act,
         found: false,
         last: Value::Sym(SYM_FALSE),
+        act_mark: None,
         hold_top: false,
     };
     // outside a firing, retracted facts stay readable (`hold_begin`)
@@ -361,11 +372,17 @@ fn delayed(cx: &mut Core<'_>, call: Ix, top: bool) -> Result<Value, EvalError> {
     };
     let n = w.q.nvars;
     let mut last = Value::Sym(SYM_FALSE);
+    // each tuple's value supersedes the one before: its cells go down to here
+    let base = cx.st.scratch_top;
     let mut t = 0;
     while t + n <= tuples.len as usize {
         for k in 0..n {
             let at = (cx.st.bp + cx.exprs[w.q.vars[k] as usize].data) as usize;
             cx.stack[at] = cx.mf_item(tuples, t + k);
+        }
+        if matches!(last, Value::Multi(_)) {
+            last = Value::Sym(SYM_FALSE);
+            release_scratch(cx, base);
         }
         let mark = cx.st.scratch_top;
         last = if w.q.actions == NONE {
@@ -527,5 +544,24 @@ FALSE
 ",
         );
         assert!(out.contains("items 3 (<Fact-2>)\n"), "{out}");
+    }
+
+    /// Each tuple's multifield value supersedes the one before, whose cells are freed:
+    /// 60 tuples of 41 cells each would not fit the small engine's scratch at once.
+    #[test]
+    fn do_for_all_facts_frees_superseded_multifield_values() {
+        let out = run_program(
+            "(deftemplate p (slot v))
+(defglobal ?*big* = (create$ 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20
+                             21 22 23 24 25 26 27 28 29 30 31 32 33 34 35 36 37 38 39 40))
+(loop-for-count (?i 1 60) (assert (p (v ?i))))
+(bind ?r (do-for-all-facts ((?x p)) TRUE (create$ ?*big* ?x:v)))
+(printout t (length$ ?r) \" \" (nth$ 41 ?r) crlf)
+(bind ?r (delayed-do-for-all-facts ((?x p)) TRUE (create$ ?*big* (* 2 ?x:v))))
+(printout t (length$ ?r) \" \" (nth$ 41 ?r) crlf)
+",
+        );
+        assert!(out.contains("\n41 60\n"), "{out}");
+        assert!(out.ends_with("\n41 120\n"), "{out}");
     }
 }
