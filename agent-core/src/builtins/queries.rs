@@ -381,7 +381,6 @@ fn delayed(cx: &mut Core<'_>, call: Ix, top: bool) -> Result<Value, EvalError> {
             cx.stack[at] = cx.mf_item(tuples, t + k);
         }
         if matches!(last, Value::Multi(_)) {
-            last = Value::Sym(SYM_FALSE);
             release_scratch(cx, base);
         }
         let mark = cx.st.scratch_top;
