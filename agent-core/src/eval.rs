@@ -19,7 +19,7 @@ impl Core<'_> {
             Op::Int | Op::Float | Op::Sym | Op::Str => Ok(self.const_value(e)),
             Op::Local => Ok(self.stack[(self.st.bp + x.data) as usize]),
             Op::Global => Ok(self.globals[x.data as usize].value),
-            Op::PatVar => self.pattern_var(x.aux, x.data, x.first),
+            Op::PatVar => self.pattern_var_of(x),
             Op::QSlot => self.query_slot(e, x),
             Op::Expand => self.eval(x.first),
             Op::Eq2 => {
@@ -66,7 +66,7 @@ impl Core<'_> {
                 Expr::join_bits(x, self.exprs[e as usize + 1]) as i64
             )),
             Op::Local => Ok(self.stack[(self.st.bp + x.data) as usize]),
-            Op::PatVar => self.pattern_var(x.aux, x.data, x.first),
+            Op::PatVar => self.pattern_var_of(x),
             Op::QSlot => self.query_slot(e, x),
             _ => self.eval(e),
         }
@@ -170,6 +170,26 @@ impl Core<'_> {
         }
     }
 
+    /// `pattern_var` of node `x`, its commonest case (a single-field slot of a flat
+    /// fact) read in place on the host, without the call.
+    #[cfg_attr(feature = "wide-pools", inline(always))]
+    fn pattern_var_of(&mut self, x: Expr) -> Result<Value, EvalError> {
+        #[cfg(feature = "wide-pools")]
+        if loc::elem(x.data) == loc::SINGLE && x.data != loc::FACT {
+            let fact = self.binding(x.aux).fact;
+            if fact != NONE {
+                let f = &self.facts[fact as usize];
+                if f.flat {
+                    let v = self.values[(f.start + Ix::from(loc::slot(x.data))) as usize];
+                    if !v.is_multi() {
+                        return Ok(v);
+                    }
+                }
+            }
+        }
+        self.pattern_var(x.aux, x.data, x.first)
+    }
+
     /// Value of an LHS variable: a field of the fact bound to pattern `pat`.
     pub(crate) fn pattern_var(
         &mut self,
@@ -271,7 +291,9 @@ impl Core<'_> {
         Err(EvalError::new(EvalErrorKind::UnboundVariable))
     }
 
-    /// `?v:slot` (an `Op::QSlot` node).
+    /// `?v:slot` (an `Op::QSlot` node); inlined on the host, where most are read in
+    /// place (`cached_query_slot`) and the call cost as much as the read.
+    #[cfg_attr(feature = "wide-pools", inline(always))]
     fn query_slot(&mut self, e: Ix, x: Expr) -> Result<Value, EvalError> {
         let fv = self.stack[(self.st.bp + x.data) as usize];
         let name = self.exprs[x.first as usize].data;

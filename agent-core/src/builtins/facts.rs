@@ -228,6 +228,31 @@ impl Core<'_> {
         }
     }
 
+    /// What `modify_or_duplicate`'s two push loops make of the `n` slots of `fact`
+    /// when it is flat, no slot holds a multifield and the stack has room: the
+    /// values pushed twice from stack slot `sp` (the top); false (nothing pushed)
+    /// otherwise.
+    #[cfg(feature = "wide-pools")]
+    fn copy_flat_slots_twice(&mut self, fact: Ix, n: usize, sp: usize) -> bool {
+        let f = &self.facts[fact as usize];
+        let start = f.start as usize;
+        if !f.flat || sp + 2 * n > self.stack.len() {
+            return false;
+        }
+        for s in 0..n {
+            let v = self.values[start + s];
+            // an empty multislot's cell: `fact_slot_value` makes a scratch multifield
+            if v.is_multi() {
+                return false;
+            }
+            self.stack[sp + s] = v;
+            self.stack[sp + n + s] = v;
+        }
+        self.st.sp = (sp + 2 * n) as Ix;
+        self.note_hw(crate::error::Pool::EvalStack, sp + 2 * n);
+        true
+    }
+
     fn modify_or_duplicate(
         &mut self,
         call: Ix,
@@ -267,12 +292,19 @@ impl Core<'_> {
         let saved = self.st.sp;
         let base = saved + nslots;
         let r = (|| {
-            for s in 0..nslots {
-                let v = self.fact_slot_value(old, s)?;
-                self.push_value(v)?;
-            }
-            for s in 0..nslots {
-                self.push_value(self.stack[(saved + s) as usize])?;
+            // host: a flat fact without multislot values (most) copied in place
+            #[cfg(feature = "wide-pools")]
+            let copied = self.copy_flat_slots_twice(old, nslots as usize, saved as usize);
+            #[cfg(not(feature = "wide-pools"))]
+            let copied = false;
+            if !copied {
+                for s in 0..nslots {
+                    let v = self.fact_slot_value(old, s)?;
+                    self.push_value(v)?;
+                }
+                for s in 0..nslots {
+                    self.push_value(self.stack[(saved + s) as usize])?;
+                }
             }
             let mut sv = self.exprs[first as usize].next;
             while sv != NONE {

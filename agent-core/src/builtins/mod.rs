@@ -5,7 +5,8 @@
 //! lazy builtins (control forms, fact-set queries) receive their call node and
 //! evaluate arguments themselves with [`Core::eval`]. Each module exports
 //! `pub const FUNCS: &[Builtin]`; [`TABLES`] lists the modules. A function is named by
-//! a `Ix` id `table << 8 | index`, stored in the call's expression node.
+//! its `Ix` index in [`BUILTINS`] (the tables one after another), stored in the
+//! call's expression node.
 //! See `/work/brief/engine-interfaces.md` for how to add one.
 
 pub mod basic;
@@ -120,7 +121,8 @@ impl Builtin {
     }
 }
 
-/// Every builtin table; the position is the high byte of a function id.
+/// Every builtin table, in id order (`basic` first: its comparisons are the ids
+/// `basic::CMP_FIRST..=CMP_LAST`).
 pub const TABLES: &[&[Builtin]] = &[
     basic::FUNCS,
     control::FUNCS,
@@ -138,20 +140,45 @@ pub const TABLES: &[&[Builtin]] = &[
     evaluate::FUNCS,
 ];
 
+const fn builtin_count() -> usize {
+    let (mut n, mut t) = (0, 0);
+    while t < TABLES.len() {
+        n += TABLES[t].len();
+        t += 1;
+    }
+    n
+}
+
+const fn flatten<const N: usize>() -> [Builtin; N] {
+    let mut out = [basic::FUNCS[0]; N];
+    let (mut t, mut k) = (0, 0);
+    while t < TABLES.len() {
+        let mut i = 0;
+        while i < TABLES[t].len() {
+            out[k] = TABLES[t][i];
+            i += 1;
+            k += 1;
+        }
+        t += 1;
+    }
+    out
+}
+
+/// Every builtin, the tables one after another; a function's id is its index: every
+/// call reads its builtin with one index, not two.
+pub static BUILTINS: [Builtin; builtin_count()] = flatten();
+
 /// Finds a builtin by name.
 pub fn lookup(name: &str) -> Option<(Ix, &'static Builtin)> {
-    for (t, table) in TABLES.iter().enumerate() {
-        for (i, b) in table.iter().enumerate() {
-            if b.name == name {
-                return Some(((t as Ix) << 8 | i as Ix, b));
-            }
-        }
-    }
-    None
+    BUILTINS
+        .iter()
+        .enumerate()
+        .find(|(_, b)| b.name == name)
+        .map(|(i, b)| (i as Ix, b))
 }
 
 pub fn get(id: Ix) -> &'static Builtin {
-    &TABLES[(id >> 8) as usize][(id & 0xFF) as usize]
+    &BUILTINS[id as usize]
 }
 
 /// Number argument, as CLIPS's arithmetic sees it.

@@ -151,7 +151,7 @@ impl<'s> Parser<'s, '_, '_> {
 
     /// Builtin call node by name (for desugaring special forms).
     pub fn builtin_call(&mut self, name: &'static str) -> PResult<Ix> {
-        let (id, _) = builtins::lookup(name).unwrap_or((0, &builtins::basic::FUNCS[0]));
+        let (id, _) = builtins::lookup(name).unwrap_or((0, &builtins::BUILTINS[0]));
         self.push_call(FnKind::Builtin, id)
     }
 

@@ -29,19 +29,9 @@ impl Core<'_> {
             // modify's old fact would need more room to come back than it freed)
             let node = &self.alphas[a as usize];
             if node.live {
-                // the first test decided up front: most nodes a fact visits fail it,
-                // and then no segmentation work is done
-                let mut tests = node.tests;
-                let pass = tests == NONE
-                    || match self.quick_first_test(tests, fact) {
-                        Some(false) => false,
-                        Some(true) => {
-                            tests = self.exprs[tests as usize].next;
-                            true
-                        }
-                        None => true,
-                    };
-                if pass {
+                // the tests the quick path decides come first: most nodes a fact
+                // visits fail one, and then no segmentation work is done
+                if let Some(tests) = self.quick_tests(node.tests, fact) {
                     // host: a node without multislot constraints (most) matches in
                     // one call
                     #[cfg(feature = "wide-pools")]
@@ -98,8 +88,7 @@ impl Core<'_> {
     }
 
     /// Runs one alpha node over one fact, creating an alpha match per segmentation;
-    /// `tests` are the node's tests still to check (all, or those after the ones
-    /// the quick path found true).
+    /// `tests` are the node's tests left for the evaluator (see `quick_tests`).
     pub(crate) fn match_alpha(&mut self, alpha: Ix, fact: Ix, tests: Ix) -> Result<(), EvalError> {
         let node = &self.alphas[alpha as usize];
         if node.desc == NONE && node.nmarks == 0 {
@@ -217,18 +206,9 @@ impl Core<'_> {
         tests: Ix,
         marks: [u8; MAX_MARKS],
     ) -> Result<bool, EvalError> {
-        let mut t = tests;
-        // tests the quick path decides are skipped in order; the evaluator takes over
-        // (for all the rest, as before) at the first one it cannot decide
-        loop {
-            if t == NONE {
-                return Ok(true);
-            }
-            match self.quick_alpha_test(t, fact) {
-                Some(true) => t = self.exprs[t as usize].next,
-                Some(false) => return Ok(false),
-                None => break,
-            }
+        let t = tests;
+        if t == NONE {
+            return Ok(true);
         }
         let saved = self.st.this_pm;
         self.st.this_pm = PatBinding { fact, marks };
@@ -242,6 +222,32 @@ impl Core<'_> {
             }
             r => r,
         }
+    }
+
+    /// A node's tests `tests` run on `fact` by the quick path, in order, before any
+    /// segmentation (they read no marks): None when one is false, else the tests
+    /// left for the evaluator, from the first one the quick path cannot decide
+    /// (NONE: all passed).
+    #[cfg_attr(feature = "wide-pools", inline(always))]
+    fn quick_tests(&mut self, tests: Ix, fact: Ix) -> Option<Ix> {
+        let mut t = tests;
+        if t == NONE {
+            return Some(t);
+        }
+        // the first test, which most nodes a fact visits fail, with its fast case
+        match self.quick_first_test(t, fact) {
+            Some(true) => t = self.exprs[t as usize].next,
+            Some(false) => return None,
+            None => return Some(t),
+        }
+        while t != NONE {
+            match self.quick_alpha_test(t, fact) {
+                Some(true) => t = self.exprs[t as usize].next,
+                Some(false) => return None,
+                None => break,
+            }
+        }
+        Some(t)
     }
 
     /// `quick_alpha_test` with its commonest case first: a field of the fact equal
@@ -533,7 +539,9 @@ impl Core<'_> {
             let mut a = self.templates[tmpl as usize].alpha_head;
             while a != NONE {
                 if a >= first {
-                    self.match_alpha(a, f, self.alphas[a as usize].tests)?;
+                    if let Some(tests) = self.quick_tests(self.alphas[a as usize].tests, f) {
+                        self.match_alpha(a, f, tests)?;
+                    }
                 }
                 a = self.alphas[a as usize].next_in_tmpl;
             }
