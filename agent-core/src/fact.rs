@@ -708,6 +708,7 @@ impl Core<'_> {
     }
 
     /// Retracts a live fact; `hold` keeps its slot and cells readable (pending).
+    #[cfg_attr(feature = "wide-pools", inline(always))]
     pub(crate) fn retract_fact_held(&mut self, slot: Ix, hold: bool) {
         if self.st.watch & crate::engine::watch::FACTS != 0 {
             self.print_fact_line("<== ", slot);

@@ -57,9 +57,9 @@ struct Walk {
     act: bool,
     found: bool,
     last: Value,
-    /// do-for-all-facts: the scratch top before the first tuple's actions; each tuple's
-    /// value supersedes the one before, whose cells are freed down to here.
-    act_mark: Option<Ix>,
+    /// The scratch top when the walk began: in do-for-all-facts each tuple's value
+    /// supersedes the one before, whose cells are freed down to here.
+    base: Ix,
     /// The outermost query outside a firing: it frees the facts its tuples retracted
     /// (see `Core::query_hold`) once no variable is bound to them.
     hold_top: bool,
@@ -239,12 +239,9 @@ fn visit(cx: &mut Core<'_>, w: &mut Walk) -> Result<bool, EvalError> {
         }
     }
     if w.act {
-        if w.mode == Mode::All {
-            let base = *w.act_mark.get_or_insert(cx.st.scratch_top);
-            if matches!(w.last, Value::Multi(_)) {
-                w.last = Value::Sym(SYM_FALSE);
-                release_scratch(cx, base);
-            }
+        if w.mode == Mode::All && matches!(w.last, Value::Multi(_)) {
+            w.last = Value::Sym(SYM_FALSE);
+            release_scratch(cx, w.base);
         }
         let mark = cx.st.scratch_top;
         w.last = if w.q.actions == NONE {
@@ -314,7 +311,7 @@ fn run(
         act,
         found: false,
         last: Value::Sym(SYM_FALSE),
-        act_mark: None,
+        base: cx.st.scratch_top,
         hold_top: false,
     };
     // outside a firing, retracted facts stay readable (`hold_begin`)
