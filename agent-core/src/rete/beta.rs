@@ -926,10 +926,29 @@ impl Core<'_> {
     }
 
     /// Whether `join`'s child list (child joins and rule ends) has one entry.
-    #[cfg_attr(feature = "wide-pools", inline(always))]
+    #[cfg(not(feature = "wide-pools"))]
     fn one_child(&self, join: Ix) -> bool {
         let c = self.joins[join as usize].first_child;
         c != NONE && self.joins[c as usize].next_sibling == NONE
+    }
+
+    #[cfg(feature = "wide-pools")]
+    #[inline(always)]
+    fn one_child(&self, join: Ix) -> bool {
+        self.joins[join as usize].one_child
+    }
+
+    /// Records whether `join`'s child list has one entry (host: `Join::one_child`),
+    /// after every change to the list.
+    pub(crate) fn note_children(&mut self, join: Ix) {
+        #[cfg(feature = "wide-pools")]
+        {
+            let c = self.joins[join as usize].first_child;
+            self.joins[join as usize].one_child =
+                c != NONE && self.joins[c as usize].next_sibling == NONE;
+        }
+        #[cfg(not(feature = "wide-pools"))]
+        let _ = join;
     }
 
     /// Unlinks a token from its parent, alpha match (or blocker, or owed list) and
