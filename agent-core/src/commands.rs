@@ -428,6 +428,7 @@ impl Core<'_> {
         let head = self.joins[parent as usize].first_child;
         self.joins[parent as usize].first_child =
             self.unlink_from_list(head, j, |x| &mut x.next_sibling);
+        self.note_children(parent);
         if self.joins[parent as usize].index_child == j {
             self.drop_beta_index(parent);
         }

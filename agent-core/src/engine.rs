@@ -892,6 +892,7 @@ impl Core<'_> {
                 self.joins[c as usize].next_sibling = n;
                 c = n;
             }
+            self.note_children(p);
             if self.joins[p as usize].index_child != NONE
                 && self.joins[p as usize].index_child >= cp.njoins
             {

@@ -386,6 +386,16 @@ impl Core<'_> {
             "join 0 is not the root",
             0
         );
+        #[cfg(feature = "wide-pools")]
+        for j in 0..st.njoins {
+            let c = self.joins[j as usize].first_child;
+            ensure!(
+                self.joins[j as usize].one_child
+                    == (c != NONE && self.joins[c as usize].next_sibling == NONE),
+                "join's one-child flag disagrees with its child list",
+                j
+            );
+        }
         for j in 1..st.njoins {
             let jn = self.joins[j as usize];
             if jn.refs == 0 {

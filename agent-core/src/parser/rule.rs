@@ -1304,6 +1304,8 @@ impl<'s> Parser<'s, '_, '_> {
                 index_child: NONE,
                 #[cfg(feature = "wide-pools")]
                 index_built: false,
+                #[cfg(feature = "wide-pools")]
+                one_child: false,
             };
             // a join from the right comes right after its subnetwork's first join
             // among the parent's children: the subnetwork sees a new left token first
@@ -1319,6 +1321,7 @@ impl<'s> Parser<'s, '_, '_> {
                 self.cx.joins[j as usize].next_sibling = self.cx.joins[parent as usize].first_child;
                 self.cx.joins[parent as usize].first_child = j;
             }
+            self.cx.note_children(parent);
             if rjoin != NONE {
                 self.cx.joins[j as usize].alpha_next = self.cx.joins[rjoin as usize].rsucc;
                 self.cx.joins[rjoin as usize].rsucc = j;
@@ -1346,6 +1349,7 @@ impl<'s> Parser<'s, '_, '_> {
             ..Join::EMPTY
         };
         self.cx.joins[prev as usize].first_child = term;
+        self.cx.note_children(prev);
         let prev = term;
         self.cx.note_hw(Pool::Joins, self.cx.st.njoins as usize);
         self.cx.rules[nr] = Rule {

@@ -143,10 +143,31 @@ impl Core<'_> {
     /// Evaluates a join's tests for left token `left` and alpha match `am`.
     #[cfg_attr(feature = "wide-pools", inline(always))]
     fn join_test(&mut self, join: Ix, left: Ix, am: Ix) -> Result<bool, EvalError> {
-        let (tests, depth) = {
-            let j = &self.joins[join as usize];
-            (j.tests, j.depth)
-        };
+        let (tests, depth) = self.join_test_fields(join);
+        self.join_test_with(join, tests, depth, left, am, &mut false)
+    }
+
+    /// The join's `tests` and `depth`, read once for a loop of `join_test_with`.
+    #[cfg_attr(feature = "wide-pools", inline(always))]
+    fn join_test_fields(&self, join: Ix) -> (Ix, u8) {
+        let j = &self.joins[join as usize];
+        (j.tests, j.depth)
+    }
+
+    /// `join_test` with the join's fields from `join_test_fields`. `planned`: the
+    /// join's test plan is known to be cached (set here once the plan answers, so a
+    /// loop over candidates checks the cache once; callers clear it after a
+    /// propagation, which may evict it).
+    #[cfg_attr(feature = "wide-pools", inline(always))]
+    fn join_test_with(
+        &mut self,
+        join: Ix,
+        tests: Ix,
+        depth: u8,
+        left: Ix,
+        am: Ix,
+        planned: &mut bool,
+    ) -> Result<bool, EvalError> {
         if tests == NONE {
             return Ok(true);
         }
@@ -156,9 +177,11 @@ impl Core<'_> {
             NONE
         };
         self.bind_for_quick(left);
-        if let Some(r) = self.planned_join_test(join, tests, depth, left, right_fact) {
+        if let Some(r) = self.planned_join_test(join, tests, depth, left, right_fact, planned) {
             return Ok(r);
         }
+        // the evaluator may do anything to the cache
+        *planned = false;
         self.join_test_eval(join, left, am)
     }
 
@@ -351,9 +374,19 @@ impl Core<'_> {
     ) -> Result<Ix, EvalError> {
         let rjoin = self.joins[join as usize].rjoin;
         if rjoin == NONE {
+            // host: the join's test fields read and its plan cache checked once
+            // (the image checks per candidate: less code)
+            #[cfg(feature = "wide-pools")]
+            let (tests, depth) = self.join_test_fields(join);
+            #[cfg(feature = "wide-pools")]
+            let mut planned = false;
             let mut a = from;
             while a != NONE {
-                if self.join_test(join, left, a)? {
+                #[cfg(feature = "wide-pools")]
+                let found = self.join_test_with(join, tests, depth, left, a, &mut planned)?;
+                #[cfg(not(feature = "wide-pools"))]
+                let found = self.join_test(join, left, a)?;
+                if found {
                     return Ok(a);
                 }
                 a = self.next_candidate(a, hashed);
@@ -378,11 +411,24 @@ impl Core<'_> {
         match kind {
             JoinKind::Positive => {
                 let (mut a, hashed) = self.first_candidate(join, left);
+                // host: see `find_blocker`
+                #[cfg(feature = "wide-pools")]
+                let (tests, depth) = self.join_test_fields(join);
+                #[cfg(feature = "wide-pools")]
+                let mut planned = false;
                 while a != NONE {
                     let next = self.next_candidate(a, hashed);
-                    if self.join_test(join, left, a)? {
+                    #[cfg(feature = "wide-pools")]
+                    let matched = self.join_test_with(join, tests, depth, left, a, &mut planned)?;
+                    #[cfg(not(feature = "wide-pools"))]
+                    let matched = self.join_test(join, left, a)?;
+                    if matched {
                         let t = self.link_token(join, left, a)?;
                         self.propagate_in(t, join)?;
+                        #[cfg(feature = "wide-pools")]
+                        {
+                            planned = false;
+                        }
                     }
                     a = next;
                 }
@@ -926,10 +972,29 @@ impl Core<'_> {
     }
 
     /// Whether `join`'s child list (child joins and rule ends) has one entry.
-    #[cfg_attr(feature = "wide-pools", inline(always))]
+    #[cfg(not(feature = "wide-pools"))]
     fn one_child(&self, join: Ix) -> bool {
         let c = self.joins[join as usize].first_child;
         c != NONE && self.joins[c as usize].next_sibling == NONE
+    }
+
+    #[cfg(feature = "wide-pools")]
+    #[inline(always)]
+    fn one_child(&self, join: Ix) -> bool {
+        self.joins[join as usize].one_child
+    }
+
+    /// Records whether `join`'s child list has one entry (host: `Join::one_child`),
+    /// after every change to the list.
+    pub(crate) fn note_children(&mut self, join: Ix) {
+        #[cfg(feature = "wide-pools")]
+        {
+            let c = self.joins[join as usize].first_child;
+            self.joins[join as usize].one_child =
+                c != NONE && self.joins[c as usize].next_sibling == NONE;
+        }
+        #[cfg(not(feature = "wide-pools"))]
+        let _ = join;
     }
 
     /// Unlinks a token from its parent, alpha match (or blocker, or owed list) and

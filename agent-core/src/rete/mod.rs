@@ -131,6 +131,11 @@ pub struct Join {
     /// without one (most, in Manners) never pay for it.
     #[cfg(feature = "wide-pools")]
     pub index_built: bool,
+    /// Host: whether the child list has exactly one entry (read for every deleted
+    /// partial match; two loads less than walking the list), kept by
+    /// `Core::note_children`.
+    #[cfg(feature = "wide-pools")]
+    pub one_child: bool,
 }
 
 impl Join {
@@ -158,6 +163,8 @@ impl Join {
         index_child: NONE,
         #[cfg(feature = "wide-pools")]
         index_built: false,
+        #[cfg(feature = "wide-pools")]
+        one_child: false,
     };
 }
 

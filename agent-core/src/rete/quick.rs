@@ -94,7 +94,8 @@ impl Core<'_> {
     }
 
     /// `quick_join_test` for the tests of `join` through its cached plan.
-    /// `tests` and `depth` are the join's (read by the caller with its other fields).
+    /// `tests` and `depth` are the join's (read by the caller with its other fields);
+    /// `planned`: the plan is known cached (see `join_test_with`), set once it is.
     #[cfg_attr(feature = "wide-pools", inline(always))]
     pub(crate) fn planned_join_test(
         &mut self,
@@ -103,11 +104,15 @@ impl Core<'_> {
         depth: u8,
         left: Ix,
         right_fact: Ix,
+        planned: &mut bool,
     ) -> Option<bool> {
         let i = join as usize % TEST_PLANS;
-        let cached = &self.st.test_plans[i];
-        if cached.join != join || cached.tests != tests {
-            self.st.test_plans[i] = self.test_plan(join, tests, depth);
+        if !*planned {
+            let cached = &self.st.test_plans[i];
+            if cached.join != join || cached.tests != tests {
+                self.st.test_plans[i] = self.test_plan(join, tests, depth);
+            }
+            *planned = true;
         }
         // read in place (a copy of the whole plan costs more than the few ops used)
         let plan = &self.st.test_plans[i];
