@@ -590,6 +590,22 @@ mod tests {
         assert!(out.ends_with("100\n()\n"), "{out}");
     }
 
+    /// The delayed variant frees them when the slots run out: the same 100-for-100
+    /// swap fits (each tuple's fact is read after its retraction), twice over.
+    #[test]
+    fn delayed_query_frees_retracted_facts_when_slots_run_out() {
+        let out = run_program(
+            "(deftemplate a (slot x))
+             (deftemplate b (slot y))
+             (loop-for-count (?i 1 100) (assert (a (x ?i))))
+             (delayed-do-for-all-facts ((?f a)) TRUE (retract ?f) (assert (b (y ?f:x))))
+             (delayed-do-for-all-facts ((?f b)) TRUE (retract ?f) (assert (a (x ?f:y))))
+             (printout t (length$ (find-all-facts ((?g a)) (> ?g:x 0))) crlf)
+             (printout t (find-all-facts ((?g b)) TRUE) crlf)",
+        );
+        assert!(out.ends_with("100\n()\n"), "{out}");
+    }
+
     /// A modify inside a top-level query on a full fact pool: the old fact is freed at
     /// once instead of held, so the modify finds a slot (it failed while the query held
     /// it); `?f:slot` then reads FALSE. With room to spare the old values are read.
@@ -607,21 +623,5 @@ mod tests {
         );
         // 126 + (initial-fact) leave one slot: the first modify holds the old fact
         assert!(out.ends_with("1\n<Fact-128>\n127\nFALSE\n127 2\n"), "{out}");
-    }
-
-    /// The delayed variant frees them when the slots run out: the same 100-for-100
-    /// swap fits (each tuple's fact is read after its retraction), twice over.
-    #[test]
-    fn delayed_query_frees_retracted_facts_when_slots_run_out() {
-        let out = run_program(
-            "(deftemplate a (slot x))
-             (deftemplate b (slot y))
-             (loop-for-count (?i 1 100) (assert (a (x ?i))))
-             (delayed-do-for-all-facts ((?f a)) TRUE (retract ?f) (assert (b (y ?f:x))))
-             (delayed-do-for-all-facts ((?f b)) TRUE (retract ?f) (assert (a (x ?f:y))))
-             (printout t (length$ (find-all-facts ((?g a)) (> ?g:x 0))) crlf)
-             (printout t (find-all-facts ((?g b)) TRUE) crlf)",
-        );
-        assert!(out.ends_with("100\n()\n"), "{out}");
     }
 }

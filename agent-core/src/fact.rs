@@ -339,7 +339,7 @@ impl Core<'_> {
     /// its slot and cells are not given back until the firing ends. A top-level query
     /// holds it too, but only so that `?f:slot` reads the old values: on a full pool
     /// the modify matters more, so the old fact is freed at once (`?f:slot` then reads
-    /// FALSE). Returns whether the retract must free it so.
+    /// FALSE). Returns whether the retract holds the old fact (`retract_fact_held`).
     pub(crate) fn modify_fits(
         &mut self,
         old: Ix,
@@ -350,12 +350,11 @@ impl Core<'_> {
         if slots_full && self.st.firing {
             return Err(cap(Pool::Facts, self.facts.len()));
         }
-        let free_now = slots_full && self.st.query_hold > 0;
-        let freed = !self.st.firing && (self.st.query_hold == 0 || free_now);
+        let hold = self.st.firing || (self.st.query_hold > 0 && !slots_full);
         let need = self.cells_needed(tmpl, base);
         let cap_v = self.values.len().min(NONE as usize);
         if self.st.values_top as usize + need <= cap_v {
-            return Ok(free_now);
+            return Ok(hold);
         }
         // what compaction would leave: the cells of live and pending facts
         let mut used = 0usize;
@@ -366,13 +365,13 @@ impl Core<'_> {
                 f = self.facts[f as usize].next;
             }
         }
-        if freed {
+        if !hold {
             used -= self.facts[old as usize].len as usize;
         }
         if used + need > cap_v {
             return Err(cap(Pool::FactValues, self.values.len()));
         }
-        Ok(free_now)
+        Ok(hold)
     }
 
     /// Puts back a fact a failed modify retracted: the same slot, number and values,

@@ -321,7 +321,7 @@ impl Core<'_> {
                 return self.assert_slots(tmpl, base as usize);
             }
             // no room for the new fact: fail before anything changed
-            let free_old = self.modify_fits(old, tmpl, base as usize)?;
+            let hold = self.modify_fits(old, tmpl, base as usize)?;
             let old_fact = self.facts[old as usize];
             // a modify that is undone prints nothing (see `hold`); the activations
             // its retract removes are noted, to put them back in their agenda places,
@@ -333,7 +333,6 @@ impl Core<'_> {
                 on: true,
                 ..crate::rete::UnblockLog::EMPTY
             };
-            let hold = (self.st.firing || self.st.query_hold > 0) && !free_old;
             self.retract_fact_held(old, hold);
             self.st.unblocked.on = false;
             self.journal_pause();
