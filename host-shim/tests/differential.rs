@@ -550,4 +550,5 @@ differential_programs! {
     p154_retracted_query_facts => "154-retracted-query-facts",
     p155_progn_multifield_value => "155-progn-multifield-value",
     p156_bind_global_multifield => "156-bind-global-multifield",
+    p157_query_slot_tests => "157-query-slot-tests",
 }

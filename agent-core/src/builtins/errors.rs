@@ -78,6 +78,10 @@ const FALSE_FNS: &[&str] = &[
     "evenp",
     "oddp",
     "subsetp",
+    "any-factp",
+    "do-for-fact",
+    "do-for-all-facts",
+    "delayed-do-for-all-facts",
 ];
 const ZERO_FNS: &[&str] = &["mod", "abs", "integer", "round", "str-compare"];
 const FLOAT_ZERO_FNS: &[&str] = &[
@@ -103,6 +107,8 @@ const EMPTY_MULTI_FNS: &[&str] = &[
     "replace$",
     "delete-member$",
     "replace-member$",
+    "find-fact",
+    "find-all-facts",
 ];
 /// Functions whose string arguments CLIPS checks in the body as "symbol or string".
 const LEXEME_BODY_FNS: &[&str] = &[

@@ -188,18 +188,148 @@ fn rebind_outer(cx: &mut Core<'_>, w: &Walk, k: usize) {
     }
 }
 
+/// The template a query variable's template-name node `tnode` names, remembered in
+/// the node's `aux` (index + 1) and checked against the name on every use, so a
+/// redefinition or `clear` cannot make it stale.
+fn template_of(cx: &mut Core<'_>, tnode: Ix) -> Option<Ix> {
+    let x = cx.exprs[tnode as usize];
+    let cached = Ix::from(x.aux);
+    if cached != 0 && cached <= cx.st.ntemplates && cx.templates[cached as usize - 1].name == x.data
+    {
+        return Some(cached - 1);
+    }
+    let t = cx.find_template(x.data)?;
+    if t < Ix::from(u8::MAX) {
+        cx.exprs[tnode as usize].aux = t as u8 + 1;
+    }
+    Some(t)
+}
+
+/// A query test that compares one slot of the innermost variable's fact with a
+/// constant, a local or a global (`(= ?m:index ?i)`, `(eq ?p:name ?from)`): such a
+/// test has no side effects, so the walk decides it in place for each fact and
+/// binds only the facts that pass. A fact it cannot decide (a multifield value, a
+/// non-number for `=`, which the builtin reports) goes to the evaluator.
+#[derive(Clone, Copy)]
+struct SlotTest {
+    /// Comparison builtin id (`basic::CMP_FIRST..=CMP_LAST`).
+    cmp: Ix,
+    /// The name of the slot the `QSlot` operand reads.
+    name: crate::value::SymId,
+    /// The other operand (a leaf node), and whether the slot is the first argument.
+    other: Ix,
+    slot_first: bool,
+}
+
+impl SlotTest {
+    /// The slot test of query test `test` on the variable in frame slot `frame`, if
+    /// the test has that shape.
+    fn of(cx: &Core<'_>, test: Ix, frame: Ix) -> Option<SlotTest> {
+        use super::basic::{CMP_FIRST, CMP_LAST};
+        use crate::expr::{FnKind, Op};
+        let x = cx.exprs[test as usize];
+        if x.op != Op::Call
+            || x.aux != FnKind::Builtin as u8
+            || !(CMP_FIRST..=CMP_LAST).contains(&x.data)
+        {
+            return None;
+        }
+        let a = x.first;
+        let b = if a == NONE {
+            return None;
+        } else {
+            cx.exprs[a as usize].next
+        };
+        if b == NONE || cx.exprs[b as usize].next != NONE {
+            return None;
+        }
+        let is_own_slot = |e: Ix| {
+            let n = cx.exprs[e as usize];
+            n.op == Op::QSlot && n.data == frame
+        };
+        let is_leaf = |e: Ix| {
+            let n = cx.exprs[e as usize];
+            match n.op {
+                Op::Sym | Op::Str | Op::Int | Op::Float | Op::Global => true,
+                // another frame slot: a local, or an outer query variable
+                Op::Local => n.data != frame,
+                _ => false,
+            }
+        };
+        let (qslot, other, slot_first) = if is_own_slot(a) && is_leaf(b) {
+            (a, b, true)
+        } else if is_own_slot(b) && is_leaf(a) {
+            (b, a, false)
+        } else {
+            return None;
+        };
+        Some(SlotTest {
+            cmp: x.data,
+            name: cx.exprs[cx.exprs[qslot as usize].first as usize].data,
+            other,
+            slot_first,
+        })
+    }
+
+    /// The test's result for live fact `f` of template `tmpl` whose slot `slot`
+    /// it reads; None when the evaluator must decide.
+    #[cfg_attr(feature = "wide-pools", inline(always))]
+    fn decide(&self, cx: &Core<'_>, f: Ix, slot: Ix) -> Option<bool> {
+        let fact = &cx.facts[f as usize];
+        if !fact.flat {
+            return None;
+        }
+        let v = cx.values[(fact.start + slot) as usize];
+        if v.is_multi() {
+            return None;
+        }
+        let o = cx.exprs[self.other as usize];
+        let w = match o.op {
+            crate::expr::Op::Local => cx.stack[(cx.st.bp + o.data) as usize],
+            crate::expr::Op::Global => cx.globals[o.data as usize].value,
+            _ => cx.const_value(self.other),
+        };
+        let (a, b) = if self.slot_first { (v, w) } else { (w, v) };
+        super::basic::compare(cx, self.cmp, a, b)
+    }
+}
+
 /// Walks the tuples of variables `k..`; returns true to stop the whole walk.
 fn walk(cx: &mut Core<'_>, w: &mut Walk, k: usize) -> Result<bool, EvalError> {
     let var = w.q.vars[k];
+    // the innermost variable's facts that fail a slot test are skipped in place
+    let quick = if k + 1 == w.q.nvars {
+        SlotTest::of(cx, w.q.test, cx.exprs[var as usize].data)
+    } else {
+        None
+    };
     let mut tnode = cx.exprs[var as usize].first;
     while tnode != NONE {
-        let tmpl = cx.find_template(cx.exprs[tnode as usize].data);
+        let tmpl = template_of(cx, tnode);
         tnode = cx.exprs[tnode as usize].next;
         let Some(tmpl) = tmpl else { continue };
+        // the slot the quick test reads in this template (none: the evaluator
+        // reports the unknown slot)
+        let quick_slot = match quick {
+            Some(q) if !cx.templates[tmpl as usize].implied => {
+                cx.find_slot(tmpl, q.name).map(|s| (q, s))
+            }
+            _ => None,
+        };
         let mut prev: Option<Resume> = None;
         while let Some(f) = next_of_template(cx, tmpl, prev) {
             debug_assert!(fact_fits(cx, var, f));
+            // (an outer variable the test may read is bound again first)
             rebind_outer(cx, w, k);
+            let decided = quick_slot.and_then(|(q, slot)| q.decide(cx, f, slot));
+            if decided == Some(false) {
+                // as after a visit whose test failed: nothing ran, nothing to stop for
+                prev = Some(Resume {
+                    fact: cx.fact_ref(f),
+                    counter: cx.st.next_fact_num,
+                });
+                continue;
+            }
             bind(cx, w, k, f);
             prev = Some(Resume {
                 fact: w.cursor[k],
@@ -208,7 +338,7 @@ fn walk(cx: &mut Core<'_>, w: &mut Walk, k: usize) -> Result<bool, EvalError> {
             let stop = if k + 1 < w.q.nvars {
                 walk(cx, w, k + 1)?
             } else {
-                let stop = visit(cx, w)?;
+                let stop = visit(cx, w, decided == Some(true))?;
                 if w.hold_top && cx.st.pending != NONE {
                     release_held(cx, &w.cursor[..w.q.nvars], 0..0);
                 }
@@ -222,15 +352,18 @@ fn walk(cx: &mut Core<'_>, w: &mut Walk, k: usize) -> Result<bool, EvalError> {
     Ok(false)
 }
 
-/// Tests the query for the bound tuple and acts on a match; true to stop.
+/// Tests the query for the bound tuple (unless `passed`: a slot test decided it) and
+/// acts on a match; true to stop.
 #[cfg_attr(feature = "wide-pools", inline(always))]
-fn visit(cx: &mut Core<'_>, w: &mut Walk) -> Result<bool, EvalError> {
-    let mark = cx.st.scratch_top;
-    let ok = Core::is_true(cx.eval(w.q.test)?);
-    // the query's temporaries are dead; keep a collected result contiguous
-    release_scratch(cx, mark);
-    if !ok {
-        return Ok(false);
+fn visit(cx: &mut Core<'_>, w: &mut Walk, passed: bool) -> Result<bool, EvalError> {
+    if !passed {
+        let mark = cx.st.scratch_top;
+        let ok = Core::is_true(cx.eval(w.q.test)?);
+        // the query's temporaries are dead; keep a collected result contiguous
+        release_scratch(cx, mark);
+        if !ok {
+            return Ok(false);
+        }
     }
     w.found = true;
     if w.collect {
