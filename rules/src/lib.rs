@@ -10,6 +10,7 @@
 #![no_std]
 
 pub mod facts;
+mod minify;
 pub mod order;
 pub mod setup;
 
@@ -27,6 +28,22 @@ macro_rules! rule_file {
             text: include_str!(concat!("../", $path)),
         }
     };
+}
+
+/// A rule file minified at compile time (see `minify`): only the minified bytes are
+/// embedded where this is used.
+macro_rules! min_rule_file {
+    ($path:literal) => {{
+        const LEN: usize = crate::minify::minified_len(include_str!(concat!("../", $path)));
+        const BYTES: [u8; LEN] = crate::minify::minify::<LEN>(include_str!(concat!("../", $path)));
+        RuleFile {
+            name: $path,
+            text: match core::str::from_utf8(&BYTES) {
+                Ok(text) => text,
+                Err(_) => panic!("minified rule text is not UTF-8"),
+            },
+        }
+    }};
 }
 
 /// Priorities (saliences) and helper functions; load first.
@@ -118,12 +135,12 @@ const fn same_text(a: &str, b: &str) -> bool {
     true
 }
 
-/// The embedded file called `name`; an unknown name stops the compilation.
-const fn by_name(name: &str) -> RuleFile {
+/// The file of `all` called `name`; an unknown name stops the compilation.
+const fn by_name(all: &[RuleFile], name: &str) -> RuleFile {
     let mut i = 0;
-    while i < ALL.len() {
-        if same_text(ALL[i].name, name) {
-            return ALL[i];
+    while i < all.len() {
+        if same_text(all[i].name, name) {
+            return all[i];
         }
         i += 1;
     }
@@ -133,6 +150,11 @@ const fn by_name(name: &str) -> RuleFile {
 /// The files named by `parts`, one after the other; `N` must be their total count
 /// (checked at compile time).
 const fn load<const N: usize>(parts: &[&[&str]]) -> [RuleFile; N] {
+    load_from(&ALL, parts)
+}
+
+/// `load` from the files of `all`.
+const fn load_from<const N: usize>(all: &[RuleFile], parts: &[&[&str]]) -> [RuleFile; N] {
     let mut out = [UTILS; N];
     let mut k = 0;
     let mut p = 0;
@@ -140,7 +162,7 @@ const fn load<const N: usize>(parts: &[&[&str]]) -> [RuleFile; N] {
         let mut i = 0;
         while i < parts[p].len() {
             assert!(k < N, "load order longer than its array");
-            out[k] = by_name(parts[p][i]);
+            out[k] = by_name(all, parts[p][i]);
             k += 1;
             i += 1;
         }
@@ -178,6 +200,42 @@ pub fn game_files(strategy: Strategy) -> &'static [RuleFile] {
         Strategy::Naive => &GAME_NAIVE,
         Strategy::Paper => &GAME_PAPER,
         Strategy::Travel => &GAME_TRAVEL,
+    }
+}
+
+/// The rule files as the agent image embeds them: minified (no comments, whitespace
+/// runs collapsed; see `minify`), loading into the same constructs.
+pub mod minified {
+    use super::{load_from, order, RuleFile, Strategy};
+
+    const ALL: [RuleFile; 12] = [
+        min_rule_file!("utils.clp"),
+        min_rule_file!("worldmodel.clp"),
+        min_rule_file!("execution.clp"),
+        min_rule_file!("production-common.clp"),
+        min_rule_file!("production.clp"),
+        min_rule_file!("select-paper.clp"),
+        min_rule_file!("select-travel.clp"),
+        min_rule_file!("production-naive.clp"),
+        min_rule_file!("referee.clp"),
+        min_rule_file!("game-log.clp"),
+        min_rule_file!("sim.clp"),
+        min_rule_file!("snapshot.clp"),
+    ];
+    const GAME_NAIVE: [RuleFile; 9] =
+        load_from(&ALL, &[order::AGENT_NAIVE, order::DRIVER, order::SIM]);
+    const GAME_PAPER: [RuleFile; 10] =
+        load_from(&ALL, &[order::AGENT_PAPER, order::DRIVER, order::SIM]);
+    const GAME_TRAVEL: [RuleFile; 10] =
+        load_from(&ALL, &[order::AGENT_TRAVEL, order::DRIVER, order::SIM]);
+
+    /// [`super::game_files`], minified.
+    pub fn game_files(strategy: Strategy) -> &'static [RuleFile] {
+        match strategy {
+            Strategy::Naive => &GAME_NAIVE,
+            Strategy::Paper => &GAME_PAPER,
+            Strategy::Travel => &GAME_TRAVEL,
+        }
     }
 }
 

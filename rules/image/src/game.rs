@@ -1,5 +1,6 @@
 //! The seeded game, played inside the image: the engine in its static arena, the game's
-//! rule files (agent, referee, instant simulation and decision log: `rules::game_files`),
+//! rule files (agent, referee, instant simulation and decision log: `rules::game_files`,
+//! minified: `rules::minified`),
 //! the setup of `robotino-agent sim --seed 0` asserted as facts after `(reset)`, run to
 //! the end, the result read back from the facts. The same steps as the host's `sim`
 //! (host-shim `sim::game`), so the score must be the same; CI compares them.
@@ -154,7 +155,7 @@ fn fail(
 /// Plays the seeded game in `engine` (fresh from `ImageEngine::new()`).
 pub fn play(engine: &mut ImageEngine, host: &mut QuietHost) -> Result<GameResult, GameError> {
     engine.set_pretty_print_forms(false);
-    for file in rules::game_files(STRATEGY) {
+    for file in rules::minified::game_files(STRATEGY) {
         engine
             .load_str(host, file.name, file.text)
             .map_err(|e| fail(host, "load", file.name, &e))?;

@@ -92,9 +92,9 @@ pub fn run(
     }
 }
 
-/// The game's rule base from the `rules` crate: files and CLIPS text size.
+/// The game's rule base from the `rules` crate (minified): files and CLIPS text size.
 fn rules_line(out: &mut impl Write) -> fmt::Result {
-    let files = rules::game_files(game::STRATEGY);
+    let files = rules::minified::game_files(game::STRATEGY);
     let bytes: usize = files.iter().map(|file| file.text.len()).sum();
     writeln!(
         out,
