@@ -415,6 +415,7 @@ impl Core<'_> {
     }
 
     pub(crate) fn unlink_join(&mut self, j: Ix) {
+        self.st.net_gen = self.st.net_gen.wrapping_add(1);
         let a = self.joins[j as usize].alpha;
         if a != NONE {
             let head = self.alphas[a as usize].succ;
@@ -501,6 +502,35 @@ impl Core<'_> {
         r
     }
 
+    /// A rule's actions, as `eval_chain`, each marked as the top-level action while it
+    /// runs (`State::top_action`, see `rete::defer`). A propagation still deferred at
+    /// the end is built here; its error wins, as it happened first.
+    fn eval_actions(&mut self, mut e: Ix) -> Result<Value, EvalError> {
+        let saved = self.st.top_action;
+        let mut r = Ok(Value::Sym(crate::builtins::SYM_FALSE));
+        while e != NONE {
+            self.st.top_action = e;
+            // a deferred propagation waits only for an assert or modify whose
+            // arguments call nothing (see `rete::defer`)
+            if self.st.deferred.fact != NONE && !self.may_wait_for(e) {
+                if let Err(err) = self.flush_deferred() {
+                    r = Err(err);
+                    break;
+                }
+            }
+            r = self.eval(e);
+            if r.is_err() || self.st.returning || self.st.breaking || self.st.halt_now() {
+                break;
+            }
+            e = self.exprs[e as usize].next;
+        }
+        self.st.top_action = saved;
+        if let Err(err) = self.flush_deferred() {
+            r = Err(err);
+        }
+        r
+    }
+
     fn run_rules(&mut self, limit: i64, stats: &mut RunStats) -> Result<u32, EvalError> {
         self.st.halt = false;
         let mut fired: u32 = 0;
@@ -540,7 +570,7 @@ impl Core<'_> {
                 }
             }
             if r.is_ok() {
-                r = self.eval_chain(self.rules[rule as usize].rhs);
+                r = self.eval_actions(self.rules[rule as usize].rhs);
             }
             self.st.returning = false;
             self.st.breaking = false;

@@ -229,6 +229,17 @@ pub struct State {
     pub error_fallback: Option<crate::builtins::errors::ErrorFallback>,
     /// Template of `(initial-fact)`.
     pub initial_tmpl: Ix,
+    /// Network generation: changes whenever joins are added or unlinked (cached
+    /// per-template facts about the network, `rete::defer`, are renewed then).
+    pub net_gen: u32,
+    /// The fact whose propagation waits for a retract to go first (`rete::defer`).
+    pub deferred: crate::rete::Deferred,
+    /// The right-hand-side action being evaluated at the top level (NONE outside a
+    /// firing), and whether the assert it makes now may be deferred.
+    pub top_action: Ix,
+    pub defer_next: bool,
+    /// A modify's old fact while its new one is asserted, for a deferral to keep.
+    pub modify_old: Option<(Ix, crate::fact::Fact)>,
     /// Pattern bindings for network tests (`lhs`) and the firing rule (`rhs`).
     pub lhs_pm: [PatBinding; MAX_PATTERNS],
     /// The partial match whose whole ancestry `lhs_pm` holds (NONE if none): then
@@ -324,6 +335,11 @@ impl State {
             field_error: None,
             error_fallback: None,
             initial_tmpl: NONE,
+            net_gen: 0,
+            deferred: crate::rete::Deferred::NONE,
+            top_action: NONE,
+            defer_next: false,
+            modify_old: None,
             lhs_pm: [PatBinding::EMPTY; MAX_PATTERNS],
             lhs_of: NONE,
             rhs_pm: [PatBinding::EMPTY; MAX_PATTERNS],
@@ -846,6 +862,7 @@ impl Core<'_> {
     /// Tokens and activations built by new joins are released first; shared old joins
     /// get their reference counts back.
     pub fn rollback(&mut self, cp: Checkpoint) {
+        self.st.net_gen = self.st.net_gen.wrapping_add(1);
         for j in (cp.njoins..self.st.njoins).rev() {
             if !self.joins[j as usize].is_terminal() {
                 self.clear_join_memory(j);

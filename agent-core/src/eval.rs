@@ -148,6 +148,7 @@ impl Core<'_> {
 
     /// Evaluates a chain of actions; the value of the last one is the result.
     /// Stops early while a `return`/`break` unwinds.
+    #[cfg_attr(feature = "wide-pools", inline(always))]
     pub fn eval_chain(&mut self, mut e: Ix) -> Result<Value, EvalError> {
         let mut v = Value::Sym(SYM_FALSE);
         while e != NONE {

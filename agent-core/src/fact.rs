@@ -110,6 +110,10 @@ impl Core<'_> {
             implied: true,
             alpha_head: NONE,
             nfacts: 0,
+            #[cfg(feature = "defer")]
+            defer_flags: 0,
+            #[cfg(feature = "defer")]
+            flags_gen: 0,
             #[cfg(feature = "wide-pools")]
             tfirst: NONE,
             #[cfg(feature = "wide-pools")]
@@ -503,6 +507,12 @@ impl Core<'_> {
     /// multislot's value is a scratch `Multi`). Returns `None` for a duplicate.
     /// Runs the network; on a full pool the fact is removed again and the error returned.
     pub fn assert_slots(&mut self, tmpl: Ix, base: usize) -> Result<Option<Ix>, EvalError> {
+        let defer = core::mem::take(&mut self.st.defer_next);
+        // a deferred propagation (`rete::defer`) belongs to an earlier assert: built
+        // first, or the assert fails with nothing changed
+        if self.st.deferred.fact != NONE {
+            self.flush_deferred()?;
+        }
         // matches an earlier removal still owes come first: without room for them
         // the assert fails with nothing changed
         self.pay_owed()?;
@@ -581,6 +591,15 @@ impl Core<'_> {
         if self.st.watch & crate::engine::watch::FACTS != 0 {
             self.print_fact_line("==> ", slot);
         }
+        if defer && self.may_defer() {
+            // the propagation waits for the next action (`rete::defer`)
+            self.st.deferred = crate::rete::Deferred {
+                fact: slot,
+                old: self.st.modify_old.take(),
+            };
+            self.release_traces(true);
+            return Ok(Some(slot));
+        }
         // the activations the new fact's blockers remove are noted, to put them back
         // in their agenda places should the assert fail
         let mark = self.journal_begin();
@@ -643,7 +662,7 @@ impl Core<'_> {
         self.st.facts_used as usize
     }
 
-    fn unlink_fact(&mut self, slot: Ix) {
+    pub(crate) fn unlink_fact(&mut self, slot: Ix) {
         let f = self.facts[slot as usize];
         self.st.facts_live -= 1;
         let t = &mut self.templates[f.tmpl as usize];

@@ -77,6 +77,12 @@ pub struct Template {
     /// Live facts of this template: a fact-set query over a template without facts
     /// ends at once instead of walking the whole fact list.
     pub nfacts: Ix,
+    /// Whether its facts may take part in deferred propagation (`rete::defer`),
+    /// worked out for network generation `flags_gen`.
+    #[cfg(feature = "defer")]
+    pub defer_flags: u8,
+    #[cfg(feature = "defer")]
+    pub flags_gen: u32,
     /// Host: first and last live fact of this template, linked through `Core::fact_tlinks`.
     #[cfg(feature = "wide-pools")]
     pub tfirst: Ix,
@@ -92,6 +98,10 @@ impl Template {
         implied: false,
         alpha_head: NONE,
         nfacts: 0,
+        #[cfg(feature = "defer")]
+        defer_flags: 0,
+        #[cfg(feature = "defer")]
+        flags_gen: 0,
         #[cfg(feature = "wide-pools")]
         tfirst: NONE,
         #[cfg(feature = "wide-pools")]

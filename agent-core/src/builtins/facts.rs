@@ -184,18 +184,29 @@ impl Core<'_> {
 
     /// Asserts the fact described by a `FactSpec` node. `Ok(None)`: duplicate.
     pub fn assert_spec(&mut self, spec: Ix) -> Result<Option<Ix>, EvalError> {
+        self.assert_spec_deferring(spec, false)
+    }
+
+    /// `assert_spec`; `defer`: the fact's propagation may wait (`rete::defer`).
+    fn assert_spec_deferring(&mut self, spec: Ix, defer: bool) -> Result<Option<Ix>, EvalError> {
         let tmpl = self.exprs[spec as usize].data;
         let nslots = self.templates[tmpl as usize].nslots;
         let base = self.st.sp;
         for _ in 0..nslots {
             self.push_value(Value::Void)?;
         }
-        let r = self.assert_spec_inner(spec, tmpl, base);
+        let r = self.assert_spec_inner(spec, tmpl, base, defer);
         self.st.sp = base;
         r
     }
 
-    fn assert_spec_inner(&mut self, spec: Ix, tmpl: Ix, base: Ix) -> Result<Option<Ix>, EvalError> {
+    fn assert_spec_inner(
+        &mut self,
+        spec: Ix,
+        tmpl: Ix,
+        base: Ix,
+        defer: bool,
+    ) -> Result<Option<Ix>, EvalError> {
         let nslots = self.templates[tmpl as usize].nslots;
         let mut given = [false; 64];
         let mut sv = self.exprs[spec as usize].first;
@@ -216,6 +227,7 @@ impl Core<'_> {
         }
         // Values computed at run time are not checked against the slots' restrictions:
         // CLIPS checks literals while parsing and leaves dynamic constraint checking off.
+        self.st.defer_next = defer;
         self.assert_slots(tmpl, base as usize)
     }
 
@@ -261,6 +273,16 @@ impl Core<'_> {
     ) -> Result<Value, EvalError> {
         let first = self.exprs[call as usize].first;
         let fv = self.eval(first)?;
+        // a waiting propagation (`rete::defer`) lets only this modify's retract go
+        // first, and only when nothing can tell
+        if self.st.deferred.fact != NONE
+            && !(retract_old
+                && self
+                    .fact_arg(fv)
+                    .is_some_and(|old| self.may_overtake(call, old)))
+        {
+            self.flush_deferred()?;
+        }
         let old = match self.fact_arg(fv) {
             Some(f) => f,
             // a stale fact address: CLIPS says FALSE without a message
@@ -336,7 +358,26 @@ impl Core<'_> {
             self.retract_fact_held(old, hold);
             self.st.unblocked.on = false;
             self.journal_pause();
-            let r = self.assert_slots(tmpl, base as usize);
+            // a propagation the retract overtook (`rete::defer`) is built now; if it
+            // fails, this modify's journal lacks the activations the overtaken
+            // assert's retract removed: its undo rebuilds every one as the newest
+            let r = match self.flush_deferred() {
+                Err(e) => {
+                    self.st.act_journal.overflow = true;
+                    Err(e)
+                }
+                Ok(()) => {
+                    // the new fact's propagation may wait for the next action's retract
+                    let defer = self.defer_worth(call);
+                    if defer {
+                        self.st.modify_old = Some((old, old_fact));
+                    }
+                    self.st.defer_next = defer;
+                    let r = self.assert_slots(tmpl, base as usize);
+                    self.st.modify_old = None;
+                    r
+                }
+            };
             if r.is_err() {
                 // the network ran out of room (tokens, activations): the new fact is
                 // gone again; the old one comes back with the room its retract freed
@@ -364,10 +405,14 @@ fn assert(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     let mut spec = cx.exprs[call as usize].first;
     let mut last = Value::Sym(SYM_FALSE);
     cx.st.pattern_error = false;
+    // a top-level action's last fact may defer its propagation (`rete::defer`): an
+    // earlier one's pattern errors must stop the assert before the next fact
+    let top = cx.defer_worth(call);
     while spec != NONE {
         if cx.exprs[spec as usize].op == Op::FactSpec {
             cx.st.field_error = None;
-            last = match cx.assert_spec(spec)? {
+            let defer = top && cx.exprs[spec as usize].next == NONE;
+            last = match cx.assert_spec_deferring(spec, defer)? {
                 Some(f) => Value::Fact(cx.fact_ref(f)),
                 None => Value::Sym(SYM_FALSE),
             };

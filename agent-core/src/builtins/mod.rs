@@ -168,6 +168,57 @@ const fn flatten<const N: usize>() -> [Builtin; N] {
 /// call reads its builtin with one index, not two.
 pub static BUILTINS: [Builtin; builtin_count()] = flatten();
 
+/// The id of builtin `name`, worked out at compile time (a missing name does not
+/// compile).
+const fn builtin_id(name: &str) -> Ix {
+    const ALL: [Builtin; builtin_count()] = flatten();
+    let mut i = 0;
+    while i < ALL.len() {
+        let (a, b) = (ALL[i].name.as_bytes(), name.as_bytes());
+        if a.len() == b.len() {
+            let mut k = 0;
+            while k < a.len() && a[k] == b[k] {
+                k += 1;
+            }
+            if k == a.len() {
+                return i as Ix;
+            }
+        }
+        i += 1;
+    }
+    panic!("no such builtin")
+}
+
+/// The first id of table `t` of [`TABLES`] (`TABLES.len()`: the end of the last).
+const fn table_start(t: usize) -> Ix {
+    let (mut n, mut i) = (0, 0);
+    while i < t {
+        n += TABLES[i].len();
+        i += 1;
+    }
+    n as Ix
+}
+
+/// Whether builtin `id` depends on its arguments alone and changes nothing a retract
+/// changes or observes (facts, agenda, output order): the arithmetic, comparison,
+/// string, multifield, predicate and geometry tables (`rete::defer` needs this of
+/// the tests a deferred propagation runs).
+pub fn is_pure(id: Ix) -> bool {
+    // the tables in `TABLES` order: basic 0, math 4, strings 5, multifield 6,
+    // predicates 7, geometry 11
+    const PURE: [(Ix, Ix); 3] = [
+        (table_start(0), table_start(1)),
+        (table_start(4), table_start(8)),
+        (table_start(11), table_start(12)),
+    ];
+    PURE.iter().any(|&(a, b)| (a..b).contains(&id))
+}
+
+/// Ids of `assert` and `modify`: as top-level actions of a firing they may leave a
+/// deferred propagation waiting (`rete::defer`).
+pub const ID_ASSERT: Ix = builtin_id("assert");
+pub const ID_MODIFY: Ix = builtin_id("modify");
+
 /// Finds a builtin by name.
 pub fn lookup(name: &str) -> Option<(Ix, &'static Builtin)> {
     BUILTINS

@@ -92,6 +92,10 @@ impl<'s> Parser<'s, '_, '_> {
             implied: false,
             alpha_head: NONE,
             nfacts: 0,
+            #[cfg(feature = "defer")]
+            defer_flags: 0,
+            #[cfg(feature = "defer")]
+            flags_gen: 0,
             #[cfg(feature = "wide-pools")]
             tfirst: NONE,
             #[cfg(feature = "wide-pools")]

@@ -1030,6 +1030,7 @@ impl<'s> Parser<'s, '_, '_> {
         self.assign_trie_key(tmpl, n as Ix);
         self.insert_alpha_sorted(tmpl, n as Ix);
         self.cx.st.nalpha += 1;
+        self.cx.st.net_gen = self.cx.st.net_gen.wrapping_add(1);
         self.cx.note_hw(Pool::AlphaNodes, n + 1);
         Ok(n as Ix)
     }
@@ -1233,6 +1234,7 @@ impl<'s> Parser<'s, '_, '_> {
 
     /// Creates the rule and its joins (the root token comes later, in `defrule`).
     fn build_rule(&mut self, name: SymId, salience: (i32, Ix), b: &Build, rhs: Ix) -> PResult<Ix> {
+        self.cx.st.net_gen = self.cx.st.net_gen.wrapping_add(1);
         let at = self.peek();
         let nr = self.cx.st.nrules as usize;
         if nr >= self.cx.rules.len() {

@@ -4,6 +4,8 @@ mod alpha;
 mod beta;
 mod index;
 pub use index::{KeyPlan, KEY_PLANS};
+mod defer;
+pub use defer::Deferred;
 mod quick;
 pub use quick::{TestOp, TestPlan, PLAN_TESTS, TEST_PLANS};
 

@@ -1,0 +1,429 @@
+//! Deferred propagation: a rule's actions `(modify ?a ...) (modify ?b ...)` let the
+//! second modify's retract go before the first modify's new fact is propagated.
+//!
+//! Why: a modify that changes a control fact (`(modify ?ctx (state next))`) after one
+//! that changes a counter (`(modify ?cnt (c (+ ?c 1)))`) removes every partial match
+//! below the control fact, including the ones the counter's new fact had just built.
+//! Built after that retract, the new fact meets empty memories instead (Miss Manners
+//! spends a third of its time on such matches).
+//!
+//! When it is exact: the network's final state after "propagate f, retract g" and after
+//! "retract g, propagate f" is the same set of partial matches, and the matches f
+//! builds are made in the same relative order (the memories they iterate only lack
+//! g's matches), so the activations keep their agenda order. That needs a retract that
+//! only deletes: g's template feeds no not/exists join and no join from the right
+//! (whose removal would unblock and build matches), no owed matches are waiting, and
+//! nothing is traced (`watch facts`, `watch activations`). And it needs tests on f's
+//! side that cannot see the retract: only pure builtins (no deffunction, no fact or
+//! agenda query) in the alpha tests of f's template and the join tests below them.
+//!
+//! Everything else keeps the eager order: an assert's propagation is deferred only for
+//! a top-level action of a rule's right-hand side (an `assert` or `modify` there), and
+//! any other function call, the next assert, a retract that may not overtake, and the
+//! end of the actions build it first (`flush_deferred`). So between an assert and its
+//! propagation only leaves are read and at most one overtaking retract runs.
+//!
+//! A full pool found while building the deferred matches undoes that assert (a
+//! modify's old fact comes back), and the error stops the actions where it was found,
+//! as it would have stopped them at the assert; the overtaking retract is part of a
+//! modify whose own failure path puts its old fact back.
+
+#[cfg(feature = "defer")]
+use super::JoinKind;
+#[cfg(feature = "defer")]
+use crate::engine::watch;
+use crate::engine::Core;
+use crate::error::EvalError;
+#[cfg(feature = "defer")]
+use crate::expr::{FnKind, Op};
+use crate::fact::Fact;
+use crate::value::{Ix, NONE};
+
+/// Flags of a template (see `Core::defer_flags`).
+#[cfg(feature = "defer")]
+const FLAGS_KNOWN: u8 = 1;
+/// Its facts' propagation runs only pure tests: it may be overtaken by a retract.
+#[cfg(feature = "defer")]
+const PURE_TESTS: u8 = 2;
+/// Retracting one of its facts only deletes partial matches: it may overtake.
+#[cfg(feature = "defer")]
+const DELETE_ONLY: u8 = 4;
+/// Deepest join subtree walked for the flags (deeper: treated as unsafe).
+#[cfg(feature = "defer")]
+const WALK_STACK: usize = 64;
+
+/// The fact whose propagation waits, and for a modify its old fact.
+#[derive(Clone, Copy, Debug)]
+pub struct Deferred {
+    pub fact: Ix,
+    pub old: Option<(Ix, Fact)>,
+}
+
+impl Deferred {
+    pub const NONE: Deferred = Deferred {
+        fact: NONE,
+        old: None,
+    };
+}
+
+#[cfg(feature = "defer")]
+impl Core<'_> {
+    /// Whether the expression chain from `e` (and everything below it) calls only
+    /// pure builtins.
+    fn chain_pure(&self, mut e: Ix) -> bool {
+        while e != NONE {
+            let x = self.exprs[e as usize];
+            if x.op == Op::Call
+                && (x.aux != FnKind::Builtin as u8 || !crate::builtins::is_pure(x.data))
+            {
+                return false;
+            }
+            // a 64-bit constant's payload node (after its header) is data, not a child
+            if !matches!(x.op, Op::Int | Op::Float) && !self.chain_pure(x.first) {
+                return false;
+            }
+            e = x.next;
+        }
+        true
+    }
+
+    /// Walks the joins a fact of alpha node `alpha` can reach (its successors, their
+    /// descendants and the joins taking those from the right); false as soon as
+    /// `ok` refuses one, or the walk is deeper than it can follow.
+    fn joins_below(&self, alpha: Ix, ok: &mut dyn FnMut(&Core<'_>, Ix) -> bool) -> bool {
+        let mut stack = [NONE; WALK_STACK];
+        let mut n = 0;
+        let mut j = self.alphas[alpha as usize].succ;
+        while j != NONE {
+            if n == WALK_STACK {
+                return false;
+            }
+            stack[n] = j;
+            n += 1;
+            j = self.joins[j as usize].alpha_next;
+        }
+        while n > 0 {
+            n -= 1;
+            let j = stack[n];
+            if !ok(self, j) {
+                return false;
+            }
+            let jn = &self.joins[j as usize];
+            for first in [jn.first_child, jn.rsucc] {
+                let mut c = first;
+                while c != NONE {
+                    if n == WALK_STACK {
+                        return false;
+                    }
+                    stack[n] = c;
+                    n += 1;
+                    let cj = &self.joins[c as usize];
+                    c = if first == jn.first_child {
+                        cj.next_sibling
+                    } else {
+                        cj.alpha_next
+                    };
+                }
+            }
+        }
+        true
+    }
+
+    /// `PURE_TESTS` and `DELETE_ONLY` of template `tmpl`, worked out once per network
+    /// generation (`State::net_gen`).
+    fn defer_flags(&mut self, tmpl: Ix) -> u8 {
+        let t = self.templates[tmpl as usize];
+        if t.flags_gen == self.st.net_gen && t.defer_flags & FLAGS_KNOWN != 0 {
+            return t.defer_flags;
+        }
+        let (mut pure, mut delete_only) = (true, true);
+        let mut a = t.alpha_head;
+        while a != NONE {
+            let node = &self.alphas[a as usize];
+            if node.live {
+                pure = pure && self.chain_pure(node.tests);
+                // a not/exists join on this pattern: its matches are blockers
+                let mut j = node.succ;
+                while j != NONE {
+                    let jn = &self.joins[j as usize];
+                    if matches!(jn.kind, JoinKind::Negative | JoinKind::Exists) {
+                        delete_only = false;
+                    }
+                    j = jn.alpha_next;
+                }
+                let mut below_pure = true;
+                let mut below_no_rsucc = true;
+                let walked = self.joins_below(a, &mut |cx, j| {
+                    let jn = &cx.joins[j as usize];
+                    below_pure = below_pure && cx.chain_pure(jn.tests) && cx.chain_pure(jn.post);
+                    // partial matches there block the outputs of a join from the right
+                    below_no_rsucc = below_no_rsucc && jn.rsucc == NONE;
+                    true
+                });
+                pure = pure && walked && below_pure;
+                delete_only = delete_only && walked && below_no_rsucc;
+            }
+            a = self.alphas[a as usize].next_in_tmpl;
+        }
+        let flags = FLAGS_KNOWN
+            | if pure { PURE_TESTS } else { 0 }
+            | if delete_only { DELETE_ONLY } else { 0 };
+        let t = &mut self.templates[tmpl as usize];
+        t.defer_flags = flags;
+        t.flags_gen = self.st.net_gen;
+        flags
+    }
+
+    /// Whether a waiting propagation may stay waiting while action `e` runs: an
+    /// assert or modify whose arguments read leaves only (constants, variables), so
+    /// nothing runs before it decides (`assert_slots` builds it first, a modify's
+    /// retract may overtake it).
+    pub(crate) fn may_wait_for(&self, e: Ix) -> bool {
+        let x = self.exprs[e as usize];
+        x.op == Op::Call
+            && x.aux == FnKind::Builtin as u8
+            && (x.data == crate::builtins::ID_ASSERT || x.data == crate::builtins::ID_MODIFY)
+            && self.calls_nothing(x.first)
+    }
+
+    /// Whether the expression chain from `e` contains no function call.
+    fn calls_nothing(&self, mut e: Ix) -> bool {
+        while e != NONE {
+            let x = self.exprs[e as usize];
+            if x.op == Op::Call {
+                return false;
+            }
+            if !matches!(x.op, Op::Int | Op::Float) && !self.calls_nothing(x.first) {
+                return false;
+            }
+            e = x.next;
+        }
+        true
+    }
+
+    /// Whether the assert or modify `call` should defer its propagation: it is the
+    /// top-level action and the next action is a modify that may wait for it, whose
+    /// retract may go first (anything else would build it at once, so deferring
+    /// would only cost).
+    pub(crate) fn defer_worth(&self, call: Ix) -> bool {
+        if call != self.st.top_action {
+            return false;
+        }
+        let n = self.exprs[call as usize].next;
+        n != NONE
+            && self.exprs[n as usize].data == crate::builtins::ID_MODIFY
+            && self.may_wait_for(n)
+    }
+
+    /// Whether the assert of a top-level action may leave its propagation for later:
+    /// in a firing, nothing traced, nothing owed, no undo replaying.
+    pub(crate) fn may_defer(&self) -> bool {
+        self.st.firing
+            && self.st.watch & (watch::FACTS | watch::ACTIVATIONS) == 0
+            && self.st.owed == NONE
+            && !self.st.act_journal.replay
+    }
+
+    /// Whether the retract of live fact `old` (by the top-level modify `call`) may
+    /// run before the waiting propagation (see the module docs).
+    pub(crate) fn may_overtake(&mut self, call: Ix, old: Ix) -> bool {
+        let waiting = self.st.deferred.fact;
+        if waiting == NONE
+            || call != self.st.top_action
+            || self.st.watch & (watch::FACTS | watch::ACTIVATIONS) != 0
+            || self.st.owed != NONE
+            || self.st.act_journal.replay
+        {
+            return false;
+        }
+        let (wt, ot) = (
+            self.facts[waiting as usize].tmpl,
+            self.facts[old as usize].tmpl,
+        );
+        self.defer_flags(wt) & PURE_TESTS != 0 && self.defer_flags(ot) & DELETE_ONLY != 0
+    }
+
+    /// Builds the waiting propagation, if any. On a full pool it is undone with its
+    /// fact (a modify's old fact comes back) and the error returned.
+    pub(crate) fn flush_deferred(&mut self) -> Result<(), EvalError> {
+        let d = self.st.deferred;
+        if d.fact == NONE {
+            return Ok(());
+        }
+        self.st.deferred = Deferred::NONE;
+        let f = d.fact;
+        self.hold_traces();
+        let mark = self.journal_begin();
+        let r = self.network_assert(f).and_then(|()| self.pay_owed());
+        self.journal_pause();
+        if let Err(e) = r {
+            // as a failed assert: what the fact built goes, then the fact itself
+            self.journal_replay(mark);
+            self.network_retract(f);
+            let fact = self.facts[f as usize];
+            self.unlink_fact(f);
+            if fact.start as usize + fact.len as usize == self.st.values_top as usize {
+                self.st.values_top = fact.start;
+            }
+            self.free_fact_slot(f);
+            // nothing was asserted since: its number is the next one again
+            if fact.num.wrapping_add(1) == self.st.next_fact_num {
+                self.st.next_fact_num = fact.num;
+            }
+            let _ = self.pay_owed();
+            // the old fact's removed activations were journaled by its own modify,
+            // which is over: they come back as the newest (replay off)
+            self.journal_end(mark);
+            if let Some((old, saved)) = d.old {
+                // held since its retract (a firing holds retracted facts): its cells
+                // are there, so no stacked values are needed
+                if self.restore_fact(old, saved, 0).is_ok() {
+                    let _ = self.pay_owed();
+                }
+            }
+            self.release_traces(false);
+            return Err(e);
+        }
+        self.journal_end(mark);
+        self.release_traces(true);
+        Ok(())
+    }
+}
+
+/// Without the `defer` feature (the agent image) nothing is deferred: these answer so,
+/// and the callers' branches compile away.
+#[cfg(not(feature = "defer"))]
+impl Core<'_> {
+    #[inline(always)]
+    pub(crate) fn defer_worth(&self, _call: Ix) -> bool {
+        false
+    }
+
+    #[inline(always)]
+    pub(crate) fn may_defer(&self) -> bool {
+        false
+    }
+
+    #[inline(always)]
+    pub(crate) fn may_overtake(&mut self, _call: Ix, _old: Ix) -> bool {
+        false
+    }
+
+    #[inline(always)]
+    pub(crate) fn may_wait_for(&self, _e: Ix) -> bool {
+        false
+    }
+
+    #[inline(always)]
+    pub(crate) fn flush_deferred(&mut self) -> Result<(), EvalError> {
+        Ok(())
+    }
+}
+
+#[cfg(all(test, feature = "defer"))]
+mod tests {
+    extern crate std;
+    use crate::testutil::run_program;
+    use std::string::String;
+
+    /// A counter's modify followed by a control fact's modify: the counter's new fact
+    /// meets the partial matches only after the control fact's retract removed them,
+    /// with the agenda and facts of the eager order (a `printout` between the two
+    /// actions keeps that order, as it builds the propagation first).
+    fn counter_program(between: &str, items: usize, watch: &str) -> String {
+        let mut facts = String::new();
+        for i in 0..items {
+            facts.push_str(&std::format!("(item (id {i})) "));
+        }
+        run_program(&std::format!(
+            "(deftemplate cnt (slot c))
+             (deftemplate ctx (slot s))
+             (deftemplate item (slot id))
+             (deffacts d (cnt (c 0)) (ctx (s go)) {facts})
+             (defrule step ?x <- (ctx (s go)) (item (id ?i)) ?n <- (cnt (c ?c&:(< ?c 3)))
+               => (modify ?n (c (+ ?c 1))) {between} (modify ?x (s back)))
+             (defrule back ?x <- (ctx (s back)) => (modify ?x (s go)))
+             (defrule wide (cnt (c ?c&:(= ?c 2))) (item (id ?i)) (item (id ?j)) =>)
+             (defrule count (declare (salience -5)) (cnt (c ?c)) (item (id ?i)) =>
+               (printout t c ?c i ?i crlf))
+             {watch}
+             (reset)
+             (run)
+             (facts)
+             (agenda)"
+        ))
+    }
+
+    #[test]
+    fn overtaking_retract_keeps_the_eager_result() {
+        let deferred = counter_program("", 3, "");
+        let eager = counter_program("(printout t \"\")", 3, "");
+        assert_eq!(deferred, eager);
+        assert!(deferred.contains("(cnt (c 3))"), "{deferred}");
+        // and with every activation traced (no deferral at all)
+        let traced = counter_program("", 3, "(watch activations)");
+        assert!(traced.contains("==> Activation"), "{traced}");
+    }
+
+    /// The deferred matches do not fit (`wide` needs 20 x 20 tokens and activations
+    /// for the counter at 2): the counter's modify is undone with the control fact's
+    /// retract that overtook it, as the eager order fails at the counter's modify. The
+    /// same facts and activations come back; the rebuilt activations' order is the
+    /// journal's (both orders overflow its 24 entries here: they come back newest).
+    #[test]
+    fn full_pool_at_the_deferred_propagation_undoes_both_modifies() {
+        let deferred = counter_program("", 20, "");
+        let eager = counter_program("(printout t \"\")", 20, "");
+        assert!(deferred.contains("[ERROR] out of "), "{deferred}");
+        let split = |out: &str| {
+            let (facts, agenda) = out
+                .split_once("For a total of 23 facts.\n")
+                .unwrap_or((out, ""));
+            let mut acts: std::vec::Vec<String> = agenda.lines().map(String::from).collect();
+            acts.sort();
+            (String::from(facts), acts)
+        };
+        assert_eq!(split(&deferred), split(&eager));
+        assert!(
+            deferred.contains("(cnt (c 1))") && deferred.contains("(ctx (s go))"),
+            "{deferred}"
+        );
+        assert!(
+            deferred.contains("For a total of 40 activations."),
+            "{deferred}"
+        );
+    }
+
+    /// The control fact's retract goes first, so the counter's new fact meets no
+    /// partial matches under it: 20 x 20 matches of `big` that the eager order builds
+    /// (and runs out of room for) are never made.
+    #[test]
+    fn overtaking_retract_saves_the_matches_it_would_remove() {
+        let program = |between: &str| {
+            let mut items = String::new();
+            for i in 0..20 {
+                items.push_str(&std::format!("(item (id {i})) "));
+            }
+            run_program(&std::format!(
+                "(deftemplate cnt (slot c))
+                 (deftemplate ctx (slot s))
+                 (deftemplate item (slot id))
+                 (deffacts d (cnt (c 0)) (ctx (s go)) {items})
+                 (defrule step ?x <- (ctx (s go)) ?n <- (cnt (c ?c))
+                   => (modify ?n (c (+ ?c 1))) {between} (modify ?x (s end)))
+                 (defrule big (ctx (s go)) (cnt (c ?c&:(> ?c 0))) (item (id ?i)) (item (id ?j)) =>)
+                 (reset)
+                 (run)
+                 (facts)"
+            ))
+        };
+        let deferred = program("");
+        assert!(!deferred.contains("[ERROR]"), "{deferred}");
+        assert!(
+            deferred.contains("(cnt (c 1))") && deferred.contains("(ctx (s end))"),
+            "{deferred}"
+        );
+        let eager = program("(printout t \"\")");
+        assert!(eager.contains("[ERROR] out of "), "{eager}");
+    }
+}
