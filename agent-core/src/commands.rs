@@ -495,6 +495,12 @@ impl Core<'_> {
         }
         let r = self.run_rules(limit, &mut stats);
         if let Ok(fired) = r {
+            // CLIPS 6.30 counts its limit down per firing and prints this when what is
+            // left equals what fired: for `(run 0)`, and for a run that fired half its
+            // limit (not when the limit is used up)
+            if limit >= 0 && limit - i64::from(fired) == i64::from(fired) {
+                self.write(router::STDOUT, "rule firing limit reached\n");
+            }
             if self.st.watch & watch::STATISTICS != 0 {
                 stats.print(self, fired);
             }

@@ -551,4 +551,6 @@ differential_programs! {
     p155_progn_multifield_value => "155-progn-multifield-value",
     p156_bind_global_multifield => "156-bind-global-multifield",
     p157_query_slot_tests => "157-query-slot-tests",
+    p158_run_limit_message => "158-run-limit-message",
+    p159_modify_retracted_in_firing => "159-modify-retracted-in-firing",
 }

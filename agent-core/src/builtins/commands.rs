@@ -67,11 +67,8 @@ fn run(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     } else {
         -1
     };
-    if limit == 0 {
-        cx.write(router::STDOUT, "rule firing limit reached\n");
-        return Ok(Value::Void);
-    }
-    // `(watch statistics)` lines are printed by `Core::run` (commands.rs)
+    // `(watch statistics)` lines and the limit message are printed by `Core::run`
+    // (commands.rs)
     cx.run(limit)?;
     Ok(Value::Void)
 }

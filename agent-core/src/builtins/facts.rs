@@ -283,11 +283,19 @@ impl Core<'_> {
         {
             self.flush_deferred()?;
         }
-        let old = match self.fact_arg(fv) {
-            Some(f) => f,
+        // a fact retracted meanwhile whose values are still held (in this firing, or
+        // by a query): CLIPS makes the modified copy without retracting anything, as
+        // `duplicate` does
+        let held = match fv {
+            Value::Fact(r) if self.fact_readable(r) => Some(r.slot),
+            _ => None,
+        };
+        let (old, retract_old) = match (self.fact_arg(fv), held) {
+            (Some(f), _) => (f, retract_old),
+            (None, Some(f)) => (f, false),
             // a stale fact address: CLIPS says FALSE without a message
-            None if matches!(fv, Value::Fact(_)) => return Ok(Value::Sym(SYM_FALSE)),
-            None => {
+            (None, None) if matches!(fv, Value::Fact(_)) => return Ok(Value::Sym(SYM_FALSE)),
+            (None, None) => {
                 let n = match fv {
                     Value::Int(i) => i,
                     _ => -1,
