@@ -154,7 +154,7 @@ engine_impl! {
         let r = cx.run(limit.map(|l| l as i64).unwrap_or(-1));
         cx.st.scratch_top = 0;
         match r {
-            Err(e) if e.kind == EvalErrorKind::Exit => Ok(0),
+            Err(e) if e.kind() == EvalErrorKind::Exit => Ok(0),
             r => r.map_err(EngineError::from),
         }
     }

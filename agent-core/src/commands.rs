@@ -595,17 +595,16 @@ impl Core<'_> {
                 stats.sample(self);
             }
             if let Err(e) = r {
-                if e.kind == EvalErrorKind::Exit {
+                if e.kind() == EvalErrorKind::Exit {
                     return Err(e);
                 }
                 self.report_rhs_error(rule, e);
-                if e.kind == EvalErrorKind::Interrupted {
+                if e.kind() == EvalErrorKind::Interrupted {
                     // the caller learns the run was stopped; the message is out
                     self.st.halt = false;
-                    return Err(EvalError {
-                        reported: true,
-                        ..e
-                    });
+                    let mut e = e;
+                    e.reported = true;
+                    return Err(e);
                 }
                 break;
             }
@@ -655,7 +654,7 @@ impl Core<'_> {
             return;
         }
         let mut b: TextBuf<256> = TextBuf::new();
-        match e.kind {
+        match e.kind() {
             EvalErrorKind::Reported | EvalErrorKind::Exit => return,
             EvalErrorKind::Arity { func } => {
                 let _ = writeln!(
@@ -1125,11 +1124,11 @@ impl Core<'_> {
                             self.write(router::STDOUT, "\n");
                         }
                     }
-                    Err(err) if err.kind == EvalErrorKind::Exit => {}
+                    Err(err) if err.kind() == EvalErrorKind::Exit => {}
                     Err(err) => {
                         self.report_eval_error(err);
                         if !matches!(
-                            err.kind,
+                            err.kind(),
                             EvalErrorKind::Capacity(_) | EvalErrorKind::Interrupted
                         ) && !self.st.quiet_results
                         {

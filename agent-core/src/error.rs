@@ -131,52 +131,280 @@ pub enum EvalErrorKind {
     Other(&'static str),
 }
 
-/// An evaluation error.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// An evaluation error, packed into 8 bytes: `Result<Value, EvalError>` is then no
+/// larger than a value (16 bytes, returned in two registers on the host, where the
+/// evaluator's results used to go through memory at 48). Names and messages are kept
+/// as indices into static texts (builtin names, [`ERROR_TEXTS`]); [`EvalError::kind`]
+/// gives the full description back.
+#[derive(Clone, Copy, PartialEq, Eq)]
 pub struct EvalError {
-    pub kind: EvalErrorKind,
+    /// Which `EvalErrorKind` (`code::*`).
+    code: u8,
     /// CLIPS's message for it is printed already (by a deffunction it went through, which
     /// added its `[PRCCODE4]` line); callers only stop.
     pub reported: bool,
+    /// The kind's fields (see `EvalError::new`).
+    a: u16,
+    b: u32,
+}
+
+/// `EvalError::code` of each `EvalErrorKind`.
+mod code {
+    pub const CAPACITY: u8 = 0;
+    pub const WRONG_TYPE: u8 = 1;
+    pub const ARITY: u8 = 2;
+    pub const DIVIDE_BY_ZERO: u8 = 3;
+    pub const UNBOUND_VARIABLE: u8 = 4;
+    pub const TOO_DEEP: u8 = 5;
+    pub const NO_SUCH_FACT: u8 = 6;
+    pub const NO_SUCH_FUNCTION: u8 = 7;
+    pub const NO_SUCH_TEMPLATE: u8 = 8;
+    pub const NO_SUCH_SLOT: u8 = 9;
+    pub const BAD_SLOT_VALUE: u8 = 10;
+    pub const EXTERNAL: u8 = 11;
+    pub const EXIT: u8 = 12;
+    pub const INTERRUPTED: u8 = 13;
+    pub const REPORTED: u8 = 14;
+    pub const OTHER: u8 = 15;
+}
+
+/// Texts an `EvalError` can name besides the builtins' names: callers that are not
+/// builtins, CLIPS's descriptions of argument types, slot-value reasons, messages.
+/// Index 0 stands for a text missing here (a debug build panics on it instead).
+pub const ERROR_TEXTS: &[&str] = &[
+    "?",
+    "deffunction",
+    "external",
+    // argument types, as CLIPS words them
+    "integer or float",
+    "integer",
+    "float",
+    "string",
+    "multifield",
+    "symbol or string",
+    "symbol, string, or instance name",
+    "string, instance name, symbol, float, or integer",
+    "multifield, symbol, or string",
+    "fact-address",
+    "deftemplate fact",
+    "fact-address, fact-index, or the symbol *",
+    "fact-address, integer, or symbol",
+    "symbol or positive number",
+    "positive number",
+    // slot values that do not fit their slot
+    "type restriction violated",
+    "allowed-values restriction violated",
+    "a single-field slot needs exactly one value",
+    "slot has no default and needs a value",
+    // messages
+    "only the depth strategy is supported",
+    "fact-set query: more than 8 query variables",
+    "fact-set query: missing query variables or query",
+    "str-cat: result too long",
+    "format: result longer than 2048 bytes",
+    "string result longer than 2048 bytes",
+    "implode$: result longer than 2048 bytes",
+    "syntax error",
+    "[EMATHFUN1] Domain error for sqrt function.",
+    "[EMATHFUN1] Domain error for ** function.",
+    "[EMATHFUN1] Domain error for log function.",
+    "[EMATHFUN1] Domain error for log10 function.",
+    "[EMATHFUN1] Domain error for asin function.",
+    "[EMATHFUN1] Domain error for acos function.",
+    "[EMATHFUN1] Domain error.",
+    "[EMATHFUN2] Argument overflow for log function.",
+    "[EMATHFUN2] Argument overflow for log10 function.",
+    "[ARGACCES4] Function format expected exactly 2 argument(s)",
+    "[ARGACCES4] Function format expected exactly 3 argument(s)",
+    "[ARGACCES4] Function format expected exactly 4 argument(s)",
+    "[ARGACCES4] Function format expected exactly 5 argument(s)",
+    "[ARGACCES4] Function format expected exactly 6 argument(s)",
+    "[ARGACCES4] Function format expected exactly 7 argument(s)",
+    "[ARGACCES4] Function format expected exactly 8 argument(s)",
+    "[ARGACCES4] Function format expected exactly 9 argument(s)",
+    "[ARGACCES4] Function format expected exactly 10 argument(s)",
+    "[ARGACCES4] Function format expected exactly 11 argument(s)",
+    "[ARGACCES4] Function format expected exactly 12 argument(s)",
+    "[ARGACCES4] Function format called with the wrong number of arguments.",
+    "[MISCFUN3] Function random expected argument #1 to be less than argument #2",
+    "[MISCFUN2] Function random expected either 0 or 2 arguments",
+];
+
+const fn same_text(a: &str, b: &str) -> bool {
+    let (a, b) = (a.as_bytes(), b.as_bytes());
+    if a.len() != b.len() {
+        return false;
+    }
+    let mut i = 0;
+    while i < a.len() {
+        if a[i] != b[i] {
+            return false;
+        }
+        i += 1;
+    }
+    true
+}
+
+/// The index of text `s` in `ERROR_TEXTS` (0, "?", when it is missing there: a debug
+/// build panics).
+const fn text_id(s: &str) -> u16 {
+    let mut k = 0;
+    while k < ERROR_TEXTS.len() {
+        if same_text(ERROR_TEXTS[k], s) {
+            return k as u16;
+        }
+        k += 1;
+    }
+    debug_assert!(false, "an error text missing from ERROR_TEXTS");
+    0
+}
+
+/// The text of index `id` of `ERROR_TEXTS`.
+fn text(id: u16) -> &'static str {
+    ERROR_TEXTS.get(id as usize).copied().unwrap_or("?")
+}
+
+/// The index of a function's name: a builtin's id, else `BUILTINS.len()` plus its
+/// index in `ERROR_TEXTS` (callers that are not builtins).
+fn name_id(s: &str) -> u16 {
+    let builtins = &crate::builtins::BUILTINS;
+    match builtins.iter().position(|b| b.name == s) {
+        Some(i) => i as u16,
+        None => (builtins.len() + text_id(s) as usize) as u16,
+    }
+}
+
+/// The name of index `id` (see `name_id`).
+fn name(id: u16) -> &'static str {
+    let builtins = &crate::builtins::BUILTINS;
+    match builtins.get(id as usize) {
+        Some(b) => b.name,
+        None => text((id as usize).saturating_sub(builtins.len()) as u16),
+    }
+}
+
+/// The pools by their index (`Pool as u16`).
+fn pool(i: u16) -> Pool {
+    Pool::ALL.get(i as usize).copied().unwrap_or(Pool::Tokens)
 }
 
 impl EvalError {
-    pub const fn new(kind: EvalErrorKind) -> Self {
+    const fn packed(code: u8, a: u16, b: u32) -> Self {
         EvalError {
-            kind,
+            code,
             reported: false,
+            a,
+            b,
         }
     }
-    pub const fn other(msg: &'static str) -> Self {
-        EvalError {
-            kind: EvalErrorKind::Other(msg),
-            reported: false,
-        }
-    }
-    pub const fn wrong_type(func: &'static str, arg: u8, expected: &'static str) -> Self {
-        EvalError {
-            kind: EvalErrorKind::WrongType {
+
+    pub fn new(kind: EvalErrorKind) -> Self {
+        use EvalErrorKind as K;
+        match kind {
+            K::Capacity(c) => Self::packed(code::CAPACITY, c.pool as u16, c.capacity),
+            K::WrongType {
                 func,
                 arg,
                 expected,
-            },
-            reported: false,
+            } => Self::packed(
+                code::WRONG_TYPE,
+                name_id(func),
+                arg as u32 | (text_id(expected) as u32) << 8,
+            ),
+            K::Arity { func } => Self::packed(code::ARITY, name_id(func), 0),
+            K::DivideByZero { func } => Self::packed(code::DIVIDE_BY_ZERO, name_id(func), 0),
+            K::UnboundVariable => Self::packed(code::UNBOUND_VARIABLE, 0, 0),
+            K::TooDeep { limit } => Self::packed(code::TOO_DEEP, limit, 0),
+            // 48 bits of the index: CLIPS prints what was asked for, and nothing
+            // beyond that range can name a fact
+            K::NoSuchFact(n) => {
+                let n = n.clamp(-(1 << 47), (1 << 47) - 1);
+                Self::packed(code::NO_SUCH_FACT, (n >> 32) as u16, n as u32)
+            }
+            K::NoSuchFunction => Self::packed(code::NO_SUCH_FUNCTION, 0, 0),
+            K::NoSuchTemplate => Self::packed(code::NO_SUCH_TEMPLATE, 0, 0),
+            K::NoSuchSlot => Self::packed(code::NO_SUCH_SLOT, 0, 0),
+            K::BadSlotValue { reason } => Self::packed(code::BAD_SLOT_VALUE, text_id(reason), 0),
+            K::External => Self::packed(code::EXTERNAL, 0, 0),
+            K::Exit => Self::packed(code::EXIT, 0, 0),
+            K::Interrupted => Self::packed(code::INTERRUPTED, 0, 0),
+            K::Reported => Self::packed(code::REPORTED, 0, 0),
+            K::Other(msg) => Self::packed(code::OTHER, text_id(msg), 0),
         }
+    }
+
+    /// What went wrong, with its names and numbers.
+    pub fn kind(&self) -> EvalErrorKind {
+        use EvalErrorKind as K;
+        match self.code {
+            code::CAPACITY => K::Capacity(CapacityError {
+                pool: pool(self.a),
+                capacity: self.b,
+            }),
+            code::WRONG_TYPE => K::WrongType {
+                func: name(self.a),
+                arg: self.b as u8,
+                expected: text((self.b >> 8) as u16),
+            },
+            code::ARITY => K::Arity { func: name(self.a) },
+            code::DIVIDE_BY_ZERO => K::DivideByZero { func: name(self.a) },
+            code::UNBOUND_VARIABLE => K::UnboundVariable,
+            code::TOO_DEEP => K::TooDeep { limit: self.a },
+            code::NO_SUCH_FACT => {
+                // the 48 bits back, sign-extended
+                let n = (((self.a as u64) << 32 | self.b as u64) << 16) as i64 >> 16;
+                K::NoSuchFact(n)
+            }
+            code::NO_SUCH_FUNCTION => K::NoSuchFunction,
+            code::NO_SUCH_TEMPLATE => K::NoSuchTemplate,
+            code::NO_SUCH_SLOT => K::NoSuchSlot,
+            code::BAD_SLOT_VALUE => K::BadSlotValue {
+                reason: text(self.a),
+            },
+            code::EXTERNAL => K::External,
+            code::EXIT => K::Exit,
+            code::INTERRUPTED => K::Interrupted,
+            code::REPORTED => K::Reported,
+            _ => K::Other(text(self.a)),
+        }
+    }
+
+    /// Whether this is a full pool (most callers treat those apart), without
+    /// unpacking.
+    pub fn is_capacity(&self) -> bool {
+        self.code == code::CAPACITY
+    }
+
+    pub const fn other(msg: &'static str) -> Self {
+        Self::packed(code::OTHER, text_id(msg), 0)
+    }
+    pub fn wrong_type(func: &'static str, arg: u8, expected: &'static str) -> Self {
+        Self::new(EvalErrorKind::WrongType {
+            func,
+            arg,
+            expected,
+        })
+    }
+}
+
+impl fmt::Debug for EvalError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("EvalError")
+            .field("kind", &self.kind())
+            .field("reported", &self.reported)
+            .finish()
     }
 }
 
 impl From<CapacityError> for EvalError {
     fn from(c: CapacityError) -> Self {
-        EvalError {
-            kind: EvalErrorKind::Capacity(c),
-            reported: false,
-        }
+        Self::new(EvalErrorKind::Capacity(c))
     }
 }
 
 impl fmt::Display for EvalError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self.kind {
+        match self.kind() {
             EvalErrorKind::Capacity(c) => write!(f, "{c}"),
             EvalErrorKind::WrongType {
                 func,
@@ -346,7 +574,7 @@ impl From<CapacityError> for EngineError {
 }
 impl From<EvalError> for EngineError {
     fn from(e: EvalError) -> Self {
-        match e.kind {
+        match e.kind() {
             EvalErrorKind::Capacity(c) => EngineError::Capacity(c),
             _ => EngineError::Eval(e),
         }
@@ -377,4 +605,93 @@ pub enum HostIoError {
     TooLarge,
     Unsupported,
     Other,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::value::Value;
+
+    /// Every kind comes back from its 8 bytes as it went in: each builtin's name and
+    /// each text of `ERROR_TEXTS` in every field that holds one, numbers at their edges.
+    #[test]
+    fn errors_keep_their_kind_in_eight_bytes() {
+        assert_eq!(core::mem::size_of::<EvalError>(), 8);
+        assert_eq!(
+            core::mem::size_of::<Result<Value, EvalError>>(),
+            core::mem::size_of::<Value>()
+        );
+        let mut kinds = [EvalErrorKind::Exit; 16];
+        let simple = [
+            EvalErrorKind::UnboundVariable,
+            EvalErrorKind::NoSuchFunction,
+            EvalErrorKind::NoSuchTemplate,
+            EvalErrorKind::NoSuchSlot,
+            EvalErrorKind::External,
+            EvalErrorKind::Exit,
+            EvalErrorKind::Interrupted,
+            EvalErrorKind::Reported,
+            EvalErrorKind::TooDeep { limit: u16::MAX },
+            EvalErrorKind::NoSuchFact(-7),
+            EvalErrorKind::NoSuchFact(0),
+            EvalErrorKind::NoSuchFact(5_000_000_000),
+            EvalErrorKind::NoSuchFact((1 << 47) - 1),
+            EvalErrorKind::NoSuchFact(-(1 << 47)),
+            EvalErrorKind::Capacity(CapacityError {
+                pool: Pool::ExternalFns,
+                capacity: u32::MAX,
+            }),
+            EvalErrorKind::Capacity(CapacityError {
+                pool: Pool::Facts,
+                capacity: 0,
+            }),
+        ];
+        kinds.copy_from_slice(&simple);
+        for k in kinds {
+            assert_eq!(EvalError::new(k).kind(), k);
+        }
+        let names = crate::builtins::BUILTINS
+            .iter()
+            .map(|b| b.name)
+            .chain(["deffunction", "external"]);
+        for func in names {
+            for k in [
+                EvalErrorKind::Arity { func },
+                EvalErrorKind::DivideByZero { func },
+                EvalErrorKind::WrongType {
+                    func,
+                    arg: 255,
+                    expected: "integer or float",
+                },
+            ] {
+                assert_eq!(EvalError::new(k).kind(), k);
+            }
+        }
+        for &t in &ERROR_TEXTS[1..] {
+            for k in [
+                EvalErrorKind::Other(t),
+                EvalErrorKind::BadSlotValue { reason: t },
+                EvalErrorKind::WrongType {
+                    func: "+",
+                    arg: 1,
+                    expected: t,
+                },
+            ] {
+                assert_eq!(EvalError::new(k).kind(), k);
+            }
+        }
+        // beyond 48 bits a fact index is clamped (no fact has one)
+        assert_eq!(
+            EvalError::new(EvalErrorKind::NoSuchFact(i64::MAX)).kind(),
+            EvalErrorKind::NoSuchFact((1 << 47) - 1)
+        );
+        let mut reported = EvalError::other("syntax error");
+        reported.reported = true;
+        assert_eq!(reported.kind(), EvalErrorKind::Other("syntax error"));
+        assert!(EvalError::from(CapacityError {
+            pool: Pool::Tokens,
+            capacity: 3
+        })
+        .is_capacity());
+    }
 }

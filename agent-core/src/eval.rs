@@ -454,11 +454,11 @@ impl Core<'_> {
         let r = match r {
             // a runaway recursion names the function where the limit was hit, once,
             // not once per frame
-            Err(err) if matches!(err.kind, EvalErrorKind::TooDeep { .. }) && err.reported => {
+            Err(err) if matches!(err.kind(), EvalErrorKind::TooDeep { .. }) && err.reported => {
                 Err(err)
             }
             Err(mut err)
-                if !matches!(err.kind, EvalErrorKind::Exit | EvalErrorKind::Capacity(_)) =>
+                if !matches!(err.kind(), EvalErrorKind::Exit | EvalErrorKind::Capacity(_)) =>
             {
                 self.write_error_message(err);
                 self.write_halted_in("deffunction", df.name);
@@ -486,7 +486,7 @@ impl Core<'_> {
             func,
             arg,
             expected,
-        } = err.kind
+        } = err.kind()
         else {
             return err;
         };

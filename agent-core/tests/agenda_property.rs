@@ -307,7 +307,9 @@ fn check_full_pools(ops: &[Op]) -> Result<(), TestCaseError> {
                 };
                 let r = e.eval_str(h, &format!("(modify {num} (v {v}))"));
                 match r {
-                    Err(ref err) if matches!(err.kind, agent_core::EvalErrorKind::Capacity(_)) => {
+                    Err(ref err)
+                        if matches!(err.kind(), agent_core::EvalErrorKind::Capacity(_)) =>
+                    {
                         failed = true
                     }
                     _ => {

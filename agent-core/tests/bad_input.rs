@@ -445,7 +445,7 @@ fn runaway_recursion() {
     )
     .expect("loads: the recursion is only a run-time error");
     let err = e.eval_str(h, "(forever 1)").unwrap_err();
-    assert_eq!(err.kind, EvalErrorKind::TooDeep { limit: 200 });
+    assert_eq!(err.kind(), EvalErrorKind::TooDeep { limit: 200 });
     assert!(
         h.0.contains("evaluation depth limit (200)")
             && h.0
@@ -507,7 +507,7 @@ fn recursion_that_fills_the_evaluation_stack_names_the_pool() {
             "(wide 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20)",
         )
         .unwrap_err();
-    match err.kind {
+    match err.kind() {
         EvalErrorKind::Capacity(c) => {
             assert_eq!(c.pool, agent_core::Pool::EvalStack, "{c}");
         }

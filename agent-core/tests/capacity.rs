@@ -17,7 +17,7 @@ fn cap_of(e: EngineError) -> CapacityError {
     match e {
         EngineError::Capacity(c) => c,
         EngineError::Load(l) => l.capacity.expect("a capacity error"),
-        EngineError::Eval(v) => match v.kind {
+        EngineError::Eval(v) => match v.kind() {
             EvalErrorKind::Capacity(c) => c,
             k => panic!("not a capacity error: {k:?}"),
         },
@@ -348,7 +348,7 @@ fn eval_stack_and_scratch_pools() {
     let mut e = engine!(STACK = 8);
     let err = e.eval_str(h, "(+ 1 2 3 4 5 6 7 8 9 10)").unwrap_err();
     assert_eq!(
-        err.kind,
+        err.kind(),
         EvalErrorKind::Capacity(CapacityError {
             pool: Pool::EvalStack,
             capacity: 8
@@ -368,7 +368,7 @@ fn eval_stack_and_scratch_pools() {
     .unwrap();
     let err = e.eval_str(h, "(many)").unwrap_err();
     assert_eq!(
-        err.kind,
+        err.kind(),
         EvalErrorKind::Capacity(CapacityError {
             pool: Pool::Scratch,
             capacity: 8

@@ -117,7 +117,7 @@ fn cap_of(e: &EngineError) -> CapacityError {
     match e {
         EngineError::Capacity(c) => *c,
         EngineError::Load(l) => l.capacity.expect("a capacity error"),
-        EngineError::Eval(v) => match v.kind {
+        EngineError::Eval(v) => match v.kind() {
             EvalErrorKind::Capacity(c) => c,
             k => panic!("not a capacity error: {k:?}"),
         },
@@ -314,7 +314,7 @@ fn fact_values_at_assert_run_modify_and_reset() {
     let before_listing = listing(&mut *e);
     let r = e.eval_str(h, "(modify 1 (xs 1 2 3 4 5 6 7 8 9 10 11 12))");
     assert_eq!(
-        r.map_err(|e| e.kind),
+        r.map_err(|e| e.kind()),
         Err(EvalErrorKind::Capacity(full(Pool::FactValues, 20)))
     );
     failed_modify_kept_the_facts(&mut *e, &before, &before_listing);
@@ -586,7 +586,7 @@ macro_rules! match_pool_case {
         // (k (v 1)) matches 36 pairs: more activations and tokens than room
         let r = e.eval_str(h, &format!("(modify {} (v 1))", fact.0));
         assert_eq!(
-            r.map_err(|e| e.kind),
+            r.map_err(|e| e.kind()),
             Err(EvalErrorKind::Capacity(full(pool, cap))),
             "modify"
         );
@@ -968,7 +968,7 @@ macro_rules! agenda_order_case {
         assert_eq!(before.agenda.len(), 6, "{:?}", before.agenda);
         let r = e.eval_str(h, &format!("(modify {} (v 1))", k.0));
         assert_eq!(
-            r.map_err(|e| e.kind),
+            r.map_err(|e| e.kind()),
             Err(EvalErrorKind::Capacity(full(pool, cap))),
             "{pool:?} {:?}",
             e.usage()
@@ -1141,7 +1141,7 @@ fn failed_modify_of_an_old_fact_then_compaction_keeps_every_fact() {
     // the restore makes room below the (a)/(b) facts
     let r = e.eval_str(h, &format!("(modify {} (v 1))", k.0));
     assert_eq!(
-        r.map_err(|e| e.kind),
+        r.map_err(|e| e.kind()),
         Err(EvalErrorKind::Capacity(full(Pool::Tokens, 40)))
     );
     e.consistent();

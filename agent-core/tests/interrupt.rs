@@ -37,7 +37,7 @@ impl Host for Budget {
 }
 
 fn is_interrupt(e: &EngineError) -> bool {
-    matches!(e, EngineError::Eval(ev) if ev.kind == EvalErrorKind::Interrupted)
+    matches!(e, EngineError::Eval(ev) if ev.kind() == EvalErrorKind::Interrupted)
 }
 
 /// After an interrupt: invariants hold, and with the host rearmed the engine evaluates,
@@ -70,7 +70,7 @@ fn endless_while_in_eval_str_is_interrupted() {
     let mut h = Budget::new(1000);
     let r = e.eval_str(&mut h, "(while TRUE (+ 1 1))");
     let err = r.expect_err("the endless loop must stop");
-    assert_eq!(err.kind, EvalErrorKind::Interrupted);
+    assert_eq!(err.kind(), EvalErrorKind::Interrupted);
     assert_eq!(h.polls, 1001, "polled once per iteration");
     // the API returns the error; at the prompt it is printed
     assert!(h.out.is_empty(), "eval_str prints nothing: {}", h.out);
@@ -96,7 +96,7 @@ fn huge_loop_for_count_in_deffunction_is_interrupted() {
     )
     .expect("loads");
     let err = e.eval_str(&mut h, "(spin)").expect_err("interrupted");
-    assert_eq!(err.kind, EvalErrorKind::Interrupted);
+    assert_eq!(err.kind(), EvalErrorKind::Interrupted);
     assert_eq!(h.polls, 501);
     assert!(
         h.out.contains("deffunction spin"),
@@ -113,7 +113,7 @@ fn progn_dollar_over_a_long_list_is_interrupted() {
     let err = e
         .eval_str(&mut h, "(progn$ (?x (create$ a b c d e f g)) (+ 1 1))")
         .expect_err("interrupted");
-    assert_eq!(err.kind, EvalErrorKind::Interrupted);
+    assert_eq!(err.kind(), EvalErrorKind::Interrupted);
     assert_eq!(h.polls, 4);
     assert_usable(&mut e, &mut h);
 }

@@ -114,7 +114,7 @@ impl Core<'_> {
                 Ok(v) => v,
                 Err(err)
                     if !matches!(
-                        err.kind,
+                        err.kind(),
                         EvalErrorKind::Capacity(_)
                             | EvalErrorKind::Exit
                             | EvalErrorKind::Interrupted

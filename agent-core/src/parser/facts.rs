@@ -178,7 +178,7 @@ impl<'s> Parser<'s, '_, '_> {
         let v = self.cx.const_value(e);
         match self.cx.check_atom_def(def, v) {
             Ok(()) => None,
-            Err(err) => Some(match err.kind {
+            Err(err) => Some(match err.kind() {
                 EvalErrorKind::BadSlotValue { reason } if reason.starts_with("type") => {
                     Violation::Type
                 }

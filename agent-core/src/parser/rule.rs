@@ -214,7 +214,7 @@ impl<'s> Parser<'s, '_, '_> {
         match r {
             Ok(()) => Ok(()),
             Err(e) => {
-                let c = match e.kind {
+                let c = match e.kind() {
                     crate::error::EvalErrorKind::Capacity(c) => c,
                     _ => cap(Pool::Tokens, self.cx.tokens.len()),
                 };

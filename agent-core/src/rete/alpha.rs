@@ -216,7 +216,7 @@ impl Core<'_> {
         self.st.this_pm = saved;
         match r {
             // CLIPS reports a failing pattern test and treats it as not matching
-            Err(e) if !matches!(e.kind, crate::error::EvalErrorKind::Capacity(_)) => {
+            Err(e) if !e.is_capacity() => {
                 self.report_pattern_error(alpha, fact, e);
                 Ok(false)
             }

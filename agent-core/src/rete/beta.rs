@@ -12,7 +12,7 @@
 
 use super::{JoinKind, PatBinding, Token, TokenKind};
 use crate::engine::{cap, Core};
-use crate::error::{CapacityError, EvalError, EvalErrorKind, Pool};
+use crate::error::{CapacityError, EvalError, Pool};
 use crate::value::Ix;
 use crate::value::NONE;
 
@@ -666,7 +666,7 @@ impl Core<'_> {
         if let Err(e) = self.propagate(t) {
             // an evaluation error in a join test counts as no match (as before);
             // only a full pool leaves matches to build later
-            if matches!(e.kind, EvalErrorKind::Capacity(_)) {
+            if e.is_capacity() {
                 self.deactivate(t);
                 self.owe(t, false);
             }
@@ -766,7 +766,7 @@ impl Core<'_> {
             let t = self.st.owed;
             self.unowe(t);
             if let Err(e) = self.propagate(t) {
-                if matches!(e.kind, EvalErrorKind::Capacity(_)) {
+                if e.is_capacity() {
                     self.deactivate(t);
                     self.owe(t, true);
                     return Err(e);

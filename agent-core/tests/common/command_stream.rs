@@ -260,7 +260,7 @@ pub fn apply_with(e: &mut StreamEngine, cmd: &Cmd, rules: &str) -> String {
                 let owed = e.owes();
                 let r = e.eval_str(h, &text);
                 if let Err(ref err) = r {
-                    if matches!(err.kind, agent_core::EvalErrorKind::Capacity(_)) {
+                    if matches!(err.kind(), agent_core::EvalErrorKind::Capacity(_)) {
                         // a failed modify is undone: same facts, same agenda order
                         assert_eq!(e.facts().collect::<Vec<_>>(), facts, "{text}: {err}");
                         same_agenda_but_owed(&acts, &agenda(e), owed, &text);
