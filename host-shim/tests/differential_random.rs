@@ -1,0 +1,481 @@
+//! Random differential programs: a seeded generator writes small CLIPS batch programs of
+//! modify chains (templates `ctx`/`cnt`/`it`/`mk`, a deffacts, 3-7 rules with `not`,
+//! `exists` and `test` CEs, right-hand sides of `modify`, `(bind ?f (modify ...))`,
+//! `assert` and `printout`), then `(watch rules)`, `(reset)`, `(run 60)`, `(facts)`,
+//! `(agenda)`, `(exit)`. Each runs in real CLIPS 6.30 and in our CLI exactly as the
+//! differential suite runs its programs (`clips_runner`); the transcripts must be equal.
+//!
+//! The seeds are fixed (`SEEDS`), so the test is deterministic; `DIFFRANDOM_SEEDS=A..B`
+//! runs other seeds (exploration, reproducing one seed). A program that differs is saved
+//! with both transcripts under `CARGO_TARGET_TMPDIR/differential_random/`, and the failure
+//! lists every such seed with its first differing line and the saved file.
+//!
+//! These programs exercise deferred propagation (`agent-core/src/rete/defer.rs`), which a
+//! modify following an assert or modify on the same right-hand side triggers, and the
+//! order of activations a modify chain leaves on the agenda.
+//!
+//! Real CLIPS is required: without `clips` on PATH the test fails naming the package.
+
+mod clips_runner;
+
+use clips_runner::{
+    clips_command, first_difference, our_engine, transcript, without_position_lines,
+};
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// The seeds the test runs: about 11 s in a debug build on the 2-core test machine.
+const SEEDS: Range<u64> = 0..300;
+
+/// SplitMix64: tiny, fast and good enough to draw program shapes; fixed forever so a seed
+/// always names the same program.
+struct Rng(u64);
+
+impl Rng {
+    fn new(seed: u64) -> Self {
+        Rng(seed)
+    }
+
+    fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^ (z >> 31)
+    }
+
+    /// Uniform in [0, 1).
+    fn unit(&mut self) -> f64 {
+        (self.next_u64() >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    /// Uniform in `lo..=hi` (the modulo bias is irrelevant for ranges this small).
+    fn int(&mut self, lo: u32, hi: u32) -> u32 {
+        lo + (self.next_u64() % u64::from(hi - lo + 1)) as u32
+    }
+
+    fn pick<'a>(&mut self, items: &[&'a str]) -> &'a str {
+        items[self.next_u64() as usize % items.len()]
+    }
+}
+
+const STATES: [&str; 4] = ["s0", "s1", "s2", "s3"];
+const VALUES: [&str; 3] = ["x", "y", "z"];
+
+/// One rule `r{k}`: a `ctx` pattern (always bound to `?x`) before or after a random body,
+/// and 1-4 actions that never touch a fact the rule already modified without rebinding.
+fn rule(rng: &mut Rng, k: u32) -> String {
+    let ctx = format!("?x <- (ctx (s {}))", rng.pick(&STATES));
+    let ctx_first = rng.unit() < 0.5;
+    let mut body: Vec<String> = Vec::new();
+    let mut has_it = false;
+    let mut has_cnt = false;
+    if rng.unit() < 0.8 {
+        has_it = true;
+        let v = if rng.unit() < 0.3 {
+            format!("?v&{}", rng.pick(&VALUES))
+        } else {
+            "?v".to_string()
+        };
+        body.push(format!("(it (id ?i) (v {v}) (w ?w))"));
+    }
+    if rng.unit() < 0.6 {
+        has_cnt = true;
+        body.push(format!("?n <- (cnt (c ?c&:(< ?c {})))", rng.int(3, 9)));
+    }
+    if rng.unit() < 0.3 {
+        // Joined on ?i when it is bound: blocked per item rather than once.
+        body.push(if has_it {
+            "(not (mk (id ?i)))".to_string()
+        } else {
+            "(not (mk (v z)))".to_string()
+        });
+    }
+    if rng.unit() < 0.2 {
+        body.push(format!("(exists (mk (v {})))", rng.pick(&VALUES)));
+    }
+    if rng.unit() < 0.2 && has_it {
+        body.push("(test (> ?w 0))".to_string());
+    }
+    let ces = if ctx_first {
+        std::iter::once(ctx).chain(body).collect::<Vec<_>>()
+    } else {
+        body.into_iter().chain(std::iter::once(ctx)).collect()
+    };
+
+    // A fact modified without rebinding its variable is retracted: later actions must not
+    // modify it again (CLIPS would report an error, not a divergence worth finding).
+    let mut x_live = true;
+    let mut n_live = has_cnt;
+    let mut actions = Vec::new();
+    for _ in 0..rng.int(1, 4) {
+        let p = rng.unit();
+        let bind = rng.unit() < 0.3;
+        if p < 0.35 && n_live {
+            let m = "(modify ?n (c (+ ?c 1)))";
+            if bind {
+                actions.push(format!("(bind ?n {m})"));
+            } else {
+                actions.push(m.to_string());
+                n_live = false;
+            }
+        } else if p < 0.6 && x_live {
+            let m = format!("(modify ?x (s {}))", rng.pick(&STATES));
+            if bind {
+                actions.push(format!("(bind ?x {m})"));
+            } else {
+                actions.push(m);
+                x_live = false;
+            }
+        } else if p < 0.7 {
+            actions.push(format!(
+                "(assert (mk (id {}) (v {})))",
+                rng.int(0, 5),
+                rng.pick(&VALUES)
+            ));
+        } else if p < 0.8 && has_it {
+            actions.push(format!("(printout t \"r{k} \" ?i crlf)"));
+        } else if p < 0.9 {
+            actions.push(format!(
+                "(assert (it (id {}) (v {}) (w {})))",
+                rng.int(6, 9),
+                rng.pick(&VALUES),
+                rng.int(0, 3)
+            ));
+        } else if x_live {
+            actions.push(format!("(modify ?x (s {}))", rng.pick(&STATES)));
+            x_live = false;
+        }
+    }
+    let salience = if rng.unit() < 0.4 {
+        format!("(declare (salience {})) ", rng.int(0, 4) as i32 - 2)
+    } else {
+        String::new()
+    };
+    format!(
+        "(defrule r{k} {salience}{} => {})",
+        ces.join(" "),
+        actions.join(" ")
+    )
+}
+
+/// The program for `seed`; `watch_activations` adds `(watch activations)` before
+/// `(watch rules)` without changing anything else.
+fn program(seed: u64, watch_activations: bool) -> String {
+    let mut rng = Rng::new(seed);
+    let mut out = vec![
+        "(deftemplate ctx (slot s))".to_string(),
+        "(deftemplate cnt (slot c))".to_string(),
+        "(deftemplate it (slot id) (slot v) (slot w))".to_string(),
+        "(deftemplate mk (slot id) (slot v))".to_string(),
+    ];
+    let mut facts = vec!["(ctx (s s0))".to_string(), "(cnt (c 0))".to_string()];
+    for i in 0..rng.int(2, 6) {
+        facts.push(format!(
+            "(it (id {i}) (v {}) (w {}))",
+            rng.pick(&VALUES),
+            rng.int(0, 3)
+        ));
+    }
+    for _ in 0..rng.int(0, 3) {
+        facts.push(format!(
+            "(mk (id {}) (v {}))",
+            rng.int(0, 5),
+            rng.pick(&VALUES)
+        ));
+    }
+    out.push(format!("(deffacts start {})", facts.join(" ")));
+    for k in 0..rng.int(3, 7) {
+        out.push(rule(&mut rng, k));
+    }
+    if watch_activations {
+        out.push("(watch activations)".to_string());
+    }
+    for line in [
+        "(watch rules)",
+        "(reset)",
+        "(run 60)",
+        "(facts)",
+        "(agenda)",
+    ] {
+        out.push(line.to_string());
+    }
+    out.push("(exit)".to_string());
+    out.join("\n") + "\n"
+}
+
+/// `DIFFRANDOM_SEEDS=A..B` when set, else `SEEDS`.
+fn seeds() -> Range<u64> {
+    let Some(spec) = std::env::var_os("DIFFRANDOM_SEEDS") else {
+        return SEEDS;
+    };
+    let spec = spec.to_string_lossy();
+    let parsed = spec
+        .split_once("..")
+        .and_then(|(a, b)| Some(a.trim().parse().ok()?..b.trim().parse().ok()?));
+    match parsed {
+        Some(range) if !Range::is_empty(&range) => range,
+        _ => panic!("DIFFRANDOM_SEEDS must be A..B with A < B, got {spec:?}"),
+    }
+}
+
+/// What the runs of one variant found.
+struct Outcome {
+    programs: usize,
+    /// Every program whose transcripts differ or that failed to run.
+    failures: Vec<Failure>,
+    /// Programs in which CLIPS fired at least one rule.
+    fired_any: usize,
+    /// FIRE lines in all of CLIPS's transcripts.
+    fired_total: usize,
+}
+
+struct Failure {
+    seed: u64,
+    /// One line: the first differing line (or what went wrong) and the saved program.
+    brief: String,
+    /// The difference with context lines, and our CLI's exit status and stderr.
+    report: String,
+}
+
+/// `transcript line N: clips "..." but ours "..."` for the first line that differs.
+fn first_differing_line(theirs: &[String], ours: &[String]) -> String {
+    let at = (0..theirs.len().max(ours.len()))
+        .find(|&i| theirs.get(i) != ours.get(i))
+        .unwrap_or(0);
+    let show = |l: Option<&String>| l.map_or("<end of output>".to_string(), |l| format!("{l:?}"));
+    format!(
+        "transcript line {}: clips {} but ours {}",
+        at + 1,
+        show(theirs.get(at)),
+        show(ours.get(at))
+    )
+}
+
+/// Where programs that differ are kept after the run, one directory per variant.
+fn saved_dir(variant: &str) -> PathBuf {
+    Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join("differential_random")
+        .join(variant)
+}
+
+/// Runs every seed in CLIPS and in our CLI. Panics at once when `clips` is missing.
+fn run_variant(variant: &str, watch_activations: bool) -> Outcome {
+    let clips = clips_command().unwrap_or_else(|e| panic!("{e}"));
+    let ours = our_engine();
+    let work = std::env::temp_dir().join(format!(
+        "robotino-diffrandom-{}-{variant}",
+        std::process::id()
+    ));
+    std::fs::create_dir_all(&work).expect("work dir");
+    let saved = saved_dir(variant);
+    // Only this run's divergences stay in it.
+    let _ = std::fs::remove_dir_all(&saved);
+    let mut outcome = Outcome {
+        programs: 0,
+        failures: Vec::new(),
+        fired_any: 0,
+        fired_total: 0,
+    };
+    for seed in seeds() {
+        outcome.programs += 1;
+        let name = format!("seed-{seed}");
+        let text = program(seed, watch_activations);
+        let file = work.join(format!("{name}.clp"));
+        std::fs::write(&file, &text).expect("write program");
+        let runs = transcript("clips", &clips, &name, &file)
+            .and_then(|theirs| Ok((theirs, transcript("robotino-agent", &ours, &name, &file)?)));
+        let report = match runs {
+            Err(e) => Some((e.lines().next().unwrap_or_default().to_string(), e, None)),
+            Ok((theirs, mine)) => {
+                let fires = theirs
+                    .lines
+                    .iter()
+                    .filter(|l| l.starts_with("FIRE "))
+                    .count();
+                outcome.fired_total += fires;
+                outcome.fired_any += usize::from(fires > 0);
+                let our_lines = without_position_lines(&mine.lines);
+                first_difference("clips", &theirs.lines, "ours", &our_lines).map(|diff| {
+                    let kind = if watch_activations {
+                        activations_aside(&theirs.lines, &our_lines)
+                    } else {
+                        String::new()
+                    };
+                    (
+                        first_differing_line(&theirs.lines, &our_lines),
+                        format!("{diff}{kind}{}", mine.note),
+                        Some((theirs.raw, mine.raw)),
+                    )
+                })
+            }
+        };
+        if let Some((brief, report, raws)) = report {
+            std::fs::create_dir_all(&saved).expect("saved dir");
+            let copy = saved.join(format!("{name}.clp"));
+            std::fs::write(&copy, &text).expect("save program");
+            if let Some((theirs, mine)) = raws {
+                std::fs::write(saved.join(format!("{name}.clips.out")), theirs)
+                    .expect("save transcript");
+                std::fs::write(saved.join(format!("{name}.ours.out")), mine)
+                    .expect("save transcript");
+            }
+            outcome.failures.push(Failure {
+                seed,
+                brief: format!("seed {seed}: {brief}; program saved as {}", copy.display()),
+                report: format!("seed {seed} ({}):\n{report}", copy.display()),
+            });
+        }
+        let _ = std::fs::remove_file(&file);
+    }
+    let _ = std::fs::remove_dir_all(&work);
+    outcome
+}
+
+/// For the activations variant: whether the transcripts still differ once the
+/// `==>`/`<== Activation` lines are dropped (the known divergence does not).
+fn activations_aside(theirs: &[String], ours: &[String]) -> String {
+    let strip = |lines: &[String]| -> Vec<String> {
+        lines
+            .iter()
+            .filter(|l| !l.starts_with("==> Activation ") && !l.starts_with("<== Activation "))
+            .cloned()
+            .collect()
+    };
+    match first_difference("clips", &strip(theirs), "ours", &strip(ours)) {
+        None => "(only activation lines differ)\n".to_string(),
+        Some(diff) => format!("without activation lines it still differs:\n{diff}"),
+    }
+}
+
+/// Prints the summary and fails listing every seed that differs.
+fn assert_agree(variant: &str, watch_activations: bool) -> Outcome {
+    let started = Instant::now();
+    let outcome = run_variant(variant, watch_activations);
+    for failure in &outcome.failures {
+        println!("{}", failure.report);
+    }
+    let summary = format!(
+        "{variant}: {} of {} random programs differ from CLIPS 6.30 (CLIPS fired {} rules, \
+         in {} programs; {:.1} s)",
+        outcome.failures.len(),
+        outcome.programs,
+        outcome.fired_total,
+        outcome.fired_any,
+        started.elapsed().as_secs_f64()
+    );
+    println!("{summary}");
+    // The full reports are on stdout above; one line per seed here.
+    assert!(
+        outcome.failures.is_empty(),
+        "{summary}; seeds {:?} (one seed again: DIFFRANDOM_SEEDS=N..N+1):\n{}",
+        outcome.failures.iter().map(|f| f.seed).collect::<Vec<_>>(),
+        outcome
+            .failures
+            .iter()
+            .map(|f| f.brief.as_str())
+            .collect::<Vec<_>>()
+            .join("\n")
+    );
+    outcome
+}
+
+#[test]
+fn random_programs_agree_with_clips() {
+    let outcome = assert_agree("rules", false);
+    // Programs that fire nothing compare little: the generator must keep producing chains
+    // (about two in three do, as with the Python original: a rule must start from s0).
+    // Judged on the fixed seeds only; a few chosen ones may fire nothing.
+    assert!(
+        seeds() != SEEDS || outcome.fired_any * 2 >= outcome.programs,
+        "only {} of {} programs fired a rule in CLIPS",
+        outcome.fired_any,
+        outcome.programs
+    );
+}
+
+/// The same programs with `(watch activations)`. Ignored: one divergence is known and not
+/// fixed. When one fact matches a `not` pattern and an `exists` pattern of the same
+/// template that sit on different alpha nodes (e.g. `(not (mk (id ?i)))` and
+/// `(exists (mk (v x)))`), CLIPS and our engine pass it through the two in different
+/// orders, so their `==>`/`<== Activation` lines differ in order, or ours shows a match
+/// the `not` blocks at once as activated and deactivated (seed 219 of `SEEDS`). What
+/// fires, in which order, and the final facts and agenda agree; each report says whether
+/// anything but activation lines differs. Run with `-- --ignored` when working on that
+/// order.
+#[test]
+#[ignore = "known divergence: activation lines when one fact meets a not and an exists on different alpha nodes"]
+fn random_programs_with_watched_activations_agree_with_clips() {
+    assert_agree("activations", true);
+}
+
+#[test]
+fn a_seed_always_names_the_same_program() {
+    assert_eq!(program(17, false), program(17, false));
+    assert_ne!(program(17, false), program(18, false));
+    // The activations variant differs only by its watch line.
+    assert_eq!(
+        program(17, true).replace("(watch activations)\n", ""),
+        program(17, false)
+    );
+}
+
+#[test]
+fn programs_have_the_generator_shapes() {
+    let mut rule_counts = [0usize; 8];
+    let (mut nots, mut exists, mut tests, mut binds, mut saliences) = (0, 0, 0, 0, 0);
+    for seed in SEEDS {
+        let text = program(seed, false);
+        assert!(!text.contains("(watch activations)"), "seed {seed}");
+        assert!(
+            text.ends_with("(watch rules)\n(reset)\n(run 60)\n(facts)\n(agenda)\n(exit)\n"),
+            "seed {seed}:\n{text}"
+        );
+        let rules = text.lines().filter(|l| l.starts_with("(defrule ")).count();
+        assert!((3..=7).contains(&rules), "seed {seed}: {rules} rules");
+        rule_counts[rules] += 1;
+        nots += text.matches("(not (mk").count();
+        exists += text.matches("(exists (mk").count();
+        tests += text.matches("(test (> ?w 0))").count();
+        binds += text.matches("(bind ?").count();
+        saliences += text.matches("(salience ").count();
+        for line in text.lines().filter(|l| l.starts_with("(defrule ")) {
+            // Every rule binds the ctx fact, and parentheses balance.
+            assert!(line.contains("?x <- (ctx (s s"), "{line}");
+            let depth = line.chars().fold(0i32, |d, c| match c {
+                '(' => d + 1,
+                ')' => d - 1,
+                _ => d,
+            });
+            assert_eq!(depth, 0, "{line}");
+        }
+    }
+    // Every rule count occurs, and each kind of CE and action is common.
+    assert!(rule_counts[3..].iter().all(|&n| n > 0), "{rule_counts:?}");
+    for (what, n) in [
+        ("not", nots),
+        ("exists", exists),
+        ("test", tests),
+        ("bind", binds),
+        ("salience", saliences),
+    ] {
+        assert!(n >= 50, "{what} appears only {n} times in {SEEDS:?}");
+    }
+}
+
+/// The published SplitMix64 sequence for seed 0: a changed generator would silently
+/// replace the programs the seeds name.
+#[test]
+fn rng_is_splitmix64() {
+    let mut rng = Rng::new(0);
+    assert_eq!(rng.next_u64(), 0xe220_a839_7b1d_cdaf);
+    assert_eq!(rng.next_u64(), 0x6e78_9e6a_a1b9_65f4);
+    assert_eq!(rng.next_u64(), 0x06c4_5d18_8009_454f);
+    let mut rng = Rng::new(1);
+    for _ in 0..1000 {
+        let u = rng.unit();
+        assert!((0.0..1.0).contains(&u), "{u}");
+        assert!((3..=7).contains(&rng.int(3, 7)));
+    }
+}
