@@ -316,4 +316,5 @@ differential_programs! {
     p157_query_slot_tests => "157-query-slot-tests",
     p158_run_limit_message => "158-run-limit-message",
     p159_modify_retracted_in_firing => "159-modify-retracted-in-firing",
+    p160_retract_unblocks_shared_pattern => "160-retract-unblocks-shared-pattern",
 }

@@ -98,6 +98,18 @@ fn rule(rng: &mut Rng, k: u32) -> String {
     if rng.unit() < 0.2 && has_it {
         body.push("(test (> ?w 0))".to_string());
     }
+    // CEs on the facts the actions modify: a `not`/`exists` on them (their retract can
+    // build matches), and a test that looks at the fact base (a propagation must see
+    // the facts as they are at its assert), so deferred propagation must stay eager
+    if rng.unit() < 0.15 {
+        body.push(format!("(not (ctx (s {})))", rng.pick(&STATES)));
+    }
+    if rng.unit() < 0.1 {
+        body.push(format!("(exists (cnt (c ?e&:(> ?e {}))))", rng.int(0, 4)));
+    }
+    if rng.unit() < 0.15 {
+        body.push("(cnt (c ?d&:(= (nctx) 1)))".to_string());
+    }
     let ces = if ctx_first {
         std::iter::once(ctx).chain(body).collect::<Vec<_>>()
     } else {
@@ -170,6 +182,8 @@ fn program(seed: u64, watch_activations: bool) -> String {
         "(deftemplate it (slot id) (slot v) (slot w))".to_string(),
         "(deftemplate mk (slot id) (slot v))".to_string(),
     ];
+    // a test function that counts the control facts (see `rule`)
+    out.push("(deffunction nctx () (length$ (find-all-facts ((?f ctx)) TRUE)))".to_string());
     let mut facts = vec!["(ctx (s s0))".to_string(), "(cnt (c 0))".to_string()];
     for i in 0..rng.int(2, 6) {
         facts.push(format!(
@@ -425,6 +439,7 @@ fn a_seed_always_names_the_same_program() {
 fn programs_have_the_generator_shapes() {
     let mut rule_counts = [0usize; 8];
     let (mut nots, mut exists, mut tests, mut binds, mut saliences) = (0, 0, 0, 0, 0);
+    let (mut ctx_nots, mut cnt_exists, mut fact_tests) = (0, 0, 0);
     for seed in SEEDS {
         let text = program(seed, false);
         assert!(!text.contains("(watch activations)"), "seed {seed}");
@@ -440,6 +455,9 @@ fn programs_have_the_generator_shapes() {
         tests += text.matches("(test (> ?w 0))").count();
         binds += text.matches("(bind ?").count();
         saliences += text.matches("(salience ").count();
+        ctx_nots += text.matches("(not (ctx").count();
+        cnt_exists += text.matches("(exists (cnt").count();
+        fact_tests += text.matches("(= (nctx) 1)").count();
         for line in text.lines().filter(|l| l.starts_with("(defrule ")) {
             // Every rule binds the ctx fact, and parentheses balance.
             assert!(line.contains("?x <- (ctx (s s"), "{line}");
@@ -459,6 +477,9 @@ fn programs_have_the_generator_shapes() {
         ("test", tests),
         ("bind", binds),
         ("salience", saliences),
+        ("not on ctx", ctx_nots),
+        ("exists on cnt", cnt_exists),
+        ("fact-base test", fact_tests),
     ] {
         assert!(n >= 50, "{what} appears only {n} times in {SEEDS:?}");
     }

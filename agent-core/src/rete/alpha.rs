@@ -493,10 +493,14 @@ impl Core<'_> {
             let c = self.tokens[am as usize].first_child;
             self.delete_token(c);
         }
-        while self.tokens[am as usize].blocks != NONE {
-            let k = self.tokens[am as usize].blocks;
-            self.remove_link(k);
-        }
+        // out of its memory and bucket before the outputs it blocks are unblocked: a
+        // later pattern of their rule may share this node, and what they pass on must
+        // not meet the fact that is going (CLIPS builds nothing with it). Its own links
+        // stay, so the search for the next blocker goes on after it.
+        let (mem_next, am_next) = (
+            self.tokens[am as usize].mem_next,
+            self.tokens[am as usize].am_next,
+        );
         self.index_remove(am);
         let tk = self.tokens[am as usize];
         if tk.mem_prev != NONE {
@@ -508,6 +512,12 @@ impl Core<'_> {
             self.tokens[tk.mem_next as usize].mem_prev = tk.mem_prev;
         } else {
             self.alphas[alpha as usize].mem_tail = tk.mem_prev;
+        }
+        self.tokens[am as usize].mem_next = mem_next;
+        self.tokens[am as usize].am_next = am_next;
+        while self.tokens[am as usize].blocks != NONE {
+            let k = self.tokens[am as usize].blocks;
+            self.remove_link(k);
         }
         if tk.prev_sib != NONE {
             self.tokens[tk.prev_sib as usize].next_sib = tk.next_sib;
