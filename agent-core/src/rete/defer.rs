@@ -228,7 +228,10 @@ impl Core<'_> {
     /// run before the waiting propagation (see the module docs).
     pub(crate) fn may_overtake(&mut self, call: Ix, old: Ix) -> bool {
         let waiting = self.st.deferred.fact;
+        // (the waiting fact itself cannot be retracted before it was propagated; no
+        // variable can name it without a call in between, which builds it first)
         if waiting == NONE
+            || waiting == old
             || call != self.st.top_action
             || self.st.watch & (watch::FACTS | watch::ACTIVATIONS) != 0
             || self.st.owed != NONE
