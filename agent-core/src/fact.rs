@@ -591,7 +591,7 @@ impl Core<'_> {
         if self.st.watch & crate::engine::watch::FACTS != 0 {
             self.print_fact_line("==> ", slot);
         }
-        if defer && self.may_defer() {
+        if defer && self.may_defer(tmpl) {
             // the propagation waits for the next action (`rete::defer`)
             self.st.deferred = crate::rete::Deferred {
                 fact: slot,

@@ -341,7 +341,7 @@ impl Core<'_> {
                 let sym = self.exprs[sv as usize].data;
                 let slot = self
                     .find_slot(tmpl, sym)
-                    .ok_or(EvalError::new(EvalErrorKind::NoSuchSlot))?;
+                    .ok_or_else(|| EvalError::new(EvalErrorKind::NoSuchSlot))?;
                 // unchecked, as in CLIPS (see assert)
                 let v = self.slot_value_from(tmpl, slot, self.exprs[sv as usize].first)?;
                 self.stack[(base + slot) as usize] = v;

@@ -214,6 +214,19 @@ pub fn is_pure(id: Ix) -> bool {
     PURE.iter().any(|&(a, b)| (a..b).contains(&id))
 }
 
+/// Whether builtin `id` is pure (`is_pure`) and prints nothing itself, even on an
+/// error (it returns the error, reported once the actions stop): the arithmetic,
+/// comparison, math, predicate and geometry tables.
+pub fn is_quiet(id: Ix) -> bool {
+    const QUIET: [(Ix, Ix); 4] = [
+        (table_start(0), table_start(1)),
+        (table_start(4), table_start(5)),
+        (table_start(7), table_start(8)),
+        (table_start(11), table_start(12)),
+    ];
+    QUIET.iter().any(|&(a, b)| (a..b).contains(&id))
+}
+
 /// Ids of `assert` and `modify`: as top-level actions of a firing they may leave a
 /// deferred propagation waiting (`rete::defer`).
 pub const ID_ASSERT: Ix = builtin_id("assert");

@@ -68,25 +68,6 @@ impl Deferred {
 
 #[cfg(feature = "defer")]
 impl Core<'_> {
-    /// Whether the expression chain from `e` (and everything below it) calls only
-    /// pure builtins.
-    fn chain_pure(&self, mut e: Ix) -> bool {
-        while e != NONE {
-            let x = self.exprs[e as usize];
-            if x.op == Op::Call
-                && (x.aux != FnKind::Builtin as u8 || !crate::builtins::is_pure(x.data))
-            {
-                return false;
-            }
-            // a 64-bit constant's payload node (after its header) is data, not a child
-            if !matches!(x.op, Op::Int | Op::Float) && !self.chain_pure(x.first) {
-                return false;
-            }
-            e = x.next;
-        }
-        true
-    }
-
     /// Walks the joins a fact of alpha node `alpha` can reach (its successors, their
     /// descendants and the joins taking those from the right); false as soon as
     /// `ok` refuses one, or the walk is deeper than it can follow.
@@ -141,7 +122,7 @@ impl Core<'_> {
         while a != NONE {
             let node = &self.alphas[a as usize];
             if node.live {
-                pure = pure && self.chain_pure(node.tests);
+                pure = pure && self.calls_only(node.tests, crate::builtins::is_pure);
                 // a not/exists join on this pattern: its matches are blockers
                 let mut j = node.succ;
                 while j != NONE {
@@ -155,7 +136,9 @@ impl Core<'_> {
                 let mut below_no_rsucc = true;
                 let walked = self.joins_below(a, &mut |cx, j| {
                     let jn = &cx.joins[j as usize];
-                    below_pure = below_pure && cx.chain_pure(jn.tests) && cx.chain_pure(jn.post);
+                    below_pure = below_pure
+                        && cx.calls_only(jn.tests, crate::builtins::is_pure)
+                        && cx.calls_only(jn.post, crate::builtins::is_pure);
                     // partial matches there block the outputs of a join from the right
                     below_no_rsucc = below_no_rsucc && jn.rsucc == NONE;
                     true
@@ -175,25 +158,29 @@ impl Core<'_> {
     }
 
     /// Whether a waiting propagation may stay waiting while action `e` runs: an
-    /// assert or modify whose arguments read leaves only (constants, variables), so
-    /// nothing runs before it decides (`assert_slots` builds it first, a modify's
-    /// retract may overtake it).
+    /// assert or modify whose arguments call only quiet builtins (arithmetic and
+    /// comparisons on leaves, `builtins::is_quiet`), so nothing runs before it decides
+    /// that could see the propagation missing or print before what it prints
+    /// (`assert_slots` builds it first, a modify's retract may overtake it; an error
+    /// of the arguments is reported after the actions, once it is built).
     pub(crate) fn may_wait_for(&self, e: Ix) -> bool {
         let x = self.exprs[e as usize];
         x.op == Op::Call
             && x.aux == FnKind::Builtin as u8
             && (x.data == crate::builtins::ID_ASSERT || x.data == crate::builtins::ID_MODIFY)
-            && self.calls_nothing(x.first)
+            && self.calls_only(x.first, crate::builtins::is_quiet)
     }
 
-    /// Whether the expression chain from `e` contains no function call.
-    fn calls_nothing(&self, mut e: Ix) -> bool {
+    /// Whether the expression chain from `e` (and everything below it) calls only
+    /// builtins that `allowed` accepts.
+    fn calls_only(&self, mut e: Ix, allowed: fn(Ix) -> bool) -> bool {
         while e != NONE {
             let x = self.exprs[e as usize];
-            if x.op == Op::Call {
+            if x.op == Op::Call && (x.aux != FnKind::Builtin as u8 || !allowed(x.data)) {
                 return false;
             }
-            if !matches!(x.op, Op::Int | Op::Float) && !self.calls_nothing(x.first) {
+            // a 64-bit constant's payload node (after its header) is data, not a child
+            if !matches!(x.op, Op::Int | Op::Float) && !self.calls_only(x.first, allowed) {
                 return false;
             }
             e = x.next;
@@ -215,13 +202,16 @@ impl Core<'_> {
             && self.may_wait_for(n)
     }
 
-    /// Whether the assert of a top-level action may leave its propagation for later:
-    /// in a firing, nothing traced, nothing owed, no undo replaying.
-    pub(crate) fn may_defer(&self) -> bool {
+    /// Whether the assert of a top-level action, a fact of template `tmpl`, may leave
+    /// its propagation for later: in a firing, nothing traced, nothing owed, no undo
+    /// replaying, and the template's tests pure (else no retract could overtake it,
+    /// and deferring would only cost).
+    pub(crate) fn may_defer(&mut self, tmpl: Ix) -> bool {
         self.st.firing
             && self.st.watch & (watch::FACTS | watch::ACTIVATIONS) == 0
             && self.st.owed == NONE
             && !self.st.act_journal.replay
+            && self.defer_flags(tmpl) & PURE_TESTS != 0
     }
 
     /// Whether the retract of live fact `old` (by the top-level modify `call`) may
@@ -248,11 +238,19 @@ impl Core<'_> {
 
     /// Builds the waiting propagation, if any. On a full pool it is undone with its
     /// fact (a modify's old fact comes back) and the error returned.
+    #[inline(always)]
     pub(crate) fn flush_deferred(&mut self) -> Result<(), EvalError> {
-        let d = self.st.deferred;
-        if d.fact == NONE {
+        // most callers find nothing waiting: no call for them
+        if self.st.deferred.fact == NONE {
             return Ok(());
         }
+        self.flush_waiting()
+    }
+
+    /// `flush_deferred` of a waiting propagation.
+    #[inline(never)]
+    fn flush_waiting(&mut self) -> Result<(), EvalError> {
+        let d = self.st.deferred;
         self.st.deferred = Deferred::NONE;
         let f = d.fact;
         self.hold_traces();
@@ -303,7 +301,7 @@ impl Core<'_> {
     }
 
     #[inline(always)]
-    pub(crate) fn may_defer(&self) -> bool {
+    pub(crate) fn may_defer(&mut self, _tmpl: Ix) -> bool {
         false
     }
 
