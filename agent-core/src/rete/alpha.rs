@@ -497,35 +497,35 @@ impl Core<'_> {
         // later pattern of their rule may share this node, and what they pass on must
         // not meet the fact that is going (CLIPS builds nothing with it). Its own links
         // stay, so the search for the next blocker goes on after it.
-        let (mem_next, am_next) = (
-            self.tokens[am as usize].mem_next,
-            self.tokens[am as usize].am_next,
-        );
+        let am_next = self.tokens[am as usize].am_next;
         self.index_remove(am);
-        let tk = self.tokens[am as usize];
-        if tk.mem_prev != NONE {
-            self.tokens[tk.mem_prev as usize].mem_next = tk.mem_next;
+        let tk = &self.tokens[am as usize];
+        let (mem_prev, mem_next, fact) = (tk.mem_prev, tk.mem_next, tk.fact);
+        let (prev_sib, next_sib, blocks) = (tk.prev_sib, tk.next_sib, tk.blocks);
+        if mem_prev != NONE {
+            self.tokens[mem_prev as usize].mem_next = mem_next;
         } else {
-            self.alphas[alpha as usize].mem = tk.mem_next;
+            self.alphas[alpha as usize].mem = mem_next;
         }
-        if tk.mem_next != NONE {
-            self.tokens[tk.mem_next as usize].mem_prev = tk.mem_prev;
+        if mem_next != NONE {
+            self.tokens[mem_next as usize].mem_prev = mem_prev;
         } else {
-            self.alphas[alpha as usize].mem_tail = tk.mem_prev;
+            self.alphas[alpha as usize].mem_tail = mem_prev;
         }
-        self.tokens[am as usize].mem_next = mem_next;
-        self.tokens[am as usize].am_next = am_next;
-        while self.tokens[am as usize].blocks != NONE {
-            let k = self.tokens[am as usize].blocks;
-            self.remove_link(k);
+        if blocks != NONE {
+            self.tokens[am as usize].am_next = am_next;
+            while self.tokens[am as usize].blocks != NONE {
+                let k = self.tokens[am as usize].blocks;
+                self.remove_link(k);
+            }
         }
-        if tk.prev_sib != NONE {
-            self.tokens[tk.prev_sib as usize].next_sib = tk.next_sib;
+        if prev_sib != NONE {
+            self.tokens[prev_sib as usize].next_sib = next_sib;
         } else {
-            self.facts[tk.fact as usize].first_am = tk.next_sib;
+            self.facts[fact as usize].first_am = next_sib;
         }
-        if tk.next_sib != NONE {
-            self.tokens[tk.next_sib as usize].prev_sib = tk.prev_sib;
+        if next_sib != NONE {
+            self.tokens[next_sib as usize].prev_sib = prev_sib;
         }
         self.free_token(am);
     }
