@@ -1308,6 +1308,10 @@ impl<'s> Parser<'s, '_, '_> {
                 index_built: false,
                 #[cfg(feature = "wide-pools")]
                 one_child: false,
+                #[cfg(feature = "wipe")]
+                plain: false,
+                #[cfg(feature = "wipe")]
+                plain_gen: u32::MAX,
             };
             // a join from the right comes right after its subnetwork's first join
             // among the parent's children: the subnetwork sees a new left token first

@@ -486,6 +486,9 @@ impl Core<'_> {
 
     /// Removes an alpha match: retracts what successor joins built from it.
     pub(crate) fn remove_alpha_match(&mut self, am: Ix) {
+        // the only match of its memory: its successors' memories go whole
+        #[cfg(feature = "wipe")]
+        self.wipe_successors(am);
         let alpha = self.tokens[am as usize].owner;
         // partial matches built on it (newest first), then the not/exists outputs it
         // blocks, which look for another blocker: CLIPS's order

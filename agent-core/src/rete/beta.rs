@@ -584,7 +584,7 @@ impl Core<'_> {
     /// Takes blocked output `t` off its blocker's list. `am_prev` is the blocker
     /// exactly when `t` heads the blocker's list (a token is on one list only).
     #[cfg_attr(feature = "wide-pools", inline(always))]
-    fn unlink_blocked(&mut self, t: Ix) {
+    pub(super) fn unlink_blocked(&mut self, t: Ix) {
         let tk = &mut self.tokens[t as usize];
         let (p, n) = (tk.am_prev, tk.am_next);
         tk.am_next = NONE;

@@ -565,6 +565,13 @@ impl Core<'_> {
     /// `join` (then `next_left` with `hashed`), else the whole memory.
     pub(crate) fn first_left(&mut self, join: Ix, am: Ix) -> (Ix, bool) {
         let j = self.joins[join as usize];
+        let parent_mem = self.joins[j.parent as usize].mem;
+        // host: an empty memory stays unindexed (its index would only make every
+        // partial match that comes pay its bucket until the next right activation)
+        #[cfg(feature = "wide-pools")]
+        if parent_mem == NONE {
+            return (NONE, false);
+        }
         if self.joins[j.parent as usize].index_child == join {
             #[cfg(feature = "wide-pools")]
             if !self.joins[j.parent as usize].index_built {
@@ -582,7 +589,7 @@ impl Core<'_> {
             let first = self.skip_other_beta(self.amem_buckets[b as usize], j.parent);
             return (first, true);
         }
-        (self.joins[j.parent as usize].mem, false)
+        (parent_mem, false)
     }
 
     /// The partial match after `l` (same chain kind as `first_left` gave).

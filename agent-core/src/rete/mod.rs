@@ -7,6 +7,8 @@ pub use index::{KeyPlan, KEY_PLANS};
 mod defer;
 pub use defer::Deferred;
 mod quick;
+#[cfg(feature = "wipe")]
+mod wipe;
 pub use quick::{TestOp, TestPlan, PLAN_TESTS, TEST_PLANS};
 
 use crate::value::Ix;
@@ -138,6 +140,13 @@ pub struct Join {
     /// `Core::note_children`.
     #[cfg(feature = "wide-pools")]
     pub one_child: bool,
+    /// Whether no join from this one down feeds a join from the right (its memories
+    /// may then be emptied whole, `rete::wipe`), worked out for network generation
+    /// `plain_gen`.
+    #[cfg(feature = "wipe")]
+    pub plain: bool,
+    #[cfg(feature = "wipe")]
+    pub plain_gen: u32,
 }
 
 impl Join {
@@ -167,6 +176,10 @@ impl Join {
         index_built: false,
         #[cfg(feature = "wide-pools")]
         one_child: false,
+        #[cfg(feature = "wipe")]
+        plain: false,
+        #[cfg(feature = "wipe")]
+        plain_gen: u32::MAX,
     };
 }
 

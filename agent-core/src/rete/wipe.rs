@@ -1,0 +1,213 @@
+//! Whole memories removed at once: when the only match of an alpha memory goes, every
+//! partial match of its positive successor joins goes, and with them everything below
+//! (a memory's partial matches all extend those of its parent join). A control fact
+//! that changes (`(modify ?ctx (state next))`) takes a rule's whole network with it.
+//!
+//! Deleting them one by one (`delete_token`) unlinks each from its parent's child list
+//! and from its memory list, though parents and memories all go too. Here each memory
+//! is walked once and emptied; a partial match is only taken off the lists that stay:
+//! its alpha match's children (the alpha match may live on), the blocker list of
+//! another fact's match (a blocked not output), its index bucket, its activations.
+//!
+//! The result is the same network and agenda as one by one; only the order in which the
+//! activations leave differs, which `(watch activations)` would show, so traced runs
+//! delete one by one. A subtree feeding a join from the right (whose partial matches
+//! block outputs elsewhere) is deleted one by one too, as is everything while matches
+//! are owed.
+
+use super::{JoinKind, TokenKind};
+use crate::engine::{watch, Core};
+use crate::value::{Ix, NONE};
+
+/// Deepest join subtree checked (deeper: deleted one by one).
+const WALK_STACK: usize = 64;
+
+impl Core<'_> {
+    /// Before alpha match `am` is removed: if it is its memory's only match, empties the
+    /// memories of its positive successor joins and all below them at once.
+    pub(crate) fn wipe_successors(&mut self, am: Ix) {
+        if self.st.watch & watch::ACTIVATIONS != 0 || self.st.owed != NONE {
+            return;
+        }
+        let alpha = self.tokens[am as usize].owner;
+        let node = &self.alphas[alpha as usize];
+        if node.mem != am || self.tokens[am as usize].mem_next != NONE {
+            return;
+        }
+        let mut j = node.succ;
+        while j != NONE {
+            let jn = &self.joins[j as usize];
+            let next = jn.alpha_next;
+            if jn.kind == JoinKind::Positive && jn.mem != NONE && self.subtree_plain(j) {
+                self.wipe_memory(j, true);
+            }
+            j = next;
+        }
+    }
+
+    /// Whether no join from `join` down feeds a join from the right (remembered per
+    /// network generation).
+    fn subtree_plain(&mut self, join: Ix) -> bool {
+        let jn = &self.joins[join as usize];
+        if jn.plain_gen == self.st.net_gen {
+            return jn.plain;
+        }
+        let plain = self.walk_plain(join);
+        let jn = &mut self.joins[join as usize];
+        jn.plain = plain;
+        jn.plain_gen = self.st.net_gen;
+        plain
+    }
+
+    fn walk_plain(&self, join: Ix) -> bool {
+        let mut stack = [NONE; WALK_STACK];
+        let (mut n, mut j) = (0, join);
+        loop {
+            let jn = &self.joins[j as usize];
+            if jn.rsucc != NONE {
+                return false;
+            }
+            let mut c = jn.first_child;
+            while c != NONE {
+                if n == WALK_STACK {
+                    return false;
+                }
+                stack[n] = c;
+                n += 1;
+                c = self.joins[c as usize].next_sibling;
+            }
+            if n == 0 {
+                return true;
+            }
+            n -= 1;
+            j = stack[n];
+        }
+    }
+
+    /// Empties the memory of `join` and of every join below it; `parents_stay`: the
+    /// partial matches' parents are not being removed (the top memory), so they leave
+    /// their parents' child lists.
+    fn wipe_memory(&mut self, join: Ix, parents_stay: bool) {
+        let mut t = self.joins[join as usize].mem;
+        while t != NONE {
+            let next = self.tokens[t as usize].mem_next;
+            if parents_stay {
+                self.leave_parent(t);
+            }
+            self.wipe_token(t);
+            t = next;
+        }
+        let jn = &mut self.joins[join as usize];
+        jn.mem = NONE;
+        // an empty memory is trivially unindexed (see `Join::index_built`)
+        #[cfg(feature = "wide-pools")]
+        {
+            jn.index_built = false;
+        }
+        let mut c = jn.first_child;
+        while c != NONE {
+            let cj = &self.joins[c as usize];
+            let next = cj.next_sibling;
+            // an empty memory has empty ones below it (theirs extend its matches)
+            if !cj.is_terminal() && cj.mem != NONE {
+                self.wipe_memory(c, false);
+            }
+            c = next;
+        }
+    }
+
+    /// Takes partial match `t` off its parent's child list.
+    fn leave_parent(&mut self, t: Ix) {
+        let tk = &self.tokens[t as usize];
+        let (parent, prev, next) = (tk.parent, tk.prev_sib, tk.next_sib);
+        if parent == NONE {
+            return;
+        }
+        if prev != NONE {
+            self.tokens[prev as usize].next_sib = next;
+        } else {
+            self.tokens[parent as usize].first_child = next;
+        }
+        if next != NONE {
+            self.tokens[next as usize].prev_sib = prev;
+        }
+    }
+
+    /// Frees partial match `t` of a memory being emptied, taking it off the lists that
+    /// stay: its alpha match's children, its blocker's list, its index bucket, and its
+    /// activations off the agenda.
+    #[inline(always)]
+    fn wipe_token(&mut self, t: Ix) {
+        let tk = &self.tokens[t as usize];
+        debug_assert!(tk.kind == TokenKind::Beta && tk.blocks == NONE);
+        let (am, am_prev, am_next) = (tk.am, tk.am_prev, tk.am_next);
+        if am != NONE {
+            if am_prev != NONE {
+                self.tokens[am_prev as usize].am_next = am_next;
+            } else {
+                self.tokens[am as usize].first_child = am_next;
+            }
+            if am_next != NONE {
+                self.tokens[am_next as usize].am_prev = am_prev;
+            }
+        } else if self.tokens[t as usize].blocked {
+            // a not/exists output on another match's blocker list (nothing is owed)
+            self.unlink_blocked(t);
+        }
+        while self.tokens[t as usize].extra != NONE {
+            let a = self.tokens[t as usize].extra;
+            self.remove_activation(a);
+        }
+        self.beta_index_remove(t);
+        self.free_token(t);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use crate::testutil::run_program;
+    use std::string::String;
+
+    /// A control fact's modifies empty whole memories (not/exists outputs blocked by
+    /// other facts, shared joins, two rules on the same pattern, activations): the
+    /// facts, agenda and firings equal those of the one-by-one deletion that a traced
+    /// run takes. (The traced run's own lines are dropped before comparing.)
+    #[test]
+    fn wiped_memories_leave_what_one_by_one_deletion_leaves() {
+        let program = |watch: &str| {
+            run_program(&std::format!(
+                "(deftemplate ctx (slot s))
+                 (deftemplate it (slot id) (slot v))
+                 (deftemplate mk (slot id))
+                 (deffacts d (ctx (s a)) (it (id 1) (v x)) (it (id 2) (v y)) (it (id 3) (v x))
+                   (mk (id 2)))
+                 (defrule step-a ?c <- (ctx (s a)) (it (id ?i) (v ?v)) (not (mk (id ?i)))
+                   (it (id ?j&~?i) (v ?v)) => (modify ?c (s b)))
+                 (defrule also-a (ctx (s a)) (it (id ?i)) (exists (mk (id ?k&:(> ?k ?i)))) =>)
+                 (defrule step-b ?c <- (ctx (s b)) (it (id ?i) (v x)) =>
+                   (assert (mk (id ?i))) (modify ?c (s a)))
+                 (defrule done (declare (salience -5)) (ctx (s a)) (not (it (id ?i&:(> ?i 0)) (v x))) =>)
+                 {watch}
+                 (reset)
+                 (run 12)
+                 (printout t \"--\" crlf)
+                 (facts)
+                 (agenda)"
+            ))
+        };
+        let after = |out: String| {
+            let keep = out
+                .lines()
+                .filter(|l| !l.starts_with("==> Activation") && !l.starts_with("<== Activation"))
+                .collect::<std::vec::Vec<_>>()
+                .join("\n");
+            keep
+        };
+        let wiped = program("(watch rules)");
+        let one_by_one = program("(watch rules)\n(watch activations)");
+        assert!(one_by_one.contains("<== Activation"), "{one_by_one}");
+        assert!(wiped.contains("FIRE"), "{wiped}");
+        assert_eq!(after(wiped), after(one_by_one));
+    }
+}
