@@ -553,6 +553,6 @@ differential_programs! {
     p157_query_slot_tests => "157-query-slot-tests",
     p158_run_limit_message => "158-run-limit-message",
     p159_modify_retracted_in_firing => "159-modify-retracted-in-firing",
-    p160_alpha_selector_nodes => "160-alpha-selector-nodes",
-    p161_alpha_multifield_nodes => "161-alpha-multifield-nodes",
+    p161_alpha_selector_nodes => "161-alpha-selector-nodes",
+    p162_alpha_multifield_nodes => "162-alpha-multifield-nodes",
 }
