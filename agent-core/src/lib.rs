@@ -30,7 +30,9 @@
 //!   (the "right hash") are part of the node's identity: `(a ?x)` as a first pattern
 //!   and `(a ?x)` joined on `?x` are different nodes. Nodes of a template are kept in
 //!   CLIPS's pattern-network order (newer sibling nodes first), which is the order a
-//!   fact visits them.
+//!   fact visits them; a pattern's path there has one level per field with a test of
+//!   its own, two for a constant (CLIPS's selector node, shared by every constant on
+//!   that field, then the constant).
 //! - **Joins** ([`rete::Join`]): each rule is a chain `Root -> CE1 -> ... -> CEn`.
 //!   The root holds one empty token. A join combines each token of its parent's output
 //!   memory (left) with the alpha matches of its pattern (right) under the join tests

@@ -317,4 +317,6 @@ differential_programs! {
     p158_run_limit_message => "158-run-limit-message",
     p159_modify_retracted_in_firing => "159-modify-retracted-in-firing",
     p160_retract_unblocks_shared_pattern => "160-retract-unblocks-shared-pattern",
+    p161_alpha_selector_nodes => "161-alpha-selector-nodes",
+    p162_alpha_multifield_nodes => "162-alpha-multifield-nodes",
 }

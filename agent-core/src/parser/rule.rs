@@ -741,6 +741,10 @@ impl<'s> Parser<'s, '_, '_> {
                 }
             }
         }
+        if i == 0 {
+            // CLIPS tests an empty multislot `(l)` for zero length in a node of its own
+            pb.record(loc::new(slot, ZERO_LEN), NONE, false);
+        }
         if multis >= 2 {
             pb.marks += multis - 1;
             if pb.marks as usize > MAX_MARKS {
@@ -978,8 +982,12 @@ impl<'s> Parser<'s, '_, '_> {
     }
 
     fn find_or_make_alpha(&mut self, tmpl: Ix, pb: &PatBuild, at: Token<'s>) -> PResult<Ix> {
+        let (path, tail) = self.pattern_path(pb);
+        // CLIPS never shares the relation-name node an ordered pattern without tests
+        // (`(o $?)`) ends in: each such pattern is a new, newest node
+        let alone = self.cx.templates[tmpl as usize].implied && path.locs[0] == EMPTY_PATH;
         let mut a = self.cx.templates[tmpl as usize].alpha_head;
-        while a != NONE {
+        while a != NONE && !alone {
             let n = self.cx.alphas[a as usize];
             if n.live
                 && self.chain_eq(n.desc, pb.desc)
@@ -996,9 +1004,9 @@ impl<'s> Parser<'s, '_, '_> {
             let c = cap(Pool::AlphaNodes, self.cx.alphas.len());
             return Err(self.cap_err(at, c));
         }
-        let (path_loc, mut path_test, plen) = self.pattern_path(tmpl, pb);
+        let (path_loc, mut path_test, plen) = (path.locs, path.tests, path.len);
         if pb.nrhash > 0 {
-            // the last pattern node carries the right hash: a node of its own
+            // the last field's nodes carry the right hash: nodes of their own
             let mut h: u32 = 0x7f4a_7c15;
             for &e in &pb.rhash[..pb.nrhash] {
                 let x = self.cx.exprs[e as usize];
@@ -1008,7 +1016,9 @@ impl<'s> Parser<'s, '_, '_> {
                     h = mix16(h, u32::from(d.data) | u32::from(d.aux) << 16);
                 }
             }
-            path_test[plen - 1] = (mix16(u32::from(path_test[plen - 1]), h) & 0xFFFF) as Ix | 1;
+            for t in &mut path_test[plen - tail..plen] {
+                *t = (mix16(u32::from(*t), h) & 0xFFFF) as Ix | 1;
+            }
         }
         self.cx.alphas[n] = AlphaNode {
             tmpl,
@@ -1027,7 +1037,7 @@ impl<'s> Parser<'s, '_, '_> {
             rhash: pb.rhash,
             nrhash: pb.nrhash as u8,
         };
-        self.assign_trie_key(tmpl, n as Ix);
+        self.assign_trie_key(tmpl, n as Ix, alone);
         self.insert_alpha_sorted(tmpl, n as Ix);
         self.cx.st.nalpha += 1;
         self.cx.st.net_gen = self.cx.st.net_gen.wrapping_add(1);
@@ -1035,69 +1045,152 @@ impl<'s> Parser<'s, '_, '_> {
         Ok(n as Ix)
     }
 
-    /// The pattern-network path of a pattern: its fields in slot order; trailing
-    /// untested single-field slots of a deftemplate pattern make no node (CLIPS
-    /// shares such patterns); an empty path gets one placeholder node.
-    fn pattern_path(&self, tmpl: Ix, pb: &PatBuild) -> ([Ix; PATH_LEN], [Ix; PATH_LEN], usize) {
-        let mut f = pb.fields;
-        let nf = pb.nfields;
-        f[..nf].sort_unstable_by_key(|x| x.0);
-        let implied = self.cx.templates[tmpl as usize].implied;
-        let mut end = nf;
-        if !implied {
-            while end > 0 && f[end - 1].1 == NONE && loc::elem(f[end - 1].0) == loc::SINGLE {
-                end -= 1;
-            }
-        }
-        // single slots are one node each; a multislot's elements form one node
-        let mut locs = [0 as Ix; PATH_LEN];
-        let mut tests = [0 as Ix; PATH_LEN];
-        let mut len = 0;
+    /// The pattern's path in CLIPS's pattern network (CLIPS 6.30 `factbld.c`), one
+    /// level per network node, in the order the pattern names its slots: a field
+    /// without a test of its own makes no node wherever it stands; a constant
+    /// constraint without `|` makes two, a "selector" node for the field that every
+    /// such constant on it shares, then the constant. Multislot elements are nodes of
+    /// their own, told apart by their place in the slot's layout (the first carries
+    /// the slot's length test). Returns the path and how many of its last levels are
+    /// the last field's (they carry the right hash; 0 when the path was cut).
+    fn pattern_path(&self, pb: &PatBuild) -> (NetPath, usize) {
+        let (f, nf) = (pb.fields, pb.nfields);
+        let mut path = NetPath {
+            locs: [0; PATH_LEN],
+            tests: [0; PATH_LEN],
+            len: 0,
+            cut: false,
+        };
+        let mut tail = 0;
         let mut i = 0;
-        while i < end && len < PATH_LEN {
-            let slot = loc::slot(f[i].0);
-            if loc::elem(f[i].0) == loc::SINGLE {
-                locs[len] = f[i].0;
-                tests[len] = if f[i].1 == NONE {
-                    0
-                } else {
-                    self.expr_hash(f[i].1)
-                };
-                i += 1;
-            } else {
-                let mut h: u32 = 0x2545_f491;
-                while i < end && loc::slot(f[i].0) == slot {
-                    h = mix16(h, u32::from(f[i].2) + 2);
-                    h = mix16(
-                        h,
-                        if f[i].1 == NONE {
-                            1
-                        } else {
-                            self.expr_hash(f[i].1) as u32
-                        },
-                    );
+        while i < nf {
+            let (l, t, _) = f[i];
+            match loc::elem(l) {
+                loc::SINGLE => {
+                    if t != NONE {
+                        let sel = self.selects(t).then_some(SELECTOR);
+                        tail = path.field(l, sel, self.expr_hash(t));
+                    }
                     i += 1;
                 }
-                locs[len] = loc::new(slot, 0xFE);
-                tests[len] = ((h ^ (h >> 16)) & 0xFFFF) as Ix;
+                ZERO_LEN => {
+                    tail = path.field(l, None, ZERO_LEN as Ix);
+                    i += 1;
+                }
+                _ => {
+                    let slot = loc::slot(l);
+                    let mut k = i;
+                    while k < nf && loc::slot(f[k].0) == slot {
+                        k += 1;
+                    }
+                    if let Some(n) = self.multislot_path(&f[i..k], &mut path) {
+                        tail = n;
+                    }
+                    i = k;
+                }
             }
-            len += 1;
         }
-        if len == 0 {
-            locs[0] = EMPTY_PATH;
-            return (locs, tests, 1);
+        if path.len == 0 {
+            path.locs[0] = EMPTY_PATH;
+            path.len = 1;
+            tail = 1;
         }
-        (locs, tests, len)
+        if path.cut {
+            tail = 0;
+        }
+        (path, tail)
+    }
+
+    /// The nodes of one multislot's elements (CLIPS's `RemoveUnneededSlots`): an
+    /// element keeps a node if it has a test (the first one always has the slot's
+    /// length test unless it is a multifield with no single field after it) or if it
+    /// is a multifield among several. Returns the last node's level count, if any.
+    fn multislot_path(&self, r: &[(Ix, Ix, bool)], path: &mut NetPath) -> Option<usize> {
+        let nmf = r.iter().filter(|x| x.2).count() as u32;
+        let nsf = r.len() as u32 - nmf;
+        let length_test = if r[0].2 && nsf == 0 {
+            0
+        } else {
+            2 + u32::from(nmf == 0) + (nsf << 1)
+        };
+        let keeps = |k: usize| {
+            let (_, t, m) = r[k];
+            t != NONE || (k == 0 && length_test != 0) || (m && nmf > 1)
+        };
+        let last = (0..r.len()).rev().find(|&k| keeps(k))?;
+        let (mut sfb, mut mfb) = (0u32, 0u32);
+        let mut tail = 1;
+        for (k, &(l, t, m)) in r.iter().enumerate() {
+            if keeps(k) {
+                // what CLIPS compares: position, kind, end of slot, how the value is
+                // found (fields before and after) and the length test
+                let mut h = mix16(0x51ed_270b, k as u32);
+                h = mix16(h, u32::from(m) | u32::from(k == last) << 1);
+                h = mix16(h, sfb | mfb << 8);
+                h = mix16(
+                    h,
+                    (nsf - sfb - u32::from(!m)) | (nmf - mfb - u32::from(m)) << 8,
+                );
+                if k == 0 {
+                    h = mix16(h, length_test);
+                }
+                let fold = |h: u32| ((h ^ (h >> 16)) & 0xFFFF) as Ix;
+                tail = if t != NONE && !m && self.selects(t) {
+                    let v = mix16(u32::from(self.expr_hash(t)), u32::from(k == last));
+                    path.field(l, Some(fold(mix16(h, 0))), fold(v))
+                } else {
+                    let test = if t == NONE { 1 } else { self.expr_hash(t) };
+                    path.field(l, None, fold(mix16(h, u32::from(test))))
+                };
+            }
+            sfb += u32::from(!m);
+            mfb += u32::from(m);
+        }
+        Some(tail)
+    }
+
+    /// Whether CLIPS 6.30 hashes this field constraint on a constant (a selector
+    /// node): an `&` chain holding a literal that is not negated, and no `|`.
+    fn selects(&self, t: Ix) -> bool {
+        let x = self.cx.exprs[t as usize];
+        if x.op != Op::And {
+            return self.is_const_eq(t);
+        }
+        let mut c = x.first;
+        while c != NONE {
+            if self.is_const_eq(c) {
+                return true;
+            }
+            c = self.cx.exprs[c as usize].next;
+        }
+        false
+    }
+
+    fn is_const_eq(&self, e: Ix) -> bool {
+        let x = self.cx.exprs[e as usize];
+        if x.op != Op::Eq2 || x.first == NONE {
+            return false;
+        }
+        let v = self.cx.exprs[x.first as usize].next;
+        v != NONE
+            && matches!(
+                self.cx.exprs[v as usize].op,
+                Op::Int | Op::Float | Op::Sym | Op::Str
+            )
     }
 
     /// Gives each level of the new alpha node's path the id of the identical node of
-    /// an existing pattern (same prefix), or a new id.
-    fn assign_trie_key(&mut self, tmpl: Ix, n: Ix) {
+    /// an existing pattern (same prefix), or a new id (always, for a node `alone`).
+    fn assign_trie_key(&mut self, tmpl: Ix, n: Ix, alone: bool) {
         let me = self.cx.alphas[n as usize];
         let mut key = [0 as Ix; PATH_LEN];
         for lvl in 0..me.key_len as usize {
             let mut id = 0;
-            let mut a = self.cx.templates[tmpl as usize].alpha_head;
+            let mut a = if alone {
+                NONE
+            } else {
+                self.cx.templates[tmpl as usize].alpha_head
+            };
             while a != NONE {
                 let o = self.cx.alphas[a as usize];
                 if o.key_len as usize > lvl
@@ -1148,7 +1241,8 @@ impl<'s> Parser<'s, '_, '_> {
         let mut a = self.cx.templates[tmpl as usize].alpha_head;
         while a != NONE {
             let o = self.cx.alphas[a as usize];
-            if key_before(&me.key[..me.key_len as usize], &o.key[..o.key_len as usize]) {
+            // an equal path is the same CLIPS node, whose newest joins come first
+            if !key_before(&o.key[..o.key_len as usize], &me.key[..me.key_len as usize]) {
                 break;
             }
             prev = a;
@@ -1390,7 +1484,8 @@ struct Primed {
 const MAX_FIELDS: usize = 16;
 
 struct PatBuild {
-    /// (locator, alpha test or NONE, multifield element) per field, in parse order.
+    /// (locator, alpha test or NONE, multifield element) per field, in parse order;
+    /// an empty multislot is one entry with element `ZERO_LEN`.
     fields: [(Ix, Ix, bool); MAX_FIELDS],
     nfields: usize,
     desc: Ix,
@@ -1412,6 +1507,37 @@ impl PatBuild {
         }
     }
 }
+
+/// A pattern's levels in CLIPS's pattern network (field locators and test hashes).
+struct NetPath {
+    locs: [Ix; PATH_LEN],
+    tests: [Ix; PATH_LEN],
+    len: usize,
+    /// Levels past `PATH_LEN` were dropped.
+    cut: bool,
+}
+
+impl NetPath {
+    /// Adds one field's nodes (a selector first, if any); returns how many.
+    fn field(&mut self, l: Ix, selector: Option<Ix>, test: Ix) -> usize {
+        let before = self.len;
+        for t in selector.into_iter().chain(Some(test)) {
+            if self.len < PATH_LEN {
+                self.locs[self.len] = l;
+                self.tests[self.len] = t;
+                self.len += 1;
+            } else {
+                self.cut = true;
+            }
+        }
+        self.len - before
+    }
+}
+
+/// Element locator of an empty multislot's zero-length node (never a real element).
+const ZERO_LEN: u8 = 0xFE;
+/// Path test of a selector node on a single-field slot (`expr_hash` is never 1).
+const SELECTOR: Ix = 1;
 
 /// Depth-first order of pattern-network paths: at the first differing level the
 /// newer node (higher id) goes first; a path goes before its extensions.
