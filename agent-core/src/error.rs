@@ -168,10 +168,46 @@ mod code {
     pub const OTHER: u8 = 15;
 }
 
+/// `format`'s arity messages: CLIPS names the exact count its control string needs
+/// (2 to 12 arguments), or none beyond that.
+pub const FORMAT_ARITY: [&str; 12] = [
+    "[ARGACCES4] Function format expected exactly 2 argument(s)",
+    "[ARGACCES4] Function format expected exactly 3 argument(s)",
+    "[ARGACCES4] Function format expected exactly 4 argument(s)",
+    "[ARGACCES4] Function format expected exactly 5 argument(s)",
+    "[ARGACCES4] Function format expected exactly 6 argument(s)",
+    "[ARGACCES4] Function format expected exactly 7 argument(s)",
+    "[ARGACCES4] Function format expected exactly 8 argument(s)",
+    "[ARGACCES4] Function format expected exactly 9 argument(s)",
+    "[ARGACCES4] Function format expected exactly 10 argument(s)",
+    "[ARGACCES4] Function format expected exactly 11 argument(s)",
+    "[ARGACCES4] Function format expected exactly 12 argument(s)",
+    "[ARGACCES4] Function format called with the wrong number of arguments.",
+];
+
 /// Texts an `EvalError` can name besides the builtins' names: callers that are not
-/// builtins, CLIPS's descriptions of argument types, slot-value reasons, messages.
-/// Index 0 stands for a text missing here (a debug build panics on it instead).
-pub const ERROR_TEXTS: &[&str] = &[
+/// builtins, CLIPS's descriptions of argument types, slot-value reasons, messages
+/// (`FORMAT_ARITY` among them). Index 0 stands for a text missing here (a debug build
+/// panics on it instead).
+pub const ERROR_TEXTS: [&str; BASE_TEXTS.len() + FORMAT_ARITY.len()] =
+    concat_texts(&BASE_TEXTS, &FORMAT_ARITY);
+
+const fn concat_texts<const N: usize>(a: &[&'static str], b: &[&'static str]) -> [&'static str; N] {
+    let mut out = [""; N];
+    let mut i = 0;
+    while i < a.len() {
+        out[i] = a[i];
+        i += 1;
+    }
+    let mut k = 0;
+    while k < b.len() {
+        out[i + k] = b[k];
+        k += 1;
+    }
+    out
+}
+
+const BASE_TEXTS: [&str; 41] = [
     "?",
     "deffunction",
     "external",
@@ -214,18 +250,6 @@ pub const ERROR_TEXTS: &[&str] = &[
     "[EMATHFUN1] Domain error.",
     "[EMATHFUN2] Argument overflow for log function.",
     "[EMATHFUN2] Argument overflow for log10 function.",
-    "[ARGACCES4] Function format expected exactly 2 argument(s)",
-    "[ARGACCES4] Function format expected exactly 3 argument(s)",
-    "[ARGACCES4] Function format expected exactly 4 argument(s)",
-    "[ARGACCES4] Function format expected exactly 5 argument(s)",
-    "[ARGACCES4] Function format expected exactly 6 argument(s)",
-    "[ARGACCES4] Function format expected exactly 7 argument(s)",
-    "[ARGACCES4] Function format expected exactly 8 argument(s)",
-    "[ARGACCES4] Function format expected exactly 9 argument(s)",
-    "[ARGACCES4] Function format expected exactly 10 argument(s)",
-    "[ARGACCES4] Function format expected exactly 11 argument(s)",
-    "[ARGACCES4] Function format expected exactly 12 argument(s)",
-    "[ARGACCES4] Function format called with the wrong number of arguments.",
     "[MISCFUN3] Function random expected argument #1 to be less than argument #2",
     "[MISCFUN2] Function random expected either 0 or 2 arguments",
 ];

@@ -98,23 +98,12 @@ fn count_args(ctl: &str) -> usize {
 
 /// CLIPS's arity message names the exact count the control string needs.
 fn arity_error(expected: usize) -> EvalError {
-    const MSGS: [&str; 11] = [
-        "[ARGACCES4] Function format expected exactly 2 argument(s)",
-        "[ARGACCES4] Function format expected exactly 3 argument(s)",
-        "[ARGACCES4] Function format expected exactly 4 argument(s)",
-        "[ARGACCES4] Function format expected exactly 5 argument(s)",
-        "[ARGACCES4] Function format expected exactly 6 argument(s)",
-        "[ARGACCES4] Function format expected exactly 7 argument(s)",
-        "[ARGACCES4] Function format expected exactly 8 argument(s)",
-        "[ARGACCES4] Function format expected exactly 9 argument(s)",
-        "[ARGACCES4] Function format expected exactly 10 argument(s)",
-        "[ARGACCES4] Function format expected exactly 11 argument(s)",
-        "[ARGACCES4] Function format expected exactly 12 argument(s)",
-    ];
+    use crate::error::FORMAT_ARITY;
     EvalError::other(
-        MSGS.get(expected.wrapping_sub(2))
+        FORMAT_ARITY[..FORMAT_ARITY.len() - 1]
+            .get(expected.wrapping_sub(2))
             .copied()
-            .unwrap_or("[ARGACCES4] Function format called with the wrong number of arguments."),
+            .unwrap_or(FORMAT_ARITY[FORMAT_ARITY.len() - 1]),
     )
 }
 

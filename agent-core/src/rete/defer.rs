@@ -48,9 +48,6 @@ const PURE_TESTS: u8 = 2;
 /// Retracting one of its facts only deletes partial matches: it may overtake.
 #[cfg(feature = "defer")]
 const DELETE_ONLY: u8 = 4;
-/// Deepest join subtree walked for the flags (deeper: treated as unsafe).
-#[cfg(feature = "defer")]
-const WALK_STACK: usize = 64;
 
 /// The fact whose propagation waits, and for a modify its old fact.
 #[derive(Clone, Copy, Debug)]
@@ -68,48 +65,6 @@ impl Deferred {
 
 #[cfg(feature = "defer")]
 impl Core<'_> {
-    /// Walks the joins a fact of alpha node `alpha` can reach (its successors, their
-    /// descendants and the joins taking those from the right); false as soon as
-    /// `ok` refuses one, or the walk is deeper than it can follow.
-    fn joins_below(&self, alpha: Ix, ok: &mut dyn FnMut(&Core<'_>, Ix) -> bool) -> bool {
-        let mut stack = [NONE; WALK_STACK];
-        let mut n = 0;
-        let mut j = self.alphas[alpha as usize].succ;
-        while j != NONE {
-            if n == WALK_STACK {
-                return false;
-            }
-            stack[n] = j;
-            n += 1;
-            j = self.joins[j as usize].alpha_next;
-        }
-        while n > 0 {
-            n -= 1;
-            let j = stack[n];
-            if !ok(self, j) {
-                return false;
-            }
-            let jn = &self.joins[j as usize];
-            for first in [jn.first_child, jn.rsucc] {
-                let mut c = first;
-                while c != NONE {
-                    if n == WALK_STACK {
-                        return false;
-                    }
-                    stack[n] = c;
-                    n += 1;
-                    let cj = &self.joins[c as usize];
-                    c = if first == jn.first_child {
-                        cj.next_sibling
-                    } else {
-                        cj.alpha_next
-                    };
-                }
-            }
-        }
-        true
-    }
-
     /// `PURE_TESTS` and `DELETE_ONLY` of template `tmpl`, worked out once per network
     /// generation (`State::net_gen`).
     fn defer_flags(&mut self, tmpl: Ix) -> u8 {
@@ -134,7 +89,7 @@ impl Core<'_> {
                 }
                 let mut below_pure = true;
                 let mut below_no_rsucc = true;
-                let walked = self.joins_below(a, &mut |cx, j| {
+                let walked = self.walk_joins(node.succ, true, &mut |cx, j| {
                     let jn = &cx.joins[j as usize];
                     below_pure = below_pure
                         && cx.calls_only(jn.tests, crate::builtins::is_pure)
@@ -327,15 +282,17 @@ mod tests {
     use crate::testutil::run_program;
     use std::string::String;
 
+    /// `(item (id 0)) ... (item (id n-1))`.
+    fn item_facts(n: usize) -> String {
+        (0..n).map(|i| std::format!("(item (id {i})) ")).collect()
+    }
+
     /// A counter's modify followed by a control fact's modify: the counter's new fact
     /// meets the partial matches only after the control fact's retract removed them,
     /// with the agenda and facts of the eager order (a `printout` between the two
     /// actions keeps that order, as it builds the propagation first).
     fn counter_program(between: &str, items: usize, watch: &str) -> String {
-        let mut facts = String::new();
-        for i in 0..items {
-            facts.push_str(&std::format!("(item (id {i})) "));
-        }
+        let facts = item_facts(items);
         run_program(&std::format!(
             "(deftemplate cnt (slot c))
              (deftemplate ctx (slot s))
@@ -401,10 +358,7 @@ mod tests {
     #[test]
     fn overtaking_retract_saves_the_matches_it_would_remove() {
         let program = |between: &str| {
-            let mut items = String::new();
-            for i in 0..20 {
-                items.push_str(&std::format!("(item (id {i})) "));
-            }
+            let items = item_facts(20);
             run_program(&std::format!(
                 "(deftemplate cnt (slot c))
                  (deftemplate ctx (slot s))

@@ -7,6 +7,8 @@ pub use index::{KeyPlan, KEY_PLANS};
 mod defer;
 pub use defer::Deferred;
 mod quick;
+#[cfg(any(feature = "defer", feature = "wipe"))]
+mod walk;
 #[cfg(feature = "wipe")]
 mod wipe;
 pub use quick::{TestOp, TestPlan, PLAN_TESTS, TEST_PLANS};

@@ -19,9 +19,6 @@ use super::{JoinKind, TokenKind};
 use crate::engine::{watch, Core};
 use crate::value::{Ix, NONE};
 
-/// Deepest join subtree checked (deeper: deleted one by one).
-const WALK_STACK: usize = 64;
-
 impl Core<'_> {
     /// Before alpha match `am` is removed: if it is its memory's only match, empties the
     /// memories of its positive successor joins and all below them at once.
@@ -52,36 +49,11 @@ impl Core<'_> {
         if jn.plain_gen == self.st.net_gen {
             return jn.plain;
         }
-        let plain = self.walk_plain(join);
+        let plain = self.walk_joins(join, false, &mut |cx, j| cx.joins[j as usize].rsucc == NONE);
         let jn = &mut self.joins[join as usize];
         jn.plain = plain;
         jn.plain_gen = self.st.net_gen;
         plain
-    }
-
-    fn walk_plain(&self, join: Ix) -> bool {
-        let mut stack = [NONE; WALK_STACK];
-        let (mut n, mut j) = (0, join);
-        loop {
-            let jn = &self.joins[j as usize];
-            if jn.rsucc != NONE {
-                return false;
-            }
-            let mut c = jn.first_child;
-            while c != NONE {
-                if n == WALK_STACK {
-                    return false;
-                }
-                stack[n] = c;
-                n += 1;
-                c = self.joins[c as usize].next_sibling;
-            }
-            if n == 0 {
-                return true;
-            }
-            n -= 1;
-            j = stack[n];
-        }
     }
 
     /// Empties the memory of `join` and of every join below it; `parents_stay`: the
