@@ -186,6 +186,9 @@ pub struct State {
     pub exit: bool,
     /// A pattern test failed with an error during the current assert.
     pub pattern_error: bool,
+    /// The test `eval_tests` last stopped at with an error (names the field in
+    /// `[FACTMCH1]`).
+    pub failed_test: Ix,
     /// `return` / `break` unwinding in progress.
     pub returning: bool,
     pub breaking: bool,
@@ -316,6 +319,7 @@ impl State {
             halt: false,
             exit: false,
             pattern_error: false,
+            failed_test: NONE,
             returning: false,
             breaking: false,
             return_value: Value::Void,

@@ -319,4 +319,8 @@ differential_programs! {
     p160_retract_unblocks_shared_pattern => "160-retract-unblocks-shared-pattern",
     p161_alpha_selector_nodes => "161-alpha-selector-nodes",
     p162_alpha_multifield_nodes => "162-alpha-multifield-nodes",
+    p163_deferred_join_test_error => "163-deferred-join-test-error",
+    p164_redefine_rule_shared_pattern => "164-redefine-rule-shared-pattern",
+    p165_redefine_rule_primes_shared_join => "165-redefine-rule-primes-shared-join",
+    p166_network_error_halts => "166-network-error-halts",
 }

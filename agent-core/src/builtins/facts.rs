@@ -321,6 +321,7 @@ impl Core<'_> {
         // modify that fails after the retract puts the old fact back from them
         let saved = self.st.sp;
         let base = saved + nslots;
+        self.st.pattern_error = false;
         let r = (|| {
             // host: a flat fact without multislot values (most) copied in place
             #[cfg(feature = "wide-pools")]
@@ -402,10 +403,14 @@ impl Core<'_> {
             r
         })();
         self.st.sp = saved;
-        Ok(match r? {
+        let v = match r? {
             Some(f) => Value::Fact(self.fact_ref(f)),
             None => Value::Sym(SYM_FALSE),
-        })
+        };
+        if self.st.pattern_error {
+            return halt_after_network_error(self, v);
+        }
+        Ok(v)
     }
 }
 
@@ -434,12 +439,25 @@ fn assert(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
         spec = cx.exprs[spec as usize].next;
         // CLIPS stops a multi-fact assert after a pattern-network error
         if cx.st.pattern_error && spec != NONE {
-            cx.st.pattern_error = false;
-            return Ok(Value::Sym(SYM_FALSE));
+            return halt_after_network_error(cx, Value::Sym(SYM_FALSE));
         }
     }
-    cx.st.pattern_error = false;
+    if cx.st.pattern_error {
+        return halt_after_network_error(cx, last);
+    }
     Ok(last)
+}
+
+/// After a test in the pattern or join network failed with an error (reported there,
+/// the test taken as false, the fact standing), CLIPS halts execution: the rule's or
+/// deffunction's remaining actions do not run. The error is already reported; the
+/// call's value (the fact, shown by a bare `assert` at the prompt) is the fallback.
+fn halt_after_network_error(cx: &mut Core<'_>, value: Value) -> Result<Value, EvalError> {
+    cx.st.pattern_error = false;
+    cx.set_error_fallback(value, None);
+    let mut e = EvalError::new(EvalErrorKind::Reported);
+    e.reported = true;
+    Err(e)
 }
 
 fn retract(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {

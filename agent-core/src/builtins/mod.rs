@@ -199,22 +199,21 @@ const fn table_start(t: usize) -> Ix {
     n as Ix
 }
 
-/// Whether builtin `id` depends on its arguments alone and changes nothing a retract
-/// changes or observes (facts, agenda, output order): the arithmetic, comparison,
-/// string, multifield, predicate and geometry tables (`rete::defer` needs this of
-/// the tests a deferred propagation runs).
-pub fn is_pure(id: Ix) -> bool {
-    // the tables in `TABLES` order: basic 0, math 4, strings 5, multifield 6,
-    // predicates 7, geometry 11
-    const PURE: [(Ix, Ix); 3] = [
-        (table_start(0), table_start(1)),
-        (table_start(4), table_start(8)),
-        (table_start(11), table_start(12)),
+/// Whether builtin `id` depends on its arguments alone, changes nothing a retract
+/// changes or observes (facts, agenda, output order) and cannot fail, whatever its
+/// arguments: `eq`, `neq`, `and`, `or`, `not` and the type predicates. `rete::defer`
+/// needs this of the tests a deferred propagation runs: a retract that overtakes it
+/// removes combinations those tests would have seen, so a test that could fail (`<`
+/// on a symbol) would lose an error CLIPS reports.
+pub fn is_total(id: Ix) -> bool {
+    const TOTAL: [(Ix, Ix); 2] = [
+        (builtin_id("eq"), builtin_id("not") + 1),
+        (builtin_id("numberp"), builtin_id("multifieldp") + 1),
     ];
-    PURE.iter().any(|&(a, b)| (a..b).contains(&id))
+    TOTAL.iter().any(|&(a, b)| (a..b).contains(&id))
 }
 
-/// Whether builtin `id` is pure (`is_pure`) and prints nothing itself, even on an
+/// Whether builtin `id` depends on its arguments alone and prints nothing itself, even on an
 /// error (it returns the error, reported once the actions stop): the arithmetic,
 /// comparison, math, predicate and geometry tables.
 pub fn is_quiet(id: Ix) -> bool {

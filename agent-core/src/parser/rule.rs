@@ -149,6 +149,16 @@ impl<'s> Parser<'s, '_, '_> {
                 self.cx.rules[first_new_rule as usize].text = id;
             }
         }
+        // hook the new joins up to their alpha nodes first: a redefinition's removal of
+        // the old rule below empties and retires an alpha node whose successor list it
+        // leaves empty, and the new rule may share that node
+        for j in first_new_join..self.cx.st.njoins {
+            let a = self.cx.joins[j as usize].alpha;
+            if a != NONE {
+                self.cx.joins[j as usize].alpha_next = self.cx.alphas[a as usize].succ;
+                self.cx.alphas[a as usize].succ = j;
+            }
+        }
         // a redefinition replaces the old rule
         for r in 0..first_new_rule {
             if self.cx.rules[r as usize].name == sym && !self.cx.rules[r as usize].deleted {
@@ -158,15 +168,8 @@ impl<'s> Parser<'s, '_, '_> {
         // `load` prints "Defining defrule" before the new activations, as CLIPS does
         self.announce();
         // match the new rule(s) against existing facts as CLIPS's incremental reset
-        // does: hook the new joins up, prime those fed by old joins (each rule from its
+        // does (the new joins are hooked up above): prime those fed by old joins (each rule from its
         // end upwards), then drive the facts, oldest first, through the new patterns
-        for j in first_new_join..self.cx.st.njoins {
-            let a = self.cx.joins[j as usize].alpha;
-            if a != NONE {
-                self.cx.joins[j as usize].alpha_next = self.cx.alphas[a as usize].succ;
-                self.cx.alphas[a as usize].succ = j;
-            }
-        }
         let mut primed = Primed {
             ids: [NONE; 64],
             n: 0,

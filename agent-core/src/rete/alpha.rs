@@ -413,7 +413,19 @@ impl Core<'_> {
             let (view, _) = self.split();
             let _ = view.write_fact(&mut b, fact);
         }
-        let _ = writeln!(b, "\n   Problem resides in field #1");
+        let tm = self.templates[self.facts[fact as usize].tmpl as usize];
+        match self.failed_field(self.st.failed_test) {
+            Some((slot, _)) if !tm.implied => {
+                let name = self.slots[(tm.first_slot + Ix::from(slot)) as usize].name;
+                let _ = writeln!(b, "\n   Problem resides in slot {}", self.sym_text(name));
+            }
+            Some((_, elem)) if elem != loc::SINGLE => {
+                let _ = writeln!(b, "\n   Problem resides in field #{}", elem as usize + 1);
+            }
+            _ => {
+                let _ = writeln!(b, "\n   Problem resides in field #1");
+            }
+        }
         if t != NONE {
             let rule = self.joins[t as usize].rule;
             let _ = writeln!(
@@ -425,6 +437,29 @@ impl Core<'_> {
         self.write(crate::host::router::WERROR, b.as_str());
     }
 
+    /// The field (slot, element) of the pattern's first variable in test `e`: the
+    /// field the failing constraint belongs to, as CLIPS names it.
+    fn failed_field(&self, e: Ix) -> Option<(u8, u8)> {
+        if e == NONE {
+            return None;
+        }
+        let x = self.exprs[e as usize];
+        if x.op == Op::PatVar && x.aux == THIS_PATTERN && x.data != loc::FACT {
+            return Some((loc::slot(x.data), loc::elem(x.data)));
+        }
+        if matches!(x.op, Op::Int | Op::Float) {
+            return None;
+        }
+        let mut c = x.first;
+        while c != NONE {
+            if let Some(f) = self.failed_field(c) {
+                return Some(f);
+            }
+            c = self.exprs[c as usize].next;
+        }
+        None
+    }
+
     /// Evaluates a chain of tests; all must be non-FALSE. Scratch and stack are
     /// restored afterwards, so tests leave nothing behind.
     pub(crate) fn eval_tests(&mut self, mut t: Ix) -> Result<bool, EvalError> {
@@ -434,6 +469,9 @@ impl Core<'_> {
             let v = self.eval(t);
             self.st.scratch_top = scratch;
             self.st.sp = sp;
+            if v.is_err() {
+                self.st.failed_test = t;
+            }
             if v? == Value::Sym(crate::builtins::SYM_FALSE) {
                 ok = false;
                 break;

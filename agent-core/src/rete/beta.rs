@@ -202,7 +202,42 @@ impl Core<'_> {
         } else {
             PatBinding::EMPTY
         };
-        self.eval_lhs_tests(j.tests)
+        match self.eval_lhs_tests(j.tests) {
+            // CLIPS reports a failing join test and takes it as false (a not CE's as
+            // true: the fact blocks); the assert goes on, then execution halts
+            Err(e) if !e.is_capacity() => {
+                self.report_join_error(join, e);
+                Ok(j.kind == JoinKind::Negative)
+            }
+            r => r,
+        }
+    }
+
+    /// `[DRIVE1]`: an error while testing a join (out of line: errors are rare).
+    #[inline(never)]
+    fn report_join_error(&mut self, join: Ix, e: EvalError) {
+        use core::fmt::Write;
+        self.st.pattern_error = true;
+        self.report_eval_error(e);
+        // a rule below the join, and the join's pattern in it
+        let mut t = join;
+        while t != NONE && !self.joins[t as usize].is_terminal() {
+            t = self.joins[t as usize].first_child;
+        }
+        let mut b: crate::value::TextBuf<256> = crate::value::TextBuf::new();
+        let _ = b.write_str(
+            "\n[DRIVE1] This error occurred in the join network\n   Problem resides in associated join\n",
+        );
+        if t != NONE {
+            let rule = self.joins[t as usize].rule;
+            let _ = writeln!(
+                b,
+                "      Of pattern #{} in rule {}\n",
+                self.joins[join as usize].depth as usize + 1,
+                self.sym_text(self.rules[rule as usize].name)
+            );
+        }
+        self.write(crate::host::router::WERROR, b.as_str());
     }
 
     /// Whether child token `c` belongs to the front of its parent's child list:

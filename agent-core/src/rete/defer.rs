@@ -14,8 +14,10 @@
 //! only deletes: g's template feeds no not/exists join and no join from the right
 //! (whose removal would unblock and build matches), no owed matches are waiting, and
 //! nothing is traced (`watch facts`, `watch activations`). And it needs tests on f's
-//! side that cannot see the retract: only pure builtins (no deffunction, no fact or
-//! agenda query) in the alpha tests of f's template and the join tests below them.
+//! side that cannot see the retract: only total builtins (`builtins::is_total`: no
+//! deffunction, no fact or agenda query, nothing that can fail, as `<` on a symbol
+//! would: the retract would remove the combination that reports it) in the alpha
+//! tests of f's template and the join tests below them.
 //!
 //! Everything else keeps the eager order: an assert's propagation is deferred only for
 //! a top-level action of a rule's right-hand side (an `assert` or `modify` there), and
@@ -42,9 +44,9 @@ use crate::value::{Ix, NONE};
 /// Flags of a template (see `Core::defer_flags`).
 #[cfg(feature = "defer")]
 const FLAGS_KNOWN: u8 = 1;
-/// Its facts' propagation runs only pure tests: it may be overtaken by a retract.
+/// Its facts' propagation runs only total tests: it may be overtaken by a retract.
 #[cfg(feature = "defer")]
-const PURE_TESTS: u8 = 2;
+const TOTAL_TESTS: u8 = 2;
 /// Retracting one of its facts only deletes partial matches: it may overtake.
 #[cfg(feature = "defer")]
 const DELETE_ONLY: u8 = 4;
@@ -65,19 +67,19 @@ impl Deferred {
 
 #[cfg(feature = "defer")]
 impl Core<'_> {
-    /// `PURE_TESTS` and `DELETE_ONLY` of template `tmpl`, worked out once per network
+    /// `TOTAL_TESTS` and `DELETE_ONLY` of template `tmpl`, worked out once per network
     /// generation (`State::net_gen`).
     fn defer_flags(&mut self, tmpl: Ix) -> u8 {
         let t = self.templates[tmpl as usize];
         if t.flags_gen == self.st.net_gen && t.defer_flags & FLAGS_KNOWN != 0 {
             return t.defer_flags;
         }
-        let (mut pure, mut delete_only) = (true, true);
+        let (mut total, mut delete_only) = (true, true);
         let mut a = t.alpha_head;
         while a != NONE {
             let node = &self.alphas[a as usize];
             if node.live {
-                pure = pure && self.calls_only(node.tests, crate::builtins::is_pure);
+                total = total && self.calls_only(node.tests, crate::builtins::is_total);
                 // a not/exists join on this pattern: its matches are blockers
                 let mut j = node.succ;
                 while j != NONE {
@@ -87,24 +89,24 @@ impl Core<'_> {
                     }
                     j = jn.alpha_next;
                 }
-                let mut below_pure = true;
+                let mut below_total = true;
                 let mut below_no_rsucc = true;
                 let walked = self.walk_joins(node.succ, true, &mut |cx, j| {
                     let jn = &cx.joins[j as usize];
-                    below_pure = below_pure
-                        && cx.calls_only(jn.tests, crate::builtins::is_pure)
-                        && cx.calls_only(jn.post, crate::builtins::is_pure);
+                    below_total = below_total
+                        && cx.calls_only(jn.tests, crate::builtins::is_total)
+                        && cx.calls_only(jn.post, crate::builtins::is_total);
                     // partial matches there block the outputs of a join from the right
                     below_no_rsucc = below_no_rsucc && jn.rsucc == NONE;
                     true
                 });
-                pure = pure && walked && below_pure;
+                total = total && walked && below_total;
                 delete_only = delete_only && walked && below_no_rsucc;
             }
             a = self.alphas[a as usize].next_in_tmpl;
         }
         let flags = FLAGS_KNOWN
-            | if pure { PURE_TESTS } else { 0 }
+            | if total { TOTAL_TESTS } else { 0 }
             | if delete_only { DELETE_ONLY } else { 0 };
         let t = &mut self.templates[tmpl as usize];
         t.defer_flags = flags;
@@ -159,22 +161,23 @@ impl Core<'_> {
 
     /// Whether the assert of a top-level action, a fact of template `tmpl`, may leave
     /// its propagation for later: in a firing, nothing traced, nothing owed, no undo
-    /// replaying, and the template's tests pure (else no retract could overtake it,
+    /// replaying, and the template's tests total (else no retract could overtake it,
     /// and deferring would only cost).
     pub(crate) fn may_defer(&mut self, tmpl: Ix) -> bool {
         self.st.firing
             && self.st.watch & (watch::FACTS | watch::ACTIVATIONS) == 0
             && self.st.owed == NONE
             && !self.st.act_journal.replay
-            && self.defer_flags(tmpl) & PURE_TESTS != 0
+            && self.defer_flags(tmpl) & TOTAL_TESTS != 0
     }
 
     /// Whether the retract of live fact `old` (by the top-level modify `call`) may
     /// run before the waiting propagation (see the module docs).
     pub(crate) fn may_overtake(&mut self, call: Ix, old: Ix) -> bool {
         let waiting = self.st.deferred.fact;
-        // (the waiting fact itself cannot be retracted before it was propagated; no
-        // variable can name it without a call in between, which builds it first)
+        // the waiting fact itself is never retracted before it was propagated: a
+        // literal index (`(modify 5 ...)` naming the new f-5) reaches it, so the
+        // `waiting == old` check builds it first
         if waiting == NONE
             || waiting == old
             || call != self.st.top_action
@@ -188,7 +191,7 @@ impl Core<'_> {
             self.facts[waiting as usize].tmpl,
             self.facts[old as usize].tmpl,
         );
-        self.defer_flags(wt) & PURE_TESTS != 0 && self.defer_flags(ot) & DELETE_ONLY != 0
+        self.defer_flags(wt) & TOTAL_TESTS != 0 && self.defer_flags(ot) & DELETE_ONLY != 0
     }
 
     /// Builds the waiting propagation, if any. On a full pool it is undone with its
@@ -298,10 +301,10 @@ mod tests {
              (deftemplate ctx (slot s))
              (deftemplate item (slot id))
              (deffacts d (cnt (c 0)) (ctx (s go)) {facts})
-             (defrule step ?x <- (ctx (s go)) (item (id ?i)) ?n <- (cnt (c ?c&:(< ?c 3)))
+             (defrule step ?x <- (ctx (s go)) (item (id ?i)) ?n <- (cnt (c ?c&~3))
                => (modify ?n (c (+ ?c 1))) {between} (modify ?x (s back)))
              (defrule back ?x <- (ctx (s back)) => (modify ?x (s go)))
-             (defrule wide (cnt (c ?c&:(= ?c 2))) (item (id ?i)) (item (id ?j)) =>)
+             (defrule wide (cnt (c 2)) (item (id ?i)) (item (id ?j)) =>)
              (defrule count (declare (salience -5)) (cnt (c ?c)) (item (id ?i)) =>
                (printout t c ?c i ?i crlf))
              {watch}
@@ -366,7 +369,7 @@ mod tests {
                  (deffacts d (cnt (c 0)) (ctx (s go)) {items})
                  (defrule step ?x <- (ctx (s go)) ?n <- (cnt (c ?c))
                    => (modify ?n (c (+ ?c 1))) {between} (modify ?x (s end)))
-                 (defrule big (ctx (s go)) (cnt (c ?c&:(> ?c 0))) (item (id ?i)) (item (id ?j)) =>)
+                 (defrule big (ctx (s go)) (cnt (c ?c&~0)) (item (id ?i)) (item (id ?j)) =>)
                  (reset)
                  (run)
                  (facts)"
@@ -380,5 +383,32 @@ mod tests {
         );
         let eager = program("(printout t \"\")");
         assert!(eager.contains("[ERROR] out of "), "{eager}");
+    }
+
+    /// A join test that can fail (`>` of a symbol) keeps the eager order: the counter's
+    /// new fact meets the control fact before the second modify retracts it, so the
+    /// error is reported and the actions stop, as in CLIPS; with `eq`, which cannot
+    /// fail, the retract overtakes and both modifies complete.
+    #[test]
+    fn fallible_join_test_keeps_its_error() {
+        let program = |test: &str| {
+            run_program(&std::format!(
+                "(deftemplate cnt (slot c))
+                 (deftemplate ctx (slot s))
+                 (deffacts d (cnt (c 0)) (ctx (s go)))
+                 (defrule step ?x <- (ctx (s go)) ?n <- (cnt (c 0))
+                   => (modify ?n (c 1)) (modify ?x (s stop)))
+                 (defrule chk (cnt (c ?c)) (ctx (s ?s)) (test (or (neq ?s go) {test})) =>)
+                 (reset)
+                 (run)
+                 (facts)"
+            ))
+        };
+        let fallible = program("(< ?c 1) (> ?s ?c)");
+        assert!(fallible.contains("[ARGACCES5]"), "{fallible}");
+        assert!(fallible.contains("(ctx (s go))"), "{fallible}");
+        let total = program("(eq ?c 0)");
+        assert!(!total.contains("[ARGACCES5]"), "{total}");
+        assert!(total.contains("(ctx (s stop))"), "{total}");
     }
 }
