@@ -323,4 +323,5 @@ differential_programs! {
     p164_redefine_rule_shared_pattern => "164-redefine-rule-shared-pattern",
     p165_redefine_rule_primes_shared_join => "165-redefine-rule-primes-shared-join",
     p166_network_error_halts => "166-network-error-halts",
+    p167_query_test_shares_nodes => "167-query-test-shares-nodes",
 }

@@ -1220,7 +1220,7 @@ impl<'s> Parser<'s, '_, '_> {
     fn expr_hash(&self, e: Ix) -> Ix {
         let x = self.cx.exprs[e as usize];
         let mut h = mix16(0x9e37, x.op as u32);
-        h = mix16(h, x.aux as u32);
+        h = mix16(h, shape_aux(x) as u32);
         h = mix16(h, x.data as u32);
         if matches!(x.op, Op::Int | Op::Float) {
             let p = self.cx.exprs[e as usize + 1];
@@ -1309,8 +1309,7 @@ impl<'s> Parser<'s, '_, '_> {
 
     fn expr_eq(&self, a: Ix, b: Ix) -> bool {
         let (x, y) = (self.cx.exprs[a as usize], self.cx.exprs[b as usize]);
-        // a query slot read keeps a lookup cache in `aux` (`slot_value_of`)
-        if x.op != y.op || (x.aux != y.aux && x.op != Op::QSlot) || x.data != y.data {
+        if x.op != y.op || shape_aux(x) != shape_aux(y) || x.data != y.data {
             return false;
         }
         match x.op {
@@ -1551,6 +1550,18 @@ fn key_before(a: &[Ix], b: &[Ix]) -> bool {
         }
     }
     a.len() < b.len()
+}
+
+/// A node's `aux` as far as it is part of the expression: a query slot read
+/// (`slot_value_of`) and a query variable's template name (`queries::template_of`)
+/// keep a lookup cache there, which a run fills in and which must not keep an
+/// identical pattern or test from sharing the node.
+fn shape_aux(x: crate::expr::Expr) -> u8 {
+    if matches!(x.op, Op::QSlot | Op::Sym) {
+        0
+    } else {
+        x.aux
+    }
 }
 
 fn mix16(h: u32, x: u32) -> u32 {
