@@ -322,6 +322,10 @@ impl EvalError {
         }
     }
 
+    /// Packs `kind`. Its texts and function names are stored as indices: a text must
+    /// be one of `ERROR_TEXTS` and a name a builtin's (or listed there), else it reads
+    /// back as "?" (a debug build panics). A host function reports its own failure
+    /// with `EvalErrorKind::External`, after printing what it wants to say.
     pub fn new(kind: EvalErrorKind) -> Self {
         use EvalErrorKind as K;
         match kind {
@@ -635,6 +639,86 @@ pub enum HostIoError {
 mod tests {
     use super::*;
     use crate::value::Value;
+
+    /// The string literals the engine's sources give an error as a text or a function
+    /// name (`Other("..")`, `other("..")`, `reason: ".."`, `func: ".."`, the last
+    /// argument of `wrong_type(..)`; a `WrongType`'s `expected` is written through
+    /// `wrong_type`, the field name is also a `LoadError`'s): each must survive packing,
+    /// so a text missing from `ERROR_TEXTS` fails here rather than printing "?".
+    #[test]
+    fn every_error_text_in_the_sources_is_listed() {
+        extern crate std;
+        use std::string::String;
+        use std::vec::Vec;
+        fn files(dir: &std::path::Path, out: &mut Vec<std::path::PathBuf>) {
+            for entry in std::fs::read_dir(dir).into_iter().flatten().flatten() {
+                let p = entry.path();
+                if p.is_dir() {
+                    files(&p, out);
+                } else if p.extension().is_some_and(|e| e == "rs") {
+                    out.push(p);
+                }
+            }
+        }
+        /// The literal starting right after `at` (just past its opening quote), unless
+        /// it stands in a comment.
+        fn literal(text: &str, at: usize) -> Option<&str> {
+            let line = &text[text[..at].rfind('\n').map_or(0, |n| n + 1)..at];
+            if line.trim_start().starts_with("//") {
+                return None;
+            }
+            text[at..].find('"').map(|end| &text[at..at + end])
+        }
+        let mut paths = Vec::new();
+        files(
+            &std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("src"),
+            &mut paths,
+        );
+        let (mut texts, mut funcs): (Vec<String>, Vec<String>) = (Vec::new(), Vec::new());
+        for path in &paths {
+            let text = std::fs::read_to_string(path).unwrap_or_default();
+            for marker in ["Other(\"", "other(\"", "reason: \""] {
+                for (i, _) in text.match_indices(marker) {
+                    texts.extend(literal(&text, i + marker.len()).map(String::from));
+                }
+            }
+            for (i, _) in text.match_indices("func: \"") {
+                funcs.extend(literal(&text, i + 7).map(String::from));
+            }
+            for (i, _) in text.match_indices("wrong_type(") {
+                let call = &text[i..];
+                let Some(close) = call.find(')') else {
+                    continue;
+                };
+                if literal(&text, i).is_none() {
+                    continue;
+                }
+                let args = call[..close].trim_end().trim_end_matches(',');
+                if let Some(body) = args.strip_suffix('"') {
+                    if let Some(open) = body.rfind('"') {
+                        texts.push(String::from(&body[open + 1..]));
+                    }
+                }
+            }
+        }
+        assert!(texts.len() > 20 && !funcs.is_empty(), "{texts:?} {funcs:?}");
+        for t in texts {
+            let leaked: &'static str = std::boxed::Box::leak(t.into_boxed_str());
+            assert!(
+                ERROR_TEXTS.contains(&leaked),
+                "error text {leaked:?} is missing from ERROR_TEXTS"
+            );
+        }
+        for f in funcs {
+            let leaked: &'static str = std::boxed::Box::leak(f.into_boxed_str());
+            let kind = EvalError::new(EvalErrorKind::Arity { func: leaked }).kind();
+            assert_eq!(
+                kind,
+                EvalErrorKind::Arity { func: leaked },
+                "function name {leaked:?}"
+            );
+        }
+    }
 
     /// Every kind comes back from its 8 bytes as it went in: each builtin's name and
     /// each text of `ERROR_TEXTS` in every field that holds one, numbers at their edges.
