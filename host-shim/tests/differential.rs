@@ -324,4 +324,6 @@ differential_programs! {
     p165_redefine_rule_primes_shared_join => "165-redefine-rule-primes-shared-join",
     p166_network_error_halts => "166-network-error-halts",
     p167_query_test_shares_nodes => "167-query-test-shares-nodes",
+    p168_network_error_placement => "168-network-error-placement",
+    p169_new_rule_primes_shared_pattern => "169-new-rule-primes-shared-pattern",
 }

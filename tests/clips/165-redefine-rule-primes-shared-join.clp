@@ -1,6 +1,6 @@
-; Redefining a rule whose first join the new definition shares: CLIPS removes the old
-; rule first, so that join is built again and primed oldest fact first; we keep the
-; shared join and its memory, whose order (newest first) orders the new activations.
+; Redefining a rule whose first join only the old definition used: CLIPS removes the
+; old rule first, so that join is built again and primed oldest fact first, not shared
+; with its memory (newest first), whose order would order the new activations.
 (watch activations)
 (deftemplate cnt (slot c))
 (deftemplate ctx (slot s))

@@ -443,7 +443,10 @@ fn assert(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
         }
     }
     if cx.st.pattern_error {
-        return halt_after_network_error(cx, last);
+        // CLIPS shows a lone fact, but FALSE for a multi-fact assert
+        let several = cx.exprs[cx.exprs[call as usize].first as usize].next != NONE;
+        let v = if several { Value::Sym(SYM_FALSE) } else { last };
+        return halt_after_network_error(cx, v);
     }
     Ok(last)
 }

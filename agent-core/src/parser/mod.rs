@@ -91,6 +91,9 @@ pub struct Parser<'s, 'c, 'e> {
     /// Where a failure of the current construct rolls back to when not to its start:
     /// past what its parse-time evaluations created (their effects stay, as in CLIPS).
     pub keep: Option<crate::engine::Checkpoint>,
+    /// The first rule the current defrule creates: rules before it with its name are
+    /// the definition it replaces.
+    pub rule_base: Ix,
 }
 
 pub type PResult<T> = Result<T, LoadError>;
@@ -117,6 +120,7 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
             lhs_slot: None,
             depth: 0,
             ce_count: 0,
+            rule_base: 0,
             keep: None,
         }
     }

@@ -94,6 +94,7 @@ impl<'s> Parser<'s, '_, '_> {
         }
         let body_lex = self.save();
         let first_new_rule = self.cx.st.nrules;
+        self.rule_base = first_new_rule;
         let first_new_alpha = self.cx.st.nalpha;
         let first_new_join = self.cx.st.njoins;
         let mut b = Build {
@@ -635,6 +636,8 @@ impl<'s> Parser<'s, '_, '_> {
             nrhash: 0,
             fields: [(0, NONE, false); MAX_FIELDS],
             nfields: 0,
+            aliases: [(0, 0, 0, NONE); 8],
+            naliases: 0,
         };
         if self.cx.templates[tmpl as usize].implied {
             self.lhs_slot = None;
@@ -763,22 +766,125 @@ impl<'s> Parser<'s, '_, '_> {
         Ok(())
     }
 
-    /// Puts a field test in the alpha node (if it needs only this pattern) or the join.
-    /// Returns the test if it went to the alpha node, else NONE.
+    /// Puts a field test in the alpha node (if it needs only this pattern) or the join;
+    /// a `&` chain goes conjunct by conjunct, as CLIPS splits it. A variable bound in an
+    /// earlier pattern that this pattern equates with one of its fields (`?x&...`
+    /// leading a field) is read from that field by the rest of the pattern, so
+    /// `?x&:(> ?x 1)` is tested in the alpha node and only `?x`'s equality in the join.
+    /// Returns the alpha node's part of the test, else NONE.
     fn classify(&mut self, pb: &mut PatBuild, p: u8, e: Ix) -> Ix {
+        let x = self.cx.exprs[e as usize];
+        if x.op != Op::And {
+            return self.classify_one(pb, p, e, true);
+        }
+        // the conjuncts, detached; the alpha ones regrouped under `e`
+        let (mut alpha, mut alast, mut n) = (NONE, NONE, 0);
+        let mut c = x.first;
+        while c != NONE {
+            let next = self.cx.exprs[c as usize].next;
+            self.cx.exprs[c as usize].next = NONE;
+            if self.classify_one(pb, p, c, false) != NONE {
+                Self::chain_push(self, &mut alpha, &mut alast, c);
+                n += 1;
+            }
+            c = next;
+        }
+        match n {
+            0 => NONE,
+            1 => {
+                self.push_alpha_test(pb, alpha);
+                alpha
+            }
+            _ => {
+                self.cx.exprs[e as usize].first = alpha;
+                self.push_alpha_test(pb, e);
+                e
+            }
+        }
+    }
+
+    /// One conjunct of a field's test: aliases noted and applied (see `classify`), then
+    /// to the join or (returned) to the alpha side, where `push` adds it to the tests.
+    fn classify_one(&mut self, pb: &mut PatBuild, p: u8, e: Ix, push: bool) -> Ix {
+        if !self.note_alias(pb, p, e) {
+            self.apply_aliases(pb, p, e);
+        }
         if self.refs_earlier(e, p) {
             let (mut h, mut l) = (pb.jtests, pb.jlast);
             Self::chain_push(self, &mut h, &mut l, e);
             pb.jtests = h;
             pb.jlast = l;
+            return NONE;
+        }
+        self.retarget(e, p);
+        if push {
+            self.push_alpha_test(pb, e);
+        }
+        e
+    }
+
+    fn push_alpha_test(&mut self, pb: &mut PatBuild, e: Ix) {
+        let (mut h, mut l) = (pb.atests, pb.alast);
+        Self::chain_push(self, &mut h, &mut l, e);
+        pb.atests = h;
+        pb.alast = l;
+    }
+
+    /// Notes `e` as an alias if it is `this field = ?x` with `?x` bound earlier and not
+    /// aliased yet in this pattern (the first such field reads it; later ones compare
+    /// with that field).
+    fn note_alias(&mut self, pb: &mut PatBuild, p: u8, e: Ix) -> bool {
+        let x = self.cx.exprs[e as usize];
+        if x.op != Op::Eq2 {
+            return false;
+        }
+        let this = self.cx.exprs[x.first as usize];
+        let other = self.cx.exprs[this.next as usize];
+        if this.op != Op::PatVar
+            || this.aux != p
+            || other.op != Op::PatVar
+            || other.aux == p
+            || other.aux == THIS_PATTERN
+            || other.data == loc::FACT
+            || pb.aliases[..pb.naliases]
+                .iter()
+                .any(|a| (a.0, a.1) == (other.aux, other.data))
+            || pb.naliases == pb.aliases.len()
+        {
+            return false;
+        }
+        pb.aliases[pb.naliases] = (other.aux, other.data, this.data, this.first);
+        pb.naliases += 1;
+        true
+    }
+
+    /// Rewrites references in `e` to aliased variables (`note_alias`) into reads of
+    /// this pattern's field.
+    fn apply_aliases(&mut self, pb: &PatBuild, p: u8, e: Ix) {
+        if pb.naliases == 0 {
+            return;
+        }
+        let x = self.cx.exprs[e as usize];
+        if x.op == Op::PatVar {
+            if let Some(a) = pb.aliases[..pb.naliases]
+                .iter()
+                .find(|a| (a.0, a.1) == (x.aux, x.data))
+            {
+                let n = &mut self.cx.exprs[e as usize];
+                n.aux = p;
+                n.data = a.2;
+                n.first = a.3;
+            }
+            return;
+        }
+        let mut c = if matches!(x.op, Op::Int | Op::Float) {
             NONE
         } else {
-            self.retarget(e, p);
-            let (mut h, mut l) = (pb.atests, pb.alast);
-            Self::chain_push(self, &mut h, &mut l, e);
-            pb.atests = h;
-            pb.alast = l;
-            e
+            x.first
+        };
+        while c != NONE {
+            self.apply_aliases(pb, p, c);
+            c = self.cx.exprs[c as usize].next;
         }
     }
 
@@ -1328,6 +1434,39 @@ impl<'s> Parser<'s, '_, '_> {
         }
     }
 
+    /// How many references to join `j` the rule this defrule replaces (named `name`,
+    /// created before `rule_base`) holds: a join only it uses is not shared, as CLIPS
+    /// removes the old rule first and builds (and primes) such joins anew.
+    fn replaced_uses(&self, name: SymId, j: Ix) -> Ix {
+        let mut n = 0;
+        for r in 0..self.rule_base {
+            let rule = &self.cx.rules[r as usize];
+            if rule.name == name && !rule.deleted {
+                let mut d = r;
+                while d != NONE {
+                    n += self.chain_uses(self.cx.rules[d as usize].terminal, 0, j);
+                    d = self.cx.rules[d as usize].next_disjunct;
+                }
+            }
+        }
+        n
+    }
+
+    /// References to join `j` on the chain from `from` up to `stop` and in the
+    /// subnetworks it takes from the right (the walk `Core::remove_rule` releases).
+    fn chain_uses(&self, mut from: Ix, stop: Ix, j: Ix) -> Ix {
+        let mut n = 0;
+        while from != NONE && from != 0 && from != stop {
+            let jn = &self.cx.joins[from as usize];
+            n += Ix::from(from == j);
+            if jn.rjoin != NONE {
+                n += self.chain_uses(jn.rjoin, jn.parent, j);
+            }
+            from = jn.parent;
+        }
+        n
+    }
+
     /// Creates the rule and its joins (the root token comes later, in `defrule`).
     fn build_rule(&mut self, name: SymId, salience: (i32, Ix), b: &Build, rhs: Ix) -> PResult<Ix> {
         self.cx.st.net_gen = self.cx.st.net_gen.wrapping_add(1);
@@ -1362,6 +1501,7 @@ impl<'s> Parser<'s, '_, '_> {
                 while c != NONE {
                     let cj = self.cx.joins[c as usize];
                     if cj.refs > 0
+                        && cj.refs > self.replaced_uses(name, c)
                         && cj.kind == ce.kind
                         && cj.alpha == ce.alpha
                         && cj.rjoin == rjoin
@@ -1499,6 +1639,10 @@ struct PatBuild {
     marks: u8,
     rhash: [Ix; MAX_RHASH],
     nrhash: usize,
+    /// Variables bound earlier that this pattern equates with a field: (pattern,
+    /// locator) of the binding, (locator, descriptor) of the field (`classify`).
+    aliases: [(u8, Ix, Ix, Ix); 8],
+    naliases: usize,
 }
 
 impl PatBuild {

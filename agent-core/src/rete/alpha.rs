@@ -393,20 +393,6 @@ impl Core<'_> {
         use core::fmt::Write;
         self.st.pattern_error = true;
         self.report_eval_error(e);
-        // a rule using the pattern, and the pattern's position in it
-        let mut j = self.alphas[alpha as usize].succ;
-        while j != NONE && self.joins[j as usize].alpha_next != NONE {
-            j = self.joins[j as usize].alpha_next;
-        }
-        let depth = if j != NONE {
-            self.joins[j as usize].depth as usize + 1
-        } else {
-            1
-        };
-        let mut t = j;
-        while t != NONE && !self.joins[t as usize].is_terminal() {
-            t = self.joins[t as usize].first_child;
-        }
         let mut b: crate::value::TextBuf<512> = crate::value::TextBuf::new();
         let _ = b.write_str("\n[FACTMCH1] This error occurred in the fact pattern network\n   Currently active fact: ");
         {
@@ -426,15 +412,39 @@ impl Core<'_> {
                 let _ = writeln!(b, "\n   Problem resides in field #1");
             }
         }
-        if t != NONE {
-            let rule = self.joins[t as usize].rule;
-            let _ = writeln!(
-                b,
-                "      Of pattern #{depth} in rule {}\n",
-                self.sym_text(self.rules[rule as usize].name)
-            );
-        }
         self.write(crate::host::router::WERROR, b.as_str());
+        // every rule using the pattern, and the pattern's position in it
+        let mut j = self.alphas[alpha as usize].succ;
+        while j != NONE {
+            self.write_rules_below(j, self.joins[j as usize].depth as usize + 1);
+            j = self.joins[j as usize].alpha_next;
+        }
+        self.write(crate::host::router::WERROR, "\n");
+    }
+
+    /// `      Of pattern #N in rule R` for every rule whose network passes through
+    /// `join` (newest first, as CLIPS traces an error to its rules).
+    pub(crate) fn write_rules_below(&mut self, join: Ix, pattern: usize) {
+        use core::fmt::Write;
+        let j = self.joins[join as usize];
+        if j.is_terminal() {
+            let mut b: crate::value::TextBuf<128> = crate::value::TextBuf::new();
+            let name = self.sym_text(self.rules[j.rule as usize].name);
+            let _ = writeln!(b, "      Of pattern #{pattern} in rule {name}");
+            self.write(crate::host::router::WERROR, b.as_str());
+            return;
+        }
+        let mut c = j.first_child;
+        while c != NONE {
+            self.write_rules_below(c, pattern);
+            c = self.joins[c as usize].next_sibling;
+        }
+        // the end of a not/exists subnetwork feeds joins from the right
+        let mut r = j.rsucc;
+        while r != NONE {
+            self.write_rules_below(r, pattern);
+            r = self.joins[r as usize].alpha_next;
+        }
     }
 
     /// The field (slot, element) of the pattern's first variable in test `e`: the

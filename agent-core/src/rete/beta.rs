@@ -219,25 +219,13 @@ impl Core<'_> {
         use core::fmt::Write;
         self.st.pattern_error = true;
         self.report_eval_error(e);
-        // a rule below the join, and the join's pattern in it
-        let mut t = join;
-        while t != NONE && !self.joins[t as usize].is_terminal() {
-            t = self.joins[t as usize].first_child;
-        }
-        let mut b: crate::value::TextBuf<256> = crate::value::TextBuf::new();
+        let mut b: crate::value::TextBuf<128> = crate::value::TextBuf::new();
         let _ = b.write_str(
             "\n[DRIVE1] This error occurred in the join network\n   Problem resides in associated join\n",
         );
-        if t != NONE {
-            let rule = self.joins[t as usize].rule;
-            let _ = writeln!(
-                b,
-                "      Of pattern #{} in rule {}\n",
-                self.joins[join as usize].depth as usize + 1,
-                self.sym_text(self.rules[rule as usize].name)
-            );
-        }
         self.write(crate::host::router::WERROR, b.as_str());
+        self.write_rules_below(join, self.joins[join as usize].depth as usize + 1);
+        self.write(crate::host::router::WERROR, "\n");
     }
 
     /// Whether child token `c` belongs to the front of its parent's child list:
@@ -472,7 +460,15 @@ impl Core<'_> {
                 let post = self.joins[join as usize].post;
                 if post != NONE {
                     self.bind_left(left);
-                    if !self.eval_lhs_tests(post)? {
+                    // an error is reported as in the join's own tests; the test fails
+                    let pass = match self.eval_lhs_tests(post) {
+                        Err(e) if !e.is_capacity() => {
+                            self.report_join_error(join, e);
+                            false
+                        }
+                        r => r?,
+                    };
+                    if !pass {
                         return Ok(());
                     }
                 }
