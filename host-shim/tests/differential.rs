@@ -326,4 +326,5 @@ differential_programs! {
     p167_query_test_shares_nodes => "167-query-test-shares-nodes",
     p168_network_error_placement => "168-network-error-placement",
     p169_new_rule_primes_shared_pattern => "169-new-rule-primes-shared-pattern",
+    p170_query_after_pattern_error => "170-query-after-pattern-error",
 }
