@@ -254,27 +254,12 @@ const BASE_TEXTS: [&str; 41] = [
     "[MISCFUN2] Function random expected either 0 or 2 arguments",
 ];
 
-const fn same_text(a: &str, b: &str) -> bool {
-    let (a, b) = (a.as_bytes(), b.as_bytes());
-    if a.len() != b.len() {
-        return false;
-    }
-    let mut i = 0;
-    while i < a.len() {
-        if a[i] != b[i] {
-            return false;
-        }
-        i += 1;
-    }
-    true
-}
-
 /// The index of text `s` in `ERROR_TEXTS` (0, "?", when it is missing there: a debug
 /// build panics).
 const fn text_id(s: &str) -> u16 {
     let mut k = 0;
     while k < ERROR_TEXTS.len() {
-        if same_text(ERROR_TEXTS[k], s) {
+        if crate::symbols::same_text(ERROR_TEXTS[k], s) {
             return k as u16;
         }
         k += 1;

@@ -7,6 +7,23 @@ use crate::error::{CapacityError, Pool};
 use crate::value::Ix;
 use crate::value::{SymId, NONE};
 
+/// Whether two texts are equal, usable in constants (`==` on `str` is not `const`):
+/// names looked up at compile time (builtins, error texts, rule files).
+pub const fn same_text(a: &str, b: &str) -> bool {
+    let (a, b) = (a.as_bytes(), b.as_bytes());
+    if a.len() != b.len() {
+        return false;
+    }
+    let mut i = 0;
+    while i < a.len() {
+        if a[i] != b[i] {
+            return false;
+        }
+        i += 1;
+    }
+    true
+}
+
 #[derive(Clone, Copy, Debug)]
 pub struct SymEntry {
     pub start: Ix,

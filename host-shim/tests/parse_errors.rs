@@ -19,15 +19,10 @@
 //! bad construct must leave nothing of itself behind (e.g. no rule in `(list-defrules)`). What real CLIPS prints for each program is recorded for humans in
 //! `NNN-*.clips-out` (`tests/clips-errors/regen.sh`); it is not compared.
 
+mod clips_runner;
 mod known_divergences;
 
-use std::io::Read;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
-use std::sync::atomic::{AtomicUsize, Ordering};
-use std::time::{Duration, Instant};
-
-const RUN_TIMEOUT: Duration = Duration::from_secs(10);
 
 fn programs_dir() -> PathBuf {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests/clips-errors");
@@ -121,80 +116,23 @@ fn parse_position_line(text: &str) -> Option<PositionLine<'_>> {
 }
 
 fn run_our_cli(file: &Path, name: &str) -> Result<String, String> {
-    // Unique per run: a program's own test and the summary test may run it concurrently.
-    static RUNS: AtomicUsize = AtomicUsize::new(0);
-    let cwd = std::env::temp_dir().join(format!(
-        "robotino-parse-errors-{}-{}-{name}",
-        std::process::id(),
-        RUNS.fetch_add(1, Ordering::Relaxed)
-    ));
+    let cwd = clips_runner::scratch_dir(name, "parse-errors")?;
+    let run = clips_runner::run_with_timeout(
+        &clips_runner::our_engine(),
+        &[Path::new("clips"), Path::new("-f"), file],
+        &cwd,
+    )?;
     let _ = std::fs::remove_dir_all(&cwd);
-    std::fs::create_dir_all(&cwd).map_err(|e| format!("cannot create {}: {e}", cwd.display()))?;
-    // `DIFFTEST_ENGINE` may name another executable with the same arguments, to check
-    // this harness itself.
-    let exe = std::env::var_os("DIFFTEST_ENGINE")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| PathBuf::from(env!("CARGO_BIN_EXE_robotino-agent")));
-    let mut child = Command::new(&exe)
-        .arg("clips")
-        .arg("-f")
-        .arg(file)
-        .current_dir(&cwd)
-        .stdin(Stdio::null())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .map_err(|e| format!("cannot start {}: {e}", exe.display()))?;
-    // Position lines may go to stdout or stderr; both are searched, so read both in threads.
-    let readers: Vec<_> = [
-        child
-            .stdout
-            .take()
-            .map(|p| Box::new(p) as Box<dyn Read + Send>),
-        child
-            .stderr
-            .take()
-            .map(|p| Box::new(p) as Box<dyn Read + Send>),
-    ]
-    .into_iter()
-    .flatten()
-    .map(|mut pipe| {
-        std::thread::spawn(move || {
-            let mut bytes = Vec::new();
-            let _ = pipe.read_to_end(&mut bytes);
-            bytes
-        })
-    })
-    .collect();
-    let deadline = Instant::now() + RUN_TIMEOUT;
-    let mut timed_out = false;
-    loop {
-        match child.try_wait() {
-            Ok(Some(_)) => break,
-            Ok(None) if Instant::now() >= deadline => {
-                timed_out = true;
-                let _ = child.kill();
-                let _ = child.wait();
-                break;
-            }
-            Ok(None) => std::thread::sleep(Duration::from_millis(5)),
-            Err(e) => return Err(format!("waiting for {}: {e}", exe.display())),
-        }
+    // position lines may go to stdout or stderr: both are searched
+    let mut output = run.stdout;
+    if !output.ends_with('\n') && !output.is_empty() {
+        output.push('\n');
     }
-    let mut output = String::new();
-    for reader in readers {
-        let bytes = reader
-            .join()
-            .map_err(|_| "output reader thread panicked".to_string())?;
-        output.push_str(&String::from_utf8_lossy(&bytes));
-        if !output.ends_with('\n') && !output.is_empty() {
-            output.push('\n');
-        }
-    }
-    let _ = std::fs::remove_dir_all(&cwd);
-    if timed_out {
+    output.push_str(&run.stderr);
+    if run.timed_out {
         return Err(format!(
-            "our CLI did not finish {name} within {RUN_TIMEOUT:?}; output so far:\n{output}"
+            "our CLI did not finish {name} within {:?}; output so far:\n{output}",
+            clips_runner::RUN_TIMEOUT
         ));
     }
     Ok(output)

@@ -120,6 +120,7 @@ const ALL: [RuleFile; 13] = [
     CLIPS_STUBS,
 ];
 
+// (agent-core has the same helper; this crate stays free of dependencies)
 const fn same_text(a: &str, b: &str) -> bool {
     let (a, b) = (a.as_bytes(), b.as_bytes());
     if a.len() != b.len() {

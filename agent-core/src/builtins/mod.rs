@@ -174,15 +174,8 @@ const fn builtin_id(name: &str) -> Ix {
     const ALL: [Builtin; builtin_count()] = flatten();
     let mut i = 0;
     while i < ALL.len() {
-        let (a, b) = (ALL[i].name.as_bytes(), name.as_bytes());
-        if a.len() == b.len() {
-            let mut k = 0;
-            while k < a.len() && a[k] == b[k] {
-                k += 1;
-            }
-            if k == a.len() {
-                return i as Ix;
-            }
+        if crate::symbols::same_text(ALL[i].name, name) {
+            return i as Ix;
         }
         i += 1;
     }

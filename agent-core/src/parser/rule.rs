@@ -1483,6 +1483,11 @@ impl<'s> Parser<'s, '_, '_> {
         self.cx.rules[nr] = Rule::EMPTY;
         // the join built for each CE
         let mut jid = [0 as Ix; MAX_PATTERNS];
+        // a redefinition: the old rule's joins may not be shared (`replaced_uses`)
+        let replacing = (0..self.rule_base).any(|r| {
+            let rule = &self.cx.rules[r as usize];
+            rule.name == name && !rule.deleted
+        });
         for (i, ce) in b.ces[..b.n].iter().enumerate() {
             let parent = if ce.parent == CE_ROOT {
                 0
@@ -1501,7 +1506,7 @@ impl<'s> Parser<'s, '_, '_> {
                 while c != NONE {
                     let cj = self.cx.joins[c as usize];
                     if cj.refs > 0
-                        && cj.refs > self.replaced_uses(name, c)
+                        && (!replacing || cj.refs > self.replaced_uses(name, c))
                         && cj.kind == ce.kind
                         && cj.alpha == ce.alpha
                         && cj.rjoin == rjoin

@@ -1045,24 +1045,10 @@ impl Core<'_> {
         #[cfg(not(feature = "wide-pools"))]
         let in_bucket = true;
         if parent != NONE {
-            if prev_sib != NONE {
-                tokens[prev_sib as usize].next_sib = next_sib;
-            } else {
-                tokens[parent as usize].first_child = next_sib;
-            }
-            if next_sib != NONE {
-                tokens[next_sib as usize].prev_sib = prev_sib;
-            }
+            leave_parent(tokens, parent, prev_sib, next_sib);
         }
         if am != NONE {
-            if am_prev != NONE {
-                tokens[am_prev as usize].am_next = am_next;
-            } else {
-                tokens[am as usize].first_child = am_next;
-            }
-            if am_next != NONE {
-                tokens[am_next as usize].am_prev = am_prev;
-            }
+            leave_alpha_match(tokens, am, am_prev, am_next);
         } else if am_prev != NONE {
             // a not/exists output: blocked, or owed (see `is_owed`)
             if tokens[t as usize].blocked {
@@ -1139,6 +1125,34 @@ impl Core<'_> {
             l = next;
         }
         Ok(())
+    }
+}
+
+/// Takes a partial match (whose sibling links are `prev`, `next`) off the child list
+/// of token `parent`.
+#[inline(always)]
+pub(super) fn leave_parent(tokens: &mut [Token], parent: Ix, prev: Ix, next: Ix) {
+    if prev != NONE {
+        tokens[prev as usize].next_sib = next;
+    } else {
+        tokens[parent as usize].first_child = next;
+    }
+    if next != NONE {
+        tokens[next as usize].prev_sib = prev;
+    }
+}
+
+/// Takes a partial match (whose links under its alpha match are `prev`, `next`) off
+/// the list of partial matches built on alpha match `am`.
+#[inline(always)]
+pub(super) fn leave_alpha_match(tokens: &mut [Token], am: Ix, prev: Ix, next: Ix) {
+    if prev != NONE {
+        tokens[prev as usize].am_next = next;
+    } else {
+        tokens[am as usize].first_child = next;
+    }
+    if next != NONE {
+        tokens[next as usize].am_prev = prev;
     }
 }
 

@@ -92,16 +92,8 @@ impl Core<'_> {
     fn leave_parent(&mut self, t: Ix) {
         let tk = &self.tokens[t as usize];
         let (parent, prev, next) = (tk.parent, tk.prev_sib, tk.next_sib);
-        if parent == NONE {
-            return;
-        }
-        if prev != NONE {
-            self.tokens[prev as usize].next_sib = next;
-        } else {
-            self.tokens[parent as usize].first_child = next;
-        }
-        if next != NONE {
-            self.tokens[next as usize].prev_sib = prev;
+        if parent != NONE {
+            super::beta::leave_parent(self.tokens, parent, prev, next);
         }
     }
 
@@ -114,14 +106,7 @@ impl Core<'_> {
         debug_assert!(tk.kind == TokenKind::Beta && tk.blocks == NONE);
         let (am, am_prev, am_next) = (tk.am, tk.am_prev, tk.am_next);
         if am != NONE {
-            if am_prev != NONE {
-                self.tokens[am_prev as usize].am_next = am_next;
-            } else {
-                self.tokens[am as usize].first_child = am_next;
-            }
-            if am_next != NONE {
-                self.tokens[am_next as usize].am_prev = am_prev;
-            }
+            super::beta::leave_alpha_match(self.tokens, am, am_prev, am_next);
         } else if self.tokens[t as usize].blocked {
             // a not/exists output on another match's blocker list (nothing is owed)
             self.unlink_blocked(t);
