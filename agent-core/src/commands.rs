@@ -242,10 +242,16 @@ impl Core<'_> {
             }
             j = self.joins[j as usize].next_sibling;
         }
-        self.assert_initial_fact()?;
-        for d in 0..self.st.ndeffacts {
+        if self.st.initial_deffacts {
+            self.assert_initial_fact()?;
+        }
+        // an error in the network halts CLIPS's reset: no further deffacts fact
+        'deffacts: for d in 0..self.st.ndeffacts {
             let mut spec = self.deffacts[d as usize].facts;
             while spec != NONE {
+                if self.st.halting {
+                    break 'deffacts;
+                }
                 if self.exprs[spec as usize].op == Op::FactSpec {
                     // a multislot's value is built in the scratch area; once asserted
                     // the fact holds its own copy, so a deffacts of any size fits
@@ -567,6 +573,9 @@ impl Core<'_> {
             self.st.firing = true;
             self.st.pm_rhs = true;
             self.st.current_rule = rule;
+            // a halt ends the run, so one left here came from before it (a top-level
+            // command's propagation): the rule's actions run as usual
+            self.st.halting = false;
             self.st.bp = self.st.sp;
             let nlocals = self.rules[rule as usize].nlocals;
             let mut r = Ok(Value::Void);
@@ -932,6 +941,8 @@ impl Core<'_> {
             let start = first.start;
             let existed = p.cx.construct_exists(&text[start..]);
             p.cx.st.announce = verbose.then_some((start, existed));
+            // CLIPS ends a halt with the construct whose matching caused it
+            p.cx.st.halting = false;
             let cp = p.cx.checkpoint();
             let item = match p.next_item() {
                 Ok(Item::Command(_)) => {
@@ -1097,6 +1108,8 @@ impl Core<'_> {
 
     #[inline(never)]
     fn exec_item(&mut self, text: &str, source: &str) {
+        // a halt lasts until the command (or construct) that caused it is done
+        self.st.halting = false;
         let exprs_before = self.st.nexprs;
         let cp = self.checkpoint();
         let mut p = Parser::new(self, text);

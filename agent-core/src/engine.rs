@@ -186,6 +186,22 @@ pub struct State {
     pub exit: bool,
     /// A pattern test failed with an error during the current assert.
     pub pattern_error: bool,
+    /// CLIPS's halting state: an error was reported in the pattern or join network (or
+    /// in a field of the fact being asserted) during the current command, firing or
+    /// construct. Until that ends, what CLIPS stops while halting does nothing and
+    /// gives FALSE (progn, switch, loops, deffunction calls, fact-set queries; printout
+    /// prints nothing) in the rest of the propagation, and `reset` asserts no further
+    /// deffacts facts.
+    pub halting: bool,
+    /// Pattern or join tests running (nested): CLIPS is pattern-matching, and refuses
+    /// to assert, retract, modify or duplicate facts, to build or remove rules, to
+    /// `clear` or to `reset` until they are done (`builtins::matching`).
+    pub matching: u16,
+    /// The `initial-fact` deffacts is defined (`undeffacts` removes it): `reset`
+    /// asserts `(initial-fact)`.
+    pub initial_deffacts: bool,
+    /// Number of the next `gensym` symbol.
+    pub gensym_next: u32,
     /// The test `eval_tests` last stopped at with an error (names the field in
     /// `[FACTMCH1]`).
     pub failed_test: Ix,
@@ -319,6 +335,10 @@ impl State {
             halt: false,
             exit: false,
             pattern_error: false,
+            halting: false,
+            matching: 0,
+            initial_deffacts: true,
+            gensym_next: 1,
             failed_test: NONE,
             returning: false,
             breaking: false,
@@ -664,6 +684,8 @@ impl<
             // assert reports the capacity error instead.
             let _ = core.startup();
         }
+        // every API call is a command of its own: no halting carried over
+        core.st.halting = false;
         // invariant mode: every operation starts from a consistent engine
         core.debug_check("at the start of an engine operation");
         core

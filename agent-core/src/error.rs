@@ -207,7 +207,7 @@ const fn concat_texts<const N: usize>(a: &[&'static str], b: &[&'static str]) ->
     out
 }
 
-const BASE_TEXTS: [&str; 41] = [
+const BASE_TEXTS: [&str; 42] = [
     "?",
     "deffunction",
     "external",
@@ -226,6 +226,7 @@ const BASE_TEXTS: [&str; 41] = [
     "fact-address, fact-index, or the symbol *",
     "fact-address, integer, or symbol",
     "symbol or positive number",
+    "function, deffunction, or generic function name",
     "positive number",
     // slot values that do not fit their slot
     "type restriction violated",

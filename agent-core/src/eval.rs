@@ -139,8 +139,11 @@ impl Core<'_> {
             base: sp as Ix,
             len: 2,
         };
-        let r = match builtins::get(x.data).imp {
-            Imp::Eager(f) => f(self, args).map_err(|err| self.classify_type_error(x.first, err)),
+        let b = builtins::get(x.data);
+        let r = match b.imp {
+            Imp::Eager(f) => {
+                f(self, args).map_err(|err| self.classify_type_error(b.name, x.first, err))
+            }
             Imp::Lazy(_) => Err(EvalError::new(EvalErrorKind::NoSuchFunction)),
         };
         Some(r)
@@ -151,7 +154,8 @@ impl Core<'_> {
     #[cfg_attr(feature = "wide-pools", inline(always))]
     pub fn eval_chain(&mut self, mut e: Ix) -> Result<Value, EvalError> {
         let mut v = Value::Sym(SYM_FALSE);
-        while e != NONE {
+        // while CLIPS halts (`State::halting`) a progn runs nothing and is FALSE
+        while e != NONE && !self.st.halting {
             v = self.eval(e)?;
             if self.st.returning || self.st.breaking || self.st.halt_now() {
                 break;
@@ -389,7 +393,7 @@ impl Core<'_> {
                     Imp::Eager(f) => {
                         let args = self.push_args(x.first)?;
                         check_arity(b.name, b.min, b.max, args.len)?;
-                        f(self, args).map_err(|err| self.classify_type_error(x.first, err))
+                        f(self, args).map_err(|err| self.classify_type_error(b.name, x.first, err))
                     }
                 }
             }
@@ -407,8 +411,64 @@ impl Core<'_> {
     }
 
     fn call_deffunction(&mut self, func: Ix, first_arg: Ix) -> Result<Value, EvalError> {
-        let df = self.funcs[func as usize];
+        // while CLIPS halts, a deffunction call evaluates nothing and is FALSE
+        if self.st.halting {
+            return Ok(Value::Sym(SYM_FALSE));
+        }
         let args = self.push_args(first_arg)?;
+        self.apply_deffunction(func, args)
+    }
+
+    /// Calls the builtin, host function or deffunction named `name` with the values
+    /// `args` (`funcall`); None when no function has that name, or it is a special form
+    /// whose arguments are expressions.
+    pub(crate) fn call_named(
+        &mut self,
+        name: &str,
+        args: Args,
+    ) -> Option<Result<Value, EvalError>> {
+        if let Some((_, b)) = builtins::lookup(name) {
+            return match b.imp {
+                Imp::Eager(f) => {
+                    Some(check_arity(b.name, b.min, b.max, args.len).and_then(|_| f(self, args)))
+                }
+                Imp::Lazy(_) => None,
+            };
+        }
+        let sym = self.find_sym(name)?;
+        if let Some(f) = (0..self.st.nfuncs).find(|&f| self.funcs[f as usize].name == sym) {
+            if self.st.halting {
+                return Some(Ok(Value::Sym(SYM_FALSE)));
+            }
+            // the deffunction's frame starts at its arguments: copy them to the top
+            let base = self.st.sp;
+            for i in 0..args.len {
+                let v = self.stack[(args.base + i) as usize];
+                if let Err(e) = self.push_value(v) {
+                    return Some(Err(e.into()));
+                }
+            }
+            return Some(self.apply_deffunction(
+                f,
+                Args {
+                    base,
+                    len: args.len,
+                },
+            ));
+        }
+        let e = (0..self.st.nexternals).find(|&e| self.externals[e as usize].name == sym)?;
+        let ext = self.externals[e as usize];
+        Some(
+            check_arity("external", ext.min, ext.max, args.len).and_then(|_| match ext.f {
+                Some(f) => f(self, args),
+                None => Err(EvalError::new(EvalErrorKind::NoSuchFunction)),
+            }),
+        )
+    }
+
+    /// Runs deffunction `func` on the arguments `args`, the top of the stack (its frame).
+    fn apply_deffunction(&mut self, func: Ix, args: Args) -> Result<Value, EvalError> {
+        let df = self.funcs[func as usize];
         let n = args.len as usize;
         let np = df.nparams as usize;
         if n < np || (!df.rest && n > np) {
@@ -481,7 +541,9 @@ impl Core<'_> {
     /// An argument type error of a builtin: CLIPS checks literal arguments while parsing
     /// (remembered in `literal_error`) and computed ones in the function body, sometimes
     /// with other type names (`builtins::errors`).
-    fn classify_type_error(&mut self, first_arg: Ix, err: EvalError) -> EvalError {
+    /// `called` is the builtin the call names: another one's error (a function `funcall`
+    /// called) is about values, never literals of this call.
+    fn classify_type_error(&mut self, called: &str, first_arg: Ix, err: EvalError) -> EvalError {
         let EvalErrorKind::WrongType {
             func,
             arg,
@@ -497,9 +559,12 @@ impl Core<'_> {
             node = self.exprs[node as usize].next;
             k += 1;
         }
-        // format checks its directives' arguments in its body, literal or not
+        // format checks its directives' arguments in its body, literal or not, and
+        // funcall the function it calls
         let literal = node != NONE
+            && func == called
             && !(func == "format" && arg > 2)
+            && !(func == "funcall" && expected != "symbol or string")
             && matches!(
                 self.exprs[node as usize].op,
                 Op::Int | Op::Float | Op::Sym | Op::Str

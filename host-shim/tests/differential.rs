@@ -327,4 +327,10 @@ differential_programs! {
     p168_network_error_placement => "168-network-error-placement",
     p169_new_rule_primes_shared_pattern => "169-new-rule-primes-shared-pattern",
     p170_query_after_pattern_error => "170-query-after-pattern-error",
+    p171_halting_after_network_error => "171-halting-after-network-error",
+    p172_reset_halts_deffacts => "172-reset-halts-deffacts",
+    p173_no_changes_while_matching => "173-no-changes-while-matching",
+    p174_error_slot_of_test_without_its_variable => "174-error-slot-of-test-without-its-variable",
+    p175_introspection_and_late_functions => "175-introspection-and-late-functions",
+    p176_retract_order_after_priming => "176-retract-order-after-priming",
 }

@@ -20,7 +20,7 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("agenda", 0, 1, agenda),
     Builtin::eager("watch", 1, ANY, watch_),
     Builtin::eager("unwatch", 1, ANY, unwatch),
-    Builtin::eager("printout", 1, ANY, printout),
+    Builtin::lazy("printout", 1, ANY, printout),
     Builtin::eager("halt", 0, 0, halt),
     Builtin::eager("exit", 0, 1, exit),
     Builtin::eager("refresh-agenda", 0, 1, refresh_agenda),
@@ -43,6 +43,17 @@ pub const FUNCS: &[Builtin] = &[
 ];
 
 fn reset(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
+    if cx.st.matching > 0 {
+        // a reset from a pattern or join test would wipe the network it runs in;
+        // CLIPS 6.30 fails on deleting its initial object and halts, with these words
+        cx.write(
+            router::WERROR,
+            "[INSMNGR12] Cannot delete instances of reactive classes while\n  pattern-matching is in process.\n[PRCCODE4] Execution halted during the actions of message-handler delete primary in class USER\n",
+        );
+        let mut e = EvalError::new(EvalErrorKind::Reported);
+        e.reported = true;
+        return Err(e);
+    }
     cx.reset()?;
     Ok(Value::Void)
 }
@@ -50,7 +61,7 @@ fn reset(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
 fn clear(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
     // a firing rule, a running deffunction or a construct being parsed would go on
     // with its pools wiped under it
-    if cx.st.firing || cx.st.in_use > 0 || cx.st.defining {
+    if cx.st.firing || cx.st.in_use > 0 || cx.st.defining || cx.st.matching > 0 {
         cx.write(
             router::WERROR,
             "[CONSTRCT1] Some constructs are still in use. Clear cannot continue.\n",
@@ -134,19 +145,42 @@ fn unwatch(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     Ok(Value::Void)
 }
 
-fn printout(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    if cx.arg(a, 0) == Value::Sym(SYM_NIL) {
+/// `(printout name args...)`, lazy as in CLIPS: nothing is evaluated for `nil` or an
+/// unknown router, and each argument is printed before the next one is evaluated (a
+/// function called by a later argument prints after it). While CLIPS halts
+/// (`State::halting`) it stops after evaluating an argument, printing nothing more.
+fn printout(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
+    let first = cx.exprs[call as usize].first;
+    let name = cx.eval(first)?;
+    if name == Value::Sym(SYM_NIL) || cx.st.halting {
         return Ok(Value::Void);
     }
-    let routed = match resolve_router(cx, cx.arg(a, 0)) {
+    let routed = match resolve_router(cx, name) {
         Ok(Some(r)) => r,
         Ok(None) => return Ok(Value::Void),
         // CLIPS's printout reports the name and carries on with nothing printed
         Err(_) => return Ok(Value::Void),
     };
+    let mark = cx.st.scratch_top;
     let mut b: TextBuf<1024> = TextBuf::new();
-    for i in 1..a.len as usize {
-        let v = cx.arg(a, i);
+    let mut a = cx.exprs[first as usize].next;
+    let mut r = Ok(Value::Void);
+    while a != NONE {
+        // what a call prints must follow what is printed before it
+        if !is_leaf(cx.exprs[a as usize].op) && !b.is_empty() {
+            cx.write(routed, b.as_str());
+            b.clear();
+        }
+        let v = match cx.eval(a) {
+            Ok(v) => v,
+            Err(e) => {
+                r = Err(e);
+                break;
+            }
+        };
+        if cx.st.halting {
+            break;
+        }
         match v {
             Value::Sym(s) if s == SYM_CRLF => {
                 let _ = b.write_char('\n');
@@ -162,9 +196,20 @@ fn printout(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
                 }
             }
         }
+        a = cx.exprs[a as usize].next;
     }
     cx.write(routed, b.as_str());
-    Ok(Value::Void)
+    cx.st.scratch_top = mark;
+    r
+}
+
+/// Expressions whose evaluation calls nothing (so prints nothing).
+fn is_leaf(op: crate::expr::Op) -> bool {
+    use crate::expr::Op;
+    matches!(
+        op,
+        Op::Int | Op::Float | Op::Sym | Op::Str | Op::Local | Op::Global | Op::PatVar | Op::QSlot
+    )
 }
 
 /// Maps a logical name to a router constant (unknown names go to stdout).
@@ -278,6 +323,17 @@ fn ppdefrule(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 
 fn undefrule(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let name = cx.arg_lexeme(a, 0, "undefrule")?;
+    if cx.st.matching > 0 {
+        // the network may not change while a test in it runs
+        let mut b: TextBuf<160> = TextBuf::new();
+        let _ = writeln!(
+            b,
+            "[PRNTUTIL4] Unable to delete defrule {}.",
+            cx.sym_text(name)
+        );
+        cx.write(router::WERROR, b.as_str());
+        return Ok(Value::Void);
+    }
     if cx.sym_text(name) == "*" {
         // every rule in definition order; `remove_rule` takes a rule's first disjunct
         for r in 0..cx.st.nrules {

@@ -4,7 +4,7 @@
 use super::{Builtin, ANY, SYM_FALSE};
 use crate::engine::Core;
 use crate::error::{EvalError, EvalErrorKind};
-use crate::expr::Op;
+use crate::expr::{FnKind, Op};
 use crate::value::Ix;
 use crate::value::{Value, NONE};
 
@@ -42,12 +42,24 @@ fn progn(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
 fn if_(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     let [c, t, e] = kids::<3>(cx, call);
     if Core::is_true(cx.eval(c)?) {
-        cx.eval(t)
+        branch(cx, t)
     } else if e != NONE {
-        cx.eval(e)
+        branch(cx, e)
     } else {
         Ok(Value::Sym(SYM_FALSE))
     }
+}
+
+/// An `if` branch, parsed as a progn of its actions. CLIPS keeps a progn only around
+/// two or more, which is seen while it halts (`State::halting`): a lone action still
+/// runs there, a progn does not.
+fn branch(cx: &mut Core<'_>, p: Ix) -> Result<Value, EvalError> {
+    let x = cx.exprs[p as usize];
+    let progn = x.op == Op::Call && x.aux == FnKind::Builtin as u8 && x.data == super::ID_PROGN;
+    if progn && x.first != NONE && cx.exprs[x.first as usize].next == NONE {
+        return cx.eval(x.first);
+    }
+    cx.eval(p)
 }
 
 /// Resets scratch to `mark` unless a frame variable still points above it. Globals
@@ -72,7 +84,8 @@ pub(super) fn release_scratch(cx: &mut Core<'_>, mark: Ix) {
 fn while_(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     let [c, body] = kids::<2>(cx, call);
     let mark = cx.st.scratch_top;
-    while Core::is_true(cx.eval(c)?) {
+    // while CLIPS halts (`State::halting`) loops run no iteration
+    while !cx.st.halting && Core::is_true(cx.eval(c)?) {
         cx.poll_interrupt()?;
         cx.eval(body)?;
         release_scratch(cx, mark);
@@ -104,7 +117,7 @@ fn loop_for_count(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     };
     let mark = cx.st.scratch_top;
     let mut i = start;
-    while i <= end {
+    while i <= end && !cx.st.halting {
         if let Some(sl) = slot {
             let at = (cx.st.bp + sl) as usize;
             cx.stack[at] = Value::Int(i);
@@ -134,6 +147,9 @@ fn foreach(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     let mark = cx.st.scratch_top;
     let mut last = Value::Sym(SYM_FALSE);
     for k in 0..m.len as usize {
+        if cx.st.halting {
+            break;
+        }
         let at = (cx.st.bp + slot) as usize;
         cx.stack[at] = cx.scratch[m.start as usize + k];
         cx.stack[at + 1] = Value::Int(k as i64 + 1);
@@ -166,6 +182,10 @@ pub(super) fn keep_value(mark: Ix, v: Value) -> Ix {
 }
 
 fn switch(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
+    // while CLIPS halts (`State::halting`) a switch is FALSE
+    if cx.st.halting {
+        return Ok(Value::Sym(SYM_FALSE));
+    }
     let first = cx.exprs[call as usize].first;
     let v = cx.eval(first)?;
     let mut c = cx.exprs[first as usize].next;

@@ -64,6 +64,8 @@ const FALSE_FNS: &[&str] = &[
     "str-index",
     "member$",
     "eval",
+    "funcall",
+    "assert-string",
     "progn",
     "progn$",
     "foreach",

@@ -1,6 +1,6 @@
 //! `eval` and `build`: CLIPS source given as a string, parsed and run at run time.
 
-use super::{Args, Builtin, SYM_FALSE, SYM_TRUE};
+use super::{Args, Builtin, ANY, SYM_FALSE, SYM_TRUE};
 use crate::engine::Core;
 use crate::error::{EvalError, EvalErrorKind};
 use crate::parser::{Item, Parser};
@@ -9,6 +9,8 @@ use crate::value::Value;
 pub const FUNCS: &[Builtin] = &[
     Builtin::eager("eval", 1, 1, eval),
     Builtin::eager("build", 1, 1, build),
+    Builtin::eager("assert-string", 1, 1, assert_string),
+    Builtin::eager("funcall", 1, ANY, funcall),
 ];
 
 /// The text argument (symbol or string), copied out of the symbol table.
@@ -27,8 +29,19 @@ fn source_arg(
 /// `build`). Its expression nodes are dropped again afterwards.
 fn eval(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let text = source_arg(cx, a, "eval")?;
+    eval_text(cx, text.as_str(), "eval", None)
+}
+
+/// Parses and evaluates one command of `text` (`func` names it in a parse error,
+/// which gives `on_parse_error` when set, else the reported error).
+fn eval_text(
+    cx: &mut Core<'_>,
+    text: &str,
+    func: &'static str,
+    on_parse_error: Option<Value>,
+) -> Result<Value, EvalError> {
     let cp = cx.checkpoint();
-    let mut p = Parser::new(cx, text.as_str());
+    let mut p = Parser::new(cx, text);
     let item = p.next_item();
     let nlocals = p.nlocals;
     let r = match item {
@@ -51,8 +64,8 @@ fn eval(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         Ok(Item::End) => Ok(Value::Sym(SYM_FALSE)),
         Ok(Item::Construct) => Ok(Value::Sym(SYM_FALSE)),
         Err(e) => {
-            cx.report_load_error("eval", text.as_str(), &e);
-            Err(EvalError::new(EvalErrorKind::Reported))
+            cx.report_load_error(func, text, &e);
+            on_parse_error.ok_or(EvalError::new(EvalErrorKind::Reported))
         }
     };
     // a plain command leaves no expressions behind
@@ -68,9 +81,50 @@ fn eval(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     r
 }
 
+/// `(assert-string "(point (x 1))")`: asserts the fact the string writes, as `assert`
+/// would (the fact, or FALSE: a duplicate, or text that is not a fact).
+fn assert_string(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let Value::Str(s) = cx.arg(a, 0) else {
+        return Err(EvalError::wrong_type("assert-string", 1, "string"));
+    };
+    let mut text = super::strings::Text::new();
+    let fits = core::fmt::Write::write_fmt(&mut text, format_args!("(assert {})", cx.sym_text(s)));
+    if fits.is_err() {
+        return Err(EvalError::other("string result longer than 2048 bytes"));
+    }
+    eval_text(
+        cx,
+        text.as_str(),
+        "assert-string",
+        Some(Value::Sym(SYM_FALSE)),
+    )
+}
+
+/// `(funcall name args...)`: calls the function (builtin, deffunction or host
+/// function) whose name `name` evaluates to, with the other arguments' values.
+fn funcall(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    const NOT_A_FUNCTION: &str = "function, deffunction, or generic function name";
+    let name = match cx.arg(a, 0) {
+        Value::Sym(s) | Value::Str(s) => s,
+        _ => return Err(EvalError::wrong_type("funcall", 1, "symbol or string")),
+    };
+    let rest = Args {
+        base: a.base + 1,
+        len: a.len - 1,
+    };
+    let mut text = super::strings::Text::new();
+    let _ = core::fmt::Write::write_str(&mut text, cx.sym_text(name));
+    cx.call_named(text.as_str(), rest)
+        .unwrap_or_else(|| Err(EvalError::wrong_type("funcall", 1, NOT_A_FUNCTION)))
+}
+
 /// `(build "(defrule ...)")`: defines one construct, silently; TRUE when it was defined.
 fn build(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let text = source_arg(cx, a, "build")?;
+    // CLIPS defines nothing while a pattern or join test runs (`State::matching`)
+    if cx.st.matching > 0 {
+        return Ok(Value::Sym(SYM_FALSE));
+    }
     match cx.load_text(text.as_str(), false) {
         Ok(n) if n > 0 => Ok(Value::Sym(SYM_TRUE)),
         Ok(_) => Ok(Value::Sym(SYM_FALSE)),

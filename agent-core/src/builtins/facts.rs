@@ -309,6 +309,14 @@ impl Core<'_> {
                 return Ok(Value::Sym(SYM_FALSE));
             }
         };
+        if self.st.matching > 0 {
+            // a modify is a retract, then an assert: CLIPS refuses both
+            if retract_old {
+                self.write(router::WERROR, NO_RETRACT_WHILE_MATCHING);
+            }
+            self.write(router::WERROR, NO_ASSERT_WHILE_MATCHING);
+            return Ok(Value::Sym(SYM_FALSE));
+        }
         let tmpl = self.facts[old as usize].tmpl;
         if self.templates[tmpl as usize].implied {
             return Err(EvalError::wrong_type(name, 1, "deftemplate fact"));
@@ -422,7 +430,10 @@ fn assert(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     // earlier one's pattern errors must stop the assert before the next fact
     let top = cx.defer_worth(call);
     while spec != NONE {
-        if cx.exprs[spec as usize].op == Op::FactSpec {
+        if cx.exprs[spec as usize].op == Op::FactSpec && cx.st.matching > 0 {
+            cx.write(router::WERROR, NO_ASSERT_WHILE_MATCHING);
+            last = Value::Sym(SYM_FALSE);
+        } else if cx.exprs[spec as usize].op == Op::FactSpec {
             cx.st.field_error = None;
             let defer = top && cx.exprs[spec as usize].next == NONE;
             last = match cx.assert_spec_deferring(spec, defer)? {
@@ -463,11 +474,27 @@ fn halt_after_network_error(cx: &mut Core<'_>, value: Value) -> Result<Value, Ev
     Err(e)
 }
 
+/// CLIPS's messages for a fact change asked for by a pattern or join test: while
+/// matching (`State::matching`) the network may not change under its own feet.
+const NO_RETRACT_WHILE_MATCHING: &str =
+    "\n[FACTMNGR1] Facts may not be retracted during pattern-matching\n";
+const NO_ASSERT_WHILE_MATCHING: &str =
+    "\n[FACTMNGR2] Facts may not be asserted during pattern-matching\n";
+
 fn retract(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     for i in 0..a.len as usize {
         let v = cx.arg(a, i);
         if let Value::Sym(s) = v {
             if cx.sym_text(s) == "*" {
+                if cx.st.matching > 0 {
+                    // CLIPS refuses each fact (and, unlike here, tries again forever)
+                    let mut f = cx.st.fact_head;
+                    while f != NONE {
+                        cx.write(router::WERROR, NO_RETRACT_WHILE_MATCHING);
+                        f = cx.facts[f as usize].next;
+                    }
+                    continue;
+                }
                 while cx.st.fact_head != NONE {
                     let f = cx.st.fact_head;
                     cx.retract_fact(f);
@@ -476,6 +503,7 @@ fn retract(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
             }
         }
         match cx.fact_arg(v) {
+            Some(_) if cx.st.matching > 0 => cx.write(router::WERROR, NO_RETRACT_WHILE_MATCHING),
             Some(f) => cx.retract_fact(f),
             // a stale fact address was retracted already: nothing to do (as CLIPS)
             None if matches!(v, Value::Fact(_)) => {}

@@ -11,6 +11,7 @@
 
 pub mod basic;
 pub mod commands;
+pub mod constructs;
 pub mod control;
 pub mod errors;
 pub mod evaluate;
@@ -138,6 +139,7 @@ pub const TABLES: &[&[Builtin]] = &[
     geometry::FUNCS,
     memory::FUNCS,
     evaluate::FUNCS,
+    constructs::FUNCS,
 ];
 
 const fn builtin_count() -> usize {
@@ -223,6 +225,8 @@ pub fn is_quiet(id: Ix) -> bool {
 /// deferred propagation waiting (`rete::defer`).
 pub const ID_ASSERT: Ix = builtin_id("assert");
 pub const ID_MODIFY: Ix = builtin_id("modify");
+/// Id of `progn`: an `if` branch is one (see `control::branch`).
+pub const ID_PROGN: Ix = builtin_id("progn");
 
 /// Finds a builtin by name.
 pub fn lookup(name: &str) -> Option<(Ix, &'static Builtin)> {

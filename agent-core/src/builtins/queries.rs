@@ -447,6 +447,10 @@ fn run(
         base: cx.st.scratch_top,
         hold_top: false,
     };
+    // while CLIPS halts, a query tests no fact set: nothing found, no action run
+    if cx.st.halting {
+        return Ok(w);
+    }
     // outside a firing, retracted facts stay readable (`hold_begin`)
     let hold = hold_begin(cx);
     w.hold_top = hold.1;

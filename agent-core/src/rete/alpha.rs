@@ -392,6 +392,7 @@ impl Core<'_> {
     fn report_pattern_error(&mut self, alpha: Ix, fact: Ix, e: EvalError) {
         use core::fmt::Write;
         self.st.pattern_error = true;
+        self.st.halting = true;
         self.report_eval_error(e);
         let mut b: crate::value::TextBuf<512> = crate::value::TextBuf::new();
         let _ = b.write_str("\n[FACTMCH1] This error occurred in the fact pattern network\n   Currently active fact: ");
@@ -472,23 +473,32 @@ impl Core<'_> {
 
     /// Evaluates a chain of tests; all must be non-FALSE. Scratch and stack are
     /// restored afterwards, so tests leave nothing behind.
+    /// While they run, CLIPS is pattern-matching: facts, rules and the environment
+    /// may not change (`State::matching`).
     pub(crate) fn eval_tests(&mut self, mut t: Ix) -> Result<bool, EvalError> {
         let (scratch, sp) = (self.st.scratch_top, self.st.sp);
-        let mut ok = true;
+        self.st.matching += 1;
+        let mut r = Ok(true);
         while t != NONE {
             let v = self.eval(t);
             self.st.scratch_top = scratch;
             self.st.sp = sp;
-            if v.is_err() {
-                self.st.failed_test = t;
-            }
-            if v? == Value::Sym(crate::builtins::SYM_FALSE) {
-                ok = false;
-                break;
+            match v {
+                Err(e) => {
+                    self.st.failed_test = t;
+                    r = Err(e);
+                    break;
+                }
+                Ok(v) if v == Value::Sym(crate::builtins::SYM_FALSE) => {
+                    r = Ok(false);
+                    break;
+                }
+                Ok(_) => {}
             }
             t = self.exprs[t as usize].next;
         }
-        Ok(ok)
+        self.st.matching -= 1;
+        r
     }
 
     fn add_alpha_match(

@@ -218,6 +218,7 @@ impl Core<'_> {
     fn report_join_error(&mut self, join: Ix, e: EvalError) {
         use core::fmt::Write;
         self.st.pattern_error = true;
+        self.st.halting = true;
         self.report_eval_error(e);
         let mut b: crate::value::TextBuf<128> = crate::value::TextBuf::new();
         let _ = b.write_str(

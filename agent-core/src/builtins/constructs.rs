@@ -1,0 +1,220 @@
+//! Asking the environment about its constructs and facts (`get-defrule-list`,
+//! `list-deffacts`, `fact-slot-names`, ...), `undeffacts`, and `gensym`. Off in the agent
+//! image (agent-core feature `reflection`): its rules call none of them.
+// without the feature the table is empty and the functions unused (and not linked)
+#![cfg_attr(not(feature = "reflection"), allow(dead_code))]
+
+use super::{Args, Builtin, SYM_FALSE};
+use crate::engine::Core;
+use crate::error::{EvalError, EvalErrorKind};
+use crate::host::router;
+use crate::value::SymId;
+use crate::value::{Ix, TextBuf, Value, NONE};
+use core::fmt::Write;
+
+#[cfg(feature = "reflection")]
+pub const FUNCS: &[Builtin] = &[
+    Builtin::eager("get-deffacts-list", 0, 1, get_deffacts_list),
+    Builtin::eager("get-deftemplate-list", 0, 1, get_deftemplate_list),
+    Builtin::eager("get-deffunction-list", 0, 1, get_deffunction_list),
+    Builtin::eager("get-defglobal-list", 0, 1, get_defglobal_list),
+    Builtin::eager("get-defrule-list", 0, 1, get_defrule_list),
+    Builtin::eager("list-deffacts", 0, 1, list_deffacts),
+    Builtin::eager("list-defglobals", 0, 1, list_defglobals),
+    Builtin::eager("undeffacts", 1, 1, undeffacts),
+    Builtin::eager("fact-relation", 1, 1, fact_relation),
+    Builtin::eager("fact-slot-names", 1, 1, fact_slot_names),
+    Builtin::eager("gensym", 0, 0, gensym),
+    Builtin::eager("gensym*", 0, 0, gensym_star),
+];
+#[cfg(not(feature = "reflection"))]
+pub const FUNCS: &[Builtin] = &[];
+
+/// The kinds of construct these functions list, each with its names in definition
+/// order (the `initial-fact` deffacts and template first, as CLIPS has them).
+#[derive(Clone, Copy)]
+enum Kind {
+    Deffacts,
+    Deftemplate,
+    Deffunction,
+    Defglobal,
+    Defrule,
+}
+
+/// Name number `i` of construct kind `kind`: None past the last; Some(None) for an
+/// entry that is gone (a retired template, a removed rule, a rule's later disjunct).
+fn name_at(cx: &Core<'_>, kind: Kind, i: Ix) -> Option<Option<SymId>> {
+    match kind {
+        Kind::Deffacts => {
+            // the `initial-fact` deffacts comes first while it is defined
+            let skip = Ix::from(!cx.st.initial_deffacts);
+            let i = i + skip;
+            if i == 0 {
+                // named as its template
+                let t = cx.st.initial_tmpl;
+                return Some((t != NONE).then(|| cx.templates[t as usize].name));
+            }
+            (i <= cx.st.ndeffacts).then(|| Some(cx.deffacts[i as usize - 1].name))
+        }
+        Kind::Deftemplate => (i < cx.st.ntemplates).then(|| {
+            let name = cx.templates[i as usize].name;
+            (name != NONE).then_some(name)
+        }),
+        Kind::Deffunction => (i < cx.st.nfuncs).then(|| Some(cx.funcs[i as usize].name)),
+        Kind::Defglobal => (i < cx.st.nglobals).then(|| Some(cx.globals[i as usize].name)),
+        Kind::Defrule => (i < cx.st.nrules).then(|| {
+            let r = cx.rules[i as usize];
+            let later_disjunct = i > 0 && cx.rules[i as usize - 1].next_disjunct == i;
+            (!r.deleted && !later_disjunct).then_some(r.name)
+        }),
+    }
+}
+
+fn names_list(cx: &mut Core<'_>, kind: Kind) -> Result<Value, EvalError> {
+    let start = cx.multi_begin();
+    let mut i = 0;
+    while let Some(name) = name_at(cx, kind, i) {
+        if let Some(s) = name {
+            cx.multi_push(Value::Sym(s))?;
+        }
+        i += 1;
+    }
+    Ok(cx.multi_finish(start))
+}
+
+/// Writes the names, one per line, and `For a total of N <what>s.`; nothing at all
+/// when there are none (as CLIPS lists deffacts and defglobals).
+fn list_names(cx: &mut Core<'_>, kind: Kind, what: &str, plural: &str) {
+    let mut n = 0;
+    let mut i = 0;
+    while let Some(name) = name_at(cx, kind, i) {
+        if let Some(s) = name {
+            let mut b: TextBuf<160> = TextBuf::new();
+            let _ = writeln!(b, "{}", cx.sym_text(s));
+            cx.write(router::WDISPLAY, b.as_str());
+            n += 1;
+        }
+        i += 1;
+    }
+    if n > 0 {
+        let mut b: TextBuf<64> = TextBuf::new();
+        let plural = if n == 1 { "" } else { plural };
+        let _ = writeln!(b, "For a total of {n} {what}{plural}.");
+        cx.write(router::WDISPLAY, b.as_str());
+    }
+}
+
+fn get_deffacts_list(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
+    names_list(cx, Kind::Deffacts)
+}
+fn get_deftemplate_list(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
+    names_list(cx, Kind::Deftemplate)
+}
+fn get_deffunction_list(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
+    names_list(cx, Kind::Deffunction)
+}
+fn get_defglobal_list(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
+    names_list(cx, Kind::Defglobal)
+}
+fn get_defrule_list(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
+    names_list(cx, Kind::Defrule)
+}
+
+fn list_deffacts(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
+    list_names(cx, Kind::Deffacts, "deffacts", "");
+    Ok(Value::Void)
+}
+
+fn list_defglobals(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
+    list_names(cx, Kind::Defglobal, "defglobal", "s");
+    Ok(Value::Void)
+}
+
+/// `(undeffacts name)` or `(undeffacts *)`: the deffacts goes; facts it asserted stay.
+fn undeffacts(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let name = cx.arg_lexeme(a, 0, "undeffacts")?;
+    match cx.sym_text(name) {
+        "*" => {
+            cx.st.ndeffacts = 0;
+            cx.st.initial_deffacts = false;
+        }
+        "initial-fact" if cx.st.initial_deffacts => cx.st.initial_deffacts = false,
+        _ => match (0..cx.st.ndeffacts).find(|&d| cx.deffacts[d as usize].name == name) {
+            Some(d) => {
+                // the later ones move up: `reset` asserts in definition order
+                let n = cx.st.ndeffacts as usize;
+                cx.deffacts.copy_within(d as usize + 1..n, d as usize);
+                cx.st.ndeffacts -= 1;
+            }
+            None => {
+                let mut b: TextBuf<160> = TextBuf::new();
+                let _ = writeln!(
+                    b,
+                    "[PRNTUTIL1] Unable to find deffacts {}.",
+                    cx.sym_text(name)
+                );
+                cx.write(router::WERROR, b.as_str());
+            }
+        },
+    }
+    Ok(Value::Void)
+}
+
+/// `(fact-relation f)`: the template name of a fact (index or address), FALSE when
+/// there is no such fact.
+fn fact_relation(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    Ok(match cx.fact_arg(cx.arg(a, 0)) {
+        Some(f) => Value::Sym(cx.templates[cx.facts[f as usize].tmpl as usize].name),
+        None => Value::Sym(SYM_FALSE),
+    })
+}
+
+/// `(fact-slot-names f)`: the slot names of a fact's template, `(implied)` for an
+/// ordered fact; FALSE (with CLIPS's message for an index) when there is no such fact.
+fn fact_slot_names(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let fv = cx.arg(a, 0);
+    let Some(f) = cx.fact_arg(fv) else {
+        if let Value::Int(n) = fv {
+            cx.write_error_message(EvalError::new(EvalErrorKind::NoSuchFact(n)));
+        }
+        return Ok(Value::Sym(SYM_FALSE));
+    };
+    let tm = cx.templates[cx.facts[f as usize].tmpl as usize];
+    let start = cx.multi_begin();
+    if cx.facts[f as usize].tmpl == cx.st.initial_tmpl {
+        // `(initial-fact)`: a template without slots in CLIPS, not an ordered fact
+    } else if tm.implied {
+        let implied = cx.intern("implied")?;
+        cx.multi_push(Value::Sym(implied))?;
+    } else {
+        for s in 0..tm.nslots {
+            let name = cx.slots[(tm.first_slot + s) as usize].name;
+            cx.multi_push(Value::Sym(name))?;
+        }
+    }
+    Ok(cx.multi_finish(start))
+}
+
+/// The text of the next `genN` symbol.
+fn next_gensym(cx: &mut Core<'_>) -> TextBuf<24> {
+    let mut b: TextBuf<24> = TextBuf::new();
+    let _ = write!(b, "gen{}", cx.st.gensym_next);
+    cx.st.gensym_next = cx.st.gensym_next.wrapping_add(1);
+    b
+}
+
+/// `(gensym)`: `gen1`, `gen2`, ... whether or not the symbol is in use.
+fn gensym(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
+    let b = next_gensym(cx);
+    Ok(Value::Sym(cx.intern(b.as_str())?))
+}
+
+/// `(gensym*)`: the next `genN` not yet in the symbol table.
+fn gensym_star(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
+    loop {
+        let b = next_gensym(cx);
+        if cx.find_sym(b.as_str()).is_none() {
+            return Ok(Value::Sym(cx.intern(b.as_str())?));
+        }
+    }
+}
