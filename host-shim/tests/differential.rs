@@ -333,4 +333,5 @@ differential_programs! {
     p174_error_slot_of_test_without_its_variable => "174-error-slot-of-test-without-its-variable",
     p175_introspection_and_late_functions => "175-introspection-and-late-functions",
     p176_retract_order_after_priming => "176-retract-order-after-priming",
+    p177_undefine_constructs => "177-undefine-constructs",
 }

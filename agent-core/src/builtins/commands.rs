@@ -645,13 +645,20 @@ fn list_deftemplates(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
 }
 
 fn list_deffunctions(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
-    let n = cx.st.nfuncs;
+    // a removed deffunction keeps its entry, without a name
+    let n = (0..cx.st.nfuncs)
+        .filter(|&f| cx.funcs[f as usize].name != NONE)
+        .count();
     if n == 0 {
         return Ok(Value::Void); // CLIPS lists nothing, not even the total
     }
-    for f in 0..n {
+    for f in 0..cx.st.nfuncs {
+        let name = cx.funcs[f as usize].name;
+        if name == NONE {
+            continue;
+        }
         let mut b: TextBuf<128> = TextBuf::new();
-        let _ = writeln!(b, "{}", cx.sym_text(cx.funcs[f as usize].name));
+        let _ = writeln!(b, "{}", cx.sym_text(name));
         cx.write(router::WDISPLAY, b.as_str());
     }
     let mut b: TextBuf<64> = TextBuf::new();

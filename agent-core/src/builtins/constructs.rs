@@ -22,6 +22,9 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("list-deffacts", 0, 1, list_deffacts),
     Builtin::eager("list-defglobals", 0, 1, list_defglobals),
     Builtin::eager("undeffacts", 1, 1, undeffacts),
+    Builtin::eager("undeftemplate", 1, 1, undeftemplate),
+    Builtin::eager("undeffunction", 1, 1, undeffunction),
+    Builtin::eager("undefglobal", 1, 1, undefglobal),
     Builtin::eager("fact-relation", 1, 1, fact_relation),
     Builtin::eager("fact-slot-names", 1, 1, fact_slot_names),
     Builtin::eager("gensym", 0, 0, gensym),
@@ -60,8 +63,15 @@ fn name_at(cx: &Core<'_>, kind: Kind, i: Ix) -> Option<Option<SymId>> {
             let name = cx.templates[i as usize].name;
             (name != NONE).then_some(name)
         }),
-        Kind::Deffunction => (i < cx.st.nfuncs).then(|| Some(cx.funcs[i as usize].name)),
-        Kind::Defglobal => (i < cx.st.nglobals).then(|| Some(cx.globals[i as usize].name)),
+        // a removed deffunction or global keeps its entry, without a name
+        Kind::Deffunction => (i < cx.st.nfuncs).then(|| {
+            let name = cx.funcs[i as usize].name;
+            (name != NONE).then_some(name)
+        }),
+        Kind::Defglobal => (i < cx.st.nglobals).then(|| {
+            let name = cx.globals[i as usize].name;
+            (name != NONE).then_some(name)
+        }),
         Kind::Defrule => (i < cx.st.nrules).then(|| {
             let r = cx.rules[i as usize];
             let later_disjunct = i > 0 && cx.rules[i as usize - 1].next_disjunct == i;
@@ -156,6 +166,103 @@ fn undeffacts(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
                 cx.write(router::WERROR, b.as_str());
             }
         },
+    }
+    Ok(Value::Void)
+}
+
+/// CLIPS's words for a construct that cannot go (`in use`) or is not there.
+fn cannot(cx: &mut Core<'_>, in_use: bool, kind: &str, name: SymId) {
+    let mut b: TextBuf<160> = TextBuf::new();
+    let _ = if in_use {
+        writeln!(
+            b,
+            "[PRNTUTIL4] Unable to delete {kind} {}.",
+            cx.sym_text(name)
+        )
+    } else {
+        writeln!(
+            b,
+            "[PRNTUTIL1] Unable to find {kind} {}.",
+            cx.sym_text(name)
+        )
+    };
+    cx.write(router::WERROR, b.as_str());
+}
+
+/// `(undeftemplate name)` or `*`: a template no fact and no construct uses goes (its
+/// entry stays, without a name, as a redefinition leaves it).
+fn undeftemplate(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let name = cx.arg_lexeme(a, 0, "undeftemplate")?;
+    let all = cx.sym_text(name) == "*";
+    let one = if all { None } else { cx.find_template(name) };
+    if !all && one.is_none() {
+        cannot(cx, false, "deftemplate", name);
+    }
+    for t in 0..cx.st.ntemplates {
+        let tname = cx.templates[t as usize].name;
+        if tname == NONE || (!all && one != Some(t)) {
+            continue;
+        }
+        // `(initial-fact)`'s template stays, as in CLIPS
+        if t == cx.st.initial_tmpl || cx.template_in_use(t) {
+            cannot(cx, true, "deftemplate", tname);
+        } else {
+            cx.templates[t as usize].name = NONE;
+            cx.templates[t as usize].implied = true;
+        }
+    }
+    Ok(Value::Void)
+}
+
+/// `(undeffunction name)` or `*`: a deffunction no other construct calls goes (its
+/// entry stays, without a name: calls compiled into removed constructs are gone too).
+/// While a deffunction runs none goes, where CLIPS refuses only the running ones.
+fn undeffunction(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let name = cx.arg_lexeme(a, 0, "undeffunction")?;
+    let all = cx.sym_text(name) == "*";
+    let one = (0..cx.st.nfuncs).find(|&f| cx.funcs[f as usize].name == name);
+    if !all && one.is_none() {
+        cannot(cx, false, "deffunction", name);
+        return Ok(Value::Void);
+    }
+    for f in 0..cx.st.nfuncs {
+        let fname = cx.funcs[f as usize].name;
+        if fname == NONE || (!all && one != Some(f)) {
+            continue;
+        }
+        // with `*` the deffunctions go together: calls among them do not count
+        if cx.st.in_use > 0 || cx.deffunction_in_use(f, all) {
+            cannot(cx, true, "deffunction", fname);
+        } else {
+            cx.funcs[f as usize].name = NONE;
+        }
+    }
+    Ok(Value::Void)
+}
+
+/// `(undefglobal name)` (without `?*`..`*`) or `*`: a global no rule, deffunction,
+/// deffacts or slot default uses goes (its entry stays, without a name).
+fn undefglobal(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let name = cx.arg_lexeme(a, 0, "undefglobal")?;
+    let all = cx.sym_text(name) == "*";
+    let one = (0..cx.st.nglobals).find(|&g| cx.globals[g as usize].name == name);
+    if !all && one.is_none() {
+        cannot(cx, false, "defglobal", name);
+        return Ok(Value::Void);
+    }
+    for g in 0..cx.st.nglobals {
+        let gname = cx.globals[g as usize].name;
+        if gname == NONE || (!all && one != Some(g)) {
+            continue;
+        }
+        if cx.global_in_use(g) {
+            cannot(cx, true, "defglobal", gname);
+        } else {
+            // its multifield leaves the globals' region of scratch
+            cx.set_global(g, Value::Void)?;
+            cx.globals[g as usize].name = NONE;
+            cx.globals[g as usize].init = NONE;
+        }
     }
     Ok(Value::Void)
 }

@@ -1,14 +1,27 @@
-//! Whether a deftemplate is in use, which decides whether it may be redefined: CLIPS
-//! refuses (`[CSTRCPSR4]`) while a fact of it exists or a construct refers to it (a
-//! rule's pattern, an `assert` or fact-set query in a rule, deffunction, deffacts,
-//! global or slot default), and otherwise replaces it.
+//! Whether a deftemplate is in use, which decides whether it may be redefined or
+//! removed: CLIPS refuses (`[CSTRCPSR4]`) while a fact of it exists or a construct refers
+//! to it (a rule's pattern, an `assert` or fact-set query in a rule, deffunction,
+//! deffacts, global or slot default), and otherwise replaces it. Likewise for a
+//! deffunction a construct calls and a global a construct uses (`undeffunction`,
+//! `undefglobal`).
 
 use crate::builtins::{self, Syntax};
 use crate::engine::Core;
-use crate::expr::{FnKind, Op};
+use crate::expr::{Expr, FnKind, Op};
 use crate::fact::FactState;
 use crate::value::Ix;
 use crate::value::{SymId, NONE};
+
+/// Construct expressions a use check leaves out.
+#[derive(Clone, Copy)]
+struct Skip {
+    /// This deffunction's body ([`SKIP_ALL`]: every deffunction's, NONE: none).
+    func: Ix,
+    /// The globals' initial values.
+    global_inits: bool,
+}
+
+const SKIP_ALL: Ix = NONE - 1;
 
 impl Core<'_> {
     pub(crate) fn template_in_use(&self, tmpl: Ix) -> bool {
@@ -20,43 +33,108 @@ impl Core<'_> {
         {
             return true;
         }
+        // a rule's pattern of it
+        let in_pattern = self.rules[..self.st.nrules as usize].iter().any(|r| {
+            let mut j = r.terminal;
+            while !r.deleted && j != NONE && j != 0 {
+                let join = &self.joins[j as usize];
+                if join.alpha != NONE && self.alphas[join.alpha as usize].tmpl == tmpl {
+                    return true;
+                }
+                j = join.parent;
+            }
+            false
+        });
+        let skip = Skip {
+            func: NONE,
+            global_inits: false,
+        };
+        in_pattern || self.any_construct_chain(skip, &mut |e| self.chain_uses(e, tmpl, name))
+    }
+
+    /// Whether another construct calls deffunction `func` (CLIPS then refuses
+    /// `undeffunction`; its own recursive calls do not count, nor, with
+    /// `but_functions`, any deffunction's).
+    pub(crate) fn deffunction_in_use(&self, func: Ix, but_functions: bool) -> bool {
+        let calls =
+            |x: &Expr| x.op == Op::Call && x.aux == FnKind::Deffunction as u8 && x.data == func;
+        let skip = Skip {
+            func: if but_functions { SKIP_ALL } else { func },
+            global_inits: false,
+        };
+        self.any_construct_chain(skip, &mut |e| self.chain_has(e, &calls))
+    }
+
+    /// Whether a construct reads or sets global `global` (CLIPS then refuses
+    /// `undefglobal`; globals' initial values do not count).
+    pub(crate) fn global_in_use(&self, global: Ix) -> bool {
+        let reads = |x: &Expr| x.op == Op::Global && x.data == global;
+        let skip = Skip {
+            func: NONE,
+            global_inits: true,
+        };
+        self.any_construct_chain(skip, &mut |e| self.chain_has(e, &reads))
+    }
+
+    /// Calls `hit` on every expression chain a construct keeps (rule actions,
+    /// salience and tests, deffunction bodies, deffacts, global initial values, slot
+    /// defaults) until it says yes.
+    fn any_construct_chain(&self, skip: Skip, hit: &mut dyn FnMut(Ix) -> bool) -> bool {
         for r in &self.rules[..self.st.nrules as usize] {
             if r.deleted {
                 continue;
             }
-            if self.chain_uses(r.rhs, tmpl, name) || self.chain_uses(r.salience_expr, tmpl, name) {
+            if hit(r.rhs) || hit(r.salience_expr) {
                 return true;
             }
             // the rule's joins, from its end node up to the root
             let mut j = r.terminal;
             while j != NONE && j != 0 {
                 let join = &self.joins[j as usize];
-                if join.alpha != NONE {
-                    let alpha = &self.alphas[join.alpha as usize];
-                    if alpha.tmpl == tmpl || self.chain_uses(alpha.tests, tmpl, name) {
-                        return true;
-                    }
+                if join.alpha != NONE && hit(self.alphas[join.alpha as usize].tests) {
+                    return true;
                 }
-                if self.chain_uses(join.tests, tmpl, name) || self.chain_uses(join.post, tmpl, name)
-                {
+                if hit(join.tests) || hit(join.post) {
                     return true;
                 }
                 j = join.parent;
             }
         }
-        let uses = |e: Ix| self.chain_uses(e, tmpl, name);
-        self.funcs[..self.st.nfuncs as usize]
-            .iter()
-            .any(|f| uses(f.body))
+        let funcs = self.funcs[..self.st.nfuncs as usize].iter().enumerate();
+        funcs
+            .filter(|&(i, f)| skip.func != SKIP_ALL && skip.func != i as Ix && f.name != NONE)
+            .any(|(_, f)| hit(f.body))
             || self.deffacts[..self.st.ndeffacts as usize]
                 .iter()
-                .any(|d| uses(d.facts))
-            || self.globals[..self.st.nglobals as usize]
-                .iter()
-                .any(|g| uses(g.init))
+                .any(|d| hit(d.facts))
+            || (!skip.global_inits
+                && self.globals[..self.st.nglobals as usize]
+                    .iter()
+                    .any(|g| hit(g.init)))
             || self.slots[..self.st.nslots as usize]
                 .iter()
-                .any(|s| uses(s.default))
+                .any(|s| hit(s.default))
+    }
+
+    /// Whether a node of an expression chain (or below one) is one `is` picks.
+    fn chain_has(&self, mut e: Ix, is: &dyn Fn(&Expr) -> bool) -> bool {
+        while e != NONE {
+            let x = self.exprs[e as usize];
+            if is(&x) {
+                return true;
+            }
+            // constants keep their payload, pattern variables their descriptor, in
+            // the places other nodes keep children
+            let leaf = matches!(
+                x.op,
+                Op::Int | Op::Float | Op::Sym | Op::Str | Op::PatVar | Op::Payload
+            );
+            if !leaf && self.chain_has(x.first, is) {
+                return true;
+            }
+            e = x.next;
+        }
+        false
     }
 
     /// Whether an expression chain (a node and its next siblings) refers to the
