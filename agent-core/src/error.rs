@@ -207,7 +207,7 @@ const fn concat_texts<const N: usize>(a: &[&'static str], b: &[&'static str]) ->
     out
 }
 
-const BASE_TEXTS: [&str; 42] = [
+const BASE_TEXTS: [&str; 43] = [
     "?",
     "deffunction",
     "external",
@@ -227,6 +227,7 @@ const BASE_TEXTS: [&str; 42] = [
     "fact-address, integer, or symbol",
     "symbol or positive number",
     "function, deffunction, or generic function name",
+    "function name, deffunction name, or defgeneric name",
     "positive number",
     // slot values that do not fit their slot
     "type restriction violated",

@@ -419,51 +419,57 @@ impl Core<'_> {
         self.apply_deffunction(func, args)
     }
 
-    /// Calls the builtin, host function or deffunction named `name` with the values
-    /// `args` (`funcall`); None when no function has that name, or it is a special form
-    /// whose arguments are expressions.
-    pub(crate) fn call_named(
-        &mut self,
-        name: &str,
-        args: Args,
-    ) -> Option<Result<Value, EvalError>> {
+    /// The builtin, host function or deffunction named `name` (`funcall`, `sort`); None
+    /// when no function has that name, or it is a special form whose arguments are
+    /// expressions.
+    pub(crate) fn callee(&mut self, name: &str) -> Option<Callee> {
         if let Some((_, b)) = builtins::lookup(name) {
             return match b.imp {
-                Imp::Eager(f) => {
-                    Some(check_arity(b.name, b.min, b.max, args.len).and_then(|_| f(self, args)))
-                }
+                Imp::Eager(f) => Some(Callee::Builtin(b.name, b.min, b.max, f)),
                 Imp::Lazy(_) => None,
             };
         }
         let sym = self.find_sym(name)?;
         if let Some(f) = (0..self.st.nfuncs).find(|&f| self.funcs[f as usize].name == sym) {
-            if self.st.halting {
-                return Some(Ok(Value::Sym(SYM_FALSE)));
-            }
-            // the deffunction's frame starts at its arguments: copy them to the top
-            let base = self.st.sp;
-            for i in 0..args.len {
-                let v = self.stack[(args.base + i) as usize];
-                if let Err(e) = self.push_value(v) {
-                    return Some(Err(e.into()));
-                }
-            }
-            return Some(self.apply_deffunction(
-                f,
-                Args {
-                    base,
-                    len: args.len,
-                },
-            ));
+            return Some(Callee::Deffunction(f));
         }
         let e = (0..self.st.nexternals).find(|&e| self.externals[e as usize].name == sym)?;
-        let ext = self.externals[e as usize];
-        Some(
-            check_arity("external", ext.min, ext.max, args.len).and_then(|_| match ext.f {
-                Some(f) => f(self, args),
-                None => Err(EvalError::new(EvalErrorKind::NoSuchFunction)),
-            }),
-        )
+        Some(Callee::External(e))
+    }
+
+    /// Calls `callee` with the values `args`.
+    pub(crate) fn call_values(&mut self, callee: Callee, args: Args) -> Result<Value, EvalError> {
+        match callee {
+            Callee::Builtin(name, min, max, f) => {
+                check_arity(name, min, max, args.len)?;
+                f(self, args)
+            }
+            Callee::Deffunction(f) => {
+                if self.st.halting {
+                    return Ok(Value::Sym(SYM_FALSE));
+                }
+                // the deffunction's frame starts at its arguments: copy them to the top
+                let base = self.st.sp;
+                for i in 0..args.len {
+                    self.push_value(self.stack[(args.base + i) as usize])?;
+                }
+                self.apply_deffunction(
+                    f,
+                    Args {
+                        base,
+                        len: args.len,
+                    },
+                )
+            }
+            Callee::External(e) => {
+                let ext = self.externals[e as usize];
+                check_arity("external", ext.min, ext.max, args.len)?;
+                match ext.f {
+                    Some(f) => f(self, args),
+                    None => Err(EvalError::new(EvalErrorKind::NoSuchFunction)),
+                }
+            }
+        }
     }
 
     /// Runs deffunction `func` on the arguments `args`, the top of the stack (its frame).
@@ -560,11 +566,12 @@ impl Core<'_> {
             k += 1;
         }
         // format checks its directives' arguments in its body, literal or not, and
-        // funcall the function it calls
+        // funcall and sort the function they call
         let literal = node != NONE
             && func == called
             && !(func == "format" && arg > 2)
             && !(func == "funcall" && expected != "symbol or string")
+            && func != "sort"
             && matches!(
                 self.exprs[node as usize].op,
                 Op::Int | Op::Float | Op::Sym | Op::Str
@@ -579,6 +586,14 @@ impl Core<'_> {
             builtins::errors::runtime_type_name(func, expected),
         )
     }
+}
+
+/// A function called by name with values (`Core::callee`).
+#[derive(Clone, Copy)]
+pub(crate) enum Callee {
+    Builtin(&'static str, u8, u8, builtins::BuiltinFn),
+    Deffunction(Ix),
+    External(Ix),
 }
 
 pub(crate) fn check_arity(name: &'static str, min: u8, max: u8, n: Ix) -> Result<(), EvalError> {

@@ -334,4 +334,5 @@ differential_programs! {
     p175_introspection_and_late_functions => "175-introspection-and-late-functions",
     p176_retract_order_after_priming => "176-retract-order-after-priming",
     p177_undefine_constructs => "177-undefine-constructs",
+    p178_sort => "178-sort",
 }

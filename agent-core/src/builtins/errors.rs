@@ -65,6 +65,7 @@ const FALSE_FNS: &[&str] = &[
     "member$",
     "eval",
     "funcall",
+    "sort",
     "assert-string",
     "progn",
     "progn$",

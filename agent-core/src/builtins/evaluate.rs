@@ -3,8 +3,9 @@
 use super::{Args, Builtin, ANY, SYM_FALSE, SYM_TRUE};
 use crate::engine::Core;
 use crate::error::{EvalError, EvalErrorKind};
+use crate::eval::Callee;
 use crate::parser::{Item, Parser};
-use crate::value::Value;
+use crate::value::{Ix, Value};
 
 pub const FUNCS: &[Builtin] = &[
     Builtin::eager("eval", 1, 1, eval),
@@ -112,10 +113,131 @@ fn funcall(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         base: a.base + 1,
         len: a.len - 1,
     };
+    match callee_named(cx, name) {
+        Some(c) => cx.call_values(c, rest),
+        None => Err(EvalError::wrong_type("funcall", 1, NOT_A_FUNCTION)),
+    }
+}
+
+fn callee_named(cx: &mut Core<'_>, name: crate::value::SymId) -> Option<Callee> {
     let mut text = super::strings::Text::new();
     let _ = core::fmt::Write::write_str(&mut text, cx.sym_text(name));
-    cx.call_named(text.as_str(), rest)
-        .unwrap_or_else(|| Err(EvalError::wrong_type("funcall", 1, NOT_A_FUNCTION)))
+    cx.callee(text.as_str())
+}
+
+/// `(sort f values...)`: the values (multifields spliced) in the order of a stable
+/// merge sort that puts `b` before `a` where `(f a b)` is not FALSE, comparing as CLIPS
+/// does (its comparison function sees the same calls). A failing comparison reports
+/// its error; the values then come back unsorted, as in CLIPS.
+// listed in `extras` (off in the agent image)
+#[cfg_attr(not(feature = "extras"), allow(dead_code))]
+pub(super) fn sort(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    const NOT_A_FUNCTION: &str = "function name, deffunction name, or defgeneric name";
+    let callee = match cx.arg(a, 0) {
+        Value::Sym(s) | Value::Str(s) => callee_named(cx, s),
+        _ => None,
+    };
+    let Some(callee) = callee else {
+        return Err(EvalError::wrong_type("sort", 1, NOT_A_FUNCTION));
+    };
+    // the values, then as many cells for merging
+    let start = cx.multi_begin();
+    for i in 1..a.len as usize {
+        match cx.arg(a, i) {
+            Value::Multi(m) => {
+                for k in 0..m.len as usize {
+                    let v = cx.mf_item(m, k);
+                    cx.multi_push(v)?;
+                }
+            }
+            v => cx.multi_push(v)?,
+        }
+    }
+    let Value::Multi(values) = cx.multi_finish(start) else {
+        return Ok(Value::Sym(SYM_FALSE));
+    };
+    let n = values.len;
+    let tmp = cx.scratch_alloc(n as usize)?;
+    let order = Merge {
+        callee,
+        at: values.start,
+        tmp,
+    };
+    if let Err(e) = order.sort(cx, 0, n) {
+        // CLIPS gives the values as they were
+        let start = cx.multi_begin();
+        for i in 1..a.len as usize {
+            match cx.arg(a, i) {
+                Value::Multi(m) => {
+                    for k in 0..m.len as usize {
+                        let v = cx.mf_item(m, k);
+                        cx.multi_push(v)?;
+                    }
+                }
+                v => cx.multi_push(v)?,
+            }
+        }
+        let unsorted = cx.multi_finish(start);
+        cx.set_error_fallback(unsorted, None);
+        return Err(e);
+    }
+    Ok(Value::Multi(values))
+}
+
+/// A merge sort of scratch cells `at..` through the comparison `callee`, with room for
+/// merging at `tmp..`.
+#[cfg_attr(not(feature = "extras"), allow(dead_code))]
+struct Merge {
+    callee: Callee,
+    at: Ix,
+    tmp: Ix,
+}
+
+#[cfg_attr(not(feature = "extras"), allow(dead_code))]
+impl Merge {
+    /// Sorts cells `lo..hi` (relative to `at`); the left half is the bigger one.
+    fn sort(&self, cx: &mut Core<'_>, lo: Ix, hi: Ix) -> Result<(), EvalError> {
+        if hi - lo < 2 {
+            return Ok(());
+        }
+        let mid = lo + (hi - lo).div_ceil(2);
+        self.sort(cx, lo, mid)?;
+        self.sort(cx, mid, hi)?;
+        let (mut i, mut j, mut k) = (lo, mid, lo);
+        while i < mid || j < hi {
+            let take_right = if i == mid {
+                true
+            } else if j == hi {
+                false
+            } else {
+                let (x, y) = (
+                    cx.scratch[(self.at + i) as usize],
+                    cx.scratch[(self.at + j) as usize],
+                );
+                self.after(cx, x, y)?
+            };
+            let src = if take_right { &mut j } else { &mut i };
+            cx.scratch[(self.tmp + k) as usize] = cx.scratch[(self.at + *src) as usize];
+            *src += 1;
+            k += 1;
+        }
+        for c in lo..hi {
+            cx.scratch[(self.at + c) as usize] = cx.scratch[(self.tmp + c) as usize];
+        }
+        Ok(())
+    }
+
+    /// Whether `x` goes after `y`: `(f x y)` is not FALSE.
+    fn after(&self, cx: &mut Core<'_>, x: Value, y: Value) -> Result<bool, EvalError> {
+        let base = cx.st.sp;
+        cx.push_value(x)?;
+        cx.push_value(y)?;
+        let mark = cx.st.scratch_top;
+        let r = cx.call_values(self.callee, Args { base, len: 2 });
+        cx.st.sp = base;
+        cx.st.scratch_top = cx.st.scratch_top.max(mark);
+        Ok(r? != Value::Sym(SYM_FALSE))
+    }
 }
 
 /// `(build "(defrule ...)")`: defines one construct, silently; TRUE when it was defined.
@@ -138,6 +260,46 @@ fn build(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 #[cfg(test)]
 mod tests {
     use crate::testutil::{eval_to_string, run_program};
+
+    /// `sort` orders like a stable sort by the comparison, for lists of every length
+    /// up to 40 with many ties (pseudo-random, fixed seed): by value with `>`, and by
+    /// tens only (ties kept in their order) with a deffunction.
+    #[test]
+    #[cfg(feature = "extras")]
+    fn sort_is_a_stable_sort_by_its_comparison() {
+        extern crate std;
+        use std::string::String;
+        use std::vec::Vec;
+        let mut seed: u64 = 0x2545_f491_4f6c_dd1d;
+        for len in 0..40usize {
+            let values: Vec<i64> = (0..len)
+                .map(|_| {
+                    seed = seed
+                        .wrapping_mul(6364136223846793005)
+                        .wrapping_add(1442695040888963407);
+                    ((seed >> 33) % 50) as i64
+                })
+                .collect();
+            let list: Vec<String> = values.iter().map(|v| std::format!("{v}")).collect();
+            let list = list.join(" ");
+            let mut by_value = values.clone();
+            by_value.sort();
+            let mut by_tens = values.clone();
+            by_tens.sort_by_key(|v| v / 10);
+            let show = |v: &[i64]| {
+                let items: Vec<String> = v.iter().map(|x| std::format!("{x}")).collect();
+                std::format!("({})", items.join(" "))
+            };
+            assert_eq!(
+                eval_to_string(&std::format!("(sort > {list})")),
+                show(&by_value)
+            );
+            let out = run_program(&std::format!(
+                "(deffunction tens (?a ?b) (> (div ?a 10) (div ?b 10)))\n(printout t (sort tens {list}) crlf)\n"
+            ));
+            assert!(out.contains(&show(&by_tens)), "len {len}: {out}");
+        }
+    }
 
     #[test]
     fn eval_runs_a_command_from_a_string() {

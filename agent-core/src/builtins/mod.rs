@@ -11,10 +11,10 @@
 
 pub mod basic;
 pub mod commands;
-pub mod constructs;
 pub mod control;
 pub mod errors;
 pub mod evaluate;
+pub mod extras;
 pub mod facts;
 pub mod files;
 pub mod format;
@@ -139,7 +139,7 @@ pub const TABLES: &[&[Builtin]] = &[
     geometry::FUNCS,
     memory::FUNCS,
     evaluate::FUNCS,
-    constructs::FUNCS,
+    extras::FUNCS,
 ];
 
 const fn builtin_count() -> usize {

@@ -1,8 +1,9 @@
-//! Asking the environment about its constructs and facts (`get-defrule-list`,
-//! `list-deffacts`, `fact-slot-names`, ...), `undeffacts`, and `gensym`. Off in the agent
-//! image (agent-core feature `reflection`): its rules call none of them.
+//! Builtins the agent image leaves out (agent-core feature `extras`; its rules call none
+//! of them): asking the environment about its constructs and facts (`get-defrule-list`,
+//! `list-deffacts`, `fact-slot-names`, ...), removing constructs (`undeffacts`,
+//! `undeftemplate`, ...), `gensym`, and `sort` (with `funcall`'s calls, in `evaluate`).
 // without the feature the table is empty and the functions unused (and not linked)
-#![cfg_attr(not(feature = "reflection"), allow(dead_code))]
+#![cfg_attr(not(feature = "extras"), allow(dead_code))]
 
 use super::{Args, Builtin, SYM_FALSE};
 use crate::engine::Core;
@@ -12,7 +13,7 @@ use crate::value::SymId;
 use crate::value::{Ix, TextBuf, Value, NONE};
 use core::fmt::Write;
 
-#[cfg(feature = "reflection")]
+#[cfg(feature = "extras")]
 pub const FUNCS: &[Builtin] = &[
     Builtin::eager("get-deffacts-list", 0, 1, get_deffacts_list),
     Builtin::eager("get-deftemplate-list", 0, 1, get_deftemplate_list),
@@ -29,8 +30,9 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("fact-slot-names", 1, 1, fact_slot_names),
     Builtin::eager("gensym", 0, 0, gensym),
     Builtin::eager("gensym*", 0, 0, gensym_star),
+    Builtin::eager("sort", 1, super::ANY, super::evaluate::sort),
 ];
-#[cfg(not(feature = "reflection"))]
+#[cfg(not(feature = "extras"))]
 pub const FUNCS: &[Builtin] = &[];
 
 /// The kinds of construct these functions list, each with its names in definition
