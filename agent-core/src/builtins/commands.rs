@@ -299,16 +299,37 @@ fn find_rule(cx: &Core<'_>, name: Ix) -> Option<Ix> {
     (0..cx.st.nrules).find(|&r| cx.rules[r as usize].name == name && !cx.rules[r as usize].deleted)
 }
 
+/// What a construct command could not do.
+#[derive(Clone, Copy)]
+pub(super) enum Unable {
+    /// `[PRNTUTIL1]`: no construct of that name.
+    Find,
+    /// `[PRNTUTIL4]`: it is in use.
+    Delete,
+}
+
+/// CLIPS's message for a construct `name` of kind `kind` that is not there or cannot go.
+pub(super) fn unable(cx: &mut Core<'_>, what: Unable, kind: &str, name: Ix) {
+    let mut b: TextBuf<300> = TextBuf::new();
+    let _ = match what {
+        Unable::Find => writeln!(
+            b,
+            "[PRNTUTIL1] Unable to find {kind} {}.",
+            cx.sym_text(name)
+        ),
+        Unable::Delete => writeln!(
+            b,
+            "[PRNTUTIL4] Unable to delete {kind} {}.",
+            cx.sym_text(name)
+        ),
+    };
+    cx.write(router::WERROR, b.as_str());
+}
+
 fn ppdefrule(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let name = cx.arg_lexeme(a, 0, "ppdefrule")?;
     let Some(r) = find_rule(cx, name) else {
-        let mut b: TextBuf<300> = TextBuf::new();
-        let _ = writeln!(
-            b,
-            "[PRNTUTIL1] Unable to find defrule {}.",
-            cx.sym_text(name)
-        );
-        cx.write(router::WERROR, b.as_str());
+        unable(cx, Unable::Find, "defrule", name);
         return Ok(Value::Void);
     };
     let text = cx.rules[r as usize].text;
@@ -325,13 +346,7 @@ fn undefrule(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let name = cx.arg_lexeme(a, 0, "undefrule")?;
     if cx.st.matching > 0 {
         // the network may not change while a test in it runs
-        let mut b: TextBuf<160> = TextBuf::new();
-        let _ = writeln!(
-            b,
-            "[PRNTUTIL4] Unable to delete defrule {}.",
-            cx.sym_text(name)
-        );
-        cx.write(router::WERROR, b.as_str());
+        unable(cx, Unable::Delete, "defrule", name);
         return Ok(Value::Void);
     }
     if cx.sym_text(name) == "*" {
@@ -350,13 +365,7 @@ fn undefrule(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
             Ok(Value::Void)
         }
         None => {
-            let mut b: TextBuf<160> = TextBuf::new();
-            let _ = writeln!(
-                b,
-                "[PRNTUTIL1] Unable to find defrule {}.",
-                cx.sym_text(name)
-            );
-            cx.write(router::WERROR, b.as_str());
+            unable(cx, Unable::Find, "defrule", name);
             Ok(Value::Void)
         }
     }

@@ -141,6 +141,28 @@ pub(super) fn sort(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         return Err(EvalError::wrong_type("sort", 1, NOT_A_FUNCTION));
     };
     // the values, then as many cells for merging
+    let Value::Multi(values) = spliced(cx, a)? else {
+        return Ok(Value::Sym(SYM_FALSE));
+    };
+    let n = values.len;
+    let tmp = cx.scratch_alloc(n as usize)?;
+    let order = Merge {
+        callee,
+        at: values.start,
+        tmp,
+    };
+    if let Err(e) = order.sort(cx, 0, n) {
+        // CLIPS gives the values as they were
+        let unsorted = spliced(cx, a)?;
+        cx.set_error_fallback(unsorted, None);
+        return Err(e);
+    }
+    Ok(Value::Multi(values))
+}
+
+/// Arguments 2.. as one multifield, multifields spliced.
+#[cfg_attr(not(feature = "extras"), allow(dead_code))]
+fn spliced(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let start = cx.multi_begin();
     for i in 1..a.len as usize {
         match cx.arg(a, i) {
@@ -153,35 +175,7 @@ pub(super) fn sort(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
             v => cx.multi_push(v)?,
         }
     }
-    let Value::Multi(values) = cx.multi_finish(start) else {
-        return Ok(Value::Sym(SYM_FALSE));
-    };
-    let n = values.len;
-    let tmp = cx.scratch_alloc(n as usize)?;
-    let order = Merge {
-        callee,
-        at: values.start,
-        tmp,
-    };
-    if let Err(e) = order.sort(cx, 0, n) {
-        // CLIPS gives the values as they were
-        let start = cx.multi_begin();
-        for i in 1..a.len as usize {
-            match cx.arg(a, i) {
-                Value::Multi(m) => {
-                    for k in 0..m.len as usize {
-                        let v = cx.mf_item(m, k);
-                        cx.multi_push(v)?;
-                    }
-                }
-                v => cx.multi_push(v)?,
-            }
-        }
-        let unsorted = cx.multi_finish(start);
-        cx.set_error_fallback(unsorted, None);
-        return Err(e);
-    }
-    Ok(Value::Multi(values))
+    Ok(cx.multi_finish(start))
 }
 
 /// A merge sort of scratch cells `at..` through the comparison `callee`, with room for

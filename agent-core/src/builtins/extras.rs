@@ -5,6 +5,7 @@
 // without the feature the table is empty and the functions unused (and not linked)
 #![cfg_attr(not(feature = "extras"), allow(dead_code))]
 
+use super::commands::Unable;
 use super::{Args, Builtin, SYM_FALSE};
 use crate::engine::Core;
 use crate::error::{EvalError, EvalErrorKind};
@@ -158,115 +159,105 @@ fn undeffacts(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
                 cx.deffacts.copy_within(d as usize + 1..n, d as usize);
                 cx.st.ndeffacts -= 1;
             }
-            None => {
-                let mut b: TextBuf<160> = TextBuf::new();
-                let _ = writeln!(
-                    b,
-                    "[PRNTUTIL1] Unable to find deffacts {}.",
-                    cx.sym_text(name)
-                );
-                cx.write(router::WERROR, b.as_str());
-            }
+            None => super::commands::unable(cx, Unable::Find, "deffacts", name),
         },
     }
     Ok(Value::Void)
 }
 
-/// CLIPS's words for a construct that cannot go (`in use`) or is not there.
-fn cannot(cx: &mut Core<'_>, in_use: bool, kind: &str, name: SymId) {
-    let mut b: TextBuf<160> = TextBuf::new();
-    let _ = if in_use {
-        writeln!(
-            b,
-            "[PRNTUTIL4] Unable to delete {kind} {}.",
-            cx.sym_text(name)
-        )
-    } else {
-        writeln!(
-            b,
-            "[PRNTUTIL1] Unable to find {kind} {}.",
-            cx.sym_text(name)
-        )
-    };
-    cx.write(router::WERROR, b.as_str());
+/// How one kind of construct goes by its `undef...` command.
+struct Undefine {
+    func: &'static str,
+    kind: &'static str,
+    count: fn(&Core<'_>) -> Ix,
+    /// The name of entry `i` (NONE: removed before).
+    name: fn(&Core<'_>, Ix) -> SymId,
+    /// Whether entry `i` must stay (in use); the flag: all of its kind go (`*`).
+    stays: fn(&Core<'_>, Ix, bool) -> bool,
+    remove: fn(&mut Core<'_>, Ix) -> Result<(), EvalError>,
 }
 
-/// `(undeftemplate name)` or `*`: a template no fact and no construct uses goes (its
-/// entry stays, without a name, as a redefinition leaves it).
+/// `(undef... name)` or `*`: what nothing uses goes, the rest stays with CLIPS's
+/// `[PRNTUTIL4]`; a name not defined is `[PRNTUTIL1]`. Entries stay where they are,
+/// without a name (indices compiled into other constructs stay valid), as a redefined
+/// template's does.
+fn undefine(cx: &mut Core<'_>, a: Args, how: &Undefine) -> Result<Value, EvalError> {
+    let name = cx.arg_lexeme(a, 0, how.func)?;
+    let all = cx.sym_text(name) == "*";
+    let n = (how.count)(cx);
+    if !all && !(0..n).any(|i| (how.name)(cx, i) == name) {
+        super::commands::unable(cx, Unable::Find, how.kind, name);
+        return Ok(Value::Void);
+    }
+    for i in 0..n {
+        let this = (how.name)(cx, i);
+        if this == NONE || (!all && this != name) {
+            continue;
+        }
+        if (how.stays)(cx, i, all) {
+            super::commands::unable(cx, Unable::Delete, how.kind, this);
+        } else {
+            (how.remove)(cx, i)?;
+        }
+    }
+    Ok(Value::Void)
+}
+
+/// `(undeftemplate name)`: a template no fact and no construct uses goes; the
+/// `(initial-fact)` template stays, as in CLIPS.
 fn undeftemplate(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    let name = cx.arg_lexeme(a, 0, "undeftemplate")?;
-    let all = cx.sym_text(name) == "*";
-    let one = if all { None } else { cx.find_template(name) };
-    if !all && one.is_none() {
-        cannot(cx, false, "deftemplate", name);
-    }
-    for t in 0..cx.st.ntemplates {
-        let tname = cx.templates[t as usize].name;
-        if tname == NONE || (!all && one != Some(t)) {
-            continue;
-        }
-        // `(initial-fact)`'s template stays, as in CLIPS
-        if t == cx.st.initial_tmpl || cx.template_in_use(t) {
-            cannot(cx, true, "deftemplate", tname);
-        } else {
-            cx.templates[t as usize].name = NONE;
-            cx.templates[t as usize].implied = true;
-        }
-    }
-    Ok(Value::Void)
+    let how = Undefine {
+        func: "undeftemplate",
+        kind: "deftemplate",
+        count: |cx| cx.st.ntemplates,
+        name: |cx, t| cx.templates[t as usize].name,
+        stays: |cx, t, _| t == cx.st.initial_tmpl || cx.template_in_use(t),
+        remove: |cx, t| {
+            let tm = &mut cx.templates[t as usize];
+            tm.name = NONE;
+            tm.implied = true;
+            Ok(())
+        },
+    };
+    undefine(cx, a, &how)
 }
 
-/// `(undeffunction name)` or `*`: a deffunction no other construct calls goes (its
-/// entry stays, without a name: calls compiled into removed constructs are gone too).
-/// While a deffunction runs none goes, where CLIPS refuses only the running ones.
+/// `(undeffunction name)`: a deffunction no other construct calls goes (with `*`,
+/// calls among deffunctions do not count: they go together). While a deffunction runs
+/// none goes, where CLIPS refuses only the running ones.
 fn undeffunction(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    let name = cx.arg_lexeme(a, 0, "undeffunction")?;
-    let all = cx.sym_text(name) == "*";
-    let one = (0..cx.st.nfuncs).find(|&f| cx.funcs[f as usize].name == name);
-    if !all && one.is_none() {
-        cannot(cx, false, "deffunction", name);
-        return Ok(Value::Void);
-    }
-    for f in 0..cx.st.nfuncs {
-        let fname = cx.funcs[f as usize].name;
-        if fname == NONE || (!all && one != Some(f)) {
-            continue;
-        }
-        // with `*` the deffunctions go together: calls among them do not count
-        if cx.st.in_use > 0 || cx.deffunction_in_use(f, all) {
-            cannot(cx, true, "deffunction", fname);
-        } else {
+    let how = Undefine {
+        func: "undeffunction",
+        kind: "deffunction",
+        count: |cx| cx.st.nfuncs,
+        name: |cx, f| cx.funcs[f as usize].name,
+        stays: |cx, f, all| cx.st.in_use > 0 || cx.deffunction_in_use(f, all),
+        remove: |cx, f| {
             cx.funcs[f as usize].name = NONE;
-        }
-    }
-    Ok(Value::Void)
+            Ok(())
+        },
+    };
+    undefine(cx, a, &how)
 }
 
-/// `(undefglobal name)` (without `?*`..`*`) or `*`: a global no rule, deffunction,
-/// deffacts or slot default uses goes (its entry stays, without a name).
+/// `(undefglobal name)` (without `?*`..`*`): a global no rule, deffunction, deffacts or
+/// slot default uses goes (other globals' initial values do not count, as in CLIPS).
 fn undefglobal(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    let name = cx.arg_lexeme(a, 0, "undefglobal")?;
-    let all = cx.sym_text(name) == "*";
-    let one = (0..cx.st.nglobals).find(|&g| cx.globals[g as usize].name == name);
-    if !all && one.is_none() {
-        cannot(cx, false, "defglobal", name);
-        return Ok(Value::Void);
-    }
-    for g in 0..cx.st.nglobals {
-        let gname = cx.globals[g as usize].name;
-        if gname == NONE || (!all && one != Some(g)) {
-            continue;
-        }
-        if cx.global_in_use(g) {
-            cannot(cx, true, "defglobal", gname);
-        } else {
+    let how = Undefine {
+        func: "undefglobal",
+        kind: "defglobal",
+        count: |cx| cx.st.nglobals,
+        name: |cx, g| cx.globals[g as usize].name,
+        stays: |cx, g, _| cx.global_in_use(g),
+        remove: |cx, g| {
             // its multifield leaves the globals' region of scratch
             cx.set_global(g, Value::Void)?;
             cx.globals[g as usize].name = NONE;
             cx.globals[g as usize].init = NONE;
-        }
-    }
-    Ok(Value::Void)
+            Ok(())
+        },
+    };
+    undefine(cx, a, &how)
 }
 
 /// `(fact-relation f)`: the template name of a fact (index or address), FALSE when
