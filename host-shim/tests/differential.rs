@@ -335,4 +335,5 @@ differential_programs! {
     p176_retract_order_after_priming => "176-retract-order-after-priming",
     p177_undefine_constructs => "177-undefine-constructs",
     p178_sort => "178-sort",
+    p179_redefined_rule_nodes_are_new => "179-redefined-rule-nodes-are-new",
 }

@@ -25,7 +25,7 @@ use crate::error::{CapacityError, LoadError};
 use crate::lexer::{Lexer, Tok, Token};
 use crate::rete::MAX_PATTERNS;
 use crate::value::Ix;
-use crate::value::NONE;
+use crate::value::{SymId, NONE};
 
 /// Most variables visible at once while parsing one construct.
 pub const MAX_VARS: usize = 64;
@@ -94,6 +94,10 @@ pub struct Parser<'s, 'c, 'e> {
     /// The first rule the current defrule creates: rules before it with its name are
     /// the definition it replaces.
     pub rule_base: Ix,
+    /// The current defrule's name when it replaces a rule of that name (else NONE),
+    /// and the first alpha node it creates: see `Parser::old_only_alpha`.
+    pub replacing: SymId,
+    pub alpha_base: Ix,
 }
 
 pub type PResult<T> = Result<T, LoadError>;
@@ -121,6 +125,8 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
             depth: 0,
             ce_count: 0,
             rule_base: 0,
+            replacing: NONE,
+            alpha_base: 0,
             keep: None,
         }
     }

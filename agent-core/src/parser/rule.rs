@@ -96,6 +96,12 @@ impl<'s> Parser<'s, '_, '_> {
         let first_new_rule = self.cx.st.nrules;
         self.rule_base = first_new_rule;
         let first_new_alpha = self.cx.st.nalpha;
+        self.alpha_base = first_new_alpha;
+        let replaces = (0..first_new_rule).any(|r| {
+            let rule = &self.cx.rules[r as usize];
+            rule.name == sym && !rule.deleted
+        });
+        self.replacing = if replaces { sym } else { NONE };
         let first_new_join = self.cx.st.njoins;
         let mut b = Build {
             ces: [CE_EMPTY; MAX_PATTERNS],
@@ -1099,6 +1105,7 @@ impl<'s> Parser<'s, '_, '_> {
         while a != NONE && !alone {
             let n = self.cx.alphas[a as usize];
             if n.live
+                && !self.old_only_alpha(a)
                 && self.chain_eq(n.desc, pb.desc)
                 && self.chain_eq(n.tests, pb.atests)
                 && n.nrhash as usize == pb.nrhash
@@ -1303,6 +1310,7 @@ impl<'s> Parser<'s, '_, '_> {
             while a != NONE {
                 let o = self.cx.alphas[a as usize];
                 if o.key_len as usize > lvl
+                    && !self.old_only_alpha(a)
                     && o.key[..lvl] == key[..lvl]
                     && o.path_loc[lvl] == me.path_loc[lvl]
                     && o.path_test[lvl] == me.path_test[lvl]
@@ -1432,6 +1440,23 @@ impl<'s> Parser<'s, '_, '_> {
             }
             _ => self.chain_eq(x.first, y.first),
         }
+    }
+
+    /// Whether alpha node `a` serves only the rule this defrule replaces: CLIPS removes
+    /// the old rule first, so such a node (and a path level only it has) is made anew,
+    /// as the newest, not shared. Nodes this defrule made itself are shared.
+    fn old_only_alpha(&self, a: Ix) -> bool {
+        if self.replacing == NONE || a >= self.alpha_base {
+            return false;
+        }
+        let mut j = self.cx.alphas[a as usize].succ;
+        while j != NONE {
+            if self.cx.joins[j as usize].refs > self.replaced_uses(self.replacing, j) {
+                return false;
+            }
+            j = self.cx.joins[j as usize].alpha_next;
+        }
+        true
     }
 
     /// How many references to join `j` the rule this defrule replaces (named `name`,
