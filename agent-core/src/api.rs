@@ -72,6 +72,7 @@ engine_impl! {
         cx.st.sp = 0;
         cx.st.bp = 0;
         let before = cx.st.nexprs;
+        cx.st.command_base = before;
         let cp = cx.checkpoint();
         let mut p = Parser::new(&mut cx, command);
         let item = p.next_item();

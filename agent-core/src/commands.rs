@@ -531,6 +531,13 @@ impl Core<'_> {
                 }
             }
             r = self.eval(e);
+            // a network error that did not come back as one (a retract's join test)
+            // halts the actions too
+            if r.is_ok() && self.st.halting {
+                let mut err = EvalError::new(EvalErrorKind::Reported);
+                err.reported = true;
+                r = Err(err);
+            }
             if r.is_err() || self.st.returning || self.st.breaking || self.st.halt_now() {
                 break;
             }
@@ -1111,6 +1118,7 @@ impl Core<'_> {
         // a halt lasts until the command (or construct) that caused it is done
         self.st.halting = false;
         let exprs_before = self.st.nexprs;
+        self.st.command_base = exprs_before;
         let cp = self.checkpoint();
         let mut p = Parser::new(self, text);
         let item = p.next_item();
@@ -1189,6 +1197,15 @@ impl Core<'_> {
                     continue;
                 }
             };
+            // no fact may come while a pattern or join test runs (`State::matching`)
+            if self.st.matching > 0 {
+                self.write(
+                    router::WERROR,
+                    crate::builtins::facts::NO_ASSERT_WHILE_MATCHING,
+                );
+                self.st.nexprs = exprs_before;
+                continue;
+            }
             let r = self.assert_spec(spec);
             self.st.nexprs = exprs_before;
             r?;

@@ -197,6 +197,9 @@ pub struct State {
     /// to assert, retract, modify or duplicate facts, to build or remove rules, to
     /// `clear` or to `reset` until they are done (`builtins::matching`).
     pub matching: u16,
+    /// First expression node of the command being run (at the prompt, or an `eval`
+    /// string): what it refers to is in use, as in CLIPS (`undeftemplate` ...).
+    pub command_base: Ix,
     /// The `initial-fact` deffacts is defined (`undeffacts` removes it): `reset`
     /// asserts `(initial-fact)`.
     pub initial_deffacts: bool,
@@ -337,6 +340,7 @@ impl State {
             pattern_error: false,
             halting: false,
             matching: 0,
+            command_base: 0,
             initial_deffacts: true,
             gensym_next: 1,
             failed_test: NONE,

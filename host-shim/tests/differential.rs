@@ -336,4 +336,5 @@ differential_programs! {
     p177_undefine_constructs => "177-undefine-constructs",
     p178_sort => "178-sort",
     p179_redefined_rule_nodes_are_new => "179-redefined-rule-nodes-are-new",
+    p180_halts_and_in_use_during_a_command => "180-halts-and-in-use-during-a-command",
 }

@@ -78,6 +78,10 @@ fn run(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     } else {
         -1
     };
+    // a run from a rule's actions does nothing in CLIPS: the run going on goes on
+    if cx.st.firing {
+        return Ok(Value::Void);
+    }
     // `(watch statistics)` lines and the limit message are printed by `Core::run`
     // (commands.rs)
     cx.run(limit)?;
@@ -199,7 +203,8 @@ fn printout(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
         a = cx.exprs[a as usize].next;
     }
     cx.write(routed, b.as_str());
-    cx.st.scratch_top = mark;
+    // what the arguments built goes, unless a variable bound there holds it
+    super::control::release_scratch(cx, mark);
     r
 }
 

@@ -4,6 +4,8 @@ use super::{Args, Builtin, ANY, SYM_FALSE, SYM_TRUE};
 use crate::engine::Core;
 use crate::error::{EvalError, EvalErrorKind};
 use crate::eval::Callee;
+use crate::host::router;
+use crate::lexer::Tok;
 use crate::parser::{Item, Parser};
 use crate::value::{Ix, Value};
 
@@ -82,23 +84,63 @@ fn eval_text(
     r
 }
 
-/// `(assert-string "(point (x 1))")`: asserts the fact the string writes, as `assert`
-/// would (the fact, or FALSE: a duplicate, or text that is not a fact).
+/// `(assert-string "(point (x 1))")`: asserts the first fact the string writes (its
+/// fields may call functions and read globals, not variables), as `assert` would: the
+/// fact, or FALSE (a duplicate, or text that is not a fact).
 fn assert_string(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let Value::Str(s) = cx.arg(a, 0) else {
         return Err(EvalError::wrong_type("assert-string", 1, "string"));
     };
-    let mut text = super::strings::Text::new();
-    let fits = core::fmt::Write::write_fmt(&mut text, format_args!("(assert {})", cx.sym_text(s)));
-    if fits.is_err() {
-        return Err(EvalError::other("string result longer than 2048 bytes"));
+    let text = super::strings::copy_text(cx, s)?;
+    // CLIPS refuses a variable (a global is no variable here)
+    let mut lex = crate::lexer::Lexer::new(text.as_str());
+    loop {
+        match lex.next_token().tok {
+            Tok::SfVar(_) | Tok::MfVar(_) => {
+                cx.write(
+                    router::WERROR,
+                    "\n[PRNTUTIL6] Local variables can not be accessed by the assert-string function.\n",
+                );
+                return Ok(Value::Sym(SYM_FALSE));
+            }
+            Tok::Eof | Tok::Bad => break,
+            _ => {}
+        }
     }
-    eval_text(
-        cx,
-        text.as_str(),
-        "assert-string",
-        Some(Value::Sym(SYM_FALSE)),
-    )
+    let cp = cx.checkpoint();
+    let mut p = Parser::new(cx, text.as_str());
+    let spec = p.expect_lparen("a fact").and_then(|_| p.fact_spec());
+    let r = match spec {
+        Ok(spec) => {
+            // a one-fact assert: what `assert` does with it (errors, halts, FALSE)
+            let call = cx.push_expr(crate::expr::Expr::new(
+                crate::expr::Op::Call,
+                crate::expr::FnKind::Builtin as u8,
+                super::ID_ASSERT,
+            ));
+            match call {
+                Ok(call) => {
+                    cx.exprs[call as usize].first = spec;
+                    cx.eval(call)
+                }
+                Err(full) => Err(full.into()),
+            }
+        }
+        Err(e) if e.detail == crate::error::LoadDetail::Syntax => {
+            cx.write(
+                router::WERROR,
+                "\n[PRNTUTIL2] Syntax Error:  Check appropriate syntax for RHS patterns.\n",
+            );
+            Ok(Value::Sym(SYM_FALSE))
+        }
+        Err(e) => {
+            cx.report_load_error("assert-string", text.as_str(), &e);
+            Ok(Value::Sym(SYM_FALSE))
+        }
+    };
+    // the fact's expression nodes go again (symbols it made stay, as for any assert)
+    cx.st.nexprs = cp.nexprs;
+    r
 }
 
 /// `(funcall name args...)`: calls the function (builtin, deffunction or host
@@ -229,8 +271,10 @@ impl Merge {
         let mark = cx.st.scratch_top;
         let r = cx.call_values(self.callee, Args { base, len: 2 });
         cx.st.sp = base;
-        cx.st.scratch_top = cx.st.scratch_top.max(mark);
-        Ok(r? != Value::Sym(SYM_FALSE))
+        // only the answer's truth is kept: what the call built goes
+        let r = r.map(|v| v != Value::Sym(SYM_FALSE));
+        super::control::release_scratch(cx, mark);
+        r
     }
 }
 

@@ -71,9 +71,10 @@ fn name_at(cx: &Core<'_>, kind: Kind, i: Ix) -> Option<Option<SymId>> {
             let name = cx.funcs[i as usize].name;
             (name != NONE).then_some(name)
         }),
+        // a variable bound at the prompt is a hidden global named `?x`: not listed
         Kind::Defglobal => (i < cx.st.nglobals).then(|| {
             let name = cx.globals[i as usize].name;
-            (name != NONE).then_some(name)
+            (name != NONE && !cx.sym_text(name).starts_with('?')).then_some(name)
         }),
         Kind::Defrule => (i < cx.st.nrules).then(|| {
             let r = cx.rules[i as usize];

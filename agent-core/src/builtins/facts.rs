@@ -476,9 +476,9 @@ fn halt_after_network_error(cx: &mut Core<'_>, value: Value) -> Result<Value, Ev
 
 /// CLIPS's messages for a fact change asked for by a pattern or join test: while
 /// matching (`State::matching`) the network may not change under its own feet.
-const NO_RETRACT_WHILE_MATCHING: &str =
+pub(crate) const NO_RETRACT_WHILE_MATCHING: &str =
     "\n[FACTMNGR1] Facts may not be retracted during pattern-matching\n";
-const NO_ASSERT_WHILE_MATCHING: &str =
+pub(crate) const NO_ASSERT_WHILE_MATCHING: &str =
     "\n[FACTMNGR2] Facts may not be asserted during pattern-matching\n";
 
 fn retract(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {

@@ -49,7 +49,9 @@ impl Core<'_> {
             func: NONE,
             global_inits: false,
         };
-        in_pattern || self.any_construct_chain(skip, &mut |e| self.chain_uses(e, tmpl, name))
+        in_pattern
+            || self.any_construct_chain(skip, &mut |e| self.chain_uses(e, tmpl, name))
+            || self.command_refers(&|x| x.op == Op::FactSpec && x.data == tmpl)
     }
 
     /// Whether another construct calls deffunction `func` (CLIPS then refuses
@@ -63,6 +65,7 @@ impl Core<'_> {
             global_inits: false,
         };
         self.any_construct_chain(skip, &mut |e| self.chain_has(e, &calls))
+            || self.command_refers(&calls)
     }
 
     /// Whether a construct reads or sets global `global` (CLIPS then refuses
@@ -74,6 +77,14 @@ impl Core<'_> {
             global_inits: true,
         };
         self.any_construct_chain(skip, &mut |e| self.chain_has(e, &reads))
+            || self.command_refers(&reads)
+    }
+
+    /// Whether the command being run (`State::command_base` on) has a node `is` picks:
+    /// what it refers to is in use while it runs.
+    fn command_refers(&self, is: &dyn Fn(&Expr) -> bool) -> bool {
+        let end = self.st.nexprs;
+        (self.st.command_base.min(end)..end).any(|e| is(&self.exprs[e as usize]))
     }
 
     /// Calls `hit` on every expression chain a construct keeps (rule actions,

@@ -1,0 +1,36 @@
+; A retract whose join test fails halts the rule's remaining actions and the run; a
+; (run) inside a rule's actions does nothing; a multifield bound inside a printout
+; argument survives it; a template or deffunction the running command refers to is in
+; use; variables bound at the prompt are no defglobals; assert-string takes the first
+; fact and refuses variables.
+(defglobal ?*n* = 0)
+(defrule r (a ?x) (not (b ?y&:(> ?y ?x))) =>)
+(assert (b 5) (b foo) (a 1))
+(defrule k ?g <- (b 5) => (retract ?g) (assert (c)) (bind ?*n* 7))
+(defrule k2 (declare (salience -1)) => (printout t "k2" crlf))
+(watch rules)
+(run)
+(facts)
+?*n*
+(clear)
+(defrule a => (printout t "a start" crlf) (run) (printout t "a end" crlf))
+(defrule b (declare (salience -1)) => (printout t "b" crlf))
+(reset)
+(run)
+(deffunction f () (printout t (bind ?x (create$ 1 2 3)) crlf) (bind ?y (create$ 7 8 9)) ?x)
+(f)
+(deftemplate t (slot s))
+(progn (undeftemplate t) (assert (t (s 1))))
+(facts)
+(deffunction g (?a) (+ ?a 1))
+(progn (undeffunction g) (g 1))
+(bind ?v 5)
+(list-defglobals)
+(get-defglobal-list)
+(assert-string "(a) (b)")
+(assert-string "(c (+ 1 2))")
+(assert-string "d e")
+(assert-string "(f ?x)")
+(assert-string "(h $?y)")
+(facts)
+(exit)
