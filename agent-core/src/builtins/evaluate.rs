@@ -1,6 +1,6 @@
 //! `eval` and `build`: CLIPS source given as a string, parsed and run at run time.
 
-use super::{Args, Builtin, ANY, SYM_FALSE, SYM_TRUE};
+use super::{Args, Builtin, SYM_FALSE, SYM_TRUE};
 use crate::engine::Core;
 use crate::error::{EvalError, EvalErrorKind};
 use crate::eval::Callee;
@@ -12,8 +12,6 @@ use crate::value::{Ix, Value};
 pub const FUNCS: &[Builtin] = &[
     Builtin::eager("eval", 1, 1, eval),
     Builtin::eager("build", 1, 1, build),
-    Builtin::eager("assert-string", 1, 1, assert_string),
-    Builtin::eager("funcall", 1, ANY, funcall),
 ];
 
 /// The text argument (symbol or string), copied out of the symbol table.
@@ -87,7 +85,8 @@ fn eval_text(
 /// `(assert-string "(point (x 1))")`: asserts the first fact the string writes (its
 /// fields may call functions and read globals, not variables), as `assert` would: the
 /// fact, or FALSE (a duplicate, or text that is not a fact).
-fn assert_string(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+#[cfg_attr(not(feature = "extras"), allow(dead_code))]
+pub(super) fn assert_string(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let Value::Str(s) = cx.arg(a, 0) else {
         return Err(EvalError::wrong_type("assert-string", 1, "string"));
     };
@@ -145,7 +144,8 @@ fn assert_string(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 
 /// `(funcall name args...)`: calls the function (builtin, deffunction or host
 /// function) whose name `name` evaluates to, with the other arguments' values.
-fn funcall(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+#[cfg_attr(not(feature = "extras"), allow(dead_code))]
+pub(super) fn funcall(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     const NOT_A_FUNCTION: &str = "function, deffunction, or generic function name";
     let name = match cx.arg(a, 0) {
         Value::Sym(s) | Value::Str(s) => s,
@@ -161,6 +161,7 @@ fn funcall(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     }
 }
 
+#[cfg_attr(not(feature = "extras"), allow(dead_code))]
 fn callee_named(cx: &mut Core<'_>, name: crate::value::SymId) -> Option<Callee> {
     let mut text = super::strings::Text::new();
     let _ = core::fmt::Write::write_str(&mut text, cx.sym_text(name));

@@ -1,7 +1,8 @@
 //! Builtins the agent image leaves out (agent-core feature `extras`; its rules call none
 //! of them): asking the environment about its constructs and facts (`get-defrule-list`,
 //! `list-deffacts`, `fact-slot-names`, ...), removing constructs (`undeffacts`,
-//! `undeftemplate`, ...), `gensym`, and `sort` (with `funcall`'s calls, in `evaluate`).
+//! `undeftemplate`, ...), `gensym`, and `sort`, `funcall` and `assert-string` (in
+//! `evaluate`).
 // without the feature the table is empty and the functions unused (and not linked)
 #![cfg_attr(not(feature = "extras"), allow(dead_code))]
 
@@ -32,6 +33,8 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("gensym", 0, 0, gensym),
     Builtin::eager("gensym*", 0, 0, gensym_star),
     Builtin::eager("sort", 1, super::ANY, super::evaluate::sort),
+    Builtin::eager("funcall", 1, super::ANY, super::evaluate::funcall),
+    Builtin::eager("assert-string", 1, 1, super::evaluate::assert_string),
 ];
 #[cfg(not(feature = "extras"))]
 pub const FUNCS: &[Builtin] = &[];
