@@ -1118,6 +1118,19 @@ impl Core<'_> {
         // a halt lasts until the command (or construct) that caused it is done
         self.st.halting = false;
         let exprs_before = self.st.nexprs;
+        // a command run from inside another (`batch*` in a rule's actions or a
+        // deffunction) leaves the outer one's frame, scratch and command as they were;
+        // one at the prompt starts and ends with all three empty
+        let outer = if self.st.eval_depth > 0 {
+            (
+                self.st.sp,
+                self.st.bp,
+                self.st.scratch_top,
+                self.st.command_base,
+            )
+        } else {
+            (0, 0, 0, 0)
+        };
         self.st.command_base = exprs_before;
         let cp = self.checkpoint();
         let mut p = Parser::new(self, text);
@@ -1157,11 +1170,9 @@ impl Core<'_> {
                         }
                     }
                 }
-                self.st.sp = 0;
-                self.st.bp = 0;
+                (self.st.sp, self.st.bp, self.st.scratch_top) = (outer.0, outer.1, outer.2);
                 self.st.returning = false;
                 self.st.breaking = false;
-                self.st.scratch_top = 0;
                 // a plain command leaves no expressions behind
                 let now = self.checkpoint();
                 if now.nrules == cp.nrules
@@ -1176,6 +1187,7 @@ impl Core<'_> {
             Ok(_) => {}
             Err(e) => self.report_load_error(source, text, &e),
         }
+        self.st.command_base = outer.3;
     }
 
     /// `load-facts`: each top-level `(fact ...)` is asserted.

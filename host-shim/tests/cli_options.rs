@@ -183,3 +183,30 @@ fn large_pools_hold_what_the_default_engine_cannot() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `batch*` from a rule's actions and from a pattern test: the commands of the batch
+/// file run there (an assert refused while the test runs), and the rule's own variables
+/// and multifields are as they were afterwards.
+#[test]
+fn batch_star_inside_actions_and_tests_keeps_the_caller_frame() {
+    compare(
+        "batch-star-nested",
+        &[
+            (
+                "main.clp",
+                "(deffunction bf () (batch* \"cmd.clp\") TRUE)\n\
+                 (defrule r (a ?x&:(bf)) => (printout t \"r fired\" crlf))\n\
+                 (assert (a 1))\n\
+                 (facts)\n\
+                 (defrule s (s) => (bind ?v (create$ 1 2 3)) (bind ?w 7) \
+                 (batch* \"cmd.clp\") (printout t ?v \" \" ?w crlf))\n\
+                 (assert (s))\n\
+                 (run)\n\
+                 (exit)\n",
+            ),
+            ("cmd.clp", "(printout t \"in batch\" crlf)\n(assert (c 1))\n"),
+        ],
+        &["-f2", "main.clp"],
+        "",
+    );
+}
