@@ -204,7 +204,10 @@ fn batch_star_inside_actions_and_tests_keeps_the_caller_frame() {
                  (run)\n\
                  (exit)\n",
             ),
-            ("cmd.clp", "(printout t \"in batch\" crlf)\n(assert (c 1))\n"),
+            (
+                "cmd.clp",
+                "(printout t \"in batch\" crlf)\n(assert (c 1))\n",
+            ),
         ],
         &["-f2", "main.clp"],
         "",
