@@ -534,9 +534,7 @@ impl Core<'_> {
             // a network error that did not come back as one (a retract's join test)
             // halts the actions too
             if r.is_ok() && self.st.halting {
-                let mut err = EvalError::new(EvalErrorKind::Reported);
-                err.reported = true;
-                r = Err(err);
+                r = Err(EvalError::already_reported());
             }
             if r.is_err() || self.st.returning || self.st.breaking || self.st.halt_now() {
                 break;
@@ -1209,15 +1207,6 @@ impl Core<'_> {
                     continue;
                 }
             };
-            // no fact may come while a pattern or join test runs (`State::matching`)
-            if self.st.matching > 0 {
-                self.write(
-                    router::WERROR,
-                    crate::builtins::facts::NO_ASSERT_WHILE_MATCHING,
-                );
-                self.st.nexprs = exprs_before;
-                continue;
-            }
             let r = self.assert_spec(spec);
             self.st.nexprs = exprs_before;
             r?;

@@ -186,16 +186,16 @@ pub struct State {
     pub exit: bool,
     /// A pattern test failed with an error during the current assert.
     pub pattern_error: bool,
-    /// CLIPS's halting state: an error was reported in the pattern or join network (or
-    /// in a field of the fact being asserted) during the current command, firing or
-    /// construct. Until that ends, what CLIPS stops while halting does nothing and
+    /// CLIPS's halting state: an error was reported in the pattern or join network
+    /// during the current command, firing or construct. Until that ends, what CLIPS stops while halting does nothing and
     /// gives FALSE (progn, switch, loops, deffunction calls, fact-set queries; printout
     /// prints nothing) in the rest of the propagation, and `reset` asserts no further
     /// deffacts facts.
     pub halting: bool,
     /// Pattern or join tests running (nested): CLIPS is pattern-matching, and refuses
     /// to assert, retract, modify or duplicate facts, to build or remove rules, to
-    /// `clear` or to `reset` until they are done (`builtins::matching`).
+    /// `clear` or to `reset` until they are done (the checks sit in those builtins and
+    /// in `Core::assert_spec`).
     pub matching: u16,
     /// First expression node of the command being run (at the prompt, or an `eval`
     /// string): what it refers to is in use, as in CLIPS (`undeftemplate` ...).

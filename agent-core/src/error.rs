@@ -309,6 +309,14 @@ impl EvalError {
         }
     }
 
+    /// An error already printed where it happened (a network error, a refused
+    /// operation): evaluation just stops, nothing more is printed.
+    pub fn already_reported() -> Self {
+        let mut e = Self::new(EvalErrorKind::Reported);
+        e.reported = true;
+        e
+    }
+
     /// Packs `kind`. Its texts and function names are stored as indices: a text must
     /// be one of `ERROR_TEXTS` and a name a builtin's (or listed there), else it reads
     /// back as "?" (a debug build panics). A host function reports its own failure

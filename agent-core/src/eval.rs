@@ -398,13 +398,8 @@ impl Core<'_> {
                 }
             }
             k if k == FnKind::External as u8 => {
-                let ext = self.externals[x.data as usize];
                 let args = self.push_args(x.first)?;
-                check_arity("external", ext.min, ext.max, args.len)?;
-                match ext.f {
-                    Some(f) => f(self, args),
-                    None => Err(EvalError::new(EvalErrorKind::NoSuchFunction)),
-                }
+                self.call_values(Callee::External(x.data), args)
             }
             _ => self.call_deffunction(x.data, x.first),
         }

@@ -50,9 +50,7 @@ fn reset(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
             router::WERROR,
             "[INSMNGR12] Cannot delete instances of reactive classes while\n  pattern-matching is in process.\n[PRCCODE4] Execution halted during the actions of message-handler delete primary in class USER\n",
         );
-        let mut e = EvalError::new(EvalErrorKind::Reported);
-        e.reported = true;
-        return Err(e);
+        return Err(EvalError::already_reported());
     }
     cx.reset()?;
     Ok(Value::Void)

@@ -30,17 +30,7 @@ fn source_arg(
 /// `build`). Its expression nodes are dropped again afterwards.
 fn eval(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let text = source_arg(cx, a, "eval")?;
-    eval_text(cx, text.as_str(), "eval", None)
-}
-
-/// Parses and evaluates one command of `text` (`func` names it in a parse error,
-/// which gives `on_parse_error` when set, else the reported error).
-fn eval_text(
-    cx: &mut Core<'_>,
-    text: &str,
-    func: &'static str,
-    on_parse_error: Option<Value>,
-) -> Result<Value, EvalError> {
+    let text = text.as_str();
     let cp = cx.checkpoint();
     let mut p = Parser::new(cx, text);
     let item = p.next_item();
@@ -65,8 +55,8 @@ fn eval_text(
         Ok(Item::End) => Ok(Value::Sym(SYM_FALSE)),
         Ok(Item::Construct) => Ok(Value::Sym(SYM_FALSE)),
         Err(e) => {
-            cx.report_load_error(func, text, &e);
-            on_parse_error.ok_or(EvalError::new(EvalErrorKind::Reported))
+            cx.report_load_error("eval", text, &e);
+            Err(EvalError::new(EvalErrorKind::Reported))
         }
     };
     // a plain command leaves no expressions behind

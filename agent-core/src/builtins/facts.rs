@@ -189,6 +189,12 @@ impl Core<'_> {
 
     /// `assert_spec`; `defer`: the fact's propagation may wait (`rete::defer`).
     fn assert_spec_deferring(&mut self, spec: Ix, defer: bool) -> Result<Option<Ix>, EvalError> {
+        // no fact may come while a pattern or join test runs (`State::matching`): CLIPS
+        // says so and the assert gives FALSE
+        if self.st.matching > 0 {
+            self.write(router::WERROR, NO_ASSERT_WHILE_MATCHING);
+            return Ok(None);
+        }
         let tmpl = self.exprs[spec as usize].data;
         let nslots = self.templates[tmpl as usize].nslots;
         let base = self.st.sp;
@@ -430,10 +436,7 @@ fn assert(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     // earlier one's pattern errors must stop the assert before the next fact
     let top = cx.defer_worth(call);
     while spec != NONE {
-        if cx.exprs[spec as usize].op == Op::FactSpec && cx.st.matching > 0 {
-            cx.write(router::WERROR, NO_ASSERT_WHILE_MATCHING);
-            last = Value::Sym(SYM_FALSE);
-        } else if cx.exprs[spec as usize].op == Op::FactSpec {
+        if cx.exprs[spec as usize].op == Op::FactSpec {
             cx.st.field_error = None;
             let defer = top && cx.exprs[spec as usize].next == NONE;
             last = match cx.assert_spec_deferring(spec, defer)? {
@@ -469,16 +472,14 @@ fn assert(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
 fn halt_after_network_error(cx: &mut Core<'_>, value: Value) -> Result<Value, EvalError> {
     cx.st.pattern_error = false;
     cx.set_error_fallback(value, None);
-    let mut e = EvalError::new(EvalErrorKind::Reported);
-    e.reported = true;
-    Err(e)
+    Err(EvalError::already_reported())
 }
 
 /// CLIPS's messages for a fact change asked for by a pattern or join test: while
 /// matching (`State::matching`) the network may not change under its own feet.
-pub(crate) const NO_RETRACT_WHILE_MATCHING: &str =
+const NO_RETRACT_WHILE_MATCHING: &str =
     "\n[FACTMNGR1] Facts may not be retracted during pattern-matching\n";
-pub(crate) const NO_ASSERT_WHILE_MATCHING: &str =
+const NO_ASSERT_WHILE_MATCHING: &str =
     "\n[FACTMNGR2] Facts may not be asserted during pattern-matching\n";
 
 fn retract(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
