@@ -1,6 +1,7 @@
 //! The public engine API (see `/work/brief/engine-api.md`).
 
 use crate::builtins::{BuiltinFn, ANY};
+use crate::config::Storage;
 use crate::engine::{cap, Engine, ExternalEntry, Stats};
 use crate::error::{EngineError, EvalError, EvalErrorKind, LoadError, Pool};
 use crate::fact::FactState;
@@ -35,15 +36,7 @@ pub type ExternalFn = BuiltinFn;
 
 macro_rules! engine_impl {
     ($($body:tt)*) => {
-        impl<
-            const FACTS: usize, const VALUES: usize, const SYMBOLS: usize, const SYMBYTES: usize,
-            const TEMPLATES: usize, const SLOTS: usize, const RULES: usize, const ALPHA: usize,
-            const JOINS: usize, const TOKENS: usize, const ACTS: usize, const FUNCS: usize,
-            const GLOBALS: usize, const EXPRS: usize, const STACK: usize, const SCRATCH: usize,
-            const DEFFACTS: usize, const EXTERNALS: usize,
-        > Engine<FACTS, VALUES, SYMBOLS, SYMBYTES, TEMPLATES, SLOTS, RULES, ALPHA, JOINS, TOKENS,
-            ACTS, FUNCS, GLOBALS, EXPRS, STACK, SCRATCH, DEFFACTS, EXTERNALS>
-        { $($body)* }
+        impl<S: Storage> Engine<S> { $($body)* }
     };
 }
 
@@ -270,7 +263,7 @@ engine_impl! {
     /// High-water marks and capacities of every pool.
     pub fn stats(&self) -> Stats {
         let mut s = self.st.hw;
-        let caps = [FACTS, VALUES, SYMBOLS, SYMBYTES, TEMPLATES, SLOTS, RULES, ALPHA, JOINS, TOKENS, ACTS, FUNCS, GLOBALS, EXPRS, STACK, SCRATCH, DEFFACTS, EXTERNALS];
+        let caps = S::CAPACITIES.to_array();
         for (i, c) in caps.iter().enumerate() {
             s.capacity[i] = *c as u32;
         }

@@ -1,15 +1,18 @@
-//! The engine: inline storage sized by const generics, and `Core`, the non-generic view
-//! of that storage that all algorithms run on (one copy of the code for every size).
+//! The engine: its scalar state and its pools' storage (sized by named capacities, see
+//! [`crate::config`]), and `Core`, the non-generic view of that storage that all
+//! algorithms run on (one copy of the code for every size).
 
 use crate::builtins::BuiltinFn;
+pub use crate::config::{entry_bytes, Core};
+use crate::config::{HostStorage, SmallStorage, Storage};
 use crate::error::{CapacityError, Pool};
 use crate::expr::{Expr, Op};
 use crate::fact::Fact;
 use crate::host::Host;
-use crate::rete::{AlphaNode, Join, PatBinding, Token, MAX_PATTERNS};
+use crate::rete::{AlphaNode, Join, PatBinding, MAX_PATTERNS};
 use crate::rule::{Activation, Rule};
-use crate::symbols::{SymEntry, Symbols};
-use crate::template::{Deffacts, Deffunction, Global, SlotDef, Template};
+use crate::symbols::Symbols;
+use crate::template::{SlotDef, Template};
 use crate::value::Ix;
 use crate::value::{SymId, Value, NONE};
 
@@ -44,15 +47,15 @@ pub mod watch {
 /// High-water marks (entries in use at most) of every pool.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Stats {
-    pub used: [u32; 18],
-    pub capacity: [u32; 18],
+    pub used: [u32; Pool::COUNT],
+    pub capacity: [u32; Pool::COUNT],
 }
 
 impl Stats {
     pub const fn new() -> Stats {
         Stats {
-            used: [0; 18],
-            capacity: [0; 18],
+            used: [0; Pool::COUNT],
+            capacity: [0; Pool::COUNT],
         }
     }
     pub fn get(&self, pool: Pool) -> (u32, u32) {
@@ -62,42 +65,6 @@ impl Stats {
     /// Bytes the pool's storage takes in the engine (capacity times entry size).
     pub fn bytes(&self, pool: Pool) -> usize {
         self.capacity[pool as usize] as usize * entry_bytes(pool)
-    }
-}
-
-/// Bytes one entry of `pool` occupies in an engine, its hash-bucket index included, so
-/// hosts can turn capacities and high-water marks into RAM figures.
-pub const fn entry_bytes(pool: Pool) -> usize {
-    use core::mem::size_of;
-    match pool {
-        // a fact and its duplicate-index bucket head (and on the host its template
-        // list links, `Engine::fact_tlinks`)
-        Pool::Facts => {
-            size_of::<Fact>()
-                + size_of::<Ix>()
-                + if cfg!(feature = "wide-pools") {
-                    2 * size_of::<Ix>()
-                } else {
-                    0
-                }
-        }
-        Pool::FactValues | Pool::EvalStack | Pool::Scratch => size_of::<Value>(),
-        // a symbol entry and its hash bucket head
-        Pool::Symbols => size_of::<SymEntry>() + size_of::<Ix>(),
-        Pool::SymbolBytes => 1,
-        Pool::Templates => size_of::<Template>(),
-        Pool::SlotDefs => size_of::<SlotDef>(),
-        Pool::Rules => size_of::<Rule>(),
-        Pool::AlphaNodes => size_of::<AlphaNode>(),
-        Pool::Joins => size_of::<Join>(),
-        // a token and its alpha/beta memory index bucket head
-        Pool::Tokens => size_of::<Token>() + size_of::<Ix>(),
-        Pool::Activations => size_of::<Activation>(),
-        Pool::Functions => size_of::<Deffunction>(),
-        Pool::Globals => size_of::<Global>(),
-        Pool::Exprs => size_of::<Expr>(),
-        Pool::Deffacts => size_of::<Deffacts>(),
-        Pool::ExternalFns => size_of::<ExternalEntry>(),
     }
 }
 
@@ -393,174 +360,40 @@ impl Default for State {
     }
 }
 
-/// The CLIPS engine. Every pool is an inline array sized by a const generic, so an
-/// engine can be a `static` and its size is known at compile time.
-pub struct Engine<
-    const FACTS: usize,
-    const VALUES: usize,
-    const SYMBOLS: usize,
-    const SYMBYTES: usize,
-    const TEMPLATES: usize,
-    const SLOTS: usize,
-    const RULES: usize,
-    const ALPHA: usize,
-    const JOINS: usize,
-    const TOKENS: usize,
-    const ACTS: usize,
-    const FUNCS: usize,
-    const GLOBALS: usize,
-    const EXPRS: usize,
-    const STACK: usize,
-    const SCRATCH: usize,
-    const DEFFACTS: usize,
-    const EXTERNALS: usize,
-> {
+/// The CLIPS engine: its state and `S`, the storage of every pool, made by
+/// [`engine_storage!`](crate::engine_storage) from named capacities. Every pool is an
+/// inline array, so an engine can be a `static` and its size is known at compile time.
+pub struct Engine<S: Storage> {
     pub(crate) st: State,
-    facts: [Fact; FACTS],
-    fact_buckets: [Ix; FACTS],
-    values: [Value; VALUES],
-    sym_entries: [SymEntry; SYMBOLS],
-    sym_buckets: [Ix; SYMBOLS],
-    sym_bytes: [u8; SYMBYTES],
-    templates: [Template; TEMPLATES],
-    slots: [SlotDef; SLOTS],
-    rules: [Rule; RULES],
-    alphas: [AlphaNode; ALPHA],
-    joins: [Join; JOINS],
-    tokens: [Token; TOKENS],
-    /// Alpha-memory index: bucket heads, keyed by alpha node and the values of its
-    /// right-hash fields (see `rete::alpha`).
-    amem_buckets: [Ix; TOKENS],
-    acts: [Activation; ACTS],
-    funcs: [Deffunction; FUNCS],
-    globals: [Global; GLOBALS],
-    exprs: [Expr; EXPRS],
-    stack: [Value; STACK],
-    scratch: [Value; SCRATCH],
-    deffacts: [Deffacts; DEFFACTS],
-    externals: [ExternalEntry; EXTERNALS],
-    /// Host: per fact slot, the next and previous live fact of its template
-    /// (`Template::tfirst`), so a fact-set query walks only those.
-    #[cfg(feature = "wide-pools")]
-    fact_tlinks: [[Ix; 2]; FACTS],
+    pools: S,
     started: bool,
 }
 
-/// Host defaults: roomy enough for the differential suite and the benchmarks.
-pub type DefaultEngine = Engine<
-    4096,  // facts
-    32768, // fact values
-    4096,  // symbols
-    49152, // symbol bytes
-    256,   // templates
-    1024,  // slot definitions
-    512,   // rules
-    1024,  // alpha nodes
-    2048,  // joins
-    32768, // tokens
-    8192,  // activations
-    256,   // deffunctions
-    128,   // globals
-    32768, // expression nodes
-    1024,  // evaluation stack
-    4096,  // multifield scratch
-    64,    // deffacts
-    32,    // external functions
->;
+/// Host defaults ([`Capacities::HOST`](crate::Capacities::HOST)): roomy enough for the
+/// differential suite and the benchmarks.
+pub type DefaultEngine = Engine<HostStorage>;
 
-/// Small capacities for unit tests (fits a thread stack).
-pub type SmallEngine =
-    Engine<128, 1024, 256, 4096, 16, 64, 32, 64, 128, 512, 256, 16, 16, 2048, 128, 256, 8, 8>;
+/// Small capacities for unit tests ([`Capacities::SMALL`](crate::Capacities::SMALL);
+/// fits a thread stack).
+pub type SmallEngine = Engine<SmallStorage>;
 
-/// The non-generic view every algorithm works on.
-pub struct Core<'a> {
-    pub st: &'a mut State,
-    pub host: &'a mut dyn Host,
-    pub facts: &'a mut [Fact],
-    pub fact_buckets: &'a mut [Ix],
-    pub values: &'a mut [Value],
-    pub sym_entries: &'a mut [SymEntry],
-    pub sym_buckets: &'a mut [Ix],
-    pub sym_bytes: &'a mut [u8],
-    pub templates: &'a mut [Template],
-    pub slots: &'a mut [SlotDef],
-    pub rules: &'a mut [Rule],
-    pub alphas: &'a mut [AlphaNode],
-    pub joins: &'a mut [Join],
-    pub tokens: &'a mut [Token],
-    pub amem_buckets: &'a mut [Ix],
-    pub acts: &'a mut [Activation],
-    pub funcs: &'a mut [Deffunction],
-    pub globals: &'a mut [Global],
-    pub exprs: &'a mut [Expr],
-    pub stack: &'a mut [Value],
-    pub scratch: &'a mut [Value],
-    pub deffacts: &'a mut [Deffacts],
-    pub externals: &'a mut [ExternalEntry],
-    /// Host: see `Engine::fact_tlinks`.
-    #[cfg(feature = "wide-pools")]
-    pub fact_tlinks: &'a mut [[Ix; 2]],
-}
-
-impl<
-        const FACTS: usize,
-        const VALUES: usize,
-        const SYMBOLS: usize,
-        const SYMBYTES: usize,
-        const TEMPLATES: usize,
-        const SLOTS: usize,
-        const RULES: usize,
-        const ALPHA: usize,
-        const JOINS: usize,
-        const TOKENS: usize,
-        const ACTS: usize,
-        const FUNCS: usize,
-        const GLOBALS: usize,
-        const EXPRS: usize,
-        const STACK: usize,
-        const SCRATCH: usize,
-        const DEFFACTS: usize,
-        const EXTERNALS: usize,
-    >
-    Engine<
-        FACTS,
-        VALUES,
-        SYMBOLS,
-        SYMBYTES,
-        TEMPLATES,
-        SLOTS,
-        RULES,
-        ALPHA,
-        JOINS,
-        TOKENS,
-        ACTS,
-        FUNCS,
-        GLOBALS,
-        EXPRS,
-        STACK,
-        SCRATCH,
-        DEFFACTS,
-        EXTERNALS,
-    >
-{
+impl<S: Storage> Engine<S> {
     /// An empty engine; `const` so it can initialise a `static`. The first API call
     /// performs CLIPS's start-up (`(initial-fact)` asserted as f-0).
     ///
     /// A pool larger than the index type [`crate::Ix`] can address does not compile:
     /// ```compile_fail
-    /// const TOO_MANY: usize = agent_core::NONE as usize + 1;
-    /// type Big = agent_core::Engine<4, 4, 4, TOO_MANY, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4, 4>;
-    /// let _ = Big::new();
+    /// agent_core::engine_storage! {
+    ///     struct Big { symbol_bytes: agent_core::NONE as usize + 1, ..agent_core::Capacities::SMALL }
+    /// }
+    /// let _ = agent_core::Engine::<Big>::new();
     /// ```
     pub const fn new() -> Self {
         // Every pool entry must be addressable by an `Ix` other than `NONE`: a
         // capacity the index type cannot hold fails to compile (enable the
         // `wide-pools` feature for pools beyond 65,535 entries).
         const {
-            let capacities = [
-                FACTS, VALUES, SYMBOLS, SYMBYTES, TEMPLATES, SLOTS, RULES, ALPHA, JOINS, TOKENS,
-                ACTS, FUNCS, GLOBALS, EXPRS, STACK, SCRATCH, DEFFACTS, EXTERNALS,
-            ];
+            let capacities = S::CAPACITIES.to_array();
             let mut i = 0;
             while i < capacities.len() {
                 assert!(
@@ -572,47 +405,25 @@ impl<
         }
         Engine {
             st: State::new(),
-            facts: [Fact::EMPTY; FACTS],
-            fact_buckets: [NONE; FACTS],
-            values: [Value::Void; VALUES],
-            sym_entries: [SymEntry::EMPTY; SYMBOLS],
-            sym_buckets: [NONE; SYMBOLS],
-            sym_bytes: [0; SYMBYTES],
-            templates: [Template::EMPTY; TEMPLATES],
-            slots: [SlotDef::EMPTY; SLOTS],
-            rules: [Rule::EMPTY; RULES],
-            alphas: [AlphaNode::EMPTY; ALPHA],
-            joins: [Join::EMPTY; JOINS],
-            tokens: [Token::EMPTY; TOKENS],
-            amem_buckets: [NONE; TOKENS],
-            acts: [Activation::EMPTY; ACTS],
-            funcs: [Deffunction::EMPTY; FUNCS],
-            globals: [Global::EMPTY; GLOBALS],
-            exprs: [Expr::EMPTY; EXPRS],
-            stack: [Value::Void; STACK],
-            scratch: [Value::Void; SCRATCH],
-            deffacts: [Deffacts::EMPTY; DEFFACTS],
-            externals: [ExternalEntry::EMPTY; EXTERNALS],
-            #[cfg(feature = "wide-pools")]
-            fact_tlinks: [[NONE; 2]; FACTS],
+            pools: S::EMPTY,
             started: false,
         }
     }
 
     pub(crate) fn fact_at(&self, f: Ix) -> Fact {
-        self.facts[f as usize]
+        self.pools.pools().facts[f as usize]
     }
     pub(crate) fn template_at(&self, t: Ix) -> Template {
-        self.templates[t as usize]
+        self.pools.pools().templates[t as usize]
     }
     pub(crate) fn slot_at(&self, s: Ix) -> SlotDef {
-        self.slots[s as usize]
+        self.pools.pools().slots[s as usize]
     }
     pub(crate) fn value_at(&self, c: usize) -> Value {
-        self.values[c]
+        self.pools.pools().values[c]
     }
     pub(crate) fn rule_at(&self, r: Ix) -> Rule {
-        self.rules[r as usize]
+        self.pools.pools().rules[r as usize]
     }
 
     /// Fact indices along a token's ancestry, by pattern position.
@@ -621,18 +432,19 @@ impl<
         token: Ix,
         out: &mut [Option<u32>; crate::rete::MAX_PATTERNS],
     ) -> usize {
+        let pools = self.pools.pools();
         let mut n = 0;
         let mut t = token;
         while t != NONE {
-            let tk = self.tokens[t as usize];
-            let j = self.joins[tk.owner as usize];
+            let tk = pools.tokens[t as usize];
+            let j = pools.joins[tk.owner as usize];
             if j.kind == crate::rete::JoinKind::Root {
                 break;
             }
             let d = j.depth as usize;
             if d < out.len() {
                 out[d] = if tk.am != NONE {
-                    Some(self.facts[self.tokens[tk.am as usize].fact as usize].num)
+                    Some(pools.facts[pools.tokens[tk.am as usize].fact as usize].num)
                 } else {
                     None
                 };
@@ -644,43 +456,18 @@ impl<
     }
 
     pub(crate) fn act_at(&self, a: Ix) -> Activation {
-        self.acts[a as usize]
+        self.pools.pools().acts[a as usize]
     }
     pub(crate) fn sym_str(&self, id: SymId) -> &str {
-        let e = self.sym_entries[id as usize];
-        core::str::from_utf8(&self.sym_bytes[e.start as usize..(e.start + e.len) as usize])
+        let pools = self.pools.pools();
+        let e = pools.sym_entries[id as usize];
+        core::str::from_utf8(&pools.sym_bytes[e.start as usize..(e.start + e.len) as usize])
             .unwrap_or("")
     }
 
     /// The non-generic view of this engine, bound to `host` for output.
     pub fn core<'a>(&'a mut self, host: &'a mut dyn Host) -> Core<'a> {
-        let mut core = Core {
-            st: &mut self.st,
-            host,
-            facts: &mut self.facts,
-            fact_buckets: &mut self.fact_buckets,
-            values: &mut self.values,
-            sym_entries: &mut self.sym_entries,
-            sym_buckets: &mut self.sym_buckets,
-            sym_bytes: &mut self.sym_bytes,
-            templates: &mut self.templates,
-            slots: &mut self.slots,
-            rules: &mut self.rules,
-            alphas: &mut self.alphas,
-            joins: &mut self.joins,
-            tokens: &mut self.tokens,
-            amem_buckets: &mut self.amem_buckets,
-            acts: &mut self.acts,
-            funcs: &mut self.funcs,
-            globals: &mut self.globals,
-            exprs: &mut self.exprs,
-            stack: &mut self.stack,
-            scratch: &mut self.scratch,
-            deffacts: &mut self.deffacts,
-            externals: &mut self.externals,
-            #[cfg(feature = "wide-pools")]
-            fact_tlinks: &mut self.fact_tlinks,
-        };
+        let mut core = self.pools.core(&mut self.st, host);
         if !self.started {
             self.started = true;
             // Start-up as CLIPS: an empty environment holding (initial-fact) as f-0.
@@ -696,47 +483,7 @@ impl<
     }
 }
 
-impl<
-        const FACTS: usize,
-        const VALUES: usize,
-        const SYMBOLS: usize,
-        const SYMBYTES: usize,
-        const TEMPLATES: usize,
-        const SLOTS: usize,
-        const RULES: usize,
-        const ALPHA: usize,
-        const JOINS: usize,
-        const TOKENS: usize,
-        const ACTS: usize,
-        const FUNCS: usize,
-        const GLOBALS: usize,
-        const EXPRS: usize,
-        const STACK: usize,
-        const SCRATCH: usize,
-        const DEFFACTS: usize,
-        const EXTERNALS: usize,
-    > Default
-    for Engine<
-        FACTS,
-        VALUES,
-        SYMBOLS,
-        SYMBYTES,
-        TEMPLATES,
-        SLOTS,
-        RULES,
-        ALPHA,
-        JOINS,
-        TOKENS,
-        ACTS,
-        FUNCS,
-        GLOBALS,
-        EXPRS,
-        STACK,
-        SCRATCH,
-        DEFFACTS,
-        EXTERNALS,
-    >
-{
+impl<S: Storage> Default for Engine<S> {
     fn default() -> Self {
         Self::new()
     }
@@ -1127,26 +874,7 @@ impl Core<'_> {
     /// Stats: high-water marks and capacities of every pool.
     pub fn stats(&self) -> Stats {
         let mut s = self.st.hw;
-        let caps = [
-            self.facts.len(),
-            self.values.len(),
-            self.sym_entries.len(),
-            self.sym_bytes.len(),
-            self.templates.len(),
-            self.slots.len(),
-            self.rules.len(),
-            self.alphas.len(),
-            self.joins.len(),
-            self.tokens.len(),
-            self.acts.len(),
-            self.funcs.len(),
-            self.globals.len(),
-            self.exprs.len(),
-            self.stack.len(),
-            self.scratch.len(),
-            self.deffacts.len(),
-            self.externals.len(),
-        ];
+        let caps = self.capacities();
         for (i, c) in caps.iter().enumerate() {
             s.capacity[i] = *c as u32;
         }
@@ -1158,6 +886,9 @@ impl Core<'_> {
 mod size_tests {
     extern crate std;
     use super::*;
+    use crate::rete::Token;
+    use crate::symbols::SymEntry;
+    use crate::template::{Deffacts, Deffunction, Global};
     use core::mem::size_of;
 
     /// The pools' bytes as `Stats::bytes` reports them account for the whole engine but

@@ -3,74 +3,7 @@
 use crate::value::Ix;
 use core::fmt;
 
-/// A fixed-capacity pool of the engine.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Pool {
-    Facts,
-    FactValues,
-    Symbols,
-    SymbolBytes,
-    Templates,
-    SlotDefs,
-    Rules,
-    AlphaNodes,
-    Joins,
-    Tokens,
-    Activations,
-    Functions,
-    Globals,
-    Exprs,
-    EvalStack,
-    Scratch,
-    Deffacts,
-    ExternalFns,
-}
-
-impl Pool {
-    pub const ALL: [Pool; 18] = [
-        Pool::Facts,
-        Pool::FactValues,
-        Pool::Symbols,
-        Pool::SymbolBytes,
-        Pool::Templates,
-        Pool::SlotDefs,
-        Pool::Rules,
-        Pool::AlphaNodes,
-        Pool::Joins,
-        Pool::Tokens,
-        Pool::Activations,
-        Pool::Functions,
-        Pool::Globals,
-        Pool::Exprs,
-        Pool::EvalStack,
-        Pool::Scratch,
-        Pool::Deffacts,
-        Pool::ExternalFns,
-    ];
-
-    pub const fn name(self) -> &'static str {
-        match self {
-            Pool::Facts => "facts",
-            Pool::FactValues => "fact values",
-            Pool::Symbols => "symbols",
-            Pool::SymbolBytes => "symbol bytes",
-            Pool::Templates => "templates",
-            Pool::SlotDefs => "slot definitions",
-            Pool::Rules => "rules",
-            Pool::AlphaNodes => "alpha nodes",
-            Pool::Joins => "joins",
-            Pool::Tokens => "tokens",
-            Pool::Activations => "activations",
-            Pool::Functions => "deffunctions",
-            Pool::Globals => "globals",
-            Pool::Exprs => "expression nodes",
-            Pool::EvalStack => "evaluation stack",
-            Pool::Scratch => "multifield scratch",
-            Pool::Deffacts => "deffacts",
-            Pool::ExternalFns => "external functions",
-        }
-    }
-}
+pub use crate::config::Pool;
 
 /// A pool ran out: which one, and how big it is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -39,6 +39,19 @@ pub struct Fact {
     pub hash: u32,
 }
 
+/// Host speed-up: a fact's next and previous live fact of its template
+/// (`Template::tfirst`), so a fact-set query walks only those. Without the feature, no
+/// bytes (the pool table keeps the array, of zero-sized entries).
+#[cfg(feature = "wide-pools")]
+pub type TemplateLinks = [Ix; 2];
+#[cfg(not(feature = "wide-pools"))]
+pub type TemplateLinks = ();
+/// The links of a fact in no template list.
+#[cfg(feature = "wide-pools")]
+pub const NO_TEMPLATE_LINKS: TemplateLinks = [crate::value::NONE; 2];
+#[cfg(not(feature = "wide-pools"))]
+pub const NO_TEMPLATE_LINKS: TemplateLinks = ();
+
 impl Fact {
     pub const EMPTY: Fact = Fact {
         num: 0,

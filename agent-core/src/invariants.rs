@@ -63,47 +63,7 @@ macro_rules! ensure {
     };
 }
 
-impl<
-        const FACTS: usize,
-        const VALUES: usize,
-        const SYMBOLS: usize,
-        const SYMBYTES: usize,
-        const TEMPLATES: usize,
-        const SLOTS: usize,
-        const RULES: usize,
-        const ALPHA: usize,
-        const JOINS: usize,
-        const TOKENS: usize,
-        const ACTS: usize,
-        const FUNCS: usize,
-        const GLOBALS: usize,
-        const EXPRS: usize,
-        const STACK: usize,
-        const SCRATCH: usize,
-        const DEFFACTS: usize,
-        const EXTERNALS: usize,
-    >
-    Engine<
-        FACTS,
-        VALUES,
-        SYMBOLS,
-        SYMBYTES,
-        TEMPLATES,
-        SLOTS,
-        RULES,
-        ALPHA,
-        JOINS,
-        TOKENS,
-        ACTS,
-        FUNCS,
-        GLOBALS,
-        EXPRS,
-        STACK,
-        SCRATCH,
-        DEFFACTS,
-        EXTERNALS,
-    >
-{
+impl<S: crate::config::Storage> Engine<S> {
     /// Checks every engine invariant (see the module docs). Call it between API
     /// operations (not from inside a host function). `&mut` only because the engine's
     /// view is built that way; nothing is changed (a never-used engine is started).

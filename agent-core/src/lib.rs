@@ -1,8 +1,9 @@
 //! A CLIPS 6.30-compatible rule and fact engine in fixed memory.
 //!
 //! `#![no_std]`, no `alloc`: every byte lives in an [`Engine`] whose pools are inline
-//! arrays sized by const generics, so an engine can be a `static` and its size is
-//! known at compile time. Running out of a pool is a [`CapacityError`] naming the pool
+//! arrays sized by named capacities ([`config`]: one table of every pool, and
+//! [`engine_storage!`] to size an engine's), so an engine can be a `static` and its size
+//! is known at compile time. Running out of a pool is a [`CapacityError`] naming the pool
 //! and its capacity; the failed operation is undone.
 //!
 //! # Layout
@@ -15,8 +16,9 @@
 //!   index, a creation-ordered list), deftemplates, deffacts, globals, deffunctions.
 //! - [`rete`], [`agenda`], [`commands`]: matching, conflict resolution, run loop.
 //! - [`builtins`]: the function registry (one table per module), [`eval`]: evaluator.
-//! - [`engine`]: storage and `Core`, the non-generic view all algorithms run on, so
-//!   the code exists once whatever the capacities; [`api`]: the host API.
+//! - [`config`]: the pool table, capacities by name; [`engine`]: state, storage and
+//!   `Core`, the non-generic view all algorithms run on, so the code exists once
+//!   whatever the capacities; [`api`]: the host API.
 //!
 //! # The Rete network
 //! - **Alpha nodes** ([`rete::AlphaNode`]): one per distinct pattern (template +
@@ -105,6 +107,7 @@ pub mod agenda;
 pub mod api;
 pub mod builtins;
 pub mod commands;
+pub mod config;
 pub mod engine;
 pub mod error;
 pub mod eval;
@@ -127,6 +130,7 @@ pub mod testutil;
 
 pub use api::{ExternalFn, FactId, Usage};
 pub use builtins::{Args, BuiltinFn};
+pub use config::{Capacities, Storage};
 pub use engine::{entry_bytes, Core, DefaultEngine, Engine, SmallEngine, Stats};
 pub use error::{
     CapacityError, EngineError, EvalError, EvalErrorKind, HostIoError, LoadError, Pool,

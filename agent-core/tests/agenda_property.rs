@@ -220,9 +220,15 @@ fn op_or_run() -> impl Strategy<Value = Op> {
     prop_oneof![7 => op(), 1 => (1u8..4).prop_map(Op::Run)]
 }
 
-/// SmallEngine with 64 tokens and 12 activations: the sequences run them out.
-type TightEngine =
-    Engine<128, 1024, 256, 4096, 16, 64, 32, 64, 128, 64, 12, 16, 16, 2048, 128, 256, 8, 8>;
+agent_core::engine_storage! {
+    /// SmallEngine with 64 tokens and 12 activations: the sequences run them out.
+    struct TightStorage {
+        tokens: 64,
+        activations: 12,
+        ..agent_core::Capacities::SMALL
+    }
+}
+type TightEngine = Engine<TightStorage>;
 
 fn agenda_of(e: &TightEngine) -> Vec<(Key, i32)> {
     let mut got = Vec::new();

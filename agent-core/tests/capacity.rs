@@ -27,7 +27,7 @@ fn cap_of(e: EngineError) -> CapacityError {
 
 #[test]
 fn facts_pool() {
-    let mut e = engine!(FACTS = 4);
+    let mut e = engine!(facts = 4);
     let h = &mut Quiet;
     for i in 1..4 {
         e.assert_str(h, &format!("(a {i})")).unwrap();
@@ -48,7 +48,7 @@ fn facts_pool() {
 
 #[test]
 fn fact_values_pool() {
-    let mut e = engine!(VALUES = 24);
+    let mut e = engine!(fact_values = 24);
     let h = &mut Quiet;
     e.assert_str(h, "(big 1 2 3 4 5 6 7 8 9 10)").unwrap();
     let err = cap_of(
@@ -66,7 +66,7 @@ fn fact_values_pool() {
 
 #[test]
 fn symbols_pool() {
-    let mut e = engine!(SYMBOLS = 16);
+    let mut e = engine!(symbols = 16);
     let h = &mut Quiet;
     let mut failed = None;
     for i in 0..20 {
@@ -88,7 +88,7 @@ fn symbols_pool() {
 
 #[test]
 fn symbol_bytes_pool() {
-    let mut e = engine!(SYMBYTES = 96);
+    let mut e = engine!(symbol_bytes = 96);
     let h = &mut Quiet;
     let long = "x".repeat(80);
     let err = cap_of(e.assert_str(h, &format!("(s {long})")).unwrap_err());
@@ -104,7 +104,7 @@ fn symbol_bytes_pool() {
 
 #[test]
 fn templates_and_slot_defs_pools() {
-    let mut e = engine!(TEMPLATES = 3);
+    let mut e = engine!(templates = 3);
     let h = &mut Quiet;
     e.load_str(h, "t", "(deftemplate one (slot a))").unwrap();
     let before = e.usage();
@@ -120,7 +120,7 @@ fn templates_and_slot_defs_pools() {
     assert_eq!(e.usage().templates, before.templates + 1);
     e.assert_str(h, "(two (a 1))").unwrap();
 
-    let mut e = engine!(SLOTS = 4);
+    let mut e = engine!(slot_defs = 4);
     e.load_str(h, "t", "(deftemplate one (slot a) (slot b))")
         .unwrap();
     let before = e.usage();
@@ -141,7 +141,7 @@ fn templates_and_slot_defs_pools() {
 #[test]
 fn rules_alpha_and_joins_pools() {
     let h = &mut Quiet;
-    let mut e = engine!(RULES = 2);
+    let mut e = engine!(rules = 2);
     e.load_str(h, "t", "(defrule r1 (a) =>) (defrule r2 (b) =>)")
         .unwrap();
     let before = e.usage();
@@ -157,7 +157,7 @@ fn rules_alpha_and_joins_pools() {
     e.assert_str(h, "(a)").unwrap();
     assert_eq!(e.counts().1, 1);
 
-    let mut e = engine!(ALPHA = 2);
+    let mut e = engine!(alpha_nodes = 2);
     e.load_str(h, "t", "(defrule r1 (a 1) (a 2) =>)").unwrap();
     let before = e.usage();
     let err = e.load_str(h, "t", "(defrule r2 (a 3) =>)").unwrap_err();
@@ -171,7 +171,7 @@ fn rules_alpha_and_joins_pools() {
     assert_eq!(e.usage(), before);
 
     // join 0 is the global root; r1 takes 3 (2 CEs + its end node)
-    let mut e = engine!(JOINS = 5);
+    let mut e = engine!(joins = 5);
     e.load_str(h, "t", "(defrule r1 (a ?x) (b ?x) =>)").unwrap();
     let before = e.usage();
     let err = e
@@ -193,7 +193,7 @@ fn rules_alpha_and_joins_pools() {
 #[test]
 fn tokens_pool_assert_is_undone() {
     let h = &mut Quiet;
-    let mut e = engine!(TOKENS = 24);
+    let mut e = engine!(tokens = 24);
     e.load_str(
         h,
         "t",
@@ -235,28 +235,7 @@ fn tokens_pool_assert_is_undone() {
     assert!(e.run(h, None).unwrap() > 0);
 }
 
-fn agenda<
-    const A: usize,
-    const B: usize,
-    const C: usize,
-    const D: usize,
-    const E: usize,
-    const F: usize,
-    const G: usize,
-    const H: usize,
-    const I: usize,
-    const J: usize,
-    const K: usize,
-    const L: usize,
-    const M: usize,
-    const N: usize,
-    const O: usize,
-    const P: usize,
-    const Q: usize,
-    const R: usize,
->(
-    e: &Engine<A, B, C, D, E, F, G, H, I, J, K, L, M, N, O, P, Q, R>,
-) -> Vec<String> {
+fn agenda<S: agent_core::Storage>(e: &Engine<S>) -> Vec<String> {
     let mut v = Vec::new();
     e.for_each_activation(|r, s, b| v.push(format!("{s} {r} {b:?}")));
     v
@@ -265,7 +244,7 @@ fn agenda<
 #[test]
 fn activations_pool() {
     let h = &mut Quiet;
-    let mut e = engine!(ACTS = 3);
+    let mut e = engine!(activations = 3);
     e.load_str(h, "t", "(defrule r (a ?x) =>)").unwrap();
     for i in 0..3 {
         e.assert_str(h, &format!("(a {i})")).unwrap();
@@ -287,7 +266,7 @@ fn activations_pool() {
 #[test]
 fn functions_globals_deffacts_pools() {
     let h = &mut Quiet;
-    let mut e = engine!(FUNCS = 1);
+    let mut e = engine!(functions = 1);
     e.load_str(h, "t", "(deffunction f (?x) (* ?x 2))").unwrap();
     let before = e.usage();
     let err = e.load_str(h, "t", "(deffunction g (?x) ?x)").unwrap_err();
@@ -301,7 +280,7 @@ fn functions_globals_deffacts_pools() {
     assert_eq!(e.usage(), before);
     assert_eq!(e.eval_str(h, "(f 21)").unwrap(), agent_core::Value::Int(42));
 
-    let mut e = engine!(GLOBALS = 1);
+    let mut e = engine!(globals = 1);
     e.load_str(h, "t", "(defglobal ?*a* = 1)").unwrap();
     let err = e.load_str(h, "t", "(defglobal ?*b* = 2)").unwrap_err();
     assert_eq!(
@@ -313,7 +292,7 @@ fn functions_globals_deffacts_pools() {
     );
     assert_eq!(e.eval_str(h, "?*a*").unwrap(), agent_core::Value::Int(1));
 
-    let mut e = engine!(DEFFACTS = 1);
+    let mut e = engine!(deffacts = 1);
     e.load_str(h, "t", "(deffacts one (x 1))").unwrap();
     let err = e.load_str(h, "t", "(deffacts two (x 2))").unwrap_err();
     assert_eq!(
@@ -330,7 +309,7 @@ fn functions_globals_deffacts_pools() {
 #[test]
 fn exprs_pool() {
     let h = &mut Quiet;
-    let mut e = engine!(EXPRS = 40);
+    let mut e = engine!(exprs = 40);
     e.load_str(h, "t", "(defrule r (a ?x) => (printout t ?x crlf))")
         .unwrap();
     let before = e.usage();
@@ -345,7 +324,7 @@ fn exprs_pool() {
 #[test]
 fn eval_stack_and_scratch_pools() {
     let h = &mut Quiet;
-    let mut e = engine!(STACK = 8);
+    let mut e = engine!(eval_stack = 8);
     let err = e.eval_str(h, "(+ 1 2 3 4 5 6 7 8 9 10)").unwrap_err();
     assert_eq!(
         err.kind(),
@@ -359,7 +338,7 @@ fn eval_stack_and_scratch_pools() {
         agent_core::Value::Int(6)
     );
 
-    let mut e = engine!(SCRATCH = 8);
+    let mut e = engine!(scratch = 8);
     e.load_str(
         h,
         "t",
@@ -386,7 +365,7 @@ fn external_functions_pool() {
         Ok(agent_core::Value::Int(1))
     }
     let h = &mut Quiet;
-    let mut e = engine!(EXTERNALS = 1);
+    let mut e = engine!(external_fns = 1);
     e.register_function("one", 0, Some(0), one).unwrap();
     let err = cap_of(e.register_function("two", 0, Some(0), one).unwrap_err());
     assert_eq!(
@@ -418,7 +397,7 @@ fn stats_report_high_water_marks() {
 /// the fact is asserted: a deffacts larger than the scratch area resets.
 #[test]
 fn deffacts_larger_than_the_scratch_area_reset() {
-    let mut e = engine!(SCRATCH = 16, FACTS = 256, VALUES = 1024);
+    let mut e = engine!(scratch = 16, facts = 256, fact_values = 1024);
     let h = &mut Quiet;
     let facts: String = (0..200).map(|i| format!("(item {i} x)\n")).collect();
     e.load_str(h, "f", &format!("(deffacts many {facts})"))

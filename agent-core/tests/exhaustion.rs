@@ -43,27 +43,7 @@ trait Probe {
     fn consistent(&mut self);
 }
 
-impl<
-        const A: usize,
-        const B: usize,
-        const C: usize,
-        const D: usize,
-        const E: usize,
-        const F: usize,
-        const G: usize,
-        const H: usize,
-        const I: usize,
-        const J: usize,
-        const K: usize,
-        const L: usize,
-        const M: usize,
-        const N: usize,
-        const O: usize,
-        const P: usize,
-        const Q: usize,
-        const R: usize,
-    > Probe for Engine<A, B, C, D, E, F, G, H, I, J, K, L, M, N, O, P, Q, R>
-{
+impl<S: agent_core::Storage> Probe for Engine<S> {
     fn snapshot(&self) -> Snapshot {
         let mut agenda = Vec::new();
         self.for_each_activation(|r, s, b| agenda.push(format!("{s} {r} {b:?}")));
@@ -85,27 +65,7 @@ trait EvalFacts {
     fn fact_listing(&mut self) -> String;
 }
 
-impl<
-        const A: usize,
-        const B: usize,
-        const C: usize,
-        const D: usize,
-        const E: usize,
-        const F: usize,
-        const G: usize,
-        const H: usize,
-        const I: usize,
-        const J: usize,
-        const K: usize,
-        const L: usize,
-        const M: usize,
-        const N: usize,
-        const O: usize,
-        const P: usize,
-        const Q: usize,
-        const R: usize,
-    > EvalFacts for Engine<A, B, C, D, E, F, G, H, I, J, K, L, M, N, O, P, Q, R>
-{
+impl<S: agent_core::Storage> EvalFacts for Engine<S> {
     fn fact_listing(&mut self) -> String {
         let mut h = Capture::default();
         self.eval_str(&mut h, "(facts)").unwrap();
@@ -186,7 +146,7 @@ fn load_until_full<E: Probe + ?Sized>(
 fn facts_at_assert_run_modify_and_reset() {
     let h = &mut Capture::default();
     // assert
-    let mut e = engine!(FACTS = 6);
+    let mut e = engine!(facts = 6);
     let c = assert_until_full(&mut *e, |e, i| e.assert_str(h, &format!("(a {i})")));
     assert_eq!(c, full(Pool::Facts, 6));
     let first = e.facts().nth(1).unwrap();
@@ -195,7 +155,7 @@ fn facts_at_assert_run_modify_and_reset() {
     e.consistent();
 
     // run: a rule counting upwards fills the pool; the failed assert adds nothing
-    let mut e = engine!(FACTS = 6);
+    let mut e = engine!(facts = 6);
     let h = &mut Capture::default();
     e.load_str(
         h,
@@ -218,7 +178,7 @@ fn facts_at_assert_run_modify_and_reset() {
 
     // modify while the pool is full: the retracted fact stays readable until the
     // firing ends, so the new one has no slot
-    let mut e = engine!(FACTS = 4);
+    let mut e = engine!(facts = 4);
     let h = &mut Capture::default();
     e.load_str(
         h,
@@ -256,7 +216,7 @@ fn facts_at_assert_run_modify_and_reset() {
     e.consistent();
 
     // reset with more deffacts than room
-    let mut e = engine!(FACTS = 4);
+    let mut e = engine!(facts = 4);
     let h = &mut Capture::default();
     e.load_str(h, "t", "(deffacts many (a 1) (a 2) (a 3) (a 4) (a 5))")
         .unwrap();
@@ -275,7 +235,7 @@ fn facts_at_assert_run_modify_and_reset() {
 #[test]
 fn fact_values_at_assert_run_modify_and_reset() {
     let h = &mut Capture::default();
-    let mut e = engine!(VALUES = 24);
+    let mut e = engine!(fact_values = 24);
     let c = assert_until_full(&mut *e, |e, i| {
         e.assert_str(h, &format!("(big {i} 1 2 3 4 5 6)"))
     });
@@ -286,7 +246,7 @@ fn fact_values_at_assert_run_modify_and_reset() {
     e.consistent();
 
     // run: growing multifields
-    let mut e = engine!(VALUES = 40);
+    let mut e = engine!(fact_values = 40);
     let h = &mut Capture::default();
     e.load_str(h, "t", "(defrule grow (l $?x) => (assert (l $?x $?x 1)))")
         .unwrap();
@@ -304,7 +264,7 @@ fn fact_values_at_assert_run_modify_and_reset() {
     e.consistent();
 
     // modify to a longer multislot than fits
-    let mut e = engine!(VALUES = 20);
+    let mut e = engine!(fact_values = 20);
     let h = &mut Capture::default();
     e.load_str(h, "t", "(deftemplate m (multislot xs))")
         .unwrap();
@@ -330,7 +290,7 @@ fn fact_values_at_assert_run_modify_and_reset() {
     e.consistent();
 
     // reset with big deffacts
-    let mut e = engine!(VALUES = 16);
+    let mut e = engine!(fact_values = 16);
     let h = &mut Capture::default();
     e.load_str(
         h,
@@ -374,7 +334,7 @@ fn symbols_and_bytes_at_assert_run_modify_and_load() {
     for (pool, cap) in [(Pool::Symbols, 48u32), (Pool::SymbolBytes, 600)] {
         // assert new symbols
         let h = &mut Capture::default();
-        let mut e = engine!(SYMBOLS = 48, SYMBYTES = 600);
+        let mut e = engine!(symbols = 48, symbol_bytes = 600);
         let long = "s".repeat(if pool == Pool::SymbolBytes { 40 } else { 1 });
         let c = assert_until_full(&mut *e, |e, i| e.assert_str(h, &format!("(s {long}{i})")));
         assert_eq!(c, full(pool, cap));
@@ -385,7 +345,12 @@ fn symbols_and_bytes_at_assert_run_modify_and_load() {
         e.consistent();
 
         // load: new template names
-        let mut e = engine!(SYMBOLS = 48, SYMBYTES = 600, TEMPLATES = 64, SLOTS = 128);
+        let mut e = engine!(
+            symbols = 48,
+            symbol_bytes = 600,
+            templates = 64,
+            slot_defs = 128
+        );
         let c = load_until_full(&mut *e, |e, i| {
             e.load_str(h, "t", &format!("(deftemplate {long}t{i} (slot v))"))
         });
@@ -394,7 +359,7 @@ fn symbols_and_bytes_at_assert_run_modify_and_load() {
         e.consistent();
 
         // run: the right-hand side makes new symbols; modify does too
-        let mut e = engine!(SYMBOLS = 48, SYMBYTES = 600);
+        let mut e = engine!(symbols = 48, symbol_bytes = 600);
         let h = &mut Capture::default();
         e.load_str(
             h,
@@ -419,7 +384,7 @@ fn symbols_and_bytes_at_assert_run_modify_and_load() {
 fn templates_and_slot_defs_at_load_and_assert() {
     let h = &mut Capture::default();
     // initial-fact takes one template and one slot
-    let mut e = engine!(TEMPLATES = 4);
+    let mut e = engine!(templates = 4);
     let c = load_until_full(&mut *e, |e, i| {
         e.load_str(h, "t", &format!("(deftemplate t{i} (slot v))"))
     });
@@ -432,7 +397,7 @@ fn templates_and_slot_defs_at_load_and_assert() {
     e.assert_str(h, "(rel 1)").unwrap();
     e.consistent();
 
-    let mut e = engine!(SLOTS = 6);
+    let mut e = engine!(slot_defs = 6);
     let c = load_until_full(&mut *e, |e, i| {
         e.load_str(h, "t", &format!("(deftemplate t{i} (slot a) (slot b))"))
     });
@@ -482,9 +447,9 @@ macro_rules! rule_pool_case {
 
 #[test]
 fn rules_alpha_nodes_and_joins_at_load() {
-    rule_pool_case!(Pool::Rules, 6, engine!(RULES = 6));
-    rule_pool_case!(Pool::AlphaNodes, 8, engine!(ALPHA = 8));
-    rule_pool_case!(Pool::Joins, 14, engine!(JOINS = 14));
+    rule_pool_case!(Pool::Rules, 6, engine!(rules = 6));
+    rule_pool_case!(Pool::AlphaNodes, 8, engine!(alpha_nodes = 8));
+    rule_pool_case!(Pool::Joins, 14, engine!(joins = 14));
 }
 
 /// Regression (found by the invariant property test): a load that failed after
@@ -493,7 +458,7 @@ fn rules_alpha_nodes_and_joins_at_load() {
 #[test]
 fn failed_load_unlinks_alpha_nodes_from_the_middle_of_a_template_list() {
     let h = &mut Capture::default();
-    let mut e = engine!(RULES = 2);
+    let mut e = engine!(rules = 2);
     e.load_str(
         h,
         "t",
@@ -625,8 +590,8 @@ macro_rules! match_pool_case {
 
 #[test]
 fn tokens_and_activations_at_assert_run_modify_and_load() {
-    match_pool_case!(Pool::Tokens, 40, engine!(TOKENS = 40));
-    match_pool_case!(Pool::Activations, 6, engine!(ACTS = 6));
+    match_pool_case!(Pool::Tokens, 40, engine!(tokens = 40));
+    match_pool_case!(Pool::Activations, 6, engine!(activations = 6));
 }
 
 // ---------------------------------------------------------------- constructs
@@ -634,7 +599,7 @@ fn tokens_and_activations_at_assert_run_modify_and_load() {
 #[test]
 fn functions_globals_and_deffacts_at_load() {
     let h = &mut Capture::default();
-    let mut e = engine!(FUNCS = 2);
+    let mut e = engine!(functions = 2);
     let c = load_until_full(&mut *e, |e, i| {
         e.load_str(h, "t", &format!("(deffunction f{i} (?x) (* ?x {i}))"))
     });
@@ -644,7 +609,7 @@ fn functions_globals_and_deffacts_at_load() {
     e.load_str(h, "t", "(deffunction g () 1)").unwrap();
     e.consistent();
 
-    let mut e = engine!(GLOBALS = 2);
+    let mut e = engine!(globals = 2);
     let c = load_until_full(&mut *e, |e, i| {
         e.load_str(h, "t", &format!("(defglobal ?*g{i}* = (create$ {i} {i}))"))
     });
@@ -655,7 +620,7 @@ fn functions_globals_and_deffacts_at_load() {
     e.load_str(h, "t", "(defglobal ?*x* = 1)").unwrap();
     e.consistent();
 
-    let mut e = engine!(DEFFACTS = 2);
+    let mut e = engine!(deffacts = 2);
     let c = load_until_full(&mut *e, |e, i| {
         e.load_str(h, "t", &format!("(deffacts d{i} (d {i}))"))
     });
@@ -671,7 +636,7 @@ fn functions_globals_and_deffacts_at_load() {
 #[test]
 fn expression_nodes_at_load_and_assert() {
     let h = &mut Capture::default();
-    let mut e = engine!(EXPRS = 200);
+    let mut e = engine!(exprs = 200);
     let c = load_until_full(&mut *e, |e, i| {
         e.load_str(
             h,
@@ -700,7 +665,7 @@ fn expression_nodes_at_load_and_assert() {
 fn eval_stack_at_run_assert_and_eval() {
     let h = &mut Capture::default();
     // run: a recursive deffunction on the right-hand side
-    let mut e = engine!(STACK = 24);
+    let mut e = engine!(eval_stack = 24);
     e.load_str(
         h,
         "t",
@@ -724,7 +689,7 @@ fn eval_stack_at_run_assert_and_eval() {
     e.consistent();
 
     // assert: a template with more slots than the stack holds
-    let mut e = engine!(STACK = 4);
+    let mut e = engine!(eval_stack = 4);
     e.load_str(
         h,
         "t",
@@ -743,7 +708,7 @@ fn eval_stack_at_run_assert_and_eval() {
 #[test]
 fn scratch_at_run_assert_and_modify() {
     let h = &mut Capture::default();
-    let mut e = engine!(SCRATCH = 12);
+    let mut e = engine!(scratch = 12);
     e.load_str(
         h,
         "t",
@@ -779,7 +744,7 @@ fn external_functions_at_registration() {
         Ok(agent_core::Value::Int(1))
     }
     let h = &mut Capture::default();
-    let mut e = engine!(EXTERNALS = 2);
+    let mut e = engine!(external_fns = 2);
     e.register_function("one", 0, Some(0), one).unwrap();
     e.register_function("two", 0, Some(0), one).unwrap();
     let before = e.snapshot();
@@ -830,7 +795,7 @@ fn every_pool_is_covered() {
 #[test]
 fn failed_assert_keeps_the_agenda_order_of_blocked_not_rules() {
     let h = &mut Capture::default();
-    let mut e = engine!(TOKENS = 40);
+    let mut e = engine!(tokens = 40);
     e.load_str(
         h,
         "t",
@@ -870,7 +835,7 @@ fn failed_assert_keeps_the_agenda_order_of_blocked_not_rules() {
 #[test]
 fn retract_unblocking_a_not_with_full_tokens_is_not_silent() {
     let h = &mut Capture::default();
-    let mut e = engine!(TOKENS = 40);
+    let mut e = engine!(tokens = 40);
     e.load_str(
         h,
         "t",
@@ -924,7 +889,7 @@ fn retract_unblocking_a_not_with_full_tokens_is_not_silent() {
 #[test]
 fn failed_assert_keeps_no_new_symbols_or_templates() {
     let h = &mut Capture::default();
-    let mut e = engine!(FACTS = 3);
+    let mut e = engine!(facts = 3);
     e.assert_str(h, "(a 1)").unwrap();
     e.assert_str(h, "(a 2)").unwrap();
     let before = e.snapshot();
@@ -989,8 +954,8 @@ macro_rules! agenda_order_case {
 /// agenda places (between activations of other facts, and in another salience).
 #[test]
 fn failed_modify_keeps_the_agenda_order() {
-    agenda_order_case!(Pool::Tokens, 24, engine!(TOKENS = 24));
-    agenda_order_case!(Pool::Activations, 12, engine!(ACTS = 12));
+    agenda_order_case!(Pool::Tokens, 24, engine!(tokens = 24));
+    agenda_order_case!(Pool::Activations, 12, engine!(activations = 12));
 }
 
 /// The same during a firing: the retracted fact was pending (readable until the
@@ -998,7 +963,7 @@ fn failed_modify_keeps_the_agenda_order() {
 #[test]
 fn failed_modify_in_a_firing_keeps_the_old_fact() {
     let h = &mut Capture::default();
-    let mut e = engine!(TOKENS = 40);
+    let mut e = engine!(tokens = 40);
     e.load_str(
         h,
         "t",
@@ -1042,7 +1007,7 @@ fn failed_modify_in_a_firing_keeps_the_old_fact() {
 #[test]
 fn failed_modify_and_assert_print_no_watch_traces() {
     let h = &mut Capture::default();
-    let mut e = engine!(TOKENS = 40);
+    let mut e = engine!(tokens = 40);
     e.load_str(
         h,
         "t",
@@ -1121,7 +1086,7 @@ fn failed_modify_and_assert_print_no_watch_traces() {
 fn failed_modify_of_an_old_fact_then_compaction_keeps_every_fact() {
     let h = &mut Capture::default();
     // (initial-fact), (pad) and (k) take one cell each, (a i) and (b i) two: 28
-    let mut e = engine!(TOKENS = 40, VALUES = 28);
+    let mut e = engine!(tokens = 40, fact_values = 28);
     e.load_str(
         h,
         "t",
@@ -1168,7 +1133,7 @@ fn failed_modify_of_an_old_fact_then_compaction_keeps_every_fact() {
 #[test]
 fn compaction_in_a_firing_passes_a_retracted_fact_without_slots() {
     let h = &mut Capture::default();
-    let mut e = engine!(VALUES = 16);
+    let mut e = engine!(fact_values = 16);
     e.load_str(
         h,
         "t",

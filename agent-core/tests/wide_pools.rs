@@ -7,7 +7,7 @@
 // The `engine!` macro's default capacities are shadowed by the overrides.
 #![allow(dead_code)]
 
-use agent_core::{CapacityError, Engine, EngineError, FactId, Host, Ix, Pool, Value};
+use agent_core::{CapacityError, EngineError, FactId, Host, Ix, Pool, Value};
 
 #[macro_use]
 mod engine_macro;
@@ -42,10 +42,10 @@ fn the_index_type_is_wide() {
 fn facts_tokens_and_activations_pass_65535() {
     on_big_stack(|| {
         let mut e = engine!(
-            FACTS = BIG + 16,
-            VALUES = 3 * BIG,
-            TOKENS = 2 * BIG + 64,
-            ACTS = BIG + 16
+            facts = BIG + 16,
+            fact_values = 3 * BIG,
+            tokens = 2 * BIG + 64,
+            activations = BIG + 16
         );
         let h = &mut Quiet;
         e.load_str(h, "rules", "(defrule count (item ?n) => (bind ?x ?n))")
@@ -74,7 +74,7 @@ fn facts_tokens_and_activations_pass_65535() {
 #[test]
 fn a_full_wide_pool_is_a_typed_error() {
     on_big_stack(|| {
-        let mut e = engine!(FACTS = BIG, VALUES = 2 * BIG);
+        let mut e = engine!(facts = BIG, fact_values = 2 * BIG);
         let h = &mut Quiet;
         // (initial-fact) takes one entry
         for i in 1..BIG {
@@ -105,11 +105,11 @@ fn a_deffacts_beyond_65535_expression_nodes_loads_and_resets() {
         const N: i64 = 25_000;
         const n: usize = N as usize;
         let mut e = engine!(
-            FACTS = n + 16,
-            VALUES = 4 * n,
-            EXPRS = 8 * n,
-            TOKENS = 2 * n + 64,
-            ACTS = n + 16
+            facts = n + 16,
+            fact_values = 4 * n,
+            exprs = 8 * n,
+            tokens = 2 * n + 64,
+            activations = n + 16
         );
         let h = &mut Quiet;
         let mut text = String::from("(deffacts many\n");

@@ -9,9 +9,30 @@
 
 use agent_core::{Engine, EngineError, FactId, Host};
 
-/// Small pools, so random streams reach every "full" path.
-pub type StreamEngine =
-    Engine<24, 192, 128, 2048, 8, 32, 16, 48, 96, 160, 40, 4, 4, 1400, 64, 96, 2, 2>;
+agent_core::engine_storage! {
+    /// Small pools, so random streams reach every "full" path.
+    pub struct StreamStorage {
+        facts: 24,
+        fact_values: 192,
+        symbols: 128,
+        symbol_bytes: 2048,
+        templates: 8,
+        slot_defs: 32,
+        rules: 16,
+        alpha_nodes: 48,
+        joins: 96,
+        tokens: 160,
+        activations: 40,
+        functions: 4,
+        globals: 4,
+        exprs: 1400,
+        eval_stack: 64,
+        scratch: 96,
+        deffacts: 2,
+        external_fns: 2,
+    }
+}
+pub type StreamEngine = Engine<StreamStorage>;
 
 /// Rules with not/exists, multifield patterns, shared prefixes, modify and retract on
 /// the right-hand side, salience, a `test` CE and a global. (A macro so the extended

@@ -1,35 +1,23 @@
 //! `engine!`: a boxed engine with roomy pools except the ones a test shrinks, shared
-//! by the capacity and exhaustion tests. The caller imports `agent_core::Engine`.
+//! by the capacity and exhaustion tests. Pools are named as in `agent_core::Capacities`.
 
-/// Engine with all pools roomy except the ones a test shrinks (positional consts).
+use agent_core::Capacities;
+
+/// The pools a test does not shrink: [`Capacities::SMALL`] with room for 64 facts of
+/// 8 fields.
+pub const ROOMY: Capacities = Capacities {
+    facts: 64,
+    fact_values: 512,
+    ..Capacities::SMALL
+};
+
+/// Engine with all pools roomy ([`ROOMY`]) except the ones a test shrinks, by name:
+/// `engine!(tokens = 40, fact_values = 28)`.
 macro_rules! engine {
     ($($name:ident = $v:expr),*) => {{
-        #[allow(non_snake_case, unused_variables)]
-        {
-            const FACTS: usize = 64;
-            const VALUES: usize = 512;
-            const SYMBOLS: usize = 256;
-            const SYMBYTES: usize = 4096;
-            const TEMPLATES: usize = 16;
-            const SLOTS: usize = 64;
-            const RULES: usize = 32;
-            const ALPHA: usize = 64;
-            const JOINS: usize = 128;
-            const TOKENS: usize = 512;
-            const ACTS: usize = 256;
-            const FUNCS: usize = 16;
-            const GLOBALS: usize = 16;
-            const EXPRS: usize = 2048;
-            const STACK: usize = 128;
-            const SCRATCH: usize = 256;
-            const DEFFACTS: usize = 8;
-            const EXTERNALS: usize = 8;
-            {
-                // inner items shadow the defaults above
-                $(const $name: usize = $v;)*
-                Box::new(Engine::<FACTS, VALUES, SYMBOLS, SYMBYTES, TEMPLATES, SLOTS, RULES, ALPHA, JOINS,
-                    TOKENS, ACTS, FUNCS, GLOBALS, EXPRS, STACK, SCRATCH, DEFFACTS, EXTERNALS>::new())
-            }
+        agent_core::engine_storage! {
+            struct TestStorage { $($name: $v,)* ..crate::engine_macro::ROOMY }
         }
+        Box::new(agent_core::Engine::<TestStorage>::new())
     }};
 }

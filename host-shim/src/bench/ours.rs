@@ -175,7 +175,7 @@ fn context(host: &CaptureHost) -> String {
 
 /// Bytes of each pool's entry type, in `Pool` order (fact and symbol entries count
 /// their hash bucket too). Used to turn high-water marks into bytes.
-pub fn entry_bytes() -> [usize; 18] {
+pub fn entry_bytes() -> [usize; agent_core::Pool::COUNT] {
     agent_core::Pool::ALL.map(agent_core::entry_bytes)
 }
 

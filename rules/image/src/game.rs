@@ -26,26 +26,32 @@ const FIRE_LIMIT: u32 = 500_000;
 /// the fact-value arena compacts when full, so it needs the live values at the game's
 /// peak (between 1,536 and 1,792 cells), not all values ever written. Rules keep no
 /// pretty-print text here, which is what keeps the symbol bytes small.
-pub type ImageEngine = Engine<
-    224,  // facts (183)
-    2048, // fact values (live peak <= 1,792)
-    336,  // symbols (295)
-    4096, // symbol bytes (3,072)
-    40,   // templates (34)
-    112,  // slot definitions (98)
-    80,   // rules (71)
-    124,  // alpha nodes (112)
-    264,  // joins (243)
-    416,  // tokens (376)
-    32,   // activations (16)
-    26,   // deffunctions (22)
-    30,   // globals (26)
-    3968, // expression nodes (3,647)
-    48,   // evaluation stack (19)
-    128,  // multifield scratch (72)
-    5,    // deffacts (3)
-    1,    // external functions (0: `distance` is built in)
->;
+pub type ImageEngine = Engine<ImageStorage>;
+
+agent_core::engine_storage! {
+    /// The pools of [`ImageEngine`], every one named (a pool added to agent-core must
+    /// get its capacity here: the image's RAM budget is checked against them).
+    pub struct ImageStorage {
+        facts: 224,           // 183
+        fact_values: 2048,    // live peak <= 1,792
+        symbols: 336,         // 295
+        symbol_bytes: 4096,   // 3,072
+        templates: 40,        // 34
+        slot_defs: 112,       // 98
+        rules: 80,            // 71
+        alpha_nodes: 124,     // 112
+        joins: 264,           // 243
+        tokens: 416,          // 376
+        activations: 32,      // 16
+        functions: 26,        // 22
+        globals: 30,          // 26
+        exprs: 3968,          // 3,647
+        eval_stack: 48,       // 19
+        scratch: 128,         // 72
+        deffacts: 5,          // 3
+        external_fns: 1,      // 0: `distance` is built in
+    }
+}
 
 /// The engine arena, exported under a fixed name (`report::ENGINE_SYMBOL`) so the
 /// footprint tool can show its share of RAM. `try_take` hands it out once, as

@@ -1,0 +1,290 @@
+//! Capacities by name: the one pool table.
+//!
+//! Every pool of an engine is one row of [`pool_table!`](crate::__pool_table): its
+//! [`Pool`] variant, the name of its capacity, the name a [`CapacityError`] prints, its
+//! capacity in the host's [`Capacities::HOST`] and the unit tests' [`Capacities::SMALL`],
+//! and the arrays an engine holds per entry (entry type and empty value). Everything
+//! that lists the pools is generated from that row: [`Pool`] (`ALL`, `COUNT`, `name`),
+//! [`Capacities`], [`entry_bytes`], [`Stats`](crate::Stats)' arrays, the slices of
+//! [`Core`], and the storage an [`engine_storage!`](crate::engine_storage) names.
+//!
+//! An engine's capacities are named, never positional:
+//! ```
+//! agent_core::engine_storage! {
+//!     /// A small robot engine.
+//!     pub struct RobotStorage {
+//!         facts: 64,
+//!         tokens: 256,
+//!         // the pools not named take the unit tests' capacities
+//!         ..agent_core::Capacities::SMALL
+//!     }
+//! }
+//! type RobotEngine = agent_core::Engine<RobotStorage>;
+//! let engine = Box::new(RobotEngine::new());
+//! assert_eq!(engine.stats().get(agent_core::Pool::Tokens).1, 256);
+//! ```
+//! A name that is no pool, or a pool left out without a `..` base, does not compile:
+//! ```compile_fail
+//! agent_core::engine_storage! {
+//!     pub struct Typo { fatcs: 64, ..agent_core::Capacities::SMALL }
+//! }
+//! ```
+//!
+//! Adding a pool: a row here (and the entry type in the module that allocates from it);
+//! every engine that names all its capacities (the agent image pins each one to its
+//! game's high-water mark) names the new one too.
+//!
+//! [`CapacityError`]: crate::CapacityError
+//! [`Core`]: crate::Core
+
+use crate::host::Host;
+
+/// The pool table: calls `$callback! { $($args)* rows }`, one row per pool:
+/// `Variant capacity_name "error name" host small [array: Type = EMPTY, ...]`. The first
+/// array of a row is the pool itself (its length is the capacity); the others are
+/// indexes with one entry per pool entry.
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __pool_table {
+    ($callback:path { $($args:tt)* }) => {
+        $callback! { $($args)*
+            Facts facts "facts" 4096 128 [
+                facts: $crate::fact::Fact = $crate::fact::Fact::EMPTY,
+                // duplicate-index bucket heads
+                fact_buckets: $crate::value::Ix = $crate::value::NONE,
+                // host speed-up: the template list links of each fact
+                fact_tlinks: $crate::fact::TemplateLinks = $crate::fact::NO_TEMPLATE_LINKS,
+            ],
+            FactValues fact_values "fact values" 32768 1024 [
+                values: $crate::value::Value = $crate::value::Value::Void,
+            ],
+            Symbols symbols "symbols" 4096 256 [
+                sym_entries: $crate::symbols::SymEntry = $crate::symbols::SymEntry::EMPTY,
+                sym_buckets: $crate::value::Ix = $crate::value::NONE,
+            ],
+            SymbolBytes symbol_bytes "symbol bytes" 49152 4096 [
+                sym_bytes: u8 = 0,
+            ],
+            Templates templates "templates" 256 16 [
+                templates: $crate::template::Template = $crate::template::Template::EMPTY,
+            ],
+            SlotDefs slot_defs "slot definitions" 1024 64 [
+                slots: $crate::template::SlotDef = $crate::template::SlotDef::EMPTY,
+            ],
+            Rules rules "rules" 512 32 [
+                rules: $crate::rule::Rule = $crate::rule::Rule::EMPTY,
+            ],
+            AlphaNodes alpha_nodes "alpha nodes" 1024 64 [
+                alphas: $crate::rete::AlphaNode = $crate::rete::AlphaNode::EMPTY,
+            ],
+            Joins joins "joins" 2048 128 [
+                joins: $crate::rete::Join = $crate::rete::Join::EMPTY,
+            ],
+            Tokens tokens "tokens" 32768 512 [
+                tokens: $crate::rete::Token = $crate::rete::Token::EMPTY,
+                // alpha- and beta-memory index bucket heads (see `rete::index`)
+                amem_buckets: $crate::value::Ix = $crate::value::NONE,
+            ],
+            Activations activations "activations" 8192 256 [
+                acts: $crate::rule::Activation = $crate::rule::Activation::EMPTY,
+            ],
+            Functions functions "deffunctions" 256 16 [
+                funcs: $crate::template::Deffunction = $crate::template::Deffunction::EMPTY,
+            ],
+            Globals globals "globals" 128 16 [
+                globals: $crate::template::Global = $crate::template::Global::EMPTY,
+            ],
+            Exprs exprs "expression nodes" 32768 2048 [
+                exprs: $crate::expr::Expr = $crate::expr::Expr::EMPTY,
+            ],
+            EvalStack eval_stack "evaluation stack" 1024 128 [
+                stack: $crate::value::Value = $crate::value::Value::Void,
+            ],
+            Scratch scratch "multifield scratch" 4096 256 [
+                scratch: $crate::value::Value = $crate::value::Value::Void,
+            ],
+            Deffacts deffacts "deffacts" 64 8 [
+                deffacts: $crate::template::Deffacts = $crate::template::Deffacts::EMPTY,
+            ],
+            ExternalFns external_fns "external functions" 32 8 [
+                externals: $crate::engine::ExternalEntry = $crate::engine::ExternalEntry::EMPTY,
+            ],
+        }
+    };
+}
+
+/// Generates, from the pool table, everything in agent-core that lists the pools.
+macro_rules! pool_items {
+    ($(
+        $variant:ident $cap:ident $name:literal $host:literal $small:literal [
+            $first:ident : $fty:ty = $fempty:expr
+            $(, $arr:ident : $aty:ty = $aempty:expr)* $(,)?
+        ]
+    ),* $(,)?) => {
+        /// A pool of the engine (named in [`CapacityError`](crate::CapacityError)s and
+        /// [`Stats`](crate::Stats)); one row of the pool table each.
+        #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+        pub enum Pool {
+            $($variant,)*
+        }
+
+        impl Pool {
+            /// Every pool, in table order (`pool as usize` indexes [`Stats`](crate::Stats)).
+            pub const ALL: [Pool; Pool::COUNT] = [$(Pool::$variant,)*];
+            /// How many pools an engine has.
+            pub const COUNT: usize = [$(stringify!($variant),)*].len();
+
+            /// The pool's name in messages (`out of tokens (capacity 512)`).
+            pub const fn name(self) -> &'static str {
+                match self {
+                    $(Pool::$variant => $name,)*
+                }
+            }
+        }
+
+        /// Every pool's capacity (entries), by name. An engine's storage is made from
+        /// one of these by [`engine_storage!`](crate::engine_storage).
+        #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+        pub struct Capacities {
+            $(
+                #[doc = concat!("Entries of the ", $name, " pool.")]
+                pub $cap: usize,
+            )*
+        }
+
+        impl Capacities {
+            /// Host defaults ([`DefaultEngine`](crate::DefaultEngine)): roomy enough for
+            /// the differential suite and the benchmarks.
+            pub const HOST: Capacities = Capacities { $($cap: $host,)* };
+            /// Small capacities for unit tests ([`SmallEngine`](crate::SmallEngine); fits
+            /// a thread stack).
+            pub const SMALL: Capacities = Capacities { $($cap: $small,)* };
+
+            /// The capacity of `pool`.
+            pub const fn get(&self, pool: Pool) -> usize {
+                match pool {
+                    $(Pool::$variant => self.$cap,)*
+                }
+            }
+
+            /// The capacities in table order (as [`Pool::ALL`]).
+            pub const fn to_array(&self) -> [usize; Pool::COUNT] {
+                [$(self.$cap,)*]
+            }
+        }
+
+        /// Bytes one entry of `pool` occupies in an engine, its index entries included
+        /// (hash-bucket heads, the host's template list links), so hosts can turn
+        /// capacities and high-water marks into RAM figures.
+        pub const fn entry_bytes(pool: Pool) -> usize {
+            match pool {
+                $(Pool::$variant => {
+                    core::mem::size_of::<$fty>() $(+ core::mem::size_of::<$aty>())*
+                })*
+            }
+        }
+
+        /// The non-generic view every algorithm works on: the engine's scalar state,
+        /// the host, and every pool's arrays as slices (one copy of the code whatever
+        /// the capacities).
+        pub struct Core<'a> {
+            pub st: &'a mut crate::engine::State,
+            pub host: &'a mut dyn Host,
+            $(
+                pub $first: &'a mut [$fty],
+                $(pub $arr: &'a mut [$aty],)*
+            )*
+        }
+
+        /// Read-only slices of every pool (the engine's queries between operations).
+        pub struct Pools<'a> {
+            $(
+                pub $first: &'a [$fty],
+                $(pub $arr: &'a [$aty],)*
+            )*
+        }
+
+        impl Core<'_> {
+            /// Capacities of every pool, in table order.
+            pub fn capacities(&self) -> [usize; Pool::COUNT] {
+                [$(self.$first.len(),)*]
+            }
+        }
+    };
+}
+
+__pool_table!(pool_items {});
+
+/// Storage for every pool of an engine, sized by named capacities. Implemented only by
+/// [`engine_storage!`](crate::engine_storage), which generates the struct from the pool
+/// table; an [`Engine`](crate::Engine) holds one.
+pub trait Storage {
+    /// The capacities this storage was made with.
+    const CAPACITIES: Capacities;
+    /// Every entry empty; `const` so an engine can be a `static`.
+    const EMPTY: Self;
+    /// The engine's view of the storage, with its state and host.
+    fn core<'a>(&'a mut self, st: &'a mut crate::engine::State, host: &'a mut dyn Host)
+        -> Core<'a>;
+    /// Read-only slices of every pool.
+    fn pools(&self) -> Pools<'_>;
+}
+
+/// Defines a struct holding every pool of an engine, sized by named capacities (a
+/// [`Capacities`] literal: every pool named, or the rest taken from a base with
+/// `..Capacities::SMALL`). `Engine<ThatStruct>` is then an engine. See the [module
+/// docs](crate::config).
+#[macro_export]
+macro_rules! engine_storage {
+    ($(#[$meta:meta])* $vis:vis struct $name:ident $caps:tt) => {
+        $crate::__pool_table!($crate::__engine_storage { ($(#[$meta])*) ($vis) $name $caps });
+    };
+}
+
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __engine_storage {
+    (($($meta:tt)*) ($vis:vis) $name:ident $caps:tt $(
+        $variant:ident $cap:ident $pname:literal $host:literal $small:literal [
+            $($arr:ident : $aty:ty = $aempty:expr),* $(,)?
+        ]
+    ),* $(,)?) => {
+        $($meta)*
+        $vis struct $name {
+            $($(
+                $arr: [$aty; $crate::config::Capacities $caps.$cap],
+            )*)*
+        }
+
+        impl $crate::config::Storage for $name {
+            const CAPACITIES: $crate::config::Capacities = $crate::config::Capacities $caps;
+            const EMPTY: Self = $name {
+                $($(
+                    $arr: [$aempty; $crate::config::Capacities $caps.$cap],
+                )*)*
+            };
+            #[inline(always)]
+            fn core<'a>(
+                &'a mut self,
+                st: &'a mut $crate::engine::State,
+                host: &'a mut dyn $crate::Host,
+            ) -> $crate::Core<'a> {
+                $crate::Core { st, host, $($($arr: &mut self.$arr,)*)* }
+            }
+            #[inline(always)]
+            fn pools(&self) -> $crate::config::Pools<'_> {
+                $crate::config::Pools { $($($arr: &self.$arr,)*)* }
+            }
+        }
+    };
+}
+
+crate::engine_storage! {
+    /// Storage of [`DefaultEngine`](crate::DefaultEngine): [`Capacities::HOST`].
+    pub struct HostStorage { ..Capacities::HOST }
+}
+
+crate::engine_storage! {
+    /// Storage of [`SmallEngine`](crate::SmallEngine): [`Capacities::SMALL`].
+    pub struct SmallStorage { ..Capacities::SMALL }
+}
