@@ -881,6 +881,11 @@ impl Core<'_> {
                 b,
                 "\n[ANALYSIS3] Variable ?{name} is used as both a single and multifield variable in the LHS"
             );
+        } else if let LoadDetail::NotImplemented { what } = e.detail {
+            let _ = writeln!(
+                b,
+                "\n[NOTIMPL1] robotino-agent does not implement {what}: {tok}"
+            );
         } else if e.construct == "command" {
             {
                 let _ = writeln!(

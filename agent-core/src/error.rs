@@ -140,7 +140,7 @@ const fn concat_texts<const N: usize>(a: &[&'static str], b: &[&'static str]) ->
     out
 }
 
-const BASE_TEXTS: [&str; 43] = [
+const BASE_TEXTS: [&str; 45] = [
     "?",
     "deffunction",
     "external",
@@ -159,6 +159,7 @@ const BASE_TEXTS: [&str; 43] = [
     "fact-address, fact-index, or the symbol *",
     "fact-address, integer, or symbol",
     "symbol or positive number",
+    "watchable symbol",
     "function, deffunction, or generic function name",
     "function name, deffunction name, or defgeneric name",
     "positive number",
@@ -169,6 +170,7 @@ const BASE_TEXTS: [&str; 43] = [
     "slot has no default and needs a value",
     // messages
     "only the depth strategy is supported",
+    "[NOTIMPL1] robotino-agent does not trace it",
     "fact-set query: more than 8 query variables",
     "fact-set query: missing query variables or query",
     "str-cat: result too long",
@@ -501,6 +503,11 @@ pub enum LoadDetail {
     ReplacesBuiltin,
     /// `[ANALYSIS3]`: one LHS variable used both as `?x` and `$?x` (the offending token).
     MixedVariable,
+    /// `[NOTIMPL1]` (ours, not CLIPS's): something robotino-agent does not implement
+    /// yet (`what`, e.g. "defmodule"), refused rather than accepted and ignored.
+    NotImplemented {
+        what: &'static str,
+    },
 }
 
 impl fmt::Display for LoadError {

@@ -225,3 +225,57 @@ fn constructs_before_an_error_in_the_same_text_stay() {
     e.assert_str(h, "(p (x 1))").unwrap();
     assert_eq!(e.counts().1, 1);
 }
+
+/// What we do not implement yet is refused where it stands, as `NotImplemented`, and
+/// leaves nothing behind: never accepted and ignored (issue 19).
+#[test]
+fn unimplemented_constructs_are_refused() {
+    use agent_core::LoadDetail;
+    let cases: &[(&str, u32, &str)] = &[
+        (
+            "(defrule r (logical (good (a 1))) => (assert (b)))",
+            13,
+            "logical",
+        ),
+        ("(defmodule SENSE (export ?ALL))", 12, "defmodule"),
+        ("(deftemplate MAIN::t (slot x))", 14, "module"),
+        ("(defrule MAIN::r (good (a 1)) =>)", 10, "module"),
+        ("(defrule r (MAIN::good (a 1)) =>)", 13, "module"),
+        (
+            "(defrule r (declare (auto-focus TRUE)) (good (a 1)) =>)",
+            22,
+            "auto-focus",
+        ),
+    ];
+    for &(bad, col, what_has) in cases {
+        let mut e = Box::new(SmallEngine::new());
+        let h = &mut Quiet;
+        e.load_str(h, "good", GOOD).unwrap();
+        let before = e.usage();
+        let err = e.load_str(h, "bad", bad).unwrap_err();
+        assert_eq!((err.line, err.col), (1, col), "{bad}");
+        match err.detail {
+            LoadDetail::NotImplemented { what } => {
+                assert!(what.contains(what_has), "{bad}: {what}")
+            }
+            d => panic!("{bad}: {d:?}"),
+        }
+        assert_eq!(e.usage(), before, "leftovers after {bad:?}");
+    }
+    // watch of an item we do not trace, literal or in a variable
+    let mut e = Box::new(SmallEngine::new());
+    let h = &mut Quiet;
+    for cmd in [
+        "(watch focus)",
+        "(watch all)",
+        "(watch facts good)",
+        "(unwatch globals)",
+    ] {
+        assert!(e.eval_str(h, cmd).is_err(), "{cmd}");
+    }
+    assert!(e.eval_str(h, "(bind ?w globals)").is_ok());
+    assert!(e.eval_str(h, "(watch ?w)").is_err());
+    for cmd in ["(watch facts)", "(unwatch all)", "(watch rules)"] {
+        assert!(e.eval_str(h, cmd).is_ok(), "{cmd}");
+    }
+}

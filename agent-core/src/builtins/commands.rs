@@ -117,32 +117,66 @@ fn agenda(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
     Ok(Value::Void)
 }
 
-fn watch_bits(cx: &Core<'_>, a: Args) -> Result<u8, EvalError> {
+/// What `watch`/`unwatch` make of an item name.
+pub(crate) enum WatchItem {
+    /// An item we trace: its `watch::*` bit.
+    Traced(u8),
+    All,
+    /// An item CLIPS traces and we do not (refused, see `parser::expr`).
+    Untraced,
+    Unknown,
+}
+
+pub(crate) fn watch_item(name: &str) -> WatchItem {
+    match name {
+        "facts" => WatchItem::Traced(watch::FACTS),
+        "rules" => WatchItem::Traced(watch::RULES),
+        "activations" => WatchItem::Traced(watch::ACTIVATIONS),
+        "compilations" => WatchItem::Traced(watch::COMPILATIONS),
+        "statistics" => WatchItem::Traced(watch::STATISTICS),
+        "all" => WatchItem::All,
+        "focus" | "globals" | "deffunctions" | "generic-functions" | "methods" | "instances"
+        | "slots" | "messages" | "message-handlers" => WatchItem::Untraced,
+        _ => WatchItem::Unknown,
+    }
+}
+
+/// The trace bits of `watch`/`unwatch`'s items; the parser refused literal items we
+/// do not trace, and one that arrives in a variable is refused here.
+fn watch_bits(cx: &Core<'_>, a: Args, func: &'static str) -> Result<u8, EvalError> {
     let mut bits = 0;
+    if a.len > 1 {
+        // construct names after the item
+        return Err(EvalError::other(
+            "[NOTIMPL1] robotino-agent does not trace it",
+        ));
+    }
     for i in 0..a.len as usize {
-        let s = cx.arg_lexeme(a, i, "watch")?;
-        bits |= match cx.sym_text(s) {
-            "facts" => watch::FACTS,
-            "rules" => watch::RULES,
-            "activations" => watch::ACTIVATIONS,
-            "compilations" => watch::COMPILATIONS,
-            "statistics" => watch::STATISTICS,
-            "all" => 0xFF,
-            // other watch items (focus, globals, deffunctions, ...) are accepted silently
-            _ => 0,
+        let s = cx.arg_lexeme(a, i, func)?;
+        bits |= match watch_item(cx.sym_text(s)) {
+            WatchItem::Traced(b) => b,
+            WatchItem::All if func == "unwatch" => 0xFF,
+            WatchItem::Unknown => {
+                return Err(EvalError::wrong_type(func, i as u8 + 1, "watchable symbol"))
+            }
+            _ => {
+                return Err(EvalError::other(
+                    "[NOTIMPL1] robotino-agent does not trace it",
+                ))
+            }
         };
     }
     Ok(bits)
 }
 
 fn watch_(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    let b = watch_bits(cx, a)?;
+    let b = watch_bits(cx, a, "watch")?;
     cx.st.watch |= b;
     Ok(Value::Void)
 }
 
 fn unwatch(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    let b = watch_bits(cx, a)?;
+    let b = watch_bits(cx, a, "unwatch")?;
     cx.st.watch &= !b;
     Ok(Value::Void)
 }

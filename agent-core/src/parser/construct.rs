@@ -21,7 +21,7 @@ impl<'s> Parser<'s, '_, '_> {
     pub(super) fn deftemplate(&mut self) -> PResult<()> {
         let nt = self.next();
         let name = match nt.tok {
-            Tok::Symbol(s) => s,
+            Tok::Symbol(s) => self.plain_name(nt, s)?,
             _ => return Err(self.err(nt, "a deftemplate name")),
         };
         let sym = cap!(self, self.cx.intern(name))?;
@@ -119,7 +119,7 @@ impl<'s> Parser<'s, '_, '_> {
     pub(super) fn deffacts(&mut self) -> PResult<()> {
         let nt = self.next();
         let name = match nt.tok {
-            Tok::Symbol(s) => s,
+            Tok::Symbol(s) => self.plain_name(nt, s)?,
             _ => return Err(self.err(nt, "a deffacts name")),
         };
         let sym = cap!(self, self.cx.intern(name))?;
@@ -168,7 +168,7 @@ impl<'s> Parser<'s, '_, '_> {
     pub(super) fn deffunction(&mut self) -> PResult<()> {
         let nt = self.next();
         let name = match nt.tok {
-            Tok::Symbol(s) => s,
+            Tok::Symbol(s) => self.plain_name(nt, s)?,
             _ => return Err(self.err(nt, "a deffunction name")),
         };
         // CLIPS's own functions cannot be replaced; our geometry extensions can, since a

@@ -179,7 +179,7 @@ impl<'s> Parser<'s, '_, '_> {
     fn call(&mut self) -> PResult<Ix> {
         let nt = self.next();
         let name = match nt.tok {
-            Tok::Symbol(s) => s,
+            Tok::Symbol(s) => self.plain_name(nt, s)?,
             _ => return Err(self.err(nt, "a function name")),
         };
         match name {
@@ -240,7 +240,9 @@ impl<'s> Parser<'s, '_, '_> {
                     };
                     return Err(e);
                 }
-                if b.syntax == Syntax::Plain {
+                if matches!(b.name, "watch" | "unwatch") {
+                    self.check_watch_items(b.name, call, args_at)?;
+                } else if b.syntax == Syntax::Plain {
                     self.check_literal_args(b.name, call, args_at)?;
                 }
                 Ok(call)
@@ -293,6 +295,53 @@ impl<'s> Parser<'s, '_, '_> {
             }
             c = self.cx.exprs[c as usize].next;
             k += 1;
+        }
+        Ok(())
+    }
+
+    /// `watch`/`unwatch` items given as literals: one CLIPS does not know is its
+    /// `[ARGACCES5]`; one we do not trace (`focus`, `globals`, ...; `all` for `watch`)
+    /// is refused rather than accepted and ignored.
+    fn check_watch_items(
+        &mut self,
+        func: &'static str,
+        call: Ix,
+        args_at: (Lexer<'s>, Option<Token<'s>>),
+    ) -> PResult<()> {
+        let mut c = self.cx.exprs[call as usize].first;
+        let mut k = 0;
+        while c != NONE {
+            let x = self.cx.exprs[c as usize];
+            c = x.next;
+            k += 1;
+            if x.op != Op::Sym && k == 1 {
+                continue;
+            }
+            // CLIPS takes construct names after the item (`(watch facts t)`)
+            let known = k > 1
+                || match crate::builtins::commands::watch_item(self.cx.sym_text(x.data)) {
+                    crate::builtins::commands::WatchItem::Traced(_) => continue,
+                    crate::builtins::commands::WatchItem::All if func == "unwatch" => continue,
+                    crate::builtins::commands::WatchItem::Unknown => false,
+                    _ => true,
+                };
+            let resume = self.save();
+            self.restore(args_at);
+            for _ in 1..k {
+                self.skip_balanced()?;
+            }
+            let at = self.peek();
+            self.restore(resume);
+            if known {
+                return Err(self.not_implemented(at, "watch of this item"));
+            }
+            let mut e = self.err(at, "a watchable symbol");
+            e.detail = crate::error::LoadDetail::ArgType {
+                func,
+                arg: k as Ix,
+                expected: "watchable symbol",
+            };
+            return Err(e);
         }
         Ok(())
     }

@@ -40,7 +40,7 @@ impl<'s> Parser<'s, '_, '_> {
     pub fn fact_spec(&mut self) -> PResult<Ix> {
         let nt = self.next();
         let name = match nt.tok {
-            Tok::Symbol(s) => s,
+            Tok::Symbol(s) => self.plain_name(nt, s)?,
             _ => return Err(self.err(nt, "a template or relation name")),
         };
         let sym = cap!(self, self.cx.intern(name))?;

@@ -182,6 +182,24 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
         }
     }
 
+    /// A construct, CE, declaration or name we do not implement yet: refused where it
+    /// stands (`[NOTIMPL1]`, our own message), never accepted and ignored.
+    pub fn not_implemented(&self, at: Token<'s>, what: &'static str) -> LoadError {
+        LoadError {
+            detail: crate::error::LoadDetail::NotImplemented { what },
+            ..self.err(at, "something robotino-agent implements")
+        }
+    }
+
+    /// A name token: one with a module specifier (`MAIN::x`) is refused, as modules are
+    /// not implemented.
+    pub fn plain_name(&self, at: Token<'s>, name: &'s str) -> PResult<&'s str> {
+        if name.contains("::") {
+            return Err(self.not_implemented(at, "module specifiers (Module::name)"));
+        }
+        Ok(name)
+    }
+
     pub fn cap_err(&self, at: Token<'s>, c: CapacityError) -> LoadError {
         LoadError {
             capacity: Some(c),
@@ -408,20 +426,8 @@ impl<'s> Parser<'s, '_, '_> {
             "deffunction" => self.deffunction(),
             "defglobal" => self.defglobal(),
             _ => {
-                // defmodule: only MAIN is supported; accept and ignore its body
-                let depth_tok = self.peek();
-                let _ = depth_tok;
-                loop {
-                    let t = self.peek();
-                    match t.tok {
-                        Tok::RParen => {
-                            self.next();
-                            return Ok(());
-                        }
-                        Tok::Eof => return Err(self.err(t, "')'")),
-                        _ => self.skip_balanced()?,
-                    }
-                }
+                let at = self.peek();
+                Err(self.not_implemented(at, "defmodule"))
             }
         }
     }

@@ -85,7 +85,7 @@ impl<'s> Parser<'s, '_, '_> {
     pub(super) fn defrule(&mut self, start: usize) -> PResult<()> {
         let nt = self.next();
         let name = match nt.tok {
-            Tok::Symbol(s) => s,
+            Tok::Symbol(s) => self.plain_name(nt, s)?,
             _ => return Err(self.err(nt, "a defrule name")),
         };
         let sym = cap!(self, self.cx.intern(name))?;
@@ -316,8 +316,7 @@ impl<'s> Parser<'s, '_, '_> {
                             self.expect_rparen("')' after the salience")?;
                         }
                         Tok::Symbol("auto-focus") => {
-                            self.next();
-                            self.expect_rparen("')'")?;
+                            return Err(self.not_implemented(kw, "auto-focus"));
                         }
                         _ => return Err(self.err(kw, "salience or auto-focus")),
                     }
@@ -382,7 +381,10 @@ impl<'s> Parser<'s, '_, '_> {
                             "')' closing exists"
                         })
                     }
-                    Tok::Symbol("and") | Tok::Symbol("logical") => {
+                    Tok::Symbol("logical") => {
+                        Err(self.not_implemented(h, "the logical conditional element"))
+                    }
+                    Tok::Symbol("and") => {
                         self.next();
                         loop {
                             let p = self.peek();
@@ -596,7 +598,7 @@ impl<'s> Parser<'s, '_, '_> {
             Tok::Symbol(s)
                 if !matches!(s, "test" | "not" | "and" | "or" | "exists" | "logical") =>
             {
-                s
+                self.plain_name(nt, s)?
             }
             _ => return Err(self.err(nt, "a template or relation name")),
         };
