@@ -40,6 +40,10 @@ fn main() {
         if let Err(message) = check(dir, &game) {
             fail(&format!("{message} (loading the {strategy} game)"));
         }
+        let member: Vec<&str> = agent.iter().chain(order::TEAM).copied().collect();
+        if let Err(message) = check(dir, &member) {
+            fail(&format!("{message} (loading the {strategy} team member)"));
+        }
     }
 }
 

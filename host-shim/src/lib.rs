@@ -2,3 +2,4 @@
 //! by the integration tests.
 
 pub mod shim;
+pub mod team;

@@ -70,6 +70,8 @@ pub const GAME_LOG: RuleFile = rule_file!("game-log.clp");
 pub const SIM: RuleFile = rule_file!("sim.clp");
 /// A snapshot of the fact base after every decision (with a snapshot-file fact).
 pub const SNAPSHOT: RuleFile = rule_file!("snapshot.clp");
+/// The team's claims on machines, input storage and gates (one engine per robot).
+pub const TEAM: RuleFile = rule_file!("team.clp");
 /// Real-CLIPS stand-ins for host functions (`distance`); our engine has
 /// them built in, so hosts running our engine do not load this.
 pub const CLIPS_STUBS: RuleFile = rule_file!("clips/stubs.clp");

@@ -36,6 +36,8 @@ pub const DRIVER: &[&str] = &["referee.clp", "game-log.clp"];
 /// What a simulated game loads after the driver files: the instant simulation and
 /// the snapshots after every decision.
 pub const SIM: &[&str] = &["sim.clp", "snapshot.clp"];
+/// What a robot of a team loads after its agent: the claims protocol.
+pub const TEAM: &[&str] = &["team.clp"];
 
 /// Every agent, by strategy name (as `Strategy::name` spells it).
 pub const AGENTS: [(&str, &[&str]); 3] = [
