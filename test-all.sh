@@ -144,11 +144,16 @@ stage_fmt() {
 }
 
 stage_clippy() {
-    # the workspace build has agent-core's u32 pool indices (host-shim enables
-    # `wide-pools`); agent-core alone has the image's u16 ones: lint both
+    # the workspace build has agent-core's u32 pool indices and host speed-ups
+    # (host-shim enables `wide-index` and `host-speedups`); agent-core alone has the
+    # image's u16 indices and neither: lint both ...
     cargo clippy --workspace --all-targets -- -D warnings || return 1
-    echo "-- clippy on agent-core alone (u16 pool indices)"
+    echo "-- clippy on agent-core alone (u16 pool indices, no host speed-ups)"
     cargo clippy -p agent-core --all-targets -- -D warnings || return 1
+    # ... and the library with each of the two independent features alone
+    echo "-- clippy on agent-core with wide-index alone, then host-speedups alone"
+    cargo clippy -p agent-core --features wide-index -- -D warnings || return 1
+    cargo clippy -p agent-core --features host-speedups -- -D warnings || return 1
     # The image's freestanding code (entry point, syscalls, mem functions) only exists
     # when built for i586: lint that build too.
     echo "-- clippy on the freestanding image build ($I586)"
@@ -156,12 +161,14 @@ stage_clippy() {
 }
 
 stage_host_tests() {
-    # host-shim enables agent-core's `wide-pools` (u32 pool indices), and cargo unifies
-    # features across the workspace: this run tests agent-core with u32 indices ...
+    # host-shim enables agent-core's `wide-index` (u32 pool indices) and
+    # `host-speedups`, and cargo unifies features across the workspace: this run tests
+    # agent-core with both on ...
     cargo test --workspace --no-fail-fast || return 1
-    # ... and this one with the u16 indices of the agent image, on the host, with the
-    # invariants checked before and after every engine operation (`check-invariants`).
-    echo "-- agent-core with u16 pool indices (no wide-pools) and check-invariants"
+    # ... and this one with both off, as in the agent image (u16 indices, no host
+    # speed-ups), on the host, with the invariants checked before and after every
+    # engine operation (`check-invariants`).
+    echo "-- agent-core as in the image (no wide-index, no host-speedups) and check-invariants"
     cargo test -p agent-core --features check-invariants --no-fail-fast
 }
 

@@ -67,7 +67,7 @@ impl ActJournal {
 }
 
 impl Core<'_> {
-    #[cfg_attr(feature = "wide-pools", inline(always))]
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     pub(crate) fn add_activation(&mut self, rule: Ix, token: Ix) -> Result<(), CapacityError> {
         let mut replayed = None;
         if self.st.act_journal.replay && !self.st.act_journal.overflow {
@@ -138,7 +138,7 @@ impl Core<'_> {
     }
 
     /// Inserts before the first activation of lower or equal salience.
-    #[cfg_attr(feature = "wide-pools", inline(always))]
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     fn agenda_insert(&mut self, a: Ix) {
         let sal = self.acts[a as usize].salience;
         let mut prev = NONE;
@@ -173,7 +173,7 @@ impl Core<'_> {
         }
     }
 
-    #[cfg_attr(feature = "wide-pools", inline(always))]
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     pub(crate) fn remove_activation(&mut self, a: Ix) {
         if self.st.act_journal.on {
             self.journal_activation(a);
@@ -185,7 +185,7 @@ impl Core<'_> {
         self.free_activation(a);
     }
 
-    #[cfg_attr(feature = "wide-pools", inline(always))]
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     fn free_activation(&mut self, a: Ix) {
         // unlink from the token's activation chain
         let t = self.acts[a as usize].token;

@@ -391,14 +391,14 @@ impl<S: Storage> Engine<S> {
     pub const fn new() -> Self {
         // Every pool entry must be addressable by an `Ix` other than `NONE`: a
         // capacity the index type cannot hold fails to compile (enable the
-        // `wide-pools` feature for pools beyond 65,535 entries).
+        // `wide-index` feature for pools beyond 65,535 entries).
         const {
             let capacities = S::CAPACITIES.to_array();
             let mut i = 0;
             while i < capacities.len() {
                 assert!(
                     capacities[i] <= NONE as usize,
-                    "an engine pool is larger than its index type allows (feature wide-pools)"
+                    "an engine pool is larger than its index type allows (feature wide-index)"
                 );
                 i += 1;
             }
@@ -910,7 +910,10 @@ mod size_tests {
     /// Pins the per-entry sizes that decide the image's RAM (see the crate docs); the
     /// image keeps `u16` indices, so `u32` ones (a host feature) are not pinned.
     #[test]
-    #[cfg_attr(feature = "wide-pools", ignore = "pins the sizes with u16 indices")]
+    #[cfg_attr(
+        any(feature = "wide-index", feature = "host-speedups"),
+        ignore = "pins the image's sizes: u16 indices, no host speed-ups"
+    )]
     fn entry_sizes_stay_small() {
         assert!(size_of::<Token>() <= 32, "token {}", size_of::<Token>());
         assert!(size_of::<Expr>() == 8);

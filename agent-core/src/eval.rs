@@ -81,7 +81,7 @@ impl Core<'_> {
     /// is full.
     // out of line in the image: inlined, it would grow `call_inner`'s frame, which
     // every nested call pays in stack
-    #[cfg_attr(not(feature = "wide-pools"), inline(never))]
+    #[cfg_attr(not(feature = "host-speedups"), inline(never))]
     fn quick_compare(&mut self, x: Expr) -> Option<Result<Value, EvalError>> {
         let leaf = |op: Op| {
             matches!(
@@ -151,7 +151,7 @@ impl Core<'_> {
 
     /// Evaluates a chain of actions; the value of the last one is the result.
     /// Stops early while a `return`/`break` unwinds.
-    #[cfg_attr(feature = "wide-pools", inline(always))]
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     pub fn eval_chain(&mut self, mut e: Ix) -> Result<Value, EvalError> {
         let mut v = Value::Sym(SYM_FALSE);
         // while CLIPS halts (`State::halting`) a progn runs nothing and is FALSE
@@ -177,9 +177,9 @@ impl Core<'_> {
 
     /// `pattern_var` of node `x`, its commonest case (a single-field slot of a flat
     /// fact) read in place on the host, without the call.
-    #[cfg_attr(feature = "wide-pools", inline(always))]
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     fn pattern_var_of(&mut self, x: Expr) -> Result<Value, EvalError> {
-        #[cfg(feature = "wide-pools")]
+        #[cfg(feature = "host-speedups")]
         if loc::elem(x.data) == loc::SINGLE && x.data != loc::FACT {
             let fact = self.binding(x.aux).fact;
             if fact != NONE {
@@ -298,7 +298,7 @@ impl Core<'_> {
 
     /// `?v:slot` (an `Op::QSlot` node); inlined on the host, where most are read in
     /// place (`cached_query_slot`) and the call cost as much as the read.
-    #[cfg_attr(feature = "wide-pools", inline(always))]
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     fn query_slot(&mut self, e: Ix, x: Expr) -> Result<Value, EvalError> {
         let fv = self.stack[(self.st.bp + x.data) as usize];
         let name = self.exprs[x.first as usize].data;
@@ -310,7 +310,7 @@ impl Core<'_> {
 
     /// `?v:slot` in the usual case, read in place: a readable fact, the slot cached in
     /// `aux` (see `slot_value_of`) and one cell per slot; None for anything else.
-    #[cfg_attr(feature = "wide-pools", inline(always))]
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     fn cached_query_slot(&self, fv: Value, name: crate::value::SymId, aux: u8) -> Option<Value> {
         let (Value::Fact(r), k) = (fv, Ix::from(aux)) else {
             return None;
@@ -335,7 +335,7 @@ impl Core<'_> {
 
     /// Evaluates a call's arguments onto the stack (inlined into `call` on the host:
     /// most calls have an argument or two, where the call's own cost showed).
-    #[cfg_attr(feature = "wide-pools", inline(always))]
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     fn push_args(&mut self, mut a: Ix) -> Result<Args, EvalError> {
         let base = self.st.sp;
         while a != NONE {

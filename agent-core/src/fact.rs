@@ -35,21 +35,21 @@ pub struct Fact {
     pub flat: bool,
     /// Host: `cells_hash` of its cells, so a retract finds its bucket without
     /// hashing them again (4 bytes per fact the image does without).
-    #[cfg(feature = "wide-pools")]
+    #[cfg(feature = "host-speedups")]
     pub hash: u32,
 }
 
 /// Host speed-up: a fact's next and previous live fact of its template
 /// (`Template::tfirst`), so a fact-set query walks only those. Without the feature, no
 /// bytes (the pool table keeps the array, of zero-sized entries).
-#[cfg(feature = "wide-pools")]
+#[cfg(feature = "host-speedups")]
 pub type TemplateLinks = [Ix; 2];
-#[cfg(not(feature = "wide-pools"))]
+#[cfg(not(feature = "host-speedups"))]
 pub type TemplateLinks = ();
 /// The links of a fact in no template list.
-#[cfg(feature = "wide-pools")]
+#[cfg(feature = "host-speedups")]
 pub const NO_TEMPLATE_LINKS: TemplateLinks = [crate::value::NONE; 2];
-#[cfg(not(feature = "wide-pools"))]
+#[cfg(not(feature = "host-speedups"))]
 pub const NO_TEMPLATE_LINKS: TemplateLinks = ();
 
 impl Fact {
@@ -64,7 +64,7 @@ impl Fact {
         first_am: NONE,
         state: FactState::Free,
         flat: false,
-        #[cfg(feature = "wide-pools")]
+        #[cfg(feature = "host-speedups")]
         hash: 0,
     };
 }
@@ -127,9 +127,9 @@ impl Core<'_> {
             defer_flags: 0,
             #[cfg(feature = "defer")]
             flags_gen: 0,
-            #[cfg(feature = "wide-pools")]
+            #[cfg(feature = "host-speedups")]
             tfirst: NONE,
-            #[cfg(feature = "wide-pools")]
+            #[cfg(feature = "host-speedups")]
             tlast: NONE,
         };
         self.st.ntemplates += 1;
@@ -482,7 +482,7 @@ impl Core<'_> {
             first_am: NONE,
             state: FactState::Live,
             flat: len == self.templates[saved.tmpl as usize].nslots,
-            #[cfg(feature = "wide-pools")]
+            #[cfg(feature = "host-speedups")]
             hash: h,
             ..saved
         };
@@ -499,7 +499,7 @@ impl Core<'_> {
         } else {
             self.facts[next as usize].prev = slot;
         }
-        #[cfg(feature = "wide-pools")]
+        #[cfg(feature = "host-speedups")]
         self.tmpl_link(slot);
         // it needs no more room than its retract freed: what a not output passes on
         // waits until every pattern of the fact is in (see `State::defer_nots`)
@@ -572,7 +572,7 @@ impl Core<'_> {
             first_am: NONE,
             state: FactState::Live,
             flat: need == self.templates[tmpl as usize].nslots as usize,
-            #[cfg(feature = "wide-pools")]
+            #[cfg(feature = "host-speedups")]
             hash: h,
         };
         self.fact_buckets[bucket] = slot;
@@ -585,7 +585,7 @@ impl Core<'_> {
         }
         self.st.fact_tail = slot;
         // host: the newest fact, last in its template's list too
-        #[cfg(feature = "wide-pools")]
+        #[cfg(feature = "host-speedups")]
         {
             let t = &mut self.templates[tmpl as usize];
             self.fact_tlinks[slot as usize] = [NONE, t.tlast];
@@ -642,7 +642,7 @@ impl Core<'_> {
 
     /// Host: links a restored fact into its template's list, after the last fact of
     /// the template with a smaller number.
-    #[cfg(feature = "wide-pools")]
+    #[cfg(feature = "host-speedups")]
     fn tmpl_link(&mut self, slot: Ix) {
         let (tmpl, num) = (
             self.facts[slot as usize].tmpl,
@@ -690,7 +690,7 @@ impl Core<'_> {
         } else {
             self.st.fact_tail = f.prev;
         }
-        #[cfg(feature = "wide-pools")]
+        #[cfg(feature = "host-speedups")]
         {
             let [tnext, tprev] = self.fact_tlinks[slot as usize];
             let t = &mut self.templates[f.tmpl as usize];
@@ -706,9 +706,9 @@ impl Core<'_> {
             }
         }
         // hash chain
-        #[cfg(feature = "wide-pools")]
+        #[cfg(feature = "host-speedups")]
         let h = f.hash;
-        #[cfg(not(feature = "wide-pools"))]
+        #[cfg(not(feature = "host-speedups"))]
         let h = self.cells_hash(f.tmpl, f.start as usize, f.len as usize);
         let bucket = h as usize % self.fact_buckets.len();
         let mut p = self.fact_buckets[bucket];
@@ -739,7 +739,7 @@ impl Core<'_> {
     }
 
     /// Retracts a live fact; `hold` keeps its slot and cells readable (pending).
-    #[cfg_attr(feature = "wide-pools", inline(always))]
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     pub(crate) fn retract_fact_held(&mut self, slot: Ix, hold: bool) {
         if self.st.watch & crate::engine::watch::FACTS != 0 {
             self.print_fact_line("<== ", slot);

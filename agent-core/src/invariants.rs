@@ -346,7 +346,7 @@ impl Core<'_> {
             "join 0 is not the root",
             0
         );
-        #[cfg(feature = "wide-pools")]
+        #[cfg(feature = "host-speedups")]
         for j in 0..st.njoins {
             let c = self.joins[j as usize].first_child;
             ensure!(
@@ -537,7 +537,7 @@ impl Core<'_> {
             per_template
         );
         // host: each template's own list holds its live facts, numbers growing
-        #[cfg(feature = "wide-pools")]
+        #[cfg(feature = "host-speedups")]
         for t in 0..self.st.ntemplates as usize {
             let (mut prev, mut f, mut n) = (NONE, self.templates[t].tfirst, 0usize);
             while f != NONE {
@@ -628,7 +628,7 @@ impl Core<'_> {
                     "fact in the wrong hash bucket",
                     d
                 );
-                #[cfg(feature = "wide-pools")]
+                #[cfg(feature = "host-speedups")]
                 ensure!(x.hash == h, "fact's stored hash is stale", d);
                 hashed += 1;
                 steps += 1;
@@ -875,7 +875,7 @@ impl Core<'_> {
                 } else {
                     ensure!(j.refs > 0, "partial match of a removed join", i);
                     self.check_parent(i, j.parent)?;
-                    #[cfg(feature = "wide-pools")]
+                    #[cfg(feature = "host-speedups")]
                     {
                         // the binding copy: the parent's plus the own level
                         let mut want = self.tokens[tk.parent as usize].binds;

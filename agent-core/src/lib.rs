@@ -99,7 +99,7 @@
 // With `u32` indices (`value::Ix`) the widening casts and conversions written for `u16`
 // indices (`x as u32`, `u32::from(x)`) become identities; they stay for the `u16` build.
 #![cfg_attr(
-    feature = "wide-pools",
+    feature = "wide-index",
     allow(clippy::unnecessary_cast, clippy::useless_conversion)
 )]
 

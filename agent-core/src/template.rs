@@ -84,9 +84,9 @@ pub struct Template {
     #[cfg(feature = "defer")]
     pub flags_gen: u32,
     /// Host: first and last live fact of this template, linked through `Core::fact_tlinks`.
-    #[cfg(feature = "wide-pools")]
+    #[cfg(feature = "host-speedups")]
     pub tfirst: Ix,
-    #[cfg(feature = "wide-pools")]
+    #[cfg(feature = "host-speedups")]
     pub tlast: Ix,
 }
 
@@ -102,9 +102,9 @@ impl Template {
         defer_flags: 0,
         #[cfg(feature = "defer")]
         flags_gen: 0,
-        #[cfg(feature = "wide-pools")]
+        #[cfg(feature = "host-speedups")]
         tfirst: NONE,
-        #[cfg(feature = "wide-pools")]
+        #[cfg(feature = "host-speedups")]
         tlast: NONE,
     };
 }

@@ -5,11 +5,11 @@ use core::mem::MaybeUninit;
 
 /// Index into an engine pool (and link between pool entries). The agent image keeps
 /// `u16`: half the bytes per link, and no pool there comes near 65,535 entries.
-#[cfg(not(feature = "wide-pools"))]
+#[cfg(not(feature = "wide-index"))]
 pub type Ix = u16;
 /// `u32` pool indices for host engines with more than 65,535 entries per pool (feature
-/// `wide-pools`); the agent image keeps `u16`.
-#[cfg(feature = "wide-pools")]
+/// `wide-index`); the agent image keeps `u16`.
+#[cfg(feature = "wide-index")]
 pub type Ix = u32;
 
 /// Index of a symbol or string in the symbol table.

@@ -1,6 +1,6 @@
 //! `LargeEngine`: pools for the big benchmark programs (Manners with 128 guests, the
 //! join and negation programs at 10^5 facts), which outgrow `DefaultEngine`. Needs the
-//! `wide-pools` feature of agent-core (`u32` pool indices; host-shim enables it).
+//! `wide-index` feature of agent-core (`u32` pool indices; host-shim enables it).
 //! `robotino-agent clips --large-pools` and the bench's in-process engine use it.
 
 agent_core::engine_storage! {

@@ -88,7 +88,7 @@ fn div(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 
 /// Comparison `id` (`CMP_FIRST..=CMP_LAST`) of two values as its builtin decides
 /// it; None when a numeric one gets a non-number (the builtin reports that).
-#[cfg_attr(feature = "wide-pools", inline(always))]
+#[cfg_attr(feature = "host-speedups", inline(always))]
 pub(crate) fn compare(cx: &Core<'_>, id: Ix, a: Value, b: Value) -> Option<bool> {
     let op = id - CMP_FIRST;
     if op >= 6 {

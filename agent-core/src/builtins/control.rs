@@ -207,7 +207,7 @@ fn switch(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
 fn bind(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     let target = cx.exprs[call as usize].first;
     let mut a = cx.exprs[target as usize].next;
-    #[cfg(feature = "wide-pools")]
+    #[cfg(feature = "host-speedups")]
     if a != NONE && cx.exprs[a as usize].next == NONE {
         return bind_one(cx, target, a);
     }
@@ -247,7 +247,7 @@ fn bind(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
 /// `bind` of one value on the host: what the general path makes of it, without copying
 /// the value into scratch and dropping the copy again, and with a constant or variable
 /// read in place.
-#[cfg(feature = "wide-pools")]
+#[cfg(feature = "host-speedups")]
 fn bind_one(cx: &mut Core<'_>, target: Ix, a: Ix) -> Result<Value, EvalError> {
     let start = cx.multi_begin();
     let value = cx.eval_operand(a)?;

@@ -95,9 +95,9 @@ impl Core<'_> {
         if !multi {
             // most slot values are constants or variables: the host reads them in
             // place (the image keeps the 370 B of code that inline copy costs)
-            #[cfg(feature = "wide-pools")]
+            #[cfg(feature = "host-speedups")]
             let v = self.eval_operand(e)?;
-            #[cfg(not(feature = "wide-pools"))]
+            #[cfg(not(feature = "host-speedups"))]
             let v = self.eval(e)?;
             return match v {
                 Value::Multi(m) if m.len == 1 => Ok(self.mf_item(m, 0)),
@@ -250,7 +250,7 @@ impl Core<'_> {
     /// when it is flat, no slot holds a multifield and the stack has room: the
     /// values pushed twice from stack slot `sp` (the top); false (nothing pushed)
     /// otherwise.
-    #[cfg(feature = "wide-pools")]
+    #[cfg(feature = "host-speedups")]
     fn copy_flat_slots_twice(&mut self, fact: Ix, n: usize, sp: usize) -> bool {
         let f = &self.facts[fact as usize];
         let start = f.start as usize;
@@ -338,9 +338,9 @@ impl Core<'_> {
         self.st.pattern_error = false;
         let r = (|| {
             // host: a flat fact without multislot values (most) copied in place
-            #[cfg(feature = "wide-pools")]
+            #[cfg(feature = "host-speedups")]
             let copied = self.copy_flat_slots_twice(old, nslots as usize, saved as usize);
-            #[cfg(not(feature = "wide-pools"))]
+            #[cfg(not(feature = "host-speedups"))]
             let copied = false;
             if !copied {
                 for s in 0..nslots {

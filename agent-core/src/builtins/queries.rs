@@ -126,18 +126,18 @@ struct Resume {
 /// asserted after it (e.g. by `modify`) are not reached through it; we approximate the
 /// retraction time by the start of the actions (`counter`). A fact that is still live
 /// continues through its current link, so new facts join the iteration.
-#[cfg_attr(feature = "wide-pools", inline(always))]
+#[cfg_attr(feature = "host-speedups", inline(always))]
 fn next_of_template(cx: &Core<'_>, tmpl: Ix, after: Option<Resume>) -> Option<Ix> {
     if cx.templates[tmpl as usize].nfacts == 0 {
         return None;
     }
     // the host walks the template's own list (`Template::tfirst`), the image the list
     // of all facts
-    #[cfg(feature = "wide-pools")]
+    #[cfg(feature = "host-speedups")]
     let (head, link) = (cx.templates[tmpl as usize].tfirst, |f: Ix| {
         cx.fact_tlinks[f as usize][0]
     });
-    #[cfg(not(feature = "wide-pools"))]
+    #[cfg(not(feature = "host-speedups"))]
     let (head, link) = (cx.st.fact_head, |f: Ix| cx.facts[f as usize].next);
     let (mut f, lo, hi) = match after {
         None => (head, None, u32::MAX),
@@ -170,7 +170,7 @@ fn next_of_template(cx: &Core<'_>, tmpl: Ix, after: Option<Resume>) -> Option<Ix
 }
 
 /// Sets the frame slot of query variable `k` to fact slot `f`.
-#[cfg_attr(feature = "wide-pools", inline(always))]
+#[cfg_attr(feature = "host-speedups", inline(always))]
 fn bind(cx: &mut Core<'_>, w: &mut Walk, k: usize, f: Ix) {
     let r = cx.fact_ref(f);
     w.cursor[k] = r;
@@ -180,7 +180,7 @@ fn bind(cx: &mut Core<'_>, w: &mut Walk, k: usize, f: Ix) {
 
 /// Re-binds variables `0..k` (actions of an inner tuple may have bound other values
 /// to the same frame slots through nested queries).
-#[cfg_attr(feature = "wide-pools", inline(always))]
+#[cfg_attr(feature = "host-speedups", inline(always))]
 fn rebind_outer(cx: &mut Core<'_>, w: &Walk, k: usize) {
     for (i, &var) in w.q.vars[..k].iter().enumerate() {
         let at = (cx.st.bp + cx.exprs[var as usize].data) as usize;
@@ -273,7 +273,7 @@ impl SlotTest {
 
     /// The test's result for live fact `f` of template `tmpl` whose slot `slot`
     /// it reads; None when the evaluator must decide.
-    #[cfg_attr(feature = "wide-pools", inline(always))]
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     fn decide(&self, cx: &Core<'_>, f: Ix, slot: Ix) -> Option<bool> {
         let fact = &cx.facts[f as usize];
         if !fact.flat {
@@ -354,7 +354,7 @@ fn walk(cx: &mut Core<'_>, w: &mut Walk, k: usize) -> Result<bool, EvalError> {
 
 /// Tests the query for the bound tuple (unless `passed`: a slot test decided it) and
 /// acts on a match; true to stop.
-#[cfg_attr(feature = "wide-pools", inline(always))]
+#[cfg_attr(feature = "host-speedups", inline(always))]
 fn visit(cx: &mut Core<'_>, w: &mut Walk, passed: bool) -> Result<bool, EvalError> {
     if !passed {
         let mark = cx.st.scratch_top;

@@ -96,9 +96,9 @@ impl<'s> Parser<'s, '_, '_> {
             defer_flags: 0,
             #[cfg(feature = "defer")]
             flags_gen: 0,
-            #[cfg(feature = "wide-pools")]
+            #[cfg(feature = "host-speedups")]
             tfirst: NONE,
-            #[cfg(feature = "wide-pools")]
+            #[cfg(feature = "host-speedups")]
             tlast: NONE,
         };
         self.cx.st.ntemplates += 1;

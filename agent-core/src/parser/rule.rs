@@ -1572,9 +1572,9 @@ impl<'s> Parser<'s, '_, '_> {
                 rjoin,
                 rsucc: NONE,
                 index_child: NONE,
-                #[cfg(feature = "wide-pools")]
+                #[cfg(feature = "host-speedups")]
                 index_built: false,
-                #[cfg(feature = "wide-pools")]
+                #[cfg(feature = "host-speedups")]
                 one_child: false,
                 #[cfg(feature = "wipe")]
                 plain: false,

@@ -34,7 +34,7 @@ impl Core<'_> {
                 if let Some(tests) = self.quick_tests(node.tests, fact) {
                     // host: a node without multislot constraints (most) matches in
                     // one call
-                    #[cfg(feature = "wide-pools")]
+                    #[cfg(feature = "host-speedups")]
                     if self.alphas[a as usize].desc == NONE && self.alphas[a as usize].nmarks == 0 {
                         self.match_one(a, fact, tests, [0; MAX_MARKS])?;
                         a = self.alphas[a as usize].next_in_tmpl;
@@ -96,7 +96,7 @@ impl Core<'_> {
             let mut marks = [0u8; MAX_MARKS];
             return self.enumerate_marks(alpha, fact, tests, &[], &[0; 8], &mut marks, 0, 0);
         }
-        #[cfg(feature = "wide-pools")]
+        #[cfg(feature = "host-speedups")]
         if node.nmarks == 0 {
             // one segmentation (no multislot has two multifield variables): only the
             // slots' lengths decide, checked as `layouts` lays them out (same slots,
@@ -185,7 +185,7 @@ impl Core<'_> {
     }
 
     /// One segmentation of `fact` for `alpha`: an alpha match if the tests pass.
-    #[cfg_attr(feature = "wide-pools", inline(never))]
+    #[cfg_attr(feature = "host-speedups", inline(never))]
     fn match_one(
         &mut self,
         alpha: Ix,
@@ -228,7 +228,7 @@ impl Core<'_> {
     /// segmentation (they read no marks): None when one is false, else the tests
     /// left for the evaluator, from the first one the quick path cannot decide
     /// (NONE: all passed).
-    #[cfg_attr(feature = "wide-pools", inline(always))]
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     fn quick_tests(&mut self, tests: Ix, fact: Ix) -> Option<Ix> {
         let mut t = tests;
         if t == NONE {
@@ -252,7 +252,7 @@ impl Core<'_> {
 
     /// `quick_alpha_test` with its commonest case first: a field of the fact equal
     /// to a symbol (`(state IDLE)`, `(x a)`), a couple of loads and no calls.
-    #[cfg_attr(feature = "wide-pools", inline(always))]
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     fn quick_first_test(&mut self, e: Ix, fact: Ix) -> Option<bool> {
         let x = self.exprs[e as usize];
         if x.op == Op::Eq2 {
@@ -303,9 +303,9 @@ impl Core<'_> {
                 let mut c = x.first;
                 while c != NONE {
                     // host: a field equal to a symbol (`S0|S1|S2`) decided in line
-                    #[cfg(feature = "wide-pools")]
+                    #[cfg(feature = "host-speedups")]
                     let r = self.quick_first_test(c, fact)?;
-                    #[cfg(not(feature = "wide-pools"))]
+                    #[cfg(not(feature = "host-speedups"))]
                     let r = self.quick_alpha_test(c, fact)?;
                     if r == want {
                         return Some(want);
@@ -341,7 +341,7 @@ impl Core<'_> {
     /// `fact` that `pattern_var` reads without segmentation marks; None for anything
     /// else and for multifield values.
     // inlined on the host only: in the image the copies would cost 2 KB of code
-    #[cfg_attr(feature = "wide-pools", inline(always))]
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     fn quick_alpha_operand(&self, e: Ix, fact: Ix) -> Option<Value> {
         let x = self.exprs[e as usize];
         let v = match x.op {

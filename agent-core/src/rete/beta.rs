@@ -141,14 +141,14 @@ impl Core<'_> {
     }
 
     /// Evaluates a join's tests for left token `left` and alpha match `am`.
-    #[cfg_attr(feature = "wide-pools", inline(always))]
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     fn join_test(&mut self, join: Ix, left: Ix, am: Ix) -> Result<bool, EvalError> {
         let (tests, depth) = self.join_test_fields(join);
         self.join_test_with(join, tests, depth, left, am, &mut false)
     }
 
     /// The join's `tests` and `depth`, read once for a loop of `join_test_with`.
-    #[cfg_attr(feature = "wide-pools", inline(always))]
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     fn join_test_fields(&self, join: Ix) -> (Ix, u8) {
         let j = &self.joins[join as usize];
         (j.tests, j.depth)
@@ -158,7 +158,7 @@ impl Core<'_> {
     /// join's test plan is known to be cached (set here once the plan answers, so a
     /// loop over candidates checks the cache once; callers clear it after a
     /// propagation, which may evict it).
-    #[cfg_attr(feature = "wide-pools", inline(always))]
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     fn join_test_with(
         &mut self,
         join: Ix,
@@ -257,7 +257,7 @@ impl Core<'_> {
     /// The last token of `parent`'s front run of children (NONE if the run is
     /// empty) and the child after it, for a new child of positive `join` (a child
     /// of `join` itself ends the run without looking at its join).
-    #[cfg_attr(feature = "wide-pools", inline(always))]
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     fn front_run_end(&self, parent: Ix, join: Ix) -> (Ix, Ix) {
         let mut last = NONE;
         let mut c = self.tokens[parent as usize].first_child;
@@ -387,7 +387,7 @@ impl Core<'_> {
     /// `left`: alpha matches from `from` on (memory order; `hashed`: along its index
     /// bucket), or active partial matches
     /// of the subnetwork extending `left` (skipping `skip`).
-    #[cfg_attr(feature = "wide-pools", inline(always))]
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     fn find_blocker(
         &mut self,
         join: Ix,
@@ -400,15 +400,15 @@ impl Core<'_> {
         if rjoin == NONE {
             // host: the join's test fields read and its plan cache checked once
             // (the image checks per candidate: less code)
-            #[cfg(feature = "wide-pools")]
+            #[cfg(feature = "host-speedups")]
             let (tests, depth) = self.join_test_fields(join);
-            #[cfg(feature = "wide-pools")]
+            #[cfg(feature = "host-speedups")]
             let mut planned = false;
             let mut a = from;
             while a != NONE {
-                #[cfg(feature = "wide-pools")]
+                #[cfg(feature = "host-speedups")]
                 let found = self.join_test_with(join, tests, depth, left, a, &mut planned)?;
-                #[cfg(not(feature = "wide-pools"))]
+                #[cfg(not(feature = "host-speedups"))]
                 let found = self.join_test(join, left, a)?;
                 if found {
                     return Ok(a);
@@ -436,20 +436,20 @@ impl Core<'_> {
             JoinKind::Positive => {
                 let (mut a, hashed) = self.first_candidate(join, left);
                 // host: see `find_blocker`
-                #[cfg(feature = "wide-pools")]
+                #[cfg(feature = "host-speedups")]
                 let (tests, depth) = self.join_test_fields(join);
-                #[cfg(feature = "wide-pools")]
+                #[cfg(feature = "host-speedups")]
                 let mut planned = false;
                 while a != NONE {
                     let next = self.next_candidate(a, hashed);
-                    #[cfg(feature = "wide-pools")]
+                    #[cfg(feature = "host-speedups")]
                     let matched = self.join_test_with(join, tests, depth, left, a, &mut planned)?;
-                    #[cfg(not(feature = "wide-pools"))]
+                    #[cfg(not(feature = "host-speedups"))]
                     let matched = self.join_test(join, left, a)?;
                     if matched {
                         let t = self.link_token(join, left, a)?;
                         self.propagate_in(t, join)?;
-                        #[cfg(feature = "wide-pools")]
+                        #[cfg(feature = "host-speedups")]
                         {
                             planned = false;
                         }
@@ -513,7 +513,7 @@ impl Core<'_> {
 
     /// Creates a partial match in `join`'s memory (newest first) and links it under
     /// its parents.
-    #[cfg_attr(feature = "wide-pools", inline(always))]
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     fn link_token(&mut self, join: Ix, parent: Ix, am: Ix) -> Result<Ix, EvalError> {
         let t = self.alloc_token()?;
         let kind = self.joins[join as usize].kind;
@@ -533,11 +533,11 @@ impl Core<'_> {
         let jn = &mut self.joins[join as usize];
         // the index child too, while the join is at hand
         let (head, depth) = (jn.mem, jn.depth);
-        #[cfg(feature = "wide-pools")]
+        #[cfg(feature = "host-speedups")]
         let ichild = if jn.index_built { jn.index_child } else { NONE };
-        #[cfg(not(feature = "wide-pools"))]
+        #[cfg(not(feature = "host-speedups"))]
         let ichild = NONE;
-        #[cfg(feature = "wide-pools")]
+        #[cfg(feature = "host-speedups")]
         let own = if am != NONE {
             tokens[am as usize].fact
         } else {
@@ -561,15 +561,15 @@ impl Core<'_> {
         };
         // the bindings: the parent's, copied after the token is written (read
         // before, they went through the stack), then the own level patched in place
-        #[cfg(feature = "wide-pools")]
+        #[cfg(feature = "host-speedups")]
         if parent != NONE {
             tokens[t as usize].binds = tokens[parent as usize].binds;
         }
-        #[cfg(feature = "wide-pools")]
+        #[cfg(feature = "host-speedups")]
         if let Some(x) = tokens[t as usize].binds.get_mut(depth as usize) {
             *x = own;
         }
-        #[cfg(not(feature = "wide-pools"))]
+        #[cfg(not(feature = "host-speedups"))]
         let _ = depth;
         if head != NONE {
             tokens[head as usize].mem_prev = t;
@@ -600,7 +600,7 @@ impl Core<'_> {
     /// `blocks` list, chained by its `am_next`/`am_prev` (free: the output has no
     /// alpha match, and a blocked one is never owed); the head's `am_prev` names
     /// the blocker. Allocates nothing, as CLIPS links the partial match itself.
-    #[cfg_attr(feature = "wide-pools", inline(always))]
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     fn add_link(&mut self, t: Ix, blocker: Ix) {
         let bsib = self.tokens[blocker as usize].blocks;
         let tk = &mut self.tokens[t as usize];
@@ -615,7 +615,7 @@ impl Core<'_> {
 
     /// Takes blocked output `t` off its blocker's list. `am_prev` is the blocker
     /// exactly when `t` heads the blocker's list (a token is on one list only).
-    #[cfg_attr(feature = "wide-pools", inline(always))]
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     pub(super) fn unlink_blocked(&mut self, t: Ix) {
         let tk = &mut self.tokens[t as usize];
         let (p, n) = (tk.am_prev, tk.am_next);
@@ -782,7 +782,7 @@ impl Core<'_> {
     /// Propagates the owed not outputs, oldest first. On a full pool the one that
     /// failed is taken back, keeps its turn and the error is returned: the network
     /// stays complete up to what is still owed.
-    #[cfg_attr(feature = "wide-pools", inline(always))]
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     pub(crate) fn pay_owed(&mut self) -> Result<(), EvalError> {
         // most operations owe nothing: no call for them on the host
         if self.st.owed == NONE {
@@ -792,7 +792,7 @@ impl Core<'_> {
     }
 
     /// `pay_owed` of a non-empty owed list.
-    #[cfg_attr(feature = "wide-pools", inline(never))]
+    #[cfg_attr(feature = "host-speedups", inline(never))]
     fn pay_owed_list(&mut self) -> Result<(), EvalError> {
         while self.st.owed != NONE {
             let t = self.st.owed;
@@ -810,14 +810,14 @@ impl Core<'_> {
 
     /// Passes an active partial match on to its join's successors, newest first as
     /// CLIPS does: child joins and rule ends (left), joins taking it from the right.
-    #[cfg_attr(feature = "wide-pools", inline(always))]
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     pub(crate) fn propagate(&mut self, t: Ix) -> Result<(), EvalError> {
         let join = self.tokens[t as usize].owner;
         self.propagate_in(t, join)
     }
 
     /// `propagate` of token `t` of `join` (callers that just made it know the join).
-    #[cfg_attr(feature = "wide-pools", inline(always))]
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     fn propagate_in(&mut self, t: Ix, join: Ix) -> Result<(), EvalError> {
         if self.joins[join as usize].rsucc == NONE {
             // the common case: no join takes these tokens from the right, so the
@@ -852,7 +852,7 @@ impl Core<'_> {
     /// CLIPS created its copies (oldest successor first): a rule end loses the
     /// activation, a child join the partial matches built on the token, a join from
     /// the right the output it blocks (which looks for another blocker).
-    #[cfg_attr(feature = "wide-pools", inline(always))]
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     fn deactivate(&mut self, t: Ix) {
         let tk = &self.tokens[t as usize];
         if tk.first_child == NONE
@@ -919,7 +919,7 @@ impl Core<'_> {
     }
 
     /// Takes back what token `t` passed on to successor `c` (see `deactivate`).
-    #[cfg_attr(feature = "wide-pools", inline(always))]
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     fn take_back(&mut self, t: Ix, c: Ix, from_right: bool) {
         let cj = self.joins[c as usize];
         if from_right {
@@ -954,7 +954,7 @@ impl Core<'_> {
         }
     }
 
-    #[cfg_attr(feature = "wide-pools", inline(always))]
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     pub(crate) fn delete_children(&mut self, t: Ix) {
         while self.tokens[t as usize].first_child != NONE {
             let c = self.tokens[t as usize].first_child;
@@ -1004,13 +1004,13 @@ impl Core<'_> {
     }
 
     /// Whether `join`'s child list (child joins and rule ends) has one entry.
-    #[cfg(not(feature = "wide-pools"))]
+    #[cfg(not(feature = "host-speedups"))]
     fn one_child(&self, join: Ix) -> bool {
         let c = self.joins[join as usize].first_child;
         c != NONE && self.joins[c as usize].next_sibling == NONE
     }
 
-    #[cfg(feature = "wide-pools")]
+    #[cfg(feature = "host-speedups")]
     #[inline(always)]
     fn one_child(&self, join: Ix) -> bool {
         self.joins[join as usize].one_child
@@ -1019,19 +1019,19 @@ impl Core<'_> {
     /// Records whether `join`'s child list has one entry (host: `Join::one_child`),
     /// after every change to the list.
     pub(crate) fn note_children(&mut self, join: Ix) {
-        #[cfg(feature = "wide-pools")]
+        #[cfg(feature = "host-speedups")]
         {
             let c = self.joins[join as usize].first_child;
             self.joins[join as usize].one_child =
                 c != NONE && self.joins[c as usize].next_sibling == NONE;
         }
-        #[cfg(not(feature = "wide-pools"))]
+        #[cfg(not(feature = "host-speedups"))]
         let _ = join;
     }
 
     /// Unlinks a token from its parent, alpha match (or blocker, or owed list) and
     /// memory lists, then frees it.
-    #[cfg_attr(feature = "wide-pools", inline(always))]
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     fn unlink_and_free(&mut self, t: Ix) {
         // fields read one by one: copying the whole (host: 104-byte) token cost
         // more than the unlinking; one borrow of the pool per stretch keeps its
@@ -1041,9 +1041,9 @@ impl Core<'_> {
         let (am, am_prev, am_next) = (tk.am, tk.am_prev, tk.am_next);
         let (parent, prev_sib, next_sib) = (tk.parent, tk.prev_sib, tk.next_sib);
         // host: only a partial match in a bucket has one (see `beta_index_remove`)
-        #[cfg(feature = "wide-pools")]
+        #[cfg(feature = "wide-index")]
         let in_bucket = tk.beta_links[1] != NONE;
-        #[cfg(not(feature = "wide-pools"))]
+        #[cfg(not(feature = "wide-index"))]
         let in_bucket = true;
         if parent != NONE {
             leave_parent(tokens, parent, prev_sib, next_sib);
@@ -1070,7 +1070,7 @@ impl Core<'_> {
             let j = &mut self.joins[owner as usize];
             j.mem = mem_next;
             // an empty memory is trivially unindexed (see `Join::index_built`)
-            #[cfg(feature = "wide-pools")]
+            #[cfg(feature = "host-speedups")]
             if mem_next == NONE {
                 j.index_built = false;
             }

@@ -149,7 +149,7 @@ impl Core<'_> {
     /// `left_key` without the evaluator, for left token `left` (after
     /// `bind_for_quick`): the compared fields are read straight from the facts, as
     /// the join's key plan says. None when one is not a plain single-field slot.
-    #[cfg_attr(feature = "wide-pools", inline(always))]
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     fn quick_left_key(&mut self, join: Ix, left: Ix) -> Option<u32> {
         let tests = self.joins[join as usize].tests;
         let i = join as usize % KEY_PLANS;
@@ -298,7 +298,7 @@ impl Core<'_> {
     /// Where a left token of alpha-fed `join` starts looking for right partners:
     /// the first match of its bucket (then `next_candidate` with `hashed`), or the
     /// whole memory.
-    #[cfg_attr(feature = "wide-pools", inline(always))]
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     pub(crate) fn first_candidate(&mut self, join: Ix, left: Ix) -> (Ix, bool) {
         debug_assert!(self.joins[join as usize].kind != JoinKind::Root);
         let alpha = self.joins[join as usize].alpha;
@@ -315,7 +315,7 @@ impl Core<'_> {
                         self.left_key(join)
                     }
                 };
-                #[cfg(feature = "wide-pools")]
+                #[cfg(feature = "host-speedups")]
                 if let Some(k) = key {
                     let owner = self.tokens[left as usize].owner;
                     if self.joins[owner as usize].index_child == join {
@@ -371,26 +371,26 @@ impl Core<'_> {
         self.tokens[t as usize].fact = n;
     }
 
-    #[cfg(not(feature = "wide-pools"))]
+    #[cfg(not(feature = "wide-index"))]
     fn bprev(&self, t: Ix) -> Ix {
         let m = self.tokens[t as usize].marks;
         Ix::from_le_bytes([m[0], m[1]])
     }
 
-    #[cfg(not(feature = "wide-pools"))]
+    #[cfg(not(feature = "wide-index"))]
     fn set_bprev(&mut self, t: Ix, p: Ix) {
         let b = p.to_le_bytes();
         self.tokens[t as usize].marks[0] = b[0];
         self.tokens[t as usize].marks[1] = b[1];
     }
 
-    #[cfg(not(feature = "wide-pools"))]
+    #[cfg(not(feature = "wide-index"))]
     fn bbucket(&self, t: Ix) -> Ix {
         let m = self.tokens[t as usize].marks;
         Ix::from_le_bytes([m[2], m[3]])
     }
 
-    #[cfg(not(feature = "wide-pools"))]
+    #[cfg(not(feature = "wide-index"))]
     fn set_bbucket(&mut self, t: Ix, b: Ix) {
         let x = b.to_le_bytes();
         self.tokens[t as usize].marks[2] = x[0];
@@ -398,22 +398,22 @@ impl Core<'_> {
     }
 
     // With `u32` indices two links do not fit in `marks`: the token has a field for them.
-    #[cfg(feature = "wide-pools")]
+    #[cfg(feature = "wide-index")]
     fn bprev(&self, t: Ix) -> Ix {
         self.tokens[t as usize].beta_links[0]
     }
 
-    #[cfg(feature = "wide-pools")]
+    #[cfg(feature = "wide-index")]
     fn set_bprev(&mut self, t: Ix, p: Ix) {
         self.tokens[t as usize].beta_links[0] = p;
     }
 
-    #[cfg(feature = "wide-pools")]
+    #[cfg(feature = "wide-index")]
     fn bbucket(&self, t: Ix) -> Ix {
         self.tokens[t as usize].beta_links[1]
     }
 
-    #[cfg(feature = "wide-pools")]
+    #[cfg(feature = "wide-index")]
     fn set_bbucket(&mut self, t: Ix, b: Ix) {
         self.tokens[t as usize].beta_links[1] = b;
     }
@@ -444,13 +444,13 @@ impl Core<'_> {
     }
 
     /// Adds a new partial match (already at the head of its memory) to the index.
-    #[cfg_attr(feature = "wide-pools", inline(always))]
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     pub(crate) fn beta_index_insert(&mut self, t: Ix) {
         let join = self.tokens[t as usize].owner;
         let child = self.joins[join as usize].index_child;
-        #[cfg(feature = "wide-pools")]
+        #[cfg(feature = "host-speedups")]
         let skip = child == NONE || !self.joins[join as usize].index_built;
-        #[cfg(not(feature = "wide-pools"))]
+        #[cfg(not(feature = "host-speedups"))]
         let skip = child == NONE;
         if skip {
             self.set_bnext(t, NONE);
@@ -466,7 +466,7 @@ impl Core<'_> {
     /// `marks`, which EMPTY zeroes, so they are written).
     /// On the host `child` is the join's index child if its index is built (NONE
     /// otherwise), read by the caller with the join's other fields.
-    #[cfg(feature = "wide-pools")]
+    #[cfg(all(feature = "host-speedups", feature = "wide-index"))]
     #[inline(always)]
     pub(crate) fn beta_index_insert_fresh(&mut self, t: Ix, join: Ix, child: Ix) {
         if child != NONE {
@@ -474,20 +474,20 @@ impl Core<'_> {
         }
     }
 
-    #[cfg(not(feature = "wide-pools"))]
+    #[cfg(not(all(feature = "host-speedups", feature = "wide-index")))]
     pub(crate) fn beta_index_insert_fresh(&mut self, t: Ix, _join: Ix, _child: Ix) {
         self.beta_index_insert(t);
     }
 
     /// Puts partial match `t` of `join` at the head of its bucket for `child`.
-    #[cfg_attr(feature = "wide-pools", inline(always))]
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     fn beta_index_link(&mut self, t: Ix, join: Ix, child: Ix) {
-        #[cfg(feature = "wide-pools")]
+        #[cfg(feature = "host-speedups")]
         let known = {
             let tk = &self.tokens[t as usize];
             tk.has_key.then_some(tk.key)
         };
-        #[cfg(not(feature = "wide-pools"))]
+        #[cfg(not(feature = "host-speedups"))]
         let known = None;
         // usually one level more than the left token just bound by the join test
         self.bind_for_quick(t);
@@ -524,11 +524,11 @@ impl Core<'_> {
     }
 
     /// Takes a partial match out of its memory's index.
-    #[cfg_attr(feature = "wide-pools", inline(always))]
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     pub(crate) fn beta_index_remove(&mut self, t: Ix) {
         // host: only a linked partial match has a bucket (alpha matches and links
         // keep `beta_links` NONE), so one load decides the common unindexed case
-        #[cfg(feature = "wide-pools")]
+        #[cfg(feature = "wide-index")]
         if self.bbucket(t) == NONE {
             return;
         }
@@ -568,12 +568,12 @@ impl Core<'_> {
         let parent_mem = self.joins[j.parent as usize].mem;
         // host: an empty memory stays unindexed (its index would only make every
         // partial match that comes pay its bucket until the next right activation)
-        #[cfg(feature = "wide-pools")]
+        #[cfg(feature = "host-speedups")]
         if parent_mem == NONE {
             return (NONE, false);
         }
         if self.joins[j.parent as usize].index_child == join {
-            #[cfg(feature = "wide-pools")]
+            #[cfg(feature = "host-speedups")]
             if !self.joins[j.parent as usize].index_built {
                 self.build_beta_index(j.parent, join);
             }
@@ -612,7 +612,7 @@ impl Core<'_> {
     /// Host: indexes `join`'s memory for `child` (see `Join::index_built`). Oldest
     /// first, each at its bucket's head: the buckets get memory order, as if every
     /// match had been indexed when it came.
-    #[cfg(feature = "wide-pools")]
+    #[cfg(feature = "host-speedups")]
     fn build_beta_index(&mut self, join: Ix, child: Ix) {
         let mut t = self.joins[join as usize].mem;
         let mut last = NONE;
@@ -635,7 +635,7 @@ impl Core<'_> {
             t = self.tokens[t as usize].mem_next;
         }
         self.joins[join as usize].index_child = NONE;
-        #[cfg(feature = "wide-pools")]
+        #[cfg(feature = "host-speedups")]
         {
             self.joins[join as usize].index_built = false;
         }

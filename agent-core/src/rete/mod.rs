@@ -28,7 +28,7 @@ pub const EMPTY_PATH: Ix = 0xFFFE;
 pub const MAX_PATTERNS: usize = 32;
 /// Pattern depths whose facts a partial match keeps a copy of on the host
 /// (`Token::binds`); deeper ones are read by walking the ancestry.
-#[cfg(feature = "wide-pools")]
+#[cfg(feature = "host-speedups")]
 pub const BIND_W: usize = 8;
 /// Most fields of one pattern compared for equality with earlier variables that
 /// key its alpha node (CLIPS's "right hash"); further ones are plain join tests.
@@ -135,12 +135,12 @@ pub struct Join {
     /// The index is built on the first right activation that uses it and dropped
     /// when the memory empties, so memories that are filled and emptied again
     /// without one (most, in Manners) never pay for it.
-    #[cfg(feature = "wide-pools")]
+    #[cfg(feature = "host-speedups")]
     pub index_built: bool,
     /// Host: whether the child list has exactly one entry (read for every deleted
     /// partial match; two loads less than walking the list), kept by
     /// `Core::note_children`.
-    #[cfg(feature = "wide-pools")]
+    #[cfg(feature = "host-speedups")]
     pub one_child: bool,
     /// Whether no join from this one down feeds a join from the right (its memories
     /// may then be emptied whole, `rete::wipe`), worked out for network generation
@@ -174,9 +174,9 @@ impl Join {
         rjoin: NONE,
         rsucc: NONE,
         index_child: NONE,
-        #[cfg(feature = "wide-pools")]
+        #[cfg(feature = "host-speedups")]
         index_built: false,
-        #[cfg(feature = "wide-pools")]
+        #[cfg(feature = "host-speedups")]
         one_child: false,
         #[cfg(feature = "wipe")]
         plain: false,
@@ -229,19 +229,19 @@ pub struct Token {
     pub blocks: Ix,
     /// Beta-memory index links of a partial match (previous, bucket), kept in `marks`
     /// when indices are `u16` (see `rete::index`).
-    #[cfg(feature = "wide-pools")]
+    #[cfg(feature = "wide-index")]
     pub beta_links: [Ix; 2],
     /// Partial match: the fact bound at each pattern depth below `BIND_W` (NONE for
     /// not/exists/test levels), copied from the parent when linked, so the quick
     /// join tests and index keys read them without walking the ancestry. Host
     /// only: it would cost the image 16 bytes per token.
-    #[cfg(feature = "wide-pools")]
+    #[cfg(feature = "host-speedups")]
     pub binds: [Ix; BIND_W],
     /// Partial match: its key for its join's index child, once computed (by a left
     /// activation of that child), for when the index is built (`Join::index_built`).
-    #[cfg(feature = "wide-pools")]
+    #[cfg(feature = "host-speedups")]
     pub has_key: bool,
-    #[cfg(feature = "wide-pools")]
+    #[cfg(feature = "host-speedups")]
     pub key: u32,
 }
 
@@ -263,13 +263,13 @@ impl Token {
         mem_prev: NONE,
         extra: NONE,
         blocks: NONE,
-        #[cfg(feature = "wide-pools")]
+        #[cfg(feature = "wide-index")]
         beta_links: [NONE; 2],
-        #[cfg(feature = "wide-pools")]
+        #[cfg(feature = "host-speedups")]
         binds: [NONE; BIND_W],
-        #[cfg(feature = "wide-pools")]
+        #[cfg(feature = "host-speedups")]
         has_key: false,
-        #[cfg(feature = "wide-pools")]
+        #[cfg(feature = "host-speedups")]
         key: 0,
     };
 }

@@ -69,9 +69,9 @@ impl Core<'_> {
     /// `Token::binds` (host) they already are, else `lhs_pm` is filled.
     #[inline(always)]
     pub(crate) fn bind_for_quick(&mut self, left: Ix) {
-        #[cfg(not(feature = "wide-pools"))]
+        #[cfg(not(feature = "host-speedups"))]
         self.bind_left(left);
-        #[cfg(feature = "wide-pools")]
+        #[cfg(feature = "host-speedups")]
         let _ = left;
     }
 
@@ -79,14 +79,14 @@ impl Core<'_> {
     /// kept), after `bind_for_quick(left)`.
     #[inline(always)]
     pub(crate) fn left_fact(&self, left: Ix, pat: u8) -> Ix {
-        #[cfg(feature = "wide-pools")]
+        #[cfg(feature = "host-speedups")]
         {
             match self.tokens[left as usize].binds.get(pat as usize) {
                 Some(&f) => f,
                 None => NONE,
             }
         }
-        #[cfg(not(feature = "wide-pools"))]
+        #[cfg(not(feature = "host-speedups"))]
         {
             let _ = left;
             self.st.lhs_pm[pat as usize].fact
@@ -96,7 +96,7 @@ impl Core<'_> {
     /// `quick_join_test` for the tests of `join` through its cached plan.
     /// `tests` and `depth` are the join's (read by the caller with its other fields);
     /// `planned`: the plan is known cached (see `join_test_with`), set once it is.
-    #[cfg_attr(feature = "wide-pools", inline(always))]
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     pub(crate) fn planned_join_test(
         &mut self,
         join: Ix,

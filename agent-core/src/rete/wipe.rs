@@ -72,7 +72,7 @@ impl Core<'_> {
         let jn = &mut self.joins[join as usize];
         jn.mem = NONE;
         // an empty memory is trivially unindexed (see `Join::index_built`)
-        #[cfg(feature = "wide-pools")]
+        #[cfg(feature = "host-speedups")]
         {
             jn.index_built = false;
         }

@@ -487,7 +487,7 @@ exhausts a pool of that default engine is measured again, in full, with \
 `robotino-agent clips --large-pools -f2 FILE`, whose pools hold the largest workloads) and \
 in-process through `bench::ours::InProcessEngine` (always the large-pool engine, built \
 before the clock starts). Both are host builds with `u32` pool indices (feature \
-`wide-pools`), so in-process memory counts 4-byte links; the agent image keeps 2-byte \
+`wide-index`, with `host-speedups`), so in-process memory counts 4-byte links; the agent image keeps 2-byte \
 ones. Rules fired come from `(watch statistics)` (CLI) or \
 the `run()` return value. Results agree when the programs' result lines are equal (Manners: \
 the same set of seat assignments, also checked to be a valid seating).\n\n";

@@ -1,9 +1,9 @@
-//! Pools beyond 65,535 entries: with the feature `wide-pools` indices are `u32`
+//! Pools beyond 65,535 entries: with the feature `wide-index` indices are `u32`
 //! (`agent_core::Ix`), so facts, tokens, activations and expression nodes go past the
 //! `u16` limit, and a full pool is still a typed error naming its real capacity.
 // Invariant mode walks every pool at every operation: tens of thousands of asserts
 // into pools this size would take hours, so these tests run without it.
-#![cfg(all(feature = "wide-pools", not(feature = "check-invariants")))]
+#![cfg(all(feature = "wide-index", not(feature = "check-invariants")))]
 // The `engine!` macro's default capacities are shadowed by the overrides.
 #![allow(dead_code)]
 
