@@ -729,7 +729,7 @@ impl Core<'_> {
             return;
         }
         let fb = if x.aux == FnKind::Builtin as u8 {
-            match crate::builtins::errors::fallback(crate::builtins::get(x.data).name) {
+            match crate::builtins::get(x.data).on_error.fallback() {
                 Some(f) => f,
                 None => return,
             }

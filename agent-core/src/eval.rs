@@ -578,7 +578,7 @@ impl Core<'_> {
         EvalError::wrong_type(
             func,
             arg,
-            builtins::errors::runtime_type_name(func, expected),
+            builtins::describe::runtime_type_name(func, expected),
         )
     }
 }

@@ -1,5 +1,7 @@
 //! Arithmetic, comparison, equality, boolean connectives and `str-cat`.
 
+use super::describe::ArgType::Number as N;
+use super::describe::OnError;
 use super::{Args, Builtin, Num, ANY};
 use crate::engine::Core;
 use crate::error::{EvalError, EvalErrorKind};
@@ -12,23 +14,24 @@ use crate::value::{TextBuf, Value, NONE};
 pub const CMP_FIRST: Ix = 4;
 pub const CMP_LAST: Ix = 11;
 
+#[rustfmt::skip]
 pub const FUNCS: &[Builtin] = &[
-    Builtin::eager("+", 2, ANY, add),
-    Builtin::eager("-", 2, ANY, sub),
-    Builtin::eager("*", 2, ANY, mul),
-    Builtin::eager("/", 2, ANY, div),
-    Builtin::eager("=", 2, ANY, num_eq),
-    Builtin::eager("<>", 2, ANY, num_ne),
-    Builtin::eager("<", 2, ANY, lt),
-    Builtin::eager("<=", 2, ANY, le),
-    Builtin::eager(">", 2, ANY, gt),
-    Builtin::eager(">=", 2, ANY, ge),
-    Builtin::eager("eq", 2, ANY, eq),
-    Builtin::eager("neq", 2, ANY, neq),
-    Builtin::lazy("and", 2, ANY, and),
-    Builtin::lazy("or", 2, ANY, or),
-    Builtin::eager("not", 1, 1, not),
-    Builtin::eager("str-cat", 1, ANY, str_cat),
+    Builtin::eager("+", 2, ANY, add).args(&[], N).quiet(),
+    Builtin::eager("-", 2, ANY, sub).args(&[], N).quiet(),
+    Builtin::eager("*", 2, ANY, mul).args(&[], N).quiet(),
+    Builtin::eager("/", 2, ANY, div).args(&[], N).on_error(OnError::FloatOne).quiet(),
+    Builtin::eager("=", 2, ANY, num_eq).args(&[], N).on_error(OnError::False).quiet(),
+    Builtin::eager("<>", 2, ANY, num_ne).args(&[], N).on_error(OnError::False).quiet(),
+    Builtin::eager("<", 2, ANY, lt).args(&[], N).on_error(OnError::False).quiet(),
+    Builtin::eager("<=", 2, ANY, le).args(&[], N).on_error(OnError::False).quiet(),
+    Builtin::eager(">", 2, ANY, gt).args(&[], N).on_error(OnError::False).quiet(),
+    Builtin::eager(">=", 2, ANY, ge).args(&[], N).on_error(OnError::False).quiet(),
+    Builtin::eager("eq", 2, ANY, eq).on_error(OnError::False).total(),
+    Builtin::eager("neq", 2, ANY, neq).on_error(OnError::False).total(),
+    Builtin::lazy("and", 2, ANY, and).on_error(OnError::False).total(),
+    Builtin::lazy("or", 2, ANY, or).on_error(OnError::False).total(),
+    Builtin::eager("not", 1, 1, not).on_error(OnError::False).total(),
+    Builtin::eager("str-cat", 1, ANY, str_cat).on_error(OnError::EmptyString).quiet(),
 ];
 
 fn fold(

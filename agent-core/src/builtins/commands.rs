@@ -12,6 +12,7 @@ use crate::value::Ix;
 use crate::value::{TextBuf, Value, NONE};
 use core::fmt::Write;
 
+#[rustfmt::skip]
 pub const FUNCS: &[Builtin] = &[
     Builtin::eager("reset", 0, 0, reset),
     Builtin::eager("clear", 0, 0, clear),

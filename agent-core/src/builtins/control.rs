@@ -1,6 +1,7 @@
 //! Control forms (lazy builtins): progn, if, while, loop-for-count, progn$/foreach,
 //! switch, bind, return, break.
 
+use super::describe::OnError;
 use super::{Builtin, ANY, SYM_FALSE};
 use crate::engine::Core;
 use crate::error::{EvalError, EvalErrorKind};
@@ -8,13 +9,14 @@ use crate::expr::{FnKind, Op};
 use crate::value::Ix;
 use crate::value::{Value, NONE};
 
+#[rustfmt::skip]
 pub const FUNCS: &[Builtin] = &[
-    Builtin::lazy("progn", 0, ANY, progn),
+    Builtin::lazy("progn", 0, ANY, progn).on_error(OnError::False),
     Builtin::lazy("if", 2, 3, if_),
-    Builtin::lazy("while", 2, 2, while_),
+    Builtin::lazy("while", 2, 2, while_).on_error(OnError::False),
     Builtin::lazy("loop-for-count", 4, 4, loop_for_count),
-    Builtin::lazy("progn$", 3, 3, foreach),
-    Builtin::lazy("foreach", 3, 3, foreach),
+    Builtin::lazy("progn$", 3, 3, foreach).on_error(OnError::False),
+    Builtin::lazy("foreach", 3, 3, foreach).on_error(OnError::False),
     Builtin::lazy("switch", 1, ANY, switch),
     Builtin::lazy("bind", 1, ANY, bind),
     Builtin::eager("return", 0, 1, return_),

@@ -1,5 +1,6 @@
 //! `eval` and `build`: CLIPS source given as a string, parsed and run at run time.
 
+use super::describe::OnError;
 use super::{Args, Builtin, SYM_FALSE, SYM_TRUE};
 use crate::engine::Core;
 use crate::error::{EvalError, EvalErrorKind};
@@ -9,8 +10,9 @@ use crate::lexer::Tok;
 use crate::parser::{Item, Parser};
 use crate::value::{Ix, Value};
 
+#[rustfmt::skip]
 pub const FUNCS: &[Builtin] = &[
-    Builtin::eager("eval", 1, 1, eval),
+    Builtin::eager("eval", 1, 1, eval).on_error(OnError::False),
     Builtin::eager("build", 1, 1, build),
 ];
 

@@ -7,6 +7,7 @@
 #![cfg_attr(not(feature = "extras"), allow(dead_code))]
 
 use super::commands::Unable;
+
 use super::{Args, Builtin, SYM_FALSE};
 use crate::engine::Core;
 use crate::error::{EvalError, EvalErrorKind};
@@ -16,6 +17,7 @@ use crate::value::{Ix, TextBuf, Value, NONE};
 use core::fmt::Write;
 
 #[cfg(feature = "extras")]
+#[rustfmt::skip]
 pub const FUNCS: &[Builtin] = &[
     Builtin::eager("get-deffacts-list", 0, 1, get_deffacts_list),
     Builtin::eager("get-deftemplate-list", 0, 1, get_deftemplate_list),
@@ -32,9 +34,9 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("fact-slot-names", 1, 1, fact_slot_names),
     Builtin::eager("gensym", 0, 0, gensym),
     Builtin::eager("gensym*", 0, 0, gensym_star),
-    Builtin::eager("sort", 1, super::ANY, super::evaluate::sort),
-    Builtin::eager("funcall", 1, super::ANY, super::evaluate::funcall),
-    Builtin::eager("assert-string", 1, 1, super::evaluate::assert_string),
+    Builtin::eager("sort", 1, super::ANY, super::evaluate::sort).on_error(super::describe::OnError::False),
+    Builtin::eager("funcall", 1, super::ANY, super::evaluate::funcall).on_error(super::describe::OnError::False),
+    Builtin::eager("assert-string", 1, 1, super::evaluate::assert_string).on_error(super::describe::OnError::False),
 ];
 #[cfg(not(feature = "extras"))]
 pub const FUNCS: &[Builtin] = &[];

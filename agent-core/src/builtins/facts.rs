@@ -1,5 +1,7 @@
 //! Fact functions: assert, retract, modify, duplicate, fact-slot-value, fact-index.
 
+use super::describe::ArgType::{Any, FactAddress as F};
+use super::describe::OnError;
 use super::{Args, Builtin, ANY, SYM_FALSE, SYM_NIL};
 use crate::engine::Core;
 use crate::error::{EvalError, EvalErrorKind};
@@ -9,13 +11,14 @@ use crate::template::{allowed, types, DefaultKind, SlotDef};
 use crate::value::Ix;
 use crate::value::{FactRef, MfSpan, SymId, Value, NONE};
 
+#[rustfmt::skip]
 pub const FUNCS: &[Builtin] = &[
     Builtin::lazy("assert", 1, ANY, assert),
     Builtin::eager("retract", 1, ANY, retract),
     Builtin::lazy("modify", 1, ANY, modify),
     Builtin::lazy("duplicate", 1, ANY, duplicate),
     Builtin::eager("fact-slot-value", 2, 2, fact_slot_value),
-    Builtin::eager("fact-index", 1, 1, fact_index),
+    Builtin::eager("fact-index", 1, 1, fact_index).args(&[F], Any).on_error(OnError::MinusOne),
     Builtin::eager("fact-existp", 1, 1, fact_existp),
 ];
 

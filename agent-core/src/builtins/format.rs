@@ -7,6 +7,8 @@
 //! justify), a width (a leading `0` pads with zeros) and `.precision`; CLIPS rejects
 //! the other C flags (`+`, space, `#`) and length modifiers with `[IOFUN3]`.
 
+use super::describe::ArgType::{Any, Str as S};
+use super::describe::OnError;
 use core::fmt::Write;
 
 use super::math::{c_trunc_to_i64, T_NUMBER};
@@ -17,7 +19,9 @@ use crate::error::{EvalError, EvalErrorKind};
 use crate::host::router;
 use crate::value::{TextBuf, Value};
 
-pub const FUNCS: &[Builtin] = &[Builtin::eager("format", 2, ANY, format)];
+pub const FUNCS: &[Builtin] = &[Builtin::eager("format", 2, ANY, format)
+    .args(&[Any, S], Any)
+    .on_error(OnError::EmptyString)];
 
 const TOO_LONG: EvalError = EvalError::other("format: result longer than 2048 bytes");
 

@@ -21,12 +21,13 @@ use crate::engine::Core;
 use crate::error::EvalError;
 use crate::value::Value;
 
+#[rustfmt::skip]
 pub const FUNCS: &[Builtin] = &[
-    Builtin::eager("distance", 4, 4, distance),
-    Builtin::eager("heading", 4, 4, heading),
-    Builtin::eager("pose-compose", 6, 6, pose_compose),
-    Builtin::eager("pose-inverse", 3, 3, pose_inverse),
-    Builtin::eager("normalize-angle", 1, 1, normalize_angle),
+    Builtin::eager("distance", 4, 4, distance).quiet(),
+    Builtin::eager("heading", 4, 4, heading).quiet(),
+    Builtin::eager("pose-compose", 6, 6, pose_compose).quiet(),
+    Builtin::eager("pose-inverse", 3, 3, pose_inverse).quiet(),
+    Builtin::eager("normalize-angle", 1, 1, normalize_angle).quiet(),
 ];
 
 /// CLIPS `-`: integers stay integers (wrapping like CLIPS's `long long`), else floats.

@@ -5,34 +5,37 @@
 //! produce CLIPS's own `[ARGACCES5]` type names ("integer or float", "symbol, string,
 //! or instance name", ...).
 
+use super::describe::ArgType::{Any, Number as N};
+use super::describe::{BodyNames, OnError};
 use super::{Args, Builtin, Num, ANY};
 use crate::engine::Core;
 use crate::error::{EvalError, EvalErrorKind};
 use crate::value::{SymId, Value};
 
+#[rustfmt::skip]
 pub const FUNCS: &[Builtin] = &[
-    Builtin::eager("div", 2, ANY, div),
-    Builtin::eager("mod", 2, 2, modulo),
-    Builtin::eager("abs", 1, 1, abs),
-    Builtin::eager("min", 2, ANY, min),
-    Builtin::eager("max", 2, ANY, max),
-    Builtin::eager("**", 2, 2, pow),
-    Builtin::eager("sqrt", 1, 1, sqrt),
-    Builtin::eager("round", 1, 1, round),
-    Builtin::eager("integer", 1, 1, integer),
-    Builtin::eager("float", 1, 1, float),
-    Builtin::eager("exp", 1, 1, exp),
-    Builtin::eager("log", 1, 1, log),
-    Builtin::eager("log10", 1, 1, log10),
-    Builtin::eager("pi", 0, 0, pi),
-    Builtin::eager("sin", 1, 1, sin),
-    Builtin::eager("cos", 1, 1, cos),
-    Builtin::eager("tan", 1, 1, tan),
-    Builtin::eager("asin", 1, 1, asin),
-    Builtin::eager("acos", 1, 1, acos),
-    Builtin::eager("atan", 1, 1, atan),
-    Builtin::eager("deg-rad", 1, 1, deg_rad),
-    Builtin::eager("rad-deg", 1, 1, rad_deg),
+    Builtin::eager("div", 2, ANY, div).args(&[], N).on_error(OnError::One).quiet(),
+    Builtin::eager("mod", 2, 2, modulo).args(&[], N).on_error(OnError::Zero).quiet(),
+    Builtin::eager("abs", 1, 1, abs).args(&[N], Any).on_error(OnError::Zero).quiet(),
+    Builtin::eager("min", 2, ANY, min).args(&[], N).quiet(),
+    Builtin::eager("max", 2, ANY, max).args(&[], N).quiet(),
+    Builtin::eager("**", 2, 2, pow).args(&[], N).on_error(OnError::FloatZero).quiet().body_names(BodyNames::Float),
+    Builtin::eager("sqrt", 1, 1, sqrt).args(&[N], Any).on_error(OnError::FloatZero).quiet().body_names(BodyNames::Float),
+    Builtin::eager("round", 1, 1, round).args(&[N], Any).on_error(OnError::Zero).quiet(),
+    Builtin::eager("integer", 1, 1, integer).args(&[N], Any).on_error(OnError::Zero).quiet().body_names(BodyNames::Integer),
+    Builtin::eager("float", 1, 1, float).args(&[N], Any).on_error(OnError::FloatZero).quiet().body_names(BodyNames::Float),
+    Builtin::eager("exp", 1, 1, exp).args(&[N], Any).on_error(OnError::FloatZero).quiet().body_names(BodyNames::Float),
+    Builtin::eager("log", 1, 1, log).args(&[N], Any).on_error(OnError::FloatZero).quiet().body_names(BodyNames::Float),
+    Builtin::eager("log10", 1, 1, log10).args(&[N], Any).on_error(OnError::FloatZero).quiet().body_names(BodyNames::Float),
+    Builtin::eager("pi", 0, 0, pi).quiet(),
+    Builtin::eager("sin", 1, 1, sin).args(&[N], Any).on_error(OnError::FloatZero).quiet().body_names(BodyNames::Float),
+    Builtin::eager("cos", 1, 1, cos).args(&[N], Any).on_error(OnError::FloatZero).quiet().body_names(BodyNames::Float),
+    Builtin::eager("tan", 1, 1, tan).args(&[N], Any).on_error(OnError::FloatZero).quiet().body_names(BodyNames::Float),
+    Builtin::eager("asin", 1, 1, asin).args(&[N], Any).on_error(OnError::FloatZero).quiet().body_names(BodyNames::Float),
+    Builtin::eager("acos", 1, 1, acos).args(&[N], Any).on_error(OnError::FloatZero).quiet().body_names(BodyNames::Float),
+    Builtin::eager("atan", 1, 1, atan).args(&[N], Any).on_error(OnError::FloatZero).quiet().body_names(BodyNames::Float),
+    Builtin::eager("deg-rad", 1, 1, deg_rad).args(&[N], Any).on_error(OnError::FloatZero).quiet().body_names(BodyNames::Float),
+    Builtin::eager("rad-deg", 1, 1, rad_deg).args(&[N], Any).on_error(OnError::FloatZero).quiet().body_names(BodyNames::Float),
 ];
 
 // ---- argument helpers shared by this helper's modules ----

@@ -16,6 +16,7 @@ use crate::engine::Core;
 use crate::error::EvalError;
 use crate::value::Value;
 
+#[rustfmt::skip]
 pub const FUNCS: &[Builtin] = &[
     Builtin::eager("mem-used", 0, 0, mem_used),
     Builtin::eager("mem-requests", 0, 0, mem_requests),

@@ -1,6 +1,9 @@
 //! Built-in functions: the registry and the calling convention.
 //!
-//! A builtin is a plain `fn` in a table (`Builtin`). Eager builtins receive their
+//! A builtin is one row of a table (`Builtin`): its name, arity, argument types, purity,
+//! the value it returns after a run-time error and its plain `fn` (see [`describe`]:
+//! `Builtin::eager("sqrt", 1, 1, sqrt).args(&[N], Any).on_error(OnError::FloatZero)
+//! .quiet()`). Adding one is a row in a module's table plus its tests. Eager builtins receive their
 //! arguments already evaluated, on the evaluation stack, through an [`Args`] handle;
 //! lazy builtins (control forms, fact-set queries) receive their call node and
 //! evaluate arguments themselves with [`Core::eval`]. Each module exports
@@ -12,6 +15,7 @@
 pub mod basic;
 pub mod commands;
 pub mod control;
+pub mod describe;
 pub mod errors;
 pub mod evaluate;
 pub mod extras;
@@ -83,6 +87,7 @@ pub enum Syntax {
 /// Unbounded arity marker for `Builtin::max`.
 pub const ANY: u8 = u8::MAX;
 
+/// One builtin, described in one row.
 #[derive(Clone, Copy)]
 pub struct Builtin {
     pub name: &'static str,
@@ -90,35 +95,37 @@ pub struct Builtin {
     pub max: u8,
     pub imp: Imp,
     pub syntax: Syntax,
+    /// Argument types CLIPS checks literal arguments against while parsing.
+    pub signature: describe::Signature,
+    /// The value CLIPS returns after a run-time error.
+    pub on_error: describe::OnError,
+    pub purity: describe::Purity,
+    /// How the body words a computed argument's wrong type.
+    pub body_names: describe::BodyNames,
 }
 
 impl Builtin {
-    pub const fn eager(name: &'static str, min: u8, max: u8, f: BuiltinFn) -> Builtin {
+    const fn row(name: &'static str, min: u8, max: u8, imp: Imp, syntax: Syntax) -> Builtin {
         Builtin {
             name,
             min,
             max,
-            imp: Imp::Eager(f),
-            syntax: Syntax::Plain,
+            imp,
+            syntax,
+            signature: describe::Signature::ANY,
+            on_error: describe::OnError::Nothing,
+            purity: describe::Purity::Effects,
+            body_names: describe::BodyNames::Same,
         }
+    }
+    pub const fn eager(name: &'static str, min: u8, max: u8, f: BuiltinFn) -> Builtin {
+        Builtin::row(name, min, max, Imp::Eager(f), Syntax::Plain)
     }
     pub const fn lazy(name: &'static str, min: u8, max: u8, f: LazyFn) -> Builtin {
-        Builtin {
-            name,
-            min,
-            max,
-            imp: Imp::Lazy(f),
-            syntax: Syntax::Plain,
-        }
+        Builtin::row(name, min, max, Imp::Lazy(f), Syntax::Plain)
     }
     pub const fn query(name: &'static str, min: u8, max: u8, f: LazyFn) -> Builtin {
-        Builtin {
-            name,
-            min,
-            max,
-            imp: Imp::Lazy(f),
-            syntax: Syntax::Query,
-        }
+        Builtin::row(name, min, max, Imp::Lazy(f), Syntax::Query)
     }
 }
 
@@ -184,41 +191,23 @@ const fn builtin_id(name: &str) -> Ix {
     panic!("no such builtin")
 }
 
-/// The first id of table `t` of [`TABLES`] (`TABLES.len()`: the end of the last).
-const fn table_start(t: usize) -> Ix {
-    let (mut n, mut i) = (0, 0);
-    while i < t {
-        n += TABLES[i].len();
-        i += 1;
-    }
-    n as Ix
-}
-
-/// Whether builtin `id` depends on its arguments alone, changes nothing a retract
-/// changes or observes (facts, agenda, output order) and cannot fail, whatever its
-/// arguments: `eq`, `neq`, `and`, `or`, `not` and the type predicates. `rete::defer`
-/// needs this of the tests a deferred propagation runs: a retract that overtakes it
-/// removes combinations those tests would have seen, so a test that could fail (`<`
-/// on a symbol) would lose an error CLIPS reports.
+/// Whether builtin `id` is total ([`describe::Purity::Total`]: `eq`, `neq`, `and`, `or`,
+/// `not` and the type predicates): `rete::defer` needs this of the tests a deferred
+/// propagation runs: a retract that overtakes it removes combinations those tests would
+/// have seen, so a test that could fail (`<` on a symbol) would lose an error CLIPS
+/// reports.
 pub fn is_total(id: Ix) -> bool {
-    const TOTAL: [(Ix, Ix); 2] = [
-        (builtin_id("eq"), builtin_id("not") + 1),
-        (builtin_id("numberp"), builtin_id("multifieldp") + 1),
-    ];
-    TOTAL.iter().any(|&(a, b)| (a..b).contains(&id))
+    BUILTINS
+        .get(id as usize)
+        .is_some_and(|b| b.purity == describe::Purity::Total)
 }
 
 /// Whether builtin `id` depends on its arguments alone and prints nothing itself, even on an
-/// error (it returns the error, reported once the actions stop): the arithmetic,
-/// comparison, math, predicate and geometry tables.
+/// error ([`describe::Purity::Quiet`] or total).
 pub fn is_quiet(id: Ix) -> bool {
-    const QUIET: [(Ix, Ix); 4] = [
-        (table_start(0), table_start(1)),
-        (table_start(4), table_start(5)),
-        (table_start(7), table_start(8)),
-        (table_start(11), table_start(12)),
-    ];
-    QUIET.iter().any(|&(a, b)| (a..b).contains(&id))
+    BUILTINS
+        .get(id as usize)
+        .is_some_and(|b| b.purity >= describe::Purity::Quiet)
 }
 
 /// Ids of `assert` and `modify`: as top-level actions of a firing they may leave a

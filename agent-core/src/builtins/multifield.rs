@@ -4,6 +4,8 @@
 //! Results are new multifields in scratch; inputs are read before the result is built
 //! (their elements stay below the result, so copying element by element is safe).
 
+use super::describe::ArgType::{Any, Integer as I, Multifield as M, Str as S};
+use super::describe::OnError;
 use super::math::{int_arg, T_MULTI};
 use super::strings::{scan_field, Text};
 use super::{Args, Builtin, ANY, SYM_FALSE, SYM_NIL};
@@ -15,24 +17,25 @@ use crate::value::Ix;
 use crate::value::{MfSpan, TextBuf, Value};
 use core::fmt::Write;
 
+#[rustfmt::skip]
 pub const FUNCS: &[Builtin] = &[
-    Builtin::eager("create$", 0, ANY, create),
+    Builtin::eager("create$", 0, ANY, create).on_error(OnError::EmptyMultifield),
     Builtin::eager("length$", 1, 1, length),
     // CLIPS 6.30 still accepts the old name
     Builtin::eager("length", 1, 1, length_old),
-    Builtin::eager("nth$", 2, 2, nth),
-    Builtin::eager("member$", 2, 2, member),
-    Builtin::eager("subsetp", 2, 2, subsetp),
-    Builtin::eager("insert$", 3, ANY, insert),
-    Builtin::eager("delete$", 3, 3, delete),
-    Builtin::eager("replace$", 4, ANY, replace),
-    Builtin::eager("first$", 1, 1, first),
-    Builtin::eager("rest$", 1, 1, rest),
-    Builtin::eager("subseq$", 3, 3, subseq),
-    Builtin::eager("implode$", 1, 1, implode),
-    Builtin::eager("delete-member$", 2, ANY, delete_member),
-    Builtin::eager("replace-member$", 3, ANY, replace_member),
-    Builtin::eager("explode$", 1, 1, explode),
+    Builtin::eager("nth$", 2, 2, nth).args(&[I, M], Any).on_error(OnError::Nil),
+    Builtin::eager("member$", 2, 2, member).args(&[Any, M], Any).on_error(OnError::False),
+    Builtin::eager("subsetp", 2, 2, subsetp).args(&[M, M], Any).on_error(OnError::False),
+    Builtin::eager("insert$", 3, ANY, insert).args(&[M, I], Any).on_error(OnError::EmptyMultifield),
+    Builtin::eager("delete$", 3, 3, delete).args(&[M, I, I], Any).on_error(OnError::EmptyMultifield),
+    Builtin::eager("replace$", 4, ANY, replace).args(&[M, I, I], Any).on_error(OnError::EmptyMultifield),
+    Builtin::eager("first$", 1, 1, first).args(&[M], Any).on_error(OnError::EmptyMultifield),
+    Builtin::eager("rest$", 1, 1, rest).args(&[M], Any).on_error(OnError::EmptyMultifield),
+    Builtin::eager("subseq$", 3, 3, subseq).args(&[M, I, I], Any).on_error(OnError::EmptyMultifield),
+    Builtin::eager("implode$", 1, 1, implode).args(&[M], Any).on_error(OnError::EmptyString),
+    Builtin::eager("delete-member$", 2, ANY, delete_member).args(&[M], Any).on_error(OnError::EmptyMultifield),
+    Builtin::eager("replace-member$", 3, ANY, replace_member).args(&[M], Any).on_error(OnError::EmptyMultifield),
+    Builtin::eager("explode$", 1, 1, explode).args(&[S], Any).on_error(OnError::EmptyMultifield),
 ];
 
 fn multi_arg(cx: &Core<'_>, a: Args, i: usize, func: &'static str) -> Result<MfSpan, EvalError> {

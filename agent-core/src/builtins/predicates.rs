@@ -1,22 +1,25 @@
 //! Builtins: type predicates (numberp integerp floatp symbolp stringp lexemep
 //! multifieldp) and the integer predicates evenp / oddp.
 
+use super::describe::ArgType::{Any, Integer as I};
+use super::describe::OnError;
 use super::math::int_arg;
 use super::{Args, Builtin};
 use crate::engine::Core;
 use crate::error::EvalError;
 use crate::value::Value;
 
+#[rustfmt::skip]
 pub const FUNCS: &[Builtin] = &[
-    Builtin::eager("numberp", 1, 1, numberp),
-    Builtin::eager("integerp", 1, 1, integerp),
-    Builtin::eager("floatp", 1, 1, floatp),
-    Builtin::eager("symbolp", 1, 1, symbolp),
-    Builtin::eager("stringp", 1, 1, stringp),
-    Builtin::eager("lexemep", 1, 1, lexemep),
-    Builtin::eager("multifieldp", 1, 1, multifieldp),
-    Builtin::eager("evenp", 1, 1, evenp),
-    Builtin::eager("oddp", 1, 1, oddp),
+    Builtin::eager("numberp", 1, 1, numberp).on_error(OnError::False).total(),
+    Builtin::eager("integerp", 1, 1, integerp).on_error(OnError::False).total(),
+    Builtin::eager("floatp", 1, 1, floatp).on_error(OnError::False).total(),
+    Builtin::eager("symbolp", 1, 1, symbolp).on_error(OnError::False).total(),
+    Builtin::eager("stringp", 1, 1, stringp).on_error(OnError::False).total(),
+    Builtin::eager("lexemep", 1, 1, lexemep).on_error(OnError::False).total(),
+    Builtin::eager("multifieldp", 1, 1, multifieldp).on_error(OnError::False).total(),
+    Builtin::eager("evenp", 1, 1, evenp).args(&[I], Any).on_error(OnError::False).quiet(),
+    Builtin::eager("oddp", 1, 1, oddp).args(&[I], Any).on_error(OnError::False).quiet(),
 ];
 
 fn test(cx: &Core<'_>, a: Args, pred: fn(Value) -> bool) -> Result<Value, EvalError> {

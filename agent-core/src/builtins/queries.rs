@@ -9,19 +9,21 @@
 //! let them (see `next_of_template`).
 
 use super::control::{keep_value, release_scratch};
+use super::describe::OnError;
 use super::{Builtin, ANY, SYM_FALSE};
 use crate::engine::Core;
 use crate::error::EvalError;
 use crate::value::Ix;
 use crate::value::{FactRef, Value, NONE};
 
+#[rustfmt::skip]
 pub const FUNCS: &[Builtin] = &[
-    Builtin::query("any-factp", 2, 2, any_factp),
-    Builtin::query("find-fact", 2, 2, find_fact),
-    Builtin::query("find-all-facts", 2, 2, find_all_facts),
-    Builtin::query("do-for-fact", 2, ANY, do_for_fact),
-    Builtin::query("do-for-all-facts", 2, ANY, do_for_all_facts),
-    Builtin::query("delayed-do-for-all-facts", 2, ANY, delayed_do_for_all_facts),
+    Builtin::query("any-factp", 2, 2, any_factp).on_error(OnError::False),
+    Builtin::query("find-fact", 2, 2, find_fact).on_error(OnError::EmptyMultifield),
+    Builtin::query("find-all-facts", 2, 2, find_all_facts).on_error(OnError::EmptyMultifield),
+    Builtin::query("do-for-fact", 2, ANY, do_for_fact).on_error(OnError::False),
+    Builtin::query("do-for-all-facts", 2, ANY, do_for_all_facts).on_error(OnError::False),
+    Builtin::query("delayed-do-for-all-facts", 2, ANY, delayed_do_for_all_facts).on_error(OnError::False),
 ];
 
 /// Most query variables in one fact-set query.

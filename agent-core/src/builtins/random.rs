@@ -9,15 +9,17 @@
 //! ring of 31 words, `rng_pos` the index of glibc's "rear" pointer (the "front" pointer
 //! is 3 ahead), `rng_seeded` whether the ring was initialised.
 
+use super::describe::ArgType::{Any, Integer as I};
 use super::math::int_arg;
 use super::{Args, Builtin};
 use crate::engine::{Core, State};
 use crate::error::EvalError;
 use crate::value::Value;
 
+#[rustfmt::skip]
 pub const FUNCS: &[Builtin] = &[
-    Builtin::eager("random", 0, 2, random),
-    Builtin::eager("seed", 1, 1, seed),
+    Builtin::eager("random", 0, 2, random).args(&[], I),
+    Builtin::eager("seed", 1, 1, seed).args(&[I], Any),
 ];
 
 /// Degree and separation of glibc's TYPE_3 generator.

@@ -5,6 +5,8 @@
 //! `sub-string` and `str-index`); `upcase`/`lowcase` change ASCII letters only, as
 //! C's `toupper` in the "C" locale does.
 
+use super::describe::ArgType::{Any, Integer as I, Lexeme as L};
+use super::describe::{BodyNames, OnError};
 use super::math::{int_arg, lexeme_arg, T_ATOM};
 use super::{Args, Builtin, SYM_FALSE};
 use crate::engine::Core;
@@ -13,15 +15,16 @@ use crate::host::router;
 use crate::lexer::{Lexer, Tok};
 use crate::value::{SymId, TextBuf, Value};
 
+#[rustfmt::skip]
 pub const FUNCS: &[Builtin] = &[
-    Builtin::eager("sym-cat", 1, super::ANY, sym_cat),
-    Builtin::eager("str-length", 1, 1, str_length),
-    Builtin::eager("sub-string", 3, 3, sub_string),
-    Builtin::eager("str-index", 2, 2, str_index),
-    Builtin::eager("upcase", 1, 1, upcase),
-    Builtin::eager("lowcase", 1, 1, lowcase),
-    Builtin::eager("str-compare", 2, 3, str_compare),
-    Builtin::eager("string-to-field", 1, 1, string_to_field),
+    Builtin::eager("sym-cat", 1, super::ANY, sym_cat).on_error(OnError::Nil),
+    Builtin::eager("str-length", 1, 1, str_length).args(&[L], Any).on_error(OnError::MinusOne).body_names(BodyNames::SymbolOrString),
+    Builtin::eager("sub-string", 3, 3, sub_string).args(&[I, I, L], Any).on_error(OnError::EmptyString).body_names(BodyNames::SymbolOrString),
+    Builtin::eager("str-index", 2, 2, str_index).args(&[L, L], Any).on_error(OnError::False).body_names(BodyNames::SymbolOrString),
+    Builtin::eager("upcase", 1, 1, upcase).args(&[L], Any).on_error(OnError::EmptyString).body_names(BodyNames::SymbolOrString),
+    Builtin::eager("lowcase", 1, 1, lowcase).args(&[L], Any).on_error(OnError::EmptyString).body_names(BodyNames::SymbolOrString),
+    Builtin::eager("str-compare", 2, 3, str_compare).args(&[L, L, I], Any).on_error(OnError::Zero).body_names(BodyNames::SymbolOrString),
+    Builtin::eager("string-to-field", 1, 1, string_to_field).on_error(OnError::ErrorString).body_names(BodyNames::SymbolOrString),
 ];
 
 /// Longest text a string builtin builds (symbol texts longer than this are an error).

@@ -1,6 +1,7 @@
 //! Expressions: constants, variables, function calls and the special forms.
 
-use super::{argtypes, PResult, Parser, Scope, VarKind};
+use super::{PResult, Parser, Scope, VarKind};
+use crate::builtins::describe as argtypes;
 use crate::builtins::{self, Syntax};
 use crate::expr::{Expr, FnKind, Op};
 use crate::lexer::{Lexer, Tok, Token};

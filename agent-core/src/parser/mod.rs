@@ -12,7 +12,6 @@ macro_rules! cap {
     }};
 }
 
-pub mod argtypes;
 mod construct;
 mod expr;
 mod facts;

@@ -1,0 +1,324 @@
+//! What a builtin's row says about it besides its name, arity and function: the argument
+//! types CLIPS checks literals against at parse time, the value it returns after a
+//! run-time error, the type names its body prints, and its purity. Each is set on the
+//! row with a `const` builder (`Builtin::eager("sqrt", 1, 1, sqrt).args(&[N], Any)
+//! .on_error(OnError::FloatZero).quiet().body_names(BodyNames::Float)`); a row that
+//! says nothing takes any argument,
+//! prints no value after an error and may have effects. Every entry was compared with
+//! CLIPS 6.30.
+
+use super::errors::Fallback;
+use super::math::{T_LEXEME, T_NUMBER};
+use super::{lookup, Builtin};
+use crate::value::Value;
+
+/// What a function accepts in one argument position. Only literals are checked while
+/// parsing (`(+ 1 abc)` is `[ARGACCES5]`, a load error); variables and calls are
+/// checked when they run.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ArgType {
+    Any,
+    Number,
+    Integer,
+    /// Symbol or string.
+    Lexeme,
+    Str,
+    /// No literal is a multifield.
+    Multifield,
+    /// No literal is a fact address.
+    FactAddress,
+}
+
+/// Most leading argument positions a row types one by one (then every further argument
+/// has the `rest` type).
+pub const MAX_TYPED: usize = 3;
+
+/// A builtin's argument types: the leading positions, then the type of every further one.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Signature {
+    lead: [ArgType; MAX_TYPED],
+    nlead: u8,
+    rest: ArgType,
+}
+
+impl Signature {
+    /// Any argument anywhere.
+    pub const ANY: Signature = Signature {
+        lead: [ArgType::Any; MAX_TYPED],
+        nlead: 0,
+        rest: ArgType::Any,
+    };
+
+    /// `lead` (at most [`MAX_TYPED`]), then `rest` for every further argument.
+    pub const fn new(lead: &[ArgType], rest: ArgType) -> Signature {
+        assert!(
+            lead.len() <= MAX_TYPED,
+            "more typed arguments than MAX_TYPED"
+        );
+        let mut s = Signature {
+            lead: [ArgType::Any; MAX_TYPED],
+            nlead: lead.len() as u8,
+            rest,
+        };
+        let mut i = 0;
+        while i < lead.len() {
+            s.lead[i] = lead[i];
+            i += 1;
+        }
+        s
+    }
+
+    /// The type of argument `index` (0-based).
+    pub fn get(&self, index: usize) -> ArgType {
+        if index < self.nlead as usize {
+            self.lead[index]
+        } else {
+            self.rest
+        }
+    }
+}
+
+/// The value a builtin returns in CLIPS after a run-time error, when it is a constant
+/// (the command line prints it after the message).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum OnError {
+    /// None printed: the value depends on the arguments already seen (`+`, `min`, ...,
+    /// recorded by the builtin itself, `Core::set_error_fallback`), or nothing observed.
+    Nothing,
+    False,
+    Nil,
+    Zero,
+    One,
+    MinusOne,
+    FloatZero,
+    FloatOne,
+    EmptyString,
+    /// `"*** ERROR ***"` (string-to-field).
+    ErrorString,
+    EmptyMultifield,
+}
+
+impl OnError {
+    pub fn fallback(self) -> Option<Fallback> {
+        Some(match self {
+            OnError::Nothing => return None,
+            OnError::False => Fallback::Sym("FALSE"),
+            OnError::Nil => Fallback::Sym("nil"),
+            OnError::Zero => Fallback::Int(0),
+            OnError::One => Fallback::Int(1),
+            OnError::MinusOne => Fallback::Int(-1),
+            OnError::FloatZero => Fallback::Float(0.0),
+            OnError::FloatOne => Fallback::Float(1.0),
+            OnError::EmptyString => Fallback::Str(""),
+            OnError::ErrorString => Fallback::Str("*** ERROR ***"),
+            OnError::EmptyMultifield => Fallback::EmptyMulti,
+        })
+    }
+}
+
+/// What a builtin may do besides computing its value.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub enum Purity {
+    /// Anything (facts, agenda, output, globals ...).
+    Effects,
+    /// Depends on its arguments alone and prints nothing itself, even on an error (it
+    /// returns the error, reported once the actions stop).
+    Quiet,
+    /// Quiet, changes nothing a retract changes or observes, and cannot fail whatever
+    /// its arguments (`rete::defer` needs this of the tests a deferred propagation runs).
+    Total,
+}
+
+/// The type names a builtin's body prints for a computed argument of the wrong type,
+/// where CLIPS's body words them differently from its argument restriction.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum BodyNames {
+    /// As the restriction.
+    Same,
+    /// "symbol or string" for "symbol, string, or instance name".
+    SymbolOrString,
+    /// "float" for "integer or float".
+    Float,
+    /// "integer" for "integer or float".
+    Integer,
+}
+
+impl Builtin {
+    /// The argument types CLIPS checks literal arguments against while parsing.
+    pub const fn args(mut self, lead: &[ArgType], rest: ArgType) -> Builtin {
+        self.signature = Signature::new(lead, rest);
+        self
+    }
+    /// The value CLIPS returns after a run-time error.
+    pub const fn on_error(mut self, value: OnError) -> Builtin {
+        self.on_error = value;
+        self
+    }
+    /// Depends on its arguments alone and prints nothing itself.
+    pub const fn quiet(mut self) -> Builtin {
+        self.purity = Purity::Quiet;
+        self
+    }
+    /// Quiet and cannot fail.
+    pub const fn total(mut self) -> Builtin {
+        self.purity = Purity::Total;
+        self
+    }
+    /// How the body words a computed argument's wrong type.
+    pub const fn body_names(mut self, names: BodyNames) -> Builtin {
+        self.body_names = names;
+        self
+    }
+
+    /// The type name the body prints for a computed argument of the wrong type, given
+    /// the name its argument restriction uses for a literal one (`expected`).
+    pub fn runtime_type_name(&self, expected: &'static str) -> &'static str {
+        match self.body_names {
+            BodyNames::SymbolOrString if expected == T_LEXEME => "symbol or string",
+            BodyNames::Float if expected == T_NUMBER => "float",
+            BodyNames::Integer if expected == T_NUMBER => "integer",
+            _ => expected,
+        }
+    }
+}
+
+/// The type builtin `func` takes as its `index`-th (0-based) argument (any for a name
+/// that is no builtin).
+pub fn arg_type(func: &str, index: usize) -> ArgType {
+    match lookup(func) {
+        Some((_, b)) => b.signature.get(index),
+        None => ArgType::Any,
+    }
+}
+
+/// [`Builtin::runtime_type_name`] of builtin `func` (`expected` for a name that is no
+/// builtin).
+pub fn runtime_type_name(func: &str, expected: &'static str) -> &'static str {
+    match lookup(func) {
+        Some((_, b)) => b.runtime_type_name(expected),
+        None => expected,
+    }
+}
+
+impl ArgType {
+    /// Whether a literal value (integer, float, symbol or string) fits.
+    pub fn admits(self, v: Value) -> bool {
+        match self {
+            ArgType::Any => true,
+            ArgType::Number => matches!(v, Value::Int(_) | Value::Float(_)),
+            ArgType::Integer => matches!(v, Value::Int(_)),
+            ArgType::Lexeme => matches!(v, Value::Sym(_) | Value::Str(_)),
+            ArgType::Str => matches!(v, Value::Str(_)),
+            ArgType::Multifield | ArgType::FactAddress => false,
+        }
+    }
+
+    /// CLIPS's wording in `[ARGACCES5] ... to be of type WORDING`.
+    pub fn clips_name(self) -> &'static str {
+        match self {
+            ArgType::Any => "any",
+            ArgType::Number => "integer or float",
+            ArgType::Integer => "integer",
+            ArgType::Lexeme => "symbol, string, or instance name",
+            ArgType::Str => "string",
+            ArgType::Multifield => "multifield",
+            ArgType::FactAddress => "fact-address",
+        }
+    }
+
+    /// The position line's "expected ..." text.
+    pub fn expected(self) -> &'static str {
+        match self {
+            ArgType::Any => "an argument",
+            ArgType::Number => "an argument of type integer or float",
+            ArgType::Integer => "an argument of type integer",
+            ArgType::Lexeme => "an argument of type symbol or string",
+            ArgType::Str => "an argument of type string",
+            ArgType::Multifield => {
+                "an argument of type multifield (a variable or call, not a literal)"
+            }
+            ArgType::FactAddress => {
+                "an argument of type fact-address (a variable or call, not a literal)"
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::*;
+    use crate::builtins::BUILTINS;
+
+    #[test]
+    fn positions_past_the_listed_ones_take_the_rest_type() {
+        assert_eq!(arg_type("+", 0), ArgType::Number);
+        assert_eq!(arg_type("+", 7), ArgType::Number);
+        assert_eq!(arg_type("nth$", 0), ArgType::Integer);
+        assert_eq!(arg_type("nth$", 1), ArgType::Multifield);
+        assert_eq!(arg_type("insert$", 5), ArgType::Any);
+        assert_eq!(arg_type("printout", 1), ArgType::Any);
+        assert_eq!(arg_type("no-such-function", 0), ArgType::Any);
+    }
+
+    #[test]
+    fn literals_are_judged_by_their_type() {
+        assert!(ArgType::Number.admits(Value::Float(1.5)));
+        assert!(!ArgType::Number.admits(Value::Sym(3)));
+        assert!(!ArgType::Integer.admits(Value::Float(1.0)));
+        assert!(ArgType::Lexeme.admits(Value::Str(3)));
+        assert!(!ArgType::Str.admits(Value::Sym(3)));
+        assert!(!ArgType::Multifield.admits(Value::Int(1)));
+    }
+
+    #[test]
+    fn runtime_names_differ_only_where_clips_differs() {
+        assert_eq!(
+            runtime_type_name("str-length", T_LEXEME),
+            "symbol or string"
+        );
+        assert_eq!(runtime_type_name("sqrt", T_NUMBER), "float");
+        assert_eq!(runtime_type_name("integer", T_NUMBER), "integer");
+        assert_eq!(runtime_type_name("+", T_NUMBER), T_NUMBER);
+        assert_eq!(runtime_type_name("sqrt", T_LEXEME), T_LEXEME);
+    }
+
+    #[test]
+    fn fallbacks_come_from_the_rows() {
+        let of = |name: &str| lookup(name).unwrap().1.on_error.fallback();
+        assert_eq!(of("+"), None);
+        assert_eq!(of("format"), Some(Fallback::Str("")));
+        assert_eq!(of("/"), Some(Fallback::Float(1.0)));
+        assert_eq!(of("nth$"), Some(Fallback::Sym("nil")));
+        assert_eq!(of("find-all-facts"), Some(Fallback::EmptyMulti));
+    }
+
+    /// A total builtin is quiet; the quiet ones are the arithmetic, comparison, math,
+    /// predicate and geometry functions and nothing that prints, reads or changes facts.
+    #[test]
+    fn purity_is_consistent() {
+        for b in BUILTINS.iter() {
+            if b.purity >= Purity::Quiet {
+                assert!(
+                    !matches!(
+                        b.name,
+                        "printout" | "assert" | "retract" | "modify" | "bind" | "read"
+                    ),
+                    "{} cannot be quiet",
+                    b.name
+                );
+            }
+        }
+        let total: std::vec::Vec<&str> = BUILTINS
+            .iter()
+            .filter(|b| b.purity == Purity::Total)
+            .map(|b| b.name)
+            .collect();
+        for name in ["eq", "neq", "and", "or", "not", "numberp", "multifieldp"] {
+            assert!(total.contains(&name), "{name} is total");
+        }
+        for name in ["<", "+", "str-cat", "sqrt"] {
+            assert!(!total.contains(&name), "{name} can fail");
+        }
+    }
+}
