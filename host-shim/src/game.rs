@@ -23,8 +23,8 @@ pub struct Args {
     /// Game length in simulated seconds.
     #[arg(long, default_value_t = 900.0)]
     pub game_seconds: f32,
-    /// Robots on the field (1..=3), one agent process each.
-    #[arg(long, default_value_t = 1)]
+    /// Robots on the field (1..=3, as an LLSF team), one agent process each.
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u8).range(1..=3))]
     pub robots: u8,
     /// Directory holding `robotino-sim` (default: next to this program).
     #[arg(long)]
@@ -149,7 +149,7 @@ fn play(args: &Args) -> Result<i64, String> {
             .ok_or("this program has no directory")?,
     };
     let sim_path = dir.join("robotino-sim");
-    let robots = args.robots.clamp(1, 3);
+    let robots = args.robots;
     let nanos = std::time::SystemTime::now()
         .duration_since(std::time::UNIX_EPOCH)
         .map(|d| d.subsec_nanos())

@@ -12,10 +12,11 @@ use hal::{Pose2, Twist};
 use host_shim::shim::agent::{ChosenSkill, EngineAgent, MachineView};
 use host_shim::shim::behaviour::{DriveTuning, Perceived, Skill};
 use host_shim::shim::config::Config;
+use host_shim::shim::lockstep::{spawn_heartbeat, FrameWatch};
 use host_shim::shim::payloads::{
-    BumperPayload, DriverId, GyroPayload, HeartbeatPayload, IrScanPayload, LightPayload,
-    MachineClaimPayload, MotorCommandPayload, OdometryPayload, PuckPayload, SkillRequestPayload,
-    SkillStatus, SkillStatusPayload, WorldModelPayload,
+    BumperPayload, GyroPayload, IrScanPayload, LightPayload, MachineClaimPayload,
+    MotorCommandPayload, OdometryPayload, PuckPayload, SkillRequestPayload, SkillStatus,
+    SkillStatusPayload, WorldModelPayload,
 };
 use host_shim::shim::rule_engine::exit_from_engine_stack;
 use host_shim::shim::safety::{CycleInput, SafetyMonitor, Stream};
@@ -24,6 +25,8 @@ use host_shim::shim::transport::{Pub, RobotStream, Sub, TeamStream, Transport, T
 use rules::Strategy;
 use std::path::PathBuf;
 use std::process::ExitCode;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 #[derive(clap::Args)]
@@ -40,7 +43,8 @@ pub struct Args {
     /// Stop after this many cycles (0: run until terminated).
     #[arg(long, default_value_t = 0)]
     pub cycles: u64,
-    /// Cycle in lockstep with the sim: a cycle per fresh odometry sample.
+    /// Cycle in lockstep with the sim: a cycle per complete sensor frame, however long it
+    /// takes to come (the sim waits for this agent's answer as long as its heartbeat beats).
     #[arg(long)]
     pub lockstep: bool,
     /// Simulated seconds per wall-clock second (overrides the file).
@@ -76,7 +80,6 @@ struct AgentPorts {
     motor: Pub<MotorCommandPayload>,
     request: Pub<SkillRequestPayload>,
     status: Pub<SkillStatusPayload>,
-    heartbeat: Pub<HeartbeatPayload>,
     world_out: Pub<WorldModelPayload>,
     world_in: Sub<WorldModelPayload>,
     claims_out: Pub<MachineClaimPayload>,
@@ -96,7 +99,6 @@ impl AgentPorts {
             motor: t.publisher(&name(RobotStream::Motor))?,
             request: t.publisher(&name(RobotStream::SkillRequest))?,
             status: t.publisher(&name(RobotStream::SkillStatus))?,
-            heartbeat: t.publisher(&name(RobotStream::Heartbeat))?,
             world_out: t.publisher(&t.names.team(TeamStream::WorldModel))?,
             world_in: t.subscriber(&t.names.team(TeamStream::WorldModel))?,
             claims_out: t.publisher(&t.names.team(TeamStream::Claims))?,
@@ -113,7 +115,6 @@ struct Samples {
     /// cycle (the loop's count at receipt): the start of the bumper-latency measurement.
     bumper_hit: Option<(Instant, u64)>,
     perceived: Perceived,
-    odometry_seq: Option<u32>,
     gate: Option<hal::field::GateId>,
 }
 
@@ -129,7 +130,6 @@ impl Samples {
                 has_puck: false,
                 light: None,
             },
-            odometry_seq: None,
             gate: None,
         }
     }
@@ -160,7 +160,6 @@ impl Samples {
                 // The driver's odometry already fuses wheels and gyro (hal::odometry).
                 self.perceived.pose = r.pose;
                 self.seq[Stream::Odometry as usize] = Some(s.seq);
-                self.odometry_seq = Some(s.seq);
             }
         }
         if let Some(s) = p.puck.poll()? {
@@ -208,6 +207,15 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
     };
     let transport = Transport::open(&config.services.prefix, &format!("robotino-agent-{robot}"))?;
     let mut ports = AgentPorts::open(&transport, robot)?;
+    let mut frames = FrameWatch::open(&transport, robot)?;
+    // The sim tells a dead agent from a slow one by this thread's beats.
+    let beat_cycle = Arc::new(AtomicU64::new(0));
+    spawn_heartbeat(
+        &transport.names,
+        robot,
+        Duration::from_millis(config.timing.heartbeat_period_ms),
+        Arc::clone(&beat_cycle),
+    )?;
     let tuning = DriveTuning {
         max_linear_m_s: config.limits.max_linear_m_s,
         max_angular_rad_s: config.limits.max_angular_rad_s,
@@ -226,7 +234,6 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
     let mut running: Option<Running> = None;
     let mut stats = LoopStats::default();
     let wall_cycle = config.wall_cycle();
-    let grace = Duration::from_millis(config.timing.lockstep_grace_ms);
     let poll = Duration::from_micros(200);
     let start = Instant::now();
     let mut cycle: u64 = 0;
@@ -237,13 +244,10 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
     );
 
     loop {
-        // Wait for the cycle: the next fresh odometry sample in lockstep, else the clock.
-        let wait_start = Instant::now();
-        let last_odometry = samples.odometry_seq;
+        // Wait for the cycle: the sim's next complete frame in lockstep, else the clock.
         loop {
             let due = if config.timing.lockstep {
-                samples.read(&mut ports, cycle + 1)?;
-                samples.odometry_seq != last_odometry || wait_start.elapsed() >= grace
+                frames.fresh_frame()?
             } else {
                 start.elapsed() >= wall_cycle * (cycle as u32 + 1)
             };
@@ -257,6 +261,7 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
         }
         let work_start = Instant::now();
         cycle += 1;
+        beat_cycle.store(cycle, Ordering::Relaxed);
         samples.read(&mut ports, cycle)?;
         let p = samples.perceived;
         mind.listen(&mut ports, cycle)?;
@@ -362,9 +367,6 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
                 samples.bumper_hit = None;
             }
         }
-        ports
-            .heartbeat
-            .send(|s| HeartbeatPayload::encode(s, cycle as u32, DriverId::Agent))?;
 
         if let Some(r) = running.as_ref() {
             let request = r.skill.request();

@@ -7,14 +7,16 @@
 //! from `--seed` like `robotino-agent sim --seed`.
 //!
 //! Cycles: in real time (`time_warp` 1) a cycle every 1/15 s; with `time_warp` W, W times as
-//! fast; in lockstep, a cycle as soon as every robot's agent sent a fresh motor command (or
-//! after `lockstep_grace_ms`, so a dead agent still trips the dead-man rule).
+//! fast; in lockstep, a cycle as soon as every live robot's agent answered the cycle's
+//! frame with its motor command (`host_shim::shim::lockstep`: an agent whose heartbeat
+//! stopped is dead and no longer waited for, so its wheels stop by the dead-man rule).
 
 use clap::Parser;
 use hal::field::GateId;
 use hal::WheelSpeeds;
 use host_shim::shim::config::Config;
 use host_shim::shim::field_sim::{Command, FieldSim, SensorFrame};
+use host_shim::shim::lockstep::{AgentLife, AgentWatch};
 use host_shim::shim::payloads::{
     BumperPayload, DriverId, GyroPayload, HeartbeatPayload, IrScanPayload, LightPayload,
     MotorCommandPayload, OdometryPayload, OdometryReading, PuckPayload,
@@ -37,8 +39,8 @@ struct Args {
     /// Service-name prefix (overrides the file).
     #[arg(long)]
     prefix: Option<String>,
-    /// Number of robots on the field (1..=3).
-    #[arg(long, default_value_t = 1)]
+    /// Number of robots on the field (1..=3; LLSF teams field at most three).
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u8).range(1..=3))]
     robots: u8,
     /// Stop after this many cycles (0: when the game ends).
     #[arg(long, default_value_t = 0)]
@@ -91,6 +93,17 @@ impl DriverPorts {
         })
     }
 
+    /// Hands the current frame to subscribers that joined since it was published.
+    fn update_connections(&self) -> Result<(), TransportError> {
+        self.ir.update_connections()?;
+        self.bumper.update_connections()?;
+        self.gyro.update_connections()?;
+        self.odometry.update_connections()?;
+        self.puck.update_connections()?;
+        self.light.update_connections()?;
+        self.heartbeat.update_connections()
+    }
+
     /// Publishes a frame; returns the bumper sample's sequence number.
     fn publish(
         &mut self,
@@ -115,8 +128,9 @@ impl DriverPorts {
         Ok(bumper_seq)
     }
 
-    /// The newest valid motor command and the bumper sample it answers. An invalid one is
-    /// dropped (and so is not fresh: the dead-man rule counts it as missing).
+    /// The newest valid motor command and the bumper sample it answers (in lockstep, the
+    /// frame it answers). An invalid one is dropped (and so is not fresh: the dead-man
+    /// rule counts it as missing).
     fn command(&mut self) -> Result<Option<(Command, u32)>, TransportError> {
         Ok(self.motor.poll()?.and_then(|p| {
             let wheels: WheelSpeeds = p.decode().ok()?;
@@ -163,7 +177,7 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
         config.timing.time_warp = w;
     }
     config.timing.lockstep |= args.lockstep;
-    let robots = args.robots.clamp(1, 3);
+    let robots = args.robots;
     let transport = Transport::open(&config.services.prefix, "robotino-sim")?;
     let mut ports = (1..=robots)
         .map(|r| DriverPorts::open(&transport, r))
@@ -177,14 +191,26 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
     let mut field = FieldSim::new(&config, robots, referee);
 
     let wall_cycle = config.wall_cycle();
-    let grace = Duration::from_millis(config.timing.lockstep_grace_ms);
     let poll = Duration::from_micros(200);
+    let mut watches = (1..=robots)
+        .map(|r| {
+            AgentWatch::open(
+                &transport,
+                r,
+                Duration::from_millis(config.timing.heartbeat_timeout_ms),
+                Duration::from_millis(config.timing.startup_timeout_ms),
+            )
+        })
+        .collect::<Result<Vec<_>, _>>()?;
     let mut last_seq: Vec<Option<u32>> = vec![None; ports.len()];
     let mut latency: Option<BumperLatency> = None;
+    let mut bumps_seen = vec![0u32; ports.len()];
     let start = Instant::now();
 
+    // The bumper sample of each robot's current frame: a lockstep answer names it.
+    let mut frame_seq: Vec<u32> = Vec::with_capacity(ports.len());
     for (i, p) in ports.iter_mut().enumerate() {
-        p.publish(&field.sense(i), gate, 0)?;
+        frame_seq.push(p.publish(&field.sense(i), gate, 0)?);
     }
     println!(
         "robotino-sim: ready prefix={} robots={robots} seed={} gate=D{} referee=rules/referee.clp",
@@ -194,31 +220,55 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
     );
     loop {
         // Wait for the next cycle.
-        let cycle_start = Instant::now();
         let mut commands: Vec<Option<(Command, u32)>> = vec![None; ports.len()];
         loop {
             for (c, p) in commands.iter_mut().zip(ports.iter_mut()) {
                 *c = p.command()?;
             }
-            let all_fresh = commands
-                .iter()
-                .zip(last_seq.iter())
-                .all(|(c, last)| c.is_some_and(|(c, _)| Some(c.seq) != *last));
             let due = if config.timing.lockstep {
-                all_fresh || cycle_start.elapsed() >= grace
+                let mut all_answered = true;
+                for (i, w) in watches.iter_mut().enumerate() {
+                    let (life, changed) = w.poll()?;
+                    if let Some(new) = changed {
+                        println!(
+                            "robotino-sim: agent robot={} cycle={} {}",
+                            i + 1,
+                            field.cycle(),
+                            match new {
+                                AgentLife::Starting => "starting",
+                                AgentLife::Alive => "alive",
+                                AgentLife::Dead => "dead (heartbeat stopped): not waited for",
+                            }
+                        );
+                    }
+                    let answered = commands[i].is_some_and(|(_, b)| b == frame_seq[i]);
+                    all_answered &= answered || life == AgentLife::Dead;
+                }
+                all_answered
             } else {
                 start.elapsed() >= wall_cycle * (field.cycle() as u32 + 1)
             };
             if due {
                 break;
             }
+            for p in &ports {
+                p.update_connections()?;
+            }
             if !transport.wait(poll) {
                 println!("robotino-sim: terminated");
                 return Ok(());
             }
         }
-        for (last, c) in last_seq.iter_mut().zip(commands.iter()) {
-            *last = c.map(|(c, _)| c.seq);
+        // A command is fresh once: in lockstep only the one answering this frame counts.
+        for (i, (last, c)) in last_seq.iter_mut().zip(commands.iter_mut()).enumerate() {
+            let stale = c.is_some_and(|(c, b)| {
+                Some(c.seq) == *last || (config.timing.lockstep && b != frame_seq[i])
+            });
+            if stale {
+                *c = None;
+            } else if let Some((c, _)) = c {
+                *last = Some(c.seq);
+            }
         }
 
         if let (Some(l), Some(Some((Command { wheels, .. }, bumper_seq)))) =
@@ -248,6 +298,7 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
         for (i, p) in ports.iter_mut().enumerate() {
             let frame = field.sense(i);
             let bumper_seq = p.publish(&frame, gate, cycle as u32)?;
+            frame_seq[i] = bumper_seq;
             if bump_now && i == 0 {
                 latency = Some(BumperLatency {
                     pressed_seq: bumper_seq,
@@ -258,6 +309,18 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
             }
         }
         for r in &field.robots {
+            if r.bumper() && r.contact.is_some() && r.bumps > bumps_seen[usize::from(r.number) - 1]
+            {
+                bumps_seen[usize::from(r.number) - 1] = r.bumps;
+                println!(
+                    "robotino-sim: cycle={cycle} bump robot={} with={} at=({:.2},{:.2},{:.2})",
+                    r.number,
+                    r.contact.map(|c| c.to_string()).unwrap_or_default(),
+                    r.true_pose.x_m,
+                    r.true_pose.y_m,
+                    r.true_pose.phi_rad
+                );
+            }
             // Log the dead-man rule's transitions (the cycle it trips and the one it clears).
             let silent = r.cycles_without_command();
             if silent == config.timing.motor_deadline_cycles {
@@ -284,8 +347,11 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
             if let Some(e) = &field.referee.fault {
                 return Err(format!("the referee stopped: {e}").into());
             }
+            let bumps: u32 = field.robots.iter().map(|r| r.bumps).sum();
+            // Both robots of a contact count it: a collision is one contact of two.
+            let robot_contacts: u32 = field.robots.iter().map(|r| r.robot_contacts).sum();
             println!(
-                "robotino-sim: done cycles={cycle} game_time_s={:.1} score={} wall_ms={}",
+                "robotino-sim: done cycles={cycle} game_time_s={:.1} score={} bumps={bumps} robot_contacts={robot_contacts} wall_ms={}",
                 field.referee.clock_s(),
                 field.referee.score(),
                 start.elapsed().as_millis()

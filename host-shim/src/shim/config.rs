@@ -58,10 +58,18 @@ pub struct TimingConfig {
     pub skill_timeout_cycles: u32,
     /// Simulated seconds per wall-clock second (1 = real time).
     pub time_warp: f32,
-    /// Lockstep: the sim advances one cycle per agent motor command (or after
-    /// `lockstep_grace_ms` without one, so a dead agent still trips the dead-man).
+    /// Lockstep: the sim advances one cycle once every live robot's agent answered the
+    /// cycle's sensor frame with its motor command; nothing else decides when, so the same
+    /// seed plays the same game.
     pub lockstep: bool,
-    pub lockstep_grace_ms: u64,
+    /// Wall-clock time without a heartbeat after which an agent process counts as dead
+    /// (lockstep no longer waits for it; its wheels stop by the dead-man rule). Agents
+    /// send heartbeats from a thread of their own every `heartbeat_period_ms`, so a slow
+    /// cycle never looks like a death.
+    pub heartbeat_timeout_ms: u64,
+    pub heartbeat_period_ms: u64,
+    /// How long lockstep waits for an agent's first heartbeat before playing without it.
+    pub startup_timeout_ms: u64,
 }
 
 /// Sensor noise in the simulation (standard deviations) and the generator's seed.
@@ -118,7 +126,9 @@ impl Default for TimingConfig {
             skill_timeout_cycles: 15 * 120,
             time_warp: 1.0,
             lockstep: false,
-            lockstep_grace_ms: 500,
+            heartbeat_timeout_ms: 3000,
+            heartbeat_period_ms: 100,
+            startup_timeout_ms: 120_000,
         }
     }
 }

@@ -102,9 +102,34 @@ pub struct SimRobot {
     gyro_angle: f32,
     gyro_rate: f32,
     measured: WheelSpeeds,
+    /// What the bumper touches this cycle, if anything.
+    pub contact: Option<Contact>,
+    /// Bumper contacts so far (each counted when it begins), and those with another robot.
+    pub bumps: u32,
+    pub robot_contacts: u32,
     /// The station where this robot last put or took a puck, until it leaves it: a robot
     /// standing still at a machine must not place the same puck every cycle.
     worked_station: Option<Station>,
+}
+
+/// What a robot's bumper touched.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Contact {
+    Wall,
+    /// 0-based machine index.
+    Machine(usize),
+    /// The other robot's number.
+    Robot(u8),
+}
+
+impl std::fmt::Display for Contact {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::Wall => write!(f, "wall"),
+            Self::Machine(i) => write!(f, "M{}", i + 1),
+            Self::Robot(n) => write!(f, "robot{n}"),
+        }
+    }
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -158,6 +183,9 @@ impl<R: Referee> FieldSim<R> {
                     gyro_angle: pose.phi_rad,
                     gyro_rate: 0.0,
                     measured: WheelSpeeds::ZERO,
+                    contact: None,
+                    bumps: 0,
+                    robot_contacts: 0,
                     worked_station: None,
                 }
             })
@@ -222,10 +250,18 @@ impl<R: Referee> FieldSim<R> {
         let twist = self.geometry.forward(self.robots[i].applied);
         let old = self.robots[i].true_pose;
         let new = old.advanced(twist, twist.omega_rad_s * self.dt_s, self.dt_s);
-        let blocked = self.collides(i, new.x_m, new.y_m);
+        let contact = self.collides(i, new.x_m, new.y_m);
+        let blocked = contact.is_some();
         let r = &mut self.robots[i];
         // Contact stops the robot where it was; the bumper reports contact in this cycle.
         r.bumper = blocked;
+        if blocked && r.contact.is_none() {
+            r.bumps += 1;
+            if matches!(contact, Some(Contact::Robot(_))) {
+                r.robot_contacts += 1;
+            }
+        }
+        r.contact = contact;
         if blocked {
             r.true_pose = Pose2::new(old.x_m, old.y_m, old.phi_rad);
         } else {
@@ -301,25 +337,28 @@ impl<R: Referee> FieldSim<R> {
         }
     }
 
-    /// True when a robot of this radius at (x, y) would touch a wall, a machine or another
+    /// What a robot of this radius at (x, y) would touch: a wall, a machine or another
     /// robot.
-    fn collides(&self, i: usize, x: f32, y: f32) -> bool {
+    fn collides(&self, i: usize, x: f32, y: f32) -> Option<Contact> {
         let rad = self.radius_m;
         if x < rad || y < rad || x > FIELD_SIZE_M - rad || y > FIELD_SIZE_M - rad {
-            return true;
+            return Some(Contact::Wall);
         }
         let half = MACHINE_SIZE_M / 2.0;
-        let hits_machine = MACHINE_POSITIONS.iter().any(|&(mx, my)| {
+        let machine = MACHINE_POSITIONS.iter().position(|&(mx, my)| {
             // Distance from the circle's centre to the square.
             let dx = ((x - mx).abs() - half).max(0.0);
             let dy = ((y - my).abs() - half).max(0.0);
             dx * dx + dy * dy < rad * rad
         });
-        let hits_robot =
-            self.robots.iter().enumerate().any(|(j, o)| {
-                j != i && o.true_pose.distance_to(&Pose2::new(x, y, 0.0)) < 2.0 * rad
-            });
-        hits_machine || hits_robot
+        if let Some(m) = machine {
+            return Some(Contact::Machine(m));
+        }
+        self.robots
+            .iter()
+            .enumerate()
+            .find(|&(j, o)| j != i && o.true_pose.distance_to(&Pose2::new(x, y, 0.0)) < 2.0 * rad)
+            .map(|(_, o)| Contact::Robot(o.number))
     }
 
     /// Distance along a ray from (x, y) in direction `angle` to the first obstacle.

@@ -6,6 +6,7 @@ pub mod agent;
 pub mod behaviour;
 pub mod config;
 pub mod field_sim;
+pub mod lockstep;
 pub mod payloads;
 pub mod planner;
 pub mod referee;

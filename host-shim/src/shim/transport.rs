@@ -34,6 +34,7 @@
 
 use iceoryx2::port::publisher::Publisher;
 use iceoryx2::port::subscriber::Subscriber;
+use iceoryx2::port::update_connections::UpdateConnections;
 use iceoryx2::prelude::*;
 use std::fmt::{self, Debug};
 
@@ -89,6 +90,10 @@ impl ServiceNames {
         }
     }
 
+    pub fn prefix(&self) -> &str {
+        &self.prefix
+    }
+
     pub fn robot(&self, robot: u8, stream: RobotStream) -> String {
         format!("{}/robot{robot}/{}", self.prefix, stream.leaf())
     }
@@ -134,15 +139,33 @@ impl Transport {
     /// Creates the node and removes what killed processes left behind, so a restarted
     /// driver can take over its services.
     pub fn open(prefix: &str, node_name: &str) -> Result<Self, TransportError> {
+        // Ctrl-C and SIGTERM end the loops through `Node::wait`; processes exit cleanly.
+        let t = Self::open_with(
+            prefix,
+            node_name,
+            SignalHandlingMode::HandleTerminationRequests,
+        )?;
+        t.node.try_cleanup_dead_nodes();
+        Ok(t)
+    }
+
+    /// A second node of the process (a helper thread's): signals stay with the main one.
+    pub fn open_without_signals(prefix: &str, node_name: &str) -> Result<Self, TransportError> {
+        Self::open_with(prefix, node_name, SignalHandlingMode::Disabled)
+    }
+
+    fn open_with(
+        prefix: &str,
+        node_name: &str,
+        signals: SignalHandlingMode,
+    ) -> Result<Self, TransportError> {
         set_log_level(LogLevel::Error);
         let name = NodeName::new(node_name).map_err(|e| err("node name", e))?;
         let node = NodeBuilder::new()
             .name(&name)
-            // Ctrl-C and SIGTERM end the loops through `Node::wait`; processes exit cleanly.
-            .signal_handling_mode(SignalHandlingMode::HandleTerminationRequests)
+            .signal_handling_mode(signals)
             .create::<ipc::Service>()
             .map_err(|e| err("create iceoryx2 node", e))?;
-        node.try_cleanup_dead_nodes();
         Ok(Self {
             node,
             names: ServiceNames::new(prefix),
@@ -226,6 +249,15 @@ impl<T: Debug + ZeroCopySend + Copy + 'static> Pub<T> {
             .map_err(|e| err(format!("send on {}", self.name), e))?;
         self.next_seq = self.next_seq.wrapping_add(1);
         Ok(seq)
+    }
+
+    /// Connects subscribers that came since the last send and hands them the latest sample
+    /// (a lockstep publisher that waits for an answer would otherwise never reach a
+    /// subscriber that joined after its last send).
+    pub fn update_connections(&self) -> Result<(), TransportError> {
+        self.publisher
+            .update_connections()
+            .map_err(|e| err(format!("connect subscribers of {}", self.name), e))
     }
 }
 
