@@ -78,7 +78,7 @@ engine_impl! {
             },
             Ok(Item::Construct) => Ok(Value::Void),
             Ok(Item::End) => Ok(Value::Void),
-            Err(_) => Err(EvalError::other("syntax error")),
+            Err(_) => Err(EvalError::message(crate::error::Message::SyntaxError)),
         };
         let now = cx.checkpoint();
         if now.nrules == cp.nrules && now.nfuncs == cp.nfuncs && now.ntemplates == cp.ntemplates && now.nglobals == cp.nglobals && now.ndeffacts == cp.ndeffacts {

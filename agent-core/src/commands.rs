@@ -699,7 +699,7 @@ impl Core<'_> {
                 let _ = writeln!(b, "[INTERRUPT] Execution interrupted by the host.");
             }
             // messages that already carry CLIPS's code, e.g. "[MULTIFUN1] ..."
-            EvalErrorKind::Other(m) if m.starts_with('[') => {
+            EvalErrorKind::Other(m) if m.text().starts_with('[') => {
                 let _ = writeln!(b, "{m}");
             }
             _ => {

@@ -50,7 +50,7 @@ pub enum EvalErrorKind {
     NoSuchTemplate,
     NoSuchSlot,
     BadSlotValue {
-        reason: &'static str,
+        reason: Message,
     },
     /// A host-registered function reported failure.
     External,
@@ -61,13 +61,13 @@ pub enum EvalErrorKind {
     /// The message is already printed (a builtin whose CLIPS message names run-time
     /// details, or a deffunction that added its `[PRCCODE4]` line): evaluation just stops.
     Reported,
-    Other(&'static str),
+    Other(Message),
 }
 
 /// An evaluation error, packed into 8 bytes: `Result<Value, EvalError>` is then no
 /// larger than a value (16 bytes, returned in two registers on the host, where the
-/// evaluator's results used to go through memory at 48). Names and messages are kept
-/// as indices into static texts (builtin names, [`ERROR_TEXTS`]); [`EvalError::kind`]
+/// evaluator's results used to go through memory at 48). Names and texts are kept as
+/// indices (builtin ids, [`Message`]s, [`ERROR_TEXTS`] for type names); [`EvalError::kind`]
 /// gives the full description back.
 #[derive(Clone, Copy, PartialEq, Eq)]
 pub struct EvalError {
@@ -101,46 +101,117 @@ mod code {
     pub const OTHER: u8 = 15;
 }
 
-/// `format`'s arity messages: CLIPS names the exact count its control string needs
-/// (2 to 12 arguments), or none beyond that.
-pub const FORMAT_ARITY: [&str; 12] = [
-    "[ARGACCES4] Function format expected exactly 2 argument(s)",
-    "[ARGACCES4] Function format expected exactly 3 argument(s)",
-    "[ARGACCES4] Function format expected exactly 4 argument(s)",
-    "[ARGACCES4] Function format expected exactly 5 argument(s)",
-    "[ARGACCES4] Function format expected exactly 6 argument(s)",
-    "[ARGACCES4] Function format expected exactly 7 argument(s)",
-    "[ARGACCES4] Function format expected exactly 8 argument(s)",
-    "[ARGACCES4] Function format expected exactly 9 argument(s)",
-    "[ARGACCES4] Function format expected exactly 10 argument(s)",
-    "[ARGACCES4] Function format expected exactly 11 argument(s)",
-    "[ARGACCES4] Function format expected exactly 12 argument(s)",
-    "[ARGACCES4] Function format called with the wrong number of arguments.",
-];
+/// Declares [`Message`]: every message an [`EvalError`] can carry, each with its text,
+/// in one table.
+macro_rules! messages {
+    ($($(#[$doc:meta])* $variant:ident = $text:literal,)*) => {
+        /// A message of an evaluation error ([`EvalErrorKind::Other`], the reason of
+        /// [`EvalErrorKind::BadSlotValue`]): named, not looked up by its text. Texts
+        /// that start with CLIPS's code (`[EMATHFUN1] ...`) are printed as they are.
+        #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+        pub enum Message {
+            $($(#[$doc])* $variant,)*
+        }
 
-/// Texts an `EvalError` can name besides the builtins' names: callers that are not
-/// builtins, CLIPS's descriptions of argument types, slot-value reasons, messages
-/// (`FORMAT_ARITY` among them). Index 0 stands for a text missing here (a debug build
-/// panics on it instead).
-pub const ERROR_TEXTS: [&str; BASE_TEXTS.len() + FORMAT_ARITY.len()] =
-    concat_texts(&BASE_TEXTS, &FORMAT_ARITY);
+        impl Message {
+            /// Every message, in declaration order (`message as usize` indexes it).
+            pub const ALL: &'static [Message] = &[$(Message::$variant,)*];
 
-const fn concat_texts<const N: usize>(a: &[&'static str], b: &[&'static str]) -> [&'static str; N] {
-    let mut out = [""; N];
-    let mut i = 0;
-    while i < a.len() {
-        out[i] = a[i];
-        i += 1;
-    }
-    let mut k = 0;
-    while k < b.len() {
-        out[i + k] = b[k];
-        k += 1;
-    }
-    out
+            /// The message as printed.
+            pub const fn text(self) -> &'static str {
+                match self {
+                    $(Message::$variant => $text,)*
+                }
+            }
+        }
+    };
 }
 
-const BASE_TEXTS: [&str; 45] = [
+messages! {
+    // slot values that do not fit their slot
+    TypeViolated = "type restriction violated",
+    AllowedValuesViolated = "allowed-values restriction violated",
+    SingleFieldNeedsOneValue = "a single-field slot needs exactly one value",
+    NoDefault = "slot has no default and needs a value",
+    // refusals and limits
+    DepthStrategyOnly = "only the depth strategy is supported",
+    NotTraced = "[NOTIMPL1] robotino-agent does not trace it",
+    QueryTooManyVariables = "fact-set query: more than 8 query variables",
+    QueryIncomplete = "fact-set query: missing query variables or query",
+    StrCatTooLong = "str-cat: result too long",
+    FormatTooLong = "format: result longer than 2048 bytes",
+    StringTooLong = "string result longer than 2048 bytes",
+    ImplodeTooLong = "implode$: result longer than 2048 bytes",
+    SyntaxError = "syntax error",
+    // CLIPS's math and random messages
+    SqrtDomain = "[EMATHFUN1] Domain error for sqrt function.",
+    PowDomain = "[EMATHFUN1] Domain error for ** function.",
+    LogDomain = "[EMATHFUN1] Domain error for log function.",
+    Log10Domain = "[EMATHFUN1] Domain error for log10 function.",
+    AsinDomain = "[EMATHFUN1] Domain error for asin function.",
+    AcosDomain = "[EMATHFUN1] Domain error for acos function.",
+    Domain = "[EMATHFUN1] Domain error.",
+    LogOverflow = "[EMATHFUN2] Argument overflow for log function.",
+    Log10Overflow = "[EMATHFUN2] Argument overflow for log10 function.",
+    RandomRange = "[MISCFUN3] Function random expected argument #1 to be less than argument #2",
+    RandomArity = "[MISCFUN2] Function random expected either 0 or 2 arguments",
+    // `format`'s arity: CLIPS names the exact count its control string needs (2 to 12
+    // arguments), or none beyond that
+    FormatArity2 = "[ARGACCES4] Function format expected exactly 2 argument(s)",
+    FormatArity3 = "[ARGACCES4] Function format expected exactly 3 argument(s)",
+    FormatArity4 = "[ARGACCES4] Function format expected exactly 4 argument(s)",
+    FormatArity5 = "[ARGACCES4] Function format expected exactly 5 argument(s)",
+    FormatArity6 = "[ARGACCES4] Function format expected exactly 6 argument(s)",
+    FormatArity7 = "[ARGACCES4] Function format expected exactly 7 argument(s)",
+    FormatArity8 = "[ARGACCES4] Function format expected exactly 8 argument(s)",
+    FormatArity9 = "[ARGACCES4] Function format expected exactly 9 argument(s)",
+    FormatArity10 = "[ARGACCES4] Function format expected exactly 10 argument(s)",
+    FormatArity11 = "[ARGACCES4] Function format expected exactly 11 argument(s)",
+    FormatArity12 = "[ARGACCES4] Function format expected exactly 12 argument(s)",
+    FormatArity = "[ARGACCES4] Function format called with the wrong number of arguments.",
+}
+
+impl Message {
+    /// `format`'s arity message for a control string that needs `expected` arguments.
+    pub fn format_arity(expected: usize) -> Message {
+        const EXACT: [Message; 11] = [
+            Message::FormatArity2,
+            Message::FormatArity3,
+            Message::FormatArity4,
+            Message::FormatArity5,
+            Message::FormatArity6,
+            Message::FormatArity7,
+            Message::FormatArity8,
+            Message::FormatArity9,
+            Message::FormatArity10,
+            Message::FormatArity11,
+            Message::FormatArity12,
+        ];
+        EXACT
+            .get(expected.wrapping_sub(2))
+            .copied()
+            .unwrap_or(Message::FormatArity)
+    }
+
+    /// The message of index `i` (see [`Message::ALL`]).
+    fn from_index(i: u16) -> Message {
+        Message::ALL
+            .get(i as usize)
+            .copied()
+            .unwrap_or(Message::SyntaxError)
+    }
+}
+
+impl fmt::Display for Message {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.text())
+    }
+}
+
+/// Texts an `EvalError` can name besides the builtins' names and its [`Message`]s:
+/// callers that are not builtins and CLIPS's descriptions of argument types. Index 0
+/// stands for a text missing here (a debug build panics on it instead).
+pub const ERROR_TEXTS: &[&str] = &[
     "?",
     "deffunction",
     "external",
@@ -163,32 +234,6 @@ const BASE_TEXTS: [&str; 45] = [
     "function, deffunction, or generic function name",
     "function name, deffunction name, or defgeneric name",
     "positive number",
-    // slot values that do not fit their slot
-    "type restriction violated",
-    "allowed-values restriction violated",
-    "a single-field slot needs exactly one value",
-    "slot has no default and needs a value",
-    // messages
-    "only the depth strategy is supported",
-    "[NOTIMPL1] robotino-agent does not trace it",
-    "fact-set query: more than 8 query variables",
-    "fact-set query: missing query variables or query",
-    "str-cat: result too long",
-    "format: result longer than 2048 bytes",
-    "string result longer than 2048 bytes",
-    "implode$: result longer than 2048 bytes",
-    "syntax error",
-    "[EMATHFUN1] Domain error for sqrt function.",
-    "[EMATHFUN1] Domain error for ** function.",
-    "[EMATHFUN1] Domain error for log function.",
-    "[EMATHFUN1] Domain error for log10 function.",
-    "[EMATHFUN1] Domain error for asin function.",
-    "[EMATHFUN1] Domain error for acos function.",
-    "[EMATHFUN1] Domain error.",
-    "[EMATHFUN2] Argument overflow for log function.",
-    "[EMATHFUN2] Argument overflow for log10 function.",
-    "[MISCFUN3] Function random expected argument #1 to be less than argument #2",
-    "[MISCFUN2] Function random expected either 0 or 2 arguments",
 ];
 
 /// The index of text `s` in `ERROR_TEXTS` (0, "?", when it is missing there: a debug
@@ -252,8 +297,9 @@ impl EvalError {
         e
     }
 
-    /// Packs `kind`. Its texts and function names are stored as indices: a text must
-    /// be one of `ERROR_TEXTS` and a name a builtin's (or listed there), else it reads
+    /// Packs `kind`. Its type names and function names are stored as indices: a type
+    /// name must be one of `ERROR_TEXTS` and a function name a builtin's (or listed
+    /// there), else it reads
     /// back as "?" (a debug build panics). A host function reports its own failure
     /// with `EvalErrorKind::External`, after printing what it wants to say.
     pub fn new(kind: EvalErrorKind) -> Self {
@@ -282,12 +328,12 @@ impl EvalError {
             K::NoSuchFunction => Self::packed(code::NO_SUCH_FUNCTION, 0, 0),
             K::NoSuchTemplate => Self::packed(code::NO_SUCH_TEMPLATE, 0, 0),
             K::NoSuchSlot => Self::packed(code::NO_SUCH_SLOT, 0, 0),
-            K::BadSlotValue { reason } => Self::packed(code::BAD_SLOT_VALUE, text_id(reason), 0),
+            K::BadSlotValue { reason } => Self::packed(code::BAD_SLOT_VALUE, reason as u16, 0),
             K::External => Self::packed(code::EXTERNAL, 0, 0),
             K::Exit => Self::packed(code::EXIT, 0, 0),
             K::Interrupted => Self::packed(code::INTERRUPTED, 0, 0),
             K::Reported => Self::packed(code::REPORTED, 0, 0),
-            K::Other(msg) => Self::packed(code::OTHER, text_id(msg), 0),
+            K::Other(msg) => Self::packed(code::OTHER, msg as u16, 0),
         }
     }
 
@@ -317,13 +363,13 @@ impl EvalError {
             code::NO_SUCH_TEMPLATE => K::NoSuchTemplate,
             code::NO_SUCH_SLOT => K::NoSuchSlot,
             code::BAD_SLOT_VALUE => K::BadSlotValue {
-                reason: text(self.a),
+                reason: Message::from_index(self.a),
             },
             code::EXTERNAL => K::External,
             code::EXIT => K::Exit,
             code::INTERRUPTED => K::Interrupted,
             code::REPORTED => K::Reported,
-            _ => K::Other(text(self.a)),
+            _ => K::Other(Message::from_index(self.a)),
         }
     }
 
@@ -333,8 +379,9 @@ impl EvalError {
         self.code == code::CAPACITY
     }
 
-    pub const fn other(msg: &'static str) -> Self {
-        Self::packed(code::OTHER, text_id(msg), 0)
+    /// An error carrying `msg` (`EvalErrorKind::Other`).
+    pub const fn message(msg: Message) -> Self {
+        Self::packed(code::OTHER, msg as u16, 0)
     }
     pub fn wrong_type(func: &'static str, arg: u8, expected: &'static str) -> Self {
         Self::new(EvalErrorKind::WrongType {
@@ -612,11 +659,6 @@ mod tests {
         let (mut texts, mut funcs): (Vec<String>, Vec<String>) = (Vec::new(), Vec::new());
         for path in &paths {
             let text = std::fs::read_to_string(path).unwrap_or_default();
-            for marker in ["Other(\"", "other(\"", "reason: \""] {
-                for (i, _) in text.match_indices(marker) {
-                    texts.extend(literal(&text, i + marker.len()).map(String::from));
-                }
-            }
             for (i, _) in text.match_indices("func: \"") {
                 funcs.extend(literal(&text, i + 7).map(String::from));
             }
@@ -636,7 +678,7 @@ mod tests {
                 }
             }
         }
-        assert!(texts.len() > 20 && !funcs.is_empty(), "{texts:?} {funcs:?}");
+        assert!(texts.len() > 10 && !funcs.is_empty(), "{texts:?} {funcs:?}");
         for t in texts {
             let leaked: &'static str = std::boxed::Box::leak(t.into_boxed_str());
             assert!(
@@ -711,14 +753,17 @@ mod tests {
             }
         }
         for &t in &ERROR_TEXTS[1..] {
+            let k = EvalErrorKind::WrongType {
+                func: "+",
+                arg: 1,
+                expected: t,
+            };
+            assert_eq!(EvalError::new(k).kind(), k);
+        }
+        for &m in Message::ALL {
             for k in [
-                EvalErrorKind::Other(t),
-                EvalErrorKind::BadSlotValue { reason: t },
-                EvalErrorKind::WrongType {
-                    func: "+",
-                    arg: 1,
-                    expected: t,
-                },
+                EvalErrorKind::Other(m),
+                EvalErrorKind::BadSlotValue { reason: m },
             ] {
                 assert_eq!(EvalError::new(k).kind(), k);
             }
@@ -728,9 +773,9 @@ mod tests {
             EvalError::new(EvalErrorKind::NoSuchFact(i64::MAX)).kind(),
             EvalErrorKind::NoSuchFact((1 << 47) - 1)
         );
-        let mut reported = EvalError::other("syntax error");
+        let mut reported = EvalError::message(Message::SyntaxError);
         reported.reported = true;
-        assert_eq!(reported.kind(), EvalErrorKind::Other("syntax error"));
+        assert_eq!(reported.kind(), EvalErrorKind::Other(Message::SyntaxError));
         assert!(EvalError::from(CapacityError {
             pool: Pool::Tokens,
             capacity: 3

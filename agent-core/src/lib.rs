@@ -133,7 +133,8 @@ pub use builtins::{Args, BuiltinFn};
 pub use config::{Capacities, Storage};
 pub use engine::{entry_bytes, Core, DefaultEngine, Engine, SmallEngine, Stats};
 pub use error::{
-    CapacityError, EngineError, EvalError, EvalErrorKind, HostIoError, LoadDetail, LoadError, Pool,
+    CapacityError, EngineError, EvalError, EvalErrorKind, HostIoError, LoadDetail, LoadError,
+    Message, Pool,
 };
 pub use host::{Host, NullHost};
 pub use invariants::Violation;

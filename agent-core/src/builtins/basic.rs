@@ -247,7 +247,7 @@ fn str_cat(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
             ));
         }
         cx.write_plain(&mut b, v)
-            .map_err(|_| EvalError::other("str-cat: result too long"))?;
+            .map_err(|_| EvalError::message(crate::error::Message::StrCatTooLong))?;
     }
     Ok(cx.make_string(b.as_str())?)
 }

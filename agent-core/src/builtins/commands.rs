@@ -148,9 +148,7 @@ fn watch_bits(cx: &Core<'_>, a: Args, func: &'static str) -> Result<u8, EvalErro
     let mut bits = 0;
     if a.len > 1 {
         // construct names after the item
-        return Err(EvalError::other(
-            "[NOTIMPL1] robotino-agent does not trace it",
-        ));
+        return Err(EvalError::message(crate::error::Message::NotTraced));
     }
     for i in 0..a.len as usize {
         let s = cx.arg_lexeme(a, i, func)?;
@@ -160,11 +158,7 @@ fn watch_bits(cx: &Core<'_>, a: Args, func: &'static str) -> Result<u8, EvalErro
             WatchItem::Unknown => {
                 return Err(EvalError::wrong_type(func, i as u8 + 1, "watchable symbol"))
             }
-            _ => {
-                return Err(EvalError::other(
-                    "[NOTIMPL1] robotino-agent does not trace it",
-                ))
-            }
+            _ => return Err(EvalError::message(crate::error::Message::NotTraced)),
         };
     }
     Ok(bits)
@@ -300,7 +294,7 @@ fn refresh_agenda(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
 fn set_strategy(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let s = cx.arg_lexeme(a, 0, "set-strategy")?;
     if cx.sym_text(s) != "depth" {
-        return Err(EvalError::other("only the depth strategy is supported"));
+        return Err(EvalError::message(crate::error::Message::DepthStrategyOnly));
     }
     Ok(Value::Sym(cx.intern("depth")?))
 }

@@ -51,7 +51,7 @@ impl Core<'_> {
     pub(crate) fn check_atom_def(&self, def: &SlotDef, v: Value) -> Result<(), EvalError> {
         if def.types != 0 && def.types & type_bit(v) == 0 {
             return Err(EvalError::new(EvalErrorKind::BadSlotValue {
-                reason: "type restriction violated",
+                reason: crate::error::Message::TypeViolated,
             }));
         }
         let applies = match def.allowed_kind {
@@ -84,7 +84,7 @@ impl Core<'_> {
             }
             if restricted {
                 return Err(EvalError::new(EvalErrorKind::BadSlotValue {
-                    reason: "allowed-values restriction violated",
+                    reason: crate::error::Message::AllowedValuesViolated,
                 }));
             }
         }
@@ -105,7 +105,7 @@ impl Core<'_> {
             return match v {
                 Value::Multi(m) if m.len == 1 => Ok(self.mf_item(m, 0)),
                 Value::Multi(_) => Err(EvalError::new(EvalErrorKind::BadSlotValue {
-                    reason: "a single-field slot needs exactly one value",
+                    reason: crate::error::Message::SingleFieldNeedsOneValue,
                 })),
                 _ => Ok(v),
             };
@@ -161,7 +161,7 @@ impl Core<'_> {
                 self.slot_value_from(tmpl, slot, def.default)
             }
             DefaultKind::Required => Err(EvalError::new(EvalErrorKind::BadSlotValue {
-                reason: "slot has no default and needs a value",
+                reason: crate::error::Message::NoDefault,
             })),
             _ => {
                 if def.multi {

@@ -23,7 +23,7 @@ pub const FUNCS: &[Builtin] = &[Builtin::eager("format", 2, ANY, format)
     .args(&[Any, S], Any)
     .on_error(OnError::EmptyString)];
 
-const TOO_LONG: EvalError = EvalError::other("format: result longer than 2048 bytes");
+const TOO_LONG: EvalError = EvalError::message(crate::error::Message::FormatTooLong);
 
 /// One parsed `%` directive.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -102,13 +102,7 @@ fn count_args(ctl: &str) -> usize {
 
 /// CLIPS's arity message names the exact count the control string needs.
 fn arity_error(expected: usize) -> EvalError {
-    use crate::error::FORMAT_ARITY;
-    EvalError::other(
-        FORMAT_ARITY[..FORMAT_ARITY.len() - 1]
-            .get(expected.wrapping_sub(2))
-            .copied()
-            .unwrap_or(FORMAT_ARITY[FORMAT_ARITY.len() - 1]),
-    )
+    EvalError::message(crate::error::Message::format_arity(expected))
 }
 
 fn format(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {

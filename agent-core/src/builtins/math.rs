@@ -89,22 +89,23 @@ pub(super) fn lexeme_arg(
 
 /// `[EMATHFUN1]` for the named function.
 pub(super) fn domain_error(func: &'static str) -> EvalError {
-    EvalError::other(match func {
-        "sqrt" => "[EMATHFUN1] Domain error for sqrt function.",
-        "**" => "[EMATHFUN1] Domain error for ** function.",
-        "log" => "[EMATHFUN1] Domain error for log function.",
-        "log10" => "[EMATHFUN1] Domain error for log10 function.",
-        "asin" => "[EMATHFUN1] Domain error for asin function.",
-        "acos" => "[EMATHFUN1] Domain error for acos function.",
-        _ => "[EMATHFUN1] Domain error.",
+    use crate::error::Message;
+    EvalError::message(match func {
+        "sqrt" => Message::SqrtDomain,
+        "**" => Message::PowDomain,
+        "log" => Message::LogDomain,
+        "log10" => Message::Log10Domain,
+        "asin" => Message::AsinDomain,
+        "acos" => Message::AcosDomain,
+        _ => Message::Domain,
     })
 }
 
 /// `[EMATHFUN2]`: CLIPS's message for `log`/`log10` of zero.
 fn overflow_error(func: &'static str) -> EvalError {
-    EvalError::other(match func {
-        "log" => "[EMATHFUN2] Argument overflow for log function.",
-        _ => "[EMATHFUN2] Argument overflow for log10 function.",
+    EvalError::message(match func {
+        "log" => crate::error::Message::LogOverflow,
+        _ => crate::error::Message::Log10Overflow,
     })
 }
 

@@ -335,7 +335,7 @@ fn implode(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let m = multi_arg(cx, a, 0, "implode$")?;
     let mut b = Text::new();
     write_implode(cx, m, &mut b)
-        .map_err(|_| EvalError::other("implode$: result longer than 2048 bytes"))?;
+        .map_err(|_| EvalError::message(crate::error::Message::ImplodeTooLong))?;
     Ok(cx.make_string(b.as_str())?)
 }
 

@@ -84,8 +84,8 @@ fn parse(cx: &Core<'_>, call: Ix) -> Result<Query, EvalError> {
     let mut v = cx.exprs[decl as usize].first;
     while v != NONE {
         if q.nvars == MAX_VARS {
-            return Err(EvalError::other(
-                "fact-set query: more than 8 query variables",
+            return Err(EvalError::message(
+                crate::error::Message::QueryTooManyVariables,
             ));
         }
         q.vars[q.nvars] = v;
@@ -93,9 +93,7 @@ fn parse(cx: &Core<'_>, call: Ix) -> Result<Query, EvalError> {
         v = cx.exprs[v as usize].next;
     }
     if test == NONE || q.nvars == 0 {
-        return Err(EvalError::other(
-            "fact-set query: missing query variables or query",
-        ));
+        return Err(EvalError::message(crate::error::Message::QueryIncomplete));
     }
     Ok(q)
 }

@@ -68,9 +68,7 @@ fn random(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
             let lo = int_arg(cx, a, 0, "random")?;
             let hi = int_arg(cx, a, 1, "random")?;
             if hi < lo {
-                return Err(EvalError::other(
-                    "[MISCFUN3] Function random expected argument #1 to be less than argument #2",
-                ));
+                return Err(EvalError::message(crate::error::Message::RandomRange));
             }
             let r = next_random(cx.st);
             let span = hi.wrapping_sub(lo).wrapping_add(1);
@@ -80,9 +78,7 @@ fn random(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
                 lo.wrapping_add(r % span)
             }))
         }
-        _ => Err(EvalError::other(
-            "[MISCFUN2] Function random expected either 0 or 2 arguments",
-        )),
+        _ => Err(EvalError::message(crate::error::Message::RandomArity)),
     }
 }
 

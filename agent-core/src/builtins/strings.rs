@@ -31,7 +31,7 @@ pub const FUNCS: &[Builtin] = &[
 pub(super) const TEXT_MAX: usize = 2048;
 pub(super) type Text = TextBuf<TEXT_MAX>;
 
-const TOO_LONG: EvalError = EvalError::other("string result longer than 2048 bytes");
+const TOO_LONG: EvalError = EvalError::message(crate::error::Message::StringTooLong);
 
 /// Copies a symbol's text out of the table, so the table can be written afterwards.
 pub(super) fn copy_text(cx: &Core<'_>, id: SymId) -> Result<Text, EvalError> {

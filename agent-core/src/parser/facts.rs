@@ -179,9 +179,9 @@ impl<'s> Parser<'s, '_, '_> {
         match self.cx.check_atom_def(def, v) {
             Ok(()) => None,
             Err(err) => Some(match err.kind() {
-                EvalErrorKind::BadSlotValue { reason } if reason.starts_with("type") => {
-                    Violation::Type
-                }
+                EvalErrorKind::BadSlotValue {
+                    reason: crate::error::Message::TypeViolated,
+                } => Violation::Type,
                 _ => Violation::AllowedValues,
             }),
         }
