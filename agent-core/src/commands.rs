@@ -695,6 +695,14 @@ impl Core<'_> {
             EvalErrorKind::NoSuchFact(n) => {
                 let _ = writeln!(b, "[PRNTUTIL1] Unable to find fact f-{n}.");
             }
+            EvalErrorKind::UnboundVariable { name } if name != crate::value::NONE => {
+                // a prompt variable's hidden global is `?x`; a local's name is `x`
+                let text = self.sym_text(name);
+                let _ = match text.strip_prefix('?') {
+                    Some(v) => writeln!(b, "[EVALUATN1] Variable {v} is unbound"),
+                    None => writeln!(b, "[PRCCODE5] Variable {text} unbound."),
+                };
+            }
             EvalErrorKind::Interrupted => {
                 let _ = writeln!(b, "[INTERRUPT] Execution interrupted by the host.");
             }
@@ -725,6 +733,11 @@ impl Core<'_> {
             return;
         }
         let x = self.exprs[top as usize];
+        // a prompt variable read unbound
+        if x.op == Op::Global {
+            self.write(router::STDOUT, "FALSE\n");
+            return;
+        }
         if x.op != Op::Call {
             return;
         }

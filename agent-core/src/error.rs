@@ -39,7 +39,11 @@ pub enum EvalErrorKind {
     DivideByZero {
         func: &'static str,
     },
-    UnboundVariable,
+    /// A variable read before it was bound: `name` is its symbol (a prompt
+    /// variable's hidden global is named `?x`), `NONE` when unknown.
+    UnboundVariable {
+        name: crate::value::SymId,
+    },
     /// Function calls nested deeper than the evaluator allows (`limit`, the
     /// `eval::MAX_EVAL_DEPTH`): a runaway recursion, stopped before the Rust stack is.
     TooDeep {
@@ -317,7 +321,7 @@ impl EvalError {
             ),
             K::Arity { func } => Self::packed(code::ARITY, name_id(func), 0),
             K::DivideByZero { func } => Self::packed(code::DIVIDE_BY_ZERO, name_id(func), 0),
-            K::UnboundVariable => Self::packed(code::UNBOUND_VARIABLE, 0, 0),
+            K::UnboundVariable { name } => Self::packed(code::UNBOUND_VARIABLE, 0, name as u32),
             K::TooDeep { limit } => Self::packed(code::TOO_DEEP, limit, 0),
             // 48 bits of the index: CLIPS prints what was asked for, and nothing
             // beyond that range can name a fact
@@ -352,7 +356,9 @@ impl EvalError {
             },
             code::ARITY => K::Arity { func: name(self.a) },
             code::DIVIDE_BY_ZERO => K::DivideByZero { func: name(self.a) },
-            code::UNBOUND_VARIABLE => K::UnboundVariable,
+            code::UNBOUND_VARIABLE => K::UnboundVariable {
+                name: self.b as crate::value::SymId,
+            },
             code::TOO_DEEP => K::TooDeep { limit: self.a },
             code::NO_SUCH_FACT => {
                 // the 48 bits back, sign-extended
@@ -427,7 +433,7 @@ impl fmt::Display for EvalError {
             EvalErrorKind::DivideByZero { func } => {
                 write!(f, "division by zero in function {func}")
             }
-            EvalErrorKind::UnboundVariable => write!(f, "unbound variable"),
+            EvalErrorKind::UnboundVariable { .. } => write!(f, "unbound variable"),
             EvalErrorKind::TooDeep { limit } => write!(
                 f,
                 "function calls nested deeper than the evaluation depth limit ({limit})"
@@ -708,7 +714,7 @@ mod tests {
         );
         let mut kinds = [EvalErrorKind::Exit; 16];
         let simple = [
-            EvalErrorKind::UnboundVariable,
+            EvalErrorKind::UnboundVariable { name: 7 },
             EvalErrorKind::NoSuchFunction,
             EvalErrorKind::NoSuchTemplate,
             EvalErrorKind::NoSuchSlot,

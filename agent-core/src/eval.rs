@@ -17,8 +17,14 @@ impl Core<'_> {
         let x = self.exprs[e as usize];
         match x.op {
             Op::Int | Op::Float | Op::Sym | Op::Str => Ok(self.const_value(e)),
-            Op::Local => Ok(self.stack[(self.st.bp + x.data) as usize]),
-            Op::Global => Ok(self.globals[x.data as usize].value),
+            Op::Local => self.local(e, x),
+            Op::Global => {
+                let v = self.globals[x.data as usize].value;
+                if matches!(v, Value::Void) {
+                    return self.unbound_global(x.data);
+                }
+                Ok(v)
+            }
             Op::PatVar => self.pattern_var_of(x),
             Op::QSlot => self.query_slot(e, x),
             Op::Expand => self.eval(x.first),
@@ -53,6 +59,60 @@ impl Core<'_> {
         }
     }
 
+    /// A frame local's value; one the parser marked as maybe unbound (bound only
+    /// inside a condition or loop: `aux` 1, its name in the payload node after it) is
+    /// an error while unbound.
+    #[inline(always)]
+    fn local(&mut self, e: Ix, x: Expr) -> Result<Value, EvalError> {
+        let v = self.stack[(self.st.bp + x.data) as usize];
+        if x.aux == 1 && matches!(v, Value::Void) {
+            return Err(self.unbound_local(e));
+        }
+        Ok(v)
+    }
+
+    #[cold]
+    #[inline(never)]
+    fn unbound_local(&self, e: Ix) -> EvalError {
+        let name = self.exprs[e as usize + 1].data;
+        EvalError::new(EvalErrorKind::UnboundVariable { name })
+    }
+
+    /// A global holding no value: a prompt variable (`?x`, hidden global `?x`) never
+    /// bound is CLIPS's `[EVALUATN1]`; a defglobal gives its value.
+    #[cold]
+    #[inline(never)]
+    fn unbound_global(&mut self, g: Ix) -> Result<Value, EvalError> {
+        let name = self.globals[g as usize].name;
+        if self.sym_text(name).starts_with('?') {
+            return Err(EvalError::new(EvalErrorKind::UnboundVariable { name }));
+        }
+        Ok(Value::Void)
+    }
+
+    /// CLIPS's message for an error that stopped deffunction `func`: an unbound local
+    /// names the deffunction. Out of line: the deffunction call recurses, and its
+    /// frame should not carry the text buffer.
+    #[cold]
+    #[inline(never)]
+    fn write_deffunction_error(&mut self, err: EvalError, func: crate::value::SymId) {
+        match err.kind() {
+            EvalErrorKind::UnboundVariable { name } if !err.reported && name != NONE => {
+                let mut b: crate::value::TextBuf<160> = crate::value::TextBuf::new();
+                let _ = core::fmt::Write::write_fmt(
+                    &mut b,
+                    format_args!(
+                        "[PRCCODE5] Variable {} unbound in deffunction {}.\n",
+                        self.sym_text(name),
+                        self.sym_text(func)
+                    ),
+                );
+                self.write(crate::host::router::WERROR, b.as_str());
+            }
+            _ => self.write_error_message(err),
+        }
+    }
+
     /// Evaluates an operand (a call argument, an `Eq2` side, a slot value): leaves (constants,
     /// variables) are read in place, without a recursive `eval` call, which is where
     /// most operands end and most of the evaluator's time went.
@@ -65,7 +125,7 @@ impl Core<'_> {
             Op::Int => Ok(Value::Int(
                 Expr::join_bits(x, self.exprs[e as usize + 1]) as i64
             )),
-            Op::Local => Ok(self.stack[(self.st.bp + x.data) as usize]),
+            Op::Local => self.local(e, x),
             Op::PatVar => self.pattern_var_of(x),
             Op::QSlot => self.query_slot(e, x),
             _ => self.eval(e),
@@ -204,7 +264,9 @@ impl Core<'_> {
     ) -> Result<Value, EvalError> {
         let b = self.binding(pat);
         if b.fact == NONE {
-            return Err(EvalError::new(EvalErrorKind::UnboundVariable));
+            return Err(EvalError::new(EvalErrorKind::UnboundVariable {
+                name: NONE,
+            }));
         }
         if locator == loc::FACT {
             return Ok(Value::Fact(self.fact_ref(b.fact)));
@@ -293,7 +355,9 @@ impl Core<'_> {
             i += 1;
             c = self.exprs[c as usize].next;
         }
-        Err(EvalError::new(EvalErrorKind::UnboundVariable))
+        Err(EvalError::new(EvalErrorKind::UnboundVariable {
+            name: NONE,
+        }))
     }
 
     /// `?v:slot` (an `Op::QSlot` node); inlined on the host, where most are read in
@@ -521,7 +585,7 @@ impl Core<'_> {
             Err(mut err)
                 if !matches!(err.kind(), EvalErrorKind::Exit | EvalErrorKind::Capacity(_)) =>
             {
-                self.write_error_message(err);
+                self.write_deffunction_error(err, df.name);
                 self.write_halted_in("deffunction", df.name);
                 err.reported = true;
                 Err(err)

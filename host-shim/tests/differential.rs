@@ -337,4 +337,6 @@ differential_programs! {
     p178_sort => "178-sort",
     p179_redefined_rule_nodes_are_new => "179-redefined-rule-nodes-are-new",
     p180_halts_and_in_use_during_a_command => "180-halts-and-in-use-during-a-command",
+    p181_unbound_prompt_variables => "181-unbound-prompt-variables",
+    p182_unbound_local_variables => "182-unbound-local-variables",
 }

@@ -14,10 +14,10 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::lazy("progn", 0, ANY, progn).on_error(OnError::False),
     Builtin::lazy("if", 2, 3, if_),
     Builtin::lazy("while", 2, 2, while_).on_error(OnError::False),
-    Builtin::lazy("loop-for-count", 4, 4, loop_for_count),
+    Builtin::lazy("loop-for-count", 4, 4, loop_for_count).on_error(OnError::False),
     Builtin::lazy("progn$", 3, 3, foreach).on_error(OnError::False),
     Builtin::lazy("foreach", 3, 3, foreach).on_error(OnError::False),
-    Builtin::lazy("switch", 1, ANY, switch),
+    Builtin::lazy("switch", 1, ANY, switch).on_error(OnError::False),
     Builtin::lazy("bind", 1, ANY, bind),
     Builtin::eager("return", 0, 1, return_),
     Builtin::eager("break", 0, 0, break_),
@@ -295,7 +295,11 @@ fn store_bound(cx: &mut Core<'_>, target: Ix, value: Value) -> Result<(), EvalEr
             cx.stack[at] = value;
         }
         Op::Global => cx.set_global(t.data, value)?,
-        _ => return Err(EvalError::new(EvalErrorKind::UnboundVariable)),
+        _ => {
+            return Err(EvalError::new(EvalErrorKind::UnboundVariable {
+                name: NONE,
+            }))
+        }
     }
     Ok(())
 }

@@ -123,6 +123,14 @@ impl Core<'_> {
                             | EvalErrorKind::Interrupted
                     ) =>
                 {
+                    if matches!(err.kind(), EvalErrorKind::UnboundVariable { .. }) {
+                        // an unbound variable empties the slot, as in CLIPS:
+                        // `(assert (k x ?u y))` makes `(k)`, then the actions stop
+                        self.write_error_message(err);
+                        self.st.field_error = Some(err);
+                        self.st.sp = base;
+                        break;
+                    }
                     // CLIPS reports it and goes on without this field
                     self.write_error_message(err);
                     self.st.field_error = Some(err);

@@ -241,7 +241,7 @@ impl<'s> Parser<'s, '_, '_> {
             body: NONE,
         };
         self.defining_fn = f;
-        let body = self.action_block();
+        let body = self.body_block();
         self.defining_fn = NONE;
         let body = match body {
             Ok(b) => b,

@@ -103,6 +103,9 @@ impl<'s> Parser<'s, '_, '_> {
                     first: desc,
                     ..Expr::new(Op::PatVar, pat, loc)
                 },
+                VarKind::Local(s) if v.unbound_name != NONE => {
+                    return self.checked_local_ref(s, v.unbound_name);
+                }
                 VarKind::Local(s) => Expr::new(Op::Local, 0, s),
             };
             let e = self.cx.push_expr(e);
@@ -119,6 +122,15 @@ impl<'s> Parser<'s, '_, '_> {
             }
             _ => Err(self.err(t, "a bound variable")),
         }
+    }
+
+    /// A read of a local that may be unbound: `aux` 1, its name in the payload node
+    /// after it (`Core::local`). Out of line: the reader recurses through `var_ref`.
+    #[inline(never)]
+    fn checked_local_ref(&mut self, slot: Ix, name: Ix) -> PResult<Ix> {
+        let e = cap!(self, self.cx.push_expr(Expr::new(Op::Local, 1, slot)))?;
+        cap!(self, self.cx.push_expr(Expr::new(Op::Payload, 0, name)))?;
+        Ok(e)
     }
 
     /// Top-level `?x` lives in a hidden global named `?x`.
@@ -138,7 +150,8 @@ impl<'s> Parser<'s, '_, '_> {
         }
         self.cx.globals[n] = crate::template::Global {
             name: id,
-            value: Value::Sym(builtins::SYM_NIL),
+            // unbound until bound (`eval::unbound_global`)
+            value: Value::Void,
             init: NONE,
         };
         self.cx.st.nglobals += 1;
@@ -241,9 +254,14 @@ impl<'s> Parser<'s, '_, '_> {
                     };
                     return Err(e);
                 }
+                // the image leaves this to `watch` itself (a run-time refusal): its
+                // code budget is tight
+                #[cfg(feature = "extras")]
                 if matches!(b.name, "watch" | "unwatch") {
                     self.check_watch_items(b.name, call, args_at)?;
-                } else if b.syntax == Syntax::Plain {
+                    return Ok(call);
+                }
+                if b.syntax == Syntax::Plain {
                     self.check_literal_args(b.name, call, args_at)?;
                 }
                 Ok(call)
@@ -300,6 +318,7 @@ impl<'s> Parser<'s, '_, '_> {
         Ok(())
     }
 
+    #[cfg(feature = "extras")]
     /// `watch`/`unwatch` items given as literals: one CLIPS does not know is its
     /// `[ARGACCES5]`; one we do not trace (`focus`, `globals`, ...; `all` for `watch`)
     /// is refused rather than accepted and ignored.
@@ -429,6 +448,11 @@ impl<'s> Parser<'s, '_, '_> {
             }
             _ => {
                 let s = self.new_local(t, name, false)?;
+                if self.in_nested_action() {
+                    // bound only on some paths: reads check it (`Core::local`)
+                    let sym = cap!(self, self.cx.intern(name))?;
+                    self.vars[self.nvars - 1].unbound_name = sym;
+                }
                 let e = self.cx.push_expr(Expr::new(Op::Local, 0, s));
                 cap!(self, e)
             }

@@ -48,6 +48,9 @@ pub struct VarEntry<'s> {
     pub name: &'s str,
     pub kind: VarKind,
     pub multi: bool,
+    /// A local bound only inside a condition or loop may be read unbound: its name
+    /// symbol, for the run-time error (`NONE`: always bound when read).
+    pub unbound_name: Ix,
 }
 
 /// Where expressions are being parsed, which decides how unknown variables resolve.
@@ -84,6 +87,9 @@ pub struct Parser<'s, 'c, 'e> {
     pub lhs_slot: Option<crate::template::SlotDef>,
     /// Current recursion depth of the reader (see `MAX_NESTING`).
     depth: u16,
+    /// `depth` where the actions of the rule or deffunction being read start: a
+    /// `bind` deeper than one level below it is conditional (see `VarEntry`).
+    pub body_depth: u16,
     /// Conditional elements of the rule so far, numbered as CLIPS numbers them in its
     /// messages (`CE #N`: patterns and tests in text order, all `or` branches).
     pub ce_count: u8,
@@ -111,6 +117,7 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
                 name: "",
                 kind: VarKind::Local(0),
                 multi: false,
+                unbound_name: NONE,
             }; MAX_VARS],
             nvars: 0,
             nlocals: 0,
@@ -122,6 +129,7 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
             pat_tmpl: [NONE; MAX_PATTERNS],
             lhs_slot: None,
             depth: 0,
+            body_depth: 0,
             ce_count: 0,
             rule_base: 0,
             replacing: NONE,
@@ -297,9 +305,25 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
         if self.nvars >= MAX_VARS {
             return Err(self.err(at, "fewer variables in one construct"));
         }
-        self.vars[self.nvars] = VarEntry { name, kind, multi };
+        self.vars[self.nvars] = VarEntry {
+            name,
+            kind,
+            multi,
+            unbound_name: NONE,
+        };
         self.nvars += 1;
         Ok(())
+    }
+
+    /// Reads the actions of a rule or deffunction (`body_depth` is where they start).
+    pub fn body_block(&mut self) -> PResult<Ix> {
+        self.body_depth = self.depth;
+        self.action_block()
+    }
+
+    /// Whether the reader is inside a condition or loop of the current actions.
+    pub fn in_nested_action(&self) -> bool {
+        self.depth > self.body_depth + 1
     }
 
     /// A new frame local for `name`.

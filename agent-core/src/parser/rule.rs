@@ -271,7 +271,7 @@ impl<'s> Parser<'s, '_, '_> {
             b.depth = 1;
         }
         self.scope = Scope::Frame;
-        let rhs = self.action_block()?;
+        let rhs = self.body_block()?;
         self.build_rule(name, salience, b, rhs)
     }
 
