@@ -40,7 +40,12 @@ fn main() {
         if let Err(message) = check(dir, &game) {
             fail(&format!("{message} (loading the {strategy} game)"));
         }
-        let member: Vec<&str> = agent.iter().chain(order::TEAM).copied().collect();
+        let member: Vec<&str> = agent
+            .iter()
+            .chain(order::TEAM)
+            .chain(order::TEAM_AGENT)
+            .copied()
+            .collect();
         if let Err(message) = check(dir, &member) {
             fail(&format!("{message} (loading the {strategy} team member)"));
         }

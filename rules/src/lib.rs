@@ -72,6 +72,8 @@ pub const SIM: RuleFile = rule_file!("sim.clp");
 pub const SNAPSHOT: RuleFile = rule_file!("snapshot.clp");
 /// The team's claims on machines, input storage and gates (one engine per robot).
 pub const TEAM: RuleFile = rule_file!("team.clp");
+/// The agent as a team member: claim before committing, news of worked machines.
+pub const TEAM_AGENT: RuleFile = rule_file!("team-agent.clp");
 /// Real-CLIPS stand-ins for host functions (`distance`); our engine has
 /// them built in, so hosts running our engine do not load this.
 pub const CLIPS_STUBS: RuleFile = rule_file!("clips/stubs.clp");

@@ -38,6 +38,8 @@ pub const DRIVER: &[&str] = &["referee.clp", "game-log.clp"];
 pub const SIM: &[&str] = &["sim.clp", "snapshot.clp"];
 /// What a robot of a team loads after its agent: the claims protocol.
 pub const TEAM: &[&str] = &["team.clp"];
+/// What a team member's agent loads after `TEAM`: claims before commitments, news.
+pub const TEAM_AGENT: &[&str] = &["team-agent.clp"];
 
 /// Every agent, by strategy name (as `Strategy::name` spells it).
 pub const AGENTS: [(&str, &[&str]); 3] = [

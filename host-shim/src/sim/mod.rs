@@ -10,6 +10,7 @@ pub mod replay;
 pub mod report;
 pub mod snapshot;
 pub mod sweep;
+pub mod team;
 
 use std::process::ExitCode;
 
@@ -64,6 +65,10 @@ pub struct Args {
     /// the process in the middle of a game).
     #[arg(long, value_name = "N", default_value_t = 0)]
     pub pace_ms: u64,
+    /// Robots in the team (1: the single agent; 2..6: one engine per robot with the
+    /// team rules, rules/team.clp and rules/team-agent.clp).
+    #[arg(long, default_value_t = 1)]
+    pub robots: u8,
     /// Play the game in FILE again and check that the decisions are the same.
     #[arg(long, value_name = "FILE", conflicts_with_all = ["seed", "assignment", "index", "log"])]
     pub replay: Option<std::path::PathBuf>,
@@ -194,6 +199,9 @@ fn run(args: Args) -> Result<String, SimError> {
         };
     }
     let (setup, title) = setup_from_args(&args)?;
+    if args.robots != 1 {
+        return team_game(&args, &setup, &title);
+    }
     let mut player = Player::new(args.strategy)?;
     warn_stub(&player);
     player.set_snapshot(sink_for(&args, args.snapshot.as_deref())?);
@@ -212,6 +220,27 @@ fn run(args: Args) -> Result<String, SimError> {
         out.push_str(&format!("game log written to {}\n", path.display()));
     }
     Ok(out)
+}
+
+/// `sim --robots N`: the team's game, with what the single game offers that a team
+/// game does not (yet) refused rather than ignored.
+fn team_game(args: &Args, setup: &GameSetup, title: &str) -> Result<String, SimError> {
+    let refused = [
+        (args.trace, "--trace"),
+        (args.log.is_some(), "--log"),
+        (args.snapshot.is_some(), "--snapshot"),
+        (args.faults > 0, "--faults"),
+        (args.fault_rate > 0, "--fault-rate"),
+    ];
+    if let Some((_, name)) = refused.iter().find(|(on, _)| *on) {
+        return Err(SimError::Input(format!(
+            "{name} is for one robot; a team game (--robots {}) does not support it",
+            args.robots
+        )));
+    }
+    let mut player = team::TeamPlayer::new(args.strategy, args.robots)?;
+    let record = player.play(setup, args.seed.unwrap_or(1))?;
+    Ok(team::render(&record, title, usize::from(args.robots)))
 }
 
 /// Says on stderr when the engine lacked `distance` and the CLIPS stub stands in.

@@ -42,6 +42,10 @@ pub struct Args {
     /// --fault-rate).
     #[arg(long, conflicts_with = "fault_rate")]
     pub fault_table: bool,
+    /// Robots in the team: above 1 plays every assignment with the team (one engine
+    /// per robot) and with one robot, and prints a table of both.
+    #[arg(long, default_value_t = 1, conflicts_with_all = ["fault_table", "fault_rate"])]
+    pub robots: u8,
 }
 
 /// What a sweep plays: strategy, clock and faults.
@@ -406,6 +410,9 @@ pub fn main(args: Args) -> ExitCode {
             fault_rate: args.fault_rate,
         }]
     };
+    if args.robots != 1 {
+        return team_main(&args, count, threads);
+    }
     if args.fault_table {
         println!("{TABLE_HEADER}");
     }
@@ -452,5 +459,40 @@ pub fn main(args: Args) -> ExitCode {
         ExitCode::FAILURE
     } else {
         ExitCode::SUCCESS
+    }
+}
+
+/// `sweep --robots N`.
+fn team_main(args: &Args, count: u32, threads: usize) -> ExitCode {
+    let config = SweepConfig {
+        strategy: args.strategy,
+        clock_off: args.clock_off,
+        fault_rate: 0,
+    };
+    let bar = if args.quiet {
+        ProgressBar::hidden()
+    } else {
+        ProgressBar::new(u64::from(count))
+    };
+    if let Ok(style) =
+        ProgressStyle::with_template("{bar:40} {pos}/{len} games  {per_sec}  eta {eta}")
+    {
+        bar.set_style(style);
+    }
+    let started = Instant::now();
+    let result = super::team::sweep_team(config, args.robots, count, threads, &|| bar.inc(1));
+    bar.finish_and_clear();
+    match result {
+        Ok(games) => {
+            print!(
+                "{}",
+                super::team::summarize_team(args.robots, &games, started.elapsed().as_secs_f64())
+            );
+            ExitCode::SUCCESS
+        }
+        Err(e) => {
+            eprintln!("robotino-agent sweep: {e}");
+            ExitCode::FAILURE
+        }
     }
 }

@@ -1,0 +1,153 @@
+;;; team-agent.clp -- the agent as a member of a team (after team.clp).
+;;;
+;;; The robot commits only to what it holds: an intent at a shared place (a
+;;; machine, the input storage, a delivery gate) is claimed first (state
+;;; TEAM-CLAIM); once held the skill request goes out as usual.  If another
+;;; robot has the place, the intent is dropped and the robot waits (state
+;;; TEAM-WAIT) until the place is free, then decides again with what it has
+;;; learned meanwhile.  When the skill's outcome is digested, the robot tells
+;;; the team what it now believes of that machine (news) and then releases
+;;; the claim; the others take the news into their own machine beliefs.  So
+;;; two robots never work one machine, and no robot carries an input chosen
+;;; on beliefs another robot was about to change.
+
+(defglobal ?*PRIORITY_TEAM_AGENT* = 105)   ; above execution (100)
+
+(deffunction team-resource-p (?x)
+  (or (eq ?x INS)
+      (member$ ?x (create$ D1 D2 D3 M1 M2 M3 M4 M5 M6 M7 M8 M9 M10))))
+
+(defrule team-claim-first
+  "An intent at a shared place: claim the place before committing."
+  (declare (salience ?*PRIORITY_TEAM_AGENT*))
+  ?s <- (state IDLE)
+  (intent (target ?x&:(team-resource-p ?x)))
+  (not (team-want (resource ?x)))
+  =>
+  (retract ?s)
+  (assert (state TEAM-CLAIM) (team-want (resource ?x))))
+
+(defrule team-claim-held
+  "The place is ours: commit (execution turns the intent into a request)."
+  (declare (salience ?*PRIORITY_TEAM_AGENT*))
+  ?s <- (state TEAM-CLAIM)
+  (intent (target ?x))
+  (team-clock (now ?t))
+  (team-claim (resource ?x) (until ?u&:(> ?u ?t)))
+  =>
+  (retract ?s)
+  (assert (state IDLE)))
+
+(defrule team-claim-busy
+  "Another robot has the place: drop the intent and wait for the place."
+  (declare (salience ?*PRIORITY_TEAM_AGENT*))
+  ?s <- (state TEAM-CLAIM)
+  ?i <- (intent (target ?x))
+  ?w <- (team-want (resource ?x))
+  (team-self (id ?me))
+  (team-clock (now ?t))
+  (team-vote (resource ?x) (holder ~?me) (until ?u&:(> ?u ?t)))
+  =>
+  (retract ?s ?i ?w)
+  (assert (state TEAM-WAIT) (team-waiting ?x)))
+
+(defrule team-wait-over
+  "The place is free again: decide anew."
+  (declare (salience ?*PRIORITY_TEAM_AGENT*))
+  ?s <- (state TEAM-WAIT)
+  ?w <- (team-waiting ?x)
+  (team-self (id ?me))
+  (team-clock (now ?t))
+  (not (team-vote (resource ?x) (holder ~?me) (until ?u&:(> ?u ?t))))
+  =>
+  (retract ?s ?w)
+  (assert (state IDLE)))
+
+(defrule team-done-with
+  "The skill at X is over and its outcome digested: news of the machine,
+   then the release (the team takes both in this order)."
+  (declare (salience (+ ?*PRIORITY_CANDIDATE* 5)))
+  ?w <- (team-want (resource ?x))
+  (state IDLE|DONE)
+  (not (intent (target ?x)))
+  (not (skill-request (target ?x)))
+  (team-self (id ?me))
+  =>
+  (do-for-fact ((?m machine)) (eq ?m:name ?x)
+    (team-send-msg ?me news 0 ?x 0 0.0 ?m:mtype ?m:junk ?m:productions ?m:loaded-with))
+  (retract ?w))
+
+(defrule team-news-machine
+  "A teammate's belief of a machine it just worked: take it.  A robot still
+   claiming a place decides again (its choice predates the news)."
+  (declare (salience ?*PRIORITY_TEAM*))
+  ?n <- (team-recv (taken TRUE) (kind news) (from ?f) (resource ?x)
+          (data ?type ?junk ?made $?loaded))
+  (team-self (id ?me&~?f))
+  ?m <- (machine (name ?x))
+  =>
+  (retract ?n)
+  (modify ?m (mtype ?type) (junk ?junk) (productions ?made) (loaded-with ?loaded))
+  (do-for-fact ((?s state)) (eq (nth$ 1 ?s:implied) TEAM-CLAIM)
+    (do-for-all-facts ((?i intent)) TRUE (retract ?i))
+    (do-for-all-facts ((?w team-want)) (not (any-factp ((?r skill-request)) (eq ?r:target ?w:resource)))
+      (retract ?w))
+    (retract ?s)
+    (assert (state IDLE))))
+
+;;; ---- the raw pucks: the team shares the storage's 20 -----------------------
+
+(defglobal ?*TEAM_SOLO_S0* = 8)   ; this few raw pucks left: robot 1 plays them alone
+
+(deftemplate team-s0-of
+  "Raw pucks robot R has taken from the input storage (its news of INS)."
+  (slot robot (type INTEGER))
+  (slot taken (type INTEGER)))
+
+(deffunction team-s0-taken ()
+  "Raw pucks the team has taken, as far as this robot knows: its own and
+   what the others' news of the input storage said."
+  (bind ?n 0)
+  (do-for-fact ((?c s0-taken)) TRUE (bind ?n (nth$ 1 ?c:implied)))
+  (do-for-all-facts ((?o team-s0-of)) TRUE (bind ?n (+ ?n ?o:taken)))
+  ?n)
+
+(defrule team-news-storage
+  "A teammate's count of the raw pucks it took."
+  (declare (salience ?*PRIORITY_TEAM*))
+  ?n <- (team-recv (taken TRUE) (kind news) (from ?f) (resource INS) (data ?k))
+  (team-self (id ?me&~?f))
+  =>
+  (retract ?n)
+  (do-for-all-facts ((?o team-s0-of)) (= ?o:robot ?f) (retract ?o))
+  (assert (team-s0-of (robot ?f) (taken ?k))))
+
+(defrule team-news-storage-send
+  "Done at the input storage: tell the team how many raw pucks this robot took
+   (before the release, so the next robot there knows)."
+  (declare (salience (+ ?*PRIORITY_CANDIDATE* 6)))
+  (team-want (resource INS))
+  (state IDLE|DONE)
+  (not (intent (target INS)))
+  (not (skill-request (target INS)))
+  (s0-taken ?k)
+  (team-self (id ?me))
+  (not (team-s0-told ?k))
+  =>
+  (do-for-all-facts ((?t team-s0-told)) TRUE (retract ?t))
+  (assert (team-s0-told ?k))
+  (team-send-msg ?me news 0 INS 0 0.0 ?k))
+
+(defrule team-solo-endgame
+  "Few raw pucks left: robots other than robot 1 stop, so the last products
+   are made one after another and none is left half-made when the storage
+   runs dry."
+  (declare (salience ?*PRIORITY_TEAM_AGENT*))
+  ?s <- (state IDLE)
+  ?i <- (intent (action get-s0))
+  (team-self (id ?me&:(> ?me 1)))
+  (s0-supply ?supply)
+  (test (<= (- ?supply (team-s0-taken)) ?*TEAM_SOLO_S0*))
+  =>
+  (retract ?s ?i)
+  (assert (state DONE)))
