@@ -6,16 +6,43 @@
 //! is known at compile time. Running out of a pool is a [`CapacityError`] naming the pool
 //! and its capacity; the failed operation is undone.
 //!
+//! # Three stages
+//! A construct goes through three stages; data flows down, nothing reaches back up.
+//!
+//! ```text
+//!  CLIPS text
+//!     │  syntax: lexer, parser (parser::rule for defrule)
+//!     ▼
+//!  expression nodes (Expr pool) + a rule's conditional elements (parser::rule::Build,
+//!  one Ce per join, tests as expression chains) + each pattern's fields and tests
+//!  (PatBuild)
+//!     │  compile: compile::alpha (pattern network: sharing, discrimination, order),
+//!     │           compile::join (joins, sharing of prefixes, priming new joins)
+//!     ▼
+//!  alpha nodes, joins, rules (their pools), primed with the existing facts
+//!     │  run time: rete (match), agenda, eval, builtins, commands (run loop)
+//!     ▼
+//!  tokens, activations, facts; firings
+//! ```
+//!
+//! Where the code is not there yet (issue 23): the syntax stage still builds a
+//! pattern's alpha node as soon as it has read the pattern (so a rule's form is not
+//! whole before the network is touched; a failed construct is undone by `Core::rollback`
+//! instead), and rule removal (`commands`) and that rollback (`engine`) edit the
+//! network outside `compile`.
+//!
 //! # Layout
 //! - [`value`]: values (`Int`, `Float`, symbols, strings, fact addresses, multifield
 //!   spans) and CLIPS number printing; [`symbols`]: interned texts.
-//! - [`lexer`] and [`parser`]: CLIPS source to constructs and expression trees
-//!   ([`expr`], 8-byte nodes). Each construct is built inside a checkpoint and rolled
-//!   back completely on any error.
+//! - [`lexer`] and [`parser`]: the syntax stage, CLIPS source to constructs and
+//!   expression trees ([`expr`], 8-byte nodes). Each construct is built inside a
+//!   checkpoint and rolled back completely on any error.
+//! - `compile`: the network builder (alpha nodes, joins, priming).
 //! - [`fact`], [`template`]: fact storage (a compacting value arena, a duplicate hash
 //!   index, a creation-ordered list), deftemplates, deffacts, globals, deffunctions.
 //! - [`rete`], [`agenda`], [`commands`]: matching, conflict resolution, run loop.
-//! - [`builtins`]: the function registry (one table per module), [`eval`]: evaluator.
+//! - [`builtins`]: the functions, one row each (name, arity, argument types, purity,
+//!   value after an error: [`builtins::describe`]), [`eval`]: evaluator.
 //! - [`config`]: the pool table, capacities by name; [`engine`]: state, storage and
 //!   `Core`, the non-generic view all algorithms run on, so the code exists once
 //!   whatever the capacities; [`api`]: the host API.
@@ -107,6 +134,7 @@ pub mod agenda;
 pub mod api;
 pub mod builtins;
 pub mod commands;
+pub(crate) mod compile;
 pub mod config;
 pub mod engine;
 pub mod error;

@@ -16,7 +16,7 @@ mod construct;
 mod expr;
 mod facts;
 mod in_use;
-mod rule;
+pub(crate) mod rule;
 mod slot;
 
 use crate::engine::Core;

@@ -1,16 +1,14 @@
-//! defrule: LHS conditional elements compiled into alpha nodes and joins, RHS actions.
+//! defrule, the syntax stage: the LHS's conditional elements read into a `Build` (one
+//! `Ce` per join to make, its tests as expression nodes) and each pattern into a
+//! `PatBuild`, the RHS's actions; the network is built from them by `crate::compile`.
 
 use super::facts::Violation;
 use super::{PResult, Parser, Scope, VarKind};
-use crate::engine::cap;
-use crate::error::Pool;
+use crate::compile::alpha::ZERO_LEN;
+use crate::compile::join::Primed;
 use crate::expr::{loc, Expr, Op};
 use crate::lexer::{Tok, Token};
-use crate::rete::{
-    AlphaNode, Join, JoinKind, EMPTY_PATH, MAX_MARKS, MAX_PATTERNS, MAX_RHASH, PATH_LEN,
-    THIS_PATTERN,
-};
-use crate::rule::Rule;
+use crate::rete::{JoinKind, MAX_MARKS, MAX_PATTERNS, MAX_RHASH, THIS_PATTERN};
 use crate::value::Ix;
 use crate::value::{SymId, Value, NONE};
 
@@ -18,28 +16,28 @@ use crate::value::{SymId, Value, NONE};
 const MAX_ORS: usize = 8;
 
 /// CE index meaning "the root" (as a parent) or "none" (as a right input).
-const CE_ROOT: u8 = 0xFF;
+pub(crate) const CE_ROOT: u8 = 0xFF;
 
 /// One join to build. CEs are listed in creation order; a `not`/`exists` over
 /// several CEs lists its subnetwork first, then the join taking the subnetwork's
 /// end from the right.
 #[derive(Clone, Copy)]
-struct Ce {
-    kind: JoinKind,
-    alpha: Ix,
+pub(crate) struct Ce {
+    pub(crate) kind: JoinKind,
+    pub(crate) alpha: Ix,
     /// Join tests (chain) and post tests (after not/exists).
-    jtests: Ix,
-    jlast: Ix,
-    post: Ix,
-    plast: Ix,
+    pub(crate) jtests: Ix,
+    pub(crate) jlast: Ix,
+    pub(crate) post: Ix,
+    pub(crate) plast: Ix,
     /// Pattern index (binding slot) of the CE in its chain.
-    depth: u8,
+    pub(crate) depth: u8,
     /// Left input: index of the CE before it in its chain, or CE_ROOT.
-    parent: u8,
+    pub(crate) parent: u8,
     /// Join from the right: index of the subnetwork's last CE (else CE_ROOT) and
     /// of its first one.
-    right: u8,
-    first_sub: u8,
+    pub(crate) right: u8,
+    pub(crate) first_sub: u8,
 }
 
 const CE_EMPTY: Ce = Ce {
@@ -55,22 +53,22 @@ const CE_EMPTY: Ce = Ce {
     first_sub: CE_ROOT,
 };
 
-struct Build {
-    ces: [Ce; MAX_PATTERNS],
-    n: usize,
+pub(crate) struct Build {
+    pub(crate) ces: [Ce; MAX_PATTERNS],
+    pub(crate) n: usize,
     /// Last CE of the chain being built (CE_ROOT before the first) and the next
     /// pattern index in it.
-    cur: u8,
-    depth: u8,
+    pub(crate) cur: u8,
+    pub(crate) depth: u8,
     /// Nesting of not/exists groups, and the first CE of the innermost one.
-    groups: u8,
-    group_first: u8,
+    pub(crate) groups: u8,
+    pub(crate) group_first: u8,
     /// `or` branch choice per `or` met, and how many branches each had.
-    choice: [u8; MAX_ORS],
-    counts: [u8; MAX_ORS],
-    nor: usize,
+    pub(crate) choice: [u8; MAX_ORS],
+    pub(crate) counts: [u8; MAX_ORS],
+    pub(crate) nor: usize,
     /// The salience, once the first disjunct evaluated it (CLIPS evaluates it once).
-    salience: Option<i32>,
+    pub(crate) salience: Option<i32>,
 }
 
 /// Where a CE sits: at top level, or inside `not`/`exists`.
@@ -192,45 +190,6 @@ impl<'s> Parser<'s, '_, '_> {
         }
 
         Ok(())
-    }
-
-    /// Primes the new joins of a chain whose left input is an old join, walking
-    /// from `j` up to `stop`; a subnetwork is primed after the join taking it.
-    fn prime_chain(
-        &mut self,
-        mut j: Ix,
-        first_new: Ix,
-        stop: Ix,
-        primed: &mut Primed,
-    ) -> Result<(), crate::error::EvalError> {
-        while j != NONE && j != 0 && j != stop {
-            let jn = self.cx.joins[j as usize];
-            if j >= first_new && jn.parent < first_new && !primed.ids[..primed.n].contains(&j) {
-                if primed.n < primed.ids.len() {
-                    primed.ids[primed.n] = j;
-                    primed.n += 1;
-                }
-                self.cx.prime_join(j)?;
-            }
-            if jn.rjoin != NONE {
-                self.prime_chain(jn.rjoin, first_new, jn.parent, primed)?;
-            }
-            j = jn.parent;
-        }
-        Ok(())
-    }
-
-    fn map_prime_err(&self, r: Result<(), crate::error::EvalError>, at: Token<'s>) -> PResult<()> {
-        match r {
-            Ok(()) => Ok(()),
-            Err(e) => {
-                let c = match e.kind() {
-                    crate::error::EvalErrorKind::Capacity(c) => c,
-                    _ => cap(Pool::Tokens, self.cx.tokens.len()),
-                };
-                Err(self.cap_err(at, c))
-            }
-        }
     }
 
     /// One disjunct: LHS (with the current or-choices), RHS, then the network.
@@ -1097,584 +1056,30 @@ impl<'s> Parser<'s, '_, '_> {
             },
         }
     }
-
-    fn find_or_make_alpha(&mut self, tmpl: Ix, pb: &PatBuild, at: Token<'s>) -> PResult<Ix> {
-        let (path, tail) = self.pattern_path(pb);
-        // CLIPS never shares the relation-name node an ordered pattern without tests
-        // (`(o $?)`) ends in: each such pattern is a new, newest node
-        let alone = self.cx.templates[tmpl as usize].implied && path.locs[0] == EMPTY_PATH;
-        let mut a = self.cx.templates[tmpl as usize].alpha_head;
-        while a != NONE && !alone {
-            let n = self.cx.alphas[a as usize];
-            if n.live
-                && !self.old_only_alpha(a)
-                && self.chain_eq(n.desc, pb.desc)
-                && self.chain_eq(n.tests, pb.atests)
-                && n.nrhash as usize == pb.nrhash
-                && (0..pb.nrhash).all(|i| self.same_field(n.rhash[i], pb.rhash[i]))
-            {
-                return Ok(a);
-            }
-            a = n.next_in_tmpl;
-        }
-        let n = self.cx.st.nalpha as usize;
-        if n >= self.cx.alphas.len() {
-            let c = cap(Pool::AlphaNodes, self.cx.alphas.len());
-            return Err(self.cap_err(at, c));
-        }
-        let (path_loc, mut path_test, plen) = (path.locs, path.tests, path.len);
-        if pb.nrhash > 0 {
-            // the last field's nodes carry the right hash: nodes of their own
-            let mut h: u32 = 0x7f4a_7c15;
-            for &e in &pb.rhash[..pb.nrhash] {
-                let x = self.cx.exprs[e as usize];
-                h = mix16(h, u32::from(x.data));
-                if x.first != NONE {
-                    let d = self.cx.exprs[x.first as usize];
-                    h = mix16(h, u32::from(d.data) | u32::from(d.aux) << 16);
-                }
-            }
-            for t in &mut path_test[plen - tail..plen] {
-                *t = (mix16(u32::from(*t), h) & 0xFFFF) as Ix | 1;
-            }
-        }
-        self.cx.alphas[n] = AlphaNode {
-            tmpl,
-            desc: pb.desc,
-            tests: pb.atests,
-            next_in_tmpl: NONE,
-            succ: NONE,
-            mem: NONE,
-            mem_tail: NONE,
-            nmarks: pb.marks,
-            live: true,
-            path_loc,
-            path_test,
-            key: [0; PATH_LEN],
-            key_len: plen as u8,
-            rhash: pb.rhash,
-            nrhash: pb.nrhash as u8,
-        };
-        self.assign_trie_key(tmpl, n as Ix, alone);
-        self.insert_alpha_sorted(tmpl, n as Ix);
-        self.cx.st.nalpha += 1;
-        self.cx.st.net_gen = self.cx.st.net_gen.wrapping_add(1);
-        self.cx.note_hw(Pool::AlphaNodes, n + 1);
-        Ok(n as Ix)
-    }
-
-    /// The pattern's path in CLIPS's pattern network (CLIPS 6.30 `factbld.c`), one
-    /// level per network node, in the order the pattern names its slots: a field
-    /// without a test of its own makes no node wherever it stands; a constant
-    /// constraint without `|` makes two, a "selector" node for the field that every
-    /// such constant on it shares, then the constant. Multislot elements are nodes of
-    /// their own, told apart by their place in the slot's layout (the first carries
-    /// the slot's length test). Returns the path and how many of its last levels are
-    /// the last field's (they carry the right hash; 0 when the path was cut).
-    fn pattern_path(&self, pb: &PatBuild) -> (NetPath, usize) {
-        let (f, nf) = (pb.fields, pb.nfields);
-        let mut path = NetPath {
-            locs: [0; PATH_LEN],
-            tests: [0; PATH_LEN],
-            len: 0,
-            cut: false,
-        };
-        let mut tail = 0;
-        let mut i = 0;
-        while i < nf {
-            let (l, t, _) = f[i];
-            match loc::elem(l) {
-                loc::SINGLE => {
-                    if t != NONE {
-                        let sel = self.selects(t).then_some(SELECTOR);
-                        tail = path.field(l, sel, self.expr_hash(t));
-                    }
-                    i += 1;
-                }
-                ZERO_LEN => {
-                    tail = path.field(l, None, ZERO_LEN as Ix);
-                    i += 1;
-                }
-                _ => {
-                    let slot = loc::slot(l);
-                    let mut k = i;
-                    while k < nf && loc::slot(f[k].0) == slot {
-                        k += 1;
-                    }
-                    if let Some(n) = self.multislot_path(&f[i..k], &mut path) {
-                        tail = n;
-                    }
-                    i = k;
-                }
-            }
-        }
-        if path.len == 0 {
-            path.locs[0] = EMPTY_PATH;
-            path.len = 1;
-            tail = 1;
-        }
-        if path.cut {
-            tail = 0;
-        }
-        (path, tail)
-    }
-
-    /// The nodes of one multislot's elements (CLIPS's `RemoveUnneededSlots`): an
-    /// element keeps a node if it has a test (the first one always has the slot's
-    /// length test unless it is a multifield with no single field after it) or if it
-    /// is a multifield among several. Returns the last node's level count, if any.
-    fn multislot_path(&self, r: &[(Ix, Ix, bool)], path: &mut NetPath) -> Option<usize> {
-        let nmf = r.iter().filter(|x| x.2).count() as u32;
-        let nsf = r.len() as u32 - nmf;
-        let length_test = if r[0].2 && nsf == 0 {
-            0
-        } else {
-            2 + u32::from(nmf == 0) + (nsf << 1)
-        };
-        let keeps = |k: usize| {
-            let (_, t, m) = r[k];
-            t != NONE || (k == 0 && length_test != 0) || (m && nmf > 1)
-        };
-        let last = (0..r.len()).rev().find(|&k| keeps(k))?;
-        let (mut sfb, mut mfb) = (0u32, 0u32);
-        let mut tail = 1;
-        for (k, &(l, t, m)) in r.iter().enumerate() {
-            if keeps(k) {
-                // what CLIPS compares: position, kind, end of slot, how the value is
-                // found (fields before and after) and the length test
-                let mut h = mix16(0x51ed_270b, k as u32);
-                h = mix16(h, u32::from(m) | u32::from(k == last) << 1);
-                h = mix16(h, sfb | mfb << 8);
-                h = mix16(
-                    h,
-                    (nsf - sfb - u32::from(!m)) | (nmf - mfb - u32::from(m)) << 8,
-                );
-                if k == 0 {
-                    h = mix16(h, length_test);
-                }
-                let fold = |h: u32| ((h ^ (h >> 16)) & 0xFFFF) as Ix;
-                tail = if t != NONE && !m && self.selects(t) {
-                    let v = mix16(u32::from(self.expr_hash(t)), u32::from(k == last));
-                    path.field(l, Some(fold(mix16(h, 0))), fold(v))
-                } else {
-                    let test = if t == NONE { 1 } else { self.expr_hash(t) };
-                    path.field(l, None, fold(mix16(h, u32::from(test))))
-                };
-            }
-            sfb += u32::from(!m);
-            mfb += u32::from(m);
-        }
-        Some(tail)
-    }
-
-    /// Whether CLIPS 6.30 hashes this field constraint on a constant (a selector
-    /// node): an `&` chain holding a literal that is not negated, and no `|`.
-    fn selects(&self, t: Ix) -> bool {
-        let x = self.cx.exprs[t as usize];
-        if x.op != Op::And {
-            return self.is_const_eq(t);
-        }
-        let mut c = x.first;
-        while c != NONE {
-            if self.is_const_eq(c) {
-                return true;
-            }
-            c = self.cx.exprs[c as usize].next;
-        }
-        false
-    }
-
-    fn is_const_eq(&self, e: Ix) -> bool {
-        let x = self.cx.exprs[e as usize];
-        if x.op != Op::Eq2 || x.first == NONE {
-            return false;
-        }
-        let v = self.cx.exprs[x.first as usize].next;
-        v != NONE
-            && matches!(
-                self.cx.exprs[v as usize].op,
-                Op::Int | Op::Float | Op::Sym | Op::Str
-            )
-    }
-
-    /// Gives each level of the new alpha node's path the id of the identical node of
-    /// an existing pattern (same prefix), or a new id (always, for a node `alone`).
-    fn assign_trie_key(&mut self, tmpl: Ix, n: Ix, alone: bool) {
-        let me = self.cx.alphas[n as usize];
-        let mut key = [0 as Ix; PATH_LEN];
-        for lvl in 0..me.key_len as usize {
-            let mut id = 0;
-            let mut a = if alone {
-                NONE
-            } else {
-                self.cx.templates[tmpl as usize].alpha_head
-            };
-            while a != NONE {
-                let o = self.cx.alphas[a as usize];
-                if o.key_len as usize > lvl
-                    && !self.old_only_alpha(a)
-                    && o.key[..lvl] == key[..lvl]
-                    && o.path_loc[lvl] == me.path_loc[lvl]
-                    && o.path_test[lvl] == me.path_test[lvl]
-                {
-                    id = o.key[lvl];
-                    break;
-                }
-                a = o.next_in_tmpl;
-            }
-            if id == 0 {
-                self.cx.st.trie_ids = self.cx.st.trie_ids.wrapping_add(1).max(1);
-                id = self.cx.st.trie_ids;
-            }
-            key[lvl] = id;
-        }
-        self.cx.alphas[n as usize].key = key;
-    }
-
-    /// Structural hash of an expression tree (orders alpha nodes; never decides
-    /// sharing, which compares exactly).
-    fn expr_hash(&self, e: Ix) -> Ix {
-        let x = self.cx.exprs[e as usize];
-        let mut h = mix16(0x9e37, x.op as u32);
-        h = mix16(h, shape_aux(x) as u32);
-        h = mix16(h, x.data as u32);
-        if matches!(x.op, Op::Int | Op::Float) {
-            let p = self.cx.exprs[e as usize + 1];
-            h = mix16(h, p.data as u32 | (p.first as u32) << 16);
-            h = mix16(h, p.next as u32);
-        } else if x.op != Op::PatVar {
-            let mut c = x.first;
-            while c != NONE {
-                h = mix16(h, self.expr_hash(c) as u32);
-                c = self.cx.exprs[c as usize].next;
-            }
-        }
-        (((h ^ (h >> 16)) & 0xFFFF) as Ix).max(2)
-    }
-
-    /// Keeps a template's alpha nodes in pattern-network order: depth first, newer
-    /// sibling nodes first, a pattern's own node before longer ones.
-    fn insert_alpha_sorted(&mut self, tmpl: Ix, n: Ix) {
-        let me = self.cx.alphas[n as usize];
-        let mut prev = NONE;
-        let mut a = self.cx.templates[tmpl as usize].alpha_head;
-        while a != NONE {
-            let o = self.cx.alphas[a as usize];
-            // an equal path is the same CLIPS node, whose newest joins come first
-            if !key_before(&o.key[..o.key_len as usize], &me.key[..me.key_len as usize]) {
-                break;
-            }
-            prev = a;
-            a = o.next_in_tmpl;
-        }
-        self.cx.alphas[n as usize].next_in_tmpl = a;
-        if prev == NONE {
-            self.cx.templates[tmpl as usize].alpha_head = n;
-        } else {
-            self.cx.alphas[prev as usize].next_in_tmpl = n;
-        }
-    }
-
-    /// Records the fields of pattern `p` that its join tests compare for equality
-    /// with a variable bound earlier (`?x` used again): CLIPS's right hash.
-    fn right_hash(&mut self, pb: &mut PatBuild, p: u8) {
-        let mut t = pb.jtests;
-        while t != NONE && pb.nrhash < MAX_RHASH {
-            let x = self.cx.exprs[t as usize];
-            if x.op == Op::Eq2 && x.first != NONE {
-                let this = self.cx.exprs[x.first as usize];
-                let other = this.next;
-                if this.op == Op::PatVar
-                    && this.aux == p
-                    && other != NONE
-                    && self.cx.exprs[other as usize].op == Op::PatVar
-                    && self.cx.exprs[other as usize].aux != p
-                {
-                    pb.rhash[pb.nrhash] = x.first;
-                    pb.nrhash += 1;
-                }
-            }
-            t = x.next;
-        }
-    }
-
-    /// Whether two pattern-variable expressions name the same field (any pattern).
-    fn same_field(&self, a: Ix, b: Ix) -> bool {
-        let (x, y) = (self.cx.exprs[a as usize], self.cx.exprs[b as usize]);
-        x.data == y.data
-            && ((x.first == NONE && y.first == NONE)
-                || (x.first != NONE && y.first != NONE && {
-                    let (p, q) = (
-                        self.cx.exprs[x.first as usize],
-                        self.cx.exprs[y.first as usize],
-                    );
-                    p.aux == q.aux && p.data == q.data && self.chain_eq(p.first, q.first)
-                }))
-    }
-
-    fn chain_eq(&self, mut a: Ix, mut b: Ix) -> bool {
-        while a != NONE && b != NONE {
-            if !self.expr_eq(a, b) {
-                return false;
-            }
-            a = self.cx.exprs[a as usize].next;
-            b = self.cx.exprs[b as usize].next;
-        }
-        a == NONE && b == NONE
-    }
-
-    fn expr_eq(&self, a: Ix, b: Ix) -> bool {
-        let (x, y) = (self.cx.exprs[a as usize], self.cx.exprs[b as usize]);
-        if x.op != y.op || shape_aux(x) != shape_aux(y) || x.data != y.data {
-            return false;
-        }
-        match x.op {
-            Op::Int | Op::Float => self.cx.const_value(a).same(self.cx.const_value(b)),
-            Op::PatVar => {
-                (x.first == NONE && y.first == NONE)
-                    || (x.first != NONE && y.first != NONE && {
-                        let (p, q) = (
-                            self.cx.exprs[x.first as usize],
-                            self.cx.exprs[y.first as usize],
-                        );
-                        p.aux == q.aux && p.data == q.data && self.chain_eq(p.first, q.first)
-                    })
-            }
-            _ => self.chain_eq(x.first, y.first),
-        }
-    }
-
-    /// Whether alpha node `a` serves only the rule this defrule replaces: CLIPS removes
-    /// the old rule first, so such a node (and a path level only it has) is made anew,
-    /// as the newest, not shared. Nodes this defrule made itself are shared.
-    fn old_only_alpha(&self, a: Ix) -> bool {
-        if self.replacing == NONE || a >= self.alpha_base {
-            return false;
-        }
-        let mut j = self.cx.alphas[a as usize].succ;
-        while j != NONE {
-            if self.cx.joins[j as usize].refs > self.replaced_uses(self.replacing, j) {
-                return false;
-            }
-            j = self.cx.joins[j as usize].alpha_next;
-        }
-        true
-    }
-
-    /// How many references to join `j` the rule this defrule replaces (named `name`,
-    /// created before `rule_base`) holds: a join only it uses is not shared, as CLIPS
-    /// removes the old rule first and builds (and primes) such joins anew.
-    fn replaced_uses(&self, name: SymId, j: Ix) -> Ix {
-        let mut n = 0;
-        for r in 0..self.rule_base {
-            let rule = &self.cx.rules[r as usize];
-            if rule.name == name && !rule.deleted {
-                let mut d = r;
-                while d != NONE {
-                    n += self.chain_uses(self.cx.rules[d as usize].terminal, 0, j);
-                    d = self.cx.rules[d as usize].next_disjunct;
-                }
-            }
-        }
-        n
-    }
-
-    /// References to join `j` on the chain from `from` up to `stop` and in the
-    /// subnetworks it takes from the right (the walk `Core::remove_rule` releases).
-    fn chain_uses(&self, mut from: Ix, stop: Ix, j: Ix) -> Ix {
-        let mut n = 0;
-        while from != NONE && from != 0 && from != stop {
-            let jn = &self.cx.joins[from as usize];
-            n += Ix::from(from == j);
-            if jn.rjoin != NONE {
-                n += self.chain_uses(jn.rjoin, jn.parent, j);
-            }
-            from = jn.parent;
-        }
-        n
-    }
-
-    /// Creates the rule and its joins (the root token comes later, in `defrule`).
-    fn build_rule(&mut self, name: SymId, salience: (i32, Ix), b: &Build, rhs: Ix) -> PResult<Ix> {
-        self.cx.st.net_gen = self.cx.st.net_gen.wrapping_add(1);
-        let at = self.peek();
-        let nr = self.cx.st.nrules as usize;
-        if nr >= self.cx.rules.len() {
-            let c = cap(Pool::Rules, self.cx.rules.len());
-            return Err(self.cap_err(at, c));
-        }
-        if self.cx.st.njoins as usize + b.n + 1 > self.cx.joins.len() {
-            let c = cap(Pool::Joins, self.cx.joins.len());
-            return Err(self.cap_err(at, c));
-        }
-        self.cx.rules[nr] = Rule::EMPTY;
-        // the join built for each CE
-        let mut jid = [0 as Ix; MAX_PATTERNS];
-        // a redefinition: the old rule's joins may not be shared (`replaced_uses`)
-        let replacing = (0..self.rule_base).any(|r| {
-            let rule = &self.cx.rules[r as usize];
-            rule.name == name && !rule.deleted
-        });
-        for (i, ce) in b.ces[..b.n].iter().enumerate() {
-            let parent = if ce.parent == CE_ROOT {
-                0
-            } else {
-                jid[ce.parent as usize]
-            };
-            let rjoin = if ce.right == CE_ROOT {
-                NONE
-            } else {
-                jid[ce.right as usize]
-            };
-            {
-                // share an identical join under the same parent (CLIPS does)
-                let mut c = self.cx.joins[parent as usize].first_child;
-                let mut found = NONE;
-                while c != NONE {
-                    let cj = self.cx.joins[c as usize];
-                    if cj.refs > 0
-                        && (!replacing || cj.refs > self.replaced_uses(name, c))
-                        && cj.kind == ce.kind
-                        && cj.alpha == ce.alpha
-                        && cj.rjoin == rjoin
-                        && cj.depth == ce.depth
-                        && self.chain_eq(cj.tests, ce.jtests)
-                        && self.chain_eq(cj.post, ce.post)
-                    {
-                        found = c;
-                        break;
-                    }
-                    c = cj.next_sibling;
-                }
-                if found != NONE {
-                    self.cx.joins[found as usize].refs += 1;
-                    self.push_join_mark(true);
-                    jid[i] = found;
-                    continue;
-                }
-            }
-            self.push_join_mark(false);
-            let j = self.cx.st.njoins;
-            self.cx.st.njoins += 1;
-            self.cx.joins[j as usize] = Join {
-                kind: ce.kind,
-                depth: ce.depth,
-                rule: NONE,
-                parent,
-                first_child: NONE,
-                next_sibling: NONE,
-                refs: 1,
-                alpha: ce.alpha,
-                tests: ce.jtests,
-                post: ce.post,
-                alpha_next: NONE,
-                mem: NONE,
-                rjoin,
-                rsucc: NONE,
-                index_child: NONE,
-                #[cfg(feature = "host-speedups")]
-                index_built: false,
-                #[cfg(feature = "host-speedups")]
-                one_child: false,
-                #[cfg(feature = "wipe")]
-                plain: false,
-                #[cfg(feature = "wipe")]
-                plain_gen: u32::MAX,
-            };
-            // a join from the right comes right after its subnetwork's first join
-            // among the parent's children: the subnetwork sees a new left token first
-            let after = if rjoin != NONE {
-                jid[ce.first_sub as usize]
-            } else {
-                NONE
-            };
-            if after != NONE && self.cx.joins[after as usize].parent == parent {
-                self.cx.joins[j as usize].next_sibling = self.cx.joins[after as usize].next_sibling;
-                self.cx.joins[after as usize].next_sibling = j;
-            } else {
-                self.cx.joins[j as usize].next_sibling = self.cx.joins[parent as usize].first_child;
-                self.cx.joins[parent as usize].first_child = j;
-            }
-            self.cx.note_children(parent);
-            if rjoin != NONE {
-                self.cx.joins[j as usize].alpha_next = self.cx.joins[rjoin as usize].rsucc;
-                self.cx.joins[rjoin as usize].rsucc = j;
-            }
-            self.cx.choose_index_child(parent, j);
-            jid[i] = j;
-        }
-        let prev = jid[b.cur as usize];
-        // the first CE of the rule's own chain decides whether reset rebuilds it
-        let mut first = b.cur;
-        while b.ces[first as usize].parent != CE_ROOT {
-            first = b.ces[first as usize].parent;
-        }
-        // the rule's end node
-        self.push_join_mark(false);
-        let term = self.cx.st.njoins;
-        self.cx.st.njoins += 1;
-        self.cx.joins[term as usize] = Join {
-            kind: JoinKind::Terminal,
-            depth: b.depth,
-            rule: nr as Ix,
-            parent: prev,
-            next_sibling: self.cx.joins[prev as usize].first_child,
-            refs: 1,
-            ..Join::EMPTY
-        };
-        self.cx.joins[prev as usize].first_child = term;
-        self.cx.note_children(prev);
-        let prev = term;
-        self.cx.note_hw(Pool::Joins, self.cx.st.njoins as usize);
-        self.cx.rules[nr] = Rule {
-            name,
-            salience: salience.0,
-            salience_expr: salience.1,
-            root: 0,
-            terminal: prev,
-            rhs: self.cx.exprs[rhs as usize].first,
-            npat: b.depth,
-            nlocals: self.nlocals.min(255) as u8,
-            next_disjunct: NONE,
-            next_at_join: NONE,
-            root_sensitive: b.ces[first as usize].kind != JoinKind::Positive,
-            deleted: false,
-            text: NONE,
-        };
-        self.cx.st.nrules += 1;
-        self.cx.note_hw(Pool::Rules, nr + 1);
-        Ok(nr as Ix)
-    }
-}
-
-/// New joins already primed while defining a rule (disjuncts share joins).
-struct Primed {
-    ids: [Ix; 64],
-    n: usize,
 }
 
 /// Fields of one pattern remembered for ordering alpha nodes like CLIPS's pattern
 /// network; more are accepted but not used for ordering.
 const MAX_FIELDS: usize = 16;
 
-struct PatBuild {
+pub(crate) struct PatBuild {
     /// (locator, alpha test or NONE, multifield element) per field, in parse order;
     /// an empty multislot is one entry with element `ZERO_LEN`.
-    fields: [(Ix, Ix, bool); MAX_FIELDS],
-    nfields: usize,
-    desc: Ix,
-    dlast: Ix,
-    atests: Ix,
-    alast: Ix,
-    jtests: Ix,
-    jlast: Ix,
-    marks: u8,
-    rhash: [Ix; MAX_RHASH],
-    nrhash: usize,
+    pub(crate) fields: [(Ix, Ix, bool); MAX_FIELDS],
+    pub(crate) nfields: usize,
+    pub(crate) desc: Ix,
+    pub(crate) dlast: Ix,
+    pub(crate) atests: Ix,
+    pub(crate) alast: Ix,
+    pub(crate) jtests: Ix,
+    pub(crate) jlast: Ix,
+    pub(crate) marks: u8,
+    pub(crate) rhash: [Ix; MAX_RHASH],
+    pub(crate) nrhash: usize,
     /// Variables bound earlier that this pattern equates with a field: (pattern,
     /// locator) of the binding, (locator, descriptor) of the field (`classify`).
-    aliases: [(u8, Ix, Ix, Ix); 8],
-    naliases: usize,
+    pub(crate) aliases: [(u8, Ix, Ix, Ix); 8],
+    pub(crate) naliases: usize,
 }
 
 impl PatBuild {
@@ -1684,62 +1089,4 @@ impl PatBuild {
             self.nfields += 1;
         }
     }
-}
-
-/// A pattern's levels in CLIPS's pattern network (field locators and test hashes).
-struct NetPath {
-    locs: [Ix; PATH_LEN],
-    tests: [Ix; PATH_LEN],
-    len: usize,
-    /// Levels past `PATH_LEN` were dropped.
-    cut: bool,
-}
-
-impl NetPath {
-    /// Adds one field's nodes (a selector first, if any); returns how many.
-    fn field(&mut self, l: Ix, selector: Option<Ix>, test: Ix) -> usize {
-        let before = self.len;
-        for t in selector.into_iter().chain(Some(test)) {
-            if self.len < PATH_LEN {
-                self.locs[self.len] = l;
-                self.tests[self.len] = t;
-                self.len += 1;
-            } else {
-                self.cut = true;
-            }
-        }
-        self.len - before
-    }
-}
-
-/// Element locator of an empty multislot's zero-length node (never a real element).
-const ZERO_LEN: u8 = 0xFE;
-/// Path test of a selector node on a single-field slot (`expr_hash` is never 1).
-const SELECTOR: Ix = 1;
-
-/// Depth-first order of pattern-network paths: at the first differing level the
-/// newer node (higher id) goes first; a path goes before its extensions.
-fn key_before(a: &[Ix], b: &[Ix]) -> bool {
-    for (x, y) in a.iter().zip(b.iter()) {
-        if x != y {
-            return x > y;
-        }
-    }
-    a.len() < b.len()
-}
-
-/// A node's `aux` as far as it is part of the expression: a query slot read
-/// (`slot_value_of`) and a query variable's template name (`queries::template_of`)
-/// keep a lookup cache there, which a run fills in and which must not keep an
-/// identical pattern or test from sharing the node.
-fn shape_aux(x: crate::expr::Expr) -> u8 {
-    if matches!(x.op, Op::QSlot | Op::Sym) {
-        0
-    } else {
-        x.aux
-    }
-}
-
-fn mix16(h: u32, x: u32) -> u32 {
-    (h ^ x).wrapping_mul(0x0100_0193).rotate_left(7)
 }

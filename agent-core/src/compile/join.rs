@@ -1,0 +1,254 @@
+//! Join network building: a rule's conditional elements (the `Build` the syntax
+//! stage filled) become joins, shared with earlier rules' identical prefixes, and the
+//! new joins are primed with the facts that exist (CLIPS's incremental reset).
+
+use crate::engine::cap;
+use crate::error::Pool;
+use crate::lexer::Token;
+use crate::parser::rule::{Build, CE_ROOT};
+use crate::parser::{PResult, Parser};
+use crate::rete::{Join, JoinKind, MAX_PATTERNS};
+use crate::rule::Rule;
+use crate::value::{Ix, SymId, NONE};
+
+impl<'s> Parser<'s, '_, '_> {
+    /// Primes the new joins of a chain whose left input is an old join, walking
+    /// from `j` up to `stop`; a subnetwork is primed after the join taking it.
+    pub(crate) fn prime_chain(
+        &mut self,
+        mut j: Ix,
+        first_new: Ix,
+        stop: Ix,
+        primed: &mut Primed,
+    ) -> Result<(), crate::error::EvalError> {
+        while j != NONE && j != 0 && j != stop {
+            let jn = self.cx.joins[j as usize];
+            if j >= first_new && jn.parent < first_new && !primed.ids[..primed.n].contains(&j) {
+                if primed.n < primed.ids.len() {
+                    primed.ids[primed.n] = j;
+                    primed.n += 1;
+                }
+                self.cx.prime_join(j)?;
+            }
+            if jn.rjoin != NONE {
+                self.prime_chain(jn.rjoin, first_new, jn.parent, primed)?;
+            }
+            j = jn.parent;
+        }
+        Ok(())
+    }
+
+    pub(crate) fn map_prime_err(
+        &self,
+        r: Result<(), crate::error::EvalError>,
+        at: Token<'s>,
+    ) -> PResult<()> {
+        match r {
+            Ok(()) => Ok(()),
+            Err(e) => {
+                let c = match e.kind() {
+                    crate::error::EvalErrorKind::Capacity(c) => c,
+                    _ => cap(Pool::Tokens, self.cx.tokens.len()),
+                };
+                Err(self.cap_err(at, c))
+            }
+        }
+    }
+
+    /// How many references to join `j` the rule this defrule replaces (named `name`,
+    /// created before `rule_base`) holds: a join only it uses is not shared, as CLIPS
+    /// removes the old rule first and builds (and primes) such joins anew.
+    pub(crate) fn replaced_uses(&self, name: SymId, j: Ix) -> Ix {
+        let mut n = 0;
+        for r in 0..self.rule_base {
+            let rule = &self.cx.rules[r as usize];
+            if rule.name == name && !rule.deleted {
+                let mut d = r;
+                while d != NONE {
+                    n += self.chain_uses(self.cx.rules[d as usize].terminal, 0, j);
+                    d = self.cx.rules[d as usize].next_disjunct;
+                }
+            }
+        }
+        n
+    }
+
+    /// References to join `j` on the chain from `from` up to `stop` and in the
+    /// subnetworks it takes from the right (the walk `Core::remove_rule` releases).
+    fn chain_uses(&self, mut from: Ix, stop: Ix, j: Ix) -> Ix {
+        let mut n = 0;
+        while from != NONE && from != 0 && from != stop {
+            let jn = &self.cx.joins[from as usize];
+            n += Ix::from(from == j);
+            if jn.rjoin != NONE {
+                n += self.chain_uses(jn.rjoin, jn.parent, j);
+            }
+            from = jn.parent;
+        }
+        n
+    }
+
+    /// Creates the rule and its joins (the root token comes later, in `defrule`).
+    pub(crate) fn build_rule(
+        &mut self,
+        name: SymId,
+        salience: (i32, Ix),
+        b: &Build,
+        rhs: Ix,
+    ) -> PResult<Ix> {
+        self.cx.st.net_gen = self.cx.st.net_gen.wrapping_add(1);
+        let at = self.peek();
+        let nr = self.cx.st.nrules as usize;
+        if nr >= self.cx.rules.len() {
+            let c = cap(Pool::Rules, self.cx.rules.len());
+            return Err(self.cap_err(at, c));
+        }
+        if self.cx.st.njoins as usize + b.n + 1 > self.cx.joins.len() {
+            let c = cap(Pool::Joins, self.cx.joins.len());
+            return Err(self.cap_err(at, c));
+        }
+        self.cx.rules[nr] = Rule::EMPTY;
+        // the join built for each CE
+        let mut jid = [0 as Ix; MAX_PATTERNS];
+        // a redefinition: the old rule's joins may not be shared (`replaced_uses`)
+        let replacing = (0..self.rule_base).any(|r| {
+            let rule = &self.cx.rules[r as usize];
+            rule.name == name && !rule.deleted
+        });
+        for (i, ce) in b.ces[..b.n].iter().enumerate() {
+            let parent = if ce.parent == CE_ROOT {
+                0
+            } else {
+                jid[ce.parent as usize]
+            };
+            let rjoin = if ce.right == CE_ROOT {
+                NONE
+            } else {
+                jid[ce.right as usize]
+            };
+            {
+                // share an identical join under the same parent (CLIPS does)
+                let mut c = self.cx.joins[parent as usize].first_child;
+                let mut found = NONE;
+                while c != NONE {
+                    let cj = self.cx.joins[c as usize];
+                    if cj.refs > 0
+                        && (!replacing || cj.refs > self.replaced_uses(name, c))
+                        && cj.kind == ce.kind
+                        && cj.alpha == ce.alpha
+                        && cj.rjoin == rjoin
+                        && cj.depth == ce.depth
+                        && self.chain_eq(cj.tests, ce.jtests)
+                        && self.chain_eq(cj.post, ce.post)
+                    {
+                        found = c;
+                        break;
+                    }
+                    c = cj.next_sibling;
+                }
+                if found != NONE {
+                    self.cx.joins[found as usize].refs += 1;
+                    self.push_join_mark(true);
+                    jid[i] = found;
+                    continue;
+                }
+            }
+            self.push_join_mark(false);
+            let j = self.cx.st.njoins;
+            self.cx.st.njoins += 1;
+            self.cx.joins[j as usize] = Join {
+                kind: ce.kind,
+                depth: ce.depth,
+                rule: NONE,
+                parent,
+                first_child: NONE,
+                next_sibling: NONE,
+                refs: 1,
+                alpha: ce.alpha,
+                tests: ce.jtests,
+                post: ce.post,
+                alpha_next: NONE,
+                mem: NONE,
+                rjoin,
+                rsucc: NONE,
+                index_child: NONE,
+                #[cfg(feature = "host-speedups")]
+                index_built: false,
+                #[cfg(feature = "host-speedups")]
+                one_child: false,
+                #[cfg(feature = "wipe")]
+                plain: false,
+                #[cfg(feature = "wipe")]
+                plain_gen: u32::MAX,
+            };
+            // a join from the right comes right after its subnetwork's first join
+            // among the parent's children: the subnetwork sees a new left token first
+            let after = if rjoin != NONE {
+                jid[ce.first_sub as usize]
+            } else {
+                NONE
+            };
+            if after != NONE && self.cx.joins[after as usize].parent == parent {
+                self.cx.joins[j as usize].next_sibling = self.cx.joins[after as usize].next_sibling;
+                self.cx.joins[after as usize].next_sibling = j;
+            } else {
+                self.cx.joins[j as usize].next_sibling = self.cx.joins[parent as usize].first_child;
+                self.cx.joins[parent as usize].first_child = j;
+            }
+            self.cx.note_children(parent);
+            if rjoin != NONE {
+                self.cx.joins[j as usize].alpha_next = self.cx.joins[rjoin as usize].rsucc;
+                self.cx.joins[rjoin as usize].rsucc = j;
+            }
+            self.cx.choose_index_child(parent, j);
+            jid[i] = j;
+        }
+        let prev = jid[b.cur as usize];
+        // the first CE of the rule's own chain decides whether reset rebuilds it
+        let mut first = b.cur;
+        while b.ces[first as usize].parent != CE_ROOT {
+            first = b.ces[first as usize].parent;
+        }
+        // the rule's end node
+        self.push_join_mark(false);
+        let term = self.cx.st.njoins;
+        self.cx.st.njoins += 1;
+        self.cx.joins[term as usize] = Join {
+            kind: JoinKind::Terminal,
+            depth: b.depth,
+            rule: nr as Ix,
+            parent: prev,
+            next_sibling: self.cx.joins[prev as usize].first_child,
+            refs: 1,
+            ..Join::EMPTY
+        };
+        self.cx.joins[prev as usize].first_child = term;
+        self.cx.note_children(prev);
+        let prev = term;
+        self.cx.note_hw(Pool::Joins, self.cx.st.njoins as usize);
+        self.cx.rules[nr] = Rule {
+            name,
+            salience: salience.0,
+            salience_expr: salience.1,
+            root: 0,
+            terminal: prev,
+            rhs: self.cx.exprs[rhs as usize].first,
+            npat: b.depth,
+            nlocals: self.nlocals.min(255) as u8,
+            next_disjunct: NONE,
+            next_at_join: NONE,
+            root_sensitive: b.ces[first as usize].kind != JoinKind::Positive,
+            deleted: false,
+            text: NONE,
+        };
+        self.cx.st.nrules += 1;
+        self.cx.note_hw(Pool::Rules, nr + 1);
+        Ok(nr as Ix)
+    }
+}
+
+/// New joins already primed while defining a rule (disjuncts share joins).
+pub(crate) struct Primed {
+    pub(crate) ids: [Ix; 64],
+    pub(crate) n: usize,
+}
