@@ -31,6 +31,9 @@ enum Command {
     Run(run::Args),
     /// A whole game across processes: robotino-sim and one `run` per robot, in lockstep.
     Game(game::Args),
+    /// Process-level games over many seeds in parallel: a table of points, collisions,
+    /// double claims and stalls.
+    GameSweep(game::sweep::Args),
     /// Benchmarks against CLIPS 6.30 and 6.4: prints ratios, regenerates BENCHMARKS.md.
     Bench(bench::Args),
     /// Plays one simulated LLSF game and prints a readable report.
@@ -45,6 +48,7 @@ fn main() -> ExitCode {
         Command::Clips(args) => clips_cli::main(args),
         Command::Run(args) => run::main(args),
         Command::Game(args) => game::main(args),
+        Command::GameSweep(args) => game::sweep::main(args),
         Command::Bench(args) => bench::main(args),
         Command::Sim(args) => sim::main(args),
         Command::Sweep(args) => sim::sweep::main(args),

@@ -356,6 +356,12 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
                 field.referee.score(),
                 start.elapsed().as_millis()
             );
+            for r in &field.robots {
+                println!(
+                    "robotino-sim: travel robot={} m={:.1}",
+                    r.number, r.travel_m
+                );
+            }
             println!(
                 "robotino-sim: referee engine {:?}",
                 field.referee.engine_stats()

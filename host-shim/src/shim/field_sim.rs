@@ -107,6 +107,8 @@ pub struct SimRobot {
     /// Bumper contacts so far (each counted when it begins), and those with another robot.
     pub bumps: u32,
     pub robot_contacts: u32,
+    /// Metres the robot really drove.
+    pub travel_m: f32,
     /// The station where this robot last put or took a puck, until it leaves it: a robot
     /// standing still at a machine must not place the same puck every cycle.
     worked_station: Option<Station>,
@@ -186,6 +188,7 @@ impl<R: Referee> FieldSim<R> {
                     contact: None,
                     bumps: 0,
                     robot_contacts: 0,
+                    travel_m: 0.0,
                     worked_station: None,
                 }
             })
@@ -265,6 +268,7 @@ impl<R: Referee> FieldSim<R> {
         if blocked {
             r.true_pose = Pose2::new(old.x_m, old.y_m, old.phi_rad);
         } else {
+            r.travel_m += old.distance_to(&new);
             r.true_pose = new;
         }
     }

@@ -2,7 +2,13 @@
 //! drivers, the field and the CLIPS referee) and one `robotino-agent run` per robot under a
 //! fresh service prefix, in lockstep (the sim advances a cycle per agent command, so a
 //! 15-minute game takes seconds), waits for the referee's end of game, stops the agents
-//! and prints the score and the agents' loop statistics.
+//! and prints the readable report ([`report`]), the score and the agents' loop statistics;
+//! `--svg FILE` draws the timeline ([`svg`]). `game-sweep` ([`sweep`]) plays many seeds.
+
+pub mod record;
+pub mod report;
+pub mod svg;
+pub mod sweep;
 
 use std::io::{BufRead, BufReader};
 use std::path::{Path, PathBuf};
@@ -12,7 +18,9 @@ use std::time::{Duration, Instant};
 
 use rules::Strategy;
 
-#[derive(clap::Args)]
+use record::GameRecord;
+
+#[derive(clap::Args, Clone)]
 pub struct Args {
     /// Seed of the game setup (hidden machine types, active gate).
     #[arg(long, default_value_t = 0)]
@@ -35,12 +43,23 @@ pub struct Args {
     /// Give up after this many wall-clock seconds.
     #[arg(long, default_value_t = 600)]
     pub timeout_s: u64,
+    /// Also draw the game's timeline as SVG into this file.
+    #[arg(long)]
+    pub svg: Option<PathBuf>,
 }
 
 pub fn main(args: Args) -> ExitCode {
-    match play(&args) {
-        Ok(score) => {
-            println!("robotino-agent game: score={score}");
+    match play(&args, true) {
+        Ok(record) => {
+            print!("{}", report::render(&record, args.strategy.name()));
+            if let Some(path) = &args.svg {
+                if let Err(e) = std::fs::write(path, svg::render(&record)) {
+                    eprintln!("robotino-agent game: cannot write {}: {e}", path.display());
+                    return ExitCode::FAILURE;
+                }
+                println!("robotino-agent game: timeline in {}", path.display());
+            }
+            println!("robotino-agent game: score={}", record.score);
             ExitCode::SUCCESS
         }
         Err(e) => {
@@ -133,13 +152,8 @@ impl Drop for Proc {
     }
 }
 
-/// The value of `key=` in a line.
-fn field<'a>(line: &'a str, key: &str) -> Option<&'a str> {
-    line.split_whitespace()
-        .find_map(|w| w.strip_prefix(key)?.strip_prefix('='))
-}
-
-fn play(args: &Args) -> Result<i64, String> {
+/// Plays one game; `chatty` prints the processes' summary lines as they come.
+pub fn play(args: &Args, chatty: bool) -> Result<GameRecord, String> {
     let me = std::env::current_exe().map_err(|e| format!("where am I: {e}"))?;
     let dir = match &args.bin_dir {
         Some(d) => d.clone(),
@@ -189,12 +203,14 @@ fn play(args: &Args) -> Result<i64, String> {
             )
         })
         .collect::<Result<Vec<_>, _>>()?;
-    println!(
-        "robotino-agent game: prefix={prefix} seed={} strategy={} robots={robots} game_seconds={}",
-        args.seed,
-        args.strategy.name(),
-        args.game_seconds
-    );
+    if chatty {
+        println!(
+            "robotino-agent game: prefix={prefix} seed={} strategy={} robots={robots} game_seconds={}",
+            args.seed,
+            args.strategy.name(),
+            args.game_seconds
+        );
+    }
     let started = Instant::now();
     let status = sim
         .finish(Duration::from_secs(args.timeout_s), args.verbose)
@@ -212,19 +228,25 @@ fn play(args: &Args) -> Result<i64, String> {
         .line_with("robotino-sim: done")
         .ok_or("robotino-sim ended without its `done` line")?
         .clone();
-    println!("{done}");
-    for a in &agents {
-        let decisions = a.seen.iter().filter(|l| l.contains(" start ")).count();
-        println!("robotino-agent game: {} skills={decisions}", a.name);
-        if let Some(stats) = a.line_with("robotino-agent run: done") {
-            println!("{stats}");
+    if chatty {
+        println!("{done}");
+        for a in &agents {
+            let decisions = a.seen.iter().filter(|l| l.contains(" start ")).count();
+            println!("robotino-agent game: {} skills={decisions}", a.name);
+            if let Some(stats) = a.line_with("robotino-agent run: done") {
+                println!("{stats}");
+            }
         }
+        println!(
+            "robotino-agent game: wall_ms={}",
+            started.elapsed().as_millis()
+        );
     }
-    println!(
-        "robotino-agent game: wall_ms={}",
-        started.elapsed().as_millis()
-    );
-    field(&done, "score")
-        .and_then(|v| v.parse().ok())
-        .ok_or_else(|| format!("no score in `{done}`"))
+    let agent_lines: Vec<Vec<String>> = agents.iter().map(|a| a.seen.clone()).collect();
+    Ok(GameRecord::parse(
+        args.seed,
+        f64::from(args.game_seconds),
+        &sim.seen,
+        &agent_lines,
+    ))
 }
