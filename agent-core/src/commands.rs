@@ -14,7 +14,7 @@ use crate::fact::FactState;
 use crate::host::router;
 use crate::lexer::{Lexer, Tok};
 use crate::parser::{Item, Parser};
-use crate::rete::{Join, JoinKind, PatBinding, TokenKind};
+use crate::rete::{JoinKind, PatBinding, TokenKind};
 use crate::value::{SymId, TextBuf, Value, NONE};
 
 /// `(watch statistics)`: facts and activations sampled before the run and after each
@@ -364,108 +364,6 @@ impl Core<'_> {
         self.st.initial_tmpl = t;
         self.make_root()?;
         self.assert_initial_fact()
-    }
-
-    /// Removes a rule (all its disjuncts): joins no other rule uses go, with their
-    /// partial matches and activations; unused alpha nodes are emptied.
-    pub fn remove_rule(&mut self, r: Ix) {
-        let mut rr = r;
-        while rr != NONE {
-            let rule = self.rules[rr as usize];
-            if rule.terminal != NONE {
-                let parent = self.joins[rule.terminal as usize].parent;
-                self.remove_rule_activations(rr, parent);
-            }
-            self.release_chain(rule.terminal, 0);
-            self.rules[rr as usize].deleted = true;
-            rr = rule.next_disjunct;
-        }
-    }
-
-    /// Drops one reference to each join from `j` up to `stop` (and to the
-    /// subnetworks of joins from the right); unused joins go with their memories.
-    fn release_chain(&mut self, mut j: Ix, stop: Ix) {
-        while j != NONE && j != 0 && j != stop {
-            let jn = self.joins[j as usize];
-            self.joins[j as usize].refs = jn.refs.saturating_sub(1);
-            if self.joins[j as usize].refs == 0 {
-                if !jn.is_terminal() {
-                    self.clear_join_memory(j);
-                }
-                self.unlink_join(j);
-            }
-            if jn.rjoin != NONE {
-                self.release_chain(jn.rjoin, jn.parent);
-            }
-            j = jn.parent;
-        }
-    }
-
-    pub(crate) fn remove_rule_activations_pub(&mut self, rule: Ix, join: Ix) {
-        self.remove_rule_activations(rule, join);
-    }
-
-    fn remove_rule_activations(&mut self, rule: Ix, join: Ix) {
-        let mut t = self.joins[join as usize].mem;
-        while t != NONE {
-            let mut a = self.tokens[t as usize].extra;
-            while a != NONE {
-                let next = self.acts[a as usize].next_of_token;
-                if self.acts[a as usize].rule == rule {
-                    self.remove_activation(a);
-                }
-                a = next;
-            }
-            t = self.tokens[t as usize].mem_next;
-        }
-    }
-
-    pub(crate) fn unlink_join(&mut self, j: Ix) {
-        self.st.net_gen = self.st.net_gen.wrapping_add(1);
-        let a = self.joins[j as usize].alpha;
-        if a != NONE {
-            let head = self.alphas[a as usize].succ;
-            self.alphas[a as usize].succ = self.unlink_from_list(head, j, |x| &mut x.alpha_next);
-            if self.alphas[a as usize].succ == NONE {
-                self.clear_alpha_memory(a);
-                self.alphas[a as usize].live = false;
-            }
-        }
-        let parent = self.joins[j as usize].parent;
-        let head = self.joins[parent as usize].first_child;
-        self.joins[parent as usize].first_child =
-            self.unlink_from_list(head, j, |x| &mut x.next_sibling);
-        self.note_children(parent);
-        if self.joins[parent as usize].index_child == j {
-            self.drop_beta_index(parent);
-        }
-        let rj = self.joins[j as usize].rjoin;
-        if rj != NONE {
-            let head = self.joins[rj as usize].rsucc;
-            self.joins[rj as usize].rsucc = self.unlink_from_list(head, j, |x| &mut x.alpha_next);
-        }
-        self.joins[j as usize].alpha = NONE;
-        self.joins[j as usize].rjoin = NONE;
-        self.joins[j as usize].parent = 0;
-    }
-
-    /// Removes join `j` from a singly linked list of joins that starts at `head` and
-    /// chains through the field `next` selects; returns the list's new head.
-    fn unlink_from_list(&mut self, head: Ix, j: Ix, next: fn(&mut Join) -> &mut Ix) -> Ix {
-        let after = *next(&mut self.joins[j as usize]);
-        if head == j {
-            return after;
-        }
-        let mut p = head;
-        while p != NONE {
-            let n = *next(&mut self.joins[p as usize]);
-            if n == j {
-                *next(&mut self.joins[p as usize]) = after;
-                break;
-            }
-            p = n;
-        }
-        head
     }
 
     /// Copies a token's pattern bindings for the RHS.

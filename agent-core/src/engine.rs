@@ -9,7 +9,7 @@ use crate::error::{CapacityError, Pool};
 use crate::expr::{Expr, Op};
 use crate::fact::Fact;
 use crate::host::Host;
-use crate::rete::{AlphaNode, Join, PatBinding, MAX_PATTERNS};
+use crate::rete::{PatBinding, MAX_PATTERNS};
 use crate::rule::{Activation, Rule};
 use crate::symbols::Symbols;
 use crate::template::{SlotDef, Template};
@@ -620,135 +620,6 @@ impl Core<'_> {
         }
     }
 
-    /// Gives back the references a new rule took on old joins (below `first_new`),
-    /// from `j` up to `stop`, subnetworks included.
-    fn release_old_refs(&mut self, mut j: Ix, stop: Ix, first_new: Ix) {
-        while j != NONE && j != 0 && j != stop && (j as usize) < self.joins.len() {
-            let jn = self.joins[j as usize];
-            if j < first_new {
-                self.joins[j as usize].refs = jn.refs.saturating_sub(1);
-            }
-            if jn.rjoin != NONE {
-                self.release_old_refs(jn.rjoin, jn.parent, first_new);
-            }
-            j = jn.parent;
-        }
-    }
-
-    /// Undoes every construct defined after `cp` (used when a construct fails halfway).
-    /// Tokens and activations built by new joins are released first; shared old joins
-    /// get their reference counts back.
-    pub fn rollback(&mut self, cp: Checkpoint) {
-        self.st.net_gen = self.st.net_gen.wrapping_add(1);
-        for j in (cp.njoins..self.st.njoins).rev() {
-            if !self.joins[j as usize].is_terminal() {
-                self.clear_join_memory(j);
-            }
-        }
-        for a in cp.nalpha..self.st.nalpha {
-            self.clear_alpha_memory(a);
-        }
-        // activations of new rules (their end nodes may hang below old joins)
-        for r in cp.nrules..self.st.nrules {
-            let t = self.rules[r as usize].terminal;
-            if t != NONE && (t as usize) < self.joins.len() {
-                let parent = self.joins[t as usize].parent;
-                self.remove_rule_activations_pub(r, parent);
-            }
-        }
-        for r in cp.nrules..self.st.nrules {
-            let t = self.rules[r as usize].terminal;
-            self.release_old_refs(t, 0, cp.njoins);
-        }
-        // unlink new joins from old alpha nodes and old parent joins (new ones lead)
-        for a in 0..cp.nalpha.min(self.st.nalpha) {
-            while self.alphas[a as usize].succ != NONE && self.alphas[a as usize].succ >= cp.njoins
-            {
-                let j = self.alphas[a as usize].succ;
-                self.alphas[a as usize].succ = self.joins[j as usize].alpha_next;
-            }
-        }
-        for p in 0..cp.njoins.min(self.st.njoins) {
-            // new children lead the list, except joins from the right (placed after
-            // their subnetwork's first join): drop new ones wherever they are
-            while self.joins[p as usize].first_child != NONE
-                && self.joins[p as usize].first_child >= cp.njoins
-            {
-                let j = self.joins[p as usize].first_child;
-                self.joins[p as usize].first_child = self.joins[j as usize].next_sibling;
-            }
-            let mut c = self.joins[p as usize].first_child;
-            while c != NONE {
-                let mut n = self.joins[c as usize].next_sibling;
-                while n != NONE && n >= cp.njoins {
-                    n = self.joins[n as usize].next_sibling;
-                }
-                self.joins[c as usize].next_sibling = n;
-                c = n;
-            }
-            self.note_children(p);
-            if self.joins[p as usize].index_child != NONE
-                && self.joins[p as usize].index_child >= cp.njoins
-            {
-                self.drop_beta_index(p);
-            }
-            while self.joins[p as usize].rsucc != NONE && self.joins[p as usize].rsucc >= cp.njoins
-            {
-                let j = self.joins[p as usize].rsucc;
-                self.joins[p as usize].rsucc = self.joins[j as usize].alpha_next;
-            }
-        }
-        // a template's alpha nodes are kept in network order, so new ones can sit
-        // anywhere in its list, not only at the head
-        for t in 0..cp.ntemplates.min(self.st.ntemplates) {
-            while self.templates[t as usize].alpha_head != NONE
-                && self.templates[t as usize].alpha_head >= cp.nalpha
-            {
-                let a = self.templates[t as usize].alpha_head;
-                self.templates[t as usize].alpha_head = self.alphas[a as usize].next_in_tmpl;
-            }
-            let mut a = self.templates[t as usize].alpha_head;
-            while a != NONE {
-                let mut n = self.alphas[a as usize].next_in_tmpl;
-                while n != NONE && n >= cp.nalpha {
-                    n = self.alphas[n as usize].next_in_tmpl;
-                }
-                self.alphas[a as usize].next_in_tmpl = n;
-                a = n;
-            }
-        }
-        for a in cp.nalpha..self.st.nalpha {
-            self.alphas[a as usize] = AlphaNode::EMPTY;
-        }
-        for j in cp.njoins..self.st.njoins {
-            self.joins[j as usize] = Join::EMPTY;
-        }
-        for r in cp.nrules..self.st.nrules {
-            self.rules[r as usize] = Rule::EMPTY;
-        }
-        // An old join whose last user was the new rule (its previous users were removed
-        // meanwhile, e.g. by a redefinition of the same rule) is now unused: remove it
-        // as `remove_rule` would, or it keeps its partial matches and eats tokens.
-        for j in 1..cp.njoins.min(self.st.njoins) {
-            if self.joins[j as usize].refs == 0 {
-                if !self.joins[j as usize].is_terminal() {
-                    self.clear_join_memory(j);
-                }
-                self.unlink_join(j);
-            }
-        }
-        self.st.nrules = cp.nrules;
-        self.st.nalpha = cp.nalpha;
-        self.st.njoins = cp.njoins;
-        self.st.nexprs = cp.nexprs;
-        self.st.ntemplates = cp.ntemplates;
-        self.st.nslots = cp.nslots;
-        self.st.nfuncs = cp.nfuncs;
-        self.st.nglobals = cp.nglobals;
-        self.st.ndeffacts = cp.ndeffacts;
-        self.syms().truncate(cp.nsyms, cp.sym_bytes);
-    }
-
     /// Pushes a value on the evaluation stack.
     pub fn push_value(&mut self, v: Value) -> Result<(), CapacityError> {
         let sp = self.st.sp as usize;
@@ -886,7 +757,7 @@ impl Core<'_> {
 mod size_tests {
     extern crate std;
     use super::*;
-    use crate::rete::Token;
+    use crate::rete::{AlphaNode, Join, Token};
     use crate::symbols::SymEntry;
     use crate::template::{Deffacts, Deffunction, Global};
     use core::mem::size_of;

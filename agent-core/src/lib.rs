@@ -17,7 +17,8 @@
 //!  one Ce per join, tests as expression chains) + each pattern's fields and tests
 //!  (PatBuild)
 //!     │  compile: compile::alpha (pattern network: sharing, discrimination, order),
-//!     │           compile::join (joins, sharing of prefixes, priming new joins)
+//!     │           compile::join (joins, sharing of prefixes, priming new joins),
+//!     │           compile::remove (rule removal, rollback of a failed construct)
 //!     ▼
 //!  alpha nodes, joins, rules (their pools), primed with the existing facts
 //!     │  run time: rete (match), agenda, eval, builtins, commands (run loop)
@@ -25,11 +26,12 @@
 //!  tokens, activations, facts; firings
 //! ```
 //!
-//! Where the code is not there yet (issue 23): the syntax stage still builds a
-//! pattern's alpha node as soon as it has read the pattern (so a rule's form is not
-//! whole before the network is touched; a failed construct is undone by `Core::rollback`
-//! instead), and rule removal (`commands`) and that rollback (`engine`) edit the
-//! network outside `compile`.
+//! Rule removal and the undo of a construct that failed halfway (`Core::rollback`) are
+//! in `compile` too. Where the code is not there yet (issue 23): the syntax stage still
+//! builds a pattern's alpha node as soon as it has read the pattern, so a rule's form
+//! is not whole before the network is touched (a failed construct is rolled back
+//! instead), and `rete` keeps a join's child list in order (`note_children`) and builds
+//! the root join at start-up.
 //!
 //! # Layout
 //! - [`value`]: values (`Int`, `Float`, symbols, strings, fact addresses, multifield
@@ -37,7 +39,8 @@
 //! - [`lexer`] and [`parser`]: the syntax stage, CLIPS source to constructs and
 //!   expression trees ([`expr`], 8-byte nodes). Each construct is built inside a
 //!   checkpoint and rolled back completely on any error.
-//! - `compile`: the network builder (alpha nodes, joins, priming).
+//! - `compile`: the network builder (alpha nodes, joins, priming) and remover (rule
+//!   removal, rollback).
 //! - [`fact`], [`template`]: fact storage (a compacting value arena, a duplicate hash
 //!   index, a creation-ordered list), deftemplates, deffacts, globals, deffunctions.
 //! - [`rete`], [`agenda`], [`commands`]: matching, conflict resolution, run loop.

@@ -1,0 +1,241 @@
+//! Taking network out: a rule's removal (its joins no other rule uses, their partial
+//! matches and activations; unused alpha nodes emptied) and the undo of a construct
+//! that failed halfway (`rollback` to a checkpoint).
+
+use crate::engine::{Checkpoint, Core};
+use crate::rete::{AlphaNode, Join};
+use crate::rule::Rule;
+use crate::value::{Ix, NONE};
+
+impl Core<'_> {
+    /// Removes a rule (all its disjuncts): joins no other rule uses go, with their
+    /// partial matches and activations; unused alpha nodes are emptied.
+    pub fn remove_rule(&mut self, r: Ix) {
+        let mut rr = r;
+        while rr != NONE {
+            let rule = self.rules[rr as usize];
+            if rule.terminal != NONE {
+                let parent = self.joins[rule.terminal as usize].parent;
+                self.remove_rule_activations(rr, parent);
+            }
+            self.release_chain(rule.terminal, 0);
+            self.rules[rr as usize].deleted = true;
+            rr = rule.next_disjunct;
+        }
+    }
+
+    /// Drops one reference to each join from `j` up to `stop` (and to the
+    /// subnetworks of joins from the right); unused joins go with their memories.
+    fn release_chain(&mut self, mut j: Ix, stop: Ix) {
+        while j != NONE && j != 0 && j != stop {
+            let jn = self.joins[j as usize];
+            self.joins[j as usize].refs = jn.refs.saturating_sub(1);
+            if self.joins[j as usize].refs == 0 {
+                if !jn.is_terminal() {
+                    self.clear_join_memory(j);
+                }
+                self.unlink_join(j);
+            }
+            if jn.rjoin != NONE {
+                self.release_chain(jn.rjoin, jn.parent);
+            }
+            j = jn.parent;
+        }
+    }
+
+    pub(crate) fn remove_rule_activations_pub(&mut self, rule: Ix, join: Ix) {
+        self.remove_rule_activations(rule, join);
+    }
+
+    fn remove_rule_activations(&mut self, rule: Ix, join: Ix) {
+        let mut t = self.joins[join as usize].mem;
+        while t != NONE {
+            let mut a = self.tokens[t as usize].extra;
+            while a != NONE {
+                let next = self.acts[a as usize].next_of_token;
+                if self.acts[a as usize].rule == rule {
+                    self.remove_activation(a);
+                }
+                a = next;
+            }
+            t = self.tokens[t as usize].mem_next;
+        }
+    }
+
+    pub(crate) fn unlink_join(&mut self, j: Ix) {
+        self.st.net_gen = self.st.net_gen.wrapping_add(1);
+        let a = self.joins[j as usize].alpha;
+        if a != NONE {
+            let head = self.alphas[a as usize].succ;
+            self.alphas[a as usize].succ = self.unlink_from_list(head, j, |x| &mut x.alpha_next);
+            if self.alphas[a as usize].succ == NONE {
+                self.clear_alpha_memory(a);
+                self.alphas[a as usize].live = false;
+            }
+        }
+        let parent = self.joins[j as usize].parent;
+        let head = self.joins[parent as usize].first_child;
+        self.joins[parent as usize].first_child =
+            self.unlink_from_list(head, j, |x| &mut x.next_sibling);
+        self.note_children(parent);
+        if self.joins[parent as usize].index_child == j {
+            self.drop_beta_index(parent);
+        }
+        let rj = self.joins[j as usize].rjoin;
+        if rj != NONE {
+            let head = self.joins[rj as usize].rsucc;
+            self.joins[rj as usize].rsucc = self.unlink_from_list(head, j, |x| &mut x.alpha_next);
+        }
+        self.joins[j as usize].alpha = NONE;
+        self.joins[j as usize].rjoin = NONE;
+        self.joins[j as usize].parent = 0;
+    }
+
+    /// Removes join `j` from a singly linked list of joins that starts at `head` and
+    /// chains through the field `next` selects; returns the list's new head.
+    fn unlink_from_list(&mut self, head: Ix, j: Ix, next: fn(&mut Join) -> &mut Ix) -> Ix {
+        let after = *next(&mut self.joins[j as usize]);
+        if head == j {
+            return after;
+        }
+        let mut p = head;
+        while p != NONE {
+            let n = *next(&mut self.joins[p as usize]);
+            if n == j {
+                *next(&mut self.joins[p as usize]) = after;
+                break;
+            }
+            p = n;
+        }
+        head
+    }
+
+    /// Gives back the references a new rule took on old joins (below `first_new`),
+    /// from `j` up to `stop`, subnetworks included.
+    fn release_old_refs(&mut self, mut j: Ix, stop: Ix, first_new: Ix) {
+        while j != NONE && j != 0 && j != stop && (j as usize) < self.joins.len() {
+            let jn = self.joins[j as usize];
+            if j < first_new {
+                self.joins[j as usize].refs = jn.refs.saturating_sub(1);
+            }
+            if jn.rjoin != NONE {
+                self.release_old_refs(jn.rjoin, jn.parent, first_new);
+            }
+            j = jn.parent;
+        }
+    }
+
+    /// Undoes every construct defined after `cp` (used when a construct fails halfway).
+    /// Tokens and activations built by new joins are released first; shared old joins
+    /// get their reference counts back.
+    pub fn rollback(&mut self, cp: Checkpoint) {
+        self.st.net_gen = self.st.net_gen.wrapping_add(1);
+        for j in (cp.njoins..self.st.njoins).rev() {
+            if !self.joins[j as usize].is_terminal() {
+                self.clear_join_memory(j);
+            }
+        }
+        for a in cp.nalpha..self.st.nalpha {
+            self.clear_alpha_memory(a);
+        }
+        // activations of new rules (their end nodes may hang below old joins)
+        for r in cp.nrules..self.st.nrules {
+            let t = self.rules[r as usize].terminal;
+            if t != NONE && (t as usize) < self.joins.len() {
+                let parent = self.joins[t as usize].parent;
+                self.remove_rule_activations_pub(r, parent);
+            }
+        }
+        for r in cp.nrules..self.st.nrules {
+            let t = self.rules[r as usize].terminal;
+            self.release_old_refs(t, 0, cp.njoins);
+        }
+        // unlink new joins from old alpha nodes and old parent joins (new ones lead)
+        for a in 0..cp.nalpha.min(self.st.nalpha) {
+            while self.alphas[a as usize].succ != NONE && self.alphas[a as usize].succ >= cp.njoins
+            {
+                let j = self.alphas[a as usize].succ;
+                self.alphas[a as usize].succ = self.joins[j as usize].alpha_next;
+            }
+        }
+        for p in 0..cp.njoins.min(self.st.njoins) {
+            // new children lead the list, except joins from the right (placed after
+            // their subnetwork's first join): drop new ones wherever they are
+            while self.joins[p as usize].first_child != NONE
+                && self.joins[p as usize].first_child >= cp.njoins
+            {
+                let j = self.joins[p as usize].first_child;
+                self.joins[p as usize].first_child = self.joins[j as usize].next_sibling;
+            }
+            let mut c = self.joins[p as usize].first_child;
+            while c != NONE {
+                let mut n = self.joins[c as usize].next_sibling;
+                while n != NONE && n >= cp.njoins {
+                    n = self.joins[n as usize].next_sibling;
+                }
+                self.joins[c as usize].next_sibling = n;
+                c = n;
+            }
+            self.note_children(p);
+            if self.joins[p as usize].index_child != NONE
+                && self.joins[p as usize].index_child >= cp.njoins
+            {
+                self.drop_beta_index(p);
+            }
+            while self.joins[p as usize].rsucc != NONE && self.joins[p as usize].rsucc >= cp.njoins
+            {
+                let j = self.joins[p as usize].rsucc;
+                self.joins[p as usize].rsucc = self.joins[j as usize].alpha_next;
+            }
+        }
+        // a template's alpha nodes are kept in network order, so new ones can sit
+        // anywhere in its list, not only at the head
+        for t in 0..cp.ntemplates.min(self.st.ntemplates) {
+            while self.templates[t as usize].alpha_head != NONE
+                && self.templates[t as usize].alpha_head >= cp.nalpha
+            {
+                let a = self.templates[t as usize].alpha_head;
+                self.templates[t as usize].alpha_head = self.alphas[a as usize].next_in_tmpl;
+            }
+            let mut a = self.templates[t as usize].alpha_head;
+            while a != NONE {
+                let mut n = self.alphas[a as usize].next_in_tmpl;
+                while n != NONE && n >= cp.nalpha {
+                    n = self.alphas[n as usize].next_in_tmpl;
+                }
+                self.alphas[a as usize].next_in_tmpl = n;
+                a = n;
+            }
+        }
+        for a in cp.nalpha..self.st.nalpha {
+            self.alphas[a as usize] = AlphaNode::EMPTY;
+        }
+        for j in cp.njoins..self.st.njoins {
+            self.joins[j as usize] = Join::EMPTY;
+        }
+        for r in cp.nrules..self.st.nrules {
+            self.rules[r as usize] = Rule::EMPTY;
+        }
+        // An old join whose last user was the new rule (its previous users were removed
+        // meanwhile, e.g. by a redefinition of the same rule) is now unused: remove it
+        // as `remove_rule` would, or it keeps its partial matches and eats tokens.
+        for j in 1..cp.njoins.min(self.st.njoins) {
+            if self.joins[j as usize].refs == 0 {
+                if !self.joins[j as usize].is_terminal() {
+                    self.clear_join_memory(j);
+                }
+                self.unlink_join(j);
+            }
+        }
+        self.st.nrules = cp.nrules;
+        self.st.nalpha = cp.nalpha;
+        self.st.njoins = cp.njoins;
+        self.st.nexprs = cp.nexprs;
+        self.st.ntemplates = cp.ntemplates;
+        self.st.nslots = cp.nslots;
+        self.st.nfuncs = cp.nfuncs;
+        self.st.nglobals = cp.nglobals;
+        self.st.ndeffacts = cp.ndeffacts;
+        self.syms().truncate(cp.nsyms, cp.sym_bytes);
+    }
+}
