@@ -5,6 +5,16 @@ use core::fmt;
 
 pub use crate::config::Pool;
 
+/// The 1-based number of argument `i` (0-based) in an error: 255 stands for any
+/// beyond 254 (the field is a byte; a call may have more arguments).
+pub const fn arg_no(i: usize) -> u8 {
+    if i >= 254 {
+        255
+    } else {
+        i as u8 + 1
+    }
+}
+
 /// A pool ran out: which one, and how big it is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct CapacityError {

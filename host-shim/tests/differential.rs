@@ -339,4 +339,5 @@ differential_programs! {
     p180_halts_and_in_use_during_a_command => "180-halts-and-in-use-during-a-command",
     p181_unbound_prompt_variables => "181-unbound-prompt-variables",
     p182_unbound_local_variables => "182-unbound-local-variables",
+    p183_template_with_70_slots => "183-template-with-70-slots",
 }

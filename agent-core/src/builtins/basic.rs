@@ -242,7 +242,7 @@ fn str_cat(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         if matches!(v, Value::Multi(_) | Value::Fact(_) | Value::Void) {
             return Err(EvalError::wrong_type(
                 "str-cat",
-                i as u8 + 1,
+                crate::error::arg_no(i),
                 super::math::T_ATOM,
             ));
         }

@@ -104,7 +104,11 @@ fn facts(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
                 } else {
                     "positive number"
                 };
-                return Err(EvalError::wrong_type("facts", i as u8 + 1, expected));
+                return Err(EvalError::wrong_type(
+                    "facts",
+                    crate::error::arg_no(i),
+                    expected,
+                ));
             }
         }
     }
@@ -156,7 +160,11 @@ fn watch_bits(cx: &Core<'_>, a: Args, func: &'static str) -> Result<u8, EvalErro
             WatchItem::Traced(b) => b,
             WatchItem::All if func == "unwatch" => 0xFF,
             WatchItem::Unknown => {
-                return Err(EvalError::wrong_type(func, i as u8 + 1, "watchable symbol"))
+                return Err(EvalError::wrong_type(
+                    func,
+                    crate::error::arg_no(i),
+                    "watchable symbol",
+                ))
             }
             _ => return Err(EvalError::message(crate::error::Message::NotTraced)),
         };

@@ -225,19 +225,25 @@ impl Core<'_> {
         defer: bool,
     ) -> Result<Option<Ix>, EvalError> {
         let nslots = self.templates[tmpl as usize].nslots;
-        let mut given = [false; 64];
+        // which of the first 64 slots the spec gives; later ones are looked up in it
+        let mut given = 0u64;
         let mut sv = self.exprs[spec as usize].first;
         while sv != NONE {
             let slot = self.exprs[sv as usize].data;
             let v = self.slot_value_from(tmpl, slot, self.exprs[sv as usize].first)?;
             self.stack[(base + slot) as usize] = v;
-            if (slot as usize) < given.len() {
-                given[slot as usize] = true;
+            if slot < 64 {
+                given |= 1 << slot;
             }
             sv = self.exprs[sv as usize].next;
         }
         for s in 0..nslots {
-            if !given.get(s as usize).copied().unwrap_or(false) {
+            let is_given = if s < 64 {
+                given & 1 << s != 0
+            } else {
+                self.spec_gives(spec, s)
+            };
+            if !is_given {
                 let v = self.default_value(tmpl, s)?;
                 self.stack[(base + s) as usize] = v;
             }
@@ -246,6 +252,19 @@ impl Core<'_> {
         // CLIPS checks literals while parsing and leaves dynamic constraint checking off.
         self.st.defer_next = defer;
         self.assert_slots(tmpl, base as usize)
+    }
+
+    /// Whether the fact spec gives slot `slot` a value.
+    #[cold]
+    fn spec_gives(&self, spec: Ix, slot: Ix) -> bool {
+        let mut sv = self.exprs[spec as usize].first;
+        while sv != NONE {
+            if self.exprs[sv as usize].data == slot {
+                return true;
+            }
+            sv = self.exprs[sv as usize].next;
+        }
+        false
     }
 
     /// Resolves a fact argument: an address or an index.
@@ -527,14 +546,14 @@ fn retract(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
                     Value::Sym(_) => {
                         return Err(EvalError::wrong_type(
                             "retract",
-                            i as u8 + 1,
+                            crate::error::arg_no(i),
                             "fact-address, fact-index, or the symbol *",
                         ))
                     }
                     _ => {
                         return Err(EvalError::wrong_type(
                             "retract",
-                            i as u8 + 1,
+                            crate::error::arg_no(i),
                             "fact-address, integer, or symbol",
                         ))
                     }

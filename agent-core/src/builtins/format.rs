@@ -192,7 +192,7 @@ fn render(cx: &Core<'_>, a: Args, ctl: &str, out: &mut Text) -> Result<(), Rende
             b'%' if used == 1 => out.write_char('%'),
             c if takes_arg(c) => {
                 let v = cx.arg(a, next_arg);
-                let argno = next_arg as u8 + 1;
+                let argno = crate::error::arg_no(next_arg);
                 next_arg += 1;
                 directive(cx, spec, v, argno, out)?;
                 Ok(())

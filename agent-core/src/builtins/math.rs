@@ -57,7 +57,11 @@ pub(super) fn num_arg(
     match cx.arg(a, i) {
         Value::Int(x) => Ok(Num::Int(x)),
         Value::Float(x) => Ok(Num::Float(x)),
-        _ => Err(EvalError::wrong_type(func, i as u8 + 1, T_NUMBER)),
+        _ => Err(EvalError::wrong_type(
+            func,
+            crate::error::arg_no(i),
+            T_NUMBER,
+        )),
     }
 }
 
@@ -70,7 +74,11 @@ pub(super) fn int_arg(
 ) -> Result<i64, EvalError> {
     match cx.arg(a, i) {
         Value::Int(x) => Ok(x),
-        _ => Err(EvalError::wrong_type(func, i as u8 + 1, T_INTEGER)),
+        _ => Err(EvalError::wrong_type(
+            func,
+            crate::error::arg_no(i),
+            T_INTEGER,
+        )),
     }
 }
 
@@ -83,7 +91,11 @@ pub(super) fn lexeme_arg(
 ) -> Result<SymId, EvalError> {
     match cx.arg(a, i) {
         Value::Sym(s) | Value::Str(s) => Ok(s),
-        _ => Err(EvalError::wrong_type(func, i as u8 + 1, T_LEXEME)),
+        _ => Err(EvalError::wrong_type(
+            func,
+            crate::error::arg_no(i),
+            T_LEXEME,
+        )),
     }
 }
 

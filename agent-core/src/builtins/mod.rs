@@ -263,7 +263,11 @@ impl Core<'_> {
         match self.arg(a, i) {
             Value::Int(x) => Ok(Num::Int(x)),
             Value::Float(x) => Ok(Num::Float(x)),
-            _ => Err(EvalError::wrong_type(func, i as u8 + 1, "integer or float")),
+            _ => Err(EvalError::wrong_type(
+                func,
+                crate::error::arg_no(i),
+                "integer or float",
+            )),
         }
     }
 
@@ -271,7 +275,11 @@ impl Core<'_> {
         match self.arg(a, i) {
             Value::Int(x) => Ok(x),
             Value::Float(x) => Ok(x as i64),
-            _ => Err(EvalError::wrong_type(func, i as u8 + 1, "integer")),
+            _ => Err(EvalError::wrong_type(
+                func,
+                crate::error::arg_no(i),
+                "integer",
+            )),
         }
     }
 
@@ -279,7 +287,11 @@ impl Core<'_> {
     pub fn arg_lexeme(&self, a: Args, i: usize, func: &'static str) -> Result<SymId, EvalError> {
         match self.arg(a, i) {
             Value::Sym(s) | Value::Str(s) => Ok(s),
-            _ => Err(EvalError::wrong_type(func, i as u8 + 1, "symbol or string")),
+            _ => Err(EvalError::wrong_type(
+                func,
+                crate::error::arg_no(i),
+                "symbol or string",
+            )),
         }
     }
 
@@ -287,7 +299,11 @@ impl Core<'_> {
     pub fn arg_multi(&self, a: Args, i: usize, func: &'static str) -> Result<MfSpan, EvalError> {
         match self.arg(a, i) {
             Value::Multi(m) => Ok(m),
-            _ => Err(EvalError::wrong_type(func, i as u8 + 1, "multifield")),
+            _ => Err(EvalError::wrong_type(
+                func,
+                crate::error::arg_no(i),
+                "multifield",
+            )),
         }
     }
 

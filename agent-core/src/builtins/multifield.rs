@@ -41,7 +41,11 @@ pub const FUNCS: &[Builtin] = &[
 fn multi_arg(cx: &Core<'_>, a: Args, i: usize, func: &'static str) -> Result<MfSpan, EvalError> {
     match cx.arg(a, i) {
         Value::Multi(m) => Ok(m),
-        _ => Err(EvalError::wrong_type(func, i as u8 + 1, T_MULTI)),
+        _ => Err(EvalError::wrong_type(
+            func,
+            crate::error::arg_no(i),
+            T_MULTI,
+        )),
     }
 }
 

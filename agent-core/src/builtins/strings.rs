@@ -59,7 +59,7 @@ pub(super) fn concat_args(cx: &Core<'_>, a: Args, func: &'static str) -> Result<
         let v = cx.arg(a, i);
         // CLIPS rejects multifields and fact addresses alike
         if matches!(v, Value::Multi(_) | Value::Fact(_) | Value::Void) {
-            return Err(EvalError::wrong_type(func, i as u8 + 1, T_ATOM));
+            return Err(EvalError::wrong_type(func, crate::error::arg_no(i), T_ATOM));
         }
         cx.write_plain(&mut b, v).map_err(|_| TOO_LONG)?;
     }

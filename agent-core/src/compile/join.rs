@@ -24,10 +24,12 @@ impl<'s> Parser<'s, '_, '_> {
         while j != NONE && j != 0 && j != stop {
             let jn = self.cx.joins[j as usize];
             if j >= first_new && jn.parent < first_new && !primed.ids[..primed.n].contains(&j) {
-                if primed.n < primed.ids.len() {
-                    primed.ids[primed.n] = j;
-                    primed.n += 1;
+                if primed.n == primed.ids.len() {
+                    // priming it unrecorded could prime it twice
+                    return Err(cap(Pool::Joins, MAX_PRIMED).into());
                 }
+                primed.ids[primed.n] = j;
+                primed.n += 1;
                 self.cx.prime_join(j)?;
             }
             if jn.rjoin != NONE {
@@ -247,8 +249,12 @@ impl<'s> Parser<'s, '_, '_> {
     }
 }
 
+/// New joins fed by older ones that one rule (all its disjuncts) may prime while facts
+/// exist; more is a capacity error naming the joins.
+pub(crate) const MAX_PRIMED: usize = 64;
+
 /// New joins already primed while defining a rule (disjuncts share joins).
 pub(crate) struct Primed {
-    pub(crate) ids: [Ix; 64],
+    pub(crate) ids: [Ix; MAX_PRIMED],
     pub(crate) n: usize,
 }

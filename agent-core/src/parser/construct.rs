@@ -67,6 +67,11 @@ impl<'s> Parser<'s, '_, '_> {
                     {
                         return Err(self.err(st, "a slot name not used before in this template"));
                     }
+                    // a pattern's field locator holds the slot in 8 bits, 255 meaning
+                    // the fact itself (`expr::loc`)
+                    if nslots >= 255 {
+                        return Err(self.err(st, "at most 255 slots in one deftemplate"));
+                    }
                     let s = self.cx.st.nslots as usize;
                     if s >= self.cx.slots.len() {
                         let c = cap(Pool::SlotDefs, self.cx.slots.len());

@@ -135,6 +135,10 @@ impl<'s> Parser<'s, '_, '_> {
 
     /// Top-level `?x` lives in a hidden global named `?x`.
     fn toplevel_var(&mut self, t: Token<'s>, name: &str) -> PResult<Ix> {
+        // a longer name would be cut in the buffer and share another's global
+        if name.len() > 126 {
+            return Err(self.err(t, "a variable name of at most 126 bytes"));
+        }
         let mut b: TextBuf<128> = TextBuf::new();
         let _ = core::fmt::Write::write_fmt(&mut b, format_args!("?{name}"));
         let id = self.cx.intern(b.as_str());

@@ -329,6 +329,10 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
     /// A new frame local for `name`.
     pub fn new_local(&mut self, at: Token<'s>, name: &'s str, multi: bool) -> PResult<Ix> {
         let slot = self.nlocals;
+        // a frame's size is a u8 (`Rule::nlocals`, `Deffunction::nlocals`)
+        if slot >= 255 {
+            return Err(self.err(at, "at most 255 local variables in one construct"));
+        }
         self.nlocals += 1;
         self.add_var(at, name, VarKind::Local(slot), multi)?;
         Ok(slot)

@@ -176,7 +176,7 @@ impl<'s> Parser<'s, '_, '_> {
         // does (the new joins are hooked up above): prime those fed by old joins (each rule from its
         // end upwards), then drive the facts, oldest first, through the new patterns
         let mut primed = Primed {
-            ids: [NONE; 64],
+            ids: [NONE; crate::compile::join::MAX_PRIMED],
             n: 0,
         };
         for r in first_new_rule..self.cx.st.nrules {
@@ -727,6 +727,16 @@ impl<'s> Parser<'s, '_, '_> {
         if pb.desc == NONE {
             pb.desc = ps;
         } else {
+            // the alpha node lays out at most 8 (`rete::alpha::MAX_LAYOUTS`)
+            let mut n = 0;
+            let mut d = pb.desc;
+            while d != NONE {
+                n += 1;
+                d = self.cx.exprs[d as usize].next;
+            }
+            if n >= crate::rete::alpha::MAX_LAYOUTS {
+                return Err(self.err(at, "at most 8 multislots with constraints in one pattern"));
+            }
             self.cx.exprs[pb.dlast as usize].next = ps;
         }
         pb.dlast = ps;

@@ -18,6 +18,9 @@ struct SlotLayout {
     first_mark: u8,
 }
 
+/// Multislots with constraints one pattern may have (the parser refuses more).
+pub(crate) const MAX_LAYOUTS: usize = 8;
+
 impl Core<'_> {
     /// Adds a new fact to every alpha memory it matches and propagates.
     pub(crate) fn network_assert(&mut self, fact: Ix) -> Result<(), EvalError> {
@@ -56,7 +59,7 @@ impl Core<'_> {
         }
     }
 
-    fn layouts(&self, alpha: Ix, out: &mut [SlotLayout; 8]) -> usize {
+    fn layouts(&self, alpha: Ix, out: &mut [SlotLayout; MAX_LAYOUTS]) -> usize {
         let mut n = 0;
         let mut marks = 0u8;
         let mut s = self.alphas[alpha as usize].desc;
@@ -94,7 +97,16 @@ impl Core<'_> {
         if node.desc == NONE && node.nmarks == 0 {
             // no multislot constraints (most patterns): one segmentation, nothing to lay out
             let mut marks = [0u8; MAX_MARKS];
-            return self.enumerate_marks(alpha, fact, tests, &[], &[0; 8], &mut marks, 0, 0);
+            return self.enumerate_marks(
+                alpha,
+                fact,
+                tests,
+                &[],
+                &[0; MAX_LAYOUTS],
+                &mut marks,
+                0,
+                0,
+            );
         }
         #[cfg(feature = "host-speedups")]
         if node.nmarks == 0 {
@@ -124,16 +136,25 @@ impl Core<'_> {
                 s = sd.next;
             }
             let mut marks = [0u8; MAX_MARKS];
-            return self.enumerate_marks(alpha, fact, tests, &[], &[0; 8], &mut marks, 0, 0);
+            return self.enumerate_marks(
+                alpha,
+                fact,
+                tests,
+                &[],
+                &[0; MAX_LAYOUTS],
+                &mut marks,
+                0,
+                0,
+            );
         }
         let mut lay = [SlotLayout {
             slot: 0,
             fixed: 0,
             multis: 0,
             first_mark: 0,
-        }; 8];
+        }; MAX_LAYOUTS];
         let n = self.layouts(alpha, &mut lay);
-        let mut slack = [0 as Ix; 8];
+        let mut slack = [0 as Ix; MAX_LAYOUTS];
         for (i, l) in lay[..n].iter().enumerate() {
             let len = self.slot_cell(fact, l.slot).1.unwrap_or(1);
             if len < l.fixed || (l.multis == 0 && len != l.fixed) {
@@ -154,7 +175,7 @@ impl Core<'_> {
         fact: Ix,
         tests: Ix,
         lay: &[SlotLayout],
-        slack: &[Ix; 8],
+        slack: &[Ix; MAX_LAYOUTS],
         marks: &mut [u8; MAX_MARKS],
         i: usize,
         nmarks: usize,
@@ -683,7 +704,7 @@ mod tests {
                         fixed: 0,
                         multis: 0,
                         first_mark: 0,
-                    }; 8];
+                    }; MAX_LAYOUTS];
                     let n = c.layouts(a as Ix, &mut lay);
                     lay[..n].iter().all(|l| {
                         let len = c.slot_cell(f, l.slot).1.unwrap_or(1);

@@ -1,6 +1,6 @@
 //! The Rete network. See the crate docs for the design.
 
-mod alpha;
+pub(crate) mod alpha;
 mod beta;
 mod index;
 pub use index::{KeyPlan, KEY_PLANS};

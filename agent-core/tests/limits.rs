@@ -1,0 +1,162 @@
+//! Fixed local limits of the core that input can reach (issue 19): each one beyond
+//! what the pools bound is a typed load error naming the limit, leaving the engine as
+//! it was; none drops data silently. The list of limits and what each does is in
+//! tests/clips/NOTES.md ("Fixed limits").
+
+use agent_core::{DefaultEngine, Host};
+
+struct Quiet;
+impl Host for Quiet {
+    fn write_str(&mut self, _router: &str, _text: &str) {}
+}
+
+fn engine() -> Box<DefaultEngine> {
+    Box::new(DefaultEngine::new())
+}
+
+/// Loads `text` and expects a load error whose `expected` names `limit`; the usage
+/// figures stay as they were.
+fn refused(text: &str, limit: &str) {
+    let mut e = engine();
+    let h = &mut Quiet;
+    // the first load sets the engine up (initial-fact): measure after it
+    e.load_str(h, "setup", "").unwrap();
+    let before = e.usage();
+    let err = e.load_str(h, "limit", text).unwrap_err();
+    assert!(err.expected.contains(limit), "{limit}: {err:?}");
+    assert!(err.capacity.is_none(), "{err:?}");
+    assert_eq!(e.usage(), before);
+}
+
+#[test]
+fn a_template_holds_255_slots_and_refuses_the_256th() {
+    with_big_stack(|| {
+        let slots = |n: usize| (0..n).map(|i| format!("(slot s{i})")).collect::<String>();
+        let mut e = engine();
+        let h = &mut Quiet;
+        e.load_str(h, "t", &format!("(deftemplate t {})", slots(255)))
+            .unwrap();
+        refused(
+            &format!("(deftemplate u {})", slots(256)),
+            "at most 255 slots",
+        );
+    });
+}
+
+#[test]
+fn values_of_slots_past_64_are_kept() {
+    with_big_stack(|| {
+        let slots: String = (0..100)
+            .map(|i| format!("(slot s{i} (default d))"))
+            .collect();
+        let mut e = engine();
+        let h = &mut Quiet;
+        e.load_str(h, "t", &format!("(deftemplate t {slots})"))
+            .unwrap();
+        e.eval_str(h, "(assert (t (s3 a) (s64 b) (s65 c) (s99 z)))")
+            .unwrap();
+        for (slot, want) in [
+            ("s3", "a"),
+            ("s64", "b"),
+            ("s65", "c"),
+            ("s66", "d"),
+            ("s99", "z"),
+        ] {
+            let v = e
+                .eval_str(h, &format!("(eq (fact-slot-value 1 {slot}) {want})"))
+                .unwrap();
+            assert_eq!(
+                e.eval_str(h, "TRUE").unwrap(),
+                v,
+                "slot {slot} should hold {want}"
+            );
+        }
+    });
+}
+
+/// Runs `f` on a thread with room for the debug build's deep parser frames.
+fn with_big_stack(f: impl FnOnce() + Send + 'static) {
+    std::thread::Builder::new()
+        .stack_size(64 << 20)
+        .spawn(f)
+        .unwrap()
+        .join()
+        .unwrap();
+}
+
+#[test]
+fn a_construct_names_at_most_64_variables() {
+    // the variable table (64) bounds the frame's locals (255, a u8) first
+    with_big_stack(|| {
+        let binds = |n: usize| {
+            (0..n)
+                .map(|i| format!("(bind ?v{i} {i})"))
+                .collect::<String>()
+        };
+        let mut e = engine();
+        let h = &mut Quiet;
+        e.load_str(h, "f", &format!("(deffunction f () {} ?v63)", binds(64)))
+            .unwrap();
+        assert_eq!(e.eval_str(h, "(f)").unwrap(), agent_core::Value::Int(63));
+        refused(
+            &format!("(deffunction g () {})", binds(65)),
+            "fewer variables",
+        );
+        refused(&format!("(defrule r => {})", binds(65)), "fewer variables");
+    });
+}
+
+#[test]
+fn a_pattern_constrains_at_most_8_multislots() {
+    with_big_stack(|| {
+        let template = (0..9)
+            .map(|i| format!("(multislot m{i})"))
+            .collect::<String>();
+        let constraints = |n: usize| (0..n).map(|i| format!("(m{i} $? x)")).collect::<String>();
+        let mut e = engine();
+        let h = &mut Quiet;
+        let text = format!(
+            "(deftemplate t {template}) (defrule ok (t {}) =>)",
+            constraints(8)
+        );
+        e.load_str(h, "ok", &text).unwrap();
+        let mut e = engine();
+        e.load_str(h, "t", &format!("(deftemplate t {template})"))
+            .unwrap();
+        let before = e.usage();
+        let err = e
+            .load_str(h, "r", &format!("(defrule r (t {}) =>)", constraints(9)))
+            .unwrap_err();
+        assert!(err.expected.contains("at most 8 multislots"), "{err:?}");
+        assert_eq!(e.usage(), before);
+    });
+}
+
+#[test]
+fn an_argument_past_the_255th_is_numbered_255() {
+    with_big_stack(|| {
+        let mut e = engine();
+        let h = &mut Quiet;
+        e.eval_str(h, "(bind ?s a)").unwrap();
+        let call = format!("(+ {} ?s)", "1 ".repeat(255));
+        let err = e.eval_str(h, &call).unwrap_err();
+        match err.kind() {
+            agent_core::EvalErrorKind::WrongType { arg, .. } => assert_eq!(arg, 255),
+            k => panic!("{k:?}"),
+        }
+    });
+}
+
+#[test]
+fn a_prompt_variable_name_is_at_most_126_bytes() {
+    with_big_stack(|| {
+        let mut e = engine();
+        let h = &mut Quiet;
+        let ok = "v".repeat(126);
+        e.eval_str(h, &format!("(bind ?{ok} 1)")).unwrap();
+        // two long names differing after the cut would share one global
+        let long = "v".repeat(200);
+        assert!(e.eval_str(h, &format!("(bind ?{long}a 1)")).is_err());
+        assert!(e.eval_str(h, &format!("(bind ?{long}b 2)")).is_err());
+    });
+}
