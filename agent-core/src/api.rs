@@ -132,6 +132,17 @@ engine_impl! {
         self.st.exit
     }
 
+    /// The status `(exit N)` asked for (0 for a bare `(exit)`).
+    pub fn exit_status(&self) -> i32 {
+        self.st.exit_status
+    }
+
+    /// Whether a pool ran out or the input ended inside a construct since the engine
+    /// was made: the command line exits non-zero then (CLIPS exits 0).
+    pub fn hit_unrecoverable(&self) -> bool {
+        self.st.unrecoverable
+    }
+
     pub fn reset(&mut self, host: &mut dyn Host) -> Result<(), EngineError> {
         let mut cx = self.core(host);
         cx.reset().map_err(EngineError::from)

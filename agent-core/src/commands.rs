@@ -562,6 +562,9 @@ impl Core<'_> {
 
     /// CLIPS's message for an evaluation error (nothing for one already reported).
     pub fn write_error_message(&mut self, e: EvalError) {
+        if e.is_capacity() {
+            self.st.unrecoverable = true;
+        }
         if e.reported {
             return;
         }
@@ -665,6 +668,9 @@ impl Core<'_> {
     pub fn report_load_error(&mut self, source: &str, text: &str, e: &LoadError) {
         let mut b: TextBuf<4096> = TextBuf::new();
         let tok = text.get(e.start as usize..e.end as usize).unwrap_or("");
+        if e.capacity.is_some() || e.expected == crate::parser::INPUT_ENDED {
+            self.st.unrecoverable = true;
+        }
         if let Some(c) = e.capacity {
             let _ = writeln!(b, "[MEMORY] {c}");
         } else if let LoadDetail::Arity {

@@ -151,6 +151,11 @@ pub struct State {
     pub watch: u8,
     pub halt: bool,
     pub exit: bool,
+    /// `(exit N)`'s N (0 for a bare `(exit)`).
+    pub exit_status: i32,
+    /// Something the session could not recover from was reported: a pool ran out, or
+    /// the input ended inside a construct (a command line exits non-zero for it).
+    pub unrecoverable: bool,
     /// A pattern test failed with an error during the current assert.
     pub pattern_error: bool,
     /// CLIPS's halting state: an error was reported in the pattern or join network
@@ -304,6 +309,8 @@ impl State {
             watch: watch::COMPILATIONS,
             halt: false,
             exit: false,
+            exit_status: 0,
+            unrecoverable: false,
             pattern_error: false,
             halting: false,
             matching: 0,

@@ -169,4 +169,5 @@ pub use error::{
 };
 pub use host::{Host, NullHost};
 pub use invariants::Violation;
+pub use parser::INPUT_ENDED;
 pub use value::{Ix, Value, ValueRef, NONE};

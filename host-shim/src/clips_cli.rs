@@ -47,6 +47,9 @@ enum Step {
 struct CliHost {
     started: std::time::Instant,
     out: std::io::BufWriter<std::io::Stdout>,
+    /// A `-f`/`-f2`/`-l` file could not be read, or a `-l` file hit something
+    /// unrecoverable: the process exits non-zero (`exit_code`).
+    failed: bool,
 }
 
 impl Host for CliHost {
@@ -189,6 +192,8 @@ trait CliEngine {
     fn load_str(&mut self, host: &mut dyn Host, name: &str, text: &str)
         -> Result<usize, LoadError>;
     fn exec_command(&mut self, host: &mut dyn Host, text: &str, source: &str) -> bool;
+    fn exit_status(&self) -> i32;
+    fn hit_unrecoverable(&self) -> bool;
 }
 
 macro_rules! cli_engine {
@@ -220,6 +225,12 @@ macro_rules! cli_engine {
             fn exec_command(&mut self, host: &mut dyn Host, text: &str, source: &str) -> bool {
                 <$ty>::exec_command(self, host, text, source)
             }
+            fn exit_status(&self) -> i32 {
+                <$ty>::exit_status(self)
+            }
+            fn hit_unrecoverable(&self) -> bool {
+                <$ty>::hit_unrecoverable(self)
+            }
         }
     };
 }
@@ -230,6 +241,7 @@ fn session(engine: &mut dyn CliEngine, steps: Vec<Step>) -> ExitCode {
     let mut host = CliHost {
         started: std::time::Instant::now(),
         out: std::io::BufWriter::new(std::io::stdout()),
+        failed: false,
     };
     // As CLIPS: `-l` and `-f2` files run at start-up, before the banner; `-f` files are
     // read by the command loop after it, as if typed at the prompt.
@@ -243,11 +255,26 @@ fn session(engine: &mut dyn CliEngine, steps: Vec<Step>) -> ExitCode {
     {
         if !run_step(engine, &mut host, step) {
             let _ = host.out.flush();
-            return ExitCode::SUCCESS;
+            return exit_code(engine, &host, true);
         }
     }
     interactive(engine, &mut host);
     let _ = host.out.flush();
+    exit_code(engine, &host, false)
+}
+
+/// The process status: `(exit N)`'s N; else 1 when a file could not be read, a pool ran
+/// out or the input ended inside a construct (CLIPS exits 0 then: a deliberate
+/// difference, so scripts can tell), else 0.
+fn exit_code(engine: &dyn CliEngine, host: &CliHost, exited: bool) -> ExitCode {
+    let status = engine.exit_status();
+    if exited && status != 0 {
+        // as the shell sees it: the low 8 bits
+        return ExitCode::from(status as u8);
+    }
+    if host.failed || engine.hit_unrecoverable() {
+        return ExitCode::FAILURE;
+    }
     ExitCode::SUCCESS
 }
 
@@ -266,12 +293,16 @@ fn run_step(engine: &mut dyn CliEngine, host: &mut CliHost, step: Step) -> bool 
             Err(e) => {
                 let _ = host.out.flush();
                 eprintln!("robotino-agent clips: cannot read {path}: {e}");
+                host.failed = true;
                 true
             }
         },
         Step::Load(path) => match std::fs::read_to_string(&path) {
             Ok(text) => {
                 if let Err(e) = engine.load_str(host, &path, &text) {
+                    if e.capacity.is_some() || e.expected == agent_core::INPUT_ENDED {
+                        host.failed = true;
+                    }
                     host.write_str(
                         "werror",
                         &format!("\n[PRNTUTIL2] Syntax Error:  Check appropriate syntax for {}.\n--> {path}:{}:{}: expected {}\n", e.construct, e.line, e.col, e.expected),
@@ -281,6 +312,7 @@ fn run_step(engine: &mut dyn CliEngine, host: &mut CliHost, step: Step) -> bool 
             }
             Err(e) => {
                 eprintln!("robotino-agent clips: cannot read {path}: {e}");
+                host.failed = true;
                 true
             }
         },

@@ -288,7 +288,14 @@ fn halt(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
     Ok(Value::Void)
 }
 
-fn exit(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
+fn exit(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    cx.st.exit_status = match a.len {
+        0 => 0,
+        _ => match cx.arg(a, 0) {
+            Value::Int(n) => n as i32,
+            _ => return Err(EvalError::wrong_type("exit", 1, "integer")),
+        },
+    };
     cx.st.exit = true;
     cx.st.halt = true;
     Err(EvalError::new(EvalErrorKind::Exit))

@@ -32,6 +32,9 @@ pub const MAX_VARS: usize = 64;
 /// Deepest nesting the reader follows (expressions, conditional elements, `~`
 /// chains): the reader recurses per level, so input must not decide how deep. An
 /// expression nested deeper than the evaluator's call limit could not run anyway.
+/// What a parse error at the end of the input expected.
+pub const INPUT_ENDED: &str = "')' (the input ended inside a construct)";
+
 pub const MAX_NESTING: u16 = crate::eval::MAX_EVAL_DEPTH;
 const _: () = assert!(MAX_NESTING == 200, "update the text of the nesting error");
 
@@ -173,7 +176,7 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
 
     pub fn err(&self, at: Token<'s>, expected: &'static str) -> LoadError {
         let expected = match at.tok {
-            Tok::Eof => "')' (the input ended inside a construct)",
+            Tok::Eof => INPUT_ENDED,
             Tok::Bad => "a closing '\"' of the string",
             _ => expected,
         };
