@@ -20,7 +20,7 @@
 //!     }
 //! }
 //! type RobotEngine = agent_core::Engine<RobotStorage>;
-//! let engine = Box::new(RobotEngine::new());
+//! let engine = Box::new(RobotEngine::with_storage(RobotStorage::new()));
 //! assert_eq!(engine.stats().get(agent_core::Pool::Tokens).1, 256);
 //! ```
 //! A name that is no pool, or a pool left out without a `..` base, does not compile:
@@ -217,12 +217,14 @@ __pool_table!(pool_items {});
 
 /// Storage for every pool of an engine, sized by named capacities. Implemented only by
 /// [`engine_storage!`](crate::engine_storage), which generates the struct from the pool
-/// table; an [`Engine`](crate::Engine) holds one.
+/// table, with a `const fn new()` (every entry empty) that runs as fill loops when
+/// called at run time; an [`Engine`](crate::Engine) holds one
+/// ([`Engine::with_storage`](crate::Engine::with_storage)). (Not an associated `EMPTY`
+/// constant: a host engine's constant would be copied from a read-only image of its
+/// every byte, hundreds of MiB for the large one.)
 pub trait Storage {
     /// The capacities this storage was made with.
     const CAPACITIES: Capacities;
-    /// Every entry empty; `const` so an engine can be a `static`.
-    const EMPTY: Self;
     /// The engine's view of the storage, with its state and host.
     fn core<'a>(&'a mut self, st: &'a mut crate::engine::State, host: &'a mut dyn Host)
         -> Core<'a>;
@@ -256,13 +258,20 @@ macro_rules! __engine_storage {
             )*)*
         }
 
+        impl $name {
+            /// Every entry empty; `const` so an engine can be a `static`.
+            #[allow(clippy::new_without_default)]
+            pub const fn new() -> Self {
+                $name {
+                    $($(
+                        $arr: [$aempty; $crate::config::Capacities $caps.$cap],
+                    )*)*
+                }
+            }
+        }
+
         impl $crate::config::Storage for $name {
             const CAPACITIES: $crate::config::Capacities = $crate::config::Capacities $caps;
-            const EMPTY: Self = $name {
-                $($(
-                    $arr: [$aempty; $crate::config::Capacities $caps.$cap],
-                )*)*
-            };
             #[inline(always)]
             fn core<'a>(
                 &'a mut self,

@@ -384,18 +384,33 @@ pub type DefaultEngine = Engine<HostStorage>;
 /// fits a thread stack).
 pub type SmallEngine = Engine<SmallStorage>;
 
+impl Engine<HostStorage> {
+    /// An empty engine with [`Capacities::HOST`](crate::Capacities::HOST).
+    pub const fn new() -> Self {
+        Engine::with_storage(HostStorage::new())
+    }
+}
+
+impl Engine<SmallStorage> {
+    /// An empty engine with [`Capacities::SMALL`](crate::Capacities::SMALL).
+    pub const fn new() -> Self {
+        Engine::with_storage(SmallStorage::new())
+    }
+}
+
 impl<S: Storage> Engine<S> {
-    /// An empty engine; `const` so it can initialise a `static`. The first API call
-    /// performs CLIPS's start-up (`(initial-fact)` asserted as f-0).
+    /// An empty engine holding `pools` (a storage's `new()`); `const` so it can
+    /// initialise a `static`. The first API call performs CLIPS's start-up
+    /// (`(initial-fact)` asserted as f-0).
     ///
     /// A pool larger than the index type [`crate::Ix`] can address does not compile:
     /// ```compile_fail
     /// agent_core::engine_storage! {
     ///     struct Big { symbol_bytes: agent_core::NONE as usize + 1, ..agent_core::Capacities::SMALL }
     /// }
-    /// let _ = agent_core::Engine::<Big>::new();
+    /// let _ = agent_core::Engine::with_storage(Big::new());
     /// ```
-    pub const fn new() -> Self {
+    pub const fn with_storage(pools: S) -> Self {
         // Every pool entry must be addressable by an `Ix` other than `NONE`: a
         // capacity the index type cannot hold fails to compile (enable the
         // `wide-index` feature for pools beyond 65,535 entries).
@@ -412,7 +427,7 @@ impl<S: Storage> Engine<S> {
         }
         Engine {
             st: State::new(),
-            pools: S::EMPTY,
+            pools,
             started: false,
         }
     }
@@ -490,7 +505,7 @@ impl<S: Storage> Engine<S> {
     }
 }
 
-impl<S: Storage> Default for Engine<S> {
+impl Default for Engine<HostStorage> {
     fn default() -> Self {
         Self::new()
     }

@@ -242,7 +242,7 @@ fn is_full(r: &Result<impl std::fmt::Debug, EngineError>) -> bool {
 
 /// Runs `ops` on a `TightEngine` against the naive model (see the module docs).
 fn check_full_pools(ops: &[Op]) -> Result<(), TestCaseError> {
-    let mut e = Box::new(TightEngine::new());
+    let mut e = Box::new(TightEngine::with_storage(TightStorage::new()));
     let h = &mut Quiet;
     e.load_str(h, "rules", RULES).unwrap();
     let mut facts: BTreeMap<u32, F> = BTreeMap::new();

@@ -174,7 +174,12 @@ pub fn main(args: Args) -> ExitCode {
 /// a frame on entry, so the default session must not share it.
 #[inline(never)]
 fn large_session(steps: Vec<Step>) -> ExitCode {
-    session(&mut *Box::new(LargeEngine::new()), steps)
+    session(
+        &mut *Box::new(LargeEngine::with_storage(
+            crate::large_engine::LargeStorage::new(),
+        )),
+        steps,
+    )
 }
 
 /// The command line's engine, built at compile time. `DefaultEngine::new()` at run time

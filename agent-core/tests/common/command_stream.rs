@@ -218,7 +218,7 @@ pub fn new_engine() -> Box<StreamEngine> {
 }
 
 pub fn new_engine_with(rules: &str) -> Box<StreamEngine> {
-    let mut e = Box::new(StreamEngine::new());
+    let mut e = Box::new(StreamEngine::with_storage(StreamStorage::new()));
     setup(&mut e, rules);
     e
 }

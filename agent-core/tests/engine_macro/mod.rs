@@ -18,6 +18,6 @@ macro_rules! engine {
         agent_core::engine_storage! {
             struct TestStorage { $($name: $v,)* ..crate::engine_macro::ROOMY }
         }
-        Box::new(agent_core::Engine::<TestStorage>::new())
+        Box::new(agent_core::Engine::with_storage(TestStorage::new()))
     }};
 }

@@ -195,7 +195,9 @@ pub fn arena_bytes(stats: &agent_core::Stats) -> (u64, u64) {
 /// [`crate::large_engine::LARGE_ENGINE_THREAD_STACK`] (the bench command runs on one).
 pub fn new_engine() -> Option<Box<dyn InProcessEngine>> {
     Some(Box::new(Ours {
-        engine: Box::new(BenchEngine::new()),
+        engine: Box::new(BenchEngine::with_storage(
+            crate::large_engine::LargeStorage::new(),
+        )),
         host: CaptureHost::default(),
     }))
 }

@@ -57,7 +57,8 @@ agent_core::engine_storage! {
 /// footprint tool can show its share of RAM. `try_take` hands it out once, as
 /// `&'static mut`.
 #[no_mangle]
-pub static AGENT_ENGINE: ConstStaticCell<ImageEngine> = ConstStaticCell::new(ImageEngine::new());
+pub static AGENT_ENGINE: ConstStaticCell<ImageEngine> =
+    ConstStaticCell::new(ImageEngine::with_storage(ImageStorage::new()));
 
 /// What the engine printed during the game: normally nothing (the game's rules only print
 /// on trouble), so the byte count and the first line are enough to diagnose a failure.
@@ -158,7 +159,7 @@ fn fail(
     GameError { step, file }
 }
 
-/// Plays the seeded game in `engine` (fresh from `ImageEngine::new()`).
+/// Plays the seeded game in `engine` (fresh from `ImageStorage::new()`).
 pub fn play(engine: &mut ImageEngine, host: &mut QuietHost) -> Result<GameResult, GameError> {
     engine.set_pretty_print_forms(false);
     for file in rules::minified::game_files(STRATEGY) {

@@ -176,7 +176,7 @@ mod tests {
     use std::string::String;
 
     fn fresh_engine() -> Box<ImageEngine> {
-        Box::new(ImageEngine::new())
+        Box::new(ImageEngine::with_storage(game::ImageStorage::new()))
     }
 
     #[test]
