@@ -9,8 +9,8 @@
 //! evaluate arguments themselves with [`Core::eval`]. Each module exports
 //! `pub const FUNCS: &[Builtin]`; [`TABLES`] lists the modules. A function is named by
 //! its `Ix` index in [`BUILTINS`] (the tables one after another), stored in the
-//! call's expression node.
-//! See `/work/brief/engine-interfaces.md` for how to add one.
+//! call's expression node. Adding a builtin: its row in a module's `FUNCS` and its
+//! function, nothing else (`describe` says what a row can say).
 
 pub mod basic;
 pub mod commands;
