@@ -244,6 +244,7 @@ pub const ERROR_TEXTS: &[&str] = &[
     "fact-address, fact-index, or the symbol *",
     "fact-address, integer, or symbol",
     "symbol or positive number",
+    "defmodule name",
     "watchable symbol",
     "function, deffunction, or generic function name",
     "function name, deffunction name, or defgeneric name",

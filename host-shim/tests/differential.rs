@@ -340,4 +340,5 @@ differential_programs! {
     p181_unbound_prompt_variables => "181-unbound-prompt-variables",
     p182_unbound_local_variables => "182-unbound-local-variables",
     p183_template_with_70_slots => "183-template-with-70-slots",
+    p184_get_fact_list => "184-get-fact-list",
 }

@@ -24,6 +24,8 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("get-deffunction-list", 0, 1, get_deffunction_list),
     Builtin::eager("get-defglobal-list", 0, 1, get_defglobal_list),
     Builtin::eager("get-defrule-list", 0, 1, get_defrule_list),
+    Builtin::eager("get-fact-list", 0, 1, get_fact_list)
+        .on_error(super::describe::OnError::EmptyMultifield),
     Builtin::eager("list-deffacts", 0, 1, list_deffacts),
     Builtin::eager("list-defglobals", 0, 1, list_defglobals),
     Builtin::eager("undeffacts", 1, 1, undeffacts),
@@ -137,6 +139,31 @@ fn get_defglobal_list(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
 }
 fn get_defrule_list(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
     names_list(cx, Kind::Defrule)
+}
+
+/// `(get-fact-list [module])`: the addresses of the facts, oldest first. Only module
+/// MAIN exists (`defmodule` is refused), so `MAIN` and `*` give them all; another
+/// name is CLIPS's `[ARGACCES5]`.
+fn get_fact_list(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    if a.len > 0 {
+        let ok = match cx.arg(a, 0) {
+            Value::Sym(s) => matches!(cx.sym_text(s), "MAIN" | "*"),
+            _ => false,
+        };
+        if !ok {
+            // checked here even for a literal, so CLIPS's `()` follows (OnError)
+            cx.write_error_message(EvalError::wrong_type("get-fact-list", 1, "defmodule name"));
+            return Err(EvalError::already_reported());
+        }
+    }
+    let start = cx.multi_begin();
+    let mut f = cx.st.fact_head;
+    while f != NONE {
+        let r = cx.fact_ref(f);
+        cx.multi_push(Value::Fact(r))?;
+        f = cx.facts[f as usize].next;
+    }
+    Ok(cx.multi_finish(start))
 }
 
 fn list_deffacts(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
