@@ -219,6 +219,7 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
     let tuning = DriveTuning {
         max_linear_m_s: config.limits.max_linear_m_s,
         max_angular_rad_s: config.limits.max_angular_rad_s,
+        max_linear_acc_m_s2: config.limits.max_linear_acc_m_s2,
         robot_radius_m: config.robot.radius_m,
         robot_number: config.robot.number,
         ..DriveTuning::default()

@@ -313,12 +313,14 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
             {
                 bumps_seen[usize::from(r.number) - 1] = r.bumps;
                 println!(
-                    "robotino-sim: cycle={cycle} bump robot={} with={} at=({:.2},{:.2},{:.2})",
+                    "robotino-sim: cycle={cycle} bump robot={} with={} at=({:.2},{:.2},{:.2}) odometry=({:.2},{:.2})",
                     r.number,
                     r.contact.map(|c| c.to_string()).unwrap_or_default(),
                     r.true_pose.x_m,
                     r.true_pose.y_m,
-                    r.true_pose.phi_rad
+                    r.true_pose.phi_rad,
+                    r.odometry_pose().x_m,
+                    r.odometry_pose().y_m
                 );
             }
             // Log the dead-man rule's transitions (the cycle it trips and the one it clears).

@@ -24,6 +24,8 @@ pub struct Perceived {
 pub struct DriveTuning {
     pub max_linear_m_s: f32,
     pub max_angular_rad_s: f32,
+    /// The drive's acceleration limit: how fast it can brake before a corner.
+    pub max_linear_acc_m_s2: f32,
     pub robot_radius_m: f32,
     /// Proportional gains: speed per metre and per radian of error.
     pub gain_linear: f32,
@@ -45,6 +47,7 @@ impl Default for DriveTuning {
         Self {
             max_linear_m_s: 0.5,
             max_angular_rad_s: 0.78,
+            max_linear_acc_m_s2: 1.0,
             robot_radius_m: 0.185,
             gain_linear: 1.5,
             gain_angular: 2.0,
@@ -119,8 +122,18 @@ impl DriveTo {
             .copied()
             .unwrap_or((self.goal.x_m, self.goal.y_m));
         let mut dist = ((target.0 - pose.x_m).powi(2) + (target.1 - pose.y_m).powi(2)).sqrt();
-        // Intermediate waypoints are passed loosely; the final one exactly.
-        while self.next < last && dist < 0.1 {
+        // Intermediate waypoints are passed loosely, but only where the straight line on
+        // to the next one clears every obstacle by the robot's radius: cutting the corner
+        // of a machine there is what pressed the bumper. The final one exactly.
+        while self.next < last
+            && (dist < WAYPOINT_REACHED_M
+                || (dist < WAYPOINT_PASS_M
+                    && planner::segment_is_free(
+                        (pose.x_m, pose.y_m),
+                        self.waypoints[self.next + 1],
+                        t.robot_radius_m + CORNER_CLEARANCE_M,
+                    )))
+        {
             self.next += 1;
             target = self.waypoints[self.next];
             dist = ((target.0 - pose.x_m).powi(2) + (target.1 - pose.y_m).powi(2)).sqrt();
@@ -145,9 +158,26 @@ impl DriveTo {
             }
         }
 
+        // Brake in time: the drive decelerates at most at its limit, and a robot still
+        // fast at a sharp turn swings wide into the machine the lane passes (the lanes
+        // leave 7 cm a side). So: slow to a turning speed by the point where the next leg
+        // begins, and to a stop at the goal.
+        let brake = BRAKE_SHARE * t.max_linear_acc_m_s2;
+        let corner_speed = if self.next < last {
+            let turn = turn_angle((pose.x_m, pose.y_m), target, self.waypoints[self.next + 1]);
+            let v_turn = if turn < SHALLOW_TURN_RAD {
+                t.max_linear_m_s
+            } else {
+                TURN_SPEED_M_S
+            };
+            v_turn + (2.0 * brake * (dist - WAYPOINT_PASS_M).max(0.0)).sqrt()
+        } else {
+            0.02 + (2.0 * brake * dist).sqrt()
+        };
         let speed = (t.gain_linear * (dist + self.remaining_after(self.next)))
             .min(t.max_linear_m_s)
-            .min(t.gain_linear * 4.0 * dist.max(0.0) + 0.02);
+            .min(t.gain_linear * 4.0 * dist.max(0.0) + 0.02)
+            .min(corner_speed);
         let (lx, ly) = pose.to_local(target.0, target.1);
         let (mut vx, mut vy) = if dist > 1e-4 {
             (lx / dist * speed, ly / dist * speed)
@@ -184,6 +214,25 @@ impl DriveTo {
             .map(|w| ((w[1].0 - w[0].0).powi(2) + (w[1].1 - w[0].1).powi(2)).sqrt())
             .sum()
     }
+}
+
+/// An intermediate waypoint this close is passed (heading for the next one) ...
+const WAYPOINT_PASS_M: f32 = 0.1;
+/// ... when the way on keeps this much beyond the radius; this close it is reached anyway.
+const CORNER_CLEARANCE_M: f32 = 0.015;
+const WAYPOINT_REACHED_M: f32 = 0.03;
+
+/// Share of the drive's acceleration limit the controller plans to brake with.
+const BRAKE_SHARE: f32 = 0.7;
+/// Turns sharper than this are taken at [`TURN_SPEED_M_S`].
+const SHALLOW_TURN_RAD: f32 = 0.35;
+const TURN_SPEED_M_S: f32 = 0.12;
+
+/// The angle between the leg a -> b and the leg b -> c.
+fn turn_angle(a: (f32, f32), b: (f32, f32), c: (f32, f32)) -> f32 {
+    let h1 = (b.1 - a.1).atan2(b.0 - a.0);
+    let h2 = (c.1 - b.1).atan2(c.0 - b.0);
+    wrap_angle(h2 - h1).abs()
 }
 
 /// Obstacles this close ahead stop the robot unless they are its goal.
@@ -465,6 +514,88 @@ mod tests {
     /// Moves a pose by a body twist for one 1/15 s cycle, exactly (no noise).
     fn integrate(pose: Pose2, tw: Twist) -> Pose2 {
         pose.advanced(tw, tw.omega_rad_s / 15.0, 1.0 / 15.0)
+    }
+
+    /// Distance from a point to the nearest machine's square (as the sim's bumper sees it).
+    fn machine_clearance(x: f32, y: f32) -> f32 {
+        let half = hal::field::MACHINE_SIZE_M / 2.0;
+        hal::field::MACHINE_POSITIONS
+            .iter()
+            .map(|&(mx, my)| {
+                let dx = ((x - mx).abs() - half).max(0.0);
+                let dy = ((y - my).abs() - half).max(0.0);
+                (dx * dx + dy * dy).sqrt()
+            })
+            .fold(f32::INFINITY, f32::min)
+    }
+
+    /// Drives from `from` to `to` through the drive's acceleration limits (as the safety
+    /// layer passes the twist on); returns whether it arrived and the least clearance
+    /// between the robot's edge and a machine on the way.
+    fn drive_with_limits(from: Pose2, to: Pose2) -> (bool, f32) {
+        let t = DriveTuning::default();
+        let limits = hal::limits::MotionLimits::ROBOTINO2;
+        let Some(mut drive) = DriveTo::plan(from, to, &t) else {
+            return (false, f32::NEG_INFINITY);
+        };
+        let (mut pose, mut previous) = (from, Twist::ZERO);
+        let mut least = f32::INFINITY;
+        for _ in 0..15 * 90 {
+            match drive.step(&perceived(pose, false), &t) {
+                DriveStep::Driving(tw) => {
+                    let tw = limits.clamp(previous, tw, 1.0 / 15.0);
+                    previous = tw;
+                    pose = integrate(pose, tw);
+                    least = least.min(machine_clearance(pose.x_m, pose.y_m) - t.robot_radius_m);
+                }
+                DriveStep::Arrived => return (true, least),
+                DriveStep::Failed(_) => return (false, least),
+            }
+        }
+        (false, least)
+    }
+
+    /// Every way the agent drives (storage to each machine, machine to machine, machine to
+    /// each gate) keeps off the machines, braking for the lanes' corners.
+    #[test]
+    fn no_drive_between_stations_touches_a_machine() {
+        let machines: Vec<Pose2> = MachineId::all().map(machine_approach_pose).collect();
+        let gates: Vec<Pose2> = (1..=3)
+            .filter_map(GateId::new)
+            .map(hal::field::gate_pose)
+            .collect();
+        let mut trips: Vec<(Pose2, Pose2)> = Vec::new();
+        for robot in 1..=3 {
+            let storage = input_storage_pose_for(robot);
+            for &m in &machines {
+                trips.push((storage, m));
+                trips.push((m, storage));
+            }
+        }
+        for &a in &machines {
+            for &b in machines.iter().chain(gates.iter()) {
+                if a != b {
+                    trips.push((a, b));
+                }
+            }
+        }
+        let mut worst = (f32::INFINITY, Pose2::default(), Pose2::default());
+        let mut touching = 0;
+        let n = trips.len();
+        for (a, b) in trips {
+            // Leaving a station starts backed off from it, as the skills do.
+            let from = leave_pose(a, &DriveTuning::default()).unwrap_or(a);
+            let (arrived, least) = drive_with_limits(from, b);
+            assert!(arrived, "{from:?} -> {b:?} did not arrive");
+            touching += usize::from(least <= 0.0);
+            if least < worst.0 {
+                worst = (least, from, b);
+            }
+        }
+        assert!(
+            worst.0 > 0.0,
+            "{touching} of {n} touched a machine, worst: {worst:?}"
+        );
     }
 
     #[test]

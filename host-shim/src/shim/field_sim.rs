@@ -149,6 +149,10 @@ impl SimRobot {
         self.bumper
     }
     /// Cycles since the last fresh motor command.
+    /// The pose the drive's odometry reports.
+    pub fn odometry_pose(&self) -> Pose2 {
+        self.odometry.pose()
+    }
     pub fn cycles_without_command(&self) -> u32 {
         self.cycles_without_command
     }
