@@ -318,6 +318,11 @@ impl<R: Referee> FieldSim<R> {
         if station.is_none() || station != r.worked_station {
             r.worked_station = None;
         }
+        // A puck goes into a station only from a robot that stopped there: one driving
+        // past a machine's approach pose on its way elsewhere keeps its puck.
+        if !r.applied.is_zero() {
+            return;
+        }
         let (Some(station), None) = (station, r.worked_station) else {
             return;
         };
