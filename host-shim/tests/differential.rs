@@ -341,4 +341,5 @@ differential_programs! {
     p182_unbound_local_variables => "182-unbound-local-variables",
     p183_template_with_70_slots => "183-template-with-70-slots",
     p184_get_fact_list => "184-get-fact-list",
+    p185_unbound_variables_in_queries => "185-unbound-variables-in-queries",
 }

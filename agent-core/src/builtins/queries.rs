@@ -289,6 +289,10 @@ impl SlotTest {
             crate::expr::Op::Global => cx.globals[o.data as usize].value,
             _ => cx.const_value(self.other),
         };
+        // an unbound variable: the evaluator reports it
+        if matches!(w, Value::Void) {
+            return None;
+        }
         let (a, b) = if self.slot_first { (v, w) } else { (w, v) };
         super::basic::compare(cx, self.cmp, a, b)
     }

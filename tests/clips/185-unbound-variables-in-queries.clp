@@ -1,0 +1,7 @@
+(deftemplate p (slot x))
+(assert (p (x 1)) (p (x 2)))
+(find-all-facts ((?f p)) (eq ?f:x ?u))
+(deffunction g (?n) (if (> ?n 0) then (bind ?k 1)) (find-all-facts ((?f p)) (eq ?f:x ?k)))
+(g 1)
+(g 0)
+(exit)
