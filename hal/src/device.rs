@@ -2,6 +2,7 @@
 //! calibration) belongs to the implementation. Every method is fallible.
 
 use crate::error::ErrorType;
+use crate::field::{GateId, MachineId};
 use crate::ir::IrScan;
 use crate::kinematics::WheelSpeeds;
 use crate::light::LightSignal;
@@ -50,15 +51,44 @@ pub trait Odometry: ErrorType {
     fn set_pose(&mut self, pose: Pose2) -> Result<(), Self::Error>;
 }
 
-/// The signal light of the machine in front of the robot.
+/// The signal light of the machine in front of the robot (the camera).
 pub trait MachineLight: ErrorType {
-    /// `None` when no light is in view.
-    fn read_light(&mut self) -> Result<Option<LightSignal>, Self::Error>;
+    /// The machine in view and its light; `None` when no light is in view.
+    fn read_light(&mut self) -> Result<Option<(MachineId, LightSignal)>, Self::Error>;
+}
+
+/// The delivery gate whose light is on (the camera, looking at the gates).
+pub trait GateSignal: ErrorType {
+    /// `None` until the active gate was seen.
+    fn active_gate(&mut self) -> Result<Option<GateId>, Self::Error>;
 }
 
 /// Whether a puck sits in the robot's gripper area (the front IR sensor on the 2012 robot).
 pub trait PuckSensor: ErrorType {
     fn has_puck(&mut self) -> Result<bool, Self::Error>;
+}
+
+/// Letting go of the puck: the 2012 robot has no gripper to open, it backs away from the
+/// puck; the drive does it when asked, with its next motor command.
+pub trait PuckRelease: ErrorType {
+    fn set_release(&mut self, release: bool) -> Result<(), Self::Error>;
+}
+
+/// The sensing devices, for telling fresh readings from stale ones.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Device {
+    Ir,
+    Bumper,
+    Gyro,
+    Odometry,
+    Puck,
+    Camera,
+}
+
+/// The sequence number of each device's newest valid reading: a reader that sees it
+/// unchanged for too long treats the device as silent (the safety layer's deadline).
+pub trait Freshness {
+    fn sequence(&self, device: Device) -> Option<u32>;
 }
 
 impl<T: IrRing + ?Sized> IrRing for &mut T {
@@ -98,8 +128,20 @@ impl<T: Odometry + ?Sized> Odometry for &mut T {
 }
 
 impl<T: MachineLight + ?Sized> MachineLight for &mut T {
-    fn read_light(&mut self) -> Result<Option<LightSignal>, Self::Error> {
+    fn read_light(&mut self) -> Result<Option<(MachineId, LightSignal)>, Self::Error> {
         T::read_light(self)
+    }
+}
+
+impl<T: GateSignal + ?Sized> GateSignal for &mut T {
+    fn active_gate(&mut self) -> Result<Option<GateId>, Self::Error> {
+        T::active_gate(self)
+    }
+}
+
+impl<T: PuckRelease + ?Sized> PuckRelease for &mut T {
+    fn set_release(&mut self, release: bool) -> Result<(), Self::Error> {
+        T::set_release(self, release)
     }
 }
 

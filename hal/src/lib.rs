@@ -1,8 +1,9 @@
 //! Hardware abstraction for the Festo Robotino (`no_std`, no alloc).
 //!
 //! * [`device`]: one small trait per device (IR ring, bumper, gyro, omni drive, odometry,
-//!   machine light, puck sensor), embedded-hal style: every method is fallible and each
-//!   implementation's error maps to a shared [`ErrorKind`].
+//!   machine light, active gate, puck sensor, puck release), embedded-hal style: every
+//!   method is fallible and each implementation's error maps to a shared [`ErrorKind`];
+//!   `Freshness` tells fresh readings from stale ones.
 //! * [`kinematics`], [`limits`], [`odometry`]: the three-wheel omni drive's transforms, the
 //!   speed/acceleration limits and pose integration fused with the gyro heading.
 //! * [`ir`]: the IR ring's geometry and the sensors' volts-to-metres table.

@@ -5,6 +5,10 @@
 //! the robot is idle and something changed, the engine runs to quiescence and the skill it
 //! chose starts.
 
+use hal::device::{
+    Bumper, Device, Freshness, GateSignal, Gyro, IrRing, MachineLight, Odometry, OmniDrive,
+    PuckRelease, PuckSensor,
+};
 use hal::field::MachineId;
 use hal::ir::IrScan;
 use hal::skill::{SkillOutcome, SkillRequest};
@@ -12,11 +16,10 @@ use hal::{Pose2, Twist};
 use host_shim::shim::agent::{ChosenSkill, EngineAgent, MachineView};
 use host_shim::shim::behaviour::{DriveTuning, Perceived, Skill};
 use host_shim::shim::config::Config;
+use host_shim::shim::drivers::{usable, DriverError, SimDrivers};
 use host_shim::shim::lockstep::{spawn_heartbeat, FrameWatch};
 use host_shim::shim::payloads::{
-    BumperPayload, GyroPayload, IrScanPayload, LightPayload, MachineClaimPayload,
-    MotorCommandPayload, OdometryPayload, PuckPayload, SkillRequestPayload, SkillStatus,
-    SkillStatusPayload, WorldModelPayload,
+    MachineClaimPayload, SkillRequestPayload, SkillStatus, SkillStatusPayload, WorldModelPayload,
 };
 use host_shim::shim::rule_engine::exit_from_engine_stack;
 use host_shim::shim::safety::{CycleInput, SafetyMonitor, Stream};
@@ -71,13 +74,6 @@ pub fn main(args: Args) -> ExitCode {
 
 /// The agent's ports for one robot.
 struct AgentPorts {
-    ir: Sub<IrScanPayload>,
-    bumper: Sub<BumperPayload>,
-    gyro: Sub<GyroPayload>,
-    odometry: Sub<OdometryPayload>,
-    puck: Sub<PuckPayload>,
-    light: Sub<LightPayload>,
-    motor: Pub<MotorCommandPayload>,
     request: Pub<SkillRequestPayload>,
     status: Pub<SkillStatusPayload>,
     world_out: Pub<WorldModelPayload>,
@@ -90,13 +86,6 @@ impl AgentPorts {
     fn open(t: &Transport, robot: u8) -> Result<Self, TransportError> {
         let name = |s| t.names.robot(robot, s);
         Ok(Self {
-            ir: t.subscriber(&name(RobotStream::Ir))?,
-            bumper: t.subscriber(&name(RobotStream::Bumper))?,
-            gyro: t.subscriber(&name(RobotStream::Gyro))?,
-            odometry: t.subscriber(&name(RobotStream::Odometry))?,
-            puck: t.subscriber(&name(RobotStream::Puck))?,
-            light: t.subscriber(&name(RobotStream::Light))?,
-            motor: t.publisher(&name(RobotStream::Motor))?,
             request: t.publisher(&name(RobotStream::SkillRequest))?,
             status: t.publisher(&name(RobotStream::SkillStatus))?,
             world_out: t.publisher(&t.names.team(TeamStream::WorldModel))?,
@@ -134,45 +123,49 @@ impl Samples {
         }
     }
 
-    fn read(&mut self, p: &mut AgentPorts, cycle: u64) -> Result<(), TransportError> {
-        if let Some(s) = p.ir.poll()? {
-            if let Ok(scan) = s.decode() {
-                self.perceived.ir = scan;
-                self.seq[Stream::Ir as usize] = Some(s.seq);
-            }
+    /// Reads every device through the `hal` traits; a missing or invalid reading keeps
+    /// the last one (and its stream goes stale for the safety monitor).
+    fn read<D>(&mut self, d: &mut D, cycle: u64) -> Result<(), DriverError>
+    where
+        D: IrRing<Error = DriverError>
+            + Bumper<Error = DriverError>
+            + Gyro<Error = DriverError>
+            + Odometry<Error = DriverError>
+            + PuckSensor<Error = DriverError>
+            + MachineLight<Error = DriverError>
+            + GateSignal<Error = DriverError>
+            + Freshness,
+    {
+        if let Some(scan) = usable(d.read_scan())? {
+            self.perceived.ir = scan;
         }
-        if let Some(s) = p.bumper.poll()? {
-            if let Ok(pressed) = s.decode() {
-                if pressed && !self.bumper_pressed {
-                    self.bumper_hit = Some((Instant::now(), cycle));
-                }
-                self.bumper_pressed = pressed;
-                self.seq[Stream::Bumper as usize] = Some(s.seq);
+        if let Some(pressed) = usable(d.is_pressed())? {
+            if pressed && !self.bumper_pressed {
+                self.bumper_hit = Some((Instant::now(), cycle));
             }
+            self.bumper_pressed = pressed;
         }
-        if let Some(s) = p.gyro.poll()? {
-            if s.decode().is_ok() {
-                self.seq[Stream::Gyro as usize] = Some(s.seq);
-            }
+        usable(Gyro::read(d))?;
+        if let Some(o) = usable(d.read_pose())? {
+            self.perceived.pose = o.pose;
         }
-        if let Some(s) = p.odometry.poll()? {
-            if let Ok(r) = s.decode() {
-                // The driver's odometry already fuses wheels and gyro (hal::odometry).
-                self.perceived.pose = r.pose;
-                self.seq[Stream::Odometry as usize] = Some(s.seq);
-            }
+        if let Some(present) = usable(d.has_puck())? {
+            self.perceived.has_puck = present;
         }
-        if let Some(s) = p.puck.poll()? {
-            if let Ok(present) = s.decode() {
-                self.perceived.has_puck = present;
-                self.seq[Stream::Puck as usize] = Some(s.seq);
-            }
+        if let Some(light) = usable(d.read_light())? {
+            self.perceived.light = light;
         }
-        if let Some(s) = p.light.poll()? {
-            if let (Ok(light), Ok(gate)) = (s.decode(), s.active_gate()) {
-                self.perceived.light = light;
-                self.gate = gate.or(self.gate);
-            }
+        if let Some(gate) = usable(d.active_gate())? {
+            self.gate = gate.or(self.gate);
+        }
+        for s in Stream::ALL {
+            self.seq[s as usize] = d.sequence(match s {
+                Stream::Ir => Device::Ir,
+                Stream::Bumper => Device::Bumper,
+                Stream::Gyro => Device::Gyro,
+                Stream::Odometry => Device::Odometry,
+                Stream::Puck => Device::Puck,
+            });
         }
         Ok(())
     }
@@ -207,6 +200,7 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
     };
     let transport = Transport::open(&config.services.prefix, &format!("robotino-agent-{robot}"))?;
     let mut ports = AgentPorts::open(&transport, robot)?;
+    let mut drivers = SimDrivers::open(&transport, robot)?;
     let mut frames = FrameWatch::open(&transport, robot)?;
     // The sim tells a dead agent from a slow one by this thread's beats.
     let beat_cycle = Arc::new(AtomicU64::new(0));
@@ -263,7 +257,7 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
         let work_start = Instant::now();
         cycle += 1;
         beat_cycle.store(cycle, Ordering::Relaxed);
-        samples.read(&mut ports, cycle)?;
+        samples.read(&mut drivers, cycle)?;
         let p = samples.perceived;
         mind.listen(&mut ports, cycle)?;
         if let Some(g) = samples.gate {
@@ -358,10 +352,8 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
         let release = running
             .as_ref()
             .is_some_and(|r| r.skill.releasing() && !outcome.is_terminal());
-        let bumper_seq = samples.seq[Stream::Bumper as usize].unwrap_or(0);
-        ports.motor.send(|s| {
-            MotorCommandPayload::encode(s, bumper_seq, decision.wheels).with_release(release)
-        })?;
+        drivers.set_release(release)?;
+        drivers.set_motor_speeds(decision.wheels)?;
         if let Some((received, at_cycle)) = samples.bumper_hit {
             if decision.wheels.is_zero() {
                 stats.bumper(received.elapsed(), cycle - at_cycle.min(cycle));

@@ -5,6 +5,7 @@
 pub mod agent;
 pub mod behaviour;
 pub mod config;
+pub mod drivers;
 pub mod field_sim;
 pub mod lockstep;
 pub mod payloads;
