@@ -9,7 +9,7 @@ use agent_core::{DefaultEngine, EngineError, FactId, Host, ValueRef};
 use rules::RuleFile;
 
 /// A team message as `team-send`/`team-recv` carry it (see `rules/team.clp`).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct TeamMsg {
     pub from: u8,
     pub seq: i64,

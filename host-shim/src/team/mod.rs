@@ -2,7 +2,8 @@
 //! robot, messages between them carried by the host. [`member`] drives one robot's
 //! engine (clock, messages in and out, wants, holds); [`net`] is the message-level fault
 //! proxy (loss, delay, duplication in game time) the tests and the simulations put
-//! between robots.
+//! between robots. The `team-link` crate (its own workspace, `team-link/`) carries them
+//! over Zenoh between processes and machines.
 
 pub mod member;
 pub mod net;
