@@ -243,11 +243,16 @@ const STOP_WITHIN_M: f32 = 0.07;
 const PATH_MARGIN_M: f32 = 0.03;
 /// How far a robot in contact with an obstacle moves away before following its plan.
 const ESCAPE_M: f32 = 0.12;
+/// A robot this close to an obstacle (by its pose) counts as touching it.
+const ESCAPE_WITHIN_M: f32 = 0.05;
 
 /// For a robot closer to an obstacle than its radius (plus a little), the nearest point
 /// [`ESCAPE_M`] away that is clear of everything, trying 16 directions.
 fn escape_point(from: Pose2, radius_m: f32) -> Option<(f32, f32)> {
-    if !hal::field::is_blocked(from.x_m, from.y_m, radius_m + 0.01) {
+    // The margin covers the odometry's few centimetres of error: a robot whose pose says
+    // 2 cm clear may be pressed against the machine, and planning along its edge pressed
+    // the bumper again in the first cycle, skill after skill.
+    if !hal::field::is_blocked(from.x_m, from.y_m, radius_m + ESCAPE_WITHIN_M) {
         return None;
     }
     (0..16)

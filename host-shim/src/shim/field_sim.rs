@@ -257,7 +257,12 @@ impl<R: Referee> FieldSim<R> {
         let twist = self.geometry.forward(self.robots[i].applied);
         let old = self.robots[i].true_pose;
         let new = old.advanced(twist, twist.omega_rad_s * self.dt_s, self.dt_s);
-        let contact = self.collides(i, new.x_m, new.y_m);
+        // A robot touching something may still back away from it: only a move that does
+        // not increase its least gap is blocked (else a robot pressed against a machine
+        // could never leave, its first slow cycle still within reach of the edge).
+        let contact = self
+            .collides(i, new.x_m, new.y_m)
+            .filter(|_| self.gap(i, new.x_m, new.y_m) <= self.gap(i, old.x_m, old.y_m));
         let blocked = contact.is_some();
         let r = &mut self.robots[i];
         // Contact stops the robot where it was; the bumper reports contact in this cycle.
@@ -348,6 +353,30 @@ impl<R: Referee> FieldSim<R> {
             }
             _ => {}
         }
+    }
+
+    /// The least distance from a robot's edge at (x, y) to a wall, a machine or another
+    /// robot (negative when overlapping).
+    fn gap(&self, i: usize, x: f32, y: f32) -> f32 {
+        let rad = self.radius_m;
+        let walls = x.min(y).min(FIELD_SIZE_M - x).min(FIELD_SIZE_M - y);
+        let half = MACHINE_SIZE_M / 2.0;
+        let machines = MACHINE_POSITIONS
+            .iter()
+            .map(|&(mx, my)| {
+                let dx = ((x - mx).abs() - half).max(0.0);
+                let dy = ((y - my).abs() - half).max(0.0);
+                (dx * dx + dy * dy).sqrt()
+            })
+            .fold(f32::INFINITY, f32::min);
+        let robots = self
+            .robots
+            .iter()
+            .enumerate()
+            .filter(|&(j, _)| j != i)
+            .map(|(_, o)| o.true_pose.distance_to(&Pose2::new(x, y, 0.0)) - rad)
+            .fold(f32::INFINITY, f32::min);
+        walls.min(machines).min(robots) - rad
     }
 
     /// What a robot of this radius at (x, y) would touch: a wall, a machine or another
