@@ -265,7 +265,9 @@ fn escape_point(from: Pose2, radius_m: f32) -> Option<(f32, f32)> {
 /// [`BACK_OFF_M`]) that keeps the robot's radius clear of walls and machines, or `None`
 /// when there is no room behind (between two machine rows the lane is narrow).
 fn leave_pose(pose: Pose2, t: &DriveTuning) -> Option<Pose2> {
-    let clearance = t.robot_radius_m + 0.01;
+    // The odometry's error margin, as for escaping: backing towards a machine the pose
+    // says is 2 cm away may press the bumper.
+    let clearance = t.robot_radius_m + ESCAPE_WITHIN_M;
     [BACK_OFF_M, BACK_OFF_M / 2.0, BACK_OFF_M / 5.0]
         .into_iter()
         .map(|d| backed_off(pose, d))
