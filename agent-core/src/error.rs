@@ -156,6 +156,7 @@ messages! {
     FormatTooLong = "format: result longer than 2048 bytes",
     StringTooLong = "string result longer than 2048 bytes",
     ImplodeTooLong = "implode$: result longer than 2048 bytes",
+    PathTooLong = "file name longer than 256 bytes",
     SyntaxError = "syntax error",
     // CLIPS's math and random messages
     SqrtDomain = "[EMATHFUN1] Domain error for sqrt function.",

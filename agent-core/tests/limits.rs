@@ -160,3 +160,35 @@ fn a_prompt_variable_name_is_at_most_126_bytes() {
         assert!(e.eval_str(h, &format!("(bind ?{long}b 2)")).is_err());
     });
 }
+
+/// Serves one file under a 256-byte name (a longer name cut to 256 bytes would be it).
+struct OneFile(String);
+impl Host for OneFile {
+    fn write_str(&mut self, _router: &str, _text: &str) {}
+    fn read_file(&mut self, path: &str, buf: &mut [u8]) -> Result<usize, agent_core::HostIoError> {
+        if path != self.0 {
+            return Err(agent_core::HostIoError::NotFound);
+        }
+        let text = b"(defglobal ?*loaded* = yes)";
+        buf[..text.len()].copy_from_slice(text);
+        Ok(text.len())
+    }
+}
+
+#[test]
+fn a_file_name_over_256_bytes_is_an_error_not_another_file() {
+    with_big_stack(|| {
+        let mut e = engine();
+        let name = "f".repeat(256);
+        let h = &mut OneFile(name.clone());
+        // exactly 256 bytes: loaded
+        e.eval_str(h, &format!("(load \"{name}\")")).unwrap();
+        e.eval_str(h, "(bind ?*loaded* no)").unwrap();
+        for f in ["load", "load*", "batch", "batch*", "load-facts"] {
+            let err = e.eval_str(h, &format!("({f} \"{name}x\")")).unwrap_err();
+            assert!(err.to_string().contains("longer than 256"), "{f}: {err}");
+        }
+        let v = e.eval_str(h, "(eq ?*loaded* no)").unwrap();
+        assert_eq!(v, e.eval_str(h, "TRUE").unwrap());
+    });
+}

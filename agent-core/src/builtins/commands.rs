@@ -549,7 +549,10 @@ fn write_bases(cx: &mut Core<'_>, j: Ix) -> i64 {
 fn path_arg(cx: &Core<'_>, a: Args, func: &'static str) -> Result<TextBuf<256>, EvalError> {
     let p = cx.arg_lexeme(a, 0, func)?;
     let mut path: TextBuf<256> = TextBuf::new();
-    let _ = path.write_str(cx.sym_text(p));
+    // a cut name would open another file
+    if path.write_str(cx.sym_text(p)).is_err() {
+        return Err(EvalError::message(crate::error::Message::PathTooLong));
+    }
     Ok(path)
 }
 
