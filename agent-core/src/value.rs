@@ -112,6 +112,10 @@ impl<const N: usize> TextBuf<N> {
     pub fn clear(&mut self) {
         self.len = 0;
     }
+    /// Back to an earlier length (one `len` returned), dropping what came after.
+    pub fn truncate(&mut self, len: usize) {
+        self.len = self.len.min(len);
+    }
     pub fn len(&self) -> usize {
         self.len
     }

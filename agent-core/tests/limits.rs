@@ -192,3 +192,41 @@ fn a_file_name_over_256_bytes_is_an_error_not_another_file() {
         assert_eq!(v, e.eval_str(h, "TRUE").unwrap());
     });
 }
+
+struct Capture(String);
+impl Host for Capture {
+    fn write_str(&mut self, _router: &str, text: &str) {
+        self.0.push_str(text);
+    }
+}
+
+#[test]
+fn a_string_literal_is_at_most_1024_bytes() {
+    with_big_stack(|| {
+        let mut e = engine();
+        let h = &mut Capture(String::new());
+        let s = "x".repeat(1025);
+        let err = e
+            .load_str(h, "s", &format!("(defglobal ?*s* = \"{s}\")"))
+            .unwrap_err();
+        assert!(err.expected.contains("at most 1024 bytes"), "{err:?}");
+        assert!(e.eval_str(h, &format!("(printout t \"{s}\")")).is_err());
+    });
+}
+
+#[test]
+fn printout_prints_each_value_once_and_whole() {
+    with_big_stack(|| {
+        let mut e = engine();
+        let cases = [(500, 600), (0, 950), (10, 1024), (1000, 1000), (1024, 1024)];
+        for (a, b) in cases {
+            let h = &mut Capture(String::new());
+            let (a, b) = ("a".repeat(a), "b".repeat(b));
+            let tail = "crlf tab crlf ".repeat(200);
+            e.eval_str(h, &format!("(printout t \"{a}\" \"{b}\" {tail})"))
+                .unwrap();
+            let tail = "\n\t\n".repeat(200);
+            assert_eq!(h.0, format!("{a}{b}{tail}"), "{} {}", a.len(), b.len());
+        }
+    });
+}

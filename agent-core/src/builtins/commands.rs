@@ -220,6 +220,11 @@ fn printout(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
         if cx.st.halting {
             break;
         }
+        // room for a crlf or tab; a value that does not fit goes out alone
+        if b.len() > 900 {
+            cx.write(routed, b.as_str());
+            b.clear();
+        }
         match v {
             Value::Sym(s) if s == SYM_CRLF => {
                 let _ = b.write_char('\n');
@@ -228,7 +233,10 @@ fn printout(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
                 let _ = b.write_char('\t');
             }
             _ => {
-                if cx.write_printout(&mut b, v).is_err() || b.len() > 900 {
+                let len = b.len();
+                if cx.write_printout(&mut b, v).is_err() {
+                    // out goes what came before it, then the value (cut past 1 KiB)
+                    b.truncate(len);
                     cx.write(routed, b.as_str());
                     b.clear();
                     let _ = cx.write_printout(&mut b, v);

@@ -10,13 +10,15 @@ use crate::value::{TextBuf, Value, NONE};
 
 impl<'s> Parser<'s, '_, '_> {
     /// Interns a string literal's contents with `\"` and `\\` unescaped.
-    pub fn string_const(&mut self, raw: &str) -> PResult<Ix> {
+    pub fn string_const(&mut self, t: Token<'s>, raw: &str) -> PResult<Ix> {
         let mut b: TextBuf<1024> = TextBuf::new();
         let mut esc = false;
         for ch in raw.chars() {
             if esc || ch != '\\' {
                 let mut tmp = [0u8; 4];
-                let _ = core::fmt::Write::write_str(&mut b, ch.encode_utf8(&mut tmp));
+                if core::fmt::Write::write_str(&mut b, ch.encode_utf8(&mut tmp)).is_err() {
+                    return Err(self.err(t, "a string literal of at most 1024 bytes"));
+                }
                 esc = false;
             } else {
                 esc = true;
@@ -44,7 +46,7 @@ impl<'s> Parser<'s, '_, '_> {
                 Ok(id) => self.cx.push_expr(Expr::new(Op::Sym, 0, id)),
                 Err(e) => Err(e),
             },
-            Tok::Str(s) => return self.string_const(s).map(Some),
+            Tok::Str(s) => return self.string_const(t, s).map(Some),
             _ => return Ok(None),
         };
         cap!(self, r).map(Some)
