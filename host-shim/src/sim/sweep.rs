@@ -136,14 +136,47 @@ pub fn play_all(
     threads: usize,
     on_game: &(dyn Fn() + Sync),
 ) -> Result<Vec<GameSummary>, SimError> {
+    let new_player = || Player::new(config.strategy);
+    let play = |player: &mut Player, index: u32, setup: &GameSetup| {
+        // A panic is counted, not fatal: the sweep must say how
+        // many games panic (0 is the requirement).
+        let played =
+            std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| player.play(setup, false)));
+        match played {
+            Ok(record) => Ok(GameSummary::of(
+                index,
+                &record.map_err(|e| SimError::Input(format!("assignment #{index}: {e}")))?,
+            )),
+            Err(_) => {
+                // The engine may be half-way through an operation.
+                *player = Player::new(config.strategy)?;
+                Ok(GameSummary::panicked(index))
+            }
+        }
+    };
+    on_workers(config, count, threads, &new_player, &play, on_game)
+}
+
+/// The worker pool of every sweep: `threads` scoped workers, each with its own
+/// `new_worker()` state (its engines), take the next assignment index until `count`
+/// and call `play` on it; the first error stops all workers at their next game.
+/// Results are ordered by index.
+pub fn on_workers<W, T: Send>(
+    config: SweepConfig,
+    count: u32,
+    threads: usize,
+    new_worker: &(dyn Fn() -> Result<W, SimError> + Sync),
+    play: &(dyn Fn(&mut W, u32, &GameSetup) -> Result<T, SimError> + Sync),
+    on_game: &(dyn Fn() + Sync),
+) -> Result<Vec<T>, SimError> {
     let next = AtomicU32::new(0);
-    let results: Mutex<Vec<GameSummary>> = Mutex::new(Vec::with_capacity(count as usize));
+    let results: Mutex<Vec<(u32, T)>> = Mutex::new(Vec::with_capacity(count as usize));
     let first_error: Mutex<Option<SimError>> = Mutex::new(None);
     let (next, results, first_error) = (&next, &results, &first_error);
     std::thread::scope(|scope| {
         for _ in 0..threads.max(1) {
             let worker = || -> Result<(), SimError> {
-                let mut player = Player::new(config.strategy)?;
+                let mut state = new_worker()?;
                 loop {
                     let index = next.fetch_add(1, Ordering::Relaxed);
                     if index >= count {
@@ -151,26 +184,9 @@ pub fn play_all(
                     }
                     let setup = sweep_setup(index, config)
                         .ok_or_else(|| SimError::Input(format!("no assignment #{index}")))?;
-                    // A panic is counted, not fatal: the sweep must say how
-                    // many games panic (0 is the requirement).
-                    let played = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-                        player.play(&setup, false)
-                    }));
-                    let summary = match played {
-                        Ok(record) => GameSummary::of(
-                            index,
-                            &record.map_err(|e| {
-                                SimError::Input(format!("assignment #{index}: {e}"))
-                            })?,
-                        ),
-                        Err(_) => {
-                            // The engine may be half-way through an operation.
-                            player = Player::new(config.strategy)?;
-                            GameSummary::panicked(index)
-                        }
-                    };
+                    let result = play(&mut state, index, &setup)?;
                     if let Ok(mut all) = results.lock() {
-                        all.push(summary);
+                        all.push((index, result));
                     }
                     on_game();
                 }
@@ -200,8 +216,8 @@ pub fn play_all(
         .lock()
         .map(|mut all| std::mem::take(&mut *all))
         .map_err(|_| SimError::Input("a worker panicked".into()))?;
-    all.sort_by_key(|g| g.index);
-    Ok(all)
+    all.sort_by_key(|(index, _)| *index);
+    Ok(all.into_iter().map(|(_, result)| result).collect())
 }
 
 fn mean(values: impl Iterator<Item = f64>) -> f64 {

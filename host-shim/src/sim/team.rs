@@ -9,6 +9,7 @@
 use std::fmt::Write;
 
 use agent_core::{DefaultEngine, FactId, Host, ValueRef};
+use host_shim::team::member::{slot_float, slot_int, slot_sym};
 use host_shim::team::{FaultyNet, LinkFaults, TeamError, TeamMember};
 use rules::setup::GameSetup;
 use rules::Strategy;
@@ -175,25 +176,15 @@ impl World {
     }
 
     fn int(&self, id: FactId, slot: &str) -> i64 {
-        match self.engine.fact_slot(id, slot) {
-            Some(ValueRef::Int(i)) => i,
-            _ => 0,
-        }
+        slot_int(&self.engine, id, slot)
     }
 
     fn num(&self, id: FactId, slot: &str) -> f64 {
-        match self.engine.fact_slot(id, slot) {
-            Some(ValueRef::Int(i)) => i as f64,
-            Some(ValueRef::Float(f)) => f,
-            _ => 0.0,
-        }
+        slot_float(&self.engine, id, slot)
     }
 
     fn sym(&self, id: FactId, slot: &str) -> String {
-        match self.engine.fact_slot(id, slot) {
-            Some(ValueRef::Symbol(s)) => s.to_string(),
-            _ => String::new(),
-        }
+        slot_sym(&self.engine, id, slot)
     }
 
     fn s0_left(&self) -> i64 {
@@ -254,17 +245,11 @@ pub struct TeamPlayer {
 }
 
 fn sym_of(m: &TeamMember, id: FactId, slot: &str) -> String {
-    match m.engine.fact_slot(id, slot) {
-        Some(ValueRef::Symbol(s)) => s.to_string(),
-        _ => String::new(),
-    }
+    slot_sym(&m.engine, id, slot)
 }
 
 fn int_of(m: &TeamMember, id: FactId, slot: &str) -> i64 {
-    match m.engine.fact_slot(id, slot) {
-        Some(ValueRef::Int(i)) => i,
-        _ => 0,
-    }
+    slot_int(&m.engine, id, slot)
 }
 
 /// The agent's `(state X)`.
@@ -701,65 +686,26 @@ pub fn sweep_team(
     threads: usize,
     on_game: &(dyn Fn() + Sync),
 ) -> Result<Vec<TeamVsOne>, SimError> {
-    use std::sync::atomic::{AtomicU32, Ordering};
-    use std::sync::Mutex;
-    let next = AtomicU32::new(0);
-    let results: Mutex<Vec<TeamVsOne>> = Mutex::new(Vec::new());
-    let first_error: Mutex<Option<SimError>> = Mutex::new(None);
-    let (next, results, first_error) = (&next, &results, &first_error);
-    std::thread::scope(|scope| {
-        for _ in 0..threads.max(1) {
-            let worker = || -> Result<(), SimError> {
-                let mut team = TeamPlayer::new(config.strategy, robots)?;
-                let mut one = super::game::Player::new(config.strategy)?;
-                loop {
-                    let index = next.fetch_add(1, Ordering::Relaxed);
-                    if index >= count {
-                        return Ok(());
-                    }
-                    let setup = super::sweep::sweep_setup(index, config)
-                        .ok_or_else(|| SimError::Input(format!("no assignment #{index}")))?;
-                    let record = team
-                        .play(&setup, u64::from(index))
-                        .map_err(|e| SimError::Input(format!("assignment #{index}: {e}")))?;
-                    let single = one.play(&setup, false)?;
-                    if let Ok(mut all) = results.lock() {
-                        all.push(TeamVsOne {
-                            index,
-                            team: record,
-                            one_points: single.score.points,
-                            one_end: single.end_time,
-                        });
-                    }
-                    on_game();
-                }
-            };
-            let spawned = std::thread::Builder::new()
-                .stack_size(super::game::ENGINE_THREAD_STACK)
-                .spawn_scoped(scope, move || {
-                    if let Err(e) = worker() {
-                        next.store(count, Ordering::Relaxed);
-                        if let Ok(mut slot) = first_error.lock() {
-                            slot.get_or_insert(e);
-                        }
-                    }
-                });
-            if let Err(e) = spawned {
-                if let Ok(mut slot) = first_error.lock() {
-                    slot.get_or_insert(SimError::Input(format!("cannot start a worker: {e}")));
-                }
-            }
-        }
-    });
-    if let Some(e) = first_error.lock().ok().and_then(|mut slot| slot.take()) {
-        return Err(e);
-    }
-    let mut all = results
-        .lock()
-        .map(|mut all| std::mem::take(&mut *all))
-        .map_err(|_| SimError::Input("a worker panicked".into()))?;
-    all.sort_by_key(|g| g.index);
-    Ok(all)
+    let new_players = || -> Result<_, SimError> {
+        Ok((
+            TeamPlayer::new(config.strategy, robots)?,
+            super::game::Player::new(config.strategy)?,
+        ))
+    };
+    let play =
+        |(team, one): &mut (TeamPlayer, super::game::Player), index: u32, setup: &GameSetup| {
+            let record = team
+                .play(setup, u64::from(index))
+                .map_err(|e| SimError::Input(format!("assignment #{index}: {e}")))?;
+            let single = one.play(setup, false)?;
+            Ok(TeamVsOne {
+                index,
+                team: record,
+                one_points: single.score.points,
+                one_end: single.end_time,
+            })
+        };
+    super::sweep::on_workers(config, count, threads, &new_players, &play, on_game)
 }
 
 /// The table of a team sweep against one robot.

@@ -189,26 +189,15 @@ impl TeamMember {
     }
 
     fn int(&self, id: FactId, slot: &str) -> i64 {
-        match self.engine.fact_slot(id, slot) {
-            Some(ValueRef::Int(i)) => i,
-            Some(ValueRef::Float(f)) => f as i64,
-            _ => 0,
-        }
+        slot_int(&self.engine, id, slot)
     }
 
     fn float(&self, id: FactId, slot: &str) -> f64 {
-        match self.engine.fact_slot(id, slot) {
-            Some(ValueRef::Int(i)) => i as f64,
-            Some(ValueRef::Float(f)) => f,
-            _ => 0.0,
-        }
+        slot_float(&self.engine, id, slot)
     }
 
     fn sym(&self, id: FactId, slot: &str) -> String {
-        match self.engine.fact_slot(id, slot) {
-            Some(ValueRef::Symbol(s)) | Some(ValueRef::String(s)) => s.to_string(),
-            _ => String::new(),
-        }
+        slot_sym(&self.engine, id, slot)
     }
 
     fn symbols(&self, id: FactId, slot: &str) -> Vec<String> {
@@ -301,5 +290,31 @@ impl TeamMember {
                 (holder != self.id).then(|| (self.sym(id, "resource"), holder))
             })
             .collect()
+    }
+}
+
+/// A fact's slot as an integer (a float truncated); 0 when absent or of another type.
+pub fn slot_int(engine: &DefaultEngine, id: FactId, slot: &str) -> i64 {
+    match engine.fact_slot(id, slot) {
+        Some(ValueRef::Int(i)) => i,
+        Some(ValueRef::Float(f)) => f as i64,
+        _ => 0,
+    }
+}
+
+/// A fact's slot as a number; 0.0 when absent or not a number.
+pub fn slot_float(engine: &DefaultEngine, id: FactId, slot: &str) -> f64 {
+    match engine.fact_slot(id, slot) {
+        Some(ValueRef::Int(i)) => i as f64,
+        Some(ValueRef::Float(f)) => f,
+        _ => 0.0,
+    }
+}
+
+/// A fact's slot as text (symbol or string); empty when absent or of another type.
+pub fn slot_sym(engine: &DefaultEngine, id: FactId, slot: &str) -> String {
+    match engine.fact_slot(id, slot) {
+        Some(ValueRef::Symbol(s)) | Some(ValueRef::String(s)) => s.to_string(),
+        _ => String::new(),
     }
 }
