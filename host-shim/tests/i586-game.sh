@@ -27,6 +27,8 @@ cleanup() {
     [ -n "$agent_pid" ] && kill "$agent_pid" 2>/dev/null || true
     [ -n "$sim_pid" ] && kill "$sim_pid" 2>/dev/null || true
     rm -rf "$work"
+    # The prefix's own iceoryx2 root (host-shim/src/shim/transport.rs, root_dir).
+    rm -rf "/tmp/iceoryx2/robotino/i586game/$$-"*
 }
 trap cleanup EXIT
 

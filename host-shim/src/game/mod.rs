@@ -152,6 +152,15 @@ impl Drop for Proc {
     }
 }
 
+/// Removes a game's iceoryx2 directory when the game is over, however it ended.
+struct RootGuard(String);
+
+impl Drop for RootGuard {
+    fn drop(&mut self) {
+        host_shim::shim::transport::remove_root(&self.0);
+    }
+}
+
 /// Plays one game; `chatty` prints the processes' summary lines as they come.
 pub fn play(args: &Args, chatty: bool) -> Result<GameRecord, String> {
     let me = std::env::current_exe().map_err(|e| format!("where am I: {e}"))?;
@@ -169,6 +178,8 @@ pub fn play(args: &Args, chatty: bool) -> Result<GameRecord, String> {
         .map(|d| d.subsec_nanos())
         .unwrap_or(0);
     let prefix = format!("game/{}-{nanos}", std::process::id());
+    // Declared before the processes, so dropped after they are killed and reaped.
+    let _root = RootGuard(prefix.clone());
     let s = |x: &str| x.to_string();
     let mut sim = Proc::start(
         "sim",

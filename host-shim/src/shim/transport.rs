@@ -38,6 +38,37 @@ use iceoryx2::port::update_connections::UpdateConnections;
 use iceoryx2::prelude::*;
 use std::fmt::{self, Debug};
 
+/// Where every prefix keeps its iceoryx2 nodes and services.
+const ROOT_BASE: &str = "/tmp/iceoryx2/robotino";
+
+/// The iceoryx2 root directory of one service prefix. Processes of one prefix (one game, one
+/// robot) never see the nodes of another: a killed test game's dead nodes, or those of the
+/// 32-bit robot build, whose shared-memory layout a 64-bit process misreads when it cleans
+/// them up (iceoryx2 0.10 aborts on a misaligned pointer there).
+pub fn root_dir(prefix: &str) -> std::path::PathBuf {
+    let mut dir = std::path::PathBuf::from(ROOT_BASE);
+    for part in prefix.split('/').filter(|p| !p.is_empty()) {
+        // Only characters that are safe in any file name; `.` would allow `..`.
+        let clean: String = part
+            .chars()
+            .map(|c| {
+                if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+                    c
+                } else {
+                    '_'
+                }
+            })
+            .collect();
+        dir.push(clean);
+    }
+    dir
+}
+
+/// Removes a prefix's iceoryx2 directory once every process of it has ended.
+pub fn remove_root(prefix: &str) {
+    let _ = std::fs::remove_dir_all(root_dir(prefix));
+}
+
 /// One stream of one robot.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum RobotStream {
@@ -161,8 +192,19 @@ impl Transport {
     ) -> Result<Self, TransportError> {
         set_log_level(LogLevel::Error);
         let name = NodeName::new(node_name).map_err(|e| err("node name", e))?;
+        let mut root = root_dir(prefix)
+            .into_os_string()
+            .into_string()
+            .map_err(|p| err("iceoryx2 root", p))?;
+        root.push('/');
+        let mut config = Config::global_config().clone();
+        config.global.set_root_path(
+            &iceoryx2_bb_system_types::path::Path::new(root.as_bytes())
+                .map_err(|e| err(format!("iceoryx2 root {root}"), e))?,
+        );
         let node = NodeBuilder::new()
             .name(&name)
+            .config(&config)
             .signal_handling_mode(signals)
             .create::<ipc::Service>()
             .map_err(|e| err("create iceoryx2 node", e))?;
@@ -299,6 +341,16 @@ impl<T: Debug + ZeroCopySend + Copy + 'static> Sub<T> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Each prefix has a root of its own, and no prefix reaches outside the base.
+    #[test]
+    fn every_prefix_has_its_own_root_below_the_base() {
+        let a = root_dir("game/1-2");
+        assert_eq!(a, std::path::Path::new("/tmp/iceoryx2/robotino/game/1-2"));
+        assert_ne!(a, root_dir("game/1-3"));
+        let odd = root_dir("/../x y/.");
+        assert_eq!(odd, std::path::Path::new("/tmp/iceoryx2/robotino/__/x_y/_"));
+    }
 
     #[test]
     fn names_live_under_the_prefix() {
