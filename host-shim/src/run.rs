@@ -3,7 +3,10 @@
 //! safety monitor and publishes the motor command, then reports the skill's status. Skill
 //! outcomes and perceptions become facts of the agent's rule base (our engine); whenever
 //! the robot is idle and something changed, the engine runs to quiescence and the skill it
-//! chose starts.
+//! chose starts. In a team (`--team-size` above 1) the same engine runs the team's rules
+//! (`rules/team.clp`, `rules/team-agent.clp`): claims on machines, the input storage and
+//! the gates, and news of machines, exchanged with the teammates over a [`TeamLink`]
+//! (iceoryx2 on one host; in lockstep a message sent in one cycle is taken in the next).
 
 use hal::device::{
     Bumper, Device, Freshness, GateSignal, Gyro, IrRing, MachineLight, Odometry, OmniDrive,
@@ -11,20 +14,19 @@ use hal::device::{
 };
 use hal::field::MachineId;
 use hal::ir::IrScan;
-use hal::skill::{SkillOutcome, SkillRequest};
+use hal::skill::SkillOutcome;
 use hal::{Pose2, Twist};
-use host_shim::shim::agent::{ChosenSkill, EngineAgent, MachineView};
+use host_shim::shim::agent::{ChosenSkill, EngineAgent, MachineView, TeamSeat};
 use host_shim::shim::behaviour::{DriveTuning, Perceived, Skill};
 use host_shim::shim::config::Config;
 use host_shim::shim::drivers::{usable, DriverError, SimDrivers};
 use host_shim::shim::lockstep::{spawn_heartbeat, FrameWatch};
-use host_shim::shim::payloads::{
-    MachineClaimPayload, SkillRequestPayload, SkillStatus, SkillStatusPayload, WorldModelPayload,
-};
+use host_shim::shim::payloads::{SkillRequestPayload, SkillStatus, SkillStatusPayload};
 use host_shim::shim::rule_engine::exit_from_engine_stack;
 use host_shim::shim::safety::{CycleInput, SafetyMonitor, Stream};
-use host_shim::shim::team::TeamView;
-use host_shim::shim::transport::{Pub, RobotStream, Sub, TeamStream, Transport, TransportError};
+use host_shim::shim::team::IceoryxTeamLink;
+use host_shim::shim::transport::{Pub, RobotStream, Transport, TransportError};
+use host_shim::team::TeamLink;
 use rules::Strategy;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -59,7 +61,18 @@ pub struct Args {
     /// Also print every cycle's and every decision's time (one `stat` line each).
     #[arg(long)]
     pub stats: bool,
+    /// Robots in the team (1..=3): above 1 the agent loads the team's rules and talks to
+    /// the others over the team link.
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u8).range(1..=3))]
+    pub team_size: u8,
+    /// Raw pucks in the input storage at the start (the team shares them).
+    #[arg(long, default_value_t = 20)]
+    pub raw_pucks: u32,
 }
+
+/// In a team the rules run at least this often (cycles), so claims renew and waits end
+/// while nothing else happens (claims renew every 2 s of game time).
+const TEAM_TICK_CYCLES: u64 = 7;
 
 pub fn main(args: Args) -> ExitCode {
     // The engine's arrays pass through the stack on their way to the heap.
@@ -76,10 +89,6 @@ pub fn main(args: Args) -> ExitCode {
 struct AgentPorts {
     request: Pub<SkillRequestPayload>,
     status: Pub<SkillStatusPayload>,
-    world_out: Pub<WorldModelPayload>,
-    world_in: Sub<WorldModelPayload>,
-    claims_out: Pub<MachineClaimPayload>,
-    claims_in: Sub<MachineClaimPayload>,
 }
 
 impl AgentPorts {
@@ -88,10 +97,6 @@ impl AgentPorts {
         Ok(Self {
             request: t.publisher(&name(RobotStream::SkillRequest))?,
             status: t.publisher(&name(RobotStream::SkillStatus))?,
-            world_out: t.publisher(&t.names.team(TeamStream::WorldModel))?,
-            world_in: t.subscriber(&t.names.team(TeamStream::WorldModel))?,
-            claims_out: t.publisher(&t.names.team(TeamStream::Claims))?,
-            claims_in: t.subscriber(&t.names.team(TeamStream::Claims))?,
         })
     }
 }
@@ -190,18 +195,45 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
     }
     config.timing.lockstep |= args.lockstep;
     let robot = config.robot.number;
+    if args.team_size > 1 && robot > args.team_size {
+        return Err(format!("robot {robot} is not in a team of {}", args.team_size).into());
+    }
+    let seat = (args.team_size > 1).then_some(TeamSeat {
+        id: robot,
+        robots: args.team_size,
+        s0_supply: args.raw_pucks,
+    });
+    let transport = Transport::open(&config.services.prefix, &format!("robotino-agent-{robot}"))?;
+    let link: Option<Box<dyn TeamLink>> = match seat {
+        Some(_) => Some(Box::new(IceoryxTeamLink::open(&transport, robot)?)),
+        None => None,
+    };
+    run_with(args, config, seat, link, &transport)
+}
+
+/// The agent loop with the given team link (another carrier, e.g. Zenoh between
+/// machines, comes in here).
+pub fn run_with(
+    args: &Args,
+    config: Config,
+    seat: Option<TeamSeat>,
+    link: Option<Box<dyn TeamLink>>,
+    transport: &Transport,
+) -> Result<(), Box<dyn std::error::Error>> {
+    let robot = config.robot.number;
     let mut mind = Mind {
         robot,
-        agent: EngineAgent::new(args.strategy)?,
-        team: TeamView::new(robot),
+        agent: EngineAgent::with_team(args.strategy, seat)?,
+        link,
         dirty: true,
         done_reported: false,
-        published: [MachineView::default(); hal::field::MACHINE_COUNT],
+        known: [MachineView::default(); hal::field::MACHINE_COUNT],
+        sent: 0,
+        received: 0,
     };
-    let transport = Transport::open(&config.services.prefix, &format!("robotino-agent-{robot}"))?;
-    let mut ports = AgentPorts::open(&transport, robot)?;
-    let mut drivers = SimDrivers::open(&transport, robot)?;
-    let mut frames = FrameWatch::open(&transport, robot)?;
+    let mut ports = AgentPorts::open(transport, robot)?;
+    let mut drivers = SimDrivers::open(transport, robot)?;
+    let mut frames = FrameWatch::open(transport, robot)?;
     // The sim tells a dead agent from a slow one by this thread's beats.
     let beat_cycle = Arc::new(AtomicU64::new(0));
     spawn_heartbeat(
@@ -233,9 +265,10 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
     let start = Instant::now();
     let mut cycle: u64 = 0;
     println!(
-        "robotino-agent run: robot={robot} prefix={} strategy={} engine=rules",
+        "robotino-agent run: robot={robot} prefix={} strategy={} engine=rules team={}",
         config.services.prefix,
-        args.strategy.name()
+        args.strategy.name(),
+        seat.map_or(1, |s| s.robots)
     );
 
     loop {
@@ -250,7 +283,7 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
                 break;
             }
             if !transport.wait(poll) {
-                stats.report(cycle, &mind.agent);
+                stats.report(cycle, &mind);
                 return Ok(());
             }
         }
@@ -259,48 +292,48 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
         beat_cycle.store(cycle, Ordering::Relaxed);
         samples.read(&mut drivers, cycle)?;
         let p = samples.perceived;
-        mind.listen(&mut ports, cycle)?;
         if let Some(g) = samples.gate {
             if !mind.agent.knows_gate() {
                 mind.agent.see_active_gate(g)?;
                 mind.dirty = true;
             }
         }
-        // Late joiners: repeat what we found out now and then (the service keeps one sample).
-        if cycle.is_multiple_of(150) {
-            for m in MachineId::all() {
-                if mind
-                    .team
-                    .machine(m)
-                    .machine_type
-                    .is_some_and(|(_, by)| by == robot)
-                {
-                    mind.publish_belief(&mut ports, m)?;
-                }
-            }
-        }
+        // The team link's cycle: in lockstep the sim's frame, so every agent counts alike.
+        let link_cycle = if config.timing.lockstep {
+            frames.cycle().map_or(0, u64::from)
+        } else {
+            u64::MAX
+        };
+        // The first cycle sends nothing: a teammate may not have subscribed yet (all have
+        // before the sim's second frame, which waits for every agent's first answer).
+        let team_heard = cycle > 1 && mind.listen(link_cycle, cycle)?;
 
-        // Idle: let the rules decide, but only once every driver is fresh (a skill planned
-        // from a pose never received would start from the field's corner) and the gate's
-        // light was seen (the rules deliver to it).
+        // Let the rules decide once every driver is fresh (a skill planned from a pose
+        // never received would start from the field's corner) and the gate's light was
+        // seen (the rules deliver to it); in a team also to answer and renew claims.
         let drivers_fresh = samples.seq.iter().all(Option::is_some)
             && Stream::ALL
                 .iter()
                 .all(|&s| monitor.staleness(s) < config.timing.sensor_deadline_cycles);
+        let ready = drivers_fresh && mind.agent.knows_gate();
+        let team_tick = mind.link.is_some() && cycle > 1 && cycle.is_multiple_of(TEAM_TICK_CYCLES);
         let mut decided = None;
-        if running.is_none() && drivers_fresh && mind.agent.knows_gate() && mind.dirty {
+        if (ready && mind.dirty && (mind.link.is_none() || cycle > 1)) || team_heard || team_tick {
             let t0 = Instant::now();
-            let chosen = mind.decide(&mut ports, cycle)?;
+            mind.think(
+                cycle,
+                cycle as f64 * f64::from(config.cycle_s()),
+                link_cycle,
+            )?;
             decided = Some(t0.elapsed());
-            if let Some(chosen) = chosen {
+        }
+        if running.is_none() && ready {
+            if let Some(chosen) = mind.agent.take_request()? {
                 let request = chosen.request;
                 let request_seq = ports
                     .request
                     .send(|s| SkillRequestPayload::encode(s, robot, request))?;
                 monitor.skill_started();
-                if let SkillRequest::BringPuckTo(m) = request {
-                    mind.claim(&mut ports, m, true)?;
-                }
                 println!(
                     "robotino-agent run: cycle={cycle} start {request:?} (skill-request {} {} {} holding {})",
                     chosen.id, chosen.name, chosen.target, chosen.puck
@@ -321,18 +354,7 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
             }
         }
 
-        // Two robots claimed the same machine in the same moment: the lower number goes
-        // first, the other waits where it is until the machine is free.
-        let lost_claim = running.as_ref().is_some_and(|r| match r.skill.request() {
-            SkillRequest::BringPuckTo(m) => mind
-                .team
-                .machine(m)
-                .claimed_by
-                .is_some_and(|other| other < robot),
-            _ => false,
-        });
         let (desired, mut outcome) = match running.as_mut() {
-            Some(_) if lost_claim => (Twist::ZERO, SkillOutcome::Running),
             Some(r) => r.skill.step(&p, &tuning),
             None => (Twist::ZERO, SkillOutcome::Running),
         };
@@ -401,140 +423,91 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
             );
         }
         if args.cycles > 0 && cycle >= args.cycles {
-            stats.report(cycle, &mind.agent);
+            stats.report(cycle, &mind);
             return Ok(());
         }
     }
 }
 
-/// What the robot knows beyond its sensors: the agent's rules and the team's shared
-/// picture.
+/// What the robot knows beyond its sensors: the agent's rules (with the team's, in a
+/// team) and the link to the teammates.
 struct Mind {
     robot: u8,
     agent: EngineAgent,
-    team: TeamView,
+    link: Option<Box<dyn TeamLink>>,
     /// Facts changed since the rules last ran.
     dirty: bool,
-    /// The machine views last published (or taken from a teammate).
-    published: [MachineView; hal::field::MACHINE_COUNT],
+    /// The machine beliefs after the rules last ran (to log types found out).
+    known: [MachineView; hal::field::MACHINE_COUNT],
     done_reported: bool,
+    /// Team messages sent and taken so far.
+    sent: u64,
+    received: u64,
 }
 
 impl Mind {
-    /// Runs the rules, publishes what they found out, and returns the skill they chose.
-    fn decide(
+    /// Takes the teammates' messages due in `link_cycle`; `true` when there were any.
+    fn listen(&mut self, link_cycle: u64, cycle: u64) -> Result<bool, Box<dyn std::error::Error>> {
+        let Some(link) = self.link.as_mut() else {
+            return Ok(false);
+        };
+        let msgs = link.receive(link_cycle)?;
+        for m in &msgs {
+            if m.kind == "news" {
+                println!(
+                    "robotino-agent run: cycle={cycle} news from robot {}: {} {}",
+                    m.from,
+                    m.resource,
+                    m.data.join(" ")
+                );
+            }
+            self.agent.receive_team(m)?;
+        }
+        self.received += msgs.len() as u64;
+        Ok(!msgs.is_empty())
+    }
+
+    /// Runs the rules at game time `now` (the team's clock), logs what they found out,
+    /// and sends the team messages they wrote.
+    fn think(
         &mut self,
-        ports: &mut AgentPorts,
         cycle: u64,
-    ) -> Result<Option<ChosenSkill>, Box<dyn std::error::Error>> {
-        let chosen = self.agent.decide()?;
+        now: f64,
+        link_cycle: u64,
+    ) -> Result<(), Box<dyn std::error::Error>> {
+        if self.link.is_some() {
+            self.agent.set_team_time(now)?;
+        }
+        self.agent.run_rules()?;
         self.dirty = false;
         let printed = self.agent.take_output();
         if !printed.is_empty() {
             print!("{printed}");
         }
-        self.share_findings(ports, cycle)?;
-        if let Some(c) = &chosen {
-            if let SkillRequest::BringPuckTo(m) = c.request {
-                if let Some((t, by)) = self.team.machine(m).machine_type {
-                    if by != self.robot {
-                        println!(
-                            "robotino-agent run: cycle={cycle} using shared type M{} T{t} from robot {by}",
-                            m.number()
-                        );
-                    }
-                }
+        for (m, view) in MachineId::all().zip(self.agent.machines()) {
+            let before = self.known[m.index()];
+            if let (None, Some(t)) = (before.machine_type, view.machine_type) {
+                println!(
+                    "robotino-agent run: cycle={cycle} learned M{} T{t}",
+                    m.number()
+                );
             }
-        } else if self.agent.is_done() && !self.done_reported {
+            self.known[m.index()] = view;
+        }
+        if let Some(link) = self.link.as_mut() {
+            let out = self.agent.team_outbox()?;
+            link.send(link_cycle, &out)?;
+            self.sent += out.len() as u64;
+        }
+        if self.agent.is_done() && !self.done_reported {
             self.done_reported = true;
             println!("robotino-agent run: cycle={cycle} agent DONE (storage empty, hands empty)");
         }
-        Ok(chosen)
-    }
-
-    /// Publishes what the rules believe of a machine whenever it changed by their own
-    /// doing (a type found out, inputs loaded); logs types the team did not know yet.
-    fn share_findings(&mut self, ports: &mut AgentPorts, cycle: u64) -> Result<(), TransportError> {
-        for (m, view) in MachineId::all().zip(self.agent.machines()) {
-            if self.published[m.index()] == view {
-                continue;
-            }
-            self.published[m.index()] = view;
-            if self.team.record_own(m, view.machine_type, view.loaded) {
-                println!(
-                    "robotino-agent run: cycle={cycle} learned M{} T{}",
-                    m.number(),
-                    view.machine_type.unwrap_or(0)
-                );
-            }
-            self.publish_belief(ports, m)?;
-        }
         Ok(())
     }
 
-    fn claim(
-        &mut self,
-        ports: &mut AgentPorts,
-        m: MachineId,
-        claimed: bool,
-    ) -> Result<(), TransportError> {
-        self.team.apply_claim(self.robot, m, claimed);
-        let robot = self.robot;
-        ports
-            .claims_out
-            .send(|s| MachineClaimPayload::encode(s, robot, m, claimed))?;
-        Ok(())
-    }
-
-    fn publish_belief(&self, ports: &mut AgentPorts, m: MachineId) -> Result<(), TransportError> {
-        let belief = self.team.belief(m);
-        ports
-            .world_out
-            .send(|s| WorldModelPayload::encode(s, &belief))?;
-        Ok(())
-    }
-
-    /// Takes teammates' world-model updates (a type they found out narrows our rules'
-    /// belief) and claims.
-    fn listen(
-        &mut self,
-        ports: &mut AgentPorts,
-        cycle: u64,
-    ) -> Result<(), Box<dyn std::error::Error>> {
-        let mut learned = Vec::new();
-        let team = &mut self.team;
-        ports.world_in.drain(|p| {
-            if let Ok(b) = p.decode() {
-                if team.apply_belief(&b) {
-                    learned.push(b);
-                }
-            }
-        })?;
-        for b in learned {
-            let t = b.machine_type.unwrap_or(0);
-            let adopted = self.agent.adopt(b.machine, b.machine_type, b.loaded)?;
-            self.dirty |= adopted;
-            // What we took from a teammate is not news to repeat.
-            self.published[b.machine.index()] = self.agent.machines()[b.machine.index()];
-            println!(
-                "robotino-agent run: cycle={cycle} belief from robot {}: M{} T{t} loaded={} adopted={adopted}",
-                b.robot,
-                b.machine.number(),
-                b.loaded
-            );
-        }
-        ports.claims_in.drain(|p| {
-            if let Ok((robot, m, claimed)) = p.decode() {
-                if robot != team.me {
-                    team.apply_claim(robot, m, claimed);
-                }
-            }
-        })?;
-        Ok(())
-    }
-
-    /// Publishes a skill's end, tells the rules (a `skill-outcome` fact) and releases the
-    /// machine's claim.
+    /// Publishes a skill's end and tells the rules (a `skill-outcome` fact; in a team the
+    /// rules then send news of the place and release it).
     fn finish(
         &mut self,
         ports: &mut AgentPorts,
@@ -560,9 +533,6 @@ impl Mind {
         println!("robotino-agent run: cycle={cycle} end {request:?} {outcome:?} {reason}");
         self.agent.report(chosen.id, outcome)?;
         self.dirty = true;
-        if let SkillRequest::BringPuckTo(m) = request {
-            self.claim(ports, m, false)?;
-        }
         Ok(())
     }
 }
@@ -607,7 +577,8 @@ impl LoopStats {
         self.bumper_cycles.push(cycles);
     }
 
-    fn report(&self, cycle: u64, agent: &EngineAgent) {
+    fn report(&self, cycle: u64, mind: &Mind) {
+        let agent = &mind.agent;
         let (c_med, c_max) = median_max(&self.cycle_us);
         let (d_med, d_max) = median_max(&self.decision_cycle_us);
         let (e_med, e_max) = median_max(&self.decide_us);
@@ -615,9 +586,11 @@ impl LoopStats {
         let b_cycles = self.bumper_cycles.iter().max().copied().unwrap_or(0);
         let s = agent.engine_stats();
         println!(
-            "robotino-agent run: done cycles={cycle} cycle_work_median_us={c_med} cycle_work_max_us={c_max} decision_cycles={} decision_cycle_median_us={d_med} decision_cycle_max_us={d_max} engine_run_median_us={e_med} engine_run_max_us={e_max} bumper_hits={} bumper_latency_cycles_max={b_cycles} bumper_latency_median_us={b_med} bumper_latency_max_us={b_max} state={}",
+            "robotino-agent run: done cycles={cycle} cycle_work_median_us={c_med} cycle_work_max_us={c_max} decision_cycles={} decision_cycle_median_us={d_med} decision_cycle_max_us={d_max} engine_run_median_us={e_med} engine_run_max_us={e_max} bumper_hits={} bumper_latency_cycles_max={b_cycles} bumper_latency_median_us={b_med} bumper_latency_max_us={b_max} team_sent={} team_received={} state={}",
             self.decision_cycle_us.len(),
             self.bumper_us.len(),
+            mind.sent,
+            mind.received,
             agent.state().unwrap_or_default()
         );
         println!("robotino-agent run: engine {s:?}");

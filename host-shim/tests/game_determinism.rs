@@ -1,7 +1,9 @@
 //! The process-level game is reproducible: in lockstep the world advances only when the
 //! robot answered, so the same seed plays the same game (every decision at the same cycle,
-//! every referee event, the same score), however the processes are scheduled. And a team
-//! larger than the league's three robots is refused, not clamped.
+//! every referee event, the same score), however the processes are scheduled. A team of
+//! three too: each agent runs the team's rules (`rules/team.clp`) and their messages go
+//! over iceoryx2, taken in the cycle after the one they were sent in. And a team larger
+//! than the league's three robots is refused, not clamped.
 
 mod shim_common;
 
@@ -10,7 +12,7 @@ use std::time::Duration;
 
 /// What two runs of one seed must agree on: the agent's decisions and skill ends and the
 /// referee's log, each with its cycle (timings and service prefixes left out).
-fn game_events(seed: &str) -> (Vec<String>, String) {
+fn game_events(seed: &str, robots: &str) -> (Vec<String>, String) {
     let mut game = Proc::start(
         "game",
         AGENT,
@@ -18,6 +20,8 @@ fn game_events(seed: &str) -> (Vec<String>, String) {
             "game",
             "--seed",
             seed,
+            "--robots",
+            robots,
             "--game-seconds",
             "150",
             "--verbose",
@@ -35,7 +39,11 @@ fn game_events(seed: &str) -> (Vec<String>, String) {
         .lines()
         .into_iter()
         .filter(|l| {
-            (l.contains(" start ") || l.contains(" end ") || l.contains(" referee t="))
+            (l.contains(" start ")
+                || l.contains(" end ")
+                || l.contains(" referee t=")
+                || l.contains(" news from ")
+                || l.contains(" learned "))
                 && l.contains("cycle=")
         })
         .collect();
@@ -48,8 +56,33 @@ fn game_events(seed: &str) -> (Vec<String>, String) {
 
 #[test]
 fn the_same_seed_plays_the_same_process_level_game() {
-    let first = game_events("3");
-    let second = game_events("3");
+    let first = game_events("3", "1");
+    let second = game_events("3", "1");
+    assert_eq!(first.1, second.1);
+    assert_eq!(first.0, second.0);
+}
+
+#[test]
+fn the_same_seed_plays_the_same_team_game() {
+    let first = game_events("3", "3");
+    let second = game_events("3", "3");
+    // The team talked: every robot started skills, and news of places reached the others.
+    for r in 1..=3 {
+        let tag = format!("[agent{r}]");
+        assert!(
+            first
+                .0
+                .iter()
+                .any(|l| l.starts_with(&tag) && l.contains(" start ")),
+            "robot {r} never started a skill: {:#?}",
+            first.0
+        );
+    }
+    assert!(
+        first.0.iter().any(|l| l.contains(" news from robot ")),
+        "no team news: {:#?}",
+        first.0
+    );
     assert_eq!(first.1, second.1);
     assert_eq!(first.0, second.0);
 }

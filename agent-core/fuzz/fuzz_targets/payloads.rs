@@ -14,7 +14,7 @@ use libfuzzer_sys::fuzz_target;
 /// Only for the payload types below: each is `#[repr(C)]` and made of `u32`, `f32` and
 /// `u8` fields (arrays included) with no padding, so every bit pattern is a valid value.
 fn from_bytes<T: Copy>(data: &[u8]) -> T {
-    let mut buf = [0u8; 64];
+    let mut buf = [0u8; 4096];
     assert!(size_of::<T>() <= buf.len());
     let n = data.len().min(size_of::<T>());
     buf[..n].copy_from_slice(&data[..n]);
@@ -142,22 +142,19 @@ fuzz_target!(|data: &[u8]| {
             );
         }
         10 => {
-            if let Some(b) = check(
-                from_bytes::<WorldModelPayload>(rest),
-                |p| p.decode(),
-                |v| WorldModelPayload::encode(seq, v),
-            ) {
-                assert!(b
-                    .machine_type
-                    .is_none_or(|t| (1..=MACHINE_TYPE_MAX).contains(&t)));
+            // Text: the floats of re-encoded JSON may differ in the last digit, and
+            // escapes may change the length, so stability is checked on the rest.
+            if let Ok((robot, cycle, msgs)) = from_bytes::<TeamBatchPayload>(rest).decode() {
+                assert!((1..=MAX_ROBOTS).contains(&robot));
+                assert!(msgs.iter().all(|m| m.from == robot));
+                if let Some(again) = TeamBatchPayload::encode(seq, robot, cycle, &msgs) {
+                    let (r2, c2, m2) = again.decode().unwrap_or_else(|e| panic!("{e}"));
+                    assert_eq!((r2, c2, m2.len()), (robot, cycle, msgs.len()));
+                    for (a, b) in msgs.iter().zip(&m2) {
+                        assert_eq!((a.seq, &a.kind, &a.resource, &a.data), (b.seq, &b.kind, &b.resource, &b.data));
+                    }
+                }
             }
-        }
-        11 => {
-            check(
-                from_bytes::<MachineClaimPayload>(rest),
-                |p| p.decode(),
-                |(r, m, c)| MachineClaimPayload::encode(seq, *r, *m, *c),
-            );
         }
         _ => {
             // a payload of one type read as another (a mixed-up service name)

@@ -210,6 +210,8 @@ pub fn play(args: &Args, chatty: bool) -> Result<GameRecord, String> {
                     r.to_string(),
                     s("--strategy"),
                     s(args.strategy.name()),
+                    s("--team-size"),
+                    robots.to_string(),
                 ],
             )
         })

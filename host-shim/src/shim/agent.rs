@@ -1,10 +1,14 @@
 //! The deliberative agent inside `robotino-agent run`: the rules issue's agent rule base
 //! (`rules::agent_files(strategy)`) in our engine. The shim turns skill outcomes and
-//! perceptions into facts (`skill-outcome`, `active-gate`, teammates' machine types), runs
-//! the engine to quiescence while the robot is idle, and reads the `skill-request` it chose.
-//! The fact interface is `rules/README.md`'s "Agent <-> executor".
+//! perceptions into facts (`skill-outcome`, `active-gate`), runs the engine to quiescence,
+//! and reads the `skill-request` it chose. The fact interface is `rules/README.md`'s
+//! "Agent <-> executor". In a team the same engine also loads `rules/team.clp` and
+//! `rules/team-agent.clp` (claims, votes, news; `rules/README.md`'s "Team"): the host
+//! moves its clock, hands teammates' messages in and takes its own out.
 
 use super::rule_engine::{Rules, RulesError};
+use crate::team::TeamMsg;
+use agent_core::{EngineError, ValueRef};
 use hal::field::{GateId, MachineId, MACHINE_COUNT};
 use hal::skill::{FailReason, Perception, SkillOutcome, SkillRequest};
 use hal::LightSignal;
@@ -32,32 +36,136 @@ pub struct MachineView {
     pub loaded: u8,
 }
 
+/// This robot's seat in a team.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct TeamSeat {
+    /// 1..=robots.
+    pub id: u8,
+    pub robots: u8,
+    /// Raw pucks in the input storage at the start (every robot knows the supply).
+    pub s0_supply: u32,
+}
+
 /// The agent's rules in our engine.
 pub struct EngineAgent {
     rules: Rules,
     /// The request handed to the behaviour layer and not answered yet.
     handed_out: Option<i64>,
     gate_told: bool,
-    /// Rules fired by the last [`EngineAgent::decide`].
+    /// Rules fired by the last run of the engine.
     pub last_fired: u32,
+    team: Option<TeamSeat>,
 }
 
 impl EngineAgent {
     /// Loads the strategy's agent files and resets (the agent's beliefs are deffacts).
     /// Call on a thread with [`super::rule_engine::ENGINE_THREAD_STACK`].
     pub fn new(strategy: Strategy) -> Result<Self, RulesError> {
-        let mut rules = Rules::load(rules::agent_files(strategy))?;
+        Self::with_team(strategy, None)
+    }
+
+    /// The agent, and with a seat the team's rules after it (`rules::TEAM`,
+    /// `rules::TEAM_AGENT`), its identity, clock at 0 and the raw-puck supply.
+    pub fn with_team(strategy: Strategy, team: Option<TeamSeat>) -> Result<Self, RulesError> {
+        let mut files = rules::agent_files(strategy).to_vec();
+        if team.is_some() {
+            files.extend([rules::TEAM, rules::TEAM_AGENT]);
+        }
+        let mut rules = Rules::load(&files)?;
         // `distance` is a host function of the rules; our engine has it built in.
         rules
             .eval("(distance 0 0 3 4)")
             .map_err(|e| RulesError::new("checking the `distance` builtin", e.message))?;
         rules.reset()?;
+        if let Some(seat) = team {
+            rules.assert(&format!(
+                "(team-self (id {}) (robots {}))",
+                seat.id, seat.robots
+            ))?;
+            rules.assert("(team-clock (now 0.0))")?;
+            rules.assert(&format!("(s0-supply {})", seat.s0_supply))?;
+        }
         Ok(Self {
             rules,
             handed_out: None,
             gate_told: false,
             last_fired: 0,
+            team,
         })
+    }
+
+    pub fn team(&self) -> Option<TeamSeat> {
+        self.team
+    }
+
+    /// Moves the team clock (game time as this robot reads it).
+    pub fn set_team_time(&mut self, now: f64) -> Result<(), RulesError> {
+        self.rules.eval(&format!("(team-set-time {now:?})"))
+    }
+
+    /// Hands a teammate's message in. A copy of one still pending is one fact already
+    /// (CLIPS keeps no duplicate facts): nothing to do.
+    pub fn receive_team(&mut self, msg: &TeamMsg) -> Result<(), RulesError> {
+        match self
+            .rules
+            .engine
+            .assert_str(&mut self.rules.host, &msg.recv_fact())
+        {
+            Ok(_) | Err(EngineError::Duplicate) => Ok(()),
+            Err(e) => Err(RulesError::new("receiving a team message", e)),
+        }
+    }
+
+    /// Takes the messages the rules want sent (retracting their `team-send` facts), in
+    /// the order the robot numbered them.
+    pub fn team_outbox(&mut self) -> Result<Vec<TeamMsg>, RulesError> {
+        let Some(seat) = self.team else {
+            return Ok(Vec::new());
+        };
+        let ids: Vec<_> = self.rules.facts_of("team-send").collect();
+        let mut out = Vec::with_capacity(ids.len());
+        for id in ids {
+            let r = &self.rules;
+            let n = match r.engine.fact_slot(id, "data") {
+                Some(ValueRef::Multi(n)) => n as usize,
+                _ => 0,
+            };
+            let data = (0..n)
+                .filter_map(|i| match r.engine.fact_multislot_item(id, "data", i) {
+                    Some(ValueRef::Symbol(s)) => Some(s.to_string()),
+                    Some(ValueRef::Int(v)) => Some(v.to_string()),
+                    _ => None,
+                })
+                .collect();
+            out.push(TeamMsg {
+                from: seat.id,
+                seq: r.int(id, "seq").unwrap_or(0),
+                kind: r.symbol(id, "kind").unwrap_or_default(),
+                to: r.int(id, "to").unwrap_or(0),
+                resource: r.symbol(id, "resource").unwrap_or_default(),
+                rseq: r.int(id, "rseq").unwrap_or(0),
+                lease: r.number(id, "lease").unwrap_or(0.0),
+                data,
+            });
+            self.rules.retract(id)?;
+        }
+        out.sort_by_key(|m| m.seq);
+        Ok(out)
+    }
+
+    /// The places this robot holds a claim on now (its rules' `team-holds`).
+    pub fn team_holds(&self) -> Vec<String> {
+        let now = self
+            .rules
+            .facts_of("team-clock")
+            .next()
+            .and_then(|id| self.rules.number(id, "now"))
+            .unwrap_or(0.0);
+        self.rules
+            .facts_of("team-claim")
+            .filter(|&id| self.rules.number(id, "until").unwrap_or(-1.0) > now)
+            .filter_map(|id| self.rules.symbol(id, "resource"))
+            .collect()
     }
 
     /// The agent's `(state ...)`: IDLE, EXEC, GOTO-FINAL or DONE.
@@ -85,7 +193,18 @@ impl EngineAgent {
 
     /// Runs the rules to quiescence and returns the skill they chose, if it is new.
     pub fn decide(&mut self) -> Result<Option<ChosenSkill>, RulesError> {
+        self.run_rules()?;
+        self.take_request()
+    }
+
+    /// Runs the rules to quiescence (decisions, and in a team the messages).
+    pub fn run_rules(&mut self) -> Result<(), RulesError> {
         self.last_fired = self.rules.run()?;
+        Ok(())
+    }
+
+    /// The skill the rules chose, if it was not handed out yet.
+    pub fn take_request(&mut self) -> Result<Option<ChosenSkill>, RulesError> {
         let Some(f) = self.rules.facts_of("skill-request").next() else {
             return Ok(None);
         };
@@ -159,59 +278,6 @@ impl EngineAgent {
             };
         }
         out
-    }
-
-    /// A teammate's view of machine `m`: its type (narrows our belief when it is one we
-    /// still consider possible) and the inputs it holds now (replace ours: the teammate put
-    /// them there or saw the machine complete). Returns whether the belief changed.
-    pub fn adopt(
-        &mut self,
-        m: MachineId,
-        machine_type: Option<u8>,
-        loaded: u8,
-    ) -> Result<bool, RulesError> {
-        let name = format!("M{}", m.number());
-        let Some(f) = self
-            .rules
-            .facts_of("machine")
-            .find(|&f| self.rules.symbol(f, "name").as_deref() == Some(name.as_str()))
-        else {
-            return Ok(false);
-        };
-        // T1_2_3, T1_2, T2_3: the digits are the types still possible.
-        let current = self.rules.symbol(f, "mtype").unwrap_or_default();
-        let mtype = match machine_type {
-            Some(t @ 1..=3) if current.contains(char::from(b'0' + t)) => format!("T{t}"),
-            _ => current.clone(),
-        };
-        let old_loaded = self.rules.symbols(f, "loaded-with");
-        let new_loaded: Vec<&str> = [(LOADED_S0, "S0"), (LOADED_S1, "S1"), (LOADED_S2, "S2")]
-            .into_iter()
-            .filter(|&(bit, _)| loaded & bit != 0)
-            .map(|(_, p)| p)
-            .collect();
-        let same_loaded = {
-            let mut a: Vec<&str> = old_loaded.iter().map(String::as_str).collect();
-            a.sort_unstable();
-            a == new_loaded
-        };
-        if mtype == current && same_loaded {
-            return Ok(false);
-        }
-        // A modify, spelled out: the same fact with the new slots, as a new fact.
-        let index = self.rules.int(f, "index").unwrap_or(0);
-        let loaded_text = if same_loaded {
-            old_loaded.join(" ")
-        } else {
-            new_loaded.join(" ")
-        };
-        let junk = self.rules.int(f, "junk").unwrap_or(0);
-        let productions = self.rules.int(f, "productions").unwrap_or(0);
-        self.rules.retract(f)?;
-        self.rules.assert(&format!(
-            "(machine (name {name}) (index {index}) (mtype {mtype}) (loaded-with {loaded_text}) (junk {junk}) (productions {productions}))"
-        ))?;
-        Ok(true)
     }
 
     /// What the rules printed since the last call.
@@ -331,26 +397,64 @@ mod tests {
         });
     }
 
+    /// Two robots of a team want the input storage at once: their rules settle who
+    /// fetches first over messages delivered a step later, never both hold it, and the
+    /// other fetches once the first is done with it.
     #[test]
-    fn a_teammates_type_narrows_the_belief_once() {
+    fn team_agents_take_turns_at_a_shared_place() {
         on_engine_stack(|| {
-            let mut a = EngineAgent::new(Strategy::Travel).unwrap_or_else(|e| panic!("{e}"));
-            assert_eq!(a.machines()[4].machine_type, None);
-            assert_eq!(a.adopt(m(5), Some(3), 0), Ok(true));
-            assert_eq!(a.machines()[4].machine_type, Some(3));
-            assert_eq!(a.adopt(m(5), Some(3), 0), Ok(false));
-            // A type our belief already excludes is not taken.
-            assert_eq!(a.adopt(m(5), Some(1), 0), Ok(false));
-            // Inputs a teammate put there.
-            assert_eq!(a.adopt(m(5), Some(3), LOADED_S0 | LOADED_S1), Ok(true));
-            assert_eq!(
-                a.machines()[4],
-                MachineView {
-                    machine_type: Some(3),
-                    loaded: LOADED_S0 | LOADED_S1
+            let seat = |id| {
+                Some(TeamSeat {
+                    id,
+                    robots: 2,
+                    s0_supply: 20,
+                })
+            };
+            let mut robots: Vec<EngineAgent> = [1, 2]
+                .iter()
+                .map(|&id| {
+                    let mut a = EngineAgent::with_team(Strategy::Paper, seat(id))
+                        .unwrap_or_else(|e| panic!("{e}"));
+                    a.see_active_gate(GateId::new(1).unwrap_or_else(|| panic!()))
+                        .unwrap_or_else(|e| panic!("{e}"));
+                    a
+                })
+                .collect();
+            let mut in_flight: Vec<TeamMsg> = Vec::new();
+            let mut fetches: Vec<(u8, f64)> = Vec::new();
+            for step in 0..200 {
+                let now = f64::from(step) * 0.1;
+                let arriving = std::mem::take(&mut in_flight);
+                for (i, a) in robots.iter_mut().enumerate() {
+                    let me = i as u8 + 1;
+                    a.set_team_time(now).unwrap_or_else(|e| panic!("{e}"));
+                    for m in arriving.iter().filter(|m| m.from != me) {
+                        a.receive_team(m).unwrap_or_else(|e| panic!("{e}"));
+                    }
+                    a.run_rules().unwrap_or_else(|e| panic!("{e}"));
+                    in_flight.extend(a.team_outbox().unwrap_or_else(|e| panic!("{e}")));
+                    let chosen = a.take_request().unwrap_or_else(|e| panic!("{e}"));
+                    if let Some(c) = chosen.filter(|c| c.request == SkillRequest::GetS0) {
+                        assert!(a.team_holds().contains(&"INS".to_string()));
+                        fetches.push((me, now));
+                        // Fetched at once; the outcome frees the storage.
+                        a.report(c.id, SkillOutcome::Final(Perception::GotS0))
+                            .unwrap_or_else(|e| panic!("{e}"));
+                    }
                 }
-            );
-            assert_eq!(a.adopt(m(5), None, LOADED_S0 | LOADED_S1), Ok(false));
+                let holders = robots
+                    .iter()
+                    .filter(|a| a.team_holds().contains(&"INS".to_string()))
+                    .count();
+                assert!(holders <= 1, "two robots hold INS at {now} s");
+                if fetches.len() >= 2 {
+                    break;
+                }
+            }
+            let who: Vec<u8> = fetches.iter().map(|f| f.0).collect();
+            assert_eq!(who.len(), 2, "{fetches:?}");
+            assert_ne!(who[0], who[1], "{fetches:?}");
+            assert!(fetches[1].1 < 10.0, "{fetches:?}");
         });
     }
 

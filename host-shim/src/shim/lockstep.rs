@@ -123,6 +123,11 @@ impl FrameWatch {
         })
     }
 
+    /// The sim's cycle of the newest complete frame seen.
+    pub fn cycle(&self) -> Option<u32> {
+        self.last
+    }
+
     /// `true` once a new frame is complete.
     pub fn fresh_frame(&mut self) -> Result<bool, TransportError> {
         let mut newest = None;

@@ -33,6 +33,8 @@ pub enum DecodeError {
         field: &'static str,
         code: u8,
     },
+    /// Text that does not parse (a team batch's JSON).
+    Malformed(&'static str),
     /// A byte buffer of the wrong size for the payload ([`Wire::from_bytes`]).
     Length {
         expected: usize,
@@ -48,6 +50,7 @@ impl fmt::Display for DecodeError {
             Self::UnknownCode { field, code } => {
                 write!(f, "field `{field}` has unknown code {code}")
             }
+            Self::Malformed(field) => write!(f, "field `{field}` does not parse"),
             Self::Length { expected, got } => {
                 write!(f, "payload of {got} bytes, expected {expected}")
             }
@@ -589,92 +592,57 @@ pub const LOADED_S0: u8 = 1;
 pub const LOADED_S1: u8 = 2;
 pub const LOADED_S2: u8 = 4;
 
-/// One robot's belief about one machine, shared with the other robots.
+/// Bytes of team-message text one [`TeamBatchPayload`] carries.
+pub const TEAM_BATCH_BYTES: usize = 4000;
+
+/// A robot's team messages (`rules/team.clp`'s `team-send` facts) of one cycle, as JSON
+/// text: the same form the Zenoh link carries between machines. A cycle whose messages
+/// do not fit is sent as several batches with the same `cycle`.
 #[derive(Debug, Clone, Copy, PartialEq, ZeroCopySend)]
-#[type_name("robotino::WorldModelShare")]
+#[type_name("robotino::TeamBatch")]
 #[repr(C)]
-pub struct WorldModelPayload {
+pub struct TeamBatchPayload {
     pub seq: u32,
+    /// The sender's cycle (in lockstep the sim frame it answered): a receiver hands the
+    /// batch to its rules in the next cycle, so every run of a seed delivers alike.
+    pub cycle: u32,
+    /// Bytes of `text` in use.
+    pub len: u32,
     pub robot: u8,
-    pub machine: u8,
-    /// 0 unknown, 1..=3 for T1..T3.
-    pub machine_type: u8,
-    /// `LOADED_*` bits.
-    pub loaded: u8,
+    pub reserved: [u8; 3],
+    pub text: [u8; TEAM_BATCH_BYTES],
 }
 
-/// A decoded world-model update.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct MachineBelief {
-    pub robot: u8,
-    pub machine: MachineId,
-    pub machine_type: Option<u8>,
-    pub loaded: u8,
-}
-
-impl WorldModelPayload {
-    pub fn encode(seq: u32, belief: &MachineBelief) -> Self {
-        Self {
+impl TeamBatchPayload {
+    /// `None` when the JSON text of `msgs` does not fit one batch.
+    pub fn encode(seq: u32, robot: u8, cycle: u32, msgs: &[crate::team::TeamMsg]) -> Option<Self> {
+        let json = serde_json::to_vec(msgs).ok()?;
+        if json.len() > TEAM_BATCH_BYTES {
+            return None;
+        }
+        let mut text = [0u8; TEAM_BATCH_BYTES];
+        text[..json.len()].copy_from_slice(&json);
+        Some(Self {
             seq,
-            robot: belief.robot,
-            machine: belief.machine.number(),
-            machine_type: belief.machine_type.unwrap_or(MACHINE_TYPE_UNKNOWN),
-            loaded: belief.loaded,
-        }
-    }
-
-    pub fn decode(&self) -> Result<MachineBelief, DecodeError> {
-        if self.machine_type > MACHINE_TYPE_MAX {
-            return Err(DecodeError::UnknownCode {
-                field: "machine_type",
-                code: self.machine_type,
-            });
-        }
-        if self.loaded & !(LOADED_S0 | LOADED_S1 | LOADED_S2) != 0 {
-            return Err(DecodeError::UnknownCode {
-                field: "loaded",
-                code: self.loaded,
-            });
-        }
-        Ok(MachineBelief {
-            robot: robot(self.robot)?,
-            machine: machine(self.machine)?,
-            machine_type: (self.machine_type != MACHINE_TYPE_UNKNOWN).then_some(self.machine_type),
-            loaded: self.loaded,
+            cycle,
+            len: json.len() as u32,
+            robot,
+            reserved: [0; 3],
+            text,
         })
     }
-}
 
-/// A robot claims a machine before driving to it (1) and releases it afterwards (0).
-#[derive(Debug, Clone, Copy, PartialEq, ZeroCopySend)]
-#[type_name("robotino::MachineClaim")]
-#[repr(C)]
-pub struct MachineClaimPayload {
-    pub seq: u32,
-    pub robot: u8,
-    pub machine: u8,
-    pub claimed: u8,
-    pub reserved: u8,
-}
-
-impl MachineClaimPayload {
-    pub fn encode(seq: u32, robot: u8, machine: MachineId, claimed: bool) -> Self {
-        Self {
-            seq,
-            robot,
-            machine: machine.number(),
-            claimed: claimed as u8,
-            reserved: 0,
+    /// `(robot, cycle, messages)`; every message must name the sending robot.
+    pub fn decode(&self) -> Result<(u8, u32, Vec<crate::team::TeamMsg>), DecodeError> {
+        let robot = robot(self.robot)?;
+        let len = usize::try_from(self.len).map_err(|_| DecodeError::OutOfRange("len"))?;
+        let text = self.text.get(..len).ok_or(DecodeError::OutOfRange("len"))?;
+        let msgs: Vec<crate::team::TeamMsg> =
+            serde_json::from_slice(text).map_err(|_| DecodeError::Malformed("text"))?;
+        if msgs.iter().any(|m| m.from != robot) {
+            return Err(DecodeError::OutOfRange("text"));
         }
-    }
-
-    /// `(robot, machine, claimed)`.
-    pub fn decode(&self) -> Result<(u8, MachineId, bool), DecodeError> {
-        Ok((
-            robot(self.robot)?,
-            machine(self.machine)?,
-            flag(self.claimed, "claimed")?,
-        ))
+        Ok((robot, self.cycle, msgs))
     }
 }
 
@@ -835,19 +803,13 @@ wire!(HeartbeatPayload {
     driver,
     reserved
 });
-wire!(WorldModelPayload {
+wire!(TeamBatchPayload {
     seq,
+    cycle,
+    len,
     robot,
-    machine,
-    machine_type,
-    loaded
-});
-wire!(MachineClaimPayload {
-    seq,
-    robot,
-    machine,
-    claimed,
-    reserved
+    reserved,
+    text
 });
 
 #[cfg(test)]
@@ -988,112 +950,13 @@ mod tests {
         };
         wire_round_trip(SkillStatusPayload::encode(9, &status), byte(11, 9));
         wire_round_trip(HeartbeatPayload::encode(10, 5, DriverId::Agent), byte(8, 0));
-        let belief = MachineBelief {
-            robot: 1,
-            machine: m(2),
-            machine_type: Some(3),
-            loaded: LOADED_S0,
-        };
-        wire_round_trip(WorldModelPayload::encode(11, &belief), byte(6, 4));
-        wire_round_trip(MachineClaimPayload::encode(12, 3, m(9), true), byte(5, 0));
+        let batch = TeamBatchPayload::encode(11, 2, 7, &[team_msg(2, "M3")])
+            .unwrap_or_else(|| panic!("one message fits"));
+        wire_round_trip(batch, byte(12, 9));
     }
 
     #[test]
-    fn light_carries_the_active_gate() {
-        let g = GateId::new(2);
-        let p = LightPayload::encode(1, None).with_gate(g);
-        assert_eq!(p.active_gate(), Ok(g));
-        assert_eq!(LightPayload::encode(1, None).active_gate(), Ok(None));
-        let mut bad = p;
-        bad.active_gate = 4;
-        assert!(matches!(
-            bad.decode(),
-            Err(DecodeError::UnknownCode {
-                field: "active_gate",
-                code: 4
-            })
-        ));
-    }
-
-    #[test]
-    fn light_codes() {
-        let seen = Some((m(4), LightSignal::YellowFlashing));
-        assert_eq!(LightPayload::encode(1, seen).decode(), Ok(seen));
-        assert_eq!(LightPayload::encode(1, None).decode(), Ok(None));
-        let mut bad = LightPayload::encode(1, seen);
-        bad.light = 9;
-        assert!(matches!(
-            bad.decode(),
-            Err(DecodeError::UnknownCode { field: "light", .. })
-        ));
-        bad = LightPayload::encode(1, seen);
-        bad.machine = 11;
-        assert!(matches!(
-            bad.decode(),
-            Err(DecodeError::UnknownCode {
-                field: "machine",
-                ..
-            })
-        ));
-    }
-
-    #[test]
-    fn skill_request_and_status_round_trip() {
-        for req in [
-            SkillRequest::GetS0,
-            SkillRequest::BringPuckTo(m(10)),
-            SkillRequest::DeliverTo(GateId::new(2).unwrap_or_else(|| panic!("gate"))),
-            SkillRequest::Discard,
-        ] {
-            assert_eq!(
-                SkillRequestPayload::encode(1, 2, req).decode(),
-                Ok((2, req))
-            );
-            for outcome in [
-                SkillOutcome::Running,
-                SkillOutcome::Failed(FailReason::Bumper),
-                SkillOutcome::Final(Perception::GotS0),
-                SkillOutcome::Final(Perception::LightSeen(LightSignal::Yellow)),
-                SkillOutcome::Final(Perception::LightUnchanged),
-                SkillOutcome::Final(Perception::Delivered),
-                SkillOutcome::Final(Perception::Released),
-            ] {
-                let s = SkillStatus {
-                    request_seq: 5,
-                    robot: 1,
-                    request: req,
-                    outcome,
-                };
-                assert_eq!(SkillStatusPayload::encode(3, &s).decode(), Ok(s));
-            }
-        }
-        let mut bad = SkillRequestPayload::encode(1, 1, SkillRequest::GetS0);
-        bad.kind = 0;
-        assert!(bad.decode().is_err());
-        bad = SkillRequestPayload::encode(1, 4, SkillRequest::GetS0);
-        assert_eq!(bad.decode(), Err(DecodeError::OutOfRange("robot")));
-        bad = SkillRequestPayload::encode(1, 1, SkillRequest::GetS0);
-        bad.kind = SKILL_DELIVER;
-        bad.target = 4;
-        assert!(bad.decode().is_err());
-        let mut st = SkillStatusPayload::encode(
-            1,
-            &SkillStatus {
-                request_seq: 1,
-                robot: 1,
-                request: SkillRequest::GetS0,
-                outcome: SkillOutcome::Running,
-            },
-        );
-        st.state = 3;
-        assert!(st.decode().is_err());
-        st.state = STATE_FAILED;
-        st.detail = 0;
-        assert!(st.decode().is_err());
-    }
-
-    #[test]
-    fn heartbeat_world_model_and_claims() {
+    fn heartbeats_and_team_batches() {
         assert_eq!(
             HeartbeatPayload::encode(1, 42, DriverId::Sim).decode(),
             Ok((DriverId::Sim, 42))
@@ -1102,26 +965,34 @@ mod tests {
         hb.driver = 0;
         assert!(hb.decode().is_err());
 
-        let belief = MachineBelief {
-            robot: 2,
-            machine: m(7),
-            machine_type: Some(3),
-            loaded: LOADED_S0 | LOADED_S2,
-        };
-        assert_eq!(WorldModelPayload::encode(1, &belief).decode(), Ok(belief));
-        let mut wm = WorldModelPayload::encode(1, &belief);
-        wm.machine_type = 4;
-        assert!(wm.decode().is_err());
-        wm = WorldModelPayload::encode(1, &belief);
-        wm.loaded = 8;
-        assert!(wm.decode().is_err());
+        let msgs = [team_msg(3, "INS"), team_msg(3, "M10")];
+        let batch = TeamBatchPayload::encode(1, 3, 42, &msgs).unwrap_or_else(|| panic!("fits"));
+        assert_eq!(batch.decode(), Ok((3, 42, msgs.to_vec())));
+        // A message in another robot's name, garbage text, a length past the buffer.
+        let mut forged = batch;
+        forged.robot = 1;
+        assert!(forged.decode().is_err());
+        let mut garbage = batch;
+        garbage.text[0] = b'x';
+        assert_eq!(garbage.decode(), Err(DecodeError::Malformed("text")));
+        let mut long = batch;
+        long.len = TEAM_BATCH_BYTES as u32 + 1;
+        assert_eq!(long.decode(), Err(DecodeError::OutOfRange("len")));
+        // Too many messages for one batch: the sender splits them.
+        let many: Vec<_> = (0..100).map(|_| team_msg(1, "M1")).collect();
+        assert_eq!(TeamBatchPayload::encode(1, 1, 0, &many), None);
+    }
 
-        assert_eq!(
-            MachineClaimPayload::encode(1, 3, m(1), true).decode(),
-            Ok((3, m(1), true))
-        );
-        let mut c = MachineClaimPayload::encode(1, 3, m(1), true);
-        c.claimed = 7;
-        assert!(c.decode().is_err());
+    fn team_msg(from: u8, resource: &str) -> crate::team::TeamMsg {
+        crate::team::TeamMsg {
+            from,
+            seq: 4,
+            kind: "news".into(),
+            to: 0,
+            resource: resource.into(),
+            rseq: 4,
+            lease: 20.0,
+            data: vec!["T2_3".into(), "0".into(), "1".into(), "S0".into()],
+        }
     }
 }

@@ -16,8 +16,7 @@
 //! | `P/robotN/skill-request` | [`SkillRequestPayload`] | agent | monitors, other robots |
 //! | `P/robotN/skill-status` | [`SkillStatusPayload`] | agent | monitors, other robots |
 //! | `P/robotN/heartbeat` | [`HeartbeatPayload`] | every driver, agent | agent, sim |
-//! | `P/team/world-model` | [`WorldModelPayload`] | every agent | every agent |
-//! | `P/team/claims` | [`MachineClaimPayload`] | every agent | every agent |
+//! | `P/team/messages` | [`TeamBatchPayload`] | every agent | every agent |
 //!
 //! [`IrScanPayload`]: super::payloads::IrScanPayload
 //! [`BumperPayload`]: super::payloads::BumperPayload
@@ -29,8 +28,7 @@
 //! [`SkillRequestPayload`]: super::payloads::SkillRequestPayload
 //! [`SkillStatusPayload`]: super::payloads::SkillStatusPayload
 //! [`HeartbeatPayload`]: super::payloads::HeartbeatPayload
-//! [`WorldModelPayload`]: super::payloads::WorldModelPayload
-//! [`MachineClaimPayload`]: super::payloads::MachineClaimPayload
+//! [`TeamBatchPayload`]: super::payloads::TeamBatchPayload
 
 use iceoryx2::port::publisher::Publisher;
 use iceoryx2::port::subscriber::Subscriber;
@@ -104,8 +102,8 @@ impl RobotStream {
 /// A stream shared by the whole team.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum TeamStream {
-    WorldModel,
-    Claims,
+    /// The team's messages (`rules/team.clp`): claims, votes, releases, news.
+    Messages,
 }
 
 /// Builds service names under a prefix.
@@ -131,8 +129,7 @@ impl ServiceNames {
 
     pub fn team(&self, stream: TeamStream) -> String {
         let leaf = match stream {
-            TeamStream::WorldModel => "world-model",
-            TeamStream::Claims => "claims",
+            TeamStream::Messages => "messages",
         };
         format!("{}/team/{leaf}", self.prefix)
     }
@@ -158,6 +155,30 @@ fn err(context: impl Into<String>, detail: impl Debug) -> TransportError {
         context: context.into(),
         detail: format!("{detail:?}"),
     }
+}
+
+/// How a service queues samples for each subscriber.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Queue {
+    /// Samples a subscriber holds before the oldest is overwritten.
+    pub buffer: usize,
+    /// Samples a subscriber that joins late receives.
+    pub history: usize,
+}
+
+impl Queue {
+    /// Sensor and command streams: only the newest sample matters, and a late reader
+    /// gets it.
+    pub const LATEST: Queue = Queue {
+        buffer: 4,
+        history: 1,
+    };
+    /// Team messages: every one counts (a reader drains each cycle; three robots send a
+    /// batch or two a cycle), and a late joiner gets none of the past.
+    pub const MESSAGES: Queue = Queue {
+        buffer: 64,
+        history: 0,
+    };
 }
 
 /// The process's iceoryx2 node.
@@ -222,6 +243,7 @@ impl Transport {
     fn service<T: Debug + ZeroCopySend + 'static>(
         &self,
         name: &str,
+        queue: Queue,
     ) -> Result<
         iceoryx2::service::port_factory::publish_subscribe::PortFactory<ipc::Service, T, ()>,
         TransportError,
@@ -235,8 +257,8 @@ impl Transport {
             .publish_subscribe::<T>()
             .max_publishers(4)
             .max_subscribers(8)
-            .subscriber_max_buffer_size(4)
-            .history_size(1)
+            .subscriber_max_buffer_size(queue.buffer)
+            .history_size(queue.history)
             .enable_safe_overflow(true)
             .open_or_create()
             .map_err(|e| err(format!("open service {name}"), e))
@@ -246,8 +268,17 @@ impl Transport {
         &self,
         name: &str,
     ) -> Result<Pub<T>, TransportError> {
+        self.publisher_with(name, Queue::LATEST)
+    }
+
+    /// A publisher on a service with the given queue (every opener must ask for the same).
+    pub fn publisher_with<T: Debug + ZeroCopySend + Copy + 'static>(
+        &self,
+        name: &str,
+        queue: Queue,
+    ) -> Result<Pub<T>, TransportError> {
         let publisher = self
-            .service::<T>(name)?
+            .service::<T>(name, queue)?
             .publisher_builder()
             .create()
             .map_err(|e| err(format!("publisher on {name}"), e))?;
@@ -262,8 +293,17 @@ impl Transport {
         &self,
         name: &str,
     ) -> Result<Sub<T>, TransportError> {
+        self.subscriber_with(name, Queue::LATEST)
+    }
+
+    /// A subscriber on a service with the given queue (every opener must ask for the same).
+    pub fn subscriber_with<T: Debug + ZeroCopySend + Copy + 'static>(
+        &self,
+        name: &str,
+        queue: Queue,
+    ) -> Result<Sub<T>, TransportError> {
         let subscriber = self
-            .service::<T>(name)?
+            .service::<T>(name, queue)?
             .subscriber_builder()
             .create()
             .map_err(|e| err(format!("subscriber on {name}"), e))?;
@@ -356,6 +396,6 @@ mod tests {
     fn names_live_under_the_prefix() {
         let n = ServiceNames::new("test/x/");
         assert_eq!(n.robot(2, RobotStream::Motor), "test/x/robot2/motor");
-        assert_eq!(n.team(TeamStream::Claims), "test/x/team/claims");
+        assert_eq!(n.team(TeamStream::Messages), "test/x/team/messages");
     }
 }

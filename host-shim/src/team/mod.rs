@@ -2,11 +2,13 @@
 //! robot, messages between them carried by the host. [`member`] drives one robot's
 //! engine (clock, messages in and out, wants, holds); [`net`] is the message-level fault
 //! proxy (loss, delay, duplication in game time) the tests and the simulations put
-//! between robots. The `team-link` crate (its own workspace, `team-link/`) carries them
+//! between robots; [`link`] is how `robotino-agent run` carries them between processes. The `team-link` crate (its own workspace, `team-link/`) carries them
 //! over Zenoh between processes and machines.
 
+pub mod link;
 pub mod member;
 pub mod net;
 
+pub use link::{LinkError, TeamLink};
 pub use member::{TeamError, TeamMember, TeamMsg};
 pub use net::{FaultyNet, LinkFaults};
