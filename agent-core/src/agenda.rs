@@ -139,7 +139,7 @@ impl Core<'_> {
 
     /// Inserts before the first activation of lower or equal salience.
     #[cfg_attr(feature = "host-speedups", inline(always))]
-    fn agenda_insert(&mut self, a: Ix) {
+    pub(crate) fn agenda_insert(&mut self, a: Ix) {
         let sal = self.acts[a as usize].salience;
         let mut prev = NONE;
         let mut cur = self.st.agenda_head;

@@ -195,7 +195,7 @@ impl Core<'_> {
         self.assert_initial_fact()
     }
 
-    fn assert_initial_fact(&mut self) -> Result<(), EvalError> {
+    pub(crate) fn assert_initial_fact(&mut self) -> Result<(), EvalError> {
         let base = self.st.sp;
         let m = self.multi_begin();
         self.push_value(self.multi_finish(m))?;

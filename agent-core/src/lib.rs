@@ -138,6 +138,7 @@ pub mod api;
 pub mod builtins;
 pub mod commands;
 pub(crate) mod compile;
+pub mod compiled;
 pub mod config;
 pub mod engine;
 pub mod error;

@@ -179,7 +179,7 @@ pub static BUILTINS: [Builtin; builtin_count()] = flatten();
 
 /// The id of builtin `name`, worked out at compile time (a missing name does not
 /// compile).
-const fn builtin_id(name: &str) -> Ix {
+pub const fn builtin_id(name: &str) -> Ix {
     const ALL: [Builtin; builtin_count()] = flatten();
     let mut i = 0;
     while i < ALL.len() {

@@ -1,0 +1,307 @@
+//! The loader: a [`RuleBase`] into a fresh engine.
+
+use super::RuleBase;
+use crate::config::Storage;
+use crate::engine::{cap, Core, Engine};
+use crate::error::{CapacityError, EvalError, Pool};
+use crate::expr::{FnKind, Op};
+use crate::host::Host;
+use crate::rete::{JoinKind, KeyPlan, TestPlan, KEY_PLANS, TEST_PLANS};
+use crate::value::{Ix, Value, NONE};
+use core::fmt;
+
+/// Why a compiled rule base did not load. The engine is as it was before the call.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum CompiledError {
+    /// The engine already holds constructs: a compiled rule base loads into an engine
+    /// fresh from start-up or `(clear)` only (its indices are the writer's).
+    NotFresh,
+    /// Symbol `index` of the rule base is not the engine's (host functions registered
+    /// in another order than in the writing engine, or a rule base from another
+    /// version of the engine).
+    SymbolMismatch { index: usize },
+    /// The start-up template (`initial-fact`) differs.
+    TemplateMismatch,
+    /// The rule base calls a host function the engine has not registered.
+    MissingExternal { name: &'static str },
+    /// A pool of the engine is too small for the rule base.
+    Capacity(CapacityError),
+    /// Rebuilding the start-up matches failed (the engine was cleared again).
+    Eval(EvalError),
+}
+
+impl From<CapacityError> for CompiledError {
+    fn from(c: CapacityError) -> Self {
+        CompiledError::Capacity(c)
+    }
+}
+
+impl fmt::Display for CompiledError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            CompiledError::NotFresh => write!(
+                f,
+                "a compiled rule base loads into an engine without constructs only"
+            ),
+            CompiledError::SymbolMismatch { index } => write!(
+                f,
+                "symbol {index} of the compiled rule base differs from the engine's \
+                 (host functions registered in another order?)"
+            ),
+            CompiledError::TemplateMismatch => {
+                write!(f, "the compiled rule base's initial-fact template differs")
+            }
+            CompiledError::MissingExternal { name } => write!(
+                f,
+                "the compiled rule base calls host function {name}, which is not registered"
+            ),
+            CompiledError::Capacity(c) => write!(f, "{c}"),
+            CompiledError::Eval(e) => write!(f, "{e}"),
+        }
+    }
+}
+
+impl<S: Storage> Engine<S> {
+    /// Loads a rule base compiled ahead of time (see [`crate::compiled`]) into this
+    /// engine, which must hold no constructs yet (fresh, or after `clear`; host
+    /// functions the rule base calls registered). Afterwards the engine is as after
+    /// loading the rule base's files, with `(initial-fact)` as f-0; `reset` asserts
+    /// its deffacts.
+    pub fn load_compiled(
+        &mut self,
+        host: &mut dyn Host,
+        base: &RuleBase,
+    ) -> Result<(), CompiledError> {
+        let mut cx = self.core(host);
+        cx.load_compiled(base)
+    }
+}
+
+impl Core<'_> {
+    /// See [`Engine::load_compiled`].
+    pub fn load_compiled(&mut self, base: &RuleBase) -> Result<(), CompiledError> {
+        self.check_loadable(base)?;
+        let cp = self.checkpoint();
+        if let Err(e) = self.intern_base_symbols(base) {
+            self.syms().truncate(cp.nsyms, cp.sym_bytes);
+            return Err(e);
+        }
+        self.copy_network(base);
+        let watch = self.st.watch;
+        self.st.watch = 0;
+        let r = self.rebuild_working_memory(base);
+        self.st.watch = watch;
+        if let Err(e) = r {
+            // back to a fresh engine (host functions stay)
+            let _ = self.clear();
+            return Err(CompiledError::Eval(e));
+        }
+        Ok(())
+    }
+
+    /// Everything that can refuse the rule base, checked before anything changes.
+    fn check_loadable(&mut self, base: &RuleBase) -> Result<(), CompiledError> {
+        let st = &self.st;
+        if st.nrules != 0
+            || st.ntemplates != 1
+            || st.njoins != 1
+            || st.nalpha != 0
+            || st.nfuncs != 0
+            || st.nglobals != 0
+            || st.ndeffacts != 0
+            || st.firing
+            || st.defining
+        {
+            return Err(CompiledError::NotFresh);
+        }
+        match (base.templates.first(), base.joins.first()) {
+            (Some(t), Some(j))
+                if t.name == self.templates[0].name && t.implied && j.kind == JoinKind::Root =>
+            {
+                // the start-up slot must be the base's first too
+                if self.st.nslots != 1 || base.slots.is_empty() {
+                    return Err(CompiledError::TemplateMismatch);
+                }
+            }
+            _ => return Err(CompiledError::TemplateMismatch),
+        }
+        let fits = [
+            (Pool::Templates, base.templates.len(), self.templates.len()),
+            (Pool::SlotDefs, base.slots.len(), self.slots.len()),
+            (Pool::Rules, base.rules.len(), self.rules.len()),
+            (Pool::AlphaNodes, base.alphas.len(), self.alphas.len()),
+            (Pool::Joins, base.joins.len(), self.joins.len()),
+            (Pool::Exprs, base.exprs.len(), self.exprs.len()),
+            (Pool::Functions, base.functions.len(), self.funcs.len()),
+            (Pool::Globals, base.globals.len(), self.globals.len()),
+            (Pool::Deffacts, base.deffacts.len(), self.deffacts.len()),
+        ];
+        for (pool, need, capacity) in fits {
+            if need > capacity || need >= NONE as usize {
+                return Err(cap(pool, capacity).into());
+            }
+        }
+        let have = self.st.nsyms as usize;
+        if have > base.symbols.len() {
+            return Err(CompiledError::SymbolMismatch {
+                index: base.symbols.len(),
+            });
+        }
+        for (i, text) in base.symbols[..have].iter().enumerate() {
+            if self.sym_text(i as Ix) != *text {
+                return Err(CompiledError::SymbolMismatch { index: i });
+            }
+        }
+        for name in base.externals {
+            if self.external_index(name).is_none() {
+                return Err(CompiledError::MissingExternal { name });
+            }
+        }
+        Ok(())
+    }
+
+    fn external_index(&mut self, name: &str) -> Option<Ix> {
+        let sym = self.find_sym(name)?;
+        (0..self.st.nexternals).find(|&x| self.externals[x as usize].name == sym)
+    }
+
+    /// The base's symbols after the engine's: each must get its id in the base.
+    fn intern_base_symbols(&mut self, base: &RuleBase) -> Result<(), CompiledError> {
+        for (i, text) in base.symbols.iter().enumerate().skip(self.st.nsyms as usize) {
+            if self.intern(text)? as usize != i {
+                return Err(CompiledError::SymbolMismatch { index: i });
+            }
+        }
+        Ok(())
+    }
+
+    /// The construct pools from the base; the root join keeps its root token.
+    fn copy_network(&mut self, base: &RuleBase) {
+        // working memory empties first: f-0 goes (asserted again through the network)
+        while self.st.fact_head != NONE {
+            let f = self.st.fact_head;
+            self.retract_fact(f);
+        }
+        self.free_pending();
+        self.st.values_top = 0;
+        self.st.next_fact_num = 0;
+        let root_token = self.joins[0].mem;
+
+        self.templates[..base.templates.len()].copy_from_slice(base.templates);
+        self.slots[..base.slots.len()].copy_from_slice(base.slots);
+        self.rules[..base.rules.len()].copy_from_slice(base.rules);
+        self.alphas[..base.alphas.len()].copy_from_slice(base.alphas);
+        self.joins[..base.joins.len()].copy_from_slice(base.joins);
+        self.exprs[..base.exprs.len()].copy_from_slice(base.exprs);
+        self.funcs[..base.functions.len()].copy_from_slice(base.functions);
+        self.globals[..base.globals.len()].copy_from_slice(base.globals);
+        self.deffacts[..base.deffacts.len()].copy_from_slice(base.deffacts);
+        self.joins[0].mem = root_token;
+        for e in 0..base.exprs.len() {
+            let x = self.exprs[e];
+            if x.op == Op::Call && x.aux == FnKind::External as u8 {
+                // checked by `check_loadable`: every name is registered
+                let name = base.externals.get(x.data as usize).copied().unwrap_or("");
+                self.exprs[e].data = self.external_index(name).unwrap_or(NONE);
+            }
+        }
+
+        let n = |len: usize| len as Ix;
+        self.st.ntemplates = n(base.templates.len());
+        self.st.nslots = n(base.slots.len());
+        self.st.nrules = n(base.rules.len());
+        self.st.nalpha = n(base.alphas.len());
+        self.st.njoins = n(base.joins.len());
+        self.st.nexprs = n(base.exprs.len());
+        self.st.nfuncs = n(base.functions.len());
+        self.st.nglobals = n(base.globals.len());
+        self.st.ndeffacts = n(base.deffacts.len());
+        for (pool, used) in [
+            (Pool::Templates, base.templates.len()),
+            (Pool::SlotDefs, base.slots.len()),
+            (Pool::Rules, base.rules.len()),
+            (Pool::AlphaNodes, base.alphas.len()),
+            (Pool::Joins, base.joins.len()),
+            (Pool::Exprs, base.exprs.len()),
+            (Pool::Functions, base.functions.len()),
+            (Pool::Globals, base.globals.len()),
+            (Pool::Deffacts, base.deffacts.len()),
+        ] {
+            self.note_hw(pool, used);
+        }
+        self.st.trie_ids = base.trie_ids;
+        // caches keyed by join or network generation start over
+        self.st.net_gen = self.st.net_gen.wrapping_add(1).max(1);
+        self.st.key_plans = [KeyPlan::NONE; KEY_PLANS];
+        self.st.test_plans = [TestPlan::NONE; TEST_PLANS];
+        for j in 0..self.st.njoins {
+            self.note_children(j);
+        }
+    }
+
+    /// Globals' values and the start-up matches: f-0 (the parser's engine had it
+    /// before the first rule), then the rules that start with `not`, `exists` or
+    /// `test` from the root token; their activations in the parser's order.
+    fn rebuild_working_memory(&mut self, base: &RuleBase) -> Result<(), EvalError> {
+        for (g, global) in base.globals.iter().enumerate() {
+            // values the writer could not keep (multifields) are evaluated again
+            if matches!(global.value, Value::Void) && global.init != NONE {
+                let v = self.eval(global.init)?;
+                self.set_global(g as Ix, v)?;
+            }
+        }
+        self.st.sp = 0;
+        self.st.scratch_top = 0;
+        self.assert_initial_fact()?;
+        let root_token = self.joins[0].mem;
+        let mut j = self.joins[0].first_child;
+        while j != NONE {
+            if self.joins[j as usize].kind != JoinKind::Positive {
+                self.left_activate(j, root_token)?;
+            }
+            j = self.joins[j as usize].next_sibling;
+        }
+        self.order_activations_as_parsed();
+        Ok(())
+    }
+
+    /// The parser primed each rule as it was defined, so a rule's start-up
+    /// activations are newer than those of every rule defined before it; the network
+    /// made them in its own order. Puts them in definition order (by rule, then as
+    /// made), each taking the next creation number, and back on the agenda in that
+    /// order (the newest goes first among equal saliences).
+    fn order_activations_as_parsed(&mut self) {
+        let mut old = self.st.agenda_head;
+        let mut seq = u32::MAX;
+        let mut a = old;
+        while a != NONE {
+            seq = seq.min(self.acts[a as usize].seq);
+            a = self.acts[a as usize].next;
+        }
+        self.st.agenda_head = NONE;
+        self.st.agenda_len = 0;
+        let key = |x: &crate::rule::Activation| (x.rule, x.seq);
+        while old != NONE {
+            let mut best = old;
+            let mut a = self.acts[old as usize].next;
+            while a != NONE {
+                if key(&self.acts[a as usize]) < key(&self.acts[best as usize]) {
+                    best = a;
+                }
+                a = self.acts[a as usize].next;
+            }
+            let (prev, next) = (self.acts[best as usize].prev, self.acts[best as usize].next);
+            if prev != NONE {
+                self.acts[prev as usize].next = next;
+            } else {
+                old = next;
+            }
+            if next != NONE {
+                self.acts[next as usize].prev = prev;
+            }
+            self.acts[best as usize].seq = seq;
+            seq = seq.wrapping_add(1);
+            self.agenda_insert(best);
+        }
+    }
+}

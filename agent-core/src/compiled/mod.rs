@@ -1,0 +1,94 @@
+//! A rule base compiled ahead of time: the constructs of a loaded engine as Rust
+//! constants, and the loader that puts them into another engine.
+//!
+//! The compiled form is the network *after* compilation, not the text or the parser's
+//! intermediate form: the used part of every construct pool (symbols, templates and
+//! their slots, rules, alpha nodes, joins, expression nodes, deffunctions, globals,
+//! deffacts) in the engine's own entry types, with the fields that belong to working
+//! memory (alpha and join memories, a template's fact count) empty. So the engine that
+//! loads it holds exactly the network the parser built, and a robot image that loads
+//! it needs no parser and no rule text.
+//!
+//! ```text
+//!  host (build script):  .clp text ──parse──▶ Engine ──write_compiled──▶ Rust source
+//!  image / host:         RuleBase (static) ──load_compiled──▶ Engine ──reset, run──▶
+//! ```
+//!
+//! Independent of the engine's features and index width: the writer names every field
+//! the network needs and leaves the rest to the entry type's `EMPTY` (`..Join::EMPTY`:
+//! the host's caches, `defer` and `wipe` flags), writes `N` for [`NONE`](crate::NONE)
+//! and names builtins, not their table positions (`builtin_id("str-cat")`, worked out
+//! when the generated code compiles: a builtin the loading engine lacks does not
+//! compile). Host functions are named too and found among the loading engine's
+//! registered functions.
+//!
+//! What loading gives: the state the parser leaves after the same constructs (the
+//! loader rebuilds the start-up matches, f-0 and the rules that start with `not`,
+//! `exists` or `test`, and orders their activations by rule, as the parser primed
+//! them one after another). A rule base
+//! whose parse left facts behind (a global's initial value that asserts) is refused by
+//! the writer, since facts are not part of the compiled form.
+
+mod load;
+mod write;
+
+pub use load::CompiledError;
+pub use write::WriteError;
+
+use crate::expr::Expr;
+use crate::rete::{AlphaNode, Join};
+use crate::rule::Rule;
+use crate::template::{Deffacts, Deffunction, Global, SlotDef, Template};
+use crate::value::Ix;
+
+/// A rule base compiled ahead of time (see the [module docs](self)): generated Rust
+/// source (`Engine::write_compiled`) defines one as a `static`, and
+/// `Engine::load_compiled` puts it into an engine.
+#[derive(Clone, Copy, Debug)]
+pub struct RuleBase {
+    /// What it was compiled from (for messages).
+    pub name: &'static str,
+    /// Every symbol and string, by id (the fixed start-up symbols first).
+    pub symbols: &'static [&'static str],
+    pub templates: &'static [Template],
+    pub slots: &'static [SlotDef],
+    pub rules: &'static [Rule],
+    pub alphas: &'static [AlphaNode],
+    pub joins: &'static [Join],
+    pub exprs: &'static [Expr],
+    pub functions: &'static [Deffunction],
+    pub globals: &'static [Global],
+    pub deffacts: &'static [Deffacts],
+    /// Names of the host functions, by the index calls of kind `External` hold.
+    pub externals: &'static [&'static str],
+    /// Ids given to pattern-network nodes so far (`State::trie_ids`).
+    pub trie_ids: Ix,
+}
+
+/// What generated code uses: `use agent_core::compiled::gen::*;`.
+pub mod gen {
+    pub use super::RuleBase;
+    pub use crate::builtins::builtin_id;
+    pub use crate::expr::{Expr, Op};
+    pub use crate::rete::{AlphaNode, Join, JoinKind};
+    pub use crate::rule::Rule;
+    pub use crate::template::{DefaultKind, Deffacts, Deffunction, Global, SlotDef, Template};
+    pub use crate::value::{Ix, Value};
+
+    /// [`NONE`](crate::NONE), short: generated tables hold many.
+    pub const N: Ix = crate::value::NONE;
+
+    /// An expression node, short.
+    pub const fn e(op: Op, aux: u8, data: Ix, first: Ix, next: Ix) -> Expr {
+        Expr {
+            op,
+            aux,
+            data,
+            first,
+            next,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests;

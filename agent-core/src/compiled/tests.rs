@@ -1,0 +1,82 @@
+extern crate std;
+use super::*;
+use crate::SmallEngine;
+use std::string::String;
+
+#[test]
+fn writes_every_construct_pool() {
+    let mut e = std::boxed::Box::new(SmallEngine::new());
+    let mut host = crate::NullHost;
+    e.load_str(
+        &mut host,
+        "t",
+        "(deftemplate p (slot x (default 1))) (defglobal ?*g* = 2.5) \
+         (deffunction f (?a) (+ ?a 1)) (deffacts d (p (x 3))) \
+         (defrule r (p (x ?x&:(> ?x 0))) (not (q)) => (printout t (f ?x) crlf))",
+    )
+    .unwrap();
+    let mut out = String::new();
+    e.write_compiled("demo", "demo.clp", &mut out).unwrap();
+    assert!(out.starts_with("/// Rule base `demo.clp`"), "{out}");
+    assert!(out.contains("pub mod demo {"));
+    assert!(out.contains("builtin_id(\">\")"));
+    assert!(out.contains("builtin_id(\"printout\")"));
+    assert!(out.contains("\"initial-fact\","));
+    assert!(out.contains("JoinKind::Negative"));
+    assert!(out.contains("Value::Float(f64::from_bits(0x4004000000000000))"));
+    // working memory is not written
+    assert!(!out.contains("mem: 0") && !out.contains("nfacts: 1"));
+}
+
+#[test]
+fn refuses_facts_left_by_parsing_and_bad_names() {
+    let mut e = std::boxed::Box::new(SmallEngine::new());
+    let mut host = crate::NullHost;
+    e.load_str(
+        &mut host,
+        "t",
+        "(defglobal ?*g* = (assert (made-while-parsing)))",
+    )
+    .unwrap();
+    let mut out = String::new();
+    assert_eq!(
+        e.write_compiled("m", "t", &mut out),
+        Err(WriteError::FactsLeft)
+    );
+    let mut fresh = std::boxed::Box::new(SmallEngine::new());
+    assert_eq!(
+        fresh.write_compiled("Not-ident", "t", &mut out),
+        Err(WriteError::BadName)
+    );
+}
+
+#[test]
+fn loader_refuses_an_engine_with_constructs() {
+    static EMPTY: RuleBase = RuleBase {
+        name: "empty",
+        symbols: &[],
+        templates: &[],
+        slots: &[],
+        rules: &[],
+        alphas: &[],
+        joins: &[],
+        exprs: &[],
+        functions: &[],
+        globals: &[],
+        deffacts: &[],
+        externals: &[],
+        trie_ids: 0,
+    };
+    let mut e = std::boxed::Box::new(SmallEngine::new());
+    let mut host = crate::NullHost;
+    e.load_str(&mut host, "t", "(defrule r (a) =>)").unwrap();
+    assert_eq!(
+        e.load_compiled(&mut host, &EMPTY),
+        Err(CompiledError::NotFresh)
+    );
+    let mut fresh = std::boxed::Box::new(SmallEngine::new());
+    assert_eq!(
+        fresh.load_compiled(&mut host, &EMPTY),
+        Err(CompiledError::TemplateMismatch)
+    );
+}

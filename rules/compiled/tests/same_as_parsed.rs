@@ -1,0 +1,196 @@
+//! A rule base loaded from its compiled form behaves exactly as its parsed text: the
+//! same output (FIRE lines with `(watch rules)` and `(watch facts)`, everything
+//! printed) and the same facts at the end.
+//! - every strategy's simulated game, over several seeds, set up as the image and
+//!   `robotino-agent sim` set it up (reset, then the seed's setup facts);
+//! - every differential program (`tests/clips`): its constructs parsed or loaded
+//!   compiled, then its commands run on each engine.
+
+#[path = "../src/split.rs"]
+mod split;
+
+mod programs {
+    include!(concat!(env!("OUT_DIR"), "/clips.rs"));
+}
+
+use agent_core::{DefaultEngine, Host, HostIoError};
+use rules::setup::{fact_lines, GameSetup};
+use rules::Strategy;
+use std::collections::HashMap;
+
+/// Output as text; files written by a program stay in memory, files read come from
+/// `tests/clips` (both engines see the same).
+#[derive(Default)]
+struct Capture {
+    out: String,
+    files: HashMap<String, Vec<u8>>,
+}
+
+impl Host for Capture {
+    fn write_str(&mut self, _router: &str, text: &str) {
+        self.out.push_str(text);
+    }
+    fn read_file(&mut self, path: &str, buf: &mut [u8]) -> Result<usize, HostIoError> {
+        let data = match self.files.get(path) {
+            Some(d) => d.clone(),
+            None => std::fs::read(clips_dir().join(path)).map_err(|_| HostIoError::NotFound)?,
+        };
+        if data.len() > buf.len() {
+            return Err(HostIoError::TooLarge);
+        }
+        buf[..data.len()].copy_from_slice(&data);
+        Ok(data.len())
+    }
+    fn write_file(&mut self, path: &str, data: &[u8], append: bool) -> Result<(), HostIoError> {
+        let file = self.files.entry(path.to_string()).or_default();
+        if !append {
+            file.clear();
+        }
+        file.extend_from_slice(data);
+        Ok(())
+    }
+}
+
+fn clips_dir() -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/clips")
+}
+
+/// Runs `f` on a thread with room for engines built on the stack (unoptimised builds).
+fn on_big_stack<T: Send>(f: impl FnOnce() -> T + Send) -> T {
+    std::thread::scope(|s| {
+        std::thread::Builder::new()
+            .stack_size(64 << 20)
+            .spawn_scoped(s, f)
+            .expect("spawn")
+            .join()
+            .expect("no panic")
+    })
+}
+
+/// Plays `seed` on an engine holding the game's rules: output with rules and facts
+/// watched, then the fact list.
+fn play(engine: &mut DefaultEngine, seed: u64) -> String {
+    let mut host = Capture::default();
+    engine.exec_command(&mut host, "(watch rules)", "test");
+    engine.exec_command(&mut host, "(watch facts)", "test");
+    engine.reset(&mut host).expect("reset");
+    let mut setup = String::new();
+    GameSetup::for_seed(seed)
+        .write_clips(&mut setup)
+        .expect("setup text");
+    for fact in fact_lines(&setup) {
+        engine.assert_str(&mut host, fact).expect("setup fact");
+    }
+    let fired = engine.run(&mut host, Some(500_000)).expect("run");
+    host.out.push_str(&format!("fired {fired}\n"));
+    engine.exec_command(&mut host, "(facts)", "test");
+    host.out
+}
+
+#[test]
+fn every_strategys_game_plays_the_same_from_its_compiled_form() {
+    for strategy in Strategy::ALL {
+        let base = rules_compiled::game(strategy.name()).expect("compiled game");
+        for seed in [0, 1, 7] {
+            let (parsed, compiled) = on_big_stack(|| {
+                let mut parsed = Box::new(DefaultEngine::new());
+                parsed.set_pretty_print_forms(false);
+                for file in rules::game_files(strategy) {
+                    parsed
+                        .load_str(&mut Capture::default(), file.name, file.text)
+                        .expect("rule file loads");
+                }
+                let mut compiled = Box::new(DefaultEngine::new());
+                compiled
+                    .load_compiled(&mut Capture::default(), base)
+                    .expect("compiled form loads");
+                (play(&mut parsed, seed), play(&mut compiled, seed))
+            });
+            assert!(
+                parsed.contains("FIRE") && parsed.contains("game-over"),
+                "{strategy:?} seed {seed}: the game did not play:\n{parsed}"
+            );
+            if parsed != compiled {
+                let line = parsed
+                    .lines()
+                    .zip(compiled.lines())
+                    .position(|(a, b)| a != b)
+                    .unwrap_or(0);
+                panic!(
+                    "{strategy:?} seed {seed}: compiled form differs from line {}:\nparsed:   {:?}\ncompiled: {:?}",
+                    line + 1,
+                    parsed.lines().nth(line),
+                    compiled.lines().nth(line)
+                );
+            }
+        }
+    }
+}
+
+/// Runs a program's commands (not its constructs) on `engine`; returns the output.
+fn run_commands(engine: &mut DefaultEngine, text: &str, name: &str) -> String {
+    let mut host = Capture::default();
+    for form in split::forms(text) {
+        if split::is_construct(form) {
+            continue;
+        }
+        if !engine.exec_command(&mut host, form, name) {
+            break;
+        }
+    }
+    host.out
+}
+
+#[test]
+fn every_differential_program_runs_the_same_from_its_compiled_constructs() {
+    let mut compared = 0;
+    let mut differ = Vec::new();
+    for (name, base) in programs::CLIPS_PROGRAMS {
+        let text = std::fs::read_to_string(clips_dir().join(format!("{name}.clp"))).expect("read");
+        let base = match base {
+            Ok(base) => *base,
+            Err(why) => {
+                // only parse-time effects keep a program's constructs from compiling
+                assert!(why.contains("left facts"), "{name}: {why}");
+                continue;
+            }
+        };
+        let (parsed, compiled) = on_big_stack(|| {
+            let mut parsed = Box::new(DefaultEngine::new());
+            for form in split::forms(&text)
+                .into_iter()
+                .filter(|f| split::is_construct(f))
+            {
+                let _ = parsed.load_str(&mut Capture::default(), name, form);
+            }
+            let mut compiled = Box::new(DefaultEngine::new());
+            let loaded = compiled.load_compiled(&mut Capture::default(), base);
+            assert_eq!(loaded, Ok(()), "{name}: compiled form does not load");
+            (
+                run_commands(&mut parsed, &text, name),
+                run_commands(&mut compiled, &text, name),
+            )
+        });
+        compared += 1;
+        if parsed != compiled {
+            let line = parsed
+                .lines()
+                .zip(compiled.lines())
+                .position(|(a, b)| a != b)
+                .unwrap_or(0);
+            differ.push(format!(
+                "{name} line {}:\n  parsed:   {:?}\n  compiled: {:?}",
+                line + 1,
+                parsed.lines().nth(line),
+                compiled.lines().nth(line)
+            ));
+        }
+    }
+    assert!(compared > 150, "only {compared} programs compared");
+    assert!(
+        differ.is_empty(),
+        "{} of {compared} differ:\n{}",
+        differ.len(),
+        differ.join("\n")
+    );
+}
