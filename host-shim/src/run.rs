@@ -17,7 +17,7 @@ use hal::ir::IrScan;
 use hal::skill::SkillOutcome;
 use hal::{Pose2, Twist};
 use host_shim::shim::agent::{ChosenSkill, EngineAgent, MachineView, TeamSeat};
-use host_shim::shim::behaviour::{DriveTuning, Perceived, Skill};
+use host_shim::shim::behaviour::{DriveStep, DriveTo, DriveTuning, Perceived, Skill};
 use host_shim::shim::config::Config;
 use host_shim::shim::drivers::{usable, DriverError, SimDrivers};
 use host_shim::shim::lockstep::{spawn_heartbeat, FrameWatch};
@@ -68,6 +68,30 @@ pub struct Args {
     /// Raw pucks in the input storage at the start (the team shares them).
     #[arg(long, default_value_t = 20)]
     pub raw_pucks: u32,
+}
+
+/// A team member that waits for a place (or is done) this long drives out of the lanes
+/// to a passing place of its own, so it does not stand in a teammate's way (once per
+/// wait).
+const PARK_AFTER_CYCLES: u64 = 30;
+
+/// Passing places: dead ends at the field's edge, away from the lanes, stations and
+/// gates; two per robot (it takes the nearer), no two robots share one.
+fn passing_places(robot: u8) -> [(f32, f32); 2] {
+    match robot {
+        1 => [(0.35, 0.40), (5.30, 2.10)],
+        2 => [(0.35, 5.25), (0.35, 1.90)],
+        _ => [(5.25, 5.25), (5.25, 0.40)],
+    }
+}
+
+/// Where a waiting robot drives: its nearer passing place, unless it is there already.
+fn park_goal(robot: u8, at: Pose2) -> Option<Pose2> {
+    let d = |q: &(f32, f32)| (q.0 - at.x_m).hypot(q.1 - at.y_m);
+    let spot = passing_places(robot)
+        .into_iter()
+        .min_by(|a, b| d(a).total_cmp(&d(b)))?;
+    (d(&spot) > 0.3).then(|| Pose2::new(spot.0, spot.1, at.phi_rad))
 }
 
 /// In a team the rules run at least this often (cycles), so claims renew and waits end
@@ -259,6 +283,10 @@ pub fn run_with(
     );
     let mut samples = Samples::new();
     let mut running: Option<Running> = None;
+    // A team member out of the way while it waits: the drive there, and since when it
+    // waits (one parking drive per wait).
+    let mut parking: Option<DriveTo> = None;
+    let mut waiting_since: Option<u64> = None;
     let mut stats = LoopStats::default();
     let wall_cycle = config.wall_cycle();
     let poll = Duration::from_micros(200);
@@ -329,6 +357,7 @@ pub fn run_with(
         }
         if running.is_none() && ready {
             if let Some(chosen) = mind.agent.take_request()? {
+                parking = None;
                 let request = chosen.request;
                 let request_seq = ports
                     .request
@@ -354,16 +383,48 @@ pub fn run_with(
             }
         }
 
-        let (desired, mut outcome) = match running.as_mut() {
-            Some(r) => r.skill.step(&p, &tuning),
-            None => (Twist::ZERO, SkillOutcome::Running),
+        // Waiting in a team: out of the lanes after a while.
+        let waits = mind.link.is_some()
+            && running.is_none()
+            && matches!(mind.agent.state().as_deref(), Some("TEAM-WAIT" | "DONE"));
+        if !waits {
+            waiting_since = None;
+            parking = None;
+        } else if waiting_since.is_none() {
+            waiting_since = Some(cycle);
+        } else if waiting_since == Some(cycle.saturating_sub(PARK_AFTER_CYCLES)) {
+            if let Some(goal) = park_goal(robot, p.pose) {
+                parking = DriveTo::plan(p.pose, goal, &tuning);
+                if parking.is_some() {
+                    monitor.skill_started();
+                    println!(
+                        "robotino-agent run: cycle={cycle} parking at ({:.2},{:.2})",
+                        goal.x_m, goal.y_m
+                    );
+                }
+            }
+        }
+        let (desired, mut outcome) = match (running.as_mut(), parking.as_mut()) {
+            (Some(r), _) => r.skill.step(&p, &tuning),
+            (None, Some(drive)) => match drive.step(&p, &tuning) {
+                DriveStep::Driving(t) => (t, SkillOutcome::Running),
+                DriveStep::Arrived | DriveStep::Failed(_) => {
+                    parking = None;
+                    (Twist::ZERO, SkillOutcome::Running)
+                }
+            },
+            (None, None) => (Twist::ZERO, SkillOutcome::Running),
         };
         let decision = monitor.step(&CycleInput {
             latest_seq: samples.seq,
             bumper_pressed: samples.bumper_pressed,
             desired,
-            skill_running: running.is_some() && !outcome.is_terminal(),
+            skill_running: (running.is_some() && !outcome.is_terminal()) || parking.is_some(),
         });
+        if running.is_none() && decision.fail_skill.is_some() {
+            // Bumped (or blind) on the way to park: stay put (pushing on makes it worse).
+            parking = None;
+        }
         if let Some(reason) = decision.fail_skill {
             // A stop while only backing away from the station does not undo the work.
             outcome = match running.as_ref().and_then(|r| r.skill.done_perception()) {
