@@ -1,0 +1,140 @@
+//! The team in the process-level game: three agents, each with the team's rules
+//! (`rules/team.clp`), talking over iceoryx2. A robot killed mid-game leaves its claims
+//! to run out (at most one lease, 20 s of game time) and the other two play on; a short
+//! `game-sweep --robots 3` has no double claim.
+
+mod shim_common;
+
+use shim_common::{unique_prefix, Proc, AGENT, SIM};
+use std::time::Duration;
+
+/// Cycles per simulated second (the sim's and the agents' rate).
+const HZ: u64 = 15;
+
+fn cycle_of(line: &str) -> Option<u64> {
+    line.split_whitespace()
+        .find_map(|w| w.strip_prefix("cycle="))
+        .and_then(|c| c.parse().ok())
+}
+
+#[test]
+fn a_killed_robot_of_three_frees_its_claims_and_the_others_play_on() {
+    let prefix = unique_prefix("team-kill");
+    let mut sim = Proc::start(
+        "sim",
+        SIM,
+        &[
+            "--prefix",
+            &prefix,
+            "--lockstep",
+            "--robots",
+            "3",
+            "--seed",
+            "1",
+            "--game-seconds",
+            "240",
+        ],
+    );
+    let mut agents: Vec<Proc> = (1..=3)
+        .map(|r| {
+            let robot = r.to_string();
+            Proc::start(
+                &format!("agent{r}"),
+                AGENT,
+                &[
+                    "run",
+                    "--prefix",
+                    &prefix,
+                    "--lockstep",
+                    "--robot",
+                    &robot,
+                    "--team-size",
+                    "3",
+                ],
+            )
+        })
+        .collect();
+    // Kill robot 3 once it has claimed the input storage for its first fetch: it dies
+    // holding (or just having held) a claim.
+    let deadline = std::time::Instant::now() + Duration::from_secs(120);
+    while agents[2].line_with("start GetS0").is_none() {
+        assert!(
+            std::time::Instant::now() < deadline,
+            "robot 3 never fetched\n{}\n{}",
+            sim.dump(),
+            agents[2].dump()
+        );
+        std::thread::sleep(Duration::from_millis(2));
+    }
+    agents[2].kill();
+    let status = sim.wait_exit(Duration::from_secs(240));
+    assert!(status.is_some_and(|s| s.success()), "{}", sim.dump());
+    for a in &mut agents[..2] {
+        a.kill();
+    }
+    let dead = sim
+        .lines()
+        .into_iter()
+        .find(|l| l.contains("agent robot=3") && l.contains("dead"))
+        .and_then(|l| cycle_of(&l))
+        .unwrap_or_else(|| panic!("the sim never saw robot 3 die\n{}", sim.dump()));
+    let lease_cycles = 20 * HZ;
+    for a in &agents[..2] {
+        let starts: Vec<String> = a
+            .lines()
+            .into_iter()
+            .filter(|l| l.contains(" start ") && cycle_of(l).is_some_and(|c| c > dead))
+            .collect();
+        assert!(
+            starts.len() >= 2,
+            "{} stopped after robot 3 died at cycle {dead}\n{}",
+            a.name,
+            a.dump()
+        );
+    }
+    // The input storage is not robot 3's for ever: a teammate fetches there after the
+    // lease robot 3 may still have held ran out.
+    let fetched_after = agents[..2].iter().any(|a| {
+        a.lines().iter().any(|l| {
+            l.contains("start GetS0") && cycle_of(l).is_some_and(|c| c > dead + lease_cycles)
+        })
+    });
+    assert!(
+        fetched_after,
+        "nobody fetched after robot 3's claims ran out\n{}\n{}",
+        agents[0].dump(),
+        agents[1].dump()
+    );
+    host_shim::shim::transport::remove_root(&prefix);
+}
+
+#[test]
+fn a_short_team_sweep_has_no_double_claim() {
+    let mut sweep = Proc::start(
+        "game-sweep",
+        AGENT,
+        &[
+            "game-sweep",
+            "--robots",
+            "3",
+            "--from",
+            "0",
+            "--count",
+            "2",
+            "--game-seconds",
+            "120",
+            "--quiet",
+        ],
+    );
+    let status = sweep.wait_exit(Duration::from_secs(240));
+    assert!(status.is_some_and(|s| s.success()), "{}", sweep.dump());
+    let lines = sweep.lines();
+    let header = lines
+        .iter()
+        .position(|l| l.starts_with("| games | mean points"))
+        .unwrap_or_else(|| panic!("no summary\n{}", sweep.dump()));
+    // | games | mean points | min | max | collisions | double claims | stalls | ...
+    let cells: Vec<&str> = lines[header + 2].split('|').map(str::trim).collect();
+    assert_eq!(cells.get(1), Some(&"2"), "{}", sweep.dump());
+    assert_eq!(cells.get(6), Some(&"0"), "double claims\n{}", sweep.dump());
+}
