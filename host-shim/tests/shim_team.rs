@@ -1,5 +1,6 @@
-//! Two robots on one simulated field share world-model updates and claims over the team
-//! services: a machine type found out by one robot is used by the other.
+//! Two robots on one simulated field, each with the team's rules (`run --team-size 2`):
+//! what one robot finds out of a machine reaches the other as news over the team
+//! service, and the other takes it into its own belief.
 
 mod shim_common;
 
@@ -7,8 +8,19 @@ use host_shim::shim::transport::Transport;
 use shim_common::{unique_prefix, wait_until, Proc, AGENT, SIM};
 use std::time::Duration;
 
+/// `news from robot R: M3 T2 ...` -> (R, "M3", "T2") when the news names a definite type.
+fn typed_news(line: &str) -> Option<(u8, String, String)> {
+    let rest = line.split(" news from robot ").nth(1)?;
+    let (from, rest) = rest.split_once(": ")?;
+    let mut w = rest.split_whitespace();
+    let (machine, mtype) = (w.next()?, w.next()?);
+    (machine.starts_with('M') && ["T1", "T2", "T3"].contains(&mtype))
+        .then(|| (from.parse().ok(), machine.to_string(), mtype.to_string()))
+        .and_then(|(f, m, t)| Some((f?, m, t)))
+}
+
 #[test]
-fn a_type_learned_by_one_robot_is_used_by_the_other() {
+fn a_type_learned_by_one_robot_reaches_the_other() {
     let prefix = unique_prefix("team");
     let _cleanup = Transport::open(&prefix, "shim-test-team").unwrap_or_else(|e| panic!("{e}"));
     let sim = Proc::start(
@@ -24,47 +36,48 @@ fn a_type_learned_by_one_robot_is_used_by_the_other() {
             "900",
         ],
     );
-    let a1 = Proc::start(
-        "agent1",
-        AGENT,
-        &["run", "--prefix", &prefix, "--lockstep", "--robot", "1"],
-    );
-    let a2 = Proc::start(
-        "agent2",
-        AGENT,
-        &["run", "--prefix", &prefix, "--lockstep", "--robot", "2"],
-    );
-    let mut user = None;
+    let agent = |r: &str| {
+        Proc::start(
+            &format!("agent{r}"),
+            AGENT,
+            &[
+                "run",
+                "--prefix",
+                &prefix,
+                "--lockstep",
+                "--robot",
+                r,
+                "--team-size",
+                "2",
+            ],
+        )
+    };
+    let (a1, a2) = (agent("1"), agent("2"));
+    let mut found = None;
     wait_until(
-        "a robot uses a type its teammate found",
+        "a robot takes a type its teammate found",
         Duration::from_secs(240),
         &[&sim, &a1, &a2],
         || {
-            for (me, other, agent) in [(1, 2, &a1), (2, 1, &a2)] {
-                if let Some(line) = agent.line_with("shared type") {
-                    if line.ends_with(&format!("from robot {other}")) {
-                        user = Some((me, line));
+            for (me, agent) in [(1u8, &a1), (2, &a2)] {
+                for line in agent.lines() {
+                    if let Some((from, machine, mtype)) = typed_news(&line) {
+                        let learned = format!("learned {machine} {mtype}");
+                        if from != me && agent.line_with(&learned).is_some() {
+                            found = Some((me, from, learned));
+                        }
                     }
                 }
             }
-            user.is_some()
+            found.is_some()
         },
     );
-    let (me, line) = user.unwrap_or_default();
-    // The machine named in the line was learned by the teammate, who logged it first.
-    let machine = line
-        .split_whitespace()
-        .find(|w| w.starts_with('M'))
-        .unwrap_or_default()
-        .to_string();
-    let teammate = if me == 1 { &a2 } else { &a1 };
+    let (_, from, learned) = found.unwrap_or_default();
+    // The sender found it out itself first.
+    let sender = if from == 1 { &a1 } else { &a2 };
     assert!(
-        teammate.line_with(&format!("learned {machine} ")).is_some(),
-        "{line}\n{}",
-        teammate.dump()
+        sender.line_with(&learned).is_some(),
+        "{learned}\n{}",
+        sender.dump()
     );
-    let receiver = if me == 1 { &a1 } else { &a2 };
-    assert!(receiver
-        .line_with(&format!("belief from robot {}: {machine} ", 3 - me))
-        .is_some());
 }
