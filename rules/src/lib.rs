@@ -13,6 +13,7 @@ pub mod facts;
 mod minify;
 pub mod order;
 pub mod setup;
+pub mod setup_facts;
 
 /// One embedded rule file: its path relative to `rules/` and its text.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

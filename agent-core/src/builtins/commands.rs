@@ -31,12 +31,7 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("ppdefrule", 1, 1, ppdefrule),
     Builtin::eager("undefrule", 1, 1, undefrule),
     Builtin::eager("matches", 1, 2, matches),
-    Builtin::eager("load", 1, 1, load),
-    Builtin::eager("load*", 1, 1, load_quiet),
-    Builtin::eager("batch", 1, 1, batch),
-    Builtin::eager("batch*", 1, 1, batch_quiet),
     Builtin::eager("save-facts", 1, ANY, save_facts),
-    Builtin::eager("load-facts", 1, 1, load_facts),
     Builtin::eager("time", 0, 0, time),
     Builtin::eager("list-deftemplates", 0, 1, list_deftemplates),
     Builtin::eager("list-deffunctions", 0, 1, list_deffunctions),
@@ -601,17 +596,20 @@ fn load_impl(cx: &mut Core<'_>, a: Args, quiet: bool) -> Result<Value, EvalError
     Ok(Value::Sym(if ok { SYM_TRUE } else { SYM_FALSE }))
 }
 
-fn load(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+#[cfg_attr(not(feature = "parser"), allow(dead_code))]
+pub(super) fn load(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     load_impl(cx, a, false)
 }
-fn load_quiet(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+#[cfg_attr(not(feature = "parser"), allow(dead_code))]
+pub(super) fn load_quiet(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     load_impl(cx, a, true)
 }
 
 /// `batch`: CLIPS makes the file its next input source, so its commands run (echoed,
 /// with prompts) after the current command has finished and printed its TRUE. The path
 /// is remembered here and run by the command loop (`Core::run_pending_batch`).
-fn batch(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+#[cfg_attr(not(feature = "parser"), allow(dead_code))]
+pub(super) fn batch(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let path = path_arg(cx, a, "batch")?;
     let mut probe = [0u8; 1];
     match cx.host.read_file_at(path.as_str(), 0, &mut probe) {
@@ -628,7 +626,8 @@ fn batch(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 }
 
 /// `batch*`: runs the file's commands at once, without prompts, echo or results.
-fn batch_quiet(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+#[cfg_attr(not(feature = "parser"), allow(dead_code))]
+pub(super) fn batch_quiet(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let path = path_arg(cx, a, "batch")?;
     let ok = cx.batch_file_stream(path.as_str(), false)?;
     Ok(Value::Sym(if ok { SYM_TRUE } else { SYM_FALSE }))
@@ -663,7 +662,8 @@ fn save_facts(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     Ok(Value::Sym(SYM_TRUE))
 }
 
-fn load_facts(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+#[cfg_attr(not(feature = "parser"), allow(dead_code))]
+pub(super) fn load_facts(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let path = path_arg(cx, a, "load-facts")?;
     let mut buf = [0u8; FILE_BUF];
     let mut file = FileItems::new(path.as_str(), &mut buf);

@@ -1,5 +1,11 @@
-//! `eval` and `build`: CLIPS source given as a string, parsed and run at run time.
+//! `eval` and `build`: CLIPS source given as a string, parsed and run at run time;
+//! and the table of every builtin that parses text at run time (these two, `load`,
+//! `load*`, `batch`, `batch*`, `load-facts`): without the feature `parser` (the agent
+//! image, whose rule base is compiled ahead of time) the table is empty, nothing
+//! reaches the parser, and the linker leaves it out.
+#![cfg_attr(not(feature = "parser"), allow(dead_code))]
 
+#[cfg(feature = "parser")]
 use super::describe::OnError;
 use super::{Args, Builtin, SYM_FALSE, SYM_TRUE};
 use crate::engine::Core;
@@ -10,11 +16,20 @@ use crate::lexer::Tok;
 use crate::parser::{Item, Parser};
 use crate::value::{Ix, Value};
 
+#[cfg(feature = "parser")]
 #[rustfmt::skip]
 pub const FUNCS: &[Builtin] = &[
     Builtin::eager("eval", 1, 1, eval).on_error(OnError::False),
     Builtin::eager("build", 1, 1, build),
+    Builtin::eager("load", 1, 1, super::commands::load),
+    Builtin::eager("load*", 1, 1, super::commands::load_quiet),
+    Builtin::eager("batch", 1, 1, super::commands::batch),
+    Builtin::eager("batch*", 1, 1, super::commands::batch_quiet),
+    Builtin::eager("load-facts", 1, 1, super::commands::load_facts),
 ];
+
+#[cfg(not(feature = "parser"))]
+pub const FUNCS: &[Builtin] = &[];
 
 /// The text argument (symbol or string), copied out of the symbol table.
 fn source_arg(

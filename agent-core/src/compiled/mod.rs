@@ -29,6 +29,7 @@
 //! whose parse left facts behind (a global's initial value that asserts) is refused by
 //! the writer, since facts are not part of the compiled form.
 
+mod assert;
 mod load;
 mod write;
 

@@ -80,3 +80,54 @@ fn loader_refuses_an_engine_with_constructs() {
         Err(CompiledError::TemplateMismatch)
     );
 }
+
+#[test]
+fn facts_built_through_the_api_are_the_parsed_ones() {
+    use crate::ValueRef::{Float, Int, Symbol};
+    let rules = "(deftemplate m (slot name) (slot kind (default T1)) (multislot xs)) \
+                 (deftemplate need (slot id (default ?NONE)))";
+    let mut host = crate::NullHost;
+    let mut parsed = std::boxed::Box::new(SmallEngine::new());
+    let mut built = std::boxed::Box::new(SmallEngine::new());
+    for e in [&mut parsed, &mut built] {
+        e.load_str(&mut host, "t", rules).unwrap();
+    }
+    parsed
+        .assert_str(&mut host, "(m (name M1) (xs 1 2.5 a))")
+        .unwrap();
+    parsed.assert_str(&mut host, "(supply 4 D2)").unwrap();
+    built
+        .assert_fact(
+            &mut host,
+            "m",
+            &[
+                ("name", &[Symbol("M1")]),
+                ("xs", &[Int(1), Float(2.5), Symbol("a")]),
+            ],
+        )
+        .unwrap();
+    built
+        .assert_fact(&mut host, "supply", &[("", &[Int(4), Symbol("D2")])])
+        .unwrap();
+    let facts = |e: &mut SmallEngine| {
+        let mut out = crate::testutil::CaptureHost::default();
+        e.exec_command(&mut out, "(facts)", "t");
+        out.out
+    };
+    assert_eq!(facts(&mut parsed), facts(&mut built));
+    // refused before anything changes
+    let symbols = built.usage().symbols;
+    for bad in [
+        built.assert_fact(&mut host, "m", &[("nope", &[Int(1)])]),
+        built.assert_fact(&mut host, "m", &[("name", &[Int(1), Int(2)])]),
+        built.assert_fact(&mut host, "need", &[]),
+        built.assert_fact(&mut host, "supply", &[("x", &[Int(1)]), ("y", &[])]),
+    ] {
+        assert!(matches!(bad, Err(crate::EngineError::Load(_))), "{bad:?}");
+    }
+    assert_eq!(built.usage().symbols, symbols);
+    assert_eq!(
+        built.assert_fact(&mut host, "supply", &[("", &[Int(4), Symbol("D2")])]),
+        Err(crate::EngineError::Duplicate)
+    );
+}

@@ -1,15 +1,17 @@
 //! The seeded game, played inside the image: the engine in its static arena, the game's
-//! rule files (agent, referee, instant simulation and decision log: `rules::game_files`,
-//! minified: `rules::minified`),
-//! the setup of `robotino-agent sim --seed 0` asserted as facts after `(reset)`, run to
-//! the end, the result read back from the facts. The same steps as the host's `sim`
+//! rule base compiled ahead of time (agent, referee, instant simulation and decision
+//! log: `rules_compiled::game`, the files of `rules::game_files` as read-only tables;
+//! no parser, no rule text), the setup of `robotino-agent sim --seed 0` asserted
+//! through the engine's API after `(reset)` (`GameSetup::for_each_fact`), run to the
+//! end, the result read back from the facts. The same steps as the host's `sim`
 //! (host-shim `sim::game`), so the score must be the same; CI compares them.
 
 use agent_core::host::{router, RouterWriter};
 use agent_core::value::TextBuf;
 use agent_core::{Engine, Host, Pool, Stats, ValueRef};
 use core::fmt::{self, Write};
-use rules::setup::{fact_lines, GameSetup};
+use rules::setup::GameSetup;
+use rules::setup_facts::{Field, SetupFact};
 use rules::Strategy;
 use static_cell::ConstStaticCell;
 
@@ -161,28 +163,50 @@ fn fail(
 
 /// Plays the seeded game in `engine` (fresh from `ImageStorage::new()`).
 pub fn play(engine: &mut ImageEngine, host: &mut QuietHost) -> Result<GameResult, GameError> {
-    engine.set_pretty_print_forms(false);
-    for file in rules::minified::game_files(STRATEGY) {
-        engine
-            .load_str(host, file.name, file.text)
-            .map_err(|e| fail(host, "load", file.name, &e))?;
-    }
-    let mut setup_text: TextBuf<2048> = TextBuf::new();
-    GameSetup::for_seed(SEED)
-        .write_clips(&mut setup_text)
-        .map_err(|_| fail(host, "setup", "", &"the setup text does not fit 2048 bytes"))?;
+    let base = rules_compiled::game(STRATEGY.name())
+        .ok_or_else(|| fail(host, "load", "", &"no compiled rule base for the strategy"))?;
+    engine
+        .load_compiled(host, base)
+        .map_err(|e| fail(host, "load", base.name, &e))?;
     engine
         .reset(host)
         .map_err(|e| fail(host, "reset", "", &e))?;
-    for fact in fact_lines(setup_text.as_str()) {
-        engine
-            .assert_str(host, fact)
-            .map_err(|e| fail(host, "assert setup", "", &e))?;
-    }
+    let mut setup = Ok(());
+    GameSetup::for_seed(SEED).for_each_fact(|fact| {
+        if setup.is_ok() {
+            setup = assert_setup_fact(engine, host, fact)
+                .map_err(|e| fail(host, "assert setup", fact.template, &e));
+        }
+    });
+    setup?;
     let fired = engine
         .run(host, Some(FIRE_LIMIT))
         .map_err(|e| fail(host, "run", "", &e))?;
     Ok(read_result(engine, fired))
+}
+
+/// Asserts one setup fact through the API (the image has no parser).
+fn assert_setup_fact(
+    engine: &mut ImageEngine,
+    host: &mut QuietHost,
+    fact: &SetupFact,
+) -> Result<(), agent_core::EngineError> {
+    let given = fact.slots();
+    let mut values = [ValueRef::Void; 4];
+    for (value, (_, field)) in values.iter_mut().zip(given) {
+        *value = match field {
+            Field::Int(i) => ValueRef::Int(*i),
+            Field::Float(x) => ValueRef::Float(*x),
+            Field::Symbol(name) => ValueRef::Symbol(name.as_str()),
+        };
+    }
+    let mut slots: [(&str, &[ValueRef<'_>]); 4] = [("", &[]); 4];
+    for (k, (slot, (name, _))) in slots.iter_mut().zip(given).enumerate() {
+        *slot = (*name, core::slice::from_ref(&values[k]));
+    }
+    engine
+        .assert_fact(host, fact.template, &slots[..given.len().min(4)])
+        .map(|_| ())
 }
 
 fn read_result(engine: &ImageEngine, fired: u32) -> GameResult {

@@ -92,16 +92,21 @@ pub fn run(
     }
 }
 
-/// The game's rule base from the `rules` crate (minified): files and CLIPS text size.
+/// The game's rule base, compiled ahead of time (`rules_compiled`): what it holds.
 fn rules_line(out: &mut impl Write) -> fmt::Result {
-    let files = rules::minified::game_files(game::STRATEGY);
-    let bytes: usize = files.iter().map(|file| file.text.len()).sum();
-    writeln!(
-        out,
-        "agent-image: rules=embedded strategy={} files={} text_bytes={bytes}",
-        game::STRATEGY.name(),
-        files.len()
-    )
+    match rules_compiled::game(game::STRATEGY.name()) {
+        Some(base) => writeln!(
+            out,
+            "agent-image: rules=compiled strategy={} rules={} joins={} alpha_nodes={} exprs={} symbols={}",
+            game::STRATEGY.name(),
+            base.rules.len(),
+            base.joins.len(),
+            base.alphas.len(),
+            base.exprs.len(),
+            base.symbols.len()
+        ),
+        None => writeln!(out, "agent-image: rules=missing strategy={}", game::STRATEGY.name()),
+    }
 }
 
 /// Exercises what the freestanding build provides itself: memset, memcpy, memmove,
