@@ -119,10 +119,19 @@ fn sim_killed_mid_game_stops_the_motors_and_the_game_resumes_with_a_new_driver()
             moving_again
         },
     );
-    let starts_after = agent
-        .lines()
-        .iter()
-        .filter(|l| l.contains(" start "))
-        .count();
-    assert!(starts_after > starts_before, "{}", agent.dump());
+    // The motor command can overtake the agent's `start` line (a pipe and a reader
+    // thread): wait for the line rather than count at once.
+    wait_until(
+        "a skill starts with the new driver",
+        WATCHDOG,
+        &[&agent],
+        || {
+            agent
+                .lines()
+                .iter()
+                .filter(|l| l.contains(" start "))
+                .count()
+                > starts_before
+        },
+    );
 }
