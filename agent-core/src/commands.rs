@@ -311,6 +311,9 @@ impl Core<'_> {
             self.st.rng_seeded,
         );
         *self.st = crate::engine::State::new();
+        // a compiled rule base's nodes read in place go with the rest
+        #[cfg(feature = "in-place")]
+        self.exprs.set_rom(self.st.rom_exprs);
         self.st.hw = hw;
         (
             self.st.sp,

@@ -113,6 +113,17 @@ macro_rules! __pool_table {
     };
 }
 
+/// How `Core` holds a pool's array: a slice, but the expression pool, whose view
+/// reads a compiled rule base's nodes in place too ([`ExprPool`](crate::expr::ExprPool)).
+#[doc(hidden)]
+#[macro_export]
+macro_rules! __pool_view {
+    (exprs, $l:lifetime, $t:ty) => { $crate::expr::ExprPool<$l> };
+    ($name:ident, $l:lifetime, $t:ty) => { &$l mut [$t] };
+    (exprs, $rom:ident, $arr:expr) => { $crate::expr::ExprPool::new($rom, $arr) };
+    ($name:ident, $rom:ident, $arr:expr) => { $arr };
+}
+
 /// Generates, from the pool table, everything in agent-core that lists the pools.
 macro_rules! pool_items {
     ($(
@@ -191,7 +202,7 @@ macro_rules! pool_items {
             pub st: &'a mut crate::engine::State,
             pub host: &'a mut dyn Host,
             $(
-                pub $first: &'a mut [$fty],
+                pub $first: $crate::__pool_view!($first, 'a, $fty),
                 $(pub $arr: &'a mut [$aty],)*
             )*
         }
@@ -278,7 +289,8 @@ macro_rules! __engine_storage {
                 st: &'a mut $crate::engine::State,
                 host: &'a mut dyn $crate::Host,
             ) -> $crate::Core<'a> {
-                $crate::Core { st, host, $($($arr: &mut self.$arr,)*)* }
+                let rom = st.rom_exprs;
+                $crate::Core { st, host, $($($arr: $crate::__pool_view!($arr, rom, &mut self.$arr),)*)* }
             }
             #[inline(always)]
             fn pools(&self) -> $crate::config::Pools<'_> {

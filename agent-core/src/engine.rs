@@ -257,6 +257,9 @@ pub struct State {
     pub rng_glibc: [i32; 34],
     pub rng_pos: u8,
     pub rng_seeded: bool,
+    /// Expression nodes of a compiled rule base read in place (feature `in-place`,
+    /// `compiled`): node ids below its length are these, the arena's come after.
+    pub rom_exprs: &'static [Expr],
     /// Keep each rule's source text for `ppdefrule` (CLIPS's pretty-print forms). A
     /// robot image that never lists its rules turns this off to save the symbol bytes.
     pub keep_pp_forms: bool,
@@ -356,6 +359,7 @@ impl State {
             rng_glibc: [0; 34],
             rng_pos: 0,
             rng_seeded: false,
+            rom_exprs: &[],
             keep_pp_forms: true,
         }
     }

@@ -130,3 +130,89 @@ pub mod loc {
         l as u8
     }
 }
+
+/// The expression pool as the engine sees it: the nodes of a rule base compiled ahead of
+/// time read in place from read-only memory (feature `in-place`, see
+/// [`crate::compiled`]), then the engine's own nodes in its arena. One index space: node
+/// `i` is compiled when `i < rom_len()`, else arena entry `i - rom_len()`. Without the
+/// feature there are no compiled nodes and indexing is the arena slice's.
+pub struct ExprPool<'a> {
+    #[cfg(feature = "in-place")]
+    rom: &'static [Expr],
+    ram: &'a mut [Expr],
+}
+
+impl<'a> ExprPool<'a> {
+    /// The pool over `ram`, after the compiled nodes `rom` (ignored without `in-place`).
+    #[inline(always)]
+    pub fn new(rom: &'static [Expr], ram: &'a mut [Expr]) -> Self {
+        #[cfg(not(feature = "in-place"))]
+        let _ = rom;
+        ExprPool {
+            #[cfg(feature = "in-place")]
+            rom,
+            ram,
+        }
+    }
+
+    /// Nodes addressable: the compiled ones and the arena's.
+    #[inline(always)]
+    pub fn len(&self) -> usize {
+        self.rom_len() + self.ram.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Compiled nodes read in place (0 without `in-place`).
+    #[inline(always)]
+    pub fn rom_len(&self) -> usize {
+        #[cfg(feature = "in-place")]
+        return self.rom.len();
+        #[cfg(not(feature = "in-place"))]
+        0
+    }
+
+    /// Whether node `i` may be written (it is in the arena): caches kept in nodes are
+    /// not kept in compiled ones.
+    #[inline(always)]
+    pub fn writable(&self, i: usize) -> bool {
+        i >= self.rom_len() && i < self.len()
+    }
+
+    /// Makes `rom` the compiled nodes (the engine's `State::rom_exprs` says the same).
+    #[cfg(feature = "in-place")]
+    pub fn set_rom(&mut self, rom: &'static [Expr]) {
+        self.rom = rom;
+    }
+
+    /// The arena's nodes.
+    pub fn ram(&mut self) -> &mut [Expr] {
+        self.ram
+    }
+}
+
+impl core::ops::Index<usize> for ExprPool<'_> {
+    type Output = Expr;
+    #[inline(always)]
+    fn index(&self, i: usize) -> &Expr {
+        #[cfg(feature = "in-place")]
+        if i < self.rom.len() {
+            return &self.rom[i];
+        }
+        &self.ram[i - self.rom_len()]
+    }
+}
+
+impl core::ops::IndexMut<usize> for ExprPool<'_> {
+    /// Panics for a compiled node: nothing writes a node it did not make but the
+    /// caches, which check [`ExprPool::writable`] first.
+    #[inline(always)]
+    fn index_mut(&mut self, i: usize) -> &mut Expr {
+        let rom = self.rom_len();
+        &mut self.ram[i
+            .checked_sub(rom)
+            .expect("compiled expression nodes are read-only")]
+    }
+}

@@ -616,7 +616,8 @@ pub(crate) fn slot_value_of(
         }
         // a miss: search once, remember it, read it (an unknown slot reports below)
         if let Some(s) = cx.find_slot(tmpl, name) {
-            if s < u8::MAX as Ix {
+            // (a compiled rule base's nodes read in place keep no cache)
+            if s < u8::MAX as Ix && cx.exprs.writable(node as usize) {
                 cx.exprs[node as usize].aux = s as u8 + 1;
             }
             return Ok(cx.fact_slot_value(f, s)?);

@@ -46,7 +46,10 @@ impl Core<'_> {
             (self.activation_count(), size_of_first(self.acts)),
             (st.nfuncs as usize, size_of_first(self.funcs)),
             (st.nglobals as usize, size_of_first(self.globals)),
-            (st.nexprs as usize, size_of_first(self.exprs)),
+            (
+                st.nexprs as usize,
+                core::mem::size_of::<crate::expr::Expr>(),
+            ),
             (st.ndeffacts as usize, size_of_first(self.deffacts)),
             (st.nexternals as usize, size_of_first(self.externals)),
         ];

@@ -199,7 +199,8 @@ fn template_of(cx: &mut Core<'_>, tnode: Ix) -> Option<Ix> {
         return Some(cached - 1);
     }
     let t = cx.find_template(x.data)?;
-    if t < Ix::from(u8::MAX) {
+    // (a compiled rule base's nodes read in place keep no cache)
+    if t < Ix::from(u8::MAX) && cx.exprs.writable(tnode as usize) {
         cx.exprs[tnode as usize].aux = t as u8 + 1;
     }
     Some(t)

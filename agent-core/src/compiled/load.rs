@@ -4,6 +4,7 @@ use super::RuleBase;
 use crate::config::Storage;
 use crate::engine::{cap, Core, Engine};
 use crate::error::{CapacityError, EvalError, Pool};
+#[cfg(not(feature = "in-place"))]
 use crate::expr::{FnKind, Op};
 use crate::host::Host;
 use crate::rete::{JoinKind, KeyPlan, TestPlan, KEY_PLANS, TEST_PLANS};
@@ -131,6 +132,8 @@ impl Core<'_> {
             (Pool::Rules, base.rules.len(), self.rules.len()),
             (Pool::AlphaNodes, base.alphas.len(), self.alphas.len()),
             (Pool::Joins, base.joins.len(), self.joins.len()),
+            // (read in place: the arena needs no room for them)
+            #[cfg(not(feature = "in-place"))]
             (Pool::Exprs, base.exprs.len(), self.exprs.len()),
             (Pool::Functions, base.functions.len(), self.funcs.len()),
             (Pool::Globals, base.globals.len(), self.globals.len()),
@@ -152,9 +155,15 @@ impl Core<'_> {
                 return Err(CompiledError::SymbolMismatch { index: i });
             }
         }
-        for name in base.externals {
-            if self.external_index(name).is_none() {
-                return Err(CompiledError::MissingExternal { name });
+        for (i, name) in base.externals.iter().enumerate() {
+            match self.external_index(name) {
+                None => return Err(CompiledError::MissingExternal { name }),
+                // nodes read in place keep the writer's numbering: the host registers
+                // its functions in the same order
+                Some(x) if cfg!(feature = "in-place") && x as usize != i => {
+                    return Err(CompiledError::MissingExternal { name })
+                }
+                Some(_) => {}
             }
         }
         Ok(())
@@ -192,11 +201,18 @@ impl Core<'_> {
         self.rules[..base.rules.len()].copy_from_slice(base.rules);
         self.alphas[..base.alphas.len()].copy_from_slice(base.alphas);
         self.joins[..base.joins.len()].copy_from_slice(base.joins);
-        self.exprs[..base.exprs.len()].copy_from_slice(base.exprs);
+        #[cfg(feature = "in-place")]
+        {
+            self.exprs.set_rom(base.exprs);
+            self.st.rom_exprs = base.exprs;
+        }
+        #[cfg(not(feature = "in-place"))]
+        self.exprs.ram()[..base.exprs.len()].copy_from_slice(base.exprs);
         self.funcs[..base.functions.len()].copy_from_slice(base.functions);
         self.globals[..base.globals.len()].copy_from_slice(base.globals);
         self.deffacts[..base.deffacts.len()].copy_from_slice(base.deffacts);
         self.joins[0].mem = root_token;
+        #[cfg(not(feature = "in-place"))]
         for e in 0..base.exprs.len() {
             let x = self.exprs[e];
             if x.op == Op::Call && x.aux == FnKind::External as u8 {

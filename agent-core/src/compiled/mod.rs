@@ -66,9 +66,28 @@ pub struct RuleBase {
     pub trie_ids: Ix,
 }
 
+/// How many entries a compiled rule base fills in each construct pool, as constants
+/// (generated next to its `BASE` as `SIZES`): an engine sized for exactly one rule base
+/// (the agent image) names its capacities from them plus what the game adds at run time.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Sizes {
+    pub symbols: usize,
+    /// Bytes of symbol text.
+    pub symbol_bytes: usize,
+    pub templates: usize,
+    pub slots: usize,
+    pub rules: usize,
+    pub alphas: usize,
+    pub joins: usize,
+    pub exprs: usize,
+    pub functions: usize,
+    pub globals: usize,
+    pub deffacts: usize,
+}
+
 /// What generated code uses: `use agent_core::compiled::gen::*;`.
 pub mod gen {
-    pub use super::RuleBase;
+    pub use super::{RuleBase, Sizes};
     pub use crate::builtins::builtin_id;
     pub use crate::expr::{Expr, Op};
     pub use crate::rete::{AlphaNode, Join, JoinKind};

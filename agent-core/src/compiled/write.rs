@@ -140,22 +140,40 @@ impl Core<'_> {
         writeln!(out, "],")?;
         writeln!(out, "trie_ids: {},", self.st.trie_ids)?;
         writeln!(out, "}};")?;
+        writeln!(
+            out,
+            "pub const SIZES: Sizes = Sizes {{ symbols: {}, symbol_bytes: {}, templates: {}, \
+             slots: {}, rules: {}, alphas: {}, joins: {}, exprs: {}, functions: {}, \
+             globals: {}, deffacts: {} }};",
+            self.st.nsyms,
+            self.st.sym_bytes,
+            self.st.ntemplates,
+            self.st.nslots,
+            self.st.nrules,
+            self.st.nalpha,
+            self.st.njoins,
+            self.st.nexprs,
+            self.st.nfuncs,
+            self.st.nglobals,
+            self.st.ndeffacts
+        )?;
         writeln!(out, "}}")?;
         Ok(())
     }
 
-    fn builtin_calls(&self) -> impl Iterator<Item = Ix> + '_ {
-        self.exprs[..self.st.nexprs as usize]
-            .iter()
-            .filter(|x| x.op == Op::Call && x.aux == FnKind::Builtin as u8)
-            .map(|x| x.data)
+    /// Whether some node calls builtin `id`.
+    fn calls_builtin(&self, id: usize) -> bool {
+        (0..self.st.nexprs as usize).any(|e| {
+            let x = self.exprs[e];
+            x.op == Op::Call && x.aux == FnKind::Builtin as u8 && x.data as usize == id
+        })
     }
 
     /// A constant per builtin called: `const B12: Ix = builtin_id("str-cat");`.
     fn write_builtin_ids(&self, out: &mut dyn Write) -> fmt::Result {
         let n = crate::builtins::BUILTINS.len();
         for id in 0..n {
-            if self.builtin_calls().any(|c| c as usize == id) {
+            if self.calls_builtin(id) {
                 writeln!(
                     out,
                     "const B{id}: Ix = builtin_id({:?});",
@@ -299,7 +317,8 @@ impl Core<'_> {
 
     fn write_exprs(&self, out: &mut dyn Write) -> fmt::Result {
         writeln!(out, "exprs: &[")?;
-        for x in &self.exprs[..self.st.nexprs as usize] {
+        for e in 0..self.st.nexprs as usize {
+            let x = self.exprs[e];
             write!(out, "e(Op::{:?}, {}, ", x.op, x.aux)?;
             if x.op == Op::Call && x.aux == FnKind::Builtin as u8 {
                 write!(out, "B{}", x.data)?;

@@ -23,35 +23,41 @@ pub const STRATEGY: Strategy = Strategy::Paper;
 /// game fires under a thousand, so reaching it means the rules loop.
 const FIRE_LIMIT: u32 = 500_000;
 
-/// The image's engine. Capacities are the high-water marks of the seed-0 game (shown in
-/// the comments, from the image's own `pool` lines) plus room for the rule base to grow;
-/// the fact-value arena compacts when full, so it needs the live values at the game's
-/// peak (between 1,536 and 1,792 cells), not all values ever written. Rules keep no
-/// pretty-print text here, which is what keeps the symbol bytes small.
+/// The image's engine. The construct pools hold the compiled rule base exactly (its
+/// `SIZES`) plus what the game adds at run time (symbols it makes, the setup facts'
+/// expression nodes while they are asserted); its expression nodes are read in place
+/// from read-only memory (agent-core's `in-place`), so the arena holds only those the
+/// engine makes itself. Working-memory capacities are the high-water marks of the seed-0
+/// game (shown in the comments, from the image's own `pool` lines) plus margin; the
+/// fact-value arena compacts when full, so it needs the live values at the game's peak
+/// (between 1,536 and 1,792 cells), not all values ever written.
 pub type ImageEngine = Engine<ImageStorage>;
+
+/// Entries of the compiled rule base (paper strategy).
+const BASE: agent_core::compiled::Sizes = rules_compiled::game_paper::SIZES;
 
 agent_core::engine_storage! {
     /// The pools of [`ImageEngine`], every one named (a pool added to agent-core must
     /// get its capacity here: the image's RAM budget is checked against them).
     pub struct ImageStorage {
-        facts: 224,           // 183
-        fact_values: 2048,    // live peak <= 1,792
-        symbols: 336,         // 295
-        symbol_bytes: 4096,   // 3,072
-        templates: 40,        // 34
-        slot_defs: 112,       // 98
-        rules: 80,            // 71
-        alpha_nodes: 124,     // 112
-        joins: 264,           // 243
-        tokens: 416,          // 376
-        activations: 32,      // 16
-        functions: 26,        // 22
-        globals: 30,          // 26
-        exprs: 3968,          // 3,647
-        eval_stack: 48,       // 19
-        scratch: 128,         // 72
-        deffacts: 5,          // 3
-        external_fns: 1,      // 0: `distance` is built in
+        facts: 224,                                // 183
+        fact_values: 2048,                         // live peak <= 1,792
+        symbols: BASE.symbols + 24,                // +9 at run time
+        symbol_bytes: BASE.symbol_bytes + 192,     // +41 at run time
+        templates: BASE.templates + 2,             // +0
+        slot_defs: BASE.slots + 2,                 // +0
+        rules: BASE.rules,
+        alpha_nodes: BASE.alphas,
+        joins: BASE.joins,
+        tokens: 416,                               // 370
+        activations: 32,                           // 16
+        functions: BASE.functions,
+        globals: BASE.globals,
+        exprs: 48,                                 // 13 beyond the compiled ones
+        eval_stack: 48,                            // 21
+        scratch: 128,                              // 72
+        deffacts: BASE.deffacts,
+        external_fns: 1,                           // 0: `distance` is built in
     }
 }
 
