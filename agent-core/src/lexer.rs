@@ -73,6 +73,26 @@ impl<'a> Lexer<'a> {
         self.pos
     }
 
+    /// The token starting at byte `start` of the source, with its line and column (for
+    /// an error found after the reader has moved on).
+    pub fn token_at(&self, start: usize) -> Token<'a> {
+        let before = self.src.as_bytes().get(..start).unwrap_or(&[]);
+        let line_start = before
+            .iter()
+            .rposition(|&b| b == b'\n')
+            .map_or(0, |i| i + 1);
+        let mut at = Lexer {
+            src: self.src,
+            pos: start.min(self.src.len()),
+            line: 1 + before.iter().filter(|&&b| b == b'\n').count() as u32,
+            col: 1 + before[line_start..]
+                .iter()
+                .filter(|&&b| (b & 0xC0) != 0x80)
+                .count() as u32,
+        };
+        at.next_token()
+    }
+
     fn bump(&mut self) -> Option<u8> {
         let b = *self.src.as_bytes().get(self.pos)?;
         self.pos += 1;
@@ -303,5 +323,22 @@ mod tests {
         l.next_token();
         let b = l.next_token();
         assert_eq!((b.line, b.col), (2, 3));
+    }
+
+    #[test]
+    fn a_token_is_found_again_by_its_start() {
+        let src = "(défrule ä\n  (p (x \"é\n\")) ; c\n\t?x <- (q)\n=> )";
+        let mut l = Lexer::new(src);
+        loop {
+            let t = l.next_token();
+            let again = l.token_at(t.start);
+            assert_eq!(
+                (again.tok, again.line, again.col, again.start, again.end),
+                (t.tok, t.line, t.col, t.start, t.end)
+            );
+            if t.tok == Tok::Eof {
+                break;
+            }
+        }
     }
 }

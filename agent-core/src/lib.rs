@@ -11,14 +11,15 @@
 //!
 //! ```text
 //!  CLIPS text
-//!     │  syntax: lexer, parser (parser::rule for defrule)
+//!     │  syntax: lexer, parser (parser::rule for defrule); touches no network
 //!     ▼
-//!  expression nodes (Expr pool) + a rule's conditional elements (parser::rule::Build,
-//!  one Ce per join, tests as expression chains) + each pattern's fields and tests
-//!  (PatBuild)
+//!  a rule's intermediate form: expression nodes (Expr pool) + its conditional
+//!  elements (parser::rule::Build, one Ce per join, tests as expression chains), each
+//!  pattern's tests and pattern-network path (PatIr); a rule with `or` is read whole,
+//!  every disjunct, before anything is built
 //!     │  compile: compile::alpha (pattern network: sharing, discrimination, order),
-//!     │           compile::join (joins, sharing of prefixes, priming new joins),
-//!     │           compile::remove (rule removal, rollback of a failed construct)
+//!     │           compile::join (joins, sharing of prefixes, hooking up, priming),
+//!     │           compile::remove (rule removal, rollback of a failed build)
 //!     ▼
 //!  alpha nodes, joins, rules (their pools), primed with the existing facts
 //!     │  run time: rete (match), agenda, eval, builtins, commands (run loop)
@@ -26,19 +27,19 @@
 //!  tokens, activations, facts; firings
 //! ```
 //!
-//! Rule removal and the undo of a construct that failed halfway (`Core::rollback`) are
-//! in `compile` too. Where the code is not there yet (issue 23): the syntax stage still
-//! builds a pattern's alpha node as soon as it has read the pattern, so a rule's form
-//! is not whole before the network is touched (a failed construct is rolled back
-//! instead), and `rete` keeps a join's child list in order (`note_children`) and builds
-//! the root join at start-up.
+//! A construct the syntax stage refuses leaves nothing in the network, since nothing
+//! is built before its form is whole; its expression nodes, symbols and implied
+//! templates (append-only pools) are given back. Only a build that runs out of room
+//! (a pool, or tokens while priming) is undone in the network (`Core::rollback`).
+//! Where the code is not there yet (issue 23): `rete` keeps a join's child list in
+//! order (`note_children`) and builds the root join at start-up.
 //!
 //! # Layout
 //! - [`value`]: values (`Int`, `Float`, symbols, strings, fact addresses, multifield
 //!   spans) and CLIPS number printing; [`symbols`]: interned texts.
 //! - [`lexer`] and [`parser`]: the syntax stage, CLIPS source to constructs and
-//!   expression trees ([`expr`], 8-byte nodes). Each construct is built inside a
-//!   checkpoint and rolled back completely on any error.
+//!   expression trees ([`expr`], 8-byte nodes), a rule into its intermediate form.
+//!   Each construct is read and built inside a checkpoint and undone on any error.
 //! - `compile`: the network builder (alpha nodes, joins, priming) and remover (rule
 //!   removal, rollback).
 //! - [`fact`], [`template`]: fact storage (a compacting value arena, a duplicate hash

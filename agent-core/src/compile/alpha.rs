@@ -1,46 +1,25 @@
-//! Alpha network building: a pattern's tests become a path in CLIPS's pattern network,
-//! shared with identical earlier patterns (sharing and discrimination), kept in CLIPS's
-//! order. Called by the syntax stage for each pattern it has parsed.
+//! Alpha network building: a pattern's form (`PatIr`: its tests and its path in CLIPS's
+//! pattern network, analysed by `pattern_form` while the syntax stage reads it, which
+//! touches no network) becomes an alpha node, shared with identical earlier patterns
+//! (sharing and discrimination) and kept in CLIPS's order.
 
 use crate::engine::cap;
 use crate::error::Pool;
 use crate::expr::{loc, Op};
-use crate::lexer::Token;
-use crate::parser::rule::PatBuild;
+use crate::parser::rule::{PatBuild, PatIr};
 use crate::parser::{PResult, Parser};
 use crate::rete::{AlphaNode, EMPTY_PATH, MAX_RHASH, PATH_LEN};
 use crate::value::{Ix, NONE};
 
-impl<'s> Parser<'s, '_, '_> {
-    pub(crate) fn find_or_make_alpha(
-        &mut self,
-        tmpl: Ix,
-        pb: &PatBuild,
-        at: Token<'s>,
-    ) -> PResult<Ix> {
+impl Parser<'_, '_, '_> {
+    /// Analysis of a pattern the syntax stage has read (pure: reads expression nodes
+    /// and the template only): its path in the pattern network, the right hash folded
+    /// into the path's last field.
+    pub(crate) fn pattern_form(&self, tmpl: Ix, pb: &PatBuild) -> PatIr {
         let (path, tail) = self.pattern_path(pb);
         // CLIPS never shares the relation-name node an ordered pattern without tests
         // (`(o $?)`) ends in: each such pattern is a new, newest node
         let alone = self.cx.templates[tmpl as usize].implied && path.locs[0] == EMPTY_PATH;
-        let mut a = self.cx.templates[tmpl as usize].alpha_head;
-        while a != NONE && !alone {
-            let n = self.cx.alphas[a as usize];
-            if n.live
-                && !self.old_only_alpha(a)
-                && self.chain_eq(n.desc, pb.desc)
-                && self.chain_eq(n.tests, pb.atests)
-                && n.nrhash as usize == pb.nrhash
-                && (0..pb.nrhash).all(|i| self.same_field(n.rhash[i], pb.rhash[i]))
-            {
-                return Ok(a);
-            }
-            a = n.next_in_tmpl;
-        }
-        let n = self.cx.st.nalpha as usize;
-        if n >= self.cx.alphas.len() {
-            let c = cap(Pool::AlphaNodes, self.cx.alphas.len());
-            return Err(self.cap_err(at, c));
-        }
         let (path_loc, mut path_test, plen) = (path.locs, path.tests, path.len);
         if pb.nrhash > 0 {
             // the last field's nodes carry the right hash: nodes of their own
@@ -57,24 +36,62 @@ impl<'s> Parser<'s, '_, '_> {
                 *t = (mix16(u32::from(*t), h) & 0xFFFF) as Ix | 1;
             }
         }
-        self.cx.alphas[n] = AlphaNode {
+        PatIr {
             tmpl,
             desc: pb.desc,
-            tests: pb.atests,
+            atests: pb.atests,
+            rhash: pb.rhash,
+            nrhash: pb.nrhash as u8,
+            marks: pb.marks,
+            alone,
+            path_len: plen as u8,
+            path_loc,
+            path_test,
+        }
+    }
+
+    /// The alpha node of a pattern: an identical live one, or a new one. `at`: where
+    /// the pattern starts in the text (for the error when the pool is full).
+    pub(crate) fn find_or_make_alpha(&mut self, pat: &PatIr, at: u32) -> PResult<Ix> {
+        let tmpl = pat.tmpl;
+        let nrhash = pat.nrhash as usize;
+        let mut a = self.cx.templates[tmpl as usize].alpha_head;
+        while a != NONE && !pat.alone {
+            let n = self.cx.alphas[a as usize];
+            if n.live
+                && !self.old_only_alpha(a)
+                && self.chain_eq(n.desc, pat.desc)
+                && self.chain_eq(n.tests, pat.atests)
+                && n.nrhash == pat.nrhash
+                && (0..nrhash).all(|i| self.same_field(n.rhash[i], pat.rhash[i]))
+            {
+                return Ok(a);
+            }
+            a = n.next_in_tmpl;
+        }
+        let n = self.cx.st.nalpha as usize;
+        if n >= self.cx.alphas.len() {
+            let c = cap(Pool::AlphaNodes, self.cx.alphas.len());
+            return Err(self.cap_err(self.lex.token_at(at as usize), c));
+        }
+        self.cx.alphas[n] = AlphaNode {
+            tmpl,
+            desc: pat.desc,
+            tests: pat.atests,
             next_in_tmpl: NONE,
             succ: NONE,
             mem: NONE,
             mem_tail: NONE,
-            nmarks: pb.marks,
+            nmarks: pat.marks,
             live: true,
-            path_loc,
-            path_test,
+            path_loc: pat.path_loc,
+            path_test: pat.path_test,
             key: [0; PATH_LEN],
-            key_len: plen as u8,
-            rhash: pb.rhash,
-            nrhash: pb.nrhash as u8,
+            key_len: pat.path_len,
+            rhash: pat.rhash,
+            nrhash: pat.nrhash,
         };
-        self.assign_trie_key(tmpl, n as Ix, alone);
+        self.assign_trie_key(tmpl, n as Ix, pat.alone);
         self.insert_alpha_sorted(tmpl, n as Ix);
         self.cx.st.nalpha += 1;
         self.cx.st.net_gen = self.cx.st.net_gen.wrapping_add(1);

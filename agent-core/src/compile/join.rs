@@ -1,8 +1,9 @@
 //! Join network building: a rule's conditional elements (the `Build` the syntax
-//! stage filled) become joins, shared with earlier rules' identical prefixes, and the
-//! new joins are primed with the facts that exist (CLIPS's incremental reset).
+//! stage filled) become alpha nodes (`compile::alpha`) and joins, shared with earlier
+//! rules' identical prefixes; the new joins are hooked up to their alpha nodes and
+//! primed with the facts that exist (CLIPS's incremental reset).
 
-use crate::engine::cap;
+use crate::engine::{cap, Core};
 use crate::error::Pool;
 use crate::lexer::Token;
 use crate::parser::rule::{Build, CE_ROOT};
@@ -11,10 +12,46 @@ use crate::rete::{Join, JoinKind, MAX_PATTERNS};
 use crate::rule::Rule;
 use crate::value::{Ix, SymId, NONE};
 
-impl<'s> Parser<'s, '_, '_> {
+impl Core<'_> {
+    /// Hooks the joins from `first_new` on up to their alpha nodes (each new join
+    /// first among its node's successors).
+    pub(crate) fn hook_new_joins(&mut self, first_new: Ix) {
+        for j in first_new..self.st.njoins {
+            let a = self.joins[j as usize].alpha;
+            if a != NONE {
+                self.joins[j as usize].alpha_next = self.alphas[a as usize].succ;
+                self.alphas[a as usize].succ = j;
+            }
+        }
+    }
+
+    /// Matches new rules (from `first_rule` on, their joins from `first_join` and
+    /// alpha nodes from `first_alpha` on) against the existing facts, as CLIPS's
+    /// incremental reset does: primes the new joins fed by old ones (each rule from
+    /// its end upwards), then drives the facts, oldest first, through the new patterns.
+    pub(crate) fn prime_new_rules(
+        &mut self,
+        first_rule: Ix,
+        first_join: Ix,
+        first_alpha: Ix,
+    ) -> Result<(), crate::error::EvalError> {
+        let mut primed = Primed {
+            ids: [NONE; MAX_PRIMED],
+            n: 0,
+        };
+        for r in first_rule..self.st.nrules {
+            let t = self.rules[r as usize].terminal;
+            self.prime_chain(t, first_join, 0, &mut primed)?;
+        }
+        if first_alpha < self.st.nalpha {
+            self.prime_alphas(first_alpha)?;
+        }
+        Ok(())
+    }
+
     /// Primes the new joins of a chain whose left input is an old join, walking
     /// from `j` up to `stop`; a subnetwork is primed after the join taking it.
-    pub(crate) fn prime_chain(
+    fn prime_chain(
         &mut self,
         mut j: Ix,
         first_new: Ix,
@@ -22,7 +59,7 @@ impl<'s> Parser<'s, '_, '_> {
         primed: &mut Primed,
     ) -> Result<(), crate::error::EvalError> {
         while j != NONE && j != 0 && j != stop {
-            let jn = self.cx.joins[j as usize];
+            let jn = self.joins[j as usize];
             if j >= first_new && jn.parent < first_new && !primed.ids[..primed.n].contains(&j) {
                 if primed.n == primed.ids.len() {
                     // priming it unrecorded could prime it twice
@@ -30,7 +67,7 @@ impl<'s> Parser<'s, '_, '_> {
                 }
                 primed.ids[primed.n] = j;
                 primed.n += 1;
-                self.cx.prime_join(j)?;
+                self.prime_join(j)?;
             }
             if jn.rjoin != NONE {
                 self.prime_chain(jn.rjoin, first_new, jn.parent, primed)?;
@@ -39,7 +76,9 @@ impl<'s> Parser<'s, '_, '_> {
         }
         Ok(())
     }
+}
 
+impl<'s> Parser<'s, '_, '_> {
     pub(crate) fn map_prime_err(
         &self,
         r: Result<(), crate::error::EvalError>,
@@ -90,14 +129,20 @@ impl<'s> Parser<'s, '_, '_> {
         n
     }
 
-    /// Creates the rule and its joins (the root token comes later, in `defrule`).
-    pub(crate) fn build_rule(
-        &mut self,
-        name: SymId,
-        salience: (i32, Ix),
-        b: &Build,
-        rhs: Ix,
-    ) -> PResult<Ix> {
+    /// Builds one disjunct the syntax stage has read whole: the alpha nodes of its
+    /// patterns, its joins and its rule (hooked up to the alpha nodes and primed
+    /// later, in `defrule`).
+    pub(crate) fn compile_disjunct(&mut self, name: SymId, b: &mut Build) -> PResult<Ix> {
+        for ce in &mut b.ces[..b.n] {
+            if ce.pat.tmpl != NONE {
+                ce.alpha = self.find_or_make_alpha(&ce.pat, ce.at)?;
+            }
+        }
+        self.build_rule(name, b)
+    }
+
+    /// Creates the rule and its joins.
+    fn build_rule(&mut self, name: SymId, b: &Build) -> PResult<Ix> {
         self.cx.st.net_gen = self.cx.st.net_gen.wrapping_add(1);
         let at = self.peek();
         let nr = self.cx.st.nrules as usize;
@@ -230,13 +275,13 @@ impl<'s> Parser<'s, '_, '_> {
         self.cx.note_hw(Pool::Joins, self.cx.st.njoins as usize);
         self.cx.rules[nr] = Rule {
             name,
-            salience: salience.0,
-            salience_expr: salience.1,
+            salience: b.sal.0,
+            salience_expr: b.sal.1,
             root: 0,
             terminal: prev,
-            rhs: self.cx.exprs[rhs as usize].first,
+            rhs: self.cx.exprs[b.rhs as usize].first,
             npat: b.depth,
-            nlocals: self.nlocals.min(255) as u8,
+            nlocals: b.nlocals,
             next_disjunct: NONE,
             next_at_join: NONE,
             root_sensitive: b.ces[first as usize].kind != JoinKind::Positive,

@@ -1,12 +1,85 @@
 //! The compile stage: analysis and network building. What the syntax stage read
-//! (`parser::rule`: a rule's conditional elements as a `Build`, each pattern as a
-//! `PatBuild`, tests and actions as expression nodes) becomes alpha nodes ([`alpha`]:
-//! sharing and discrimination) and joins ([`join`]: sharing of identical prefixes,
-//! the rule, priming of new joins); [`remove`] takes them out again (rule removal, the
-//! undo of a construct that failed halfway). Still to move here: the syntax stage's
-//! calls of `find_or_make_alpha` while it reads a pattern (the alpha nodes are built
-//! before the rule's form is whole).
+//! (`parser::rule`: a rule's conditional elements as a `Build`, each pattern's form as
+//! a `PatIr`, tests and actions as expression nodes), once whole, becomes alpha nodes
+//! ([`alpha`]: sharing and discrimination) and joins ([`join`]: sharing of identical
+//! prefixes, the rule, hooking up and priming of new joins); [`remove`] takes them out
+//! again (rule removal, the undo of a build that ran out of room).
 
 pub(crate) mod alpha;
 pub(crate) mod join;
 pub(crate) mod remove;
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use crate::engine::SmallEngine;
+    use crate::host::NullHost;
+
+    /// A rule the syntax stage refuses never reaches the network: not even in an `or`
+    /// whose first disjunct is sound (the pattern-network ids a built alpha node
+    /// takes are never given back, so they show whether one was built and undone).
+    #[test]
+    fn a_rule_that_fails_to_read_builds_nothing() {
+        let mut e = std::boxed::Box::new(SmallEngine::new());
+        let h = &mut NullHost;
+        e.load_str(
+            h,
+            "t",
+            "(deftemplate p (slot x)) (defrule old (p (x 1)) =>)",
+        )
+        .unwrap();
+        e.assert_str(h, "(p (x 2))").unwrap();
+        let before = |e: &mut SmallEngine| {
+            let mut h = NullHost;
+            let c = e.core(&mut h);
+            (
+                c.st.nalpha,
+                c.st.njoins,
+                c.st.nrules,
+                c.st.trie_ids,
+                c.st.nexprs,
+            )
+        };
+        let b = before(&mut e);
+        for bad in [
+            "(defrule r (p (x 2)) (or (q ?y) (s ?y (t))) =>)",
+            "(defrule r (p (x ?x)) (q ?x) => (printout t ?x) (",
+            "(defrule r (or (p (x 3)) (p (x 4))) (q 1) => (bind))",
+            "(defrule old (p (x 5)) (r =>)",
+        ] {
+            assert!(e.load_str(h, "t", bad).is_err(), "{bad}");
+            assert_eq!(before(&mut e), b, "{bad}");
+        }
+        // an `or` rule that reads: every disjunct built and primed
+        e.load_str(h, "t", "(defrule r (or (p (x 2)) (p (x 3))) =>)")
+            .unwrap();
+        assert_eq!(e.run(h, None).unwrap(), 1);
+    }
+
+    /// A pool that runs out while the network is built names the place of the pattern
+    /// whose node did not fit, as when nodes were built while reading.
+    #[test]
+    fn a_full_alpha_pool_names_the_pattern() {
+        let mut e = std::boxed::Box::new(SmallEngine::new());
+        let h = &mut NullHost;
+        let room = e.stats().get(crate::Pool::AlphaNodes).1 as usize;
+        let mut text = std::string::String::new();
+        for i in 0..room - 1 {
+            if i % 8 == 0 {
+                text.push_str(&std::format!("(defrule r{i} "));
+            }
+            text.push_str(&std::format!("(p {i}) "));
+            if i % 8 == 7 || i == room - 2 {
+                text.push_str("=>)\n");
+            }
+        }
+        e.load_str(h, "t", &text).unwrap();
+        let err = e
+            .load_str(h, "t", "(defrule full\n  (p 0)\n  (p x) (q é) (p y)\n =>)")
+            .unwrap_err();
+        assert_eq!(err.capacity.map(|c| c.pool), Some(crate::Pool::AlphaNodes));
+        // `(p 0)` shares a node, `(p x)` takes the last one, `(q é)` finds none
+        assert_eq!((err.line, err.col), (3, 10));
+        assert_eq!(err.end - err.start, 1);
+    }
+}

@@ -130,6 +130,13 @@ impl Core<'_> {
     /// get their reference counts back.
     pub fn rollback(&mut self, cp: Checkpoint) {
         self.st.net_gen = self.st.net_gen.wrapping_add(1);
+        if cp.njoins == self.st.njoins && cp.nalpha == self.st.nalpha && cp.nrules == self.st.nrules
+        {
+            // nothing was built (a construct the syntax stage refused, or one without
+            // a network): only the append-only pools go back
+            self.truncate_to(cp);
+            return;
+        }
         for j in (cp.njoins..self.st.njoins).rev() {
             if !self.joins[j as usize].is_terminal() {
                 self.clear_join_memory(j);
@@ -230,6 +237,11 @@ impl Core<'_> {
         self.st.nrules = cp.nrules;
         self.st.nalpha = cp.nalpha;
         self.st.njoins = cp.njoins;
+        self.truncate_to(cp);
+    }
+
+    /// Gives back the entries of the append-only construct pools made after `cp`.
+    fn truncate_to(&mut self, cp: Checkpoint) {
         self.st.nexprs = cp.nexprs;
         self.st.ntemplates = cp.ntemplates;
         self.st.nslots = cp.nslots;

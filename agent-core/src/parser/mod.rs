@@ -1,7 +1,10 @@
-//! The CLIPS reader: constructs and commands parsed straight into engine pools.
+//! The CLIPS reader, the syntax stage: commands and constructs read into expression
+//! nodes and construct entries; a rule into its intermediate form, which
+//! `crate::compile` builds into the network once it is whole.
 //!
-//! Every construct is parsed and built inside a checkpoint; on any error the engine
-//! is rolled back to it, so a bad construct leaves nothing behind.
+//! Every construct is read and built inside a checkpoint; on any error the engine
+//! goes back to it, so a bad construct leaves nothing behind (a rule the reader
+//! refuses has built nothing in the network, so only the append-only pools go back).
 
 /// Maps a pool error to a load error at the current position (two-step so the
 /// parser is not borrowed twice).

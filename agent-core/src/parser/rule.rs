@@ -1,16 +1,17 @@
-//! defrule, the syntax stage: the LHS's conditional elements read into a `Build` (one
-//! `Ce` per join to make, its tests as expression nodes) and each pattern into a
-//! `PatBuild`, the RHS's actions; the network is built from them by `crate::compile`.
+//! defrule, the syntax stage: a rule read into its intermediate form, a `Build` (one
+//! `Ce` per join to make, its tests as expression nodes, a pattern's own tests and
+//! network path as a `PatIr`) and the RHS's actions. Reading touches no network: the
+//! alpha nodes and joins are built from the whole form by `crate::compile`, so a rule
+//! that fails to read leaves nothing in the network.
 
 use super::facts::Violation;
 use super::{PResult, Parser, Scope, VarKind};
 use crate::compile::alpha::ZERO_LEN;
-use crate::compile::join::Primed;
 use crate::expr::{loc, Expr, Op};
 use crate::lexer::{Tok, Token};
-use crate::rete::{JoinKind, MAX_MARKS, MAX_PATTERNS, MAX_RHASH, THIS_PATTERN};
+use crate::rete::{JoinKind, MAX_MARKS, MAX_PATTERNS, MAX_RHASH, PATH_LEN, THIS_PATTERN};
 use crate::value::Ix;
-use crate::value::{SymId, Value, NONE};
+use crate::value::{Value, NONE};
 
 /// Most `or` CEs in one rule.
 const MAX_ORS: usize = 8;
@@ -24,7 +25,13 @@ pub(crate) const CE_ROOT: u8 = 0xFF;
 #[derive(Clone, Copy)]
 pub(crate) struct Ce {
     pub(crate) kind: JoinKind,
+    /// The CE's pattern (`pat.tmpl` NONE for a test CE or a not/exists group) and,
+    /// once `compile::alpha` has built it, its alpha node.
+    pub(crate) pat: PatIr,
     pub(crate) alpha: Ix,
+    /// Where the pattern's name starts in the text (`Lexer::token_at`), for an error
+    /// while building its node.
+    pub(crate) at: u32,
     /// Join tests (chain) and post tests (after not/exists).
     pub(crate) jtests: Ix,
     pub(crate) jlast: Ix,
@@ -42,7 +49,9 @@ pub(crate) struct Ce {
 
 const CE_EMPTY: Ce = Ce {
     kind: JoinKind::Test,
+    pat: PatIr::NONE,
     alpha: NONE,
+    at: 0,
     jtests: NONE,
     jlast: NONE,
     post: NONE,
@@ -69,6 +78,86 @@ pub(crate) struct Build {
     pub(crate) nor: usize,
     /// The salience, once the first disjunct evaluated it (CLIPS evaluates it once).
     pub(crate) salience: Option<i32>,
+    /// The disjunct's salience (value, and its expression when not a literal), its
+    /// actions and its frame size.
+    pub(crate) sal: (i32, Ix),
+    pub(crate) rhs: Ix,
+    pub(crate) nlocals: u8,
+}
+
+impl Build {
+    /// An empty form. Not inlined: built in place in the caller's slot (an inlined
+    /// literal kept a second copy on the stack; a constant, 2 KB of read-only data).
+    #[inline(never)]
+    fn new() -> Build {
+        Build {
+            ces: [CE_EMPTY; MAX_PATTERNS],
+            n: 0,
+            cur: CE_ROOT,
+            depth: 0,
+            groups: 0,
+            group_first: CE_ROOT,
+            choice: [0; MAX_ORS],
+            counts: [0; MAX_ORS],
+            nor: 0,
+            salience: None,
+            sal: (0, NONE),
+            rhs: NONE,
+            nlocals: 0,
+        }
+    }
+
+    /// Moves to the next combination of `or` branches; false after the last one
+    /// (the choices are then all 0 again).
+    fn next_choice(&mut self) -> bool {
+        let mut i = self.nor;
+        while i > 0 {
+            i -= 1;
+            self.choice[i] += 1;
+            if self.choice[i] < self.counts[i] {
+                return true;
+            }
+            self.choice[i] = 0;
+        }
+        false
+    }
+}
+
+/// A pattern as the syntax stage hands it to `compile::alpha`: its template, the tests
+/// it makes of one fact, and its path in CLIPS's pattern network (computed by
+/// `Parser::pattern_form`), which decide which alpha node it shares.
+#[derive(Clone, Copy)]
+pub(crate) struct PatIr {
+    /// NONE: no pattern.
+    pub(crate) tmpl: Ix,
+    /// Multislot layout (descriptor chain) and alpha tests (chain).
+    pub(crate) desc: Ix,
+    pub(crate) atests: Ix,
+    /// Fields the join compares for equality with earlier variables (right hash).
+    pub(crate) rhash: [Ix; MAX_RHASH],
+    pub(crate) nrhash: u8,
+    /// Multifield lengths each match records.
+    pub(crate) marks: u8,
+    /// A node CLIPS never shares (an ordered pattern without tests).
+    pub(crate) alone: bool,
+    pub(crate) path_len: u8,
+    pub(crate) path_loc: [Ix; PATH_LEN],
+    pub(crate) path_test: [Ix; PATH_LEN],
+}
+
+impl PatIr {
+    pub(crate) const NONE: PatIr = PatIr {
+        tmpl: NONE,
+        desc: NONE,
+        atests: NONE,
+        rhash: [NONE; MAX_RHASH],
+        nrhash: 0,
+        marks: 0,
+        alone: false,
+        path_len: 0,
+        path_loc: [0; PATH_LEN],
+        path_test: [0; PATH_LEN],
+    };
 }
 
 /// Where a CE sits: at top level, or inside `not`/`exists`.
@@ -101,48 +190,34 @@ impl<'s> Parser<'s, '_, '_> {
         });
         self.replacing = if replaces { sym } else { NONE };
         let first_new_join = self.cx.st.njoins;
-        let mut b = Build {
-            ces: [CE_EMPTY; MAX_PATTERNS],
-            n: 0,
-            cur: CE_ROOT,
-            depth: 0,
-            groups: 0,
-            group_first: CE_ROOT,
-            choice: [0; MAX_ORS],
-            counts: [0; MAX_ORS],
-            nor: 0,
-            salience: None,
-        };
+        let mut b = Build::new();
+        // The syntax stage reads the whole rule before anything is built: a rule with
+        // `or` is one disjunct per combination of branches, each read with its own
+        // variables and pattern numbers, so all of them are read once first (their
+        // expression nodes are scratch, dropped after), then read again, each built as
+        // soon as it is whole. A syntax error anywhere leaves no network behind.
+        let exprs_mark = self.cx.st.nexprs;
+        self.read_disjunct(&body_lex, &mut b)?;
+        let several = b.nor > 0;
+        if several {
+            while b.next_choice() {
+                self.read_disjunct(&body_lex, &mut b)?;
+            }
+            // (what a parse-time evaluation created stays: see `eval_now`)
+            let keep = self.keep.map_or(0, |k| k.nexprs);
+            self.cx.st.nexprs = exprs_mark.max(keep);
+        }
         let mut prev_rule = NONE;
         loop {
-            self.restore(body_lex.clone());
-            self.nvars = 0;
-            self.nlocals = 0;
-            b.n = 0;
-            b.cur = CE_ROOT;
-            b.depth = 0;
-            b.groups = 0;
-            b.group_first = CE_ROOT;
-            b.nor = 0;
-            let r = self.rule_body(sym, &mut b)?;
+            if several {
+                self.read_disjunct(&body_lex, &mut b)?;
+            }
+            let r = self.compile_disjunct(sym, &mut b)?;
             if prev_rule != NONE {
                 self.cx.rules[prev_rule as usize].next_disjunct = r;
             }
             prev_rule = r;
-            // next combination of or-branches
-            let mut i = b.nor;
-            loop {
-                if i == 0 {
-                    break;
-                }
-                i -= 1;
-                b.choice[i] += 1;
-                if b.choice[i] < b.counts[i] {
-                    break;
-                }
-                b.choice[i] = 0;
-            }
-            if b.choice[..b.nor].iter().all(|&c| c == 0) {
+            if !several || !b.next_choice() {
                 break;
             }
         }
@@ -157,13 +232,7 @@ impl<'s> Parser<'s, '_, '_> {
         // hook the new joins up to their alpha nodes first: a redefinition's removal of
         // the old rule below empties and retires an alpha node whose successor list it
         // leaves empty, and the new rule may share that node
-        for j in first_new_join..self.cx.st.njoins {
-            let a = self.cx.joins[j as usize].alpha;
-            if a != NONE {
-                self.cx.joins[j as usize].alpha_next = self.cx.alphas[a as usize].succ;
-                self.cx.alphas[a as usize].succ = j;
-            }
-        }
+        self.cx.hook_new_joins(first_new_join);
         // a redefinition replaces the old rule
         for r in 0..first_new_rule {
             if self.cx.rules[r as usize].name == sym && !self.cx.rules[r as usize].deleted {
@@ -172,28 +241,32 @@ impl<'s> Parser<'s, '_, '_> {
         }
         // `load` prints "Defining defrule" before the new activations, as CLIPS does
         self.announce();
-        // match the new rule(s) against existing facts as CLIPS's incremental reset
-        // does (the new joins are hooked up above): prime those fed by old joins (each rule from its
-        // end upwards), then drive the facts, oldest first, through the new patterns
-        let mut primed = Primed {
-            ids: [NONE; crate::compile::join::MAX_PRIMED],
-            n: 0,
-        };
-        for r in first_new_rule..self.cx.st.nrules {
-            let t = self.cx.rules[r as usize].terminal;
-            let res = self.prime_chain(t, first_new_join, 0, &mut primed);
-            self.map_prime_err(res, nt)?;
-        }
-        if first_new_alpha < self.cx.st.nalpha {
-            let res = self.cx.prime_alphas(first_new_alpha);
-            self.map_prime_err(res, nt)?;
-        }
-
-        Ok(())
+        let res = self
+            .cx
+            .prime_new_rules(first_new_rule, first_new_join, first_new_alpha);
+        self.map_prime_err(res, nt)
     }
 
-    /// One disjunct: LHS (with the current or-choices), RHS, then the network.
-    fn rule_body(&mut self, name: SymId, b: &mut Build) -> PResult<Ix> {
+    /// Reads one disjunct (LHS with the current or-choices, RHS) into `b`.
+    fn read_disjunct(
+        &mut self,
+        body: &(crate::lexer::Lexer<'s>, Option<Token<'s>>),
+        b: &mut Build,
+    ) -> PResult<()> {
+        self.restore(body.clone());
+        self.nvars = 0;
+        self.nlocals = 0;
+        b.n = 0;
+        b.cur = CE_ROOT;
+        b.depth = 0;
+        b.groups = 0;
+        b.group_first = CE_ROOT;
+        b.nor = 0;
+        self.rule_body(b)
+    }
+
+    /// One disjunct: LHS (with the current or-choices), RHS.
+    fn rule_body(&mut self, b: &mut Build) -> PResult<()> {
         self.ce_count = 0;
         let mut salience = (0i32, NONE);
         // (declare (salience N))
@@ -230,8 +303,10 @@ impl<'s> Parser<'s, '_, '_> {
             b.depth = 1;
         }
         self.scope = Scope::Frame;
-        let rhs = self.body_block()?;
-        self.build_rule(name, salience, b, rhs)
+        b.rhs = self.body_block()?;
+        b.sal = salience;
+        b.nlocals = self.nlocals.min(255) as u8;
+        Ok(())
     }
 
     fn declare(&mut self, b: &mut Build) -> PResult<(i32, Ix)> {
@@ -258,8 +333,8 @@ impl<'s> Parser<'s, '_, '_> {
                             if !matches!(self.cx.exprs[e as usize].op, Op::Int | Op::Float) {
                                 sal_expr = e;
                             }
-                            // later disjuncts are built after the first one's network:
-                            // their failure must not be kept (see `eval_now`)
+                            // evaluated once, while the first disjunct is read (CLIPS
+                            // evaluates it once per rule)
                             let v = match b.salience {
                                 Some(s) => Ok(Value::Int(s.into())),
                                 None => self.eval_now(e),
@@ -644,9 +719,9 @@ impl<'s> Parser<'s, '_, '_> {
             }
         }
         self.lhs_slot = None;
-        // share an identical alpha node or make a new one
+        // the pattern's form; `compile::alpha` shares an identical node or makes one
         self.right_hash(&mut pb, p);
-        let alpha = self.find_or_make_alpha(tmpl, &pb, nt)?;
+        let pat = self.pattern_form(tmpl, &pb);
         let kind = match ctx {
             Ctx::Top => JoinKind::Positive,
             Ctx::Not => JoinKind::Negative,
@@ -654,7 +729,9 @@ impl<'s> Parser<'s, '_, '_> {
         };
         b.ces[b.n] = Ce {
             kind,
-            alpha,
+            pat,
+            alpha: NONE,
+            at: nt.start as u32,
             jtests: pb.jtests,
             jlast: pb.jlast,
             post: NONE,
