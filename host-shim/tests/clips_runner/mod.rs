@@ -28,14 +28,38 @@ pub struct RunOutput {
 
 /// Runs `program args...` in `cwd` with stdin closed, killing it after `RUN_TIMEOUT`.
 pub fn run_with_timeout(program: &Path, args: &[&Path], cwd: &Path) -> Result<RunOutput, String> {
+    run_with_input(program, args, cwd, None, RUN_TIMEOUT)
+}
+
+/// Runs `program args...` in `cwd`, feeding `input` on stdin (closed when `None`, and after
+/// the input), killing it after `timeout`.
+pub fn run_with_input(
+    program: &Path,
+    args: &[&Path],
+    cwd: &Path,
+    input: Option<&[u8]>,
+    timeout: Duration,
+) -> Result<RunOutput, String> {
     let mut child = Command::new(program)
         .args(args)
         .current_dir(cwd)
-        .stdin(Stdio::null())
+        .stdin(if input.is_some() {
+            Stdio::piped()
+        } else {
+            Stdio::null()
+        })
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
         .spawn()
         .map_err(|e| format!("cannot start {}: {e}", program.display()))?;
+    if let (Some(bytes), Some(mut stdin)) = (input, child.stdin.take()) {
+        let bytes = bytes.to_vec();
+        // A writer thread: a program that does not read its input must not block us.
+        std::thread::spawn(move || {
+            use std::io::Write as _;
+            let _ = stdin.write_all(&bytes);
+        });
+    }
     let mut stdout_pipe = child
         .stdout
         .take()
@@ -55,7 +79,7 @@ pub fn run_with_timeout(program: &Path, args: &[&Path], cwd: &Path) -> Result<Ru
         let _ = stderr_pipe.read_to_end(&mut bytes);
         bytes
     });
-    let deadline = Instant::now() + RUN_TIMEOUT;
+    let deadline = Instant::now() + timeout;
     let mut timed_out = false;
     let status = loop {
         match child.try_wait() {

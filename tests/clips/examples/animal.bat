@@ -1,0 +1,9 @@
+(load "animal.clp")
+(reset)
+(run)
+yes
+yes
+yes
+yes
+yes
+(exit)

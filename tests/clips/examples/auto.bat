@@ -1,0 +1,9 @@
+(load "auto.clp")
+(reset)
+(run)
+no
+yes
+no
+no
+yes
+(exit)

@@ -1,0 +1,4 @@
+(load "cam.clp")
+(reset)
+(run)
+(exit)

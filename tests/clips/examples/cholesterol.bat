@@ -1,0 +1,2 @@
+(batch "loadall")
+(exit)

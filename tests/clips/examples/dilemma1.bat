@@ -1,0 +1,4 @@
+(load "dilemma1.clp")
+(reset)
+(run)
+(exit)

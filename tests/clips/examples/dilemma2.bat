@@ -1,0 +1,4 @@
+(load "dilemma2.clp")
+(reset)
+(run)
+(exit)

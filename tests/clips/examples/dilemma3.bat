@@ -1,0 +1,4 @@
+(load "dilemma3.clp")
+(reset)
+(run)
+(exit)

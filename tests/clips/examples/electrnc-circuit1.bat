@@ -1,0 +1,5 @@
+(load "electrnc.clp")
+(load "circuit1.clp")
+(reset)
+(run)
+(exit)

@@ -1,0 +1,4 @@
+(load "mab.clp")
+(reset)
+(run)
+(exit)

@@ -1,0 +1,5 @@
+(load "nematode.clp")
+(reset)
+(run)
+no
+(exit)

@@ -1,0 +1,10 @@
+(load "rpc.clp")
+(reset)
+(run)
+R
+Yes
+P
+Yes
+S
+No
+(exit)

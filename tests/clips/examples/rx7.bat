@@ -1,0 +1,5 @@
+(load "rx7.clp")
+(reset)
+(run)
+7
+(exit)

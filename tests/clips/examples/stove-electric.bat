@@ -1,0 +1,10 @@
+(load "stove.clp")
+(reset)
+(run)
+1
+yes
+no
+yes
+no
+3
+(exit)

@@ -1,0 +1,5 @@
+(load "stove.clp")
+(reset)
+(run)
+3
+(exit)

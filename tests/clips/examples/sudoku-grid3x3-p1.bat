@@ -1,0 +1,7 @@
+(load "sudoku.clp")
+(load "solve.clp")
+(load "output-simple.clp")
+(load "puzzles/grid3x3-p1.clp")
+(reset)
+(run)
+(exit)

@@ -1,0 +1,7 @@
+(load "sudoku.clp")
+(load "solve.clp")
+(load "output-simple.clp")
+(load "puzzles/grid4x4-p4.clp")
+(reset)
+(run)
+(exit)

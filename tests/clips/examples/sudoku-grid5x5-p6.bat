@@ -1,0 +1,7 @@
+(load "sudoku.clp")
+(load "solve.clp")
+(load "output-simple.clp")
+(load "puzzles/grid5x5-p6.clp")
+(reset)
+(run)
+(exit)

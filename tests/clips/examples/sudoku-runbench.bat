@@ -1,0 +1,2 @@
+(batch "runbench.bat")
+(exit)

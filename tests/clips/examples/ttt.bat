@@ -1,0 +1,19 @@
+(load "ttt.clp")
+(reset)
+(run)
+yes
+1
+1
+2
+2
+3
+3
+1
+3
+3
+1
+2
+1
+1
+2
+(exit)

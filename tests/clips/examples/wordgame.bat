@@ -1,0 +1,4 @@
+(load "wordgame.clp")
+(reset)
+(run)
+(exit)

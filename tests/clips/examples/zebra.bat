@@ -1,0 +1,4 @@
+(load "zebra.clp")
+(reset)
+(run)
+(exit)
