@@ -260,6 +260,9 @@ pub struct State {
     /// Expression nodes of a compiled rule base read in place (feature `in-place`,
     /// `compiled`): node ids below its length are these, the arena's come after.
     pub rom_exprs: &'static [Expr],
+    /// Without the feature `parser`: the code of the builtins the loaded compiled rule
+    /// base calls, by id (see `builtins::code_for`); empty otherwise.
+    pub builtin_code: &'static [crate::builtins::Imp],
     /// Keep each rule's source text for `ppdefrule` (CLIPS's pretty-print forms). A
     /// robot image that never lists its rules turns this off to save the symbol bytes.
     pub keep_pp_forms: bool,
@@ -360,6 +363,7 @@ impl State {
             rng_pos: 0,
             rng_seeded: false,
             rom_exprs: &[],
+            builtin_code: &[],
             keep_pp_forms: true,
         }
     }

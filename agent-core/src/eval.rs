@@ -200,7 +200,7 @@ impl Core<'_> {
             len: 2,
         };
         let b = builtins::get(x.data);
-        let r = match b.imp {
+        let r = match builtins::code_of(self, x.data, b) {
             Imp::Eager(f) => {
                 f(self, args).map_err(|err| self.classify_type_error(b.name, x.first, err))
             }
@@ -452,7 +452,7 @@ impl Core<'_> {
                     }
                 }
                 let b = builtins::get(x.data);
-                match b.imp {
+                match builtins::code_of(self, x.data, b) {
                     Imp::Lazy(f) => f(self, e),
                     Imp::Eager(f) => {
                         let args = self.push_args(x.first)?;
@@ -482,8 +482,8 @@ impl Core<'_> {
     /// when no function has that name, or it is a special form whose arguments are
     /// expressions.
     pub(crate) fn callee(&mut self, name: &str) -> Option<Callee> {
-        if let Some((_, b)) = builtins::lookup(name) {
-            return match b.imp {
+        if let Some((id, b)) = builtins::lookup(name) {
+            return match builtins::code_of(self, id, b) {
                 Imp::Eager(f) => Some(Callee::Builtin(b.name, b.min, b.max, f)),
                 Imp::Lazy(_) => None,
             };

@@ -173,9 +173,69 @@ const fn flatten<const N: usize>() -> [Builtin; N] {
     out
 }
 
+/// How many builtins there are (the ids are `0..COUNT`).
+pub const COUNT: usize = builtin_count();
+
 /// Every builtin, the tables one after another; a function's id is its index: every
 /// call reads its builtin with one index, not two.
-pub static BUILTINS: [Builtin; builtin_count()] = flatten();
+#[cfg(feature = "parser")]
+pub static BUILTINS: [Builtin; COUNT] = flatten();
+
+/// Without `parser` (the agent image) the rows describe the builtins but hold no code:
+/// the code of the builtins a compiled rule base calls comes with it
+/// ([`code_for`], `RuleBase::code`), so the image links only those.
+#[cfg(not(feature = "parser"))]
+pub static BUILTINS: [Builtin; COUNT] = {
+    let mut rows = flatten::<COUNT>();
+    let mut i = 0;
+    while i < COUNT {
+        rows[i].imp = NOT_LINKED;
+        i += 1;
+    }
+    rows
+};
+
+/// The code of a builtin a compiled rule base does not call (see [`code_for`]).
+pub const NOT_LINKED: Imp = Imp::Eager(not_linked);
+
+fn not_linked(_cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
+    Err(EvalError::new(crate::error::EvalErrorKind::NoSuchFunction))
+}
+
+/// The code of builtins `ids`, by id, the others [`NOT_LINKED`]: worked out when the
+/// generated code of a compiled rule base compiles, so only these functions are
+/// referenced (and linked).
+pub const fn code_for(ids: &[Ix]) -> [Imp; COUNT] {
+    const ALL: [Builtin; COUNT] = flatten();
+    let mut out = [NOT_LINKED; COUNT];
+    let mut k = 0;
+    while k < ids.len() {
+        let id = ids[k] as usize;
+        out[id] = ALL[id].imp;
+        k += 1;
+    }
+    out
+}
+
+/// The code of builtin `id` for an engine: its row's, or without `parser` the code the
+/// loaded compiled rule base brought (`State::builtin_code`).
+#[inline(always)]
+pub fn code_of(cx: &Core<'_>, id: Ix, row: &Builtin) -> Imp {
+    #[cfg(feature = "parser")]
+    {
+        let _ = (cx, id);
+        row.imp
+    }
+    #[cfg(not(feature = "parser"))]
+    {
+        let _ = row;
+        cx.st
+            .builtin_code
+            .get(id as usize)
+            .copied()
+            .unwrap_or(NOT_LINKED)
+    }
+}
 
 /// The id of builtin `name`, worked out at compile time (a missing name does not
 /// compile).

@@ -246,6 +246,7 @@ impl Core<'_> {
             self.note_hw(pool, used);
         }
         self.st.trie_ids = base.trie_ids;
+        self.st.builtin_code = base.code;
         // caches keyed by join or network generation start over
         self.st.net_gen = self.st.net_gen.wrapping_add(1).max(1);
         self.st.key_plans = [KeyPlan::NONE; KEY_PLANS];

@@ -45,7 +45,7 @@ use crate::value::Ix;
 /// A rule base compiled ahead of time (see the [module docs](self)): generated Rust
 /// source (`Engine::write_compiled`) defines one as a `static`, and
 /// `Engine::load_compiled` puts it into an engine.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy)]
 pub struct RuleBase {
     /// What it was compiled from (for messages).
     pub name: &'static str,
@@ -64,6 +64,9 @@ pub struct RuleBase {
     pub externals: &'static [&'static str],
     /// Ids given to pattern-network nodes so far (`State::trie_ids`).
     pub trie_ids: Ix,
+    /// The code of the builtins it calls, by id (`builtins::code_for`): an engine
+    /// without the feature `parser` runs these and links no other builtin.
+    pub code: &'static [crate::builtins::Imp],
 }
 
 /// How many entries a compiled rule base fills in each construct pool, as constants
@@ -88,7 +91,7 @@ pub struct Sizes {
 /// What generated code uses: `use agent_core::compiled::gen::*;`.
 pub mod gen {
     pub use super::{RuleBase, Sizes};
-    pub use crate::builtins::builtin_id;
+    pub use crate::builtins::{builtin_id, code_for, Imp, COUNT};
     pub use crate::expr::{Expr, Op};
     pub use crate::rete::{AlphaNode, Join, JoinKind};
     pub use crate::rule::Rule;

@@ -66,6 +66,7 @@ fn loader_refuses_an_engine_with_constructs() {
         deffacts: &[],
         externals: &[],
         trie_ids: 0,
+        code: &[],
     };
     let mut e = std::boxed::Box::new(SmallEngine::new());
     let mut host = crate::NullHost;
@@ -130,4 +131,25 @@ fn facts_built_through_the_api_are_the_parsed_ones() {
         built.assert_fact(&mut host, "supply", &[("", &[Int(4), Symbol("D2")])]),
         Err(crate::EngineError::Duplicate)
     );
+}
+
+#[test]
+fn a_rule_base_brings_the_code_of_the_builtins_it_calls_only() {
+    use crate::builtins::{builtin_id, code_for, Imp, BUILTINS, NOT_LINKED};
+    let same = |a: Imp, b: Imp| match (a, b) {
+        (Imp::Eager(f), Imp::Eager(g)) => f as usize == g as usize,
+        (Imp::Lazy(f), Imp::Lazy(g)) => f as usize == g as usize,
+        _ => false,
+    };
+    let plus = builtin_id("+");
+    let printout = builtin_id("printout");
+    let code = code_for(&[plus, printout]);
+    assert_eq!(code.len(), BUILTINS.len());
+    for (id, imp) in code.iter().enumerate() {
+        if id == plus as usize || id == printout as usize {
+            assert!(same(*imp, BUILTINS[id].imp), "{}", BUILTINS[id].name);
+        } else {
+            assert!(same(*imp, NOT_LINKED), "{}", BUILTINS[id].name);
+        }
+    }
 }

@@ -139,7 +139,16 @@ impl Core<'_> {
         }
         writeln!(out, "],")?;
         writeln!(out, "trie_ids: {},", self.st.trie_ids)?;
+        writeln!(out, "code: &CODE,")?;
         writeln!(out, "}};")?;
+        // only the builtins called: an image links no other
+        write!(out, "static CODE: [Imp; COUNT] = code_for(&[")?;
+        for id in 0..crate::builtins::BUILTINS.len() {
+            if self.calls_builtin(id) {
+                write!(out, "B{id}, ")?;
+            }
+        }
+        writeln!(out, "]);")?;
         writeln!(
             out,
             "pub const SIZES: Sizes = Sizes {{ symbols: {}, symbol_bytes: {}, templates: {}, \
