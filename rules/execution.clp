@@ -6,14 +6,19 @@
 ;;; (skill-outcome) of the same id: FINAL (with the light seen at a
 ;;; machine) or FAILED.  A failure aborts the step: the robot believes it
 ;;; holds nothing and is IDLE again, ready for the next best action.
+;;; Recycling (2012 rules): get-junk takes a junk puck at a machine
+;;; (holding JUNK), recycle brings it to a recycling unit, which turns it
+;;; back into S0 (holding S0).
 
 (deftemplate intent
-  (slot action (type SYMBOL) (allowed-symbols get-s0 finish-puck-at deliver discard))
+  (slot action (type SYMBOL)
+    (allowed-symbols get-s0 finish-puck-at deliver discard get-junk recycle))
   (slot target (type SYMBOL)))
 
 (deftemplate skill-request
   (slot id (type INTEGER))
-  (slot name (type SYMBOL) (allowed-symbols get-s0 finish-puck-at deliver discard))
+  (slot name (type SYMBOL)
+    (allowed-symbols get-s0 finish-puck-at deliver discard get-junk recycle))
   (slot target (type SYMBOL))
   (slot puck (type SYMBOL) (default NONE)))
 
@@ -77,6 +82,47 @@
         (return unknown))
   ?light)
 
+(defrule exec-get-junk-final
+  "Took a junk puck at a machine: one less lies there."
+  (declare (salience ?*PRIORITY_EXEC*))
+  ?s <- (state EXEC)
+  ?r <- (skill-request (id ?id) (name get-junk) (target ?m))
+  ?o <- (skill-outcome (id ?id) (status FINAL))
+  ?h <- (holding ?)
+  ?f <- (machine (name ?m) (junk ?j))
+  ?p <- (robot-at ?)
+  =>
+  (retract ?s ?r ?o ?h ?p)
+  (modify ?f (junk (if (> ?j 0) then (- ?j 1) else 0)))
+  (assert (state IDLE) (holding JUNK) (robot-at ?m)))
+
+(defrule exec-get-junk-none
+  "No junk where the agent believed some: believe none is there (before
+   exec-failed-abort, which handles other failed fetches of junk)."
+  (declare (salience (+ ?*PRIORITY_EXEC* 1)))
+  ?s <- (state EXEC)
+  ?r <- (skill-request (id ?id) (name get-junk) (target ?m))
+  ?o <- (skill-outcome (id ?id) (status FAILED) (info no-junk))
+  ?h <- (holding ?)
+  ?f <- (machine (name ?m))
+  ?p <- (robot-at ?)
+  =>
+  (retract ?s ?r ?o ?h ?p)
+  (modify ?f (junk 0))
+  (assert (state IDLE) (holding NONE) (robot-at ?m)))
+
+(defrule exec-recycle-final
+  "The recycling unit turned the junk back into a raw puck, now held."
+  (declare (salience ?*PRIORITY_EXEC*))
+  ?s <- (state EXEC)
+  ?r <- (skill-request (id ?id) (name recycle) (target ?t))
+  ?o <- (skill-outcome (id ?id) (status FINAL))
+  ?h <- (holding ?)
+  ?p <- (robot-at ?)
+  =>
+  (retract ?s ?r ?o ?h ?p)
+  (assert (state IDLE) (holding S0) (robot-at ?t)))
+
 (defrule exec-finish-puck-final
   "Arrived with the puck: the world model reads the light (checked against
    the gripper's puck sensor)."
@@ -117,7 +163,7 @@
   (assert (state IDLE) (holding NONE) (s0-taken (+ ?n 1)) (robot-at ?t)))
 
 (defrule exec-failed-abort
-  "The behaviour layer gave up carrying a puck: abort, believe the puck is
+  "The behaviour layer gave up carrying a puck (or fetching junk): abort, believe the puck is
    gone (machine beliefs stay: it was lost on the way), go idle."
   (declare (salience ?*PRIORITY_EXEC*))
   ?s <- (state EXEC)
@@ -130,11 +176,26 @@
   (assert (state IDLE) (holding NONE) (robot-at ?t)))
 
 (defrule exec-nothing-left
-  "Empty hands and an empty input storage: the agent is done."
+  "Empty hands, an empty input storage and no junk to recycle: the agent
+   is done."
   (declare (salience ?*PRIORITY_DONE*))
   ?s <- (state IDLE)
   (holding NONE)
   (input-storage empty)
+  (not (machine (junk ?j&:(> ?j 0))))
+  (not (intent))
+  =>
+  (retract ?s)
+  (assert (state DONE)))
+
+(defrule exec-nothing-left-unrecyclable
+  "The same for an executor that cannot carry junk (no-recycling): junk
+   left at machines does not keep the agent busy."
+  (declare (salience ?*PRIORITY_DONE*))
+  ?s <- (state IDLE)
+  (holding NONE)
+  (input-storage empty)
+  (no-recycling)
   (not (intent))
   =>
   (retract ?s)

@@ -3,7 +3,9 @@
 ;;; When IDLE: empty hands fetch a raw puck, a P goes to the active gate,
 ;;; and any other puck opens a (goto) target search that the strategy's
 ;;; candidate rules fill.  A puck nothing can use is discarded at the
-;;; nearest recycling unit so the robot never stalls.
+;;; nearest recycling unit so the robot never stalls.  Junk left at a
+;;; machine by a production is taken to a recycling unit before the next
+;;; raw puck is fetched: it scores and comes back as a raw puck.
 
 (deftemplate goto
   "Candidate targets for the held puck; only those of the highest machine
@@ -22,8 +24,22 @@
      then (bind ?best ?p) (bind ?best-d ?d)))
   ?best)
 
+(deffunction nearest-junk
+  "The machine with junk closest to ?from; lower index wins ties."
+  (?from)
+  (bind ?best nil)
+  (bind ?best-d 0.0)
+  (bind ?best-i 0)
+  (do-for-all-facts ((?m machine)) (> ?m:junk 0)
+    (bind ?d (place-distance ?from ?m:name))
+    (if (or (eq ?best nil) (< ?d ?best-d)
+            (and (= ?d ?best-d) (< ?m:index ?best-i)))
+     then (bind ?best ?m:name) (bind ?best-d ?d) (bind ?best-i ?m:index)))
+  ?best)
+
 (defrule prod-get-s0
-  "Empty hands: fetch a raw puck from the input storage."
+  "Empty hands: fetch a raw puck from the input storage (known junk goes
+   first, see prod-get-junk)."
   (declare (salience ?*PRIORITY_CANDIDATE*))
   (state IDLE)
   (holding NONE)
@@ -31,6 +47,31 @@
   (not (intent))
   =>
   (assert (intent (action get-s0) (target INS))))
+
+(defrule prod-get-junk
+  "Empty hands and junk lying at a machine: recycling it scores (2012: +3
+   per T2 production, +6 per T3) and gives a raw puck back, so it comes
+   before the input storage.  The nearest junk first.  An executor that
+   cannot carry junk yet asserts (no-recycling)."
+  (declare (salience ?*PRIORITY_RECYCLE*))
+  (state IDLE)
+  (holding NONE)
+  (not (no-recycling))
+  (exists (machine (junk ?j&:(> ?j 0))))
+  (robot-at ?here)
+  (not (intent))
+  =>
+  (assert (intent (action get-junk) (target (nearest-junk ?here)))))
+
+(defrule prod-recycle
+  "Holding junk: to the nearest recycling unit, which returns an S0."
+  (declare (salience ?*PRIORITY_CANDIDATE*))
+  (state IDLE)
+  (holding JUNK)
+  (robot-at ?here)
+  (not (intent))
+  =>
+  (assert (intent (action recycle) (target (nearest-of ?here R1 R2)))))
 
 (defrule prod-deliver-p
   "A finished product goes to the active delivery gate."

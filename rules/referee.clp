@@ -8,6 +8,23 @@
 ;;; scores.  Setup facts the host asserts before (run): (rf-machine (name)
 ;;; (type)) x10, and optionally (rf-times ...), (s0-supply N),
 ;;; (active-gate Dk), (game-clock ...); missing ones get defaults.
+;;;
+;;; Recycling (2012 rulebook, robocup-logistics/rcll-rulebook, first commit,
+;;; rulebook2012.tex: "Recycling Unit" and the scoring table): a T2's
+;;; production leaves one consumed puck (junk) at the machine, a T3's two.
+;;; A robot may take junk from a machine (rf-action take-junk) and bring it
+;;; to a recycling unit R1/R2 (rf-action recycle): "The recycling unit
+;;; processes all supplied loading carriers back to raw-material (S0) within
+;;; 2 seconds", so the robot leaves with an S0 it can use again.  Points:
+;;; "Clean up a polluted machine (M2 or M3) by recycling all of the consumed
+;;; loading carriers.  Partial recycling (M3) will not be rewarded": +3 for
+;;; the junk of a T2 production, +6 once both junk pucks of a T3 production
+;;; are recycled (counted per machine: any two of its junk make a pair).
+;;; Delivered pucks leave the game ("cannot be recycled").  The rulebook
+;;; turns any puck brought to a recycling unit into S0; here only junk is
+;;; recycled (rf-recycle-refused): the agent discards a puck it cannot use
+;;; (unknown after a misread light) rather than recycle it.  The referee knows which machine the junk a robot carries came from
+;;; (rf-junk-held), so rf-action names the robot (1 when one robot plays).
 
 (defglobal ?*RF_SALIENCE* = 500)
 
@@ -15,7 +32,8 @@
   (slot name (type SYMBOL))
   (slot type (type SYMBOL) (allowed-symbols T1 T2 T3))
   (multislot loaded-with (type SYMBOL) (allowed-symbols S0 S1 S2))
-  (slot junk (type INTEGER) (default 0))
+  (slot junk (type INTEGER) (default 0))          ; junk pucks lying there
+  (slot recycled (type INTEGER) (default 0))      ; of a T3 pair, recycled so far
   (slot productions (type INTEGER) (default 0)))
 
 (deftemplate rf-times
@@ -24,7 +42,8 @@
   (slot t1 (type NUMBER) (default 5.5))
   (slot t2 (type NUMBER) (default 20.0))
   (slot t3 (type NUMBER) (default 50.0))
-  (slot per-input (type NUMBER) (default 2.0)))
+  (slot per-input (type NUMBER) (default 2.0))
+  (slot recycle (type NUMBER) (default 2.0)))
 
 (deftemplate rf-storage
   (slot s0 (type INTEGER)))
@@ -42,13 +61,21 @@
   (slot delivered (type INTEGER) (default 0))
   (slot wrong-gate (type INTEGER) (default 0))
   (slot lost (type INTEGER) (default 0))
-  (slot discarded (type INTEGER) (default 0)))
+  (slot discarded (type INTEGER) (default 0))
+  (slot recycled (type INTEGER) (default 0)))     ; junk pucks recycled
 
 (deftemplate rf-action
   (slot id (type INTEGER))
-  (slot kind (type SYMBOL) (allowed-symbols get-s0 load deliver discard lose))
+  (slot kind (type SYMBOL)
+    (allowed-symbols get-s0 load deliver discard lose take-junk recycle))
   (slot target (type SYMBOL))
-  (slot puck (type SYMBOL) (default NONE)))
+  (slot puck (type SYMBOL) (default NONE))
+  (slot robot (type INTEGER) (default 1)))
+
+(deftemplate rf-junk-held
+  "Robot ?robot carries a junk puck taken from machine ?from."
+  (slot robot (type INTEGER))
+  (slot from (type SYMBOL)))
 
 (deftemplate rf-result
   (slot id (type INTEGER))
@@ -79,6 +106,16 @@
 (deffunction rf-process-time (?type ?t1 ?t2 ?t3)
   (switch ?type (case T1 then ?t1) (case T2 then ?t2) (case T3 then ?t3)
     (default 0.0)))
+
+(deffunction rf-junk-per-production
+  "Junk pucks one production leaves: the inputs but the converted one."
+  (?type)
+  (switch ?type (case T2 then 1) (case T3 then 2) (default 0)))
+
+(deffunction rf-recycle-points
+  "2012 points for recycling all junk of one production: T2 +3, T3 +6."
+  (?type)
+  (switch ?type (case T2 then 3) (case T3 then 6) (default 0)))
 
 (deffunction rf-output-points
   "2012 points for producing: S2 +4, P +12."
@@ -232,6 +269,15 @@
   (modify ?s (discarded (+ ?d 1)))
   (assert (rf-result (id ?id) (status ok))))
 
+(defrule rf-junk-leaves-robot
+  "Junk lost, dropped or driven into a gate: that robot carries none now
+   (the machine it came from cannot be cleaned up with it)."
+  (declare (salience (+ ?*RF_SALIENCE* 1)))
+  (rf-action (kind lose|discard|deliver) (puck JUNK) (robot ?r))
+  ?h <- (rf-junk-held (robot ?r))
+  =>
+  (retract ?h))
+
 (defrule rf-lose-carried-puck
   (declare (salience ?*RF_SALIENCE*))
   ?a <- (rf-action (id ?id) (kind lose) (puck ?x&~NONE))
@@ -244,7 +290,8 @@
 (defrule rf-lose-fetched-puck
   "Lost right after taking it from the input storage."
   (declare (salience ?*RF_SALIENCE*))
-  ?a <- (rf-action (id ?id) (kind lose) (puck NONE))
+  ?a <- (rf-action (id ?id) (kind lose) (target ?t) (puck NONE))
+  (not (rf-machine (name ?t)))
   ?st <- (rf-storage (s0 ?n))
   ?s <- (score (lost ?l))
   =>
@@ -253,3 +300,69 @@
    then (modify ?st (s0 (- ?n 1)))
         (modify ?s (lost (+ ?l 1))))
   (assert (rf-result (id ?id) (status ok))))
+
+(defrule rf-lose-fetched-junk
+  "Lost right after taking junk from a machine: it is gone from there."
+  (declare (salience ?*RF_SALIENCE*))
+  ?a <- (rf-action (id ?id) (kind lose) (target ?m) (puck NONE))
+  ?f <- (rf-machine (name ?m) (junk ?j))
+  ?s <- (score (lost ?l))
+  =>
+  (retract ?a)
+  (if (> ?j 0)
+   then (modify ?f (junk (- ?j 1)))
+        (modify ?s (lost (+ ?l 1))))
+  (assert (rf-result (id ?id) (status ok))))
+
+;;; ---- recycling (2012 rulebook, see the header) ---------------------------
+
+(defrule rf-take-junk
+  "A robot with empty hands takes a junk puck lying at a machine."
+  (declare (salience ?*RF_SALIENCE*))
+  ?a <- (rf-action (id ?id) (kind take-junk) (target ?m) (robot ?r))
+  ?f <- (rf-machine (name ?m) (junk ?j&:(> ?j 0)))
+  =>
+  (retract ?a)
+  (modify ?f (junk (- ?j 1)))
+  (assert (rf-junk-held (robot ?r) (from ?m))
+          (rf-result (id ?id) (status ok) (puck JUNK))))
+
+(defrule rf-take-junk-none
+  "No junk at that place: nothing to take."
+  (declare (salience (- ?*RF_SALIENCE* 1)))
+  ?a <- (rf-action (id ?id) (kind take-junk))
+  =>
+  (retract ?a)
+  (assert (rf-result (id ?id) (status empty))))
+
+(defrule rf-recycle-junk
+  "Junk brought to a recycling unit: back to S0 after the recycling time;
+   the last junk of a production scores that production's recycling."
+  (declare (salience ?*RF_SALIENCE*))
+  ?a <- (rf-action (id ?id) (kind recycle) (target R1|R2) (puck JUNK) (robot ?r))
+  ?h <- (rf-junk-held (robot ?r) (from ?m))
+  ?f <- (rf-machine (name ?m) (type ?t) (recycled ?n))
+  (rf-times (recycle ?w))
+  ?c <- (game-clock (time ?now) (limit ?lim) (enabled ?on))
+  ?s <- (score (points ?pts) (recycled ?rc))
+  =>
+  (retract ?a)
+  (if (and (eq ?on TRUE) (> (+ ?now ?w) ?lim))
+   then (assert (rf-result (id ?id) (status late) (puck JUNK))
+                (game-over (reason time) (time ?lim)))
+   else (retract ?h)
+        (bind ?all (>= (+ ?n 1) (rf-junk-per-production ?t)))
+        (modify ?f (recycled (if ?all then 0 else (+ ?n 1))))
+        (modify ?s (points (+ ?pts (if ?all then (rf-recycle-points ?t) else 0)))
+                (recycled (+ ?rc 1)))
+        (modify ?c (time (+ ?now ?w)))
+        (assert (rf-result (id ?id) (status ok) (puck S0) (wait ?w)))))
+
+(defrule rf-recycle-refused
+  "Anything but junk that robot took from a machine: nothing recycled (the
+   agent discards other pucks, see the header)."
+  (declare (salience (- ?*RF_SALIENCE* 1)))
+  ?a <- (rf-action (id ?id) (kind recycle))
+  =>
+  (retract ?a)
+  (assert (rf-result (id ?id) (status empty))))

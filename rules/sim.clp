@@ -44,6 +44,8 @@
     (case get-s0 then get-s0)
     (case finish-puck-at then load)
     (case deliver then deliver)
+    (case get-junk then take-junk)
+    (case recycle then recycle)
     (default discard)))
 
 (deffunction sim-fault-kind
@@ -56,6 +58,7 @@
     (if (eq ?kind drawn)
      then (bind ?fits (switch ?skill
                         (case get-s0 then (create$ lose-puck drive-fail grab-fail))
+                        (case get-junk then (create$ lose-puck drive-fail grab-fail))
                         (case finish-puck-at then (create$ lose-puck drive-fail wrong-light))
                         (default (create$ lose-puck drive-fail))))
           (bind ?kind (nth$ (+ 1 (mod ?f:draw (length$ ?fits))) ?fits))))
@@ -110,7 +113,7 @@
   (sim-robot (puck ?held))
   =>
   (bind ?fault (sim-fault-kind ?id ?a))
-  (bind ?fetch (eq ?a get-s0))
+  (bind ?fetch (or (eq ?a get-s0) (eq ?a get-junk)))
   (if (and (not ?fetch) (eq ?held NONE))
    then ;; nothing to carry (the agent misjudged what it holds): fail
         (modify ?s (phase asked) (failed TRUE))
@@ -156,7 +159,7 @@
   (bind ?now (if ?fail then NONE else ?after))
   (modify ?r (puck ?now))
   (bind ?info (if (eq ?st empty)
-               then storage-empty
+               then (if (eq ?a get-junk) then no-junk else storage-empty)
                else (if (and (not ?fail) (eq ?a finish-puck-at))
                      then (if (eq ?now NONE) then no-puck else puck-held)
                      else none)))

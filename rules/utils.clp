@@ -13,6 +13,7 @@
   ?*PRIORITY_WM_CLEANUP* = 150  ; unhandled evaluation, back to IDLE
   ?*PRIORITY_EXEC* = 100        ; execution monitoring
   ?*PRIORITY_LOG* = 60          ; simulation: decision log after beliefs settle
+  ?*PRIORITY_RECYCLE* = 55      ; production: junk to recycle before a raw puck
   ?*PRIORITY_CANDIDATE* = 50    ; production: collect candidate targets
   ?*PRIORITY_SELECT* = 40       ; production: commit to one candidate
   ?*PRIORITY_FALLBACK* = 30     ; production: nothing fits the held puck

@@ -2,7 +2,7 @@
 ;;;
 ;;; Beliefs: a machine fact per machine (type belief, loaded pucks, junk,
 ;;; productions), (holding X) for the puck the robot carries (NONE, S0,
-;;; S1, S2, P), (robot-at PLACE), (s0-taken N) and (input-storage empty).
+;;; S1, S2, P, JUNK from a machine, UNKNOWN), (robot-at PLACE), (s0-taken N) and (input-storage empty).
 ;;; Updates run after finish-puck-at ended FINAL: execution monitoring sets
 ;;; (state GOTO-FINAL), (goto-target M) and (light L).  First the light
 ;;; tells what the robot holds now (wm-light-*, which assert a wm-eval),

@@ -113,6 +113,16 @@ fn the_fault_table_has_a_row_per_strategy_and_rate() {
         // deadlocks, stalls, panics
         assert_eq!(&cells[10..13], ["0", "0", "0"], "{row}");
     }
-    // Without faults the paper's agent makes its 105 points in each game.
-    assert!(out.contains("| paper | 0 | 3 | 105.00 | 105 |"), "{out}");
+    // Without faults the paper's agent makes at least the 105 points of a game without
+    // recycling in each game (20 S0 make 5 P; recycled junk scores and makes more).
+    let row = out
+        .lines()
+        .find(|l| l.starts_with("| paper | 0 | 3 |"))
+        .unwrap_or_else(|| panic!("no fault-free paper row:\n{out}"));
+    let min: i64 = row
+        .split('|')
+        .nth(5)
+        .and_then(|c| c.trim().parse().ok())
+        .unwrap_or(0);
+    assert!(min >= 105, "{row}");
 }

@@ -26,7 +26,7 @@ fn field<'a>(result: &'a str, name: &str) -> &'a str {
 }
 
 #[test]
-fn three_robots_make_what_one_makes_sooner_without_double_claims() {
+fn three_robots_make_more_than_one_without_double_claims() {
     let (ok, one, err) = agent(&["sim", "--seed", "0"]);
     assert!(ok, "{err}");
     let one_result = one.lines().find(|l| l.starts_with("RESULT")).unwrap_or("");
@@ -37,12 +37,16 @@ fn three_robots_make_what_one_makes_sooner_without_double_claims() {
         .find(|l| l.starts_with("RESULT"))
         .unwrap_or_else(|| panic!("no RESULT line:\n{team}"));
     assert_eq!(field(result, "double-claims"), "0", "{result}");
-    assert_eq!(field(result, "end"), "done", "{result}");
-    assert_eq!(
-        field(result, "points"),
-        field(one_result, "points"),
+    // With 2012 recycling the pucks come back, so the clock ends both games and the
+    // team's saved time becomes points: at least 1.3 times one robot's (the issue's
+    // target for the team).
+    assert_eq!(field(result, "end"), "time", "{result}");
+    let points = |r: &str| field(r, "points").parse::<f64>().unwrap_or(0.0);
+    assert!(
+        points(result) >= 1.3 * points(one_result),
         "{result}\n{one_result}"
     );
+    assert_ne!(field(result, "recycled"), "0", "{result}");
     // Every robot worked.
     for r in 1..=3 {
         let line = team
@@ -51,12 +55,6 @@ fn three_robots_make_what_one_makes_sooner_without_double_claims() {
             .unwrap_or_else(|| panic!("no robot {r} line:\n{team}"));
         assert!(!line.contains(": 0 skills"), "{line}");
     }
-    let team_end: f64 = field(result, "time").parse().unwrap_or(f64::MAX);
-    let one_end: f64 = field(one_result, "time").parse().unwrap_or(0.0);
-    assert!(
-        team_end < one_end,
-        "team ends at {team_end} s, one robot at {one_end} s"
-    );
 }
 
 #[test]

@@ -19,6 +19,6 @@
   (bind ?metres 0.0)
   (do-for-fact ((?r sim-robot)) TRUE (bind ?metres ?r:travelled))
   (do-for-fact ((?s score)) TRUE
-    (format t "RESULT points %d s1 %d s2 %d p %d delivered %d lost %d discarded %d end %s time %.1f decisions %d travel %.1f%n"
+    (format t "RESULT points %d s1 %d s2 %d p %d delivered %d lost %d discarded %d recycled %d end %s time %.1f decisions %d travel %.1f%n"
       ?s:points ?s:s1 ?s:s2 ?s:p ?s:delivered ?s:lost ?s:discarded
-      ?reason ?time ?decisions ?metres)))
+      ?s:recycled ?reason ?time ?decisions ?metres)))

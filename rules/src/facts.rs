@@ -49,7 +49,7 @@ macro_rules! symbol_enum {
 
 symbol_enum!(
     /// What the robot can hold.
-    Puck { None => "NONE", S0 => "S0", S1 => "S1", S2 => "S2", P => "P" }
+    Puck { None => "NONE", S0 => "S0", S1 => "S1", S2 => "S2", P => "P", Junk => "JUNK" }
 );
 
 symbol_enum!(
@@ -72,6 +72,8 @@ symbol_enum!(
         FinishPuckAt => "finish-puck-at",
         Deliver => "deliver",
         Discard => "discard",
+        GetJunk => "get-junk",
+        Recycle => "recycle",
     }
 );
 

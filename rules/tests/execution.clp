@@ -42,3 +42,44 @@
 (run)
 (t-expect-state "exec storage empty: DONE" DONE)
 (t-expect-no-request "exec storage empty: no more requests")
+
+;; Recycling: known junk comes before the input storage, nearest first.
+(reset)
+(t-at M1)
+(do-for-fact ((?m machine)) (eq ?m:name M8) (modify ?m (mtype T3) (junk 2)))
+(do-for-fact ((?m machine)) (eq ?m:name M4) (modify ?m (mtype T2) (junk 1)))
+(run)
+(t-expect-request "exec junk known: fetch the nearest junk" get-junk M4)
+
+;; Junk taken: holding JUNK, one less there, off to the nearest unit.
+(reset)
+(do-for-fact ((?m machine)) (eq ?m:name M2) (modify ?m (mtype T2) (junk 1)))
+(t-outcome get-junk M2 FINAL none)
+(run)
+(t-expect-holding "exec junk taken: holding JUNK" JUNK)
+(t-expect-junk "exec junk taken: none left at M2" M2 0 0)
+(t-expect-request "exec junk taken: to the nearest recycling unit" recycle R1)
+
+;; No junk where believed: believe none, fetch a raw puck instead.
+(reset)
+(do-for-fact ((?m machine)) (eq ?m:name M9) (modify ?m (mtype T3) (junk 2)))
+(t-outcome get-junk M9 FAILED none)
+(do-for-all-facts ((?o skill-outcome)) TRUE (modify ?o (info no-junk)))
+(run)
+(t-expect-junk "exec no junk: believe none" M9 0 0)
+(t-expect-request "exec no junk: fetch a raw puck" get-s0 INS)
+
+;; Recycled: the unit hands back an S0, which goes to production.
+(reset)
+(t-holding JUNK)
+(t-outcome recycle R2 FINAL none)
+(run)
+(t-expect-holding "exec recycled: holding S0" S0)
+(t-expect-request "exec recycled: the S0 explores M1" finish-puck-at M1)
+
+;; Storage empty but junk known: not done, recycle it.
+(reset)
+(assert (input-storage empty))
+(do-for-fact ((?m machine)) (eq ?m:name M5) (modify ?m (mtype T2) (junk 1)))
+(run)
+(t-expect-request "exec storage empty, junk known: fetch junk" get-junk M5)

@@ -10,12 +10,15 @@
   (rf-machine (name M9) (type T1)) (rf-machine (name M10) (type T1))
   (active-gate D1))
 
-;; Clock off: 20 S0 make 5 P, the agent ends DONE.
+;; Clock off: 20 S0 make 5 P and 15 junk; recycled, the junk makes more.
+;; Every P leaves the game at the gate, so 20 pucks make 18 P (the last
+;; two are left half-made: an S1 and an S0 cannot make a P); all junk
+;; recycled: 18 x (12 + 5 + 6) + 19 S2 x (4 + 3) = 547.
 (reset)
 (assert (game-clock (enabled FALSE)))
 (run)
 (t-expect-game-over "game clock off: agent done" done)
-(t-expect-score "game clock off: 5 P, 105 points" 105 5)
+(t-expect-score "game clock off: 18 P, 547 points" 547 18)
 (t-report (= (length$ (find-all-facts ((?d decision)) TRUE))
              (length$ (find-all-facts ((?d decision)) (> ?d:n 0))))
           "game decisions logged" "")
@@ -29,8 +32,8 @@
 (t-expect-game-over "game with faults: agent done" done)
 (do-for-fact ((?s score)) TRUE
   ;; decision 2 carries an S0 (lost); decision 5 is a fetch that never
-  ;; reaches the storage (nothing taken): 19 S0 left make 4 P.
-  (t-report (and (= ?s:lost 1) (= ?s:p 4)) "game with faults: 1 lost, 4 P"
+  ;; reaches the storage (nothing taken): 19 pucks left make 17 P.
+  (t-report (and (= ?s:lost 1) (= ?s:p 17)) "game with faults: 1 lost, 17 P"
             (str-cat "lost " ?s:lost " P " ?s:p)))
 (do-for-fact ((?d decision)) (= ?d:n 2)
   (t-report (and (eq ?d:status FAILED) (eq ?d:holding NONE))

@@ -51,6 +51,41 @@
 (do-for-fact ((?c game-clock)) TRUE
   (t-report (= ?c:time 81.5) "referee clock: 5.5 + 20 + 50 + 3 x 2 s"
             (str-cat "time " ?c:time)))
+;; Recycling (2012): the junk of a T2 scores 3, a T3's two junk score 6
+;; together (half of it nothing); the recycling unit returns an S0.
+(assert (rf-action (id 13) (kind take-junk) (target M2)))
+(run)
+(t-expect-result "referee junk taken at the T2" 13 ok none JUNK)
+(assert (rf-action (id 14) (kind take-junk) (target M2) (robot 2)))
+(run)
+(t-expect-result "referee the T2 left one junk only" 14 empty none NONE)
+(assert (rf-action (id 15) (kind recycle) (target R1) (puck JUNK)))
+(run)
+(t-expect-result "referee recycling returns an S0" 15 ok none S0)
+(t-expect-score "referee the T2's junk recycled scores 3" 24 1)
+(assert (rf-action (id 16) (kind take-junk) (target M3)))
+(run)
+(assert (rf-action (id 17) (kind recycle) (target R2) (puck JUNK)))
+(run)
+(t-expect-score "referee half the T3's junk: no points" 24 1)
+(assert (rf-action (id 18) (kind take-junk) (target M3) (robot 3)))
+(run)
+(assert (rf-action (id 19) (kind recycle) (target R2) (puck JUNK) (robot 3)))
+(run)
+(t-expect-score "referee all the T3's junk scores 6" 30 1)
+(do-for-fact ((?s score)) TRUE
+  (t-report (= ?s:recycled 3) "referee three junk pucks recycled"
+            (str-cat "recycled " ?s:recycled)))
+(assert (rf-action (id 20) (kind take-junk) (target M1)))
+(run)
+(t-expect-result "referee a T1 leaves no junk" 20 empty none NONE)
+(assert (rf-action (id 21) (kind recycle) (target R1) (puck S1)))
+(run)
+(t-expect-result "referee only junk is recycled" 21 empty none NONE)
+(t-expect-score "referee a refused puck scores nothing" 30 1)
+(do-for-fact ((?c game-clock)) TRUE
+  (t-report (= ?c:time 87.5) "referee clock: 3 recycling runs of 2 s"
+            (str-cat "time " ?c:time)))
 
 ;; Processing that would end after the limit does not count.
 (reset)

@@ -85,6 +85,9 @@ impl EngineAgent {
             rules.assert("(team-clock (now 0.0))")?;
             rules.assert(&format!("(s0-supply {})", seat.s0_supply))?;
         }
+        // The behaviour layer cannot take junk from a machine or work a recycling unit
+        // yet: the rules leave junk where it is (rules/production-common.clp).
+        rules.assert("(no-recycling)")?;
         Ok(Self {
             rules,
             handed_out: None,

@@ -55,6 +55,8 @@ pub struct Score {
     pub wrong_gate: i64,
     pub lost: i64,
     pub discarded: i64,
+    /// Junk pucks brought to a recycling unit (2012 recycling).
+    pub recycled: i64,
 }
 
 /// How the game ended (`game-over` reason), or that the engine stopped
@@ -107,7 +109,7 @@ impl GameRecord {
     pub fn result_line(&self) -> String {
         let s = &self.score;
         format!(
-            "RESULT points {} s1 {} s2 {} p {} delivered {} lost {} discarded {} end {} time {:.1} decisions {} travel {:.1}",
+            "RESULT points {} s1 {} s2 {} p {} delivered {} lost {} discarded {} recycled {} end {} time {:.1} decisions {} travel {:.1}",
             s.points,
             s.s1,
             s.s2,
@@ -115,6 +117,7 @@ impl GameRecord {
             s.delivered,
             s.lost,
             s.discarded,
+            s.recycled,
             match self.end {
                 EndReason::Stalled => "none",
                 other => other.name(),
@@ -209,6 +212,7 @@ fn read_score(engine: &DefaultEngine, id: FactId) -> Result<Score, SimError> {
         wrong_gate: slot_int(engine, id, "wrong-gate")?,
         lost: slot_int(engine, id, "lost")?,
         discarded: slot_int(engine, id, "discarded")?,
+        recycled: slot_int(engine, id, "recycled")?,
     })
 }
 

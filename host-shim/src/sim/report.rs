@@ -161,8 +161,8 @@ pub fn render(record: &GameRecord, title: &str) -> String {
     let s = &record.score;
     let _ = writeln!(
         out,
-        "\nproducts: S1 {}, S2 {}, P {} (delivered {}, at a wrong gate {}); pucks lost {}, discarded {}",
-        s.s1, s.s2, s.p, s.delivered, s.wrong_gate, s.lost, s.discarded
+        "\nproducts: S1 {}, S2 {}, P {} (delivered {}, at a wrong gate {}); pucks lost {}, discarded {}, junk recycled {}",
+        s.s1, s.s2, s.p, s.delivered, s.wrong_gate, s.lost, s.discarded, s.recycled
     );
     let _ = writeln!(out, "travel: {:.1} m", record.travelled);
     let _ = writeln!(

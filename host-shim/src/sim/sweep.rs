@@ -76,6 +76,8 @@ pub struct GameSummary {
     pub travelled: f64,
     pub lost: i64,
     pub discarded: i64,
+    /// Junk pucks recycled (2012 recycling).
+    pub recycled: i64,
     /// The engine thread panicked during this game (always a bug).
     pub panicked: bool,
 }
@@ -94,6 +96,7 @@ impl GameSummary {
             travelled: r.travelled,
             lost: r.score.lost,
             discarded: r.score.discarded,
+            recycled: r.score.recycled,
             panicked: false,
         }
     }
@@ -111,6 +114,7 @@ impl GameSummary {
             travelled: 0.0,
             lost: 0,
             discarded: 0,
+            recycled: 0,
             panicked: true,
         }
     }
@@ -323,6 +327,11 @@ pub fn summarize(config: SweepConfig, games: &[GameSummary], seconds: f64) -> St
             mean(games.iter().map(|g| g.discarded as f64))
         );
     }
+    let _ = writeln!(
+        out,
+        "junk recycled per game {:.2}",
+        mean(games.iter().map(|g| g.recycled as f64))
+    );
     let ends = distribution(games.iter().map(|g| match g.end {
         EndReason::Time => 0,
         EndReason::Done => 1,
@@ -346,7 +355,7 @@ pub fn summarize(config: SweepConfig, games: &[GameSummary], seconds: f64) -> St
     if clock_off {
         let _ = writeln!(
             out,
-            "P made per 20 S0 (clock off): mean {:.3}, games with 5 P: {} of {n}",
+            "P made per 20 S0 (clock off, junk recycled): mean {:.3}, games with 5 P or more: {} of {n}",
             mean(games.iter().map(|g| g.p as f64)),
             count(&|g| g.p >= 5)
         );

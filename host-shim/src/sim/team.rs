@@ -74,6 +74,7 @@ pub struct TeamRecord {
     pub delivered: i64,
     pub lost: i64,
     pub discarded: i64,
+    pub recycled: i64,
     pub end_time: f64,
     /// `done` (every robot done), `time` (the clock), `stuck` (nobody can act: a bug).
     pub end: String,
@@ -201,6 +202,7 @@ impl World {
     fn act(
         &mut self,
         t: f64,
+        robot: usize,
         kind: &str,
         target: &str,
         puck: &str,
@@ -211,7 +213,7 @@ impl World {
             "(do-for-fact ((?c game-clock)) TRUE (modify ?c (time {t:?})))"
         ))?;
         self.assert(&format!(
-            "(rf-action (id {id}) (kind {kind}) (target {target}) (puck {puck}))"
+            "(rf-action (id {id}) (kind {kind}) (target {target}) (puck {puck}) (robot {robot}))"
         ))?;
         self.run()?;
         let result = self
@@ -432,7 +434,7 @@ impl TeamPlayer {
                         };
                         b.at = skill.target.clone();
                         let (phase, status, light) =
-                            self.act(b, id, t, &skill.action, &skill.target, limit)?;
+                            self.act(b, i + 1, id, t, &skill.action, &skill.target, limit)?;
                         let b = &mut bodies[i];
                         if let Some(s) = b.current.as_mut() {
                             s.status = status;
@@ -501,6 +503,7 @@ impl TeamPlayer {
             record.delivered = w.int(id, "delivered");
             record.lost = w.int(id, "lost");
             record.discarded = w.int(id, "discarded");
+            record.recycled = w.int(id, "recycled");
         }
         Ok(record)
     }
@@ -537,20 +540,24 @@ impl TeamPlayer {
 
     /// Robot at its skill's place: the referee round trip, as `sim.clp` does it.
     /// Returns the next phase, the status and the light.
+    #[allow(clippy::too_many_arguments)]
     fn act(
         &mut self,
         b: &mut Body,
+        robot: usize,
         id: i64,
         t: f64,
         action: &str,
         target: &str,
         limit: Option<f64>,
     ) -> Result<(Phase, String, String), SimError> {
-        let fetch = action == "get-s0";
+        let fetch = matches!(action, "get-s0" | "get-junk");
         let kind = match action {
             "get-s0" => "get-s0",
             "finish-puck-at" => "load",
             "deliver" => "deliver",
+            "get-junk" => "take-junk",
+            "recycle" => "recycle",
             _ => "discard",
         };
         let failed = |b: &mut Body| {
@@ -569,10 +576,10 @@ impl TeamPlayer {
             return Ok(failed(b));
         }
         if fetch && b.puck != "NONE" {
-            self.world.act(t, "lose", target, &b.puck)?;
+            self.world.act(t, robot, "lose", target, &b.puck)?;
             return Ok(failed(b));
         }
-        let (status, light, after, wait) = self.world.act(t, kind, target, &b.puck)?;
+        let (status, light, after, wait) = self.world.act(t, robot, kind, target, &b.puck)?;
         let done = t + wait;
         if status == "late" || limit.is_some_and(|l| done > l) {
             return Ok((Phase::Stopped, "late".into(), light));
@@ -583,7 +590,11 @@ impl TeamPlayer {
                 Phase::Working {
                     id,
                     done,
-                    outcome: "(status FAILED) (info storage-empty)".into(),
+                    outcome: if action == "get-junk" {
+                        "(status FAILED) (info no-junk)".into()
+                    } else {
+                        "(status FAILED) (info storage-empty)".into()
+                    },
                 },
                 "FAILED".into(),
                 "none".into(),
@@ -652,7 +663,7 @@ pub fn render(r: &TeamRecord, title: &str, robots: usize) -> String {
     }
     let _ = writeln!(
         out,
-        "RESULT points {} s1 {} s2 {} p {} delivered {} lost {} discarded {} end {} time {:.1} double-claims {} stalls {}",
+        "RESULT points {} s1 {} s2 {} p {} delivered {} lost {} discarded {} recycled {} end {} time {:.1} double-claims {} stalls {}",
         r.points,
         r.s1,
         r.s2,
@@ -660,6 +671,7 @@ pub fn render(r: &TeamRecord, title: &str, robots: usize) -> String {
         r.delivered,
         r.lost,
         r.discarded,
+        r.recycled,
         r.end,
         r.end_time,
         r.double_claims,

@@ -28,9 +28,10 @@ const FIRE_LIMIT: u32 = 500_000;
 /// expression nodes while they are asserted); its expression nodes are read in place
 /// from read-only memory (agent-core's `in-place`), so the arena holds only those the
 /// engine makes itself. Working-memory capacities are the high-water marks of the seed-0
-/// game (shown in the comments, from the image's own `pool` lines) plus margin; the
-/// fact-value arena compacts when full, so it needs the live values at the game's peak
-/// (between 1,536 and 1,792 cells), not all values ever written.
+/// game (shown in the comments, from the image's own `pool` lines) plus margin (the 2012
+/// recycling made that game 82 decisions long, 64 before, and the decision log is
+/// facts); the fact-value arena compacts when full, so it needs the live values at the
+/// game's peak (2,176 cells are too few), not all values ever written.
 pub type ImageEngine = Engine<ImageStorage>;
 
 /// Entries of the compiled rule base (paper strategy).
@@ -40,8 +41,8 @@ agent_core::engine_storage! {
     /// The pools of [`ImageEngine`], every one named (a pool added to agent-core must
     /// get its capacity here: the image's RAM budget is checked against them).
     pub struct ImageStorage {
-        facts: 224,                                // 183
-        fact_values: 2048,                         // live peak <= 1,792
+        facts: 240,                                // 220
+        fact_values: 2304,                         // live peak: 2,176 too few
         symbols: BASE.symbols + 24,                // +9 at run time
         symbol_bytes: BASE.symbol_bytes + 192,     // +41 at run time
         templates: BASE.templates + 2,             // +0
@@ -49,7 +50,7 @@ agent_core::engine_storage! {
         rules: BASE.rules,
         alpha_nodes: BASE.alphas,
         joins: BASE.joins,
-        tokens: 416,                               // 370
+        tokens: 496,                               // 461
         activations: 32,                           // 16
         functions: BASE.functions,
         globals: BASE.globals,
