@@ -6,7 +6,6 @@ mod bench;
 mod clips_cli;
 mod game;
 mod large_engine;
-mod run;
 mod sim;
 
 use clap::{Parser, Subcommand};
@@ -28,7 +27,7 @@ enum Command {
     /// A CLIPS-like command line (`-f FILE`, `-f2 FILE`, `-l FILE`, or interactive).
     Clips(clips_cli::Args),
     /// One robot's agent loop over iceoryx2 (sensors, skills, safety, motor command).
-    Run(run::Args),
+    Run(host_shim::agent_loop::Args),
     /// A whole game across processes: robotino-sim and one `run` per robot, in lockstep.
     Game(game::Args),
     /// Process-level games over many seeds in parallel: a table of points, collisions,
@@ -46,7 +45,7 @@ fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
         Command::Clips(args) => clips_cli::main(args),
-        Command::Run(args) => run::main(args),
+        Command::Run(args) => host_shim::agent_loop::main(args),
         Command::Game(args) => game::main(args),
         Command::GameSweep(args) => game::sweep::main(args),
         Command::Bench(args) => bench::main(args),

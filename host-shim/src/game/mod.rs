@@ -46,6 +46,10 @@ pub struct Args {
     /// Also draw the game's timeline as SVG into this file.
     #[arg(long)]
     pub svg: Option<PathBuf>,
+    /// Join the robots only over Zenoh: run this program (`robotino-agent-zenoh`, built
+    /// in `team-link/`) as each robot's agent, peers on 127.0.0.1 TCP endpoints.
+    #[arg(long)]
+    pub zenoh_agent: Option<PathBuf>,
 }
 
 pub fn main(args: Args) -> ExitCode {
@@ -196,24 +200,35 @@ pub fn play(args: &Args, chatty: bool) -> Result<GameRecord, String> {
             args.game_seconds.to_string(),
         ],
     )?;
+    // Zenoh ports for this game: from the process and the clock, so parallel games of a
+    // sweep do not share them.
+    let port_base = 20_000 + (std::process::id().wrapping_mul(7919) ^ (nanos / 1000)) % 40_000;
+    let endpoint = |r: u8| format!("tcp/127.0.0.1:{}", port_base + u32::from(r));
     let mut agents = (1..=robots)
         .map(|r| {
-            Proc::start(
-                &format!("agent{r}"),
-                &me,
-                &[
-                    s("run"),
-                    s("--prefix"),
-                    prefix.clone(),
-                    s("--lockstep"),
-                    s("--robot"),
-                    r.to_string(),
-                    s("--strategy"),
-                    s(args.strategy.name()),
-                    s("--team-size"),
-                    robots.to_string(),
-                ],
-            )
+            let (program, mut argv) = match &args.zenoh_agent {
+                Some(z) => {
+                    let mut v = vec![s("--listen"), endpoint(r)];
+                    for lower in 1..r {
+                        v.extend([s("--connect"), endpoint(lower)]);
+                    }
+                    v.extend([s("--zenoh-prefix"), prefix.replace('/', "_")]);
+                    (z.as_path(), v)
+                }
+                None => (me.as_path(), vec![s("run")]),
+            };
+            argv.extend([
+                s("--prefix"),
+                prefix.clone(),
+                s("--lockstep"),
+                s("--robot"),
+                r.to_string(),
+                s("--strategy"),
+                s(args.strategy.name()),
+                s("--team-size"),
+                robots.to_string(),
+            ]);
+            Proc::start(&format!("agent{r}"), program, &argv)
         })
         .collect::<Result<Vec<_>, _>>()?;
     if chatty {

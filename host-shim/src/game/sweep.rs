@@ -39,6 +39,9 @@ pub struct Args {
     /// No progress bar (for logs and tests).
     #[arg(long)]
     pub quiet: bool,
+    /// Join the robots only over Zenoh (see `game --zenoh-agent`).
+    #[arg(long)]
+    pub zenoh_agent: Option<PathBuf>,
 }
 
 /// One seed's figures.
@@ -108,6 +111,7 @@ pub fn main(args: Args) -> ExitCode {
                     verbose: false,
                     timeout_s: 600,
                     svg: None,
+                    zenoh_agent: args.zenoh_agent.clone(),
                 };
                 let row = super::play(&game, false)
                     .map(|g| Row::of(&g))

@@ -293,6 +293,12 @@ impl EngineAgent {
     }
 }
 
+/// A strategy by name (command lines).
+pub fn parse_strategy(name: &str) -> Result<Strategy, String> {
+    Strategy::from_name(name)
+        .ok_or_else(|| format!("unknown strategy {name:?} (naive, paper or travel)"))
+}
+
 /// The behaviour layer's skill for a rules' `skill-request`.
 pub fn skill_request(name: &str, target: &str) -> Option<SkillRequest> {
     let number = |prefix: char| {

@@ -77,21 +77,45 @@ pub struct DriveTo {
     next: usize,
     best_distance_m: f32,
     cycles_without_progress: u32,
+    /// Cycles stopped in a row by something ahead that is not the goal.
+    blocked_cycles: u32,
 }
 
 impl DriveTo {
     /// Plans from `from`; `None` when the goal cannot be reached.
     pub fn plan(from: Pose2, goal: Pose2, tuning: &DriveTuning) -> Option<Self> {
+        Self::plan_around(from, goal, &[], tuning)
+    }
+
+    /// Plans from `from` around what the IR ring sees close by that the field does not
+    /// explain (another robot), backing away first from one it touches.
+    pub fn plan_seeing(
+        from: Pose2,
+        goal: Pose2,
+        ir: &IrScan,
+        tuning: &DriveTuning,
+    ) -> Option<Self> {
+        let r = tuning.robot_radius_m;
+        let discs = robots_seen(from, ir, r, SEEN_WITHIN_M, |_| true);
+        Self::plan_around(from, goal, &discs, tuning).or_else(|| Self::plan(from, goal, tuning))
+    }
+
+    fn plan_around(
+        from: Pose2,
+        goal: Pose2,
+        discs: &[planner::Disc],
+        tuning: &DriveTuning,
+    ) -> Option<Self> {
         let r = tuning.robot_radius_m;
         // A robot touching an obstacle first moves clear of it: a plan from inside an
         // obstacle's margin would drive straight back into it.
-        let escape = escape_point(from, r);
+        let escape = escape_point(from, r, discs);
         let start = escape.unwrap_or((from.x_m, from.y_m));
         let to = (goal.x_m, goal.y_m);
         // Keep a margin to what the path passes (the controller cuts corners a little);
         // the lanes between machines are narrow, so fall back to the bare radius.
-        let path =
-            planner::plan(start, to, r + PATH_MARGIN_M).or_else(|| planner::plan(start, to, r))?;
+        let path = planner::plan_around(start, to, r + PATH_MARGIN_M, discs)
+            .or_else(|| planner::plan_around(start, to, r, discs))?;
         let waypoints = escape.into_iter().chain(path).collect();
         Some(Self {
             goal,
@@ -99,6 +123,7 @@ impl DriveTo {
             next: 0,
             best_distance_m: f32::INFINITY,
             cycles_without_progress: 0,
+            blocked_cycles: 0,
         })
     }
 
@@ -110,6 +135,7 @@ impl DriveTo {
             next: 0,
             best_distance_m: f32::INFINITY,
             cycles_without_progress: 0,
+            blocked_cycles: 0,
         }
     }
 
@@ -191,6 +217,24 @@ impl DriveTo {
                 // Something right ahead that is not the station we drive to (another robot):
                 // wait for it to move; the progress watchdog ends the wait.
                 let blocked = d <= STOP_WITHIN_M && remaining > d + 0.15;
+                self.blocked_cycles = if blocked { self.blocked_cycles + 1 } else { 0 };
+                // Blocked a while: plan around it. Robots give way by number (the highest
+                // replans first), so two that meet head-on do not both turn the same way.
+                let patience =
+                    REPLAN_AFTER_CYCLES * u32::from(4u8.saturating_sub(t.robot_number).max(1));
+                if blocked && self.blocked_cycles >= patience {
+                    self.blocked_cycles = 0;
+                    let ahead = |a: f32| wrap_angle(a - motion).abs() <= 25f32.to_radians();
+                    let discs = robots_seen(pose, &p.ir, t.robot_radius_m, STOP_WITHIN_M, ahead);
+                    // Only for a robot: a machine in the way is the watchdog's business.
+                    if let Some(around) = (!discs.is_empty())
+                        .then(|| Self::plan_around(pose, self.goal, &discs, t))
+                        .flatten()
+                    {
+                        *self = around;
+                        return DriveStep::Driving(Twist::ZERO);
+                    }
+                }
                 let f = if blocked {
                     0.0
                 } else {
@@ -246,19 +290,59 @@ const ESCAPE_M: f32 = 0.12;
 /// A robot this close to an obstacle (by its pose) counts as touching it.
 const ESCAPE_WITHIN_M: f32 = 0.05;
 
-/// For a robot closer to an obstacle than its radius (plus a little), the nearest point
-/// [`ESCAPE_M`] away that is clear of everything, trying 16 directions.
-fn escape_point(from: Pose2, radius_m: f32) -> Option<(f32, f32)> {
+/// For a robot closer to an obstacle (or a disc) than its radius (plus a little), the
+/// nearest point [`ESCAPE_M`] away that is clear of everything, trying 16 directions.
+fn escape_point(from: Pose2, radius_m: f32, discs: &[planner::Disc]) -> Option<(f32, f32)> {
     // The margin covers the odometry's few centimetres of error: a robot whose pose says
     // 2 cm clear may be pressed against the machine, and planning along its edge pressed
     // the bumper again in the first cycle, skill after skill.
-    if !hal::field::is_blocked(from.x_m, from.y_m, radius_m + ESCAPE_WITHIN_M) {
+    let here = (from.x_m, from.y_m);
+    if planner::segment_is_free_of(here, here, radius_m + ESCAPE_WITHIN_M, discs) {
         return None;
     }
     (0..16)
         .map(|i| i as f32 * core::f32::consts::TAU / 16.0)
         .map(|a| (from.x_m + ESCAPE_M * a.cos(), from.y_m + ESCAPE_M * a.sin()))
-        .find(|&(x, y)| !hal::field::is_blocked(x, y, radius_m + PATH_MARGIN_M))
+        .find(|&p| planner::segment_is_free_of(p, p, radius_m + PATH_MARGIN_M, discs))
+}
+
+/// A reading this close to a machine or wall (by the odometry's pose, a few centimetres
+/// off) is that machine or wall.
+const EXPLAINED_WITHIN_M: f32 = 0.1;
+/// Another robot seen this close (IR, from the body's edge) is planned around when a
+/// skill starts.
+const SEEN_WITHIN_M: f32 = 0.2;
+/// Cycles a drive waits for a robot ahead before the highest-numbered robot plans around
+/// it (robot 2 waits twice, robot 1 three times as long).
+const REPLAN_AFTER_CYCLES: u32 = 15;
+
+/// What the IR ring sees within `within_m` in the directions `towards` (robot frame)
+/// that is not a wall or machine: robots, each a disc of this robot's radius behind the
+/// reading.
+fn robots_seen(
+    pose: Pose2,
+    ir: &IrScan,
+    radius_m: f32,
+    within_m: f32,
+    towards: impl Fn(f32) -> bool,
+) -> Vec<planner::Disc> {
+    ir.distances_m
+        .iter()
+        .enumerate()
+        .filter(|&(i, &d)| {
+            d > hal::ir::IR_NO_READING && d <= within_m && towards(hal::ir::sensor_angle_rad(i))
+        })
+        .filter_map(|(i, &d)| {
+            let a = pose.phi_rad + hal::ir::sensor_angle_rad(i);
+            let (c, s) = (a.cos(), a.sin());
+            let edge = (pose.x_m + (radius_m + d) * c, pose.y_m + (radius_m + d) * s);
+            // A reading the field explains is a machine or a wall.
+            (!hal::field::is_blocked(edge.0, edge.1, EXPLAINED_WITHIN_M)).then(|| {
+                let centre = radius_m + d + radius_m;
+                (pose.x_m + centre * c, pose.y_m + centre * s, radius_m)
+            })
+        })
+        .collect()
 }
 
 /// Where to back away to after working a station: the longest back-off (up to
@@ -339,9 +423,9 @@ impl Skill {
             SkillRequest::DeliverTo(g) => Some(gate_pose(g)),
         };
         let phase = match goal {
-            Some(goal) if !(request == SkillRequest::GetS0 && p.has_puck) => {
-                Phase::Approach(DriveTo::plan(p.pose, goal, t).ok_or(FailReason::DriveFailed)?)
-            }
+            Some(goal) if !(request == SkillRequest::GetS0 && p.has_puck) => Phase::Approach(
+                DriveTo::plan_seeing(p.pose, goal, &p.ir, t).ok_or(FailReason::DriveFailed)?,
+            ),
             then => Phase::Release { waited: 0, then },
         };
         Ok(Self {
@@ -381,7 +465,7 @@ impl Skill {
                     return (Twist::ZERO, SkillOutcome::Running);
                 }
                 self.phase = match then {
-                    Some(goal) => match DriveTo::plan(p.pose, *goal, t) {
+                    Some(goal) => match DriveTo::plan_seeing(p.pose, *goal, &p.ir, t) {
                         Some(drive) => Phase::Approach(drive),
                         None => {
                             return (Twist::ZERO, SkillOutcome::Failed(FailReason::DriveFailed))

@@ -18,13 +18,35 @@ fn centre(c: usize) -> f32 {
     (c as f32 + 0.5) * CELL_M
 }
 
+/// A round obstacle the field does not know of: another robot, seen by the IR ring
+/// (centre x, y and radius, metres).
+pub type Disc = (f32, f32, f32);
+
+/// The field's obstacles and the discs.
+fn blocked_by(x: f32, y: f32, clearance_m: f32, discs: &[Disc]) -> bool {
+    is_blocked(x, y, clearance_m)
+        || discs
+            .iter()
+            .any(|&(cx, cy, r)| (x - cx).hypot(y - cy) < r + clearance_m)
+}
+
 /// True when a straight segment keeps `clearance_m` from every obstacle.
 pub fn segment_is_free(a: (f32, f32), b: (f32, f32), clearance_m: f32) -> bool {
+    segment_is_free_of(a, b, clearance_m, &[])
+}
+
+/// [`segment_is_free`], also clear of `discs`.
+pub fn segment_is_free_of(a: (f32, f32), b: (f32, f32), clearance_m: f32, discs: &[Disc]) -> bool {
     let len = ((b.0 - a.0).powi(2) + (b.1 - a.1).powi(2)).sqrt();
     let steps = (len / 0.02).ceil().max(1.0) as usize;
     (0..=steps).all(|i| {
         let t = i as f32 / steps as f32;
-        !is_blocked(a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1), clearance_m)
+        !blocked_by(
+            a.0 + t * (b.0 - a.0),
+            a.1 + t * (b.1 - a.1),
+            clearance_m,
+            discs,
+        )
     })
 }
 
@@ -32,14 +54,24 @@ pub fn segment_is_free(a: (f32, f32), b: (f32, f32), clearance_m: f32) -> bool {
 /// no path keeps `clearance_m`. Start and goal cells are allowed even when they touch an
 /// obstacle (the robot may stand close to a machine it works at).
 pub fn plan(from: (f32, f32), to: (f32, f32), clearance_m: f32) -> Option<Vec<(f32, f32)>> {
-    if segment_is_free(from, to, clearance_m) {
+    plan_around(from, to, clearance_m, &[])
+}
+
+/// [`plan`] around `discs` too (robots in the way).
+pub fn plan_around(
+    from: (f32, f32),
+    to: (f32, f32),
+    clearance_m: f32,
+    discs: &[Disc],
+) -> Option<Vec<(f32, f32)>> {
+    if segment_is_free_of(from, to, clearance_m, discs) {
         return Some(vec![to]);
     }
     let start = (cell_of(from.0), cell_of(from.1));
     let goal = (cell_of(to.0), cell_of(to.1));
     let idx = |c: (usize, usize)| c.1 * N + c.0;
     let free = |c: (usize, usize)| {
-        c == start || c == goal || !is_blocked(centre(c.0), centre(c.1), clearance_m)
+        c == start || c == goal || !blocked_by(centre(c.0), centre(c.1), clearance_m, discs)
     };
     // Costs in millimetres so the heap orders integers.
     let h = |c: (usize, usize)| {
@@ -104,18 +136,23 @@ pub fn plan(from: (f32, f32), to: (f32, f32), clearance_m: f32) -> Option<Vec<(f
         .map(|&(x, y)| (centre(x), centre(y)))
         .chain(std::iter::once(to))
         .collect();
-    Some(shortcut(from, &points, clearance_m))
+    Some(shortcut(from, &points, clearance_m, discs))
 }
 
 /// Keeps only the waypoints line of sight needs.
-fn shortcut(from: (f32, f32), points: &[(f32, f32)], clearance_m: f32) -> Vec<(f32, f32)> {
+fn shortcut(
+    from: (f32, f32),
+    points: &[(f32, f32)],
+    clearance_m: f32,
+    discs: &[Disc],
+) -> Vec<(f32, f32)> {
     let mut out = Vec::new();
     let mut at = from;
     let mut i = 0;
     while i < points.len() {
         let mut far = i;
         for j in (i..points.len()).rev() {
-            if segment_is_free(at, points[j], clearance_m) {
+            if segment_is_free_of(at, points[j], clearance_m, discs) {
                 far = j;
                 break;
             }
@@ -154,6 +191,25 @@ mod tests {
                 at = p;
             }
         }
+    }
+
+    #[test]
+    fn a_robot_in_the_way_is_driven_around() {
+        // The lane below the first machine row, a robot standing in it.
+        let (from, to) = ((0.6, 0.8), (4.6, 0.8));
+        let robot = (2.6, 0.8, R);
+        assert_eq!(plan(from, to, R), Some(vec![to]));
+        let path = plan_around(from, to, R, &[robot]).unwrap_or_else(|| panic!("no way round"));
+        assert_eq!(path.last(), Some(&to));
+        let mut at = from;
+        for &p in &path {
+            assert!(
+                segment_is_free_of(at, p, R - 0.01, &[robot]),
+                "{at:?} -> {p:?}"
+            );
+            at = p;
+        }
+        assert!(path.len() > 1);
     }
 
     #[test]

@@ -75,10 +75,7 @@ pub struct Args {
 }
 
 /// clap value parser for `--strategy`.
-pub fn parse_strategy(name: &str) -> Result<Strategy, String> {
-    Strategy::from_name(name)
-        .ok_or_else(|| format!("unknown strategy {name:?} (naive, paper or travel)"))
-}
+pub use host_shim::shim::agent::parse_strategy;
 
 /// The setup the options ask for and a title naming it.
 fn setup_from_args(args: &Args) -> Result<(GameSetup, String), SimError> {

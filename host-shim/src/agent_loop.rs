@@ -1,4 +1,5 @@
-//! `robotino-agent run`: one robot's agent loop. Each cycle it reads the newest sensor
+//! `robotino-agent run` (and the Zenoh-linked agent of the `team-link` crate): one
+//! robot's agent loop. Each cycle it reads the newest sensor
 //! samples over iceoryx2, advances the running skill, passes the skill's twist through the
 //! safety monitor and publishes the motor command, then reports the skill's status. Skill
 //! outcomes and perceptions become facts of the agent's rule base (our engine); whenever
@@ -8,6 +9,17 @@
 //! the gates, and news of machines, exchanged with the teammates over a [`TeamLink`]
 //! (iceoryx2 on one host; in lockstep a message sent in one cycle is taken in the next).
 
+use crate::shim::agent::{ChosenSkill, EngineAgent, MachineView, TeamSeat};
+use crate::shim::behaviour::{DriveStep, DriveTo, DriveTuning, Perceived, Skill};
+use crate::shim::config::Config;
+use crate::shim::drivers::{usable, DriverError, SimDrivers};
+use crate::shim::lockstep::{spawn_heartbeat, FrameWatch};
+use crate::shim::payloads::{SkillRequestPayload, SkillStatus, SkillStatusPayload};
+use crate::shim::rule_engine::exit_from_engine_stack;
+use crate::shim::safety::{CycleInput, SafetyMonitor, Stream};
+use crate::shim::team::IceoryxTeamLink;
+use crate::shim::transport::{Pub, RobotStream, Transport, TransportError};
+use crate::team::TeamLink;
 use hal::device::{
     Bumper, Device, Freshness, GateSignal, Gyro, IrRing, MachineLight, Odometry, OmniDrive,
     PuckRelease, PuckSensor,
@@ -16,17 +28,6 @@ use hal::field::MachineId;
 use hal::ir::IrScan;
 use hal::skill::SkillOutcome;
 use hal::{Pose2, Twist};
-use host_shim::shim::agent::{ChosenSkill, EngineAgent, MachineView, TeamSeat};
-use host_shim::shim::behaviour::{DriveStep, DriveTo, DriveTuning, Perceived, Skill};
-use host_shim::shim::config::Config;
-use host_shim::shim::drivers::{usable, DriverError, SimDrivers};
-use host_shim::shim::lockstep::{spawn_heartbeat, FrameWatch};
-use host_shim::shim::payloads::{SkillRequestPayload, SkillStatus, SkillStatusPayload};
-use host_shim::shim::rule_engine::exit_from_engine_stack;
-use host_shim::shim::safety::{CycleInput, SafetyMonitor, Stream};
-use host_shim::shim::team::IceoryxTeamLink;
-use host_shim::shim::transport::{Pub, RobotStream, Transport, TransportError};
-use host_shim::team::TeamLink;
 use rules::Strategy;
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -56,7 +57,7 @@ pub struct Args {
     #[arg(long)]
     pub time_warp: Option<f32>,
     /// Production strategy of the agent's rules: naive, paper or travel.
-    #[arg(long, default_value = "paper", value_parser = crate::sim::parse_strategy)]
+    #[arg(long, default_value = "paper", value_parser = crate::shim::agent::parse_strategy)]
     pub strategy: Strategy,
     /// Also print every cycle's and every decision's time (one `stat` line each).
     #[arg(long)]
@@ -71,25 +72,25 @@ pub struct Args {
 }
 
 /// A team member that waits for a place (or is done) this long drives out of the lanes
-/// to a passing place of its own, so it does not stand in a teammate's way (once per
-/// wait).
+/// to a passing place of its own, so it does not stand in a teammate's way (and tries
+/// again this often until it is there, around what its IR ring sees).
 const PARK_AFTER_CYCLES: u64 = 30;
 
-/// Passing places: dead ends at the field's edge, away from the lanes, stations and
-/// gates; two per robot (it takes the nearer), no two robots share one.
-fn passing_places(robot: u8) -> [(f32, f32); 2] {
+/// Passing places: the field's corners, the only spots more than 0.7 m from every
+/// machine's approach, the storage and the gates; no two robots share one.
+fn passing_places(robot: u8) -> &'static [(f32, f32)] {
     match robot {
-        1 => [(0.35, 0.40), (5.30, 2.10)],
-        2 => [(0.35, 5.25), (0.35, 1.90)],
-        _ => [(5.25, 5.25), (5.25, 0.40)],
+        1 => &[(0.40, 0.40)],
+        2 => &[(0.40, 5.20)],
+        _ => &[(5.20, 0.40), (5.20, 5.20)],
     }
 }
 
 /// Where a waiting robot drives: its nearer passing place, unless it is there already.
 fn park_goal(robot: u8, at: Pose2) -> Option<Pose2> {
     let d = |q: &(f32, f32)| (q.0 - at.x_m).hypot(q.1 - at.y_m);
-    let spot = passing_places(robot)
-        .into_iter()
+    let spot = *passing_places(robot)
+        .iter()
         .min_by(|a, b| d(a).total_cmp(&d(b)))?;
     (d(&spot) > 0.3).then(|| Pose2::new(spot.0, spot.1, at.phi_rad))
 }
@@ -98,9 +99,24 @@ fn park_goal(robot: u8, at: Pose2) -> Option<Pose2> {
 /// while nothing else happens (claims renew every 2 s of game time).
 const TEAM_TICK_CYCLES: u64 = 7;
 
+/// A team link made once the process's iceoryx2 node is open (given the node and the
+/// robot's seat).
+pub type LinkMaker = dyn FnOnce(&Transport, TeamSeat) -> Result<Box<dyn TeamLink>, Box<dyn std::error::Error>>
+    + Send;
+
+/// `robotino-agent run`: in a team the messages go over iceoryx2 on this host.
 pub fn main(args: Args) -> ExitCode {
+    main_with(
+        args,
+        Box::new(|t, seat| Ok(Box::new(IceoryxTeamLink::open(t, seat.id)?))),
+    )
+}
+
+/// The agent loop with another team link (e.g. Zenoh between machines): the process
+/// ends with the loop (the exit code: 0, or 1 after an error).
+pub fn main_with(args: Args, make_link: Box<LinkMaker>) -> ExitCode {
     // The engine's arrays pass through the stack on their way to the heap.
-    exit_from_engine_stack(move || match run(&args) {
+    exit_from_engine_stack(move || match run(&args, make_link) {
         Ok(()) => 0,
         Err(e) => {
             eprintln!("robotino-agent run: {e}");
@@ -206,7 +222,7 @@ struct Running {
     request_seq: u32,
 }
 
-fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
+fn run(args: &Args, make_link: Box<LinkMaker>) -> Result<(), Box<dyn std::error::Error>> {
     let mut config = Config::load(args.config.as_deref())?;
     if let Some(p) = &args.prefix {
         config.services.prefix = p.clone();
@@ -228,16 +244,14 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
         s0_supply: args.raw_pucks,
     });
     let transport = Transport::open(&config.services.prefix, &format!("robotino-agent-{robot}"))?;
-    let link: Option<Box<dyn TeamLink>> = match seat {
-        Some(_) => Some(Box::new(IceoryxTeamLink::open(&transport, robot)?)),
+    let link = match seat {
+        Some(seat) => Some(make_link(&transport, seat)?),
         None => None,
     };
-    run_with(args, config, seat, link, &transport)
+    agent_loop(args, config, seat, link, &transport)
 }
 
-/// The agent loop with the given team link (another carrier, e.g. Zenoh between
-/// machines, comes in here).
-pub fn run_with(
+fn agent_loop(
     args: &Args,
     config: Config,
     seat: Option<TeamSeat>,
@@ -392,9 +406,13 @@ pub fn run_with(
             parking = None;
         } else if waiting_since.is_none() {
             waiting_since = Some(cycle);
-        } else if waiting_since == Some(cycle.saturating_sub(PARK_AFTER_CYCLES)) {
+        } else if parking.is_none()
+            && waiting_since.is_some_and(|since| {
+                cycle > since && (cycle - since).is_multiple_of(PARK_AFTER_CYCLES)
+            })
+        {
             if let Some(goal) = park_goal(robot, p.pose) {
-                parking = DriveTo::plan(p.pose, goal, &tuning);
+                parking = DriveTo::plan_seeing(p.pose, goal, &p.ir, &tuning);
                 if parking.is_some() {
                     monitor.skill_started();
                     println!(
@@ -422,7 +440,8 @@ pub fn run_with(
             skill_running: (running.is_some() && !outcome.is_terminal()) || parking.is_some(),
         });
         if running.is_none() && decision.fail_skill.is_some() {
-            // Bumped (or blind) on the way to park: stay put (pushing on makes it worse).
+            // Bumped (or blind) on the way to park: stop; the next try plans around
+            // whatever the IR ring sees.
             parking = None;
         }
         if let Some(reason) = decision.fail_skill {
