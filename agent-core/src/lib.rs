@@ -42,6 +42,11 @@
 //!   Each construct is read and built inside a checkpoint and undone on any error.
 //! - `compile`: the network builder (alpha nodes, joins, priming) and remover (rule
 //!   removal, rollback).
+//! - [`compiled`]: the ahead-of-time form: a loaded engine's constructs, compiled
+//!   network included, written as Rust constants (`Engine::write_compiled`, at build
+//!   time on the host) and loaded into an engine without the parser
+//!   (`Engine::load_compiled`); facts built through the API (`Engine::assert_fact`).
+//!   The agent image runs from it (features `parser` off, `in-place` on).
 //! - [`fact`], [`template`]: fact storage (a compacting value arena, a duplicate hash
 //!   index, a creation-ordered list), deftemplates, deffacts, globals, deffunctions.
 //! - [`rete`], [`agenda`], [`commands`]: matching, conflict resolution, run loop.
