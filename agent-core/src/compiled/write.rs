@@ -72,6 +72,28 @@ impl fmt::Display for I {
     }
 }
 
+/// The first `len` entries of an array of 16-bit values that are not indices (field
+/// locators, hashes), written as they are, since in a narrow build `0xFFFF` equals NONE
+/// and `N` would load as a wide build's NONE; the unused rest as indices (`N` padding).
+struct Raw<'a>(&'a [Ix], usize);
+
+impl fmt::Display for Raw<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("[")?;
+        for (i, &x) in self.0.iter().enumerate() {
+            if i > 0 {
+                f.write_str(", ")?;
+            }
+            if i < self.1 {
+                write!(f, "{x}")?;
+            } else {
+                write!(f, "{}", I(x))?;
+            }
+        }
+        f.write_str("]")
+    }
+}
+
 /// An array of indices.
 struct Is<'a>(&'a [Ix]);
 
@@ -285,9 +307,9 @@ impl Core<'_> {
                 I(a.succ),
                 a.nmarks,
                 a.live,
-                Is(&a.path_loc),
-                Is(&a.path_test),
-                Is(&a.key),
+                Raw(&a.path_loc, a.key_len as usize),
+                Raw(&a.path_test, a.key_len as usize),
+                Raw(&a.key, a.key_len as usize),
                 a.key_len,
                 Is(&a.rhash),
                 a.nrhash
@@ -331,13 +353,19 @@ impl Core<'_> {
             write!(out, "e(Op::{:?}, {}, ", x.op, x.aux)?;
             if x.op == Op::Call && x.aux == FnKind::Builtin as u8 {
                 write!(out, "B{}", x.data)?;
-            } else if x.op == Op::Payload || matches!(x.op, Op::Int | Op::Float) {
-                // 16 bits of a constant, never an index
+            } else if matches!(x.op, Op::Payload | Op::Int | Op::Float | Op::PatVar) {
+                // 16 bits of a constant, or a field locator (`loc::FACT` is 0xFFFF in
+                // every index width): never an index, so never `N`
                 write!(out, "{}", x.data)?;
             } else {
                 write!(out, "{}", I(x.data))?;
             }
-            writeln!(out, ", {}, {}),", I(x.first), I(x.next))?;
+            if x.op == Op::Payload {
+                // the other 32 bits of the constant
+                writeln!(out, ", {}, {}),", x.first, x.next)?;
+            } else {
+                writeln!(out, ", {}, {}),", I(x.first), I(x.next))?;
+            }
         }
         writeln!(out, "],")
     }
