@@ -289,7 +289,7 @@ run_stage "4 i586 tests (qemu)" stage_i586_tests
 run_stage "5 no_std proof" stage_no_std
 run_stage "6 agent image (qemu)" stage_image
 run_stage "7 footprint gate" stage_footprint
-run_stage "8 instruction-set gate" stage_isa
+run_stage "8 instruction-set + contents gate" stage_isa
 run_stage "9 i586 game (qemu)" stage_i586_game
 
 echo
