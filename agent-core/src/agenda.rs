@@ -70,7 +70,7 @@ impl Core<'_> {
     #[cfg_attr(feature = "host-speedups", inline(always))]
     pub(crate) fn add_activation(&mut self, rule: Ix, token: Ix) -> Result<(), CapacityError> {
         let mut replayed = None;
-        if self.st.act_journal.replay && !self.st.act_journal.overflow {
+        if self.st.agenda.act_journal.replay && !self.st.agenda.act_journal.overflow {
             match self.journal_take(rule, token) {
                 Some(seq) => replayed = Some(seq),
                 // not on the agenda before the operation: the rule had fired for this
@@ -78,25 +78,25 @@ impl Core<'_> {
                 None => return Ok(()),
             }
         }
-        let a = if self.st.act_free != NONE {
-            let a = self.st.act_free;
-            self.st.act_free = self.acts[a as usize].next;
+        let a = if self.st.pools.act_free != NONE {
+            let a = self.st.pools.act_free;
+            self.st.pools.act_free = self.acts[a as usize].next;
             a
         } else {
-            let n = self.st.acts_used as usize;
+            let n = self.st.pools.acts_used as usize;
             if n >= self.acts.len() || n >= NONE as usize {
                 return Err(cap(Pool::Activations, self.acts.len()));
             }
-            self.st.acts_used += 1;
+            self.st.pools.acts_used += 1;
             // the mark follows `acts_used`, which only a fresh entry raises
-            self.note_hw(Pool::Activations, self.st.acts_used as usize);
+            self.note_hw(Pool::Activations, self.st.pools.acts_used as usize);
             n as Ix
         };
         let seq = match replayed {
             Some(seq) => seq,
             None => {
-                self.st.act_seq = self.st.act_seq.wrapping_add(1);
-                self.st.act_seq
+                self.st.agenda.act_seq = self.st.agenda.act_seq.wrapping_add(1);
+                self.st.agenda.act_seq
             }
         };
         let salience = self.rules[rule as usize].salience;
@@ -116,7 +116,7 @@ impl Core<'_> {
         } else {
             self.agenda_insert(a);
         }
-        if self.st.watch & watch::ACTIVATIONS != 0 {
+        if self.st.mode.watch & watch::ACTIVATIONS != 0 {
             self.print_activation_line("==> Activation ", a);
         }
         Ok(())
@@ -128,9 +128,17 @@ impl Core<'_> {
         if e == NONE {
             return self.rules[rule as usize].salience;
         }
-        let (scratch, sp, pm) = (self.st.scratch_top, self.st.sp, self.st.pm_rhs);
+        let (scratch, sp, pm) = (
+            self.st.frame.scratch_top,
+            self.st.frame.sp,
+            self.st.net.pm_rhs,
+        );
         let v = self.eval(e);
-        (self.st.scratch_top, self.st.sp, self.st.pm_rhs) = (scratch, sp, pm);
+        (
+            self.st.frame.scratch_top,
+            self.st.frame.sp,
+            self.st.net.pm_rhs,
+        ) = (scratch, sp, pm);
         match v {
             Ok(crate::value::Value::Int(i)) => i.clamp(-10000, 10000) as i32,
             _ => self.rules[rule as usize].salience,
@@ -142,7 +150,7 @@ impl Core<'_> {
     pub(crate) fn agenda_insert(&mut self, a: Ix) {
         let sal = self.acts[a as usize].salience;
         let mut prev = NONE;
-        let mut cur = self.st.agenda_head;
+        let mut cur = self.st.agenda.agenda_head;
         while cur != NONE && self.acts[cur as usize].salience > sal {
             prev = cur;
             cur = self.acts[cur as usize].next;
@@ -155,18 +163,18 @@ impl Core<'_> {
         if prev != NONE {
             self.acts[prev as usize].next = a;
         } else {
-            self.st.agenda_head = a;
+            self.st.agenda.agenda_head = a;
         }
-        self.st.agenda_len += 1;
+        self.st.agenda.agenda_len += 1;
     }
 
     fn agenda_unlink(&mut self, a: Ix) {
         let x = self.acts[a as usize];
-        self.st.agenda_len -= 1;
+        self.st.agenda.agenda_len -= 1;
         if x.prev != NONE {
             self.acts[x.prev as usize].next = x.next;
         } else {
-            self.st.agenda_head = x.next;
+            self.st.agenda.agenda_head = x.next;
         }
         if x.next != NONE {
             self.acts[x.next as usize].prev = x.prev;
@@ -175,10 +183,10 @@ impl Core<'_> {
 
     #[cfg_attr(feature = "host-speedups", inline(always))]
     pub(crate) fn remove_activation(&mut self, a: Ix) {
-        if self.st.act_journal.on {
+        if self.st.agenda.act_journal.on {
             self.journal_activation(a);
         }
-        if self.st.watch & watch::ACTIVATIONS != 0 {
+        if self.st.mode.watch & watch::ACTIVATIONS != 0 {
             self.print_activation_line("<== Activation ", a);
         }
         self.agenda_unlink(a);
@@ -205,15 +213,15 @@ impl Core<'_> {
             }
         }
         self.acts[a as usize] = Activation {
-            next: self.st.act_free,
+            next: self.st.pools.act_free,
             ..Activation::EMPTY
         };
-        self.st.act_free = a;
+        self.st.pools.act_free = a;
     }
 
     /// Takes the top activation off the agenda (it fires; refraction keeps it gone).
     pub(crate) fn pop_activation(&mut self) -> Option<(Ix, Ix)> {
-        let a = self.st.agenda_head;
+        let a = self.st.agenda.agenda_head;
         if a == NONE {
             return None;
         }
@@ -226,15 +234,15 @@ impl Core<'_> {
     /// `refresh-agenda`: global-based saliences are evaluated again (CLIPS's
     /// when-defined evaluation otherwise keeps them), then the agenda is re-sorted.
     pub fn reorder_agenda(&mut self) {
-        for r in 0..self.st.nrules {
+        for r in 0..self.st.pools.nrules {
             if self.rules[r as usize].salience_expr != NONE {
                 let s = self.rule_salience(r);
                 self.rules[r as usize].salience = s;
             }
         }
-        let mut list = self.st.agenda_head;
-        self.st.agenda_head = NONE;
-        self.st.agenda_len = 0;
+        let mut list = self.st.agenda.agenda_head;
+        self.st.agenda.agenda_head = NONE;
+        self.st.agenda.agenda_len = 0;
         // re-insert oldest first so newer stay ahead among equals
         let mut tail = list;
         while tail != NONE && self.acts[tail as usize].next != NONE {
@@ -252,7 +260,7 @@ impl Core<'_> {
 
     pub fn agenda_len(&self) -> usize {
         let mut n = 0;
-        let mut a = self.st.agenda_head;
+        let mut a = self.st.agenda.agenda_head;
         while a != NONE {
             n += 1;
             a = self.acts[a as usize].next;
@@ -285,12 +293,12 @@ impl Core<'_> {
     }
 
     fn journal_activation(&mut self, a: Ix) {
-        let j = &self.st.act_journal;
+        let j = &self.st.agenda.act_journal;
         if self.acts[a as usize].seq.wrapping_sub(j.base) as i32 > 0 {
             return;
         }
         if j.len as usize >= JOURNAL_LEN {
-            self.st.act_journal.overflow = true;
+            self.st.agenda.act_journal.overflow = true;
             return;
         }
         let x = self.acts[a as usize];
@@ -299,7 +307,7 @@ impl Core<'_> {
             basis: self.token_basis(x.token),
             seq: x.seq,
         };
-        let j = &mut self.st.act_journal;
+        let j = &mut self.st.agenda.act_journal;
         j.entries[j.len as usize] = entry;
         j.len += 1;
     }
@@ -307,27 +315,27 @@ impl Core<'_> {
     /// Starts (or nests) recording the activations removed from now on (see
     /// `JournalEntry`): an assert inside a modify records after the modify's entries.
     pub(crate) fn journal_begin(&mut self) -> JournalMark {
-        let j = &mut self.st.act_journal;
+        let j = &mut self.st.agenda.act_journal;
         let m = JournalMark {
             len: j.len,
             on: j.on,
             overflow: j.overflow,
             base: j.base,
-            seq: self.st.act_seq,
+            seq: self.st.agenda.act_seq,
         };
         j.on = true;
-        j.base = self.st.act_seq;
+        j.base = self.st.agenda.act_seq;
         m
     }
 
     /// Stops recording; the entries stay for `journal_replay`.
     pub(crate) fn journal_pause(&mut self) {
-        self.st.act_journal.on = false;
+        self.st.agenda.act_journal.on = false;
     }
 
     /// Drops the entries recorded since `m` and recording goes back to what it was.
     pub(crate) fn journal_end(&mut self, m: JournalMark) {
-        let j = &mut self.st.act_journal;
+        let j = &mut self.st.agenda.act_journal;
         j.len = m.len;
         j.on = m.on;
         j.overflow = m.overflow;
@@ -341,7 +349,7 @@ impl Core<'_> {
     /// rule had fired for that match). After a journal overflow nothing is known:
     /// rebuilt activations come back as the newest.
     pub(crate) fn journal_replay(&mut self, m: JournalMark) {
-        let j = &mut self.st.act_journal;
+        let j = &mut self.st.agenda.act_journal;
         j.on = false;
         j.replay = true;
         j.replay_from = m.len;
@@ -351,7 +359,7 @@ impl Core<'_> {
     /// used up (each entry is one activation), or None if none was recorded.
     fn journal_take(&mut self, rule: Ix, token: Ix) -> Option<u32> {
         let basis = self.token_basis(token);
-        let j = &mut self.st.act_journal;
+        let j = &mut self.st.agenda.act_journal;
         let recorded = j
             .entries
             .get_mut(j.replay_from as usize..j.len as usize)
@@ -369,7 +377,7 @@ impl Core<'_> {
     fn agenda_insert_at_seq(&mut self, a: Ix) {
         let (sal, seq) = (self.acts[a as usize].salience, self.acts[a as usize].seq);
         let mut prev = NONE;
-        let mut cur = self.st.agenda_head;
+        let mut cur = self.st.agenda.agenda_head;
         while cur != NONE {
             let c = self.acts[cur as usize];
             if c.salience < sal || (c.salience == sal && (c.seq.wrapping_sub(seq) as i32) < 0) {
@@ -386,8 +394,8 @@ impl Core<'_> {
         if prev != NONE {
             self.acts[prev as usize].next = a;
         } else {
-            self.st.agenda_head = a;
+            self.st.agenda.agenda_head = a;
         }
-        self.st.agenda_len += 1;
+        self.st.agenda.agenda_len += 1;
     }
 }

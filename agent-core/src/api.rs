@@ -54,18 +54,18 @@ engine_impl! {
     /// that never lists its rules saves that RAM (CLIPS's run-time images drop their
     /// pretty-print forms the same way).
     pub fn set_pretty_print_forms(&mut self, keep: bool) {
-        self.st.keep_pp_forms = keep;
+        self.st.mode.keep_pp_forms = keep;
     }
 
     /// Parses and evaluates one expression/command. A multifield result points into
     /// scratch and is valid until the next call.
     pub fn eval_str(&mut self, host: &mut dyn Host, command: &str) -> Result<Value, EvalError> {
         let mut cx = self.core(host);
-        cx.st.scratch_top = 0;
-        cx.st.sp = 0;
-        cx.st.bp = 0;
-        let before = cx.st.nexprs;
-        cx.st.command_base = before;
+        cx.st.frame.scratch_top = 0;
+        cx.st.frame.sp = 0;
+        cx.st.frame.bp = 0;
+        let before = cx.st.pools.nexprs;
+        cx.st.eval.command_base = before;
         let cp = cx.checkpoint();
         let mut p = Parser::new(&mut cx, command);
         let item = p.next_item();
@@ -82,9 +82,9 @@ engine_impl! {
         };
         let now = cx.checkpoint();
         if now.nrules == cp.nrules && now.nfuncs == cp.nfuncs && now.ntemplates == cp.ntemplates && now.nglobals == cp.nglobals && now.ndeffacts == cp.ndeffacts {
-            cx.st.nexprs = before;
+            cx.st.pools.nexprs = before;
         }
-        cx.st.sp = 0;
+        cx.st.frame.sp = 0;
         r
     }
 
@@ -93,7 +93,7 @@ engine_impl! {
     pub fn exec_command(&mut self, host: &mut dyn Host, text: &str, source: &str) -> bool {
         let mut cx = self.core(host);
         cx.exec_command(text, source);
-        !cx.st.exit
+        !cx.st.mode.exit
     }
 
     /// Runs text as CLIPS's batch mode (`clips -f`): prompts and echo when `echo`.
@@ -106,18 +106,18 @@ engine_impl! {
     pub fn batch_file(&mut self, host: &mut dyn Host, source_name: &str, text: &str, echo: bool) -> bool {
         let mut cx = self.core(host);
         let _ = cx.batch_text_named(text, echo, source_name);
-        !cx.st.exit
+        !cx.st.mode.exit
     }
 
     /// `batch*` of a text: runs its commands without prompts, echo or results (what
     /// `clips -f2 FILE` does). Returns false once `(exit)` ran.
     pub fn batch_file_quiet(&mut self, host: &mut dyn Host, source_name: &str, text: &str) -> bool {
         let mut cx = self.core(host);
-        let saved = cx.st.quiet_results;
-        cx.st.quiet_results = true;
+        let saved = cx.st.io.quiet_results;
+        cx.st.io.quiet_results = true;
         let _ = cx.batch_text_named(text, false, source_name);
-        cx.st.quiet_results = saved;
-        !cx.st.exit
+        cx.st.io.quiet_results = saved;
+        !cx.st.mode.exit
     }
 
     /// Runs a file a `batch` command left for the command loop (a `batch` inside
@@ -125,22 +125,22 @@ engine_impl! {
     pub fn run_pending_batch(&mut self, host: &mut dyn Host) -> bool {
         let mut cx = self.core(host);
         cx.run_pending_batch();
-        !cx.st.exit
+        !cx.st.mode.exit
     }
 
     pub fn exited(&self) -> bool {
-        self.st.exit
+        self.st.mode.exit
     }
 
     /// The status `(exit N)` asked for (0 for a bare `(exit)`).
     pub fn exit_status(&self) -> i32 {
-        self.st.exit_status
+        self.st.mode.exit_status
     }
 
     /// Whether a pool ran out or the input ended inside a construct since the engine
     /// was made: the command line exits non-zero then (CLIPS exits 0).
     pub fn hit_unrecoverable(&self) -> bool {
-        self.st.unrecoverable
+        self.st.mode.unrecoverable
     }
 
     pub fn reset(&mut self, host: &mut dyn Host) -> Result<(), EngineError> {
@@ -157,7 +157,7 @@ engine_impl! {
     pub fn run(&mut self, host: &mut dyn Host, limit: Option<u32>) -> Result<u32, EngineError> {
         let mut cx = self.core(host);
         let r = cx.run(limit.map(|l| l as i64).unwrap_or(-1));
-        cx.st.scratch_top = 0;
+        cx.st.frame.scratch_top = 0;
         match r {
             Err(e) if e.kind() == EvalErrorKind::Exit => Ok(0),
             r => r.map_err(EngineError::from),
@@ -167,7 +167,7 @@ engine_impl! {
     /// Asserts one fact written in CLIPS syntax, e.g. `(pos (x 1) (y 2))`.
     pub fn assert_str(&mut self, host: &mut dyn Host, fact: &str) -> Result<FactId, EngineError> {
         let mut cx = self.core(host);
-        let before = cx.st.nexprs;
+        let before = cx.st.pools.nexprs;
         let cp = cx.checkpoint();
         let mut p = Parser::new(&mut cx, fact);
         p.scope = crate::parser::Scope::Lhs;
@@ -180,9 +180,9 @@ engine_impl! {
             }
         };
         let r = cx.assert_spec(spec);
-        cx.st.nexprs = before;
-        cx.st.scratch_top = 0;
-        cx.st.sp = 0;
+        cx.st.pools.nexprs = before;
+        cx.st.frame.scratch_top = 0;
+        cx.st.frame.sp = 0;
         match r {
             Ok(Some(f)) => Ok(FactId(cx.facts[f as usize].num)),
             Ok(None) => Err(EngineError::Duplicate),
@@ -215,27 +215,27 @@ engine_impl! {
         let mut host = crate::host::NullHost;
         let mut cx = self.core(&mut host);
         let sym = cx.intern(name)?;
-        let existing = (0..cx.st.nexternals).find(|&x| cx.externals[x as usize].name == sym);
+        let existing = (0..cx.st.pools.nexternals).find(|&x| cx.externals[x as usize].name == sym);
         let i = match existing {
             Some(i) => i as usize,
             None => {
-                let n = cx.st.nexternals as usize;
+                let n = cx.st.pools.nexternals as usize;
                 if n >= cx.externals.len() {
                     return Err(cap(Pool::ExternalFns, cx.externals.len()).into());
                 }
-                cx.st.nexternals += 1;
+                cx.st.pools.nexternals += 1;
                 cx.note_hw(Pool::ExternalFns, n + 1);
                 n
             }
         };
         cx.externals[i] = ExternalEntry { name: sym, min: min_args, max: max_args.unwrap_or(ANY), f: Some(f) };
-        cx.st.ext_syms = cx.st.nsyms;
+        cx.st.pools.ext_syms = cx.st.pools.nsyms;
         Ok(())
     }
 
     /// Live facts in index order.
     pub fn facts(&self) -> impl Iterator<Item = FactId> + '_ {
-        let mut f = self.st.fact_head;
+        let mut f = self.st.facts.fact_head;
         core::iter::from_fn(move || {
             if f == NONE {
                 return None;
@@ -273,7 +273,7 @@ engine_impl! {
 
     /// High-water marks and capacities of every pool.
     pub fn stats(&self) -> Stats {
-        let mut s = self.st.hw;
+        let mut s = self.st.pools.hw;
         let caps = S::CAPACITIES.to_array();
         for (i, c) in caps.iter().enumerate() {
             s.capacity[i] = *c as u32;
@@ -284,31 +284,31 @@ engine_impl! {
     /// Whether matches a retract unblocked wait for room (they are *owed*): until they
     /// are built, assert and modify build them first and `run` fires nothing.
     pub fn owes(&self) -> bool {
-        self.st.owed != NONE
+        self.st.net.owed != NONE
     }
 
     /// Entries in use of the append-only pools (constructs and what they built):
     /// a construct that fails to load leaves these unchanged.
     pub fn usage(&self) -> Usage {
         Usage {
-            symbols: self.st.nsyms,
-            templates: self.st.ntemplates,
-            slot_defs: self.st.nslots,
-            rules: self.st.nrules,
-            alpha_nodes: self.st.nalpha,
-            joins: self.st.njoins,
-            exprs: self.st.nexprs,
-            functions: self.st.nfuncs,
-            globals: self.st.nglobals,
-            deffacts: self.st.ndeffacts,
-            tokens: self.st.tokens_live,
+            symbols: self.st.pools.nsyms,
+            templates: self.st.pools.ntemplates,
+            slot_defs: self.st.pools.nslots,
+            rules: self.st.pools.nrules,
+            alpha_nodes: self.st.pools.nalpha,
+            joins: self.st.pools.njoins,
+            exprs: self.st.pools.nexprs,
+            functions: self.st.pools.nfuncs,
+            globals: self.st.pools.nglobals,
+            deffacts: self.st.pools.ndeffacts,
+            tokens: self.st.pools.tokens_live,
         }
     }
 
     /// Calls `f(rule, salience, basis)` for each activation in agenda order; `basis`
     /// holds each pattern CE's fact index (None for not/exists/test CEs).
     pub fn for_each_activation(&self, mut f: impl FnMut(&str, i32, &[Option<u32>])) {
-        let mut a = self.st.agenda_head;
+        let mut a = self.st.agenda.agenda_head;
         while a != NONE {
             let act = self.act_at(a);
             let mut basis = [None; crate::rete::MAX_PATTERNS];
@@ -323,7 +323,7 @@ engine_impl! {
     pub fn counts(&self) -> (usize, usize) {
         (self.facts().count(), {
             let mut n = 0;
-            let mut a = self.st.agenda_head;
+            let mut a = self.st.agenda.agenda_head;
             while a != NONE {
                 n += 1;
                 a = self.act_at(a).next;
@@ -345,7 +345,7 @@ engine_impl! {
     }
 
     fn fact_slot_of(&self, id: FactId) -> Option<Ix> {
-        let mut f = self.st.fact_head;
+        let mut f = self.st.facts.fact_head;
         while f != NONE {
             let x = self.fact_at(f);
             if x.num == id.0 && x.state == FactState::Live {

@@ -7,7 +7,7 @@ use core::fmt::Write;
 use crate::builtins::errors::Fallback;
 use crate::builtins::files::{FileItems, FILE_BUF};
 use crate::builtins::{FIXED_SYMBOLS, SYM_INITIAL_FACT};
-use crate::engine::{watch, Core};
+use crate::engine::{watch, Core, Frame};
 use crate::error::{EvalError, EvalErrorKind, LoadDetail, LoadError};
 use crate::expr::{FnKind, Op};
 use crate::fact::FactState;
@@ -92,13 +92,13 @@ impl Parser<'_, '_, '_> {
     /// the parser once a construct is built (a rule before it is matched, as CLIPS
     /// prints it before the activations), and after it by `load_items`; prints once.
     pub(crate) fn announce(&mut self) {
-        let Some((start, existed)) = self.cx.st.announce.take() else {
+        let Some((start, existed)) = self.cx.st.io.announce.take() else {
             return;
         };
         let kw = self.construct;
         let text = self.lex.source().get(start..).unwrap_or("");
         let mut b: TextBuf<256> = TextBuf::new();
-        if self.cx.st.watch & watch::COMPILATIONS != 0 {
+        if self.cx.st.mode.watch & watch::COMPILATIONS != 0 {
             let name = construct_name(text);
             let _ = if existed {
                 write!(b, "\n[CSTRCPSR1] WARNING: Redefining {kw}: {name}")
@@ -122,7 +122,7 @@ impl Parser<'_, '_, '_> {
                 "deffacts" => '$',
                 _ => '#',
             });
-            self.cx.st.progress_printed = true;
+            self.cx.st.io.progress_printed = true;
         }
         self.cx.write(router::STDOUT, b.as_str());
     }
@@ -144,10 +144,12 @@ impl Core<'_> {
             return false;
         };
         match kw {
-            "defrule" => (0..self.st.nrules)
+            "defrule" => (0..self.st.pools.nrules)
                 .any(|r| self.rules[r as usize].name == id && !self.rules[r as usize].deleted),
-            "deffacts" => (0..self.st.ndeffacts).any(|d| self.deffacts[d as usize].name == id),
-            "deffunction" => (0..self.st.nfuncs).any(|f| self.funcs[f as usize].name == id),
+            "deffacts" => {
+                (0..self.st.pools.ndeffacts).any(|d| self.deffacts[d as usize].name == id)
+            }
+            "deffunction" => (0..self.st.pools.nfuncs).any(|f| self.funcs[f as usize].name == id),
             "deftemplate" => self.find_template(id).is_some(),
             _ => false,
         }
@@ -190,17 +192,17 @@ impl Core<'_> {
             self.intern(s)?;
         }
         let t = self.implied_template(SYM_INITIAL_FACT)?;
-        self.st.initial_tmpl = t;
+        self.st.facts.initial_tmpl = t;
         self.make_root()?;
         self.assert_initial_fact()
     }
 
     pub(crate) fn assert_initial_fact(&mut self) -> Result<(), EvalError> {
-        let base = self.st.sp;
+        let base = self.st.frame.sp;
         let m = self.multi_begin();
         self.push_value(self.multi_finish(m))?;
-        let r = self.assert_slots(self.st.initial_tmpl, base as usize);
-        self.st.sp = base;
+        let r = self.assert_slots(self.st.facts.initial_tmpl, base as usize);
+        self.st.frame.sp = base;
         r.map(|_| ())
     }
 
@@ -220,15 +222,15 @@ impl Core<'_> {
             }
             self.delete_token(c);
         }
-        while self.st.fact_head != NONE {
-            let f = self.st.fact_head;
+        while self.st.facts.fact_head != NONE {
+            let f = self.st.facts.fact_head;
             self.retract_fact(f);
         }
         self.free_pending();
-        self.st.values_top = 0;
-        self.st.next_fact_num = 0;
+        self.st.facts.values_top = 0;
+        self.st.facts.next_fact_num = 0;
         // globals back to their initial values
-        for g in 0..self.st.nglobals {
+        for g in 0..self.st.pools.nglobals {
             let init = self.globals[g as usize].init;
             if init != NONE {
                 let v = self.eval(init)?;
@@ -242,35 +244,35 @@ impl Core<'_> {
             }
             j = self.joins[j as usize].next_sibling;
         }
-        if self.st.initial_deffacts {
+        if self.st.mode.initial_deffacts {
             self.assert_initial_fact()?;
         }
         // an error in the network halts CLIPS's reset: no further deffacts fact
-        'deffacts: for d in 0..self.st.ndeffacts {
+        'deffacts: for d in 0..self.st.pools.ndeffacts {
             let mut spec = self.deffacts[d as usize].facts;
             while spec != NONE {
-                if self.st.halting {
+                if self.st.mode.halting {
                     break 'deffacts;
                 }
                 if self.exprs[spec as usize].op == Op::FactSpec {
                     // a multislot's value is built in the scratch area; once asserted
                     // the fact holds its own copy, so a deffacts of any size fits
-                    let mark = self.st.scratch_top;
+                    let mark = self.st.frame.scratch_top;
                     self.assert_spec(spec)?;
-                    self.st.scratch_top = mark;
+                    self.st.frame.scratch_top = mark;
                 }
                 spec = self.exprs[spec as usize].next;
             }
         }
-        self.st.scratch_top = 0;
+        self.st.frame.scratch_top = 0;
         Ok(())
     }
 
     /// `(clear)`: everything goes; the environment starts afresh (externals stay).
     pub fn clear(&mut self) -> Result<(), EvalError> {
-        let w = self.st.watch;
-        let next = self.st.nexternals;
-        let ext_syms = self.st.ext_syms;
+        let w = self.st.mode.watch;
+        let next = self.st.pools.nexternals;
+        let ext_syms = self.st.pools.ext_syms;
         for f in self.facts.iter_mut() {
             *f = crate::fact::Fact::EMPTY;
         }
@@ -295,41 +297,28 @@ impl Core<'_> {
         for t in self.templates.iter_mut() {
             *t = crate::template::Template::EMPTY;
         }
-        let hw = self.st.hw;
+        let hw = self.st.pools.hw;
+        // what is running goes on: its frame, nesting and firing, and the generator
         let ctx = (
-            self.st.sp,
-            self.st.bp,
-            self.st.scratch_top,
-            self.st.eval_depth,
-            self.st.firing,
-            self.st.pm_rhs,
+            self.st.frame,
+            self.st.eval.eval_depth,
+            self.st.mode.firing,
+            self.st.net.pm_rhs,
         );
-        let rng = (
-            self.st.rng,
-            self.st.rng_glibc,
-            self.st.rng_pos,
-            self.st.rng_seeded,
-        );
+        let random = self.st.random;
         *self.st = crate::engine::State::new();
         // a compiled rule base's nodes read in place go with the rest
         #[cfg(feature = "in-place")]
         self.exprs.set_rom(self.st.rom_exprs);
-        self.st.hw = hw;
+        self.st.pools.hw = hw;
         (
-            self.st.sp,
-            self.st.bp,
-            self.st.scratch_top,
-            self.st.eval_depth,
-            self.st.firing,
-            self.st.pm_rhs,
+            self.st.frame,
+            self.st.eval.eval_depth,
+            self.st.mode.firing,
+            self.st.net.pm_rhs,
         ) = ctx;
-        (
-            self.st.rng,
-            self.st.rng_glibc,
-            self.st.rng_pos,
-            self.st.rng_seeded,
-        ) = rng;
-        self.st.nexternals = next;
+        self.st.random = random;
+        self.st.pools.nexternals = next;
         // keep the symbols naming external functions
         for b in self.sym_buckets.iter_mut() {
             *b = NONE;
@@ -345,15 +334,15 @@ impl Core<'_> {
             self.sym_entries[i as usize].next = self.sym_buckets[h];
             self.sym_buckets[h] = i;
         }
-        self.st.nsyms = keep;
-        self.st.sym_bytes = if keep == 0 {
+        self.st.pools.nsyms = keep;
+        self.st.pools.sym_bytes = if keep == 0 {
             0
         } else {
             self.sym_entries[keep as usize - 1].start + self.sym_entries[keep as usize - 1].len
         };
-        self.st.ext_syms = ext_syms;
+        self.st.pools.ext_syms = ext_syms;
         // CLIPS prints `==> f-0 (initial-fact)` here when facts are watched
-        self.st.watch = w;
+        self.st.mode.watch = w;
         if keep == 0 {
             self.startup()
         } else {
@@ -364,14 +353,14 @@ impl Core<'_> {
     fn startup_after_clear(&mut self) -> Result<(), EvalError> {
         // fixed symbols are already the first entries
         let t = self.implied_template(SYM_INITIAL_FACT)?;
-        self.st.initial_tmpl = t;
+        self.st.facts.initial_tmpl = t;
         self.make_root()?;
         self.assert_initial_fact()
     }
 
     /// Copies a token's pattern bindings for the RHS.
     fn bind_rhs(&mut self, mut t: Ix) {
-        for b in self.st.rhs_pm.iter_mut() {
+        for b in self.st.net.rhs_pm.iter_mut() {
             *b = PatBinding::EMPTY;
         }
         while t != NONE {
@@ -385,7 +374,7 @@ impl Core<'_> {
             }
             if tk.am != NONE {
                 let a = self.tokens[tk.am as usize];
-                self.st.rhs_pm[j.depth as usize] = PatBinding {
+                self.st.net.rhs_pm[j.depth as usize] = PatBinding {
                     fact: a.fact,
                     marks: a.marks,
                 };
@@ -397,7 +386,7 @@ impl Core<'_> {
     /// `(run [limit])`: fires activations; returns how many fired.
     pub fn run(&mut self, limit: i64) -> Result<u32, EvalError> {
         let mut stats = RunStats::default();
-        if self.st.watch & watch::STATISTICS != 0 {
+        if self.st.mode.watch & watch::STATISTICS != 0 {
             stats.sample(self);
         }
         let r = self.run_rules(limit, &mut stats);
@@ -408,7 +397,7 @@ impl Core<'_> {
             if limit >= 0 && limit - i64::from(fired) == i64::from(fired) {
                 self.write(router::STDOUT, "rule firing limit reached\n");
             }
-            if self.st.watch & watch::STATISTICS != 0 {
+            if self.st.mode.watch & watch::STATISTICS != 0 {
                 stats.print(self, fired);
             }
         }
@@ -419,13 +408,13 @@ impl Core<'_> {
     /// runs (`State::top_action`, see `rete::defer`). A propagation still deferred at
     /// the end is built here; its error wins, as it happened first.
     fn eval_actions(&mut self, mut e: Ix) -> Result<Value, EvalError> {
-        let saved = self.st.top_action;
+        let saved = self.st.net.top_action;
         let mut r = Ok(Value::Sym(crate::builtins::SYM_FALSE));
         while e != NONE {
-            self.st.top_action = e;
+            self.st.net.top_action = e;
             // a deferred propagation waits only for an assert or modify whose
             // arguments call nothing (see `rete::defer`)
-            if self.st.deferred.fact != NONE && !self.may_wait_for(e) {
+            if self.st.net.deferred.fact != NONE && !self.may_wait_for(e) {
                 if let Err(err) = self.flush_deferred() {
                     r = Err(err);
                     break;
@@ -434,15 +423,15 @@ impl Core<'_> {
             r = self.eval(e);
             // a network error that did not come back as one (a retract's join test)
             // halts the actions too
-            if r.is_ok() && self.st.halting {
+            if r.is_ok() && self.st.mode.halting {
                 r = Err(EvalError::already_reported());
             }
-            if r.is_err() || self.st.returning || self.st.breaking || self.st.halt_now() {
+            if r.is_err() || self.st.eval.returning || self.st.eval.breaking || self.st.halt_now() {
                 break;
             }
             e = self.exprs[e as usize].next;
         }
-        self.st.top_action = saved;
+        self.st.net.top_action = saved;
         if let Err(err) = self.flush_deferred() {
             r = Err(err);
         }
@@ -450,16 +439,16 @@ impl Core<'_> {
     }
 
     fn run_rules(&mut self, limit: i64, stats: &mut RunStats) -> Result<u32, EvalError> {
-        self.st.halt = false;
+        self.st.mode.halt = false;
         let mut fired: u32 = 0;
-        let scratch_mark = self.st.scratch_top;
+        let scratch_mark = self.st.frame.scratch_top;
         while limit < 0 || (fired as i64) < limit {
             // the agenda is complete only once owed matches are built: fire nothing
             // before (the error stops the run; retracting facts makes room)
             self.pay_owed()?;
             // the host may stop an endless run between firings (`Host::interrupt`)
             if let Err(e) = self.poll_interrupt() {
-                self.st.halt = false;
+                self.st.mode.halt = false;
                 return Err(e);
             }
             let (rule, token) = match self.pop_activation() {
@@ -470,19 +459,18 @@ impl Core<'_> {
             self.print_fire_line(fired, rule, token);
             self.bind_rhs(token);
             let saved = (
-                self.st.firing,
-                self.st.pm_rhs,
-                self.st.bp,
-                self.st.sp,
-                self.st.current_rule,
+                self.st.mode.firing,
+                self.st.net.pm_rhs,
+                self.st.frame,
+                self.st.agenda.current_rule,
             );
-            self.st.firing = true;
-            self.st.pm_rhs = true;
-            self.st.current_rule = rule;
+            self.st.mode.firing = true;
+            self.st.net.pm_rhs = true;
+            self.st.agenda.current_rule = rule;
             // a halt ends the run, so one left here came from before it (a top-level
             // command's propagation): the rule's actions run as usual
-            self.st.halting = false;
-            self.st.bp = self.st.sp;
+            self.st.mode.halting = false;
+            self.st.frame.bp = self.st.frame.sp;
             let nlocals = self.rules[rule as usize].nlocals;
             let mut r = Ok(Value::Void);
             for _ in 0..nlocals {
@@ -493,20 +481,22 @@ impl Core<'_> {
             if r.is_ok() {
                 r = self.eval_actions(self.rules[rule as usize].rhs);
             }
-            self.st.returning = false;
-            self.st.breaking = false;
+            self.st.eval.returning = false;
+            self.st.eval.breaking = false;
+            // the rule's frame goes; what it left in scratch goes below, at the top level
+            let frame;
             (
-                self.st.firing,
-                self.st.pm_rhs,
-                self.st.bp,
-                self.st.sp,
-                self.st.current_rule,
+                self.st.mode.firing,
+                self.st.net.pm_rhs,
+                frame,
+                self.st.agenda.current_rule,
             ) = saved;
-            if !self.st.firing {
+            self.st.frame.leave(frame);
+            if !self.st.mode.firing {
                 self.free_pending();
-                self.st.scratch_top = scratch_mark;
+                self.st.frame.scratch_top = scratch_mark;
             }
-            if self.st.watch & watch::STATISTICS != 0 {
+            if self.st.mode.watch & watch::STATISTICS != 0 {
                 stats.sample(self);
             }
             if let Err(e) = r {
@@ -516,16 +506,16 @@ impl Core<'_> {
                 self.report_rhs_error(rule, e);
                 if e.kind() == EvalErrorKind::Interrupted {
                     // the caller learns the run was stopped; the message is out
-                    self.st.halt = false;
+                    self.st.mode.halt = false;
                     let mut e = e;
                     e.reported = true;
                     return Err(e);
                 }
                 break;
             }
-            if self.st.halt {
+            if self.st.mode.halt {
                 // CLIPS names the halted rule only while rules are watched
-                if self.st.watch & watch::RULES == 0 {
+                if self.st.mode.watch & watch::RULES == 0 {
                     break;
                 }
                 let mut b: TextBuf<160> = TextBuf::new();
@@ -538,7 +528,7 @@ impl Core<'_> {
                 break;
             }
         }
-        self.st.halt = false;
+        self.st.mode.halt = false;
         Ok(fired)
     }
 
@@ -566,7 +556,7 @@ impl Core<'_> {
     /// CLIPS's message for an evaluation error (nothing for one already reported).
     pub fn write_error_message(&mut self, e: EvalError) {
         if e.is_capacity() {
-            self.st.unrecoverable = true;
+            self.st.mode.unrecoverable = true;
         }
         if e.reported {
             return;
@@ -625,10 +615,10 @@ impl Core<'_> {
     /// returned: its fallback (`builtins::errors`), `FALSE` for a deffunction.
     #[inline(never)]
     fn print_fallback(&mut self, top: Ix) {
-        if self.st.literal_error {
+        if self.st.eval.literal_error {
             return;
         }
-        if let Some(fb) = self.st.error_fallback.filter(|fb| fb.depth == 1) {
+        if let Some(fb) = self.st.eval.error_fallback.filter(|fb| fb.depth == 1) {
             if let Some(func) = fb.divide_by_zero {
                 self.write_error_message(EvalError::new(EvalErrorKind::DivideByZero { func }));
             }
@@ -672,7 +662,7 @@ impl Core<'_> {
         let mut b: TextBuf<4096> = TextBuf::new();
         let tok = text.get(e.start as usize..e.end as usize).unwrap_or("");
         if e.capacity.is_some() || e.expected == crate::parser::INPUT_ENDED {
-            self.st.unrecoverable = true;
+            self.st.mode.unrecoverable = true;
         }
         if let Some(c) = e.capacity {
             let _ = writeln!(b, "[MEMORY] {c}");
@@ -837,7 +827,7 @@ impl Core<'_> {
             b,
             "--> {}:{}:{}: expected {}",
             source,
-            e.line + self.st.line_base,
+            e.line + self.st.io.line_base,
             e.col,
             e.expected
         );
@@ -864,15 +854,15 @@ impl Core<'_> {
         progress: &mut bool,
     ) -> Result<usize, LoadError> {
         let mut n = 0;
-        self.st.progress_printed = *progress;
+        self.st.io.progress_printed = *progress;
         let mut p = Parser::new(self, text);
         let r = loop {
             let first = p.peek();
             let start = first.start;
             let existed = p.cx.construct_exists(&text[start..]);
-            p.cx.st.announce = verbose.then_some((start, existed));
+            p.cx.st.io.announce = verbose.then_some((start, existed));
             // CLIPS ends a halt with the construct whose matching caused it
-            p.cx.st.halting = false;
+            p.cx.st.mode.halting = false;
             let cp = p.cx.checkpoint();
             let item = match p.next_item() {
                 Ok(Item::Command(_)) => {
@@ -895,8 +885,8 @@ impl Core<'_> {
                 Err(e) => break Err(e),
             }
         };
-        self.st.announce = None;
-        *progress = self.st.progress_printed;
+        self.st.io.announce = None;
+        *progress = self.st.io.progress_printed;
         r
     }
 
@@ -915,8 +905,8 @@ impl Core<'_> {
     ) -> Result<(), EvalError> {
         let mut pos = 0;
         let mut line_base = 0u32;
-        while pos < text.len() && !self.st.exit {
-            if echo && !core::mem::take(&mut self.st.prompt_shown) {
+        while pos < text.len() && !self.st.mode.exit {
+            if echo && !core::mem::take(&mut self.st.io.prompt_shown) {
                 self.write(router::STDOUT, "CLIPS> ");
             }
             let mut end = pos;
@@ -930,10 +920,10 @@ impl Core<'_> {
                 }
                 end = line_end;
                 if let Some(k) = command_complete(&text[pos..end]) {
-                    self.st.line_base = line_base;
+                    self.st.io.line_base = line_base;
                     self.exec_command(&text[pos..pos + k], source);
-                    self.st.line_base = 0;
-                    if !self.st.firing && self.st.eval_depth == 0 {
+                    self.st.io.line_base = 0;
+                    if !self.st.mode.firing && self.st.eval.eval_depth == 0 {
                         self.debug_check("after a batch command");
                     }
                     break;
@@ -941,9 +931,9 @@ impl Core<'_> {
                 if end >= text.len() {
                     // input ends inside a command: report where it is incomplete
                     if !only_blank(&text[pos..end]) {
-                        self.st.line_base = line_base;
+                        self.st.io.line_base = line_base;
                         self.exec_command(&text[pos..end], source);
-                        self.st.line_base = 0;
+                        self.st.io.line_base = 0;
                     }
                     break;
                 }
@@ -965,18 +955,18 @@ impl Core<'_> {
             self.report_unopened_file("batch", path);
             return Ok(false);
         }
-        if self.st.batch_depth >= MAX_BATCH_DEPTH {
+        if self.st.io.batch_depth >= MAX_BATCH_DEPTH {
             self.write(
                 router::WERROR,
                 "[FILEIO] batch files nested too deeply (a file that runs itself?)\n",
             );
             return Ok(false);
         }
-        self.st.batch_depth += 1;
-        let saved_quiet = self.st.quiet_results;
-        self.st.quiet_results = !echo;
+        self.st.io.batch_depth += 1;
+        let saved_quiet = self.st.io.quiet_results;
+        self.st.io.quiet_results = !echo;
         let mut done = true;
-        while !self.st.exit {
+        while !self.st.mode.exit {
             let item = match file.next_command(self) {
                 Ok(Some(item)) => item,
                 Ok(None) => break,
@@ -992,33 +982,33 @@ impl Core<'_> {
             if echo {
                 // a long comment block comes alone: echoed without a prompt of its own
                 let blank = only_blank(command);
-                if (!blank || item.last) && !core::mem::take(&mut self.st.prompt_shown) {
+                if (!blank || item.last) && !core::mem::take(&mut self.st.io.prompt_shown) {
                     self.write(router::STDOUT, "CLIPS> ");
                 }
                 self.write(router::STDOUT, item.text);
                 // CLIPS prompted for a command the file's end cut short: the next
                 // command read (from the outer input) goes without a prompt
                 if blank && item.last {
-                    self.st.prompt_shown = true;
+                    self.st.io.prompt_shown = true;
                 }
             }
             if !only_blank(command) {
-                self.st.line_base = item.line_base;
+                self.st.io.line_base = item.line_base;
                 self.exec_command(command, path);
-                self.st.line_base = 0;
+                self.st.io.line_base = 0;
             }
         }
-        self.st.quiet_results = saved_quiet;
-        self.st.batch_depth -= 1;
+        self.st.io.quiet_results = saved_quiet;
+        self.st.io.batch_depth -= 1;
         Ok(done)
     }
 
     /// Runs the file a `batch` command asked for, as the next input of the command loop.
     pub fn run_pending_batch(&mut self) {
-        while !self.st.pending_batch.is_empty() && !self.st.exit {
+        while !self.st.io.pending_batch.is_empty() && !self.st.mode.exit {
             let mut path: TextBuf<256> = TextBuf::new();
-            let _ = path.write_str(self.st.pending_batch.as_str());
-            self.st.pending_batch.clear();
+            let _ = path.write_str(self.st.io.pending_batch.as_str());
+            self.st.io.pending_batch.clear();
             let _ = self.batch_file_stream(path.as_str(), true);
         }
     }
@@ -1031,7 +1021,7 @@ impl Core<'_> {
     pub fn exec_command(&mut self, text: &str, source: &str) {
         self.exec_item(text, source);
         // inside batch* a batch file waits for the command loop, as in CLIPS
-        if !self.st.quiet_results {
+        if !self.st.io.quiet_results {
             self.run_pending_batch();
         }
     }
@@ -1039,22 +1029,17 @@ impl Core<'_> {
     #[inline(never)]
     fn exec_item(&mut self, text: &str, source: &str) {
         // a halt lasts until the command (or construct) that caused it is done
-        self.st.halting = false;
-        let exprs_before = self.st.nexprs;
+        self.st.mode.halting = false;
+        let exprs_before = self.st.pools.nexprs;
         // a command run from inside another (`batch*` in a rule's actions or a
         // deffunction) leaves the outer one's frame, scratch and command as they were;
         // one at the prompt starts and ends with all three empty
-        let outer = if self.st.eval_depth > 0 {
-            (
-                self.st.sp,
-                self.st.bp,
-                self.st.scratch_top,
-                self.st.command_base,
-            )
+        let outer = if self.st.eval.eval_depth > 0 {
+            (self.st.frame, self.st.eval.command_base)
         } else {
-            (0, 0, 0, 0)
+            (Frame::new(), 0)
         };
-        self.st.command_base = exprs_before;
+        self.st.eval.command_base = exprs_before;
         let cp = self.checkpoint();
         let mut p = Parser::new(self, text);
         let item = p.next_item();
@@ -1062,21 +1047,21 @@ impl Core<'_> {
         match item {
             Ok(Item::Command(e)) => {
                 // a frame for loop/query variables of the command
-                self.st.bp = self.st.sp;
+                self.st.frame.bp = self.st.frame.sp;
                 let mut r = Ok(Value::Void);
                 for _ in 0..nlocals {
                     if let Err(c) = self.push_value(Value::Void) {
                         r = Err(c.into());
                     }
                 }
-                self.st.literal_error = false;
-                self.st.error_fallback = None;
+                self.st.eval.literal_error = false;
+                self.st.eval.error_fallback = None;
                 if r.is_ok() {
                     r = self.eval(e);
                 }
                 match r {
                     Ok(v) => {
-                        if v != Value::Void && !self.st.quiet_results {
+                        if v != Value::Void && !self.st.io.quiet_results {
                             self.print_value(router::STDOUT, v, true);
                             self.write(router::STDOUT, "\n");
                         }
@@ -1087,15 +1072,15 @@ impl Core<'_> {
                         if !matches!(
                             err.kind(),
                             EvalErrorKind::Capacity(_) | EvalErrorKind::Interrupted
-                        ) && !self.st.quiet_results
+                        ) && !self.st.io.quiet_results
                         {
                             self.print_fallback(e);
                         }
                     }
                 }
-                (self.st.sp, self.st.bp, self.st.scratch_top) = (outer.0, outer.1, outer.2);
-                self.st.returning = false;
-                self.st.breaking = false;
+                self.st.frame = outer.0;
+                self.st.eval.returning = false;
+                self.st.eval.breaking = false;
                 // a plain command leaves no expressions behind
                 let now = self.checkpoint();
                 if now.nrules == cp.nrules
@@ -1104,13 +1089,13 @@ impl Core<'_> {
                     && now.ntemplates == cp.ntemplates
                     && now.nglobals == cp.nglobals
                 {
-                    self.st.nexprs = exprs_before;
+                    self.st.pools.nexprs = exprs_before;
                 }
             }
             Ok(_) => {}
             Err(e) => self.report_load_error(source, text, &e),
         }
-        self.st.command_base = outer.3;
+        self.st.eval.command_base = outer.1;
     }
 
     /// `load-facts`: each top-level `(fact ...)` is asserted.
@@ -1119,7 +1104,7 @@ impl Core<'_> {
         while let Some(k) = command_complete(&text[pos..]) {
             let chunk = &text[pos..pos + k];
             pos += k;
-            let exprs_before = self.st.nexprs;
+            let exprs_before = self.st.pools.nexprs;
             let mut p = Parser::new(self, chunk);
             p.scope = crate::parser::Scope::Lhs;
             if p.expect_lparen("a fact").is_err() {
@@ -1128,12 +1113,12 @@ impl Core<'_> {
             let spec = match p.fact_spec() {
                 Ok(s) => s,
                 Err(_) => {
-                    self.st.nexprs = exprs_before;
+                    self.st.pools.nexprs = exprs_before;
                     continue;
                 }
             };
             let r = self.assert_spec(spec);
-            self.st.nexprs = exprs_before;
+            self.st.pools.nexprs = exprs_before;
             r?;
         }
         Ok(())

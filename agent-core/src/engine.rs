@@ -1,6 +1,12 @@
 //! The engine: its scalar state and its pools' storage (sized by named capacities, see
 //! [`crate::config`]), and `Core`, the non-generic view of that storage that all
 //! algorithms run on (one copy of the code for every size).
+//!
+//! The scalar state ([`State`]) is one small struct per subsystem: pool counters
+//! ([`PoolCounts`]), the fact list ([`FactList`]), the agenda ([`AgendaState`]),
+//! matching in progress ([`MatchState`]), the evaluator's registers ([`Frame`]) and
+//! the rest of its state ([`EvalState`]), batch and prompt I/O ([`BatchIo`]), CLIPS
+//! mode flags ([`Mode`]), caches ([`Caches`]) and the random generator ([`Random`]).
 
 use crate::builtins::BuiltinFn;
 pub use crate::config::{entry_bytes, Core};
@@ -84,8 +90,8 @@ pub struct Checkpoint {
     pub ndeffacts: Ix,
 }
 
-/// Scalar engine state (counters, list heads, flags).
-pub struct State {
+/// Entries in use, free lists and high-water marks of the pools.
+pub struct PoolCounts {
     pub nsyms: Ix,
     pub sym_bytes: Ix,
     pub ntemplates: Ix,
@@ -100,8 +106,6 @@ pub struct State {
     pub nexternals: Ix,
     /// Symbols to keep across `clear` (fixed ones and external function names).
     pub ext_syms: Ix,
-    /// Line of the current batch command's first line minus one (error positions).
-    pub line_base: u32,
     /// Ids of pattern-network nodes (see `AlphaNode::key`).
     pub trie_ids: Ix,
     pub fact_free: Ix,
@@ -112,165 +116,12 @@ pub struct State {
     /// Tokens currently allocated (for the high-water mark).
     pub tokens_live: Ix,
     pub acts_used: Ix,
-    /// Top of the fact value arena.
-    pub values_top: Ix,
-    /// Live facts in creation (= number) order.
-    pub fact_head: Ix,
-    /// How many facts that list holds (`watch statistics` samples it per firing).
-    pub facts_live: Ix,
-    pub fact_tail: Ix,
-    /// Activations on the agenda: `(watch statistics)` samples it after every firing,
-    /// which must not walk the list.
-    pub agenda_len: Ix,
-    /// Facts retracted during the current firing, freed when it ends.
-    pub pending: Ix,
-    pub next_fact_num: u32,
-    pub agenda_head: Ix,
-    pub act_seq: u32,
-    /// Activations the retract of a modify removed, to put back in place if the
-    /// modify fails.
-    pub act_journal: crate::agenda::ActJournal,
-    /// Not outputs a removal unblocked on a full token pool, waiting for their
-    /// propagation (see `Core::pay_owed`); chained through the tokens.
-    pub owed: Ix,
-    /// Putting a fact back (a failed modify's old fact): a not output that becomes
-    /// active is owed instead of passed on, and paid once the fact is complete. A
-    /// fact's assert may pass a `not` on and block it again with a later pattern of
-    /// its own; re-asserting into a full pool must not need that room for a moment.
-    pub defer_nots: bool,
-    /// Not outputs a modify's retract unblocked (see `Core::owe_unblocked`).
-    pub unblocked: crate::rete::UnblockLog,
-    /// Watch traces of an assert/modify held back until it cannot be undone.
-    pub hold: crate::hold::TraceHold,
-    /// Evaluation stack pointer and current frame base.
-    pub sp: Ix,
-    pub bp: Ix,
-    pub scratch_top: Ix,
-    /// Cells at the top of scratch holding multifield values of globals.
-    pub gmf_used: Ix,
-    pub watch: u8,
-    pub halt: bool,
-    pub exit: bool,
-    /// `(exit N)`'s N (0 for a bare `(exit)`).
-    pub exit_status: i32,
-    /// Something the session could not recover from was reported: a pool ran out, or
-    /// the input ended inside a construct (a command line exits non-zero for it).
-    pub unrecoverable: bool,
-    /// A pattern test failed with an error during the current assert.
-    pub pattern_error: bool,
-    /// CLIPS's halting state: an error was reported in the pattern or join network
-    /// during the current command, firing or construct. Until that ends, what CLIPS stops while halting does nothing and
-    /// gives FALSE (progn, switch, loops, deffunction calls, fact-set queries; printout
-    /// prints nothing) in the rest of the propagation, and `reset` asserts no further
-    /// deffacts facts.
-    pub halting: bool,
-    /// Pattern or join tests running (nested): CLIPS is pattern-matching, and refuses
-    /// to assert, retract, modify or duplicate facts, to build or remove rules, to
-    /// `clear` or to `reset` until they are done (the checks sit in those builtins and
-    /// in `Core::assert_spec`).
-    pub matching: u16,
-    /// First expression node of the command being run (at the prompt, or an `eval`
-    /// string): what it refers to is in use, as in CLIPS (`undeftemplate` ...).
-    pub command_base: Ix,
-    /// The `initial-fact` deffacts is defined (`undeffacts` removes it): `reset`
-    /// asserts `(initial-fact)`.
-    pub initial_deffacts: bool,
-    /// Number of the next `gensym` symbol.
-    pub gensym_next: u32,
-    /// The test `eval_tests` last stopped at with an error (names the field in
-    /// `[FACTMCH1]`).
-    pub failed_test: Ix,
-    /// `return` / `break` unwinding in progress.
-    pub returning: bool,
-    pub breaking: bool,
-    pub return_value: Value,
-    pub firing: bool,
-    /// Top-level fact-set queries running (outside a firing): a fact they retract
-    /// stays pending, its cells readable by `?f:slot`, until the tuple is done.
-    pub query_hold: u16,
-    pub eval_depth: u16,
-    /// Deffunctions executing: `clear` refuses while any is, as in CLIPS.
-    pub in_use: u16,
-    /// A construct is being parsed: its parse-time expressions (salience, a global's
-    /// value) may not define other constructs or `clear`, which would change the pools
-    /// its rollback marks point into.
-    pub defining: bool,
-    /// Facts asserted and globals set (wrapping): a parse-time evaluation that moved
-    /// it left values that may use the construct's new symbols and templates.
-    pub effects: u32,
-    /// The last argument type error was about a literal argument: CLIPS reports those
-    /// while parsing, so the command line prints no fallback value after it.
-    pub literal_error: bool,
-    /// A file `batch` asked for, run by the command loop after the current command.
-    pub pending_batch: crate::value::TextBuf<256>,
-    /// How many batch files are running inside each other.
-    pub batch_depth: u8,
-    /// `batch*`: commands print no results.
-    pub quiet_results: bool,
-    /// A batch file ended after its prompt was printed; the next command read uses it.
-    pub prompt_shown: bool,
-    /// `load` of the construct being parsed: its start in the text and whether it
-    /// redefines one; the parser announces it (`Parser::announce`) once it is built,
-    /// before it is matched against the facts.
-    pub announce: Option<(usize, bool)>,
-    /// A progress mark (`*`, `%`, ...) was printed by this load.
-    pub progress_printed: bool,
-    /// A field of the fact being asserted failed to evaluate: CLIPS reports it, leaves
-    /// the field out, asserts the fact and then stops the actions (see `assert`).
-    pub field_error: Option<crate::error::EvalError>,
-    /// A builtin's fallback value after a run-time error, when it depends on the
-    /// arguments (see `builtins::errors::ErrorFallback`).
-    pub error_fallback: Option<crate::builtins::errors::ErrorFallback>,
-    /// Template of `(initial-fact)`.
-    pub initial_tmpl: Ix,
-    /// Network generation: changes whenever joins are added or unlinked (cached
-    /// per-template facts about the network, `rete::defer`, are renewed then).
-    pub net_gen: u32,
-    /// The fact whose propagation waits for a retract to go first (`rete::defer`).
-    pub deferred: crate::rete::Deferred,
-    /// The right-hand-side action being evaluated at the top level (NONE outside a
-    /// firing), and whether the assert it makes now may be deferred.
-    pub top_action: Ix,
-    pub defer_next: bool,
-    /// A modify's old fact while its new one is asserted, for a deferral to keep.
-    pub modify_old: Option<(Ix, crate::fact::Fact)>,
-    /// Pattern bindings for network tests (`lhs`) and the firing rule (`rhs`).
-    pub lhs_pm: [PatBinding; MAX_PATTERNS],
-    /// The partial match whose whole ancestry `lhs_pm` holds (NONE if none): then
-    /// binding it again is free and quick join tests read facts from `lhs_pm`.
-    pub lhs_of: Ix,
-    pub rhs_pm: [PatBinding; MAX_PATTERNS],
-    pub this_pm: PatBinding,
-    /// Last beta-index key computed: (token, index child join, key). The token's
-    /// left activation of that child, which follows at once, reuses it.
-    pub key_cache: (Ix, Ix, u32),
-    /// Recently used joins' key plans (`rete::index`), direct-mapped by join.
-    pub key_plans: [crate::rete::KeyPlan; crate::rete::KEY_PLANS],
-    /// Recently used joins' test plans (`rete::quick`), direct-mapped by join.
-    pub test_plans: [crate::rete::TestPlan; crate::rete::TEST_PLANS],
-    pub pm_rhs: bool,
-    /// Rule being fired (for messages), NONE outside a firing.
-    pub current_rule: Ix,
     pub hw: Stats,
-    /// Random generator state (`seed`/`random`).
-    pub rng: u64,
-    pub rng_glibc: [i32; 34],
-    pub rng_pos: u8,
-    pub rng_seeded: bool,
-    /// Expression nodes of a compiled rule base read in place (feature `in-place`,
-    /// `compiled`): node ids below its length are these, the arena's come after.
-    pub rom_exprs: &'static [Expr],
-    /// Without the feature `parser`: the code of the builtins the loaded compiled rule
-    /// base calls, by id (see `builtins::code_for`); empty otherwise.
-    pub builtin_code: &'static [crate::builtins::Imp],
-    /// Keep each rule's source text for `ppdefrule` (CLIPS's pretty-print forms). A
-    /// robot image that never lists its rules turns this off to save the symbol bytes.
-    pub keep_pp_forms: bool,
 }
 
-impl State {
-    pub const fn new() -> State {
-        State {
+impl PoolCounts {
+    pub const fn new() -> PoolCounts {
+        PoolCounts {
             nsyms: 0,
             sym_bytes: 0,
             ntemplates: 0,
@@ -285,7 +136,6 @@ impl State {
             nexternals: 0,
             ext_syms: 0,
             trie_ids: 0,
-            line_base: 0,
             fact_free: NONE,
             token_free: NONE,
             act_free: NONE,
@@ -293,87 +143,403 @@ impl State {
             tokens_used: 0,
             tokens_live: 0,
             acts_used: 0,
+            hw: Stats::new(),
+        }
+    }
+}
+
+/// The live facts: their list, numbering and value arena top.
+pub struct FactList {
+    /// Top of the fact value arena.
+    pub values_top: Ix,
+    /// Live facts in creation (= number) order.
+    pub fact_head: Ix,
+    /// How many facts that list holds (`watch statistics` samples it per firing).
+    pub facts_live: Ix,
+    pub fact_tail: Ix,
+    /// Facts retracted during the current firing, freed when it ends.
+    pub pending: Ix,
+    pub next_fact_num: u32,
+    /// Template of `(initial-fact)`.
+    pub initial_tmpl: Ix,
+    /// A modify's old fact while its new one is asserted, for a deferral to keep.
+    pub modify_old: Option<(Ix, crate::fact::Fact)>,
+}
+
+impl FactList {
+    pub const fn new() -> FactList {
+        FactList {
             values_top: 0,
             fact_head: NONE,
             facts_live: 0,
             fact_tail: NONE,
-            agenda_len: 0,
             pending: NONE,
             next_fact_num: 0,
+            initial_tmpl: NONE,
+            modify_old: None,
+        }
+    }
+}
+
+/// The agenda: its list and activation numbering, the journal of a failed modify.
+pub struct AgendaState {
+    pub agenda_head: Ix,
+    /// Activations on the agenda: `(watch statistics)` samples it after every firing,
+    /// which must not walk the list.
+    pub agenda_len: Ix,
+    pub act_seq: u32,
+    /// Activations the retract of a modify removed, to put back in place if the
+    /// modify fails.
+    pub act_journal: crate::agenda::ActJournal,
+    /// Rule being fired (for messages), NONE outside a firing.
+    pub current_rule: Ix,
+}
+
+impl AgendaState {
+    pub const fn new() -> AgendaState {
+        AgendaState {
             agenda_head: NONE,
+            agenda_len: 0,
             act_seq: 0,
             act_journal: crate::agenda::ActJournal::EMPTY,
+            current_rule: NONE,
+        }
+    }
+}
+
+/// Matching in progress: pattern bindings, deferred and owed propagation.
+pub struct MatchState {
+    /// Not outputs a removal unblocked on a full token pool, waiting for their
+    /// propagation (see `Core::pay_owed`); chained through the tokens.
+    pub owed: Ix,
+    /// Putting a fact back (a failed modify's old fact): a not output that becomes
+    /// active is owed instead of passed on, and paid once the fact is complete. A
+    /// fact's assert may pass a `not` on and block it again with a later pattern of
+    /// its own; re-asserting into a full pool must not need that room for a moment.
+    pub defer_nots: bool,
+    /// Not outputs a modify's retract unblocked (see `Core::owe_unblocked`).
+    pub unblocked: crate::rete::UnblockLog,
+    /// Watch traces of an assert/modify held back until it cannot be undone.
+    pub hold: crate::hold::TraceHold,
+    /// The test `eval_tests` last stopped at with an error (names the field in
+    /// `[FACTMCH1]`).
+    pub failed_test: Ix,
+    /// A pattern test failed with an error during the current assert.
+    pub pattern_error: bool,
+    /// Pattern or join tests running (nested): CLIPS is pattern-matching, and refuses
+    /// to assert, retract, modify or duplicate facts, to build or remove rules, to
+    /// `clear` or to `reset` until they are done (the checks sit in those builtins and
+    /// in `Core::assert_spec`).
+    pub matching: u16,
+    /// Network generation: changes whenever joins are added or unlinked (cached
+    /// per-template facts about the network, `rete::defer`, are renewed then).
+    pub net_gen: u32,
+    /// The fact whose propagation waits for a retract to go first (`rete::defer`).
+    pub deferred: crate::rete::Deferred,
+    /// The right-hand-side action being evaluated at the top level (NONE outside a
+    /// firing), and whether the assert it makes now may be deferred.
+    pub top_action: Ix,
+    pub defer_next: bool,
+    /// Pattern bindings for network tests (`lhs`) and the firing rule (`rhs`).
+    pub lhs_pm: [PatBinding; MAX_PATTERNS],
+    /// The partial match whose whole ancestry `lhs_pm` holds (NONE if none): then
+    /// binding it again is free and quick join tests read facts from `lhs_pm`.
+    pub lhs_of: Ix,
+    pub rhs_pm: [PatBinding; MAX_PATTERNS],
+    pub this_pm: PatBinding,
+    pub pm_rhs: bool,
+}
+
+impl MatchState {
+    pub const fn new() -> MatchState {
+        MatchState {
             owed: NONE,
             defer_nots: false,
             unblocked: crate::rete::UnblockLog::EMPTY,
             hold: crate::hold::TraceHold::EMPTY,
+            failed_test: NONE,
+            pattern_error: false,
+            matching: 0,
+            net_gen: 0,
+            deferred: crate::rete::Deferred::NONE,
+            top_action: NONE,
+            defer_next: false,
+            lhs_pm: [PatBinding::EMPTY; MAX_PATTERNS],
+            lhs_of: NONE,
+            rhs_pm: [PatBinding::EMPTY; MAX_PATTERNS],
+            this_pm: PatBinding::EMPTY,
+            pm_rhs: false,
+        }
+    }
+}
+
+/// The evaluator's registers: stack pointer, frame base, scratch top, saved and
+/// restored as one value around a frame (a firing, a deffunction call, a command).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Frame {
+    /// Evaluation stack pointer and current frame base.
+    pub sp: Ix,
+    pub bp: Ix,
+    pub scratch_top: Ix,
+}
+
+impl Frame {
+    /// Ends a frame opened at `outer`: its stack (locals, arguments) goes; what it
+    /// left in scratch stays for the caller to keep or drop.
+    #[inline]
+    pub fn leave(&mut self, outer: Frame) {
+        self.sp = outer.sp;
+        self.bp = outer.bp;
+    }
+
+    pub const fn new() -> Frame {
+        Frame {
             sp: 0,
             bp: 0,
             scratch_top: 0,
+        }
+    }
+}
+
+/// The evaluator: nesting, unwinding, error details of the current call.
+pub struct EvalState {
+    /// Cells at the top of scratch holding multifield values of globals.
+    pub gmf_used: Ix,
+    pub eval_depth: u16,
+    /// `return` / `break` unwinding in progress.
+    pub returning: bool,
+    pub breaking: bool,
+    pub return_value: Value,
+    /// Deffunctions executing: `clear` refuses while any is, as in CLIPS.
+    pub in_use: u16,
+    /// Facts asserted and globals set (wrapping): a parse-time evaluation that moved
+    /// it left values that may use the construct's new symbols and templates.
+    pub effects: u32,
+    /// The last argument type error was about a literal argument: CLIPS reports those
+    /// while parsing, so the command line prints no fallback value after it.
+    pub literal_error: bool,
+    /// A field of the fact being asserted failed to evaluate: CLIPS reports it, leaves
+    /// the field out, asserts the fact and then stops the actions (see `assert`).
+    pub field_error: Option<crate::error::EvalError>,
+    /// A builtin's fallback value after a run-time error, when it depends on the
+    /// arguments (see `builtins::errors::ErrorFallback`).
+    pub error_fallback: Option<crate::builtins::errors::ErrorFallback>,
+    /// Number of the next `gensym` symbol.
+    pub gensym_next: u32,
+    /// First expression node of the command being run (at the prompt, or an `eval`
+    /// string): what it refers to is in use, as in CLIPS (`undeftemplate` ...).
+    pub command_base: Ix,
+    /// Top-level fact-set queries running (outside a firing): a fact they retract
+    /// stays pending, its cells readable by `?f:slot`, until the tuple is done.
+    pub query_hold: u16,
+}
+
+impl EvalState {
+    pub const fn new() -> EvalState {
+        EvalState {
             gmf_used: 0,
-            // CLIPS starts with compilations watched
-            watch: watch::COMPILATIONS,
-            halt: false,
-            exit: false,
-            exit_status: 0,
-            unrecoverable: false,
-            pattern_error: false,
-            halting: false,
-            matching: 0,
-            command_base: 0,
-            initial_deffacts: true,
-            gensym_next: 1,
-            failed_test: NONE,
+            eval_depth: 0,
             returning: false,
             breaking: false,
             return_value: Value::Void,
-            firing: false,
-            query_hold: 0,
-            eval_depth: 0,
             in_use: 0,
-            defining: false,
             effects: 0,
             literal_error: false,
+            field_error: None,
+            error_fallback: None,
+            gensym_next: 1,
+            command_base: 0,
+            query_hold: 0,
+        }
+    }
+}
+
+/// Batch files and the prompt: where commands come from and what they print.
+pub struct BatchIo {
+    /// Line of the current batch command's first line minus one (error positions).
+    pub line_base: u32,
+    /// A file `batch` asked for, run by the command loop after the current command.
+    pub pending_batch: crate::value::TextBuf<256>,
+    /// How many batch files are running inside each other.
+    pub batch_depth: u8,
+    /// `batch*`: commands print no results.
+    pub quiet_results: bool,
+    /// A batch file ended after its prompt was printed; the next command read uses it.
+    pub prompt_shown: bool,
+    /// `load` of the construct being parsed: its start in the text and whether it
+    /// redefines one; the parser announces it (`Parser::announce`) once it is built,
+    /// before it is matched against the facts.
+    pub announce: Option<(usize, bool)>,
+    /// A progress mark (`*`, `%`, ...) was printed by this load.
+    pub progress_printed: bool,
+}
+
+impl BatchIo {
+    pub const fn new() -> BatchIo {
+        BatchIo {
+            line_base: 0,
             pending_batch: crate::value::TextBuf::new(),
             batch_depth: 0,
             quiet_results: false,
             prompt_shown: false,
             announce: None,
             progress_printed: false,
-            field_error: None,
-            error_fallback: None,
-            initial_tmpl: NONE,
-            net_gen: 0,
-            deferred: crate::rete::Deferred::NONE,
-            top_action: NONE,
-            defer_next: false,
-            modify_old: None,
-            lhs_pm: [PatBinding::EMPTY; MAX_PATTERNS],
-            lhs_of: NONE,
-            rhs_pm: [PatBinding::EMPTY; MAX_PATTERNS],
-            this_pm: PatBinding::EMPTY,
-            key_cache: (NONE, NONE, 0),
-            key_plans: [crate::rete::KeyPlan::NONE; crate::rete::KEY_PLANS],
-            test_plans: [crate::rete::TestPlan::NONE; crate::rete::TEST_PLANS],
-            pm_rhs: false,
-            current_rule: NONE,
-            hw: Stats::new(),
-            rng: 1,
-            rng_glibc: [0; 34],
-            rng_pos: 0,
-            rng_seeded: false,
-            rom_exprs: &[],
-            builtin_code: &[],
+        }
+    }
+}
+
+/// CLIPS mode flags: watch, halt and exit, halting after an error, what is running.
+pub struct Mode {
+    pub watch: u8,
+    pub halt: bool,
+    pub exit: bool,
+    /// `(exit N)`'s N (0 for a bare `(exit)`).
+    pub exit_status: i32,
+    /// Something the session could not recover from was reported: a pool ran out, or
+    /// the input ended inside a construct (a command line exits non-zero for it).
+    pub unrecoverable: bool,
+    /// CLIPS's halting state: an error was reported in the pattern or join network
+    /// during the current command, firing or construct. Until that ends, what CLIPS stops while halting does nothing and
+    /// gives FALSE (progn, switch, loops, deffunction calls, fact-set queries; printout
+    /// prints nothing) in the rest of the propagation, and `reset` asserts no further
+    /// deffacts facts.
+    pub halting: bool,
+    pub firing: bool,
+    /// A construct is being parsed: its parse-time expressions (salience, a global's
+    /// value) may not define other constructs or `clear`, which would change the pools
+    /// its rollback marks point into.
+    pub defining: bool,
+    /// The `initial-fact` deffacts is defined (`undeffacts` removes it): `reset`
+    /// asserts `(initial-fact)`.
+    pub initial_deffacts: bool,
+    /// Keep each rule's source text for `ppdefrule` (CLIPS's pretty-print forms). A
+    /// robot image that never lists its rules turns this off to save the symbol bytes.
+    pub keep_pp_forms: bool,
+}
+
+impl Mode {
+    pub const fn new() -> Mode {
+        Mode {
+            // CLIPS starts with compilations watched
+            watch: watch::COMPILATIONS,
+            halt: false,
+            exit: false,
+            exit_status: 0,
+            unrecoverable: false,
+            halting: false,
+            firing: false,
+            defining: false,
+            initial_deffacts: true,
             keep_pp_forms: true,
         }
     }
 }
 
-impl Default for State {
-    fn default() -> Self {
-        Self::new()
+/// Caches of facts about the network (renewed when it changes): join keys and test plans.
+pub struct Caches {
+    /// Last beta-index key computed: (token, index child join, key). The token's
+    /// left activation of that child, which follows at once, reuses it.
+    pub key_cache: (Ix, Ix, u32),
+    /// Recently used joins' key plans (`rete::index`), direct-mapped by join.
+    pub key_plans: [crate::rete::KeyPlan; crate::rete::KEY_PLANS],
+    /// Recently used joins' test plans (`rete::quick`), direct-mapped by join.
+    pub test_plans: [crate::rete::TestPlan; crate::rete::TEST_PLANS],
+}
+
+impl Caches {
+    pub const fn new() -> Caches {
+        Caches {
+            key_cache: (NONE, NONE, 0),
+            key_plans: [crate::rete::KeyPlan::NONE; crate::rete::KEY_PLANS],
+            test_plans: [crate::rete::TestPlan::NONE; crate::rete::TEST_PLANS],
+        }
     }
 }
+
+/// The random generator (`seed`, `random`).
+#[derive(Clone, Copy)]
+pub struct Random {
+    /// Random generator state (`seed`/`random`).
+    pub rng: u64,
+    pub rng_glibc: [i32; 34],
+    pub rng_pos: u8,
+    pub rng_seeded: bool,
+}
+
+impl Random {
+    pub const fn new() -> Random {
+        Random {
+            rng: 1,
+            rng_glibc: [0; 34],
+            rng_pos: 0,
+            rng_seeded: false,
+        }
+    }
+}
+
+/// Scalar engine state, one small struct per subsystem.
+pub struct State {
+    pub pools: PoolCounts,
+    pub facts: FactList,
+    pub agenda: AgendaState,
+    pub net: MatchState,
+    pub frame: Frame,
+    pub eval: EvalState,
+    pub io: BatchIo,
+    pub mode: Mode,
+    pub cache: Caches,
+    pub random: Random,
+    /// Expression nodes of a compiled rule base read in place (feature `in-place`,
+    /// `compiled`): node ids below its length are these, the arena's come after.
+    pub rom_exprs: &'static [Expr],
+    /// Without the feature `parser`: the code of the builtins the loaded compiled rule
+    /// base calls, by id (see `builtins::code_for`); empty otherwise.
+    pub builtin_code: &'static [crate::builtins::Imp],
+}
+
+impl State {
+    pub const fn new() -> State {
+        State {
+            pools: PoolCounts::new(),
+            facts: FactList::new(),
+            agenda: AgendaState::new(),
+            net: MatchState::new(),
+            frame: Frame::new(),
+            eval: EvalState::new(),
+            io: BatchIo::new(),
+            mode: Mode::new(),
+            cache: Caches::new(),
+            random: Random::new(),
+            rom_exprs: &[],
+            builtin_code: &[],
+        }
+    }
+}
+
+/// `Default` is `new()` (the state of an empty engine) for the state and its parts.
+macro_rules! default_is_new {
+    ($($t:ty),*) => {
+        $(impl Default for $t {
+            fn default() -> Self {
+                Self::new()
+            }
+        })*
+    };
+}
+
+default_is_new!(
+    State,
+    PoolCounts,
+    FactList,
+    AgendaState,
+    MatchState,
+    Frame,
+    EvalState,
+    BatchIo,
+    Mode,
+    Caches,
+    Random
+);
 
 /// The CLIPS engine: its state and `S`, the storage of every pool, made by
 /// [`engine_storage!`](crate::engine_storage) from named capacities. Every pool is an
@@ -506,7 +672,7 @@ impl<S: Storage> Engine<S> {
             let _ = core.startup();
         }
         // every API call is a command of its own: no halting carried over
-        core.st.halting = false;
+        core.st.mode.halting = false;
         // invariant mode: every operation starts from a consistent engine
         core.debug_check("at the start of an engine operation");
         core
@@ -532,8 +698,8 @@ impl Core<'_> {
             entries: self.sym_entries,
             buckets: self.sym_buckets,
             bytes: self.sym_bytes,
-            count: &mut self.st.nsyms,
-            bytes_used: &mut self.st.sym_bytes,
+            count: &mut self.st.pools.nsyms,
+            bytes_used: &mut self.st.pools.sym_bytes,
         }
     }
 
@@ -551,8 +717,8 @@ impl Core<'_> {
 
     pub fn intern(&mut self, s: &str) -> Result<SymId, CapacityError> {
         let r = self.syms().intern(s);
-        self.note_hw(Pool::Symbols, self.st.nsyms as usize);
-        self.note_hw(Pool::SymbolBytes, self.st.sym_bytes as usize);
+        self.note_hw(Pool::Symbols, self.st.pools.nsyms as usize);
+        self.note_hw(Pool::SymbolBytes, self.st.pools.sym_bytes as usize);
         r
     }
 
@@ -562,19 +728,19 @@ impl Core<'_> {
 
     pub fn note_hw(&mut self, pool: Pool, used: usize) {
         let i = pool as usize;
-        if used as u32 > self.st.hw.used[i] {
-            self.st.hw.used[i] = used as u32;
+        if used as u32 > self.st.pools.hw.used[i] {
+            self.st.pools.hw.used[i] = used as u32;
         }
     }
 
     /// Appends an expression node.
     pub fn push_expr(&mut self, e: Expr) -> Result<Ix, CapacityError> {
-        let n = self.st.nexprs as usize;
+        let n = self.st.pools.nexprs as usize;
         if n >= self.exprs.len() || n >= NONE as usize {
             return Err(cap(Pool::Exprs, self.exprs.len()));
         }
         self.exprs[n] = e;
-        self.st.nexprs += 1;
+        self.st.pools.nexprs += 1;
         self.note_hw(Pool::Exprs, n + 1);
         Ok(n as Ix)
     }
@@ -636,40 +802,40 @@ impl Core<'_> {
 
     pub fn checkpoint(&self) -> Checkpoint {
         Checkpoint {
-            nsyms: self.st.nsyms,
-            sym_bytes: self.st.sym_bytes,
-            ntemplates: self.st.ntemplates,
-            nslots: self.st.nslots,
-            nrules: self.st.nrules,
-            nalpha: self.st.nalpha,
-            njoins: self.st.njoins,
-            nexprs: self.st.nexprs,
-            nfuncs: self.st.nfuncs,
-            nglobals: self.st.nglobals,
-            ndeffacts: self.st.ndeffacts,
+            nsyms: self.st.pools.nsyms,
+            sym_bytes: self.st.pools.sym_bytes,
+            ntemplates: self.st.pools.ntemplates,
+            nslots: self.st.pools.nslots,
+            nrules: self.st.pools.nrules,
+            nalpha: self.st.pools.nalpha,
+            njoins: self.st.pools.njoins,
+            nexprs: self.st.pools.nexprs,
+            nfuncs: self.st.pools.nfuncs,
+            nglobals: self.st.pools.nglobals,
+            ndeffacts: self.st.pools.ndeffacts,
         }
     }
 
     /// Pushes a value on the evaluation stack.
     pub fn push_value(&mut self, v: Value) -> Result<(), CapacityError> {
-        let sp = self.st.sp as usize;
+        let sp = self.st.frame.sp as usize;
         if sp >= self.stack.len() {
             return Err(cap(Pool::EvalStack, self.stack.len()));
         }
         self.stack[sp] = v;
-        self.st.sp += 1;
+        self.st.frame.sp += 1;
         self.note_hw(Pool::EvalStack, sp + 1);
         Ok(())
     }
 
     /// Allocates `n` cells of multifield scratch, returning the start.
     pub fn scratch_alloc(&mut self, n: usize) -> Result<Ix, CapacityError> {
-        let top = self.st.scratch_top as usize;
-        let limit = self.scratch.len() - self.st.gmf_used as usize;
+        let top = self.st.frame.scratch_top as usize;
+        let limit = self.scratch.len() - self.st.eval.gmf_used as usize;
         if top + n > limit || top + n > NONE as usize {
             return Err(cap(Pool::Scratch, self.scratch.len()));
         }
-        self.st.scratch_top += n as Ix;
+        self.st.frame.scratch_top += n as Ix;
         self.note_hw(Pool::Scratch, top + n);
         Ok(top as Ix)
     }
@@ -678,9 +844,9 @@ impl Core<'_> {
     /// region at the top of scratch (compacted on each store) so it outlives the
     /// command that built it.
     pub fn set_global(&mut self, g: Ix, v: Value) -> Result<(), CapacityError> {
-        self.st.effects = self.st.effects.wrapping_add(1);
+        self.st.eval.effects = self.st.eval.effects.wrapping_add(1);
         let len = self.scratch.len();
-        let region = len - self.st.gmf_used as usize;
+        let region = len - self.st.eval.gmf_used as usize;
         let m = match v {
             Value::Multi(m) if (m.start as usize) < region => m,
             Value::Multi(m) => {
@@ -704,14 +870,17 @@ impl Core<'_> {
         // copy the new value to a safe place first: the area just below the region
         let n = m.len as usize;
         let mut others = 0usize;
-        for (i, gl) in self.globals[..self.st.nglobals as usize].iter().enumerate() {
+        for (i, gl) in self.globals[..self.st.pools.nglobals as usize]
+            .iter()
+            .enumerate()
+        {
             if let Value::Multi(x) = gl.value {
                 if i != g as usize && x.start as usize >= region {
                     others += x.len as usize;
                 }
             }
         }
-        if self.st.scratch_top as usize + others + n > len {
+        if self.st.frame.scratch_top as usize + others + n > len {
             return Err(cap(Pool::Scratch, len));
         }
         self.globals[g as usize].value = Value::Void;
@@ -719,7 +888,10 @@ impl Core<'_> {
         let mut new_top = len;
         loop {
             let mut best: Option<usize> = None;
-            for (i, gl) in self.globals[..self.st.nglobals as usize].iter().enumerate() {
+            for (i, gl) in self.globals[..self.st.pools.nglobals as usize]
+                .iter()
+                .enumerate()
+            {
                 if let Value::Multi(x) = gl.value {
                     let s = x.start as usize;
                     if s >= region && s + (x.len as usize) <= new_top && s < new_top {
@@ -764,17 +936,17 @@ impl Core<'_> {
             start: dst as Ix,
             len: n as Ix,
         });
-        self.st.gmf_used = (len - dst) as Ix;
+        self.st.eval.gmf_used = (len - dst) as Ix;
         self.note_hw(
             Pool::Scratch,
-            self.st.scratch_top as usize + self.st.gmf_used as usize,
+            self.st.frame.scratch_top as usize + self.st.eval.gmf_used as usize,
         );
         Ok(())
     }
 
     /// Stats: high-water marks and capacities of every pool.
     pub fn stats(&self) -> Stats {
-        let mut s = self.st.hw;
+        let mut s = self.st.pools.hw;
         let caps = self.capacities();
         for (i, c) in caps.iter().enumerate() {
             s.capacity[i] = *c as u32;

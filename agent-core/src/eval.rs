@@ -64,7 +64,7 @@ impl Core<'_> {
     /// an error while unbound.
     #[inline(always)]
     fn local(&mut self, e: Ix, x: Expr) -> Result<Value, EvalError> {
-        let v = self.stack[(self.st.bp + x.data) as usize];
+        let v = self.stack[(self.st.frame.bp + x.data) as usize];
         if x.aux == 1 && matches!(v, Value::Void) {
             return Err(self.unbound_local(e));
         }
@@ -168,7 +168,7 @@ impl Core<'_> {
         {
             return None;
         }
-        let sp = self.st.sp as usize;
+        let sp = self.st.frame.sp as usize;
         if sp + 2 > self.stack.len() {
             return None;
         }
@@ -194,7 +194,7 @@ impl Core<'_> {
         // pops it)
         self.stack[sp] = va;
         self.stack[sp + 1] = vb;
-        self.st.sp += 2;
+        self.st.frame.sp += 2;
         let args = Args {
             base: sp as Ix,
             len: 2,
@@ -215,9 +215,9 @@ impl Core<'_> {
     pub fn eval_chain(&mut self, mut e: Ix) -> Result<Value, EvalError> {
         let mut v = Value::Sym(SYM_FALSE);
         // while CLIPS halts (`State::halting`) a progn runs nothing and is FALSE
-        while e != NONE && !self.st.halting {
+        while e != NONE && !self.st.mode.halting {
             v = self.eval(e)?;
-            if self.st.returning || self.st.breaking || self.st.halt_now() {
+            if self.st.eval.returning || self.st.eval.breaking || self.st.halt_now() {
                 break;
             }
             e = self.exprs[e as usize].next;
@@ -227,11 +227,11 @@ impl Core<'_> {
 
     fn binding(&self, pat: u8) -> PatBinding {
         if pat == THIS_PATTERN {
-            self.st.this_pm
-        } else if self.st.pm_rhs {
-            self.st.rhs_pm[pat as usize]
+            self.st.net.this_pm
+        } else if self.st.net.pm_rhs {
+            self.st.net.rhs_pm[pat as usize]
         } else {
-            self.st.lhs_pm[pat as usize]
+            self.st.net.lhs_pm[pat as usize]
         }
     }
 
@@ -364,7 +364,7 @@ impl Core<'_> {
     /// place (`cached_query_slot`) and the call cost as much as the read.
     #[cfg_attr(feature = "host-speedups", inline(always))]
     fn query_slot(&mut self, e: Ix, x: Expr) -> Result<Value, EvalError> {
-        let fv = self.stack[(self.st.bp + x.data) as usize];
+        let fv = self.stack[(self.st.frame.bp + x.data) as usize];
         let name = self.exprs[x.first as usize].data;
         if let Some(v) = self.cached_query_slot(fv, name, x.aux) {
             return Ok(v);
@@ -401,45 +401,45 @@ impl Core<'_> {
     /// most calls have an argument or two, where the call's own cost showed).
     #[cfg_attr(feature = "host-speedups", inline(always))]
     fn push_args(&mut self, mut a: Ix) -> Result<Args, EvalError> {
-        let base = self.st.sp;
+        let base = self.st.frame.sp;
         while a != NONE {
             // `$?x` is passed as one multifield argument: CLIPS 6.30 does not expand it
             // into separate arguments (`(length$ $?x)` is the length of ?x)
             let v = match self.eval_operand(a) {
                 Ok(v) => v,
                 Err(e) => {
-                    self.note_hw(Pool::EvalStack, self.st.sp as usize);
+                    self.note_hw(Pool::EvalStack, self.st.frame.sp as usize);
                     return Err(e);
                 }
             };
             // `push_value` without its per-value high-water note (one note per call)
-            let sp = self.st.sp as usize;
+            let sp = self.st.frame.sp as usize;
             if sp >= self.stack.len() {
                 return Err(cap(Pool::EvalStack, self.stack.len()).into());
             }
             self.stack[sp] = v;
-            self.st.sp += 1;
+            self.st.frame.sp += 1;
             a = self.exprs[a as usize].next;
         }
-        self.note_hw(Pool::EvalStack, self.st.sp as usize);
+        self.note_hw(Pool::EvalStack, self.st.frame.sp as usize);
         Ok(Args {
             base,
-            len: self.st.sp - base,
+            len: self.st.frame.sp - base,
         })
     }
 
     /// Calls the function of call node `e` (whose node `x` the caller has read).
     fn call(&mut self, e: Ix, x: Expr) -> Result<Value, EvalError> {
-        if self.st.eval_depth >= MAX_EVAL_DEPTH {
+        if self.st.eval.eval_depth >= MAX_EVAL_DEPTH {
             return Err(EvalError::new(EvalErrorKind::TooDeep {
                 limit: MAX_EVAL_DEPTH,
             }));
         }
-        self.st.eval_depth += 1;
-        let sp = self.st.sp;
+        self.st.eval.eval_depth += 1;
+        let sp = self.st.frame.sp;
         let r = self.call_inner(e, x);
-        self.st.sp = sp;
-        self.st.eval_depth -= 1;
+        self.st.frame.sp = sp;
+        self.st.eval.eval_depth -= 1;
         r
     }
 
@@ -471,7 +471,7 @@ impl Core<'_> {
 
     fn call_deffunction(&mut self, func: Ix, first_arg: Ix) -> Result<Value, EvalError> {
         // while CLIPS halts, a deffunction call evaluates nothing and is FALSE
-        if self.st.halting {
+        if self.st.mode.halting {
             return Ok(Value::Sym(SYM_FALSE));
         }
         let args = self.push_args(first_arg)?;
@@ -489,10 +489,10 @@ impl Core<'_> {
             };
         }
         let sym = self.find_sym(name)?;
-        if let Some(f) = (0..self.st.nfuncs).find(|&f| self.funcs[f as usize].name == sym) {
+        if let Some(f) = (0..self.st.pools.nfuncs).find(|&f| self.funcs[f as usize].name == sym) {
             return Some(Callee::Deffunction(f));
         }
-        let e = (0..self.st.nexternals).find(|&e| self.externals[e as usize].name == sym)?;
+        let e = (0..self.st.pools.nexternals).find(|&e| self.externals[e as usize].name == sym)?;
         Some(Callee::External(e))
     }
 
@@ -504,11 +504,11 @@ impl Core<'_> {
                 f(self, args)
             }
             Callee::Deffunction(f) => {
-                if self.st.halting {
+                if self.st.mode.halting {
                     return Ok(Value::Sym(SYM_FALSE));
                 }
                 // the deffunction's frame starts at its arguments: copy them to the top
-                let base = self.st.sp;
+                let base = self.st.frame.sp;
                 for i in 0..args.len {
                     self.push_value(self.stack[(args.base + i) as usize])?;
                 }
@@ -543,7 +543,7 @@ impl Core<'_> {
         }
         if df.rest {
             // collect the extra arguments (multifields spliced) into the rest parameter
-            let start = self.st.scratch_top;
+            let start = self.st.frame.scratch_top;
             for k in 0..n - np {
                 match self.stack[args.base as usize + np + k] {
                     Value::Multi(m) => {
@@ -558,22 +558,22 @@ impl Core<'_> {
                     }
                 }
             }
-            self.st.sp = args.base + np as Ix;
+            self.st.frame.sp = args.base + np as Ix;
             self.push_value(Value::Multi(MfSpan {
                 start,
-                len: self.st.scratch_top - start,
+                len: self.st.frame.scratch_top - start,
             }))?;
         }
         let frame_args = np + usize::from(df.rest);
         for _ in frame_args..df.nlocals as usize {
             self.push_value(Value::Void)?;
         }
-        let saved_bp = self.st.bp;
-        self.st.bp = args.base;
-        self.st.in_use += 1;
+        let saved_bp = self.st.frame.bp;
+        self.st.frame.bp = args.base;
+        self.st.eval.in_use += 1;
         let r = self.eval_chain(df.body);
-        self.st.in_use -= 1;
-        self.st.bp = saved_bp;
+        self.st.eval.in_use -= 1;
+        self.st.frame.bp = saved_bp;
         // CLIPS reports an error inside a deffunction where it happens and adds which
         // deffunction it halted, at every level of nesting.
         let r = match r {
@@ -592,9 +592,9 @@ impl Core<'_> {
             }
             r => r,
         };
-        let v = if self.st.returning {
-            self.st.returning = false;
-            self.st.return_value
+        let v = if self.st.eval.returning {
+            self.st.eval.returning = false;
+            self.st.eval.return_value
         } else {
             r?
         };
@@ -635,7 +635,7 @@ impl Core<'_> {
                 self.exprs[node as usize].op,
                 Op::Int | Op::Float | Op::Sym | Op::Str
             );
-        self.st.literal_error = literal;
+        self.st.eval.literal_error = literal;
         if literal {
             return err;
         }
@@ -678,7 +678,7 @@ impl Core<'_> {
 
 impl crate::engine::State {
     pub fn halt_now(&self) -> bool {
-        self.exit
+        self.mode.exit
     }
 }
 

@@ -93,7 +93,7 @@ pub(crate) fn value_hash(h: u32, v: Value) -> u32 {
 
 impl Core<'_> {
     pub fn find_template(&self, name: SymId) -> Option<Ix> {
-        (0..self.st.ntemplates).find(|&t| self.templates[t as usize].name == name)
+        (0..self.st.pools.ntemplates).find(|&t| self.templates[t as usize].name == name)
     }
 
     /// The implied (ordered-fact) template for `name`, created on first use.
@@ -101,11 +101,11 @@ impl Core<'_> {
         if let Some(t) = self.find_template(name) {
             return Ok(t);
         }
-        let n = self.st.ntemplates as usize;
+        let n = self.st.pools.ntemplates as usize;
         if n >= self.templates.len() {
             return Err(cap(Pool::Templates, self.templates.len()));
         }
-        let s = self.st.nslots as usize;
+        let s = self.st.pools.nslots as usize;
         if s >= self.slots.len() {
             return Err(cap(Pool::SlotDefs, self.slots.len()));
         }
@@ -115,7 +115,7 @@ impl Core<'_> {
             multi: true,
             ..SlotDef::EMPTY
         };
-        self.st.nslots += 1;
+        self.st.pools.nslots += 1;
         self.templates[n] = Template {
             name,
             first_slot: s as Ix,
@@ -132,7 +132,7 @@ impl Core<'_> {
             #[cfg(feature = "host-speedups")]
             tlast: NONE,
         };
-        self.st.ntemplates += 1;
+        self.st.pools.ntemplates += 1;
         self.note_hw(Pool::Templates, n + 1);
         self.note_hw(Pool::SlotDefs, s + 1);
         Ok(n as Ix)
@@ -217,7 +217,7 @@ impl Core<'_> {
 
     /// Fact slot holding live fact number `num`.
     pub fn find_fact(&self, num: u32) -> Option<Ix> {
-        let mut f = self.st.fact_head;
+        let mut f = self.st.facts.fact_head;
         while f != NONE {
             let x = &self.facts[f as usize];
             if x.num == num {
@@ -248,7 +248,7 @@ impl Core<'_> {
     /// `check_invariants`), and pending facts keep their place between live ones.
     fn compact_values(&mut self) {
         let mut dst = 0usize;
-        let mut live = self.st.fact_head;
+        let mut live = self.st.facts.fact_head;
         loop {
             // the pending fact with the lowest start below the next live one goes first
             let live_start = if live == NONE {
@@ -257,7 +257,7 @@ impl Core<'_> {
                 self.facts[live as usize].start as usize
             };
             let mut best = NONE;
-            let mut p = self.st.pending;
+            let mut p = self.st.facts.pending;
             while p != NONE {
                 let x = self.facts[p as usize];
                 let s = x.start as usize;
@@ -290,19 +290,19 @@ impl Core<'_> {
             }
             dst += l;
         }
-        self.st.values_top = dst as Ix;
+        self.st.facts.values_top = dst as Ix;
     }
 
     /// Reserves `n` cells at the top of the value arena (compacting if needed).
     fn reserve_cells(&mut self, n: usize) -> Result<usize, CapacityError> {
         let cap_v = self.values.len().min(NONE as usize);
-        if self.st.values_top as usize + n > cap_v {
+        if self.st.facts.values_top as usize + n > cap_v {
             self.compact_values();
-            if self.st.values_top as usize + n > cap_v {
+            if self.st.facts.values_top as usize + n > cap_v {
                 return Err(cap(Pool::FactValues, self.values.len()));
             }
         }
-        Ok(self.st.values_top as usize)
+        Ok(self.st.facts.values_top as usize)
     }
 
     /// Value cells a fact made from per-slot values on the stack at `base` takes.
@@ -318,12 +318,12 @@ impl Core<'_> {
 
     /// Whether every fact slot has been handed out (the free list aside).
     fn fact_slots_exhausted(&self) -> bool {
-        self.st.facts_used as usize >= self.facts.len().min(NONE as usize - 1)
+        self.st.pools.facts_used as usize >= self.facts.len().min(NONE as usize - 1)
     }
 
     /// No fact slot is free to take: neither a freed one nor a never-used one.
     pub(crate) fn fact_slots_full(&self) -> bool {
-        self.st.fact_free == NONE && self.fact_slots_exhausted()
+        self.st.pools.fact_free == NONE && self.fact_slots_exhausted()
     }
 
     /// Writes per-slot values from the stack at `base` into cells from `start`.
@@ -364,18 +364,18 @@ impl Core<'_> {
         base: usize,
     ) -> Result<bool, CapacityError> {
         let slots_full = self.fact_slots_full();
-        if slots_full && self.st.firing {
+        if slots_full && self.st.mode.firing {
             return Err(cap(Pool::Facts, self.facts.len()));
         }
-        let hold = self.st.firing || (self.st.query_hold > 0 && !slots_full);
+        let hold = self.st.mode.firing || (self.st.eval.query_hold > 0 && !slots_full);
         let need = self.cells_needed(tmpl, base);
         let cap_v = self.values.len().min(NONE as usize);
-        if self.st.values_top as usize + need <= cap_v {
+        if self.st.facts.values_top as usize + need <= cap_v {
             return Ok(hold);
         }
         // what compaction would leave: the cells of live and pending facts
         let mut used = 0usize;
-        for list in [self.st.fact_head, self.st.pending] {
+        for list in [self.st.facts.fact_head, self.st.facts.pending] {
             let mut f = list;
             while f != NONE {
                 used += self.facts[f as usize].len as usize;
@@ -402,12 +402,12 @@ impl Core<'_> {
         base: usize,
     ) -> Result<(), EvalError> {
         // the creation-ordered list: after the last fact with a smaller number
-        let mut prev = self.st.fact_tail;
+        let mut prev = self.st.facts.fact_tail;
         while prev != NONE && self.facts[prev as usize].num > saved.num {
             prev = self.facts[prev as usize].prev;
         }
         let next = if prev == NONE {
-            self.st.fact_head
+            self.st.facts.fact_head
         } else {
             self.facts[prev as usize].next
         };
@@ -419,23 +419,23 @@ impl Core<'_> {
             p.start as usize + p.len as usize
         };
         let hi = if next == NONE {
-            self.st.values_top as usize
+            self.st.facts.values_top as usize
         } else {
             self.facts[next as usize].start as usize
         };
         let (start, len) = match self.facts[slot as usize].state {
             FactState::Pending => {
-                remove_from_list(self.facts, &mut self.st.pending, slot);
+                remove_from_list(self.facts, &mut self.st.facts.pending, slot);
                 let f = self.facts[slot as usize];
                 // its cells stayed in order; a fact without cells may have been
                 // left behind by compaction
                 (if f.len == 0 { hi as Ix } else { f.start }, f.len)
             }
             FactState::Free => {
-                remove_from_list(self.facts, &mut self.st.fact_free, slot);
+                remove_from_list(self.facts, &mut self.st.pools.fact_free, slot);
                 let need = self.cells_needed(saved.tmpl, base);
                 // its old cells, unless a compaction closed the gap meanwhile
-                let at = if self.st.pending == NONE && hi.saturating_sub(lo) >= need {
+                let at = if self.st.facts.pending == NONE && hi.saturating_sub(lo) >= need {
                     lo
                 } else {
                     let top = match self.reserve_cells(need) {
@@ -452,7 +452,7 @@ impl Core<'_> {
                         self.facts[next as usize].start as usize
                     };
                     self.values.copy_within(at..top, at + need);
-                    for list in [next, self.st.pending] {
+                    for list in [next, self.st.facts.pending] {
                         let mut f = list;
                         while f != NONE {
                             let x = &mut self.facts[f as usize];
@@ -462,7 +462,7 @@ impl Core<'_> {
                             f = x.next;
                         }
                     }
-                    self.st.values_top = (top + need) as Ix;
+                    self.st.facts.values_top = (top + need) as Ix;
                     at
                 };
                 self.write_cells(saved.tmpl, base, at);
@@ -487,15 +487,15 @@ impl Core<'_> {
             ..saved
         };
         self.fact_buckets[bucket] = slot;
-        self.st.facts_live += 1;
+        self.st.facts.facts_live += 1;
         self.templates[saved.tmpl as usize].nfacts += 1;
         if prev == NONE {
-            self.st.fact_head = slot;
+            self.st.facts.fact_head = slot;
         } else {
             self.facts[prev as usize].next = slot;
         }
         if next == NONE {
-            self.st.fact_tail = slot;
+            self.st.facts.fact_tail = slot;
         } else {
             self.facts[next as usize].prev = slot;
         }
@@ -503,9 +503,9 @@ impl Core<'_> {
         self.tmpl_link(slot);
         // it needs no more room than its retract freed: what a not output passes on
         // waits until every pattern of the fact is in (see `State::defer_nots`)
-        self.st.defer_nots = true;
+        self.st.net.defer_nots = true;
         let r = self.network_assert(slot);
-        self.st.defer_nots = false;
+        self.st.net.defer_nots = false;
         if let Err(e) = r {
             self.network_retract(slot);
             self.unlink_fact(slot);
@@ -520,10 +520,10 @@ impl Core<'_> {
     /// multislot's value is a scratch `Multi`). Returns `None` for a duplicate.
     /// Runs the network; on a full pool the fact is removed again and the error returned.
     pub fn assert_slots(&mut self, tmpl: Ix, base: usize) -> Result<Option<Ix>, EvalError> {
-        let defer = core::mem::take(&mut self.st.defer_next);
+        let defer = core::mem::take(&mut self.st.net.defer_next);
         // a deferred propagation (`rete::defer`) belongs to an earlier assert: built
         // first, or the assert fails with nothing changed
-        if self.st.deferred.fact != NONE {
+        if self.st.net.deferred.fact != NONE {
             self.flush_deferred()?;
         }
         // matches an earlier removal still owes come first: without room for them
@@ -549,25 +549,25 @@ impl Core<'_> {
             d = df.hash_next;
         }
         // allocate the fact slot
-        let slot = if self.st.fact_free != NONE {
-            let s = self.st.fact_free;
-            self.st.fact_free = self.facts[s as usize].next;
+        let slot = if self.st.pools.fact_free != NONE {
+            let s = self.st.pools.fact_free;
+            self.st.pools.fact_free = self.facts[s as usize].next;
             s
         } else {
-            self.st.facts_used += 1;
-            self.st.facts_used - 1
+            self.st.pools.facts_used += 1;
+            self.st.pools.facts_used - 1
         };
-        self.st.values_top = (start + need) as Ix;
-        let num = self.st.next_fact_num;
-        self.st.next_fact_num += 1;
-        self.st.effects = self.st.effects.wrapping_add(1);
+        self.st.facts.values_top = (start + need) as Ix;
+        let num = self.st.facts.next_fact_num;
+        self.st.facts.next_fact_num += 1;
+        self.st.eval.effects = self.st.eval.effects.wrapping_add(1);
         self.facts[slot as usize] = Fact {
             num,
             tmpl,
             start: start as Ix,
             len: need as Ix,
             next: NONE,
-            prev: self.st.fact_tail,
+            prev: self.st.facts.fact_tail,
             hash_next: self.fact_buckets[bucket],
             first_am: NONE,
             state: FactState::Live,
@@ -576,14 +576,14 @@ impl Core<'_> {
             hash: h,
         };
         self.fact_buckets[bucket] = slot;
-        self.st.facts_live += 1;
+        self.st.facts.facts_live += 1;
         self.templates[tmpl as usize].nfacts += 1;
-        if self.st.fact_tail != NONE {
-            self.facts[self.st.fact_tail as usize].next = slot;
+        if self.st.facts.fact_tail != NONE {
+            self.facts[self.st.facts.fact_tail as usize].next = slot;
         } else {
-            self.st.fact_head = slot;
+            self.st.facts.fact_head = slot;
         }
-        self.st.fact_tail = slot;
+        self.st.facts.fact_tail = slot;
         // host: the newest fact, last in its template's list too
         #[cfg(feature = "host-speedups")]
         {
@@ -598,17 +598,17 @@ impl Core<'_> {
         }
         let live = self.count_live_facts_hint();
         self.note_hw(Pool::Facts, live);
-        self.note_hw(Pool::FactValues, self.st.values_top as usize);
+        self.note_hw(Pool::FactValues, self.st.facts.values_top as usize);
         // an undone assert prints nothing (see `hold`)
         self.hold_traces();
-        if self.st.watch & crate::engine::watch::FACTS != 0 {
+        if self.st.mode.watch & crate::engine::watch::FACTS != 0 {
             self.print_fact_line("==> ", slot);
         }
         if defer && self.may_defer(tmpl) {
             // the propagation waits for the next action (`rete::defer`)
-            self.st.deferred = crate::rete::Deferred {
+            self.st.net.deferred = crate::rete::Deferred {
                 fact: slot,
-                old: self.st.modify_old.take(),
+                old: self.st.facts.modify_old.take(),
             };
             self.release_traces(true);
             return Ok(Some(slot));
@@ -628,8 +628,8 @@ impl Core<'_> {
             self.network_retract(slot);
             self.unlink_fact(slot);
             self.free_fact_slot(slot);
-            self.st.next_fact_num = num;
-            self.st.values_top = start as Ix;
+            self.st.facts.next_fact_num = num;
+            self.st.facts.values_top = start as Ix;
             let _ = self.pay_owed();
             self.journal_end(mark);
             self.release_traces(false);
@@ -672,23 +672,23 @@ impl Core<'_> {
 
     fn count_live_facts_hint(&self) -> usize {
         // facts_used is the pool high mark; good enough as a high-water figure
-        self.st.facts_used as usize
+        self.st.pools.facts_used as usize
     }
 
     pub(crate) fn unlink_fact(&mut self, slot: Ix) {
         let f = self.facts[slot as usize];
-        self.st.facts_live -= 1;
+        self.st.facts.facts_live -= 1;
         let t = &mut self.templates[f.tmpl as usize];
         t.nfacts = t.nfacts.saturating_sub(1);
         if f.prev != NONE {
             self.facts[f.prev as usize].next = f.next;
         } else {
-            self.st.fact_head = f.next;
+            self.st.facts.fact_head = f.next;
         }
         if f.next != NONE {
             self.facts[f.next as usize].prev = f.prev;
         } else {
-            self.st.fact_tail = f.prev;
+            self.st.facts.fact_tail = f.prev;
         }
         #[cfg(feature = "host-speedups")]
         {
@@ -728,33 +728,33 @@ impl Core<'_> {
 
     pub(crate) fn free_fact_slot(&mut self, slot: Ix) {
         self.facts[slot as usize].state = FactState::Free;
-        self.facts[slot as usize].next = self.st.fact_free;
-        self.st.fact_free = slot;
+        self.facts[slot as usize].next = self.st.pools.fact_free;
+        self.st.pools.fact_free = slot;
     }
 
     /// Retracts a live fact: watch line, network removal, then the slot is freed (or
     /// kept readable until the current firing or top-level query tuple ends).
     pub fn retract_fact(&mut self, slot: Ix) {
-        self.retract_fact_held(slot, self.st.firing || self.st.query_hold > 0);
+        self.retract_fact_held(slot, self.st.mode.firing || self.st.eval.query_hold > 0);
     }
 
     /// Retracts a live fact; `hold` keeps its slot and cells readable (pending).
     #[cfg_attr(feature = "host-speedups", inline(always))]
     pub(crate) fn retract_fact_held(&mut self, slot: Ix, hold: bool) {
-        if self.st.watch & crate::engine::watch::FACTS != 0 {
+        if self.st.mode.watch & crate::engine::watch::FACTS != 0 {
             self.print_fact_line("<== ", slot);
         }
         self.network_retract(slot);
         // what the retract unblocked and could not rebuild on a full pool is owed:
         // the tokens the fact itself freed may be enough now
-        if self.st.owed != NONE {
+        if self.st.net.owed != NONE {
             let _ = self.pay_owed();
         }
         self.unlink_fact(slot);
         if hold {
             self.facts[slot as usize].state = FactState::Pending;
-            self.facts[slot as usize].next = self.st.pending;
-            self.st.pending = slot;
+            self.facts[slot as usize].next = self.st.facts.pending;
+            self.st.facts.pending = slot;
         } else {
             self.release_fact_values(slot);
             self.free_fact_slot(slot);
@@ -763,23 +763,23 @@ impl Core<'_> {
 
     fn release_fact_values(&mut self, slot: Ix) {
         let f = self.facts[slot as usize];
-        if f.start as usize + f.len as usize == self.st.values_top as usize {
-            self.st.values_top = f.start;
+        if f.start as usize + f.len as usize == self.st.facts.values_top as usize {
+            self.st.facts.values_top = f.start;
         }
     }
 
     /// Frees facts retracted during a firing.
     pub fn free_pending(&mut self) {
-        while self.st.pending != NONE {
-            let s = self.st.pending;
-            self.st.pending = self.facts[s as usize].next;
+        while self.st.facts.pending != NONE {
+            let s = self.st.facts.pending;
+            self.st.facts.pending = self.facts[s as usize].next;
             self.free_fact_slot(s);
         }
     }
 
     /// Facts on the live list (kept as a count: `watch statistics` asks per firing).
     pub fn live_fact_count(&self) -> usize {
-        self.st.facts_live as usize
+        self.st.facts.facts_live as usize
     }
 }
 

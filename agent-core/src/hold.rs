@@ -69,13 +69,13 @@ impl fmt::Write for TraceWriter<'_> {
 impl Core<'_> {
     /// Opens a hold (nested holds share the outermost one's fate).
     pub(crate) fn hold_traces(&mut self) {
-        self.st.hold.depth = self.st.hold.depth.saturating_add(1);
+        self.st.net.hold.depth = self.st.net.hold.depth.saturating_add(1);
     }
 
     /// Closes a hold. The outermost one sends the held traces out when the
     /// operation succeeded (`keep`) and drops them when it was undone.
     pub(crate) fn release_traces(&mut self, keep: bool) {
-        let h = &mut self.st.hold;
+        let h = &mut self.st.net.hold;
         h.depth = h.depth.saturating_sub(1);
         if h.depth > 0 {
             return;
@@ -89,8 +89,8 @@ impl Core<'_> {
 
     /// Another write while traces are held: they go out first, to keep the order.
     pub(crate) fn spill_traces(&mut self) {
-        if self.st.hold.depth > 0 && !self.st.hold.spilled {
-            self.st.hold.spill(&mut *self.host);
+        if self.st.net.hold.depth > 0 && !self.st.net.hold.spilled {
+            self.st.net.hold.spill(&mut *self.host);
         }
     }
 }

@@ -103,7 +103,10 @@ impl Core<'_> {
 
     /// An alpha node whose rules are gone keeps no matches (new facts skip it).
     fn check_dead_alphas(&self) -> Result<(), Violation> {
-        for (i, n) in self.alphas[..self.st.nalpha as usize].iter().enumerate() {
+        for (i, n) in self.alphas[..self.st.pools.nalpha as usize]
+            .iter()
+            .enumerate()
+        {
             ensure!(
                 n.live || n.mem == NONE,
                 "removed alpha node holds matches",
@@ -116,9 +119,9 @@ impl Core<'_> {
     /// The owed list (see `Core::pay_owed`): unblocked not outputs, each once, their
     /// back links consistent (the head's names the tail), and no other token marked.
     fn check_owed(&self) -> Result<(), Violation> {
-        let used = self.st.tokens_used as usize;
+        let used = self.st.pools.tokens_used as usize;
         let marked = (0..used).filter(|&t| self.is_owed(t as Ix)).count();
-        let (mut n, mut prev, mut t) = (0usize, NONE, self.st.owed);
+        let (mut n, mut prev, mut t) = (0usize, NONE, self.st.net.owed);
         while t != NONE {
             ensure!(
                 (t as usize) < used,
@@ -141,11 +144,11 @@ impl Core<'_> {
             t = tk.am_next;
         }
         ensure!(n == marked, "owed marks outside the owed list", marked);
-        if self.st.owed != NONE {
+        if self.st.net.owed != NONE {
             ensure!(
-                self.tokens[self.st.owed as usize].am_prev == prev,
+                self.tokens[self.st.net.owed as usize].am_prev == prev,
                 "owed list head does not name the tail",
-                self.st.owed
+                self.st.net.owed
             );
         }
         Ok(())
@@ -154,47 +157,47 @@ impl Core<'_> {
     /// Between operations nothing is half done.
     fn check_rest_state(&self) -> Result<(), Violation> {
         let st = &self.st;
-        ensure!(!st.firing, "firing flag set between operations", 0);
+        ensure!(!st.mode.firing, "firing flag set between operations", 0);
         ensure!(
-            st.pending == NONE,
+            st.facts.pending == NONE,
             "retracted facts still pending",
-            st.pending
+            st.facts.pending
         );
         ensure!(
-            st.eval_depth == 0 && st.in_use == 0 && !st.defining,
+            st.eval.eval_depth == 0 && st.eval.in_use == 0 && !st.mode.defining,
             "evaluation depth not back to 0",
-            st.eval_depth
+            st.eval.eval_depth
         );
         ensure!(
-            st.hold.depth == 0 && st.hold.buf.is_empty(),
+            st.net.hold.depth == 0 && st.net.hold.buf.is_empty(),
             "watch traces still held",
-            st.hold.depth
+            st.net.hold.depth
         );
         ensure!(
-            !st.act_journal.on && !st.unblocked.on && !st.defer_nots,
+            !st.agenda.act_journal.on && !st.net.unblocked.on && !st.net.defer_nots,
             "undo journal still recording",
             0
         );
         ensure!(
-            (st.sp as usize) <= self.stack.len(),
+            (st.frame.sp as usize) <= self.stack.len(),
             "evaluation stack pointer past the stack",
-            st.sp
+            st.frame.sp
         );
         ensure!(
-            st.scratch_top as usize + st.gmf_used as usize <= self.scratch.len(),
+            st.frame.scratch_top as usize + st.eval.gmf_used as usize <= self.scratch.len(),
             "scratch and globals' multifields overlap",
-            st.scratch_top
+            st.frame.scratch_top
         );
         Ok(())
     }
 
     fn check_symbols(&self) -> Result<(), Violation> {
-        let n = self.st.nsyms as usize;
+        let n = self.st.pools.nsyms as usize;
         ensure!(n <= self.sym_entries.len(), "more symbols than capacity", n);
         ensure!(
-            self.st.sym_bytes as usize <= self.sym_bytes.len(),
+            self.st.pools.sym_bytes as usize <= self.sym_bytes.len(),
             "symbol bytes past capacity",
-            self.st.sym_bytes
+            self.st.pools.sym_bytes
         );
         // texts are appended, so entry i starts where entry i-1 ended
         let mut end = 0usize;
@@ -203,7 +206,7 @@ impl Core<'_> {
             ensure!(e.start as usize == end, "symbol text not packed", i);
             end += e.len as usize;
             ensure!(
-                end <= self.st.sym_bytes as usize,
+                end <= self.st.pools.sym_bytes as usize,
                 "symbol text past the used bytes",
                 i
             );
@@ -214,7 +217,7 @@ impl Core<'_> {
             );
         }
         ensure!(
-            end == self.st.sym_bytes as usize,
+            end == self.st.pools.sym_bytes as usize,
             "used symbol bytes do not match the entries",
             end
         );
@@ -261,67 +264,67 @@ impl Core<'_> {
     fn check_constructs(&self) -> Result<(), Violation> {
         let st = &self.st;
         ensure!(
-            (st.ntemplates as usize) <= self.templates.len(),
+            (st.pools.ntemplates as usize) <= self.templates.len(),
             "templates past capacity",
-            st.ntemplates
+            st.pools.ntemplates
         );
         ensure!(
-            (st.nslots as usize) <= self.slots.len(),
+            (st.pools.nslots as usize) <= self.slots.len(),
             "slots past capacity",
-            st.nslots
+            st.pools.nslots
         );
         ensure!(
-            (st.nrules as usize) <= self.rules.len(),
+            (st.pools.nrules as usize) <= self.rules.len(),
             "rules past capacity",
-            st.nrules
+            st.pools.nrules
         );
         ensure!(
-            (st.nalpha as usize) <= self.alphas.len(),
+            (st.pools.nalpha as usize) <= self.alphas.len(),
             "alpha nodes past capacity",
-            st.nalpha
+            st.pools.nalpha
         );
         ensure!(
-            (st.njoins as usize) <= self.joins.len(),
+            (st.pools.njoins as usize) <= self.joins.len(),
             "joins past capacity",
-            st.njoins
+            st.pools.njoins
         );
         ensure!(
-            (st.nexprs as usize) <= self.exprs.len(),
+            (st.pools.nexprs as usize) <= self.exprs.len(),
             "expressions past capacity",
-            st.nexprs
+            st.pools.nexprs
         );
         ensure!(
-            (st.nfuncs as usize) <= self.funcs.len(),
+            (st.pools.nfuncs as usize) <= self.funcs.len(),
             "deffunctions past capacity",
-            st.nfuncs
+            st.pools.nfuncs
         );
         ensure!(
-            (st.nglobals as usize) <= self.globals.len(),
+            (st.pools.nglobals as usize) <= self.globals.len(),
             "globals past capacity",
-            st.nglobals
+            st.pools.nglobals
         );
         ensure!(
-            (st.ndeffacts as usize) <= self.deffacts.len(),
+            (st.pools.ndeffacts as usize) <= self.deffacts.len(),
             "deffacts past capacity",
-            st.ndeffacts
+            st.pools.ndeffacts
         );
         ensure!(
-            (st.nexternals as usize) <= self.externals.len(),
+            (st.pools.nexternals as usize) <= self.externals.len(),
             "external functions past capacity",
-            st.nexternals
+            st.pools.nexternals
         );
-        for t in 0..st.ntemplates as usize {
+        for t in 0..st.pools.ntemplates as usize {
             let tp = self.templates[t];
             // a redefined template's old entry is retired in place: no name, listed
             // nowhere, matched by nothing (`parser::construct::deftemplate`)
             ensure!(
-                (tp.name as usize) < st.nsyms as usize
+                (tp.name as usize) < st.pools.nsyms as usize
                     || (tp.name == NONE && tp.implied && tp.alpha_head == NONE),
                 "template name is not a symbol",
                 t
             );
             ensure!(
-                tp.first_slot as usize + tp.nslots as usize <= st.nslots as usize,
+                tp.first_slot as usize + tp.nslots as usize <= st.pools.nslots as usize,
                 "template slots past the slot pool",
                 t
             );
@@ -329,25 +332,33 @@ impl Core<'_> {
             let mut a = tp.alpha_head;
             let mut steps = 0usize;
             while a != NONE {
-                ensure!(a < st.nalpha, "template lists a dropped alpha node", t);
+                ensure!(
+                    a < st.pools.nalpha,
+                    "template lists a dropped alpha node",
+                    t
+                );
                 ensure!(
                     self.alphas[a as usize].tmpl as usize == t,
                     "alpha node listed under another template",
                     a
                 );
                 steps += 1;
-                ensure!(steps <= st.nalpha as usize, "alpha list has a cycle", t);
+                ensure!(
+                    steps <= st.pools.nalpha as usize,
+                    "alpha list has a cycle",
+                    t
+                );
                 a = self.alphas[a as usize].next_in_tmpl;
             }
         }
         // joins: the root, then live joins hang under live parents and their alpha node
         ensure!(
-            st.njoins >= 1 && self.joins[0].kind == JoinKind::Root,
+            st.pools.njoins >= 1 && self.joins[0].kind == JoinKind::Root,
             "join 0 is not the root",
             0
         );
         #[cfg(feature = "host-speedups")]
-        for j in 0..st.njoins {
+        for j in 0..st.pools.njoins {
             let c = self.joins[j as usize].first_child;
             ensure!(
                 self.joins[j as usize].one_child
@@ -356,7 +367,7 @@ impl Core<'_> {
                 j
             );
         }
-        for j in 1..st.njoins {
+        for j in 1..st.pools.njoins {
             let jn = self.joins[j as usize];
             if jn.refs == 0 {
                 ensure!(
@@ -377,7 +388,7 @@ impl Core<'_> {
                 continue;
             }
             ensure!(jn.kind != JoinKind::Root, "second root join", j);
-            ensure!(jn.parent < st.njoins, "join parent past the pool", j);
+            ensure!(jn.parent < st.pools.njoins, "join parent past the pool", j);
             ensure!(
                 self.joins[jn.parent as usize].refs > 0,
                 "live join under a removed parent",
@@ -391,17 +402,21 @@ impl Core<'_> {
             match jn.kind {
                 JoinKind::Negative | JoinKind::Exists if jn.rjoin != NONE => {
                     // not/exists over several CEs: fed by a subnetwork's last join
-                    ensure!(jn.rjoin < st.njoins, "join from the right past the pool", j);
+                    ensure!(
+                        jn.rjoin < st.pools.njoins,
+                        "join from the right past the pool",
+                        j
+                    );
                     let mut r = self.joins[jn.rjoin as usize].rsucc;
                     let mut steps = 0usize;
-                    while r != NONE && r != j && steps <= st.njoins as usize {
+                    while r != NONE && r != j && steps <= st.pools.njoins as usize {
                         r = self.joins[r as usize].alpha_next;
                         steps += 1;
                     }
                     ensure!(r == j, "join missing from its right input's successors", j);
                 }
                 JoinKind::Positive | JoinKind::Negative | JoinKind::Exists => {
-                    ensure!(jn.alpha < st.nalpha, "join without its alpha node", j);
+                    ensure!(jn.alpha < st.pools.nalpha, "join without its alpha node", j);
                     ensure!(
                         self.succ_listed(jn.alpha, j),
                         "join missing from its alpha node's successors",
@@ -410,17 +425,21 @@ impl Core<'_> {
                 }
                 JoinKind::Terminal => {
                     ensure!(jn.mem == NONE, "terminal join holds partial matches", j);
-                    ensure!(jn.rule < st.nrules, "terminal join without a rule", j);
+                    ensure!(jn.rule < st.pools.nrules, "terminal join without a rule", j);
                 }
                 _ => {}
             }
         }
-        for r in 0..st.nrules {
+        for r in 0..st.pools.nrules {
             let rule = self.rules[r as usize];
             if rule.deleted || rule.terminal == NONE {
                 continue;
             }
-            ensure!(rule.terminal < st.njoins, "rule end past the join pool", r);
+            ensure!(
+                rule.terminal < st.pools.njoins,
+                "rule end past the join pool",
+                r
+            );
             let t = self.joins[rule.terminal as usize];
             ensure!(
                 t.kind == JoinKind::Terminal && t.refs > 0,
@@ -429,8 +448,8 @@ impl Core<'_> {
             );
         }
         // globals' multifields live in the reserved top of scratch
-        let region = self.scratch.len() - st.gmf_used as usize;
-        for g in 0..st.nglobals as usize {
+        let region = self.scratch.len() - st.eval.gmf_used as usize;
+        for g in 0..st.pools.nglobals as usize {
             if let Value::Multi(m) = self.globals[g].value {
                 if m.len > 0 {
                     ensure!(
@@ -448,7 +467,7 @@ impl Core<'_> {
     fn child_listed(&self, parent: Ix, child: Ix) -> bool {
         let mut c = self.joins[parent as usize].first_child;
         let mut steps = 0usize;
-        while c != NONE && steps <= self.st.njoins as usize {
+        while c != NONE && steps <= self.st.pools.njoins as usize {
             if c == child {
                 return true;
             }
@@ -461,7 +480,7 @@ impl Core<'_> {
     fn succ_listed(&self, alpha: Ix, join: Ix) -> bool {
         let mut c = self.alphas[alpha as usize].succ;
         let mut steps = 0usize;
-        while c != NONE && steps <= self.st.njoins as usize {
+        while c != NONE && steps <= self.st.pools.njoins as usize {
             if c == join {
                 return true;
             }
@@ -492,7 +511,7 @@ impl Core<'_> {
     }
 
     fn check_facts(&self) -> Result<(), Violation> {
-        let used = self.st.facts_used as usize;
+        let used = self.st.pools.facts_used as usize;
         ensure!(
             used <= self.facts.len(),
             "facts handed out past capacity",
@@ -500,7 +519,7 @@ impl Core<'_> {
         );
         // live list: doubly linked, numbers growing, tail at the end
         let mut prev = NONE;
-        let mut f = self.st.fact_head;
+        let mut f = self.st.facts.fact_head;
         let mut live = 0usize;
         let mut last_num: Option<u32> = None;
         while f != NONE {
@@ -512,7 +531,7 @@ impl Core<'_> {
                 ensure!(x.num > n, "fact numbers not increasing", f);
             }
             ensure!(
-                x.num < self.st.next_fact_num,
+                x.num < self.st.facts.next_fact_num,
                 "fact number not yet handed out",
                 f
             );
@@ -522,13 +541,17 @@ impl Core<'_> {
             prev = f;
             f = x.next;
         }
-        ensure!(self.st.fact_tail == prev, "fact list tail wrong", prev);
         ensure!(
-            live == self.st.facts_live as usize,
-            "live fact count wrong",
-            self.st.facts_live
+            self.st.facts.fact_tail == prev,
+            "fact list tail wrong",
+            prev
         );
-        let per_template: usize = (0..self.st.ntemplates as usize)
+        ensure!(
+            live == self.st.facts.facts_live as usize,
+            "live fact count wrong",
+            self.st.facts.facts_live
+        );
+        let per_template: usize = (0..self.st.pools.ntemplates as usize)
             .map(|t| self.templates[t].nfacts as usize)
             .sum();
         ensure!(
@@ -538,7 +561,7 @@ impl Core<'_> {
         );
         // host: each template's own list holds its live facts, numbers growing
         #[cfg(feature = "host-speedups")]
-        for t in 0..self.st.ntemplates as usize {
+        for t in 0..self.st.pools.ntemplates as usize {
             let (mut prev, mut f, mut n) = (NONE, self.templates[t].tfirst, 0usize);
             while f != NONE {
                 ensure!((f as usize) < used, "template fact list leaves the pool", f);
@@ -572,7 +595,7 @@ impl Core<'_> {
             );
         }
         let free = self.walk(
-            self.st.fact_free,
+            self.st.pools.fact_free,
             used,
             |i| self.facts[i as usize].next,
             "fact free list broken",
@@ -604,7 +627,7 @@ impl Core<'_> {
             free
         );
         ensure!(live + free == used, "fact accounting does not add up", used);
-        let mut g = self.st.fact_free;
+        let mut g = self.st.pools.fact_free;
         while g != NONE {
             ensure!(
                 self.facts[g as usize].state == FactState::Free,
@@ -642,11 +665,11 @@ impl Core<'_> {
             hashed
         );
         // each live fact: template, cell layout, and no equal twin
-        let mut f = self.st.fact_head;
+        let mut f = self.st.facts.fact_head;
         while f != NONE {
             let x = self.facts[f as usize];
             ensure!(
-                x.tmpl < self.st.ntemplates,
+                x.tmpl < self.st.pools.ntemplates,
                 "fact of an unknown template",
                 f
             );
@@ -654,7 +677,7 @@ impl Core<'_> {
             let mut c = x.start as usize;
             let end = x.start as usize + x.len as usize;
             ensure!(
-                end <= self.st.values_top as usize,
+                end <= self.st.facts.values_top as usize,
                 "fact cells past the arena top",
                 f
             );
@@ -676,7 +699,7 @@ impl Core<'_> {
                     ensure!(k < end, "multislot runs past the fact", f);
                     match self.values[k] {
                         Value::Sym(id) | Value::Str(id) => {
-                            ensure!(id < self.st.nsyms, "fact holds a dropped symbol", f)
+                            ensure!(id < self.st.pools.nsyms, "fact holds a dropped symbol", f)
                         }
                         // a void element stays (CLIPS keeps the one `insert$` of a
                         // call without a value puts in, and prints nothing for it)
@@ -707,12 +730,12 @@ impl Core<'_> {
     /// compaction walks the list and moves each fact down to where the last one ended.
     fn check_values(&self) -> Result<(), Violation> {
         ensure!(
-            self.st.values_top as usize <= self.values.len(),
+            self.st.facts.values_top as usize <= self.values.len(),
             "value arena top past capacity",
-            self.st.values_top
+            self.st.facts.values_top
         );
         let mut end = 0usize;
-        let mut f = self.st.fact_head;
+        let mut f = self.st.facts.fact_head;
         while f != NONE {
             let a = self.facts[f as usize];
             ensure!(
@@ -727,14 +750,14 @@ impl Core<'_> {
     }
 
     fn check_tokens(&self) -> Result<(), Violation> {
-        let used = self.st.tokens_used as usize;
+        let used = self.st.pools.tokens_used as usize;
         ensure!(
             used <= self.tokens.len(),
             "tokens handed out past capacity",
             used
         );
         let free = self.walk(
-            self.st.token_free,
+            self.st.pools.token_free,
             used,
             |i| self.tokens[i as usize].next_sib,
             "token free list broken",
@@ -754,19 +777,19 @@ impl Core<'_> {
         );
         ensure!(nfree == free, "free tokens not all on the free list", free);
         ensure!(
-            nalpha + nbeta == self.st.tokens_live as usize,
+            nalpha + nbeta == self.st.pools.tokens_live as usize,
             "live token count wrong",
-            self.st.tokens_live
+            self.st.pools.tokens_live
         );
         ensure!(
-            free + self.st.tokens_live as usize == used,
+            free + self.st.pools.tokens_live as usize == used,
             "token accounting does not add up",
             used
         );
 
         // alpha memories and each fact's alpha matches hold exactly the alpha tokens
         let mut in_mem = 0usize;
-        for a in 0..self.st.nalpha {
+        for a in 0..self.st.pools.nalpha {
             let node = self.alphas[a as usize];
             let mut prev = NONE;
             let mut t = node.mem;
@@ -802,7 +825,7 @@ impl Core<'_> {
         }
         ensure!(in_mem == nalpha, "alpha matches outside any memory", in_mem);
         let mut of_facts = 0usize;
-        let mut f = self.st.fact_head;
+        let mut f = self.st.facts.fact_head;
         while f != NONE {
             let mut prev = NONE;
             let mut t = self.facts[f as usize].first_am;
@@ -834,7 +857,7 @@ impl Core<'_> {
 
         // join memories hold exactly the partial matches
         let mut in_joins = 0usize;
-        for j in 0..self.st.njoins {
+        for j in 0..self.st.pools.njoins {
             let mut prev = NONE;
             let mut t = self.joins[j as usize].mem;
             while t != NONE {
@@ -920,7 +943,7 @@ impl Core<'_> {
                 let mut steps = 0usize;
                 while a != NONE {
                     ensure!(
-                        (a as usize) < self.st.acts_used as usize,
+                        (a as usize) < self.st.pools.acts_used as usize,
                         "match lists an activation outside the pool",
                         i
                     );
@@ -1034,7 +1057,7 @@ impl Core<'_> {
     fn check_parent(&self, t: usize, parent_join: Ix) -> Result<(), Violation> {
         let p = self.tokens[t].parent;
         ensure!(
-            p != NONE && (p as usize) < self.st.tokens_used as usize,
+            p != NONE && (p as usize) < self.st.pools.tokens_used as usize,
             "partial match without its parent",
             t
         );
@@ -1056,7 +1079,7 @@ impl Core<'_> {
     fn check_am(&self, t: usize, alpha: Ix) -> Result<(), Violation> {
         let am = self.tokens[t].am;
         ensure!(
-            am != NONE && (am as usize) < self.st.tokens_used as usize,
+            am != NONE && (am as usize) < self.st.pools.tokens_used as usize,
             "partial match without its alpha match (dangling)",
             t
         );
@@ -1086,16 +1109,16 @@ impl Core<'_> {
     }
 
     fn check_agenda(&self) -> Result<(), Violation> {
-        let used = self.st.acts_used as usize;
+        let used = self.st.pools.acts_used as usize;
         ensure!(used <= self.acts.len(), "activations past capacity", used);
         let free = self.walk(
-            self.st.act_free,
+            self.st.pools.act_free,
             used,
             |i| self.acts[i as usize].next,
             "activation free list broken",
         )?;
         let mut prev = NONE;
-        let mut a = self.st.agenda_head;
+        let mut a = self.st.agenda.agenda_head;
         let mut on_agenda = 0usize;
         while a != NONE {
             ensure!((a as usize) < used, "agenda leaves the pool", a);
@@ -1110,11 +1133,15 @@ impl Core<'_> {
                     a
                 );
             }
-            ensure!(x.rule < self.st.nrules, "activation of an unknown rule", a);
+            ensure!(
+                x.rule < self.st.pools.nrules,
+                "activation of an unknown rule",
+                a
+            );
             let rule = self.rules[x.rule as usize];
             ensure!(!rule.deleted, "activation of a removed rule", a);
             ensure!(
-                (x.token as usize) < self.st.tokens_used as usize,
+                (x.token as usize) < self.st.pools.tokens_used as usize,
                 "activation without its match",
                 a
             );
@@ -1171,13 +1198,13 @@ impl Core<'_> {
             used
         );
         ensure!(
-            self.st.agenda_len as usize == on_agenda,
+            self.st.agenda.agenda_len as usize == on_agenda,
             "agenda length wrong",
-            self.st.agenda_len
+            self.st.agenda.agenda_len
         );
         // and every activation listed under a match is on the agenda (counted above)
         let mut listed = 0usize;
-        for tk in self.tokens[..self.st.tokens_used as usize].iter() {
+        for tk in self.tokens[..self.st.pools.tokens_used as usize].iter() {
             if tk.kind == TokenKind::Beta {
                 let mut k = tk.extra;
                 while k != NONE {
@@ -1257,16 +1284,16 @@ mod tests {
         type Damage = fn(&mut crate::engine::Core<'_>);
         let cases: [(&str, Damage); 10] = [
             ("free tokens not all on the free list", |cx| {
-                cx.st.tokens_used += 1
+                cx.st.pools.tokens_used += 1
             }),
-            ("live token count wrong", |cx| cx.st.tokens_live += 1),
+            ("live token count wrong", |cx| cx.st.pools.tokens_live += 1),
             ("fact list tail wrong", |cx| {
-                cx.st.fact_tail = cx.st.fact_head
+                cx.st.facts.fact_tail = cx.st.facts.fact_head
             }),
             ("fact cells not after the previous fact's", |cx| {
                 // (p 0) and (q 0) trade places in the arena: values and hashes stay
                 // right, only the order compaction relies on is broken
-                let a = cx.facts[cx.st.fact_head as usize].next as usize;
+                let a = cx.facts[cx.st.facts.fact_head as usize].next as usize;
                 let b = cx.facts[a].next as usize;
                 let (sa, sb) = (cx.facts[a].start, cx.facts[b].start);
                 for i in 0..2 {
@@ -1285,23 +1312,23 @@ mod tests {
                 cx.sym_buckets[b] = NONE;
             }),
             ("agenda not newest first among equal salience", |cx| {
-                let a = cx.st.agenda_head;
+                let a = cx.st.agenda.agenda_head;
                 cx.acts[a as usize].seq = 0;
             }),
             ("activation accounting does not add up", |cx| {
-                cx.st.acts_used += 1
+                cx.st.pools.acts_used += 1
             }),
             ("alpha match of a match was freed", |cx| {
                 // free an alpha match that partial matches are built on (dangling)
-                let t = (0..cx.st.tokens_used as usize)
+                let t = (0..cx.st.pools.tokens_used as usize)
                     .find(|&t| {
                         cx.tokens[t].kind == TokenKind::Alpha && cx.tokens[t].first_child != NONE
                     })
                     .unwrap();
                 cx.tokens[t].kind = TokenKind::Free;
-                cx.st.tokens_live -= 1;
-                let free = cx.st.token_free;
-                cx.st.token_free = t as Ix;
+                cx.st.pools.tokens_live -= 1;
+                let free = cx.st.pools.token_free;
+                cx.st.pools.token_free = t as Ix;
                 // take it out of its fact's and memory's lists as a buggy free would
                 let tk = cx.tokens[t];
                 let a = tk.owner as usize;
@@ -1326,7 +1353,7 @@ mod tests {
                 cx.tokens[t].next_sib = free;
             }),
             ("blocked matches missing from their blockers' lists", |cx| {
-                let t = (0..cx.st.tokens_used as usize)
+                let t = (0..cx.st.pools.tokens_used as usize)
                     .find(|&t| cx.tokens[t].kind != TokenKind::Free && cx.tokens[t].blocks != NONE)
                     .unwrap();
                 cx.tokens[t].blocks = NONE;

@@ -176,7 +176,7 @@ impl Core<'_> {
             },
             crate::hold::TraceWriter {
                 host: &mut *self.host,
-                hold: &mut self.st.hold,
+                hold: &mut self.st.net.hold,
             },
         )
     }
@@ -267,7 +267,7 @@ impl Core<'_> {
     }
 
     pub(crate) fn print_fire_line(&mut self, count: u32, rule: Ix, token: Ix) {
-        if self.st.watch & watch::RULES == 0 {
+        if self.st.mode.watch & watch::RULES == 0 {
             return;
         }
         let mut b: crate::value::TextBuf<512> = crate::value::TextBuf::new();
@@ -283,7 +283,7 @@ impl Core<'_> {
 
     /// `(facts)`: all facts with number >= `start`, then the total.
     pub fn list_facts(&mut self, start: i64, end: i64, max: i64) {
-        let mut f = self.st.fact_head;
+        let mut f = self.st.facts.fact_head;
         let mut n = 0i64;
         while f != NONE {
             let num = self.facts[f as usize].num as i64;
@@ -310,7 +310,7 @@ impl Core<'_> {
 
     /// `(agenda)` listing.
     pub fn list_agenda(&mut self) {
-        let mut a = self.st.agenda_head;
+        let mut a = self.st.agenda.agenda_head;
         let mut n = 0;
         while a != NONE {
             let mut b: crate::value::TextBuf<512> = crate::value::TextBuf::new();

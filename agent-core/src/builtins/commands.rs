@@ -39,7 +39,7 @@ pub const FUNCS: &[Builtin] = &[
 ];
 
 fn reset(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
-    if cx.st.matching > 0 {
+    if cx.st.net.matching > 0 {
         // a reset from a pattern or join test would wipe the network it runs in;
         // CLIPS 6.30 fails on deleting its initial object and halts, with these words
         cx.write(
@@ -55,7 +55,7 @@ fn reset(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
 fn clear(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
     // a firing rule, a running deffunction or a construct being parsed would go on
     // with its pools wiped under it
-    if cx.st.firing || cx.st.in_use > 0 || cx.st.defining || cx.st.matching > 0 {
+    if cx.st.mode.firing || cx.st.eval.in_use > 0 || cx.st.mode.defining || cx.st.net.matching > 0 {
         cx.write(
             router::WERROR,
             "[CONSTRCT1] Some constructs are still in use. Clear cannot continue.\n",
@@ -73,7 +73,7 @@ fn run(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         -1
     };
     // a run from a rule's actions does nothing in CLIPS: the run going on goes on
-    if cx.st.firing {
+    if cx.st.mode.firing {
         return Ok(Value::Void);
     }
     // `(watch statistics)` lines and the limit message are printed by `Core::run`
@@ -169,13 +169,13 @@ fn watch_bits(cx: &Core<'_>, a: Args, func: &'static str) -> Result<u8, EvalErro
 
 fn watch_(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let b = watch_bits(cx, a, "watch")?;
-    cx.st.watch |= b;
+    cx.st.mode.watch |= b;
     Ok(Value::Void)
 }
 
 fn unwatch(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let b = watch_bits(cx, a, "unwatch")?;
-    cx.st.watch &= !b;
+    cx.st.mode.watch &= !b;
     Ok(Value::Void)
 }
 
@@ -186,7 +186,7 @@ fn unwatch(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 fn printout(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     let first = cx.exprs[call as usize].first;
     let name = cx.eval(first)?;
-    if name == Value::Sym(SYM_NIL) || cx.st.halting {
+    if name == Value::Sym(SYM_NIL) || cx.st.mode.halting {
         return Ok(Value::Void);
     }
     let routed = match resolve_router(cx, name) {
@@ -195,7 +195,7 @@ fn printout(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
         // CLIPS's printout reports the name and carries on with nothing printed
         Err(_) => return Ok(Value::Void),
     };
-    let mark = cx.st.scratch_top;
+    let mark = cx.st.frame.scratch_top;
     let mut b: TextBuf<1024> = TextBuf::new();
     let mut a = cx.exprs[first as usize].next;
     let mut r = Ok(Value::Void);
@@ -212,7 +212,7 @@ fn printout(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
                 break;
             }
         };
-        if cx.st.halting {
+        if cx.st.mode.halting {
             break;
         }
         // room for a crlf or tab; a value that does not fit goes out alone
@@ -287,20 +287,20 @@ pub(super) fn resolve_router(
 }
 
 fn halt(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
-    cx.st.halt = true;
+    cx.st.mode.halt = true;
     Ok(Value::Void)
 }
 
 fn exit(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    cx.st.exit_status = match a.len {
+    cx.st.mode.exit_status = match a.len {
         0 => 0,
         _ => match cx.arg(a, 0) {
             Value::Int(n) => n as i32,
             _ => return Err(EvalError::wrong_type("exit", 1, "integer")),
         },
     };
-    cx.st.exit = true;
-    cx.st.halt = true;
+    cx.st.mode.exit = true;
+    cx.st.mode.halt = true;
     Err(EvalError::new(EvalErrorKind::Exit))
 }
 
@@ -323,7 +323,7 @@ fn get_strategy(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
 
 fn list_defrules(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
     let mut n = 0;
-    for r in 0..cx.st.nrules {
+    for r in 0..cx.st.pools.nrules {
         let rule = cx.rules[r as usize];
         if rule.deleted || (r > 0 && cx.rules[r as usize - 1].next_disjunct == r) {
             continue;
@@ -346,7 +346,8 @@ fn list_defrules(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
 }
 
 fn find_rule(cx: &Core<'_>, name: Ix) -> Option<Ix> {
-    (0..cx.st.nrules).find(|&r| cx.rules[r as usize].name == name && !cx.rules[r as usize].deleted)
+    (0..cx.st.pools.nrules)
+        .find(|&r| cx.rules[r as usize].name == name && !cx.rules[r as usize].deleted)
 }
 
 /// What a construct command could not do.
@@ -394,14 +395,14 @@ fn ppdefrule(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 
 fn undefrule(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let name = cx.arg_lexeme(a, 0, "undefrule")?;
-    if cx.st.matching > 0 {
+    if cx.st.net.matching > 0 {
         // the network may not change while a test in it runs
         unable(cx, Unable::Delete, "defrule", name);
         return Ok(Value::Void);
     }
     if cx.sym_text(name) == "*" {
         // every rule in definition order; `remove_rule` takes a rule's first disjunct
-        for r in 0..cx.st.nrules {
+        for r in 0..cx.st.pools.nrules {
             let rule = cx.rules[r as usize];
             if !rule.deleted && find_rule(cx, rule.name) == Some(r) {
                 cx.remove_rule(r);
@@ -498,7 +499,7 @@ fn matches(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         partial_total += count;
     }
     cx.write(router::WDISPLAY, "Activations\n");
-    let mut act = cx.st.agenda_head;
+    let mut act = cx.st.agenda.agenda_head;
     while act != NONE {
         let x = cx.acts[act as usize];
         if x.rule == r {
@@ -584,9 +585,9 @@ fn load_impl(cx: &mut Core<'_>, a: Args, quiet: bool) -> Result<Value, EvalError
             }
         };
         if let Err(e) = cx.load_items(item.text, !quiet, &mut progress) {
-            cx.st.line_base = item.line_base;
+            cx.st.io.line_base = item.line_base;
             cx.report_load_error(path.as_str(), item.text, &e);
-            cx.st.line_base = 0;
+            cx.st.io.line_base = 0;
             ok = false;
         }
     }
@@ -620,8 +621,8 @@ pub(super) fn batch(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
             return Ok(Value::Sym(SYM_FALSE));
         }
     }
-    cx.st.pending_batch.clear();
-    let _ = cx.st.pending_batch.write_str(path.as_str());
+    cx.st.io.pending_batch.clear();
+    let _ = cx.st.io.pending_batch.write_str(path.as_str());
     Ok(Value::Sym(SYM_TRUE))
 }
 
@@ -638,7 +639,7 @@ fn save_facts(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let mut path: TextBuf<256> = TextBuf::new();
     let _ = path.write_str(cx.sym_text(p));
     let mut first = true;
-    let mut f = cx.st.fact_head;
+    let mut f = cx.st.facts.fact_head;
     while f != NONE {
         let mut b: TextBuf<2048> = TextBuf::new();
         {
@@ -689,7 +690,7 @@ fn time(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
 
 fn list_deftemplates(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
     let mut n = 0;
-    for t in 0..cx.st.ntemplates {
+    for t in 0..cx.st.pools.ntemplates {
         // implied (ordered-fact) templates are listed too, as CLIPS 6.30 does; a
         // template retired by a redefinition has no name and is gone
         let tm = cx.templates[t as usize];
@@ -713,13 +714,13 @@ fn list_deftemplates(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
 
 fn list_deffunctions(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
     // a removed deffunction keeps its entry, without a name
-    let n = (0..cx.st.nfuncs)
+    let n = (0..cx.st.pools.nfuncs)
         .filter(|&f| cx.funcs[f as usize].name != NONE)
         .count();
     if n == 0 {
         return Ok(Value::Void); // CLIPS lists nothing, not even the total
     }
-    for f in 0..cx.st.nfuncs {
+    for f in 0..cx.st.pools.nfuncs {
         let name = cx.funcs[f as usize].name;
         if name == NONE {
             continue;

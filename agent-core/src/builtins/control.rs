@@ -69,33 +69,33 @@ fn branch(cx: &mut Core<'_>, p: Ix) -> Result<Value, EvalError> {
 /// (`Core::set_global`), above any temporary.
 pub(super) fn release_scratch(cx: &mut Core<'_>, mark: Ix) {
     // nothing above the mark (the usual loop body or query test): nothing to scan for
-    if cx.st.scratch_top <= mark {
+    if cx.st.frame.scratch_top <= mark {
         return;
     }
     let mut keep = mark;
-    for i in 0..cx.st.sp as usize {
+    for i in 0..cx.st.frame.sp as usize {
         if let Value::Multi(m) = cx.stack[i] {
             keep = keep.max(m.start + m.len);
         }
     }
-    if keep < cx.st.scratch_top {
-        cx.st.scratch_top = keep;
+    if keep < cx.st.frame.scratch_top {
+        cx.st.frame.scratch_top = keep;
     }
 }
 
 fn while_(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     let [c, body] = kids::<2>(cx, call);
-    let mark = cx.st.scratch_top;
+    let mark = cx.st.frame.scratch_top;
     // while CLIPS halts (`State::halting`) loops run no iteration
-    while !cx.st.halting && Core::is_true(cx.eval(c)?) {
+    while !cx.st.mode.halting && Core::is_true(cx.eval(c)?) {
         cx.poll_interrupt()?;
         cx.eval(body)?;
         release_scratch(cx, mark);
-        if cx.st.breaking {
-            cx.st.breaking = false;
+        if cx.st.eval.breaking {
+            cx.st.eval.breaking = false;
             break;
         }
-        if cx.st.returning || cx.st.exit {
+        if cx.st.eval.returning || cx.st.mode.exit {
             break;
         }
     }
@@ -117,21 +117,21 @@ fn loop_for_count(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     } else {
         None
     };
-    let mark = cx.st.scratch_top;
+    let mark = cx.st.frame.scratch_top;
     let mut i = start;
-    while i <= end && !cx.st.halting {
+    while i <= end && !cx.st.mode.halting {
         if let Some(sl) = slot {
-            let at = (cx.st.bp + sl) as usize;
+            let at = (cx.st.frame.bp + sl) as usize;
             cx.stack[at] = Value::Int(i);
         }
         cx.poll_interrupt()?;
         cx.eval(body)?;
         release_scratch(cx, mark);
-        if cx.st.breaking {
-            cx.st.breaking = false;
+        if cx.st.eval.breaking {
+            cx.st.eval.breaking = false;
             break;
         }
-        if cx.st.returning || cx.st.exit {
+        if cx.st.eval.returning || cx.st.mode.exit {
             break;
         }
         i += 1;
@@ -146,29 +146,29 @@ fn foreach(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
         _ => return Err(EvalError::wrong_type("progn$", 1, "multifield")),
     };
     let slot = cx.exprs[var as usize].data;
-    let mark = cx.st.scratch_top;
+    let mark = cx.st.frame.scratch_top;
     let mut last = Value::Sym(SYM_FALSE);
     for k in 0..m.len as usize {
-        if cx.st.halting {
+        if cx.st.mode.halting {
             break;
         }
-        let at = (cx.st.bp + slot) as usize;
+        let at = (cx.st.frame.bp + slot) as usize;
         cx.stack[at] = cx.scratch[m.start as usize + k];
         cx.stack[at + 1] = Value::Int(k as i64 + 1);
         cx.poll_interrupt()?;
         last = cx.eval(body)?;
         // the last iteration's value is progn$'s (a multifield too, as in CLIPS), so its
         // cells stay; earlier iterations' are freed, so a long loop holds one body's worth
-        let done = k + 1 == m.len as usize || cx.st.returning || cx.st.exit;
+        let done = k + 1 == m.len as usize || cx.st.eval.returning || cx.st.mode.exit;
         let base = mark.max(m.start + m.len);
         release_scratch(cx, if done { keep_value(base, last) } else { base });
-        if cx.st.breaking {
+        if cx.st.eval.breaking {
             // CLIPS's progn$ left by break has no value (loop-for-count's is FALSE)
-            cx.st.breaking = false;
+            cx.st.eval.breaking = false;
             last = Value::Void;
             break;
         }
-        if cx.st.returning || cx.st.exit {
+        if cx.st.eval.returning || cx.st.mode.exit {
             break;
         }
     }
@@ -185,7 +185,7 @@ pub(super) fn keep_value(mark: Ix, v: Value) -> Ix {
 
 fn switch(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     // while CLIPS halts (`State::halting`) a switch is FALSE
-    if cx.st.halting {
+    if cx.st.mode.halting {
         return Ok(Value::Sym(SYM_FALSE));
     }
     let first = cx.exprs[call as usize].first;
@@ -264,20 +264,20 @@ fn bind_one(cx: &mut Core<'_>, target: Ix, a: Ix) -> Result<Value, EvalError> {
 /// multifield is copied (its region is repacked on every global store, and a
 /// temporary's end there would hold the scratch top inside the region).
 fn keep_bound(cx: &mut Core<'_>, start: Ix, v: Value) -> Result<Value, EvalError> {
-    let top = cx.st.scratch_top;
+    let top = cx.st.frame.scratch_top;
     let Value::Multi(m) = v else {
-        cx.st.scratch_top = start;
+        cx.st.frame.scratch_top = start;
         return Ok(v);
     };
     if m.start >= top {
-        cx.st.scratch_top = start;
+        cx.st.frame.scratch_top = start;
         for k in 0..m.len as usize {
             let item = cx.scratch[m.start as usize + k];
             cx.multi_push(item)?;
         }
         return Ok(cx.multi_finish(start));
     }
-    cx.st.scratch_top = if m.start >= start {
+    cx.st.frame.scratch_top = if m.start >= start {
         m.start + m.len
     } else {
         start
@@ -291,7 +291,7 @@ fn store_bound(cx: &mut Core<'_>, target: Ix, value: Value) -> Result<(), EvalEr
     let t = cx.exprs[target as usize];
     match t.op {
         Op::Local => {
-            let at = (cx.st.bp + t.data) as usize;
+            let at = (cx.st.frame.bp + t.data) as usize;
             cx.stack[at] = value;
         }
         Op::Global => cx.set_global(t.data, value)?,
@@ -306,13 +306,13 @@ fn store_bound(cx: &mut Core<'_>, target: Ix, value: Value) -> Result<(), EvalEr
 
 fn return_(cx: &mut Core<'_>, a: super::Args) -> Result<Value, EvalError> {
     let v = if a.len > 0 { cx.arg(a, 0) } else { Value::Void };
-    cx.st.returning = true;
-    cx.st.return_value = v;
+    cx.st.eval.returning = true;
+    cx.st.eval.return_value = v;
     Ok(v)
 }
 
 fn break_(cx: &mut Core<'_>, _a: super::Args) -> Result<Value, EvalError> {
-    cx.st.breaking = true;
+    cx.st.eval.breaking = true;
     Ok(Value::Sym(SYM_FALSE))
 }
 

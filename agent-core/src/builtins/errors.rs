@@ -25,9 +25,9 @@ pub struct ErrorFallback {
 impl Core<'_> {
     /// Records the value this builtin returns in CLIPS after a run-time error.
     pub fn set_error_fallback(&mut self, value: Value, divide_by_zero: Option<&'static str>) {
-        self.st.error_fallback = Some(ErrorFallback {
+        self.st.eval.error_fallback = Some(ErrorFallback {
             value,
-            depth: self.st.eval_depth,
+            depth: self.st.eval.eval_depth,
             divide_by_zero,
         });
     }

@@ -55,8 +55,8 @@ fn eval(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let r = match item {
         Ok(Item::Command(e)) => {
             // a frame for the command's own loop/query variables
-            let (bp, sp) = (cx.st.bp, cx.st.sp);
-            cx.st.bp = cx.st.sp;
+            let outer = cx.st.frame;
+            cx.st.frame.bp = cx.st.frame.sp;
             let mut r = Ok(Value::Void);
             for _ in 0..nlocals {
                 if let Err(c) = cx.push_value(Value::Void) {
@@ -66,7 +66,7 @@ fn eval(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
             if r.is_ok() {
                 r = cx.eval(e);
             }
-            (cx.st.bp, cx.st.sp) = (bp, sp);
+            cx.st.frame.leave(outer);
             r
         }
         Ok(Item::End) => Ok(Value::Sym(SYM_FALSE)),
@@ -84,7 +84,7 @@ fn eval(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         && now.ntemplates == cp.ntemplates
         && now.nglobals == cp.nglobals
     {
-        cx.st.nexprs = cp.nexprs;
+        cx.st.pools.nexprs = cp.nexprs;
     }
     r
 }
@@ -145,7 +145,7 @@ pub(super) fn assert_string(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalErr
         }
     };
     // the fact's expression nodes go again (symbols it made stay, as for any assert)
-    cx.st.nexprs = cp.nexprs;
+    cx.st.pools.nexprs = cp.nexprs;
     r
 }
 
@@ -273,12 +273,12 @@ impl Merge {
 
     /// Whether `x` goes after `y`: `(f x y)` is not FALSE.
     fn after(&self, cx: &mut Core<'_>, x: Value, y: Value) -> Result<bool, EvalError> {
-        let base = cx.st.sp;
+        let base = cx.st.frame.sp;
         cx.push_value(x)?;
         cx.push_value(y)?;
-        let mark = cx.st.scratch_top;
+        let mark = cx.st.frame.scratch_top;
         let r = cx.call_values(self.callee, Args { base, len: 2 });
-        cx.st.sp = base;
+        cx.st.frame.sp = base;
         // only the answer's truth is kept: what the call built goes
         let r = r.map(|v| v != Value::Sym(SYM_FALSE));
         super::control::release_scratch(cx, mark);
@@ -290,7 +290,7 @@ impl Merge {
 fn build(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let text = source_arg(cx, a, "build")?;
     // CLIPS defines nothing while a pattern or join test runs (`State::matching`)
-    if cx.st.matching > 0 {
+    if cx.st.net.matching > 0 {
         return Ok(Value::Sym(SYM_FALSE));
     }
     match cx.load_text(text.as_str(), false) {

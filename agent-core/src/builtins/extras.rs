@@ -60,30 +60,30 @@ fn name_at(cx: &Core<'_>, kind: Kind, i: Ix) -> Option<Option<SymId>> {
     match kind {
         Kind::Deffacts => {
             // the `initial-fact` deffacts comes first while it is defined
-            let skip = Ix::from(!cx.st.initial_deffacts);
+            let skip = Ix::from(!cx.st.mode.initial_deffacts);
             let i = i + skip;
             if i == 0 {
                 // named as its template
-                let t = cx.st.initial_tmpl;
+                let t = cx.st.facts.initial_tmpl;
                 return Some((t != NONE).then(|| cx.templates[t as usize].name));
             }
-            (i <= cx.st.ndeffacts).then(|| Some(cx.deffacts[i as usize - 1].name))
+            (i <= cx.st.pools.ndeffacts).then(|| Some(cx.deffacts[i as usize - 1].name))
         }
-        Kind::Deftemplate => (i < cx.st.ntemplates).then(|| {
+        Kind::Deftemplate => (i < cx.st.pools.ntemplates).then(|| {
             let name = cx.templates[i as usize].name;
             (name != NONE).then_some(name)
         }),
         // a removed deffunction or global keeps its entry, without a name
-        Kind::Deffunction => (i < cx.st.nfuncs).then(|| {
+        Kind::Deffunction => (i < cx.st.pools.nfuncs).then(|| {
             let name = cx.funcs[i as usize].name;
             (name != NONE).then_some(name)
         }),
         // a variable bound at the prompt is a hidden global named `?x`: not listed
-        Kind::Defglobal => (i < cx.st.nglobals).then(|| {
+        Kind::Defglobal => (i < cx.st.pools.nglobals).then(|| {
             let name = cx.globals[i as usize].name;
             (name != NONE && !cx.sym_text(name).starts_with('?')).then_some(name)
         }),
-        Kind::Defrule => (i < cx.st.nrules).then(|| {
+        Kind::Defrule => (i < cx.st.pools.nrules).then(|| {
             let r = cx.rules[i as usize];
             let later_disjunct = i > 0 && cx.rules[i as usize - 1].next_disjunct == i;
             (!r.deleted && !later_disjunct).then_some(r.name)
@@ -157,7 +157,7 @@ fn get_fact_list(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         }
     }
     let start = cx.multi_begin();
-    let mut f = cx.st.fact_head;
+    let mut f = cx.st.facts.fact_head;
     while f != NONE {
         let r = cx.fact_ref(f);
         cx.multi_push(Value::Fact(r))?;
@@ -181,16 +181,16 @@ fn undeffacts(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let name = cx.arg_lexeme(a, 0, "undeffacts")?;
     match cx.sym_text(name) {
         "*" => {
-            cx.st.ndeffacts = 0;
-            cx.st.initial_deffacts = false;
+            cx.st.pools.ndeffacts = 0;
+            cx.st.mode.initial_deffacts = false;
         }
-        "initial-fact" if cx.st.initial_deffacts => cx.st.initial_deffacts = false,
-        _ => match (0..cx.st.ndeffacts).find(|&d| cx.deffacts[d as usize].name == name) {
+        "initial-fact" if cx.st.mode.initial_deffacts => cx.st.mode.initial_deffacts = false,
+        _ => match (0..cx.st.pools.ndeffacts).find(|&d| cx.deffacts[d as usize].name == name) {
             Some(d) => {
                 // the later ones move up: `reset` asserts in definition order
-                let n = cx.st.ndeffacts as usize;
+                let n = cx.st.pools.ndeffacts as usize;
                 cx.deffacts.copy_within(d as usize + 1..n, d as usize);
-                cx.st.ndeffacts -= 1;
+                cx.st.pools.ndeffacts -= 1;
             }
             None => super::commands::unable(cx, Unable::Find, "deffacts", name),
         },
@@ -242,9 +242,9 @@ fn undeftemplate(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let how = Undefine {
         func: "undeftemplate",
         kind: "deftemplate",
-        count: |cx| cx.st.ntemplates,
+        count: |cx| cx.st.pools.ntemplates,
         name: |cx, t| cx.templates[t as usize].name,
-        stays: |cx, t, _| t == cx.st.initial_tmpl || cx.template_in_use(t),
+        stays: |cx, t, _| t == cx.st.facts.initial_tmpl || cx.template_in_use(t),
         remove: |cx, t| {
             let tm = &mut cx.templates[t as usize];
             tm.name = NONE;
@@ -262,9 +262,9 @@ fn undeffunction(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let how = Undefine {
         func: "undeffunction",
         kind: "deffunction",
-        count: |cx| cx.st.nfuncs,
+        count: |cx| cx.st.pools.nfuncs,
         name: |cx, f| cx.funcs[f as usize].name,
-        stays: |cx, f, all| cx.st.in_use > 0 || cx.deffunction_in_use(f, all),
+        stays: |cx, f, all| cx.st.eval.in_use > 0 || cx.deffunction_in_use(f, all),
         remove: |cx, f| {
             cx.funcs[f as usize].name = NONE;
             Ok(())
@@ -279,7 +279,7 @@ fn undefglobal(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let how = Undefine {
         func: "undefglobal",
         kind: "defglobal",
-        count: |cx| cx.st.nglobals,
+        count: |cx| cx.st.pools.nglobals,
         name: |cx, g| cx.globals[g as usize].name,
         stays: |cx, g, _| cx.global_in_use(g),
         remove: |cx, g| {
@@ -314,7 +314,7 @@ fn fact_slot_names(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     };
     let tm = cx.templates[cx.facts[f as usize].tmpl as usize];
     let start = cx.multi_begin();
-    if cx.facts[f as usize].tmpl == cx.st.initial_tmpl {
+    if cx.facts[f as usize].tmpl == cx.st.facts.initial_tmpl {
         // `(initial-fact)`: a template without slots in CLIPS, not an ordered fact
     } else if tm.implied {
         let implied = cx.intern("implied")?;
@@ -331,8 +331,8 @@ fn fact_slot_names(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 /// The text of the next `genN` symbol.
 fn next_gensym(cx: &mut Core<'_>) -> TextBuf<24> {
     let mut b: TextBuf<24> = TextBuf::new();
-    let _ = write!(b, "gen{}", cx.st.gensym_next);
-    cx.st.gensym_next = cx.st.gensym_next.wrapping_add(1);
+    let _ = write!(b, "gen{}", cx.st.eval.gensym_next);
+    cx.st.eval.gensym_next = cx.st.eval.gensym_next.wrapping_add(1);
     b
 }
 

@@ -111,7 +111,7 @@ impl Core<'_> {
             };
         }
         // evaluate first (values may build scratch), then gather
-        let base = self.st.sp;
+        let base = self.st.frame.sp;
         while e != NONE {
             let v = match self.eval(e) {
                 Ok(v) => v,
@@ -127,13 +127,13 @@ impl Core<'_> {
                         // an unbound variable empties the slot, as in CLIPS:
                         // `(assert (k x ?u y))` makes `(k)`, then the actions stop
                         self.write_error_message(err);
-                        self.st.field_error = Some(err);
-                        self.st.sp = base;
+                        self.st.eval.field_error = Some(err);
+                        self.st.frame.sp = base;
                         break;
                     }
                     // CLIPS reports it and goes on without this field
                     self.write_error_message(err);
-                    self.st.field_error = Some(err);
+                    self.st.eval.field_error = Some(err);
                     e = self.exprs[e as usize].next;
                     continue;
                 }
@@ -143,7 +143,7 @@ impl Core<'_> {
             e = self.exprs[e as usize].next;
         }
         let start = self.multi_begin();
-        for i in base..self.st.sp {
+        for i in base..self.st.frame.sp {
             match self.stack[i as usize] {
                 Value::Multi(m) => {
                     for k in 0..m.len as usize {
@@ -157,7 +157,7 @@ impl Core<'_> {
                 v => self.multi_push(v)?,
             }
         }
-        self.st.sp = base;
+        self.st.frame.sp = base;
         Ok(self.multi_finish(start))
     }
 
@@ -174,7 +174,7 @@ impl Core<'_> {
             _ => {
                 if def.multi {
                     return Ok(Value::Multi(MfSpan {
-                        start: self.st.scratch_top,
+                        start: self.st.frame.scratch_top,
                         len: 0,
                     }));
                 }
@@ -202,18 +202,18 @@ impl Core<'_> {
     fn assert_spec_deferring(&mut self, spec: Ix, defer: bool) -> Result<Option<Ix>, EvalError> {
         // no fact may come while a pattern or join test runs (`State::matching`): CLIPS
         // says so and the assert gives FALSE
-        if self.st.matching > 0 {
+        if self.st.net.matching > 0 {
             self.write(router::WERROR, NO_ASSERT_WHILE_MATCHING);
             return Ok(None);
         }
         let tmpl = self.exprs[spec as usize].data;
         let nslots = self.templates[tmpl as usize].nslots;
-        let base = self.st.sp;
+        let base = self.st.frame.sp;
         for _ in 0..nslots {
             self.push_value(Value::Void)?;
         }
         let r = self.assert_spec_inner(spec, tmpl, base, defer);
-        self.st.sp = base;
+        self.st.frame.sp = base;
         r
     }
 
@@ -250,7 +250,7 @@ impl Core<'_> {
         }
         // Values computed at run time are not checked against the slots' restrictions:
         // CLIPS checks literals while parsing and leaves dynamic constraint checking off.
-        self.st.defer_next = defer;
+        self.st.net.defer_next = defer;
         self.assert_slots(tmpl, base as usize)
     }
 
@@ -296,7 +296,7 @@ impl Core<'_> {
             self.stack[sp + s] = v;
             self.stack[sp + n + s] = v;
         }
-        self.st.sp = (sp + 2 * n) as Ix;
+        self.st.frame.sp = (sp + 2 * n) as Ix;
         self.note_hw(crate::error::Pool::EvalStack, sp + 2 * n);
         true
     }
@@ -311,7 +311,7 @@ impl Core<'_> {
         let fv = self.eval(first)?;
         // a waiting propagation (`rete::defer`) lets only this modify's retract go
         // first, and only when nothing can tell
-        if self.st.deferred.fact != NONE
+        if self.st.net.deferred.fact != NONE
             && !(retract_old
                 && self
                     .fact_arg(fv)
@@ -345,7 +345,7 @@ impl Core<'_> {
                 return Ok(Value::Sym(SYM_FALSE));
             }
         };
-        if self.st.matching > 0 {
+        if self.st.net.matching > 0 {
             // a modify is a retract, then an assert: CLIPS refuses both
             if retract_old {
                 self.write(router::WERROR, NO_RETRACT_WHILE_MATCHING);
@@ -363,9 +363,9 @@ impl Core<'_> {
         self.pay_owed()?;
         // the old values at `saved`, the new fact's built from a copy at `base`: a
         // modify that fails after the retract puts the old fact back from them
-        let saved = self.st.sp;
+        let saved = self.st.frame.sp;
         let base = saved + nslots;
-        self.st.pattern_error = false;
+        self.st.net.pattern_error = false;
         let r = (|| {
             // host: a flat fact without multislot values (most) copied in place
             #[cfg(feature = "host-speedups")]
@@ -404,30 +404,30 @@ impl Core<'_> {
             // the assert fail
             self.hold_traces();
             let mark = self.journal_begin();
-            self.st.unblocked = crate::rete::UnblockLog {
+            self.st.net.unblocked = crate::rete::UnblockLog {
                 on: true,
                 ..crate::rete::UnblockLog::EMPTY
             };
             self.retract_fact_held(old, hold);
-            self.st.unblocked.on = false;
+            self.st.net.unblocked.on = false;
             self.journal_pause();
             // a propagation the retract overtook (`rete::defer`) is built now; if it
             // fails, this modify's journal lacks the activations the overtaken
             // assert's retract removed: its undo rebuilds every one as the newest
             let r = match self.flush_deferred() {
                 Err(e) => {
-                    self.st.act_journal.overflow = true;
+                    self.st.agenda.act_journal.overflow = true;
                     Err(e)
                 }
                 Ok(()) => {
                     // the new fact's propagation may wait for the next action's retract
                     let defer = self.defer_worth(call);
                     if defer {
-                        self.st.modify_old = Some((old, old_fact));
+                        self.st.facts.modify_old = Some((old, old_fact));
                     }
-                    self.st.defer_next = defer;
+                    self.st.net.defer_next = defer;
                     let r = self.assert_slots(tmpl, base as usize);
-                    self.st.modify_old = None;
+                    self.st.facts.modify_old = None;
                     r
                 }
             };
@@ -446,12 +446,12 @@ impl Core<'_> {
             self.release_traces(r.is_ok());
             r
         })();
-        self.st.sp = saved;
+        self.st.frame.sp = saved;
         let v = match r? {
             Some(f) => Value::Fact(self.fact_ref(f)),
             None => Value::Sym(SYM_FALSE),
         };
-        if self.st.pattern_error {
+        if self.st.net.pattern_error {
             return halt_after_network_error(self, v);
         }
         Ok(v)
@@ -461,20 +461,20 @@ impl Core<'_> {
 fn assert(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     let mut spec = cx.exprs[call as usize].first;
     let mut last = Value::Sym(SYM_FALSE);
-    cx.st.pattern_error = false;
+    cx.st.net.pattern_error = false;
     // a top-level action's last fact may defer its propagation (`rete::defer`): an
     // earlier one's pattern errors must stop the assert before the next fact
     let top = cx.defer_worth(call);
     while spec != NONE {
         if cx.exprs[spec as usize].op == Op::FactSpec {
-            cx.st.field_error = None;
+            cx.st.eval.field_error = None;
             let defer = top && cx.exprs[spec as usize].next == NONE;
             last = match cx.assert_spec_deferring(spec, defer)? {
                 Some(f) => Value::Fact(cx.fact_ref(f)),
                 None => Value::Sym(SYM_FALSE),
             };
             // a field failed: the fact stands without it, the actions stop here
-            if let Some(mut err) = cx.st.field_error.take() {
+            if let Some(mut err) = cx.st.eval.field_error.take() {
                 err.reported = true;
                 cx.set_error_fallback(last, None);
                 return Err(err);
@@ -482,11 +482,11 @@ fn assert(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
         }
         spec = cx.exprs[spec as usize].next;
         // CLIPS stops a multi-fact assert after a pattern-network error
-        if cx.st.pattern_error && spec != NONE {
+        if cx.st.net.pattern_error && spec != NONE {
             return halt_after_network_error(cx, Value::Sym(SYM_FALSE));
         }
     }
-    if cx.st.pattern_error {
+    if cx.st.net.pattern_error {
         // CLIPS shows a lone fact, but FALSE for a multi-fact assert
         let several = cx.exprs[cx.exprs[call as usize].first as usize].next != NONE;
         let v = if several { Value::Sym(SYM_FALSE) } else { last };
@@ -500,7 +500,7 @@ fn assert(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
 /// deffunction's remaining actions do not run. The error is already reported; the
 /// call's value (the fact, shown by a bare `assert` at the prompt) is the fallback.
 fn halt_after_network_error(cx: &mut Core<'_>, value: Value) -> Result<Value, EvalError> {
-    cx.st.pattern_error = false;
+    cx.st.net.pattern_error = false;
     cx.set_error_fallback(value, None);
     Err(EvalError::already_reported())
 }
@@ -517,24 +517,26 @@ fn retract(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         let v = cx.arg(a, i);
         if let Value::Sym(s) = v {
             if cx.sym_text(s) == "*" {
-                if cx.st.matching > 0 {
+                if cx.st.net.matching > 0 {
                     // CLIPS refuses each fact (and, unlike here, tries again forever)
-                    let mut f = cx.st.fact_head;
+                    let mut f = cx.st.facts.fact_head;
                     while f != NONE {
                         cx.write(router::WERROR, NO_RETRACT_WHILE_MATCHING);
                         f = cx.facts[f as usize].next;
                     }
                     continue;
                 }
-                while cx.st.fact_head != NONE {
-                    let f = cx.st.fact_head;
+                while cx.st.facts.fact_head != NONE {
+                    let f = cx.st.facts.fact_head;
                     cx.retract_fact(f);
                 }
                 continue;
             }
         }
         match cx.fact_arg(v) {
-            Some(_) if cx.st.matching > 0 => cx.write(router::WERROR, NO_RETRACT_WHILE_MATCHING),
+            Some(_) if cx.st.net.matching > 0 => {
+                cx.write(router::WERROR, NO_RETRACT_WHILE_MATCHING)
+            }
             Some(f) => cx.retract_fact(f),
             // a stale fact address was retracted already: nothing to do (as CLIPS)
             None if matches!(v, Value::Fact(_)) => {}

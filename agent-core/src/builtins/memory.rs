@@ -27,7 +27,7 @@ pub const FUNCS: &[Builtin] = &[
 impl Core<'_> {
     /// Activations on the agenda.
     pub fn activation_count(&self) -> usize {
-        self.st.agenda_len as usize
+        self.st.agenda.agenda_len as usize
     }
 
     /// Pool entries in use and their bytes: `(entries, bytes)`.
@@ -35,26 +35,26 @@ impl Core<'_> {
         let st = &*self.st;
         let counts = [
             (self.live_fact_count(), size_of_first(self.facts)),
-            (st.values_top as usize, size_of_first(self.values)),
-            (st.nsyms as usize, size_of_first(self.sym_entries)),
-            (st.ntemplates as usize, size_of_first(self.templates)),
-            (st.nslots as usize, size_of_first(self.slots)),
-            (st.nrules as usize, size_of_first(self.rules)),
-            (st.nalpha as usize, size_of_first(self.alphas)),
-            (st.njoins as usize, size_of_first(self.joins)),
-            (st.tokens_live as usize, size_of_first(self.tokens)),
+            (st.facts.values_top as usize, size_of_first(self.values)),
+            (st.pools.nsyms as usize, size_of_first(self.sym_entries)),
+            (st.pools.ntemplates as usize, size_of_first(self.templates)),
+            (st.pools.nslots as usize, size_of_first(self.slots)),
+            (st.pools.nrules as usize, size_of_first(self.rules)),
+            (st.pools.nalpha as usize, size_of_first(self.alphas)),
+            (st.pools.njoins as usize, size_of_first(self.joins)),
+            (st.pools.tokens_live as usize, size_of_first(self.tokens)),
             (self.activation_count(), size_of_first(self.acts)),
-            (st.nfuncs as usize, size_of_first(self.funcs)),
-            (st.nglobals as usize, size_of_first(self.globals)),
+            (st.pools.nfuncs as usize, size_of_first(self.funcs)),
+            (st.pools.nglobals as usize, size_of_first(self.globals)),
             (
-                st.nexprs as usize,
+                st.pools.nexprs as usize,
                 core::mem::size_of::<crate::expr::Expr>(),
             ),
-            (st.ndeffacts as usize, size_of_first(self.deffacts)),
-            (st.nexternals as usize, size_of_first(self.externals)),
+            (st.pools.ndeffacts as usize, size_of_first(self.deffacts)),
+            (st.pools.nexternals as usize, size_of_first(self.externals)),
         ];
         let mut entries = 0;
-        let mut bytes = st.sym_bytes as usize;
+        let mut bytes = st.pools.sym_bytes as usize;
         for (n, size) in counts {
             entries += n;
             bytes += n * size;

@@ -401,7 +401,7 @@ impl Core<'_> {
     /// Starts building a multifield of unknown length: push elements with
     /// `multi_push`, then `multi_finish(start)`.
     pub fn multi_begin(&self) -> Ix {
-        self.st.scratch_top
+        self.st.frame.scratch_top
     }
 
     pub fn multi_push(&mut self, v: Value) -> Result<(), CapacityError> {
@@ -413,7 +413,7 @@ impl Core<'_> {
     pub fn multi_finish(&self, start: Ix) -> Value {
         Value::Multi(MfSpan {
             start,
-            len: self.st.scratch_top - start,
+            len: self.st.frame.scratch_top - start,
         })
     }
 

@@ -138,7 +138,7 @@ fn next_of_template(cx: &Core<'_>, tmpl: Ix, after: Option<Resume>) -> Option<Ix
         cx.fact_tlinks[f as usize][0]
     });
     #[cfg(not(feature = "host-speedups"))]
-    let (head, link) = (cx.st.fact_head, |f: Ix| cx.facts[f as usize].next);
+    let (head, link) = (cx.st.facts.fact_head, |f: Ix| cx.facts[f as usize].next);
     let (mut f, lo, hi) = match after {
         None => (head, None, u32::MAX),
         // fast path: still linked, continue from its successor
@@ -174,7 +174,7 @@ fn next_of_template(cx: &Core<'_>, tmpl: Ix, after: Option<Resume>) -> Option<Ix
 fn bind(cx: &mut Core<'_>, w: &mut Walk, k: usize, f: Ix) {
     let r = cx.fact_ref(f);
     w.cursor[k] = r;
-    let at = (cx.st.bp + cx.exprs[w.q.vars[k] as usize].data) as usize;
+    let at = (cx.st.frame.bp + cx.exprs[w.q.vars[k] as usize].data) as usize;
     cx.stack[at] = Value::Fact(r);
 }
 
@@ -183,7 +183,7 @@ fn bind(cx: &mut Core<'_>, w: &mut Walk, k: usize, f: Ix) {
 #[cfg_attr(feature = "host-speedups", inline(always))]
 fn rebind_outer(cx: &mut Core<'_>, w: &Walk, k: usize) {
     for (i, &var) in w.q.vars[..k].iter().enumerate() {
-        let at = (cx.st.bp + cx.exprs[var as usize].data) as usize;
+        let at = (cx.st.frame.bp + cx.exprs[var as usize].data) as usize;
         cx.stack[at] = Value::Fact(w.cursor[i]);
     }
 }
@@ -194,7 +194,9 @@ fn rebind_outer(cx: &mut Core<'_>, w: &Walk, k: usize) {
 fn template_of(cx: &mut Core<'_>, tnode: Ix) -> Option<Ix> {
     let x = cx.exprs[tnode as usize];
     let cached = Ix::from(x.aux);
-    if cached != 0 && cached <= cx.st.ntemplates && cx.templates[cached as usize - 1].name == x.data
+    if cached != 0
+        && cached <= cx.st.pools.ntemplates
+        && cx.templates[cached as usize - 1].name == x.data
     {
         return Some(cached - 1);
     }
@@ -286,7 +288,7 @@ impl SlotTest {
         }
         let o = cx.exprs[self.other as usize];
         let w = match o.op {
-            crate::expr::Op::Local => cx.stack[(cx.st.bp + o.data) as usize],
+            crate::expr::Op::Local => cx.stack[(cx.st.frame.bp + o.data) as usize],
             crate::expr::Op::Global => cx.globals[o.data as usize].value,
             _ => cx.const_value(self.other),
         };
@@ -331,25 +333,25 @@ fn walk(cx: &mut Core<'_>, w: &mut Walk, k: usize) -> Result<bool, EvalError> {
                 // as after a visit whose test failed: nothing ran, nothing to stop for
                 prev = Some(Resume {
                     fact: cx.fact_ref(f),
-                    counter: cx.st.next_fact_num,
+                    counter: cx.st.facts.next_fact_num,
                 });
                 continue;
             }
             bind(cx, w, k, f);
             prev = Some(Resume {
                 fact: w.cursor[k],
-                counter: cx.st.next_fact_num,
+                counter: cx.st.facts.next_fact_num,
             });
             let stop = if k + 1 < w.q.nvars {
                 walk(cx, w, k + 1)?
             } else {
                 let stop = visit(cx, w, decided == Some(true))?;
-                if w.hold_top && cx.st.pending != NONE {
+                if w.hold_top && cx.st.facts.pending != NONE {
                     release_held(cx, &w.cursor[..w.q.nvars], 0..0);
                 }
                 stop
             };
-            if stop || cx.st.returning || cx.st.breaking || cx.st.halt_now() {
+            if stop || cx.st.eval.returning || cx.st.eval.breaking || cx.st.halt_now() {
                 return Ok(true);
             }
         }
@@ -362,7 +364,7 @@ fn walk(cx: &mut Core<'_>, w: &mut Walk, k: usize) -> Result<bool, EvalError> {
 #[cfg_attr(feature = "host-speedups", inline(always))]
 fn visit(cx: &mut Core<'_>, w: &mut Walk, passed: bool) -> Result<bool, EvalError> {
     if !passed {
-        let mark = cx.st.scratch_top;
+        let mark = cx.st.frame.scratch_top;
         let ok = Core::is_true(cx.eval(w.q.test)?);
         // the query's temporaries are dead; keep a collected result contiguous
         release_scratch(cx, mark);
@@ -381,7 +383,7 @@ fn visit(cx: &mut Core<'_>, w: &mut Walk, passed: bool) -> Result<bool, EvalErro
             w.last = Value::Sym(SYM_FALSE);
             release_scratch(cx, w.base);
         }
-        let mark = cx.st.scratch_top;
+        let mark = cx.st.frame.scratch_top;
         w.last = if w.q.actions == NONE {
             Value::Sym(SYM_FALSE)
         } else {
@@ -399,13 +401,13 @@ fn visit(cx: &mut Core<'_>, w: &mut Walk, passed: bool) -> Result<bool, EvalErro
 /// while a query variable is bound to it, and only that long, so a query retracting
 /// many facts holds no more cells than a few tuples take.
 fn release_held(cx: &mut Core<'_>, keep: &[FactRef], vals: core::ops::Range<usize>) {
-    let mut p = core::mem::replace(&mut cx.st.pending, NONE);
+    let mut p = core::mem::replace(&mut cx.st.facts.pending, NONE);
     while p != NONE {
         let f = cx.facts[p as usize];
         let named = |v: &Value| matches!(*v, Value::Fact(x) if x.slot == p);
         if keep.iter().any(|k| k.slot == p) || cx.scratch[vals.clone()].iter().any(named) {
-            cx.facts[p as usize].next = cx.st.pending;
-            cx.st.pending = p;
+            cx.facts[p as usize].next = cx.st.facts.pending;
+            cx.st.facts.pending = p;
         } else {
             cx.free_fact_slot(p);
         }
@@ -417,17 +419,17 @@ fn release_held(cx: &mut Core<'_>, keep: &[FactRef], vals: core::ops::Range<usiz
 /// and whether this is the outermost query outside a firing (it frees what is still
 /// held at the end).
 fn hold_begin(cx: &mut Core<'_>) -> (u16, bool) {
-    let saved = cx.st.query_hold;
-    if cx.st.firing {
+    let saved = cx.st.eval.query_hold;
+    if cx.st.mode.firing {
         return (saved, false);
     }
-    cx.st.query_hold = saved.saturating_add(1);
+    cx.st.eval.query_hold = saved.saturating_add(1);
     (saved, saved == 0)
 }
 
 fn hold_end(cx: &mut Core<'_>, (saved, top): (u16, bool)) {
     // restored, not decremented: a `clear` in the actions resets the state
-    cx.st.query_hold = saved;
+    cx.st.eval.query_hold = saved;
     if top {
         cx.free_pending();
     }
@@ -449,11 +451,11 @@ fn run(
         act,
         found: false,
         last: Value::Sym(SYM_FALSE),
-        base: cx.st.scratch_top,
+        base: cx.st.frame.scratch_top,
         hold_top: false,
     };
     // while CLIPS halts, a query tests no fact set: nothing found, no action run
-    if cx.st.halting {
+    if cx.st.mode.halting {
         return Ok(w);
     }
     // outside a firing, retracted facts stay readable (`hold_begin`)
@@ -512,31 +514,31 @@ fn delayed(cx: &mut Core<'_>, call: Ix, top: bool) -> Result<Value, EvalError> {
     let n = w.q.nvars;
     let mut last = Value::Sym(SYM_FALSE);
     // each tuple's value supersedes the one before: its cells go down to here
-    let base = cx.st.scratch_top;
+    let base = cx.st.frame.scratch_top;
     let mut t = 0;
     while t + n <= tuples.len as usize {
         for k in 0..n {
-            let at = (cx.st.bp + cx.exprs[w.q.vars[k] as usize].data) as usize;
+            let at = (cx.st.frame.bp + cx.exprs[w.q.vars[k] as usize].data) as usize;
             cx.stack[at] = cx.mf_item(tuples, t + k);
         }
         if matches!(last, Value::Multi(_)) {
             release_scratch(cx, base);
         }
-        let mark = cx.st.scratch_top;
+        let mark = cx.st.frame.scratch_top;
         last = if w.q.actions == NONE {
             Value::Sym(SYM_FALSE)
         } else {
             cx.eval_chain(w.q.actions)?
         };
         release_scratch(cx, keep_value(mark, last));
-        if top && cx.st.pending != NONE && cx.fact_slots_full() {
+        if top && cx.st.facts.pending != NONE && cx.fact_slots_full() {
             // the tuples still to come may name a fact retracted now; freed only when
             // the slots are needed, as the check scans those tuples (per tuple, it
             // made a query retracting all its facts quadratic)
             let (s, e) = (tuples.start as usize, (tuples.start + tuples.len) as usize);
             release_held(cx, &[], (s + t + n).min(e)..e);
         }
-        if cx.st.returning || cx.st.breaking || cx.st.halt_now() {
+        if cx.st.eval.returning || cx.st.eval.breaking || cx.st.halt_now() {
             break;
         }
         t += n;

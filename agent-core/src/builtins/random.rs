@@ -30,18 +30,18 @@ const SEP: usize = 3;
 /// glibc computes it) and discards the first 310 outputs.
 fn srandom(st: &mut State, seed: u32) {
     let seed = if seed == 0 { 1 } else { seed };
-    st.rng_glibc[0] = seed as i32;
+    st.random.rng_glibc[0] = seed as i32;
     for i in 1..DEG {
-        let word = st.rng_glibc[i - 1] as i64;
+        let word = st.random.rng_glibc[i - 1] as i64;
         let (hi, lo) = (word / 127_773, word % 127_773);
         let mut next = 16_807 * lo - 2_836 * hi;
         if next < 0 {
             next += 2_147_483_647;
         }
-        st.rng_glibc[i] = next as i32;
+        st.random.rng_glibc[i] = next as i32;
     }
-    st.rng_pos = 0;
-    st.rng_seeded = true;
+    st.random.rng_pos = 0;
+    st.random.rng_seeded = true;
     for _ in 0..10 * DEG {
         next_random(st);
     }
@@ -49,14 +49,14 @@ fn srandom(st: &mut State, seed: u32) {
 
 /// glibc `random`: front += rear (mod 2^32); the result is front >> 1.
 fn next_random(st: &mut State) -> i64 {
-    if !st.rng_seeded {
+    if !st.random.rng_seeded {
         srandom(st, 1);
     }
-    let rear = st.rng_pos as usize % DEG;
+    let rear = st.random.rng_pos as usize % DEG;
     let front = (rear + SEP) % DEG;
-    let sum = (st.rng_glibc[front] as u32).wrapping_add(st.rng_glibc[rear] as u32);
-    st.rng_glibc[front] = sum as i32;
-    st.rng_pos = ((rear + 1) % DEG) as u8;
+    let sum = (st.random.rng_glibc[front] as u32).wrapping_add(st.random.rng_glibc[rear] as u32);
+    st.random.rng_glibc[front] = sum as i32;
+    st.random.rng_pos = ((rear + 1) % DEG) as u8;
     i64::from(sum >> 1)
 }
 

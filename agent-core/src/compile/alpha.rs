@@ -69,7 +69,7 @@ impl Parser<'_, '_, '_> {
             }
             a = n.next_in_tmpl;
         }
-        let n = self.cx.st.nalpha as usize;
+        let n = self.cx.st.pools.nalpha as usize;
         if n >= self.cx.alphas.len() {
             let c = cap(Pool::AlphaNodes, self.cx.alphas.len());
             return Err(self.cap_err(self.lex.token_at(at as usize), c));
@@ -93,8 +93,8 @@ impl Parser<'_, '_, '_> {
         };
         self.assign_trie_key(tmpl, n as Ix, pat.alone);
         self.insert_alpha_sorted(tmpl, n as Ix);
-        self.cx.st.nalpha += 1;
-        self.cx.st.net_gen = self.cx.st.net_gen.wrapping_add(1);
+        self.cx.st.pools.nalpha += 1;
+        self.cx.st.net.net_gen = self.cx.st.net.net_gen.wrapping_add(1);
         self.cx.note_hw(Pool::AlphaNodes, n + 1);
         Ok(n as Ix)
     }
@@ -259,8 +259,8 @@ impl Parser<'_, '_, '_> {
                 a = o.next_in_tmpl;
             }
             if id == 0 {
-                self.cx.st.trie_ids = self.cx.st.trie_ids.wrapping_add(1).max(1);
-                id = self.cx.st.trie_ids;
+                self.cx.st.pools.trie_ids = self.cx.st.pools.trie_ids.wrapping_add(1).max(1);
+                id = self.cx.st.pools.trie_ids;
             }
             key[lvl] = id;
         }

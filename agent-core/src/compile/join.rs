@@ -16,7 +16,7 @@ impl Core<'_> {
     /// Hooks the joins from `first_new` on up to their alpha nodes (each new join
     /// first among its node's successors).
     pub(crate) fn hook_new_joins(&mut self, first_new: Ix) {
-        for j in first_new..self.st.njoins {
+        for j in first_new..self.st.pools.njoins {
             let a = self.joins[j as usize].alpha;
             if a != NONE {
                 self.joins[j as usize].alpha_next = self.alphas[a as usize].succ;
@@ -39,11 +39,11 @@ impl Core<'_> {
             ids: [NONE; MAX_PRIMED],
             n: 0,
         };
-        for r in first_rule..self.st.nrules {
+        for r in first_rule..self.st.pools.nrules {
             let t = self.rules[r as usize].terminal;
             self.prime_chain(t, first_join, 0, &mut primed)?;
         }
-        if first_alpha < self.st.nalpha {
+        if first_alpha < self.st.pools.nalpha {
             self.prime_alphas(first_alpha)?;
         }
         Ok(())
@@ -143,14 +143,14 @@ impl<'s> Parser<'s, '_, '_> {
 
     /// Creates the rule and its joins.
     fn build_rule(&mut self, name: SymId, b: &Build) -> PResult<Ix> {
-        self.cx.st.net_gen = self.cx.st.net_gen.wrapping_add(1);
+        self.cx.st.net.net_gen = self.cx.st.net.net_gen.wrapping_add(1);
         let at = self.peek();
-        let nr = self.cx.st.nrules as usize;
+        let nr = self.cx.st.pools.nrules as usize;
         if nr >= self.cx.rules.len() {
             let c = cap(Pool::Rules, self.cx.rules.len());
             return Err(self.cap_err(at, c));
         }
-        if self.cx.st.njoins as usize + b.n + 1 > self.cx.joins.len() {
+        if self.cx.st.pools.njoins as usize + b.n + 1 > self.cx.joins.len() {
             let c = cap(Pool::Joins, self.cx.joins.len());
             return Err(self.cap_err(at, c));
         }
@@ -201,8 +201,8 @@ impl<'s> Parser<'s, '_, '_> {
                 }
             }
             self.push_join_mark(false);
-            let j = self.cx.st.njoins;
-            self.cx.st.njoins += 1;
+            let j = self.cx.st.pools.njoins;
+            self.cx.st.pools.njoins += 1;
             self.cx.joins[j as usize] = Join {
                 kind: ce.kind,
                 depth: ce.depth,
@@ -258,8 +258,8 @@ impl<'s> Parser<'s, '_, '_> {
         }
         // the rule's end node
         self.push_join_mark(false);
-        let term = self.cx.st.njoins;
-        self.cx.st.njoins += 1;
+        let term = self.cx.st.pools.njoins;
+        self.cx.st.pools.njoins += 1;
         self.cx.joins[term as usize] = Join {
             kind: JoinKind::Terminal,
             depth: b.depth,
@@ -272,7 +272,8 @@ impl<'s> Parser<'s, '_, '_> {
         self.cx.joins[prev as usize].first_child = term;
         self.cx.note_children(prev);
         let prev = term;
-        self.cx.note_hw(Pool::Joins, self.cx.st.njoins as usize);
+        self.cx
+            .note_hw(Pool::Joins, self.cx.st.pools.njoins as usize);
         self.cx.rules[nr] = Rule {
             name,
             salience: b.sal.0,
@@ -288,7 +289,7 @@ impl<'s> Parser<'s, '_, '_> {
             deleted: false,
             text: NONE,
         };
-        self.cx.st.nrules += 1;
+        self.cx.st.pools.nrules += 1;
         self.cx.note_hw(Pool::Rules, nr + 1);
         Ok(nr as Ix)
     }

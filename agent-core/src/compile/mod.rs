@@ -33,11 +33,11 @@ mod tests {
             let mut h = NullHost;
             let c = e.core(&mut h);
             (
-                c.st.nalpha,
-                c.st.njoins,
-                c.st.nrules,
-                c.st.trie_ids,
-                c.st.nexprs,
+                c.st.pools.nalpha,
+                c.st.pools.njoins,
+                c.st.pools.nrules,
+                c.st.pools.trie_ids,
+                c.st.pools.nexprs,
             )
         };
         let b = before(&mut e);

@@ -63,7 +63,7 @@ impl Core<'_> {
     }
 
     pub(crate) fn unlink_join(&mut self, j: Ix) {
-        self.st.net_gen = self.st.net_gen.wrapping_add(1);
+        self.st.net.net_gen = self.st.net.net_gen.wrapping_add(1);
         let a = self.joins[j as usize].alpha;
         if a != NONE {
             let head = self.alphas[a as usize].succ;
@@ -129,43 +129,45 @@ impl Core<'_> {
     /// Tokens and activations built by new joins are released first; shared old joins
     /// get their reference counts back.
     pub fn rollback(&mut self, cp: Checkpoint) {
-        self.st.net_gen = self.st.net_gen.wrapping_add(1);
-        if cp.njoins == self.st.njoins && cp.nalpha == self.st.nalpha && cp.nrules == self.st.nrules
+        self.st.net.net_gen = self.st.net.net_gen.wrapping_add(1);
+        if cp.njoins == self.st.pools.njoins
+            && cp.nalpha == self.st.pools.nalpha
+            && cp.nrules == self.st.pools.nrules
         {
             // nothing was built (a construct the syntax stage refused, or one without
             // a network): only the append-only pools go back
             self.truncate_to(cp);
             return;
         }
-        for j in (cp.njoins..self.st.njoins).rev() {
+        for j in (cp.njoins..self.st.pools.njoins).rev() {
             if !self.joins[j as usize].is_terminal() {
                 self.clear_join_memory(j);
             }
         }
-        for a in cp.nalpha..self.st.nalpha {
+        for a in cp.nalpha..self.st.pools.nalpha {
             self.clear_alpha_memory(a);
         }
         // activations of new rules (their end nodes may hang below old joins)
-        for r in cp.nrules..self.st.nrules {
+        for r in cp.nrules..self.st.pools.nrules {
             let t = self.rules[r as usize].terminal;
             if t != NONE && (t as usize) < self.joins.len() {
                 let parent = self.joins[t as usize].parent;
                 self.remove_rule_activations_pub(r, parent);
             }
         }
-        for r in cp.nrules..self.st.nrules {
+        for r in cp.nrules..self.st.pools.nrules {
             let t = self.rules[r as usize].terminal;
             self.release_old_refs(t, 0, cp.njoins);
         }
         // unlink new joins from old alpha nodes and old parent joins (new ones lead)
-        for a in 0..cp.nalpha.min(self.st.nalpha) {
+        for a in 0..cp.nalpha.min(self.st.pools.nalpha) {
             while self.alphas[a as usize].succ != NONE && self.alphas[a as usize].succ >= cp.njoins
             {
                 let j = self.alphas[a as usize].succ;
                 self.alphas[a as usize].succ = self.joins[j as usize].alpha_next;
             }
         }
-        for p in 0..cp.njoins.min(self.st.njoins) {
+        for p in 0..cp.njoins.min(self.st.pools.njoins) {
             // new children lead the list, except joins from the right (placed after
             // their subnetwork's first join): drop new ones wherever they are
             while self.joins[p as usize].first_child != NONE
@@ -197,7 +199,7 @@ impl Core<'_> {
         }
         // a template's alpha nodes are kept in network order, so new ones can sit
         // anywhere in its list, not only at the head
-        for t in 0..cp.ntemplates.min(self.st.ntemplates) {
+        for t in 0..cp.ntemplates.min(self.st.pools.ntemplates) {
             while self.templates[t as usize].alpha_head != NONE
                 && self.templates[t as usize].alpha_head >= cp.nalpha
             {
@@ -214,19 +216,19 @@ impl Core<'_> {
                 a = n;
             }
         }
-        for a in cp.nalpha..self.st.nalpha {
+        for a in cp.nalpha..self.st.pools.nalpha {
             self.alphas[a as usize] = AlphaNode::EMPTY;
         }
-        for j in cp.njoins..self.st.njoins {
+        for j in cp.njoins..self.st.pools.njoins {
             self.joins[j as usize] = Join::EMPTY;
         }
-        for r in cp.nrules..self.st.nrules {
+        for r in cp.nrules..self.st.pools.nrules {
             self.rules[r as usize] = Rule::EMPTY;
         }
         // An old join whose last user was the new rule (its previous users were removed
         // meanwhile, e.g. by a redefinition of the same rule) is now unused: remove it
         // as `remove_rule` would, or it keeps its partial matches and eats tokens.
-        for j in 1..cp.njoins.min(self.st.njoins) {
+        for j in 1..cp.njoins.min(self.st.pools.njoins) {
             if self.joins[j as usize].refs == 0 {
                 if !self.joins[j as usize].is_terminal() {
                     self.clear_join_memory(j);
@@ -234,20 +236,20 @@ impl Core<'_> {
                 self.unlink_join(j);
             }
         }
-        self.st.nrules = cp.nrules;
-        self.st.nalpha = cp.nalpha;
-        self.st.njoins = cp.njoins;
+        self.st.pools.nrules = cp.nrules;
+        self.st.pools.nalpha = cp.nalpha;
+        self.st.pools.njoins = cp.njoins;
         self.truncate_to(cp);
     }
 
     /// Gives back the entries of the append-only construct pools made after `cp`.
     fn truncate_to(&mut self, cp: Checkpoint) {
-        self.st.nexprs = cp.nexprs;
-        self.st.ntemplates = cp.ntemplates;
-        self.st.nslots = cp.nslots;
-        self.st.nfuncs = cp.nfuncs;
-        self.st.nglobals = cp.nglobals;
-        self.st.ndeffacts = cp.ndeffacts;
+        self.st.pools.nexprs = cp.nexprs;
+        self.st.pools.ntemplates = cp.ntemplates;
+        self.st.pools.nslots = cp.nslots;
+        self.st.pools.nfuncs = cp.nfuncs;
+        self.st.pools.nglobals = cp.nglobals;
+        self.st.pools.ndeffacts = cp.ndeffacts;
         self.syms().truncate(cp.nsyms, cp.sym_bytes);
     }
 }

@@ -38,15 +38,15 @@ impl<S: Storage> Engine<S> {
         slots: &[(&str, &[ValueRef<'_>])],
     ) -> Result<FactId, EngineError> {
         let mut cx = self.core(host);
-        let before = cx.st.nexprs;
+        let before = cx.st.pools.nexprs;
         let cp = cx.checkpoint();
         let r = match cx.fact_spec_of(template, slots) {
             Ok(spec) => cx.assert_spec(spec).map_err(EngineError::from),
             Err(e) => Err(e),
         };
-        cx.st.nexprs = before;
-        cx.st.scratch_top = 0;
-        cx.st.sp = 0;
+        cx.st.pools.nexprs = before;
+        cx.st.frame.scratch_top = 0;
+        cx.st.frame.sp = 0;
         match r {
             Ok(Some(f)) => Ok(FactId(cx.facts[f as usize].num)),
             Ok(None) => Err(EngineError::Duplicate),

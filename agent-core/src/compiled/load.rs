@@ -88,10 +88,10 @@ impl Core<'_> {
             return Err(e);
         }
         self.copy_network(base);
-        let watch = self.st.watch;
-        self.st.watch = 0;
+        let watch = self.st.mode.watch;
+        self.st.mode.watch = 0;
         let r = self.rebuild_working_memory(base);
-        self.st.watch = watch;
+        self.st.mode.watch = watch;
         if let Err(e) = r {
             // back to a fresh engine (host functions stay)
             let _ = self.clear();
@@ -103,15 +103,15 @@ impl Core<'_> {
     /// Everything that can refuse the rule base, checked before anything changes.
     fn check_loadable(&mut self, base: &RuleBase) -> Result<(), CompiledError> {
         let st = &self.st;
-        if st.nrules != 0
-            || st.ntemplates != 1
-            || st.njoins != 1
-            || st.nalpha != 0
-            || st.nfuncs != 0
-            || st.nglobals != 0
-            || st.ndeffacts != 0
-            || st.firing
-            || st.defining
+        if st.pools.nrules != 0
+            || st.pools.ntemplates != 1
+            || st.pools.njoins != 1
+            || st.pools.nalpha != 0
+            || st.pools.nfuncs != 0
+            || st.pools.nglobals != 0
+            || st.pools.ndeffacts != 0
+            || st.mode.firing
+            || st.mode.defining
         {
             return Err(CompiledError::NotFresh);
         }
@@ -120,7 +120,7 @@ impl Core<'_> {
                 if t.name == self.templates[0].name && t.implied && j.kind == JoinKind::Root =>
             {
                 // the start-up slot must be the base's first too
-                if self.st.nslots != 1 || base.slots.is_empty() {
+                if self.st.pools.nslots != 1 || base.slots.is_empty() {
                     return Err(CompiledError::TemplateMismatch);
                 }
             }
@@ -144,7 +144,7 @@ impl Core<'_> {
                 return Err(cap(pool, capacity).into());
             }
         }
-        let have = self.st.nsyms as usize;
+        let have = self.st.pools.nsyms as usize;
         if have > base.symbols.len() {
             return Err(CompiledError::SymbolMismatch {
                 index: base.symbols.len(),
@@ -171,12 +171,17 @@ impl Core<'_> {
 
     fn external_index(&mut self, name: &str) -> Option<Ix> {
         let sym = self.find_sym(name)?;
-        (0..self.st.nexternals).find(|&x| self.externals[x as usize].name == sym)
+        (0..self.st.pools.nexternals).find(|&x| self.externals[x as usize].name == sym)
     }
 
     /// The base's symbols after the engine's: each must get its id in the base.
     fn intern_base_symbols(&mut self, base: &RuleBase) -> Result<(), CompiledError> {
-        for (i, text) in base.symbols.iter().enumerate().skip(self.st.nsyms as usize) {
+        for (i, text) in base
+            .symbols
+            .iter()
+            .enumerate()
+            .skip(self.st.pools.nsyms as usize)
+        {
             if self.intern(text)? as usize != i {
                 return Err(CompiledError::SymbolMismatch { index: i });
             }
@@ -187,13 +192,13 @@ impl Core<'_> {
     /// The construct pools from the base; the root join keeps its root token.
     fn copy_network(&mut self, base: &RuleBase) {
         // working memory empties first: f-0 goes (asserted again through the network)
-        while self.st.fact_head != NONE {
-            let f = self.st.fact_head;
+        while self.st.facts.fact_head != NONE {
+            let f = self.st.facts.fact_head;
             self.retract_fact(f);
         }
         self.free_pending();
-        self.st.values_top = 0;
-        self.st.next_fact_num = 0;
+        self.st.facts.values_top = 0;
+        self.st.facts.next_fact_num = 0;
         let root_token = self.joins[0].mem;
 
         self.templates[..base.templates.len()].copy_from_slice(base.templates);
@@ -223,15 +228,15 @@ impl Core<'_> {
         }
 
         let n = |len: usize| len as Ix;
-        self.st.ntemplates = n(base.templates.len());
-        self.st.nslots = n(base.slots.len());
-        self.st.nrules = n(base.rules.len());
-        self.st.nalpha = n(base.alphas.len());
-        self.st.njoins = n(base.joins.len());
-        self.st.nexprs = n(base.exprs.len());
-        self.st.nfuncs = n(base.functions.len());
-        self.st.nglobals = n(base.globals.len());
-        self.st.ndeffacts = n(base.deffacts.len());
+        self.st.pools.ntemplates = n(base.templates.len());
+        self.st.pools.nslots = n(base.slots.len());
+        self.st.pools.nrules = n(base.rules.len());
+        self.st.pools.nalpha = n(base.alphas.len());
+        self.st.pools.njoins = n(base.joins.len());
+        self.st.pools.nexprs = n(base.exprs.len());
+        self.st.pools.nfuncs = n(base.functions.len());
+        self.st.pools.nglobals = n(base.globals.len());
+        self.st.pools.ndeffacts = n(base.deffacts.len());
         for (pool, used) in [
             (Pool::Templates, base.templates.len()),
             (Pool::SlotDefs, base.slots.len()),
@@ -245,13 +250,13 @@ impl Core<'_> {
         ] {
             self.note_hw(pool, used);
         }
-        self.st.trie_ids = base.trie_ids;
+        self.st.pools.trie_ids = base.trie_ids;
         self.st.builtin_code = base.code;
         // caches keyed by join or network generation start over
-        self.st.net_gen = self.st.net_gen.wrapping_add(1).max(1);
-        self.st.key_plans = [KeyPlan::NONE; KEY_PLANS];
-        self.st.test_plans = [TestPlan::NONE; TEST_PLANS];
-        for j in 0..self.st.njoins {
+        self.st.net.net_gen = self.st.net.net_gen.wrapping_add(1).max(1);
+        self.st.cache.key_plans = [KeyPlan::NONE; KEY_PLANS];
+        self.st.cache.test_plans = [TestPlan::NONE; TEST_PLANS];
+        for j in 0..self.st.pools.njoins {
             self.note_children(j);
         }
     }
@@ -267,8 +272,8 @@ impl Core<'_> {
                 self.set_global(g as Ix, v)?;
             }
         }
-        self.st.sp = 0;
-        self.st.scratch_top = 0;
+        self.st.frame.sp = 0;
+        self.st.frame.scratch_top = 0;
         self.assert_initial_fact()?;
         let root_token = self.joins[0].mem;
         let mut j = self.joins[0].first_child;
@@ -288,15 +293,15 @@ impl Core<'_> {
     /// made), each taking the next creation number, and back on the agenda in that
     /// order (the newest goes first among equal saliences).
     fn order_activations_as_parsed(&mut self) {
-        let mut old = self.st.agenda_head;
+        let mut old = self.st.agenda.agenda_head;
         let mut seq = u32::MAX;
         let mut a = old;
         while a != NONE {
             seq = seq.min(self.acts[a as usize].seq);
             a = self.acts[a as usize].next;
         }
-        self.st.agenda_head = NONE;
-        self.st.agenda_len = 0;
+        self.st.agenda.agenda_head = NONE;
+        self.st.agenda.agenda_len = 0;
         let key = |x: &crate::rule::Activation| (x.rule, x.seq);
         while old != NONE {
             let mut best = old;

@@ -129,9 +129,9 @@ impl Core<'_> {
         if !is_ident(module) {
             return Err(WriteError::BadName);
         }
-        let mut f = self.st.fact_head;
+        let mut f = self.st.facts.fact_head;
         while f != NONE {
-            if self.facts[f as usize].tmpl != self.st.initial_tmpl {
+            if self.facts[f as usize].tmpl != self.st.facts.initial_tmpl {
                 return Err(WriteError::FactsLeft);
             }
             f = self.facts[f as usize].next;
@@ -156,11 +156,11 @@ impl Core<'_> {
         self.write_exprs(out)?;
         self.write_functions(out)?;
         writeln!(out, "externals: &[")?;
-        for x in &self.externals[..self.st.nexternals as usize] {
+        for x in &self.externals[..self.st.pools.nexternals as usize] {
             writeln!(out, "{:?},", self.sym_text(x.name))?;
         }
         writeln!(out, "],")?;
-        writeln!(out, "trie_ids: {},", self.st.trie_ids)?;
+        writeln!(out, "trie_ids: {},", self.st.pools.trie_ids)?;
         writeln!(out, "code: &CODE,")?;
         writeln!(out, "}};")?;
         // only the builtins called: an image links no other
@@ -176,17 +176,17 @@ impl Core<'_> {
             "pub const SIZES: Sizes = Sizes {{ symbols: {}, symbol_bytes: {}, templates: {}, \
              slots: {}, rules: {}, alphas: {}, joins: {}, exprs: {}, functions: {}, \
              globals: {}, deffacts: {} }};",
-            self.st.nsyms,
-            self.st.sym_bytes,
-            self.st.ntemplates,
-            self.st.nslots,
-            self.st.nrules,
-            self.st.nalpha,
-            self.st.njoins,
-            self.st.nexprs,
-            self.st.nfuncs,
-            self.st.nglobals,
-            self.st.ndeffacts
+            self.st.pools.nsyms,
+            self.st.pools.sym_bytes,
+            self.st.pools.ntemplates,
+            self.st.pools.nslots,
+            self.st.pools.nrules,
+            self.st.pools.nalpha,
+            self.st.pools.njoins,
+            self.st.pools.nexprs,
+            self.st.pools.nfuncs,
+            self.st.pools.nglobals,
+            self.st.pools.ndeffacts
         )?;
         writeln!(out, "}}")?;
         Ok(())
@@ -194,7 +194,7 @@ impl Core<'_> {
 
     /// Whether some node calls builtin `id`.
     fn calls_builtin(&self, id: usize) -> bool {
-        (0..self.st.nexprs as usize).any(|e| {
+        (0..self.st.pools.nexprs as usize).any(|e| {
             let x = self.exprs[e];
             x.op == Op::Call && x.aux == FnKind::Builtin as u8 && x.data as usize == id
         })
@@ -217,7 +217,7 @@ impl Core<'_> {
 
     fn write_symbols(&self, out: &mut dyn Write) -> fmt::Result {
         writeln!(out, "symbols: &[")?;
-        for id in 0..self.st.nsyms {
+        for id in 0..self.st.pools.nsyms {
             writeln!(out, "{:?},", self.sym_text(id))?;
         }
         writeln!(out, "],")
@@ -225,7 +225,7 @@ impl Core<'_> {
 
     fn write_templates(&self, out: &mut dyn Write) -> fmt::Result {
         writeln!(out, "templates: &[")?;
-        for t in &self.templates[..self.st.ntemplates as usize] {
+        for t in &self.templates[..self.st.pools.ntemplates as usize] {
             writeln!(
                 out,
                 "Template {{ name: {}, first_slot: {}, nslots: {}, implied: {}, \
@@ -239,7 +239,7 @@ impl Core<'_> {
         }
         writeln!(out, "],")?;
         writeln!(out, "slots: &[")?;
-        for s in &self.slots[..self.st.nslots as usize] {
+        for s in &self.slots[..self.st.pools.nslots as usize] {
             writeln!(
                 out,
                 "SlotDef {{ name: {}, multi: {}, default_kind: DefaultKind::{:?}, \
@@ -255,7 +255,7 @@ impl Core<'_> {
         }
         writeln!(out, "],")?;
         writeln!(out, "deffacts: &[")?;
-        for d in &self.deffacts[..self.st.ndeffacts as usize] {
+        for d in &self.deffacts[..self.st.pools.ndeffacts as usize] {
             writeln!(
                 out,
                 "Deffacts {{ name: {}, facts: {} }},",
@@ -268,7 +268,7 @@ impl Core<'_> {
 
     fn write_rules(&self, out: &mut dyn Write) -> fmt::Result {
         writeln!(out, "rules: &[")?;
-        for r in &self.rules[..self.st.nrules as usize] {
+        for r in &self.rules[..self.st.pools.nrules as usize] {
             writeln!(
                 out,
                 "Rule {{ name: {}, salience: {}, salience_expr: {}, root: {}, terminal: {}, \
@@ -294,7 +294,7 @@ impl Core<'_> {
 
     fn write_alphas(&self, out: &mut dyn Write) -> fmt::Result {
         writeln!(out, "alphas: &[")?;
-        for a in &self.alphas[..self.st.nalpha as usize] {
+        for a in &self.alphas[..self.st.pools.nalpha as usize] {
             writeln!(
                 out,
                 "AlphaNode {{ tmpl: {}, desc: {}, tests: {}, next_in_tmpl: {}, succ: {}, \
@@ -320,7 +320,7 @@ impl Core<'_> {
 
     fn write_joins(&self, out: &mut dyn Write) -> fmt::Result {
         writeln!(out, "joins: &[")?;
-        for j in &self.joins[..self.st.njoins as usize] {
+        for j in &self.joins[..self.st.pools.njoins as usize] {
             writeln!(
                 out,
                 "Join {{ kind: JoinKind::{:?}, depth: {}, rule: {}, parent: {}, \
@@ -348,7 +348,7 @@ impl Core<'_> {
 
     fn write_exprs(&self, out: &mut dyn Write) -> fmt::Result {
         writeln!(out, "exprs: &[")?;
-        for e in 0..self.st.nexprs as usize {
+        for e in 0..self.st.pools.nexprs as usize {
             let x = self.exprs[e];
             write!(out, "e(Op::{:?}, {}, ", x.op, x.aux)?;
             if x.op == Op::Call && x.aux == FnKind::Builtin as u8 {
@@ -372,7 +372,7 @@ impl Core<'_> {
 
     fn write_functions(&self, out: &mut dyn Write) -> fmt::Result {
         writeln!(out, "functions: &[")?;
-        for d in &self.funcs[..self.st.nfuncs as usize] {
+        for d in &self.funcs[..self.st.pools.nfuncs as usize] {
             writeln!(
                 out,
                 "Deffunction {{ name: {}, nparams: {}, rest: {}, nlocals: {}, body: {} }},",
@@ -385,7 +385,7 @@ impl Core<'_> {
         }
         writeln!(out, "],")?;
         writeln!(out, "globals: &[")?;
-        for g in &self.globals[..self.st.nglobals as usize] {
+        for g in &self.globals[..self.st.pools.nglobals as usize] {
             write!(out, "Global {{ name: {}, value: ", I(g.name))?;
             match g.value {
                 Value::Int(i) => write!(out, "Value::Int({i})")?,

@@ -38,12 +38,12 @@ impl<'s> Parser<'s, '_, '_> {
             return Err(e);
         }
         self.skip_comment();
-        let n = self.cx.st.ntemplates as usize;
+        let n = self.cx.st.pools.ntemplates as usize;
         if n >= self.cx.templates.len() {
             let c = cap(Pool::Templates, self.cx.templates.len());
             return Err(self.cap_err(nt, c));
         }
-        let first_slot = self.cx.st.nslots;
+        let first_slot = self.cx.st.pools.nslots;
         let mut nslots = 0 as Ix;
         loop {
             let t = self.next();
@@ -72,7 +72,7 @@ impl<'s> Parser<'s, '_, '_> {
                     if nslots >= 255 {
                         return Err(self.err(st, "at most 255 slots in one deftemplate"));
                     }
-                    let s = self.cx.st.nslots as usize;
+                    let s = self.cx.st.pools.nslots as usize;
                     if s >= self.cx.slots.len() {
                         let c = cap(Pool::SlotDefs, self.cx.slots.len());
                         return Err(self.cap_err(st, c));
@@ -83,7 +83,7 @@ impl<'s> Parser<'s, '_, '_> {
                         ..SlotDef::EMPTY
                     })?;
                     self.cx.slots[s] = def;
-                    self.cx.st.nslots += 1;
+                    self.cx.st.pools.nslots += 1;
                     self.cx.note_hw(Pool::SlotDefs, s + 1);
                     nslots += 1;
                 }
@@ -106,7 +106,7 @@ impl<'s> Parser<'s, '_, '_> {
             #[cfg(feature = "host-speedups")]
             tlast: NONE,
         };
-        self.cx.st.ntemplates += 1;
+        self.cx.st.pools.ntemplates += 1;
         self.cx.note_hw(Pool::Templates, n + 1);
         if let Some(old) = replaces {
             // Nothing refers to the old entry, so it is retired where it is (indices of
@@ -148,22 +148,22 @@ impl<'s> Parser<'s, '_, '_> {
         // a redefinition replaces the old deffacts and, as in CLIPS, moves it last
         // (which orders the facts `reset` asserts)
         let existing =
-            (0..self.cx.st.ndeffacts).find(|&d| self.cx.deffacts[d as usize].name == sym);
+            (0..self.cx.st.pools.ndeffacts).find(|&d| self.cx.deffacts[d as usize].name == sym);
         let facts = self.cx.exprs[holder as usize].first;
         match existing {
             Some(d) => {
-                let n = self.cx.st.ndeffacts as usize;
+                let n = self.cx.st.pools.ndeffacts as usize;
                 self.cx.deffacts.copy_within(d as usize + 1..n, d as usize);
                 self.cx.deffacts[n - 1] = Deffacts { name: sym, facts };
             }
             None => {
-                let n = self.cx.st.ndeffacts as usize;
+                let n = self.cx.st.pools.ndeffacts as usize;
                 if n >= self.cx.deffacts.len() {
                     let c = cap(Pool::Deffacts, self.cx.deffacts.len());
                     return Err(self.cap_err(nt, c));
                 }
                 self.cx.deffacts[n] = Deffacts { name: sym, facts };
-                self.cx.st.ndeffacts += 1;
+                self.cx.st.pools.ndeffacts += 1;
                 self.cx.note_hw(Pool::Deffacts, n + 1);
             }
         }
@@ -192,16 +192,17 @@ impl<'s> Parser<'s, '_, '_> {
         let sym = cap!(self, self.cx.intern(name))?;
         self.skip_comment();
         // register first so the body can call itself recursively
-        let existing = (0..self.cx.st.nfuncs).find(|&f| self.cx.funcs[f as usize].name == sym);
+        let existing =
+            (0..self.cx.st.pools.nfuncs).find(|&f| self.cx.funcs[f as usize].name == sym);
         let f = match existing {
             Some(f) => f,
             None => {
-                let n = self.cx.st.nfuncs as usize;
+                let n = self.cx.st.pools.nfuncs as usize;
                 if n >= self.cx.funcs.len() {
                     let c = cap(Pool::Functions, self.cx.funcs.len());
                     return Err(self.cap_err(nt, c));
                 }
-                self.cx.st.nfuncs += 1;
+                self.cx.st.pools.nfuncs += 1;
                 self.cx.note_hw(Pool::Functions, n + 1);
                 n as Ix
             }
@@ -284,10 +285,10 @@ impl<'s> Parser<'s, '_, '_> {
                     }
                     let init = self.parse_expr()?;
                     let sym = cap!(self, self.cx.intern(name))?;
-                    let existing =
-                        (0..self.cx.st.nglobals).find(|&g| self.cx.globals[g as usize].name == sym);
+                    let existing = (0..self.cx.st.pools.nglobals)
+                        .find(|&g| self.cx.globals[g as usize].name == sym);
                     // a full pool fails before the evaluation, whose effects would stay
-                    let n = self.cx.st.nglobals as usize;
+                    let n = self.cx.st.pools.nglobals as usize;
                     if existing.is_none() && n >= self.cx.globals.len() {
                         let c = cap(Pool::Globals, self.cx.globals.len());
                         return Err(self.cap_err(t, c));
@@ -299,7 +300,7 @@ impl<'s> Parser<'s, '_, '_> {
                     let g = match existing {
                         Some(g) => g as usize,
                         None => {
-                            self.cx.st.nglobals += 1;
+                            self.cx.st.pools.nglobals += 1;
                             self.cx.note_hw(Pool::Globals, n + 1);
                             n
                         }

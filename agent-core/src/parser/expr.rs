@@ -81,7 +81,7 @@ impl<'s> Parser<'s, '_, '_> {
     pub fn global_ref(&mut self, t: Token<'s>, name: &str) -> PResult<Ix> {
         let id = self.cx.find_sym(name);
         let g = id.and_then(|id| {
-            (0..self.cx.st.nglobals).find(|&g| self.cx.globals[g as usize].name == id)
+            (0..self.cx.st.pools.nglobals).find(|&g| self.cx.globals[g as usize].name == id)
         });
         match g {
             Some(g) => {
@@ -145,11 +145,12 @@ impl<'s> Parser<'s, '_, '_> {
         let _ = core::fmt::Write::write_fmt(&mut b, format_args!("?{name}"));
         let id = self.cx.intern(b.as_str());
         let id = cap!(self, id)?;
-        if let Some(g) = (0..self.cx.st.nglobals).find(|&g| self.cx.globals[g as usize].name == id)
+        if let Some(g) =
+            (0..self.cx.st.pools.nglobals).find(|&g| self.cx.globals[g as usize].name == id)
         {
             return Ok(g);
         }
-        let n = self.cx.st.nglobals as usize;
+        let n = self.cx.st.pools.nglobals as usize;
         if n >= self.cx.globals.len() {
             let c = crate::engine::cap(crate::error::Pool::Globals, self.cx.globals.len());
             return Err(self.cap_err(t, c));
@@ -160,7 +161,7 @@ impl<'s> Parser<'s, '_, '_> {
             value: Value::Void,
             init: NONE,
         };
-        self.cx.st.nglobals += 1;
+        self.cx.st.pools.nglobals += 1;
         Ok(n as Ix)
     }
 
@@ -217,7 +218,8 @@ impl<'s> Parser<'s, '_, '_> {
         }
         // deffunctions shadow nothing builtin in CLIPS; check user functions first
         if let Some(sym) = self.cx.find_sym(name) {
-            if let Some(f) = (0..self.cx.st.nfuncs).find(|&f| self.cx.funcs[f as usize].name == sym)
+            if let Some(f) =
+                (0..self.cx.st.pools.nfuncs).find(|&f| self.cx.funcs[f as usize].name == sym)
             {
                 let call = self.push_call(FnKind::Deffunction, f)?;
                 let n = self.args_until_rparen(call)?;
@@ -229,8 +231,8 @@ impl<'s> Parser<'s, '_, '_> {
                 }
                 return Ok(call);
             }
-            if let Some(x) =
-                (0..self.cx.st.nexternals).find(|&x| self.cx.externals[x as usize].name == sym)
+            if let Some(x) = (0..self.cx.st.pools.nexternals)
+                .find(|&x| self.cx.externals[x as usize].name == sym)
             {
                 let call = self.push_call(FnKind::External, x)?;
                 let n = self.args_until_rparen(call)?;

@@ -34,7 +34,7 @@ impl Core<'_> {
             return true;
         }
         // a rule's pattern of it
-        let in_pattern = self.rules[..self.st.nrules as usize].iter().any(|r| {
+        let in_pattern = self.rules[..self.st.pools.nrules as usize].iter().any(|r| {
             let mut j = r.terminal;
             while !r.deleted && j != NONE && j != 0 {
                 let join = &self.joins[j as usize];
@@ -83,15 +83,15 @@ impl Core<'_> {
     /// Whether the command being run (`State::command_base` on) has a node `is` picks:
     /// what it refers to is in use while it runs.
     fn command_refers(&self, is: &dyn Fn(&Expr) -> bool) -> bool {
-        let end = self.st.nexprs;
-        (self.st.command_base.min(end)..end).any(|e| is(&self.exprs[e as usize]))
+        let end = self.st.pools.nexprs;
+        (self.st.eval.command_base.min(end)..end).any(|e| is(&self.exprs[e as usize]))
     }
 
     /// Calls `hit` on every expression chain a construct keeps (rule actions,
     /// salience and tests, deffunction bodies, deffacts, global initial values, slot
     /// defaults) until it says yes.
     fn any_construct_chain(&self, skip: Skip, hit: &mut dyn FnMut(Ix) -> bool) -> bool {
-        for r in &self.rules[..self.st.nrules as usize] {
+        for r in &self.rules[..self.st.pools.nrules as usize] {
             if r.deleted {
                 continue;
             }
@@ -111,18 +111,20 @@ impl Core<'_> {
                 j = join.parent;
             }
         }
-        let funcs = self.funcs[..self.st.nfuncs as usize].iter().enumerate();
+        let funcs = self.funcs[..self.st.pools.nfuncs as usize]
+            .iter()
+            .enumerate();
         funcs
             .filter(|&(i, f)| skip.func != SKIP_ALL && skip.func != i as Ix && f.name != NONE)
             .any(|(_, f)| hit(f.body))
-            || self.deffacts[..self.st.ndeffacts as usize]
+            || self.deffacts[..self.st.pools.ndeffacts as usize]
                 .iter()
                 .any(|d| hit(d.facts))
             || (!skip.global_inits
-                && self.globals[..self.st.nglobals as usize]
+                && self.globals[..self.st.pools.nglobals as usize]
                     .iter()
                     .any(|g| hit(g.init)))
-            || self.slots[..self.st.nslots as usize]
+            || self.slots[..self.st.pools.nslots as usize]
                 .iter()
                 .any(|s| hit(s.default))
     }

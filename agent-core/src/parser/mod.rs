@@ -383,7 +383,7 @@ impl<'s> Parser<'s, '_, '_> {
                     "deftemplate" | "defrule" | "deffacts" | "deffunction" | "defglobal"
                     | "defmodule" => {
                         let kt = self.next();
-                        if self.cx.st.defining {
+                        if self.cx.st.mode.defining {
                             // CLIPS 6.30 crashes on this one
                             self.construct = kw;
                             return Err(
@@ -393,9 +393,9 @@ impl<'s> Parser<'s, '_, '_> {
                         let start = t.start;
                         let cp = self.cx.checkpoint();
                         self.keep = None;
-                        self.cx.st.defining = true;
+                        self.cx.st.mode.defining = true;
                         let r = self.construct_body(kw, start);
-                        self.cx.st.defining = false;
+                        self.cx.st.mode.defining = false;
                         if r.is_err() {
                             self.cx.rollback(self.keep.unwrap_or(cp));
                         }
@@ -431,9 +431,9 @@ impl<'s> Parser<'s, '_, '_> {
     /// created so far (symbols, the implied template of `(assert (new 1))` made while
     /// parsing the call): should the construct fail, that stays too.
     pub fn eval_now(&mut self, e: Ix) -> Result<crate::value::Value, crate::error::EvalError> {
-        let effects = self.cx.st.effects;
+        let effects = self.cx.st.eval.effects;
         let r = self.cx.eval(e);
-        if self.cx.st.effects != effects {
+        if self.cx.st.eval.effects != effects {
             self.keep = Some(self.cx.checkpoint());
         }
         r

@@ -180,23 +180,23 @@ impl<'s> Parser<'s, '_, '_> {
             self.next();
         }
         let body_lex = self.save();
-        let first_new_rule = self.cx.st.nrules;
+        let first_new_rule = self.cx.st.pools.nrules;
         self.rule_base = first_new_rule;
-        let first_new_alpha = self.cx.st.nalpha;
+        let first_new_alpha = self.cx.st.pools.nalpha;
         self.alpha_base = first_new_alpha;
         let replaces = (0..first_new_rule).any(|r| {
             let rule = &self.cx.rules[r as usize];
             rule.name == sym && !rule.deleted
         });
         self.replacing = if replaces { sym } else { NONE };
-        let first_new_join = self.cx.st.njoins;
+        let first_new_join = self.cx.st.pools.njoins;
         let mut b = Build::new();
         // The syntax stage reads the whole rule before anything is built: a rule with
         // `or` is one disjunct per combination of branches, each read with its own
         // variables and pattern numbers, so all of them are read once first (their
         // expression nodes are scratch, dropped after), then read again, each built as
         // soon as it is whole. A syntax error anywhere leaves no network behind.
-        let exprs_mark = self.cx.st.nexprs;
+        let exprs_mark = self.cx.st.pools.nexprs;
         self.read_disjunct(&body_lex, &mut b)?;
         let several = b.nor > 0;
         if several {
@@ -205,7 +205,7 @@ impl<'s> Parser<'s, '_, '_> {
             }
             // (what a parse-time evaluation created stays: see `eval_now`)
             let keep = self.keep.map_or(0, |k| k.nexprs);
-            self.cx.st.nexprs = exprs_mark.max(keep);
+            self.cx.st.pools.nexprs = exprs_mark.max(keep);
         }
         let mut prev_rule = NONE;
         loop {
@@ -222,7 +222,7 @@ impl<'s> Parser<'s, '_, '_> {
             }
         }
         // source text for ppdefrule, unless the host chose to drop pretty-print forms
-        if self.cx.st.keep_pp_forms {
+        if self.cx.st.mode.keep_pp_forms {
             let end = self.lex.pos();
             let text = &self.lex.source()[start..end];
             if let Ok(id) = self.cx.intern(text) {

@@ -231,10 +231,10 @@ impl Core<'_> {
         if t == NONE {
             return Ok(true);
         }
-        let saved = self.st.this_pm;
-        self.st.this_pm = PatBinding { fact, marks };
+        let saved = self.st.net.this_pm;
+        self.st.net.this_pm = PatBinding { fact, marks };
         let r = self.eval_tests(t);
-        self.st.this_pm = saved;
+        self.st.net.this_pm = saved;
         match r {
             // CLIPS reports a failing pattern test and treats it as not matching
             Err(e) if !e.is_capacity() => {
@@ -345,8 +345,8 @@ impl Core<'_> {
                     return None;
                 }
                 // what `call` and `push_args` would refuse or record
-                let sp = self.st.sp as usize + 2;
-                if self.st.eval_depth >= crate::eval::MAX_EVAL_DEPTH || sp > self.stack.len() {
+                let sp = self.st.frame.sp as usize + 2;
+                if self.st.eval.eval_depth >= crate::eval::MAX_EVAL_DEPTH || sp > self.stack.len() {
                     return None;
                 }
                 let a = self.quick_alpha_operand(x.first, fact)?;
@@ -412,8 +412,8 @@ impl Core<'_> {
     /// `[FACTMCH1]`: an error while testing a fact in the pattern network.
     fn report_pattern_error(&mut self, alpha: Ix, fact: Ix, e: EvalError) {
         use core::fmt::Write;
-        self.st.pattern_error = true;
-        self.st.halting = true;
+        self.st.net.pattern_error = true;
+        self.st.mode.halting = true;
         self.report_eval_error(e);
         let mut b: crate::value::TextBuf<512> = crate::value::TextBuf::new();
         let _ = b.write_str("\n[FACTMCH1] This error occurred in the fact pattern network\n   Currently active fact: ");
@@ -422,7 +422,7 @@ impl Core<'_> {
             let _ = view.write_fact(&mut b, fact);
         }
         let tm = self.templates[self.facts[fact as usize].tmpl as usize];
-        match self.failed_field(self.st.failed_test) {
+        match self.failed_field(self.st.net.failed_test) {
             Some((slot, _)) if !tm.implied => {
                 let name = self.slots[(tm.first_slot + Ix::from(slot)) as usize].name;
                 let _ = writeln!(b, "\n   Problem resides in slot {}", self.sym_text(name));
@@ -497,16 +497,16 @@ impl Core<'_> {
     /// While they run, CLIPS is pattern-matching: facts, rules and the environment
     /// may not change (`State::matching`).
     pub(crate) fn eval_tests(&mut self, mut t: Ix) -> Result<bool, EvalError> {
-        let (scratch, sp) = (self.st.scratch_top, self.st.sp);
-        self.st.matching += 1;
+        let (scratch, sp) = (self.st.frame.scratch_top, self.st.frame.sp);
+        self.st.net.matching += 1;
         let mut r = Ok(true);
         while t != NONE {
             let v = self.eval(t);
-            self.st.scratch_top = scratch;
-            self.st.sp = sp;
+            self.st.frame.scratch_top = scratch;
+            self.st.frame.sp = sp;
             match v {
                 Err(e) => {
-                    self.st.failed_test = t;
+                    self.st.net.failed_test = t;
                     r = Err(e);
                     break;
                 }
@@ -518,7 +518,7 @@ impl Core<'_> {
             }
             t = self.exprs[t as usize].next;
         }
-        self.st.matching -= 1;
+        self.st.net.matching -= 1;
         r
     }
 
@@ -624,7 +624,7 @@ impl Core<'_> {
     /// Drives the existing facts, oldest first, through the alpha nodes numbered
     /// `first` and up (a new rule's patterns), in network order per fact.
     pub(crate) fn prime_alphas(&mut self, first: Ix) -> Result<(), EvalError> {
-        let mut f = self.st.fact_head;
+        let mut f = self.st.facts.fact_head;
         while f != NONE {
             let next = self.facts[f as usize].next;
             let tmpl = self.facts[f as usize].tmpl;
@@ -696,7 +696,7 @@ mod tests {
             if !node.live || node.nmarks != 0 {
                 continue;
             }
-            let mut f = c.st.fact_head;
+            let mut f = c.st.facts.fact_head;
             while f != NONE {
                 let fits = c.facts[f as usize].tmpl == node.tmpl && {
                     let mut lay = [SlotLayout {
@@ -720,14 +720,14 @@ mod tests {
                         t = c.exprs[t as usize].next;
                         continue;
                     }
-                    c.st.this_pm = PatBinding {
+                    c.st.net.this_pm = PatBinding {
                         fact: f,
                         marks: [0; MAX_MARKS],
                     };
                     let general = c
                         .eval(t)
                         .map(|v| v != Value::Sym(crate::builtins::SYM_FALSE));
-                    c.st.this_pm = PatBinding::EMPTY;
+                    c.st.net.this_pm = PatBinding::EMPTY;
                     if let Some(Some(q)) = first {
                         assert_eq!(Ok(q), general, "first: alpha {a} test {t} fact {f}");
                         firsts += 1;
@@ -767,7 +767,7 @@ mod tests {
         .unwrap();
         e.assert_str(h, "(p (x sym) (m 1))").unwrap();
         let mut c = e.core(h);
-        let f = c.st.fact_head;
+        let f = c.st.facts.fact_head;
         let mut n = 0;
         for a in 0..c.alphas.len() {
             let node = c.alphas[a];

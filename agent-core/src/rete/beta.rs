@@ -18,40 +18,40 @@ use crate::value::NONE;
 
 impl Core<'_> {
     pub(crate) fn alloc_token(&mut self) -> Result<Ix, CapacityError> {
-        if self.st.token_free != NONE {
-            let t = self.st.token_free;
-            self.st.token_free = self.tokens[t as usize].next_sib;
+        if self.st.pools.token_free != NONE {
+            let t = self.st.pools.token_free;
+            self.st.pools.token_free = self.tokens[t as usize].next_sib;
             // no high-water mark to raise: with a free entry, live + 1 <= used,
             // and the mark reached `used` when the last fresh entry was taken
             // (`clear` keeps the mark)
-            self.st.tokens_live += 1;
+            self.st.pools.tokens_live += 1;
             return Ok(t);
         }
-        let n = self.st.tokens_used as usize;
+        let n = self.st.pools.tokens_used as usize;
         if n >= self.tokens.len() || n >= NONE as usize {
             return Err(cap(Pool::Tokens, self.tokens.len()));
         }
-        self.st.tokens_used += 1;
-        self.st.tokens_live += 1;
-        self.note_hw(Pool::Tokens, self.st.tokens_live as usize);
+        self.st.pools.tokens_used += 1;
+        self.st.pools.tokens_live += 1;
+        self.note_hw(Pool::Tokens, self.st.pools.tokens_live as usize);
         Ok(n as Ix)
     }
 
     pub(crate) fn free_token(&mut self, t: Ix) {
-        if self.st.lhs_of == t {
-            self.st.lhs_of = NONE;
+        if self.st.net.lhs_of == t {
+            self.st.net.lhs_of = NONE;
         }
         // a reused id must not find this match's key
-        if self.st.key_cache.0 == t {
-            self.st.key_cache.0 = NONE;
+        if self.st.cache.key_cache.0 == t {
+            self.st.cache.key_cache.0 = NONE;
         }
         // only the free-list link and the kind: every `alloc_token` caller writes
         // the whole token
         let tk = &mut self.tokens[t as usize];
         tk.kind = TokenKind::Free;
-        tk.next_sib = self.st.token_free;
-        self.st.token_free = t;
-        self.st.tokens_live -= 1;
+        tk.next_sib = self.st.pools.token_free;
+        self.st.pools.token_free = t;
+        self.st.pools.tokens_live -= 1;
     }
 
     /// Whether a partial match is passed on to child joins / the agenda.
@@ -69,22 +69,22 @@ impl Core<'_> {
     /// depths along an ancestry are contiguous from 0, so every entry up to the
     /// token's depth is written).
     pub(crate) fn bind_left(&mut self, mut t: Ix) {
-        let cur = self.st.lhs_of;
+        let cur = self.st.net.lhs_of;
         if cur == t {
             return;
         }
         if cur != NONE && t != NONE && self.bound_by(t, cur) {
-            self.st.lhs_of = t;
+            self.st.net.lhs_of = t;
             return;
         }
-        self.st.lhs_of = t;
+        self.st.net.lhs_of = t;
         while t != NONE {
             let tk = self.tokens[t as usize];
             let j = self.joins[tk.owner as usize];
             if j.kind == JoinKind::Root {
                 break;
             }
-            self.st.lhs_pm[j.depth as usize] = if tk.am != NONE {
+            self.st.net.lhs_pm[j.depth as usize] = if tk.am != NONE {
                 let a = self.tokens[tk.am as usize];
                 PatBinding {
                     fact: a.fact,
@@ -107,7 +107,7 @@ impl Core<'_> {
             return false;
         }
         if tk.parent == cur {
-            self.st.lhs_pm[j.depth as usize] = if tk.am != NONE {
+            self.st.net.lhs_pm[j.depth as usize] = if tk.am != NONE {
                 let a = self.tokens[tk.am as usize];
                 PatBinding {
                     fact: a.fact,
@@ -133,10 +133,10 @@ impl Core<'_> {
     }
 
     fn eval_lhs_tests(&mut self, tests: Ix) -> Result<bool, EvalError> {
-        let saved = self.st.pm_rhs;
-        self.st.pm_rhs = false;
+        let saved = self.st.net.pm_rhs;
+        self.st.net.pm_rhs = false;
         let r = self.eval_tests(tests);
-        self.st.pm_rhs = saved;
+        self.st.net.pm_rhs = saved;
         r
     }
 
@@ -193,7 +193,7 @@ impl Core<'_> {
         self.bind_left(left);
         let j = self.joins[join as usize];
         // the join's own depth lies below `left`'s ancestry: `left` stays bound
-        self.st.lhs_pm[j.depth as usize] = if am != NONE {
+        self.st.net.lhs_pm[j.depth as usize] = if am != NONE {
             let a = self.tokens[am as usize];
             PatBinding {
                 fact: a.fact,
@@ -217,8 +217,8 @@ impl Core<'_> {
     #[inline(never)]
     fn report_join_error(&mut self, join: Ix, e: EvalError) {
         use core::fmt::Write;
-        self.st.pattern_error = true;
-        self.st.halting = true;
+        self.st.net.pattern_error = true;
+        self.st.mode.halting = true;
         self.report_eval_error(e);
         let mut b: crate::value::TextBuf<128> = crate::value::TextBuf::new();
         let _ = b.write_str(
@@ -488,7 +488,7 @@ impl Core<'_> {
                 // `token_active` of the new output: it is owed nothing yet, so a
                 // not output is active unblocked, an exists output blocked
                 if (b == NONE) == (kind == JoinKind::Negative) {
-                    if self.st.defer_nots && kind == JoinKind::Negative {
+                    if self.st.net.defer_nots && kind == JoinKind::Negative {
                         // see `defer_nots`: a later pattern of the same fact may block it
                         self.owe(t, false);
                     } else {
@@ -691,7 +691,7 @@ impl Core<'_> {
     /// (assert fails unchanged if it cannot; `run` fires nothing; retract reports
     /// the error), so no match is lost and no rule fires on an incomplete agenda.
     fn propagate_or_owe(&mut self, t: Ix) {
-        if self.st.defer_nots {
+        if self.st.net.defer_nots {
             self.owe(t, false);
             return;
         }
@@ -715,11 +715,11 @@ impl Core<'_> {
 
     /// Puts `t` on the owed list: at the end, or at the front (kept its turn).
     fn owe(&mut self, t: Ix, front: bool) {
-        let head = self.st.owed;
+        let head = self.st.net.owed;
         if head == NONE {
             self.tokens[t as usize].am_next = NONE;
             self.tokens[t as usize].am_prev = t;
-            self.st.owed = t;
+            self.st.net.owed = t;
             return;
         }
         let tail = self.tokens[head as usize].am_prev;
@@ -727,7 +727,7 @@ impl Core<'_> {
             self.tokens[t as usize].am_next = head;
             self.tokens[t as usize].am_prev = tail;
             self.tokens[head as usize].am_prev = t;
-            self.st.owed = t;
+            self.st.net.owed = t;
         } else {
             self.tokens[t as usize].am_next = NONE;
             self.tokens[t as usize].am_prev = tail;
@@ -737,12 +737,12 @@ impl Core<'_> {
     }
 
     fn unowe(&mut self, t: Ix) {
-        self.st.owed = self.am_chain_remove(self.st.owed, t);
+        self.st.net.owed = self.am_chain_remove(self.st.net.owed, t);
     }
 
     /// Notes a not output a modify's retract unblocked (see `UnblockLog`).
     fn log_unblocked(&mut self, t: Ix) {
-        let log = &mut self.st.unblocked;
+        let log = &mut self.st.net.unblocked;
         if !log.on {
             return;
         }
@@ -763,7 +763,7 @@ impl Core<'_> {
     /// deleted since (and maybe reused) is recognised by its join and parent: a left
     /// token has one output per join. Returns false if the log overflowed.
     pub(crate) fn owe_unblocked(&mut self) -> bool {
-        let log = self.st.unblocked;
+        let log = self.st.net.unblocked;
         for &(t, owner, parent) in &log.entries[..log.len as usize] {
             let tk = self.tokens[t as usize];
             if tk.kind == TokenKind::Beta
@@ -785,7 +785,7 @@ impl Core<'_> {
     #[cfg_attr(feature = "host-speedups", inline(always))]
     pub(crate) fn pay_owed(&mut self) -> Result<(), EvalError> {
         // most operations owe nothing: no call for them on the host
-        if self.st.owed == NONE {
+        if self.st.net.owed == NONE {
             return Ok(());
         }
         self.pay_owed_list()
@@ -794,8 +794,8 @@ impl Core<'_> {
     /// `pay_owed` of a non-empty owed list.
     #[cfg_attr(feature = "host-speedups", inline(never))]
     fn pay_owed_list(&mut self) -> Result<(), EvalError> {
-        while self.st.owed != NONE {
-            let t = self.st.owed;
+        while self.st.net.owed != NONE {
+            let t = self.st.net.owed;
             self.unowe(t);
             if let Err(e) = self.propagate(t) {
                 if e.is_capacity() {
@@ -1091,7 +1091,7 @@ impl Core<'_> {
 
     /// The global root join and its empty token (join 0), made at start-up.
     pub(crate) fn make_root(&mut self) -> Result<(), EvalError> {
-        if self.st.njoins == 0 {
+        if self.st.pools.njoins == 0 {
             if self.joins.is_empty() {
                 return Err(cap(Pool::Joins, 0).into());
             }
@@ -1100,7 +1100,7 @@ impl Core<'_> {
                 refs: 1,
                 ..super::Join::EMPTY
             };
-            self.st.njoins = 1;
+            self.st.pools.njoins = 1;
         }
         if self.joins[0].mem == NONE {
             let t = self.alloc_token()?;

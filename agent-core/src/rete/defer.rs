@@ -71,7 +71,7 @@ impl Core<'_> {
     /// generation (`State::net_gen`).
     fn defer_flags(&mut self, tmpl: Ix) -> u8 {
         let t = self.templates[tmpl as usize];
-        if t.flags_gen == self.st.net_gen && t.defer_flags & FLAGS_KNOWN != 0 {
+        if t.flags_gen == self.st.net.net_gen && t.defer_flags & FLAGS_KNOWN != 0 {
             return t.defer_flags;
         }
         let (mut total, mut delete_only) = (true, true);
@@ -110,7 +110,7 @@ impl Core<'_> {
             | if delete_only { DELETE_ONLY } else { 0 };
         let t = &mut self.templates[tmpl as usize];
         t.defer_flags = flags;
-        t.flags_gen = self.st.net_gen;
+        t.flags_gen = self.st.net.net_gen;
         flags
     }
 
@@ -150,7 +150,7 @@ impl Core<'_> {
     /// retract may go first (anything else would build it at once, so deferring
     /// would only cost).
     pub(crate) fn defer_worth(&self, call: Ix) -> bool {
-        if call != self.st.top_action {
+        if call != self.st.net.top_action {
             return false;
         }
         let n = self.exprs[call as usize].next;
@@ -164,26 +164,26 @@ impl Core<'_> {
     /// replaying, and the template's tests total (else no retract could overtake it,
     /// and deferring would only cost).
     pub(crate) fn may_defer(&mut self, tmpl: Ix) -> bool {
-        self.st.firing
-            && self.st.watch & (watch::FACTS | watch::ACTIVATIONS) == 0
-            && self.st.owed == NONE
-            && !self.st.act_journal.replay
+        self.st.mode.firing
+            && self.st.mode.watch & (watch::FACTS | watch::ACTIVATIONS) == 0
+            && self.st.net.owed == NONE
+            && !self.st.agenda.act_journal.replay
             && self.defer_flags(tmpl) & TOTAL_TESTS != 0
     }
 
     /// Whether the retract of live fact `old` (by the top-level modify `call`) may
     /// run before the waiting propagation (see the module docs).
     pub(crate) fn may_overtake(&mut self, call: Ix, old: Ix) -> bool {
-        let waiting = self.st.deferred.fact;
+        let waiting = self.st.net.deferred.fact;
         // the waiting fact itself is never retracted before it was propagated: a
         // literal index (`(modify 5 ...)` naming the new f-5) reaches it, so the
         // `waiting == old` check builds it first
         if waiting == NONE
             || waiting == old
-            || call != self.st.top_action
-            || self.st.watch & (watch::FACTS | watch::ACTIVATIONS) != 0
-            || self.st.owed != NONE
-            || self.st.act_journal.replay
+            || call != self.st.net.top_action
+            || self.st.mode.watch & (watch::FACTS | watch::ACTIVATIONS) != 0
+            || self.st.net.owed != NONE
+            || self.st.agenda.act_journal.replay
         {
             return false;
         }
@@ -199,7 +199,7 @@ impl Core<'_> {
     #[inline(always)]
     pub(crate) fn flush_deferred(&mut self) -> Result<(), EvalError> {
         // most callers find nothing waiting: no call for them
-        if self.st.deferred.fact == NONE {
+        if self.st.net.deferred.fact == NONE {
             return Ok(());
         }
         self.flush_waiting()
@@ -208,8 +208,8 @@ impl Core<'_> {
     /// `flush_deferred` of a waiting propagation.
     #[inline(never)]
     fn flush_waiting(&mut self) -> Result<(), EvalError> {
-        let d = self.st.deferred;
-        self.st.deferred = Deferred::NONE;
+        let d = self.st.net.deferred;
+        self.st.net.deferred = Deferred::NONE;
         let f = d.fact;
         self.hold_traces();
         let mark = self.journal_begin();
@@ -221,13 +221,13 @@ impl Core<'_> {
             self.network_retract(f);
             let fact = self.facts[f as usize];
             self.unlink_fact(f);
-            if fact.start as usize + fact.len as usize == self.st.values_top as usize {
-                self.st.values_top = fact.start;
+            if fact.start as usize + fact.len as usize == self.st.facts.values_top as usize {
+                self.st.facts.values_top = fact.start;
             }
             self.free_fact_slot(f);
             // nothing was asserted since: its number is the next one again
-            if fact.num.wrapping_add(1) == self.st.next_fact_num {
-                self.st.next_fact_num = fact.num;
+            if fact.num.wrapping_add(1) == self.st.facts.next_fact_num {
+                self.st.facts.next_fact_num = fact.num;
             }
             let _ = self.pay_owed();
             // the old fact's removed activations were journaled by its own modify,

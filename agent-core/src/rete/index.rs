@@ -88,9 +88,9 @@ impl Core<'_> {
         if let Some(key) = self.quick_alpha_key(alpha, b.fact) {
             return key;
         }
-        let (scratch, sp) = (self.st.scratch_top, self.st.sp);
-        let saved = self.st.this_pm;
-        self.st.this_pm = b;
+        let (scratch, sp) = (self.st.frame.scratch_top, self.st.frame.sp);
+        let saved = self.st.net.this_pm;
+        self.st.net.this_pm = b;
         let n = self.alphas[alpha as usize];
         let mut key = 0x5bd1_e995u32;
         for &e in &n.rhash[..n.nrhash as usize] {
@@ -101,8 +101,8 @@ impl Core<'_> {
                 .unwrap_or(Value::Void);
             key = mix(key, self.value_hash(v));
         }
-        self.st.this_pm = saved;
-        (self.st.scratch_top, self.st.sp) = (scratch, sp);
+        self.st.net.this_pm = saved;
+        (self.st.frame.scratch_top, self.st.frame.sp) = (scratch, sp);
         key
     }
 
@@ -113,8 +113,12 @@ impl Core<'_> {
     fn left_key(&mut self, join: Ix) -> Option<u32> {
         let j = self.joins[join as usize];
         let n = self.alphas[j.alpha as usize];
-        let (scratch, sp, pm) = (self.st.scratch_top, self.st.sp, self.st.pm_rhs);
-        self.st.pm_rhs = false;
+        let (scratch, sp, pm) = (
+            self.st.frame.scratch_top,
+            self.st.frame.sp,
+            self.st.net.pm_rhs,
+        );
+        self.st.net.pm_rhs = false;
         let mut key = 0x5bd1_e995u32;
         let mut found = 0;
         let mut t = j.tests;
@@ -139,7 +143,11 @@ impl Core<'_> {
             }
             t = x.next;
         }
-        (self.st.scratch_top, self.st.sp, self.st.pm_rhs) = (scratch, sp, pm);
+        (
+            self.st.frame.scratch_top,
+            self.st.frame.sp,
+            self.st.net.pm_rhs,
+        ) = (scratch, sp, pm);
         if !ok || found != n.nrhash {
             return None;
         }
@@ -153,12 +161,12 @@ impl Core<'_> {
     fn quick_left_key(&mut self, join: Ix, left: Ix) -> Option<u32> {
         let tests = self.joins[join as usize].tests;
         let i = join as usize % KEY_PLANS;
-        let cached = &self.st.key_plans[i];
+        let cached = &self.st.cache.key_plans[i];
         if cached.join != join || cached.tests != tests {
-            self.st.key_plans[i] = self.key_plan(join);
+            self.st.cache.key_plans[i] = self.key_plan(join);
         }
         // read in place (a copy of the whole plan costs more than the few fields used)
-        let plan = &self.st.key_plans[i];
+        let plan = &self.st.cache.key_plans[i];
         if plan.n == KeyPlan::NONE.n {
             return None;
         }
@@ -303,7 +311,7 @@ impl Core<'_> {
         debug_assert!(self.joins[join as usize].kind != JoinKind::Root);
         let alpha = self.joins[join as usize].alpha;
         if self.alphas[alpha as usize].nrhash > 0 {
-            let (ct, cj, ck) = self.st.key_cache;
+            let (ct, cj, ck) = self.st.cache.key_cache;
             let key = if ct == left && cj == join {
                 Some(ck)
             } else {
@@ -428,8 +436,8 @@ impl Core<'_> {
     /// empty and not indexed yet and `child` is fed by a node with a right hash.
     pub(crate) fn choose_index_child(&mut self, parent: Ix, child: Ix) {
         // called for every new join: a reused join id must not keep an old plan
-        self.st.key_plans = [KeyPlan::NONE; KEY_PLANS];
-        self.st.test_plans = [super::TestPlan::NONE; super::TEST_PLANS];
+        self.st.cache.key_plans = [KeyPlan::NONE; KEY_PLANS];
+        self.st.cache.test_plans = [super::TestPlan::NONE; super::TEST_PLANS];
         let p = self.joins[parent as usize];
         let c = self.joins[child as usize];
         if parent != 0
@@ -499,16 +507,19 @@ impl Core<'_> {
             Some(key) => key,
             None => {
                 self.bind_left(t);
-                let (pm, depth) = (self.st.pm_rhs, self.joins[child as usize].depth as usize);
-                let saved = self.st.lhs_pm[depth];
+                let (pm, depth) = (
+                    self.st.net.pm_rhs,
+                    self.joins[child as usize].depth as usize,
+                );
+                let saved = self.st.net.lhs_pm[depth];
                 // an unreadable value: bucket of key 0 (the child then scans, see below)
                 let key = self.left_key(child).unwrap_or(0);
-                self.st.lhs_pm[depth] = saved;
-                self.st.pm_rhs = pm;
+                self.st.net.lhs_pm[depth] = saved;
+                self.st.net.pm_rhs = pm;
                 key
             }
         };
-        self.st.key_cache = (t, child, key);
+        self.st.cache.key_cache = (t, child, key);
         let b = self.beta_bucket(join, key);
         let head = self.amem_buckets[b as usize];
         self.set_bbucket(t, b);

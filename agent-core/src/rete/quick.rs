@@ -89,7 +89,7 @@ impl Core<'_> {
         #[cfg(not(feature = "host-speedups"))]
         {
             let _ = left;
-            self.st.lhs_pm[pat as usize].fact
+            self.st.net.lhs_pm[pat as usize].fact
         }
     }
 
@@ -108,14 +108,14 @@ impl Core<'_> {
     ) -> Option<bool> {
         let i = join as usize % TEST_PLANS;
         if !*planned {
-            let cached = &self.st.test_plans[i];
+            let cached = &self.st.cache.test_plans[i];
             if cached.join != join || cached.tests != tests {
-                self.st.test_plans[i] = self.test_plan(join, tests, depth);
+                self.st.cache.test_plans[i] = self.test_plan(join, tests, depth);
             }
             *planned = true;
         }
         // read in place (a copy of the whole plan costs more than the few ops used)
-        let plan = &self.st.test_plans[i];
+        let plan = &self.st.cache.test_plans[i];
         if plan.n == TestPlan::NONE.n {
             return self.quick_join_test(tests, depth, left, right_fact);
         }

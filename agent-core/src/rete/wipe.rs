@@ -23,7 +23,7 @@ impl Core<'_> {
     /// Before alpha match `am` is removed: if it is its memory's only match, empties the
     /// memories of its positive successor joins and all below them at once.
     pub(crate) fn wipe_successors(&mut self, am: Ix) {
-        if self.st.watch & watch::ACTIVATIONS != 0 || self.st.owed != NONE {
+        if self.st.mode.watch & watch::ACTIVATIONS != 0 || self.st.net.owed != NONE {
             return;
         }
         let alpha = self.tokens[am as usize].owner;
@@ -46,13 +46,13 @@ impl Core<'_> {
     /// network generation).
     fn subtree_plain(&mut self, join: Ix) -> bool {
         let jn = &self.joins[join as usize];
-        if jn.plain_gen == self.st.net_gen {
+        if jn.plain_gen == self.st.net.net_gen {
             return jn.plain;
         }
         let plain = self.walk_joins(join, false, &mut |cx, j| cx.joins[j as usize].rsucc == NONE);
         let jn = &mut self.joins[join as usize];
         jn.plain = plain;
-        jn.plain_gen = self.st.net_gen;
+        jn.plain_gen = self.st.net.net_gen;
         plain
     }
 
