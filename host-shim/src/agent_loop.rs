@@ -19,7 +19,7 @@ use crate::shim::rule_engine::exit_from_engine_stack;
 use crate::shim::safety::{CycleInput, SafetyMonitor, Stream};
 use crate::shim::team::IceoryxTeamLink;
 use crate::shim::transport::{Pub, RobotStream, Transport, TransportError};
-use crate::team::TeamLink;
+use crate::team::{FaultyLink, LinkFaults, TeamLink};
 use hal::device::{
     Bumper, Device, Freshness, GateSignal, Gyro, IrRing, MachineLight, Odometry, OmniDrive,
     PuckRelease, PuckSensor,
@@ -69,6 +69,16 @@ pub struct Args {
     /// Raw pucks in the input storage at the start (the team shares them).
     #[arg(long, default_value_t = 20)]
     pub raw_pucks: u32,
+    /// Team link faults (our proxy at the receiver, in game time): percent of the
+    /// teammates' messages lost ...
+    #[arg(long, default_value_t = 0, value_parser = clap::value_parser!(u32).range(0..=100))]
+    pub link_loss_percent: u32,
+    /// ... and each delayed by up to this many seconds (so they overtake each other) ...
+    #[arg(long, default_value_t = 0.0)]
+    pub link_delay_s: f64,
+    /// ... drawn from this seed.
+    #[arg(long, default_value_t = 0)]
+    pub link_seed: u64,
 }
 
 /// A team member that waits for a place (or is done) this long drives out of the lanes
@@ -244,7 +254,24 @@ fn run(args: &Args, make_link: Box<LinkMaker>) -> Result<(), Box<dyn std::error:
         s0_supply: args.raw_pucks,
     });
     let transport = Transport::open(&config.services.prefix, &format!("robotino-agent-{robot}"))?;
+    let faults = LinkFaults {
+        loss_percent: args.link_loss_percent,
+        delay_min: 0.0,
+        delay_max: args.link_delay_s.max(0.0),
+        dup_percent: 0,
+    };
     let link = match seat {
+        Some(seat) if faults != LinkFaults::NONE => {
+            let link = make_link(&transport, seat)?;
+            let cycle_s = f64::from(config.cycle_s());
+            Some(Box::new(FaultyLink::new(
+                link,
+                seat.id,
+                faults,
+                args.link_seed,
+                cycle_s,
+            )) as Box<dyn TeamLink>)
+        }
         Some(seat) => Some(make_link(&transport, seat)?),
         None => None,
     };
@@ -266,6 +293,7 @@ fn agent_loop(
         dirty: true,
         done_reported: false,
         known: [MachineView::default(); hal::field::MACHINE_COUNT],
+        holds: Vec::new(),
         sent: 0,
         received: 0,
     };
@@ -520,6 +548,8 @@ struct Mind {
     /// The machine beliefs after the rules last ran (to log types found out).
     known: [MachineView; hal::field::MACHINE_COUNT],
     done_reported: bool,
+    /// The places this robot held when the rules last ran (logged when they change).
+    holds: Vec<String>,
     /// Team messages sent and taken so far.
     sent: u64,
     received: u64,
@@ -575,6 +605,14 @@ impl Mind {
             self.known[m.index()] = view;
         }
         if let Some(link) = self.link.as_mut() {
+            let holds = self.agent.team_holds();
+            if holds != self.holds {
+                println!(
+                    "robotino-agent run: cycle={cycle} holds {}",
+                    holds.join(" ")
+                );
+                self.holds = holds;
+            }
             let out = self.agent.team_outbox()?;
             link.send(link_cycle, &out)?;
             self.sent += out.len() as u64;

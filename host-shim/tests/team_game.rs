@@ -1,7 +1,8 @@
 //! The team in the process-level game: three agents, each with the team's rules
 //! (`rules/team.clp`), talking over iceoryx2. A robot killed mid-game leaves its claims
 //! to run out (at most one lease, 20 s of game time) and the other two play on; a short
-//! `game-sweep --robots 3` has no double claim.
+//! `game-sweep --robots 3` has no double claim, nor has a game whose team link loses 10 %
+//! of the messages and delays the rest by up to 2 s.
 
 mod shim_common;
 
@@ -137,4 +138,40 @@ fn a_short_team_sweep_has_no_double_claim() {
     let cells: Vec<&str> = lines[header + 2].split('|').map(str::trim).collect();
     assert_eq!(cells.get(1), Some(&"2"), "{}", sweep.dump());
     assert_eq!(cells.get(6), Some(&"0"), "double claims\n{}", sweep.dump());
+}
+
+#[test]
+fn a_team_game_over_a_lossy_slow_link_has_no_double_claim() {
+    let mut game = Proc::start(
+        "game",
+        AGENT,
+        &[
+            "game",
+            "--robots",
+            "3",
+            "--seed",
+            "2",
+            "--game-seconds",
+            "240",
+            "--link-loss-percent",
+            "10",
+            "--link-delay-s",
+            "2",
+            "--timeout-s",
+            "200",
+        ],
+    );
+    let status = game.wait_exit(Duration::from_secs(240));
+    assert!(status.is_some_and(|s| s.success()), "{}", game.dump());
+    let team = game
+        .line_with("team: ")
+        .unwrap_or_else(|| panic!("no team line\n{}", game.dump()));
+    assert!(team.contains(" 0 double claims"), "{team}\n{}", game.dump());
+    for r in 1..=3 {
+        let skills: usize = game
+            .line_with(&format!("agent{r} skills="))
+            .and_then(|l| l.rsplit('=').next().and_then(|v| v.parse().ok()))
+            .unwrap_or(0);
+        assert!(skills >= 2, "robot {r}: {skills} skills\n{}", game.dump());
+    }
 }

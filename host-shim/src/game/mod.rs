@@ -50,6 +50,12 @@ pub struct Args {
     /// in `team-link/`) as each robot's agent, peers on 127.0.0.1 TCP endpoints.
     #[arg(long)]
     pub zenoh_agent: Option<PathBuf>,
+    /// Percent of the team's messages the link loses (our proxy, drawn from the seed).
+    #[arg(long, default_value_t = 0, value_parser = clap::value_parser!(u32).range(0..=100))]
+    pub link_loss_percent: u32,
+    /// Longest delay of a team message in game time (seconds).
+    #[arg(long, default_value_t = 0.0)]
+    pub link_delay_s: f64,
 }
 
 pub fn main(args: Args) -> ExitCode {
@@ -227,6 +233,12 @@ pub fn play(args: &Args, chatty: bool) -> Result<GameRecord, String> {
                 s(args.strategy.name()),
                 s("--team-size"),
                 robots.to_string(),
+                s("--link-loss-percent"),
+                args.link_loss_percent.to_string(),
+                s("--link-delay-s"),
+                args.link_delay_s.to_string(),
+                s("--link-seed"),
+                args.seed.to_string(),
             ]);
             Proc::start(&format!("agent{r}"), program, &argv)
         })

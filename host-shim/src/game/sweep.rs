@@ -42,6 +42,11 @@ pub struct Args {
     /// Join the robots only over Zenoh (see `game --zenoh-agent`).
     #[arg(long)]
     pub zenoh_agent: Option<PathBuf>,
+    /// Team link faults (see `game --link-loss-percent`, `--link-delay-s`).
+    #[arg(long, default_value_t = 0, value_parser = clap::value_parser!(u32).range(0..=100))]
+    pub link_loss_percent: u32,
+    #[arg(long, default_value_t = 0.0)]
+    pub link_delay_s: f64,
 }
 
 /// One seed's figures.
@@ -112,6 +117,8 @@ pub fn main(args: Args) -> ExitCode {
                     timeout_s: 600,
                     svg: None,
                     zenoh_agent: args.zenoh_agent.clone(),
+                    link_loss_percent: args.link_loss_percent,
+                    link_delay_s: args.link_delay_s,
                 };
                 let row = super::play(&game, false)
                     .map(|g| Row::of(&g))

@@ -6,6 +6,7 @@
 use std::fmt;
 
 use super::member::TeamMsg;
+use super::net::{FaultyNet, LinkFaults};
 
 /// A link failure, with what was being done.
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -61,6 +62,54 @@ impl CycleQueue {
     }
 }
 
+/// A link whose incoming messages pass our fault proxy ([`FaultyNet`]): each is lost,
+/// delayed or duplicated in game time, drawn from a seed (so a lockstep game with faults
+/// is still reproducible). The clock is the receiver's: one `receive` a cycle.
+pub struct FaultyLink<L> {
+    inner: L,
+    net: FaultyNet,
+    me: u8,
+    cycle_s: f64,
+    cycles: u64,
+}
+
+impl<L: TeamLink> FaultyLink<L> {
+    pub fn new(inner: L, me: u8, faults: LinkFaults, seed: u64, cycle_s: f64) -> Self {
+        Self {
+            inner,
+            net: FaultyNet::new(faults, seed ^ u64::from(me)),
+            me,
+            cycle_s,
+            cycles: 0,
+        }
+    }
+}
+
+impl<L: TeamLink> TeamLink for FaultyLink<L> {
+    fn send(&mut self, cycle: u64, msgs: &[TeamMsg]) -> Result<(), LinkError> {
+        self.inner.send(cycle, msgs)
+    }
+
+    fn receive(&mut self, cycle: u64) -> Result<Vec<TeamMsg>, LinkError> {
+        self.cycles += 1;
+        let now = self.cycles as f64 * self.cycle_s;
+        for m in self.inner.receive(cycle)? {
+            self.net.send(&m, now, [self.me]);
+        }
+        Ok(self.net.arrived(now).into_iter().map(|(_, m)| m).collect())
+    }
+}
+
+impl TeamLink for Box<dyn TeamLink> {
+    fn send(&mut self, cycle: u64, msgs: &[TeamMsg]) -> Result<(), LinkError> {
+        (**self).send(cycle, msgs)
+    }
+
+    fn receive(&mut self, cycle: u64) -> Result<Vec<TeamMsg>, LinkError> {
+        (**self).receive(cycle)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -76,6 +125,43 @@ mod tests {
             lease: 20.0,
             data: Vec::new(),
         }
+    }
+
+    /// A perfect inner link: what is sent comes back at the next receive.
+    #[derive(Default)]
+    struct Loopback(Vec<TeamMsg>);
+
+    impl TeamLink for Loopback {
+        fn send(&mut self, _cycle: u64, msgs: &[TeamMsg]) -> Result<(), LinkError> {
+            self.0.extend_from_slice(msgs);
+            Ok(())
+        }
+        fn receive(&mut self, _cycle: u64) -> Result<Vec<TeamMsg>, LinkError> {
+            Ok(std::mem::take(&mut self.0))
+        }
+    }
+
+    #[test]
+    fn a_faulty_link_loses_and_delays_in_game_time() {
+        let faults = LinkFaults {
+            loss_percent: 10,
+            delay_min: 0.0,
+            delay_max: 2.0,
+            dup_percent: 0,
+        };
+        let mut link = FaultyLink::new(Loopback::default(), 2, faults, 7, 0.1);
+        let mut got = 0;
+        for c in 0..1000u64 {
+            if c < 500 {
+                link.send(c, &[msg(1, c as i64 + 1)])
+                    .unwrap_or_else(|e| panic!("{e}"));
+            }
+            let arrived = link.receive(c).unwrap_or_else(|e| panic!("{e}"));
+            // Nothing is due before it was sent; up to 2 s (20 cycles) later.
+            assert!(arrived.iter().all(|m| m.seq <= c as i64 + 1));
+            got += arrived.len();
+        }
+        assert!((400..490).contains(&got), "{got} of 500 arrived");
     }
 
     #[test]

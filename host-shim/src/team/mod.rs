@@ -9,6 +9,6 @@ pub mod link;
 pub mod member;
 pub mod net;
 
-pub use link::{LinkError, TeamLink};
+pub use link::{FaultyLink, LinkError, TeamLink};
 pub use member::{TeamError, TeamMember, TeamMsg};
 pub use net::{FaultyNet, LinkFaults};
