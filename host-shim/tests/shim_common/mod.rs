@@ -26,6 +26,7 @@ pub struct Proc {
     pub name: String,
     child: Child,
     lines: Arc<Mutex<Vec<String>>>,
+    reader: Option<std::thread::JoinHandle<()>>,
 }
 
 impl Proc {
@@ -37,20 +38,22 @@ impl Proc {
             .spawn()
             .unwrap_or_else(|e| panic!("cannot start {program}: {e}"));
         let lines = Arc::new(Mutex::new(Vec::new()));
+        let mut reader = None;
         if let Some(out) = child.stdout.take() {
             let sink = Arc::clone(&lines);
-            std::thread::spawn(move || {
+            reader = Some(std::thread::spawn(move || {
                 for line in BufReader::new(out).lines().map_while(Result::ok) {
                     if let Ok(mut v) = sink.lock() {
                         v.push(line);
                     }
                 }
-            });
+            }));
         }
         Proc {
             name: name.to_string(),
             child,
             lines,
+            reader,
         }
     }
 
@@ -81,6 +84,14 @@ impl Proc {
         let deadline = Instant::now() + timeout;
         while Instant::now() < deadline {
             if let Ok(Some(status)) = self.child.try_wait() {
+                // The last lines may still be in the pipe: let the reader reach its end
+                // (bounded, in case a grandchild holds the pipe open).
+                let until = Instant::now() + Duration::from_secs(5);
+                while self.reader.as_ref().is_some_and(|r| !r.is_finished())
+                    && Instant::now() < until
+                {
+                    std::thread::sleep(Duration::from_millis(5));
+                }
                 return Some(status);
             }
             std::thread::sleep(Duration::from_millis(10));
