@@ -342,4 +342,7 @@ differential_programs! {
     p183_template_with_70_slots => "183-template-with-70-slots",
     p184_get_fact_list => "184-get-fact-list",
     p185_unbound_variables_in_queries => "185-unbound-variables-in-queries",
+    p186_hyperbolic_and_reciprocal_trig => "186-hyperbolic-and-reciprocal-trig",
+    p187_older_function_names => "187-older-function-names",
+    p188_setgen_and_engine_settings => "188-setgen-and-engine-settings",
 }

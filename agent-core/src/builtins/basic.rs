@@ -152,7 +152,7 @@ fn num_eq(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     Ok(Core::bool_value(true))
 }
 /// `<>`: the first differs from every other.
-fn num_ne(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+pub(super) fn num_ne(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let first = cx.arg_num(a, 0, "<>")?;
     for i in 1..a.len as usize {
         if cmp_num(first, cx.arg_num(a, i, "<>")?) == core::cmp::Ordering::Equal {

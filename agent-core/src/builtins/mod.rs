@@ -14,6 +14,7 @@
 
 pub mod basic;
 pub mod commands;
+pub mod compat;
 pub mod control;
 pub mod describe;
 pub mod errors;
@@ -147,6 +148,7 @@ pub const TABLES: &[&[Builtin]] = &[
     memory::FUNCS,
     evaluate::FUNCS,
     extras::FUNCS,
+    compat::FUNCS,
 ];
 
 const fn builtin_count() -> usize {

@@ -38,7 +38,12 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("explode$", 1, 1, explode).args(&[S], Any).on_error(OnError::EmptyMultifield),
 ];
 
-fn multi_arg(cx: &Core<'_>, a: Args, i: usize, func: &'static str) -> Result<MfSpan, EvalError> {
+pub(super) fn multi_arg(
+    cx: &Core<'_>,
+    a: Args,
+    i: usize,
+    func: &'static str,
+) -> Result<MfSpan, EvalError> {
     match cx.arg(a, i) {
         Value::Multi(m) => Ok(m),
         _ => Err(EvalError::wrong_type(
@@ -50,7 +55,7 @@ fn multi_arg(cx: &Core<'_>, a: Args, i: usize, func: &'static str) -> Result<MfS
 }
 
 /// Appends `v` to the multifield being built, splicing a multifield's elements.
-fn push_flat(cx: &mut Core<'_>, v: Value) -> Result<(), EvalError> {
+pub(super) fn push_flat(cx: &mut Core<'_>, v: Value) -> Result<(), EvalError> {
     match v {
         Value::Multi(m) => {
             for k in 0..m.len as usize {
@@ -64,7 +69,12 @@ fn push_flat(cx: &mut Core<'_>, v: Value) -> Result<(), EvalError> {
 }
 
 /// Appends elements `from..to` (0-based, exclusive) of `m`.
-fn push_range(cx: &mut Core<'_>, m: MfSpan, from: usize, to: usize) -> Result<(), EvalError> {
+pub(super) fn push_range(
+    cx: &mut Core<'_>,
+    m: MfSpan,
+    from: usize,
+    to: usize,
+) -> Result<(), EvalError> {
     for k in from..to {
         let item = cx.mf_item(m, k);
         cx.multi_push(item)?;
@@ -73,14 +83,14 @@ fn push_range(cx: &mut Core<'_>, m: MfSpan, from: usize, to: usize) -> Result<()
 }
 
 /// A multifield holding elements `from..to` of `m` (a sub-span: no copy needed).
-fn slice(m: MfSpan, from: usize, to: usize) -> Value {
+pub(super) fn slice(m: MfSpan, from: usize, to: usize) -> Value {
     Value::Multi(MfSpan {
         start: m.start + from as Ix,
         len: to.saturating_sub(from) as Ix,
     })
 }
 
-fn create(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+pub(super) fn create(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let start = cx.multi_begin();
     for i in 0..a.len as usize {
         // a call without a value adds nothing (CLIPS; insert$ and replace$ keep it)
@@ -119,7 +129,7 @@ fn length_old(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 }
 
 /// `(nth$ i m)`: element `i` (1-based) or `nil` when out of range.
-fn nth(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+pub(super) fn nth(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let i = int_arg(cx, a, 0, "nth$")?;
     let m = multi_arg(cx, a, 1, "nth$")?;
     Ok(if i >= 1 && i <= m.len as i64 {
@@ -159,7 +169,7 @@ fn member(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 }
 
 /// `(subsetp a b)`: every element of `a` occurs in `b` (`eq` comparison).
-fn subsetp(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+pub(super) fn subsetp(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let sub = multi_arg(cx, a, 0, "subsetp")?;
     let sup = multi_arg(cx, a, 1, "subsetp")?;
     let all = (0..sub.len as usize)
@@ -233,7 +243,13 @@ fn replace_member(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 }
 
 /// `[MULTIFUN1]`: CLIPS names the bad index (or range) and the valid one, 1..`max`.
-fn index_error(cx: &mut Core<'_>, func: &'static str, s: i64, e: i64, max: usize) -> EvalError {
+pub(super) fn index_error(
+    cx: &mut Core<'_>,
+    func: &'static str,
+    s: i64,
+    e: i64,
+    max: usize,
+) -> EvalError {
     let mut b: TextBuf<160> = TextBuf::new();
     let _ = if s == e {
         writeln!(
@@ -335,7 +351,7 @@ fn subseq(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 /// `(implode$ m)`: elements as CLIPS prints them, separated by single spaces, as one
 /// string. Strings are written in quotes with inner `"` and `\\` escaped (CLIPS 6.30:
 /// `(implode$ (create$ "a\\b"))` has 6 characters).
-fn implode(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+pub(super) fn implode(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let m = multi_arg(cx, a, 0, "implode$")?;
     let mut b = Text::new();
     write_implode(cx, m, &mut b)
@@ -366,7 +382,7 @@ fn write_implode(cx: &Core<'_>, m: MfSpan, b: &mut Text) -> core::fmt::Result {
 }
 
 /// `(explode$ s)`: the fields of a string as CLIPS's scanner reads them.
-fn explode(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+pub(super) fn explode(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let s = match cx.arg(a, 0) {
         Value::Str(s) => s,
         _ => return Err(EvalError::wrong_type("explode$", 1, "string")),

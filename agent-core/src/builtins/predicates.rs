@@ -35,7 +35,7 @@ fn integerp(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 fn floatp(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     test(cx, a, |v| matches!(v, Value::Float(_)))
 }
-fn symbolp(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+pub(super) fn symbolp(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     test(cx, a, |v| matches!(v, Value::Sym(_)))
 }
 fn stringp(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
