@@ -345,4 +345,5 @@ differential_programs! {
     p186_hyperbolic_and_reciprocal_trig => "186-hyperbolic-and-reciprocal-trig",
     p187_older_function_names => "187-older-function-names",
     p188_setgen_and_engine_settings => "188-setgen-and-engine-settings",
+    p189_deftemplate_slot_functions => "189-deftemplate-slot-functions",
 }

@@ -321,7 +321,7 @@ fn get_strategy(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
     Ok(Value::Sym(cx.intern("depth")?))
 }
 
-fn list_defrules(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
+pub(super) fn list_defrules(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
     let mut n = 0;
     for r in 0..cx.st.pools.nrules {
         let rule = cx.rules[r as usize];

@@ -76,7 +76,7 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("get-sequence-operator-recognition", 0, 0, get_sequence_operator_recognition),
     Builtin::eager("set-sequence-operator-recognition", 1, 1, set_sequence_operator_recognition),
     Builtin::eager("get-salience-evaluation", 0, 0, get_salience_evaluation),
-    Builtin::eager("set-salience-evaluation", 1, 1, set_salience_evaluation),
+    Builtin::eager("set-salience-evaluation", 1, 1, set_salience_evaluation).args(&[super::describe::ArgType::Symbol], Any),
 ];
 #[cfg(not(feature = "extras"))]
 pub const FUNCS: &[Builtin] = &[];

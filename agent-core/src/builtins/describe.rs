@@ -22,6 +22,8 @@ pub enum ArgType {
     Integer,
     /// Symbol or string.
     Lexeme,
+    /// A symbol alone (a construct or slot name).
+    Symbol,
     Str,
     /// No literal is a multifield.
     Multifield,
@@ -208,6 +210,7 @@ impl ArgType {
             ArgType::Number => matches!(v, Value::Int(_) | Value::Float(_)),
             ArgType::Integer => matches!(v, Value::Int(_)),
             ArgType::Lexeme => matches!(v, Value::Sym(_) | Value::Str(_)),
+            ArgType::Symbol => matches!(v, Value::Sym(_)),
             ArgType::Str => matches!(v, Value::Str(_)),
             ArgType::Multifield | ArgType::FactAddress => false,
         }
@@ -220,6 +223,7 @@ impl ArgType {
             ArgType::Number => "integer or float",
             ArgType::Integer => "integer",
             ArgType::Lexeme => "symbol, string, or instance name",
+            ArgType::Symbol => "symbol",
             ArgType::Str => "string",
             ArgType::Multifield => "multifield",
             ArgType::FactAddress => "fact-address",
@@ -233,6 +237,7 @@ impl ArgType {
             ArgType::Number => "an argument of type integer or float",
             ArgType::Integer => "an argument of type integer",
             ArgType::Lexeme => "an argument of type symbol or string",
+            ArgType::Symbol => "an argument of type symbol",
             ArgType::Str => "an argument of type string",
             ArgType::Multifield => {
                 "an argument of type multifield (a variable or call, not a literal)"

@@ -162,7 +162,7 @@ impl Core<'_> {
     }
 
     /// The value a slot takes when an assert leaves it out.
-    fn default_value(&mut self, tmpl: Ix, slot: Ix) -> Result<Value, EvalError> {
+    pub(crate) fn default_value(&mut self, tmpl: Ix, slot: Ix) -> Result<Value, EvalError> {
         let def = self.slot_def(tmpl, slot);
         match def.default_kind {
             DefaultKind::Static | DefaultKind::Dynamic if def.default != NONE => {

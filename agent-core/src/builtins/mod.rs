@@ -32,6 +32,7 @@ pub mod pretty;
 pub mod queries;
 pub mod random;
 pub mod strings;
+pub mod template_slots;
 
 use crate::engine::Core;
 use crate::error::{CapacityError, EvalError};
@@ -149,6 +150,7 @@ pub const TABLES: &[&[Builtin]] = &[
     evaluate::FUNCS,
     extras::FUNCS,
     compat::FUNCS,
+    template_slots::FUNCS,
 ];
 
 const fn builtin_count() -> usize {

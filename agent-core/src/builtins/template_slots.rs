@@ -1,0 +1,324 @@
+//! The `deftemplate-slot-*` functions (agent-core feature `extras`; the agent image
+//! calls none of them): what a template says about its slots, as CLIPS 6.30 answers.
+//!
+//! This engine keeps no `range` or `cardinality` of a slot (the parser reads them
+//! without keeping them), so `deftemplate-slot-range` and `deftemplate-slot-cardinality`
+//! answer only where those cannot apply (a range on a slot that takes no number, a
+//! cardinality on a single-field slot) and otherwise refuse with an error instead of
+//! guessing.
+// without the feature the table is empty and the functions unused (and not linked)
+#![cfg_attr(not(feature = "extras"), allow(dead_code, unused_imports))]
+
+use super::describe::ArgType::{Any, Symbol as Y};
+use super::{Args, Builtin, SYM_FALSE};
+use crate::engine::Core;
+use crate::error::{EvalError, EvalErrorKind};
+use crate::host::router;
+use crate::template::{types, DefaultKind, SlotDef};
+use crate::value::{Ix, SymId, TextBuf, Value, NONE};
+use core::fmt::Write;
+
+#[cfg(feature = "extras")]
+#[rustfmt::skip]
+pub const FUNCS: &[Builtin] = &[
+    Builtin::eager("deftemplate-slot-names", 1, 1, slot_names),
+    Builtin::eager("deftemplate-slot-existp", 2, 2, slot_existp).args(&[Y, Y], Any),
+    Builtin::eager("deftemplate-slot-multip", 2, 2, slot_multip).args(&[Y, Y], Any),
+    Builtin::eager("deftemplate-slot-singlep", 2, 2, slot_singlep).args(&[Y, Y], Any),
+    Builtin::eager("deftemplate-slot-defaultp", 2, 2, slot_defaultp).args(&[Y, Y], Any),
+    Builtin::eager("deftemplate-slot-default-value", 2, 2, slot_default_value).args(&[Y, Y], Any),
+    Builtin::eager("deftemplate-slot-types", 2, 2, slot_types).args(&[Y, Y], Any),
+    Builtin::eager("deftemplate-slot-allowed-values", 2, 2, slot_allowed_values).args(&[Y, Y], Any),
+    Builtin::eager("deftemplate-slot-range", 2, 2, slot_range).args(&[Y, Y], Any),
+    Builtin::eager("deftemplate-slot-cardinality", 2, 2, slot_cardinality).args(&[Y, Y], Any),
+    Builtin::eager("rules", 0, 1, super::commands::list_defrules),
+];
+#[cfg(not(feature = "extras"))]
+pub const FUNCS: &[Builtin] = &[];
+
+/// CLIPS's type names in the order `deftemplate-slot-types` lists them.
+const TYPE_NAMES: [(u8, &str); 5] = [
+    (types::FLOAT, "FLOAT"),
+    (types::INTEGER, "INTEGER"),
+    (types::SYMBOL, "SYMBOL"),
+    (types::STRING, "STRING"),
+    (types::FACT_ADDRESS, "FACT-ADDRESS"),
+];
+/// Every type a slot without `(type ...)` takes, as CLIPS lists it.
+const ALL_TYPES: [&str; 8] = [
+    "FLOAT",
+    "INTEGER",
+    "SYMBOL",
+    "STRING",
+    "EXTERNAL-ADDRESS",
+    "FACT-ADDRESS",
+    "INSTANCE-ADDRESS",
+    "INSTANCE-NAME",
+];
+
+fn empty_multi(cx: &mut Core<'_>) -> Value {
+    let start = cx.multi_begin();
+    cx.multi_finish(start)
+}
+
+/// An error CLIPS reports with `text` and follows with `fallback` (FALSE, or `()`).
+fn reported(cx: &mut Core<'_>, text: &str, fallback: Value) -> EvalError {
+    cx.write(router::WERROR, text);
+    cx.set_error_fallback(fallback, None);
+    EvalError::new(EvalErrorKind::Reported)
+}
+
+/// The named template (argument 1), as `func` looks it up: a symbol naming a defined
+/// template.
+fn template_arg(
+    cx: &mut Core<'_>,
+    a: Args,
+    func: &'static str,
+    fallback: Value,
+) -> Result<Ix, EvalError> {
+    let name = match cx.arg(a, 0) {
+        Value::Sym(s) => s,
+        _ => {
+            let mut b: TextBuf<160> = TextBuf::new();
+            let _ = writeln!(
+                b,
+                "[ARGACCES5] Function {func} expected argument #1 to be of type deftemplate name"
+            );
+            return Err(reported(cx, b.as_str(), fallback));
+        }
+    };
+    match cx.find_template(name) {
+        Some(t) => Ok(t),
+        None => {
+            let mut b: TextBuf<160> = TextBuf::new();
+            let _ = writeln!(
+                b,
+                "[PRNTUTIL1] Unable to find deftemplate {}.",
+                cx.sym_text(name)
+            );
+            Err(reported(cx, b.as_str(), fallback))
+        }
+    }
+}
+
+/// Slot `name` of template `t`; `(initial-fact)` has none, as in CLIPS.
+fn find_slot(cx: &Core<'_>, t: Ix, name: Value) -> Option<Ix> {
+    match name {
+        Value::Sym(s) if t != cx.st.facts.initial_tmpl => cx.find_slot(t, s),
+        _ => None,
+    }
+}
+
+/// The slot name (argument 2), a symbol.
+fn slot_name_arg(
+    cx: &mut Core<'_>,
+    a: Args,
+    func: &'static str,
+    fallback: Value,
+) -> Result<Value, EvalError> {
+    let name = cx.arg(a, 1);
+    if !matches!(name, Value::Sym(_)) {
+        let mut b: TextBuf<160> = TextBuf::new();
+        let _ = writeln!(
+            b,
+            "[ARGACCES5] Function {func} expected argument #2 to be of type symbol"
+        );
+        return Err(reported(cx, b.as_str(), fallback));
+    }
+    Ok(name)
+}
+
+/// Template and slot (arguments 1 and 2); a missing slot is `[TMPLTDEF1]` followed by
+/// `fallback`.
+fn slot_arg(
+    cx: &mut Core<'_>,
+    a: Args,
+    func: &'static str,
+    fallback: Value,
+) -> Result<(Ix, Ix), EvalError> {
+    let t = template_arg(cx, a, func, fallback)?;
+    let name = slot_name_arg(cx, a, func, fallback)?;
+    match find_slot(cx, t, name) {
+        Some(s) => Ok((t, s)),
+        None => {
+            let mut b: TextBuf<200> = TextBuf::new();
+            let _ = write!(b, "[TMPLTDEF1] Invalid slot ");
+            let _ = cx.write_plain(&mut b, name);
+            let tname: SymId = cx.templates[t as usize].name;
+            let _ = writeln!(
+                b,
+                " not defined in corresponding deftemplate {}.",
+                cx.sym_text(tname)
+            );
+            Err(reported(cx, b.as_str(), fallback))
+        }
+    }
+}
+
+fn slot_names(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let t = template_arg(cx, a, "deftemplate-slot-names", Value::Sym(SYM_FALSE))?;
+    let start = cx.multi_begin();
+    if t != cx.st.facts.initial_tmpl {
+        let tm = cx.templates[t as usize];
+        for s in 0..tm.nslots {
+            let name = cx.slots[(tm.first_slot + s) as usize].name;
+            cx.multi_push(Value::Sym(name))?;
+        }
+    }
+    Ok(cx.multi_finish(start))
+}
+
+/// FALSE for a missing slot, without a message.
+fn slot_existp(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let false_ = Value::Sym(SYM_FALSE);
+    let t = template_arg(cx, a, "deftemplate-slot-existp", false_)?;
+    let name = slot_name_arg(cx, a, "deftemplate-slot-existp", false_)?;
+    Ok(Core::bool_value(find_slot(cx, t, name).is_some()))
+}
+
+fn def_of(
+    cx: &mut Core<'_>,
+    a: Args,
+    func: &'static str,
+    fallback: Value,
+) -> Result<SlotDef, EvalError> {
+    let (t, s) = slot_arg(cx, a, func, fallback)?;
+    Ok(cx.slot_def(t, s))
+}
+
+fn slot_multip(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let def = def_of(cx, a, "deftemplate-slot-multip", Value::Sym(SYM_FALSE))?;
+    Ok(Core::bool_value(def.multi))
+}
+
+fn slot_singlep(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let def = def_of(cx, a, "deftemplate-slot-singlep", Value::Sym(SYM_FALSE))?;
+    Ok(Core::bool_value(!def.multi))
+}
+
+/// `static` (a `default`, or none given), `dynamic`, or FALSE for `?NONE`.
+fn slot_defaultp(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let def = def_of(cx, a, "deftemplate-slot-defaultp", Value::Sym(SYM_FALSE))?;
+    Ok(match def.default_kind {
+        DefaultKind::Required => Value::Sym(SYM_FALSE),
+        DefaultKind::Dynamic => Value::Sym(cx.intern("dynamic")?),
+        DefaultKind::Static | DefaultKind::Derived => Value::Sym(cx.intern("static")?),
+    })
+}
+
+/// The value an assert would give the slot (a dynamic default is evaluated now);
+/// `?NONE` for a slot that must be given.
+fn slot_default_value(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let (t, s) = slot_arg(
+        cx,
+        a,
+        "deftemplate-slot-default-value",
+        Value::Sym(SYM_FALSE),
+    )?;
+    if cx.slot_def(t, s).default_kind == DefaultKind::Required {
+        return Ok(Value::Sym(cx.intern("?NONE")?));
+    }
+    let v = cx.default_value(t, s)?;
+    if let Value::Multi(m) = v {
+        // a derived empty multifield points at the scratch top: make it a real one
+        if m.len == 0 {
+            return Ok(empty_multi(cx));
+        }
+    }
+    Ok(v)
+}
+
+fn slot_types(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let fallback = empty_multi(cx);
+    let def = def_of(cx, a, "deftemplate-slot-types", fallback)?;
+    let start = cx.multi_begin();
+    if def.types == 0 {
+        for name in ALL_TYPES {
+            let s = cx.intern(name)?;
+            cx.multi_push(Value::Sym(s))?;
+        }
+    } else {
+        for (bit, name) in TYPE_NAMES {
+            if def.types & bit != 0 {
+                let s = cx.intern(name)?;
+                cx.multi_push(Value::Sym(s))?;
+            }
+        }
+    }
+    Ok(cx.multi_finish(start))
+}
+
+/// The `allowed-...` values, or FALSE when the slot has none.
+fn slot_allowed_values(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let fallback = empty_multi(cx);
+    let def = def_of(cx, a, "deftemplate-slot-allowed-values", fallback)?;
+    if def.allowed == NONE {
+        return Ok(Value::Sym(SYM_FALSE));
+    }
+    let start = cx.multi_begin();
+    let mut e = def.allowed;
+    while e != NONE {
+        let v = cx.const_value(e);
+        cx.multi_push(v)?;
+        e = cx.exprs[e as usize].next;
+    }
+    Ok(cx.multi_finish(start))
+}
+
+/// `[NOTIMPL1]`: the engine does not keep what `func` asks for.
+fn not_kept(cx: &mut Core<'_>, func: &str, what: &str) -> EvalError {
+    let mut b: TextBuf<160> = TextBuf::new();
+    let _ = writeln!(
+        b,
+        "[NOTIMPL1] {func}: robotino-agent does not keep a slot's {what}"
+    );
+    cx.write(router::WERROR, b.as_str());
+    EvalError::already_reported()
+}
+
+/// FALSE for a slot that takes no number; otherwise unknown here (see the module).
+fn slot_range(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let fallback = empty_multi(cx);
+    let def = def_of(cx, a, "deftemplate-slot-range", fallback)?;
+    if def.types != 0 && def.types & types::NUMBER == 0 {
+        return Ok(Value::Sym(SYM_FALSE));
+    }
+    Err(not_kept(cx, "deftemplate-slot-range", "range"))
+}
+
+/// `()` for a single-field slot; otherwise unknown here (see the module).
+fn slot_cardinality(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let fallback = empty_multi(cx);
+    let def = def_of(cx, a, "deftemplate-slot-cardinality", fallback)?;
+    if !def.multi {
+        return Ok(empty_multi(cx));
+    }
+    Err(not_kept(cx, "deftemplate-slot-cardinality", "cardinality"))
+}
+
+#[cfg(all(test, feature = "extras"))]
+mod tests {
+    use crate::testutil::run_program;
+
+    #[test]
+    fn range_and_cardinality_are_refused_where_unknown() {
+        let out = run_program(
+            "(deftemplate t (slot a (type INTEGER)) (slot b (type SYMBOL)) (multislot c))\n\
+             (printout t (deftemplate-slot-range t b) crlf)\n\
+             (printout t (deftemplate-slot-cardinality t a) crlf)\n\
+             (deftemplate-slot-range t a)\n\
+             (deftemplate-slot-cardinality t c)\n",
+        );
+        assert!(out.starts_with("FALSE\n()\n"), "{out}");
+        assert!(
+            out.contains(
+                "[NOTIMPL1] deftemplate-slot-range: robotino-agent does not keep a slot's range"
+            ),
+            "{out}"
+        );
+        assert!(
+            out.contains("[NOTIMPL1] deftemplate-slot-cardinality: robotino-agent does not keep a slot's cardinality"),
+            "{out}"
+        );
+    }
+}
