@@ -5,7 +5,9 @@
 ;;; robot driver) and waits in state EXEC.  The executor answers with a
 ;;; (skill-outcome) of the same id: FINAL (with the light seen at a
 ;;; machine) or FAILED.  A failure aborts the step: the robot believes it
-;;; holds nothing and is IDLE again, ready for the next best action.
+;;; holds nothing, unless the executor's puck sensor says the puck is still
+;;; in the gripper (info puck-held: kept), and is IDLE again, ready for the
+;;; next best action.
 ;;; Recycling (2012 rules): get-junk takes a junk puck at a machine
 ;;; (holding JUNK), recycle brings it to a recycling unit, which turns it
 ;;; back into S0 (holding S0).
@@ -161,6 +163,38 @@
   =>
   (retract ?s ?r ?o ?h ?c ?p)
   (assert (state IDLE) (holding NONE) (s0-taken (+ ?n 1)) (robot-at ?t)))
+
+(defglobal ?*KEPT_TRIES* = 2)   ; failures in a row that keep the puck
+
+(deffacts execution-start
+  (kept-failures 0))
+
+(defrule exec-failed-still-holding
+  "The skill failed on the way, but the gripper still holds the puck (the
+   executor's puck sensor: info puck-held): abort, keep the puck and the
+   beliefs, go idle; the next decision uses the puck.  After KEPT_TRIES
+   such failures in a row the step is aborted as any other (the puck is
+   believed lost): whatever keeps failing is not tried forever."
+  (declare (salience (+ ?*PRIORITY_EXEC* 1)))
+  ?s <- (state EXEC)
+  ?r <- (skill-request (id ?id) (name ~get-s0&~get-junk))
+  ?o <- (skill-outcome (id ?id) (status FAILED) (info puck-held))
+  (holding ~NONE)
+  ?k <- (kept-failures ?n&:(< ?n ?*KEPT_TRIES*))
+  =>
+  (retract ?s ?r ?o ?k)
+  (assert (state IDLE) (kept-failures (+ ?n 1))))
+
+(defrule exec-kept-failures-over
+  "A skill ended FINAL, or a failure left the hands empty: the next kept
+   failure counts from zero again."
+  (declare (salience (+ ?*PRIORITY_EXEC* 2)))
+  (skill-outcome (status ?st) (info ?info))
+  (test (or (eq ?st FINAL) (neq ?info puck-held)))
+  ?k <- (kept-failures ?n&:(> ?n 0))
+  =>
+  (retract ?k)
+  (assert (kept-failures 0)))
 
 (defrule exec-failed-abort
   "The behaviour layer gave up carrying a puck (or fetching junk): abort, believe the puck is

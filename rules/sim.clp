@@ -5,18 +5,20 @@
 ;;; approach poses at ROBOT_SPEED), then a referee action; the referee's
 ;;; answer becomes the skill outcome the agent sees.  The simulation keeps
 ;;; the ground truth of what the robot carries ((sim-robot (puck))): the
-;;; referee always sees the real puck, whatever the agent believes.  Like
-;;; the 2012 behaviour layer, a skill that ends FAILED leaves the robot
-;;; empty-handed, and the gripper's puck sensor (front IR) is reported with
-;;; every outcome at a machine (info puck-held / no-puck).  The decision log
+;;; referee always sees the real puck, whatever the agent believes.  A skill
+;;; that ends FAILED leaves the robot empty-handed (the puck was lost or
+;;; grabbed in vain), except a failed drive, after which the robot still
+;;; holds its puck and says so (info puck-held); the gripper's puck sensor
+;;; (front IR) is also reported with every outcome at a machine (info
+;;; puck-held / no-puck).  The decision log
 ;;; and the end of the game are game-log.clp's business, so a host driver
 ;;; that moves a real or simulated robot shares them.
 
 (deftemplate fault
   "Injected disturbance of the skill with request id at-decision:
    lose-puck (the carried puck is lost on the way; a fetched one right
-   after taking it), drive-fail (the goto fails: the robot never gets there
-   and leaves a carried puck behind), grab-fail (fetching: the grab fails,
+   after taking it), drive-fail (the goto fails: the robot never gets there;
+   a carried puck stays in the gripper), grab-fail (fetching: the grab fails,
    nothing is taken), wrong-light (at a machine the camera reports another
    light than the machine shows; the machine acts as usual), drawn (the
    simulation picks one of the kinds that fit the skill from draw)."
@@ -33,7 +35,8 @@
 (deftemplate sim-step
   (slot id (type INTEGER))
   (slot phase (type SYMBOL) (allowed-symbols arrived asked))
-  (slot failed (type SYMBOL) (allowed-symbols TRUE FALSE) (default FALSE))
+  ;; KEPT: failed, the robot still holds its puck
+  (slot failed (type SYMBOL) (allowed-symbols TRUE FALSE KEPT) (default FALSE))
   (slot misread (type INTEGER) (default 0)))  ; wrong light: 1 or 2, see sim-misread-light
 
 (deffacts sim-start
@@ -127,10 +130,8 @@
     else
     (switch ?fault
       (case drive-fail then
-        (modify ?s (phase asked) (failed TRUE))
-        (if ?fetch
-         then (assert (rf-result (id ?id) (status ok)))
-         else (assert (rf-action (id ?id) (kind lose) (target ?t) (puck ?held)))))
+        (modify ?s (phase asked) (failed (if ?fetch then TRUE else KEPT)))
+        (assert (rf-result (id ?id) (status ok))))
       (case lose-puck then
         (modify ?s (phase asked) (failed TRUE))
         (assert (rf-action (id ?id) (kind lose) (target ?t) (puck ?held))))
@@ -151,17 +152,20 @@
   (sim-step (id ?id) (phase asked) (failed ?failed) (misread ?misread))
   (skill-request (id ?id) (name ?a))
   ?res <- (rf-result (id ?id) (status ?st&~late) (light ?l) (puck ?after))
-  ?r <- (sim-robot)
+  ?r <- (sim-robot (puck ?held))
   =>
   (retract ?res)
-  (bind ?fail (or (eq ?failed TRUE) (eq ?st empty)))
+  (bind ?kept (eq ?failed KEPT))
+  (bind ?fail (or (eq ?failed TRUE) ?kept (eq ?st empty)))
   (bind ?status (if ?fail then FAILED else FINAL))
-  (bind ?now (if ?fail then NONE else ?after))
+  (bind ?now (if ?kept then ?held else (if ?fail then NONE else ?after)))
   (modify ?r (puck ?now))
   (bind ?info (if (eq ?st empty)
                then (if (eq ?a get-junk) then no-junk else storage-empty)
-               else (if (and (not ?fail) (eq ?a finish-puck-at))
-                     then (if (eq ?now NONE) then no-puck else puck-held)
-                     else none)))
+               else (if ?kept
+                     then puck-held
+                     else (if (and (not ?fail) (eq ?a finish-puck-at))
+                           then (if (eq ?now NONE) then no-puck else puck-held)
+                           else none))))
   (assert (skill-outcome (id ?id) (status ?status)
                          (light (sim-misread-light ?l ?misread)) (info ?info))))

@@ -419,7 +419,7 @@ fn agent_loop(
                     }
                     Err(reason) => {
                         let outcome = SkillOutcome::Failed(reason);
-                        mind.finish(&mut ports, &chosen, request_seq, outcome, cycle)?;
+                        mind.finish(&mut ports, &chosen, request_seq, outcome, &p, cycle)?;
                     }
                 }
             }
@@ -497,7 +497,7 @@ fn agent_loop(
                 let chosen = r.chosen.clone();
                 let request_seq = r.request_seq;
                 running = None;
-                mind.finish(&mut ports, &chosen, request_seq, outcome, cycle)?;
+                mind.finish(&mut ports, &chosen, request_seq, outcome, &p, cycle)?;
             } else {
                 let status = SkillStatus {
                     request_seq: r.request_seq,
@@ -632,6 +632,7 @@ impl Mind {
         chosen: &ChosenSkill,
         request_seq: u32,
         outcome: SkillOutcome,
+        p: &Perceived,
         cycle: u64,
     ) -> Result<(), Box<dyn std::error::Error>> {
         let request = chosen.request;
@@ -649,7 +650,8 @@ impl Mind {
             _ => "",
         };
         println!("robotino-agent run: cycle={cycle} end {request:?} {outcome:?} {reason}");
-        self.agent.report(chosen.id, outcome)?;
+        // A failed skill with the puck still in the gripper keeps it (the rules hear so).
+        self.agent.report_sensed(chosen.id, outcome, p.has_puck)?;
         self.dirty = true;
         Ok(())
     }

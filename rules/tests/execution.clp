@@ -83,3 +83,33 @@
 (do-for-fact ((?m machine)) (eq ?m:name M5) (modify ?m (mtype T2) (junk 1)))
 (run)
 (t-expect-request "exec storage empty, junk known: fetch junk" get-junk M5)
+
+;; A failed transport with the puck still in the gripper: keep it, try again.
+(reset)
+(t-holding S1)
+(t-machine M2 T2 S0)
+(t-outcome-sensed finish-puck-at M2 FAILED none puck-held)
+(run)
+(t-expect-holding "exec failed, puck held: still holding S1" S1)
+(t-expect-machine "exec failed, puck held: machine belief kept" M2 T2 S0)
+(t-expect-request "exec failed, puck held: the S1 goes to M2 again" finish-puck-at M2)
+
+;; A failed delivery with the P still held: deliver it again.
+(reset)
+(assert (active-gate D2))
+(t-holding P)
+(t-outcome-sensed deliver D2 FAILED none puck-held)
+(run)
+(t-expect-holding "exec failed delivery, puck held: still holding P" P)
+(t-expect-request "exec failed delivery, puck held: deliver again" deliver D2)
+
+;; Kept failures in a row: after KEPT_TRIES the puck is believed lost.
+(reset)
+(t-holding S1)
+(t-machine M2 T2 S0)
+(do-for-all-facts ((?k kept-failures)) TRUE (retract ?k))
+(assert (kept-failures 2))
+(t-outcome-sensed finish-puck-at M2 FAILED none puck-held)
+(run)
+(t-expect-holding "exec third kept failure: believed lost" NONE)
+(t-expect-request "exec third kept failure: fetch anew" get-s0 INS)

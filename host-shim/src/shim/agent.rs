@@ -236,7 +236,22 @@ impl EngineAgent {
 
     /// Tells the rules how skill `id` ended: asserts its `skill-outcome`.
     pub fn report(&mut self, id: i64, outcome: SkillOutcome) -> Result<(), RulesError> {
-        let (status, light, info) = outcome_slots(outcome);
+        self.report_sensed(id, outcome, false)
+    }
+
+    /// [`Self::report`] with the puck sensor's reading at the end: a failed skill with a
+    /// puck still in the gripper says so (`info puck-held`), and the rules keep the puck
+    /// instead of believing it lost.
+    pub fn report_sensed(
+        &mut self,
+        id: i64,
+        outcome: SkillOutcome,
+        puck_present: bool,
+    ) -> Result<(), RulesError> {
+        let (status, light, mut info) = outcome_slots(outcome);
+        if status == "FAILED" && info == "none" && puck_present {
+            info = "puck-held";
+        }
         self.rules.assert(&format!(
             "(skill-outcome (id {id}) (status {status}) (light {light}) (info {info}))"
         ))?;
