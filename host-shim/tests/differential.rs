@@ -346,4 +346,5 @@ differential_programs! {
     p187_older_function_names => "187-older-function-names",
     p188_setgen_and_engine_settings => "188-setgen-and-engine-settings",
     p189_deftemplate_slot_functions => "189-deftemplate-slot-functions",
+    p190_show_defglobals => "190-show-defglobals",
 }

@@ -1,6 +1,6 @@
 //! Builtins the agent image leaves out (agent-core feature `extras`; its rules call none
 //! of them): asking the environment about its constructs and facts (`get-defrule-list`,
-//! `list-deffacts`, `fact-slot-names`, ...), removing constructs (`undeffacts`,
+//! `list-deffacts`, `show-defglobals`, `fact-slot-names`, ...), removing constructs (`undeffacts`,
 //! `undeftemplate`, ...), `gensym`, and `sort`, `funcall` and `assert-string` (in
 //! `evaluate`).
 // without the feature the table is empty and the functions unused (and not linked)
@@ -28,6 +28,7 @@ pub const FUNCS: &[Builtin] = &[
         .on_error(super::describe::OnError::EmptyMultifield),
     Builtin::eager("list-deffacts", 0, 1, list_deffacts),
     Builtin::eager("list-defglobals", 0, 1, list_defglobals),
+    Builtin::eager("show-defglobals", 0, 1, show_defglobals).args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any),
     Builtin::eager("undeffacts", 1, 1, undeffacts),
     Builtin::eager("undeftemplate", 1, 1, undeftemplate),
     Builtin::eager("undeffunction", 1, 1, undeffunction),
@@ -173,6 +174,40 @@ fn list_deffacts(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
 
 fn list_defglobals(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
     list_names(cx, Kind::Defglobal, "defglobal", "s");
+    Ok(Value::Void)
+}
+
+/// `(show-defglobals [module])`: `?*name* = value` per global, in definition order.
+fn show_defglobals(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    if a.len == 1 {
+        // one module here, MAIN
+        let what = match cx.arg(a, 0) {
+            Value::Sym(s) if cx.sym_text(s) == "MAIN" => None,
+            Value::Sym(_) => Some("defmodule name"),
+            _ => Some("symbol"),
+        };
+        if let Some(what) = what {
+            let mut b: TextBuf<160> = TextBuf::new();
+            let _ = writeln!(
+                b,
+                "[ARGACCES5] Function show-defglobals expected argument #1 to be of type {what}"
+            );
+            cx.write(router::WERROR, b.as_str());
+            return Err(EvalError::already_reported());
+        }
+    }
+    let mut i = 0;
+    while let Some(name) = name_at(cx, Kind::Defglobal, i) {
+        if let Some(s) = name {
+            let mut b: TextBuf<160> = TextBuf::new();
+            let _ = write!(b, "?*{}* = ", cx.sym_text(s));
+            cx.write(router::WDISPLAY, b.as_str());
+            let v = cx.globals[i as usize].value;
+            cx.print_value(router::WDISPLAY, v, true);
+            cx.write(router::WDISPLAY, "\n");
+        }
+        i += 1;
+    }
     Ok(Value::Void)
 }
 
