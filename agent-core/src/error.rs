@@ -184,6 +184,7 @@ messages! {
     FormatArity11 = "[ARGACCES4] Function format expected exactly 11 argument(s)",
     FormatArity12 = "[ARGACCES4] Function format expected exactly 12 argument(s)",
     FormatArity = "[ARGACCES4] Function format called with the wrong number of arguments.",
+    TanSingularity = "[EMATHFUN3] Singularity at asymptote in tan function.",
 }
 
 impl Message {

@@ -315,8 +315,14 @@ fn sin(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 fn cos(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     unary(cx, a, "cos", libm::cos)
 }
+/// CLIPS refuses a tangent whose cosine is within 1e-15 of zero (`(tan (/ (pi) 2))`).
 fn tan(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    unary(cx, a, "tan", libm::tan)
+    let x = float_of(cx, a, 0, "tan")?;
+    let c = libm::cos(x);
+    if c < 1e-15 && c > -1e-15 {
+        return Err(EvalError::message(crate::error::Message::TanSingularity));
+    }
+    Ok(Value::Float(libm::tan(x)))
 }
 fn atan(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     unary(cx, a, "atan", libm::atan)
