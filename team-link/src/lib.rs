@@ -11,7 +11,7 @@ use zenoh::pubsub::Subscriber;
 use zenoh::sample::Sample;
 use zenoh::{Session, Wait};
 
-use host_shim::team::TeamMsg;
+use host_shim::team::{TeamLink, TeamMsg};
 
 /// What went wrong on the link.
 #[derive(Debug)]
@@ -102,5 +102,22 @@ impl ZenohLink {
                 .map_err(|e| err("receiving", e))?;
         }
         Ok(out)
+    }
+}
+
+/// The agent loop's team link over Zenoh (`robotino-agent-zenoh`): no lockstep between
+/// machines, so the cycle is ignored and whatever has arrived is handed in; the team's
+/// rules stay correct under the delays, losses and reordering that brings.
+impl TeamLink for ZenohLink {
+    fn send(&mut self, _cycle: u64, msgs: &[TeamMsg]) -> Result<(), host_shim::team::LinkError> {
+        for m in msgs {
+            ZenohLink::send(self, m).map_err(|e| host_shim::team::LinkError(e.to_string()))?;
+        }
+        Ok(())
+    }
+
+    fn receive(&mut self, _cycle: u64) -> Result<Vec<TeamMsg>, host_shim::team::LinkError> {
+        ZenohLink::receive(self, Duration::ZERO)
+            .map_err(|e| host_shim::team::LinkError(e.to_string()))
     }
 }
