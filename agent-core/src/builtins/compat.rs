@@ -130,6 +130,15 @@ fn gen_asinh(x: f64) -> f64 {
 fn gen_atanh(x: f64) -> f64 {
     0.5 * libm::log((1.0 + x) / (1.0 - x))
 }
+fn gen_asech(x: f64) -> f64 {
+    libm::log(1.0 / x + libm::sqrt(1.0 / (x * x) - 1.0))
+}
+fn gen_acsch(x: f64) -> f64 {
+    libm::log(1.0 / x + libm::sqrt(1.0 / (x * x) + 1.0))
+}
+fn gen_acoth(x: f64) -> f64 {
+    0.5 * libm::log((x + 1.0) / (x - 1.0))
+}
 
 fn sinh(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     float(libm::sinh(float_arg(cx, a, "sinh")?))
@@ -179,21 +188,21 @@ fn asech(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     if x > 1.0 || x <= 0.0 {
         return domain(cx, "asech");
     }
-    float(gen_acosh(1.0 / x))
+    float(gen_asech(x))
 }
 fn acsch(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let x = float_arg(cx, a, "acsch")?;
     if x == 0.0 {
         return domain(cx, "acsch");
     }
-    float(gen_asinh(1.0 / x))
+    float(gen_acsch(x))
 }
 fn acoth(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let x = float_arg(cx, a, "acoth")?;
     if (-1.0..=1.0).contains(&x) {
         return domain(cx, "acoth");
     }
-    float(gen_atanh(1.0 / x))
+    float(gen_acoth(x))
 }
 fn sec(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let c = libm::cos(float_arg(cx, a, "sec")?);
