@@ -79,7 +79,7 @@ fn no_position(message: String) -> BadRuleFile {
 }
 
 /// What a stand-in returns: loading never calls it.
-fn stand_in(_cx: &mut agent_core::Core<'_>, _args: agent_core::Args) -> Result<Value, EvalError> {
+fn stand_in(_call: &mut agent_core::HostCall<'_, '_>) -> Result<Value, EvalError> {
     Ok(Value::Void)
 }
 

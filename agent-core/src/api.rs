@@ -1,11 +1,11 @@
 //! The public engine API (see `/work/brief/engine-api.md`).
 
-use crate::builtins::{BuiltinFn, ANY};
+use crate::builtins::ANY;
 use crate::config::Storage;
 use crate::engine::{cap, Engine, ExternalEntry, Stats};
 use crate::error::{EngineError, EvalError, EvalErrorKind, LoadError, Pool};
-use crate::fact::FactState;
 use crate::host::Host;
+use crate::host_fn::ExternalFn;
 use crate::parser::{Item, Parser};
 use crate::value::Ix;
 use crate::value::{Value, ValueRef, NONE};
@@ -30,9 +30,6 @@ pub struct Usage {
 /// A fact's index (`f-N`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub struct FactId(pub u32);
-
-/// Host-facing result of `eval_str` and external functions.
-pub type ExternalFn = BuiltinFn;
 
 macro_rules! engine_impl {
     ($($body:tt)*) => {
@@ -235,40 +232,21 @@ engine_impl! {
 
     /// Live facts in index order.
     pub fn facts(&self) -> impl Iterator<Item = FactId> + '_ {
-        let mut f = self.st.facts.fact_head;
-        core::iter::from_fn(move || {
-            if f == NONE {
-                return None;
-            }
-            let x = self.fact_at(f);
-            f = x.next;
-            Some(FactId(x.num))
-        })
+        self.fact_view().ids()
     }
 
     pub fn fact_template_name(&self, id: FactId) -> Option<&str> {
-        let f = self.fact_slot_of(id)?;
-        let t = self.template_at(self.fact_at(f).tmpl);
-        Some(self.sym_str(t.name))
+        self.fact_view().template_name(id)
     }
 
     /// A slot of a fact (`implied` for ordered facts). Multislots read as `Multi(len)`;
     /// elements via `fact_multislot_item`.
     pub fn fact_slot(&self, id: FactId, slot: &str) -> Option<ValueRef<'_>> {
-        let (cell, multi) = self.slot_cell_of(id, slot)?;
-        match multi {
-            Some(n) => Some(ValueRef::Multi(n)),
-            None => Some(self.value_ref(self.value_at(cell))),
-        }
+        self.fact_view().slot(id, slot)
     }
 
     pub fn fact_multislot_item(&self, id: FactId, slot: &str, i: usize) -> Option<ValueRef<'_>> {
-        let (cell, multi) = self.slot_cell_of(id, slot)?;
-        let n = multi? as usize;
-        if i >= n {
-            return None;
-        }
-        Some(self.value_ref(self.value_at(cell + 1 + i)))
+        self.fact_view().multislot_item(id, slot, i)
     }
 
     /// High-water marks and capacities of every pool.
@@ -330,51 +308,5 @@ engine_impl! {
             }
             n
         })
-    }
-
-    fn value_ref(&self, v: Value) -> ValueRef<'_> {
-        match v {
-            Value::Int(i) => ValueRef::Int(i),
-            Value::Float(f) => ValueRef::Float(f),
-            Value::Sym(s) => ValueRef::Symbol(self.sym_str(s)),
-            Value::Str(s) => ValueRef::String(self.sym_str(s)),
-            Value::Fact(r) => ValueRef::Fact(r.num),
-            Value::Multi(m) => ValueRef::Multi(m.len),
-            Value::Void => ValueRef::Void,
-        }
-    }
-
-    fn fact_slot_of(&self, id: FactId) -> Option<Ix> {
-        let mut f = self.st.facts.fact_head;
-        while f != NONE {
-            let x = self.fact_at(f);
-            if x.num == id.0 && x.state == FactState::Live {
-                return Some(f);
-            }
-            f = x.next;
-        }
-        None
-    }
-
-    fn slot_cell_of(&self, id: FactId, slot: &str) -> Option<(usize, Option<Ix>)> {
-        let f = self.fact_slot_of(id)?;
-        let fact = self.fact_at(f);
-        let t = self.template_at(fact.tmpl);
-        let idx = if t.implied {
-            0
-        } else {
-            (0..t.nslots).find(|&i| self.sym_str(self.slot_at(t.first_slot + i).name) == slot)?
-        };
-        let mut c = fact.start as usize;
-        for _ in 0..idx {
-            match self.value_at(c) {
-                Value::Multi(m) => c += 1 + m.len as usize,
-                _ => c += 1,
-            }
-        }
-        match self.value_at(c) {
-            Value::Multi(m) => Some((c, Some(m.len))),
-            _ => Some((c, None)),
-        }
     }
 }

@@ -8,17 +8,15 @@
 //! the rest of its state ([`EvalState`]), batch and prompt I/O ([`BatchIo`]), CLIPS
 //! mode flags ([`Mode`]), caches ([`Caches`]) and the random generator ([`Random`]).
 
-use crate::builtins::BuiltinFn;
 pub use crate::config::{entry_bytes, Core};
 use crate::config::{HostStorage, SmallStorage, Storage};
 use crate::error::{CapacityError, Pool};
 use crate::expr::{Expr, Op};
-use crate::fact::Fact;
 use crate::host::Host;
 use crate::rete::{PatBinding, MAX_PATTERNS};
 use crate::rule::{Activation, Rule};
 use crate::symbols::Symbols;
-use crate::template::{SlotDef, Template};
+
 use crate::value::Ix;
 use crate::value::{SymId, Value, NONE};
 
@@ -29,7 +27,7 @@ pub struct ExternalEntry {
     pub min: u8,
     /// `u8::MAX`: no upper bound.
     pub max: u8,
-    pub f: Option<BuiltinFn>,
+    pub f: Option<crate::host_fn::ExternalFn>,
 }
 
 impl ExternalEntry {
@@ -606,18 +604,20 @@ impl<S: Storage> Engine<S> {
         }
     }
 
-    pub(crate) fn fact_at(&self, f: Ix) -> Fact {
-        self.pools.pools().facts[f as usize]
+    /// The facts as the host API reads them.
+    pub(crate) fn fact_view(&self) -> crate::host_fn::FactView<'_> {
+        let p = self.pools.pools();
+        crate::host_fn::FactView {
+            facts: p.facts,
+            templates: p.templates,
+            slots: p.slots,
+            values: p.values,
+            sym_entries: p.sym_entries,
+            sym_bytes: p.sym_bytes,
+            head: self.st.facts.fact_head,
+        }
     }
-    pub(crate) fn template_at(&self, t: Ix) -> Template {
-        self.pools.pools().templates[t as usize]
-    }
-    pub(crate) fn slot_at(&self, s: Ix) -> SlotDef {
-        self.pools.pools().slots[s as usize]
-    }
-    pub(crate) fn value_at(&self, c: usize) -> Value {
-        self.pools.pools().values[c]
-    }
+
     pub(crate) fn rule_at(&self, r: Ix) -> Rule {
         self.pools.pools().rules[r as usize]
     }
@@ -959,9 +959,11 @@ impl Core<'_> {
 mod size_tests {
     extern crate std;
     use super::*;
+    use crate::fact::Fact;
     use crate::rete::{AlphaNode, Join, Token};
     use crate::symbols::SymEntry;
     use crate::template::{Deffacts, Deffunction, Global};
+    use crate::template::{SlotDef, Template};
     use core::mem::size_of;
 
     /// The pools' bytes as `Stats::bytes` reports them account for the whole engine but

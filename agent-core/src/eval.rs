@@ -524,7 +524,7 @@ impl Core<'_> {
                 let ext = self.externals[e as usize];
                 check_arity("external", ext.min, ext.max, args.len)?;
                 match ext.f {
-                    Some(f) => f(self, args),
+                    Some(f) => f(&mut crate::host_fn::HostCall::new(self, args)),
                     None => Err(EvalError::new(EvalErrorKind::NoSuchFunction)),
                 }
             }

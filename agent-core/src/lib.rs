@@ -153,6 +153,7 @@ pub mod expr;
 pub mod fact;
 pub mod hold;
 pub mod host;
+pub mod host_fn;
 pub mod invariants;
 pub mod lexer;
 pub mod parser;
@@ -166,7 +167,7 @@ pub mod value;
 #[cfg(test)]
 pub mod testutil;
 
-pub use api::{ExternalFn, FactId, Usage};
+pub use api::{FactId, Usage};
 pub use builtins::{Args, BuiltinFn};
 pub use config::{Capacities, Storage};
 pub use engine::{entry_bytes, Core, DefaultEngine, Engine, SmallEngine, Stats};
@@ -175,6 +176,7 @@ pub use error::{
     Message, Pool,
 };
 pub use host::{Host, NullHost};
+pub use host_fn::{ExternalFn, HostCall};
 pub use invariants::Violation;
 pub use parser::INPUT_ENDED;
 pub use value::{Ix, Value, ValueRef, NONE};

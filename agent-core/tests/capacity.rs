@@ -359,8 +359,7 @@ fn eval_stack_and_scratch_pools() {
 #[test]
 fn external_functions_pool() {
     fn one(
-        _cx: &mut agent_core::Core<'_>,
-        _a: agent_core::Args,
+        _call: &mut agent_core::HostCall<'_, '_>,
     ) -> Result<agent_core::Value, agent_core::EvalError> {
         Ok(agent_core::Value::Int(1))
     }

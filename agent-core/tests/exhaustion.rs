@@ -738,8 +738,7 @@ fn scratch_at_run_assert_and_modify() {
 #[test]
 fn external_functions_at_registration() {
     fn one(
-        _cx: &mut agent_core::Core<'_>,
-        _a: agent_core::Args,
+        _call: &mut agent_core::HostCall<'_, '_>,
     ) -> Result<agent_core::Value, agent_core::EvalError> {
         Ok(agent_core::Value::Int(1))
     }

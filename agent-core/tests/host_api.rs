@@ -60,3 +60,65 @@ fn eval_str_runs_fact_set_queries_that_modify_their_fact() {
     ts.sort();
     assert_eq!(ts, ["y", "z"]);
 }
+
+/// A host function sees its arguments and the engine's services through a `HostCall`:
+/// argument values and texts, multifield elements, facts by number and slot, new
+/// symbols and multifields as results, output through the host.
+#[test]
+fn host_functions_read_arguments_and_facts_through_their_call() {
+    use agent_core::{EvalError, FactId, HostCall, Value};
+    // (describe ?fact-number $?words): "<template> <slot x> <number of words>"
+    fn describe(call: &mut HostCall<'_, '_>) -> Result<Value, EvalError> {
+        let Some(Value::Int(n)) = call.arg(0) else {
+            return Ok(Value::Void);
+        };
+        let id = FactId(n as u32);
+        let name = call.fact_template_name(id).unwrap_or("?").to_string();
+        let x = match call.fact_slot(id, "x") {
+            Some(ValueRef::Symbol(s)) => s.to_string(),
+            other => format!("{other:?}"),
+        };
+        let words = call.arg(1).unwrap();
+        let first = call
+            .item(words, 0)
+            .and_then(|w| call.text(w))
+            .unwrap_or("-");
+        let text = format!(
+            "{name} {x} {first} {} {}",
+            call.len(),
+            call.fact_ids().count()
+        );
+        call.write("t", &text);
+        call.write("t", "\n");
+        let a = call.symbol("done")?;
+        let b = call.string(&name)?;
+        Ok(call.multifield(&[a, b, Value::Int(n)])?)
+    }
+    let mut engine = Box::new(SmallEngine::new());
+    let mut host = Capture::default();
+    engine
+        .register_function("describe", 2, Some(2), describe)
+        .unwrap();
+    engine
+        .load_str(&mut host, "d.clp", "(deftemplate p (slot x))")
+        .unwrap();
+    let f = engine.assert_str(&mut host, "(p (x seven))").unwrap();
+    let r = engine
+        .eval_str(
+            &mut host,
+            &format!("(length$ (describe {} (create$ hello world)))", f.0),
+        )
+        .unwrap();
+    assert_eq!(r, Value::Int(3));
+    assert_eq!(host.0, "p seven hello 2 2\n");
+    host.0.clear();
+    let r = engine
+        .eval_str(&mut host, &format!("(nth$ 2 (describe {} (create$)))", f.0))
+        .unwrap();
+    assert_eq!(host.0, "p seven - 2 2\n");
+    let mut text = String::new();
+    if let Value::Str(_) = r {
+        text = "a string".into();
+    }
+    assert_eq!(text, "a string");
+}
