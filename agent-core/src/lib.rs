@@ -31,8 +31,9 @@
 //! is built before its form is whole; its expression nodes, symbols and implied
 //! templates (append-only pools) are given back. Only a build that runs out of room
 //! (a pool, or tokens while priming) is undone in the network (`Core::rollback`).
-//! Where the code is not there yet (issue 23): `rete` keeps a join's child list in
-//! order (`note_children`) and builds the root join at start-up.
+//! The root join made at start-up and the priming of new rules are in
+//! `compile::prime`; `rete` only matches (and notes a join's one-child flag,
+//! `note_children`, after compile changes its child list).
 //!
 //! # Layout
 //! - [`value`]: values (`Int`, `Float`, symbols, strings, fact addresses, multifield

@@ -2,11 +2,13 @@
 //! (`parser::rule`: a rule's conditional elements as a `Build`, each pattern's form as
 //! a `PatIr`, tests and actions as expression nodes), once whole, becomes alpha nodes
 //! ([`alpha`]: sharing and discrimination) and joins ([`join`]: sharing of identical
-//! prefixes, the rule, hooking up and priming of new joins); [`remove`] takes them out
+//! prefixes, the rule, hooking up new joins), [`prime`] (the root join; new joins and
+//! alpha nodes matched against what exists); [`remove`] takes them out
 //! again (rule removal, the undo of a build that ran out of room).
 
 pub(crate) mod alpha;
 pub(crate) mod join;
+pub(crate) mod prime;
 pub(crate) mod remove;
 
 #[cfg(test)]

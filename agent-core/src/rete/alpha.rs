@@ -250,7 +250,7 @@ impl Core<'_> {
     /// left for the evaluator, from the first one the quick path cannot decide
     /// (NONE: all passed).
     #[cfg_attr(feature = "host-speedups", inline(always))]
-    fn quick_tests(&mut self, tests: Ix, fact: Ix) -> Option<Ix> {
+    pub(crate) fn quick_tests(&mut self, tests: Ix, fact: Ix) -> Option<Ix> {
         let mut t = tests;
         if t == NONE {
             return Some(t);
@@ -619,27 +619,6 @@ impl Core<'_> {
             self.tokens[am as usize].extra = NONE;
             self.remove_alpha_match(am);
         }
-    }
-
-    /// Drives the existing facts, oldest first, through the alpha nodes numbered
-    /// `first` and up (a new rule's patterns), in network order per fact.
-    pub(crate) fn prime_alphas(&mut self, first: Ix) -> Result<(), EvalError> {
-        let mut f = self.st.facts.fact_head;
-        while f != NONE {
-            let next = self.facts[f as usize].next;
-            let tmpl = self.facts[f as usize].tmpl;
-            let mut a = self.templates[tmpl as usize].alpha_head;
-            while a != NONE {
-                if a >= first {
-                    if let Some(tests) = self.quick_tests(self.alphas[a as usize].tests, f) {
-                        self.match_alpha(a, f, tests)?;
-                    }
-                }
-                a = self.alphas[a as usize].next_in_tmpl;
-            }
-            f = next;
-        }
-        Ok(())
     }
 }
 

@@ -1088,45 +1088,6 @@ impl Core<'_> {
             self.delete_token(t);
         }
     }
-
-    /// The global root join and its empty token (join 0), made at start-up.
-    pub(crate) fn make_root(&mut self) -> Result<(), EvalError> {
-        if self.st.pools.njoins == 0 {
-            if self.joins.is_empty() {
-                return Err(cap(Pool::Joins, 0).into());
-            }
-            self.joins[0] = super::Join {
-                kind: JoinKind::Root,
-                refs: 1,
-                ..super::Join::EMPTY
-            };
-            self.st.pools.njoins = 1;
-        }
-        if self.joins[0].mem == NONE {
-            let t = self.alloc_token()?;
-            self.tokens[t as usize] = Token {
-                kind: TokenKind::Beta,
-                owner: 0,
-                ..Token::EMPTY
-            };
-            self.joins[0].mem = t;
-        }
-        Ok(())
-    }
-
-    /// Feeds the active tokens of `parent`'s memory into a new child join.
-    pub(crate) fn prime_join(&mut self, join: Ix) -> Result<(), EvalError> {
-        let parent = self.joins[join as usize].parent;
-        let mut l = self.joins[parent as usize].mem;
-        while l != NONE {
-            let next = self.tokens[l as usize].mem_next;
-            if self.token_active(l) {
-                self.left_activate(join, l)?;
-            }
-            l = next;
-        }
-        Ok(())
-    }
 }
 
 /// Takes a partial match (whose sibling links are `prev`, `next`) off the child list

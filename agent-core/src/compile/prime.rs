@@ -1,0 +1,69 @@
+//! Priming: the root join made at start-up, and new joins and alpha nodes matched
+//! against what exists when a rule is added (CLIPS's incremental reset, `incrrset.c`).
+
+use crate::engine::{cap, Core};
+use crate::error::{EvalError, Pool};
+use crate::rete::{Join, JoinKind, Token, TokenKind};
+use crate::value::{Ix, NONE};
+
+impl Core<'_> {
+    /// The global root join and its empty token (join 0), made at start-up.
+    pub(crate) fn make_root(&mut self) -> Result<(), EvalError> {
+        if self.st.pools.njoins == 0 {
+            if self.joins.is_empty() {
+                return Err(cap(Pool::Joins, 0).into());
+            }
+            self.joins[0] = Join {
+                kind: JoinKind::Root,
+                refs: 1,
+                ..Join::EMPTY
+            };
+            self.st.pools.njoins = 1;
+        }
+        if self.joins[0].mem == NONE {
+            let t = self.alloc_token()?;
+            self.tokens[t as usize] = Token {
+                kind: TokenKind::Beta,
+                owner: 0,
+                ..Token::EMPTY
+            };
+            self.joins[0].mem = t;
+        }
+        Ok(())
+    }
+
+    /// Feeds the active tokens of `parent`'s memory into a new child join.
+    pub(crate) fn prime_join(&mut self, join: Ix) -> Result<(), EvalError> {
+        let parent = self.joins[join as usize].parent;
+        let mut l = self.joins[parent as usize].mem;
+        while l != NONE {
+            let next = self.tokens[l as usize].mem_next;
+            if self.token_active(l) {
+                self.left_activate(join, l)?;
+            }
+            l = next;
+        }
+        Ok(())
+    }
+
+    /// Drives the existing facts, oldest first, through the alpha nodes numbered
+    /// `first` and up (a new rule's patterns), in network order per fact.
+    pub(crate) fn prime_alphas(&mut self, first: Ix) -> Result<(), EvalError> {
+        let mut f = self.st.facts.fact_head;
+        while f != NONE {
+            let next = self.facts[f as usize].next;
+            let tmpl = self.facts[f as usize].tmpl;
+            let mut a = self.templates[tmpl as usize].alpha_head;
+            while a != NONE {
+                if a >= first {
+                    if let Some(tests) = self.quick_tests(self.alphas[a as usize].tests, f) {
+                        self.match_alpha(a, f, tests)?;
+                    }
+                }
+                a = self.alphas[a as usize].next_in_tmpl;
+            }
+            f = next;
+        }
+        Ok(())
+    }
+}
