@@ -209,7 +209,7 @@ impl Core<'_> {
     /// `(reset)`.
     pub fn reset(&mut self) -> Result<(), EvalError> {
         // rules starting with not/exists/test lose their root-based matches first
-        let root_token = self.joins[0].mem;
+        let root_token = self.join_mems[0].mem;
         loop {
             let mut c = self.tokens[root_token as usize].first_child;
             while c != NONE
@@ -288,11 +288,17 @@ impl Core<'_> {
         for a in self.acts.iter_mut() {
             *a = crate::rule::Activation::EMPTY;
         }
-        for j in self.joins.iter_mut() {
+        for j in self.joins.ram().iter_mut() {
             *j = crate::rete::Join::EMPTY;
         }
-        for a in self.alphas.iter_mut() {
+        for j in self.join_mems.iter_mut() {
+            *j = crate::rete::JoinMem::EMPTY;
+        }
+        for a in self.alphas.ram().iter_mut() {
             *a = crate::rete::AlphaNode::EMPTY;
+        }
+        for a in self.alpha_mems.iter_mut() {
+            *a = crate::rete::AlphaMem::EMPTY;
         }
         for t in self.templates.iter_mut() {
             *t = crate::template::Template::EMPTY;
@@ -309,7 +315,11 @@ impl Core<'_> {
         *self.st = crate::engine::State::new();
         // a compiled rule base's nodes read in place go with the rest
         #[cfg(feature = "in-place")]
-        self.exprs.set_rom(self.st.rom_exprs);
+        {
+            self.exprs.set_rom(self.st.rom.exprs);
+            self.alphas.set_rom(self.st.rom.alphas);
+            self.joins.set_rom(self.st.rom.joins);
+        }
         self.st.pools.hw = hw;
         (
             self.st.frame,

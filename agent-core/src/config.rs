@@ -77,8 +77,17 @@ macro_rules! __pool_table {
             AlphaNodes alpha_nodes "alpha nodes" 1024 64 [
                 alphas: $crate::rete::AlphaNode = $crate::rete::AlphaNode::EMPTY,
             ],
+            // what changes at run time per alpha node (its memory), by alpha node id:
+            // with `in-place`, the nodes of a compiled rule base are read in place
+            AlphaMemories alpha_memories "alpha memories" 1024 64 [
+                alpha_mems: $crate::rete::AlphaMem = $crate::rete::AlphaMem::EMPTY,
+            ],
             Joins joins "joins" 2048 128 [
                 joins: $crate::rete::Join = $crate::rete::Join::EMPTY,
+            ],
+            // what changes at run time per join (its memory), by join id
+            JoinMemories join_memories "join memories" 2048 128 [
+                join_mems: $crate::rete::JoinMem = $crate::rete::JoinMem::EMPTY,
             ],
             Tokens tokens "tokens" 32768 512 [
                 tokens: $crate::rete::Token = $crate::rete::Token::EMPTY,
@@ -113,15 +122,28 @@ macro_rules! __pool_table {
     };
 }
 
-/// How `Core` holds a pool's array: a slice, but the expression pool, whose view
-/// reads a compiled rule base's nodes in place too ([`ExprPool`](crate::expr::ExprPool)).
+/// How `Core` holds a pool's array: a slice, but the expression nodes, alpha nodes
+/// and joins, whose views read a compiled rule base's entries in place too
+/// ([`RomPool`](crate::rom::RomPool)).
 #[doc(hidden)]
 #[macro_export]
 macro_rules! __pool_view {
-    (exprs, $l:lifetime, $t:ty) => { $crate::expr::ExprPool<$l> };
-    ($name:ident, $l:lifetime, $t:ty) => { &$l mut [$t] };
-    (exprs, $rom:ident, $arr:expr) => { $crate::expr::ExprPool::new($rom, $arr) };
-    ($name:ident, $rom:ident, $arr:expr) => { $arr };
+    (mut exprs, $l:lifetime, $t:ty) => { $crate::rom::RomPool<$l, $t> };
+    (mut alphas, $l:lifetime, $t:ty) => { $crate::rom::RomPool<$l, $t> };
+    (mut joins, $l:lifetime, $t:ty) => { $crate::rom::RomPool<$l, $t> };
+    (mut $name:ident, $l:lifetime, $t:ty) => { &$l mut [$t] };
+    (ref exprs, $l:lifetime, $t:ty) => { $crate::rom::RomRef<$l, $t> };
+    (ref alphas, $l:lifetime, $t:ty) => { $crate::rom::RomRef<$l, $t> };
+    (ref joins, $l:lifetime, $t:ty) => { $crate::rom::RomRef<$l, $t> };
+    (ref $name:ident, $l:lifetime, $t:ty) => { &$l [$t] };
+    (mut exprs, $rom:ident, $arr:expr) => { $crate::rom::RomPool::new($rom.exprs, $arr) };
+    (mut alphas, $rom:ident, $arr:expr) => { $crate::rom::RomPool::new($rom.alphas, $arr) };
+    (mut joins, $rom:ident, $arr:expr) => { $crate::rom::RomPool::new($rom.joins, $arr) };
+    (mut $name:ident, $rom:ident, $arr:expr) => { $arr };
+    (ref exprs, $rom:ident, $arr:expr) => { $crate::rom::RomRef::new($rom.exprs, $arr) };
+    (ref alphas, $rom:ident, $arr:expr) => { $crate::rom::RomRef::new($rom.alphas, $arr) };
+    (ref joins, $rom:ident, $arr:expr) => { $crate::rom::RomRef::new($rom.joins, $arr) };
+    (ref $name:ident, $rom:ident, $arr:expr) => { $arr };
 }
 
 /// Generates, from the pool table, everything in agent-core that lists the pools.
@@ -202,7 +224,7 @@ macro_rules! pool_items {
             pub st: &'a mut crate::engine::State,
             pub host: &'a mut dyn Host,
             $(
-                pub $first: $crate::__pool_view!($first, 'a, $fty),
+                pub $first: $crate::__pool_view!(mut $first, 'a, $fty),
                 $(pub $arr: &'a mut [$aty],)*
             )*
         }
@@ -210,7 +232,7 @@ macro_rules! pool_items {
         /// Read-only slices of every pool (the engine's queries between operations).
         pub struct Pools<'a> {
             $(
-                pub $first: &'a [$fty],
+                pub $first: $crate::__pool_view!(ref $first, 'a, $fty),
                 $(pub $arr: &'a [$aty],)*
             )*
         }
@@ -239,8 +261,9 @@ pub trait Storage {
     /// The engine's view of the storage, with its state and host.
     fn core<'a>(&'a mut self, st: &'a mut crate::engine::State, host: &'a mut dyn Host)
         -> Core<'a>;
-    /// Read-only slices of every pool.
-    fn pools(&self) -> Pools<'_>;
+    /// Read-only slices of every pool (`rom`: the compiled entries read in place,
+    /// `State::rom`).
+    fn pools(&self, rom: crate::rom::Rom) -> Pools<'_>;
 }
 
 /// Defines a struct holding every pool of an engine, sized by named capacities (a
@@ -289,12 +312,12 @@ macro_rules! __engine_storage {
                 st: &'a mut $crate::engine::State,
                 host: &'a mut dyn $crate::Host,
             ) -> $crate::Core<'a> {
-                let rom = st.rom_exprs;
-                $crate::Core { st, host, $($($arr: $crate::__pool_view!($arr, rom, &mut self.$arr),)*)* }
+                let rom = st.rom;
+                $crate::Core { st, host, $($($arr: $crate::__pool_view!(mut $arr, rom, &mut self.$arr),)*)* }
             }
             #[inline(always)]
-            fn pools(&self) -> $crate::config::Pools<'_> {
-                $crate::config::Pools { $($($arr: &self.$arr,)*)* }
+            fn pools(&self, rom: $crate::rom::Rom) -> $crate::config::Pools<'_> {
+                $crate::config::Pools { $($($arr: $crate::__pool_view!(ref $arr, rom, &self.$arr),)*)* }
             }
         }
     };

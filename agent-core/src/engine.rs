@@ -487,9 +487,10 @@ pub struct State {
     pub mode: Mode,
     pub cache: Caches,
     pub random: Random,
-    /// Expression nodes of a compiled rule base read in place (feature `in-place`,
-    /// `compiled`): node ids below its length are these, the arena's come after.
-    pub rom_exprs: &'static [Expr],
+    /// Expression nodes, alpha nodes and joins of a compiled rule base read in place
+    /// (feature `in-place`, `compiled`, `rom`): ids below their length are these, the
+    /// arena's come after.
+    pub rom: crate::rom::Rom,
     /// Without the feature `parser`: the code of the builtins the loaded compiled rule
     /// base calls, by id (see `builtins::code_for`); empty otherwise.
     pub builtin_code: &'static [crate::builtins::Imp],
@@ -508,7 +509,7 @@ impl State {
             mode: Mode::new(),
             cache: Caches::new(),
             random: Random::new(),
-            rom_exprs: &[],
+            rom: crate::rom::Rom::EMPTY,
             builtin_code: &[],
         }
     }
@@ -606,7 +607,7 @@ impl<S: Storage> Engine<S> {
 
     /// The facts as the host API reads them.
     pub(crate) fn fact_view(&self) -> crate::host_fn::FactView<'_> {
-        let p = self.pools.pools();
+        let p = self.pools.pools(self.st.rom);
         crate::host_fn::FactView {
             facts: p.facts,
             templates: p.templates,
@@ -619,7 +620,7 @@ impl<S: Storage> Engine<S> {
     }
 
     pub(crate) fn rule_at(&self, r: Ix) -> Rule {
-        self.pools.pools().rules[r as usize]
+        self.pools.pools(self.st.rom).rules[r as usize]
     }
 
     /// Fact indices along a token's ancestry, by pattern position.
@@ -628,7 +629,7 @@ impl<S: Storage> Engine<S> {
         token: Ix,
         out: &mut [Option<u32>; crate::rete::MAX_PATTERNS],
     ) -> usize {
-        let pools = self.pools.pools();
+        let pools = self.pools.pools(self.st.rom);
         let mut n = 0;
         let mut t = token;
         while t != NONE {
@@ -652,10 +653,10 @@ impl<S: Storage> Engine<S> {
     }
 
     pub(crate) fn act_at(&self, a: Ix) -> Activation {
-        self.pools.pools().acts[a as usize]
+        self.pools.pools(self.st.rom).acts[a as usize]
     }
     pub(crate) fn sym_str(&self, id: SymId) -> &str {
-        let pools = self.pools.pools();
+        let pools = self.pools.pools(self.st.rom);
         let e = pools.sym_entries[id as usize];
         core::str::from_utf8(&pools.sym_bytes[e.start as usize..(e.start + e.len) as usize])
             .unwrap_or("")

@@ -103,12 +103,10 @@ impl Core<'_> {
 
     /// An alpha node whose rules are gone keeps no matches (new facts skip it).
     fn check_dead_alphas(&self) -> Result<(), Violation> {
-        for (i, n) in self.alphas[..self.st.pools.nalpha as usize]
-            .iter()
-            .enumerate()
-        {
+        for i in 0..self.st.pools.nalpha as usize {
+            let n = &self.alphas[i];
             ensure!(
-                n.live || n.mem == NONE,
+                n.live || self.alpha_mems[i].head == NONE,
                 "removed alpha node holds matches",
                 i
             );
@@ -361,7 +359,7 @@ impl Core<'_> {
         for j in 0..st.pools.njoins {
             let c = self.joins[j as usize].first_child;
             ensure!(
-                self.joins[j as usize].one_child
+                self.join_mems[j as usize].one_child
                     == (c != NONE && self.joins[c as usize].next_sibling == NONE),
                 "join's one-child flag disagrees with its child list",
                 j
@@ -371,7 +369,7 @@ impl Core<'_> {
             let jn = self.joins[j as usize];
             if jn.refs == 0 {
                 ensure!(
-                    jn.mem == NONE,
+                    self.join_mems[j as usize].mem == NONE,
                     "removed join still holds partial matches",
                     j
                 );
@@ -424,7 +422,11 @@ impl Core<'_> {
                     );
                 }
                 JoinKind::Terminal => {
-                    ensure!(jn.mem == NONE, "terminal join holds partial matches", j);
+                    ensure!(
+                        self.join_mems[j as usize].mem == NONE,
+                        "terminal join holds partial matches",
+                        j
+                    );
                     ensure!(jn.rule < st.pools.nrules, "terminal join without a rule", j);
                 }
                 _ => {}
@@ -790,9 +792,9 @@ impl Core<'_> {
         // alpha memories and each fact's alpha matches hold exactly the alpha tokens
         let mut in_mem = 0usize;
         for a in 0..self.st.pools.nalpha {
-            let node = self.alphas[a as usize];
+            let node = self.alpha_mems[a as usize];
             let mut prev = NONE;
-            let mut t = node.mem;
+            let mut t = node.head;
             while t != NONE {
                 ensure!((t as usize) < used, "alpha memory leaves the pool", a);
                 let tk = self.tokens[t as usize];
@@ -812,7 +814,7 @@ impl Core<'_> {
                     t
                 );
                 ensure!(
-                    self.facts[f as usize].tmpl == node.tmpl,
+                    self.facts[f as usize].tmpl == self.alphas[a as usize].tmpl,
                     "alpha match of another template's fact",
                     t
                 );
@@ -821,7 +823,7 @@ impl Core<'_> {
                 prev = t;
                 t = tk.mem_next;
             }
-            ensure!(node.mem_tail == prev, "alpha memory tail wrong", a);
+            ensure!(node.tail == prev, "alpha memory tail wrong", a);
         }
         ensure!(in_mem == nalpha, "alpha matches outside any memory", in_mem);
         let mut of_facts = 0usize;
@@ -859,7 +861,7 @@ impl Core<'_> {
         let mut in_joins = 0usize;
         for j in 0..self.st.pools.njoins {
             let mut prev = NONE;
-            let mut t = self.joins[j as usize].mem;
+            let mut t = self.join_mems[j as usize].mem;
             while t != NONE {
                 ensure!((t as usize) < used, "join memory leaves the pool", j);
                 let tk = self.tokens[t as usize];
@@ -1335,12 +1337,12 @@ mod tests {
                 if tk.mem_prev != NONE {
                     cx.tokens[tk.mem_prev as usize].mem_next = tk.mem_next;
                 } else {
-                    cx.alphas[a].mem = tk.mem_next;
+                    cx.alpha_mems[a].head = tk.mem_next;
                 }
                 if tk.mem_next != NONE {
                     cx.tokens[tk.mem_next as usize].mem_prev = tk.mem_prev;
                 } else {
-                    cx.alphas[a].mem_tail = tk.mem_prev;
+                    cx.alpha_mems[a].tail = tk.mem_prev;
                 }
                 if tk.prev_sib != NONE {
                     cx.tokens[tk.prev_sib as usize].next_sib = tk.next_sib;

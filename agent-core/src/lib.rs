@@ -160,6 +160,7 @@ pub mod lexer;
 pub mod parser;
 pub mod print;
 pub mod rete;
+pub mod rom;
 pub mod rule;
 pub mod symbols;
 pub mod template;

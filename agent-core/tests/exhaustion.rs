@@ -427,7 +427,9 @@ macro_rules! rule_pool_case {
         let c = load_until_full(&mut *e, |e, i| {
             let text = match pool {
                 Pool::Rules => format!("(defrule r{i} (p (x ?x)) =>)"),
-                Pool::AlphaNodes => format!("(defrule r{i} (p (x {i}) (y ?y)) =>)"),
+                Pool::AlphaNodes | Pool::AlphaMemories => {
+                    format!("(defrule r{i} (p (x {i}) (y ?y)) =>)")
+                }
                 _ => format!("(defrule r{i} (p (x ?x)) (p (y ?x)) (q {i}) =>)"),
             };
             e.load_str(h, "t", &text)
@@ -450,6 +452,10 @@ fn rules_alpha_nodes_and_joins_at_load() {
     rule_pool_case!(Pool::Rules, 6, engine!(rules = 6));
     rule_pool_case!(Pool::AlphaNodes, 8, engine!(alpha_nodes = 8));
     rule_pool_case!(Pool::Joins, 14, engine!(joins = 14));
+    // the run-time parts of alpha nodes and joins, pools of their own (so that a
+    // compiled rule base's nodes can be read in place)
+    rule_pool_case!(Pool::AlphaMemories, 8, engine!(alpha_memories = 8));
+    rule_pool_case!(Pool::JoinMemories, 14, engine!(join_memories = 14));
 }
 
 /// Regression (found by the invariant property test): a load that failed after
@@ -770,7 +776,9 @@ fn every_pool_is_covered() {
         Pool::SlotDefs,
         Pool::Rules,
         Pool::AlphaNodes,
+        Pool::AlphaMemories,
         Pool::Joins,
+        Pool::JoinMemories,
         Pool::Tokens,
         Pool::Activations,
         Pool::Functions,

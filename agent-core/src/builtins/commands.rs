@@ -400,6 +400,8 @@ fn undefrule(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         unable(cx, Unable::Delete, "defrule", name);
         return Ok(Value::Void);
     }
+    // a compiled rule base's network read in place is copied into the arena first
+    cx.network_writable()?;
     if cx.sym_text(name) == "*" {
         // every rule in definition order; `remove_rule` takes a rule's first disjunct
         for r in 0..cx.st.pools.nrules {
@@ -461,7 +463,7 @@ fn matches(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         let mut b: TextBuf<64> = TextBuf::new();
         let _ = writeln!(b, "Matches for Pattern {pattern}");
         cx.write(router::WDISPLAY, b.as_str());
-        let mut t = cx.alphas[alpha as usize].mem;
+        let mut t = cx.alpha_mems[alpha as usize].head;
         let mut count = 0;
         while t != NONE {
             let fact = cx.tokens[t as usize].fact;
@@ -528,7 +530,7 @@ fn matches(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 /// how many. A not/exists join keeps blocked tokens too: only live ones count.
 fn write_bases(cx: &mut Core<'_>, j: Ix) -> i64 {
     let kind = cx.joins[j as usize].kind;
-    let mut t = cx.joins[j as usize].mem;
+    let mut t = cx.join_mems[j as usize].mem;
     let mut count = 0;
     while t != NONE {
         let tk = cx.tokens[t as usize];

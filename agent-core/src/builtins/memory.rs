@@ -40,8 +40,15 @@ impl Core<'_> {
             (st.pools.ntemplates as usize, size_of_first(self.templates)),
             (st.pools.nslots as usize, size_of_first(self.slots)),
             (st.pools.nrules as usize, size_of_first(self.rules)),
-            (st.pools.nalpha as usize, size_of_first(self.alphas)),
-            (st.pools.njoins as usize, size_of_first(self.joins)),
+            // a node and its memory count as one entry
+            (
+                st.pools.nalpha as usize,
+                size_of::<crate::rete::AlphaNode>() + size_of_first(self.alpha_mems),
+            ),
+            (
+                st.pools.njoins as usize,
+                size_of::<crate::rete::Join>() + size_of_first(self.join_mems),
+            ),
             (st.pools.tokens_live as usize, size_of_first(self.tokens)),
             (self.activation_count(), size_of_first(self.acts)),
             (st.pools.nfuncs as usize, size_of_first(self.funcs)),

@@ -69,19 +69,25 @@ impl Parser<'_, '_, '_> {
             }
             a = n.next_in_tmpl;
         }
-        let n = self.cx.st.pools.nalpha as usize;
-        if n >= self.cx.alphas.len() {
-            let c = cap(Pool::AlphaNodes, self.cx.alphas.len());
+        if let Err(c) = self.cx.network_writable() {
             return Err(self.cap_err(self.lex.token_at(at as usize), c));
         }
+        let n = self.cx.st.pools.nalpha as usize;
+        if n >= self.cx.alphas.len() || n >= self.cx.alpha_mems.len() {
+            let c = if n >= self.cx.alphas.len() {
+                cap(Pool::AlphaNodes, self.cx.alphas.len())
+            } else {
+                cap(Pool::AlphaMemories, self.cx.alpha_mems.len())
+            };
+            return Err(self.cap_err(self.lex.token_at(at as usize), c));
+        }
+        self.cx.alpha_mems[n] = crate::rete::AlphaMem::EMPTY;
         self.cx.alphas[n] = AlphaNode {
             tmpl,
             desc: pat.desc,
             tests: pat.atests,
             next_in_tmpl: NONE,
             succ: NONE,
-            mem: NONE,
-            mem_tail: NONE,
             nmarks: pat.marks,
             live: true,
             path_loc: pat.path_loc,
@@ -96,6 +102,7 @@ impl Parser<'_, '_, '_> {
         self.cx.st.pools.nalpha += 1;
         self.cx.st.net.net_gen = self.cx.st.net.net_gen.wrapping_add(1);
         self.cx.note_hw(Pool::AlphaNodes, n + 1);
+        self.cx.note_hw(Pool::AlphaMemories, n + 1);
         Ok(n as Ix)
     }
 

@@ -8,7 +8,7 @@ use crate::error::Pool;
 use crate::lexer::Token;
 use crate::parser::rule::{Build, CE_ROOT};
 use crate::parser::{PResult, Parser};
-use crate::rete::{Join, JoinKind, MAX_PATTERNS};
+use crate::rete::{Join, JoinKind, JoinMem, MAX_PATTERNS};
 use crate::rule::Rule;
 use crate::value::{Ix, SymId, NONE};
 
@@ -150,8 +150,16 @@ impl<'s> Parser<'s, '_, '_> {
             let c = cap(Pool::Rules, self.cx.rules.len());
             return Err(self.cap_err(at, c));
         }
-        if self.cx.st.pools.njoins as usize + b.n + 1 > self.cx.joins.len() {
+        if let Err(c) = self.cx.network_writable() {
+            return Err(self.cap_err(at, c));
+        }
+        let need = self.cx.st.pools.njoins as usize + b.n + 1;
+        if need > self.cx.joins.len() {
             let c = cap(Pool::Joins, self.cx.joins.len());
+            return Err(self.cap_err(at, c));
+        }
+        if need > self.cx.join_mems.len() {
+            let c = cap(Pool::JoinMemories, self.cx.join_mems.len());
             return Err(self.cap_err(at, c));
         }
         self.cx.rules[nr] = Rule::EMPTY;
@@ -215,19 +223,11 @@ impl<'s> Parser<'s, '_, '_> {
                 tests: ce.jtests,
                 post: ce.post,
                 alpha_next: NONE,
-                mem: NONE,
                 rjoin,
                 rsucc: NONE,
                 index_child: NONE,
-                #[cfg(feature = "host-speedups")]
-                index_built: false,
-                #[cfg(feature = "host-speedups")]
-                one_child: false,
-                #[cfg(feature = "wipe")]
-                plain: false,
-                #[cfg(feature = "wipe")]
-                plain_gen: u32::MAX,
             };
+            self.cx.join_mems[j as usize] = JoinMem::EMPTY;
             // a join from the right comes right after its subnetwork's first join
             // among the parent's children: the subnetwork sees a new left token first
             let after = if rjoin != NONE {
@@ -274,6 +274,8 @@ impl<'s> Parser<'s, '_, '_> {
         let prev = term;
         self.cx
             .note_hw(Pool::Joins, self.cx.st.pools.njoins as usize);
+        self.cx
+            .note_hw(Pool::JoinMemories, self.cx.st.pools.njoins as usize);
         self.cx.rules[nr] = Rule {
             name,
             salience: b.sal.0,

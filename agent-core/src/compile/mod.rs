@@ -11,6 +11,38 @@ pub(crate) mod join;
 pub(crate) mod prime;
 pub(crate) mod remove;
 
+use crate::engine::Core;
+use crate::error::CapacityError;
+
+impl Core<'_> {
+    /// Makes the network's topology editable: a compiled rule base's alpha nodes and
+    /// joins read in place (feature `in-place`, `rom`) are copied into the arena first
+    /// (ids unchanged), so that rules can be added and removed as in an engine that
+    /// parsed them. Every edit of the topology (a rule built, a rule removed) calls this
+    /// before its first write. An arena without room for the copy is a capacity error
+    /// and the engine stays as it was (an image sized for its compiled rule base
+    /// cannot take new rules).
+    pub(crate) fn network_writable(&mut self) -> Result<(), CapacityError> {
+        #[cfg(feature = "in-place")]
+        {
+            use crate::engine::cap;
+            use crate::error::Pool;
+            if self.joins.rom_len() > self.joins.ram().len() {
+                return Err(cap(Pool::Joins, self.joins.ram().len()));
+            }
+            self.alphas
+                .copy_rom_to_ram()
+                .map_err(|room| cap(Pool::AlphaNodes, room))?;
+            self.st.rom.alphas = &[];
+            self.joins
+                .copy_rom_to_ram()
+                .map_err(|room| cap(Pool::Joins, room))?;
+            self.st.rom.joins = &[];
+        }
+        Ok(())
+    }
+}
+
 #[cfg(test)]
 mod tests {
     extern crate std;

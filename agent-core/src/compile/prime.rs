@@ -20,14 +20,14 @@ impl Core<'_> {
             };
             self.st.pools.njoins = 1;
         }
-        if self.joins[0].mem == NONE {
+        if self.join_mems[0].mem == NONE {
             let t = self.alloc_token()?;
             self.tokens[t as usize] = Token {
                 kind: TokenKind::Beta,
                 owner: 0,
                 ..Token::EMPTY
             };
-            self.joins[0].mem = t;
+            self.join_mems[0].mem = t;
         }
         Ok(())
     }
@@ -35,7 +35,7 @@ impl Core<'_> {
     /// Feeds the active tokens of `parent`'s memory into a new child join.
     pub(crate) fn prime_join(&mut self, join: Ix) -> Result<(), EvalError> {
         let parent = self.joins[join as usize].parent;
-        let mut l = self.joins[parent as usize].mem;
+        let mut l = self.join_mems[parent as usize].mem;
         while l != NONE {
             let next = self.tokens[l as usize].mem_next;
             if self.token_active(l) {

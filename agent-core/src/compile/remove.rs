@@ -9,7 +9,9 @@ use crate::value::{Ix, NONE};
 
 impl Core<'_> {
     /// Removes a rule (all its disjuncts): joins no other rule uses go, with their
-    /// partial matches and activations; unused alpha nodes are emptied.
+    /// partial matches and activations; unused alpha nodes are emptied. The network
+    /// must be writable (`network_writable`, done by whoever built the rule or asks
+    /// for its removal).
     pub fn remove_rule(&mut self, r: Ix) {
         let mut rr = r;
         while rr != NONE {
@@ -48,7 +50,7 @@ impl Core<'_> {
     }
 
     fn remove_rule_activations(&mut self, rule: Ix, join: Ix) {
-        let mut t = self.joins[join as usize].mem;
+        let mut t = self.join_mems[join as usize].mem;
         while t != NONE {
             let mut a = self.tokens[t as usize].extra;
             while a != NONE {

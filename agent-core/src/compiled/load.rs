@@ -130,9 +130,17 @@ impl Core<'_> {
             (Pool::Templates, base.templates.len(), self.templates.len()),
             (Pool::SlotDefs, base.slots.len(), self.slots.len()),
             (Pool::Rules, base.rules.len(), self.rules.len()),
-            (Pool::AlphaNodes, base.alphas.len(), self.alphas.len()),
-            (Pool::Joins, base.joins.len(), self.joins.len()),
+            (
+                Pool::AlphaMemories,
+                base.alphas.len(),
+                self.alpha_mems.len(),
+            ),
+            (Pool::JoinMemories, base.joins.len(), self.join_mems.len()),
             // (read in place: the arena needs no room for them)
+            #[cfg(not(feature = "in-place"))]
+            (Pool::AlphaNodes, base.alphas.len(), self.alphas.len()),
+            #[cfg(not(feature = "in-place"))]
+            (Pool::Joins, base.joins.len(), self.joins.len()),
             #[cfg(not(feature = "in-place"))]
             (Pool::Exprs, base.exprs.len(), self.exprs.len()),
             (Pool::Functions, base.functions.len(), self.funcs.len()),
@@ -199,24 +207,32 @@ impl Core<'_> {
         self.free_pending();
         self.st.facts.values_top = 0;
         self.st.facts.next_fact_num = 0;
-        let root_token = self.joins[0].mem;
+        let root_token = self.join_mems[0].mem;
 
         self.templates[..base.templates.len()].copy_from_slice(base.templates);
         self.slots[..base.slots.len()].copy_from_slice(base.slots);
         self.rules[..base.rules.len()].copy_from_slice(base.rules);
-        self.alphas[..base.alphas.len()].copy_from_slice(base.alphas);
-        self.joins[..base.joins.len()].copy_from_slice(base.joins);
         #[cfg(feature = "in-place")]
         {
             self.exprs.set_rom(base.exprs);
-            self.st.rom_exprs = base.exprs;
+            self.alphas.set_rom(base.alphas);
+            self.joins.set_rom(base.joins);
+            self.st.rom = crate::rom::Rom {
+                exprs: base.exprs,
+                alphas: base.alphas,
+                joins: base.joins,
+            };
         }
         #[cfg(not(feature = "in-place"))]
-        self.exprs.ram()[..base.exprs.len()].copy_from_slice(base.exprs);
+        {
+            self.exprs.ram()[..base.exprs.len()].copy_from_slice(base.exprs);
+            self.alphas.ram()[..base.alphas.len()].copy_from_slice(base.alphas);
+            self.joins.ram()[..base.joins.len()].copy_from_slice(base.joins);
+        }
         self.funcs[..base.functions.len()].copy_from_slice(base.functions);
         self.globals[..base.globals.len()].copy_from_slice(base.globals);
         self.deffacts[..base.deffacts.len()].copy_from_slice(base.deffacts);
-        self.joins[0].mem = root_token;
+        self.join_mems[0].mem = root_token;
         #[cfg(not(feature = "in-place"))]
         for e in 0..base.exprs.len() {
             let x = self.exprs[e];
@@ -242,7 +258,9 @@ impl Core<'_> {
             (Pool::SlotDefs, base.slots.len()),
             (Pool::Rules, base.rules.len()),
             (Pool::AlphaNodes, base.alphas.len()),
+            (Pool::AlphaMemories, base.alphas.len()),
             (Pool::Joins, base.joins.len()),
+            (Pool::JoinMemories, base.joins.len()),
             (Pool::Exprs, base.exprs.len()),
             (Pool::Functions, base.functions.len()),
             (Pool::Globals, base.globals.len()),
@@ -275,7 +293,7 @@ impl Core<'_> {
         self.st.frame.sp = 0;
         self.st.frame.scratch_top = 0;
         self.assert_initial_fact()?;
-        let root_token = self.joins[0].mem;
+        let root_token = self.join_mems[0].mem;
         let mut j = self.joins[0].first_child;
         while j != NONE {
             if self.joins[j as usize].kind != JoinKind::Positive {

@@ -15,8 +15,8 @@
 //! ```
 //!
 //! Independent of the engine's features and index width: the writer names every field
-//! the network needs and leaves the rest to the entry type's `EMPTY` (`..Join::EMPTY`:
-//! the host's caches, `defer` and `wipe` flags), writes `N` for [`NONE`](crate::NONE)
+//! the network needs (what changes at run time, memories and the host's caches, is in
+//! pools of its own: `rete::AlphaMem`, `rete::JoinMem`), writes `N` for [`NONE`](crate::NONE)
 //! and names builtins, not their table positions (`builtin_id("str-cat")`, worked out
 //! when the generated code compiles: a builtin the loading engine lacks does not
 //! compile). Host functions are named too and found among the loading engine's

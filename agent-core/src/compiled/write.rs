@@ -294,11 +294,12 @@ impl Core<'_> {
 
     fn write_alphas(&self, out: &mut dyn Write) -> fmt::Result {
         writeln!(out, "alphas: &[")?;
-        for a in &self.alphas[..self.st.pools.nalpha as usize] {
+        for i in 0..self.st.pools.nalpha as usize {
+            let a = &self.alphas[i];
             writeln!(
                 out,
                 "AlphaNode {{ tmpl: {}, desc: {}, tests: {}, next_in_tmpl: {}, succ: {}, \
-                 mem: N, mem_tail: N, nmarks: {}, live: {}, path_loc: {}, path_test: {}, \
+                 nmarks: {}, live: {}, path_loc: {}, path_test: {}, \
                  key: {}, key_len: {}, rhash: {}, nrhash: {} }},",
                 I(a.tmpl),
                 I(a.desc),
@@ -320,13 +321,13 @@ impl Core<'_> {
 
     fn write_joins(&self, out: &mut dyn Write) -> fmt::Result {
         writeln!(out, "joins: &[")?;
-        for j in &self.joins[..self.st.pools.njoins as usize] {
+        for i in 0..self.st.pools.njoins as usize {
+            let j = &self.joins[i];
             writeln!(
                 out,
                 "Join {{ kind: JoinKind::{:?}, depth: {}, rule: {}, parent: {}, \
                  first_child: {}, next_sibling: {}, refs: {}, alpha: {}, tests: {}, \
-                 post: {}, alpha_next: {}, mem: N, rjoin: {}, rsucc: {}, index_child: {}, \
-                 ..Join::EMPTY }},",
+                 post: {}, alpha_next: {}, rjoin: {}, rsucc: {}, index_child: {} }},",
                 j.kind,
                 j.depth,
                 I(j.rule),

@@ -529,7 +529,7 @@ impl Core<'_> {
         marks: [u8; MAX_MARKS],
     ) -> Result<(), EvalError> {
         let t = self.alloc_token()?;
-        let tail = self.alphas[alpha as usize].mem_tail;
+        let tail = self.alpha_mems[alpha as usize].tail;
         let fam = self.facts[fact as usize].first_am;
         self.tokens[t as usize] = Token {
             kind: TokenKind::Alpha,
@@ -544,9 +544,9 @@ impl Core<'_> {
         if tail != NONE {
             self.tokens[tail as usize].mem_next = t;
         } else {
-            self.alphas[alpha as usize].mem = t;
+            self.alpha_mems[alpha as usize].head = t;
         }
-        self.alphas[alpha as usize].mem_tail = t;
+        self.alpha_mems[alpha as usize].tail = t;
         if fam != NONE {
             self.tokens[fam as usize].prev_sib = t;
         }
@@ -587,12 +587,12 @@ impl Core<'_> {
         if mem_prev != NONE {
             self.tokens[mem_prev as usize].mem_next = mem_next;
         } else {
-            self.alphas[alpha as usize].mem = mem_next;
+            self.alpha_mems[alpha as usize].head = mem_next;
         }
         if mem_next != NONE {
             self.tokens[mem_next as usize].mem_prev = mem_prev;
         } else {
-            self.alphas[alpha as usize].mem_tail = mem_prev;
+            self.alpha_mems[alpha as usize].tail = mem_prev;
         }
         if blocks != NONE {
             self.tokens[am as usize].am_next = am_next;
@@ -614,8 +614,8 @@ impl Core<'_> {
 
     /// Empties an alpha memory (used when a rule is removed or a load rolled back).
     pub(crate) fn clear_alpha_memory(&mut self, alpha: Ix) {
-        while self.alphas[alpha as usize].mem != NONE {
-            let am = self.alphas[alpha as usize].mem;
+        while self.alpha_mems[alpha as usize].head != NONE {
+            let am = self.alpha_mems[alpha as usize].head;
             self.tokens[am as usize].extra = NONE;
             self.remove_alpha_match(am);
         }

@@ -347,7 +347,7 @@ impl Core<'_> {
     /// copies it into its successors' memories only now, so they meet it as newest.
     fn move_to_front(&mut self, t: Ix) {
         let join = self.tokens[t as usize].owner;
-        if self.joins[join as usize].mem == t {
+        if self.join_mems[join as usize].mem == t {
             return;
         }
         self.beta_index_remove(t);
@@ -358,13 +358,13 @@ impl Core<'_> {
         if tk.mem_next != NONE {
             self.tokens[tk.mem_next as usize].mem_prev = tk.mem_prev;
         }
-        let head = self.joins[join as usize].mem;
+        let head = self.join_mems[join as usize].mem;
         self.tokens[t as usize].mem_prev = NONE;
         self.tokens[t as usize].mem_next = head;
         if head != NONE {
             self.tokens[head as usize].mem_prev = t;
         }
-        self.joins[join as usize].mem = t;
+        self.join_mems[join as usize].mem = t;
         self.beta_index_insert(t);
     }
 
@@ -417,7 +417,7 @@ impl Core<'_> {
             }
         } else {
             let parent = self.joins[join as usize].parent;
-            let mut r = self.joins[rjoin as usize].mem;
+            let mut r = self.join_mems[rjoin as usize].mem;
             while r != NONE {
                 if r != skip && self.token_active(r) && self.ancestor_in(r, parent) == left {
                     return Ok(r);
@@ -530,11 +530,12 @@ impl Core<'_> {
         // one borrow of the pool and one of the join for all the links (their
         // addresses stay in registers across the stores)
         let tokens = &mut *self.tokens;
-        let jn = &mut self.joins[join as usize];
+        let jn = &self.joins[join as usize];
+        let jm = &mut self.join_mems[join as usize];
         // the index child too, while the join is at hand
-        let (head, depth) = (jn.mem, jn.depth);
+        let (head, depth) = (jm.mem, jn.depth);
         #[cfg(feature = "host-speedups")]
-        let ichild = if jn.index_built { jn.index_child } else { NONE };
+        let ichild = if jm.index_built { jn.index_child } else { NONE };
         #[cfg(not(feature = "host-speedups"))]
         let ichild = NONE;
         #[cfg(feature = "host-speedups")]
@@ -590,7 +591,7 @@ impl Core<'_> {
             }
             tokens[am as usize].first_child = t;
         }
-        jn.mem = t;
+        jm.mem = t;
         self.beta_index_insert_fresh(t, join, ichild);
         Ok(t)
     }
@@ -1013,16 +1014,16 @@ impl Core<'_> {
     #[cfg(feature = "host-speedups")]
     #[inline(always)]
     fn one_child(&self, join: Ix) -> bool {
-        self.joins[join as usize].one_child
+        self.join_mems[join as usize].one_child
     }
 
-    /// Records whether `join`'s child list has one entry (host: `Join::one_child`),
+    /// Records whether `join`'s child list has one entry (host: `JoinMem::one_child`),
     /// after every change to the list.
     pub(crate) fn note_children(&mut self, join: Ix) {
         #[cfg(feature = "host-speedups")]
         {
             let c = self.joins[join as usize].first_child;
-            self.joins[join as usize].one_child =
+            self.join_mems[join as usize].one_child =
                 c != NONE && self.joins[c as usize].next_sibling == NONE;
         }
         #[cfg(not(feature = "host-speedups"))]
@@ -1067,9 +1068,9 @@ impl Core<'_> {
         if mem_prev != NONE {
             tokens[mem_prev as usize].mem_next = mem_next;
         } else {
-            let j = &mut self.joins[owner as usize];
+            let j = &mut self.join_mems[owner as usize];
             j.mem = mem_next;
-            // an empty memory is trivially unindexed (see `Join::index_built`)
+            // an empty memory is trivially unindexed (see `JoinMem::index_built`)
             #[cfg(feature = "host-speedups")]
             if mem_next == NONE {
                 j.index_built = false;
@@ -1083,8 +1084,8 @@ impl Core<'_> {
 
     /// Deletes every token in a join's memory.
     pub(crate) fn clear_join_memory(&mut self, join: Ix) {
-        while self.joins[join as usize].mem != NONE {
-            let t = self.joins[join as usize].mem;
+        while self.join_mems[join as usize].mem != NONE {
+            let t = self.join_mems[join as usize].mem;
             self.delete_token(t);
         }
     }

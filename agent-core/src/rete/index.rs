@@ -340,7 +340,7 @@ impl Core<'_> {
                 return (self.skip_foreign(a, alpha), true);
             }
         }
-        (self.alphas[alpha as usize].mem, false)
+        (self.alpha_mems[alpha as usize].head, false)
     }
 
     /// The candidate after `a` (same chain kind as `first_candidate` gave).
@@ -442,7 +442,7 @@ impl Core<'_> {
         let c = self.joins[child as usize];
         if parent != 0
             && p.index_child == NONE
-            && p.mem == NONE
+            && self.join_mems[parent as usize].mem == NONE
             && c.alpha != NONE
             && c.rjoin == NONE
             && self.alphas[c.alpha as usize].nrhash > 0
@@ -457,7 +457,7 @@ impl Core<'_> {
         let join = self.tokens[t as usize].owner;
         let child = self.joins[join as usize].index_child;
         #[cfg(feature = "host-speedups")]
-        let skip = child == NONE || !self.joins[join as usize].index_built;
+        let skip = child == NONE || !self.join_mems[join as usize].index_built;
         #[cfg(not(feature = "host-speedups"))]
         let skip = child == NONE;
         if skip {
@@ -576,7 +576,7 @@ impl Core<'_> {
     /// `join` (then `next_left` with `hashed`), else the whole memory.
     pub(crate) fn first_left(&mut self, join: Ix, am: Ix) -> (Ix, bool) {
         let j = self.joins[join as usize];
-        let parent_mem = self.joins[j.parent as usize].mem;
+        let parent_mem = self.join_mems[j.parent as usize].mem;
         // host: an empty memory stays unindexed (its index would only make every
         // partial match that comes pay its bucket until the next right activation)
         #[cfg(feature = "host-speedups")]
@@ -585,7 +585,7 @@ impl Core<'_> {
         }
         if self.joins[j.parent as usize].index_child == join {
             #[cfg(feature = "host-speedups")]
-            if !self.joins[j.parent as usize].index_built {
+            if !self.join_mems[j.parent as usize].index_built {
                 self.build_beta_index(j.parent, join);
             }
             let tk = self.tokens[am as usize];
@@ -620,12 +620,12 @@ impl Core<'_> {
         l
     }
 
-    /// Host: indexes `join`'s memory for `child` (see `Join::index_built`). Oldest
+    /// Host: indexes `join`'s memory for `child` (see `JoinMem::index_built`). Oldest
     /// first, each at its bucket's head: the buckets get memory order, as if every
     /// match had been indexed when it came.
     #[cfg(feature = "host-speedups")]
     fn build_beta_index(&mut self, join: Ix, child: Ix) {
-        let mut t = self.joins[join as usize].mem;
+        let mut t = self.join_mems[join as usize].mem;
         let mut last = NONE;
         while t != NONE {
             last = t;
@@ -635,12 +635,12 @@ impl Core<'_> {
             self.beta_index_link(last, join, child);
             last = self.tokens[last as usize].mem_prev;
         }
-        self.joins[join as usize].index_built = true;
+        self.join_mems[join as usize].index_built = true;
     }
 
     /// Stops indexing `join`'s memory (its index child goes away).
     pub(crate) fn drop_beta_index(&mut self, join: Ix) {
-        let mut t = self.joins[join as usize].mem;
+        let mut t = self.join_mems[join as usize].mem;
         while t != NONE {
             self.beta_index_remove(t);
             t = self.tokens[t as usize].mem_next;
@@ -648,7 +648,7 @@ impl Core<'_> {
         self.joins[join as usize].index_child = NONE;
         #[cfg(feature = "host-speedups")]
         {
-            self.joins[join as usize].index_built = false;
+            self.join_mems[join as usize].index_built = false;
         }
     }
 }

@@ -46,9 +46,6 @@ pub struct AlphaNode {
     pub next_in_tmpl: Ix,
     /// First successor join (chained by `Join::alpha_next`, newest first).
     pub succ: Ix,
-    /// Alpha memory: alpha-match tokens, oldest first (CLIPS iterates them so).
-    pub mem: Ix,
-    pub mem_tail: Ix,
     pub nmarks: u8,
     pub live: bool,
     /// The pattern's path in CLIPS's pattern network (field locators and their alpha
@@ -72,8 +69,6 @@ impl AlphaNode {
         tests: NONE,
         next_in_tmpl: NONE,
         succ: NONE,
-        mem: NONE,
-        mem_tail: NONE,
         nmarks: 0,
         live: false,
         path_loc: [0; PATH_LEN],
@@ -82,6 +77,22 @@ impl AlphaNode {
         key_len: 0,
         rhash: [NONE; MAX_RHASH],
         nrhash: 0,
+    };
+}
+
+/// What changes at run time per alpha node: its memory (an own pool, so that a
+/// compiled rule base's alpha nodes can be read in place, `rom`).
+#[derive(Clone, Copy, Debug)]
+pub struct AlphaMem {
+    /// Alpha-match tokens, oldest first (CLIPS iterates them so).
+    pub head: Ix,
+    pub tail: Ix,
+}
+
+impl AlphaMem {
+    pub const EMPTY: AlphaMem = AlphaMem {
+        head: NONE,
+        tail: NONE,
     };
 }
 
@@ -121,8 +132,6 @@ pub struct Join {
     pub post: Ix,
     /// Next join in the alpha node's successor list.
     pub alpha_next: Ix,
-    /// Output memory: first token (newest first).
-    pub mem: Ix,
     /// `not`/`exists` over several CEs: the join ending the subnetwork whose partial
     /// matches are this join's right input ("join from the right"), NONE otherwise.
     pub rjoin: Ix,
@@ -131,24 +140,6 @@ pub struct Join {
     /// The child join whose equality tests key the index of this join's output
     /// memory (see `rete::index`), NONE if the memory is not indexed.
     pub index_child: Ix,
-    /// Host: whether the output memory's partial matches are in their index buckets.
-    /// The index is built on the first right activation that uses it and dropped
-    /// when the memory empties, so memories that are filled and emptied again
-    /// without one (most, in Manners) never pay for it.
-    #[cfg(feature = "host-speedups")]
-    pub index_built: bool,
-    /// Host: whether the child list has exactly one entry (read for every deleted
-    /// partial match; two loads less than walking the list), kept by
-    /// `Core::note_children`.
-    #[cfg(feature = "host-speedups")]
-    pub one_child: bool,
-    /// Whether no join from this one down feeds a join from the right (its memories
-    /// may then be emptied whole, `rete::wipe`), worked out for network generation
-    /// `plain_gen`.
-    #[cfg(feature = "wipe")]
-    pub plain: bool,
-    #[cfg(feature = "wipe")]
-    pub plain_gen: u32,
 }
 
 impl Join {
@@ -170,10 +161,41 @@ impl Join {
         tests: NONE,
         post: NONE,
         alpha_next: NONE,
-        mem: NONE,
         rjoin: NONE,
         rsucc: NONE,
         index_child: NONE,
+    };
+}
+
+/// What changes at run time per join: its output memory and the caches about it (an
+/// own pool, so that a compiled rule base's joins can be read in place, `rom`).
+#[derive(Clone, Copy, Debug)]
+pub struct JoinMem {
+    /// Output memory: first token (newest first).
+    pub mem: Ix,
+    /// Host: whether the output memory's partial matches are in their index buckets.
+    /// The index is built on the first right activation that uses it and dropped
+    /// when the memory empties, so memories that are filled and emptied again
+    /// without one (most, in Manners) never pay for it.
+    #[cfg(feature = "host-speedups")]
+    pub index_built: bool,
+    /// Host: whether the child list has exactly one entry (read for every deleted
+    /// partial match; two loads less than walking the list), kept by
+    /// `Core::note_children`.
+    #[cfg(feature = "host-speedups")]
+    pub one_child: bool,
+    /// Whether no join from this one down feeds a join from the right (its memories
+    /// may then be emptied whole, `rete::wipe`), worked out for network generation
+    /// `plain_gen`.
+    #[cfg(feature = "wipe")]
+    pub plain: bool,
+    #[cfg(feature = "wipe")]
+    pub plain_gen: u32,
+}
+
+impl JoinMem {
+    pub const EMPTY: JoinMem = JoinMem {
+        mem: NONE,
         #[cfg(feature = "host-speedups")]
         index_built: false,
         #[cfg(feature = "host-speedups")]
@@ -238,7 +260,7 @@ pub struct Token {
     #[cfg(feature = "host-speedups")]
     pub binds: [Ix; BIND_W],
     /// Partial match: its key for its join's index child, once computed (by a left
-    /// activation of that child), for when the index is built (`Join::index_built`).
+    /// activation of that child), for when the index is built (`JoinMem::index_built`).
     #[cfg(feature = "host-speedups")]
     pub has_key: bool,
     #[cfg(feature = "host-speedups")]

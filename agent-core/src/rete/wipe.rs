@@ -27,15 +27,17 @@ impl Core<'_> {
             return;
         }
         let alpha = self.tokens[am as usize].owner;
-        let node = &self.alphas[alpha as usize];
-        if node.mem != am || self.tokens[am as usize].mem_next != NONE {
+        if self.alpha_mems[alpha as usize].head != am || self.tokens[am as usize].mem_next != NONE {
             return;
         }
-        let mut j = node.succ;
+        let mut j = self.alphas[alpha as usize].succ;
         while j != NONE {
             let jn = &self.joins[j as usize];
             let next = jn.alpha_next;
-            if jn.kind == JoinKind::Positive && jn.mem != NONE && self.subtree_plain(j) {
+            if jn.kind == JoinKind::Positive
+                && self.join_mems[j as usize].mem != NONE
+                && self.subtree_plain(j)
+            {
                 self.wipe_memory(j, true);
             }
             j = next;
@@ -45,12 +47,12 @@ impl Core<'_> {
     /// Whether no join from `join` down feeds a join from the right (remembered per
     /// network generation).
     fn subtree_plain(&mut self, join: Ix) -> bool {
-        let jn = &self.joins[join as usize];
+        let jn = &self.join_mems[join as usize];
         if jn.plain_gen == self.st.net.net_gen {
             return jn.plain;
         }
         let plain = self.walk_joins(join, false, &mut |cx, j| cx.joins[j as usize].rsucc == NONE);
-        let jn = &mut self.joins[join as usize];
+        let jn = &mut self.join_mems[join as usize];
         jn.plain = plain;
         jn.plain_gen = self.st.net.net_gen;
         plain
@@ -60,7 +62,7 @@ impl Core<'_> {
     /// partial matches' parents are not being removed (the top memory), so they leave
     /// their parents' child lists.
     fn wipe_memory(&mut self, join: Ix, parents_stay: bool) {
-        let mut t = self.joins[join as usize].mem;
+        let mut t = self.join_mems[join as usize].mem;
         while t != NONE {
             let next = self.tokens[t as usize].mem_next;
             if parents_stay {
@@ -69,19 +71,19 @@ impl Core<'_> {
             self.wipe_token(t);
             t = next;
         }
-        let jn = &mut self.joins[join as usize];
-        jn.mem = NONE;
-        // an empty memory is trivially unindexed (see `Join::index_built`)
+        let jm = &mut self.join_mems[join as usize];
+        jm.mem = NONE;
+        // an empty memory is trivially unindexed (see `JoinMem::index_built`)
         #[cfg(feature = "host-speedups")]
         {
-            jn.index_built = false;
+            jm.index_built = false;
         }
-        let mut c = jn.first_child;
+        let mut c = self.joins[join as usize].first_child;
         while c != NONE {
             let cj = &self.joins[c as usize];
             let next = cj.next_sibling;
             // an empty memory has empty ones below it (theirs extend its matches)
-            if !cj.is_terminal() && cj.mem != NONE {
+            if !cj.is_terminal() && self.join_mems[c as usize].mem != NONE {
                 self.wipe_memory(c, false);
             }
             c = next;

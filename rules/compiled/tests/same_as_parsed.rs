@@ -196,3 +196,80 @@ fn every_differential_program_runs_the_same_from_its_compiled_constructs() {
         differ.join("\n")
     );
 }
+
+/// Rules added and removed after a compiled rule base loaded work as after parsing it
+/// (with `in-place`, which the workspace build has, the network read in place is
+/// copied into the arena before the first edit): one rule of the game removed, one
+/// added that shares its first pattern with the game's rules, then seed 0 played.
+#[test]
+fn rules_added_and_removed_after_a_compiled_load_work_as_parsed() {
+    let edits = [
+        "(undefrule exec-get-junk-none)",
+        "(defrule extra-points (score (points ?p&:(> ?p 0))) => (printout t \"points \" ?p crlf))",
+    ];
+    let strategy = Strategy::Paper;
+    let base = rules_compiled::game(strategy.name()).expect("compiled game");
+    let (parsed, compiled) = on_big_stack(|| {
+        let mut parsed = Box::new(DefaultEngine::new());
+        parsed.set_pretty_print_forms(false);
+        for file in rules::game_files(strategy) {
+            parsed
+                .load_str(&mut Capture::default(), file.name, file.text)
+                .expect("rule file loads");
+        }
+        let mut compiled = Box::new(DefaultEngine::new());
+        compiled
+            .load_compiled(&mut Capture::default(), base)
+            .expect("compiled form loads");
+        for engine in [&mut parsed, &mut compiled] {
+            for edit in edits {
+                assert!(engine.exec_command(&mut Capture::default(), edit, "test"));
+            }
+        }
+        (play(&mut parsed, 0), play(&mut compiled, 0))
+    });
+    assert!(parsed.contains("points "), "{parsed}");
+    assert!(!parsed.contains("exec-get-junk-none"));
+    assert_eq!(parsed, compiled);
+}
+
+agent_core::engine_storage! {
+    /// Sized as the agent image: the compiled network's nodes only read in place.
+    struct InPlaceOnly {
+        alpha_nodes: 0,
+        joins: 1,
+        alpha_memories: rules_compiled::game_paper::SIZES.alphas,
+        join_memories: rules_compiled::game_paper::SIZES.joins,
+        ..agent_core::Capacities::HOST
+    }
+}
+
+/// An engine sized to read its compiled network in place (as the image) has no room to
+/// copy it: a new rule is refused with a capacity error naming the pool, and the
+/// engine still plays its game.
+#[test]
+fn an_engine_sized_for_in_place_reading_refuses_new_rules() {
+    if !agent_core::rom::IN_PLACE {
+        // (without the feature such an engine cannot load the rule base at all)
+        return;
+    }
+    let base = rules_compiled::game("paper").expect("compiled game");
+    on_big_stack(|| {
+        let mut engine = Box::new(agent_core::Engine::with_storage(InPlaceOnly::new()));
+        let host = &mut Capture::default();
+        engine.load_compiled(host, base).expect("loads in place");
+        let err = engine
+            .load_str(host, "t", "(defrule extra (score) =>)")
+            .expect_err("no room to copy the network");
+        assert_eq!(
+            err.capacity.map(|c| c.pool),
+            Some(agent_core::Pool::Joins),
+            "{err}"
+        );
+        let mut undef = Capture::default();
+        engine.exec_command(&mut undef, "(undefrule exec-get-junk-none)", "t");
+        assert!(undef.out.contains("joins"), "{}", undef.out);
+        engine.reset(host).expect("reset");
+        assert!(engine.run(host, Some(500_000)).expect("run") > 0);
+    });
+}

@@ -48,8 +48,10 @@ agent_core::engine_storage! {
         templates: BASE.templates + 2,             // +0
         slot_defs: BASE.slots + 2,                 // +0
         rules: BASE.rules,
-        alpha_nodes: BASE.alphas,
-        joins: BASE.joins,
+        alpha_nodes: 0,                            // read in place
+        alpha_memories: BASE.alphas,
+        joins: 1,                                  // read in place; 1: the start-up root
+        join_memories: BASE.joins,
         tokens: 496,                               // 461
         activations: 32,                           // 16
         functions: BASE.functions,
