@@ -145,10 +145,22 @@ impl<T: PuckRelease + ?Sized> PuckRelease for &mut T {
     }
 }
 
+impl<T: PuckGrab + ?Sized> PuckGrab for &mut T {
+    fn set_grab(&mut self, grab: bool) -> Result<(), Self::Error> {
+        T::set_grab(self, grab)
+    }
+}
+
 impl<T: PuckSensor + ?Sized> PuckSensor for &mut T {
     fn has_puck(&mut self) -> Result<bool, Self::Error> {
         T::has_puck(self)
     }
+}
+
+/// Taking a puck that lies in front of the robot (junk at a machine's output): the 2012
+/// robot drives onto it; the drive does it when asked, with its next motor command.
+pub trait PuckGrab: ErrorType {
+    fn set_grab(&mut self, grab: bool) -> Result<(), Self::Error>;
 }
 
 #[cfg(test)]

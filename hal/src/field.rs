@@ -68,6 +68,46 @@ pub const GATE_POSITIONS: [(f32, f32); 3] = [(3.15, 0.26), (2.80, 0.26), (2.45, 
 /// The team's navigation pose in front of the input storage.
 pub const INPUT_STORAGE_POSITION: (f32, f32) = (2.25, 4.90);
 
+/// A recycling unit, 1..=2 (the rules' `R1`, `R2`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct RecyclingId(u8);
+
+impl RecyclingId {
+    pub const fn new(number: u8) -> Option<Self> {
+        if number >= 1 && number <= 2 {
+            Some(Self(number))
+        } else {
+            None
+        }
+    }
+
+    pub const fn number(self) -> u8 {
+        self.0
+    }
+
+    pub const fn position(self) -> (f32, f32) {
+        RECYCLING_POSITIONS[self.0 as usize - 1]
+    }
+}
+
+/// How far from a recycling unit (in a field corner) a robot stops, facing it.
+pub const RECYCLING_APPROACH_M: f32 = 0.55;
+
+/// The pose in front of a recycling unit: on the diagonal towards the field's centre,
+/// facing the corner where the unit stands.
+pub fn recycling_pose(unit: RecyclingId) -> Pose2 {
+    let (x, y) = unit.position();
+    let c = FIELD_SIZE_M / 2.0;
+    let (dx, dy) = (c - x, c - y);
+    let n = libm::hypotf(dx, dy);
+    let (ux, uy) = (dx / n, dy / n);
+    Pose2::new(
+        x + RECYCLING_APPROACH_M * ux,
+        y + RECYCLING_APPROACH_M * uy,
+        libm::atan2f(-uy, -ux),
+    )
+}
+
 /// A delivery gate, 1..=3.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct GateId(u8);
@@ -191,6 +231,12 @@ mod tests {
         for m in MachineId::all() {
             let p = machine_approach_pose(m);
             assert!(!is_blocked(p.x_m, p.y_m, 0.2), "{m:?} {p:?}");
+        }
+        for unit in 1..=2 {
+            let r = RecyclingId::new(unit)
+                .map(recycling_pose)
+                .unwrap_or_default();
+            assert!(!is_blocked(r.x_m, r.y_m, 0.2), "R{unit} {r:?}");
         }
         for robot in 1..=3 {
             let s = input_storage_pose_for(robot);

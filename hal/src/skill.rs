@@ -2,7 +2,7 @@
 //! drives the robot): requests, outcomes and the perceptions an outcome carries. Matches the
 //! 2012 Carologistics skills: `get_s0`, `finish_puck_at(machine)`, and delivery to a gate.
 
-use crate::field::{GateId, MachineId};
+use crate::field::{GateId, MachineId, RecyclingId};
 use crate::light::LightSignal;
 
 /// What the agent asks the behaviour layer to do.
@@ -17,6 +17,11 @@ pub enum SkillRequest {
     /// Release the held puck where the robot stands and back away from it: the agent's
     /// `discard`, and how the behaviour layer gets rid of a puck the agent believes lost.
     Discard,
+    /// Drive to a machine with empty hands and take a junk puck lying there (the consumed
+    /// inputs of a production, 2012 recycling).
+    GetJunk(MachineId),
+    /// Bring the held junk to a recycling unit and take the raw puck it turns it into.
+    Recycle(RecyclingId),
 }
 
 impl SkillRequest {
@@ -27,6 +32,8 @@ impl SkillRequest {
             Self::BringPuckTo(_) => "finish_puck_at",
             Self::DeliverTo(_) => "deliver",
             Self::Discard => "discard",
+            Self::GetJunk(_) => "get_junk",
+            Self::Recycle(_) => "recycle",
         }
     }
 }
@@ -44,6 +51,10 @@ pub enum Perception {
     Delivered,
     /// The robot released its puck and no longer holds one.
     Released,
+    /// The robot took a junk puck at a machine.
+    GotJunk,
+    /// The recycling unit took the junk and handed a raw S0 back.
+    Recycled,
 }
 
 /// Why a skill failed. Codes are stable for payloads.
@@ -67,6 +78,8 @@ pub enum FailReason {
     Aborted = 7,
     /// The input storage had no puck to give.
     StorageEmpty = 8,
+    /// No junk lay at the machine.
+    NoJunk = 9,
 }
 
 impl FailReason {
@@ -84,6 +97,7 @@ impl FailReason {
             6 => Self::InvalidRequest,
             7 => Self::Aborted,
             8 => Self::StorageEmpty,
+            9 => Self::NoJunk,
             _ => return None,
         })
     }
@@ -98,6 +112,7 @@ impl FailReason {
             Self::InvalidRequest => "invalid-request",
             Self::Aborted => "aborted",
             Self::StorageEmpty => "storage-empty",
+            Self::NoJunk => "no-junk",
         }
     }
 }

@@ -22,7 +22,7 @@ use crate::shim::transport::{Pub, RobotStream, Transport, TransportError};
 use crate::team::{FaultyLink, LinkFaults, TeamLink};
 use hal::device::{
     Bumper, Device, Freshness, GateSignal, Gyro, IrRing, MachineLight, Odometry, OmniDrive,
-    PuckRelease, PuckSensor,
+    PuckGrab, PuckRelease, PuckSensor,
 };
 use hal::field::MachineId;
 use hal::ir::IrScan;
@@ -86,13 +86,13 @@ pub struct Args {
 /// again this often until it is there, around what its IR ring sees).
 const PARK_AFTER_CYCLES: u64 = 30;
 
-/// Passing places: the field's corners, the only spots more than 0.7 m from every
-/// machine's approach, the storage and the gates; no two robots share one.
+/// Passing places: spots more than 0.7 m from every machine's approach, the storage, the
+/// gates and the recycling units (which stand in two corners); no two robots share one.
 fn passing_places(robot: u8) -> &'static [(f32, f32)] {
     match robot {
-        1 => &[(0.40, 0.40)],
+        1 => &[(5.20, 0.40)],
         2 => &[(0.40, 5.20)],
-        _ => &[(5.20, 0.40), (5.20, 5.20)],
+        _ => &[(0.40, 3.70)],
     }
 }
 
@@ -483,6 +483,10 @@ fn agent_loop(
             .as_ref()
             .is_some_and(|r| r.skill.releasing() && !outcome.is_terminal());
         drivers.set_release(release)?;
+        let grab = running
+            .as_ref()
+            .is_some_and(|r| r.skill.grabbing() && !outcome.is_terminal());
+        drivers.set_grab(grab)?;
         drivers.set_motor_speeds(decision.wheels)?;
         if let Some((received, at_cycle)) = samples.bumper_hit {
             if decision.wheels.is_zero() {

@@ -135,11 +135,13 @@ impl DriverPorts {
         Ok(self.motor.poll()?.and_then(|p| {
             let wheels: WheelSpeeds = p.decode().ok()?;
             let release = p.release().ok()?;
+            let grab = p.grab().ok()?;
             Some((
                 Command {
                     seq: p.seq,
                     wheels,
                     release,
+                    grab,
                 },
                 p.bumper_seq,
             ))

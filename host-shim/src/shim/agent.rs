@@ -9,7 +9,7 @@
 use super::rule_engine::{Rules, RulesError};
 use crate::team::TeamMsg;
 use agent_core::{EngineError, ValueRef};
-use hal::field::{GateId, MachineId, MACHINE_COUNT};
+use hal::field::{GateId, MachineId, RecyclingId, MACHINE_COUNT};
 use hal::skill::{FailReason, Perception, SkillOutcome, SkillRequest};
 use hal::LightSignal;
 use rules::Strategy;
@@ -20,7 +20,8 @@ use super::payloads::{LOADED_S0, LOADED_S1, LOADED_S2};
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct ChosenSkill {
     pub id: i64,
-    /// The rules' names: `get-s0`, `finish-puck-at`, `deliver`, `discard`.
+    /// The rules' names: `get-s0`, `finish-puck-at`, `deliver`, `discard`, `get-junk`,
+    /// `recycle`.
     pub name: String,
     pub target: String,
     /// The puck the agent believes it carries.
@@ -85,9 +86,6 @@ impl EngineAgent {
             rules.assert("(team-clock (now 0.0))")?;
             rules.assert(&format!("(s0-supply {})", seat.s0_supply))?;
         }
-        // The behaviour layer cannot take junk from a machine or work a recycling unit
-        // yet: the rules leave junk where it is (rules/production-common.clp).
-        rules.assert("(no-recycling)")?;
         Ok(Self {
             rules,
             handed_out: None,
@@ -331,6 +329,12 @@ pub fn skill_request(name: &str, target: &str) -> Option<SkillRequest> {
             .map(SkillRequest::DeliverTo),
         // The recycling units are where the rules would drive; the robot releases in place.
         "discard" => Some(SkillRequest::Discard),
+        "get-junk" => number('M')
+            .and_then(MachineId::new)
+            .map(SkillRequest::GetJunk),
+        "recycle" => number('R')
+            .and_then(RecyclingId::new)
+            .map(SkillRequest::Recycle),
         _ => None,
     }
 }
@@ -346,10 +350,15 @@ pub fn outcome_slots(outcome: SkillOutcome) -> (&'static str, &'static str, &'st
         SkillOutcome::Final(Perception::LightSeen(_) | Perception::LightUnchanged) => {
             ("FAILED", "none", "none")
         }
-        SkillOutcome::Final(Perception::GotS0 | Perception::Delivered | Perception::Released) => {
-            ("FINAL", "none", "none")
-        }
+        SkillOutcome::Final(
+            Perception::GotS0
+            | Perception::Delivered
+            | Perception::Released
+            | Perception::GotJunk
+            | Perception::Recycled,
+        ) => ("FINAL", "none", "none"),
         SkillOutcome::Failed(FailReason::StorageEmpty) => ("FAILED", "none", "storage-empty"),
+        SkillOutcome::Failed(FailReason::NoJunk) => ("FAILED", "none", "no-junk"),
         SkillOutcome::Failed(_) | SkillOutcome::Running => ("FAILED", "none", "none"),
     }
 }
@@ -379,6 +388,15 @@ mod tests {
             GateId::new(3).map(SkillRequest::DeliverTo)
         );
         assert_eq!(skill_request("discard", "R2"), Some(SkillRequest::Discard));
+        assert_eq!(
+            skill_request("get-junk", "M3"),
+            Some(SkillRequest::GetJunk(m(3)))
+        );
+        assert_eq!(
+            skill_request("recycle", "R2"),
+            RecyclingId::new(2).map(SkillRequest::Recycle)
+        );
+        assert_eq!(skill_request("recycle", "R3"), None);
         assert_eq!(skill_request("finish-puck-at", "M11"), None);
         assert_eq!(skill_request("fly", "M1"), None);
     }

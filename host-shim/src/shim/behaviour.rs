@@ -5,7 +5,9 @@
 use super::planner;
 #[cfg(test)]
 use hal::field::input_storage_pose;
-use hal::field::{gate_pose, input_storage_pose_for, machine_approach_pose, MachineId};
+use hal::field::{
+    gate_pose, input_storage_pose_for, machine_approach_pose, recycling_pose, MachineId,
+};
 use hal::ir::IrScan;
 use hal::skill::{FailReason, Perception, SkillOutcome, SkillRequest};
 use hal::{wrap_angle, LightSignal, Pose2, Twist};
@@ -370,6 +372,8 @@ fn backed_off(pose: Pose2, distance_m: f32) -> Pose2 {
 const WAIT_CYCLES: u32 = 30;
 /// Cycles to let a machine's light react to a placed puck before reading it.
 const LIGHT_SETTLE_CYCLES: u32 = 5;
+/// Longest wait at a recycling unit for the raw puck (the unit takes 2 s).
+const RECYCLE_WAIT_CYCLES: u32 = 15 * 6;
 /// Longest wait at a machine: past the longest processing time (T3, 60 s).
 const PROCESSING_WAIT_CYCLES: u32 = 15 * 65;
 /// Within this distance of a station's pose, a puck leaving the robot was placed, not lost.
@@ -400,6 +404,8 @@ pub struct Skill {
     light_before: Option<LightSignal>,
     /// The light differed from `light_before` at some point while waiting.
     light_changed: bool,
+    /// Recycling: the unit took the junk (the gripper was empty at some point).
+    puck_left: bool,
 }
 
 impl Skill {
@@ -412,18 +418,26 @@ impl Skill {
         t: &DriveTuning,
     ) -> Result<Self, FailReason> {
         let goal = match request {
-            SkillRequest::BringPuckTo(_) | SkillRequest::DeliverTo(_) | SkillRequest::Discard
+            SkillRequest::BringPuckTo(_)
+            | SkillRequest::DeliverTo(_)
+            | SkillRequest::Discard
+            | SkillRequest::Recycle(_)
                 if !p.has_puck =>
             {
                 return Err(FailReason::InvalidRequest)
             }
             SkillRequest::Discard => None,
             SkillRequest::GetS0 => Some(input_storage_pose_for(t.robot_number)),
-            SkillRequest::BringPuckTo(m) => Some(machine_approach_pose(m)),
+            SkillRequest::BringPuckTo(m) | SkillRequest::GetJunk(m) => {
+                Some(machine_approach_pose(m))
+            }
             SkillRequest::DeliverTo(g) => Some(gate_pose(g)),
+            SkillRequest::Recycle(u) => Some(recycling_pose(u)),
         };
+        // A fetch with a puck in the gripper (one the agent believes lost) lets go first.
+        let fetch = matches!(request, SkillRequest::GetS0 | SkillRequest::GetJunk(_));
         let phase = match goal {
-            Some(goal) if !(request == SkillRequest::GetS0 && p.has_puck) => Phase::Approach(
+            Some(goal) if !(fetch && p.has_puck) => Phase::Approach(
                 DriveTo::plan_seeing(p.pose, goal, &p.ir, t).ok_or(FailReason::DriveFailed)?,
             ),
             then => Phase::Release { waited: 0, then },
@@ -433,12 +447,19 @@ impl Skill {
             phase,
             light_before: None,
             light_changed: false,
+            puck_left: false,
         })
     }
 
     /// True while the skill asks the drive to let go of the puck.
     pub fn releasing(&self) -> bool {
         matches!(self.phase, Phase::Release { .. })
+    }
+
+    /// True while the skill asks the drive to take the puck lying in front of the robot
+    /// (junk at the machine it stands at).
+    pub fn grabbing(&self) -> bool {
+        matches!(self.request, SkillRequest::GetJunk(_)) && matches!(self.phase, Phase::Wait(_))
     }
 
     /// What the skill perceived, once it is only leaving the station: the work is done.
@@ -482,7 +503,9 @@ impl Skill {
                 DriveStep::Driving(tw) => {
                     if matches!(
                         self.request,
-                        SkillRequest::BringPuckTo(_) | SkillRequest::DeliverTo(_)
+                        SkillRequest::BringPuckTo(_)
+                            | SkillRequest::DeliverTo(_)
+                            | SkillRequest::Recycle(_)
                     ) && !p.has_puck
                     {
                         // Next to the station the puck leaving is the placement itself.
@@ -541,6 +564,22 @@ impl Skill {
                 (false, true) => Err(FailReason::StorageEmpty),
                 (false, false) => Ok(None),
             },
+            SkillRequest::GetJunk(_) => match (p.has_puck, timed_out) {
+                (true, _) => Ok(Some(Perception::GotJunk)),
+                (false, true) => Err(FailReason::NoJunk),
+                (false, false) => Ok(None),
+            },
+            // The unit takes the junk and hands a raw puck back after its recycling time.
+            SkillRequest::Recycle(_) => {
+                self.puck_left |= !p.has_puck;
+                match (p.has_puck, self.puck_left) {
+                    (true, true) => Ok(Some(Perception::Recycled)),
+                    // The unit did not take the puck: still held (the agent keeps it).
+                    (true, false) if timed_out => Err(FailReason::DriveFailed),
+                    (false, _) if waited >= RECYCLE_WAIT_CYCLES => Err(FailReason::PuckLost),
+                    _ => Ok(None),
+                }
+            }
             // Discard never waits at a station (it releases in place).
             SkillRequest::Discard => Ok(Some(Perception::Released)),
             SkillRequest::DeliverTo(_) => match (p.has_puck, timed_out) {
@@ -663,11 +702,18 @@ mod tests {
                 trips.push((m, storage));
             }
         }
+        let recyclers: Vec<Pose2> = (1..=2)
+            .filter_map(hal::field::RecyclingId::new)
+            .map(recycling_pose)
+            .collect();
         for &a in &machines {
-            for &b in machines.iter().chain(gates.iter()) {
+            for &b in machines.iter().chain(gates.iter()).chain(recyclers.iter()) {
                 if a != b {
                     trips.push((a, b));
                 }
+            }
+            for &r in &recyclers {
+                trips.push((r, a));
             }
         }
         let mut worst = (f32::INFINITY, Pose2::default(), Pose2::default());
@@ -937,6 +983,62 @@ mod tests {
             },
         );
         assert_eq!(outcome, SkillOutcome::Failed(FailReason::PuckLost));
+    }
+
+    #[test]
+    fn get_junk_takes_what_lies_at_the_machine_or_fails() {
+        let t = DriveTuning::default();
+        let m = MachineId::new(6).unwrap_or_else(|| panic!());
+        let target = machine_approach_pose(m);
+        let start = perceived(input_storage_pose(), false);
+        // The world hands the junk only to a skill that asks for it, at the machine.
+        let mut skill =
+            Skill::start(SkillRequest::GetJunk(m), &start, &t).unwrap_or_else(|r| panic!("{r:?}"));
+        let mut p = start;
+        let mut outcome = SkillOutcome::Running;
+        for _ in 0..15 * 90 {
+            let (tw, o) = skill.step(&p, &t);
+            outcome = o;
+            if o.is_terminal() {
+                break;
+            }
+            if skill.grabbing() {
+                assert!(p.pose.distance_to(&target) < 0.05, "{:?}", p.pose);
+                p.has_puck = true;
+            }
+            p.pose = integrate(p.pose, hal::limits::MotionLimits::ROBOTINO2.clamp_speed(tw));
+        }
+        assert_eq!(outcome, SkillOutcome::Final(Perception::GotJunk));
+        assert_eq!(
+            run(SkillRequest::GetJunk(m), start, |_| {}),
+            SkillOutcome::Failed(FailReason::NoJunk)
+        );
+    }
+
+    #[test]
+    fn recycle_hands_the_junk_over_and_waits_for_the_raw_puck() {
+        let unit = hal::field::RecyclingId::new(2).unwrap_or_else(|| panic!());
+        let station = recycling_pose(unit);
+        let start = perceived(input_storage_pose(), true);
+        let mut at_unit = 0;
+        let outcome = run(SkillRequest::Recycle(unit), start, |p| {
+            if p.pose.distance_to(&station) < 0.05 {
+                at_unit += 1;
+                // The unit takes the junk, and 2 s later hands an S0 back.
+                p.has_puck = at_unit > 30;
+            }
+        });
+        assert_eq!(outcome, SkillOutcome::Final(Perception::Recycled));
+        // A unit that never takes the puck: failed, the puck still held.
+        assert_eq!(
+            run(SkillRequest::Recycle(unit), start, |_| {}),
+            SkillOutcome::Failed(FailReason::DriveFailed)
+        );
+        let empty = perceived(input_storage_pose(), false);
+        assert_eq!(
+            run(SkillRequest::Recycle(unit), empty, |_| {}),
+            SkillOutcome::Failed(FailReason::InvalidRequest)
+        );
     }
 
     #[test]

@@ -11,7 +11,7 @@
 
 use hal::device::{
     Bumper, Device, Freshness, GateSignal, Gyro, GyroSample, IrRing, MachineLight, Odometry,
-    OdometrySample, OmniDrive, PuckRelease, PuckSensor,
+    OdometrySample, OmniDrive, PuckGrab, PuckRelease, PuckSensor,
 };
 use hal::field::{GateId, MachineId};
 use hal::ir::IrScan;
@@ -92,6 +92,7 @@ pub struct SimDrivers {
     seq: [Option<u32>; 6],
     measured: WheelSpeeds,
     release: bool,
+    grab: bool,
 }
 
 fn slot(d: Device) -> usize {
@@ -119,6 +120,7 @@ impl SimDrivers {
             seq: [None; 6],
             measured: WheelSpeeds::ZERO,
             release: false,
+            grab: false,
         })
     }
 
@@ -217,12 +219,22 @@ impl PuckRelease for SimDrivers {
     }
 }
 
+impl PuckGrab for SimDrivers {
+    fn set_grab(&mut self, grab: bool) -> Result<(), DriverError> {
+        self.grab = grab;
+        Ok(())
+    }
+}
+
 impl OmniDrive for SimDrivers {
     fn set_motor_speeds(&mut self, speeds: WheelSpeeds) -> Result<(), DriverError> {
         let bumper_seq = self.seq[slot(Device::Bumper)].unwrap_or(0);
-        let release = self.release;
-        self.motor
-            .send(|s| MotorCommandPayload::encode(s, bumper_seq, speeds).with_release(release))?;
+        let (release, grab) = (self.release, self.grab);
+        self.motor.send(|s| {
+            MotorCommandPayload::encode(s, bumper_seq, speeds)
+                .with_release(release)
+                .with_grab(grab)
+        })?;
         Ok(())
     }
 

@@ -7,8 +7,8 @@ use super::config::Config;
 use super::referee::{Placement, PuckKind, Referee};
 use hal::device::GyroSample;
 use hal::field::{
-    gate_pose, input_storage_pose_for, machine_approach_pose, GateId, MachineId, FIELD_SIZE_M,
-    MACHINE_POSITIONS, MACHINE_SIZE_M,
+    gate_pose, input_storage_pose_for, machine_approach_pose, recycling_pose, GateId, MachineId,
+    RecyclingId, FIELD_SIZE_M, MACHINE_POSITIONS, MACHINE_SIZE_M,
 };
 use hal::ir::{sensor_angle_rad, IrScan, IR_MAX_RANGE_M, IR_MIN_RANGE_M, IR_SENSOR_COUNT};
 use hal::odometry::OdometryIntegrator;
@@ -76,6 +76,8 @@ pub struct Command {
     pub wheels: WheelSpeeds,
     /// Let go of the puck in front of the robot.
     pub release: bool,
+    /// Take the puck lying in front of the robot (junk at a machine).
+    pub grab: bool,
 }
 
 impl Command {
@@ -84,6 +86,7 @@ impl Command {
             seq,
             wheels,
             release: false,
+            grab: false,
         }
     }
 }
@@ -112,6 +115,11 @@ pub struct SimRobot {
     /// The station where this robot last put or took a puck, until it leaves it: a robot
     /// standing still at a machine must not place the same puck every cycle.
     worked_station: Option<Station>,
+    /// Junk this robot handed to a recycling unit: seconds until the unit hands the raw
+    /// puck back (to the robot if it still stands there).
+    recycling: Option<(f32, RecyclingId)>,
+    /// The drive tried to take junk since the grab was asked for (once per asking).
+    grab_tried: bool,
 }
 
 /// What a robot's bumper touched.
@@ -139,6 +147,7 @@ enum Station {
     Storage,
     Machine(MachineId),
     Gate(GateId),
+    Recycling(RecyclingId),
 }
 
 impl SimRobot {
@@ -194,6 +203,8 @@ impl<R: Referee> FieldSim<R> {
                     robot_contacts: 0,
                     travel_m: 0.0,
                     worked_station: None,
+                    recycling: None,
+                    grab_tried: false,
                 }
             })
             .collect();
@@ -231,7 +242,8 @@ impl<R: Referee> FieldSim<R> {
             }
             self.move_robot(i);
             self.sense_motion(i);
-            self.work_stations(i);
+            self.recycle_tick(i);
+            self.work_stations(i, command.is_some_and(|c| c.grab));
         }
     }
 
@@ -303,7 +315,26 @@ impl<R: Referee> FieldSim<R> {
         r.odometry.update(measured, Some(r.gyro_angle), dt);
     }
 
-    fn work_stations(&mut self, i: usize) {
+    /// The recycling unit's time passes; then the raw puck goes to the robot still waiting
+    /// there (one that left loses it: it stays in the unit).
+    fn recycle_tick(&mut self, i: usize) {
+        let dt = self.dt_s;
+        let r = &mut self.robots[i];
+        let Some((left, unit)) = r.recycling.as_mut() else {
+            return;
+        };
+        *left -= dt;
+        if *left > 0.0 {
+            return;
+        }
+        let unit = *unit;
+        r.recycling = None;
+        if r.worked_station == Some(Station::Recycling(unit)) && r.held.is_none() {
+            r.held = Some(PuckKind::S0);
+        }
+    }
+
+    fn work_stations(&mut self, i: usize, grab: bool) {
         let pose = self.robots[i].true_pose;
         let at = |target: Pose2| {
             pose.distance_to(&target) <= STATION_REACH_M
@@ -318,14 +349,34 @@ impl<R: Referee> FieldSim<R> {
                 .filter_map(GateId::new)
                 .find(|&g| at(gate_pose(g)))
                 .map(Station::Gate)
+                .or_else(|| {
+                    (1..=2)
+                        .filter_map(RecyclingId::new)
+                        .find(|&u| at(recycling_pose(u)))
+                        .map(Station::Recycling)
+                })
         };
         let r = &mut self.robots[i];
         if station.is_none() || station != r.worked_station {
             r.worked_station = None;
         }
+        r.grab_tried &= grab;
         // A puck goes into a station only from a robot that stopped there: one driving
         // past a machine's approach pose on its way elsewhere keeps its puck.
         if !r.applied.is_zero() {
+            return;
+        }
+        // Junk is taken only when asked (the robot drives onto it), once per asking: a
+        // robot that merely stops in front of a machine takes nothing, and one that just
+        // worked the machine may take the junk its production left.
+        if let (Some(Station::Machine(m)), None, true, false) =
+            (station, r.held, grab, r.grab_tried)
+        {
+            r.grab_tried = true;
+            let robot = r.number;
+            if self.referee.take_junk(robot, m) {
+                self.robots[i].held = Some(PuckKind::Junk);
+            }
             return;
         }
         let (Some(station), None) = (station, r.worked_station) else {
@@ -335,6 +386,13 @@ impl<R: Referee> FieldSim<R> {
         match (station, r.held) {
             (Station::Storage, None) => {
                 r.held = self.referee.take_from_storage(robot);
+                r.worked_station = Some(station);
+            }
+            (Station::Recycling(u), Some(PuckKind::Junk)) => {
+                if let Some(wait_s) = self.referee.recycle(robot, u) {
+                    r.held = None;
+                    r.recycling = Some((wait_s, u));
+                }
                 r.worked_station = Some(station);
             }
             (Station::Machine(m), Some(puck)) => {
@@ -642,6 +700,7 @@ mod tests {
                 seq: 1,
                 wheels: WheelSpeeds::ZERO,
                 release: true,
+                grab: false,
             };
             s.step(&[Some(release)]);
             assert_eq!(s.robots[0].held, None);
@@ -655,6 +714,77 @@ mod tests {
             s.robots[0].true_pose = gate_pose(g);
             s.step(&[None]);
             assert_eq!(s.robots[0].held, None);
+        });
+    }
+
+    /// 2012 recycling: the junk a T2 production leaves is taken only when asked for, once,
+    /// and a recycling unit hands a raw puck back after its 2 s (+3 for the T2's junk).
+    #[test]
+    fn junk_goes_from_a_machine_to_a_recycling_unit_and_back_as_s0() {
+        on_engine_stack(|| {
+            let mut s = sim();
+            let setup = GameSetup::for_seed(SEED);
+            let of = |t| {
+                MachineId::all()
+                    .find(|&m| setup.assignment[m.index()] == t)
+                    .unwrap_or_else(|| panic!("{t:?}"))
+            };
+            let (t1, t2) = (of(MachineType::T1), of(MachineType::T2));
+            let command = |seq, release, grab| Command {
+                seq,
+                wheels: WheelSpeeds::ZERO,
+                release,
+                grab,
+            };
+            for (station, held) in [
+                (input_storage_pose_for(1), PuckKind::S0),
+                (machine_approach_pose(t1), PuckKind::S1),
+            ] {
+                s.robots[0].true_pose = station;
+                s.step(&[None]);
+                assert_eq!(s.robots[0].held, Some(held));
+            }
+            s.robots[0].true_pose = machine_approach_pose(t2);
+            s.step(&[None]);
+            assert_eq!(s.robots[0].held, None, "S1 loaded into the T2");
+            s.robots[0].true_pose = input_storage_pose_for(1);
+            s.step(&[None]);
+            s.robots[0].true_pose = machine_approach_pose(t2);
+            s.step(&[None]);
+            assert_eq!(s.robots[0].held, Some(PuckKind::S2));
+            s.step(&[Some(command(1, true, false))]);
+            assert_eq!(s.robots[0].held, None);
+            // Standing there without asking takes nothing; asking takes the one junk.
+            s.step(&[Some(command(2, false, false))]);
+            assert_eq!(s.robots[0].held, None);
+            s.step(&[Some(command(3, false, true))]);
+            assert_eq!(s.robots[0].held, Some(PuckKind::Junk));
+            // Asked on: nothing more (the T2's one junk is gone, and it asks once).
+            s.step(&[Some(command(4, false, true))]);
+            assert_eq!(s.robots[0].held, Some(PuckKind::Junk));
+            let score_before = s.referee.score();
+            let unit = RecyclingId::new(1).unwrap_or_else(|| panic!());
+            s.robots[0].true_pose = recycling_pose(unit);
+            s.step(&[None]);
+            assert_eq!(s.robots[0].held, None, "the unit took the junk");
+            assert_eq!(s.referee.score(), score_before + 3);
+            for _ in 0..15 * 2 + 1 {
+                s.step(&[None]);
+            }
+            assert_eq!(s.robots[0].held, Some(PuckKind::S0));
+            let log = s.referee.take_log();
+            assert!(
+                log.iter()
+                    .any(|l| l.contains("robot=1 recycle R1 JUNK -> ok")),
+                "{log:?}"
+            );
+            // Junk the referee never saw taken from a machine is refused: kept.
+            s.robots[0].held = Some(PuckKind::Junk);
+            s.robots[0].true_pose = machine_approach_pose(t1);
+            s.step(&[None]);
+            s.robots[0].true_pose = recycling_pose(unit);
+            s.step(&[None]);
+            assert_eq!(s.robots[0].held, Some(PuckKind::Junk));
         });
     }
 

@@ -8,7 +8,7 @@
 
 use core::fmt;
 use hal::device::GyroSample;
-use hal::field::{GateId, MachineId};
+use hal::field::{GateId, MachineId, RecyclingId};
 use hal::ir::{IrScan, IR_MAX_RANGE_M, IR_NO_READING, IR_SENSOR_COUNT};
 use hal::skill::{FailReason, Perception, SkillOutcome, SkillRequest};
 use hal::{LightSignal, Pose2, WheelSpeeds};
@@ -242,7 +242,8 @@ impl OdometryPayload {
 /// The motor command. `bumper_seq` names the newest bumper sample the sender had read when
 /// it computed the command, so the driver can measure bumper-to-stop latency in cycles.
 /// `release_puck` = 1 asks the drive to let go of the puck in front of the robot (the
-/// behaviour layer's discard).
+/// behaviour layer's discard); `grab_puck` = 1 to take one lying in front of it (junk at a
+/// machine).
 #[derive(Debug, Clone, Copy, PartialEq, ZeroCopySend)]
 #[type_name("robotino::MotorCommand")]
 #[repr(C)]
@@ -251,7 +252,8 @@ pub struct MotorCommandPayload {
     pub bumper_seq: u32,
     pub rpm: [f32; 3],
     pub release_puck: u8,
-    pub reserved: [u8; 3],
+    pub grab_puck: u8,
+    pub reserved: [u8; 2],
 }
 
 impl MotorCommandPayload {
@@ -261,13 +263,20 @@ impl MotorCommandPayload {
             bumper_seq,
             rpm: wheels.rpm,
             release_puck: 0,
-            reserved: [0; 3],
+            grab_puck: 0,
+            reserved: [0; 2],
         }
     }
 
     /// The same command, asking (or not) to release the puck.
     pub fn with_release(mut self, release: bool) -> Self {
         self.release_puck = u8::from(release);
+        self
+    }
+
+    /// The same command, asking (or not) to take the puck in front of the robot.
+    pub fn with_grab(mut self, grab: bool) -> Self {
+        self.grab_puck = u8::from(grab);
         self
     }
 
@@ -278,12 +287,18 @@ impl MotorCommandPayload {
             *out = within(r, -MAX_WIRE_RPM, MAX_WIRE_RPM, "rpm")?;
         }
         flag(self.release_puck, "release_puck")?;
+        flag(self.grab_puck, "grab_puck")?;
         Ok(wheels)
     }
 
     /// Whether the command asks to release the puck.
     pub fn release(&self) -> Result<bool, DecodeError> {
         flag(self.release_puck, "release_puck")
+    }
+
+    /// Whether the command asks to take the puck in front of the robot.
+    pub fn grab(&self) -> Result<bool, DecodeError> {
+        flag(self.grab_puck, "grab_puck")
     }
 }
 
@@ -372,6 +387,8 @@ const SKILL_GET_S0: u8 = 1;
 const SKILL_BRING_PUCK: u8 = 2;
 const SKILL_DELIVER: u8 = 3;
 const SKILL_DISCARD: u8 = 4;
+const SKILL_GET_JUNK: u8 = 5;
+const SKILL_RECYCLE: u8 = 6;
 
 fn encode_request(request: SkillRequest) -> (u8, u8) {
     match request {
@@ -379,6 +396,8 @@ fn encode_request(request: SkillRequest) -> (u8, u8) {
         SkillRequest::BringPuckTo(m) => (SKILL_BRING_PUCK, m.number()),
         SkillRequest::DeliverTo(g) => (SKILL_DELIVER, g.number()),
         SkillRequest::Discard => (SKILL_DISCARD, 0),
+        SkillRequest::GetJunk(m) => (SKILL_GET_JUNK, m.number()),
+        SkillRequest::Recycle(r) => (SKILL_RECYCLE, r.number()),
     }
 }
 
@@ -387,6 +406,15 @@ fn decode_request(kind: u8, target: u8) -> Result<SkillRequest, DecodeError> {
         SKILL_GET_S0 => Ok(SkillRequest::GetS0),
         SKILL_DISCARD => Ok(SkillRequest::Discard),
         SKILL_BRING_PUCK => Ok(SkillRequest::BringPuckTo(machine(target)?)),
+        SKILL_GET_JUNK => Ok(SkillRequest::GetJunk(machine(target)?)),
+        SKILL_RECYCLE => {
+            RecyclingId::new(target)
+                .map(SkillRequest::Recycle)
+                .ok_or(DecodeError::UnknownCode {
+                    field: "target",
+                    code: target,
+                })
+        }
         SKILL_DELIVER => {
             GateId::new(target)
                 .map(SkillRequest::DeliverTo)
@@ -440,6 +468,8 @@ const PERCEPTION_LIGHT: u8 = 2;
 const PERCEPTION_LIGHT_UNCHANGED: u8 = 3;
 const PERCEPTION_DELIVERED: u8 = 4;
 const PERCEPTION_RELEASED: u8 = 5;
+const PERCEPTION_GOT_JUNK: u8 = 6;
+const PERCEPTION_RECYCLED: u8 = 7;
 
 /// A skill's state for monitoring. `detail` is the perception code (FINAL) or the fail
 /// reason (FAILED); `light` carries the seen light for `PERCEPTION_LIGHT`.
@@ -480,6 +510,8 @@ impl SkillStatusPayload {
                 Perception::LightUnchanged => (STATE_FINAL, PERCEPTION_LIGHT_UNCHANGED, 0),
                 Perception::Delivered => (STATE_FINAL, PERCEPTION_DELIVERED, 0),
                 Perception::Released => (STATE_FINAL, PERCEPTION_RELEASED, 0),
+                Perception::GotJunk => (STATE_FINAL, PERCEPTION_GOT_JUNK, 0),
+                Perception::Recycled => (STATE_FINAL, PERCEPTION_RECYCLED, 0),
             },
         };
         Self {
@@ -510,6 +542,8 @@ impl SkillStatusPayload {
                 PERCEPTION_LIGHT_UNCHANGED => Perception::LightUnchanged,
                 PERCEPTION_DELIVERED => Perception::Delivered,
                 PERCEPTION_RELEASED => Perception::Released,
+                PERCEPTION_GOT_JUNK => Perception::GotJunk,
+                PERCEPTION_RECYCLED => Perception::Recycled,
                 code => return Err(unknown("detail", code)),
             }),
             code => return Err(unknown("state", code)),
@@ -765,6 +799,7 @@ wire!(MotorCommandPayload {
     bumper_seq,
     rpm,
     release_puck,
+    grab_puck,
     reserved
 });
 wire!(LightPayload {
@@ -899,6 +934,17 @@ mod tests {
                 code: 3
             })
         ));
+        let grab = cmd.with_grab(true);
+        assert_eq!((grab.grab(), grab.release()), (Ok(true), Ok(false)));
+        let mut bad = grab;
+        bad.grab_puck = 2;
+        assert!(matches!(
+            bad.decode(),
+            Err(DecodeError::UnknownCode {
+                field: "grab_puck",
+                code: 2
+            })
+        ));
     }
 
     /// Encodes, goes through bytes and back, and checks that a wrong length and a bad field
@@ -914,6 +960,38 @@ mod tests {
         let mut bad = bytes;
         corrupt(&mut bad);
         assert!(T::from_bytes(&bad).is_err(), "{p:?}: corruption accepted");
+    }
+
+    #[test]
+    fn junk_and_recycling_skills_round_trip() {
+        let r2 = RecyclingId::new(2).unwrap_or_else(|| panic!("R2"));
+        for (request, outcome) in [
+            (
+                SkillRequest::GetJunk(m(7)),
+                SkillOutcome::Final(Perception::GotJunk),
+            ),
+            (
+                SkillRequest::GetJunk(m(1)),
+                SkillOutcome::Failed(FailReason::NoJunk),
+            ),
+            (
+                SkillRequest::Recycle(r2),
+                SkillOutcome::Final(Perception::Recycled),
+            ),
+        ] {
+            let p = SkillRequestPayload::encode(1, 3, request);
+            assert_eq!(p.decode(), Ok((3, request)));
+            let status = SkillStatus {
+                request_seq: 1,
+                robot: 3,
+                request,
+                outcome,
+            };
+            assert_eq!(SkillStatusPayload::encode(2, &status).decode(), Ok(status));
+        }
+        let mut bad = SkillRequestPayload::encode(1, 1, SkillRequest::Recycle(r2));
+        bad.target = 3;
+        assert!(bad.decode().is_err());
     }
 
     #[test]

@@ -9,7 +9,7 @@
 //! shows the referee's light (green), as a real machine would.
 
 use super::rule_engine::{Rules, RulesError};
-use hal::field::{GateId, MachineId, MACHINE_COUNT};
+use hal::field::{GateId, MachineId, RecyclingId, MACHINE_COUNT};
 use hal::LightSignal;
 use rules::setup::GameSetup;
 
@@ -20,6 +20,8 @@ pub enum PuckKind {
     S1,
     S2,
     P,
+    /// A consumed input left at a machine (2012 recycling).
+    Junk,
 }
 
 impl PuckKind {
@@ -29,11 +31,12 @@ impl PuckKind {
             Self::S1 => "S1",
             Self::S2 => "S2",
             Self::P => "P",
+            Self::Junk => "JUNK",
         }
     }
 
     pub fn from_symbol(s: &str) -> Option<Self> {
-        [Self::S0, Self::S1, Self::S2, Self::P]
+        [Self::S0, Self::S1, Self::S2, Self::P, Self::Junk]
             .into_iter()
             .find(|k| k.symbol() == s)
     }
@@ -60,6 +63,11 @@ pub trait Referee {
     fn deliver(&mut self, robot: u8, gate: GateId, puck: PuckKind) -> bool;
     /// A robot lets go of `puck` on the field (the agent's discard).
     fn discard(&mut self, robot: u8, puck: PuckKind);
+    /// A robot with empty hands takes a junk puck lying at `machine`; `false`: none there.
+    fn take_junk(&mut self, robot: u8, machine: MachineId) -> bool;
+    /// A robot hands the junk it carries to a recycling unit: the seconds until the unit
+    /// hands a raw puck back, or `None` when it refuses (no junk of a machine, too late).
+    fn recycle(&mut self, robot: u8, unit: RecyclingId) -> Option<f32>;
     /// The light a camera would see at `machine` now.
     fn light(&self, machine: MachineId) -> LightSignal;
     /// The delivery gate whose light is on.
@@ -170,7 +178,7 @@ impl ClipsReferee {
         if self.over {
             return None;
         }
-        match self.try_act(kind, target, puck) {
+        match self.try_act(robot, kind, target, puck) {
             Ok(r) => {
                 self.log.push(format!(
                     "referee t={:.1} robot={robot} {kind} {target} {puck} -> {} light={} puck={} wait={:.1} score={}",
@@ -191,7 +199,13 @@ impl ClipsReferee {
         }
     }
 
-    fn try_act(&mut self, kind: &str, target: &str, puck: &str) -> Result<RfResult, RulesError> {
+    fn try_act(
+        &mut self,
+        robot: u8,
+        kind: &str,
+        target: &str,
+        puck: &str,
+    ) -> Result<RfResult, RulesError> {
         let id = self.next_action;
         self.next_action += 1;
         // The field's clock is the game's: the referee judges lateness against it.
@@ -209,7 +223,7 @@ impl ClipsReferee {
             ))?;
         }
         self.rules.assert(&format!(
-            "(rf-action (id {id}) (kind {kind}) (target {target}) (puck {puck}))"
+            "(rf-action (id {id}) (kind {kind}) (target {target}) (puck {puck}) (robot {robot}))"
         ))?;
         self.rules.run()?;
         let answer = self
@@ -282,6 +296,18 @@ impl Referee for ClipsReferee {
 
     fn discard(&mut self, robot: u8, puck: PuckKind) {
         let _ = self.act(robot, "discard", "FIELD", puck.symbol());
+    }
+
+    fn take_junk(&mut self, robot: u8, machine: MachineId) -> bool {
+        let name = format!("M{}", machine.number());
+        self.act(robot, "take-junk", &name, "NONE")
+            .is_some_and(|r| r.status == "ok")
+    }
+
+    fn recycle(&mut self, robot: u8, unit: RecyclingId) -> Option<f32> {
+        let name = format!("R{}", unit.number());
+        let r = self.act(robot, "recycle", &name, PuckKind::Junk.symbol())?;
+        (r.status == "ok").then_some(r.wait_s as f32)
     }
 
     fn light(&self, machine: MachineId) -> LightSignal {
