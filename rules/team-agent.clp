@@ -13,15 +13,19 @@
 
 (defglobal ?*PRIORITY_TEAM_AGENT* = 105)   ; above execution (100)
 
-(deffunction team-resource-p (?x)
+(deffunction team-resource-p (?action ?x)
+  "A shared place for this action: the input storage, a gate, a machine, and a
+   recycling unit to recycle at (one robot works a unit at a time; a discard
+   needs none)."
   (or (eq ?x INS)
-      (member$ ?x (create$ D1 D2 D3 M1 M2 M3 M4 M5 M6 M7 M8 M9 M10))))
+      (member$ ?x (create$ D1 D2 D3 M1 M2 M3 M4 M5 M6 M7 M8 M9 M10))
+      (and (eq ?action recycle) (member$ ?x (create$ R1 R2)))))
 
 (defrule team-claim-first
   "An intent at a shared place: claim the place before committing."
   (declare (salience ?*PRIORITY_TEAM_AGENT*))
   ?s <- (state IDLE)
-  (intent (target ?x&:(team-resource-p ?x)))
+  (intent (action ?a) (target ?x&:(team-resource-p ?a ?x)))
   (not (team-want (resource ?x)))
   =>
   (retract ?s)
@@ -50,6 +54,25 @@
   =>
   (retract ?s ?i ?w)
   (assert (state TEAM-WAIT) (team-waiting ?x)))
+
+(defrule team-claim-busy-other-unit
+  "The recycling unit is another robot's: recycle at the other one, if free,
+   rather than wait (before team-claim-busy)."
+  (declare (salience (+ ?*PRIORITY_TEAM_AGENT* 1)))
+  (state TEAM-CLAIM)
+  ?i <- (intent (action recycle) (target ?x))
+  ?w <- (team-want (resource ?x))
+  (team-self (id ?me))
+  (team-clock (now ?t))
+  (team-vote (resource ?x) (holder ~?me) (until ?u&:(> ?u ?t)))
+  (test (member$ ?x (create$ R1 R2)))
+  =>
+  (bind ?y (if (eq ?x R1) then R2 else R1))
+  (if (not (any-factp ((?v team-vote))
+             (and (eq ?v:resource ?y) (neq ?v:holder ?me) (> ?v:until ?t))))
+   then (retract ?w)
+        (modify ?i (target ?y))
+        (assert (team-want (resource ?y)))))
 
 (defrule team-wait-over
   "The place is free again: decide anew."
@@ -137,6 +160,18 @@
   (do-for-all-facts ((?t team-s0-told)) TRUE (retract ?t))
   (assert (team-s0-told ?k))
   (team-send-msg ?me news 0 INS 0 0.0 ?k))
+
+(defrule team-done-junk-news
+  "Done, hands empty, and a teammate's news tells of junk: recycling it scores
+   and gives a raw puck, so the robot plays again."
+  (declare (salience ?*PRIORITY_TEAM_AGENT*))
+  ?s <- (state DONE)
+  (holding NONE)
+  (not (no-recycling))
+  (exists (machine (junk ?j&:(> ?j 0))))
+  =>
+  (retract ?s)
+  (assert (state IDLE)))
 
 (defrule team-solo-endgame
   "Few raw pucks left: robots other than robot 1 stop, so the last products
