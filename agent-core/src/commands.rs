@@ -273,6 +273,7 @@ impl Core<'_> {
         let w = self.st.mode.watch;
         let next = self.st.pools.nexternals;
         let ext_syms = self.st.pools.ext_syms;
+        let rom_syms = self.st.rom.symbols;
         for f in self.facts.iter_mut() {
             *f = crate::fact::Fact::EMPTY;
         }
@@ -334,6 +335,35 @@ impl Core<'_> {
             *b = NONE;
         }
         let keep = ext_syms;
+        if !rom_syms.is_empty() {
+            // they were a compiled rule base's, read in place (the engine had them in
+            // its arena before it loaded the rule base, so they fit)
+            let mut top = 0usize;
+            for i in 0..keep as usize {
+                let t = rom_syms.texts.get(i).copied().unwrap_or("").as_bytes();
+                if i >= self.sym_entries.len() {
+                    return Err(crate::engine::cap(
+                        crate::error::Pool::Symbols,
+                        self.sym_entries.len(),
+                    )
+                    .into());
+                }
+                if top + t.len() > self.sym_bytes.len() {
+                    return Err(crate::engine::cap(
+                        crate::error::Pool::SymbolBytes,
+                        self.sym_bytes.len(),
+                    )
+                    .into());
+                }
+                self.sym_bytes[top..top + t.len()].copy_from_slice(t);
+                self.sym_entries[i] = crate::symbols::SymEntry {
+                    start: top as Ix,
+                    len: t.len() as Ix,
+                    next: NONE,
+                };
+                top += t.len();
+            }
+        }
         for i in 0..keep {
             let e = self.sym_entries[i as usize];
             let text_start = e.start as usize;

@@ -613,8 +613,11 @@ impl<S: Storage> Engine<S> {
             templates: p.templates,
             slots: p.slots,
             values: p.values,
-            sym_entries: p.sym_entries,
-            sym_bytes: p.sym_bytes,
+            syms: crate::symbols::SymTexts {
+                rom: self.st.rom.symbols,
+                entries: p.sym_entries,
+                bytes: p.sym_bytes,
+            },
             head: self.st.facts.fact_head,
         }
     }
@@ -657,9 +660,12 @@ impl<S: Storage> Engine<S> {
     }
     pub(crate) fn sym_str(&self, id: SymId) -> &str {
         let pools = self.pools.pools(self.st.rom);
-        let e = pools.sym_entries[id as usize];
-        core::str::from_utf8(&pools.sym_bytes[e.start as usize..(e.start + e.len) as usize])
-            .unwrap_or("")
+        crate::symbols::SymTexts {
+            rom: self.st.rom.symbols,
+            entries: pools.sym_entries,
+            bytes: pools.sym_bytes,
+        }
+        .text(id)
     }
 
     /// The non-generic view of this engine, bound to `host` for output.
@@ -696,6 +702,7 @@ pub(crate) fn cap(pool: Pool, capacity: usize) -> CapacityError {
 impl Core<'_> {
     pub fn syms(&mut self) -> Symbols<'_> {
         Symbols {
+            rom: self.st.rom.symbols,
             entries: self.sym_entries,
             buckets: self.sym_buckets,
             bytes: self.sym_bytes,
@@ -707,13 +714,17 @@ impl Core<'_> {
     /// Text of a symbol or string.
     pub fn sym_text(&self, id: SymId) -> &str {
         // NONE (a retired construct's name) and any id out of range read as ""
-        let Some(e) = self.sym_entries.get(id as usize) else {
-            return "";
-        };
-        self.sym_bytes
-            .get(e.start as usize..e.start as usize + e.len as usize)
-            .and_then(|b| core::str::from_utf8(b).ok())
-            .unwrap_or("")
+        self.sym_texts().text(id)
+    }
+
+    /// Every symbol's text, read-only.
+    #[inline]
+    pub fn sym_texts(&self) -> crate::symbols::SymTexts<'_> {
+        crate::symbols::SymTexts {
+            rom: self.st.rom.symbols,
+            entries: self.sym_entries,
+            bytes: self.sym_bytes,
+        }
     }
 
     pub fn intern(&mut self, s: &str) -> Result<SymId, CapacityError> {

@@ -8,7 +8,6 @@ use crate::builtins::Args;
 use crate::engine::{cap, Core};
 use crate::error::{CapacityError, EvalError, Pool};
 use crate::fact::{Fact, FactState};
-use crate::symbols::SymEntry;
 use crate::template::{SlotDef, Template};
 use crate::value::{Ix, MfSpan, SymId, Value, ValueRef, NONE};
 
@@ -119,8 +118,7 @@ impl<'a, 'c> HostCall<'a, 'c> {
             templates: &self.cx.templates[..],
             slots: &self.cx.slots[..],
             values: &self.cx.values[..],
-            sym_entries: &self.cx.sym_entries[..],
-            sym_bytes: &self.cx.sym_bytes[..],
+            syms: self.cx.sym_texts(),
             head: self.cx.st.facts.fact_head,
         }
     }
@@ -133,21 +131,14 @@ pub(crate) struct FactView<'a> {
     pub(crate) templates: &'a [Template],
     pub(crate) slots: &'a [SlotDef],
     pub(crate) values: &'a [Value],
-    pub(crate) sym_entries: &'a [SymEntry],
-    pub(crate) sym_bytes: &'a [u8],
+    pub(crate) syms: crate::symbols::SymTexts<'a>,
     /// First fact of the creation-ordered list.
     pub(crate) head: Ix,
 }
 
 impl<'a> FactView<'a> {
     pub(crate) fn text(&self, id: SymId) -> &'a str {
-        let Some(e) = self.sym_entries.get(id as usize) else {
-            return "";
-        };
-        self.sym_bytes
-            .get(e.start as usize..e.start as usize + e.len as usize)
-            .and_then(|b| core::str::from_utf8(b).ok())
-            .unwrap_or("")
+        self.syms.text(id)
     }
 
     pub(crate) fn value_ref(&self, v: Value) -> ValueRef<'a> {

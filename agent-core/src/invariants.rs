@@ -190,7 +190,15 @@ impl Core<'_> {
     }
 
     fn check_symbols(&self) -> Result<(), Violation> {
-        let n = self.st.pools.nsyms as usize;
+        // a compiled rule base's symbols read in place come first; the arena's entry
+        // `k` is id `rom + k`
+        let rom = self.st.rom.symbols.len();
+        ensure!(
+            self.st.pools.nsyms as usize >= rom,
+            "fewer symbols than read in place",
+            self.st.pools.nsyms
+        );
+        let n = self.st.pools.nsyms as usize - rom;
         ensure!(n <= self.sym_entries.len(), "more symbols than capacity", n);
         ensure!(
             self.st.pools.sym_bytes as usize <= self.sym_bytes.len(),
@@ -225,8 +233,12 @@ impl Core<'_> {
             let mut i = head;
             let mut steps = 0usize;
             while i != NONE {
-                ensure!((i as usize) < n, "symbol chain links a dropped entry", b);
-                let e = self.sym_entries[i as usize];
+                ensure!(
+                    (i as usize) >= rom && (i as usize) < rom + n,
+                    "symbol chain links a dropped entry",
+                    b
+                );
+                let e = self.sym_entries[i as usize - rom];
                 let text = &self.sym_bytes[e.start as usize..(e.start + e.len) as usize];
                 let home = crate::symbols::hash_bytes(text) as usize % self.sym_buckets.len();
                 ensure!(home == b, "symbol in the wrong hash bucket", i);
@@ -248,13 +260,18 @@ impl Core<'_> {
             let b = crate::symbols::hash_bytes(text) as usize % self.sym_buckets.len();
             let mut j = self.sym_buckets[b];
             while j != NONE {
-                let f = self.sym_entries[j as usize];
+                let f = self.sym_entries[j as usize - rom];
                 if &self.sym_bytes[f.start as usize..(f.start + f.len) as usize] == text {
                     break;
                 }
                 j = f.next;
             }
-            ensure!(j as usize == i, "symbol text interned twice", i);
+            ensure!(j as usize == rom + i, "symbol text interned twice", i);
+            ensure!(
+                core::str::from_utf8(text).map_or(true, |t| self.st.rom.symbols.find(t).is_none()),
+                "symbol text interned twice",
+                i
+            );
         }
         Ok(())
     }

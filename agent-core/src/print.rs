@@ -7,7 +7,6 @@ use crate::engine::{watch, Core};
 use crate::fact::Fact;
 use crate::host::{router, Host, RouterWriter};
 use crate::rule::{Activation, Rule};
-use crate::symbols::SymEntry;
 use crate::template::{SlotDef, Template};
 use crate::value::{write_float, SymId, Value, NONE};
 
@@ -15,8 +14,7 @@ use crate::value::{write_float, SymId, Value, NONE};
 pub struct View<'a> {
     pub values: &'a [Value],
     pub scratch: &'a [Value],
-    pub sym_entries: &'a [SymEntry],
-    pub sym_bytes: &'a [u8],
+    pub syms: crate::symbols::SymTexts<'a>,
     pub templates: &'a [Template],
     pub slots: &'a [SlotDef],
     pub facts: &'a [Fact],
@@ -24,9 +22,7 @@ pub struct View<'a> {
 
 impl View<'_> {
     pub fn sym(&self, id: SymId) -> &str {
-        let e = self.sym_entries[id as usize];
-        core::str::from_utf8(&self.sym_bytes[e.start as usize..(e.start + e.len) as usize])
-            .unwrap_or("")
+        self.syms.text(id)
     }
 
     /// A value as CLIPS prints results: strings quoted, multifields in parentheses.
@@ -147,8 +143,11 @@ impl Core<'_> {
             View {
                 values: self.values,
                 scratch: self.scratch,
-                sym_entries: self.sym_entries,
-                sym_bytes: self.sym_bytes,
+                syms: crate::symbols::SymTexts {
+                    rom: self.st.rom.symbols,
+                    entries: self.sym_entries,
+                    bytes: self.sym_bytes,
+                },
                 templates: self.templates,
                 slots: self.slots,
                 facts: self.facts,
@@ -168,8 +167,11 @@ impl Core<'_> {
             View {
                 values: self.values,
                 scratch: self.scratch,
-                sym_entries: self.sym_entries,
-                sym_bytes: self.sym_bytes,
+                syms: crate::symbols::SymTexts {
+                    rom: self.st.rom.symbols,
+                    entries: self.sym_entries,
+                    bytes: self.sym_bytes,
+                },
                 templates: self.templates,
                 slots: self.slots,
                 facts: self.facts,

@@ -3,7 +3,8 @@
 //! With the feature `in-place` an engine that loads a [compiled rule
 //! base](crate::compiled) reads its expression nodes, alpha nodes and joins from the
 //! rule base's read-only tables instead of copying them into its arena: the agent
-//! image's RAM. What changes at run time (alpha and join memories) lives in pools of
+//! image's RAM. Its symbols too (`symbols::RomSymbols`, with hash chains the compiler
+//! works out, `symbols::SymbolIndex`). What changes at run time (alpha and join memories) lives in pools of
 //! its own ([`AlphaMem`](crate::rete::AlphaMem), [`JoinMem`](crate::rete::JoinMem)),
 //! indexed like the nodes.
 //!
@@ -19,6 +20,7 @@
 
 use crate::expr::Expr;
 use crate::rete::{AlphaNode, Join};
+use crate::symbols::RomSymbols;
 
 /// Whether this build reads compiled entries in place (feature `in-place`).
 pub const IN_PLACE: bool = cfg!(feature = "in-place");
@@ -30,6 +32,7 @@ pub struct Rom {
     pub exprs: &'static [Expr],
     pub alphas: &'static [AlphaNode],
     pub joins: &'static [Join],
+    pub symbols: RomSymbols,
 }
 
 impl Rom {
@@ -37,6 +40,7 @@ impl Rom {
         exprs: &[],
         alphas: &[],
         joins: &[],
+        symbols: RomSymbols::EMPTY,
     };
 }
 

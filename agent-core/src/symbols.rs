@@ -40,18 +40,117 @@ impl SymEntry {
     };
 }
 
-/// FNV-1a over bytes; cheap and good enough for bucket spreading.
-pub fn hash_bytes(b: &[u8]) -> u32 {
+/// FNV-1a over bytes; cheap and good enough for bucket spreading. `const`, so a
+/// compiled rule base's hash chains are worked out when it compiles ([`SymbolIndex`]).
+pub const fn hash_bytes(b: &[u8]) -> u32 {
     let mut h: u32 = 0x811c_9dc5;
-    for &x in b {
-        h ^= x as u32;
+    let mut i = 0;
+    while i < b.len() {
+        h ^= b[i] as u32;
         h = h.wrapping_mul(0x0100_0193);
+        i += 1;
     }
     h
 }
 
-/// Borrowed view of the symbol storage (see `engine::Core`).
+/// The hash chains of a compiled rule base's symbols (one bucket per symbol), built
+/// by the compiler from the texts (`SymbolIndex::new` is `const`), so the engine
+/// finds them in place without copying them into its arena (feature `in-place`).
+pub struct SymbolIndex<const N: usize> {
+    /// Newest id first in each bucket, as the engine's own table.
+    pub buckets: [Ix; N],
+    pub next: [Ix; N],
+}
+
+impl<const N: usize> SymbolIndex<N> {
+    pub const fn new(texts: &[&str; N]) -> Self {
+        let mut buckets = [NONE; N];
+        let mut next = [NONE; N];
+        let mut id = 0;
+        while id < N {
+            let b = hash_bytes(texts[id].as_bytes()) as usize % N;
+            next[id] = buckets[b];
+            buckets[b] = id as Ix;
+            id += 1;
+        }
+        SymbolIndex { buckets, next }
+    }
+}
+
+/// A compiled rule base's symbols read in place: ids `0..texts.len()`, before the
+/// arena's (all empty without `in-place`, or before a compiled rule base loads).
+#[derive(Clone, Copy)]
+pub struct RomSymbols {
+    pub texts: &'static [&'static str],
+    pub buckets: &'static [Ix],
+    pub next: &'static [Ix],
+}
+
+impl RomSymbols {
+    pub const EMPTY: RomSymbols = RomSymbols {
+        texts: &[],
+        buckets: &[],
+        next: &[],
+    };
+
+    #[inline(always)]
+    pub fn len(&self) -> usize {
+        self.texts.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.texts.is_empty()
+    }
+
+    pub(crate) fn find(&self, s: &str) -> Option<SymId> {
+        if self.buckets.is_empty() {
+            return None;
+        }
+        let b = hash_bytes(s.as_bytes()) as usize % self.buckets.len();
+        let mut i = self.buckets[b];
+        while i != NONE {
+            if self.texts.get(i as usize) == Some(&s) {
+                return Some(i);
+            }
+            i = self.next.get(i as usize).copied().unwrap_or(NONE);
+        }
+        None
+    }
+}
+
+/// Read-only view of every symbol's text: the compiled ones read in place, then the
+/// arena's.
+#[derive(Clone, Copy)]
+pub struct SymTexts<'a> {
+    pub rom: RomSymbols,
+    pub entries: &'a [SymEntry],
+    pub bytes: &'a [u8],
+}
+
+impl<'a> SymTexts<'a> {
+    /// Text of symbol `id`; "" for NONE (a retired construct's name) or any id out of
+    /// range.
+    #[inline]
+    pub fn text(&self, id: SymId) -> &'a str {
+        let rom = self.rom.len();
+        if (id as usize) < rom {
+            return self.rom.texts[id as usize];
+        }
+        let Some(e) = self.entries.get(id as usize - rom) else {
+            return "";
+        };
+        self.bytes
+            .get(e.start as usize..e.start as usize + e.len as usize)
+            .and_then(|b| core::str::from_utf8(b).ok())
+            .unwrap_or("")
+    }
+}
+
+/// Borrowed view of the symbol storage (see `engine::Core`): ids below `rom.len()`
+/// are a compiled rule base's, read in place; the arena's entries come after (entry
+/// `k` is id `rom.len() + k`), and its buckets and chains hold ids.
 pub struct Symbols<'a> {
+    pub rom: RomSymbols,
     pub entries: &'a mut [SymEntry],
     /// Bucket heads; same length as `entries`.
     pub buckets: &'a mut [Ix],
@@ -62,22 +161,29 @@ pub struct Symbols<'a> {
 
 impl Symbols<'_> {
     pub fn text(&self, id: SymId) -> &str {
-        let e = self.entries[id as usize];
-        core::str::from_utf8(&self.bytes[e.start as usize..(e.start + e.len) as usize])
-            .unwrap_or("")
+        SymTexts {
+            rom: self.rom,
+            entries: self.entries,
+            bytes: self.bytes,
+        }
+        .text(id)
     }
 
     pub fn find(&self, s: &str) -> Option<SymId> {
+        if let Some(i) = self.rom.find(s) {
+            return Some(i);
+        }
         if self.buckets.is_empty() {
             return None;
         }
+        let rom = self.rom.len();
         let b = hash_bytes(s.as_bytes()) as usize % self.buckets.len();
         let mut i = self.buckets[b];
         while i != NONE {
             if self.text(i) == s {
                 return Some(i);
             }
-            i = self.entries[i as usize].next;
+            i = self.entries[i as usize - rom].next;
         }
         None
     }
@@ -87,7 +193,8 @@ impl Symbols<'_> {
             return Ok(i);
         }
         let n = *self.count as usize;
-        if n >= self.entries.len() || n >= NONE as usize {
+        let k = n - self.rom.len();
+        if k >= self.entries.len() || n >= NONE as usize {
             return Err(CapacityError {
                 pool: Pool::Symbols,
                 capacity: self.entries.len() as u32,
@@ -102,7 +209,7 @@ impl Symbols<'_> {
         }
         self.bytes[used..used + s.len()].copy_from_slice(s.as_bytes());
         let b = hash_bytes(s.as_bytes()) as usize % self.buckets.len();
-        self.entries[n] = SymEntry {
+        self.entries[k] = SymEntry {
             start: used as Ix,
             len: s.len() as Ix,
             next: self.buckets[b],
@@ -113,14 +220,18 @@ impl Symbols<'_> {
         Ok(n as SymId)
     }
 
-    /// Drops every entry with id >= `count` (newest entries sit at bucket heads).
+    /// Drops every entry with id >= `count` (newest entries sit at bucket heads;
+    /// the compiled ones stay).
     pub fn truncate(&mut self, count: Ix, bytes_used: Ix) {
         if count >= *self.count {
             return;
         }
+        let rom = self.rom.len();
+        // (the compiled symbols stay)
+        let count = count.max(rom as Ix);
         for b in self.buckets.iter_mut() {
             while *b != NONE && *b >= count {
-                *b = self.entries[*b as usize].next;
+                *b = self.entries[*b as usize - rom].next;
             }
         }
         *self.count = count;

@@ -426,8 +426,7 @@ impl Core<'_> {
         let view = crate::print::View {
             values: self.values,
             scratch: self.scratch,
-            sym_entries: self.sym_entries,
-            sym_bytes: self.sym_bytes,
+            syms: self.sym_texts(),
             templates: self.templates,
             slots: self.slots,
             facts: self.facts,
@@ -442,8 +441,7 @@ impl Core<'_> {
         let view = crate::print::View {
             values: self.values,
             scratch: self.scratch,
-            sym_entries: self.sym_entries,
-            sym_bytes: self.sym_bytes,
+            syms: self.sym_texts(),
             templates: self.templates,
             slots: self.slots,
             facts: self.facts,

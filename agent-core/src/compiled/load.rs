@@ -82,10 +82,15 @@ impl Core<'_> {
     /// See [`Engine::load_compiled`].
     pub fn load_compiled(&mut self, base: &RuleBase) -> Result<(), CompiledError> {
         self.check_loadable(base)?;
-        let cp = self.checkpoint();
-        if let Err(e) = self.intern_base_symbols(base) {
-            self.syms().truncate(cp.nsyms, cp.sym_bytes);
-            return Err(e);
+        #[cfg(feature = "in-place")]
+        self.read_symbols_in_place(base);
+        #[cfg(not(feature = "in-place"))]
+        {
+            let cp = self.checkpoint();
+            if let Err(e) = self.intern_base_symbols(base) {
+                self.syms().truncate(cp.nsyms, cp.sym_bytes);
+                return Err(e);
+            }
         }
         self.copy_network(base);
         let watch = self.st.mode.watch;
@@ -152,6 +157,15 @@ impl Core<'_> {
                 return Err(cap(pool, capacity).into());
             }
         }
+        if base.symbols.len() >= NONE as usize
+            || (cfg!(feature = "in-place")
+                && (base.symbol_buckets.len() != base.symbols.len()
+                    || base.symbol_next.len() != base.symbols.len()))
+        {
+            return Err(CompiledError::SymbolMismatch {
+                index: base.symbols.len(),
+            });
+        }
         let have = self.st.pools.nsyms as usize;
         if have > base.symbols.len() {
             return Err(CompiledError::SymbolMismatch {
@@ -182,7 +196,24 @@ impl Core<'_> {
         (0..self.st.pools.nexternals).find(|&x| self.externals[x as usize].name == sym)
     }
 
+    /// The base's symbols read in place (the engine's own, checked to be its first
+    /// ones by `check_loadable`, leave the arena, which keeps only those made later).
+    #[cfg(feature = "in-place")]
+    fn read_symbols_in_place(&mut self, base: &RuleBase) {
+        for b in self.sym_buckets.iter_mut() {
+            *b = NONE;
+        }
+        self.st.rom.symbols = crate::symbols::RomSymbols {
+            texts: base.symbols,
+            buckets: base.symbol_buckets,
+            next: base.symbol_next,
+        };
+        self.st.pools.nsyms = base.symbols.len() as Ix;
+        self.st.pools.sym_bytes = 0;
+    }
+
     /// The base's symbols after the engine's: each must get its id in the base.
+    #[cfg(not(feature = "in-place"))]
     fn intern_base_symbols(&mut self, base: &RuleBase) -> Result<(), CompiledError> {
         for (i, text) in base
             .symbols
@@ -217,11 +248,9 @@ impl Core<'_> {
             self.exprs.set_rom(base.exprs);
             self.alphas.set_rom(base.alphas);
             self.joins.set_rom(base.joins);
-            self.st.rom = crate::rom::Rom {
-                exprs: base.exprs,
-                alphas: base.alphas,
-                joins: base.joins,
-            };
+            self.st.rom.exprs = base.exprs;
+            self.st.rom.alphas = base.alphas;
+            self.st.rom.joins = base.joins;
         }
         #[cfg(not(feature = "in-place"))]
         {

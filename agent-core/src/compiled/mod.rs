@@ -51,6 +51,10 @@ pub struct RuleBase {
     pub name: &'static str,
     /// Every symbol and string, by id (the fixed start-up symbols first).
     pub symbols: &'static [&'static str],
+    /// Their hash chains (`symbols::SymbolIndex`, worked out when the generated code
+    /// compiles), for reading them in place (feature `in-place`).
+    pub symbol_buckets: &'static [Ix],
+    pub symbol_next: &'static [Ix],
     pub templates: &'static [Template],
     pub slots: &'static [SlotDef],
     pub rules: &'static [Rule],
@@ -95,6 +99,7 @@ pub mod gen {
     pub use crate::expr::{Expr, Op};
     pub use crate::rete::{AlphaNode, Join, JoinKind};
     pub use crate::rule::Rule;
+    pub use crate::symbols::SymbolIndex;
     pub use crate::template::{DefaultKind, Deffacts, Deffunction, Global, SlotDef, Template};
     pub use crate::value::{Ix, Value};
 

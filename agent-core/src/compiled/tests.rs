@@ -55,6 +55,8 @@ fn loader_refuses_an_engine_with_constructs() {
     static EMPTY: RuleBase = RuleBase {
         name: "empty",
         symbols: &[],
+        symbol_buckets: &[],
+        symbol_next: &[],
         templates: &[],
         slots: &[],
         rules: &[],

@@ -146,6 +146,7 @@ impl Core<'_> {
         writeln!(out, "#[allow(unused_imports)]")?;
         writeln!(out, "use agent_core::compiled::gen::*;")?;
         self.write_builtin_ids(out)?;
+        self.write_symbol_statics(out)?;
         writeln!(out, "pub static BASE: RuleBase = RuleBase {{")?;
         writeln!(out, "name: {source:?},")?;
         self.write_symbols(out)?;
@@ -215,12 +216,24 @@ impl Core<'_> {
         Ok(())
     }
 
-    fn write_symbols(&self, out: &mut dyn Write) -> fmt::Result {
-        writeln!(out, "symbols: &[")?;
-        for id in 0..self.st.pools.nsyms {
+    /// The symbols' texts and their hash chains, as statics before the rule base.
+    fn write_symbol_statics(&self, out: &mut dyn Write) -> fmt::Result {
+        let n = self.st.pools.nsyms;
+        writeln!(out, "static SYMBOLS: [&str; {n}] = [")?;
+        for id in 0..n {
             writeln!(out, "{:?},", self.sym_text(id))?;
         }
-        writeln!(out, "],")
+        writeln!(out, "];")?;
+        writeln!(
+            out,
+            "static SYMBOL_INDEX: SymbolIndex<{n}> = SymbolIndex::new(&SYMBOLS);"
+        )
+    }
+
+    fn write_symbols(&self, out: &mut dyn Write) -> fmt::Result {
+        writeln!(out, "symbols: &SYMBOLS,")?;
+        writeln!(out, "symbol_buckets: &SYMBOL_INDEX.buckets,")?;
+        writeln!(out, "symbol_next: &SYMBOL_INDEX.next,")
     }
 
     fn write_templates(&self, out: &mut dyn Write) -> fmt::Result {

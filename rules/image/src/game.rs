@@ -43,8 +43,8 @@ agent_core::engine_storage! {
     pub struct ImageStorage {
         facts: 240,                                // 220
         fact_values: 2304,                         // live peak: 2,176 too few
-        symbols: BASE.symbols + 24,                // +9 at run time
-        symbol_bytes: BASE.symbol_bytes + 192,     // +41 at run time
+        symbols: 24,                               // read in place; +9 at run time
+        symbol_bytes: 192,                         // +41 at run time
         templates: BASE.templates + 2,             // +0
         slot_defs: BASE.slots + 2,                 // +0
         rules: BASE.rules,
