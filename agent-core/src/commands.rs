@@ -8,7 +8,7 @@ use crate::builtins::errors::Fallback;
 use crate::builtins::files::{FileItems, FILE_BUF};
 use crate::builtins::{FIXED_SYMBOLS, SYM_INITIAL_FACT};
 use crate::engine::{watch, Core, Frame};
-use crate::error::{EvalError, EvalErrorKind, LoadDetail, LoadError};
+use crate::error::{EvalError, EvalErrorKind, LoadDetail, LoadError, Restriction};
 use crate::expr::{FnKind, Op};
 use crate::fact::FactState;
 use crate::host::router;
@@ -697,6 +697,28 @@ impl Core<'_> {
         self.write(router::STDOUT, "\n");
     }
 
+    /// `[CSTRNCHK1]`'s second line: the restriction a value breaks, for slot `slot`
+    /// (`range`: the slot's range, for its bounds).
+    fn write_restriction(&self, b: &mut TextBuf<4096>, what: Restriction, range: Ix, slot: Ix) {
+        let _ = match what {
+            Restriction::Type => b.write_str("does not match the allowed types"),
+            Restriction::Values => b.write_str("does not match the allowed values"),
+            Restriction::Cardinality => {
+                b.write_str("does not satisfy the cardinality restrictions")
+            }
+            Restriction::Range if range != NONE => {
+                let min = self.const_value(range);
+                let max = self.const_value(self.exprs[range as usize].next);
+                let _ = b.write_str("does not fall in the allowed range ");
+                let _ = self.write_plain(b, min);
+                let _ = b.write_str(" to ");
+                self.write_plain(b, max)
+            }
+            Restriction::Range => b.write_str("does not fall in the allowed range"),
+        };
+        let _ = writeln!(b, " for slot {}.", self.sym_text(slot));
+    }
+
     /// Prints a load error in CLIPS's style plus the position line.
     pub fn report_load_error(&mut self, source: &str, text: &str, e: &LoadError) {
         let mut b: TextBuf<4096> = TextBuf::new();
@@ -739,34 +761,75 @@ impl Core<'_> {
             let _ = writeln!(b, "\n[EXPRNPSR3] Missing function declaration for {tok}.");
         } else if let LoadDetail::Constraint {
             command,
-            types,
+            what,
             slot,
+            range,
         } = e.detail
         {
-            let what = if types { "types" } else { "values" };
-            let _ = writeln!(
-                b,
-                "\n[CSTRNCHK1] A literal slot value found in the {command} command\ndoes not match the allowed {what} for slot {}.",
-                self.sym_text(slot)
-            );
+            let _ = if what == Restriction::Cardinality {
+                writeln!(
+                    b,
+                    "\n[CSTRNCHK1] Literal slot values found in the {command} command"
+                )
+            } else {
+                writeln!(
+                    b,
+                    "\n[CSTRNCHK1] A literal slot value found in the {command} command"
+                )
+            };
+            self.write_restriction(&mut b, what, range, slot);
         } else if let LoadDetail::DefaultConstraint {
             attribute,
-            types,
+            what,
             slot,
+            range,
         } = e.detail
         {
-            let what = if types { "types" } else { "values" };
             let _ = writeln!(
                 b,
-                "\n[CSTRNCHK1] An expression found in the {attribute} attribute\ndoes not match the allowed {what} for slot {}.",
+                "\n[CSTRNCHK1] An expression found in the {attribute} attribute"
+            );
+            self.write_restriction(&mut b, what, range, slot);
+        } else if let LoadDetail::PatternConstraint {
+            ce,
+            what,
+            slot,
+            range,
+        } = e.detail
+        {
+            let _ = if what == Restriction::Cardinality {
+                writeln!(
+                    b,
+                    "\n[CSTRNCHK1] The group of restrictions found in CE #{ce}"
+                )
+            } else {
+                writeln!(
+                    b,
+                    "\n[CSTRNCHK1] A literal restriction value found in CE #{ce}"
+                )
+            };
+            self.write_restriction(&mut b, what, range, slot);
+        } else if let LoadDetail::VariableConflict { ce, slot } = e.detail {
+            let _ = writeln!(
+                b,
+                "\n[RULECSTR1] Variable {tok} in CE #{ce} slot {}\nhas constraint conflicts which make the pattern unmatchable.",
                 self.sym_text(slot)
             );
-        } else if let LoadDetail::PatternConstraint { ce, types, slot } = e.detail {
-            let what = if types { "types" } else { "values" };
+        } else if let LoadDetail::MinAboveMax { cardinality } = e.detail {
+            let what = if cardinality { "cardinality" } else { "range" };
             let _ = writeln!(
                 b,
-                "\n[CSTRNCHK1] A literal restriction value found in CE #{ce}\ndoes not match the allowed {what} for slot {}.",
-                self.sym_text(slot)
+                "\n[CSTRNPSR2] Minimum {what} value must be less than\nor equal to the maximum {what} value"
+            );
+        } else if e.detail == LoadDetail::CardinalityOfSingle {
+            let _ = writeln!(
+                b,
+                "\n[CSTRNPSR5] The cardinality attribute can only be used with multifield slots."
+            );
+        } else if e.detail == LoadDetail::CardinalityBelowZero {
+            let _ = writeln!(
+                b,
+                "\n[CSTRNPSR6] Minimum cardinality value must be greater than or equal to zero"
             );
         } else if let LoadDetail::SingleSlot { slot } = e.detail {
             let _ = writeln!(
@@ -850,18 +913,49 @@ impl Core<'_> {
                 e.construct
             );
         }
-        // CLIPS checks modify/duplicate slot values once the whole rule is read, and then
-        // shows the rule it rejected
-        if let LoadDetail::Constraint {
-            command: "modify" | "duplicate",
-            ..
-        } = e.detail
+        // CLIPS checks modify/duplicate slot values and the patterns' constraints once
+        // the whole rule is read, and then shows the rule it rejected
+        if matches!(
+            e.detail,
+            LoadDetail::Constraint {
+                command: "modify" | "duplicate",
+                ..
+            } | LoadDetail::PatternConstraint { .. }
+                | LoadDetail::VariableConflict { .. }
+        ) && e.construct == "defrule"
         {
-            if e.construct == "defrule" {
-                let _ = b.write_str("\nERROR:\n");
-                let _ = crate::builtins::pretty::write_defrule(text, &mut b);
-                let _ = b.write_char('\n');
+            let _ = b.write_str("\nERROR:\n");
+            let _ = crate::builtins::pretty::write_defrule(text, &mut b);
+            let _ = b.write_char('\n');
+        }
+        // CLIPS shows the construct it rejected up to where it stopped reading: a
+        // deftemplate's slot, a rule's action (a prompt command is not shown)
+        let assert_in_rule = matches!(
+            e.detail,
+            LoadDetail::Constraint {
+                command: "assert",
+                ..
             }
+        ) && e.construct == "defrule";
+        if matches!(e.detail, LoadDetail::Constraint { .. }) && e.construct == "deffacts" {
+            let _ = b.write_str("\nERROR:\n");
+            let upto = text.get(..e.echo_end as usize).unwrap_or(text);
+            let _ = crate::builtins::pretty::write_deffacts_upto(upto, &mut b);
+            let _ = b.write_char('\n');
+        } else if assert_in_rule {
+            let _ = b.write_str("\nERROR:\n");
+            let upto = text.get(..e.echo_end as usize).unwrap_or(text);
+            let _ = crate::builtins::pretty::write_defrule_upto(upto, &mut b);
+            let _ = b.write_char('\n');
+        } else if e.echo_end != 0 && !matches!(e.detail, LoadDetail::Constraint { .. }) {
+            let _ = b.write_str("\nERROR:\n");
+            let _ = crate::builtins::pretty::write_deftemplate_echo(
+                text,
+                e.echo_end as usize,
+                e.echo_tail,
+                &mut b,
+            );
+            let _ = b.write_char('\n');
         }
         let _ = writeln!(
             b,

@@ -145,6 +145,8 @@ messages! {
     // slot values that do not fit their slot
     TypeViolated = "type restriction violated",
     AllowedValuesViolated = "allowed-values restriction violated",
+    RangeViolated = "range restriction violated",
+    CardinalityViolated = "cardinality restriction violated",
     SingleFieldNeedsOneValue = "a single-field slot needs exactly one value",
     NoDefault = "slot has no default and needs a value",
     // refusals and limits
@@ -482,6 +484,38 @@ pub struct LoadError {
     pub end: u32,
     /// Extra detail for CLIPS's message.
     pub detail: LoadDetail,
+    /// How far CLIPS shows the construct after `ERROR:` (a byte offset in the parsed
+    /// text, the end of the last token it read), and how it joins that last token;
+    /// 0 when we do not show it.
+    pub echo_end: u32,
+    pub echo_tail: EchoTail,
+}
+
+/// How CLIPS's `ERROR:` text joins the token at which it stopped (its pretty-print
+/// buffer saves separators around tokens at fixed places).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum EchoTail {
+    /// As in a pretty-printed construct.
+    Normal,
+    /// With a space before it even when it is a `)`: `(range 1 )`.
+    SpaceBefore,
+    /// Without a space before it: `(range 1 23`.
+    Glued,
+    /// With a space after it: `(allowed-symbols 1 `.
+    SpaceAfter,
+}
+
+/// Which restriction of a slot a value breaks, as `[CSTRNCHK1]` words it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Restriction {
+    /// "does not match the allowed types"
+    Type,
+    /// "does not match the allowed values"
+    Values,
+    /// "does not fall in the allowed range MIN to MAX"
+    Range,
+    /// "does not satisfy the cardinality restrictions"
+    Cardinality,
 }
 
 /// Which CLIPS message a load error corresponds to. (`Ix` fields come before the
@@ -503,8 +537,10 @@ pub enum LoadDetail {
     /// allowed values.
     Constraint {
         slot: Ix,
+        /// The slot's range (for `Restriction::Range`'s message).
+        range: Ix,
         command: &'static str,
-        types: bool,
+        what: Restriction,
     },
     /// `[TMPLTDEF1]`: a slot name the template does not have (the offending token).
     UnknownSlot {
@@ -514,16 +550,33 @@ pub enum LoadDetail {
     /// violates the slot's type (`types`) or allowed values.
     DefaultConstraint {
         slot: Ix,
+        range: Ix,
         attribute: &'static str,
-        types: bool,
+        what: Restriction,
     },
     /// `[CSTRNCHK1]`: a literal in a pattern's slot constraint (CE number `ce`)
     /// violates the slot's type (`types`) or allowed values.
     PatternConstraint {
-        ce: u8,
-        types: bool,
         slot: Ix,
+        range: Ix,
+        ce: u8,
+        what: Restriction,
     },
+    /// `[RULECSTR1]`: a variable whose constraints in CE `ce`, slot `slot`, conflict
+    /// with those it has elsewhere in the rule (the offending token is the variable).
+    VariableConflict {
+        slot: Ix,
+        ce: u8,
+    },
+    /// `[CSTRNPSR2]`: a range's (or a cardinality's, `cardinality`) minimum above its
+    /// maximum.
+    MinAboveMax {
+        cardinality: bool,
+    },
+    /// `[CSTRNPSR5]`: `cardinality` on a single-field slot.
+    CardinalityOfSingle,
+    /// `[CSTRNPSR6]`: a negative minimum cardinality.
+    CardinalityBelowZero,
     /// `[TMPLTDEF2]`: a single-field slot given no value or several.
     SingleSlot {
         slot: Ix,

@@ -41,6 +41,12 @@ pub struct SlotDef {
     pub allowed: Ix,
     /// Which `allowed-...` attribute gave `allowed` (see `allowed`).
     pub allowed_kind: u8,
+    /// `(range MIN MAX)`: two constant nodes (min, then max), an unbounded end
+    /// (`?VARIABLE`) being the symbol `-oo`/`+oo` as CLIPS keeps it; NONE without one.
+    pub range: Ix,
+    /// `(cardinality MIN MAX)` of a multislot: two constant nodes, an integer or
+    /// `+oo` for an unbounded maximum (an unbounded minimum is 0); NONE without one.
+    pub cardinality: Ix,
 }
 
 /// `SlotDef::allowed_kind` values: which values an `allowed-...` list restricts.
@@ -63,6 +69,8 @@ impl SlotDef {
         types: 0,
         allowed: NONE,
         allowed_kind: 0,
+        range: NONE,
+        cardinality: NONE,
     };
 }
 

@@ -347,4 +347,8 @@ differential_programs! {
     p188_setgen_and_engine_settings => "188-setgen-and-engine-settings",
     p189_deftemplate_slot_functions => "189-deftemplate-slot-functions",
     p190_show_defglobals => "190-show-defglobals",
+    p191_range_cardinality_defaults => "191-range-cardinality-defaults",
+    p192_range_cardinality_literals => "192-range-cardinality-literals",
+    p193_range_cardinality_rules => "193-range-cardinality-rules",
+    p194_range_cardinality_attribute_errors => "194-range-cardinality-attribute-errors",
 }

@@ -33,6 +33,15 @@ fn type_bit(v: Value) -> u8 {
     }
 }
 
+/// `a < b` for two numbers; false when either is not a number (an unbounded end of
+/// a range, `-oo`/`+oo`).
+fn below(a: Value, b: Value) -> bool {
+    match (a.as_number(), b.as_number()) {
+        (Some(x), Some(y)) => x < y,
+        _ => false,
+    }
+}
+
 fn same_class(a: Value, b: Value) -> bool {
     matches!(
         (a, b),
@@ -88,7 +97,96 @@ impl Core<'_> {
                 }));
             }
         }
+        if def.range != NONE && matches!(v, Value::Int(_) | Value::Float(_)) {
+            let min = self.const_value(def.range);
+            let max = self.const_value(self.exprs[def.range as usize].next);
+            if below(v, min) || below(max, v) {
+                return Err(EvalError::new(EvalErrorKind::BadSlotValue {
+                    reason: crate::error::Message::RangeViolated,
+                }));
+            }
+        }
         Ok(())
+    }
+
+    /// A multislot's cardinality: the fewest and most fields it takes.
+    pub(crate) fn cardinality_of(&self, def: &SlotDef) -> (i64, i64) {
+        if def.cardinality == NONE {
+            return (0, i64::MAX);
+        }
+        let bound = |v: Value, unbounded: i64| match v {
+            Value::Int(n) => n,
+            _ => unbounded,
+        };
+        (
+            bound(self.const_value(def.cardinality), 0),
+            bound(
+                self.const_value(self.exprs[def.cardinality as usize].next),
+                i64::MAX,
+            ),
+        )
+    }
+
+    /// A value a derived default gives a slot of type `ty` (one type bit): the first
+    /// allowed value of that type, else for numbers the range's minimum, else its
+    /// maximum (converted to the type), else `standard`, as CLIPS derives it.
+    fn derived_atom(&self, def: &SlotDef, ty: u8, standard: Value) -> Value {
+        let mut c = def.allowed;
+        while c != NONE {
+            let v = self.const_value(c);
+            if type_bit(v) == ty {
+                return v;
+            }
+            c = self.exprs[c as usize].next;
+        }
+        if def.range != NONE && ty & types::NUMBER != 0 {
+            let min = self.const_value(def.range);
+            let max = self.const_value(self.exprs[def.range as usize].next);
+            for bound in [min, max] {
+                match (ty, bound) {
+                    (types::INTEGER, Value::Int(_)) | (types::FLOAT, Value::Float(_)) => {
+                        return bound
+                    }
+                    (types::INTEGER, Value::Float(f)) => return Value::Int(f as i64),
+                    (types::FLOAT, Value::Int(n)) => return Value::Float(n as f64),
+                    _ => {}
+                }
+            }
+        }
+        standard
+    }
+
+    /// The value of a slot without a default, derived from its restrictions as CLIPS
+    /// does: the first type it takes among symbol, string, integer, float, with the
+    /// value `derived_atom` picks; a multislot takes its minimum cardinality of them.
+    fn derived_default(&mut self, def: &SlotDef) -> Result<Value, EvalError> {
+        let t = def.types;
+        let atom = if t == 0 || t & types::SYMBOL != 0 {
+            self.derived_atom(def, types::SYMBOL, Value::Sym(SYM_NIL))
+        } else if t & types::STRING != 0 {
+            self.derived_atom(def, types::STRING, Value::Str(super::SYM_EMPTY_STR))
+        } else if t & types::INTEGER != 0 {
+            self.derived_atom(def, types::INTEGER, Value::Int(0))
+        } else if t & types::FLOAT != 0 {
+            self.derived_atom(def, types::FLOAT, Value::Float(0.0))
+        } else {
+            Value::Sym(SYM_NIL)
+        };
+        if !def.multi {
+            return Ok(atom);
+        }
+        let (min, _) = self.cardinality_of(def);
+        if min == 0 {
+            return Ok(Value::Multi(MfSpan {
+                start: self.st.frame.scratch_top,
+                len: 0,
+            }));
+        }
+        let start = self.multi_begin();
+        for _ in 0..min {
+            self.multi_push(atom)?;
+        }
+        Ok(self.multi_finish(start))
     }
 
     /// Evaluates value expressions (a chain) into one slot value: a multifield for a
@@ -171,25 +269,7 @@ impl Core<'_> {
             DefaultKind::Required => Err(EvalError::new(EvalErrorKind::BadSlotValue {
                 reason: crate::error::Message::NoDefault,
             })),
-            _ => {
-                if def.multi {
-                    return Ok(Value::Multi(MfSpan {
-                        start: self.st.frame.scratch_top,
-                        len: 0,
-                    }));
-                }
-                if def.allowed != NONE && def.allowed_kind == allowed::VALUES {
-                    return Ok(self.const_value(def.allowed));
-                }
-                Ok(match def.types {
-                    0 => Value::Sym(SYM_NIL),
-                    t if t & types::SYMBOL != 0 => Value::Sym(SYM_NIL),
-                    t if t & types::STRING != 0 => Value::Str(super::SYM_EMPTY_STR),
-                    t if t & types::INTEGER != 0 => Value::Int(0),
-                    t if t & types::FLOAT != 0 => Value::Float(0.0),
-                    _ => Value::Sym(SYM_NIL),
-                })
-            }
+            _ => self.derived_default(&def),
         }
     }
 

@@ -249,12 +249,35 @@ fn action(c: &mut Cursor<'_>, w: &mut dyn Write, col: usize) -> fmt::Result {
             }
             close(c, w)
         }
+        "assert" => {
+            // several facts: one per line, aligned under the first
+            c.next();
+            c.next();
+            w.write_str("(assert ")?;
+            let mut first = true;
+            while c.peek(0).tok == Tok::LParen {
+                if !first {
+                    w.write_char('\n')?;
+                    spaces(w, col + 8)?;
+                }
+                first = false;
+                flat(c, w)?;
+            }
+            close(c, w)
+        }
         _ => flat(c, w),
     }
 }
 
 /// Writes the pretty-printed form of the defrule whose source is `src`.
 pub fn write_defrule(src: &str, w: &mut dyn Write) -> fmt::Result {
+    write_defrule_upto(src, w)?;
+    w.write_char(')')
+}
+
+/// The pretty-printed form of the defrule whose source `src` holds, without its last
+/// `)`: what CLIPS shows after `ERROR:` for a rule it stopped reading where `src` ends.
+pub fn write_defrule_upto(src: &str, w: &mut dyn Write) -> fmt::Result {
     let mut c = Cursor::new(src);
     c.next(); // (
     c.next(); // defrule
@@ -281,8 +304,102 @@ pub fn write_defrule(src: &str, w: &mut dyn Write) -> fmt::Result {
     if is_sym(c.peek(0), "=>") {
         c.next();
     }
-    action_lines(&mut c, w, 3, &[])?;
-    w.write_char(')')
+    action_lines(&mut c, w, 3, &[])
+}
+
+/// What CLIPS shows after `ERROR:` for a deffacts it stopped reading where `src`
+/// ends: `(deffacts MAIN::name`, then each fact on a line of its own indented by 3.
+pub fn write_deffacts_upto(src: &str, w: &mut dyn Write) -> fmt::Result {
+    let mut c = Cursor::new(src);
+    c.next(); // (
+    c.next(); // deffacts
+    let name = c.next();
+    let name = c.text(name);
+    write!(
+        w,
+        "(deffacts MAIN::{}",
+        name.strip_prefix("MAIN::").unwrap_or(name)
+    )?;
+    if let Tok::Str(_) = c.peek(0).tok {
+        let t = c.next();
+        w.write_char(' ')?;
+        write_token(&c, w, t)?;
+    }
+    while c.peek(0).tok == Tok::LParen {
+        w.write_str("\n   ")?;
+        flat(&mut c, w)?;
+    }
+    Ok(())
+}
+
+/// What CLIPS shows after `ERROR:` for a deftemplate it rejected: the construct as
+/// its pretty-print buffer held it (`(deftemplate MAIN::name`, each slot on a line of
+/// its own indented by 3, tokens one space apart), from the construct that `src`
+/// holds up to the token ending at byte `end`, that last token joined by `tail`.
+pub fn write_deftemplate_echo(
+    src: &str,
+    end: usize,
+    tail: crate::error::EchoTail,
+    w: &mut dyn Write,
+) -> fmt::Result {
+    use crate::error::EchoTail;
+    let mut c = Cursor::new(src);
+    // the construct the error is in: the last top-level `(` before it
+    let mut start = 0;
+    let mut depth = 0u32;
+    loop {
+        let t = c.next();
+        if matches!(t.tok, Tok::Eof | Tok::Bad) || t.start >= end {
+            break;
+        }
+        match t.tok {
+            Tok::LParen => {
+                if depth == 0 {
+                    start = t.start;
+                }
+                depth += 1;
+            }
+            Tok::RParen => depth = depth.saturating_sub(1),
+            _ => {}
+        }
+    }
+    let mut c = Cursor::new(src.get(start..end).unwrap_or(""));
+    c.next(); // (
+    c.next(); // deftemplate
+    let name = c.next();
+    let name = c.text(name);
+    write!(
+        w,
+        "(deftemplate MAIN::{}",
+        name.strip_prefix("MAIN::").unwrap_or(name)
+    )?;
+    let mut depth = 1u32;
+    let mut after_open = false;
+    loop {
+        let t = c.next();
+        if matches!(t.tok, Tok::Eof | Tok::Bad) {
+            break;
+        }
+        let last = t.end + start >= end;
+        match t.tok {
+            Tok::LParen if depth == 1 => w.write_str("\n   ")?,
+            Tok::RParen if last && tail == EchoTail::SpaceBefore => w.write_char(' ')?,
+            Tok::RParen => {}
+            _ if after_open || (last && tail == EchoTail::Glued) => {}
+            _ => w.write_char(' ')?,
+        }
+        write_token(&c, w, t)?;
+        if last && tail == EchoTail::SpaceAfter {
+            w.write_char(' ')?;
+        }
+        after_open = t.tok == Tok::LParen;
+        match t.tok {
+            Tok::LParen => depth += 1,
+            Tok::RParen => depth = depth.saturating_sub(1),
+            _ => {}
+        }
+    }
+    Ok(())
 }
 
 #[cfg(test)]

@@ -1,11 +1,5 @@
 //! The `deftemplate-slot-*` functions (agent-core feature `extras`; the agent image
 //! calls none of them): what a template says about its slots, as CLIPS 6.30 answers.
-//!
-//! This engine keeps no `range` or `cardinality` of a slot (the parser reads them
-//! without keeping them), so `deftemplate-slot-range` and `deftemplate-slot-cardinality`
-//! answer only where those cannot apply (a range on a slot that takes no number, a
-//! cardinality on a single-field slot) and otherwise refuse with an error instead of
-//! guessing.
 // without the feature the table is empty and the functions unused (and not linked)
 #![cfg_attr(not(feature = "extras"), allow(dead_code, unused_imports))]
 
@@ -265,35 +259,44 @@ fn slot_allowed_values(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     Ok(cx.multi_finish(start))
 }
 
-/// `[NOTIMPL1]`: the engine does not keep what `func` asks for.
-fn not_kept(cx: &mut Core<'_>, func: &str, what: &str) -> EvalError {
-    let mut b: TextBuf<160> = TextBuf::new();
-    let _ = writeln!(
-        b,
-        "[NOTIMPL1] {func}: robotino-agent does not keep a slot's {what}"
-    );
-    cx.write(router::WERROR, b.as_str());
-    EvalError::already_reported()
+/// A `(MIN MAX)` multifield of the two bounds chained at `bounds`, or of
+/// `default_min` and `+oo` when the slot has none.
+fn bounds_value(cx: &mut Core<'_>, bounds: Ix, default_min: &str) -> Result<Value, EvalError> {
+    let (min, max) = if bounds == NONE {
+        let min = match default_min {
+            "0" => Value::Int(0),
+            _ => Value::Sym(cx.intern(default_min)?),
+        };
+        (min, Value::Sym(cx.intern("+oo")?))
+    } else {
+        let max = cx.exprs[bounds as usize].next;
+        (cx.const_value(bounds), cx.const_value(max))
+    };
+    let start = cx.multi_begin();
+    cx.multi_push(min)?;
+    cx.multi_push(max)?;
+    Ok(cx.multi_finish(start))
 }
 
-/// FALSE for a slot that takes no number; otherwise unknown here (see the module).
+/// FALSE for a slot that takes no number, else its range (`-oo`/`+oo` for an
+/// unbounded end).
 fn slot_range(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let fallback = empty_multi(cx);
     let def = def_of(cx, a, "deftemplate-slot-range", fallback)?;
     if def.types != 0 && def.types & types::NUMBER == 0 {
         return Ok(Value::Sym(SYM_FALSE));
     }
-    Err(not_kept(cx, "deftemplate-slot-range", "range"))
+    bounds_value(cx, def.range, "-oo")
 }
 
-/// `()` for a single-field slot; otherwise unknown here (see the module).
+/// `()` for a single-field slot, else its cardinality (`+oo` for no maximum).
 fn slot_cardinality(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let fallback = empty_multi(cx);
     let def = def_of(cx, a, "deftemplate-slot-cardinality", fallback)?;
     if !def.multi {
         return Ok(empty_multi(cx));
     }
-    Err(not_kept(cx, "deftemplate-slot-cardinality", "cardinality"))
+    bounds_value(cx, def.cardinality, "0")
 }
 
 #[cfg(all(test, feature = "extras"))]
@@ -301,23 +304,19 @@ mod tests {
     use crate::testutil::run_program;
 
     #[test]
-    fn range_and_cardinality_are_refused_where_unknown() {
+    fn range_and_cardinality_are_the_slots_own() {
         let out = run_program(
-            "(deftemplate t (slot a (type INTEGER)) (slot b (type SYMBOL)) (multislot c))\n\
+            "(deftemplate t (slot a (type INTEGER) (range 2 ?VARIABLE)) (slot b (type SYMBOL)) \
+             (multislot c (cardinality 1 3)) (multislot d) (slot e))\n\
              (printout t (deftemplate-slot-range t b) crlf)\n\
              (printout t (deftemplate-slot-cardinality t a) crlf)\n\
-             (deftemplate-slot-range t a)\n\
-             (deftemplate-slot-cardinality t c)\n",
+             (printout t (deftemplate-slot-range t a) crlf)\n\
+             (printout t (deftemplate-slot-range t e) crlf)\n\
+             (printout t (deftemplate-slot-cardinality t c) crlf)\n\
+             (printout t (deftemplate-slot-cardinality t d) crlf)\n",
         );
-        assert!(out.starts_with("FALSE\n()\n"), "{out}");
-        assert!(
-            out.contains(
-                "[NOTIMPL1] deftemplate-slot-range: robotino-agent does not keep a slot's range"
-            ),
-            "{out}"
-        );
-        assert!(
-            out.contains("[NOTIMPL1] deftemplate-slot-cardinality: robotino-agent does not keep a slot's cardinality"),
+        assert_eq!(
+            out, "FALSE\n()\n(2 +oo)\n(-oo +oo)\n(1 3)\n(0 +oo)\n",
             "{out}"
         );
     }

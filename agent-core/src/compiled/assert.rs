@@ -21,6 +21,8 @@ fn refused(expected: &'static str) -> EngineError {
         start: 0,
         end: 0,
         detail: crate::error::LoadDetail::Syntax,
+        echo_end: 0,
+        echo_tail: crate::error::EchoTail::Normal,
     })
 }
 

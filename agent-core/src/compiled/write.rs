@@ -256,14 +256,17 @@ impl Core<'_> {
             writeln!(
                 out,
                 "SlotDef {{ name: {}, multi: {}, default_kind: DefaultKind::{:?}, \
-                 default: {}, types: {}, allowed: {}, allowed_kind: {} }},",
+                 default: {}, types: {}, allowed: {}, allowed_kind: {}, range: {}, \
+                 cardinality: {} }},",
                 I(s.name),
                 s.multi,
                 s.default_kind,
                 I(s.default),
                 s.types,
                 I(s.allowed),
-                s.allowed_kind
+                s.allowed_kind,
+                I(s.range),
+                I(s.cardinality)
             )?;
         }
         writeln!(out, "],")?;

@@ -4,19 +4,12 @@
 //! allowed values, and every `(default ?NONE)` slot given.
 
 use super::{PResult, Parser, Scope};
-use crate::error::{EvalErrorKind, LoadDetail};
+use crate::error::{EvalErrorKind, LoadDetail, Restriction};
 use crate::expr::{loc, Expr, Op};
 use crate::lexer::{Tok, Token};
 use crate::template::{DefaultKind, SlotDef};
 use crate::value::Ix;
 use crate::value::NONE;
-
-/// Which check a literal failed.
-#[derive(Clone, Copy, PartialEq, Eq)]
-pub(super) enum Violation {
-    Type,
-    AllowedValues,
-}
 
 impl<'s> Parser<'s, '_, '_> {
     pub(super) fn parse_assert(&mut self) -> PResult<Ix> {
@@ -129,12 +122,18 @@ impl<'s> Parser<'s, '_, '_> {
         command: &'static str,
     ) -> PResult<()> {
         let mut n = 0 as Ix;
-        loop {
+        // values that are literals (one field each), and whether others (variables,
+        // calls: any number of fields) came too
+        let mut literals = 0i64;
+        let mut open = false;
+        // CLIPS checks the values once the slot is read (and shows a rule up to there)
+        let mut bad = None;
+        let close = loop {
             let t = self.peek();
             match t.tok {
                 Tok::RParen => {
                     self.next();
-                    break;
+                    break t;
                 }
                 Tok::Eof | Tok::Bad => return Err(self.err(t, "')'")),
                 _ if !def.multi && n == 1 => {
@@ -144,19 +143,39 @@ impl<'s> Parser<'s, '_, '_> {
                 }
                 _ => {
                     let v = self.parse_expr()?;
-                    if let Some(violation) = self.literal_violation(def, v) {
-                        let mut e = self.err(t, violation.expected());
+                    if let Some(what) = self.literal_violation(def, v) {
+                        let mut e = self.err(t, expected(what));
                         e.detail = LoadDetail::Constraint {
                             command,
-                            types: violation == Violation::Type,
+                            what,
                             slot: def.name,
+                            range: def.range,
                         };
-                        return Err(e);
+                        bad = bad.or(Some(e));
+                    }
+                    if self.is_literal(v) {
+                        literals += 1;
+                    } else {
+                        open = true;
                     }
                     self.cx.append_child(sv, v);
                     n += 1;
                 }
             }
+        };
+        if bad.is_none() && def.multi && !self.count_fits(def, literals, open) {
+            let mut e = self.err(st, "as many values as the slot's cardinality allows");
+            e.detail = LoadDetail::Constraint {
+                command,
+                what: Restriction::Cardinality,
+                slot: def.name,
+                range: def.range,
+            };
+            bad = Some(e);
+        }
+        if let Some(mut e) = bad {
+            e.echo_end = close.end as u32;
+            return Err(e);
         }
         if !def.multi && n != 1 {
             let mut e = self.err(st, "exactly one value for a single-field slot");
@@ -166,25 +185,29 @@ impl<'s> Parser<'s, '_, '_> {
         Ok(())
     }
 
-    /// How a literal expression node breaks a slot's restrictions (None for a literal
-    /// that fits, and for anything that is not a literal: checked when it runs).
-    pub(super) fn literal_violation(&self, def: &SlotDef, e: Ix) -> Option<Violation> {
-        if !matches!(
+    /// Whether expression node `e` is a literal constant.
+    pub(super) fn is_literal(&self, e: Ix) -> bool {
+        matches!(
             self.cx.exprs[e as usize].op,
             Op::Int | Op::Float | Op::Sym | Op::Str
-        ) {
+        )
+    }
+
+    /// Whether `literals` fields, plus any number more when `open`, can fit a
+    /// multislot's cardinality.
+    pub(super) fn count_fits(&self, def: &SlotDef, literals: i64, open: bool) -> bool {
+        let (min, max) = self.cx.cardinality_of(def);
+        literals <= max && (open || literals >= min)
+    }
+
+    /// How a literal expression node breaks a slot's restrictions (None for a literal
+    /// that fits, and for anything that is not a literal: checked when it runs).
+    pub(super) fn literal_violation(&self, def: &SlotDef, e: Ix) -> Option<Restriction> {
+        if !self.is_literal(e) {
             return None;
         }
         let v = self.cx.const_value(e);
-        match self.cx.check_atom_def(def, v) {
-            Ok(()) => None,
-            Err(err) => Some(match err.kind() {
-                EvalErrorKind::BadSlotValue {
-                    reason: crate::error::Message::TypeViolated,
-                } => Violation::Type,
-                _ => Violation::AllowedValues,
-            }),
-        }
+        self.cx.check_atom_def(def, v).err().map(restriction_of)
     }
 
     /// The deftemplate of the fact a `modify`/`duplicate` target expression names, when
@@ -250,12 +273,29 @@ impl<'s> Parser<'s, '_, '_> {
     }
 }
 
-impl Violation {
-    /// The position line's "expected ..." text.
-    pub(super) fn expected(self) -> &'static str {
-        match self {
-            Violation::Type => "a value of the slot's type",
-            Violation::AllowedValues => "one of the slot's allowed values",
-        }
+/// The restriction a `BadSlotValue` error names.
+pub(crate) fn restriction_of(err: crate::error::EvalError) -> Restriction {
+    use crate::error::Message;
+    match err.kind() {
+        EvalErrorKind::BadSlotValue {
+            reason: Message::TypeViolated,
+        } => Restriction::Type,
+        EvalErrorKind::BadSlotValue {
+            reason: Message::RangeViolated,
+        } => Restriction::Range,
+        EvalErrorKind::BadSlotValue {
+            reason: Message::CardinalityViolated,
+        } => Restriction::Cardinality,
+        _ => Restriction::Values,
+    }
+}
+
+/// The position line's "expected ..." text for a broken restriction.
+pub(super) fn expected(what: Restriction) -> &'static str {
+    match what {
+        Restriction::Type => "a value of the slot's type",
+        Restriction::Values => "one of the slot's allowed values",
+        Restriction::Range => "a number in the slot's range",
+        Restriction::Cardinality => "as many values as the slot's cardinality allows",
     }
 }

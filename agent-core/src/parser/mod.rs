@@ -192,6 +192,8 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
             start: at.start as u32,
             end: at.end as u32,
             detail: crate::error::LoadDetail::Syntax,
+            echo_end: 0,
+            echo_tail: crate::error::EchoTail::Normal,
         }
     }
 

@@ -4,7 +4,7 @@
 //! alpha nodes and joins are built from the whole form by `crate::compile`, so a rule
 //! that fails to read leaves nothing in the network.
 
-use super::facts::Violation;
+use super::facts::expected;
 use super::{PResult, Parser, Scope, VarKind};
 use crate::compile::alpha::ZERO_LEN;
 use crate::expr::{loc, Expr, Op};
@@ -794,6 +794,21 @@ impl<'s> Parser<'s, '_, '_> {
         if i == 0 {
             // CLIPS tests an empty multislot `(l)` for zero length in a node of its own
             pb.record(loc::new(slot, ZERO_LEN), NONE, false);
+        } else if multis == 0 {
+            // a slot's fields, all single, must be as many as its cardinality allows
+            // (CLIPS lets an empty slot and any with a multifield pass)
+            if let Some(def) = self.lhs_slot {
+                if def.multi && !self.count_fits(&def, i64::from(i), false) {
+                    let mut e = self.err(at, expected(crate::error::Restriction::Cardinality));
+                    e.detail = crate::error::LoadDetail::PatternConstraint {
+                        ce: self.ce_count,
+                        what: crate::error::Restriction::Cardinality,
+                        slot: def.name,
+                        range: def.range,
+                    };
+                    return Err(e);
+                }
+            }
         }
         if multis >= 2 {
             pb.marks += multis - 1;
@@ -1126,12 +1141,13 @@ impl<'s> Parser<'s, '_, '_> {
             _ => match self.literal(t)? {
                 Some(c) => {
                     if let Some(def) = self.lhs_slot {
-                        if let Some(violation) = self.literal_violation(&def, c) {
-                            let mut e = self.err(t, violation.expected());
+                        if let Some(what) = self.literal_violation(&def, c) {
+                            let mut e = self.err(t, expected(what));
                             e.detail = crate::error::LoadDetail::PatternConstraint {
                                 ce: self.ce_count,
-                                types: violation == Violation::Type,
+                                what,
                                 slot: def.name,
+                                range: def.range,
                             };
                             return Err(e);
                         }

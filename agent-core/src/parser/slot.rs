@@ -1,12 +1,14 @@
 //! A deftemplate slot's attributes — `type`, `default`/`default-dynamic`, the
-//! `allowed-...` lists and the accepted-but-unenforced rest — with the checks CLIPS
-//! makes when it parses them: each attribute once, values of the type an `allowed-...`
-//! attribute names, a `type` that admits every allowed value, and a default that fits
-//! both (reported at the offending value).
+//! `allowed-...` lists, `range` and `cardinality` — with the checks CLIPS makes when it
+//! parses them: each attribute once, values of the type an `allowed-...` attribute
+//! names, bounds in order, a `type` that admits every allowed value and the range's
+//! bounds, and a default that fits them all (reported at the offending value). COOL's
+//! slot attributes (`visibility`, `storage`, ...) are refused as CLIPS refuses them in
+//! a deftemplate.
 
-use super::facts::Violation;
+use super::facts::expected;
 use super::{PResult, Parser, Scope};
-use crate::error::LoadDetail;
+use crate::error::{EchoTail, LoadDetail, LoadError, Restriction};
 use crate::expr::{Expr, Op};
 use crate::lexer::{Lexer, Tok, Token};
 use crate::template::{allowed, types, DefaultKind, SlotDef};
@@ -21,6 +23,24 @@ struct Seen<'s> {
     types: bool,
     default: Option<(ValuesAt<'s>, &'static str)>,
     allowed: Option<(ValuesAt<'s>, &'static str)>,
+    /// The `range` attribute's name token.
+    range: Option<Token<'s>>,
+    cardinality: bool,
+}
+
+/// `e` with CLIPS's `ERROR:` text shown up to token `at`, joined by `tail`.
+fn echoed(mut e: LoadError, at: Token<'_>, tail: EchoTail) -> LoadError {
+    e.echo_end = at.end as u32;
+    e.echo_tail = tail;
+    e
+}
+
+/// The `allowed-...` attributes that restrict numbers, which `range` excludes.
+fn restricts_numbers(attribute: &str) -> bool {
+    matches!(
+        attribute,
+        "allowed-values" | "allowed-integers" | "allowed-floats" | "allowed-numbers"
+    )
 }
 
 /// The `allowed-...` attributes: name, kind, and whether a value fits the kind.
@@ -72,12 +92,16 @@ impl<'s> Parser<'s, '_, '_> {
             types: false,
             default: None,
             allowed: None,
+            range: None,
+            cardinality: false,
         };
         loop {
             let t = self.next();
             match t.tok {
                 Tok::RParen => {
-                    self.check_slot(&def, &seen)?;
+                    // CLIPS checks the slot once it is read, and shows it whole
+                    self.check_slot(&def, &seen)
+                        .map_err(|e| echoed(e, t, EchoTail::Normal))?;
                     return Ok(def);
                 }
                 Tok::LParen => {
@@ -124,29 +148,62 @@ impl<'s> Parser<'s, '_, '_> {
                                         first,
                                         second: name,
                                     };
-                                    return Err(e);
+                                    return Err(echoed(e, at, EchoTail::Normal));
                                 }
+                            }
+                            if seen.range.is_some() && restricts_numbers(name) {
+                                let mut e = self.err(at, "no allowed-... numbers with a range");
+                                e.detail = LoadDetail::AllowedCombined {
+                                    first: "range",
+                                    second: name,
+                                };
+                                return Err(echoed(e, at, EchoTail::Normal));
                             }
                             let values_at = self.save();
                             self.allowed_attribute(&mut def, name, kind)?;
                             seen.allowed = Some((values_at, name));
                         }
-                        "range" | "cardinality" | "visibility" | "storage" | "pattern-match"
-                        | "create-accessor" | "override-message" | "access" | "propagation"
-                        | "source" => {
-                            // accepted, not enforced
-                            loop {
-                                let tt = self.next();
-                                match tt.tok {
-                                    Tok::RParen => break,
-                                    Tok::Eof | Tok::Bad => return Err(self.err(tt, "')'")),
-                                    _ => {}
-                                }
+                        "range" => {
+                            if seen.range.is_some() {
+                                return Err(self.twice(at, "range"));
                             }
+                            if let Some(first) = seen
+                                .allowed
+                                .as_ref()
+                                .map(|a| a.1)
+                                .filter(|a| restricts_numbers(a))
+                            {
+                                let mut e = self.err(at, "no range with allowed-... numbers");
+                                e.detail = LoadDetail::AllowedCombined {
+                                    first,
+                                    second: "range",
+                                };
+                                return Err(echoed(e, at, EchoTail::Normal));
+                            }
+                            seen.range = Some(at);
+                            def.range = self.bounds_attribute(false)?;
                         }
+                        "cardinality" => {
+                            if seen.cardinality {
+                                return Err(self.twice(at, "cardinality"));
+                            }
+                            if !def.multi {
+                                let mut e = self.err(at, "a multislot for a cardinality");
+                                e.detail = LoadDetail::CardinalityOfSingle;
+                                return Err(echoed(e, at, EchoTail::Normal));
+                            }
+                            seen.cardinality = true;
+                            def.cardinality = self.bounds_attribute(true)?;
+                        }
+                        // the rest of CLIPS's slot attributes belong to COOL's classes;
+                        // in a deftemplate CLIPS refuses them like an unknown one
                         _ => {
-                            return Err(self
-                                .err(at, "a slot attribute (type, default, allowed-values, ...)"))
+                            let e = self.attribute_syntax(
+                                at,
+                                "a slot attribute (type, default, allowed-values, range, ...)",
+                                "slot attributes",
+                            );
+                            return Err(echoed(e, at, EchoTail::Normal));
                         }
                     }
                 }
@@ -159,7 +216,7 @@ impl<'s> Parser<'s, '_, '_> {
     fn twice(&self, at: Token<'s>, attribute: &'static str) -> crate::error::LoadError {
         let mut e = self.err(at, "each slot attribute once");
         e.detail = LoadDetail::AttributeTwice { attribute };
-        e
+        echoed(e, at, EchoTail::Normal)
     }
 
     /// `(default ...)`/`(default-dynamic ...)` after its name; None for `?NONE` and
@@ -254,6 +311,72 @@ impl<'s> Parser<'s, '_, '_> {
         }
     }
 
+    /// `(range MIN MAX)` or, with `cardinality`, `(cardinality MIN MAX)` after its
+    /// name: two numbers (integers for a cardinality, not below 0) or `?VARIABLE`,
+    /// the minimum not above the maximum. Returns the chain of the two bounds.
+    fn bounds_attribute(&mut self, cardinality: bool) -> PResult<Ix> {
+        let what = if cardinality {
+            "cardinality attribute"
+        } else {
+            "range attribute"
+        };
+        let holder = cap!(self, self.cx.push_expr(Expr::new(Op::Nop, 0, 0)))?;
+        let mut bounds = [Value::Void; 2];
+        for (k, bound) in bounds.iter_mut().enumerate() {
+            let t = self.next();
+            let v = match t.tok {
+                Tok::Int(i) | Tok::IntOverflow(i) => Value::Int(i),
+                Tok::Float(f) if !cardinality => Value::Float(f),
+                Tok::SfVar("VARIABLE") => {
+                    let unbounded = match (k, cardinality) {
+                        (0, true) => Value::Int(0),
+                        (0, false) => Value::Sym(cap!(self, self.cx.intern("-oo"))?),
+                        _ => Value::Sym(cap!(self, self.cx.intern("+oo"))?),
+                    };
+                    let c = cap!(self, self.cx.push_const(unbounded))?;
+                    self.cx.append_child(holder, c);
+                    *bound = unbounded;
+                    continue;
+                }
+                _ => {
+                    // CLIPS saved a space before reading the bound
+                    let tail = if t.tok == Tok::RParen {
+                        EchoTail::SpaceBefore
+                    } else {
+                        EchoTail::Normal
+                    };
+                    let e = self.attribute_syntax(t, "a number or ?VARIABLE", what);
+                    return Err(echoed(e, t, tail));
+                }
+            };
+            if cardinality && k == 0 && matches!(v, Value::Int(i) if i < 0) {
+                let mut e = self.err(t, "a minimum cardinality of 0 or more");
+                e.detail = LoadDetail::CardinalityBelowZero;
+                return Err(echoed(e, t, EchoTail::Normal));
+            }
+            let c = match self.literal(t)? {
+                Some(c) => c,
+                None => return Err(self.attribute_syntax(t, "a number or ?VARIABLE", what)),
+            };
+            self.cx.append_child(holder, c);
+            *bound = v;
+        }
+        let close = self.next();
+        if close.tok != Tok::RParen {
+            // CLIPS names the range attribute here, for a cardinality too
+            let e = self.attribute_syntax(close, "')' after the two bounds", "range attribute");
+            return Err(echoed(e, close, EchoTail::Glued));
+        }
+        if let (Some(min), Some(max)) = (bounds[0].as_number(), bounds[1].as_number()) {
+            if min > max {
+                let mut e = self.err(close, "a minimum not above the maximum");
+                e.detail = LoadDetail::MinAboveMax { cardinality };
+                return Err(echoed(e, close, EchoTail::Normal));
+            }
+        }
+        Ok(self.cx.exprs[holder as usize].first)
+    }
+
     /// `(allowed-KIND v...)` after its name: constants of the kind's type.
     fn allowed_attribute(
         &mut self,
@@ -279,7 +402,7 @@ impl<'s> Parser<'s, '_, '_> {
             if !fits_allowed_kind(kind, self.cx.const_value(c)) {
                 let mut e = self.err(tt, "a value of the type the allowed-... attribute names");
                 e.detail = LoadDetail::AllowedValueType { attribute: name };
-                return Err(e);
+                return Err(echoed(e, tt, EchoTail::SpaceAfter));
             }
             self.cx.append_child(holder, c);
         };
@@ -337,22 +460,56 @@ impl<'s> Parser<'s, '_, '_> {
                 }
             }
         }
-        if let Some((values_at, attribute)) = &seen.default {
-            let mut c = def.default;
-            let mut k = 0;
+        if let (Some(at), true) = (seen.range, def.types != 0) {
+            // each bound's type must be one the slot takes
+            let mut c = def.range;
             while c != NONE {
-                if let Some(violation) = self.literal_violation(def, c) {
-                    let at = self.value_at(values_at.clone(), k)?;
-                    let mut e = self.err(at, violation.expected());
-                    e.detail = LoadDetail::DefaultConstraint {
-                        attribute,
-                        types: violation == Violation::Type,
-                        slot: def.name,
-                    };
+                let bound = self.cx.const_value(c);
+                let number = matches!(bound, Value::Int(_) | Value::Float(_));
+                if number && def.types & type_bit(bound) == 0 {
+                    let mut e = self.err(at, "a range of numbers of the slot's type");
+                    e.detail = LoadDetail::TypeConflict { attribute: "range" };
                     return Err(e);
                 }
                 c = self.cx.exprs[c as usize].next;
+            }
+        }
+        if let Some((values_at, attribute)) = &seen.default {
+            let mut c = def.default;
+            let mut k = 0;
+            let mut literals = 0i64;
+            let mut open = false;
+            while c != NONE {
+                if let Some(what) = self.literal_violation(def, c) {
+                    let at = self.value_at(values_at.clone(), k)?;
+                    let mut e = self.err(at, expected(what));
+                    e.detail = LoadDetail::DefaultConstraint {
+                        attribute,
+                        what,
+                        slot: def.name,
+                        range: def.range,
+                    };
+                    return Err(e);
+                }
+                if self.is_literal(c) {
+                    literals += 1;
+                } else {
+                    open = true;
+                }
+                c = self.cx.exprs[c as usize].next;
                 k += 1;
+            }
+            if def.multi && !self.count_fits(def, literals, open) {
+                let at = self.value_at(values_at.clone(), 0)?;
+                let what = Restriction::Cardinality;
+                let mut e = self.err(at, expected(what));
+                e.detail = LoadDetail::DefaultConstraint {
+                    attribute,
+                    what,
+                    slot: def.name,
+                    range: def.range,
+                };
+                return Err(e);
             }
         }
         Ok(())
