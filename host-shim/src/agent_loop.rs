@@ -18,6 +18,7 @@ use crate::shim::payloads::{SkillRequestPayload, SkillStatus, SkillStatusPayload
 use crate::shim::rule_engine::exit_from_engine_stack;
 use crate::shim::safety::{CycleInput, SafetyMonitor, Stream};
 use crate::shim::team::IceoryxTeamLink;
+use crate::shim::traffic::{PoseReport, TeamBoard, MAX_TEAMMATES, POSE_KIND};
 use crate::shim::transport::{Pub, RobotStream, Transport, TransportError};
 use crate::team::{FaultyLink, LinkFaults, TeamLink};
 use hal::device::{
@@ -173,6 +174,7 @@ impl Samples {
                 ir: IrScan::EMPTY,
                 has_puck: false,
                 light: None,
+                teammates: [None; MAX_TEAMMATES],
             },
             gate: None,
         }
@@ -296,6 +298,7 @@ fn agent_loop(
         holds: Vec::new(),
         sent: 0,
         received: 0,
+        board: TeamBoard::default(),
     };
     let mut ports = AgentPorts::open(transport, robot)?;
     let mut drivers = SimDrivers::open(transport, robot)?;
@@ -328,6 +331,8 @@ fn agent_loop(
     // A team member out of the way while it waits: the drive there, and since when it
     // waits (one parking drive per wait).
     let mut parking: Option<DriveTo> = None;
+    // The parking drive makes way for a teammate (it runs whatever the rules' state).
+    let mut making_way = false;
     let mut waiting_since: Option<u64> = None;
     let mut stats = LoopStats::default();
     let wall_cycle = config.wall_cycle();
@@ -361,7 +366,7 @@ fn agent_loop(
         cycle += 1;
         beat_cycle.store(cycle, Ordering::Relaxed);
         samples.read(&mut drivers, cycle)?;
-        let p = samples.perceived;
+        let mut p = samples.perceived;
         if let Some(g) = samples.gate {
             if !mind.agent.knows_gate() {
                 mind.agent.see_active_gate(g)?;
@@ -377,6 +382,13 @@ fn agent_loop(
         // The first cycle sends nothing: a teammate may not have subscribed yet (all have
         // before the sim's second frame, which waits for every agent's first answer).
         let team_heard = cycle > 1 && mind.listen(link_cycle, cycle)?;
+        // The teammates' clock: the link's in lockstep, else this loop's own.
+        let traffic_now = if config.timing.lockstep {
+            link_cycle
+        } else {
+            cycle
+        };
+        p.teammates = mind.board.teammates(traffic_now, config.cycle_s(), &p.pose);
 
         // Let the rules decide once every driver is fresh (a skill planned from a pose
         // never received would start from the field's corner) and the gate's light was
@@ -400,6 +412,7 @@ fn agent_loop(
         if running.is_none() && ready {
             if let Some(chosen) = mind.agent.take_request()? {
                 parking = None;
+                making_way = false;
                 let request = chosen.request;
                 let request_seq = ports
                     .request
@@ -425,13 +438,34 @@ fn agent_loop(
             }
         }
 
+        // Idle where a teammate must go (it says this robot holds it back): make way,
+        // to the waiting place.
+        let asked = (running.is_none() && parking.is_none())
+            .then(|| mind.board.asking_way(robot, traffic_now))
+            .flatten();
+        if let Some(mate) = asked {
+            if let Some(goal) = park_goal(robot, p.pose) {
+                parking = DriveTo::plan_among(p.pose, goal, &p.ir, &p.teammates, &tuning);
+                making_way = parking.is_some();
+                if making_way {
+                    monitor.skill_started();
+                    println!(
+                        "robotino-agent run: cycle={cycle} making way for robot {mate}: parking at ({:.2},{:.2})",
+                        goal.x_m, goal.y_m
+                    );
+                }
+            }
+        }
         // Waiting in a team: out of the lanes after a while.
         let waits = mind.link.is_some()
             && running.is_none()
             && matches!(mind.agent.state().as_deref(), Some("TEAM-WAIT" | "DONE"));
         if !waits {
             waiting_since = None;
-            parking = None;
+            if !(making_way && running.is_none()) {
+                parking = None;
+                making_way = false;
+            }
         } else if waiting_since.is_none() {
             waiting_since = Some(cycle);
         } else if parking.is_none()
@@ -440,7 +474,7 @@ fn agent_loop(
             })
         {
             if let Some(goal) = park_goal(robot, p.pose) {
-                parking = DriveTo::plan_seeing(p.pose, goal, &p.ir, &tuning);
+                parking = DriveTo::plan_among(p.pose, goal, &p.ir, &p.teammates, &tuning);
                 if parking.is_some() {
                     monitor.skill_started();
                     println!(
@@ -456,6 +490,7 @@ fn agent_loop(
                 DriveStep::Driving(t) => (t, SkillOutcome::Running),
                 DriveStep::Arrived | DriveStep::Failed(_) => {
                     parking = None;
+                    making_way = false;
                     (Twist::ZERO, SkillOutcome::Running)
                 }
             },
@@ -471,6 +506,7 @@ fn agent_loop(
             // Bumped (or blind) on the way to park: stop; the next try plans around
             // whatever the IR ring sees.
             parking = None;
+            making_way = false;
         }
         if let Some(reason) = decision.fail_skill {
             // A stop while only backing away from the station does not undo the work.
@@ -482,6 +518,20 @@ fn agent_loop(
         let release = running
             .as_ref()
             .is_some_and(|r| r.skill.releasing() && !outcome.is_terminal());
+        // Where this robot is and how it moves, for the teammates' drives (not the
+        // first cycle: a teammate may not listen yet). Before the motor command: in
+        // lockstep the sim moves on once every command is in, and the teammates take
+        // this cycle's messages in the next.
+        if let (Some(link), true) = (mind.link.as_mut(), cycle > 1) {
+            let held_by = match (running.as_ref(), parking.as_ref()) {
+                (Some(r), _) => r.skill.held_by(),
+                (None, Some(d)) => d.held_by(),
+                (None, None) => None,
+            };
+            let report =
+                PoseReport::new(robot, link_cycle, p.pose, decision.twist).held_by(held_by);
+            link.send(link_cycle, &[report.to_msg()])?;
+        }
         drivers.set_release(release)?;
         let grab = running
             .as_ref()
@@ -557,6 +607,8 @@ struct Mind {
     /// Team messages sent and taken so far.
     sent: u64,
     received: u64,
+    /// Where the teammates announced themselves.
+    board: TeamBoard,
 }
 
 impl Mind {
@@ -565,7 +617,22 @@ impl Mind {
         let Some(link) = self.link.as_mut() else {
             return Ok(false);
         };
-        let msgs = link.receive(link_cycle)?;
+        let mut msgs = link.receive(link_cycle)?;
+        // Poses are the drives' business, not the rules'.
+        msgs.retain(|m| {
+            if m.kind != POSE_KIND {
+                return true;
+            }
+            // A malformed announcement is dropped.
+            if let Some(mut r) = PoseReport::from_msg(m) {
+                if link_cycle == u64::MAX {
+                    // Off lockstep the sender's cycle means nothing here: heard now.
+                    r.cycle = cycle.saturating_sub(1);
+                }
+                self.board.hear(r);
+            }
+            false
+        });
         for m in &msgs {
             if m.kind == "news" {
                 println!(

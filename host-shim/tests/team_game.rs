@@ -1,7 +1,7 @@
 //! The team in the process-level game: three agents, each with the team's rules
 //! (`rules/team.clp`), talking over iceoryx2. A robot killed mid-game leaves its claims
 //! to run out (at most one lease, 20 s of game time) and the other two play on; a short
-//! `game-sweep --robots 3` has no double claim, nor has a game whose team link loses 10 %
+//! `game-sweep --robots 3` has no double claim and no collision, nor has a game whose team link loses 10 %
 //! of the messages and delays the rest by up to 2 s.
 
 mod shim_common;
@@ -110,7 +110,7 @@ fn a_killed_robot_of_three_frees_its_claims_and_the_others_play_on() {
 }
 
 #[test]
-fn a_short_team_sweep_has_no_double_claim() {
+fn a_short_team_sweep_has_no_double_claim_and_no_collision() {
     let mut sweep = Proc::start(
         "game-sweep",
         AGENT,
@@ -138,6 +138,9 @@ fn a_short_team_sweep_has_no_double_claim() {
     let cells: Vec<&str> = lines[header + 2].split('|').map(str::trim).collect();
     assert_eq!(cells.get(1), Some(&"2"), "{}", sweep.dump());
     assert_eq!(cells.get(6), Some(&"0"), "double claims\n{}", sweep.dump());
+    // The robots keep their distance: no bumper contact between two of them (seed 0's
+    // robots 1 and 2 met within the first minute before they announced their poses).
+    assert_eq!(cells.get(5), Some(&"0"), "collisions\n{}", sweep.dump());
 }
 
 #[test]

@@ -3,6 +3,7 @@
 //! FINAL, FAILED). Pure: no I/O, no clock; the safety layer clamps and may veto the twist.
 
 use super::planner;
+use super::traffic::{self, Teammates};
 #[cfg(test)]
 use hal::field::input_storage_pose;
 use hal::field::{
@@ -19,6 +20,8 @@ pub struct Perceived {
     pub ir: IrScan,
     pub has_puck: bool,
     pub light: Option<(MachineId, LightSignal)>,
+    /// Where the teammates are (from their announcements over the team link).
+    pub teammates: Teammates,
 }
 
 /// Controller gains and tolerances.
@@ -81,6 +84,8 @@ pub struct DriveTo {
     cycles_without_progress: u32,
     /// Cycles stopped in a row by something ahead that is not the goal.
     blocked_cycles: u32,
+    /// The teammate that held this drive back in the last step.
+    held_by: Option<u8>,
 }
 
 impl DriveTo {
@@ -97,8 +102,21 @@ impl DriveTo {
         ir: &IrScan,
         tuning: &DriveTuning,
     ) -> Option<Self> {
+        Self::plan_among(from, goal, ir, &[None; traffic::MAX_TEAMMATES], tuning)
+    }
+
+    /// [`Self::plan_seeing`], also around the teammates close by (as they announced
+    /// themselves).
+    pub fn plan_among(
+        from: Pose2,
+        goal: Pose2,
+        ir: &IrScan,
+        teammates: &Teammates,
+        tuning: &DriveTuning,
+    ) -> Option<Self> {
         let r = tuning.robot_radius_m;
-        let discs = robots_seen(from, ir, r, SEEN_WITHIN_M, |_| true);
+        let mut discs = robots_seen(from, ir, r, SEEN_WITHIN_M, |_| true);
+        discs.extend(teammate_discs(from, teammates, r, MATES_PLANNED_WITHIN_M));
         Self::plan_around(from, goal, &discs, tuning).or_else(|| Self::plan(from, goal, tuning))
     }
 
@@ -126,6 +144,7 @@ impl DriveTo {
             best_distance_m: f32::INFINITY,
             cycles_without_progress: 0,
             blocked_cycles: 0,
+            held_by: None,
         })
     }
 
@@ -138,7 +157,13 @@ impl DriveTo {
             best_distance_m: f32::INFINITY,
             cycles_without_progress: 0,
             blocked_cycles: 0,
+            held_by: None,
         }
+    }
+
+    /// The teammate that held this drive back in its last step, if one did.
+    pub fn held_by(&self) -> Option<u8> {
+        self.held_by
     }
 
     pub fn step(&mut self, p: &Perceived, t: &DriveTuning) -> DriveStep {
@@ -213,31 +238,19 @@ impl DriveTo {
             (0.0, 0.0)
         };
         // Slow down for obstacles ahead in the direction of motion.
+        let mut ir_blocked = false;
+        let mut ahead_discs = Vec::new();
         if speed > 0.0 {
             let motion = vy.atan2(vx);
             if let Some(d) = p.ir.nearest_towards(motion, 25f32.to_radians()) {
                 // Something right ahead that is not the station we drive to (another robot):
                 // wait for it to move; the progress watchdog ends the wait.
-                let blocked = d <= STOP_WITHIN_M && remaining > d + 0.15;
-                self.blocked_cycles = if blocked { self.blocked_cycles + 1 } else { 0 };
-                // Blocked a while: plan around it. Robots give way by number (the highest
-                // replans first), so two that meet head-on do not both turn the same way.
-                let patience =
-                    REPLAN_AFTER_CYCLES * u32::from(4u8.saturating_sub(t.robot_number).max(1));
-                if blocked && self.blocked_cycles >= patience {
-                    self.blocked_cycles = 0;
+                ir_blocked = d <= STOP_WITHIN_M && remaining > d + 0.15;
+                if ir_blocked {
                     let ahead = |a: f32| wrap_angle(a - motion).abs() <= 25f32.to_radians();
-                    let discs = robots_seen(pose, &p.ir, t.robot_radius_m, STOP_WITHIN_M, ahead);
-                    // Only for a robot: a machine in the way is the watchdog's business.
-                    if let Some(around) = (!discs.is_empty())
-                        .then(|| Self::plan_around(pose, self.goal, &discs, t))
-                        .flatten()
-                    {
-                        *self = around;
-                        return DriveStep::Driving(Twist::ZERO);
-                    }
+                    ahead_discs = robots_seen(pose, &p.ir, t.robot_radius_m, STOP_WITHIN_M, ahead);
                 }
-                let f = if blocked {
+                let f = if ir_blocked {
                     0.0
                 } else {
                     ((d - hal::ir::IR_MIN_RANGE_M)
@@ -246,6 +259,47 @@ impl DriveTo {
                 };
                 vx *= f;
                 vy *= f;
+            }
+        }
+        // Keep the distance to the teammates (as they announced themselves): a teammate
+        // in the way holds this robot back unless it stands at this drive's goal (a queue
+        // at a gate: wait for it to leave).
+        let wanted = vx.hypot(vy);
+        let guarded = traffic::keep_distance(
+            &pose,
+            Twist::new(vx, vy, 0.0),
+            &p.teammates,
+            t.robot_radius_m,
+            t.max_linear_acc_m_s2,
+        );
+        let held = wanted > 0.03 && guarded.linear_speed_m_s() < HELD_BACK_SHARE * wanted;
+        // The nearest teammate is the one in the way.
+        self.held_by = p.teammates[0].filter(|_| held).map(|m| m.number);
+        let mate_blocked = held
+            && p.teammates.iter().flatten().all(|m| {
+                (m.x_m - self.goal.x_m).hypot(m.y_m - self.goal.y_m) > 2.0 * t.robot_radius_m
+            });
+        (vx, vy) = (guarded.vx_m_s, guarded.vy_m_s);
+        let blocked = ir_blocked || mate_blocked;
+        self.blocked_cycles = if blocked { self.blocked_cycles + 1 } else { 0 };
+        // Blocked a while: plan around it. Robots give way by number (the highest
+        // replans first), so two that meet head-on do not both turn the same way.
+        let patience = REPLAN_AFTER_CYCLES * u32::from(4u8.saturating_sub(t.robot_number).max(1));
+        if blocked && self.blocked_cycles >= patience {
+            self.blocked_cycles = 0;
+            ahead_discs.extend(teammate_discs(
+                pose,
+                &p.teammates,
+                t.robot_radius_m,
+                MATES_PLANNED_WITHIN_M,
+            ));
+            // Only for a robot: a machine in the way is the watchdog's business.
+            if let Some(around) = (!ahead_discs.is_empty())
+                .then(|| Self::plan_around(pose, self.goal, &ahead_discs, t))
+                .flatten()
+            {
+                *self = around;
+                return DriveStep::Driving(Twist::ZERO);
             }
         }
         let omega =
@@ -317,6 +371,27 @@ const SEEN_WITHIN_M: f32 = 0.2;
 /// Cycles a drive waits for a robot ahead before the highest-numbered robot plans around
 /// it (robot 2 waits twice, robot 1 three times as long).
 const REPLAN_AFTER_CYCLES: u32 = 15;
+
+/// A drive the teammate guard slows below this share of what it wants is held back.
+const HELD_BACK_SHARE: f32 = 0.2;
+/// Teammates whose body is this close to this robot's are planned around.
+const MATES_PLANNED_WITHIN_M: f32 = 0.5;
+
+/// The teammates whose bodies are within `within_m` of this robot's, as discs grown by
+/// the gap the guard keeps.
+fn teammate_discs(
+    pose: Pose2,
+    teammates: &Teammates,
+    radius_m: f32,
+    within_m: f32,
+) -> Vec<planner::Disc> {
+    teammates
+        .iter()
+        .flatten()
+        .filter(|m| m.distance_to(&pose) - 2.0 * radius_m <= within_m)
+        .map(|m| (m.x_m, m.y_m, radius_m + traffic::MIN_GAP_M))
+        .collect()
+}
 
 /// What the IR ring sees within `within_m` in the directions `towards` (robot frame)
 /// that is not a wall or machine: robots, each a disc of this robot's radius behind the
@@ -438,7 +513,8 @@ impl Skill {
         let fetch = matches!(request, SkillRequest::GetS0 | SkillRequest::GetJunk(_));
         let phase = match goal {
             Some(goal) if !(fetch && p.has_puck) => Phase::Approach(
-                DriveTo::plan_seeing(p.pose, goal, &p.ir, t).ok_or(FailReason::DriveFailed)?,
+                DriveTo::plan_among(p.pose, goal, &p.ir, &p.teammates, t)
+                    .ok_or(FailReason::DriveFailed)?,
             ),
             then => Phase::Release { waited: 0, then },
         };
@@ -449,6 +525,14 @@ impl Skill {
             light_changed: false,
             puck_left: false,
         })
+    }
+
+    /// The teammate that holds the skill's drive back, if one does.
+    pub fn held_by(&self) -> Option<u8> {
+        match &self.phase {
+            Phase::Approach(d) | Phase::Leave(d, _) => d.held_by(),
+            _ => None,
+        }
     }
 
     /// True while the skill asks the drive to let go of the puck.
@@ -486,12 +570,14 @@ impl Skill {
                     return (Twist::ZERO, SkillOutcome::Running);
                 }
                 self.phase = match then {
-                    Some(goal) => match DriveTo::plan_seeing(p.pose, *goal, &p.ir, t) {
-                        Some(drive) => Phase::Approach(drive),
-                        None => {
-                            return (Twist::ZERO, SkillOutcome::Failed(FailReason::DriveFailed))
+                    Some(goal) => {
+                        match DriveTo::plan_among(p.pose, *goal, &p.ir, &p.teammates, t) {
+                            Some(drive) => Phase::Approach(drive),
+                            None => {
+                                return (Twist::ZERO, SkillOutcome::Failed(FailReason::DriveFailed))
+                            }
                         }
-                    },
+                    }
                     None => match leave_pose(p.pose, t) {
                         Some(goal) => Phase::Leave(DriveTo::straight(goal), Perception::Released),
                         None => return (Twist::ZERO, SkillOutcome::Final(Perception::Released)),
@@ -638,6 +724,7 @@ mod tests {
             ir: IrScan::EMPTY,
             has_puck,
             light: None,
+            teammates: [None; traffic::MAX_TEAMMATES],
         }
     }
 
@@ -805,6 +892,45 @@ mod tests {
             "escape {x},{y}"
         );
         assert!((x - stuck.x_m).hypot(y - stuck.y_m) < 0.13);
+    }
+
+    /// A teammate standing in the way (as it announced itself): the drive stops short of
+    /// it, then plans around it and arrives without touching it.
+    #[test]
+    fn a_drive_goes_around_a_teammate_standing_in_the_way() {
+        let t = DriveTuning::default();
+        let (start, goal) = (Pose2::new(1.0, 0.6, 0.0), Pose2::new(3.0, 0.6, 0.0));
+        let mate = traffic::Teammate {
+            number: 2,
+            x_m: 2.0,
+            y_m: 0.6,
+            vx_m_s: 0.0,
+            vy_m_s: 0.0,
+        };
+        let mut p = perceived(start, false);
+        p.teammates[0] = Some(mate);
+        let limits = hal::limits::MotionLimits::ROBOTINO2;
+        let mut drive = DriveTo::plan_among(start, goal, &p.ir, &p.teammates, &t)
+            .unwrap_or_else(|| panic!("plan"));
+        let (mut previous, mut least) = (Twist::ZERO, f32::INFINITY);
+        let mut arrived = false;
+        for _ in 0..15 * 60 {
+            match drive.step(&p, &t) {
+                DriveStep::Driving(tw) => {
+                    let tw = limits.clamp(previous, tw, 1.0 / 15.0);
+                    previous = tw;
+                    p.pose = integrate(p.pose, tw);
+                    least = least.min(mate.distance_to(&p.pose) - 2.0 * t.robot_radius_m);
+                }
+                DriveStep::Arrived => {
+                    arrived = true;
+                    break;
+                }
+                DriveStep::Failed(r) => panic!("{r:?} at {:?}", p.pose),
+            }
+        }
+        assert!(arrived, "{:?}", p.pose);
+        assert!(least > 0.02, "came within {least} of the teammate");
     }
 
     #[test]

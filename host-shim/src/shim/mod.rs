@@ -14,4 +14,5 @@ pub mod referee;
 pub mod rule_engine;
 pub mod safety;
 pub mod team;
+pub mod traffic;
 pub mod transport;

@@ -1,0 +1,349 @@
+//! Traffic between the robots of a team: each robot announces its pose and velocity every
+//! cycle over the team link (a `pose` message, never through the simulator), keeps the
+//! newest announcement of each teammate, predicts where the teammate is now, and its
+//! drives keep their distance ([`keep_distance`]): the part of a twist that closes in on a
+//! teammate is cut to what the drive can still brake before the two touch. A robot that
+//! is only in a teammate's way is planned around (see `behaviour::DriveTo`); one standing
+//! idle where a teammate must go (a station's approach) is asked to make way: the held
+//! robot names it in its announcement, and the idle one drives to its waiting place.
+
+use crate::team::TeamMsg;
+use hal::{Pose2, Twist};
+
+/// The team message kind of a pose announcement (the rules never see these).
+pub const POSE_KIND: &str = "pose";
+
+/// Where a teammate is, predicted for the current cycle, and how it moves (world frame).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Teammate {
+    pub number: u8,
+    pub x_m: f32,
+    pub y_m: f32,
+    pub vx_m_s: f32,
+    pub vy_m_s: f32,
+}
+
+impl Teammate {
+    pub fn is_still(&self) -> bool {
+        self.vx_m_s.hypot(self.vy_m_s) < 0.02
+    }
+
+    /// Distance between the two robots' centres.
+    pub fn distance_to(&self, pose: &Pose2) -> f32 {
+        (self.x_m - pose.x_m).hypot(self.y_m - pose.y_m)
+    }
+}
+
+/// At most this many teammates (LLSF teams field three robots).
+pub const MAX_TEAMMATES: usize = 2;
+
+/// The teammates a robot knows of this cycle.
+pub type Teammates = [Option<Teammate>; MAX_TEAMMATES];
+
+/// An announcement: the sender's pose and its commanded velocity in the world frame, the
+/// cycle it was sent in (the team link's clock, the same for every robot), and the
+/// teammate that holds the sender's drive back (0: none).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PoseReport {
+    pub from: u8,
+    pub cycle: u64,
+    pub x_m: f32,
+    pub y_m: f32,
+    pub vx_m_s: f32,
+    pub vy_m_s: f32,
+    pub held_by: u8,
+}
+
+impl PoseReport {
+    /// The report of a robot at `pose` commanding the body twist `twist`.
+    pub fn new(from: u8, cycle: u64, pose: Pose2, twist: Twist) -> Self {
+        let (s, c) = pose.phi_rad.sin_cos();
+        Self {
+            from,
+            cycle,
+            x_m: pose.x_m,
+            y_m: pose.y_m,
+            vx_m_s: c * twist.vx_m_s - s * twist.vy_m_s,
+            vy_m_s: s * twist.vx_m_s + c * twist.vy_m_s,
+            held_by: 0,
+        }
+    }
+
+    /// The same report naming the teammate that holds the drive back.
+    pub fn held_by(self, teammate: Option<u8>) -> Self {
+        Self {
+            held_by: teammate.unwrap_or(0),
+            ..self
+        }
+    }
+
+    pub fn to_msg(&self) -> TeamMsg {
+        TeamMsg {
+            from: self.from,
+            seq: i64::try_from(self.cycle).unwrap_or(i64::MAX),
+            kind: POSE_KIND.to_string(),
+            to: 0,
+            resource: "body".to_string(),
+            rseq: 0,
+            lease: 0.0,
+            data: [self.x_m, self.y_m, self.vx_m_s, self.vy_m_s]
+                .iter()
+                .map(|v| format!("{v:.3}"))
+                .chain(core::iter::once(self.held_by.to_string()))
+                .collect(),
+        }
+    }
+
+    /// `None` for another kind of message or a malformed announcement.
+    pub fn from_msg(m: &TeamMsg) -> Option<Self> {
+        if m.kind != POSE_KIND || m.data.len() != 5 {
+            return None;
+        }
+        let mut v = [0f32; 4];
+        for (slot, text) in v.iter_mut().zip(&m.data[..4]) {
+            *slot = text.parse().ok().filter(|x: &f32| x.is_finite())?;
+        }
+        Some(Self {
+            from: m.from,
+            cycle: u64::try_from(m.seq).ok()?,
+            x_m: v[0],
+            y_m: v[1],
+            vx_m_s: v[2],
+            vy_m_s: v[3],
+            held_by: m.data[4].parse().ok()?,
+        })
+    }
+}
+
+/// An announcement older than this (cycles) says too little about where the teammate is
+/// now: the drives rely on the IR ring alone for it.
+const MAX_AGE_CYCLES: u64 = 15;
+/// A velocity is extrapolated at most this many cycles (the teammate may have braked).
+const PREDICT_CYCLES: u64 = 3;
+
+/// The newest announcement of each teammate (a late or duplicated one never replaces a
+/// newer one).
+#[derive(Debug, Clone, Default)]
+pub struct TeamBoard {
+    reports: Vec<PoseReport>,
+}
+
+impl TeamBoard {
+    pub fn hear(&mut self, r: PoseReport) {
+        match self.reports.iter_mut().find(|o| o.from == r.from) {
+            Some(o) if o.cycle >= r.cycle => {}
+            Some(o) => *o = r,
+            None => {
+                self.reports.push(r);
+                self.reports.sort_by_key(|o| o.from);
+            }
+        }
+    }
+
+    /// A teammate whose fresh announcement says robot `me` holds it back.
+    pub fn asking_way(&self, me: u8, cycle: u64) -> Option<u8> {
+        self.reports
+            .iter()
+            .filter(|r| cycle.saturating_sub(r.cycle) <= MAX_AGE_CYCLES)
+            .find(|r| r.held_by == me)
+            .map(|r| r.from)
+    }
+
+    /// The teammates as they are predicted to stand in `cycle` (`dt_s` a cycle), nearest
+    /// first.
+    pub fn teammates(&self, cycle: u64, dt_s: f32, me: &Pose2) -> Teammates {
+        let mut known: Vec<Teammate> = self
+            .reports
+            .iter()
+            .filter(|r| cycle.saturating_sub(r.cycle) <= MAX_AGE_CYCLES)
+            .map(|r| {
+                let ahead = cycle.saturating_sub(r.cycle).min(PREDICT_CYCLES) as f32 * dt_s;
+                Teammate {
+                    number: r.from,
+                    x_m: r.x_m + r.vx_m_s * ahead,
+                    y_m: r.y_m + r.vy_m_s * ahead,
+                    vx_m_s: r.vx_m_s,
+                    vy_m_s: r.vy_m_s,
+                }
+            })
+            .collect();
+        known.sort_by(|a, b| a.distance_to(me).total_cmp(&b.distance_to(me)));
+        let mut out = [None; MAX_TEAMMATES];
+        for (slot, t) in out.iter_mut().zip(known) {
+            *slot = Some(t);
+        }
+        out
+    }
+}
+
+/// The gap between two robots' bodies this guard keeps at the least: the odometry of
+/// each is a few centimetres off, and an announcement is a cycle old.
+pub const MIN_GAP_M: f32 = 0.07;
+/// The share of the drive's deceleration the guard plans with.
+const BRAKE_SHARE: f32 = 0.5;
+
+/// Cuts the part of `twist` (body frame of `pose`) that closes in on a teammate to the
+/// speed from which this robot can still stop (at `max_acc_m_s2`) before the gap falls
+/// to [`MIN_GAP_M`], sharing the remaining gap with a teammate that closes in too.
+/// Moving away or past a teammate stays free.
+pub fn keep_distance(
+    pose: &Pose2,
+    twist: Twist,
+    teammates: &Teammates,
+    radius_m: f32,
+    max_acc_m_s2: f32,
+) -> Twist {
+    let (mut vx, mut vy) = (twist.vx_m_s, twist.vy_m_s);
+    for t in teammates.iter().flatten() {
+        let (lx, ly) = pose.to_local(t.x_m, t.y_m);
+        let d = lx.hypot(ly);
+        if d < 1e-3 {
+            continue;
+        }
+        let (ux, uy) = (lx / d, ly / d);
+        // The teammate's own closing speed (its velocity towards this robot).
+        let (s, c) = pose.phi_rad.sin_cos();
+        let (tvx, tvy) = (c * t.vx_m_s + s * t.vy_m_s, -s * t.vx_m_s + c * t.vy_m_s);
+        let theirs = -(tvx * ux + tvy * uy);
+        let gap = d - 2.0 * radius_m - MIN_GAP_M;
+        // Both brake: each gets half of what is left, less what the teammate closes in
+        // during the cycle its announcement is late.
+        let share = if theirs > 0.01 { 0.5 } else { 1.0 };
+        let room = (share * gap - theirs.max(0.0) / 15.0).max(0.0);
+        let allowed = (2.0 * BRAKE_SHARE * max_acc_m_s2 * room).sqrt();
+        let towards = vx * ux + vy * uy;
+        if towards > allowed {
+            vx -= (towards - allowed) * ux;
+            vy -= (towards - allowed) * uy;
+        }
+    }
+    Twist::new(vx, vy, twist.omega_rad_s)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn mate(x: f32, y: f32, vx: f32, vy: f32) -> Teammates {
+        [
+            Some(Teammate {
+                number: 2,
+                x_m: x,
+                y_m: y,
+                vx_m_s: vx,
+                vy_m_s: vy,
+            }),
+            None,
+        ]
+    }
+
+    #[test]
+    fn pose_reports_round_trip_and_reject_other_messages() {
+        let r = PoseReport::new(
+            2,
+            77,
+            Pose2::new(1.0, 2.0, core::f32::consts::FRAC_PI_2),
+            Twist::new(0.3, 0.0, 0.1),
+        );
+        // Facing +y, driving forward: +y in the world.
+        assert!(
+            (r.vy_m_s - 0.3).abs() < 1e-5 && r.vx_m_s.abs() < 1e-5,
+            "{r:?}"
+        );
+        let back = PoseReport::from_msg(&r.to_msg()).unwrap_or_else(|| panic!("decodes"));
+        assert_eq!(back.from, 2);
+        assert_eq!(back.cycle, 77);
+        assert_eq!(back.held_by, 0);
+        let asking = PoseReport::from_msg(&r.held_by(Some(3)).to_msg());
+        assert_eq!(asking.map(|a| a.held_by), Some(3));
+        assert!((back.y_m - 2.0).abs() < 1e-3);
+        let mut news = r.to_msg();
+        news.kind = "news".to_string();
+        assert_eq!(PoseReport::from_msg(&news), None);
+        let mut broken = r.to_msg();
+        broken.data[1] = "NaN".to_string();
+        assert_eq!(PoseReport::from_msg(&broken), None);
+    }
+
+    #[test]
+    fn the_board_keeps_the_newest_report_and_forgets_old_ones() {
+        let mut b = TeamBoard::default();
+        let at = |cycle, x| PoseReport {
+            from: 3,
+            cycle,
+            x_m: x,
+            y_m: 1.0,
+            vx_m_s: 0.0,
+            vy_m_s: 0.0,
+            held_by: 1,
+        };
+        b.hear(at(10, 1.0));
+        b.hear(at(8, 2.0));
+        let me = Pose2::new(0.0, 0.0, 0.0);
+        let t = b.teammates(11, 1.0 / 15.0, &me)[0].unwrap_or_else(|| panic!("known"));
+        assert_eq!(t.x_m, 1.0);
+        assert_eq!(b.asking_way(1, 11), Some(3));
+        assert_eq!(b.asking_way(2, 11), None);
+        assert_eq!(b.asking_way(1, 10 + MAX_AGE_CYCLES + 1), None);
+        assert_eq!(
+            b.teammates(10 + MAX_AGE_CYCLES + 1, 1.0 / 15.0, &me)[0],
+            None
+        );
+    }
+
+    #[test]
+    fn the_guard_stops_closing_in_but_lets_the_robot_pass_and_leave() {
+        let me = Pose2::new(1.0, 1.0, 0.0);
+        let r = 0.185;
+        // A teammate touching distance plus the gap ahead: no speed towards it.
+        let near = mate(1.0 + 2.0 * r + MIN_GAP_M, 1.0, 0.0, 0.0);
+        let t = keep_distance(&me, Twist::new(0.5, 0.2, 0.3), &near, r, 1.0);
+        assert!(t.vx_m_s.abs() < 1e-3, "{t:?}");
+        assert!((t.vy_m_s - 0.2).abs() < 1e-5 && (t.omega_rad_s - 0.3).abs() < 1e-6);
+        // Backing away stays free.
+        let back = keep_distance(&me, Twist::new(-0.3, 0.0, 0.0), &near, r, 1.0);
+        assert_eq!(back, Twist::new(-0.3, 0.0, 0.0));
+        // Far away: untouched.
+        let far = mate(3.0, 1.0, 0.0, 0.0);
+        let t = keep_distance(&me, Twist::new(0.5, 0.0, 0.0), &far, r, 1.0);
+        assert_eq!(t, Twist::new(0.5, 0.0, 0.0));
+        // A teammate coming head-on leaves less room than a still one.
+        let still = mate(1.6, 1.0, 0.0, 0.0);
+        let coming = mate(1.6, 1.0, -0.4, 0.0);
+        let a = keep_distance(&me, Twist::new(0.5, 0.0, 0.0), &still, r, 1.0);
+        let b = keep_distance(&me, Twist::new(0.5, 0.0, 0.0), &coming, r, 1.0);
+        assert!(b.vx_m_s < a.vx_m_s && a.vx_m_s < 0.5, "{a:?} {b:?}");
+    }
+
+    /// Two robots driving head-on at full speed, each guarding with the other's
+    /// announcement of the cycle before, through the drive's acceleration limit: they
+    /// stop apart.
+    #[test]
+    fn two_guarded_robots_head_on_never_touch() {
+        let r = 0.185;
+        let dt = 1.0 / 15.0;
+        let limits = hal::limits::MotionLimits::ROBOTINO2;
+        let mut poses = [Pose2::new(1.0, 1.0, 0.0), Pose2::new(3.0, 1.0, PI)];
+        let mut twists = [Twist::ZERO; 2];
+        let mut least = f32::INFINITY;
+        use core::f32::consts::PI;
+        for cycle in 0..15 * 10 {
+            let reports: Vec<PoseReport> = (0..2)
+                .map(|i| PoseReport::new(i as u8 + 1, cycle, poses[i], twists[i]))
+                .collect();
+            for i in 0..2 {
+                let mut board = TeamBoard::default();
+                board.hear(reports[1 - i]);
+                let mates = board.teammates(cycle + 1, dt, &poses[i]);
+                let want = keep_distance(&poses[i], Twist::new(0.5, 0.0, 0.0), &mates, r, 1.0);
+                twists[i] = limits.clamp_acceleration(twists[i], want, dt);
+            }
+            for i in 0..2 {
+                poses[i] = poses[i].advanced(twists[i], 0.0, dt);
+            }
+            least = least.min(poses[0].distance_to(&poses[1]) - 2.0 * r);
+        }
+        assert!(least > 0.02, "gap fell to {least}");
+        assert!(least < 0.2, "they should come close: {least}");
+    }
+}
