@@ -942,6 +942,18 @@ impl Core<'_> {
             let upto = text.get(..e.echo_end as usize).unwrap_or(text);
             let _ = crate::builtins::pretty::write_deffacts_upto(upto, &mut b);
             let _ = b.write_char('\n');
+        } else if matches!(
+            e.detail,
+            LoadDetail::Constraint {
+                command: "assert",
+                ..
+            }
+        ) && e.construct == "deffunction"
+        {
+            let _ = b.write_str("\nERROR:\n");
+            let upto = text.get(..e.echo_end as usize).unwrap_or(text);
+            let _ = crate::builtins::pretty::write_deffunction_upto(upto, &mut b);
+            let _ = b.write_char('\n');
         } else if assert_in_rule {
             let _ = b.write_str("\nERROR:\n");
             let upto = text.get(..e.echo_end as usize).unwrap_or(text);

@@ -413,6 +413,9 @@ pub struct Mode {
     /// Keep each rule's source text for `ppdefrule` (CLIPS's pretty-print forms). A
     /// robot image that never lists its rules turns this off to save the symbol bytes.
     pub keep_pp_forms: bool,
+    /// `(set-dynamic-constraint-checking TRUE)`: every new fact's slot values are
+    /// checked against their slots' restrictions (agent-core feature `extras`).
+    pub dynamic_checks: bool,
 }
 
 impl Mode {
@@ -429,6 +432,7 @@ impl Mode {
             defining: false,
             initial_deffacts: true,
             keep_pp_forms: true,
+            dynamic_checks: false,
         }
     }
 }

@@ -518,6 +518,24 @@ pub enum Restriction {
     Cardinality,
 }
 
+impl EvalError {
+    /// The restriction a `BadSlotValue` error names (`Values` for any other).
+    pub fn restriction(&self) -> Restriction {
+        match self.kind() {
+            EvalErrorKind::BadSlotValue {
+                reason: Message::TypeViolated,
+            } => Restriction::Type,
+            EvalErrorKind::BadSlotValue {
+                reason: Message::RangeViolated,
+            } => Restriction::Range,
+            EvalErrorKind::BadSlotValue {
+                reason: Message::CardinalityViolated,
+            } => Restriction::Cardinality,
+            _ => Restriction::Values,
+        }
+    }
+}
+
 /// Which CLIPS message a load error corresponds to. (`Ix` fields come before the
 /// others: derived `PartialEq` compares fields spelled as primitive types first, so
 /// this keeps the comparison, and the image's code, as it was with `u16` fields.)

@@ -604,6 +604,9 @@ impl Core<'_> {
         if self.st.mode.watch & crate::engine::watch::FACTS != 0 {
             self.print_fact_line("==> ", slot);
         }
+        // CLIPS checks the new fact (dynamic constraint checking) before matching it
+        #[cfg(feature = "extras")]
+        let defer = !(self.st.mode.dynamic_checks && self.report_violation(slot)) && defer;
         if defer && self.may_defer(tmpl) {
             // the propagation waits for the next action (`rete::defer`)
             self.st.net.deferred = crate::rete::Deferred {

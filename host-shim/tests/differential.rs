@@ -351,4 +351,5 @@ differential_programs! {
     p192_range_cardinality_literals => "192-range-cardinality-literals",
     p193_range_cardinality_rules => "193-range-cardinality-rules",
     p194_range_cardinality_attribute_errors => "194-range-cardinality-attribute-errors",
+    p195_dynamic_constraint_checking => "195-dynamic-constraint-checking",
 }

@@ -2,10 +2,10 @@
 //! its rules call none of them): hyperbolic and reciprocal trigonometry, `deg-grad` and
 //! `grad-deg`, the older names CLIPS still accepts (`!=`, `nth`, `mv-append`,
 //! `str-explode`, `str-implode`, `mv-subseq`, `mv-delete`, `mv-replace`, `subset`,
-//! `wordp`), `pointerp`, `setgen`, and the engine settings this engine has one value of
-//! (`get-`/`set-auto-float-dividend`, `-salience-evaluation`,
-//! `-dynamic-constraint-checking`, `-sequence-operator-recognition`): setting the value
-//! it has is accepted, any other is refused with an error, never accepted and ignored.
+//! `wordp`), `pointerp`, `setgen`, `get-`/`set-dynamic-constraint-checking`, and the
+//! engine settings this engine has one value of (`get-`/`set-auto-float-dividend`,
+//! `-salience-evaluation`, `-sequence-operator-recognition`): setting the value it has
+//! is accepted, any other is refused with an error, never accepted and ignored.
 //!
 //! An older name whose function CLIPS shares with the newer one is a row with the newer
 //! one's function: CLIPS names the older one when it checks a literal argument while
@@ -364,15 +364,16 @@ fn set_auto_float_dividend(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalErro
     Ok(Value::Sym(SYM_TRUE))
 }
 
-/// Slot values are checked when constructs are parsed only (CLIPS's default, FALSE).
-fn get_dynamic_constraint_checking(_cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
-    Ok(Value::Sym(SYM_FALSE))
+/// Whether every new fact's slot values are checked (off by default, as in CLIPS:
+/// literals are checked when constructs and commands are parsed).
+fn get_dynamic_constraint_checking(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
+    Ok(Core::bool_value(cx.st.mode.dynamic_checks))
 }
+/// Any value but FALSE turns it on; the old setting is returned.
 fn set_dynamic_constraint_checking(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    if !is_false(cx.arg(a, 0)) {
-        return Err(refuse(cx, "set-dynamic-constraint-checking", "FALSE"));
-    }
-    Ok(Value::Sym(SYM_FALSE))
+    let old = cx.st.mode.dynamic_checks;
+    cx.st.mode.dynamic_checks = !is_false(cx.arg(a, 0));
+    Ok(Core::bool_value(old))
 }
 
 /// `$` before a function call's argument is not a sequence operator (CLIPS's default).
@@ -433,10 +434,6 @@ mod tests {
                 "(set-auto-float-dividend TRUE)",
             ),
             (
-                "(set-dynamic-constraint-checking TRUE)",
-                "(set-dynamic-constraint-checking FALSE)",
-            ),
-            (
                 "(set-sequence-operator-recognition TRUE)",
                 "(set-sequence-operator-recognition FALSE)",
             ),
@@ -459,10 +456,6 @@ mod tests {
         assert_eq!(
             eval_to_string("(set-salience-evaluation when-defined)"),
             "when-defined"
-        );
-        assert_eq!(
-            eval_to_string("(set-dynamic-constraint-checking FALSE)"),
-            "FALSE"
         );
     }
 

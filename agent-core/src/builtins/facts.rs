@@ -109,6 +109,72 @@ impl Core<'_> {
         Ok(())
     }
 
+    /// Dynamic constraint checking of a new fact: the first slot whose value breaks
+    /// its restrictions is reported as CLIPS reports it (`[CSTRNCHK1] Slot value ...
+    /// found in fact f-N`), and execution halts as after an error in the pattern
+    /// network (the fact stays). Whether one was reported.
+    #[cfg(feature = "extras")]
+    pub(crate) fn report_violation(&mut self, fact: Ix) -> bool {
+        use crate::error::Restriction;
+        use core::fmt::Write;
+        let tmpl = self.facts[fact as usize].tmpl;
+        let nslots = self.templates[tmpl as usize].nslots;
+        for s in 0..nslots {
+            let def = self.slot_def(tmpl, s);
+            let Ok(v) = self.fact_slot_value(fact, s) else {
+                return false;
+            };
+            let what = match v {
+                Value::Multi(m) => {
+                    let (min, max) = self.cardinality_of(&def);
+                    let len = i64::from(m.len);
+                    if len < min || len > max {
+                        Some(Restriction::Cardinality)
+                    } else {
+                        (0..m.len as usize).find_map(|k| {
+                            let item = self.mf_item(m, k);
+                            self.check_atom_def(&def, item)
+                                .err()
+                                .map(|e| e.restriction())
+                        })
+                    }
+                }
+                v => self.check_atom_def(&def, v).err().map(|e| e.restriction()),
+            };
+            let Some(what) = what else { continue };
+            let mut b: crate::value::TextBuf<1024> = crate::value::TextBuf::new();
+            let _ = b.write_str("\n[CSTRNCHK1] Slot value ");
+            {
+                let (view, _) = self.split();
+                let _ = view.write_value(&mut b, v, true);
+            }
+            let mut id: crate::value::TextBuf<16> = crate::value::TextBuf::new();
+            let _ = write!(id, "f-{}", self.facts[fact as usize].num);
+            let _ = writeln!(b, " found in fact {:<7} ", id.as_str());
+            let _ = match what {
+                Restriction::Type => b.write_str("does not match the allowed types"),
+                Restriction::Values => b.write_str("does not match the allowed values"),
+                Restriction::Cardinality => {
+                    b.write_str("does not satisfy the cardinality restrictions")
+                }
+                Restriction::Range => {
+                    let min = self.const_value(def.range);
+                    let max = self.const_value(self.exprs[def.range as usize].next);
+                    let _ = b.write_str("does not fall in the allowed range ");
+                    let _ = self.write_plain(&mut b, min);
+                    let _ = b.write_str(" to ");
+                    self.write_plain(&mut b, max)
+                }
+            };
+            let _ = writeln!(b, " for slot {}.", self.sym_text(def.name));
+            self.write(router::WERROR, b.as_str());
+            self.st.net.pattern_error = true;
+            self.st.mode.halting = true;
+            return true;
+        }
+        false
+    }
+
     /// A multislot's cardinality: the fewest and most fields it takes.
     pub(crate) fn cardinality_of(&self, def: &SlotDef) -> (i64, i64) {
         if def.cardinality == NONE {

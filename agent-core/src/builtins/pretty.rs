@@ -307,6 +307,29 @@ pub fn write_defrule_upto(src: &str, w: &mut dyn Write) -> fmt::Result {
     action_lines(&mut c, w, 3, &[])
 }
 
+/// What CLIPS shows after `ERROR:` for a deffunction it stopped reading where `src`
+/// ends: `(deffunction MAIN::name`, the parameters on a line, one action per line.
+pub fn write_deffunction_upto(src: &str, w: &mut dyn Write) -> fmt::Result {
+    let mut c = Cursor::new(src);
+    c.next(); // (
+    c.next(); // deffunction
+    let name = c.next();
+    let name = c.text(name);
+    write!(
+        w,
+        "(deffunction MAIN::{}",
+        name.strip_prefix("MAIN::").unwrap_or(name)
+    )?;
+    if let Tok::Str(_) = c.peek(0).tok {
+        let t = c.next();
+        w.write_char(' ')?;
+        write_token(&c, w, t)?;
+    }
+    w.write_str("\n   ")?;
+    flat(&mut c, w)?;
+    action_lines(&mut c, w, 3, &[])
+}
+
 /// What CLIPS shows after `ERROR:` for a deffacts it stopped reading where `src`
 /// ends: `(deffacts MAIN::name`, then each fact on a line of its own indented by 3.
 pub fn write_deffacts_upto(src: &str, w: &mut dyn Write) -> fmt::Result {

@@ -4,7 +4,7 @@
 //! allowed values, and every `(default ?NONE)` slot given.
 
 use super::{PResult, Parser, Scope};
-use crate::error::{EvalErrorKind, LoadDetail, Restriction};
+use crate::error::{LoadDetail, Restriction};
 use crate::expr::{loc, Expr, Op};
 use crate::lexer::{Tok, Token};
 use crate::template::{DefaultKind, SlotDef};
@@ -207,7 +207,10 @@ impl<'s> Parser<'s, '_, '_> {
             return None;
         }
         let v = self.cx.const_value(e);
-        self.cx.check_atom_def(def, v).err().map(restriction_of)
+        self.cx
+            .check_atom_def(def, v)
+            .err()
+            .map(|e| e.restriction())
     }
 
     /// The deftemplate of the fact a `modify`/`duplicate` target expression names, when
@@ -270,23 +273,6 @@ impl<'s> Parser<'s, '_, '_> {
                 _ => return Err(self.err(t, "'(' and a slot name")),
             }
         }
-    }
-}
-
-/// The restriction a `BadSlotValue` error names.
-pub(crate) fn restriction_of(err: crate::error::EvalError) -> Restriction {
-    use crate::error::Message;
-    match err.kind() {
-        EvalErrorKind::BadSlotValue {
-            reason: Message::TypeViolated,
-        } => Restriction::Type,
-        EvalErrorKind::BadSlotValue {
-            reason: Message::RangeViolated,
-        } => Restriction::Range,
-        EvalErrorKind::BadSlotValue {
-            reason: Message::CardinalityViolated,
-        } => Restriction::Cardinality,
-        _ => Restriction::Values,
     }
 }
 
