@@ -11,7 +11,9 @@
 ;;; two robots never work one machine, and no robot carries an input chosen
 ;;; on beliefs another robot was about to change.
 
-(defglobal ?*PRIORITY_TEAM_AGENT* = 105)   ; above execution (100)
+(defglobal
+  ?*PRIORITY_TEAM_AGENT* = 105   ; above execution (100)
+  ?*TEAM_NEWS_COPIES* = 2)       ; news is sent this often: a lost copy costs nothing
 
 (deffunction team-resource-p (?action ?x)
   "A shared place for this action: the input storage, a gate, a machine, and a
@@ -22,14 +24,19 @@
       (and (eq ?action recycle) (member$ ?x (create$ R1 R2)))))
 
 (defrule team-claim-first
-  "An intent at a shared place: claim the place before committing."
+  "An intent at a shared place this robot does not hold now: claim the place
+   before committing (a want left from the last skill there, not released
+   yet, is not a hold)."
   (declare (salience ?*PRIORITY_TEAM_AGENT*))
   ?s <- (state IDLE)
   (intent (action ?a) (target ?x&:(team-resource-p ?a ?x)))
-  (not (team-want (resource ?x)))
+  (team-clock (now ?t))
+  (not (team-claim (resource ?x) (until ?u&:(> ?u ?t))))
   =>
   (retract ?s)
-  (assert (state TEAM-CLAIM) (team-want (resource ?x))))
+  (assert (state TEAM-CLAIM))
+  (if (not (any-factp ((?w team-want)) (eq ?w:resource ?x)))
+   then (assert (team-want (resource ?x)))))
 
 (defrule team-claim-held
   "The place is ours: commit (execution turns the intent into a request)."
@@ -74,6 +81,34 @@
         (modify ?i (target ?y))
         (assert (team-want (resource ?y)))))
 
+(deftemplate skill-abort
+  "The executor is to stop skill id at once and report it FAILED."
+  (slot id (type INTEGER)))
+
+(defrule team-hold-lapsed
+  "Execution monitoring: the hold on the place of the running skill ran out
+   (its renewals were lost), so another robot may get it: the robot must not
+   act there any more.  The skill is aborted (the executor reports it FAILED;
+   execution resets the beliefs as for any failure) and the robot decides anew."
+  (declare (salience ?*PRIORITY_TEAM_AGENT*))
+  (state EXEC)
+  (skill-request (id ?id) (name ?a) (target ?x&:(team-resource-p ?a ?x)))
+  (not (skill-outcome (id ?id)))
+  (not (skill-abort (id ?id)))
+  (team-clock (now ?t))
+  (not (team-claim (resource ?x) (until ?u&:(> ?u ?t))))
+  =>
+  (printout t "WARN hold on " ?x " lapsed at " ?t ": skill " ?id " aborted" crlf)
+  (assert (skill-abort (id ?id))))
+
+(defrule team-abort-over
+  "The aborted skill's outcome is digested."
+  (declare (salience ?*PRIORITY_TEAM_AGENT*))
+  ?a <- (skill-abort (id ?id))
+  (not (skill-request (id ?id)))
+  =>
+  (retract ?a))
+
 (defrule team-wait-over
   "The place is free again: decide anew."
   (declare (salience ?*PRIORITY_TEAM_AGENT*))
@@ -97,7 +132,8 @@
   (team-self (id ?me))
   =>
   (do-for-fact ((?m machine)) (eq ?m:name ?x)
-    (team-send-msg ?me news 0 ?x 0 0.0 ?m:mtype ?m:junk ?m:productions ?m:loaded-with))
+    (loop-for-count ?*TEAM_NEWS_COPIES*
+      (team-send-msg ?me news 0 ?x 0 0.0 ?m:mtype ?m:junk ?m:productions ?m:loaded-with)))
   (retract ?w))
 
 (defrule team-news-machine
@@ -159,7 +195,7 @@
   =>
   (do-for-all-facts ((?t team-s0-told)) TRUE (retract ?t))
   (assert (team-s0-told ?k))
-  (team-send-msg ?me news 0 INS 0 0.0 ?k))
+  (loop-for-count ?*TEAM_NEWS_COPIES* (team-send-msg ?me news 0 INS 0 0.0 ?k)))
 
 (defrule team-done-junk-news
   "Done, hands empty, and a teammate's news tells of junk: recycling it scores

@@ -23,6 +23,7 @@
   ?*TEAM_LEASE* = 20.0       ; seconds of game time a vote lasts
   ?*TEAM_RENEW* = 2.0        ; a holding claimant asks again this often
   ?*TEAM_ROUND* = 10.0       ; a round without a majority ends after this
+  ?*TEAM_RENEW_RETRY* = 5.0  ; ... a renewal round of a held claim already after this
   ?*TEAM_MARGIN* = 0.5       ; clock rate differences over one lease
   ?*TEAM_SEQ* = 1            ; number of this robot's next message (reset starts at 1)
   ?*PRIORITY_TEAM_DROP* = 460   ; duplicates and late messages go first
@@ -66,10 +67,17 @@
 
 (deftemplate team-peer
   "The highest message number about resource X taken from robot id (self
-   included)."
+   included), news aside."
   (slot id (type INTEGER))
   (slot resource (type SYMBOL))
   (slot seen (type INTEGER) (default 0)))
+
+(deftemplate team-news-seen
+  "The highest news number about X taken from robot id: news has an order of
+   its own, so a release or request that overtakes it does not drop it."
+  (slot id (type INTEGER))
+  (slot resource (type SYMBOL))
+  (slot seen (type INTEGER)))
 
 (deftemplate team-send
   "A message for the host to broadcast.  request: rseq = seq, lease asked;
@@ -122,7 +130,7 @@
 (defrule team-peer-new
   "The first message from robot f about X."
   (declare (salience (+ ?*PRIORITY_TEAM_DROP* 1)))
-  (team-recv (from ?f) (resource ?x) (taken FALSE))
+  (team-recv (from ?f) (kind ~news) (resource ?x) (taken FALSE))
   (not (team-peer (id ?f) (resource ?x)))
   =>
   (assert (team-peer (id ?f) (resource ?x))))
@@ -132,18 +140,39 @@
    resource is a duplicate or was overtaken: dropping it is the same as
    losing it."
   (declare (salience ?*PRIORITY_TEAM_DROP*))
-  ?m <- (team-recv (from ?f) (resource ?x) (seq ?s) (taken FALSE))
+  ?m <- (team-recv (from ?f) (kind ~news) (resource ?x) (seq ?s) (taken FALSE))
   (team-peer (id ?f) (resource ?x) (seen ?n&:(<= ?s ?n)))
   =>
   (retract ?m))
+
+(defrule team-drop-old-news
+  "News not newer than the last news about X taken from its sender: a copy,
+   or overtaken by newer news (which says more)."
+  (declare (salience ?*PRIORITY_TEAM_DROP*))
+  ?m <- (team-recv (from ?f) (kind news) (resource ?x) (seq ?s) (taken FALSE))
+  (team-news-seen (id ?f) (resource ?x) (seen ?n&:(<= ?s ?n)))
+  =>
+  (retract ?m))
+
+(defrule team-take-news
+  "News is taken as it comes, newest per sender and resource; it only informs
+   the agent's beliefs, so its order against claims does not matter."
+  (declare (salience ?*PRIORITY_TEAM*))
+  ?m <- (team-recv (from ?f) (kind news) (resource ?x) (seq ?s) (taken FALSE))
+  (not (team-news-seen (id ?f) (resource ?x) (seen ?n&:(>= ?n ?s))))
+  =>
+  (do-for-all-facts ((?o team-news-seen)) (and (= ?o:id ?f) (eq ?o:resource ?x))
+    (retract ?o))
+  (assert (team-news-seen (id ?f) (resource ?x) (seen ?s)))
+  (modify ?m (taken TRUE)))
 
 (defrule team-take
   "Take each sender's messages about X in its order: the oldest pending one
    first."
   (declare (salience ?*PRIORITY_TEAM*))
-  ?m <- (team-recv (from ?f) (resource ?x) (seq ?s) (taken FALSE))
+  ?m <- (team-recv (from ?f) (kind ~news) (resource ?x) (seq ?s) (taken FALSE))
   ?p <- (team-peer (id ?f) (resource ?x) (seen ?n&:(> ?s ?n)))
-  (not (team-recv (from ?f) (resource ?x) (seq ?o&:(< ?o ?s)) (taken FALSE)))
+  (not (team-recv (from ?f) (kind ~news) (resource ?x) (seq ?o&:(< ?o ?s)) (taken FALSE)))
   =>
   (modify ?p (seen ?s))
   (modify ?m (taken TRUE)))
@@ -245,14 +274,16 @@
 
 (defrule team-renew
   "Held: a new round once the last one got its majority and is a renewal
-   interval old, or ran out of time; the hold extends when it gets its own."
+   interval old, or got none within the retry time (lost messages: several
+   tries fit in one lease, so a hold lapses only when all of them fail); the
+   hold extends when a round gets its own majority."
   (declare (salience ?*PRIORITY_TEAM*))
   (team-want (resource ?x))
   ?c <- (team-claim (resource ?x) (sent ?sent) (done ?done) (until ?u))
   (team-self (id ?me))
   (team-clock (now ?t&:(< ?t ?u)
                     &:(or (and (eq ?done TRUE) (>= ?t (+ ?sent ?*TEAM_RENEW*)))
-                          (>= ?t (+ ?sent ?*TEAM_ROUND*)))))
+                          (>= ?t (+ ?sent ?*TEAM_RENEW_RETRY*)))))
   =>
   (bind ?seq (team-send-msg ?me request 0 ?x 0 ?*TEAM_LEASE*))
   (modify ?c (round ?seq) (sent ?t) (votes) (done FALSE)))

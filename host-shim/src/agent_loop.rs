@@ -27,7 +27,7 @@ use hal::device::{
 };
 use hal::field::MachineId;
 use hal::ir::IrScan;
-use hal::skill::SkillOutcome;
+use hal::skill::{FailReason, SkillOutcome};
 use hal::{Pose2, Twist};
 use rules::Strategy;
 use std::path::PathBuf;
@@ -485,6 +485,14 @@ fn agent_loop(
             }
         }
         let (desired, mut outcome) = match (running.as_mut(), parking.as_mut()) {
+            // The rules abort a skill whose place is no longer this robot's (unless the
+            // work is done and it only backs away).
+            (Some(r), _)
+                if r.skill.done_perception().is_none()
+                    && mind.agent.abort_requested(r.chosen.id) =>
+            {
+                (Twist::ZERO, SkillOutcome::Failed(FailReason::Aborted))
+            }
             (Some(r), _) => r.skill.step(&p, &tuning),
             (None, Some(drive)) => match drive.step(&p, &tuning) {
                 DriveStep::Driving(t) => (t, SkillOutcome::Running),

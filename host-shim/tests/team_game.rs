@@ -143,6 +143,64 @@ fn a_short_team_sweep_has_no_double_claim_and_no_collision() {
     assert_eq!(cells.get(5), Some(&"0"), "collisions\n{}", sweep.dump());
 }
 
+/// A short `game-sweep` (seeds 0 and 1, 360 s): the rows (seed, points) and the summary's
+/// cells.
+fn short_sweep(robots: &str) -> (Vec<(u64, i64)>, Vec<String>) {
+    let mut sweep = Proc::start(
+        "game-sweep",
+        AGENT,
+        &[
+            "game-sweep",
+            "--robots",
+            robots,
+            "--from",
+            "0",
+            "--count",
+            "2",
+            "--game-seconds",
+            "360",
+            "--quiet",
+        ],
+    );
+    let status = sweep.wait_exit(Duration::from_secs(300));
+    assert!(status.is_some_and(|s| s.success()), "{}", sweep.dump());
+    let lines = sweep.lines();
+    let cells = |l: &str| -> Vec<String> { l.split('|').map(|c| c.trim().to_string()).collect() };
+    let rows = lines
+        .iter()
+        .filter(|l| l.starts_with("| ") && !l.starts_with("| seed") && !l.starts_with("| games"))
+        .map(|l| cells(l))
+        .filter_map(|c| Some((c.get(1)?.parse().ok()?, c.get(2)?.parse().ok()?)))
+        .collect();
+    let header = lines
+        .iter()
+        .position(|l| l.starts_with("| games | mean points"))
+        .unwrap_or_else(|| panic!("no summary\n{}", sweep.dump()));
+    (rows, cells(&lines[header + 2]))
+}
+
+/// The team of three on seeds 0 and 1 (360 s games): no double claim, and on every seed
+/// at least the points of one robot alone (with recycling the clock is the limit, so the
+/// team's parallel work counts; at 240 s one late load ended seed 1 before the team's
+/// first P).
+#[test]
+fn a_short_team_sweep_has_no_double_claim_and_beats_one_robot() {
+    let (team, summary) = short_sweep("3");
+    // | games | mean points | min | max | collisions | double claims | stalls | ...
+    assert_eq!(summary.get(1).map(String::as_str), Some("2"), "{summary:?}");
+    assert_eq!(
+        summary.get(6).map(String::as_str),
+        Some("0"),
+        "double claims {summary:?}"
+    );
+    let (one, _) = short_sweep("1");
+    assert_eq!(team.len(), 2, "{team:?}");
+    assert_eq!(one.len(), 2, "{one:?}");
+    for ((seed, t), (_, o)) in team.iter().zip(&one) {
+        assert!(t >= o, "seed {seed}: team {t} points, one robot {o}");
+    }
+}
+
 #[test]
 fn a_team_game_over_a_lossy_slow_link_has_no_double_claim() {
     let mut game = Proc::start(

@@ -288,7 +288,7 @@ fn broken_variants_of_the_protocol_fail_the_check() {
                 ("(seen ?n&:(<= ?s ?n)))", "(seen ?n&:(< ?s 0)))"),
                 ("(seen ?n&:(> ?s ?n)))", "(seen ?n))"),
                 (
-                    "(not (team-recv (from ?f) (resource ?x) (seq ?o&:(< ?o ?s)) (taken FALSE)))",
+                    "(not (team-recv (from ?f) (kind ~news) (resource ?x) (seq ?o&:(< ?o ?s)) (taken FALSE)))",
                     "",
                 ),
             ],

@@ -232,6 +232,14 @@ impl EngineAgent {
         }))
     }
 
+    /// Whether the rules want skill `id` stopped (`skill-abort`: in a team, the hold on
+    /// its place lapsed).
+    pub fn abort_requested(&self, id: i64) -> bool {
+        self.rules
+            .facts_of("skill-abort")
+            .any(|f| self.rules.int(f, "id") == Some(id))
+    }
+
     /// Tells the rules how skill `id` ended: asserts its `skill-outcome`.
     pub fn report(&mut self, id: i64, outcome: SkillOutcome) -> Result<(), RulesError> {
         self.report_sensed(id, outcome, false)
