@@ -39,7 +39,8 @@ pub struct SlotDef {
     pub types: u8,
     /// Chain of constant expression nodes (allowed-values etc.), NONE when unrestricted.
     pub allowed: Ix,
-    /// Which `allowed-...` attribute gave `allowed` (see `allowed`).
+    /// Which values the `allowed-...` lists restrict (`allowed` bits): a value of a
+    /// restricted type must be one of `allowed`.
     pub allowed_kind: u8,
     /// `(range MIN MAX)`: two constant nodes (min, then max), an unbounded end
     /// (`?VARIABLE`) being the symbol `-oo`/`+oo` as CLIPS keeps it; NONE without one.
@@ -49,15 +50,17 @@ pub struct SlotDef {
     pub cardinality: Ix,
 }
 
-/// `SlotDef::allowed_kind` values: which values an `allowed-...` list restricts.
+/// `SlotDef::allowed_kind` bits: the values an `allowed-...` list restricts, by type
+/// (as CLIPS keeps a restriction flag per type), `VALUES` for every type.
 pub mod allowed {
-    pub const VALUES: u8 = 0;
-    pub const SYMBOLS: u8 = 1;
-    pub const STRINGS: u8 = 2;
-    pub const LEXEMES: u8 = 3;
-    pub const INTEGERS: u8 = 4;
-    pub const FLOATS: u8 = 5;
-    pub const NUMBERS: u8 = 6;
+    use super::types;
+    pub const VALUES: u8 = 0x80;
+    pub const SYMBOLS: u8 = types::SYMBOL;
+    pub const STRINGS: u8 = types::STRING;
+    pub const LEXEMES: u8 = types::LEXEME;
+    pub const INTEGERS: u8 = types::INTEGER;
+    pub const FLOATS: u8 = types::FLOAT;
+    pub const NUMBERS: u8 = types::NUMBER;
 }
 
 impl SlotDef {

@@ -352,4 +352,5 @@ differential_programs! {
     p193_range_cardinality_rules => "193-range-cardinality-rules",
     p194_range_cardinality_attribute_errors => "194-range-cardinality-attribute-errors",
     p195_dynamic_constraint_checking => "195-dynamic-constraint-checking",
+    p196_several_allowed_lists => "196-several-allowed-lists",
 }

@@ -42,18 +42,6 @@ fn below(a: Value, b: Value) -> bool {
     }
 }
 
-fn same_class(a: Value, b: Value) -> bool {
-    matches!(
-        (a, b),
-        (Value::Sym(_), Value::Sym(_))
-            | (Value::Str(_), Value::Str(_))
-            | (
-                Value::Int(_) | Value::Float(_),
-                Value::Int(_) | Value::Float(_)
-            )
-    )
-}
-
 impl Core<'_> {
     /// Checks one atom against a slot's type and allowed-value restrictions (the
     /// parser's literal checks; also for a slot not yet stored in a template).
@@ -63,39 +51,25 @@ impl Core<'_> {
                 reason: crate::error::Message::TypeViolated,
             }));
         }
-        let applies = match def.allowed_kind {
-            allowed::SYMBOLS => matches!(v, Value::Sym(_)),
-            allowed::STRINGS => matches!(v, Value::Str(_)),
-            allowed::LEXEMES => matches!(v, Value::Sym(_) | Value::Str(_)),
-            allowed::INTEGERS => matches!(v, Value::Int(_)),
-            allowed::FLOATS => matches!(v, Value::Float(_)),
-            allowed::NUMBERS => matches!(v, Value::Int(_) | Value::Float(_)),
-            _ => true,
-        };
-        if def.allowed != NONE && applies {
+        let restricted = def.allowed_kind & (allowed::VALUES | type_bit(v)) != 0;
+        if def.allowed != NONE && restricted {
+            // CLIPS looks for a value of the same type: 1.0 is not 1
             let mut c = def.allowed;
-            let mut restricted = def.allowed_kind != allowed::VALUES;
             while c != NONE {
                 let a = self.const_value(c);
-                if same_class(a, v) || def.allowed_kind == allowed::VALUES {
-                    restricted = true;
-                    let eq = match (a, v) {
-                        (Value::Int(_) | Value::Float(_), Value::Int(_) | Value::Float(_)) => {
-                            a.as_number() == v.as_number()
-                        }
-                        _ => a.same(v),
-                    };
-                    if eq {
-                        return Ok(());
-                    }
+                let eq = match (a, v) {
+                    (Value::Int(x), Value::Int(y)) => x == y,
+                    (Value::Float(x), Value::Float(y)) => x == y,
+                    _ => type_bit(a) == type_bit(v) && a.same(v),
+                };
+                if eq {
+                    return Ok(());
                 }
                 c = self.exprs[c as usize].next;
             }
-            if restricted {
-                return Err(EvalError::new(EvalErrorKind::BadSlotValue {
-                    reason: crate::error::Message::AllowedValuesViolated,
-                }));
-            }
+            return Err(EvalError::new(EvalErrorKind::BadSlotValue {
+                reason: crate::error::Message::AllowedValuesViolated,
+            }));
         }
         if def.range != NONE && matches!(v, Value::Int(_) | Value::Float(_)) {
             let min = self.const_value(def.range);

@@ -22,7 +22,8 @@ type ValuesAt<'s> = (Lexer<'s>, Option<Token<'s>>);
 struct Seen<'s> {
     types: bool,
     default: Option<(ValuesAt<'s>, &'static str)>,
-    allowed: Option<(ValuesAt<'s>, &'static str)>,
+    /// Where each `allowed-...` attribute's values start, by `ALLOWED` index.
+    lists: [Option<ValuesAt<'s>>; 7],
     /// The `range` attribute's name token.
     range: Option<Token<'s>>,
     cardinality: bool,
@@ -33,6 +34,51 @@ fn echoed(mut e: LoadError, at: Token<'_>, tail: EchoTail) -> LoadError {
     e.echo_end = at.end as u32;
     e.echo_tail = tail;
     e
+}
+
+impl Seen<'_> {
+    /// Whether `allowed-...` attribute `name` was given.
+    fn has(&self, name: &str) -> bool {
+        ALLOWED
+            .iter()
+            .zip(self.lists.iter())
+            .any(|(&(n, _), l)| n == name && l.is_some())
+    }
+
+    /// The attribute given before that `allowed-...` attribute `name` cannot be
+    /// combined with, named as CLIPS names it (`allowed-number` is CLIPS's spelling).
+    fn excluded_by(&self, name: &str) -> Option<&'static str> {
+        let first_of = |names: &[&'static str]| names.iter().copied().find(|n| self.has(n));
+        if name == "allowed-values" {
+            let other = first_of(&[
+                "allowed-symbols",
+                "allowed-strings",
+                "allowed-lexemes",
+                "allowed-integers",
+                "allowed-floats",
+                "allowed-numbers",
+            ]);
+            if other.is_some() {
+                return other;
+            }
+        }
+        if self.range.is_some() && restricts_numbers(name) {
+            return Some("range");
+        }
+        match name {
+            "allowed-values" => None,
+            _ if self.has("allowed-values") => Some("allowed-values"),
+            "allowed-numbers" => first_of(&["allowed-floats", "allowed-integers"]),
+            "allowed-integers" | "allowed-floats" if self.has("allowed-numbers") => {
+                Some("allowed-number")
+            }
+            "allowed-lexemes" => first_of(&["allowed-symbols", "allowed-strings"]),
+            "allowed-symbols" | "allowed-strings" if self.has("allowed-lexemes") => {
+                Some("allowed-lexemes")
+            }
+            _ => None,
+        }
+    }
 }
 
 /// The `allowed-...` attributes that restrict numbers, which `range` excludes.
@@ -76,22 +122,13 @@ fn type_bit(v: Value) -> u8 {
     }
 }
 
-/// CLIPS's name of the restriction a `type` conflicts with, by allowed kind and value.
-fn conflict_name(attribute: &'static str, kind: u8, v: Value) -> &'static str {
-    match (kind, v) {
-        (allowed::INTEGERS | allowed::NUMBERS, Value::Int(_)) => "allowed-integers/numbers",
-        (allowed::FLOATS | allowed::NUMBERS, Value::Float(_)) => "allowed-floats/numbers",
-        _ => attribute,
-    }
-}
-
 impl<'s> Parser<'s, '_, '_> {
     /// The attributes of one slot, up to the slot's `)`.
     pub(super) fn slot_attributes(&mut self, mut def: SlotDef) -> PResult<SlotDef> {
         let mut seen = Seen {
             types: false,
             default: None,
-            allowed: None,
+            lists: [None, None, None, None, None, None, None],
             range: None,
             cardinality: false,
         };
@@ -135,43 +172,38 @@ impl<'s> Parser<'s, '_, '_> {
                                 .copied()
                                 .find(|&(name, _)| name == attr)
                                 .unwrap_or(ALLOWED[0]);
-                            if let Some((_, first)) = seen.allowed {
-                                if first == name {
-                                    return Err(self.twice(at, name));
-                                }
-                                if first == "allowed-values" || name == "allowed-values" {
-                                    let mut e = self.err(
-                                        at,
-                                        "allowed-values alone (it cannot be combined with another allowed-... attribute)",
-                                    );
-                                    e.detail = LoadDetail::AllowedCombined {
-                                        first,
-                                        second: name,
-                                    };
-                                    return Err(echoed(e, at, EchoTail::Normal));
-                                }
+                            if seen.has(name) {
+                                return Err(self.twice(at, name));
                             }
-                            if seen.range.is_some() && restricts_numbers(name) {
-                                let mut e = self.err(at, "no allowed-... numbers with a range");
+                            if let Some(first) = seen.excluded_by(name) {
+                                let mut e = self.err(
+                                    at,
+                                    "attributes that combine (allowed-values stands alone; no number list with range)",
+                                );
                                 e.detail = LoadDetail::AllowedCombined {
-                                    first: "range",
+                                    first,
                                     second: name,
                                 };
                                 return Err(echoed(e, at, EchoTail::Normal));
                             }
                             let values_at = self.save();
                             self.allowed_attribute(&mut def, name, kind)?;
-                            seen.allowed = Some((values_at, name));
+                            if let Some(k) = ALLOWED.iter().position(|&(n, _)| n == name) {
+                                seen.lists[k] = Some(values_at);
+                            }
                         }
                         "range" => {
                             if seen.range.is_some() {
                                 return Err(self.twice(at, "range"));
                             }
-                            if let Some(first) = seen
-                                .allowed
-                                .as_ref()
-                                .map(|a| a.1)
-                                .filter(|a| restricts_numbers(a))
+                            if let Some(first) = [
+                                "allowed-values",
+                                "allowed-integers",
+                                "allowed-floats",
+                                "allowed-numbers",
+                            ]
+                            .into_iter()
+                            .find(|a| seen.has(a))
                             {
                                 let mut e = self.err(at, "no range with allowed-... numbers");
                                 e.detail = LoadDetail::AllowedCombined {
@@ -384,6 +416,15 @@ impl<'s> Parser<'s, '_, '_> {
         name: &'static str,
         kind: u8,
     ) -> PResult<()> {
+        let what = match name {
+            "allowed-symbols" => "allowed-symbols attribute",
+            "allowed-strings" => "allowed-strings attribute",
+            "allowed-lexemes" => "allowed-lexemes attribute",
+            "allowed-integers" => "allowed-integers attribute",
+            "allowed-floats" => "allowed-floats attribute",
+            "allowed-numbers" => "allowed-numbers attribute",
+            _ => "allowed-values attribute",
+        };
         let holder = cap!(self, self.cx.push_expr(Expr::new(Op::Nop, 0, 0)))?;
         let mut any = false;
         let close = loop {
@@ -391,37 +432,51 @@ impl<'s> Parser<'s, '_, '_> {
             if tt.tok == Tok::RParen {
                 break tt;
             }
+            // CLIPS saved a space after each value it read
+            let constants = self.cx.exprs[holder as usize].first != NONE;
             if tt.tok == Tok::SfVar("VARIABLE") {
+                if constants {
+                    let e = self.attribute_syntax(tt, "constants or ?VARIABLE, not both", what);
+                    return Err(echoed(e, tt, EchoTail::SpaceAfter));
+                }
                 any = true;
                 continue;
             }
             let c = match self.literal(tt)? {
                 Some(c) => c,
-                None => return Err(self.err(tt, "a constant allowed value")),
+                None => {
+                    let e = self.attribute_syntax(tt, "a constant allowed value", what);
+                    return Err(echoed(e, tt, EchoTail::SpaceAfter));
+                }
             };
             if !fits_allowed_kind(kind, self.cx.const_value(c)) {
                 let mut e = self.err(tt, "a value of the type the allowed-... attribute names");
                 e.detail = LoadDetail::AllowedValueType { attribute: name };
                 return Err(echoed(e, tt, EchoTail::SpaceAfter));
             }
+            if any {
+                let e = self.attribute_syntax(tt, "constants or ?VARIABLE, not both", what);
+                return Err(echoed(e, tt, EchoTail::SpaceAfter));
+            }
             self.cx.append_child(holder, c);
         };
         let first = self.cx.exprs[holder as usize].first;
         if first == NONE && !any {
-            let what = match name {
-                "allowed-symbols" => "allowed-symbols attribute",
-                "allowed-strings" => "allowed-strings attribute",
-                "allowed-lexemes" => "allowed-lexemes attribute",
-                "allowed-integers" => "allowed-integers attribute",
-                "allowed-floats" => "allowed-floats attribute",
-                "allowed-numbers" => "allowed-numbers attribute",
-                _ => "allowed-values attribute",
-            };
-            return Err(self.attribute_syntax(close, "at least one allowed value", what));
+            let e = self.attribute_syntax(close, "at least one allowed value", what);
+            return Err(echoed(e, close, EchoTail::SpaceBefore));
         }
         if first != NONE {
-            def.allowed = first;
-            def.allowed_kind = kind;
+            // the values of every allowed-... attribute make one list, as in CLIPS
+            if def.allowed == NONE {
+                def.allowed = first;
+            } else {
+                let mut last = def.allowed;
+                while self.cx.exprs[last as usize].next != NONE {
+                    last = self.cx.exprs[last as usize].next;
+                }
+                self.cx.exprs[last as usize].next = first;
+            }
+            def.allowed_kind |= kind;
         }
         Ok(())
     }
@@ -441,8 +496,31 @@ impl<'s> Parser<'s, '_, '_> {
     /// Checks made when the slot is complete (its attributes come in any order): the
     /// `type` admits every allowed value, and the default's literals fit both.
     fn check_slot(&mut self, def: &SlotDef, seen: &Seen<'s>) -> PResult<()> {
-        if let Some((values_at, attribute)) = &seen.allowed {
-            if def.types != 0 {
+        if def.types != 0 {
+            // a type an allowed-... list restricts must be one the slot takes (CLIPS's
+            // order and names); reported at the first value of that list
+            let kinds: [(u8, &str, [usize; 2]); 4] = [
+                (types::SYMBOL, "allowed-symbols", [1, 3]),
+                (types::STRING, "allowed-strings", [2, 3]),
+                (types::INTEGER, "allowed-integers/numbers", [4, 6]),
+                (types::FLOAT, "allowed-floats/numbers", [5, 6]),
+            ];
+            for (bit, attribute, lists) in kinds {
+                if def.allowed_kind & bit != 0 && def.types & bit == 0 {
+                    let list = lists.iter().find_map(|&k| seen.lists[k].clone());
+                    let at = match list {
+                        Some(values_at) => self.value_at(values_at, 0)?,
+                        None => self.peek(),
+                    };
+                    let mut e = self.err(at, "allowed values of the slot's type");
+                    e.detail = LoadDetail::TypeConflict { attribute };
+                    return Err(e);
+                }
+            }
+            if let (Some(values_at), true) = (
+                seen.lists[0].clone(),
+                def.allowed_kind & allowed::VALUES != 0,
+            ) {
                 let mut c = def.allowed;
                 let mut k = 0;
                 while c != NONE {
@@ -451,7 +529,7 @@ impl<'s> Parser<'s, '_, '_> {
                         let at = self.value_at(values_at.clone(), k)?;
                         let mut e = self.err(at, "allowed values of the slot's type");
                         e.detail = LoadDetail::TypeConflict {
-                            attribute: conflict_name(attribute, def.allowed_kind, v),
+                            attribute: "allowed-values",
                         };
                         return Err(e);
                     }
