@@ -220,6 +220,48 @@ impl Symbols<'_> {
         Ok(n as SymId)
     }
 
+    /// Interns the text already written at the arena's free end (`len` bytes from
+    /// `*bytes_used`, see [`TailWriter`]): an existing symbol is found (the bytes stay
+    /// free), a new one keeps them.
+    pub fn intern_tail(&mut self, len: usize) -> Result<SymId, CapacityError> {
+        let used = *self.bytes_used as usize;
+        let (found, h) = {
+            let s = self
+                .bytes
+                .get(used..used + len)
+                .and_then(|b| core::str::from_utf8(b).ok())
+                .unwrap_or("");
+            (self.find(s), hash_bytes(s.as_bytes()))
+        };
+        if let Some(i) = found {
+            return Ok(i);
+        }
+        let n = *self.count as usize;
+        let k = n - self.rom.len();
+        if k >= self.entries.len() || n >= NONE as usize {
+            return Err(CapacityError {
+                pool: Pool::Symbols,
+                capacity: self.entries.len() as u32,
+            });
+        }
+        if used + len > Ix::MAX as usize {
+            return Err(CapacityError {
+                pool: Pool::SymbolBytes,
+                capacity: self.bytes.len() as u32,
+            });
+        }
+        let b = h as usize % self.buckets.len();
+        self.entries[k] = SymEntry {
+            start: used as Ix,
+            len: len as Ix,
+            next: self.buckets[b],
+        };
+        self.buckets[b] = n as Ix;
+        *self.count += 1;
+        *self.bytes_used += len as Ix;
+        Ok(n as SymId)
+    }
+
     /// Drops every entry with id >= `count` (newest entries sit at bucket heads;
     /// the compiled ones stay).
     pub fn truncate(&mut self, count: Ix, bytes_used: Ix) {
@@ -236,5 +278,33 @@ impl Symbols<'_> {
         }
         *self.count = count;
         *self.bytes_used = bytes_used;
+    }
+}
+
+/// Writes a text into the symbol arena's free end, so a builtin that builds a symbol
+/// (`sym-cat`, `sub-string`) needs no buffer of the longest text on its stack (the
+/// agent image's stack high-water mark); [`Symbols::intern_tail`] then keeps it.
+pub struct TailWriter<'a> {
+    pub tail: &'a mut [u8],
+    pub len: usize,
+    /// Longest text allowed (the builtins' limit, `builtins::strings::TEXT_MAX`).
+    pub max: usize,
+    /// Whether a write failed for want of room in the arena (not the limit).
+    pub out_of_room: bool,
+}
+
+impl core::fmt::Write for TailWriter<'_> {
+    fn write_str(&mut self, s: &str) -> core::fmt::Result {
+        let end = self.len + s.len();
+        if end > self.max {
+            return Err(core::fmt::Error);
+        }
+        let Some(dst) = self.tail.get_mut(self.len..end) else {
+            self.out_of_room = true;
+            return Err(core::fmt::Error);
+        };
+        dst.copy_from_slice(s.as_bytes());
+        self.len = end;
+        Ok(())
     }
 }

@@ -378,6 +378,50 @@ fn symbols_and_bytes_at_assert_run_modify_and_load() {
     }
 }
 
+/// `sym-cat` and `sub-string` build their text at the symbol arena's free end: with
+/// the arena full, texts that exist are still found, and a new one is a capacity
+/// error; the limit on a text's length stays the same.
+#[test]
+fn sym_cat_and_sub_string_with_the_symbol_arena_full() {
+    let h = &mut Capture::default();
+    let mut e = engine!(symbol_bytes = 600);
+    e.assert_str(h, "(known abcdef)").unwrap();
+    let c = assert_until_full(&mut *e, |e, i| {
+        e.assert_str(h, &format!("(s {}{i})", "s".repeat(40)))
+    });
+    assert_eq!(c, full(Pool::SymbolBytes, 600));
+    let found = e
+        .eval_str(h, "(sym-cat abc def)")
+        .expect("an existing symbol");
+    let again = e
+        .eval_str(h, "(sym-cat abcdef)")
+        .expect("an existing symbol");
+    assert_eq!(found, again);
+    e.eval_str(h, "(sub-string 1 6 abcdef)")
+        .expect("an existing string");
+    let err = e
+        .eval_str(h, &format!("(sym-cat{})", " abcdef".repeat(8)))
+        .unwrap_err();
+    assert_eq!(
+        cap_of(&EngineError::Eval(err)),
+        full(Pool::SymbolBytes, 600)
+    );
+    e.consistent();
+
+    // the length limit, with room in the arena
+    let mut e = engine!(symbol_bytes = 8192);
+    let long = "x".repeat(1100);
+    let err = e
+        .eval_str(h, &format!("(sym-cat {long} {long})"))
+        .unwrap_err();
+    assert!(err.to_string().contains("longer than 2048"), "{err}");
+    let ok = e
+        .eval_str(h, &format!("(sym-cat {long} {})", "y".repeat(900)))
+        .unwrap();
+    assert!(matches!(ok, agent_core::Value::Sym(_)), "{ok:?}");
+    e.consistent();
+}
+
 // ---------------------------------------------------------------- templates, slots
 
 #[test]

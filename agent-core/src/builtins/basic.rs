@@ -238,7 +238,7 @@ fn str_cat(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let mut b: TextBuf<1024> = TextBuf::new();
     for i in 0..a.len as usize {
         let v = cx.arg(a, i);
-        // CLIPS rejects multifields, fact addresses and no value alike (as `concat_args`)
+        // CLIPS rejects multifields, fact addresses and no value alike (as `sym-cat`)
         if matches!(v, Value::Multi(_) | Value::Fact(_) | Value::Void) {
             return Err(EvalError::wrong_type(
                 "str-cat",

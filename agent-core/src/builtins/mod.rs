@@ -66,6 +66,13 @@ pub struct Args {
     pub len: Ix,
 }
 
+/// What a builtin's text writer gives back (`Core::make_lexeme_with`).
+type WriteResult = Result<(), EvalError>;
+/// A builtin's text writer (`Core::make_lexeme_with`): the printing view, the
+/// call's arguments, where to write.
+type TextWriter<'w> =
+    dyn Fn(&crate::print::View<'_>, &[Value], &mut dyn core::fmt::Write) -> WriteResult + 'w;
+
 /// An eager builtin (also the type of host-registered external functions).
 pub type BuiltinFn = fn(cx: &mut Core<'_>, args: Args) -> Result<Value, EvalError>;
 /// A lazy builtin: gets the call node; its arguments are the node's children.
@@ -390,6 +397,90 @@ impl Core<'_> {
 
     pub fn make_string(&mut self, s: &str) -> Result<Value, CapacityError> {
         Ok(Value::Str(self.intern(s)?))
+    }
+
+    /// A symbol (`string` false) or string of the text `write` writes (at most `max`
+    /// bytes, else its error), built in place at the symbol arena's free end: no
+    /// buffer for the longest text on the stack. `write` gets the printing view (for
+    /// symbol texts and values) and the call's arguments `a`. When the arena's free
+    /// end is too short, the text is built on the stack instead (`lexeme_via_stack`),
+    /// so a text that exists already is still found with the arena full.
+    pub(crate) fn make_lexeme_with(
+        &mut self,
+        string: bool,
+        a: Args,
+        max: usize,
+        write: impl Fn(&crate::print::View<'_>, &[Value], &mut dyn core::fmt::Write) -> WriteResult,
+    ) -> Result<Value, EvalError> {
+        let args = &self.stack[a.base as usize..a.base as usize + a.len as usize];
+        let used = self.st.pools.sym_bytes as usize;
+        let (head, tail) = self.sym_bytes.split_at_mut(used.min(self.sym_bytes.len()));
+        let view = crate::print::View {
+            values: self.values,
+            scratch: self.scratch,
+            syms: crate::symbols::SymTexts {
+                rom: self.st.rom.symbols,
+                entries: self.sym_entries,
+                bytes: head,
+            },
+            templates: self.templates,
+            slots: self.slots,
+            facts: self.facts,
+        };
+        let mut out = crate::symbols::TailWriter {
+            tail,
+            len: 0,
+            max,
+            out_of_room: false,
+        };
+        if let Err(e) = write(&view, args, &mut out) {
+            return if out.out_of_room {
+                self.lexeme_via_stack(string, a, &write)
+            } else {
+                Err(e)
+            };
+        }
+        let len = out.len;
+        let id = self.syms().intern_tail(len)?;
+        self.note_hw(crate::error::Pool::Symbols, self.st.pools.nsyms as usize);
+        self.note_hw(
+            crate::error::Pool::SymbolBytes,
+            self.st.pools.sym_bytes as usize,
+        );
+        Ok(if string {
+            Value::Str(id)
+        } else {
+            Value::Sym(id)
+        })
+    }
+
+    /// `make_lexeme_with`'s way when the symbol arena is (nearly) full: the text built
+    /// in a buffer of the longest text on the stack, then interned (found, or a
+    /// capacity error). Not inlined, so the buffer is on the stack only then.
+    #[inline(never)]
+    fn lexeme_via_stack(
+        &mut self,
+        string: bool,
+        a: Args,
+        write: &TextWriter<'_>,
+    ) -> Result<Value, EvalError> {
+        let mut text = strings::Text::new();
+        let args = &self.stack[a.base as usize..a.base as usize + a.len as usize];
+        let view = crate::print::View {
+            values: self.values,
+            scratch: self.scratch,
+            syms: self.sym_texts(),
+            templates: self.templates,
+            slots: self.slots,
+            facts: self.facts,
+        };
+        write(&view, args, &mut text)?;
+        let id = self.intern(text.as_str())?;
+        Ok(if string {
+            Value::Str(id)
+        } else {
+            Value::Sym(id)
+        })
     }
 
     /// A new multifield built from `items` (copied into scratch).

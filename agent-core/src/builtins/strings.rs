@@ -52,23 +52,22 @@ fn same_kind(cx: &mut Core<'_>, like: Value, s: &str) -> Result<Value, EvalError
     })
 }
 
-/// Concatenates atoms as `str-cat` prints them; multifields are CLIPS's type error.
-pub(super) fn concat_args(cx: &Core<'_>, a: Args, func: &'static str) -> Result<Text, EvalError> {
-    let mut b = Text::new();
-    for i in 0..a.len as usize {
-        let v = cx.arg(a, i);
-        // CLIPS rejects multifields and fact addresses alike
-        if matches!(v, Value::Multi(_) | Value::Fact(_) | Value::Void) {
-            return Err(EvalError::wrong_type(func, crate::error::arg_no(i), T_ATOM));
-        }
-        cx.write_plain(&mut b, v).map_err(|_| TOO_LONG)?;
-    }
-    Ok(b)
-}
-
 fn sym_cat(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    let b = concat_args(cx, a, "sym-cat")?;
-    Ok(cx.make_symbol(b.as_str())?)
+    // built in the symbol arena (a `Text` here was the image's deepest stack frame)
+    cx.make_lexeme_with(false, a, TEXT_MAX, |view, args, out| {
+        for (i, &v) in args.iter().enumerate() {
+            // CLIPS rejects multifields and fact addresses alike
+            if matches!(v, Value::Multi(_) | Value::Fact(_) | Value::Void) {
+                return Err(EvalError::wrong_type(
+                    "sym-cat",
+                    crate::error::arg_no(i),
+                    T_ATOM,
+                ));
+            }
+            view.write_flat(out, v, false).map_err(|_| TOO_LONG)?;
+        }
+        Ok(())
+    })
 }
 
 fn str_length(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
@@ -87,18 +86,20 @@ fn sub_string(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let start = int_arg(cx, a, 0, "sub-string")?;
     let end = int_arg(cx, a, 1, "sub-string")?;
     let s = lexeme_arg(cx, a, 2, "sub-string")?;
-    let text = copy_text(cx, s)?;
-    let t = text.as_str();
-    let nchars = t.chars().count() as i64;
-    let (from, to) = (start.max(1), end.min(nchars));
-    if from > to {
-        return Ok(cx.make_string("")?);
-    }
-    let (b0, b1) = (
-        char_offset(t, from as usize - 1),
-        char_offset(t, to as usize),
-    );
-    Ok(cx.make_string(&t[b0..b1])?)
+    // copied within the symbol arena (a `Text` here was the image's deepest stack frame)
+    cx.make_lexeme_with(true, a, TEXT_MAX, |view, _, out| {
+        let t = view.sym(s);
+        let nchars = t.chars().count() as i64;
+        let (from, to) = (start.max(1), end.min(nchars));
+        if from > to {
+            return Ok(());
+        }
+        let (b0, b1) = (
+            char_offset(t, from as usize - 1),
+            char_offset(t, to as usize),
+        );
+        out.write_str(&t[b0..b1]).map_err(|_| TOO_LONG)
+    })
 }
 
 /// `(str-index needle haystack)`: 1-based character position of the first occurrence,

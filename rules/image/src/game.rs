@@ -53,12 +53,12 @@ agent_core::engine_storage! {
         joins: 1,                                  // read in place; 1: the start-up root
         join_memories: BASE.joins,
         tokens: 496,                               // 461
-        activations: 32,                           // 16
+        activations: 24,                           // 16
         functions: BASE.functions,
         globals: BASE.globals,
-        exprs: 48,                                 // 13 beyond the compiled ones
-        eval_stack: 48,                            // 21
-        scratch: 128,                              // 72
+        exprs: 32,                                 // 13 beyond the compiled ones
+        eval_stack: 32,                            // 23
+        scratch: 96,                               // 72
         deffacts: BASE.deffacts,
         external_fns: 1,                           // 0: `distance` is built in
     }
@@ -172,7 +172,17 @@ fn fail(
 
 /// Plays the seeded game in `engine` (fresh from `ImageStorage::new()`).
 pub fn play(engine: &mut ImageEngine, host: &mut QuietHost) -> Result<GameResult, GameError> {
-    let base = rules_compiled::game(STRATEGY.name())
+    play_seed(engine, host, STRATEGY, SEED)
+}
+
+/// Plays the game of `seed` in `engine` (fresh from `ImageStorage::new()`).
+pub fn play_seed(
+    engine: &mut ImageEngine,
+    host: &mut QuietHost,
+    strategy: Strategy,
+    seed: u64,
+) -> Result<GameResult, GameError> {
+    let base = rules_compiled::game(strategy.name())
         .ok_or_else(|| fail(host, "load", "", &"no compiled rule base for the strategy"))?;
     engine
         .load_compiled(host, base)
@@ -181,7 +191,7 @@ pub fn play(engine: &mut ImageEngine, host: &mut QuietHost) -> Result<GameResult
         .reset(host)
         .map_err(|e| fail(host, "reset", "", &e))?;
     let mut setup = Ok(());
-    GameSetup::for_seed(SEED).for_each_fact(|fact| {
+    GameSetup::for_seed(seed).for_each_fact(|fact| {
         if setup.is_ok() {
             setup = assert_setup_fact(engine, host, fact)
                 .map_err(|e| fail(host, "assert setup", fact.template, &e));
