@@ -56,6 +56,19 @@ pub struct Args {
     /// Longest delay of a team message in game time (seconds).
     #[arg(long, default_value_t = 0.0)]
     pub link_delay_s: f64,
+    /// Kill the last robot's agent process once its game time passes this many seconds
+    /// (a team plays on without it; its claims run out).
+    #[arg(long)]
+    pub kill_at_s: Option<f64>,
+}
+
+/// A game time for `game-sweep --kill-one` drawn from the seed: 60..840 s.
+pub fn kill_time_for_seed(seed: u64) -> f64 {
+    let mut z = seed.wrapping_add(0x9E37_79B9_7F4A_7C15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^= z >> 31;
+    60.0 + (z % 781) as f64
 }
 
 pub fn main(args: Args) -> ExitCode {
@@ -252,9 +265,41 @@ pub fn play(args: &Args, chatty: bool) -> Result<GameRecord, String> {
         );
     }
     let started = Instant::now();
-    let status = sim
-        .finish(Duration::from_secs(args.timeout_s), args.verbose)
-        .ok_or_else(|| format!("no end of game within {} s", args.timeout_s))?;
+    let deadline = started + Duration::from_secs(args.timeout_s);
+    let mut victim = args
+        .kill_at_s
+        .and_then(|t| Some((agents.len().checked_sub(1)?, t)));
+    let status = loop {
+        if let Some(status) = sim.finish(Duration::from_millis(20), args.verbose) {
+            break status;
+        }
+        if Instant::now() >= deadline {
+            return Err(format!("no end of game within {} s", args.timeout_s));
+        }
+        // The victim's game time, from the cycles its lines name.
+        if let Some((i, t)) = victim {
+            let a = &mut agents[i];
+            a.collect(args.verbose);
+            let passed = a
+                .seen
+                .iter()
+                .rev()
+                .take(8)
+                .filter_map(|l| record::field(l, "cycle")?.parse::<f64>().ok())
+                .any(|c| c / record::CYCLE_HZ >= t);
+            if passed {
+                let _ = a.child.kill();
+                a.seen.push(format!(
+                    "robotino-agent game: killed robot {} at t={t:.1}",
+                    i + 1
+                ));
+                if chatty {
+                    println!("robotino-agent game: killed robot {} at t={t:.1}", i + 1);
+                }
+                victim = None;
+            }
+        }
+    };
     for a in &agents {
         a.terminate();
     }

@@ -142,10 +142,15 @@ impl GameRecord {
         for (i, lines) in agents.iter().enumerate() {
             let robot = i as u8 + 1;
             let mut open: Option<SkillRun> = None;
+            // A robot killed mid-game (`game --kill-at-s`): its skill ends there.
+            let mut killed_at: Option<f64> = None;
             for line in lines {
                 let Some(c) = cycle_of(line) else {
                     if let Some(w) = line.strip_prefix("WARN ") {
                         g.warnings.push((robot, w.to_string()));
+                    }
+                    if line.contains(" killed robot ") {
+                        killed_at = line.rsplit("t=").next().and_then(|t| t.parse().ok());
                     }
                     continue;
                 };
@@ -193,7 +198,7 @@ impl GameRecord {
                 }
             }
             if let Some(mut s) = open.take() {
-                s.end_s = g.game_time_s.max(s.start_s);
+                s.end_s = killed_at.unwrap_or(g.game_time_s).max(s.start_s);
                 g.skills.push(s);
             }
         }
@@ -354,5 +359,25 @@ mod tests {
         // Both carry to M1 between cycles 300 and 334.
         assert_eq!(g.double_claims().len(), 1);
         assert_eq!(g.bumps.len(), 1);
+    }
+
+    /// A robot killed mid-skill (`game --kill-at-s`) works no machine after its death.
+    #[test]
+    fn a_killed_robots_skill_ends_at_its_death() {
+        let sim = lines(&[
+            "robotino-sim: done cycles=13500 game_time_s=900.0 score=4 bumps=0 robot_contacts=0 wall_ms=1",
+        ]);
+        let a1 = lines(&[
+            "robotino-agent run: cycle=300 start BringPuckTo(MachineId(1)) (skill-request 1 finish-puck-at M1 holding S0)",
+            "robotino-agent game: killed robot 1 at t=25.0",
+        ]);
+        let a2 = lines(&[
+            "robotino-agent run: cycle=900 start BringPuckTo(MachineId(1)) (skill-request 1 finish-puck-at M1 holding S0)",
+            "robotino-agent run: cycle=1000 end BringPuckTo(MachineId(1)) Final(LightSeen(Yellow)) ",
+        ]);
+        let g = GameRecord::parse(3, 900.0, &sim, &[a1, a2]);
+        assert_eq!(g.skills[0].ending, Ending::Cut);
+        assert_eq!(g.skills[0].end_s, 25.0);
+        assert!(g.double_claims().is_empty());
     }
 }

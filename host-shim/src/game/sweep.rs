@@ -47,6 +47,10 @@ pub struct Args {
     pub link_loss_percent: u32,
     #[arg(long, default_value_t = 0.0)]
     pub link_delay_s: f64,
+    /// Kill the last robot's agent in every game, at a game time drawn from the seed
+    /// (60..840 s; see `game --kill-at-s`).
+    #[arg(long)]
+    pub kill_one: bool,
 }
 
 /// One seed's figures.
@@ -119,6 +123,7 @@ pub fn main(args: Args) -> ExitCode {
                     zenoh_agent: args.zenoh_agent.clone(),
                     link_loss_percent: args.link_loss_percent,
                     link_delay_s: args.link_delay_s,
+                    kill_at_s: args.kill_one.then(|| super::kill_time_for_seed(seed)),
                 };
                 let row = super::play(&game, false)
                     .map(|g| Row::of(&g))
