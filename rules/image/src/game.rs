@@ -24,27 +24,35 @@ pub const STRATEGY: Strategy = Strategy::Paper;
 const FIRE_LIMIT: u32 = 500_000;
 
 /// The image's engine. The construct pools hold the compiled rule base exactly (its
-/// `SIZES`) plus what the game adds at run time (symbols it makes, the setup facts'
-/// expression nodes while they are asserted); its expression nodes are read in place
-/// from read-only memory (agent-core's `in-place`), so the arena holds only those the
-/// engine makes itself. Working-memory capacities are the high-water marks of the seed-0
-/// game (shown in the comments, from the image's own `pool` lines) plus margin (the 2012
-/// recycling made that game 82 decisions long, 64 before, and the decision log is
-/// facts); the fact-value arena compacts when full, so it needs the live values at the
-/// game's peak (2,176 cells are too few), not all values ever written.
+/// `SIZES`) plus what the game adds at run time; its expression nodes, alpha nodes,
+/// joins and symbols are read in place from read-only memory (agent-core's
+/// `in-place`), so the arena holds only what the engine makes itself and the alpha
+/// and join memories.
+///
+/// Working-memory capacities: the high-water marks over the games the image is sized
+/// for, [`SIZED_FOR`] (paper strategy, seeds 0..39; `tests::every_game_it_is_sized_for`
+/// plays them all with these pools), plus the margin in each comment. Most of working
+/// memory is the decision log (one fact of 20 cells per decision, up to 87 decisions):
+/// the fact-value arena compacts when full, so it needs the live cells at the game's
+/// peak, not all values ever written (the smallest arena that plays every seed:
+/// between 2,337 and 2,368 cells).
 pub type ImageEngine = Engine<ImageStorage>;
+
+/// The games the image's pools are sized for (strategy, seeds).
+pub const SIZED_FOR: (Strategy, core::ops::Range<u64>) = (Strategy::Paper, 0..40);
 
 /// Entries of the compiled rule base (paper strategy).
 const BASE: agent_core::compiled::Sizes = rules_compiled::game_paper::SIZES;
 
 agent_core::engine_storage! {
     /// The pools of [`ImageEngine`], every one named (a pool added to agent-core must
-    /// get its capacity here: the image's RAM budget is checked against them).
+    /// get its capacity here: the image's RAM budget is checked against them). In the
+    /// comments: the most any game of [`SIZED_FOR`] used.
     pub struct ImageStorage {
-        facts: 240,                                // 220
-        fact_values: 2304,                         // live peak: 2,176 too few
-        symbols: 24,                               // read in place; +9 at run time
-        symbol_bytes: 192,                         // +41 at run time
+        facts: 256,                                // 233, +10 %
+        fact_values: 2464,                         // live peak <= 2,368, +96 (5 decisions)
+        symbols: 24,                               // read in place; 12 made at run time
+        symbol_bytes: 192,                         // 61 at run time
         templates: BASE.templates + 2,             // +0
         slot_defs: BASE.slots + 2,                 // +0
         rules: BASE.rules,
@@ -52,7 +60,7 @@ agent_core::engine_storage! {
         alpha_memories: BASE.alphas,
         joins: 1,                                  // read in place; 1: the start-up root
         join_memories: BASE.joins,
-        tokens: 496,                               // 461
+        tokens: 544,                               // 495, +10 %
         activations: 24,                           // 16
         functions: BASE.functions,
         globals: BASE.globals,

@@ -60,6 +60,14 @@ pub fn run(
         core::mem::size_of::<ImageEngine>()
     )?;
     rules_line(out)?;
+    let (strategy, seeds) = game::SIZED_FOR;
+    writeln!(
+        out,
+        "agent-image: pools_sized_for strategy={} seeds={}..{}",
+        strategy.name(),
+        seeds.start,
+        seeds.end
+    )?;
     let mut host = QuietHost::new();
     let played = game::play(engine, &mut host);
     if host.bytes > 0 {
@@ -209,6 +217,45 @@ mod tests {
             "the game printed: {text}"
         );
         assert!(text.lines().all(|line| line.starts_with("agent-image: ")));
+    }
+
+    /// The pools hold every game the image is sized for (`game::SIZED_FOR`): each
+    /// plays to its end without an error (running out of a pool is one, printed on
+    /// the error router), within the capacities' stated margins of its high-water
+    /// marks.
+    #[test]
+    fn every_game_it_is_sized_for() {
+        use agent_core::Pool;
+        let (strategy, seeds) = game::SIZED_FOR;
+        let mut most = [0u32; Pool::COUNT];
+        for seed in seeds {
+            let mut engine = fresh_engine();
+            let mut host = QuietHost::new();
+            let result = game::play_seed(&mut engine, &mut host, strategy, seed)
+                .unwrap_or_else(|e| panic!("seed {seed}: {e}: {}", host.first.as_str()));
+            assert_eq!(host.bytes, 0, "seed {seed}: {}", host.first.as_str());
+            assert!(
+                matches!(
+                    result.end,
+                    Some(game::EndReason::Time | game::EndReason::Done)
+                ),
+                "seed {seed}: {result:?}"
+            );
+            let stats = engine.stats();
+            for pool in Pool::ALL {
+                most[pool as usize] = most[pool as usize].max(stats.get(pool).0);
+            }
+        }
+        // the margins the capacities claim (game.rs): 10 % for facts and tokens
+        let stats = fresh_engine().stats();
+        for pool in [Pool::Facts, Pool::Tokens] {
+            let capacity = stats.get(pool).1;
+            assert!(
+                most[pool as usize] * 11 <= capacity * 10 + 10,
+                "{pool:?}: {} of {capacity}",
+                most[pool as usize]
+            );
+        }
     }
 
     #[test]
