@@ -4,6 +4,7 @@
 
 use crate::engine::{cap, watch, Core};
 use crate::error::{CapacityError, Pool};
+use crate::handle::TokenId;
 use crate::rule::Activation;
 use crate::value::Ix;
 use crate::value::NONE;
@@ -68,7 +69,7 @@ impl ActJournal {
 
 impl Core<'_> {
     #[cfg_attr(feature = "host-speedups", inline(always))]
-    pub(crate) fn add_activation(&mut self, rule: Ix, token: Ix) -> Result<(), CapacityError> {
+    pub(crate) fn add_activation(&mut self, rule: Ix, token: TokenId) -> Result<(), CapacityError> {
         let mut replayed = None;
         if self.st.agenda.act_journal.replay && !self.st.agenda.act_journal.overflow {
             match self.journal_take(rule, token) {
@@ -100,7 +101,7 @@ impl Core<'_> {
             }
         };
         let salience = self.rules[rule as usize].salience;
-        let next_of_token = self.tokens[token as usize].extra;
+        let next_of_token = self.tokens[token].extra;
         self.acts[a as usize] = Activation {
             rule,
             token,
@@ -110,7 +111,7 @@ impl Core<'_> {
             prev: NONE,
             next_of_token,
         };
-        self.tokens[token as usize].extra = a;
+        self.tokens[token].extra = a;
         if replayed.is_some() {
             self.agenda_insert_at_seq(a);
         } else {
@@ -197,10 +198,10 @@ impl Core<'_> {
     fn free_activation(&mut self, a: Ix) {
         // unlink from the token's activation chain
         let t = self.acts[a as usize].token;
-        if t != NONE {
-            let mut p = self.tokens[t as usize].extra;
+        if t != TokenId::NONE {
+            let mut p = self.tokens[t].extra;
             if p == a {
-                self.tokens[t as usize].extra = self.acts[a as usize].next_of_token;
+                self.tokens[t].extra = self.acts[a as usize].next_of_token;
             } else {
                 while p != NONE {
                     let n = self.acts[p as usize].next_of_token;
@@ -220,7 +221,7 @@ impl Core<'_> {
     }
 
     /// Takes the top activation off the agenda (it fires; refraction keeps it gone).
-    pub(crate) fn pop_activation(&mut self) -> Option<(Ix, Ix)> {
+    pub(crate) fn pop_activation(&mut self) -> Option<(Ix, TokenId)> {
         let a = self.st.agenda.agenda_head;
         if a == NONE {
             return None;
@@ -270,18 +271,18 @@ impl Core<'_> {
 
     /// Hash of the fact numbers a partial match holds (an activation's identity across
     /// a rebuild).
-    fn token_basis(&self, token: Ix) -> u32 {
+    fn token_basis(&self, token: TokenId) -> u32 {
         // walks the partial match up to the root: (depth, fact number) pairs
         let mut h = 0x9E37_79B9u32;
         let mut t = token;
-        while t != NONE {
-            let tk = self.tokens[t as usize];
-            let j = self.joins[tk.owner as usize];
+        while t != TokenId::NONE {
+            let tk = self.tokens[t];
+            let j = self.joins[tk.owner];
             if j.kind == crate::rete::JoinKind::Root {
                 break;
             }
-            let num = if tk.am != NONE {
-                self.facts[self.tokens[tk.am as usize].fact as usize].num
+            let num = if tk.am != TokenId::NONE {
+                self.facts[self.tokens[tk.am].fact as usize].num
             } else {
                 u32::MAX
             };
@@ -357,7 +358,7 @@ impl Core<'_> {
 
     /// The recorded number of the activation of `rule` for partial match `token`,
     /// used up (each entry is one activation), or None if none was recorded.
-    fn journal_take(&mut self, rule: Ix, token: Ix) -> Option<u32> {
+    fn journal_take(&mut self, rule: Ix, token: TokenId) -> Option<u32> {
         let basis = self.token_basis(token);
         let j = &mut self.st.agenda.act_journal;
         let recorded = j

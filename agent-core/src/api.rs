@@ -4,6 +4,7 @@ use crate::builtins::ANY;
 use crate::config::Storage;
 use crate::engine::{cap, Engine, ExternalEntry, Stats};
 use crate::error::{EngineError, EvalError, EvalErrorKind, LoadError, Pool};
+use crate::handle::TokenId;
 use crate::host::Host;
 use crate::host_fn::ExternalFn;
 use crate::parser::{Item, Parser};
@@ -262,7 +263,7 @@ engine_impl! {
     /// Whether matches a retract unblocked wait for room (they are *owed*): until they
     /// are built, assert and modify build them first and `run` fires nothing.
     pub fn owes(&self) -> bool {
-        self.st.net.owed != NONE
+        self.st.net.owed != TokenId::NONE
     }
 
     /// Entries in use of the append-only pools (constructs and what they built):

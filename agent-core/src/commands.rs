@@ -1,6 +1,7 @@
 //! Engine-level operations: start-up, reset, clear, run, undefrule, loading text,
 //! and CLIPS's batch command loop.
 
+use crate::handle::{JoinId, TokenId};
 use crate::value::Ix;
 use core::fmt::Write;
 
@@ -209,15 +210,14 @@ impl Core<'_> {
     /// `(reset)`.
     pub fn reset(&mut self) -> Result<(), EvalError> {
         // rules starting with not/exists/test lose their root-based matches first
-        let root_token = self.join_mems[0].mem;
+        let root_token = self.join_mems[JoinId::ROOT].mem;
         loop {
-            let mut c = self.tokens[root_token as usize].first_child;
-            while c != NONE
-                && self.joins[self.tokens[c as usize].owner as usize].kind == JoinKind::Positive
+            let mut c = self.tokens[root_token].first_child;
+            while c != TokenId::NONE && self.joins[self.tokens[c].owner].kind == JoinKind::Positive
             {
-                c = self.tokens[c as usize].next_sib;
+                c = self.tokens[c].next_sib;
             }
-            if c == NONE {
+            if c == TokenId::NONE {
                 break;
             }
             self.delete_token(c);
@@ -237,12 +237,12 @@ impl Core<'_> {
                 self.set_global(g, v)?;
             }
         }
-        let mut j = self.joins[0].first_child;
-        while j != NONE {
-            if self.joins[j as usize].kind != JoinKind::Positive {
+        let mut j = self.joins[JoinId::ROOT].first_child;
+        while j != JoinId::NONE {
+            if self.joins[j].kind != JoinKind::Positive {
                 self.left_activate(j, root_token)?;
             }
-            j = self.joins[j as usize].next_sibling;
+            j = self.joins[j].next_sibling;
         }
         if self.st.mode.initial_deffacts {
             self.assert_initial_fact()?;
@@ -284,7 +284,7 @@ impl Core<'_> {
             *t = crate::rete::Token::EMPTY;
         }
         for b in self.amem_buckets.iter_mut() {
-            *b = NONE;
+            *b = TokenId::NONE;
         }
         for a in self.acts.iter_mut() {
             *a = crate::rule::Activation::EMPTY;
@@ -399,21 +399,21 @@ impl Core<'_> {
     }
 
     /// Copies a token's pattern bindings for the RHS.
-    fn bind_rhs(&mut self, mut t: Ix) {
+    fn bind_rhs(&mut self, mut t: TokenId) {
         for b in self.st.net.rhs_pm.iter_mut() {
             *b = PatBinding::EMPTY;
         }
-        while t != NONE {
-            let tk = self.tokens[t as usize];
+        while t != TokenId::NONE {
+            let tk = self.tokens[t];
             if tk.kind != TokenKind::Beta {
                 break;
             }
-            let j = self.joins[tk.owner as usize];
+            let j = self.joins[tk.owner];
             if j.kind == JoinKind::Root {
                 break;
             }
-            if tk.am != NONE {
-                let a = self.tokens[tk.am as usize];
+            if tk.am != TokenId::NONE {
+                let a = self.tokens[tk.am];
                 self.st.net.rhs_pm[j.depth as usize] = PatBinding {
                     fact: a.fact,
                     marks: a.marks,

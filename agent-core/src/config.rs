@@ -92,7 +92,7 @@ macro_rules! __pool_table {
             Tokens tokens "tokens" 32768 512 [
                 tokens: $crate::rete::Token = $crate::rete::Token::EMPTY,
                 // alpha- and beta-memory index bucket heads (see `rete::index`)
-                amem_buckets: $crate::value::Ix = $crate::value::NONE,
+                amem_buckets: $crate::handle::TokenId = $crate::handle::TokenId::NONE,
             ],
             Activations activations "activations" 8192 256 [
                 acts: $crate::rule::Activation = $crate::rule::Activation::EMPTY,
@@ -130,19 +130,27 @@ macro_rules! __pool_table {
 macro_rules! __pool_view {
     (mut exprs, $l:lifetime, $t:ty) => { $crate::rom::RomPool<$l, $t> };
     (mut alphas, $l:lifetime, $t:ty) => { $crate::rom::RomPool<$l, $t> };
-    (mut joins, $l:lifetime, $t:ty) => { $crate::rom::RomPool<$l, $t> };
+    (mut joins, $l:lifetime, $t:ty) => { $crate::rom::RomPool<$l, $t, $crate::handle::JoinId> };
+    (mut join_mems, $l:lifetime, $t:ty) => { $crate::handle::Slots<$l, $crate::handle::JoinId, $t> };
+    (mut tokens, $l:lifetime, $t:ty) => { $crate::handle::Slots<$l, $crate::handle::TokenId, $t> };
     (mut $name:ident, $l:lifetime, $t:ty) => { &$l mut [$t] };
     (ref exprs, $l:lifetime, $t:ty) => { $crate::rom::RomRef<$l, $t> };
     (ref alphas, $l:lifetime, $t:ty) => { $crate::rom::RomRef<$l, $t> };
-    (ref joins, $l:lifetime, $t:ty) => { $crate::rom::RomRef<$l, $t> };
+    (ref joins, $l:lifetime, $t:ty) => { $crate::rom::RomRef<$l, $t, $crate::handle::JoinId> };
+    (ref join_mems, $l:lifetime, $t:ty) => { $crate::handle::SlotsRef<$l, $crate::handle::JoinId, $t> };
+    (ref tokens, $l:lifetime, $t:ty) => { $crate::handle::SlotsRef<$l, $crate::handle::TokenId, $t> };
     (ref $name:ident, $l:lifetime, $t:ty) => { &$l [$t] };
     (mut exprs, $rom:ident, $arr:expr) => { $crate::rom::RomPool::new($rom.exprs, $arr) };
     (mut alphas, $rom:ident, $arr:expr) => { $crate::rom::RomPool::new($rom.alphas, $arr) };
     (mut joins, $rom:ident, $arr:expr) => { $crate::rom::RomPool::new($rom.joins, $arr) };
+    (mut join_mems, $rom:ident, $arr:expr) => { $crate::handle::Slots::new($arr) };
+    (mut tokens, $rom:ident, $arr:expr) => { $crate::handle::Slots::new($arr) };
     (mut $name:ident, $rom:ident, $arr:expr) => { $arr };
     (ref exprs, $rom:ident, $arr:expr) => { $crate::rom::RomRef::new($rom.exprs, $arr) };
     (ref alphas, $rom:ident, $arr:expr) => { $crate::rom::RomRef::new($rom.alphas, $arr) };
     (ref joins, $rom:ident, $arr:expr) => { $crate::rom::RomRef::new($rom.joins, $arr) };
+    (ref join_mems, $rom:ident, $arr:expr) => { $crate::handle::SlotsRef::new($arr) };
+    (ref tokens, $rom:ident, $arr:expr) => { $crate::handle::SlotsRef::new($arr) };
     (ref $name:ident, $rom:ident, $arr:expr) => { $arr };
 }
 

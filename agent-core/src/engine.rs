@@ -17,6 +17,7 @@ use crate::rete::{PatBinding, MAX_PATTERNS};
 use crate::rule::{Activation, Rule};
 use crate::symbols::Symbols;
 
+use crate::handle::{JoinId, TokenId};
 use crate::value::Ix;
 use crate::value::{SymId, Value, NONE};
 
@@ -107,7 +108,7 @@ pub struct PoolCounts {
     /// Ids of pattern-network nodes (see `AlphaNode::key`).
     pub trie_ids: Ix,
     pub fact_free: Ix,
-    pub token_free: Ix,
+    pub token_free: TokenId,
     pub act_free: Ix,
     pub facts_used: Ix,
     pub tokens_used: Ix,
@@ -135,7 +136,7 @@ impl PoolCounts {
             ext_syms: 0,
             trie_ids: 0,
             fact_free: NONE,
-            token_free: NONE,
+            token_free: TokenId::NONE,
             act_free: NONE,
             facts_used: 0,
             tokens_used: 0,
@@ -209,7 +210,7 @@ impl AgendaState {
 pub struct MatchState {
     /// Not outputs a removal unblocked on a full token pool, waiting for their
     /// propagation (see `Core::pay_owed`); chained through the tokens.
-    pub owed: Ix,
+    pub owed: TokenId,
     /// Putting a fact back (a failed modify's old fact): a not output that becomes
     /// active is owed instead of passed on, and paid once the fact is complete. A
     /// fact's assert may pass a `not` on and block it again with a later pattern of
@@ -242,7 +243,7 @@ pub struct MatchState {
     pub lhs_pm: [PatBinding; MAX_PATTERNS],
     /// The partial match whose whole ancestry `lhs_pm` holds (NONE if none): then
     /// binding it again is free and quick join tests read facts from `lhs_pm`.
-    pub lhs_of: Ix,
+    pub lhs_of: TokenId,
     pub rhs_pm: [PatBinding; MAX_PATTERNS],
     pub this_pm: PatBinding,
     pub pm_rhs: bool,
@@ -251,7 +252,7 @@ pub struct MatchState {
 impl MatchState {
     pub const fn new() -> MatchState {
         MatchState {
-            owed: NONE,
+            owed: TokenId::NONE,
             defer_nots: false,
             unblocked: crate::rete::UnblockLog::EMPTY,
             hold: crate::hold::TraceHold::EMPTY,
@@ -263,7 +264,7 @@ impl MatchState {
             top_action: NONE,
             defer_next: false,
             lhs_pm: [PatBinding::EMPTY; MAX_PATTERNS],
-            lhs_of: NONE,
+            lhs_of: TokenId::NONE,
             rhs_pm: [PatBinding::EMPTY; MAX_PATTERNS],
             this_pm: PatBinding::EMPTY,
             pm_rhs: false,
@@ -441,7 +442,7 @@ impl Mode {
 pub struct Caches {
     /// Last beta-index key computed: (token, index child join, key). The token's
     /// left activation of that child, which follows at once, reuses it.
-    pub key_cache: (Ix, Ix, u32),
+    pub key_cache: (TokenId, JoinId, u32),
     /// Recently used joins' key plans (`rete::index`), direct-mapped by join.
     pub key_plans: [crate::rete::KeyPlan; crate::rete::KEY_PLANS],
     /// Recently used joins' test plans (`rete::quick`), direct-mapped by join.
@@ -451,7 +452,7 @@ pub struct Caches {
 impl Caches {
     pub const fn new() -> Caches {
         Caches {
-            key_cache: (NONE, NONE, 0),
+            key_cache: (TokenId::NONE, JoinId::NONE, 0),
             key_plans: [crate::rete::KeyPlan::NONE; crate::rete::KEY_PLANS],
             test_plans: [crate::rete::TestPlan::NONE; crate::rete::TEST_PLANS],
         }
@@ -633,22 +634,22 @@ impl<S: Storage> Engine<S> {
     /// Fact indices along a token's ancestry, by pattern position.
     pub(crate) fn basis_of(
         &self,
-        token: Ix,
+        token: TokenId,
         out: &mut [Option<u32>; crate::rete::MAX_PATTERNS],
     ) -> usize {
         let pools = self.pools.pools(self.st.rom);
         let mut n = 0;
         let mut t = token;
-        while t != NONE {
-            let tk = pools.tokens[t as usize];
-            let j = pools.joins[tk.owner as usize];
+        while t != TokenId::NONE {
+            let tk = pools.tokens[t];
+            let j = pools.joins[tk.owner];
             if j.kind == crate::rete::JoinKind::Root {
                 break;
             }
             let d = j.depth as usize;
             if d < out.len() {
-                out[d] = if tk.am != NONE {
-                    Some(pools.facts[pools.tokens[tk.am as usize].fact as usize].num)
+                out[d] = if tk.am != TokenId::NONE {
+                    Some(pools.facts[pools.tokens[tk.am].fact as usize].num)
                 } else {
                     None
                 };

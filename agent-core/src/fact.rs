@@ -1,6 +1,7 @@
 //! Fact storage: slots in a pool, values in a compacting value arena, a hash index
 //! against duplicates, and a creation-ordered list (fact numbers only grow).
 
+use crate::handle::TokenId;
 use crate::value::Ix;
 use crate::value::NONE;
 
@@ -27,7 +28,7 @@ pub struct Fact {
     pub prev: Ix,
     pub hash_next: Ix,
     /// First alpha match of this fact (chained through the tokens' `next_sib`).
-    pub first_am: Ix,
+    pub first_am: TokenId,
     pub state: FactState,
     /// One cell per slot (`len` is the template's slot count): slot `i` is cell
     /// `start + i`. Kept here (in padding) so the join tests need not load the
@@ -61,7 +62,7 @@ impl Fact {
         next: NONE,
         prev: NONE,
         hash_next: NONE,
-        first_am: NONE,
+        first_am: TokenId::NONE,
         state: FactState::Free,
         flat: false,
         #[cfg(feature = "host-speedups")]
@@ -479,7 +480,7 @@ impl Core<'_> {
             next,
             prev,
             hash_next: self.fact_buckets[bucket],
-            first_am: NONE,
+            first_am: TokenId::NONE,
             state: FactState::Live,
             flat: len == self.templates[saved.tmpl as usize].nslots,
             #[cfg(feature = "host-speedups")]
@@ -569,7 +570,7 @@ impl Core<'_> {
             next: NONE,
             prev: self.st.facts.fact_tail,
             hash_next: self.fact_buckets[bucket],
-            first_am: NONE,
+            first_am: TokenId::NONE,
             state: FactState::Live,
             flat: need == self.templates[tmpl as usize].nslots as usize,
             #[cfg(feature = "host-speedups")]
@@ -750,7 +751,7 @@ impl Core<'_> {
         self.network_retract(slot);
         // what the retract unblocked and could not rebuild on a full pool is owed:
         // the tokens the fact itself freed may be enough now
-        if self.st.net.owed != NONE {
+        if self.st.net.owed != TokenId::NONE {
             let _ = self.pay_owed();
         }
         self.unlink_fact(slot);

@@ -21,6 +21,7 @@
 //! It only reads; it costs O(pool sizes) (O(n^2) for the fact cell overlap check), so
 //! it is for debugging, not for the robot's control loop.
 
+use crate::handle::{JoinId, TokenId};
 use crate::value::Ix;
 use core::fmt;
 
@@ -55,10 +56,38 @@ fn fail<T>(what: &'static str, at: usize) -> Result<T, Violation> {
     })
 }
 
+/// The entry a violation names: a pool index, typed or not.
+trait At {
+    fn at(self) -> usize;
+}
+
+macro_rules! at_as_usize {
+    ($($t:ty),*) => {$(
+        impl At for $t {
+            fn at(self) -> usize {
+                self as usize
+            }
+        }
+    )*};
+}
+at_as_usize!(u8, u16, u32, usize, i32);
+
+impl At for JoinId {
+    fn at(self) -> usize {
+        self.ix()
+    }
+}
+
+impl At for TokenId {
+    fn at(self) -> usize {
+        self.ix()
+    }
+}
+
 macro_rules! ensure {
     ($cond:expr, $what:expr, $at:expr) => {
         if !$cond {
-            return fail($what, $at as usize);
+            return fail($what, At::at($at));
         }
     };
 }
@@ -106,7 +135,7 @@ impl Core<'_> {
         for i in 0..self.st.pools.nalpha as usize {
             let n = &self.alphas[i];
             ensure!(
-                n.live || self.alpha_mems[i].head == NONE,
+                n.live || self.alpha_mems[i].head == TokenId::NONE,
                 "removed alpha node holds matches",
                 i
             );
@@ -118,22 +147,18 @@ impl Core<'_> {
     /// back links consistent (the head's names the tail), and no other token marked.
     fn check_owed(&self) -> Result<(), Violation> {
         let used = self.st.pools.tokens_used as usize;
-        let marked = (0..used).filter(|&t| self.is_owed(t as Ix)).count();
-        let (mut n, mut prev, mut t) = (0usize, NONE, self.st.net.owed);
-        while t != NONE {
-            ensure!(
-                (t as usize) < used,
-                "owed list names a token outside the pool",
-                t
-            );
-            let tk = self.tokens[t as usize];
+        let marked = (0..used).filter(|&t| self.is_owed(TokenId::at(t))).count();
+        let (mut n, mut prev, mut t) = (0usize, TokenId::NONE, self.st.net.owed);
+        while t != TokenId::NONE {
+            ensure!(t.ix() < used, "owed list names a token outside the pool", t);
+            let tk = self.tokens[t];
             ensure!(self.is_owed(t), "owed list holds an unmarked token", t);
             ensure!(
-                self.joins[tk.owner as usize].kind == JoinKind::Negative && !tk.blocked,
+                self.joins[tk.owner].kind == JoinKind::Negative && !tk.blocked,
                 "owed token is not an unblocked not output",
                 t
             );
-            if prev != NONE {
+            if prev != TokenId::NONE {
                 ensure!(tk.am_prev == prev, "owed list back link broken", t);
             }
             n += 1;
@@ -142,9 +167,9 @@ impl Core<'_> {
             t = tk.am_next;
         }
         ensure!(n == marked, "owed marks outside the owed list", marked);
-        if self.st.net.owed != NONE {
+        if self.st.net.owed != TokenId::NONE {
             ensure!(
-                self.tokens[self.st.net.owed as usize].am_prev == prev,
+                self.tokens[self.st.net.owed].am_prev == prev,
                 "owed list head does not name the tail",
                 self.st.net.owed
             );
@@ -368,25 +393,27 @@ impl Core<'_> {
         }
         // joins: the root, then live joins hang under live parents and their alpha node
         ensure!(
-            st.pools.njoins >= 1 && self.joins[0].kind == JoinKind::Root,
+            st.pools.njoins >= 1 && self.joins[JoinId::ROOT].kind == JoinKind::Root,
             "join 0 is not the root",
             0
         );
         #[cfg(feature = "host-speedups")]
         for j in 0..st.pools.njoins {
-            let c = self.joins[j as usize].first_child;
+            let j = JoinId(j);
+            let c = self.joins[j].first_child;
             ensure!(
-                self.join_mems[j as usize].one_child
-                    == (c != NONE && self.joins[c as usize].next_sibling == NONE),
+                self.join_mems[j].one_child
+                    == (c != JoinId::NONE && self.joins[c].next_sibling == JoinId::NONE),
                 "join's one-child flag disagrees with its child list",
                 j
             );
         }
         for j in 1..st.pools.njoins {
-            let jn = self.joins[j as usize];
+            let j = JoinId(j);
+            let jn = self.joins[j];
             if jn.refs == 0 {
                 ensure!(
-                    self.join_mems[j as usize].mem == NONE,
+                    self.join_mems[j].mem == TokenId::NONE,
                     "removed join still holds partial matches",
                     j
                 );
@@ -403,9 +430,13 @@ impl Core<'_> {
                 continue;
             }
             ensure!(jn.kind != JoinKind::Root, "second root join", j);
-            ensure!(jn.parent < st.pools.njoins, "join parent past the pool", j);
             ensure!(
-                self.joins[jn.parent as usize].refs > 0,
+                jn.parent.0 < st.pools.njoins,
+                "join parent past the pool",
+                j
+            );
+            ensure!(
+                self.joins[jn.parent].refs > 0,
                 "live join under a removed parent",
                 j
             );
@@ -415,17 +446,17 @@ impl Core<'_> {
                 j
             );
             match jn.kind {
-                JoinKind::Negative | JoinKind::Exists if jn.rjoin != NONE => {
+                JoinKind::Negative | JoinKind::Exists if jn.rjoin != JoinId::NONE => {
                     // not/exists over several CEs: fed by a subnetwork's last join
                     ensure!(
-                        jn.rjoin < st.pools.njoins,
+                        jn.rjoin.0 < st.pools.njoins,
                         "join from the right past the pool",
                         j
                     );
-                    let mut r = self.joins[jn.rjoin as usize].rsucc;
+                    let mut r = self.joins[jn.rjoin].rsucc;
                     let mut steps = 0usize;
-                    while r != NONE && r != j && steps <= st.pools.njoins as usize {
-                        r = self.joins[r as usize].alpha_next;
+                    while r != JoinId::NONE && r != j && steps <= st.pools.njoins as usize {
+                        r = self.joins[r].alpha_next;
                         steps += 1;
                     }
                     ensure!(r == j, "join missing from its right input's successors", j);
@@ -440,7 +471,7 @@ impl Core<'_> {
                 }
                 JoinKind::Terminal => {
                     ensure!(
-                        self.join_mems[j as usize].mem == NONE,
+                        self.join_mems[j].mem == TokenId::NONE,
                         "terminal join holds partial matches",
                         j
                     );
@@ -451,15 +482,15 @@ impl Core<'_> {
         }
         for r in 0..st.pools.nrules {
             let rule = self.rules[r as usize];
-            if rule.deleted || rule.terminal == NONE {
+            if rule.deleted || rule.terminal == JoinId::NONE {
                 continue;
             }
             ensure!(
-                rule.terminal < st.pools.njoins,
+                rule.terminal.0 < st.pools.njoins,
                 "rule end past the join pool",
                 r
             );
-            let t = self.joins[rule.terminal as usize];
+            let t = self.joins[rule.terminal];
             ensure!(
                 t.kind == JoinKind::Terminal && t.refs > 0,
                 "rule end is not a live terminal join",
@@ -483,27 +514,27 @@ impl Core<'_> {
         Ok(())
     }
 
-    fn child_listed(&self, parent: Ix, child: Ix) -> bool {
-        let mut c = self.joins[parent as usize].first_child;
+    fn child_listed(&self, parent: JoinId, child: JoinId) -> bool {
+        let mut c = self.joins[parent].first_child;
         let mut steps = 0usize;
-        while c != NONE && steps <= self.st.pools.njoins as usize {
+        while c != JoinId::NONE && steps <= self.st.pools.njoins as usize {
             if c == child {
                 return true;
             }
-            c = self.joins[c as usize].next_sibling;
+            c = self.joins[c].next_sibling;
             steps += 1;
         }
         false
     }
 
-    fn succ_listed(&self, alpha: Ix, join: Ix) -> bool {
+    fn succ_listed(&self, alpha: Ix, join: JoinId) -> bool {
         let mut c = self.alphas[alpha as usize].succ;
         let mut steps = 0usize;
-        while c != NONE && steps <= self.st.pools.njoins as usize {
+        while c != JoinId::NONE && steps <= self.st.pools.njoins as usize {
             if c == join {
                 return true;
             }
-            c = self.joins[c as usize].alpha_next;
+            c = self.joins[c].alpha_next;
             steps += 1;
         }
         false
@@ -627,7 +658,11 @@ impl Core<'_> {
             }
             states[x.state as usize] += 1;
             if x.state != FactState::Live {
-                ensure!(x.first_am == NONE, "dead fact keeps alpha matches", i);
+                ensure!(
+                    x.first_am == TokenId::NONE,
+                    "dead fact keeps alpha matches",
+                    i
+                );
             }
         }
         ensure!(
@@ -776,9 +811,9 @@ impl Core<'_> {
             used
         );
         let free = self.walk(
-            self.st.pools.token_free,
+            self.st.pools.token_free.0,
             used,
-            |i| self.tokens[i as usize].next_sib,
+            |i| self.tokens[TokenId(i)].next_sib.0,
             "token free list broken",
         )?;
         let mut counts = [0usize; 3];
@@ -810,17 +845,17 @@ impl Core<'_> {
         let mut in_mem = 0usize;
         for a in 0..self.st.pools.nalpha {
             let node = self.alpha_mems[a as usize];
-            let mut prev = NONE;
+            let mut prev = TokenId::NONE;
             let mut t = node.head;
-            while t != NONE {
-                ensure!((t as usize) < used, "alpha memory leaves the pool", a);
-                let tk = self.tokens[t as usize];
+            while t != TokenId::NONE {
+                ensure!(t.ix() < used, "alpha memory leaves the pool", a);
+                let tk = self.tokens[t];
                 ensure!(
                     tk.kind == TokenKind::Alpha,
                     "non-alpha token in an alpha memory",
                     t
                 );
-                ensure!(tk.owner == a, "alpha match in another node's memory", t);
+                ensure!(tk.alpha() == a, "alpha match in another node's memory", t);
                 ensure!(tk.mem_prev == prev, "alpha memory back link broken", t);
                 ensure!(tk.extra == NONE, "alpha match left mid-propagation", t);
                 let f = tk.fact;
@@ -846,10 +881,10 @@ impl Core<'_> {
         let mut of_facts = 0usize;
         let mut f = self.st.facts.fact_head;
         while f != NONE {
-            let mut prev = NONE;
+            let mut prev = TokenId::NONE;
             let mut t = self.facts[f as usize].first_am;
-            while t != NONE {
-                let tk = self.tokens[t as usize];
+            while t != TokenId::NONE {
+                let tk = self.tokens[t];
                 ensure!(
                     tk.kind == TokenKind::Alpha,
                     "fact lists a non-alpha token",
@@ -877,11 +912,12 @@ impl Core<'_> {
         // join memories hold exactly the partial matches
         let mut in_joins = 0usize;
         for j in 0..self.st.pools.njoins {
-            let mut prev = NONE;
-            let mut t = self.join_mems[j as usize].mem;
-            while t != NONE {
-                ensure!((t as usize) < used, "join memory leaves the pool", j);
-                let tk = self.tokens[t as usize];
+            let j = JoinId(j);
+            let mut prev = TokenId::NONE;
+            let mut t = self.join_mems[j].mem;
+            while t != TokenId::NONE {
+                ensure!(t.ix() < used, "join memory leaves the pool", j);
+                let tk = self.tokens[t];
                 ensure!(
                     tk.kind == TokenKind::Beta,
                     "non-partial match in a join memory",
@@ -905,25 +941,25 @@ impl Core<'_> {
         let mut parented = 0usize;
         let mut with_am = 0usize;
         let mut with_blocker = 0usize;
-        for (i, tk) in self.tokens[..used].iter().enumerate() {
+        for (i, tk) in self.tokens.as_slice()[..used].iter().enumerate() {
             if tk.kind == TokenKind::Beta {
-                let j = self.joins[tk.owner as usize];
+                let j = self.joins[tk.owner];
                 if j.kind == JoinKind::Root {
                     ensure!(
-                        tk.parent == NONE && tk.am == NONE,
+                        tk.parent == TokenId::NONE && tk.am == TokenId::NONE,
                         "root token with parents",
                         i
                     );
                 } else {
                     ensure!(j.refs > 0, "partial match of a removed join", i);
-                    self.check_parent(i, j.parent)?;
+                    self.check_parent(TokenId::at(i), j.parent)?;
                     #[cfg(feature = "host-speedups")]
                     {
                         // the binding copy: the parent's plus the own level
-                        let mut want = self.tokens[tk.parent as usize].binds;
+                        let mut want = self.tokens[tk.parent].binds;
                         if let Some(x) = want.get_mut(j.depth as usize) {
-                            *x = if tk.am != NONE {
-                                self.tokens[tk.am as usize].fact
+                            *x = if tk.am != TokenId::NONE {
+                                self.tokens[tk.am].fact
                             } else {
                                 NONE
                             };
@@ -932,10 +968,10 @@ impl Core<'_> {
                     }
                     match j.kind {
                         JoinKind::Positive => {
-                            self.check_am(i, j.alpha)?;
+                            self.check_am(TokenId::at(i), j.alpha)?;
                             with_am += 1;
                         }
-                        _ => ensure!(tk.am == NONE, "unexpected alpha match", i),
+                        _ => ensure!(tk.am == TokenId::NONE, "unexpected alpha match", i),
                     }
                     if tk.blocked {
                         ensure!(
@@ -945,16 +981,16 @@ impl Core<'_> {
                         );
                         with_blocker += 1;
                     }
-                    if !self.token_active(i as Ix) {
+                    if !self.token_active(TokenId::at(i)) {
                         ensure!(
-                            self.children(i as Ix, TokenKind::Beta)? == 0,
+                            self.children(TokenId::at(i), TokenKind::Beta)? == 0,
                             "inactive not/exists match has children",
                             i
                         );
                         ensure!(tk.extra == NONE, "inactive match has activations", i);
                     }
                 }
-                if tk.parent != NONE {
+                if tk.parent != TokenId::NONE {
                     parented += 1;
                 }
                 // every activation of this match is on the agenda and points back
@@ -967,7 +1003,7 @@ impl Core<'_> {
                         i
                     );
                     ensure!(
-                        self.acts[a as usize].token as usize == i,
+                        self.acts[a as usize].token.ix() == i,
                         "match lists another match's activation",
                         a
                     );
@@ -982,28 +1018,32 @@ impl Core<'_> {
         // subnetwork of a not/exists over several CEs); the head's back link names
         // the blocker
         let mut listed_b = 0usize;
-        for (i, tk) in self.tokens[..used].iter().enumerate() {
+        for (i, tk) in self.tokens.as_slice()[..used].iter().enumerate() {
             if !matches!(tk.kind, TokenKind::Alpha | TokenKind::Beta) {
                 continue;
             }
-            let mut prev = i as Ix;
+            let mut prev = TokenId::at(i);
             let mut k = tk.blocks;
-            while k != NONE {
-                ensure!((k as usize) < used, "blocker list outside the pool", i);
-                let lk = self.tokens[k as usize];
+            while k != TokenId::NONE {
+                ensure!(k.ix() < used, "blocker list outside the pool", i);
+                let lk = self.tokens[k];
                 ensure!(
                     lk.kind == TokenKind::Beta && lk.blocked,
                     "blocker list holds an unblocked token",
                     k
                 );
-                let j = self.joins[lk.owner as usize];
+                let j = self.joins[lk.owner];
                 match tk.kind {
                     TokenKind::Alpha => ensure!(
-                        tk.owner == j.alpha && j.rjoin == NONE,
+                        tk.alpha() == j.alpha && j.rjoin == JoinId::NONE,
                         "blocker of another pattern",
                         k
                     ),
-                    _ => ensure!(j.rjoin != NONE, "partial match blocks an alpha-fed join", k),
+                    _ => ensure!(
+                        j.rjoin != JoinId::NONE,
+                        "partial match blocks an alpha-fed join",
+                        k
+                    ),
                 }
                 ensure!(lk.am_prev == prev, "blocker list back link broken", k);
                 listed_b += 1;
@@ -1020,18 +1060,14 @@ impl Core<'_> {
         // child lists: every child points back and every parented token is listed
         let mut listed_p = 0usize;
         let mut listed_a = 0usize;
-        for (i, tk) in self.tokens[..used].iter().enumerate() {
+        for (i, tk) in self.tokens.as_slice()[..used].iter().enumerate() {
             match tk.kind {
                 TokenKind::Beta => {
-                    let mut prev = NONE;
+                    let mut prev = TokenId::NONE;
                     let mut c = tk.first_child;
-                    while c != NONE {
-                        let ck = self.tokens[c as usize];
-                        ensure!(
-                            ck.parent as usize == i,
-                            "child does not point to its parent",
-                            c
-                        );
+                    while c != TokenId::NONE {
+                        let ck = self.tokens[c];
+                        ensure!(ck.parent.ix() == i, "child does not point to its parent", c);
                         ensure!(ck.prev_sib == prev, "child list back link broken", c);
                         listed_p += 1;
                         ensure!(listed_p <= parented, "child list has a cycle", i);
@@ -1040,12 +1076,12 @@ impl Core<'_> {
                     }
                 }
                 TokenKind::Alpha => {
-                    let mut prev = NONE;
+                    let mut prev = TokenId::NONE;
                     let mut c = tk.first_child;
-                    while c != NONE {
-                        let ck = self.tokens[c as usize];
+                    while c != TokenId::NONE {
+                        let ck = self.tokens[c];
                         ensure!(
-                            ck.am as usize == i,
+                            ck.am.ix() == i,
                             "match does not point to its alpha match",
                             c
                         );
@@ -1073,14 +1109,14 @@ impl Core<'_> {
     }
 
     /// A partial match's parent is a live partial match of the parent join.
-    fn check_parent(&self, t: usize, parent_join: Ix) -> Result<(), Violation> {
+    fn check_parent(&self, t: TokenId, parent_join: JoinId) -> Result<(), Violation> {
         let p = self.tokens[t].parent;
         ensure!(
-            p != NONE && (p as usize) < self.st.pools.tokens_used as usize,
+            p != TokenId::NONE && p.ix() < self.st.pools.tokens_used as usize,
             "partial match without its parent",
             t
         );
-        let pk = self.tokens[p as usize];
+        let pk = self.tokens[p];
         ensure!(
             pk.kind == TokenKind::Beta,
             "parent of a match is not a partial match",
@@ -1095,34 +1131,34 @@ impl Core<'_> {
     }
 
     /// A partial match's alpha match is live and of the join's alpha node.
-    fn check_am(&self, t: usize, alpha: Ix) -> Result<(), Violation> {
+    fn check_am(&self, t: TokenId, alpha: Ix) -> Result<(), Violation> {
         let am = self.tokens[t].am;
         ensure!(
-            am != NONE && (am as usize) < self.st.pools.tokens_used as usize,
+            am != TokenId::NONE && am.ix() < self.st.pools.tokens_used as usize,
             "partial match without its alpha match (dangling)",
             t
         );
-        let ak = self.tokens[am as usize];
+        let ak = self.tokens[am];
         ensure!(
             ak.kind == TokenKind::Alpha,
             "alpha match of a match was freed",
             t
         );
-        ensure!(ak.owner == alpha, "alpha match of another pattern", t);
+        ensure!(ak.alpha() == alpha, "alpha match of another pattern", t);
         Ok(())
     }
 
-    fn children(&self, t: Ix, kind: TokenKind) -> Result<usize, Violation> {
+    fn children(&self, t: TokenId, kind: TokenKind) -> Result<usize, Violation> {
         let mut n = 0usize;
-        let mut c = self.tokens[t as usize].first_child;
+        let mut c = self.tokens[t].first_child;
         let mut steps = 0usize;
-        while c != NONE {
-            if self.tokens[c as usize].kind == kind {
+        while c != TokenId::NONE {
+            if self.tokens[c].kind == kind {
                 n += 1;
             }
             steps += 1;
             ensure!(steps <= self.tokens.len(), "child list has a cycle", t);
-            c = self.tokens[c as usize].next_sib;
+            c = self.tokens[c].next_sib;
         }
         Ok(n)
     }
@@ -1160,14 +1196,14 @@ impl Core<'_> {
             let rule = self.rules[x.rule as usize];
             ensure!(!rule.deleted, "activation of a removed rule", a);
             ensure!(
-                (x.token as usize) < self.st.pools.tokens_used as usize,
+                x.token.ix() < self.st.pools.tokens_used as usize,
                 "activation without its match",
                 a
             );
-            let tk = self.tokens[x.token as usize];
+            let tk = self.tokens[x.token];
             ensure!(tk.kind == TokenKind::Beta, "activation of a freed match", a);
             ensure!(
-                rule.terminal != NONE && self.joins[rule.terminal as usize].parent == tk.owner,
+                rule.terminal != JoinId::NONE && self.joins[rule.terminal].parent == tk.owner,
                 "activation's match is not at its rule's last join",
                 a
             );
@@ -1192,10 +1228,10 @@ impl Core<'_> {
             // every fact it matched is live
             let mut t = x.token;
             let mut depth = 0usize;
-            while t != NONE {
-                let tk = self.tokens[t as usize];
-                if tk.am != NONE {
-                    let f = self.tokens[tk.am as usize].fact;
+            while t != TokenId::NONE {
+                let tk = self.tokens[t];
+                if tk.am != TokenId::NONE {
+                    let f = self.tokens[tk.am].fact;
                     ensure!(
                         self.facts[f as usize].state == FactState::Live,
                         "activation of a retracted fact",
@@ -1223,7 +1259,7 @@ impl Core<'_> {
         );
         // and every activation listed under a match is on the agenda (counted above)
         let mut listed = 0usize;
-        for tk in self.tokens[..self.st.pools.tokens_used as usize].iter() {
+        for tk in self.tokens.as_slice()[..self.st.pools.tokens_used as usize].iter() {
             if tk.kind == TokenKind::Beta {
                 let mut k = tk.extra;
                 while k != NONE {
@@ -1246,9 +1282,10 @@ impl Core<'_> {
 mod tests {
     extern crate std;
     use crate::engine::SmallEngine;
+    use crate::handle::TokenId;
     use crate::host::NullHost;
     use crate::rete::TokenKind;
-    use crate::value::{Ix, NONE};
+    use crate::value::NONE;
     use std::boxed::Box;
 
     #[test]
@@ -1340,42 +1377,47 @@ mod tests {
             ("alpha match of a match was freed", |cx| {
                 // free an alpha match that partial matches are built on (dangling)
                 let t = (0..cx.st.pools.tokens_used as usize)
+                    .map(TokenId::at)
                     .find(|&t| {
-                        cx.tokens[t].kind == TokenKind::Alpha && cx.tokens[t].first_child != NONE
+                        cx.tokens[t].kind == TokenKind::Alpha
+                            && cx.tokens[t].first_child != TokenId::NONE
                     })
                     .unwrap();
                 cx.tokens[t].kind = TokenKind::Free;
                 cx.st.pools.tokens_live -= 1;
                 let free = cx.st.pools.token_free;
-                cx.st.pools.token_free = t as Ix;
+                cx.st.pools.token_free = t;
                 // take it out of its fact's and memory's lists as a buggy free would
                 let tk = cx.tokens[t];
-                let a = tk.owner as usize;
-                if tk.mem_prev != NONE {
-                    cx.tokens[tk.mem_prev as usize].mem_next = tk.mem_next;
+                let a = tk.alpha() as usize;
+                if tk.mem_prev != TokenId::NONE {
+                    cx.tokens[tk.mem_prev].mem_next = tk.mem_next;
                 } else {
                     cx.alpha_mems[a].head = tk.mem_next;
                 }
-                if tk.mem_next != NONE {
-                    cx.tokens[tk.mem_next as usize].mem_prev = tk.mem_prev;
+                if tk.mem_next != TokenId::NONE {
+                    cx.tokens[tk.mem_next].mem_prev = tk.mem_prev;
                 } else {
                     cx.alpha_mems[a].tail = tk.mem_prev;
                 }
-                if tk.prev_sib != NONE {
-                    cx.tokens[tk.prev_sib as usize].next_sib = tk.next_sib;
+                if tk.prev_sib != TokenId::NONE {
+                    cx.tokens[tk.prev_sib].next_sib = tk.next_sib;
                 } else {
                     cx.facts[tk.fact as usize].first_am = tk.next_sib;
                 }
-                if tk.next_sib != NONE {
-                    cx.tokens[tk.next_sib as usize].prev_sib = tk.prev_sib;
+                if tk.next_sib != TokenId::NONE {
+                    cx.tokens[tk.next_sib].prev_sib = tk.prev_sib;
                 }
                 cx.tokens[t].next_sib = free;
             }),
             ("blocked matches missing from their blockers' lists", |cx| {
                 let t = (0..cx.st.pools.tokens_used as usize)
-                    .find(|&t| cx.tokens[t].kind != TokenKind::Free && cx.tokens[t].blocks != NONE)
+                    .map(TokenId::at)
+                    .find(|&t| {
+                        cx.tokens[t].kind != TokenKind::Free && cx.tokens[t].blocks != TokenId::NONE
+                    })
                     .unwrap();
-                cx.tokens[t].blocks = NONE;
+                cx.tokens[t].blocks = TokenId::NONE;
             }),
         ];
         let mut wrong = std::vec::Vec::new();

@@ -152,6 +152,7 @@ pub mod error;
 pub mod eval;
 pub mod expr;
 pub mod fact;
+pub mod handle;
 pub mod hold;
 pub mod host;
 pub mod host_fn;
@@ -177,6 +178,7 @@ pub use error::{
     CapacityError, EngineError, EvalError, EvalErrorKind, HostIoError, LoadDetail, LoadError,
     Message, Pool,
 };
+pub use handle::{JoinId, TokenId};
 pub use host::{Host, NullHost};
 pub use host_fn::{ExternalFn, HostCall};
 pub use invariants::Violation;

@@ -1,5 +1,6 @@
 //! Printing values, facts, activations and watch traces exactly as CLIPS 6.30 does.
 
+use crate::handle::TokenId;
 use crate::value::Ix;
 use core::fmt::{self, Write};
 
@@ -220,19 +221,19 @@ impl Core<'_> {
     }
 
     /// `f-1,f-3,*` for a partial match.
-    pub(crate) fn write_basis(&self, w: &mut dyn Write, token: Ix) -> fmt::Result {
+    pub(crate) fn write_basis(&self, w: &mut dyn Write, token: TokenId) -> fmt::Result {
         let mut ids = [u32::MAX; crate::rete::MAX_PATTERNS];
         let mut n = 0;
         let mut t = token;
-        while t != NONE {
-            let tk = self.tokens[t as usize];
-            let j = self.joins[tk.owner as usize];
+        while t != TokenId::NONE {
+            let tk = self.tokens[t];
+            let j = self.joins[tk.owner];
             if j.kind == crate::rete::JoinKind::Root {
                 break;
             }
             if (j.depth as usize) < ids.len() {
-                ids[j.depth as usize] = if tk.am != NONE {
-                    self.facts[self.tokens[tk.am as usize].fact as usize].num
+                ids[j.depth as usize] = if tk.am != TokenId::NONE {
+                    self.facts[self.tokens[tk.am].fact as usize].num
                 } else {
                     u32::MAX
                 };
@@ -268,7 +269,7 @@ impl Core<'_> {
         let _ = w.write_str(b.as_str());
     }
 
-    pub(crate) fn print_fire_line(&mut self, count: u32, rule: Ix, token: Ix) {
+    pub(crate) fn print_fire_line(&mut self, count: u32, rule: Ix, token: TokenId) {
         if self.st.mode.watch & watch::RULES == 0 {
             return;
         }

@@ -19,8 +19,10 @@
 //! whose arena has no room for the copy gets a capacity error.
 
 use crate::expr::Expr;
+use crate::handle::Handle;
 use crate::rete::{AlphaNode, Join};
 use crate::symbols::RomSymbols;
+use core::marker::PhantomData;
 
 /// Whether this build reads compiled entries in place (feature `in-place`).
 pub const IN_PLACE: bool = cfg!(feature = "in-place");
@@ -44,14 +46,16 @@ impl Rom {
     };
 }
 
-/// A pool as the engine sees it: compiled entries read in place, then the arena's.
-pub struct RomPool<'a, T: 'static> {
+/// A pool as the engine sees it: compiled entries read in place, then the arena's;
+/// indexed by the pool's handle `H` only (see [`crate::handle`]).
+pub struct RomPool<'a, T: 'static, H = usize> {
     #[cfg(feature = "in-place")]
     rom: &'static [T],
     ram: &'a mut [T],
+    handle: PhantomData<H>,
 }
 
-impl<'a, T: 'static> RomPool<'a, T> {
+impl<'a, T: 'static, H> RomPool<'a, T, H> {
     /// The pool over `ram`, after the compiled entries `rom` (ignored without
     /// `in-place`).
     #[inline(always)]
@@ -62,6 +66,7 @@ impl<'a, T: 'static> RomPool<'a, T> {
             #[cfg(feature = "in-place")]
             rom,
             ram,
+            handle: PhantomData,
         }
     }
 
@@ -112,7 +117,7 @@ impl<'a, T: 'static> RomPool<'a, T> {
     }
 }
 
-impl<T: Copy + 'static> RomPool<'_, T> {
+impl<T: Copy + 'static, H> RomPool<'_, T, H> {
     /// Copies the compiled entries into the arena, after which every entry is the
     /// arena's (indices unchanged). The arena's entries must not be in use yet (the
     /// caller has added none since the compiled ones were set). Refused, changing
@@ -132,10 +137,11 @@ impl<T: Copy + 'static> RomPool<'_, T> {
     }
 }
 
-impl<T: 'static> core::ops::Index<usize> for RomPool<'_, T> {
+impl<T: 'static, H: Handle> core::ops::Index<H> for RomPool<'_, T, H> {
     type Output = T;
     #[inline(always)]
-    fn index(&self, i: usize) -> &T {
+    fn index(&self, h: H) -> &T {
+        let i = h.ix();
         #[cfg(feature = "in-place")]
         if i < self.rom.len() {
             return &self.rom[i];
@@ -144,25 +150,27 @@ impl<T: 'static> core::ops::Index<usize> for RomPool<'_, T> {
     }
 }
 
-impl<T: 'static> core::ops::IndexMut<usize> for RomPool<'_, T> {
+impl<T: 'static, H: Handle> core::ops::IndexMut<H> for RomPool<'_, T, H> {
     /// Panics for a compiled entry: nothing writes an entry it did not make (the
     /// expression pool's caches check [`RomPool::writable`] first; the network is
     /// copied into the arena before its topology changes).
     #[inline(always)]
-    fn index_mut(&mut self, i: usize) -> &mut T {
+    fn index_mut(&mut self, h: H) -> &mut T {
+        let i = h.ix();
         let rom = self.rom_len();
         &mut self.ram[i.checked_sub(rom).expect("compiled entries are read-only")]
     }
 }
 
 /// The read-only counterpart of [`RomPool`] (the engine's queries between operations).
-pub struct RomRef<'a, T: 'static> {
+pub struct RomRef<'a, T: 'static, H = usize> {
     #[cfg(feature = "in-place")]
     rom: &'static [T],
     ram: &'a [T],
+    handle: PhantomData<H>,
 }
 
-impl<'a, T: 'static> RomRef<'a, T> {
+impl<'a, T: 'static, H> RomRef<'a, T, H> {
     #[inline(always)]
     pub fn new(rom: &'static [T], ram: &'a [T]) -> Self {
         #[cfg(not(feature = "in-place"))]
@@ -171,6 +179,7 @@ impl<'a, T: 'static> RomRef<'a, T> {
             #[cfg(feature = "in-place")]
             rom,
             ram,
+            handle: PhantomData,
         }
     }
 
@@ -192,10 +201,11 @@ impl<'a, T: 'static> RomRef<'a, T> {
     }
 }
 
-impl<T: 'static> core::ops::Index<usize> for RomRef<'_, T> {
+impl<T: 'static, H: Handle> core::ops::Index<H> for RomRef<'_, T, H> {
     type Output = T;
     #[inline(always)]
-    fn index(&self, i: usize) -> &T {
+    fn index(&self, h: H) -> &T {
+        let i = h.ix();
         #[cfg(feature = "in-place")]
         if i < self.rom.len() {
             return &self.rom[i];

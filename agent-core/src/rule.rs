@@ -1,5 +1,6 @@
 //! Rules and agenda activations.
 
+use crate::handle::{JoinId, TokenId};
 use crate::value::Ix;
 use crate::value::{SymId, NONE};
 
@@ -11,8 +12,8 @@ pub struct Rule {
     /// `refresh-agenda`, as CLIPS does for global-based saliences), else NONE.
     pub salience_expr: Ix,
     /// Root join (holds the rule's empty root token) and terminal join.
-    pub root: Ix,
-    pub terminal: Ix,
+    pub root: JoinId,
+    pub terminal: JoinId,
     /// RHS: chain of actions.
     pub rhs: Ix,
     /// Pattern-level CEs (joins below the root).
@@ -35,8 +36,8 @@ impl Rule {
         name: 0,
         salience: 0,
         salience_expr: NONE,
-        root: NONE,
-        terminal: NONE,
+        root: JoinId::NONE,
+        terminal: JoinId::NONE,
         rhs: NONE,
         npat: 0,
         nlocals: 0,
@@ -51,7 +52,7 @@ impl Rule {
 #[derive(Clone, Copy, Debug)]
 pub struct Activation {
     pub rule: Ix,
-    pub token: Ix,
+    pub token: TokenId,
     pub salience: i32,
     /// Creation order; the depth strategy puts newer activations first.
     pub seq: u32,
@@ -64,7 +65,7 @@ pub struct Activation {
 impl Activation {
     pub const EMPTY: Activation = Activation {
         rule: NONE,
-        token: NONE,
+        token: TokenId::NONE,
         salience: 0,
         seq: 0,
         next: NONE,

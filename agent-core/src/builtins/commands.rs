@@ -6,6 +6,7 @@ use super::files::{FileItems, FILE_BUF};
 use super::{Args, Builtin, ANY, SYM_CRLF, SYM_FALSE, SYM_NIL, SYM_TRUE};
 use crate::engine::{watch, Core};
 use crate::error::{EvalError, EvalErrorKind};
+use crate::handle::{JoinId, TokenId};
 use crate::host::router;
 use crate::rete::JoinKind;
 use crate::value::Ix;
@@ -443,19 +444,19 @@ fn matches(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     };
     let rule = cx.rules[r as usize];
     // the rule's joins from the first pattern down to (without) the terminal
-    let mut path = [NONE; crate::rete::MAX_PATTERNS + 2];
+    let mut path = [JoinId::NONE; crate::rete::MAX_PATTERNS + 2];
     let mut n = 0;
-    let mut j = cx.joins[rule.terminal as usize].parent;
-    while j != NONE && n < path.len() && cx.joins[j as usize].kind != JoinKind::Root {
+    let mut j = cx.joins[rule.terminal].parent;
+    while j != JoinId::NONE && n < path.len() && cx.joins[j].kind != JoinKind::Root {
         path[n] = j;
         n += 1;
-        j = cx.joins[j as usize].parent;
+        j = cx.joins[j].parent;
     }
     path[..n].reverse();
     let (mut alpha_total, mut partial_total, mut act_total) = (0i64, 0i64, 0i64);
     let mut pattern = 0;
     for &j in &path[..n] {
-        let alpha = cx.joins[j as usize].alpha;
+        let alpha = cx.joins[j].alpha;
         if alpha == NONE {
             continue;
         }
@@ -465,13 +466,13 @@ fn matches(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         cx.write(router::WDISPLAY, b.as_str());
         let mut t = cx.alpha_mems[alpha as usize].head;
         let mut count = 0;
-        while t != NONE {
-            let fact = cx.tokens[t as usize].fact;
+        while t != TokenId::NONE {
+            let fact = cx.tokens[t].fact;
             let mut b: TextBuf<32> = TextBuf::new();
             let _ = writeln!(b, "f-{}", cx.facts[fact as usize].num);
             cx.write(router::WDISPLAY, b.as_str());
             count += 1;
-            t = cx.tokens[t as usize].mem_next;
+            t = cx.tokens[t].mem_next;
         }
         if count == 0 {
             cx.write(router::WDISPLAY, " None\n");
@@ -485,7 +486,7 @@ fn matches(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     }
     let mut pattern = 0;
     for &j in &path[..n] {
-        if cx.joins[j as usize].alpha != NONE {
+        if cx.joins[j].alpha != NONE {
             pattern += 1;
         }
         if pattern < 2 {
@@ -528,12 +529,12 @@ fn matches(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 
 /// Prints the basis of each partial match in join `j`'s memory (`f-1,f-3,*`); returns
 /// how many. A not/exists join keeps blocked tokens too: only live ones count.
-fn write_bases(cx: &mut Core<'_>, j: Ix) -> i64 {
-    let kind = cx.joins[j as usize].kind;
-    let mut t = cx.join_mems[j as usize].mem;
+fn write_bases(cx: &mut Core<'_>, j: JoinId) -> i64 {
+    let kind = cx.joins[j].kind;
+    let mut t = cx.join_mems[j].mem;
     let mut count = 0;
-    while t != NONE {
-        let tk = cx.tokens[t as usize];
+    while t != TokenId::NONE {
+        let tk = cx.tokens[t];
         let live = match kind {
             JoinKind::Negative => !tk.blocked,
             JoinKind::Exists => tk.blocked,

@@ -47,9 +47,12 @@ impl Core<'_> {
             ),
             (
                 st.pools.njoins as usize,
-                size_of::<crate::rete::Join>() + size_of_first(self.join_mems),
+                size_of::<crate::rete::Join>() + size_of_first(self.join_mems.as_slice()),
             ),
-            (st.pools.tokens_live as usize, size_of_first(self.tokens)),
+            (
+                st.pools.tokens_live as usize,
+                size_of_first(self.tokens.as_slice()),
+            ),
             (self.activation_count(), size_of_first(self.acts)),
             (st.pools.nfuncs as usize, size_of_first(self.funcs)),
             (st.pools.nglobals as usize, size_of_first(self.globals)),

@@ -6,6 +6,7 @@
 use crate::engine::cap;
 use crate::error::Pool;
 use crate::expr::{loc, Op};
+use crate::handle::JoinId;
 use crate::parser::rule::{PatBuild, PatIr};
 use crate::parser::{PResult, Parser};
 use crate::rete::{AlphaNode, EMPTY_PATH, MAX_RHASH, PATH_LEN};
@@ -87,7 +88,7 @@ impl Parser<'_, '_, '_> {
             desc: pat.desc,
             tests: pat.atests,
             next_in_tmpl: NONE,
-            succ: NONE,
+            succ: JoinId::NONE,
             nmarks: pat.marks,
             live: true,
             path_loc: pat.path_loc,
@@ -395,11 +396,11 @@ impl Parser<'_, '_, '_> {
             return false;
         }
         let mut j = self.cx.alphas[a as usize].succ;
-        while j != NONE {
-            if self.cx.joins[j as usize].refs > self.replaced_uses(self.replacing, j) {
+        while j != JoinId::NONE {
+            if self.cx.joins[j].refs > self.replaced_uses(self.replacing, j) {
                 return false;
             }
-            j = self.cx.joins[j as usize].alpha_next;
+            j = self.cx.joins[j].alpha_next;
         }
         true
     }

@@ -5,6 +5,7 @@
 
 use crate::engine::{cap, Core};
 use crate::error::Pool;
+use crate::handle::JoinId;
 use crate::lexer::Token;
 use crate::parser::rule::{Build, CE_ROOT};
 use crate::parser::{PResult, Parser};
@@ -15,11 +16,12 @@ use crate::value::{Ix, SymId, NONE};
 impl Core<'_> {
     /// Hooks the joins from `first_new` on up to their alpha nodes (each new join
     /// first among its node's successors).
-    pub(crate) fn hook_new_joins(&mut self, first_new: Ix) {
-        for j in first_new..self.st.pools.njoins {
-            let a = self.joins[j as usize].alpha;
+    pub(crate) fn hook_new_joins(&mut self, first_new: JoinId) {
+        for j in first_new.0..self.st.pools.njoins {
+            let j = JoinId(j);
+            let a = self.joins[j].alpha;
             if a != NONE {
-                self.joins[j as usize].alpha_next = self.alphas[a as usize].succ;
+                self.joins[j].alpha_next = self.alphas[a as usize].succ;
                 self.alphas[a as usize].succ = j;
             }
         }
@@ -32,16 +34,16 @@ impl Core<'_> {
     pub(crate) fn prime_new_rules(
         &mut self,
         first_rule: Ix,
-        first_join: Ix,
+        first_join: JoinId,
         first_alpha: Ix,
     ) -> Result<(), crate::error::EvalError> {
         let mut primed = Primed {
-            ids: [NONE; MAX_PRIMED],
+            ids: [JoinId::NONE; MAX_PRIMED],
             n: 0,
         };
         for r in first_rule..self.st.pools.nrules {
             let t = self.rules[r as usize].terminal;
-            self.prime_chain(t, first_join, 0, &mut primed)?;
+            self.prime_chain(t, first_join, JoinId::ROOT, &mut primed)?;
         }
         if first_alpha < self.st.pools.nalpha {
             self.prime_alphas(first_alpha)?;
@@ -53,13 +55,13 @@ impl Core<'_> {
     /// from `j` up to `stop`; a subnetwork is primed after the join taking it.
     fn prime_chain(
         &mut self,
-        mut j: Ix,
-        first_new: Ix,
-        stop: Ix,
+        mut j: JoinId,
+        first_new: JoinId,
+        stop: JoinId,
         primed: &mut Primed,
     ) -> Result<(), crate::error::EvalError> {
-        while j != NONE && j != 0 && j != stop {
-            let jn = self.joins[j as usize];
+        while j != JoinId::NONE && j != JoinId::ROOT && j != stop {
+            let jn = self.joins[j];
             if j >= first_new && jn.parent < first_new && !primed.ids[..primed.n].contains(&j) {
                 if primed.n == primed.ids.len() {
                     // priming it unrecorded could prime it twice
@@ -69,7 +71,7 @@ impl Core<'_> {
                 primed.n += 1;
                 self.prime_join(j)?;
             }
-            if jn.rjoin != NONE {
+            if jn.rjoin != JoinId::NONE {
                 self.prime_chain(jn.rjoin, first_new, jn.parent, primed)?;
             }
             j = jn.parent;
@@ -99,14 +101,14 @@ impl<'s> Parser<'s, '_, '_> {
     /// How many references to join `j` the rule this defrule replaces (named `name`,
     /// created before `rule_base`) holds: a join only it uses is not shared, as CLIPS
     /// removes the old rule first and builds (and primes) such joins anew.
-    pub(crate) fn replaced_uses(&self, name: SymId, j: Ix) -> Ix {
+    pub(crate) fn replaced_uses(&self, name: SymId, j: JoinId) -> Ix {
         let mut n = 0;
         for r in 0..self.rule_base {
             let rule = &self.cx.rules[r as usize];
             if rule.name == name && !rule.deleted {
                 let mut d = r;
                 while d != NONE {
-                    n += self.chain_uses(self.cx.rules[d as usize].terminal, 0, j);
+                    n += self.chain_uses(self.cx.rules[d as usize].terminal, JoinId::ROOT, j);
                     d = self.cx.rules[d as usize].next_disjunct;
                 }
             }
@@ -116,12 +118,12 @@ impl<'s> Parser<'s, '_, '_> {
 
     /// References to join `j` on the chain from `from` up to `stop` and in the
     /// subnetworks it takes from the right (the walk `Core::remove_rule` releases).
-    fn chain_uses(&self, mut from: Ix, stop: Ix, j: Ix) -> Ix {
+    fn chain_uses(&self, mut from: JoinId, stop: JoinId, j: JoinId) -> Ix {
         let mut n = 0;
-        while from != NONE && from != 0 && from != stop {
-            let jn = &self.cx.joins[from as usize];
+        while from != JoinId::NONE && from != JoinId::ROOT && from != stop {
+            let jn = &self.cx.joins[from];
             n += Ix::from(from == j);
-            if jn.rjoin != NONE {
+            if jn.rjoin != JoinId::NONE {
                 n += self.chain_uses(jn.rjoin, jn.parent, j);
             }
             from = jn.parent;
@@ -164,7 +166,7 @@ impl<'s> Parser<'s, '_, '_> {
         }
         self.cx.rules[nr] = Rule::EMPTY;
         // the join built for each CE
-        let mut jid = [0 as Ix; MAX_PATTERNS];
+        let mut jid = [JoinId::ROOT; MAX_PATTERNS];
         // a redefinition: the old rule's joins may not be shared (`replaced_uses`)
         let replacing = (0..self.rule_base).any(|r| {
             let rule = &self.cx.rules[r as usize];
@@ -172,21 +174,21 @@ impl<'s> Parser<'s, '_, '_> {
         });
         for (i, ce) in b.ces[..b.n].iter().enumerate() {
             let parent = if ce.parent == CE_ROOT {
-                0
+                JoinId::ROOT
             } else {
                 jid[ce.parent as usize]
             };
             let rjoin = if ce.right == CE_ROOT {
-                NONE
+                JoinId::NONE
             } else {
                 jid[ce.right as usize]
             };
             {
                 // share an identical join under the same parent (CLIPS does)
-                let mut c = self.cx.joins[parent as usize].first_child;
-                let mut found = NONE;
-                while c != NONE {
-                    let cj = self.cx.joins[c as usize];
+                let mut c = self.cx.joins[parent].first_child;
+                let mut found = JoinId::NONE;
+                while c != JoinId::NONE {
+                    let cj = self.cx.joins[c];
                     if cj.refs > 0
                         && (!replacing || cj.refs > self.replaced_uses(name, c))
                         && cj.kind == ce.kind
@@ -201,51 +203,51 @@ impl<'s> Parser<'s, '_, '_> {
                     }
                     c = cj.next_sibling;
                 }
-                if found != NONE {
-                    self.cx.joins[found as usize].refs += 1;
+                if found != JoinId::NONE {
+                    self.cx.joins[found].refs += 1;
                     self.push_join_mark(true);
                     jid[i] = found;
                     continue;
                 }
             }
             self.push_join_mark(false);
-            let j = self.cx.st.pools.njoins;
+            let j = JoinId(self.cx.st.pools.njoins);
             self.cx.st.pools.njoins += 1;
-            self.cx.joins[j as usize] = Join {
+            self.cx.joins[j] = Join {
                 kind: ce.kind,
                 depth: ce.depth,
                 rule: NONE,
                 parent,
-                first_child: NONE,
-                next_sibling: NONE,
+                first_child: JoinId::NONE,
+                next_sibling: JoinId::NONE,
                 refs: 1,
                 alpha: ce.alpha,
                 tests: ce.jtests,
                 post: ce.post,
-                alpha_next: NONE,
+                alpha_next: JoinId::NONE,
                 rjoin,
-                rsucc: NONE,
-                index_child: NONE,
+                rsucc: JoinId::NONE,
+                index_child: JoinId::NONE,
             };
-            self.cx.join_mems[j as usize] = JoinMem::EMPTY;
+            self.cx.join_mems[j] = JoinMem::EMPTY;
             // a join from the right comes right after its subnetwork's first join
             // among the parent's children: the subnetwork sees a new left token first
-            let after = if rjoin != NONE {
+            let after = if rjoin != JoinId::NONE {
                 jid[ce.first_sub as usize]
             } else {
-                NONE
+                JoinId::NONE
             };
-            if after != NONE && self.cx.joins[after as usize].parent == parent {
-                self.cx.joins[j as usize].next_sibling = self.cx.joins[after as usize].next_sibling;
-                self.cx.joins[after as usize].next_sibling = j;
+            if after != JoinId::NONE && self.cx.joins[after].parent == parent {
+                self.cx.joins[j].next_sibling = self.cx.joins[after].next_sibling;
+                self.cx.joins[after].next_sibling = j;
             } else {
-                self.cx.joins[j as usize].next_sibling = self.cx.joins[parent as usize].first_child;
-                self.cx.joins[parent as usize].first_child = j;
+                self.cx.joins[j].next_sibling = self.cx.joins[parent].first_child;
+                self.cx.joins[parent].first_child = j;
             }
             self.cx.note_children(parent);
-            if rjoin != NONE {
-                self.cx.joins[j as usize].alpha_next = self.cx.joins[rjoin as usize].rsucc;
-                self.cx.joins[rjoin as usize].rsucc = j;
+            if rjoin != JoinId::NONE {
+                self.cx.joins[j].alpha_next = self.cx.joins[rjoin].rsucc;
+                self.cx.joins[rjoin].rsucc = j;
             }
             self.cx.choose_index_child(parent, j);
             jid[i] = j;
@@ -258,18 +260,18 @@ impl<'s> Parser<'s, '_, '_> {
         }
         // the rule's end node
         self.push_join_mark(false);
-        let term = self.cx.st.pools.njoins;
+        let term = JoinId(self.cx.st.pools.njoins);
         self.cx.st.pools.njoins += 1;
-        self.cx.joins[term as usize] = Join {
+        self.cx.joins[term] = Join {
             kind: JoinKind::Terminal,
             depth: b.depth,
             rule: nr as Ix,
             parent: prev,
-            next_sibling: self.cx.joins[prev as usize].first_child,
+            next_sibling: self.cx.joins[prev].first_child,
             refs: 1,
             ..Join::EMPTY
         };
-        self.cx.joins[prev as usize].first_child = term;
+        self.cx.joins[prev].first_child = term;
         self.cx.note_children(prev);
         let prev = term;
         self.cx
@@ -280,7 +282,7 @@ impl<'s> Parser<'s, '_, '_> {
             name,
             salience: b.sal.0,
             salience_expr: b.sal.1,
-            root: 0,
+            root: JoinId::ROOT,
             terminal: prev,
             rhs: self.cx.exprs[b.rhs as usize].first,
             npat: b.depth,
@@ -303,6 +305,6 @@ pub(crate) const MAX_PRIMED: usize = 64;
 
 /// New joins already primed while defining a rule (disjuncts share joins).
 pub(crate) struct Primed {
-    pub(crate) ids: [Ix; MAX_PRIMED],
+    pub(crate) ids: [JoinId; MAX_PRIMED],
     pub(crate) n: usize,
 }

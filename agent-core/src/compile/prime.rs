@@ -3,6 +3,7 @@
 
 use crate::engine::{cap, Core};
 use crate::error::{EvalError, Pool};
+use crate::handle::{JoinId, TokenId};
 use crate::rete::{Join, JoinKind, Token, TokenKind};
 use crate::value::{Ix, NONE};
 
@@ -13,31 +14,31 @@ impl Core<'_> {
             if self.joins.is_empty() {
                 return Err(cap(Pool::Joins, 0).into());
             }
-            self.joins[0] = Join {
+            self.joins[JoinId::ROOT] = Join {
                 kind: JoinKind::Root,
                 refs: 1,
                 ..Join::EMPTY
             };
             self.st.pools.njoins = 1;
         }
-        if self.join_mems[0].mem == NONE {
+        if self.join_mems[JoinId::ROOT].mem == TokenId::NONE {
             let t = self.alloc_token()?;
-            self.tokens[t as usize] = Token {
+            self.tokens[t] = Token {
                 kind: TokenKind::Beta,
-                owner: 0,
+                owner: JoinId::ROOT,
                 ..Token::EMPTY
             };
-            self.join_mems[0].mem = t;
+            self.join_mems[JoinId::ROOT].mem = t;
         }
         Ok(())
     }
 
     /// Feeds the active tokens of `parent`'s memory into a new child join.
-    pub(crate) fn prime_join(&mut self, join: Ix) -> Result<(), EvalError> {
-        let parent = self.joins[join as usize].parent;
-        let mut l = self.join_mems[parent as usize].mem;
-        while l != NONE {
-            let next = self.tokens[l as usize].mem_next;
+    pub(crate) fn prime_join(&mut self, join: JoinId) -> Result<(), EvalError> {
+        let parent = self.joins[join].parent;
+        let mut l = self.join_mems[parent].mem;
+        while l != TokenId::NONE {
+            let next = self.tokens[l].mem_next;
             if self.token_active(l) {
                 self.left_activate(join, l)?;
             }

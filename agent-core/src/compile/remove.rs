@@ -3,6 +3,7 @@
 //! that failed halfway (`rollback` to a checkpoint).
 
 use crate::engine::{Checkpoint, Core};
+use crate::handle::{JoinId, TokenId};
 use crate::rete::{AlphaNode, Join};
 use crate::rule::Rule;
 use crate::value::{Ix, NONE};
@@ -16,11 +17,11 @@ impl Core<'_> {
         let mut rr = r;
         while rr != NONE {
             let rule = self.rules[rr as usize];
-            if rule.terminal != NONE {
-                let parent = self.joins[rule.terminal as usize].parent;
+            if rule.terminal != JoinId::NONE {
+                let parent = self.joins[rule.terminal].parent;
                 self.remove_rule_activations(rr, parent);
             }
-            self.release_chain(rule.terminal, 0);
+            self.release_chain(rule.terminal, JoinId::ROOT);
             self.rules[rr as usize].deleted = true;
             rr = rule.next_disjunct;
         }
@@ -28,31 +29,31 @@ impl Core<'_> {
 
     /// Drops one reference to each join from `j` up to `stop` (and to the
     /// subnetworks of joins from the right); unused joins go with their memories.
-    fn release_chain(&mut self, mut j: Ix, stop: Ix) {
-        while j != NONE && j != 0 && j != stop {
-            let jn = self.joins[j as usize];
-            self.joins[j as usize].refs = jn.refs.saturating_sub(1);
-            if self.joins[j as usize].refs == 0 {
+    fn release_chain(&mut self, mut j: JoinId, stop: JoinId) {
+        while j != JoinId::NONE && j != JoinId::ROOT && j != stop {
+            let jn = self.joins[j];
+            self.joins[j].refs = jn.refs.saturating_sub(1);
+            if self.joins[j].refs == 0 {
                 if !jn.is_terminal() {
                     self.clear_join_memory(j);
                 }
                 self.unlink_join(j);
             }
-            if jn.rjoin != NONE {
+            if jn.rjoin != JoinId::NONE {
                 self.release_chain(jn.rjoin, jn.parent);
             }
             j = jn.parent;
         }
     }
 
-    pub(crate) fn remove_rule_activations_pub(&mut self, rule: Ix, join: Ix) {
+    pub(crate) fn remove_rule_activations_pub(&mut self, rule: Ix, join: JoinId) {
         self.remove_rule_activations(rule, join);
     }
 
-    fn remove_rule_activations(&mut self, rule: Ix, join: Ix) {
-        let mut t = self.join_mems[join as usize].mem;
-        while t != NONE {
-            let mut a = self.tokens[t as usize].extra;
+    fn remove_rule_activations(&mut self, rule: Ix, join: JoinId) {
+        let mut t = self.join_mems[join].mem;
+        while t != TokenId::NONE {
+            let mut a = self.tokens[t].extra;
             while a != NONE {
                 let next = self.acts[a as usize].next_of_token;
                 if self.acts[a as usize].rule == rule {
@@ -60,51 +61,55 @@ impl Core<'_> {
                 }
                 a = next;
             }
-            t = self.tokens[t as usize].mem_next;
+            t = self.tokens[t].mem_next;
         }
     }
 
-    pub(crate) fn unlink_join(&mut self, j: Ix) {
+    pub(crate) fn unlink_join(&mut self, j: JoinId) {
         self.st.net.net_gen = self.st.net.net_gen.wrapping_add(1);
-        let a = self.joins[j as usize].alpha;
+        let a = self.joins[j].alpha;
         if a != NONE {
             let head = self.alphas[a as usize].succ;
             self.alphas[a as usize].succ = self.unlink_from_list(head, j, |x| &mut x.alpha_next);
-            if self.alphas[a as usize].succ == NONE {
+            if self.alphas[a as usize].succ == JoinId::NONE {
                 self.clear_alpha_memory(a);
                 self.alphas[a as usize].live = false;
             }
         }
-        let parent = self.joins[j as usize].parent;
-        let head = self.joins[parent as usize].first_child;
-        self.joins[parent as usize].first_child =
-            self.unlink_from_list(head, j, |x| &mut x.next_sibling);
+        let parent = self.joins[j].parent;
+        let head = self.joins[parent].first_child;
+        self.joins[parent].first_child = self.unlink_from_list(head, j, |x| &mut x.next_sibling);
         self.note_children(parent);
-        if self.joins[parent as usize].index_child == j {
+        if self.joins[parent].index_child == j {
             self.drop_beta_index(parent);
         }
-        let rj = self.joins[j as usize].rjoin;
-        if rj != NONE {
-            let head = self.joins[rj as usize].rsucc;
-            self.joins[rj as usize].rsucc = self.unlink_from_list(head, j, |x| &mut x.alpha_next);
+        let rj = self.joins[j].rjoin;
+        if rj != JoinId::NONE {
+            let head = self.joins[rj].rsucc;
+            self.joins[rj].rsucc = self.unlink_from_list(head, j, |x| &mut x.alpha_next);
         }
-        self.joins[j as usize].alpha = NONE;
-        self.joins[j as usize].rjoin = NONE;
-        self.joins[j as usize].parent = 0;
+        self.joins[j].alpha = NONE;
+        self.joins[j].rjoin = JoinId::NONE;
+        self.joins[j].parent = JoinId::ROOT;
     }
 
     /// Removes join `j` from a singly linked list of joins that starts at `head` and
     /// chains through the field `next` selects; returns the list's new head.
-    fn unlink_from_list(&mut self, head: Ix, j: Ix, next: fn(&mut Join) -> &mut Ix) -> Ix {
-        let after = *next(&mut self.joins[j as usize]);
+    fn unlink_from_list(
+        &mut self,
+        head: JoinId,
+        j: JoinId,
+        next: fn(&mut Join) -> &mut JoinId,
+    ) -> JoinId {
+        let after = *next(&mut self.joins[j]);
         if head == j {
             return after;
         }
         let mut p = head;
-        while p != NONE {
-            let n = *next(&mut self.joins[p as usize]);
+        while p != JoinId::NONE {
+            let n = *next(&mut self.joins[p]);
             if n == j {
-                *next(&mut self.joins[p as usize]) = after;
+                *next(&mut self.joins[p]) = after;
                 break;
             }
             p = n;
@@ -114,13 +119,13 @@ impl Core<'_> {
 
     /// Gives back the references a new rule took on old joins (below `first_new`),
     /// from `j` up to `stop`, subnetworks included.
-    fn release_old_refs(&mut self, mut j: Ix, stop: Ix, first_new: Ix) {
-        while j != NONE && j != 0 && j != stop && (j as usize) < self.joins.len() {
-            let jn = self.joins[j as usize];
+    fn release_old_refs(&mut self, mut j: JoinId, stop: JoinId, first_new: JoinId) {
+        while j != JoinId::NONE && j != JoinId::ROOT && j != stop && j.ix() < self.joins.len() {
+            let jn = self.joins[j];
             if j < first_new {
-                self.joins[j as usize].refs = jn.refs.saturating_sub(1);
+                self.joins[j].refs = jn.refs.saturating_sub(1);
             }
-            if jn.rjoin != NONE {
+            if jn.rjoin != JoinId::NONE {
                 self.release_old_refs(jn.rjoin, jn.parent, first_new);
             }
             j = jn.parent;
@@ -142,7 +147,8 @@ impl Core<'_> {
             return;
         }
         for j in (cp.njoins..self.st.pools.njoins).rev() {
-            if !self.joins[j as usize].is_terminal() {
+            let j = JoinId(j);
+            if !self.joins[j].is_terminal() {
                 self.clear_join_memory(j);
             }
         }
@@ -152,51 +158,52 @@ impl Core<'_> {
         // activations of new rules (their end nodes may hang below old joins)
         for r in cp.nrules..self.st.pools.nrules {
             let t = self.rules[r as usize].terminal;
-            if t != NONE && (t as usize) < self.joins.len() {
-                let parent = self.joins[t as usize].parent;
+            if t != JoinId::NONE && t.ix() < self.joins.len() {
+                let parent = self.joins[t].parent;
                 self.remove_rule_activations_pub(r, parent);
             }
         }
         for r in cp.nrules..self.st.pools.nrules {
             let t = self.rules[r as usize].terminal;
-            self.release_old_refs(t, 0, cp.njoins);
+            self.release_old_refs(t, JoinId::ROOT, JoinId(cp.njoins));
         }
         // unlink new joins from old alpha nodes and old parent joins (new ones lead)
         for a in 0..cp.nalpha.min(self.st.pools.nalpha) {
-            while self.alphas[a as usize].succ != NONE && self.alphas[a as usize].succ >= cp.njoins
+            while self.alphas[a as usize].succ != JoinId::NONE
+                && self.alphas[a as usize].succ >= JoinId(cp.njoins)
             {
                 let j = self.alphas[a as usize].succ;
-                self.alphas[a as usize].succ = self.joins[j as usize].alpha_next;
+                self.alphas[a as usize].succ = self.joins[j].alpha_next;
             }
         }
         for p in 0..cp.njoins.min(self.st.pools.njoins) {
+            let p = JoinId(p);
             // new children lead the list, except joins from the right (placed after
             // their subnetwork's first join): drop new ones wherever they are
-            while self.joins[p as usize].first_child != NONE
-                && self.joins[p as usize].first_child >= cp.njoins
+            while self.joins[p].first_child != JoinId::NONE
+                && self.joins[p].first_child >= JoinId(cp.njoins)
             {
-                let j = self.joins[p as usize].first_child;
-                self.joins[p as usize].first_child = self.joins[j as usize].next_sibling;
+                let j = self.joins[p].first_child;
+                self.joins[p].first_child = self.joins[j].next_sibling;
             }
-            let mut c = self.joins[p as usize].first_child;
-            while c != NONE {
-                let mut n = self.joins[c as usize].next_sibling;
-                while n != NONE && n >= cp.njoins {
-                    n = self.joins[n as usize].next_sibling;
+            let mut c = self.joins[p].first_child;
+            while c != JoinId::NONE {
+                let mut n = self.joins[c].next_sibling;
+                while n != JoinId::NONE && n >= JoinId(cp.njoins) {
+                    n = self.joins[n].next_sibling;
                 }
-                self.joins[c as usize].next_sibling = n;
+                self.joins[c].next_sibling = n;
                 c = n;
             }
             self.note_children(p);
-            if self.joins[p as usize].index_child != NONE
-                && self.joins[p as usize].index_child >= cp.njoins
+            if self.joins[p].index_child != JoinId::NONE
+                && self.joins[p].index_child >= JoinId(cp.njoins)
             {
                 self.drop_beta_index(p);
             }
-            while self.joins[p as usize].rsucc != NONE && self.joins[p as usize].rsucc >= cp.njoins
-            {
-                let j = self.joins[p as usize].rsucc;
-                self.joins[p as usize].rsucc = self.joins[j as usize].alpha_next;
+            while self.joins[p].rsucc != JoinId::NONE && self.joins[p].rsucc >= JoinId(cp.njoins) {
+                let j = self.joins[p].rsucc;
+                self.joins[p].rsucc = self.joins[j].alpha_next;
             }
         }
         // a template's alpha nodes are kept in network order, so new ones can sit
@@ -222,7 +229,8 @@ impl Core<'_> {
             self.alphas[a as usize] = AlphaNode::EMPTY;
         }
         for j in cp.njoins..self.st.pools.njoins {
-            self.joins[j as usize] = Join::EMPTY;
+            let j = JoinId(j);
+            self.joins[j] = Join::EMPTY;
         }
         for r in cp.nrules..self.st.pools.nrules {
             self.rules[r as usize] = Rule::EMPTY;
@@ -231,8 +239,9 @@ impl Core<'_> {
         // meanwhile, e.g. by a redefinition of the same rule) is now unused: remove it
         // as `remove_rule` would, or it keeps its partial matches and eats tokens.
         for j in 1..cp.njoins.min(self.st.pools.njoins) {
-            if self.joins[j as usize].refs == 0 {
-                if !self.joins[j as usize].is_terminal() {
+            let j = JoinId(j);
+            if self.joins[j].refs == 0 {
+                if !self.joins[j].is_terminal() {
                     self.clear_join_memory(j);
                 }
                 self.unlink_join(j);

@@ -6,6 +6,7 @@ use crate::engine::{cap, Core, Engine};
 use crate::error::{CapacityError, EvalError, Pool};
 #[cfg(not(feature = "in-place"))]
 use crate::expr::{FnKind, Op};
+use crate::handle::JoinId;
 use crate::host::Host;
 use crate::rete::{JoinKind, KeyPlan, TestPlan, KEY_PLANS, TEST_PLANS};
 use crate::value::{Ix, Value, NONE};
@@ -238,7 +239,7 @@ impl Core<'_> {
         self.free_pending();
         self.st.facts.values_top = 0;
         self.st.facts.next_fact_num = 0;
-        let root_token = self.join_mems[0].mem;
+        let root_token = self.join_mems[JoinId::ROOT].mem;
 
         self.templates[..base.templates.len()].copy_from_slice(base.templates);
         self.slots[..base.slots.len()].copy_from_slice(base.slots);
@@ -261,7 +262,7 @@ impl Core<'_> {
         self.funcs[..base.functions.len()].copy_from_slice(base.functions);
         self.globals[..base.globals.len()].copy_from_slice(base.globals);
         self.deffacts[..base.deffacts.len()].copy_from_slice(base.deffacts);
-        self.join_mems[0].mem = root_token;
+        self.join_mems[JoinId::ROOT].mem = root_token;
         #[cfg(not(feature = "in-place"))]
         for e in 0..base.exprs.len() {
             let x = self.exprs[e];
@@ -304,6 +305,7 @@ impl Core<'_> {
         self.st.cache.key_plans = [KeyPlan::NONE; KEY_PLANS];
         self.st.cache.test_plans = [TestPlan::NONE; TEST_PLANS];
         for j in 0..self.st.pools.njoins {
+            let j = JoinId(j);
             self.note_children(j);
         }
     }
@@ -322,13 +324,13 @@ impl Core<'_> {
         self.st.frame.sp = 0;
         self.st.frame.scratch_top = 0;
         self.assert_initial_fact()?;
-        let root_token = self.join_mems[0].mem;
-        let mut j = self.joins[0].first_child;
-        while j != NONE {
-            if self.joins[j as usize].kind != JoinKind::Positive {
+        let root_token = self.join_mems[JoinId::ROOT].mem;
+        let mut j = self.joins[JoinId::ROOT].first_child;
+        while j != JoinId::NONE {
+            if self.joins[j].kind != JoinKind::Positive {
                 self.left_activate(j, root_token)?;
             }
-            j = self.joins[j as usize].next_sibling;
+            j = self.joins[j].next_sibling;
         }
         self.order_activations_as_parsed();
         Ok(())

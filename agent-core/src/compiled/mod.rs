@@ -97,6 +97,7 @@ pub mod gen {
     pub use super::{RuleBase, Sizes};
     pub use crate::builtins::{builtin_id, code_for, Imp, COUNT};
     pub use crate::expr::{Expr, Op};
+    pub use crate::handle::JoinId;
     pub use crate::rete::{AlphaNode, Join, JoinKind};
     pub use crate::rule::Rule;
     pub use crate::symbols::SymbolIndex;
@@ -105,6 +106,13 @@ pub mod gen {
 
     /// [`NONE`](crate::NONE), short: generated tables hold many.
     pub const N: Ix = crate::value::NONE;
+    /// No join, short.
+    pub const JN: JoinId = JoinId::NONE;
+
+    /// A join, short.
+    pub const fn j(i: Ix) -> JoinId {
+        JoinId(i)
+    }
 
     /// An expression node, short.
     pub const fn e(op: Op, aux: u8, data: Ix, first: Ix, next: Ix) -> Expr {

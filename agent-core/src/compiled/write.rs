@@ -5,6 +5,7 @@
 use crate::config::Storage;
 use crate::engine::{Core, Engine};
 use crate::expr::{FnKind, Op};
+use crate::handle::JoinId;
 use crate::host::NullHost;
 use crate::value::{Ix, Value, NONE};
 use core::fmt::{self, Write};
@@ -68,6 +69,19 @@ impl fmt::Display for I {
             f.write_str("N")
         } else {
             write!(f, "{}", self.0)
+        }
+    }
+}
+
+/// A join, `j(3)`, or `JN` for none.
+struct J(JoinId);
+
+impl fmt::Display for J {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.0 == JoinId::NONE {
+            f.write_str("JN")
+        } else {
+            write!(f, "j({})", self.0 .0)
         }
     }
 }
@@ -293,8 +307,8 @@ impl Core<'_> {
                 I(r.name),
                 r.salience,
                 I(r.salience_expr),
-                I(r.root),
-                I(r.terminal),
+                J(r.root),
+                J(r.terminal),
                 I(r.rhs),
                 r.npat,
                 r.nlocals,
@@ -321,7 +335,7 @@ impl Core<'_> {
                 I(a.desc),
                 I(a.tests),
                 I(a.next_in_tmpl),
-                I(a.succ),
+                J(a.succ),
                 a.nmarks,
                 a.live,
                 Raw(&a.path_loc, a.key_len as usize),
@@ -338,7 +352,7 @@ impl Core<'_> {
     fn write_joins(&self, out: &mut dyn Write) -> fmt::Result {
         writeln!(out, "joins: &[")?;
         for i in 0..self.st.pools.njoins as usize {
-            let j = &self.joins[i];
+            let j = &self.joins[JoinId::at(i)];
             writeln!(
                 out,
                 "Join {{ kind: JoinKind::{:?}, depth: {}, rule: {}, parent: {}, \
@@ -347,17 +361,17 @@ impl Core<'_> {
                 j.kind,
                 j.depth,
                 I(j.rule),
-                I(j.parent),
-                I(j.first_child),
-                I(j.next_sibling),
+                J(j.parent),
+                J(j.first_child),
+                J(j.next_sibling),
                 I(j.refs),
                 I(j.alpha),
                 I(j.tests),
                 I(j.post),
-                I(j.alpha_next),
-                I(j.rjoin),
-                I(j.rsucc),
-                I(j.index_child)
+                J(j.alpha_next),
+                J(j.rjoin),
+                J(j.rsucc),
+                J(j.index_child)
             )?;
         }
         writeln!(out, "],")

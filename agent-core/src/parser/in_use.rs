@@ -9,6 +9,7 @@ use crate::builtins::{self, Syntax};
 use crate::engine::Core;
 use crate::expr::{Expr, FnKind, Op};
 use crate::fact::FactState;
+use crate::handle::JoinId;
 use crate::value::Ix;
 use crate::value::{SymId, NONE};
 
@@ -36,8 +37,8 @@ impl Core<'_> {
         // a rule's pattern of it
         let in_pattern = self.rules[..self.st.pools.nrules as usize].iter().any(|r| {
             let mut j = r.terminal;
-            while !r.deleted && j != NONE && j != 0 {
-                let join = &self.joins[j as usize];
+            while !r.deleted && j != JoinId::ROOT && j != JoinId::NONE {
+                let join = &self.joins[j];
                 if join.alpha != NONE && self.alphas[join.alpha as usize].tmpl == tmpl {
                     return true;
                 }
@@ -100,8 +101,8 @@ impl Core<'_> {
             }
             // the rule's joins, from its end node up to the root
             let mut j = r.terminal;
-            while j != NONE && j != 0 {
-                let join = &self.joins[j as usize];
+            while j != JoinId::ROOT && j != JoinId::NONE {
+                let join = &self.joins[j];
                 if join.alpha != NONE && hit(self.alphas[join.alpha as usize].tests) {
                     return true;
                 }

@@ -8,6 +8,7 @@ use super::facts::expected;
 use super::{PResult, Parser, Scope, VarKind};
 use crate::compile::alpha::ZERO_LEN;
 use crate::expr::{loc, Expr, Op};
+use crate::handle::JoinId;
 use crate::lexer::{Tok, Token};
 use crate::rete::{JoinKind, MAX_MARKS, MAX_PATTERNS, MAX_RHASH, PATH_LEN, THIS_PATTERN};
 use crate::value::Ix;
@@ -189,7 +190,7 @@ impl<'s> Parser<'s, '_, '_> {
             rule.name == sym && !rule.deleted
         });
         self.replacing = if replaces { sym } else { NONE };
-        let first_new_join = self.cx.st.pools.njoins;
+        let first_new_join = JoinId(self.cx.st.pools.njoins);
         let mut b = Build::new();
         // The syntax stage reads the whole rule before anything is built: a rule with
         // `or` is one disjunct per combination of branches, each read with its own

@@ -6,6 +6,7 @@ use crate::builtins::basic::{CMP_FIRST, CMP_LAST};
 use crate::engine::Core;
 use crate::error::EvalError;
 use crate::expr::{loc, FnKind, Op};
+use crate::handle::{JoinId, TokenId};
 use crate::value::Ix;
 use crate::value::{Value, NONE};
 
@@ -53,7 +54,7 @@ impl Core<'_> {
 
     /// Removes everything a fact built in the network.
     pub(crate) fn network_retract(&mut self, fact: Ix) {
-        while self.facts[fact as usize].first_am != NONE {
+        while self.facts[fact as usize].first_am != TokenId::NONE {
             let am = self.facts[fact as usize].first_am;
             self.remove_alpha_match(am);
         }
@@ -437,18 +438,18 @@ impl Core<'_> {
         self.write(crate::host::router::WERROR, b.as_str());
         // every rule using the pattern, and the pattern's position in it
         let mut j = self.alphas[alpha as usize].succ;
-        while j != NONE {
-            self.write_rules_below(j, self.joins[j as usize].depth as usize + 1);
-            j = self.joins[j as usize].alpha_next;
+        while j != JoinId::NONE {
+            self.write_rules_below(j, self.joins[j].depth as usize + 1);
+            j = self.joins[j].alpha_next;
         }
         self.write(crate::host::router::WERROR, "\n");
     }
 
     /// `      Of pattern #N in rule R` for every rule whose network passes through
     /// `join` (newest first, as CLIPS traces an error to its rules).
-    pub(crate) fn write_rules_below(&mut self, join: Ix, pattern: usize) {
+    pub(crate) fn write_rules_below(&mut self, join: JoinId, pattern: usize) {
         use core::fmt::Write;
-        let j = self.joins[join as usize];
+        let j = self.joins[join];
         if j.is_terminal() {
             let mut b: crate::value::TextBuf<128> = crate::value::TextBuf::new();
             let name = self.sym_text(self.rules[j.rule as usize].name);
@@ -457,15 +458,15 @@ impl Core<'_> {
             return;
         }
         let mut c = j.first_child;
-        while c != NONE {
+        while c != JoinId::NONE {
             self.write_rules_below(c, pattern);
-            c = self.joins[c as usize].next_sibling;
+            c = self.joins[c].next_sibling;
         }
         // the end of a not/exists subnetwork feeds joins from the right
         let mut r = j.rsucc;
-        while r != NONE {
+        while r != JoinId::NONE {
             self.write_rules_below(r, pattern);
-            r = self.joins[r as usize].alpha_next;
+            r = self.joins[r].alpha_next;
         }
     }
 
@@ -531,92 +532,92 @@ impl Core<'_> {
         let t = self.alloc_token()?;
         let tail = self.alpha_mems[alpha as usize].tail;
         let fam = self.facts[fact as usize].first_am;
-        self.tokens[t as usize] = Token {
+        self.tokens[t] = Token {
             kind: TokenKind::Alpha,
             marks,
-            owner: alpha,
+            owner: Token::alpha_owner(alpha),
             fact,
             mem_prev: tail,
             next_sib: fam,
             extra: NONE,
             ..Token::EMPTY
         };
-        if tail != NONE {
-            self.tokens[tail as usize].mem_next = t;
+        if tail != TokenId::NONE {
+            self.tokens[tail].mem_next = t;
         } else {
             self.alpha_mems[alpha as usize].head = t;
         }
         self.alpha_mems[alpha as usize].tail = t;
-        if fam != NONE {
-            self.tokens[fam as usize].prev_sib = t;
+        if fam != TokenId::NONE {
+            self.tokens[fam].prev_sib = t;
         }
         self.facts[fact as usize].first_am = t;
         self.index_insert(t);
         let mut j = self.alphas[alpha as usize].succ;
-        while j != NONE {
+        while j != JoinId::NONE {
             // remember how far propagation got, so a rollback undoes only that
-            self.tokens[t as usize].extra = j;
+            self.tokens[t].extra = j.0;
             self.right_activate(j, t)?;
-            j = self.joins[j as usize].alpha_next;
+            j = self.joins[j].alpha_next;
         }
-        self.tokens[t as usize].extra = NONE;
+        self.tokens[t].extra = NONE;
         Ok(())
     }
 
     /// Removes an alpha match: retracts what successor joins built from it.
-    pub(crate) fn remove_alpha_match(&mut self, am: Ix) {
+    pub(crate) fn remove_alpha_match(&mut self, am: TokenId) {
         // the only match of its memory: its successors' memories go whole
         #[cfg(feature = "wipe")]
         self.wipe_successors(am);
-        let alpha = self.tokens[am as usize].owner;
+        let alpha = self.tokens[am].alpha();
         // partial matches built on it (newest first), then the not/exists outputs it
         // blocks, which look for another blocker: CLIPS's order
-        while self.tokens[am as usize].first_child != NONE {
-            let c = self.tokens[am as usize].first_child;
+        while self.tokens[am].first_child != TokenId::NONE {
+            let c = self.tokens[am].first_child;
             self.delete_token(c);
         }
         // out of its memory and bucket before the outputs it blocks are unblocked: a
         // later pattern of their rule may share this node, and what they pass on must
         // not meet the fact that is going (CLIPS builds nothing with it). Its own links
         // stay, so the search for the next blocker goes on after it.
-        let am_next = self.tokens[am as usize].am_next;
+        let am_next = self.tokens[am].am_next;
         self.index_remove(am);
-        let tk = &self.tokens[am as usize];
+        let tk = &self.tokens[am];
         let (mem_prev, mem_next, fact) = (tk.mem_prev, tk.mem_next, tk.fact);
         let (prev_sib, next_sib, blocks) = (tk.prev_sib, tk.next_sib, tk.blocks);
-        if mem_prev != NONE {
-            self.tokens[mem_prev as usize].mem_next = mem_next;
+        if mem_prev != TokenId::NONE {
+            self.tokens[mem_prev].mem_next = mem_next;
         } else {
             self.alpha_mems[alpha as usize].head = mem_next;
         }
-        if mem_next != NONE {
-            self.tokens[mem_next as usize].mem_prev = mem_prev;
+        if mem_next != TokenId::NONE {
+            self.tokens[mem_next].mem_prev = mem_prev;
         } else {
             self.alpha_mems[alpha as usize].tail = mem_prev;
         }
-        if blocks != NONE {
-            self.tokens[am as usize].am_next = am_next;
-            while self.tokens[am as usize].blocks != NONE {
-                let k = self.tokens[am as usize].blocks;
+        if blocks != TokenId::NONE {
+            self.tokens[am].am_next = am_next;
+            while self.tokens[am].blocks != TokenId::NONE {
+                let k = self.tokens[am].blocks;
                 self.remove_link(k);
             }
         }
-        if prev_sib != NONE {
-            self.tokens[prev_sib as usize].next_sib = next_sib;
+        if prev_sib != TokenId::NONE {
+            self.tokens[prev_sib].next_sib = next_sib;
         } else {
             self.facts[fact as usize].first_am = next_sib;
         }
-        if next_sib != NONE {
-            self.tokens[next_sib as usize].prev_sib = prev_sib;
+        if next_sib != TokenId::NONE {
+            self.tokens[next_sib].prev_sib = prev_sib;
         }
         self.free_token(am);
     }
 
     /// Empties an alpha memory (used when a rule is removed or a load rolled back).
     pub(crate) fn clear_alpha_memory(&mut self, alpha: Ix) {
-        while self.alpha_mems[alpha as usize].head != NONE {
+        while self.alpha_mems[alpha as usize].head != TokenId::NONE {
             let am = self.alpha_mems[alpha as usize].head;
-            self.tokens[am as usize].extra = NONE;
+            self.tokens[am].extra = NONE;
             self.remove_alpha_match(am);
         }
     }

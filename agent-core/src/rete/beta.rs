@@ -10,17 +10,18 @@
 //! *active* (passed on) while unblocked (`not`) or blocked (`exists`). When the
 //! blocker goes, the next matching right item takes over before anything changes.
 
-use super::{JoinKind, PatBinding, Token, TokenKind};
+use super::{JoinId, JoinKind, PatBinding, Token, TokenId, TokenKind};
 use crate::engine::{cap, Core};
 use crate::error::{CapacityError, EvalError, Pool};
+use crate::handle::Slots;
 use crate::value::Ix;
 use crate::value::NONE;
 
 impl Core<'_> {
-    pub(crate) fn alloc_token(&mut self) -> Result<Ix, CapacityError> {
-        if self.st.pools.token_free != NONE {
+    pub(crate) fn alloc_token(&mut self) -> Result<TokenId, CapacityError> {
+        if self.st.pools.token_free != TokenId::NONE {
             let t = self.st.pools.token_free;
-            self.st.pools.token_free = self.tokens[t as usize].next_sib;
+            self.st.pools.token_free = self.tokens[t].next_sib;
             // no high-water mark to raise: with a free entry, live + 1 <= used,
             // and the mark reached `used` when the last fresh entry was taken
             // (`clear` keeps the mark)
@@ -34,20 +35,20 @@ impl Core<'_> {
         self.st.pools.tokens_used += 1;
         self.st.pools.tokens_live += 1;
         self.note_hw(Pool::Tokens, self.st.pools.tokens_live as usize);
-        Ok(n as Ix)
+        Ok(TokenId::at(n))
     }
 
-    pub(crate) fn free_token(&mut self, t: Ix) {
+    pub(crate) fn free_token(&mut self, t: TokenId) {
         if self.st.net.lhs_of == t {
-            self.st.net.lhs_of = NONE;
+            self.st.net.lhs_of = TokenId::NONE;
         }
         // a reused id must not find this match's key
         if self.st.cache.key_cache.0 == t {
-            self.st.cache.key_cache.0 = NONE;
+            self.st.cache.key_cache.0 = TokenId::NONE;
         }
         // only the free-list link and the kind: every `alloc_token` caller writes
         // the whole token
-        let tk = &mut self.tokens[t as usize];
+        let tk = &mut self.tokens[t];
         tk.kind = TokenKind::Free;
         tk.next_sib = self.st.pools.token_free;
         self.st.pools.token_free = t;
@@ -55,11 +56,11 @@ impl Core<'_> {
     }
 
     /// Whether a partial match is passed on to child joins / the agenda.
-    pub(crate) fn token_active(&self, t: Ix) -> bool {
-        let tk = &self.tokens[t as usize];
-        match self.joins[tk.owner as usize].kind {
+    pub(crate) fn token_active(&self, t: TokenId) -> bool {
+        let tk = &self.tokens[t];
+        match self.joins[tk.owner].kind {
             // an owed output (see `owe`) passes nothing on until it is paid
-            JoinKind::Negative => !tk.blocked && tk.am_prev == NONE,
+            JoinKind::Negative => !tk.blocked && tk.am_prev == TokenId::NONE,
             JoinKind::Exists => tk.blocked,
             _ => true,
         }
@@ -68,24 +69,24 @@ impl Core<'_> {
     /// Fills `lhs_pm` with the pattern bindings along a token's ancestry (pattern
     /// depths along an ancestry are contiguous from 0, so every entry up to the
     /// token's depth is written).
-    pub(crate) fn bind_left(&mut self, mut t: Ix) {
+    pub(crate) fn bind_left(&mut self, mut t: TokenId) {
         let cur = self.st.net.lhs_of;
         if cur == t {
             return;
         }
-        if cur != NONE && t != NONE && self.bound_by(t, cur) {
+        if cur != TokenId::NONE && t != TokenId::NONE && self.bound_by(t, cur) {
             self.st.net.lhs_of = t;
             return;
         }
         self.st.net.lhs_of = t;
-        while t != NONE {
-            let tk = self.tokens[t as usize];
-            let j = self.joins[tk.owner as usize];
+        while t != TokenId::NONE {
+            let tk = self.tokens[t];
+            let j = self.joins[tk.owner];
             if j.kind == JoinKind::Root {
                 break;
             }
-            self.st.net.lhs_pm[j.depth as usize] = if tk.am != NONE {
-                let a = self.tokens[tk.am as usize];
+            self.st.net.lhs_pm[j.depth as usize] = if tk.am != TokenId::NONE {
+                let a = self.tokens[tk.am];
                 PatBinding {
                     fact: a.fact,
                     marks: a.marks,
@@ -100,15 +101,15 @@ impl Core<'_> {
     /// Whether `lhs_pm`, holding the ancestry of `cur`, holds that of `t` after
     /// at most writing `t`'s own level: `cur` is `t`'s parent (one level added)
     /// or `cur` descends from `t` (its entries up to `t`'s depth are `t`'s).
-    fn bound_by(&mut self, t: Ix, cur: Ix) -> bool {
-        let tk = self.tokens[t as usize];
-        let j = self.joins[tk.owner as usize];
+    fn bound_by(&mut self, t: TokenId, cur: TokenId) -> bool {
+        let tk = self.tokens[t];
+        let j = self.joins[tk.owner];
         if j.kind == JoinKind::Root {
             return false;
         }
         if tk.parent == cur {
-            self.st.net.lhs_pm[j.depth as usize] = if tk.am != NONE {
-                let a = self.tokens[tk.am as usize];
+            self.st.net.lhs_pm[j.depth as usize] = if tk.am != TokenId::NONE {
+                let a = self.tokens[tk.am];
                 PatBinding {
                     fact: a.fact,
                     marks: a.marks,
@@ -123,8 +124,8 @@ impl Core<'_> {
             if c == t {
                 return true;
             }
-            let ck = &self.tokens[c as usize];
-            let cj = &self.joins[ck.owner as usize];
+            let ck = &self.tokens[c];
+            let cj = &self.joins[ck.owner];
             if cj.kind == JoinKind::Root || cj.depth <= j.depth {
                 return false;
             }
@@ -142,15 +143,15 @@ impl Core<'_> {
 
     /// Evaluates a join's tests for left token `left` and alpha match `am`.
     #[cfg_attr(feature = "host-speedups", inline(always))]
-    fn join_test(&mut self, join: Ix, left: Ix, am: Ix) -> Result<bool, EvalError> {
+    fn join_test(&mut self, join: JoinId, left: TokenId, am: TokenId) -> Result<bool, EvalError> {
         let (tests, depth) = self.join_test_fields(join);
         self.join_test_with(join, tests, depth, left, am, &mut false)
     }
 
     /// The join's `tests` and `depth`, read once for a loop of `join_test_with`.
     #[cfg_attr(feature = "host-speedups", inline(always))]
-    fn join_test_fields(&self, join: Ix) -> (Ix, u8) {
-        let j = &self.joins[join as usize];
+    fn join_test_fields(&self, join: JoinId) -> (Ix, u8) {
+        let j = &self.joins[join];
         (j.tests, j.depth)
     }
 
@@ -161,18 +162,18 @@ impl Core<'_> {
     #[cfg_attr(feature = "host-speedups", inline(always))]
     fn join_test_with(
         &mut self,
-        join: Ix,
+        join: JoinId,
         tests: Ix,
         depth: u8,
-        left: Ix,
-        am: Ix,
+        left: TokenId,
+        am: TokenId,
         planned: &mut bool,
     ) -> Result<bool, EvalError> {
         if tests == NONE {
             return Ok(true);
         }
-        let right_fact = if am != NONE {
-            self.tokens[am as usize].fact
+        let right_fact = if am != TokenId::NONE {
+            self.tokens[am].fact
         } else {
             NONE
         };
@@ -188,13 +189,18 @@ impl Core<'_> {
     /// `join_test` through the evaluator (kept out of line: the planned test is
     /// inlined into the join loops on the host).
     #[inline(never)]
-    fn join_test_eval(&mut self, join: Ix, left: Ix, am: Ix) -> Result<bool, EvalError> {
+    fn join_test_eval(
+        &mut self,
+        join: JoinId,
+        left: TokenId,
+        am: TokenId,
+    ) -> Result<bool, EvalError> {
         // one walk up the ancestry per left token, not one per candidate
         self.bind_left(left);
-        let j = self.joins[join as usize];
+        let j = self.joins[join];
         // the join's own depth lies below `left`'s ancestry: `left` stays bound
-        self.st.net.lhs_pm[j.depth as usize] = if am != NONE {
-            let a = self.tokens[am as usize];
+        self.st.net.lhs_pm[j.depth as usize] = if am != TokenId::NONE {
+            let a = self.tokens[am];
             PatBinding {
                 fact: a.fact,
                 marks: a.marks,
@@ -215,7 +221,7 @@ impl Core<'_> {
 
     /// `[DRIVE1]`: an error while testing a join (out of line: errors are rare).
     #[inline(never)]
-    fn report_join_error(&mut self, join: Ix, e: EvalError) {
+    fn report_join_error(&mut self, join: JoinId, e: EvalError) {
         use core::fmt::Write;
         self.st.net.pattern_error = true;
         self.st.mode.halting = true;
@@ -225,16 +231,16 @@ impl Core<'_> {
             "\n[DRIVE1] This error occurred in the join network\n   Problem resides in associated join\n",
         );
         self.write(crate::host::router::WERROR, b.as_str());
-        self.write_rules_below(join, self.joins[join as usize].depth as usize + 1);
+        self.write_rules_below(join, self.joins[join].depth as usize + 1);
         self.write(crate::host::router::WERROR, "\n");
     }
 
     /// Whether child token `c` belongs to the front of its parent's child list:
     /// not/exists outputs (at most one per child join), see `link_token`.
-    fn in_front_run(&self, c: Ix) -> bool {
-        let tk = &self.tokens[c as usize];
+    fn in_front_run(&self, c: TokenId) -> bool {
+        let tk = &self.tokens[c];
         matches!(
-            self.joins[tk.owner as usize].kind,
+            self.joins[tk.owner].kind,
             JoinKind::Negative | JoinKind::Exists
         )
     }
@@ -243,26 +249,26 @@ impl Core<'_> {
     /// front run of the child list is walked: a left token can have any number of
     /// positive children (the root token one per fact of a rule's first pattern), and
     /// walking them made every right activation of a leading `not` linear.
-    fn output_of(&self, left: Ix, join: Ix) -> Ix {
-        let mut c = self.tokens[left as usize].first_child;
-        while c != NONE && self.in_front_run(c) {
-            if self.tokens[c as usize].owner == join {
+    fn output_of(&self, left: TokenId, join: JoinId) -> TokenId {
+        let mut c = self.tokens[left].first_child;
+        while c != TokenId::NONE && self.in_front_run(c) {
+            if self.tokens[c].owner == join {
                 return c;
             }
-            c = self.tokens[c as usize].next_sib;
+            c = self.tokens[c].next_sib;
         }
-        NONE
+        TokenId::NONE
     }
 
     /// The last token of `parent`'s front run of children (NONE if the run is
     /// empty) and the child after it, for a new child of positive `join` (a child
     /// of `join` itself ends the run without looking at its join).
     #[cfg_attr(feature = "host-speedups", inline(always))]
-    fn front_run_end(&self, parent: Ix, join: Ix) -> (Ix, Ix) {
-        let mut last = NONE;
-        let mut c = self.tokens[parent as usize].first_child;
-        while c != NONE {
-            let tk = &self.tokens[c as usize];
+    fn front_run_end(&self, parent: TokenId, join: JoinId) -> (TokenId, TokenId) {
+        let mut last = TokenId::NONE;
+        let mut c = self.tokens[parent].first_child;
+        while c != TokenId::NONE {
+            let tk = &self.tokens[c];
             if tk.owner == join || !self.in_front_run(c) {
                 break;
             }
@@ -273,16 +279,16 @@ impl Core<'_> {
     }
 
     /// A new alpha match arrives on the right of `join`.
-    pub(crate) fn right_activate(&mut self, join: Ix, am: Ix) -> Result<(), EvalError> {
-        let j = self.joins[join as usize];
+    pub(crate) fn right_activate(&mut self, join: JoinId, am: TokenId) -> Result<(), EvalError> {
+        let j = self.joins[join];
         // the left tokens are all the parent join's: only not/exists outputs can
         // be inactive
         let all_active = !matches!(
-            self.joins[j.parent as usize].kind,
+            self.joins[j.parent].kind,
             JoinKind::Negative | JoinKind::Exists
         );
         let (mut l, hashed) = self.first_left(join, am);
-        while l != NONE {
+        while l != TokenId::NONE {
             let next = self.next_left(l, hashed);
             if all_active || self.token_active(l) {
                 match j.kind {
@@ -295,8 +301,8 @@ impl Core<'_> {
                     JoinKind::Negative | JoinKind::Exists => {
                         let t = self.output_of(l, join);
                         // a blocked output keeps its one blocker (CLIPS's order)
-                        if t != NONE
-                            && !self.tokens[t as usize].blocked
+                        if t != TokenId::NONE
+                            && !self.tokens[t].blocked
                             && self.join_test(join, l, am)?
                         {
                             self.block(t, am)?;
@@ -312,22 +318,22 @@ impl Core<'_> {
 
     /// A partial match `r` of a subnetwork became active: it blocks the output of
     /// the not/exists join `join` for the left token it extends.
-    fn right_activate_beta(&mut self, join: Ix, r: Ix) -> Result<(), EvalError> {
-        let parent = self.joins[join as usize].parent;
+    fn right_activate_beta(&mut self, join: JoinId, r: TokenId) -> Result<(), EvalError> {
+        let parent = self.joins[join].parent;
         let l = self.ancestor_in(r, parent);
-        if l == NONE {
+        if l == TokenId::NONE {
             return Ok(());
         }
         let t = self.output_of(l, join);
-        if t != NONE && !self.tokens[t as usize].blocked {
+        if t != TokenId::NONE && !self.tokens[t].blocked {
             self.block(t, r)?;
         }
         Ok(())
     }
 
     /// Links `blocker` to not/exists output `t` and passes on or takes back.
-    fn block(&mut self, t: Ix, blocker: Ix) -> Result<(), EvalError> {
-        if self.joins[self.tokens[t as usize].owner as usize].kind == JoinKind::Negative {
+    fn block(&mut self, t: TokenId, blocker: TokenId) -> Result<(), EvalError> {
+        if self.joins[self.tokens[t].owner].kind == JoinKind::Negative {
             // blocked again before its propagation was paid: nothing is owed any more
             // (first: the owed list and the blocker list share the links)
             if self.is_owed(t) {
@@ -345,42 +351,42 @@ impl Core<'_> {
 
     /// A not/exists output that becomes active goes to the front of its memory: CLIPS
     /// copies it into its successors' memories only now, so they meet it as newest.
-    fn move_to_front(&mut self, t: Ix) {
-        let join = self.tokens[t as usize].owner;
-        if self.join_mems[join as usize].mem == t {
+    fn move_to_front(&mut self, t: TokenId) {
+        let join = self.tokens[t].owner;
+        if self.join_mems[join].mem == t {
             return;
         }
         self.beta_index_remove(t);
-        let tk = self.tokens[t as usize];
-        if tk.mem_prev != NONE {
-            self.tokens[tk.mem_prev as usize].mem_next = tk.mem_next;
+        let tk = self.tokens[t];
+        if tk.mem_prev != TokenId::NONE {
+            self.tokens[tk.mem_prev].mem_next = tk.mem_next;
         }
-        if tk.mem_next != NONE {
-            self.tokens[tk.mem_next as usize].mem_prev = tk.mem_prev;
+        if tk.mem_next != TokenId::NONE {
+            self.tokens[tk.mem_next].mem_prev = tk.mem_prev;
         }
-        let head = self.join_mems[join as usize].mem;
-        self.tokens[t as usize].mem_prev = NONE;
-        self.tokens[t as usize].mem_next = head;
-        if head != NONE {
-            self.tokens[head as usize].mem_prev = t;
+        let head = self.join_mems[join].mem;
+        self.tokens[t].mem_prev = TokenId::NONE;
+        self.tokens[t].mem_next = head;
+        if head != TokenId::NONE {
+            self.tokens[head].mem_prev = t;
         }
-        self.join_mems[join as usize].mem = t;
+        self.join_mems[join].mem = t;
         self.beta_index_insert(t);
     }
 
     /// The ancestor of `t` in the memory of `join` (NONE if it has none there).
-    fn ancestor_in(&self, mut t: Ix, join: Ix) -> Ix {
-        while t != NONE {
-            let tk = &self.tokens[t as usize];
+    fn ancestor_in(&self, mut t: TokenId, join: JoinId) -> TokenId {
+        while t != TokenId::NONE {
+            let tk = &self.tokens[t];
             if tk.owner == join {
                 return t;
             }
-            if tk.owner == 0 {
+            if tk.owner == JoinId::ROOT {
                 break;
             }
             t = tk.parent;
         }
-        NONE
+        TokenId::NONE
     }
 
     /// The first right item blocking the output of not/exists `join` for left token
@@ -390,14 +396,14 @@ impl Core<'_> {
     #[cfg_attr(feature = "host-speedups", inline(always))]
     fn find_blocker(
         &mut self,
-        join: Ix,
-        left: Ix,
-        from: Ix,
+        join: JoinId,
+        left: TokenId,
+        from: TokenId,
         hashed: bool,
-        skip: Ix,
-    ) -> Result<Ix, EvalError> {
-        let rjoin = self.joins[join as usize].rjoin;
-        if rjoin == NONE {
+        skip: TokenId,
+    ) -> Result<TokenId, EvalError> {
+        let rjoin = self.joins[join].rjoin;
+        if rjoin == JoinId::NONE {
             // host: the join's test fields read and its plan cache checked once
             // (the image checks per candidate: less code)
             #[cfg(feature = "host-speedups")]
@@ -405,7 +411,7 @@ impl Core<'_> {
             #[cfg(feature = "host-speedups")]
             let mut planned = false;
             let mut a = from;
-            while a != NONE {
+            while a != TokenId::NONE {
                 #[cfg(feature = "host-speedups")]
                 let found = self.join_test_with(join, tests, depth, left, a, &mut planned)?;
                 #[cfg(not(feature = "host-speedups"))]
@@ -416,22 +422,22 @@ impl Core<'_> {
                 a = self.next_candidate(a, hashed);
             }
         } else {
-            let parent = self.joins[join as usize].parent;
-            let mut r = self.join_mems[rjoin as usize].mem;
-            while r != NONE {
+            let parent = self.joins[join].parent;
+            let mut r = self.join_mems[rjoin].mem;
+            while r != TokenId::NONE {
                 if r != skip && self.token_active(r) && self.ancestor_in(r, parent) == left {
                     return Ok(r);
                 }
-                r = self.tokens[r as usize].mem_next;
+                r = self.tokens[r].mem_next;
             }
         }
-        Ok(NONE)
+        Ok(TokenId::NONE)
     }
 
     /// A new active partial match `left` arrives on the left of `join`.
-    pub(crate) fn left_activate(&mut self, join: Ix, left: Ix) -> Result<(), EvalError> {
+    pub(crate) fn left_activate(&mut self, join: JoinId, left: TokenId) -> Result<(), EvalError> {
         // the fields, not a copy of the join (which lived on the stack across calls)
-        let kind = self.joins[join as usize].kind;
+        let kind = self.joins[join].kind;
         match kind {
             JoinKind::Positive => {
                 let (mut a, hashed) = self.first_candidate(join, left);
@@ -440,7 +446,7 @@ impl Core<'_> {
                 let (tests, depth) = self.join_test_fields(join);
                 #[cfg(feature = "host-speedups")]
                 let mut planned = false;
-                while a != NONE {
+                while a != TokenId::NONE {
                     let next = self.next_candidate(a, hashed);
                     #[cfg(feature = "host-speedups")]
                     let matched = self.join_test_with(join, tests, depth, left, a, &mut planned)?;
@@ -458,7 +464,7 @@ impl Core<'_> {
                 }
             }
             JoinKind::Negative | JoinKind::Exists => {
-                let post = self.joins[join as usize].post;
+                let post = self.joins[join].post;
                 if post != NONE {
                     self.bind_left(left);
                     // an error is reported as in the join's own tests; the test fails
@@ -475,19 +481,19 @@ impl Core<'_> {
                 }
                 // the bucket is looked up before the output token exists: its
                 // index insert would evict `left`'s key from the key cache
-                let (from, hashed) = if self.joins[join as usize].rjoin == NONE {
+                let (from, hashed) = if self.joins[join].rjoin == JoinId::NONE {
                     self.first_candidate(join, left)
                 } else {
-                    (NONE, false)
+                    (TokenId::NONE, false)
                 };
-                let t = self.link_token(join, left, NONE)?;
-                let b = self.find_blocker(join, left, from, hashed, NONE)?;
-                if b != NONE {
+                let t = self.link_token(join, left, TokenId::NONE)?;
+                let b = self.find_blocker(join, left, from, hashed, TokenId::NONE)?;
+                if b != TokenId::NONE {
                     self.add_link(t, b);
                 }
                 // `token_active` of the new output: it is owed nothing yet, so a
                 // not output is active unblocked, an exists output blocked
-                if (b == NONE) == (kind == JoinKind::Negative) {
+                if (b == TokenId::NONE) == (kind == JoinKind::Negative) {
                     if self.st.net.defer_nots && kind == JoinKind::Negative {
                         // see `defer_nots`: a later pattern of the same fact may block it
                         self.owe(t, false);
@@ -497,13 +503,13 @@ impl Core<'_> {
                 }
             }
             JoinKind::Test => {
-                if self.join_test(join, left, NONE)? {
-                    let t = self.link_token(join, left, NONE)?;
+                if self.join_test(join, left, TokenId::NONE)? {
+                    let t = self.link_token(join, left, TokenId::NONE)?;
                     self.propagate_in(t, join)?;
                 }
             }
             JoinKind::Terminal => {
-                let rule = self.joins[join as usize].rule;
+                let rule = self.joins[join].rule;
                 self.add_activation(rule, left)?;
             }
             JoinKind::Root => {}
@@ -514,42 +520,51 @@ impl Core<'_> {
     /// Creates a partial match in `join`'s memory (newest first) and links it under
     /// its parents.
     #[cfg_attr(feature = "host-speedups", inline(always))]
-    fn link_token(&mut self, join: Ix, parent: Ix, am: Ix) -> Result<Ix, EvalError> {
+    fn link_token(
+        &mut self,
+        join: JoinId,
+        parent: TokenId,
+        am: TokenId,
+    ) -> Result<TokenId, EvalError> {
         let t = self.alloc_token()?;
-        let kind = self.joins[join as usize].kind;
+        let kind = self.joins[join].kind;
         // not/exists outputs stay in front of the parent's other children
         // (see `output_of`); the others keep newest-first order among themselves,
         // which is all that the per-successor walks (`take_back`) rely on
-        let (after, psib) = if parent == NONE {
-            (NONE, NONE)
+        let (after, psib) = if parent == TokenId::NONE {
+            (TokenId::NONE, TokenId::NONE)
         } else if matches!(kind, JoinKind::Negative | JoinKind::Exists) {
-            (NONE, self.tokens[parent as usize].first_child)
+            (TokenId::NONE, self.tokens[parent].first_child)
         } else {
             self.front_run_end(parent, join)
         };
         // one borrow of the pool and one of the join for all the links (their
         // addresses stay in registers across the stores)
-        let tokens = &mut *self.tokens;
-        let jn = &self.joins[join as usize];
-        let jm = &mut self.join_mems[join as usize];
+        let mut tokens = self.tokens.view();
+        let jn = &self.joins[join];
+        let jm = &mut self.join_mems[join];
         // the index child too, while the join is at hand
         let (head, depth) = (jm.mem, jn.depth);
         #[cfg(feature = "host-speedups")]
-        let ichild = if jm.index_built { jn.index_child } else { NONE };
+        let ichild = if jm.index_built {
+            jn.index_child
+        } else {
+            JoinId::NONE
+        };
         #[cfg(not(feature = "host-speedups"))]
-        let ichild = NONE;
+        let ichild = JoinId::NONE;
         #[cfg(feature = "host-speedups")]
-        let own = if am != NONE {
-            tokens[am as usize].fact
+        let own = if am != TokenId::NONE {
+            tokens[am].fact
         } else {
             NONE
         };
-        let asib = if am != NONE {
-            tokens[am as usize].first_child
+        let asib = if am != TokenId::NONE {
+            tokens[am].first_child
         } else {
-            NONE
+            TokenId::NONE
         };
-        tokens[t as usize] = Token {
+        tokens[t] = Token {
             kind: TokenKind::Beta,
             owner: join,
             am,
@@ -563,33 +578,33 @@ impl Core<'_> {
         // the bindings: the parent's, copied after the token is written (read
         // before, they went through the stack), then the own level patched in place
         #[cfg(feature = "host-speedups")]
-        if parent != NONE {
-            tokens[t as usize].binds = tokens[parent as usize].binds;
+        if parent != TokenId::NONE {
+            tokens[t].binds = tokens[parent].binds;
         }
         #[cfg(feature = "host-speedups")]
-        if let Some(x) = tokens[t as usize].binds.get_mut(depth as usize) {
+        if let Some(x) = tokens[t].binds.get_mut(depth as usize) {
             *x = own;
         }
         #[cfg(not(feature = "host-speedups"))]
         let _ = depth;
-        if head != NONE {
-            tokens[head as usize].mem_prev = t;
+        if head != TokenId::NONE {
+            tokens[head].mem_prev = t;
         }
-        if parent != NONE {
-            if psib != NONE {
-                tokens[psib as usize].prev_sib = t;
+        if parent != TokenId::NONE {
+            if psib != TokenId::NONE {
+                tokens[psib].prev_sib = t;
             }
-            if after != NONE {
-                tokens[after as usize].next_sib = t;
+            if after != TokenId::NONE {
+                tokens[after].next_sib = t;
             } else {
-                tokens[parent as usize].first_child = t;
+                tokens[parent].first_child = t;
             }
         }
-        if am != NONE {
-            if asib != NONE {
-                tokens[asib as usize].am_prev = t;
+        if am != TokenId::NONE {
+            if asib != TokenId::NONE {
+                tokens[asib].am_prev = t;
             }
-            tokens[am as usize].first_child = t;
+            tokens[am].first_child = t;
         }
         jm.mem = t;
         self.beta_index_insert_fresh(t, join, ichild);
@@ -602,43 +617,43 @@ impl Core<'_> {
     /// alpha match, and a blocked one is never owed); the head's `am_prev` names
     /// the blocker. Allocates nothing, as CLIPS links the partial match itself.
     #[cfg_attr(feature = "host-speedups", inline(always))]
-    fn add_link(&mut self, t: Ix, blocker: Ix) {
-        let bsib = self.tokens[blocker as usize].blocks;
-        let tk = &mut self.tokens[t as usize];
+    fn add_link(&mut self, t: TokenId, blocker: TokenId) {
+        let bsib = self.tokens[blocker].blocks;
+        let tk = &mut self.tokens[t];
         tk.am_next = bsib;
         tk.am_prev = blocker;
         tk.blocked = true;
-        if bsib != NONE {
-            self.tokens[bsib as usize].am_prev = t;
+        if bsib != TokenId::NONE {
+            self.tokens[bsib].am_prev = t;
         }
-        self.tokens[blocker as usize].blocks = t;
+        self.tokens[blocker].blocks = t;
     }
 
     /// Takes blocked output `t` off its blocker's list. `am_prev` is the blocker
     /// exactly when `t` heads the blocker's list (a token is on one list only).
     #[cfg_attr(feature = "host-speedups", inline(always))]
-    pub(super) fn unlink_blocked(&mut self, t: Ix) {
-        let tk = &mut self.tokens[t as usize];
+    pub(super) fn unlink_blocked(&mut self, t: TokenId) {
+        let tk = &mut self.tokens[t];
         let (p, n) = (tk.am_prev, tk.am_next);
-        tk.am_next = NONE;
-        tk.am_prev = NONE;
+        tk.am_next = TokenId::NONE;
+        tk.am_prev = TokenId::NONE;
         tk.blocked = false;
-        if self.tokens[p as usize].blocks == t {
-            self.tokens[p as usize].blocks = n;
+        if self.tokens[p].blocks == t {
+            self.tokens[p].blocks = n;
         } else {
-            self.tokens[p as usize].am_next = n;
+            self.tokens[p].am_next = n;
         }
-        if n != NONE {
-            self.tokens[n as usize].am_prev = p;
+        if n != TokenId::NONE {
+            self.tokens[n].am_prev = p;
         }
     }
 
     /// The blocker of blocked output `t`: back along the list to its head.
-    fn blocker_of(&self, t: Ix) -> Ix {
+    fn blocker_of(&self, t: TokenId) -> TokenId {
         let mut c = t;
         loop {
-            let p = self.tokens[c as usize].am_prev;
-            if self.tokens[p as usize].blocks == c {
+            let p = self.tokens[c].am_prev;
+            if self.tokens[p].blocks == c {
                 return p;
             }
             c = p;
@@ -647,34 +662,34 @@ impl Core<'_> {
 
     /// Blocked output `t` loses its blocker (`t` from the blocker's `blocks`
     /// list; O(1) for its head, as retracts take them).
-    pub(crate) fn remove_link(&mut self, t: Ix) {
+    pub(crate) fn remove_link(&mut self, t: TokenId) {
         let blocker = self.blocker_of(t);
         self.unblock(t, blocker);
     }
 
     /// The blocker of output `t` goes away: `t` gets the next blocker, or is
     /// unblocked (not) or loses its match (exists), as CLIPS does.
-    fn unblock(&mut self, t: Ix, blocker: Ix) {
+    fn unblock(&mut self, t: TokenId, blocker: TokenId) {
         self.unlink_blocked(t);
-        let join = self.tokens[t as usize].owner;
-        let left = self.tokens[t as usize].parent;
-        let (from, hashed) = if self.tokens[blocker as usize].kind == TokenKind::Alpha {
+        let join = self.tokens[t].owner;
+        let left = self.tokens[t].parent;
+        let (from, hashed) = if self.tokens[blocker].kind == TokenKind::Alpha {
             // the blocker is the first match in memory order: search on after it,
             // along its index bucket when its node has one (same key as `left`)
-            let hashed = self.alphas[self.tokens[blocker as usize].owner as usize].nrhash > 0;
+            let hashed = self.alphas[self.tokens[blocker].alpha() as usize].nrhash > 0;
             (self.next_candidate(blocker, hashed), hashed)
         } else {
-            (NONE, false)
+            (TokenId::NONE, false)
         };
         // an evaluation error while searching counts as no further blocker
         let next = self
             .find_blocker(join, left, from, hashed, blocker)
-            .unwrap_or(NONE);
-        if next != NONE {
+            .unwrap_or(TokenId::NONE);
+        if next != TokenId::NONE {
             self.add_link(t, next);
             return;
         }
-        if self.joins[join as usize].kind == JoinKind::Negative {
+        if self.joins[join].kind == JoinKind::Negative {
             self.move_to_front(t);
             self.log_unblocked(t);
             self.propagate_or_owe(t);
@@ -691,7 +706,7 @@ impl Core<'_> {
     /// `pay_owed` propagates it once there is room. Every operation pays first
     /// (assert fails unchanged if it cannot; `run` fires nothing; retract reports
     /// the error), so no match is lost and no rule fires on an incomplete agenda.
-    fn propagate_or_owe(&mut self, t: Ix) {
+    fn propagate_or_owe(&mut self, t: TokenId) {
         if self.st.net.defer_nots {
             self.owe(t, false);
             return;
@@ -709,40 +724,43 @@ impl Core<'_> {
     /// Whether not output `t` is owed its propagation. Not outputs have no alpha
     /// match, so their alpha-sibling links are free: they chain the owed list (the
     /// head's `am_prev` is the tail), and a non-NONE `am_prev` marks membership.
-    pub(crate) fn is_owed(&self, t: Ix) -> bool {
-        let tk = &self.tokens[t as usize];
-        tk.kind == TokenKind::Beta && tk.am == NONE && !tk.blocked && tk.am_prev != NONE
+    pub(crate) fn is_owed(&self, t: TokenId) -> bool {
+        let tk = &self.tokens[t];
+        tk.kind == TokenKind::Beta
+            && tk.am == TokenId::NONE
+            && !tk.blocked
+            && tk.am_prev != TokenId::NONE
     }
 
     /// Puts `t` on the owed list: at the end, or at the front (kept its turn).
-    fn owe(&mut self, t: Ix, front: bool) {
+    fn owe(&mut self, t: TokenId, front: bool) {
         let head = self.st.net.owed;
-        if head == NONE {
-            self.tokens[t as usize].am_next = NONE;
-            self.tokens[t as usize].am_prev = t;
+        if head == TokenId::NONE {
+            self.tokens[t].am_next = TokenId::NONE;
+            self.tokens[t].am_prev = t;
             self.st.net.owed = t;
             return;
         }
-        let tail = self.tokens[head as usize].am_prev;
+        let tail = self.tokens[head].am_prev;
         if front {
-            self.tokens[t as usize].am_next = head;
-            self.tokens[t as usize].am_prev = tail;
-            self.tokens[head as usize].am_prev = t;
+            self.tokens[t].am_next = head;
+            self.tokens[t].am_prev = tail;
+            self.tokens[head].am_prev = t;
             self.st.net.owed = t;
         } else {
-            self.tokens[t as usize].am_next = NONE;
-            self.tokens[t as usize].am_prev = tail;
-            self.tokens[tail as usize].am_next = t;
-            self.tokens[head as usize].am_prev = t;
+            self.tokens[t].am_next = TokenId::NONE;
+            self.tokens[t].am_prev = tail;
+            self.tokens[tail].am_next = t;
+            self.tokens[head].am_prev = t;
         }
     }
 
-    fn unowe(&mut self, t: Ix) {
+    fn unowe(&mut self, t: TokenId) {
         self.st.net.owed = self.am_chain_remove(self.st.net.owed, t);
     }
 
     /// Notes a not output a modify's retract unblocked (see `UnblockLog`).
-    fn log_unblocked(&mut self, t: Ix) {
+    fn log_unblocked(&mut self, t: TokenId) {
         let log = &mut self.st.net.unblocked;
         if !log.on {
             return;
@@ -751,7 +769,7 @@ impl Core<'_> {
             log.overflow = true;
             return;
         }
-        let tk = &self.tokens[t as usize];
+        let tk = &self.tokens[t];
         log.entries[log.len as usize] = (t, tk.owner, tk.parent);
         log.len += 1;
     }
@@ -766,11 +784,11 @@ impl Core<'_> {
     pub(crate) fn owe_unblocked(&mut self) -> bool {
         let log = self.st.net.unblocked;
         for &(t, owner, parent) in &log.entries[..log.len as usize] {
-            let tk = self.tokens[t as usize];
+            let tk = self.tokens[t];
             if tk.kind == TokenKind::Beta
                 && tk.owner == owner
                 && tk.parent == parent
-                && self.joins[owner as usize].kind == JoinKind::Negative
+                && self.joins[owner].kind == JoinKind::Negative
                 && self.token_active(t)
             {
                 self.deactivate(t);
@@ -786,7 +804,7 @@ impl Core<'_> {
     #[cfg_attr(feature = "host-speedups", inline(always))]
     pub(crate) fn pay_owed(&mut self) -> Result<(), EvalError> {
         // most operations owe nothing: no call for them on the host
-        if self.st.net.owed == NONE {
+        if self.st.net.owed == TokenId::NONE {
             return Ok(());
         }
         self.pay_owed_list()
@@ -795,7 +813,7 @@ impl Core<'_> {
     /// `pay_owed` of a non-empty owed list.
     #[cfg_attr(feature = "host-speedups", inline(never))]
     fn pay_owed_list(&mut self) -> Result<(), EvalError> {
-        while self.st.net.owed != NONE {
+        while self.st.net.owed != TokenId::NONE {
             let t = self.st.net.owed;
             self.unowe(t);
             if let Err(e) = self.propagate(t) {
@@ -812,20 +830,20 @@ impl Core<'_> {
     /// Passes an active partial match on to its join's successors, newest first as
     /// CLIPS does: child joins and rule ends (left), joins taking it from the right.
     #[cfg_attr(feature = "host-speedups", inline(always))]
-    pub(crate) fn propagate(&mut self, t: Ix) -> Result<(), EvalError> {
-        let join = self.tokens[t as usize].owner;
+    pub(crate) fn propagate(&mut self, t: TokenId) -> Result<(), EvalError> {
+        let join = self.tokens[t].owner;
         self.propagate_in(t, join)
     }
 
     /// `propagate` of token `t` of `join` (callers that just made it know the join).
     #[cfg_attr(feature = "host-speedups", inline(always))]
-    fn propagate_in(&mut self, t: Ix, join: Ix) -> Result<(), EvalError> {
-        if self.joins[join as usize].rsucc == NONE {
+    fn propagate_in(&mut self, t: TokenId, join: JoinId) -> Result<(), EvalError> {
+        if self.joins[join].rsucc == JoinId::NONE {
             // the common case: no join takes these tokens from the right, so the
             // successors are the child list as it is
-            let mut c = self.joins[join as usize].first_child;
-            while c != NONE {
-                let cj = &self.joins[c as usize];
+            let mut c = self.joins[join].first_child;
+            while c != JoinId::NONE {
+                let cj = &self.joins[c];
                 let next = cj.next_sibling;
                 if cj.kind == JoinKind::Terminal {
                     // a rule end: `left_activate` would only do this, in a big frame
@@ -854,46 +872,46 @@ impl Core<'_> {
     /// activation, a child join the partial matches built on the token, a join from
     /// the right the output it blocks (which looks for another blocker).
     #[cfg_attr(feature = "host-speedups", inline(always))]
-    fn deactivate(&mut self, t: Ix) {
-        let tk = &self.tokens[t as usize];
-        if tk.first_child == NONE
-            && tk.blocks == NONE
+    fn deactivate(&mut self, t: TokenId) {
+        let tk = &self.tokens[t];
+        if tk.first_child == TokenId::NONE
+            && tk.blocks == TokenId::NONE
             && (tk.kind != TokenKind::Beta || tk.extra == NONE)
         {
             // passed nothing on (no partial matches, activations or blocks)
             return;
         }
         let join = tk.owner;
-        let jn = &self.joins[join as usize];
-        if jn.rsucc == NONE
-            && jn.first_child != NONE
-            && self.joins[jn.first_child as usize].next_sibling == NONE
+        let jn = &self.joins[join];
+        if jn.rsucc == JoinId::NONE
+            && jn.first_child != JoinId::NONE
+            && self.joins[jn.first_child].next_sibling == JoinId::NONE
         {
             // the common case: one successor, a child join or rule end, so all
             // the children or activations are its (`take_back` without the
             // per-entry checks)
-            if self.joins[jn.first_child as usize].kind != JoinKind::Terminal {
+            if self.joins[jn.first_child].kind != JoinKind::Terminal {
                 self.delete_children(t);
-            } else if self.tokens[t as usize].kind == TokenKind::Beta {
-                while self.tokens[t as usize].extra != NONE {
-                    let a = self.tokens[t as usize].extra;
+            } else if self.tokens[t].kind == TokenKind::Beta {
+                while self.tokens[t].extra != NONE {
+                    let a = self.tokens[t].extra;
                     self.remove_activation(a);
                 }
             }
         } else {
             self.take_back_all(t, join);
         }
-        while self.tokens[t as usize].blocks != NONE {
-            let k = self.tokens[t as usize].blocks;
+        while self.tokens[t].blocks != TokenId::NONE {
+            let k = self.tokens[t].blocks;
             self.unblock(k, t);
         }
     }
 
     /// `deactivate` for every successor of `join`, oldest first.
-    fn take_back_all(&mut self, t: Ix, join: Ix) {
+    fn take_back_all(&mut self, t: TokenId, join: JoinId) {
         // the successors in walking order; the first few kept, as most joins have
         // one or two, the rest walked to again
-        let mut first = [(NONE, false); 8];
+        let mut first = [(JoinId::NONE, false); 8];
         let mut n = 0;
         let mut it = Successors::of(self, join);
         while let Some(s) = it.next(self) {
@@ -921,20 +939,20 @@ impl Core<'_> {
 
     /// Takes back what token `t` passed on to successor `c` (see `deactivate`).
     #[cfg_attr(feature = "host-speedups", inline(always))]
-    fn take_back(&mut self, t: Ix, c: Ix, from_right: bool) {
-        let cj = self.joins[c as usize];
+    fn take_back(&mut self, t: TokenId, c: JoinId, from_right: bool) {
+        let cj = self.joins[c];
         if from_right {
-            let mut k = self.tokens[t as usize].blocks;
-            while k != NONE {
-                let next = self.tokens[k as usize].am_next;
-                if self.tokens[k as usize].owner == c {
+            let mut k = self.tokens[t].blocks;
+            while k != TokenId::NONE {
+                let next = self.tokens[k].am_next;
+                if self.tokens[k].owner == c {
                     self.unblock(k, t);
                 }
                 k = next;
             }
         } else if cj.is_terminal() {
-            if self.tokens[t as usize].kind == TokenKind::Beta {
-                let mut a = self.tokens[t as usize].extra;
+            if self.tokens[t].kind == TokenKind::Beta {
+                let mut a = self.tokens[t].extra;
                 while a != NONE {
                     let next = self.acts[a as usize].next_of_token;
                     if self.acts[a as usize].rule == cj.rule {
@@ -944,10 +962,10 @@ impl Core<'_> {
                 }
             }
         } else {
-            let mut k = self.tokens[t as usize].first_child;
-            while k != NONE {
-                let next = self.tokens[k as usize].next_sib;
-                if self.tokens[k as usize].owner == c {
+            let mut k = self.tokens[t].first_child;
+            while k != TokenId::NONE {
+                let next = self.tokens[k].next_sib;
+                if self.tokens[k].owner == c {
                     self.delete_token(k);
                 }
                 k = next;
@@ -956,16 +974,16 @@ impl Core<'_> {
     }
 
     #[cfg_attr(feature = "host-speedups", inline(always))]
-    pub(crate) fn delete_children(&mut self, t: Ix) {
-        while self.tokens[t as usize].first_child != NONE {
-            let c = self.tokens[t as usize].first_child;
+    pub(crate) fn delete_children(&mut self, t: TokenId) {
+        while self.tokens[t].first_child != TokenId::NONE {
+            let c = self.tokens[t].first_child;
             self.delete_token(c);
         }
     }
 
     /// Deletes a partial match and everything built on it.
-    pub(crate) fn delete_token(&mut self, t: Ix) {
-        let tk = &self.tokens[t as usize];
+    pub(crate) fn delete_token(&mut self, t: TokenId) {
+        let tk = &self.tokens[t];
         let (owner, fc, extra) = (tk.owner, tk.first_child, tk.extra);
         // What it passed on decides: nothing (a leaf, like most blocked not
         // outputs); or with one successor in the child list (joins from the right
@@ -975,16 +993,16 @@ impl Core<'_> {
         // successor.
         // (`delete_children` only where there may be children: a leaf's list
         // was just read)
-        if tk.blocks != NONE || (fc != NONE && extra != NONE) {
+        if tk.blocks != TokenId::NONE || (fc != TokenId::NONE && extra != NONE) {
             self.deactivate(t);
             self.delete_children(t);
-        } else if fc != NONE {
+        } else if fc != TokenId::NONE {
             if self.one_child(owner) {
                 // the children from the first, as `delete_children` takes them
                 let mut c = fc;
-                while c != NONE {
+                while c != TokenId::NONE {
                     self.delete_token(c);
-                    c = self.tokens[t as usize].first_child;
+                    c = self.tokens[t].first_child;
                 }
             } else {
                 self.deactivate(t);
@@ -992,8 +1010,8 @@ impl Core<'_> {
             }
         } else if extra != NONE {
             if self.one_child(owner) {
-                while self.tokens[t as usize].extra != NONE {
-                    let a = self.tokens[t as usize].extra;
+                while self.tokens[t].extra != NONE {
+                    let a = self.tokens[t].extra;
                     self.remove_activation(a);
                 }
             } else {
@@ -1006,25 +1024,25 @@ impl Core<'_> {
 
     /// Whether `join`'s child list (child joins and rule ends) has one entry.
     #[cfg(not(feature = "host-speedups"))]
-    fn one_child(&self, join: Ix) -> bool {
-        let c = self.joins[join as usize].first_child;
-        c != NONE && self.joins[c as usize].next_sibling == NONE
+    fn one_child(&self, join: JoinId) -> bool {
+        let c = self.joins[join].first_child;
+        c != JoinId::NONE && self.joins[c].next_sibling == JoinId::NONE
     }
 
     #[cfg(feature = "host-speedups")]
     #[inline(always)]
-    fn one_child(&self, join: Ix) -> bool {
-        self.join_mems[join as usize].one_child
+    fn one_child(&self, join: JoinId) -> bool {
+        self.join_mems[join].one_child
     }
 
     /// Records whether `join`'s child list has one entry (host: `JoinMem::one_child`),
     /// after every change to the list.
-    pub(crate) fn note_children(&mut self, join: Ix) {
+    pub(crate) fn note_children(&mut self, join: JoinId) {
         #[cfg(feature = "host-speedups")]
         {
-            let c = self.joins[join as usize].first_child;
-            self.join_mems[join as usize].one_child =
-                c != NONE && self.joins[c as usize].next_sibling == NONE;
+            let c = self.joins[join].first_child;
+            self.join_mems[join].one_child =
+                c != JoinId::NONE && self.joins[c].next_sibling == JoinId::NONE;
         }
         #[cfg(not(feature = "host-speedups"))]
         let _ = join;
@@ -1033,12 +1051,12 @@ impl Core<'_> {
     /// Unlinks a token from its parent, alpha match (or blocker, or owed list) and
     /// memory lists, then frees it.
     #[cfg_attr(feature = "host-speedups", inline(always))]
-    fn unlink_and_free(&mut self, t: Ix) {
+    fn unlink_and_free(&mut self, t: TokenId) {
         // fields read one by one: copying the whole (host: 104-byte) token cost
         // more than the unlinking; one borrow of the pool per stretch keeps its
         // bounds in registers across the stores
-        let tokens = &mut *self.tokens;
-        let tk = &tokens[t as usize];
+        let mut tokens = self.tokens.view();
+        let tk = &tokens[t];
         let (am, am_prev, am_next) = (tk.am, tk.am_prev, tk.am_next);
         let (parent, prev_sib, next_sib) = (tk.parent, tk.prev_sib, tk.next_sib);
         // host: only a partial match in a bucket has one (see `beta_index_remove`)
@@ -1046,14 +1064,14 @@ impl Core<'_> {
         let in_bucket = tk.beta_links[1] != NONE;
         #[cfg(not(feature = "wide-index"))]
         let in_bucket = true;
-        if parent != NONE {
-            leave_parent(tokens, parent, prev_sib, next_sib);
+        if parent != TokenId::NONE {
+            leave_parent(&mut tokens, parent, prev_sib, next_sib);
         }
-        if am != NONE {
-            leave_alpha_match(tokens, am, am_prev, am_next);
-        } else if am_prev != NONE {
+        if am != TokenId::NONE {
+            leave_alpha_match(&mut tokens, am, am_prev, am_next);
+        } else if am_prev != TokenId::NONE {
             // a not/exists output: blocked, or owed (see `is_owed`)
-            if tokens[t as usize].blocked {
+            if tokens[t].blocked {
                 self.unlink_blocked(t);
             } else {
                 self.unowe(t);
@@ -1062,30 +1080,30 @@ impl Core<'_> {
         if in_bucket {
             self.beta_index_remove(t);
         }
-        let tokens = &mut *self.tokens;
-        let tk = &tokens[t as usize];
+        let mut tokens = self.tokens.view();
+        let tk = &tokens[t];
         let (owner, mem_prev, mem_next) = (tk.owner, tk.mem_prev, tk.mem_next);
-        if mem_prev != NONE {
-            tokens[mem_prev as usize].mem_next = mem_next;
+        if mem_prev != TokenId::NONE {
+            tokens[mem_prev].mem_next = mem_next;
         } else {
-            let j = &mut self.join_mems[owner as usize];
+            let j = &mut self.join_mems[owner];
             j.mem = mem_next;
             // an empty memory is trivially unindexed (see `JoinMem::index_built`)
             #[cfg(feature = "host-speedups")]
-            if mem_next == NONE {
+            if mem_next == TokenId::NONE {
                 j.index_built = false;
             }
         }
-        if mem_next != NONE {
-            tokens[mem_next as usize].mem_prev = mem_prev;
+        if mem_next != TokenId::NONE {
+            tokens[mem_next].mem_prev = mem_prev;
         }
         self.free_token(t);
     }
 
     /// Deletes every token in a join's memory.
-    pub(crate) fn clear_join_memory(&mut self, join: Ix) {
-        while self.join_mems[join as usize].mem != NONE {
-            let t = self.join_mems[join as usize].mem;
+    pub(crate) fn clear_join_memory(&mut self, join: JoinId) {
+        while self.join_mems[join].mem != TokenId::NONE {
+            let t = self.join_mems[join].mem;
             self.delete_token(t);
         }
     }
@@ -1094,28 +1112,38 @@ impl Core<'_> {
 /// Takes a partial match (whose sibling links are `prev`, `next`) off the child list
 /// of token `parent`.
 #[inline(always)]
-pub(super) fn leave_parent(tokens: &mut [Token], parent: Ix, prev: Ix, next: Ix) {
-    if prev != NONE {
-        tokens[prev as usize].next_sib = next;
+pub(super) fn leave_parent(
+    tokens: &mut Slots<'_, TokenId, Token>,
+    parent: TokenId,
+    prev: TokenId,
+    next: TokenId,
+) {
+    if prev != TokenId::NONE {
+        tokens[prev].next_sib = next;
     } else {
-        tokens[parent as usize].first_child = next;
+        tokens[parent].first_child = next;
     }
-    if next != NONE {
-        tokens[next as usize].prev_sib = prev;
+    if next != TokenId::NONE {
+        tokens[next].prev_sib = prev;
     }
 }
 
 /// Takes a partial match (whose links under its alpha match are `prev`, `next`) off
 /// the list of partial matches built on alpha match `am`.
 #[inline(always)]
-pub(super) fn leave_alpha_match(tokens: &mut [Token], am: Ix, prev: Ix, next: Ix) {
-    if prev != NONE {
-        tokens[prev as usize].am_next = next;
+pub(super) fn leave_alpha_match(
+    tokens: &mut Slots<'_, TokenId, Token>,
+    am: TokenId,
+    prev: TokenId,
+    next: TokenId,
+) {
+    if prev != TokenId::NONE {
+        tokens[prev].am_next = next;
     } else {
-        tokens[am as usize].first_child = next;
+        tokens[am].first_child = next;
     }
-    if next != NONE {
-        tokens[next as usize].am_prev = prev;
+    if next != TokenId::NONE {
+        tokens[next].am_prev = prev;
     }
 }
 
@@ -1123,44 +1151,44 @@ pub(super) fn leave_alpha_match(tokens: &mut [Token], am: Ix, prev: Ix, next: Ix
 /// right sits just after its subnetwork's first join) merged with the joins taking
 /// its tokens from the right, by creation.
 struct Successors {
-    left: Ix,
-    right: Ix,
+    left: JoinId,
+    right: JoinId,
     /// Key of the last child taken from the child list.
     last_key: u32,
 }
 
 impl Successors {
-    fn of(cx: &Core<'_>, join: Ix) -> Successors {
+    fn of(cx: &Core<'_>, join: JoinId) -> Successors {
         Successors {
-            left: cx.joins[join as usize].first_child,
-            right: cx.joins[join as usize].rsucc,
+            left: cx.joins[join].first_child,
+            right: cx.joins[join].rsucc,
             last_key: u32::MAX,
         }
     }
 
     fn left_key(&self, cx: &Core<'_>) -> u32 {
-        if cx.joins[self.left as usize].rjoin != NONE {
+        if cx.joins[self.left].rjoin != JoinId::NONE {
             self.last_key.saturating_sub(1)
         } else {
-            2 * u32::from(self.left)
+            2 * u32::from(self.left.0)
         }
     }
 
-    fn next(&mut self, cx: &Core<'_>) -> Option<(Ix, bool)> {
-        let take_left = match (self.left != NONE, self.right != NONE) {
+    fn next(&mut self, cx: &Core<'_>) -> Option<(JoinId, bool)> {
+        let take_left = match (self.left != JoinId::NONE, self.right != JoinId::NONE) {
             (false, false) => return None,
             (true, false) => true,
             (false, true) => false,
-            (true, true) => self.left_key(cx) > 2 * u32::from(self.right),
+            (true, true) => self.left_key(cx) > 2 * u32::from(self.right.0),
         };
         if take_left {
             let c = self.left;
             self.last_key = self.left_key(cx);
-            self.left = cx.joins[c as usize].next_sibling;
+            self.left = cx.joins[c].next_sibling;
             Some((c, false))
         } else {
             let c = self.right;
-            self.right = cx.joins[c as usize].alpha_next;
+            self.right = cx.joins[c].alpha_next;
             Some((c, true))
         }
     }

@@ -39,6 +39,8 @@ use crate::error::EvalError;
 #[cfg(feature = "defer")]
 use crate::expr::{FnKind, Op};
 use crate::fact::Fact;
+#[cfg(feature = "defer")]
+use crate::handle::{JoinId, TokenId};
 use crate::value::{Ix, NONE};
 
 /// Flags of a template (see `Core::defer_flags`).
@@ -82,8 +84,8 @@ impl Core<'_> {
                 total = total && self.calls_only(node.tests, crate::builtins::is_total);
                 // a not/exists join on this pattern: its matches are blockers
                 let mut j = node.succ;
-                while j != NONE {
-                    let jn = &self.joins[j as usize];
+                while j != JoinId::NONE {
+                    let jn = &self.joins[j];
                     if matches!(jn.kind, JoinKind::Negative | JoinKind::Exists) {
                         delete_only = false;
                     }
@@ -92,12 +94,12 @@ impl Core<'_> {
                 let mut below_total = true;
                 let mut below_no_rsucc = true;
                 let walked = self.walk_joins(node.succ, true, &mut |cx, j| {
-                    let jn = &cx.joins[j as usize];
+                    let jn = &cx.joins[j];
                     below_total = below_total
                         && cx.calls_only(jn.tests, crate::builtins::is_total)
                         && cx.calls_only(jn.post, crate::builtins::is_total);
                     // partial matches there block the outputs of a join from the right
-                    below_no_rsucc = below_no_rsucc && jn.rsucc == NONE;
+                    below_no_rsucc = below_no_rsucc && jn.rsucc == JoinId::NONE;
                     true
                 });
                 total = total && walked && below_total;
@@ -166,7 +168,7 @@ impl Core<'_> {
     pub(crate) fn may_defer(&mut self, tmpl: Ix) -> bool {
         self.st.mode.firing
             && self.st.mode.watch & (watch::FACTS | watch::ACTIVATIONS) == 0
-            && self.st.net.owed == NONE
+            && self.st.net.owed == TokenId::NONE
             && !self.st.agenda.act_journal.replay
             && self.defer_flags(tmpl) & TOTAL_TESTS != 0
     }
@@ -182,7 +184,7 @@ impl Core<'_> {
             || waiting == old
             || call != self.st.net.top_action
             || self.st.mode.watch & (watch::FACTS | watch::ACTIVATIONS) != 0
-            || self.st.net.owed != NONE
+            || self.st.net.owed != TokenId::NONE
             || self.st.agenda.act_journal.replay
         {
             return false;

@@ -13,6 +13,7 @@
 use super::{JoinKind, PatBinding, TokenKind, MAX_RHASH, THIS_PATTERN};
 use crate::engine::Core;
 use crate::expr::{loc, Op};
+use crate::handle::{JoinId, TokenId};
 use crate::value::{Ix, Value, NONE};
 
 /// `Core::value_hash` of a single-field value (no multifield to walk; callers
@@ -39,7 +40,7 @@ pub const KEY_PLANS: usize = 8;
 /// index and slot of each earlier variable its equality tests compare with.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct KeyPlan {
-    pub join: Ix,
+    pub join: JoinId,
     /// The join's test chain (a reused join id has another one).
     pub tests: Ix,
     /// Number of fields; `KeyPlan::NONE.n` when the evaluator must compute the key.
@@ -49,7 +50,7 @@ pub struct KeyPlan {
 
 impl KeyPlan {
     pub const NONE: KeyPlan = KeyPlan {
-        join: NONE,
+        join: JoinId::NONE,
         tests: NONE,
         n: u8::MAX,
         vars: [(0, 0); MAX_RHASH],
@@ -110,8 +111,8 @@ impl Core<'_> {
     /// the earlier variables the join's equality tests compare with; `lhs_pm` must
     /// hold the left token's bindings. None when a value cannot be read: then the
     /// whole memory is scanned.
-    fn left_key(&mut self, join: Ix) -> Option<u32> {
-        let j = self.joins[join as usize];
+    fn left_key(&mut self, join: JoinId) -> Option<u32> {
+        let j = self.joins[join];
         let n = self.alphas[j.alpha as usize];
         let (scratch, sp, pm) = (
             self.st.frame.scratch_top,
@@ -158,9 +159,9 @@ impl Core<'_> {
     /// `bind_for_quick`): the compared fields are read straight from the facts, as
     /// the join's key plan says. None when one is not a plain single-field slot.
     #[cfg_attr(feature = "host-speedups", inline(always))]
-    fn quick_left_key(&mut self, join: Ix, left: Ix) -> Option<u32> {
-        let tests = self.joins[join as usize].tests;
-        let i = join as usize % KEY_PLANS;
+    fn quick_left_key(&mut self, join: JoinId, left: TokenId) -> Option<u32> {
+        let tests = self.joins[join].tests;
+        let i = join.ix() % KEY_PLANS;
         let cached = &self.st.cache.key_plans[i];
         if cached.join != join || cached.tests != tests {
             self.st.cache.key_plans[i] = self.key_plan(join);
@@ -189,8 +190,8 @@ impl Core<'_> {
     /// Which fields `left_key` reads for `join`: the earlier variables its
     /// equality tests compare with, in test order, when all are plain single-field
     /// slot reads (else a plan with `n == KeyPlan::NONE.n`).
-    fn key_plan(&self, join: Ix) -> KeyPlan {
-        let j = &self.joins[join as usize];
+    fn key_plan(&self, join: JoinId) -> KeyPlan {
+        let j = &self.joins[join];
         let nrhash = self.alphas[j.alpha as usize].nrhash;
         let mut plan = KeyPlan {
             join,
@@ -240,12 +241,12 @@ impl Core<'_> {
     }
 
     /// Adds a new alpha match (already in its node's memory) to the index.
-    pub(crate) fn index_insert(&mut self, am: Ix) {
-        let alpha = self.tokens[am as usize].owner;
+    pub(crate) fn index_insert(&mut self, am: TokenId) {
+        let alpha = self.tokens[am].alpha();
         if self.alphas[alpha as usize].nrhash == 0 {
             return;
         }
-        let tk = self.tokens[am as usize];
+        let tk = self.tokens[am];
         let key = self.alpha_key(
             alpha,
             PatBinding {
@@ -255,51 +256,51 @@ impl Core<'_> {
         );
         let b = self.bucket(alpha, key);
         let head = self.amem_buckets[b as usize];
-        self.tokens[am as usize].parent = b;
-        self.tokens[am as usize].am_next = NONE;
-        if head == NONE {
-            self.tokens[am as usize].am_prev = am;
+        self.tokens[am].parent = TokenId(b);
+        self.tokens[am].am_next = TokenId::NONE;
+        if head == TokenId::NONE {
+            self.tokens[am].am_prev = am;
             self.amem_buckets[b as usize] = am;
         } else {
-            let tail = self.tokens[head as usize].am_prev;
-            self.tokens[tail as usize].am_next = am;
-            self.tokens[am as usize].am_prev = tail;
-            self.tokens[head as usize].am_prev = am;
+            let tail = self.tokens[head].am_prev;
+            self.tokens[tail].am_next = am;
+            self.tokens[am].am_prev = tail;
+            self.tokens[head].am_prev = am;
         }
     }
 
     /// Takes an alpha match out of the index.
-    pub(crate) fn index_remove(&mut self, am: Ix) {
-        let tk = self.tokens[am as usize];
-        if tk.kind != TokenKind::Alpha || self.alphas[tk.owner as usize].nrhash == 0 {
+    pub(crate) fn index_remove(&mut self, am: TokenId) {
+        let tk = self.tokens[am];
+        if tk.kind != TokenKind::Alpha || self.alphas[tk.alpha() as usize].nrhash == 0 {
             return;
         }
-        let b = tk.parent as usize;
+        let b = tk.parent.ix();
         self.amem_buckets[b] = self.am_chain_remove(self.amem_buckets[b], am);
-        self.tokens[am as usize].parent = NONE;
+        self.tokens[am].parent = TokenId::NONE;
     }
 
     /// Removes `t` from a chain linked through `am_next`/`am_prev` whose head's
     /// `am_prev` is the tail (a bucket, or the owed list); returns the new head.
-    pub(crate) fn am_chain_remove(&mut self, head: Ix, t: Ix) -> Ix {
-        let tk = self.tokens[t as usize];
+    pub(crate) fn am_chain_remove(&mut self, head: TokenId, t: TokenId) -> TokenId {
+        let tk = self.tokens[t];
         let mut new_head = head;
         if t == head {
             new_head = tk.am_next;
-            if tk.am_next != NONE {
+            if tk.am_next != TokenId::NONE {
                 // the new head keeps the tail
-                self.tokens[tk.am_next as usize].am_prev = tk.am_prev;
+                self.tokens[tk.am_next].am_prev = tk.am_prev;
             }
         } else {
-            self.tokens[tk.am_prev as usize].am_next = tk.am_next;
-            if tk.am_next != NONE {
-                self.tokens[tk.am_next as usize].am_prev = tk.am_prev;
+            self.tokens[tk.am_prev].am_next = tk.am_next;
+            if tk.am_next != TokenId::NONE {
+                self.tokens[tk.am_next].am_prev = tk.am_prev;
             } else {
-                self.tokens[head as usize].am_prev = tk.am_prev;
+                self.tokens[head].am_prev = tk.am_prev;
             }
         }
-        self.tokens[t as usize].am_next = NONE;
-        self.tokens[t as usize].am_prev = NONE;
+        self.tokens[t].am_next = TokenId::NONE;
+        self.tokens[t].am_prev = TokenId::NONE;
         new_head
     }
 
@@ -307,9 +308,9 @@ impl Core<'_> {
     /// the first match of its bucket (then `next_candidate` with `hashed`), or the
     /// whole memory.
     #[cfg_attr(feature = "host-speedups", inline(always))]
-    pub(crate) fn first_candidate(&mut self, join: Ix, left: Ix) -> (Ix, bool) {
-        debug_assert!(self.joins[join as usize].kind != JoinKind::Root);
-        let alpha = self.joins[join as usize].alpha;
+    pub(crate) fn first_candidate(&mut self, join: JoinId, left: TokenId) -> (TokenId, bool) {
+        debug_assert!(self.joins[join].kind != JoinKind::Root);
+        let alpha = self.joins[join].alpha;
         if self.alphas[alpha as usize].nrhash > 0 {
             let (ct, cj, ck) = self.st.cache.key_cache;
             let key = if ct == left && cj == join {
@@ -325,9 +326,9 @@ impl Core<'_> {
                 };
                 #[cfg(feature = "host-speedups")]
                 if let Some(k) = key {
-                    let owner = self.tokens[left as usize].owner;
-                    if self.joins[owner as usize].index_child == join {
-                        let tk = &mut self.tokens[left as usize];
+                    let owner = self.tokens[left].owner;
+                    if self.joins[owner].index_child == join {
+                        let tk = &mut self.tokens[left];
                         tk.key = k;
                         tk.has_key = true;
                     }
@@ -344,19 +345,19 @@ impl Core<'_> {
     }
 
     /// The candidate after `a` (same chain kind as `first_candidate` gave).
-    pub(crate) fn next_candidate(&self, a: Ix, hashed: bool) -> Ix {
+    pub(crate) fn next_candidate(&self, a: TokenId, hashed: bool) -> TokenId {
         if hashed {
-            let alpha = self.tokens[a as usize].owner;
-            self.skip_foreign(self.tokens[a as usize].am_next, alpha)
+            let alpha = self.tokens[a].alpha();
+            self.skip_foreign(self.tokens[a].am_next, alpha)
         } else {
-            self.tokens[a as usize].mem_next
+            self.tokens[a].mem_next
         }
     }
 
     /// Skips bucket entries of other alpha nodes.
-    fn skip_foreign(&self, mut a: Ix, alpha: Ix) -> Ix {
-        while a != NONE && self.tokens[a as usize].owner != alpha {
-            a = self.tokens[a as usize].am_next;
+    fn skip_foreign(&self, mut a: TokenId, alpha: Ix) -> TokenId {
+        while a != TokenId::NONE && self.tokens[a].alpha() != alpha {
+            a = self.tokens[a].am_next;
         }
         a
     }
@@ -371,98 +372,98 @@ impl Core<'_> {
     // keep the bucket links in fields only alpha matches use: `fact` (next),
     // `marks[0..2]` (previous; the head's is the tail), `marks[2..4]` (bucket).
 
-    fn bnext(&self, t: Ix) -> Ix {
-        self.tokens[t as usize].fact
+    fn bnext(&self, t: TokenId) -> TokenId {
+        TokenId(self.tokens[t].fact)
     }
 
-    fn set_bnext(&mut self, t: Ix, n: Ix) {
-        self.tokens[t as usize].fact = n;
-    }
-
-    #[cfg(not(feature = "wide-index"))]
-    fn bprev(&self, t: Ix) -> Ix {
-        let m = self.tokens[t as usize].marks;
-        Ix::from_le_bytes([m[0], m[1]])
+    fn set_bnext(&mut self, t: TokenId, n: TokenId) {
+        self.tokens[t].fact = n.0;
     }
 
     #[cfg(not(feature = "wide-index"))]
-    fn set_bprev(&mut self, t: Ix, p: Ix) {
-        let b = p.to_le_bytes();
-        self.tokens[t as usize].marks[0] = b[0];
-        self.tokens[t as usize].marks[1] = b[1];
+    fn bprev(&self, t: TokenId) -> TokenId {
+        let m = self.tokens[t].marks;
+        TokenId(Ix::from_le_bytes([m[0], m[1]]))
     }
 
     #[cfg(not(feature = "wide-index"))]
-    fn bbucket(&self, t: Ix) -> Ix {
-        let m = self.tokens[t as usize].marks;
+    fn set_bprev(&mut self, t: TokenId, p: TokenId) {
+        let b = p.0.to_le_bytes();
+        self.tokens[t].marks[0] = b[0];
+        self.tokens[t].marks[1] = b[1];
+    }
+
+    #[cfg(not(feature = "wide-index"))]
+    fn bbucket(&self, t: TokenId) -> Ix {
+        let m = self.tokens[t].marks;
         Ix::from_le_bytes([m[2], m[3]])
     }
 
     #[cfg(not(feature = "wide-index"))]
-    fn set_bbucket(&mut self, t: Ix, b: Ix) {
+    fn set_bbucket(&mut self, t: TokenId, b: Ix) {
         let x = b.to_le_bytes();
-        self.tokens[t as usize].marks[2] = x[0];
-        self.tokens[t as usize].marks[3] = x[1];
+        self.tokens[t].marks[2] = x[0];
+        self.tokens[t].marks[3] = x[1];
     }
 
     // With `u32` indices two links do not fit in `marks`: the token has a field for them.
     #[cfg(feature = "wide-index")]
-    fn bprev(&self, t: Ix) -> Ix {
-        self.tokens[t as usize].beta_links[0]
+    fn bprev(&self, t: TokenId) -> TokenId {
+        TokenId(self.tokens[t].beta_links[0])
     }
 
     #[cfg(feature = "wide-index")]
-    fn set_bprev(&mut self, t: Ix, p: Ix) {
-        self.tokens[t as usize].beta_links[0] = p;
+    fn set_bprev(&mut self, t: TokenId, p: TokenId) {
+        self.tokens[t].beta_links[0] = p.0;
     }
 
     #[cfg(feature = "wide-index")]
-    fn bbucket(&self, t: Ix) -> Ix {
-        self.tokens[t as usize].beta_links[1]
+    fn bbucket(&self, t: TokenId) -> Ix {
+        self.tokens[t].beta_links[1]
     }
 
     #[cfg(feature = "wide-index")]
-    fn set_bbucket(&mut self, t: Ix, b: Ix) {
-        self.tokens[t as usize].beta_links[1] = b;
+    fn set_bbucket(&mut self, t: TokenId, b: Ix) {
+        self.tokens[t].beta_links[1] = b;
     }
 
-    fn beta_bucket(&self, join: Ix, key: u32) -> Ix {
+    fn beta_bucket(&self, join: JoinId, key: u32) -> Ix {
         let n = self.amem_buckets.len();
         let half = n / 2;
-        (half + mix(key, 0x8000_0000 | u32::from(join)) as usize % (n - half).max(1)) as Ix
+        (half + mix(key, 0x8000_0000 | u32::from(join.0)) as usize % (n - half).max(1)) as Ix
     }
 
     /// Makes `child` the join whose tests key `parent`'s memory, if the memory is
     /// empty and not indexed yet and `child` is fed by a node with a right hash.
-    pub(crate) fn choose_index_child(&mut self, parent: Ix, child: Ix) {
+    pub(crate) fn choose_index_child(&mut self, parent: JoinId, child: JoinId) {
         // called for every new join: a reused join id must not keep an old plan
         self.st.cache.key_plans = [KeyPlan::NONE; KEY_PLANS];
         self.st.cache.test_plans = [super::TestPlan::NONE; super::TEST_PLANS];
-        let p = self.joins[parent as usize];
-        let c = self.joins[child as usize];
-        if parent != 0
-            && p.index_child == NONE
-            && self.join_mems[parent as usize].mem == NONE
+        let p = self.joins[parent];
+        let c = self.joins[child];
+        if parent != JoinId::ROOT
+            && p.index_child == JoinId::NONE
+            && self.join_mems[parent].mem == TokenId::NONE
             && c.alpha != NONE
-            && c.rjoin == NONE
+            && c.rjoin == JoinId::NONE
             && self.alphas[c.alpha as usize].nrhash > 0
         {
-            self.joins[parent as usize].index_child = child;
+            self.joins[parent].index_child = child;
         }
     }
 
     /// Adds a new partial match (already at the head of its memory) to the index.
     #[cfg_attr(feature = "host-speedups", inline(always))]
-    pub(crate) fn beta_index_insert(&mut self, t: Ix) {
-        let join = self.tokens[t as usize].owner;
-        let child = self.joins[join as usize].index_child;
+    pub(crate) fn beta_index_insert(&mut self, t: TokenId) {
+        let join = self.tokens[t].owner;
+        let child = self.joins[join].index_child;
         #[cfg(feature = "host-speedups")]
-        let skip = child == NONE || !self.join_mems[join as usize].index_built;
+        let skip = child == JoinId::NONE || !self.join_mems[join].index_built;
         #[cfg(not(feature = "host-speedups"))]
-        let skip = child == NONE;
+        let skip = child == JoinId::NONE;
         if skip {
-            self.set_bnext(t, NONE);
-            self.set_bprev(t, NONE);
+            self.set_bnext(t, TokenId::NONE);
+            self.set_bprev(t, TokenId::NONE);
             self.set_bbucket(t, NONE);
             return;
         }
@@ -476,23 +477,23 @@ impl Core<'_> {
     /// otherwise), read by the caller with the join's other fields.
     #[cfg(all(feature = "host-speedups", feature = "wide-index"))]
     #[inline(always)]
-    pub(crate) fn beta_index_insert_fresh(&mut self, t: Ix, join: Ix, child: Ix) {
-        if child != NONE {
+    pub(crate) fn beta_index_insert_fresh(&mut self, t: TokenId, join: JoinId, child: JoinId) {
+        if child != JoinId::NONE {
             self.beta_index_link(t, join, child);
         }
     }
 
     #[cfg(not(all(feature = "host-speedups", feature = "wide-index")))]
-    pub(crate) fn beta_index_insert_fresh(&mut self, t: Ix, _join: Ix, _child: Ix) {
+    pub(crate) fn beta_index_insert_fresh(&mut self, t: TokenId, _join: JoinId, _child: JoinId) {
         self.beta_index_insert(t);
     }
 
     /// Puts partial match `t` of `join` at the head of its bucket for `child`.
     #[cfg_attr(feature = "host-speedups", inline(always))]
-    fn beta_index_link(&mut self, t: Ix, join: Ix, child: Ix) {
+    fn beta_index_link(&mut self, t: TokenId, join: JoinId, child: JoinId) {
         #[cfg(feature = "host-speedups")]
         let known = {
-            let tk = &self.tokens[t as usize];
+            let tk = &self.tokens[t];
             tk.has_key.then_some(tk.key)
         };
         #[cfg(not(feature = "host-speedups"))]
@@ -507,10 +508,7 @@ impl Core<'_> {
             Some(key) => key,
             None => {
                 self.bind_left(t);
-                let (pm, depth) = (
-                    self.st.net.pm_rhs,
-                    self.joins[child as usize].depth as usize,
-                );
+                let (pm, depth) = (self.st.net.pm_rhs, self.joins[child].depth as usize);
                 let saved = self.st.net.lhs_pm[depth];
                 // an unreadable value: bucket of key 0 (the child then scans, see below)
                 let key = self.left_key(child).unwrap_or(0);
@@ -524,7 +522,7 @@ impl Core<'_> {
         let head = self.amem_buckets[b as usize];
         self.set_bbucket(t, b);
         self.set_bnext(t, head);
-        if head == NONE {
+        if head == TokenId::NONE {
             self.set_bprev(t, t);
         } else {
             let tail = self.bprev(head);
@@ -536,17 +534,15 @@ impl Core<'_> {
 
     /// Takes a partial match out of its memory's index.
     #[cfg_attr(feature = "host-speedups", inline(always))]
-    pub(crate) fn beta_index_remove(&mut self, t: Ix) {
+    pub(crate) fn beta_index_remove(&mut self, t: TokenId) {
         // host: only a linked partial match has a bucket (alpha matches and links
         // keep `beta_links` NONE), so one load decides the common unindexed case
         #[cfg(feature = "wide-index")]
         if self.bbucket(t) == NONE {
             return;
         }
-        let owner = self.tokens[t as usize].owner;
-        if self.tokens[t as usize].kind != TokenKind::Beta
-            || self.joins[owner as usize].index_child == NONE
-        {
+        let owner = self.tokens[t].owner;
+        if self.tokens[t].kind != TokenKind::Beta || self.joins[owner].index_child == JoinId::NONE {
             return;
         }
         let b = self.bbucket(t);
@@ -557,12 +553,12 @@ impl Core<'_> {
         let head = self.amem_buckets[b as usize];
         if head == t {
             self.amem_buckets[b as usize] = next;
-            if next != NONE {
+            if next != TokenId::NONE {
                 self.set_bprev(next, prev);
             }
         } else {
             self.set_bnext(prev, next);
-            if next != NONE {
+            if next != TokenId::NONE {
                 self.set_bprev(next, prev);
             } else {
                 self.set_bprev(head, prev);
@@ -574,21 +570,21 @@ impl Core<'_> {
     /// Where a new alpha match `am` right-activating `join` starts among the
     /// parent's partial matches: its bucket when the parent's memory is indexed for
     /// `join` (then `next_left` with `hashed`), else the whole memory.
-    pub(crate) fn first_left(&mut self, join: Ix, am: Ix) -> (Ix, bool) {
-        let j = self.joins[join as usize];
-        let parent_mem = self.join_mems[j.parent as usize].mem;
+    pub(crate) fn first_left(&mut self, join: JoinId, am: TokenId) -> (TokenId, bool) {
+        let j = self.joins[join];
+        let parent_mem = self.join_mems[j.parent].mem;
         // host: an empty memory stays unindexed (its index would only make every
         // partial match that comes pay its bucket until the next right activation)
         #[cfg(feature = "host-speedups")]
-        if parent_mem == NONE {
-            return (NONE, false);
+        if parent_mem == TokenId::NONE {
+            return (TokenId::NONE, false);
         }
-        if self.joins[j.parent as usize].index_child == join {
+        if self.joins[j.parent].index_child == join {
             #[cfg(feature = "host-speedups")]
-            if !self.join_mems[j.parent as usize].index_built {
+            if !self.join_mems[j.parent].index_built {
                 self.build_beta_index(j.parent, join);
             }
-            let tk = self.tokens[am as usize];
+            let tk = self.tokens[am];
             let key = self.alpha_key(
                 j.alpha,
                 PatBinding {
@@ -604,17 +600,17 @@ impl Core<'_> {
     }
 
     /// The partial match after `l` (same chain kind as `first_left` gave).
-    pub(crate) fn next_left(&self, l: Ix, hashed: bool) -> Ix {
+    pub(crate) fn next_left(&self, l: TokenId, hashed: bool) -> TokenId {
         if hashed {
-            let owner = self.tokens[l as usize].owner;
+            let owner = self.tokens[l].owner;
             self.skip_other_beta(self.bnext(l), owner)
         } else {
-            self.tokens[l as usize].mem_next
+            self.tokens[l].mem_next
         }
     }
 
-    fn skip_other_beta(&self, mut l: Ix, join: Ix) -> Ix {
-        while l != NONE && self.tokens[l as usize].owner != join {
+    fn skip_other_beta(&self, mut l: TokenId, join: JoinId) -> TokenId {
+        while l != TokenId::NONE && self.tokens[l].owner != join {
             l = self.bnext(l);
         }
         l
@@ -624,31 +620,31 @@ impl Core<'_> {
     /// first, each at its bucket's head: the buckets get memory order, as if every
     /// match had been indexed when it came.
     #[cfg(feature = "host-speedups")]
-    fn build_beta_index(&mut self, join: Ix, child: Ix) {
-        let mut t = self.join_mems[join as usize].mem;
-        let mut last = NONE;
-        while t != NONE {
+    fn build_beta_index(&mut self, join: JoinId, child: JoinId) {
+        let mut t = self.join_mems[join].mem;
+        let mut last = TokenId::NONE;
+        while t != TokenId::NONE {
             last = t;
-            t = self.tokens[t as usize].mem_next;
+            t = self.tokens[t].mem_next;
         }
-        while last != NONE {
+        while last != TokenId::NONE {
             self.beta_index_link(last, join, child);
-            last = self.tokens[last as usize].mem_prev;
+            last = self.tokens[last].mem_prev;
         }
-        self.join_mems[join as usize].index_built = true;
+        self.join_mems[join].index_built = true;
     }
 
     /// Stops indexing `join`'s memory (its index child goes away).
-    pub(crate) fn drop_beta_index(&mut self, join: Ix) {
-        let mut t = self.join_mems[join as usize].mem;
-        while t != NONE {
+    pub(crate) fn drop_beta_index(&mut self, join: JoinId) {
+        let mut t = self.join_mems[join].mem;
+        while t != TokenId::NONE {
             self.beta_index_remove(t);
-            t = self.tokens[t as usize].mem_next;
+            t = self.tokens[t].mem_next;
         }
-        self.joins[join as usize].index_child = NONE;
+        self.joins[join].index_child = JoinId::NONE;
         #[cfg(feature = "host-speedups")]
         {
-            self.join_mems[join as usize].index_built = false;
+            self.join_mems[join].index_built = false;
         }
     }
 }

@@ -13,6 +13,7 @@ mod walk;
 mod wipe;
 pub use quick::{TestOp, TestPlan, PLAN_TESTS, TEST_PLANS};
 
+pub use crate::handle::{JoinId, TokenId};
 use crate::value::Ix;
 use crate::value::NONE;
 
@@ -45,7 +46,7 @@ pub struct AlphaNode {
     pub tests: Ix,
     pub next_in_tmpl: Ix,
     /// First successor join (chained by `Join::alpha_next`, newest first).
-    pub succ: Ix,
+    pub succ: JoinId,
     pub nmarks: u8,
     pub live: bool,
     /// The pattern's path in CLIPS's pattern network (field locators and their alpha
@@ -68,7 +69,7 @@ impl AlphaNode {
         desc: NONE,
         tests: NONE,
         next_in_tmpl: NONE,
-        succ: NONE,
+        succ: JoinId::NONE,
         nmarks: 0,
         live: false,
         path_loc: [0; PATH_LEN],
@@ -85,14 +86,14 @@ impl AlphaNode {
 #[derive(Clone, Copy, Debug)]
 pub struct AlphaMem {
     /// Alpha-match tokens, oldest first (CLIPS iterates them so).
-    pub head: Ix,
-    pub tail: Ix,
+    pub head: TokenId,
+    pub tail: TokenId,
 }
 
 impl AlphaMem {
     pub const EMPTY: AlphaMem = AlphaMem {
-        head: NONE,
-        tail: NONE,
+        head: TokenId::NONE,
+        tail: TokenId::NONE,
     };
 }
 
@@ -119,10 +120,10 @@ pub struct Join {
     pub depth: u8,
     /// Terminal node: its rule (NONE for other joins).
     pub rule: Ix,
-    pub parent: Ix,
+    pub parent: JoinId,
     /// Child joins (newest first), chained by `next_sibling`.
-    pub first_child: Ix,
-    pub next_sibling: Ix,
+    pub first_child: JoinId,
+    pub next_sibling: JoinId,
     /// Rules using this join (joins with the same prefix are shared).
     pub refs: Ix,
     pub alpha: Ix,
@@ -131,15 +132,15 @@ pub struct Join {
     /// `test` CEs after a `not`/`exists`: checked on the left token before output.
     pub post: Ix,
     /// Next join in the alpha node's successor list.
-    pub alpha_next: Ix,
+    pub alpha_next: JoinId,
     /// `not`/`exists` over several CEs: the join ending the subnetwork whose partial
     /// matches are this join's right input ("join from the right"), NONE otherwise.
-    pub rjoin: Ix,
+    pub rjoin: JoinId,
     /// First join having this one as its right input (chained by `alpha_next`).
-    pub rsucc: Ix,
+    pub rsucc: JoinId,
     /// The child join whose equality tests key the index of this join's output
     /// memory (see `rete::index`), NONE if the memory is not indexed.
-    pub index_child: Ix,
+    pub index_child: JoinId,
 }
 
 impl Join {
@@ -153,17 +154,17 @@ impl Join {
         kind: JoinKind::Root,
         depth: 0,
         rule: NONE,
-        parent: NONE,
-        first_child: NONE,
-        next_sibling: NONE,
+        parent: JoinId::NONE,
+        first_child: JoinId::NONE,
+        next_sibling: JoinId::NONE,
         refs: 0,
         alpha: NONE,
         tests: NONE,
         post: NONE,
-        alpha_next: NONE,
-        rjoin: NONE,
-        rsucc: NONE,
-        index_child: NONE,
+        alpha_next: JoinId::NONE,
+        rjoin: JoinId::NONE,
+        rsucc: JoinId::NONE,
+        index_child: JoinId::NONE,
     };
 }
 
@@ -172,7 +173,7 @@ impl Join {
 #[derive(Clone, Copy, Debug)]
 pub struct JoinMem {
     /// Output memory: first token (newest first).
-    pub mem: Ix,
+    pub mem: TokenId,
     /// Host: whether the output memory's partial matches are in their index buckets.
     /// The index is built on the first right activation that uses it and dropped
     /// when the memory empties, so memories that are filled and emptied again
@@ -195,7 +196,7 @@ pub struct JoinMem {
 
 impl JoinMem {
     pub const EMPTY: JoinMem = JoinMem {
-        mem: NONE,
+        mem: TokenId::NONE,
         #[cfg(feature = "host-speedups")]
         index_built: false,
         #[cfg(feature = "host-speedups")]
@@ -225,30 +226,31 @@ pub struct Token {
     /// matches.
     pub blocked: bool,
     pub marks: [u8; MAX_MARKS],
-    /// Alpha node (alpha match) or join (partial match).
-    pub owner: Ix,
+    /// Partial match: its join. Alpha match: its alpha node, read by
+    /// [`Token::alpha`] (one field for both, as a token is one or the other).
+    pub owner: JoinId,
     /// Alpha match: the fact slot.
     pub fact: Ix,
     /// Partial match: the alpha match joined on the right (NONE for not/exists/test/root).
-    pub am: Ix,
-    pub parent: Ix,
+    pub am: TokenId,
+    pub parent: TokenId,
     /// Alpha match: first partial match built on it; partial match: first left child.
-    pub first_child: Ix,
+    pub first_child: TokenId,
     /// Partial match: siblings under `parent`; alpha match: other matches of the same fact.
-    pub next_sib: Ix,
-    pub prev_sib: Ix,
+    pub next_sib: TokenId,
+    pub prev_sib: TokenId,
     /// Partial match: siblings under `am`. Not/exists output: the owed list (see
     /// `Core::is_owed`), or while blocked its blocker's `blocks` list (the head's
     /// `am_prev` is the blocker).
-    pub am_next: Ix,
-    pub am_prev: Ix,
-    pub mem_next: Ix,
-    pub mem_prev: Ix,
+    pub am_next: TokenId,
+    pub am_prev: TokenId,
+    pub mem_next: TokenId,
+    pub mem_prev: TokenId,
     /// Partial match: its first activation. Alpha match: propagation progress.
     pub extra: Ix,
     /// The not/exists outputs this token blocks (chained by their `am_next`), so
     /// removing it visits exactly the outputs it decided.
-    pub blocks: Ix,
+    pub blocks: TokenId,
     /// Beta-memory index links of a partial match (previous, bucket), kept in `marks`
     /// when indices are `u16` (see `rete::index`).
     #[cfg(feature = "wide-index")]
@@ -268,23 +270,35 @@ pub struct Token {
 }
 
 impl Token {
+    /// An alpha match's alpha node.
+    #[inline(always)]
+    pub fn alpha(&self) -> Ix {
+        self.owner.0
+    }
+
+    /// The `owner` of an alpha match of alpha node `a`.
+    #[inline(always)]
+    pub const fn alpha_owner(a: Ix) -> JoinId {
+        JoinId(a)
+    }
+
     pub const EMPTY: Token = Token {
         kind: TokenKind::Free,
         blocked: false,
         marks: [0; MAX_MARKS],
-        owner: NONE,
+        owner: JoinId::NONE,
         fact: NONE,
-        am: NONE,
-        parent: NONE,
-        first_child: NONE,
-        next_sib: NONE,
-        prev_sib: NONE,
-        am_next: NONE,
-        am_prev: NONE,
-        mem_next: NONE,
-        mem_prev: NONE,
+        am: TokenId::NONE,
+        parent: TokenId::NONE,
+        first_child: TokenId::NONE,
+        next_sib: TokenId::NONE,
+        prev_sib: TokenId::NONE,
+        am_next: TokenId::NONE,
+        am_prev: TokenId::NONE,
+        mem_next: TokenId::NONE,
+        mem_prev: TokenId::NONE,
         extra: NONE,
-        blocks: NONE,
+        blocks: TokenId::NONE,
         #[cfg(feature = "wide-index")]
         beta_links: [NONE; 2],
         #[cfg(feature = "host-speedups")]
@@ -320,7 +334,7 @@ pub struct UnblockLog {
     pub on: bool,
     pub overflow: bool,
     pub len: u8,
-    pub entries: [(Ix, Ix, Ix); UNBLOCK_LOG_LEN],
+    pub entries: [(TokenId, JoinId, TokenId); UNBLOCK_LOG_LEN],
 }
 
 impl UnblockLog {
@@ -328,6 +342,6 @@ impl UnblockLog {
         on: false,
         overflow: false,
         len: 0,
-        entries: [(NONE, NONE, NONE); UNBLOCK_LOG_LEN],
+        entries: [(TokenId::NONE, JoinId::NONE, TokenId::NONE); UNBLOCK_LOG_LEN],
     };
 }

@@ -11,6 +11,7 @@
 
 use crate::engine::Core;
 use crate::expr::{loc, Expr, Op};
+use crate::handle::{JoinId, TokenId};
 use crate::value::{Ix, Value, NONE};
 
 /// Entries of the join-test plan cache (`State::test_plans`, direct-mapped by join).
@@ -31,7 +32,7 @@ pub struct TestOp {
 /// `n == TestPlan::NONE.n` when they are not all of that shape.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct TestPlan {
-    pub join: Ix,
+    pub join: JoinId,
     /// The join's test chain (a reused join id has another one).
     pub tests: Ix,
     pub n: u8,
@@ -40,7 +41,7 @@ pub struct TestPlan {
 
 impl TestPlan {
     pub const NONE: TestPlan = TestPlan {
-        join: NONE,
+        join: JoinId::NONE,
         tests: NONE,
         n: u8::MAX,
         ops: [TestOp {
@@ -68,7 +69,7 @@ impl Core<'_> {
     /// Makes the facts of `left`'s ancestry readable by `left_fact`: with
     /// `Token::binds` (host) they already are, else `lhs_pm` is filled.
     #[inline(always)]
-    pub(crate) fn bind_for_quick(&mut self, left: Ix) {
+    pub(crate) fn bind_for_quick(&mut self, left: TokenId) {
         #[cfg(not(feature = "host-speedups"))]
         self.bind_left(left);
         #[cfg(feature = "host-speedups")]
@@ -78,10 +79,10 @@ impl Core<'_> {
     /// The fact bound at pattern `pat` of left token `left` (NONE if none or not
     /// kept), after `bind_for_quick(left)`.
     #[inline(always)]
-    pub(crate) fn left_fact(&self, left: Ix, pat: u8) -> Ix {
+    pub(crate) fn left_fact(&self, left: TokenId, pat: u8) -> Ix {
         #[cfg(feature = "host-speedups")]
         {
-            match self.tokens[left as usize].binds.get(pat as usize) {
+            match self.tokens[left].binds.get(pat as usize) {
                 Some(&f) => f,
                 None => NONE,
             }
@@ -99,14 +100,14 @@ impl Core<'_> {
     #[cfg_attr(feature = "host-speedups", inline(always))]
     pub(crate) fn planned_join_test(
         &mut self,
-        join: Ix,
+        join: JoinId,
         tests: Ix,
         depth: u8,
-        left: Ix,
+        left: TokenId,
         right_fact: Ix,
         planned: &mut bool,
     ) -> Option<bool> {
-        let i = join as usize % TEST_PLANS;
+        let i = join.ix() % TEST_PLANS;
         if !*planned {
             let cached = &self.st.cache.test_plans[i];
             if cached.join != join || cached.tests != tests {
@@ -135,7 +136,7 @@ impl Core<'_> {
         &self,
         (pat, slot): (u8, u8),
         depth: u8,
-        left: Ix,
+        left: TokenId,
         right_fact: Ix,
     ) -> Option<&Value> {
         let fact = if pat == depth {
@@ -162,7 +163,7 @@ impl Core<'_> {
     }
 
     /// The plan of a join's tests (see `TestPlan`).
-    fn test_plan(&self, join: Ix, tests: Ix, depth: u8) -> TestPlan {
+    fn test_plan(&self, join: JoinId, tests: Ix, depth: u8) -> TestPlan {
         let mut plan = TestPlan {
             join,
             tests,
@@ -225,7 +226,7 @@ impl Core<'_> {
 
     /// A pattern variable of a join test of the join at `depth`: the right input's
     /// fact (`right_fact`) for `depth`, else left token `left`'s (`left_fact`).
-    fn join_var(&self, x: &Expr, depth: u8, left: Ix, right_fact: Ix) -> Option<&Value> {
+    fn join_var(&self, x: &Expr, depth: u8, left: TokenId, right_fact: Ix) -> Option<&Value> {
         if x.op != Op::PatVar || x.first != NONE || x.data == loc::FACT {
             return None;
         }
@@ -249,7 +250,7 @@ impl Core<'_> {
         &self,
         tests: Ix,
         depth: u8,
-        left: Ix,
+        left: TokenId,
         right_fact: Ix,
     ) -> Option<bool> {
         let mut t = tests;

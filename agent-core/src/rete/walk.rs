@@ -2,7 +2,7 @@
 //! deferred propagation and whole-memory removal need).
 
 use crate::engine::Core;
-use crate::value::{Ix, NONE};
+use crate::handle::JoinId;
 
 /// Deepest join subtree a walk follows (deeper: it gives up).
 const WALK_STACK: usize = 64;
@@ -14,23 +14,23 @@ impl Core<'_> {
     /// is deeper than it can follow.
     pub(super) fn walk_joins(
         &self,
-        first: Ix,
+        first: JoinId,
         chain: bool,
-        ok: &mut dyn FnMut(&Core<'_>, Ix) -> bool,
+        ok: &mut dyn FnMut(&Core<'_>, JoinId) -> bool,
     ) -> bool {
-        let mut stack = [NONE; WALK_STACK];
+        let mut stack = [JoinId::NONE; WALK_STACK];
         let mut n = 0;
         let mut j = first;
-        while j != NONE {
+        while j != JoinId::NONE {
             if n == WALK_STACK {
                 return false;
             }
             stack[n] = j;
             n += 1;
             j = if chain {
-                self.joins[j as usize].alpha_next
+                self.joins[j].alpha_next
             } else {
-                NONE
+                JoinId::NONE
             };
         }
         while n > 0 {
@@ -39,16 +39,16 @@ impl Core<'_> {
             if !ok(self, j) {
                 return false;
             }
-            let jn = &self.joins[j as usize];
+            let jn = &self.joins[j];
             // children by `next_sibling`, joins from the right by `alpha_next`
             for (mut c, by_sibling) in [(jn.first_child, true), (jn.rsucc, false)] {
-                while c != NONE {
+                while c != JoinId::NONE {
                     if n == WALK_STACK {
                         return false;
                     }
                     stack[n] = c;
                     n += 1;
-                    let cj = &self.joins[c as usize];
+                    let cj = &self.joins[c];
                     c = if by_sibling {
                         cj.next_sibling
                     } else {

@@ -17,25 +17,26 @@
 
 use super::{JoinKind, TokenKind};
 use crate::engine::{watch, Core};
-use crate::value::{Ix, NONE};
+use crate::handle::{JoinId, TokenId};
+use crate::value::NONE;
 
 impl Core<'_> {
     /// Before alpha match `am` is removed: if it is its memory's only match, empties the
     /// memories of its positive successor joins and all below them at once.
-    pub(crate) fn wipe_successors(&mut self, am: Ix) {
-        if self.st.mode.watch & watch::ACTIVATIONS != 0 || self.st.net.owed != NONE {
+    pub(crate) fn wipe_successors(&mut self, am: TokenId) {
+        if self.st.mode.watch & watch::ACTIVATIONS != 0 || self.st.net.owed != TokenId::NONE {
             return;
         }
-        let alpha = self.tokens[am as usize].owner;
-        if self.alpha_mems[alpha as usize].head != am || self.tokens[am as usize].mem_next != NONE {
+        let alpha = self.tokens[am].alpha();
+        if self.alpha_mems[alpha as usize].head != am || self.tokens[am].mem_next != TokenId::NONE {
             return;
         }
         let mut j = self.alphas[alpha as usize].succ;
-        while j != NONE {
-            let jn = &self.joins[j as usize];
+        while j != JoinId::NONE {
+            let jn = &self.joins[j];
             let next = jn.alpha_next;
             if jn.kind == JoinKind::Positive
-                && self.join_mems[j as usize].mem != NONE
+                && self.join_mems[j].mem != TokenId::NONE
                 && self.subtree_plain(j)
             {
                 self.wipe_memory(j, true);
@@ -46,13 +47,13 @@ impl Core<'_> {
 
     /// Whether no join from `join` down feeds a join from the right (remembered per
     /// network generation).
-    fn subtree_plain(&mut self, join: Ix) -> bool {
-        let jn = &self.join_mems[join as usize];
+    fn subtree_plain(&mut self, join: JoinId) -> bool {
+        let jn = &self.join_mems[join];
         if jn.plain_gen == self.st.net.net_gen {
             return jn.plain;
         }
-        let plain = self.walk_joins(join, false, &mut |cx, j| cx.joins[j as usize].rsucc == NONE);
-        let jn = &mut self.join_mems[join as usize];
+        let plain = self.walk_joins(join, false, &mut |cx, j| cx.joins[j].rsucc == JoinId::NONE);
+        let jn = &mut self.join_mems[join];
         jn.plain = plain;
         jn.plain_gen = self.st.net.net_gen;
         plain
@@ -61,29 +62,29 @@ impl Core<'_> {
     /// Empties the memory of `join` and of every join below it; `parents_stay`: the
     /// partial matches' parents are not being removed (the top memory), so they leave
     /// their parents' child lists.
-    fn wipe_memory(&mut self, join: Ix, parents_stay: bool) {
-        let mut t = self.join_mems[join as usize].mem;
-        while t != NONE {
-            let next = self.tokens[t as usize].mem_next;
+    fn wipe_memory(&mut self, join: JoinId, parents_stay: bool) {
+        let mut t = self.join_mems[join].mem;
+        while t != TokenId::NONE {
+            let next = self.tokens[t].mem_next;
             if parents_stay {
                 self.leave_parent(t);
             }
             self.wipe_token(t);
             t = next;
         }
-        let jm = &mut self.join_mems[join as usize];
-        jm.mem = NONE;
+        let jm = &mut self.join_mems[join];
+        jm.mem = TokenId::NONE;
         // an empty memory is trivially unindexed (see `JoinMem::index_built`)
         #[cfg(feature = "host-speedups")]
         {
             jm.index_built = false;
         }
-        let mut c = self.joins[join as usize].first_child;
-        while c != NONE {
-            let cj = &self.joins[c as usize];
+        let mut c = self.joins[join].first_child;
+        while c != JoinId::NONE {
+            let cj = &self.joins[c];
             let next = cj.next_sibling;
             // an empty memory has empty ones below it (theirs extend its matches)
-            if !cj.is_terminal() && self.join_mems[c as usize].mem != NONE {
+            if !cj.is_terminal() && self.join_mems[c].mem != TokenId::NONE {
                 self.wipe_memory(c, false);
             }
             c = next;
@@ -91,11 +92,11 @@ impl Core<'_> {
     }
 
     /// Takes partial match `t` off its parent's child list.
-    fn leave_parent(&mut self, t: Ix) {
-        let tk = &self.tokens[t as usize];
+    fn leave_parent(&mut self, t: TokenId) {
+        let tk = &self.tokens[t];
         let (parent, prev, next) = (tk.parent, tk.prev_sib, tk.next_sib);
-        if parent != NONE {
-            super::beta::leave_parent(self.tokens, parent, prev, next);
+        if parent != TokenId::NONE {
+            super::beta::leave_parent(&mut self.tokens, parent, prev, next);
         }
     }
 
@@ -103,18 +104,18 @@ impl Core<'_> {
     /// stay: its alpha match's children, its blocker's list, its index bucket, and its
     /// activations off the agenda.
     #[inline(always)]
-    fn wipe_token(&mut self, t: Ix) {
-        let tk = &self.tokens[t as usize];
-        debug_assert!(tk.kind == TokenKind::Beta && tk.blocks == NONE);
+    fn wipe_token(&mut self, t: TokenId) {
+        let tk = &self.tokens[t];
+        debug_assert!(tk.kind == TokenKind::Beta && tk.blocks == TokenId::NONE);
         let (am, am_prev, am_next) = (tk.am, tk.am_prev, tk.am_next);
-        if am != NONE {
-            super::beta::leave_alpha_match(self.tokens, am, am_prev, am_next);
-        } else if self.tokens[t as usize].blocked {
+        if am != TokenId::NONE {
+            super::beta::leave_alpha_match(&mut self.tokens, am, am_prev, am_next);
+        } else if self.tokens[t].blocked {
             // a not/exists output on another match's blocker list (nothing is owed)
             self.unlink_blocked(t);
         }
-        while self.tokens[t as usize].extra != NONE {
-            let a = self.tokens[t as usize].extra;
+        while self.tokens[t].extra != NONE {
+            let a = self.tokens[t].extra;
             self.remove_activation(a);
         }
         self.beta_index_remove(t);
