@@ -108,7 +108,7 @@ impl Parser<'_, '_, '_> {
             };
             if kw == "defrule" {
                 let _ = b.write_char(' ');
-                for &m in &self.join_marks[..self.njm] {
+                for &m in self.join_marks.as_slice() {
                     let _ = write!(b, "{}j", m as char);
                 }
             }

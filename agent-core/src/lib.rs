@@ -7,33 +7,46 @@
 //! and its capacity; the failed operation is undone.
 //!
 //! # Three stages
-//! A construct goes through three stages; data flows down, nothing reaches back up.
+//! A construct goes through three stages, each with its own types; data flows down,
+//! nothing reaches back up.
 //!
 //! ```text
-//!  CLIPS text
-//!     │  syntax: lexer, parser (parser::rule for defrule); touches no network
+//!  CLIPS text (&str)
+//!     │  syntax: lexer::Lexer -> parser::Parser (parser::rule for defrule);
+//!     │  reads, touches no network
 //!     ▼
-//!  a rule's intermediate form: expression nodes (Expr pool) + its conditional
-//!  elements (parser::rule::Build, one Ce per join, tests as expression chains), each
-//!  pattern's tests and pattern-network path (PatIr); a rule with `or` is read whole,
-//!  every disjunct, before anything is built
-//!     │  compile: compile::alpha (pattern network: sharing, discrimination, order),
-//!     │           compile::join (joins, sharing of prefixes, hooking up, priming),
-//!     │           compile::remove (rule removal, rollback of a failed build)
+//!  a rule's intermediate form, whole (every disjunct of an `or`):
+//!    parser::rule::Build    one Ce per join to make (kind, parent and right input
+//!                           by CE number, join and post tests as expression chains)
+//!    parser::rule::PatIr    per pattern: template, alpha tests, multislot layout,
+//!                           right hash, path in CLIPS's pattern network
+//!    expression nodes       tests and actions (expr::Expr, the Expr pool)
+//!     │  compile: compile::Compiler { the pools (Core), where the rule's entries
+//!     │  start, the rule it replaces } ; errors are compile::CompileError (pool,
+//!     │  CE), placed in the text by the parser
+//!     │    compile::alpha   pattern network: sharing, discrimination, order
+//!     │    compile::join    joins: sharing of prefixes, the rule, hooking up
+//!     │    compile::prime   the root join; new joins and alpha nodes primed
+//!     │    compile::remove  rule removal, rollback of a build out of room
 //!     ▼
-//!  alpha nodes, joins, rules (their pools), primed with the existing facts
+//!  the network: rules (rule::Rule), alpha nodes (rete::AlphaNode + AlphaMem),
+//!  joins (rete::Join + JoinMem, by JoinId), primed with the existing facts
+//!     │  (host, at build time: Engine::write_compiled -> compiled::RuleBase, Rust
+//!     │   constants; Engine::load_compiled puts one into an engine with no parser)
 //!     │  run time: rete (match), agenda, eval, builtins, commands (run loop)
 //!     ▼
-//!  tokens, activations, facts; firings
+//!  tokens (rete::Token, by TokenId), activations, facts; firings
 //! ```
 //!
 //! A construct the syntax stage refuses leaves nothing in the network, since nothing
 //! is built before its form is whole; its expression nodes, symbols and implied
 //! templates (append-only pools) are given back. Only a build that runs out of room
 //! (a pool, or tokens while priming) is undone in the network (`Core::rollback`).
-//! The root join made at start-up and the priming of new rules are in
-//! `compile::prime`; `rete` only matches (and notes a join's one-child flag,
-//! `note_children`, after compile changes its child list).
+//! The compile stage holds no lexer and no parser: the parser calls it with a form
+//! that is whole ([`parser::Parser`]'s `compiler()`), and `rete` only matches (and
+//! notes a join's one-child flag, `note_children`, after compile changes its child
+//! list). Pools are indexed by typed handles ([`handle`]: a token's index cannot
+//! index the joins).
 //!
 //! # Layout
 //! - [`value`]: values (`Int`, `Float`, symbols, strings, fact addresses, multifield
@@ -42,7 +55,9 @@
 //!   expression trees ([`expr`], 8-byte nodes), a rule into its intermediate form.
 //!   Each construct is read and built inside a checkpoint and undone on any error.
 //! - `compile`: the network builder (alpha nodes, joins, priming) and remover (rule
-//!   removal, rollback).
+//!   removal, rollback), on a rule's intermediate form and the pools it edits.
+//! - [`handle`]: typed pool indexes (`JoinId`, `TokenId`) and the pool views they
+//!   index.
 //! - [`compiled`]: the ahead-of-time form: a loaded engine's constructs, compiled
 //!   network included, written as Rust constants (`Engine::write_compiled`, at build
 //!   time on the host) and loaded into an engine without the parser

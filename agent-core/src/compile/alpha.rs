@@ -3,16 +3,16 @@
 //! touches no network) becomes an alpha node, shared with identical earlier patterns
 //! (sharing and discrimination) and kept in CLIPS's order.
 
+use super::{CompileError, Compiler};
 use crate::engine::cap;
 use crate::error::Pool;
 use crate::expr::{loc, Op};
 use crate::handle::JoinId;
 use crate::parser::rule::{PatBuild, PatIr};
-use crate::parser::{PResult, Parser};
 use crate::rete::{AlphaNode, EMPTY_PATH, MAX_RHASH, PATH_LEN};
 use crate::value::{Ix, NONE};
 
-impl Parser<'_, '_, '_> {
+impl Compiler<'_, '_> {
     /// Analysis of a pattern the syntax stage has read (pure: reads expression nodes
     /// and the template only): its path in the pattern network, the right hash folded
     /// into the path's last field.
@@ -53,7 +53,7 @@ impl Parser<'_, '_, '_> {
 
     /// The alpha node of a pattern: an identical live one, or a new one. `at`: where
     /// the pattern starts in the text (for the error when the pool is full).
-    pub(crate) fn find_or_make_alpha(&mut self, pat: &PatIr, at: u32) -> PResult<Ix> {
+    pub(crate) fn find_or_make_alpha(&mut self, pat: &PatIr, at: u32) -> Result<Ix, CompileError> {
         let tmpl = pat.tmpl;
         let nrhash = pat.nrhash as usize;
         let mut a = self.cx.templates[tmpl as usize].alpha_head;
@@ -71,7 +71,10 @@ impl Parser<'_, '_, '_> {
             a = n.next_in_tmpl;
         }
         if let Err(c) = self.cx.network_writable() {
-            return Err(self.cap_err(self.lex.token_at(at as usize), c));
+            return Err(CompileError {
+                capacity: c,
+                at: Some(at),
+            });
         }
         let n = self.cx.st.pools.nalpha as usize;
         if n >= self.cx.alphas.len() || n >= self.cx.alpha_mems.len() {
@@ -80,7 +83,10 @@ impl Parser<'_, '_, '_> {
             } else {
                 cap(Pool::AlphaMemories, self.cx.alpha_mems.len())
             };
-            return Err(self.cap_err(self.lex.token_at(at as usize), c));
+            return Err(CompileError {
+                capacity: c,
+                at: Some(at),
+            });
         }
         self.cx.alpha_mems[n] = crate::rete::AlphaMem::EMPTY;
         self.cx.alphas[n] = AlphaNode {

@@ -3,12 +3,11 @@
 //! rules' identical prefixes; the new joins are hooked up to their alpha nodes and
 //! primed with the facts that exist (CLIPS's incremental reset).
 
+use super::{CompileError, Compiler};
 use crate::engine::{cap, Core};
 use crate::error::Pool;
 use crate::handle::JoinId;
-use crate::lexer::Token;
 use crate::parser::rule::{Build, CE_ROOT};
-use crate::parser::{PResult, Parser};
 use crate::rete::{Join, JoinKind, JoinMem, MAX_PATTERNS};
 use crate::rule::Rule;
 use crate::value::{Ix, SymId, NONE};
@@ -80,24 +79,7 @@ impl Core<'_> {
     }
 }
 
-impl<'s> Parser<'s, '_, '_> {
-    pub(crate) fn map_prime_err(
-        &self,
-        r: Result<(), crate::error::EvalError>,
-        at: Token<'s>,
-    ) -> PResult<()> {
-        match r {
-            Ok(()) => Ok(()),
-            Err(e) => {
-                let c = match e.kind() {
-                    crate::error::EvalErrorKind::Capacity(c) => c,
-                    _ => cap(Pool::Tokens, self.cx.tokens.len()),
-                };
-                Err(self.cap_err(at, c))
-            }
-        }
-    }
-
+impl Compiler<'_, '_> {
     /// How many references to join `j` the rule this defrule replaces (named `name`,
     /// created before `rule_base`) holds: a join only it uses is not shared, as CLIPS
     /// removes the old rule first and builds (and primes) such joins anew.
@@ -134,7 +116,11 @@ impl<'s> Parser<'s, '_, '_> {
     /// Builds one disjunct the syntax stage has read whole: the alpha nodes of its
     /// patterns, its joins and its rule (hooked up to the alpha nodes and primed
     /// later, in `defrule`).
-    pub(crate) fn compile_disjunct(&mut self, name: SymId, b: &mut Build) -> PResult<Ix> {
+    pub(crate) fn compile_disjunct(
+        &mut self,
+        name: SymId,
+        b: &mut Build,
+    ) -> Result<Ix, CompileError> {
         for ce in &mut b.ces[..b.n] {
             if ce.pat.tmpl != NONE {
                 ce.alpha = self.find_or_make_alpha(&ce.pat, ce.at)?;
@@ -144,25 +130,36 @@ impl<'s> Parser<'s, '_, '_> {
     }
 
     /// Creates the rule and its joins.
-    fn build_rule(&mut self, name: SymId, b: &Build) -> PResult<Ix> {
+    fn build_rule(&mut self, name: SymId, b: &Build) -> Result<Ix, CompileError> {
         self.cx.st.net.net_gen = self.cx.st.net.net_gen.wrapping_add(1);
-        let at = self.peek();
         let nr = self.cx.st.pools.nrules as usize;
         if nr >= self.cx.rules.len() {
             let c = cap(Pool::Rules, self.cx.rules.len());
-            return Err(self.cap_err(at, c));
+            return Err(CompileError {
+                capacity: c,
+                at: None,
+            });
         }
         if let Err(c) = self.cx.network_writable() {
-            return Err(self.cap_err(at, c));
+            return Err(CompileError {
+                capacity: c,
+                at: None,
+            });
         }
         let need = self.cx.st.pools.njoins as usize + b.n + 1;
         if need > self.cx.joins.len() {
             let c = cap(Pool::Joins, self.cx.joins.len());
-            return Err(self.cap_err(at, c));
+            return Err(CompileError {
+                capacity: c,
+                at: None,
+            });
         }
         if need > self.cx.join_mems.len() {
             let c = cap(Pool::JoinMemories, self.cx.join_mems.len());
-            return Err(self.cap_err(at, c));
+            return Err(CompileError {
+                capacity: c,
+                at: None,
+            });
         }
         self.cx.rules[nr] = Rule::EMPTY;
         // the join built for each CE
@@ -205,12 +202,12 @@ impl<'s> Parser<'s, '_, '_> {
                 }
                 if found != JoinId::NONE {
                     self.cx.joins[found].refs += 1;
-                    self.push_join_mark(true);
+                    self.marks.push(true);
                     jid[i] = found;
                     continue;
                 }
             }
-            self.push_join_mark(false);
+            self.marks.push(false);
             let j = JoinId(self.cx.st.pools.njoins);
             self.cx.st.pools.njoins += 1;
             self.cx.joins[j] = Join {
@@ -259,7 +256,7 @@ impl<'s> Parser<'s, '_, '_> {
             first = b.ces[first as usize].parent;
         }
         // the rule's end node
-        self.push_join_mark(false);
+        self.marks.push(false);
         let term = JoinId(self.cx.st.pools.njoins);
         self.cx.st.pools.njoins += 1;
         self.cx.joins[term] = Join {

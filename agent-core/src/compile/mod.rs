@@ -4,7 +4,9 @@
 //! ([`alpha`]: sharing and discrimination) and joins ([`join`]: sharing of identical
 //! prefixes, the rule, hooking up new joins), [`prime`] (the root join; new joins and
 //! alpha nodes matched against what exists); [`remove`] takes them out
-//! again (rule removal, the undo of a build that ran out of room).
+//! again (rule removal, the undo of a build that ran out of room). A defrule is built
+//! by a [`Compiler`]: the pools and what the parser knows of the rule, no lexer; its
+//! errors ([`CompileError`]) name the CE, which the parser places in the text.
 
 pub(crate) mod alpha;
 pub(crate) mod join;
@@ -13,6 +15,71 @@ pub(crate) mod remove;
 
 use crate::engine::Core;
 use crate::error::CapacityError;
+use crate::value::{Ix, SymId};
+
+/// The compile stage at work on one defrule: the pools it edits (the engine's
+/// [`Core`]) and what it needs to know of the defrule besides its form (a `Build`
+/// the syntax stage read whole, handed to [`Compiler::compile_disjunct`]): where the
+/// rules and alpha nodes it creates start, and which rule it replaces. Holds no
+/// lexer and no parser: what it reports is a [`CompileError`], placed in the text by
+/// the caller.
+pub(crate) struct Compiler<'a, 'e> {
+    pub(crate) cx: &'a mut Core<'e>,
+    /// The first rule this defrule creates: rules before it with its name are the
+    /// definition it replaces.
+    pub(crate) rule_base: Ix,
+    /// The first alpha node it creates, and its name when it replaces a rule of that
+    /// name (else NONE): see `Compiler::old_only_alpha`.
+    pub(crate) alpha_base: Ix,
+    pub(crate) replacing: SymId,
+    /// `+j`/`=j` per join built (new or shared), for `watch compilations`.
+    pub(crate) marks: &'a mut JoinMarks,
+}
+
+/// A build that ran out of room: the pool, and where the CE whose node did not fit
+/// starts in the text (`None`: the rule as a whole, placed where the reader stopped).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct CompileError {
+    pub(crate) capacity: CapacityError,
+    pub(crate) at: Option<u32>,
+}
+
+/// `+` (new) or `=` (shared) per join of the last defrule, for `watch compilations`.
+pub struct JoinMarks {
+    marks: [u8; 64],
+    n: usize,
+}
+
+impl JoinMarks {
+    pub const fn new() -> JoinMarks {
+        JoinMarks {
+            marks: [0; 64],
+            n: 0,
+        }
+    }
+
+    pub fn clear(&mut self) {
+        self.n = 0;
+    }
+
+    /// Notes one join (marks past the 64th are dropped: the trace is a summary).
+    pub fn push(&mut self, shared: bool) {
+        if self.n < self.marks.len() {
+            self.marks[self.n] = if shared { b'=' } else { b'+' };
+            self.n += 1;
+        }
+    }
+
+    pub fn as_slice(&self) -> &[u8] {
+        &self.marks[..self.n]
+    }
+}
+
+impl Default for JoinMarks {
+    fn default() -> Self {
+        JoinMarks::new()
+    }
+}
 
 impl Core<'_> {
     /// Makes the network's topology editable: a compiled rule base's alpha nodes and

@@ -83,8 +83,7 @@ pub struct Parser<'s, 'c, 'e> {
     /// Deffunction being defined (for recursive calls), NONE otherwise.
     pub defining_fn: Ix,
     /// `+j`/`=j` per join of the last defrule (new or shared), for `watch compilations`.
-    pub join_marks: [u8; 64],
-    pub njm: usize,
+    pub(crate) join_marks: crate::compile::JoinMarks,
     /// Deftemplate of each LHS pattern of the rule being parsed (NONE when unknown),
     /// so `modify ?f` on the RHS can check slots at parse time.
     pub pat_tmpl: [Ix; MAX_PATTERNS],
@@ -102,11 +101,10 @@ pub struct Parser<'s, 'c, 'e> {
     /// Where a failure of the current construct rolls back to when not to its start:
     /// past what its parse-time evaluations created (their effects stay, as in CLIPS).
     pub keep: Option<crate::engine::Checkpoint>,
-    /// The first rule the current defrule creates: rules before it with its name are
-    /// the definition it replaces.
+    /// The first rule the current defrule creates (see `compile::Compiler`).
     pub rule_base: Ix,
     /// The current defrule's name when it replaces a rule of that name (else NONE),
-    /// and the first alpha node it creates: see `Parser::old_only_alpha`.
+    /// and the first alpha node it creates (see `compile::Compiler`).
     pub replacing: SymId,
     pub alpha_base: Ix,
 }
@@ -130,8 +128,7 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
             scope: Scope::TopLevel,
             construct: "",
             defining_fn: NONE,
-            join_marks: [0; 64],
-            njm: 0,
+            join_marks: crate::compile::JoinMarks::new(),
             pat_tmpl: [NONE; MAX_PATTERNS],
             lhs_slot: None,
             depth: 0,
@@ -357,7 +354,7 @@ pub enum Item {
     End,
 }
 
-impl<'s> Parser<'s, '_, '_> {
+impl<'s, 'e> Parser<'s, '_, 'e> {
     /// Reads the next construct or command. Constructs are built right away (rolled
     /// back on error); commands are returned for the caller to evaluate.
     pub fn next_item(&mut self) -> PResult<Item> {
@@ -441,15 +438,30 @@ impl<'s> Parser<'s, '_, '_> {
         r
     }
 
-    pub fn push_join_mark(&mut self, shared: bool) {
-        if self.njm < self.join_marks.len() {
-            self.join_marks[self.njm] = if shared { b'=' } else { b'+' };
-            self.njm += 1;
+    /// The compile stage for the defrule being read: the pools, and what the reader
+    /// knows of the rule it replaces.
+    pub(crate) fn compiler(&mut self) -> crate::compile::Compiler<'_, 'e> {
+        crate::compile::Compiler {
+            cx: &mut *self.cx,
+            rule_base: self.rule_base,
+            alpha_base: self.alpha_base,
+            replacing: self.replacing,
+            marks: &mut self.join_marks,
         }
     }
 
+    /// A compile error placed in the text: at the CE it names, else where the reader
+    /// stopped.
+    pub(crate) fn compile_err(&mut self, e: crate::compile::CompileError) -> LoadError {
+        let at = match e.at {
+            Some(at) => self.lex.token_at(at as usize),
+            None => self.peek(),
+        };
+        self.cap_err(at, e.capacity)
+    }
+
     fn construct_body(&mut self, kw: &'static str, start: usize) -> PResult<()> {
-        self.njm = 0;
+        self.join_marks.clear();
         self.pat_tmpl = [NONE; MAX_PATTERNS];
         self.nvars = 0;
         self.nlocals = 0;

@@ -126,7 +126,7 @@ impl Build {
 
 /// A pattern as the syntax stage hands it to `compile::alpha`: its template, the tests
 /// it makes of one fact, and its path in CLIPS's pattern network (computed by
-/// `Parser::pattern_form`), which decide which alpha node it shares.
+/// `Compiler::pattern_form`), which decide which alpha node it shares.
 #[derive(Clone, Copy)]
 pub(crate) struct PatIr {
     /// NONE: no pattern.
@@ -213,7 +213,10 @@ impl<'s> Parser<'s, '_, '_> {
             if several {
                 self.read_disjunct(&body_lex, &mut b)?;
             }
-            let r = self.compile_disjunct(sym, &mut b)?;
+            let r = match self.compiler().compile_disjunct(sym, &mut b) {
+                Ok(r) => r,
+                Err(e) => return Err(self.compile_err(e)),
+            };
             if prev_rule != NONE {
                 self.cx.rules[prev_rule as usize].next_disjunct = r;
             }
@@ -246,6 +249,20 @@ impl<'s> Parser<'s, '_, '_> {
             .cx
             .prime_new_rules(first_new_rule, first_new_join, first_new_alpha);
         self.map_prime_err(res, nt)
+    }
+
+    /// A priming that ran out of room, as a load error at `at`.
+    fn map_prime_err(&self, r: Result<(), crate::error::EvalError>, at: Token<'s>) -> PResult<()> {
+        match r {
+            Ok(()) => Ok(()),
+            Err(e) => {
+                let c = match e.kind() {
+                    crate::error::EvalErrorKind::Capacity(c) => c,
+                    _ => crate::engine::cap(crate::error::Pool::Tokens, self.cx.tokens.len()),
+                };
+                Err(self.cap_err(at, c))
+            }
+        }
     }
 
     /// Reads one disjunct (LHS with the current or-choices, RHS) into `b`.
@@ -721,8 +738,9 @@ impl<'s> Parser<'s, '_, '_> {
         }
         self.lhs_slot = None;
         // the pattern's form; `compile::alpha` shares an identical node or makes one
-        self.right_hash(&mut pb, p);
-        let pat = self.pattern_form(tmpl, &pb);
+        let mut compiler = self.compiler();
+        compiler.right_hash(&mut pb, p);
+        let pat = compiler.pattern_form(tmpl, &pb);
         let kind = match ctx {
             Ctx::Top => JoinKind::Positive,
             Ctx::Not => JoinKind::Negative,
