@@ -353,4 +353,5 @@ differential_programs! {
     p194_range_cardinality_attribute_errors => "194-range-cardinality-attribute-errors",
     p195_dynamic_constraint_checking => "195-dynamic-constraint-checking",
     p196_several_allowed_lists => "196-several-allowed-lists",
+    p197_variable_constraint_conflicts => "197-variable-constraint-conflicts",
 }

@@ -75,6 +75,9 @@ pub struct Parser<'s, 'c, 'e> {
     peeked: Option<Token<'s>>,
     pub cx: &'c mut Core<'e>,
     pub vars: [VarEntry<'s>; MAX_VARS],
+    /// What each LHS variable (by `vars` index) can still hold after the slots it
+    /// stood in so far: CLIPS refuses a rule where that is nothing (`[RULECSTR1]`).
+    pub var_cstr: [VarCstr; MAX_VARS],
     pub nvars: usize,
     pub nlocals: Ix,
     pub scope: Scope,
@@ -111,6 +114,24 @@ pub struct Parser<'s, 'c, 'e> {
 
 pub type PResult<T> = Result<T, LoadError>;
 
+/// The values a pattern variable can hold: the types and the numeric range every slot
+/// it stood in allows (`lo`/`hi`: the constant node of the highest minimum and the
+/// lowest maximum, NONE for no bound).
+#[derive(Clone, Copy)]
+pub struct VarCstr {
+    pub types: u8,
+    pub lo: Ix,
+    pub hi: Ix,
+}
+
+impl VarCstr {
+    pub const ANY: VarCstr = VarCstr {
+        types: 0xFF,
+        lo: NONE,
+        hi: NONE,
+    };
+}
+
 impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
     pub fn new(cx: &'c mut Core<'e>, src: &'s str) -> Self {
         Parser {
@@ -123,6 +144,7 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
                 multi: false,
                 unbound_name: NONE,
             }; MAX_VARS],
+            var_cstr: [VarCstr::ANY; MAX_VARS],
             nvars: 0,
             nlocals: 0,
             scope: Scope::TopLevel,
@@ -316,6 +338,7 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
             multi,
             unbound_name: NONE,
         };
+        self.var_cstr[self.nvars] = VarCstr::ANY;
         self.nvars += 1;
         Ok(())
     }

@@ -1050,6 +1050,9 @@ impl<'s> Parser<'s, '_, '_> {
                     },
                     multi,
                 )?;
+                if !multi {
+                    self.narrow_var(t, name)?;
+                }
                 bound_first = true;
             }
             Tok::SfWild | Tok::MfWild => {
@@ -1074,7 +1077,62 @@ impl<'s> Parser<'s, '_, '_> {
             return Ok((multi, Some(e)));
         }
         let e = self.or_constraint(p, locv, desc, &mut multi)?;
+        // a bound variable leading the constraint (not one of `|` alternatives) must
+        // fit this slot too
+        if let Tok::SfVar(name) = t.tok {
+            if self.cx.exprs[e as usize].op != Op::Or {
+                self.narrow_var(t, name)?;
+            }
+        }
         Ok((multi, Some(e)))
+    }
+
+    /// Narrows what LHS variable `name` (at token `t`) can hold by the slot being read
+    /// (none for an ordered fact): `[RULECSTR1]` when no type is left, or only numbers
+    /// and an empty range, as CLIPS checks (it does not intersect allowed values).
+    fn narrow_var(&mut self, t: Token<'s>, name: &str) -> PResult<()> {
+        let Some(def) = self.lhs_slot else {
+            return Ok(());
+        };
+        let Some(i) = self.vars[..self.nvars].iter().rposition(|v| v.name == name) else {
+            return Ok(());
+        };
+        let mut c = self.var_cstr[i];
+        if def.types != 0 {
+            c.types &= def.types;
+        }
+        if def.range != NONE {
+            let bound = |cx: &crate::engine::Core<'_>, e: Ix| cx.const_value(e).as_number();
+            let lo = def.range;
+            let hi = self.cx.exprs[lo as usize].next;
+            if let Some(v) = bound(self.cx, lo) {
+                if c.lo == NONE || bound(self.cx, c.lo).is_some_and(|old| v > old) {
+                    c.lo = lo;
+                }
+            }
+            if let Some(v) = bound(self.cx, hi) {
+                if c.hi == NONE || bound(self.cx, c.hi).is_some_and(|old| v < old) {
+                    c.hi = hi;
+                }
+            }
+        }
+        self.var_cstr[i] = c;
+        let numbers_only = c.types & !crate::template::types::NUMBER == 0;
+        let empty_range = c.lo != NONE
+            && c.hi != NONE
+            && matches!(
+                (self.cx.const_value(c.lo).as_number(), self.cx.const_value(c.hi).as_number()),
+                (Some(lo), Some(hi)) if lo > hi
+            );
+        if c.types == 0 || (numbers_only && empty_range) {
+            let mut e = self.err(t, "a variable whose slots can hold a common value");
+            e.detail = crate::error::LoadDetail::VariableConflict {
+                ce: self.ce_count,
+                slot: def.name,
+            };
+            return Err(e);
+        }
+        Ok(())
     }
 
     fn or_constraint(&mut self, p: u8, locv: Ix, desc: Ix, multi: &mut bool) -> PResult<Ix> {
