@@ -193,8 +193,10 @@ pub fn keep_distance(
     radius_m: f32,
     max_acc_m_s2: f32,
 ) -> Twist {
-    let (mut vx, mut vy) = (twist.vx_m_s, twist.vy_m_s);
-    for t in teammates.iter().flatten() {
+    // Each teammate bounds the speed towards it: (direction, most speed allowed).
+    let mut bounds = [((0f32, 0f32), f32::INFINITY); MAX_TEAMMATES];
+    for (b, t) in bounds.iter_mut().zip(teammates.iter()) {
+        let Some(t) = t else { continue };
         let (lx, ly) = pose.to_local(t.x_m, t.y_m);
         let d = lx.hypot(ly);
         if d < 1e-3 {
@@ -210,12 +212,25 @@ pub fn keep_distance(
         // during the cycle its announcement is late.
         let share = if theirs > 0.01 { 0.5 } else { 1.0 };
         let room = (share * gap - theirs.max(0.0) / 15.0).max(0.0);
-        let allowed = (2.0 * BRAKE_SHARE * max_acc_m_s2 * room).sqrt();
-        let towards = vx * ux + vy * uy;
-        if towards > allowed {
-            vx -= (towards - allowed) * ux;
-            vy -= (towards - allowed) * uy;
+        *b = ((ux, uy), (2.0 * BRAKE_SHARE * max_acc_m_s2 * room).sqrt());
+    }
+    let (mut vx, mut vy) = (twist.vx_m_s, twist.vy_m_s);
+    let excess =
+        |vx: f32, vy: f32, ((ux, uy), allowed): ((f32, f32), f32)| vx * ux + vy * uy - allowed;
+    // Cutting the speed towards one teammate may add speed towards another (a robot
+    // between two): project in turn a few times, and stand still if that does not
+    // satisfy both.
+    for _ in 0..4 {
+        for &b in &bounds {
+            let over = excess(vx, vy, b);
+            if over > 0.0 {
+                vx -= over * b.0 .0;
+                vy -= over * b.0 .1;
+            }
         }
+    }
+    if bounds.iter().any(|&b| excess(vx, vy, b) > 1e-3) {
+        (vx, vy) = (0.0, 0.0);
     }
     Twist::new(vx, vy, twist.omega_rad_s)
 }
@@ -313,6 +328,40 @@ mod tests {
         let a = keep_distance(&me, Twist::new(0.5, 0.0, 0.0), &still, r, 1.0);
         let b = keep_distance(&me, Twist::new(0.5, 0.0, 0.0), &coming, r, 1.0);
         assert!(b.vx_m_s < a.vx_m_s && a.vx_m_s < 0.5, "{a:?} {b:?}");
+    }
+
+    /// A robot between two teammates: cutting the speed towards one must not add speed
+    /// towards the other (seed 29 of the team game touched that way).
+    #[test]
+    fn the_guard_holds_between_two_teammates() {
+        let r = 0.185;
+        let me = Pose2::new(2.59, 1.856, core::f32::consts::FRAC_PI_2);
+        let mates = [
+            Some(Teammate {
+                number: 3,
+                x_m: 2.771,
+                y_m: 2.196,
+                vx_m_s: 0.0,
+                vy_m_s: 0.0,
+            }),
+            Some(Teammate {
+                number: 2,
+                x_m: 2.601,
+                y_m: 1.400,
+                vx_m_s: 0.361,
+                vy_m_s: 0.088,
+            }),
+        ];
+        let t = keep_distance(&me, Twist::new(-0.045, -0.366, 0.0), &mates, r, 1.0);
+        for m in mates.iter().flatten() {
+            let (lx, ly) = me.to_local(m.x_m, m.y_m);
+            let towards = (t.vx_m_s * lx + t.vy_m_s * ly) / lx.hypot(ly);
+            assert!(
+                towards < 0.05,
+                "towards robot {}: {towards} ({t:?})",
+                m.number
+            );
+        }
     }
 
     /// Two robots driving head-on at full speed, each guarding with the other's
