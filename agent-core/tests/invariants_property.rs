@@ -71,6 +71,20 @@ fn fuzz_found_streams() {
     ));
 }
 
+/// Found by `engine_commands` (not-and rule base) after join memories moved into their
+/// own pool: a load that failed was rolled back, giving back its joins but not their
+/// memories, and the next rule's end node took a slot whose stale one-child flag said
+/// "one child" (a partial match deleted there would have looked for a child that is
+/// not there; the flag and its check exist with `host-speedups`). New end nodes and
+/// rolled-back joins now get fresh memories.
+#[test]
+fn fuzz_found_rollback_leaves_a_join_memory_behind() {
+    run_stream_with(
+        RULE_BASE_NOT_AND,
+        include_bytes!("fuzz_regressions/engine_commands-rollback-leaves-one-child-flag.bin"),
+    );
+}
+
 /// Found by `engine_commands` after the not/exists rework: an assert of a `link` that
 /// blocked a `not` of rule `pair`, then ran out of tokens, was undone, but unblocking
 /// during the undo lost the `pair` activation (`remove_link` ignores a failing

@@ -268,6 +268,8 @@ impl Compiler<'_, '_> {
             refs: 1,
             ..Join::EMPTY
         };
+        // a failed load's rollback may have left this slot's memory behind
+        self.cx.join_mems[term] = JoinMem::EMPTY;
         self.cx.joins[prev].first_child = term;
         self.cx.note_children(prev);
         let prev = term;

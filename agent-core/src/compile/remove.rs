@@ -4,7 +4,7 @@
 
 use crate::engine::{Checkpoint, Core};
 use crate::handle::{JoinId, TokenId};
-use crate::rete::{AlphaNode, Join};
+use crate::rete::{AlphaNode, Join, JoinMem};
 use crate::rule::Rule;
 use crate::value::{Ix, NONE};
 
@@ -231,6 +231,7 @@ impl Core<'_> {
         for j in cp.njoins..self.st.pools.njoins {
             let j = JoinId(j);
             self.joins[j] = Join::EMPTY;
+            self.join_mems[j] = JoinMem::EMPTY;
         }
         for r in cp.nrules..self.st.pools.nrules {
             self.rules[r as usize] = Rule::EMPTY;
