@@ -209,6 +209,15 @@ impl Core<'_> {
 
     /// `(reset)`.
     pub fn reset(&mut self) -> Result<(), EvalError> {
+        // a deffacts or global that calls `clear` is refused (builtins/commands.rs)
+        let outer = self.st.mode.resetting;
+        self.st.mode.resetting = true;
+        let r = self.reset_inner();
+        self.st.mode.resetting = outer;
+        r
+    }
+
+    fn reset_inner(&mut self) -> Result<(), EvalError> {
         // rules starting with not/exists/test lose their root-based matches first
         let root_token = self.join_mems[JoinId::ROOT].mem;
         loop {

@@ -408,6 +408,9 @@ pub struct Mode {
     /// value) may not define other constructs or `clear`, which would change the pools
     /// its rollback marks point into.
     pub defining: bool,
+    /// `reset` is going on: the deffacts and globals it evaluates may not `clear`,
+    /// which would wipe the templates, facts and deffacts under it.
+    pub resetting: bool,
     /// The `initial-fact` deffacts is defined (`undeffacts` removes it): `reset`
     /// asserts `(initial-fact)`.
     pub initial_deffacts: bool,
@@ -431,6 +434,7 @@ impl Mode {
             halting: false,
             firing: false,
             defining: false,
+            resetting: false,
             initial_deffacts: true,
             keep_pp_forms: true,
             dynamic_checks: false,

@@ -199,3 +199,43 @@ fn deffacts_create_of_a_call_without_a_value() {
         .expect("asserts");
     e.check_invariants().expect("invariants");
 }
+
+/// Found by `load_str`: a deffacts field that calls `clear` wiped the engine in the
+/// middle of the `reset` asserting it, which went on with facts, templates and
+/// deffacts gone under it ("per-template fact counts wrong"; with a template, an index
+/// out of bounds). `clear` is now refused during a reset, as from a firing rule.
+#[test]
+fn deffacts_that_clears_at_reset() {
+    replay(
+        "deffacts-clear-at-reset",
+        include_bytes!("fuzz_regressions/load_str-deffacts-clear-at-reset.clp"),
+    );
+    replay("minimal", b"(deffacts d1 (a (progn (clear) TRUE)))");
+    struct Errors(String);
+    impl Host for Errors {
+        fn write_str(&mut self, router: &str, text: &str) {
+            if router == "werror" {
+                self.0.push_str(text);
+            }
+        }
+    }
+    let mut e = Box::new(SmallEngine::new());
+    let h = &mut Errors(String::new());
+    e.load_str(
+        h,
+        "d",
+        "(deftemplate it (slot id)) (deffacts d (it (id 1)) (b (progn (clear) x)) (it (id 2)))",
+    )
+    .expect("loads");
+    e.reset(h).expect("resets");
+    e.check_invariants().expect("invariants");
+    assert!(h.0.contains("[CONSTRCT1]"), "clear refused: {:?}", h.0);
+    assert_eq!(
+        e.eval_str(h, "(length$ (find-all-facts ((?f it)) TRUE))"),
+        Ok(agent_core::Value::Int(2))
+    );
+    assert_eq!(
+        e.eval_str(h, "(length$ (find-all-facts ((?f b)) TRUE))"),
+        Ok(agent_core::Value::Int(1))
+    );
+}

@@ -54,9 +54,14 @@ fn reset(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
 }
 
 fn clear(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
-    // a firing rule, a running deffunction or a construct being parsed would go on
-    // with its pools wiped under it
-    if cx.st.mode.firing || cx.st.eval.in_use > 0 || cx.st.mode.defining || cx.st.net.matching > 0 {
+    // a firing rule, a running deffunction, a construct being parsed or a reset
+    // would go on with its pools wiped under it
+    if cx.st.mode.firing
+        || cx.st.eval.in_use > 0
+        || cx.st.mode.defining
+        || cx.st.mode.resetting
+        || cx.st.net.matching > 0
+    {
         cx.write(
             router::WERROR,
             "[CONSTRCT1] Some constructs are still in use. Clear cannot continue.\n",
