@@ -169,7 +169,12 @@ stage_host_tests() {
     # speed-ups), on the host, with the invariants checked before and after every
     # engine operation (`check-invariants`).
     echo "-- agent-core as in the image (no wide-index, no host-speedups) and check-invariants"
-    cargo test -p agent-core --features check-invariants --no-fail-fast
+    cargo test -p agent-core --features check-invariants --no-fail-fast || return 1
+    # The host speed-ups keep state of their own (the joins' one-child flags): the
+    # invariant property tests and fuzz regressions run with them on as well.
+    echo "-- agent-core's invariant tests with host-speedups and check-invariants"
+    cargo test -p agent-core --features check-invariants,host-speedups --no-fail-fast \
+        --test invariants_property
 }
 
 # ---------------------------------------------------------------------------------------
