@@ -9,6 +9,7 @@ mod batch_cli;
 mod clipspy;
 mod decision;
 mod footprint;
+mod generated;
 mod measure;
 mod ours;
 mod process;
@@ -54,12 +55,20 @@ pub enum WorkloadArg {
     Join,
     /// Negation-heavy scaling program at each --scale-sizes fact count.
     Negation,
+    /// Generated: many rules with constant tests on one template (--discrim-sizes rules).
+    Discrim,
+    /// Generated: joins on two and three shared variables (--join3-sizes facts each).
+    Join3,
+    /// Generated: assert/retract chains with not/exists (--propagate-sizes nodes).
+    Propagate,
+    /// Generated: many rules, few facts, like an agent (--agent-sizes rules).
+    Agent,
 }
 
 #[derive(clap::Args, Debug)]
 pub struct Args {
     /// Workloads to run (comma-separated).
-    #[arg(long, value_enum, value_delimiter = ',', default_values = ["llsf", "manners", "join", "negation"])]
+    #[arg(long, value_enum, value_delimiter = ',', default_values = ["llsf", "manners", "join", "negation", "discrim", "join3", "propagate", "agent"])]
     pub workloads: Vec<WorkloadArg>,
     /// Seeded LLSF games (seeds 0..N) played in one process per measurement.
     #[arg(long, default_value_t = 10)]
@@ -70,6 +79,22 @@ pub struct Args {
     /// Fact counts for the join and negation programs.
     #[arg(long, value_delimiter = ',', default_values_t = [100, 1000, 10000, 100000])]
     pub scale_sizes: Vec<usize>,
+    /// Rule counts of the generated discrimination program (multiples of 4).
+    #[arg(long, value_delimiter = ',', default_values_t = [40, 80, 160, 320])]
+    pub discrim_sizes: Vec<usize>,
+    /// Facts per template of the generated two- and three-variable join program.
+    #[arg(long, value_delimiter = ',', default_values_t = [1000, 2000, 4000, 8000])]
+    pub join3_sizes: Vec<usize>,
+    /// Nodes of the generated propagation program.
+    #[arg(long, value_delimiter = ',', default_values_t = [500, 1000, 2000, 4000])]
+    pub propagate_sizes: Vec<usize>,
+    /// Rule counts of the generated agent-like program (2000 firings each).
+    #[arg(long, value_delimiter = ',', default_values_t = [40, 80, 160, 320])]
+    pub agent_sizes: Vec<usize>,
+    /// Cheap run: every selected workload at its smallest size only, one repetition,
+    /// no decision time (for a quick look, not for BENCHMARKS.md).
+    #[arg(long)]
+    pub quick: bool,
     /// Timed repetitions per measurement (wall times are medians).
     #[arg(long, default_value_t = 5)]
     pub reps: usize,
@@ -116,11 +141,18 @@ impl Args {
                 WorkloadArg::Manners => (Kind::Manners, &self.manners_sizes[..]),
                 WorkloadArg::Join => (Kind::Join, &self.scale_sizes[..]),
                 WorkloadArg::Negation => (Kind::Negation, &self.scale_sizes[..]),
+                WorkloadArg::Discrim => (Kind::Discrim, &self.discrim_sizes[..]),
+                WorkloadArg::Join3 => (Kind::Join3, &self.join3_sizes[..]),
+                WorkloadArg::Propagate => (Kind::Propagate, &self.propagate_sizes[..]),
+                WorkloadArg::Agent => (Kind::Agent, &self.agent_sizes[..]),
             };
             // Ascending, so an engine that fails at one size can skip the larger ones.
             let mut sizes = sizes.to_vec();
             sizes.sort_unstable();
             sizes.dedup();
+            if self.quick {
+                sizes.truncate(1);
+            }
             selected.extend(sizes.into_iter().map(|size| Workload { kind, size }));
         }
         selected
@@ -184,7 +216,7 @@ fn run(args: &Args) -> Result<bool, BenchError> {
     }
 
     let plan = Plan {
-        reps: args.reps.max(1),
+        reps: if args.quick { 1 } else { args.reps.max(1) },
         callgrind_limit: (!args.no_callgrind && process::valgrind_available())
             .then(|| Duration::from_secs(args.callgrind_timeout)),
         run_limit: Duration::from_secs(args.run_timeout),
@@ -261,8 +293,8 @@ fn run(args: &Args) -> Result<bool, BenchError> {
         });
     }
 
-    let decisions = if args.no_decision {
-        Err("not measured: --no-decision".to_string())
+    let decisions = if args.no_decision || args.quick {
+        Err("not measured: --no-decision or --quick".to_string())
     } else {
         eprintln!(
             "bench: [{:>5.0} s] decision time over {} games",
@@ -539,6 +571,10 @@ mod tests {
             (Kind::Manners, 16),
             (Kind::Join, 100),
             (Kind::Negation, 100),
+            (Kind::Discrim, 40),
+            (Kind::Join3, 1000),
+            (Kind::Propagate, 500),
+            (Kind::Agent, 40),
         ] {
             let workload = Workload { kind, size };
             let files = ProgramFiles::write(&dir, workload).expect("temp dir is writable");
@@ -565,8 +601,10 @@ mod tests {
         let dir = std::env::temp_dir().join(format!("bench-ours-clips-{}", std::process::id()));
         std::fs::create_dir_all(&dir).expect("temp dir is writable");
         let clips = BatchCli::clips_630();
-        if clips.probe(&dir).is_err() {
-            eprintln!("clips not installed: nothing to compare");
+        if let Err(why) = clips.probe(&dir) {
+            eprintln!(
+                "SKIPPED: CLIPS 6.30 (`clips`) not usable here ({why}): ours is not compared"
+            );
             return;
         }
         let plan = Plan {
@@ -578,6 +616,12 @@ mod tests {
             (Kind::Manners, 16, true),
             (Kind::Join, 100, true),
             (Kind::Negation, 100, false),
+            // the generated kinds at their smallest default sizes: their result lines
+            // do not depend on the order of equal activations
+            (Kind::Discrim, 40, true),
+            (Kind::Join3, 1000, true),
+            (Kind::Propagate, 500, true),
+            (Kind::Agent, 40, true),
         ] {
             let workload = Workload { kind, size };
             let files = ProgramFiles::write(&dir, workload).expect("temp dir is writable");
@@ -592,6 +636,11 @@ mod tests {
                 .expect("engine thread starts")
                 .join()
                 .expect("engine thread runs");
+            assert!(
+                reference.fired.is_ok(),
+                "{}: {reference:?}",
+                workload.name()
+            );
             assert_eq!(ours.fired, reference.fired, "{}", workload.name());
             let outcome = agreement(workload, &["clips", "ours"], &[reference, ours]);
             assert!(outcome.wrong.is_empty(), "{}", outcome.text);
@@ -603,7 +652,7 @@ mod tests {
     }
 
     #[test]
-    fn default_arguments_select_all_thirteen_programs() {
+    fn default_arguments_select_all_twenty_nine_programs() {
         use clap::Parser;
         #[derive(clap::Parser)]
         struct Wrapper {
@@ -617,10 +666,26 @@ mod tests {
             .iter()
             .map(Workload::name)
             .collect();
-        assert_eq!(names.len(), 13);
+        assert_eq!(names.len(), 29);
         assert_eq!(names[0], "llsf-10");
         assert_eq!(names[1], "manners-16");
         assert_eq!(names[12], "negation-100000");
+        assert_eq!(names[13], "discrim-40");
+        assert_eq!(names[28], "agent-320");
+        let quick = Wrapper::parse_from(["bench", "--quick", "--workloads", "join3,agent"]);
+        assert_eq!(
+            quick.args.selected_workloads(),
+            vec![
+                Workload {
+                    kind: Kind::Join3,
+                    size: 1000
+                },
+                Workload {
+                    kind: Kind::Agent,
+                    size: 40
+                }
+            ]
+        );
         let only = Wrapper::parse_from(["bench", "--workloads", "join", "--scale-sizes", "300"]);
         assert_eq!(
             only.args.selected_workloads(),

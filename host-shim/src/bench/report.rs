@@ -312,6 +312,65 @@ impl Report {
         md
     }
 
+    /// Run-phase instructions per rule fired, per workload, and how they grow from the
+    /// smallest to the largest size of each kind (a cost per firing that stays flat
+    /// means total cost grows with the work, not faster).
+    fn per_firing_markdown(&self) -> String {
+        let names = self.names();
+        let mut md = String::from("\n## Instructions per firing (run phase)\n\n");
+        md.push_str(
+            "Run-phase instructions ÷ the engine's own rules fired. *Growth* is the largest \
+             size's value ÷ the smallest size's, per kind.\n\n",
+        );
+        Self::table_header(&mut md, &["workload"], &names, &[]);
+        let mut kinds: Vec<Kind> = Vec::new();
+        for row in &self.rows {
+            if !kinds.contains(&row.workload.kind) {
+                kinds.push(row.workload.kind);
+            }
+            let cells: Vec<String> = row
+                .measured
+                .iter()
+                .map(|m| match per_firing(m) {
+                    Some(v) => format!("{v:.0}"),
+                    None => "–".to_string(),
+                })
+                .collect();
+            let _ = writeln!(md, "| {} | {} |", row.workload.name(), cells.join(" | "));
+        }
+        for kind in kinds {
+            let rows: Vec<&Row> = self
+                .rows
+                .iter()
+                .filter(|r| r.workload.kind == kind)
+                .collect();
+            let (Some(first), Some(last)) = (rows.first(), rows.last()) else {
+                continue;
+            };
+            if rows.len() < 2 {
+                continue;
+            }
+            let cells: Vec<String> = (0..names.len())
+                .map(|i| {
+                    let small = first.measured.get(i).and_then(per_firing);
+                    let large = last.measured.get(i).and_then(per_firing);
+                    match (small, large) {
+                        (Some(s), Some(l)) if s > 0.0 => format!("{:.2}x", l / s),
+                        _ => "–".to_string(),
+                    }
+                })
+                .collect();
+            let _ = writeln!(
+                md,
+                "| growth {} → {} | {} |",
+                first.workload.name(),
+                last.workload.name(),
+                cells.join(" | ")
+            );
+        }
+        md
+    }
+
     /// The whole `BENCHMARKS.md`.
     pub fn markdown(&self) -> String {
         let names = self.names();
@@ -398,6 +457,8 @@ impl Report {
                 );
             }
         }
+
+        md.push_str(&self.per_firing_markdown());
 
         let _ = writeln!(md, "\n## Wall time (median of {})\n", self.plan.reps);
         Self::table_header(
@@ -491,6 +552,13 @@ before the clock starts). Both are host builds with `u32` pool indices (feature 
 ones. Rules fired come from `(watch statistics)` (CLI) or \
 the `run()` return value. Results agree when the programs' result lines are equal (Manners: \
 the same set of seat assignments, also checked to be a valid seating).\n\n";
+
+/// Run-phase instructions per rule fired, when both were measured.
+pub fn per_firing(m: &Measurement) -> Option<f64> {
+    let instr = m.instr_run.as_ref().ok()?;
+    let fired = m.fired.as_ref().ok().filter(|&&f| f > 0)?;
+    Some(*instr as f64 / *fired as f64)
+}
 
 /// The agent image line(s) from the footprint tool's JSON.
 pub fn image_markdown(image: &Result<ImageFootprint, String>) -> String {
@@ -600,6 +668,18 @@ mod tests {
         assert_eq!(duration_text(Duration::from_micros(250)), "250 µs");
         assert_eq!(duration_text(Duration::from_micros(2500)), "2.50 ms");
         assert_eq!(duration_text(Duration::from_millis(3480)), "3.480 s");
+    }
+
+    #[test]
+    fn per_firing_needs_both_readings() {
+        let mut m = Measurement::not_measured("x");
+        assert_eq!(per_firing(&m), None);
+        m.instr_run = Ok(5000);
+        assert_eq!(per_firing(&m), None);
+        m.fired = Ok(0);
+        assert_eq!(per_firing(&m), None);
+        m.fired = Ok(20);
+        assert_eq!(per_firing(&m), Some(250.0));
     }
 
     #[test]

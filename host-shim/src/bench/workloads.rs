@@ -4,6 +4,7 @@
 //! program text. Facts go into `deffacts` so that `(reset)` asserts them: parsing and
 //! asserting then belong to the "no run" baseline that the run phase is measured against.
 
+use super::generated;
 use super::rng::SplitMix64;
 use std::fmt::Write as _;
 
@@ -27,6 +28,14 @@ pub enum Kind {
     Negation,
     /// Seeded simulated LLSF games of the agent rule base (size = number of games).
     Llsf,
+    /// Generated (`generated.rs`): many rules with constant tests (size = rules).
+    Discrim,
+    /// Generated: joins on two and three variables (size = facts per template).
+    Join3,
+    /// Generated: assert/retract chains with `not`/`exists` (size = nodes).
+    Propagate,
+    /// Generated: an agent-like state machine (size = rules).
+    Agent,
 }
 
 impl Kind {
@@ -36,16 +45,32 @@ impl Kind {
             Kind::Join => "join",
             Kind::Negation => "negation",
             Kind::Llsf => "llsf",
+            Kind::Discrim => "discrim",
+            Kind::Join3 => "join3",
+            Kind::Propagate => "propagate",
+            Kind::Agent => "agent",
         }
     }
 
-    /// The rule text of the single-file workloads (LLSF games load the rule base's files).
+    /// The rule text of the single-file workloads from `tests/bench` (LLSF games load
+    /// the rule base's files; the generated kinds make their whole text).
     fn rules(self) -> &'static str {
         match self {
             Kind::Manners => MANNERS_RULES,
             Kind::Join => JOIN_RULES,
             Kind::Negation => NEGATION_RULES,
-            Kind::Llsf => "",
+            _ => "",
+        }
+    }
+
+    /// The whole program text of a generated kind at `size`, None for the others.
+    fn generated_text(self, size: usize) -> Option<String> {
+        match self {
+            Kind::Discrim => Some(generated::discrim_text(size)),
+            Kind::Join3 => Some(generated::join3_text(size)),
+            Kind::Propagate => Some(generated::propagate_text(size)),
+            Kind::Agent => Some(generated::agent_text(size)),
+            _ => None,
         }
     }
 
@@ -57,6 +82,10 @@ impl Kind {
             Kind::Join => "reach2 ",
             Kind::Negation => "started ",
             Kind::Llsf => "GAME ",
+            Kind::Discrim => "discrim ",
+            Kind::Join3 => "join3 ",
+            Kind::Propagate => "propagate ",
+            Kind::Agent => "agent ",
         }
     }
 }
@@ -93,13 +122,17 @@ impl Workload {
             Kind::Manners => manners_facts(&manners_guests(self.size)),
             Kind::Join => join_facts(self.size),
             Kind::Negation => negation_facts(self.size),
-            // Each game's setup is its own deffacts (see `llsf_games_batch`).
-            Kind::Llsf => Vec::new(),
+            // Each game's setup is its own deffacts (see `llsf_games_batch`); generated
+            // kinds write their facts with their rules.
+            _ => Vec::new(),
         }
     }
 
     /// Constructs only (templates, rules, deffacts): what `(load* ...)` reads.
     pub fn constructs_text(&self) -> String {
+        if let Some(text) = self.kind.generated_text(self.size) {
+            return text;
+        }
         let mut text = String::from(self.kind.rules());
         text.push('\n');
         text.push_str(&deffacts_text(&self.name(), &self.facts()));
