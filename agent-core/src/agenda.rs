@@ -234,11 +234,17 @@ impl Core<'_> {
 
     /// `refresh-agenda`: global-based saliences are evaluated again (CLIPS's
     /// when-defined evaluation otherwise keeps them), then the agenda is re-sorted.
-    pub fn reorder_agenda(&mut self) {
+    /// A rule read in place whose salience changes is copied first
+    /// (`network_writable`): an arena without room for the copy is a capacity error,
+    /// and nothing changed.
+    pub fn reorder_agenda(&mut self) -> Result<(), CapacityError> {
         for r in 0..self.st.pools.nrules {
             if self.rules[r as usize].salience_expr != NONE {
                 let s = self.rule_salience(r);
-                self.rules[r as usize].salience = s;
+                if s != self.rules[r as usize].salience {
+                    self.network_writable()?;
+                    self.rules[r as usize].salience = s;
+                }
             }
         }
         let mut list = self.st.agenda.agenda_head;
@@ -257,6 +263,7 @@ impl Core<'_> {
             self.agenda_insert(list);
             list = prev;
         }
+        Ok(())
     }
 
     pub fn agenda_len(&self) -> usize {

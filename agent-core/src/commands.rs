@@ -40,6 +40,9 @@ impl RunStats {
         self.max_acts = self.max_acts.max(a);
     }
 
+    /// Not inlined: its buffer stays off the run loop's stack frame.
+    #[cold]
+    #[inline(never)]
     fn print(&self, cx: &mut Core<'_>, fired: u32) {
         // CLIPS rounds the means to the nearest integer
         let mean = |sum: u64| (sum * 2 + self.samples) / (2 * self.samples.max(1));
@@ -310,8 +313,11 @@ impl Core<'_> {
         for a in self.alpha_mems.iter_mut() {
             *a = crate::rete::AlphaMem::EMPTY;
         }
-        for t in self.templates.iter_mut() {
+        for t in self.templates.ram().iter_mut() {
             *t = crate::template::Template::EMPTY;
+        }
+        for t in self.tmpl_mems.iter_mut() {
+            *t = crate::template::TemplateMem::EMPTY;
         }
         let hw = self.st.pools.hw;
         // what is running goes on: its frame, nesting and firing, and the generator
@@ -329,6 +335,9 @@ impl Core<'_> {
             self.exprs.set_rom(self.st.rom.exprs);
             self.alphas.set_rom(self.st.rom.alphas);
             self.joins.set_rom(self.st.rom.joins);
+            self.templates.set_rom(self.st.rom.templates);
+            self.slots.set_rom(self.st.rom.slots);
+            self.rules.set_rom(self.st.rom.rules);
         }
         self.st.pools.hw = hw;
         (
@@ -567,13 +576,7 @@ impl Core<'_> {
                 if self.st.mode.watch & watch::RULES == 0 {
                     break;
                 }
-                let mut b: TextBuf<160> = TextBuf::new();
-                let _ = writeln!(
-                    b,
-                    "[PRCCODE4] Execution halted during the actions of defrule {}.",
-                    self.sym_text(self.rules[rule as usize].name)
-                );
-                self.write(router::WERROR, b.as_str());
+                self.write_halted_in("defrule", self.rules[rule as usize].name);
                 break;
             }
         }
@@ -586,7 +589,10 @@ impl Core<'_> {
         self.write_halted_in("defrule", self.rules[rule as usize].name);
     }
 
-    /// `[PRCCODE4]`: which construct's actions an error stopped.
+    /// `[PRCCODE4]`: which construct's actions an error (or a halt) stopped. Not
+    /// inlined: its buffer stays off the run loop's stack frame.
+    #[cold]
+    #[inline(never)]
     pub(crate) fn write_halted_in(&mut self, construct: &str, name: SymId) {
         let mut b: TextBuf<256> = TextBuf::new();
         let _ = writeln!(
@@ -1160,6 +1166,7 @@ impl Core<'_> {
 
     /// Runs the file a `batch` command asked for, as the next input of the command loop.
     pub fn run_pending_batch(&mut self) {
+        #[cfg(feature = "parser")]
         while !self.st.io.pending_batch.is_empty() && !self.st.mode.exit {
             let mut path: TextBuf<256> = TextBuf::new();
             let _ = path.write_str(self.st.io.pending_batch.as_str());

@@ -68,6 +68,11 @@ macro_rules! __pool_table {
             Templates templates "templates" 256 16 [
                 templates: $crate::template::Template = $crate::template::Template::EMPTY,
             ],
+            // what changes at run time per template (its facts), by template index:
+            // with `in-place`, the templates of a compiled rule base are read in place
+            TemplateMemories template_memories "template memories" 256 16 [
+                tmpl_mems: $crate::template::TemplateMem = $crate::template::TemplateMem::EMPTY,
+            ],
             SlotDefs slot_defs "slot definitions" 1024 64 [
                 slots: $crate::template::SlotDef = $crate::template::SlotDef::EMPTY,
             ],
@@ -122,31 +127,43 @@ macro_rules! __pool_table {
     };
 }
 
-/// How `Core` holds a pool's array: a slice, but the expression nodes, alpha nodes
-/// and joins, whose views read a compiled rule base's entries in place too
-/// ([`RomPool`](crate::rom::RomPool)).
+/// How `Core` holds a pool's array: a slice, but the pools whose views read a compiled
+/// rule base's entries in place too ([`RomPool`](crate::rom::RomPool)): expression
+/// nodes, alpha nodes, joins, templates, slot definitions and rules.
 #[doc(hidden)]
 #[macro_export]
 macro_rules! __pool_view {
     (mut exprs, $l:lifetime, $t:ty) => { $crate::rom::RomPool<$l, $t> };
+    (mut templates, $l:lifetime, $t:ty) => { $crate::rom::RomPool<$l, $t> };
+    (mut slots, $l:lifetime, $t:ty) => { $crate::rom::RomPool<$l, $t> };
+    (mut rules, $l:lifetime, $t:ty) => { $crate::rom::RomPool<$l, $t> };
     (mut alphas, $l:lifetime, $t:ty) => { $crate::rom::RomPool<$l, $t> };
     (mut joins, $l:lifetime, $t:ty) => { $crate::rom::RomPool<$l, $t, $crate::handle::JoinId> };
     (mut join_mems, $l:lifetime, $t:ty) => { $crate::handle::Slots<$l, $crate::handle::JoinId, $t> };
     (mut tokens, $l:lifetime, $t:ty) => { $crate::handle::Slots<$l, $crate::handle::TokenId, $t> };
     (mut $name:ident, $l:lifetime, $t:ty) => { &$l mut [$t] };
     (ref exprs, $l:lifetime, $t:ty) => { $crate::rom::RomRef<$l, $t> };
+    (ref templates, $l:lifetime, $t:ty) => { $crate::rom::RomRef<$l, $t> };
+    (ref slots, $l:lifetime, $t:ty) => { $crate::rom::RomRef<$l, $t> };
+    (ref rules, $l:lifetime, $t:ty) => { $crate::rom::RomRef<$l, $t> };
     (ref alphas, $l:lifetime, $t:ty) => { $crate::rom::RomRef<$l, $t> };
     (ref joins, $l:lifetime, $t:ty) => { $crate::rom::RomRef<$l, $t, $crate::handle::JoinId> };
     (ref join_mems, $l:lifetime, $t:ty) => { $crate::handle::SlotsRef<$l, $crate::handle::JoinId, $t> };
     (ref tokens, $l:lifetime, $t:ty) => { $crate::handle::SlotsRef<$l, $crate::handle::TokenId, $t> };
     (ref $name:ident, $l:lifetime, $t:ty) => { &$l [$t] };
     (mut exprs, $rom:ident, $arr:expr) => { $crate::rom::RomPool::new($rom.exprs, $arr) };
+    (mut templates, $rom:ident, $arr:expr) => { $crate::rom::RomPool::new($rom.templates, $arr) };
+    (mut slots, $rom:ident, $arr:expr) => { $crate::rom::RomPool::new($rom.slots, $arr) };
+    (mut rules, $rom:ident, $arr:expr) => { $crate::rom::RomPool::new($rom.rules, $arr) };
     (mut alphas, $rom:ident, $arr:expr) => { $crate::rom::RomPool::new($rom.alphas, $arr) };
     (mut joins, $rom:ident, $arr:expr) => { $crate::rom::RomPool::new($rom.joins, $arr) };
     (mut join_mems, $rom:ident, $arr:expr) => { $crate::handle::Slots::new($arr) };
     (mut tokens, $rom:ident, $arr:expr) => { $crate::handle::Slots::new($arr) };
     (mut $name:ident, $rom:ident, $arr:expr) => { $arr };
     (ref exprs, $rom:ident, $arr:expr) => { $crate::rom::RomRef::new($rom.exprs, $arr) };
+    (ref templates, $rom:ident, $arr:expr) => { $crate::rom::RomRef::new($rom.templates, $arr) };
+    (ref slots, $rom:ident, $arr:expr) => { $crate::rom::RomRef::new($rom.slots, $arr) };
+    (ref rules, $rom:ident, $arr:expr) => { $crate::rom::RomRef::new($rom.rules, $arr) };
     (ref alphas, $rom:ident, $arr:expr) => { $crate::rom::RomRef::new($rom.alphas, $arr) };
     (ref joins, $rom:ident, $arr:expr) => { $crate::rom::RomRef::new($rom.joins, $arr) };
     (ref join_mems, $rom:ident, $arr:expr) => { $crate::handle::SlotsRef::new($arr) };

@@ -357,7 +357,9 @@ impl EvalState {
 pub struct BatchIo {
     /// Line of the current batch command's first line minus one (error positions).
     pub line_base: u32,
-    /// A file `batch` asked for, run by the command loop after the current command.
+    /// A file `batch` asked for, run by the command loop after the current command
+    /// (`batch` parses its file: only with the feature `parser`).
+    #[cfg(feature = "parser")]
     pub pending_batch: crate::value::TextBuf<256>,
     /// How many batch files are running inside each other.
     pub batch_depth: u8,
@@ -377,6 +379,7 @@ impl BatchIo {
     pub const fn new() -> BatchIo {
         BatchIo {
             line_base: 0,
+            #[cfg(feature = "parser")]
             pending_batch: crate::value::TextBuf::new(),
             batch_depth: 0,
             quiet_results: false,

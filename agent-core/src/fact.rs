@@ -41,7 +41,7 @@ pub struct Fact {
 }
 
 /// Host speed-up: a fact's next and previous live fact of its template
-/// (`Template::tfirst`), so a fact-set query walks only those. Without the feature, no
+/// (`TemplateMem::tfirst`), so a fact-set query walks only those. Without the feature, no
 /// bytes (the pool table keeps the array, of zero-sized entries).
 #[cfg(feature = "host-speedups")]
 pub type TemplateLinks = [Ix; 2];
@@ -106,6 +106,9 @@ impl Core<'_> {
         if n >= self.templates.len() {
             return Err(cap(Pool::Templates, self.templates.len()));
         }
+        if n >= self.tmpl_mems.len() {
+            return Err(cap(Pool::TemplateMemories, self.tmpl_mems.len()));
+        }
         let s = self.st.pools.nslots as usize;
         if s >= self.slots.len() {
             return Err(cap(Pool::SlotDefs, self.slots.len()));
@@ -123,16 +126,8 @@ impl Core<'_> {
             nslots: 1,
             implied: true,
             alpha_head: NONE,
-            nfacts: 0,
-            #[cfg(feature = "defer")]
-            defer_flags: 0,
-            #[cfg(feature = "defer")]
-            flags_gen: 0,
-            #[cfg(feature = "host-speedups")]
-            tfirst: NONE,
-            #[cfg(feature = "host-speedups")]
-            tlast: NONE,
         };
+        self.tmpl_mems[n] = TemplateMem::EMPTY;
         self.st.pools.ntemplates += 1;
         self.note_hw(Pool::Templates, n + 1);
         self.note_hw(Pool::SlotDefs, s + 1);
@@ -489,7 +484,7 @@ impl Core<'_> {
         };
         self.fact_buckets[bucket] = slot;
         self.st.facts.facts_live += 1;
-        self.templates[saved.tmpl as usize].nfacts += 1;
+        self.tmpl_mems[saved.tmpl as usize].nfacts += 1;
         if prev == NONE {
             self.st.facts.fact_head = slot;
         } else {
@@ -578,7 +573,7 @@ impl Core<'_> {
         };
         self.fact_buckets[bucket] = slot;
         self.st.facts.facts_live += 1;
-        self.templates[tmpl as usize].nfacts += 1;
+        self.tmpl_mems[tmpl as usize].nfacts += 1;
         if self.st.facts.fact_tail != NONE {
             self.facts[self.st.facts.fact_tail as usize].next = slot;
         } else {
@@ -588,7 +583,7 @@ impl Core<'_> {
         // host: the newest fact, last in its template's list too
         #[cfg(feature = "host-speedups")]
         {
-            let t = &mut self.templates[tmpl as usize];
+            let t = &mut self.tmpl_mems[tmpl as usize];
             self.fact_tlinks[slot as usize] = [NONE, t.tlast];
             if t.tlast == NONE {
                 t.tfirst = slot;
@@ -652,23 +647,23 @@ impl Core<'_> {
             self.facts[slot as usize].tmpl,
             self.facts[slot as usize].num,
         );
-        let mut p = self.templates[tmpl as usize].tlast;
+        let mut p = self.tmpl_mems[tmpl as usize].tlast;
         while p != NONE && self.facts[p as usize].num > num {
             p = self.fact_tlinks[p as usize][1];
         }
         let n = if p == NONE {
-            self.templates[tmpl as usize].tfirst
+            self.tmpl_mems[tmpl as usize].tfirst
         } else {
             self.fact_tlinks[p as usize][0]
         };
         self.fact_tlinks[slot as usize] = [n, p];
         if p == NONE {
-            self.templates[tmpl as usize].tfirst = slot;
+            self.tmpl_mems[tmpl as usize].tfirst = slot;
         } else {
             self.fact_tlinks[p as usize][0] = slot;
         }
         if n == NONE {
-            self.templates[tmpl as usize].tlast = slot;
+            self.tmpl_mems[tmpl as usize].tlast = slot;
         } else {
             self.fact_tlinks[n as usize][1] = slot;
         }
@@ -682,7 +677,7 @@ impl Core<'_> {
     pub(crate) fn unlink_fact(&mut self, slot: Ix) {
         let f = self.facts[slot as usize];
         self.st.facts.facts_live -= 1;
-        let t = &mut self.templates[f.tmpl as usize];
+        let t = &mut self.tmpl_mems[f.tmpl as usize];
         t.nfacts = t.nfacts.saturating_sub(1);
         if f.prev != NONE {
             self.facts[f.prev as usize].next = f.next;
@@ -697,7 +692,7 @@ impl Core<'_> {
         #[cfg(feature = "host-speedups")]
         {
             let [tnext, tprev] = self.fact_tlinks[slot as usize];
-            let t = &mut self.templates[f.tmpl as usize];
+            let t = &mut self.tmpl_mems[f.tmpl as usize];
             if tprev == NONE {
                 t.tfirst = tnext;
             } else {
@@ -787,7 +782,7 @@ impl Core<'_> {
     }
 }
 
-use crate::template::{SlotDef, Template};
+use crate::template::{SlotDef, Template, TemplateMem};
 use crate::value::SymId;
 
 /// Unlinks `slot` from a singly linked list of fact slots chained through `next`

@@ -8,6 +8,7 @@ use crate::builtins::Args;
 use crate::engine::{cap, Core};
 use crate::error::{CapacityError, EvalError, Pool};
 use crate::fact::{Fact, FactState};
+use crate::rom::RomRef;
 use crate::template::{SlotDef, Template};
 use crate::value::{Ix, MfSpan, SymId, Value, ValueRef, NONE};
 
@@ -115,8 +116,8 @@ impl<'a, 'c> HostCall<'a, 'c> {
     fn facts(&self) -> FactView<'_> {
         FactView {
             facts: &self.cx.facts[..],
-            templates: &self.cx.templates[..],
-            slots: &self.cx.slots[..],
+            templates: self.cx.templates.as_ref(),
+            slots: self.cx.slots.as_ref(),
             values: &self.cx.values[..],
             syms: self.cx.sym_texts(),
             head: self.cx.st.facts.fact_head,
@@ -128,8 +129,8 @@ impl<'a, 'c> HostCall<'a, 'c> {
 /// function's view).
 pub(crate) struct FactView<'a> {
     pub(crate) facts: &'a [Fact],
-    pub(crate) templates: &'a [Template],
-    pub(crate) slots: &'a [SlotDef],
+    pub(crate) templates: RomRef<'a, Template>,
+    pub(crate) slots: RomRef<'a, SlotDef>,
     pub(crate) values: &'a [Value],
     pub(crate) syms: crate::symbols::SymTexts<'a>,
     /// First fact of the creation-ordered list.

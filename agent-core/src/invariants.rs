@@ -602,7 +602,7 @@ impl Core<'_> {
             self.st.facts.facts_live
         );
         let per_template: usize = (0..self.st.pools.ntemplates as usize)
-            .map(|t| self.templates[t].nfacts as usize)
+            .map(|t| self.tmpl_mems[t].nfacts as usize)
             .sum();
         ensure!(
             per_template == live,
@@ -612,7 +612,7 @@ impl Core<'_> {
         // host: each template's own list holds its live facts, numbers growing
         #[cfg(feature = "host-speedups")]
         for t in 0..self.st.pools.ntemplates as usize {
-            let (mut prev, mut f, mut n) = (NONE, self.templates[t].tfirst, 0usize);
+            let (mut prev, mut f, mut n) = (NONE, self.tmpl_mems[t].tfirst, 0usize);
             while f != NONE {
                 ensure!((f as usize) < used, "template fact list leaves the pool", f);
                 let x = self.facts[f as usize];
@@ -634,12 +634,12 @@ impl Core<'_> {
                 f = next;
             }
             ensure!(
-                self.templates[t].tlast == prev,
+                self.tmpl_mems[t].tlast == prev,
                 "template fact list tail wrong",
                 prev
             );
             ensure!(
-                n == self.templates[t].nfacts as usize,
+                n == self.tmpl_mems[t].nfacts as usize,
                 "template fact list length wrong",
                 n
             );

@@ -16,8 +16,8 @@ pub struct View<'a> {
     pub values: &'a [Value],
     pub scratch: &'a [Value],
     pub syms: crate::symbols::SymTexts<'a>,
-    pub templates: &'a [Template],
-    pub slots: &'a [SlotDef],
+    pub templates: crate::rom::RomRef<'a, Template>,
+    pub slots: crate::rom::RomRef<'a, SlotDef>,
     pub facts: &'a [Fact],
 }
 
@@ -149,8 +149,8 @@ impl Core<'_> {
                     entries: self.sym_entries,
                     bytes: self.sym_bytes,
                 },
-                templates: self.templates,
-                slots: self.slots,
+                templates: self.templates.as_ref(),
+                slots: self.slots.as_ref(),
                 facts: self.facts,
             },
             &mut *self.host,
@@ -173,8 +173,8 @@ impl Core<'_> {
                     entries: self.sym_entries,
                     bytes: self.sym_bytes,
                 },
-                templates: self.templates,
-                slots: self.slots,
+                templates: self.templates.as_ref(),
+                slots: self.slots.as_ref(),
                 facts: self.facts,
             },
             crate::hold::TraceWriter {
@@ -269,10 +269,18 @@ impl Core<'_> {
         let _ = w.write_str(b.as_str());
     }
 
+    #[inline]
     pub(crate) fn print_fire_line(&mut self, count: u32, rule: Ix, token: TokenId) {
-        if self.st.mode.watch & watch::RULES == 0 {
-            return;
+        if self.st.mode.watch & watch::RULES != 0 {
+            self.write_fire_line(count, rule, token);
         }
+    }
+
+    /// Not inlined: its line buffer stays off the run loop's stack frame, which every
+    /// rule's actions run below.
+    #[cold]
+    #[inline(never)]
+    fn write_fire_line(&mut self, count: u32, rule: Ix, token: TokenId) {
         let mut b: crate::value::TextBuf<512> = crate::value::TextBuf::new();
         let _ = write!(
             b,

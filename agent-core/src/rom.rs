@@ -1,27 +1,34 @@
 //! Pools whose first entries a compiled rule base provides in place.
 //!
 //! With the feature `in-place` an engine that loads a [compiled rule
-//! base](crate::compiled) reads its expression nodes, alpha nodes and joins from the
-//! rule base's read-only tables instead of copying them into its arena: the agent
-//! image's RAM. Its symbols too (`symbols::RomSymbols`, with hash chains the compiler
-//! works out, `symbols::SymbolIndex`). What changes at run time (alpha and join memories) lives in pools of
-//! its own ([`AlphaMem`](crate::rete::AlphaMem), [`JoinMem`](crate::rete::JoinMem)),
-//! indexed like the nodes.
+//! base](crate::compiled) reads its expression nodes, alpha nodes, joins, templates,
+//! slot definitions and rules from the rule base's read-only tables instead of copying
+//! them into its arena: the agent image's RAM. Its symbols too
+//! (`symbols::RomSymbols`, with hash chains the compiler works out,
+//! `symbols::SymbolIndex`). What changes at run time (alpha, join and template
+//! memories) lives in pools of its own ([`AlphaMem`](crate::rete::AlphaMem),
+//! [`JoinMem`](crate::rete::JoinMem), [`TemplateMem`](crate::template::TemplateMem)),
+//! indexed like the entries.
 //!
 //! One index space per pool: entry `i` is compiled when `i < rom_len()`, else arena
 //! entry `i - rom_len()`. Without the feature there are no compiled entries and
 //! indexing is the arena slice's.
 //!
-//! Compiled entries are never written. The expression pool only appends after them;
-//! the network (alpha nodes and joins) is copied into the arena before the first edit
-//! of its topology (`Core::network_writable`), so a host that loads a compiled rule
-//! base and then defines or removes rules works as without the feature, and an image
-//! whose arena has no room for the copy gets a capacity error.
+//! Compiled entries are never written. The expression pool only appends after them
+//! (templates and slot definitions too, for ordered facts of a new relation); the
+//! network and the constructs it hangs off (alpha nodes, joins, templates, slot
+//! definitions, rules) are copied into the arena before the first edit of a compiled
+//! entry (`Core::network_writable`: a rule defined or removed, a template redefined or
+//! removed, a salience evaluated again), so a host that loads a compiled rule base and
+//! then defines or removes rules works as without the feature, and an image whose
+//! arena has no room for the copy gets a capacity error.
 
 use crate::expr::Expr;
 use crate::handle::Handle;
 use crate::rete::{AlphaNode, Join};
+use crate::rule::Rule;
 use crate::symbols::RomSymbols;
+use crate::template::{SlotDef, Template};
 use core::marker::PhantomData;
 
 /// Whether this build reads compiled entries in place (feature `in-place`).
@@ -34,6 +41,9 @@ pub struct Rom {
     pub exprs: &'static [Expr],
     pub alphas: &'static [AlphaNode],
     pub joins: &'static [Join],
+    pub templates: &'static [Template],
+    pub slots: &'static [SlotDef],
+    pub rules: &'static [Rule],
     pub symbols: RomSymbols,
 }
 
@@ -42,6 +52,9 @@ impl Rom {
         exprs: &[],
         alphas: &[],
         joins: &[],
+        templates: &[],
+        slots: &[],
+        rules: &[],
         symbols: RomSymbols::EMPTY,
     };
 }
@@ -115,22 +128,47 @@ impl<'a, T: 'static, H> RomPool<'a, T, H> {
         }
         self.ram.get(i - self.rom_len())
     }
+
+    /// Every addressable entry in index order: the compiled ones, then the arena's.
+    pub fn iter(&self) -> impl Iterator<Item = &T> + '_ {
+        #[cfg(feature = "in-place")]
+        let rom = self.rom.iter();
+        #[cfg(not(feature = "in-place"))]
+        let rom = [].iter();
+        rom.chain(self.ram.iter())
+    }
+
+    /// The read-only view of the same entries.
+    pub fn as_ref(&self) -> RomRef<'_, T, H> {
+        #[cfg(feature = "in-place")]
+        return RomRef::new(self.rom, self.ram);
+        #[cfg(not(feature = "in-place"))]
+        RomRef::new(&[], self.ram)
+    }
 }
 
 impl<T: Copy + 'static, H> RomPool<'_, T, H> {
-    /// Copies the compiled entries into the arena, after which every entry is the
-    /// arena's (indices unchanged). The arena's entries must not be in use yet (the
-    /// caller has added none since the compiled ones were set). Refused, changing
-    /// nothing, when the arena is smaller than the compiled entries.
+    /// Whether [`RomPool::copy_rom_to_ram`] has room with `used` entries in use.
     #[cfg(feature = "in-place")]
-    pub fn copy_rom_to_ram(&mut self) -> Result<(), usize> {
+    pub fn fits_in_ram(&self, used: usize) -> bool {
+        used.max(self.rom.len()) <= self.ram.len()
+    }
+
+    /// Copies the compiled entries into the arena, after which every entry is the
+    /// arena's (indices unchanged): the arena's entries in use (`used` counts every
+    /// entry in use, compiled ones too) move up behind them. Refused, changing
+    /// nothing, when the arena is too small for all of them; `Err` holds its size.
+    #[cfg(feature = "in-place")]
+    pub fn copy_rom_to_ram(&mut self, used: usize) -> Result<(), usize> {
         let n = self.rom.len();
         if n == 0 {
             return Ok(());
         }
-        if n > self.ram.len() {
+        if !self.fits_in_ram(used) {
             return Err(self.ram.len());
         }
+        let made = used.saturating_sub(n);
+        self.ram.copy_within(..made, n);
         self.ram[..n].copy_from_slice(self.rom);
         self.rom = &[];
         Ok(())
@@ -199,7 +237,34 @@ impl<'a, T: 'static, H> RomRef<'a, T, H> {
     pub fn is_empty(&self) -> bool {
         self.len() == 0
     }
+
+    /// Entry `i`, or `None` past the end.
+    #[inline(always)]
+    pub fn get(&self, i: usize) -> Option<&'a T> {
+        #[cfg(feature = "in-place")]
+        if i < self.rom.len() {
+            return self.rom.get(i);
+        }
+        self.ram.get(i - self.rom_len())
+    }
+
+    /// Every addressable entry in index order: the compiled ones, then the arena's.
+    pub fn iter(&self) -> impl Iterator<Item = &'a T> + 'a {
+        #[cfg(feature = "in-place")]
+        let rom: core::slice::Iter<'a, T> = self.rom.iter();
+        #[cfg(not(feature = "in-place"))]
+        let rom: core::slice::Iter<'a, T> = [].iter();
+        rom.chain(self.ram.iter())
+    }
 }
+
+impl<T: 'static, H> Clone for RomRef<'_, T, H> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<T: 'static, H> Copy for RomRef<'_, T, H> {}
 
 impl<T: 'static, H: Handle> core::ops::Index<H> for RomRef<'_, T, H> {
     type Output = T;

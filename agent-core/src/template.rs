@@ -77,6 +77,9 @@ impl SlotDef {
     };
 }
 
+/// A deftemplate as compiled: what only the parser and the network compiler write (a
+/// compiled rule base's templates are read in place, `crate::rom`). What changes while
+/// facts come and go is its [`TemplateMem`], by the same index.
 #[derive(Clone, Copy, Debug)]
 pub struct Template {
     pub name: SymId,
@@ -85,6 +88,22 @@ pub struct Template {
     pub implied: bool,
     /// First alpha node testing facts of this template.
     pub alpha_head: Ix,
+}
+
+impl Template {
+    pub const EMPTY: Template = Template {
+        name: 0,
+        first_slot: NONE,
+        nslots: 0,
+        implied: false,
+        alpha_head: NONE,
+    };
+}
+
+/// The run-time part of a template (pool "template memories", by template index): its
+/// live facts.
+#[derive(Clone, Copy, Debug)]
+pub struct TemplateMem {
     /// Live facts of this template: a fact-set query over a template without facts
     /// ends at once instead of walking the whole fact list.
     pub nfacts: Ix,
@@ -101,13 +120,8 @@ pub struct Template {
     pub tlast: Ix,
 }
 
-impl Template {
-    pub const EMPTY: Template = Template {
-        name: 0,
-        first_slot: NONE,
-        nslots: 0,
-        implied: false,
-        alpha_head: NONE,
+impl TemplateMem {
+    pub const EMPTY: TemplateMem = TemplateMem {
         nfacts: 0,
         #[cfg(feature = "defer")]
         defer_flags: 0,

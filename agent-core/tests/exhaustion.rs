@@ -349,6 +349,7 @@ fn symbols_and_bytes_at_assert_run_modify_and_load() {
             symbols = 48,
             symbol_bytes = 600,
             templates = 64,
+            template_memories = 64,
             slot_defs = 128
         );
         let c = load_until_full(&mut *e, |e, i| {
@@ -436,6 +437,19 @@ fn templates_and_slot_defs_at_load_and_assert() {
     // an ordered fact of a new relation needs an implied template
     let c = assert_until_full(&mut *e, |e, i| e.assert_str(h, &format!("(rel{i} 1)")));
     assert_eq!(c, full(Pool::Templates, 4));
+    e.assert_str(h, "(t0 (v 1))").unwrap();
+    e.clear(h).unwrap();
+    e.assert_str(h, "(rel 1)").unwrap();
+    e.consistent();
+
+    // a template's run-time part (its fact count) is an entry of its own pool
+    let mut e = engine!(template_memories = 4);
+    let c = load_until_full(&mut *e, |e, i| {
+        e.load_str(h, "t", &format!("(deftemplate t{i} (slot v))"))
+    });
+    assert_eq!(c, full(Pool::TemplateMemories, 4));
+    let c = assert_until_full(&mut *e, |e, i| e.assert_str(h, &format!("(rel{i} 1)")));
+    assert_eq!(c, full(Pool::TemplateMemories, 4));
     e.assert_str(h, "(t0 (v 1))").unwrap();
     e.clear(h).unwrap();
     e.assert_str(h, "(rel 1)").unwrap();
@@ -817,6 +831,7 @@ fn every_pool_is_covered() {
         Pool::Symbols,
         Pool::SymbolBytes,
         Pool::Templates,
+        Pool::TemplateMemories,
         Pool::SlotDefs,
         Pool::Rules,
         Pool::AlphaNodes,

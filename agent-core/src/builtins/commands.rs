@@ -311,7 +311,7 @@ fn exit(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 }
 
 fn refresh_agenda(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
-    cx.reorder_agenda();
+    cx.reorder_agenda()?;
     Ok(Value::Void)
 }
 
@@ -617,7 +617,7 @@ pub(super) fn load_quiet(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError>
 /// `batch`: CLIPS makes the file its next input source, so its commands run (echoed,
 /// with prompts) after the current command has finished and printed its TRUE. The path
 /// is remembered here and run by the command loop (`Core::run_pending_batch`).
-#[cfg_attr(not(feature = "parser"), allow(dead_code))]
+#[cfg(feature = "parser")]
 pub(super) fn batch(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let path = path_arg(cx, a, "batch")?;
     let mut probe = [0u8; 1];

@@ -765,21 +765,29 @@ fn slot_of_fact(cx: &mut Core<'_>, f: Ix, name: SymId) -> Result<Value, EvalErro
         match cx.find_slot(tmpl, name) {
             Some(s) => s,
             None => {
-                let mut b: crate::value::TextBuf<256> = crate::value::TextBuf::new();
-                let _ = core::fmt::Write::write_fmt(
-                    &mut b,
-                    format_args!(
-                        "[TMPLTDEF1] Invalid slot {} not defined in corresponding deftemplate {}.\n",
-                        cx.sym_text(name),
-                        cx.sym_text(cx.templates[tmpl as usize].name)
-                    ),
-                );
-                cx.write(router::WERROR, b.as_str());
+                report_invalid_slot(cx, tmpl, name);
                 return Ok(Value::Sym(SYM_FALSE));
             }
         }
     };
     Ok(cx.fact_slot_value(f, slot)?)
+}
+
+/// `[TMPLTDEF1]`. Out of line: its buffer stays off the stack frame of every slot
+/// read (`?f:slot`).
+#[cold]
+#[inline(never)]
+fn report_invalid_slot(cx: &mut Core<'_>, tmpl: Ix, name: SymId) {
+    let mut b: crate::value::TextBuf<256> = crate::value::TextBuf::new();
+    let _ = core::fmt::Write::write_fmt(
+        &mut b,
+        format_args!(
+            "[TMPLTDEF1] Invalid slot {} not defined in corresponding deftemplate {}.\n",
+            cx.sym_text(name),
+            cx.sym_text(cx.templates[tmpl as usize].name)
+        ),
+    );
+    cx.write(router::WERROR, b.as_str());
 }
 
 fn fact_index(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {

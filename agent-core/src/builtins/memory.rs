@@ -37,9 +37,16 @@ impl Core<'_> {
             (self.live_fact_count(), size_of_first(self.facts)),
             (st.facts.values_top as usize, size_of_first(self.values)),
             (st.pools.nsyms as usize, size_of_first(self.sym_entries)),
-            (st.pools.ntemplates as usize, size_of_first(self.templates)),
-            (st.pools.nslots as usize, size_of_first(self.slots)),
-            (st.pools.nrules as usize, size_of_first(self.rules)),
+            // a template and its memory count as one entry
+            (
+                st.pools.ntemplates as usize,
+                size_of::<crate::template::Template>() + size_of_first(self.tmpl_mems),
+            ),
+            (
+                st.pools.nslots as usize,
+                size_of::<crate::template::SlotDef>(),
+            ),
+            (st.pools.nrules as usize, size_of::<crate::rule::Rule>()),
             // a node and its memory count as one entry
             (
                 st.pools.nalpha as usize,

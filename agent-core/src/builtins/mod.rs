@@ -423,8 +423,8 @@ impl Core<'_> {
                 entries: self.sym_entries,
                 bytes: head,
             },
-            templates: self.templates,
-            slots: self.slots,
+            templates: self.templates.as_ref(),
+            slots: self.slots.as_ref(),
             facts: self.facts,
         };
         let mut out = crate::symbols::TailWriter {
@@ -470,8 +470,8 @@ impl Core<'_> {
             values: self.values,
             scratch: self.scratch,
             syms: self.sym_texts(),
-            templates: self.templates,
-            slots: self.slots,
+            templates: self.templates.as_ref(),
+            slots: self.slots.as_ref(),
             facts: self.facts,
         };
         write(&view, args, &mut text)?;
@@ -518,8 +518,8 @@ impl Core<'_> {
             values: self.values,
             scratch: self.scratch,
             syms: self.sym_texts(),
-            templates: self.templates,
-            slots: self.slots,
+            templates: self.templates.as_ref(),
+            slots: self.slots.as_ref(),
             facts: self.facts,
         };
         // a string prints bare, but inside a multifield in quotes: (a "b c")
@@ -533,8 +533,8 @@ impl Core<'_> {
             values: self.values,
             scratch: self.scratch,
             syms: self.sym_texts(),
-            templates: self.templates,
-            slots: self.slots,
+            templates: self.templates.as_ref(),
+            slots: self.slots.as_ref(),
             facts: self.facts,
         };
         view.write_flat(out, v, false)

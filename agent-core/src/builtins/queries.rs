@@ -128,13 +128,13 @@ struct Resume {
 /// continues through its current link, so new facts join the iteration.
 #[cfg_attr(feature = "host-speedups", inline(always))]
 fn next_of_template(cx: &Core<'_>, tmpl: Ix, after: Option<Resume>) -> Option<Ix> {
-    if cx.templates[tmpl as usize].nfacts == 0 {
+    if cx.tmpl_mems[tmpl as usize].nfacts == 0 {
         return None;
     }
-    // the host walks the template's own list (`Template::tfirst`), the image the list
+    // the host walks the template's own list (`TemplateMem::tfirst`), the image the list
     // of all facts
     #[cfg(feature = "host-speedups")]
-    let (head, link) = (cx.templates[tmpl as usize].tfirst, |f: Ix| {
+    let (head, link) = (cx.tmpl_mems[tmpl as usize].tfirst, |f: Ix| {
         cx.fact_tlinks[f as usize][0]
     });
     #[cfg(not(feature = "host-speedups"))]

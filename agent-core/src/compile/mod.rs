@@ -82,29 +82,75 @@ impl Default for JoinMarks {
 }
 
 impl Core<'_> {
-    /// Makes the network's topology editable: a compiled rule base's alpha nodes and
-    /// joins read in place (feature `in-place`, `rom`) are copied into the arena first
-    /// (ids unchanged), so that rules can be added and removed as in an engine that
-    /// parsed them. Every edit of the topology (a rule built, a rule removed) calls this
-    /// before its first write. An arena without room for the copy is a capacity error
-    /// and the engine stays as it was (an image sized for its compiled rule base
-    /// cannot take new rules).
+    /// Makes the network's topology and the constructs it hangs off editable: a
+    /// compiled rule base's alpha nodes, joins, templates, slot definitions and rules
+    /// read in place (feature `in-place`, `rom`) are copied into the arena first (ids
+    /// unchanged), so that rules can be added and removed as in an engine that parsed
+    /// them. Every write to an entry that may be compiled (a rule built or removed, a
+    /// template redefined or removed, a salience evaluated again) calls this first. An
+    /// arena without room for the copy is a capacity error and the engine stays as it
+    /// was (an image sized for its compiled rule base cannot take new rules).
     pub(crate) fn network_writable(&mut self) -> Result<(), CapacityError> {
         #[cfg(feature = "in-place")]
         {
             use crate::engine::cap;
             use crate::error::Pool;
-            if self.joins.rom_len() > self.joins.ram().len() {
-                return Err(cap(Pool::Joins, self.joins.ram().len()));
+            let p = &self.st.pools;
+            let (alphas, joins) = (p.nalpha as usize, p.njoins as usize);
+            let (templates, slots, rules) =
+                (p.ntemplates as usize, p.nslots as usize, p.nrules as usize);
+            // all or nothing: every copy is checked before the first
+            let room = [
+                (
+                    Pool::Joins,
+                    self.joins.fits_in_ram(joins),
+                    self.joins.ram().len(),
+                ),
+                (
+                    Pool::AlphaNodes,
+                    self.alphas.fits_in_ram(alphas),
+                    self.alphas.ram().len(),
+                ),
+                (
+                    Pool::Templates,
+                    self.templates.fits_in_ram(templates),
+                    self.templates.ram().len(),
+                ),
+                (
+                    Pool::SlotDefs,
+                    self.slots.fits_in_ram(slots),
+                    self.slots.ram().len(),
+                ),
+                (
+                    Pool::Rules,
+                    self.rules.fits_in_ram(rules),
+                    self.rules.ram().len(),
+                ),
+            ];
+            if let Some(&(pool, _, size)) = room.iter().find(|(_, fits, _)| !fits) {
+                return Err(cap(pool, size));
             }
+            // (each copy has room: checked above; the state follows each one)
             self.alphas
-                .copy_rom_to_ram()
-                .map_err(|room| cap(Pool::AlphaNodes, room))?;
+                .copy_rom_to_ram(alphas)
+                .map_err(|size| cap(Pool::AlphaNodes, size))?;
             self.st.rom.alphas = &[];
             self.joins
-                .copy_rom_to_ram()
-                .map_err(|room| cap(Pool::Joins, room))?;
+                .copy_rom_to_ram(joins)
+                .map_err(|size| cap(Pool::Joins, size))?;
             self.st.rom.joins = &[];
+            self.templates
+                .copy_rom_to_ram(templates)
+                .map_err(|size| cap(Pool::Templates, size))?;
+            self.st.rom.templates = &[];
+            self.slots
+                .copy_rom_to_ram(slots)
+                .map_err(|size| cap(Pool::SlotDefs, size))?;
+            self.st.rom.slots = &[];
+            self.rules
+                .copy_rom_to_ram(rules)
+                .map_err(|size| cap(Pool::Rules, size))?;
+            self.st.rom.rules = &[];
         }
         Ok(())
     }

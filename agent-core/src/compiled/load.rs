@@ -133,9 +133,11 @@ impl Core<'_> {
             _ => return Err(CompiledError::TemplateMismatch),
         }
         let fits = [
-            (Pool::Templates, base.templates.len(), self.templates.len()),
-            (Pool::SlotDefs, base.slots.len(), self.slots.len()),
-            (Pool::Rules, base.rules.len(), self.rules.len()),
+            (
+                Pool::TemplateMemories,
+                base.templates.len(),
+                self.tmpl_mems.len(),
+            ),
             (
                 Pool::AlphaMemories,
                 base.alphas.len(),
@@ -143,6 +145,12 @@ impl Core<'_> {
             ),
             (Pool::JoinMemories, base.joins.len(), self.join_mems.len()),
             // (read in place: the arena needs no room for them)
+            #[cfg(not(feature = "in-place"))]
+            (Pool::Templates, base.templates.len(), self.templates.len()),
+            #[cfg(not(feature = "in-place"))]
+            (Pool::SlotDefs, base.slots.len(), self.slots.len()),
+            #[cfg(not(feature = "in-place"))]
+            (Pool::Rules, base.rules.len(), self.rules.len()),
             #[cfg(not(feature = "in-place"))]
             (Pool::AlphaNodes, base.alphas.len(), self.alphas.len()),
             #[cfg(not(feature = "in-place"))]
@@ -241,11 +249,17 @@ impl Core<'_> {
         self.st.facts.next_fact_num = 0;
         let root_token = self.join_mems[JoinId::ROOT].mem;
 
-        self.templates[..base.templates.len()].copy_from_slice(base.templates);
-        self.slots[..base.slots.len()].copy_from_slice(base.slots);
-        self.rules[..base.rules.len()].copy_from_slice(base.rules);
+        for m in self.tmpl_mems.iter_mut() {
+            *m = crate::template::TemplateMem::EMPTY;
+        }
         #[cfg(feature = "in-place")]
         {
+            self.templates.set_rom(base.templates);
+            self.slots.set_rom(base.slots);
+            self.rules.set_rom(base.rules);
+            self.st.rom.templates = base.templates;
+            self.st.rom.slots = base.slots;
+            self.st.rom.rules = base.rules;
             self.exprs.set_rom(base.exprs);
             self.alphas.set_rom(base.alphas);
             self.joins.set_rom(base.joins);
@@ -255,6 +269,9 @@ impl Core<'_> {
         }
         #[cfg(not(feature = "in-place"))]
         {
+            self.templates.ram()[..base.templates.len()].copy_from_slice(base.templates);
+            self.slots.ram()[..base.slots.len()].copy_from_slice(base.slots);
+            self.rules.ram()[..base.rules.len()].copy_from_slice(base.rules);
             self.exprs.ram()[..base.exprs.len()].copy_from_slice(base.exprs);
             self.alphas.ram()[..base.alphas.len()].copy_from_slice(base.alphas);
             self.joins.ram()[..base.joins.len()].copy_from_slice(base.joins);
@@ -285,6 +302,7 @@ impl Core<'_> {
         self.st.pools.ndeffacts = n(base.deffacts.len());
         for (pool, used) in [
             (Pool::Templates, base.templates.len()),
+            (Pool::TemplateMemories, base.templates.len()),
             (Pool::SlotDefs, base.slots.len()),
             (Pool::Rules, base.rules.len()),
             (Pool::AlphaNodes, base.alphas.len()),

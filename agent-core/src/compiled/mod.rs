@@ -4,8 +4,8 @@
 //! The compiled form is the network *after* compilation, not the text or the parser's
 //! intermediate form: the used part of every construct pool (symbols, templates and
 //! their slots, rules, alpha nodes, joins, expression nodes, deffunctions, globals,
-//! deffacts) in the engine's own entry types, with the fields that belong to working
-//! memory (alpha and join memories, a template's fact count) empty. So the engine that
+//! deffacts) in the engine's own entry types, which hold no working memory (alpha,
+//! join and template memories are pools of their own). So the engine that
 //! loads it holds exactly the network the parser built, and a robot image that loads
 //! it needs no parser and no rule text.
 //!
@@ -16,7 +16,7 @@
 //!
 //! Independent of the engine's features and index width: the writer names every field
 //! the network needs (what changes at run time, memories and the host's caches, is in
-//! pools of its own: `rete::AlphaMem`, `rete::JoinMem`), writes `N` for [`NONE`](crate::NONE)
+//! pools of its own: `rete::AlphaMem`, `rete::JoinMem`, `template::TemplateMem`), writes `N` for [`NONE`](crate::NONE)
 //! and names builtins, not their table positions (`builtin_id("str-cat")`, worked out
 //! when the generated code compiles: a builtin the loading engine lacks does not
 //! compile). Host functions are named too and found among the loading engine's

@@ -25,7 +25,7 @@ fn writes_every_construct_pool() {
     assert!(out.contains("JoinKind::Negative"));
     assert!(out.contains("Value::Float(f64::from_bits(0x4004000000000000))"));
     // working memory is not written
-    assert!(!out.contains("mem: 0") && !out.contains("nfacts: 1"));
+    assert!(!out.contains("mem: 0") && !out.contains("nfacts"));
 }
 
 #[test]

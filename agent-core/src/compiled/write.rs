@@ -252,11 +252,15 @@ impl Core<'_> {
 
     fn write_templates(&self, out: &mut dyn Write) -> fmt::Result {
         writeln!(out, "templates: &[")?;
-        for t in &self.templates[..self.st.pools.ntemplates as usize] {
+        for t in self
+            .templates
+            .iter()
+            .take(self.st.pools.ntemplates as usize)
+        {
             writeln!(
                 out,
                 "Template {{ name: {}, first_slot: {}, nslots: {}, implied: {}, \
-                 alpha_head: {}, nfacts: 0, ..Template::EMPTY }},",
+                 alpha_head: {} }},",
                 I(t.name),
                 I(t.first_slot),
                 t.nslots,
@@ -266,7 +270,7 @@ impl Core<'_> {
         }
         writeln!(out, "],")?;
         writeln!(out, "slots: &[")?;
-        for s in &self.slots[..self.st.pools.nslots as usize] {
+        for s in self.slots.iter().take(self.st.pools.nslots as usize) {
             writeln!(
                 out,
                 "SlotDef {{ name: {}, multi: {}, default_kind: DefaultKind::{:?}, \
@@ -298,7 +302,7 @@ impl Core<'_> {
 
     fn write_rules(&self, out: &mut dyn Write) -> fmt::Result {
         writeln!(out, "rules: &[")?;
-        for r in &self.rules[..self.st.pools.nrules as usize] {
+        for r in self.rules.iter().take(self.st.pools.nrules as usize) {
             writeln!(
                 out,
                 "Rule {{ name: {}, salience: {}, salience_expr: {}, root: {}, terminal: {}, \

@@ -6,7 +6,7 @@ use crate::error::LoadDetail;
 use crate::error::Pool;
 use crate::expr::Op;
 use crate::lexer::Tok;
-use crate::template::{Deffacts, Deffunction, Global, SlotDef, Template};
+use crate::template::{Deffacts, Deffunction, Global, SlotDef, Template, TemplateMem};
 use crate::value::Ix;
 use crate::value::{Value, NONE};
 
@@ -37,10 +37,20 @@ impl<'s> Parser<'s, '_, '_> {
             };
             return Err(e);
         }
+        if replaces.is_some() {
+            // the old entry is retired in place: a compiled one is copied first
+            if let Err(c) = self.cx.network_writable() {
+                return Err(self.cap_err(nt, c));
+            }
+        }
         self.skip_comment();
         let n = self.cx.st.pools.ntemplates as usize;
         if n >= self.cx.templates.len() {
             let c = cap(Pool::Templates, self.cx.templates.len());
+            return Err(self.cap_err(nt, c));
+        }
+        if n >= self.cx.tmpl_mems.len() {
+            let c = cap(Pool::TemplateMemories, self.cx.tmpl_mems.len());
             return Err(self.cap_err(nt, c));
         }
         let first_slot = self.cx.st.pools.nslots;
@@ -96,16 +106,8 @@ impl<'s> Parser<'s, '_, '_> {
             nslots,
             implied: false,
             alpha_head: NONE,
-            nfacts: 0,
-            #[cfg(feature = "defer")]
-            defer_flags: 0,
-            #[cfg(feature = "defer")]
-            flags_gen: 0,
-            #[cfg(feature = "host-speedups")]
-            tfirst: NONE,
-            #[cfg(feature = "host-speedups")]
-            tlast: NONE,
         };
+        self.cx.tmpl_mems[n] = TemplateMem::EMPTY;
         self.cx.st.pools.ntemplates += 1;
         self.cx.note_hw(Pool::Templates, n + 1);
         if let Some(old) = replaces {

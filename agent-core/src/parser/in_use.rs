@@ -35,17 +35,21 @@ impl Core<'_> {
             return true;
         }
         // a rule's pattern of it
-        let in_pattern = self.rules[..self.st.pools.nrules as usize].iter().any(|r| {
-            let mut j = r.terminal;
-            while !r.deleted && j != JoinId::ROOT && j != JoinId::NONE {
-                let join = &self.joins[j];
-                if join.alpha != NONE && self.alphas[join.alpha as usize].tmpl == tmpl {
-                    return true;
+        let in_pattern = self
+            .rules
+            .iter()
+            .take(self.st.pools.nrules as usize)
+            .any(|r| {
+                let mut j = r.terminal;
+                while !r.deleted && j != JoinId::ROOT && j != JoinId::NONE {
+                    let join = &self.joins[j];
+                    if join.alpha != NONE && self.alphas[join.alpha as usize].tmpl == tmpl {
+                        return true;
+                    }
+                    j = join.parent;
                 }
-                j = join.parent;
-            }
-            false
-        });
+                false
+            });
         let skip = Skip {
             func: NONE,
             global_inits: false,
@@ -92,7 +96,7 @@ impl Core<'_> {
     /// salience and tests, deffunction bodies, deffacts, global initial values, slot
     /// defaults) until it says yes.
     fn any_construct_chain(&self, skip: Skip, hit: &mut dyn FnMut(Ix) -> bool) -> bool {
-        for r in &self.rules[..self.st.pools.nrules as usize] {
+        for r in self.rules.iter().take(self.st.pools.nrules as usize) {
             if r.deleted {
                 continue;
             }
@@ -125,8 +129,10 @@ impl Core<'_> {
                 && self.globals[..self.st.pools.nglobals as usize]
                     .iter()
                     .any(|g| hit(g.init)))
-            || self.slots[..self.st.pools.nslots as usize]
+            || self
+                .slots
                 .iter()
+                .take(self.st.pools.nslots as usize)
                 .any(|s| hit(s.default))
     }
 

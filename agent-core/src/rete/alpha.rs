@@ -410,7 +410,10 @@ impl Core<'_> {
         }
     }
 
-    /// `[FACTMCH1]`: an error while testing a fact in the pattern network.
+    /// `[FACTMCH1]`: an error while testing a fact in the pattern network (out of
+    /// line: errors are rare, and its buffer stays off the matching's stack frames).
+    #[cold]
+    #[inline(never)]
     fn report_pattern_error(&mut self, alpha: Ix, fact: Ix, e: EvalError) {
         use core::fmt::Write;
         self.st.net.pattern_error = true;

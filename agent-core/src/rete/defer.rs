@@ -72,12 +72,12 @@ impl Core<'_> {
     /// `TOTAL_TESTS` and `DELETE_ONLY` of template `tmpl`, worked out once per network
     /// generation (`State::net_gen`).
     fn defer_flags(&mut self, tmpl: Ix) -> u8 {
-        let t = self.templates[tmpl as usize];
+        let t = self.tmpl_mems[tmpl as usize];
         if t.flags_gen == self.st.net.net_gen && t.defer_flags & FLAGS_KNOWN != 0 {
             return t.defer_flags;
         }
         let (mut total, mut delete_only) = (true, true);
-        let mut a = t.alpha_head;
+        let mut a = self.templates[tmpl as usize].alpha_head;
         while a != NONE {
             let node = &self.alphas[a as usize];
             if node.live {
@@ -110,7 +110,7 @@ impl Core<'_> {
         let flags = FLAGS_KNOWN
             | if total { TOTAL_TESTS } else { 0 }
             | if delete_only { DELETE_ONLY } else { 0 };
-        let t = &mut self.templates[tmpl as usize];
+        let t = &mut self.tmpl_mems[tmpl as usize];
         t.defer_flags = flags;
         t.flags_gen = self.st.net.net_gen;
         flags

@@ -17,6 +17,7 @@ agent_core::engine_storage! {
         symbols: 128,
         symbol_bytes: 2048,
         templates: 8,
+        template_memories: 8,
         slot_defs: 32,
         rules: 16,
         alpha_nodes: 48,

@@ -198,18 +198,21 @@ fn every_differential_program_runs_the_same_from_its_compiled_constructs() {
 }
 
 /// Rules added and removed after a compiled rule base loaded work as after parsing it
-/// (with `in-place`, which the workspace build has, the network read in place is
-/// copied into the arena before the first edit): one rule of the game removed, one
-/// added that shares its first pattern with the game's rules, then seed 0 played.
+/// (with `in-place`, which the workspace build has, the network and the templates,
+/// slots and rules read in place are copied into the arena before the first edit,
+/// the template an ordered fact made after loading moved behind them): one rule of
+/// the game removed, one added that shares its first pattern with the game's rules,
+/// then seed 0 played.
 #[test]
 fn rules_added_and_removed_after_a_compiled_load_work_as_parsed() {
     let edits = [
+        "(assert (extra-marker 1))",
         "(undefrule exec-get-junk-none)",
         "(defrule extra-points (score (points ?p&:(> ?p 0))) => (printout t \"points \" ?p crlf))",
     ];
     let strategy = Strategy::Paper;
     let base = rules_compiled::game(strategy.name()).expect("compiled game");
-    let (parsed, compiled) = on_big_stack(|| {
+    let (listed, parsed, compiled) = on_big_stack(|| {
         let mut parsed = Box::new(DefaultEngine::new());
         parsed.set_pretty_print_forms(false);
         for file in rules::game_files(strategy) {
@@ -221,32 +224,44 @@ fn rules_added_and_removed_after_a_compiled_load_work_as_parsed() {
         compiled
             .load_compiled(&mut Capture::default(), base)
             .expect("compiled form loads");
-        for engine in [&mut parsed, &mut compiled] {
+        let mut listed = [String::new(), String::new()];
+        for (engine, listed) in [&mut parsed, &mut compiled].into_iter().zip(&mut listed) {
             for edit in edits {
                 assert!(engine.exec_command(&mut Capture::default(), edit, "test"));
             }
+            let mut out = Capture::default();
+            assert!(engine.exec_command(&mut out, "(facts)", "test"));
+            *listed = out.out;
         }
-        (play(&mut parsed, 0), play(&mut compiled, 0))
+        (listed, play(&mut parsed, 0), play(&mut compiled, 0))
     });
+    assert!(listed[0].contains("(extra-marker 1)"), "{}", listed[0]);
+    assert_eq!(listed[0], listed[1]);
     assert!(parsed.contains("points "), "{parsed}");
     assert!(!parsed.contains("exec-get-junk-none"));
     assert_eq!(parsed, compiled);
 }
 
 agent_core::engine_storage! {
-    /// Sized as the agent image: the compiled network's nodes only read in place.
+    /// Sized as the agent image: the compiled network's nodes, templates, slots and
+    /// rules only read in place.
     struct InPlaceOnly {
         alpha_nodes: 0,
         joins: 1,
+        templates: 1,
+        slot_defs: 1,
+        rules: 0,
         alpha_memories: rules_compiled::game_paper::SIZES.alphas,
         join_memories: rules_compiled::game_paper::SIZES.joins,
+        template_memories: rules_compiled::game_paper::SIZES.templates + 1,
         ..agent_core::Capacities::HOST
     }
 }
 
 /// An engine sized to read its compiled network in place (as the image) has no room to
-/// copy it: a new rule is refused with a capacity error naming the pool, and the
-/// engine still plays its game.
+/// copy it: a new rule, a rule removed or a second ordered-fact relation made at run
+/// time is refused with a capacity error naming the pool, and the engine still plays
+/// its game.
 #[test]
 fn an_engine_sized_for_in_place_reading_refuses_new_rules() {
     if !agent_core::rom::IN_PLACE {
@@ -258,17 +273,24 @@ fn an_engine_sized_for_in_place_reading_refuses_new_rules() {
         let mut engine = Box::new(agent_core::Engine::with_storage(InPlaceOnly::new()));
         let host = &mut Capture::default();
         engine.load_compiled(host, base).expect("loads in place");
+        // the rules read in place fill the rule pool: a new one has no room
         let err = engine
             .load_str(host, "t", "(defrule extra (score) =>)")
-            .expect_err("no room to copy the network");
+            .expect_err("no room for a rule");
         assert_eq!(
             err.capacity.map(|c| c.pool),
-            Some(agent_core::Pool::Joins),
+            Some(agent_core::Pool::Rules),
             "{err}"
         );
         let mut undef = Capture::default();
         engine.exec_command(&mut undef, "(undefrule exec-get-junk-none)", "t");
         assert!(undef.out.contains("joins"), "{}", undef.out);
+        // an ordered fact of a new relation takes the arena's one template
+        let mut more = Capture::default();
+        assert!(engine.exec_command(&mut more, "(assert (extra-marker 1))", "t"));
+        assert!(!more.out.contains("out of"), "{}", more.out);
+        engine.exec_command(&mut more, "(assert (another-marker 1))", "t");
+        assert!(more.out.contains("templates"), "{}", more.out);
         engine.reset(host).expect("reset");
         assert!(engine.run(host, Some(500_000)).expect("run") > 0);
     });

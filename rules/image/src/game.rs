@@ -25,9 +25,9 @@ const FIRE_LIMIT: u32 = 500_000;
 
 /// The image's engine. The construct pools hold the compiled rule base exactly (its
 /// `SIZES`) plus what the game adds at run time; its expression nodes, alpha nodes,
-/// joins and symbols are read in place from read-only memory (agent-core's
-/// `in-place`), so the arena holds only what the engine makes itself and the alpha
-/// and join memories.
+/// joins, templates, slot definitions, rules and symbols are read in place from
+/// read-only memory (agent-core's `in-place`), so the arena holds only what the engine
+/// makes itself and the alpha, join and template memories.
 ///
 /// Working-memory capacities: the high-water marks over the games the image is sized
 /// for, [`SIZED_FOR`] (paper strategy, seeds 0..39; `tests::every_game_it_is_sized_for`
@@ -53,9 +53,10 @@ agent_core::engine_storage! {
         fact_values: 2464,                         // live peak <= 2,368, +96 (5 decisions)
         symbols: 24,                               // read in place; 12 made at run time
         symbol_bytes: 192,                         // 61 at run time
-        templates: BASE.templates + 2,             // +0
-        slot_defs: BASE.slots + 2,                 // +0
-        rules: BASE.rules,
+        templates: 1,                              // read in place; 1: start-up's
+        template_memories: BASE.templates + 1,     // +0 made at run time
+        slot_defs: 1,                              // read in place; 1: start-up's
+        rules: 0,                                  // read in place
         alpha_nodes: 0,                            // read in place
         alpha_memories: BASE.alphas,
         joins: 1,                                  // read in place; 1: the start-up root
@@ -162,7 +163,10 @@ impl fmt::Display for GameError {
     }
 }
 
-/// Reports `cause` on the host's error router and names the failed step.
+/// Reports `cause` on the host's error router and names the failed step. Not
+/// inlined: its formatting stays off the stack frame the game runs below.
+#[cold]
+#[inline(never)]
 fn fail(
     host: &mut QuietHost,
     step: &'static str,
@@ -190,6 +194,23 @@ pub fn play_seed(
     strategy: Strategy,
     seed: u64,
 ) -> Result<GameResult, GameError> {
+    set_up(engine, host, strategy, seed)?;
+    let fired = engine
+        .run(host, Some(FIRE_LIMIT))
+        .map_err(|e| fail(host, "run", "", &e))?;
+    Ok(read_result(engine, fired))
+}
+
+/// Loads the rule base, resets and asserts the setup of `seed`. Not inlined: the
+/// setup's data and the loader's locals are off the stack before the game runs (the
+/// run's deepest calls start below this frame; the image's measured stack).
+#[inline(never)]
+fn set_up(
+    engine: &mut ImageEngine,
+    host: &mut QuietHost,
+    strategy: Strategy,
+    seed: u64,
+) -> Result<(), GameError> {
     let base = rules_compiled::game(strategy.name())
         .ok_or_else(|| fail(host, "load", "", &"no compiled rule base for the strategy"))?;
     engine
@@ -205,11 +226,7 @@ pub fn play_seed(
                 .map_err(|e| fail(host, "assert setup", fact.template, &e));
         }
     });
-    setup?;
-    let fired = engine
-        .run(host, Some(FIRE_LIMIT))
-        .map_err(|e| fail(host, "run", "", &e))?;
-    Ok(read_result(engine, fired))
+    setup
 }
 
 /// Asserts one setup fact through the API (the image has no parser).
