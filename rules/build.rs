@@ -42,6 +42,7 @@ fn main() {
         }
         let member: Vec<&str> = agent
             .iter()
+            .chain(order::BODY)
             .chain(order::TEAM)
             .chain(order::TEAM_AGENT)
             .copied()

@@ -14,13 +14,15 @@
 
 (deftemplate intent
   (slot action (type SYMBOL)
-    (allowed-symbols get-s0 finish-puck-at deliver discard get-junk recycle))
+    (allowed-symbols get-s0 finish-puck-at deliver discard get-junk recycle
+      feed collect))
   (slot target (type SYMBOL)))
 
 (deftemplate skill-request
   (slot id (type INTEGER))
   (slot name (type SYMBOL)
-    (allowed-symbols get-s0 finish-puck-at deliver discard get-junk recycle))
+    (allowed-symbols get-s0 finish-puck-at deliver discard get-junk recycle
+      feed collect))
   (slot target (type SYMBOL))
   (slot puck (type SYMBOL) (default NONE)))
 

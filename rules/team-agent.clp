@@ -129,6 +129,7 @@
   (state IDLE|DONE)
   (not (intent (target ?x)))
   (not (skill-request (target ?x)))
+  (not (output-at ?x ?))   ; a product left there to collect (collect.clp)
   (team-self (id ?me))
   =>
   (do-for-fact ((?m machine)) (eq ?m:name ?x)
@@ -149,14 +150,16 @@
   (modify ?m (mtype ?type) (junk ?junk) (productions ?made) (loaded-with ?loaded))
   (do-for-fact ((?s state)) (eq (nth$ 1 ?s:implied) TEAM-CLAIM)
     (do-for-all-facts ((?i intent)) TRUE (retract ?i))
-    (do-for-all-facts ((?w team-want)) (not (any-factp ((?r skill-request)) (eq ?r:target ?w:resource)))
+    (do-for-all-facts ((?w team-want))
+        (not (or (any-factp ((?r skill-request)) (eq ?r:target ?w:resource))
+                 (any-factp ((?o output-at)) (eq (nth$ 1 ?o:implied) ?w:resource))))
       (retract ?w))
     (retract ?s)
     (assert (state IDLE))))
 
 ;;; ---- the raw pucks: the team shares the storage's 20 -----------------------
 
-(defglobal ?*TEAM_SOLO_S0* = 8)   ; this few raw pucks left: robot 1 plays them alone
+(defglobal ?*TEAM_SOLO_S0* = 0)   ; this few raw pucks left: robot 1 plays them alone
 
 (deftemplate team-s0-of
   "Raw pucks robot R has taken from the input storage (its news of INS)."

@@ -22,6 +22,13 @@ pub enum SkillRequest {
     GetJunk(MachineId),
     /// Bring the held junk to a recycling unit and take the raw puck it turns it into.
     Recycle(RecyclingId),
+    /// Bring the held puck to a machine as its last input and, once the machine works on
+    /// it, leave it there (its output stays at the machine until collected) instead of
+    /// waiting for the light to turn green.
+    FeedTo(MachineId),
+    /// Drive to a machine with empty hands, wait for its light to turn green and take the
+    /// output lying there.
+    Collect(MachineId),
 }
 
 impl SkillRequest {
@@ -34,6 +41,8 @@ impl SkillRequest {
             Self::Discard => "discard",
             Self::GetJunk(_) => "get_junk",
             Self::Recycle(_) => "recycle",
+            Self::FeedTo(_) => "feed",
+            Self::Collect(_) => "collect",
         }
     }
 }
@@ -55,6 +64,10 @@ pub enum Perception {
     GotJunk,
     /// The recycling unit took the junk and handed a raw S0 back.
     Recycled,
+    /// The machine took the puck and works on it; the robot left it there (`FeedTo`).
+    LeftProcessing,
+    /// The robot took the output lying at a machine (`Collect`).
+    GotOutput,
 }
 
 /// Why a skill failed. Codes are stable for payloads.
@@ -80,6 +93,8 @@ pub enum FailReason {
     StorageEmpty = 8,
     /// No junk lay at the machine.
     NoJunk = 9,
+    /// No output turned up at the machine (`Collect`).
+    NoOutput = 10,
 }
 
 impl FailReason {
@@ -98,6 +113,7 @@ impl FailReason {
             7 => Self::Aborted,
             8 => Self::StorageEmpty,
             9 => Self::NoJunk,
+            10 => Self::NoOutput,
             _ => return None,
         })
     }
@@ -113,6 +129,7 @@ impl FailReason {
             Self::Aborted => "aborted",
             Self::StorageEmpty => "storage-empty",
             Self::NoJunk => "no-junk",
+            Self::NoOutput => "no-output",
         }
     }
 }

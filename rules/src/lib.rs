@@ -71,6 +71,8 @@ pub const GAME_LOG: RuleFile = rule_file!("game-log.clp");
 pub const SIM: RuleFile = rule_file!("sim.clp");
 /// A snapshot of the fact base after every decision (with a snapshot-file fact).
 pub const SNAPSHOT: RuleFile = rule_file!("snapshot.clp");
+/// A robot on the field leaves a working T3 and collects the P later (`run` only).
+pub const COLLECT: RuleFile = rule_file!("collect.clp");
 /// The team's claims on machines, input storage and gates (one engine per robot).
 pub const TEAM: RuleFile = rule_file!("team.clp");
 /// The agent as a team member: claim before committing, news of worked machines.

@@ -36,6 +36,9 @@ pub const DRIVER: &[&str] = &["referee.clp", "game-log.clp"];
 /// What a simulated game loads after the driver files: the instant simulation and
 /// the snapshots after every decision.
 pub const SIM: &[&str] = &["sim.clp", "snapshot.clp"];
+/// What an agent on the robot's body (`run`) loads after its agent: leaving a working
+/// T3 and collecting its product later.
+pub const BODY: &[&str] = &["collect.clp"];
 /// What a robot of a team loads after its agent: the claims protocol.
 pub const TEAM: &[&str] = &["team.clp"];
 /// What a team member's agent loads after `TEAM`: claims before commitments, news.

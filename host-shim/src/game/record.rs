@@ -252,12 +252,12 @@ impl GameRecord {
     }
 
     /// Double claims: two robots carrying to (or working) the same machine at once, from
-    /// their `finish-puck-at` skills.
+    /// their `finish-puck-at`, `feed` and `collect` skills.
     pub fn double_claims(&self) -> Vec<(String, u8, u8, f64)> {
         let at_machine: Vec<&SkillRun> = self
             .skills
             .iter()
-            .filter(|s| s.name == "finish-puck-at")
+            .filter(|s| matches!(s.name.as_str(), "finish-puck-at" | "feed" | "collect"))
             .collect();
         let mut out = Vec::new();
         for (i, a) in at_machine.iter().enumerate() {

@@ -65,10 +65,13 @@ impl EngineAgent {
         Self::with_team(strategy, None)
     }
 
-    /// The agent, and with a seat the team's rules after it (`rules::TEAM`,
-    /// `rules::TEAM_AGENT`), its identity, clock at 0 and the raw-puck supply.
+    /// The agent with what a robot on the field adds (`rules::COLLECT`: leave a working T3,
+    /// collect its product later), and with a seat the team's rules after it
+    /// (`rules::TEAM`, `rules::TEAM_AGENT`), its identity, clock at 0 and the raw-puck
+    /// supply.
     pub fn with_team(strategy: Strategy, team: Option<TeamSeat>) -> Result<Self, RulesError> {
         let mut files = rules::agent_files(strategy).to_vec();
+        files.push(rules::COLLECT);
         if team.is_some() {
             files.extend([rules::TEAM, rules::TEAM_AGENT]);
         }
@@ -343,6 +346,12 @@ pub fn skill_request(name: &str, target: &str) -> Option<SkillRequest> {
         "recycle" => number('R')
             .and_then(RecyclingId::new)
             .map(SkillRequest::Recycle),
+        "feed" => number('M')
+            .and_then(MachineId::new)
+            .map(SkillRequest::FeedTo),
+        "collect" => number('M')
+            .and_then(MachineId::new)
+            .map(SkillRequest::Collect),
         _ => None,
     }
 }
@@ -363,10 +372,14 @@ pub fn outcome_slots(outcome: SkillOutcome) -> (&'static str, &'static str, &'st
             | Perception::Delivered
             | Perception::Released
             | Perception::GotJunk
-            | Perception::Recycled,
+            | Perception::Recycled
+            | Perception::GotOutput,
         ) => ("FINAL", "none", "none"),
+        // The machine works on the last input, left there: its light is yellow until done.
+        SkillOutcome::Final(Perception::LeftProcessing) => ("FINAL", "yellow", "processing"),
         SkillOutcome::Failed(FailReason::StorageEmpty) => ("FAILED", "none", "storage-empty"),
         SkillOutcome::Failed(FailReason::NoJunk) => ("FAILED", "none", "no-junk"),
+        SkillOutcome::Failed(FailReason::NoOutput) => ("FAILED", "none", "no-output"),
         SkillOutcome::Failed(_) | SkillOutcome::Running => ("FAILED", "none", "none"),
     }
 }
@@ -404,6 +417,15 @@ mod tests {
             skill_request("recycle", "R2"),
             RecyclingId::new(2).map(SkillRequest::Recycle)
         );
+        assert_eq!(
+            skill_request("feed", "M6"),
+            Some(SkillRequest::FeedTo(m(6)))
+        );
+        assert_eq!(
+            skill_request("collect", "M6"),
+            Some(SkillRequest::Collect(m(6)))
+        );
+        assert_eq!(skill_request("collect", "INS"), None);
         assert_eq!(skill_request("recycle", "R3"), None);
         assert_eq!(skill_request("finish-puck-at", "M11"), None);
         assert_eq!(skill_request("fly", "M1"), None);

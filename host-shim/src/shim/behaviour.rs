@@ -481,6 +481,9 @@ pub struct Skill {
     light_changed: bool,
     /// Recycling: the unit took the junk (the gripper was empty at some point).
     puck_left: bool,
+    /// Collecting: the cycle the machine's light turned green (its output is ready), from
+    /// when the drive is asked to take it.
+    ready_at: Option<u32>,
 }
 
 impl Skill {
@@ -494,6 +497,7 @@ impl Skill {
     ) -> Result<Self, FailReason> {
         let goal = match request {
             SkillRequest::BringPuckTo(_)
+            | SkillRequest::FeedTo(_)
             | SkillRequest::DeliverTo(_)
             | SkillRequest::Discard
             | SkillRequest::Recycle(_)
@@ -503,14 +507,18 @@ impl Skill {
             }
             SkillRequest::Discard => None,
             SkillRequest::GetS0 => Some(input_storage_pose_for(t.robot_number)),
-            SkillRequest::BringPuckTo(m) | SkillRequest::GetJunk(m) => {
-                Some(machine_approach_pose(m))
-            }
+            SkillRequest::BringPuckTo(m)
+            | SkillRequest::FeedTo(m)
+            | SkillRequest::GetJunk(m)
+            | SkillRequest::Collect(m) => Some(machine_approach_pose(m)),
             SkillRequest::DeliverTo(g) => Some(gate_pose(g)),
             SkillRequest::Recycle(u) => Some(recycling_pose(u)),
         };
         // A fetch with a puck in the gripper (one the agent believes lost) lets go first.
-        let fetch = matches!(request, SkillRequest::GetS0 | SkillRequest::GetJunk(_));
+        let fetch = matches!(
+            request,
+            SkillRequest::GetS0 | SkillRequest::GetJunk(_) | SkillRequest::Collect(_)
+        );
         let phase = match goal {
             Some(goal) if !(fetch && p.has_puck) => Phase::Approach(
                 DriveTo::plan_among(p.pose, goal, &p.ir, &p.teammates, t)
@@ -524,6 +532,7 @@ impl Skill {
             light_before: None,
             light_changed: false,
             puck_left: false,
+            ready_at: None,
         })
     }
 
@@ -541,9 +550,14 @@ impl Skill {
     }
 
     /// True while the skill asks the drive to take the puck lying in front of the robot
-    /// (junk at the machine it stands at).
+    /// (junk at the machine it stands at, or its output once the light is green).
     pub fn grabbing(&self) -> bool {
-        matches!(self.request, SkillRequest::GetJunk(_)) && matches!(self.phase, Phase::Wait(_))
+        let waiting = matches!(self.phase, Phase::Wait(_));
+        match self.request {
+            SkillRequest::GetJunk(_) => waiting,
+            SkillRequest::Collect(_) => waiting && self.ready_at.is_some(),
+            _ => false,
+        }
     }
 
     /// What the skill perceived, once it is only leaving the station: the work is done.
@@ -590,6 +604,7 @@ impl Skill {
                     if matches!(
                         self.request,
                         SkillRequest::BringPuckTo(_)
+                            | SkillRequest::FeedTo(_)
                             | SkillRequest::DeliverTo(_)
                             | SkillRequest::Recycle(_)
                     ) && !p.has_puck
@@ -601,7 +616,10 @@ impl Skill {
                         }
                         return (Twist::ZERO, SkillOutcome::Failed(FailReason::PuckLost));
                     }
-                    if let (SkillRequest::BringPuckTo(m), Some((seen, l))) = (self.request, p.light)
+                    if let (
+                        SkillRequest::BringPuckTo(m) | SkillRequest::FeedTo(m),
+                        Some((seen, l)),
+                    ) = (self.request, p.light)
                     {
                         if seen == m {
                             self.light_before = Some(l);
@@ -673,7 +691,25 @@ impl Skill {
                 (true, true) => Err(FailReason::DriveFailed),
                 (true, false) => Ok(None),
             },
-            SkillRequest::BringPuckTo(m) => {
+            // The output is taken once the light is green; a light that never turns green,
+            // or a grab that finds nothing, means no output lies there.
+            SkillRequest::Collect(m) => {
+                let green = p.light == Some((m, LightSignal::Green));
+                if p.has_puck {
+                    return Ok(Some(Perception::GotOutput));
+                }
+                match self.ready_at {
+                    None if green => {
+                        self.ready_at = Some(waited);
+                        Ok(None)
+                    }
+                    None if waited >= PROCESSING_WAIT_CYCLES => Err(FailReason::NoOutput),
+                    Some(at) if waited >= at + WAIT_CYCLES => Err(FailReason::NoOutput),
+                    _ => Ok(None),
+                }
+            }
+            SkillRequest::BringPuckTo(m) | SkillRequest::FeedTo(m) => {
+                let feeding = matches!(self.request, SkillRequest::FeedTo(_));
                 let now = p.light.filter(|(seen, _)| *seen == m).map(|(_, l)| l);
                 if now.is_some() && now != self.light_before {
                     self.light_changed = true;
@@ -687,7 +723,11 @@ impl Skill {
                     (Some(LightSignal::Yellow), false) => {
                         Ok(Some(Perception::LightSeen(LightSignal::Yellow)))
                     }
-                    // Yellow while the robot still has the puck: processing, keep waiting.
+                    // Yellow while the robot still has the puck: processing. Feeding, the
+                    // robot leaves the puck to the machine; otherwise it waits.
+                    (Some(LightSignal::Yellow), true) if feeding => {
+                        Ok(Some(Perception::LeftProcessing))
+                    }
                     (Some(LightSignal::Yellow), true) if waited < PROCESSING_WAIT_CYCLES => {
                         Ok(None)
                     }
@@ -1082,6 +1122,76 @@ mod tests {
         assert_eq!(
             outcome,
             SkillOutcome::Final(Perception::LightSeen(LightSignal::Green))
+        );
+    }
+
+    #[test]
+    fn feed_leaves_the_puck_once_the_machine_works_on_it() {
+        let m = MachineId::new(6).unwrap_or_else(|| panic!());
+        let target = machine_approach_pose(m);
+        let mut start = perceived(input_storage_pose(), true);
+        start.light = Some((m, LightSignal::Yellow));
+        let mut cycles_there = 0;
+        let outcome = run(SkillRequest::FeedTo(m), start, |p| {
+            // The last input: the light stays yellow while the machine works for 50 s.
+            if p.pose.distance_to(&target) < 0.15 {
+                cycles_there += 1;
+            }
+        });
+        assert_eq!(outcome, SkillOutcome::Final(Perception::LeftProcessing));
+        assert!(cycles_there < 15 * 5, "waited {cycles_there} cycles there");
+        // A consumed input (not the last) is read as usual.
+        let outcome = run(SkillRequest::FeedTo(m), start, |p| {
+            if p.has_puck && p.pose.distance_to(&target) < 0.05 {
+                p.has_puck = false;
+            }
+        });
+        assert_eq!(
+            outcome,
+            SkillOutcome::Final(Perception::LightSeen(LightSignal::Yellow))
+        );
+    }
+
+    #[test]
+    fn collect_takes_the_output_only_once_the_light_is_green() {
+        let t = DriveTuning::default();
+        let m = MachineId::new(6).unwrap_or_else(|| panic!());
+        let target = machine_approach_pose(m);
+        let mut start = perceived(input_storage_pose(), false);
+        start.light = Some((m, LightSignal::Yellow));
+        let mut skill =
+            Skill::start(SkillRequest::Collect(m), &start, &t).unwrap_or_else(|r| panic!("{r:?}"));
+        let mut p = start;
+        let (mut outcome, mut there) = (SkillOutcome::Running, 0);
+        for _ in 0..15 * 90 {
+            let (tw, o) = skill.step(&p, &t);
+            outcome = o;
+            if o.is_terminal() {
+                break;
+            }
+            if p.pose.distance_to(&target) < 0.05 {
+                there += 1;
+                if there == 200 {
+                    p.light = Some((m, LightSignal::Green));
+                }
+            }
+            if skill.grabbing() {
+                assert_eq!(p.light, Some((m, LightSignal::Green)), "grab before green");
+                p.has_puck = true;
+            }
+            p.pose = integrate(p.pose, hal::limits::MotionLimits::ROBOTINO2.clamp_speed(tw));
+        }
+        assert_eq!(outcome, SkillOutcome::Final(Perception::GotOutput));
+        // Green but nothing to take, or never green: no output.
+        let mut green = start;
+        green.light = Some((m, LightSignal::Green));
+        assert_eq!(
+            run(SkillRequest::Collect(m), green, |_| {}),
+            SkillOutcome::Failed(FailReason::NoOutput)
+        );
+        assert_eq!(
+            run(SkillRequest::Collect(m), start, |_| {}),
+            SkillOutcome::Failed(FailReason::NoOutput)
         );
     }
 

@@ -120,6 +120,9 @@ pub struct SimRobot {
     recycling: Option<(f32, RecyclingId)>,
     /// The drive tried to take junk since the grab was asked for (once per asking).
     grab_tried: bool,
+    /// The machine whose production the held puck is, while that machine still works on
+    /// it: a robot that drives away then leaves the puck there.
+    produced_at: Option<MachineId>,
 }
 
 /// What a robot's bumper touched.
@@ -178,6 +181,8 @@ pub struct FieldSim<R: Referee> {
     pub robots: Vec<SimRobot>,
     pub referee: R,
     cycle: u64,
+    /// Outputs robots left under a working machine (by machine index), until one takes it.
+    outputs: [Option<PuckKind>; 10],
 }
 
 impl<R: Referee> FieldSim<R> {
@@ -205,6 +210,7 @@ impl<R: Referee> FieldSim<R> {
                     worked_station: None,
                     recycling: None,
                     grab_tried: false,
+                    produced_at: None,
                 }
             })
             .collect();
@@ -218,6 +224,7 @@ impl<R: Referee> FieldSim<R> {
             robots,
             referee,
             cycle: 0,
+            outputs: [None; 10],
         }
     }
 
@@ -236,8 +243,13 @@ impl<R: Referee> FieldSim<R> {
             self.apply_command(i, command);
             if command.is_some_and(|c| c.release) {
                 let r = &mut self.robots[i];
-                if let Some(puck) = r.held.take() {
-                    self.referee.discard(r.number, puck);
+                match (r.held.take(), r.produced_at.take()) {
+                    // Let go under a machine that still works on it: it stays there.
+                    (Some(puck), Some(m)) if self.referee.light(m) == LightSignal::Yellow => {
+                        self.outputs[m.index()] = Some(puck);
+                    }
+                    (Some(puck), _) => self.referee.discard(r.number, puck),
+                    (None, _) => {}
                 }
             }
             self.move_robot(i);
@@ -361,6 +373,17 @@ impl<R: Referee> FieldSim<R> {
             r.worked_station = None;
         }
         r.grab_tried &= grab;
+        // The product under a machine that still works on it stays there when the robot
+        // drives away (2012: the machine processes the puck under its light); the robot
+        // may come back for it once the light is green.
+        if let Some(m) = r.produced_at {
+            if self.referee.light(m) != LightSignal::Yellow || r.held.is_none() {
+                r.produced_at = None;
+            } else if !r.applied.is_zero() {
+                self.outputs[m.index()] = r.held.take();
+                r.produced_at = None;
+            }
+        }
         // A puck goes into a station only from a robot that stopped there: one driving
         // past a machine's approach pose on its way elsewhere keeps its puck.
         if !r.applied.is_zero() {
@@ -373,6 +396,15 @@ impl<R: Referee> FieldSim<R> {
             (station, r.held, grab, r.grab_tried)
         {
             r.grab_tried = true;
+            // What it took is not put back into the machine it stands at.
+            r.worked_station = station;
+            // A finished output lies on top: it is what the robot takes first.
+            if self.referee.light(m) == LightSignal::Green {
+                if let Some(out) = self.outputs[m.index()].take() {
+                    r.held = Some(out);
+                    return;
+                }
+            }
             let robot = r.number;
             if self.referee.take_junk(robot, m) {
                 self.robots[i].held = Some(PuckKind::Junk);
@@ -399,7 +431,10 @@ impl<R: Referee> FieldSim<R> {
                 r.held = match self.referee.place_at_machine(robot, m, puck) {
                     Placement::Consumed => None,
                     Placement::Rejected => Some(puck),
-                    Placement::Produced(out) => Some(out),
+                    Placement::Produced(out) => {
+                        r.produced_at = Some(m);
+                        Some(out)
+                    }
                 };
                 r.worked_station = Some(station);
             }
@@ -785,6 +820,94 @@ mod tests {
             s.robots[0].true_pose = recycling_pose(unit);
             s.step(&[None]);
             assert_eq!(s.robots[0].held, Some(PuckKind::Junk));
+        });
+    }
+
+    fn command(seq: u32, wheels: WheelSpeeds, release: bool, grab: bool) -> Option<Command> {
+        Some(Command {
+            seq,
+            wheels,
+            release,
+            grab,
+        })
+    }
+
+    /// A field whose robot 1 just put the last input into the T3: it holds the P under the
+    /// working machine (light yellow). Returns the field and the T3.
+    fn p_under_a_working_t3() -> (FieldSim<ClipsReferee>, MachineId) {
+        let mut s = sim();
+        let setup = GameSetup::for_seed(SEED);
+        let of = |t| {
+            MachineId::all()
+                .find(|&m| setup.assignment[m.index()] == t)
+                .unwrap_or_else(|| panic!("{t:?}"))
+        };
+        let (t1, t2, t3) = (
+            of(MachineType::T1),
+            of(MachineType::T2),
+            of(MachineType::T3),
+        );
+        // A fresh S0 from the storage before each chain: S0 into the T3; S1 into the T3;
+        // S1 and S0 into the T2 make the S2, the T3's last input.
+        let chains: [&[MachineId]; 4] = [&[t3], &[t1, t3], &[t1, t2], &[t2, t3]];
+        for chain in chains {
+            s.robots[0].true_pose = input_storage_pose_for(1);
+            s.step(&[None]);
+            assert_eq!(s.robots[0].held, Some(PuckKind::S0));
+            for &m in chain {
+                for _ in 0..15 * 21 {
+                    s.step(&[None]); // the last machine finishes its work
+                }
+                s.robots[0].true_pose = machine_approach_pose(m);
+                s.step(&[None]);
+            }
+        }
+        assert_eq!(s.robots[0].held, Some(PuckKind::P), "held under the light");
+        assert_eq!(s.referee.light(t3), LightSignal::Yellow);
+        (s, t3)
+    }
+
+    /// A T3's product stays under the machine when the robot drives away while the machine
+    /// works on it; a grab there takes junk until the light is green, then the product.
+    #[test]
+    fn a_product_left_at_a_working_machine_is_taken_back_once_green() {
+        on_engine_stack(|| {
+            let (mut s, t3) = p_under_a_working_t3();
+            let back = WheelSpeeds {
+                rpm: [-300.0, 0.0, 300.0],
+            };
+            s.step(&[command(1, back, false, false)]);
+            assert_eq!(s.robots[0].held, None);
+            // Still working: a grab takes a junk puck, not the product.
+            s.robots[0].true_pose = machine_approach_pose(t3);
+            s.step(&[command(2, WheelSpeeds::ZERO, false, true)]);
+            assert_eq!(s.robots[0].held, Some(PuckKind::Junk));
+            s.robots[0].held = None;
+            for _ in 0..15 * 51 {
+                s.step(&[command(3, WheelSpeeds::ZERO, false, false)]);
+            }
+            assert_eq!(s.referee.light(t3), LightSignal::Green);
+            s.step(&[command(4, WheelSpeeds::ZERO, false, true)]);
+            assert_eq!(s.robots[0].held, Some(PuckKind::P));
+        });
+    }
+
+    /// Letting go of the product under the working machine (no room to back away) leaves
+    /// it there too: nothing is discarded, a later grab takes it.
+    #[test]
+    fn a_product_let_go_at_a_working_machine_stays_there() {
+        on_engine_stack(|| {
+            let (mut s, _) = p_under_a_working_t3();
+            let _ = s.referee.take_log();
+            s.step(&[command(1, WheelSpeeds::ZERO, true, false)]);
+            assert_eq!(s.robots[0].held, None);
+            let log = s.referee.take_log();
+            assert!(!log.iter().any(|l| l.contains("discard")), "{log:?}");
+            for _ in 0..15 * 51 {
+                s.step(&[command(2, WheelSpeeds::ZERO, false, false)]);
+            }
+            s.step(&[command(3, WheelSpeeds::ZERO, false, true)]);
+            assert_eq!(s.robots[0].held, Some(PuckKind::P));
         });
     }
 

@@ -389,6 +389,8 @@ const SKILL_DELIVER: u8 = 3;
 const SKILL_DISCARD: u8 = 4;
 const SKILL_GET_JUNK: u8 = 5;
 const SKILL_RECYCLE: u8 = 6;
+const SKILL_FEED: u8 = 7;
+const SKILL_COLLECT: u8 = 8;
 
 fn encode_request(request: SkillRequest) -> (u8, u8) {
     match request {
@@ -398,6 +400,8 @@ fn encode_request(request: SkillRequest) -> (u8, u8) {
         SkillRequest::Discard => (SKILL_DISCARD, 0),
         SkillRequest::GetJunk(m) => (SKILL_GET_JUNK, m.number()),
         SkillRequest::Recycle(r) => (SKILL_RECYCLE, r.number()),
+        SkillRequest::FeedTo(m) => (SKILL_FEED, m.number()),
+        SkillRequest::Collect(m) => (SKILL_COLLECT, m.number()),
     }
 }
 
@@ -407,6 +411,8 @@ fn decode_request(kind: u8, target: u8) -> Result<SkillRequest, DecodeError> {
         SKILL_DISCARD => Ok(SkillRequest::Discard),
         SKILL_BRING_PUCK => Ok(SkillRequest::BringPuckTo(machine(target)?)),
         SKILL_GET_JUNK => Ok(SkillRequest::GetJunk(machine(target)?)),
+        SKILL_FEED => Ok(SkillRequest::FeedTo(machine(target)?)),
+        SKILL_COLLECT => Ok(SkillRequest::Collect(machine(target)?)),
         SKILL_RECYCLE => {
             RecyclingId::new(target)
                 .map(SkillRequest::Recycle)
@@ -470,6 +476,8 @@ const PERCEPTION_DELIVERED: u8 = 4;
 const PERCEPTION_RELEASED: u8 = 5;
 const PERCEPTION_GOT_JUNK: u8 = 6;
 const PERCEPTION_RECYCLED: u8 = 7;
+const PERCEPTION_LEFT_PROCESSING: u8 = 8;
+const PERCEPTION_GOT_OUTPUT: u8 = 9;
 
 /// A skill's state for monitoring. `detail` is the perception code (FINAL) or the fail
 /// reason (FAILED); `light` carries the seen light for `PERCEPTION_LIGHT`.
@@ -512,6 +520,8 @@ impl SkillStatusPayload {
                 Perception::Released => (STATE_FINAL, PERCEPTION_RELEASED, 0),
                 Perception::GotJunk => (STATE_FINAL, PERCEPTION_GOT_JUNK, 0),
                 Perception::Recycled => (STATE_FINAL, PERCEPTION_RECYCLED, 0),
+                Perception::LeftProcessing => (STATE_FINAL, PERCEPTION_LEFT_PROCESSING, 0),
+                Perception::GotOutput => (STATE_FINAL, PERCEPTION_GOT_OUTPUT, 0),
             },
         };
         Self {
@@ -544,6 +554,8 @@ impl SkillStatusPayload {
                 PERCEPTION_RELEASED => Perception::Released,
                 PERCEPTION_GOT_JUNK => Perception::GotJunk,
                 PERCEPTION_RECYCLED => Perception::Recycled,
+                PERCEPTION_LEFT_PROCESSING => Perception::LeftProcessing,
+                PERCEPTION_GOT_OUTPUT => Perception::GotOutput,
                 code => return Err(unknown("detail", code)),
             }),
             code => return Err(unknown("state", code)),
@@ -963,7 +975,7 @@ mod tests {
     }
 
     #[test]
-    fn junk_and_recycling_skills_round_trip() {
+    fn junk_recycling_feed_and_collect_skills_round_trip() {
         let r2 = RecyclingId::new(2).unwrap_or_else(|| panic!("R2"));
         for (request, outcome) in [
             (
@@ -977,6 +989,18 @@ mod tests {
             (
                 SkillRequest::Recycle(r2),
                 SkillOutcome::Final(Perception::Recycled),
+            ),
+            (
+                SkillRequest::FeedTo(m(6)),
+                SkillOutcome::Final(Perception::LeftProcessing),
+            ),
+            (
+                SkillRequest::Collect(m(6)),
+                SkillOutcome::Final(Perception::GotOutput),
+            ),
+            (
+                SkillRequest::Collect(m(10)),
+                SkillOutcome::Failed(FailReason::NoOutput),
             ),
         ] {
             let p = SkillRequestPayload::encode(1, 3, request);

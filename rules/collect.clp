@@ -1,0 +1,110 @@
+;;; collect.clp -- a robot on the field leaves a working T3 and comes back for the P.
+;;;
+;;; A T3 works 50 s on its last input.  The instant simulation charges that wait
+;;; to the clock; a robot on the field need not stand there meanwhile.  `run`
+;;; loads this file after the agent (the instant simulation and the image do
+;;; not): the last input of a known T3 becomes a `feed` skill, which leaves the
+;;; puck under the machine's light once the machine works on it (outcome FINAL,
+;;; light yellow, info processing).  The robot then believes the machine full
+;;; (all three inputs, so no candidate rule picks it) with its two junk pucks
+;;; and the P lying there, (output-at M P), and does the next best thing: the
+;;; junk right there first (recycled into a raw puck it goes on with), and once
+;;; its hands are empty it comes back to `collect` the P (the skill waits there
+;;; for green).  A team member keeps its claim on M until then (team-agent.clp,
+;;; team-done-with), so nobody else loads M or takes what lies there.
+
+(defrule feed-last-input-of-t3
+  "The committed puck completes a known T3: feed it and leave."
+  (declare (salience (+ ?*PRIORITY_EXEC* 1)))
+  (state IDLE)
+  ?i <- (intent (action finish-puck-at) (target ?m))
+  (holding ?x)
+  (machine (name ?m) (mtype T3)
+    (loaded-with $?lw&:(= (length$ ?lw) 2)&:(not (member$ ?x ?lw))))
+  (not (output-at ?m ?))
+  =>
+  (modify ?i (action feed)))
+
+(defrule exec-feed-left-processing
+  "The T3 works on the last input, left there: it made a P (collected later)
+   and its other two inputs are junk."
+  (declare (salience (+ ?*PRIORITY_EXEC* 1)))
+  ?s <- (state EXEC)
+  ?r <- (skill-request (id ?id) (name feed) (target ?m))
+  ?o <- (skill-outcome (id ?id) (status FINAL) (info processing))
+  ?h <- (holding ?x)
+  ?f <- (machine (name ?m) (loaded-with $?lw) (junk ?j) (productions ?n))
+  ?p <- (robot-at ?)
+  =>
+  (retract ?s ?r ?o ?h ?p)
+  (modify ?f (mtype T3) (loaded-with ?lw ?x) (junk (+ ?j (length$ ?lw)))
+          (productions (+ ?n 1)))
+  (assert (state IDLE) (holding NONE) (robot-at ?m) (output-at ?m P)))
+
+(defrule exec-feed-final
+  "Any other light after a feed: read it as after finish-puck-at (the
+   beliefs were wrong; the world model sorts it out)."
+  (declare (salience ?*PRIORITY_EXEC*))
+  ?s <- (state EXEC)
+  ?r <- (skill-request (id ?id) (name feed) (target ?m))
+  ?o <- (skill-outcome (id ?id) (status FINAL) (light ?l) (info ?info&~processing))
+  ?p <- (robot-at ?)
+  =>
+  (retract ?s ?r ?o ?p)
+  (assert (state GOTO-FINAL) (goto-target ?m) (light (exec-seen-light ?m ?l ?info))
+          (robot-at ?m)))
+
+(defrule prod-collect-output
+  "Hands empty and an output waits at a machine: fetch it, once the junk
+   there is no longer the nearer work (the first junk puck is taken right
+   after feeding, while the machine still works)."
+  (declare (salience (+ ?*PRIORITY_RECYCLE* 1)))
+  (state IDLE)
+  (holding NONE)
+  (output-at ?m ?)
+  (machine (name ?m) (junk ?j&:(< ?j 2)))
+  (not (intent))
+  =>
+  (assert (intent (action collect) (target ?m))))
+
+(defrule collect-not-done
+  "An output still waits: the robot is not done."
+  (declare (salience ?*PRIORITY_EXEC*))
+  ?s <- (state DONE)
+  (holding NONE)
+  (output-at ? ?)
+  =>
+  (retract ?s)
+  (assert (state IDLE)))
+
+(defrule exec-collect-final
+  "Took the output: the machine is empty again."
+  (declare (salience ?*PRIORITY_EXEC*))
+  ?s <- (state EXEC)
+  ?r <- (skill-request (id ?id) (name collect) (target ?m))
+  ?o <- (skill-outcome (id ?id) (status FINAL))
+  ?c <- (output-at ?m ?out)
+  ?h <- (holding ?)
+  ?f <- (machine (name ?m))
+  ?p <- (robot-at ?)
+  =>
+  (retract ?s ?r ?o ?c ?h ?p)
+  (modify ?f (loaded-with))
+  (assert (state IDLE) (holding ?out) (robot-at ?m)))
+
+(defrule exec-collect-none
+  "No output turned up: believe none is there and the machine empty (before
+   exec-failed-abort, which keeps the belief after a failure on the way)."
+  (declare (salience (+ ?*PRIORITY_EXEC* 1)))
+  ?s <- (state EXEC)
+  ?r <- (skill-request (id ?id) (name collect) (target ?m))
+  ?o <- (skill-outcome (id ?id) (status FAILED) (info no-output))
+  ?c <- (output-at ?m ?)
+  ?h <- (holding ?)
+  ?f <- (machine (name ?m))
+  ?p <- (robot-at ?)
+  =>
+  (retract ?s ?r ?o ?c ?h ?p)
+  (printout t "WARN no output at " ?m crlf)
+  (modify ?f (loaded-with))
+  (assert (state IDLE) (holding NONE) (robot-at ?m)))
