@@ -1,6 +1,7 @@
-//! The agenda: activations ordered by salience, then by CLIPS's depth strategy (newer
-//! activations first). Refraction comes from the network: a fired activation is gone,
-//! and only a new partial match can activate the rule again.
+//! The agenda: activations ordered by salience, then by the conflict resolution
+//! strategy (`strategy`; depth by default: newer activations first). Refraction comes
+//! from the network: a fired activation is gone, and only a new partial match can
+//! activate the rule again.
 
 use crate::engine::{cap, watch, Core};
 use crate::error::{CapacityError, Pool};
@@ -20,6 +21,9 @@ pub struct JournalEntry {
     /// Hash of the fact numbers the activation matched.
     pub basis: u32,
     pub seq: u32,
+    /// Its random-strategy number (an undo draws no new one).
+    #[cfg(feature = "extras")]
+    pub random: u32,
 }
 
 /// Where a (possibly nested) journal recording began: the journal as it was then,
@@ -63,6 +67,8 @@ impl ActJournal {
             rule: NONE,
             basis: 0,
             seq: 0,
+            #[cfg(feature = "extras")]
+            random: 0,
         }; JOURNAL_LEN],
     };
 }
@@ -94,13 +100,20 @@ impl Core<'_> {
             n as Ix
         };
         let seq = match replayed {
-            Some(seq) => seq,
+            Some((seq, _)) => seq,
             None => {
                 self.st.agenda.act_seq = self.st.agenda.act_seq.wrapping_add(1);
                 self.st.agenda.act_seq
             }
         };
-        let salience = self.rules[rule as usize].salience;
+        // CLIPS draws a random number for every activation, whatever the strategy:
+        // `(random)` after activations gives what it gives in CLIPS
+        #[cfg(feature = "extras")]
+        let random = match replayed {
+            Some((_, random)) => random,
+            None => crate::builtins::random::next_random(self.st) as u32,
+        };
+        let salience = i32::from(self.rules[rule as usize].salience);
         let next_of_token = self.tokens[token].extra;
         self.acts[a as usize] = Activation {
             rule,
@@ -110,13 +123,12 @@ impl Core<'_> {
             next: NONE,
             prev: NONE,
             next_of_token,
+            #[cfg(feature = "extras")]
+            random,
         };
         self.tokens[token].extra = a;
-        if replayed.is_some() {
-            self.agenda_insert_at_seq(a);
-        } else {
-            self.agenda_insert(a);
-        }
+        // a replayed activation has its old number back, hence its old place
+        self.agenda_insert(a);
         if self.st.mode.watch & watch::ACTIVATIONS != 0 {
             self.print_activation_line("==> Activation ", a);
         }
@@ -127,7 +139,7 @@ impl Core<'_> {
     pub(crate) fn rule_salience(&mut self, rule: Ix) -> i32 {
         let e = self.rules[rule as usize].salience_expr;
         if e == NONE {
-            return self.rules[rule as usize].salience;
+            return i32::from(self.rules[rule as usize].salience);
         }
         let (scratch, sp, pm) = (
             self.st.frame.scratch_top,
@@ -142,17 +154,16 @@ impl Core<'_> {
         ) = (scratch, sp, pm);
         match v {
             Ok(crate::value::Value::Int(i)) => i.clamp(-10000, 10000) as i32,
-            _ => self.rules[rule as usize].salience,
+            _ => i32::from(self.rules[rule as usize].salience),
         }
     }
 
-    /// Inserts before the first activation of lower or equal salience.
+    /// Inserts before the first activation it goes before (`goes_before`).
     #[cfg_attr(feature = "host-speedups", inline(always))]
     pub(crate) fn agenda_insert(&mut self, a: Ix) {
-        let sal = self.acts[a as usize].salience;
         let mut prev = NONE;
         let mut cur = self.st.agenda.agenda_head;
-        while cur != NONE && self.acts[cur as usize].salience > sal {
+        while cur != NONE && !self.goes_before(a, cur) {
             prev = cur;
             cur = self.acts[cur as usize].next;
         }
@@ -241,29 +252,46 @@ impl Core<'_> {
         for r in 0..self.st.pools.nrules {
             if self.rules[r as usize].salience_expr != NONE {
                 let s = self.rule_salience(r);
+                // (`rule_salience` keeps it in CLIPS's range)
+                let s = s as i16;
                 if s != self.rules[r as usize].salience {
                     self.network_writable()?;
                     self.rules[r as usize].salience = s;
                 }
             }
         }
+        let mut a = self.st.agenda.agenda_head;
+        while a != NONE {
+            let rule = self.acts[a as usize].rule;
+            self.acts[a as usize].salience = i32::from(self.rules[rule as usize].salience);
+            a = self.acts[a as usize].next;
+        }
+        self.resort_agenda();
+        Ok(())
+    }
+
+    /// Sorts the agenda again (saliences or the strategy changed): every activation
+    /// is inserted again, which puts it where `goes_before` says whatever the order.
+    pub(crate) fn resort_agenda(&mut self) {
         let mut list = self.st.agenda.agenda_head;
         self.st.agenda.agenda_head = NONE;
         self.st.agenda.agenda_len = 0;
-        // re-insert oldest first so newer stay ahead among equals
-        let mut tail = list;
-        while tail != NONE && self.acts[tail as usize].next != NONE {
-            tail = self.acts[tail as usize].next;
-        }
-        list = tail;
         while list != NONE {
-            let prev = self.acts[list as usize].prev;
-            let rule = self.acts[list as usize].rule;
-            self.acts[list as usize].salience = self.rules[rule as usize].salience;
+            let next = self.acts[list as usize].next;
             self.agenda_insert(list);
-            list = prev;
+            list = next;
         }
-        Ok(())
+    }
+
+    /// `set-strategy`: the agenda is re-sorted when the strategy changes; returns
+    /// the strategy before.
+    pub fn set_strategy(&mut self, s: crate::strategy::Strategy) -> crate::strategy::Strategy {
+        let old = self.strategy();
+        self.st.agenda.strategy = s as u8;
+        if old != s {
+            self.resort_agenda();
+        }
+        old
     }
 
     pub fn agenda_len(&self) -> usize {
@@ -314,6 +342,8 @@ impl Core<'_> {
             rule: x.rule,
             basis: self.token_basis(x.token),
             seq: x.seq,
+            #[cfg(feature = "extras")]
+            random: x.random,
         };
         let j = &mut self.st.agenda.act_journal;
         j.entries[j.len as usize] = entry;
@@ -363,9 +393,10 @@ impl Core<'_> {
         j.replay_from = m.len;
     }
 
-    /// The recorded number of the activation of `rule` for partial match `token`,
-    /// used up (each entry is one activation), or None if none was recorded.
-    fn journal_take(&mut self, rule: Ix, token: TokenId) -> Option<u32> {
+    /// The recorded number (and random number) of the activation of `rule` for
+    /// partial match `token`, used up (each entry is one activation), or None if none
+    /// was recorded.
+    fn journal_take(&mut self, rule: Ix, token: TokenId) -> Option<(u32, u32)> {
         let basis = self.token_basis(token);
         let j = &mut self.st.agenda.act_journal;
         let recorded = j
@@ -376,34 +407,10 @@ impl Core<'_> {
             .iter_mut()
             .find(|e| e.rule == rule && e.basis == basis)?;
         e.rule = NONE;
-        Some(e.seq)
-    }
-
-    /// Inserts where its creation number puts it: the agenda is sorted by salience,
-    /// then newest first (the invariant mode checks it), so an activation given its
-    /// old number back goes exactly where it was.
-    fn agenda_insert_at_seq(&mut self, a: Ix) {
-        let (sal, seq) = (self.acts[a as usize].salience, self.acts[a as usize].seq);
-        let mut prev = NONE;
-        let mut cur = self.st.agenda.agenda_head;
-        while cur != NONE {
-            let c = self.acts[cur as usize];
-            if c.salience < sal || (c.salience == sal && (c.seq.wrapping_sub(seq) as i32) < 0) {
-                break;
-            }
-            prev = cur;
-            cur = c.next;
-        }
-        self.acts[a as usize].prev = prev;
-        self.acts[a as usize].next = cur;
-        if cur != NONE {
-            self.acts[cur as usize].prev = a;
-        }
-        if prev != NONE {
-            self.acts[prev as usize].next = a;
-        } else {
-            self.st.agenda.agenda_head = a;
-        }
-        self.st.agenda.agenda_len += 1;
+        #[cfg(feature = "extras")]
+        let random = e.random;
+        #[cfg(not(feature = "extras"))]
+        let random = 0;
+        Some((e.seq, random))
     }
 }

@@ -328,6 +328,8 @@ impl Core<'_> {
             self.st.net.pm_rhs,
         );
         let random = self.st.random;
+        // the strategy is a setting: CLIPS keeps it across clear
+        let strategy = self.st.agenda.strategy;
         *self.st = crate::engine::State::new();
         // a compiled rule base's nodes read in place go with the rest
         #[cfg(feature = "in-place")]
@@ -347,6 +349,7 @@ impl Core<'_> {
             self.st.net.pm_rhs,
         ) = ctx;
         self.st.random = random;
+        self.st.agenda.strategy = strategy;
         self.st.pools.nexternals = next;
         // keep the symbols naming external functions
         for b in self.sym_buckets.iter_mut() {

@@ -192,6 +192,8 @@ pub struct AgendaState {
     pub act_journal: crate::agenda::ActJournal,
     /// Rule being fired (for messages), NONE outside a firing.
     pub current_rule: Ix,
+    /// The conflict resolution strategy (`strategy::Strategy` as u8).
+    pub strategy: u8,
 }
 
 impl AgendaState {
@@ -202,6 +204,7 @@ impl AgendaState {
             act_seq: 0,
             act_journal: crate::agenda::ActJournal::EMPTY,
             current_rule: NONE,
+            strategy: 0,
         }
     }
 }

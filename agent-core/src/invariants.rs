@@ -12,7 +12,7 @@
 //!   is live; every partial match is in its join's memory, under its parent and its
 //!   alpha match (no dangling partial match after a retract), and not/exists counts
 //!   equal their links;
-//! - the agenda: doubly linked, sorted by salience then newest first (depth strategy),
+//! - the agenda: doubly linked, sorted by salience then by the strategy (`strategy`),
 //!   every activation belongs to a live rule, sits on an active partial match of that
 //!   rule's last join, and all the facts it matched are live;
 //! - the symbol table: texts packed in order, hash chains complete, no duplicates;
@@ -1183,8 +1183,8 @@ impl Core<'_> {
                 let p = self.acts[prev as usize];
                 ensure!(p.salience >= x.salience, "agenda not sorted by salience", a);
                 ensure!(
-                    p.salience > x.salience || p.seq > x.seq,
-                    "agenda not newest first among equal salience",
+                    !self.goes_before(a, prev),
+                    "agenda not in strategy order among equal salience",
                     a
                 );
             }
@@ -1214,7 +1214,7 @@ impl Core<'_> {
             );
             if rule.salience_expr == NONE {
                 ensure!(
-                    x.salience == rule.salience,
+                    x.salience == i32::from(rule.salience),
                     "activation salience is stale",
                     a
                 );
@@ -1367,7 +1367,7 @@ mod tests {
                 let b = cx.sym_buckets.iter().position(|&b| b != NONE).unwrap();
                 cx.sym_buckets[b] = NONE;
             }),
-            ("agenda not newest first among equal salience", |cx| {
+            ("agenda not in strategy order among equal salience", |cx| {
                 let a = cx.st.agenda.agenda_head;
                 cx.acts[a as usize].seq = 0;
             }),

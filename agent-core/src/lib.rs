@@ -178,6 +178,7 @@ pub mod print;
 pub mod rete;
 pub mod rom;
 pub mod rule;
+pub mod strategy;
 pub mod symbols;
 pub mod template;
 pub mod value;

@@ -7,7 +7,9 @@ use crate::value::{SymId, NONE};
 #[derive(Clone, Copy, Debug)]
 pub struct Rule {
     pub name: SymId,
-    pub salience: i32,
+    /// -10000..=10000 (CLIPS's range): 16 bits keep the rule table's size with
+    /// `complexity` added (the image copies its rules into RAM).
+    pub salience: i16,
     /// Salience expression when not a constant (re-evaluated per activation and by
     /// `refresh-agenda`, as CLIPS does for global-based saliences), else NONE.
     pub salience_expr: Ix,
@@ -29,6 +31,9 @@ pub struct Rule {
     pub deleted: bool,
     /// Source text of the construct in the symbol table (for `ppdefrule`), or NONE.
     pub text: Ix,
+    /// CLIPS's specificity of the LHS, for the complexity, simplicity, lex and mea
+    /// strategies (see `parser::rule`'s `Complexity`).
+    pub complexity: u16,
 }
 
 impl Rule {
@@ -46,6 +51,7 @@ impl Rule {
         root_sensitive: false,
         deleted: false,
         text: NONE,
+        complexity: 0,
     };
 }
 
@@ -54,12 +60,17 @@ pub struct Activation {
     pub rule: Ix,
     pub token: TokenId,
     pub salience: i32,
-    /// Creation order; the depth strategy puts newer activations first.
+    /// Creation order; the depth strategy puts newer activations first, the others
+    /// older ones among equal keys.
     pub seq: u32,
     pub next: Ix,
     pub prev: Ix,
     /// Next activation of the same partial match (rules sharing a terminal join).
     pub next_of_token: Ix,
+    /// The C library `rand()` value CLIPS draws for every activation (the random
+    /// strategy's key, see `strategy`).
+    #[cfg(feature = "extras")]
+    pub random: u32,
 }
 
 impl Activation {
@@ -71,5 +82,7 @@ impl Activation {
         next: NONE,
         prev: NONE,
         next_of_token: NONE,
+        #[cfg(feature = "extras")]
+        random: 0,
     };
 }

@@ -354,4 +354,11 @@ differential_programs! {
     p195_dynamic_constraint_checking => "195-dynamic-constraint-checking",
     p196_several_allowed_lists => "196-several-allowed-lists",
     p197_variable_constraint_conflicts => "197-variable-constraint-conflicts",
+    p198_strategy_breadth => "198-strategy-breadth",
+    p199_strategy_lex => "199-strategy-lex",
+    p200_strategy_mea => "200-strategy-mea",
+    p201_strategy_complexity => "201-strategy-complexity",
+    p202_strategy_simplicity => "202-strategy-simplicity",
+    p203_strategy_random => "203-strategy-random",
+    p204_strategy_switching => "204-strategy-switching",
 }

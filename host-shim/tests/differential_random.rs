@@ -2,8 +2,12 @@
 //! modify chains (templates `ctx`/`cnt`/`it`/`mk`, a deffacts, 3-7 rules with `not`,
 //! `exists` and `test` CEs, right-hand sides of `modify`, `(bind ?f (modify ...))`,
 //! `assert` and `printout`), then `(watch rules)`, `(reset)`, `(run 60)`, `(facts)`,
-//! `(agenda)`, `(exit)`. Each runs in real CLIPS 6.30 and in our CLI exactly as the
-//! differential suite runs its programs (`clips_runner`); the transcripts must be equal.
+//! `(agenda)`, `(exit)`. Two programs in three first choose a conflict resolution strategy
+//! (`(set-strategy ...)`, any of the seven), and some of those switch to another after
+//! five firings; the choice is drawn from a generator of its own (`strategy_lines`), so
+//! the rest of a seed's program is what it was before strategies existed. Each runs in
+//! real CLIPS 6.30 and in our CLI exactly as the differential suite runs its programs
+//! (`clips_runner`); the transcripts must be equal.
 //!
 //! The seeds are fixed (`SEEDS`), so the test is deterministic; `DIFFRANDOM_SEEDS=A..B`
 //! runs other seeds (exploration, reproducing one seed). A program that differs is saved
@@ -61,6 +65,39 @@ impl Rng {
 }
 
 const STATES: [&str; 4] = ["s0", "s1", "s2", "s3"];
+const STRATEGIES: [&str; 7] = [
+    "depth",
+    "breadth",
+    "lex",
+    "mea",
+    "complexity",
+    "simplicity",
+    "random",
+];
+
+/// The strategy lines of `seed`'s program: the `(set-strategy ...)` it starts with (none
+/// for a third of the seeds: depth, CLIPS's default) and the run it ends with: `(run 60)`,
+/// or `(run 5)`, a switch to another strategy, `(agenda)` and `(run 55)`. Drawn from a
+/// generator of their own so that the rest of the program does not depend on them.
+fn strategy_lines(seed: u64) -> (Option<String>, Vec<String>) {
+    let mut rng = Rng::new(seed ^ 0x5354_5241_5445_4759);
+    if rng.unit() < 1.0 / 3.0 {
+        return (None, vec!["(run 60)".to_string()]);
+    }
+    let first = rng.pick(&STRATEGIES);
+    let start = Some(format!("(set-strategy {first})"));
+    if rng.unit() < 0.6 {
+        return (start, vec!["(run 60)".to_string()]);
+    }
+    let second = rng.pick(&STRATEGIES);
+    let run = vec![
+        "(run 5)".to_string(),
+        format!("(set-strategy {second})"),
+        "(agenda)".to_string(),
+        "(run 55)".to_string(),
+    ];
+    (start, run)
+}
 const VALUES: [&str; 3] = ["x", "y", "z"];
 
 /// One rule `r{k}`: a `ctx` pattern (always bound to `?x`) before or after a random body,
@@ -176,12 +213,14 @@ fn rule(rng: &mut Rng, k: u32) -> String {
 /// `(watch rules)` without changing anything else.
 fn program(seed: u64, watch_activations: bool) -> String {
     let mut rng = Rng::new(seed);
-    let mut out = vec![
+    let (strategy, run) = strategy_lines(seed);
+    let mut out: Vec<String> = strategy.into_iter().collect();
+    out.extend([
         "(deftemplate ctx (slot s))".to_string(),
         "(deftemplate cnt (slot c))".to_string(),
         "(deftemplate it (slot id) (slot v) (slot w))".to_string(),
         "(deftemplate mk (slot id) (slot v))".to_string(),
-    ];
+    ]);
     // a test function that counts the control facts (see `rule`)
     out.push("(deffunction nctx () (length$ (find-all-facts ((?f ctx)) TRUE)))".to_string());
     let mut facts = vec!["(ctx (s s0))".to_string(), "(cnt (c 0))".to_string()];
@@ -206,15 +245,11 @@ fn program(seed: u64, watch_activations: bool) -> String {
     if watch_activations {
         out.push("(watch activations)".to_string());
     }
-    for line in [
-        "(watch rules)",
-        "(reset)",
-        "(run 60)",
-        "(facts)",
-        "(agenda)",
-    ] {
-        out.push(line.to_string());
-    }
+    out.push("(watch rules)".to_string());
+    out.push("(reset)".to_string());
+    out.extend(run);
+    out.push("(facts)".to_string());
+    out.push("(agenda)".to_string());
     out.push("(exit)".to_string());
     out.join("\n") + "\n"
 }
@@ -435,13 +470,28 @@ fn programs_have_the_generator_shapes() {
     let mut rule_counts = [0usize; 8];
     let (mut nots, mut exists, mut tests, mut binds, mut saliences) = (0, 0, 0, 0, 0);
     let (mut ctx_nots, mut cnt_exists, mut fact_tests) = (0, 0, 0);
+    let (mut strategy_counts, mut unset, mut switches) = ([0usize; 7], 0, 0);
     for seed in SEEDS {
         let text = program(seed, false);
         assert!(!text.contains("(watch activations)"), "seed {seed}");
         assert!(
-            text.ends_with("(watch rules)\n(reset)\n(run 60)\n(facts)\n(agenda)\n(exit)\n"),
+            text.ends_with("(facts)\n(agenda)\n(exit)\n")
+                && (text.contains("(watch rules)\n(reset)\n(run 60)\n")
+                    || text.contains("(watch rules)\n(reset)\n(run 5)\n(set-strategy ")),
             "seed {seed}:\n{text}"
         );
+        match text.lines().next() {
+            Some(first) if first.starts_with("(set-strategy ") => {
+                let name = first
+                    .trim_start_matches("(set-strategy ")
+                    .trim_end_matches(')');
+                let k = STRATEGIES.iter().position(|s| *s == name);
+                assert!(k.is_some(), "seed {seed}: {first}");
+                strategy_counts[k.unwrap_or(0)] += 1;
+            }
+            _ => unset += 1,
+        }
+        switches += usize::from(text.contains("(run 5)\n(set-strategy "));
         let rules = text.lines().filter(|l| l.starts_with("(defrule ")).count();
         assert!((3..=7).contains(&rules), "seed {seed}: {rules} rules");
         rule_counts[rules] += 1;
@@ -478,6 +528,11 @@ fn programs_have_the_generator_shapes() {
     ] {
         assert!(n >= 50, "{what} appears only {n} times in {SEEDS:?}");
     }
+    // Every strategy is chosen, the default (none chosen) and switches mid-run too.
+    assert!(
+        strategy_counts.iter().all(|&n| n >= 15) && unset >= 50 && switches >= 40,
+        "{strategy_counts:?} unset {unset} switches {switches}"
+    );
 }
 
 /// The published SplitMix64 sequence for seed 0: a changed generator would silently

@@ -1,7 +1,10 @@
 #!/usr/bin/env python3
 """Random CLIPS sessions that change the rule base while facts exist: rules defined,
 redefined and removed between asserts and runs, tests that can fail on a symbol,
-queries in tests. For differential runs against CLIPS 6.30 (random_sessions.sh).
+queries in tests, and conflict resolution strategies chosen at the start and changed
+between steps (drawn from a generator of their own, so the rest of a seed's session is
+what it was before strategies were added). For differential runs against CLIPS 6.30
+(random_sessions.sh).
 Usage: random_sessions.py SEED > program.clp"""
 import random, sys
 
@@ -68,6 +71,11 @@ def gen(seed):
             return f"(cnt (c {r.choice(['0', '2', '5', 'n'])}))"
         return f"(ctx (s {r.choice(states)}))"
 
+    strategies = ["depth", "breadth", "lex", "mea", "complexity", "simplicity", "random"]
+    rs = random.Random(seed * 7919 + 104729)
+    if rs.random() < 0.7:
+        out.append(f"(set-strategy {rs.choice(strategies)})")
+
     if r.random() < 0.5:
         out.append("(watch activations)")
     out.append("(watch rules)")
@@ -85,6 +93,8 @@ def gen(seed):
             out.append(f"(run {r.randint(1, 4)})")
         else:
             out.append("(agenda)")
+        if rs.random() < 0.15:
+            out.append(f"(set-strategy {rs.choice(strategies)})")
     out.append("(agenda)")
     out.append("(run)")
     out.append("(facts)")

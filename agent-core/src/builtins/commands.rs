@@ -315,6 +315,39 @@ fn refresh_agenda(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
     Ok(Value::Void)
 }
 
+/// `(set-strategy NAME)`: the strategy before; CLIPS's messages for a bad argument.
+#[cfg(feature = "extras")]
+fn set_strategy(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    use crate::strategy::Strategy;
+    let s = match cx.arg(a, 0) {
+        Value::Sym(s) => s,
+        _ => {
+            cx.write(
+                router::WERROR,
+                "[ARGACCES5] Function set-strategy expected argument #1 to be of type symbol\n",
+            );
+            return Err(EvalError::already_reported());
+        }
+    };
+    match Strategy::from_name(cx.sym_text(s)) {
+        Some(new) => {
+            let old = cx.set_strategy(new);
+            Ok(Value::Sym(cx.intern(old.name())?))
+        }
+        None => {
+            cx.write(
+                router::WERROR,
+                "[ARGACCES5] Function set-strategy expected argument #1 to be of type symbol with value depth, breadth, lex, mea, complexity, simplicity, or random\n",
+            );
+            let current = Value::Sym(cx.intern(cx.strategy().name())?);
+            cx.set_error_fallback(current, None);
+            Err(EvalError::new(EvalErrorKind::Reported))
+        }
+    }
+}
+
+/// Without `extras` (the agent image) the agenda has the depth strategy only.
+#[cfg(not(feature = "extras"))]
 fn set_strategy(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let s = cx.arg_lexeme(a, 0, "set-strategy")?;
     if cx.sym_text(s) != "depth" {
@@ -324,7 +357,7 @@ fn set_strategy(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 }
 
 fn get_strategy(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
-    Ok(Value::Sym(cx.intern("depth")?))
+    Ok(Value::Sym(cx.intern(cx.strategy().name())?))
 }
 
 pub(super) fn list_defrules(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {

@@ -48,7 +48,7 @@ fn srandom(st: &mut State, seed: u32) {
 }
 
 /// glibc `random`: front += rear (mod 2^32); the result is front >> 1.
-fn next_random(st: &mut State) -> i64 {
+pub(crate) fn next_random(st: &mut State) -> i64 {
     if !st.random.rng_seeded {
         srandom(st, 1);
     }

@@ -279,7 +279,8 @@ impl Compiler<'_, '_> {
             .note_hw(Pool::JoinMemories, self.cx.st.pools.njoins as usize);
         self.cx.rules[nr] = Rule {
             name,
-            salience: b.sal.0,
+            // (the parser keeps it in CLIPS's range, -10000..=10000)
+            salience: b.sal.0.clamp(-10000, 10000) as i16,
             salience_expr: b.sal.1,
             root: JoinId::ROOT,
             terminal: prev,
@@ -291,6 +292,7 @@ impl Compiler<'_, '_> {
             root_sensitive: b.ces[first as usize].kind != JoinKind::Positive,
             deleted: false,
             text: NONE,
+            complexity: b.complexity,
         };
         self.cx.st.pools.nrules += 1;
         self.cx.note_hw(Pool::Rules, nr + 1);

@@ -3,7 +3,7 @@
 //! that failed halfway (`rollback` to a checkpoint).
 
 use crate::engine::{Checkpoint, Core};
-use crate::handle::{JoinId, TokenId};
+use crate::handle::JoinId;
 use crate::rete::{AlphaNode, Join, JoinMem};
 use crate::rule::Rule;
 use crate::value::{Ix, NONE};
@@ -18,8 +18,7 @@ impl Core<'_> {
         while rr != NONE {
             let rule = self.rules[rr as usize];
             if rule.terminal != JoinId::NONE {
-                let parent = self.joins[rule.terminal].parent;
-                self.remove_rule_activations(rr, parent);
+                self.remove_rule_activations(rr);
             }
             self.release_chain(rule.terminal, JoinId::ROOT);
             self.rules[rr as usize].deleted = true;
@@ -46,22 +45,16 @@ impl Core<'_> {
         }
     }
 
-    pub(crate) fn remove_rule_activations_pub(&mut self, rule: Ix, join: JoinId) {
-        self.remove_rule_activations(rule, join);
-    }
-
-    fn remove_rule_activations(&mut self, rule: Ix, join: JoinId) {
-        let mut t = self.join_mems[join].mem;
-        while t != TokenId::NONE {
-            let mut a = self.tokens[t].extra;
-            while a != NONE {
-                let next = self.acts[a as usize].next_of_token;
-                if self.acts[a as usize].rule == rule {
-                    self.remove_activation(a);
-                }
-                a = next;
+    /// Removes the activations of `rule` (one disjunct) in agenda order, as CLIPS
+    /// does (`(watch activations)` shows the order, which the strategy decides).
+    fn remove_rule_activations(&mut self, rule: Ix) {
+        let mut a = self.st.agenda.agenda_head;
+        while a != NONE {
+            let next = self.acts[a as usize].next;
+            if self.acts[a as usize].rule == rule {
+                self.remove_activation(a);
             }
-            t = self.tokens[t].mem_next;
+            a = next;
         }
     }
 
@@ -159,8 +152,7 @@ impl Core<'_> {
         for r in cp.nrules..self.st.pools.nrules {
             let t = self.rules[r as usize].terminal;
             if t != JoinId::NONE && t.ix() < self.joins.len() {
-                let parent = self.joins[t].parent;
-                self.remove_rule_activations_pub(r, parent);
+                self.remove_rule_activations(r);
             }
         }
         for r in cp.nrules..self.st.pools.nrules {

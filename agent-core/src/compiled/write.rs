@@ -307,7 +307,7 @@ impl Core<'_> {
                 out,
                 "Rule {{ name: {}, salience: {}, salience_expr: {}, root: {}, terminal: {}, \
                  rhs: {}, npat: {}, nlocals: {}, next_disjunct: {}, next_at_join: {}, \
-                 root_sensitive: {}, deleted: {}, text: {} }},",
+                 root_sensitive: {}, deleted: {}, text: {}, complexity: {} }},",
                 I(r.name),
                 r.salience,
                 I(r.salience_expr),
@@ -320,7 +320,8 @@ impl Core<'_> {
                 I(r.next_at_join),
                 r.root_sensitive,
                 r.deleted,
-                I(r.text)
+                I(r.text),
+                r.complexity
             )?;
         }
         writeln!(out, "],")

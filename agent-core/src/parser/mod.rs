@@ -101,6 +101,8 @@ pub struct Parser<'s, 'c, 'e> {
     /// Conditional elements of the rule so far, numbered as CLIPS numbers them in its
     /// messages (`CE #N`: patterns and tests in text order, all `or` branches).
     pub ce_count: u8,
+    /// CLIPS's specificity of the rule (disjunct) being read (see `rule::Complexity`).
+    pub complexity: u16,
     /// Where a failure of the current construct rolls back to when not to its start:
     /// past what its parse-time evaluations created (their effects stay, as in CLIPS).
     pub keep: Option<crate::engine::Checkpoint>,
@@ -156,6 +158,7 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
             depth: 0,
             body_depth: 0,
             ce_count: 0,
+            complexity: 0,
             rule_base: 0,
             replacing: NONE,
             alpha_base: 0,

@@ -84,6 +84,8 @@ pub(crate) struct Build {
     pub(crate) sal: (i32, Ix),
     pub(crate) rhs: Ix,
     pub(crate) nlocals: u8,
+    /// The disjunct's complexity (`Rule::complexity`).
+    pub(crate) complexity: u16,
 }
 
 impl Build {
@@ -105,6 +107,7 @@ impl Build {
             sal: (0, NONE),
             rhs: NONE,
             nlocals: 0,
+            complexity: 0,
         }
     }
 
@@ -286,6 +289,7 @@ impl<'s> Parser<'s, '_, '_> {
     /// One disjunct: LHS (with the current or-choices), RHS.
     fn rule_body(&mut self, b: &mut Build) -> PResult<()> {
         self.ce_count = 0;
+        self.complexity = 0;
         let mut salience = (0i32, NONE);
         // (declare (salience N))
         if self.peek().tok == Tok::LParen {
@@ -324,6 +328,7 @@ impl<'s> Parser<'s, '_, '_> {
         b.rhs = self.body_block()?;
         b.sal = salience;
         b.nlocals = self.nlocals.min(255) as u8;
+        b.complexity = self.complexity;
         Ok(())
     }
 
@@ -495,6 +500,7 @@ impl<'s> Parser<'s, '_, '_> {
                         self.scope = Scope::Lhs;
                         let e = self.parse_expr()?;
                         self.expect_rparen("')' closing test")?;
+                        self.add_complexity(e);
                         self.attach_test_ce(b, e, h)
                     }
                     _ => self.pattern(b, ctx, None),
@@ -594,7 +600,9 @@ impl<'s> Parser<'s, '_, '_> {
 
     fn attach_test_ce(&mut self, b: &mut Build, e: Ix, at: Token<'s>) -> PResult<()> {
         if b.cur == CE_ROOT || (b.groups > 0 && b.n == b.group_first as usize) {
-            // a leading test: a test join of its own (a pattern slot shown as `*`)
+            // a leading test: a test join of its own (a pattern slot shown as `*`),
+            // which CLIPS counts as a pattern in the rule's complexity
+            self.complexity = self.complexity.saturating_add(1);
             if b.n >= MAX_PATTERNS || b.depth as usize >= MAX_PATTERNS {
                 return Err(self.err(at, "fewer conditional elements"));
             }
@@ -671,6 +679,8 @@ impl<'s> Parser<'s, '_, '_> {
         };
         self.pat_tmpl[p as usize] = tmpl;
         self.ce_count = self.ce_count.saturating_add(1);
+        // the comparison of the relation or template name
+        self.complexity = self.complexity.saturating_add(1);
         if let Some((ft, fv)) = factvar {
             self.add_var(
                 ft,
@@ -1074,9 +1084,11 @@ impl<'s> Parser<'s, '_, '_> {
             }
             self.next();
             let e = self.or_constraint(p, locv, desc, &mut multi)?;
+            self.add_complexity(e);
             return Ok((multi, Some(e)));
         }
         let e = self.or_constraint(p, locv, desc, &mut multi)?;
+        self.add_complexity(e);
         // a bound variable leading the constraint (not one of `|` alternatives) must
         // fit this slot too
         if let Tok::SfVar(name) = t.tok {
@@ -1133,6 +1145,12 @@ impl<'s> Parser<'s, '_, '_> {
             return Err(e);
         }
         Ok(())
+    }
+
+    /// Adds a constraint's or a test CE's share of the rule's complexity.
+    fn add_complexity(&mut self, e: Ix) {
+        let c = Complexity::of(self.cx, e);
+        self.complexity = self.complexity.saturating_add(c);
     }
 
     fn or_constraint(&mut self, p: u8, locv: Ix, desc: Ix, multi: &mut bool) -> PResult<Ix> {
@@ -1268,5 +1286,43 @@ impl PatBuild {
             self.fields[self.nfields] = (locv, test, multi);
             self.nfields += 1;
         }
+    }
+}
+
+/// CLIPS's specificity (complexity) of a rule, as its complexity, simplicity, lex and
+/// mea strategies use it (Basic Programming Guide 5.3.5, checked with CLIPS 6.30): one
+/// per pattern (the comparison of its relation or template name) and per leading test
+/// CE, one per comparison of a field with a constant or an earlier variable (`a`, `~a`,
+/// `?x` again, `=(...)`), one per function call in `:(...)` and `test` CEs, where
+/// `and`, `or` and `not` count their arguments instead and calls nested in calls count
+/// nothing.
+pub(crate) struct Complexity;
+
+impl Complexity {
+    const AND: Ix = crate::builtins::builtin_id("and");
+    const OR: Ix = crate::builtins::builtin_id("or");
+    const NOT: Ix = crate::builtins::builtin_id("not");
+
+    pub(crate) fn of(cx: &crate::engine::Core<'_>, e: Ix) -> u16 {
+        let x = cx.exprs[e as usize];
+        let logical = match x.op {
+            Op::And | Op::Or | Op::Not => true,
+            Op::Call => {
+                x.aux == crate::expr::FnKind::Builtin as u8
+                    && matches!(x.data, Self::AND | Self::OR | Self::NOT)
+            }
+            Op::Eq2 => return 1,
+            _ => return 0,
+        };
+        if !logical {
+            return 1;
+        }
+        let mut sum = 0u16;
+        let mut c = x.first;
+        while c != NONE {
+            sum = sum.saturating_add(Self::of(cx, c));
+            c = cx.exprs[c as usize].next;
+        }
+        sum
     }
 }

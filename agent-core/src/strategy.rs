@@ -1,0 +1,314 @@
+//! Conflict resolution strategies: the order of activations of equal salience on the
+//! agenda, as CLIPS 6.30 orders them (Basic Programming Guide 5.3; the details below
+//! were observed in CLIPS 6.30 with `(agenda)` after `set-strategy`).
+//!
+//! Every strategy is a total order: salience first (higher first), then the strategy's
+//! key, then creation order. Depth puts newer activations first among equal keys; every
+//! other strategy puts older ones first. So an agenda re-sorted after `set-strategy` or
+//! `refresh-agenda` is the same whatever order its activations are re-inserted in.
+//!
+//! - depth, breadth: creation order only (newest first, oldest first).
+//! - lex: the fact numbers an activation matched (a `not`/`exists`/leading `test`
+//!   slot counts as 0), sorted from most recent; compared one by one, the more recent
+//!   first; when one list is a prefix of the other, the longer first; then the rule's
+//!   complexity (higher first).
+//! - mea: the fact matched by the first pattern (none ranks lowest), more recent
+//!   first, then as lex.
+//! - complexity, simplicity: the rule's complexity (see `Rule::complexity`), higher
+//!   first or lower first.
+//! - random: the number CLIPS draws from the C library's `rand()` for every activation
+//!   it creates, whatever the strategy (so `(seed N)` reproduces CLIPS's order
+//!   exactly), smaller first.
+//!
+//! Strategies other than depth need the `extras` feature (the agent image keeps
+//! depth only: the random number costs a word per activation).
+
+use crate::engine::Core;
+use crate::value::Ix;
+
+/// A conflict resolution strategy (`set-strategy`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(u8)]
+pub enum Strategy {
+    Depth = 0,
+    Breadth = 1,
+    Lex = 2,
+    Mea = 3,
+    Complexity = 4,
+    Simplicity = 5,
+    Random = 6,
+}
+
+impl Strategy {
+    pub const ALL: [Strategy; 7] = [
+        Strategy::Depth,
+        Strategy::Breadth,
+        Strategy::Lex,
+        Strategy::Mea,
+        Strategy::Complexity,
+        Strategy::Simplicity,
+        Strategy::Random,
+    ];
+
+    /// The name `get-strategy` returns.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Strategy::Depth => "depth",
+            Strategy::Breadth => "breadth",
+            Strategy::Lex => "lex",
+            Strategy::Mea => "mea",
+            Strategy::Complexity => "complexity",
+            Strategy::Simplicity => "simplicity",
+            Strategy::Random => "random",
+        }
+    }
+
+    pub fn from_name(name: &str) -> Option<Strategy> {
+        Strategy::ALL.into_iter().find(|s| s.name() == name)
+    }
+
+    pub fn from_u8(v: u8) -> Strategy {
+        Strategy::ALL
+            .get(v as usize)
+            .copied()
+            .unwrap_or(Strategy::Depth)
+    }
+}
+
+/// Most fact slots an activation's recency list holds (a rule's pattern slots).
+const MAX_SLOTS: usize = crate::rete::MAX_PATTERNS;
+
+/// An activation's matched fact numbers for lex and mea: most recent first, a slot
+/// without a fact as 0 (below every fact), and the first pattern's fact.
+struct Recency {
+    sorted: [u32; MAX_SLOTS],
+    n: usize,
+    first: Option<u32>,
+}
+
+impl Core<'_> {
+    /// The strategy in force.
+    pub fn strategy(&self) -> Strategy {
+        Strategy::from_u8(self.st.agenda.strategy)
+    }
+
+    /// Whether activation `x` goes before activation `y` on the agenda.
+    #[cfg_attr(feature = "host-speedups", inline(always))]
+    pub(crate) fn goes_before(&self, x: Ix, y: Ix) -> bool {
+        let (ax, ay) = (self.acts[x as usize], self.acts[y as usize]);
+        if ax.salience != ay.salience {
+            return ax.salience > ay.salience;
+        }
+        // creation order: positive when x is newer (numbers wrap)
+        let newer = ax.seq.wrapping_sub(ay.seq) as i32;
+        let strategy = self.strategy();
+        if strategy == Strategy::Depth {
+            return newer > 0;
+        }
+        let by_key = self.compare_keys(strategy, x, y);
+        if by_key != core::cmp::Ordering::Equal {
+            return by_key == core::cmp::Ordering::Less;
+        }
+        newer < 0
+    }
+
+    /// The strategy's key of `x` against `y`: Less when `x` goes first.
+    fn compare_keys(&self, strategy: Strategy, x: Ix, y: Ix) -> core::cmp::Ordering {
+        use core::cmp::Ordering::Equal;
+        let (ax, ay) = (self.acts[x as usize], self.acts[y as usize]);
+        let complexity = |a: &crate::rule::Activation| self.rules[a.rule as usize].complexity;
+        match strategy {
+            Strategy::Depth | Strategy::Breadth => Equal,
+            Strategy::Complexity => complexity(&ay).cmp(&complexity(&ax)),
+            Strategy::Simplicity => complexity(&ax).cmp(&complexity(&ay)),
+            Strategy::Random => random_key(&ax).cmp(&random_key(&ay)),
+            Strategy::Lex | Strategy::Mea => {
+                let (rx, ry) = (self.recency(ax.token), self.recency(ay.token));
+                if strategy == Strategy::Mea && rx.first != ry.first {
+                    // a fact beats no fact; the more recent fact goes first
+                    return ry.first.cmp(&rx.first);
+                }
+                let shared = rx.n.min(ry.n);
+                for i in 0..shared {
+                    if rx.sorted[i] != ry.sorted[i] {
+                        return ry.sorted[i].cmp(&rx.sorted[i]);
+                    }
+                }
+                ry.n.cmp(&rx.n)
+                    .then_with(|| complexity(&ay).cmp(&complexity(&ax)))
+            }
+        }
+    }
+
+    /// The recency list of a partial match (see `Recency`).
+    fn recency(&self, token: crate::handle::TokenId) -> Recency {
+        use crate::handle::TokenId;
+        // fact numbers by pattern slot, walking the partial match up to the root; fact
+        // numbers start at 0 (initial-fact), so they are shifted: 0 means "no fact"
+        let mut slots = [0u32; MAX_SLOTS];
+        let mut n = 0;
+        let mut t = token;
+        while t != TokenId::NONE {
+            let tk = self.tokens[t];
+            let j = self.joins[tk.owner];
+            if j.kind == crate::rete::JoinKind::Root {
+                break;
+            }
+            let d = j.depth as usize;
+            if d < MAX_SLOTS {
+                if tk.am != TokenId::NONE {
+                    let num = self.facts[self.tokens[tk.am].fact as usize].num;
+                    slots[d] = num.saturating_add(1);
+                }
+                n = n.max(d + 1);
+            }
+            t = tk.parent;
+        }
+        let first = if n > 0 && slots[0] != 0 {
+            Some(slots[0])
+        } else {
+            None
+        };
+        slots[..n].sort_unstable_by(|a, b| b.cmp(a));
+        Recency {
+            sorted: slots,
+            n,
+            first,
+        }
+    }
+}
+
+#[cfg(feature = "extras")]
+fn random_key(a: &crate::rule::Activation) -> u32 {
+    a.random
+}
+
+#[cfg(not(feature = "extras"))]
+fn random_key(_a: &crate::rule::Activation) -> u32 {
+    0
+}
+
+#[cfg(all(test, feature = "extras"))]
+mod tests {
+    extern crate std;
+    use super::Strategy;
+    use crate::engine::SmallEngine;
+    use crate::testutil::{run_program, CaptureHost};
+    use std::string::String;
+    use std::vec::Vec;
+
+    #[test]
+    fn names_round_trip() {
+        for s in Strategy::ALL {
+            assert_eq!(Strategy::from_name(s.name()), Some(s));
+            assert_eq!(Strategy::from_u8(s as u8), s);
+        }
+        assert_eq!(Strategy::from_name("fifo"), None);
+    }
+
+    /// The complexity of each rule as CLIPS 6.30 ranks it (measured against rules of
+    /// 1 to 10 bare patterns under the complexity strategy).
+    #[test]
+    fn rule_complexity_is_clips_specificity() {
+        let cases = [
+            ("(item)", 1),
+            ("(item a b)", 3),
+            ("(item ?x ?x)", 2),
+            (
+                "(item ?x ?y ?x) (test (and (numberp ?x) (> ?x (+ 10 ?y)) (< ?x 100)))",
+                5,
+            ),
+            ("(item ?x) (other ?x)", 3),
+            ("(item ~a)", 2),
+            ("(item a|b)", 3),
+            ("(item ?x&:(or (> ?x 1) (< ?x 0)))", 3),
+            ("(item =(+ 1 1))", 2),
+            ("(item ?x) (not (other ?x ?x))", 4),
+            ("(item) (exists (other))", 2),
+            ("(test (> 2 1)) (item)", 3),
+            ("(not (item))", 1),
+            ("?f <- (item $? a $?)", 2),
+            ("", 0),
+        ];
+        for (lhs, want) in cases {
+            let mut e = std::boxed::Box::new(SmallEngine::new());
+            let mut h = CaptureHost::default();
+            e.batch_str(&mut h, &std::format!("(defrule r {lhs} =>)"), false);
+            let out = h.out.clone();
+            let cx = e.core(&mut h);
+            assert_eq!(cx.st.pools.nrules, 1, "{lhs}: {out}");
+            assert_eq!(cx.rules[0].complexity, want, "{lhs}");
+        }
+    }
+
+    /// The fired rules' names, in order.
+    fn fired(out: &str) -> Vec<String> {
+        out.lines()
+            .filter_map(|l| l.strip_prefix("FIRE"))
+            .filter_map(|l| l.split_whitespace().nth(1))
+            .map(|r| r.trim_end_matches(':').into())
+            .collect()
+    }
+
+    /// Random ordering is a permutation of the same activations that keeps salience
+    /// order, and depends on the seed.
+    #[test]
+    fn random_is_a_salience_respecting_permutation() {
+        let rules = "(defrule hi (declare (salience 5)) (a ?x) =>)
+(defrule r1 (a ?x) =>)
+(defrule r2 (a ?x) =>)
+(defrule r3 (a ?x) (b) =>)
+(defrule lo (declare (salience -5)) (a ?x) =>)
+(watch rules)
+";
+        let facts = "(assert (a 1) (a 2) (a 3) (b))\n(run)\n";
+        let depth = fired(&run_program(&std::format!("{rules}{facts}")));
+        assert_eq!(depth.len(), 15, "{depth:?}");
+        let mut orders = Vec::new();
+        for seed in 1..6 {
+            let out = run_program(&std::format!(
+                "(seed {seed})\n(set-strategy random)\n{rules}{facts}"
+            ));
+            let order = fired(&out);
+            let mut a = order.clone();
+            let mut b = depth.clone();
+            a.sort();
+            b.sort();
+            assert_eq!(a, b, "{out}");
+            let hi = order.iter().rposition(|r| r == "hi");
+            let lo = order.iter().position(|r| r == "lo");
+            let mid = order.iter().position(|r| r.starts_with('r'));
+            assert!(hi < mid && mid < lo, "{order:?}");
+            orders.push(order);
+        }
+        assert!(orders.iter().any(|o| *o != orders[0]), "{orders:?}");
+    }
+
+    #[test]
+    fn set_strategy_returns_the_old_one_and_refuses_other_names() {
+        let out = run_program(
+            "(printout t (set-strategy lex) crlf)
+(printout t (get-strategy) crlf)
+(printout t (set-strategy fifo) crlf)
+(printout t (get-strategy) crlf)
+",
+        );
+        // (the error ends the printout; the strategy stays)
+        assert!(out.starts_with("depth\nlex\n[ARGACCES5]"), "{out}");
+        assert!(out.ends_with("or random\nlex\n"), "{out}");
+    }
+
+    /// A change of strategy re-sorts what is on the agenda: breadth fires the oldest
+    /// activation first, depth the newest.
+    #[test]
+    fn set_strategy_reorders_the_agenda() {
+        let program = "(defrule r (a ?x) => (printout t ?x crlf))
+(assert (a 1))
+(assert (a 2))
+(assert (a 3))
+";
+        let run = |extra: &str| run_program(&std::format!("{program}{extra}(run)\n"));
+        assert!(run("").ends_with("<Fact-3>\n3\n2\n1\n"));
+        assert!(run("(set-strategy breadth)\n").ends_with("<Fact-3>\ndepth\n1\n2\n3\n"));
+    }
+}
