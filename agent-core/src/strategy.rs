@@ -102,7 +102,8 @@ impl Core<'_> {
         // creation order: positive when x is newer (numbers wrap)
         let newer = ax.seq.wrapping_sub(ay.seq) as i32;
         let strategy = self.strategy();
-        if strategy == Strategy::Depth {
+        // (without `extras` the strategy is always depth: the rest is not linked)
+        if !cfg!(feature = "extras") || strategy == Strategy::Depth {
             return newer > 0;
         }
         let by_key = self.compare_keys(strategy, x, y);
