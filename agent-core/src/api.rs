@@ -46,8 +46,9 @@ engine_impl! {
         cx.load_text(text, false)
     }
 
-    /// Whether rules loaded from now on keep their source text for `ppdefrule` (default:
-    /// yes, as CLIPS does). Without it `ppdefrule` prints nothing for them, and the
+    /// Whether rules, deftemplates and deffacts loaded from now on keep their source text
+    /// for `ppdefrule`, `ppdeftemplate` and `ppdeffacts` (default: yes, as CLIPS does).
+    /// Without it those print nothing for them, and the
     /// symbol table does not hold a second copy of the rule base's text: a robot image
     /// that never lists its rules saves that RAM (CLIPS's run-time images drop their
     /// pretty-print forms the same way).

@@ -126,6 +126,7 @@ impl Core<'_> {
             nslots: 1,
             implied: true,
             alpha_head: NONE,
+            text: NONE,
         };
         self.tmpl_mems[n] = TemplateMem::EMPTY;
         self.st.pools.ntemplates += 1;

@@ -88,6 +88,8 @@ pub struct Template {
     pub implied: bool,
     /// First alpha node testing facts of this template.
     pub alpha_head: Ix,
+    /// Source text of the construct in the symbol table (for `ppdeftemplate`), or NONE.
+    pub text: Ix,
 }
 
 impl Template {
@@ -97,6 +99,7 @@ impl Template {
         nslots: 0,
         implied: false,
         alpha_head: NONE,
+        text: NONE,
     };
 }
 
@@ -139,12 +142,15 @@ impl TemplateMem {
 pub struct Deffacts {
     pub name: SymId,
     pub facts: Ix,
+    /// Source text of the construct in the symbol table (for `ppdeffacts`), or NONE.
+    pub text: Ix,
 }
 
 impl Deffacts {
     pub const EMPTY: Deffacts = Deffacts {
         name: 0,
         facts: NONE,
+        text: NONE,
     };
 }
 

@@ -361,4 +361,5 @@ differential_programs! {
     p202_strategy_simplicity => "202-strategy-simplicity",
     p203_strategy_random => "203-strategy-random",
     p204_strategy_switching => "204-strategy-switching",
+    p205_ppdeftemplate_ppdeffacts => "205-ppdeftemplate-ppdeffacts",
 }

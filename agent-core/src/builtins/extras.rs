@@ -30,6 +30,8 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("list-defglobals", 0, 1, list_defglobals),
     Builtin::eager("show-defglobals", 0, 1, show_defglobals).args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any),
     Builtin::eager("undeffacts", 1, 1, undeffacts),
+    Builtin::eager("ppdeftemplate", 1, 1, ppdeftemplate).args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any),
+    Builtin::eager("ppdeffacts", 1, 1, ppdeffacts).args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any),
     Builtin::eager("undeftemplate", 1, 1, undeftemplate),
     Builtin::eager("undeffunction", 1, 1, undeffunction),
     Builtin::eager("undefglobal", 1, 1, undefglobal),
@@ -212,6 +214,74 @@ fn show_defglobals(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 }
 
 /// `(undeffacts name)` or `(undeffacts *)`: the deffacts goes; facts it asserted stay.
+/// The symbol argument of a `ppdef*` command, or ARGACCES5 as CLIPS words it.
+fn pp_name(cx: &mut Core<'_>, a: Args, func: &str) -> Result<SymId, EvalError> {
+    match cx.arg(a, 0) {
+        Value::Sym(s) => Ok(s),
+        _ => {
+            let mut b: TextBuf<120> = TextBuf::new();
+            let _ = writeln!(
+                b,
+                "[ARGACCES5] Function {func} expected argument #1 to be of type symbol"
+            );
+            cx.write(router::WERROR, b.as_str());
+            Err(EvalError::already_reported())
+        }
+    }
+}
+
+/// Writes a construct's pretty-printed form, made by `pp` from its source text (none
+/// when the text was not kept, as for `initial-fact`).
+fn write_pp(cx: &mut Core<'_>, text: Ix, pp: fn(&str, &mut dyn Write) -> core::fmt::Result) {
+    if text == NONE {
+        return;
+    }
+    let mut b: TextBuf<8192> = TextBuf::new();
+    let _ = pp(cx.sym_text(text), &mut b);
+    let _ = b.write_char('\n');
+    cx.write(router::WDISPLAY, b.as_str());
+}
+
+/// `(ppdeftemplate name)`: the deftemplate as CLIPS pretty-prints it; nothing for an
+/// ordered fact's implied template or `initial-fact`.
+fn ppdeftemplate(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let name = pp_name(cx, a, "ppdeftemplate")?;
+    match cx.find_template(name) {
+        Some(t) => {
+            let text = cx.templates[t as usize].text;
+            write_pp(cx, text, |src, w| {
+                super::pretty::write_deftemplate_echo(
+                    src,
+                    src.len(),
+                    crate::error::EchoTail::Normal,
+                    w,
+                )
+            });
+        }
+        None => super::commands::unable(cx, Unable::Find, "deftemplate", name),
+    }
+    Ok(Value::Void)
+}
+
+/// `(ppdeffacts name)`: the deffacts as CLIPS pretty-prints it.
+fn ppdeffacts(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let name = pp_name(cx, a, "ppdeffacts")?;
+    if cx.sym_text(name) == "initial-fact" && cx.st.mode.initial_deffacts {
+        return Ok(Value::Void);
+    }
+    match (0..cx.st.pools.ndeffacts).find(|&d| cx.deffacts[d as usize].name == name) {
+        Some(d) => {
+            let text = cx.deffacts[d as usize].text;
+            write_pp(cx, text, |src, w| {
+                super::pretty::write_deffacts_upto(src, w)?;
+                w.write_char(')')
+            });
+        }
+        None => super::commands::unable(cx, Unable::Find, "deffacts", name),
+    }
+    Ok(Value::Void)
+}
+
 fn undeffacts(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let name = cx.arg_lexeme(a, 0, "undeffacts")?;
     match cx.sym_text(name) {

@@ -260,12 +260,13 @@ impl Core<'_> {
             writeln!(
                 out,
                 "Template {{ name: {}, first_slot: {}, nslots: {}, implied: {}, \
-                 alpha_head: {} }},",
+                 alpha_head: {}, text: {} }},",
                 I(t.name),
                 I(t.first_slot),
                 t.nslots,
                 t.implied,
-                I(t.alpha_head)
+                I(t.alpha_head),
+                I(t.text)
             )?;
         }
         writeln!(out, "],")?;
@@ -292,9 +293,10 @@ impl Core<'_> {
         for d in &self.deffacts[..self.st.pools.ndeffacts as usize] {
             writeln!(
                 out,
-                "Deffacts {{ name: {}, facts: {} }},",
+                "Deffacts {{ name: {}, facts: {}, text: {} }},",
                 I(d.name),
-                I(d.facts)
+                I(d.facts),
+                I(d.text)
             )?;
         }
         writeln!(out, "],")

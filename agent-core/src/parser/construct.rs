@@ -18,7 +18,18 @@ impl<'s> Parser<'s, '_, '_> {
         }
     }
 
-    pub(super) fn deftemplate(&mut self) -> PResult<()> {
+    /// The construct's source text from `start` to here, interned for its `ppdef*`
+    /// command, unless the host chose to drop pretty-print forms (then NONE).
+    fn pp_text(&mut self, start: usize) -> Ix {
+        if !self.cx.st.mode.keep_pp_forms {
+            return NONE;
+        }
+        let end = self.lex.pos();
+        let text = self.lex.source().get(start..end).unwrap_or("");
+        self.cx.intern(text).unwrap_or(NONE)
+    }
+
+    pub(super) fn deftemplate(&mut self, start: usize) -> PResult<()> {
         let nt = self.next();
         let name = match nt.tok {
             Tok::Symbol(s) => self.plain_name(nt, s)?,
@@ -106,6 +117,7 @@ impl<'s> Parser<'s, '_, '_> {
             nslots,
             implied: false,
             alpha_head: NONE,
+            text: self.pp_text(start),
         };
         self.cx.tmpl_mems[n] = TemplateMem::EMPTY;
         self.cx.st.pools.ntemplates += 1;
@@ -123,7 +135,7 @@ impl<'s> Parser<'s, '_, '_> {
         Ok(())
     }
 
-    pub(super) fn deffacts(&mut self) -> PResult<()> {
+    pub(super) fn deffacts(&mut self, start: usize) -> PResult<()> {
         let nt = self.next();
         let name = match nt.tok {
             Tok::Symbol(s) => self.plain_name(nt, s)?,
@@ -152,11 +164,16 @@ impl<'s> Parser<'s, '_, '_> {
         let existing =
             (0..self.cx.st.pools.ndeffacts).find(|&d| self.cx.deffacts[d as usize].name == sym);
         let facts = self.cx.exprs[holder as usize].first;
+        let text = self.pp_text(start);
         match existing {
             Some(d) => {
                 let n = self.cx.st.pools.ndeffacts as usize;
                 self.cx.deffacts.copy_within(d as usize + 1..n, d as usize);
-                self.cx.deffacts[n - 1] = Deffacts { name: sym, facts };
+                self.cx.deffacts[n - 1] = Deffacts {
+                    name: sym,
+                    facts,
+                    text,
+                };
             }
             None => {
                 let n = self.cx.st.pools.ndeffacts as usize;
@@ -164,7 +181,11 @@ impl<'s> Parser<'s, '_, '_> {
                     let c = cap(Pool::Deffacts, self.cx.deffacts.len());
                     return Err(self.cap_err(nt, c));
                 }
-                self.cx.deffacts[n] = Deffacts { name: sym, facts };
+                self.cx.deffacts[n] = Deffacts {
+                    name: sym,
+                    facts,
+                    text,
+                };
                 self.cx.st.pools.ndeffacts += 1;
                 self.cx.note_hw(Pool::Deffacts, n + 1);
             }

@@ -493,9 +493,9 @@ impl<'s, 'e> Parser<'s, '_, 'e> {
         self.nlocals = 0;
         self.construct = kw;
         match kw {
-            "deftemplate" => self.deftemplate(),
+            "deftemplate" => self.deftemplate(start),
             "defrule" => self.defrule(start),
-            "deffacts" => self.deffacts(),
+            "deffacts" => self.deffacts(start),
             "deffunction" => self.deffunction(),
             "defglobal" => self.defglobal(),
             _ => {
