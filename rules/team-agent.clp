@@ -60,7 +60,46 @@
   (team-vote (resource ?x) (holder ~?me) (until ?u&:(> ?u ?t)))
   =>
   (retract ?s ?i ?w)
-  (assert (state TEAM-WAIT) (team-waiting ?x)))
+  (assert (state TEAM-WAIT) (team-waiting ?x) (team-wait-since ?t)))
+
+(deffunction team-free-of
+  "The places of ?places no other robot holds now."
+  ($?places)
+  (bind ?me 0)
+  (do-for-fact ((?f team-self)) TRUE (bind ?me ?f:id))
+  (bind ?now 0.0)
+  (do-for-fact ((?c team-clock)) TRUE (bind ?now ?c:now))
+  (bind ?free (create$))
+  (progn$ (?p ?places)
+    (if (not (any-factp ((?v team-vote))
+               (and (eq ?v:resource ?p) (neq ?v:holder ?me) (> ?v:until ?now))))
+     then (bind ?free (create$ ?free ?p))))
+  ?free)
+
+(deffunction team-nearest-of
+  "The place of ?places nearest to ?from (earlier places win ties)."
+  (?from $?places)
+  (bind ?best nil)
+  (bind ?best-d 0.0)
+  (progn$ (?p ?places)
+    (bind ?d (place-distance ?from ?p))
+    (if (or (eq ?best nil) (< ?d ?best-d))
+     then (bind ?best ?p) (bind ?best-d ?d)))
+  ?best)
+
+(defrule team-select-free-candidate
+  "Another robot holds some of the candidate machines for the held puck: take
+   the nearest of the others, rather than wait for the held one (before the
+   strategy's own selection; if all are held the robot claims one and waits)."
+  (declare (salience (+ ?*PRIORITY_SELECT* 1)))
+  (state IDLE)
+  ?g <- (goto (machines $?ms&:(> (length$ ?ms) 1)))
+  (robot-at ?here)
+  (test (< 0 (length$ (team-free-of ?ms)) (length$ ?ms)))
+  =>
+  (retract ?g)
+  (assert (intent (action finish-puck-at)
+                  (target (team-nearest-of ?here (team-free-of ?ms))))))
 
 (defrule team-claim-busy-other-unit
   "The recycling unit is another robot's: recycle at the other one, if free,
@@ -119,7 +158,28 @@
   (not (team-vote (resource ?x) (holder ~?me) (until ?u&:(> ?u ?t))))
   =>
   (retract ?s ?w)
+  (do-for-all-facts ((?b team-wait-since)) TRUE (retract ?b))
   (assert (state IDLE)))
+
+(defglobal ?*TEAM_WAIT_HOLDING_S* = 20)   ; s: longest wait with a puck and a product out
+
+(defrule team-wait-breaks-hold-cycle
+  "Waiting with a puck in hand while this robot's product lies at a machine
+   it holds (collect.clp): the robot waited on may be waiting for that very
+   machine, with its hands full too.  After a while the robot lets go of the
+   puck (discard) and goes for its product, which frees its machine."
+  (declare (salience ?*PRIORITY_TEAM_AGENT*))
+  ?s <- (state TEAM-WAIT)
+  ?w <- (team-waiting ?x)
+  ?b <- (team-wait-since ?t0)
+  (team-clock (now ?t&:(>= ?t (+ ?t0 ?*TEAM_WAIT_HOLDING_S*))))
+  (holding ~NONE)
+  (output-at ? ?)
+  (robot-at ?here)
+  =>
+  (retract ?s ?w ?b)
+  (printout t "WARN waited " (- ?t ?t0) " s for " ?x " with a product out: discard" crlf)
+  (assert (state IDLE) (intent (action discard) (target (nearest-of ?here R1 R2)))))
 
 (defrule team-done-with
   "The skill at X is over and its outcome digested: news of the machine,
@@ -158,8 +218,8 @@
     (assert (state IDLE))))
 
 ;;; ---- the raw pucks: the team shares the storage's 20 -----------------------
-
-(defglobal ?*TEAM_SOLO_S0* = 0)   ; this few raw pucks left: robot 1 plays them alone
+;;; (Every robot plays to the end: recycling brings raw pucks back, and a team
+;;; must not rely on any one robot being alive to finish the last products.)
 
 (deftemplate team-s0-of
   "Raw pucks robot R has taken from the input storage (its news of INS)."
@@ -211,17 +271,3 @@
   =>
   (retract ?s)
   (assert (state IDLE)))
-
-(defrule team-solo-endgame
-  "Few raw pucks left: robots other than robot 1 stop, so the last products
-   are made one after another and none is left half-made when the storage
-   runs dry."
-  (declare (salience ?*PRIORITY_TEAM_AGENT*))
-  ?s <- (state IDLE)
-  ?i <- (intent (action get-s0))
-  (team-self (id ?me&:(> ?me 1)))
-  (s0-supply ?supply)
-  (test (<= (- ?supply (team-s0-taken)) ?*TEAM_SOLO_S0*))
-  =>
-  (retract ?s ?i)
-  (assert (state DONE)))

@@ -39,8 +39,10 @@ fn three_robots_make_more_than_one_without_double_claims() {
     assert_eq!(field(result, "double-claims"), "0", "{result}");
     // With 2012 recycling the pucks come back, so the clock ends both games and the
     // team's saved time becomes points: at least 1.3 times one robot's (the issue's
-    // target for the team).
-    assert_eq!(field(result, "end"), "time", "{result}");
+    // target for the team). The team may be done a few seconds early, when nothing it
+    // could still start would end before the clock.
+    let end_s = field(result, "time").parse::<f64>().unwrap_or(0.0);
+    assert!(field(result, "end") == "time" || end_s >= 890.0, "{result}");
     let points = |r: &str| field(r, "points").parse::<f64>().unwrap_or(0.0);
     assert!(
         points(result) >= 1.3 * points(one_result),

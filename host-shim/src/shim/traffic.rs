@@ -116,8 +116,13 @@ impl PoseReport {
 }
 
 /// An announcement older than this (cycles) says too little about where the teammate is
-/// now: the drives rely on the IR ring alone for it.
+/// going: it is no longer extrapolated, nor does it ask for the way.
 const MAX_AGE_CYCLES: u64 = 15;
+/// A teammate silent for longer (its messages lost or delayed, or the robot dead where
+/// it stopped) stays an obstacle where it was last heard of, standing still, for at most
+/// this many cycles (20 s); after that the drives rely on the IR ring alone for it, so a
+/// pose that is long wrong blocks no way for good.
+const STALE_OBSTACLE_CYCLES: u64 = 15 * 20;
 /// A velocity is extrapolated at most this many cycles (the teammate may have braked).
 const PREDICT_CYCLES: u64 = 3;
 
@@ -155,9 +160,19 @@ impl TeamBoard {
         let mut known: Vec<Teammate> = self
             .reports
             .iter()
-            .filter(|r| cycle.saturating_sub(r.cycle) <= MAX_AGE_CYCLES)
+            .filter(|r| cycle.saturating_sub(r.cycle) <= STALE_OBSTACLE_CYCLES)
             .map(|r| {
-                let ahead = cycle.saturating_sub(r.cycle).min(PREDICT_CYCLES) as f32 * dt_s;
+                let age = cycle.saturating_sub(r.cycle);
+                if age > MAX_AGE_CYCLES {
+                    return Teammate {
+                        number: r.from,
+                        x_m: r.x_m,
+                        y_m: r.y_m,
+                        vx_m_s: 0.0,
+                        vy_m_s: 0.0,
+                    };
+                }
+                let ahead = age.min(PREDICT_CYCLES) as f32 * dt_s;
                 Teammate {
                     number: r.from,
                     x_m: r.x_m + r.vx_m_s * ahead,
@@ -281,6 +296,32 @@ mod tests {
     }
 
     #[test]
+    fn a_silent_teammate_stays_a_still_obstacle_for_a_bounded_time() {
+        let mut b = TeamBoard::default();
+        b.hear(PoseReport {
+            from: 2,
+            cycle: 100,
+            x_m: 2.0,
+            y_m: 1.0,
+            vx_m_s: 0.5,
+            vy_m_s: 0.0,
+            held_by: 0,
+        });
+        let me = Pose2::new(0.0, 0.0, 0.0);
+        let dt = 1.0 / 15.0;
+        let fresh = b.teammates(101, dt, &me)[0].unwrap_or_else(|| panic!("known"));
+        assert!(fresh.x_m > 2.0 && fresh.vx_m_s > 0.0, "{fresh:?}");
+        let stale = 100 + MAX_AGE_CYCLES + 1;
+        let t = b.teammates(stale, dt, &me)[0].unwrap_or_else(|| panic!("kept"));
+        assert_eq!((t.x_m, t.y_m, t.vx_m_s, t.vy_m_s), (2.0, 1.0, 0.0, 0.0));
+        assert!(b.teammates(100 + STALE_OBSTACLE_CYCLES, dt, &me)[0].is_some());
+        assert_eq!(
+            b.teammates(100 + STALE_OBSTACLE_CYCLES + 1, dt, &me)[0],
+            None
+        );
+    }
+
+    #[test]
     fn the_board_keeps_the_newest_report_and_forgets_old_ones() {
         let mut b = TeamBoard::default();
         let at = |cycle, x| PoseReport {
@@ -301,7 +342,7 @@ mod tests {
         assert_eq!(b.asking_way(2, 11), None);
         assert_eq!(b.asking_way(1, 10 + MAX_AGE_CYCLES + 1), None);
         assert_eq!(
-            b.teammates(10 + MAX_AGE_CYCLES + 1, 1.0 / 15.0, &me)[0],
+            b.teammates(10 + STALE_OBSTACLE_CYCLES + 1, 1.0 / 15.0, &me)[0],
             None
         );
     }
