@@ -21,6 +21,34 @@ pub struct View<'a> {
     pub facts: &'a [Fact],
 }
 
+/// The [`View`] of a `Core`'s pools with the symbol texts `syms`, and of the
+/// `Core`'s own symbols without it. A macro, not a method: it borrows the fields it
+/// names only, so a caller keeps the host (or the symbol arena's free end) mutably
+/// borrowed beside it.
+macro_rules! print_view {
+    ($cx:expr) => {
+        $crate::print::print_view!(
+            $cx,
+            $crate::symbols::SymTexts {
+                rom: $cx.st.rom.symbols,
+                entries: $cx.sym_entries,
+                bytes: $cx.sym_bytes,
+            }
+        )
+    };
+    ($cx:expr, $syms:expr) => {
+        $crate::print::View {
+            values: $cx.values,
+            scratch: $cx.scratch,
+            syms: $syms,
+            templates: $cx.templates.as_ref(),
+            slots: $cx.slots.as_ref(),
+            facts: $cx.facts,
+        }
+    };
+}
+pub(crate) use print_view;
+
 impl View<'_> {
     pub fn sym(&self, id: SymId) -> &str {
         self.syms.text(id)
@@ -140,21 +168,7 @@ fn write_quoted(out: &mut dyn Write, s: &str) -> fmt::Result {
 impl Core<'_> {
     /// Splits into a printing view and the host.
     pub fn split(&mut self) -> (View<'_>, &mut dyn Host) {
-        (
-            View {
-                values: self.values,
-                scratch: self.scratch,
-                syms: crate::symbols::SymTexts {
-                    rom: self.st.rom.symbols,
-                    entries: self.sym_entries,
-                    bytes: self.sym_bytes,
-                },
-                templates: self.templates.as_ref(),
-                slots: self.slots.as_ref(),
-                facts: self.facts,
-            },
-            &mut *self.host,
-        )
+        (print_view!(self), &mut *self.host)
     }
 
     pub fn write(&mut self, router: &str, text: &str) {
@@ -165,18 +179,7 @@ impl Core<'_> {
     /// Splits into a printing view and a writer for watch traces (see `hold`).
     fn split_trace(&mut self) -> (View<'_>, crate::hold::TraceWriter<'_>) {
         (
-            View {
-                values: self.values,
-                scratch: self.scratch,
-                syms: crate::symbols::SymTexts {
-                    rom: self.st.rom.symbols,
-                    entries: self.sym_entries,
-                    bytes: self.sym_bytes,
-                },
-                templates: self.templates.as_ref(),
-                slots: self.slots.as_ref(),
-                facts: self.facts,
-            },
+            print_view!(self),
             crate::hold::TraceWriter {
                 host: &mut *self.host,
                 hold: &mut self.st.net.hold,

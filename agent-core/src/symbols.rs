@@ -192,32 +192,10 @@ impl Symbols<'_> {
         if let Some(i) = self.find(s) {
             return Ok(i);
         }
-        let n = *self.count as usize;
-        let k = n - self.rom.len();
-        if k >= self.entries.len() || n >= NONE as usize {
-            return Err(CapacityError {
-                pool: Pool::Symbols,
-                capacity: self.entries.len() as u32,
-            });
-        }
         let used = *self.bytes_used as usize;
-        if used + s.len() > self.bytes.len() || used + s.len() > Ix::MAX as usize {
-            return Err(CapacityError {
-                pool: Pool::SymbolBytes,
-                capacity: self.bytes.len() as u32,
-            });
-        }
+        self.room_for(used + s.len() <= self.bytes.len(), s.len())?;
         self.bytes[used..used + s.len()].copy_from_slice(s.as_bytes());
-        let b = hash_bytes(s.as_bytes()) as usize % self.buckets.len();
-        self.entries[k] = SymEntry {
-            start: used as Ix,
-            len: s.len() as Ix,
-            next: self.buckets[b],
-        };
-        self.buckets[b] = n as Ix;
-        *self.count += 1;
-        *self.bytes_used += s.len() as Ix;
-        Ok(n as SymId)
+        Ok(self.add_entry(s.len(), hash_bytes(s.as_bytes())))
     }
 
     /// Interns the text already written at the arena's free end (`len` bytes from
@@ -236,22 +214,37 @@ impl Symbols<'_> {
         if let Some(i) = found {
             return Ok(i);
         }
+        // (the bytes are in the arena already)
+        self.room_for(true, len)?;
+        Ok(self.add_entry(len, h))
+    }
+
+    /// Whether a new symbol of `len` bytes fits: an entry (the symbols' capacity
+    /// error first), then its bytes (`bytes_fit`, and its end within [`Ix`]).
+    fn room_for(&self, bytes_fit: bool, len: usize) -> Result<(), CapacityError> {
         let n = *self.count as usize;
-        let k = n - self.rom.len();
-        if k >= self.entries.len() || n >= NONE as usize {
+        if n - self.rom.len() >= self.entries.len() || n >= NONE as usize {
             return Err(CapacityError {
                 pool: Pool::Symbols,
                 capacity: self.entries.len() as u32,
             });
         }
-        if used + len > Ix::MAX as usize {
+        if !bytes_fit || *self.bytes_used as usize + len > Ix::MAX as usize {
             return Err(CapacityError {
                 pool: Pool::SymbolBytes,
                 capacity: self.bytes.len() as u32,
             });
         }
+        Ok(())
+    }
+
+    /// Makes the `len` bytes at the arena's free end (hash `h`) the next symbol
+    /// (room checked by `room_for`).
+    fn add_entry(&mut self, len: usize, h: u32) -> SymId {
+        let n = *self.count as usize;
+        let used = *self.bytes_used as usize;
         let b = h as usize % self.buckets.len();
-        self.entries[k] = SymEntry {
+        self.entries[n - self.rom.len()] = SymEntry {
             start: used as Ix,
             len: len as Ix,
             next: self.buckets[b],
@@ -259,7 +252,7 @@ impl Symbols<'_> {
         self.buckets[b] = n as Ix;
         *self.count += 1;
         *self.bytes_used += len as Ix;
-        Ok(n as SymId)
+        n as SymId
     }
 
     /// Drops every entry with id >= `count` (newest entries sit at bucket heads;

@@ -415,18 +415,14 @@ impl Core<'_> {
         let args = &self.stack[a.base as usize..a.base as usize + a.len as usize];
         let used = self.st.pools.sym_bytes as usize;
         let (head, tail) = self.sym_bytes.split_at_mut(used.min(self.sym_bytes.len()));
-        let view = crate::print::View {
-            values: self.values,
-            scratch: self.scratch,
-            syms: crate::symbols::SymTexts {
+        let view = crate::print::print_view!(
+            self,
+            crate::symbols::SymTexts {
                 rom: self.st.rom.symbols,
                 entries: self.sym_entries,
                 bytes: head,
-            },
-            templates: self.templates.as_ref(),
-            slots: self.slots.as_ref(),
-            facts: self.facts,
-        };
+            }
+        );
         let mut out = crate::symbols::TailWriter {
             tail,
             len: 0,
@@ -466,14 +462,7 @@ impl Core<'_> {
     ) -> Result<Value, EvalError> {
         let mut text = strings::Text::new();
         let args = &self.stack[a.base as usize..a.base as usize + a.len as usize];
-        let view = crate::print::View {
-            values: self.values,
-            scratch: self.scratch,
-            syms: self.sym_texts(),
-            templates: self.templates.as_ref(),
-            slots: self.slots.as_ref(),
-            facts: self.facts,
-        };
+        let view = crate::print::print_view!(self);
         write(&view, args, &mut text)?;
         let id = self.intern(text.as_str())?;
         Ok(if string {
@@ -514,14 +503,7 @@ impl Core<'_> {
 
     /// A value as `printout` writes it: strings unquoted, multifields in parentheses.
     pub fn write_printout(&self, out: &mut dyn core::fmt::Write, v: Value) -> core::fmt::Result {
-        let view = crate::print::View {
-            values: self.values,
-            scratch: self.scratch,
-            syms: self.sym_texts(),
-            templates: self.templates.as_ref(),
-            slots: self.slots.as_ref(),
-            facts: self.facts,
-        };
+        let view = crate::print::print_view!(self);
         // a string prints bare, but inside a multifield in quotes: (a "b c")
         view.write_value(out, v, v.is_multi())
     }
@@ -529,14 +511,7 @@ impl Core<'_> {
     /// Writes a value's printed form (strings without quotes, as str-cat wants them)
     /// into `out`.
     pub fn write_plain(&self, out: &mut dyn core::fmt::Write, v: Value) -> core::fmt::Result {
-        let view = crate::print::View {
-            values: self.values,
-            scratch: self.scratch,
-            syms: self.sym_texts(),
-            templates: self.templates.as_ref(),
-            slots: self.slots.as_ref(),
-            facts: self.facts,
-        };
+        let view = crate::print::print_view!(self);
         view.write_flat(out, v, false)
     }
 }

@@ -95,62 +95,36 @@ impl Core<'_> {
         {
             use crate::engine::cap;
             use crate::error::Pool;
-            let p = &self.st.pools;
-            let (alphas, joins) = (p.nalpha as usize, p.njoins as usize);
-            let (templates, slots, rules) =
-                (p.ntemplates as usize, p.nslots as usize, p.nrules as usize);
-            // all or nothing: every copy is checked before the first
-            let room = [
-                (
-                    Pool::Joins,
-                    self.joins.fits_in_ram(joins),
-                    self.joins.ram().len(),
-                ),
-                (
-                    Pool::AlphaNodes,
-                    self.alphas.fits_in_ram(alphas),
-                    self.alphas.ram().len(),
-                ),
-                (
-                    Pool::Templates,
-                    self.templates.fits_in_ram(templates),
-                    self.templates.ram().len(),
-                ),
-                (
-                    Pool::SlotDefs,
-                    self.slots.fits_in_ram(slots),
-                    self.slots.ram().len(),
-                ),
-                (
-                    Pool::Rules,
-                    self.rules.fits_in_ram(rules),
-                    self.rules.ram().len(),
-                ),
-            ];
-            if let Some(&(pool, _, size)) = room.iter().find(|(_, fits, _)| !fits) {
-                return Err(cap(pool, size));
+            // every pool read in place: its field (in `Core` and `Rom`), the pool,
+            // its entries in use
+            macro_rules! each_in_place_pool {
+                ($do:ident) => {
+                    $do!(joins, Joins, njoins);
+                    $do!(alphas, AlphaNodes, nalpha);
+                    $do!(templates, Templates, ntemplates);
+                    $do!(slots, SlotDefs, nslots);
+                    $do!(rules, Rules, nrules);
+                };
             }
+            // all or nothing: every copy is checked before the first
+            macro_rules! check_room {
+                ($field:ident, $pool:ident, $used:ident) => {
+                    if !self.$field.fits_in_ram(self.st.pools.$used as usize) {
+                        return Err(cap(Pool::$pool, self.$field.ram().len()));
+                    }
+                };
+            }
+            each_in_place_pool!(check_room);
             // (each copy has room: checked above; the state follows each one)
-            self.alphas
-                .copy_rom_to_ram(alphas)
-                .map_err(|size| cap(Pool::AlphaNodes, size))?;
-            self.st.rom.alphas = &[];
-            self.joins
-                .copy_rom_to_ram(joins)
-                .map_err(|size| cap(Pool::Joins, size))?;
-            self.st.rom.joins = &[];
-            self.templates
-                .copy_rom_to_ram(templates)
-                .map_err(|size| cap(Pool::Templates, size))?;
-            self.st.rom.templates = &[];
-            self.slots
-                .copy_rom_to_ram(slots)
-                .map_err(|size| cap(Pool::SlotDefs, size))?;
-            self.st.rom.slots = &[];
-            self.rules
-                .copy_rom_to_ram(rules)
-                .map_err(|size| cap(Pool::Rules, size))?;
-            self.st.rom.rules = &[];
+            macro_rules! copy_to_ram {
+                ($field:ident, $pool:ident, $used:ident) => {
+                    self.$field
+                        .copy_rom_to_ram(self.st.pools.$used as usize)
+                        .map_err(|size| cap(Pool::$pool, size))?;
+                    self.st.rom.$field = &[];
+                };
+            }
+            each_in_place_pool!(copy_to_ram);
         }
         Ok(())
     }

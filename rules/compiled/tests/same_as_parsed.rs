@@ -89,23 +89,33 @@ fn play(engine: &mut DefaultEngine, seed: u64) -> String {
     host.out
 }
 
+/// Two engines with the game of `strategy`: one that parsed its files, one that
+/// loaded `base`, its compiled form.
+fn parsed_and_compiled(
+    strategy: Strategy,
+    base: &agent_core::compiled::RuleBase,
+) -> (Box<DefaultEngine>, Box<DefaultEngine>) {
+    let mut parsed = Box::new(DefaultEngine::new());
+    parsed.set_pretty_print_forms(false);
+    for file in rules::game_files(strategy) {
+        parsed
+            .load_str(&mut Capture::default(), file.name, file.text)
+            .expect("rule file loads");
+    }
+    let mut compiled = Box::new(DefaultEngine::new());
+    compiled
+        .load_compiled(&mut Capture::default(), base)
+        .expect("compiled form loads");
+    (parsed, compiled)
+}
+
 #[test]
 fn every_strategys_game_plays_the_same_from_its_compiled_form() {
     for strategy in Strategy::ALL {
         let base = rules_compiled::game(strategy.name()).expect("compiled game");
         for seed in [0, 1, 7] {
             let (parsed, compiled) = on_big_stack(|| {
-                let mut parsed = Box::new(DefaultEngine::new());
-                parsed.set_pretty_print_forms(false);
-                for file in rules::game_files(strategy) {
-                    parsed
-                        .load_str(&mut Capture::default(), file.name, file.text)
-                        .expect("rule file loads");
-                }
-                let mut compiled = Box::new(DefaultEngine::new());
-                compiled
-                    .load_compiled(&mut Capture::default(), base)
-                    .expect("compiled form loads");
+                let (mut parsed, mut compiled) = parsed_and_compiled(strategy, base);
                 (play(&mut parsed, seed), play(&mut compiled, seed))
             });
             assert!(
@@ -213,17 +223,7 @@ fn rules_added_and_removed_after_a_compiled_load_work_as_parsed() {
     let strategy = Strategy::Paper;
     let base = rules_compiled::game(strategy.name()).expect("compiled game");
     let (listed, parsed, compiled) = on_big_stack(|| {
-        let mut parsed = Box::new(DefaultEngine::new());
-        parsed.set_pretty_print_forms(false);
-        for file in rules::game_files(strategy) {
-            parsed
-                .load_str(&mut Capture::default(), file.name, file.text)
-                .expect("rule file loads");
-        }
-        let mut compiled = Box::new(DefaultEngine::new());
-        compiled
-            .load_compiled(&mut Capture::default(), base)
-            .expect("compiled form loads");
+        let (mut parsed, mut compiled) = parsed_and_compiled(strategy, base);
         let mut listed = [String::new(), String::new()];
         for (engine, listed) in [&mut parsed, &mut compiled].into_iter().zip(&mut listed) {
             for edit in edits {
