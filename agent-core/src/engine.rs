@@ -477,6 +477,10 @@ pub struct Random {
     pub rng_glibc: [i32; 34],
     pub rng_pos: u8,
     pub rng_seeded: bool,
+    /// `random` or `seed` was called: the numbers drawn for activations (one per
+    /// activation, as in CLIPS) are seen, so deferred propagation, which skips
+    /// activations CLIPS makes and removes, stays off (`rete::defer`).
+    pub observed: bool,
 }
 
 impl Random {
@@ -486,6 +490,7 @@ impl Random {
             rng_glibc: [0; 34],
             rng_pos: 0,
             rng_seeded: false,
+            observed: false,
         }
     }
 }

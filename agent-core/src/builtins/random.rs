@@ -62,6 +62,7 @@ pub(crate) fn next_random(st: &mut State) -> i64 {
 
 /// `(random)` or `(random lo hi)`: `lo + r mod (hi - lo + 1)` as CLIPS computes it.
 fn random(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    cx.st.random.observed = true;
     match a.len {
         0 => Ok(Value::Int(next_random(cx.st))),
         2 => {
@@ -85,6 +86,7 @@ fn random(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 /// `(seed n)`: C's `srand((unsigned) n)`; returns no value, as in CLIPS.
 fn seed(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let n = int_arg(cx, a, 0, "seed")?;
+    cx.st.random.observed = true;
     srandom(cx.st, n as u32);
     Ok(Value::Void)
 }

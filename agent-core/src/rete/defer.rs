@@ -164,10 +164,14 @@ impl Core<'_> {
     /// Whether the assert of a top-level action, a fact of template `tmpl`, may leave
     /// its propagation for later: in a firing, nothing traced, nothing owed, no undo
     /// replaying, and the template's tests total (else no retract could overtake it,
-    /// and deferring would only cost).
+    /// and deferring would only cost). Nor when the random numbers CLIPS draws for
+    /// every activation are seen (the random strategy, `random`, `seed`): activations
+    /// never made would draw none.
     pub(crate) fn may_defer(&mut self, tmpl: Ix) -> bool {
         self.st.mode.firing
             && self.st.mode.watch & (watch::FACTS | watch::ACTIVATIONS) == 0
+            && !self.st.random.observed
+            && self.st.agenda.strategy != crate::strategy::Strategy::Random as u8
             && self.st.net.owed == TokenId::NONE
             && !self.st.agenda.act_journal.replay
             && self.defer_flags(tmpl) & TOTAL_TESTS != 0
