@@ -72,6 +72,8 @@ macro_rules! __pool_table {
             // with `in-place`, the templates of a compiled rule base are read in place
             TemplateMemories template_memories "template memories" 256 16 [
                 tmpl_mems: $crate::template::TemplateMem = $crate::template::TemplateMem::EMPTY,
+                // host speed-up: each template's constant-test discrimination
+                tmpl_disc: $crate::rete::TemplateDisc = $crate::rete::NO_TEMPLATE_DISC,
             ],
             SlotDefs slot_defs "slot definitions" 1024 64 [
                 slots: $crate::template::SlotDef = $crate::template::SlotDef::EMPTY,
@@ -86,6 +88,8 @@ macro_rules! __pool_table {
             // with `in-place`, the nodes of a compiled rule base are read in place
             AlphaMemories alpha_memories "alpha memories" 1024 64 [
                 alpha_mems: $crate::rete::AlphaMem = $crate::rete::AlphaMem::EMPTY,
+                // host speed-up: discrimination links by alpha node id, and bucket heads
+                alpha_disc: $crate::rete::AlphaDisc = $crate::rete::NO_ALPHA_DISC,
             ],
             Joins joins "joins" 2048 128 [
                 joins: $crate::rete::Join = $crate::rete::Join::EMPTY,

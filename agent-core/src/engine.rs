@@ -236,6 +236,9 @@ pub struct MatchState {
     /// Network generation: changes whenever joins are added or unlinked (cached
     /// per-template facts about the network, `rete::defer`, are renewed then).
     pub net_gen: u32,
+    /// Host: what the constant-test discrimination index was built for (`rete::discrim`).
+    #[cfg(feature = "host-speedups")]
+    pub disc: crate::rete::DiscState,
     /// The fact whose propagation waits for a retract to go first (`rete::defer`).
     pub deferred: crate::rete::Deferred,
     /// The right-hand-side action being evaluated at the top level (NONE outside a
@@ -263,6 +266,8 @@ impl MatchState {
             pattern_error: false,
             matching: 0,
             net_gen: 0,
+            #[cfg(feature = "host-speedups")]
+            disc: crate::rete::DiscState::EMPTY,
             deferred: crate::rete::Deferred::NONE,
             top_action: NONE,
             defer_next: false,

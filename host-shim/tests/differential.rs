@@ -362,4 +362,5 @@ differential_programs! {
     p203_strategy_random => "203-strategy-random",
     p204_strategy_switching => "204-strategy-switching",
     p205_ppdeftemplate_ppdeffacts => "205-ppdeftemplate-ppdeffacts",
+    p230_alpha_constant_discrimination => "230-alpha-constant-discrimination",
 }

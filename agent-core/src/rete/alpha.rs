@@ -25,29 +25,39 @@ pub(crate) const MAX_LAYOUTS: usize = 8;
 impl Core<'_> {
     /// Adds a new fact to every alpha memory it matches and propagates.
     pub(crate) fn network_assert(&mut self, fact: Ix) -> Result<(), EvalError> {
+        // host: only the nodes whose constant the fact holds, and the others
+        #[cfg(feature = "host-speedups")]
+        if self.for_discriminated_alphas(fact, |cx, a| cx.visit_alpha(a, fact))? {
+            return Ok(());
+        }
         let tmpl = self.facts[fact as usize].tmpl;
         let mut a = self.templates[tmpl as usize].alpha_head;
         while a != NONE {
-            // a node whose rules are gone stays listed (ids and order) but is empty
-            // and stays so: matches there would take tokens for nothing (and a
-            // modify's old fact would need more room to come back than it freed)
-            let node = &self.alphas[a as usize];
-            if node.live {
-                // the tests the quick path decides come first: most nodes a fact
-                // visits fail one, and then no segmentation work is done
-                if let Some(tests) = self.quick_tests(node.tests, fact) {
-                    // host: a node without multislot constraints (most) matches in
-                    // one call
-                    #[cfg(feature = "host-speedups")]
-                    if self.alphas[a as usize].desc == NONE && self.alphas[a as usize].nmarks == 0 {
-                        self.match_one(a, fact, tests, [0; MAX_MARKS])?;
-                        a = self.alphas[a as usize].next_in_tmpl;
-                        continue;
-                    }
-                    self.match_alpha(a, fact, tests)?;
-                }
-            }
+            self.visit_alpha(a, fact)?;
             a = self.alphas[a as usize].next_in_tmpl;
+        }
+        Ok(())
+    }
+
+    /// Tests a new fact against one alpha node of its template and propagates a match.
+    #[cfg_attr(feature = "host-speedups", inline(always))]
+    fn visit_alpha(&mut self, a: Ix, fact: Ix) -> Result<(), EvalError> {
+        // a node whose rules are gone stays listed (ids and order) but is empty
+        // and stays so: matches there would take tokens for nothing (and a
+        // modify's old fact would need more room to come back than it freed)
+        let node = &self.alphas[a as usize];
+        if node.live {
+            // the tests the quick path decides come first: most nodes a fact
+            // visits fail one, and then no segmentation work is done
+            if let Some(tests) = self.quick_tests(node.tests, fact) {
+                // host: a node without multislot constraints (most) matches in
+                // one call
+                #[cfg(feature = "host-speedups")]
+                if self.alphas[a as usize].desc == NONE && self.alphas[a as usize].nmarks == 0 {
+                    return self.match_one(a, fact, tests, [0; MAX_MARKS]);
+                }
+                self.match_alpha(a, fact, tests)?;
+            }
         }
         Ok(())
     }

@@ -6,6 +6,24 @@ mod index;
 pub use index::{KeyPlan, KEY_PLANS};
 mod defer;
 pub use defer::Deferred;
+#[cfg(feature = "host-speedups")]
+pub(crate) mod discrim;
+#[cfg(feature = "host-speedups")]
+pub use discrim::{AlphaDisc, DiscState, TemplateDisc};
+/// Host speed-up: constant-test discrimination (`discrim`); without the feature, no
+/// bytes (the pool table keeps the arrays, of zero-sized entries).
+#[cfg(not(feature = "host-speedups"))]
+pub type AlphaDisc = ();
+#[cfg(not(feature = "host-speedups"))]
+pub type TemplateDisc = ();
+#[cfg(feature = "host-speedups")]
+pub const NO_ALPHA_DISC: AlphaDisc = AlphaDisc::EMPTY;
+#[cfg(not(feature = "host-speedups"))]
+pub const NO_ALPHA_DISC: AlphaDisc = ();
+#[cfg(feature = "host-speedups")]
+pub const NO_TEMPLATE_DISC: TemplateDisc = TemplateDisc::EMPTY;
+#[cfg(not(feature = "host-speedups"))]
+pub const NO_TEMPLATE_DISC: TemplateDisc = ();
 mod quick;
 #[cfg(any(feature = "defer", feature = "wipe"))]
 mod walk;

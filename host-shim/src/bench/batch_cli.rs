@@ -66,6 +66,13 @@ impl BatchCli {
         if finished.timed_out {
             return Err(format!("run exceeded {} s", limit.as_secs()));
         }
+        // An exhausted pool first: our CLI then also exits non-zero, and the caller
+        // measures the program again with `--large-pools` on this reason.
+        for text in [&finished.stdout, &finished.stderr] {
+            if let Some(pool) = super::ours::capacity_exceeded(text) {
+                return Err(format!("capacity exceeded: {pool}"));
+            }
+        }
         if !finished.status.success() {
             let first_error = finished.stderr.lines().next().unwrap_or("").to_string();
             return Err(format!("{}: {first_error}", finished.status));
@@ -78,12 +85,6 @@ impl BatchCli {
             .find(|l| l.contains("was unable to open file"))
         {
             return Err(format!("program not loaded: {}", line.trim()));
-        }
-        // Our engine reports an exhausted pool and stops the run: not a result.
-        for text in [&finished.stdout, &finished.stderr] {
-            if let Some(pool) = super::ours::capacity_exceeded(text) {
-                return Err(format!("capacity exceeded: {pool}"));
-            }
         }
         Ok(finished)
     }
@@ -227,5 +228,37 @@ impl Contender for BatchCli {
             instr_run,
             mem_bytes,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A program that runs out of a pool and exits non-zero (as our CLI does when a load
+    /// fails) is reported as an exhausted pool, so it is measured again with the large
+    /// pools instead of failing.
+    #[test]
+    fn an_exhausted_pool_is_reported_even_with_a_failing_exit_status() {
+        let cli = |script: &str| BatchCli {
+            label: "test".to_string(),
+            program: PathBuf::from("sh"),
+            prefix_args: vec!["-c".to_string(), script.to_string(), "sh".to_string()],
+            larger: None,
+        };
+        let batch = Path::new("unused.clp");
+        let limit = Duration::from_secs(30);
+        let out_of = cli("echo '[MEMORY] out of expression nodes (capacity 32768)'; exit 1");
+        assert_eq!(
+            out_of.run_once(batch, limit).err(),
+            Some("capacity exceeded: out of expression nodes (capacity 32768)".to_string())
+        );
+        let plain_failure = cli("echo 'bad thing' >&2; exit 1");
+        let reason = plain_failure
+            .run_once(batch, limit)
+            .err()
+            .unwrap_or_default();
+        assert!(reason.contains("bad thing"), "{reason}");
+        assert!(cli("echo fine").run_once(batch, limit).is_ok());
     }
 }
