@@ -62,7 +62,10 @@ macro_rules! __pool_table {
                 sym_entries: $crate::symbols::SymEntry = $crate::symbols::SymEntry::EMPTY,
                 sym_buckets: $crate::value::Ix = $crate::value::NONE,
             ],
-            SymbolBytes symbol_bytes "symbol bytes" 49152 4096 [
+            // the host holds the text of deftemplates and deffacts for ppdeftemplate and
+            // ppdeffacts here too: the rule scenarios with referee and sim need ~50 KiB;
+            // 65,535 is the most a u16 index (no wide-index) can address
+            SymbolBytes symbol_bytes "symbol bytes" 65535 4096 [
                 sym_bytes: u8 = 0,
             ],
             Templates templates "templates" 256 16 [
