@@ -319,6 +319,8 @@ impl Core<'_> {
         for t in self.tmpl_mems.iter_mut() {
             *t = crate::template::TemplateMem::EMPTY;
         }
+        #[cfg(feature = "logical")]
+        self.logical_clear();
         let hw = self.st.pools.hw;
         // what is running goes on: its frame, nesting and firing, and the generator
         let ctx = (
@@ -539,9 +541,14 @@ impl Core<'_> {
                     r = Err(e.into());
                 }
             }
+            // the logical support its asserts get (`logical`)
+            #[cfg(feature = "logical")]
+            let logical = self.logical_enter(rule, token);
             if r.is_ok() {
                 r = self.eval_actions(self.rules[rule as usize].rhs);
             }
+            #[cfg(feature = "logical")]
+            self.logical_leave(logical);
             self.st.eval.returning = false;
             self.st.eval.breaking = false;
             // the rule's frame goes; what it left in scratch goes below, at the top level

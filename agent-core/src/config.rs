@@ -54,6 +54,8 @@ macro_rules! __pool_table {
                 fact_buckets: $crate::value::Ix = $crate::value::NONE,
                 // host speed-up: the template list links of each fact
                 fact_tlinks: $crate::fact::TemplateLinks = $crate::fact::NO_TEMPLATE_LINKS,
+                // truth maintenance: the head of each fact's logical supports
+                fact_deps: $crate::logical::Deps = $crate::logical::NO_DEPS,
             ],
             FactValues fact_values "fact values" 32768 1024 [
                 values: $crate::value::Value = $crate::value::Value::Void,
@@ -83,6 +85,8 @@ macro_rules! __pool_table {
             ],
             Rules rules "rules" 512 32 [
                 rules: $crate::rule::Rule = $crate::rule::Rule::EMPTY,
+                // truth maintenance: each rule's logical join
+                rule_logical: $crate::logical::RuleLogical = $crate::logical::NO_RULE_LOGICAL,
             ],
             AlphaNodes alpha_nodes "alpha nodes" 1024 64 [
                 alphas: $crate::rete::AlphaNode = $crate::rete::AlphaNode::EMPTY,
@@ -105,6 +109,8 @@ macro_rules! __pool_table {
                 tokens: $crate::rete::Token = $crate::rete::Token::EMPTY,
                 // alpha- and beta-memory index bucket heads (see `rete::index`)
                 amem_buckets: $crate::handle::TokenId = $crate::handle::TokenId::NONE,
+                // truth maintenance: the head of the facts each partial match supports
+                token_deps: $crate::logical::Deps = $crate::logical::NO_DEPS,
             ],
             Activations activations "activations" 8192 256 [
                 acts: $crate::rule::Activation = $crate::rule::Activation::EMPTY,
@@ -129,6 +135,10 @@ macro_rules! __pool_table {
             ],
             ExternalFns external_fns "external functions" 32 8 [
                 externals: $crate::engine::ExternalEntry = $crate::engine::ExternalEntry::EMPTY,
+            ],
+            // truth maintenance (`logical`): one entry per (partial match, fact) support
+            Supports supports "logical supports" 8192 64 [
+                supports: $crate::logical::Support = $crate::logical::NO_SUPPORT,
             ],
         }
     };

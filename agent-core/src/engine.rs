@@ -512,6 +512,9 @@ pub struct State {
     pub mode: Mode,
     pub cache: Caches,
     pub random: Random,
+    /// Truth maintenance (`logical`).
+    #[cfg(feature = "logical")]
+    pub logical: crate::logical::LogicalState,
     /// Expression nodes, alpha nodes and joins of a compiled rule base read in place
     /// (feature `in-place`, `compiled`, `rom`): ids below their length are these, the
     /// arena's come after.
@@ -534,6 +537,8 @@ impl State {
             mode: Mode::new(),
             cache: Caches::new(),
             random: Random::new(),
+            #[cfg(feature = "logical")]
+            logical: crate::logical::LogicalState::new(),
             rom: crate::rom::Rom::EMPTY,
             builtin_code: &[],
         }

@@ -253,6 +253,7 @@ pub const ERROR_TEXTS: &[&str] = &[
     "function, deffunction, or generic function name",
     "function name, deffunction name, or defgeneric name",
     "positive number",
+    "instance address, instance name, fact address, integer, or symbol",
 ];
 
 /// The index of text `s` in `ERROR_TEXTS` (0, "?", when it is missing there: a debug

@@ -530,6 +530,9 @@ impl Core<'_> {
         if self.fact_slots_full() {
             return Err(cap(Pool::Facts, self.facts.len()).into());
         }
+        // the logical support this assert may add needs an entry
+        #[cfg(feature = "logical")]
+        self.support_room()?;
         let start = self.reserve_cells(need)?;
         self.write_cells(tmpl, base, start);
         let h = self.cells_hash(tmpl, start, need);
@@ -541,9 +544,17 @@ impl Core<'_> {
                 && df.len as usize == need
                 && self.cells_equal(df.start as usize, start, need)
             {
+                // no new fact; its support may change (`logical`)
+                #[cfg(feature = "logical")]
+                self.support_existing_fact(d);
                 return Ok(None);
             }
             d = df.hash_next;
+        }
+        // a logical rule whose partial match went creates nothing (as CLIPS)
+        #[cfg(feature = "logical")]
+        if !self.logical_may_assert() {
+            return Ok(None);
         }
         // allocate the fact slot
         let slot = if self.st.pools.fact_free != NONE {
@@ -596,6 +607,8 @@ impl Core<'_> {
         let live = self.count_live_facts_hint();
         self.note_hw(Pool::Facts, live);
         self.note_hw(Pool::FactValues, self.st.facts.values_top as usize);
+        #[cfg(feature = "logical")]
+        self.support_new_fact(slot);
         // an undone assert prints nothing (see `hold`)
         self.hold_traces();
         if self.st.mode.watch & crate::engine::watch::FACTS != 0 {
@@ -625,6 +638,8 @@ impl Core<'_> {
             // removal rebuilds what the fact had blocked from the tokens it frees
             // (anything that does not fit at once is owed and paid right after).
             self.journal_replay(mark);
+            #[cfg(feature = "logical")]
+            self.fact_leaves(slot);
             self.network_retract(slot);
             self.unlink_fact(slot);
             self.free_fact_slot(slot);
@@ -637,6 +652,9 @@ impl Core<'_> {
         }
         self.journal_end(mark);
         self.release_traces(true);
+        // the facts whose support the new fact took (blocking a `not`) go now
+        #[cfg(feature = "logical")]
+        self.force_logical_retractions();
         Ok(Some(slot))
     }
 
@@ -744,6 +762,8 @@ impl Core<'_> {
         if self.st.mode.watch & crate::engine::watch::FACTS != 0 {
             self.print_fact_line("<== ", slot);
         }
+        #[cfg(feature = "logical")]
+        self.fact_leaves(slot);
         self.network_retract(slot);
         // what the retract unblocked and could not rebuild on a full pool is owed:
         // the tokens the fact itself freed may be enough now
@@ -759,6 +779,9 @@ impl Core<'_> {
             self.release_fact_values(slot);
             self.free_fact_slot(slot);
         }
+        // then the facts it alone supported, and theirs (`logical`)
+        #[cfg(feature = "logical")]
+        self.force_logical_retractions();
     }
 
     fn release_fact_values(&mut self, slot: Ix) {

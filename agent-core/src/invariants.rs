@@ -127,6 +127,69 @@ impl Core<'_> {
         self.check_owed()?;
         self.check_dead_alphas()?;
         self.check_agenda()?;
+        #[cfg(feature = "logical")]
+        self.check_supports()?;
+        Ok(())
+    }
+
+    /// Truth maintenance between operations: no unsupported fact waits, no logical
+    /// rule is firing; every support links a live partial match and a live fact and
+    /// is on both their lists; the live count is what the lists hold.
+    #[cfg(feature = "logical")]
+    fn check_supports(&self) -> Result<(), Violation> {
+        let l = &self.st.logical;
+        ensure!(
+            l.unsupported == NONE,
+            "unsupported facts left unretracted",
+            l.unsupported
+        );
+        ensure!(
+            l.bind == TokenId::NONE && !l.gone && !l.forcing,
+            "logical firing state left set",
+            0
+        );
+        let mut n = 0usize;
+        for (f, &head) in self.fact_deps.iter().enumerate() {
+            let mut s = head;
+            while s != NONE {
+                ensure!(
+                    (s as usize) < self.supports.len(),
+                    "support index past the pool",
+                    f
+                );
+                let e = self.supports[s as usize];
+                ensure!(e.fact as usize == f, "support listed by another fact", s);
+                ensure!(
+                    self.facts[f].state == crate::fact::FactState::Live,
+                    "support of a fact not live",
+                    f
+                );
+                ensure!(
+                    e.token.ix() < self.tokens.len()
+                        && self.tokens[e.token].kind == TokenKind::Beta,
+                    "support by a token that is no partial match",
+                    s
+                );
+                let mut t = self.token_deps[e.token.ix()];
+                while t != NONE && t != s {
+                    t = self.supports[t as usize].next_of_token;
+                }
+                ensure!(t == s, "support missing from its partial match's list", s);
+                n += 1;
+                ensure!(n <= self.supports.len(), "support lists loop", s);
+                s = e.next_of_fact;
+            }
+        }
+        let mut m = 0usize;
+        for &head in self.token_deps.iter() {
+            let mut s = head;
+            while s != NONE && m <= self.supports.len() {
+                m += 1;
+                s = self.supports[s as usize].next_of_token;
+            }
+        }
+        ensure!(m == n, "partial matches list supports no fact lists", m);
+        ensure!(n == l.live as usize, "live support count off", n);
         Ok(())
     }
 

@@ -173,6 +173,7 @@ pub mod host;
 pub mod host_fn;
 pub mod invariants;
 pub mod lexer;
+pub mod logical;
 pub mod parser;
 pub mod print;
 pub mod rete;

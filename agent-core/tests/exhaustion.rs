@@ -822,6 +822,40 @@ fn external_functions_at_registration() {
     e.consistent();
 }
 
+#[test]
+fn logical_supports_at_run_and_assert() {
+    let h = &mut Capture::default();
+    let mut e = engine!(supports = 2);
+    e.load_str(h, "t", "(defrule hold (logical (a ?x)) => (assert (b ?x)))")
+        .unwrap();
+    for x in 1..=3 {
+        e.assert_str(h, &format!("(a {x})")).unwrap();
+    }
+    // two firings fill the pool; the third one's assert stops the run, creating nothing
+    e.run(h, None).unwrap();
+    assert!(h.out.contains(&run_message(Pool::Supports, 2)), "{}", h.out);
+    e.consistent();
+    let listing = e.fact_listing();
+    assert_eq!(listing.matches("(b ").count(), 2, "{listing}");
+    // retracting a supporting fact frees its support (and retracts what it held)
+    h.out.clear();
+    e.eval_str(h, "(retract 3)").unwrap();
+    let listing = e.fact_listing();
+    assert!(
+        !listing.contains("(b 3)") && !listing.contains("(a 3)"),
+        "{listing}"
+    );
+    assert_eq!(listing.matches("(b ").count(), 1, "{listing}");
+    e.consistent();
+    // the failed firing is spent (refraction); a new match finds the room freed
+    e.assert_str(h, "(a 4)").unwrap();
+    h.out.clear();
+    e.run(h, None).unwrap();
+    assert!(h.out.is_empty(), "{}", h.out);
+    assert!(e.fact_listing().contains("(b 4)"));
+    e.consistent();
+}
+
 /// Every pool has a case above (names listed by hand; a new pool fails this test).
 #[test]
 fn every_pool_is_covered() {
@@ -847,6 +881,7 @@ fn every_pool_is_covered() {
         Pool::Scratch,
         Pool::Deffacts,
         Pool::ExternalFns,
+        Pool::Supports,
     ];
     for p in Pool::ALL {
         assert!(covered.contains(&p), "no exhaustion case for {p:?}");

@@ -232,11 +232,6 @@ fn constructs_before_an_error_in_the_same_text_stay() {
 fn unimplemented_constructs_are_refused() {
     use agent_core::LoadDetail;
     let cases: &[(&str, u32, &str)] = &[
-        (
-            "(defrule r (logical (good (a 1))) => (assert (b)))",
-            13,
-            "logical",
-        ),
         ("(defmodule SENSE (export ?ALL))", 12, "defmodule"),
         ("(deftemplate MAIN::t (slot x))", 14, "module"),
         ("(defrule MAIN::r (good (a 1)) =>)", 10, "module"),

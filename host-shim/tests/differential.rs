@@ -363,4 +363,8 @@ differential_programs! {
     p204_strategy_switching => "204-strategy-switching",
     p205_ppdeftemplate_ppdeffacts => "205-ppdeftemplate-ppdeffacts",
     p230_alpha_constant_discrimination => "230-alpha-constant-discrimination",
+    p240_logical_basic => "240-logical-basic",
+    p241_logical_self_retract => "241-logical-self-retract",
+    p242_logical_not_exists_modify => "242-logical-not-exists-modify",
+    p243_logical_strategies => "243-logical-strategies",
 }

@@ -499,7 +499,7 @@ malformed_programs! {
     e078_allowed_values_combined => "078-allowed-values-combined",
     e079_modify_fact_index_in_rule => "079-modify-fact-index-in-rule",
     e080_declare_after_a_ce => "080-declare-after-a-ce",
-    e081_logical_ce_refused => "081-logical-ce-refused",
+    e081_logical_ce_not_first => "081-logical-ce-not-first",
     e082_defmodule_refused => "082-defmodule-refused",
     e083_module_specifier_refused => "083-module-specifier-refused",
     e084_auto_focus_refused => "084-auto-focus-refused",

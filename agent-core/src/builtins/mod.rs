@@ -24,6 +24,7 @@ pub mod facts;
 pub mod files;
 pub mod format;
 pub mod geometry;
+pub mod logical;
 pub mod math;
 pub mod memory;
 pub mod multifield;
@@ -158,6 +159,7 @@ pub const TABLES: &[&[Builtin]] = &[
     extras::FUNCS,
     compat::FUNCS,
     template_slots::FUNCS,
+    logical::FUNCS,
 ];
 
 const fn builtin_count() -> usize {

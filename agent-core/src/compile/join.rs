@@ -140,6 +140,14 @@ impl Compiler<'_, '_> {
                 at: None,
             });
         }
+        // a logical rule's join is noted by the rule's index (`logical`)
+        #[cfg(feature = "logical")]
+        if b.logical != CE_ROOT && nr >= self.cx.rule_logical.len() {
+            return Err(CompileError {
+                capacity: cap(Pool::Rules, self.cx.rule_logical.len()),
+                at: None,
+            });
+        }
         if let Err(c) = self.cx.network_writable() {
             return Err(CompileError {
                 capacity: c,
@@ -294,6 +302,17 @@ impl Compiler<'_, '_> {
             text: NONE,
             complexity: b.complexity,
         };
+        // the join where the rule's logical CEs end (`logical`)
+        #[cfg(feature = "logical")]
+        {
+            let lj = if b.logical == CE_ROOT {
+                JoinId::NONE
+            } else {
+                jid[b.logical as usize]
+            };
+            // (room checked above)
+            let _ = self.cx.set_rule_logical_join(nr as Ix, lj);
+        }
         self.cx.st.pools.nrules += 1;
         self.cx.note_hw(Pool::Rules, nr + 1);
         Ok(nr as Ix)

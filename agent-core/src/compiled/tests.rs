@@ -50,6 +50,24 @@ fn refuses_facts_left_by_parsing_and_bad_names() {
     );
 }
 
+#[cfg(feature = "logical")]
+#[test]
+fn refuses_logical_rules() {
+    let mut e = std::boxed::Box::new(SmallEngine::new());
+    let mut host = crate::NullHost;
+    e.load_str(&mut host, "t", "(defrule r (logical (a)) => (assert (b)))")
+        .unwrap();
+    let mut out = String::new();
+    assert_eq!(
+        e.write_compiled("m", "t", &mut out),
+        Err(WriteError::Logical)
+    );
+    // once the rule is gone the rest is written
+    e.load_str(&mut host, "t", "(defrule r (a) => (assert (b)))")
+        .unwrap();
+    assert_eq!(e.write_compiled("m", "t", &mut out), Ok(()));
+}
+
 #[test]
 fn loader_refuses_an_engine_with_constructs() {
     static EMPTY: RuleBase = RuleBase {

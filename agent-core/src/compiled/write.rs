@@ -21,6 +21,9 @@ pub enum WriteError {
     BadName,
     /// The output refused the text.
     Output,
+    /// A rule uses `logical`: a compiled rule base keeps no logical joins (the agent
+    /// image has no truth maintenance).
+    Logical,
 }
 
 impl From<fmt::Error> for WriteError {
@@ -39,6 +42,10 @@ impl fmt::Display for WriteError {
             ),
             WriteError::BadName => write!(f, "the module name is not a Rust identifier"),
             WriteError::Output => write!(f, "the output refused the text"),
+            WriteError::Logical => write!(
+                f,
+                "a rule uses the logical CE: compiled rule bases have no truth maintenance"
+            ),
         }
     }
 }
@@ -142,6 +149,12 @@ impl Core<'_> {
     ) -> Result<(), WriteError> {
         if !is_ident(module) {
             return Err(WriteError::BadName);
+        }
+        #[cfg(feature = "logical")]
+        for r in 0..self.st.pools.nrules {
+            if !self.rules[r as usize].deleted && self.rule_logical_join(r).is_some() {
+                return Err(WriteError::Logical);
+            }
         }
         let mut f = self.st.facts.fact_head;
         while f != NONE {

@@ -86,6 +86,11 @@ pub(crate) struct Build {
     pub(crate) nlocals: u8,
     /// The disjunct's complexity (`Rule::complexity`).
     pub(crate) complexity: u16,
+    /// The CE ending the rule's `logical` CEs (its logical join), CE_ROOT if none;
+    /// whether a `logical` CE is being read, and whether a CE outside one was met.
+    pub(crate) logical: u8,
+    pub(crate) in_logical: bool,
+    pub(crate) plain_seen: bool,
 }
 
 impl Build {
@@ -108,6 +113,9 @@ impl Build {
             rhs: NONE,
             nlocals: 0,
             complexity: 0,
+            logical: CE_ROOT,
+            in_logical: false,
+            plain_seen: false,
         }
     }
 
@@ -283,6 +291,9 @@ impl<'s> Parser<'s, '_, '_> {
         b.groups = 0;
         b.group_first = CE_ROOT;
         b.nor = 0;
+        b.logical = CE_ROOT;
+        b.in_logical = false;
+        b.plain_seen = false;
         self.rule_body(b)
     }
 
@@ -402,6 +413,9 @@ impl<'s> Parser<'s, '_, '_> {
                         "a pattern (fact addresses cannot be bound inside not/exists)",
                     ));
                 }
+                if !b.in_logical {
+                    b.plain_seen = true;
+                }
                 let lp = self.expect_lparen("'(' starting a pattern")?;
                 if let Tok::Symbol("not" | "and" | "or" | "exists" | "test" | "logical") =
                     self.peek().tok
@@ -412,6 +426,13 @@ impl<'s> Parser<'s, '_, '_> {
             }
             Tok::LParen => {
                 let h = self.peek();
+                // a top-level CE outside `logical` ends the rule's logical CEs
+                if b.groups == 0
+                    && !b.in_logical
+                    && !matches!(h.tok, Tok::Symbol("logical" | "and" | "or"))
+                {
+                    b.plain_seen = true;
+                }
                 match h.tok {
                     Tok::Symbol(kw @ ("not" | "exists")) => {
                         self.next();
@@ -438,9 +459,7 @@ impl<'s> Parser<'s, '_, '_> {
                             "')' closing exists"
                         })
                     }
-                    Tok::Symbol("logical") => {
-                        Err(self.not_implemented(h, "the logical conditional element"))
-                    }
+                    Tok::Symbol("logical") => self.logical_ce(b, ctx, h),
                     Tok::Symbol("and") => {
                         self.next();
                         loop {
@@ -508,6 +527,59 @@ impl<'s> Parser<'s, '_, '_> {
             }
             _ => Err(self.err(t, "a conditional element")),
         }
+    }
+
+    /// `(logical CE...)` after its `(`: the rule's first CEs, whose partial match
+    /// gives the facts its actions assert their logical support (`crate::logical`).
+    #[cfg(feature = "logical")]
+    fn logical_ce(&mut self, b: &mut Build, ctx: Ctx, h: Token<'s>) -> PResult<()> {
+        if ctx != Ctx::Top || b.groups > 0 || b.in_logical {
+            return Err(self.err(
+                h,
+                "a pattern (the logical CE cannot be used within a not/exists/forall CE)",
+            ));
+        }
+        if b.plain_seen {
+            return Err(self.err(
+                h,
+                if b.logical == CE_ROOT {
+                    "no logical CE here (logical CEs must be placed first in a rule)"
+                } else {
+                    "no logical CE here (gaps may not exist between logical CEs)"
+                },
+            ));
+        }
+        self.next();
+        b.in_logical = true;
+        let first = b.n;
+        let r = loop {
+            let p = self.peek();
+            match p.tok {
+                Tok::RParen => {
+                    self.next();
+                    break Ok(());
+                }
+                Tok::Eof | Tok::Bad => break Err(self.err(p, "')'")),
+                _ => {
+                    if let Err(e) = self.ce(b, ctx) {
+                        break Err(e);
+                    }
+                }
+            }
+        };
+        b.in_logical = false;
+        r?;
+        if b.n == first && b.logical == CE_ROOT {
+            return Err(self.err(h, "a conditional element inside logical"));
+        }
+        b.logical = b.cur;
+        Ok(())
+    }
+
+    /// Without truth maintenance (feature `logical`), refused.
+    #[cfg(not(feature = "logical"))]
+    fn logical_ce(&mut self, _b: &mut Build, _ctx: Ctx, h: Token<'s>) -> PResult<()> {
+        Err(self.not_implemented(h, "the logical conditional element"))
     }
 
     /// Whether the next CE is one pattern closing the enclosing CE.

@@ -39,6 +39,11 @@ impl Core<'_> {
     }
 
     pub(crate) fn free_token(&mut self, t: TokenId) {
+        // the facts a partial match supports lose that support (`logical`)
+        #[cfg(feature = "logical")]
+        if self.logical_in_use() {
+            self.token_leaves(t);
+        }
         if self.st.net.lhs_of == t {
             self.st.net.lhs_of = TokenId::NONE;
         }
@@ -341,6 +346,11 @@ impl Core<'_> {
             }
             self.add_link(t, blocker);
             self.deactivate(t);
+            // a blocked not output is no partial match for CLIPS: its support goes
+            #[cfg(feature = "logical")]
+            if self.logical_in_use() {
+                self.token_leaves(t);
+            }
             Ok(())
         } else {
             self.add_link(t, blocker);
@@ -695,6 +705,11 @@ impl Core<'_> {
             self.propagate_or_owe(t);
         } else {
             self.deactivate(t);
+            // an exists output without a match is no partial match for CLIPS
+            #[cfg(feature = "logical")]
+            if self.logical_in_use() {
+                self.token_leaves(t);
+            }
         }
     }
 

@@ -174,7 +174,18 @@ impl Core<'_> {
             && self.st.agenda.strategy != crate::strategy::Strategy::Random as u8
             && self.st.net.owed == TokenId::NONE
             && !self.st.agenda.act_journal.replay
+            && !self.logical_busy()
             && self.defer_flags(tmpl) & TOTAL_TESTS != 0
+    }
+
+    /// Whether truth maintenance is at work: its retractions follow each operation,
+    /// which a deferred propagation would reorder.
+    #[inline(always)]
+    fn logical_busy(&self) -> bool {
+        #[cfg(feature = "logical")]
+        return self.logical_in_use();
+        #[cfg(not(feature = "logical"))]
+        false
     }
 
     /// Whether the retract of live fact `old` (by the top-level modify `call`) may
@@ -190,6 +201,7 @@ impl Core<'_> {
             || self.st.mode.watch & (watch::FACTS | watch::ACTIVATIONS) != 0
             || self.st.net.owed != TokenId::NONE
             || self.st.agenda.act_journal.replay
+            || self.logical_busy()
         {
             return false;
         }

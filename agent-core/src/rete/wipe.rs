@@ -27,6 +27,11 @@ impl Core<'_> {
         if self.st.mode.watch & watch::ACTIVATIONS != 0 || self.st.net.owed != TokenId::NONE {
             return;
         }
+        // logical support goes partial match by partial match, in CLIPS's order
+        #[cfg(feature = "logical")]
+        if self.logical_in_use() {
+            return;
+        }
         let alpha = self.tokens[am].alpha();
         if self.alpha_mems[alpha as usize].head != am || self.tokens[am].mem_next != TokenId::NONE {
             return;

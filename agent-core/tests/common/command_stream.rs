@@ -33,6 +33,7 @@ agent_core::engine_storage! {
         scratch: 96,
         deffacts: 2,
         external_fns: 2,
+        supports: 8,
     }
 }
 pub type StreamEngine = Engine<StreamStorage>;

@@ -70,6 +70,7 @@ agent_core::engine_storage! {
         scratch: 96,                               // 72
         deffacts: BASE.deffacts,
         external_fns: 1,                           // 0: `distance` is built in
+        supports: 0,                               // no `logical` in the rules
     }
 }
 
