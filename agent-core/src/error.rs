@@ -227,9 +227,17 @@ impl fmt::Display for Message {
 }
 
 /// Texts an `EvalError` can name besides the builtins' names and its [`Message`]s:
-/// callers that are not builtins and CLIPS's descriptions of argument types. Index 0
-/// stands for a text missing here (a debug build panics on it instead).
-pub const ERROR_TEXTS: &[&str] = &[
+/// callers that are not builtins and CLIPS's descriptions of argument types; the
+/// common ones here, then the wordings each builtin module's `TABLE` adds
+/// ([`builtins::Table`](crate::builtins::Table)). Index 0 stands for a text missing here
+/// (a debug build panics on it instead).
+pub const ERROR_TEXTS: &[&str] = &ALL_TEXTS;
+
+const ALL_TEXTS: [&str; COMMON_TEXTS.len() + crate::builtins::table_text_count()] =
+    crate::builtins::error_texts(COMMON_TEXTS);
+
+/// The texts more than one module names.
+const COMMON_TEXTS: &[&str] = &[
     "?",
     "deffunction",
     "external",
@@ -253,7 +261,6 @@ pub const ERROR_TEXTS: &[&str] = &[
     "function, deffunction, or generic function name",
     "function name, deffunction name, or defgeneric name",
     "positive number",
-    "instance address, instance name, fact address, integer, or symbol",
 ];
 
 /// The index of text `s` in `ERROR_TEXTS` (0, "?", when it is missing there: a debug

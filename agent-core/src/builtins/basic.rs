@@ -33,6 +33,7 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("not", 1, 1, not).on_error(OnError::False).total(),
     Builtin::eager("str-cat", 1, ANY, str_cat).on_error(OnError::EmptyString).quiet(),
 ];
+pub const TABLE: super::Table = super::Table::new(FUNCS);
 
 fn fold(
     cx: &mut Core<'_>,

@@ -38,6 +38,7 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("list-deffunctions", 0, 1, list_deffunctions),
     Builtin::eager("get-fact-duplication", 0, 0, get_fact_dup),
 ];
+pub const TABLE: super::Table = super::Table::new(FUNCS);
 
 fn reset(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
     if cx.st.net.matching > 0 {

@@ -80,6 +80,7 @@ pub const FUNCS: &[Builtin] = &[
 ];
 #[cfg(not(feature = "extras"))]
 pub const FUNCS: &[Builtin] = &[];
+pub const TABLE: super::Table = super::Table::new(FUNCS);
 
 // ---- trigonometry, as CLIPS 6.30's emathfun.c computes it ----
 

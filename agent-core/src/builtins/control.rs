@@ -22,6 +22,7 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("return", 0, 1, return_),
     Builtin::eager("break", 0, 0, break_),
 ];
+pub const TABLE: super::Table = super::Table::new(FUNCS);
 
 fn kids<const N: usize>(cx: &Core<'_>, call: Ix) -> [Ix; N] {
     let mut out = [NONE; N];

@@ -30,6 +30,7 @@ pub const FUNCS: &[Builtin] = &[
 
 #[cfg(not(feature = "parser"))]
 pub const FUNCS: &[Builtin] = &[];
+pub const TABLE: super::Table = super::Table::new(FUNCS);
 
 /// The text argument (symbol or string), copied out of the symbol table.
 fn source_arg(

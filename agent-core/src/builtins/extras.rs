@@ -45,6 +45,7 @@ pub const FUNCS: &[Builtin] = &[
 ];
 #[cfg(not(feature = "extras"))]
 pub const FUNCS: &[Builtin] = &[];
+pub const TABLE: super::Table = super::Table::new(FUNCS);
 
 /// The kinds of construct these functions list, each with its names in definition
 /// order (the `initial-fact` deffacts and template first, as CLIPS has them).

@@ -21,6 +21,7 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("fact-index", 1, 1, fact_index).args(&[F], Any).on_error(OnError::MinusOne),
     Builtin::eager("fact-existp", 1, 1, fact_existp),
 ];
+pub const TABLE: super::Table = super::Table::new(FUNCS);
 
 fn type_bit(v: Value) -> u8 {
     match v {

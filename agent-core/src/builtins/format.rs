@@ -22,6 +22,7 @@ use crate::value::{TextBuf, Value};
 pub const FUNCS: &[Builtin] = &[Builtin::eager("format", 2, ANY, format)
     .args(&[Any, S], Any)
     .on_error(OnError::EmptyString)];
+pub const TABLE: super::Table = super::Table::new(FUNCS);
 
 const TOO_LONG: EvalError = EvalError::message(crate::error::Message::FormatTooLong);
 

@@ -29,6 +29,7 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("pose-inverse", 3, 3, pose_inverse).quiet(),
     Builtin::eager("normalize-angle", 1, 1, normalize_angle).quiet(),
 ];
+pub const TABLE: super::Table = super::Table::new(FUNCS);
 
 /// CLIPS `-`: integers stay integers (wrapping like CLIPS's `long long`), else floats.
 fn sub(p: Num, q: Num) -> Num {

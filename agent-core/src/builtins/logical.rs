@@ -18,6 +18,10 @@ pub const FUNCS: &[Builtin] = &[
 ];
 #[cfg(not(feature = "logical"))]
 pub const FUNCS: &[Builtin] = &[];
+pub const TABLE: super::Table = super::Table::new(FUNCS).texts(&[T_SUPPORTED]);
+
+/// CLIPS's wording for what `dependencies` and `dependents` take.
+const T_SUPPORTED: &str = "instance address, instance name, fact address, integer, or symbol";
 
 /// The fact a command names (an address or an index), or its message printed.
 fn fact_named(cx: &mut Core<'_>, func: &'static str, v: Value) -> Result<Option<Ix>, EvalError> {
@@ -37,13 +41,7 @@ fn fact_named(cx: &mut Core<'_>, func: &'static str, v: Value) -> Result<Option<
         Value::Sym(s) => {
             let _ = writeln!(b, "[PRNTUTIL1] Unable to find instance {}.", cx.sym_text(s));
         }
-        _ => {
-            return Err(EvalError::wrong_type(
-                func,
-                1,
-                "instance address, instance name, fact address, integer, or symbol",
-            ))
-        }
+        _ => return Err(EvalError::wrong_type(func, 1, T_SUPPORTED)),
     }
     cx.write(router::WERROR, b.as_str());
     Ok(None)

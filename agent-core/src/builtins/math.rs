@@ -37,6 +37,7 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("deg-rad", 1, 1, deg_rad).args(&[N], Any).on_error(OnError::FloatZero).quiet().body_names(BodyNames::Float),
     Builtin::eager("rad-deg", 1, 1, rad_deg).args(&[N], Any).on_error(OnError::FloatZero).quiet().body_names(BodyNames::Float),
 ];
+pub const TABLE: super::Table = super::Table::new(FUNCS);
 
 // ---- argument helpers shared by this helper's modules ----
 

@@ -23,6 +23,7 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("release-mem", 0, 0, release_mem),
     Builtin::eager("conserve-mem", 1, 1, conserve_mem),
 ];
+pub const TABLE: super::Table = super::Table::new(FUNCS);
 
 impl Core<'_> {
     /// Activations on the agenda.

@@ -3,14 +3,21 @@
 //! A builtin is one row of a table (`Builtin`): its name, arity, argument types, purity,
 //! the value it returns after a run-time error and its plain `fn` (see [`describe`]:
 //! `Builtin::eager("sqrt", 1, 1, sqrt).args(&[N], Any).on_error(OnError::FloatZero)
-//! .quiet()`). Adding one is a row in a module's table plus its tests. Eager builtins receive their
-//! arguments already evaluated, on the evaluation stack, through an [`Args`] handle;
-//! lazy builtins (control forms, fact-set queries) receive their call node and
-//! evaluate arguments themselves with [`Core::eval`]. Each module exports
-//! `pub const FUNCS: &[Builtin]`; [`TABLES`] lists the modules. A function is named by
-//! its `Ix` index in [`BUILTINS`] (the tables one after another), stored in the
-//! call's expression node. Adding a builtin: its row in a module's `FUNCS` and its
-//! function, nothing else (`describe` says what a row can say).
+//! .quiet()`). Eager builtins receive their arguments already evaluated, on the
+//! evaluation stack, through an [`Args`] handle; lazy builtins (control forms, fact-set
+//! queries) receive their call node and evaluate arguments themselves with
+//! [`Core::eval`]. Each module exports its rows (`FUNCS`) as a [`Table`] (`TABLE`), with
+//! the CLIPS wordings of argument types its bodies name in wrong-type errors that no
+//! other module uses; [`TABLES`] lists the modules. A function is named by its `Ix`
+//! index in [`BUILTINS`] (the tables one after another), stored in the call's
+//! expression node.
+//!
+//! Adding a builtin is a change to one module: its row in the module's `FUNCS`, its
+//! function, and (only if CLIPS words a wrong argument in a way no module has yet) the
+//! wording in the module's `TABLE`; nothing else (`describe` says what a row can say).
+//! Messages a body prints itself (`[PRNTUTIL1]`, `[ROUTER1]`) it writes where it finds
+//! them and returns [`EvalError::already_reported`](crate::EvalError::already_reported).
+//! A new module is one line in [`TABLES`] besides.
 
 pub mod basic;
 pub mod commands;
@@ -139,36 +146,89 @@ impl Builtin {
     }
 }
 
+/// One module's builtins: its rows, and the wordings of argument types its bodies pass
+/// to [`EvalError::wrong_type`] that the common list (`error::ERROR_TEXTS`) does not
+/// have, so that such a wording is part of the module that prints it.
+#[derive(Clone, Copy)]
+pub struct Table {
+    pub funcs: &'static [Builtin],
+    pub texts: &'static [&'static str],
+}
+
+impl Table {
+    /// A module's rows, naming no wording of their own.
+    pub const fn new(funcs: &'static [Builtin]) -> Table {
+        Table { funcs, texts: &[] }
+    }
+    /// The wordings the module's bodies name in wrong-type errors, beyond the common ones.
+    pub const fn texts(mut self, texts: &'static [&'static str]) -> Table {
+        self.texts = texts;
+        self
+    }
+}
+
 /// Every builtin table, in id order (`basic` first: its comparisons are the ids
 /// `basic::CMP_FIRST..=CMP_LAST`).
-pub const TABLES: &[&[Builtin]] = &[
-    basic::FUNCS,
-    control::FUNCS,
-    facts::FUNCS,
-    commands::FUNCS,
-    math::FUNCS,
-    strings::FUNCS,
-    multifield::FUNCS,
-    predicates::FUNCS,
-    format::FUNCS,
-    queries::FUNCS,
-    random::FUNCS,
-    geometry::FUNCS,
-    memory::FUNCS,
-    evaluate::FUNCS,
-    extras::FUNCS,
-    compat::FUNCS,
-    template_slots::FUNCS,
-    logical::FUNCS,
+pub const TABLES: &[Table] = &[
+    basic::TABLE,
+    control::TABLE,
+    facts::TABLE,
+    commands::TABLE,
+    math::TABLE,
+    strings::TABLE,
+    multifield::TABLE,
+    predicates::TABLE,
+    format::TABLE,
+    queries::TABLE,
+    random::TABLE,
+    geometry::TABLE,
+    memory::TABLE,
+    evaluate::TABLE,
+    extras::TABLE,
+    compat::TABLE,
+    template_slots::TABLE,
+    logical::TABLE,
 ];
 
 const fn builtin_count() -> usize {
     let (mut n, mut t) = (0, 0);
     while t < TABLES.len() {
-        n += TABLES[t].len();
+        n += TABLES[t].funcs.len();
         t += 1;
     }
     n
+}
+
+/// How many wordings the tables add to the common error texts.
+pub(crate) const fn table_text_count() -> usize {
+    let (mut n, mut t) = (0, 0);
+    while t < TABLES.len() {
+        n += TABLES[t].texts.len();
+        t += 1;
+    }
+    n
+}
+
+/// `common`, then every table's wordings in table order (`N` in all): the texts an
+/// `EvalError` can name (`error::ERROR_TEXTS`).
+pub(crate) const fn error_texts<const N: usize>(common: &[&'static str]) -> [&'static str; N] {
+    let mut out = [""; N];
+    let mut k = 0;
+    while k < common.len() {
+        out[k] = common[k];
+        k += 1;
+    }
+    let mut t = 0;
+    while t < TABLES.len() {
+        let mut i = 0;
+        while i < TABLES[t].texts.len() {
+            out[k] = TABLES[t].texts[i];
+            i += 1;
+            k += 1;
+        }
+        t += 1;
+    }
+    out
 }
 
 const fn flatten<const N: usize>() -> [Builtin; N] {
@@ -176,8 +236,8 @@ const fn flatten<const N: usize>() -> [Builtin; N] {
     let (mut t, mut k) = (0, 0);
     while t < TABLES.len() {
         let mut i = 0;
-        while i < TABLES[t].len() {
-            out[k] = TABLES[t][i];
+        while i < TABLES[t].funcs.len() {
+            out[k] = TABLES[t].funcs[i];
             i += 1;
             k += 1;
         }

@@ -37,6 +37,7 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("replace-member$", 3, ANY, replace_member).args(&[M], Any).on_error(OnError::EmptyMultifield),
     Builtin::eager("explode$", 1, 1, explode).args(&[S], Any).on_error(OnError::EmptyMultifield),
 ];
+pub const TABLE: super::Table = super::Table::new(FUNCS);
 
 pub(super) fn multi_arg(
     cx: &Core<'_>,

@@ -21,6 +21,7 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("evenp", 1, 1, evenp).args(&[I], Any).on_error(OnError::False).quiet(),
     Builtin::eager("oddp", 1, 1, oddp).args(&[I], Any).on_error(OnError::False).quiet(),
 ];
+pub const TABLE: super::Table = super::Table::new(FUNCS);
 
 fn test(cx: &Core<'_>, a: Args, pred: fn(Value) -> bool) -> Result<Value, EvalError> {
     Ok(Core::bool_value(pred(cx.arg(a, 0))))

@@ -25,6 +25,7 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::query("do-for-all-facts", 2, ANY, do_for_all_facts).on_error(OnError::False),
     Builtin::query("delayed-do-for-all-facts", 2, ANY, delayed_do_for_all_facts).on_error(OnError::False),
 ];
+pub const TABLE: super::Table = super::Table::new(FUNCS);
 
 /// Most query variables in one fact-set query.
 const MAX_VARS: usize = 8;

@@ -21,6 +21,7 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("random", 0, 2, random).args(&[], I),
     Builtin::eager("seed", 1, 1, seed).args(&[I], Any),
 ];
+pub const TABLE: super::Table = super::Table::new(FUNCS);
 
 /// Degree and separation of glibc's TYPE_3 generator.
 const DEG: usize = 31;

@@ -26,6 +26,7 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("str-compare", 2, 3, str_compare).args(&[L, L, I], Any).on_error(OnError::Zero).body_names(BodyNames::SymbolOrString),
     Builtin::eager("string-to-field", 1, 1, string_to_field).on_error(OnError::ErrorString).body_names(BodyNames::SymbolOrString),
 ];
+pub const TABLE: super::Table = super::Table::new(FUNCS);
 
 /// Longest text a string builtin builds (symbol texts longer than this are an error).
 pub(super) const TEXT_MAX: usize = 2048;

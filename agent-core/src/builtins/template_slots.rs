@@ -29,6 +29,7 @@ pub const FUNCS: &[Builtin] = &[
 ];
 #[cfg(not(feature = "extras"))]
 pub const FUNCS: &[Builtin] = &[];
+pub const TABLE: super::Table = super::Table::new(FUNCS);
 
 /// CLIPS's type names in the order `deftemplate-slot-types` lists them.
 const TYPE_NAMES: [(u8, &str); 5] = [
