@@ -362,6 +362,7 @@ differential_programs! {
     p203_strategy_random => "203-strategy-random",
     p204_strategy_switching => "204-strategy-switching",
     p205_ppdeftemplate_ppdeffacts => "205-ppdeftemplate-ppdeffacts",
+    p206_ppfact => "206-ppfact",
     p230_alpha_constant_discrimination => "230-alpha-constant-discrimination",
     p240_logical_basic => "240-logical-basic",
     p241_logical_self_retract => "241-logical-self-retract",

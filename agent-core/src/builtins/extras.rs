@@ -11,7 +11,9 @@ use super::commands::Unable;
 use super::{Args, Builtin, SYM_FALSE};
 use crate::engine::Core;
 use crate::error::{EvalError, EvalErrorKind};
-use crate::host::router;
+use crate::fact::FactState;
+use crate::host::{router, RouterWriter};
+use crate::template::DefaultKind;
 use crate::value::SymId;
 use crate::value::{Ix, TextBuf, Value, NONE};
 use core::fmt::Write;
@@ -37,6 +39,7 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("undefglobal", 1, 1, undefglobal),
     Builtin::eager("fact-relation", 1, 1, fact_relation),
     Builtin::eager("fact-slot-names", 1, 1, fact_slot_names),
+    Builtin::eager("ppfact", 1, 3, ppfact),
     Builtin::eager("gensym", 0, 0, gensym),
     Builtin::eager("gensym*", 0, 0, gensym_star),
     Builtin::eager("sort", 1, super::ANY, super::evaluate::sort).on_error(super::describe::OnError::False),
@@ -45,7 +48,10 @@ pub const FUNCS: &[Builtin] = &[
 ];
 #[cfg(not(feature = "extras"))]
 pub const FUNCS: &[Builtin] = &[];
-pub const TABLE: super::Table = super::Table::new(FUNCS);
+pub const TABLE: super::Table = super::Table::new(FUNCS).texts(&[T_FACT_OR_INDEX]);
+
+/// CLIPS's wording for a fact argument that is neither a fact's address nor an index.
+const T_FACT_OR_INDEX: &str = "fact-address or fact-index";
 
 /// The kinds of construct these functions list, each with its names in definition
 /// order (the `initial-fact` deffacts and template first, as CLIPS has them).
@@ -433,6 +439,134 @@ fn fact_slot_names(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         }
     }
     Ok(cx.multi_finish(start))
+}
+
+/// `(ppfact fact [logical-name [ignore-defaults]])`: the fact as CLIPS pretty-prints it,
+/// each slot of a template fact on a line of its own; with ignore-defaults (any value but
+/// FALSE) the slots that hold their static default are left out. Logical name `nil`
+/// prints nothing, as `stdin` does.
+fn ppfact(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let fv = cx.arg(a, 0);
+    let Some(f) = cx.fact_arg(fv) else {
+        return match fv {
+            // a retracted fact's address prints nothing
+            Value::Fact(_) => Ok(Value::Void),
+            Value::Int(n) if n >= 0 => {
+                cx.write_error_message(EvalError::new(EvalErrorKind::NoSuchFact(n)));
+                Ok(Value::Void)
+            }
+            Value::Sym(_) | Value::Int(_) => {
+                Err(EvalError::wrong_type("ppfact", 1, T_FACT_OR_INDEX))
+            }
+            _ => Err(EvalError::wrong_type(
+                "ppfact",
+                1,
+                "fact-address, integer, or symbol",
+            )),
+        };
+    };
+    let to = if a.len > 1 {
+        match cx.arg(a, 1) {
+            Value::Multi(_) => {
+                cx.write(
+                    router::WERROR,
+                    "[IOFUN1] Illegal logical name used for ppfact function.\n",
+                );
+                return Err(EvalError::already_reported());
+            }
+            Value::Sym(s) | Value::Str(s) if cx.sym_text(s) == "nil" => return Ok(Value::Void),
+            name => match super::commands::resolve_router(cx, name)? {
+                Some(to) => to,
+                None => return Ok(Value::Void),
+            },
+        }
+    } else {
+        router::STDOUT
+    };
+    let ignore_defaults = a.len > 2 && cx.arg(a, 2) != Value::Sym(SYM_FALSE);
+    let (num, tmpl) = (cx.facts[f as usize].num, cx.facts[f as usize].tmpl);
+    let t = cx.templates[tmpl as usize];
+    if t.implied || t.nslots == 0 {
+        let (view, host) = cx.split();
+        let mut w = RouterWriter { host, router: to };
+        let _ = view.write_fact(&mut w, f);
+        let _ = w.write_char('\n');
+        return Ok(Value::Void);
+    }
+    {
+        let (view, host) = cx.split();
+        let _ = write!(RouterWriter { host, router: to }, "({}", view.sym(t.name));
+    }
+    let mut printed = false;
+    for s in 0..t.nslots {
+        if ignore_defaults && holds_static_default(cx, f, s)? {
+            continue;
+        }
+        // a default's evaluation may have retracted the fact
+        let fact = cx.facts[f as usize];
+        if fact.num != num || fact.state != FactState::Live {
+            break;
+        }
+        let cell = slot_cell(cx, f, s);
+        let name = cx.slots[(t.first_slot + s) as usize].name;
+        let (view, host) = cx.split();
+        let mut w = RouterWriter { host, router: to };
+        let _ = w.write_str(if printed { "\n   (" } else { " \n   (" });
+        printed = true;
+        let _ = w.write_str(view.sym(name));
+        let n = match view.values[cell] {
+            Value::Multi(m) => m.len as usize,
+            _ => 0,
+        };
+        let values = if n == 0 && !view.values[cell].is_multi() {
+            cell..cell + 1
+        } else {
+            cell + 1..cell + 1 + n
+        };
+        for c in values {
+            let _ = w.write_char(' ');
+            let _ = view.write_value(&mut w, view.values[c], true);
+        }
+        let _ = w.write_str(if s + 1 < t.nslots { ") " } else { ")" });
+    }
+    cx.write(to, ")\n");
+    Ok(Value::Void)
+}
+
+/// The value cell of slot `slot` of fact `f` (a multislot's `Multi` header).
+fn slot_cell(cx: &Core<'_>, f: Ix, slot: Ix) -> usize {
+    let mut c = cx.facts[f as usize].start as usize;
+    for _ in 0..slot {
+        c += match cx.values[c] {
+            Value::Multi(m) => 1 + m.len as usize,
+            _ => 1,
+        };
+    }
+    c
+}
+
+/// Whether slot `slot` of fact `f` holds the value its template gives it when an assert
+/// leaves it out: never for a dynamic default or a slot that must be given.
+fn holds_static_default(cx: &mut Core<'_>, f: Ix, slot: Ix) -> Result<bool, EvalError> {
+    let tmpl = cx.facts[f as usize].tmpl;
+    if matches!(
+        cx.slot_def(tmpl, slot).default_kind,
+        DefaultKind::Dynamic | DefaultKind::Required
+    ) {
+        return Ok(false);
+    }
+    let mark = cx.st.frame.scratch_top;
+    let default = cx.default_value(tmpl, slot)?;
+    let cell = slot_cell(cx, f, slot);
+    let same = match (default, cx.values[cell]) {
+        (Value::Multi(d), Value::Multi(m)) => {
+            d.len == m.len
+                && (0..m.len as usize).all(|k| cx.mf_item(d, k) == cx.values[cell + 1 + k])
+        }
+        (d, v) => d == v,
+    };
+    cx.st.frame.scratch_top = mark;
+    Ok(same)
 }
 
 /// The text of the next `genN` symbol.
