@@ -174,7 +174,11 @@ stage_host_tests() {
     # invariant property tests and fuzz regressions run with them on as well.
     echo "-- agent-core's invariant tests with host-speedups and check-invariants"
     cargo test -p agent-core --features check-invariants,host-speedups --no-fail-fast \
-        --test invariants_property
+        --test invariants_property || return 1
+    # Without default features (no parser, extras, defer or wipe: the image's matching
+    # paths); the tests that evaluate builtins need `parser`, which links their code.
+    echo "-- agent-core without default features"
+    cargo test -p agent-core --no-default-features --no-fail-fast
 }
 
 # ---------------------------------------------------------------------------------------

@@ -1302,7 +1302,8 @@ impl Core<'_> {
     }
 }
 
-#[cfg(test)]
+// the tests evaluate builtins, whose code only `parser` links (`builtins::BUILTINS`)
+#[cfg(all(test, feature = "parser"))]
 mod tests {
     extern crate std;
     use crate::testutil::run_program;

@@ -682,7 +682,8 @@ impl crate::engine::State {
     }
 }
 
-#[cfg(test)]
+// the tests evaluate builtins, whose code only `parser` links (`builtins::BUILTINS`)
+#[cfg(all(test, feature = "parser"))]
 mod tests {
     extern crate std;
     use crate::testutil::run_program;

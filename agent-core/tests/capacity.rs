@@ -263,6 +263,7 @@ fn activations_pool() {
     e.assert_str(h, "(a 3)").unwrap();
 }
 
+#[cfg(feature = "parser")]
 #[test]
 fn functions_globals_deffacts_pools() {
     let h = &mut Quiet;
@@ -321,6 +322,7 @@ fn exprs_pool() {
     assert_eq!(e.run(h, None).unwrap(), 1);
 }
 
+#[cfg(feature = "parser")]
 #[test]
 fn eval_stack_and_scratch_pools() {
     let h = &mut Quiet;

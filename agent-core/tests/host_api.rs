@@ -1,5 +1,7 @@
 //! The host API used the way hosts use it (`eval_str`, `assert_str`, fact reading),
 //! outside the command line.
+// the tests evaluate builtins, whose code only `parser` links (`builtins::BUILTINS`)
+#![cfg(feature = "parser")]
 
 use agent_core::{Host, SmallEngine, ValueRef};
 

@@ -1,6 +1,8 @@
 //! `Host::interrupt`: a host stops a runaway program (endless `while`, huge
 //! `loop-for-count`, endless rule firing, a deffacts that loops at reset); the engine
 //! stays consistent and usable afterwards.
+// the tests evaluate builtins, whose code only `parser` links (`builtins::BUILTINS`)
+#![cfg(feature = "parser")]
 
 use agent_core::{EngineError, EvalErrorKind, Host, SmallEngine};
 

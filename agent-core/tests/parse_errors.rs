@@ -228,6 +228,7 @@ fn constructs_before_an_error_in_the_same_text_stay() {
 
 /// What we do not implement yet is refused where it stands, as `NotImplemented`, and
 /// leaves nothing behind: never accepted and ignored (issue 19).
+#[cfg(feature = "parser")]
 #[test]
 fn unimplemented_constructs_are_refused() {
     use agent_core::LoadDetail;

@@ -304,7 +304,8 @@ fn build(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     }
 }
 
-#[cfg(test)]
+// the tests evaluate builtins, whose code only `parser` links (`builtins::BUILTINS`)
+#[cfg(all(test, feature = "parser"))]
 mod tests {
     use crate::testutil::{eval_to_string, run_program};
 

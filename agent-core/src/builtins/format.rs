@@ -361,7 +361,8 @@ fn strip_zeros(s: &str) -> &str {
     s.trim_end_matches('0').trim_end_matches('.')
 }
 
-#[cfg(test)]
+// the tests evaluate builtins, whose code only `parser` links (`builtins::BUILTINS`)
+#[cfg(all(test, feature = "parser"))]
 mod tests {
     use crate::testutil::{eval_to_string, run_program};
 

@@ -231,7 +231,8 @@ fn unescape(raw: &str) -> Result<Text, EvalError> {
     Ok(b)
 }
 
-#[cfg(test)]
+// the tests evaluate builtins, whose code only `parser` links (`builtins::BUILTINS`)
+#[cfg(all(test, feature = "parser"))]
 mod tests {
     use crate::testutil::{eval_to_string, run_program};
 

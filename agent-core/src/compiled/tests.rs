@@ -28,6 +28,7 @@ fn writes_every_construct_pool() {
     assert!(!out.contains("mem: 0") && !out.contains("nfacts"));
 }
 
+#[cfg(feature = "parser")]
 #[test]
 fn refuses_facts_left_by_parsing_and_bad_names() {
     let mut e = std::boxed::Box::new(SmallEngine::new());
@@ -153,6 +154,7 @@ fn facts_built_through_the_api_are_the_parsed_ones() {
     );
 }
 
+#[cfg(feature = "parser")]
 #[test]
 fn a_rule_base_brings_the_code_of_the_builtins_it_calls_only() {
     use crate::builtins::{builtin_id, code_for, Imp, BUILTINS, NOT_LINKED};

@@ -636,7 +636,8 @@ impl Core<'_> {
     }
 }
 
-#[cfg(test)]
+// the tests evaluate builtins, whose code only `parser` links (`builtins::BUILTINS`)
+#[cfg(all(test, feature = "parser"))]
 mod tests {
     extern crate std;
     use super::*;
