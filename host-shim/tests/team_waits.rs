@@ -1,0 +1,186 @@
+//! A team member that finds its machine busy does not wait for it for ever
+//! (`rules/team-agent.clp`, "a robot that waits long takes other work"): robot 2 keeps
+//! M3 (it fed the T3 and will collect the P); robot 1, holding an S1 whose best use is
+//! M3, waits, and after `?*TEAM_WAIT_OTHER_WORK_S*` (20 s) brings the S1 to the free T2
+//! M8 instead, a lower priority. A robot that still holds nothing else keeps waiting
+//! when no free machine takes its puck.
+
+use agent_core::ValueRef;
+use host_shim::team::member::slot_sym;
+use host_shim::team::TeamMember;
+
+const STEP: f64 = 0.25;
+
+fn on_big_stack<T: Send + 'static>(f: impl FnOnce() -> T + Send + 'static) -> T {
+    std::thread::Builder::new()
+        .stack_size(256 << 20)
+        .spawn(f)
+        .expect("spawning the test thread")
+        .join()
+        .expect("the test thread panicked")
+}
+
+fn team() -> Vec<TeamMember> {
+    let files: Vec<rules::RuleFile> = rules::agent_files(rules::Strategy::Paper).to_vec();
+    (1..=3u8)
+        .map(|id| {
+            let mut m = TeamMember::new(&files, None).unwrap_or_else(|e| panic!("{e}"));
+            m.engine
+                .load_str(&mut m.host, rules::TEAM_AGENT.name, rules::TEAM_AGENT.text)
+                .unwrap_or_else(|e| panic!("team-agent.clp: {e}"));
+            m.start(id, 3, 0.0, &[]).unwrap_or_else(|e| panic!("{e}"));
+            m
+        })
+        .collect()
+}
+
+fn eval(m: &mut TeamMember, command: &str) {
+    m.eval(command).unwrap_or_else(|e| panic!("{e}"));
+}
+
+/// Robot `m` believes what the test says: nothing to do (a state no rule acts on) until
+/// `begin` puts it to work.
+fn believe(m: &mut TeamMember, holding: &str, machines: &[(&str, &str, &str)]) {
+    eval(m, "(do-for-all-facts ((?s state)) TRUE (retract ?s))");
+    eval(m, "(assert (state TEST-PAUSED))");
+    eval(m, "(do-for-all-facts ((?h holding)) TRUE (retract ?h))");
+    eval(m, &format!("(assert (holding {holding}))"));
+    for (name, mtype, loaded) in machines {
+        eval(
+            m,
+            &format!(
+                "(do-for-fact ((?m machine)) (eq ?m:name {name}) \
+                 (modify ?m (mtype {mtype}) (loaded-with {loaded})))"
+            ),
+        );
+    }
+}
+
+fn begin(m: &mut TeamMember) {
+    eval(m, "(do-for-all-facts ((?s state)) TRUE (retract ?s))");
+    eval(m, "(assert (state IDLE))");
+}
+
+/// One step of game time: clocks, rules, and every message to every robot (the sender
+/// too: its own vote comes back to it), until the team is quiet.
+fn step(members: &mut [TeamMember], t: f64) {
+    for m in members.iter_mut() {
+        m.set_time(t).unwrap_or_else(|e| panic!("{e}"));
+    }
+    for _ in 0..50 {
+        let mut mail = Vec::new();
+        for m in members.iter_mut() {
+            m.run().unwrap_or_else(|e| panic!("{e}"));
+            mail.extend(m.outbox().unwrap_or_else(|e| panic!("{e}")));
+        }
+        if mail.is_empty() {
+            return;
+        }
+        for msg in &mail {
+            for m in members.iter_mut() {
+                m.receive(msg).unwrap_or_else(|e| panic!("{e}"));
+            }
+        }
+    }
+    panic!("the team's messages do not settle at {t} s");
+}
+
+fn state(m: &TeamMember) -> String {
+    m.engine
+        .facts()
+        .find(|&id| m.engine.fact_template_name(id) == Some("state"))
+        .and_then(|id| match m.engine.fact_multislot_item(id, "implied", 0) {
+            Some(ValueRef::Symbol(s)) => Some(s.to_string()),
+            _ => None,
+        })
+        .unwrap_or_default()
+}
+
+/// The (name, target) of the robot's skill request, if it made one.
+fn request(m: &TeamMember) -> Option<(String, String)> {
+    m.engine
+        .facts()
+        .find(|&id| m.engine.fact_template_name(id) == Some("skill-request"))
+        .map(|id| {
+            (
+                slot_sym(&m.engine, id, "name"),
+                slot_sym(&m.engine, id, "target"),
+            )
+        })
+}
+
+/// Robot 1 at one step: (game time, state, skill request).
+type Moment = (f64, String, Option<(String, String)>);
+
+/// Robot 2 holds M3 (a T3 with an S2 it fed, its P to collect) all game; every robot
+/// believes `beliefs` of the machines; robot 1 gets an S1 at 3 s. Returns robot 1's
+/// moments up to `until`.
+fn play(beliefs: &[(&str, &str, &str)], until: f64) -> Vec<Moment> {
+    let mut members = team();
+    believe(&mut members[0], "S1", beliefs);
+    believe(&mut members[1], "NONE", beliefs);
+    believe(&mut members[2], "NONE", beliefs);
+    eval(&mut members[1], "(assert (output-at M3 P))");
+    members[1].want("M3").unwrap_or_else(|e| panic!("{e}"));
+    let mut seen = Vec::new();
+    let mut t = 0.0;
+    while t <= until {
+        if t == 3.0 {
+            assert!(members[1].holds("M3"), "robot 2 got M3 at the start");
+            begin(&mut members[0]);
+        }
+        step(&mut members, t);
+        assert!(
+            !(members[0].holds("M3") && members[1].holds("M3")),
+            "M3 held twice at {t}"
+        );
+        seen.push((t, state(&members[0]), request(&members[0])));
+        t += STEP;
+    }
+    seen
+}
+
+#[test]
+fn a_robot_that_waits_long_brings_its_puck_to_a_free_machine() {
+    let seen = on_big_stack(|| {
+        play(
+            &[("M3", "T3", "S2"), ("M8", "T2", ""), ("M1", "T1", "")],
+            30.0,
+        )
+    });
+    // It waits for M3 at first (the S1 is of most use there) ...
+    let waited = seen
+        .iter()
+        .filter(|(t, s, r)| *t >= 4.0 && *t < 22.0 && s == "TEAM-WAIT" && r.is_none())
+        .count();
+    assert!(
+        waited as f64 * STEP >= 15.0,
+        "robot 1 should wait for M3 first: {seen:?}"
+    );
+    // ... and then brings it to the free T2 M8 (a lower priority), never to M3.
+    let first = seen.iter().find_map(|(t, _, r)| r.clone().map(|r| (*t, r)));
+    assert_eq!(
+        first.as_ref().map(|(_, r)| r.clone()),
+        Some(("finish-puck-at".to_string(), "M8".to_string())),
+        "{seen:?}"
+    );
+    let at = first.map(|(t, _)| t).unwrap_or_default();
+    assert!(
+        (23.0..=26.0).contains(&at),
+        "M8 after 20 s of waiting, not at {at}"
+    );
+}
+
+#[test]
+fn a_robot_keeps_waiting_when_no_free_machine_takes_its_puck() {
+    // Every other machine is a T1: none takes an S1 (unknown ones would, to explore).
+    let others = ["M1", "M2", "M4", "M5", "M6", "M7", "M8", "M9", "M10"];
+    let mut beliefs = vec![("M3", "T3", "S2")];
+    beliefs.extend(others.iter().map(|m| (*m, "T1", "")));
+    let seen = on_big_stack(move || play(&beliefs, 40.0));
+    let last = seen.last().cloned();
+    assert!(
+        matches!(&last, Some((_, s, None)) if s == "TEAM-WAIT"),
+        "robot 1 should still wait for M3: {last:?}"
+    );
+}
