@@ -308,10 +308,13 @@
 
 (defrule team-done-with
   "The skill at X is over and its outcome digested: news of the machine,
-   then the release (the team takes both in this order)."
+   then the release (the team takes both in this order).  Also once the
+   robot claims, waits for or works its next place (the outcome of the
+   last skill is digested by then, not while GOTO-FINAL): holding the last
+   place meanwhile makes teammates wait for a place nobody works."
   (declare (salience (+ ?*PRIORITY_CANDIDATE* 5)))
   ?w <- (team-want (resource ?x))
-  (state IDLE|DONE)
+  (state IDLE|DONE|TEAM-CLAIM|TEAM-WAIT|EXEC)
   (not (intent (target ?x)))
   (not (skill-request (target ?x)))
   (not (output-at ?x ?))   ; a product left there to collect (collect.clp)
@@ -374,7 +377,7 @@
    (before the release, so the next robot there knows)."
   (declare (salience (+ ?*PRIORITY_CANDIDATE* 6)))
   (team-want (resource INS))
-  (state IDLE|DONE)
+  (state IDLE|DONE|TEAM-CLAIM|TEAM-WAIT|EXEC)
   (not (intent (target INS)))
   (not (skill-request (target INS)))
   (s0-taken ?k)
