@@ -273,14 +273,21 @@ impl Referee for ClipsReferee {
                 self.processing[i] = Some((r.wait_s as f32, LightSignal::Green));
                 r.puck.map_or(Placement::Consumed, Placement::Produced)
             }
+            // A machine that still works on its last input goes on with it (its light
+            // stays yellow until the referee's green): a puck a robot puts down there
+            // meanwhile, e.g. junk it carries while it stops in front of the machine,
+            // must not cancel the product (it did: the P under the light never turned
+            // green, and the robot that came to collect it waited in vain).
             ("ok", Some(LightSignal::Yellow)) => {
-                self.lights[i] = LightSignal::Yellow;
-                self.processing[i] = None;
+                if self.processing[i].is_none() {
+                    self.lights[i] = LightSignal::Yellow;
+                }
                 Placement::Consumed
             }
             ("ok", Some(light)) => {
-                self.lights[i] = light;
-                self.processing[i] = None;
+                if self.processing[i].is_none() {
+                    self.lights[i] = light;
+                }
                 Placement::Rejected
             }
             // `late`: the processing would end after the clock; the game is over.
@@ -392,6 +399,31 @@ mod tests {
         })
         .unwrap_or_else(|e| panic!("{e}"));
         assert_eq!(out, 6);
+    }
+
+    #[test]
+    fn a_refused_puck_does_not_cancel_a_machine_at_work() {
+        with_engine_stack(|| {
+            let setup = GameSetup::for_seed(7);
+            let mut r = ClipsReferee::new(&setup).unwrap_or_else(|e| panic!("{e}"));
+            let t1 = machine_of(&setup, MachineType::T1);
+            assert_eq!(r.take_from_storage(1), Some(PuckKind::S0));
+            assert_eq!(
+                r.place_at_machine(1, t1, PuckKind::S0),
+                Placement::Produced(PuckKind::S1)
+            );
+            // Junk put down while the T1 works: refused, and the machine works on.
+            assert_eq!(
+                r.place_at_machine(2, t1, PuckKind::Junk),
+                Placement::Rejected
+            );
+            assert_eq!(r.light(t1), LightSignal::Yellow);
+            for _ in 0..15 * 10 {
+                r.tick(1.0 / 15.0);
+            }
+            assert_eq!(r.light(t1), LightSignal::Green);
+        })
+        .unwrap_or_else(|e| panic!("{e}"));
     }
 
     #[test]
