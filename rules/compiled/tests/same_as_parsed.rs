@@ -162,8 +162,13 @@ fn every_differential_program_runs_the_same_from_its_compiled_constructs() {
         let base = match base {
             Ok(base) => *base,
             Err(why) => {
-                // only parse-time effects keep a program's constructs from compiling
-                assert!(why.contains("left facts"), "{name}: {why}");
+                // only parse-time effects keep a program's constructs from compiling, and
+                // the logical CE, which compiled rule bases refuse (no truth maintenance
+                // in the image: the robot's rules do not use it)
+                assert!(
+                    why.contains("left facts") || why.contains("no truth maintenance"),
+                    "{name}: {why}"
+                );
                 continue;
             }
         };
