@@ -62,15 +62,19 @@
 //!   network included, written as Rust constants (`Engine::write_compiled`, at build
 //!   time on the host) and loaded into an engine without the parser
 //!   (`Engine::load_compiled`); facts built through the API (`Engine::assert_fact`).
-//!   The agent image runs from it (features `parser` off, `in-place` on).
+//!   The agent image runs from it (features `parser` off, `in-place` on: [`rom`] reads
+//!   its entries in place).
 //! - [`fact`], [`template`]: fact storage (a compacting value arena, a duplicate hash
 //!   index, a creation-ordered list), deftemplates, deffacts, globals, deffunctions.
-//! - [`rete`], [`agenda`], [`commands`]: matching, conflict resolution, run loop.
+//! - [`rete`], [`agenda`] and [`strategy`], [`commands`]: matching, conflict
+//!   resolution, run loop; [`logical`]: truth maintenance (logical support of facts).
 //! - [`builtins`]: the functions, one row each (name, arity, argument types, purity,
 //!   value after an error: [`builtins::describe`]), [`eval`]: evaluator.
 //! - [`config`]: the pool table, capacities by name; [`engine`]: state, storage and
 //!   `Core`, the non-generic view all algorithms run on, so the code exists once
-//!   whatever the capacities; [`api`]: the host API.
+//!   whatever the capacities; [`api`]: the host API, [`host`] and [`host_fn`]: what a
+//!   host provides (routers, files, its own functions); [`print`]: CLIPS's printed
+//!   forms; [`invariants`]: the consistency checks tests and fuzzing run.
 //!
 //! # The Rete network
 //! - **Alpha nodes** ([`rete::AlphaNode`]): one per distinct pattern (template +
@@ -138,15 +142,15 @@
 //!   inactive not output on a list, `Core::pay_owed`) and built by the first
 //!   operation with room; until then run fires nothing, and an assert or modify that
 //!   runs out fails with no trace but the owed matches it built first.
-//! - **Agenda**: activations sorted by salience, then newest first (CLIPS's depth
-//!   strategy); a fired activation is gone for good (refraction), so a rule fires again
+//! - **Agenda**: activations sorted by salience, then by the strategy ([`strategy`]:
+//!   depth, newest first, by default; breadth, lex, mea, complexity, simplicity and
+//!   random with `extras`); a fired activation is gone for good (refraction), so a rule fires again
 //!   only for a new partial match (e.g. after `modify`, which retracts and re-asserts).
 //!
 //! # Not supported yet
-//! See the crate README section in `engine-interfaces.md`: COOL, modules other than
-//! MAIN, `or` and fact addresses inside `not`/`exists`, `logical` truth maintenance,
-//! strategies other
-//! than depth, multifield globals across commands.
+//! As the README's "Not implemented yet" lists them: COOL, modules other than MAIN and
+//! the focus stack, the `forall` CE, `or` inside `not`/`exists` (CLIPS takes it).
+//! Each is refused where it is read, with a clear message, never accepted and ignored.
 #![no_std]
 // With `u32` indices (`value::Ix`) the widening casts and conversions written for `u16`
 // indices (`x as u32`, `u32::from(x)`) become identities; they stay for the `u16` build.
