@@ -307,23 +307,12 @@ impl Core<'_> {
     /// Hash of the fact numbers a partial match holds (an activation's identity across
     /// a rebuild).
     fn token_basis(&self, token: TokenId) -> u32 {
-        // walks the partial match up to the root: (depth, fact number) pairs
         let mut h = 0x9E37_79B9u32;
-        let mut t = token;
-        while t != TokenId::NONE {
-            let tk = self.tokens[t];
-            let j = self.joins[tk.owner];
-            if j.kind == crate::rete::JoinKind::Root {
-                break;
-            }
-            let num = if tk.am != TokenId::NONE {
-                self.facts[self.tokens[tk.am].fact as usize].num
-            } else {
-                u32::MAX
-            };
-            h = (h ^ j.depth as u32).wrapping_mul(0x0100_0193);
-            h = (h ^ num).wrapping_mul(0x0100_0193).rotate_left(5);
-            t = tk.parent;
+        for (depth, num) in self.basis(token) {
+            h = (h ^ depth as u32).wrapping_mul(0x0100_0193);
+            h = (h ^ num.unwrap_or(u32::MAX))
+                .wrapping_mul(0x0100_0193)
+                .rotate_left(5);
         }
         h
     }

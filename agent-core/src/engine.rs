@@ -663,24 +663,18 @@ impl<S: Storage> Engine<S> {
         out: &mut [Option<u32>; crate::rete::MAX_PATTERNS],
     ) -> usize {
         let pools = self.pools.pools(self.st.rom);
+        let walk = crate::rete::basis::Basis {
+            tokens: pools.tokens,
+            joins: pools.joins,
+            facts: pools.facts,
+            at: token,
+        };
         let mut n = 0;
-        let mut t = token;
-        while t != TokenId::NONE {
-            let tk = pools.tokens[t];
-            let j = pools.joins[tk.owner];
-            if j.kind == crate::rete::JoinKind::Root {
-                break;
+        for (depth, num) in walk {
+            if depth < out.len() {
+                out[depth] = num;
+                n = n.max(depth + 1);
             }
-            let d = j.depth as usize;
-            if d < out.len() {
-                out[d] = if tk.am != TokenId::NONE {
-                    Some(pools.facts[pools.tokens[tk.am].fact as usize].num)
-                } else {
-                    None
-                };
-                n = n.max(d + 1);
-            }
-            t = tk.parent;
         }
         n
     }

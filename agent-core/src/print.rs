@@ -227,22 +227,11 @@ impl Core<'_> {
     pub(crate) fn write_basis(&self, w: &mut dyn Write, token: TokenId) -> fmt::Result {
         let mut ids = [u32::MAX; crate::rete::MAX_PATTERNS];
         let mut n = 0;
-        let mut t = token;
-        while t != TokenId::NONE {
-            let tk = self.tokens[t];
-            let j = self.joins[tk.owner];
-            if j.kind == crate::rete::JoinKind::Root {
-                break;
+        for (depth, num) in self.basis(token) {
+            if depth < ids.len() {
+                ids[depth] = num.unwrap_or(u32::MAX);
+                n = n.max(depth + 1);
             }
-            if (j.depth as usize) < ids.len() {
-                ids[j.depth as usize] = if tk.am != TokenId::NONE {
-                    self.facts[self.tokens[tk.am].fact as usize].num
-                } else {
-                    u32::MAX
-                };
-                n = n.max(j.depth as usize + 1);
-            }
-            t = tk.parent;
         }
         for (i, id) in ids[..n].iter().enumerate() {
             if i > 0 {

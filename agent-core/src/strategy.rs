@@ -143,27 +143,17 @@ impl Core<'_> {
 
     /// The recency list of a partial match (see `Recency`).
     fn recency(&self, token: crate::handle::TokenId) -> Recency {
-        use crate::handle::TokenId;
         // fact numbers by pattern slot, walking the partial match up to the root; fact
         // numbers start at 0 (initial-fact), so they are shifted: 0 means "no fact"
         let mut slots = [0u32; MAX_SLOTS];
         let mut n = 0;
-        let mut t = token;
-        while t != TokenId::NONE {
-            let tk = self.tokens[t];
-            let j = self.joins[tk.owner];
-            if j.kind == crate::rete::JoinKind::Root {
-                break;
-            }
-            let d = j.depth as usize;
-            if d < MAX_SLOTS {
-                if tk.am != TokenId::NONE {
-                    let num = self.facts[self.tokens[tk.am].fact as usize].num;
-                    slots[d] = num.saturating_add(1);
+        for (depth, num) in self.basis(token) {
+            if depth < MAX_SLOTS {
+                if let Some(num) = num {
+                    slots[depth] = num.saturating_add(1);
                 }
-                n = n.max(d + 1);
+                n = n.max(depth + 1);
             }
-            t = tk.parent;
         }
         let first = if n > 0 && slots[0] != 0 {
             Some(slots[0])

@@ -190,23 +190,24 @@ pub const TABLES: &[Table] = &[
     logical::TABLE,
 ];
 
-const fn builtin_count() -> usize {
-    let (mut n, mut t) = (0, 0);
+/// How many rows, and how many wordings of their own, the tables have in all.
+const fn table_sizes() -> (usize, usize) {
+    let (mut funcs, mut texts, mut t) = (0, 0, 0);
     while t < TABLES.len() {
-        n += TABLES[t].funcs.len();
+        funcs += TABLES[t].funcs.len();
+        texts += TABLES[t].texts.len();
         t += 1;
     }
-    n
+    (funcs, texts)
+}
+
+const fn builtin_count() -> usize {
+    table_sizes().0
 }
 
 /// How many wordings the tables add to the common error texts.
 pub(crate) const fn table_text_count() -> usize {
-    let (mut n, mut t) = (0, 0);
-    while t < TABLES.len() {
-        n += TABLES[t].texts.len();
-        t += 1;
-    }
-    n
+    table_sizes().1
 }
 
 /// `common`, then every table's wordings in table order (`N` in all): the texts an

@@ -1133,14 +1133,13 @@ pub(super) fn leave_parent(
     prev: TokenId,
     next: TokenId,
 ) {
-    if prev != TokenId::NONE {
-        tokens[prev].next_sib = next;
-    } else {
-        tokens[parent].first_child = next;
-    }
-    if next != TokenId::NONE {
-        tokens[next].prev_sib = prev;
-    }
+    unlink(
+        tokens,
+        parent,
+        (prev, next),
+        |t| &mut t.next_sib,
+        |t| &mut t.prev_sib,
+    );
 }
 
 /// Takes a partial match (whose links under its alpha match are `prev`, `next`) off
@@ -1152,13 +1151,33 @@ pub(super) fn leave_alpha_match(
     prev: TokenId,
     next: TokenId,
 ) {
+    unlink(
+        tokens,
+        am,
+        (prev, next),
+        |t| &mut t.am_next,
+        |t| &mut t.am_prev,
+    );
+}
+
+/// Takes an entry whose neighbours are `prev` and `next` off a doubly linked list of
+/// tokens that starts at `head`'s `first_child` and is linked by the fields
+/// `next_of` and `prev_of` (inlined: the same code as written out for each list).
+#[inline(always)]
+fn unlink(
+    tokens: &mut Slots<'_, TokenId, Token>,
+    head: TokenId,
+    (prev, next): (TokenId, TokenId),
+    next_of: fn(&mut Token) -> &mut TokenId,
+    prev_of: fn(&mut Token) -> &mut TokenId,
+) {
     if prev != TokenId::NONE {
-        tokens[prev].am_next = next;
+        *next_of(&mut tokens[prev]) = next;
     } else {
-        tokens[am].first_child = next;
+        tokens[head].first_child = next;
     }
     if next != TokenId::NONE {
-        tokens[next].am_prev = prev;
+        *prev_of(&mut tokens[next]) = prev;
     }
 }
 

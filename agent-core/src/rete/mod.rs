@@ -1,6 +1,7 @@
 //! The Rete network. See the crate docs for the design.
 
 pub(crate) mod alpha;
+pub(crate) mod basis;
 mod beta;
 mod index;
 pub use index::{KeyPlan, KEY_PLANS};
