@@ -3,7 +3,7 @@
 //! from the network: a fired activation is gone, and only a new partial match can
 //! activate the rule again.
 
-use crate::engine::{cap, watch, Core};
+use crate::engine::{watch, Core};
 use crate::error::{CapacityError, Pool};
 use crate::handle::TokenId;
 use crate::rule::Activation;
@@ -92,7 +92,7 @@ impl Core<'_> {
         } else {
             let n = self.st.pools.acts_used as usize;
             if n >= self.acts.len() || n >= NONE as usize {
-                return Err(cap(Pool::Activations, self.acts.len()));
+                crate::engine::full_pool!(self, Pool::Activations, n + 1, self.acts.len());
             }
             self.st.pools.acts_used += 1;
             // the mark follows `acts_used`, which only a fresh entry raises

@@ -219,6 +219,8 @@ engine_impl! {
             Some(i) => i as usize,
             None => {
                 let n = cx.st.pools.nexternals as usize;
+                #[cfg(feature = "grow")]
+                cx.ensure(Pool::ExternalFns, n + 1);
                 if n >= cx.externals.len() {
                     return Err(cap(Pool::ExternalFns, cx.externals.len()).into());
                 }
@@ -254,7 +256,7 @@ engine_impl! {
     /// High-water marks and capacities of every pool.
     pub fn stats(&self) -> Stats {
         let mut s = self.st.pools.hw;
-        let caps = S::CAPACITIES.to_array();
+        let caps = self.storage_capacities();
         for (i, c) in caps.iter().enumerate() {
             s.capacity[i] = *c as u32;
         }

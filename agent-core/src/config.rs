@@ -242,6 +242,11 @@ macro_rules! pool_items {
                 }
             }
 
+            /// Every pool with `n` entries.
+            pub const fn uniform(n: usize) -> Capacities {
+                Capacities { $($cap: n,)* }
+            }
+
             /// The capacities in table order (as [`Pool::ALL`]).
             pub const fn to_array(&self) -> [usize; Pool::COUNT] {
                 [$(self.$cap,)*]
@@ -265,6 +270,8 @@ macro_rules! pool_items {
         pub struct Core<'a> {
             pub st: &'a mut crate::engine::State,
             pub host: &'a mut dyn Host,
+            /// How a full pool grows (feature `grow`; nothing on fixed storage).
+            pub grower: Grower<'a>,
             $(
                 pub $first: $crate::__pool_view!(mut $first, 'a, $fty),
                 $(pub $arr: &'a mut [$aty],)*
@@ -306,6 +313,29 @@ pub trait Storage {
     /// Read-only slices of every pool (`rom`: the compiled entries read in place,
     /// `State::rom`).
     fn pools(&self, rom: crate::rom::Rom) -> Pools<'_>;
+    /// The capacities this storage has now, in table order (a growing storage's grow).
+    #[inline(always)]
+    fn capacities(&self) -> [usize; Pool::COUNT] {
+        Self::CAPACITIES.to_array()
+    }
+}
+
+/// How a `Core` grows its storage: with feature `grow`, a handle on the
+/// [`GrowStorage`](crate::grow::GrowStorage) it was made from; without it, nothing
+/// (fixed storage never grows).
+#[cfg(feature = "grow")]
+pub use crate::grow::Grower;
+
+/// How a `Core` grows its storage: without feature `grow`, nothing (fixed storage
+/// never grows; the type takes no space).
+#[cfg(not(feature = "grow"))]
+#[derive(Clone, Copy)]
+pub struct Grower<'a>(core::marker::PhantomData<&'a mut ()>);
+
+#[cfg(not(feature = "grow"))]
+impl Grower<'_> {
+    /// Fixed storage: a full pool is full.
+    pub const NONE: Self = Grower(core::marker::PhantomData);
 }
 
 /// Defines a struct holding every pool of an engine, sized by named capacities (a
@@ -355,7 +385,7 @@ macro_rules! __engine_storage {
                 host: &'a mut dyn $crate::Host,
             ) -> $crate::Core<'a> {
                 let rom = st.rom;
-                $crate::Core { st, host, $($($arr: $crate::__pool_view!(mut $arr, rom, &mut self.$arr),)*)* }
+                $crate::Core { st, host, grower: $crate::config::Grower::NONE, $($($arr: $crate::__pool_view!(mut $arr, rom, &mut self.$arr),)*)* }
             }
             #[inline(always)]
             fn pools(&self, rom: $crate::rom::Rom) -> $crate::config::Pools<'_> {

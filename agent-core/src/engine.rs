@@ -679,6 +679,12 @@ impl<S: Storage> Engine<S> {
         n
     }
 
+    /// The capacities of the storage now, in table order.
+    #[inline(always)]
+    pub(crate) fn storage_capacities(&self) -> [usize; Pool::COUNT] {
+        self.pools.capacities()
+    }
+
     pub(crate) fn act_at(&self, a: Ix) -> Activation {
         self.pools.pools(self.st.rom).acts[a as usize]
     }
@@ -716,6 +722,19 @@ impl Default for Engine<HostStorage> {
     }
 }
 
+/// At a full pool, in a function whose error type takes a [`CapacityError`]: with
+/// feature `grow`, grows `pool` to at least `need` entries (`Core::grow`: the error
+/// only if it cannot); without it, returns the pool's capacity error (capacity `len`).
+macro_rules! full_pool {
+    ($core:expr, $pool:expr, $need:expr, $len:expr) => {{
+        #[cfg(feature = "grow")]
+        $core.grow($pool, $need)?;
+        #[cfg(not(feature = "grow"))]
+        return Err($crate::engine::cap($pool, $len).into());
+    }};
+}
+pub(crate) use full_pool;
+
 pub(crate) fn cap(pool: Pool, capacity: usize) -> CapacityError {
     CapacityError {
         pool,
@@ -732,6 +751,29 @@ impl Core<'_> {
             bytes: self.sym_bytes,
             count: &mut self.st.pools.nsyms,
             bytes_used: &mut self.st.pools.sym_bytes,
+        }
+    }
+
+    /// With feature `grow`: room for one more symbol of `len` bytes, grown if needed
+    /// (the [`Symbols`] view cannot grow; a pool that stays full is its error there).
+    #[cfg(feature = "grow")]
+    pub(crate) fn symbol_room(&mut self, len: usize) {
+        let n = (self.st.pools.nsyms as usize).saturating_sub(self.st.rom.symbols.len());
+        if n >= self.sym_entries.len() {
+            let _ = self.grow(Pool::Symbols, n + 1);
+        }
+        let used = self.st.pools.sym_bytes as usize;
+        if used + len > self.sym_bytes.len() {
+            let _ = self.grow(Pool::SymbolBytes, used + len);
+        }
+    }
+
+    /// With feature `grow`: makes `pool` hold `need` entries if it can (the check
+    /// that follows reports a pool that stays too small).
+    #[cfg(feature = "grow")]
+    pub(crate) fn ensure(&mut self, pool: Pool, need: usize) {
+        if need > self.capacities()[pool as usize] {
+            let _ = self.grow(pool, need);
         }
     }
 
@@ -752,6 +794,8 @@ impl Core<'_> {
     }
 
     pub fn intern(&mut self, s: &str) -> Result<SymId, CapacityError> {
+        #[cfg(feature = "grow")]
+        self.symbol_room(s.len());
         let r = self.syms().intern(s);
         self.note_hw(Pool::Symbols, self.st.pools.nsyms as usize);
         self.note_hw(Pool::SymbolBytes, self.st.pools.sym_bytes as usize);
@@ -773,7 +817,7 @@ impl Core<'_> {
     pub fn push_expr(&mut self, e: Expr) -> Result<Ix, CapacityError> {
         let n = self.st.pools.nexprs as usize;
         if n >= self.exprs.len() || n >= NONE as usize {
-            return Err(cap(Pool::Exprs, self.exprs.len()));
+            full_pool!(self, Pool::Exprs, n + 1, self.exprs.len());
         }
         self.exprs[n] = e;
         self.st.pools.nexprs += 1;
@@ -856,7 +900,7 @@ impl Core<'_> {
     pub fn push_value(&mut self, v: Value) -> Result<(), CapacityError> {
         let sp = self.st.frame.sp as usize;
         if sp >= self.stack.len() {
-            return Err(cap(Pool::EvalStack, self.stack.len()));
+            full_pool!(self, Pool::EvalStack, sp + 1, self.stack.len());
         }
         self.stack[sp] = v;
         self.st.frame.sp += 1;
@@ -869,6 +913,15 @@ impl Core<'_> {
         let top = self.st.frame.scratch_top as usize;
         let limit = self.scratch.len() - self.st.eval.gmf_used as usize;
         if top + n > limit || top + n > NONE as usize {
+            // the globals' multifields sit at the top: growing would move them under
+            // values that point at them, so scratch grows only while there are none
+            #[cfg(feature = "grow")]
+            if self.st.eval.gmf_used == 0 {
+                self.grow(Pool::Scratch, top + n)?;
+                self.st.frame.scratch_top += n as Ix;
+                self.note_hw(Pool::Scratch, top + n);
+                return Ok(top as Ix);
+            }
             return Err(cap(Pool::Scratch, self.scratch.len()));
         }
         self.st.frame.scratch_top += n as Ix;

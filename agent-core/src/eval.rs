@@ -1,7 +1,7 @@
 //! The expression evaluator.
 
 use crate::builtins::{self, Args, Imp, SYM_FALSE, SYM_TRUE};
-use crate::engine::{cap, Core};
+use crate::engine::Core;
 use crate::error::{EvalError, EvalErrorKind, Pool};
 use crate::expr::{loc, Expr, FnKind, Op};
 use crate::rete::{PatBinding, THIS_PATTERN};
@@ -415,7 +415,7 @@ impl Core<'_> {
             // `push_value` without its per-value high-water note (one note per call)
             let sp = self.st.frame.sp as usize;
             if sp >= self.stack.len() {
-                return Err(cap(Pool::EvalStack, self.stack.len()).into());
+                crate::engine::full_pool!(self, Pool::EvalStack, sp + 1, self.stack.len());
             }
             self.stack[sp] = v;
             self.st.frame.sp += 1;

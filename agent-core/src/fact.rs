@@ -103,6 +103,12 @@ impl Core<'_> {
             return Ok(t);
         }
         let n = self.st.pools.ntemplates as usize;
+        #[cfg(feature = "grow")]
+        {
+            self.ensure(Pool::Templates, n + 1);
+            self.ensure(Pool::TemplateMemories, n + 1);
+            self.ensure(Pool::SlotDefs, self.st.pools.nslots as usize + 1);
+        }
         if n >= self.templates.len() {
             return Err(cap(Pool::Templates, self.templates.len()));
         }
@@ -295,6 +301,19 @@ impl Core<'_> {
         let cap_v = self.values.len().min(NONE as usize);
         if self.st.facts.values_top as usize + n > cap_v {
             self.compact_values();
+            // growing once the live cells fill three quarters keeps compaction rare
+            #[cfg(feature = "grow")]
+            let cap_v = if self.st.facts.values_top as usize + n > cap_v - cap_v / 4 {
+                let need = (self.st.facts.values_top as usize + n).max(cap_v + 1);
+                let grown = self.grow(Pool::FactValues, need);
+                let cap_v = self.values.len().min(NONE as usize);
+                if self.st.facts.values_top as usize + n > cap_v {
+                    grown?;
+                }
+                cap_v
+            } else {
+                cap_v
+            };
             if self.st.facts.values_top as usize + n > cap_v {
                 return Err(cap(Pool::FactValues, self.values.len()));
             }
@@ -361,6 +380,11 @@ impl Core<'_> {
         base: usize,
     ) -> Result<bool, CapacityError> {
         let slots_full = self.fact_slots_full();
+        #[cfg(feature = "grow")]
+        let slots_full = slots_full
+            && self
+                .grow(Pool::Facts, self.st.pools.facts_used as usize + 1)
+                .is_err();
         if slots_full && self.st.mode.firing {
             return Err(cap(Pool::Facts, self.facts.len()));
         }
@@ -383,7 +407,7 @@ impl Core<'_> {
             used -= self.facts[old as usize].len as usize;
         }
         if used + need > cap_v {
-            return Err(cap(Pool::FactValues, self.values.len()));
+            crate::engine::full_pool!(self, Pool::FactValues, used + need, self.values.len());
         }
         Ok(hold)
     }
@@ -517,6 +541,12 @@ impl Core<'_> {
     /// multislot's value is a scratch `Multi`). Returns `None` for a duplicate.
     /// Runs the network; on a full pool the fact is removed again and the error returned.
     pub fn assert_slots(&mut self, tmpl: Ix, base: usize) -> Result<Option<Ix>, EvalError> {
+        // no pattern matching runs here (asserting during it is refused): the token
+        // index may grow now (`grow`)
+        #[cfg(feature = "grow")]
+        if self.amem_buckets.len() < self.tokens.len() && self.st.net.matching == 0 {
+            self.grow_token_index();
+        }
         let defer = core::mem::take(&mut self.st.net.defer_next);
         // a deferred propagation (`rete::defer`) belongs to an earlier assert: built
         // first, or the assert fails with nothing changed
@@ -528,7 +558,12 @@ impl Core<'_> {
         self.pay_owed()?;
         let need = self.cells_needed(tmpl, base);
         if self.fact_slots_full() {
-            return Err(cap(Pool::Facts, self.facts.len()).into());
+            crate::engine::full_pool!(
+                self,
+                Pool::Facts,
+                self.st.pools.facts_used as usize + 1,
+                self.facts.len()
+            );
         }
         // the logical support this assert may add needs an entry
         #[cfg(feature = "logical")]

@@ -159,6 +159,10 @@
     allow(clippy::unnecessary_cast, clippy::useless_conversion)
 )]
 
+// only the host's growing storage allocates (`grow`)
+#[cfg(feature = "grow")]
+extern crate alloc;
+
 pub mod agenda;
 pub mod api;
 pub mod builtins;
@@ -171,6 +175,8 @@ pub mod error;
 pub mod eval;
 pub mod expr;
 pub mod fact;
+#[cfg(feature = "grow")]
+pub mod grow;
 pub mod handle;
 pub mod hold;
 pub mod host;

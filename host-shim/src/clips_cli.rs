@@ -7,21 +7,23 @@
 //! CLIPS's own), `-f` files after it through the command loop; `-f2` prints no prompts,
 //! echo or command results.
 //!
-//! `--large-pools` (before the CLIPS options; not a CLIPS option) runs the session on a
-//! [`LargeEngine`] instead of the `DefaultEngine`, for programs that outgrow its pools.
+//! The session runs on a [`GrowEngine`]: its pools start small and grow as the program
+//! needs (`agent_core::grow`), so an empty program stays small and no program runs out
+//! of a pool before the index type's limit or the machine's memory. `--large-pools`
+//! (before the CLIPS options; not a CLIPS option) is still accepted and changes nothing:
+//! it chose a larger fixed engine before the pools grew.
 
 use std::io::{BufRead, Write};
 use std::process::ExitCode;
 
 use agent_core::commands::command_complete;
-use agent_core::{DefaultEngine, Host, HostIoError, LoadError};
-
-use crate::large_engine::{LargeEngine, LARGE_ENGINE_THREAD_STACK};
+use agent_core::grow::GrowEngine;
+use agent_core::{Host, HostIoError, LoadError};
 
 #[derive(clap::Args)]
 pub struct Args {
-    /// Run on an engine with large pools (hundreds of thousands of facts, millions of
-    /// tokens and expression nodes) instead of the default one. Not a CLIPS option.
+    /// Accepted for older scripts; changes nothing (the pools grow as needed). Not a
+    /// CLIPS option.
     #[arg(long)]
     pub large_pools: bool,
     /// CLIPS options: -f FILE | -f2 FILE | -l FILE (in order).
@@ -143,53 +145,19 @@ pub fn main(args: Args) -> ExitCode {
             return ExitCode::FAILURE;
         }
     };
-    // The large engine is boxed, but may pass through the stack on the way: give it a
-    // thread stack. The default one lives in a static (see `CLI_ENGINE`).
-    let large = args.large_pools;
-    let stack = if large {
-        LARGE_ENGINE_THREAD_STACK
-    } else {
-        256 << 20
-    };
+    // (`--large-pools` is the same engine: its pools grow)
+    let _ = args.large_pools;
+    // a deep stack for deeply nested expressions; only the pages used are touched
     let worker = std::thread::Builder::new()
-        .stack_size(stack)
-        .spawn(move || {
-            if large {
-                large_session(steps)
-            } else if let Some(engine) = CLI_ENGINE.try_take() {
-                session(engine, steps)
-            } else {
-                eprintln!("robotino-agent clips: the command-line engine is already in use");
-                ExitCode::FAILURE
-            }
-        });
+        .stack_size(256 << 20)
+        .spawn(move || session(&mut GrowEngine::with_storage(Default::default()), steps));
     match worker.map(|w| w.join()) {
         Ok(Ok(code)) => code,
         _ => ExitCode::FAILURE,
     }
 }
 
-/// A session on a new large engine. Out of line: the frame that builds it holds the
-/// engine's 100+ MiB on its way into the box, and stack probes touch every page of
-/// a frame on entry, so the default session must not share it.
-#[inline(never)]
-fn large_session(steps: Vec<Step>) -> ExitCode {
-    session(
-        &mut *Box::new(LargeEngine::with_storage(
-            crate::large_engine::LargeStorage::new(),
-        )),
-        steps,
-    )
-}
-
-/// The command line's engine, built at compile time. `DefaultEngine::new()` at run time
-/// wrote all of its few MiB on the stack and copied them (every page touched: ~90 ms
-/// of page faults on this VM for an empty program, 25x CLIPS's whole run); a static is
-/// mapped from the binary and only the pages the program uses are ever touched.
-static CLI_ENGINE: static_cell::ConstStaticCell<DefaultEngine> =
-    static_cell::ConstStaticCell::new(DefaultEngine::new());
-
-/// The engine calls the command line makes, for either engine size.
+/// The engine calls the command line makes.
 trait CliEngine {
     fn run_pending_batch(&mut self, host: &mut dyn Host) -> bool;
     fn batch_file(&mut self, host: &mut dyn Host, name: &str, text: &str, echo: bool) -> bool;
@@ -239,8 +207,7 @@ macro_rules! cli_engine {
         }
     };
 }
-cli_engine!(DefaultEngine);
-cli_engine!(LargeEngine);
+cli_engine!(GrowEngine);
 
 fn session(engine: &mut dyn CliEngine, steps: Vec<Step>) -> ExitCode {
     let mut host = CliHost {

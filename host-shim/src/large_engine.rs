@@ -1,7 +1,8 @@
 //! `LargeEngine`: pools for the big benchmark programs (Manners with 128 guests, the
 //! join and negation programs at 10^5 facts), which outgrow `DefaultEngine`. Needs the
 //! `wide-index` feature of agent-core (`u32` pool indices; host-shim enables it).
-//! `robotino-agent clips --large-pools` and the bench's in-process engine use it.
+//! The bench's in-process engine uses it (`robotino-agent clips` runs on
+//! `agent_core::grow::GrowEngine`, whose pools grow; `--large-pools` is an alias there).
 
 agent_core::engine_storage! {
     /// The pools of [`LargeEngine`] (those not named are the host defaults): the high-water marks of the biggest benchmark programs with about half
@@ -23,7 +24,7 @@ agent_core::engine_storage! {
         ..agent_core::Capacities::HOST
     }
 }
-/// The engine of `clips --large-pools` and the bench (see [`LargeStorage`]).
+/// The bench's in-process engine (see [`LargeStorage`]).
 pub type LargeEngine = agent_core::Engine<LargeStorage>;
 
 /// Stack for a thread that builds a [`LargeEngine`] before boxing it: room for two

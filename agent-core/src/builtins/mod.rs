@@ -492,14 +492,26 @@ impl Core<'_> {
             max,
             out_of_room: false,
         };
-        if let Err(e) = write(&view, args, &mut out) {
-            return if out.out_of_room {
+        let written = write(&view, args, &mut out);
+        let (len, out_of_room) = (out.len, out.out_of_room);
+        if let Err(e) = written {
+            // the arena's free end grows (doubles) until the text fits there
+            #[cfg(feature = "grow")]
+            if out_of_room
+                && self
+                    .grow(crate::error::Pool::SymbolBytes, self.sym_bytes.len() + 1)
+                    .is_ok()
+            {
+                return self.make_lexeme_with(string, a, max, write);
+            }
+            return if out_of_room {
                 self.lexeme_via_stack(string, a, &write)
             } else {
                 Err(e)
             };
         }
-        let len = out.len;
+        #[cfg(feature = "grow")]
+        self.symbol_room(0);
         let id = self.syms().intern_tail(len)?;
         self.note_hw(crate::error::Pool::Symbols, self.st.pools.nsyms as usize);
         self.note_hw(

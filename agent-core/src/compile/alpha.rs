@@ -77,6 +77,11 @@ impl Compiler<'_, '_> {
             });
         }
         let n = self.cx.st.pools.nalpha as usize;
+        #[cfg(feature = "grow")]
+        {
+            self.cx.ensure(Pool::AlphaNodes, n + 1);
+            self.cx.ensure(Pool::AlphaMemories, n + 1);
+        }
         if n >= self.cx.alphas.len() || n >= self.cx.alpha_mems.len() {
             let c = if n >= self.cx.alphas.len() {
                 cap(Pool::AlphaNodes, self.cx.alphas.len())

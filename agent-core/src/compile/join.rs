@@ -133,6 +133,13 @@ impl Compiler<'_, '_> {
     fn build_rule(&mut self, name: SymId, b: &Build) -> Result<Ix, CompileError> {
         self.cx.st.net.net_gen = self.cx.st.net.net_gen.wrapping_add(1);
         let nr = self.cx.st.pools.nrules as usize;
+        #[cfg(feature = "grow")]
+        {
+            let joins = self.cx.st.pools.njoins as usize + b.n + 1;
+            self.cx.ensure(Pool::Rules, nr + 1);
+            self.cx.ensure(Pool::Joins, joins);
+            self.cx.ensure(Pool::JoinMemories, joins);
+        }
         if nr >= self.cx.rules.len() {
             let c = cap(Pool::Rules, self.cx.rules.len());
             return Err(CompileError {

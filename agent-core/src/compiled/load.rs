@@ -162,6 +162,11 @@ impl Core<'_> {
             (Pool::Deffacts, base.deffacts.len(), self.deffacts.len()),
         ];
         for (pool, need, capacity) in fits {
+            #[cfg(feature = "grow")]
+            let capacity = {
+                self.ensure(pool, need);
+                capacity.max(self.capacities()[pool as usize])
+            };
             if need > capacity || need >= NONE as usize {
                 return Err(cap(pool, capacity).into());
             }

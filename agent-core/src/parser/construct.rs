@@ -56,6 +56,11 @@ impl<'s> Parser<'s, '_, '_> {
         }
         self.skip_comment();
         let n = self.cx.st.pools.ntemplates as usize;
+        #[cfg(feature = "grow")]
+        {
+            self.cx.ensure(Pool::Templates, n + 1);
+            self.cx.ensure(Pool::TemplateMemories, n + 1);
+        }
         if n >= self.cx.templates.len() {
             let c = cap(Pool::Templates, self.cx.templates.len());
             return Err(self.cap_err(nt, c));
@@ -94,6 +99,8 @@ impl<'s> Parser<'s, '_, '_> {
                         return Err(self.err(st, "at most 255 slots in one deftemplate"));
                     }
                     let s = self.cx.st.pools.nslots as usize;
+                    #[cfg(feature = "grow")]
+                    self.cx.ensure(Pool::SlotDefs, s + 1);
                     if s >= self.cx.slots.len() {
                         let c = cap(Pool::SlotDefs, self.cx.slots.len());
                         return Err(self.cap_err(st, c));
@@ -177,6 +184,8 @@ impl<'s> Parser<'s, '_, '_> {
             }
             None => {
                 let n = self.cx.st.pools.ndeffacts as usize;
+                #[cfg(feature = "grow")]
+                self.cx.ensure(Pool::Deffacts, n + 1);
                 if n >= self.cx.deffacts.len() {
                     let c = cap(Pool::Deffacts, self.cx.deffacts.len());
                     return Err(self.cap_err(nt, c));
@@ -221,6 +230,8 @@ impl<'s> Parser<'s, '_, '_> {
             Some(f) => f,
             None => {
                 let n = self.cx.st.pools.nfuncs as usize;
+                #[cfg(feature = "grow")]
+                self.cx.ensure(Pool::Functions, n + 1);
                 if n >= self.cx.funcs.len() {
                     let c = cap(Pool::Functions, self.cx.funcs.len());
                     return Err(self.cap_err(nt, c));
@@ -312,6 +323,10 @@ impl<'s> Parser<'s, '_, '_> {
                         .find(|&g| self.cx.globals[g as usize].name == sym);
                     // a full pool fails before the evaluation, whose effects would stay
                     let n = self.cx.st.pools.nglobals as usize;
+                    #[cfg(feature = "grow")]
+                    if existing.is_none() {
+                        self.cx.ensure(Pool::Globals, n + 1);
+                    }
                     if existing.is_none() && n >= self.cx.globals.len() {
                         let c = cap(Pool::Globals, self.cx.globals.len());
                         return Err(self.cap_err(t, c));

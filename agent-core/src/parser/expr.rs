@@ -151,6 +151,8 @@ impl<'s> Parser<'s, '_, '_> {
             return Ok(g);
         }
         let n = self.cx.st.pools.nglobals as usize;
+        #[cfg(feature = "grow")]
+        self.cx.ensure(crate::error::Pool::Globals, n + 1);
         if n >= self.cx.globals.len() {
             let c = crate::engine::cap(crate::error::Pool::Globals, self.cx.globals.len());
             return Err(self.cap_err(t, c));

@@ -11,7 +11,7 @@
 //! blocker goes, the next matching right item takes over before anything changes.
 
 use super::{JoinId, JoinKind, PatBinding, Token, TokenId, TokenKind};
-use crate::engine::{cap, Core};
+use crate::engine::Core;
 use crate::error::{CapacityError, EvalError, Pool};
 use crate::handle::Slots;
 use crate::value::Ix;
@@ -30,7 +30,7 @@ impl Core<'_> {
         }
         let n = self.st.pools.tokens_used as usize;
         if n >= self.tokens.len() || n >= NONE as usize {
-            return Err(cap(Pool::Tokens, self.tokens.len()));
+            crate::engine::full_pool!(self, Pool::Tokens, n + 1, self.tokens.len());
         }
         self.st.pools.tokens_used += 1;
         self.st.pools.tokens_live += 1;

@@ -61,6 +61,29 @@ fn mix(h: u32, x: u32) -> u32 {
     (h ^ x).wrapping_mul(0x9E37_79B1).rotate_left(13)
 }
 
+/// With feature `grow` a bucket's tokens keep their hash (a tag, never `NONE`) instead
+/// of the bucket number, so the table can grow (`grow`: `rehash_token_index`).
+#[cfg(feature = "grow")]
+const TAG: u32 = 0x7FFF_FFFF;
+
+/// The hash an alpha match's bucket is taken from.
+#[inline(always)]
+fn alpha_tag(alpha: Ix, key: u32) -> u32 {
+    let h = mix(key, u32::from(alpha));
+    #[cfg(feature = "grow")]
+    let h = h & TAG;
+    h
+}
+
+/// The hash a partial match's bucket is taken from.
+#[inline(always)]
+fn beta_tag(join: JoinId, key: u32) -> u32 {
+    let h = mix(key, 0x8000_0000 | u32::from(join.0));
+    #[cfg(feature = "grow")]
+    let h = h & TAG;
+    h
+}
+
 impl Core<'_> {
     /// A hash of a value consistent with `values_same` (the join tests' equality).
     fn value_hash(&self, v: Value) -> u32 {
@@ -80,7 +103,22 @@ impl Core<'_> {
     /// chain holds one kind of token (they link through different fields).
     fn bucket(&self, alpha: Ix, key: u32) -> Ix {
         let half = (self.amem_buckets.len() / 2).max(1);
-        (mix(key, u32::from(alpha)) as usize % half) as Ix
+        (alpha_tag(alpha, key) as usize % half) as Ix
+    }
+
+    /// With feature `grow`: the bucket of an alpha match's stored tag (`index_insert`).
+    #[cfg(feature = "grow")]
+    pub(crate) fn alpha_bucket_of(&self, tag: u32) -> usize {
+        tag as usize % (self.amem_buckets.len() / 2).max(1)
+    }
+
+    /// With feature `grow`: the bucket of a partial match's stored tag
+    /// (`beta_index_link`).
+    #[cfg(feature = "grow")]
+    pub(crate) fn beta_bucket_of(&self, tag: u32) -> usize {
+        let n = self.amem_buckets.len();
+        let half = n / 2;
+        half + tag as usize % (n - half).max(1)
     }
 
     /// The key of an alpha match of `alpha` (a node with a right hash): its
@@ -256,7 +294,12 @@ impl Core<'_> {
         );
         let b = self.bucket(alpha, key);
         let head = self.amem_buckets[b as usize];
-        self.tokens[am].parent = TokenId(b);
+        // (with `grow` the tag the bucket comes from, see `alpha_tag`)
+        #[cfg(not(feature = "grow"))]
+        let kept = b;
+        #[cfg(feature = "grow")]
+        let kept = alpha_tag(alpha, key);
+        self.tokens[am].parent = TokenId(kept);
         self.tokens[am].am_next = TokenId::NONE;
         if head == TokenId::NONE {
             self.tokens[am].am_prev = am;
@@ -276,6 +319,8 @@ impl Core<'_> {
             return;
         }
         let b = tk.parent.ix();
+        #[cfg(feature = "grow")]
+        let b = self.alpha_bucket_of(b as u32);
         self.amem_buckets[b] = self.am_chain_remove(self.amem_buckets[b], am);
         self.tokens[am].parent = TokenId::NONE;
     }
@@ -430,7 +475,7 @@ impl Core<'_> {
     fn beta_bucket(&self, join: JoinId, key: u32) -> Ix {
         let n = self.amem_buckets.len();
         let half = n / 2;
-        (half + mix(key, 0x8000_0000 | u32::from(join.0)) as usize % (n - half).max(1)) as Ix
+        (half + beta_tag(join, key) as usize % (n - half).max(1)) as Ix
     }
 
     /// Makes `child` the join whose tests key `parent`'s memory, if the memory is
@@ -520,7 +565,10 @@ impl Core<'_> {
         self.st.cache.key_cache = (t, child, key);
         let b = self.beta_bucket(join, key);
         let head = self.amem_buckets[b as usize];
+        #[cfg(not(feature = "grow"))]
         self.set_bbucket(t, b);
+        #[cfg(feature = "grow")]
+        self.set_bbucket(t, beta_tag(join, key));
         self.set_bnext(t, head);
         if head == TokenId::NONE {
             self.set_bprev(t, t);
@@ -546,6 +594,12 @@ impl Core<'_> {
             return;
         }
         let b = self.bbucket(t);
+        #[cfg(feature = "grow")]
+        let b = if b == NONE {
+            NONE
+        } else {
+            self.beta_bucket_of(b) as Ix
+        };
         if b == NONE || b as usize >= self.amem_buckets.len() {
             return;
         }
@@ -645,6 +699,67 @@ impl Core<'_> {
         #[cfg(feature = "host-speedups")]
         {
             self.join_mems[join].index_built = false;
+        }
+    }
+}
+
+/// With feature `grow`: the token index follows its pool (see `grow`).
+#[cfg(feature = "grow")]
+impl Core<'_> {
+    /// Links every token of the old table `old` (bucket heads, alpha buckets in the
+    /// first half) into the table `amem_buckets` is now (every head `NONE`), each by
+    /// the tag it keeps. A new table twice the old one's length (or a power of two
+    /// times) splits each old chain in order, so tokens of one key keep their order.
+    pub(crate) fn relink_token_index(&mut self, old: &[TokenId]) {
+        let old_half = (old.len() / 2).max(1);
+        for &head in &old[..old_half.min(old.len())] {
+            // alpha matches, oldest first: each appended to its new bucket
+            let mut t = head;
+            while t != TokenId::NONE {
+                let next = self.tokens[t].am_next;
+                let b = self.alpha_bucket_of(self.tokens[t].parent.0);
+                let first = self.amem_buckets[b];
+                self.tokens[t].am_next = TokenId::NONE;
+                if first == TokenId::NONE {
+                    self.tokens[t].am_prev = t;
+                    self.amem_buckets[b] = t;
+                } else {
+                    let tail = self.tokens[first].am_prev;
+                    self.tokens[tail].am_next = t;
+                    self.tokens[t].am_prev = tail;
+                    self.tokens[first].am_prev = t;
+                }
+                t = next;
+            }
+        }
+        for &head in &old[old_half.min(old.len())..] {
+            if head == TokenId::NONE {
+                continue;
+            }
+            // partial matches, newest first: from the tail, each put at the head
+            let mut t = self.bprev(head);
+            loop {
+                let prev = if t == head {
+                    TokenId::NONE
+                } else {
+                    self.bprev(t)
+                };
+                let b = self.beta_bucket_of(self.bbucket(t));
+                let first = self.amem_buckets[b];
+                self.set_bnext(t, first);
+                if first == TokenId::NONE {
+                    self.set_bprev(t, t);
+                } else {
+                    let tail = self.bprev(first);
+                    self.set_bprev(t, tail);
+                    self.set_bprev(first, t);
+                }
+                self.amem_buckets[b] = t;
+                if prev == TokenId::NONE {
+                    break;
+                }
+                t = prev;
+            }
         }
     }
 }

@@ -1,0 +1,498 @@
+//! Storage that grows (feature `grow`, hosts only): [`GrowStorage`] holds every array
+//! of the pool table in a heap vector that starts small ([`GrowStorage::START`]) and doubles
+//! when an allocation finds its pool full, up to a limit (by default the most the index
+//! type can address), so one host engine runs small and big programs alike and costs
+//! only what it uses. The robot never enables the feature: its storage stays the fixed
+//! arrays of [`engine_storage!`](crate::engine_storage), and there a full pool is the
+//! [`CapacityError`] at once.
+//!
+//! Nothing outside the storage holds an address into a pool: entries are reached by
+//! index through the slices of [`Core`], and growing replaces the grown pool's slices
+//! in that `Core` (it takes `&mut Core`, so no borrow of the old ones is alive). A
+//! growth that cannot happen (the limit, or the allocator refusing) is the pool's
+//! `CapacityError`, with the storage as it was.
+//!
+//! The hash tables over the pools grow with them: the fact and symbol tables are
+//! rebuilt at once (their chains are found again from each entry's hash), the token
+//! index (alpha- and beta-memory buckets, whose chains a join may be walking) at the
+//! next assert, when no pattern matching runs (`grow_token_index`); its tokens keep
+//! their hash for that (`rete::index`).
+
+use alloc::vec::Vec;
+use core::marker::PhantomData;
+use core::ptr::NonNull;
+
+use crate::config::{Capacities, Core, Pool};
+use crate::engine::cap;
+use crate::error::CapacityError;
+use crate::handle::TokenId;
+use crate::value::NONE;
+
+/// The most entries any pool can have: every index below [`NONE`] but the last (a fact
+/// slot's number and a token's id must stay distinct from `NONE`).
+pub const INDEX_LIMIT: usize = NONE as usize - 1;
+
+/// Whether an array is the token index's bucket heads (grown by `grow_token_index`,
+/// not with the tokens).
+macro_rules! token_heads {
+    (amem_buckets) => {
+        true
+    };
+    ($other:ident) => {
+        false
+    };
+}
+
+/// Makes room for `len` entries in `v` without changing it.
+fn reserve<T>(v: &mut Vec<T>, len: usize) -> Result<(), ()> {
+    let extra = len.saturating_sub(v.len());
+    v.try_reserve_exact(extra).map_err(|_| ())
+}
+
+macro_rules! grow_items {
+    ($(
+        $variant:ident $cap:ident $name:literal $host:literal $small:literal [
+            $first:ident : $fty:ty = $fempty:expr
+            $(, $arr:ident : $aty:ty = $aempty:expr)* $(,)?
+        ]
+    ),* $(,)?) => {
+        /// Every pool in a heap vector that grows on demand (see the module docs).
+        pub struct GrowStorage {
+            /// The most entries each pool may grow to, in table order.
+            limits: [usize; Pool::COUNT],
+            $(
+                $first: Vec<$fty>,
+                $($arr: Vec<$aty>,)*
+            )*
+        }
+
+        impl GrowStorage {
+            /// Pools of `start` entries (every entry empty) that grow up to `limit`
+            /// entries each (at most [`INDEX_LIMIT`]). Allocates only `start`: an
+            /// allocator that refuses that much aborts, as any allocation of the host
+            /// does.
+            pub fn with_limits(start: Capacities, limit: Capacities) -> Self {
+                let limits = limit.to_array().map(|l| l.min(INDEX_LIMIT));
+                let start = start.to_array();
+                GrowStorage {
+                    limits,
+                    $(
+                        $first: alloc::vec![$fempty; start[Pool::$variant as usize]
+                            .min(limits[Pool::$variant as usize])],
+                        $($arr: alloc::vec![$aempty; start[Pool::$variant as usize]
+                            .min(limits[Pool::$variant as usize])],)*
+                    )*
+                }
+            }
+
+            /// Entries each pool has now, in table order.
+            pub fn lens(&self) -> [usize; Pool::COUNT] {
+                [$(self.$first.len(),)*]
+            }
+
+            /// Makes every array of `pool` `len` entries long (new entries empty), or
+            /// changes nothing if the allocator refuses.
+            fn resize(&mut self, pool: Pool, len: usize) -> Result<(), ()> {
+                match pool {
+                    $(Pool::$variant => {
+                        // all or nothing: reserve every array before changing one
+                        reserve(&mut self.$first, len)?;
+                        $(if !token_heads!($arr) {
+                            reserve(&mut self.$arr, len)?;
+                        })*
+                        self.$first.resize(len, $fempty);
+                        $(if !token_heads!($arr) {
+                            self.$arr.resize(len, $aempty);
+                        })*
+                    })*
+                }
+                Ok(())
+            }
+        }
+
+        impl crate::config::Storage for GrowStorage {
+            const CAPACITIES: Capacities = GrowStorage::START;
+
+            fn core<'a>(
+                &'a mut self,
+                st: &'a mut crate::engine::State,
+                host: &'a mut dyn crate::Host,
+            ) -> Core<'a> {
+                let rom = st.rom;
+                let me = NonNull::from(self);
+                // SAFETY: `me` comes from `&'a mut self`, so for 'a nothing else reaches
+                // the storage; every slice below and the grower are derived from it and
+                // live in the one `Core`, which hands them out only through `&mut Core`
+                // (growth replaces a pool's slices before anything reads them again).
+                let s = unsafe { &mut *me.as_ptr() };
+                Core {
+                    st,
+                    host,
+                    grower: Grower { storage: Some(me), life: PhantomData },
+                    $(
+                        $first: crate::__pool_view!(mut $first, rom, &mut s.$first[..]),
+                        $($arr: crate::__pool_view!(mut $arr, rom, &mut s.$arr[..]),)*
+                    )*
+                }
+            }
+
+            fn pools(&self, rom: crate::rom::Rom) -> crate::config::Pools<'_> {
+                crate::config::Pools {
+                    $(
+                        $first: crate::__pool_view!(ref $first, rom, &self.$first[..]),
+                        $($arr: crate::__pool_view!(ref $arr, rom, &self.$arr[..]),)*
+                    )*
+                }
+            }
+
+            fn capacities(&self) -> [usize; Pool::COUNT] {
+                self.lens()
+            }
+        }
+
+        impl Core<'_> {
+            /// Points `pool`'s slices at the storage's arrays again (after a growth).
+            fn rebind(&mut self, pool: Pool, s: NonNull<GrowStorage>) {
+                let rom = self.st.rom;
+                // SAFETY: `s` is the storage this `Core` was made from (`Grower`); the
+                // slices replaced here are the only other views of the grown arrays,
+                // and nothing borrows them while `self` is borrowed mutably.
+                let s = unsafe { &mut *s.as_ptr() };
+                match pool {
+                    $(Pool::$variant => {
+                        self.$first = crate::__pool_view!(mut $first, rom, &mut s.$first[..]);
+                        $(self.$arr = crate::__pool_view!(mut $arr, rom, &mut s.$arr[..]);)*
+                    })*
+                }
+            }
+        }
+    };
+}
+
+crate::__pool_table!(grow_items {});
+
+impl GrowStorage {
+    /// Pools that start at [`Self::START`] and grow up to [`INDEX_LIMIT`].
+    pub fn new() -> Self {
+        Self::with_limits(Self::START, Self::NO_LIMIT)
+    }
+
+    /// Where [`GrowStorage::new`] starts: the unit tests' small pools, but the
+    /// multifield scratch of the fixed host engine (it grows only while no global holds
+    /// a multifield, see `Core::scratch_alloc`).
+    pub const START: Capacities = Capacities {
+        scratch: Capacities::HOST.scratch,
+        ..Capacities::SMALL
+    };
+
+    /// Limits no pool reaches before its index type's (every one [`INDEX_LIMIT`]).
+    pub const NO_LIMIT: Capacities = Capacities::uniform(INDEX_LIMIT);
+}
+
+/// An engine whose pools grow ([`GrowStorage`]).
+pub type GrowEngine = crate::Engine<GrowStorage>;
+
+impl Default for GrowStorage {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// How a [`Core`] reaches the [`GrowStorage`] it was made from, to grow it (`None` for
+/// fixed storage).
+#[derive(Clone, Copy)]
+pub struct Grower<'a> {
+    storage: Option<NonNull<GrowStorage>>,
+    life: PhantomData<&'a mut GrowStorage>,
+}
+
+impl Grower<'_> {
+    /// Fixed storage: a full pool is full.
+    pub const NONE: Self = Grower {
+        storage: None,
+        life: PhantomData,
+    };
+}
+
+impl Core<'_> {
+    /// Makes `pool` hold at least `need` entries: doubles it (or more, to `need`), up
+    /// to its limit. The pool's [`CapacityError`] (its capacity as it was) when the
+    /// storage is fixed, `need` is over the limit, or the allocator refuses.
+    #[cold]
+    #[inline(never)]
+    pub(crate) fn grow(&mut self, pool: Pool, need: usize) -> Result<(), CapacityError> {
+        let have = self.capacities()[pool as usize];
+        let full = cap(pool, have);
+        let Some(storage) = self.grower.storage else {
+            return Err(full);
+        };
+        // SAFETY: as in `rebind`: the storage this `Core` was made from, reached only
+        // through it; read here for its lengths and limits, resized below.
+        let s = unsafe { &mut *storage.as_ptr() };
+        let ram = s.lens()[pool as usize];
+        // entries of a compiled rule base read in place count in `have`, not in `ram`
+        let rom = have - ram;
+        let limit = s.limits[pool as usize];
+        if need <= have {
+            return Ok(());
+        }
+        if need - rom > limit {
+            return Err(full);
+        }
+        let len = (need - rom).max(ram.saturating_mul(2)).min(limit);
+        s.resize(pool, len).map_err(|()| full)?;
+        self.rebind(pool, storage);
+        match pool {
+            Pool::Facts => self.rehash_facts(ram),
+            Pool::Symbols => self.rehash_symbols(),
+            _ => {}
+        }
+        Ok(())
+    }
+
+    /// Puts every fact of the duplicate index's first `old` buckets in its bucket of
+    /// the table's length now (the facts' order in a chain does not matter).
+    fn rehash_facts(&mut self, old: usize) {
+        let mut heads = Vec::new();
+        if heads.try_reserve_exact(old).is_err() {
+            // keep the old table's chains: they are all in its first `old` buckets,
+            // but lookups hash over the new length; rebuild from the fact list instead
+            return self.rehash_facts_from_list();
+        }
+        heads.extend_from_slice(&self.fact_buckets[..old]);
+        self.fact_buckets.fill(NONE);
+        for head in heads {
+            let mut f = head;
+            while f != NONE {
+                let next = self.facts[f as usize].hash_next;
+                self.link_fact_hash(f);
+                f = next;
+            }
+        }
+    }
+
+    /// `rehash_facts` without room for a copy of the heads: every fact in the
+    /// duplicate index is live or pending, so both lists give them all.
+    fn rehash_facts_from_list(&mut self) {
+        self.fact_buckets.fill(NONE);
+        for list in [self.st.facts.fact_head, self.st.facts.pending] {
+            let mut f = list;
+            while f != NONE {
+                self.link_fact_hash(f);
+                f = self.facts[f as usize].next;
+            }
+        }
+    }
+
+    /// Puts fact `f` at the head of its duplicate-index bucket.
+    fn link_fact_hash(&mut self, f: crate::value::Ix) {
+        let fact = self.facts[f as usize];
+        #[cfg(feature = "host-speedups")]
+        let h = fact.hash;
+        #[cfg(not(feature = "host-speedups"))]
+        let h = self.cells_hash(fact.tmpl, fact.start as usize, fact.len as usize);
+        let b = h as usize % self.fact_buckets.len();
+        self.facts[f as usize].hash_next = self.fact_buckets[b];
+        self.fact_buckets[b] = f;
+    }
+
+    /// Builds the symbol table's buckets again for its length now, newest symbol at
+    /// each bucket's head (as interning leaves them; `Symbols::truncate` needs it).
+    fn rehash_symbols(&mut self) {
+        self.sym_buckets.fill(NONE);
+        let rom = self.st.rom.symbols.len();
+        let count = (self.st.pools.nsyms as usize).saturating_sub(rom);
+        for k in 0..count {
+            let e = self.sym_entries[k];
+            let text = &self.sym_bytes[e.start as usize..e.start as usize + e.len as usize];
+            let b = crate::symbols::hash_bytes(text) as usize % self.sym_buckets.len();
+            self.sym_entries[k].next = self.sym_buckets[b];
+            self.sym_buckets[b] = (rom + k) as crate::value::Ix;
+        }
+    }
+
+    /// At a point where no pattern matching runs (an assert's start): doubles the token
+    /// index until it has a bucket per token, as a fixed engine's, and moves every
+    /// indexed token to its bucket there (`rete::index`). Keeps the old table if the
+    /// allocator refuses (chains longer, results the same).
+    #[cold]
+    #[inline(never)]
+    pub(crate) fn grow_token_index(&mut self) {
+        let (have, tokens) = (self.amem_buckets.len(), self.tokens.len());
+        if have >= tokens {
+            return;
+        }
+        let Some(storage) = self.grower.storage else {
+            return;
+        };
+        let mut len = have.max(2);
+        while len < tokens {
+            len *= 2;
+        }
+        let mut old = Vec::new();
+        if old.try_reserve_exact(have).is_err() {
+            return;
+        }
+        // SAFETY: as in `rebind`: the storage this `Core` was made from.
+        let s = unsafe { &mut *storage.as_ptr() };
+        if reserve(&mut s.amem_buckets, len).is_err() {
+            return;
+        }
+        old.extend_from_slice(&s.amem_buckets);
+        s.amem_buckets.resize(len, TokenId::NONE);
+        s.amem_buckets.fill(TokenId::NONE);
+        self.rebind(Pool::Tokens, storage);
+        self.relink_token_index(&old);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+
+    use std::boxed::Box;
+    use std::format;
+    use std::string::String;
+
+    use super::*;
+    use crate::testutil::CaptureHost;
+    use crate::DefaultEngine;
+
+    /// Runs `src` as a batch (no echo) on `engine`; returns all output.
+    fn run<S: crate::Storage>(engine: &mut crate::Engine<S>, src: &str) -> String {
+        let mut host = CaptureHost::default();
+        engine.batch_str(&mut host, src, false);
+        host.out
+    }
+
+    /// A program past the fixed host engine's pools: 4,500 `n` facts and as many `m`
+    /// ones (of 4,096 facts), 520 rules (of 512), joins on a shared variable (the token
+    /// index grows under them) and a `not` per rule, with the agenda printed so the
+    /// order of what is left shows.
+    fn big_program() -> String {
+        let mut p = String::from("(defglobal ?*hits* = 0)\n");
+        for r in 0..520 {
+            p.push_str(&format!(
+                "(defrule r{r} (n ?x {r}) (m ?x) (not (gone ?x)) => (bind ?*hits* (+ ?*hits* 1)))\n"
+            ));
+        }
+        p.push_str(
+            "(defrule pair (n ?x ?) (m ?x) (test (= (mod ?x 7) 0)) => (assert (gone (+ ?x 3))))\n",
+        );
+        for i in 0..4500 {
+            p.push_str(&format!("(assert (n {i} {}))\n", i % 520));
+        }
+        for i in (0..4500).rev() {
+            p.push_str(&format!("(assert (m {i}))\n"));
+        }
+        p.push_str("(run 3000)\n(printout t \"hits \" ?*hits* crlf)\n(agenda)\n");
+        p.push_str("(printout t (length$ (find-all-facts ((?f gone)) TRUE)) crlf)\n");
+        p
+    }
+
+    #[test]
+    fn a_program_past_the_host_capacities_runs_as_on_a_roomy_fixed_engine() {
+        // the fixed engines are built on the stack on their way into the box
+        std::thread::Builder::new()
+            .stack_size(1 << 30)
+            .spawn(past_the_host_capacities)
+            .and_then(|t| t.join().map_err(|_| std::io::Error::other("test failed")))
+            .unwrap();
+    }
+
+    fn past_the_host_capacities() {
+        let program = big_program();
+        let mut grown = Box::new(GrowEngine::with_storage(GrowStorage::new()));
+        let out = run(&mut grown, &program);
+        assert!(
+            !out.contains("out of "),
+            "the growing engine ran out: {out}"
+        );
+        assert!(out.contains("hits "), "{out}");
+        // every pool it outgrew grew, and the start was the small one
+        let stats = grown.stats();
+        for pool in [Pool::Facts, Pool::Rules, Pool::Tokens, Pool::FactValues] {
+            let (used, capacity) = stats.get(pool);
+            assert!(
+                used as usize > Capacities::SMALL.get(pool),
+                "{pool:?} {used}"
+            );
+            assert!(capacity >= used, "{pool:?} {used} of {capacity}");
+        }
+        assert!(stats.get(Pool::Facts).0 as usize > Capacities::HOST.facts);
+        // the same run on a fixed engine roomy enough for it (on the heap)
+        crate::engine_storage! {
+            struct Roomy { facts: 16_384, fact_values: 65_536, rules: 1024, joins: 4096,
+                join_memories: 4096, tokens: 262_144, activations: 16_384, exprs: 65_536,
+                ..Capacities::HOST }
+        }
+        let mut fixed = Box::new(crate::Engine::with_storage(Roomy::new()));
+        let expected = run(&mut fixed, &program);
+        assert!(!expected.contains("out of "), "the roomy engine ran out");
+        if let Some((i, (a, b))) = out
+            .lines()
+            .zip(expected.lines())
+            .enumerate()
+            .find(|(_, (a, b))| a != b)
+        {
+            panic!("line {i}: grown {a:?}, fixed {b:?}");
+        }
+        assert_eq!(out, expected);
+        // and a default (fixed host) engine runs out on it
+        let mut small = Box::new(DefaultEngine::new());
+        assert!(run(&mut small, &program).contains("out of "));
+    }
+
+    #[test]
+    fn a_pool_at_its_limit_is_the_capacity_error_and_the_engine_goes_on() {
+        let limit = Capacities {
+            facts: 200,
+            ..GrowStorage::NO_LIMIT
+        };
+        let mut e = Box::new(GrowEngine::with_storage(GrowStorage::with_limits(
+            Capacities::SMALL,
+            limit,
+        )));
+        let mut host = CaptureHost::default();
+        let mut last = Ok(());
+        for i in 0..300 {
+            let r = e.assert_str(&mut host, &format!("(n {i})"));
+            if r.is_err() {
+                last = r.map(|_| ());
+                break;
+            }
+        }
+        match last {
+            Err(crate::EngineError::Capacity(c)) => {
+                assert_eq!((c.pool, c.capacity), (Pool::Facts, 200));
+            }
+            other => panic!("expected the facts' capacity error, got {other:?}"),
+        }
+        // grown up to the limit (from the small start), and nothing lost
+        assert_eq!(e.stats().get(Pool::Facts).1, 200);
+        let out = run(
+            &mut e,
+            "(printout t (length$ (find-all-facts ((?f n)) TRUE)) crlf)",
+        );
+        assert_eq!(out.trim(), "199");
+    }
+
+    #[test]
+    fn no_limit_is_the_index_types() {
+        let s = GrowStorage::with_limits(Capacities::SMALL, Capacities::uniform(usize::MAX));
+        assert!(s.limits.iter().all(|&l| l == INDEX_LIMIT));
+        assert_eq!(INDEX_LIMIT, NONE as usize - 1);
+        assert_eq!(s.lens(), Capacities::SMALL.to_array());
+        assert_eq!(GrowStorage::new().lens(), GrowStorage::START.to_array());
+    }
+
+    #[test]
+    fn a_fixed_storage_does_not_grow() {
+        let mut e = Box::new(crate::SmallEngine::new());
+        let mut host = crate::NullHost;
+        let mut core = e.core(&mut host);
+        let have = core.capacities()[Pool::Tokens as usize];
+        let err = core.grow(Pool::Tokens, have + 1).unwrap_err();
+        assert_eq!((err.pool, err.capacity as usize), (Pool::Tokens, have));
+    }
+}
