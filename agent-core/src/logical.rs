@@ -19,7 +19,7 @@
 //! `logical`, and the per-token and per-fact list heads cost a word each.
 
 #[cfg(feature = "logical")]
-use crate::engine::{cap, Core};
+use crate::engine::Core;
 #[cfg(feature = "logical")]
 use crate::error::{CapacityError, Pool};
 #[cfg(feature = "logical")]
@@ -200,12 +200,16 @@ impl Core<'_> {
 
     /// Whether there is room for the support an assert may add now.
     #[inline(always)]
-    pub(crate) fn support_room(&self) -> Result<(), CapacityError> {
+    pub(crate) fn support_room(&mut self) -> Result<(), CapacityError> {
         let l = &self.st.logical;
         if l.bind == TokenId::NONE || l.free != NONE || (l.used as usize) < self.supports.len() {
             return Ok(());
         }
-        Err(cap(Pool::Supports, self.supports.len()))
+        // with feature `grow` the pool grows (or that is its capacity error)
+        #[cfg(feature = "grow")]
+        return self.grow(Pool::Supports, self.st.logical.used as usize + 1);
+        #[cfg(not(feature = "grow"))]
+        Err(crate::engine::cap(Pool::Supports, self.supports.len()))
     }
 
     /// Support for a fact just created (before its watch line): the firing rule's
