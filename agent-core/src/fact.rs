@@ -544,7 +544,10 @@ impl Core<'_> {
         // no pattern matching runs here (asserting during it is refused): the token
         // index may grow now (`grow`)
         #[cfg(feature = "grow")]
-        if self.amem_buckets.len() < self.tokens.len() && self.st.net.matching == 0 {
+        if self.amem_buckets.len() < 2 * self.tokens.len()
+            && self.grows()
+            && self.st.net.matching == 0
+        {
             self.grow_token_index();
         }
         let defer = core::mem::take(&mut self.st.net.defer_next);

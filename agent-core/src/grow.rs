@@ -12,7 +12,8 @@
 //! growth that cannot happen (the limit, or the allocator refusing) is the pool's
 //! `CapacityError`, with the storage as it was.
 //!
-//! The hash tables over the pools grow with them: the fact and symbol tables are
+//! The hash tables over the pools start at the fixed host engine's length and keep
+//! twice as many buckets as their pool has entries: the fact and symbol tables are
 //! rebuilt at once (their chains are found again from each entry's hash), the token
 //! index (alpha- and beta-memory buckets, whose chains a join may be walking) at the
 //! next assert, when no pattern matching runs (`grow_token_index`); its tokens keep
@@ -32,15 +33,40 @@ use crate::value::NONE;
 /// slot's number and a token's id must stay distinct from `NONE`).
 pub const INDEX_LIMIT: usize = NONE as usize - 1;
 
-/// Whether an array is the token index's bucket heads (grown by `grow_token_index`,
-/// not with the tokens).
-macro_rules! token_heads {
+/// The starting length of an array that is a hash table's bucket heads (`Some`: at
+/// least the fixed host engine's, so a small program's chains are no longer there;
+/// grown to twice its pool's length by `grow_heads`, not with the pool), or `None` for
+/// an array with one entry per pool entry.
+macro_rules! heads {
+    (fact_buckets) => {
+        Some(Capacities::HOST.facts)
+    };
+    (sym_buckets) => {
+        Some(Capacities::HOST.symbols)
+    };
     (amem_buckets) => {
-        true
+        Some(Capacities::HOST.tokens)
     };
     ($other:ident) => {
-        false
+        None::<usize>
     };
+}
+
+/// Doubles the bucket heads `v` (new ones `empty`) until there are `at_least`; the old
+/// length if they grew (the old heads stay in front), `None` if they were long enough
+/// or the allocator refuses.
+fn grow_heads<T: Clone>(v: &mut Vec<T>, at_least: usize, empty: T) -> Option<usize> {
+    let old = v.len();
+    if old >= at_least {
+        return None;
+    }
+    let mut len = old.max(2);
+    while len < at_least {
+        len = len.saturating_mul(2);
+    }
+    reserve(v, len).ok()?;
+    v.resize(len, empty);
+    Some(old)
 }
 
 /// Makes room for `len` entries in `v` without changing it.
@@ -79,8 +105,11 @@ macro_rules! grow_items {
                     $(
                         $first: alloc::vec![$fempty; start[Pool::$variant as usize]
                             .min(limits[Pool::$variant as usize])],
-                        $($arr: alloc::vec![$aempty; start[Pool::$variant as usize]
-                            .min(limits[Pool::$variant as usize])],)*
+                        $($arr: alloc::vec![$aempty; {
+                            let n = start[Pool::$variant as usize]
+                                .min(limits[Pool::$variant as usize]);
+                            heads!($arr).map_or(n, |h| n.max(h))
+                        }],)*
                     )*
                 }
             }
@@ -97,11 +126,11 @@ macro_rules! grow_items {
                     $(Pool::$variant => {
                         // all or nothing: reserve every array before changing one
                         reserve(&mut self.$first, len)?;
-                        $(if !token_heads!($arr) {
+                        $(if heads!($arr).is_none() {
                             reserve(&mut self.$arr, len)?;
                         })*
                         self.$first.resize(len, $fempty);
-                        $(if !token_heads!($arr) {
+                        $(if heads!($arr).is_none() {
                             self.$arr.resize(len, $aempty);
                         })*
                     })*
@@ -241,13 +270,31 @@ impl Core<'_> {
         }
         let len = (need - rom).max(ram.saturating_mul(2)).min(limit);
         s.resize(pool, len).map_err(|()| full)?;
-        self.rebind(pool, storage);
+        // hash tables: twice as many buckets as entries (a table that cannot grow
+        // keeps its chains, longer)
         match pool {
-            Pool::Facts => self.rehash_facts(ram),
-            Pool::Symbols => self.rehash_symbols(),
+            Pool::Facts => {
+                if let Some(old) = grow_heads(&mut s.fact_buckets, 2 * len, NONE) {
+                    self.rebind(pool, storage);
+                    self.rehash_facts(old);
+                }
+            }
+            Pool::Symbols => {
+                if grow_heads(&mut s.sym_buckets, 2 * len, NONE).is_some() {
+                    self.rebind(pool, storage);
+                    self.rehash_symbols();
+                }
+            }
             _ => {}
         }
+        self.rebind(pool, storage);
         Ok(())
+    }
+
+    /// Whether this `Core`'s storage grows.
+    #[inline(always)]
+    pub(crate) fn grows(&self) -> bool {
+        self.grower.storage.is_some()
     }
 
     /// Puts every fact of the duplicate index's first `old` buckets in its bucket of
@@ -312,34 +359,26 @@ impl Core<'_> {
     }
 
     /// At a point where no pattern matching runs (an assert's start): doubles the token
-    /// index until it has a bucket per token, as a fixed engine's, and moves every
-    /// indexed token to its bucket there (`rete::index`). Keeps the old table if the
-    /// allocator refuses (chains longer, results the same).
+    /// index until it has two buckets per token, and moves every indexed token to its
+    /// bucket there (`rete::index`). Keeps the old table if the allocator refuses
+    /// (chains longer, results the same).
     #[cold]
     #[inline(never)]
     pub(crate) fn grow_token_index(&mut self) {
-        let (have, tokens) = (self.amem_buckets.len(), self.tokens.len());
-        if have >= tokens {
-            return;
-        }
         let Some(storage) = self.grower.storage else {
             return;
         };
-        let mut len = have.max(2);
-        while len < tokens {
-            len *= 2;
-        }
+        let have = self.amem_buckets.len();
         let mut old = Vec::new();
         if old.try_reserve_exact(have).is_err() {
             return;
         }
+        old.extend_from_slice(&self.amem_buckets[..]);
         // SAFETY: as in `rebind`: the storage this `Core` was made from.
         let s = unsafe { &mut *storage.as_ptr() };
-        if reserve(&mut s.amem_buckets, len).is_err() {
+        if grow_heads(&mut s.amem_buckets, 2 * self.tokens.len(), TokenId::NONE).is_none() {
             return;
         }
-        old.extend_from_slice(&s.amem_buckets);
-        s.amem_buckets.resize(len, TokenId::NONE);
         s.amem_buckets.fill(TokenId::NONE);
         self.rebind(Pool::Tokens, storage);
         self.relink_token_index(&old);
