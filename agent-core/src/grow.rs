@@ -272,22 +272,17 @@ impl Core<'_> {
         s.resize(pool, len).map_err(|()| full)?;
         // hash tables: twice as many buckets as entries (a table that cannot grow
         // keeps its chains, longer)
-        match pool {
-            Pool::Facts => {
-                if let Some(old) = grow_heads(&mut s.fact_buckets, 2 * len, NONE) {
-                    self.rebind(pool, storage);
-                    self.rehash_facts(old);
-                }
-            }
-            Pool::Symbols => {
-                if grow_heads(&mut s.sym_buckets, 2 * len, NONE).is_some() {
-                    self.rebind(pool, storage);
-                    self.rehash_symbols();
-                }
-            }
+        let grown_heads = match pool {
+            Pool::Facts => grow_heads(&mut s.fact_buckets, 2 * len, NONE),
+            Pool::Symbols => grow_heads(&mut s.sym_buckets, 2 * len, NONE),
+            _ => None,
+        };
+        self.rebind(pool, storage);
+        match (pool, grown_heads) {
+            (Pool::Facts, Some(old)) => self.rehash_facts(old),
+            (Pool::Symbols, Some(_)) => self.rehash_symbols(),
             _ => {}
         }
-        self.rebind(pool, storage);
         Ok(())
     }
 
