@@ -108,6 +108,17 @@ engine_impl! {
         !cx.st.mode.exit
     }
 
+    /// Runs a command file as CLIPS's batch mode does (`clips -f FILE`): prompts, echo
+    /// and results, the file streamed through [`Host::read_file_at`]. As in CLIPS,
+    /// `read`, `readline` and `get-char` from `stdin` in its commands take the file's
+    /// next lines (then the host's standard input after its end). Returns false once
+    /// `(exit)` ran.
+    pub fn batch_path(&mut self, host: &mut dyn Host, path: &str) -> bool {
+        let mut cx = self.core(host);
+        let _ = cx.batch_file_stream(path, true);
+        !cx.st.mode.exit
+    }
+
     /// `batch*` of a text: runs its commands without prompts, echo or results (what
     /// `clips -f2 FILE` does). Returns false once `(exit)` ran.
     pub fn batch_file_quiet(&mut self, host: &mut dyn Host, source_name: &str, text: &str) -> bool {

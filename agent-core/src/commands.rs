@@ -332,7 +332,10 @@ impl Core<'_> {
         let random = self.st.random;
         // the strategy is a setting: CLIPS keeps it across clear
         let strategy = self.st.agenda.strategy;
+        // and so do the batch files running and where their input is
+        let io = core::mem::take(&mut self.st.io);
         *self.st = crate::engine::State::new();
+        self.st.io = io;
         // a compiled rule base's nodes read in place go with the rest
         #[cfg(feature = "in-place")]
         {
@@ -1165,13 +1168,43 @@ impl Core<'_> {
             }
             if !only_blank(command) {
                 self.st.io.line_base = item.line_base;
-                self.exec_command(command, path);
+                let moved = self.exec_batch_command(command, path, echo, item.end_offset);
                 self.st.io.line_base = 0;
+                if let Some((offset, lines)) = moved {
+                    file.skip_to(offset, lines);
+                }
             }
         }
         self.st.io.quiet_results = saved_quiet;
         self.st.io.batch_depth -= 1;
         Ok(done)
+    }
+
+    /// Runs one command of a batch file (`path`) that ends at byte `end`. With `echo`
+    /// (CLIPS's batch mode, not `batch*`) the command's reads from stdin take the
+    /// file's next lines (`builtins::io`): then where the file goes on (offset, and
+    /// the newlines the reads took) when they took any.
+    fn exec_batch_command(
+        &mut self,
+        command: &str,
+        path: &str,
+        echo: bool,
+        end: u64,
+    ) -> Option<(u64, u32)> {
+        #[cfg(feature = "parser")]
+        if echo {
+            let mut input = crate::engine::BatchInput::new();
+            input.active = true;
+            input.offset = end;
+            let _ = input.path.write_str(path);
+            let outer = core::mem::replace(&mut self.st.io.batch_input, input);
+            self.exec_command(command, path);
+            let left = core::mem::replace(&mut self.st.io.batch_input, outer);
+            return (left.offset != end).then_some((left.offset, left.lines));
+        }
+        let _ = (echo, end);
+        self.exec_command(command, path);
+        None
     }
 
     /// Runs the file a `batch` command asked for, as the next input of the command loop.

@@ -369,6 +369,10 @@ pub struct BatchIo {
     /// (`batch` parses its file: only with the feature `parser`).
     #[cfg(feature = "parser")]
     pub pending_batch: crate::value::TextBuf<256>,
+    /// The batch file (with echo) whose commands run now: in CLIPS's batch mode
+    /// `read`, `readline` and `get-char` from `stdin` take its next lines.
+    #[cfg(feature = "parser")]
+    pub batch_input: BatchInput,
     /// How many batch files are running inside each other.
     pub batch_depth: u8,
     /// `batch*`: commands print no results.
@@ -389,12 +393,47 @@ impl BatchIo {
             line_base: 0,
             #[cfg(feature = "parser")]
             pending_batch: crate::value::TextBuf::new(),
+            #[cfg(feature = "parser")]
+            batch_input: BatchInput::new(),
             batch_depth: 0,
             quiet_results: false,
             prompt_shown: false,
             announce: None,
             progress_printed: false,
         }
+    }
+}
+
+/// Where standard input comes from while a batch file runs (`BatchIo::batch_input`):
+/// the file and the offset of its first byte no command or read has consumed. The
+/// batch loop sets it before each command and picks up where reads left it.
+#[cfg(feature = "parser")]
+pub struct BatchInput {
+    /// A batch file is running; false at the prompt, in `batch*` and once the file's
+    /// end was read (then input comes from the host's standard input, as in CLIPS).
+    pub active: bool,
+    pub path: crate::value::TextBuf<256>,
+    pub offset: u64,
+    /// Newlines reads consumed since the batch loop set `offset` (error positions).
+    pub lines: u32,
+}
+
+#[cfg(feature = "parser")]
+impl BatchInput {
+    pub const fn new() -> BatchInput {
+        BatchInput {
+            active: false,
+            path: crate::value::TextBuf::new(),
+            offset: 0,
+            lines: 0,
+        }
+    }
+}
+
+#[cfg(feature = "parser")]
+impl Default for BatchInput {
+    fn default() -> Self {
+        Self::new()
     }
 }
 

@@ -50,6 +50,42 @@ pub trait Host {
     fn time(&mut self) -> f64 {
         0.0
     }
+    /// Opens file `path` as logical name `name` (`open`): output to the name comes
+    /// through [`Host::write_str`] with it as the router, input through
+    /// [`Host::read_byte`]. The engine has checked that the name is free; a host
+    /// without files (the robot) refuses with `Unsupported`, and `open` says so.
+    fn open_file(&mut self, _name: &str, _path: &str, _mode: OpenMode) -> Result<(), HostIoError> {
+        Err(HostIoError::Unsupported)
+    }
+    /// Closes the file opened as `name`; false when no file has that name.
+    fn close_file(&mut self, _name: &str) -> bool {
+        false
+    }
+    /// Closes every open file (`(close)`); false when none was open.
+    fn close_all_files(&mut self) -> bool {
+        false
+    }
+    /// Whether `name` is the logical name of a file this host opened.
+    fn is_open_file(&self, _name: &str) -> bool {
+        false
+    }
+    /// The next byte of input `name`: standard input for `stdin`, else a file opened
+    /// with [`Host::open_file`]; `Ok(None)` at its end. `Unsupported` when the host has
+    /// no such input (`read` reports it rather than pretending the input ended).
+    fn read_byte(&mut self, _name: &str) -> Result<Option<u8>, HostIoError> {
+        Err(HostIoError::Unsupported)
+    }
+    /// Gives back the byte [`Host::read_byte`] returned last for `name`: the next read
+    /// returns it again (`read` stops at the character after a token, as CLIPS does).
+    fn unread_byte(&mut self, _name: &str, _byte: u8) {}
+    /// Deletes a file (`remove`).
+    fn remove_file(&mut self, _path: &str) -> Result<(), HostIoError> {
+        Err(HostIoError::Unsupported)
+    }
+    /// Renames a file (`rename`).
+    fn rename_file(&mut self, _from: &str, _to: &str) -> Result<(), HostIoError> {
+        Err(HostIoError::Unsupported)
+    }
     /// Polled once per iteration of `while`, `loop-for-count`, `progn$`/`foreach` and
     /// once per rule firing of `run`: returning true stops the current execution (as
     /// CLIPS's keyboard interrupt does) with `EvalErrorKind::Interrupted`. A robot's
@@ -59,6 +95,17 @@ pub trait Host {
     fn interrupt(&mut self) -> bool {
         false
     }
+}
+
+/// How `open` opens a file: CLIPS's modes `"r"`, `"w"`, `"a"` (and their `b` forms,
+/// the same on the hosts we have).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum OpenMode {
+    Read,
+    /// Created, or emptied if it exists.
+    Write,
+    /// Created if missing, written at its end.
+    Append,
 }
 
 /// A host that drops all output.
@@ -71,7 +118,7 @@ impl Host for NullHost {
 /// Adapter so `core::fmt::Write` can target a router.
 pub struct RouterWriter<'h> {
     pub host: &'h mut dyn Host,
-    pub router: &'static str,
+    pub router: &'h str,
 }
 
 impl core::fmt::Write for RouterWriter<'_> {

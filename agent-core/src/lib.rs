@@ -206,7 +206,7 @@ pub use error::{
     Message, Pool,
 };
 pub use handle::{JoinId, TokenId};
-pub use host::{Host, NullHost};
+pub use host::{Host, NullHost, OpenMode};
 pub use host_fn::{ExternalFn, HostCall};
 pub use invariants::Violation;
 pub use parser::INPUT_ENDED;

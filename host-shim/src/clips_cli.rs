@@ -13,12 +13,13 @@
 //! (before the CLIPS options; not a CLIPS option) is still accepted and changes nothing:
 //! it chose a larger fixed engine before the pools grew.
 
-use std::io::{BufRead, Write};
+use std::collections::HashMap;
+use std::io::{BufRead, Read, Write};
 use std::process::ExitCode;
 
 use agent_core::commands::command_complete;
 use agent_core::grow::GrowEngine;
-use agent_core::{Host, HostIoError, LoadError};
+use agent_core::{Host, HostIoError, LoadError, OpenMode};
 
 #[derive(clap::Args)]
 pub struct Args {
@@ -45,18 +46,164 @@ enum Step {
     Banner,
 }
 
-/// Host for the command line: every router goes to stdout; files via std::fs.
+/// A file `open` opened, by its logical name.
+enum OpenFile {
+    /// Read a byte at a time; `back` is a byte `read` gave back.
+    Read {
+        file: std::io::BufReader<std::fs::File>,
+        back: Option<u8>,
+    },
+    Write(std::io::BufWriter<std::fs::File>),
+}
+
+/// Standard input, shared by the prompt loop and the read functions.
+struct Stdin {
+    lines: std::io::StdinLock<'static>,
+    back: Option<u8>,
+}
+
+impl Stdin {
+    fn read_byte(&mut self) -> std::io::Result<Option<u8>> {
+        if let Some(b) = self.back.take() {
+            return Ok(Some(b));
+        }
+        let mut b = [0u8; 1];
+        loop {
+            match self.lines.read(&mut b) {
+                Ok(0) => return Ok(None),
+                Ok(_) => return Ok(Some(b[0])),
+                Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
+                Err(e) => return Err(e),
+            }
+        }
+    }
+
+    /// The next line (with its newline); empty at the end.
+    fn read_line(&mut self, line: &mut String) -> std::io::Result<usize> {
+        let mut n = 0;
+        if let Some(b) = self.back.take() {
+            line.push(char::from(b));
+            n = 1;
+            if b == b'\n' {
+                return Ok(n);
+            }
+        }
+        Ok(n + self.lines.read_line(line)?)
+    }
+}
+
+/// Host for the command line: every router goes to stdout, but the logical names of
+/// files `open` opened; files via std::fs.
 struct CliHost {
     started: std::time::Instant,
     out: std::io::BufWriter<std::io::Stdout>,
     /// A `-f`/`-f2`/`-l` file could not be read, or a `-l` file hit something
     /// unrecoverable: the process exits non-zero (`exit_code`).
     failed: bool,
+    files: HashMap<String, OpenFile>,
+    stdin: Stdin,
 }
 
 impl Host for CliHost {
-    fn write_str(&mut self, _router: &str, text: &str) {
+    fn write_str(&mut self, router: &str, text: &str) {
+        if !self.files.is_empty() {
+            match self.files.get_mut(router) {
+                Some(OpenFile::Write(f)) => {
+                    let _ = f.write_all(text.as_bytes());
+                    return;
+                }
+                // as CLIPS's fprintf to a file opened for reading: nothing written
+                Some(OpenFile::Read { .. }) => return,
+                None => {}
+            }
+        }
         let _ = self.out.write_all(text.as_bytes());
+    }
+
+    fn open_file(&mut self, name: &str, path: &str, mode: OpenMode) -> Result<(), HostIoError> {
+        let mut options = std::fs::OpenOptions::new();
+        match mode {
+            OpenMode::Read => options.read(true),
+            OpenMode::Write => options.write(true).create(true).truncate(true),
+            OpenMode::Append => options.append(true).create(true),
+        };
+        let file = options.open(path).map_err(|e| match e.kind() {
+            std::io::ErrorKind::NotFound => HostIoError::NotFound,
+            _ => HostIoError::Other,
+        })?;
+        let open = match mode {
+            OpenMode::Read => OpenFile::Read {
+                file: std::io::BufReader::new(file),
+                back: None,
+            },
+            OpenMode::Write | OpenMode::Append => OpenFile::Write(std::io::BufWriter::new(file)),
+        };
+        self.files.insert(name.to_string(), open);
+        Ok(())
+    }
+
+    fn close_file(&mut self, name: &str) -> bool {
+        match self.files.remove(name) {
+            Some(OpenFile::Write(mut f)) => {
+                let _ = f.flush();
+                true
+            }
+            Some(OpenFile::Read { .. }) => true,
+            None => false,
+        }
+    }
+
+    fn close_all_files(&mut self) -> bool {
+        let any = !self.files.is_empty();
+        let names: Vec<String> = self.files.keys().cloned().collect();
+        for name in names {
+            self.close_file(&name);
+        }
+        any
+    }
+
+    fn is_open_file(&self, name: &str) -> bool {
+        self.files.contains_key(name)
+    }
+
+    fn read_byte(&mut self, name: &str) -> Result<Option<u8>, HostIoError> {
+        if name == "stdin" {
+            // what was asked before the read is on the screen first
+            let _ = self.out.flush();
+            return self.stdin.read_byte().map_err(|_| HostIoError::Other);
+        }
+        match self.files.get_mut(name) {
+            Some(OpenFile::Read { file, back }) => {
+                if let Some(b) = back.take() {
+                    return Ok(Some(b));
+                }
+                let mut b = [0u8; 1];
+                match file.read(&mut b) {
+                    Ok(0) => Ok(None),
+                    Ok(_) => Ok(Some(b[0])),
+                    Err(_) => Err(HostIoError::Other),
+                }
+            }
+            // a file opened for writing reads as ended, as in CLIPS
+            Some(OpenFile::Write(_)) => Ok(None),
+            None => Err(HostIoError::NotFound),
+        }
+    }
+
+    fn unread_byte(&mut self, name: &str, byte: u8) {
+        if name == "stdin" {
+            self.stdin.back = Some(byte);
+        } else if let Some(OpenFile::Read { back, .. }) = self.files.get_mut(name) {
+            *back = Some(byte);
+        }
+    }
+
+    fn remove_file(&mut self, path: &str) -> Result<(), HostIoError> {
+        std::fs::remove_file(path).map_err(|_| HostIoError::Other)
+    }
+
+    fn rename_file(&mut self, from: &str, to: &str) -> Result<(), HostIoError> {
+        std::fs::rename(from, to).map_err(|_| HostIoError::Other)
     }
 
     fn read_file(&mut self, path: &str, buf: &mut [u8]) -> Result<usize, HostIoError> {
@@ -160,7 +307,7 @@ pub fn main(args: Args) -> ExitCode {
 /// The engine calls the command line makes.
 trait CliEngine {
     fn run_pending_batch(&mut self, host: &mut dyn Host) -> bool;
-    fn batch_file(&mut self, host: &mut dyn Host, name: &str, text: &str, echo: bool) -> bool;
+    fn batch_path(&mut self, host: &mut dyn Host, path: &str) -> bool;
     fn batch_file_quiet(&mut self, host: &mut dyn Host, name: &str, text: &str) -> bool;
     fn load_str(&mut self, host: &mut dyn Host, name: &str, text: &str)
         -> Result<usize, LoadError>;
@@ -175,14 +322,8 @@ macro_rules! cli_engine {
             fn run_pending_batch(&mut self, host: &mut dyn Host) -> bool {
                 <$ty>::run_pending_batch(self, host)
             }
-            fn batch_file(
-                &mut self,
-                host: &mut dyn Host,
-                name: &str,
-                text: &str,
-                echo: bool,
-            ) -> bool {
-                <$ty>::batch_file(self, host, name, text, echo)
+            fn batch_path(&mut self, host: &mut dyn Host, path: &str) -> bool {
+                <$ty>::batch_path(self, host, path)
             }
             fn batch_file_quiet(&mut self, host: &mut dyn Host, name: &str, text: &str) -> bool {
                 <$ty>::batch_file_quiet(self, host, name, text)
@@ -214,6 +355,11 @@ fn session(engine: &mut dyn CliEngine, steps: Vec<Step>) -> ExitCode {
         started: std::time::Instant::now(),
         out: std::io::BufWriter::new(std::io::stdout()),
         failed: false,
+        files: HashMap::new(),
+        stdin: Stdin {
+            lines: std::io::stdin().lock(),
+            back: None,
+        },
     };
     // As CLIPS: `-l` and `-f2` files run at start-up, before the banner; `-f` files are
     // read by the command loop after it, as if typed at the prompt.
@@ -260,7 +406,8 @@ fn run_step(engine: &mut dyn CliEngine, host: &mut CliHost, step: Step) -> bool 
             engine.run_pending_batch(host)
         }
         Step::Batch { path, echo } => match std::fs::read_to_string(&path) {
-            Ok(text) if echo => engine.batch_file(host, &path, &text, true),
+            // streamed by the engine, so that reads from stdin take its lines
+            Ok(_) if echo => engine.batch_path(host, &path),
             Ok(text) => engine.batch_file_quiet(host, &path, &text),
             Err(e) => {
                 let _ = host.out.flush();
@@ -293,8 +440,6 @@ fn run_step(engine: &mut dyn CliEngine, host: &mut CliHost, step: Step) -> bool 
 
 /// The prompt loop on standard input.
 fn interactive(engine: &mut dyn CliEngine, host: &mut CliHost) {
-    let stdin = std::io::stdin();
-    let mut lines = stdin.lock();
     let mut buf = String::new();
     loop {
         if buf.trim().is_empty() {
@@ -303,7 +448,7 @@ fn interactive(engine: &mut dyn CliEngine, host: &mut CliHost) {
         }
         let _ = host.out.flush();
         let mut line = String::new();
-        match lines.read_line(&mut line) {
+        match host.stdin.read_line(&mut line) {
             Ok(0) | Err(_) => return,
             Ok(_) => {}
         }

@@ -368,4 +368,6 @@ differential_programs! {
     p241_logical_self_retract => "241-logical-self-retract",
     p242_logical_not_exists_modify => "242-logical-not-exists-modify",
     p243_logical_strategies => "243-logical-strategies",
+    p270_io_read_batch => "270-io-read-batch",
+    p271_io_files => "271-io-files",
 }

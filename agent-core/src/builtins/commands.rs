@@ -209,7 +209,7 @@ fn printout(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     while a != NONE {
         // what a call prints must follow what is printed before it
         if !is_leaf(cx.exprs[a as usize].op) && !b.is_empty() {
-            cx.write(routed, b.as_str());
+            cx.write(routed.name(), b.as_str());
             b.clear();
         }
         let v = match cx.eval(a) {
@@ -224,7 +224,7 @@ fn printout(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
         }
         // room for a crlf or tab; a value that does not fit goes out alone
         if b.len() > 900 {
-            cx.write(routed, b.as_str());
+            cx.write(routed.name(), b.as_str());
             b.clear();
         }
         match v {
@@ -239,7 +239,7 @@ fn printout(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
                 if cx.write_printout(&mut b, v).is_err() {
                     // out goes what came before it, then the value (cut past 1 KiB)
                     b.truncate(len);
-                    cx.write(routed, b.as_str());
+                    cx.write(routed.name(), b.as_str());
                     b.clear();
                     let _ = cx.write_printout(&mut b, v);
                 }
@@ -247,7 +247,7 @@ fn printout(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
         }
         a = cx.exprs[a as usize].next;
     }
-    cx.write(routed, b.as_str());
+    cx.write(routed.name(), b.as_str());
     // what the arguments built goes, unless a variable bound there holds it
     super::control::release_scratch(cx, mark);
     r
@@ -262,35 +262,65 @@ fn is_leaf(op: crate::expr::Op) -> bool {
     )
 }
 
-/// Maps a logical name to a router constant (unknown names go to stdout).
-/// The engine router for a CLIPS logical name: `Some(router)`, or `None` for `stdin`
-/// (output to it is dropped). Any other name is `[ROUTER1]` (printed here), as in the
-/// CLIPS command line, which has no other routers.
-pub(super) fn resolve_router(
-    cx: &mut Core<'_>,
-    name: Value,
-) -> Result<Option<&'static str>, EvalError> {
-    const ROUTERS: [(&str, Option<&str>); 9] = [
-        ("t", Some(router::STDOUT)),
-        ("stdout", Some(router::STDOUT)),
-        ("wclips", Some(router::STDOUT)),
-        ("wdialog", Some(router::STDOUT)),
-        ("wdisplay", Some(router::WDISPLAY)),
-        ("wtrace", Some(router::WTRACE)),
-        ("werror", Some(router::WERROR)),
-        ("wwarning", Some(router::WWARNING)),
-        ("stdin", None),
-    ];
+/// CLIPS's own logical names and the engine routers they go to (`None`: `stdin`,
+/// output to which is dropped). `open` refuses them as names in use.
+pub(super) const ROUTERS: [(&str, Option<&str>); 9] = [
+    ("t", Some(router::STDOUT)),
+    ("stdout", Some(router::STDOUT)),
+    ("wclips", Some(router::STDOUT)),
+    ("wdialog", Some(router::STDOUT)),
+    ("wdisplay", Some(router::WDISPLAY)),
+    ("wtrace", Some(router::WTRACE)),
+    ("werror", Some(router::WERROR)),
+    ("wwarning", Some(router::WWARNING)),
+    ("stdin", None),
+];
+
+/// Where output to a logical name goes.
+// lives on the stack for one call, and there is no heap to box the name into
+#[allow(clippy::large_enum_variant)]
+pub(super) enum Routed {
+    /// One of CLIPS's own routers.
+    Engine(&'static str),
+    /// A file the host opened under this name (`open`).
+    #[cfg(feature = "parser")]
+    File(TextBuf<256>),
+}
+
+impl Routed {
+    /// The router name the host is given.
+    pub(super) fn name(&self) -> &str {
+        match self {
+            Routed::Engine(r) => r,
+            #[cfg(feature = "parser")]
+            Routed::File(name) => name.as_str(),
+        }
+    }
+}
+
+/// Where output to a CLIPS logical name goes: `Some(router)`, or `None` for `stdin`
+/// (output to it is dropped). A name that is no router and no open file is
+/// `[ROUTER1]` (printed here), as in the CLIPS command line.
+pub(super) fn resolve_router(cx: &mut Core<'_>, name: Value) -> Result<Option<Routed>, EvalError> {
     if let Value::Sym(s) | Value::Str(s) = name {
         let text = cx.sym_text(s);
         if let Some(&(_, r)) = ROUTERS.iter().find(|(n, _)| *n == text) {
-            return Ok(r);
+            return Ok(r.map(Routed::Engine));
         }
     }
+    #[cfg(feature = "parser")]
+    if let Some(file) = super::io::open_file_name(cx, name) {
+        return Ok(Some(Routed::File(file)));
+    }
+    report_unknown_router(cx, name);
+    Err(EvalError::new(EvalErrorKind::Reported))
+}
+
+/// `[ROUTER1]`: no router takes this logical name.
+pub(super) fn report_unknown_router(cx: &mut Core<'_>, name: Value) {
     cx.write(router::WERROR, "[ROUTER1] Logical name ");
     cx.print_value(router::WERROR, name, false);
     cx.write(router::WERROR, " was not recognized by any routers\n");
-    Err(EvalError::new(EvalErrorKind::Reported))
 }
 
 fn halt(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {

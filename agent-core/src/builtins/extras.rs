@@ -481,21 +481,31 @@ fn ppfact(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
             },
         }
     } else {
-        router::STDOUT
+        super::commands::Routed::Engine(router::STDOUT)
     };
     let ignore_defaults = a.len > 2 && cx.arg(a, 2) != Value::Sym(SYM_FALSE);
     let (num, tmpl) = (cx.facts[f as usize].num, cx.facts[f as usize].tmpl);
     let t = cx.templates[tmpl as usize];
     if t.implied || t.nslots == 0 {
         let (view, host) = cx.split();
-        let mut w = RouterWriter { host, router: to };
+        let mut w = RouterWriter {
+            host,
+            router: to.name(),
+        };
         let _ = view.write_fact(&mut w, f);
         let _ = w.write_char('\n');
         return Ok(Value::Void);
     }
     {
         let (view, host) = cx.split();
-        let _ = write!(RouterWriter { host, router: to }, "({}", view.sym(t.name));
+        let _ = write!(
+            RouterWriter {
+                host,
+                router: to.name()
+            },
+            "({}",
+            view.sym(t.name)
+        );
     }
     let mut printed = false;
     for s in 0..t.nslots {
@@ -510,7 +520,10 @@ fn ppfact(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         let cell = slot_cell(cx, f, s);
         let name = cx.slots[(t.first_slot + s) as usize].name;
         let (view, host) = cx.split();
-        let mut w = RouterWriter { host, router: to };
+        let mut w = RouterWriter {
+            host,
+            router: to.name(),
+        };
         let _ = w.write_str(if printed { "\n   (" } else { " \n   (" });
         printed = true;
         let _ = w.write_str(view.sym(name));
@@ -529,7 +542,7 @@ fn ppfact(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         }
         let _ = w.write_str(if s + 1 < t.nslots { ") " } else { ")" });
     }
-    cx.write(to, ")\n");
+    cx.write(to.name(), ")\n");
     Ok(Value::Void)
 }
 

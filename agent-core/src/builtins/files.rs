@@ -55,6 +55,8 @@ pub struct Item<'s> {
     pub line_base: u32,
     /// The rest of the file, holding no complete item.
     pub last: bool,
+    /// File offset of the byte after the item.
+    pub end_offset: u64,
 }
 
 impl<'b> FileItems<'b> {
@@ -74,6 +76,16 @@ impl<'b> FileItems<'b> {
 
     pub fn path(&self) -> &str {
         self.path.as_str()
+    }
+
+    /// Goes on from file offset `offset`, `lines` newlines further than `position()`
+    /// (bytes read past meanwhile: a command's `read` took batch lines).
+    pub fn skip_to(&mut self, offset: u64, lines: u32) {
+        self.start = 0;
+        self.end = 0;
+        self.offset = offset;
+        self.eof = false;
+        self.lines += lines;
     }
 
     /// Reads the first bytes, so a missing file is reported before anything runs.
@@ -157,11 +169,13 @@ impl<'b> FileItems<'b> {
         let line_base = self.lines;
         let text = core::str::from_utf8(&self.buf[a..b]).unwrap_or("");
         self.lines += text.bytes().filter(|&c| c == b'\n').count() as u32;
+        let end_offset = self.offset - (self.end - b) as u64;
         Ok(Some(Item {
             text,
             len,
             line_base,
             last,
+            end_offset,
         }))
     }
 

@@ -138,7 +138,7 @@ fn format(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         return Err(bad.into());
     }
     if let Some(r) = dest {
-        cx.write(r, out.as_str());
+        cx.write(r.name(), out.as_str());
     }
     Ok(cx.make_string(out.as_str())?)
 }

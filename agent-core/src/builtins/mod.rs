@@ -31,6 +31,8 @@ pub mod facts;
 pub mod files;
 pub mod format;
 pub mod geometry;
+#[cfg(feature = "parser")]
+pub mod io;
 pub mod logical;
 pub mod math;
 pub mod memory;
@@ -188,7 +190,15 @@ pub const TABLES: &[Table] = &[
     compat::TABLE,
     template_slots::TABLE,
     logical::TABLE,
+    IO_TABLE,
 ];
+
+/// The I/O functions (`io`): only with the feature `parser`, like the other builtins
+/// that lex text at run time.
+#[cfg(feature = "parser")]
+const IO_TABLE: Table = io::TABLE;
+#[cfg(not(feature = "parser"))]
+const IO_TABLE: Table = Table::new(&[]);
 
 /// How many rows, and how many wordings of their own, the tables have in all.
 const fn table_sizes() -> (usize, usize) {
