@@ -370,4 +370,5 @@ differential_programs! {
     p243_logical_strategies => "243-logical-strategies",
     p270_io_read_batch => "270-io-read-batch",
     p271_io_files => "271-io-files",
+    p272_fact_value_equals_call => "272-fact-value-equals-call",
 }

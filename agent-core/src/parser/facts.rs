@@ -45,7 +45,20 @@ impl<'s> Parser<'s, '_, '_> {
         if self.cx.templates[tmpl as usize].implied {
             let sv = cap!(self, self.cx.push_expr(Expr::new(Op::SlotVal, 0, 0)))?;
             self.cx.append_child(spec, sv);
-            self.args_until_rparen(sv)?;
+            loop {
+                let t = self.peek();
+                match t.tok {
+                    Tok::RParen => {
+                        self.next();
+                        break;
+                    }
+                    Tok::Eof | Tok::Bad => return Err(self.err(t, "')'")),
+                    _ => {
+                        let v = self.fact_value()?;
+                        self.cx.append_child(sv, v);
+                    }
+                }
+            }
             return Ok(spec);
         }
         loop {
@@ -77,6 +90,21 @@ impl<'s> Parser<'s, '_, '_> {
             }
         }
         Ok(spec)
+    }
+
+    /// One value of a fact: an expression, or `=(call)`, CLIPS's older way of writing
+    /// a call's value there (the `=` is dropped; after it only a call may come).
+    fn fact_value(&mut self) -> PResult<Ix> {
+        if self.peek().tok == Tok::Symbol("=") {
+            self.next();
+            let t = self.peek();
+            if t.tok != Tok::LParen {
+                let mut e = self.err(t, "a function call after '='");
+                e.construct = "function calls";
+                return Err(e);
+            }
+        }
+        self.parse_expr()
     }
 
     /// The index of the slot named by token `st` in deftemplate `tmpl`.
@@ -142,7 +170,7 @@ impl<'s> Parser<'s, '_, '_> {
                     return Err(e);
                 }
                 _ => {
-                    let v = self.parse_expr()?;
+                    let v = self.fact_value()?;
                     if let Some(what) = self.literal_violation(def, v) {
                         let mut e = self.err(t, expected(what));
                         e.detail = LoadDetail::Constraint {

@@ -1,0 +1,18 @@
+; `=(call)` as a value in assert, deffacts, modify and duplicate: the call's value, the
+; `=` dropped (CLIPS's older form); after a lone `=` only a call may come.
+(assert (a =(+ 1 2)))
+(assert (b = (+ 1 2)))
+(assert (c = 3))
+(assert (d =))
+(deftemplate t (slot x) (multislot y))
+(assert (t (x =(+ 2 2)) (y =(create$ 1 2) 3)))
+(deffacts f (e =(* 2 3)) (t (x =(- 10 1))))
+(reset)
+(facts)
+(assert (g =(create$ p q) z))
+(assert (h =?x))
+(defrule r => (bind ?v 9) (assert (i =?v =(+ ?v 1))))
+(defrule m ?f <- (t (x 9)) => (modify ?f (x =(* 3 5)) (y =(create$ a b))) (duplicate ?f (x =(+ 1 1))))
+(run)
+(facts)
+(exit)
