@@ -1,6 +1,6 @@
 //! Builtins CLIPS 6.30 has that the agent image leaves out (agent-core feature `extras`;
 //! its rules call none of them): hyperbolic and reciprocal trigonometry, `deg-grad` and
-//! `grad-deg`, the older names CLIPS still accepts (`!=`, `nth`, `mv-append`,
+//! `grad-deg`, the older names CLIPS still accepts (`!=`, `member`, `nth`, `mv-append`,
 //! `str-explode`, `str-implode`, `mv-subseq`, `mv-delete`, `mv-replace`, `subset`,
 //! `wordp`), `pointerp`, `setgen`, `get-`/`set-dynamic-constraint-checking`, and the
 //! engine settings this engine has one value of (`get-`/`set-auto-float-dividend`,
@@ -59,6 +59,7 @@ pub const FUNCS: &[Builtin] = &[
     trig("grad-deg", grad_deg),
     Builtin::eager("!=", 2, ANY, super::basic::num_ne).args(&[], N).on_error(OnError::False).quiet(),
     Builtin::eager("mv-append", 0, ANY, super::multifield::create).on_error(OnError::EmptyMultifield),
+    Builtin::eager("member", 2, 2, super::multifield::member).args(&[Any, M], Any).on_error(OnError::False),
     Builtin::eager("nth", 2, 2, super::multifield::nth).args(&[I, M], Any).on_error(OnError::Nil),
     Builtin::eager("str-explode", 1, 1, super::multifield::explode).args(&[S], Any).on_error(OnError::EmptyMultifield),
     Builtin::eager("str-implode", 1, 1, super::multifield::implode).args(&[M], Any).on_error(OnError::EmptyString),

@@ -150,7 +150,7 @@ fn find_run(cx: &Core<'_>, needle: MfSpan, hay: MfSpan) -> Option<usize> {
 /// `(member$ x m)`: 1-based index of the first element `eq` to `x`, or FALSE. A
 /// multifield `x` of two or more elements is searched as a run and answered with its
 /// `(start end)`; CLIPS answers an empty one with `(1 0)`.
-fn member(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+pub(super) fn member(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let hay = multi_arg(cx, a, 1, "member$")?;
     let found = match cx.arg(a, 0) {
         Value::Multi(n) if n.len == 1 => find_run(cx, n, hay).map(|at| (at, 1)),
