@@ -144,7 +144,7 @@ impl Core<'_> {
             l.unsupported
         );
         ensure!(
-            l.bind == TokenId::NONE && !l.gone && !l.forcing,
+            l.bind == TokenId::NONE && !l.gone && !l.forcing && !l.detach,
             "logical firing state left set",
             0
         );

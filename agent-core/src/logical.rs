@@ -27,12 +27,17 @@ use crate::handle::{JoinId, TokenId};
 #[cfg(feature = "logical")]
 use crate::value::{Ix, NONE};
 
-/// One logical support: partial match `token` supports fact `fact`. On the unsupported
+/// One logical support: partial match `token`, as passed on to successor `succ` (the
+/// next join or rule end on the supporting rule's path), supports fact `fact`. CLIPS
+/// copies a partial match for every successor, and each copy has its own supports:
+/// rules sharing a partial match support their facts apart, and a copy's support goes
+/// right after what it passed on (CLIPS's order of retractions). On the unsupported
 /// stack (`token` NONE): fact `fact` lost its last support and is to be retracted.
 #[cfg(feature = "logical")]
 #[derive(Clone, Copy, Debug)]
 pub struct Support {
     pub token: TokenId,
+    pub succ: JoinId,
     pub fact: Ix,
     /// Next support of the same partial match (newest first), or next free entry, or
     /// next entry of the unsupported stack.
@@ -45,6 +50,7 @@ pub struct Support {
 impl Support {
     pub const EMPTY: Support = Support {
         token: TokenId::NONE,
+        succ: JoinId::NONE,
         fact: NONE,
         next_of_token: NONE,
         next_of_fact: NONE,
@@ -70,7 +76,8 @@ pub type Deps = ();
 #[cfg(not(feature = "logical"))]
 pub const NO_DEPS: Deps = ();
 
-/// A rule's logical join (NONE: the rule has no `logical` CE).
+/// The successor of a rule's logical join on the rule's path (a join or the rule's end;
+/// NONE: the rule has no `logical` CE).
 #[cfg(feature = "logical")]
 pub type RuleLogical = JoinId;
 #[cfg(feature = "logical")]
@@ -90,12 +97,18 @@ pub struct LogicalState {
     pub live: Ix,
     /// Facts that lost their last support, to retract (newest first).
     pub unsupported: Ix,
-    /// The firing rule's logical partial match (NONE: no logical rule firing).
+    /// The firing rule's logical partial match (NONE: no logical rule firing) and the
+    /// successor whose copy of it gives the support.
     pub bind: TokenId,
+    pub bind_succ: JoinId,
     /// That partial match went during the rule's actions: they assert nothing more.
     pub gone: bool,
     /// The unsupported stack is being retracted (nested operations leave it to that).
     pub forcing: bool,
+    /// Partial matches go with their rule (`undefrule`, a redefinition): the facts
+    /// they support keep only their other supports, or none (unconditional), and
+    /// stay, as in CLIPS.
+    pub detach: bool,
 }
 
 #[cfg(feature = "logical")]
@@ -107,8 +120,10 @@ impl LogicalState {
             live: 0,
             unsupported: NONE,
             bind: TokenId::NONE,
+            bind_succ: JoinId::NONE,
             gone: false,
             forcing: false,
+            detach: false,
         }
     }
 }
@@ -126,6 +141,7 @@ impl Default for LogicalState {
 #[derive(Clone, Copy)]
 pub struct LogicalFrame {
     bind: TokenId,
+    bind_succ: JoinId,
     gone: bool,
 }
 
@@ -140,7 +156,7 @@ impl Core<'_> {
         l.live != 0 || l.unsupported != NONE || l.bind != TokenId::NONE
     }
 
-    /// The logical join of rule `rule` (NONE: none).
+    /// The successor of rule `rule`'s logical join on its path (NONE: no logical CE).
     pub(crate) fn rule_logical_join(&self, rule: Ix) -> JoinId {
         self.rule_logical
             .get(rule as usize)
@@ -148,7 +164,8 @@ impl Core<'_> {
             .unwrap_or(JoinId::NONE)
     }
 
-    /// Records rule `rule`'s logical join; false if the rule is beyond the table.
+    /// Records the successor of rule `rule`'s logical join; false if the rule is beyond
+    /// the table.
     pub(crate) fn set_rule_logical_join(&mut self, rule: Ix, join: JoinId) -> bool {
         match self.rule_logical.get_mut(rule as usize) {
             Some(e) => {
@@ -164,9 +181,15 @@ impl Core<'_> {
     pub(crate) fn logical_enter(&mut self, rule: Ix, token: TokenId) -> LogicalFrame {
         let saved = LogicalFrame {
             bind: self.st.logical.bind,
+            bind_succ: self.st.logical.bind_succ,
             gone: self.st.logical.gone,
         };
-        let join = self.rule_logical_join(rule);
+        let succ = self.rule_logical_join(rule);
+        let join = if succ == JoinId::NONE {
+            JoinId::NONE
+        } else {
+            self.joins[succ].parent
+        };
         let mut t = token;
         if join != JoinId::NONE {
             while t != TokenId::NONE && self.tokens[t].owner != join {
@@ -180,6 +203,7 @@ impl Core<'_> {
             t = TokenId::NONE;
         }
         self.st.logical.bind = t;
+        self.st.logical.bind_succ = succ;
         // a logical rule whose partial match cannot be found supports nothing
         self.st.logical.gone = join != JoinId::NONE && t == TokenId::NONE;
         saved
@@ -188,6 +212,7 @@ impl Core<'_> {
     /// After the actions: the outer firing's logical support again.
     pub(crate) fn logical_leave(&mut self, saved: LogicalFrame) {
         self.st.logical.bind = saved.bind;
+        self.st.logical.bind_succ = saved.bind_succ;
         self.st.logical.gone = saved.gone;
     }
 
@@ -245,6 +270,7 @@ impl Core<'_> {
         };
         self.supports[s as usize] = crate::logical::Support {
             token: t,
+            succ: self.st.logical.bind_succ,
             fact,
             next_of_token: self.token_deps[t.ix()],
             next_of_fact: self.fact_deps[fact as usize],
@@ -338,20 +364,71 @@ impl Core<'_> {
     /// pushed on the unsupported stack, in the order of its list.
     #[inline(always)]
     pub(crate) fn token_leaves(&mut self, t: TokenId) {
-        if t == self.st.logical.bind {
+        self.copy_leaves(t, JoinId::NONE);
+    }
+
+    /// Partial match `t`'s copy passed on to successor `succ` goes (all its copies
+    /// for NONE): see `token_leaves`. Called once what the copy passed on is taken
+    /// back (CLIPS's order).
+    #[inline(always)]
+    pub(crate) fn copy_leaves(&mut self, t: TokenId, succ: JoinId) {
+        if t == self.st.logical.bind && (succ == JoinId::NONE || succ == self.st.logical.bind_succ)
+        {
             self.st.logical.gone = true;
             self.st.logical.bind = TokenId::NONE;
         }
-        if self.st.logical.live == 0 {
+        if self.st.logical.live == 0 || self.token_deps[t.ix()] == NONE {
             return;
         }
+        if succ == JoinId::NONE {
+            self.drop_all_copies(t);
+        } else {
+            self.drop_copy_supports(t, succ);
+        }
+    }
+
+    /// Every copy of `t` goes: their supports in the order CLIPS made the copies (the
+    /// oldest successor first, as `deactivate` takes back what they passed on).
+    #[inline(never)]
+    fn drop_all_copies(&mut self, t: TokenId) {
+        let owner = self.tokens[t].owner;
+        let mut n = 0usize;
+        let mut c = self.joins[owner].first_child;
+        while c != JoinId::NONE {
+            n += 1;
+            c = self.joins[c].next_sibling;
+        }
+        // the child list is newest first: walk it to the i-th entry, from the last
+        for i in (0..n).rev() {
+            let mut c = self.joins[owner].first_child;
+            for _ in 0..i {
+                c = self.joins[c].next_sibling;
+            }
+            self.drop_copy_supports(t, c);
+        }
+        // (a support whose successor went with a removed rule)
+        if self.token_deps[t.ix()] != NONE {
+            self.drop_copy_supports(t, JoinId::NONE);
+        }
+    }
+
+    #[inline(never)]
+    fn drop_copy_supports(&mut self, t: TokenId, succ: JoinId) {
         let mut s = self.token_deps[t.ix()];
-        if s == NONE {
-            return;
-        }
-        self.token_deps[t.ix()] = NONE;
+        let mut kept_last = NONE;
         while s != NONE {
             let e = self.supports[s as usize];
+            if succ != JoinId::NONE && e.succ != succ {
+                // another copy's support stays on the list
+                kept_last = s;
+                s = e.next_of_token;
+                continue;
+            }
+            if kept_last == NONE {
+                self.token_deps[t.ix()] = e.next_of_token;
+            } else {
+                self.supports[kept_last as usize].next_of_token = e.next_of_token;
+            }
             let fact = e.fact;
             // off the fact's list
             let head = self.fact_deps[fact as usize];
@@ -368,10 +445,11 @@ impl Core<'_> {
                     p = n;
                 }
             }
-            if self.fact_deps[fact as usize] == NONE {
+            if self.fact_deps[fact as usize] == NONE && !self.st.logical.detach {
                 // the entry itself goes on the unsupported stack
                 self.supports[s as usize] = crate::logical::Support {
                     token: TokenId::NONE,
+                    succ: JoinId::NONE,
                     fact,
                     next_of_token: self.st.logical.unsupported,
                     next_of_fact: NONE,
@@ -408,6 +486,31 @@ impl Core<'_> {
             }
         }
         self.st.logical.forcing = false;
+    }
+
+    /// While `on`, partial matches that go take their supports along without
+    /// retracting anything (`LogicalState::detach`); returns the previous setting.
+    pub(crate) fn detach_supports(&mut self, on: bool) -> bool {
+        core::mem::replace(&mut self.st.logical.detach, on)
+    }
+
+    /// Rule `rule` is removed: the copies of its logical partial matches go with its
+    /// joins unless another rule shares that path, and the facts they support keep
+    /// only their other supports (CLIPS retracts nothing then).
+    pub(crate) fn detach_rule_supports(&mut self, rule: Ix) {
+        let succ = self.rule_logical_join(rule);
+        if succ == JoinId::NONE || self.st.logical.live == 0 || self.joins[succ].refs > 1 {
+            return;
+        }
+        let detach = self.detach_supports(true);
+        let mut t = self.join_mems[self.joins[succ].parent].mem;
+        while t != TokenId::NONE {
+            if self.token_deps[t.ix()] != NONE {
+                self.drop_copy_supports(t, succ);
+            }
+            t = self.tokens[t].mem_next;
+        }
+        self.detach_supports(detach);
     }
 
     /// Forgets every support (`clear`; tokens and facts are wiped with them).

@@ -312,10 +312,17 @@ impl Compiler<'_, '_> {
         // the join where the rule's logical CEs end (`logical`)
         #[cfg(feature = "logical")]
         {
+            // the successor of the logical join on the rule's path (CLIPS's copy
+            // of the logical partial match that supports the rule's facts)
             let lj = if b.logical == CE_ROOT {
                 JoinId::NONE
             } else {
-                jid[b.logical as usize]
+                let logical = jid[b.logical as usize];
+                let mut s = term;
+                while s != JoinId::NONE && self.cx.joins[s].parent != logical {
+                    s = self.cx.joins[s].parent;
+                }
+                s
             };
             // (room checked above)
             let _ = self.cx.set_rule_logical_join(nr as Ix, lj);

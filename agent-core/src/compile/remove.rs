@@ -14,16 +14,23 @@ impl Core<'_> {
     /// must be writable (`network_writable`, done by whoever built the rule or asks
     /// for its removal).
     pub fn remove_rule(&mut self, r: Ix) {
+        // the facts its partial matches support stay (`logical`)
+        #[cfg(feature = "logical")]
+        let detach = self.detach_supports(true);
         let mut rr = r;
         while rr != NONE {
             let rule = self.rules[rr as usize];
             if rule.terminal != JoinId::NONE {
                 self.remove_rule_activations(rr);
             }
+            #[cfg(feature = "logical")]
+            self.detach_rule_supports(rr);
             self.release_chain(rule.terminal, JoinId::ROOT);
             self.rules[rr as usize].deleted = true;
             rr = rule.next_disjunct;
         }
+        #[cfg(feature = "logical")]
+        self.detach_supports(detach);
     }
 
     /// Drops one reference to each join from `j` up to `stop` (and to the
@@ -139,6 +146,9 @@ impl Core<'_> {
             self.truncate_to(cp);
             return;
         }
+        // the facts the removed partial matches support stay (`logical`)
+        #[cfg(feature = "logical")]
+        let detach = self.detach_supports(true);
         for j in (cp.njoins..self.st.pools.njoins).rev() {
             let j = JoinId(j);
             if !self.joins[j].is_terminal() {
@@ -240,6 +250,8 @@ impl Core<'_> {
                 self.unlink_join(j);
             }
         }
+        #[cfg(feature = "logical")]
+        self.detach_supports(detach);
         self.st.pools.nrules = cp.nrules;
         self.st.pools.nalpha = cp.nalpha;
         self.st.pools.njoins = cp.njoins;

@@ -986,6 +986,11 @@ impl Core<'_> {
                 k = next;
             }
         }
+        // CLIPS's copy of `t` for `c` goes now, with its logical support
+        #[cfg(feature = "logical")]
+        if self.logical_in_use() {
+            self.copy_leaves(t, c);
+        }
     }
 
     #[cfg_attr(feature = "host-speedups", inline(always))]
