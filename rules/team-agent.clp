@@ -63,10 +63,11 @@
   (assert (state TEAM-WAIT) (team-waiting ?x)))
 
 (defrule team-wait-starts
-  "The robot found a busy place: its wait counts from the first busy place
-   since its last skill (waits for one place after another add up)."
+  "The robot claims a place or found it busy: its wait counts from the first
+   claim since its last skill (claims and waits for one place after another
+   add up; a claim can last when robots' requests keep splitting the votes)."
   (declare (salience ?*PRIORITY_TEAM_AGENT*))
-  (state TEAM-WAIT)
+  (state TEAM-CLAIM|TEAM-WAIT)
   (team-clock (now ?t))
   (not (team-wait-since ?))
   =>
@@ -178,113 +179,6 @@
   ?b <- (team-wait-since ?)
   =>
   (retract ?b))
-
-;;; ---- a robot that waits long takes other work -----------------------------
-;;; Waiting for a place another robot works costs the whole team time: after
-;;; ?*TEAM_WAIT_OTHER_WORK_S* of waits the robot takes the best use of its puck
-;;; at a place nobody holds, even of lower priority than the busy one, or,
-;;; hands empty, junk or a raw puck elsewhere (the paper's priorities decide
-;;; among the free places; a free place is claimed as any other).
-
-(defglobal ?*TEAM_WAIT_OTHER_WORK_S* = 20)   ; s: waits before other work
-
-(deffunction team-s1-awaited ()
-  "TRUE if some machine waits for an S1 a T1 could make (as production.clp's
-   awaits-s1: a T2 or T2_3 holding just an S0, or a started T3 without S1)."
-  (any-factp ((?m machine))
-    (and (not (member$ S1 ?m:loaded-with))
-         (or (and (member$ ?m:mtype (create$ T2 T2_3))
-                  (= (length$ ?m:loaded-with) 1) (member$ S0 ?m:loaded-with))
-             (and (eq ?m:mtype T3) (> (length$ ?m:loaded-with) 0))))))
-
-(deffunction team-puck-use
-  "The machine priority (utils.clp PRIO_*) of bringing puck ?x to a machine
-   believed ?mt loaded with ?lw, as the candidate rules of production.clp
-   rank it; 0 if no candidate rule would pick it."
-  (?x ?mt $?lw)
-  (bind ?n (length$ ?lw))
-  (bind ?new (not (member$ ?x ?lw)))
-  (bind ?any (member$ ?x (create$ S0 S1 S2)))
-  (bind ?low (member$ ?x (create$ S0 S1)))
-  (if (and ?any ?new (eq ?mt T3) (= ?n 2)) then (return ?*PRIO_COMPLETE_P*))
-  (if (and ?low ?new (eq ?mt T2) (= ?n 1)) then (return ?*PRIO_COMPLETE_S2*))
-  (if (and (eq ?mt T2_3) (= ?n 1)
-           (or (and (eq ?x S0) (eq (nth$ 1 ?lw) S1))
-               (and (eq ?x S1) (eq (nth$ 1 ?lw) S0))))
-   then (return ?*PRIO_RESOLVE_T23*))
-  (if (and ?any ?new (eq ?mt T3) (= ?n 1)) then (return ?*PRIO_T3_PROGRESS*))
-  (if (and (eq ?x S0) (eq ?mt T1) (team-s1-awaited)) then (return ?*PRIO_FEED_S1*))
-  (if (and ?low (eq ?mt T2) (= ?n 0)) then (return ?*PRIO_T2_START*))
-  (if (and (eq ?x S2) (eq ?mt T3) (= ?n 0)) then (return ?*PRIO_T3_START_S2*))
-  (if (and ?low (eq ?mt T3) (= ?n 0)) then (return ?*PRIO_T3_START*))
-  (if (and (eq ?x S0) (eq ?mt T1)) then (return ?*PRIO_T1*))
-  (if (and (eq ?x S2) (eq ?mt T2_3) ?new) then (return ?*PRIO_EXPLORE_T23*))
-  (if (and ?any (eq ?mt T1_2_3) (= ?n 0)) then (return ?*PRIO_EXPLORE*))
-  (if (and ?low (eq ?mt T1_2) (= ?n 0)) then (return ?*PRIO_EXPLORE*))
-  0)
-
-(deffunction team-free-use-of
-  "The free machine where puck ?x is of most use (nearest to ?here among
-   equals), or nil if no free machine takes it."
-  (?x ?here)
-  (bind ?free (team-free-of M1 M2 M3 M4 M5 M6 M7 M8 M9 M10))
-  (bind ?best nil)
-  (bind ?best-p 0)
-  (bind ?best-d 0.0)
-  (do-for-all-facts ((?m machine)) (member$ ?m:name ?free)
-    (bind ?p (team-puck-use ?x ?m:mtype ?m:loaded-with))
-    (bind ?d (place-distance ?here ?m:name))
-    (if (and (> ?p 0)
-             (or (> ?p ?best-p) (and (= ?p ?best-p) (< ?d ?best-d))))
-     then (bind ?best ?m:name) (bind ?best-p ?p) (bind ?best-d ?d)))
-  ?best)
-
-(defrule team-wait-other-machine
-  "Waited long with a puck: bring it to the free machine where it is of most
-   use (before team-wait-breaks-hold-cycle, which would throw it away)."
-  (declare (salience (+ ?*PRIORITY_TEAM_AGENT* 1)))
-  ?s <- (state TEAM-WAIT)
-  ?w <- (team-waiting ?x)
-  (team-wait-since ?t0)
-  (team-clock (now ?t&:(>= ?t (+ ?t0 ?*TEAM_WAIT_OTHER_WORK_S*))))
-  (holding ?p&S0|S1|S2)
-  (robot-at ?here)
-  (test (neq (team-free-use-of ?p ?here) nil))
-  =>
-  (retract ?s ?w)
-  (assert (state IDLE)
-          (intent (action finish-puck-at) (target (team-free-use-of ?p ?here)))))
-
-(deffunction team-free-empty-handed-work
-  "Hands empty: the nearest free machine with junk, else the input storage
-   if it is free and has raw pucks; nil if neither."
-  (?here)
-  (bind ?junk (create$))
-  (do-for-all-facts ((?m machine)) (> ?m:junk 0) (bind ?junk (create$ ?junk ?m:name)))
-  (bind ?free (team-free-of ?junk))
-  (if (> (length$ ?free) 0) then (return (team-nearest-of ?here ?free)))
-  (if (and (not (any-factp ((?e input-storage)) TRUE))
-           (> (length$ (team-free-of INS)) 0))
-   then (return INS))
-  nil)
-
-(defrule team-wait-other-work-empty-handed
-  "Waited long with empty hands (for a machine's junk or the storage):
-   junk at a free machine, else a raw puck from the free storage."
-  (declare (salience (+ ?*PRIORITY_TEAM_AGENT* 1)))
-  ?s <- (state TEAM-WAIT)
-  ?w <- (team-waiting ?x)
-  (team-wait-since ?t0)
-  (team-clock (now ?t&:(>= ?t (+ ?t0 ?*TEAM_WAIT_OTHER_WORK_S*))))
-  (holding NONE)
-  (robot-at ?here)
-  (test (neq (team-free-empty-handed-work ?here) nil))
-  =>
-  (retract ?s ?w)
-  (bind ?y (team-free-empty-handed-work ?here))
-  (bind ?a get-junk)
-  (if (eq ?y INS) then (bind ?a get-s0))
-  (assert (state IDLE) (intent (action ?a) (target ?y))))
 
 (defglobal ?*TEAM_WAIT_HOLDING_S* = 20)   ; s: longest wait with a puck and a product out
 
@@ -399,3 +293,128 @@
   =>
   (retract ?s)
   (assert (state IDLE)))
+
+;;; ---- a robot that waits long takes other work -----------------------------
+;;; Waiting for a place another robot works costs the whole team time: after
+;;; ?*TEAM_WAIT_OTHER_WORK_S* of waits the robot takes the best use of its puck
+;;; at a place nobody holds, even of lower priority than the busy one, or,
+;;; hands empty, junk or a raw puck elsewhere (the paper's priorities decide
+;;; among the free places; a free place is claimed as any other).
+
+(defglobal ?*TEAM_WAIT_OTHER_WORK_S* = 20)   ; s: waits before other work
+
+(deffunction team-s1-awaited ()
+  "TRUE if some machine waits for an S1 a T1 could make (as production.clp's
+   awaits-s1: a T2 or T2_3 holding just an S0, or a started T3 without S1)."
+  (any-factp ((?m machine))
+    (and (not (member$ S1 ?m:loaded-with))
+         (or (and (member$ ?m:mtype (create$ T2 T2_3))
+                  (= (length$ ?m:loaded-with) 1) (member$ S0 ?m:loaded-with))
+             (and (eq ?m:mtype T3) (> (length$ ?m:loaded-with) 0))))))
+
+(deffunction team-puck-use
+  "The machine priority (utils.clp PRIO_*) of bringing puck ?x to a machine
+   believed ?mt loaded with ?lw, as the candidate rules of production.clp
+   rank it; 0 if no candidate rule would pick it."
+  (?x ?mt $?lw)
+  (bind ?n (length$ ?lw))
+  (bind ?new (not (member$ ?x ?lw)))
+  (bind ?any (member$ ?x (create$ S0 S1 S2)))
+  (bind ?low (member$ ?x (create$ S0 S1)))
+  (if (and ?any ?new (eq ?mt T3) (= ?n 2)) then (return ?*PRIO_COMPLETE_P*))
+  (if (and ?low ?new (eq ?mt T2) (= ?n 1)) then (return ?*PRIO_COMPLETE_S2*))
+  (if (and (eq ?mt T2_3) (= ?n 1)
+           (or (and (eq ?x S0) (eq (nth$ 1 ?lw) S1))
+               (and (eq ?x S1) (eq (nth$ 1 ?lw) S0))))
+   then (return ?*PRIO_RESOLVE_T23*))
+  (if (and ?any ?new (eq ?mt T3) (= ?n 1)) then (return ?*PRIO_T3_PROGRESS*))
+  (if (and (eq ?x S0) (eq ?mt T1) (team-s1-awaited)) then (return ?*PRIO_FEED_S1*))
+  (if (and ?low (eq ?mt T2) (= ?n 0)) then (return ?*PRIO_T2_START*))
+  (if (and (eq ?x S2) (eq ?mt T3) (= ?n 0)) then (return ?*PRIO_T3_START_S2*))
+  (if (and ?low (eq ?mt T3) (= ?n 0)) then (return ?*PRIO_T3_START*))
+  (if (and (eq ?x S0) (eq ?mt T1)) then (return ?*PRIO_T1*))
+  (if (and (eq ?x S2) (eq ?mt T2_3) ?new) then (return ?*PRIO_EXPLORE_T23*))
+  (if (and ?any (eq ?mt T1_2_3) (= ?n 0)) then (return ?*PRIO_EXPLORE*))
+  (if (and ?low (eq ?mt T1_2) (= ?n 0)) then (return ?*PRIO_EXPLORE*))
+  0)
+
+(deffunction team-free-use-of
+  "The free machine where puck ?x is of most use (nearest to ?here among
+   equals), or nil if no free machine takes it."
+  (?x ?here)
+  (bind ?free (team-free-of M1 M2 M3 M4 M5 M6 M7 M8 M9 M10))
+  (bind ?best nil)
+  (bind ?best-p 0)
+  (bind ?best-d 0.0)
+  (do-for-all-facts ((?m machine)) (member$ ?m:name ?free)
+    (bind ?p (team-puck-use ?x ?m:mtype ?m:loaded-with))
+    (bind ?d (place-distance ?here ?m:name))
+    (if (and (> ?p 0)
+             (or (> ?p ?best-p) (and (= ?p ?best-p) (< ?d ?best-d))))
+     then (bind ?best ?m:name) (bind ?best-p ?p) (bind ?best-d ?d)))
+  ?best)
+
+(deffunction team-stop-waiting ()
+  "Drop what the robot claims or waits for now (the release goes out)."
+  (do-for-all-facts ((?w team-waiting)) TRUE (retract ?w))
+  (do-for-all-facts ((?i intent)) TRUE
+    (do-for-all-facts ((?w team-want))
+        (and (eq ?w:resource ?i:target)
+             (not (any-factp ((?o output-at)) (eq (nth$ 1 ?o:implied) ?w:resource))))
+      (retract ?w))
+    (retract ?i)))
+
+(defrule team-wait-other-machine
+  "Waited or claimed long with a puck: bring it to the free machine where it
+   is of most use (before team-wait-breaks-hold-cycle, which would throw it
+   away).  The wait counts anew from here, so the robot does not switch
+   places again at once."
+  (declare (salience (+ ?*PRIORITY_TEAM_AGENT* 1)))
+  ?s <- (state TEAM-CLAIM|TEAM-WAIT)
+  ?b <- (team-wait-since ?t0)
+  (team-clock (now ?t&:(>= ?t (+ ?t0 ?*TEAM_WAIT_OTHER_WORK_S*))))
+  (holding ?p&S0|S1|S2)
+  (robot-at ?here)
+  (test (neq (team-free-use-of ?p ?here) nil))
+  =>
+  (bind ?y (team-free-use-of ?p ?here))
+  (retract ?b)
+  (assert (team-wait-since ?t))
+  (if (not (any-factp ((?i intent)) (eq ?i:target ?y)))
+   then (retract ?s)
+        (team-stop-waiting)
+        (assert (state IDLE) (intent (action finish-puck-at) (target ?y)))))
+
+(deffunction team-free-empty-handed-work
+  "Hands empty: the nearest free machine with junk, else the input storage
+   if it is free and has raw pucks; nil if neither."
+  (?here)
+  (bind ?junk (create$))
+  (do-for-all-facts ((?m machine)) (> ?m:junk 0) (bind ?junk (create$ ?junk ?m:name)))
+  (bind ?free (team-free-of ?junk))
+  (if (> (length$ ?free) 0) then (return (team-nearest-of ?here ?free)))
+  (if (and (not (any-factp ((?e input-storage)) TRUE))
+           (> (length$ (team-free-of INS)) 0))
+   then (return INS))
+  nil)
+
+(defrule team-wait-other-work-empty-handed
+  "Waited or claimed long with empty hands (for a machine's junk or the
+   storage): junk at a free machine, else a raw puck from the free storage."
+  (declare (salience (+ ?*PRIORITY_TEAM_AGENT* 1)))
+  ?s <- (state TEAM-CLAIM|TEAM-WAIT)
+  ?b <- (team-wait-since ?t0)
+  (team-clock (now ?t&:(>= ?t (+ ?t0 ?*TEAM_WAIT_OTHER_WORK_S*))))
+  (holding NONE)
+  (robot-at ?here)
+  (test (neq (team-free-empty-handed-work ?here) nil))
+  =>
+  (bind ?y (team-free-empty-handed-work ?here))
+  (retract ?b)
+  (assert (team-wait-since ?t))
+  (bind ?a get-junk)
+  (if (eq ?y INS) then (bind ?a get-s0))
+  (if (not (any-factp ((?i intent)) (eq ?i:target ?y)))
+   then (retract ?s)
+        (team-stop-waiting)
+        (assert (state IDLE) (intent (action ?a) (target ?y)))))
