@@ -18,7 +18,8 @@ use std::io::{BufRead, Read, Write};
 use std::process::ExitCode;
 
 use agent_core::commands::command_complete;
-use agent_core::grow::GrowEngine;
+use agent_core::grow::{GrowEngine, GrowStorage};
+use agent_core::Capacities;
 use agent_core::{Host, HostIoError, LoadError, OpenMode};
 
 #[derive(clap::Args)]
@@ -27,6 +28,10 @@ pub struct Args {
     /// CLIPS option.
     #[arg(long)]
     pub large_pools: bool,
+    /// Every pool grows to at most N entries; past that an allocation is the pool's
+    /// capacity error, as on the robot, whose pools never grow. Not a CLIPS option.
+    #[arg(long, value_name = "N")]
+    pub pool_limit: Option<usize>,
     /// CLIPS options: -f FILE | -f2 FILE | -l FILE (in order).
     #[arg(allow_hyphen_values = true, trailing_var_arg = true, num_args = 0..)]
     pub options: Vec<String>,
@@ -295,9 +300,13 @@ pub fn main(args: Args) -> ExitCode {
     // (`--large-pools` is the same engine: its pools grow)
     let _ = args.large_pools;
     // a deep stack for deeply nested expressions; only the pages used are touched
+    let storage = match args.pool_limit {
+        Some(n) => GrowStorage::with_limits(GrowStorage::START, Capacities::uniform(n)),
+        None => GrowStorage::new(),
+    };
     let worker = std::thread::Builder::new()
         .stack_size(256 << 20)
-        .spawn(move || session(&mut GrowEngine::with_storage(Default::default()), steps));
+        .spawn(move || session(&mut GrowEngine::with_storage(storage), steps));
     match worker.map(|w| w.join()) {
         Ok(Ok(code)) => code,
         _ => ExitCode::FAILURE,
