@@ -242,6 +242,16 @@ fn unimplemented_constructs_are_refused() {
             22,
             "auto-focus",
         ),
+        (
+            "(defrule r (forall (good (a 1)) (good (a 2))) =>)",
+            13,
+            "forall",
+        ),
+        (
+            "(defrule r (not (forall (good (a 1)) (good))) =>)",
+            18,
+            "forall",
+        ),
     ];
     for &(bad, col, what_has) in cases {
         let mut e = Box::new(SmallEngine::new());

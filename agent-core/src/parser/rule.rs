@@ -460,6 +460,10 @@ impl<'s> Parser<'s, '_, '_> {
                         })
                     }
                     Tok::Symbol("logical") => self.logical_ce(b, ctx, h),
+                    // refused by name: otherwise it reads as a pattern of an unknown template
+                    Tok::Symbol("forall") => {
+                        Err(self.not_implemented(h, "the forall conditional element"))
+                    }
                     Tok::Symbol("and") => {
                         self.next();
                         loop {
