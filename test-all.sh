@@ -217,12 +217,33 @@ stage_no_std() {
         echo "agent-core depends on heapless or an alloc crate (see tree above)" >&2
         return 1
     fi
-    # The sysroot `alloc` crate never shows in cargo tree: look for it in the source.
-    if grep -rnE '^\s*(pub\s+)?extern\s+crate\s+alloc\b' agent-core/src; then
-        echo "agent-core uses the alloc crate (lines above)" >&2
+    # The sysroot `alloc` crate never shows in cargo tree: look for it in the source. Only
+    # the host's growing storage may use it, behind `#[cfg(feature = "grow")]`, a feature
+    # that neither the default build nor the robot's image enables (checked below).
+    local ungated
+    ungated=$(find agent-core/src -name '*.rs' -exec awk '
+        FNR == 1 { prev = "" }
+        /^[[:space:]]*(pub[[:space:]]+)?extern[[:space:]]+crate[[:space:]]+alloc([^A-Za-z0-9_]|$)/ {
+            if (prev !~ /^[[:space:]]*#\[cfg\(feature = "grow"\)\]/) print FILENAME ":" FNR ": " $0
+        }
+        NF { prev = $0 }' {} +)
+    if [ -n "$ungated" ]; then
+        echo "$ungated"
+        echo "agent-core uses the alloc crate outside the grow feature (lines above)" >&2
         return 1
     fi
-    echo "agent-core: no alloc, no heapless"
+    if grep -qE '^default *=.*"grow"' agent-core/Cargo.toml; then
+        echo "agent-core's default features include grow (alloc)" >&2
+        return 1
+    fi
+    local image_features
+    image_features=$(cargo tree -e features -i agent-core -p agent-image --target "$I586") || return 1
+    if grep -q 'feature "grow"' <<<"$image_features"; then
+        echo "$image_features"
+        echo "the agent image enables agent-core's grow feature (alloc)" >&2
+        return 1
+    fi
+    echo "agent-core: no alloc (but behind the host-only grow feature), no heapless"
 }
 
 # ---------------------------------------------------------------------------------------
