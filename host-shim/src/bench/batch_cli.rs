@@ -145,7 +145,7 @@ impl Contender for BatchCli {
     }
 
     fn measure(&self, program: &ProgramFiles, plan: &Plan) -> Measurement {
-        let prefix = program.workload.kind.result_prefix();
+        let prefix = program.workload.kind.result_prefixes();
         let mut full_times = Vec::new();
         let mut norun_times = Vec::new();
         let mut fired: Reading<u64> = Err("no run".to_string());

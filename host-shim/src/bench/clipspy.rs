@@ -6,7 +6,6 @@
 
 use super::measure::{result_lines, Contender, Measurement, Plan, ProgramFiles, Reading};
 use super::process::{callgrind_fits, callgrind_instructions, median, run_with_deadline};
-use super::workloads::Kind;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Duration;
@@ -73,7 +72,7 @@ impl ClipsPy {
     }
 
     /// The driver's arguments for one workload: constructs (the driver does reset and
-    /// run), or for LLSF games the batch files, `phase` "full" or "norun". `timed` adds
+    /// run), or for batch scripts (LLSF games, runbench) the batch files, `phase` "full" or "norun". `timed` adds
     /// the no-run batch as the baseline the driver subtracts itself.
     fn workload_args(
         driver: &Path,
@@ -82,7 +81,7 @@ impl ClipsPy {
         phase: &str,
         timed: bool,
     ) -> Vec<String> {
-        if program.workload.kind != Kind::Llsf {
+        if !program.workload.kind.is_batch_script() {
             return Self::driver_args(driver, &program.constructs, reps, phase);
         }
         let batch = if phase == "full" {
@@ -210,7 +209,7 @@ impl Contender for ClipsPy {
             fired,
             result_lines: Ok(result_lines(
                 &report.output,
-                program.workload.kind.result_prefix(),
+                program.workload.kind.result_prefixes(),
             )),
             wall_whole: median(&nanos(&report.whole_ns)).ok_or_else(|| "no run".to_string()),
             wall_run: median(&nanos(&report.run_ns)).ok_or_else(|| "no run".to_string()),

@@ -1,5 +1,6 @@
 //! What a measurement holds and the trait every engine under test implements.
 
+use super::debian;
 use super::workloads::{self, Kind, Workload};
 use super::BenchError;
 use std::path::{Path, PathBuf};
@@ -13,7 +14,7 @@ pub type Reading<T> = Result<T, String>;
 #[derive(Clone, Debug)]
 pub struct Measurement {
     pub fired: Reading<u64>,
-    /// The program's own result lines (see `Kind::result_prefix`), in printed order.
+    /// The program's own result lines (see `Kind::result_prefixes`), in printed order.
     pub result_lines: Reading<Vec<String>>,
     /// Median wall time of the whole thing (process, or load+reset+run in-process).
     pub wall_whole: Reading<Duration>,
@@ -110,7 +111,16 @@ impl ProgramFiles {
             files.write_llsf()?;
             return Ok(files);
         }
-        write_file(&files.constructs, &workload.constructs_text())?;
+        if workload.kind == Kind::SudokuRunbench {
+            files.write_runbench()?;
+            return Ok(files);
+        }
+        let text = if workload.kind.is_debian_example() {
+            debian::program_text(workload)?
+        } else {
+            workload.constructs_text()
+        };
+        write_file(&files.constructs, &text)?;
         let full = format!("{load}(watch statistics)\n(reset)\n(run)\n(exit)\n");
         write_file(&files.batch_full, &full)?;
         let norun = format!("{load}(watch statistics)\n(reset)\n(exit)\n");
@@ -119,6 +129,16 @@ impl ProgramFiles {
             format!("{load}(reset)\n(run)\n(printout t \"mem-used \" (mem-used) crlf)\n(exit)\n");
         write_file(&files.batch_mem, &mem)?;
         Ok(files)
+    }
+
+    /// The sudoku solver's `runbench.bat` as shipped, its files written into the folder;
+    /// `constructs` is their concatenation (for reading, not loaded by the batches).
+    fn write_runbench(&self) -> Result<(), BenchError> {
+        let batches = debian::write_runbench(&self.dir)?;
+        write_file(&self.constructs, &debian::program_text(self.workload)?)?;
+        write_file(&self.batch_full, &batches.full)?;
+        write_file(&self.batch_norun, &batches.norun)?;
+        write_file(&self.batch_mem, &batches.mem)
     }
 
     /// LLSF games: the rule base's files copied into the folder and loaded one by one;
@@ -182,11 +202,12 @@ pub trait Contender {
     fn measure(&self, program: &ProgramFiles, plan: &Plan) -> Measurement;
 }
 
-/// The result lines of a program's stdout: lines starting with the workload's prefix.
-pub fn result_lines(stdout: &str, prefix: &str) -> Vec<String> {
+/// The result lines of a program's stdout: lines starting with one of the workload's
+/// prefixes.
+pub fn result_lines(stdout: &str, prefixes: &[&str]) -> Vec<String> {
     stdout
         .lines()
-        .filter(|line| line.starts_with(prefix))
+        .filter(|line| prefixes.iter().any(|p| line.starts_with(p)))
         .map(|line| line.trim_end().to_string())
         .collect()
 }
@@ -220,7 +241,7 @@ mod tests {
                       18300 rules per second.\n137 mean number of facts (212 maximum).\n";
         assert_eq!(parse_rules_fired(stdout), Some(183));
         assert_eq!(
-            result_lines(stdout, "seat "),
+            result_lines(stdout, &["seat "]),
             vec!["seat 1 n3", "seat 2 n1"]
         );
         assert_eq!(parse_mem_used("x\nmem-used 2054726\n"), Some(2_054_726));

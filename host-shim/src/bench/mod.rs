@@ -7,6 +7,7 @@
 
 mod batch_cli;
 mod clipspy;
+mod debian;
 mod decision;
 mod footprint;
 mod generated;
@@ -63,12 +64,36 @@ pub enum WorkloadArg {
     Propagate,
     /// Generated: many rules, few facts, like an agent (--agent-sizes rules).
     Agent,
+    /// The published Miss Manners (printout between find_seating's modifies) at each
+    /// --manners-sizes guest count.
+    MannersPub,
+    /// The sudoku solver of Debian's clips-common examples, each --sudoku-puzzles puzzle.
+    Sudoku,
+    /// The sudoku solver's runbench.bat as shipped (a puzzle, then the stress test).
+    Runbench,
+    /// The zebra puzzle of Debian's clips-common examples.
+    Zebra,
+}
+
+/// A sudoku puzzle named like its file, `GxG-pN` (e.g. `3x3-p17`), as the workload size
+/// `G * 100 + N`.
+fn parse_puzzle(text: &str) -> Result<usize, String> {
+    let bad = || format!("{text:?}: expected GRIDxGRID-pNUMBER, e.g. 3x3-p17");
+    let (grid, puzzle) = text.split_once("-p").ok_or_else(bad)?;
+    let (rows, columns) = grid.split_once('x').ok_or_else(bad)?;
+    let rows: usize = rows.parse().map_err(|_| bad())?;
+    let columns: usize = columns.parse().map_err(|_| bad())?;
+    let puzzle: usize = puzzle.parse().map_err(|_| bad())?;
+    if rows != columns || !(2..=5).contains(&rows) || !(1..100).contains(&puzzle) {
+        return Err(bad());
+    }
+    Ok(rows * 100 + puzzle)
 }
 
 #[derive(clap::Args, Debug)]
 pub struct Args {
     /// Workloads to run (comma-separated).
-    #[arg(long, value_enum, value_delimiter = ',', default_values = ["llsf", "manners", "join", "negation", "discrim", "join3", "propagate", "agent"])]
+    #[arg(long, value_enum, value_delimiter = ',', default_values = ["llsf", "manners", "join", "negation", "discrim", "join3", "propagate", "agent", "manners-pub", "sudoku", "runbench", "zebra"])]
     pub workloads: Vec<WorkloadArg>,
     /// Seeded LLSF games (seeds 0..N) played in one process per measurement.
     #[arg(long, default_value_t = 10)]
@@ -91,6 +116,10 @@ pub struct Args {
     /// Rule counts of the generated agent-like program (2000 firings each).
     #[arg(long, value_delimiter = ',', default_values_t = [40, 80, 160, 320])]
     pub agent_sizes: Vec<usize>,
+    /// Puzzles of the Debian sudoku example (its file names, `GxG-pN`).
+    #[arg(long, value_delimiter = ',', value_parser = parse_puzzle,
+          default_values = ["3x3-p1", "3x3-p10", "3x3-p17", "4x4-p1", "4x4-p9", "4x4-p17", "5x5-p1"])]
+    pub sudoku_puzzles: Vec<usize>,
     /// Cheap run: every selected workload at its smallest size only, one repetition,
     /// no decision time (for a quick look, not for BENCHMARKS.md).
     #[arg(long)]
@@ -136,6 +165,7 @@ impl Args {
         let mut selected = Vec::new();
         for arg in &self.workloads {
             let games = [self.games];
+            let one = [1];
             let (kind, sizes) = match arg {
                 WorkloadArg::Llsf => (Kind::Llsf, &games[..]),
                 WorkloadArg::Manners => (Kind::Manners, &self.manners_sizes[..]),
@@ -145,6 +175,10 @@ impl Args {
                 WorkloadArg::Join3 => (Kind::Join3, &self.join3_sizes[..]),
                 WorkloadArg::Propagate => (Kind::Propagate, &self.propagate_sizes[..]),
                 WorkloadArg::Agent => (Kind::Agent, &self.agent_sizes[..]),
+                WorkloadArg::MannersPub => (Kind::MannersPublished, &self.manners_sizes[..]),
+                WorkloadArg::Sudoku => (Kind::Sudoku, &self.sudoku_puzzles[..]),
+                WorkloadArg::Runbench => (Kind::SudokuRunbench, &one[..]),
+                WorkloadArg::Zebra => (Kind::Zebra, &one[..]),
             };
             // Ascending, so an engine that fails at one size can skip the larger ones.
             let mut sizes = sizes.to_vec();
@@ -421,10 +455,15 @@ fn agreement(workload: Workload, names: &[&str], measured: &[Measurement]) -> Ag
             }
         }
     }
-    if workload.kind == Kind::Manners {
+    if matches!(workload.kind, Kind::Manners | Kind::MannersPublished) {
         let guests = workloads::manners_guests(workload.size);
         for (name, lines, _) in &results {
-            if let Err(why) = workloads::check_seating(&guests, lines) {
+            let seating = if workload.kind == Kind::MannersPublished {
+                workloads::published_seating(lines)
+            } else {
+                lines.clone()
+            };
+            if let Err(why) = workloads::check_seating(&guests, &seating) {
                 problems.push(format!("{name} seating invalid: {why}"));
                 wrong.push(name.to_string());
             }
@@ -432,7 +471,7 @@ fn agreement(workload: Workload, names: &[&str], measured: &[Measurement]) -> Ag
     }
     let who: Vec<&str> = results.iter().map(|(n, _, _)| *n).collect();
     if problems.is_empty() {
-        let valid = if workload.kind == Kind::Manners {
+        let valid = if matches!(workload.kind, Kind::Manners | Kind::MannersPublished) {
             "; valid seating"
         } else {
             ""
@@ -567,15 +606,18 @@ mod tests {
             callgrind_limit: None,
             run_limit: Duration::from_secs(60),
         };
-        for (kind, size) in [
+        let mut programs = vec![
             (Kind::Manners, 16),
+            (Kind::MannersPublished, 16),
             (Kind::Join, 100),
             (Kind::Negation, 100),
             (Kind::Discrim, 40),
             (Kind::Join3, 1000),
             (Kind::Propagate, 500),
             (Kind::Agent, 40),
-        ] {
+        ];
+        programs.extend(debian_examples_if_installed());
+        for (kind, size) in programs {
             let workload = Workload { kind, size };
             let files = ProgramFiles::write(&dir, workload).expect("temp dir is writable");
             let measured: Vec<Measurement> =
@@ -592,6 +634,16 @@ mod tests {
             assert!(outcome.all_agree, "{}: {}", workload.name(), outcome.text);
         }
         let _ = std::fs::remove_dir_all(&dir);
+    }
+
+    /// The small programs of Debian's clips-common examples (zebra, an easy sudoku),
+    /// where the package is installed.
+    fn debian_examples_if_installed() -> Vec<(Kind, usize)> {
+        if debian::read_example("zebra.clp").is_err() {
+            eprintln!("clips-common examples not installed: zebra and sudoku not compared");
+            return Vec::new();
+        }
+        vec![(Kind::Zebra, 1), (Kind::Sudoku, 301)]
     }
 
     /// Ours in-process fires as many rules as CLIPS 6.30 on the small programs and prints
@@ -612,8 +664,12 @@ mod tests {
             callgrind_limit: None,
             run_limit: Duration::from_secs(60),
         };
+        let examples = debian_examples_if_installed()
+            .into_iter()
+            .map(|(kind, size)| (kind, size, true));
         for (kind, size, same_output) in [
             (Kind::Manners, 16, true),
+            (Kind::MannersPublished, 16, true),
             (Kind::Join, 100, true),
             (Kind::Negation, 100, false),
             // the generated kinds at their smallest default sizes: their result lines
@@ -622,7 +678,10 @@ mod tests {
             (Kind::Join3, 1000, true),
             (Kind::Propagate, 500, true),
             (Kind::Agent, 40, true),
-        ] {
+        ]
+        .into_iter()
+        .chain(examples)
+        {
             let workload = Workload { kind, size };
             let files = ProgramFiles::write(&dir, workload).expect("temp dir is writable");
             let reference = clips.measure(&files, &plan);
@@ -652,7 +711,7 @@ mod tests {
     }
 
     #[test]
-    fn default_arguments_select_all_twenty_nine_programs() {
+    fn default_arguments_select_all_forty_two_programs() {
         use clap::Parser;
         #[derive(clap::Parser)]
         struct Wrapper {
@@ -666,12 +725,19 @@ mod tests {
             .iter()
             .map(Workload::name)
             .collect();
-        assert_eq!(names.len(), 29);
+        assert_eq!(names.len(), 42);
         assert_eq!(names[0], "llsf-10");
         assert_eq!(names[1], "manners-16");
         assert_eq!(names[12], "negation-100000");
         assert_eq!(names[13], "discrim-40");
         assert_eq!(names[28], "agent-320");
+        assert_eq!(names[29], "manners-pub-16");
+        assert_eq!(names[33], "sudoku-3x3-p1");
+        assert_eq!(names[39], "sudoku-5x5-p1");
+        assert_eq!(names[40], "sudoku-runbench");
+        assert_eq!(names[41], "zebra");
+        assert!(Wrapper::try_parse_from(["bench", "--sudoku-puzzles", "3x4-p1"]).is_err());
+        assert!(Wrapper::try_parse_from(["bench", "--sudoku-puzzles", "4x4"]).is_err());
         let quick = Wrapper::parse_from(["bench", "--quick", "--workloads", "join3,agent"]);
         assert_eq!(
             quick.args.selected_workloads(),

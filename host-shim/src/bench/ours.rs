@@ -264,6 +264,10 @@ impl Contender for OursInProcess {
         if program.workload.kind == Kind::Llsf {
             return measure_games(program.workload.size, plan);
         }
+        if program.workload.kind.is_batch_script() {
+            // its commands (clear, load, reset, run twice) are the CLI column's to run
+            return Measurement::not_measured("a batch script: see the CLI column");
+        }
         let text = match std::fs::read_to_string(&program.constructs) {
             Ok(text) => text,
             Err(e) => return Measurement::failed(&format!("reading program: {e}")),
@@ -292,7 +296,7 @@ impl Contender for OursInProcess {
         let runs: Vec<Duration> = samples.iter().map(|s| s.run).collect();
         let wholes: Vec<Duration> = samples.iter().map(|s| s.whole).collect();
         let last = samples.last();
-        let prefix = program.workload.kind.result_prefix();
+        let prefix = program.workload.kind.result_prefixes();
         let in_process_only = || Err("not measured: counted by the CLI column".to_string());
         Measurement {
             fired,

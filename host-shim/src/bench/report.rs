@@ -338,7 +338,8 @@ impl Report {
                 .collect();
             let _ = writeln!(md, "| {} | {} |", row.workload.name(), cells.join(" | "));
         }
-        for kind in kinds {
+        // growth only where the sizes scale one program (not across puzzles)
+        for kind in kinds.into_iter().filter(|k| k.is_scaled()) {
             let rows: Vec<&Row> = self
                 .rows
                 .iter()

@@ -9,6 +9,7 @@ use super::rng::SplitMix64;
 use std::fmt::Write as _;
 
 const MANNERS_RULES: &str = include_str!("../../../tests/bench/manners.clp");
+const MANNERS_PUBLISHED_RULES: &str = include_str!("../../../tests/bench/manners-published.clp");
 const JOIN_RULES: &str = include_str!("../../../tests/bench/join.clp");
 const NEGATION_RULES: &str = include_str!("../../../tests/bench/negation.clp");
 
@@ -23,7 +24,17 @@ const MANNERS_HOBBIES: u64 = 3;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Kind {
+    /// Our Miss Manners (`tests/bench/manners.clp`, size = guests).
     Manners,
+    /// The published Miss Manners (`tests/bench/manners-published.clp`, size = guests).
+    MannersPublished,
+    /// A puzzle of the sudoku solver Debian's `clips-common` ships (`debian.rs`;
+    /// size = grid * 100 + puzzle number, e.g. 317 for `grid3x3-p17`).
+    Sudoku,
+    /// The solver's own `runbench.bat`, as shipped (size 1).
+    SudokuRunbench,
+    /// The zebra puzzle of Debian's `clips-common` examples (size 1).
+    Zebra,
     Join,
     Negation,
     /// Seeded simulated LLSF games of the agent rule base (size = number of games).
@@ -42,6 +53,10 @@ impl Kind {
     pub fn label(self) -> &'static str {
         match self {
             Kind::Manners => "manners",
+            Kind::MannersPublished => "manners-pub",
+            Kind::Sudoku => "sudoku",
+            Kind::SudokuRunbench => "sudoku-runbench",
+            Kind::Zebra => "zebra",
             Kind::Join => "join",
             Kind::Negation => "negation",
             Kind::Llsf => "llsf",
@@ -57,6 +72,7 @@ impl Kind {
     fn rules(self) -> &'static str {
         match self {
             Kind::Manners => MANNERS_RULES,
+            Kind::MannersPublished => MANNERS_PUBLISHED_RULES,
             Kind::Join => JOIN_RULES,
             Kind::Negation => NEGATION_RULES,
             _ => "",
@@ -74,18 +90,49 @@ impl Kind {
         }
     }
 
+    /// Whether the program comes from Debian's `clips-common` examples, read where the
+    /// package installs them (`debian.rs`), never from the repository.
+    pub fn is_debian_example(self) -> bool {
+        matches!(self, Kind::Sudoku | Kind::SudokuRunbench | Kind::Zebra)
+    }
+
+    /// Whether the program is a batch script with its own `(reset)`/`(run)` commands
+    /// (not constructs that the drivers reset and run).
+    pub fn is_batch_script(self) -> bool {
+        matches!(self, Kind::Llsf | Kind::SudokuRunbench)
+    }
+
+    /// Whether the sizes of this kind scale one program (so growth across sizes means
+    /// something), rather than naming different programs or puzzles.
+    pub fn is_scaled(self) -> bool {
+        !matches!(
+            self,
+            Kind::Llsf | Kind::Sudoku | Kind::SudokuRunbench | Kind::Zebra
+        )
+    }
+
     /// How the program's own result lines begin; everything else on stdout (statistics,
     /// banners) is engine chatter and not compared.
-    pub fn result_prefix(self) -> &'static str {
+    pub fn result_prefixes(self) -> &'static [&'static str] {
         match self {
-            Kind::Manners => "seat ",
-            Kind::Join => "reach2 ",
-            Kind::Negation => "started ",
-            Kind::Llsf => "GAME ",
-            Kind::Discrim => "discrim ",
-            Kind::Join3 => "join3 ",
-            Kind::Propagate => "propagate ",
-            Kind::Agent => "agent ",
+            Kind::Manners => &["seat "],
+            // the trace of find_seating (`seat S NAME1 NAME2`) and the seating
+            // (`NAME SEAT`: the generator names guests `n1`, `n2`, ...)
+            Kind::MannersPublished => &["seat ", "n"],
+            // output-simple.clp's `   row: R column: C value: V` lines
+            Kind::Sudoku => &["   row: "],
+            // output-none.clp prints nothing: the cells left possible, listed after
+            // the run (`debian::RUNBENCH_RESULT`)
+            Kind::SudokuRunbench => &["cell "],
+            // the solution table's house rows, `  1   | norwegian ...`
+            Kind::Zebra => &["  "],
+            Kind::Join => &["reach2 "],
+            Kind::Negation => &["started "],
+            Kind::Llsf => &["GAME "],
+            Kind::Discrim => &["discrim "],
+            Kind::Join3 => &["join3 "],
+            Kind::Propagate => &["propagate "],
+            Kind::Agent => &["agent "],
         }
     }
 }
@@ -99,18 +146,43 @@ pub struct Workload {
 
 impl Workload {
     pub fn name(&self) -> String {
-        format!("{}-{}", self.kind.label(), self.size)
+        match self.kind {
+            Kind::Sudoku => format!(
+                "sudoku-{grid}x{grid}-p{puzzle}",
+                grid = self.size / 100,
+                puzzle = self.size % 100
+            ),
+            Kind::SudokuRunbench | Kind::Zebra => self.kind.label().to_string(),
+            _ => format!("{}-{}", self.kind.label(), self.size),
+        }
     }
 
     /// Checks the size is one the generator can make a solvable program for.
     pub fn validate(&self) -> Result<(), String> {
         match self.kind {
-            Kind::Manners if self.size < 2 || !self.size.is_multiple_of(2) => Err(format!(
-                "{}: Manners needs an even number of guests, at least 2",
-                self.name()
-            )),
+            Kind::Manners | Kind::MannersPublished
+                if self.size < 2 || !self.size.is_multiple_of(2) =>
+            {
+                Err(format!(
+                    "{}: Manners needs an even number of guests, at least 2",
+                    self.name()
+                ))
+            }
             Kind::Llsf if self.size == 0 => Err(format!("{}: at least one game", self.name())),
             Kind::Llsf => Ok(()),
+            Kind::Sudoku
+                if !(2..=5).contains(&(self.size / 100)) || self.size.is_multiple_of(100) =>
+            {
+                Err(format!(
+                    "sudoku puzzle {}: grids are 2x2 to 5x5, puzzles numbered from 1",
+                    self.size
+                ))
+            }
+            Kind::Sudoku => Ok(()),
+            Kind::SudokuRunbench | Kind::Zebra if self.size != 1 => {
+                Err(format!("{}: one program, size 1", self.kind.label()))
+            }
+            Kind::SudokuRunbench | Kind::Zebra => Ok(()),
             _ if self.size < 2 => Err(format!("{}: size must be at least 2", self.name())),
             _ => Ok(()),
         }
@@ -119,7 +191,7 @@ impl Workload {
     /// The generated facts, one fact per string, in assertion order.
     pub fn facts(&self) -> Vec<String> {
         match self.kind {
-            Kind::Manners => manners_facts(&manners_guests(self.size)),
+            Kind::Manners | Kind::MannersPublished => manners_facts(&manners_guests(self.size)),
             Kind::Join => join_facts(self.size),
             Kind::Negation => negation_facts(self.size),
             // Each game's setup is its own deffacts (see `llsf_games_batch`); generated
@@ -250,6 +322,19 @@ pub fn negation_facts(total: usize) -> Vec<String> {
         facts.push(format!("(pending (id {id}))"));
     }
     facts
+}
+
+/// The published Manners' seating as `seat S NAME` lines (for [`check_seating`]): its
+/// `print_results` prints `NAME SEAT`; the `seat ...` lines of its trace are left out.
+pub fn published_seating(result_lines: &[String]) -> Vec<String> {
+    result_lines
+        .iter()
+        .filter(|line| !line.starts_with("seat "))
+        .map(|line| match line.split_once(' ') {
+            Some((name, seat)) => format!("seat {} {name}", seat.trim()),
+            None => line.clone(),
+        })
+        .collect()
 }
 
 /// Checks printed `seat S NAME` lines form a valid Manners seating of `guests`: every seat
