@@ -57,12 +57,16 @@
 (defrule prod-collect-output
   "Hands empty and an output waits at a machine: fetch it, once the junk
    there is no longer the nearer work (the first junk puck is taken right
-   after feeding, while the machine still works)."
+   after feeding, while the machine still works).  A robot elsewhere fetches
+   it whatever junk lies there: its product is ready and its claim keeps the
+   machine from the team (seed 46's team: a P lay 4 minutes at a T3 while a
+   teammate with an S2 waited for a T3)."
   (declare (salience (+ ?*PRIORITY_RECYCLE* 1)))
   (state IDLE)
   (holding NONE)
   (output-at ?m ?)
-  (machine (name ?m) (junk ?j&:(< ?j 2)))
+  (machine (name ?m) (junk ?j))
+  (not (robot-at ?m&:(>= ?j 2)))
   (not (intent))
   =>
   (assert (intent (action collect) (target ?m))))

@@ -80,6 +80,11 @@ pub struct Args {
     /// ... drawn from this seed.
     #[arg(long, default_value_t = 0)]
     pub link_seed: u64,
+    /// Die at this cycle (the sim's frame in lockstep): the process ends at once, as a
+    /// crash would, without answering the frame or telling the team (`game --kill-at-s`;
+    /// a kill from outside lands at a cycle that depends on the machine's load).
+    #[arg(long)]
+    pub exit_at_cycle: Option<u64>,
 }
 
 /// A team member that waits for a place (or is done) this long drives out of the lanes
@@ -361,6 +366,18 @@ fn agent_loop(
                 stats.report(cycle, &mind);
                 return Ok(());
             }
+        }
+        let frame_cycle = if config.timing.lockstep {
+            frames.cycle().map_or(0, u64::from)
+        } else {
+            cycle + 1
+        };
+        if args.exit_at_cycle.is_some_and(|at| frame_cycle >= at) {
+            println!(
+                "robotino-agent run: killed robot {robot} at t={:.1}",
+                frame_cycle as f64 * f64::from(config.cycle_s())
+            );
+            std::process::exit(137);
         }
         let work_start = Instant::now();
         cycle += 1;

@@ -13,22 +13,25 @@ use std::time::Duration;
 /// What two runs of one seed must agree on: the agent's decisions and skill ends and the
 /// referee's log, each with its cycle (timings and service prefixes left out).
 fn game_events(seed: &str, robots: &str) -> (Vec<String>, String) {
-    let mut game = Proc::start(
+    game_events_with(seed, robots, &[]).0
+}
+
+/// As [`game_events`], with more options for `game`; also the game's `team:` line.
+fn game_events_with(seed: &str, robots: &str, more: &[&str]) -> ((Vec<String>, String), String) {
+    let mut args = vec![
         "game",
-        AGENT,
-        &[
-            "game",
-            "--seed",
-            seed,
-            "--robots",
-            robots,
-            "--game-seconds",
-            "150",
-            "--verbose",
-            "--timeout-s",
-            "200",
-        ],
-    );
+        "--seed",
+        seed,
+        "--robots",
+        robots,
+        "--game-seconds",
+        "150",
+        "--verbose",
+        "--timeout-s",
+        "200",
+    ];
+    args.extend_from_slice(more);
+    let mut game = Proc::start("game", AGENT, &args);
     let status = game.wait_exit(Duration::from_secs(240));
     assert!(
         status.is_some_and(|s| s.success()),
@@ -51,7 +54,8 @@ fn game_events(seed: &str, robots: &str) -> (Vec<String>, String) {
         .line_with("robotino-agent game: score=")
         .unwrap_or_else(|| panic!("no score\n{}", game.dump()));
     assert!(events.len() >= 4, "too few events\n{}", game.dump());
-    (events, score)
+    let team = game.line_with("team: ").unwrap_or_default();
+    ((events, score), team)
 }
 
 #[test]
@@ -85,6 +89,48 @@ fn the_same_seed_plays_the_same_team_game() {
     );
     assert_eq!(first.1, second.1);
     assert_eq!(first.0, second.0);
+}
+
+/// A robot killed at a game time (`game --kill-at-s`, as `game-sweep --kill-one`) dies at
+/// that cycle by itself, not when a watcher gets round to it: the game plays the same
+/// twice, the dead robot does nothing after its death, its claims run out (a lease, 20 s)
+/// and the others work on without touching its body.
+#[test]
+fn a_team_game_with_a_robot_killed_plays_the_same_twice() {
+    let kill = ["--kill-at-s", "40"];
+    let (first, team) = game_events_with("0", "3", &kill);
+    let (second, _) = game_events_with("0", "3", &kill);
+    assert_eq!(first.1, second.1);
+    assert_eq!(first.0, second.0);
+    let cycle = |l: &str| -> u64 {
+        l.split_whitespace()
+            .find_map(|w| w.strip_prefix("cycle="))
+            .and_then(|c| c.parse().ok())
+            .unwrap_or(0)
+    };
+    let death = 40 * 15;
+    assert!(
+        !first
+            .0
+            .iter()
+            .any(|l| l.starts_with("[agent3]") && cycle(l) > death),
+        "robot 3 acted after its death: {:#?}",
+        first.0
+    );
+    let after_lease = death + 20 * 15;
+    for r in 1..=2 {
+        let tag = format!("[agent{r}]");
+        assert!(
+            first
+                .0
+                .iter()
+                .any(|l| l.starts_with(&tag) && l.contains(" start ") && cycle(l) > after_lease),
+            "robot {r} stopped after robot 3 died: {:#?}",
+            first.0
+        );
+    }
+    assert!(team.contains(" 0 robot contacts"), "{team}");
+    assert!(team.contains(" 0 double claims"), "{team}");
 }
 
 #[test]

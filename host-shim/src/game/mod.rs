@@ -56,19 +56,24 @@ pub struct Args {
     /// Longest delay of a team message in game time (seconds).
     #[arg(long, default_value_t = 0.0)]
     pub link_delay_s: f64,
-    /// Kill the last robot's agent process once its game time passes this many seconds
-    /// (a team plays on without it; its claims run out).
+    /// Kill the last robot's agent process at this game time: it ends at that cycle as a
+    /// crash would (a team plays on without it; its claims run out).
     #[arg(long)]
     pub kill_at_s: Option<f64>,
 }
 
-/// A game time for `game-sweep --kill-one` drawn from the seed: 60..840 s.
-pub fn kill_time_for_seed(seed: u64) -> f64 {
+/// A game time for `game-sweep --kill-one` drawn from the seed: from 60 s to 60 s before
+/// the end (60..840 s in a 15-minute game; the middle of a game shorter than 2 minutes).
+pub fn kill_time_for_seed(seed: u64, game_seconds: f64) -> f64 {
     let mut z = seed.wrapping_add(0x9E37_79B9_7F4A_7C15);
     z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
     z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
     z ^= z >> 31;
-    60.0 + (z % 781) as f64
+    let span = (game_seconds.floor() as i64 - 119).max(0) as u64;
+    if span == 0 {
+        return (game_seconds / 2.0).floor();
+    }
+    60.0 + (z % span) as f64
 }
 
 pub fn main(args: Args) -> ExitCode {
@@ -253,6 +258,12 @@ pub fn play(args: &Args, chatty: bool) -> Result<GameRecord, String> {
                 s("--link-seed"),
                 args.seed.to_string(),
             ]);
+            // The victim dies by itself at the kill's cycle, so the game is the same
+            // however loaded the machine is.
+            if let (Some(t), true) = (args.kill_at_s, r == robots) {
+                let at = (t * record::CYCLE_HZ).ceil() as u64;
+                argv.extend([s("--exit-at-cycle"), at.to_string()]);
+            }
             Proc::start(&format!("agent{r}"), program, &argv)
         })
         .collect::<Result<Vec<_>, _>>()?;
@@ -266,38 +277,12 @@ pub fn play(args: &Args, chatty: bool) -> Result<GameRecord, String> {
     }
     let started = Instant::now();
     let deadline = started + Duration::from_secs(args.timeout_s);
-    let mut victim = args
-        .kill_at_s
-        .and_then(|t| Some((agents.len().checked_sub(1)?, t)));
     let status = loop {
         if let Some(status) = sim.finish(Duration::from_millis(20), args.verbose) {
             break status;
         }
         if Instant::now() >= deadline {
             return Err(format!("no end of game within {} s", args.timeout_s));
-        }
-        // The victim's game time, from the cycles its lines name.
-        if let Some((i, t)) = victim {
-            let a = &mut agents[i];
-            a.collect(args.verbose);
-            let passed = a
-                .seen
-                .iter()
-                .rev()
-                .take(8)
-                .filter_map(|l| record::field(l, "cycle")?.parse::<f64>().ok())
-                .any(|c| c / record::CYCLE_HZ >= t);
-            if passed {
-                let _ = a.child.kill();
-                a.seen.push(format!(
-                    "robotino-agent game: killed robot {} at t={t:.1}",
-                    i + 1
-                ));
-                if chatty {
-                    println!("robotino-agent game: killed robot {} at t={t:.1}", i + 1);
-                }
-                victim = None;
-            }
         }
     };
     for a in &agents {
@@ -316,6 +301,9 @@ pub fn play(args: &Args, chatty: bool) -> Result<GameRecord, String> {
     if chatty {
         println!("{done}");
         for a in &agents {
+            if let Some(killed) = a.line_with(" killed robot ") {
+                println!("{killed}");
+            }
             let decisions = a.seen.iter().filter(|l| l.contains(" start ")).count();
             println!("robotino-agent game: {} skills={decisions}", a.name);
             if let Some(stats) = a.line_with("robotino-agent run: done") {
@@ -334,4 +322,22 @@ pub fn play(args: &Args, chatty: bool) -> Result<GameRecord, String> {
         &sim.seen,
         &agent_lines,
     ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::kill_time_for_seed;
+
+    #[test]
+    fn kill_times_fall_inside_the_game() {
+        for seed in 0..200 {
+            let t = kill_time_for_seed(seed, 900.0);
+            assert!((60.0..=840.0).contains(&t), "seed {seed}: {t}");
+            let short = kill_time_for_seed(seed, 240.0);
+            assert!((60.0..=180.0).contains(&short), "seed {seed}: {short}");
+            assert_eq!(kill_time_for_seed(seed, 90.0), 45.0);
+        }
+        // Drawn from the seed: not all alike.
+        assert_ne!(kill_time_for_seed(0, 900.0), kill_time_for_seed(1, 900.0));
+    }
 }

@@ -92,6 +92,8 @@ pub struct GameRecord {
     pub travel_m: Vec<f64>,
     /// Lines that explain the rules' doubts (`WARN ...`).
     pub warnings: Vec<(u8, String)>,
+    /// (robot, game time) of a robot killed mid-game (`game --kill-at-s`).
+    pub killed: Vec<(u8, f64)>,
 }
 
 impl GameRecord {
@@ -201,6 +203,9 @@ impl GameRecord {
                 s.end_s = killed_at.unwrap_or(g.game_time_s).max(s.start_s);
                 g.skills.push(s);
             }
+            if let Some(t) = killed_at {
+                g.killed.push((robot, t));
+            }
         }
         g.skills
             .sort_by(|a, b| a.start_s.total_cmp(&b.start_s).then(a.robot.cmp(&b.robot)));
@@ -224,14 +229,20 @@ impl GameRecord {
     }
 
     /// Stalls: for each robot, stretches of [`STALL_S`] or more without a skill starting or
-    /// ending while raw pucks remained (each stretch counts once).
+    /// ending while raw pucks remained (each stretch counts once). A killed robot is off
+    /// the team from its death: only its time before counts.
     pub fn stalls(&self) -> Vec<(u8, f64, f64)> {
-        let until = self
+        let game_until = self
             .storage_empty_s()
             .unwrap_or(self.game_time_s)
             .min(self.game_time_s);
         let mut out = Vec::new();
         for robot in 1..=self.robots {
+            let until = self
+                .killed
+                .iter()
+                .find(|&&(r, _)| r == robot)
+                .map_or(game_until, |&(_, t)| t.min(game_until));
             let mut times: Vec<f64> = self
                 .skills
                 .iter()
@@ -379,5 +390,11 @@ mod tests {
         assert_eq!(g.skills[0].ending, Ending::Cut);
         assert_eq!(g.skills[0].end_s, 25.0);
         assert!(g.double_claims().is_empty());
+        assert_eq!(g.killed, vec![(1, 25.0)]);
+        // Robot 2 idles 60 s and more before its skill and after it; robot 1 is dead
+        // from 25 s on, which is not a stall of the team.
+        let stalls = g.stalls();
+        assert!(stalls.iter().all(|&(r, _, _)| r == 2), "{stalls:?}");
+        assert_eq!(stalls.len(), 2, "{stalls:?}");
     }
 }

@@ -48,7 +48,7 @@ pub struct Args {
     #[arg(long, default_value_t = 0.0)]
     pub link_delay_s: f64,
     /// Kill the last robot's agent in every game, at a game time drawn from the seed
-    /// (60..840 s; see `game --kill-at-s`).
+    /// (60 s to 60 s before the end; see `game --kill-at-s`).
     #[arg(long)]
     pub kill_one: bool,
 }
@@ -123,7 +123,9 @@ pub fn main(args: Args) -> ExitCode {
                     zenoh_agent: args.zenoh_agent.clone(),
                     link_loss_percent: args.link_loss_percent,
                     link_delay_s: args.link_delay_s,
-                    kill_at_s: args.kill_one.then(|| super::kill_time_for_seed(seed)),
+                    kill_at_s: args
+                        .kill_one
+                        .then(|| super::kill_time_for_seed(seed, f64::from(args.game_seconds))),
                 };
                 let row = super::play(&game, false)
                     .map(|g| Row::of(&g))

@@ -119,10 +119,11 @@ impl PoseReport {
 /// going: it is no longer extrapolated, nor does it ask for the way.
 const MAX_AGE_CYCLES: u64 = 15;
 /// A teammate silent for longer (its messages lost or delayed, or the robot dead where
-/// it stopped) stays an obstacle where it was last heard of, standing still, for at most
-/// this many cycles (20 s); after that the drives rely on the IR ring alone for it, so a
-/// pose that is long wrong blocks no way for good.
-const STALE_OBSTACLE_CYCLES: u64 = 15 * 20;
+/// it stopped) stays an obstacle where it was last heard of, standing still once its
+/// wheels would have stopped, until it is heard again: a dead robot's body stays on the
+/// field for the rest of the game (forgotten after 20 s, as before, the others ran into
+/// it again and again), and a live one on a link losing 10 % of its messages is heard
+/// again within a few cycles.
 /// A velocity is extrapolated at most this many cycles (the teammate may have braked).
 const PREDICT_CYCLES: u64 = 3;
 
@@ -160,19 +161,19 @@ impl TeamBoard {
         let mut known: Vec<Teammate> = self
             .reports
             .iter()
-            .filter(|r| cycle.saturating_sub(r.cycle) <= STALE_OBSTACLE_CYCLES)
             .map(|r| {
                 let age = cycle.saturating_sub(r.cycle);
+                let ahead = age.min(PREDICT_CYCLES) as f32 * dt_s;
                 if age > MAX_AGE_CYCLES {
+                    // Where its last command took it before its wheels stopped.
                     return Teammate {
                         number: r.from,
-                        x_m: r.x_m,
-                        y_m: r.y_m,
+                        x_m: r.x_m + r.vx_m_s * ahead,
+                        y_m: r.y_m + r.vy_m_s * ahead,
                         vx_m_s: 0.0,
                         vy_m_s: 0.0,
                     };
                 }
-                let ahead = age.min(PREDICT_CYCLES) as f32 * dt_s;
                 Teammate {
                     number: r.from,
                     x_m: r.x_m + r.vx_m_s * ahead,
@@ -296,7 +297,7 @@ mod tests {
     }
 
     #[test]
-    fn a_silent_teammate_stays_a_still_obstacle_for_a_bounded_time() {
+    fn a_silent_teammate_stays_a_still_obstacle_where_it_stopped() {
         let mut b = TeamBoard::default();
         b.hear(PoseReport {
             from: 2,
@@ -311,18 +312,30 @@ mod tests {
         let dt = 1.0 / 15.0;
         let fresh = b.teammates(101, dt, &me)[0].unwrap_or_else(|| panic!("known"));
         assert!(fresh.x_m > 2.0 && fresh.vx_m_s > 0.0, "{fresh:?}");
-        let stale = 100 + MAX_AGE_CYCLES + 1;
-        let t = b.teammates(stale, dt, &me)[0].unwrap_or_else(|| panic!("kept"));
-        assert_eq!((t.x_m, t.y_m, t.vx_m_s, t.vy_m_s), (2.0, 1.0, 0.0, 0.0));
-        assert!(b.teammates(100 + STALE_OBSTACLE_CYCLES, dt, &me)[0].is_some());
-        assert_eq!(
-            b.teammates(100 + STALE_OBSTACLE_CYCLES + 1, dt, &me)[0],
-            None
-        );
+        // Silent: it stands where its last command took it in PREDICT_CYCLES cycles,
+        // however long the silence (a dead body stays on the field).
+        let stopped_x = 2.0 + 0.5 * PREDICT_CYCLES as f32 * dt;
+        for silent in [MAX_AGE_CYCLES + 1, 15 * 20 + 1, 15 * 600] {
+            let t = b.teammates(100 + silent, dt, &me)[0].unwrap_or_else(|| panic!("kept"));
+            assert_eq!((t.y_m, t.vx_m_s, t.vy_m_s), (1.0, 0.0, 0.0), "{t:?}");
+            assert!((t.x_m - stopped_x).abs() < 1e-5, "{t:?}");
+        }
+        // Heard again: its new pose replaces the old one.
+        b.hear(PoseReport {
+            from: 2,
+            cycle: 9100,
+            x_m: 4.0,
+            y_m: 4.0,
+            vx_m_s: 0.0,
+            vy_m_s: 0.0,
+            held_by: 0,
+        });
+        let t = b.teammates(9101, dt, &me)[0].unwrap_or_else(|| panic!("known"));
+        assert_eq!((t.x_m, t.y_m), (4.0, 4.0));
     }
 
     #[test]
-    fn the_board_keeps_the_newest_report_and_forgets_old_ones() {
+    fn the_board_keeps_the_newest_report_and_stops_asking_with_old_ones() {
         let mut b = TeamBoard::default();
         let at = |cycle, x| PoseReport {
             from: 3,
@@ -341,10 +354,6 @@ mod tests {
         assert_eq!(b.asking_way(1, 11), Some(3));
         assert_eq!(b.asking_way(2, 11), None);
         assert_eq!(b.asking_way(1, 10 + MAX_AGE_CYCLES + 1), None);
-        assert_eq!(
-            b.teammates(10 + STALE_OBSTACLE_CYCLES + 1, 1.0 / 15.0, &me)[0],
-            None
-        );
     }
 
     #[test]
