@@ -380,7 +380,9 @@
   (bind ?y (team-free-use-of ?p ?here))
   (retract ?b)
   (assert (team-wait-since ?t))
-  (if (not (any-factp ((?i intent)) (eq ?i:target ?y)))
+  ;; The test above was evaluated when its facts last changed: a vote heard since may
+  ;; have taken the place (then ?y is nil and the robot waits on).
+  (if (and (neq ?y nil) (not (any-factp ((?i intent)) (eq ?i:target ?y))))
    then (retract ?s)
         (team-stop-waiting)
         (assert (state IDLE) (intent (action finish-puck-at) (target ?y)))))
@@ -414,7 +416,10 @@
   (assert (team-wait-since ?t))
   (bind ?a get-junk)
   (if (eq ?y INS) then (bind ?a get-s0))
-  (if (not (any-factp ((?i intent)) (eq ?i:target ?y)))
+  ;; As above: nil once a vote heard since took the place (seed 9 on a lossy link: the
+  ;; storage, free when the test ran, was a teammate's when the rule fired, and the
+  ;; intent (get-junk nil) stopped robot 2's agent for the whole game).
+  (if (and (neq ?y nil) (not (any-factp ((?i intent)) (eq ?i:target ?y))))
    then (retract ?s)
         (team-stop-waiting)
         (assert (state IDLE) (intent (action ?a) (target ?y)))))
