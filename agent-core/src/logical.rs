@@ -149,11 +149,14 @@ pub struct LogicalFrame {
 impl Core<'_> {
     /// Whether truth maintenance has anything to do (a support, a fact to retract, or
     /// a logical rule firing): deferred propagation and whole-memory removal, which
-    /// reorder removals, stay off then.
+    /// reorder removals, stay off then. Two loads on the hot paths of matching, so a
+    /// program without `logical` pays (almost) nothing: the facts to retract are
+    /// entries of the unsupported stack, which count in `live` until retracted.
     #[inline(always)]
     pub(crate) fn logical_in_use(&self) -> bool {
         let l = &self.st.logical;
-        l.live != 0 || l.unsupported != NONE || l.bind != TokenId::NONE
+        debug_assert!(l.unsupported == NONE || l.live != 0);
+        l.live != 0 || l.bind != TokenId::NONE
     }
 
     /// The successor of rule `rule`'s logical join on its path (NONE: no logical CE).
@@ -361,8 +364,11 @@ impl Core<'_> {
 
     /// Partial match `t` goes (deleted, or a not/exists output no longer passing
     /// on): the facts it supports lose that support, and those left with none are
-    /// pushed on the unsupported stack, in the order of its list.
-    #[inline(always)]
+    /// pushed on the unsupported stack, in the order of its list. Out of line, as
+    /// `copy_leaves`: the callers test `logical_in_use` first, and a program without
+    /// `logical` keeps them small (`free_token` inlined in the join loops).
+    #[cold]
+    #[inline(never)]
     pub(crate) fn token_leaves(&mut self, t: TokenId) {
         self.copy_leaves(t, JoinId::NONE);
     }
@@ -370,7 +376,8 @@ impl Core<'_> {
     /// Partial match `t`'s copy passed on to successor `succ` goes (all its copies
     /// for NONE): see `token_leaves`. Called once what the copy passed on is taken
     /// back (CLIPS's order).
-    #[inline(always)]
+    #[cold]
+    #[inline(never)]
     pub(crate) fn copy_leaves(&mut self, t: TokenId, succ: JoinId) {
         if t == self.st.logical.bind && (succ == JoinId::NONE || succ == self.st.logical.bind_succ)
         {
