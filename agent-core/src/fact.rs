@@ -542,11 +542,10 @@ impl Core<'_> {
     /// Runs the network; on a full pool the fact is removed again and the error returned.
     pub fn assert_slots(&mut self, tmpl: Ix, base: usize) -> Result<Option<Ix>, EvalError> {
         // no pattern matching runs here (asserting during it is refused): the token
-        // index may grow now (`grow`)
+        // index may grow now (`grow`), once it has fewer buckets than the token pool
+        // has entries (the fixed host engine's ratio, which a seeded start keeps)
         #[cfg(feature = "grow")]
-        if self.amem_buckets.len() < 2 * self.tokens.len()
-            && self.grows()
-            && self.st.net.matching == 0
+        if self.amem_buckets.len() < self.tokens.len() && self.grows() && self.st.net.matching == 0
         {
             self.grow_token_index();
         }

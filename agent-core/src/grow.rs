@@ -12,12 +12,17 @@
 //! growth that cannot happen (the limit, or the allocator refusing) is the pool's
 //! `CapacityError`, with the storage as it was.
 //!
+//! A host that wants the fixed host engine's start at no cost makes a [`HostSeed`] a
+//! `static` (built at compile time: its entries are the program's initialized data, so
+//! starting fills nothing and touches only the pages a program uses) and starts from it
+//! ([`GrowStorage::from_seed`]); a pool's first growth copies its seed arrays to the heap.
+//!
 //! The hash tables over the pools start at the fixed host engine's length and keep
 //! twice as many buckets as their pool has entries: the fact and symbol tables are
 //! rebuilt at once (their chains are found again from each entry's hash), the token
 //! index (alpha- and beta-memory buckets, whose chains a join may be walking) at the
-//! next assert, when no pattern matching runs (`grow_token_index`); its tokens keep
-//! their hash for that (`rete::index`).
+//! next assert, when no pattern matching runs, once the tokens outnumber its buckets
+//! (`grow_token_index`); its tokens keep their hash for that (`rete::index`).
 
 use alloc::vec::Vec;
 use core::marker::PhantomData;
@@ -55,7 +60,7 @@ macro_rules! heads {
 /// Doubles the bucket heads `v` (new ones `empty`) until there are `at_least`; the old
 /// length if they grew (the old heads stay in front), `None` if they were long enough
 /// or the allocator refuses.
-fn grow_heads<T: Clone>(v: &mut Vec<T>, at_least: usize, empty: T) -> Option<usize> {
+fn grow_heads<T: Clone>(v: &mut Buf<T>, at_least: usize, empty: T) -> Option<usize> {
     let old = v.len();
     if old >= at_least {
         return None;
@@ -64,15 +69,64 @@ fn grow_heads<T: Clone>(v: &mut Vec<T>, at_least: usize, empty: T) -> Option<usi
     while len < at_least {
         len = len.saturating_mul(2);
     }
-    reserve(v, len).ok()?;
+    v.reserve(len).ok()?;
     v.resize(len, empty);
     Some(old)
 }
 
-/// Makes room for `len` entries in `v` without changing it.
-fn reserve<T>(v: &mut Vec<T>, len: usize) -> Result<(), ()> {
-    let extra = len.saturating_sub(v.len());
-    v.try_reserve_exact(extra).map_err(|_| ())
+/// One array of a pool: a [`HostSeed`]'s until it first grows, then a heap vector.
+enum Buf<T: 'static> {
+    Seed(&'static mut [T]),
+    Heap(Vec<T>),
+}
+
+impl<T: Clone> Buf<T> {
+    /// Makes room for `len` entries in a heap vector (a seed's entries copied there
+    /// first) without changing the entries.
+    fn reserve(&mut self, len: usize) -> Result<(), ()> {
+        match self {
+            Buf::Heap(v) => {
+                let extra = len.saturating_sub(v.len());
+                v.try_reserve_exact(extra).map_err(|_| ())
+            }
+            Buf::Seed(seed) => {
+                let mut v = Vec::new();
+                v.try_reserve_exact(len.max(seed.len())).map_err(|_| ())?;
+                v.extend_from_slice(seed);
+                *self = Buf::Heap(v);
+                Ok(())
+            }
+        }
+    }
+
+    /// Makes it `len` entries long, new ones `empty`; unchanged if the allocator
+    /// refuses (callers reserve first, so it does not).
+    fn resize(&mut self, len: usize, empty: T) {
+        if self.reserve(len).is_ok() {
+            if let Buf::Heap(v) = self {
+                v.resize(len, empty);
+            }
+        }
+    }
+}
+
+impl<T> core::ops::Deref for Buf<T> {
+    type Target = [T];
+    fn deref(&self) -> &[T] {
+        match self {
+            Buf::Seed(s) => s,
+            Buf::Heap(v) => v,
+        }
+    }
+}
+
+impl<T> core::ops::DerefMut for Buf<T> {
+    fn deref_mut(&mut self) -> &mut [T] {
+        match self {
+            Buf::Seed(s) => s,
+            Buf::Heap(v) => v,
+        }
+    }
 }
 
 macro_rules! grow_items {
@@ -87,9 +141,31 @@ macro_rules! grow_items {
             /// The most entries each pool may grow to, in table order.
             limits: [usize; Pool::COUNT],
             $(
-                $first: Vec<$fty>,
-                $($arr: Vec<$aty>,)*
+                $first: Buf<$fty>,
+                $($arr: Buf<$aty>,)*
             )*
+        }
+
+        /// Every array of a [`GrowStorage`] at the fixed host engine's length
+        /// ([`Capacities::HOST`]), every entry empty: see the module docs.
+        pub struct HostSeed {
+            $(
+                $first: [$fty; Capacities::HOST.$cap],
+                $($arr: [$aty; Capacities::HOST.$cap],)*
+            )*
+        }
+
+        impl HostSeed {
+            /// Every entry empty; `const` so that the seed can be a `static`.
+            #[allow(clippy::new_without_default)]
+            pub const fn new() -> Self {
+                HostSeed {
+                    $(
+                        $first: [$fempty; Capacities::HOST.$cap],
+                        $($arr: [$aempty; Capacities::HOST.$cap],)*
+                    )*
+                }
+            }
         }
 
         impl GrowStorage {
@@ -103,13 +179,34 @@ macro_rules! grow_items {
                 GrowStorage {
                     limits,
                     $(
-                        $first: alloc::vec![$fempty; start[Pool::$variant as usize]
-                            .min(limits[Pool::$variant as usize])],
-                        $($arr: alloc::vec![$aempty; {
+                        $first: Buf::Heap(alloc::vec![$fempty; start[Pool::$variant as usize]
+                            .min(limits[Pool::$variant as usize])]),
+                        $($arr: Buf::Heap(alloc::vec![$aempty; {
                             let n = start[Pool::$variant as usize]
                                 .min(limits[Pool::$variant as usize]);
                             heads!($arr).map_or(n, |h| n.max(h))
-                        }],)*
+                        }]),)*
+                    )*
+                }
+            }
+
+            /// Pools that start in `seed` (the fixed host engine's lengths, or `limit`
+            /// where that is less) and grow up to `limit` entries each (at most
+            /// [`INDEX_LIMIT`]); allocates nothing until a pool grows. The seed's
+            /// entries must be empty ([`HostSeed::new`]): it is used as it is.
+            pub fn from_seed(seed: &'static mut HostSeed, limit: Capacities) -> Self {
+                let limits = limit.to_array().map(|l| l.min(INDEX_LIMIT));
+                let start = Capacities::HOST.to_array();
+                GrowStorage {
+                    limits,
+                    $(
+                        $first: Buf::Seed(&mut seed.$first[..start[Pool::$variant as usize]
+                            .min(limits[Pool::$variant as usize])]),
+                        $($arr: Buf::Seed({
+                            let n = start[Pool::$variant as usize]
+                                .min(limits[Pool::$variant as usize]);
+                            &mut seed.$arr[..heads!($arr).map_or(n, |h| n.max(h))]
+                        }),)*
                     )*
                 }
             }
@@ -125,9 +222,9 @@ macro_rules! grow_items {
                 match pool {
                     $(Pool::$variant => {
                         // all or nothing: reserve every array before changing one
-                        reserve(&mut self.$first, len)?;
+                        self.$first.reserve(len)?;
                         $(if heads!($arr).is_none() {
-                            reserve(&mut self.$arr, len)?;
+                            self.$arr.reserve(len)?;
                         })*
                         self.$first.resize(len, $fempty);
                         $(if heads!($arr).is_none() {
@@ -472,6 +569,13 @@ mod tests {
             panic!("line {i}: grown {a:?}, fixed {b:?}");
         }
         assert_eq!(out, expected);
+        // started in a seed (the CLI's start), it grows out of it the same way
+        let seed = Box::leak(Box::new(HostSeed::new()));
+        let seeded = GrowStorage::from_seed(seed, GrowStorage::NO_LIMIT);
+        assert_eq!(seeded.lens(), Capacities::HOST.to_array());
+        let mut seeded = Box::new(GrowEngine::with_storage(seeded));
+        assert_eq!(run(&mut seeded, &program), expected);
+        assert!(seeded.stats().get(Pool::Facts).1 as usize > Capacities::HOST.facts);
         // and a default (fixed host) engine runs out on it
         let mut small = Box::new(DefaultEngine::new());
         assert!(run(&mut small, &program).contains("out of "));
@@ -518,6 +622,23 @@ mod tests {
         assert_eq!(INDEX_LIMIT, NONE as usize - 1);
         assert_eq!(s.lens(), Capacities::SMALL.to_array());
         assert_eq!(GrowStorage::new().lens(), GrowStorage::START.to_array());
+    }
+
+    #[test]
+    fn a_seed_under_a_limit_starts_at_the_limit() {
+        std::thread::Builder::new()
+            .stack_size(1 << 28)
+            .spawn(|| {
+                let seed = Box::leak(Box::new(HostSeed::new()));
+                let s = GrowStorage::from_seed(seed, Capacities::uniform(100));
+                let lens = s.lens();
+                for pool in Pool::ALL {
+                    let want = Capacities::HOST.get(pool).min(100);
+                    assert_eq!(lens[pool as usize], want, "{pool:?}");
+                }
+            })
+            .and_then(|t| t.join().map_err(|_| std::io::Error::other("test failed")))
+            .unwrap();
     }
 
     #[test]
