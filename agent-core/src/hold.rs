@@ -74,17 +74,29 @@ impl Core<'_> {
 
     /// Closes a hold. The outermost one sends the held traces out when the
     /// operation succeeded (`keep`) and drops them when it was undone.
+    /// (Inlined on the host: every assert and retract closes one, mostly with nothing
+    /// held.)
+    #[cfg_attr(feature = "host-speedups", inline)]
     pub(crate) fn release_traces(&mut self, keep: bool) {
         let h = &mut self.st.net.hold;
         h.depth = h.depth.saturating_sub(1);
         if h.depth > 0 {
             return;
         }
-        if keep && !h.buf.is_empty() {
+        h.spilled = false;
+        if !h.buf.is_empty() {
+            self.send_held_traces(keep);
+        }
+    }
+
+    /// Sends the held traces out if `keep`, and forgets them.
+    #[cfg_attr(feature = "host-speedups", inline(never))]
+    fn send_held_traces(&mut self, keep: bool) {
+        let h = &mut self.st.net.hold;
+        if keep {
             self.host.write_str(router::WTRACE, h.buf.as_str());
         }
         h.buf.clear();
-        h.spilled = false;
     }
 
     /// Another write while traces are held: they go out first, to keep the order.

@@ -95,7 +95,7 @@ impl<'s> Parser<'s, '_, '_> {
     /// One value of a fact: an expression, or `=(call)`, CLIPS's older way of writing
     /// a call's value there (the `=` is dropped; after it only a call may come).
     fn fact_value(&mut self) -> PResult<Ix> {
-        if self.peek().tok == Tok::Symbol("=") {
+        if matches!(self.peek().tok, Tok::Symbol("=")) {
             self.next();
             let t = self.peek();
             if t.tok != Tok::LParen {

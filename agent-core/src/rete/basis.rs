@@ -20,6 +20,8 @@ pub(crate) struct Basis<'a> {
 impl Iterator for Basis<'_> {
     type Item = (usize, Option<u32>);
 
+    // inlined on the host: the agenda hashes every activation's basis with it
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     fn next(&mut self) -> Option<Self::Item> {
         if self.at == TokenId::NONE {
             return None;
@@ -38,6 +40,7 @@ impl Iterator for Basis<'_> {
 
 impl Core<'_> {
     /// The facts partial match `token` holds (see [`Basis`]).
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     pub(crate) fn basis(&self, token: TokenId) -> Basis<'_> {
         Basis {
             tokens: SlotsRef::new(self.tokens.as_slice()),
