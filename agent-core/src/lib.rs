@@ -184,6 +184,7 @@ pub mod host_fn;
 pub mod invariants;
 pub mod lexer;
 pub mod logical;
+pub mod module;
 pub mod parser;
 pub mod print;
 pub mod rete;
