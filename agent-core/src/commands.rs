@@ -93,6 +93,32 @@ fn construct_name(s: &str) -> &str {
     }
 }
 
+/// The globals a defglobal's text defines (`?*x* =` at its top level), in order.
+fn global_names(s: &str) -> impl Iterator<Item = &str> {
+    let mut lx = Lexer::new(s);
+    let mut depth = 0u32;
+    let mut pending: Option<&str> = None;
+    core::iter::from_fn(move || loop {
+        let t = lx.next_token();
+        match t.tok {
+            Tok::Eof | Tok::Bad => return None,
+            Tok::LParen => depth += 1,
+            Tok::RParen => depth = depth.saturating_sub(1),
+            Tok::Global(n) if depth == 1 => {
+                pending = Some(n);
+                continue;
+            }
+            Tok::Symbol("=") if depth == 1 => {
+                if let Some(n) = pending.take() {
+                    return Some(n);
+                }
+            }
+            _ => {}
+        }
+        pending = None;
+    })
+}
+
 impl Parser<'_, '_, '_> {
     /// `load`'s line for the construct just parsed: "Defining defrule: r +j" (or CLIPS's
     /// redefinition warning) with compilations watched, else a progress mark. Called by
@@ -119,6 +145,22 @@ impl Parser<'_, '_, '_> {
                 }
             }
             let _ = b.write_char('\n');
+            // a defglobal of several globals: a line for each of the others too
+            if kw == "defglobal" {
+                let end = self.lex.pos().max(start);
+                let text = self.lex.source().get(start..end).unwrap_or("");
+                for name in global_names(text).skip(1) {
+                    let _ = writeln!(b, "Defining defglobal: {name}");
+                }
+            }
+        } else if kw == "defglobal" {
+            // one mark per global
+            let end = self.lex.pos().max(start);
+            let text = self.lex.source().get(start..end).unwrap_or("");
+            for _ in global_names(text) {
+                let _ = b.write_char(':');
+            }
+            self.cx.st.io.progress_printed = true;
         } else {
             // CLIPS's progress marks when compilations are not watched
             let _ = b.write_char(match kw {

@@ -299,7 +299,10 @@ impl Core<'_> {
             #[cfg(feature = "modules")]
             let seen = all || self.template_visible(self.facts[f as usize].tmpl);
             #[cfg(not(feature = "modules"))]
-            let seen = all || true;
+            let seen = {
+                let _ = all;
+                true
+            };
             if seen && num >= start && (end < 0 || num <= end) && (max < 0 || n < max) {
                 self.print_fact_listing_line(f);
                 n += 1;

@@ -93,6 +93,7 @@ fn run(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 fn facts(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let mut nums = [-1i64; 3];
     let mut k = 0;
+    #[cfg_attr(not(feature = "modules"), allow(unused_mut))]
     let mut all = false;
     #[cfg(feature = "modules")]
     let current = cx.current_module();
@@ -122,6 +123,9 @@ fn facts(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
                 } else {
                     "positive number"
                 };
+                // (the module a first argument named is left)
+                #[cfg(feature = "modules")]
+                cx.set_current_module(current);
                 return Err(EvalError::wrong_type(
                     "facts",
                     crate::error::arg_no(i),

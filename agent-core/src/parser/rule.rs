@@ -92,6 +92,7 @@ pub(crate) struct Build {
     pub(crate) in_logical: bool,
     pub(crate) plain_seen: bool,
     /// `(declare (auto-focus TRUE))` (feature `modules`).
+    #[cfg_attr(not(feature = "modules"), allow(dead_code))]
     pub(crate) auto_focus: bool,
 }
 
