@@ -1,5 +1,5 @@
 ; expect: 5:12 expected not in use
-; keeps: (A)
+; keeps: (A MAIN)
 ; a defmodule other than MAIN cannot be defined again: CLIPS's CSTRCPSR4
 (defmodule A (export ?ALL))
 (defmodule A)
