@@ -661,8 +661,17 @@ macro_rules! match_pool_case {
 #[cfg(feature = "parser")]
 #[test]
 fn tokens_and_activations_at_assert_run_modify_and_load() {
-    match_pool_case!(Pool::Tokens, 40, engine!(tokens = 40));
-    match_pool_case!(Pool::Activations, 6, engine!(activations = 6));
+    // two expansions of the case macro make a frame too big for a test thread's
+    // default stack in a debug build, so the cases run on a thread with room
+    std::thread::Builder::new()
+        .stack_size(64 << 20)
+        .spawn(|| {
+            match_pool_case!(Pool::Tokens, 40, engine!(tokens = 40));
+            match_pool_case!(Pool::Activations, 6, engine!(activations = 6));
+        })
+        .expect("thread")
+        .join()
+        .expect("no panic");
 }
 
 // ---------------------------------------------------------------- constructs
