@@ -129,6 +129,11 @@ impl Core<'_> {
         self.tokens[token].extra = a;
         // a replayed activation has its old number back, hence its old place
         self.agenda_insert(a);
+        // an auto-focus rule's module is focused first (CLIPS prints it first)
+        #[cfg(feature = "modules")]
+        if self.rule_module[rule as usize].auto_focus {
+            self.push_focus(self.rule_module[rule as usize].module)?;
+        }
         if self.st.mode.watch & watch::ACTIVATIONS != 0 {
             self.print_activation_line("==> Activation ", a);
         }
@@ -233,6 +238,22 @@ impl Core<'_> {
 
     /// Takes the top activation off the agenda (it fires; refraction keeps it gone).
     pub(crate) fn pop_activation(&mut self) -> Option<(Ix, TokenId)> {
+        // the first activation of the focused module's agenda (the agenda is one list
+        // in CLIPS's order: each module's agenda is its activations in that order); a
+        // module with none leaves the focus stack
+        #[cfg(feature = "modules")]
+        let a = loop {
+            let m = self.focus_top()?;
+            let mut a = self.st.agenda.agenda_head;
+            while a != NONE && !self.activation_in(a, m) {
+                a = self.acts[a as usize].next;
+            }
+            if a != NONE {
+                break a;
+            }
+            self.pop_focus();
+        };
+        #[cfg(not(feature = "modules"))]
         let a = self.st.agenda.agenda_head;
         if a == NONE {
             return None;

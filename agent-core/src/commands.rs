@@ -76,18 +76,47 @@ fn only_blank(s: &str) -> bool {
 
 /// Name of the construct starting at `s` (`(defrule NAME ...`); for defglobal the
 /// first variable's name.
+/// first variable's name (after its module's name, if any). A name given with its
+/// module (`MOD::name`) is the name alone.
 fn construct_name(s: &str) -> &str {
     let mut lx = Lexer::new(s);
     lx.next_token();
-    lx.next_token();
+    let global = lx.next_token().tok == Tok::Symbol("defglobal");
     loop {
         match lx.next_token().tok {
-            Tok::Symbol(n) if n != "MAIN" => return n,
+            Tok::Symbol(_) if global => {}
+            Tok::Symbol(n) => return crate::module::split_qualified(n).map_or(n, |(_, n)| n),
             Tok::Global(n) => return n,
             Tok::Eof | Tok::Bad => return "",
             _ => {}
         }
     }
+}
+
+/// The globals a defglobal's text defines (`?*x* =` at its top level), in order.
+fn global_names(s: &str) -> impl Iterator<Item = &str> {
+    let mut lx = Lexer::new(s);
+    let mut depth = 0u32;
+    let mut pending: Option<&str> = None;
+    core::iter::from_fn(move || loop {
+        let t = lx.next_token();
+        match t.tok {
+            Tok::Eof | Tok::Bad => return None,
+            Tok::LParen => depth += 1,
+            Tok::RParen => depth = depth.saturating_sub(1),
+            Tok::Global(n) if depth == 1 => {
+                pending = Some(n);
+                continue;
+            }
+            Tok::Symbol("=") if depth == 1 => {
+                if let Some(n) = pending.take() {
+                    return Some(n);
+                }
+            }
+            _ => {}
+        }
+        pending = None;
+    })
 }
 
 impl Parser<'_, '_, '_> {
@@ -116,6 +145,22 @@ impl Parser<'_, '_, '_> {
                 }
             }
             let _ = b.write_char('\n');
+            // a defglobal of several globals: a line for each of the others too
+            if kw == "defglobal" {
+                let end = self.lex.pos().max(start);
+                let text = self.lex.source().get(start..end).unwrap_or("");
+                for name in global_names(text).skip(1) {
+                    let _ = writeln!(b, "Defining defglobal: {name}");
+                }
+            }
+        } else if kw == "defglobal" {
+            // one mark per global
+            let end = self.lex.pos().max(start);
+            let text = self.lex.source().get(start..end).unwrap_or("");
+            for _ in global_names(text) {
+                let _ = b.write_char(':');
+            }
+            self.cx.st.io.progress_printed = true;
         } else {
             // CLIPS's progress marks when compilations are not watched
             let _ = b.write_char(match kw {
@@ -143,13 +188,15 @@ impl Core<'_> {
             _ => return false,
         };
         let name = construct_name(s);
-        let name = name.strip_prefix("MAIN::").unwrap_or(name);
+        #[cfg(feature = "modules")]
+        if kw == "defmodule" {
+            return self.find_module(name).is_some();
+        }
         let Some(id) = self.find_sym(name) else {
             return false;
         };
         match kw {
-            "defrule" => (0..self.st.pools.nrules)
-                .any(|r| self.rules[r as usize].name == id && !self.rules[r as usize].deleted),
+            "defrule" => (0..self.st.pools.nrules).any(|r| self.rule_here(r, id)),
             "deffacts" => {
                 (0..self.st.pools.ndeffacts).any(|d| self.deffacts[d as usize].name == id)
             }
@@ -221,6 +268,9 @@ impl Core<'_> {
     }
 
     fn reset_inner(&mut self) -> Result<(), EvalError> {
+        // the focus stack holds MAIN only, the current module
+        #[cfg(feature = "modules")]
+        self.reset_focus()?;
         // rules starting with not/exists/test lose their root-based matches first
         let root_token = self.join_mems[JoinId::ROOT].mem;
         loop {
@@ -259,8 +309,21 @@ impl Core<'_> {
         if self.st.mode.initial_deffacts {
             self.assert_initial_fact()?;
         }
-        // an error in the network halts CLIPS's reset: no further deffacts fact
-        'deffacts: for d in 0..self.st.pools.ndeffacts {
+        // an error in the network halts CLIPS's reset: no further deffacts fact; the
+        // deffacts go module by module, in definition order in each
+        #[cfg(feature = "modules")]
+        let modules = self.st.modules.nmodules;
+        #[cfg(not(feature = "modules"))]
+        let modules = 1;
+        let ndeffacts = self.st.pools.ndeffacts;
+        'deffacts: for d in (0..modules).flat_map(|m| (0..ndeffacts).map(move |d| (m, d))) {
+            let (m, d) = d;
+            #[cfg(feature = "modules")]
+            if Ix::from(self.deffacts_module[d as usize]) != m {
+                continue;
+            }
+            #[cfg(not(feature = "modules"))]
+            let _ = m;
             let mut spec = self.deffacts[d as usize].facts;
             while spec != NONE {
                 if self.st.mode.halting {
@@ -321,6 +384,16 @@ impl Core<'_> {
         }
         #[cfg(feature = "logical")]
         self.logical_clear();
+        #[cfg(feature = "modules")]
+        {
+            self.focus.fill(crate::module::NO_TAG);
+            self.tmpl_module.fill(crate::module::NO_TAG);
+            self.rule_module.fill(crate::module::NO_RULE_TAG);
+            self.func_module.fill(crate::module::NO_TAG);
+            self.global_module.fill(crate::module::NO_TAG);
+            self.deffacts_module.fill(crate::module::NO_TAG);
+            self.modules.fill(crate::module::NO_MODULE);
+        }
         let hw = self.st.pools.hw;
         // what is running goes on: its frame, nesting and firing, and the generator
         let ctx = (
@@ -409,6 +482,9 @@ impl Core<'_> {
         self.st.pools.ext_syms = ext_syms;
         // CLIPS prints `==> f-0 (initial-fact)` here when facts are watched
         self.st.mode.watch = w;
+        // CLIPS's clear ends with a reset's focus on MAIN (the stack holds MAIN)
+        #[cfg(feature = "modules")]
+        self.reset_focus()?;
         if keep == 0 {
             self.startup()
         } else {
@@ -506,6 +582,11 @@ impl Core<'_> {
 
     fn run_rules(&mut self, limit: i64, stats: &mut RunStats) -> Result<u32, EvalError> {
         self.st.mode.halt = false;
+        // a run with an empty focus stack focuses on MAIN (as CLIPS 6.30)
+        #[cfg(feature = "modules")]
+        if self.focus_top().is_none() {
+            self.push_focus(crate::module::MAIN)?;
+        }
         let mut fired: u32 = 0;
         let scratch_mark = self.st.frame.scratch_top;
         while limit < 0 || (fired as i64) < limit {
@@ -533,6 +614,9 @@ impl Core<'_> {
             self.st.mode.firing = true;
             self.st.net.pm_rhs = true;
             self.st.agenda.current_rule = rule;
+            // the rule's actions run in its module
+            #[cfg(feature = "modules")]
+            self.set_current_module(self.rule_module[rule as usize].module);
             // a halt ends the run, so one left here came from before it (a top-level
             // command's propagation): the rule's actions run as usual
             self.st.mode.halting = false;
@@ -552,6 +636,11 @@ impl Core<'_> {
             }
             #[cfg(feature = "logical")]
             self.logical_leave(logical);
+            // `(return)` in a rule's actions ends the focus on its module
+            #[cfg(feature = "modules")]
+            if self.st.eval.returning {
+                self.pop_focus();
+            }
             self.st.eval.returning = false;
             self.st.eval.breaking = false;
             // the rule's frame goes; what it left in scratch goes below, at the top level
@@ -750,6 +839,10 @@ impl Core<'_> {
     /// Prints a load error in CLIPS's style plus the position line.
     pub fn report_load_error(&mut self, source: &str, text: &str, e: &LoadError) {
         let mut b: TextBuf<4096> = TextBuf::new();
+        // (a construct's echo names the module it was read into)
+        let mut module: TextBuf<64> = TextBuf::new();
+        let _ = module.write_str(self.current_module_name());
+        let module = module.as_str();
         let tok = text.get(e.start as usize..e.end as usize).unwrap_or("");
         if e.capacity.is_some() || e.expected == crate::parser::INPUT_ENDED {
             self.st.mode.unrecoverable = true;
@@ -953,7 +1046,7 @@ impl Core<'_> {
         ) && e.construct == "defrule"
         {
             let _ = b.write_str("\nERROR:\n");
-            let _ = crate::builtins::pretty::write_defrule(text, &mut b);
+            let _ = crate::builtins::pretty::write_defrule(text, module, &mut b);
             let _ = b.write_char('\n');
         }
         // CLIPS shows the construct it rejected up to where it stopped reading: a
@@ -968,7 +1061,7 @@ impl Core<'_> {
         if matches!(e.detail, LoadDetail::Constraint { .. }) && e.construct == "deffacts" {
             let _ = b.write_str("\nERROR:\n");
             let upto = text.get(..e.echo_end as usize).unwrap_or(text);
-            let _ = crate::builtins::pretty::write_deffacts_upto(upto, &mut b);
+            let _ = crate::builtins::pretty::write_deffacts_upto(upto, module, &mut b);
             let _ = b.write_char('\n');
         } else if matches!(
             e.detail,
@@ -980,12 +1073,12 @@ impl Core<'_> {
         {
             let _ = b.write_str("\nERROR:\n");
             let upto = text.get(..e.echo_end as usize).unwrap_or(text);
-            let _ = crate::builtins::pretty::write_deffunction_upto(upto, &mut b);
+            let _ = crate::builtins::pretty::write_deffunction_upto(upto, module, &mut b);
             let _ = b.write_char('\n');
         } else if assert_in_rule {
             let _ = b.write_str("\nERROR:\n");
             let upto = text.get(..e.echo_end as usize).unwrap_or(text);
-            let _ = crate::builtins::pretty::write_defrule_upto(upto, &mut b);
+            let _ = crate::builtins::pretty::write_defrule_upto(upto, module, &mut b);
             let _ = b.write_char('\n');
         } else if e.echo_end != 0 && !matches!(e.detail, LoadDetail::Constraint { .. }) {
             let _ = b.write_str("\nERROR:\n");
@@ -993,6 +1086,7 @@ impl Core<'_> {
                 text,
                 e.echo_end as usize,
                 e.echo_tail,
+                module,
                 &mut b,
             );
             let _ = b.write_char('\n');

@@ -79,6 +79,8 @@ macro_rules! __pool_table {
                 tmpl_mems: $crate::template::TemplateMem = $crate::template::TemplateMem::EMPTY,
                 // host speed-up: each template's constant-test discrimination
                 tmpl_disc: $crate::rete::TemplateDisc = $crate::rete::NO_TEMPLATE_DISC,
+                // modules: the module each template belongs to
+                tmpl_module: $crate::module::ModTag = $crate::module::NO_TAG,
             ],
             SlotDefs slot_defs "slot definitions" 1024 64 [
                 slots: $crate::template::SlotDef = $crate::template::SlotDef::EMPTY,
@@ -87,6 +89,8 @@ macro_rules! __pool_table {
                 rules: $crate::rule::Rule = $crate::rule::Rule::EMPTY,
                 // truth maintenance: each rule's logical join
                 rule_logical: $crate::logical::RuleLogical = $crate::logical::NO_RULE_LOGICAL,
+                // modules: the module each rule belongs to (its agenda)
+                rule_module: $crate::module::RuleTag = $crate::module::NO_RULE_TAG,
             ],
             AlphaNodes alpha_nodes "alpha nodes" 1024 64 [
                 alphas: $crate::rete::AlphaNode = $crate::rete::AlphaNode::EMPTY,
@@ -117,9 +121,13 @@ macro_rules! __pool_table {
             ],
             Functions functions "deffunctions" 256 16 [
                 funcs: $crate::template::Deffunction = $crate::template::Deffunction::EMPTY,
+                // modules: the module each deffunction belongs to
+                func_module: $crate::module::ModTag = $crate::module::NO_TAG,
             ],
             Globals globals "globals" 128 16 [
                 globals: $crate::template::Global = $crate::template::Global::EMPTY,
+                // modules: the module each defglobal belongs to
+                global_module: $crate::module::ModTag = $crate::module::NO_TAG,
             ],
             Exprs exprs "expression nodes" 32768 2048 [
                 exprs: $crate::expr::Expr = $crate::expr::Expr::EMPTY,
@@ -132,6 +140,8 @@ macro_rules! __pool_table {
             ],
             Deffacts deffacts "deffacts" 64 8 [
                 deffacts: $crate::template::Deffacts = $crate::template::Deffacts::EMPTY,
+                // modules: the module each deffacts belongs to
+                deffacts_module: $crate::module::ModTag = $crate::module::NO_TAG,
             ],
             ExternalFns external_fns "external functions" 32 8 [
                 externals: $crate::engine::ExternalEntry = $crate::engine::ExternalEntry::EMPTY,
@@ -139,6 +149,18 @@ macro_rules! __pool_table {
             // truth maintenance (`logical`): one entry per (partial match, fact) support
             Supports supports "logical supports" 8192 64 [
                 supports: $crate::logical::Support = $crate::logical::NO_SUPPORT,
+            ],
+            // modules (`defmodule`): MAIN is entry 0; the agent image has MAIN only
+            Modules modules "defmodules" 64 4 [
+                modules: $crate::module::Module = $crate::module::NO_MODULE,
+            ],
+            // modules: the import and export specifications of every defmodule
+            ModulePorts module_ports "module ports" 256 16 [
+                ports: $crate::module::Port = $crate::module::NO_PORT,
+            ],
+            // modules: the focus stack, bottom first
+            FocusStack focus_stack "focus stack" 128 8 [
+                focus: $crate::module::ModTag = $crate::module::NO_TAG,
             ],
         }
     };

@@ -47,6 +47,8 @@ pub mod watch {
     pub const ACTIVATIONS: u8 = 4;
     pub const COMPILATIONS: u8 = 8;
     pub const STATISTICS: u8 = 16;
+    /// `(watch focus)` (feature `modules`).
+    pub const FOCUS: u8 = 32;
 }
 
 /// High-water marks (entries in use at most) of every pool.
@@ -554,6 +556,9 @@ pub struct State {
     /// Truth maintenance (`logical`).
     #[cfg(feature = "logical")]
     pub logical: crate::logical::LogicalState,
+    /// Modules and the focus stack (`modules`).
+    #[cfg(feature = "modules")]
+    pub modules: crate::module::ModuleState,
     /// Expression nodes, alpha nodes and joins of a compiled rule base read in place
     /// (feature `in-place`, `compiled`, `rom`): ids below their length are these, the
     /// arena's come after.
@@ -578,6 +583,8 @@ impl State {
             random: Random::new(),
             #[cfg(feature = "logical")]
             logical: crate::logical::LogicalState::new(),
+            #[cfg(feature = "modules")]
+            modules: crate::module::ModuleState::new(),
             rom: crate::rom::Rom::EMPTY,
             builtin_code: &[],
         }

@@ -489,7 +489,7 @@ impl Core<'_> {
             };
         }
         let sym = self.find_sym(name)?;
-        if let Some(f) = (0..self.st.pools.nfuncs).find(|&f| self.funcs[f as usize].name == sym) {
+        if let Some(f) = self.find_function(sym, self.st_current_module()) {
             return Some(Callee::Deffunction(f));
         }
         let e = (0..self.st.pools.nexternals).find(|&e| self.externals[e as usize].name == sym)?;

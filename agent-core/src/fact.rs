@@ -93,7 +93,11 @@ pub(crate) fn value_hash(h: u32, v: Value) -> u32 {
 }
 
 impl Core<'_> {
+    /// The template named `name` the current module sees.
     pub fn find_template(&self, name: SymId) -> Option<Ix> {
+        #[cfg(feature = "modules")]
+        return self.template_seen_from(name, self.current_module());
+        #[cfg(not(feature = "modules"))]
         (0..self.st.pools.ntemplates).find(|&t| self.templates[t as usize].name == name)
     }
 
@@ -135,6 +139,11 @@ impl Core<'_> {
             text: NONE,
         };
         self.tmpl_mems[n] = TemplateMem::EMPTY;
+        // made in the current module, as CLIPS's implied deftemplates
+        #[cfg(feature = "modules")]
+        {
+            self.tmpl_module[n] = self.current_module();
+        }
         self.st.pools.ntemplates += 1;
         self.note_hw(Pool::Templates, n + 1);
         self.note_hw(Pool::SlotDefs, s + 1);

@@ -148,8 +148,8 @@
 //!   only for a new partial match (e.g. after `modify`, which retracts and re-asserts).
 //!
 //! # Not supported yet
-//! As the README's "Not implemented yet" lists them: COOL, modules other than MAIN and
-//! the focus stack, the `forall` CE, `or` inside `not`/`exists` (CLIPS takes it).
+//! As the README's "Not implemented yet" lists them: COOL, the `forall` CE, `or` inside
+//! `not`/`exists` (CLIPS takes it); modules ([`module`]) without the feature `modules`.
 //! Each is refused where it is read, with a clear message, never accepted and ignored.
 #![no_std]
 // With `u32` indices (`value::Ix`) the widening casts and conversions written for `u16`
@@ -184,6 +184,7 @@ pub mod host_fn;
 pub mod invariants;
 pub mod lexer;
 pub mod logical;
+pub mod module;
 pub mod parser;
 pub mod print;
 pub mod rete;

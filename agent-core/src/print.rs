@@ -286,11 +286,24 @@ impl Core<'_> {
 
     /// `(facts)`: all facts with number >= `start`, then the total.
     pub fn list_facts(&mut self, start: i64, end: i64, max: i64) {
+        self.list_facts_of(start, end, max, false);
+    }
+
+    /// `(facts)`, of every module (`all`, `(facts *)`) or those whose template the
+    /// current module sees.
+    pub fn list_facts_of(&mut self, start: i64, end: i64, max: i64, all: bool) {
         let mut f = self.st.facts.fact_head;
         let mut n = 0i64;
         while f != NONE {
             let num = self.facts[f as usize].num as i64;
-            if num >= start && (end < 0 || num <= end) && (max < 0 || n < max) {
+            #[cfg(feature = "modules")]
+            let seen = all || self.template_visible(self.facts[f as usize].tmpl);
+            #[cfg(not(feature = "modules"))]
+            let seen = {
+                let _ = all;
+                true
+            };
+            if seen && num >= start && (end < 0 || num <= end) && (max < 0 || n < max) {
                 self.print_fact_listing_line(f);
                 n += 1;
             }
@@ -316,6 +329,12 @@ impl Core<'_> {
         let mut a = self.st.agenda.agenda_head;
         let mut n = 0;
         while a != NONE {
+            // the current module's agenda
+            #[cfg(feature = "modules")]
+            if !self.activation_in(a, self.current_module()) {
+                a = self.acts[a as usize].next;
+                continue;
+            }
             let mut b: crate::value::TextBuf<512> = crate::value::TextBuf::new();
             let _ = self.write_activation(&mut b, self.acts[a as usize]);
             let _ = b.write_str("\n");

@@ -55,6 +55,19 @@ impl Rule {
     };
 }
 
+impl crate::engine::Core<'_> {
+    /// Whether rule `r` is the live rule `name` of the current module (the one a
+    /// definition of that name replaces).
+    pub fn rule_here(&self, r: Ix, name: SymId) -> bool {
+        let rule = &self.rules[r as usize];
+        #[cfg(feature = "modules")]
+        if self.rule_module[r as usize].module != self.current_module() {
+            return false;
+        }
+        rule.name == name && !rule.deleted
+    }
+}
+
 #[derive(Clone, Copy, Debug)]
 pub struct Activation {
     pub rule: Ix,

@@ -876,6 +876,53 @@ fn logical_supports_at_run_and_assert() {
     e.consistent();
 }
 
+#[cfg(all(feature = "parser", feature = "modules"))]
+#[test]
+fn modules_ports_and_focus_stack() {
+    let h = &mut Capture::default();
+    // MAIN is entry 0: two entries leave room for one defmodule
+    let mut e = engine!(modules = 2);
+    let c = load_until_full(&mut *e, |e, i| {
+        e.load_str(h, "t", &format!("(defmodule M{i})"))
+    });
+    assert_eq!(c, full(Pool::Modules, 2));
+    h.out.clear();
+    e.eval_str(h, "(printout t (get-defmodule-list) crlf)")
+        .unwrap();
+    assert_eq!(h.out, "(MAIN M0)\n");
+    e.clear(h).unwrap();
+    e.load_str(h, "t", "(defmodule N)").unwrap();
+    e.consistent();
+
+    let mut e = engine!(module_ports = 3);
+    let c = load_until_full(&mut *e, |e, i| {
+        e.load_str(
+            h,
+            "t",
+            &format!("(defmodule P{i} (export ?ALL) (export deftemplate a b))"),
+        )
+    });
+    assert_eq!(c, full(Pool::ModulePorts, 3));
+    // P0's three ports fill the pool; P1, whose ports did not fit, is not defined
+    h.out.clear();
+    e.eval_str(h, "(printout t (get-defmodule-list) crlf)")
+        .unwrap();
+    assert_eq!(h.out, "(MAIN P0)\n");
+    e.load_str(h, "t", "(defmodule Q)").unwrap();
+    e.consistent();
+
+    let mut e = engine!(focus_stack = 2);
+    e.load_str(h, "t", "(defmodule A) (defmodule B)").unwrap();
+    e.eval_str(h, "(focus A)").unwrap();
+    // the stack holds MAIN and A: B does not fit
+    assert!(e.eval_str(h, "(focus B)").is_err());
+    h.out.clear();
+    e.eval_str(h, "(printout t (get-focus-stack) crlf)")
+        .unwrap();
+    assert_eq!(h.out, "(A MAIN)\n");
+    e.consistent();
+}
+
 /// Every pool has a case above (names listed by hand; a new pool fails this test).
 #[test]
 fn every_pool_is_covered() {
@@ -902,6 +949,9 @@ fn every_pool_is_covered() {
         Pool::Deffacts,
         Pool::ExternalFns,
         Pool::Supports,
+        Pool::Modules,
+        Pool::ModulePorts,
+        Pool::FocusStack,
     ];
     for p in Pool::ALL {
         assert!(covered.contains(&p), "no exhaustion case for {p:?}");

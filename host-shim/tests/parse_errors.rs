@@ -500,8 +500,8 @@ malformed_programs! {
     e079_modify_fact_index_in_rule => "079-modify-fact-index-in-rule",
     e080_declare_after_a_ce => "080-declare-after-a-ce",
     e081_logical_ce_not_first => "081-logical-ce-not-first",
-    e082_defmodule_refused => "082-defmodule-refused",
-    e083_module_specifier_refused => "083-module-specifier-refused",
-    e084_auto_focus_refused => "084-auto-focus-refused",
+    e082_defmodule_redefined => "082-defmodule-redefined",
+    e083_module_specifier_unknown => "083-module-specifier-unknown",
+    e084_import_not_exported => "084-import-not-exported",
     e085_watch_untraced_item_refused => "085-watch-untraced-item-refused",
 }

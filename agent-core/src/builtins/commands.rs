@@ -93,8 +93,25 @@ fn run(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 fn facts(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let mut nums = [-1i64; 3];
     let mut k = 0;
+    #[cfg_attr(not(feature = "modules"), allow(unused_mut))]
+    let mut all = false;
+    #[cfg(feature = "modules")]
+    let current = cx.current_module();
     for i in 0..a.len as usize {
         match cx.arg(a, i) {
+            // a module name: the facts it sees; `*` all of them
+            #[cfg(feature = "modules")]
+            Value::Sym(s) if i == 0 => {
+                if cx.sym_text(s) == "*" {
+                    all = true;
+                } else if let Some(m) = cx.find_module(cx.sym_text(s)) {
+                    cx.set_current_module(m);
+                } else {
+                    super::commands::unable(cx, Unable::Find, "defmodule", s);
+                    return Ok(Value::Void);
+                }
+            }
+            #[cfg(not(feature = "modules"))]
             Value::Sym(_) if i == 0 => {} // a module name: there is only MAIN
             Value::Int(n) if n >= 0 && k < 3 => {
                 nums[k] = n;
@@ -106,6 +123,9 @@ fn facts(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
                 } else {
                     "positive number"
                 };
+                // (the module a first argument named is left)
+                #[cfg(feature = "modules")]
+                cx.set_current_module(current);
                 return Err(EvalError::wrong_type(
                     "facts",
                     crate::error::arg_no(i),
@@ -115,7 +135,9 @@ fn facts(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         }
     }
     let start = if k > 0 { nums[0] } else { 0 };
-    cx.list_facts(start, nums[1], nums[2]);
+    cx.list_facts_of(start, nums[1], nums[2], all);
+    #[cfg(feature = "modules")]
+    cx.set_current_module(current);
     Ok(Value::Void)
 }
 
@@ -142,8 +164,12 @@ pub(crate) fn watch_item(name: &str) -> WatchItem {
         "compilations" => WatchItem::Traced(watch::COMPILATIONS),
         "statistics" => WatchItem::Traced(watch::STATISTICS),
         "all" => WatchItem::All,
-        "focus" | "globals" | "deffunctions" | "generic-functions" | "methods" | "instances"
-        | "slots" | "messages" | "message-handlers" => WatchItem::Untraced,
+        #[cfg(feature = "modules")]
+        "focus" => WatchItem::Traced(watch::FOCUS),
+        #[cfg(not(feature = "modules"))]
+        "focus" => WatchItem::Untraced,
+        "globals" | "deffunctions" | "generic-functions" | "methods" | "instances" | "slots"
+        | "messages" | "message-handlers" => WatchItem::Untraced,
         _ => WatchItem::Unknown,
     }
 }
@@ -391,17 +417,28 @@ fn get_strategy(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
     Ok(Value::Sym(cx.intern(cx.strategy().name())?))
 }
 
-pub(super) fn list_defrules(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
+pub(super) fn list_defrules(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let Some(view) = module_view(cx, a, "list-defrules")? else {
+        return Ok(Value::Void);
+    };
     let mut n = 0;
-    for r in 0..cx.st.pools.nrules {
-        let rule = cx.rules[r as usize];
-        if rule.deleted || (r > 0 && cx.rules[r as usize - 1].next_disjunct == r) {
-            continue;
+    for (m, head) in view.modules(cx) {
+        for r in 0..cx.st.pools.nrules {
+            let rule = cx.rules[r as usize];
+            if rule.deleted || (r > 0 && cx.rules[r as usize - 1].next_disjunct == r) {
+                continue;
+            }
+            #[cfg(feature = "modules")]
+            if cx.rule_module[r as usize].module != m {
+                continue;
+            }
+            let _ = m;
+            let mut b: TextBuf<128> = TextBuf::new();
+            let _ = writeln!(b, "{}{}", view.indent(), cx.sym_text(rule.name));
+            view.head(cx, head, m);
+            cx.write(router::WDISPLAY, b.as_str());
+            n += 1;
         }
-        let mut b: TextBuf<128> = TextBuf::new();
-        let _ = writeln!(b, "{}", cx.sym_text(rule.name));
-        cx.write(router::WDISPLAY, b.as_str());
-        n += 1;
     }
     if n > 0 {
         let mut b: TextBuf<64> = TextBuf::new();
@@ -415,9 +452,17 @@ pub(super) fn list_defrules(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalEr
     Ok(Value::Void)
 }
 
-fn find_rule(cx: &Core<'_>, name: Ix) -> Option<Ix> {
-    (0..cx.st.pools.nrules)
-        .find(|&r| cx.rules[r as usize].name == name && !cx.rules[r as usize].deleted)
+/// The rule `name` names: the current module's, or `MOD::rule`.
+fn find_rule(cx: &mut Core<'_>, name: Ix) -> Option<Ix> {
+    #[cfg(feature = "modules")]
+    if let Some((m, bare)) = cx.resolve_qualified(name) {
+        let current = cx.current_module();
+        cx.set_current_module(m);
+        let r = (0..cx.st.pools.nrules).find(|&r| cx.rule_here(r, bare));
+        cx.set_current_module(current);
+        return r;
+    }
+    (0..cx.st.pools.nrules).find(|&r| cx.rule_here(r, name))
 }
 
 /// What a construct command could not do.
@@ -456,7 +501,7 @@ fn ppdefrule(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let text = cx.rules[r as usize].text;
     if text != NONE {
         let mut b: TextBuf<8192> = TextBuf::new();
-        let _ = super::pretty::write_defrule(cx.sym_text(text), &mut b);
+        let _ = super::pretty::write_defrule(cx.sym_text(text), cx.rule_module_name(r), &mut b);
         let _ = b.write_char('\n');
         cx.write(router::WDISPLAY, b.as_str());
     }
@@ -760,19 +805,34 @@ fn time(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
     Ok(Value::Float(cx.host.time()))
 }
 
-fn list_deftemplates(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
+fn list_deftemplates(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let Some(view) = module_view(cx, a, "list-deftemplates")? else {
+        return Ok(Value::Void);
+    };
     let mut n = 0;
-    for t in 0..cx.st.pools.ntemplates {
-        // implied (ordered-fact) templates are listed too, as CLIPS 6.30 does; a
-        // template retired by a redefinition has no name and is gone
-        let tm = cx.templates[t as usize];
-        if tm.name == NONE {
-            continue;
+    for (m, head) in view.modules(cx) {
+        for t in 0..cx.st.pools.ntemplates {
+            // implied (ordered-fact) templates are listed too, as CLIPS 6.30 does; a
+            // template retired by a redefinition has no name and is gone
+            let tm = cx.templates[t as usize];
+            if tm.name == NONE {
+                continue;
+            }
+            #[cfg(feature = "modules")]
+            if cx.tmpl_module[t as usize] != m {
+                continue;
+            }
+            let _ = m;
+            let mut b: TextBuf<128> = TextBuf::new();
+            let _ = writeln!(b, "{}{}", view.indent(), cx.sym_text(tm.name));
+            view.head(cx, head, m);
+            cx.write(router::WDISPLAY, b.as_str());
+            n += 1;
         }
-        let mut b: TextBuf<128> = TextBuf::new();
-        let _ = writeln!(b, "{}", cx.sym_text(tm.name));
-        cx.write(router::WDISPLAY, b.as_str());
-        n += 1;
+    }
+    // (a module without deftemplates lists nothing)
+    if n == 0 {
+        return Ok(Value::Void);
     }
     let mut b: TextBuf<64> = TextBuf::new();
     let _ = writeln!(
@@ -813,4 +873,102 @@ fn list_deffunctions(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
 
 fn get_fact_dup(_cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
     Ok(Value::Sym(SYM_FALSE))
+}
+
+/// Which modules a `list-def*` command lists: one (the current, or the one named),
+/// or all (`*`, each under a `NAME:` line, names indented by 3).
+#[derive(Clone, Copy)]
+pub(super) struct ModuleView {
+    all: bool,
+    one: crate::module::ModId,
+}
+
+impl ModuleView {
+    /// The modules to list, each with whether its heading is still to print.
+    pub(super) fn modules(
+        self,
+        cx: &Core<'_>,
+    ) -> impl Iterator<Item = (crate::module::ModId, bool)> {
+        #[cfg(feature = "modules")]
+        let n = cx.st.modules.nmodules as crate::module::ModId;
+        #[cfg(not(feature = "modules"))]
+        let n = {
+            let _ = cx;
+            1
+        };
+        (0..n)
+            .filter(move |&m| self.all || m == self.one)
+            .map(move |m| (m, self.all))
+    }
+
+    pub(super) fn indent(self) -> &'static str {
+        if self.all {
+            "   "
+        } else {
+            ""
+        }
+    }
+
+    /// Prints module `m`'s heading before its first name (`head` is cleared by the
+    /// caller's loop restarting per module).
+    pub(super) fn head(self, cx: &mut Core<'_>, head: bool, m: crate::module::ModId) {
+        if !head {
+            return;
+        }
+        #[cfg(feature = "modules")]
+        {
+            // once per module: the first name of each prints it
+            if cx.st.modules.listing_head == Some(m) {
+                return;
+            }
+            cx.st.modules.listing_head = Some(m);
+            let mut b: TextBuf<128> = TextBuf::new();
+            let _ = writeln!(b, "{}:", cx.module_name(m));
+            cx.write(router::WDISPLAY, b.as_str());
+        }
+        #[cfg(not(feature = "modules"))]
+        let _ = (cx, m);
+    }
+}
+
+/// The module argument of a `list-def*` command (`*` for all), or its message
+/// printed (None).
+pub(super) fn module_view(
+    cx: &mut Core<'_>,
+    a: Args,
+    func: &'static str,
+) -> Result<Option<ModuleView>, EvalError> {
+    #[cfg(feature = "modules")]
+    {
+        cx.st.modules.listing_head = None;
+        let current = cx.current_module();
+        if a.len == 0 {
+            return Ok(Some(ModuleView {
+                all: false,
+                one: current,
+            }));
+        }
+        let s = cx.arg_lexeme(a, 0, func)?;
+        if cx.sym_text(s) == "*" {
+            return Ok(Some(ModuleView {
+                all: true,
+                one: current,
+            }));
+        }
+        match cx.find_module(cx.sym_text(s)) {
+            Some(m) => Ok(Some(ModuleView { all: false, one: m })),
+            None => {
+                unable(cx, Unable::Find, "defmodule", s);
+                Ok(None)
+            }
+        }
+    }
+    #[cfg(not(feature = "modules"))]
+    {
+        let _ = (cx, a, func);
+        Ok(Some(ModuleView {
+            all: false,
+            one: crate::module::MAIN,
+        }))
+    }
 }

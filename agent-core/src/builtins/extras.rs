@@ -239,7 +239,11 @@ fn pp_name(cx: &mut Core<'_>, a: Args, func: &str) -> Result<SymId, EvalError> {
 
 /// Writes a construct's pretty-printed form, made by `pp` from its source text (none
 /// when the text was not kept, as for `initial-fact`).
-fn write_pp(cx: &mut Core<'_>, text: Ix, pp: fn(&str, &mut dyn Write) -> core::fmt::Result) {
+fn write_pp(
+    cx: &mut Core<'_>,
+    text: Ix,
+    pp: impl FnOnce(&str, &mut dyn Write) -> core::fmt::Result,
+) {
     if text == NONE {
         return;
     }
@@ -256,11 +260,14 @@ fn ppdeftemplate(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     match cx.find_template(name) {
         Some(t) => {
             let text = cx.templates[t as usize].text;
+            let mut module: TextBuf<64> = TextBuf::new();
+            let _ = module.write_str(cx.template_module_name(t));
             write_pp(cx, text, |src, w| {
                 super::pretty::write_deftemplate_echo(
                     src,
                     src.len(),
                     crate::error::EchoTail::Normal,
+                    module.as_str(),
                     w,
                 )
             });
@@ -279,8 +286,10 @@ fn ppdeffacts(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     match (0..cx.st.pools.ndeffacts).find(|&d| cx.deffacts[d as usize].name == name) {
         Some(d) => {
             let text = cx.deffacts[d as usize].text;
+            let mut module: TextBuf<64> = TextBuf::new();
+            let _ = module.write_str(cx.deffacts_module_name(d));
             write_pp(cx, text, |src, w| {
-                super::pretty::write_deffacts_upto(src, w)?;
+                super::pretty::write_deffacts_upto(src, module.as_str(), w)?;
                 w.write_char(')')
             });
         }

@@ -36,6 +36,7 @@ pub mod io;
 pub mod logical;
 pub mod math;
 pub mod memory;
+pub mod modules;
 pub mod multifield;
 pub mod predicates;
 pub mod pretty;
@@ -190,6 +191,7 @@ pub const TABLES: &[Table] = &[
     compat::TABLE,
     template_slots::TABLE,
     logical::TABLE,
+    modules::TABLE,
     IO_TABLE,
 ];
 

@@ -269,22 +269,31 @@ fn action(c: &mut Cursor<'_>, w: &mut dyn Write, col: usize) -> fmt::Result {
     }
 }
 
+/// `(KEYWORD MODULE::name`: a name written with its module keeps it; another is in
+/// `module`, the one the construct was defined in.
+fn write_head(w: &mut dyn Write, keyword: &str, name: &str, module: &str) -> fmt::Result {
+    if crate::module::split_qualified(name).is_some() {
+        write!(w, "({keyword} {name}")
+    } else {
+        write!(w, "({keyword} {module}::{name}")
+    }
+}
+
 /// Writes the pretty-printed form of the defrule whose source is `src`.
-pub fn write_defrule(src: &str, w: &mut dyn Write) -> fmt::Result {
-    write_defrule_upto(src, w)?;
+pub fn write_defrule(src: &str, module: &str, w: &mut dyn Write) -> fmt::Result {
+    write_defrule_upto(src, module, w)?;
     w.write_char(')')
 }
 
 /// The pretty-printed form of the defrule whose source `src` holds, without its last
 /// `)`: what CLIPS shows after `ERROR:` for a rule it stopped reading where `src` ends.
-pub fn write_defrule_upto(src: &str, w: &mut dyn Write) -> fmt::Result {
+pub fn write_defrule_upto(src: &str, module: &str, w: &mut dyn Write) -> fmt::Result {
     let mut c = Cursor::new(src);
     c.next(); // (
     c.next(); // defrule
     let name = c.next();
     let name = c.text(name);
-    let name = name.strip_prefix("MAIN::").unwrap_or(name);
-    write!(w, "(defrule MAIN::{name}")?;
+    write_head(w, "defrule", name, module)?;
     if let Tok::Str(_) = c.peek(0).tok {
         let t = c.next();
         w.write_char(' ')?;
@@ -309,17 +318,13 @@ pub fn write_defrule_upto(src: &str, w: &mut dyn Write) -> fmt::Result {
 
 /// What CLIPS shows after `ERROR:` for a deffunction it stopped reading where `src`
 /// ends: `(deffunction MAIN::name`, the parameters on a line, one action per line.
-pub fn write_deffunction_upto(src: &str, w: &mut dyn Write) -> fmt::Result {
+pub fn write_deffunction_upto(src: &str, module: &str, w: &mut dyn Write) -> fmt::Result {
     let mut c = Cursor::new(src);
     c.next(); // (
     c.next(); // deffunction
     let name = c.next();
     let name = c.text(name);
-    write!(
-        w,
-        "(deffunction MAIN::{}",
-        name.strip_prefix("MAIN::").unwrap_or(name)
-    )?;
+    write_head(w, "deffunction", name, module)?;
     if let Tok::Str(_) = c.peek(0).tok {
         let t = c.next();
         w.write_char(' ')?;
@@ -332,17 +337,13 @@ pub fn write_deffunction_upto(src: &str, w: &mut dyn Write) -> fmt::Result {
 
 /// What CLIPS shows after `ERROR:` for a deffacts it stopped reading where `src`
 /// ends: `(deffacts MAIN::name`, then each fact on a line of its own indented by 3.
-pub fn write_deffacts_upto(src: &str, w: &mut dyn Write) -> fmt::Result {
+pub fn write_deffacts_upto(src: &str, module: &str, w: &mut dyn Write) -> fmt::Result {
     let mut c = Cursor::new(src);
     c.next(); // (
     c.next(); // deffacts
     let name = c.next();
     let name = c.text(name);
-    write!(
-        w,
-        "(deffacts MAIN::{}",
-        name.strip_prefix("MAIN::").unwrap_or(name)
-    )?;
+    write_head(w, "deffacts", name, module)?;
     if let Tok::Str(_) = c.peek(0).tok {
         let t = c.next();
         w.write_char(' ')?;
@@ -363,6 +364,7 @@ pub fn write_deftemplate_echo(
     src: &str,
     end: usize,
     tail: crate::error::EchoTail,
+    module: &str,
     w: &mut dyn Write,
 ) -> fmt::Result {
     use crate::error::EchoTail;
@@ -391,11 +393,7 @@ pub fn write_deftemplate_echo(
     c.next(); // deftemplate
     let name = c.next();
     let name = c.text(name);
-    write!(
-        w,
-        "(deftemplate MAIN::{}",
-        name.strip_prefix("MAIN::").unwrap_or(name)
-    )?;
+    write_head(w, "deftemplate", name, module)?;
     let mut depth = 1u32;
     let mut after_open = false;
     loop {
@@ -433,7 +431,7 @@ mod tests {
 
     fn pp(src: &str) -> String {
         let mut s = String::new();
-        write_defrule(src, &mut s).unwrap();
+        write_defrule(src, "MAIN", &mut s).unwrap();
         s
     }
 

@@ -86,8 +86,7 @@ impl Compiler<'_, '_> {
     pub(crate) fn replaced_uses(&self, name: SymId, j: JoinId) -> Ix {
         let mut n = 0;
         for r in 0..self.rule_base {
-            let rule = &self.cx.rules[r as usize];
-            if rule.name == name && !rule.deleted {
+            if self.cx.rule_here(r, name) {
                 let mut d = r;
                 while d != NONE {
                     n += self.chain_uses(self.cx.rules[d as usize].terminal, JoinId::ROOT, j);
@@ -180,10 +179,7 @@ impl Compiler<'_, '_> {
         // the join built for each CE
         let mut jid = [JoinId::ROOT; MAX_PATTERNS];
         // a redefinition: the old rule's joins may not be shared (`replaced_uses`)
-        let replacing = (0..self.rule_base).any(|r| {
-            let rule = &self.cx.rules[r as usize];
-            rule.name == name && !rule.deleted
-        });
+        let replacing = (0..self.rule_base).any(|r| self.cx.rule_here(r, name));
         for (i, ce) in b.ces[..b.n].iter().enumerate() {
             let parent = if ce.parent == CE_ROOT {
                 JoinId::ROOT
@@ -326,6 +322,13 @@ impl Compiler<'_, '_> {
             };
             // (room checked above)
             let _ = self.cx.set_rule_logical_join(nr as Ix, lj);
+        }
+        #[cfg(feature = "modules")]
+        {
+            self.cx.rule_module[nr] = crate::module::RuleTag {
+                module: self.cx.current_module(),
+                auto_focus: b.auto_focus,
+            };
         }
         self.cx.st.pools.nrules += 1;
         self.cx.note_hw(Pool::Rules, nr + 1);

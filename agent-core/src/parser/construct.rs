@@ -11,6 +11,29 @@ use crate::value::Ix;
 use crate::value::{Value, NONE};
 
 impl<'s> Parser<'s, '_, '_> {
+    /// Whether deffacts `d` is the current module's (a redefinition replaces only
+    /// that one).
+    fn deffacts_here(&self, d: Ix) -> bool {
+        #[cfg(feature = "modules")]
+        return self.cx.deffacts_module[d as usize] == self.cx.current_module();
+        #[cfg(not(feature = "modules"))]
+        {
+            let _ = d;
+            true
+        }
+    }
+
+    /// Whether deffunction `f` is the current module's.
+    fn function_here(&self, f: Ix) -> bool {
+        #[cfg(feature = "modules")]
+        return self.cx.func_module[f as usize] == self.cx.current_module();
+        #[cfg(not(feature = "modules"))]
+        {
+            let _ = f;
+            true
+        }
+    }
+
     /// Optional comment string after a construct name.
     fn skip_comment(&mut self) {
         if let Tok::Str(_) = self.peek().tok {
@@ -20,7 +43,7 @@ impl<'s> Parser<'s, '_, '_> {
 
     /// The construct's source text from `start` to here, interned for its `ppdef*`
     /// command, unless the host chose to drop pretty-print forms (then NONE).
-    fn pp_text(&mut self, start: usize) -> Ix {
+    pub(super) fn pp_text(&mut self, start: usize) -> Ix {
         if !self.cx.st.mode.keep_pp_forms {
             return NONE;
         }
@@ -32,12 +55,17 @@ impl<'s> Parser<'s, '_, '_> {
     pub(super) fn deftemplate(&mut self, start: usize) -> PResult<()> {
         let nt = self.next();
         let name = match nt.tok {
-            Tok::Symbol(s) => self.plain_name(nt, s)?,
+            Tok::Symbol(s) => self.construct_name(nt, s)?,
             _ => return Err(self.err(nt, "a deftemplate name")),
         };
         let sym = cap!(self, self.cx.intern(name))?;
         // CLIPS replaces a deftemplate nothing uses yet, and refuses otherwise
         let replaces = self.cx.find_template(sym);
+        // one the module imports cannot be replaced by one of its own
+        #[cfg(feature = "modules")]
+        if replaces.is_some_and(|t| self.cx.tmpl_module[t as usize] != self.cx.current_module()) {
+            return Err(self.err(nt, "a deftemplate name no imported deftemplate has"));
+        }
         if replaces.is_some_and(|t| self.cx.template_in_use(t)) {
             let mut e = self.err(
                 nt,
@@ -127,6 +155,10 @@ impl<'s> Parser<'s, '_, '_> {
             text: self.pp_text(start),
         };
         self.cx.tmpl_mems[n] = TemplateMem::EMPTY;
+        #[cfg(feature = "modules")]
+        {
+            self.cx.tmpl_module[n] = self.cx.current_module();
+        }
         self.cx.st.pools.ntemplates += 1;
         self.cx.note_hw(Pool::Templates, n + 1);
         if let Some(old) = replaces {
@@ -145,7 +177,7 @@ impl<'s> Parser<'s, '_, '_> {
     pub(super) fn deffacts(&mut self, start: usize) -> PResult<()> {
         let nt = self.next();
         let name = match nt.tok {
-            Tok::Symbol(s) => self.plain_name(nt, s)?,
+            Tok::Symbol(s) => self.construct_name(nt, s)?,
             _ => return Err(self.err(nt, "a deffacts name")),
         };
         let sym = cap!(self, self.cx.intern(name))?;
@@ -168,14 +200,23 @@ impl<'s> Parser<'s, '_, '_> {
         }
         // a redefinition replaces the old deffacts and, as in CLIPS, moves it last
         // (which orders the facts `reset` asserts)
-        let existing =
-            (0..self.cx.st.pools.ndeffacts).find(|&d| self.cx.deffacts[d as usize].name == sym);
+        let existing = (0..self.cx.st.pools.ndeffacts)
+            .find(|&d| self.cx.deffacts[d as usize].name == sym && self.deffacts_here(d));
         let facts = self.cx.exprs[holder as usize].first;
         let text = self.pp_text(start);
+        #[cfg(feature = "modules")]
+        let module = self.cx.current_module();
         match existing {
             Some(d) => {
                 let n = self.cx.st.pools.ndeffacts as usize;
                 self.cx.deffacts.copy_within(d as usize + 1..n, d as usize);
+                #[cfg(feature = "modules")]
+                {
+                    self.cx
+                        .deffacts_module
+                        .copy_within(d as usize + 1..n, d as usize);
+                    self.cx.deffacts_module[n - 1] = module;
+                }
                 self.cx.deffacts[n - 1] = Deffacts {
                     name: sym,
                     facts,
@@ -195,6 +236,10 @@ impl<'s> Parser<'s, '_, '_> {
                     facts,
                     text,
                 };
+                #[cfg(feature = "modules")]
+                {
+                    self.cx.deffacts_module[n] = module;
+                }
                 self.cx.st.pools.ndeffacts += 1;
                 self.cx.note_hw(Pool::Deffacts, n + 1);
             }
@@ -205,7 +250,7 @@ impl<'s> Parser<'s, '_, '_> {
     pub(super) fn deffunction(&mut self) -> PResult<()> {
         let nt = self.next();
         let name = match nt.tok {
-            Tok::Symbol(s) => self.plain_name(nt, s)?,
+            Tok::Symbol(s) => self.construct_name(nt, s)?,
             _ => return Err(self.err(nt, "a deffunction name")),
         };
         // CLIPS's own functions cannot be replaced; our geometry extensions can, since a
@@ -224,8 +269,8 @@ impl<'s> Parser<'s, '_, '_> {
         let sym = cap!(self, self.cx.intern(name))?;
         self.skip_comment();
         // register first so the body can call itself recursively
-        let existing =
-            (0..self.cx.st.pools.nfuncs).find(|&f| self.cx.funcs[f as usize].name == sym);
+        let existing = (0..self.cx.st.pools.nfuncs)
+            .find(|&f| self.cx.funcs[f as usize].name == sym && self.function_here(f));
         let f = match existing {
             Some(f) => f,
             None => {
@@ -280,6 +325,10 @@ impl<'s> Parser<'s, '_, '_> {
             nlocals: 0,
             body: NONE,
         };
+        #[cfg(feature = "modules")]
+        {
+            self.cx.func_module[f as usize] = self.cx.current_module();
+        }
         self.defining_fn = f;
         let body = self.body_block();
         self.defining_fn = NONE;
@@ -305,8 +354,17 @@ impl<'s> Parser<'s, '_, '_> {
 
     pub(super) fn defglobal(&mut self) -> PResult<()> {
         self.scope = Scope::Frame;
-        if let Tok::Symbol(_) = self.peek().tok {
-            self.next(); // module name
+        if let Tok::Symbol(m) = self.peek().tok {
+            let mt = self.next(); // module name
+            #[cfg(feature = "modules")]
+            match self.cx.find_module(m) {
+                Some(m) => self.cx.set_current_module(m),
+                None => return Err(self.err(mt, "the name of a defined module")),
+            }
+            #[cfg(not(feature = "modules"))]
+            if m != "MAIN" {
+                return Err(self.not_implemented(mt, "defmodule"));
+            }
         }
         loop {
             let t = self.next();

@@ -201,10 +201,11 @@ impl<'s> Parser<'s, '_, '_> {
     /// `(name args...)` after the `(`.
     fn call(&mut self) -> PResult<Ix> {
         let nt = self.next();
-        let name = match nt.tok {
-            Tok::Symbol(s) => self.plain_name(nt, s)?,
+        let (module, name) = match nt.tok {
+            Tok::Symbol(s) => self.qualified_ref(nt, s)?,
             _ => return Err(self.err(nt, "a function name")),
         };
+        let qualified = module != self.current_module();
         match name {
             "if" => return self.parse_if(),
             "while" => return self.parse_while(),
@@ -220,9 +221,7 @@ impl<'s> Parser<'s, '_, '_> {
         }
         // deffunctions shadow nothing builtin in CLIPS; check user functions first
         if let Some(sym) = self.cx.find_sym(name) {
-            if let Some(f) =
-                (0..self.cx.st.pools.nfuncs).find(|&f| self.cx.funcs[f as usize].name == sym)
-            {
+            if let Some(f) = self.cx.find_function(sym, module) {
                 let call = self.push_call(FnKind::Deffunction, f)?;
                 let n = self.args_until_rparen(call)?;
                 let df = self.cx.funcs[f as usize];
@@ -244,6 +243,9 @@ impl<'s> Parser<'s, '_, '_> {
                 }
                 return Ok(call);
             }
+        }
+        if qualified {
+            return Err(self.err(nt, "a deffunction the module sees"));
         }
         match builtins::lookup(name) {
             Some((id, b)) => {

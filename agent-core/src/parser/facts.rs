@@ -32,13 +32,17 @@ impl<'s> Parser<'s, '_, '_> {
     /// `(name ...)` after the `(`: a `FactSpec` node.
     pub fn fact_spec(&mut self) -> PResult<Ix> {
         let nt = self.next();
-        let name = match nt.tok {
-            Tok::Symbol(s) => self.plain_name(nt, s)?,
+        let (module, name) = match nt.tok {
+            Tok::Symbol(s) => self.qualified_ref(nt, s)?,
             _ => return Err(self.err(nt, "a template or relation name")),
         };
         let sym = cap!(self, self.cx.intern(name))?;
-        let tmpl = match self.cx.find_template(sym) {
+        let tmpl = match self.template_in(module, sym) {
             Some(t) => t,
+            // (an ordered fact's template is made in the current module only)
+            None if module != self.current_module() => {
+                return Err(self.err(nt, "a deftemplate the module sees ([MODULDEF1])"));
+            }
             None => cap!(self, self.cx.implied_template(sym))?,
         };
         let spec = cap!(self, self.cx.push_expr(Expr::new(Op::FactSpec, 0, tmpl)))?;

@@ -19,6 +19,8 @@ mod construct;
 mod expr;
 mod facts;
 mod in_use;
+#[cfg(feature = "modules")]
+mod module;
 pub(crate) mod rule;
 mod slot;
 
@@ -235,6 +237,42 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
             return Err(self.not_implemented(at, "module specifiers (Module::name)"));
         }
         Ok(name)
+    }
+
+    /// Without modules: a construct's name, refused with a module specifier.
+    #[cfg(not(feature = "modules"))]
+    pub(super) fn construct_name(&mut self, at: Token<'s>, name: &'s str) -> PResult<&'s str> {
+        self.plain_name(at, name)
+    }
+
+    /// Without modules: a name referring to a construct, looked up in MAIN.
+    #[cfg(not(feature = "modules"))]
+    pub(super) fn qualified_ref(
+        &mut self,
+        at: Token<'s>,
+        name: &'s str,
+    ) -> PResult<(crate::module::ModId, &'s str)> {
+        Ok((crate::module::MAIN, self.plain_name(at, name)?))
+    }
+
+    /// The module constructs are being read into.
+    pub(super) fn current_module(&self) -> crate::module::ModId {
+        #[cfg(feature = "modules")]
+        return self.cx.current_module();
+        #[cfg(not(feature = "modules"))]
+        crate::module::MAIN
+    }
+
+    /// The template named `sym` that module `m` sees (`Core::find_template` for the
+    /// current module).
+    pub(super) fn template_in(&self, m: crate::module::ModId, sym: SymId) -> Option<Ix> {
+        #[cfg(feature = "modules")]
+        return self.cx.template_seen_from(sym, m);
+        #[cfg(not(feature = "modules"))]
+        {
+            let _ = m;
+            self.cx.find_template(sym)
+        }
     }
 
     pub fn cap_err(&self, at: Token<'s>, c: CapacityError) -> LoadError {
@@ -498,6 +536,9 @@ impl<'s, 'e> Parser<'s, '_, 'e> {
             "deffacts" => self.deffacts(start),
             "deffunction" => self.deffunction(),
             "defglobal" => self.defglobal(),
+            #[cfg(feature = "modules")]
+            _ => self.defmodule(start),
+            #[cfg(not(feature = "modules"))]
             _ => {
                 let at = self.peek();
                 Err(self.not_implemented(at, "defmodule"))

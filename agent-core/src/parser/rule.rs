@@ -91,6 +91,9 @@ pub(crate) struct Build {
     pub(crate) logical: u8,
     pub(crate) in_logical: bool,
     pub(crate) plain_seen: bool,
+    /// `(declare (auto-focus TRUE))` (feature `modules`).
+    #[cfg_attr(not(feature = "modules"), allow(dead_code))]
+    pub(crate) auto_focus: bool,
 }
 
 impl Build {
@@ -116,6 +119,7 @@ impl Build {
             logical: CE_ROOT,
             in_logical: false,
             plain_seen: false,
+            auto_focus: false,
         }
     }
 
@@ -184,7 +188,7 @@ impl<'s> Parser<'s, '_, '_> {
     pub(super) fn defrule(&mut self, start: usize) -> PResult<()> {
         let nt = self.next();
         let name = match nt.tok {
-            Tok::Symbol(s) => self.plain_name(nt, s)?,
+            Tok::Symbol(s) => self.construct_name(nt, s)?,
             _ => return Err(self.err(nt, "a defrule name")),
         };
         let sym = cap!(self, self.cx.intern(name))?;
@@ -196,10 +200,7 @@ impl<'s> Parser<'s, '_, '_> {
         self.rule_base = first_new_rule;
         let first_new_alpha = self.cx.st.pools.nalpha;
         self.alpha_base = first_new_alpha;
-        let replaces = (0..first_new_rule).any(|r| {
-            let rule = &self.cx.rules[r as usize];
-            rule.name == sym && !rule.deleted
-        });
+        let replaces = (0..first_new_rule).any(|r| self.cx.rule_here(r, sym));
         self.replacing = if replaces { sym } else { NONE };
         let first_new_join = JoinId(self.cx.st.pools.njoins);
         let mut b = Build::new();
@@ -250,7 +251,7 @@ impl<'s> Parser<'s, '_, '_> {
         self.cx.hook_new_joins(first_new_join);
         // a redefinition replaces the old rule
         for r in 0..first_new_rule {
-            if self.cx.rules[r as usize].name == sym && !self.cx.rules[r as usize].deleted {
+            if self.cx.rule_here(r, sym) {
                 self.cx.remove_rule(r);
             }
         }
@@ -383,6 +384,17 @@ impl<'s> Parser<'s, '_, '_> {
                             b.salience = Some(sal);
                             self.expect_rparen("')' after the salience")?;
                         }
+                        #[cfg(feature = "modules")]
+                        Tok::Symbol("auto-focus") => {
+                            let vt = self.next();
+                            b.auto_focus = match vt.tok {
+                                Tok::Symbol("TRUE") => true,
+                                Tok::Symbol("FALSE") => false,
+                                _ => return Err(self.err(vt, "TRUE or FALSE for auto-focus")),
+                            };
+                            self.expect_rparen("')' after the auto-focus value")?;
+                        }
+                        #[cfg(not(feature = "modules"))]
                         Tok::Symbol("auto-focus") => {
                             return Err(self.not_implemented(kw, "auto-focus"));
                         }
@@ -734,17 +746,21 @@ impl<'s> Parser<'s, '_, '_> {
             Tok::Symbol(s)
                 if !matches!(s, "test" | "not" | "and" | "or" | "exists" | "logical") =>
             {
-                self.plain_name(nt, s)?
+                self.qualified_ref(nt, s)?
             }
             _ => return Err(self.err(nt, "a template or relation name")),
         };
+        let (module, name) = name;
         if b.n >= MAX_PATTERNS || b.depth as usize >= MAX_PATTERNS {
             return Err(self.err(nt, "fewer conditional elements"));
         }
         let p = b.depth;
         let sym = cap!(self, self.cx.intern(name))?;
-        let tmpl = match self.cx.find_template(sym) {
+        let tmpl = match self.template_in(module, sym) {
             Some(t) => t,
+            None if module != self.current_module() => {
+                return Err(self.err(nt, "a deftemplate the module sees ([MODULDEF1])"));
+            }
             None if self.peek().tok == Tok::LParen => {
                 return Err(self.err(
                     nt,

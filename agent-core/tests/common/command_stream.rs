@@ -34,6 +34,9 @@ agent_core::engine_storage! {
         deffacts: 2,
         external_fns: 2,
         supports: 8,
+        modules: 4,
+        module_ports: 8,
+        focus_stack: 8,
     }
 }
 pub type StreamEngine = Engine<StreamStorage>;

@@ -71,6 +71,9 @@ agent_core::engine_storage! {
         deffacts: BASE.deffacts,
         external_fns: 1,                           // 0: `distance` is built in
         supports: 0,                               // no `logical` in the rules
+        modules: 1,                                // MAIN only (no `modules`)
+        module_ports: 0,
+        focus_stack: 1,
     }
 }
 

@@ -1,0 +1,224 @@
+//! Module and focus commands (agent-core feature `modules`, see `crate::module`):
+//! `focus`, `get-focus`, `get-focus-stack`, `list-focus-stack`, `pop-focus`,
+//! `clear-focus-stack`, `set-current-module`, `get-current-module`, `list-defmodules`,
+//! `get-defmodule-list`, `ppdefmodule`, as CLIPS 6.30 prints them.
+// without the feature the table is empty and the functions unused (and not linked)
+#![cfg_attr(not(feature = "modules"), allow(dead_code, unused_imports))]
+
+use super::commands::Unable;
+use super::{Args, Builtin, ANY, SYM_FALSE, SYM_TRUE};
+use crate::engine::Core;
+use crate::error::EvalError;
+use crate::host::router;
+use crate::value::{TextBuf, Value};
+use core::fmt::Write;
+
+#[cfg(feature = "modules")]
+#[rustfmt::skip]
+pub const FUNCS: &[Builtin] = &[
+    Builtin::eager("focus", 1, ANY, focus),
+    Builtin::eager("get-focus", 0, 0, get_focus),
+    Builtin::eager("get-focus-stack", 0, 0, get_focus_stack),
+    Builtin::eager("list-focus-stack", 0, 0, list_focus_stack),
+    Builtin::eager("pop-focus", 0, 0, pop_focus),
+    Builtin::eager("clear-focus-stack", 0, 0, clear_focus_stack),
+    Builtin::eager("set-current-module", 1, 1, set_current_module),
+    Builtin::eager("get-current-module", 0, 0, get_current_module),
+    Builtin::eager("list-defmodules", 0, 0, list_defmodules),
+    Builtin::eager("get-defmodule-list", 0, 0, get_defmodule_list),
+    Builtin::eager("ppdefmodule", 1, 1, ppdefmodule),
+];
+#[cfg(not(feature = "modules"))]
+pub const FUNCS: &[Builtin] = &[];
+pub const TABLE: super::Table = super::Table::new(FUNCS);
+
+#[cfg(feature = "modules")]
+use crate::module::ModId;
+
+/// The module argument `i` names, or its `[PRNTUTIL1]` message printed.
+#[cfg(feature = "modules")]
+fn module_arg(
+    cx: &mut Core<'_>,
+    a: Args,
+    i: usize,
+    func: &'static str,
+) -> Result<Option<ModId>, EvalError> {
+    let s = cx.arg_lexeme(a, i, func)?;
+    match cx.find_module(cx.sym_text(s)) {
+        Some(m) => Ok(Some(m)),
+        None => {
+            super::commands::unable(cx, Unable::Find, "defmodule", s);
+            Ok(None)
+        }
+    }
+}
+
+/// The symbol naming module `m`.
+#[cfg(feature = "modules")]
+fn module_sym(cx: &mut Core<'_>, m: ModId) -> Result<Value, EvalError> {
+    let mut b: TextBuf<256> = TextBuf::new();
+    let _ = b.write_str(cx.module_name(m));
+    Ok(Value::Sym(cx.intern(b.as_str())?))
+}
+
+/// `(focus M...)`: pushes the modules, the last first (the first ends on top).
+#[cfg(feature = "modules")]
+fn focus(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    // every name is checked before anything is pushed
+    for i in 0..a.len as usize {
+        if module_arg(cx, a, i, "focus")?.is_none() {
+            return Ok(Value::Sym(SYM_FALSE));
+        }
+    }
+    for i in (0..a.len as usize).rev() {
+        if let Some(m) = module_arg(cx, a, i, "focus")? {
+            cx.push_focus(m)?;
+        }
+    }
+    Ok(Value::Sym(SYM_TRUE))
+}
+
+#[cfg(feature = "modules")]
+fn get_focus(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
+    match cx.focus_top() {
+        Some(m) => module_sym(cx, m),
+        None => Ok(Value::Sym(SYM_FALSE)),
+    }
+}
+
+/// The focus stack, top first.
+#[cfg(feature = "modules")]
+fn get_focus_stack(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
+    let start = cx.multi_begin();
+    for k in (0..cx.st.modules.depth as usize).rev() {
+        let v = module_sym(cx, cx.focus[k])?;
+        cx.multi_push(v)?;
+    }
+    Ok(cx.multi_finish(start))
+}
+
+#[cfg(feature = "modules")]
+fn list_focus_stack(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
+    for k in (0..cx.st.modules.depth as usize).rev() {
+        let mut b: TextBuf<256> = TextBuf::new();
+        let _ = writeln!(b, "{}", cx.module_name(cx.focus[k]));
+        cx.write(router::WDISPLAY, b.as_str());
+    }
+    Ok(Value::Void)
+}
+
+#[cfg(feature = "modules")]
+fn pop_focus(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
+    match cx.pop_focus() {
+        Some(m) => module_sym(cx, m),
+        None => Ok(Value::Sym(SYM_FALSE)),
+    }
+}
+
+#[cfg(feature = "modules")]
+fn clear_focus_stack(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
+    cx.clear_focus();
+    Ok(Value::Void)
+}
+
+/// `(set-current-module M)`: the module before (unchanged for an unknown one).
+#[cfg(feature = "modules")]
+fn set_current_module(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let old = cx.current_module();
+    if let Some(m) = module_arg(cx, a, 0, "set-current-module")? {
+        cx.set_current_module(m);
+    }
+    module_sym(cx, old)
+}
+
+#[cfg(feature = "modules")]
+fn get_current_module(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
+    module_sym(cx, cx.current_module())
+}
+
+#[cfg(feature = "modules")]
+fn list_defmodules(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
+    let n = cx.st.modules.nmodules;
+    for m in 0..n {
+        let mut b: TextBuf<256> = TextBuf::new();
+        let _ = writeln!(b, "{}", cx.module_name(m as ModId));
+        cx.write(router::WDISPLAY, b.as_str());
+    }
+    let mut b: TextBuf<64> = TextBuf::new();
+    let _ = writeln!(
+        b,
+        "For a total of {n} defmodule{}.",
+        if n == 1 { "" } else { "s" }
+    );
+    cx.write(router::WDISPLAY, b.as_str());
+    Ok(Value::Void)
+}
+
+#[cfg(feature = "modules")]
+fn get_defmodule_list(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
+    let start = cx.multi_begin();
+    for m in 0..cx.st.modules.nmodules {
+        let v = module_sym(cx, m as ModId)?;
+        cx.multi_push(v)?;
+    }
+    Ok(cx.multi_finish(start))
+}
+
+/// `(ppdefmodule M)`: `(defmodule M` and each port specification on a line of its
+/// own, tokens one space apart (`(defmodule MAIN)` for the MAIN made at start-up).
+#[cfg(feature = "modules")]
+fn ppdefmodule(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let Some(m) = module_arg(cx, a, 0, "ppdefmodule")? else {
+        return Ok(Value::Void);
+    };
+    let mut b: TextBuf<4096> = TextBuf::new();
+    let text = cx.modules[m as usize].text;
+    if text == crate::value::NONE {
+        let _ = writeln!(b, "(defmodule {})", cx.module_name(m));
+    } else {
+        let _ = write_defmodule(cx.sym_text(text), &mut b);
+        let _ = b.write_char('\n');
+    }
+    cx.write(router::WDISPLAY, b.as_str());
+    Ok(Value::Void)
+}
+
+/// The pretty-printed form of the defmodule whose source is `src`.
+fn write_defmodule(src: &str, w: &mut dyn Write) -> core::fmt::Result {
+    use crate::lexer::{Lexer, Tok};
+    let mut lx = Lexer::new(src);
+    let mut depth = 0u32;
+    let mut first_in_list = false;
+    loop {
+        let t = lx.next_token();
+        let text = src.get(t.start..t.end).unwrap_or("");
+        match t.tok {
+            Tok::Eof | Tok::Bad => return Ok(()),
+            Tok::LParen => {
+                match depth {
+                    0 => {}
+                    1 => w.write_str("\n   ")?,
+                    _ => w.write_char(' ')?,
+                }
+                w.write_char('(')?;
+                depth += 1;
+                first_in_list = true;
+                continue;
+            }
+            Tok::RParen => {
+                w.write_char(')')?;
+                depth = depth.saturating_sub(1);
+                if depth == 0 {
+                    return Ok(());
+                }
+            }
+            _ => {
+                if !first_in_list {
+                    w.write_char(' ')?;
+                }
+                w.write_str(text)?;
+            }
+        }
+        first_in_list = false;
+    }
+}

@@ -1,0 +1,445 @@
+//! Modules (`defmodule`), as CLIPS 6.30 has them: which constructs a module sees
+//! (its own, and those it imports from modules that export them), the current module
+//! (where new constructs go, what `facts`, `agenda` and `list-def*` show) and the focus
+//! stack (whose top module's agenda `run` fires from).
+//!
+//! Entry 0 of the `Modules` pool is MAIN, which always exists; the others come in
+//! definition order (a module can import only from modules defined before it, so
+//! visibility is computed by following imports down to older modules). Each construct
+//! keeps its module in a side array by its index (`tmpl_module`, `rule_module`, ...).
+//!
+//! Off (feature `modules`) in the agent image: there, everything is MAIN, the side
+//! arrays and pools have zero-sized entries, and `defmodule` and `Module::name` are
+//! refused as not implemented.
+
+#[cfg(feature = "modules")]
+use crate::engine::Core;
+#[cfg(feature = "modules")]
+use crate::value::{Ix, SymId, NONE};
+
+/// A module's number: its entry in the `Modules` pool (0 is MAIN).
+pub type ModId = u8;
+pub const MAIN: ModId = 0;
+
+/// Construct classes a port names (`deftemplate`, ...), as bits; `ALL` for `?ALL`.
+pub mod class {
+    pub const TEMPLATE: u8 = 1;
+    pub const FUNCTION: u8 = 2;
+    pub const GLOBAL: u8 = 4;
+    pub const CLASS: u8 = 8;
+    pub const GENERIC: u8 = 16;
+    pub const ALL: u8 = 31;
+
+    /// The bit of a construct keyword in a port specification.
+    pub fn of(keyword: &str) -> Option<u8> {
+        Some(match keyword {
+            "deftemplate" => TEMPLATE,
+            "deffunction" => FUNCTION,
+            "defglobal" => GLOBAL,
+            "defclass" => CLASS,
+            "defgeneric" => GENERIC,
+            _ => return None,
+        })
+    }
+}
+
+/// A defmodule: its name, its ports (`ports[first_port..first_port + nports]`) and
+/// its text for `ppdefmodule` (NONE for the MAIN made at start-up).
+#[cfg(feature = "modules")]
+#[derive(Clone, Copy, Debug)]
+pub struct Module {
+    pub name: SymId,
+    pub first_port: Ix,
+    pub nports: Ix,
+    pub text: Ix,
+}
+
+#[cfg(feature = "modules")]
+pub const NO_MODULE: Module = Module {
+    name: NONE,
+    first_port: 0,
+    nports: 0,
+    text: NONE,
+};
+
+/// One `(import M ...)` or `(export ...)` item: which classes (`class` bits) and which
+/// name (NONE: every construct of those classes). `from` is the imported module.
+#[cfg(feature = "modules")]
+#[derive(Clone, Copy, Debug)]
+pub struct Port {
+    pub import: bool,
+    pub from: ModId,
+    pub classes: u8,
+    pub name: SymId,
+}
+
+#[cfg(feature = "modules")]
+pub const NO_PORT: Port = Port {
+    import: false,
+    from: MAIN,
+    classes: 0,
+    name: NONE,
+};
+
+/// A construct's module (side arrays by construct index), a focus stack entry.
+#[cfg(feature = "modules")]
+pub type ModTag = ModId;
+#[cfg(feature = "modules")]
+pub const NO_TAG: ModTag = MAIN;
+
+/// A rule's module, and whether its activations focus on it (`auto-focus`).
+#[cfg(feature = "modules")]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct RuleTag {
+    pub module: ModId,
+    pub auto_focus: bool,
+}
+#[cfg(feature = "modules")]
+pub const NO_RULE_TAG: RuleTag = RuleTag {
+    module: MAIN,
+    auto_focus: false,
+};
+#[cfg(not(feature = "modules"))]
+pub type RuleTag = ();
+#[cfg(not(feature = "modules"))]
+pub const NO_RULE_TAG: RuleTag = ();
+
+/// Without the feature: no bytes (the pool table keeps the arrays, of zero-sized
+/// entries).
+#[cfg(not(feature = "modules"))]
+pub type ModTag = ();
+#[cfg(not(feature = "modules"))]
+pub const NO_TAG: ModTag = ();
+#[cfg(not(feature = "modules"))]
+pub type Module = ();
+#[cfg(not(feature = "modules"))]
+pub const NO_MODULE: Module = ();
+#[cfg(not(feature = "modules"))]
+pub type Port = ();
+#[cfg(not(feature = "modules"))]
+pub const NO_PORT: Port = ();
+
+/// The engine's module state.
+#[cfg(feature = "modules")]
+#[derive(Clone, Copy, Debug)]
+pub struct ModuleState {
+    /// Modules defined (MAIN included: at least 1) and ports used.
+    pub nmodules: Ix,
+    pub nports: Ix,
+    /// Where new constructs go and whose view commands take.
+    pub current: ModId,
+    /// Entries of the focus stack (its top is `focus[depth - 1]`).
+    pub depth: Ix,
+    /// MAIN may be redefined once after start-up or `clear`.
+    pub main_redefined: bool,
+    /// The module whose heading a `list-def* *` printed last.
+    pub listing_head: Option<ModId>,
+}
+
+#[cfg(feature = "modules")]
+impl ModuleState {
+    pub const fn new() -> ModuleState {
+        ModuleState {
+            nmodules: 1,
+            nports: 0,
+            current: MAIN,
+            depth: 1,
+            main_redefined: false,
+            listing_head: None,
+        }
+    }
+}
+
+#[cfg(feature = "modules")]
+impl Default for ModuleState {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// `MOD::name` split at the first `::` (None for a plain name).
+pub fn split_qualified(name: &str) -> Option<(&str, &str)> {
+    let i = name.find("::")?;
+    Some((&name[..i], &name[i + 2..]))
+}
+
+#[cfg(feature = "modules")]
+impl Core<'_> {
+    /// The module named `name`.
+    pub fn find_module(&self, name: &str) -> Option<ModId> {
+        (0..self.st.modules.nmodules as usize)
+            .find(|&m| self.module_name(m as ModId) == name)
+            .map(|m| m as ModId)
+    }
+
+    pub fn module_name(&self, m: ModId) -> &str {
+        if m == MAIN {
+            return "MAIN";
+        }
+        self.sym_text(self.modules[m as usize].name)
+    }
+
+    /// `MOD::name`: the module and the plain name's symbol (None for a plain name,
+    /// and for an unknown module or name, which then names nothing).
+    pub fn resolve_qualified(&mut self, name: SymId) -> Option<(ModId, SymId)> {
+        let mut b: crate::value::TextBuf<256> = crate::value::TextBuf::new();
+        core::fmt::Write::write_str(&mut b, self.sym_text(name)).ok()?;
+        let (m, bare) = split_qualified(b.as_str())?;
+        let m = self.find_module(m).unwrap_or(ModId::MAX);
+        let bare = self.find_sym(bare).unwrap_or(NONE);
+        Some((m, bare))
+    }
+
+    pub fn current_module(&self) -> ModId {
+        self.st.modules.current
+    }
+
+    pub fn set_current_module(&mut self, m: ModId) {
+        self.st.modules.current = m;
+    }
+
+    /// Whether a construct of class `class` named `name` defined in `owner` can be used
+    /// in module `from`: its own, or imported from a module exporting it (a module
+    /// exports what it sees, its imports too). `depth` bounds the walk (a MAIN
+    /// redefined to import a later module could make a loop).
+    pub fn visible_in(&self, class: u8, owner: ModId, name: SymId, from: ModId) -> bool {
+        self.visible_depth(class, owner, name, from, self.st.modules.nmodules)
+    }
+
+    fn visible_depth(&self, class: u8, owner: ModId, name: SymId, from: ModId, depth: Ix) -> bool {
+        if owner == from {
+            return true;
+        }
+        if depth == 0 {
+            return false;
+        }
+        let m = self.modules[from as usize];
+        (m.first_port..m.first_port + m.nports).any(|p| {
+            let p = self.ports[p as usize];
+            p.import
+                && p.classes & class != 0
+                && (p.name == NONE || p.name == name)
+                && self.exports(p.from, class, owner, name, depth - 1)
+        })
+    }
+
+    fn exports(&self, m: ModId, class: u8, owner: ModId, name: SymId, depth: Ix) -> bool {
+        let md = self.modules[m as usize];
+        (md.first_port..md.first_port + md.nports).any(|p| {
+            let p = self.ports[p as usize];
+            !p.import && p.classes & class != 0 && (p.name == NONE || p.name == name)
+        }) && self.visible_depth(class, owner, name, m, depth)
+    }
+
+    /// Whether module `m` exports a construct of `class` named `name` that it sees
+    /// (what `(import m class name)` needs, `[MODULPSR1]` otherwise).
+    pub fn module_exports(&self, m: ModId, class: u8, name: SymId) -> bool {
+        let n = self.st.modules.nmodules;
+        (0..n).any(|owner| {
+            let owner = owner as ModId;
+            self.constructs_named(class, owner, name) && self.exports(m, class, owner, name, n)
+        })
+    }
+
+    /// Whether `owner` defines a construct of `class` named `name`.
+    fn constructs_named(&self, class: u8, owner: ModId, name: SymId) -> bool {
+        match class {
+            class::TEMPLATE => (0..self.st.pools.ntemplates).any(|t| {
+                self.templates[t as usize].name == name && self.tmpl_module[t as usize] == owner
+            }),
+            class::FUNCTION => (0..self.st.pools.nfuncs).any(|f| {
+                self.funcs[f as usize].name == name && self.func_module[f as usize] == owner
+            }),
+            class::GLOBAL => (0..self.st.pools.nglobals).any(|g| {
+                self.globals[g as usize].name == name && self.global_module[g as usize] == owner
+            }),
+            _ => false,
+        }
+    }
+
+    /// The template named `name` that module `from` sees.
+    pub fn template_seen_from(&self, name: SymId, from: ModId) -> Option<Ix> {
+        (0..self.st.pools.ntemplates).find(|&t| {
+            self.templates[t as usize].name == name
+                && self.visible_in(class::TEMPLATE, self.tmpl_module[t as usize], name, from)
+        })
+    }
+
+    /// Whether the current module sees template `t` (`facts`, `find_template`).
+    pub fn template_visible(&self, t: Ix) -> bool {
+        let name = self.templates[t as usize].name;
+        self.visible_in(
+            class::TEMPLATE,
+            self.tmpl_module[t as usize],
+            name,
+            self.current_module(),
+        )
+    }
+
+    /// The focus stack's top (the module whose agenda fires), if any.
+    pub fn focus_top(&self) -> Option<ModId> {
+        let d = self.st.modules.depth as usize;
+        // (a fresh engine's stack holds MAIN, entry 0's empty value)
+        (d > 0).then(|| self.focus.get(d - 1).copied().unwrap_or(MAIN))
+    }
+
+    /// Pushes `m` on the focus stack (nothing when it is the top already), as CLIPS's
+    /// `focus`: `==> Focus M from N` while focus is watched; the current module
+    /// becomes `m`.
+    pub fn push_focus(&mut self, m: ModId) -> Result<(), crate::error::CapacityError> {
+        let d = self.st.modules.depth as usize;
+        let top = self.focus_top();
+        self.st.modules.current = m;
+        if top == Some(m) {
+            return Ok(());
+        }
+        #[cfg(feature = "grow")]
+        self.ensure(crate::error::Pool::FocusStack, d + 1);
+        if d >= self.focus.len() {
+            return Err(crate::engine::cap(
+                crate::error::Pool::FocusStack,
+                self.focus.len(),
+            ));
+        }
+        self.focus[d] = m;
+        self.st.modules.depth += 1;
+        self.note_hw(crate::error::Pool::FocusStack, d + 1);
+        if self.st.mode.watch & crate::engine::watch::FOCUS != 0 {
+            let mut b: crate::value::TextBuf<128> = crate::value::TextBuf::new();
+            let _ = match top {
+                Some(t) => core::fmt::Write::write_fmt(
+                    &mut b,
+                    format_args!(
+                        "==> Focus {} from {}\n",
+                        self.module_name(m),
+                        self.module_name(t)
+                    ),
+                ),
+                None => core::fmt::Write::write_fmt(
+                    &mut b,
+                    format_args!("==> Focus {}\n", self.module_name(m)),
+                ),
+            };
+            self.write(crate::host::router::STDOUT, b.as_str());
+        }
+        Ok(())
+    }
+
+    /// Pops the focus stack's top (`<== Focus M to N` while watched); the current
+    /// module follows the new top when it was the popped one.
+    pub fn pop_focus(&mut self) -> Option<ModId> {
+        let top = self.focus_top()?;
+        self.st.modules.depth -= 1;
+        let next = self.focus_top();
+        if self.st.mode.watch & crate::engine::watch::FOCUS != 0 {
+            let mut b: crate::value::TextBuf<128> = crate::value::TextBuf::new();
+            let _ = match next {
+                Some(n) => core::fmt::Write::write_fmt(
+                    &mut b,
+                    format_args!(
+                        "<== Focus {} to {}\n",
+                        self.module_name(top),
+                        self.module_name(n)
+                    ),
+                ),
+                None => core::fmt::Write::write_fmt(
+                    &mut b,
+                    format_args!("<== Focus {}\n", self.module_name(top)),
+                ),
+            };
+            self.write(crate::host::router::STDOUT, b.as_str());
+        }
+        if let Some(n) = next {
+            if self.st.modules.current == top {
+                self.st.modules.current = n;
+            }
+        }
+        Some(top)
+    }
+
+    /// Empties the focus stack, top first.
+    pub fn clear_focus(&mut self) {
+        while self.pop_focus().is_some() {}
+    }
+
+    /// `reset` and `clear`: the focus stack holds MAIN only, which is current.
+    pub fn reset_focus(&mut self) -> Result<(), crate::error::CapacityError> {
+        self.clear_focus();
+        self.st.modules.current = MAIN;
+        self.push_focus(MAIN)
+    }
+
+    /// Whether activation `a` is on the agenda of module `m`.
+    pub fn activation_in(&self, a: Ix, m: ModId) -> bool {
+        self.rule_module[self.acts[a as usize].rule as usize].module == m
+    }
+}
+
+impl crate::engine::Core<'_> {
+    /// The current module's name ("MAIN" without the feature).
+    pub fn current_module_name(&self) -> &str {
+        #[cfg(feature = "modules")]
+        return self.module_name(self.st.modules.current);
+        #[cfg(not(feature = "modules"))]
+        "MAIN"
+    }
+
+    /// The name of the module of rule `r`.
+    pub fn rule_module_name(&self, r: crate::value::Ix) -> &str {
+        #[cfg(feature = "modules")]
+        return self.module_name(self.rule_module[r as usize].module);
+        #[cfg(not(feature = "modules"))]
+        {
+            let _ = r;
+            "MAIN"
+        }
+    }
+
+    /// The name of the module of template `t`.
+    pub fn template_module_name(&self, t: crate::value::Ix) -> &str {
+        #[cfg(feature = "modules")]
+        return self.module_name(self.tmpl_module[t as usize]);
+        #[cfg(not(feature = "modules"))]
+        {
+            let _ = t;
+            "MAIN"
+        }
+    }
+
+    /// The name of the module of deffacts `d`.
+    pub fn deffacts_module_name(&self, d: crate::value::Ix) -> &str {
+        #[cfg(feature = "modules")]
+        return self.module_name(self.deffacts_module[d as usize]);
+        #[cfg(not(feature = "modules"))]
+        {
+            let _ = d;
+            "MAIN"
+        }
+    }
+}
+
+impl crate::engine::Core<'_> {
+    /// The deffunction named `name` that module `from` sees.
+    pub fn find_function(&self, name: SymIdAny, from: ModId) -> Option<crate::value::Ix> {
+        #[cfg(feature = "modules")]
+        return (0..self.st.pools.nfuncs).find(|&f| {
+            self.funcs[f as usize].name == name
+                && self.visible_in(class::FUNCTION, self.func_module[f as usize], name, from)
+        });
+        #[cfg(not(feature = "modules"))]
+        {
+            let _ = from;
+            (0..self.st.pools.nfuncs).find(|&f| self.funcs[f as usize].name == name)
+        }
+    }
+
+    /// The current module (MAIN without the feature).
+    pub fn st_current_module(&self) -> ModId {
+        #[cfg(feature = "modules")]
+        return self.st.modules.current;
+        #[cfg(not(feature = "modules"))]
+        MAIN
+    }
+}
+
+type SymIdAny = crate::value::SymId;

@@ -1,0 +1,208 @@
+//! `defmodule` and module-qualified construct names (feature `modules`, see
+//! `crate::module`).
+
+use super::{PResult, Parser};
+use crate::error::{LoadDetail, Pool};
+use crate::lexer::{Tok, Token};
+use crate::module::{class, split_qualified, ModId, Module, Port, MAIN};
+use crate::value::{Ix, NONE};
+
+impl<'s> Parser<'s, '_, '_> {
+    /// `(defmodule NAME [comment] port-spec*)` after `defmodule`. The module is
+    /// entered only once its whole text is read; it becomes the current module.
+    pub(super) fn defmodule(&mut self, start: usize) -> PResult<()> {
+        let nt = self.next();
+        let name = match nt.tok {
+            Tok::Symbol(s) if split_qualified(s).is_none() => s,
+            _ => return Err(self.err(nt, "a defmodule name")),
+        };
+        let slot: ModId = match self.cx.find_module(name) {
+            Some(MAIN) if !self.cx.st.modules.main_redefined => MAIN,
+            Some(_) => {
+                let mut e = self.err(
+                    nt,
+                    "a defmodule name not in use (modules cannot be redefined)",
+                );
+                e.detail = LoadDetail::InUse {
+                    construct: "defmodule",
+                };
+                return Err(e);
+            }
+            None => {
+                let n = self.cx.st.modules.nmodules as usize;
+                #[cfg(feature = "grow")]
+                self.cx.ensure(Pool::Modules, n + 1);
+                if n >= self.cx.modules.len() || n > ModId::MAX as usize {
+                    let c = crate::engine::cap(Pool::Modules, self.cx.modules.len());
+                    return Err(self.cap_err(nt, c));
+                }
+                n as ModId
+            }
+        };
+        let sym = cap!(self, self.cx.intern(name))?;
+        if let Tok::Str(_) = self.peek().tok {
+            self.next();
+        }
+        let first_port = self.cx.st.modules.nports;
+        let mut nports: Ix = 0;
+        loop {
+            let t = self.next();
+            match t.tok {
+                Tok::RParen => break,
+                Tok::LParen => self.port_spec(slot, first_port, &mut nports)?,
+                _ => return Err(self.err(t, "'(' opening an import or export specification")),
+            }
+        }
+        let text = self.pp_text(start);
+        self.cx.modules[slot as usize] = Module {
+            name: sym,
+            first_port,
+            nports,
+            text,
+        };
+        self.cx.st.modules.nports = first_port + nports;
+        if slot == MAIN {
+            self.cx.st.modules.main_redefined = true;
+        } else {
+            self.cx.st.modules.nmodules += 1;
+            self.cx
+                .note_hw(Pool::Modules, self.cx.st.modules.nmodules as usize);
+        }
+        self.cx.set_current_module(slot);
+        Ok(())
+    }
+
+    /// One `(export ...)` or `(import MODULE ...)` after its `(`; its ports go after
+    /// the ones this defmodule read so far (`first + *n`).
+    fn port_spec(&mut self, this: ModId, first: Ix, n: &mut Ix) -> PResult<()> {
+        let kt = self.next();
+        let import = match kt.tok {
+            Tok::Symbol("import") => true,
+            Tok::Symbol("export") => false,
+            _ => return Err(self.err(kt, "import or export")),
+        };
+        let mut from = MAIN;
+        if import {
+            let mt = self.next();
+            from = match mt.tok {
+                Tok::Symbol(s) => match self.cx.find_module(s) {
+                    Some(m) if m != this => m,
+                    _ => return Err(self.err(mt, "the name of a defined module to import from")),
+                },
+                _ => return Err(self.err(mt, "a module name")),
+            };
+        }
+        let t = self.next();
+        match t.tok {
+            // ?ALL or ?NONE for every class
+            Tok::SfVar("ALL") => {
+                self.add_port(t, first, n, import, from, class::ALL, NONE)?;
+                self.expect_rparen("')' after ?ALL")
+            }
+            Tok::SfVar("NONE") => self.expect_rparen("')' after ?NONE"),
+            Tok::Symbol(kw) => {
+                let Some(classes) = class::of(kw) else {
+                    return Err(self.err(
+                        t,
+                        "deftemplate, deffunction, defglobal, defclass or defgeneric",
+                    ));
+                };
+                let t = self.next();
+                match t.tok {
+                    Tok::SfVar("ALL") => {
+                        self.add_port(t, first, n, import, from, classes, NONE)?;
+                        return self.expect_rparen("')' after ?ALL");
+                    }
+                    Tok::SfVar("NONE") => return self.expect_rparen("')' after ?NONE"),
+                    _ => {}
+                }
+                let mut t = t;
+                let mut names = 0;
+                loop {
+                    match t.tok {
+                        Tok::RParen if names > 0 => return Ok(()),
+                        Tok::Symbol(s) => {
+                            let sym = cap!(self, self.cx.intern(s))?;
+                            // what is imported by name must be exported by name already
+                            if import && !self.cx.module_exports(from, classes, sym) {
+                                return Err(
+                                    self.err(t, "a construct the module exports ([MODULPSR1])")
+                                );
+                            }
+                            self.add_port(t, first, n, import, from, classes, sym)?;
+                            names += 1;
+                        }
+                        _ => return Err(self.err(t, "a construct name")),
+                    }
+                    t = self.next();
+                }
+            }
+            _ => Err(self.err(t, "?ALL, ?NONE or a construct type")),
+        }
+    }
+
+    #[allow(clippy::too_many_arguments)]
+    fn add_port(
+        &mut self,
+        at: Token<'s>,
+        first: Ix,
+        n: &mut Ix,
+        import: bool,
+        from: ModId,
+        classes: u8,
+        name: Ix,
+    ) -> PResult<()> {
+        let k = first as usize + *n as usize;
+        #[cfg(feature = "grow")]
+        self.cx.ensure(Pool::ModulePorts, k + 1);
+        if k >= self.cx.ports.len() || k >= NONE as usize {
+            let c = crate::engine::cap(Pool::ModulePorts, self.cx.ports.len());
+            return Err(self.cap_err(at, c));
+        }
+        self.cx.ports[k] = Port {
+            import,
+            from,
+            classes,
+            name,
+        };
+        *n += 1;
+        self.cx.note_hw(Pool::ModulePorts, k + 1);
+        Ok(())
+    }
+
+    /// A construct's name as written after its keyword: `MOD::name` defines it in
+    /// module MOD, which becomes the current module (as in CLIPS); returns the name
+    /// without the module.
+    pub(super) fn construct_name(&mut self, at: Token<'s>, name: &'s str) -> PResult<&'s str> {
+        match split_qualified(name) {
+            None => Ok(name),
+            Some((m, bare)) => {
+                let Some(m) = self.cx.find_module(m) else {
+                    return Err(self.err(at, "the name of a defined module before '::'"));
+                };
+                if bare.is_empty() || split_qualified(bare).is_some() {
+                    return Err(self.err(at, "a construct name after the module name"));
+                }
+                self.cx.set_current_module(m);
+                Ok(bare)
+            }
+        }
+    }
+
+    /// A name that refers to a construct (`MOD::name` or `name`): the module whose
+    /// view to look it up in, and the name without the module.
+    pub(super) fn qualified_ref(
+        &mut self,
+        at: Token<'s>,
+        name: &'s str,
+    ) -> PResult<(ModId, &'s str)> {
+        match split_qualified(name) {
+            None => Ok((self.cx.current_module(), name)),
+            Some((m, bare)) => match self.cx.find_module(m) {
+                Some(m) if !bare.is_empty() && split_qualified(bare).is_none() => Ok((m, bare)),
+                Some(_) => Err(self.err(at, "a construct name after the module name")),
+                None => Err(self.err(at, "the name of a defined module before '::'")),
+            },
+        }
+    }
+}
