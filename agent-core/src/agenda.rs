@@ -131,8 +131,11 @@ impl Core<'_> {
         self.agenda_insert(a);
         // an auto-focus rule's module is focused first (CLIPS prints it first)
         #[cfg(feature = "modules")]
-        if self.rule_module[rule as usize].auto_focus {
-            self.push_focus(self.rule_module[rule as usize].module)?;
+        {
+            let tag = self.rule_tag(rule);
+            if tag.auto_focus {
+                self.push_focus(tag.module)?;
+            }
         }
         if self.st.mode.watch & watch::ACTIVATIONS != 0 {
             self.print_activation_line("==> Activation ", a);

@@ -319,7 +319,7 @@ impl Core<'_> {
         'deffacts: for d in (0..modules).flat_map(|m| (0..ndeffacts).map(move |d| (m, d))) {
             let (m, d) = d;
             #[cfg(feature = "modules")]
-            if Ix::from(self.deffacts_module[d as usize]) != m {
+            if Ix::from(self.module_of_deffacts(d)) != m {
                 continue;
             }
             #[cfg(not(feature = "modules"))]
@@ -616,7 +616,7 @@ impl Core<'_> {
             self.st.agenda.current_rule = rule;
             // the rule's actions run in its module
             #[cfg(feature = "modules")]
-            self.set_current_module(self.rule_module[rule as usize].module);
+            self.set_current_module(self.rule_tag(rule).module);
             // a halt ends the run, so one left here came from before it (a top-level
             // command's propagation): the rule's actions run as usual
             self.st.mode.halting = false;

@@ -140,10 +140,9 @@ impl Core<'_> {
         };
         self.tmpl_mems[n] = TemplateMem::EMPTY;
         // made in the current module, as CLIPS's implied deftemplates
+        // (room: the template memories just written)
         #[cfg(feature = "modules")]
-        {
-            self.tmpl_module[n] = self.current_module();
-        }
+        let _ = self.set_template_module(n as Ix, self.current_module());
         self.st.pools.ntemplates += 1;
         self.note_hw(Pool::Templates, n + 1);
         self.note_hw(Pool::SlotDefs, s + 1);

@@ -163,6 +163,99 @@ pub fn split_qualified(name: &str) -> Option<(&str, &str)> {
     Some((&name[..i], &name[i + 2..]))
 }
 
+/// Reads of the module side arrays and pools, the only ones. An engine may have fewer
+/// entries there than constructs: one sized as the agent image reads its rules in
+/// place from a compiled rule base (`rules: 0`, so `rule_module` is empty) and may
+/// name no module pools at all (`modules: 0`, `focus_stack: 0`). What has no entry is
+/// MAIN's (compiled rule bases hold MAIN only, `WriteError::Modules`), so such an
+/// engine behaves as the single MAIN module: no auto-focus, every rule here.
+#[cfg(feature = "modules")]
+impl Core<'_> {
+    /// Rule `r`'s module and auto-focus flag.
+    #[inline]
+    pub fn rule_tag(&self, r: Ix) -> RuleTag {
+        self.rule_module
+            .get(r as usize)
+            .copied()
+            .unwrap_or(NO_RULE_TAG)
+    }
+
+    /// Template `t`'s module.
+    pub fn module_of_template(&self, t: Ix) -> ModId {
+        self.tmpl_module.get(t as usize).copied().unwrap_or(MAIN)
+    }
+
+    /// Deffunction `f`'s module.
+    pub fn module_of_function(&self, f: Ix) -> ModId {
+        self.func_module.get(f as usize).copied().unwrap_or(MAIN)
+    }
+
+    /// Defglobal `g`'s module.
+    pub fn module_of_global(&self, g: Ix) -> ModId {
+        self.global_module.get(g as usize).copied().unwrap_or(MAIN)
+    }
+
+    /// Deffacts `d`'s module.
+    pub fn module_of_deffacts(&self, d: Ix) -> ModId {
+        self.deffacts_module
+            .get(d as usize)
+            .copied()
+            .unwrap_or(MAIN)
+    }
+
+    /// Module `m`'s entry (MAIN's as made at start-up when the pool has no room for it:
+    /// no ports, no text).
+    pub fn module_entry(&self, m: ModId) -> Module {
+        self.modules.get(m as usize).copied().unwrap_or(NO_MODULE)
+    }
+
+    /// Port `p` (one matching nothing past the pool's end: a module's ports are
+    /// recorded only once stored).
+    fn port_entry(&self, p: Ix) -> Port {
+        self.ports.get(p as usize).copied().unwrap_or(NO_PORT)
+    }
+
+    /// Entry `k` (bottom first) of the focus stack; an engine without a focus stack
+    /// holds MAIN only, in no storage (`push_focus`).
+    pub fn focus_entry(&self, k: usize) -> ModId {
+        self.focus.get(k).copied().unwrap_or(MAIN)
+    }
+
+    /// Records the module of rule `r`; false when the pool has no entry for it and the
+    /// tag is not MAIN's (the rule pool's room is checked before a rule is made, so
+    /// only the MAIN rules of a compiled rule base read in place have none).
+    pub fn set_rule_tag(&mut self, r: Ix, tag: RuleTag) -> bool {
+        set_tag(self.rule_module, r, tag, NO_RULE_TAG)
+    }
+
+    /// Records the module of template `t` (false as [`Core::set_rule_tag`]).
+    pub fn set_template_module(&mut self, t: Ix, m: ModId) -> bool {
+        set_tag(self.tmpl_module, t, m, MAIN)
+    }
+
+    /// Records the module of deffunction `f` (false as [`Core::set_rule_tag`]).
+    pub fn set_function_module(&mut self, f: Ix, m: ModId) -> bool {
+        set_tag(self.func_module, f, m, MAIN)
+    }
+
+    /// Records the module of deffacts `d` (false as [`Core::set_rule_tag`]).
+    pub fn set_deffacts_module(&mut self, d: Ix, m: ModId) -> bool {
+        set_tag(self.deffacts_module, d, m, MAIN)
+    }
+}
+
+/// Writes `tag` at `i`; past the end only the default (what reads there) fits.
+#[cfg(feature = "modules")]
+fn set_tag<T: Copy + PartialEq>(arr: &mut [T], i: Ix, tag: T, default: T) -> bool {
+    match arr.get_mut(i as usize) {
+        Some(e) => {
+            *e = tag;
+            true
+        }
+        None => tag == default,
+    }
+}
+
 #[cfg(feature = "modules")]
 impl Core<'_> {
     /// The module named `name`.
@@ -176,7 +269,7 @@ impl Core<'_> {
         if m == MAIN {
             return "MAIN";
         }
-        self.sym_text(self.modules[m as usize].name)
+        self.sym_text(self.module_entry(m).name)
     }
 
     /// `MOD::name`: the module and the plain name's symbol (None for a plain name,
@@ -213,9 +306,9 @@ impl Core<'_> {
         if depth == 0 {
             return false;
         }
-        let m = self.modules[from as usize];
+        let m = self.module_entry(from);
         (m.first_port..m.first_port + m.nports).any(|p| {
-            let p = self.ports[p as usize];
+            let p = self.port_entry(p);
             p.import
                 && p.classes & class != 0
                 && (p.name == NONE || p.name == name)
@@ -224,9 +317,9 @@ impl Core<'_> {
     }
 
     fn exports(&self, m: ModId, class: u8, owner: ModId, name: SymId, depth: Ix) -> bool {
-        let md = self.modules[m as usize];
+        let md = self.module_entry(m);
         (md.first_port..md.first_port + md.nports).any(|p| {
-            let p = self.ports[p as usize];
+            let p = self.port_entry(p);
             !p.import && p.classes & class != 0 && (p.name == NONE || p.name == name)
         }) && self.visible_depth(class, owner, name, m, depth)
     }
@@ -245,13 +338,13 @@ impl Core<'_> {
     fn constructs_named(&self, class: u8, owner: ModId, name: SymId) -> bool {
         match class {
             class::TEMPLATE => (0..self.st.pools.ntemplates).any(|t| {
-                self.templates[t as usize].name == name && self.tmpl_module[t as usize] == owner
+                self.templates[t as usize].name == name && self.module_of_template(t) == owner
             }),
             class::FUNCTION => (0..self.st.pools.nfuncs).any(|f| {
-                self.funcs[f as usize].name == name && self.func_module[f as usize] == owner
+                self.funcs[f as usize].name == name && self.module_of_function(f) == owner
             }),
             class::GLOBAL => (0..self.st.pools.nglobals).any(|g| {
-                self.globals[g as usize].name == name && self.global_module[g as usize] == owner
+                self.globals[g as usize].name == name && self.module_of_global(g) == owner
             }),
             _ => false,
         }
@@ -261,7 +354,7 @@ impl Core<'_> {
     pub fn template_seen_from(&self, name: SymId, from: ModId) -> Option<Ix> {
         (0..self.st.pools.ntemplates).find(|&t| {
             self.templates[t as usize].name == name
-                && self.visible_in(class::TEMPLATE, self.tmpl_module[t as usize], name, from)
+                && self.visible_in(class::TEMPLATE, self.module_of_template(t), name, from)
         })
     }
 
@@ -270,7 +363,7 @@ impl Core<'_> {
         let name = self.templates[t as usize].name;
         self.visible_in(
             class::TEMPLATE,
-            self.tmpl_module[t as usize],
+            self.module_of_template(t),
             name,
             self.current_module(),
         )
@@ -280,7 +373,7 @@ impl Core<'_> {
     pub fn focus_top(&self) -> Option<ModId> {
         let d = self.st.modules.depth as usize;
         // (a fresh engine's stack holds MAIN, entry 0's empty value)
-        (d > 0).then(|| self.focus.get(d - 1).copied().unwrap_or(MAIN))
+        (d > 0).then(|| self.focus_entry(d - 1))
     }
 
     /// Pushes `m` on the focus stack (nothing when it is the top already), as CLIPS's
@@ -295,13 +388,17 @@ impl Core<'_> {
         }
         #[cfg(feature = "grow")]
         self.ensure(crate::error::Pool::FocusStack, d + 1);
-        if d >= self.focus.len() {
-            return Err(crate::engine::cap(
-                crate::error::Pool::FocusStack,
-                self.focus.len(),
-            ));
+        match self.focus.get_mut(d) {
+            Some(e) => *e = m,
+            // an engine without a focus stack holds MAIN alone, in no storage
+            None if d == 0 && m == MAIN => {}
+            None => {
+                return Err(crate::engine::cap(
+                    crate::error::Pool::FocusStack,
+                    self.focus.len(),
+                ))
+            }
         }
-        self.focus[d] = m;
         self.st.modules.depth += 1;
         self.note_hw(crate::error::Pool::FocusStack, d + 1);
         if self.st.mode.watch & crate::engine::watch::FOCUS != 0 {
@@ -371,7 +468,7 @@ impl Core<'_> {
 
     /// Whether activation `a` is on the agenda of module `m`.
     pub fn activation_in(&self, a: Ix, m: ModId) -> bool {
-        self.rule_module[self.acts[a as usize].rule as usize].module == m
+        self.rule_tag(self.acts[a as usize].rule).module == m
     }
 }
 
@@ -387,7 +484,7 @@ impl crate::engine::Core<'_> {
     /// The name of the module of rule `r`.
     pub fn rule_module_name(&self, r: crate::value::Ix) -> &str {
         #[cfg(feature = "modules")]
-        return self.module_name(self.rule_module[r as usize].module);
+        return self.module_name(self.rule_tag(r).module);
         #[cfg(not(feature = "modules"))]
         {
             let _ = r;
@@ -398,7 +495,7 @@ impl crate::engine::Core<'_> {
     /// The name of the module of template `t`.
     pub fn template_module_name(&self, t: crate::value::Ix) -> &str {
         #[cfg(feature = "modules")]
-        return self.module_name(self.tmpl_module[t as usize]);
+        return self.module_name(self.module_of_template(t));
         #[cfg(not(feature = "modules"))]
         {
             let _ = t;
@@ -409,7 +506,7 @@ impl crate::engine::Core<'_> {
     /// The name of the module of deffacts `d`.
     pub fn deffacts_module_name(&self, d: crate::value::Ix) -> &str {
         #[cfg(feature = "modules")]
-        return self.module_name(self.deffacts_module[d as usize]);
+        return self.module_name(self.module_of_deffacts(d));
         #[cfg(not(feature = "modules"))]
         {
             let _ = d;
@@ -424,7 +521,7 @@ impl crate::engine::Core<'_> {
         #[cfg(feature = "modules")]
         return (0..self.st.pools.nfuncs).find(|&f| {
             self.funcs[f as usize].name == name
-                && self.visible_in(class::FUNCTION, self.func_module[f as usize], name, from)
+                && self.visible_in(class::FUNCTION, self.module_of_function(f), name, from)
         });
         #[cfg(not(feature = "modules"))]
         {

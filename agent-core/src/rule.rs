@@ -61,7 +61,7 @@ impl crate::engine::Core<'_> {
     pub fn rule_here(&self, r: Ix, name: SymId) -> bool {
         let rule = &self.rules[r as usize];
         #[cfg(feature = "modules")]
-        if self.rule_module[r as usize].module != self.current_module() {
+        if self.rule_tag(r).module != self.current_module() {
             return false;
         }
         rule.name == name && !rule.deleted

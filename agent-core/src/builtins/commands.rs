@@ -429,7 +429,7 @@ pub(super) fn list_defrules(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalErr
                 continue;
             }
             #[cfg(feature = "modules")]
-            if cx.rule_module[r as usize].module != m {
+            if cx.rule_tag(r).module != m {
                 continue;
             }
             let _ = m;
@@ -819,7 +819,7 @@ fn list_deftemplates(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
                 continue;
             }
             #[cfg(feature = "modules")]
-            if cx.tmpl_module[t as usize] != m {
+            if cx.module_of_template(t) != m {
                 continue;
             }
             let _ = m;

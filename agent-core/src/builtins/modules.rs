@@ -91,7 +91,7 @@ fn get_focus(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
 fn get_focus_stack(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
     let start = cx.multi_begin();
     for k in (0..cx.st.modules.depth as usize).rev() {
-        let v = module_sym(cx, cx.focus[k])?;
+        let v = module_sym(cx, cx.focus_entry(k))?;
         cx.multi_push(v)?;
     }
     Ok(cx.multi_finish(start))
@@ -101,7 +101,7 @@ fn get_focus_stack(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
 fn list_focus_stack(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
     for k in (0..cx.st.modules.depth as usize).rev() {
         let mut b: TextBuf<256> = TextBuf::new();
-        let _ = writeln!(b, "{}", cx.module_name(cx.focus[k]));
+        let _ = writeln!(b, "{}", cx.module_name(cx.focus_entry(k)));
         cx.write(router::WDISPLAY, b.as_str());
     }
     Ok(Value::Void)
@@ -172,7 +172,7 @@ fn ppdefmodule(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         return Ok(Value::Void);
     };
     let mut b: TextBuf<4096> = TextBuf::new();
-    let text = cx.modules[m as usize].text;
+    let text = cx.module_entry(m).text;
     if text == crate::value::NONE {
         let _ = writeln!(b, "(defmodule {})", cx.module_name(m));
     } else {

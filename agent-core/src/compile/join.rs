@@ -323,13 +323,15 @@ impl Compiler<'_, '_> {
             // (room checked above)
             let _ = self.cx.set_rule_logical_join(nr as Ix, lj);
         }
+        // (room: the rule just written)
         #[cfg(feature = "modules")]
-        {
-            self.cx.rule_module[nr] = crate::module::RuleTag {
+        let _ = self.cx.set_rule_tag(
+            nr as Ix,
+            crate::module::RuleTag {
                 module: self.cx.current_module(),
                 auto_focus: b.auto_focus,
-            };
-        }
+            },
+        );
         self.cx.st.pools.nrules += 1;
         self.cx.note_hw(Pool::Rules, nr + 1);
         Ok(nr as Ix)

@@ -15,8 +15,9 @@ use core::fmt;
 /// Why a compiled rule base did not load. The engine is as it was before the call.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum CompiledError {
-    /// The engine already holds constructs: a compiled rule base loads into an engine
-    /// fresh from start-up or `(clear)` only (its indices are the writer's).
+    /// The engine already holds constructs (a defmodule too, its constructs would be
+    /// MAIN's): a compiled rule base loads into an engine fresh from start-up or
+    /// `(clear)` only (its indices are the writer's).
     NotFresh,
     /// Symbol `index` of the rule base is not the engine's (host functions registered
     /// in another order than in the writing engine, or a rule base from another
@@ -118,6 +119,13 @@ impl Core<'_> {
             || st.pools.ndeffacts != 0
             || st.mode.firing
             || st.mode.defining
+        {
+            return Err(CompiledError::NotFresh);
+        }
+        #[cfg(feature = "modules")]
+        if st.modules.nmodules > 1
+            || st.modules.nports > 0
+            || st.modules.current != crate::module::MAIN
         {
             return Err(CompiledError::NotFresh);
         }

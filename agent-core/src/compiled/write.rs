@@ -24,6 +24,9 @@ pub enum WriteError {
     /// A rule uses `logical`: a compiled rule base keeps no logical joins (the agent
     /// image has no truth maintenance).
     Logical,
+    /// A defmodule besides the MAIN made at start-up: a compiled rule base keeps no
+    /// modules (its constructs are all MAIN's, as the agent image has them).
+    Modules,
 }
 
 impl From<fmt::Error> for WriteError {
@@ -45,6 +48,10 @@ impl fmt::Display for WriteError {
             WriteError::Logical => write!(
                 f,
                 "a rule uses the logical CE: compiled rule bases have no truth maintenance"
+            ),
+            WriteError::Modules => write!(
+                f,
+                "a defmodule besides MAIN: compiled rule bases hold the MAIN module only"
             ),
         }
     }
@@ -155,6 +162,10 @@ impl Core<'_> {
             if !self.rules[r as usize].deleted && self.rule_logical_join(r).is_some() {
                 return Err(WriteError::Logical);
             }
+        }
+        #[cfg(feature = "modules")]
+        if self.st.modules.nmodules > 1 || self.st.modules.nports > 0 {
+            return Err(WriteError::Modules);
         }
         let mut f = self.st.facts.fact_head;
         while f != NONE {

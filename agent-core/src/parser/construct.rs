@@ -15,7 +15,7 @@ impl<'s> Parser<'s, '_, '_> {
     /// that one).
     fn deffacts_here(&self, d: Ix) -> bool {
         #[cfg(feature = "modules")]
-        return self.cx.deffacts_module[d as usize] == self.cx.current_module();
+        return self.cx.module_of_deffacts(d) == self.cx.current_module();
         #[cfg(not(feature = "modules"))]
         {
             let _ = d;
@@ -26,7 +26,7 @@ impl<'s> Parser<'s, '_, '_> {
     /// Whether deffunction `f` is the current module's.
     fn function_here(&self, f: Ix) -> bool {
         #[cfg(feature = "modules")]
-        return self.cx.func_module[f as usize] == self.cx.current_module();
+        return self.cx.module_of_function(f) == self.cx.current_module();
         #[cfg(not(feature = "modules"))]
         {
             let _ = f;
@@ -63,7 +63,7 @@ impl<'s> Parser<'s, '_, '_> {
         let replaces = self.cx.find_template(sym);
         // one the module imports cannot be replaced by one of its own
         #[cfg(feature = "modules")]
-        if replaces.is_some_and(|t| self.cx.tmpl_module[t as usize] != self.cx.current_module()) {
+        if replaces.is_some_and(|t| self.cx.module_of_template(t) != self.cx.current_module()) {
             return Err(self.err(nt, "a deftemplate name no imported deftemplate has"));
         }
         if replaces.is_some_and(|t| self.cx.template_in_use(t)) {
@@ -155,10 +155,11 @@ impl<'s> Parser<'s, '_, '_> {
             text: self.pp_text(start),
         };
         self.cx.tmpl_mems[n] = TemplateMem::EMPTY;
+        // (room: the template memories just written)
         #[cfg(feature = "modules")]
-        {
-            self.cx.tmpl_module[n] = self.cx.current_module();
-        }
+        let _ = self
+            .cx
+            .set_template_module(n as Ix, self.cx.current_module());
         self.cx.st.pools.ntemplates += 1;
         self.cx.note_hw(Pool::Templates, n + 1);
         if let Some(old) = replaces {
@@ -215,7 +216,7 @@ impl<'s> Parser<'s, '_, '_> {
                     self.cx
                         .deffacts_module
                         .copy_within(d as usize + 1..n, d as usize);
-                    self.cx.deffacts_module[n - 1] = module;
+                    let _ = self.cx.set_deffacts_module(n as Ix - 1, module);
                 }
                 self.cx.deffacts[n - 1] = Deffacts {
                     name: sym,
@@ -236,10 +237,9 @@ impl<'s> Parser<'s, '_, '_> {
                     facts,
                     text,
                 };
+                // (room: the deffacts just written)
                 #[cfg(feature = "modules")]
-                {
-                    self.cx.deffacts_module[n] = module;
-                }
+                let _ = self.cx.set_deffacts_module(n as Ix, module);
                 self.cx.st.pools.ndeffacts += 1;
                 self.cx.note_hw(Pool::Deffacts, n + 1);
             }
@@ -325,10 +325,9 @@ impl<'s> Parser<'s, '_, '_> {
             nlocals: 0,
             body: NONE,
         };
+        // (room: the deffunction just written)
         #[cfg(feature = "modules")]
-        {
-            self.cx.func_module[f as usize] = self.cx.current_module();
-        }
+        let _ = self.cx.set_function_module(f, self.cx.current_module());
         self.defining_fn = f;
         let body = self.body_block();
         self.defining_fn = NONE;

@@ -30,15 +30,20 @@ impl<'s> Parser<'s, '_, '_> {
             }
             None => {
                 let n = self.cx.st.modules.nmodules as usize;
-                #[cfg(feature = "grow")]
-                self.cx.ensure(Pool::Modules, n + 1);
-                if n >= self.cx.modules.len() || n > ModId::MAX as usize {
-                    let c = crate::engine::cap(Pool::Modules, self.cx.modules.len());
+                if n > ModId::MAX as usize {
+                    let c = crate::engine::cap(Pool::Modules, n);
                     return Err(self.cap_err(nt, c));
                 }
                 n as ModId
             }
         };
+        // MAIN too: an engine without a modules pool has MAIN as made at start-up only
+        #[cfg(feature = "grow")]
+        self.cx.ensure(Pool::Modules, slot as usize + 1);
+        if slot as usize >= self.cx.modules.len() {
+            let c = crate::engine::cap(Pool::Modules, self.cx.modules.len());
+            return Err(self.cap_err(nt, c));
+        }
         let sym = cap!(self, self.cx.intern(name))?;
         if let Tok::Str(_) = self.peek().tok {
             self.next();

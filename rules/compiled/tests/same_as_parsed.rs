@@ -71,7 +71,7 @@ fn on_big_stack<T: Send>(f: impl FnOnce() -> T + Send) -> T {
 
 /// Plays `seed` on an engine holding the game's rules: output with rules and facts
 /// watched, then the fact list.
-fn play(engine: &mut DefaultEngine, seed: u64) -> String {
+fn play<S: agent_core::Storage>(engine: &mut agent_core::Engine<S>, seed: u64) -> String {
     let mut host = Capture::default();
     engine.exec_command(&mut host, "(watch rules)", "test");
     engine.exec_command(&mut host, "(watch facts)", "test");
@@ -163,10 +163,13 @@ fn every_differential_program_runs_the_same_from_its_compiled_constructs() {
             Ok(base) => *base,
             Err(why) => {
                 // only parse-time effects keep a program's constructs from compiling, and
-                // the logical CE, which compiled rule bases refuse (no truth maintenance
-                // in the image: the robot's rules do not use it)
+                // the logical CE and defmodules, which compiled rule bases refuse (no
+                // truth maintenance or modules in the image: the robot's rules use
+                // neither)
                 assert!(
-                    why.contains("left facts") || why.contains("no truth maintenance"),
+                    why.contains("left facts")
+                        || why.contains("no truth maintenance")
+                        || why.contains("MAIN module only"),
                     "{name}: {why}"
                 );
                 continue;
@@ -259,6 +262,10 @@ agent_core::engine_storage! {
         alpha_memories: rules_compiled::game_paper::SIZES.alphas,
         join_memories: rules_compiled::game_paper::SIZES.joins,
         template_memories: rules_compiled::game_paper::SIZES.templates + 1,
+        // no module pools: the engine is MAIN alone
+        modules: 0,
+        module_ports: 0,
+        focus_stack: 0,
         ..agent_core::Capacities::HOST
     }
 }
@@ -299,4 +306,31 @@ fn an_engine_sized_for_in_place_reading_refuses_new_rules() {
         engine.reset(host).expect("reset");
         assert!(engine.run(host, Some(500_000)).expect("run") > 0);
     });
+}
+
+/// An engine sized to read its compiled network in place, without module pools (as
+/// the image: its rules have no module entries, `rules: 0`), plays as the parsed
+/// rules do.
+#[test]
+fn an_engine_sized_for_in_place_reading_plays_as_parsed() {
+    if !agent_core::rom::IN_PLACE {
+        return;
+    }
+    let strategy = Strategy::Paper;
+    let base = rules_compiled::game(strategy.name()).expect("compiled game");
+    for seed in [0, 3] {
+        let (parsed, in_place) = on_big_stack(|| {
+            let (mut parsed, _) = parsed_and_compiled(strategy, base);
+            let mut engine = Box::new(agent_core::Engine::with_storage(InPlaceOnly::new()));
+            engine
+                .load_compiled(&mut Capture::default(), base)
+                .expect("loads in place");
+            (play(&mut parsed, seed), play(&mut engine, seed))
+        });
+        assert!(parsed.contains("game-over"), "seed {seed}:\n{parsed}");
+        assert!(
+            parsed == in_place,
+            "seed {seed}: the in-place engine plays otherwise"
+        );
+    }
 }
