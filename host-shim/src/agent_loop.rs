@@ -11,6 +11,7 @@
 
 use crate::shim::agent::{ChosenSkill, EngineAgent, MachineView, TeamSeat};
 use crate::shim::behaviour::{DriveStep, DriveTo, DriveTuning, Perceived, Skill};
+use crate::shim::bump::BumpMemory;
 use crate::shim::config::Config;
 use crate::shim::drivers::{usable, DriverError, SimDrivers};
 use crate::shim::lockstep::{spawn_heartbeat, FrameWatch};
@@ -180,6 +181,7 @@ impl Samples {
                 has_puck: false,
                 light: None,
                 teammates: [None; MAX_TEAMMATES],
+                bumped_towards: None,
             },
             gate: None,
         }
@@ -339,6 +341,9 @@ fn agent_loop(
     // The parking drive makes way for a teammate (it runs whatever the rules' state).
     let mut making_way = false;
     let mut waiting_since: Option<u64> = None;
+    // What the bumper last stopped (the twist sent last cycle is the motion it met).
+    let mut bump = BumpMemory::default();
+    let mut commanded = Twist::ZERO;
     let mut stats = LoopStats::default();
     let wall_cycle = config.wall_cycle();
     let poll = Duration::from_micros(200);
@@ -384,6 +389,8 @@ fn agent_loop(
         beat_cycle.store(cycle, Ordering::Relaxed);
         samples.read(&mut drivers, cycle)?;
         let mut p = samples.perceived;
+        bump.observe(samples.bumper_pressed, p.pose, commanded);
+        p.bumped_towards = bump.heading();
         if let Some(g) = samples.gate {
             if !mind.agent.knows_gate() {
                 mind.agent.see_active_gate(g)?;
@@ -462,7 +469,7 @@ fn agent_loop(
             .flatten();
         if let Some(mate) = asked {
             if let Some(goal) = park_goal(robot, p.pose) {
-                parking = DriveTo::plan_among(p.pose, goal, &p.ir, &p.teammates, &tuning);
+                parking = DriveTo::plan_for(&p, goal, &tuning);
                 making_way = parking.is_some();
                 if making_way {
                     monitor.skill_started();
@@ -491,7 +498,7 @@ fn agent_loop(
             })
         {
             if let Some(goal) = park_goal(robot, p.pose) {
-                parking = DriveTo::plan_among(p.pose, goal, &p.ir, &p.teammates, &tuning);
+                parking = DriveTo::plan_for(&p, goal, &tuning);
                 if parking.is_some() {
                     monitor.skill_started();
                     println!(
@@ -527,6 +534,7 @@ fn agent_loop(
             desired,
             skill_running: (running.is_some() && !outcome.is_terminal()) || parking.is_some(),
         });
+        commanded = decision.twist;
         if running.is_none() && decision.fail_skill.is_some() {
             // Bumped (or blind) on the way to park: stop; the next try plans around
             // whatever the IR ring sees.

@@ -22,6 +22,9 @@ pub struct Perceived {
     pub light: Option<(MachineId, LightSignal)>,
     /// Where the teammates are (from their announcements over the team link).
     pub teammates: Teammates,
+    /// World heading of the motion the bumper last stopped, while the robot still stands
+    /// there ([`super::bump::BumpMemory`]): the next drive backs away from it first.
+    pub bumped_towards: Option<f32>,
 }
 
 /// Controller gains and tolerances.
@@ -91,7 +94,7 @@ pub struct DriveTo {
 impl DriveTo {
     /// Plans from `from`; `None` when the goal cannot be reached.
     pub fn plan(from: Pose2, goal: Pose2, tuning: &DriveTuning) -> Option<Self> {
-        Self::plan_around(from, goal, &[], tuning)
+        Self::plan_around(from, goal, &[], None, tuning)
     }
 
     /// Plans from `from` around what the IR ring sees close by that the field does not
@@ -114,22 +117,41 @@ impl DriveTo {
         teammates: &Teammates,
         tuning: &DriveTuning,
     ) -> Option<Self> {
+        Self::plan_bumped(from, goal, ir, teammates, None, tuning)
+    }
+
+    /// [`Self::plan_among`] from what the robot perceives, backing away first from what
+    /// its bumper last met if it still stands there.
+    pub fn plan_for(p: &Perceived, goal: Pose2, tuning: &DriveTuning) -> Option<Self> {
+        Self::plan_bumped(p.pose, goal, &p.ir, &p.teammates, p.bumped_towards, tuning)
+    }
+
+    fn plan_bumped(
+        from: Pose2,
+        goal: Pose2,
+        ir: &IrScan,
+        teammates: &Teammates,
+        bumped_towards: Option<f32>,
+        tuning: &DriveTuning,
+    ) -> Option<Self> {
         let r = tuning.robot_radius_m;
         let mut discs = robots_seen(from, ir, r, SEEN_WITHIN_M, |_| true);
         discs.extend(teammate_discs(from, teammates, r, MATES_PLANNED_WITHIN_M));
-        Self::plan_around(from, goal, &discs, tuning).or_else(|| Self::plan(from, goal, tuning))
+        Self::plan_around(from, goal, &discs, bumped_towards, tuning)
+            .or_else(|| Self::plan_around(from, goal, &[], bumped_towards, tuning))
     }
 
     fn plan_around(
         from: Pose2,
         goal: Pose2,
         discs: &[planner::Disc],
+        bumped_towards: Option<f32>,
         tuning: &DriveTuning,
     ) -> Option<Self> {
         let r = tuning.robot_radius_m;
         // A robot touching an obstacle first moves clear of it: a plan from inside an
         // obstacle's margin would drive straight back into it.
-        let escape = escape_point(from, r, discs);
+        let escape = escape_point(from, r, discs, bumped_towards);
         let start = escape.unwrap_or((from.x_m, from.y_m));
         let to = (goal.x_m, goal.y_m);
         // Keep a margin to what the path passes (the controller cuts corners a little);
@@ -295,7 +317,7 @@ impl DriveTo {
             ));
             // Only for a robot: a machine in the way is the watchdog's business.
             if let Some(around) = (!ahead_discs.is_empty())
-                .then(|| Self::plan_around(pose, self.goal, &ahead_discs, t))
+                .then(|| Self::plan_around(pose, self.goal, &ahead_discs, None, t))
                 .flatten()
             {
                 *self = around;
@@ -338,7 +360,6 @@ fn turn_angle(a: (f32, f32), b: (f32, f32), c: (f32, f32)) -> f32 {
 /// Obstacles this close ahead stop the robot unless they are its goal.
 const STOP_WITHIN_M: f32 = 0.07;
 
-/// A point `distance_m` behind a pose (to back away from a machine).
 /// Extra clearance the planner keeps beyond the robot's radius where there is room.
 const PATH_MARGIN_M: f32 = 0.03;
 /// How far a robot in contact with an obstacle moves away before following its plan.
@@ -346,20 +367,61 @@ const ESCAPE_M: f32 = 0.12;
 /// A robot this close to an obstacle (by its pose) counts as touching it.
 const ESCAPE_WITHIN_M: f32 = 0.05;
 
+/// Escape directions at least this far from the heading the bumper stopped lead back away
+/// from what it met (7 of the 16, within 67.5 degrees of straight back).
+const BACK_AWAY_FROM_RAD: f32 = 1.95;
+
+/// An escape point must leave at least this much more room than where the robot stands.
+const ESCAPE_GAIN_M: f32 = 0.01;
+
 /// For a robot closer to an obstacle (or a disc) than its radius (plus a little), the
-/// nearest point [`ESCAPE_M`] away that is clear of everything, trying 16 directions.
-fn escape_point(from: Pose2, radius_m: f32, discs: &[planner::Disc]) -> Option<(f32, f32)> {
+/// nearest point [`ESCAPE_M`] away, trying 16 directions, that is clear of everything and
+/// leaves more room than here. For one whose bumper stopped a motion heading
+/// `bumped_towards` where it still stands, whatever its pose says: of the directions
+/// leading back away from what it met, the one that leaves the most room.
+fn escape_point(
+    from: Pose2,
+    radius_m: f32,
+    discs: &[planner::Disc],
+    bumped_towards: Option<f32>,
+) -> Option<(f32, f32)> {
     // The margin covers the odometry's few centimetres of error: a robot whose pose says
     // 2 cm clear may be pressed against the machine, and planning along its edge pressed
-    // the bumper again in the first cycle, skill after skill.
+    // the bumper again in the first cycle, skill after skill. A clear point is not enough
+    // either: along a machine's edge towards its corner (clear by the pose, 3.5 cm off)
+    // it pressed the corner again, every skill for the last 340 s of a game.
     let here = (from.x_m, from.y_m);
+    let here_room = planner::clearance_of(here, discs);
+    let points = (0..16)
+        .map(|i| i as f32 * core::f32::consts::TAU / 16.0)
+        .map(|a| {
+            (
+                a,
+                (from.x_m + ESCAPE_M * a.cos(), from.y_m + ESCAPE_M * a.sin()),
+            )
+        });
+    if let Some(bumped) = bumped_towards {
+        let back_away = |a: f32| wrap_angle(a - bumped).abs() >= BACK_AWAY_FROM_RAD;
+        return points
+            .filter(|&(a, _)| back_away(a))
+            .map(|(_, p)| (p, planner::clearance_of(p, discs)))
+            // The first of equals wins: a stable choice.
+            .fold(
+                None,
+                |best: Option<((f32, f32), f32)>, (p, room)| match best {
+                    Some((_, r)) if r + 1e-4 >= room => best,
+                    _ => Some((p, room)),
+                },
+            )
+            .map(|(p, _)| p);
+    }
     if planner::segment_is_free_of(here, here, radius_m + ESCAPE_WITHIN_M, discs) {
         return None;
     }
-    (0..16)
-        .map(|i| i as f32 * core::f32::consts::TAU / 16.0)
-        .map(|a| (from.x_m + ESCAPE_M * a.cos(), from.y_m + ESCAPE_M * a.sin()))
-        .find(|&p| planner::segment_is_free_of(p, p, radius_m + PATH_MARGIN_M, discs))
+    points.map(|(_, p)| p).find(|&p| {
+        planner::segment_is_free_of(p, p, radius_m + PATH_MARGIN_M, discs)
+            && planner::clearance_of(p, discs) >= here_room + ESCAPE_GAIN_M
+    })
 }
 
 /// A reading this close to a machine or wall (by the odometry's pose, a few centimetres
@@ -520,10 +582,9 @@ impl Skill {
             SkillRequest::GetS0 | SkillRequest::GetJunk(_) | SkillRequest::Collect(_)
         );
         let phase = match goal {
-            Some(goal) if !(fetch && p.has_puck) => Phase::Approach(
-                DriveTo::plan_among(p.pose, goal, &p.ir, &p.teammates, t)
-                    .ok_or(FailReason::DriveFailed)?,
-            ),
+            Some(goal) if !(fetch && p.has_puck) => {
+                Phase::Approach(DriveTo::plan_for(p, goal, t).ok_or(FailReason::DriveFailed)?)
+            }
             then => Phase::Release { waited: 0, then },
         };
         Ok(Self {
@@ -584,14 +645,12 @@ impl Skill {
                     return (Twist::ZERO, SkillOutcome::Running);
                 }
                 self.phase = match then {
-                    Some(goal) => {
-                        match DriveTo::plan_among(p.pose, *goal, &p.ir, &p.teammates, t) {
-                            Some(drive) => Phase::Approach(drive),
-                            None => {
-                                return (Twist::ZERO, SkillOutcome::Failed(FailReason::DriveFailed))
-                            }
+                    Some(goal) => match DriveTo::plan_for(p, *goal, t) {
+                        Some(drive) => Phase::Approach(drive),
+                        None => {
+                            return (Twist::ZERO, SkillOutcome::Failed(FailReason::DriveFailed))
                         }
-                    }
+                    },
                     None => match leave_pose(p.pose, t) {
                         Some(goal) => Phase::Leave(DriveTo::straight(goal), Perception::Released),
                         None => return (Twist::ZERO, SkillOutcome::Final(Perception::Released)),
@@ -765,6 +824,7 @@ mod tests {
             has_puck,
             light: None,
             teammates: [None; traffic::MAX_TEAMMATES],
+            bumped_towards: None,
         }
     }
 
@@ -932,6 +992,67 @@ mod tests {
             "escape {x},{y}"
         );
         assert!((x - stuck.x_m).hypot(y - stuck.y_m) < 0.13);
+    }
+
+    /// Where one robot of seed 25 ended up for the rest of the game: its body against
+    /// M2's top-left corner (square 3.62..4.22 x 1.38..1.98), its odometry 3.5 cm off.
+    const PRESSED_TRULY: (f32, f32) = (3.580, 2.1615);
+
+    /// The room the escape's first leg leaves where the robot truly is, moved as its plan
+    /// says (the leg from the believed pose to the first waypoint).
+    fn true_room_after_escape(believed: Pose2, drive: &DriveTo) -> (f32, f32) {
+        let (x, y) = drive.waypoints[0];
+        let (dx, dy) = (x - believed.x_m, y - believed.y_m);
+        let t = DriveTuning::default();
+        let before = machine_clearance(PRESSED_TRULY.0, PRESSED_TRULY.1) - t.robot_radius_m;
+        let after =
+            machine_clearance(PRESSED_TRULY.0 + dx, PRESSED_TRULY.1 + dy) - t.robot_radius_m;
+        (before, after)
+    }
+
+    /// Touching by its pose, the robot first moves to a clear point with more room: away
+    /// from the corner. The first clear direction of 16 (+x, along the machine's edge,
+    /// which loses room) pressed the corner again in truth, every skill for 340 s.
+    #[test]
+    fn a_robot_touching_a_corner_escapes_away_from_it() {
+        let t = DriveTuning::default();
+        let believed = Pose2::new(3.585, 2.197, core::f32::consts::FRAC_PI_2);
+        let goal = machine_approach_pose(MachineId::new(3).unwrap_or_else(|| panic!()));
+        let d = DriveTo::plan(believed, goal, &t).unwrap_or_else(|| panic!("plan"));
+        let (before, after) = true_room_after_escape(believed, &d);
+        assert!(before.abs() < 0.002, "{before}");
+        assert!(
+            after > 0.03,
+            "escape to {:?} leaves {after}",
+            d.waypoints[0]
+        );
+    }
+
+    /// Clear by its pose (the odometry 8 cm off), but the bumper stopped a motion
+    /// towards +x: the drive backs away from that first.
+    #[test]
+    fn a_bumped_robot_backs_away_whatever_its_pose_says() {
+        let t = DriveTuning::default();
+        let believed = Pose2::new(3.585, 2.24, core::f32::consts::FRAC_PI_2);
+        let goal = machine_approach_pose(MachineId::new(6).unwrap_or_else(|| panic!()));
+        let mut p = perceived(believed, false);
+        let unaware = DriveTo::plan_for(&p, goal, &t).unwrap_or_else(|| panic!("plan"));
+        // Unaware, it heads along the edge: into the corner, in truth.
+        assert!(
+            unaware.waypoints[0].0 > believed.x_m,
+            "{:?}",
+            unaware.waypoints
+        );
+        p.bumped_towards = Some(0.0);
+        let d = DriveTo::plan_for(&p, goal, &t).unwrap_or_else(|| panic!("plan"));
+        let (x, _) = d.waypoints[0];
+        assert!(x < believed.x_m - 0.04, "escape to {:?}", d.waypoints[0]);
+        let (_, after) = true_room_after_escape(believed, &d);
+        assert!(
+            after > 0.03,
+            "escape to {:?} leaves {after}",
+            d.waypoints[0]
+        );
     }
 
     /// A teammate standing in the way (as it announced itself): the drive stops short of

@@ -4,6 +4,7 @@
 
 pub mod agent;
 pub mod behaviour;
+pub mod bump;
 pub mod config;
 pub mod drivers;
 pub mod field_sim;

@@ -2,7 +2,7 @@
 //! squares grown by the robot's radius, then shortened to the waypoints that line of sight
 //! needs. Pure; a plan costs well under a millisecond.
 
-use hal::field::{is_blocked, FIELD_SIZE_M};
+use hal::field::{clearance, is_blocked, FIELD_SIZE_M};
 use std::cmp::Reverse;
 use std::collections::BinaryHeap;
 
@@ -28,6 +28,14 @@ fn blocked_by(x: f32, y: f32, clearance_m: f32, discs: &[Disc]) -> bool {
         || discs
             .iter()
             .any(|&(cx, cy, r)| (x - cx).hypot(y - cy) < r + clearance_m)
+}
+
+/// Distance from a point to the nearest wall, machine footprint or disc.
+pub fn clearance_of(p: (f32, f32), discs: &[Disc]) -> f32 {
+    discs
+        .iter()
+        .map(|&(cx, cy, r)| (p.0 - cx).hypot(p.1 - cy) - r)
+        .fold(clearance(p.0, p.1, None), f32::min)
 }
 
 /// True when a straight segment keeps `clearance_m` from every obstacle.
