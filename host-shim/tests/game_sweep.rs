@@ -3,16 +3,13 @@
 
 mod shim_common;
 
-use shim_common::{Proc, AGENT};
+use shim_common::{Proc, Sweep, AGENT};
 use std::time::Duration;
 
 #[test]
 fn sweep_prints_a_row_per_seed_and_the_summary() {
-    let mut sweep = Proc::start(
-        "game-sweep",
-        AGENT,
+    let sweep = Sweep::run(
         &[
-            "game-sweep",
             "--from",
             "5",
             "--count",
@@ -21,23 +18,35 @@ fn sweep_prints_a_row_per_seed_and_the_summary() {
             "60",
             "--quiet",
         ],
+        Duration::from_secs(240),
     );
-    let status = sweep.wait_exit(Duration::from_secs(240));
-    assert!(status.is_some_and(|s| s.success()), "{}", sweep.dump());
-    let lines = sweep.lines();
-    for seed in ["| 5 |", "| 6 |"] {
-        assert!(
-            lines.iter().any(|l| l.starts_with(seed)),
-            "{}",
-            sweep.dump()
-        );
-    }
-    let header = lines
-        .iter()
-        .position(|l| l.starts_with("| games | mean points"))
-        .unwrap_or_else(|| panic!("no summary\n{}", sweep.dump()));
-    let summary = &lines[header + 2];
-    assert!(summary.starts_with("| 2 | "), "{summary}");
+    let seeds: Vec<u64> = sweep.rows.iter().map(|&(seed, _)| seed).collect();
+    assert_eq!(seeds, [5, 6], "{}", sweep.output);
+    assert_eq!(sweep.cell("games"), "2", "{}", sweep.output);
+}
+
+#[test]
+fn a_sweep_table_is_read_by_column_name() {
+    let lines: Vec<String> = [
+        "robotino-agent game-sweep: seeds 4..5",
+        "| seed | points | collisions | double claims | stalls | bumps | failed skills | end |",
+        "|---|---|---|---|---|---|---|---|",
+        "| 4 | 121 | 0 | 0 | 2 | 1 | 1 | 900s |",
+        "| 5 | 77 | 1 | 0 | 0 | 0 | 0 | 900s |",
+        "",
+        "| games | mean points | min | max | collisions | double claims | stalls | bumps | failed skills |",
+        "|---|---|---|---|---|---|---|---|---|",
+        "| 2 | 99.0 | 77 | 121 | 1 | 0 | 2 | 1 | 1 |",
+    ]
+    .map(String::from)
+    .to_vec();
+    let s = Sweep::parse(&lines, String::new());
+    assert_eq!(s.rows, vec![(4, 121), (5, 77)]);
+    assert_eq!(s.cell("games"), "2");
+    assert_eq!(s.number("mean points"), 99.0);
+    assert_eq!(s.number("collisions"), 1.0);
+    assert_eq!(s.number("double claims"), 0.0);
+    assert_eq!(s.number("stalls"), 2.0);
 }
 
 #[test]
@@ -87,11 +96,8 @@ fn game_prints_the_report_and_draws_the_timeline() {
 /// machine it held.
 #[test]
 fn a_short_kill_one_sweep_plays_on_without_the_dead_robot() {
-    let mut sweep = Proc::start(
-        "game-sweep",
-        AGENT,
+    let sweep = Sweep::run(
         &[
-            "game-sweep",
             "--robots",
             "3",
             "--kill-one",
@@ -103,20 +109,12 @@ fn a_short_kill_one_sweep_plays_on_without_the_dead_robot() {
             "150",
             "--quiet",
         ],
+        Duration::from_secs(240),
     );
-    let status = sweep.wait_exit(Duration::from_secs(240));
-    assert!(status.is_some_and(|s| s.success()), "{}", sweep.dump());
-    let lines = sweep.lines();
-    let header = lines
-        .iter()
-        .position(|l| l.starts_with("| games | mean points"))
-        .unwrap_or_else(|| panic!("no summary\n{}", sweep.dump()));
-    // | games | mean points | min | max | collisions | double claims | stalls | ...
-    let cells: Vec<&str> = lines[header + 2].split('|').map(str::trim).collect();
-    assert_eq!(cells.get(1), Some(&"1"), "{}", sweep.dump());
-    assert_eq!(cells.get(5), Some(&"0"), "collisions\n{}", sweep.dump());
-    assert_eq!(cells.get(6), Some(&"0"), "double claims\n{}", sweep.dump());
-    assert_eq!(cells.get(7), Some(&"0"), "stalls\n{}", sweep.dump());
-    let points: f64 = cells.get(2).and_then(|p| p.parse().ok()).unwrap_or(0.0);
-    assert!(points > 0.0, "{}", sweep.dump());
+    let out = &sweep.output;
+    assert_eq!(sweep.cell("games"), "1", "{out}");
+    assert_eq!(sweep.number("collisions"), 0.0, "{out}");
+    assert_eq!(sweep.number("double claims"), 0.0, "{out}");
+    assert_eq!(sweep.number("stalls"), 0.0, "{out}");
+    assert!(sweep.number("mean points") > 0.0, "{out}");
 }

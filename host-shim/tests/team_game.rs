@@ -6,7 +6,7 @@
 
 mod shim_common;
 
-use shim_common::{unique_prefix, Proc, AGENT, SIM};
+use shim_common::{unique_prefix, Proc, Sweep, AGENT, SIM};
 use std::time::Duration;
 
 /// Cycles per simulated second (the sim's and the agents' rate).
@@ -111,11 +111,8 @@ fn a_killed_robot_of_three_frees_its_claims_and_the_others_play_on() {
 
 #[test]
 fn a_short_team_sweep_has_no_double_claim_and_no_collision() {
-    let mut sweep = Proc::start(
-        "game-sweep",
-        AGENT,
+    let sweep = Sweep::run(
         &[
-            "game-sweep",
             "--robots",
             "3",
             "--from",
@@ -126,31 +123,20 @@ fn a_short_team_sweep_has_no_double_claim_and_no_collision() {
             "120",
             "--quiet",
         ],
+        Duration::from_secs(240),
     );
-    let status = sweep.wait_exit(Duration::from_secs(240));
-    assert!(status.is_some_and(|s| s.success()), "{}", sweep.dump());
-    let lines = sweep.lines();
-    let header = lines
-        .iter()
-        .position(|l| l.starts_with("| games | mean points"))
-        .unwrap_or_else(|| panic!("no summary\n{}", sweep.dump()));
-    // | games | mean points | min | max | collisions | double claims | stalls | ...
-    let cells: Vec<&str> = lines[header + 2].split('|').map(str::trim).collect();
-    assert_eq!(cells.get(1), Some(&"2"), "{}", sweep.dump());
-    assert_eq!(cells.get(6), Some(&"0"), "double claims\n{}", sweep.dump());
+    let out = &sweep.output;
+    assert_eq!(sweep.cell("games"), "2", "{out}");
+    assert_eq!(sweep.number("double claims"), 0.0, "{out}");
     // The robots keep their distance: no bumper contact between two of them (seed 0's
     // robots 1 and 2 met within the first minute before they announced their poses).
-    assert_eq!(cells.get(5), Some(&"0"), "collisions\n{}", sweep.dump());
+    assert_eq!(sweep.number("collisions"), 0.0, "{out}");
 }
 
-/// A short `game-sweep` (seeds 0 and 1, 360 s): the rows (seed, points) and the summary's
-/// cells.
-fn short_sweep(robots: &str) -> (Vec<(u64, i64)>, Vec<String>) {
-    let mut sweep = Proc::start(
-        "game-sweep",
-        AGENT,
+/// A short `game-sweep` (seeds 0 and 1, 360 s).
+fn short_sweep(robots: &str) -> Sweep {
+    Sweep::run(
         &[
-            "game-sweep",
             "--robots",
             robots,
             "--from",
@@ -161,22 +147,8 @@ fn short_sweep(robots: &str) -> (Vec<(u64, i64)>, Vec<String>) {
             "360",
             "--quiet",
         ],
-    );
-    let status = sweep.wait_exit(Duration::from_secs(300));
-    assert!(status.is_some_and(|s| s.success()), "{}", sweep.dump());
-    let lines = sweep.lines();
-    let cells = |l: &str| -> Vec<String> { l.split('|').map(|c| c.trim().to_string()).collect() };
-    let rows = lines
-        .iter()
-        .filter(|l| l.starts_with("| ") && !l.starts_with("| seed") && !l.starts_with("| games"))
-        .map(|l| cells(l))
-        .filter_map(|c| Some((c.get(1)?.parse().ok()?, c.get(2)?.parse().ok()?)))
-        .collect();
-    let header = lines
-        .iter()
-        .position(|l| l.starts_with("| games | mean points"))
-        .unwrap_or_else(|| panic!("no summary\n{}", sweep.dump()));
-    (rows, cells(&lines[header + 2]))
+        Duration::from_secs(300),
+    )
 }
 
 /// The team of three on seeds 0 and 1 (360 s games): no double claim, and on every seed
@@ -185,18 +157,13 @@ fn short_sweep(robots: &str) -> (Vec<(u64, i64)>, Vec<String>) {
 /// first P).
 #[test]
 fn a_short_team_sweep_has_no_double_claim_and_beats_one_robot() {
-    let (team, summary) = short_sweep("3");
-    // | games | mean points | min | max | collisions | double claims | stalls | ...
-    assert_eq!(summary.get(1).map(String::as_str), Some("2"), "{summary:?}");
-    assert_eq!(
-        summary.get(6).map(String::as_str),
-        Some("0"),
-        "double claims {summary:?}"
-    );
-    let (one, _) = short_sweep("1");
-    assert_eq!(team.len(), 2, "{team:?}");
-    assert_eq!(one.len(), 2, "{one:?}");
-    for ((seed, t), (_, o)) in team.iter().zip(&one) {
+    let team = short_sweep("3");
+    assert_eq!(team.cell("games"), "2", "{}", team.output);
+    assert_eq!(team.number("double claims"), 0.0, "{}", team.output);
+    let one = short_sweep("1");
+    assert_eq!(team.rows.len(), 2, "{:?}", team.rows);
+    assert_eq!(one.rows.len(), 2, "{:?}", one.rows);
+    for ((seed, t), (_, o)) in team.rows.iter().zip(&one.rows) {
         assert!(t >= o, "seed {seed}: team {t} points, one robot {o}");
     }
 }

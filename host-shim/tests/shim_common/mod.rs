@@ -130,3 +130,75 @@ pub fn wait_until(
         logs.join("\n")
     );
 }
+
+/// A finished `game-sweep`: a row per seed and the summary, read from its tables by the
+/// columns' names.
+pub struct Sweep {
+    /// (seed, points) per game, in the order printed.
+    pub rows: Vec<(u64, i64)>,
+    /// The summary row, column name to cell (`games`, `mean points`, `collisions`, ...).
+    summary: Vec<(String, String)>,
+    /// Everything the sweep printed, for assertion messages.
+    pub output: String,
+}
+
+impl Sweep {
+    /// Runs `robotino-agent game-sweep ARGS` (add `--quiet`) and reads its tables; panics
+    /// with the output when it fails, runs past `timeout` or prints no summary.
+    pub fn run(args: &[&str], timeout: Duration) -> Sweep {
+        let mut argv = vec!["game-sweep"];
+        argv.extend_from_slice(args);
+        let mut sweep = Proc::start("game-sweep", AGENT, &argv);
+        let status = sweep.wait_exit(timeout);
+        assert!(status.is_some_and(|s| s.success()), "{}", sweep.dump());
+        Sweep::parse(&sweep.lines(), sweep.dump())
+    }
+
+    /// Reads the tables from a sweep's output lines.
+    pub fn parse(lines: &[String], output: String) -> Sweep {
+        let cells = |l: &str| -> Vec<String> {
+            let l = l.trim().trim_start_matches('|').trim_end_matches('|');
+            l.split('|').map(|c| c.trim().to_string()).collect()
+        };
+        let rows = lines
+            .iter()
+            .filter(|l| {
+                l.starts_with("| ") && !l.starts_with("| seed") && !l.starts_with("| games")
+            })
+            .map(|l| cells(l))
+            .filter_map(|c| Some((c.first()?.parse().ok()?, c.get(1)?.parse().ok()?)))
+            .collect();
+        let header = lines
+            .iter()
+            .position(|l| l.starts_with("| games | mean points"))
+            .unwrap_or_else(|| panic!("no summary\n{output}"));
+        let values = lines
+            .get(header + 2)
+            .unwrap_or_else(|| panic!("no summary row\n{output}"));
+        let summary = cells(&lines[header])
+            .into_iter()
+            .zip(cells(values))
+            .collect();
+        Sweep {
+            rows,
+            summary,
+            output,
+        }
+    }
+
+    /// The summary's cell in column `name`, as printed.
+    pub fn cell(&self, name: &str) -> &str {
+        self.summary
+            .iter()
+            .find(|(n, _)| n == name)
+            .map(|(_, v)| v.as_str())
+            .unwrap_or_else(|| panic!("no column `{name}`\n{}", self.output))
+    }
+
+    /// The summary's cell in column `name` as a number.
+    pub fn number(&self, name: &str) -> f64 {
+        let cell = self.cell(name);
+        cell.parse()
+            .unwrap_or_else(|_| panic!("`{name}` is `{cell}`\n{}", self.output))
+    }
+}
