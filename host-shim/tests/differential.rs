@@ -374,6 +374,9 @@ differential_programs! {
     p244_logical_shared_partial_matches => "244-logical-shared-partial-matches",
     p245_logical_retraction_order => "245-logical-retraction-order",
     p246_logical_undefrule_reset => "246-logical-undefrule-reset",
+    p250_forall_basic => "250-forall-basic",
+    p251_forall_not_exists => "251-forall-not-exists",
+    p252_forall_logical_strategies => "252-forall-logical-strategies",
     p260_modules_focus => "260-modules-focus",
     p261_modules_not_exists_salience => "261-modules-not-exists-salience",
 }

@@ -6,9 +6,7 @@ use super::files::{FileItems, FILE_BUF};
 use super::{Args, Builtin, ANY, SYM_CRLF, SYM_FALSE, SYM_NIL, SYM_TRUE};
 use crate::engine::{watch, Core};
 use crate::error::{EvalError, EvalErrorKind};
-use crate::handle::{JoinId, TokenId};
 use crate::host::router;
-use crate::rete::JoinKind;
 use crate::value::Ix;
 use crate::value::{TextBuf, Value, NONE};
 use core::fmt::Write;
@@ -38,7 +36,8 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("list-deffunctions", 0, 1, list_deffunctions),
     Builtin::eager("get-fact-duplication", 0, 0, get_fact_dup),
 ];
-pub const TABLE: super::Table = super::Table::new(FUNCS);
+pub const TABLE: super::Table =
+    super::Table::new(FUNCS).texts(&["symbol with value verbose, succinct, or terse"]);
 
 fn reset(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
     if cx.st.net.matching > 0 {
@@ -539,131 +538,14 @@ fn undefrule(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     }
 }
 
-/// `(matches rule)`: prints the partial matches per join (a compact form of CLIPS's
-/// listing) and the activations.
-/// `(matches rule)`: CLIPS 6.30's listing of a rule's alpha matches per pattern, its
-/// partial matches from the second pattern on, and its activations; returns the three
-/// counts as a multifield.
+/// `(matches rule [verbose|succinct|terse])` (`super::matches`).
 fn matches(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let name = cx.arg_lexeme(a, 0, "matches")?;
     let Some(r) = find_rule(cx, name) else {
-        let mut b: TextBuf<300> = TextBuf::new();
-        let _ = writeln!(
-            b,
-            "[PRNTUTIL1] Unable to find defrule {}.",
-            cx.sym_text(name)
-        );
-        cx.write(router::WERROR, b.as_str());
+        unable(cx, Unable::Find, "defrule", name);
         return Ok(Value::Sym(SYM_FALSE));
     };
-    let rule = cx.rules[r as usize];
-    // the rule's joins from the first pattern down to (without) the terminal
-    let mut path = [JoinId::NONE; crate::rete::MAX_PATTERNS + 2];
-    let mut n = 0;
-    let mut j = cx.joins[rule.terminal].parent;
-    while j != JoinId::NONE && n < path.len() && cx.joins[j].kind != JoinKind::Root {
-        path[n] = j;
-        n += 1;
-        j = cx.joins[j].parent;
-    }
-    path[..n].reverse();
-    let (mut alpha_total, mut partial_total, mut act_total) = (0i64, 0i64, 0i64);
-    let mut pattern = 0;
-    for &j in &path[..n] {
-        let alpha = cx.joins[j].alpha;
-        if alpha == NONE {
-            continue;
-        }
-        pattern += 1;
-        let mut b: TextBuf<64> = TextBuf::new();
-        let _ = writeln!(b, "Matches for Pattern {pattern}");
-        cx.write(router::WDISPLAY, b.as_str());
-        let mut t = cx.alpha_mems[alpha as usize].head;
-        let mut count = 0;
-        while t != TokenId::NONE {
-            let fact = cx.tokens[t].fact;
-            let mut b: TextBuf<32> = TextBuf::new();
-            let _ = writeln!(b, "f-{}", cx.facts[fact as usize].num);
-            cx.write(router::WDISPLAY, b.as_str());
-            count += 1;
-            t = cx.tokens[t].mem_next;
-        }
-        if count == 0 {
-            cx.write(router::WDISPLAY, " None\n");
-        }
-        alpha_total += count;
-    }
-    if pattern == 0 {
-        // a rule without patterns: CLIPS shows its one (initial) match as `*`
-        cx.write(router::WDISPLAY, "Matches for Pattern 1\n*\n");
-        alpha_total += 1;
-    }
-    let mut pattern = 0;
-    for &j in &path[..n] {
-        if cx.joins[j].alpha != NONE {
-            pattern += 1;
-        }
-        if pattern < 2 {
-            continue;
-        }
-        let mut b: TextBuf<64> = TextBuf::new();
-        let _ = writeln!(b, "Partial matches for CEs 1 - {pattern}");
-        cx.write(router::WDISPLAY, b.as_str());
-        let count = write_bases(cx, j);
-        if count == 0 {
-            cx.write(router::WDISPLAY, " None\n");
-        }
-        partial_total += count;
-    }
-    cx.write(router::WDISPLAY, "Activations\n");
-    let mut act = cx.st.agenda.agenda_head;
-    while act != NONE {
-        let x = cx.acts[act as usize];
-        if x.rule == r {
-            let mut b: TextBuf<512> = TextBuf::new();
-            let _ = cx.write_basis(&mut b, x.token);
-            if b.is_empty() {
-                let _ = b.write_char('*');
-            }
-            let _ = b.write_char('\n');
-            cx.write(router::WDISPLAY, b.as_str());
-            act_total += 1;
-        }
-        act = x.next;
-    }
-    if act_total == 0 {
-        cx.write(router::WDISPLAY, " None\n");
-    }
-    Ok(cx.make_multi(&[
-        Value::Int(alpha_total),
-        Value::Int(partial_total),
-        Value::Int(act_total),
-    ])?)
-}
-
-/// Prints the basis of each partial match in join `j`'s memory (`f-1,f-3,*`); returns
-/// how many. A not/exists join keeps blocked tokens too: only live ones count.
-fn write_bases(cx: &mut Core<'_>, j: JoinId) -> i64 {
-    let kind = cx.joins[j].kind;
-    let mut t = cx.join_mems[j].mem;
-    let mut count = 0;
-    while t != TokenId::NONE {
-        let tk = cx.tokens[t];
-        let live = match kind {
-            JoinKind::Negative => !tk.blocked,
-            JoinKind::Exists => tk.blocked,
-            _ => true,
-        };
-        if live {
-            let mut b: TextBuf<512> = TextBuf::new();
-            let _ = cx.write_basis(&mut b, t);
-            let _ = b.write_char('\n');
-            cx.write(router::WDISPLAY, b.as_str());
-            count += 1;
-        }
-        t = tk.mem_next;
-    }
-    count
+    super::matches::matches(cx, a, r)
 }
 
 /// The file-name argument of a file function, copied out of the symbol table.

@@ -34,6 +34,7 @@ pub mod geometry;
 #[cfg(feature = "parser")]
 pub mod io;
 pub mod logical;
+mod matches;
 pub mod math;
 pub mod memory;
 pub mod modules;

@@ -239,8 +239,10 @@ impl Compiler<'_, '_> {
             };
             self.cx.join_mems[j] = JoinMem::EMPTY;
             // a join from the right comes right after its subnetwork's first join
-            // among the parent's children: the subnetwork sees a new left token first
-            let after = if rjoin != JoinId::NONE {
+            // among the parent's children: the subnetwork sees a new left token first.
+            // Not at the root, whose one token only `reset` passes on: there CLIPS
+            // primes the joins newest first (its list of left-primed first joins).
+            let after = if rjoin != JoinId::NONE && parent != JoinId::ROOT {
                 jid[ce.first_sub as usize]
             } else {
                 JoinId::NONE

@@ -176,6 +176,56 @@ impl PatIr {
     };
 }
 
+/// A CE over other CEs that CLIPS reads as negations (`exists` is two, `forall` one
+/// around its first CE and one more around the rest).
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Quant {
+    Not,
+    Exists,
+    Forall,
+}
+
+impl Quant {
+    fn of(kw: &str) -> Quant {
+        match kw {
+            "not" => Quant::Not,
+            "exists" => Quant::Exists,
+            _ => Quant::Forall,
+        }
+    }
+    fn nots(self) -> u8 {
+        match self {
+            Quant::Not | Quant::Forall => 1,
+            Quant::Exists => 2,
+        }
+    }
+    fn body(self) -> GroupBody {
+        match self {
+            Quant::Not => GroupBody::One,
+            Quant::Exists => GroupBody::Several,
+            Quant::Forall => GroupBody::Forall,
+        }
+    }
+    fn closing(self) -> &'static str {
+        match self {
+            Quant::Not => "')' closing not (one CE only)",
+            Quant::Exists => "')' closing exists",
+            Quant::Forall => "')' closing forall",
+        }
+    }
+}
+
+/// What a group (a join from the right over a subnetwork) reads.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum GroupBody {
+    /// `(not CE)`: one CE.
+    One,
+    /// `(exists CE...)`, or the `(not (and B...))` inside a forall: CEs up to `)`.
+    Several,
+    /// `(forall A B...)`: A, then `(not (and B...))`.
+    Forall,
+}
+
 /// Where a CE sits: at top level, or inside `not`/`exists`.
 #[derive(Clone, Copy, PartialEq, Eq)]
 enum Ctx {
@@ -429,8 +479,9 @@ impl<'s> Parser<'s, '_, '_> {
                     b.plain_seen = true;
                 }
                 let lp = self.expect_lparen("'(' starting a pattern")?;
-                if let Tok::Symbol("not" | "and" | "or" | "exists" | "test" | "logical") =
-                    self.peek().tok
+                if let Tok::Symbol(
+                    "not" | "and" | "or" | "exists" | "forall" | "test" | "logical",
+                ) = self.peek().tok
                 {
                     return Err(self.err(lp, "a pattern after '<-' (not a conditional element)"));
                 }
@@ -446,36 +497,16 @@ impl<'s> Parser<'s, '_, '_> {
                     b.plain_seen = true;
                 }
                 match h.tok {
-                    Tok::Symbol(kw @ ("not" | "exists")) => {
+                    Tok::Symbol(kw @ ("not" | "exists" | "forall")) => {
                         self.next();
-                        let negated = kw == "not";
+                        // variables bound inside are not seen after it
                         let saved = self.nvars;
-                        let r = if self.one_pattern_follows()? {
-                            // one pattern: a not/exists join on its alpha node
-                            let inner = if negated { Ctx::Not } else { Ctx::Exists };
-                            self.ce(b, inner)
-                        } else if negated && self.not_of_one_pattern_follows()? {
-                            // (not (not P)) is (exists P), as CLIPS compiles it
-                            self.next();
-                            self.next();
-                            self.ce(b, Ctx::Exists)
-                                .and_then(|()| self.expect_rparen("')' closing not (one CE only)"))
-                        } else {
-                            self.group(b, negated, h)
-                        };
+                        let r = self.quantified(b, Quant::of(kw), h);
                         self.nvars = saved;
                         r?;
-                        self.expect_rparen(if negated {
-                            "')' closing not (one CE only)"
-                        } else {
-                            "')' closing exists"
-                        })
+                        self.expect_rparen(Quant::of(kw).closing())
                     }
                     Tok::Symbol("logical") => self.logical_ce(b, ctx, h),
-                    // refused by name: otherwise it reads as a pattern of an unknown template
-                    Tok::Symbol("forall") => {
-                        Err(self.not_implemented(h, "the forall conditional element"))
-                    }
                     Tok::Symbol("and") => {
                         self.next();
                         loop {
@@ -607,18 +638,34 @@ impl<'s> Parser<'s, '_, '_> {
         Ok(r)
     }
 
-    /// Whether the next CE is `(not PATTERN)` closing the enclosing CE.
-    fn not_of_one_pattern_follows(&mut self) -> PResult<bool> {
+    /// The keyword of the next CE if it is a `not`, `exists` or `forall` closing the
+    /// enclosing CE.
+    fn lone_quantifier_follows(&mut self) -> Option<Quant> {
         let save = self.save();
-        let mut r = false;
-        if self.next().tok == Tok::LParen && self.next().tok == Tok::Symbol("not") {
-            r = self.pattern_starts()
-                && self.skip_balanced().is_ok()
-                && self.next().tok == Tok::RParen
-                && self.peek().tok == Tok::RParen;
+        let mut r = None;
+        if self.next().tok == Tok::LParen {
+            if let Tok::Symbol(kw @ ("not" | "exists" | "forall")) = self.next().tok {
+                let mut depth = 1u32;
+                loop {
+                    match self.next().tok {
+                        Tok::LParen => depth += 1,
+                        Tok::RParen => {
+                            depth -= 1;
+                            if depth == 0 {
+                                break;
+                            }
+                        }
+                        Tok::Eof | Tok::Bad => break,
+                        _ => {}
+                    }
+                }
+                if depth == 0 && self.peek().tok == Tok::RParen {
+                    r = Some(Quant::of(kw));
+                }
+            }
         }
         self.restore(save);
-        Ok(r)
+        r
     }
 
     /// Whether a pattern CE (not another CE keyword) starts here.
@@ -628,7 +675,7 @@ impl<'s> Parser<'s, '_, '_> {
             Tok::SfVar(_) => true,
             Tok::LParen => !matches!(
                 self.next().tok,
-                Tok::Symbol("not" | "and" | "or" | "exists" | "test" | "logical")
+                Tok::Symbol("not" | "and" | "or" | "exists" | "forall" | "test" | "logical")
             ),
             _ => false,
         };
@@ -636,34 +683,125 @@ impl<'s> Parser<'s, '_, '_> {
         r
     }
 
-    /// `not`/`exists` over several CEs (or a nested CE): the CEs form a subnetwork
-    /// starting from the current chain, and a join takes its end from the right.
-    /// The group is one pattern slot (`*`) of the enclosing chain.
-    fn group(&mut self, b: &mut Build, negated: bool, at: Token<'s>) -> PResult<()> {
+    /// CEs up to the `)` closing the enclosing CE (not consumed).
+    fn ces_to_rparen(&mut self, b: &mut Build) -> PResult<()> {
+        loop {
+            let p = self.peek();
+            match p.tok {
+                Tok::RParen => return Ok(()),
+                Tok::Eof | Tok::Bad => return Err(self.err(p, "')'")),
+                _ => self.ce(b, Ctx::Top)?,
+            }
+        }
+    }
+
+    /// `not`, `exists` or `forall` after its keyword, under `nots` enclosing
+    /// negations already folded into it. CLIPS reads `(exists X...)` as
+    /// `(not (not (and X...)))` and `(forall A B...)` as `(not (and A (not (and
+    /// B...))))`, and cancels nested negations in pairs: a lone `not`/`exists`/`forall`
+    /// inside one is folded into it, and what remains is a not join (odd count) or an
+    /// exists join (even), on one pattern or on a subnetwork.
+    fn quantified(&mut self, b: &mut Build, q: Quant, at: Token<'s>) -> PResult<()> {
+        self.quantified_under(b, q.nots(), q.body(), at)
+    }
+
+    /// A quantified CE's body under `nots` negations (its own included).
+    fn quantified_under(
+        &mut self,
+        b: &mut Build,
+        nots: u8,
+        body: GroupBody,
+        at: Token<'s>,
+    ) -> PResult<()> {
+        if body != GroupBody::Forall {
+            if self.peek().tok == Tok::RParen {
+                return Err(self.err(at, "a conditional element inside not/exists"));
+            }
+            if let Some(inner) = self.lone_quantifier_follows() {
+                self.next();
+                let h = self.next();
+                self.quantified_under(b, nots.saturating_add(inner.nots()), inner.body(), h)?;
+                return self.expect_rparen(inner.closing());
+            }
+            if self.one_pattern_follows()? {
+                // one pattern: a not/exists join on its alpha node
+                return self.ce(b, if nots % 2 == 1 { Ctx::Not } else { Ctx::Exists });
+            }
+        }
+        self.group(b, body, nots % 2 == 1, at)
+    }
+
+    /// The CEs after the first of `(forall A B...)`: the inner `(not (and B...))`.
+    fn forall_rest(&mut self, b: &mut Build, at: Token<'s>) -> PResult<()> {
+        if self.peek().tok == Tok::RParen {
+            return Err(self.err(at, "a forall with two conditional elements or more"));
+        }
+        self.quantified_under(b, 1, GroupBody::Several, at)
+    }
+
+    /// `not`/`exists` over several CEs (or a nested CE), or a whole `forall`: the CEs
+    /// form a subnetwork starting from the current chain, and a join takes its end
+    /// from the right. The group is one pattern slot (`*`) of the enclosing chain.
+    /// As in CLIPS, a subnetwork of one pattern (and tests on it) is a plain not/exists
+    /// join instead, and one of tests only is a test of the enclosing chain.
+    fn group(
+        &mut self,
+        b: &mut Build,
+        body: GroupBody,
+        negated: bool,
+        at: Token<'s>,
+    ) -> PResult<()> {
         let (outer, d, gf) = (b.cur, b.depth, b.group_first);
         let first = b.n;
         b.groups += 1;
         b.group_first = first as u8;
-        let r = (|| {
-            if negated {
-                // exactly one CE: (and ...), (not ...), (exists ...)
-                self.ce(b, Ctx::Top)
-            } else {
-                loop {
-                    let p = self.peek();
-                    match p.tok {
-                        Tok::RParen => return Ok(()),
-                        Tok::Eof | Tok::Bad => return Err(self.err(p, "')'")),
-                        _ => self.ce(b, Ctx::Top)?,
-                    }
+        let r = match body {
+            // exactly one CE: (and ...), (not ...), (exists ...)
+            GroupBody::One => self.ce(b, Ctx::Top),
+            GroupBody::Several => self.ces_to_rparen(b),
+            GroupBody::Forall => {
+                if self.peek().tok == Tok::RParen {
+                    Err(self.err(at, "a forall with two conditional elements or more"))
+                } else {
+                    self.ce(b, Ctx::Top).and_then(|()| self.forall_rest(b, at))
                 }
             }
-        })();
+        };
         b.groups -= 1;
         b.group_first = gf;
         r?;
         if b.n == first {
             return Err(self.err(at, "a conditional element inside not/exists"));
+        }
+        if b.n == first + 1 && b.ces[first].parent == outer && b.ces[first].right == CE_ROOT {
+            let only = b.ces[first];
+            if only.kind == JoinKind::Positive && only.pat.tmpl != NONE {
+                // one pattern and tests on it: a not/exists join on its alpha node
+                b.ces[first].kind = if negated {
+                    JoinKind::Negative
+                } else {
+                    JoinKind::Exists
+                };
+                return Ok(());
+            }
+            if only.kind == JoinKind::Test && only.pat.tmpl == NONE && only.jtests != NONE {
+                // tests only: `(not (test X))` is `(test (not X))` of the enclosing chain
+                b.n = first;
+                b.cur = outer;
+                b.depth = d;
+                let mut e = only.jtests;
+                if self.cx.exprs[e as usize].next != NONE {
+                    let and = cap!(self, self.cx.push_expr(Expr::new(Op::And, 0, 0)))?;
+                    self.cx.exprs[and as usize].first = e;
+                    e = and;
+                }
+                if negated {
+                    let not = cap!(self, self.cx.push_expr(Expr::new(Op::Not, 0, 0)))?;
+                    self.cx.exprs[not as usize].first = e;
+                    e = not;
+                }
+                return self.attach_test_ce(b, e, at);
+            }
         }
         if b.n >= MAX_PATTERNS {
             return Err(self.err(at, "fewer conditional elements"));
@@ -744,7 +882,10 @@ impl<'s> Parser<'s, '_, '_> {
         let nt = self.next();
         let name = match nt.tok {
             Tok::Symbol(s)
-                if !matches!(s, "test" | "not" | "and" | "or" | "exists" | "logical") =>
+                if !matches!(
+                    s,
+                    "test" | "not" | "and" | "or" | "exists" | "forall" | "logical"
+                ) =>
             {
                 self.qualified_ref(nt, s)?
             }
