@@ -141,7 +141,11 @@ impl Parser<'_, '_, '_> {
             if kw == "defrule" {
                 let _ = b.write_char(' ');
                 for &m in self.join_marks.as_slice() {
-                    let _ = write!(b, "{}j", m as char);
+                    let _ = if m == b'\n' {
+                        b.write_char('\n')
+                    } else {
+                        write!(b, "{}j", m as char)
+                    };
                 }
             }
             let _ = b.write_char('\n');

@@ -377,6 +377,7 @@ differential_programs! {
     p250_forall_basic => "250-forall-basic",
     p251_forall_not_exists => "251-forall-not-exists",
     p252_forall_logical_strategies => "252-forall-logical-strategies",
+    p253_compilations_join_marks => "253-compilations-join-marks",
     p260_modules_focus => "260-modules-focus",
     p261_modules_not_exists_salience => "261-modules-not-exists-salience",
 }

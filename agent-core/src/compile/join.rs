@@ -213,7 +213,11 @@ impl Compiler<'_, '_> {
                 }
                 if found != JoinId::NONE {
                     self.cx.joins[found].refs += 1;
-                    self.marks.push(true);
+                    // CLIPS shows no `=j` for the join of an empty LHS it shares
+                    let empty_lhs = b.n == 1 && ce.kind == JoinKind::Test && ce.jtests == NONE;
+                    if !empty_lhs {
+                        self.marks.push(true);
+                    }
                     jid[i] = found;
                     continue;
                 }

@@ -44,7 +44,8 @@ pub(crate) struct CompileError {
     pub(crate) at: Option<u32>,
 }
 
-/// `+` (new) or `=` (shared) per join of the last defrule, for `watch compilations`.
+/// `+` (new) or `=` (shared) per join of the last defrule, for `watch compilations`,
+/// and `\n` between the joins of two disjuncts.
 pub struct JoinMarks {
     marks: [u8; 64],
     n: usize,
@@ -66,6 +67,15 @@ impl JoinMarks {
     pub fn push(&mut self, shared: bool) {
         if self.n < self.marks.len() {
             self.marks[self.n] = if shared { b'=' } else { b'+' };
+            self.n += 1;
+        }
+    }
+
+    /// Notes the start of the next disjunct of an `or` rule: CLIPS prints each
+    /// disjunct's marks on a line of its own.
+    pub fn push_break(&mut self) {
+        if self.n < self.marks.len() {
+            self.marks[self.n] = b'\n';
             self.n += 1;
         }
     }

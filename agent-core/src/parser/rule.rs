@@ -275,6 +275,9 @@ impl<'s> Parser<'s, '_, '_> {
             if several {
                 self.read_disjunct(&body_lex, &mut b)?;
             }
+            if prev_rule != NONE {
+                self.join_marks.push_break();
+            }
             let r = match self.compiler().compile_disjunct(sym, &mut b) {
                 Ok(r) => r,
                 Err(e) => return Err(self.compile_err(e)),
