@@ -2,7 +2,7 @@
 //! its rules call none of them): hyperbolic and reciprocal trigonometry, `deg-grad` and
 //! `grad-deg`, the older names CLIPS still accepts (`!=`, `member`, `nth`, `mv-append`,
 //! `str-explode`, `str-implode`, `mv-subseq`, `mv-delete`, `mv-replace`, `subset`,
-//! `wordp`), `pointerp`, `setgen`, `get-`/`set-dynamic-constraint-checking`, and the
+//! `wordp`), `pointerp`, `setgen`, `system` (as Debian builds CLIPS: it runs nothing), `get-`/`set-dynamic-constraint-checking`, and the
 //! engine settings this engine has one value of (`get-`/`set-auto-float-dividend`,
 //! `-salience-evaluation`, `-sequence-operator-recognition`): setting the value it has
 //! is accepted, any other is refused with an error, never accepted and ignored.
@@ -14,7 +14,9 @@
 // without the feature the table is empty and the functions unused (and not linked)
 #![cfg_attr(not(feature = "extras"), allow(dead_code, unused_imports))]
 
-use super::describe::ArgType::{Any, Integer as I, Multifield as M, Number as N, Str as S};
+use super::describe::ArgType::{
+    Any, Integer as I, Lexeme as L, Multifield as M, Number as N, Str as S,
+};
 use super::describe::{BodyNames, OnError};
 use super::math::{int_arg, num_arg};
 use super::multifield::{index_error, multi_arg, push_flat, push_range, slice};
@@ -57,6 +59,7 @@ pub const FUNCS: &[Builtin] = &[
     trig("acot", acot),
     trig("deg-grad", deg_grad),
     trig("grad-deg", grad_deg),
+    Builtin::eager("system", 1, ANY, system).args(&[], L),
     Builtin::eager("!=", 2, ANY, super::basic::num_ne).args(&[], N).on_error(OnError::False).quiet(),
     Builtin::eager("mv-append", 0, ANY, super::multifield::create).on_error(OnError::EmptyMultifield),
     Builtin::eager("member", 2, 2, super::multifield::member).args(&[Any, M], Any).on_error(OnError::False),
@@ -474,4 +477,15 @@ mod tests {
         }
         assert_eq!(eval_to_string("(grad-deg (deg-grad 27))"), "27.0");
     }
+}
+
+/// `(system ARG...)`: Debian's CLIPS 6.30 is built without a system call; it says so
+/// and returns nothing, and so does this one (a host command from a rule base is not
+/// something the engine offers).
+fn system(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
+    cx.write(
+        router::STDOUT,
+        "System function not fully defined for this system.\n",
+    );
+    Ok(Value::Void)
 }
