@@ -1257,6 +1257,8 @@ impl Core<'_> {
                 if (!blank || item.last) && !core::mem::take(&mut self.st.io.prompt_shown) {
                     self.write(router::STDOUT, "CLIPS> ");
                 }
+                #[cfg(feature = "parser")]
+                self.flush_unechoed();
                 self.write(router::STDOUT, item.text);
                 // CLIPS prompted for a command the file's end cut short: the next
                 // command read (from the outer input) goes without a prompt

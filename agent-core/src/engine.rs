@@ -375,6 +375,10 @@ pub struct BatchIo {
     /// `read`, `readline` and `get-char` from `stdin` take its next lines.
     #[cfg(feature = "parser")]
     pub batch_input: BatchInput,
+    /// Bytes `get-char` took from the batch file since its last newline: CLIPS echoes
+    /// batch input a line at a time, so they lead the next echoed line.
+    #[cfg(feature = "parser")]
+    pub unechoed: crate::value::TextBuf<80>,
     /// How many batch files are running inside each other.
     pub batch_depth: u8,
     /// `batch*`: commands print no results.
@@ -397,6 +401,8 @@ impl BatchIo {
             pending_batch: crate::value::TextBuf::new(),
             #[cfg(feature = "parser")]
             batch_input: BatchInput::new(),
+            #[cfg(feature = "parser")]
+            unechoed: crate::value::TextBuf::new(),
             batch_depth: 0,
             quiet_results: false,
             prompt_shown: false,

@@ -218,6 +218,7 @@ fn batch_line(cx: &mut Core<'_>, line: &mut Line, func: &str) -> Result<bool, Ev
     cx.st.io.batch_input.lines += u32::from(ended);
     let mut echo = Line::new();
     let _ = echo.push(&line.buf[..line.len]);
+    cx.flush_unechoed();
     cx.write(router::STDOUT, echo.text());
     cx.write(router::STDOUT, "\n");
     Ok(true)
@@ -456,6 +457,13 @@ fn batch_byte(cx: &mut Core<'_>) -> Result<Option<u8>, EvalError> {
     }
     cx.st.io.batch_input.offset = at + 1;
     cx.st.io.batch_input.lines += u32::from(b[0] == b'\n');
+    // echoed with the rest of its line, as CLIPS echoes batch input by lines
+    if b[0] == b'\n' {
+        cx.flush_unechoed();
+        cx.write(router::STDOUT, "\n");
+    } else if b[0].is_ascii() {
+        let _ = cx.st.io.unechoed.write_char(char::from(b[0]));
+    }
     Ok(Some(b[0]))
 }
 
@@ -588,6 +596,17 @@ fn rename(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         Ok(()) => Ok(truth(true)),
         Err(HostIoError::Unsupported) => Ok(no_files(cx, "rename")),
         Err(_) => Ok(truth(false)),
+    }
+}
+
+impl Core<'_> {
+    /// Echoes what `get-char` took from the batch file's current line (see
+    /// `BatchIo::unechoed`).
+    pub(crate) fn flush_unechoed(&mut self) {
+        if !self.st.io.unechoed.is_empty() {
+            let text = core::mem::take(&mut self.st.io.unechoed);
+            self.write(router::STDOUT, text.as_str());
+        }
     }
 }
 
