@@ -302,7 +302,78 @@ impl<'s> Parser<'s, '_, '_> {
         } else {
             DefaultKind::Dynamic
         };
+        if attribute == "default" {
+            self.evaluate_static_default(def, &values_at)?;
+        }
         Ok(Some((values_at, attribute)))
+    }
+
+    /// CLIPS evaluates a static default's expressions once, when the deftemplate is
+    /// defined (`(default (gensym))` is the same symbol in every fact): calls and
+    /// globals become the constants they give, a multifield's fields spliced in.
+    fn evaluate_static_default(
+        &mut self,
+        def: &mut SlotDef,
+        values_at: &ValuesAt<'s>,
+    ) -> PResult<()> {
+        let mut c = def.default;
+        let mut any = false;
+        while c != NONE {
+            any |= !self.is_literal(c);
+            c = self.cx.exprs[c as usize].next;
+        }
+        if !any {
+            return Ok(());
+        }
+        let holder = cap!(self, self.cx.push_expr(Expr::new(Op::Nop, 0, 0)))?;
+        let mut c = def.default;
+        let mut k = 0;
+        let mut fields = 0;
+        while c != NONE {
+            let next = self.cx.exprs[c as usize].next;
+            let v = if self.is_literal(c) {
+                self.cx.const_value(c)
+            } else {
+                match self.eval_now(c) {
+                    Ok(v) => v,
+                    Err(_) => {
+                        let at = self.value_at(values_at.clone(), k)?;
+                        return Err(self.err(at, "a default value that evaluates"));
+                    }
+                }
+            };
+            let push = |p: &mut Self, v: Value| -> PResult<()> {
+                let e = cap!(p, p.cx.push_const(v))?;
+                p.cx.append_child(holder, e);
+                Ok(())
+            };
+            match v {
+                Value::Multi(m) => {
+                    for i in 0..m.len as usize {
+                        let item = self.cx.mf_item(m, i);
+                        push(self, item)?;
+                        fields += 1;
+                    }
+                }
+                Value::Int(_) | Value::Float(_) | Value::Sym(_) | Value::Str(_) => {
+                    push(self, v)?;
+                    fields += 1;
+                }
+                // a fact address or no value is no constant a fact can take
+                _ => {
+                    let at = self.value_at(values_at.clone(), k)?;
+                    return Err(self.err(at, "a default value that evaluates to a field"));
+                }
+            }
+            c = next;
+            k += 1;
+        }
+        if !def.multi && fields != 1 {
+            let at = self.value_at(values_at.clone(), 0)?;
+            return Err(self.err(at, "exactly one default value for a single-field slot"));
+        }
+        def.default = self.cx.exprs[holder as usize].first;
+        Ok(())
     }
 
     /// `(type T...)` after its name: the type mask (0 for any type).
