@@ -378,6 +378,8 @@ differential_programs! {
     p251_forall_not_exists => "251-forall-not-exists",
     p252_forall_logical_strategies => "252-forall-logical-strategies",
     p253_compilations_join_marks => "253-compilations-join-marks",
+    p254_batch_get_char_echo => "254-batch-get-char-echo",
+    p255_static_default_evaluated => "255-static-default-evaluated",
     p260_modules_focus => "260-modules-focus",
     p261_modules_not_exists_salience => "261-modules-not-exists-salience",
 }
