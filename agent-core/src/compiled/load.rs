@@ -330,6 +330,7 @@ impl Core<'_> {
             self.note_hw(pool, used);
         }
         self.st.pools.trie_ids = base.trie_ids;
+        self.st.eval.gensym_next = base.gensym_next;
         self.st.builtin_code = base.code;
         // caches keyed by join or network generation start over
         self.st.net.net_gen = self.st.net.net_gen.wrapping_add(1).max(1);
@@ -355,16 +356,69 @@ impl Core<'_> {
         self.st.frame.sp = 0;
         self.st.frame.scratch_top = 0;
         self.assert_initial_fact()?;
+        // as the parser primed them: rule by rule, each chain from its end upwards (a
+        // subnetwork after the join taking it), a shared join with its first rule; the
+        // root token's list of derived tokens then has the parser's order, which is
+        // the order `reset` removes their activations in
         let root_token = self.join_mems[JoinId::ROOT].mem;
-        let mut j = self.joins[JoinId::ROOT].first_child;
-        while j != JoinId::NONE {
-            if self.joins[j].kind != JoinKind::Positive {
-                self.left_activate(j, root_token)?;
+        for r in 0..self.st.pools.nrules {
+            if self.rules[r as usize].deleted {
+                continue;
             }
-            j = self.joins[j].next_sibling;
+            let terminal = self.rules[r as usize].terminal;
+            let mut at = 0;
+            while let Some(j) = self.nth_root_start(terminal, JoinId::ROOT, &mut at) {
+                if !self.earlier_rule_uses(r, j) {
+                    self.left_activate(j, root_token)?;
+                }
+                at += 1;
+            }
         }
         self.order_activations_as_parsed();
         Ok(())
+    }
+
+    /// The `*at`-th join (in the parser's priming walk: from `from` up to `stop`, a
+    /// subnetwork after the join taking it) that starts at the root and is not a
+    /// positive join (those meet f-0 from the right). `*at` counts down the joins
+    /// passed over; `None` once the walk holds no more.
+    fn nth_root_start(&self, mut from: JoinId, stop: JoinId, at: &mut usize) -> Option<JoinId> {
+        while from != JoinId::NONE && from != JoinId::ROOT && from != stop {
+            let jn = &self.joins[from];
+            if jn.parent == JoinId::ROOT && jn.kind != JoinKind::Positive {
+                if *at == 0 {
+                    return Some(from);
+                }
+                *at -= 1;
+            }
+            if jn.rjoin != JoinId::NONE {
+                if let Some(j) = self.nth_root_start(jn.rjoin, jn.parent, at) {
+                    return Some(j);
+                }
+            }
+            from = jn.parent;
+        }
+        None
+    }
+
+    /// Whether a rule defined before rule `r` holds join `j` (it was primed then).
+    fn earlier_rule_uses(&self, r: Ix, j: JoinId) -> bool {
+        (0..r).any(|e| {
+            let rule = &self.rules[e as usize];
+            !rule.deleted && self.chain_holds(rule.terminal, JoinId::ROOT, j)
+        })
+    }
+
+    /// Whether the chain from `from` up to `stop`, or a subnetwork it takes, holds `j`.
+    fn chain_holds(&self, mut from: JoinId, stop: JoinId, j: JoinId) -> bool {
+        while from != JoinId::NONE && from != JoinId::ROOT && from != stop {
+            let jn = &self.joins[from];
+            if from == j || (jn.rjoin != JoinId::NONE && self.chain_holds(jn.rjoin, jn.parent, j)) {
+                return true;
+            }
+            from = jn.parent;
+        }
+        false
     }
 
     /// The parser primed each rule as it was defined, so a rule's start-up

@@ -68,6 +68,9 @@ pub struct RuleBase {
     pub externals: &'static [&'static str],
     /// Ids given to pattern-network nodes so far (`State::trie_ids`).
     pub trie_ids: Ix,
+    /// `gensym`'s next number: a static slot default evaluated while parsing may have
+    /// called it, and what loads next must not make the same symbols again.
+    pub gensym_next: u32,
     /// The code of the builtins it calls, by id (`builtins::code_for`): an engine
     /// without the feature `parser` runs these and links no other builtin.
     pub code: &'static [crate::builtins::Imp],

@@ -87,6 +87,7 @@ fn loader_refuses_an_engine_with_constructs() {
         deffacts: &[],
         externals: &[],
         trie_ids: 0,
+        gensym_next: 1,
         code: &[],
     };
     let mut e = std::boxed::Box::new(SmallEngine::new());

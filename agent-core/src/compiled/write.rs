@@ -200,6 +200,7 @@ impl Core<'_> {
         }
         writeln!(out, "],")?;
         writeln!(out, "trie_ids: {},", self.st.pools.trie_ids)?;
+        writeln!(out, "gensym_next: {},", self.st.eval.gensym_next)?;
         writeln!(out, "code: &CODE,")?;
         writeln!(out, "}};")?;
         // only the builtins called: an image links no other
