@@ -845,10 +845,23 @@ impl Core<'_> {
         }
     }
 
+    /// The id of symbol text `s`, added if new.
+    /// (Inlined on the host: most calls find a symbol the table has; only a new one
+    /// pays the growth check and the high-water notes.)
+    #[cfg_attr(feature = "host-speedups", inline)]
     pub fn intern(&mut self, s: &str) -> Result<SymId, CapacityError> {
+        match self.syms().find(s) {
+            Some(id) => Ok(id),
+            None => self.intern_new(s),
+        }
+    }
+
+    /// `intern` of a text the table does not have yet.
+    #[cfg_attr(feature = "host-speedups", inline(never))]
+    fn intern_new(&mut self, s: &str) -> Result<SymId, CapacityError> {
         #[cfg(feature = "grow")]
         self.symbol_room(s.len());
-        let r = self.syms().intern(s);
+        let r = self.syms().add_new(s);
         self.note_hw(Pool::Symbols, self.st.pools.nsyms as usize);
         self.note_hw(Pool::SymbolBytes, self.st.pools.sym_bytes as usize);
         r
@@ -965,20 +978,29 @@ impl Core<'_> {
         let top = self.st.frame.scratch_top as usize;
         let limit = self.scratch.len() - self.st.eval.gmf_used as usize;
         if top + n > limit || top + n > NONE as usize {
-            // the globals' multifields sit at the top: growing would move them under
-            // values that point at them, so scratch grows only while there are none
-            #[cfg(feature = "grow")]
-            if self.st.eval.gmf_used == 0 {
-                self.grow(Pool::Scratch, top + n)?;
-                self.st.frame.scratch_top += n as Ix;
-                self.note_hw(Pool::Scratch, top + n);
-                return Ok(top as Ix);
-            }
-            return Err(cap(Pool::Scratch, self.scratch.len()));
+            return self.scratch_alloc_full(top, n);
         }
         self.st.frame.scratch_top += n as Ix;
         self.note_hw(Pool::Scratch, top + n);
         Ok(top as Ix)
+    }
+
+    /// `scratch_alloc` when scratch has no room for `n` cells at `top`: grown if it
+    /// may (out of line, so the allocation that fits stays a few instructions).
+    #[cold]
+    #[inline(never)]
+    fn scratch_alloc_full(&mut self, top: usize, n: usize) -> Result<Ix, CapacityError> {
+        // the globals' multifields sit at the top: growing would move them under
+        // values that point at them, so scratch grows only while there are none
+        #[cfg(feature = "grow")]
+        if self.st.eval.gmf_used == 0 {
+            self.grow(Pool::Scratch, top + n)?;
+            self.st.frame.scratch_top += n as Ix;
+            self.note_hw(Pool::Scratch, top + n);
+            return Ok(top as Ix);
+        }
+        let _ = (top, n);
+        Err(cap(Pool::Scratch, self.scratch.len()))
     }
 
     /// Makes `v` the value of global `g`; a multifield is copied into the globals'

@@ -76,7 +76,7 @@ impl Core<'_> {
     /// operation succeeded (`keep`) and drops them when it was undone.
     /// (Inlined on the host: every assert and retract closes one, mostly with nothing
     /// held.)
-    #[cfg_attr(feature = "host-speedups", inline)]
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     pub(crate) fn release_traces(&mut self, keep: bool) {
         let h = &mut self.st.net.hold;
         h.depth = h.depth.saturating_sub(1);

@@ -192,6 +192,11 @@ impl Symbols<'_> {
         if let Some(i) = self.find(s) {
             return Ok(i);
         }
+        self.add_new(s)
+    }
+
+    /// Adds `s`, which the table does not have (`find` said so).
+    pub fn add_new(&mut self, s: &str) -> Result<SymId, CapacityError> {
         let used = *self.bytes_used as usize;
         self.room_for(used + s.len() <= self.bytes.len(), s.len())?;
         self.bytes[used..used + s.len()].copy_from_slice(s.as_bytes());

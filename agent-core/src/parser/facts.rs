@@ -98,6 +98,7 @@ impl<'s> Parser<'s, '_, '_> {
 
     /// One value of a fact: an expression, or `=(call)`, CLIPS's older way of writing
     /// a call's value there (the `=` is dropped; after it only a call may come).
+    #[inline]
     fn fact_value(&mut self) -> PResult<Ix> {
         if matches!(self.peek().tok, Tok::Symbol("=")) {
             self.next();
