@@ -626,20 +626,25 @@ impl Core<'_> {
             self.st.mode.halting = false;
             self.st.frame.bp = self.st.frame.sp;
             let nlocals = self.rules[rule as usize].nlocals;
-            let mut r = Ok(Value::Void);
-            for _ in 0..nlocals {
-                if let Err(e) = self.push_value(Value::Void) {
-                    r = Err(e.into());
-                }
-            }
-            // the logical support its asserts get (`logical`)
+            let mut r = match self.push_voids(usize::from(nlocals)) {
+                Ok(()) => Ok(Value::Void),
+                Err(e) => Err(e.into()),
+            };
+            // the logical support its asserts get (`logical`; nothing to set or keep
+            // for a rule without a logical CE fired outside any logical firing)
             #[cfg(feature = "logical")]
-            let logical = self.logical_enter(rule, token);
+            let logical = if self.logical_idle_for(rule) {
+                None
+            } else {
+                Some(self.logical_enter(rule, token))
+            };
             if r.is_ok() {
                 r = self.eval_actions(self.rules[rule as usize].rhs);
             }
             #[cfg(feature = "logical")]
-            self.logical_leave(logical);
+            if let Some(logical) = logical {
+                self.logical_leave(logical);
+            }
             // `(return)` in a rule's actions ends the focus on its module
             #[cfg(feature = "modules")]
             if self.st.eval.returning {

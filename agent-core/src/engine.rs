@@ -850,18 +850,19 @@ impl Core<'_> {
     /// pays the growth check and the high-water notes.)
     #[cfg_attr(feature = "host-speedups", inline)]
     pub fn intern(&mut self, s: &str) -> Result<SymId, CapacityError> {
-        match self.syms().find(s) {
+        let h = crate::symbols::hash_bytes(s.as_bytes());
+        match self.syms().find_hashed(s, h) {
             Some(id) => Ok(id),
-            None => self.intern_new(s),
+            None => self.intern_new(s, h),
         }
     }
 
     /// `intern` of a text the table does not have yet.
     #[cfg_attr(feature = "host-speedups", inline(never))]
-    fn intern_new(&mut self, s: &str) -> Result<SymId, CapacityError> {
+    fn intern_new(&mut self, s: &str, h: u32) -> Result<SymId, CapacityError> {
         #[cfg(feature = "grow")]
         self.symbol_room(s.len());
-        let r = self.syms().add_new(s);
+        let r = self.syms().add_new(s, h);
         self.note_hw(Pool::Symbols, self.st.pools.nsyms as usize);
         self.note_hw(Pool::SymbolBytes, self.st.pools.sym_bytes as usize);
         r
@@ -970,6 +971,30 @@ impl Core<'_> {
         self.stack[sp] = v;
         self.st.frame.sp += 1;
         self.note_hw(Pool::EvalStack, sp + 1);
+        Ok(())
+    }
+
+    /// Pushes `n` empty values (a frame's locals, a fact's slots) with one room
+    /// check; on a full stack as `n` calls of `push_value` (those that fit stay).
+    #[inline]
+    pub fn push_voids(&mut self, n: usize) -> Result<(), CapacityError> {
+        let sp = self.st.frame.sp as usize;
+        if sp + n > self.stack.len() {
+            return self.push_voids_full(n);
+        }
+        self.stack[sp..sp + n].fill(Value::Void);
+        self.st.frame.sp += n as Ix;
+        self.note_hw(Pool::EvalStack, sp + n);
+        Ok(())
+    }
+
+    /// `push_voids` past the stack's end: one at a time, grown where it may.
+    #[cold]
+    #[inline(never)]
+    fn push_voids_full(&mut self, n: usize) -> Result<(), CapacityError> {
+        for _ in 0..n {
+            self.push_value(Value::Void)?;
+        }
         Ok(())
     }
 

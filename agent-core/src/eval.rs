@@ -565,9 +565,7 @@ impl Core<'_> {
             }))?;
         }
         let frame_args = np + usize::from(df.rest);
-        for _ in frame_args..df.nlocals as usize {
-            self.push_value(Value::Void)?;
-        }
+        self.push_voids((df.nlocals as usize).saturating_sub(frame_args))?;
         let saved_bp = self.st.frame.bp;
         self.st.frame.bp = args.base;
         self.st.eval.in_use += 1;

@@ -179,6 +179,18 @@ impl Core<'_> {
         }
     }
 
+    /// Whether firing rule `rule` leaves the logical firing state as it is: the rule
+    /// has no logical CE and no logical firing is under way (`logical_enter` would set
+    /// what is there and `logical_leave` put it back).
+    #[inline(always)]
+    pub(crate) fn logical_idle_for(&self, rule: Ix) -> bool {
+        let l = &self.st.logical;
+        l.bind == TokenId::NONE
+            && !l.gone
+            && l.bind_succ == JoinId::NONE
+            && self.rule_logical_join(rule) == JoinId::NONE
+    }
+
     /// Before rule `rule` fires on partial match `token`: the logical support its
     /// asserts get (the ancestor of `token` in the rule's logical join).
     pub(crate) fn logical_enter(&mut self, rule: Ix, token: TokenId) -> LogicalFrame {

@@ -103,10 +103,15 @@ impl RomSymbols {
     }
 
     pub(crate) fn find(&self, s: &str) -> Option<SymId> {
+        self.find_hashed(s, hash_bytes(s.as_bytes()))
+    }
+
+    /// `find` of a text whose `hash_bytes` is `h`.
+    pub(crate) fn find_hashed(&self, s: &str, h: u32) -> Option<SymId> {
         if self.buckets.is_empty() {
             return None;
         }
-        let b = hash_bytes(s.as_bytes()) as usize % self.buckets.len();
+        let b = h as usize % self.buckets.len();
         let mut i = self.buckets[b];
         while i != NONE {
             if self.texts.get(i as usize) == Some(&s) {
@@ -170,14 +175,19 @@ impl Symbols<'_> {
     }
 
     pub fn find(&self, s: &str) -> Option<SymId> {
-        if let Some(i) = self.rom.find(s) {
+        self.find_hashed(s, hash_bytes(s.as_bytes()))
+    }
+
+    /// `find` of a text whose `hash_bytes` is `h` (interning hashes it once).
+    pub fn find_hashed(&self, s: &str, h: u32) -> Option<SymId> {
+        if let Some(i) = self.rom.find_hashed(s, h) {
             return Some(i);
         }
         if self.buckets.is_empty() {
             return None;
         }
         let rom = self.rom.len();
-        let b = hash_bytes(s.as_bytes()) as usize % self.buckets.len();
+        let b = h as usize % self.buckets.len();
         let mut i = self.buckets[b];
         while i != NONE {
             if self.text(i) == s {
@@ -189,18 +199,20 @@ impl Symbols<'_> {
     }
 
     pub fn intern(&mut self, s: &str) -> Result<SymId, CapacityError> {
-        if let Some(i) = self.find(s) {
+        let h = hash_bytes(s.as_bytes());
+        if let Some(i) = self.find_hashed(s, h) {
             return Ok(i);
         }
-        self.add_new(s)
+        self.add_new(s, h)
     }
 
-    /// Adds `s`, which the table does not have (`find` said so).
-    pub fn add_new(&mut self, s: &str) -> Result<SymId, CapacityError> {
+    /// Adds `s` (its `hash_bytes` is `h`), which the table does not have (`find`
+    /// said so).
+    pub fn add_new(&mut self, s: &str, h: u32) -> Result<SymId, CapacityError> {
         let used = *self.bytes_used as usize;
         self.room_for(used + s.len() <= self.bytes.len(), s.len())?;
         self.bytes[used..used + s.len()].copy_from_slice(s.as_bytes());
-        Ok(self.add_entry(s.len(), hash_bytes(s.as_bytes())))
+        Ok(self.add_entry(s.len(), h))
     }
 
     /// Interns the text already written at the arena's free end (`len` bytes from
@@ -214,7 +226,8 @@ impl Symbols<'_> {
                 .get(used..used + len)
                 .and_then(|b| core::str::from_utf8(b).ok())
                 .unwrap_or("");
-            (self.find(s), hash_bytes(s.as_bytes()))
+            let h = hash_bytes(s.as_bytes());
+            (self.find_hashed(s, h), h)
         };
         if let Some(i) = found {
             return Ok(i);

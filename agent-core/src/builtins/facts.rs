@@ -330,9 +330,7 @@ impl Core<'_> {
         let tmpl = self.exprs[spec as usize].data;
         let nslots = self.templates[tmpl as usize].nslots;
         let base = self.st.frame.sp;
-        for _ in 0..nslots {
-            self.push_value(Value::Void)?;
-        }
+        self.push_voids(nslots as usize)?;
         let r = self.assert_spec_inner(spec, tmpl, base, defer);
         self.st.frame.sp = base;
         r
