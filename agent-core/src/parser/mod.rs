@@ -233,7 +233,7 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
     /// A name token: one with a module specifier (`MAIN::x`) is refused, as modules are
     /// not implemented.
     pub fn plain_name(&self, at: Token<'s>, name: &'s str) -> PResult<&'s str> {
-        if name.contains("::") {
+        if crate::module::qualifier_end(name).is_some() {
             return Err(self.not_implemented(at, "module specifiers (Module::name)"));
         }
         Ok(name)
