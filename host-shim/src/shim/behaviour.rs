@@ -371,6 +371,9 @@ const ESCAPE_WITHIN_M: f32 = 0.05;
 /// from what it met (7 of the 16, within 67.5 degrees of straight back).
 const BACK_AWAY_FROM_RAD: f32 = 1.95;
 
+/// The first step of a bumped robot's escape, which must not lose room.
+const ESCAPE_FIRST_STEP_M: f32 = 0.02;
+
 /// An escape point must leave at least this much more room than where the robot stands.
 const ESCAPE_GAIN_M: f32 = 0.01;
 
@@ -402,8 +405,34 @@ fn escape_point(
         });
     if let Some(bumped) = bumped_towards {
         let back_away = |a: f32| wrap_angle(a - bumped).abs() >= BACK_AWAY_FROM_RAD;
-        return points
-            .filter(|&(a, _)| back_away(a))
+        // The first centimetres must not lose room either: pressed against a corner, a
+        // move whose end has room but whose start grazes the corner is stopped at once
+        // (a robot of seed 63 with a dead teammate went back and forth so, 1,983 bumps).
+        // Each obstacle it touches counts alone: the least room of all may be a teammate's
+        // disc, grown by the gap the guard keeps, while the body grazes a machine.
+        let touch = radius_m + ESCAPE_WITHIN_M;
+        let first_step_gains = |a: f32| {
+            let step = (
+                from.x_m + ESCAPE_FIRST_STEP_M * a.cos(),
+                from.y_m + ESCAPE_FIRST_STEP_M * a.sin(),
+            );
+            let field = |p: (f32, f32)| hal::field::clearance(p.0, p.1, None);
+            let field_ok = field(here) >= touch || field(step) >= field(here);
+            field_ok
+                && discs.iter().all(|d| {
+                    let room = |p: (f32, f32)| (p.0 - d.0).hypot(p.1 - d.1) - d.2;
+                    room(here) >= touch || room(step) >= room(here)
+                })
+        };
+        let backing: Vec<(f32, (f32, f32))> = points.filter(|&(a, _)| back_away(a)).collect();
+        let gaining: Vec<(f32, (f32, f32))> = backing
+            .iter()
+            .copied()
+            .filter(|&(a, _)| first_step_gains(a))
+            .collect();
+        let choices = if gaining.is_empty() { backing } else { gaining };
+        return choices
+            .into_iter()
             .map(|(_, p)| (p, planner::clearance_of(p, discs)))
             // The first of equals wins: a stable choice.
             .fold(
