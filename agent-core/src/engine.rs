@@ -478,6 +478,12 @@ pub struct Mode {
     /// `(set-dynamic-constraint-checking TRUE)`: every new fact's slot values are
     /// checked against their slots' restrictions (agent-core feature `extras`).
     pub dynamic_checks: bool,
+    /// `(set-fact-duplication TRUE)`: an assert of a fact equal to a live one makes a
+    /// second fact (agent-core feature `extras` sets it).
+    pub fact_duplication: bool,
+    /// Duplication was on at some point: equal live facts may exist (the invariant
+    /// check then allows them).
+    pub twins_made: bool,
 }
 
 impl Mode {
@@ -496,6 +502,8 @@ impl Mode {
             initial_deffacts: true,
             keep_pp_forms: true,
             dynamic_checks: false,
+            fact_duplication: false,
+            twins_made: false,
         }
     }
 }

@@ -582,7 +582,12 @@ impl Core<'_> {
         self.write_cells(tmpl, base, start);
         let h = self.cells_hash(tmpl, start, need);
         let bucket = h as usize % self.fact_buckets.len();
-        let mut d = self.fact_buckets[bucket];
+        // with duplication allowed an equal fact is made again, as in CLIPS
+        let mut d = if self.st.mode.fact_duplication {
+            NONE
+        } else {
+            self.fact_buckets[bucket]
+        };
         while d != NONE {
             let df = self.facts[d as usize];
             if df.tmpl == tmpl

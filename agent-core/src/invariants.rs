@@ -827,7 +827,12 @@ impl Core<'_> {
                 c += cells;
             }
             ensure!(c == end, "fact length does not match its slots", f);
-            let mut other = x.next;
+            // twins are made on purpose while duplication is allowed, and stay after
+            let mut other = if self.st.mode.twins_made {
+                NONE
+            } else {
+                x.next
+            };
             while other != NONE {
                 let y = self.facts[other as usize];
                 let same = y.tmpl == x.tmpl

@@ -753,8 +753,8 @@ fn list_deffunctions(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
     Ok(Value::Void)
 }
 
-fn get_fact_dup(_cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
-    Ok(Value::Sym(SYM_FALSE))
+fn get_fact_dup(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
+    Ok(Core::bool_value(cx.st.mode.fact_duplication))
 }
 
 /// Which modules a `list-def*` command lists: one (the current, or the one named),

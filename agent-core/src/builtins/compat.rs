@@ -2,7 +2,8 @@
 //! its rules call none of them): hyperbolic and reciprocal trigonometry, `deg-grad` and
 //! `grad-deg`, the older names CLIPS still accepts (`!=`, `member`, `nth`, `mv-append`,
 //! `str-explode`, `str-implode`, `mv-subseq`, `mv-delete`, `mv-replace`, `subset`,
-//! `wordp`), `pointerp`, `setgen`, `system` (as Debian builds CLIPS: it runs nothing), `get-`/`set-dynamic-constraint-checking`, and the
+//! `wordp`), `pointerp`, `setgen`, `system` (as Debian builds CLIPS: it runs nothing), `get-`/`set-dynamic-constraint-checking`,
+//! `set-fact-duplication`, and the
 //! engine settings this engine has one value of (`get-`/`set-auto-float-dividend`,
 //! `-salience-evaluation`, `-sequence-operator-recognition`): setting the value it has
 //! is accepted, any other is refused with an error, never accepted and ignored.
@@ -77,6 +78,7 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("set-auto-float-dividend", 1, 1, set_auto_float_dividend),
     Builtin::eager("get-dynamic-constraint-checking", 0, 0, get_dynamic_constraint_checking),
     Builtin::eager("set-dynamic-constraint-checking", 1, 1, set_dynamic_constraint_checking),
+    Builtin::eager("set-fact-duplication", 1, 1, set_fact_duplication),
     Builtin::eager("get-sequence-operator-recognition", 0, 0, get_sequence_operator_recognition),
     Builtin::eager("set-sequence-operator-recognition", 1, 1, set_sequence_operator_recognition),
     Builtin::eager("get-salience-evaluation", 0, 0, get_salience_evaluation),
@@ -378,6 +380,16 @@ fn get_dynamic_constraint_checking(cx: &mut Core<'_>, _a: Args) -> Result<Value,
 fn set_dynamic_constraint_checking(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let old = cx.st.mode.dynamic_checks;
     cx.st.mode.dynamic_checks = !is_false(cx.arg(a, 0));
+    Ok(Core::bool_value(old))
+}
+
+/// Whether an assert of a fact equal to a live one makes a second fact: any value but
+/// FALSE turns it on; the old setting is returned.
+fn set_fact_duplication(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let old = cx.st.mode.fact_duplication;
+    let on = !is_false(cx.arg(a, 0));
+    cx.st.mode.fact_duplication = on;
+    cx.st.mode.twins_made |= on;
     Ok(Core::bool_value(old))
 }
 

@@ -420,12 +420,7 @@ impl Core<'_> {
         true
     }
 
-    fn modify_or_duplicate(
-        &mut self,
-        call: Ix,
-        retract_old: bool,
-        name: &'static str,
-    ) -> Result<Value, EvalError> {
+    fn modify_or_duplicate(&mut self, call: Ix, retract_old: bool) -> Result<Value, EvalError> {
         let first = self.exprs[call as usize].first;
         let fv = self.eval(first)?;
         // a waiting propagation (`rete::defer`) lets only this modify's retract go
@@ -464,6 +459,11 @@ impl Core<'_> {
                 return Ok(Value::Sym(SYM_FALSE));
             }
         };
+        if self.templates[self.facts[old as usize].tmpl as usize].implied {
+            // an ordered fact has no slots to change: CLIPS gives FALSE, says nothing
+            // and evaluates no slot value
+            return Ok(Value::Sym(SYM_FALSE));
+        }
         if self.st.net.matching > 0 {
             // a modify is a retract, then an assert: CLIPS refuses both
             if retract_old {
@@ -473,9 +473,6 @@ impl Core<'_> {
             return Ok(Value::Sym(SYM_FALSE));
         }
         let tmpl = self.facts[old as usize].tmpl;
-        if self.templates[tmpl as usize].implied {
-            return Err(EvalError::wrong_type(name, 1, "deftemplate fact"));
-        }
         let nslots = self.templates[tmpl as usize].nslots;
         // matches an earlier retract owes come first: the retract below must free
         // room for the old fact's return, not for old debts
@@ -695,11 +692,11 @@ fn retract(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 }
 
 fn modify(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
-    cx.modify_or_duplicate(call, true, "modify")
+    cx.modify_or_duplicate(call, true)
 }
 
 fn duplicate(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
-    cx.modify_or_duplicate(call, false, "duplicate")
+    cx.modify_or_duplicate(call, false)
 }
 
 fn fact_slot_value(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {

@@ -121,6 +121,14 @@ fn input_arg(cx: &mut Core<'_>, a: Args, func: &str) -> Option<Input> {
     None
 }
 
+/// After a name that is no input: CLIPS halts the actions running (a deffunction's,
+/// a rule's, a `progn`), but at the prompt the read function's value is printed.
+fn halted_with(cx: &mut Core<'_>, text: &str) -> Result<Value, EvalError> {
+    let v = cx.make_string(text)?;
+    cx.set_error_fallback(v, None);
+    Err(EvalError::already_reported())
+}
+
 /// One line of input and how much of it was handed out.
 struct Line {
     buf: [u8; LINE],
@@ -350,7 +358,7 @@ fn field_of(cx: &mut Core<'_>, tok: &Line, func: &str) -> Result<Value, EvalErro
 /// Reads a field from the input argument `a` names (stdin without one).
 fn read_from(cx: &mut Core<'_>, a: Args, func: &'static str) -> Result<Value, EvalError> {
     match input_arg(cx, a, func) {
-        None => Ok(cx.make_string(READ_ERROR)?),
+        None => halted_with(cx, READ_ERROR),
         Some(Input::Stdin) => {
             // lines until one holds a token
             let mut line = Line::new();
@@ -392,7 +400,7 @@ fn read_number(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 fn readline(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let mut line = Line::new();
     let more = match input_arg(cx, a, "readline") {
-        None => return Ok(cx.make_string(READ_ERROR)?),
+        None => return halted_with(cx, READ_ERROR),
         Some(Input::Stdin) => stdin_line(cx, &mut line, "readline")?,
         Some(Input::File(name)) => {
             let mut any = false;
@@ -424,7 +432,10 @@ fn readline(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 /// `get-char`: the next byte's code, -1 at the end (or for a name that is no input).
 fn get_char(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let byte = match input_arg(cx, a, "get-char") {
-        None => return Ok(Value::Int(-1)),
+        None => {
+            cx.set_error_fallback(Value::Int(-1), None);
+            return Err(EvalError::already_reported());
+        }
         Some(Input::Stdin) if cx.st.io.batch_input.active => batch_byte(cx)?,
         Some(Input::Stdin) => cx
             .host
