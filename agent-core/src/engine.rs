@@ -517,6 +517,10 @@ pub struct Caches {
     pub key_plans: [crate::rete::KeyPlan; crate::rete::KEY_PLANS],
     /// Recently used joins' test plans (`rete::quick`), direct-mapped by join.
     pub test_plans: [crate::rete::TestPlan; crate::rete::TEST_PLANS],
+    /// Recently used joins' compiled test plans (`rete::plan`), for the joins whose
+    /// tests `test_plans` cannot hold (host only: the image keeps its RAM).
+    #[cfg(feature = "host-speedups")]
+    pub compiled_plans: crate::rete::TestPlans,
 }
 
 impl Caches {
@@ -525,6 +529,8 @@ impl Caches {
             key_cache: (TokenId::NONE, JoinId::NONE, 0),
             key_plans: [crate::rete::KeyPlan::NONE; crate::rete::KEY_PLANS],
             test_plans: [crate::rete::TestPlan::NONE; crate::rete::TEST_PLANS],
+            #[cfg(feature = "host-speedups")]
+            compiled_plans: crate::rete::TestPlans::EMPTY,
         }
     }
 }

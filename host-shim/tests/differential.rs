@@ -371,6 +371,7 @@ differential_programs! {
     p270_io_read_batch => "270-io-read-batch",
     p271_io_files => "271-io-files",
     p272_fact_value_equals_call => "272-fact-value-equals-call",
+    p280_join_tests_compiled => "280-join-tests-compiled",
     p244_logical_shared_partial_matches => "244-logical-shared-partial-matches",
     p245_logical_retraction_order => "245-logical-retraction-order",
     p246_logical_undefrule_reset => "246-logical-undefrule-reset",

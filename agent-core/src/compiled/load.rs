@@ -8,7 +8,7 @@ use crate::error::{CapacityError, EvalError, Pool};
 use crate::expr::{FnKind, Op};
 use crate::handle::JoinId;
 use crate::host::Host;
-use crate::rete::{JoinKind, KeyPlan, TestPlan, KEY_PLANS, TEST_PLANS};
+use crate::rete::{JoinKind, KeyPlan, KEY_PLANS};
 use crate::value::{Ix, Value, NONE};
 use core::fmt;
 
@@ -335,7 +335,7 @@ impl Core<'_> {
         // caches keyed by join or network generation start over
         self.st.net.net_gen = self.st.net.net_gen.wrapping_add(1).max(1);
         self.st.cache.key_plans = [KeyPlan::NONE; KEY_PLANS];
-        self.st.cache.test_plans = [TestPlan::NONE; TEST_PLANS];
+        self.clear_test_plans();
         for j in 0..self.st.pools.njoins {
             let j = JoinId(j);
             self.note_children(j);

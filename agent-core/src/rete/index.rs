@@ -213,9 +213,39 @@ impl Core<'_> {
         for &(pat, slot) in &plan.vars[..plan.n as usize] {
             let fact = self.left_fact(left, pat);
             if fact == NONE {
+                // a pattern beyond `Token::binds`: read through `lhs_pm` (rare)
+                #[cfg(feature = "host-speedups")]
+                if pat as usize >= super::BIND_W {
+                    return self.deep_left_key(i, left);
+                }
                 return None;
             }
             // hashed where it lies (a copy costs more than the hash)
+            let v = self.slot_ref(fact, Ix::from(slot));
+            if matches!(v, Value::Multi(_)) {
+                return None;
+            }
+            key = mix(key, atom_hash(*v));
+        }
+        Some(key)
+    }
+
+    /// `quick_left_key` for a key plan (cache entry `i`) that reads a pattern at or
+    /// beyond `BIND_W`: every fact through `lhs_pm`, bound to `left`'s ancestry.
+    #[cfg(feature = "host-speedups")]
+    #[inline(never)]
+    fn deep_left_key(&mut self, i: usize, left: TokenId) -> Option<u32> {
+        self.bind_left(left);
+        let plan = &self.st.cache.key_plans[i];
+        let mut key = 0x5bd1_e995u32;
+        for &(pat, slot) in &plan.vars[..plan.n as usize] {
+            let fact = match self.st.net.lhs_pm.get(pat as usize) {
+                Some(b) => b.fact,
+                None => NONE,
+            };
+            if fact == NONE {
+                return None;
+            }
             let v = self.slot_ref(fact, Ix::from(slot));
             if matches!(v, Value::Multi(_)) {
                 return None;
@@ -481,9 +511,13 @@ impl Core<'_> {
     /// Makes `child` the join whose tests key `parent`'s memory, if the memory is
     /// empty and not indexed yet and `child` is fed by a node with a right hash.
     pub(crate) fn choose_index_child(&mut self, parent: JoinId, child: JoinId) {
-        // called for every new join: a reused join id must not keep an old plan
-        self.st.cache.key_plans = [KeyPlan::NONE; KEY_PLANS];
-        self.st.cache.test_plans = [super::TestPlan::NONE; super::TEST_PLANS];
+        // called for every new join: a reused join id must not keep an old plan (the
+        // one entry it can be in; clearing all cost every rule's load a cache fill)
+        let k = child.ix() % KEY_PLANS;
+        if self.st.cache.key_plans[k].join == child {
+            self.st.cache.key_plans[k] = KeyPlan::NONE;
+        }
+        self.forget_test_plan(child);
         let p = self.joins[parent];
         let c = self.joins[child];
         if parent != JoinId::ROOT

@@ -25,11 +25,15 @@ pub const NO_ALPHA_DISC: AlphaDisc = ();
 pub const NO_TEMPLATE_DISC: TemplateDisc = TemplateDisc::EMPTY;
 #[cfg(not(feature = "host-speedups"))]
 pub const NO_TEMPLATE_DISC: TemplateDisc = ();
+#[cfg(feature = "host-speedups")]
+mod plan;
 mod quick;
 #[cfg(any(feature = "defer", feature = "wipe"))]
 mod walk;
 #[cfg(feature = "wipe")]
 mod wipe;
+#[cfg(feature = "host-speedups")]
+pub use plan::TestPlans;
 pub use quick::{TestOp, TestPlan, PLAN_TESTS, TEST_PLANS};
 
 pub use crate::handle::{JoinId, TokenId};

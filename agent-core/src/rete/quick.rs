@@ -118,6 +118,10 @@ impl Core<'_> {
         // read in place (a copy of the whole plan costs more than the few ops used)
         let plan = &self.st.cache.test_plans[i];
         if plan.n == TestPlan::NONE.n {
+            // the host compiles other tests into a plan of its own (`rete::plan`)
+            #[cfg(feature = "host-speedups")]
+            return self.compiled_join_test(join, tests, depth, left, right_fact);
+            #[cfg(not(feature = "host-speedups"))]
             return self.quick_join_test(tests, depth, left, right_fact);
         }
         for op in &plan.ops[..plan.n as usize] {
@@ -128,6 +132,23 @@ impl Core<'_> {
             }
         }
         Some(true)
+    }
+
+    /// Forgets every cached test plan (the network was replaced).
+    pub(crate) fn clear_test_plans(&mut self) {
+        self.st.cache.test_plans = [TestPlan::NONE; TEST_PLANS];
+        #[cfg(feature = "host-speedups")]
+        self.st.cache.compiled_plans.clear();
+    }
+
+    /// Forgets the cached test plans of new join `join` (its id may be reused).
+    pub(crate) fn forget_test_plan(&mut self, join: JoinId) {
+        let i = join.ix() % TEST_PLANS;
+        if self.st.cache.test_plans[i].join == join {
+            self.st.cache.test_plans[i] = TestPlan::NONE;
+        }
+        #[cfg(feature = "host-speedups")]
+        self.st.cache.compiled_plans.forget(join);
     }
 
     /// The cell of a planned variable (a multifield is the caller's to refuse).
@@ -175,9 +196,18 @@ impl Core<'_> {
             tests,
             ..TestPlan::NONE
         };
+        // a pattern beyond `Token::binds` is left to the host's compiled plan
+        #[cfg(feature = "host-speedups")]
+        let readable = |pat: u8| pat == depth || (pat as usize) < super::BIND_W;
+        #[cfg(not(feature = "host-speedups"))]
+        let readable = |_: u8| true;
         let var = |x: &Expr| -> Option<(u8, u8)> {
-            (x.op == Op::PatVar && x.first == NONE && x.data != loc::FACT && x.aux <= depth)
-                .then(|| (x.aux, loc::slot(x.data)))
+            (x.op == Op::PatVar
+                && x.first == NONE
+                && x.data != loc::FACT
+                && x.aux <= depth
+                && readable(x.aux))
+            .then(|| (x.aux, loc::slot(x.data)))
         };
         let mut t = tests;
         while t != NONE {

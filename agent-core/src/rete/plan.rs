@@ -1,0 +1,601 @@
+//! Join tests compiled into a test plan (host build, feature `host-speedups`).
+//!
+//! Joins whose tests are only `eq`/`neq` of slots keep `quick`'s plan (cheapest to
+//! run inline in the join loops); the tests of the others go through this one.
+//! A join's tests are worked out once into a small tree of direct comparisons over
+//! the slots of the facts the partial match binds: variable comparisons (`?x` used
+//! again, `~?x`, `?a | ?b`), `eq`/`neq`/`=`/`<>`/`<`/`<=`/`>`/`>=` of variables,
+//! constants and `(+ ?x N)`/`(- ?x N)`, and `and`/`or`/`not` of those, whether they
+//! come from field constraints, `&:(...)` predicates or `(test ...)` CEs. Everything
+//! else keeps the evaluator.
+//!
+//! Exactness: the plan runs the tests in the evaluator's order with its
+//! short-circuits, and the comparisons are the builtins' own (`basic::compare`,
+//! `values_same`, wrapping integer `+`/`-`). Wherever the evaluator could report an
+//! error or take another path (an unbound pattern, a multifield, a non-number for a
+//! numeric test, a float in arithmetic), the plan answers None before any result is
+//! used and the caller evaluates the tests from the start, which reports as before:
+//! the tests have no side effects, so running the first ones twice changes nothing.
+
+use crate::builtins;
+use crate::builtins::basic::{CMP_FIRST, CMP_LAST};
+use crate::engine::Core;
+use crate::expr::{loc, Expr, FnKind, Op};
+use crate::handle::{JoinId, TokenId};
+use crate::rete::BIND_W;
+use crate::value::{Ix, Value, NONE};
+
+/// Entries of the compiled plan cache (`Caches::compiled_plans`, direct-mapped by join).
+const COMPILED_PLANS: usize = 32;
+/// Nodes (and child links) the cached plans share. A plan that finds no room empties
+/// the cache first: kept small, the cache costs the engine's start little.
+const POOL_NODES: usize = 128;
+/// Most nodes one plan holds; joins with more keep the evaluator.
+const PLAN_NODES: usize = 32;
+/// Deepest nesting of `and`/`or`/`not` a plan holds.
+const PLAN_DEPTH: u8 = 4;
+
+/// Builtin ids of table 0 (`builtins::basic::FUNCS`) the plan knows, checked by a test.
+const FN_ADD: Ix = 0;
+const FN_SUB: Ix = 1;
+const FN_EQ: Ix = CMP_FIRST + 6;
+const FN_NEQ: Ix = CMP_FIRST + 7;
+const FN_AND: Ix = 12;
+const FN_OR: Ix = 13;
+const FN_NOT: Ix = 14;
+
+/// Where a compared value comes from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Source {
+    /// A single-field slot of the fact bound at pattern `pat`.
+    Slot { pat: u8, slot: u8 },
+    /// The constant at expression node `e` (read with `const_value`).
+    Const { e: Ix },
+    /// Field `elem` of multislot `slot` (an ordered fact's field), when the pattern
+    /// has only single-field elements up to it (so its offset is its index).
+    Elem { pat: u8, slot: u8, elem: u8 },
+    /// An integer slot plus `delta` (wrapping, as the builtins' `+`/`-`; a delta
+    /// beyond 32 bits keeps the evaluator, so the node stays small).
+    SlotPlus { pat: u8, slot: u8, delta: i32 },
+}
+
+/// One node of a plan. Composite nodes name their children through `kids`; all
+/// indices are into the pool of `TestPlans`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Node {
+    /// Comparison builtin `id` (`CMP_FIRST..=CMP_LAST`; `Eq2` is `eq`) of `a` and `b`.
+    Cmp { id: u8, a: Source, b: Source },
+    /// All of `kids[first..first + len]` (short-circuit, in order).
+    And { first: u8, len: u8 },
+    /// Any of `kids[first..first + len]` (short-circuit, in order).
+    Or { first: u8, len: u8 },
+    /// Not `child`.
+    Not { child: u8 },
+}
+
+const UNPLANNED: u8 = u8::MAX;
+
+/// A cache entry: the plan of `join` with test chain `tests` (a reused join id has
+/// another one), `root` its node (`UNPLANNED` when its tests are not all of a
+/// planned shape); `deep` when it reads a left pattern at or beyond `BIND_W`, which
+/// only the ancestry walk (`bind_left`) finds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct PlanEntry {
+    join: JoinId,
+    tests: Ix,
+    root: u8,
+    deep: bool,
+}
+
+impl PlanEntry {
+    const NONE: PlanEntry = PlanEntry {
+        join: JoinId::NONE,
+        tests: NONE,
+        root: UNPLANNED,
+        deep: false,
+    };
+}
+
+/// The compiled join-test plans of recently tested joins: direct-mapped entries over one
+/// shared pool of nodes.
+pub struct TestPlans {
+    entries: [PlanEntry; COMPILED_PLANS],
+    nodes: [Node; POOL_NODES],
+    kids: [u8; POOL_NODES],
+    nodes_used: u8,
+    kids_used: u8,
+}
+
+impl TestPlans {
+    pub const EMPTY: TestPlans = TestPlans {
+        entries: [PlanEntry::NONE; COMPILED_PLANS],
+        nodes: [Node::Not { child: 0 }; POOL_NODES],
+        kids: [0; POOL_NODES],
+        nodes_used: 0,
+        kids_used: 0,
+    };
+
+    /// Forgets every plan (the network was replaced).
+    pub fn clear(&mut self) {
+        self.entries = [PlanEntry::NONE; COMPILED_PLANS];
+        self.nodes_used = 0;
+        self.kids_used = 0;
+    }
+
+    /// Forgets the plan of `join`, a new join that may reuse an old one's id (its
+    /// nodes stay used until the pool is emptied).
+    pub fn forget(&mut self, join: JoinId) {
+        let e = &mut self.entries[join.ix() % COMPILED_PLANS];
+        if e.join == join {
+            *e = PlanEntry::NONE;
+        }
+    }
+
+    /// Stores built plan `b` for entry `i`, emptying the pool first if it lacks room.
+    fn store(&mut self, i: usize, mut entry: PlanEntry, b: &PlanBuild) {
+        if entry.root == UNPLANNED {
+            self.entries[i] = entry;
+            return;
+        }
+        let (n, k) = (b.used as usize, b.kids_used as usize);
+        if self.nodes_used as usize + n > POOL_NODES || self.kids_used as usize + k > POOL_NODES {
+            self.clear();
+        }
+        // POOL_NODES <= 256 and the sums fit: every index stays a u8
+        let (nb, kb) = (self.nodes_used, self.kids_used);
+        for (dst, src) in self.nodes[nb as usize..nb as usize + n]
+            .iter_mut()
+            .zip(&b.nodes[..n])
+        {
+            *dst = match *src {
+                Node::And { first, len } => Node::And {
+                    first: first + kb,
+                    len,
+                },
+                Node::Or { first, len } => Node::Or {
+                    first: first + kb,
+                    len,
+                },
+                Node::Not { child } => Node::Not { child: child + nb },
+                cmp => cmp,
+            };
+        }
+        for (dst, src) in self.kids[kb as usize..kb as usize + k]
+            .iter_mut()
+            .zip(&b.kids[..k])
+        {
+            *dst = *src + nb;
+        }
+        self.nodes_used += n as u8;
+        self.kids_used += k as u8;
+        entry.root += nb;
+        self.entries[i] = entry;
+    }
+}
+
+/// A plan being built (on the stack; `TestPlans::store` moves it into the pool).
+struct PlanBuild {
+    used: u8,
+    kids_used: u8,
+    deep: bool,
+    nodes: [Node; PLAN_NODES],
+    kids: [u8; PLAN_NODES],
+}
+
+impl PlanBuild {
+    fn push(&mut self, node: Node) -> Option<u8> {
+        let i = self.used as usize;
+        *self.nodes.get_mut(i)? = node;
+        self.used += 1;
+        Some(i as u8)
+    }
+
+    /// Reserves `len` child slots, returns the first.
+    fn reserve_kids(&mut self, len: usize) -> Option<u8> {
+        let first = self.kids_used as usize;
+        if first + len > PLAN_NODES {
+            return None;
+        }
+        self.kids_used += len as u8;
+        Some(first as u8)
+    }
+}
+
+const _: () = assert!(POOL_NODES <= UNPLANNED as usize && PLAN_NODES <= POOL_NODES);
+
+impl Source {
+    /// The pattern a source reads (None for a constant).
+    fn pat(self) -> Option<u8> {
+        match self {
+            Source::Slot { pat, .. } | Source::Elem { pat, .. } | Source::SlotPlus { pat, .. } => {
+                Some(pat)
+            }
+            Source::Const { .. } => None,
+        }
+    }
+}
+
+impl Core<'_> {
+    /// The tests of `join` (not all `eq`/`neq` of slots: `quick`'s plan holds those)
+    /// decided through its compiled plan: Some(result), or None when the evaluator
+    /// must decide (see the module comment). Out of line: one call per test beats
+    /// the evaluator, and keeps the join loops small.
+    #[inline(never)]
+    pub(crate) fn compiled_join_test(
+        &mut self,
+        join: JoinId,
+        tests: Ix,
+        depth: u8,
+        left: TokenId,
+        right_fact: Ix,
+    ) -> Option<bool> {
+        let i = join.ix() % COMPILED_PLANS;
+        let cached = &self.st.cache.compiled_plans.entries[i];
+        if cached.join != join || cached.tests != tests {
+            self.cache_test_plan(i, join, tests, depth);
+        }
+        let entry = self.st.cache.compiled_plans.entries[i];
+        if entry.root == UNPLANNED {
+            return self.quick_join_test(tests, depth, left, right_fact);
+        }
+        if entry.deep {
+            // free when `left` is bound already (a loop over its candidates)
+            self.bind_left(left);
+        }
+        self.run_node(entry.root, depth, left, right_fact)
+    }
+
+    /// Builds the plan of `join` into cache entry `i` (out of line: once per join
+    /// while it stays cached).
+    #[inline(never)]
+    fn cache_test_plan(&mut self, i: usize, join: JoinId, tests: Ix, depth: u8) {
+        let mut b = PlanBuild {
+            used: 0,
+            kids_used: 0,
+            deep: false,
+            nodes: [Node::Not { child: 0 }; PLAN_NODES],
+            kids: [0; PLAN_NODES],
+        };
+        let root = self
+            .plan_chain(&mut b, tests, depth, Chain::And, 0)
+            .unwrap_or(UNPLANNED);
+        let entry = PlanEntry {
+            join,
+            tests,
+            root,
+            deep: b.deep,
+        };
+        self.st.cache.compiled_plans.store(i, entry, &b);
+    }
+
+    fn run_node(&self, node: u8, depth: u8, left: TokenId, right_fact: Ix) -> Option<bool> {
+        let plans = &self.st.cache.compiled_plans;
+        match plans.nodes[node as usize] {
+            Node::Cmp { id, a, b } => self.run_cmp(id, a, b, depth, left, right_fact),
+            Node::And { first, len } => {
+                for &k in &plans.kids[first as usize..(first + len) as usize] {
+                    // the comparisons inline, the composites through the recursion
+                    let r = match plans.nodes[k as usize] {
+                        Node::Cmp { id, a, b } => {
+                            self.run_cmp(id, a, b, depth, left, right_fact)?
+                        }
+                        _ => self.run_node(k, depth, left, right_fact)?,
+                    };
+                    if !r {
+                        return Some(false);
+                    }
+                }
+                Some(true)
+            }
+            Node::Or { first, len } => {
+                for &k in &plans.kids[first as usize..(first + len) as usize] {
+                    let r = match plans.nodes[k as usize] {
+                        Node::Cmp { id, a, b } => {
+                            self.run_cmp(id, a, b, depth, left, right_fact)?
+                        }
+                        _ => self.run_node(k, depth, left, right_fact)?,
+                    };
+                    if r {
+                        return Some(true);
+                    }
+                }
+                Some(false)
+            }
+            Node::Not { child } => Some(!self.run_node(child, depth, left, right_fact)?),
+        }
+    }
+
+    /// One planned comparison.
+    #[inline(always)]
+    fn run_cmp(
+        &self,
+        id: u8,
+        a: Source,
+        b: Source,
+        depth: u8,
+        left: TokenId,
+        right_fact: Ix,
+    ) -> Option<bool> {
+        let va = self.source_value(a, depth, left, right_fact)?;
+        let vb = self.source_value(b, depth, left, right_fact)?;
+        builtins::basic::compare(self, id as Ix, va, vb)
+    }
+
+    /// The fact bound at pattern `pat`: the right input's at the join's own `depth`,
+    /// else `left`'s (beyond `BIND_W` through `lhs_pm`, which `planned_join_test`
+    /// bound for a deep plan). NONE if none.
+    #[inline(always)]
+    fn plan_fact(&self, pat: u8, depth: u8, left: TokenId, right_fact: Ix) -> Ix {
+        if pat == depth {
+            right_fact
+        } else if (pat as usize) < BIND_W {
+            self.left_fact(left, pat)
+        } else {
+            match self.st.net.lhs_pm.get(pat as usize) {
+                Some(b) => b.fact,
+                None => NONE,
+            }
+        }
+    }
+
+    /// The single-field value a source names; None where the evaluator must look.
+    #[inline(always)]
+    fn source_value(&self, s: Source, depth: u8, left: TokenId, right_fact: Ix) -> Option<Value> {
+        match s {
+            Source::Slot { pat, slot } => self.plan_slot_value(pat, slot, depth, left, right_fact),
+            Source::Elem { pat, slot, elem } => {
+                let fact = self.plan_fact(pat, depth, left, right_fact);
+                if fact == NONE {
+                    return None;
+                }
+                let (cell, len) = self.slot_cell(fact, Ix::from(slot));
+                match len {
+                    Some(len) if (elem as usize) < len as usize => {
+                        Some(self.values[cell + 1 + elem as usize])
+                    }
+                    _ => None,
+                }
+            }
+            Source::Const { e } => Some(self.const_value(e)),
+            Source::SlotPlus { pat, slot, delta } => {
+                match self.plan_slot_value(pat, slot, depth, left, right_fact)? {
+                    Value::Int(i) => Some(Value::Int(i.wrapping_add(i64::from(delta)))),
+                    _ => None,
+                }
+            }
+        }
+    }
+
+    /// A single-field slot of the fact bound at `pat` (None for a multifield).
+    #[inline(always)]
+    fn plan_slot_value(
+        &self,
+        pat: u8,
+        slot: u8,
+        depth: u8,
+        left: TokenId,
+        right_fact: Ix,
+    ) -> Option<Value> {
+        let fact = self.plan_fact(pat, depth, left, right_fact);
+        if fact == NONE {
+            return None;
+        }
+        match *self.slot_ref(fact, Ix::from(slot)) {
+            Value::Multi(_) => None,
+            v => Some(v),
+        }
+    }
+
+    /// Plans the sibling chain from `first` as one `and`/`or` node.
+    fn plan_chain(
+        &self,
+        plan: &mut PlanBuild,
+        first: Ix,
+        depth: u8,
+        chain: Chain,
+        level: u8,
+    ) -> Option<u8> {
+        if level > PLAN_DEPTH {
+            return None;
+        }
+        let mut members = [0u8; PLAN_NODES];
+        let mut len = 0usize;
+        let mut t = first;
+        while t != NONE {
+            *members.get_mut(len)? = self.plan_test(plan, t, depth, level)?;
+            len += 1;
+            t = self.exprs[t as usize].next;
+        }
+        if len == 1 {
+            return Some(members[0]);
+        }
+        let start = plan.reserve_kids(len)?;
+        plan.kids[start as usize..start as usize + len].copy_from_slice(&members[..len]);
+        let (first, len) = (start, len as u8);
+        plan.push(match chain {
+            Chain::And => Node::And { first, len },
+            Chain::Or => Node::Or { first, len },
+        })
+    }
+
+    /// Plans one boolean test expression.
+    fn plan_test(&self, plan: &mut PlanBuild, e: Ix, depth: u8, level: u8) -> Option<u8> {
+        let x = self.exprs[e as usize];
+        let builtin = |id: Ix| x.op == Op::Call && x.aux == FnKind::Builtin as u8 && x.data == id;
+        match x.op {
+            Op::Eq2 => self.plan_cmp(plan, FN_EQ, x.first, depth),
+            Op::Call if builtin(FN_AND) => {
+                self.plan_chain(plan, x.first, depth, Chain::And, level + 1)
+            }
+            Op::And => self.plan_chain(plan, x.first, depth, Chain::And, level + 1),
+            Op::Call if builtin(FN_OR) => {
+                self.plan_chain(plan, x.first, depth, Chain::Or, level + 1)
+            }
+            Op::Or => self.plan_chain(plan, x.first, depth, Chain::Or, level + 1),
+            Op::Not => self.plan_not(plan, x.first, depth, level),
+            Op::Call if builtin(FN_NOT) => self.plan_not(plan, x.first, depth, level),
+            Op::Call
+                if x.aux == FnKind::Builtin as u8 && (CMP_FIRST..=CMP_LAST).contains(&x.data) =>
+            {
+                self.plan_cmp(plan, x.data, x.first, depth)
+            }
+            _ => None,
+        }
+    }
+
+    /// `not` of the single test `child`; of an equality (`~?x`), `neq` in one node.
+    fn plan_not(&self, plan: &mut PlanBuild, child: Ix, depth: u8, level: u8) -> Option<u8> {
+        if child == NONE || self.exprs[child as usize].next != NONE {
+            return None;
+        }
+        let c = self.exprs[child as usize];
+        let is_eq = c.op == Op::Eq2
+            || (c.op == Op::Call && c.aux == FnKind::Builtin as u8 && c.data == FN_EQ);
+        if is_eq {
+            return self.plan_cmp(plan, FN_NEQ, c.first, depth);
+        }
+        let child = self.plan_test(plan, child, depth, level + 1)?;
+        plan.push(Node::Not { child })
+    }
+
+    /// A two-operand comparison `id` of the chain from `a`.
+    fn plan_cmp(&self, plan: &mut PlanBuild, id: Ix, a: Ix, depth: u8) -> Option<u8> {
+        if a == NONE {
+            return None;
+        }
+        let b = self.exprs[a as usize].next;
+        if b == NONE || self.exprs[b as usize].next != NONE {
+            return None;
+        }
+        let a = self.plan_source(a, depth)?;
+        let b = self.plan_source(b, depth)?;
+        for p in [a.pat(), b.pat()].into_iter().flatten() {
+            if p != depth && p as usize >= BIND_W {
+                plan.deep = true;
+            }
+        }
+        plan.push(Node::Cmp {
+            id: u8::try_from(id).ok()?,
+            a,
+            b,
+        })
+    }
+
+    /// The source of an operand: a single-field slot variable, a constant, or a slot
+    /// variable plus or minus an integer constant.
+    fn plan_source(&self, e: Ix, depth: u8) -> Option<Source> {
+        let x = self.exprs[e as usize];
+        match x.op {
+            Op::Int | Op::Float | Op::Sym | Op::Str => Some(Source::Const { e }),
+            Op::PatVar if x.first != NONE => self.plan_elem(&x, depth),
+            Op::PatVar => {
+                let (pat, slot) = self.plan_slot(&x, depth)?;
+                Some(Source::Slot { pat, slot })
+            }
+            Op::Call
+                if x.aux == FnKind::Builtin as u8
+                    && (x.data == FN_ADD || x.data == FN_SUB)
+                    && x.first != NONE =>
+            {
+                let first = self.exprs[x.first as usize];
+                if first.next == NONE || self.exprs[first.next as usize].next != NONE {
+                    return None;
+                }
+                let second_ix = first.next;
+                let second = self.exprs[second_ix as usize];
+                let int_const = |ix: Ix, ex: &Expr| match ex.op {
+                    Op::Int => match self.const_value(ix) {
+                        Value::Int(i) => Some(i),
+                        _ => None,
+                    },
+                    _ => None,
+                };
+                // `(+ ?x N)`, `(+ N ?x)`, `(- ?x N)`
+                let (var, delta) = if first.op == Op::PatVar {
+                    (first, int_const(second_ix, &second)?)
+                } else if x.data == FN_ADD && second.op == Op::PatVar {
+                    (second, int_const(x.first, &first)?)
+                } else {
+                    return None;
+                };
+                // within 32 bits, so `(- ?x i64::MIN)`, whose negation wraps, is
+                // the evaluator's
+                let delta = i32::try_from(delta).ok()?;
+                let delta = if x.data == FN_SUB {
+                    delta.checked_neg()?
+                } else {
+                    delta
+                };
+                let (pat, slot) = self.plan_slot(&var, depth)?;
+                Some(Source::SlotPlus { pat, slot, delta })
+            }
+            _ => None,
+        }
+    }
+
+    /// A pattern variable naming a single-field element of a multislot, at a fixed
+    /// offset: every element of the pattern's slot up to it is single-field.
+    fn plan_elem(&self, x: &Expr, depth: u8) -> Option<Source> {
+        let elem = loc::elem(x.data);
+        if x.data == loc::FACT || elem == loc::SINGLE || x.aux > depth {
+            return None;
+        }
+        let desc = self.exprs[x.first as usize];
+        if desc.op != Op::PatSlot {
+            return None;
+        }
+        let mut c = desc.first;
+        let mut i = 0u8;
+        while c != NONE {
+            let element = self.exprs[c as usize];
+            if element.aux == 1 {
+                return None;
+            }
+            if i == elem {
+                return Some(Source::Elem {
+                    pat: x.aux,
+                    slot: loc::slot(x.data),
+                    elem,
+                });
+            }
+            i += 1;
+            c = element.next;
+        }
+        None
+    }
+
+    /// The (pattern, slot) of a pattern variable naming a whole single-field slot of a
+    /// pattern at or above the join's `depth`.
+    fn plan_slot(&self, x: &Expr, depth: u8) -> Option<(u8, u8)> {
+        (x.op == Op::PatVar
+            && x.first == NONE
+            && x.data != loc::FACT
+            && loc::elem(x.data) == loc::SINGLE
+            && x.aux <= depth)
+            .then(|| (x.aux, loc::slot(x.data)))
+    }
+}
+
+/// Which connective a chain of tests is.
+#[derive(Clone, Copy)]
+enum Chain {
+    And,
+    Or,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn planned_builtin_ids_name_the_builtins() {
+        let name = |id: Ix| builtins::get(id).name;
+        assert_eq!(name(FN_ADD), "+");
+        assert_eq!(name(FN_SUB), "-");
+        assert_eq!(name(FN_EQ), "eq");
+        assert_eq!(name(FN_NEQ), "neq");
+        assert_eq!(name(FN_AND), "and");
+        assert_eq!(name(FN_OR), "or");
+        assert_eq!(name(FN_NOT), "not");
+    }
+}
