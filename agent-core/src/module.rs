@@ -132,8 +132,6 @@ pub struct ModuleState {
     pub depth: Ix,
     /// MAIN may be redefined once after start-up or `clear`.
     pub main_redefined: bool,
-    /// The module whose heading a `list-def* *` printed last.
-    pub listing_head: Option<ModId>,
 }
 
 #[cfg(feature = "modules")]
@@ -145,7 +143,6 @@ impl ModuleState {
             current: MAIN,
             depth: 1,
             main_redefined: false,
-            listing_head: None,
         }
     }
 }

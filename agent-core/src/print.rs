@@ -314,7 +314,7 @@ impl Core<'_> {
         }
     }
 
-    fn print_total(&mut self, n: usize, what: &str) {
+    pub(crate) fn print_total(&mut self, n: usize, what: &str) {
         let mut b: crate::value::TextBuf<64> = crate::value::TextBuf::new();
         let _ = writeln!(
             b,
@@ -326,24 +326,32 @@ impl Core<'_> {
 
     /// `(agenda)` listing.
     pub fn list_agenda(&mut self) {
+        let n = self.list_agenda_of(self.st_current_module(), "");
+        if n > 0 {
+            self.print_total(n, "activation");
+        }
+    }
+
+    /// Lists module `m`'s agenda, each line after `indent`; returns how many.
+    pub fn list_agenda_of(&mut self, m: crate::module::ModId, indent: &str) -> usize {
         let mut a = self.st.agenda.agenda_head;
         let mut n = 0;
         while a != NONE {
-            // the current module's agenda
             #[cfg(feature = "modules")]
-            if !self.activation_in(a, self.current_module()) {
+            if !self.activation_in(a, m) {
                 a = self.acts[a as usize].next;
                 continue;
             }
+            #[cfg(not(feature = "modules"))]
+            let _ = m;
             let mut b: crate::value::TextBuf<512> = crate::value::TextBuf::new();
+            let _ = b.write_str(indent);
             let _ = self.write_activation(&mut b, self.acts[a as usize]);
             let _ = b.write_str("\n");
             self.host.write_str(router::WDISPLAY, b.as_str());
             n += 1;
             a = self.acts[a as usize].next;
         }
-        if n > 0 {
-            self.print_total(n, "activation");
-        }
+        n
     }
 }

@@ -385,4 +385,5 @@ differential_programs! {
     p258_fact_duplication => "258-fact-duplication",
     p260_modules_focus => "260-modules-focus",
     p261_modules_not_exists_salience => "261-modules-not-exists-salience",
+    p262_modules_listings => "262-modules-listings",
 }

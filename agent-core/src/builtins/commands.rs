@@ -140,8 +140,20 @@ fn facts(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     Ok(Value::Void)
 }
 
-fn agenda(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
-    cx.list_agenda();
+/// `(agenda [MODULE | *])`: the current module's agenda, the one named, or every
+/// module's under its heading.
+fn agenda(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let Some(view) = module_view(cx, a, "agenda")? else {
+        return Ok(Value::Void);
+    };
+    let mut n = 0;
+    for m in view.modules(cx) {
+        view.head(cx, m);
+        n += cx.list_agenda_of(m, view.indent());
+    }
+    if n > 0 {
+        cx.print_total(n, "activation");
+    }
     Ok(Value::Void)
 }
 
@@ -421,7 +433,8 @@ pub(super) fn list_defrules(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalErr
         return Ok(Value::Void);
     };
     let mut n = 0;
-    for (m, head) in view.modules(cx) {
+    for m in view.modules(cx) {
+        view.head(cx, m);
         for r in 0..cx.st.pools.nrules {
             let rule = cx.rules[r as usize];
             if rule.deleted || (r > 0 && cx.rules[r as usize - 1].next_disjunct == r) {
@@ -434,7 +447,6 @@ pub(super) fn list_defrules(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalErr
             let _ = m;
             let mut b: TextBuf<128> = TextBuf::new();
             let _ = writeln!(b, "{}{}", view.indent(), cx.sym_text(rule.name));
-            view.head(cx, head, m);
             cx.write(router::WDISPLAY, b.as_str());
             n += 1;
         }
@@ -692,7 +704,8 @@ fn list_deftemplates(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         return Ok(Value::Void);
     };
     let mut n = 0;
-    for (m, head) in view.modules(cx) {
+    for m in view.modules(cx) {
+        view.head(cx, m);
         for t in 0..cx.st.pools.ntemplates {
             // implied (ordered-fact) templates are listed too, as CLIPS 6.30 does; a
             // template retired by a redefinition has no name and is gone
@@ -707,7 +720,6 @@ fn list_deftemplates(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
             let _ = m;
             let mut b: TextBuf<128> = TextBuf::new();
             let _ = writeln!(b, "{}{}", view.indent(), cx.sym_text(tm.name));
-            view.head(cx, head, m);
             cx.write(router::WDISPLAY, b.as_str());
             n += 1;
         }
@@ -726,22 +738,33 @@ fn list_deftemplates(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     Ok(Value::Void)
 }
 
-fn list_deffunctions(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
-    // a removed deffunction keeps its entry, without a name
-    let n = (0..cx.st.pools.nfuncs)
-        .filter(|&f| cx.funcs[f as usize].name != NONE)
-        .count();
+/// `(list-deffunctions [MODULE | *])`, as `list-defrules`.
+fn list_deffunctions(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let Some(view) = module_view(cx, a, "list-deffunctions")? else {
+        return Ok(Value::Void);
+    };
+    let mut n = 0;
+    for m in view.modules(cx) {
+        view.head(cx, m);
+        for f in 0..cx.st.pools.nfuncs {
+            // a removed deffunction keeps its entry, without a name
+            let name = cx.funcs[f as usize].name;
+            if name == NONE {
+                continue;
+            }
+            #[cfg(feature = "modules")]
+            if cx.module_of_function(f) != m {
+                continue;
+            }
+            let _ = m;
+            let mut b: TextBuf<128> = TextBuf::new();
+            let _ = writeln!(b, "{}{}", view.indent(), cx.sym_text(name));
+            cx.write(router::WDISPLAY, b.as_str());
+            n += 1;
+        }
+    }
     if n == 0 {
         return Ok(Value::Void); // CLIPS lists nothing, not even the total
-    }
-    for f in 0..cx.st.pools.nfuncs {
-        let name = cx.funcs[f as usize].name;
-        if name == NONE {
-            continue;
-        }
-        let mut b: TextBuf<128> = TextBuf::new();
-        let _ = writeln!(b, "{}", cx.sym_text(name));
-        cx.write(router::WDISPLAY, b.as_str());
     }
     let mut b: TextBuf<64> = TextBuf::new();
     let _ = writeln!(
@@ -757,8 +780,9 @@ fn get_fact_dup(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
     Ok(Core::bool_value(cx.st.mode.fact_duplication))
 }
 
-/// Which modules a `list-def*` command lists: one (the current, or the one named),
-/// or all (`*`, each under a `NAME:` line, names indented by 3).
+/// Which modules a `list-def*` command (or `agenda`) lists: one (the current, or the
+/// one named), or all (`*`, each under a `NAME:` line, empty ones too, names indented
+/// by 3).
 #[derive(Clone, Copy)]
 pub(super) struct ModuleView {
     all: bool,
@@ -766,11 +790,8 @@ pub(super) struct ModuleView {
 }
 
 impl ModuleView {
-    /// The modules to list, each with whether its heading is still to print.
-    pub(super) fn modules(
-        self,
-        cx: &Core<'_>,
-    ) -> impl Iterator<Item = (crate::module::ModId, bool)> {
+    /// The modules to list, in definition order.
+    pub(super) fn modules(self, cx: &Core<'_>) -> impl Iterator<Item = crate::module::ModId> {
         #[cfg(feature = "modules")]
         let n = cx.st.modules.nmodules as crate::module::ModId;
         #[cfg(not(feature = "modules"))]
@@ -778,9 +799,7 @@ impl ModuleView {
             let _ = cx;
             1
         };
-        (0..n)
-            .filter(move |&m| self.all || m == self.one)
-            .map(move |m| (m, self.all))
+        (0..n).filter(move |&m| self.all || m == self.one)
     }
 
     pub(super) fn indent(self) -> &'static str {
@@ -791,19 +810,13 @@ impl ModuleView {
         }
     }
 
-    /// Prints module `m`'s heading before its first name (`head` is cleared by the
-    /// caller's loop restarting per module).
-    pub(super) fn head(self, cx: &mut Core<'_>, head: bool, m: crate::module::ModId) {
-        if !head {
+    /// Prints module `m`'s heading (listing all modules only).
+    pub(super) fn head(self, cx: &mut Core<'_>, m: crate::module::ModId) {
+        if !self.all {
             return;
         }
         #[cfg(feature = "modules")]
         {
-            // once per module: the first name of each prints it
-            if cx.st.modules.listing_head == Some(m) {
-                return;
-            }
-            cx.st.modules.listing_head = Some(m);
             let mut b: TextBuf<128> = TextBuf::new();
             let _ = writeln!(b, "{}:", cx.module_name(m));
             cx.write(router::WDISPLAY, b.as_str());
@@ -813,8 +826,8 @@ impl ModuleView {
     }
 }
 
-/// The module argument of a `list-def*` command (`*` for all), or its message
-/// printed (None).
+/// The module argument of a `list-def*` command (`*` for all), or CLIPS's
+/// `[ARGACCES5]` printed for a name no module has (None).
 pub(super) fn module_view(
     cx: &mut Core<'_>,
     a: Args,
@@ -822,7 +835,6 @@ pub(super) fn module_view(
 ) -> Result<Option<ModuleView>, EvalError> {
     #[cfg(feature = "modules")]
     {
-        cx.st.modules.listing_head = None;
         let current = cx.current_module();
         if a.len == 0 {
             return Ok(Some(ModuleView {
@@ -840,7 +852,7 @@ pub(super) fn module_view(
         match cx.find_module(cx.sym_text(s)) {
             Some(m) => Ok(Some(ModuleView { all: false, one: m })),
             None => {
-                unable(cx, Unable::Find, "defmodule", s);
+                cx.write_error_message(EvalError::wrong_type(func, 1, "defmodule name"));
                 Ok(None)
             }
         }

@@ -176,9 +176,75 @@ fn get_fact_list(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     Ok(cx.multi_finish(start))
 }
 
-fn list_deffacts(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
-    list_names(cx, Kind::Deffacts, "deffacts", "");
+/// `(list-deffacts [MODULE | *])`: the deffacts of the current module, of the one
+/// named, or of every module under its heading (`initial-fact` is MAIN's).
+fn list_deffacts(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let Some(view) = super::commands::module_view(cx, a, "list-deffacts")? else {
+        return Ok(Value::Void);
+    };
+    let mut n = 0;
+    for m in view.modules(cx) {
+        view.head(cx, m);
+        let mut i = 0;
+        while let Some(name) = name_at(cx, Kind::Deffacts, i) {
+            let d = deffacts_at(cx, i);
+            i += 1;
+            let Some(s) = name else { continue };
+            let owner = d.map_or(crate::module::MAIN, |d| deffacts_module(cx, d));
+            if owner != m {
+                continue;
+            }
+            let mut b: TextBuf<160> = TextBuf::new();
+            let _ = writeln!(b, "{}{}", view.indent(), cx.sym_text(s));
+            cx.write(router::WDISPLAY, b.as_str());
+            n += 1;
+        }
+    }
+    if n > 0 {
+        let mut b: TextBuf<64> = TextBuf::new();
+        let _ = writeln!(b, "For a total of {n} deffacts.");
+        cx.write(router::WDISPLAY, b.as_str());
+    }
     Ok(Value::Void)
+}
+
+/// The deffacts entry name number `i` of `Kind::Deffacts` is (None: `initial-fact`).
+fn deffacts_at(cx: &Core<'_>, i: Ix) -> Option<Ix> {
+    let i = i + Ix::from(!cx.st.mode.initial_deffacts);
+    (i > 0).then(|| i - 1)
+}
+
+/// The deffacts `name` names: `MOD::name`, or one the current module sees (its own,
+/// or one of a module it imports from, as CLIPS finds them).
+fn find_deffacts(cx: &mut Core<'_>, name: SymId) -> Option<Ix> {
+    #[cfg(feature = "modules")]
+    {
+        let (from, bare, qualified) = match cx.resolve_qualified(name) {
+            Some((m, bare)) => (m, bare, true),
+            None => (cx.current_module(), name, false),
+        };
+        (0..cx.st.pools.ndeffacts).find(|&d| {
+            let owner = cx.module_of_deffacts(d);
+            cx.deffacts[d as usize].name == bare
+                && if qualified {
+                    owner == from
+                } else {
+                    cx.visible_in(crate::module::class::ALL, owner, bare, from)
+                }
+        })
+    }
+    #[cfg(not(feature = "modules"))]
+    (0..cx.st.pools.ndeffacts).find(|&d| cx.deffacts[d as usize].name == name)
+}
+
+fn deffacts_module(cx: &Core<'_>, d: Ix) -> crate::module::ModId {
+    #[cfg(feature = "modules")]
+    return cx.module_of_deffacts(d);
+    #[cfg(not(feature = "modules"))]
+    {
+        let _ = (cx, d);
+        crate::module::MAIN
+    }
 }
 
 fn list_defglobals(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
@@ -283,7 +349,7 @@ fn ppdeffacts(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     if cx.sym_text(name) == "initial-fact" && cx.st.mode.initial_deffacts {
         return Ok(Value::Void);
     }
-    match (0..cx.st.pools.ndeffacts).find(|&d| cx.deffacts[d as usize].name == name) {
+    match find_deffacts(cx, name) {
         Some(d) => {
             let text = cx.deffacts[d as usize].text;
             let mut module: TextBuf<64> = TextBuf::new();
@@ -306,11 +372,17 @@ fn undeffacts(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
             cx.st.mode.initial_deffacts = false;
         }
         "initial-fact" if cx.st.mode.initial_deffacts => cx.st.mode.initial_deffacts = false,
-        _ => match (0..cx.st.pools.ndeffacts).find(|&d| cx.deffacts[d as usize].name == name) {
+        _ => match find_deffacts(cx, name) {
             Some(d) => {
                 // the later ones move up: `reset` asserts in definition order
                 let n = cx.st.pools.ndeffacts as usize;
                 cx.deffacts.copy_within(d as usize + 1..n, d as usize);
+                // their modules move with them
+                #[cfg(feature = "modules")]
+                if n <= cx.deffacts_module.len() {
+                    cx.deffacts_module
+                        .copy_within(d as usize + 1..n, d as usize);
+                }
                 cx.st.pools.ndeffacts -= 1;
             }
             None => super::commands::unable(cx, Unable::Find, "deffacts", name),
