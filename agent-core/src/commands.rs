@@ -388,6 +388,11 @@ impl Core<'_> {
         }
         #[cfg(feature = "logical")]
         self.logical_clear();
+        #[cfg(feature = "extras")]
+        {
+            self.func_text.fill(crate::template::NO_PP_TEXT);
+            self.global_text.fill(crate::template::NO_PP_TEXT);
+        }
         #[cfg(feature = "modules")]
         {
             self.focus.fill(crate::module::NO_TAG);

@@ -123,11 +123,15 @@ macro_rules! __pool_table {
                 funcs: $crate::template::Deffunction = $crate::template::Deffunction::EMPTY,
                 // modules: the module each deffunction belongs to
                 func_module: $crate::module::ModTag = $crate::module::NO_TAG,
+                // extras: each deffunction's source text, for ppdeffunction
+                func_text: $crate::template::PpText = $crate::template::NO_PP_TEXT,
             ],
             Globals globals "globals" 128 16 [
                 globals: $crate::template::Global = $crate::template::Global::EMPTY,
                 // modules: the module each defglobal belongs to
                 global_module: $crate::module::ModTag = $crate::module::NO_TAG,
+                // extras: each defglobal's source text from its name, for ppdefglobal
+                global_text: $crate::template::PpText = $crate::template::NO_PP_TEXT,
             ],
             Exprs exprs "expression nodes" 32768 2048 [
                 exprs: $crate::expr::Expr = $crate::expr::Expr::EMPTY,

@@ -516,6 +516,28 @@ impl crate::engine::Core<'_> {
         }
     }
 
+    /// The name of the module of deffunction `f`.
+    pub fn function_module_name(&self, f: crate::value::Ix) -> &str {
+        #[cfg(feature = "modules")]
+        return self.module_name(self.module_of_function(f));
+        #[cfg(not(feature = "modules"))]
+        {
+            let _ = f;
+            "MAIN"
+        }
+    }
+
+    /// The name of the module of defglobal `g`.
+    pub fn global_module_name(&self, g: crate::value::Ix) -> &str {
+        #[cfg(feature = "modules")]
+        return self.module_name(self.module_of_global(g));
+        #[cfg(not(feature = "modules"))]
+        {
+            let _ = g;
+            "MAIN"
+        }
+    }
+
     /// The name of the module of deffacts `d`.
     pub fn deffacts_module_name(&self, d: crate::value::Ix) -> &str {
         #[cfg(feature = "modules")]

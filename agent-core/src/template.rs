@@ -171,6 +171,19 @@ impl Global {
     };
 }
 
+/// The source text (a symbol) of a deffunction or defglobal, kept for `ppdeffunction`
+/// and `ppdefglobal` in side arrays by construct index: only with `extras`, where those
+/// commands are; without it the entries are zero-sized (the agent image).
+#[cfg(feature = "extras")]
+pub type PpText = Ix;
+#[cfg(not(feature = "extras"))]
+pub type PpText = ();
+/// No text kept (a compiled rule base's constructs, pretty-print forms off).
+#[cfg(feature = "extras")]
+pub const NO_PP_TEXT: PpText = crate::value::NONE;
+#[cfg(not(feature = "extras"))]
+pub const NO_PP_TEXT: PpText = ();
+
 /// A `deffunction`.
 #[derive(Clone, Copy, Debug)]
 pub struct Deffunction {
@@ -193,4 +206,45 @@ impl Deffunction {
         nlocals: 0,
         body: NONE,
     };
+}
+
+/// Without `extras` no source text is kept (`ppdeffunction` and `ppdefglobal`, which
+/// read it, are not in the builtin table then).
+#[cfg(not(feature = "extras"))]
+impl crate::engine::Core<'_> {
+    pub fn function_text(&self, _f: Ix) -> Ix {
+        NONE
+    }
+
+    pub fn global_text(&self, _g: Ix) -> Ix {
+        NONE
+    }
+}
+
+/// The kept source texts of deffunctions and defglobals (`PpText`).
+#[cfg(feature = "extras")]
+impl crate::engine::Core<'_> {
+    /// Deffunction `f`'s source text (NONE when not kept).
+    pub fn function_text(&self, f: Ix) -> Ix {
+        self.func_text.get(f as usize).copied().unwrap_or(NONE)
+    }
+
+    /// Records deffunction `f`'s source text (dropped past the side array's end).
+    pub fn set_function_text(&mut self, f: Ix, text: Ix) {
+        if let Some(e) = self.func_text.get_mut(f as usize) {
+            *e = text;
+        }
+    }
+
+    /// Defglobal `g`'s source text from its `?*name*` (NONE when not kept).
+    pub fn global_text(&self, g: Ix) -> Ix {
+        self.global_text.get(g as usize).copied().unwrap_or(NONE)
+    }
+
+    /// Records defglobal `g`'s source text (dropped past the side array's end).
+    pub fn set_global_text(&mut self, g: Ix, text: Ix) {
+        if let Some(e) = self.global_text.get_mut(g as usize) {
+            *e = text;
+        }
+    }
 }

@@ -382,6 +382,7 @@ differential_programs! {
     p254_batch_get_char_echo => "254-batch-get-char-echo",
     p255_static_default_evaluated => "255-static-default-evaluated",
     p256_ordered_modify_and_unknown_inputs => "256-ordered-modify-and-unknown-inputs",
+    p257_ppdeffunction_ppdefglobal => "257-ppdeffunction-ppdefglobal",
     p258_fact_duplication => "258-fact-duplication",
     p260_modules_focus => "260-modules-focus",
     p261_modules_not_exists_salience => "261-modules-not-exists-salience",

@@ -34,6 +34,8 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("undeffacts", 1, 1, undeffacts),
     Builtin::eager("ppdeftemplate", 1, 1, ppdeftemplate).args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any),
     Builtin::eager("ppdeffacts", 1, 1, ppdeffacts).args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any),
+    Builtin::eager("ppdeffunction", 1, 1, ppdeffunction).args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any),
+    Builtin::eager("ppdefglobal", 1, 1, ppdefglobal).args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any),
     Builtin::eager("undeftemplate", 1, 1, undeftemplate),
     Builtin::eager("undeffunction", 1, 1, undeffunction),
     Builtin::eager("undefglobal", 1, 1, undefglobal),
@@ -287,15 +289,16 @@ fn show_defglobals(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 }
 
 /// `(undeffacts name)` or `(undeffacts *)`: the deffacts goes; facts it asserted stay.
-/// The symbol argument of a `ppdef*` command, or ARGACCES5 as CLIPS words it.
-fn pp_name(cx: &mut Core<'_>, a: Args, func: &str) -> Result<SymId, EvalError> {
+/// The symbol argument of a `ppdef*` command, or ARGACCES5 as CLIPS words it when the
+/// value is known only at run time (a literal is checked while parsing: "symbol").
+fn pp_name(cx: &mut Core<'_>, a: Args, func: &str, kind: &str) -> Result<SymId, EvalError> {
     match cx.arg(a, 0) {
         Value::Sym(s) => Ok(s),
         _ => {
             let mut b: TextBuf<120> = TextBuf::new();
             let _ = writeln!(
                 b,
-                "[ARGACCES5] Function {func} expected argument #1 to be of type symbol"
+                "[ARGACCES5] Function {func} expected argument #1 to be of type {kind} name"
             );
             cx.write(router::WERROR, b.as_str());
             Err(EvalError::already_reported())
@@ -322,7 +325,7 @@ fn write_pp(
 /// `(ppdeftemplate name)`: the deftemplate as CLIPS pretty-prints it; nothing for an
 /// ordered fact's implied template or `initial-fact`.
 fn ppdeftemplate(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    let name = pp_name(cx, a, "ppdeftemplate")?;
+    let name = pp_name(cx, a, "ppdeftemplate", "deftemplate")?;
     match cx.find_template(name) {
         Some(t) => {
             let text = cx.templates[t as usize].text;
@@ -345,7 +348,7 @@ fn ppdeftemplate(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 
 /// `(ppdeffacts name)`: the deffacts as CLIPS pretty-prints it.
 fn ppdeffacts(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    let name = pp_name(cx, a, "ppdeffacts")?;
+    let name = pp_name(cx, a, "ppdeffacts", "deffacts")?;
     if cx.sym_text(name) == "initial-fact" && cx.st.mode.initial_deffacts {
         return Ok(Value::Void);
     }
@@ -362,6 +365,78 @@ fn ppdeffacts(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         None => super::commands::unable(cx, Unable::Find, "deffacts", name),
     }
     Ok(Value::Void)
+}
+
+/// `(ppdeffunction name)`: the deffunction as CLIPS pretty-prints it.
+fn ppdeffunction(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let name = pp_name(cx, a, "ppdeffunction", "deffunction")?;
+    match find_pp_construct(cx, name, PpKind::Function) {
+        Some(f) => {
+            let text = cx.function_text(f);
+            let mut module: TextBuf<64> = TextBuf::new();
+            let _ = module.write_str(cx.function_module_name(f));
+            write_pp(cx, text, |src, w| {
+                super::pretty::write_deffunction(src, module.as_str(), w)
+            });
+        }
+        None => super::commands::unable(cx, Unable::Find, "deffunction", name),
+    }
+    Ok(Value::Void)
+}
+
+/// `(ppdefglobal name)` (without `?*`..`*`): the variable as CLIPS pretty-prints it,
+/// `(defglobal MODULE ?*name* = value)`.
+fn ppdefglobal(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let name = pp_name(cx, a, "ppdefglobal", "defglobal")?;
+    match find_pp_construct(cx, name, PpKind::Global) {
+        Some(g) => {
+            let text = cx.global_text(g);
+            let mut module: TextBuf<64> = TextBuf::new();
+            let _ = module.write_str(cx.global_module_name(g));
+            write_pp(cx, text, |src, w| {
+                super::pretty::write_defglobal(src, module.as_str(), w)
+            });
+        }
+        None => super::commands::unable(cx, Unable::Find, "defglobal", name),
+    }
+    Ok(Value::Void)
+}
+
+#[derive(Clone, Copy, PartialEq)]
+enum PpKind {
+    Function,
+    Global,
+}
+
+/// The deffunction or defglobal `name` names: `MODULE::x` is module MODULE's own `x`
+/// (exported or not, as in CLIPS); a plain `x` is the one the current module sees.
+fn find_pp_construct(cx: &mut Core<'_>, name: SymId, kind: PpKind) -> Option<Ix> {
+    let (count, class) = match kind {
+        PpKind::Function => (cx.st.pools.nfuncs, crate::module::class::FUNCTION),
+        PpKind::Global => (cx.st.pools.nglobals, crate::module::class::GLOBAL),
+    };
+    let name_of = |cx: &Core<'_>, i: Ix| match kind {
+        PpKind::Function => cx.funcs[i as usize].name,
+        PpKind::Global => cx.globals[i as usize].name,
+    };
+    #[cfg(feature = "modules")]
+    {
+        let module_of = |cx: &Core<'_>, i: Ix| match kind {
+            PpKind::Function => cx.module_of_function(i),
+            PpKind::Global => cx.module_of_global(i),
+        };
+        if let Some((m, bare)) = cx.resolve_qualified(name) {
+            return (0..count).find(|&i| name_of(cx, i) == bare && module_of(cx, i) == m);
+        }
+        let from = cx.current_module();
+        (0..count)
+            .find(|&i| name_of(cx, i) == name && cx.visible_in(class, module_of(cx, i), name, from))
+    }
+    #[cfg(not(feature = "modules"))]
+    {
+        let _ = class;
+        (0..count).find(|&i| name_of(cx, i) == name)
+    }
 }
 
 fn undeffacts(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {

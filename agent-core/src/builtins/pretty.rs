@@ -213,11 +213,18 @@ fn action(c: &mut Cursor<'_>, w: &mut dyn Write, col: usize) -> fmt::Result {
                 write_token(c, w, v)?;
                 w.write_char(' ')?;
             }
+            // a `(?var ...)` range or list spec is followed by a space; an expression
+            // is not
+            let spec = kw != "while"
+                && c.peek(0).tok == Tok::LParen
+                && matches!(c.peek(1).tok, Tok::SfVar(_));
             flat(c, w)?;
-            if kw != "while" {
+            if spec {
                 w.write_char(' ')?;
             }
-            if is_sym(c.peek(0), "do") {
+            // `while` and `loop-for-count` keep `do` on their line; `progn$` and
+            // `foreach` print it as the first line of their body
+            if is_sym(c.peek(0), "do") && matches!(kw, "while" | "loop-for-count") {
                 c.next();
                 w.write_str(" do")?;
             }
@@ -314,6 +321,30 @@ pub fn write_defrule_upto(src: &str, module: &str, w: &mut dyn Write) -> fmt::Re
         c.next();
     }
     action_lines(&mut c, w, 3, &[])
+}
+
+/// Writes the pretty-printed form of the deffunction whose source is `src`
+/// (`ppdeffunction`).
+pub fn write_deffunction(src: &str, module: &str, w: &mut dyn Write) -> fmt::Result {
+    write_deffunction_upto(src, module, w)?;
+    w.write_char(')')
+}
+
+/// Writes the pretty-printed form of one defglobal variable (`ppdefglobal`) whose
+/// source `src` starts at its `?*name*`: `(defglobal MODULE ?*name* = value)`, the
+/// value expression on one line.
+pub fn write_defglobal(src: &str, module: &str, w: &mut dyn Write) -> fmt::Result {
+    let mut c = Cursor::new(src);
+    let name = c.next();
+    write!(w, "(defglobal {module} {} =", c.text(name))?;
+    if is_sym(c.peek(0), "=") {
+        c.next();
+    }
+    if !matches!(c.peek(0).tok, Tok::Eof | Tok::Bad | Tok::RParen) {
+        w.write_char(' ')?;
+        flat(&mut c, w)?;
+    }
+    w.write_char(')')
 }
 
 /// What CLIPS shows after `ERROR:` for a deffunction it stopped reading where `src`
@@ -457,6 +488,41 @@ mod tests {
         assert_eq!(
             pp("(defrule r ?f <- (a  ?x&~3|4  $?rest) (c ?y&:(> ?y 1)&~5) => (printout t 2.50 crlf))"),
             "(defrule MAIN::r\n   ?f <- (a ?x&~3|4 $?rest)\n   (c ?y&:(> ?y 1)&~5)\n   =>\n   (printout t 2.5 crlf))"
+        );
+    }
+
+    /// Transcribed from CLIPS 6.30's `ppdeffunction` and `ppdefglobal`.
+    #[test]
+    fn deffunctions_and_defglobals_as_clips_prints_them() {
+        let mut s = String::new();
+        write_deffunction(
+            "(deffunction g \"c\" (?x $?r) (bind ?y   2.50) ; note\n ?y)",
+            "MAIN",
+            &mut s,
+        )
+        .unwrap();
+        assert_eq!(
+            s,
+            "(deffunction MAIN::g \"c\"\n   (?x $?r)\n   (bind ?y 2.5)\n   ?y)"
+        );
+        s.clear();
+        write_deffunction("(deffunction A::h ())", "B", &mut s).unwrap();
+        assert_eq!(s, "(deffunction A::h\n   ())");
+        s.clear();
+        write_defglobal("?*y* =\n (+ 1   (* 2 3)) ?*z* = 4", "A", &mut s).unwrap();
+        assert_eq!(s, "(defglobal A ?*y* = (+ 1 (* 2 3)))");
+        s.clear();
+        write_defglobal("?*x* = 1.50", "MAIN", &mut s).unwrap();
+        assert_eq!(s, "(defglobal MAIN ?*x* = 1.5)");
+    }
+
+    /// `do` and list specs in the loops, as CLIPS 6.30 prints them.
+    #[test]
+    fn loops_print_do_and_specs_as_clips() {
+        let src = "(defrule r => (foreach ?v (create$ a b) do (printout t ?v)) (progn$ (?v ?l) do (x)) (progn$ ?l (x)) (loop-for-count 3 do (x)) (loop-for-count (?i 1 3) do (x)) (loop-for-count (+ 1 2) (x)))";
+        assert_eq!(
+            pp(src),
+            "(defrule MAIN::r\n   =>\n   (foreach ?v (create$ a b)\n      do\n      (printout t ?v))\n   (progn$ (?v ?l) \n      do\n      (x))\n   (progn$ ?l\n      (x))\n   (loop-for-count 3 do\n      (x))\n   (loop-for-count (?i 1 3)  do\n      (x))\n   (loop-for-count (+ 1 2)\n      (x)))"
         );
     }
 

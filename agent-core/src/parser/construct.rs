@@ -247,7 +247,7 @@ impl<'s> Parser<'s, '_, '_> {
         Ok(())
     }
 
-    pub(super) fn deffunction(&mut self) -> PResult<()> {
+    pub(super) fn deffunction(&mut self, start: usize) -> PResult<()> {
         let nt = self.next();
         let name = match nt.tok {
             Tok::Symbol(s) => self.construct_name(nt, s)?,
@@ -348,6 +348,13 @@ impl<'s> Parser<'s, '_, '_> {
             nlocals,
             body: self.cx.exprs[body as usize].first,
         };
+        #[cfg(feature = "extras")]
+        {
+            let text = self.pp_text(start);
+            self.cx.set_function_text(f, text);
+        }
+        #[cfg(not(feature = "extras"))]
+        let _ = start;
         Ok(())
     }
 
@@ -407,6 +414,11 @@ impl<'s> Parser<'s, '_, '_> {
                     };
                     if let Err(c) = self.cx.set_global(g as Ix, v) {
                         return Err(self.cap_err(t, c));
+                    }
+                    #[cfg(feature = "extras")]
+                    {
+                        let text = self.pp_text(t.start);
+                        self.cx.set_global_text(g as Ix, text);
                     }
                     // defined: a later error in the construct keeps it (as CLIPS does;
                     // a redefined global must not keep an init that is rolled back)

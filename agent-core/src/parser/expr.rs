@@ -506,28 +506,31 @@ impl<'s> Parser<'s, '_, '_> {
         let node = self.builtin_call("loop-for-count")?;
         let t = self.peek();
         let (var, start, end);
-        if t.tok == Tok::LParen {
+        let range = t.tok == Tok::LParen && {
             self.next();
+            matches!(self.peek().tok, Tok::SfVar(_))
+        };
+        if range {
             let vt = self.next();
-            match vt.tok {
-                Tok::SfVar(name) => {
-                    let s = self.new_local(vt, name, false)?;
-                    var = cap!(self, self.cx.push_expr(Expr::new(Op::Local, 0, s)))?;
-                    let a = self.parse_expr()?;
-                    if self.peek().tok == Tok::RParen {
-                        start = cap!(self, self.cx.push_const(Value::Int(1)))?;
-                        end = a;
-                    } else {
-                        start = a;
-                        end = self.parse_expr()?;
-                    }
-                }
-                _ => {
-                    // (loop-for-count (expr) ...) is not CLIPS syntax; report
-                    return Err(self.err(vt, "a loop variable"));
-                }
+            let Tok::SfVar(name) = vt.tok else {
+                return Err(self.err(vt, "a loop variable"));
+            };
+            let s = self.new_local(vt, name, false)?;
+            var = cap!(self, self.cx.push_expr(Expr::new(Op::Local, 0, s)))?;
+            let a = self.parse_expr()?;
+            if self.peek().tok == Tok::RParen {
+                start = cap!(self, self.cx.push_const(Value::Int(1)))?;
+                end = a;
+            } else {
+                start = a;
+                end = self.parse_expr()?;
             }
             self.expect_rparen("')' after the loop range")?;
+        } else if t.tok == Tok::LParen {
+            // `(loop-for-count (+ 1 2) ...)`: the count is a call (its `(` read above)
+            var = cap!(self, self.cx.push_expr(Expr::new(Op::Nop, 0, 0)))?;
+            start = cap!(self, self.cx.push_const(Value::Int(1)))?;
+            end = self.call()?;
         } else {
             var = cap!(self, self.cx.push_expr(Expr::new(Op::Nop, 0, 0)))?;
             start = cap!(self, self.cx.push_const(Value::Int(1)))?;
@@ -545,12 +548,37 @@ impl<'s> Parser<'s, '_, '_> {
     }
 
     /// `(progn$ (?v list) body)` or `(foreach ?v list body)`; `?v-index` is the next
-    /// frame slot.
+    /// frame slot. `(progn$ list body)` has no variable: the fields go to two frame
+    /// slots no name reaches.
     fn parse_foreach(&mut self, name: &'static str) -> PResult<Ix> {
         let node = self.builtin_call(name)?;
         let paren = self.peek().tok == Tok::LParen;
         if paren {
             self.next();
+        }
+        let named = matches!(self.peek().tok, Tok::SfVar(_)) && (paren || name == "foreach");
+        if name == "progn$" && !named {
+            let at = self.peek();
+            // the call whose `(` was read above, or any expression
+            let list = if paren {
+                self.call()?
+            } else {
+                self.parse_expr()?
+            };
+            let slot = self.nlocals;
+            if slot >= 254 {
+                return Err(self.err(at, "at most 255 local variables in one construct"));
+            }
+            self.nlocals += 2;
+            let var = cap!(self, self.cx.push_expr(Expr::new(Op::Local, 0, slot)))?;
+            self.cx.append_child(node, var);
+            self.cx.append_child(node, list);
+            if self.peek().tok == Tok::Symbol("do") {
+                self.next();
+            }
+            let body = self.action_block()?;
+            self.cx.append_child(node, body);
+            return Ok(node);
         }
         let vt = self.next();
         let vname = match vt.tok {

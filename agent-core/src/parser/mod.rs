@@ -534,7 +534,7 @@ impl<'s, 'e> Parser<'s, '_, 'e> {
             "deftemplate" => self.deftemplate(start),
             "defrule" => self.defrule(start),
             "deffacts" => self.deffacts(start),
-            "deffunction" => self.deffunction(),
+            "deffunction" => self.deffunction(start),
             "defglobal" => self.defglobal(),
             #[cfg(feature = "modules")]
             _ => self.defmodule(start),
