@@ -245,16 +245,9 @@ impl Core<'_> {
         // in CLIPS's order: each module's agenda is its activations in that order); a
         // module with none leaves the focus stack
         #[cfg(feature = "modules")]
-        let a = loop {
-            let m = self.focus_top()?;
-            let mut a = self.st.agenda.agenda_head;
-            while a != NONE && !self.activation_in(a, m) {
-                a = self.acts[a as usize].next;
-            }
-            if a != NONE {
-                break a;
-            }
-            self.pop_focus();
+        let a = match self.single_module_head() {
+            Some(a) => a,
+            None => self.focused_head()?,
         };
         #[cfg(not(feature = "modules"))]
         let a = self.st.agenda.agenda_head;
@@ -265,6 +258,35 @@ impl Core<'_> {
         self.agenda_unlink(a);
         self.free_activation(a);
         Some((x.rule, x.token))
+    }
+
+    /// The agenda's head when MAIN is the only module and focused: every activation is
+    /// MAIN's then, so the general walk (`focused_head`) would stop at the head. None
+    /// sends the caller to that walk (an empty agenda pops the focus there).
+    #[cfg(feature = "modules")]
+    #[inline(always)]
+    fn single_module_head(&self) -> Option<Ix> {
+        let m = &self.st.modules;
+        let a = self.st.agenda.agenda_head;
+        (m.nmodules == 1 && m.depth != 0 && a != NONE).then_some(a)
+    }
+
+    /// The first activation of the focused module's agenda, popping modules with none
+    /// off the focus stack; None when the stack runs empty.
+    #[cfg(feature = "modules")]
+    #[inline(never)]
+    fn focused_head(&mut self) -> Option<Ix> {
+        loop {
+            let m = self.focus_top()?;
+            let mut a = self.st.agenda.agenda_head;
+            while a != NONE && !self.activation_in(a, m) {
+                a = self.acts[a as usize].next;
+            }
+            if a != NONE {
+                return Some(a);
+            }
+            self.pop_focus();
+        }
     }
 
     /// `refresh-agenda`: global-based saliences are evaluated again (CLIPS's

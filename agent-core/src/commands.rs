@@ -623,17 +623,23 @@ impl Core<'_> {
             self.st.mode.firing = true;
             self.st.net.pm_rhs = true;
             self.st.agenda.current_rule = rule;
-            // the rule's actions run in its module
+            // the rule's actions run in its module (with MAIN alone, current already)
             #[cfg(feature = "modules")]
-            self.set_current_module(self.rule_tag(rule).module);
+            if self.st.modules.nmodules > 1 {
+                self.set_current_module(self.rule_tag(rule).module);
+            }
             // a halt ends the run, so one left here came from before it (a top-level
             // command's propagation): the rule's actions run as usual
             self.st.mode.halting = false;
             self.st.frame.bp = self.st.frame.sp;
             let nlocals = self.rules[rule as usize].nlocals;
-            let mut r = match self.push_voids(usize::from(nlocals)) {
-                Ok(()) => Ok(Value::Void),
-                Err(e) => Err(e.into()),
+            // (most rules bind no locals: no room check for them)
+            let mut r = match nlocals {
+                0 => Ok(Value::Void),
+                n => match self.push_voids(usize::from(n)) {
+                    Ok(()) => Ok(Value::Void),
+                    Err(e) => Err(e.into()),
+                },
             };
             // the logical support its asserts get (`logical`; nothing to set or keep
             // for a rule without a logical CE fired outside any logical firing)

@@ -109,6 +109,10 @@ pub struct LogicalState {
     /// they support keep only their other supports, or none (unconditional), and
     /// stay, as in CLIPS.
     pub detach: bool,
+    /// A rule with a `logical` CE was defined in this engine (never reset): until
+    /// then there is no support, no logical firing, nothing to retract, and the checks
+    /// on the hot paths (`logical_in_use`, `logical_idle_for`) read this flag alone.
+    pub defined: bool,
 }
 
 #[cfg(feature = "logical")]
@@ -124,6 +128,7 @@ impl LogicalState {
             gone: false,
             forcing: false,
             detach: false,
+            defined: false,
         }
     }
 }
@@ -149,14 +154,16 @@ pub struct LogicalFrame {
 impl Core<'_> {
     /// Whether truth maintenance has anything to do (a support, a fact to retract, or
     /// a logical rule firing): deferred propagation and whole-memory removal, which
-    /// reorder removals, stay off then. Two loads on the hot paths of matching, so a
-    /// program without `logical` pays (almost) nothing: the facts to retract are
-    /// entries of the unsupported stack, which count in `live` until retracted.
+    /// reorder removals, stay off then. On the hot paths of matching: one load for a
+    /// program without `logical` (`defined`), two more for one with it; the facts to
+    /// retract are entries of the unsupported stack, which count in `live` until
+    /// retracted.
     #[inline(always)]
     pub(crate) fn logical_in_use(&self) -> bool {
         let l = &self.st.logical;
         debug_assert!(l.unsupported == NONE || l.live != 0);
-        l.live != 0 || l.bind != TokenId::NONE
+        debug_assert!(l.defined || (l.live == 0 && l.bind == TokenId::NONE));
+        l.defined && (l.live != 0 || l.bind != TokenId::NONE)
     }
 
     /// The successor of rule `rule`'s logical join on its path (NONE: no logical CE).
@@ -170,6 +177,9 @@ impl Core<'_> {
     /// Records the successor of rule `rule`'s logical join; false if the rule is beyond
     /// the table.
     pub(crate) fn set_rule_logical_join(&mut self, rule: Ix, join: JoinId) -> bool {
+        if join != JoinId::NONE {
+            self.st.logical.defined = true;
+        }
         match self.rule_logical.get_mut(rule as usize) {
             Some(e) => {
                 *e = join;
@@ -185,6 +195,9 @@ impl Core<'_> {
     #[inline(always)]
     pub(crate) fn logical_idle_for(&self, rule: Ix) -> bool {
         let l = &self.st.logical;
+        if !l.defined {
+            return true;
+        }
         l.bind == TokenId::NONE
             && !l.gone
             && l.bind_succ == JoinId::NONE

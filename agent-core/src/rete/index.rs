@@ -66,6 +66,20 @@ fn mix(h: u32, x: u32) -> u32 {
 #[cfg(feature = "grow")]
 const TAG: u32 = 0x7FFF_FFFF;
 
+/// Significant bits of a tag (`alpha_tag`, `beta_tag`).
+#[cfg(feature = "grow")]
+const TAG_BITS: u32 = 31;
+#[cfg(not(feature = "grow"))]
+const TAG_BITS: u32 = 32;
+
+/// Tag `tag` mapped onto `0..n` by its high bits (a multiply and a shift, where `%`
+/// would divide: the table's length need not be a power of two, and with `grow` the
+/// bucket is found again from the tag at every removal). `n` of 0 gives 0.
+#[inline(always)]
+fn reduce(tag: u32, n: usize) -> usize {
+    ((u64::from(tag) * n as u64) >> TAG_BITS) as usize
+}
+
 /// The hash an alpha match's bucket is taken from.
 #[inline(always)]
 fn alpha_tag(alpha: Ix, key: u32) -> u32 {
@@ -103,13 +117,13 @@ impl Core<'_> {
     /// chain holds one kind of token (they link through different fields).
     fn bucket(&self, alpha: Ix, key: u32) -> Ix {
         let half = (self.amem_buckets.len() / 2).max(1);
-        (alpha_tag(alpha, key) as usize % half) as Ix
+        reduce(alpha_tag(alpha, key), half) as Ix
     }
 
     /// With feature `grow`: the bucket of an alpha match's stored tag (`index_insert`).
     #[cfg(feature = "grow")]
     pub(crate) fn alpha_bucket_of(&self, tag: u32) -> usize {
-        tag as usize % (self.amem_buckets.len() / 2).max(1)
+        reduce(tag, (self.amem_buckets.len() / 2).max(1))
     }
 
     /// With feature `grow`: the bucket of a partial match's stored tag
@@ -118,7 +132,7 @@ impl Core<'_> {
     pub(crate) fn beta_bucket_of(&self, tag: u32) -> usize {
         let n = self.amem_buckets.len();
         let half = n / 2;
-        half + tag as usize % (n - half).max(1)
+        half + reduce(tag, (n - half).max(1))
     }
 
     /// The key of an alpha match of `alpha` (a node with a right hash): its
@@ -505,7 +519,7 @@ impl Core<'_> {
     fn beta_bucket(&self, join: JoinId, key: u32) -> Ix {
         let n = self.amem_buckets.len();
         let half = n / 2;
-        (half + beta_tag(join, key) as usize % (n - half).max(1)) as Ix
+        (half + reduce(beta_tag(join, key), (n - half).max(1))) as Ix
     }
 
     /// Makes `child` the join whose tests key `parent`'s memory, if the memory is
@@ -742,8 +756,8 @@ impl Core<'_> {
 impl Core<'_> {
     /// Links every token of the old table `old` (bucket heads, alpha buckets in the
     /// first half) into the table `amem_buckets` is now (every head `NONE`), each by
-    /// the tag it keeps. A new table twice the old one's length (or a power of two
-    /// times) splits each old chain in order, so tokens of one key keep their order.
+    /// the tag it keeps. Tokens of one key share a tag, so one old chain holds them and
+    /// one new chain gets them, in the old chain's order: they keep their order.
     pub(crate) fn relink_token_index(&mut self, old: &[TokenId]) {
         let old_half = (old.len() / 2).max(1);
         for &head in &old[..old_half.min(old.len())] {
