@@ -33,8 +33,12 @@ fn atom_hash(v: Value) -> u32 {
     }
 }
 
-/// Entries of the key-plan cache (`State::key_plans`, direct-mapped by join).
+/// Entries of the key-plan cache (`State::key_plans`, direct-mapped by join): on
+/// the host enough for programs of a few dozen joins (a miss rebuilds the plan).
+#[cfg(not(feature = "host-speedups"))]
 pub const KEY_PLANS: usize = 8;
+#[cfg(feature = "host-speedups")]
+pub const KEY_PLANS: usize = 32;
 
 /// The fields a join's left key reads, worked out once from its tests: pattern
 /// index and slot of each earlier variable its equality tests compare with.

@@ -22,6 +22,7 @@ use crate::builtins::basic::{CMP_FIRST, CMP_LAST};
 use crate::engine::Core;
 use crate::expr::{loc, Expr, FnKind, Op};
 use crate::handle::{JoinId, TokenId};
+use crate::rete::quick::same_cell;
 use crate::rete::BIND_W;
 use crate::value::{Ix, Value, NONE};
 
@@ -65,6 +66,13 @@ enum Source {
 enum Node {
     /// Comparison builtin `id` (`CMP_FIRST..=CMP_LAST`; `Eq2` is `eq`) of `a` and `b`.
     Cmp { id: u8, a: Source, b: Source },
+    /// `eq` (`neq` when `negated`) of two single-field slots, (pattern, slot) each:
+    /// `?x` used again and `~?x`, compared where the values lie.
+    SameSlots {
+        a: (u8, u8),
+        b: (u8, u8),
+        negated: bool,
+    },
     /// All of `kids[first..first + len]` (short-circuit, in order).
     And { first: u8, len: u8 },
     /// Any of `kids[first..first + len]` (short-circuit, in order).
@@ -272,12 +280,18 @@ impl Core<'_> {
         let plans = &self.st.cache.compiled_plans;
         match plans.nodes[node as usize] {
             Node::Cmp { id, a, b } => self.run_cmp(id, a, b, depth, left, right_fact),
+            Node::SameSlots { a, b, negated } => {
+                self.run_same(a, b, negated, depth, left, right_fact)
+            }
             Node::And { first, len } => {
                 for &k in &plans.kids[first as usize..(first + len) as usize] {
                     // the comparisons inline, the composites through the recursion
                     let r = match plans.nodes[k as usize] {
                         Node::Cmp { id, a, b } => {
                             self.run_cmp(id, a, b, depth, left, right_fact)?
+                        }
+                        Node::SameSlots { a, b, negated } => {
+                            self.run_same(a, b, negated, depth, left, right_fact)?
                         }
                         _ => self.run_node(k, depth, left, right_fact)?,
                     };
@@ -293,6 +307,9 @@ impl Core<'_> {
                         Node::Cmp { id, a, b } => {
                             self.run_cmp(id, a, b, depth, left, right_fact)?
                         }
+                        Node::SameSlots { a, b, negated } => {
+                            self.run_same(a, b, negated, depth, left, right_fact)?
+                        }
                         _ => self.run_node(k, depth, left, right_fact)?,
                     };
                     if r {
@@ -303,6 +320,39 @@ impl Core<'_> {
             }
             Node::Not { child } => Some(!self.run_node(child, depth, left, right_fact)?),
         }
+    }
+
+    /// One planned `eq`/`neq` of two slots.
+    #[inline(always)]
+    fn run_same(
+        &self,
+        a: (u8, u8),
+        b: (u8, u8),
+        negated: bool,
+        depth: u8,
+        left: TokenId,
+        right_fact: Ix,
+    ) -> Option<bool> {
+        let va = self.plan_cell(a, depth, left, right_fact)?;
+        let vb = self.plan_cell(b, depth, left, right_fact)?;
+        Some(same_cell(va, vb)? != negated)
+    }
+
+    /// The cell of single-field slot `slot` of the fact bound at `pat`, where it lies
+    /// (a copy of the two values costs more than the comparison); None if unbound.
+    #[inline(always)]
+    fn plan_cell(
+        &self,
+        (pat, slot): (u8, u8),
+        depth: u8,
+        left: TokenId,
+        right_fact: Ix,
+    ) -> Option<&Value> {
+        let fact = self.plan_fact(pat, depth, left, right_fact);
+        if fact == NONE {
+            return None;
+        }
+        Some(self.slot_ref(fact, Ix::from(slot)))
     }
 
     /// One planned comparison.
@@ -472,6 +522,15 @@ impl Core<'_> {
         for p in [a.pat(), b.pat()].into_iter().flatten() {
             if p != depth && p as usize >= BIND_W {
                 plan.deep = true;
+            }
+        }
+        if let (Source::Slot { pat: pa, slot: sa }, Source::Slot { pat: pb, slot: sb }) = (a, b) {
+            if id == FN_EQ || id == FN_NEQ {
+                return plan.push(Node::SameSlots {
+                    a: (pa, sa),
+                    b: (pb, sb),
+                    negated: id == FN_NEQ,
+                });
             }
         }
         plan.push(Node::Cmp {

@@ -14,8 +14,12 @@ use crate::expr::{loc, Expr, Op};
 use crate::handle::{JoinId, TokenId};
 use crate::value::{Ix, Value, NONE};
 
-/// Entries of the join-test plan cache (`State::test_plans`, direct-mapped by join).
+/// Entries of the join-test plan cache (`State::test_plans`, direct-mapped by join):
+/// on the host enough for programs of a few dozen joins (a miss rebuilds the plan).
+#[cfg(not(feature = "host-speedups"))]
 pub const TEST_PLANS: usize = 8;
+#[cfg(feature = "host-speedups")]
+pub const TEST_PLANS: usize = 32;
 /// Most tests a plan holds; joins with more use `quick_join_test` as it is.
 pub const PLAN_TESTS: usize = 4;
 
@@ -56,7 +60,7 @@ impl TestPlan {
 /// compared inline, where they lie (copies of the two values cost more than the
 /// test); None if either is a multifield.
 #[inline(always)]
-fn same_cell(a: &Value, b: &Value) -> Option<bool> {
+pub(super) fn same_cell(a: &Value, b: &Value) -> Option<bool> {
     Some(match (a, b) {
         (Value::Sym(x), Value::Sym(y)) => x == y,
         (Value::Int(x), Value::Int(y)) => x == y,
