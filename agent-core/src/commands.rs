@@ -770,6 +770,9 @@ impl Core<'_> {
                 // a prompt variable's hidden global is `?x`; a local's name is `x`
                 let text = self.sym_text(name);
                 let _ = match text.strip_prefix('?') {
+                    Some(v) if v.starts_with('*') => {
+                        writeln!(b, "[GLOBLDEF1] Global variable ?{v} is unbound.")
+                    }
                     Some(v) => writeln!(b, "[EVALUATN1] Variable {v} is unbound"),
                     None => writeln!(b, "[PRCCODE5] Variable {text} unbound."),
                 };
@@ -1035,6 +1038,56 @@ impl Core<'_> {
                 b,
                 "\n[ANALYSIS3] Variable ?{name} is used as both a single and multifield variable in the LHS"
             );
+        } else if let LoadDetail::ImportConflict { construct } = e.detail {
+            let name = match construct {
+                "defglobal" => tok.trim_start_matches("?*").trim_end_matches('*'),
+                _ => crate::module::split_qualified(tok).map_or(tok, |(_, n)| n),
+            };
+            let _ = writeln!(
+                b,
+                "\n[CSTRCPSR3] Cannot define {construct} {name} because of an import/export conflict.\n\nERROR:"
+            );
+            let _ = if construct == "defglobal" {
+                writeln!(b, "(defglobal {module} ?*{name}* ")
+            } else {
+                writeln!(b, "({construct} {module}::{name}")
+            };
+        } else if let LoadDetail::NotExported {
+            module: m,
+            name,
+            class,
+        } = e.detail
+        {
+            let m = self.sym_text(m);
+            let _ = if class.is_empty() {
+                writeln!(
+                    b,
+                    "\n[MODULPSR1] Module {m} does not export any constructs."
+                )
+            } else if name == NONE {
+                writeln!(
+                    b,
+                    "\n[MODULPSR1] Module {m} does not export any {class} constructs."
+                )
+            } else {
+                writeln!(
+                    b,
+                    "\n[MODULPSR1] Module {m} does not export the {class} {}.",
+                    self.sym_text(name)
+                )
+            };
+            let _ = b.write_str("\nERROR:\n");
+            let upto = text.get(..e.end as usize).unwrap_or(text);
+            let _ = crate::builtins::modules::write_defmodule_at(upto, e.start as usize, &mut b);
+            let _ = b.write_char('\n');
+        } else if let LoadDetail::ModuleImportConflict { class, name } = e.detail {
+            let _ = writeln!(
+                b,
+                "\n[CSTRCPSR3] Cannot define defmodule {tok} because of an import/export conflict caused by the {class} {}.\n\nERROR:",
+                self.sym_text(name)
+            );
+            let _ = crate::builtins::modules::write_defmodule_at(text, e.start as usize, &mut b);
+            let _ = b.write_char('\n');
         } else if let LoadDetail::NotImplemented { what } = e.detail {
             let _ = writeln!(
                 b,

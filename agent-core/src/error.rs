@@ -648,6 +648,24 @@ pub enum LoadDetail {
     ReplacesBuiltin,
     /// `[ANALYSIS3]`: one LHS variable used both as `?x` and `$?x` (the offending token).
     MixedVariable,
+    /// `[CSTRCPSR3]`: a construct (`construct`, named by the offending token) whose
+    /// name clashes with the imports and exports of the modules.
+    ImportConflict {
+        construct: &'static str,
+    },
+    /// `[MODULPSR1]`: an import of what the module (`module`, its name) does not
+    /// export: anything (`class` ""), anything of a class, or construct `name`.
+    NotExported {
+        module: Ix,
+        name: Ix,
+        class: &'static str,
+    },
+    /// `[CSTRCPSR3]`: a defmodule importing two constructs of one class (`class`, its
+    /// keyword) and name (`name`) from different modules.
+    ModuleImportConflict {
+        name: Ix,
+        class: &'static str,
+    },
     /// `[NOTIMPL1]` (ours, not CLIPS's): something robotino-agent does not implement
     /// yet (`what`, e.g. "defmodule"), refused rather than accepted and ignored.
     NotImplemented {

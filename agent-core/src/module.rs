@@ -30,6 +30,17 @@ pub mod class {
     pub const GENERIC: u8 = 16;
     pub const ALL: u8 = 31;
 
+    /// The keyword of construct class `bit` (one bit).
+    pub fn keyword(bit: u8) -> &'static str {
+        match bit {
+            TEMPLATE => "deftemplate",
+            FUNCTION => "deffunction",
+            GLOBAL => "defglobal",
+            CLASS => "defclass",
+            _ => "defgeneric",
+        }
+    }
+
     /// The bit of a construct keyword in a port specification.
     pub fn of(keyword: &str) -> Option<u8> {
         Some(match keyword {
@@ -251,6 +262,11 @@ impl Core<'_> {
         set_tag(self.func_module, f, m, MAIN)
     }
 
+    /// Records the module of defglobal `g` (false as [`Core::set_rule_tag`]).
+    pub fn set_global_module(&mut self, g: Ix, m: ModId) -> bool {
+        set_tag(self.global_module, g, m, MAIN)
+    }
+
     /// Records the module of deffacts `d` (false as [`Core::set_rule_tag`]).
     pub fn set_deffacts_module(&mut self, d: Ix, m: ModId) -> bool {
         set_tag(self.deffacts_module, d, m, MAIN)
@@ -337,6 +353,15 @@ impl Core<'_> {
         }) && self.visible_depth(class, owner, name, m, depth)
     }
 
+    /// Whether module `m` has an export specification for a class of `classes`.
+    pub fn exports_any(&self, m: ModId, classes: u8) -> bool {
+        let md = self.module_entry(m);
+        (md.first_port..md.first_port + md.nports).any(|p| {
+            let p = self.port_entry(p);
+            !p.import && p.classes & classes != 0
+        })
+    }
+
     /// Whether module `m` exports a construct of `class` named `name` that it sees
     /// (what `(import m class name)` needs, `[MODULPSR1]` otherwise).
     pub fn module_exports(&self, m: ModId, class: u8, name: SymId) -> bool {
@@ -344,6 +369,68 @@ impl Core<'_> {
         (0..n).any(|owner| {
             let owner = owner as ModId;
             self.constructs_named(class, owner, name) && self.exports(m, class, owner, name, n)
+        })
+    }
+
+    /// Whether defining a construct of `class` named `name` in module `m` clashes
+    /// with the imports and exports (CLIPS's `[CSTRCPSR3]`): `m` sees another
+    /// module's construct of that name, or a module that would see `m`'s sees another
+    /// one too (its own or one it imports).
+    pub fn import_conflict(&self, class: u8, m: ModId, name: SymId) -> bool {
+        let n = self.st.modules.nmodules;
+        (0..n).map(|o| o as ModId).any(|owner| {
+            owner != m
+                && self.constructs_named(class, owner, name)
+                && (0..n).map(|x| x as ModId).any(|x| {
+                    self.visible_in(class, m, name, x) && self.visible_in(class, owner, name, x)
+                })
+        })
+    }
+
+    /// The first construct class (`class` bit) and name of which module `m` sees two,
+    /// of different modules (CLIPS's `[CSTRCPSR3]` for a defmodule whose imports
+    /// clash).
+    pub fn clashing_import(&self, m: ModId) -> Option<(u8, SymId)> {
+        let n = self.st.modules.nmodules;
+        let names = |class: u8, i: Ix| -> Option<(SymId, ModId)> {
+            Some(match class {
+                class::TEMPLATE if i < self.st.pools.ntemplates => {
+                    (self.templates[i as usize].name, self.module_of_template(i))
+                }
+                class::FUNCTION if i < self.st.pools.nfuncs => {
+                    (self.funcs[i as usize].name, self.module_of_function(i))
+                }
+                class::GLOBAL if i < self.st.pools.nglobals => {
+                    (self.globals[i as usize].name, self.module_of_global(i))
+                }
+                _ => return None,
+            })
+        };
+        for class in [class::TEMPLATE, class::FUNCTION, class::GLOBAL] {
+            let mut i = 0;
+            while let Some((name, owner)) = names(class, i) {
+                i += 1;
+                if name == NONE || owner == m || !self.visible_in(class, owner, name, m) {
+                    continue;
+                }
+                let other = (0..n).map(|o| o as ModId).any(|o| {
+                    o != owner
+                        && self.constructs_named(class, o, name)
+                        && self.visible_in(class, o, name, m)
+                });
+                if other {
+                    return Some((class, name));
+                }
+            }
+        }
+        None
+    }
+
+    /// The defglobal named `name` that module `from` sees.
+    pub fn global_seen_from(&self, name: SymId, from: ModId) -> Option<Ix> {
+        (0..self.st.pools.nglobals).find(|&g| {
+            self.globals[g as usize].name == name
+                && self.visible_in(class::GLOBAL, self.module_of_global(g), name, from)
         })
     }
 
@@ -562,6 +649,27 @@ impl crate::engine::Core<'_> {
         {
             let _ = from;
             (0..self.st.pools.nfuncs).find(|&f| self.funcs[f as usize].name == name)
+        }
+    }
+
+    /// The defglobal named `name` that the current module sees (hidden prompt
+    /// variables have names of their own, `?x`).
+    pub fn find_global(&self, name: SymIdAny) -> Option<crate::value::Ix> {
+        #[cfg(feature = "modules")]
+        return self.global_seen_from(name, self.st.modules.current);
+        #[cfg(not(feature = "modules"))]
+        (0..self.st.pools.nglobals).find(|&g| self.globals[g as usize].name == name)
+    }
+
+    /// The defglobal named `name` that module `m` defines.
+    pub fn global_of_module(&self, name: SymIdAny, m: ModId) -> Option<crate::value::Ix> {
+        #[cfg(feature = "modules")]
+        return (0..self.st.pools.nglobals)
+            .find(|&g| self.globals[g as usize].name == name && self.module_of_global(g) == m);
+        #[cfg(not(feature = "modules"))]
+        {
+            let _ = m;
+            (0..self.st.pools.nglobals).find(|&g| self.globals[g as usize].name == name)
         }
     }
 

@@ -387,4 +387,7 @@ differential_programs! {
     p260_modules_focus => "260-modules-focus",
     p261_modules_not_exists_salience => "261-modules-not-exists-salience",
     p262_modules_listings => "262-modules-listings",
+    p281_modules_defglobals => "281-modules-defglobals",
+    p282_modules_import_conflicts => "282-modules-import-conflicts",
+    p283_modules_get_lists => "283-modules-get-lists",
 }

@@ -1,4 +1,4 @@
-; expect: 6:36 expected exports
+; expect: 6:38 expected exports
 ; keeps: For a total of 2 defmodules.
 ; importing by name what the module does not export: CLIPS's MODULPSR1
 (defmodule A (export deftemplate t1))

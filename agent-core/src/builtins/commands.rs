@@ -802,6 +802,27 @@ impl ModuleView {
         (0..n).filter(move |&m| self.all || m == self.one)
     }
 
+    /// Whether the (one) module listed sees template `t`.
+    pub(super) fn sees_template(self, cx: &Core<'_>, t: Ix) -> bool {
+        #[cfg(feature = "modules")]
+        return cx.visible_in(
+            crate::module::class::TEMPLATE,
+            cx.module_of_template(t),
+            cx.templates[t as usize].name,
+            self.one,
+        );
+        #[cfg(not(feature = "modules"))]
+        {
+            let _ = (cx, t);
+            true
+        }
+    }
+
+    /// Whether every module is listed (`*`).
+    pub(super) fn all(self) -> bool {
+        self.all
+    }
+
     pub(super) fn indent(self) -> &'static str {
         if self.all {
             "   "
@@ -822,7 +843,10 @@ impl ModuleView {
             cx.write(router::WDISPLAY, b.as_str());
         }
         #[cfg(not(feature = "modules"))]
-        let _ = (cx, m);
+        {
+            let _ = m;
+            cx.write(router::WDISPLAY, "MAIN:\n");
+        }
     }
 }
 
@@ -857,12 +881,21 @@ pub(super) fn module_view(
             }
         }
     }
+    // without modules there is MAIN alone: another name is no module's, as in CLIPS
     #[cfg(not(feature = "modules"))]
     {
-        let _ = (cx, a, func);
-        Ok(Some(ModuleView {
-            all: false,
-            one: crate::module::MAIN,
-        }))
+        let one = crate::module::MAIN;
+        if a.len == 0 {
+            return Ok(Some(ModuleView { all: false, one }));
+        }
+        let s = cx.arg_lexeme(a, 0, func)?;
+        match cx.sym_text(s) {
+            "*" => Ok(Some(ModuleView { all: true, one })),
+            "MAIN" => Ok(Some(ModuleView { all: false, one })),
+            _ => {
+                cx.write_error_message(EvalError::wrong_type(func, 1, "defmodule name"));
+                Ok(None)
+            }
+        }
     }
 }

@@ -103,31 +103,109 @@ fn name_at(cx: &Core<'_>, kind: Kind, i: Ix) -> Option<Option<SymId>> {
     }
 }
 
-fn names_list(cx: &mut Core<'_>, kind: Kind) -> Result<Value, EvalError> {
+/// The module of name number `i` of construct kind `kind` (as `name_at` numbers them).
+fn owner_at(cx: &Core<'_>, kind: Kind, i: Ix) -> crate::module::ModId {
+    #[cfg(feature = "modules")]
+    return match kind {
+        Kind::Deffacts => {
+            deffacts_at(cx, i).map_or(crate::module::MAIN, |d| cx.module_of_deffacts(d))
+        }
+        Kind::Deftemplate => cx.module_of_template(i),
+        Kind::Deffunction => cx.module_of_function(i),
+        Kind::Defglobal => cx.module_of_global(i),
+        Kind::Defrule => cx.rule_tag(i).module,
+    };
+    #[cfg(not(feature = "modules"))]
+    {
+        let _ = (cx, kind, i);
+        crate::module::MAIN
+    }
+}
+
+/// `(get-def*-list [MODULE | *])`: the names of the current module's constructs, of
+/// the one named, or of every module's as `MOD::name` (modules in definition order).
+fn names_list(
+    cx: &mut Core<'_>,
+    kind: Kind,
+    a: Args,
+    func: &'static str,
+) -> Result<Value, EvalError> {
+    if a.len == 1 && !matches!(cx.arg(a, 0), Value::Sym(_)) {
+        let mut b: TextBuf<120> = TextBuf::new();
+        let _ = writeln!(
+            b,
+            "[ARGACCES5] Function {func} expected argument #1 to be of type symbol"
+        );
+        cx.write(router::WERROR, b.as_str());
+        return Err(EvalError::already_reported());
+    }
+    let Some(view) = super::commands::module_view(cx, a, func)? else {
+        return Ok(cx.multi_finish(cx.multi_begin()));
+    };
     let start = cx.multi_begin();
-    let mut i = 0;
-    while let Some(name) = name_at(cx, kind, i) {
-        if let Some(s) = name {
+    for m in view.modules(cx) {
+        let mut i = 0;
+        while let Some(name) = name_at(cx, kind, i) {
+            let owner = owner_at(cx, kind, i);
+            i += 1;
+            let Some(s) = name else { continue };
+            if owner != m {
+                continue;
+            }
+            let s = if view.all() {
+                let mut b: TextBuf<256> = TextBuf::new();
+                let _ = write!(b, "{}::{}", module_name(cx, m), cx.sym_text(s));
+                cx.intern(b.as_str())?
+            } else {
+                s
+            };
             cx.multi_push(Value::Sym(s))?;
         }
-        i += 1;
     }
     Ok(cx.multi_finish(start))
 }
 
-/// Writes the names, one per line, and `For a total of N <what>s.`; nothing at all
-/// when there are none (as CLIPS lists deffacts and defglobals).
-fn list_names(cx: &mut Core<'_>, kind: Kind, what: &str, plural: &str) {
+/// Module `m`'s name ("MAIN" without the feature).
+fn module_name<'c>(cx: &'c Core<'_>, m: crate::module::ModId) -> &'c str {
+    #[cfg(feature = "modules")]
+    return cx.module_name(m);
+    #[cfg(not(feature = "modules"))]
+    {
+        let _ = (cx, m);
+        "MAIN"
+    }
+}
+
+/// `(list-def* [MODULE | *])`: the names, one per line (under each module's heading
+/// for `*`), and `For a total of N <what>s.`; no total when there are none (as CLIPS
+/// lists deffacts and defglobals).
+fn list_names(
+    cx: &mut Core<'_>,
+    kind: Kind,
+    a: Args,
+    func: &'static str,
+    what: &str,
+    plural: &str,
+) -> Result<(), EvalError> {
+    let Some(view) = super::commands::module_view(cx, a, func)? else {
+        return Ok(());
+    };
     let mut n = 0;
-    let mut i = 0;
-    while let Some(name) = name_at(cx, kind, i) {
-        if let Some(s) = name {
+    for m in view.modules(cx) {
+        view.head(cx, m);
+        let mut i = 0;
+        while let Some(name) = name_at(cx, kind, i) {
+            let owner = owner_at(cx, kind, i);
+            i += 1;
+            let Some(s) = name else { continue };
+            if owner != m {
+                continue;
+            }
             let mut b: TextBuf<160> = TextBuf::new();
-            let _ = writeln!(b, "{}", cx.sym_text(s));
+            let _ = writeln!(b, "{}{}", view.indent(), cx.sym_text(s));
             cx.write(router::WDISPLAY, b.as_str());
             n += 1;
         }
-        i += 1;
     }
     if n > 0 {
         let mut b: TextBuf<64> = TextBuf::new();
@@ -135,44 +213,46 @@ fn list_names(cx: &mut Core<'_>, kind: Kind, what: &str, plural: &str) {
         let _ = writeln!(b, "For a total of {n} {what}{plural}.");
         cx.write(router::WDISPLAY, b.as_str());
     }
+    Ok(())
 }
 
-fn get_deffacts_list(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
-    names_list(cx, Kind::Deffacts)
+fn get_deffacts_list(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    names_list(cx, Kind::Deffacts, a, "get-deffacts-list")
 }
-fn get_deftemplate_list(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
-    names_list(cx, Kind::Deftemplate)
+fn get_deftemplate_list(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    names_list(cx, Kind::Deftemplate, a, "get-deftemplate-list")
 }
-fn get_deffunction_list(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
-    names_list(cx, Kind::Deffunction)
+fn get_deffunction_list(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    names_list(cx, Kind::Deffunction, a, "get-deffunction-list")
 }
-fn get_defglobal_list(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
-    names_list(cx, Kind::Defglobal)
+fn get_defglobal_list(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    names_list(cx, Kind::Defglobal, a, "get-defglobal-list")
 }
-fn get_defrule_list(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
-    names_list(cx, Kind::Defrule)
+fn get_defrule_list(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    names_list(cx, Kind::Defrule, a, "get-defrule-list")
 }
 
-/// `(get-fact-list [module])`: the addresses of the facts, oldest first. Only module
-/// MAIN exists (`defmodule` is refused), so `MAIN` and `*` give them all; another
-/// name is CLIPS's `[ARGACCES5]`.
+/// `(get-fact-list [MODULE | *])`: the addresses of the facts the current module
+/// sees, the named one sees, or all, oldest first; a name no module has is CLIPS's
+/// `[ARGACCES5]`.
 fn get_fact_list(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    if a.len > 0 {
-        let ok = match cx.arg(a, 0) {
-            Value::Sym(s) => matches!(cx.sym_text(s), "MAIN" | "*"),
-            _ => false,
-        };
-        if !ok {
-            // checked here even for a literal, so CLIPS's `()` follows (OnError)
-            cx.write_error_message(EvalError::wrong_type("get-fact-list", 1, "defmodule name"));
-            return Err(EvalError::already_reported());
-        }
+    let ok = a.len == 0 || matches!(cx.arg(a, 0), Value::Sym(_));
+    if !ok {
+        // checked here even for a literal, so CLIPS's `()` follows (OnError)
+        cx.write_error_message(EvalError::wrong_type("get-fact-list", 1, "defmodule name"));
+        return Err(EvalError::already_reported());
     }
+    let Some(view) = super::commands::module_view(cx, a, "get-fact-list")? else {
+        return Err(EvalError::already_reported());
+    };
     let start = cx.multi_begin();
     let mut f = cx.st.facts.fact_head;
     while f != NONE {
         let r = cx.fact_ref(f);
-        cx.multi_push(Value::Fact(r))?;
+        let t = cx.facts[f as usize].tmpl;
+        if view.all() || view.sees_template(cx, t) {
+            cx.multi_push(Value::Fact(r))?;
+        }
         f = cx.facts[f as usize].next;
     }
     Ok(cx.multi_finish(start))
@@ -249,41 +329,42 @@ fn deffacts_module(cx: &Core<'_>, d: Ix) -> crate::module::ModId {
     }
 }
 
-fn list_defglobals(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
-    list_names(cx, Kind::Defglobal, "defglobal", "s");
+fn list_defglobals(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    list_names(cx, Kind::Defglobal, a, "list-defglobals", "defglobal", "s")?;
     Ok(Value::Void)
 }
 
-/// `(show-defglobals [module])`: `?*name* = value` per global, in definition order.
+/// `(show-defglobals [MODULE | *])`: `?*name* = value` per global of the current
+/// module, of the one named, or of each module under its heading, in definition
+/// order.
 fn show_defglobals(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    if a.len == 1 {
-        // one module here, MAIN
-        let what = match cx.arg(a, 0) {
-            Value::Sym(s) if cx.sym_text(s) == "MAIN" => None,
-            Value::Sym(_) => Some("defmodule name"),
-            _ => Some("symbol"),
-        };
-        if let Some(what) = what {
-            let mut b: TextBuf<160> = TextBuf::new();
-            let _ = writeln!(
-                b,
-                "[ARGACCES5] Function show-defglobals expected argument #1 to be of type {what}"
-            );
-            cx.write(router::WERROR, b.as_str());
-            return Err(EvalError::already_reported());
-        }
+    if a.len == 1 && !matches!(cx.arg(a, 0), Value::Sym(_)) {
+        cx.write(
+            router::WERROR,
+            "[ARGACCES5] Function show-defglobals expected argument #1 to be of type symbol\n",
+        );
+        return Err(EvalError::already_reported());
     }
-    let mut i = 0;
-    while let Some(name) = name_at(cx, Kind::Defglobal, i) {
-        if let Some(s) = name {
+    let Some(view) = super::commands::module_view(cx, a, "show-defglobals")? else {
+        return Err(EvalError::already_reported());
+    };
+    for m in view.modules(cx) {
+        view.head(cx, m);
+        let mut i = 0;
+        while let Some(name) = name_at(cx, Kind::Defglobal, i) {
+            let owner = owner_at(cx, Kind::Defglobal, i);
+            i += 1;
+            let Some(s) = name else { continue };
+            if owner != m {
+                continue;
+            }
             let mut b: TextBuf<160> = TextBuf::new();
-            let _ = write!(b, "?*{}* = ", cx.sym_text(s));
+            let _ = write!(b, "{}?*{}* = ", view.indent(), cx.sym_text(s));
             cx.write(router::WDISPLAY, b.as_str());
-            let v = cx.globals[i as usize].value;
+            let v = cx.globals[i as usize - 1].value;
             cx.print_value(router::WDISPLAY, v, true);
             cx.write(router::WDISPLAY, "\n");
         }
-        i += 1;
     }
     Ok(Value::Void)
 }

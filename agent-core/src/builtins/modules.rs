@@ -183,6 +183,16 @@ fn ppdefmodule(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     Ok(Value::Void)
 }
 
+/// The pretty-printed form of the defmodule in `src` that byte `at` is in, up to the
+/// end of `src` (what CLIPS shows after `ERROR:` for a defmodule it rejected).
+pub fn write_defmodule_at(src: &str, at: usize, w: &mut dyn Write) -> core::fmt::Result {
+    let start = src
+        .get(..at)
+        .and_then(|s| s.rfind("(defmodule"))
+        .unwrap_or(0);
+    write_defmodule(src.get(start..).unwrap_or(""), w)
+}
+
 /// The pretty-printed form of the defmodule whose source is `src`.
 fn write_defmodule(src: &str, w: &mut dyn Write) -> core::fmt::Result {
     use crate::lexer::{Lexer, Tok};

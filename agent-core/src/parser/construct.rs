@@ -63,8 +63,14 @@ impl<'s> Parser<'s, '_, '_> {
         let replaces = self.cx.find_template(sym);
         // one the module imports cannot be replaced by one of its own
         #[cfg(feature = "modules")]
-        if replaces.is_some_and(|t| self.cx.module_of_template(t) != self.cx.current_module()) {
-            return Err(self.err(nt, "a deftemplate name no imported deftemplate has"));
+        if replaces.is_some_and(|t| self.cx.module_of_template(t) != self.cx.current_module())
+            || self.cx.import_conflict(
+                crate::module::class::TEMPLATE,
+                self.cx.current_module(),
+                sym,
+            )
+        {
+            return Err(self.import_conflict(nt, "deftemplate"));
         }
         if replaces.is_some_and(|t| self.cx.template_in_use(t)) {
             let mut e = self.err(
@@ -267,6 +273,14 @@ impl<'s> Parser<'s, '_, '_> {
             return Err(e);
         }
         let sym = cap!(self, self.cx.intern(name))?;
+        #[cfg(feature = "modules")]
+        if self.cx.import_conflict(
+            crate::module::class::FUNCTION,
+            self.cx.current_module(),
+            sym,
+        ) {
+            return Err(self.import_conflict(nt, "deffunction"));
+        }
         self.skip_comment();
         // register first so the body can call itself recursively
         let existing = (0..self.cx.st.pools.nfuncs)
@@ -383,8 +397,15 @@ impl<'s> Parser<'s, '_, '_> {
                     }
                     let init = self.parse_expr()?;
                     let sym = cap!(self, self.cx.intern(name))?;
-                    let existing = (0..self.cx.st.pools.nglobals)
-                        .find(|&g| self.cx.globals[g as usize].name == sym);
+                    let here = self.cx.st_current_module();
+                    #[cfg(feature = "modules")]
+                    if self
+                        .cx
+                        .import_conflict(crate::module::class::GLOBAL, here, sym)
+                    {
+                        return Err(self.import_conflict(t, "defglobal"));
+                    }
+                    let existing = self.cx.global_of_module(sym, here);
                     // a full pool fails before the evaluation, whose effects would stay
                     let n = self.cx.st.pools.nglobals as usize;
                     #[cfg(feature = "grow")]
@@ -412,6 +433,8 @@ impl<'s> Parser<'s, '_, '_> {
                         value: Value::Void,
                         init,
                     };
+                    #[cfg(feature = "modules")]
+                    let _ = self.cx.set_global_module(g as Ix, here);
                     if let Err(c) = self.cx.set_global(g as Ix, v) {
                         return Err(self.cap_err(t, c));
                     }

@@ -72,19 +72,45 @@ impl<'s> Parser<'s, '_, '_> {
                 });
                 cap!(self, e)
             }
-            Tok::Global(name) => self.global_ref(t, name),
+            Tok::Global(name) => self.global_read(t, name),
             Tok::LParen => self.call(),
             _ => Err(self.err(t, "an expression")),
         }
     }
 
+    /// A global the current module sees (what `bind` sets).
     pub fn global_ref(&mut self, t: Token<'s>, name: &str) -> PResult<Ix> {
-        let id = self.cx.find_sym(name);
-        let g = id.and_then(|id| {
-            (0..self.cx.st.pools.nglobals).find(|&g| self.cx.globals[g as usize].name == id)
-        });
+        let g = self
+            .cx
+            .find_sym(name)
+            .and_then(|id| self.cx.find_global(id));
         match g {
             Some(g) => {
+                let e = self.cx.push_expr(Expr::new(Op::Global, 0, g));
+                cap!(self, e)
+            }
+            None => Err(self.err(t, "a defined global variable")),
+        }
+    }
+
+    /// A global read in an expression.
+    fn global_read(&mut self, t: Token<'s>, name: &str) -> PResult<Ix> {
+        let g = self
+            .cx
+            .find_sym(name)
+            .and_then(|id| self.cx.find_global(id));
+        match g {
+            Some(g) => {
+                let e = self.cx.push_expr(Expr::new(Op::Global, 0, g));
+                cap!(self, e)
+            }
+            // at the prompt CLIPS reads a global the module does not see and finds it
+            // unbound when it runs (`[GLOBLDEF1]`): a hidden global `?*name*`, never
+            // bound (`bind` names only defined ones)
+            None if self.scope == Scope::TopLevel && name.len() < 120 => {
+                let mut b: TextBuf<128> = TextBuf::new();
+                let _ = core::fmt::Write::write_fmt(&mut b, format_args!("*{name}*"));
+                let g = self.toplevel_var(t, b.as_str())?;
                 let e = self.cx.push_expr(Expr::new(Op::Global, 0, g));
                 cap!(self, e)
             }

@@ -230,6 +230,15 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
         }
     }
 
+    /// `[CSTRCPSR3]`: construct `construct` named by token `at` cannot be defined in
+    /// the current module because of the imports and exports.
+    pub fn import_conflict(&self, at: Token<'s>, construct: &'static str) -> LoadError {
+        LoadError {
+            detail: crate::error::LoadDetail::ImportConflict { construct },
+            ..self.err(at, "a name no module's imports or exports clash with")
+        }
+    }
+
     /// A name token: one with a module specifier (`MAIN::x`) is refused, as modules are
     /// not implemented.
     pub fn plain_name(&self, at: Token<'s>, name: &'s str) -> PResult<&'s str> {

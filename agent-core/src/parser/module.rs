@@ -59,12 +59,23 @@ impl<'s> Parser<'s, '_, '_> {
             }
         }
         let text = self.pp_text(start);
+        let old = self.cx.modules[slot as usize];
         self.cx.modules[slot as usize] = Module {
             name: sym,
             first_port,
             nports,
             text,
         };
+        // two constructs of one name the imports bring in from different modules
+        if let Some((class, name)) = self.cx.clashing_import(slot) {
+            self.cx.modules[slot as usize] = old;
+            let mut e = self.err(nt, "imports that bring in no two constructs of one name");
+            e.detail = LoadDetail::ModuleImportConflict {
+                name,
+                class: class::keyword(class),
+            };
+            return Err(e);
+        }
         self.cx.st.modules.nports = first_port + nports;
         if slot == MAIN {
             self.cx.st.modules.main_redefined = true;
@@ -96,6 +107,10 @@ impl<'s> Parser<'s, '_, '_> {
                 },
                 _ => return Err(self.err(mt, "a module name")),
             };
+            // a module exporting nothing cannot be imported from
+            if !self.cx.exports_any(from, class::ALL) {
+                return Err(self.not_exported(mt, from, "", NONE));
+            }
         }
         let t = self.next();
         match t.tok {
@@ -116,24 +131,31 @@ impl<'s> Parser<'s, '_, '_> {
                 match t.tok {
                     Tok::SfVar("ALL") => {
                         self.add_port(t, first, n, import, from, classes, NONE)?;
-                        return self.expect_rparen("')' after ?ALL");
+                        let close = self.next();
+                        if close.tok != Tok::RParen {
+                            return Err(self.err(close, "')' after ?ALL"));
+                        }
+                        if import && !self.cx.exports_any(from, classes) {
+                            return Err(self.not_exported(
+                                close,
+                                from,
+                                class::keyword(classes),
+                                NONE,
+                            ));
+                        }
+                        return Ok(());
                     }
                     Tok::SfVar("NONE") => return self.expect_rparen("')' after ?NONE"),
                     _ => {}
                 }
                 let mut t = t;
                 let mut names = 0;
+                let first_name = first + *n;
                 loop {
                     match t.tok {
-                        Tok::RParen if names > 0 => return Ok(()),
+                        Tok::RParen if names > 0 => break,
                         Tok::Symbol(s) => {
                             let sym = cap!(self, self.cx.intern(s))?;
-                            // what is imported by name must be exported by name already
-                            if import && !self.cx.module_exports(from, classes, sym) {
-                                return Err(
-                                    self.err(t, "a construct the module exports ([MODULPSR1])")
-                                );
-                            }
                             self.add_port(t, first, n, import, from, classes, sym)?;
                             names += 1;
                         }
@@ -141,9 +163,42 @@ impl<'s> Parser<'s, '_, '_> {
                     }
                     t = self.next();
                 }
+                // what is imported by name must be exported (and defined) already
+                if import {
+                    for p in first_name..first + *n {
+                        let name = self.cx.ports[p as usize].name;
+                        if !self.cx.module_exports(from, classes, name) {
+                            return Err(self.not_exported(t, from, class::keyword(classes), name));
+                        }
+                    }
+                }
+                Ok(())
             }
             _ => Err(self.err(t, "?ALL, ?NONE or a construct type")),
         }
+    }
+
+    /// `[MODULPSR1]` at token `at`: module `from` does not export what is imported.
+    fn not_exported(
+        &mut self,
+        at: Token<'s>,
+        from: ModId,
+        class: &'static str,
+        name: Ix,
+    ) -> crate::error::LoadError {
+        let module = self.cx.module_entry(from).name;
+        let module = if from == MAIN {
+            self.cx.intern("MAIN").unwrap_or(NONE)
+        } else {
+            module
+        };
+        let mut e = self.err(at, "an import of what the module exports ([MODULPSR1])");
+        e.detail = LoadDetail::NotExported {
+            module,
+            name,
+            class,
+        };
+        e
     }
 
     #[allow(clippy::too_many_arguments)]
