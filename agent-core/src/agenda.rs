@@ -239,6 +239,13 @@ impl Core<'_> {
         self.st.pools.act_free = a;
     }
 
+    /// Pops the focus stack's modules whose agendas are empty, down to one with an
+    /// activation (or none left).
+    #[cfg(feature = "modules")]
+    pub(crate) fn pop_empty_focus(&mut self) {
+        let _ = self.focused_head();
+    }
+
     /// Takes the top activation off the agenda (it fires; refraction keeps it gone).
     pub(crate) fn pop_activation(&mut self) -> Option<(Ix, TokenId)> {
         // the first activation of the focused module's agenda (the agenda is one list

@@ -598,7 +598,12 @@ impl Core<'_> {
         }
         let mut fired: u32 = 0;
         let scratch_mark = self.st.frame.scratch_top;
-        while limit < 0 || (fired as i64) < limit {
+        let mut limit_reached = false;
+        loop {
+            if limit >= 0 && (fired as i64) >= limit {
+                limit_reached = true;
+                break;
+            }
             // the agenda is complete only once owed matches are built: fire nothing
             // before (the error stops the run; retracting facts makes room)
             self.pay_owed()?;
@@ -702,6 +707,15 @@ impl Core<'_> {
                 break;
             }
         }
+        // CLIPS looks for the next activation after the last firing the limit allows:
+        // modules left with an empty agenda leave the focus stack then
+        #[cfg(feature = "modules")]
+        if limit_reached && fired > 0 {
+            self.pay_owed()?;
+            self.pop_empty_focus();
+        }
+        #[cfg(not(feature = "modules"))]
+        let _ = limit_reached;
         self.st.mode.halt = false;
         Ok(fired)
     }

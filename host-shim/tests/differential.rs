@@ -390,4 +390,5 @@ differential_programs! {
     p281_modules_defglobals => "281-modules-defglobals",
     p282_modules_import_conflicts => "282-modules-import-conflicts",
     p283_modules_get_lists => "283-modules-get-lists",
+    p284_modules_logical_strategies => "284-modules-logical-strategies",
 }
