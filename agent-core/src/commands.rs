@@ -873,6 +873,61 @@ impl Core<'_> {
         let _ = writeln!(b, " for slot {}.", self.sym_text(slot));
     }
 
+    /// What CLIPS shows after `ERROR:` for a rule or deffunction naming a global its
+    /// module does not see: the whole construct (`whole`) or up to the global.
+    fn write_global_echo(
+        &self,
+        b: &mut TextBuf<4096>,
+        text: &str,
+        e: &LoadError,
+        whole: bool,
+        module: &str,
+    ) {
+        let head = if e.construct == "defrule" {
+            "(defrule"
+        } else {
+            "(deffunction"
+        };
+        let at = e.start as usize;
+        let Some(start) = text.get(..at).and_then(|s| s.rfind(head)) else {
+            return;
+        };
+        let end = if whole {
+            // the construct's closing `)` (its end, or the text's)
+            let mut lx = Lexer::new(text.get(start..).unwrap_or(""));
+            let mut depth = 0u32;
+            let mut end = text.len();
+            loop {
+                let t = lx.next_token();
+                match t.tok {
+                    Tok::Eof | Tok::Bad => break,
+                    Tok::LParen => depth += 1,
+                    Tok::RParen => {
+                        depth = depth.saturating_sub(1);
+                        if depth == 0 {
+                            end = start + t.start;
+                            break;
+                        }
+                    }
+                    _ => {}
+                }
+            }
+            end
+        } else {
+            e.end as usize
+        };
+        let src = text.get(start..end).unwrap_or("");
+        let _ = b.write_str("\nERROR:\n");
+        let _ = match (e.construct, whole) {
+            ("defrule", true) => crate::builtins::pretty::write_defrule(src, module, b),
+            ("defrule", false) => crate::builtins::pretty::write_defrule_upto(src, module, b),
+            (_, true) => crate::builtins::pretty::write_deffunction_upto(src, module, b)
+                .and_then(|()| b.write_str("\n   )")),
+            _ => crate::builtins::pretty::write_deffunction_upto(src, module, b),
+        };
+        let _ = b.write_char('\n');
+    }
+
     /// Prints a load error in CLIPS's style plus the position line.
     pub fn report_load_error(&mut self, source: &str, text: &str, e: &LoadError) {
         let mut b: TextBuf<4096> = TextBuf::new();
@@ -1066,6 +1121,14 @@ impl Core<'_> {
             } else {
                 writeln!(b, "({construct} {module}::{name}")
             };
+        } else if let LoadDetail::UndefinedGlobal { whole } = e.detail {
+            let _ = writeln!(
+                b,
+                "\n[GLOBLPSR1] \nGlobal variable {tok} was referenced, but is not defined."
+            );
+            if matches!(e.construct, "defrule" | "deffunction") {
+                self.write_global_echo(&mut b, text, e, whole, module);
+            }
         } else if let LoadDetail::NotExported {
             module: m,
             name,

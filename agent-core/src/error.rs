@@ -660,6 +660,12 @@ pub enum LoadDetail {
         name: Ix,
         class: &'static str,
     },
+    /// `[GLOBLPSR1]`: a global variable the module does not see (the offending
+    /// token), read (`whole`: CLIPS shows the whole rule or deffunction) or set by
+    /// `bind` (shown up to it).
+    UndefinedGlobal {
+        whole: bool,
+    },
     /// `[CSTRCPSR3]`: a defmodule importing two constructs of one class (`class`, its
     /// keyword) and name (`name`) from different modules.
     ModuleImportConflict {

@@ -391,4 +391,5 @@ differential_programs! {
     p282_modules_import_conflicts => "282-modules-import-conflicts",
     p283_modules_get_lists => "283-modules-get-lists",
     p284_modules_logical_strategies => "284-modules-logical-strategies",
+    p285_modules_unseen_globals => "285-modules-unseen-globals",
 }

@@ -89,8 +89,23 @@ impl<'s> Parser<'s, '_, '_> {
                 let e = self.cx.push_expr(Expr::new(Op::Global, 0, g));
                 cap!(self, e)
             }
-            None => Err(self.err(t, "a defined global variable")),
+            None => Err(self.undefined_global(t, true)),
         }
+    }
+
+    /// CLIPS's `[GLOBLPSR1]` for a global the module does not see, in a rule's or
+    /// deffunction's actions or a `bind` at the prompt (elsewhere our syntax error).
+    fn undefined_global(&self, t: Token<'s>, bind: bool) -> crate::error::LoadError {
+        let mut e = self.err(t, "a defined global variable");
+        let clips = match self.scope {
+            Scope::Frame => matches!(self.construct, "defrule" | "deffunction"),
+            Scope::TopLevel => bind,
+            Scope::Lhs => false,
+        };
+        if clips {
+            e.detail = crate::error::LoadDetail::UndefinedGlobal { whole: !bind };
+        }
+        e
     }
 
     /// A global read in an expression.
@@ -114,7 +129,7 @@ impl<'s> Parser<'s, '_, '_> {
                 let e = self.cx.push_expr(Expr::new(Op::Global, 0, g));
                 cap!(self, e)
             }
-            None => Err(self.err(t, "a defined global variable")),
+            None => Err(self.undefined_global(t, false)),
         }
     }
 
