@@ -509,11 +509,12 @@ impl Core<'_> {
         self.assert_initial_fact()
     }
 
-    /// Copies a token's pattern bindings for the RHS.
+    /// Copies a token's pattern bindings for the RHS. Pattern depths along an
+    /// ancestry are contiguous from 0, so every entry up to the rule's last pattern is
+    /// written (EMPTY for a `not` or `exists`) and nothing is cleared first: the RHS
+    /// reads no deeper entry, as `bind_left`'s callers read none (one write per
+    /// pattern, where clearing all `MAX_PATTERNS` entries cost a loop per firing).
     fn bind_rhs(&mut self, mut t: TokenId) {
-        for b in self.st.net.rhs_pm.iter_mut() {
-            *b = PatBinding::EMPTY;
-        }
         while t != TokenId::NONE {
             let tk = self.tokens[t];
             if tk.kind != TokenKind::Beta {
@@ -523,13 +524,15 @@ impl Core<'_> {
             if j.kind == JoinKind::Root {
                 break;
             }
-            if tk.am != TokenId::NONE {
+            self.st.net.rhs_pm[j.depth as usize] = if tk.am != TokenId::NONE {
                 let a = self.tokens[tk.am];
-                self.st.net.rhs_pm[j.depth as usize] = PatBinding {
+                PatBinding {
                     fact: a.fact,
                     marks: a.marks,
-                };
-            }
+                }
+            } else {
+                PatBinding::EMPTY
+            };
             t = tk.parent;
         }
     }

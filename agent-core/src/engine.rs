@@ -979,13 +979,43 @@ impl Core<'_> {
     /// Pushes a value on the evaluation stack.
     pub fn push_value(&mut self, v: Value) -> Result<(), CapacityError> {
         let sp = self.st.frame.sp as usize;
-        if sp >= self.stack.len() {
-            full_pool!(self, Pool::EvalStack, sp + 1, self.stack.len());
-        }
-        self.stack[sp] = v;
+        self.put_value(sp, v)?;
         self.st.frame.sp += 1;
         self.note_hw(Pool::EvalStack, sp + 1);
         Ok(())
+    }
+
+    /// Writes `v` at stack entry `sp`, the stack grown first where it may (`grow`).
+    /// The bounds check is the room check: a full stack leaves the write's path at
+    /// once (`put_value_full`), so the common path checks once and merges with no
+    /// grown stack. Without `grow` a full stack is the error at once.
+    #[inline(always)]
+    pub(crate) fn put_value(&mut self, sp: usize, v: Value) -> Result<(), CapacityError> {
+        match self.stack.get_mut(sp) {
+            Some(slot) => {
+                *slot = v;
+                Ok(())
+            }
+            #[cfg(feature = "grow")]
+            None => self.put_value_full(sp, v),
+            #[cfg(not(feature = "grow"))]
+            None => Err(cap(Pool::EvalStack, self.stack.len())),
+        }
+    }
+
+    /// `put_value` past the stack's end (`grow`).
+    #[cfg(feature = "grow")]
+    #[cold]
+    #[inline(never)]
+    fn put_value_full(&mut self, sp: usize, v: Value) -> Result<(), CapacityError> {
+        self.grow(Pool::EvalStack, sp + 1)?;
+        match self.stack.get_mut(sp) {
+            Some(slot) => {
+                *slot = v;
+                Ok(())
+            }
+            None => Err(cap(Pool::EvalStack, self.stack.len())),
+        }
     }
 
     /// Pushes `n` empty values (a frame's locals, a fact's slots) with one room

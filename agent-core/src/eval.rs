@@ -413,11 +413,7 @@ impl Core<'_> {
                 }
             };
             // `push_value` without its per-value high-water note (one note per call)
-            let sp = self.st.frame.sp as usize;
-            if sp >= self.stack.len() {
-                crate::engine::full_pool!(self, Pool::EvalStack, sp + 1, self.stack.len());
-            }
-            self.stack[sp] = v;
+            self.put_value(self.st.frame.sp as usize, v)?;
             self.st.frame.sp += 1;
             a = self.exprs[a as usize].next;
         }
