@@ -120,62 +120,80 @@ fn global_names(s: &str) -> impl Iterator<Item = &str> {
 }
 
 impl Parser<'_, '_, '_> {
-    /// `load`'s line for the construct just parsed: "Defining defrule: r +j" (or CLIPS's
-    /// redefinition warning) with compilations watched, else a progress mark. Called by
-    /// the parser once a construct is built (a rule before it is matched, as CLIPS
-    /// prints it before the activations), and after it by `load_items`; prints once.
-    pub(crate) fn announce(&mut self) {
-        let Some((start, existed)) = self.cx.st.io.announce.take() else {
+    /// The first part of `load`'s line for the construct being read, printed as CLIPS
+    /// prints it once the construct's name and comment are read, so that what its
+    /// parsing prints (errors, a default's output) comes after it: "Defining
+    /// deftemplate: t" and a newline, "Defining defrule: r " (its join marks follow
+    /// once it is built), CLIPS's redefinition warning, or the progress mark. Prints
+    /// once; a defglobal's line waits for its globals (`announce`).
+    pub(crate) fn announce_head(&mut self) {
+        let Some((start, existed, false)) = self.cx.st.io.announce else {
             return;
         };
         let kw = self.construct;
-        let text = self.lex.source().get(start..).unwrap_or("");
+        if kw == "defglobal" {
+            return;
+        }
+        self.cx.st.io.announce = Some((start, existed, true));
         let mut b: TextBuf<256> = TextBuf::new();
         if self.cx.st.mode.watch & watch::COMPILATIONS != 0 {
+            let text = self.lex.source().get(start..).unwrap_or("");
             let name = construct_name(text);
             let _ = if existed {
                 write!(b, "\n[CSTRCPSR1] WARNING: Redefining {kw}: {name}")
             } else {
                 write!(b, "Defining {kw}: {name}")
             };
-            if kw == "defrule" {
-                let _ = b.write_char(' ');
-                for &m in self.join_marks.as_slice() {
-                    let _ = if m == b'\n' {
-                        b.write_char('\n')
-                    } else {
-                        write!(b, "{}j", m as char)
-                    };
-                }
-            }
-            let _ = b.write_char('\n');
-            // a defglobal of several globals: a line for each of the others too
-            if kw == "defglobal" {
-                let end = self.lex.pos().max(start);
-                let text = self.lex.source().get(start..end).unwrap_or("");
-                for name in global_names(text).skip(1) {
-                    let _ = writeln!(b, "Defining defglobal: {name}");
-                }
-            }
-        } else if kw == "defglobal" {
-            // one mark per global
-            let end = self.lex.pos().max(start);
-            let text = self.lex.source().get(start..end).unwrap_or("");
-            for _ in global_names(text) {
-                let _ = b.write_char(':');
-            }
-            self.cx.st.io.progress_printed = true;
+            let _ = b.write_char(if kw == "defrule" { ' ' } else { '\n' });
         } else {
             // CLIPS's progress marks when compilations are not watched
             let _ = b.write_char(match kw {
                 "deftemplate" => '%',
                 "defrule" => '*',
                 "deffunction" => '!',
-                "defglobal" => ':',
                 "deffacts" => '$',
                 _ => '#',
             });
             self.cx.st.io.progress_printed = true;
+        }
+        self.cx.write(router::STDOUT, b.as_str());
+    }
+
+    /// The rest of `load`'s line for the construct just parsed (`announce_head` first,
+    /// if the parser has not called it): a rule's join marks with compilations
+    /// watched, and a defglobal's line or marks, one per global. Called by the parser
+    /// once a construct is built (a rule before it is matched, as CLIPS prints it
+    /// before the activations), and after it by `load_items`; prints once.
+    pub(crate) fn announce(&mut self) {
+        self.announce_head();
+        let Some((start, _, _)) = self.cx.st.io.announce.take() else {
+            return;
+        };
+        let kw = self.construct;
+        let watched = self.cx.st.mode.watch & watch::COMPILATIONS != 0;
+        let mut b: TextBuf<256> = TextBuf::new();
+        if kw == "defglobal" {
+            let end = self.lex.pos().max(start);
+            let text = self.lex.source().get(start..end).unwrap_or("");
+            for name in global_names(text) {
+                let _ = if watched {
+                    writeln!(b, "Defining defglobal: {name}")
+                } else {
+                    b.write_char(':')
+                };
+            }
+            if !watched {
+                self.cx.st.io.progress_printed = true;
+            }
+        } else if kw == "defrule" && watched {
+            for &m in self.join_marks.as_slice() {
+                let _ = if m == b'\n' {
+                    b.write_char('\n')
+                } else {
+                    write!(b, "{}j", m as char)
+                };
+            }
+            let _ = b.write_char('\n');
         }
         self.cx.write(router::STDOUT, b.as_str());
     }
@@ -1173,6 +1191,8 @@ impl Core<'_> {
                 b,
                 "\n[NOTIMPL1] robotino-agent does not implement {what}: {tok}"
             );
+        } else if e.detail == LoadDetail::DefaultEvaluation {
+            // the evaluation error is printed; CLIPS adds only the construct
         } else if e.construct == "command" {
             {
                 let _ = writeln!(
@@ -1211,7 +1231,9 @@ impl Core<'_> {
                 ..
             }
         ) && e.construct == "defrule";
-        if matches!(e.detail, LoadDetail::Constraint { .. }) && e.construct == "deffacts" {
+        if e.construct == "deffacts"
+            && (e.echo_end != 0 || matches!(e.detail, LoadDetail::Constraint { .. }))
+        {
             let _ = b.write_str("\nERROR:\n");
             let upto = text.get(..e.echo_end as usize).unwrap_or(text);
             let _ = crate::builtins::pretty::write_deffacts_upto(upto, module, &mut b);
@@ -1233,7 +1255,33 @@ impl Core<'_> {
             let upto = text.get(..e.echo_end as usize).unwrap_or(text);
             let _ = crate::builtins::pretty::write_defrule_upto(upto, module, &mut b);
             let _ = b.write_char('\n');
-        } else if e.echo_end != 0 && !matches!(e.detail, LoadDetail::Constraint { .. }) {
+        } else if e.echo_end != 0
+            && e.construct == "defrule"
+            && matches!(e.detail, LoadDetail::Syntax | LoadDetail::MissingFunction)
+        {
+            // a rule CLIPS stopped reading, in its conditions or its actions
+            let _ = b.write_str("\nERROR:\n");
+            let upto = text.get(..e.echo_end as usize).unwrap_or(text);
+            let _ = if crate::builtins::pretty::has_arrow(upto) {
+                crate::builtins::pretty::write_defrule_upto(upto, module, &mut b)
+            } else {
+                crate::builtins::pretty::write_defrule_lhs_upto(upto, module, &mut b)
+            };
+            let _ = b.write_char('\n');
+        } else if e.echo_end != 0
+            && e.construct == "deffunction"
+            && e.detail == LoadDetail::MissingFunction
+        {
+            let _ = b.write_str("\nERROR:\n");
+            let upto = text.get(..e.echo_end as usize).unwrap_or(text);
+            let _ = crate::builtins::pretty::write_deffunction_upto(upto, module, &mut b);
+            let _ = b.write_char('\n');
+        } else if e.echo_end != 0
+            && !matches!(e.detail, LoadDetail::Constraint { .. })
+            // (an unknown function elsewhere, at the prompt or in a defglobal, is not
+            // shown)
+            && (e.detail != LoadDetail::MissingFunction || e.construct == "deftemplate")
+        {
             let _ = b.write_str("\nERROR:\n");
             let _ = crate::builtins::pretty::write_deftemplate_echo(
                 text,
@@ -1281,7 +1329,7 @@ impl Core<'_> {
             let first = p.peek();
             let start = first.start;
             let existed = p.cx.construct_exists(&text[start..]);
-            p.cx.st.io.announce = verbose.then_some((start, existed));
+            p.cx.st.io.announce = verbose.then_some((start, existed, false));
             // CLIPS ends a halt with the construct whose matching caused it
             p.cx.st.mode.halting = false;
             let cp = p.cx.checkpoint();

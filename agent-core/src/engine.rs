@@ -385,10 +385,11 @@ pub struct BatchIo {
     pub quiet_results: bool,
     /// A batch file ended after its prompt was printed; the next command read uses it.
     pub prompt_shown: bool,
-    /// `load` of the construct being parsed: its start in the text and whether it
-    /// redefines one; the parser announces it (`Parser::announce`) once it is built,
-    /// before it is matched against the facts.
-    pub announce: Option<(usize, bool)>,
+    /// `load` of the construct being parsed: its start in the text, whether it
+    /// redefines one, and whether the first part of its line is printed
+    /// (`Parser::announce_head`, once its name is read); the parser announces the rest
+    /// (`Parser::announce`) once it is built, before it is matched against the facts.
+    pub announce: Option<(usize, bool, bool)>,
     /// A progress mark (`*`, `%`, ...) was printed by this load.
     pub progress_printed: bool,
 }

@@ -559,6 +559,10 @@ pub enum LoadDetail {
     },
     /// `[EXPRNPSR3]`: unknown function (its name is the offending token).
     MissingFunction,
+    /// A static default whose expression failed when the deftemplate was defined: the
+    /// evaluation error was printed then, and CLIPS adds no syntax error (only the
+    /// construct after `ERROR:`).
+    DefaultEvaluation,
     /// `[CSTRNCHK1]`: a literal slot value violates the slot's type (`types`) or
     /// allowed values.
     Constraint {

@@ -86,6 +86,19 @@ pub trait Host {
     fn rename_file(&mut self, _from: &str, _to: &str) -> Result<(), HostIoError> {
         Err(HostIoError::Unsupported)
     }
+    /// Starts copying everything the engine writes to the screen (every router but the
+    /// logical names of files `open` opened) into file `path`, created or emptied
+    /// (`dribble-on`); a dribble file already open is closed first, as CLIPS does. A
+    /// host without files (the robot) refuses with `Unsupported`, and `dribble-on` says
+    /// so; any other error is a file that could not be opened.
+    fn dribble_on(&mut self, _path: &str) -> Result<(), HostIoError> {
+        Err(HostIoError::Unsupported)
+    }
+    /// Stops copying and closes the dribble file, if one is open (`dribble-off`); false
+    /// when closing it failed.
+    fn dribble_off(&mut self) -> bool {
+        true
+    }
     /// Polled once per iteration of `while`, `loop-for-count`, `progn$`/`foreach` and
     /// once per rule firing of `run`: returning true stops the current execution (as
     /// CLIPS's keyboard interrupt does) with `EvalErrorKind::Interrupted`. A robot's

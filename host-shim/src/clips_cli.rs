@@ -115,8 +115,9 @@ impl Stdin {
     }
 }
 
-/// Host for the command line: every router goes to stdout, but the logical names of
-/// files `open` opened; files via std::fs.
+/// Host for the command line: every router goes to stdout (and to the dribble file,
+/// with what is typed, while `dribble-on` has one open), but the logical names of files
+/// `open` opened; files via std::fs.
 struct CliHost {
     started: std::time::Instant,
     out: std::io::BufWriter<std::io::Stdout>,
@@ -125,6 +126,17 @@ struct CliHost {
     failed: bool,
     files: HashMap<String, OpenFile>,
     stdin: Stdin,
+    /// `dribble-on`'s file: a copy of what goes to the screen and of what is typed.
+    dribble: Option<std::io::BufWriter<std::fs::File>>,
+}
+
+impl CliHost {
+    /// Copies text to the dribble file, if one is open.
+    fn copy_to_dribble(&mut self, text: &[u8]) {
+        if let Some(d) = self.dribble.as_mut() {
+            let _ = d.write_all(text);
+        }
+    }
 }
 
 impl Host for CliHost {
@@ -141,6 +153,24 @@ impl Host for CliHost {
             }
         }
         let _ = self.out.write_all(text.as_bytes());
+        self.copy_to_dribble(text.as_bytes());
+    }
+
+    fn dribble_on(&mut self, path: &str) -> Result<(), HostIoError> {
+        self.dribble_off();
+        let file = std::fs::File::create(path).map_err(|e| match e.kind() {
+            std::io::ErrorKind::NotFound => HostIoError::NotFound,
+            _ => HostIoError::Other,
+        })?;
+        self.dribble = Some(std::io::BufWriter::new(file));
+        Ok(())
+    }
+
+    fn dribble_off(&mut self) -> bool {
+        match self.dribble.take() {
+            Some(mut d) => d.flush().is_ok(),
+            None => true,
+        }
     }
 
     fn open_file(&mut self, name: &str, path: &str, mode: OpenMode) -> Result<(), HostIoError> {
@@ -193,7 +223,14 @@ impl Host for CliHost {
         if name == "stdin" {
             // what was asked before the read is on the screen first
             let _ = self.out.flush();
-            return self.stdin.read_byte().map_err(|_| HostIoError::Other);
+            let fresh = self.stdin.back.is_none();
+            let b = self.stdin.read_byte().map_err(|_| HostIoError::Other)?;
+            // what is typed goes into the dribble file, as in CLIPS (a byte given
+            // back and read again is copied once)
+            if let (true, Some(b)) = (fresh, b) {
+                self.copy_to_dribble(&[b]);
+            }
+            return Ok(b);
         }
         match self.files.get_mut(name) {
             Some(OpenFile::Read { file, back }) => {
@@ -387,6 +424,7 @@ fn session(engine: &mut dyn CliEngine, steps: Vec<Step>) -> ExitCode {
             lines: std::io::stdin().lock(),
             back: None,
         },
+        dribble: None,
     };
     // As CLIPS: `-l` and `-f2` files run at start-up, before the banner; `-f` files are
     // read by the command loop after it, as if typed at the prompt.
@@ -400,11 +438,13 @@ fn session(engine: &mut dyn CliEngine, steps: Vec<Step>) -> ExitCode {
     {
         if !run_step(engine, &mut host, step) {
             let _ = host.out.flush();
+            host.dribble_off();
             return exit_code(engine, &host, true);
         }
     }
     interactive(engine, &mut host);
     let _ = host.out.flush();
+    host.dribble_off();
     exit_code(engine, &host, false)
 }
 
@@ -475,10 +515,14 @@ fn interactive(engine: &mut dyn CliEngine, host: &mut CliHost) {
         }
         let _ = host.out.flush();
         let mut line = String::new();
+        // a byte a read gave back went into the dribble file when it was read
+        let given_back = usize::from(host.stdin.back.is_some());
         match host.stdin.read_line(&mut line) {
             Ok(0) | Err(_) => return,
             Ok(_) => {}
         }
+        // a typed command goes into the dribble file, as in CLIPS
+        host.copy_to_dribble(line.as_bytes().get(given_back..).unwrap_or_default());
         buf.push_str(&line);
         if let Some(k) = command_complete(&buf) {
             let cmd: String = buf[..k].to_string();

@@ -5,7 +5,9 @@
 //! `wordp`), `pointerp`, `setgen`, `system` (as Debian builds CLIPS: it runs nothing), `get-`/`set-dynamic-constraint-checking`,
 //! `set-fact-duplication`, and the
 //! engine settings this engine has one value of (`get-`/`set-auto-float-dividend`,
-//! `-salience-evaluation`, `-sequence-operator-recognition`): setting the value it has
+//! `-salience-evaluation`, `-sequence-operator-recognition`,
+//! `-static-constraint-checking`, `-incremental-reset`, `-reset-globals`), and
+//! `operating-system` (as Debian builds CLIPS: `UNKNOWN`): setting the value it has
 //! is accepted, any other is refused with an error, never accepted and ignored.
 //!
 //! An older name whose function CLIPS shares with the newer one is a row with the newer
@@ -81,6 +83,13 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("set-fact-duplication", 1, 1, set_fact_duplication),
     Builtin::eager("get-sequence-operator-recognition", 0, 0, get_sequence_operator_recognition),
     Builtin::eager("set-sequence-operator-recognition", 1, 1, set_sequence_operator_recognition),
+    Builtin::eager("get-static-constraint-checking", 0, 0, get_static_constraint_checking),
+    Builtin::eager("set-static-constraint-checking", 1, 1, set_static_constraint_checking),
+    Builtin::eager("get-incremental-reset", 0, 0, get_incremental_reset),
+    Builtin::eager("set-incremental-reset", 1, 1, set_incremental_reset),
+    Builtin::eager("get-reset-globals", 0, 0, get_reset_globals),
+    Builtin::eager("set-reset-globals", 1, 1, set_reset_globals),
+    Builtin::eager("operating-system", 0, 0, operating_system),
     Builtin::eager("get-salience-evaluation", 0, 0, get_salience_evaluation),
     Builtin::eager("set-salience-evaluation", 1, 1, set_salience_evaluation).args(&[super::describe::ArgType::Symbol], Any),
 ];
@@ -402,6 +411,55 @@ fn set_sequence_operator_recognition(cx: &mut Core<'_>, a: Args) -> Result<Value
         return Err(refuse(cx, "set-sequence-operator-recognition", "FALSE"));
     }
     Ok(Value::Sym(SYM_FALSE))
+}
+
+/// Literal slot values are checked when constructs and commands are read (CLIPS's
+/// default, TRUE).
+fn get_static_constraint_checking(_cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
+    Ok(Value::Sym(SYM_TRUE))
+}
+fn set_static_constraint_checking(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    if is_false(cx.arg(a, 0)) {
+        return Err(refuse(cx, "set-static-constraint-checking", "TRUE"));
+    }
+    Ok(Value::Sym(SYM_TRUE))
+}
+
+/// A rule defined while facts exist is matched against them at once (CLIPS's default,
+/// TRUE).
+fn get_incremental_reset(_cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
+    Ok(Value::Sym(SYM_TRUE))
+}
+fn set_incremental_reset(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    if (0..cx.st.pools.nrules).any(|r| !cx.rules[r as usize].deleted) {
+        // CLIPS checks this first, whatever the value, and returns the old one
+        cx.write(
+            router::WERROR,
+            "[INCRRSET1] The incremental reset behavior cannot be changed with rules loaded.\n",
+        );
+        return Ok(Value::Sym(SYM_TRUE));
+    }
+    if is_false(cx.arg(a, 0)) {
+        return Err(refuse(cx, "set-incremental-reset", "TRUE"));
+    }
+    Ok(Value::Sym(SYM_TRUE))
+}
+
+/// `reset` gives every defglobal its initial value back (CLIPS's default, TRUE).
+fn get_reset_globals(_cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
+    Ok(Value::Sym(SYM_TRUE))
+}
+fn set_reset_globals(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    if is_false(cx.arg(a, 0)) {
+        return Err(refuse(cx, "set-reset-globals", "TRUE"));
+    }
+    Ok(Value::Sym(SYM_TRUE))
+}
+
+/// What Debian's build of CLIPS 6.30 answers: it was compiled without naming its
+/// system.
+fn operating_system(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
+    Ok(Value::Sym(cx.intern("UNKNOWN")?))
 }
 
 /// Salience is evaluated when a rule is defined (CLIPS's default).

@@ -1,6 +1,7 @@
 //! CLIPS's I/O functions: `read`, `readline`, `read-number`, `get-char`, `put-char`,
-//! `open`, `close`, `remove`, `rename` (output to an opened file is `printout` and
-//! `format`, through `commands::resolve_router`).
+//! `open`, `close`, `remove`, `rename`, `dribble-on`, `dribble-off` (output to an opened
+//! file is `printout` and `format`, through `commands::resolve_router`; the dribble file
+//! is the host's, [`Host::dribble_on`]).
 //!
 //! Files and standard input belong to the host ([`Host::open_file`],
 //! [`Host::read_byte`], ...): the engine keeps no file table, so its memory is the same
@@ -14,6 +15,7 @@
 //!
 //! [`Host::open_file`]: crate::host::Host::open_file
 //! [`Host::read_byte`]: crate::host::Host::read_byte
+//! [`Host::dribble_on`]: crate::host::Host::dribble_on
 
 use core::fmt::Write;
 
@@ -36,6 +38,8 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("close", 0, 1, close),
     Builtin::eager("remove", 1, 1, remove),
     Builtin::eager("rename", 2, 2, rename),
+    Builtin::eager("dribble-on", 1, 1, dribble_on),
+    Builtin::eager("dribble-off", 0, 0, dribble_off),
 ];
 
 pub const TABLE: super::Table = super::Table::new(FUNCS);
@@ -608,6 +612,26 @@ fn rename(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         Err(HostIoError::Unsupported) => Ok(no_files(cx, "rename")),
         Err(_) => Ok(truth(false)),
     }
+}
+
+/// `(dribble-on path)`: TRUE when the host opened the file that copies the screen
+/// from now on. A dribble file already open is closed first, even when the new one
+/// cannot be opened (`[ARGACCES2]`, FALSE), as in CLIPS.
+fn dribble_on(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let path = path_arg(cx, a, 0, "dribble-on")?;
+    match cx.host.dribble_on(path.as_str()) {
+        Ok(()) => Ok(truth(true)),
+        Err(HostIoError::Unsupported) => Ok(no_files(cx, "dribble-on")),
+        Err(_) => {
+            cx.report_unopened_file("dribble-on", path.as_str());
+            Ok(truth(false))
+        }
+    }
+}
+
+/// `(dribble-off)`: closes the dribble file; TRUE also when none was open (CLIPS 6.30).
+fn dribble_off(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
+    Ok(truth(cx.host.dribble_off()))
 }
 
 impl Core<'_> {

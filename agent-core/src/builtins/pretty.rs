@@ -149,6 +149,10 @@ fn ce(c: &mut Cursor<'_>, w: &mut dyn Write, col: usize) -> fmt::Result {
         first = false;
         ce(c, w, inner)?;
     }
+    // a rule shown up to where CLIPS stopped reading it ends inside the CE
+    if c.peek(0).tok == Tok::Eof {
+        return Ok(());
+    }
     w.write_char(')')
 }
 
@@ -321,6 +325,43 @@ pub fn write_defrule_upto(src: &str, module: &str, w: &mut dyn Write) -> fmt::Re
         c.next();
     }
     action_lines(&mut c, w, 3, &[])
+}
+
+/// Whether a defrule's text holds its `=>` (at the rule's top level).
+pub fn has_arrow(src: &str) -> bool {
+    let mut c = Cursor::new(src);
+    let mut depth = 0u32;
+    loop {
+        let t = c.next();
+        match t.tok {
+            Tok::Eof | Tok::Bad => return false,
+            Tok::LParen => depth += 1,
+            Tok::RParen => depth = depth.saturating_sub(1),
+            Tok::Symbol("=>") if depth == 1 => return true,
+            _ => {}
+        }
+    }
+}
+
+/// What CLIPS shows after `ERROR:` for a rule it stopped reading in its conditions,
+/// where `src` ends (inside a CE): the head, the comment, and the CEs one per line.
+pub fn write_defrule_lhs_upto(src: &str, module: &str, w: &mut dyn Write) -> fmt::Result {
+    let mut c = Cursor::new(src);
+    c.next(); // (
+    c.next(); // defrule
+    let name = c.next();
+    let name = c.text(name);
+    write_head(w, "defrule", name, module)?;
+    if let Tok::Str(_) = c.peek(0).tok {
+        let t = c.next();
+        w.write_char(' ')?;
+        write_token(&c, w, t)?;
+    }
+    while !matches!(c.peek(0).tok, Tok::Eof | Tok::Bad | Tok::RParen) {
+        w.write_str("\n   ")?;
+        ce(&mut c, w, 3)?;
+    }
+    Ok(())
 }
 
 /// Writes the pretty-printed form of the deffunction whose source is `src`

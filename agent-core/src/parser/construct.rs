@@ -34,11 +34,13 @@ impl<'s> Parser<'s, '_, '_> {
         }
     }
 
-    /// Optional comment string after a construct name.
+    /// Optional comment string after a construct name; `load`'s line for the construct
+    /// starts here, as CLIPS prints it once it has read the name and comment.
     fn skip_comment(&mut self) {
         if let Tok::Str(_) = self.peek().tok {
             self.next();
         }
+        self.announce_head();
     }
 
     /// The construct's source text from `start` to here, interned for its `ppdef*`

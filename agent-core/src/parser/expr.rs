@@ -328,6 +328,8 @@ impl<'s> Parser<'s, '_, '_> {
             None => {
                 let mut e = self.err(nt, "a known function name");
                 e.detail = crate::error::LoadDetail::MissingFunction;
+                // CLIPS shows the construct up to the name
+                e.echo_end = nt.end as u32;
                 Err(e)
             }
         }

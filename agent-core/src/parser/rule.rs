@@ -245,6 +245,8 @@ impl<'s> Parser<'s, '_, '_> {
         if let Tok::Str(_) = self.peek().tok {
             self.next();
         }
+        // `load`'s "Defining defrule: r " (CLIPS prints it here, errors follow it)
+        self.announce_head();
         let body_lex = self.save();
         let first_new_rule = self.cx.st.pools.nrules;
         self.rule_base = first_new_rule;
@@ -906,10 +908,13 @@ impl<'s> Parser<'s, '_, '_> {
                 return Err(self.err(nt, "a deftemplate the module sees ([MODULDEF1])"));
             }
             None if self.peek().tok == Tok::LParen => {
-                return Err(self.err(
+                // CLIPS reads it as an ordered pattern and stops at the `(`
+                let mut e = self.err(
                     nt,
                     "a deftemplate name (no such template for a slot pattern)",
-                ));
+                );
+                e.echo_end = self.peek().end as u32;
+                return Err(e);
             }
             None => cap!(self, self.cx.implied_template(sym))?,
         };
@@ -1486,7 +1491,14 @@ impl<'s> Parser<'s, '_, '_> {
                     let this = self.this_field(p, locv, desc)?;
                     self.node2(Op::Eq2, this, c)
                 }
-                None => Err(self.err(t, "a constraint (literal, variable, ~, :( ) or =( ))")),
+                None => {
+                    let mut e = self.err(t, "a constraint (literal, variable, ~, :( ) or =( ))");
+                    // CLIPS shows the rule up to a `(` where a field was due
+                    if t.tok == Tok::LParen {
+                        e.echo_end = t.end as u32;
+                    }
+                    Err(e)
+                }
             },
         }
     }

@@ -274,12 +274,12 @@ impl<'s> Parser<'s, '_, '_> {
         let holder = cap!(self, self.cx.push_expr(Expr::new(Op::Nop, 0, 0)))?;
         let values_at = self.save();
         let mut n = 0 as Ix;
-        loop {
+        let close = loop {
             let t = self.peek();
             match t.tok {
                 Tok::RParen => {
                     self.next();
-                    break;
+                    break t;
                 }
                 Tok::Eof | Tok::Bad => return Err(self.err(t, "')'")),
                 _ if !def.multi && n == 1 => {
@@ -291,7 +291,7 @@ impl<'s> Parser<'s, '_, '_> {
                     n += 1;
                 }
             }
-        }
+        };
         self.scope = save;
         if !def.multi && n != 1 {
             return Err(self.err(at, "exactly one default value for a single-field slot"));
@@ -303,18 +303,21 @@ impl<'s> Parser<'s, '_, '_> {
             DefaultKind::Dynamic
         };
         if attribute == "default" {
-            self.evaluate_static_default(def, &values_at)?;
+            self.evaluate_static_default(def, &values_at, close)?;
         }
         Ok(Some((values_at, attribute)))
     }
 
     /// CLIPS evaluates a static default's expressions once, when the deftemplate is
     /// defined (`(default (gensym))` is the same symbol in every fact): calls and
-    /// globals become the constants they give, a multifield's fields spliced in.
+    /// globals become the constants they give, a multifield's fields spliced in. An
+    /// expression that fails is reported as CLIPS reports it: its error, then the
+    /// deftemplate up to the attribute's `)` (`close`).
     fn evaluate_static_default(
         &mut self,
         def: &mut SlotDef,
         values_at: &ValuesAt<'s>,
+        close: Token<'s>,
     ) -> PResult<()> {
         let mut c = def.default;
         let mut any = false;
@@ -336,9 +339,16 @@ impl<'s> Parser<'s, '_, '_> {
             } else {
                 match self.eval_now(c) {
                     Ok(v) => v,
-                    Err(_) => {
+                    Err(err) => {
+                        if err.is_capacity() {
+                            let at = self.value_at(values_at.clone(), k)?;
+                            return Err(self.err(at, "a default value that evaluates"));
+                        }
+                        self.cx.write_error_message(err);
                         let at = self.value_at(values_at.clone(), k)?;
-                        return Err(self.err(at, "a default value that evaluates"));
+                        let mut e = self.err(at, "a default value that evaluates");
+                        e.detail = LoadDetail::DefaultEvaluation;
+                        return Err(echoed(e, close, EchoTail::Normal));
                     }
                 }
             };

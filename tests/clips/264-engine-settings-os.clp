@@ -1,0 +1,28 @@
+; engine settings at the one value this engine has (CLIPS's defaults), the message
+; set-incremental-reset gives once rules exist, and operating-system as Debian's
+; build answers it
+(get-static-constraint-checking)
+(set-static-constraint-checking TRUE)
+(set-static-constraint-checking 1)
+(set-static-constraint-checking)
+(get-incremental-reset)
+(set-incremental-reset TRUE)
+(set-incremental-reset yes no)
+(defrule r (a) =>)
+(set-incremental-reset TRUE)
+(set-incremental-reset FALSE)
+(get-incremental-reset)
+(undefrule r)
+(set-incremental-reset TRUE)
+(get-reset-globals)
+(set-reset-globals TRUE)
+(set-reset-globals nil)
+(get-reset-globals)
+(defglobal ?*g* = 1)
+(bind ?*g* 2)
+(reset)
+?*g*
+(get-reset-globals 1)
+(operating-system)
+(operating-system 1)
+(exit)
