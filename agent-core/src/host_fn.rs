@@ -166,6 +166,35 @@ impl<'a> FactView<'a> {
         })
     }
 
+    /// Live facts of the template named `name`, in index order: one walk of the list
+    /// (asking each id's template name walks it once per id).
+    pub(crate) fn ids_of(&self, name: &'a str) -> impl Iterator<Item = FactId> + 'a {
+        let (facts, templates, syms, mut f) = (self.facts, self.templates, self.syms, self.head);
+        // The last template looked at and whether its name is `name`.
+        let mut last: Option<(Ix, bool)> = None;
+        core::iter::from_fn(move || {
+            while f != NONE {
+                let x = facts[f as usize];
+                f = x.next;
+                if x.state != FactState::Live {
+                    continue;
+                }
+                let hit = match last {
+                    Some((t, hit)) if t == x.tmpl => hit,
+                    _ => {
+                        let hit = syms.is(templates[x.tmpl as usize].name, name);
+                        last = Some((x.tmpl, hit));
+                        hit
+                    }
+                };
+                if hit {
+                    return Some(FactId(x.num));
+                }
+            }
+            None
+        })
+    }
+
     fn find(&self, id: FactId) -> Option<Ix> {
         let mut f = self.head;
         while f != NONE {

@@ -149,6 +149,26 @@ impl<'a> SymTexts<'a> {
             .and_then(|b| core::str::from_utf8(b).ok())
             .unwrap_or("")
     }
+
+    /// Whether symbol `id`'s text is `text` (as `text(id) == text`, without checking
+    /// the bytes are UTF-8 first: bytes equal to a `str`'s are).
+    #[inline]
+    pub fn is(&self, id: SymId, text: &str) -> bool {
+        let rom = self.rom.len();
+        if (id as usize) < rom {
+            return self.rom.texts[id as usize] == text;
+        }
+        let Some(e) = self.entries.get(id as usize - rom) else {
+            return text.is_empty();
+        };
+        match self
+            .bytes
+            .get(e.start as usize..e.start as usize + e.len as usize)
+        {
+            Some(b) => b == text.as_bytes(),
+            None => text.is_empty(),
+        }
+    }
 }
 
 /// Borrowed view of the symbol storage (see `engine::Core`): ids below `rom.len()`

@@ -131,9 +131,7 @@ impl Rules {
 
     /// The facts of one template.
     pub fn facts_of<'a>(&'a self, template: &'a str) -> impl Iterator<Item = FactId> + 'a {
-        self.engine
-            .facts()
-            .filter(move |&id| self.engine.fact_template_name(id) == Some(template))
+        self.engine.facts_of(template)
     }
 
     /// The first ordered fact `(name VALUE)`'s value as a symbol, e.g. `(state IDLE)`.

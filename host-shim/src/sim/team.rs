@@ -171,9 +171,7 @@ impl World {
     }
 
     fn find(&self, template: &str) -> Option<FactId> {
-        self.engine
-            .facts()
-            .find(|&id| self.engine.fact_template_name(id) == Some(template))
+        self.engine.facts_of(template).next()
     }
 
     fn int(&self, id: FactId, slot: &str) -> i64 {
@@ -218,10 +216,8 @@ impl World {
         self.run()?;
         let result = self
             .engine
-            .facts()
-            .find(|&f| {
-                self.engine.fact_template_name(f) == Some("rf-result") && self.int(f, "id") == id
-            })
+            .facts_of("rf-result")
+            .find(|&f| self.int(f, "id") == id)
             .ok_or_else(|| SimError::Facts(format!("no rf-result for action {id}")))?;
         let answer = (
             self.sym(result, "status"),
@@ -257,8 +253,8 @@ fn int_of(m: &TeamMember, id: FactId, slot: &str) -> i64 {
 /// The agent's `(state X)`.
 fn agent_state(m: &TeamMember) -> String {
     m.engine
-        .facts()
-        .find(|&id| m.engine.fact_template_name(id) == Some("state"))
+        .facts_of("state")
+        .next()
         .and_then(|id| match m.engine.fact_multislot_item(id, "implied", 0) {
             Some(ValueRef::Symbol(s)) => Some(s.to_string()),
             _ => None,
@@ -444,10 +440,12 @@ impl TeamPlayer {
                     }
                 }
             }
+            // Every agent's state until the next step (no engine runs before it).
+            let states: Vec<String> = self.robots.iter().map(agent_state).collect();
             // Stalls: a robot without skill events for a minute while raw pucks remain.
             let s0_left = self.world.s0_left();
             for (i, b) in bodies.iter_mut().enumerate() {
-                let done = agent_state(&self.robots[i]) == "DONE";
+                let done = states[i] == "DONE";
                 if s0_left > 0 && !done && t - b.last_event >= STALL_S {
                     b.stats.stalls += 1;
                     b.last_event = t;
@@ -455,7 +453,7 @@ impl TeamPlayer {
             }
             // The end.
             let all_done = (0..n).all(|i| {
-                agent_state(&self.robots[i]) == "DONE" && matches!(bodies[i].phase, Phase::Free)
+                states[i] == "DONE" && matches!(bodies[i].phase, Phase::Free)
                     || matches!(bodies[i].phase, Phase::Stopped)
             });
             if all_done {
@@ -478,10 +476,7 @@ impl TeamPlayer {
                 }
             }
             for (i, b) in bodies.iter_mut().enumerate() {
-                if matches!(
-                    agent_state(&self.robots[i]).as_str(),
-                    "TEAM-WAIT" | "TEAM-CLAIM"
-                ) {
+                if matches!(states[i].as_str(), "TEAM-WAIT" | "TEAM-CLAIM") {
                     b.stats.waited += next - t;
                 }
             }
@@ -512,8 +507,7 @@ impl TeamPlayer {
     fn new_request(&self, i: usize, taken: i64) -> Option<(i64, String, String)> {
         let m = &self.robots[i];
         m.engine
-            .facts()
-            .filter(|&id| m.engine.fact_template_name(id) == Some("skill-request"))
+            .facts_of("skill-request")
             .map(|id| {
                 (
                     int_of(m, id, "id"),

@@ -182,10 +182,7 @@ impl TeamMember {
     }
 
     fn facts_of(&self, template: &str) -> Vec<FactId> {
-        self.engine
-            .facts()
-            .filter(|&id| self.engine.fact_template_name(id) == Some(template))
-            .collect()
+        self.engine.facts_of(template).collect()
     }
 
     fn int(&self, id: FactId, slot: &str) -> i64 {
