@@ -15,6 +15,9 @@ pub const ENGINE_THREAD_STACK: usize = 64 << 20;
 /// a thousand, so hitting this means the rules loop.
 pub const FIRE_LIMIT: u32 = 100_000;
 
+/// Firings watched after a loop to name its rules.
+const LOOP_TRACE_FIRINGS: u32 = 12;
+
 /// An engine operation that failed, with what the shim was doing.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RulesError {
@@ -118,10 +121,38 @@ impl Rules {
         if fired >= FIRE_LIMIT {
             return Err(RulesError::new(
                 "(run)",
-                format!("{FIRE_LIMIT} rules fired without quiescence (a rule loop)"),
+                format!(
+                    "{FIRE_LIMIT} rules fired without quiescence (a rule loop: {})",
+                    self.loop_trace()
+                ),
             ));
         }
         Ok(fired)
+    }
+
+    /// The rules a loop fires: a few more firings watched (the engine is stopped
+    /// anyway), as their `FIRE` lines.
+    fn loop_trace(&mut self) -> String {
+        let before = self.host.output.len();
+        let watched = match self.engine.eval_str(&mut self.host, "(watch rules)") {
+            Ok(_) => self
+                .engine
+                .run(&mut self.host, Some(LOOP_TRACE_FIRINGS))
+                .map(|_| ())
+                .map_err(|e| e.to_string()),
+            Err(e) => Err(e.to_string()),
+        };
+        let fires: Vec<&str> = self.host.output[before..]
+            .lines()
+            .filter(|l| l.trim_start().starts_with("FIRE"))
+            .map(str::trim)
+            .collect();
+        let trace = match watched {
+            Ok(_) => fires.join("; "),
+            Err(e) => format!("not watched: {e}"),
+        };
+        self.host.output.truncate(before);
+        trace
     }
 
     /// Takes what the rules printed since the last call.
