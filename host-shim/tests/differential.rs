@@ -396,4 +396,5 @@ differential_programs! {
     p283_modules_get_lists => "283-modules-get-lists",
     p284_modules_logical_strategies => "284-modules-logical-strategies",
     p285_modules_unseen_globals => "285-modules-unseen-globals",
+    p286_modules_undefine => "286-modules-undefine",
 }

@@ -557,6 +557,39 @@ struct Undefine {
     /// Whether entry `i` must stay (in use); the flag: all of its kind go (`*`).
     stays: fn(&Core<'_>, Ix, bool) -> bool,
     remove: fn(&mut Core<'_>, Ix) -> Result<(), EvalError>,
+    /// Its module class (`module::class`), to find a name as the current module sees it.
+    class: u8,
+}
+
+/// The entry a name given to `undef...` names: `MOD::name` is module MOD's own, a
+/// plain name the one the current module sees (its own or an imported one).
+fn undefine_target(cx: &mut Core<'_>, how: &Undefine, name: SymId) -> Option<Ix> {
+    let n = (how.count)(cx);
+    #[cfg(feature = "modules")]
+    {
+        use crate::module::class;
+        let (m, bare, qualified) = match cx.resolve_qualified(name) {
+            Some((m, bare)) => (m, bare, true),
+            None => (cx.current_module(), name, false),
+        };
+        (0..n).find(|&i| {
+            if (how.name)(cx, i) != bare {
+                return false;
+            }
+            let owner = match how.class {
+                class::TEMPLATE => cx.module_of_template(i),
+                class::FUNCTION => cx.module_of_function(i),
+                _ => cx.module_of_global(i),
+            };
+            if qualified {
+                owner == m
+            } else {
+                cx.visible_in(how.class, owner, bare, m)
+            }
+        })
+    }
+    #[cfg(not(feature = "modules"))]
+    (0..n).find(|&i| (how.name)(cx, i) == name)
 }
 
 /// `(undef... name)` or `*`: what nothing uses goes, the rest stays with CLIPS's
@@ -566,14 +599,23 @@ struct Undefine {
 fn undefine(cx: &mut Core<'_>, a: Args, how: &Undefine) -> Result<Value, EvalError> {
     let name = cx.arg_lexeme(a, 0, how.func)?;
     let all = cx.sym_text(name) == "*";
-    let n = (how.count)(cx);
-    if !all && !(0..n).any(|i| (how.name)(cx, i) == name) {
-        super::commands::unable(cx, Unable::Find, how.kind, name);
+    if !all {
+        let Some(i) = undefine_target(cx, how, name) else {
+            super::commands::unable(cx, Unable::Find, how.kind, name);
+            return Ok(Value::Void);
+        };
+        if (how.stays)(cx, i, false) {
+            let this = (how.name)(cx, i);
+            super::commands::unable(cx, Unable::Delete, how.kind, this);
+        } else {
+            (how.remove)(cx, i)?;
+        }
         return Ok(Value::Void);
     }
+    let n = (how.count)(cx);
     for i in 0..n {
         let this = (how.name)(cx, i);
-        if this == NONE || (!all && this != name) {
+        if this == NONE {
             continue;
         }
         if (how.stays)(cx, i, all) {
@@ -591,6 +633,7 @@ fn undeftemplate(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let how = Undefine {
         func: "undeftemplate",
         kind: "deftemplate",
+        class: crate::module::class::TEMPLATE,
         count: |cx| cx.st.pools.ntemplates,
         name: |cx, t| cx.templates[t as usize].name,
         stays: |cx, t, _| t == cx.st.facts.initial_tmpl || cx.template_in_use(t),
@@ -612,6 +655,7 @@ fn undeffunction(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let how = Undefine {
         func: "undeffunction",
         kind: "deffunction",
+        class: crate::module::class::FUNCTION,
         count: |cx| cx.st.pools.nfuncs,
         name: |cx, f| cx.funcs[f as usize].name,
         stays: |cx, f, all| cx.st.eval.in_use > 0 || cx.deffunction_in_use(f, all),
@@ -629,6 +673,7 @@ fn undefglobal(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let how = Undefine {
         func: "undefglobal",
         kind: "defglobal",
+        class: crate::module::class::GLOBAL,
         count: |cx| cx.st.pools.nglobals,
         name: |cx, g| cx.globals[g as usize].name,
         stays: |cx, g, _| cx.global_in_use(g),
