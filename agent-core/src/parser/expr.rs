@@ -570,7 +570,12 @@ impl<'s> Parser<'s, '_, '_> {
             }
             self.expect_rparen("')' after the loop range")?;
         } else if t.tok == Tok::LParen {
-            // `(loop-for-count (+ 1 2) ...)`: the count is a call (its `(` read above)
+            // `(loop-for-count (+ 1 2) ...)`: the count is a call (its `(` read above);
+            // `(1 2)` is neither a range nor a call, and CLIPS refuses it as a bad range
+            let head = self.peek();
+            if !matches!(head.tok, Tok::Symbol(_)) {
+                return Err(self.err(head, "a loop variable"));
+            }
             var = cap!(self, self.cx.push_expr(Expr::new(Op::Nop, 0, 0)))?;
             start = cap!(self, self.cx.push_const(Value::Int(1)))?;
             end = self.call()?;
