@@ -37,7 +37,7 @@ fn main() {
             .chain(order::SIM)
             .copied()
             .collect();
-        if let Err(message) = check(dir, &game) {
+        if let Err(message) = check_as(dir, &game, load_check::PpForms::Keep) {
             fail(&format!("{message} (loading the {strategy} game)"));
         }
         let member: Vec<&str> = agent
@@ -47,21 +47,25 @@ fn main() {
             .chain(order::TEAM_AGENT)
             .copied()
             .collect();
-        if let Err(message) = check(dir, &member) {
+        // a robot's engine: loaded without pretty-print forms, as `run` and the team
+        // members load it
+        if let Err(message) = check_as(dir, &member, load_check::PpForms::Drop) {
             fail(&format!("{message} (loading the {strategy} team member)"));
         }
     }
 }
 
-/// Reads the named files and loads them in order.
-fn check(dir: &Path, names: &[&str]) -> Result<(), String> {
+/// Reads the named files and loads them in order, keeping or dropping the
+/// pretty-print forms.
+fn check_as(dir: &Path, names: &[&str], pp_forms: load_check::PpForms) -> Result<(), String> {
     let mut files = Vec::new();
     for name in names {
         let text = std::fs::read_to_string(dir.join(name))
             .map_err(|e| format!("rules/{name}: cannot read: {e}"))?;
         files.push((format!("rules/{name}"), text));
     }
-    load_check::check_load_with(&files, order::HOST_FUNCTIONS).map_err(|bad| bad.to_string())
+    load_check::check_load_as(&files, order::HOST_FUNCTIONS, pp_forms)
+        .map_err(|bad| bad.to_string())
 }
 
 fn fail(message: &str) -> ! {

@@ -58,10 +58,30 @@ pub fn check_load_with(
     files: &[(String, String)],
     host_functions: &[HostFunction],
 ) -> Result<(), BadRuleFile> {
+    check_load_as(files, host_functions, PpForms::Keep)
+}
+
+/// Whether the engine keeps each construct's source text for `ppdefrule` and the like
+/// (`Engine::set_pretty_print_forms`). A robot's agent never lists its rules: the hosts
+/// load a robot's engine without them (`robotino-agent run`, a team member), which
+/// leaves the symbol table a second copy of the rule base's text short.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PpForms {
+    Keep,
+    Drop,
+}
+
+/// `check_load_with` into an engine that keeps or drops the pretty-print forms, as the
+/// host that loads this order does.
+pub fn check_load_as(
+    files: &[(String, String)],
+    host_functions: &[HostFunction],
+    pp_forms: PpForms,
+) -> Result<(), BadRuleFile> {
     std::thread::scope(|scope| {
         let worker = std::thread::Builder::new()
             .stack_size(ENGINE_STACK)
-            .spawn_scoped(scope, || load_all(files, host_functions))
+            .spawn_scoped(scope, || load_all(files, host_functions, pp_forms))
             .map_err(|e| no_position(format!("cannot start the checking thread: {e}")))?;
         worker
             .join()
@@ -86,8 +106,10 @@ fn stand_in(_call: &mut agent_core::HostCall<'_, '_>) -> Result<Value, EvalError
 fn load_all(
     files: &[(String, String)],
     host_functions: &[HostFunction],
+    pp_forms: PpForms,
 ) -> Result<(), BadRuleFile> {
     let mut engine = Box::new(DefaultEngine::new());
+    engine.set_pretty_print_forms(pp_forms == PpForms::Keep);
     let host = &mut Silent;
     for &(name, min, max) in host_functions {
         engine

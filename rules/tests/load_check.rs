@@ -5,8 +5,8 @@
 #[path = "../load_check.rs"]
 mod load_check;
 
-use load_check::{check_load, check_load_with, BadRuleFile};
-use rules::{agent_files, game_files, RuleFile, Strategy, DRIVER_FILES};
+use load_check::{check_load, check_load_as, check_load_with, BadRuleFile, PpForms};
+use rules::{agent_files, game_files, RuleFile, Strategy, COLLECT, DRIVER_FILES, TEAM, TEAM_AGENT};
 
 fn owned(files: &[RuleFile]) -> Vec<(String, String)> {
     files
@@ -26,6 +26,10 @@ fn every_load_order_of_the_rule_base_loads() {
         let mut driver = owned(agent_files(strategy));
         driver.extend(owned(&DRIVER_FILES));
         assert_eq!(check_load(&driver), Ok(()));
+        // a team member on its body, loaded as `run` loads it (no pretty-print forms)
+        let mut member = owned(agent_files(strategy));
+        member.extend(owned(&[COLLECT, TEAM, TEAM_AGENT]));
+        assert_eq!(check_load_as(&member, &[], PpForms::Drop), Ok(()));
     }
 }
 

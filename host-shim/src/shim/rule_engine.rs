@@ -65,13 +65,16 @@ pub struct Rules {
 }
 
 impl Rules {
-    /// A fresh engine with `files` loaded in order. Call on a thread with
+    /// A fresh engine with `files` loaded in order, without pretty-print forms (the
+    /// robot's processes never list their rules; a team member's rule base with its
+    /// source text would not fit the symbol table). Call on a thread with
     /// [`ENGINE_THREAD_STACK`].
     pub fn load(files: &[RuleFile]) -> Result<Self, RulesError> {
         let mut rules = Self {
             engine: Box::new(DefaultEngine::new()),
             host: TextHost::default(),
         };
+        rules.engine.set_pretty_print_forms(false);
         for file in files {
             rules
                 .engine

@@ -94,6 +94,9 @@ impl TeamMember {
             id: 0,
             now: 0.0,
         };
+        // a robot's engine never lists its rules, and the agent's, collect's and the
+        // team's rules with their source text would not fit the symbol table
+        m.engine.set_pretty_print_forms(false);
         for f in files {
             m.load(f.name, f.text)?;
         }
