@@ -128,6 +128,28 @@ const MAX_AGE_CYCLES: u64 = 15;
 /// (the motors' dead-man rule).
 const PREDICT_CYCLES: u64 = 3;
 
+/// How many cycles of its last velocity a teammate silent for `age` (> MAX_AGE_CYCLES)
+/// cycles is carried on: where its wheels stopped (PREDICT_CYCLES), reached from the
+/// MAX_AGE_CYCLES prediction of the cycle before by going back one cycle of its travel
+/// per cycle. Put there at once, a teammate at 0.5 m/s jumped 40 cm back in one cycle
+/// when its silence passed a second (a dead robot's phantom drove on for that second,
+/// then stood back on its body), which no robot can do.
+fn silent_cycles_ahead(age: u64) -> u64 {
+    let back = age.saturating_sub(MAX_AGE_CYCLES);
+    MAX_AGE_CYCLES.saturating_sub(back).max(PREDICT_CYCLES)
+}
+
+/// The time in `from_s..=to_s` at which `r`'s sender, driving on at its announced
+/// velocity, comes nearest to `me`.
+fn nearest_along(r: &PoseReport, from_s: f32, to_s: f32, me: &Pose2) -> f32 {
+    let speed2 = r.vx_m_s * r.vx_m_s + r.vy_m_s * r.vy_m_s;
+    if speed2 < 1e-9 {
+        return from_s;
+    }
+    let t = ((me.x_m - r.x_m) * r.vx_m_s + (me.y_m - r.y_m) * r.vy_m_s) / speed2;
+    t.clamp(from_s, to_s.max(from_s))
+}
+
 /// The newest announcement of each teammate (a late or duplicated one never replaces a
 /// newer one).
 #[derive(Debug, Clone, Default)]
@@ -164,28 +186,33 @@ impl TeamBoard {
             .iter()
             .map(|r| {
                 let age = cycle.saturating_sub(r.cycle);
-                if age > MAX_AGE_CYCLES {
-                    // Where its last command took it before its wheels stopped.
-                    let ahead = age.min(PREDICT_CYCLES) as f32 * dt_s;
-                    return Teammate {
-                        number: r.from,
-                        x_m: r.x_m + r.vx_m_s * ahead,
-                        y_m: r.y_m + r.vy_m_s * ahead,
-                        vx_m_s: 0.0,
-                        vy_m_s: 0.0,
-                    };
-                }
-                // Heard of lately: it drove on as it said for as long as the news took
-                // (on a link delaying messages up to 2 s the newest is often 8 cycles
-                // old; carried on for 3 cycles only, a teammate at 0.5 m/s was placed
-                // 17 cm behind where it was, and the two touched).
-                let ahead = age as f32 * dt_s;
+                // Not heard of this cycle, a teammate either drove on as it said for as
+                // long as the news took (on a link delaying messages up to 2 s the newest
+                // is often 8 cycles old; carried on for 3 cycles only, a teammate at
+                // 0.5 m/s was placed 17 cm behind where it was, and the two touched), or
+                // it is dead and its wheels stopped PREDICT_CYCLES after its last
+                // command (placed where it would have driven on, seed 11's dead robot 3
+                // was run into 0.7 s after its death by robot 2 following it). It is
+                // kept apart from as the point of that stretch of its path nearest to
+                // this robot.
+                let driving = if age > MAX_AGE_CYCLES {
+                    silent_cycles_ahead(age)
+                } else {
+                    age
+                };
+                let stopped = age.min(PREDICT_CYCLES);
+                let ahead = nearest_along(r, stopped as f32 * dt_s, driving as f32 * dt_s, me);
+                let (vx_m_s, vy_m_s) = if age > MAX_AGE_CYCLES {
+                    (0.0, 0.0)
+                } else {
+                    (r.vx_m_s, r.vy_m_s)
+                };
                 Teammate {
                     number: r.from,
                     x_m: r.x_m + r.vx_m_s * ahead,
                     y_m: r.y_m + r.vy_m_s * ahead,
-                    vx_m_s: r.vx_m_s,
-                    vy_m_s: r.vy_m_s,
+                    vx_m_s,
+                    vy_m_s,
                 }
             })
             .collect();
@@ -316,7 +343,8 @@ mod tests {
             vy_m_s: 0.0,
             held_by: 0,
         });
-        let me = Pose2::new(0.0, 0.0, 0.0);
+        // A robot it drives towards.
+        let me = Pose2::new(3.5, 4.40, 0.0);
         let dt = 1.0 / 15.0;
         for age in [1, 8, MAX_AGE_CYCLES] {
             let t = b.teammates(100 + age, dt, &me)[0].unwrap_or_else(|| panic!("known"));
@@ -324,6 +352,40 @@ mod tests {
             assert!((t.x_m - expected).abs() < 1e-4, "age {age}: {t:?}");
             assert!((t.vx_m_s - 0.48).abs() < 1e-6, "{t:?}");
         }
+    }
+
+    /// A teammate that fell silent may be dead, its wheels stopped PREDICT_CYCLES after
+    /// its last command: a robot behind it keeps apart from where it stopped, not from
+    /// where it would have driven on (seed 11 of the kill-one sweep: robot 2 ran into
+    /// the dead robot 3 0.7 s after its death). Beside its path, the nearest point of
+    /// the stretch between the two.
+    #[test]
+    fn a_silent_teammate_is_kept_apart_from_where_it_may_have_stopped() {
+        let mut b = TeamBoard::default();
+        b.hear(PoseReport {
+            from: 3,
+            cycle: 100,
+            x_m: 1.0,
+            y_m: 5.0,
+            vx_m_s: 0.0,
+            vy_m_s: 0.5,
+            held_by: 0,
+        });
+        let dt = 1.0 / 15.0;
+        let stopped_y = 5.0 + 0.5 * PREDICT_CYCLES as f32 * dt;
+        let behind = Pose2::new(1.0, 4.4, 1.57);
+        for age in [PREDICT_CYCLES, 8, MAX_AGE_CYCLES, MAX_AGE_CYCLES + 1, 200] {
+            let t = b.teammates(100 + age, dt, &behind)[0].unwrap_or_else(|| panic!("known"));
+            assert!((t.y_m - stopped_y).abs() < 1e-5, "age {age}: {t:?}");
+            assert_eq!(t.x_m, 1.0);
+        }
+        // Beside the stretch it may have driven (5.1 .. 5.5 in 12 cycles): level with it.
+        let beside = Pose2::new(1.6, 5.3, 0.0);
+        let t = b.teammates(112, dt, &beside)[0].unwrap_or_else(|| panic!("known"));
+        assert!((t.y_m - 5.3).abs() < 1e-4, "{t:?}");
+        // Heard this cycle's news (age 1): where it said, carried one cycle on.
+        let t = b.teammates(101, dt, &behind)[0].unwrap_or_else(|| panic!("known"));
+        assert!((t.y_m - (5.0 + 0.5 * dt)).abs() < 1e-5, "{t:?}");
     }
 
     #[test]
@@ -342,10 +404,12 @@ mod tests {
         let dt = 1.0 / 15.0;
         let fresh = b.teammates(101, dt, &me)[0].unwrap_or_else(|| panic!("known"));
         assert!(fresh.x_m > 2.0 && fresh.vx_m_s > 0.0, "{fresh:?}");
-        // Silent: it stands where its last command took it in PREDICT_CYCLES cycles,
-        // however long the silence (a dead body stays on the field).
+        // Silent: once back from where a live one would be, it stands where its last
+        // command took it in PREDICT_CYCLES cycles, however long the silence (a dead
+        // body stays on the field).
         let stopped_x = 2.0 + 0.5 * PREDICT_CYCLES as f32 * dt;
-        for silent in [MAX_AGE_CYCLES + 1, 15 * 20 + 1, 15 * 600] {
+        let back_at = 2 * MAX_AGE_CYCLES - PREDICT_CYCLES;
+        for silent in [back_at, back_at + 1, 15 * 20 + 1, 15 * 600] {
             let t = b.teammates(100 + silent, dt, &me)[0].unwrap_or_else(|| panic!("kept"));
             assert_eq!((t.y_m, t.vx_m_s, t.vy_m_s), (1.0, 0.0, 0.0), "{t:?}");
             assert!((t.x_m - stopped_x).abs() < 1e-5, "{t:?}");
@@ -362,6 +426,52 @@ mod tests {
         });
         let t = b.teammates(9101, dt, &me)[0].unwrap_or_else(|| panic!("known"));
         assert_eq!((t.x_m, t.y_m), (4.0, 4.0));
+    }
+
+    /// However long a teammate is silent, its predicted place moves no faster than it
+    /// drove: past MAX_AGE_CYCLES it goes back to where its wheels stopped, a cycle's
+    /// travel per cycle, and is still (no jump at the second of silence).
+    #[test]
+    fn a_silent_teammate_never_jumps() {
+        let mut b = TeamBoard::default();
+        let (vx, vy) = (0.4, -0.3);
+        b.hear(PoseReport {
+            from: 2,
+            cycle: 100,
+            x_m: 2.0,
+            y_m: 1.0,
+            vx_m_s: vx,
+            vy_m_s: vy,
+            held_by: 0,
+        });
+        // Far ahead on its path: the prediction is where it drove on, while that lasts.
+        let me = Pose2::new(6.0, -2.0, 0.0);
+        let dt = 1.0 / 15.0;
+        let step = f32::hypot(vx, vy) * dt;
+        let at = |age: u64| b.teammates(100 + age, dt, &me)[0].unwrap_or_else(|| panic!("known"));
+        let mut moved_back = false;
+        for age in 0..3 * MAX_AGE_CYCLES {
+            let (a, n) = (at(age), at(age + 1));
+            let d = (n.x_m - a.x_m).hypot(n.y_m - a.y_m);
+            assert!(
+                d <= step + 1e-4,
+                "age {age} -> {}: {d} m ({a:?} {n:?})",
+                age + 1
+            );
+            if age >= MAX_AGE_CYCLES {
+                assert!(n.is_still(), "age {}: {n:?}", age + 1);
+            }
+            // Going back along its path: against its velocity.
+            moved_back |= (n.x_m - a.x_m) * vx + (n.y_m - a.y_m) * vy < -1e-4;
+        }
+        assert!(
+            moved_back,
+            "the prediction never went back to where it stopped"
+        );
+        let end = at(3 * MAX_AGE_CYCLES);
+        let stopped = PREDICT_CYCLES as f32 * dt;
+        assert!((end.x_m - (2.0 + vx * stopped)).abs() < 1e-5, "{end:?}");
+        assert!((end.y_m - (1.0 + vy * stopped)).abs() < 1e-5, "{end:?}");
     }
 
     #[test]
