@@ -73,8 +73,15 @@
   =>
   (assert (team-wait-since ?t)))
 
+(deftemplate team-blocked
+  "A place this robot could not drive to ?*TEAM_UNREACHED_TRIES* times in a
+   row (a dead teammate's body in its approach stays there): it is avoided
+   as if another robot held it, until game time `until`."
+  (slot resource (type SYMBOL))
+  (slot until (type NUMBER)))
+
 (deffunction team-free-of
-  "The places of ?places no other robot holds now."
+  "The places of ?places no other robot holds now (nor blocked for this one)."
   ($?places)
   (bind ?me 0)
   (do-for-fact ((?f team-self)) TRUE (bind ?me ?f:id))
@@ -82,8 +89,10 @@
   (do-for-fact ((?c team-clock)) TRUE (bind ?now ?c:now))
   (bind ?free (create$))
   (progn$ (?p ?places)
-    (if (not (any-factp ((?v team-vote))
-               (and (eq ?v:resource ?p) (neq ?v:holder ?me) (> ?v:until ?now))))
+    (if (not (or (any-factp ((?v team-vote))
+                   (and (eq ?v:resource ?p) (neq ?v:holder ?me) (> ?v:until ?now)))
+                 (any-factp ((?b team-blocked))
+                   (and (eq ?b:resource ?p) (> ?b:until ?now)))))
      then (bind ?free (create$ ?free ?p))))
   ?free)
 
@@ -167,6 +176,7 @@
   (team-self (id ?me))
   (team-clock (now ?t))
   (not (team-vote (resource ?x) (holder ~?me) (until ?u&:(> ?u ?t))))
+  (not (team-blocked (resource ?x) (until ?b&:(> ?b ?t))))
   =>
   (retract ?s ?w)
   (assert (state IDLE)))
@@ -423,3 +433,83 @@
    then (retract ?s)
         (team-stop-waiting)
         (assert (state IDLE) (intent (action ?a) (target ?y)))))
+
+;;; ---- a place the robot cannot drive to ----------------------------------
+;;; A killed robot's body stays where its wheels stopped, on a machine's
+;;; approach too: the others drove there, failed and chose it again for the
+;;; rest of the game (kill-one seed 18: robots 1 and 2 failed 40 drives to M2,
+;;; 101 points, one robot alone 144).  The executor tells which failures were
+;;; drives that could not get there (team-unreached, asserted with the
+;;; outcome); after ?*TEAM_UNREACHED_TRIES* in a row at one place the robot
+;;; avoids it for ?*TEAM_BLOCKED_S* and takes other work at once.
+
+(defglobal
+  ?*TEAM_UNREACHED_TRIES* = 2   ; failed drives in a row to one place
+  ?*TEAM_BLOCKED_S* = 120.0)    ; s a place is then avoided
+
+(deftemplate team-unreached
+  "From the executor: skill id failed because the robot could not drive to
+   its place."
+  (slot id (type INTEGER)))
+
+(deftemplate team-unreached-count
+  "Failed drives in a row to a place (since a skill there last ended FINAL)."
+  (slot resource (type SYMBOL))
+  (slot count (type INTEGER)))
+
+(defrule team-unreached-place
+  "A drive to X failed: count it (before execution digests the outcome);
+   at ?*TEAM_UNREACHED_TRIES* X is blocked for a while."
+  (declare (salience (+ ?*PRIORITY_TEAM_AGENT* 2)))
+  ?u <- (team-unreached (id ?id))
+  (skill-request (id ?id) (target ?x))
+  (skill-outcome (id ?id) (status FAILED))
+  (team-clock (now ?t))
+  =>
+  (retract ?u)
+  (bind ?n 1)
+  (do-for-all-facts ((?c team-unreached-count)) (eq ?c:resource ?x)
+    (bind ?n (+ ?c:count 1))
+    (retract ?c))
+  (if (>= ?n ?*TEAM_UNREACHED_TRIES*)
+   then (do-for-all-facts ((?b team-blocked)) (eq ?b:resource ?x) (retract ?b))
+        (printout t "WARN " ?x " not reached " ?n " times: avoided until "
+                  (+ ?t ?*TEAM_BLOCKED_S*) crlf)
+        (assert (team-blocked (resource ?x) (until (+ ?t ?*TEAM_BLOCKED_S*))))
+   else (assert (team-unreached-count (resource ?x) (count ?n)))))
+
+(defrule team-unreached-stale
+  "A team-unreached whose skill is gone (nothing to count)."
+  (declare (salience (+ ?*PRIORITY_TEAM_AGENT* 2)))
+  ?u <- (team-unreached (id ?id))
+  (not (skill-request (id ?id)))
+  =>
+  (retract ?u))
+
+(defrule team-reached-place
+  "A skill at X ended FINAL: the next failed drive there counts from one."
+  (declare (salience (+ ?*PRIORITY_TEAM_AGENT* 2)))
+  (skill-request (id ?id) (target ?x))
+  (skill-outcome (id ?id) (status FINAL))
+  ?c <- (team-unreached-count (resource ?x))
+  =>
+  (retract ?c))
+
+(defrule team-intent-blocked
+  "An intent at a place blocked for this robot: drop it and wait for the
+   place as for a held one, the wait counted long enough for other work at
+   once (the rules of 'a robot that waits long' below)."
+  (declare (salience (+ ?*PRIORITY_TEAM_AGENT* 1)))
+  ?s <- (state IDLE)
+  ?i <- (intent (target ?x))
+  (team-clock (now ?t))
+  (team-blocked (resource ?x) (until ?b&:(> ?b ?t)))
+  =>
+  (retract ?s ?i)
+  (do-for-all-facts ((?w team-want))
+      (and (eq ?w:resource ?x)
+           (not (any-factp ((?o output-at)) (eq (nth$ 1 ?o:implied) ?x))))
+    (retract ?w))
+  (do-for-all-facts ((?w team-wait-since)) TRUE (retract ?w))
+  (assert (state TEAM-WAIT) (team-waiting ?x)
+          (team-wait-since (- ?t ?*TEAM_WAIT_OTHER_WORK_S*))))

@@ -3,7 +3,8 @@
 //! M3 (it fed the T3 and will collect the P); robot 1, holding an S1 whose best use is
 //! M3, waits, and after `?*TEAM_WAIT_OTHER_WORK_S*` (20 s) brings the S1 to the free T2
 //! M8 instead, a lower priority. A robot that still holds nothing else keeps waiting
-//! when no free machine takes its puck.
+//! when no free machine takes its puck. A robot that fails twice in a row to drive to
+//! a machine (a dead teammate's body in its approach) takes other work at once.
 
 use agent_core::ValueRef;
 use host_shim::team::member::slot_sym;
@@ -182,5 +183,92 @@ fn a_robot_keeps_waiting_when_no_free_machine_takes_its_puck() {
     assert!(
         matches!(&last, Some((_, s, None)) if s == "TEAM-WAIT"),
         "robot 1 should still wait for M3: {last:?}"
+    );
+}
+
+fn request_id(m: &TeamMember) -> Option<i64> {
+    m.engine
+        .facts()
+        .find(|&id| m.engine.fact_template_name(id) == Some("skill-request"))
+        .and_then(|id| match m.engine.fact_slot(id, "id") {
+            Some(ValueRef::Int(v)) => Some(v),
+            _ => None,
+        })
+}
+
+/// The executor's report of a drive that could not reach the place, the puck still
+/// held (as `run` reports `FailReason::DriveFailed`).
+fn fail_drive(m: &mut TeamMember) {
+    let id = request_id(m).unwrap_or_else(|| panic!("no skill running"));
+    eval(m, &format!("(assert (team-unreached (id {id})))"));
+    eval(
+        m,
+        &format!("(assert (skill-outcome (id {id}) (status FAILED) (info puck-held)))"),
+    );
+}
+
+/// Nobody holds M3, but robot 1 cannot drive there: after two failed drives in a row it
+/// brings its S1 to the free T2 M8 at once (not after 20 s), and M3 is tried again only
+/// once `?*TEAM_BLOCKED_S*` (120 s) have passed.
+#[test]
+fn a_robot_that_cannot_reach_a_machine_takes_other_work() {
+    let seen = on_big_stack(|| {
+        let mut members = team();
+        let beliefs = [("M3", "T3", "S2"), ("M8", "T2", ""), ("M1", "T1", "")];
+        believe(&mut members[0], "S1", &beliefs);
+        believe(&mut members[1], "NONE", &beliefs);
+        believe(&mut members[2], "NONE", &beliefs);
+        begin(&mut members[0]);
+        let mut seen: Vec<Moment> = Vec::new();
+        let mut failed = 0;
+        let mut t = 0.0;
+        while t <= 140.0 {
+            step(&mut members, t);
+            let r = request(&members[0]);
+            seen.push((t, state(&members[0]), r.clone()));
+            if failed < 2 && r.is_some_and(|(_, x)| x == "M3") {
+                fail_drive(&mut members[0]);
+                failed += 1;
+            }
+            // Every 10 s from 20 s robot 1 drops its skill and holds another S1 (as if
+            // the last one were in M8): it decides again.
+            if t >= 20.0 && t % 10.0 == 0.0 {
+                eval(
+                    &mut members[0],
+                    "(do-for-all-facts ((?r skill-request)) TRUE (retract ?r))",
+                );
+                believe(&mut members[0], "S1", &beliefs);
+                begin(&mut members[0]);
+            }
+            t += STEP;
+        }
+        seen
+    });
+    let at_m3: Vec<f64> = seen
+        .iter()
+        .filter(|(_, _, r)| r.as_ref().is_some_and(|(_, x)| x == "M3"))
+        .map(|(t, _, _)| *t)
+        .collect();
+    let first_m8 = seen
+        .iter()
+        .find(|(_, _, r)| r.as_ref().is_some_and(|(_, x)| x == "M8"))
+        .map(|(t, _, _)| *t);
+    let second_failure = at_m3.iter().copied().find(|&t| t > at_m3[0] + STEP / 2.0);
+    let (Some(m8), Some(failed)) = (first_m8, second_failure) else {
+        panic!("two drives to M3, then M8: {seen:?}");
+    };
+    assert!(
+        m8 - failed <= 2.0,
+        "M8 at {m8}, right after the failure at {failed}"
+    );
+    // Deciding again every 10 s, it does not go back to M3 while it is blocked ...
+    assert!(
+        !at_m3.iter().any(|&t| (20.0..failed + 119.0).contains(&t)),
+        "{seen:?}"
+    );
+    // ... but does once the block is over (its best use is still there).
+    assert!(
+        at_m3.iter().any(|&t| t >= failed + 120.0),
+        "M3 again after 120 s: {seen:?}"
     );
 }

@@ -261,6 +261,11 @@ impl EngineAgent {
         if status == "FAILED" && info == "none" && puck_present {
             info = "puck-held";
         }
+        // A team member's rules avoid a place it keeps failing to drive to
+        // (`team-unreached` in rules/team-agent.clp): told before the outcome.
+        if self.team.is_some() && outcome == SkillOutcome::Failed(FailReason::DriveFailed) {
+            self.rules.assert(&format!("(team-unreached (id {id}))"))?;
+        }
         self.rules.assert(&format!(
             "(skill-outcome (id {id}) (status {status}) (light {light}) (info {info}))"
         ))?;
