@@ -96,6 +96,19 @@
      then (bind ?free (create$ ?free ?p))))
   ?free)
 
+(deffunction team-unblocked-of
+  "The places of ?places this robot can drive to, as far as it knows (not
+   blocked for it; see 'a place the robot cannot drive to')."
+  ($?places)
+  (bind ?now 0.0)
+  (do-for-fact ((?c team-clock)) TRUE (bind ?now ?c:now))
+  (bind ?open (create$))
+  (progn$ (?p ?places)
+    (if (not (any-factp ((?b team-blocked))
+               (and (eq ?b:resource ?p) (> ?b:until ?now))))
+     then (bind ?open (create$ ?open ?p))))
+  ?open)
+
 (deffunction team-nearest-of
   "The place of ?places nearest to ?from (earlier places win ties)."
   (?from $?places)
@@ -205,10 +218,13 @@
   (holding ~NONE)
   (output-at ? ?)
   (robot-at ?here)
+  (test (> (length$ (team-unblocked-of R1 R2)) 0))
   =>
   (retract ?s ?w ?b)
   (printout t "WARN waited " (- ?t ?t0) " s for " ?x " with a product out: discard" crlf)
-  (assert (state IDLE) (intent (action discard) (target (nearest-of ?here R1 R2)))))
+  (assert (state IDLE)
+          (intent (action discard)
+                  (target (nearest-of ?here (team-unblocked-of R1 R2))))))
 
 (defrule team-done-with
   "The skill at X is over and its outcome digested: news of the machine,
@@ -494,6 +510,26 @@
   ?c <- (team-unreached-count (resource ?x))
   =>
   (retract ?c))
+
+(defrule team-intent-blocked-other-unit
+  "Recycling or a discard at a unit blocked for this robot: the other unit,
+   if it is not blocked too (before team-intent-blocked: a robot waiting with
+   its hands full for a unit it cannot reach has no other work; waiting to
+   discard there, it was sent to discard there again, a rule loop that
+   stopped its agent on kill-one seeds 92 and 97)."
+  (declare (salience (+ ?*PRIORITY_TEAM_AGENT* 2)))
+  (state IDLE)
+  ?i <- (intent (action recycle|discard) (target ?x&R1|R2))
+  (team-clock (now ?t))
+  (team-blocked (resource ?x) (until ?b&:(> ?b ?t)))
+  (test (> (length$ (team-unblocked-of R1 R2)) 0))
+  =>
+  (bind ?y (nth$ 1 (team-unblocked-of R1 R2)))
+  (do-for-all-facts ((?w team-want))
+      (and (eq ?w:resource ?x)
+           (not (any-factp ((?o output-at)) (eq (nth$ 1 ?o:implied) ?x))))
+    (retract ?w))
+  (modify ?i (target ?y)))
 
 (defrule team-intent-blocked
   "An intent at a place blocked for this robot: drop it and wait for the

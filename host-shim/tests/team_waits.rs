@@ -272,3 +272,63 @@ fn a_robot_that_cannot_reach_a_machine_takes_other_work() {
         "M3 again after 120 s: {seen:?}"
     );
 }
+
+/// Robot 1 holds junk, its P lies at M6, and it cannot drive to the recycling unit it
+/// chose: after two failed drives there it recycles at the other unit at once. Before,
+/// the blocked unit was waited for with the hands full and the product out, the wait
+/// broke with a discard at that same unit, blocked again: a rule loop that stopped the
+/// agent (kill-one seeds 92 and 97, "rules fired without quiescence").
+#[test]
+fn a_robot_that_cannot_reach_a_recycling_unit_recycles_at_the_other() {
+    let seen = on_big_stack(|| {
+        let mut members = team();
+        let beliefs = [("M6", "T3", ""), ("M8", "T2", ""), ("M1", "T1", "")];
+        believe(&mut members[0], "JUNK", &beliefs);
+        believe(&mut members[1], "NONE", &beliefs);
+        believe(&mut members[2], "NONE", &beliefs);
+        eval(&mut members[0], "(assert (output-at M6 P))");
+        begin(&mut members[0]);
+        let mut seen: Vec<Moment> = Vec::new();
+        let mut failed: Vec<String> = Vec::new();
+        let mut t = 0.0;
+        while t <= 40.0 {
+            step(&mut members, t);
+            let r = request(&members[0]);
+            seen.push((t, state(&members[0]), r.clone()));
+            match r {
+                Some((a, x)) if a == "recycle" && failed.len() < 2 => {
+                    if failed.first().is_some_and(|f| *f != x) {
+                        panic!("the first unit once more before it was blocked: {seen:?}");
+                    }
+                    fail_drive(&mut members[0]);
+                    failed.push(x);
+                }
+                _ => {}
+            }
+            t += STEP;
+        }
+        (seen, failed)
+    });
+    let (seen, failed) = seen;
+    let [first, again] = &failed[..] else {
+        panic!("two failed drives to a unit: {seen:?}");
+    };
+    assert_eq!(first, again);
+    let other = if first == "R1" { "R2" } else { "R1" };
+    let second_failure = seen
+        .iter()
+        .filter(|(_, _, r)| r.as_ref().is_some_and(|(_, x)| x == first))
+        .map(|(t, _, _)| *t)
+        .fold(0.0, f64::max);
+    let at_other = seen
+        .iter()
+        .find(|(_, _, r)| {
+            r.as_ref()
+                .is_some_and(|(a, x)| a == "recycle" && x == other)
+        })
+        .map(|(t, _, _)| *t);
+    assert!(
+        at_other.is_some_and(|t| t - second_failure <= 2.0),
+        "recycling at {other} right after the second failure at {second_failure}: {seen:?}"
+    );
+}
