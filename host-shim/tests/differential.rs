@@ -391,6 +391,8 @@ differential_programs! {
     p263_dribble_on_off => "263-dribble-on-off",
     p264_engine_settings_os => "264-engine-settings-os",
     p265_missing_function_echo => "265-missing-function-echo",
+    p266_list_watch_items => "266-list-watch-items",
+    p267_get_function_restrictions => "267-get-function-restrictions",
     p281_modules_defglobals => "281-modules-defglobals",
     p282_modules_import_conflicts => "282-modules-import-conflicts",
     p283_modules_get_lists => "283-modules-get-lists",

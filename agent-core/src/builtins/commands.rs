@@ -464,7 +464,7 @@ pub(super) fn list_defrules(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalErr
 }
 
 /// The rule `name` names: the current module's, or `MOD::rule`.
-fn find_rule(cx: &mut Core<'_>, name: Ix) -> Option<Ix> {
+pub(super) fn find_rule(cx: &mut Core<'_>, name: Ix) -> Option<Ix> {
     #[cfg(feature = "modules")]
     if let Some((m, bare)) = cx.resolve_qualified(name) {
         let current = cx.current_module();

@@ -58,7 +58,7 @@ const T_FACT_OR_INDEX: &str = "fact-address or fact-index";
 /// The kinds of construct these functions list, each with its names in definition
 /// order (the `initial-fact` deffacts and template first, as CLIPS has them).
 #[derive(Clone, Copy)]
-enum Kind {
+pub(super) enum Kind {
     Deffacts,
     Deftemplate,
     Deffunction,
@@ -68,7 +68,7 @@ enum Kind {
 
 /// Name number `i` of construct kind `kind`: None past the last; Some(None) for an
 /// entry that is gone (a retired template, a removed rule, a rule's later disjunct).
-fn name_at(cx: &Core<'_>, kind: Kind, i: Ix) -> Option<Option<SymId>> {
+pub(super) fn name_at(cx: &Core<'_>, kind: Kind, i: Ix) -> Option<Option<SymId>> {
     match kind {
         Kind::Deffacts => {
             // the `initial-fact` deffacts comes first while it is defined
@@ -104,7 +104,7 @@ fn name_at(cx: &Core<'_>, kind: Kind, i: Ix) -> Option<Option<SymId>> {
 }
 
 /// The module of name number `i` of construct kind `kind` (as `name_at` numbers them).
-fn owner_at(cx: &Core<'_>, kind: Kind, i: Ix) -> crate::module::ModId {
+pub(super) fn owner_at(cx: &Core<'_>, kind: Kind, i: Ix) -> crate::module::ModId {
     #[cfg(feature = "modules")]
     return match kind {
         Kind::Deffacts => {
@@ -484,14 +484,14 @@ fn ppdefglobal(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 }
 
 #[derive(Clone, Copy, PartialEq)]
-enum PpKind {
+pub(super) enum PpKind {
     Function,
     Global,
 }
 
 /// The deffunction or defglobal `name` names: `MODULE::x` is module MODULE's own `x`
 /// (exported or not, as in CLIPS); a plain `x` is the one the current module sees.
-fn find_pp_construct(cx: &mut Core<'_>, name: SymId, kind: PpKind) -> Option<Ix> {
+pub(super) fn find_pp_construct(cx: &mut Core<'_>, name: SymId, kind: PpKind) -> Option<Ix> {
     let (count, class) = match kind {
         PpKind::Function => (cx.st.pools.nfuncs, crate::module::class::FUNCTION),
         PpKind::Global => (cx.st.pools.nglobals, crate::module::class::GLOBAL),

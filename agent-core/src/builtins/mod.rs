@@ -24,6 +24,7 @@ pub mod commands;
 pub mod compat;
 pub mod control;
 pub mod describe;
+pub mod environment;
 pub mod errors;
 pub mod evaluate;
 pub mod extras;
@@ -194,6 +195,7 @@ pub const TABLES: &[Table] = &[
     logical::TABLE,
     modules::TABLE,
     IO_TABLE,
+    environment::TABLE,
 ];
 
 /// The I/O functions (`io`): only with the feature `parser`, like the other builtins

@@ -1,0 +1,488 @@
+//! Environment and debugging commands the agent image leaves out (agent-core feature
+//! `extras`): `list-watch-items` and `get-function-restrictions`.
+// without the feature the table is empty and the functions unused (and not linked)
+#![cfg_attr(not(feature = "extras"), allow(dead_code))]
+
+use super::commands::WatchItem;
+use super::extras::{find_pp_construct, name_at, owner_at, Kind, PpKind};
+use super::{Args, Builtin, ANY};
+use crate::engine::{watch, Core};
+use crate::error::EvalError;
+use crate::host::router;
+use crate::value::{SymId, TextBuf, Value};
+use core::fmt::Write;
+
+#[cfg(feature = "extras")]
+#[rustfmt::skip]
+pub const FUNCS: &[Builtin] = &[
+    Builtin::eager("list-watch-items", 0, ANY, list_watch_items)
+        .args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any),
+    Builtin::eager("get-function-restrictions", 1, 1, get_function_restrictions)
+        .args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any)
+        .on_error(super::describe::OnError::EmptyString),
+];
+#[cfg(not(feature = "extras"))]
+pub const FUNCS: &[Builtin] = &[];
+pub const TABLE: super::Table = super::Table::new(FUNCS);
+
+/// The watch items in the order `(list-watch-items)` prints them.
+const WATCH_ITEMS: [&str; 14] = [
+    "facts",
+    "instances",
+    "slots",
+    "rules",
+    "activations",
+    "messages",
+    "message-handlers",
+    "generic-functions",
+    "methods",
+    "deffunctions",
+    "compilations",
+    "statistics",
+    "globals",
+    "focus",
+];
+
+/// Prints `[ARGACCES5]` for argument `arg` of `list-watch-items`.
+fn watch_arg_error(cx: &mut Core<'_>, arg: usize, expected: &str) -> EvalError {
+    let mut b: TextBuf<128> = TextBuf::new();
+    let _ = writeln!(
+        b,
+        "[ARGACCES5] Function list-watch-items expected argument #{arg} to be of type {expected}"
+    );
+    cx.write(router::WERROR, b.as_str());
+    EvalError::already_reported()
+}
+
+/// `on` or `off` for a trace bit.
+fn state(cx: &Core<'_>, bit: u8) -> &'static str {
+    if cx.st.mode.watch & bit != 0 {
+        "on"
+    } else {
+        "off"
+    }
+}
+
+/// `(list-watch-items [ITEM [NAME...]])`: every item's state; one item's state and,
+/// for items about constructs, each construct's (by module, or the ones named). A
+/// construct is traced exactly when its item is (`watch` takes no construct names
+/// here; a rule shows its `activations` state under `rules` too, as CLIPS 6.30 does),
+/// and the items we do not trace (`globals`, `deffunctions`, ...) are off. COOL's
+/// items with constructs (`instances`, `slots`, `message-handlers`) are refused.
+fn list_watch_items(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    if a.len == 0 {
+        for item in WATCH_ITEMS {
+            let bit = match super::commands::watch_item(item) {
+                WatchItem::Traced(bit) => bit,
+                _ => 0,
+            };
+            let mut b: TextBuf<64> = TextBuf::new();
+            let _ = writeln!(b, "{item} = {}", state(cx, bit));
+            cx.write(router::WDISPLAY, b.as_str());
+        }
+        return Ok(Value::Void);
+    }
+    let Value::Sym(item) = cx.arg(a, 0) else {
+        return Err(watch_arg_error(cx, 1, "symbol"));
+    };
+    let mut name: TextBuf<32> = TextBuf::new();
+    let _ = name.write_str(cx.sym_text(item));
+    let bit = match super::commands::watch_item(name.as_str()) {
+        WatchItem::Traced(bit) => bit,
+        WatchItem::Untraced => 0,
+        WatchItem::All | WatchItem::Unknown => {
+            return Err(watch_arg_error(cx, 1, "watchable symbol"))
+        }
+    };
+    // what the item's constructs are, and how CLIPS names their kind
+    let kind = match name.as_str() {
+        "facts" => Some((Kind::Deftemplate, "deftemplate")),
+        "rules" | "activations" => Some((Kind::Defrule, "defrule")),
+        "deffunctions" => Some((Kind::Deffunction, "deffunction")),
+        "globals" => Some((Kind::Defglobal, "defglobal")),
+        // generic functions and methods: we have none to list
+        "generic-functions" | "methods" => None,
+        "compilations" | "statistics" | "focus" | "messages" => {
+            if a.len > 1 {
+                cx.write(
+                    router::WERROR,
+                    "[ARGACCES4] Function list-watch-items expected exactly 1 argument(s)\n",
+                );
+                return Err(EvalError::already_reported());
+            }
+            let mut b: TextBuf<64> = TextBuf::new();
+            let _ = writeln!(b, "{} = {}", name.as_str(), state(cx, bit));
+            cx.write(router::WDISPLAY, b.as_str());
+            return Ok(Value::Void);
+        }
+        // instances, slots, message-handlers: COOL's classes
+        _ => {
+            cx.write(
+                router::WERROR,
+                "[NOTIMPL1] robotino-agent does not implement objects (COOL)\n",
+            );
+            return Err(EvalError::already_reported());
+        }
+    };
+    let mut b: TextBuf<64> = TextBuf::new();
+    let _ = writeln!(b, "{} = {}", name.as_str(), state(cx, bit));
+    // CLIPS 6.30 shows a rule's activations trace under `rules` too
+    let on = state(
+        cx,
+        if bit == watch::RULES {
+            watch::ACTIVATIONS
+        } else {
+            bit
+        },
+    );
+    cx.write(router::WDISPLAY, b.as_str());
+    let Some((kind, kind_name)) = kind else {
+        if a.len > 1 {
+            return Err(watch_arg_error(cx, 2, "generic function"));
+        }
+        list_modules(cx, |_, _| {});
+        return Ok(Value::Void);
+    };
+    if a.len > 1 {
+        for i in 1..a.len as usize {
+            let found = match cx.arg(a, i) {
+                Value::Sym(s) => find_construct(cx, kind, s),
+                _ => None,
+            };
+            let Some(s) = found else {
+                return Err(watch_arg_error(cx, i + 1, kind_name));
+            };
+            let mut b: TextBuf<160> = TextBuf::new();
+            let _ = writeln!(b, "{} = {on}", cx.sym_text(s));
+            cx.write(router::WDISPLAY, b.as_str());
+        }
+        return Ok(Value::Void);
+    }
+    list_modules(cx, |cx, m| {
+        let mut i = 0;
+        while let Some(entry) = name_at(cx, kind, i) {
+            let owner = owner_at(cx, kind, i);
+            i += 1;
+            let Some(s) = entry else { continue };
+            if owner != m {
+                continue;
+            }
+            let mut b: TextBuf<160> = TextBuf::new();
+            let _ = writeln!(b, "   {} = {on}", cx.sym_text(s));
+            cx.write(router::WDISPLAY, b.as_str());
+        }
+    });
+    Ok(Value::Void)
+}
+
+/// Every module's `NAME:` line, each followed by what `each` prints for it.
+fn list_modules(cx: &mut Core<'_>, mut each: impl FnMut(&mut Core<'_>, crate::module::ModId)) {
+    #[cfg(feature = "modules")]
+    let n = cx.st.modules.nmodules as crate::module::ModId;
+    #[cfg(not(feature = "modules"))]
+    let n: crate::module::ModId = 1;
+    for m in 0..n {
+        let mut b: TextBuf<128> = TextBuf::new();
+        #[cfg(feature = "modules")]
+        let _ = writeln!(b, "{}:", cx.module_name(m));
+        #[cfg(not(feature = "modules"))]
+        let _ = b.write_str("MAIN:\n");
+        cx.write(router::WDISPLAY, b.as_str());
+        each(cx, m);
+    }
+}
+
+/// The name (without a module) of the construct of kind `kind` that `name` names
+/// (`MOD::x` or one the current module sees).
+fn find_construct(cx: &mut Core<'_>, kind: Kind, name: SymId) -> Option<SymId> {
+    match kind {
+        Kind::Deftemplate => {
+            #[cfg(feature = "modules")]
+            if let Some((m, bare)) = cx.resolve_qualified(name) {
+                let current = cx.current_module();
+                cx.set_current_module(m);
+                let t = cx.find_template(bare);
+                cx.set_current_module(current);
+                return t.map(|t| cx.templates[t as usize].name);
+            }
+            cx.find_template(name)
+                .map(|t| cx.templates[t as usize].name)
+        }
+        Kind::Defrule => super::commands::find_rule(cx, name).map(|r| cx.rules[r as usize].name),
+        Kind::Deffunction => {
+            find_pp_construct(cx, name, PpKind::Function).map(|f| cx.funcs[f as usize].name)
+        }
+        Kind::Defglobal => {
+            find_pp_construct(cx, name, PpKind::Global).map(|g| cx.globals[g as usize].name)
+        }
+        Kind::Deffacts => None,
+    }
+}
+
+/// `(get-function-restrictions NAME)`: CLIPS's restriction string of a function (its
+/// least and most arguments, `*` for no limit, then the type codes of its arguments);
+/// a function of ours CLIPS does not have gets its argument counts alone.
+fn get_function_restrictions(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let Value::Sym(name) = cx.arg(a, 0) else {
+        cx.write(
+            router::WERROR,
+            "[ARGACCES5] Function get-function-restrictions expected argument #1 to be of type symbol\n",
+        );
+        return Err(EvalError::already_reported());
+    };
+    let mut text: TextBuf<64> = TextBuf::new();
+    let _ = text.write_str(cx.sym_text(name));
+    let counts = match super::lookup(text.as_str()) {
+        Some((_, b)) => Some((b.min, b.max)),
+        None => cx
+            .find_sym(text.as_str())
+            .and_then(|s| (0..cx.st.pools.nexternals).find(|&x| cx.externals[x as usize].name == s))
+            .map(|x| {
+                let e = cx.externals[x as usize];
+                (e.min, e.max)
+            }),
+    };
+    let Some((min, max)) = counts else {
+        super::commands::unable(cx, super::commands::Unable::Find, "function", name);
+        return Err(EvalError::already_reported());
+    };
+    if let Some(&(_, r)) = RESTRICTIONS.iter().find(|(n, _)| *n == text.as_str()) {
+        return Ok(cx.make_string(r)?);
+    }
+    let mut r: TextBuf<8> = TextBuf::new();
+    let _ = write!(r, "{min}");
+    if max == ANY {
+        let _ = r.write_char('*');
+    } else {
+        let _ = write!(r, "{max}");
+    }
+    Ok(cx.make_string(r.as_str())?)
+}
+
+/// CLIPS 6.30's restriction strings of the functions it shares with us (what its
+/// `get-function-restrictions` prints for each).
+const RESTRICTIONS: &[(&str, &str)] = &[
+    ("!=", "2*n"),
+    ("*", "2*n"),
+    ("**", "22n"),
+    ("+", "2*n"),
+    ("-", "2*n"),
+    ("/", "2*n"),
+    ("<", "2*n"),
+    ("<=", "2*n"),
+    ("<>", "2*n"),
+    ("=", "2*n"),
+    (">", "2*n"),
+    (">=", "2*n"),
+    ("abs", "11n"),
+    ("acos", "11n"),
+    ("agenda", "01w"),
+    ("and", "2*"),
+    ("any-factp", "0**"),
+    ("asin", "11n"),
+    ("assert", "0**"),
+    ("assert-string", "11s"),
+    ("atan", "11n"),
+    ("batch", "11k"),
+    ("batch*", "11k"),
+    ("bind", "0**"),
+    ("break", "0**"),
+    ("build", "11k"),
+    ("clear", "00"),
+    ("clear-focus-stack", "00"),
+    ("close", "*1"),
+    ("conserve-mem", "11w"),
+    ("cos", "11n"),
+    ("create$", "0**"),
+    ("deftemplate-slot-allowed-values", "22w"),
+    ("deftemplate-slot-cardinality", "22w"),
+    ("deftemplate-slot-default-value", "22w"),
+    ("deftemplate-slot-defaultp", "22w"),
+    ("deftemplate-slot-existp", "22w"),
+    ("deftemplate-slot-multip", "22w"),
+    ("deftemplate-slot-names", "11z"),
+    ("deftemplate-slot-range", "22w"),
+    ("deftemplate-slot-singlep", "22w"),
+    ("deftemplate-slot-types", "22w"),
+    ("deg-rad", "11n"),
+    ("delayed-do-for-all-facts", "0**"),
+    ("delete$", "33im"),
+    ("delete-member$", "2*um"),
+    ("dependencies", "11h"),
+    ("dependents", "11h"),
+    ("div", "2*n"),
+    ("do-for-all-facts", "0**"),
+    ("do-for-fact", "0**"),
+    ("dribble-off", "00"),
+    ("dribble-on", "11k"),
+    ("duplicate", "0**"),
+    ("eq", "2*"),
+    ("eval", "11k"),
+    ("evenp", "11i"),
+    ("exit", "*1i"),
+    ("exp", "11n"),
+    ("expand$", "11m"),
+    ("explode$", "11s"),
+    ("fact-existp", "11z"),
+    ("fact-index", "11y"),
+    ("fact-relation", "11z"),
+    ("fact-slot-names", "11z"),
+    ("fact-slot-value", "22*zw"),
+    ("facts", "*4iu"),
+    ("find-all-facts", "0**"),
+    ("find-fact", "0**"),
+    ("first$", "11m"),
+    ("float", "11n"),
+    ("floatp", "11"),
+    ("focus", "1*w"),
+    ("foreach", "0**"),
+    ("format", "2**us"),
+    ("funcall", "1**k"),
+    ("gensym", "00"),
+    ("gensym*", "00"),
+    ("get-auto-float-dividend", "00"),
+    ("get-char", "*1"),
+    ("get-current-module", "00"),
+    ("get-deffacts-list", "01w"),
+    ("get-deffunction-list", "01"),
+    ("get-defglobal-list", "01w"),
+    ("get-defmodule-list", "00"),
+    ("get-defrule-list", "01w"),
+    ("get-deftemplate-list", "01w"),
+    ("get-dynamic-constraint-checking", "00"),
+    ("get-fact-duplication", "00"),
+    ("get-fact-list", "01w"),
+    ("get-focus", "00"),
+    ("get-focus-stack", "00"),
+    ("get-function-restrictions", "11w"),
+    ("get-incremental-reset", "00"),
+    ("get-reset-globals", "00"),
+    ("get-salience-evaluation", "00"),
+    ("get-sequence-operator-recognition", "00"),
+    ("get-static-constraint-checking", "00"),
+    ("get-strategy", "00"),
+    ("halt", "00"),
+    ("if", "0**"),
+    ("implode$", "11m"),
+    ("insert$", "3**mi"),
+    ("integer", "11n"),
+    ("integerp", "11"),
+    ("length", "11q"),
+    ("length$", "11q"),
+    ("lexemep", "11"),
+    ("list-deffacts", "01w"),
+    ("list-deffunctions", "01"),
+    ("list-defglobals", "01w"),
+    ("list-defmodules", "00"),
+    ("list-defrules", "01w"),
+    ("list-deftemplates", "01w"),
+    ("list-focus-stack", "00"),
+    ("list-watch-items", "0**w"),
+    ("load", "11k"),
+    ("load*", "11k"),
+    ("load-facts", "11k"),
+    ("log", "11n"),
+    ("log10", "11n"),
+    ("loop-for-count", "0**"),
+    ("lowcase", "11j"),
+    ("matches", "12w"),
+    ("max", "2*n"),
+    ("mem-requests", "00"),
+    ("mem-used", "00"),
+    ("member", "22*um"),
+    ("member$", "22*um"),
+    ("min", "2*n"),
+    ("mod", "22n"),
+    ("modify", "0**"),
+    ("multifieldp", "11"),
+    ("mv-append", "0**"),
+    ("mv-delete", "22*im"),
+    ("mv-replace", "33*im"),
+    ("mv-subseq", "33*iim"),
+    ("neq", "2*"),
+    ("not", "11"),
+    ("nth", "22*im"),
+    ("nth$", "22*im"),
+    ("numberp", "11"),
+    ("oddp", "11i"),
+    ("open", "23*k"),
+    ("operating-system", "00"),
+    ("or", "2*"),
+    ("pi", "00"),
+    ("pointerp", "11"),
+    ("pop-focus", "00"),
+    ("ppdeffacts", "11w"),
+    ("ppdeffunction", "11w"),
+    ("ppdefglobal", "11w"),
+    ("ppdefmodule", "11w"),
+    ("ppdefrule", "11w"),
+    ("ppdeftemplate", "11w"),
+    ("ppfact", "13*z"),
+    ("printout", "1*"),
+    ("progn", "0**"),
+    ("progn$", "0**"),
+    ("put-char", "12"),
+    ("rad-deg", "11n"),
+    ("random", "02i"),
+    ("read", "*1"),
+    ("read-number", "*1"),
+    ("readline", "*1"),
+    ("refresh-agenda", "01w"),
+    ("release-mem", "00"),
+    ("remove", "11k"),
+    ("rename", "22k"),
+    ("replace$", "4**mii"),
+    ("replace-member$", "3*um"),
+    ("reset", "00"),
+    ("rest$", "11m"),
+    ("retract", "1*z"),
+    ("return", "0**"),
+    ("round", "11n"),
+    ("rules", "01w"),
+    ("run", "*1i"),
+    ("save-facts", "1*wk"),
+    ("seed", "11i"),
+    ("set-auto-float-dividend", "11"),
+    ("set-current-module", "11w"),
+    ("set-dynamic-constraint-checking", "11"),
+    ("set-fact-duplication", "11"),
+    ("set-incremental-reset", "11"),
+    ("set-reset-globals", "11"),
+    ("set-salience-evaluation", "11w"),
+    ("set-sequence-operator-recognition", "11w"),
+    ("set-static-constraint-checking", "11"),
+    ("set-strategy", "11w"),
+    ("setgen", "11i"),
+    ("show-defglobals", "01w"),
+    ("sin", "11n"),
+    ("sort", "1**w"),
+    ("sqrt", "11n"),
+    ("str-cat", "1*"),
+    ("str-compare", "23*jji"),
+    ("str-explode", "11s"),
+    ("str-implode", "11m"),
+    ("str-index", "22j"),
+    ("str-length", "11j"),
+    ("string-to-field", "11j"),
+    ("stringp", "11"),
+    ("sub-string", "33*iij"),
+    ("subseq$", "33im"),
+    ("subset", "22*mm"),
+    ("subsetp", "22*mm"),
+    ("switch", "0**"),
+    ("sym-cat", "1*"),
+    ("symbolp", "11"),
+    ("system", "1*k"),
+    ("tan", "11n"),
+    ("time", "00"),
+    ("undeffacts", "11w"),
+    ("undeffunction", "11w"),
+    ("undefglobal", "11w"),
+    ("undefrule", "11w"),
+    ("undeftemplate", "11w"),
+    ("unwatch", "1**w"),
+    ("upcase", "11j"),
+    ("watch", "1**w"),
+    ("while", "0**"),
+    ("wordp", "11"),
+];
