@@ -293,8 +293,26 @@ impl Core<'_> {
         // the focus stack holds MAIN only, the current module
         #[cfg(feature = "modules")]
         self.reset_focus()?;
-        // rules starting with not/exists/test lose their root-based matches first
+        // rules starting with not/exists/test lose their root-based matches first, join
+        // by join in the order they are primed again below (CLIPS's list of them)
         let root_token = self.join_mems[JoinId::ROOT].mem;
+        let mut j = self.joins[JoinId::ROOT].first_child;
+        while j != JoinId::NONE {
+            if self.joins[j].kind != JoinKind::Positive {
+                loop {
+                    let mut c = self.tokens[root_token].first_child;
+                    while c != TokenId::NONE && self.tokens[c].owner != j {
+                        c = self.tokens[c].next_sib;
+                    }
+                    if c == TokenId::NONE {
+                        break;
+                    }
+                    self.delete_token(c);
+                }
+            }
+            j = self.joins[j].next_sibling;
+        }
+        // (any left over, in token order)
         loop {
             let mut c = self.tokens[root_token].first_child;
             while c != TokenId::NONE && self.joins[self.tokens[c].owner].kind == JoinKind::Positive
@@ -1186,6 +1204,14 @@ impl Core<'_> {
             );
             let _ = crate::builtins::modules::write_defmodule_at(text, e.start as usize, &mut b);
             let _ = b.write_char('\n');
+        } else if e.detail == LoadDetail::MissingName {
+            let _ = writeln!(
+                b,
+                "\n[CSTRCPSR2] Missing name for {} construct\n\nERROR:\n({} {tok}",
+                e.construct, e.construct
+            );
+        } else if e.detail == LoadDetail::NoSuchModule {
+            let _ = writeln!(b, "[PRNTUTIL1] Unable to find defmodule {tok}.");
         } else if let LoadDetail::NotImplemented { what } = e.detail {
             let _ = writeln!(
                 b,
@@ -1206,6 +1232,24 @@ impl Core<'_> {
                 "\n[PRNTUTIL2] Syntax Error:  Check appropriate syntax for {}.",
                 e.construct
             );
+        }
+        // a defmodule CLIPS stopped reading is shown up to the token it stopped at (a
+        // `)` one space after the text before it)
+        if e.construct.starts_with("defmodule")
+            && matches!(
+                e.detail,
+                LoadDetail::Syntax | LoadDetail::NoSuchModule | LoadDetail::InUse { .. }
+            )
+        {
+            let _ = b.write_str("\nERROR:\n");
+            let rparen = tok == ")";
+            let end = if rparen { e.start } else { e.end };
+            let upto = text.get(..end as usize).unwrap_or(text);
+            let _ = crate::builtins::modules::write_defmodule_at(upto, e.start as usize, &mut b);
+            if rparen {
+                let _ = b.write_str(" )");
+            }
+            let _ = b.write_char('\n');
         }
         // CLIPS checks modify/duplicate slot values and the patterns' constraints once
         // the whole rule is read, and then shows the rule it rejected

@@ -676,6 +676,12 @@ pub enum LoadDetail {
         name: Ix,
         class: &'static str,
     },
+    /// `[CSTRCPSR2]`: a construct keyword not followed by a name (the offending
+    /// token, `)` when there is nothing).
+    MissingName,
+    /// `[PRNTUTIL1]`: a defmodule importing from a module that does not exist (the
+    /// offending token).
+    NoSuchModule,
     /// `[NOTIMPL1]` (ours, not CLIPS's): something robotino-agent does not implement
     /// yet (`what`, e.g. "defmodule"), refused rather than accepted and ignored.
     NotImplemented {

@@ -28,7 +28,10 @@ pub mod class {
     pub const GLOBAL: u8 = 4;
     pub const CLASS: u8 = 8;
     pub const GENERIC: u8 = 16;
-    pub const ALL: u8 = 31;
+    /// Defrules and deffacts: no port names their class, only `?ALL` (imported from a
+    /// module exporting `?ALL`) makes another module's visible by its plain name.
+    pub const RULES: u8 = 32;
+    pub const ALL: u8 = 63;
 
     /// The keyword of construct class `bit` (one bit).
     pub fn keyword(bit: u8) -> &'static str {

@@ -399,4 +399,8 @@ differential_programs! {
     p284_modules_logical_strategies => "284-modules-logical-strategies",
     p285_modules_unseen_globals => "285-modules-unseen-globals",
     p286_modules_undefine => "286-modules-undefine",
+    p287_modules_functions => "287-modules-functions",
+    p288_modules_rule_visibility => "288-modules-rule-visibility",
+    p289_construct_missing_name => "289-construct-missing-name",
+    p310_reset_negated_first_order => "310-reset-negated-first-order",
 }

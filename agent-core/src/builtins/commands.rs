@@ -463,16 +463,35 @@ pub(super) fn list_defrules(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalErr
     Ok(Value::Void)
 }
 
-/// The rule `name` names: the current module's, or `MOD::rule`.
+/// The rule `name` names: `MOD::rule`, the current module's, or one of a module it
+/// imports `?ALL` from that exports `?ALL` (as CLIPS finds them).
 pub(super) fn find_rule(cx: &mut Core<'_>, name: Ix) -> Option<Ix> {
     #[cfg(feature = "modules")]
-    if let Some((m, bare)) = cx.resolve_qualified(name) {
-        let current = cx.current_module();
-        cx.set_current_module(m);
-        let r = (0..cx.st.pools.nrules).find(|&r| cx.rule_here(r, bare));
-        cx.set_current_module(current);
-        return r;
+    {
+        if let Some((m, bare)) = cx.resolve_qualified(name) {
+            let current = cx.current_module();
+            cx.set_current_module(m);
+            let r = (0..cx.st.pools.nrules).find(|&r| cx.rule_here(r, bare));
+            cx.set_current_module(current);
+            return r;
+        }
+        let own = (0..cx.st.pools.nrules).find(|&r| cx.rule_here(r, name));
+        let from = cx.current_module();
+        own.or_else(|| {
+            (0..cx.st.pools.nrules).find(|&r| {
+                let rule = &cx.rules[r as usize];
+                rule.name == name
+                    && !rule.deleted
+                    && cx.visible_in(
+                        crate::module::class::RULES,
+                        cx.rule_tag(r).module,
+                        name,
+                        from,
+                    )
+            })
+        })
     }
+    #[cfg(not(feature = "modules"))]
     (0..cx.st.pools.nrules).find(|&r| cx.rule_here(r, name))
 }
 
@@ -529,10 +548,12 @@ fn undefrule(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     // a compiled rule base's network read in place is copied into the arena first
     cx.network_writable()?;
     if cx.sym_text(name) == "*" {
-        // every rule in definition order; `remove_rule` takes a rule's first disjunct
+        // the current module's rules in definition order; `remove_rule` takes a
+        // rule's first disjunct
         for r in 0..cx.st.pools.nrules {
             let rule = cx.rules[r as usize];
-            if !rule.deleted && find_rule(cx, rule.name) == Some(r) {
+            let first = (0..cx.st.pools.nrules).find(|&q| cx.rule_here(q, rule.name));
+            if !rule.deleted && first == Some(r) {
                 cx.remove_rule(r);
             }
         }

@@ -298,7 +298,7 @@ fn deffacts_at(cx: &Core<'_>, i: Ix) -> Option<Ix> {
 
 /// The deffacts `name` names: `MOD::name`, or one the current module sees (its own,
 /// or one of a module it imports from, as CLIPS finds them).
-fn find_deffacts(cx: &mut Core<'_>, name: SymId) -> Option<Ix> {
+pub(super) fn find_deffacts(cx: &mut Core<'_>, name: SymId) -> Option<Ix> {
     #[cfg(feature = "modules")]
     {
         let (from, bare, qualified) = match cx.resolve_qualified(name) {
@@ -311,7 +311,7 @@ fn find_deffacts(cx: &mut Core<'_>, name: SymId) -> Option<Ix> {
                 && if qualified {
                     owner == from
                 } else {
-                    cx.visible_in(crate::module::class::ALL, owner, bare, from)
+                    cx.visible_in(crate::module::class::RULES, owner, bare, from)
                 }
         })
     }

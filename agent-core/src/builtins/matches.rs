@@ -330,10 +330,21 @@ pub(super) fn matches(cx: &mut Core<'_>, a: Args, first: Ix) -> Result<Value, Ev
     }
     say(cx, detail, "Activations\n");
     let name = cx.rules[first as usize].name;
+    // CLIPS looks for them on the current module's agenda only (an imported rule's
+    // show none), among the activations of the rule's own module
+    #[cfg(feature = "modules")]
+    let (here, module) = {
+        let m = cx.rule_tag(first).module;
+        (m == cx.current_module(), m)
+    };
+    #[cfg(feature = "modules")]
+    let ours = |cx: &Core<'_>, r: Ix| here && cx.rule_tag(r).module == module;
+    #[cfg(not(feature = "modules"))]
+    let ours = |_: &Core<'_>, _: Ix| true;
     let mut act = cx.st.agenda.agenda_head;
     while act != NONE {
         let x = cx.acts[act as usize];
-        if cx.rules[x.rule as usize].name == name {
+        if cx.rules[x.rule as usize].name == name && ours(cx, x.rule) {
             if detail == Detail::Verbose {
                 let mut b: TextBuf<512> = TextBuf::new();
                 let _ = cx.write_basis(&mut b, x.token);

@@ -1,11 +1,14 @@
 //! Module and focus commands (agent-core feature `modules`, see `crate::module`):
 //! `focus`, `get-focus`, `get-focus-stack`, `list-focus-stack`, `pop-focus`,
 //! `clear-focus-stack`, `set-current-module`, `get-current-module`, `list-defmodules`,
-//! `get-defmodule-list`, `ppdefmodule`, as CLIPS 6.30 prints them.
+//! `get-defmodule-list`, `ppdefmodule`, and the module of a construct
+//! (`deftemplate-module`, `deffacts-module`, `defrule-module`, `deffunction-module`,
+//! `defglobal-module`), as CLIPS 6.30 prints them.
 // without the feature the table is empty and the functions unused (and not linked)
 #![cfg_attr(not(feature = "modules"), allow(dead_code, unused_imports))]
 
 use super::commands::Unable;
+use super::describe::ArgType::{Any, Symbol};
 use super::{Args, Builtin, ANY, SYM_FALSE, SYM_TRUE};
 use crate::engine::Core;
 use crate::error::EvalError;
@@ -22,11 +25,16 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("list-focus-stack", 0, 0, list_focus_stack),
     Builtin::eager("pop-focus", 0, 0, pop_focus),
     Builtin::eager("clear-focus-stack", 0, 0, clear_focus_stack),
-    Builtin::eager("set-current-module", 1, 1, set_current_module),
+    Builtin::eager("set-current-module", 1, 1, set_current_module).args(&[Symbol], Any),
     Builtin::eager("get-current-module", 0, 0, get_current_module),
     Builtin::eager("list-defmodules", 0, 0, list_defmodules),
     Builtin::eager("get-defmodule-list", 0, 0, get_defmodule_list),
-    Builtin::eager("ppdefmodule", 1, 1, ppdefmodule),
+    Builtin::eager("ppdefmodule", 1, 1, ppdefmodule).args(&[Symbol], Any),
+    Builtin::eager("deftemplate-module", 1, 1, deftemplate_module).args(&[Symbol], Any),
+    Builtin::eager("deffacts-module", 1, 1, deffacts_module).args(&[Symbol], Any),
+    Builtin::eager("defrule-module", 1, 1, defrule_module).args(&[Symbol], Any),
+    Builtin::eager("deffunction-module", 1, 1, deffunction_module).args(&[Symbol], Any),
+    Builtin::eager("defglobal-module", 1, 1, defglobal_module).args(&[Symbol], Any),
 ];
 #[cfg(not(feature = "modules"))]
 pub const FUNCS: &[Builtin] = &[];
@@ -121,10 +129,20 @@ fn clear_focus_stack(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
     Ok(Value::Void)
 }
 
-/// `(set-current-module M)`: the module before (unchanged for an unknown one).
+/// `(set-current-module M)`: the module before (unchanged for an unknown one). A
+/// computed argument that is no symbol is an error whose value is the current module.
 #[cfg(feature = "modules")]
 fn set_current_module(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let old = cx.current_module();
+    if !matches!(cx.arg(a, 0), Value::Sym(_)) {
+        cx.write(
+            router::WERROR,
+            "[ARGACCES5] Function set-current-module expected argument #1 to be of type symbol\n",
+        );
+        let current = module_sym(cx, old)?;
+        cx.set_error_fallback(current, None);
+        return Err(EvalError::already_reported());
+    }
     if let Some(m) = module_arg(cx, a, 0, "set-current-module")? {
         cx.set_current_module(m);
     }
@@ -168,19 +186,146 @@ fn get_defmodule_list(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
 /// own, tokens one space apart (`(defmodule MAIN)` for the MAIN made at start-up).
 #[cfg(feature = "modules")]
 fn ppdefmodule(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    if construct_name(cx, a, "ppdefmodule", "defmodule").is_none() {
+        return Ok(Value::Void);
+    }
     let Some(m) = module_arg(cx, a, 0, "ppdefmodule")? else {
         return Ok(Value::Void);
     };
-    let mut b: TextBuf<4096> = TextBuf::new();
+    // the MAIN made at start-up has no text: nothing is printed
     let text = cx.module_entry(m).text;
-    if text == crate::value::NONE {
-        let _ = writeln!(b, "(defmodule {})", cx.module_name(m));
-    } else {
+    if text != crate::value::NONE {
+        let mut b: TextBuf<4096> = TextBuf::new();
         let _ = write_defmodule(cx.sym_text(text), &mut b);
         let _ = b.write_char('\n');
+        cx.write(router::WDISPLAY, b.as_str());
     }
-    cx.write(router::WDISPLAY, b.as_str());
     Ok(Value::Void)
+}
+
+/// The symbol argument 0 of a construct function, or None with CLIPS's
+/// `[ARGACCES5] ... of type KIND name` printed (a message only, not an error: the
+/// function returns its value for a name not found).
+#[cfg(feature = "modules")]
+fn construct_name(
+    cx: &mut Core<'_>,
+    a: Args,
+    func: &str,
+    kind: &str,
+) -> Option<crate::value::SymId> {
+    match cx.arg(a, 0) {
+        Value::Sym(s) => Some(s),
+        _ => {
+            let mut b: TextBuf<120> = TextBuf::new();
+            let _ = writeln!(
+                b,
+                "[ARGACCES5] Function {func} expected argument #1 to be of type {kind} name"
+            );
+            cx.write(router::WERROR, b.as_str());
+            None
+        }
+    }
+}
+
+/// A construct class whose module `*-module` names.
+#[cfg(feature = "modules")]
+#[derive(Clone, Copy)]
+enum Construct {
+    Template,
+    Deffacts,
+    Rule,
+    Function,
+    Global,
+}
+
+/// `(deftemplate-module NAME)` and the others: the module that defines the construct
+/// NAME names for the current module (its own or an imported one), FALSE with
+/// `[PRNTUTIL1]` for none. As in CLIPS, `MOD::...` is module MOD whatever follows the
+/// `::` (FALSE for an unknown MOD).
+#[cfg(feature = "modules")]
+fn construct_module(
+    cx: &mut Core<'_>,
+    a: Args,
+    func: &str,
+    kind: &str,
+    class: Construct,
+) -> Result<Value, EvalError> {
+    let Some(name) = construct_name(cx, a, func, kind) else {
+        return Ok(Value::Sym(SYM_FALSE));
+    };
+    let text = cx.sym_text(name);
+    let owner = match crate::module::qualifier_end(text) {
+        Some(i) if i > 0 => {
+            let m = text.get(..i).unwrap_or("");
+            cx.find_module(m)
+        }
+        _ => {
+            let from = cx.current_module();
+            match class {
+                Construct::Template => cx.find_template(name).map(|t| cx.module_of_template(t)),
+                Construct::Deffacts => {
+                    if text == "initial-fact" && cx.st.mode.initial_deffacts {
+                        let main = crate::module::MAIN;
+                        let seen = cx.visible_in(crate::module::class::RULES, main, name, from);
+                        seen.then_some(main)
+                    } else {
+                        super::extras::find_deffacts(cx, name).map(|d| cx.module_of_deffacts(d))
+                    }
+                }
+                Construct::Rule => {
+                    super::commands::find_rule(cx, name).map(|r| cx.rule_tag(r).module)
+                }
+                Construct::Function => cx
+                    .find_function(name, from)
+                    .map(|f| cx.module_of_function(f)),
+                Construct::Global => cx.find_global(name).map(|g| cx.module_of_global(g)),
+            }
+        }
+    };
+    match owner {
+        Some(m) => module_sym(cx, m),
+        None => {
+            super::commands::unable(cx, Unable::Find, kind, name);
+            Ok(Value::Sym(SYM_FALSE))
+        }
+    }
+}
+
+#[cfg(feature = "modules")]
+fn deftemplate_module(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    construct_module(
+        cx,
+        a,
+        "deftemplate-module",
+        "deftemplate",
+        Construct::Template,
+    )
+}
+
+#[cfg(feature = "modules")]
+fn deffacts_module(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    construct_module(cx, a, "deffacts-module", "deffacts", Construct::Deffacts)
+}
+
+#[cfg(feature = "modules")]
+fn defrule_module(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    construct_module(cx, a, "defrule-module", "defrule", Construct::Rule)
+}
+
+#[cfg(feature = "modules")]
+fn deffunction_module(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    construct_module(
+        cx,
+        a,
+        "deffunction-module",
+        "deffunction",
+        Construct::Function,
+    )
+}
+
+#[cfg(feature = "modules")]
+fn defglobal_module(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    construct_module(cx, a, "defglobal-module", "defglobal", Construct::Global)
 }
 
 /// The pretty-printed form of the defmodule in `src` that byte `at` is in, up to the
@@ -199,6 +344,9 @@ fn write_defmodule(src: &str, w: &mut dyn Write) -> core::fmt::Result {
     let mut lx = Lexer::new(src);
     let mut depth = 0u32;
     let mut first_in_list = false;
+    // tokens of the defmodule itself: its keyword, name and comment share its line,
+    // anything else (only in text CLIPS rejected) goes on a line of its own
+    let mut top = 0u32;
     loop {
         let t = lx.next_token();
         let text = src.get(t.start..t.end).unwrap_or("");
@@ -223,6 +371,13 @@ fn write_defmodule(src: &str, w: &mut dyn Write) -> core::fmt::Result {
                 }
             }
             _ => {
+                if depth == 1 {
+                    top += 1;
+                    let comment = top == 3 && matches!(t.tok, Tok::Str(_));
+                    if top > 2 && !comment {
+                        w.write_str("\n  ")?;
+                    }
+                }
                 if !first_in_list {
                     w.write_char(' ')?;
                 }

@@ -58,7 +58,7 @@ impl<'s> Parser<'s, '_, '_> {
         let nt = self.next();
         let name = match nt.tok {
             Tok::Symbol(s) => self.construct_name(nt, s)?,
-            _ => return Err(self.err(nt, "a deftemplate name")),
+            _ => return Err(self.missing_name(nt, "a deftemplate name")),
         };
         let sym = cap!(self, self.cx.intern(name))?;
         // CLIPS replaces a deftemplate nothing uses yet, and refuses otherwise
@@ -187,7 +187,7 @@ impl<'s> Parser<'s, '_, '_> {
         let nt = self.next();
         let name = match nt.tok {
             Tok::Symbol(s) => self.construct_name(nt, s)?,
-            _ => return Err(self.err(nt, "a deffacts name")),
+            _ => return Err(self.missing_name(nt, "a deffacts name")),
         };
         let sym = cap!(self, self.cx.intern(name))?;
         self.skip_comment();
@@ -259,7 +259,7 @@ impl<'s> Parser<'s, '_, '_> {
         let nt = self.next();
         let name = match nt.tok {
             Tok::Symbol(s) => self.construct_name(nt, s)?,
-            _ => return Err(self.err(nt, "a deffunction name")),
+            _ => return Err(self.missing_name(nt, "a deffunction name")),
         };
         // CLIPS's own functions cannot be replaced; our geometry extensions can, since a
         // CLIPS program may define a deffunction of that name (rules/clips/stubs.clp

@@ -312,6 +312,13 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
         }
     }
 
+    /// `[CSTRCPSR2]` at `at`: the construct keyword is not followed by a name.
+    pub(super) fn missing_name(&self, at: Token<'s>, expected: &'static str) -> LoadError {
+        let mut e = self.err(at, expected);
+        e.detail = crate::error::LoadDetail::MissingName;
+        e
+    }
+
     pub fn expect_rparen(&mut self, what: &'static str) -> PResult<()> {
         let t = self.next();
         if t.tok == Tok::RParen {

@@ -14,7 +14,8 @@ impl<'s> Parser<'s, '_, '_> {
         let nt = self.next();
         let name = match nt.tok {
             Tok::Symbol(s) if split_qualified(s).is_none() => s,
-            _ => return Err(self.err(nt, "a defmodule name")),
+            Tok::Symbol(_) => return Err(self.err(nt, "a defmodule name")),
+            _ => return Err(self.missing_name(nt, "a defmodule name")),
         };
         let slot: ModId = match self.cx.find_module(name) {
             Some(MAIN) if !self.cx.st.modules.main_redefined => MAIN,
@@ -103,9 +104,13 @@ impl<'s> Parser<'s, '_, '_> {
             from = match mt.tok {
                 Tok::Symbol(s) => match self.cx.find_module(s) {
                     Some(m) if m != this => m,
-                    _ => return Err(self.err(mt, "the name of a defined module to import from")),
+                    _ => {
+                        let mut e = self.err(mt, "the name of a defined module to import from");
+                        e.detail = LoadDetail::NoSuchModule;
+                        return Err(e);
+                    }
                 },
-                _ => return Err(self.err(mt, "a module name")),
+                _ => return Err(self.port_err(mt, true, "a module name")),
             };
             // a module exporting nothing cannot be imported from
             if !self.cx.exports_any(from, class::ALL) {
@@ -117,13 +122,14 @@ impl<'s> Parser<'s, '_, '_> {
             // ?ALL or ?NONE for every class
             Tok::SfVar("ALL") => {
                 self.add_port(t, first, n, import, from, class::ALL, NONE)?;
-                self.expect_rparen("')' after ?ALL")
+                self.port_rparen(import, "')' after ?ALL")
             }
-            Tok::SfVar("NONE") => self.expect_rparen("')' after ?NONE"),
+            Tok::SfVar("NONE") => self.port_rparen(import, "')' after ?NONE"),
             Tok::Symbol(kw) => {
                 let Some(classes) = class::of(kw) else {
-                    return Err(self.err(
+                    return Err(self.port_err(
                         t,
+                        import,
                         "deftemplate, deffunction, defglobal, defclass or defgeneric",
                     ));
                 };
@@ -133,7 +139,7 @@ impl<'s> Parser<'s, '_, '_> {
                         self.add_port(t, first, n, import, from, classes, NONE)?;
                         let close = self.next();
                         if close.tok != Tok::RParen {
-                            return Err(self.err(close, "')' after ?ALL"));
+                            return Err(self.port_err(close, import, "')' after ?ALL"));
                         }
                         if import && !self.cx.exports_any(from, classes) {
                             return Err(self.not_exported(
@@ -145,7 +151,7 @@ impl<'s> Parser<'s, '_, '_> {
                         }
                         return Ok(());
                     }
-                    Tok::SfVar("NONE") => return self.expect_rparen("')' after ?NONE"),
+                    Tok::SfVar("NONE") => return self.port_rparen(import, "')' after ?NONE"),
                     _ => {}
                 }
                 let mut t = t;
@@ -159,7 +165,7 @@ impl<'s> Parser<'s, '_, '_> {
                             self.add_port(t, first, n, import, from, classes, sym)?;
                             names += 1;
                         }
-                        _ => return Err(self.err(t, "a construct name")),
+                        _ => return Err(self.port_err(t, import, "a construct name")),
                     }
                     t = self.next();
                 }
@@ -174,7 +180,34 @@ impl<'s> Parser<'s, '_, '_> {
                 }
                 Ok(())
             }
-            _ => Err(self.err(t, "?ALL, ?NONE or a construct type")),
+            _ => Err(self.port_err(t, import, "?ALL, ?NONE or a construct type")),
+        }
+    }
+
+    /// A syntax error in an import (`import`) or export specification at `at`, as
+    /// CLIPS words it ("Check appropriate syntax for defmodule import specification").
+    fn port_err(
+        &self,
+        at: Token<'s>,
+        import: bool,
+        expected: &'static str,
+    ) -> crate::error::LoadError {
+        let mut e = self.err(at, expected);
+        e.construct = if import {
+            "defmodule import specification"
+        } else {
+            "defmodule export specification"
+        };
+        e
+    }
+
+    /// The `)` closing a port specification.
+    fn port_rparen(&mut self, import: bool, expected: &'static str) -> PResult<()> {
+        let t = self.next();
+        if t.tok == Tok::RParen {
+            Ok(())
+        } else {
+            Err(self.port_err(t, import, expected))
         }
     }
 

@@ -239,7 +239,7 @@ impl<'s> Parser<'s, '_, '_> {
         let nt = self.next();
         let name = match nt.tok {
             Tok::Symbol(s) => self.construct_name(nt, s)?,
-            _ => return Err(self.err(nt, "a defrule name")),
+            _ => return Err(self.missing_name(nt, "a defrule name")),
         };
         let sym = cap!(self, self.cx.intern(name))?;
         if let Tok::Str(_) = self.peek().tok {
