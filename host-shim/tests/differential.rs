@@ -403,4 +403,5 @@ differential_programs! {
     p288_modules_rule_visibility => "288-modules-rule-visibility",
     p289_construct_missing_name => "289-construct-missing-name",
     p310_reset_negated_first_order => "310-reset-negated-first-order",
+    p290_shared_join_keys => "290-shared-join-keys",
 }

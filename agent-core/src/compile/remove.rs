@@ -83,6 +83,9 @@ impl Core<'_> {
         if self.joins[parent].index_child == j {
             self.drop_beta_index(parent);
         }
+        // host: extra index groups may be keyed by `j` or map it
+        #[cfg(feature = "host-speedups")]
+        self.drop_extra_index(parent);
         let rj = self.joins[j].rjoin;
         if rj != JoinId::NONE {
             let head = self.joins[rj].rsucc;
@@ -202,6 +205,14 @@ impl Core<'_> {
                 && self.joins[p].index_child >= JoinId(cp.njoins)
             {
                 self.drop_beta_index(p);
+            }
+            #[cfg(feature = "host-speedups")]
+            if self.join_mems[p]
+                .xmap
+                .iter()
+                .any(|&(c, _)| c >= JoinId(cp.njoins) && c != JoinId::NONE)
+            {
+                self.drop_extra_index(p);
             }
             while self.joins[p].rsucc != JoinId::NONE && self.joins[p].rsucc >= JoinId(cp.njoins) {
                 let j = self.joins[p].rsucc;

@@ -292,9 +292,9 @@ impl Core<'_> {
             self.joins[j.parent].kind,
             JoinKind::Negative | JoinKind::Exists
         );
-        let (mut l, hashed) = self.first_left(join, am);
+        let (mut l, via) = self.first_left(join, am);
         while l != TokenId::NONE {
-            let next = self.next_left(l, hashed);
+            let next = self.next_left(l, via);
             if all_active || self.token_active(l) {
                 match j.kind {
                     JoinKind::Positive => {
@@ -564,6 +564,10 @@ impl Core<'_> {
         #[cfg(not(feature = "host-speedups"))]
         let ichild = JoinId::NONE;
         #[cfg(feature = "host-speedups")]
+        let xbuilt = jm.xbuilt;
+        #[cfg(not(feature = "host-speedups"))]
+        let xbuilt = 0;
+        #[cfg(feature = "host-speedups")]
         let own = if am != TokenId::NONE {
             tokens[am].fact
         } else {
@@ -617,7 +621,7 @@ impl Core<'_> {
             tokens[am].first_child = t;
         }
         jm.mem = t;
-        self.beta_index_insert_fresh(t, join, ichild);
+        self.beta_index_insert_fresh(t, join, ichild, xbuilt);
         Ok(t)
     }
 
@@ -1082,6 +1086,8 @@ impl Core<'_> {
         // host: only a partial match in a bucket has one (see `beta_index_remove`)
         #[cfg(feature = "wide-index")]
         let in_bucket = tk.beta_links[1] != NONE;
+        #[cfg(all(feature = "wide-index", feature = "host-speedups"))]
+        let in_bucket = in_bucket || tk.in_x;
         #[cfg(not(feature = "wide-index"))]
         let in_bucket = true;
         if parent != TokenId::NONE {
@@ -1112,6 +1118,7 @@ impl Core<'_> {
             #[cfg(feature = "host-speedups")]
             if mem_next == TokenId::NONE {
                 j.index_built = false;
+                j.xbuilt = 0;
             }
         }
         if mem_next != TokenId::NONE {

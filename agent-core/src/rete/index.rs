@@ -11,6 +11,8 @@
 //! bucket number. No allocation, no extra bytes per token.
 
 use super::{JoinKind, PatBinding, TokenKind, MAX_RHASH, THIS_PATTERN};
+#[cfg(feature = "host-speedups")]
+use super::{XGROUPS, XMAP, XSCAN};
 use crate::engine::Core;
 use crate::expr::{loc, Op};
 use crate::handle::{JoinId, TokenId};
@@ -102,6 +104,44 @@ fn beta_tag(join: JoinId, key: u32) -> u32 {
     h
 }
 
+/// The beta buckets of index group `g` in a table of `n` heads: (first, count).
+/// Host: group 0 (each memory's `Join::index_child`) has about half the table's beta
+/// half, the extra groups share the rest; elsewhere group 0 has it all.
+#[inline(always)]
+fn group_range(n: usize, g: usize) -> (usize, usize) {
+    let half = n / 2;
+    let r = n - half;
+    #[cfg(feature = "host-speedups")]
+    {
+        let part = r / (2 * XGROUPS);
+        let first = r - XGROUPS * part;
+        if g == 0 {
+            (half, first.max(1))
+        } else {
+            (half + first + (g - 1) * part, part)
+        }
+    }
+    #[cfg(not(feature = "host-speedups"))]
+    {
+        let _ = g;
+        (half, r.max(1))
+    }
+}
+
+/// The index group whose buckets hold bucket `i` of a table of `n` heads.
+#[cfg(feature = "grow")]
+fn group_of_bucket(n: usize, i: usize) -> usize {
+    #[cfg(feature = "host-speedups")]
+    for g in 1..=XGROUPS {
+        let (first, count) = group_range(n, g);
+        if i >= first && i < first + count {
+            return g;
+        }
+    }
+    let _ = (n, i);
+    0
+}
+
 impl Core<'_> {
     /// A hash of a value consistent with `values_same` (the join tests' equality).
     fn value_hash(&self, v: Value) -> u32 {
@@ -128,15 +168,6 @@ impl Core<'_> {
     #[cfg(feature = "grow")]
     pub(crate) fn alpha_bucket_of(&self, tag: u32) -> usize {
         reduce(tag, (self.amem_buckets.len() / 2).max(1))
-    }
-
-    /// With feature `grow`: the bucket of a partial match's stored tag
-    /// (`beta_index_link`).
-    #[cfg(feature = "grow")]
-    pub(crate) fn beta_bucket_of(&self, tag: u32) -> usize {
-        let n = self.amem_buckets.len();
-        let half = n / 2;
-        half + reduce(tag, (n - half).max(1))
     }
 
     /// The key of an alpha match of `alpha` (a node with a right hash): its
@@ -464,6 +495,13 @@ impl Core<'_> {
     // the child visits only its bucket (newest first, as the memory). Beta tokens
     // keep the bucket links in fields only alpha matches use: `fact` (next),
     // `marks[0..2]` (previous; the head's is the tail), `marks[2..4]` (bucket).
+    //
+    // Host: a memory shared by several keyed children (rules with a common prefix)
+    // also keeps up to `XGROUPS` extra index groups, each keyed as one child's tests
+    // read (links in `Token::xlinks`), taken on a child's first right activation
+    // (`JoinMem::xmap`); a child whose key plan reads the same fields as a group's
+    // uses that group. Each group has its own part of the beta buckets, as a
+    // bucket's chain runs through one group's links.
 
     fn bnext(&self, t: TokenId) -> TokenId {
         TokenId(self.tokens[t].fact)
@@ -520,10 +558,79 @@ impl Core<'_> {
         self.tokens[t].beta_links[1] = b;
     }
 
-    fn beta_bucket(&self, join: JoinId, key: u32) -> Ix {
-        let n = self.amem_buckets.len();
-        let half = n / 2;
-        (half + reduce(beta_tag(join, key), (n - half).max(1))) as Ix
+    /// Index group `g`'s next link of partial match `t` (group 0: `bnext`).
+    #[inline(always)]
+    fn gnext(&self, t: TokenId, g: usize) -> TokenId {
+        #[cfg(feature = "host-speedups")]
+        if g > 0 {
+            return TokenId(self.tokens[t].xlinks[g - 1][0]);
+        }
+        let _ = g;
+        self.bnext(t)
+    }
+
+    #[inline(always)]
+    fn set_gnext(&mut self, t: TokenId, n: TokenId, g: usize) {
+        #[cfg(feature = "host-speedups")]
+        if g > 0 {
+            self.tokens[t].xlinks[g - 1][0] = n.0;
+            return;
+        }
+        let _ = g;
+        self.set_bnext(t, n)
+    }
+
+    #[inline(always)]
+    fn gprev(&self, t: TokenId, g: usize) -> TokenId {
+        #[cfg(feature = "host-speedups")]
+        if g > 0 {
+            return TokenId(self.tokens[t].xlinks[g - 1][1]);
+        }
+        let _ = g;
+        self.bprev(t)
+    }
+
+    #[inline(always)]
+    fn set_gprev(&mut self, t: TokenId, p: TokenId, g: usize) {
+        #[cfg(feature = "host-speedups")]
+        if g > 0 {
+            self.tokens[t].xlinks[g - 1][1] = p.0;
+            return;
+        }
+        let _ = g;
+        self.set_bprev(t, p)
+    }
+
+    #[inline(always)]
+    fn gbucket(&self, t: TokenId, g: usize) -> Ix {
+        #[cfg(feature = "host-speedups")]
+        if g > 0 {
+            return self.tokens[t].xlinks[g - 1][2];
+        }
+        let _ = g;
+        self.bbucket(t)
+    }
+
+    #[inline(always)]
+    fn set_gbucket(&mut self, t: TokenId, b: Ix, g: usize) {
+        #[cfg(feature = "host-speedups")]
+        if g > 0 {
+            self.tokens[t].xlinks[g - 1][2] = b;
+            return;
+        }
+        let _ = g;
+        self.set_bbucket(t, b)
+    }
+
+    /// The bucket of index group `g` that tag `tag` maps to.
+    #[inline(always)]
+    fn group_bucket(&self, tag: u32, g: usize) -> usize {
+        let (first, count) = group_range(self.amem_buckets.len(), g);
+        first + reduce(tag, count)
+    }
+
+    fn beta_bucket(&self, join: JoinId, key: u32, g: usize) -> Ix {
+        self.group_bucket(beta_tag(join, key), g) as Ix
     }
 
     /// Makes `child` the join whose tests key `parent`'s memory, if the memory is
@@ -562,36 +669,71 @@ impl Core<'_> {
             self.set_bnext(t, TokenId::NONE);
             self.set_bprev(t, TokenId::NONE);
             self.set_bbucket(t, NONE);
-            return;
+        } else {
+            self.beta_index_link(t, join, child, 0);
         }
-        self.beta_index_link(t, join, child);
+        #[cfg(feature = "host-speedups")]
+        if self.join_mems[join].xbuilt != 0 {
+            self.link_extra(t, join);
+        }
     }
 
     /// `beta_index_insert` for a token of `join` just written from `Token::EMPTY`: with
     /// `u32` indices its bucket links are NONE already (in the image they live in
     /// `marks`, which EMPTY zeroes, so they are written).
     /// On the host `child` is the join's index child if its index is built (NONE
-    /// otherwise), read by the caller with the join's other fields.
+    /// otherwise) and `xbuilt` its built extra groups (`JoinMem::xbuilt`), read by the
+    /// caller with the join's other fields.
     #[cfg(all(feature = "host-speedups", feature = "wide-index"))]
     #[inline(always)]
-    pub(crate) fn beta_index_insert_fresh(&mut self, t: TokenId, join: JoinId, child: JoinId) {
+    pub(crate) fn beta_index_insert_fresh(
+        &mut self,
+        t: TokenId,
+        join: JoinId,
+        child: JoinId,
+        xbuilt: u8,
+    ) {
         if child != JoinId::NONE {
-            self.beta_index_link(t, join, child);
+            self.beta_index_link(t, join, child, 0);
+        }
+        if xbuilt != 0 {
+            self.link_extra(t, join);
         }
     }
 
     #[cfg(not(all(feature = "host-speedups", feature = "wide-index")))]
-    pub(crate) fn beta_index_insert_fresh(&mut self, t: TokenId, _join: JoinId, _child: JoinId) {
+    pub(crate) fn beta_index_insert_fresh(
+        &mut self,
+        t: TokenId,
+        _join: JoinId,
+        _child: JoinId,
+        _xbuilt: u8,
+    ) {
         self.beta_index_insert(t);
     }
 
-    /// Puts partial match `t` of `join` at the head of its bucket for `child`.
+    /// Host: puts partial match `t` of `join` in each built extra index group of its
+    /// memory.
+    #[cfg(feature = "host-speedups")]
+    #[inline(never)]
+    fn link_extra(&mut self, t: TokenId, join: JoinId) {
+        let built = self.join_mems[join].xbuilt;
+        for g in 1..=XGROUPS {
+            if built & (1 << (g - 1)) != 0 {
+                let child = self.join_mems[join].xkey[g - 1];
+                self.beta_index_link(t, join, child, g);
+            }
+        }
+    }
+
+    /// Puts partial match `t` of `join` at the head of its bucket of index group `g`,
+    /// keyed by `child`'s tests.
     #[cfg_attr(feature = "host-speedups", inline(always))]
-    fn beta_index_link(&mut self, t: TokenId, join: JoinId, child: JoinId) {
+    fn beta_index_link(&mut self, t: TokenId, join: JoinId, child: JoinId, g: usize) {
         #[cfg(feature = "host-speedups")]
         let known = {
             let tk = &self.tokens[t];
-            tk.has_key.then_some(tk.key)
+            (tk.has_key && g == 0).then_some(tk.key)
         };
         #[cfg(not(feature = "host-speedups"))]
         let known = None;
@@ -615,26 +757,84 @@ impl Core<'_> {
             }
         };
         self.st.cache.key_cache = (t, child, key);
-        let b = self.beta_bucket(join, key);
+        let b = self.beta_bucket(join, key, g);
         let head = self.amem_buckets[b as usize];
         #[cfg(not(feature = "grow"))]
-        self.set_bbucket(t, b);
+        self.set_gbucket(t, b, g);
         #[cfg(feature = "grow")]
-        self.set_bbucket(t, beta_tag(join, key));
-        self.set_bnext(t, head);
+        self.set_gbucket(t, beta_tag(join, key), g);
+        self.set_gnext(t, head, g);
         if head == TokenId::NONE {
-            self.set_bprev(t, t);
+            self.set_gprev(t, t, g);
         } else {
-            let tail = self.bprev(head);
-            self.set_bprev(t, tail);
-            self.set_bprev(head, t);
+            let tail = self.gprev(head, g);
+            self.set_gprev(t, tail, g);
+            self.set_gprev(head, t, g);
         }
         self.amem_buckets[b as usize] = t;
+        #[cfg(feature = "host-speedups")]
+        if g > 0 {
+            self.tokens[t].in_x = true;
+        }
+    }
+
+    /// Takes `t` out of the chain of bucket `b` of index group `g`.
+    #[inline(always)]
+    fn chain_unlink(&mut self, t: TokenId, b: usize, g: usize) {
+        let (next, prev) = (self.gnext(t, g), self.gprev(t, g));
+        let head = self.amem_buckets[b];
+        if head == t {
+            self.amem_buckets[b] = next;
+            if next != TokenId::NONE {
+                self.set_gprev(next, prev, g);
+            }
+        } else {
+            self.set_gnext(prev, next, g);
+            if next != TokenId::NONE {
+                self.set_gprev(next, prev, g);
+            } else {
+                self.set_gprev(head, prev, g);
+            }
+        }
+        self.set_gbucket(t, NONE, g);
+    }
+
+    /// The bucket partial match `t` sits in for group `g` (NONE: none).
+    #[inline(always)]
+    fn bucket_of(&self, t: TokenId, g: usize) -> Ix {
+        let b = self.gbucket(t, g);
+        #[cfg(feature = "grow")]
+        let b = if b == NONE {
+            NONE
+        } else {
+            self.group_bucket(b as u32, g) as Ix
+        };
+        if b == NONE || b as usize >= self.amem_buckets.len() {
+            return NONE;
+        }
+        b
+    }
+
+    /// Host: takes partial match `t` out of its memory's extra index groups.
+    #[cfg(feature = "host-speedups")]
+    #[inline(never)]
+    fn unlink_extra(&mut self, t: TokenId) {
+        for g in 1..=XGROUPS {
+            let b = self.bucket_of(t, g);
+            if b != NONE {
+                self.chain_unlink(t, b as usize, g);
+            }
+        }
+        self.tokens[t].in_x = false;
     }
 
     /// Takes a partial match out of its memory's index.
     #[cfg_attr(feature = "host-speedups", inline(always))]
     pub(crate) fn beta_index_remove(&mut self, t: TokenId) {
+        #[cfg(feature = "host-speedups")]
+        if self.tokens[t].in_x {
+            self.unlink_extra(t);
+        }
         // host: only a linked partial match has a bucket (alpha matches and links
         // keep `beta_links` NONE), so one load decides the common unindexed case
         #[cfg(feature = "wide-index")]
@@ -645,51 +845,44 @@ impl Core<'_> {
         if self.tokens[t].kind != TokenKind::Beta || self.joins[owner].index_child == JoinId::NONE {
             return;
         }
-        let b = self.bbucket(t);
-        #[cfg(feature = "grow")]
-        let b = if b == NONE {
-            NONE
-        } else {
-            self.beta_bucket_of(b) as Ix
-        };
-        if b == NONE || b as usize >= self.amem_buckets.len() {
-            return;
+        let b = self.bucket_of(t, 0);
+        if b != NONE {
+            self.chain_unlink(t, b as usize, 0);
         }
-        let (next, prev) = (self.bnext(t), self.bprev(t));
-        let head = self.amem_buckets[b as usize];
-        if head == t {
-            self.amem_buckets[b as usize] = next;
-            if next != TokenId::NONE {
-                self.set_bprev(next, prev);
-            }
-        } else {
-            self.set_bnext(prev, next);
-            if next != TokenId::NONE {
-                self.set_bprev(next, prev);
-            } else {
-                self.set_bprev(head, prev);
-            }
-        }
-        self.set_bbucket(t, NONE);
     }
 
     /// Where a new alpha match `am` right-activating `join` starts among the
     /// parent's partial matches: its bucket when the parent's memory is indexed for
-    /// `join` (then `next_left` with `hashed`), else the whole memory.
-    pub(crate) fn first_left(&mut self, join: JoinId, am: TokenId) -> (TokenId, bool) {
+    /// `join` (then `next_left` with the group `via` it returns), else the whole
+    /// memory (`via` 0).
+    pub(crate) fn first_left(&mut self, join: JoinId, am: TokenId) -> (TokenId, u8) {
         let j = self.joins[join];
         let parent_mem = self.join_mems[j.parent].mem;
         // host: an empty memory stays unindexed (its index would only make every
         // partial match that comes pay its bucket until the next right activation)
         #[cfg(feature = "host-speedups")]
         if parent_mem == TokenId::NONE {
-            return (TokenId::NONE, false);
+            return (TokenId::NONE, 0);
         }
-        if self.joins[j.parent].index_child == join {
+        let group = if self.joins[j.parent].index_child == join {
             #[cfg(feature = "host-speedups")]
             if !self.join_mems[j.parent].index_built {
                 self.build_beta_index(j.parent, join);
             }
+            Some(0)
+        } else {
+            // (a child without a right hash has no key: it scans)
+            #[cfg(feature = "host-speedups")]
+            let g = if self.alphas[j.alpha as usize].nrhash > 0 {
+                self.extra_group(j.parent, join)
+            } else {
+                None
+            };
+            #[cfg(not(feature = "host-speedups"))]
+            let g = None;
+            g
+        };
+        if let Some(g) = group {
             let tk = self.tokens[am];
             let key = self.alpha_key(
                 j.alpha,
@@ -698,35 +891,124 @@ impl Core<'_> {
                     marks: tk.marks,
                 },
             );
-            let b = self.beta_bucket(j.parent, key);
-            let first = self.skip_other_beta(self.amem_buckets[b as usize], j.parent);
-            return (first, true);
+            let b = self.beta_bucket(j.parent, key, g);
+            let first = self.skip_other_beta(self.amem_buckets[b as usize], j.parent, g);
+            return (first, g as u8 + 1);
         }
-        (parent_mem, false)
+        (parent_mem, 0)
     }
 
-    /// The partial match after `l` (same chain kind as `first_left` gave).
-    pub(crate) fn next_left(&self, l: TokenId, hashed: bool) -> TokenId {
-        if hashed {
+    /// The partial match after `l` (`via` as `first_left` gave).
+    pub(crate) fn next_left(&self, l: TokenId, via: u8) -> TokenId {
+        if via > 0 {
+            let g = via as usize - 1;
             let owner = self.tokens[l].owner;
-            self.skip_other_beta(self.bnext(l), owner)
+            self.skip_other_beta(self.gnext(l, g), owner, g)
         } else {
             self.tokens[l].mem_next
         }
     }
 
-    fn skip_other_beta(&self, mut l: TokenId, join: JoinId) -> TokenId {
+    fn skip_other_beta(&self, mut l: TokenId, join: JoinId, g: usize) -> TokenId {
         while l != TokenId::NONE && self.tokens[l].owner != join {
-            l = self.bnext(l);
+            l = self.gnext(l, g);
         }
         l
     }
 
-    /// Host: indexes `join`'s memory for `child` (see `JoinMem::index_built`). Oldest
-    /// first, each at its bucket's head: the buckets get memory order, as if every
-    /// match had been indexed when it came.
+    /// Host: the index group of `parent`'s memory that `join` (a child fed by an
+    /// alpha node) right-activates through, None to scan the memory.
     #[cfg(feature = "host-speedups")]
-    fn build_beta_index(&mut self, join: JoinId, child: JoinId) {
+    #[inline(always)]
+    fn extra_group(&mut self, parent: JoinId, join: JoinId) -> Option<usize> {
+        let map = &self.join_mems[parent].xmap;
+        let mut free = XMAP;
+        let mut group = None;
+        for (k, &(c, g)) in map.iter().enumerate() {
+            if c == join {
+                group = Some(g);
+                break;
+            }
+            if c == JoinId::NONE {
+                free = k;
+                break;
+            }
+        }
+        let g = match group {
+            Some(g) => g,
+            None => self.claim_group(parent, join, free),
+        };
+        if g == XSCAN {
+            return None;
+        }
+        // (re)build on use: an empty memory gives its groups' buckets up
+        if g == 0 {
+            if !self.join_mems[parent].index_built {
+                let ic = self.joins[parent].index_child;
+                self.build_beta_index(parent, ic);
+            }
+        } else if self.join_mems[parent].xbuilt & (1 << (g - 1)) == 0 {
+            let child = self.join_mems[parent].xkey[g as usize - 1];
+            self.build_group(parent, child, g as usize);
+            self.join_mems[parent].xbuilt |= 1 << (g - 1);
+        }
+        Some(g as usize)
+    }
+
+    /// Host: finds or takes the index group for `join` in `parent`'s memory (a
+    /// group keyed on the same fields, or a new one while there is room; `XSCAN`:
+    /// none) and remembers it in `xmap` entry `free` (if below `XMAP`).
+    #[cfg(feature = "host-speedups")]
+    #[cold]
+    #[inline(never)]
+    fn claim_group(&mut self, parent: JoinId, join: JoinId, free: usize) -> u8 {
+        let j = self.joins[join];
+        let plan = self.key_plan(join);
+        let mut group = XSCAN;
+        if j.rjoin == JoinId::NONE
+            && j.alpha != NONE
+            && self.alphas[j.alpha as usize].nrhash > 0
+            && plan.n != KeyPlan::NONE.n
+        {
+            let ic = self.joins[parent].index_child;
+            if ic != JoinId::NONE && self.same_key(ic, &plan) {
+                group = 0;
+            } else {
+                let nx = self.join_mems[parent].nx as usize;
+                for k in 0..nx {
+                    if self.same_key(self.join_mems[parent].xkey[k], &plan) {
+                        group = k as u8 + 1;
+                        break;
+                    }
+                }
+                if group == XSCAN && nx < XGROUPS && group_range(self.amem_buckets.len(), 1).1 > 0 {
+                    let jm = &mut self.join_mems[parent];
+                    jm.xkey[nx] = join;
+                    jm.nx += 1;
+                    group = nx as u8 + 1;
+                }
+            }
+        }
+        if let Some(e) = self.join_mems[parent].xmap.get_mut(free) {
+            *e = (join, group);
+        }
+        group
+    }
+
+    /// Host: whether `join`'s key plan reads the fields `plan` reads, in its order.
+    #[cfg(feature = "host-speedups")]
+    fn same_key(&self, join: JoinId, plan: &KeyPlan) -> bool {
+        let p = self.key_plan(join);
+        let n = plan.n as usize;
+        p.n == plan.n && n <= MAX_RHASH && p.vars[..n] == plan.vars[..n]
+    }
+
+    /// Links every partial match of `join`'s memory into index group `g`, keyed by
+    /// `child`'s tests. Oldest first, each at its bucket's head: the buckets get
+    /// memory order, as if every match had been indexed when it came.
+    #[cfg(feature = "host-speedups")]
+    #[inline(always)]
+    fn build_group(&mut self, join: JoinId, child: JoinId, g: usize) {
         let mut t = self.join_mems[join].mem;
         let mut last = TokenId::NONE;
         while t != TokenId::NONE {
@@ -734,14 +1016,43 @@ impl Core<'_> {
             t = self.tokens[t].mem_next;
         }
         while last != TokenId::NONE {
-            self.beta_index_link(last, join, child);
+            self.beta_index_link(last, join, child, g);
             last = self.tokens[last].mem_prev;
         }
+    }
+
+    /// Host: indexes `join`'s memory for `child` (see `JoinMem::index_built`).
+    #[cfg(feature = "host-speedups")]
+    fn build_beta_index(&mut self, join: JoinId, child: JoinId) {
+        self.build_group(join, child, 0);
         self.join_mems[join].index_built = true;
+    }
+
+    /// Host: gives up `join`'s extra index groups (a child goes away; they are
+    /// taken again as children right-activate).
+    #[cfg(feature = "host-speedups")]
+    pub(crate) fn drop_extra_index(&mut self, join: JoinId) {
+        if self.join_mems[join].xmap[0].0 == JoinId::NONE {
+            return;
+        }
+        let mut t = self.join_mems[join].mem;
+        while t != TokenId::NONE {
+            if self.tokens[t].in_x {
+                self.unlink_extra(t);
+            }
+            t = self.tokens[t].mem_next;
+        }
+        let jm = &mut self.join_mems[join];
+        jm.xkey = [JoinId::NONE; XGROUPS];
+        jm.nx = 0;
+        jm.xmap = [(JoinId::NONE, 0); XMAP];
+        jm.xbuilt = 0;
     }
 
     /// Stops indexing `join`'s memory (its index child goes away).
     pub(crate) fn drop_beta_index(&mut self, join: JoinId) {
+        #[cfg(feature = "host-speedups")]
+        self.drop_extra_index(join);
         let mut t = self.join_mems[join].mem;
         while t != TokenId::NONE {
             self.beta_index_remove(t);
@@ -784,27 +1095,30 @@ impl Core<'_> {
                 t = next;
             }
         }
-        for &head in &old[old_half.min(old.len())..] {
+        let n_old = old.len();
+        for (i, &head) in old.iter().enumerate().skip(old_half.min(n_old)) {
             if head == TokenId::NONE {
                 continue;
             }
+            // each group's chains through its own links
+            let g = group_of_bucket(n_old, i);
             // partial matches, newest first: from the tail, each put at the head
-            let mut t = self.bprev(head);
+            let mut t = self.gprev(head, g);
             loop {
                 let prev = if t == head {
                     TokenId::NONE
                 } else {
-                    self.bprev(t)
+                    self.gprev(t, g)
                 };
-                let b = self.beta_bucket_of(self.bbucket(t));
+                let b = self.group_bucket(self.gbucket(t, g) as u32, g);
                 let first = self.amem_buckets[b];
-                self.set_bnext(t, first);
+                self.set_gnext(t, first, g);
                 if first == TokenId::NONE {
-                    self.set_bprev(t, t);
+                    self.set_gprev(t, t, g);
                 } else {
-                    let tail = self.bprev(first);
-                    self.set_bprev(t, tail);
-                    self.set_bprev(first, t);
+                    let tail = self.gprev(first, g);
+                    self.set_gprev(t, tail, g);
+                    self.set_gprev(first, t, g);
                 }
                 self.amem_buckets[b] = t;
                 if prev == TokenId::NONE {

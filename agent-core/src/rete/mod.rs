@@ -57,6 +57,16 @@ pub const BIND_W: usize = 8;
 /// Most fields of one pattern compared for equality with earlier variables that
 /// key its alpha node (CLIPS's "right hash"); further ones are plain join tests.
 pub const MAX_RHASH: usize = 4;
+/// Host: index groups a join's output memory keeps besides its `Join::index_child`'s
+/// (see `rete::index`), each for the keyed children that read the same fields.
+#[cfg(feature = "host-speedups")]
+pub const XGROUPS: usize = 3;
+/// Host: children of one join whose index group is remembered (`JoinMem::xmap`).
+#[cfg(feature = "host-speedups")]
+pub const XMAP: usize = 8;
+/// Host: an `xmap` entry of a child that scans the memory (no group fits it).
+#[cfg(feature = "host-speedups")]
+pub const XSCAN: u8 = u8::MAX;
 
 /// One distinct pattern: a template plus the tests that need only the fact itself.
 /// Shared by every rule that uses an identical pattern.
@@ -208,6 +218,22 @@ pub struct JoinMem {
     /// `Core::note_children`.
     #[cfg(feature = "host-speedups")]
     pub one_child: bool,
+    /// Host: the child join whose key defines extra index group `g + 1` (NONE:
+    /// unused); groups are taken on a child's first right activation and kept until
+    /// a child goes away (see `rete::index`).
+    #[cfg(feature = "host-speedups")]
+    pub xkey: [JoinId; XGROUPS],
+    /// Host: number of extra groups in use (the first `nx` of `xkey`).
+    #[cfg(feature = "host-speedups")]
+    pub nx: u8,
+    /// Host: the index group of each child met so far (0: `Join::index_child`'s,
+    /// `XSCAN`: none, the child scans the memory).
+    #[cfg(feature = "host-speedups")]
+    pub xmap: [(JoinId, u8); XMAP],
+    /// Host: the extra groups whose buckets hold the memory's partial matches (bit
+    /// `g - 1`), built as `index_built` is and likewise cleared when it empties.
+    #[cfg(feature = "host-speedups")]
+    pub xbuilt: u8,
     /// Whether no join from this one down feeds a join from the right (its memories
     /// may then be emptied whole, `rete::wipe`), worked out for network generation
     /// `plain_gen`.
@@ -224,6 +250,14 @@ impl JoinMem {
         index_built: false,
         #[cfg(feature = "host-speedups")]
         one_child: false,
+        #[cfg(feature = "host-speedups")]
+        xkey: [JoinId::NONE; XGROUPS],
+        #[cfg(feature = "host-speedups")]
+        nx: 0,
+        #[cfg(feature = "host-speedups")]
+        xmap: [(JoinId::NONE, 0); XMAP],
+        #[cfg(feature = "host-speedups")]
+        xbuilt: 0,
         #[cfg(feature = "wipe")]
         plain: false,
         #[cfg(feature = "wipe")]
@@ -288,8 +322,15 @@ pub struct Token {
     /// activation of that child), for when the index is built (`JoinMem::index_built`).
     #[cfg(feature = "host-speedups")]
     pub has_key: bool,
+    /// Host: whether the partial match is in a bucket of an extra index group.
+    #[cfg(feature = "host-speedups")]
+    pub in_x: bool,
     #[cfg(feature = "host-speedups")]
     pub key: u32,
+    /// Host: the partial match's links in its memory's extra index groups (next,
+    /// previous, bucket; as `beta_links` for the first group).
+    #[cfg(feature = "host-speedups")]
+    pub xlinks: [[Ix; 3]; XGROUPS],
 }
 
 impl Token {
@@ -329,7 +370,11 @@ impl Token {
         #[cfg(feature = "host-speedups")]
         has_key: false,
         #[cfg(feature = "host-speedups")]
+        in_x: false,
+        #[cfg(feature = "host-speedups")]
         key: 0,
+        #[cfg(feature = "host-speedups")]
+        xlinks: [[NONE; 3]; XGROUPS],
     };
 }
 

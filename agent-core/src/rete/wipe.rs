@@ -83,6 +83,7 @@ impl Core<'_> {
         #[cfg(feature = "host-speedups")]
         {
             jm.index_built = false;
+            jm.xbuilt = 0;
         }
         let mut c = self.joins[join].first_child;
         while c != JoinId::NONE {
