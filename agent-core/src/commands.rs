@@ -860,6 +860,9 @@ impl Core<'_> {
             return;
         }
         let x = self.exprs[top as usize];
+        // a call whose arguments expand (`expand$`): the function it wraps
+        #[cfg(feature = "extras")]
+        let x = crate::builtins::environment::expanded_call(self, x);
         // a prompt variable read unbound
         if x.op == Op::Global {
             self.write(router::STDOUT, "FALSE\n");
@@ -1011,6 +1014,28 @@ impl Core<'_> {
             );
         } else if e.detail == LoadDetail::MissingFunction {
             let _ = writeln!(b, "\n[EXPRNPSR3] Missing function declaration for {tok}.");
+        } else if let LoadDetail::SequenceOperator { func, whole } = e.detail {
+            let _ = writeln!(
+                b,
+                "[EXPRNPSR4] $ Sequence operator not a valid argument for {func}."
+            );
+            // the whole rule or deffunction, its closing `)` on a line of its own
+            let head = if e.construct == "defrule" {
+                "(defrule"
+            } else {
+                "(deffunction"
+            };
+            let upto = text.get(..e.start as usize).unwrap_or("");
+            if let (true, Some(start)) = (whole, upto.rfind(head)) {
+                let src = upto.get(start..).unwrap_or("");
+                let _ = b.write_str("\nERROR:\n");
+                let _ = if e.construct == "defrule" {
+                    crate::builtins::pretty::write_defrule_upto(src, module, &mut b)
+                } else {
+                    crate::builtins::pretty::write_deffunction_upto(src, module, &mut b)
+                };
+                let _ = b.write_str("\n   )\n");
+            }
         } else if let LoadDetail::Constraint {
             command,
             what,
@@ -1301,7 +1326,13 @@ impl Core<'_> {
             let _ = b.write_char('\n');
         } else if e.echo_end != 0
             && e.construct == "defrule"
-            && matches!(e.detail, LoadDetail::Syntax | LoadDetail::MissingFunction)
+            && matches!(
+                e.detail,
+                LoadDetail::Syntax
+                    | LoadDetail::MissingFunction
+                    | LoadDetail::SequenceOperator { .. }
+                    | LoadDetail::Arity { .. }
+            )
         {
             // a rule CLIPS stopped reading, in its conditions or its actions
             let _ = b.write_str("\nERROR:\n");
@@ -1314,7 +1345,12 @@ impl Core<'_> {
             let _ = b.write_char('\n');
         } else if e.echo_end != 0
             && e.construct == "deffunction"
-            && e.detail == LoadDetail::MissingFunction
+            && matches!(
+                e.detail,
+                LoadDetail::MissingFunction
+                    | LoadDetail::SequenceOperator { .. }
+                    | LoadDetail::Arity { .. }
+            )
         {
             let _ = b.write_str("\nERROR:\n");
             let upto = text.get(..e.echo_end as usize).unwrap_or(text);
@@ -1324,7 +1360,10 @@ impl Core<'_> {
             && !matches!(e.detail, LoadDetail::Constraint { .. })
             // (an unknown function elsewhere, at the prompt or in a defglobal, is not
             // shown)
-            && (e.detail != LoadDetail::MissingFunction || e.construct == "deftemplate")
+            && (!matches!(
+                e.detail,
+                LoadDetail::MissingFunction | LoadDetail::SequenceOperator { .. }
+            ) || e.construct == "deftemplate")
         {
             let _ = b.write_str("\nERROR:\n");
             let _ = crate::builtins::pretty::write_deftemplate_echo(

@@ -485,6 +485,10 @@ pub struct Mode {
     /// Duplication was on at some point: equal live facts may exist (the invariant
     /// check then allows them).
     pub twins_made: bool,
+    /// `(set-sequence-operator-recognition TRUE)`: `$?x` in a function call's arguments
+    /// is read as `(expand$ ?x)` (agent-core feature `extras`; the byte fits the
+    /// struct's padding).
+    pub seq_ops: bool,
 }
 
 impl Mode {
@@ -505,6 +509,7 @@ impl Mode {
             dynamic_checks: false,
             fact_duplication: false,
             twins_made: false,
+            seq_ops: false,
         }
     }
 }

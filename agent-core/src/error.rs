@@ -559,6 +559,13 @@ pub enum LoadDetail {
     },
     /// `[EXPRNPSR3]`: unknown function (its name is the offending token).
     MissingFunction,
+    /// `[EXPRNPSR4]`: a sequence expansion (`expand$`, or `$?x` with
+    /// sequence-operator recognition) among the arguments of `func`, which takes none.
+    SequenceOperator {
+        func: &'static str,
+        /// In the actions of a rule or deffunction: CLIPS shows the whole construct.
+        whole: bool,
+    },
     /// A static default whose expression failed when the deftemplate was defined: the
     /// evaluation error was printed then, and CLIPS adds no syntax error (only the
     /// construct after `ERROR:`).

@@ -291,6 +291,45 @@ fn printout(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
 }
 
 /// Expressions whose evaluation calls nothing (so prints nothing).
+/// `printout` of values already evaluated (a call whose arguments expand, see
+/// `environment`): the first names the router.
+pub(super) fn printout_values(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let name = cx.arg(a, 0);
+    if name == Value::Sym(SYM_NIL) || cx.st.mode.halting {
+        return Ok(Value::Void);
+    }
+    let Ok(Some(routed)) = resolve_router(cx, name) else {
+        return Ok(Value::Void);
+    };
+    let mut b: TextBuf<1024> = TextBuf::new();
+    for i in 1..a.len as usize {
+        let v = cx.arg(a, i);
+        if b.len() > 900 {
+            cx.write(routed.name(), b.as_str());
+            b.clear();
+        }
+        match v {
+            Value::Sym(s) if s == SYM_CRLF => {
+                let _ = b.write_char('\n');
+            }
+            Value::Sym(s) if cx.sym_text(s) == "tab" => {
+                let _ = b.write_char('\t');
+            }
+            _ => {
+                let len = b.len();
+                if cx.write_printout(&mut b, v).is_err() {
+                    b.truncate(len);
+                    cx.write(routed.name(), b.as_str());
+                    b.clear();
+                    let _ = cx.write_printout(&mut b, v);
+                }
+            }
+        }
+    }
+    cx.write(routed.name(), b.as_str());
+    Ok(Value::Void)
+}
+
 fn is_leaf(op: crate::expr::Op) -> bool {
     use crate::expr::Op;
     matches!(

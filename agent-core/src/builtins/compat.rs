@@ -82,7 +82,8 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("set-dynamic-constraint-checking", 1, 1, set_dynamic_constraint_checking),
     Builtin::eager("set-fact-duplication", 1, 1, set_fact_duplication),
     Builtin::eager("get-sequence-operator-recognition", 0, 0, get_sequence_operator_recognition),
-    Builtin::eager("set-sequence-operator-recognition", 1, 1, set_sequence_operator_recognition),
+    Builtin::eager("set-sequence-operator-recognition", 1, 1, set_sequence_operator_recognition)
+        .args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any),
     Builtin::eager("get-static-constraint-checking", 0, 0, get_static_constraint_checking),
     Builtin::eager("set-static-constraint-checking", 1, 1, set_static_constraint_checking),
     Builtin::eager("get-incremental-reset", 0, 0, get_incremental_reset),
@@ -402,15 +403,16 @@ fn set_fact_duplication(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> 
     Ok(Core::bool_value(old))
 }
 
-/// `$` before a function call's argument is not a sequence operator (CLIPS's default).
-fn get_sequence_operator_recognition(_cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
-    Ok(Value::Sym(SYM_FALSE))
+/// Whether `$?x` in a function call's arguments is a sequence expansion (`expand$`),
+/// read when calls are parsed (CLIPS's default is FALSE: `$?x` is `?x`).
+fn get_sequence_operator_recognition(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
+    Ok(Core::bool_value(cx.st.mode.seq_ops))
 }
+/// Any value but FALSE turns recognition on; the old setting is returned.
 fn set_sequence_operator_recognition(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    if !is_false(cx.arg(a, 0)) {
-        return Err(refuse(cx, "set-sequence-operator-recognition", "FALSE"));
-    }
-    Ok(Value::Sym(SYM_FALSE))
+    let old = cx.st.mode.seq_ops;
+    cx.st.mode.seq_ops = !is_false(cx.arg(a, 0));
+    Ok(Core::bool_value(old))
 }
 
 /// Literal slot values are checked when constructs and commands are read (CLIPS's
@@ -507,10 +509,6 @@ mod tests {
             (
                 "(set-auto-float-dividend FALSE)",
                 "(set-auto-float-dividend TRUE)",
-            ),
-            (
-                "(set-sequence-operator-recognition TRUE)",
-                "(set-sequence-operator-recognition FALSE)",
             ),
             (
                 "(set-salience-evaluation when-activated)",

@@ -1,5 +1,6 @@
 //! Environment and debugging commands the agent image leaves out (agent-core feature
-//! `extras`): `list-watch-items` and `get-function-restrictions`.
+//! `extras`): `list-watch-items`, `get-function-restrictions`, and sequence expansion
+//! (`expand$`, `$?x` with `set-sequence-operator-recognition`).
 // without the feature the table is empty and the functions unused (and not linked)
 #![cfg_attr(not(feature = "extras"), allow(dead_code))]
 
@@ -8,8 +9,9 @@ use super::extras::{find_pp_construct, name_at, owner_at, Kind, PpKind};
 use super::{Args, Builtin, ANY};
 use crate::engine::{watch, Core};
 use crate::error::EvalError;
+use crate::expr::{Expr, FnKind, Op};
 use crate::host::router;
-use crate::value::{SymId, TextBuf, Value};
+use crate::value::{Ix, SymId, TextBuf, Value, NONE};
 use core::fmt::Write;
 
 #[cfg(feature = "extras")]
@@ -20,7 +22,20 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("get-function-restrictions", 1, 1, get_function_restrictions)
         .args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any)
         .on_error(super::describe::OnError::EmptyString),
+    Builtin::eager("expand$", 1, 1, expand)
+        .args(&[super::describe::ArgType::Multifield], super::describe::ArgType::Any)
+        .on_error(super::describe::OnError::False),
+    Builtin::lazy("timer", 0, ANY, timer),
+    // made by the parser only (no text names it): a call whose arguments expand
+    Builtin::lazy("(expansion-call)", 1, 1, expansion_call),
 ];
+
+/// Ids of `expand$` and of the wrapper of calls whose arguments expand (the parser
+/// makes both).
+#[cfg(feature = "extras")]
+pub const ID_EXPAND: Ix = super::builtin_id("expand$");
+#[cfg(feature = "extras")]
+pub const ID_EXPANSION_CALL: Ix = super::builtin_id("(expansion-call)");
 #[cfg(not(feature = "extras"))]
 pub const FUNCS: &[Builtin] = &[];
 pub const TABLE: super::Table = super::Table::new(FUNCS);
@@ -475,6 +490,7 @@ const RESTRICTIONS: &[(&str, &str)] = &[
     ("system", "1*k"),
     ("tan", "11n"),
     ("time", "00"),
+    ("timer", "**"),
     ("undeffacts", "11w"),
     ("undeffunction", "11w"),
     ("undefglobal", "11w"),
@@ -486,3 +502,206 @@ const RESTRICTIONS: &[(&str, &str)] = &[
     ("while", "0**"),
     ("wordp", "11"),
 ];
+
+/// `expand$` outside the arguments of a function call (the parser turns it into a
+/// sequence expansion everywhere else): CLIPS's `[MISCFUN1]`, and FALSE.
+fn expand(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
+    cx.write(
+        router::WERROR,
+        "[MISCFUN1] expand$ must be used in the argument list of a function call.\n",
+    );
+    Err(EvalError::already_reported())
+}
+
+/// The call a wrapper `x` (`(expansion-call)`) stands for, else `x`: after an error
+/// at the prompt the wrapped function's fallback value is printed.
+#[cfg(feature = "extras")]
+pub(crate) fn expanded_call(cx: &Core<'_>, x: Expr) -> Expr {
+    if x.op == Op::Call && x.aux == FnKind::Builtin as u8 && x.data == ID_EXPANSION_CALL {
+        cx.exprs[x.first as usize]
+    } else {
+        x
+    }
+}
+
+/// A call whose arguments expand, as CLIPS 6.30 runs it: the expansions are evaluated
+/// first (each must be a multifield), then the number of arguments is checked
+/// (`[ARGACCES4]`, and FALSE), then the function is called with the expansions'
+/// fields in their places and the other arguments evaluated as usual (lazily for
+/// `and` and `or`). Type errors are then errors of computed arguments.
+fn expansion_call(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
+    let inner = cx.exprs[call as usize].first;
+    let x = cx.exprs[inner as usize];
+    // the expansions' multifields, in order, from `parts`
+    let parts = cx.st.frame.sp;
+    let mut count: usize = 0;
+    let mut c = x.first;
+    while c != NONE {
+        let e = cx.exprs[c as usize];
+        if is_expansion(e) {
+            match cx.eval(e.first)? {
+                Value::Multi(m) => {
+                    count += m.len as usize;
+                    cx.push_value(Value::Multi(m))?;
+                }
+                _ => {
+                    cx.write(
+                        router::WERROR,
+                        "[ARGACCES5] Function expand$ expected argument #1 to be of type multifield\n",
+                    );
+                    return Err(EvalError::already_reported());
+                }
+            }
+        } else {
+            count += 1;
+        }
+        c = e.next;
+    }
+    let mut b: TextBuf<200> = TextBuf::new();
+    let _ = b.write_str("[ARGACCES4] Function ");
+    let (min, max) = callee_counts(cx, x, &mut b);
+    if count < usize::from(min) || (max != ANY && count > usize::from(max)) {
+        let _ = b.write_str(" expected ");
+        let _ = if min == max {
+            writeln!(b, "exactly {min} argument(s)")
+        } else if count < usize::from(min) {
+            writeln!(b, "at least {min} argument(s)")
+        } else {
+            writeln!(b, "no more than {max} argument(s)")
+        };
+        cx.write(router::WERROR, b.as_str());
+        cx.set_error_fallback(Value::Sym(super::SYM_FALSE), None);
+        return Err(EvalError::already_reported());
+    }
+    if x.aux == FnKind::Builtin as u8 {
+        let b = super::get(x.data);
+        if matches!(b.name, "and" | "or") {
+            return and_or(cx, x.first, parts, b.name == "and");
+        }
+    }
+    // the arguments, the expansions' fields spliced in
+    let base = cx.st.frame.sp;
+    let mut part = parts;
+    let mut c = x.first;
+    while c != NONE {
+        let e = cx.exprs[c as usize];
+        if is_expansion(e) {
+            if let Value::Multi(m) = cx.stack[part as usize] {
+                for k in 0..m.len as usize {
+                    let v = cx.mf_item(m, k);
+                    cx.push_value(v)?;
+                }
+            }
+            part += 1;
+        } else {
+            let v = cx.eval(c)?;
+            cx.push_value(v)?;
+        }
+        c = e.next;
+    }
+    let args = Args {
+        base,
+        len: cx.st.frame.sp - base,
+    };
+    cx.st.eval.literal_error = false;
+    match x.aux {
+        k if k == FnKind::Builtin as u8 => {
+            let b = super::get(x.data);
+            match super::code_of(cx, x.data, b) {
+                super::Imp::Eager(f) => f(cx, args).map_err(computed_type_error),
+                super::Imp::Lazy(_) if b.name == "printout" => {
+                    super::commands::printout_values(cx, args)
+                }
+                super::Imp::Lazy(_) => {
+                    Err(EvalError::new(crate::error::EvalErrorKind::NoSuchFunction))
+                }
+            }
+        }
+        k if k == FnKind::Deffunction as u8 => {
+            cx.call_values(crate::eval::Callee::Deffunction(x.data), args)
+        }
+        _ => cx.call_values(crate::eval::Callee::External(x.data), args),
+    }
+}
+
+/// Whether argument node `e` is a sequence expansion.
+fn is_expansion(e: Expr) -> bool {
+    e.op == Op::Expand && e.aux == 1
+}
+
+/// The least and most argument counts of the function call `x` calls, and its name
+/// written to `name`.
+fn callee_counts(cx: &Core<'_>, x: Expr, name: &mut dyn Write) -> (u8, u8) {
+    match x.aux {
+        k if k == FnKind::Builtin as u8 => {
+            let b = super::get(x.data);
+            let _ = name.write_str(b.name);
+            (b.min, b.max)
+        }
+        k if k == FnKind::Deffunction as u8 => {
+            let f = cx.funcs[x.data as usize];
+            let _ = name.write_str(cx.sym_text(f.name));
+            let max = if f.rest { ANY } else { f.nparams };
+            (f.nparams, max)
+        }
+        _ => {
+            let e = cx.externals[x.data as usize];
+            let _ = name.write_str(cx.sym_text(e.name));
+            (e.min, e.max)
+        }
+    }
+}
+
+/// `and` (`all`) or `or` of arguments `first..` whose expansions' multifields are on
+/// the stack from `parts`: the other arguments are evaluated only until the result
+/// is known.
+fn and_or(cx: &mut Core<'_>, first: Ix, parts: Ix, all: bool) -> Result<Value, EvalError> {
+    let mut part = parts;
+    let mut c = first;
+    while c != NONE {
+        let e = cx.exprs[c as usize];
+        if is_expansion(e) {
+            if let Value::Multi(m) = cx.stack[part as usize] {
+                for k in 0..m.len as usize {
+                    if Core::is_true(cx.mf_item(m, k)) != all {
+                        return Ok(Core::bool_value(!all));
+                    }
+                }
+            }
+            part += 1;
+        } else if Core::is_true(cx.eval(c)?) != all {
+            return Ok(Core::bool_value(!all));
+        }
+        c = e.next;
+    }
+    Ok(Core::bool_value(all))
+}
+
+/// A wrong-type error of a function called with expanded arguments: its arguments
+/// were all computed, so it is worded as the function's body words it.
+fn computed_type_error(err: EvalError) -> EvalError {
+    match err.kind() {
+        crate::error::EvalErrorKind::WrongType {
+            func,
+            arg,
+            expected,
+        } => EvalError::wrong_type(
+            func,
+            arg,
+            super::describe::runtime_type_name(func, expected),
+        ),
+        _ => err,
+    }
+}
+
+/// `(timer EXPR...)`: evaluates the expressions in order and returns the seconds they
+/// took (the host's clock, `Host::time`).
+fn timer(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
+    let start = cx.host.time();
+    let mut c = cx.exprs[call as usize].first;
+    while c != NONE {
+        cx.eval(c)?;
+        c = cx.exprs[c as usize].next;
+    }
+    Ok(Value::Float(cx.host.time() - start))
+}

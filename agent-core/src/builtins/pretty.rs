@@ -235,6 +235,13 @@ fn action(c: &mut Cursor<'_>, w: &mut dyn Write, col: usize) -> fmt::Result {
             action_lines(c, w, body, &[])?;
             close(c, w)
         }
+        "progn" => {
+            c.next();
+            c.next();
+            w.write_str("(progn")?;
+            action_lines(c, w, body, &[])?;
+            close(c, w)
+        }
         "switch" => {
             c.next();
             c.next();

@@ -66,9 +66,11 @@ impl<'s> Parser<'s, '_, '_> {
             Tok::SfVar(name) => self.var_ref(t, name, false),
             Tok::MfVar(name) => {
                 let v = self.var_ref(t, name, true)?;
+                // with sequence-operator recognition `$?x` expands (`aux` 1), as
+                // `(expand$ ?x)` does; else it is `?x`
                 let e = self.cx.push_expr(Expr {
                     first: v,
-                    ..Expr::new(Op::Expand, 0, 0)
+                    ..Expr::new(Op::Expand, u8::from(self.cx.st.mode.seq_ops), 0)
                 });
                 cap!(self, e)
             }
@@ -247,24 +249,41 @@ impl<'s> Parser<'s, '_, '_> {
             _ => return Err(self.err(nt, "a function name")),
         };
         let qualified = module != self.current_module();
-        match name {
-            "if" => return self.parse_if(),
-            "while" => return self.parse_while(),
-            "bind" => return self.parse_bind(),
-            "loop-for-count" => return self.parse_loop_for_count(),
-            "progn$" => return self.parse_foreach("progn$"),
-            "foreach" => return self.parse_foreach("foreach"),
-            "switch" => return self.parse_switch(),
-            "assert" => return self.parse_assert(),
-            "modify" => return self.parse_modify("modify"),
-            "duplicate" => return self.parse_modify("duplicate"),
-            _ => {}
+        let (form, node) = match name {
+            "if" => ("if", self.parse_if()?),
+            "while" => ("while", self.parse_while()?),
+            "bind" => {
+                let node = self.parse_bind()?;
+                // `(bind ?x a (expand$ ?y))` binds what `(bind ?x a ?y)` binds
+                #[cfg(feature = "extras")]
+                self.mark_expansions(node);
+                return Ok(node);
+            }
+            "loop-for-count" => ("loop-for-count", self.parse_loop_for_count()?),
+            "progn$" => ("progn$", self.parse_foreach("progn$")?),
+            "foreach" => ("foreach", self.parse_foreach("foreach")?),
+            "switch" => ("switch", self.parse_switch()?),
+            "assert" => ("assert", self.parse_assert()?),
+            "modify" => ("modify", self.parse_modify("modify")?),
+            "duplicate" => ("duplicate", self.parse_modify("duplicate")?),
+            _ => ("", NONE),
+        };
+        if node != NONE {
+            // CLIPS's special forms take no sequence expansion
+            #[cfg(feature = "extras")]
+            self.refuse_expansions(node, form)?;
+            let _ = form;
+            return Ok(node);
         }
         // deffunctions shadow nothing builtin in CLIPS; check user functions first
         if let Some(sym) = self.cx.find_sym(name) {
             if let Some(f) = self.cx.find_function(sym, module) {
                 let call = self.push_call(FnKind::Deffunction, f)?;
                 let n = self.args_until_rparen(call)?;
+                #[cfg(feature = "extras")]
+                if self.expands(call, None)? {
+                    return Ok(call);
+                }
                 let df = self.cx.funcs[f as usize];
                 if f != self.defining_fn
                     && (n < df.nparams as Ix || (!df.rest && n > df.nparams as Ix))
@@ -278,6 +297,10 @@ impl<'s> Parser<'s, '_, '_> {
             {
                 let call = self.push_call(FnKind::External, x)?;
                 let n = self.args_until_rparen(call)?;
+                #[cfg(feature = "extras")]
+                if self.expands(call, None)? {
+                    return Ok(call);
+                }
                 let ext = self.cx.externals[x as usize];
                 if crate::eval::check_arity("external", ext.min, ext.max, n).is_err() {
                     return Err(self.err(nt, "the function's number of arguments"));
@@ -297,6 +320,15 @@ impl<'s> Parser<'s, '_, '_> {
                 } else {
                     self.args_until_rparen(call)?
                 };
+                // arguments that expand are counted and typed when the call runs
+                #[cfg(feature = "extras")]
+                {
+                    let takes_none = b.syntax == Syntax::Query
+                        || matches!(b.name, "expand$" | "progn" | "return" | "break");
+                    if self.expands(call, takes_none.then_some(b.name))? {
+                        return Ok(call);
+                    }
+                }
                 if crate::eval::check_arity(b.name, b.min, b.max, n).is_err() {
                     let mut e = self.err(nt, arity_text(b.min, b.max));
                     e.detail = crate::error::LoadDetail::Arity {
@@ -305,6 +337,13 @@ impl<'s> Parser<'s, '_, '_> {
                         max: b.max,
                         got: n,
                     };
+                    // a construct is shown up to the call's `)`
+                    if matches!(
+                        self.construct,
+                        "defrule" | "deffunction" | "deftemplate" | "deffacts"
+                    ) {
+                        e.echo_end = self.lex.pos() as u32;
+                    }
                     return Err(e);
                 }
                 // the image leaves this to `watch` itself (a run-time refusal): its
@@ -421,6 +460,101 @@ impl<'s> Parser<'s, '_, '_> {
         Ok(())
     }
 
+    /// Turns the `(expand$ X)` arguments of call `node` into sequence expansions
+    /// (`Op::Expand`, `aux` 1); whether it has any (`$?x` read with recognition too).
+    #[cfg(feature = "extras")]
+    fn mark_expansions(&mut self, node: Ix) -> bool {
+        let mut found = false;
+        let mut c = self.cx.exprs[node as usize].first;
+        while c != NONE {
+            let x = self.cx.exprs[c as usize];
+            if x.op == Op::Call
+                && x.aux == FnKind::Builtin as u8
+                && x.data == crate::builtins::environment::ID_EXPAND
+            {
+                self.cx.exprs[c as usize] = Expr {
+                    first: x.first,
+                    next: x.next,
+                    ..Expr::new(Op::Expand, 1, 0)
+                };
+                found = true;
+            } else if x.op == Op::Expand && x.aux == 1 {
+                found = true;
+            }
+            c = x.next;
+        }
+        found
+    }
+
+    /// A call whose arguments expand becomes CLIPS's `(expansion-call)` of it (in
+    /// place: its parent's links stay), which counts and checks the arguments when it
+    /// runs; `refuse` names a function that takes no expansion (`[EXPRNPSR4]`).
+    #[cfg(feature = "extras")]
+    fn expands(&mut self, call: Ix, refuse: Option<&'static str>) -> PResult<bool> {
+        if !self.mark_expansions(call) {
+            return Ok(false);
+        }
+        if let Some(func) = refuse {
+            return Err(self.sequence_error(func));
+        }
+        let x = self.cx.exprs[call as usize];
+        let inner = cap!(self, self.cx.push_expr(Expr { next: NONE, ..x }))?;
+        self.cx.exprs[call as usize] = Expr {
+            first: inner,
+            next: x.next,
+            ..Expr::new(
+                Op::Call,
+                FnKind::Builtin as u8,
+                crate::builtins::environment::ID_EXPANSION_CALL,
+            )
+        };
+        Ok(true)
+    }
+
+    /// `[EXPRNPSR4]` for a sequence expansion among the arguments of `func` (a
+    /// special form or action block `node`; calls inside were checked already).
+    #[cfg(feature = "extras")]
+    pub(super) fn refuse_expansions(&mut self, node: Ix, func: &'static str) -> PResult<()> {
+        let mut c = self.cx.exprs[node as usize].first;
+        while c != NONE {
+            let x = self.cx.exprs[c as usize];
+            let expansion = (x.op == Op::Expand && x.aux == 1)
+                || (x.op == Op::Call
+                    && x.aux == FnKind::Builtin as u8
+                    && x.data == crate::builtins::environment::ID_EXPAND);
+            if expansion {
+                return Err(self.sequence_error(func));
+            }
+            // switch cases, asserted facts and their slots hold arguments too
+            if matches!(x.op, Op::Nop | Op::FactSpec | Op::SlotVal) {
+                self.refuse_expansions(c, func)?;
+            }
+            c = x.next;
+        }
+        Ok(())
+    }
+
+    /// CLIPS's `[EXPRNPSR4]`, the construct shown up to what was read.
+    #[cfg(feature = "extras")]
+    fn sequence_error(&mut self, func: &'static str) -> crate::error::LoadError {
+        let end = match self.peeked {
+            Some(t) => t.start,
+            None => self.lex.pos(),
+        };
+        let at = self.peek();
+        let mut e = self.err(at, "no sequence expansion among these arguments");
+        e.detail = crate::error::LoadDetail::SequenceOperator { func, whole: false };
+        e.echo_end = end as u32;
+        e
+    }
+
+    /// The end of an action block that stops before a keyword or `)`.
+    fn end_block(&mut self, p: Ix) -> PResult<Ix> {
+        #[cfg(feature = "extras")]
+        self.refuse_expansions(p, "progn")?;
+        Ok(p)
+    }
+
     fn is_defining(&mut self, name: &str) -> bool {
         let f = self.defining_fn;
         self.cx.find_sym(name) == Some(self.cx.funcs[f as usize].name)
@@ -430,6 +564,8 @@ impl<'s> Parser<'s, '_, '_> {
     pub fn action_block(&mut self) -> PResult<Ix> {
         let p = self.builtin_call("progn")?;
         self.args_until_rparen(p)?;
+        #[cfg(feature = "extras")]
+        self.refuse_expansions(p, "progn")?;
         Ok(p)
     }
 
@@ -439,8 +575,8 @@ impl<'s> Parser<'s, '_, '_> {
         loop {
             let t = self.peek();
             match t.tok {
-                Tok::RParen => return Ok(p),
-                Tok::Symbol(s) if stop.contains(&s) => return Ok(p),
+                Tok::RParen => return self.end_block(p),
+                Tok::Symbol(s) if stop.contains(&s) => return self.end_block(p),
                 Tok::Eof | Tok::Bad => return Err(self.err(t, "')'")),
                 _ => {
                     let a = self.parse_expr()?;

@@ -403,7 +403,20 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
     /// Reads the actions of a rule or deffunction (`body_depth` is where they start).
     pub fn body_block(&mut self) -> PResult<Ix> {
         self.body_depth = self.depth;
-        self.action_block()
+        let p = self.builtin_call("progn")?;
+        self.args_until_rparen(p)?;
+        // CLIPS checks the actions once all are read, and shows the whole construct
+        #[cfg(feature = "extras")]
+        if let Err(mut e) = self.refuse_expansions(p, "progn") {
+            if let crate::error::LoadDetail::SequenceOperator { func, .. } = e.detail {
+                e.detail = crate::error::LoadDetail::SequenceOperator { func, whole: true };
+                e.start = e.echo_end.saturating_sub(1);
+                e.end = e.echo_end;
+                e.echo_end = 0;
+            }
+            return Err(e);
+        }
+        Ok(p)
     }
 
     /// Whether the reader is inside a condition or loop of the current actions.

@@ -1,0 +1,17 @@
+; timer: evaluates its arguments in order (their output and side effects show) and
+; returns the seconds they took, a float (its value is not printed: it varies)
+(numberp (timer))
+(floatp (timer (+ 1 2)))
+(>= (timer (printout t "hi" crlf) (printout t "there" crlf)) 0.0)
+(bind ?n 0)
+(floatp (timer (loop-for-count 100 (bind ?n (+ ?n 1)))))
+?n
+(deffunction busy (?k) (bind ?s 0) (loop-for-count ?k (bind ?s (+ ?s 1))) ?s)
+(< (timer (busy 10)) 100.0)
+(defrule r (go) => (printout t (floatp (timer (assert (done)))) crlf))
+(watch facts)
+(assert (go))
+(run)
+(floatp (timer (facts)))
+(timer (+ 1 a))
+(exit)
