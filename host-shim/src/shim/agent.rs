@@ -262,8 +262,16 @@ impl EngineAgent {
             info = "puck-held";
         }
         // A team member's rules avoid a place it keeps failing to drive to
-        // (`team-unreached` in rules/team-agent.clp): told before the outcome.
-        if self.team.is_some() && outcome == SkillOutcome::Failed(FailReason::DriveFailed) {
+        // (`team-unreached` in rules/team-agent.clp): told before the outcome. A drive
+        // stopped by the bumper counts too: a dead teammate's body at a machine's
+        // approach pressed the others against the next machine on every try (kill-one
+        // seed 23: 115 bumps, 119 points).
+        if self.team.is_some()
+            && matches!(
+                outcome,
+                SkillOutcome::Failed(FailReason::DriveFailed | FailReason::Bumper)
+            )
+        {
             self.rules.assert(&format!("(team-unreached (id {id}))"))?;
         }
         self.rules.assert(&format!(
