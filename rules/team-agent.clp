@@ -455,8 +455,8 @@
 ;;; approach too: the others drove there, failed and chose it again for the
 ;;; rest of the game (kill-one seed 18: robots 1 and 2 failed 40 drives to M2,
 ;;; 101 points, one robot alone 144).  The executor tells which failures were
-;;; drives that could not get there or stopped on the bumper (team-unreached,
-;;; asserted with the outcome); after ?*TEAM_UNREACHED_TRIES* in a row at one place the robot
+;;; drives that could not get there, or to a machine stopped on the bumper after
+;;; 2 s of driving (team-unreached, asserted with the outcome); after ?*TEAM_UNREACHED_TRIES* in a row at one place the robot
 ;;; avoids it for ?*TEAM_BLOCKED_S* and takes other work at once.
 
 (defglobal
@@ -465,7 +465,7 @@
 
 (deftemplate team-unreached
   "From the executor: skill id failed because the robot could not drive to
-   its place or its bumper stopped it."
+   its place, or its bumper stopped it on the way to a machine."
   (slot id (type INTEGER)))
 
 (deftemplate team-unreached-count

@@ -9,7 +9,7 @@
 //! the gates, and news of machines, exchanged with the teammates over a [`TeamLink`]
 //! (iceoryx2 on one host; in lockstep a message sent in one cycle is taken in the next).
 
-use crate::shim::agent::{ChosenSkill, EngineAgent, MachineView, TeamSeat};
+use crate::shim::agent::{unreached_place, ChosenSkill, EngineAgent, MachineView, TeamSeat};
 use crate::shim::behaviour::{DriveStep, DriveTo, DriveTuning, Perceived, Skill};
 use crate::shim::bump::BumpMemory;
 use crate::shim::config::Config;
@@ -239,6 +239,8 @@ struct Running {
     skill: Skill,
     chosen: ChosenSkill,
     request_seq: u32,
+    /// The cycle it started.
+    started: u64,
 }
 
 fn run(args: &Args, make_link: Box<LinkMaker>) -> Result<(), Box<dyn std::error::Error>> {
@@ -452,11 +454,12 @@ fn agent_loop(
                             skill,
                             chosen,
                             request_seq,
+                            started: cycle,
                         })
                     }
                     Err(reason) => {
                         let outcome = SkillOutcome::Failed(reason);
-                        mind.finish(&mut ports, &chosen, request_seq, outcome, &p, cycle)?;
+                        mind.finish(&mut ports, &chosen, request_seq, (outcome, 0.0), &p, cycle)?;
                     }
                 }
             }
@@ -583,8 +586,16 @@ fn agent_loop(
             if outcome.is_terminal() {
                 let chosen = r.chosen.clone();
                 let request_seq = r.request_seq;
+                let drove_s = cycle.saturating_sub(r.started) as f64 * f64::from(config.cycle_s());
                 running = None;
-                mind.finish(&mut ports, &chosen, request_seq, outcome, &p, cycle)?;
+                mind.finish(
+                    &mut ports,
+                    &chosen,
+                    request_seq,
+                    (outcome, drove_s),
+                    &p,
+                    cycle,
+                )?;
             } else {
                 let status = SkillStatus {
                     request_seq: r.request_seq,
@@ -729,13 +740,13 @@ impl Mind {
     }
 
     /// Publishes a skill's end and tells the rules (a `skill-outcome` fact; in a team the
-    /// rules then send news of the place and release it).
+    /// rules then send news of the place and release it); `drove_s`: how long it ran.
     fn finish(
         &mut self,
         ports: &mut AgentPorts,
         chosen: &ChosenSkill,
         request_seq: u32,
-        outcome: SkillOutcome,
+        (outcome, drove_s): (SkillOutcome, f64),
         p: &Perceived,
         cycle: u64,
     ) -> Result<(), Box<dyn std::error::Error>> {
@@ -755,7 +766,9 @@ impl Mind {
         };
         println!("robotino-agent run: cycle={cycle} end {request:?} {outcome:?} {reason}");
         // A failed skill with the puck still in the gripper keeps it (the rules hear so).
-        self.agent.report_sensed(chosen.id, outcome, p.has_puck)?;
+        let unreached = unreached_place(outcome, &chosen.target, drove_s);
+        self.agent
+            .report_sensed(chosen.id, outcome, p.has_puck, unreached)?;
         self.dirty = true;
         Ok(())
     }

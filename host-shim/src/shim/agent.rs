@@ -29,6 +29,27 @@ pub struct ChosenSkill {
     pub request: SkillRequest,
 }
 
+/// Shortest drive (seconds) whose stop on the bumper counts as a place not reached: a
+/// robot already pressed against something fails every skill at once, wherever it goes.
+pub const UNREACHED_BUMPER_MIN_S: f64 = 2.0;
+
+/// Whether a skill that ended with `outcome` after `drove_s` seconds failed to reach its
+/// place `target`: a failed drive, or a drive to a machine stopped on the bumper after
+/// [`UNREACHED_BUMPER_MIN_S`] (a dead teammate's body at a machine's approach pressed
+/// the others against the next machine on every try: kill-one seed 23, 115 bumps, 119
+/// points). Bumps on the way to a gate, the storage or a unit do not count: a robot
+/// with a product that gave up its gate for 120 s stalled (team seed 66).
+pub fn unreached_place(outcome: SkillOutcome, target: &str, drove_s: f64) -> bool {
+    let machine = target
+        .strip_prefix('M')
+        .is_some_and(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()));
+    match outcome {
+        SkillOutcome::Failed(FailReason::DriveFailed) => true,
+        SkillOutcome::Failed(FailReason::Bumper) => machine && drove_s >= UNREACHED_BUMPER_MIN_S,
+        _ => false,
+    }
+}
+
 /// What the agent knows of one machine: its definite type (1..=3) and the inputs it
 /// believes loaded (payload bits).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -245,33 +266,28 @@ impl EngineAgent {
 
     /// Tells the rules how skill `id` ended: asserts its `skill-outcome`.
     pub fn report(&mut self, id: i64, outcome: SkillOutcome) -> Result<(), RulesError> {
-        self.report_sensed(id, outcome, false)
+        let unreached = outcome == SkillOutcome::Failed(FailReason::DriveFailed);
+        self.report_sensed(id, outcome, false, unreached)
     }
 
     /// [`Self::report`] with the puck sensor's reading at the end: a failed skill with a
     /// puck still in the gripper says so (`info puck-held`), and the rules keep the puck
-    /// instead of believing it lost.
+    /// instead of believing it lost. `unreached`: the skill failed because the robot
+    /// could not get to its place (see [`unreached_place`]).
     pub fn report_sensed(
         &mut self,
         id: i64,
         outcome: SkillOutcome,
         puck_present: bool,
+        unreached: bool,
     ) -> Result<(), RulesError> {
         let (status, light, mut info) = outcome_slots(outcome);
         if status == "FAILED" && info == "none" && puck_present {
             info = "puck-held";
         }
         // A team member's rules avoid a place it keeps failing to drive to
-        // (`team-unreached` in rules/team-agent.clp): told before the outcome. A drive
-        // stopped by the bumper counts too: a dead teammate's body at a machine's
-        // approach pressed the others against the next machine on every try (kill-one
-        // seed 23: 115 bumps, 119 points).
-        if self.team.is_some()
-            && matches!(
-                outcome,
-                SkillOutcome::Failed(FailReason::DriveFailed | FailReason::Bumper)
-            )
-        {
+        // (`team-unreached` in rules/team-agent.clp): told before the outcome.
+        if self.team.is_some() && unreached {
             self.rules.assert(&format!("(team-unreached (id {id}))"))?;
         }
         self.rules.assert(&format!(
@@ -404,6 +420,24 @@ mod tests {
 
     fn on_engine_stack(f: impl FnOnce() + Send + 'static) {
         with_engine_stack(f).unwrap_or_else(|e| panic!("{e}"));
+    }
+
+    #[test]
+    fn a_place_is_unreached_after_a_failed_drive_or_a_bump_on_the_way_to_a_machine() {
+        let drive = SkillOutcome::Failed(FailReason::DriveFailed);
+        let bump = SkillOutcome::Failed(FailReason::Bumper);
+        assert!(unreached_place(drive, "INS", 0.0));
+        assert!(unreached_place(bump, "M4", 4.0));
+        assert!(unreached_place(bump, "M10", UNREACHED_BUMPER_MIN_S));
+        // pressed against something already: every skill fails at once
+        assert!(!unreached_place(bump, "M8", 0.4));
+        // a gate, the storage, a unit: not for a bump
+        for place in ["D1", "INS", "R2", "M", "MX"] {
+            assert!(!unreached_place(bump, place, 4.0), "{place}");
+        }
+        let other = SkillOutcome::Failed(FailReason::Aborted);
+        assert!(!unreached_place(other, "M4", 4.0));
+        assert!(!unreached_place(SkillOutcome::Running, "M4", 4.0));
     }
 
     fn m(n: u8) -> MachineId {
