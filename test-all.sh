@@ -307,6 +307,24 @@ stage_i586_game() {
     CARGO_TARGET_DIR="$TARGET_DIR" bash host-shim/tests/i586-game.sh 120
 }
 
+# ---------------------------------------------------------------------------------------
+# Stage 10: the team over Zenoh. `team-link` is a workspace of its own (zenoh's crates stay
+# out of the main build): its tests play the claims protocol over Zenoh sessions on
+# 127.0.0.1 with 10 % loss and 2 s delays, and short team games (a few seeds, a short clock)
+# whose robots reach each other only over Zenoh, with the host tests' debug binaries of
+# robotino-agent and robotino-sim. Debug build in the same target dir (the crates both
+# workspaces share are built once).
+
+stage_zenoh_team() {
+    local bins
+    bins=$(cd "$TARGET_DIR/debug" 2>/dev/null && pwd) || {
+        echo "no $TARGET_DIR/debug: the host tests stage builds robotino-agent there" >&2
+        return 1
+    }
+    CARGO_TARGET_DIR="$TARGET_DIR" ROBOTINO_BIN_DIR="$bins" \
+        cargo test --manifest-path team-link/Cargo.toml --no-fail-fast
+}
+
 run_stage "0 prerequisites" stage_prerequisites
 if ((FAILED > 0)); then
     echo "prerequisites missing: no other stage can run" >&2
@@ -321,6 +339,7 @@ run_stage "6 agent image (qemu)" stage_image
 run_stage "7 footprint gate" stage_footprint
 run_stage "8 instruction-set + contents gate" stage_isa
 run_stage "9 i586 game (qemu)" stage_i586_game
+run_stage "10 team over Zenoh" stage_zenoh_team
 
 echo
 echo "==== summary ($(($(date +%s) - total_start)) s in total)"
