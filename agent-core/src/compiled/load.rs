@@ -292,6 +292,15 @@ impl Core<'_> {
         self.funcs[..base.functions.len()].copy_from_slice(base.functions);
         self.globals[..base.globals.len()].copy_from_slice(base.globals);
         self.deffacts[..base.deffacts.len()].copy_from_slice(base.deffacts);
+        #[cfg(feature = "extras")]
+        {
+            for (f, &text) in base.function_texts.iter().enumerate() {
+                self.set_function_text(f as Ix, text);
+            }
+            for (g, &text) in base.global_texts.iter().enumerate() {
+                self.set_global_text(g as Ix, text);
+            }
+        }
         self.join_mems[JoinId::ROOT].mem = root_token;
         #[cfg(not(feature = "in-place"))]
         for e in 0..base.exprs.len() {

@@ -63,6 +63,11 @@ pub struct RuleBase {
     pub exprs: &'static [Expr],
     pub functions: &'static [Deffunction],
     pub globals: &'static [Global],
+    /// Each deffunction's and defglobal's source text (a symbol, NONE for none), by
+    /// index, for `ppdeffunction` and `ppdefglobal`; empty when no text was kept
+    /// (pretty-print forms off, or no `extras`).
+    pub function_texts: &'static [Ix],
+    pub global_texts: &'static [Ix],
     pub deffacts: &'static [Deffacts],
     /// Names of the host functions, by the index calls of kind `External` hold.
     pub externals: &'static [&'static str],

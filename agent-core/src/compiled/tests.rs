@@ -84,6 +84,8 @@ fn loader_refuses_an_engine_with_constructs() {
         exprs: &[],
         functions: &[],
         globals: &[],
+        function_texts: &[],
+        global_texts: &[],
         deffacts: &[],
         externals: &[],
         trie_ids: 0,

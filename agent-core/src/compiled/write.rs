@@ -461,6 +461,28 @@ impl Core<'_> {
             }
             writeln!(out, ", init: {} }},", I(g.init))?;
         }
+        writeln!(out, "],")?;
+        let nfuncs = self.st.pools.nfuncs as Ix;
+        let nglobals = self.st.pools.nglobals as Ix;
+        self.write_texts(out, "function_texts", nfuncs, |f| self.function_text(f))?;
+        self.write_texts(out, "global_texts", nglobals, |g| self.global_text(g))
+    }
+
+    /// `field: &[...]`, the kept source texts of `n` constructs, or `&[]` when none
+    /// is kept (a base without pretty-print forms stores nothing for them).
+    fn write_texts(
+        &self,
+        out: &mut dyn Write,
+        field: &str,
+        n: Ix,
+        text: impl Fn(Ix) -> Ix,
+    ) -> fmt::Result {
+        write!(out, "{field}: &[")?;
+        if (0..n).any(|i| text(i) != NONE) {
+            for i in 0..n {
+                write!(out, "{}, ", I(text(i)))?;
+            }
+        }
         writeln!(out, "],")
     }
 }
