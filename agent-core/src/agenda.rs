@@ -279,10 +279,15 @@ impl Core<'_> {
     }
 
     /// The first activation of the focused module's agenda, popping modules with none
-    /// off the focus stack; None when the stack runs empty.
+    /// off the focus stack; None when the stack runs empty. An empty stack is given
+    /// MAIN first: CLIPS focuses MAIN whenever it looks for the next activation with
+    /// nothing focused (a rule's `pop-focus` emptied it, say).
     #[cfg(feature = "modules")]
     #[inline(never)]
     fn focused_head(&mut self) -> Option<Ix> {
+        if self.focus_top().is_none() {
+            self.push_focus(crate::module::MAIN).ok()?;
+        }
         loop {
             let m = self.focus_top()?;
             let mut a = self.st.agenda.agenda_head;

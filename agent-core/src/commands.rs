@@ -700,10 +700,11 @@ impl Core<'_> {
             if let Some(logical) = logical {
                 self.logical_leave(logical);
             }
-            // `(return)` in a rule's actions ends the focus on its module
+            // `(return)` in a rule's actions ends the focus on its module (the topmost
+            // entry of it, which its actions may have covered with other modules)
             #[cfg(feature = "modules")]
             if self.st.eval.returning {
-                self.pop_focus();
+                self.remove_focus(self.rule_tag(rule).module);
             }
             self.st.eval.returning = false;
             self.st.eval.breaking = false;
@@ -1229,6 +1230,27 @@ impl Core<'_> {
             );
             let _ = crate::builtins::modules::write_defmodule_at(text, e.start as usize, &mut b);
             let _ = b.write_char('\n');
+        } else if let LoadDetail::UnboundInLhs { slot, ce, field } = e.detail {
+            // a global is named as CLIPS read it, a variable without the stars
+            let _ = match tok.strip_prefix("?*") {
+                Some(g) => write!(
+                    b,
+                    "\n[ANALYSIS4] Variable ?{} found in the expression ",
+                    g.trim_end_matches('*')
+                ),
+                None => write!(b, "\n[ANALYSIS4] Variable {tok} found in the expression "),
+            };
+            let _ = write_enclosing_call(&mut b, text, e.start as usize);
+            let _ = write!(b, "\nwas referenced in CE #{ce}");
+            let _ = if slot != NONE {
+                write!(b, " slot {}", self.sym_text(slot))
+            } else if field != 0 {
+                write!(b, " field #{field}")
+            } else {
+                Ok(())
+            };
+            let _ = writeln!(b, " before being defined.");
+            self.write_global_echo(&mut b, text, e, true, module);
         } else if e.detail == LoadDetail::MissingName {
             let _ = writeln!(
                 b,
@@ -1257,6 +1279,15 @@ impl Core<'_> {
                 "\n[PRNTUTIL2] Syntax Error:  Check appropriate syntax for {}.",
                 e.construct
             );
+        }
+        // a defglobal whose initial value failed: from the global to the value's end
+        if e.construct == "defglobal" && e.echo_end != 0 {
+            let _ = write!(b, "\nERROR:\n(defglobal {module} ");
+            let _ = b.write_str(
+                text.get(e.start as usize..e.echo_end as usize)
+                    .unwrap_or(""),
+            );
+            let _ = b.write_char('\n');
         }
         // a defmodule CLIPS stopped reading is shown up to the token it stopped at (a
         // `)` one space after the text before it)
@@ -1357,6 +1388,7 @@ impl Core<'_> {
             let _ = crate::builtins::pretty::write_deffunction_upto(upto, module, &mut b);
             let _ = b.write_char('\n');
         } else if e.echo_end != 0
+            && e.construct != "defglobal"
             && !matches!(e.detail, LoadDetail::Constraint { .. })
             // (an unknown function elsewhere, at the prompt or in a defglobal, is not
             // shown)
@@ -1751,5 +1783,76 @@ mod tests {
             h.out,
             "CLIPS> (+ 1 2) (+ 3 4)\n3\nCLIPS> ; c\n(assert (a))\n<Fact-1>\n"
         );
+    }
+}
+
+/// The innermost call around byte `at` of the rule `text` holds there, as CLIPS prints
+/// an expression: tokens one space apart, globals as `?name`, floats in CLIPS's form
+/// (`[ANALYSIS4]`).
+fn write_enclosing_call(w: &mut dyn Write, text: &str, at: usize) -> core::fmt::Result {
+    let head = text
+        .get(..at)
+        .and_then(|s| s.rfind("(defrule"))
+        .unwrap_or(0);
+    // the `(` of every call open at `at`
+    let mut open = [0usize; 64];
+    let mut depth = 0usize;
+    let mut lx = Lexer::new(text.get(head..).unwrap_or(""));
+    loop {
+        let t = lx.next_token();
+        if head + t.start >= at || matches!(t.tok, Tok::Eof | Tok::Bad) {
+            break;
+        }
+        match t.tok {
+            Tok::LParen => {
+                if depth < open.len() {
+                    open[depth] = head + t.start;
+                }
+                depth += 1;
+            }
+            Tok::RParen => depth = depth.saturating_sub(1),
+            _ => {}
+        }
+    }
+    let start = match depth {
+        0 => at,
+        d => open[(d - 1).min(open.len() - 1)],
+    };
+    let src = text.get(start..).unwrap_or("");
+    let mut lx = Lexer::new(src);
+    let mut depth = 0u32;
+    let mut after_open = true;
+    loop {
+        let t = lx.next_token();
+        match t.tok {
+            Tok::Eof | Tok::Bad => return Ok(()),
+            Tok::LParen => {
+                if !after_open {
+                    w.write_char(' ')?;
+                }
+                w.write_char('(')?;
+                depth += 1;
+                after_open = true;
+                continue;
+            }
+            Tok::RParen => {
+                w.write_char(')')?;
+                depth = depth.saturating_sub(1);
+            }
+            tok => {
+                if !after_open {
+                    w.write_char(' ')?;
+                }
+                match tok {
+                    Tok::Global(g) => write!(w, "?{g}")?,
+                    Tok::Float(f) => crate::value::write_float(w, f)?,
+                    _ => w.write_str(src.get(t.start..t.end).unwrap_or(""))?,
+                }
+            }
+        }
+        after_open = false;
+        if depth == 0 {
+            return Ok(());
+        }
     }
 }

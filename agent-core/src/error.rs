@@ -683,6 +683,14 @@ pub enum LoadDetail {
         name: Ix,
         class: &'static str,
     },
+    /// `[ANALYSIS4]`: a variable (the offending token) read in a rule's conditions
+    /// before a pattern binds it, in CE #`ce`, at the ordered pattern's `field`
+    /// (1-based) or the template's `slot` (NONE and 0 in a test CE).
+    UnboundInLhs {
+        slot: Ix,
+        ce: u8,
+        field: u8,
+    },
     /// `[CSTRCPSR2]`: a construct keyword not followed by a name (the offending
     /// token, `)` when there is nothing).
     MissingName,

@@ -557,6 +557,34 @@ impl Core<'_> {
         Some(top)
     }
 
+    /// Takes the topmost entry of module `m` off the focus stack, as CLIPS's
+    /// `RemoveFocus`: the top is popped (`pop_focus`); an entry below it goes with
+    /// `<== Focus M` while watched, the top staying.
+    pub fn remove_focus(&mut self, m: ModId) {
+        let d = self.st.modules.depth as usize;
+        let Some(k) = (0..d).rev().find(|&k| self.focus_entry(k) == m) else {
+            return;
+        };
+        if k + 1 == d {
+            self.pop_focus();
+            return;
+        }
+        // (an entry below the top is in storage: only a lone MAIN may have none)
+        if d > self.focus.len() {
+            return;
+        }
+        self.focus.copy_within(k + 1..d, k);
+        self.st.modules.depth -= 1;
+        if self.st.mode.watch & crate::engine::watch::FOCUS != 0 {
+            let mut b: crate::value::TextBuf<128> = crate::value::TextBuf::new();
+            let _ = core::fmt::Write::write_fmt(
+                &mut b,
+                format_args!("<== Focus {}\n", self.module_name(m)),
+            );
+            self.write(crate::host::router::STDOUT, b.as_str());
+        }
+    }
+
     /// Empties the focus stack, top first.
     pub fn clear_focus(&mut self) {
         while self.pop_focus().is_some() {}

@@ -407,4 +407,7 @@ differential_programs! {
     p289_construct_missing_name => "289-construct-missing-name",
     p310_reset_negated_first_order => "310-reset-negated-first-order",
     p290_shared_join_keys => "290-shared-join-keys",
+    p311_lhs_unbound_variables => "311-lhs-unbound-variables",
+    p312_globals_unseen_initializers => "312-globals-unseen-initializers",
+    p313_modules_return_pop_focus => "313-modules-return-pop-focus",
 }

@@ -5,7 +5,7 @@ use crate::engine::cap;
 use crate::error::LoadDetail;
 use crate::error::Pool;
 use crate::expr::Op;
-use crate::lexer::Tok;
+use crate::lexer::{Tok, Token};
 use crate::template::{Deffacts, Deffunction, Global, SlotDef, Template, TemplateMem};
 use crate::value::Ix;
 use crate::value::{Value, NONE};
@@ -374,6 +374,39 @@ impl<'s> Parser<'s, '_, '_> {
         Ok(())
     }
 
+    /// Error `e` in the initial value of global `global` (`= at eq`), shown after
+    /// `ERROR:` as CLIPS shows it: `(defglobal MODULE ?*name* = value` (`start`..
+    /// `echo_end`: the global up to its value's end).
+    fn global_echoed(
+        &self,
+        mut e: crate::error::LoadError,
+        global: Token<'s>,
+        eq: Token<'s>,
+    ) -> crate::error::LoadError {
+        let src = self.lex.source();
+        let mut lx = crate::lexer::Lexer::new(src.get(eq.end..).unwrap_or(""));
+        let mut depth = 0u32;
+        let mut end = src.len();
+        loop {
+            let t = lx.next_token();
+            match t.tok {
+                Tok::Eof | Tok::Bad => break,
+                Tok::LParen => depth += 1,
+                Tok::RParen if depth == 0 => break,
+                Tok::RParen => depth -= 1,
+                _ => {}
+            }
+            if depth == 0 {
+                end = eq.end + t.end;
+                break;
+            }
+        }
+        e.start = global.start as u32;
+        e.end = end as u32;
+        e.echo_end = end as u32;
+        e
+    }
+
     pub(super) fn defglobal(&mut self) -> PResult<()> {
         self.scope = Scope::Frame;
         if let Tok::Symbol(m) = self.peek().tok {
@@ -397,7 +430,16 @@ impl<'s> Parser<'s, '_, '_> {
                     if eq.tok != Tok::Symbol("=") {
                         return Err(self.err(eq, "'=' after the global name"));
                     }
-                    let init = self.parse_expr()?;
+                    self.evaluated_now = true;
+                    let init = self.parse_expr();
+                    self.evaluated_now = false;
+                    let init = match init {
+                        Ok(init) => init,
+                        Err(e) if matches!(e.detail, LoadDetail::ArgType { .. }) => {
+                            return Err(self.global_echoed(e, t, eq))
+                        }
+                        Err(e) => return Err(e),
+                    };
                     let sym = cap!(self, self.cx.intern(name))?;
                     let here = self.cx.st_current_module();
                     #[cfg(feature = "modules")]
@@ -420,7 +462,16 @@ impl<'s> Parser<'s, '_, '_> {
                     }
                     let v = match self.eval_now(init) {
                         Ok(v) => v,
-                        Err(_) => return Err(self.err(eq, "an initial value that evaluates")),
+                        Err(err) if err.is_capacity() => {
+                            return Err(self.err(eq, "an initial value that evaluates"))
+                        }
+                        Err(err) => {
+                            // CLIPS prints the error, then the defglobal up to the value
+                            self.cx.write_error_message(err);
+                            let mut e = self.err(eq, "an initial value that evaluates");
+                            e.detail = LoadDetail::DefaultEvaluation;
+                            return Err(self.global_echoed(e, t, eq));
+                        }
                     };
                     let g = match existing {
                         Some(g) => g as usize,

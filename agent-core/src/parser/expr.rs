@@ -98,6 +98,9 @@ impl<'s> Parser<'s, '_, '_> {
     /// CLIPS's `[GLOBLPSR1]` for a global the module does not see, in a rule's or
     /// deffunction's actions or a `bind` at the prompt (elsewhere our syntax error).
     fn undefined_global(&self, t: Token<'s>, bind: bool) -> crate::error::LoadError {
+        if self.scope == Scope::Lhs && self.construct == "defrule" {
+            return self.unbound_in_lhs(t);
+        }
         let mut e = self.err(t, "a defined global variable");
         let clips = match self.scope {
             Scope::Frame => matches!(self.construct, "defrule" | "deffunction"),
@@ -121,10 +124,11 @@ impl<'s> Parser<'s, '_, '_> {
                 let e = self.cx.push_expr(Expr::new(Op::Global, 0, g));
                 cap!(self, e)
             }
-            // at the prompt CLIPS reads a global the module does not see and finds it
-            // unbound when it runs (`[GLOBLDEF1]`): a hidden global `?*name*`, never
-            // bound (`bind` names only defined ones)
-            None if self.scope == Scope::TopLevel && name.len() < 120 => {
+            // at the prompt, in a defglobal's initial value and in a slot default CLIPS
+            // reads a global the module does not see and finds it unbound when it
+            // runs (`[GLOBLDEF1]`): a hidden global `?*name*`, never bound (`bind`
+            // names only defined ones)
+            None if (self.scope == Scope::TopLevel || self.evaluated_now) && name.len() < 120 => {
                 let mut b: TextBuf<128> = TextBuf::new();
                 let _ = core::fmt::Write::write_fmt(&mut b, format_args!("*{name}*"));
                 let g = self.toplevel_var(t, b.as_str())?;
@@ -165,8 +169,21 @@ impl<'s> Parser<'s, '_, '_> {
             _ if self.construct == "deffacts" => {
                 Err(self.err(t, "a constant (deffacts take no variables)"))
             }
+            Scope::Lhs if self.construct == "defrule" => Err(self.unbound_in_lhs(t)),
             _ => Err(self.err(t, "a bound variable")),
         }
+    }
+
+    /// CLIPS's `[ANALYSIS4]` for variable `t` read in a rule's conditions before a
+    /// pattern binds it (a global the module does not see too): where it is read.
+    fn unbound_in_lhs(&self, t: Token<'s>) -> crate::error::LoadError {
+        let mut e = self.err(t, "a bound variable");
+        e.detail = crate::error::LoadDetail::UnboundInLhs {
+            slot: self.lhs_slot.map_or(NONE, |d| d.name),
+            ce: self.ce_count,
+            field: self.lhs_field,
+        };
+        e
     }
 
     /// A read of a local that may be unbound: `aux` 1, its name in the payload node

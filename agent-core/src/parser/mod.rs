@@ -103,6 +103,13 @@ pub struct Parser<'s, 'c, 'e> {
     /// Conditional elements of the rule so far, numbered as CLIPS numbers them in its
     /// messages (`CE #N`: patterns and tests in text order, all `or` branches).
     pub ce_count: u8,
+    /// The field (1-based) of the ordered pattern whose constraint is being parsed
+    /// (0 elsewhere), for CLIPS's `CE #N field #M` in messages.
+    pub lhs_field: u8,
+    /// Parsing a value evaluated once it is read (a slot's static default, a
+    /// defglobal's initial value): a global no module of the name sees is read as
+    /// unbound (`[GLOBLDEF1]` when evaluated), as CLIPS reads it.
+    pub evaluated_now: bool,
     /// CLIPS's specificity of the rule (disjunct) being read (see `rule::Complexity`).
     pub complexity: u16,
     /// Where a failure of the current construct rolls back to when not to its start:
@@ -160,6 +167,8 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
             depth: 0,
             body_depth: 0,
             ce_count: 0,
+            lhs_field: 0,
+            evaluated_now: false,
             complexity: 0,
             rule_base: 0,
             replacing: NONE,
@@ -451,6 +460,8 @@ impl<'s, 'e> Parser<'s, '_, 'e> {
     /// Reads the next construct or command. Constructs are built right away (rolled
     /// back on error); commands are returned for the caller to evaluate.
     pub fn next_item(&mut self) -> PResult<Item> {
+        // (a construct that failed may leave it set)
+        self.evaluated_now = false;
         let t = self.peek();
         match t.tok {
             Tok::Eof => Ok(Item::End),

@@ -1044,7 +1044,11 @@ impl<'s> Parser<'s, '_, '_> {
                     if i == loc::SINGLE - 1 {
                         return Err(self.err(t, "fewer fields in one slot"));
                     }
+                    if self.lhs_slot.is_none() {
+                        self.lhs_field = i + 1;
+                    }
                     let (multi, test) = self.field(p, loc::new(slot, i), ps)?;
+                    self.lhs_field = 0;
                     let el = cap!(
                         self,
                         self.cx

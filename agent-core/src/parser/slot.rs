@@ -271,6 +271,7 @@ impl<'s> Parser<'s, '_, '_> {
         }
         let save = self.scope;
         self.scope = Scope::Frame;
+        self.evaluated_now = attribute == "default";
         let holder = cap!(self, self.cx.push_expr(Expr::new(Op::Nop, 0, 0)))?;
         let values_at = self.save();
         let mut n = 0 as Ix;
@@ -293,6 +294,7 @@ impl<'s> Parser<'s, '_, '_> {
             }
         };
         self.scope = save;
+        self.evaluated_now = false;
         if !def.multi && n != 1 {
             return Err(self.err(at, "exactly one default value for a single-field slot"));
         }
