@@ -5,12 +5,17 @@ queries in tests, and conflict resolution strategies chosen at the start and cha
 between steps (drawn from a generator of their own, so the rest of a seed's session is
 what it was before strategies were added). For differential runs against CLIPS 6.30
 (random_sessions.sh).
-Usage: random_sessions.py SEED > program.clp"""
+With `modules` after the seed, the session has modules: MAIN exports its templates,
+modules A and B import them, rules go into any of the three (some with auto-focus and
+actions that focus another module or return), and the stream focuses modules before
+runs and lists every module's agenda and facts (drawn from a generator of its own too).
+Usage: random_sessions.py SEED [modules] > program.clp"""
 import random, sys
 
-def gen(seed):
+def gen(seed, modules=False):
     r = random.Random(seed)
-    out = ["(deftemplate ctx (slot s))",
+    rm = random.Random(seed * 104723 + 7) if modules else None
+    out = (["(defmodule MAIN (export ?ALL))"] if modules else []) + ["(deftemplate ctx (slot s))",
            "(deftemplate cnt (slot c))",
            "(deftemplate it (slot id) (slot v) (slot w))",
            "(deftemplate mk (slot id) (slot v))"]
@@ -57,6 +62,13 @@ def gen(seed):
         if r.random() < 0.5:
             acts.append(f"(printout t \"{name} fired\" crlf)")
         sal = f"(declare (salience {r.randint(-1, 1)})) " if r.random() < 0.3 else ""
+        if rm is not None:
+            module = rm.choice(["MAIN", "A", "B"])
+            if rm.random() < 0.3:
+                sal = (sal[:-2] + " (auto-focus TRUE)) ") if sal else "(declare (auto-focus TRUE)) "
+            if rm.random() < 0.3:
+                acts.append(rm.choice(["(focus A)", "(focus B)", "(focus MAIN)", "(return)"]))
+            name = f"{module}::{name}"
         return f"(defrule {name} {sal}" + " ".join(ces) + " => " + " ".join(acts) + ")"
 
     def fact():
@@ -76,6 +88,8 @@ def gen(seed):
     if rs.random() < 0.7:
         out.append(f"(set-strategy {rs.choice(strategies)})")
 
+    if rm is not None:
+        out += ["(defmodule A (import MAIN ?ALL))", "(defmodule B (import MAIN ?ALL))"]
     if r.random() < 0.5:
         out.append("(watch activations)")
     out.append("(watch rules)")
@@ -95,6 +109,12 @@ def gen(seed):
             out.append("(agenda)")
         if rs.random() < 0.15:
             out.append(f"(set-strategy {rs.choice(strategies)})")
+        if rm is not None and rm.random() < 0.2:
+            out.append(f"(focus {rm.choice(['A', 'B', 'MAIN', 'B A'])})")
+    if rm is not None:
+        out += ["(agenda *)", "(focus B A)", "(run)", "(facts *)", "(get-focus-stack)"]
+        out.append("(exit)")
+        return "\n".join(out) + "\n"
     out.append("(agenda)")
     out.append("(run)")
     out.append("(facts)")
@@ -102,4 +122,4 @@ def gen(seed):
     return "\n".join(out) + "\n"
 
 if __name__ == "__main__":
-    print(gen(int(sys.argv[1])), end="")
+    print(gen(int(sys.argv[1]), len(sys.argv) > 2 and sys.argv[2] == "modules"), end="")
