@@ -267,6 +267,20 @@ impl Core<'_> {
         Some((x.rule, x.token))
     }
 
+    /// The rule of the activation `pop_activation` would take next (a module with
+    /// none leaves the focus stack, as there).
+    #[cfg(feature = "extras")]
+    pub(crate) fn next_activation_rule(&mut self) -> Option<Ix> {
+        #[cfg(feature = "modules")]
+        let a = match self.single_module_head() {
+            Some(a) => a,
+            None => self.focused_head()?,
+        };
+        #[cfg(not(feature = "modules"))]
+        let a = self.st.agenda.agenda_head;
+        (a != NONE).then(|| self.acts[a as usize].rule)
+    }
+
     /// The agenda's head when MAIN is the only module and focused: every activation is
     /// MAIN's then, so the general walk (`focused_head`) would stop at the head. None
     /// sends the caller to that walk (an empty agenda pops the focus there).

@@ -426,6 +426,7 @@ impl Core<'_> {
         self.logical_clear();
         #[cfg(feature = "extras")]
         {
+            self.st.breaks = crate::engine::Breaks::new();
             self.func_text.fill(crate::template::NO_PP_TEXT);
             self.global_text.fill(crate::template::NO_PP_TEXT);
         }
@@ -573,6 +574,24 @@ impl Core<'_> {
         }
     }
 
+    /// Whether the next activation's rule has a breakpoint (`set-break`): then CLIPS's
+    /// message is printed.
+    #[cfg(feature = "extras")]
+    #[inline(never)]
+    fn at_breakpoint(&mut self) -> bool {
+        let Some(rule) = self.next_activation_rule() else {
+            return false;
+        };
+        let name = self.rules[rule as usize].name;
+        if !self.st.breaks.has(name) {
+            return false;
+        }
+        let mut b: TextBuf<160> = TextBuf::new();
+        let _ = writeln!(b, "Breaking on rule {}.", self.sym_text(name));
+        self.write(router::STDOUT, b.as_str());
+        true
+    }
+
     /// `(run [limit])`: fires activations; returns how many fired.
     pub fn run(&mut self, limit: i64) -> Result<u32, EvalError> {
         let mut stats = RunStats::default();
@@ -650,6 +669,11 @@ impl Core<'_> {
             if let Err(e) = self.poll_interrupt() {
                 self.st.mode.halt = false;
                 return Err(e);
+            }
+            // a breakpoint stops the run before its rule fires (not as the first)
+            #[cfg(feature = "extras")]
+            if fired > 0 && !self.st.breaks.is_empty() && self.at_breakpoint() {
+                break;
             }
             let (rule, token) = match self.pop_activation() {
                 Some(x) => x,

@@ -592,6 +592,74 @@ pub struct State {
     /// Without the feature `parser`: the code of the builtins the loaded compiled rule
     /// base calls, by id (see `builtins::code_for`); empty otherwise.
     pub builtin_code: &'static [crate::builtins::Imp],
+    /// Rules with a breakpoint (`set-break`, feature `extras`).
+    #[cfg(feature = "extras")]
+    pub breaks: Breaks,
+}
+
+/// The names of the rules with a breakpoint (`set-break`): a run stops before firing
+/// one of them, unless it is the run's first firing. A name, not a rule: as in CLIPS,
+/// a rule defined again keeps its breakpoint; `undefrule` and `clear` remove it.
+#[cfg(feature = "extras")]
+#[derive(Clone, Copy)]
+pub struct Breaks {
+    names: [SymId; Breaks::MAX],
+    n: u8,
+}
+
+#[cfg(feature = "extras")]
+impl Default for Breaks {
+    fn default() -> Breaks {
+        Breaks::new()
+    }
+}
+
+#[cfg(feature = "extras")]
+impl Breaks {
+    /// Most breakpoints at once.
+    pub const MAX: usize = 32;
+
+    pub const fn new() -> Breaks {
+        Breaks {
+            names: [0; Breaks::MAX],
+            n: 0,
+        }
+    }
+
+    pub fn has(&self, name: SymId) -> bool {
+        self.names[..usize::from(self.n)].contains(&name)
+    }
+
+    /// Sets one; false when `MAX` are set already.
+    pub fn add(&mut self, name: SymId) -> bool {
+        if self.has(name) {
+            return true;
+        }
+        let n = usize::from(self.n);
+        if n == Breaks::MAX {
+            return false;
+        }
+        self.names[n] = name;
+        self.n += 1;
+        true
+    }
+
+    /// Removes one; whether it was set.
+    pub fn remove(&mut self, name: SymId) -> bool {
+        let n = usize::from(self.n);
+        match self.names[..n].iter().position(|&x| x == name) {
+            Some(i) => {
+                self.names.copy_within(i + 1..n, i);
+                self.n -= 1;
+                true
+            }
+            None => false,
+        }
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.n == 0
+    }
 }
 
 impl State {
@@ -613,6 +681,8 @@ impl State {
             modules: crate::module::ModuleState::new(),
             rom: crate::rom::Rom::EMPTY,
             builtin_code: &[],
+            #[cfg(feature = "extras")]
+            breaks: Breaks::new(),
         }
     }
 }

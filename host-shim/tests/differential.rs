@@ -396,6 +396,8 @@ differential_programs! {
     p268_sequence_expansion => "268-sequence-expansion",
     p269_timer => "269-timer",
     p320_arity_errors_in_constructs => "320-arity-errors-in-constructs",
+    p321_breakpoints => "321-breakpoints",
+    p322_save => "322-save",
     p281_modules_defglobals => "281-modules-defglobals",
     p282_modules_import_conflicts => "282-modules-import-conflicts",
     p283_modules_get_lists => "283-modules-get-lists",

@@ -594,6 +594,8 @@ fn undefrule(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
             let first = (0..cx.st.pools.nrules).find(|&q| cx.rule_here(q, rule.name));
             if !rule.deleted && first == Some(r) {
                 cx.remove_rule(r);
+                #[cfg(feature = "extras")]
+                cx.st.breaks.remove(rule.name);
             }
         }
         return Ok(Value::Void);
@@ -601,6 +603,8 @@ fn undefrule(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     match find_rule(cx, name) {
         Some(r) => {
             cx.remove_rule(r);
+            #[cfg(feature = "extras")]
+            cx.st.breaks.remove(cx.rules[r as usize].name);
             Ok(Value::Void)
         }
         None => {

@@ -26,6 +26,13 @@ pub const FUNCS: &[Builtin] = &[
         .args(&[super::describe::ArgType::Multifield], super::describe::ArgType::Any)
         .on_error(super::describe::OnError::False),
     Builtin::lazy("timer", 0, ANY, timer),
+    Builtin::eager("save", 1, 1, save).on_error(super::describe::OnError::False),
+    Builtin::eager("set-break", 1, 1, set_break)
+        .args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any),
+    Builtin::eager("remove-break", 0, 1, remove_break)
+        .args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any),
+    Builtin::eager("show-breaks", 0, 1, show_breaks)
+        .args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any),
     // made by the parser only (no text names it): a call whose arguments expand
     Builtin::lazy("(expansion-call)", 1, 1, expansion_call),
 ];
@@ -489,6 +496,10 @@ const RESTRICTIONS: &[(&str, &str)] = &[
     ("symbolp", "11"),
     ("system", "1*k"),
     ("tan", "11n"),
+    ("save", "11k"),
+    ("set-break", "11w"),
+    ("remove-break", "*1w"),
+    ("show-breaks", "01w"),
     ("time", "00"),
     ("timer", "**"),
     ("undeffacts", "11w"),
@@ -704,4 +715,241 @@ fn timer(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
         c = cx.exprs[c as usize].next;
     }
     Ok(Value::Float(cx.host.time() - start))
+}
+
+/// `(set-break RULE)`: a run stops before firing the rule (unless it fires first).
+#[cfg(feature = "extras")]
+fn set_break(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let Value::Sym(name) = cx.arg(a, 0) else {
+        return Ok(Value::Void);
+    };
+    let Some(r) = super::commands::find_rule(cx, name) else {
+        super::commands::unable(cx, super::commands::Unable::Find, "defrule", name);
+        return Ok(Value::Void);
+    };
+    let rule = cx.rules[r as usize].name;
+    if !cx.st.breaks.add(rule) {
+        let mut b: TextBuf<120> = TextBuf::new();
+        let _ = writeln!(
+            b,
+            "[NOTIMPL1] robotino-agent keeps at most {} breakpoints",
+            crate::engine::Breaks::MAX
+        );
+        cx.write(router::WERROR, b.as_str());
+        return Err(EvalError::already_reported());
+    }
+    Ok(Value::Void)
+}
+
+/// `(remove-break [RULE])`: the rule's breakpoint, or all of them.
+#[cfg(feature = "extras")]
+fn remove_break(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    if a.len == 0 {
+        cx.st.breaks = crate::engine::Breaks::new();
+        return Ok(Value::Void);
+    }
+    let Value::Sym(name) = cx.arg(a, 0) else {
+        return Ok(Value::Void);
+    };
+    let Some(r) = super::commands::find_rule(cx, name) else {
+        super::commands::unable(cx, super::commands::Unable::Find, "defrule", name);
+        return Ok(Value::Void);
+    };
+    let rule = cx.rules[r as usize].name;
+    if !cx.st.breaks.remove(rule) {
+        let mut b: TextBuf<160> = TextBuf::new();
+        let _ = writeln!(
+            b,
+            "Rule {} does not have a breakpoint set.",
+            cx.sym_text(rule)
+        );
+        cx.write(router::WERROR, b.as_str());
+    }
+    Ok(Value::Void)
+}
+
+/// `(show-breaks [MODULE | *])`: the rules with a breakpoint, in definition order, of
+/// the current module, the one named, or each module under its heading.
+#[cfg(feature = "extras")]
+fn show_breaks(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let Some(view) = super::commands::module_view(cx, a, "show-breaks")? else {
+        return Ok(Value::Void);
+    };
+    for m in view.modules(cx) {
+        view.head(cx, m);
+        for r in 0..cx.st.pools.nrules {
+            let rule = cx.rules[r as usize];
+            // a rule's later disjuncts share its name
+            if rule.deleted
+                || (r > 0 && cx.rules[r as usize - 1].next_disjunct == r)
+                || !cx.st.breaks.has(rule.name)
+            {
+                continue;
+            }
+            #[cfg(feature = "modules")]
+            if cx.rule_tag(r).module != m {
+                continue;
+            }
+            let mut b: TextBuf<160> = TextBuf::new();
+            let _ = writeln!(b, "{}{}", view.indent(), cx.sym_text(rule.name));
+            cx.write(router::WDISPLAY, b.as_str());
+        }
+    }
+    Ok(Value::Void)
+}
+
+/// `(save FILE)`: the constructs, pretty-printed as `pp*` shows them, each followed by
+/// an empty line, in CLIPS 6.30's order: a declaration of every deffunction (its
+/// parameters numbered, so later ones can call it), the defglobals one a construct,
+/// the deftemplates, deffacts, deffunctions and defrules. TRUE, or `[ARGACCES2]` and
+/// FALSE when the file cannot be written.
+fn save(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let (Value::Sym(s) | Value::Str(s)) = cx.arg(a, 0) else {
+        // (as CLIPS words it, with no value after it)
+        cx.write(
+            router::WERROR,
+            "[ARGACCES5] Function save expected argument #1 to be of type symbol or string\n",
+        );
+        return Ok(Value::Void);
+    };
+    let mut path: TextBuf<256> = TextBuf::new();
+    let _ = path.write_str(cx.sym_text(s));
+    if cx.host.write_file(path.as_str(), b"", false).is_err() {
+        let mut b: TextBuf<320> = TextBuf::new();
+        let _ = writeln!(
+            b,
+            "[ARGACCES2] Function save was unable to open file {}.",
+            path.as_str()
+        );
+        cx.write(router::WERROR, b.as_str());
+        return Err(EvalError::already_reported());
+    }
+    let mut out = SaveFile {
+        path,
+        failed: false,
+    };
+    for f in 0..cx.st.pools.nfuncs {
+        let df = cx.funcs[f as usize];
+        if df.name == NONE {
+            continue;
+        }
+        out.put(cx, |cx, w| {
+            write!(
+                w,
+                "(deffunction {}::{} (",
+                cx.function_module_name(f),
+                cx.sym_text(df.name)
+            )?;
+            for p in 0..df.nparams {
+                if p > 0 {
+                    w.write_char(' ')?;
+                }
+                write!(w, "?p{p}")?;
+            }
+            if df.rest {
+                if df.nparams > 0 {
+                    w.write_char(' ')?;
+                }
+                w.write_str("$?wildargs")?;
+            }
+            w.write_str("))")
+        });
+    }
+    for g in 0..cx.st.pools.nglobals {
+        let name = cx.globals[g as usize].name;
+        if name == NONE || cx.sym_text(name).starts_with('?') {
+            continue;
+        }
+        let text = cx.global_text(g);
+        out.put_pp(cx, text, |cx, src, w| {
+            super::pretty::write_defglobal(src, cx.global_module_name(g), w)
+        });
+    }
+    for t in 0..cx.st.pools.ntemplates {
+        let text = cx.templates[t as usize].text;
+        out.put_pp(cx, text, |cx, src, w| {
+            super::pretty::write_deftemplate_echo(
+                src,
+                src.len(),
+                crate::error::EchoTail::Normal,
+                cx.template_module_name(t),
+                w,
+            )
+        });
+    }
+    for d in 0..cx.st.pools.ndeffacts {
+        let text = cx.deffacts[d as usize].text;
+        out.put_pp(cx, text, |cx, src, w| {
+            super::pretty::write_deffacts_upto(src, cx.deffacts_module_name(d), w)?;
+            w.write_char(')')
+        });
+    }
+    for f in 0..cx.st.pools.nfuncs {
+        if cx.funcs[f as usize].name == NONE {
+            continue;
+        }
+        let text = cx.function_text(f);
+        out.put_pp(cx, text, |cx, src, w| {
+            super::pretty::write_deffunction(src, cx.function_module_name(f), w)
+        });
+    }
+    for r in 0..cx.st.pools.nrules {
+        let rule = cx.rules[r as usize];
+        // a rule's later disjuncts share its text
+        if rule.deleted || (r > 0 && cx.rules[r as usize - 1].next_disjunct == r) {
+            continue;
+        }
+        out.put_pp(cx, rule.text, |cx, src, w| {
+            super::pretty::write_defrule(src, cx.rule_module_name(r), w)
+        });
+    }
+    if out.failed {
+        cx.write(
+            router::WERROR,
+            "[ARGACCES2] Function save could not write the whole file.\n",
+        );
+        return Err(EvalError::already_reported());
+    }
+    Ok(Value::Sym(super::SYM_TRUE))
+}
+
+/// The file `save` appends constructs to.
+struct SaveFile {
+    path: TextBuf<256>,
+    failed: bool,
+}
+
+impl SaveFile {
+    /// Appends what `write` writes, then an empty line.
+    fn put(
+        &mut self,
+        cx: &mut Core<'_>,
+        write: impl FnOnce(&Core<'_>, &mut dyn Write) -> core::fmt::Result,
+    ) {
+        let mut b: TextBuf<8192> = TextBuf::new();
+        if write(cx, &mut b).is_err() || b.write_str("\n\n").is_err() {
+            self.failed = true;
+            return;
+        }
+        if cx
+            .host
+            .write_file(self.path.as_str(), b.as_str().as_bytes(), true)
+            .is_err()
+        {
+            self.failed = true;
+        }
+    }
+
+    /// `put` of a construct's pretty-printed source `text` (none when NONE).
+    fn put_pp(
+        &mut self,
+        cx: &mut Core<'_>,
+        text: Ix,
+        pp: impl FnOnce(&Core<'_>, &str, &mut dyn Write) -> core::fmt::Result,
+    ) {
+        if text == NONE {
+            return;
+        }
+        self.put(cx, |cx, w| pp(cx, cx.sym_text(text), w));
+    }
 }
