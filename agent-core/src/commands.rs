@@ -364,6 +364,12 @@ impl Core<'_> {
             }
             #[cfg(not(feature = "modules"))]
             let _ = m;
+            // its facts are made in its module (a global read by name is looked up
+            // from there)
+            #[cfg(feature = "modules")]
+            if self.st.modules.nmodules > 1 {
+                self.set_current_module(m as crate::module::ModId);
+            }
             let mut spec = self.deffacts[d as usize].facts;
             while spec != NONE {
                 if self.st.mode.halting {
@@ -378,6 +384,10 @@ impl Core<'_> {
                 }
                 spec = self.exprs[spec as usize].next;
             }
+        }
+        #[cfg(feature = "modules")]
+        if self.st.modules.nmodules > 1 {
+            self.set_current_module(crate::module::MAIN);
         }
         self.st.frame.scratch_top = 0;
         Ok(())

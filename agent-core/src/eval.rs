@@ -84,10 +84,43 @@ impl Core<'_> {
     #[inline(never)]
     fn unbound_global(&mut self, g: Ix) -> Result<Value, EvalError> {
         let name = self.globals[g as usize].name;
-        if self.sym_text(name).starts_with('?') {
-            return Err(EvalError::new(EvalErrorKind::UnboundVariable { name }));
+        let text = self.sym_text(name);
+        if !text.starts_with('?') {
+            return Ok(Value::Void);
         }
-        Ok(Value::Void)
+        // `?*x*` read where no defglobal of the name was seen (at the prompt, in a
+        // defglobal's value, a slot default or a deffacts): CLIPS looks the name up
+        // when it runs, from the current module
+        let global = text
+            .strip_prefix("?*")
+            .and_then(|t| t.strip_suffix('*'))
+            .filter(|t| !t.is_empty());
+        let Some(inner) = global else {
+            return Err(EvalError::new(EvalErrorKind::UnboundVariable { name }));
+        };
+        let mut b: crate::value::TextBuf<128> = crate::value::TextBuf::new();
+        let _ = core::fmt::Write::write_str(&mut b, inner);
+        if let Some(v) = self
+            .find_sym(b.as_str())
+            .and_then(|id| self.find_global(id))
+            .map(|d| self.globals[d as usize].value)
+            .filter(|v| !matches!(v, Value::Void))
+        {
+            return Ok(v);
+        }
+        // none: `[GLOBLDEF1]`, and the read gives FALSE with CLIPS's evaluation error
+        // set, which halts what checks it (see `Core::args_failed`)
+        let mut m: crate::value::TextBuf<160> = crate::value::TextBuf::new();
+        let _ = core::fmt::Write::write_fmt(
+            &mut m,
+            format_args!(
+                "[GLOBLDEF1] Global variable ?*{}* is unbound.\n",
+                b.as_str()
+            ),
+        );
+        self.write(crate::host::router::WERROR, m.as_str());
+        self.st.mode.halting = true;
+        Ok(Value::Sym(SYM_FALSE))
     }
 
     /// CLIPS's message for an error that stopped deffunction `func`: an unbound local
@@ -451,7 +484,15 @@ impl Core<'_> {
                 match builtins::code_of(self, x.data, b) {
                     Imp::Lazy(f) => f(self, e),
                     Imp::Eager(f) => {
+                        let halting = self.st.mode.halting;
                         let args = self.push_args(x.first)?;
+                        // an argument failed with CLIPS's evaluation error (an
+                        // unbound global): most builtins stop with their error value
+                        if self.st.mode.halting && !halting {
+                            if let Some(v) = self.args_failed(b)? {
+                                return Ok(v);
+                            }
+                        }
                         check_arity(b.name, b.min, b.max, args.len)?;
                         f(self, args).map_err(|err| self.classify_type_error(b.name, x.first, err))
                     }
@@ -471,7 +512,26 @@ impl Core<'_> {
             return Ok(Value::Sym(SYM_FALSE));
         }
         let args = self.push_args(first_arg)?;
+        // an argument failed with CLIPS's evaluation error: FALSE, the body not run
+        if self.st.mode.halting {
+            return self.deffunction_args_failed(func);
+        }
         self.apply_deffunction(func, args)
+    }
+
+    #[cold]
+    #[inline(never)]
+    fn deffunction_args_failed(&mut self, func: Ix) -> Result<Value, EvalError> {
+        let mut b: crate::value::TextBuf<192> = crate::value::TextBuf::new();
+        let _ = core::fmt::Write::write_fmt(
+            &mut b,
+            format_args!(
+                "[PRCCODE6] This error occurred while evaluating arguments for the deffunction {}.\n",
+                self.sym_text(self.funcs[func as usize].name)
+            ),
+        );
+        self.write(crate::host::router::WERROR, b.as_str());
+        Ok(Value::Sym(SYM_FALSE))
     }
 
     /// The builtin, host function or deffunction named `name` (`funcall`, `sort`); None

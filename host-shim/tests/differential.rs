@@ -412,4 +412,6 @@ differential_programs! {
     p311_lhs_unbound_variables => "311-lhs-unbound-variables",
     p312_globals_unseen_initializers => "312-globals-unseen-initializers",
     p313_modules_return_pop_focus => "313-modules-return-pop-focus",
+    p340_unbound_global_reads => "340-unbound-global-reads",
+    p341_globals_read_when_run => "341-globals-read-when-run",
 }

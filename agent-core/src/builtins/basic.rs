@@ -211,10 +211,13 @@ fn neq(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     ))
 }
 
+// an operand failing with CLIPS's evaluation error (an unbound global read as FALSE)
+// makes `and` and `or` FALSE
 fn and(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
+    let halting = cx.st.mode.halting;
     let mut e = cx.exprs[call as usize].first;
     while e != NONE {
-        if !Core::is_true(cx.eval(e)?) {
+        if !Core::is_true(cx.eval(e)?) || (cx.st.mode.halting && !halting) {
             return Ok(Core::bool_value(false));
         }
         e = cx.exprs[e as usize].next;
@@ -222,9 +225,14 @@ fn and(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     Ok(Core::bool_value(true))
 }
 fn or(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
+    let halting = cx.st.mode.halting;
     let mut e = cx.exprs[call as usize].first;
     while e != NONE {
-        if Core::is_true(cx.eval(e)?) {
+        let v = cx.eval(e)?;
+        if cx.st.mode.halting && !halting {
+            return Ok(Core::bool_value(false));
+        }
+        if Core::is_true(v) {
             return Ok(Core::bool_value(true));
         }
         e = cx.exprs[e as usize].next;

@@ -244,8 +244,10 @@ fn printout(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     let mut a = cx.exprs[first as usize].next;
     let mut r = Ok(Value::Void);
     while a != NONE {
-        // what a call prints must follow what is printed before it
-        if !is_leaf(cx.exprs[a as usize].op) && !b.is_empty() {
+        // what a call prints must follow what is printed before it (a global read
+        // may print `[GLOBLDEF1]`)
+        let op = cx.exprs[a as usize].op;
+        if (!is_leaf(op) || op == crate::expr::Op::Global) && !b.is_empty() {
             cx.write(routed.name(), b.as_str());
             b.clear();
         }

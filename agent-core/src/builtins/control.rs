@@ -144,6 +144,8 @@ fn foreach(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     let [var, list, body] = kids::<3>(cx, call);
     let m = match cx.eval(list)? {
         Value::Multi(m) => m,
+        // CLIPS's evaluation error set (an unbound global): FALSE, no iteration
+        _ if cx.st.mode.halting => return Ok(Value::Sym(SYM_FALSE)),
         _ => return Err(EvalError::wrong_type("progn$", 1, "multifield")),
     };
     let slot = cx.exprs[var as usize].data;

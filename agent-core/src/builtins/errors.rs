@@ -46,3 +46,65 @@ pub enum Fallback {
     /// The empty multifield `()`.
     EmptyMulti,
 }
+
+/// Builtins that take an argument whose evaluation failed (an unbound global read as
+/// `FALSE`, CLIPS's evaluation error set) as the value it gave: the type predicates
+/// and `length$`, and those that check their argument types themselves and report
+/// `[ARGACCES5]` for it (arithmetic, comparisons, fact functions).
+const READ_FAILED_ARGUMENTS: &[&str] = &[
+    "eq",
+    "neq",
+    "lexemep",
+    "type",
+    "multifieldp",
+    "numberp",
+    "symbolp",
+    "stringp",
+    "integerp",
+    "floatp",
+    "pointerp",
+    "length$",
+    "length",
+    "+",
+    "-",
+    "*",
+    "/",
+    "div",
+    "<",
+    ">",
+    "<=",
+    ">=",
+    "=",
+    "<>",
+    "fact-existp",
+    "retract",
+    "fact-index",
+];
+
+impl Core<'_> {
+    /// What builtin `b` gives when evaluating its arguments set CLIPS's evaluation
+    /// error: most check it after each argument and return their constant error value
+    /// without a message (`(str-cat x ?*u* y)` is `""`, `(abs ?*u*)` is 0); None when
+    /// `b` goes on with the values (see `READ_FAILED_ARGUMENTS`) or has no constant.
+    #[cold]
+    #[inline(never)]
+    pub(crate) fn args_failed(
+        &mut self,
+        b: &super::Builtin,
+    ) -> Result<Option<Value>, crate::error::EvalError> {
+        if READ_FAILED_ARGUMENTS.contains(&b.name) {
+            return Ok(None);
+        }
+        Ok(Some(match b.on_error.fallback() {
+            None => return Ok(None),
+            Some(Fallback::Int(i)) => Value::Int(i),
+            Some(Fallback::Float(f)) => Value::Float(f),
+            Some(Fallback::Sym(s)) => Value::Sym(self.intern(s)?),
+            Some(Fallback::Str(s)) => Value::Str(self.intern(s)?),
+            Some(Fallback::EmptyMulti) => {
+                let start = self.multi_begin();
+                self.multi_finish(start)
+            }
+        }))
+    }
+}

@@ -232,15 +232,28 @@ impl Core<'_> {
 
     /// Evaluates value expressions (a chain) into one slot value: a multifield for a
     /// multislot (all values spliced), else the single value.
-    fn slot_value_from(&mut self, tmpl: Ix, slot: Ix, mut e: Ix) -> Result<Value, EvalError> {
+    /// (`asserting`: for a fact being asserted, where a failed single-field value is
+    /// kept, see `single_field_failed`)
+    fn slot_value_from(
+        &mut self,
+        tmpl: Ix,
+        slot: Ix,
+        mut e: Ix,
+        asserting: bool,
+    ) -> Result<Value, EvalError> {
         let multi = self.slot_def(tmpl, slot).multi;
         if !multi {
             // most slot values are constants or variables: the host reads them in
             // place (the image keeps the 370 B of code that inline copy costs)
             #[cfg(feature = "host-speedups")]
-            let v = self.eval_operand(e)?;
+            let v = self.eval_operand(e);
             #[cfg(not(feature = "host-speedups"))]
-            let v = self.eval(e)?;
+            let v = self.eval(e);
+            let v = match v {
+                Ok(v) => v,
+                Err(err) if asserting => self.single_field_failed(err)?,
+                Err(err) => return Err(err),
+            };
             return match v {
                 Value::Multi(m) if m.len == 1 => Ok(self.mf_item(m, 0)),
                 Value::Multi(_) => Err(EvalError::new(EvalErrorKind::BadSlotValue {
@@ -270,14 +283,23 @@ impl Core<'_> {
                         self.st.frame.sp = base;
                         break;
                     }
-                    // CLIPS reports it and goes on without this field
+                    // CLIPS reports it and goes on without this field, its evaluation
+                    // error set (fields after it are dropped, `reset` stops)
                     self.write_error_message(err);
                     self.st.eval.field_error = Some(err);
+                    self.st.mode.halting = true;
                     e = self.exprs[e as usize].next;
                     continue;
                 }
                 Err(err) => return Err(err),
             };
+            // CLIPS's evaluation error is set (an unbound global read as FALSE): the
+            // slot is empty and the actions stop, as for an unbound variable
+            if self.st.mode.halting {
+                self.st.eval.field_error = Some(EvalError::already_reported());
+                self.st.frame.sp = base;
+                break;
+            }
             self.push_value(v)?;
             e = self.exprs[e as usize].next;
         }
@@ -301,11 +323,47 @@ impl Core<'_> {
     }
 
     /// The value a slot takes when an assert leaves it out.
+    /// A single-field slot's value whose evaluation failed: CLIPS reports the error,
+    /// keeps the value the failing function returned (`(+ 1 ?*u*)` is 1), sets its
+    /// evaluation error (multislots evaluated after it are empty) and asserts the fact;
+    /// the assert then stops (`field_error`).
+    #[cold]
+    #[inline(never)]
+    fn single_field_failed(&mut self, err: EvalError) -> Result<Value, EvalError> {
+        if matches!(
+            err.kind(),
+            EvalErrorKind::Capacity(_) | EvalErrorKind::Exit | EvalErrorKind::Interrupted
+        ) {
+            return Err(err);
+        }
+        let depth = self.st.eval.eval_depth + 1;
+        let v = match self.st.eval.error_fallback {
+            Some(fb) if fb.depth == depth && fb.divide_by_zero.is_none() => fb.value,
+            _ => Value::Sym(SYM_FALSE),
+        };
+        self.write_error_message(err);
+        let mut err = err;
+        err.reported = true;
+        self.st.eval.field_error = Some(err);
+        self.st.mode.halting = true;
+        Ok(v)
+    }
+
     pub(crate) fn default_value(&mut self, tmpl: Ix, slot: Ix) -> Result<Value, EvalError> {
+        self.default_value_for(tmpl, slot, false)
+    }
+
+    /// `default_value`; `asserting`: see `slot_value_from`.
+    fn default_value_for(
+        &mut self,
+        tmpl: Ix,
+        slot: Ix,
+        asserting: bool,
+    ) -> Result<Value, EvalError> {
         let def = self.slot_def(tmpl, slot);
         match def.default_kind {
             DefaultKind::Static | DefaultKind::Dynamic if def.default != NONE => {
-                self.slot_value_from(tmpl, slot, def.default)
+                self.slot_value_from(tmpl, slot, def.default, asserting)
             }
             DefaultKind::Required => Err(EvalError::new(EvalErrorKind::BadSlotValue {
                 reason: crate::error::Message::NoDefault,
@@ -349,7 +407,7 @@ impl Core<'_> {
         let mut sv = self.exprs[spec as usize].first;
         while sv != NONE {
             let slot = self.exprs[sv as usize].data;
-            let v = self.slot_value_from(tmpl, slot, self.exprs[sv as usize].first)?;
+            let v = self.slot_value_from(tmpl, slot, self.exprs[sv as usize].first, true)?;
             self.stack[(base + slot) as usize] = v;
             if slot < 64 {
                 given |= 1 << slot;
@@ -363,7 +421,7 @@ impl Core<'_> {
                 self.spec_gives(spec, s)
             };
             if !is_given {
-                let v = self.default_value(tmpl, s)?;
+                let v = self.default_value_for(tmpl, s, true)?;
                 self.stack[(base + s) as usize] = v;
             }
         }
@@ -504,7 +562,7 @@ impl Core<'_> {
                     .find_slot(tmpl, sym)
                     .ok_or_else(|| EvalError::new(EvalErrorKind::NoSuchSlot))?;
                 // unchecked, as in CLIPS (see assert)
-                let v = self.slot_value_from(tmpl, slot, self.exprs[sv as usize].first)?;
+                let v = self.slot_value_from(tmpl, slot, self.exprs[sv as usize].first, false)?;
                 self.stack[(base + slot) as usize] = v;
                 sv = self.exprs[sv as usize].next;
             }
@@ -589,9 +647,13 @@ fn assert(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
                 Some(f) => Value::Fact(cx.fact_ref(f)),
                 None => Value::Sym(SYM_FALSE),
             };
-            // a field failed: the fact stands without it, the actions stop here
+            // a field failed: the fact stands without it, the actions stop here; the
+            // assert gives the fact, FALSE when more facts were to follow (CLIPS)
             if let Some(mut err) = cx.st.eval.field_error.take() {
                 err.reported = true;
+                if cx.exprs[spec as usize].next != NONE {
+                    last = Value::Sym(SYM_FALSE);
+                }
                 cx.set_error_fallback(last, None);
                 return Err(err);
             }

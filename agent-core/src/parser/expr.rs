@@ -124,11 +124,16 @@ impl<'s> Parser<'s, '_, '_> {
                 let e = self.cx.push_expr(Expr::new(Op::Global, 0, g));
                 cap!(self, e)
             }
-            // at the prompt, in a defglobal's initial value and in a slot default CLIPS
-            // reads a global the module does not see and finds it unbound when it
-            // runs (`[GLOBLDEF1]`): a hidden global `?*name*`, never bound (`bind`
-            // names only defined ones)
-            None if (self.scope == Scope::TopLevel || self.evaluated_now) && name.len() < 120 => {
+            // at the prompt, in a defglobal's initial value, a slot default and a
+            // deffacts CLIPS reads a global the module does not see by its name, looked
+            // up when it runs (`[GLOBLDEF1]` if still unseen): a hidden global
+            // `?*name*`, never bound (`bind` names only defined ones; see
+            // `Core::unbound_global`)
+            None if (self.scope == Scope::TopLevel
+                || self.evaluated_now
+                || self.construct == "deffacts")
+                && name.len() < 120 =>
+            {
                 let mut b: TextBuf<128> = TextBuf::new();
                 let _ = core::fmt::Write::write_fmt(&mut b, format_args!("*{name}*"));
                 let g = self.toplevel_var(t, b.as_str())?;

@@ -107,8 +107,9 @@ pub struct Parser<'s, 'c, 'e> {
     /// (0 elsewhere), for CLIPS's `CE #N field #M` in messages.
     pub lhs_field: u8,
     /// Parsing a value evaluated once it is read (a slot's static default, a
-    /// defglobal's initial value): a global no module of the name sees is read as
-    /// unbound (`[GLOBLDEF1]` when evaluated), as CLIPS reads it.
+    /// defglobal's initial value) or when it runs (a dynamic default): a global no
+    /// module of the name sees is read by its name (`[GLOBLDEF1]` when still unseen
+    /// as it runs), as CLIPS reads it.
     pub evaluated_now: bool,
     /// CLIPS's specificity of the rule (disjunct) being read (see `rule::Complexity`).
     pub complexity: u16,
@@ -535,9 +536,18 @@ impl<'s, 'e> Parser<'s, '_, 'e> {
     /// parsing the call): should the construct fail, that stays too.
     pub fn eval_now(&mut self, e: Ix) -> Result<crate::value::Value, crate::error::EvalError> {
         let effects = self.cx.st.eval.effects;
-        let r = self.cx.eval(e);
+        let halting = self.cx.st.mode.halting;
+        let mut r = self.cx.eval(e);
         if self.cx.st.eval.effects != effects {
             self.keep = Some(self.cx.checkpoint());
+        }
+        // CLIPS's evaluation error (an unbound global read as FALSE, already
+        // reported) fails the value even where the evaluation went on
+        if self.cx.st.mode.halting && !halting {
+            self.cx.st.mode.halting = false;
+            if r.is_ok() {
+                r = Err(crate::error::EvalError::already_reported());
+            }
         }
         r
     }

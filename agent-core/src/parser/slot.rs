@@ -271,7 +271,8 @@ impl<'s> Parser<'s, '_, '_> {
         }
         let save = self.scope;
         self.scope = Scope::Frame;
-        self.evaluated_now = attribute == "default";
+        // (a dynamic default reads an unseen global by name too, when it runs)
+        self.evaluated_now = attribute == "default" || attribute == "default-dynamic";
         let holder = cap!(self, self.cx.push_expr(Expr::new(Op::Nop, 0, 0)))?;
         let values_at = self.save();
         let mut n = 0 as Ix;
