@@ -242,10 +242,22 @@ pub fn keep_distance(
     radius_m: f32,
     max_acc_m_s2: f32,
 ) -> Twist {
+    let known: Vec<Teammate> = teammates.iter().flatten().copied().collect();
+    keep_distance_from(pose, twist, &known, radius_m, max_acc_m_s2)
+}
+
+/// [`keep_distance`] from any number of robots (announced teammates, and bodies the IR
+/// ring sees, standing still as far as the robot knows).
+pub fn keep_distance_from(
+    pose: &Pose2,
+    twist: Twist,
+    teammates: &[Teammate],
+    radius_m: f32,
+    max_acc_m_s2: f32,
+) -> Twist {
     // Each teammate bounds the speed towards it: (direction, most speed allowed).
-    let mut bounds = [((0f32, 0f32), f32::INFINITY); MAX_TEAMMATES];
+    let mut bounds = vec![((0f32, 0f32), f32::INFINITY); teammates.len()];
     for (b, t) in bounds.iter_mut().zip(teammates.iter()) {
-        let Some(t) = t else { continue };
         let (lx, ly) = pose.to_local(t.x_m, t.y_m);
         let d = lx.hypot(ly);
         if d < 1e-3 {
