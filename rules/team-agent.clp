@@ -73,6 +73,17 @@
   =>
   (assert (team-wait-since ?t)))
 
+(defrule team-idle-starts
+  "The robot claims a place or found it busy: team-idle-since counts all its
+   waits since its last skill (the switches to other work below do not
+   restart it, unlike team-wait-since)."
+  (declare (salience ?*PRIORITY_TEAM_AGENT*))
+  (state TEAM-CLAIM|TEAM-WAIT)
+  (team-clock (now ?t))
+  (not (team-idle-since ?))
+  =>
+  (assert (team-idle-since ?t)))
+
 (deftemplate team-blocked
   "A place this robot could not drive to ?*TEAM_UNREACHED_TRIES* times in a
    row (a dead teammate's body in its approach stays there): it is avoided
@@ -200,6 +211,14 @@
   (declare (salience ?*PRIORITY_TEAM_AGENT*))
   (state EXEC)
   ?b <- (team-wait-since ?)
+  =>
+  (retract ?b))
+
+(defrule team-idle-ends-with-skill
+  "A skill started: team-idle-since (waits in all since the last skill) ends."
+  (declare (salience ?*PRIORITY_TEAM_AGENT*))
+  (state EXEC)
+  ?b <- (team-idle-since ?)
   =>
   (retract ?b))
 
@@ -549,3 +568,64 @@
   (do-for-all-facts ((?w team-wait-since)) TRUE (retract ?w))
   (assert (state TEAM-WAIT) (team-waiting ?x)
           (team-wait-since (- ?t ?*TEAM_WAIT_OTHER_WORK_S*))))
+
+;;; The block is a guess (a teammate met in a lane can push a robot onto a
+;;; machine's corner twice in a row: team seed 32's robot 1 then held an S2
+;;; that only the blocked M10 and a T3 a teammate worked could take, and stood
+;;; still 61 s).  A robot that finds no other work tries the blocked place
+;;; again after ?*TEAM_BLOCKED_RETRY_S* rather than stand still: a failure
+;;; there costs one drive, standing costs the game's time.
+
+(defglobal ?*TEAM_BLOCKED_RETRY_S* = 20)   ; s of waiting without other work
+
+(defrule team-blocked-retry
+  "Waiting for a place blocked for this robot, which no teammate holds, with
+   no other work found meanwhile (the wait rules below would have taken it):
+   after ?*TEAM_BLOCKED_RETRY_S* the block ends and the robot decides anew."
+  (declare (salience ?*PRIORITY_TEAM_AGENT*))
+  ?s <- (state TEAM-WAIT)
+  ?w <- (team-waiting ?x)
+  (team-wait-since ?t0)
+  (team-clock (now ?t&:(>= ?t (+ ?t0 ?*TEAM_WAIT_OTHER_WORK_S* ?*TEAM_BLOCKED_RETRY_S*))))
+  ?b <- (team-blocked (resource ?x) (until ?u&:(> ?u ?t)))
+  (team-self (id ?me))
+  (not (team-vote (resource ?x) (holder ~?me) (until ?v&:(> ?v ?t))))
+  =>
+  (retract ?s ?w ?b)
+  (printout t "WARN no other work for " (- ?t ?t0 ?*TEAM_WAIT_OTHER_WORK_S*)
+            " s: " ?x " tried again" crlf)
+  (assert (state IDLE)))
+
+;;; A robot can wait with a puck in hand that no free place takes for a long
+;;; time: the T3 it would advance works for 50 s and its robot holds it until
+;;; it collects the product, and the other robots' pucks fill the free places
+;;; (team seed 91: robot 3 held an S1 for M6 61 s; seed 72: 61 s with its own
+;;; product out, the other-work rule trying a place every 20 s and so never
+;;; letting the hold-cycle rule's 20 s pass).  After ?*TEAM_WAIT_PUCK_MAX_S* of
+;;; waits in all since its last skill (team-idle-since: not restarted by the
+;;; other-work rules) the robot lets go of the puck and takes empty-handed
+;;; work: a raw or half-made puck is worth less than the time.
+
+(defglobal ?*TEAM_WAIT_PUCK_MAX_S* = 40)   ; s of waits with a puck, then discard
+
+(defrule team-wait-lets-go-of-puck
+  "Waited or claimed ?*TEAM_WAIT_PUCK_MAX_S* since the last skill with a
+   raw or half-made puck and still no free place takes it: drop the claim
+   or the wait and discard the puck at a recycling unit this robot can
+   reach (the other-work rules, of higher salience, take a free place
+   first; on a lossy link a claim can stay pending that long)."
+  (declare (salience ?*PRIORITY_TEAM_AGENT*))
+  ?s <- (state TEAM-CLAIM|TEAM-WAIT)
+  (team-idle-since ?t0)
+  (team-clock (now ?t&:(>= ?t (+ ?t0 ?*TEAM_WAIT_PUCK_MAX_S*))))
+  (holding ?p&S0|S1|S2)
+  (robot-at ?here)
+  (test (> (length$ (team-unblocked-of R1 R2)) 0))
+  =>
+  (retract ?s)
+  (team-stop-waiting)
+  (do-for-all-facts ((?b team-wait-since)) TRUE (retract ?b))
+  (printout t "WARN waited " (- ?t ?t0) " s with " ?p ": discard" crlf)
+  (assert (state IDLE)
+          (intent (action discard)
+                  (target (nearest-of ?here (team-unblocked-of R1 R2))))))

@@ -172,17 +172,35 @@ fn a_robot_that_waits_long_brings_its_puck_to_a_free_machine() {
     );
 }
 
+/// No free machine takes the S1: the robot waits for M3, and after
+/// `?*TEAM_WAIT_PUCK_MAX_S*` (40 s) of waits lets go of the puck (a discard) rather than
+/// stand still on (team seeds 72 and 91: 61 s with an S1, a stall).
 #[test]
-fn a_robot_keeps_waiting_when_no_free_machine_takes_its_puck() {
+fn a_robot_waits_when_no_free_machine_takes_its_puck_then_lets_go() {
     // Every other machine is a T1: none takes an S1 (unknown ones would, to explore).
     let others = ["M1", "M2", "M4", "M5", "M6", "M7", "M8", "M9", "M10"];
     let mut beliefs = vec![("M3", "T3", "S2")];
     beliefs.extend(others.iter().map(|m| (*m, "T1", "")));
-    let seen = on_big_stack(move || play(&beliefs, 40.0));
-    let last = seen.last().cloned();
+    let seen = on_big_stack(move || play(&beliefs, 50.0));
+    let at = |t: f64| seen.iter().find(|m| m.0 == t).cloned();
     assert!(
-        matches!(&last, Some((_, s, None)) if s == "TEAM-WAIT"),
-        "robot 1 should still wait for M3: {last:?}"
+        matches!(at(40.0), Some((_, s, None)) if s == "TEAM-WAIT"),
+        "robot 1 should still wait for M3 at 40 s: {:?}",
+        at(40.0)
+    );
+    let discard = seen
+        .iter()
+        .find(|(_, _, r)| r.as_ref().is_some_and(|(a, _)| a == "discard"))
+        .map(|(t, _, _)| *t);
+    assert!(
+        discard.is_some_and(|t| (42.0..=45.0).contains(&t)),
+        "a discard 40 s after the wait began (3 s): {discard:?} {seen:?}"
+    );
+    assert!(
+        !seen
+            .iter()
+            .any(|(_, _, r)| r.as_ref().is_some_and(|(_, x)| x == "M3")),
+        "never at M3, robot 2's: {seen:?}"
     );
 }
 
@@ -330,5 +348,61 @@ fn a_robot_that_cannot_reach_a_recycling_unit_recycles_at_the_other() {
     assert!(
         at_other.is_some_and(|t| t - second_failure <= 2.0),
         "recycling at {other} right after the second failure at {second_failure}: {seen:?}"
+    );
+}
+
+/// As above, but no other machine takes the S1 (all the others are T1s) and nobody holds
+/// M3: blocked after two failed drives, M3 is the robot's only work. It tries M3 again
+/// after `?*TEAM_BLOCKED_RETRY_S*` (20 s) rather than stand still for the block's 120 s
+/// (team seed 32: a robot pushed onto M9 twice on its way to M10 stood still 61 s with
+/// its S2, a stall).
+#[test]
+fn a_robot_with_no_other_work_tries_a_blocked_place_again() {
+    let seen = on_big_stack(|| {
+        let mut members = team();
+        let others = ["M1", "M2", "M4", "M5", "M6", "M7", "M8", "M9", "M10"];
+        let mut beliefs = vec![("M3", "T3", "S2")];
+        beliefs.extend(others.iter().map(|m| (*m, "T1", "")));
+        believe(&mut members[0], "S1", &beliefs);
+        believe(&mut members[1], "NONE", &beliefs);
+        believe(&mut members[2], "NONE", &beliefs);
+        begin(&mut members[0]);
+        let mut seen: Vec<Moment> = Vec::new();
+        // When each skill request at M3 (by its id) was first seen.
+        let mut starts: Vec<(i64, f64)> = Vec::new();
+        let mut t = 0.0;
+        while t <= 60.0 {
+            step(&mut members, t);
+            let r = request(&members[0]);
+            seen.push((t, state(&members[0]), r.clone()));
+            if r.is_some_and(|(_, x)| x == "M3") {
+                let id = request_id(&members[0]).unwrap_or_else(|| panic!("an id"));
+                if starts.iter().all(|&(i, _)| i != id) {
+                    starts.push((id, t));
+                    if starts.len() <= 2 {
+                        fail_drive(&mut members[0]);
+                    }
+                }
+            }
+            t += STEP;
+        }
+        (seen, starts)
+    });
+    let (seen, starts) = seen;
+    let starts: Vec<f64> = starts.iter().map(|&(_, t)| t).collect();
+    let [_, second, third, ..] = starts[..] else {
+        panic!("three drives to M3: {starts:?} {seen:?}");
+    };
+    // Between the second failure and the retry it waits (it has no other work) ...
+    assert!(
+        seen.iter()
+            .filter(|(t, _, _)| *t > second + 2.0 && *t < third)
+            .all(|(_, s, r)| s == "TEAM-WAIT" && r.is_none()),
+        "{seen:?}"
+    );
+    // ... 20 s, not the block's 120 s.
+    assert!(
+        (second + 19.0..=second + 24.0).contains(&third),
+        "M3 again at {third}, the second failure at {second}: {seen:?}"
     );
 }
