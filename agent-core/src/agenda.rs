@@ -171,10 +171,22 @@ impl Core<'_> {
     pub(crate) fn agenda_insert(&mut self, a: Ix) {
         let mut prev = NONE;
         let mut cur = self.st.agenda.agenda_head;
+        // host: from the first activation of no higher salience (those before it
+        // all go first), found through the salience groups
+        #[cfg(feature = "host-speedups")]
+        let group = self.group_start(a, &mut prev, &mut cur);
+        #[cfg(feature = "host-speedups")]
+        let mut steps = 0u32;
         while cur != NONE && !self.goes_before(a, cur) {
             prev = cur;
             cur = self.acts[cur as usize].next;
+            #[cfg(feature = "host-speedups")]
+            {
+                steps += 1;
+            }
         }
+        #[cfg(feature = "host-speedups")]
+        self.group_insert(group, a, prev, cur);
         self.acts[a as usize].prev = prev;
         self.acts[a as usize].next = cur;
         if cur != NONE {
@@ -186,10 +198,17 @@ impl Core<'_> {
             self.st.agenda.agenda_head = a;
         }
         self.st.agenda.agenda_len += 1;
+        #[cfg(feature = "host-speedups")]
+        if steps > GROUP_WALK && group == usize::MAX {
+            self.build_groups();
+        }
     }
 
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     fn agenda_unlink(&mut self, a: Ix) {
         let x = self.acts[a as usize];
+        #[cfg(feature = "host-speedups")]
+        self.group_unlink(&x, a);
         self.st.agenda.agenda_len -= 1;
         if x.prev != NONE {
             self.acts[x.prev as usize].next = x.next;
@@ -348,6 +367,8 @@ impl Core<'_> {
         let mut list = self.st.agenda.agenda_head;
         self.st.agenda.agenda_head = NONE;
         self.st.agenda.agenda_len = 0;
+        #[cfg(feature = "host-speedups")]
+        self.st.agenda.groups.reset();
         while list != NONE {
             let next = self.acts[list as usize].next;
             self.agenda_insert(list);
@@ -473,5 +494,215 @@ impl Core<'_> {
         #[cfg(not(feature = "extras"))]
         let random = 0;
         Some((e.seq, random))
+    }
+}
+
+/// Host: most distinct saliences the agenda indexes at once; with more it is walked
+/// from its head until it empties.
+#[cfg(feature = "host-speedups")]
+pub const SALIENCE_GROUPS: usize = 16;
+
+/// Host: an insertion that walks past more activations than this starts keeping the
+/// salience groups (until the agenda empties): a short agenda is walked, free of upkeep.
+#[cfg(feature = "host-speedups")]
+const GROUP_WALK: u32 = 32;
+
+/// One salience's run of activations on the agenda (which is sorted by salience).
+#[cfg(feature = "host-speedups")]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SalienceGroup {
+    pub salience: i32,
+    pub first: Ix,
+    pub last: Ix,
+    pub count: Ix,
+}
+
+/// Host: the agenda's salience groups, highest salience first, so an activation is
+/// inserted by a walk of its own salience's run only (as CLIPS's salience groups),
+/// not of every activation of a higher salience before it. Kept only once an
+/// insertion walked far (`GROUP_WALK`), until the agenda empties.
+#[cfg(feature = "host-speedups")]
+#[derive(Clone, Copy, Debug)]
+pub struct SalienceGroups {
+    pub groups: [SalienceGroup; SALIENCE_GROUPS],
+    pub n: u8,
+    /// The groups describe the agenda (else they are not looked at).
+    pub kept: bool,
+    /// More saliences than entries: not tried again until the agenda empties.
+    pub overflow: bool,
+}
+
+#[cfg(feature = "host-speedups")]
+impl SalienceGroups {
+    pub const EMPTY: SalienceGroups = SalienceGroups {
+        groups: [SalienceGroup {
+            salience: 0,
+            first: NONE,
+            last: NONE,
+            count: 0,
+        }; SALIENCE_GROUPS],
+        n: 0,
+        kept: false,
+        overflow: false,
+    };
+
+    /// Stops keeping the groups (the agenda emptied or was rebuilt).
+    #[inline(always)]
+    pub fn reset(&mut self) {
+        self.kept = false;
+        self.overflow = false;
+        self.n = 0;
+    }
+
+    /// The first group of salience at most `s` (`n` if none).
+    #[inline(always)]
+    fn position(&self, s: i32) -> usize {
+        let n = self.n as usize;
+        self.groups[..n]
+            .iter()
+            .position(|g| g.salience <= s)
+            .unwrap_or(n)
+    }
+}
+
+#[cfg(feature = "host-speedups")]
+impl Core<'_> {
+    /// Where `agenda_insert` starts walking for activation `a`: `cur` the first
+    /// activation of `a`'s salience or lower, `prev` the one before it. Returns the
+    /// group position (`usize::MAX` when the groups are not kept).
+    #[inline(always)]
+    fn group_start(&self, a: Ix, prev: &mut Ix, cur: &mut Ix) -> usize {
+        let g = &self.st.agenda.groups;
+        if !g.kept {
+            return usize::MAX;
+        }
+        let k = g.position(self.acts[a as usize].salience);
+        if k < g.n as usize {
+            *cur = g.groups[k].first;
+            *prev = self.acts[*cur as usize].prev;
+        } else {
+            *cur = NONE;
+            *prev = if k > 0 { g.groups[k - 1].last } else { NONE };
+        }
+        k
+    }
+
+    /// Records activation `a`, just linked between `prev` and `cur`, in the group
+    /// at position `k` (`group_start`'s).
+    #[inline(always)]
+    fn group_insert(&mut self, k: usize, a: Ix, prev: Ix, cur: Ix) {
+        if k != usize::MAX {
+            self.group_insert_kept(k, a, prev, cur);
+        }
+    }
+
+    /// `group_insert` while the groups are kept (out of line).
+    #[inline(never)]
+    fn group_insert_kept(&mut self, k: usize, a: Ix, prev: Ix, cur: Ix) {
+        let s = self.acts[a as usize].salience;
+        let g = &mut self.st.agenda.groups;
+        let n = g.n as usize;
+        if k < n && g.groups[k].salience == s {
+            let e = &mut g.groups[k];
+            if cur == e.first {
+                e.first = a;
+            }
+            if prev == e.last {
+                e.last = a;
+            }
+            e.count += 1;
+            return;
+        }
+        if n == SALIENCE_GROUPS {
+            g.kept = false;
+            g.overflow = true;
+            return;
+        }
+        g.groups.copy_within(k..n, k + 1);
+        g.groups[k] = SalienceGroup {
+            salience: s,
+            first: a,
+            last: a,
+            count: 1,
+        };
+        g.n += 1;
+    }
+
+    /// Starts keeping the groups: one walk of the agenda (out of line: once per
+    /// long agenda).
+    #[inline(never)]
+    fn build_groups(&mut self) {
+        let g = &mut self.st.agenda.groups;
+        if g.overflow {
+            return;
+        }
+        g.n = 0;
+        let mut a = self.st.agenda.agenda_head;
+        while a != NONE {
+            let x = &self.acts[a as usize];
+            let n = g.n as usize;
+            if n > 0 && g.groups[n - 1].salience == x.salience {
+                let e = &mut g.groups[n - 1];
+                e.last = a;
+                e.count += 1;
+            } else if n == SALIENCE_GROUPS {
+                g.n = 0;
+                g.overflow = true;
+                return;
+            } else {
+                g.groups[n] = SalienceGroup {
+                    salience: x.salience,
+                    first: a,
+                    last: a,
+                    count: 1,
+                };
+                g.n += 1;
+            }
+            a = x.next;
+        }
+        g.kept = true;
+    }
+
+    /// Takes activation `x` (`a`, still linked) out of its group.
+    #[inline(always)]
+    fn group_unlink(&mut self, x: &crate::rule::Activation, a: Ix) {
+        let g = &self.st.agenda.groups;
+        if g.kept | g.overflow {
+            self.group_unlink_kept(x, a);
+        }
+    }
+
+    /// `group_unlink` while the groups are kept or given up (out of line: a short
+    /// agenda never comes here).
+    #[inline(never)]
+    fn group_unlink_kept(&mut self, x: &crate::rule::Activation, a: Ix) {
+        let g = &mut self.st.agenda.groups;
+        if !g.kept {
+            if self.st.agenda.agenda_len == 1 {
+                g.reset();
+            }
+            return;
+        }
+        if self.st.agenda.agenda_len == 1 {
+            g.reset();
+            return;
+        }
+        let n = g.n as usize;
+        let Some(k) = g.groups[..n].iter().position(|e| e.salience == x.salience) else {
+            return;
+        };
+        let e = &mut g.groups[k];
+        e.count = e.count.saturating_sub(1);
+        if e.count == 0 {
+            g.groups.copy_within(k + 1..n, k);
+            g.n -= 1;
+            return;
+        }
+        if e.first == a {
+            e.first = x.next;
+        }
+        if e.last == a {
+            e.last = x.prev;
+        }
     }
 }

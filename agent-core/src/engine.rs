@@ -196,6 +196,9 @@ pub struct AgendaState {
     pub current_rule: Ix,
     /// The conflict resolution strategy (`strategy::Strategy` as u8).
     pub strategy: u8,
+    /// Host: where each salience's activations lie on the agenda (see `agenda`).
+    #[cfg(feature = "host-speedups")]
+    pub groups: crate::agenda::SalienceGroups,
 }
 
 impl AgendaState {
@@ -207,6 +210,8 @@ impl AgendaState {
             act_journal: crate::agenda::ActJournal::EMPTY,
             current_rule: NONE,
             strategy: 0,
+            #[cfg(feature = "host-speedups")]
+            groups: crate::agenda::SalienceGroups::EMPTY,
         }
     }
 }

@@ -1243,10 +1243,37 @@ impl Core<'_> {
         let mut prev = NONE;
         let mut a = self.st.agenda.agenda_head;
         let mut on_agenda = 0usize;
+        // host: the salience groups name each salience's run of the agenda
+        #[cfg(feature = "host-speedups")]
+        let groups = self.st.agenda.groups;
+        #[cfg(feature = "host-speedups")]
+        let mut group = 0usize;
         while a != NONE {
             ensure!((a as usize) < used, "agenda leaves the pool", a);
             let x = self.acts[a as usize];
             ensure!(x.prev == prev, "agenda back link broken", a);
+            #[cfg(feature = "host-speedups")]
+            if groups.kept {
+                if prev == NONE || self.acts[prev as usize].salience != x.salience {
+                    let g = groups
+                        .groups
+                        .get(group)
+                        .filter(|_| group < groups.n as usize);
+                    ensure!(
+                        g.is_some_and(|g| g.first == a && g.salience == x.salience),
+                        "salience group does not start its run",
+                        a
+                    );
+                    group += 1;
+                }
+                if x.next == NONE || self.acts[x.next as usize].salience != x.salience {
+                    ensure!(
+                        groups.groups[group - 1].last == a,
+                        "salience group does not end its run",
+                        a
+                    );
+                }
+            }
             if prev != NONE {
                 let p = self.acts[prev as usize];
                 ensure!(p.salience >= x.salience, "agenda not sorted by salience", a);
@@ -1315,6 +1342,12 @@ impl Core<'_> {
             prev = a;
             a = x.next;
         }
+        #[cfg(feature = "host-speedups")]
+        ensure!(
+            !groups.kept || group == groups.n as usize,
+            "salience group without activations",
+            groups.n
+        );
         ensure!(
             on_agenda + free == used,
             "activation accounting does not add up",

@@ -414,4 +414,5 @@ differential_programs! {
     p313_modules_return_pop_focus => "313-modules-return-pop-focus",
     p340_unbound_global_reads => "340-unbound-global-reads",
     p341_globals_read_when_run => "341-globals-read-when-run",
+    p291_arith_join_tests => "291-arith-join-tests",
 }

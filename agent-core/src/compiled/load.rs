@@ -445,6 +445,8 @@ impl Core<'_> {
         }
         self.st.agenda.agenda_head = NONE;
         self.st.agenda.agenda_len = 0;
+        #[cfg(feature = "host-speedups")]
+        self.st.agenda.groups.reset();
         let key = |x: &crate::rule::Activation| (x.rule, x.seq);
         while old != NONE {
             let mut best = old;

@@ -5,15 +5,15 @@
 //! A join's tests are worked out once into a small tree of direct comparisons over
 //! the slots of the facts the partial match binds: variable comparisons (`?x` used
 //! again, `~?x`, `?a | ?b`), `eq`/`neq`/`=`/`<>`/`<`/`<=`/`>`/`>=` of variables,
-//! constants and `(+ ?x N)`/`(- ?x N)`, and `and`/`or`/`not` of those, whether they
-//! come from field constraints, `&:(...)` predicates or `(test ...)` CEs. Everything
-//! else keeps the evaluator.
+//! constants and `(+ ?x N)`/`(- ?x N)`, integer arithmetic (`+`, `-`, `*`, `mod`) of
+//! those, and `and`/`or`/`not` of those, whether they come from field constraints,
+//! `&:(...)` predicates or `(test ...)` CEs. Everything else keeps the evaluator.
 //!
 //! Exactness: the plan runs the tests in the evaluator's order with its
 //! short-circuits, and the comparisons are the builtins' own (`basic::compare`,
 //! `values_same`, wrapping integer `+`/`-`). Wherever the evaluator could report an
 //! error or take another path (an unbound pattern, a multifield, a non-number for a
-//! numeric test, a float in arithmetic), the plan answers None before any result is
+//! numeric test, a float in arithmetic, a zero divisor), the plan answers None before any result is
 //! used and the caller evaluates the tests from the start, which reports as before:
 //! the tests have no side effects, so running the first ones twice changes nothing.
 
@@ -27,18 +27,19 @@ use crate::rete::BIND_W;
 use crate::value::{Ix, Value, NONE};
 
 /// Entries of the compiled plan cache (`Caches::compiled_plans`, direct-mapped by join).
-const COMPILED_PLANS: usize = 32;
+const COMPILED_PLANS: usize = 64;
 /// Nodes (and child links) the cached plans share. A plan that finds no room empties
 /// the cache first: kept small, the cache costs the engine's start little.
-const POOL_NODES: usize = 128;
+const POOL_NODES: usize = 255;
 /// Most nodes one plan holds; joins with more keep the evaluator.
-const PLAN_NODES: usize = 32;
+const PLAN_NODES: usize = 64;
 /// Deepest nesting of `and`/`or`/`not` a plan holds.
 const PLAN_DEPTH: u8 = 4;
 
 /// Builtin ids of table 0 (`builtins::basic::FUNCS`) the plan knows, checked by a test.
 const FN_ADD: Ix = 0;
 const FN_SUB: Ix = 1;
+const FN_MUL: Ix = 2;
 const FN_EQ: Ix = CMP_FIRST + 6;
 const FN_NEQ: Ix = CMP_FIRST + 7;
 const FN_AND: Ix = 12;
@@ -58,6 +59,18 @@ enum Source {
     /// An integer slot plus `delta` (wrapping, as the builtins' `+`/`-`; a delta
     /// beyond 32 bits keeps the evaluator, so the node stays small).
     SlotPlus { pat: u8, slot: u8, delta: i32 },
+    /// The integer result of arithmetic node `node` (`Node::Arith`).
+    Arith { node: u8 },
+}
+
+/// An integer operation of a plan, as its builtin folds its arguments (wrapping).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum ArOp {
+    Add,
+    Sub,
+    Mul,
+    /// `mod`: the remainder with C's sign rule (two arguments).
+    Mod,
 }
 
 /// One node of a plan. Composite nodes name their children through `kids`; all
@@ -79,6 +92,11 @@ enum Node {
     Or { first: u8, len: u8 },
     /// Not `child`.
     Not { child: u8 },
+    /// `op` folded over the integers of `kids[first..first + len]` (each a `Leaf`
+    /// or an `Arith`); a non-integer or a zero divisor answers None.
+    Arith { op: ArOp, first: u8, len: u8 },
+    /// An operand of an `Arith` node.
+    Leaf { s: Source },
 }
 
 const UNPLANNED: u8 = u8::MAX;
@@ -165,7 +183,18 @@ impl TestPlans {
                     len,
                 },
                 Node::Not { child } => Node::Not { child: child + nb },
-                cmp => cmp,
+                Node::Arith { op, first, len } => Node::Arith {
+                    op,
+                    first: first + kb,
+                    len,
+                },
+                Node::Leaf { s } => Node::Leaf { s: s.shifted(nb) },
+                Node::Cmp { id, a, b } => Node::Cmp {
+                    id,
+                    a: a.shifted(nb),
+                    b: b.shifted(nb),
+                },
+                same => same,
             };
         }
         for (dst, src) in self.kids[kb as usize..kb as usize + k]
@@ -212,13 +241,22 @@ impl PlanBuild {
 const _: () = assert!(POOL_NODES <= UNPLANNED as usize && PLAN_NODES <= POOL_NODES);
 
 impl Source {
-    /// The pattern a source reads (None for a constant).
+    /// The pattern a source reads (None for a constant or arithmetic, whose
+    /// operands are checked as they are planned).
     fn pat(self) -> Option<u8> {
         match self {
             Source::Slot { pat, .. } | Source::Elem { pat, .. } | Source::SlotPlus { pat, .. } => {
                 Some(pat)
             }
-            Source::Const { .. } => None,
+            Source::Const { .. } | Source::Arith { .. } => None,
+        }
+    }
+
+    /// The source with its node index moved by `nb` (a plan stored at pool offset `nb`).
+    fn shifted(self, nb: u8) -> Source {
+        match self {
+            Source::Arith { node } => Source::Arith { node: node + nb },
+            s => s,
         }
     }
 }
@@ -319,6 +357,48 @@ impl Core<'_> {
                 Some(false)
             }
             Node::Not { child } => Some(!self.run_node(child, depth, left, right_fact)?),
+            // operands, reached only through a `Source::Arith`
+            Node::Arith { .. } | Node::Leaf { .. } => None,
+        }
+    }
+
+    /// The integer value of arithmetic node `node`; None where the evaluator must
+    /// decide (a non-integer operand, a zero divisor).
+    fn run_arith(&self, node: u8, depth: u8, left: TokenId, right_fact: Ix) -> Option<i64> {
+        let plans = &self.st.cache.compiled_plans;
+        let Node::Arith { op, first, len } = plans.nodes[node as usize] else {
+            return None;
+        };
+        let kids = &plans.kids[first as usize..(first + len) as usize];
+        let (&k0, rest) = kids.split_first()?;
+        let mut acc = self.arith_operand(k0, depth, left, right_fact)?;
+        for &k in rest {
+            let x = self.arith_operand(k, depth, left, right_fact)?;
+            acc = match op {
+                ArOp::Add => acc.wrapping_add(x),
+                ArOp::Sub => acc.wrapping_sub(x),
+                ArOp::Mul => acc.wrapping_mul(x),
+                ArOp::Mod => {
+                    if x == 0 {
+                        return None;
+                    }
+                    acc.wrapping_rem(x)
+                }
+            };
+        }
+        Some(acc)
+    }
+
+    /// One operand of an arithmetic node, as an integer.
+    #[inline(always)]
+    fn arith_operand(&self, k: u8, depth: u8, left: TokenId, right_fact: Ix) -> Option<i64> {
+        match self.st.cache.compiled_plans.nodes[k as usize] {
+            Node::Leaf { s } => match self.source_value(s, depth, left, right_fact)? {
+                Value::Int(i) => Some(i),
+                _ => None,
+            },
+            Node::Arith { .. } => self.run_arith(k, depth, left, right_fact),
+            _ => None,
         }
     }
 
@@ -412,6 +492,9 @@ impl Core<'_> {
                     Value::Int(i) => Some(Value::Int(i.wrapping_add(i64::from(delta)))),
                     _ => None,
                 }
+            }
+            Source::Arith { node } => {
+                Some(Value::Int(self.run_arith(node, depth, left, right_fact)?))
             }
         }
     }
@@ -517,13 +600,8 @@ impl Core<'_> {
         if b == NONE || self.exprs[b as usize].next != NONE {
             return None;
         }
-        let a = self.plan_source(a, depth)?;
-        let b = self.plan_source(b, depth)?;
-        for p in [a.pat(), b.pat()].into_iter().flatten() {
-            if p != depth && p as usize >= BIND_W {
-                plan.deep = true;
-            }
-        }
+        let a = self.plan_source(plan, a, depth, 0)?;
+        let b = self.plan_source(plan, b, depth, 0)?;
         if let (Source::Slot { pat: pa, slot: sa }, Source::Slot { pat: pb, slot: sb }) = (a, b) {
             if id == FN_EQ || id == FN_NEQ {
                 return plan.push(Node::SameSlots {
@@ -540,9 +618,70 @@ impl Core<'_> {
         })
     }
 
-    /// The source of an operand: a single-field slot variable, a constant, or a slot
-    /// variable plus or minus an integer constant.
-    fn plan_source(&self, e: Ix, depth: u8) -> Option<Source> {
+    /// The source of an operand: a single-field slot variable, a constant, a slot
+    /// variable plus or minus an integer constant, or integer arithmetic of those
+    /// (nested `level` deep). Marks the plan `deep` for a left pattern at or beyond
+    /// `BIND_W`.
+    fn plan_source(&self, plan: &mut PlanBuild, e: Ix, depth: u8, level: u8) -> Option<Source> {
+        let s = self.plan_simple_source(e, depth);
+        if let Some(s) = s {
+            if let Some(p) = s.pat() {
+                if p != depth && p as usize >= BIND_W {
+                    plan.deep = true;
+                }
+            }
+            return Some(s);
+        }
+        self.plan_arith(plan, e, depth, level)
+    }
+
+    /// Integer arithmetic `(+ ...)`, `(- ...)`, `(* ...)`, `(mod a b)` of plannable
+    /// operands, as an `Arith` node.
+    fn plan_arith(&self, plan: &mut PlanBuild, e: Ix, depth: u8, level: u8) -> Option<Source> {
+        if level >= PLAN_DEPTH {
+            return None;
+        }
+        let x = self.exprs[e as usize];
+        if x.op != Op::Call || x.aux != FnKind::Builtin as u8 || x.first == NONE {
+            return None;
+        }
+        let op = match x.data {
+            FN_ADD => ArOp::Add,
+            FN_SUB => ArOp::Sub,
+            FN_MUL => ArOp::Mul,
+            id if builtins::get(id).name == "mod" => ArOp::Mod,
+            _ => return None,
+        };
+        let mut members = [0u8; PLAN_NODES];
+        let mut len = 0usize;
+        let mut a = x.first;
+        while a != NONE {
+            let s = self.plan_source(plan, a, depth, level + 1)?;
+            let node = match s {
+                Source::Arith { node } => node,
+                s => plan.push(Node::Leaf { s })?,
+            };
+            *members.get_mut(len)? = node;
+            len += 1;
+            a = self.exprs[a as usize].next;
+        }
+        // the builtins' arities (a call of another is the evaluator's to report)
+        if len < 2 || (op == ArOp::Mod && len != 2) {
+            return None;
+        }
+        let first = plan.reserve_kids(len)?;
+        plan.kids[first as usize..first as usize + len].copy_from_slice(&members[..len]);
+        let node = plan.push(Node::Arith {
+            op,
+            first,
+            len: len as u8,
+        })?;
+        Some(Source::Arith { node })
+    }
+
+    /// `plan_source` without arithmetic nodes: a slot variable, a constant, or a
+    /// slot variable plus or minus an integer constant.
+    fn plan_simple_source(&self, e: Ix, depth: u8) -> Option<Source> {
         let x = self.exprs[e as usize];
         match x.op {
             Op::Int | Op::Float | Op::Sym | Op::Str => Some(Source::Const { e }),
@@ -651,6 +790,7 @@ mod tests {
         let name = |id: Ix| builtins::get(id).name;
         assert_eq!(name(FN_ADD), "+");
         assert_eq!(name(FN_SUB), "-");
+        assert_eq!(name(FN_MUL), "*");
         assert_eq!(name(FN_EQ), "eq");
         assert_eq!(name(FN_NEQ), "neq");
         assert_eq!(name(FN_AND), "and");
