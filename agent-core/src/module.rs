@@ -176,16 +176,23 @@ pub fn split_qualified(name: &str) -> Option<(&str, &str)> {
 
 /// Where the first `::` in `name` starts. A plain byte loop: every name read goes
 /// through it, and `str::find`'s searcher costs more to set up than these short
-/// names take to scan.
+/// names take to scan. It looks at every other byte: a `::` always has one of its
+/// two colons at an odd position, and a colon there is checked against both
+/// neighbours (the one before first, so the first `::` is the one found).
 #[inline]
 pub fn qualifier_end(name: &str) -> Option<usize> {
     let b = name.as_bytes();
     let mut i = 1;
     while i < b.len() {
-        if b[i] == b':' && b[i - 1] == b':' {
-            return Some(i - 1);
+        if b[i] == b':' {
+            if b[i - 1] == b':' {
+                return Some(i - 1);
+            }
+            if b.get(i + 1) == Some(&b':') {
+                return Some(i);
+            }
         }
-        i += 1;
+        i += 2;
     }
     None
 }
@@ -455,6 +462,11 @@ impl Core<'_> {
 
     /// The template named `name` that module `from` sees.
     pub fn template_seen_from(&self, name: SymId, from: ModId) -> Option<Ix> {
+        // MAIN alone sees every template (each is MAIN's): the name decides
+        if self.st.modules.nmodules <= 1 {
+            return (0..self.st.pools.ntemplates)
+                .find(|&t| self.templates[t as usize].name == name);
+        }
         (0..self.st.pools.ntemplates).find(|&t| {
             self.templates[t as usize].name == name
                 && self.visible_in(class::TEMPLATE, self.module_of_template(t), name, from)
@@ -717,7 +729,9 @@ type SymIdAny = crate::value::SymId;
 
 #[cfg(test)]
 mod tests {
+    extern crate std;
     use super::{qualifier_end, split_qualified};
+    use std::string::String;
 
     #[test]
     fn qualifier_is_split_at_the_first_double_colon() {
@@ -727,6 +741,23 @@ mod tests {
         assert_eq!(qualifier_end("::"), Some(0));
         assert_eq!(qualifier_end("MAIN::x"), Some(4));
         assert_eq!(qualifier_end("a:::b"), Some(1));
+        // the pair at an even or an odd position, at either end, and after lone colons
+        assert_eq!(qualifier_end("ab::c"), Some(2));
+        assert_eq!(qualifier_end("abc::d"), Some(3));
+        assert_eq!(qualifier_end("abc::"), Some(3));
+        assert_eq!(qualifier_end("ab::"), Some(2));
+        assert_eq!(qualifier_end("a:b:c::d"), Some(5));
+        assert_eq!(qualifier_end(":a:b:c:"), None);
+        assert_eq!(qualifier_end("::::"), Some(0));
+        // every position against the obvious scan
+        for n in 0..10 {
+            for mask in 0u32..(1 << n) {
+                let s: String = (0..n)
+                    .map(|k| if mask & (1 << k) != 0 { ':' } else { 'x' })
+                    .collect();
+                assert_eq!(qualifier_end(&s), s.find("::"), "{s:?}");
+            }
+        }
         assert_eq!(split_qualified("A::b::c"), Some(("A", "b::c")));
         assert_eq!(split_qualified("x"), None);
     }

@@ -623,7 +623,9 @@ impl Core<'_> {
         if next_sib != TokenId::NONE {
             self.tokens[next_sib].prev_sib = prev_sib;
         }
-        self.free_token(am);
+        // (an alpha match carries no logical support)
+        debug_assert!(self.tokens[am].kind == TokenKind::Alpha);
+        self.release_token(am);
     }
 
     /// Empties an alpha memory (used when a rule is removed or a load rolled back).

@@ -44,6 +44,16 @@ impl Core<'_> {
         if self.logical_in_use() {
             self.token_leaves(t);
         }
+        self.release_token(t);
+    }
+
+    /// `free_token` for a token no logical support can hang on and that cannot be the
+    /// firing rule's logical partial match: an alpha match (supports hang on partial
+    /// matches of joins), or any token while truth maintenance is idle
+    /// (`logical_in_use` false, as whole-memory removal requires: `wipe`). Saves the
+    /// truth-maintenance check on the removal paths every retract runs.
+    #[inline(always)]
+    pub(crate) fn release_token(&mut self, t: TokenId) {
         if self.st.net.lhs_of == t {
             self.st.net.lhs_of = TokenId::NONE;
         }

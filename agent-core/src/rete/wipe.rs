@@ -24,16 +24,17 @@ impl Core<'_> {
     /// Before alpha match `am` is removed: if it is its memory's only match, empties the
     /// memories of its positive successor joins and all below them at once.
     pub(crate) fn wipe_successors(&mut self, am: TokenId) {
+        // (first what most removals fail: their memory keeps other matches)
+        let alpha = self.tokens[am].alpha();
+        if self.alpha_mems[alpha as usize].head != am || self.tokens[am].mem_next != TokenId::NONE {
+            return;
+        }
         if self.st.mode.watch & watch::ACTIVATIONS != 0 || self.st.net.owed != TokenId::NONE {
             return;
         }
         // logical support goes partial match by partial match, in CLIPS's order
         #[cfg(feature = "logical")]
         if self.logical_in_use() {
-            return;
-        }
-        let alpha = self.tokens[am].alpha();
-        if self.alpha_mems[alpha as usize].head != am || self.tokens[am].mem_next != TokenId::NONE {
             return;
         }
         let mut j = self.alphas[alpha as usize].succ;
@@ -125,7 +126,10 @@ impl Core<'_> {
             self.remove_activation(a);
         }
         self.beta_index_remove(t);
-        self.free_token(t);
+        // (a wipe runs only while truth maintenance is idle: `wipe_successors`)
+        #[cfg(feature = "logical")]
+        debug_assert!(!self.logical_in_use());
+        self.release_token(t);
     }
 }
 
