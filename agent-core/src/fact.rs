@@ -549,6 +549,23 @@ impl Core<'_> {
     /// multislot's value is a scratch `Multi`). Returns `None` for a duplicate.
     /// Runs the network; on a full pool the fact is removed again and the error returned.
     pub fn assert_slots(&mut self, tmpl: Ix, base: usize) -> Result<Option<Ix>, EvalError> {
+        // until a rule with a `logical` CE exists there is no support to add, check or
+        // retract: one test here instead of one per step (host; the image has no
+        // `logical`)
+        #[cfg(feature = "logical")]
+        if !self.st.logical.defined {
+            return self.assert_slots_in::<false>(tmpl, base);
+        }
+        self.assert_slots_in::<true>(tmpl, base)
+    }
+
+    /// `assert_slots`; `TMS` false: no rule with a `logical` CE exists (feature
+    /// `logical`: then the support steps are left out).
+    fn assert_slots_in<const TMS: bool>(
+        &mut self,
+        tmpl: Ix,
+        base: usize,
+    ) -> Result<Option<Ix>, EvalError> {
         // no pattern matching runs here (asserting during it is refused): the token
         // index may grow now (`grow`), once it has fewer buckets than the token pool
         // has entries (the fixed host engine's ratio, which a seeded start keeps)
@@ -577,7 +594,9 @@ impl Core<'_> {
         }
         // the logical support this assert may add needs an entry
         #[cfg(feature = "logical")]
-        self.support_room()?;
+        if TMS {
+            self.support_room()?;
+        }
         let start = self.reserve_cells(need)?;
         self.write_cells(tmpl, base, start);
         let h = self.cells_hash(tmpl, start, need);
@@ -596,14 +615,16 @@ impl Core<'_> {
             {
                 // no new fact; its support may change (`logical`)
                 #[cfg(feature = "logical")]
-                self.support_existing_fact(d);
+                if TMS {
+                    self.support_existing_fact(d);
+                }
                 return Ok(None);
             }
             d = df.hash_next;
         }
         // a logical rule whose partial match went creates nothing (as CLIPS)
         #[cfg(feature = "logical")]
-        if !self.logical_may_assert() {
+        if TMS && !self.logical_may_assert() {
             return Ok(None);
         }
         // allocate the fact slot
@@ -658,7 +679,9 @@ impl Core<'_> {
         self.note_hw(Pool::Facts, live);
         self.note_hw(Pool::FactValues, self.st.facts.values_top as usize);
         #[cfg(feature = "logical")]
-        self.support_new_fact(slot);
+        if TMS {
+            self.support_new_fact(slot);
+        }
         // an undone assert prints nothing (see `hold`)
         self.hold_traces();
         if self.st.mode.watch & crate::engine::watch::FACTS != 0 {
@@ -689,7 +712,9 @@ impl Core<'_> {
             // (anything that does not fit at once is owed and paid right after).
             self.journal_replay(mark);
             #[cfg(feature = "logical")]
-            self.fact_leaves(slot);
+            if TMS {
+                self.fact_leaves(slot);
+            }
             self.network_retract(slot);
             self.unlink_fact(slot);
             self.free_fact_slot(slot);
@@ -704,7 +729,9 @@ impl Core<'_> {
         self.release_traces(true);
         // the facts whose support the new fact took (blocking a `not`) go now
         #[cfg(feature = "logical")]
-        self.force_logical_retractions();
+        if TMS {
+            self.force_logical_retractions();
+        }
         Ok(Some(slot))
     }
 
@@ -809,11 +836,24 @@ impl Core<'_> {
     /// Retracts a live fact; `hold` keeps its slot and cells readable (pending).
     #[cfg_attr(feature = "host-speedups", inline(always))]
     pub(crate) fn retract_fact_held(&mut self, slot: Ix, hold: bool) {
+        // (as `assert_slots`: no support to drop or retract before a `logical` rule)
+        #[cfg(feature = "logical")]
+        if !self.st.logical.defined {
+            return self.retract_fact_in::<false>(slot, hold);
+        }
+        self.retract_fact_in::<true>(slot, hold)
+    }
+
+    /// `retract_fact_held`; `TMS` as for `assert_slots_in`.
+    #[cfg_attr(feature = "host-speedups", inline(always))]
+    fn retract_fact_in<const TMS: bool>(&mut self, slot: Ix, hold: bool) {
         if self.st.mode.watch & crate::engine::watch::FACTS != 0 {
             self.print_fact_line("<== ", slot);
         }
         #[cfg(feature = "logical")]
-        self.fact_leaves(slot);
+        if TMS {
+            self.fact_leaves(slot);
+        }
         self.network_retract(slot);
         // what the retract unblocked and could not rebuild on a full pool is owed:
         // the tokens the fact itself freed may be enough now
@@ -831,7 +871,9 @@ impl Core<'_> {
         }
         // then the facts it alone supported, and theirs (`logical`)
         #[cfg(feature = "logical")]
-        self.force_logical_retractions();
+        if TMS {
+            self.force_logical_retractions();
+        }
     }
 
     fn release_fact_values(&mut self, slot: Ix) {
