@@ -355,13 +355,14 @@ pub fn main(args: Args) -> ExitCode {
     // (`--large-pools` is the same engine: its pools grow)
     let _ = args.large_pools;
     // a deep stack for deeply nested expressions; only the pages used are touched
-    let storage = match args.pool_limit {
-        Some(n) => cli_storage(Capacities::uniform(n)),
-        None => cli_storage(GrowStorage::NO_LIMIT),
+    let limit = match args.pool_limit {
+        Some(n) => Capacities::uniform(n),
+        None => GrowStorage::NO_LIMIT,
     };
+    // (the storage is made on the engine's thread, after the thread's own allocations)
     let worker = std::thread::Builder::new()
         .stack_size(256 << 20)
-        .spawn(move || session(&mut GrowEngine::with_storage(storage), steps));
+        .spawn(move || session(&mut GrowEngine::with_storage(cli_storage(limit)), steps));
     match worker.map(|w| w.join()) {
         Ok(Ok(code)) => code,
         _ => ExitCode::FAILURE,
