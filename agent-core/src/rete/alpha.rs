@@ -536,6 +536,8 @@ impl Core<'_> {
         r
     }
 
+    /// (Host: inlined into `match_one`, its one caller on the assert path.)
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     fn add_alpha_match(
         &mut self,
         alpha: Ix,

@@ -377,18 +377,21 @@ impl Core<'_> {
             return;
         }
         self.beta_index_remove(t);
-        let tk = self.tokens[t];
-        if tk.mem_prev != TokenId::NONE {
-            self.tokens[tk.mem_prev].mem_next = tk.mem_next;
-        }
-        if tk.mem_next != TokenId::NONE {
-            self.tokens[tk.mem_next].mem_prev = tk.mem_prev;
-        }
+        // one borrow of the pool for the relinking (its address stays in a register
+        // across the stores)
         let head = self.join_mems[join].mem;
-        self.tokens[t].mem_prev = TokenId::NONE;
-        self.tokens[t].mem_next = head;
+        let mut tokens = self.tokens.view();
+        let (prev, next) = (tokens[t].mem_prev, tokens[t].mem_next);
+        if prev != TokenId::NONE {
+            tokens[prev].mem_next = next;
+        }
+        if next != TokenId::NONE {
+            tokens[next].mem_prev = prev;
+        }
+        tokens[t].mem_prev = TokenId::NONE;
+        tokens[t].mem_next = head;
         if head != TokenId::NONE {
-            self.tokens[head].mem_prev = t;
+            tokens[head].mem_prev = t;
         }
         self.join_mems[join].mem = t;
         self.beta_index_insert(t);

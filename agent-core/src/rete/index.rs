@@ -105,19 +105,20 @@ fn beta_tag(join: JoinId, key: u32) -> u32 {
 }
 
 /// The beta buckets of index group `g` in a table of `n` heads: (first, count).
-/// Host: group 0 (each memory's `Join::index_child`) has about half the table's beta
-/// half, the extra groups share the rest; elsewhere group 0 has it all.
+/// Host: group 0 (each memory's `Join::index_child`) has half the table's beta half,
+/// the extra groups share the rest; elsewhere group 0 has it all. Group 0's range is
+/// shifts alone: every indexed insert and removal of a partial match computes it.
 #[inline(always)]
 fn group_range(n: usize, g: usize) -> (usize, usize) {
     let half = n / 2;
     let r = n - half;
     #[cfg(feature = "host-speedups")]
     {
-        let part = r / (2 * XGROUPS);
-        let first = r - XGROUPS * part;
+        let first = r / 2;
         if g == 0 {
             (half, first.max(1))
         } else {
+            let part = (r - first) / XGROUPS;
             (half + first + (g - 1) * part, part)
         }
     }
@@ -948,11 +949,19 @@ impl Core<'_> {
                 self.build_beta_index(parent, ic);
             }
         } else if self.join_mems[parent].xbuilt & (1 << (g - 1)) == 0 {
-            let child = self.join_mems[parent].xkey[g as usize - 1];
-            self.build_group(parent, child, g as usize);
-            self.join_mems[parent].xbuilt |= 1 << (g - 1);
+            self.build_extra_group(parent, g as usize);
         }
         Some(g as usize)
+    }
+
+    /// Host: links every partial match of `parent`'s memory into its extra index
+    /// group `g` (out of line: its caller is on every right activation).
+    #[cfg(feature = "host-speedups")]
+    #[inline(never)]
+    fn build_extra_group(&mut self, parent: JoinId, g: usize) {
+        let child = self.join_mems[parent].xkey[g - 1];
+        self.build_group(parent, child, g);
+        self.join_mems[parent].xbuilt |= 1 << (g - 1);
     }
 
     /// Host: finds or takes the index group for `join` in `parent`'s memory (a
