@@ -1008,14 +1008,28 @@ impl Core<'_> {
     /// Prints a load error in CLIPS's style plus the position line.
     pub fn report_load_error(&mut self, source: &str, text: &str, e: &LoadError) {
         let mut b: TextBuf<4096> = TextBuf::new();
+        if e.capacity.is_some() || e.expected == crate::parser::INPUT_ENDED {
+            self.st.mode.unrecoverable = true;
+        }
+        self.format_load_error(source, text, e, &mut b, true);
+        self.write(router::WERROR, b.as_str());
+    }
+
+    /// A load error's text as `report_load_error` prints it: CLIPS's message and
+    /// construct echo, then (`position`) our position line naming `source`.
+    pub fn format_load_error(
+        &self,
+        source: &str,
+        text: &str,
+        e: &LoadError,
+        b: &mut TextBuf<4096>,
+        position: bool,
+    ) {
         // (a construct's echo names the module it was read into)
         let mut module: TextBuf<64> = TextBuf::new();
         let _ = module.write_str(self.current_module_name());
         let module = module.as_str();
         let tok = text.get(e.start as usize..e.end as usize).unwrap_or("");
-        if e.capacity.is_some() || e.expected == crate::parser::INPUT_ENDED {
-            self.st.mode.unrecoverable = true;
-        }
         if let Some(c) = e.capacity {
             let _ = writeln!(b, "[MEMORY] {c}");
         } else if let LoadDetail::Arity {
@@ -1041,6 +1055,12 @@ impl Core<'_> {
                     "[ARGACCES4] Function {func} expected no more than {max} argument(s)"
                 )
             };
+        } else if let LoadDetail::FunctionArity { nparams, rest } = e.detail {
+            let how = if rest { "at least" } else { "exactly" };
+            let _ = writeln!(
+                b,
+                "[ARGACCES4] Function {tok} expected {how} {nparams} argument(s)"
+            );
         } else if let LoadDetail::UnknownSlot { template } = e.detail {
             let _ = writeln!(
                 b,
@@ -1065,9 +1085,9 @@ impl Core<'_> {
                 let src = upto.get(start..).unwrap_or("");
                 let _ = b.write_str("\nERROR:\n");
                 let _ = if e.construct == "defrule" {
-                    crate::builtins::pretty::write_defrule_upto(src, module, &mut b)
+                    crate::builtins::pretty::write_defrule_upto(src, module, b)
                 } else {
-                    crate::builtins::pretty::write_deffunction_upto(src, module, &mut b)
+                    crate::builtins::pretty::write_deffunction_upto(src, module, b)
                 };
                 let _ = b.write_str("\n   )\n");
             }
@@ -1089,7 +1109,7 @@ impl Core<'_> {
                     "\n[CSTRNCHK1] A literal slot value found in the {command} command"
                 )
             };
-            self.write_restriction(&mut b, what, range, slot);
+            self.write_restriction(b, what, range, slot);
         } else if let LoadDetail::DefaultConstraint {
             attribute,
             what,
@@ -1101,7 +1121,7 @@ impl Core<'_> {
                 b,
                 "\n[CSTRNCHK1] An expression found in the {attribute} attribute"
             );
-            self.write_restriction(&mut b, what, range, slot);
+            self.write_restriction(b, what, range, slot);
         } else if let LoadDetail::PatternConstraint {
             ce,
             what,
@@ -1120,7 +1140,7 @@ impl Core<'_> {
                     "\n[CSTRNCHK1] A literal restriction value found in CE #{ce}"
                 )
             };
-            self.write_restriction(&mut b, what, range, slot);
+            self.write_restriction(b, what, range, slot);
         } else if let LoadDetail::VariableConflict { ce, slot } = e.detail {
             let _ = writeln!(
                 b,
@@ -1226,7 +1246,7 @@ impl Core<'_> {
                 "\n[GLOBLPSR1] \nGlobal variable {tok} was referenced, but is not defined."
             );
             if matches!(e.construct, "defrule" | "deffunction") {
-                self.write_global_echo(&mut b, text, e, whole, module);
+                self.write_global_echo(b, text, e, whole, module);
             }
         } else if let LoadDetail::NotExported {
             module: m,
@@ -1254,7 +1274,7 @@ impl Core<'_> {
             };
             let _ = b.write_str("\nERROR:\n");
             let upto = text.get(..e.end as usize).unwrap_or(text);
-            let _ = crate::builtins::modules::write_defmodule_at(upto, e.start as usize, &mut b);
+            let _ = crate::builtins::modules::write_defmodule_at(upto, e.start as usize, b);
             let _ = b.write_char('\n');
         } else if let LoadDetail::ModuleImportConflict { class, name } = e.detail {
             let _ = writeln!(
@@ -1262,7 +1282,7 @@ impl Core<'_> {
                 "\n[CSTRCPSR3] Cannot define defmodule {tok} because of an import/export conflict caused by the {class} {}.\n\nERROR:",
                 self.sym_text(name)
             );
-            let _ = crate::builtins::modules::write_defmodule_at(text, e.start as usize, &mut b);
+            let _ = crate::builtins::modules::write_defmodule_at(text, e.start as usize, b);
             let _ = b.write_char('\n');
         } else if let LoadDetail::UnboundInLhs { slot, ce, field } = e.detail {
             // a global is named as CLIPS read it, a variable without the stars
@@ -1274,7 +1294,7 @@ impl Core<'_> {
                 ),
                 None => write!(b, "\n[ANALYSIS4] Variable {tok} found in the expression "),
             };
-            let _ = write_enclosing_call(&mut b, text, e.start as usize);
+            let _ = write_enclosing_call(b, text, e.start as usize);
             let _ = write!(b, "\nwas referenced in CE #{ce}");
             let _ = if slot != NONE {
                 write!(b, " slot {}", self.sym_text(slot))
@@ -1284,7 +1304,7 @@ impl Core<'_> {
                 Ok(())
             };
             let _ = writeln!(b, " before being defined.");
-            self.write_global_echo(&mut b, text, e, true, module);
+            self.write_global_echo(b, text, e, true, module);
         } else if e.detail == LoadDetail::MissingName {
             let _ = writeln!(
                 b,
@@ -1335,7 +1355,7 @@ impl Core<'_> {
             let rparen = tok == ")";
             let end = if rparen { e.start } else { e.end };
             let upto = text.get(..end as usize).unwrap_or(text);
-            let _ = crate::builtins::modules::write_defmodule_at(upto, e.start as usize, &mut b);
+            let _ = crate::builtins::modules::write_defmodule_at(upto, e.start as usize, b);
             if rparen {
                 let _ = b.write_str(" )");
             }
@@ -1353,7 +1373,7 @@ impl Core<'_> {
         ) && e.construct == "defrule"
         {
             let _ = b.write_str("\nERROR:\n");
-            let _ = crate::builtins::pretty::write_defrule(text, module, &mut b);
+            let _ = crate::builtins::pretty::write_defrule(text, module, b);
             let _ = b.write_char('\n');
         }
         // CLIPS shows the construct it rejected up to where it stopped reading: a
@@ -1370,7 +1390,7 @@ impl Core<'_> {
         {
             let _ = b.write_str("\nERROR:\n");
             let upto = text.get(..e.echo_end as usize).unwrap_or(text);
-            let _ = crate::builtins::pretty::write_deffacts_upto(upto, module, &mut b);
+            let _ = crate::builtins::pretty::write_deffacts_upto(upto, module, b);
             let _ = b.write_char('\n');
         } else if matches!(
             e.detail,
@@ -1382,12 +1402,12 @@ impl Core<'_> {
         {
             let _ = b.write_str("\nERROR:\n");
             let upto = text.get(..e.echo_end as usize).unwrap_or(text);
-            let _ = crate::builtins::pretty::write_deffunction_upto(upto, module, &mut b);
+            let _ = crate::builtins::pretty::write_deffunction_upto(upto, module, b);
             let _ = b.write_char('\n');
         } else if assert_in_rule {
             let _ = b.write_str("\nERROR:\n");
             let upto = text.get(..e.echo_end as usize).unwrap_or(text);
-            let _ = crate::builtins::pretty::write_defrule_upto(upto, module, &mut b);
+            let _ = crate::builtins::pretty::write_defrule_upto(upto, module, b);
             let _ = b.write_char('\n');
         } else if e.echo_end != 0
             && e.construct == "defrule"
@@ -1397,15 +1417,17 @@ impl Core<'_> {
                     | LoadDetail::MissingFunction
                     | LoadDetail::SequenceOperator { .. }
                     | LoadDetail::Arity { .. }
+                    | LoadDetail::FunctionArity { .. }
+                    | LoadDetail::ArgType { .. }
             )
         {
             // a rule CLIPS stopped reading, in its conditions or its actions
             let _ = b.write_str("\nERROR:\n");
             let upto = text.get(..e.echo_end as usize).unwrap_or(text);
             let _ = if crate::builtins::pretty::has_arrow(upto) {
-                crate::builtins::pretty::write_defrule_upto(upto, module, &mut b)
+                crate::builtins::pretty::write_defrule_upto(upto, module, b)
             } else {
-                crate::builtins::pretty::write_defrule_lhs_upto(upto, module, &mut b)
+                crate::builtins::pretty::write_defrule_lhs_upto(upto, module, b)
             };
             let _ = b.write_char('\n');
         } else if e.echo_end != 0
@@ -1415,11 +1437,14 @@ impl Core<'_> {
                 LoadDetail::MissingFunction
                     | LoadDetail::SequenceOperator { .. }
                     | LoadDetail::Arity { .. }
+                    | LoadDetail::FunctionArity { .. }
+                    | LoadDetail::ArgType { .. }
+                    | LoadDetail::ReplacesBuiltin
             )
         {
             let _ = b.write_str("\nERROR:\n");
             let upto = text.get(..e.echo_end as usize).unwrap_or(text);
-            let _ = crate::builtins::pretty::write_deffunction_upto(upto, module, &mut b);
+            let _ = crate::builtins::pretty::write_deffunction_upto(upto, module, b);
             let _ = b.write_char('\n');
         } else if e.echo_end != 0
             && e.construct != "defglobal"
@@ -1437,19 +1462,20 @@ impl Core<'_> {
                 e.echo_end as usize,
                 e.echo_tail,
                 module,
-                &mut b,
+                b,
             );
             let _ = b.write_char('\n');
         }
-        let _ = writeln!(
-            b,
-            "--> {}:{}:{}: expected {}",
-            source,
-            e.line + self.st.io.line_base,
-            e.col,
-            e.expected
-        );
-        self.write(router::WERROR, b.as_str());
+        if position {
+            let _ = writeln!(
+                b,
+                "--> {}:{}:{}: expected {}",
+                source,
+                e.line + self.st.io.line_base,
+                e.col,
+                e.expected
+            );
+        }
     }
 
     /// Loads constructs from text (`load`): constructs before a bad one stay.

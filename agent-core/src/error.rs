@@ -702,6 +702,15 @@ pub enum LoadDetail {
     NotImplemented {
         what: &'static str,
     },
+    /// `[ARGACCES4]` for a call of a deffunction (its name is the offending token):
+    /// `nparams` arguments expected, or at least that many (`rest`).
+    FunctionArity {
+        nparams: u8,
+        rest: bool,
+    },
+    /// Not an error: `check-syntax` read the construct whole and it stops before
+    /// defining it (the parser's `check_only` mode); it rolls back as an error does.
+    Checked,
 }
 
 impl fmt::Display for LoadError {

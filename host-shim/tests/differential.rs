@@ -398,6 +398,8 @@ differential_programs! {
     p320_arity_errors_in_constructs => "320-arity-errors-in-constructs",
     p321_breakpoints => "321-breakpoints",
     p322_save => "322-save",
+    p350_check_syntax => "350-check-syntax",
+    p351_parse_time_argument_checks => "351-parse-time-argument-checks",
     p281_modules_defglobals => "281-modules-defglobals",
     p282_modules_import_conflicts => "282-modules-import-conflicts",
     p283_modules_get_lists => "283-modules-get-lists",

@@ -310,6 +310,7 @@ const RESTRICTIONS: &[(&str, &str)] = &[
     ("bind", "0**"),
     ("break", "0**"),
     ("build", "11k"),
+    ("check-syntax", "11s"),
     ("clear", "00"),
     ("clear-focus-stack", "00"),
     ("close", "*1"),

@@ -45,6 +45,7 @@ pub mod pretty;
 pub mod queries;
 pub mod random;
 pub mod strings;
+pub mod syntax;
 pub mod template_slots;
 
 use crate::engine::Core;
@@ -196,6 +197,7 @@ pub const TABLES: &[Table] = &[
     modules::TABLE,
     IO_TABLE,
     environment::TABLE,
+    syntax::TABLE,
 ];
 
 /// The I/O functions (`io`): only with the feature `parser`, like the other builtins

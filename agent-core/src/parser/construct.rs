@@ -154,6 +154,9 @@ impl<'s> Parser<'s, '_, '_> {
                 _ => return Err(self.err(t, "'(' starting a slot or ')'")),
             }
         }
+        if self.check_only {
+            return Err(self.checked(nt));
+        }
         self.cx.templates[n] = Template {
             name: sym,
             first_slot,
@@ -206,6 +209,9 @@ impl<'s> Parser<'s, '_, '_> {
                 }
                 _ => return Err(self.err(t, "'(' starting a fact or ')'")),
             }
+        }
+        if self.check_only {
+            return Err(self.checked(nt));
         }
         // a redefinition replaces the old deffacts and, as in CLIPS, moves it last
         // (which orders the facts `reset` asserts)
@@ -272,6 +278,8 @@ impl<'s> Parser<'s, '_, '_> {
         {
             let mut e = self.err(nt, "a name that is not a builtin function");
             e.detail = LoadDetail::ReplacesBuiltin;
+            // CLIPS shows the deffunction up to the token after the name
+            e.echo_end = self.peek().end as u32;
             return Err(e);
         }
         let sym = cap!(self, self.cx.intern(name))?;
@@ -348,12 +356,15 @@ impl<'s> Parser<'s, '_, '_> {
         let body = self.body_block();
         self.defining_fn = NONE;
         let body = match body {
-            Ok(b) => b,
-            Err(e) => {
+            Ok(b) if !self.check_only => b,
+            r => {
                 if existing.is_some() {
                     self.cx.funcs[f as usize] = old;
                 }
-                return Err(e);
+                return Err(match r {
+                    Err(e) => e,
+                    Ok(_) => self.checked(nt),
+                });
             }
         };
         let nlocals = self.nlocals.min(255) as u8;
@@ -424,6 +435,7 @@ impl<'s> Parser<'s, '_, '_> {
         loop {
             let t = self.next();
             match t.tok {
+                Tok::RParen if self.check_only => return Err(self.checked(t)),
                 Tok::RParen => return Ok(()),
                 Tok::Global(name) => {
                     let eq = self.next();
@@ -448,6 +460,10 @@ impl<'s> Parser<'s, '_, '_> {
                         .import_conflict(crate::module::class::GLOBAL, here, sym)
                     {
                         return Err(self.import_conflict(t, "defglobal"));
+                    }
+                    // (check-syntax evaluates no value, as CLIPS)
+                    if self.check_only {
+                        continue;
                     }
                     let existing = self.cx.global_of_module(sym, here);
                     // a full pool fails before the evaluation, whose effects would stay

@@ -306,12 +306,7 @@ impl<'s> Parser<'s, '_, '_> {
                 if self.expands(call, None)? {
                     return Ok(call);
                 }
-                let df = self.cx.funcs[f as usize];
-                if f != self.defining_fn
-                    && (n < df.nparams as Ix || (!df.rest && n > df.nparams as Ix))
-                {
-                    return Err(self.err(nt, "the deffunction's number of arguments"));
-                }
+                self.check_function_arity(nt, f, n)?;
                 return Ok(call);
             }
             if let Some(x) = (0..self.cx.st.pools.nexternals)
@@ -383,7 +378,12 @@ impl<'s> Parser<'s, '_, '_> {
             None if self.defining_fn != NONE && self.is_defining(name) => {
                 let f = self.defining_fn;
                 let call = self.push_call(FnKind::Deffunction, f)?;
-                self.args_until_rparen(call)?;
+                let n = self.args_until_rparen(call)?;
+                #[cfg(feature = "extras")]
+                if self.expands(call, None)? {
+                    return Ok(call);
+                }
+                self.check_function_arity(nt, f, n)?;
                 Ok(call)
             }
             None => {
@@ -426,6 +426,10 @@ impl<'s> Parser<'s, '_, '_> {
                     arg: k as Ix + 1,
                     expected: ty.clips_name(),
                 };
+                // a rule or deffunction is shown up to the call's `)`
+                if matches!(self.construct, "defrule" | "deffunction") {
+                    e.echo_end = self.lex.pos() as u32;
+                }
                 return Err(e);
             }
             c = self.cx.exprs[c as usize].next;
@@ -575,6 +579,28 @@ impl<'s> Parser<'s, '_, '_> {
         #[cfg(feature = "extras")]
         self.refuse_expansions(p, "progn")?;
         Ok(p)
+    }
+
+    /// CLIPS's `[ARGACCES4]` for a call of deffunction `f` with `n` arguments (the
+    /// one being defined too: its parameters are read before its body), the
+    /// construct shown up to the call's `)`.
+    fn check_function_arity(&mut self, nt: Token<'s>, f: Ix, n: Ix) -> PResult<()> {
+        let df = self.cx.funcs[f as usize];
+        if n >= df.nparams as Ix && (df.rest || n <= df.nparams as Ix) {
+            return Ok(());
+        }
+        let mut e = self.err(nt, "the deffunction's number of arguments");
+        e.detail = crate::error::LoadDetail::FunctionArity {
+            nparams: df.nparams,
+            rest: df.rest,
+        };
+        if matches!(
+            self.construct,
+            "defrule" | "deffunction" | "deftemplate" | "deffacts"
+        ) {
+            e.echo_end = self.lex.pos() as u32;
+        }
+        Err(e)
     }
 
     fn is_defining(&mut self, name: &str) -> bool {

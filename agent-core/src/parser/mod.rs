@@ -111,6 +111,11 @@ pub struct Parser<'s, 'c, 'e> {
     /// module of the name sees is read by its name (`[GLOBLDEF1]` when still unseen
     /// as it runs), as CLIPS reads it.
     pub evaluated_now: bool,
+    /// `check-syntax`: a construct read whole stops before it is defined, with a
+    /// [`LoadDetail::Checked`](crate::error::LoadDetail::Checked) "error" (rolled
+    /// back: nothing stays, no old construct is replaced); a defglobal's values are not
+    /// evaluated.
+    pub check_only: bool,
     /// CLIPS's specificity of the rule (disjunct) being read (see `rule::Complexity`).
     pub complexity: u16,
     /// Where a failure of the current construct rolls back to when not to its start:
@@ -170,6 +175,7 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
             ce_count: 0,
             lhs_field: 0,
             evaluated_now: false,
+            check_only: false,
             complexity: 0,
             rule_base: 0,
             replacing: NONE,
@@ -228,6 +234,15 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
             detail: crate::error::LoadDetail::Syntax,
             echo_end: 0,
             echo_tail: crate::error::EchoTail::Normal,
+        }
+    }
+
+    /// `check_only` mode's end of a construct read without errors (see
+    /// [`Parser::check_only`]).
+    pub fn checked(&self, at: Token<'s>) -> LoadError {
+        LoadError {
+            detail: crate::error::LoadDetail::Checked,
+            ..self.err(at, "nothing (the syntax was only checked)")
         }
     }
 

@@ -59,6 +59,9 @@ impl<'s> Parser<'s, '_, '_> {
                 _ => return Err(self.err(t, "'(' opening an import or export specification")),
             }
         }
+        if self.check_only {
+            return Err(self.checked(nt));
+        }
         let text = self.pp_text(start);
         let old = self.cx.modules[slot as usize];
         self.cx.modules[slot as usize] = Module {

@@ -292,6 +292,9 @@ impl<'s> Parser<'s, '_, '_> {
                 break;
             }
         }
+        if self.check_only {
+            return Err(self.checked(nt));
+        }
         // source text for ppdefrule, unless the host chose to drop pretty-print forms
         if self.cx.st.mode.keep_pp_forms {
             let end = self.lex.pos();
