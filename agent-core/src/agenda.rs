@@ -265,11 +265,11 @@ impl Core<'_> {
         let _ = self.focused_head();
     }
 
-    /// Takes the top activation off the agenda (it fires; refraction keeps it gone).
-    pub(crate) fn pop_activation(&mut self) -> Option<(Ix, TokenId)> {
-        // the first activation of the focused module's agenda (the agenda is one list
-        // in CLIPS's order: each module's agenda is its activations in that order); a
-        // module with none leaves the focus stack
+    /// The activation that fires next, if any: the first of the focused module's
+    /// agenda (the agenda is one list in CLIPS's order: each module's agenda is its
+    /// activations in that order); a module with none leaves the focus stack.
+    #[inline]
+    fn next_activation(&mut self) -> Option<Ix> {
         #[cfg(feature = "modules")]
         let a = match self.single_module_head() {
             Some(a) => a,
@@ -277,9 +277,12 @@ impl Core<'_> {
         };
         #[cfg(not(feature = "modules"))]
         let a = self.st.agenda.agenda_head;
-        if a == NONE {
-            return None;
-        }
+        (a != NONE).then_some(a)
+    }
+
+    /// Takes the top activation off the agenda (it fires; refraction keeps it gone).
+    pub(crate) fn pop_activation(&mut self) -> Option<(Ix, TokenId)> {
+        let a = self.next_activation()?;
         let x = self.acts[a as usize];
         self.agenda_unlink(a);
         self.free_activation(a);
@@ -290,14 +293,8 @@ impl Core<'_> {
     /// none leaves the focus stack, as there).
     #[cfg(feature = "extras")]
     pub(crate) fn next_activation_rule(&mut self) -> Option<Ix> {
-        #[cfg(feature = "modules")]
-        let a = match self.single_module_head() {
-            Some(a) => a,
-            None => self.focused_head()?,
-        };
-        #[cfg(not(feature = "modules"))]
-        let a = self.st.agenda.agenda_head;
-        (a != NONE).then(|| self.acts[a as usize].rule)
+        let a = self.next_activation()?;
+        Some(self.acts[a as usize].rule)
     }
 
     /// The agenda's head when MAIN is the only module and focused: every activation is

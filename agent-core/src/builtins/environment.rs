@@ -718,17 +718,26 @@ fn timer(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     Ok(Value::Float(cx.host.time() - start))
 }
 
-/// `(set-break RULE)`: a run stops before firing the rule (unless it fires first).
+/// The name of the rule `set-break`/`remove-break` name in their argument, or None
+/// (CLIPS's "Unable to find defrule" printed when there is no such rule).
 #[cfg(feature = "extras")]
-fn set_break(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+fn break_rule(cx: &mut Core<'_>, a: Args) -> Option<crate::value::SymId> {
     let Value::Sym(name) = cx.arg(a, 0) else {
-        return Ok(Value::Void);
+        return None;
     };
     let Some(r) = super::commands::find_rule(cx, name) else {
         super::commands::unable(cx, super::commands::Unable::Find, "defrule", name);
+        return None;
+    };
+    Some(cx.rules[r as usize].name)
+}
+
+/// `(set-break RULE)`: a run stops before firing the rule (unless it fires first).
+#[cfg(feature = "extras")]
+fn set_break(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let Some(rule) = break_rule(cx, a) else {
         return Ok(Value::Void);
     };
-    let rule = cx.rules[r as usize].name;
     if !cx.st.breaks.add(rule) {
         let mut b: TextBuf<120> = TextBuf::new();
         let _ = writeln!(
@@ -749,14 +758,9 @@ fn remove_break(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         cx.st.breaks = crate::engine::Breaks::new();
         return Ok(Value::Void);
     }
-    let Value::Sym(name) = cx.arg(a, 0) else {
+    let Some(rule) = break_rule(cx, a) else {
         return Ok(Value::Void);
     };
-    let Some(r) = super::commands::find_rule(cx, name) else {
-        super::commands::unable(cx, super::commands::Unable::Find, "defrule", name);
-        return Ok(Value::Void);
-    };
-    let rule = cx.rules[r as usize].name;
     if !cx.st.breaks.remove(rule) {
         let mut b: TextBuf<160> = TextBuf::new();
         let _ = writeln!(
