@@ -10,7 +10,9 @@
 //! `&:(...)` predicates or `(test ...)` CEs. Everything else keeps the evaluator.
 //!
 //! Exactness: the plan runs the tests in the evaluator's order with its
-//! short-circuits, and the comparisons are the builtins' own (`basic::compare`,
+//! short-circuits (except that within an `and`, an error-free `?x | ?y` goes before
+//! the error-free tests next to it: see `PlanBuild::selective_first`),
+//! and the comparisons are the builtins' own (`basic::compare`,
 //! `values_same`, wrapping integer `+`/`-`). Wherever the evaluator could report an
 //! error or take another path (an unbound pattern, a multifield, a non-number for a
 //! numeric test, a float in arithmetic, a zero divisor), the plan answers None before any result is
@@ -86,7 +88,8 @@ enum Node {
         b: (u8, u8),
         negated: bool,
     },
-    /// All of `kids[first..first + len]` (short-circuit, in order).
+    /// All of `kids[first..first + len]` (short-circuit, in order; the planner puts
+    /// members that mostly fail first where that changes no result).
     And { first: u8, len: u8 },
     /// Any of `kids[first..first + len]` (short-circuit, in order).
     Or { first: u8, len: u8 },
@@ -235,6 +238,74 @@ impl PlanBuild {
         }
         self.kids_used += len as u8;
         Some(first as u8)
+    }
+}
+
+impl PlanBuild {
+    /// How node `n` may be reordered among the members of an `and`: None when it
+    /// could make the evaluator report an error (a numeric comparison, arithmetic),
+    /// else its class: 0 a test that mostly fails (`?x | ?y`: an `or` of
+    /// equalities), 1 any other (`~?x` mostly passes; a single equality may be the
+    /// join's hash key, which its candidates pass). `eq`/`neq` of single-field
+    /// slots, elements and constants never report an error.
+    fn order_class(&self, n: u8) -> Option<u8> {
+        let plain = |s: Source| !matches!(s, Source::Arith { .. } | Source::SlotPlus { .. });
+        match self.nodes[n as usize] {
+            Node::SameSlots { .. } => Some(1),
+            Node::Cmp { id, a, b } if plain(a) && plain(b) => match Ix::from(id) {
+                FN_EQ | FN_NEQ => Some(1),
+                _ => None,
+            },
+            Node::Or { first, len } => {
+                let mut all_eq = true;
+                for &k in &self.kids[first as usize..(first + len) as usize] {
+                    self.order_class(k)?;
+                    all_eq &= self.is_equality(k);
+                }
+                Some(u8::from(!all_eq))
+            }
+            Node::And { first, len } => {
+                for &k in &self.kids[first as usize..(first + len) as usize] {
+                    self.order_class(k)?;
+                }
+                Some(1)
+            }
+            Node::Not { child } => self.order_class(child).map(|_| 1),
+            _ => None,
+        }
+    }
+
+    /// Node `n` is an `eq` of two operands.
+    fn is_equality(&self, n: u8) -> bool {
+        match self.nodes[n as usize] {
+            Node::SameSlots { negated, .. } => !negated,
+            Node::Cmp { id, .. } => Ix::from(id) == FN_EQ,
+            _ => false,
+        }
+    }
+
+    /// Puts the members of an `and` that mostly fail (`order_class` 0) first,
+    /// within each run of members that report no error (stable; a member that may
+    /// report one keeps every member on its side). The members are side-effect free
+    /// and error-free there, so their order changes no result; a member that answers
+    /// None sends the whole test to the evaluator, which runs them in source order.
+    fn selective_first(&self, members: &mut [u8]) {
+        let mut i = 0;
+        while i < members.len() {
+            let start = i;
+            while i < members.len() && self.order_class(members[i]).is_some() {
+                i += 1;
+            }
+            // insertion sort by class (stable): runs are a few members long
+            for j in start + 1..i {
+                let mut k = j;
+                while k > start && self.order_class(members[k - 1]) > self.order_class(members[k]) {
+                    members.swap(k - 1, k);
+                    k -= 1;
+                }
+            }
+            i += 1;
+        }
     }
 }
 
@@ -541,6 +612,9 @@ impl Core<'_> {
         }
         if len == 1 {
             return Some(members[0]);
+        }
+        if let Chain::And = chain {
+            plan.selective_first(&mut members[..len]);
         }
         let start = plan.reserve_kids(len)?;
         plan.kids[start as usize..start as usize + len].copy_from_slice(&members[..len]);
