@@ -3,7 +3,7 @@
 ;;; A T3 works 50 s on its last input.  The instant simulation charges that wait
 ;;; to the clock; a robot on the field need not stand there meanwhile.  `run`
 ;;; loads this file after the agent (the instant simulation and the image do
-;;; not): the last input of a known T3 becomes a `feed` skill, which leaves the
+;;; not): a puck for a known T3 goes in by a `feed` skill, which leaves the
 ;;; puck under the machine's light once the machine works on it (outcome FINAL,
 ;;; light yellow, info processing).  The robot then believes the machine full
 ;;; (all three inputs, so no candidate rule picks it) with its two junk pucks
@@ -14,20 +14,25 @@
 ;;; team-done-with), so nobody else loads M or takes what lies there.
 
 (defrule feed-last-input-of-t3
-  "The committed puck completes a known T3: feed it and leave."
+  "A puck for a known T3: feed it, and leave if it completes the T3.  Also
+   when the robot believes inputs missing: a feed the machine only takes ends
+   as finish-puck-at does, and a teammate's puck (or one lost there by a
+   robot passing by) may have completed the machine unknown to this robot
+   (seed 80 with one robot killed: an S0 believed the second input was the
+   third, and the robot stood 61 s under the light)."
   (declare (salience (+ ?*PRIORITY_EXEC* 1)))
   (state IDLE)
   ?i <- (intent (action finish-puck-at) (target ?m))
   (holding ?x)
   (machine (name ?m) (mtype T3)
-    (loaded-with $?lw&:(= (length$ ?lw) 2)&:(not (member$ ?x ?lw))))
+    (loaded-with $?lw&:(not (member$ ?x ?lw))))
   (not (output-at ?m ?))
   =>
   (modify ?i (action feed)))
 
 (defrule exec-feed-left-processing
   "The T3 works on the last input, left there: it made a P (collected later)
-   and its other two inputs are junk."
+   and its other two inputs are junk (whatever the robot believed loaded)."
   (declare (salience (+ ?*PRIORITY_EXEC* 1)))
   ?s <- (state EXEC)
   ?r <- (skill-request (id ?id) (name feed) (target ?m))
@@ -37,7 +42,7 @@
   ?p <- (robot-at ?)
   =>
   (retract ?s ?r ?o ?h ?p)
-  (modify ?f (mtype T3) (loaded-with ?lw ?x) (junk (+ ?j (length$ ?lw)))
+  (modify ?f (mtype T3) (loaded-with S0 S1 S2) (junk (+ ?j 2))
           (productions (+ ?n 1)))
   (assert (state IDLE) (holding NONE) (robot-at ?m) (output-at ?m P)))
 
