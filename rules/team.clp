@@ -1,7 +1,8 @@
 ;;; team.clp -- the team's claims on shared resources, one engine per robot.
 ;;;
-;;; A machine (M1..M10), the input storage (INS) and a delivery gate (D1..D3)
-;;; are resources.  A robot that wants one asserts (team-want (resource X)); it
+;;; A machine (M1..M10), a delivery gate (D1..D3) and a recycling unit (R1, R2)
+;;; are resources (team-agent.clp; the input storage is not: each robot has
+;;; its own spot there).  A robot that wants one asserts (team-want (resource X)); it
 ;;; holds X while it has a (team-claim (resource X) (until U)) with U later than
 ;;; its own (team-clock (now)).  Claims are leases granted by a majority of the
 ;;; team: every robot is a voter that gives its vote for X to one robot at a

@@ -516,11 +516,11 @@ mod tests {
         });
     }
 
-    /// Two robots of a team want the input storage at once: their rules settle who
-    /// fetches first over messages delivered a step later, never both hold it, and the
-    /// other fetches once the first is done with it.
+    /// Two robots of a team start at the input storage: each takes its raw pucks at its
+    /// own spot there, so neither claims the storage and both fetch at once (claimed as
+    /// one place, it kept robots waiting for each other at the start).
     #[test]
-    fn team_agents_take_turns_at_a_shared_place() {
+    fn team_agents_fetch_raw_pucks_at_once() {
         on_engine_stack(|| {
             let seat = |id| {
                 Some(TeamSeat {
@@ -554,18 +554,12 @@ mod tests {
                     in_flight.extend(a.team_outbox().unwrap_or_else(|e| panic!("{e}")));
                     let chosen = a.take_request().unwrap_or_else(|e| panic!("{e}"));
                     if let Some(c) = chosen.filter(|c| c.request == SkillRequest::GetS0) {
-                        assert!(a.team_holds().contains(&"INS".to_string()));
+                        assert!(!a.team_holds().contains(&"INS".to_string()));
                         fetches.push((me, now));
-                        // Fetched at once; the outcome frees the storage.
                         a.report(c.id, SkillOutcome::Final(Perception::GotS0))
                             .unwrap_or_else(|e| panic!("{e}"));
                     }
                 }
-                let holders = robots
-                    .iter()
-                    .filter(|a| a.team_holds().contains(&"INS".to_string()))
-                    .count();
-                assert!(holders <= 1, "two robots hold INS at {now} s");
                 if fetches.len() >= 2 {
                     break;
                 }
@@ -573,7 +567,7 @@ mod tests {
             let who: Vec<u8> = fetches.iter().map(|f| f.0).collect();
             assert_eq!(who.len(), 2, "{fetches:?}");
             assert_ne!(who[0], who[1], "{fetches:?}");
-            assert!(fetches[1].1 < 10.0, "{fetches:?}");
+            assert!(fetches[1].1 < 0.5, "{fetches:?}");
         });
     }
 

@@ -400,8 +400,10 @@ impl TeamPlayer {
                         b.stats.skills += 1;
                         b.last_event = t;
                         last_progress = t;
-                        // Double claims: another robot's skill at the same place now.
-                        if target != "R1" && target != "R2" {
+                        // Double claims: another robot's skill at the same place now (not
+                        // at the input storage, where each robot has its own spot, as on
+                        // the field: rules/team-agent.clp does not claim it).
+                        if !matches!(target.as_str(), "R1" | "R2" | "INS") {
                             let clash = bodies_at(&bodies, &target, i);
                             record.double_claims += clash;
                         }
