@@ -313,6 +313,48 @@
   (do-for-all-facts ((?o team-s0-of)) (= ?o:robot ?f) (retract ?o))
   (assert (team-s0-of (robot ?f) (taken ?k))))
 
+;;; A get-s0 that found no puck at the robot's spot (team seed 42: robot 3,
+;;; stopped off its spot after a failed drive at the storage, believed it empty
+;;; at 329 s and went without raw pucks for the rest of the game while the
+;;; others took 8 more) is doubted while the team's count says raw pucks
+;;; remain: after ?*TEAM_STORAGE_RECHECK_S* the storage is believed full again,
+;;; at most ?*TEAM_STORAGE_DOUBTS* times a game (a count short of lost news, or
+;;; of a dead robot's last pucks, costs no more than that many tries).
+
+(defglobal
+  ?*TEAM_STORAGE_RECHECK_S* = 20   ; s after an empty storage before it is doubted
+  ?*TEAM_STORAGE_DOUBTS* = 2)      ; doubts per game
+
+(deffacts team-storage-start
+  (team-storage-doubts 0))
+
+(defrule team-storage-empty-noted
+  "The storage seemed empty: note when."
+  (declare (salience ?*PRIORITY_TEAM_AGENT*))
+  (input-storage empty)
+  (team-clock (now ?t))
+  (not (team-storage-empty-since ?))
+  =>
+  (assert (team-storage-empty-since ?t)))
+
+(defrule team-storage-empty-doubted
+  "The storage seemed empty a while ago, but fewer raw pucks than the supply
+   were taken, as far as the team told: believe it full again (a robot done
+   for want of pucks plays again)."
+  (declare (salience ?*PRIORITY_TEAM_AGENT*))
+  ?e <- (input-storage empty)
+  ?f <- (team-storage-empty-since ?t0)
+  (team-clock (now ?t&:(>= ?t (+ ?t0 ?*TEAM_STORAGE_RECHECK_S*))))
+  ?d <- (team-storage-doubts ?k&:(< ?k ?*TEAM_STORAGE_DOUBTS*))
+  (s0-supply ?n)
+  (test (< (team-s0-taken) ?n))
+  =>
+  (retract ?e ?f ?d)
+  (assert (team-storage-doubts (+ ?k 1)))
+  (do-for-fact ((?s state)) (eq (nth$ 1 ?s:implied) DONE)
+    (retract ?s)
+    (assert (state IDLE))))
+
 (defrule team-news-storage-send
   "Done at the input storage: tell the team how many raw pucks this robot took."
   (declare (salience (+ ?*PRIORITY_CANDIDATE* 6)))
