@@ -532,6 +532,10 @@ pub struct Caches {
     /// tests `test_plans` cannot hold (host only: the image keeps its RAM).
     #[cfg(feature = "host-speedups")]
     pub compiled_plans: crate::rete::TestPlans,
+    /// Host: the next memory-order stamp of a match of an alpha node with an
+    /// or-lookup field (`rete::index`; saturates, and then or-lookups stop).
+    #[cfg(feature = "host-speedups")]
+    pub or_stamp: u32,
 }
 
 impl Caches {
@@ -542,6 +546,8 @@ impl Caches {
             test_plans: [crate::rete::TestPlan::NONE; crate::rete::TEST_PLANS],
             #[cfg(feature = "host-speedups")]
             compiled_plans: crate::rete::TestPlans::EMPTY,
+            #[cfg(feature = "host-speedups")]
+            or_stamp: 0,
         }
     }
 }

@@ -418,4 +418,5 @@ differential_programs! {
     p341_globals_read_when_run => "341-globals-read-when-run",
     p291_arith_join_tests => "291-arith-join-tests",
     p370_join_test_order => "370-join-test-order",
+    p410_or_lookups => "410-or-lookups",
 }

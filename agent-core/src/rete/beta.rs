@@ -463,6 +463,26 @@ impl Core<'_> {
         let kind = self.joins[join].kind;
         match kind {
             JoinKind::Positive => {
+                // host: `?a | ?b` on a field the alpha node is indexed on
+                #[cfg(feature = "host-speedups")]
+                if self.alphas[self.joins[join].alpha as usize].nrhash == 0 {
+                    if let Some(mut cur) = self.or_lookup(join, left) {
+                        let (tests, depth) = self.join_test_fields(join);
+                        let mut planned = false;
+                        loop {
+                            let a = self.or_next(&mut cur);
+                            if a == TokenId::NONE {
+                                break;
+                            }
+                            if self.join_test_with(join, tests, depth, left, a, &mut planned)? {
+                                let t = self.link_token(join, left, a)?;
+                                self.propagate_in(t, join)?;
+                                planned = false;
+                            }
+                        }
+                        return Ok(());
+                    }
+                }
                 let (mut a, hashed) = self.first_candidate(join, left);
                 // host: see `find_blocker`
                 #[cfg(feature = "host-speedups")]

@@ -63,6 +63,36 @@ impl KeyPlan {
     };
 }
 
+/// How many of an indexed alpha node's `rhash` fields its key hashes: its right
+/// hash, or (`nrhash` 0) the one field of its or-lookups.
+#[inline(always)]
+fn key_fields(n: &super::AlphaNode) -> usize {
+    if n.nrhash > 0 {
+        n.nrhash as usize
+    } else {
+        1
+    }
+}
+
+/// Host: at most this many buckets for one or-lookup (distinct alternatives).
+#[cfg(feature = "host-speedups")]
+pub const OR_WAYS: usize = 4;
+
+/// Host: the values an `?a | ?b` join test lets a field take (`Core::or_values`).
+#[cfg(feature = "host-speedups")]
+pub(crate) struct OrValues {
+    vals: [Value; OR_WAYS],
+    n: usize,
+}
+
+/// Host: an or-lookup in progress (`Core::or_lookup`): the next match of each of
+/// its buckets (NONE when done) and the alpha node they are of.
+#[cfg(feature = "host-speedups")]
+pub(crate) struct OrCursor {
+    heads: [TokenId; OR_WAYS],
+    alpha: Ix,
+}
+
 fn mix(h: u32, x: u32) -> u32 {
     (h ^ x).wrapping_mul(0x9E37_79B1).rotate_left(13)
 }
@@ -182,7 +212,7 @@ impl Core<'_> {
         self.st.net.this_pm = b;
         let n = self.alphas[alpha as usize];
         let mut key = 0x5bd1_e995u32;
-        for &e in &n.rhash[..n.nrhash as usize] {
+        for &e in &n.rhash[..key_fields(&n)] {
             let x = self.exprs[e as usize];
             // an unreadable field hashes as nothing; the join tests decide anyway
             let v = self
@@ -351,18 +381,205 @@ impl Core<'_> {
     fn quick_alpha_key(&self, alpha: Ix, fact: Ix) -> Option<u32> {
         let n = &self.alphas[alpha as usize];
         let mut key = 0x5bd1_e995u32;
-        for &e in &n.rhash[..n.nrhash as usize] {
+        for &e in &n.rhash[..key_fields(n)] {
             let v = self.plain_slot_value(fact, &self.exprs[e as usize])?;
             key = mix(key, atom_hash(v));
         }
         Some(key)
     }
 
+    /// Whether alpha node `alpha`'s matches are in the index: it has a right hash,
+    /// or (host) an or-lookup field (`compile::alpha` `or_field`).
+    #[inline(always)]
+    pub(crate) fn alpha_indexed(&self, alpha: Ix) -> bool {
+        let n = &self.alphas[alpha as usize];
+        #[cfg(feature = "host-speedups")]
+        let indexed = n.nrhash > 0 || n.rhash[0] != NONE;
+        #[cfg(not(feature = "host-speedups"))]
+        let indexed = n.nrhash > 0;
+        indexed
+    }
+
+    /// When test `t` of a join at pattern `depth` is `?a | ?b ...`, an or of
+    /// equalities of one plain single-field slot of that pattern with plain slots of
+    /// earlier patterns: the expression reading that slot (its first member's).
+    pub(crate) fn or_of_equalities(&self, t: Ix, depth: u8) -> Option<Ix> {
+        let x = self.exprs[t as usize];
+        if x.op != Op::Or || x.first == NONE {
+            return None;
+        }
+        let mut field = NONE;
+        let mut c = x.first;
+        while c != NONE {
+            let e = self.exprs[c as usize];
+            if e.op != Op::Eq2 || e.first == NONE {
+                return None;
+            }
+            let this = self.exprs[e.first as usize];
+            if this.op != Op::PatVar
+                || this.aux != depth
+                || this.first != NONE
+                || this.data == loc::FACT
+                || this.next == NONE
+            {
+                return None;
+            }
+            let o = self.exprs[this.next as usize];
+            if o.op != Op::PatVar || o.aux >= depth || o.first != NONE || o.data == loc::FACT {
+                return None;
+            }
+            if field == NONE {
+                field = e.first;
+            } else if self.exprs[field as usize].data != this.data {
+                return None;
+            }
+            c = e.next;
+        }
+        Some(field)
+    }
+
+    /// Whether test `t` reports no error whatever the fact: `eq` of pattern
+    /// variables and constants, and `and`/`or`/`not` of such tests.
+    #[cfg(feature = "host-speedups")]
+    fn error_free(&self, t: Ix) -> bool {
+        let x = self.exprs[t as usize];
+        match x.op {
+            Op::Eq2 | Op::And | Op::Or | Op::Not => {
+                let mut c = x.first;
+                while c != NONE {
+                    let e = self.exprs[c as usize];
+                    let ok = match e.op {
+                        Op::PatVar | Op::Sym | Op::Str | Op::Int | Op::Float => x.op == Op::Eq2,
+                        _ => x.op != Op::Eq2 && self.error_free(c),
+                    };
+                    if !ok {
+                        return false;
+                    }
+                    c = e.next;
+                }
+                true
+            }
+            _ => false,
+        }
+    }
+
+    /// Host: for a left token `left` of `join`, the first of the join's tests that
+    /// is `?a | ?b ...` (`or_of_equalities`; on field `want` unless NONE) with only
+    /// error-free tests before it: the values the field must equal (one per
+    /// alternative, read from `left`'s facts). A candidate whose field equals none of
+    /// them fails the join's tests, having run only tests that report nothing, so it
+    /// may be skipped unseen (CLIPS reports the same errors). None: no such test, or
+    /// a value that is not a plain single field, or more than `OR_WAYS` alternatives.
+    #[cfg(feature = "host-speedups")]
+    pub(crate) fn or_values(&mut self, join: JoinId, left: TokenId, want: Ix) -> Option<OrValues> {
+        let (depth, tests) = {
+            let j = &self.joins[join];
+            (j.depth, j.tests)
+        };
+        let mut t = tests;
+        let or = loop {
+            if t == NONE {
+                return None;
+            }
+            if let Some(f) = self.or_of_equalities(t, depth) {
+                if want == NONE || self.exprs[f as usize].data == self.exprs[want as usize].data {
+                    break t;
+                }
+            }
+            if !self.error_free(t) {
+                return None;
+            }
+            t = self.exprs[t as usize].next;
+        };
+        self.bind_for_quick(left);
+        let mut out = OrValues {
+            vals: [Value::Void; OR_WAYS],
+            n: 0,
+        };
+        let mut c = self.exprs[or as usize].first;
+        while c != NONE {
+            let this = self.exprs[c as usize].first;
+            let o = self.exprs[self.exprs[this as usize].next as usize];
+            let fact = self.left_fact(left, o.aux);
+            if fact == NONE || out.n == OR_WAYS {
+                return None;
+            }
+            let v = *self.slot_ref(fact, Ix::from(loc::slot(o.data)));
+            if matches!(v, Value::Multi(_)) {
+                return None;
+            }
+            out.vals[out.n] = v;
+            out.n += 1;
+            c = self.exprs[c as usize].next;
+        }
+        Some(out)
+    }
+
+    /// Host: where a left token of positive `join` finds its right partners when its
+    /// alpha node has an or-lookup field that the join's `or_values` test reads: one
+    /// bucket per distinct bucket of the alternatives' values, merged in memory order
+    /// (`or_next`), so each candidate comes once and in the order of a full scan.
+    /// None: scan the memory.
+    #[cfg(feature = "host-speedups")]
+    pub(crate) fn or_lookup(&mut self, join: JoinId, left: TokenId) -> Option<OrCursor> {
+        let alpha = self.joins[join].alpha;
+        let field = self.alphas[alpha as usize].rhash[0];
+        // stamps saturated: memory order is no longer known
+        if field == NONE || self.st.cache.or_stamp == u32::MAX {
+            return None;
+        }
+        let ov = self.or_values(join, left, field)?;
+        let mut cur = OrCursor {
+            heads: [TokenId::NONE; OR_WAYS],
+            alpha,
+        };
+        let mut buckets = [NONE; OR_WAYS];
+        let mut n = 0;
+        for &v in &ov.vals[..ov.n] {
+            let b = self.bucket(alpha, mix(0x5bd1_e995, atom_hash(v)));
+            // alternatives in one bucket (equal values, or a collision) visit it once
+            if !buckets[..n].contains(&b) {
+                buckets[n] = b;
+                cur.heads[n] = self.skip_foreign(self.amem_buckets[b as usize], alpha);
+                n += 1;
+            }
+        }
+        Some(cur)
+    }
+
+    /// Host: the next candidate of an or-lookup: the oldest of its buckets' next
+    /// matches (each bucket is in memory order; stamps order them across buckets).
+    #[cfg(feature = "host-speedups")]
+    #[inline(always)]
+    pub(crate) fn or_next(&self, cur: &mut OrCursor) -> TokenId {
+        let mut best = TokenId::NONE;
+        let mut at = 0;
+        let mut stamp = 0;
+        for (i, &h) in cur.heads.iter().enumerate() {
+            if h != TokenId::NONE && (best == TokenId::NONE || self.tokens[h].key < stamp) {
+                best = h;
+                at = i;
+                stamp = self.tokens[h].key;
+            }
+        }
+        if best != TokenId::NONE {
+            cur.heads[at] = self.skip_foreign(self.tokens[best].am_next, cur.alpha);
+        }
+        best
+    }
+
     /// Adds a new alpha match (already in its node's memory) to the index.
     pub(crate) fn index_insert(&mut self, am: TokenId) {
         let alpha = self.tokens[am].alpha();
-        if self.alphas[alpha as usize].nrhash == 0 {
+        if !self.alpha_indexed(alpha) {
             return;
+        }
+        // host: matches of an or-lookup node get their place in memory order
+        #[cfg(feature = "host-speedups")]
+        if self.alphas[alpha as usize].nrhash == 0 {
+            let s = self.st.cache.or_stamp;
+            self.tokens[am].key = s;
+            self.st.cache.or_stamp = s.saturating_add(1);
         }
         let tk = self.tokens[am];
         let key = self.alpha_key(
@@ -395,7 +612,7 @@ impl Core<'_> {
     /// Takes an alpha match out of the index.
     pub(crate) fn index_remove(&mut self, am: TokenId) {
         let tk = self.tokens[am];
-        if tk.kind != TokenKind::Alpha || self.alphas[tk.alpha() as usize].nrhash == 0 {
+        if tk.kind != TokenKind::Alpha || !self.alpha_indexed(tk.alpha()) {
             return;
         }
         let b = tk.parent.ix();
