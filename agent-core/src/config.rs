@@ -115,6 +115,8 @@ macro_rules! __pool_table {
                 amem_buckets: $crate::handle::TokenId = $crate::handle::TokenId::NONE,
                 // truth maintenance: the head of the facts each partial match supports
                 token_deps: $crate::logical::Deps = $crate::logical::NO_DEPS,
+                // host speed-up: partial matches' links in extra beta index groups
+                token_xlinks: $crate::rete::XLinks = $crate::rete::NO_XLINKS,
             ],
             Activations activations "activations" 8192 256 [
                 acts: $crate::rule::Activation = $crate::rule::Activation::EMPTY,

@@ -716,7 +716,7 @@ impl Core<'_> {
     //
     // Host: a memory shared by several keyed children (rules with a common prefix)
     // also keeps up to `XGROUPS` extra index groups, each keyed as one child's tests
-    // read (links in `Token::xlinks`), taken on a child's first right activation
+    // read (links in the token pool's side array `token_xlinks`), taken on a child's first right activation
     // (`JoinMem::xmap`); a child whose key plan reads the same fields as a group's
     // uses that group. Each group has its own part of the beta buckets, as a
     // bucket's chain runs through one group's links.
@@ -781,7 +781,7 @@ impl Core<'_> {
     fn gnext(&self, t: TokenId, g: usize) -> TokenId {
         #[cfg(feature = "host-speedups")]
         if g > 0 {
-            return TokenId(self.tokens[t].xlinks[g - 1][0]);
+            return TokenId(self.token_xlinks[t.ix()][g - 1][0]);
         }
         let _ = g;
         self.bnext(t)
@@ -791,7 +791,7 @@ impl Core<'_> {
     fn set_gnext(&mut self, t: TokenId, n: TokenId, g: usize) {
         #[cfg(feature = "host-speedups")]
         if g > 0 {
-            self.tokens[t].xlinks[g - 1][0] = n.0;
+            self.token_xlinks[t.ix()][g - 1][0] = n.0;
             return;
         }
         let _ = g;
@@ -802,7 +802,7 @@ impl Core<'_> {
     fn gprev(&self, t: TokenId, g: usize) -> TokenId {
         #[cfg(feature = "host-speedups")]
         if g > 0 {
-            return TokenId(self.tokens[t].xlinks[g - 1][1]);
+            return TokenId(self.token_xlinks[t.ix()][g - 1][1]);
         }
         let _ = g;
         self.bprev(t)
@@ -812,7 +812,7 @@ impl Core<'_> {
     fn set_gprev(&mut self, t: TokenId, p: TokenId, g: usize) {
         #[cfg(feature = "host-speedups")]
         if g > 0 {
-            self.tokens[t].xlinks[g - 1][1] = p.0;
+            self.token_xlinks[t.ix()][g - 1][1] = p.0;
             return;
         }
         let _ = g;
@@ -823,7 +823,7 @@ impl Core<'_> {
     fn gbucket(&self, t: TokenId, g: usize) -> Ix {
         #[cfg(feature = "host-speedups")]
         if g > 0 {
-            return self.tokens[t].xlinks[g - 1][2];
+            return self.token_xlinks[t.ix()][g - 1][2];
         }
         let _ = g;
         self.bbucket(t)
@@ -833,7 +833,7 @@ impl Core<'_> {
     fn set_gbucket(&mut self, t: TokenId, b: Ix, g: usize) {
         #[cfg(feature = "host-speedups")]
         if g > 0 {
-            self.tokens[t].xlinks[g - 1][2] = b;
+            self.token_xlinks[t.ix()][g - 1][2] = b;
             return;
         }
         let _ = g;
@@ -975,6 +975,13 @@ impl Core<'_> {
             }
         };
         self.st.cache.key_cache = (t, child, key);
+        // host: a token's extra links are its own only from its first extra group on
+        // (`XLinks`): the other groups' must read unlinked
+        #[cfg(feature = "host-speedups")]
+        if g > 0 && !self.tokens[t].in_x {
+            self.tokens[t].in_x = true;
+            self.token_xlinks[t.ix()] = crate::rete::NO_XLINKS;
+        }
         let b = self.beta_bucket(join, key, g);
         let head = self.amem_buckets[b as usize];
         #[cfg(not(feature = "grow"))]
@@ -990,10 +997,6 @@ impl Core<'_> {
             self.set_gprev(head, t, g);
         }
         self.amem_buckets[b as usize] = t;
-        #[cfg(feature = "host-speedups")]
-        if g > 0 {
-            self.tokens[t].in_x = true;
-        }
     }
 
     /// Takes `t` out of the chain of bucket `b` of index group `g`.

@@ -327,10 +327,6 @@ pub struct Token {
     pub in_x: bool,
     #[cfg(feature = "host-speedups")]
     pub key: u32,
-    /// Host: the partial match's links in its memory's extra index groups (next,
-    /// previous, bucket; as `beta_links` for the first group).
-    #[cfg(feature = "host-speedups")]
-    pub xlinks: [[Ix; 3]; XGROUPS],
 }
 
 impl Token {
@@ -373,10 +369,22 @@ impl Token {
         in_x: false,
         #[cfg(feature = "host-speedups")]
         key: 0,
-        #[cfg(feature = "host-speedups")]
-        xlinks: [[NONE; 3]; XGROUPS],
     };
 }
+
+/// Host: a partial match's links in its memory's extra index groups (next, previous,
+/// bucket; as `beta_links` for the first group), in a side array of the token pool
+/// (`Core::token_xlinks`) so that the tokens of memories without extra groups (most)
+/// do not carry them: meaningful only while the token's `in_x` is set (the first link
+/// into a group clears them). Zero-sized without `host-speedups`.
+#[cfg(feature = "host-speedups")]
+pub type XLinks = [[Ix; 3]; XGROUPS];
+#[cfg(feature = "host-speedups")]
+pub const NO_XLINKS: XLinks = [[NONE; 3]; XGROUPS];
+#[cfg(not(feature = "host-speedups"))]
+pub type XLinks = ();
+#[cfg(not(feature = "host-speedups"))]
+pub const NO_XLINKS: XLinks = ();
 
 /// What a pattern variable resolves against: a fact slot plus its segmentation.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
