@@ -328,6 +328,9 @@ impl Core<'_> {
             let f = self.st.facts.fact_head;
             self.retract_fact(f);
         }
+        // (the partial matches joins were primed with are gone)
+        #[cfg(feature = "grow")]
+        self.forget_prime_orders();
         self.free_pending();
         self.st.facts.values_top = 0;
         self.st.facts.next_fact_num = 0;
@@ -408,6 +411,8 @@ impl Core<'_> {
         for t in self.tokens.iter_mut() {
             *t = crate::rete::Token::EMPTY;
         }
+        #[cfg(feature = "grow")]
+        self.forget_prime_orders();
         for b in self.amem_buckets.iter_mut() {
             *b = TokenId::NONE;
         }

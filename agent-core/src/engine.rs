@@ -606,6 +606,10 @@ pub struct State {
     /// Rules with a breakpoint (`set-break`, feature `extras`).
     #[cfg(feature = "extras")]
     pub breaks: Breaks,
+    /// Host: joins primed while their parent had partial matches, and their own
+    /// order of those (`rete::order`).
+    #[cfg(feature = "grow")]
+    pub prime: crate::rete::PrimeOrders,
 }
 
 /// The names of the rules with a breakpoint (`set-break`): a run stops before firing
@@ -694,6 +698,8 @@ impl State {
             builtin_code: &[],
             #[cfg(feature = "extras")]
             breaks: Breaks::new(),
+            #[cfg(feature = "grow")]
+            prime: crate::rete::PrimeOrders::new(),
         }
     }
 }

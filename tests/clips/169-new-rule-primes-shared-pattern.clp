@@ -1,7 +1,7 @@
 ; A rule added while facts exist whose only pattern is the first pattern of an older
-; rule: CLIPS activates it oldest fact first (it builds the rule's last join anew and
-; primes it from the alpha memory); we share that join and prime the new rule from its
-; memory, newest first.
+; rule: CLIPS builds the rule's last join anew and primes it from the memory of the
+; older rule's join, bucket by bucket (its left hash on ?i), so oldest fact first here;
+; we keep that order on the host (`rete::order`).
 (deftemplate it (slot id))
 (deftemplate mk (slot id))
 (watch activations)

@@ -68,7 +68,7 @@ impl Core<'_> {
                 }
                 primed.ids[primed.n] = j;
                 primed.n += 1;
-                self.prime_join(j)?;
+                self.prime_join(j, first_new)?;
             }
             if jn.rjoin != JoinId::NONE {
                 self.prime_chain(jn.rjoin, first_new, jn.parent, primed)?;

@@ -34,8 +34,16 @@ impl Core<'_> {
     }
 
     /// Feeds the active tokens of `parent`'s memory into a new child join.
-    pub(crate) fn prime_join(&mut self, join: JoinId) -> Result<(), EvalError> {
+    /// Host: a join under an older one is fed its first older sibling's partial
+    /// matches in CLIPS's order (`rete::order`; joins from `first_new` on are new).
+    pub(crate) fn prime_join(&mut self, join: JoinId, first_new: JoinId) -> Result<(), EvalError> {
         let parent = self.joins[join].parent;
+        #[cfg(feature = "grow")]
+        if parent != JoinId::ROOT && self.prime_join_ordered(join, parent, first_new)? {
+            return Ok(());
+        }
+        #[cfg(not(feature = "grow"))]
+        let _ = first_new;
         let mut l = self.join_mems[parent].mem;
         while l != TokenId::NONE {
             let next = self.tokens[l].mem_next;

@@ -302,31 +302,47 @@ impl Core<'_> {
             self.joins[j.parent].kind,
             JoinKind::Negative | JoinKind::Exists
         );
+        // host: a join primed while its parent had partial matches meets those in
+        // its own order (`rete::order`)
+        #[cfg(feature = "grow")]
+        if let Some(k) = self.primed_entry(join) {
+            return self.right_activate_primed(join, am, k, all_active);
+        }
         let (mut l, via) = self.first_left(join, am);
         while l != TokenId::NONE {
             let next = self.next_left(l, via);
             if all_active || self.token_active(l) {
-                match j.kind {
-                    JoinKind::Positive => {
-                        if self.join_test(join, l, am)? {
-                            let t = self.link_token(join, l, am)?;
-                            self.propagate_in(t, join)?;
-                        }
-                    }
-                    JoinKind::Negative | JoinKind::Exists => {
-                        let t = self.output_of(l, join);
-                        // a blocked output keeps its one blocker (CLIPS's order)
-                        if t != TokenId::NONE
-                            && !self.tokens[t].blocked
-                            && self.join_test(join, l, am)?
-                        {
-                            self.block(t, am)?;
-                        }
-                    }
-                    JoinKind::Root | JoinKind::Test | JoinKind::Terminal => {}
-                }
+                self.right_one(join, j.kind, l, am)?;
             }
             l = next;
+        }
+        Ok(())
+    }
+
+    /// Alpha match `am` on the right of `join` (of `kind`) meets active left token `l`.
+    #[inline(always)]
+    pub(crate) fn right_one(
+        &mut self,
+        join: JoinId,
+        kind: JoinKind,
+        l: TokenId,
+        am: TokenId,
+    ) -> Result<(), EvalError> {
+        match kind {
+            JoinKind::Positive => {
+                if self.join_test(join, l, am)? {
+                    let t = self.link_token(join, l, am)?;
+                    self.propagate_in(t, join)?;
+                }
+            }
+            JoinKind::Negative | JoinKind::Exists => {
+                let t = self.output_of(l, join);
+                // a blocked output keeps its one blocker (CLIPS's order)
+                if t != TokenId::NONE && !self.tokens[t].blocked && self.join_test(join, l, am)? {
+                    self.block(t, am)?;
+                }
+            }
+            JoinKind::Root | JoinKind::Test | JoinKind::Terminal => {}
         }
         Ok(())
     }
@@ -372,6 +388,9 @@ impl Core<'_> {
     /// A not/exists output that becomes active goes to the front of its memory: CLIPS
     /// copies it into its successors' memories only now, so they meet it as newest.
     fn move_to_front(&mut self, t: TokenId) {
+        // host: it enters its successors' memories now (`rete::order`)
+        #[cfg(feature = "grow")]
+        self.stamp(t);
         let join = self.tokens[t].owner;
         if self.join_mems[join].mem == t {
             return;
@@ -570,6 +589,9 @@ impl Core<'_> {
         am: TokenId,
     ) -> Result<TokenId, EvalError> {
         let t = self.alloc_token()?;
+        // host: the stamp of a partial match entering its memory (`rete::order`)
+        #[cfg(feature = "grow")]
+        let seq = self.next_stamp();
         let kind = self.joins[join].kind;
         // not/exists outputs stay in front of the parent's other children
         // (see `output_of`); the others keep newest-first order among themselves,
@@ -620,6 +642,8 @@ impl Core<'_> {
             next_sib: psib,
             prev_sib: after,
             am_next: asib,
+            #[cfg(feature = "grow")]
+            seq,
             ..Token::EMPTY
         };
         // the bindings: the parent's, copied after the token is written (read

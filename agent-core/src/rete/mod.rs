@@ -25,9 +25,13 @@ pub const NO_ALPHA_DISC: AlphaDisc = ();
 pub const NO_TEMPLATE_DISC: TemplateDisc = TemplateDisc::EMPTY;
 #[cfg(not(feature = "host-speedups"))]
 pub const NO_TEMPLATE_DISC: TemplateDisc = ();
+#[cfg(feature = "grow")]
+pub(crate) mod order;
 #[cfg(feature = "host-speedups")]
 mod plan;
 mod quick;
+#[cfg(feature = "grow")]
+pub use order::PrimeOrders;
 #[cfg(any(feature = "defer", feature = "wipe"))]
 mod walk;
 #[cfg(feature = "wipe")]
@@ -327,6 +331,10 @@ pub struct Token {
     pub in_x: bool,
     #[cfg(feature = "host-speedups")]
     pub key: u32,
+    /// Host: partial match: its stamp, given when it entered the head of its memory
+    /// (see `rete::order`).
+    #[cfg(feature = "grow")]
+    pub seq: u32,
 }
 
 impl Token {
@@ -369,6 +377,8 @@ impl Token {
         in_x: false,
         #[cfg(feature = "host-speedups")]
         key: 0,
+        #[cfg(feature = "grow")]
+        seq: 0,
     };
 }
 

@@ -1,0 +1,358 @@
+//! Host (feature `grow`): the order in which a join primed from an older sibling meets
+//! the partial matches that existed when it was added, as CLIPS 6.30 does.
+//!
+//! CLIPS keeps a left memory per join: a copy of every partial match its parent made,
+//! in hash buckets (the values the join compares with earlier variables, `clips_hash`;
+//! one bucket for a join without such tests), each bucket a list that a new copy
+//! enters at its head. A join added to a parent that already has partial matches is
+//! primed from the first of its older siblings (children list, newest first): it
+//! copies that sibling's memory bucket by bucket, each copy entering its own memory at
+//! the head. Our joins share their parent's memory (newest first), which is CLIPS's
+//! order only for a join made before any of its parent's partial matches existed.
+//!
+//! So a join primed while its parent had partial matches keeps those matches here, in
+//! its own order (`Primed::order`, reverse of the order it was primed in); a partial
+//! match is told apart from later ones by its stamp (`Token::seq`, given whenever a
+//! partial match enters the head of a memory, see `Core::stamp`): the join's right
+//! activations visit the later ones first (memory order), then these. An entry whose
+//! partial match is gone (or whose id was reused: another stamp) is skipped, and a
+//! join whose entries are all gone is dropped. Not modelled: CLIPS's bucket arrays
+//! growing past 187 partial matches (11 times larger), which reorders buckets.
+
+use alloc::vec::Vec;
+
+use super::{JoinKind, TokenKind, MAX_RHASH};
+use crate::engine::Core;
+use crate::error::EvalError;
+use crate::expr::Op;
+use crate::handle::{JoinId, TokenId};
+use crate::value::{Value, NONE};
+
+/// A join primed while its parent had partial matches.
+pub struct Primed {
+    pub join: JoinId,
+    /// Stamps below this one are the partial matches it was primed with.
+    pub born: u32,
+    /// Those partial matches (and their stamps) in the join's order, first first.
+    pub order: Vec<(TokenId, u32)>,
+}
+
+/// The primed joins and the stamp clock (`State::prime`).
+pub struct PrimeOrders {
+    /// The next stamp.
+    pub clock: u32,
+    pub joins: Vec<Primed>,
+}
+
+impl PrimeOrders {
+    pub const fn new() -> PrimeOrders {
+        PrimeOrders {
+            clock: 0,
+            joins: Vec::new(),
+        }
+    }
+
+    fn find(&self, join: JoinId) -> Option<usize> {
+        self.joins.iter().position(|p| p.join == join)
+    }
+}
+
+impl Default for PrimeOrders {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// CLIPS 6.30's hash table sizes (`symbol.h`) and first beta-memory size (`network.h`).
+const SYMBOL_HASH_SIZE: u64 = 63559;
+const FLOAT_HASH_SIZE: u64 = 8191;
+const INTEGER_HASH_SIZE: u64 = 8191;
+const BETA_BUCKETS: u64 = 17;
+
+/// The bucket of a string in CLIPS's symbol table (symbols and strings share it).
+fn clips_symbol_bucket(s: &[u8]) -> u64 {
+    let mut tally: u64 = 0;
+    for &b in s {
+        // (CLIPS adds a `char`, signed on the hosts it runs on)
+        tally = tally.wrapping_mul(127).wrapping_add(b as i8 as i64 as u64);
+    }
+    tally % SYMBOL_HASH_SIZE
+}
+
+fn clips_float_bucket(f: f64) -> u64 {
+    let mut tally: u64 = 0;
+    for b in f.to_ne_bytes() {
+        tally = tally.wrapping_mul(127).wrapping_add(b as i8 as i64 as u64);
+    }
+    tally % FLOAT_HASH_SIZE
+}
+
+fn clips_integer_bucket(i: i64) -> u64 {
+    u64::from(i.unsigned_abs() as u32) % INTEGER_HASH_SIZE
+}
+
+impl Core<'_> {
+    /// Gives a partial match that enters the head of its memory the next stamp.
+    #[inline(always)]
+    pub(crate) fn stamp(&mut self, t: TokenId) {
+        self.tokens[t].seq = self.next_stamp();
+    }
+
+    /// The next stamp.
+    #[inline(always)]
+    pub(crate) fn next_stamp(&mut self) -> u32 {
+        let p = &mut self.st.prime;
+        let s = p.clock;
+        p.clock = s.wrapping_add(1);
+        if p.clock == 0 {
+            // (after 2^32 stamps) older stamps would read as newer: the orders go
+            p.joins.clear();
+        }
+        s
+    }
+
+    /// Drops the primed orders (every partial match went: `clear`, `reset`).
+    pub(crate) fn forget_prime_orders(&mut self) {
+        self.st.prime.joins.clear();
+    }
+
+    /// Whether entry `(t, seq)` of a primed join under `parent` is still its
+    /// partial match.
+    fn primed_live(&self, t: TokenId, seq: u32, parent: JoinId) -> bool {
+        let tk = &self.tokens[t];
+        tk.kind == TokenKind::Beta && tk.seq == seq && tk.owner == parent
+    }
+
+    /// The primed-order entry of `join`, if it has one.
+    #[inline(always)]
+    pub(crate) fn primed_entry(&self, join: JoinId) -> Option<usize> {
+        if self.st.prime.joins.is_empty() {
+            return None;
+        }
+        self.st.prime.find(join)
+    }
+
+    /// A join's left memory in CLIPS's order: `parent`'s active partial matches,
+    /// those `join` was primed with (if it was) last, in its own order.
+    fn clips_memory_order(&self, join: JoinId, parent: JoinId) -> Vec<TokenId> {
+        let entry = self.primed_entry(join).map(|k| &self.st.prime.joins[k]);
+        let mut out = Vec::new();
+        let mut l = self.join_mems[parent].mem;
+        while l != TokenId::NONE {
+            if self.token_active(l) && entry.is_none_or(|e| self.tokens[l].seq >= e.born) {
+                out.push(l);
+            }
+            l = self.tokens[l].mem_next;
+        }
+        if let Some(e) = entry {
+            for &(t, s) in &e.order {
+                if self.primed_live(t, s, parent) && self.token_active(t) {
+                    out.push(t);
+                }
+            }
+        }
+        out
+    }
+
+    /// CLIPS's hash of a partial match in `join`'s left memory (`BetaMemoryHashValue`
+    /// of its left hash: the earlier variables its equality tests compare with, each
+    /// value's symbol-table bucket, the last field's once, the one before it 509
+    /// times, and so on), None for a join without one (CLIPS's memory has a single
+    /// bucket then).
+    fn clips_left_hash(&mut self, join: JoinId, left: TokenId) -> Option<u64> {
+        let j = self.joins[join];
+        if j.alpha == NONE
+            || j.rjoin != JoinId::NONE
+            || !matches!(
+                j.kind,
+                JoinKind::Positive | JoinKind::Negative | JoinKind::Exists
+            )
+        {
+            return None;
+        }
+        let nrhash = self.alphas[j.alpha as usize].nrhash;
+        if nrhash == 0 {
+            return None;
+        }
+        self.bind_left(left);
+        let (scratch, sp, pm) = (
+            self.st.frame.scratch_top,
+            self.st.frame.sp,
+            self.st.net.pm_rhs,
+        );
+        self.st.net.pm_rhs = false;
+        let mut buckets = [0u64; MAX_RHASH];
+        let mut found = 0u8;
+        let mut t = j.tests;
+        while t != NONE && found < nrhash {
+            let x = self.exprs[t as usize];
+            if x.op == Op::Eq2 && x.first != NONE {
+                let this = self.exprs[x.first as usize];
+                let other = this.next;
+                if this.op == Op::PatVar
+                    && this.aux == j.depth
+                    && other != NONE
+                    && self.exprs[other as usize].op == Op::PatVar
+                    && self.exprs[other as usize].aux != j.depth
+                {
+                    let b = match self.eval(other) {
+                        Ok(v) => self.clips_bucket(v),
+                        Err(_) => 0,
+                    };
+                    buckets[found as usize] = b;
+                    found += 1;
+                }
+            }
+            t = x.next;
+        }
+        (
+            self.st.frame.scratch_top,
+            self.st.frame.sp,
+            self.st.net.pm_rhs,
+        ) = (scratch, sp, pm);
+        // the last compared field counts once, each earlier one 509 times more
+        let mut hash = 0u64;
+        for &b in &buckets[..found as usize] {
+            hash = hash.wrapping_mul(509).wrapping_add(b);
+        }
+        Some(hash)
+    }
+
+    /// The bucket of a value in CLIPS's tables (0 for what has none there).
+    fn clips_bucket(&self, v: Value) -> u64 {
+        match v {
+            Value::Sym(s) | Value::Str(s) => clips_symbol_bucket(self.sym_text(s).as_bytes()),
+            Value::Int(i) => clips_integer_bucket(i),
+            Value::Float(f) => clips_float_bucket(f),
+            _ => 0,
+        }
+    }
+
+    /// Primes new join `join` (its parent `parent` is old) as CLIPS does when a
+    /// rule is added: with the memory of its first older sibling (joins from
+    /// `first_new` on are new), bucket by bucket, and notes the order the join
+    /// keeps those partial matches in. False if it has no older sibling (then the
+    /// caller feeds it the parent's memory).
+    pub(crate) fn prime_join_ordered(
+        &mut self,
+        join: JoinId,
+        parent: JoinId,
+        first_new: JoinId,
+    ) -> Result<bool, EvalError> {
+        let mut src = self.joins[parent].first_child;
+        while src != JoinId::NONE && (src == join || src >= first_new) {
+            src = self.joins[src].next_sibling;
+        }
+        if src == JoinId::NONE {
+            return Ok(false);
+        }
+        self.prune_prime_orders();
+        let mut seq = self.clips_memory_order(src, parent);
+        // bucket by bucket (a stable sort keeps each bucket's order)
+        let mut keyed: Vec<(u64, TokenId)> = Vec::with_capacity(seq.len());
+        let mut hashed = false;
+        for &t in &seq {
+            let h = self.clips_left_hash(src, t);
+            hashed |= h.is_some();
+            keyed.push((h.unwrap_or(0) % BETA_BUCKETS, t));
+        }
+        if hashed {
+            keyed.sort_by_key(|&(b, _)| b);
+            seq = keyed.iter().map(|&(_, t)| t).collect();
+        }
+        let born = self.st.prime.clock;
+        let order: Vec<(TokenId, u32)> =
+            seq.iter().rev().map(|&t| (t, self.tokens[t].seq)).collect();
+        match self.st.prime.find(join) {
+            Some(k) => {
+                self.st.prime.joins[k].born = born;
+                self.st.prime.joins[k].order = order;
+            }
+            None => self.st.prime.joins.push(Primed { join, born, order }),
+        }
+        for t in seq {
+            // (a token priming took back meanwhile is not fed)
+            if self.tokens[t].kind == TokenKind::Beta
+                && self.tokens[t].owner == parent
+                && self.token_active(t)
+            {
+                self.left_activate(join, t)?;
+            }
+        }
+        Ok(true)
+    }
+
+    /// Drops the entries of joins that are gone and of those whose primed partial
+    /// matches all went.
+    fn prune_prime_orders(&mut self) {
+        let mut k = 0;
+        while k < self.st.prime.joins.len() {
+            let e = &self.st.prime.joins[k];
+            let j = e.join;
+            let alive = j.0 < self.st.pools.njoins && self.joins[j].refs > 0 && {
+                let parent = self.joins[j].parent;
+                e.order.iter().any(|&(t, s)| self.primed_live(t, s, parent))
+            };
+            if alive {
+                k += 1;
+            } else {
+                self.st.prime.joins.swap_remove(k);
+            }
+        }
+    }
+
+    /// `right_activate`'s walk for a primed join (entry `k`): the partial matches
+    /// made since it was primed in memory order, then those it was primed with in
+    /// its own order; `one` handles each.
+    pub(crate) fn right_activate_primed(
+        &mut self,
+        join: JoinId,
+        am: TokenId,
+        k: usize,
+        all_active: bool,
+    ) -> Result<(), EvalError> {
+        let (parent, kind) = (self.joins[join].parent, self.joins[join].kind);
+        let born = self.st.prime.joins[k].born;
+        let (mut l, via) = self.first_left(join, am);
+        while l != TokenId::NONE {
+            let next = self.next_left(l, via);
+            if self.tokens[l].seq >= born && (all_active || self.token_active(l)) {
+                self.right_one(join, kind, l, am)?;
+            }
+            l = next;
+        }
+        // (right activations add no primed joins: the entry stays at `k`)
+        let mut i = 0;
+        let mut live = 0;
+        while let Some(&(t, s)) = self.st.prime.joins.get(k).and_then(|e| e.order.get(i)) {
+            if self.primed_live(t, s, parent) {
+                live += 1;
+                if all_active || self.token_active(t) {
+                    self.right_one(join, kind, t, am)?;
+                }
+            }
+            i += 1;
+        }
+        if live == 0 && k < self.st.prime.joins.len() {
+            self.st.prime.joins.swap_remove(k);
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn clips_buckets() {
+        // "a" is 97; "ab" is 97 * 127 + 98
+        assert_eq!(clips_symbol_bucket(b"a"), 97);
+        assert_eq!(
+            clips_symbol_bucket(b"ab"),
+            (97 * 127 + 98) % SYMBOL_HASH_SIZE
+        );
+        assert_eq!(clips_integer_bucket(-5), 5);
+        assert_eq!(clips_integer_bucket(8191 + 3), 3);
+    }
+}
