@@ -417,6 +417,7 @@ differential_programs! {
     p340_unbound_global_reads => "340-unbound-global-reads",
     p341_globals_read_when_run => "341-globals-read-when-run",
     p390_primed_join_order => "390-primed-join-order",
+    p391_primed_join_bucket_tests => "391-primed-join-bucket-tests",
     p291_arith_join_tests => "291-arith-join-tests",
     p370_join_test_order => "370-join-test-order",
     p410_or_lookups => "410-or-lookups",

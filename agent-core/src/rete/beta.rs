@@ -390,7 +390,9 @@ impl Core<'_> {
     fn move_to_front(&mut self, t: TokenId) {
         // host: it enters its successors' memories now (`rete::order`)
         #[cfg(feature = "grow")]
-        self.stamp(t);
+        if !self.st.prime.joins.is_empty() {
+            self.stamp(t);
+        }
         let join = self.tokens[t].owner;
         if self.join_mems[join].mem == t {
             return;
@@ -589,9 +591,6 @@ impl Core<'_> {
         am: TokenId,
     ) -> Result<TokenId, EvalError> {
         let t = self.alloc_token()?;
-        // host: the stamp of a partial match entering its memory (`rete::order`)
-        #[cfg(feature = "grow")]
-        let seq = self.next_stamp();
         let kind = self.joins[join].kind;
         // not/exists outputs stay in front of the parent's other children
         // (see `output_of`); the others keep newest-first order among themselves,
@@ -642,8 +641,6 @@ impl Core<'_> {
             next_sib: psib,
             prev_sib: after,
             am_next: asib,
-            #[cfg(feature = "grow")]
-            seq,
             ..Token::EMPTY
         };
         // the bindings: the parent's, copied after the token is written (read
@@ -679,6 +676,12 @@ impl Core<'_> {
         }
         jm.mem = t;
         self.beta_index_insert_fresh(t, join, ichild, xbuilt);
+        // host: while a join keeps a primed order, partial matches entering a memory
+        // are stamped (`rete::order`)
+        #[cfg(feature = "grow")]
+        if !self.st.prime.joins.is_empty() {
+            self.stamp(t);
+        }
         Ok(t)
     }
 

@@ -1075,7 +1075,9 @@ impl Core<'_> {
     /// Where a new alpha match `am` right-activating `join` starts among the
     /// parent's partial matches: its bucket when the parent's memory is indexed for
     /// `join` (then `next_left` with the group `via` it returns), else the whole
-    /// memory (`via` 0).
+    /// memory (`via` 0). (Host: inlined in both walks, `right_activate` and
+    /// `rete::order`'s.)
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     pub(crate) fn first_left(&mut self, join: JoinId, am: TokenId) -> (TokenId, u8) {
         let j = self.joins[join];
         let parent_mem = self.join_mems[j.parent].mem;
@@ -1120,6 +1122,7 @@ impl Core<'_> {
     }
 
     /// The partial match after `l` (`via` as `first_left` gave).
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     pub(crate) fn next_left(&self, l: TokenId, via: u8) -> TokenId {
         if via > 0 {
             let g = via as usize - 1;

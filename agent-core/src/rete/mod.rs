@@ -331,10 +331,6 @@ pub struct Token {
     pub in_x: bool,
     #[cfg(feature = "host-speedups")]
     pub key: u32,
-    /// Host: partial match: its stamp, given when it entered the head of its memory
-    /// (see `rete::order`).
-    #[cfg(feature = "grow")]
-    pub seq: u32,
 }
 
 impl Token {
@@ -377,8 +373,6 @@ impl Token {
         in_x: false,
         #[cfg(feature = "host-speedups")]
         key: 0,
-        #[cfg(feature = "grow")]
-        seq: 0,
     };
 }
 

@@ -12,11 +12,15 @@
 //!
 //! So a join primed while its parent had partial matches keeps those matches here, in
 //! its own order (`Primed::order`, reverse of the order it was primed in); a partial
-//! match is told apart from later ones by its stamp (`Token::seq`, given whenever a
-//! partial match enters the head of a memory, see `Core::stamp`): the join's right
-//! activations visit the later ones first (memory order), then these. An entry whose
-//! partial match is gone (or whose id was reused: another stamp) is skipped, and a
-//! join whose entries are all gone is dropped. Not modelled: CLIPS's bucket arrays
+//! match is told apart from later ones by its stamp (`PrimeOrders::stamps`, by token:
+//! while any join keeps such an order, every partial match entering the head of a
+//! memory gets the next one, see `Core::stamp`; the others keep an older stamp, or
+//! none, which reads as 0, so every stamp a token has is below the clock): the join's
+//! right activations visit the later ones first (memory order), then these. An entry
+//! whose partial match is gone (or whose id was reused: another stamp) is skipped, and
+//! a join whose entries are all gone is dropped. Nothing is stamped while no join
+//! keeps an order: programs that define their rules before their facts pay a test of
+//! an empty list per partial match, no bytes per token. Not modelled: CLIPS's bucket arrays
 //! growing past 187 partial matches (11 times larger), which reorders buckets.
 
 use alloc::vec::Vec;
@@ -37,18 +41,21 @@ pub struct Primed {
     pub order: Vec<(TokenId, u32)>,
 }
 
-/// The primed joins and the stamp clock (`State::prime`).
+/// The primed joins and the stamps (`State::prime`).
 pub struct PrimeOrders {
-    /// The next stamp.
+    /// The next stamp (above every stamp given; 0 is no stamp).
     pub clock: u32,
     pub joins: Vec<Primed>,
+    /// Each token's stamp (by id; missing entries read as 0).
+    pub stamps: Vec<u32>,
 }
 
 impl PrimeOrders {
     pub const fn new() -> PrimeOrders {
         PrimeOrders {
-            clock: 0,
+            clock: 1,
             joins: Vec::new(),
+            stamps: Vec::new(),
         }
     }
 
@@ -93,22 +100,34 @@ fn clips_integer_bucket(i: i64) -> u64 {
 
 impl Core<'_> {
     /// Gives a partial match that enters the head of its memory the next stamp.
-    #[inline(always)]
+    #[inline(never)]
     pub(crate) fn stamp(&mut self, t: TokenId) {
-        self.tokens[t].seq = self.next_stamp();
+        let p = &mut self.st.prime;
+        let i = t.ix();
+        if i >= p.stamps.len() {
+            // (room for the whole pool at once; a refused allocation loses the
+            // orders, which are then CLIPS's no more, never the stamps' meaning)
+            let want = self.tokens.len().max(i + 1);
+            if p.stamps.try_reserve(want - p.stamps.len()).is_err() {
+                p.joins.clear();
+                return;
+            }
+            p.stamps.resize(want, 0);
+        }
+        p.stamps[i] = p.clock;
+        p.clock = p.clock.wrapping_add(1);
+        if p.clock == 0 {
+            // (after 2^32 stamps) older stamps would read as newer: all go
+            p.joins.clear();
+            p.stamps.clear();
+            p.clock = 1;
+        }
     }
 
-    /// The next stamp.
+    /// A token's stamp (0: none).
     #[inline(always)]
-    pub(crate) fn next_stamp(&mut self) -> u32 {
-        let p = &mut self.st.prime;
-        let s = p.clock;
-        p.clock = s.wrapping_add(1);
-        if p.clock == 0 {
-            // (after 2^32 stamps) older stamps would read as newer: the orders go
-            p.joins.clear();
-        }
-        s
+    fn seq_of(&self, t: TokenId) -> u32 {
+        self.st.prime.stamps.get(t.ix()).copied().unwrap_or(0)
     }
 
     /// Drops the primed orders (every partial match went: `clear`, `reset`).
@@ -120,7 +139,7 @@ impl Core<'_> {
     /// partial match.
     fn primed_live(&self, t: TokenId, seq: u32, parent: JoinId) -> bool {
         let tk = &self.tokens[t];
-        tk.kind == TokenKind::Beta && tk.seq == seq && tk.owner == parent
+        tk.kind == TokenKind::Beta && self.seq_of(t) == seq && tk.owner == parent
     }
 
     /// The primed-order entry of `join`, if it has one.
@@ -139,7 +158,7 @@ impl Core<'_> {
         let mut out = Vec::new();
         let mut l = self.join_mems[parent].mem;
         while l != TokenId::NONE {
-            if self.token_active(l) && entry.is_none_or(|e| self.tokens[l].seq >= e.born) {
+            if self.token_active(l) && entry.is_none_or(|e| self.seq_of(l) >= e.born) {
                 out.push(l);
             }
             l = self.tokens[l].mem_next;
@@ -261,8 +280,7 @@ impl Core<'_> {
             seq = keyed.iter().map(|&(_, t)| t).collect();
         }
         let born = self.st.prime.clock;
-        let order: Vec<(TokenId, u32)> =
-            seq.iter().rev().map(|&t| (t, self.tokens[t].seq)).collect();
+        let order: Vec<(TokenId, u32)> = seq.iter().rev().map(|&t| (t, self.seq_of(t))).collect();
         match self.st.prime.find(join) {
             Some(k) => {
                 self.st.prime.joins[k].born = born;
@@ -303,7 +321,9 @@ impl Core<'_> {
 
     /// `right_activate`'s walk for a primed join (entry `k`): the partial matches
     /// made since it was primed in memory order, then those it was primed with in
-    /// its own order; `one` handles each.
+    /// its own order (along an index bucket: those the bucket holds); `right_one`
+    /// handles each. (Not inlined: `right_activate` stays as small as without it.)
+    #[inline(never)]
     pub(crate) fn right_activate_primed(
         &mut self,
         join: JoinId,
@@ -314,20 +334,30 @@ impl Core<'_> {
         let (parent, kind) = (self.joins[join].parent, self.joins[join].kind);
         let born = self.st.prime.joins[k].born;
         let (mut l, via) = self.first_left(join, am);
+        // the primed partial matches a walk along an index bucket meets: only these
+        // are candidates (as for any other join), in the join's order below
+        let mut met: Vec<TokenId> = Vec::new();
         while l != TokenId::NONE {
             let next = self.next_left(l, via);
-            if self.tokens[l].seq >= born && (all_active || self.token_active(l)) {
-                self.right_one(join, kind, l, am)?;
+            if self.seq_of(l) >= born {
+                if all_active || self.token_active(l) {
+                    self.right_one(join, kind, l, am)?;
+                }
+            } else if via != 0 {
+                met.push(l);
             }
             l = next;
         }
+        met.sort_unstable();
         // (right activations add no primed joins: the entry stays at `k`)
         let mut i = 0;
         let mut live = 0;
         while let Some(&(t, s)) = self.st.prime.joins.get(k).and_then(|e| e.order.get(i)) {
             if self.primed_live(t, s, parent) {
                 live += 1;
-                if all_active || self.token_active(t) {
+                if (via == 0 || met.binary_search(&t).is_ok())
+                    && (all_active || self.token_active(t))
+                {
                     self.right_one(join, kind, t, am)?;
                 }
             }
