@@ -305,21 +305,67 @@ impl Core<'_> {
         // host: a join primed while its parent had partial matches meets those in
         // its own order (`rete::order`)
         #[cfg(feature = "grow")]
-        if let Some(k) = self.primed_entry(join) {
-            return self.right_activate_primed(join, am, k, all_active);
+        if !self.st.prime.joins.is_empty() {
+            return self.right_activate_maybe_primed(join, am, all_active);
         }
         let (mut l, via) = self.first_left(join, am);
         while l != TokenId::NONE {
             let next = self.next_left(l, via);
             if all_active || self.token_active(l) {
-                self.right_one(join, j.kind, l, am)?;
+                match j.kind {
+                    JoinKind::Positive => {
+                        if self.join_test(join, l, am)? {
+                            let t = self.link_token(join, l, am)?;
+                            self.propagate_in(t, join)?;
+                        }
+                    }
+                    JoinKind::Negative | JoinKind::Exists => {
+                        let t = self.output_of(l, join);
+                        // a blocked output keeps its one blocker (CLIPS's order)
+                        if t != TokenId::NONE
+                            && !self.tokens[t].blocked
+                            && self.join_test(join, l, am)?
+                        {
+                            self.block(t, am)?;
+                        }
+                    }
+                    JoinKind::Root | JoinKind::Test | JoinKind::Terminal => {}
+                }
             }
             l = next;
         }
         Ok(())
     }
 
-    /// Alpha match `am` on the right of `join` (of `kind`) meets active left token `l`.
+    /// Host: `right_activate` while some join keeps a primed order (`rete::order`):
+    /// out of line, so that the usual walk stays as it was without it.
+    #[cfg(feature = "grow")]
+    #[cold]
+    #[inline(never)]
+    fn right_activate_maybe_primed(
+        &mut self,
+        join: JoinId,
+        am: TokenId,
+        all_active: bool,
+    ) -> Result<(), EvalError> {
+        if let Some(k) = self.primed_entry(join) {
+            return self.right_activate_primed(join, am, k, all_active);
+        }
+        let kind = self.joins[join].kind;
+        let (mut l, via) = self.first_left(join, am);
+        while l != TokenId::NONE {
+            let next = self.next_left(l, via);
+            if all_active || self.token_active(l) {
+                self.right_one(join, kind, l, am)?;
+            }
+            l = next;
+        }
+        Ok(())
+    }
+
+    /// Alpha match `am` on the right of `join` (of `kind`) meets active left token `l`
+    /// (the walks of `rete::order`; `right_activate` keeps its own copy inline).
+    #[cfg(feature = "grow")]
     #[inline(always)]
     pub(crate) fn right_one(
         &mut self,
