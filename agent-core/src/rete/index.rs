@@ -568,7 +568,9 @@ impl Core<'_> {
         best
     }
 
-    /// Adds a new alpha match (already in its node's memory) to the index.
+    /// Adds a new alpha match (already in its node's memory) to the index. (Host:
+    /// inlined into the alpha match and beta paths, as before the or-lookup stamp.)
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     pub(crate) fn index_insert(&mut self, am: TokenId) {
         let alpha = self.tokens[am].alpha();
         if !self.alpha_indexed(alpha) {
