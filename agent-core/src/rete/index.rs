@@ -14,6 +14,7 @@ use super::{JoinKind, PatBinding, TokenKind, MAX_RHASH, THIS_PATTERN};
 #[cfg(feature = "host-speedups")]
 use super::{XGROUPS, XMAP, XSCAN};
 use crate::engine::Core;
+use crate::error::EvalError;
 use crate::expr::{loc, Op};
 use crate::handle::{JoinId, TokenId};
 use crate::value::{Ix, Value, NONE};
@@ -225,24 +226,28 @@ impl Core<'_> {
         key
     }
 
-    /// The key of a left token of `join` (its alpha node must have a right hash):
-    /// the earlier variables the join's equality tests compare with; `lhs_pm` must
-    /// hold the left token's bindings. None when a value cannot be read: then the
-    /// whole memory is scanned.
-    fn left_key(&mut self, join: JoinId) -> Option<u32> {
+    /// The values a left token gives `join`'s key, in test order: for each of the
+    /// join's equality tests between this pattern's variable and an earlier one (at
+    /// most `limit`), the earlier variable's value as `eval` reads it (`lhs_pm` must
+    /// hold the left token's bindings), handed to `f`. Returns how many it found.
+    /// Shared by `left_key` and CLIPS's left hash (`rete::order`).
+    #[inline(always)]
+    pub(crate) fn each_left_key_value(
+        &mut self,
+        join: JoinId,
+        limit: u8,
+        mut f: impl FnMut(&Self, Result<Value, EvalError>),
+    ) -> u8 {
         let j = self.joins[join];
-        let n = self.alphas[j.alpha as usize];
         let (scratch, sp, pm) = (
             self.st.frame.scratch_top,
             self.st.frame.sp,
             self.st.net.pm_rhs,
         );
         self.st.net.pm_rhs = false;
-        let mut key = 0x5bd1_e995u32;
         let mut found = 0;
         let mut t = j.tests;
-        let mut ok = true;
-        while t != NONE && found < n.nrhash {
+        while t != NONE && found < limit {
             let x = self.exprs[t as usize];
             if x.op == Op::Eq2 && x.first != NONE {
                 let this = self.exprs[x.first as usize];
@@ -253,10 +258,8 @@ impl Core<'_> {
                     && self.exprs[other as usize].op == Op::PatVar
                     && self.exprs[other as usize].aux != j.depth
                 {
-                    match self.eval(other) {
-                        Ok(v) => key = mix(key, self.value_hash(v)),
-                        Err(_) => ok = false,
-                    }
+                    let v = self.eval(other);
+                    f(self, v);
                     found += 1;
                 }
             }
@@ -267,7 +270,22 @@ impl Core<'_> {
             self.st.frame.sp,
             self.st.net.pm_rhs,
         ) = (scratch, sp, pm);
-        if !ok || found != n.nrhash {
+        found
+    }
+
+    /// The key of a left token of `join` (its alpha node must have a right hash):
+    /// the earlier variables the join's equality tests compare with; `lhs_pm` must
+    /// hold the left token's bindings. None when a value cannot be read: then the
+    /// whole memory is scanned.
+    fn left_key(&mut self, join: JoinId) -> Option<u32> {
+        let nrhash = self.alphas[self.joins[join].alpha as usize].nrhash;
+        let mut key = 0x5bd1_e995u32;
+        let mut ok = true;
+        let found = self.each_left_key_value(join, nrhash, |cx, v| match v {
+            Ok(v) => key = mix(key, cx.value_hash(v)),
+            Err(_) => ok = false,
+        });
+        if !ok || found != nrhash {
             return None;
         }
         Some(key)

@@ -28,7 +28,6 @@ use alloc::vec::Vec;
 use super::{JoinKind, TokenKind, MAX_RHASH};
 use crate::engine::Core;
 use crate::error::EvalError;
-use crate::expr::Op;
 use crate::handle::{JoinId, TokenId};
 use crate::value::{Value, NONE};
 
@@ -194,41 +193,12 @@ impl Core<'_> {
             return None;
         }
         self.bind_left(left);
-        let (scratch, sp, pm) = (
-            self.st.frame.scratch_top,
-            self.st.frame.sp,
-            self.st.net.pm_rhs,
-        );
-        self.st.net.pm_rhs = false;
         let mut buckets = [0u64; MAX_RHASH];
-        let mut found = 0u8;
-        let mut t = j.tests;
-        while t != NONE && found < nrhash {
-            let x = self.exprs[t as usize];
-            if x.op == Op::Eq2 && x.first != NONE {
-                let this = self.exprs[x.first as usize];
-                let other = this.next;
-                if this.op == Op::PatVar
-                    && this.aux == j.depth
-                    && other != NONE
-                    && self.exprs[other as usize].op == Op::PatVar
-                    && self.exprs[other as usize].aux != j.depth
-                {
-                    let b = match self.eval(other) {
-                        Ok(v) => self.clips_bucket(v),
-                        Err(_) => 0,
-                    };
-                    buckets[found as usize] = b;
-                    found += 1;
-                }
-            }
-            t = x.next;
-        }
-        (
-            self.st.frame.scratch_top,
-            self.st.frame.sp,
-            self.st.net.pm_rhs,
-        ) = (scratch, sp, pm);
+        let mut k = 0;
+        let found = self.each_left_key_value(join, nrhash, |cx, v| {
+            buckets[k] = v.map_or(0, |v| cx.clips_bucket(v));
+            k += 1;
+        });
         // the last compared field counts once, each earlier one 509 times more
         let mut hash = 0u64;
         for &b in &buckets[..found as usize] {
