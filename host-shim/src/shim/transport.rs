@@ -34,6 +34,9 @@ use iceoryx2::port::publisher::Publisher;
 use iceoryx2::port::subscriber::Subscriber;
 use iceoryx2::port::update_connections::UpdateConnections;
 use iceoryx2::prelude::*;
+use iceoryx2::service::builder::publish_subscribe::{
+    PublishSubscribeCreateError, PublishSubscribeOpenError, PublishSubscribeOpenOrCreateError,
+};
 use std::fmt::{self, Debug};
 
 /// Where every prefix keeps its iceoryx2 nodes and services.
@@ -157,6 +160,27 @@ fn err(context: impl Into<String>, detail: impl Debug) -> TransportError {
     }
 }
 
+/// How often a service is tried before its open error is given up on.
+const OPEN_ATTEMPTS: u32 = 10;
+
+/// Open errors that another process's creating or removing the same service at that moment
+/// explains: they pass, so trying again is worth it.
+fn open_error_passes(e: &PublishSubscribeOpenOrCreateError) -> bool {
+    use PublishSubscribeOpenError as O;
+    match e {
+        PublishSubscribeOpenOrCreateError::SystemInFlux => true,
+        PublishSubscribeOpenOrCreateError::PublishSubscribeOpenError(o) => matches!(
+            o,
+            O::DoesNotExist | O::HangsInCreation | O::IsMarkedForDestruction | O::Interrupt
+        ),
+        PublishSubscribeOpenOrCreateError::PublishSubscribeCreateError(c) => matches!(
+            c,
+            PublishSubscribeCreateError::AlreadyExists
+                | PublishSubscribeCreateError::IsBeingCreatedByAnotherInstance
+        ),
+    }
+}
+
 /// How a service queues samples for each subscriber.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Queue {
@@ -251,17 +275,37 @@ impl Transport {
         let service_name =
             ServiceName::new(name).map_err(|e| err(format!("service name {name}"), e))?;
         // Every process asks for the same settings, so whoever comes first creates the
-        // service and the others open it.
-        self.node
-            .service_builder(&service_name)
-            .publish_subscribe::<T>()
-            .max_publishers(4)
-            .max_subscribers(8)
-            .subscriber_max_buffer_size(queue.buffer)
-            .history_size(queue.history)
-            .enable_safe_overflow(true)
-            .open_or_create()
-            .map_err(|e| err(format!("open service {name}"), e))
+        // service and the others open it. Under load a process can find the service half
+        // made by another (iceoryx2 then says `DoesNotExist` or `SystemInFlux`): that passes,
+        // so those are tried again after a growing pause (about 2.5 s in all) before giving up.
+        let mut pause = std::time::Duration::from_millis(5);
+        let mut attempt = 1u32;
+        loop {
+            let result = self
+                .node
+                .service_builder(&service_name)
+                .publish_subscribe::<T>()
+                .max_publishers(4)
+                .max_subscribers(8)
+                .subscriber_max_buffer_size(queue.buffer)
+                .history_size(queue.history)
+                .enable_safe_overflow(true)
+                .open_or_create();
+            match result {
+                Ok(factory) => return Ok(factory),
+                Err(e) if attempt < OPEN_ATTEMPTS && open_error_passes(&e) => {
+                    std::thread::sleep(pause);
+                    pause = (pause * 2).min(std::time::Duration::from_millis(500));
+                    attempt += 1;
+                }
+                Err(e) => {
+                    return Err(err(
+                        format!("open service {name} (attempt {attempt} of {OPEN_ATTEMPTS})"),
+                        e,
+                    ))
+                }
+            }
+        }
     }
 
     pub fn publisher<T: Debug + ZeroCopySend + Copy + 'static>(
@@ -381,6 +425,55 @@ impl<T: Debug + ZeroCopySend + Copy + 'static> Sub<T> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A service another process is making or removing at that moment is tried again; a
+    /// service whose settings differ, or that no one may open, is not.
+    #[test]
+    fn only_passing_open_errors_are_tried_again() {
+        use PublishSubscribeOpenOrCreateError as E;
+        assert!(open_error_passes(&E::SystemInFlux));
+        assert!(open_error_passes(&E::PublishSubscribeOpenError(
+            PublishSubscribeOpenError::DoesNotExist
+        )));
+        assert!(open_error_passes(&E::PublishSubscribeCreateError(
+            PublishSubscribeCreateError::AlreadyExists
+        )));
+        assert!(!open_error_passes(&E::PublishSubscribeOpenError(
+            PublishSubscribeOpenError::IncompatibleTypes
+        )));
+        assert!(!open_error_passes(&E::PublishSubscribeOpenError(
+            PublishSubscribeOpenError::InsufficientPermissions
+        )));
+        assert!(!open_error_passes(&E::PublishSubscribeCreateError(
+            PublishSubscribeCreateError::InsufficientPermissions
+        )));
+    }
+
+    /// Two processes opening the same services at once both get them (whoever comes
+    /// second opens what the first made, or waits until it is made).
+    #[test]
+    fn two_threads_open_the_same_services_at_once() {
+        let prefix = format!("test/open-race-{}", std::process::id());
+        let run = |node: &'static str| {
+            let prefix = prefix.clone();
+            std::thread::spawn(move || -> Result<(), TransportError> {
+                let t = Transport::open_without_signals(&prefix, node)?;
+                for i in 0..8 {
+                    let _p = t.publisher::<u64>(&format!("{prefix}/s{i}"))?;
+                    let _s = t.subscriber::<u64>(&format!("{prefix}/s{i}"))?;
+                }
+                Ok(())
+            })
+        };
+        let (a, b) = (run("race-a"), run("race-b"));
+        for h in [a, b] {
+            match h.join() {
+                Ok(r) => assert!(r.is_ok(), "{r:?}"),
+                Err(_) => panic!("opening thread panicked"),
+            }
+        }
+        let _ = std::fs::remove_dir_all(root_dir(&prefix));
+    }
 
     /// Each prefix has a root of its own, and no prefix reaches outside the base.
     #[test]
