@@ -30,6 +30,23 @@
   =>
   (modify ?i (action feed)))
 
+(defrule feed-s2
+  "An S2 for a machine that may be a T3: feed it too.  Only a T3 takes an
+   S2, so a machine that starts working on it is a T3 completed (the feed
+   leaves, as above); any other light ends the feed as finish-puck-at does.
+   On a lossy link a robot often does not know that a machine is a T3 whose
+   other two inputs a teammate loaded (seed 4 with 10 % loss: robot 3 stood
+   62 s at M6, 50 s of them while the T3 worked)."
+  (declare (salience (+ ?*PRIORITY_EXEC* 1)))
+  (state IDLE)
+  ?i <- (intent (action finish-puck-at) (target ?m))
+  (holding S2)
+  (machine (name ?m) (mtype ?t&~T3&:(mtype-may-be ?t T3))
+    (loaded-with $?lw&:(not (member$ S2 ?lw))))
+  (not (output-at ?m ?))
+  =>
+  (modify ?i (action feed)))
+
 (defrule exec-feed-left-processing
   "The T3 works on the last input, left there: it made a P (collected later)
    and its other two inputs are junk (whatever the robot believed loaded)."
