@@ -21,6 +21,9 @@ pub struct Teammate {
     pub y_m: f32,
     pub vx_m_s: f32,
     pub vy_m_s: f32,
+    /// Not heard of for over [`SILENT_CYCLES`]: dead, as far as this robot can tell (a
+    /// live one on a lossy link is heard again within a second or so).
+    pub silent: bool,
 }
 
 impl Teammate {
@@ -124,6 +127,10 @@ const MAX_AGE_CYCLES: u64 = 15;
 /// field for the rest of the game (forgotten after 20 s, as before, the others ran into
 /// it again and again), and a live one on a link losing 10 % of its messages is heard
 /// again within a few cycles.
+///
+/// One not heard of for this many cycles (3 s) is taken for dead: drives plan
+/// around its body from their start.
+pub const SILENT_CYCLES: u64 = 45;
 /// A silent teammate's velocity is extrapolated this many cycles: its wheels stop then
 /// (the motors' dead-man rule).
 const PREDICT_CYCLES: u64 = 3;
@@ -213,6 +220,7 @@ impl TeamBoard {
                     y_m: r.y_m + r.vy_m_s * ahead,
                     vx_m_s,
                     vy_m_s,
+                    silent: age > SILENT_CYCLES,
                 }
             })
             .collect();
@@ -308,6 +316,7 @@ mod tests {
                 y_m: y,
                 vx_m_s: vx,
                 vy_m_s: vy,
+                silent: false,
             }),
             None,
         ]
@@ -398,6 +407,29 @@ mod tests {
         // Heard this cycle's news (age 1): where it said, carried one cycle on.
         let t = b.teammates(101, dt, &behind)[0].unwrap_or_else(|| panic!("known"));
         assert!((t.y_m - (5.0 + 0.5 * dt)).abs() < 1e-5, "{t:?}");
+    }
+
+    /// A teammate heard of within the last 3 s is alive as far as a robot can tell; one
+    /// silent for longer is taken for dead (its body planned around from a drive's start).
+    #[test]
+    fn a_teammate_silent_over_three_seconds_is_taken_for_dead() {
+        let mut b = TeamBoard::default();
+        b.hear(PoseReport {
+            from: 3,
+            cycle: 100,
+            x_m: 1.0,
+            y_m: 5.0,
+            vx_m_s: 0.0,
+            vy_m_s: 0.0,
+            held_by: 0,
+        });
+        let me = Pose2::new(4.0, 1.0, 0.0);
+        let dt = 1.0 / 15.0;
+        let silent = |age: u64| b.teammates(100 + age, dt, &me)[0].map(|t| t.silent);
+        assert_eq!(silent(1), Some(false));
+        assert_eq!(silent(SILENT_CYCLES), Some(false));
+        assert_eq!(silent(SILENT_CYCLES + 1), Some(true));
+        assert_eq!(silent(900), Some(true));
     }
 
     #[test]
@@ -545,6 +577,7 @@ mod tests {
                 y_m: 2.196,
                 vx_m_s: 0.0,
                 vy_m_s: 0.0,
+                silent: false,
             }),
             Some(Teammate {
                 number: 2,
@@ -552,6 +585,7 @@ mod tests {
                 y_m: 1.400,
                 vx_m_s: 0.361,
                 vy_m_s: 0.088,
+                silent: false,
             }),
         ];
         let t = keep_distance(&me, Twist::new(-0.045, -0.366, 0.0), &mates, r, 1.0);
