@@ -443,6 +443,12 @@ impl Core<'_> {
         if self.join_mems[join].mem == t {
             return;
         }
+        // host: a partial match whose index is its group-0 bucket alone stays in that
+        // bucket (its key, so its tag, is the same): taken out here, put back at the
+        // head below, as `beta_index_insert` would (see `index_front_take`)
+        #[cfg(all(feature = "host-speedups", feature = "grow"))]
+        let kept = self.index_front_take(t, join);
+        #[cfg(not(all(feature = "host-speedups", feature = "grow")))]
         self.beta_index_remove(t);
         // one borrow of the pool for the relinking (its address stays in a register
         // across the stores)
@@ -461,6 +467,11 @@ impl Core<'_> {
             tokens[head].mem_prev = t;
         }
         self.join_mems[join].mem = t;
+        #[cfg(all(feature = "host-speedups", feature = "grow"))]
+        if let Some(b) = kept {
+            self.index_front_put(t, join, b);
+            return;
+        }
         self.beta_index_insert(t);
     }
 

@@ -979,7 +979,18 @@ impl Core<'_> {
         self.bind_for_quick(t);
         let known = match known {
             Some(k) => Some(k),
-            None => self.quick_left_key(child, t),
+            None => {
+                let k = self.quick_left_key(child, t);
+                // host: kept for the next link (`move_to_front`), as `first_candidate`
+                // keeps it
+                #[cfg(feature = "host-speedups")]
+                if let (Some(k), 0) = (k, g) {
+                    let tk = &mut self.tokens[t];
+                    tk.key = k;
+                    tk.has_key = true;
+                }
+                k
+            }
         };
         let key = match known {
             Some(key) => key,
@@ -1090,6 +1101,45 @@ impl Core<'_> {
         if b != NONE {
             self.chain_unlink(t, b as usize, 0);
         }
+    }
+
+    /// Host (`move_to_front`): takes partial match `t` of `join` out of its index.
+    /// When that is its group-0 bucket alone (no extra group built, `t` in none) and
+    /// its key is kept in it, returns the bucket: `index_front_put` puts it back at
+    /// the head, where `beta_index_insert` would, without recomputing the key.
+    #[cfg(all(feature = "host-speedups", feature = "grow"))]
+    #[inline(always)]
+    pub(crate) fn index_front_take(&mut self, t: TokenId, join: JoinId) -> Option<(usize, Ix)> {
+        let tk = &self.tokens[t];
+        if tk.has_key && !tk.in_x && self.join_mems[join].xbuilt == 0 {
+            let tag = self.gbucket(t, 0);
+            let b = self.bucket_of(t, 0);
+            if b != NONE {
+                self.chain_unlink(t, b as usize, 0);
+                return Some((b as usize, tag));
+            }
+        }
+        self.beta_index_remove(t);
+        None
+    }
+
+    /// Host: puts `t` back at the head of its bucket `b` with its tag `tag`
+    /// (`index_front_take`), as `beta_index_link` would, its key cached as there.
+    #[cfg(all(feature = "host-speedups", feature = "grow"))]
+    #[inline(always)]
+    pub(crate) fn index_front_put(&mut self, t: TokenId, join: JoinId, (b, tag): (usize, Ix)) {
+        self.st.cache.key_cache = (t, self.joins[join].index_child, self.tokens[t].key);
+        let head = self.amem_buckets[b];
+        self.set_gbucket(t, tag, 0);
+        self.set_gnext(t, head, 0);
+        if head == TokenId::NONE {
+            self.set_gprev(t, t, 0);
+        } else {
+            let tail = self.gprev(head, 0);
+            self.set_gprev(t, tail, 0);
+            self.set_gprev(head, t, 0);
+        }
+        self.amem_buckets[b] = t;
     }
 
     /// Where a new alpha match `am` right-activating `join` starts among the
