@@ -697,24 +697,27 @@ impl Core<'_> {
             fired += 1;
             self.print_fire_line(fired, rule, token);
             self.bind_rhs(token);
+            // (one borrow of the state for its stores: through `self.st` each store
+            // made the next field access load the reference again)
+            let st = &mut *self.st;
             let saved = (
-                self.st.mode.firing,
-                self.st.net.pm_rhs,
-                self.st.frame,
-                self.st.agenda.current_rule,
+                st.mode.firing,
+                st.net.pm_rhs,
+                st.frame,
+                st.agenda.current_rule,
             );
-            self.st.mode.firing = true;
-            self.st.net.pm_rhs = true;
-            self.st.agenda.current_rule = rule;
-            // the rule's actions run in its module (with MAIN alone, current already)
-            #[cfg(feature = "modules")]
-            if self.st.modules.nmodules > 1 {
-                self.set_current_module(self.rule_tag(rule).module);
-            }
+            st.mode.firing = true;
+            st.net.pm_rhs = true;
+            st.agenda.current_rule = rule;
             // a halt ends the run, so one left here came from before it (a top-level
             // command's propagation): the rule's actions run as usual
-            self.st.mode.halting = false;
-            self.st.frame.bp = self.st.frame.sp;
+            st.mode.halting = false;
+            st.frame.bp = st.frame.sp;
+            // the rule's actions run in its module (with MAIN alone, current already)
+            #[cfg(feature = "modules")]
+            if st.modules.nmodules > 1 {
+                self.set_current_module(self.rule_tag(rule).module);
+            }
             let nlocals = self.rules[rule as usize].nlocals;
             // (most rules bind no locals: no room check for them)
             let mut r = match nlocals {
@@ -745,18 +748,14 @@ impl Core<'_> {
             if self.st.eval.returning {
                 self.remove_focus(self.rule_tag(rule).module);
             }
-            self.st.eval.returning = false;
-            self.st.eval.breaking = false;
+            let st = &mut *self.st;
+            st.eval.returning = false;
+            st.eval.breaking = false;
             // the rule's frame goes; what it left in scratch goes below, at the top level
             let frame;
-            (
-                self.st.mode.firing,
-                self.st.net.pm_rhs,
-                frame,
-                self.st.agenda.current_rule,
-            ) = saved;
-            self.st.frame.leave(frame);
-            if !self.st.mode.firing {
+            (st.mode.firing, st.net.pm_rhs, frame, st.agenda.current_rule) = saved;
+            st.frame.leave(frame);
+            if !st.mode.firing {
                 self.free_pending();
                 self.st.frame.scratch_top = scratch_mark;
             }
