@@ -536,6 +536,10 @@ pub struct Caches {
     /// or-lookup field (`rete::index`; saturates, and then or-lookups stop).
     #[cfg(feature = "host-speedups")]
     pub or_stamp: u32,
+    /// Host: recently used joins' first `?a | ?b` test after error-free ones
+    /// (join, its tests, the test or NONE), direct-mapped by join (`rete::index`).
+    #[cfg(feature = "host-speedups")]
+    pub or_plans: [(JoinId, Ix, Ix); crate::rete::KEY_PLANS],
 }
 
 impl Caches {
@@ -548,6 +552,8 @@ impl Caches {
             compiled_plans: crate::rete::TestPlans::EMPTY,
             #[cfg(feature = "host-speedups")]
             or_stamp: 0,
+            #[cfg(feature = "host-speedups")]
+            or_plans: [(JoinId::NONE, NONE, NONE); crate::rete::KEY_PLANS],
         }
     }
 }

@@ -66,8 +66,8 @@ impl Compiler<'_, '_> {
                 && n.nrhash == pat.nrhash
                 && (0..nrhash).all(|i| self.same_field(n.rhash[i], pat.rhash[i]))
             {
-                if nrhash == 0 && n.rhash[0] == NONE && pat.rhash[0] != NONE {
-                    self.add_or_field(a, pat.rhash[0]);
+                if nrhash < MAX_RHASH && n.rhash[nrhash] == NONE && pat.rhash[nrhash] != NONE {
+                    self.add_or_field(a, nrhash, pat.rhash[nrhash]);
                 }
                 return Ok(a);
             }
@@ -354,16 +354,17 @@ impl Compiler<'_, '_> {
             }
             t = x.next;
         }
-        if pb.nrhash == 0 {
-            pb.rhash[0] = self.or_field(pb.jtests, p);
+        if pb.nrhash < MAX_RHASH {
+            pb.rhash[pb.nrhash] = self.or_field(pb.jtests, p);
         }
     }
 
-    /// Without a right hash: the field of pattern `p` that a join test `?a | ?b` (an
-    /// or of equalities of one plain slot with variables bound earlier) reads, or
-    /// NONE. Kept in `rhash[0]` with `nrhash` 0: it makes no node of its own (CLIPS
-    /// has no such hash); the host indexes the node's matches on it, so such a join
-    /// looks up one bucket per alternative (`rete::index`, `or_lookup`).
+    /// The field of pattern `p` that a join test `?a | ?b` (an or of equalities of
+    /// one plain slot with variables bound earlier) reads, or NONE. Kept in
+    /// `rhash[nrhash]`: it makes no node of its own (CLIPS has no such hash). The host
+    /// indexes a node without a right hash on it, so such a join looks up one bucket
+    /// per alternative (`rete::index`, `or_lookup`); a keyed join skips the
+    /// candidates of its bucket that the test rejects (`or_admits`).
     fn or_field(&self, mut t: Ix, p: u8) -> Ix {
         while t != NONE {
             let x = self.cx.exprs[t as usize];
@@ -375,16 +376,16 @@ impl Compiler<'_, '_> {
         NONE
     }
 
-    /// A shared node without a right hash takes a later pattern's or-lookup field
-    /// (`or_field`) when it has none, and the host indexes the matches it already
-    /// holds (oldest first).
-    fn add_or_field(&mut self, a: Ix, field: Ix) {
+    /// A shared node takes a later pattern's or-test field (`or_field`) when it has
+    /// none; the host indexes the matches of one without a right hash on it (those
+    /// it already holds, oldest first).
+    fn add_or_field(&mut self, a: Ix, nrhash: usize, field: Ix) {
         if self.cx.network_writable().is_err() {
             return;
         }
-        self.cx.alphas[a as usize].rhash[0] = field;
+        self.cx.alphas[a as usize].rhash[nrhash] = field;
         #[cfg(feature = "host-speedups")]
-        {
+        if nrhash == 0 {
             let mut t = self.cx.alpha_mems[a as usize].head;
             while t != crate::handle::TokenId::NONE {
                 self.cx.index_insert(t);

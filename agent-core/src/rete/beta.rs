@@ -543,7 +543,15 @@ impl Core<'_> {
             JoinKind::Positive => {
                 // host: `?a | ?b` on a field the alpha node is indexed on
                 #[cfg(feature = "host-speedups")]
-                if self.alphas[self.joins[join].alpha as usize].nrhash == 0 {
+                let (nrhash, or_field) = {
+                    let n = &self.alphas[self.joins[join].alpha as usize];
+                    (
+                        n.nrhash as usize,
+                        n.rhash.get(n.nrhash as usize).copied().unwrap_or(NONE),
+                    )
+                };
+                #[cfg(feature = "host-speedups")]
+                if nrhash == 0 && or_field != NONE {
                     if let Some(mut cur) = self.or_lookup(join, left) {
                         let (tests, depth) = self.join_test_fields(join);
                         let mut planned = false;
@@ -567,8 +575,22 @@ impl Core<'_> {
                 let (tests, depth) = self.join_test_fields(join);
                 #[cfg(feature = "host-speedups")]
                 let mut planned = false;
+                // host: a keyed join skips the candidates its `?a | ?b` test rejects
+                #[cfg(feature = "host-speedups")]
+                let filter = if nrhash > 0 && or_field != NONE {
+                    self.or_values(join, left, NONE)
+                } else {
+                    None
+                };
                 while a != TokenId::NONE {
                     let next = self.next_candidate(a, hashed);
+                    #[cfg(feature = "host-speedups")]
+                    if let Some(ov) = &filter {
+                        if !self.or_admits(ov, self.tokens[a].fact) {
+                            a = next;
+                            continue;
+                        }
+                    }
                     #[cfg(feature = "host-speedups")]
                     let matched = self.join_test_with(join, tests, depth, left, a, &mut planned)?;
                     #[cfg(not(feature = "host-speedups"))]

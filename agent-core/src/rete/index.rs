@@ -82,6 +82,8 @@ pub const OR_WAYS: usize = 4;
 /// Host: the values an `?a | ?b` join test lets a field take (`Core::or_values`).
 #[cfg(feature = "host-speedups")]
 pub(crate) struct OrValues {
+    /// The expression reading the field (of the join's pattern).
+    field: Ix,
     vals: [Value; OR_WAYS],
     n: usize,
 }
@@ -481,9 +483,9 @@ impl Core<'_> {
         }
     }
 
-    /// Host: for a left token `left` of `join`, the first of the join's tests that
-    /// is `?a | ?b ...` (`or_of_equalities`; on field `want` unless NONE) with only
-    /// error-free tests before it: the values the field must equal (one per
+    /// Host: for a left token `left` of `join`, when the first of the join's tests
+    /// that is `?a | ?b ...` (`or_of_equalities`) has only error-free tests before it
+    /// (and reads field `want`, unless NONE): the values the field must equal (one per
     /// alternative, read from `left`'s facts). A candidate whose field equals none of
     /// them fails the join's tests, having run only tests that report nothing, so it
     /// may be skipped unseen (CLIPS reports the same errors). None: no such test, or
@@ -494,23 +496,34 @@ impl Core<'_> {
             let j = &self.joins[join];
             (j.depth, j.tests)
         };
-        let mut t = tests;
-        let or = loop {
-            if t == NONE {
-                return None;
-            }
-            if let Some(f) = self.or_of_equalities(t, depth) {
-                if want == NONE || self.exprs[f as usize].data == self.exprs[want as usize].data {
-                    break t;
+        // the test is found once per join (direct-mapped cache, as key plans)
+        let i = join.ix() % KEY_PLANS;
+        let (cj, ct, mut or) = self.st.cache.or_plans[i];
+        if cj != join || ct != tests {
+            or = NONE;
+            let mut t = tests;
+            while t != NONE {
+                if self.or_of_equalities(t, depth).is_some() {
+                    or = t;
+                    break;
                 }
+                if !self.error_free(t) {
+                    break;
+                }
+                t = self.exprs[t as usize].next;
             }
-            if !self.error_free(t) {
-                return None;
-            }
-            t = self.exprs[t as usize].next;
-        };
+            self.st.cache.or_plans[i] = (join, tests, or);
+        }
+        if or == NONE {
+            return None;
+        }
+        let field = self.exprs[self.exprs[or as usize].first as usize].first;
+        if want != NONE && self.exprs[field as usize].data != self.exprs[want as usize].data {
+            return None;
+        }
         self.bind_for_quick(left);
         let mut out = OrValues {
+            field,
             vals: [Value::Void; OR_WAYS],
             n: 0,
         };
@@ -531,6 +544,19 @@ impl Core<'_> {
             c = self.exprs[c as usize].next;
         }
         Some(out)
+    }
+
+    /// Host: whether a candidate (fact `fact`) may pass the or test of `or_values`
+    /// (true also when its field cannot be read plainly: the tests decide).
+    #[cfg(feature = "host-speedups")]
+    #[inline(always)]
+    pub(crate) fn or_admits(&self, ov: &OrValues, fact: Ix) -> bool {
+        match self.plain_slot_value(fact, &self.exprs[ov.field as usize]) {
+            Some(v) => ov.vals[..ov.n]
+                .iter()
+                .any(|&w| crate::builtins::basic::values_same(self, v, w)),
+            None => true,
+        }
     }
 
     /// Host: where a left token of positive `join` finds its right partners when its
