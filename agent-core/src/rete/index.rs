@@ -53,7 +53,15 @@ pub struct KeyPlan {
     /// Number of fields; `KeyPlan::NONE.n` when the evaluator must compute the key.
     pub n: u8,
     pub vars: [(u8, u8); MAX_RHASH],
+    /// Host: per field, the element of a multislot it reads (at a fixed offset:
+    /// every element before it single-field), or `WHOLE_SLOT`.
+    #[cfg(feature = "host-speedups")]
+    pub elems: [u8; MAX_RHASH],
 }
+
+/// `KeyPlan::elems` of a field that is a whole single-field slot.
+#[cfg(feature = "host-speedups")]
+const WHOLE_SLOT: u8 = u8::MAX;
 
 impl KeyPlan {
     pub const NONE: KeyPlan = KeyPlan {
@@ -61,6 +69,8 @@ impl KeyPlan {
         tests: NONE,
         n: u8::MAX,
         vars: [(0, 0); MAX_RHASH],
+        #[cfg(feature = "host-speedups")]
+        elems: [WHOLE_SLOT; MAX_RHASH],
     };
 }
 
@@ -310,8 +320,23 @@ impl Core<'_> {
             return None;
         }
         let mut key = 0x5bd1_e995u32;
-        for &(pat, slot) in &plan.vars[..plan.n as usize] {
+        for (k, &(pat, slot)) in plan.vars[..plan.n as usize].iter().enumerate() {
             let fact = self.left_fact(left, pat);
+            #[cfg(feature = "host-speedups")]
+            if plan.elems[k] != WHOLE_SLOT && fact != NONE {
+                // an element of an ordered fact (or multislot) at a fixed offset
+                let elem = plan.elems[k] as usize;
+                let (cell, len) = self.slot_cell(fact, Ix::from(slot));
+                match len {
+                    Some(len) if elem < len as usize => {
+                        key = mix(key, self.value_hash(self.values[cell + 1 + elem]));
+                        continue;
+                    }
+                    _ => return None,
+                }
+            }
+            #[cfg(not(feature = "host-speedups"))]
+            let _ = k;
             if fact == NONE {
                 // a pattern beyond `Token::binds`: read through `lhs_pm` (rare)
                 #[cfg(feature = "host-speedups")]
@@ -337,6 +362,12 @@ impl Core<'_> {
     fn deep_left_key(&mut self, i: usize, left: TokenId) -> Option<u32> {
         self.bind_left(left);
         let plan = &self.st.cache.key_plans[i];
+        if plan.elems[..plan.n as usize]
+            .iter()
+            .any(|&e| e != WHOLE_SLOT)
+        {
+            return None;
+        }
         let mut key = 0x5bd1_e995u32;
         for &(pat, slot) in &plan.vars[..plan.n as usize] {
             let fact = match self.st.net.lhs_pm.get(pat as usize) {
@@ -365,7 +396,7 @@ impl Core<'_> {
             join,
             tests: j.tests,
             n: 0,
-            vars: [(0, 0); MAX_RHASH],
+            ..KeyPlan::NONE
         };
         let unplanned = KeyPlan {
             join,
@@ -380,7 +411,17 @@ impl Core<'_> {
                 if this.op == Op::PatVar && this.aux == j.depth && this.next != NONE {
                     let o = self.exprs[this.next as usize];
                     if o.op == Op::PatVar && o.aux != j.depth {
-                        if o.aux > j.depth || o.first != NONE || o.data == loc::FACT {
+                        if o.aux > j.depth || o.data == loc::FACT {
+                            return unplanned;
+                        }
+                        if o.first != NONE {
+                            // host: an element at a fixed offset
+                            #[cfg(feature = "host-speedups")]
+                            match self.fixed_elem(&o) {
+                                Some(e) => plan.elems[plan.n as usize] = e,
+                                None => return unplanned,
+                            }
+                            #[cfg(not(feature = "host-speedups"))]
                             return unplanned;
                         }
                         plan.vars[plan.n as usize] = (o.aux, loc::slot(o.data));
@@ -394,6 +435,34 @@ impl Core<'_> {
             return unplanned;
         }
         plan
+    }
+
+    /// Host: the element a pattern variable reads in its multislot (or ordered
+    /// fact) when its offset is fixed: every element before it is single-field.
+    #[cfg(feature = "host-speedups")]
+    fn fixed_elem(&self, x: &crate::expr::Expr) -> Option<u8> {
+        let elem = loc::elem(x.data);
+        if elem == loc::SINGLE {
+            return None;
+        }
+        let desc = self.exprs[x.first as usize];
+        if desc.op != Op::PatSlot {
+            return None;
+        }
+        let mut c = desc.first;
+        let mut i = 0u8;
+        while c != NONE {
+            let element = self.exprs[c as usize];
+            if element.aux == 1 {
+                return None;
+            }
+            if i == elem {
+                return (elem != WHOLE_SLOT).then_some(elem);
+            }
+            i += 1;
+            c = element.next;
+        }
+        None
     }
 
     /// `alpha_key` for a match whose right-hash fields are all plain single-field
@@ -1323,12 +1392,16 @@ impl Core<'_> {
         group
     }
 
-    /// Host: whether `join`'s key plan reads the fields `plan` reads, in its order.
+    /// Host: whether `join`'s key plan reads the fields (and elements) `plan` reads,
+    /// in its order.
     #[cfg(feature = "host-speedups")]
     fn same_key(&self, join: JoinId, plan: &KeyPlan) -> bool {
         let p = self.key_plan(join);
         let n = plan.n as usize;
-        p.n == plan.n && n <= MAX_RHASH && p.vars[..n] == plan.vars[..n]
+        p.n == plan.n
+            && n <= MAX_RHASH
+            && p.vars[..n] == plan.vars[..n]
+            && p.elems[..n] == plan.elems[..n]
     }
 
     /// Links every partial match of `join`'s memory into index group `g`, keyed by
