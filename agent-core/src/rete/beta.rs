@@ -535,76 +535,104 @@ impl Core<'_> {
         Ok(TokenId::NONE)
     }
 
+    /// Host: `left_activate` of positive `join` whose alpha node keeps a field for a
+    /// `?a | ?b` test (`rhash[nrhash]`). Without a right hash: one index bucket per
+    /// alternative (`or_lookup`); with one: its bucket, skipping the candidates the
+    /// test rejects (`or_admits`). False when neither applies (the caller walks
+    /// the candidates as for any join).
+    #[cfg(feature = "host-speedups")]
+    #[inline(never)]
+    fn or_left_activate(&mut self, join: JoinId, left: TokenId) -> Result<bool, EvalError> {
+        let nrhash = self.alphas[self.joins[join].alpha as usize].nrhash;
+        let (tests, depth) = self.join_test_fields(join);
+        let mut planned = false;
+        if nrhash == 0 {
+            let Some(mut cur) = self.or_lookup(join, left) else {
+                return Ok(false);
+            };
+            loop {
+                let a = self.or_next(&mut cur);
+                if a == TokenId::NONE {
+                    return Ok(true);
+                }
+                if self.join_test_with(join, tests, depth, left, a, &mut planned)? {
+                    let t = self.link_token(join, left, a)?;
+                    self.propagate_in(t, join)?;
+                    planned = false;
+                }
+            }
+        }
+        let (mut a, hashed) = self.first_candidate(join, left);
+        let Some(ov) = self.or_values(join, left, NONE) else {
+            return self.left_walk(join, left, a, hashed).map(|()| true);
+        };
+        while a != TokenId::NONE {
+            let next = self.next_candidate(a, hashed);
+            if self.or_admits(&ov, self.tokens[a].fact)
+                && self.join_test_with(join, tests, depth, left, a, &mut planned)?
+            {
+                let t = self.link_token(join, left, a)?;
+                self.propagate_in(t, join)?;
+                planned = false;
+            }
+            a = next;
+        }
+        Ok(true)
+    }
+
+    /// A positive join's walk over its candidates from `a` (`first_candidate`) for
+    /// left token `left`: each match passing its tests is propagated.
+    #[inline(always)]
+    fn left_walk(
+        &mut self,
+        join: JoinId,
+        left: TokenId,
+        mut a: TokenId,
+        hashed: bool,
+    ) -> Result<(), EvalError> {
+        // host: see `find_blocker`
+        #[cfg(feature = "host-speedups")]
+        let (tests, depth) = self.join_test_fields(join);
+        #[cfg(feature = "host-speedups")]
+        let mut planned = false;
+        while a != TokenId::NONE {
+            let next = self.next_candidate(a, hashed);
+            #[cfg(feature = "host-speedups")]
+            let matched = self.join_test_with(join, tests, depth, left, a, &mut planned)?;
+            #[cfg(not(feature = "host-speedups"))]
+            let matched = self.join_test(join, left, a)?;
+            if matched {
+                let t = self.link_token(join, left, a)?;
+                self.propagate_in(t, join)?;
+                #[cfg(feature = "host-speedups")]
+                {
+                    planned = false;
+                }
+            }
+            a = next;
+        }
+        Ok(())
+    }
+
     /// A new active partial match `left` arrives on the left of `join`.
     pub(crate) fn left_activate(&mut self, join: JoinId, left: TokenId) -> Result<(), EvalError> {
         // the fields, not a copy of the join (which lived on the stack across calls)
         let kind = self.joins[join].kind;
         match kind {
             JoinKind::Positive => {
-                // host: `?a | ?b` on a field the alpha node is indexed on
+                // host: a join with a `?a | ?b` test on a field its alpha node keeps
+                // for it (out of line: most joins have none)
                 #[cfg(feature = "host-speedups")]
-                let (nrhash, or_field) = {
+                {
                     let n = &self.alphas[self.joins[join].alpha as usize];
-                    (
-                        n.nrhash as usize,
-                        n.rhash.get(n.nrhash as usize).copied().unwrap_or(NONE),
-                    )
-                };
-                #[cfg(feature = "host-speedups")]
-                if nrhash == 0 && or_field != NONE {
-                    if let Some(mut cur) = self.or_lookup(join, left) {
-                        let (tests, depth) = self.join_test_fields(join);
-                        let mut planned = false;
-                        loop {
-                            let a = self.or_next(&mut cur);
-                            if a == TokenId::NONE {
-                                break;
-                            }
-                            if self.join_test_with(join, tests, depth, left, a, &mut planned)? {
-                                let t = self.link_token(join, left, a)?;
-                                self.propagate_in(t, join)?;
-                                planned = false;
-                            }
-                        }
+                    if n.rhash.get(n.nrhash as usize).is_some_and(|&f| f != NONE)
+                        && self.or_left_activate(join, left)?
+                    {
                         return Ok(());
                     }
                 }
-                let (mut a, hashed) = self.first_candidate(join, left);
-                // host: see `find_blocker`
-                #[cfg(feature = "host-speedups")]
-                let (tests, depth) = self.join_test_fields(join);
-                #[cfg(feature = "host-speedups")]
-                let mut planned = false;
-                // host: a keyed join skips the candidates its `?a | ?b` test rejects
-                #[cfg(feature = "host-speedups")]
-                let filter = if nrhash > 0 && or_field != NONE {
-                    self.or_values(join, left, NONE)
-                } else {
-                    None
-                };
-                while a != TokenId::NONE {
-                    let next = self.next_candidate(a, hashed);
-                    #[cfg(feature = "host-speedups")]
-                    if let Some(ov) = &filter {
-                        if !self.or_admits(ov, self.tokens[a].fact) {
-                            a = next;
-                            continue;
-                        }
-                    }
-                    #[cfg(feature = "host-speedups")]
-                    let matched = self.join_test_with(join, tests, depth, left, a, &mut planned)?;
-                    #[cfg(not(feature = "host-speedups"))]
-                    let matched = self.join_test(join, left, a)?;
-                    if matched {
-                        let t = self.link_token(join, left, a)?;
-                        self.propagate_in(t, join)?;
-                        #[cfg(feature = "host-speedups")]
-                        {
-                            planned = false;
-                        }
-                    }
-                    a = next;
-                }
+                let (a, hashed) = self.first_candidate(join, left);
+                self.left_walk(join, left, a, hashed)?;
             }
             JoinKind::Negative | JoinKind::Exists => {
                 let post = self.joins[join].post;

@@ -57,6 +57,9 @@ pub struct KeyPlan {
     /// every element before it single-field), or `WHOLE_SLOT`.
     #[cfg(feature = "host-speedups")]
     pub elems: [u8; MAX_RHASH],
+    /// Host: some field reads an element (`elems`): `elem_left_key` computes the key.
+    #[cfg(feature = "host-speedups")]
+    pub elem: bool,
 }
 
 /// `KeyPlan::elems` of a field that is a whole single-field slot.
@@ -71,6 +74,8 @@ impl KeyPlan {
         vars: [(0, 0); MAX_RHASH],
         #[cfg(feature = "host-speedups")]
         elems: [WHOLE_SLOT; MAX_RHASH],
+        #[cfg(feature = "host-speedups")]
+        elem: false,
     };
 }
 
@@ -319,24 +324,13 @@ impl Core<'_> {
         if plan.n == KeyPlan::NONE.n {
             return None;
         }
+        #[cfg(feature = "host-speedups")]
+        if plan.elem {
+            return self.elem_left_key(i, left);
+        }
         let mut key = 0x5bd1_e995u32;
-        for (k, &(pat, slot)) in plan.vars[..plan.n as usize].iter().enumerate() {
+        for &(pat, slot) in &plan.vars[..plan.n as usize] {
             let fact = self.left_fact(left, pat);
-            #[cfg(feature = "host-speedups")]
-            if plan.elems[k] != WHOLE_SLOT && fact != NONE {
-                // an element of an ordered fact (or multislot) at a fixed offset
-                let elem = plan.elems[k] as usize;
-                let (cell, len) = self.slot_cell(fact, Ix::from(slot));
-                match len {
-                    Some(len) if elem < len as usize => {
-                        key = mix(key, self.value_hash(self.values[cell + 1 + elem]));
-                        continue;
-                    }
-                    _ => return None,
-                }
-            }
-            #[cfg(not(feature = "host-speedups"))]
-            let _ = k;
             if fact == NONE {
                 // a pattern beyond `Token::binds`: read through `lhs_pm` (rare)
                 #[cfg(feature = "host-speedups")]
@@ -355,6 +349,39 @@ impl Core<'_> {
         Some(key)
     }
 
+    /// Host: `quick_left_key` for a key plan (cache entry `i`) with a field that is
+    /// an element of an ordered fact (or multislot) at a fixed offset.
+    #[cfg(feature = "host-speedups")]
+    #[inline(never)]
+    fn elem_left_key(&mut self, i: usize, left: TokenId) -> Option<u32> {
+        let plan = self.st.cache.key_plans[i];
+        let mut key = 0x5bd1_e995u32;
+        for (k, &(pat, slot)) in plan.vars[..plan.n as usize].iter().enumerate() {
+            let fact = self.left_fact(left, pat);
+            if fact == NONE {
+                // a pattern beyond `Token::binds` (see `deep_left_key`)
+                return None;
+            }
+            if plan.elems[k] == WHOLE_SLOT {
+                let v = self.slot_ref(fact, Ix::from(slot));
+                if matches!(v, Value::Multi(_)) {
+                    return None;
+                }
+                key = mix(key, atom_hash(*v));
+                continue;
+            }
+            let elem = plan.elems[k] as usize;
+            let (cell, len) = self.slot_cell(fact, Ix::from(slot));
+            match len {
+                Some(len) if elem < len as usize => {
+                    key = mix(key, self.value_hash(self.values[cell + 1 + elem]));
+                }
+                _ => return None,
+            }
+        }
+        Some(key)
+    }
+
     /// `quick_left_key` for a key plan (cache entry `i`) that reads a pattern at or
     /// beyond `BIND_W`: every fact through `lhs_pm`, bound to `left`'s ancestry.
     #[cfg(feature = "host-speedups")]
@@ -362,12 +389,6 @@ impl Core<'_> {
     fn deep_left_key(&mut self, i: usize, left: TokenId) -> Option<u32> {
         self.bind_left(left);
         let plan = &self.st.cache.key_plans[i];
-        if plan.elems[..plan.n as usize]
-            .iter()
-            .any(|&e| e != WHOLE_SLOT)
-        {
-            return None;
-        }
         let mut key = 0x5bd1_e995u32;
         for &(pat, slot) in &plan.vars[..plan.n as usize] {
             let fact = match self.st.net.lhs_pm.get(pat as usize) {
@@ -418,7 +439,10 @@ impl Core<'_> {
                             // host: an element at a fixed offset
                             #[cfg(feature = "host-speedups")]
                             match self.fixed_elem(&o) {
-                                Some(e) => plan.elems[plan.n as usize] = e,
+                                Some(e) => {
+                                    plan.elems[plan.n as usize] = e;
+                                    plan.elem = true;
+                                }
                                 None => return unplanned,
                             }
                             #[cfg(not(feature = "host-speedups"))]
