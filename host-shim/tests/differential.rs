@@ -421,4 +421,5 @@ differential_programs! {
     p291_arith_join_tests => "291-arith-join-tests",
     p370_join_test_order => "370-join-test-order",
     p410_or_lookups => "410-or-lookups",
+    p450_keyed_or_joins => "450-keyed-or-joins",
 }

@@ -507,6 +507,16 @@ impl Core<'_> {
         if rjoin == JoinId::NONE {
             // host: the join's test fields read and its plan cache checked once
             // (the image checks per candidate: less code)
+            // host: a keyed join with a `?a | ?b` test (out of line: most have none)
+            #[cfg(feature = "host-speedups")]
+            if hashed && from != TokenId::NONE {
+                let n = &self.alphas[self.joins[join].alpha as usize];
+                if n.rhash.get(n.nrhash as usize).is_some_and(|&f| f != NONE) {
+                    if let Some(r) = self.find_blocker_or(join, left, from)? {
+                        return Ok(r);
+                    }
+                }
+            }
             #[cfg(feature = "host-speedups")]
             let (tests, depth) = self.join_test_fields(join);
             #[cfg(feature = "host-speedups")]
@@ -533,6 +543,33 @@ impl Core<'_> {
             }
         }
         Ok(TokenId::NONE)
+    }
+
+    /// Host: `find_blocker` along a keyed bucket (from `a`) of `join` whose alpha
+    /// node keeps a field for a `?a | ?b` test: candidates the test rejects are
+    /// skipped unseen (`or_admits`). None when the test's values cannot be read.
+    #[cfg(feature = "host-speedups")]
+    #[inline(never)]
+    fn find_blocker_or(
+        &mut self,
+        join: JoinId,
+        left: TokenId,
+        mut a: TokenId,
+    ) -> Result<Option<TokenId>, EvalError> {
+        let Some(ov) = self.or_values(join, left, NONE) else {
+            return Ok(None);
+        };
+        let (tests, depth) = self.join_test_fields(join);
+        let mut planned = false;
+        while a != TokenId::NONE {
+            if self.or_admits(&ov, self.tokens[a].fact)
+                && self.join_test_with(join, tests, depth, left, a, &mut planned)?
+            {
+                return Ok(Some(a));
+            }
+            a = self.next_candidate(a, true);
+        }
+        Ok(Some(TokenId::NONE))
     }
 
     /// Host: `left_activate` of positive `join` whose alpha node keeps a field for a
