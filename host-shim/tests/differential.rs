@@ -422,4 +422,5 @@ differential_programs! {
     p370_join_test_order => "370-join-test-order",
     p410_or_lookups => "410-or-lookups",
     p450_keyed_or_joins => "450-keyed-or-joins",
+    p451_element_join_keys => "451-element-join-keys",
 }
