@@ -342,6 +342,18 @@ impl Core<'_> {
                 self.set_global(g, v)?;
             }
         }
+        // variables bound at the prompt (hidden globals `?x`) are unbound again
+        #[cfg(feature = "parser")]
+        for g in 0..self.st.pools.nglobals {
+            let name = self.globals[g as usize].name;
+            let prompt_var = name != NONE && {
+                let t = self.sym_text(name);
+                t.starts_with('?') && !t.starts_with("?*")
+            };
+            if prompt_var && !matches!(self.globals[g as usize].value, Value::Void) {
+                self.set_global(g, Value::Void)?;
+            }
+        }
         let mut j = self.joins[JoinId::ROOT].first_child;
         while j != JoinId::NONE {
             if self.joins[j].kind != JoinKind::Positive {
@@ -1073,6 +1085,13 @@ impl Core<'_> {
             );
         } else if e.detail == LoadDetail::MissingFunction {
             let _ = writeln!(b, "\n[EXPRNPSR3] Missing function declaration for {tok}.");
+        } else if let LoadDetail::NotInContext { func } = e.detail {
+            // (CLIPS's two texts differ by an "is")
+            let is = if func == "return" { "is " } else { "" };
+            let _ = writeln!(
+                b,
+                "\n[PRCDRPSR2] The {func} function {is}not valid in this context."
+            );
         } else if let LoadDetail::SequenceOperator { func, whole } = e.detail {
             let _ = writeln!(
                 b,
@@ -1324,6 +1343,11 @@ impl Core<'_> {
             );
         } else if e.detail == LoadDetail::DefaultEvaluation {
             // the evaluation error is printed; CLIPS adds only the construct
+        } else if let LoadDetail::SyntaxOf { part } = e.detail {
+            let _ = writeln!(
+                b,
+                "\n[PRNTUTIL2] Syntax Error:  Check appropriate syntax for {part}."
+            );
         } else if e.construct == "command" {
             {
                 let _ = writeln!(
@@ -1418,7 +1442,9 @@ impl Core<'_> {
             && matches!(
                 e.detail,
                 LoadDetail::Syntax
+                    | LoadDetail::SyntaxOf { .. }
                     | LoadDetail::MissingFunction
+                    | LoadDetail::NotInContext { .. }
                     | LoadDetail::SequenceOperator { .. }
                     | LoadDetail::Arity { .. }
                     | LoadDetail::FunctionArity { .. }
@@ -1439,6 +1465,8 @@ impl Core<'_> {
             && matches!(
                 e.detail,
                 LoadDetail::MissingFunction
+                    | LoadDetail::SyntaxOf { .. }
+                    | LoadDetail::NotInContext { .. }
                     | LoadDetail::SequenceOperator { .. }
                     | LoadDetail::Arity { .. }
                     | LoadDetail::FunctionArity { .. }
@@ -1457,7 +1485,10 @@ impl Core<'_> {
             // shown)
             && (!matches!(
                 e.detail,
-                LoadDetail::MissingFunction | LoadDetail::SequenceOperator { .. }
+                LoadDetail::MissingFunction
+                    | LoadDetail::NotInContext { .. }
+                    | LoadDetail::SyntaxOf { .. }
+                    | LoadDetail::SequenceOperator { .. }
             ) || e.construct == "deftemplate")
         {
             let _ = b.write_str("\nERROR:\n");

@@ -559,6 +559,15 @@ pub enum LoadDetail {
     },
     /// `[EXPRNPSR3]`: unknown function (its name is the offending token).
     MissingFunction,
+    /// A syntax error CLIPS names by the part it was reading ("function calls", "first
+    /// field of a RHS pattern") rather than by the construct.
+    SyntaxOf {
+        part: &'static str,
+    },
+    /// `break` outside a loop's body, `return` at the prompt (`[PRCDRPSR2]`).
+    NotInContext {
+        func: &'static str,
+    },
     /// `[EXPRNPSR4]`: a sequence expansion (`expand$`, or `$?x` with
     /// sequence-operator recognition) among the arguments of `func`, which takes none.
     SequenceOperator {

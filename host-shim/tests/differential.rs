@@ -423,4 +423,5 @@ differential_programs! {
     p410_or_lookups => "410-or-lookups",
     p450_keyed_or_joins => "450-keyed-or-joins",
     p451_element_join_keys => "451-element-join-keys",
+    p480_testsuite_odds => "480-testsuite-odds",
 }

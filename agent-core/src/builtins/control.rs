@@ -241,6 +241,19 @@ fn bind(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     let value = if n == 1 && (!only.is_multi() || spliced) {
         keep_bound(cx, start, only)?
     } else if n == 0 {
+        // `(bind ?*g*)`: a defglobal goes back to its initial value, which bind returns
+        let t = cx.exprs[target as usize];
+        let init = if t.op == Op::Global {
+            cx.globals[t.data as usize].init
+        } else {
+            NONE
+        };
+        if init != NONE {
+            let v = cx.eval(init)?;
+            let v = keep_bound(cx, start, v)?;
+            store_bound(cx, target, v)?;
+            return Ok(v);
+        }
         Value::Void
     } else {
         cx.multi_finish(start)

@@ -51,6 +51,7 @@ fn eval(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let text = text.as_str();
     let cp = cx.checkpoint();
     let mut p = Parser::new(cx, text);
+    p.commands_only = true;
     let item = p.next_item();
     let nlocals = p.nlocals;
     let r = match item {
@@ -138,6 +139,18 @@ pub(super) fn assert_string(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalErr
                 router::WERROR,
                 "\n[PRNTUTIL2] Syntax Error:  Check appropriate syntax for RHS patterns.\n",
             );
+            Ok(Value::Sym(SYM_FALSE))
+        }
+        Err(crate::error::LoadError {
+            detail: crate::error::LoadDetail::SyntaxOf { part },
+            ..
+        }) => {
+            let mut m: crate::value::TextBuf<96> = crate::value::TextBuf::new();
+            let _ = core::fmt::Write::write_fmt(
+                &mut m,
+                format_args!("\n[PRNTUTIL2] Syntax Error:  Check appropriate syntax for {part}.\n"),
+            );
+            cx.write(router::WERROR, m.as_str());
             Ok(Value::Sym(SYM_FALSE))
         }
         Err(e) => {

@@ -850,7 +850,9 @@ fn report_invalid_slot(cx: &mut Core<'_>, tmpl: Ix, name: SymId) {
 
 fn fact_index(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     match cx.arg(a, 0) {
-        Value::Fact(r) => Ok(Value::Int(r.num as i64)),
+        // CLIPS 6.30 gives -1 for a fact that has been retracted since
+        Value::Fact(r) if cx.fact_alive(r) => Ok(Value::Int(r.num as i64)),
+        Value::Fact(_) => Ok(Value::Int(-1)),
         _ => Err(EvalError::wrong_type("fact-index", 1, "fact-address")),
     }
 }

@@ -330,10 +330,23 @@ impl<'s> Parser<'s, '_, '_> {
         }
         match builtins::lookup(name) {
             Some((id, b)) => {
+                // `break` outside a loop's body and `return` outside a deffunction or a
+                // rule's actions: CLIPS refuses them when it reads them
+                if (b.name == "break" && self.loop_depth == 0)
+                    || (b.name == "return" && self.scope == Scope::TopLevel)
+                {
+                    let mut e = self.err(nt, "a loop body (break) or actions (return)");
+                    e.detail = crate::error::LoadDetail::NotInContext { func: b.name };
+                    e.echo_end = nt.end as u32;
+                    return Err(e);
+                }
                 let call = self.push_call(FnKind::Builtin, id)?;
                 let args_at = self.save();
                 let n = if b.syntax == Syntax::Query {
-                    self.query_args(call)?
+                    self.loop_depth += 1;
+                    let r = self.query_args(call);
+                    self.loop_depth -= 1;
+                    r?
                 } else {
                     self.args_until_rparen(call)?
                 };
@@ -609,6 +622,14 @@ impl<'s> Parser<'s, '_, '_> {
     }
 
     /// Actions until `)`, wrapped in a `progn` node.
+    /// A loop's body: `break` is allowed in it (CLIPS refuses it elsewhere).
+    fn loop_body(&mut self) -> PResult<Ix> {
+        self.loop_depth += 1;
+        let r = self.action_block();
+        self.loop_depth -= 1;
+        r
+    }
+
     pub fn action_block(&mut self) -> PResult<Ix> {
         let p = self.builtin_call("progn")?;
         self.args_until_rparen(p)?;
@@ -663,7 +684,7 @@ impl<'s> Parser<'s, '_, '_> {
         if self.peek().tok == Tok::Symbol("do") {
             self.next();
         }
-        let body = self.action_block()?;
+        let body = self.loop_body()?;
         self.cx.append_child(node, body);
         Ok(node)
     }
@@ -774,7 +795,7 @@ impl<'s> Parser<'s, '_, '_> {
         if self.peek().tok == Tok::Symbol("do") {
             self.next();
         }
-        let body = self.action_block()?;
+        let body = self.loop_body()?;
         self.cx.append_child(node, body);
         Ok(node)
     }
@@ -808,7 +829,7 @@ impl<'s> Parser<'s, '_, '_> {
             if self.peek().tok == Tok::Symbol("do") {
                 self.next();
             }
-            let body = self.action_block()?;
+            let body = self.loop_body()?;
             self.cx.append_child(node, body);
             return Ok(node);
         }
@@ -833,7 +854,7 @@ impl<'s> Parser<'s, '_, '_> {
         if self.peek().tok == Tok::Symbol("do") {
             self.next();
         }
-        let body = self.action_block()?;
+        let body = self.loop_body()?;
         self.cx.append_child(node, body);
         Ok(node)
     }

@@ -33,8 +33,16 @@ impl<'s> Parser<'s, '_, '_> {
     pub fn fact_spec(&mut self) -> PResult<Ix> {
         let nt = self.next();
         let (module, name) = match nt.tok {
-            Tok::Symbol(s) => self.qualified_ref(nt, s)?,
-            _ => return Err(self.err(nt, "a template or relation name")),
+            // `=` and `:` are operators, never a relation name
+            Tok::Symbol(s) if s != "=" && s != ":" => self.qualified_ref(nt, s)?,
+            _ => {
+                let mut e = self.err(nt, "a template or relation name");
+                e.detail = crate::error::LoadDetail::SyntaxOf {
+                    part: "first field of a RHS pattern",
+                };
+                e.echo_end = nt.end as u32;
+                return Err(e);
+            }
         };
         let sym = cap!(self, self.cx.intern(name))?;
         let tmpl = match self.template_in(module, sym) {
@@ -105,7 +113,10 @@ impl<'s> Parser<'s, '_, '_> {
             let t = self.peek();
             if t.tok != Tok::LParen {
                 let mut e = self.err(t, "a function call after '='");
-                e.construct = "function calls";
+                e.detail = crate::error::LoadDetail::SyntaxOf {
+                    part: "function calls",
+                };
+                e.echo_end = t.end as u32;
                 return Err(e);
             }
         }

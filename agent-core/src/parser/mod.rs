@@ -111,6 +111,11 @@ pub struct Parser<'s, 'c, 'e> {
     /// module of the name sees is read by its name (`[GLOBLDEF1]` when still unseen
     /// as it runs), as CLIPS reads it.
     pub evaluated_now: bool,
+    /// `eval`: a construct keyword is read as a function name (CLIPS 6.30's
+    /// `[EXPRNPSR3] Missing function declaration for defrule.`), nothing is defined.
+    pub commands_only: bool,
+    /// Loop bodies around the expression being read: `break` needs one.
+    pub loop_depth: u16,
     /// `check-syntax`: a construct read whole stops before it is defined, with a
     /// [`LoadDetail::Checked`](crate::error::LoadDetail::Checked) "error" (rolled
     /// back: nothing stays, no old construct is replaced); a defglobal's values are not
@@ -175,6 +180,8 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
             ce_count: 0,
             lhs_field: 0,
             evaluated_now: false,
+            commands_only: false,
+            loop_depth: 0,
             check_only: false,
             complexity: 0,
             rule_base: 0,
@@ -478,6 +485,7 @@ impl<'s, 'e> Parser<'s, '_, 'e> {
     pub fn next_item(&mut self) -> PResult<Item> {
         // (a construct that failed may leave it set)
         self.evaluated_now = false;
+        self.loop_depth = 0;
         let t = self.peek();
         match t.tok {
             Tok::Eof => Ok(Item::End),
@@ -490,6 +498,7 @@ impl<'s, 'e> Parser<'s, '_, 'e> {
                     _ => "",
                 };
                 let kw: &'static str = match kw {
+                    _ if self.commands_only => "",
                     "deftemplate" => "deftemplate",
                     "defrule" => "defrule",
                     "deffacts" => "deffacts",

@@ -892,10 +892,19 @@ impl<'s> Parser<'s, '_, '_> {
             Tok::Symbol(s)
                 if !matches!(
                     s,
-                    "test" | "not" | "and" | "or" | "exists" | "forall" | "logical"
+                    "test" | "not" | "and" | "or" | "exists" | "forall" | "logical" | "=" | ":"
                 ) =>
             {
                 self.qualified_ref(nt, s)?
+            }
+            // `=` and `:` are operators, never a relation name (CLIPS's own wording)
+            Tok::Symbol("=" | ":") => {
+                let mut e = self.err(nt, "a template or relation name");
+                e.detail = crate::error::LoadDetail::SyntaxOf {
+                    part: "the field field of a pattern",
+                };
+                e.echo_end = nt.end as u32;
+                return Err(e);
             }
             _ => return Err(self.err(nt, "a template or relation name")),
         };
@@ -1455,6 +1464,16 @@ impl<'s> Parser<'s, '_, '_> {
                 let e = self.parse_expr()?;
                 let this = self.this_field(p, locv, desc)?;
                 self.node2(Op::Eq2, this, e)
+            }
+            // in a pattern `=` and `:` are operators: a call must follow
+            Tok::Symbol(":" | "=") => {
+                let at = self.peek();
+                let mut e = self.err(at, "a function call after '=' or ':'");
+                e.detail = crate::error::LoadDetail::SyntaxOf {
+                    part: "function calls",
+                };
+                e.echo_end = at.end as u32;
+                Err(e)
             }
             Tok::SfVar(name) | Tok::MfVar(name) => {
                 let is_mf = matches!(t.tok, Tok::MfVar(_));
