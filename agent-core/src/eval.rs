@@ -61,21 +61,26 @@ impl Core<'_> {
 
     /// A frame local's value; one the parser marked as maybe unbound (bound only
     /// inside a condition or loop: `aux` 1, its name in the payload node after it) is
-    /// an error while unbound.
+    /// an error while unbound, an LHS variable the actions bind (`aux` 2) its LHS value.
     #[inline(always)]
     fn local(&mut self, e: Ix, x: Expr) -> Result<Value, EvalError> {
         let v = self.stack[(self.st.frame.bp + x.data) as usize];
-        if x.aux == 1 && matches!(v, Value::Void) {
-            return Err(self.unbound_local(e));
+        if x.aux != 0 && matches!(v, Value::Void) {
+            return self.unbound_local(e, x);
         }
         Ok(v)
     }
 
+    /// An unbound local: an LHS variable the actions bind (`aux` 2) has its LHS value
+    /// until then (CLIPS's fallback), another is an error.
     #[cold]
     #[inline(never)]
-    fn unbound_local(&self, e: Ix) -> EvalError {
+    fn unbound_local(&mut self, e: Ix, x: Expr) -> Result<Value, EvalError> {
+        if x.aux == 2 {
+            return self.pattern_var_of(self.exprs[x.first as usize]);
+        }
         let name = self.exprs[e as usize + 1].data;
-        EvalError::new(EvalErrorKind::UnboundVariable { name })
+        Err(EvalError::new(EvalErrorKind::UnboundVariable { name }))
     }
 
     /// A global holding no value: a prompt variable (`?x`, hidden global `?x`) never

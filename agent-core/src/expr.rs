@@ -17,7 +17,9 @@ pub enum Op {
     Str,
     /// Function call: `aux` is a `FnKind`, `data` its index; args are children.
     Call,
-    /// Local variable (rule RHS `bind`, deffunction parameter): `data` is the frame slot.
+    /// Local variable (rule RHS `bind`, deffunction parameter): `data` is the frame slot;
+    /// `aux` 1: maybe unbound (its name in the payload node after it); `aux` 2: an LHS
+    /// variable the actions bind, `first` the `PatVar` read while unbound.
     Local,
     /// `data` is the global index.
     Global,

@@ -424,4 +424,5 @@ differential_programs! {
     p450_keyed_or_joins => "450-keyed-or-joins",
     p451_element_join_keys => "451-element-join-keys",
     p480_testsuite_odds => "480-testsuite-odds",
+    p470_rhs_rebind_lhs_var => "470-rhs-rebind-lhs-var",
 }

@@ -353,7 +353,7 @@ impl<'s> Parser<'s, '_, '_> {
         #[cfg(feature = "modules")]
         let _ = self.cx.set_function_module(f, self.cx.current_module());
         self.defining_fn = f;
-        let body = self.body_block();
+        let body = self.declare_bound_vars().and_then(|()| self.body_block());
         self.defining_fn = NONE;
         let body = match body {
             Ok(b) if !self.check_only => b,

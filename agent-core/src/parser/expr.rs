@@ -153,6 +153,9 @@ impl<'s> Parser<'s, '_, '_> {
         }
         if let Some(v) = self.find_var(name) {
             let e = match v.kind {
+                VarKind::Pat { pat, loc, desc } if v.rebound != NONE => {
+                    return self.rebound_ref(v.rebound, pat, loc, desc);
+                }
                 VarKind::Pat { pat, loc, desc } => Expr {
                     first: desc,
                     ..Expr::new(Op::PatVar, pat, loc)
@@ -189,6 +192,22 @@ impl<'s> Parser<'s, '_, '_> {
             field: self.lhs_field,
         };
         e
+    }
+
+    /// A read of an LHS variable the actions `bind` (`VarEntry::rebound`): its frame
+    /// slot, `aux` 2, the LHS variable as the child read while the slot is unbound.
+    #[inline(never)]
+    fn rebound_ref(&mut self, slot: Ix, pat: u8, loc: Ix, desc: Ix) -> PResult<Ix> {
+        let lhs = Expr {
+            first: desc,
+            ..Expr::new(Op::PatVar, pat, loc)
+        };
+        let lhs = cap!(self, self.cx.push_expr(lhs))?;
+        let e = Expr {
+            first: lhs,
+            ..Expr::new(Op::Local, 2, slot)
+        };
+        cap!(self, self.cx.push_expr(e))
     }
 
     /// A read of a local that may be unbound: `aux` 1, its name in the payload node
@@ -732,6 +751,13 @@ impl<'s> Parser<'s, '_, '_> {
             }
             _ => return Err(self.err(t, "a variable")),
         };
+        if let Some(v) = self.find_var(name).filter(|v| v.rebound != NONE) {
+            // an LHS variable the actions bind: its frame slot (`declare_bound_vars`)
+            let target = cap!(self, self.cx.push_expr(Expr::new(Op::Local, 0, v.rebound)))?;
+            self.cx.append_child(node, target);
+            self.args_until_rparen(node)?;
+            return Ok(node);
+        }
         if !matches!(self.find_var(name), Some(v) if matches!(v.kind, VarKind::Pat { .. })) {
             // a new or existing local: CLIPS knows it in the value too (unbound there
             // it is a run-time error, as in CLIPS)

@@ -59,6 +59,11 @@ pub struct VarEntry<'s> {
     /// A local bound only inside a condition or loop may be read unbound: its name
     /// symbol, for the run-time error (`NONE`: always bound when read).
     pub unbound_name: Ix,
+    /// An LHS variable the actions `bind` somewhere: the frame slot that holds its
+    /// new value (`NONE`: never bound). As in CLIPS, every read of it in the actions,
+    /// before or after the `bind` in the text, reads that slot, and the LHS value
+    /// while the slot is unbound (see `Core::local`).
+    pub rebound: Ix,
 }
 
 /// Where expressions are being parsed, which decides how unknown variables resolve.
@@ -165,6 +170,7 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
                 kind: VarKind::Local(0),
                 multi: false,
                 unbound_name: NONE,
+                rebound: NONE,
             }; MAX_VARS],
             var_cstr: [VarCstr::ANY; MAX_VARS],
             nvars: 0,
@@ -426,6 +432,7 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
             kind,
             multi,
             unbound_name: NONE,
+            rebound: NONE,
         };
         self.var_cstr[self.nvars] = VarCstr::ANY;
         self.nvars += 1;
@@ -449,6 +456,67 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
             return Err(e);
         }
         Ok(p)
+    }
+
+    /// Gives each variable that a `bind` in the actions ahead names its frame slot:
+    /// an LHS variable its `VarEntry::rebound`, a new name a local that may be read
+    /// unbound. CLIPS decides it from the whole of the actions, so a read earlier in
+    /// the text (in a loop body, say) sees the new value. Reads the tokens up to the
+    /// construct's closing `)` and goes back.
+    pub fn declare_bound_vars(&mut self) -> PResult<()> {
+        let save = self.save();
+        let mut depth = 0u32;
+        // 1 after `(`, 2 after `(bind`
+        let mut seen = 0u8;
+        loop {
+            let t = self.next();
+            let prev = seen;
+            seen = 0;
+            match t.tok {
+                Tok::LParen => {
+                    depth += 1;
+                    seen = 1;
+                }
+                Tok::RParen if depth == 0 => break,
+                Tok::RParen => depth -= 1,
+                Tok::Eof | Tok::Bad => break,
+                Tok::Symbol("bind") if prev == 1 => seen = 2,
+                Tok::SfVar(name) | Tok::MfVar(name) if prev == 2 => {
+                    let found = self.vars[..self.nvars].iter().rposition(|v| v.name == name);
+                    match found {
+                        Some(i) => {
+                            let v = self.vars[i];
+                            if matches!(v.kind, VarKind::Pat { .. }) && v.rebound == NONE {
+                                if self.nlocals >= 255 {
+                                    self.restore(save);
+                                    let at = self.peek();
+                                    return Err(self
+                                        .err(at, "at most 255 local variables in one construct"));
+                                }
+                                self.vars[i].rebound = self.nlocals;
+                                self.nlocals += 1;
+                            }
+                        }
+                        // a local the actions bind: known from the start, a read while
+                        // unbound (earlier in the text, or in a loop) a run-time error
+                        None => {
+                            let r = self.new_local(t, name, false).and_then(|_| {
+                                let sym = cap!(self, self.cx.intern(name))?;
+                                self.vars[self.nvars - 1].unbound_name = sym;
+                                Ok(())
+                            });
+                            if let Err(e) = r {
+                                self.restore(save);
+                                return Err(e);
+                            }
+                        }
+                    }
+                }
+                _ => {}
+            }
+        }
+        self.restore(save);
+        Ok(())
     }
 
     /// Whether the reader is inside a condition or loop of the current actions.

@@ -395,6 +395,7 @@ impl<'s> Parser<'s, '_, '_> {
             b.depth = 1;
         }
         self.scope = Scope::Frame;
+        self.declare_bound_vars()?;
         b.rhs = self.body_block()?;
         b.sal = salience;
         b.nlocals = self.nlocals.min(255) as u8;
