@@ -130,10 +130,12 @@ impl<'a> Lexer<'a> {
         }
     }
 
+    /// A symbol or number: up to a delimiter, or a `<` after its first character (as
+    /// in CLIPS, `4<56` is `4` and `<56`, `?f<-` is `?f` and `<-`).
     fn word(&mut self) -> &'a str {
         let s = self.pos;
         while let Some(b) = self.peek() {
-            if is_delim(b) {
+            if is_delim(b) || (b == b'<' && self.pos > s) {
                 break;
             }
             self.bump();
@@ -207,7 +209,7 @@ impl<'a> Lexer<'a> {
 
     fn variable(&mut self, multi: bool) -> Tok<'a> {
         let name = match self.peek() {
-            Some(b) if !is_delim(b) => self.word(),
+            Some(b) if !is_delim(b) && b != b'<' => self.word(),
             _ => "",
         };
         if name.is_empty() {
@@ -314,6 +316,26 @@ mod tests {
         assert_eq!(t[5], Tok::Symbol("-"));
         assert_eq!(t[6], Tok::Symbol("e5"));
         assert_eq!(t[7], Tok::Symbol("x"));
+    }
+
+    #[test]
+    fn a_less_than_sign_ends_a_word() {
+        let t = toks("4<56 a<b<c <<a ?f<-(x");
+        assert_eq!(t[0], Tok::Int(4));
+        assert_eq!(t[1], Tok::Symbol("<56"));
+        assert_eq!(t[2], Tok::Symbol("a"));
+        assert_eq!(t[3], Tok::Symbol("<b"));
+        assert_eq!(t[4], Tok::Symbol("<c"));
+        assert_eq!(t[5], Tok::Symbol("<"));
+        assert_eq!(t[6], Tok::Symbol("<a"));
+        assert_eq!(t[7], Tok::SfVar("f"));
+        let t = toks("?f<-(x $?r<y ?<");
+        assert_eq!(t[1], Tok::Symbol("<-"));
+        assert_eq!(t[2], Tok::LParen);
+        assert_eq!(t[4], Tok::MfVar("r"));
+        assert_eq!(t[5], Tok::Symbol("<y"));
+        assert_eq!(t[6], Tok::SfWild);
+        assert_eq!(t[7], Tok::Symbol("<"));
     }
 
     #[test]

@@ -425,4 +425,5 @@ differential_programs! {
     p451_element_join_keys => "451-element-join-keys",
     p480_testsuite_odds => "480-testsuite-odds",
     p470_rhs_rebind_lhs_var => "470-rhs-rebind-lhs-var",
+    p472_less_than_delimiter => "472-less-than-delimiter",
 }
