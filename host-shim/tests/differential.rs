@@ -426,4 +426,5 @@ differential_programs! {
     p480_testsuite_odds => "480-testsuite-odds",
     p470_rhs_rebind_lhs_var => "470-rhs-rebind-lhs-var",
     p472_less_than_delimiter => "472-less-than-delimiter",
+    p473_failed_rule_redefinition => "473-failed-rule-redefinition",
 }

@@ -589,11 +589,15 @@ impl<'s, 'e> Parser<'s, '_, 'e> {
                         let start = t.start;
                         let cp = self.cx.checkpoint();
                         self.keep = None;
+                        self.replacing = NONE;
                         self.cx.st.mode.defining = true;
                         let r = self.construct_body(kw, start);
                         self.cx.st.mode.defining = false;
                         if r.is_err() {
                             self.cx.rollback(self.keep.unwrap_or(cp));
+                            if kw == "defrule" && self.replacing != NONE && !self.check_only {
+                                self.drop_replaced_rule();
+                            }
                         }
                         r.map(|_| Item::Construct)
                     }
@@ -619,6 +623,22 @@ impl<'s, 'e> Parser<'s, '_, 'e> {
                 let e = self.parse_expr()?;
                 Ok(Item::Command(e))
             }
+        }
+    }
+
+    /// A defrule that failed after its name was read: CLIPS 6.30 has removed the rule
+    /// of that name by then, so it is gone (unless a test in the network is running,
+    /// when the network may not change).
+    #[inline(never)]
+    fn drop_replaced_rule(&mut self) {
+        let name = self.replacing;
+        if self.cx.st.net.matching > 0 || self.cx.network_writable().is_err() {
+            return;
+        }
+        if let Some(r) = (0..self.cx.st.pools.nrules).find(|&r| self.cx.rule_here(r, name)) {
+            self.cx.remove_rule(r);
+            #[cfg(feature = "extras")]
+            self.cx.st.breaks.remove(name);
         }
     }
 

@@ -1,0 +1,26 @@
+; A defrule that fails after its name is read: CLIPS 6.30 has removed the old rule
+; of that name by then, so it is gone with its activations (an error in the
+; actions, in a pattern's test, in a test CE, a bad constant argument). A rule
+; that failed before its name was read leaves the other rules alone.
+(watch rules)
+(watch activations)
+(deftemplate example (slot a))
+(defrule r (a) => (printout t "old r" crlf))
+(defrule keep (a) => (printout t "keep" crlf))
+(defrule error (example (a 1)) => (printout t "old error" crlf))
+(assert (a) (example (a 1)))
+(defrule r (b) => (bogus-fn))
+(rules)
+(agenda)
+(defrule keep (b ?x&:(bogus ?x)) => )
+(defrule error (example (a 1)) (test (bogus-test)) => (printout t "new error" crlf))
+(rules)
+(defrule keep (a) => (printout t "new keep" crlf))
+(defrule keep "doc" (b) => (printout t (+ a 1)))
+(rules)
+(defrule keep2 (a) => (printout t "keep2" crlf))
+(defrule (a) => )
+(defrule keep2 "doc" (a) => (bogus-fn2))
+(rules)
+(run)
+(exit)
