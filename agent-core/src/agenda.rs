@@ -143,6 +143,55 @@ impl Core<'_> {
         Ok(())
     }
 
+    /// `(refresh RULE)`: every complete match of rule `r` (each of its disjuncts) that
+    /// has no activation of it, because it fired, goes back on the agenda. A rule's
+    /// complete matches are its terminal join's parent's memory, newest first: the
+    /// order of CLIPS's terminal join's one unhashed bucket, entered at its head. A
+    /// running-out pool is the capacity error (activations added so far stay).
+    #[cfg(feature = "extras")]
+    pub(crate) fn refresh_rule(&mut self, r: Ix) -> Result<(), CapacityError> {
+        let mut d = r;
+        while d != NONE {
+            let terminal = self.rules[d as usize].terminal;
+            let parent = self.joins[terminal].parent;
+            // host: a rule end primed from an older sibling keeps its own order of
+            // the partial matches it was primed with (`rete::order`)
+            #[cfg(feature = "grow")]
+            if self.primed_entry(terminal).is_some() {
+                for t in self.clips_memory_order(terminal, parent) {
+                    if !self.has_activation(d, t) {
+                        self.add_activation(d, t)?;
+                    }
+                }
+                d = self.rules[d as usize].next_disjunct;
+                continue;
+            }
+            let mut t = self.join_mems[parent].mem;
+            while t != TokenId::NONE {
+                let next = self.tokens[t].mem_next;
+                if self.token_active(t) && !self.has_activation(d, t) {
+                    self.add_activation(d, t)?;
+                }
+                t = next;
+            }
+            d = self.rules[d as usize].next_disjunct;
+        }
+        Ok(())
+    }
+
+    /// Whether partial match `t` has an activation of rule `r`.
+    #[cfg(feature = "extras")]
+    fn has_activation(&self, r: Ix, t: TokenId) -> bool {
+        let mut a = self.tokens[t].extra;
+        while a != NONE {
+            if self.acts[a as usize].rule == r {
+                return true;
+            }
+            a = self.acts[a as usize].next_of_token;
+        }
+        false
+    }
+
     /// A rule's salience now (global-based saliences are evaluated again).
     pub(crate) fn rule_salience(&mut self, rule: Ix) -> i32 {
         let e = self.rules[rule as usize].salience_expr;

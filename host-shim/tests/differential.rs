@@ -427,4 +427,9 @@ differential_programs! {
     p470_rhs_rebind_lhs_var => "470-rhs-rebind-lhs-var",
     p472_less_than_delimiter => "472-less-than-delimiter",
     p473_failed_rule_redefinition => "473-failed-rule-redefinition",
+    p430_refresh_basics => "430-refresh-basics",
+    p431_refresh_ces => "431-refresh-ces",
+    p432_refresh_strategies => "432-refresh-strategies",
+    p433_refresh_modules => "433-refresh-modules",
+    p434_refresh_primed => "434-refresh-primed",
 }

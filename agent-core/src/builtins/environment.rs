@@ -33,6 +33,8 @@ pub const FUNCS: &[Builtin] = &[
         .args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any),
     Builtin::eager("show-breaks", 0, 1, show_breaks)
         .args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any),
+    Builtin::eager("refresh", 1, 1, refresh)
+        .args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any),
     // made by the parser only (no text names it): a call whose arguments expand
     Builtin::lazy("(expansion-call)", 1, 1, expansion_call),
 ];
@@ -450,6 +452,7 @@ const RESTRICTIONS: &[(&str, &str)] = &[
     ("read", "*1"),
     ("read-number", "*1"),
     ("readline", "*1"),
+    ("refresh", "11w"),
     ("refresh-agenda", "01w"),
     ("release-mem", "00"),
     ("remove", "11k"),
@@ -769,6 +772,20 @@ fn remove_break(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
             cx.sym_text(rule)
         );
         cx.write(router::WERROR, b.as_str());
+    }
+    Ok(Value::Void)
+}
+
+/// `(refresh RULE)`: the rule's fired matches that still hold go back on the agenda
+/// (`Core::refresh_rule`).
+#[cfg(feature = "extras")]
+fn refresh(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let Value::Sym(name) = cx.arg(a, 0) else {
+        return Ok(Value::Void);
+    };
+    match super::commands::find_rule(cx, name) {
+        Some(r) => cx.refresh_rule(r)?,
+        None => super::commands::unable(cx, super::commands::Unable::Find, "defrule", name),
     }
     Ok(Value::Void)
 }

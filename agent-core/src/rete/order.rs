@@ -152,7 +152,7 @@ impl Core<'_> {
 
     /// A join's left memory in CLIPS's order: `parent`'s active partial matches,
     /// those `join` was primed with (if it was) last, in its own order.
-    fn clips_memory_order(&self, join: JoinId, parent: JoinId) -> Vec<TokenId> {
+    pub(crate) fn clips_memory_order(&self, join: JoinId, parent: JoinId) -> Vec<TokenId> {
         let entry = self.primed_entry(join).map(|k| &self.st.prime.joins[k]);
         let mut out = Vec::new();
         let mut l = self.join_mems[parent].mem;
