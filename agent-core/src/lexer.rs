@@ -48,6 +48,28 @@ pub struct Lexer<'a> {
     col: u32,
 }
 
+/// Whether `text` (after a `(`) starts `bind ?x` or `bind $?x` with `x` no global.
+fn binds_a_local(text: &[u8]) -> bool {
+    let mut i = 0;
+    while matches!(text.get(i), Some(b) if b.is_ascii_whitespace()) {
+        i += 1;
+    }
+    let Some(rest) = text.get(i..).and_then(|t| t.strip_prefix(b"bind")) else {
+        return false;
+    };
+    let mut i = 0;
+    while matches!(rest.get(i), Some(b) if b.is_ascii_whitespace()) {
+        i += 1;
+    }
+    if i == 0 {
+        return false;
+    }
+    if rest.get(i) == Some(&b'$') {
+        i += 1;
+    }
+    rest.get(i) == Some(&b'?') && rest.get(i + 1) != Some(&b'*')
+}
+
 fn is_delim(b: u8) -> bool {
     matches!(
         b,
@@ -134,13 +156,57 @@ impl<'a> Lexer<'a> {
     /// in CLIPS, `4<56` is `4` and `<56`, `?f<-` is `?f` and `<-`).
     fn word(&mut self) -> &'a str {
         let s = self.pos;
+        // (the first character may be `<`: one step before the loop keeps its test
+        // as cheap as a delimiter's)
+        if matches!(self.peek(), Some(b) if !is_delim(b)) {
+            self.bump();
+        }
         while let Some(b) = self.peek() {
-            if is_delim(b) || (b == b'<' && self.pos > s) {
+            if is_delim(b) || b == b'<' {
                 break;
             }
             self.bump();
         }
         &self.src[s..self.pos]
+    }
+
+    /// Whether the text from byte `from` to the `)` closing the list it is in may bind
+    /// a local variable: holds `(bind ?x` or `(bind $?x` (not a global `?*x*`) outside
+    /// strings and comments. A look far cheaper than reading the tokens, before the
+    /// parser reads them twice.
+    pub fn binds_a_local_before_close(&self, from: usize) -> bool {
+        let b = self.src.as_bytes();
+        let mut i = from;
+        let mut depth = 0u32;
+        while let Some(&c) = b.get(i) {
+            match c {
+                b'"' => {
+                    i += 1;
+                    while let Some(&d) = b.get(i) {
+                        if d == b'"' {
+                            break;
+                        }
+                        i += if d == b'\\' { 2 } else { 1 };
+                    }
+                }
+                b';' => {
+                    while matches!(b.get(i), Some(&d) if d != b'\n') {
+                        i += 1;
+                    }
+                }
+                b'(' => {
+                    depth += 1;
+                    if binds_a_local(b.get(i + 1..).unwrap_or(&[])) {
+                        return true;
+                    }
+                }
+                b')' if depth == 0 => return false,
+                b')' => depth -= 1,
+                _ => {}
+            }
+            i += 1;
+        }
+        false
     }
 
     pub fn next_token(&mut self) -> Token<'a> {
@@ -316,6 +382,20 @@ mod tests {
         assert_eq!(t[5], Tok::Symbol("-"));
         assert_eq!(t[6], Tok::Symbol("e5"));
         assert_eq!(t[7], Tok::Symbol("x"));
+    }
+
+    #[test]
+    fn a_bind_of_a_local_is_seen_before_the_closing_paren() {
+        let sees = |t: &str| Lexer::new(t).binds_a_local_before_close(0);
+        assert!(sees("(printout t ?x) (bind ?x 1))"));
+        assert!(sees("(while TRUE (bind\n $?y (create$))))"));
+        assert!(sees("( bind ?z 2))"));
+        // a global, a string, a comment, a longer name, a later construct
+        assert!(!sees("(bind ?*g* 1))"));
+        assert!(!sees("(printout t \"(bind ?x 1)\"))"));
+        assert!(!sees("; (bind ?x 1)\n(printout t 1))"));
+        assert!(!sees("(binder ?x))"));
+        assert!(!sees("(printout t 1)) (defrule r => (bind ?x 1))"));
     }
 
     #[test]

@@ -464,6 +464,11 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
     /// the text (in a loop body, say) sees the new value. Reads the tokens up to the
     /// construct's closing `)` and goes back.
     pub fn declare_bound_vars(&mut self) -> PResult<()> {
+        // most actions bind nothing: a scan of the bytes says so
+        let from = self.peeked.map_or(self.lex.pos(), |t| t.start);
+        if !self.lex.binds_a_local_before_close(from) {
+            return Ok(());
+        }
         let save = self.save();
         let mut depth = 0u32;
         // 1 after `(`, 2 after `(bind`
