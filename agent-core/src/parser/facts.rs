@@ -29,6 +29,22 @@ impl<'s> Parser<'s, '_, '_> {
         }
     }
 
+    /// CLIPS's syntax error naming the `part` it was reading, at token `t` (out of
+    /// line: the fact readers it is called from stay small enough to inline).
+    #[cold]
+    #[inline(never)]
+    pub fn syntax_of(
+        &self,
+        t: crate::lexer::Token<'s>,
+        expected: &'static str,
+        part: &'static str,
+    ) -> crate::error::LoadError {
+        let mut e = self.err(t, expected);
+        e.detail = crate::error::LoadDetail::SyntaxOf { part };
+        e.echo_end = t.end as u32;
+        e
+    }
+
     /// `(name ...)` after the `(`: a `FactSpec` node.
     pub fn fact_spec(&mut self) -> PResult<Ix> {
         let nt = self.next();
@@ -36,12 +52,11 @@ impl<'s> Parser<'s, '_, '_> {
             // `=` and `:` are operators, never a relation name
             Tok::Symbol(s) if s != "=" && s != ":" => self.qualified_ref(nt, s)?,
             _ => {
-                let mut e = self.err(nt, "a template or relation name");
-                e.detail = crate::error::LoadDetail::SyntaxOf {
-                    part: "first field of a RHS pattern",
-                };
-                e.echo_end = nt.end as u32;
-                return Err(e);
+                return Err(self.syntax_of(
+                    nt,
+                    "a template or relation name",
+                    "first field of a RHS pattern",
+                ))
             }
         };
         let sym = cap!(self, self.cx.intern(name))?;
@@ -112,12 +127,7 @@ impl<'s> Parser<'s, '_, '_> {
             self.next();
             let t = self.peek();
             if t.tok != Tok::LParen {
-                let mut e = self.err(t, "a function call after '='");
-                e.detail = crate::error::LoadDetail::SyntaxOf {
-                    part: "function calls",
-                };
-                e.echo_end = t.end as u32;
-                return Err(e);
+                return Err(self.syntax_of(t, "a function call after '='", "function calls"));
             }
         }
         self.parse_expr()
