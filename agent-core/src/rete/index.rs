@@ -464,7 +464,7 @@ impl Core<'_> {
     /// Host: the element a pattern variable reads in its multislot (or ordered
     /// fact) when its offset is fixed: every element before it is single-field.
     #[cfg(feature = "host-speedups")]
-    fn fixed_elem(&self, x: &crate::expr::Expr) -> Option<u8> {
+    pub(super) fn fixed_elem(&self, x: &crate::expr::Expr) -> Option<u8> {
         let elem = loc::elem(x.data);
         if elem == loc::SINGLE {
             return None;

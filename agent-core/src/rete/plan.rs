@@ -808,32 +808,15 @@ impl Core<'_> {
     /// A pattern variable naming a single-field element of a multislot, at a fixed
     /// offset: every element of the pattern's slot up to it is single-field.
     fn plan_elem(&self, x: &Expr, depth: u8) -> Option<Source> {
-        let elem = loc::elem(x.data);
-        if x.data == loc::FACT || elem == loc::SINGLE || x.aux > depth {
+        if x.data == loc::FACT || x.aux > depth {
             return None;
         }
-        let desc = self.exprs[x.first as usize];
-        if desc.op != Op::PatSlot {
-            return None;
-        }
-        let mut c = desc.first;
-        let mut i = 0u8;
-        while c != NONE {
-            let element = self.exprs[c as usize];
-            if element.aux == 1 {
-                return None;
-            }
-            if i == elem {
-                return Some(Source::Elem {
-                    pat: x.aux,
-                    slot: loc::slot(x.data),
-                    elem,
-                });
-            }
-            i += 1;
-            c = element.next;
-        }
-        None
+        let elem = self.fixed_elem(x)?;
+        Some(Source::Elem {
+            pat: x.aux,
+            slot: loc::slot(x.data),
+            elem,
+        })
     }
 
     /// The (pattern, slot) of a pattern variable naming a whole single-field slot of a
