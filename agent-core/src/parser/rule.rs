@@ -900,12 +900,11 @@ impl<'s> Parser<'s, '_, '_> {
             }
             // `=` and `:` are operators, never a relation name (CLIPS's own wording)
             Tok::Symbol("=" | ":") => {
-                let mut e = self.err(nt, "a template or relation name");
-                e.detail = crate::error::LoadDetail::SyntaxOf {
-                    part: "the field field of a pattern",
-                };
-                e.echo_end = nt.end as u32;
-                return Err(e);
+                return Err(self.syntax_of(
+                    nt,
+                    "a template or relation name",
+                    "the field field of a pattern",
+                ))
             }
             _ => return Err(self.err(nt, "a template or relation name")),
         };
@@ -1469,12 +1468,7 @@ impl<'s> Parser<'s, '_, '_> {
             // in a pattern `=` and `:` are operators: a call must follow
             Tok::Symbol(":" | "=") => {
                 let at = self.peek();
-                let mut e = self.err(at, "a function call after '=' or ':'");
-                e.detail = crate::error::LoadDetail::SyntaxOf {
-                    part: "function calls",
-                };
-                e.echo_end = at.end as u32;
-                Err(e)
+                Err(self.syntax_of(at, "a function call after '=' or ':'", "function calls"))
             }
             Tok::SfVar(name) | Tok::MfVar(name) => {
                 let is_mf = matches!(t.tok, Tok::MfVar(_));
