@@ -427,6 +427,14 @@ impl<R: Referee> FieldSim<R> {
                 }
                 r.worked_station = Some(station);
             }
+            // A product still lies under the machine's light: the spot is taken, so a
+            // puck the robot brings cannot go under the light (2012: the machine reads
+            // the one puck in its place). The robot keeps it. This is what a robot
+            // stopping in front of a machine on its way elsewhere met (seed 49: an S1
+            // loaded over a finished P turned the light yellow, and the P was lost).
+            (Station::Machine(m), Some(_)) if self.outputs[m.index()].is_some() => {
+                r.worked_station = Some(station);
+            }
             (Station::Machine(m), Some(puck)) => {
                 r.held = match self.referee.place_at_machine(robot, m, puck) {
                     Placement::Consumed => None,
@@ -908,6 +916,35 @@ mod tests {
             }
             s.step(&[command(3, WheelSpeeds::ZERO, false, true)]);
             assert_eq!(s.robots[0].held, Some(PuckKind::P));
+        });
+    }
+
+    /// A robot that stops at a machine whose product still lies under the light keeps
+    /// the puck it carries: the light and the product stay as they were.
+    #[test]
+    fn a_machine_with_its_product_under_it_takes_no_puck() {
+        on_engine_stack(|| {
+            let (mut s, t3) = p_under_a_working_t3();
+            s.step(&[command(1, WheelSpeeds::ZERO, true, false)]);
+            for _ in 0..15 * 51 {
+                s.step(&[command(2, WheelSpeeds::ZERO, false, false)]);
+            }
+            assert_eq!(s.referee.light(t3), LightSignal::Green);
+            // Another robot's stop there, modelled as robot 1 arriving with an S1.
+            s.robots[0].true_pose = machine_approach_pose(t3);
+            s.robots[0].worked_station = None;
+            s.robots[0].held = Some(PuckKind::S1);
+            s.step(&[command(3, WheelSpeeds::ZERO, false, false)]);
+            assert_eq!(s.robots[0].held, Some(PuckKind::S1), "kept");
+            assert_eq!(s.referee.light(t3), LightSignal::Green);
+            s.robots[0].held = None;
+            s.robots[0].worked_station = None;
+            s.step(&[command(4, WheelSpeeds::ZERO, false, true)]);
+            assert_eq!(
+                s.robots[0].held,
+                Some(PuckKind::P),
+                "the product is still there"
+            );
         });
     }
 
