@@ -76,6 +76,31 @@
   (assert (state GOTO-FINAL) (goto-target ?m) (light (exec-seen-light ?m ?l ?info))
           (robot-at ?m)))
 
+(defrule exec-output-waits-there
+  "The puck was brought to a machine that stayed green and took nothing: an
+   output lies under its light (the spot holds one puck), left by a feed,
+   another robot's or this robot's own, perhaps of a robot that died.  Only
+   a completed T3 leaves one there (feed-last-input-of-t3, feed-s2): believe
+   it full, with its two junk pucks and a P to collect, and keep the puck
+   for other work (before exec-failed-still-holding, which would bring it
+   there again and again: kill-one seed 79, a dead robot's P under a T3 the
+   others fed in vain for the rest of the game)."
+  (declare (salience (+ ?*PRIORITY_EXEC* 2)))
+  ?s <- (state EXEC)
+  ?r <- (skill-request (id ?id) (name finish-puck-at|feed) (target ?m))
+  ?o <- (skill-outcome (id ?id) (status FAILED) (info output-waits))
+  ?f <- (machine (name ?m) (junk ?j) (productions ?n))
+  ?p <- (robot-at ?)
+  =>
+  (retract ?s ?r ?o ?p)
+  (printout t "WARN an output waits at " ?m crlf)
+  (if (not (any-factp ((?c output-at)) (eq (nth$ 1 ?c:implied) ?m)))
+   then (modify ?f (mtype T3) (loaded-with S0 S1 S2) (junk (+ ?j 2))
+                (productions (+ ?n 1)))
+        (assert (output-at ?m P))
+   else (modify ?f (mtype T3) (loaded-with S0 S1 S2)))
+  (assert (state IDLE) (robot-at ?m)))
+
 (defrule prod-collect-output
   "Hands empty and an output waits at a machine: fetch it, once the junk
    there is no longer the nearer work (the first junk puck is taken right

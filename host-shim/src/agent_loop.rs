@@ -459,7 +459,14 @@ fn agent_loop(
                     }
                     Err(reason) => {
                         let outcome = SkillOutcome::Failed(reason);
-                        mind.finish(&mut ports, &chosen, request_seq, (outcome, 0.0), &p, cycle)?;
+                        mind.finish(
+                            &mut ports,
+                            &chosen,
+                            request_seq,
+                            (outcome, 0.0, false),
+                            &p,
+                            cycle,
+                        )?;
                     }
                 }
             }
@@ -587,12 +594,13 @@ fn agent_loop(
                 let chosen = r.chosen.clone();
                 let request_seq = r.request_seq;
                 let drove_s = cycle.saturating_sub(r.started) as f64 * f64::from(config.cycle_s());
+                let output_waits = r.skill.output_waits();
                 running = None;
                 mind.finish(
                     &mut ports,
                     &chosen,
                     request_seq,
-                    (outcome, drove_s),
+                    (outcome, drove_s, output_waits),
                     &p,
                     cycle,
                 )?;
@@ -746,7 +754,7 @@ impl Mind {
         ports: &mut AgentPorts,
         chosen: &ChosenSkill,
         request_seq: u32,
-        (outcome, drove_s): (SkillOutcome, f64),
+        (outcome, drove_s, output_waits): (SkillOutcome, f64, bool),
         p: &Perceived,
         cycle: u64,
     ) -> Result<(), Box<dyn std::error::Error>> {
@@ -767,8 +775,14 @@ impl Mind {
         println!("robotino-agent run: cycle={cycle} end {request:?} {outcome:?} {reason}");
         // A failed skill with the puck still in the gripper keeps it (the rules hear so).
         let unreached = unreached_place(outcome, &chosen.target, drove_s);
+        if output_waits {
+            println!(
+                "robotino-agent run: cycle={cycle} an output waits at {}",
+                chosen.target
+            );
+        }
         self.agent
-            .report_sensed(chosen.id, outcome, p.has_puck, unreached)?;
+            .report_sensed(chosen.id, outcome, p.has_puck, unreached, output_waits)?;
         self.dirty = true;
         Ok(())
     }

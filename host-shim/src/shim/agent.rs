@@ -267,22 +267,27 @@ impl EngineAgent {
     /// Tells the rules how skill `id` ended: asserts its `skill-outcome`.
     pub fn report(&mut self, id: i64, outcome: SkillOutcome) -> Result<(), RulesError> {
         let unreached = outcome == SkillOutcome::Failed(FailReason::DriveFailed);
-        self.report_sensed(id, outcome, false, unreached)
+        self.report_sensed(id, outcome, false, unreached, false)
     }
 
     /// [`Self::report`] with the puck sensor's reading at the end: a failed skill with a
     /// puck still in the gripper says so (`info puck-held`), and the rules keep the puck
     /// instead of believing it lost. `unreached`: the skill failed because the robot
-    /// could not get to its place (see [`unreached_place`]).
+    /// could not get to its place (see [`unreached_place`]). `output_waits`: the puck was
+    /// brought to a machine that stayed green and took nothing (`info output-waits`: an
+    /// output lies under its light, rules/collect.clp).
     pub fn report_sensed(
         &mut self,
         id: i64,
         outcome: SkillOutcome,
         puck_present: bool,
         unreached: bool,
+        output_waits: bool,
     ) -> Result<(), RulesError> {
         let (status, light, mut info) = outcome_slots(outcome);
-        if status == "FAILED" && info == "none" && puck_present {
+        if status == "FAILED" && info == "none" && output_waits {
+            info = "output-waits";
+        } else if status == "FAILED" && info == "none" && puck_present {
             info = "puck-held";
         }
         // A team member's rules avoid a place it keeps failing to drive to

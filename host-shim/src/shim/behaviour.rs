@@ -658,6 +658,9 @@ pub struct Skill {
     /// Collecting: the cycle the machine's light turned green (its output is ready), from
     /// when the drive is asked to take it.
     ready_at: Option<u32>,
+    /// Bringing a puck: the machine showed green before and after and took nothing, so an
+    /// output lies under its light (the spot holds one puck; see `field_sim`).
+    output_waits: bool,
 }
 
 impl Skill {
@@ -706,7 +709,14 @@ impl Skill {
             light_changed: false,
             puck_left: false,
             ready_at: None,
+            output_waits: false,
         })
+    }
+
+    /// The skill brought a puck to a machine that stayed green and took nothing: its
+    /// output (another robot's, or one left by a robot that died) lies there.
+    pub fn output_waits(&self) -> bool {
+        self.output_waits
     }
 
     /// The teammate that holds the skill's drive back, if one does.
@@ -915,7 +925,10 @@ impl Skill {
                         Ok(Some(Perception::LightSeen(LightSignal::YellowFlashing)))
                     }
                     // Nothing happened at all: the machine did not react to the puck.
-                    _ if !changed && waited >= WAIT_CYCLES => Ok(Some(Perception::LightUnchanged)),
+                    _ if !changed && waited >= WAIT_CYCLES => {
+                        self.output_waits = now == Some(LightSignal::Green) && p.has_puck;
+                        Ok(Some(Perception::LightUnchanged))
+                    }
                     _ if waited >= PROCESSING_WAIT_CYCLES => Ok(Some(Perception::LightUnchanged)),
                     _ => Ok(None),
                 }
