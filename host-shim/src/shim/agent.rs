@@ -576,6 +576,58 @@ mod tests {
         });
     }
 
+    /// A puck brought to a machine that stayed green and took nothing (`info
+    /// output-waits`: an output lies under its light, perhaps a dead teammate's P): the
+    /// robot believes the machine a full T3 with a P to collect, keeps its puck for
+    /// other work, brings nothing there again and comes back to collect the P once its
+    /// hands are empty.
+    #[test]
+    fn a_refused_puck_at_a_green_machine_means_an_output_to_collect() {
+        on_engine_stack(|| {
+            let mut a = EngineAgent::new(Strategy::Paper).unwrap_or_else(|e| panic!("{e}"));
+            a.see_active_gate(GateId::new(2).unwrap_or_else(|| panic!()))
+                .unwrap_or_else(|e| panic!("{e}"));
+            let next = |a: &mut EngineAgent| {
+                a.decide()
+                    .unwrap_or_else(|e| panic!("{e}"))
+                    .unwrap_or_else(|| panic!("no skill chosen"))
+            };
+            let first = next(&mut a);
+            assert_eq!(first.request, SkillRequest::GetS0);
+            a.report(first.id, SkillOutcome::Final(Perception::GotS0))
+                .unwrap_or_else(|e| panic!("{e}"));
+            let bring = next(&mut a);
+            let SkillRequest::BringPuckTo(m) = bring.request else {
+                panic!("{bring:?}");
+            };
+            let unchanged = SkillOutcome::Final(Perception::LightUnchanged);
+            a.report_sensed(bring.id, unchanged, true, false, true)
+                .unwrap_or_else(|e| panic!("{e}"));
+            // Kept the S0 for other work; answered as a machine that consumes it.
+            let mut collected = false;
+            for i in 0..12 {
+                let c = next(&mut a);
+                if i == 0 {
+                    assert_eq!(a.machines()[m.index()].machine_type, Some(3));
+                    assert_eq!(c.puck, "S0", "the puck was kept: {c:?}");
+                }
+                let outcome = match c.request {
+                    SkillRequest::Collect(at) if at == m => {
+                        collected = true;
+                        break;
+                    }
+                    SkillRequest::GetS0 => SkillOutcome::Final(Perception::GotS0),
+                    SkillRequest::BringPuckTo(at) | SkillRequest::FeedTo(at) if at != m => {
+                        SkillOutcome::Final(Perception::LightSeen(LightSignal::Yellow))
+                    }
+                    _ => panic!("skill {i}: {c:?}"),
+                };
+                a.report(c.id, outcome).unwrap_or_else(|e| panic!("{e}"));
+            }
+            assert!(collected, "never came back for the output at {m:?}");
+        });
+    }
+
     #[test]
     fn failures_and_storage_empty_become_outcome_slots() {
         assert_eq!(

@@ -1568,6 +1568,39 @@ mod tests {
         assert_eq!(outcome, SkillOutcome::Final(Perception::LightUnchanged));
     }
 
+    /// A machine whose output still lies under its light takes no puck (the field sim
+    /// refuses it): the light stays green and the robot keeps its puck. The skill says an
+    /// output waits there; a machine that stays green after the puck left, or that the
+    /// robot reaches without a puck, says nothing of the kind.
+    #[test]
+    fn bring_puck_to_a_green_machine_that_takes_nothing_says_an_output_waits() {
+        let t = DriveTuning::default();
+        let m = MachineId::new(3).unwrap_or_else(|| panic!());
+        let target = machine_approach_pose(m);
+        let ends = |request: SkillRequest, drop_there: bool| {
+            let mut p = perceived(input_storage_pose(), true);
+            p.light = Some((m, LightSignal::Green));
+            let mut skill = Skill::start(request, &p, &t).unwrap_or_else(|r| panic!("{r:?}"));
+            for _ in 0..15 * 90 {
+                let (tw, outcome) = skill.step(&p, &t);
+                if outcome.is_terminal() {
+                    return (outcome, skill.output_waits());
+                }
+                p.pose = integrate(p.pose, hal::limits::MotionLimits::ROBOTINO2.clamp_speed(tw));
+                if drop_there && p.pose.distance_to(&target) < 0.05 {
+                    p.has_puck = false;
+                }
+            }
+            (SkillOutcome::Running, skill.output_waits())
+        };
+        let unchanged = SkillOutcome::Final(Perception::LightUnchanged);
+        assert_eq!(ends(SkillRequest::BringPuckTo(m), false), (unchanged, true));
+        assert_eq!(ends(SkillRequest::FeedTo(m), false), (unchanged, true));
+        // The puck went in and the light did not change: no output is known to wait.
+        let (outcome, waits) = ends(SkillRequest::BringPuckTo(m), true);
+        assert!(!waits, "{outcome:?}");
+    }
+
     #[test]
     fn bring_puck_fails_when_the_puck_is_lost_on_the_way() {
         let m = MachineId::new(9).unwrap_or_else(|| panic!());
