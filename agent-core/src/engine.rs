@@ -226,6 +226,11 @@ pub struct MatchState {
     /// fact's assert may pass a `not` on and block it again with a later pattern of
     /// its own; re-asserting into a full pool must not need that room for a moment.
     pub defer_nots: bool,
+    /// The fact a retract is taking out of the network (NONE otherwise): what a not
+    /// it unblocks passes on never meets it, as in CLIPS (see `Core::unblock`).
+    pub dying: Ix,
+    /// Whether `dying`'s alpha matches not removed yet are out of their memories.
+    pub dying_hidden: bool,
     /// Not outputs a modify's retract unblocked (see `Core::owe_unblocked`).
     pub unblocked: crate::rete::UnblockLog,
     /// Watch traces of an assert/modify held back until it cannot be undone.
@@ -267,6 +272,8 @@ impl MatchState {
         MatchState {
             owed: TokenId::NONE,
             defer_nots: false,
+            dying: NONE,
+            dying_hidden: false,
             unblocked: crate::rete::UnblockLog::EMPTY,
             hold: crate::hold::TraceHold::EMPTY,
             failed_test: NONE,

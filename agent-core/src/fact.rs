@@ -854,7 +854,10 @@ impl Core<'_> {
         if TMS {
             self.fact_leaves(slot);
         }
+        self.st.net.dying = slot;
         self.network_retract(slot);
+        self.st.net.dying = NONE;
+        self.st.net.dying_hidden = false;
         // what the retract unblocked and could not rebuild on a full pool is owed:
         // the tokens the fact itself freed may be enough now
         if self.st.net.owed != TokenId::NONE {

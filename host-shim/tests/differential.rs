@@ -432,4 +432,12 @@ differential_programs! {
     p432_refresh_strategies => "432-refresh-strategies",
     p433_refresh_modules => "433-refresh-modules",
     p434_refresh_primed => "434-refresh-primed",
+    p500_retract_unblock_skips_dying => "500-retract-unblock-skips-dying",
+    p501_retract_unblock_dying_lhs => "501-retract-unblock-dying-lhs",
+    p502_retract_unblock_subnetwork => "502-retract-unblock-subnetwork",
+    p503_retract_unblock_test_ce => "503-retract-unblock-test-ce",
+    p504_retract_unblock_later_not => "504-retract-unblock-later-not",
+    p505_retract_unblock_multifield => "505-retract-unblock-multifield",
+    p506_retract_unblock_modify => "506-retract-unblock-modify",
+    p507_retract_unblock_logical => "507-retract-unblock-logical",
 }

@@ -595,23 +595,17 @@ impl Core<'_> {
         // later pattern of their rule may share this node, and what they pass on must
         // not meet the fact that is going (CLIPS builds nothing with it). Its own links
         // stay, so the search for the next blocker goes on after it.
-        let am_next = self.tokens[am].am_next;
-        self.index_remove(am);
         let tk = &self.tokens[am];
-        let (mem_prev, mem_next, fact) = (tk.mem_prev, tk.mem_next, tk.fact);
-        let (prev_sib, next_sib, blocks) = (tk.prev_sib, tk.next_sib, tk.blocks);
-        if mem_prev != TokenId::NONE {
-            self.tokens[mem_prev].mem_next = mem_next;
-        } else {
-            self.alpha_mems[alpha as usize].head = mem_next;
-        }
-        if mem_next != TokenId::NONE {
-            self.tokens[mem_next].mem_prev = mem_prev;
-        } else {
-            self.alpha_mems[alpha as usize].tail = mem_prev;
+        let (fact, prev_sib, next_sib, blocks) = (tk.fact, tk.prev_sib, tk.next_sib, tk.blocks);
+        // (the dying fact's matches may have left their memories already: `hide_dying`)
+        let hidden = self.st.net.dying_hidden && fact == self.st.net.dying;
+        if !hidden {
+            let am_next = self.leave_alpha_memory(am, alpha);
+            if blocks != TokenId::NONE {
+                self.tokens[am].am_next = am_next;
+            }
         }
         if blocks != TokenId::NONE {
-            self.tokens[am].am_next = am_next;
             while self.tokens[am].blocks != TokenId::NONE {
                 let k = self.tokens[am].blocks;
                 self.remove_link(k);
@@ -628,6 +622,73 @@ impl Core<'_> {
         // (an alpha match carries no logical support)
         debug_assert!(self.tokens[am].kind == TokenKind::Alpha);
         self.release_token(am);
+    }
+
+    /// Takes alpha match `am` of node `alpha` out of its memory and bucket; returns
+    /// its bucket successor (`am_next`, cleared by the removal), which a search for
+    /// the next blocker after it follows. Its memory links stay.
+    #[inline(always)]
+    fn leave_alpha_memory(&mut self, am: TokenId, alpha: Ix) -> TokenId {
+        let am_next = self.tokens[am].am_next;
+        self.index_remove(am);
+        let tk = &self.tokens[am];
+        let (mem_prev, mem_next) = (tk.mem_prev, tk.mem_next);
+        if mem_prev != TokenId::NONE {
+            self.tokens[mem_prev].mem_next = mem_next;
+        } else {
+            self.alpha_mems[alpha as usize].head = mem_next;
+        }
+        if mem_next != TokenId::NONE {
+            self.tokens[mem_next].mem_prev = mem_prev;
+        } else {
+            self.alpha_mems[alpha as usize].tail = mem_prev;
+        }
+        am_next
+    }
+
+    /// Before a retract's first unblocked not output passes on: the retracted fact's
+    /// alpha matches not removed yet leave their memories and buckets, so the joins
+    /// below never meet the fact (CLIPS skips a dying fact's matches there). Each
+    /// keeps links to the next match of another fact in its memory and bucket, where
+    /// a search for a next blocker after it goes on.
+    #[cold]
+    #[inline(never)]
+    pub(crate) fn hide_dying(&mut self) {
+        let dying = self.st.net.dying;
+        let mut am = self.facts[dying as usize].first_am;
+        while am != TokenId::NONE {
+            let tk = &self.tokens[am];
+            let alpha = tk.alpha();
+            let in_memory = if tk.mem_prev != TokenId::NONE {
+                self.tokens[tk.mem_prev].mem_next == am
+            } else {
+                self.alpha_mems[alpha as usize].head == am
+            };
+            // (the match being removed has left already)
+            if in_memory {
+                let am_next = self.leave_alpha_memory(am, alpha);
+                self.tokens[am].am_next = am_next;
+            }
+            am = self.tokens[am].next_sib;
+        }
+        // (the match being removed, which left as usual, too)
+        let mut am = self.facts[dying as usize].first_am;
+        while am != TokenId::NONE {
+            let mut n = self.tokens[am].mem_next;
+            while n != TokenId::NONE && self.tokens[n].fact == dying {
+                n = self.tokens[n].mem_next;
+            }
+            self.tokens[am].mem_next = n;
+            if self.alpha_indexed(self.tokens[am].alpha()) {
+                let mut n = self.tokens[am].am_next;
+                while n != TokenId::NONE && self.tokens[n].fact == dying {
+                    n = self.tokens[n].am_next;
+                }
+                self.tokens[am].am_next = n;
+            }
+            am = self.tokens[am].next_sib;
+        }
+        self.st.net.dying_hidden = true;
     }
 
     /// Empties an alpha memory (used when a rule is removed or a load rolled back).

@@ -890,13 +890,19 @@ impl Core<'_> {
     /// unblocked (not) or loses its match (exists), as CLIPS does.
     fn unblock(&mut self, t: TokenId, blocker: TokenId) {
         self.unlink_blocked(t);
+        let dying = self.st.net.dying;
         let join = self.tokens[t].owner;
         let left = self.tokens[t].parent;
         let (from, hashed) = if self.tokens[blocker].kind == TokenKind::Alpha {
             // the blocker is the first match in memory order: search on after it,
             // along its index bucket when its node has one (same key as `left`)
             let hashed = self.alphas[self.tokens[blocker].alpha() as usize].nrhash > 0;
-            (self.next_candidate(blocker, hashed), hashed)
+            let mut from = self.next_candidate(blocker, hashed);
+            // (a retract: another match of the fact in the same node may follow it)
+            while dying != NONE && from != TokenId::NONE && self.tokens[from].fact == dying {
+                from = self.next_candidate(from, hashed);
+            }
+            (from, hashed)
         } else {
             (TokenId::NONE, false)
         };
@@ -909,6 +915,16 @@ impl Core<'_> {
             return;
         }
         if self.joins[join].kind == JoinKind::Negative {
+            // a retract: CLIPS passes nothing on that holds the fact, and nothing
+            // passed on meets it (its matches leave their memories first)
+            if dying != NONE {
+                if self.holds_fact(left, dying) {
+                    return;
+                }
+                if !self.st.net.dying_hidden {
+                    self.hide_dying();
+                }
+            }
             self.move_to_front(t);
             self.log_unblocked(t);
             self.propagate_or_owe(t);
@@ -920,6 +936,20 @@ impl Core<'_> {
                 self.token_leaves(t);
             }
         }
+    }
+
+    /// Whether partial match `t` or one of its ancestors holds a match of `fact`.
+    #[cold]
+    #[inline(never)]
+    fn holds_fact(&self, mut t: TokenId, fact: Ix) -> bool {
+        while t != TokenId::NONE && self.tokens[t].kind == TokenKind::Beta {
+            let am = self.tokens[t].am;
+            if am != TokenId::NONE && self.tokens[am].fact == fact {
+                return true;
+            }
+            t = self.tokens[t].parent;
+        }
+        false
     }
 
     /// Passes on a not output that a removal unblocked. Removals (retract, and the

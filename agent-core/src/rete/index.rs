@@ -749,6 +749,7 @@ impl Core<'_> {
     }
 
     /// Takes an alpha match out of the index.
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     pub(crate) fn index_remove(&mut self, am: TokenId) {
         let tk = self.tokens[am];
         if tk.kind != TokenKind::Alpha || !self.alpha_indexed(tk.alpha()) {

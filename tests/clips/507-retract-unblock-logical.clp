@@ -1,0 +1,15 @@
+; Logical support built through a not that a retract unblocks: the dying fact is not
+; seen below the not, and what it supported goes after.
+(watch rules)
+(watch facts)
+(watch activations)
+(deffunction show (?a ?b) (printout t "join " ?a " " ?b crlf) TRUE)
+(deffacts start (p 1) (p 2) (q 1))
+(defrule r1 (logical (p ?x) (not (q ?x)) (p ?y&:(show ?x ?y))) => (assert (derived ?x ?y)))
+(defrule r2 (logical (q ?z) (p ?x)) (not (q 2)) => (assert (other ?z ?x)))
+(reset)
+(run)
+(retract 3)
+(run)
+(facts)
+(exit)
