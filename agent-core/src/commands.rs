@@ -1249,6 +1249,20 @@ impl Core<'_> {
                 b,
                 "\n[ANALYSIS3] Variable ?{name} is used as both a single and multifield variable in the LHS"
             );
+        } else if let LoadDetail::AddressBound { ce, earlier_field } = e.detail {
+            let _ = if earlier_field {
+                writeln!(
+                    b,
+                    "\n[ANALYSIS2] Pattern-address {tok} used in CE #{ce} was previously bound within a pattern CE."
+                )
+            } else {
+                writeln!(
+                    b,
+                    "\n[ANALYSIS1] Duplicate pattern-address {tok} found in CE #{ce}."
+                )
+            };
+        } else if e.detail == LoadDetail::SlotTwice {
+            let _ = writeln!(b, "\n[PRNTUTIL5] The slot {tok} has already been parsed.");
         } else if let LoadDetail::ImportConflict { construct } = e.detail {
             let name = match construct {
                 "defglobal" => tok.trim_start_matches("?*").trim_end_matches('*'),
@@ -1398,6 +1412,8 @@ impl Core<'_> {
                 ..
             } | LoadDetail::PatternConstraint { .. }
                 | LoadDetail::VariableConflict { .. }
+                | LoadDetail::AddressBound { .. }
+                | LoadDetail::MixedVariable
         ) && e.construct == "defrule"
         {
             let _ = b.write_str("\nERROR:\n");
@@ -1449,6 +1465,7 @@ impl Core<'_> {
                     | LoadDetail::Arity { .. }
                     | LoadDetail::FunctionArity { .. }
                     | LoadDetail::ArgType { .. }
+                    | LoadDetail::SlotTwice
             )
         {
             // a rule CLIPS stopped reading, in its conditions or its actions
@@ -1472,6 +1489,7 @@ impl Core<'_> {
                     | LoadDetail::FunctionArity { .. }
                     | LoadDetail::ArgType { .. }
                     | LoadDetail::ReplacesBuiltin
+                    | LoadDetail::SlotTwice
             )
         {
             let _ = b.write_str("\nERROR:\n");

@@ -668,6 +668,15 @@ pub enum LoadDetail {
     ReplacesBuiltin,
     /// `[ANALYSIS3]`: one LHS variable used both as `?x` and `$?x` (the offending token).
     MixedVariable,
+    /// `[ANALYSIS1]` (`earlier_field` false) or `[ANALYSIS2]`: a fact-address variable
+    /// (the offending token) bound in CE #`ce` that an earlier CE bound already, to a
+    /// fact or to a field.
+    AddressBound {
+        ce: u8,
+        earlier_field: bool,
+    },
+    /// `[PRNTUTIL5]`: a slot given twice in one pattern or fact (at its second name).
+    SlotTwice,
     /// `[CSTRCPSR3]`: a construct (`construct`, named by the offending token) whose
     /// name clashes with the imports and exports of the modules.
     ImportConflict {

@@ -424,6 +424,7 @@ differential_programs! {
     p450_keyed_or_joins => "450-keyed-or-joins",
     p451_element_join_keys => "451-element-join-keys",
     p480_testsuite_odds => "480-testsuite-odds",
+    p490_address_and_slot_checks => "490-address-and-slot-checks",
     p470_rhs_rebind_lhs_var => "470-rhs-rebind-lhs-var",
     p472_less_than_delimiter => "472-less-than-delimiter",
     p473_failed_rule_redefinition => "473-failed-rule-redefinition",

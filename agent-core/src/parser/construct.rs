@@ -127,7 +127,9 @@ impl<'s> Parser<'s, '_, '_> {
                     if (first_slot..first_slot + nslots)
                         .any(|i| self.cx.slots[i as usize].name == ssym)
                     {
-                        return Err(self.err(st, "a slot name not used before in this template"));
+                        return Err(
+                            self.slot_twice(st, "a slot name not used before in this template")
+                        );
                     }
                     // a pattern's field locator holds the slot in 8 bits, 255 meaning
                     // the fact itself (`expr::loc`)

@@ -4,7 +4,7 @@
 //! allowed values, and every `(default ?NONE)` slot given.
 
 use super::{PResult, Parser, Scope};
-use crate::error::{LoadDetail, Restriction};
+use crate::error::{LoadDetail, LoadError, Restriction};
 use crate::expr::{loc, Expr, Op};
 use crate::lexer::{Tok, Token};
 use crate::template::{DefaultKind, SlotDef};
@@ -96,7 +96,7 @@ impl<'s> Parser<'s, '_, '_> {
                     let st = self.next();
                     let slot = self.slot_of(tmpl, st)?;
                     if self.slot_given(spec, slot) {
-                        return Err(self.err(st, "a slot not given twice"));
+                        return Err(self.slot_twice(st, "a slot not given twice"));
                     }
                     let sv = cap!(self, self.cx.push_expr(Expr::new(Op::SlotVal, 0, slot)))?;
                     let def = self.cx.slot_def(tmpl, slot);
@@ -150,6 +150,17 @@ impl<'s> Parser<'s, '_, '_> {
                 Err(e)
             }
         }
+    }
+
+    /// `[PRNTUTIL5]` at a slot name given a second time (CLIPS shows a construct up
+    /// to it).
+    pub(super) fn slot_twice(&self, st: Token<'s>, expected: &'static str) -> LoadError {
+        let mut e = self.err(st, expected);
+        e.detail = LoadDetail::SlotTwice;
+        if self.construct != "command" {
+            e.echo_end = st.end as u32;
+        }
+        e
     }
 
     /// Whether a `SlotVal` child of `node` already has `data == key`.
@@ -309,7 +320,7 @@ impl<'s> Parser<'s, '_, '_> {
                     };
                     let ssym = cap!(self, self.cx.intern(sname))?;
                     if self.slot_given(node, ssym) {
-                        return Err(self.err(st, "a slot not given twice"));
+                        return Err(self.slot_twice(st, "a slot not given twice"));
                     }
                     let sv = cap!(self, self.cx.push_expr(Expr::new(Op::SlotVal, 0, ssym)))?;
                     match tmpl {

@@ -5,7 +5,7 @@
 //! that fails to read leaves nothing in the network.
 
 use super::facts::expected;
-use super::{PResult, Parser, Scope, VarKind};
+use super::{PResult, Parser, Scope, VarEntry, VarKind};
 use crate::compile::alpha::ZERO_LEN;
 use crate::expr::{loc, Expr, Op};
 use crate::handle::JoinId;
@@ -555,6 +555,13 @@ impl<'s> Parser<'s, '_, '_> {
                                     if branch == b.choice[k] {
                                         self.ce(b, ctx)?;
                                     } else {
+                                        // (a pattern bound to a fact address: `?f <- (..)`)
+                                        if let Tok::SfVar(_) = p.tok {
+                                            self.next();
+                                            if self.peek().tok == Tok::Symbol("<-") {
+                                                self.next();
+                                            }
+                                        }
                                         self.skip_balanced()?;
                                         // CLIPS numbers the CEs of every branch
                                         self.ce_count = self.ce_count.saturating_add(1);
@@ -935,6 +942,24 @@ impl<'s> Parser<'s, '_, '_> {
         // the comparison of the relation or template name
         self.complexity = self.complexity.saturating_add(1);
         if let Some((ft, fv)) = factvar {
+            // CLIPS: a fact-address variable an earlier CE bound (ANALYSIS1/2/3)
+            if let Some(VarEntry {
+                kind: VarKind::Pat { loc: l, .. },
+                multi,
+                ..
+            }) = self.find_var(fv)
+            {
+                let mut e = self.err(ft, "a fact-address variable not bound before");
+                e.detail = if multi {
+                    crate::error::LoadDetail::MixedVariable
+                } else {
+                    crate::error::LoadDetail::AddressBound {
+                        ce: self.ce_count,
+                        earlier_field: l != loc::FACT,
+                    }
+                };
+                return Err(e);
+            }
             self.add_var(
                 ft,
                 fv,
@@ -966,6 +991,8 @@ impl<'s> Parser<'s, '_, '_> {
             self.lhs_slot = None;
             self.multislot_fields(&mut pb, p, 0, nt)?;
         } else {
+            // the slots given so far
+            let mut given = [0u64; 4];
             loop {
                 let t = self.next();
                 match t.tok {
@@ -973,6 +1000,12 @@ impl<'s> Parser<'s, '_, '_> {
                     Tok::LParen => {
                         let st = self.next();
                         let slot = self.slot_of(tmpl, st)?;
+                        // (a template has at most 255 slots)
+                        let (word, bit) = ((slot as usize / 64) & 3, 1u64 << (slot % 64));
+                        if given[word] & bit != 0 {
+                            return Err(self.slot_twice(st, "a slot not given twice"));
+                        }
+                        given[word] |= bit;
                         let def = self.cx.slot_def(tmpl, slot);
                         // literals in this slot's constraints must fit the slot
                         self.lhs_slot = Some(def);
