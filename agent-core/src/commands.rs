@@ -331,8 +331,12 @@ impl Core<'_> {
         // (the partial matches joins were primed with are gone)
         #[cfg(feature = "grow")]
         self.forget_prime_orders();
-        self.free_pending();
-        self.st.facts.values_top = 0;
+        // a reset in a rule's actions (or a query's body) keeps the retracted facts' cells
+        // until that ends: its variables still read the facts they matched
+        if !self.st.mode.firing && self.st.eval.query_hold == 0 {
+            self.free_pending();
+            self.st.facts.values_top = 0;
+        }
         self.st.facts.next_fact_num = 0;
         // globals back to their initial values
         for g in 0..self.st.pools.nglobals {
@@ -1828,8 +1832,9 @@ impl Core<'_> {
         self.st.eval.command_base = outer.1;
     }
 
-    /// `load-facts`: each top-level `(fact ...)` is asserted.
-    pub fn load_facts_text(&mut self, text: &str) -> Result<(), EvalError> {
+    /// `load-facts`: each top-level `(fact ...)` is asserted, up to the first item that
+    /// is no fact (CLIPS stops there quietly) or a fact CLIPS refuses (reported).
+    pub fn load_facts_text(&mut self, text: &str) -> Result<FactsRead, EvalError> {
         let mut pos = 0;
         while let Some(k) = command_complete(&text[pos..]) {
             let chunk = &text[pos..pos + k];
@@ -1837,21 +1842,55 @@ impl Core<'_> {
             let exprs_before = self.st.pools.nexprs;
             let mut p = Parser::new(self, chunk);
             p.scope = crate::parser::Scope::Lhs;
+            p.constant_facts = true;
             if p.expect_lparen("a fact").is_err() {
-                continue;
+                self.st.pools.nexprs = exprs_before;
+                return Ok(FactsRead::Stopped);
             }
             let spec = match p.fact_spec() {
                 Ok(s) => s,
-                Err(_) => {
+                Err(e) => {
                     self.st.pools.nexprs = exprs_before;
-                    continue;
+                    self.report_fact_text_error("load-facts", chunk, &e);
+                    return Ok(FactsRead::Failed);
                 }
             };
             let r = self.assert_spec(spec);
             self.st.pools.nexprs = exprs_before;
             r?;
         }
-        Ok(())
+        // what is left is an atom (no fact: CLIPS stops) or a fact the file cuts short
+        Ok(match Lexer::new(&text[pos..]).next_token().tok {
+            Tok::Eof => FactsRead::All,
+            Tok::LParen => {
+                self.write(
+                    router::WERROR,
+                    "\n[PRNTUTIL2] Syntax Error:  Check appropriate syntax for RHS patterns.\n",
+                );
+                FactsRead::Failed
+            }
+            _ => FactsRead::Stopped,
+        })
+    }
+
+    /// A fact's text `assert-string` or `load-facts` could not read, reported as
+    /// CLIPS does: a syntax error names the RHS patterns (or the part it was in).
+    pub fn report_fact_text_error(&mut self, source: &str, text: &str, e: &LoadError) {
+        match e.detail {
+            LoadDetail::Syntax => self.write(
+                router::WERROR,
+                "\n[PRNTUTIL2] Syntax Error:  Check appropriate syntax for RHS patterns.\n",
+            ),
+            LoadDetail::SyntaxOf { part } => {
+                let mut m: TextBuf<96> = TextBuf::new();
+                let _ = write!(
+                    m,
+                    "\n[PRNTUTIL2] Syntax Error:  Check appropriate syntax for {part}.\n"
+                );
+                self.write(router::WERROR, m.as_str());
+            }
+            _ => self.report_load_error(source, text, e),
+        }
     }
 
     /// Whether a fact slot is in use (live), for hosts.
@@ -1860,11 +1899,33 @@ impl Core<'_> {
     }
 }
 
+/// How far `load-facts` read one item of its file.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub enum FactsRead {
+    /// every fact in it was asserted (or a duplicate)
+    All,
+    /// an item that is no fact: CLIPS reads no further and answers TRUE
+    Stopped,
+    /// a fact CLIPS refuses, reported: no further, FALSE
+    Failed,
+}
+
 // the tests evaluate builtins, whose code only `parser` links (`builtins::BUILTINS`)
 #[cfg(all(test, feature = "parser"))]
 mod tests {
     extern crate std;
     use crate::testutil::run_program;
+
+    #[test]
+    fn reset_in_actions_keeps_the_matched_values() {
+        // the rule's variables read the fact reset retracted, not what took its cells
+        let out = run_program(
+            "(deftemplate m (slot max))\n(deffacts d (m (max 0)) (a x) (b y))\n\
+             (defrule again (m (max ?d&~0)) => (reset) (printout t \"d=\" ?d crlf))\n\
+             (reset)\n(assert (m (max 5)))\n(run)\n",
+        );
+        assert!(out.contains("d=5"), "got {out}");
+    }
 
     #[test]
     fn globals_keep_multifields_across_commands() {

@@ -4,6 +4,7 @@
 
 use super::files::{FileItems, FILE_BUF};
 use super::{Args, Builtin, ANY, SYM_CRLF, SYM_FALSE, SYM_NIL, SYM_TRUE};
+use crate::commands::FactsRead;
 use crate::engine::{watch, Core};
 use crate::error::{EvalError, EvalErrorKind};
 use crate::host::router;
@@ -751,7 +752,14 @@ pub(super) fn load_facts(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError>
     }
     loop {
         match file.next_item(cx) {
-            Ok(Some(item)) => cx.load_facts_text(item.text)?,
+            Ok(Some(item)) => match cx.load_facts_text(item.text)? {
+                FactsRead::All => {}
+                FactsRead::Stopped => return Ok(Value::Sym(SYM_TRUE)),
+                FactsRead::Failed => {
+                    cx.write(router::WERROR, "Function load-facts encountered an error\n");
+                    return Ok(Value::Sym(SYM_FALSE));
+                }
+            },
             Ok(None) => return Ok(Value::Sym(SYM_TRUE)),
             Err(e) => {
                 cx.report_file_error("load-facts", path.as_str(), e);

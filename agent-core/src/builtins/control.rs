@@ -7,7 +7,7 @@ use crate::engine::Core;
 use crate::error::{EvalError, EvalErrorKind};
 use crate::expr::{FnKind, Op};
 use crate::value::Ix;
-use crate::value::{Value, NONE};
+use crate::value::{MfSpan, Value, NONE};
 
 #[rustfmt::skip]
 pub const FUNCS: &[Builtin] = &[
@@ -222,8 +222,23 @@ fn bind(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     let start = cx.multi_begin();
     let mut spliced = false;
     while a != NONE {
-        let v = cx.eval(a)?;
+        let pos = cx.st.frame.scratch_top;
+        let mut v = cx.eval(a)?;
         match v {
+            // a multifield the argument built in scratch above `pos` (an LHS multifield
+            // variable's copy, `create$`) is already in place: slid down over the
+            // argument's other temporaries, not copied a second time
+            Value::Multi(m) if m.start >= pos && m.start + m.len <= cx.st.frame.scratch_top => {
+                let from = m.start as usize;
+                cx.scratch
+                    .copy_within(from..from + m.len as usize, pos as usize);
+                cx.st.frame.scratch_top = pos + m.len;
+                v = Value::Multi(MfSpan {
+                    start: pos,
+                    len: m.len,
+                });
+                spliced = true;
+            }
             Value::Multi(m) => {
                 for k in 0..m.len as usize {
                     let item = cx.scratch[m.start as usize + k];
@@ -231,7 +246,10 @@ fn bind(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
                 }
                 spliced = true;
             }
-            _ => cx.multi_push(v)?,
+            _ => {
+                cx.st.frame.scratch_top = pos;
+                cx.multi_push(v)?
+            }
         }
         only = v;
         n += 1;
@@ -336,6 +354,18 @@ fn break_(cx: &mut Core<'_>, _a: super::Args) -> Result<Value, EvalError> {
 #[cfg(all(test, feature = "parser"))]
 mod tests {
     use crate::testutil::run_program;
+
+    #[test]
+    fn bind_of_several_values_splices_each_multifield_once() {
+        // an argument's multifield built in scratch (create$, an LHS multifield
+        // variable) is taken as it lies, not copied after itself
+        let out = run_program(
+            "(defrule r (data $?x) => (bind ?b $?x z) (bind ?c (create$ a b) $?x)\n\
+             (printout t ?b \" \" ?c crlf))\n\
+             (assert (data p q))\n(run)\n",
+        );
+        assert!(out.contains("(p q z) (a b p q)"), "got {out}");
+    }
 
     #[test]
     fn bound_multifield_survives_later_multifields() {

@@ -134,27 +134,8 @@ pub(super) fn assert_string(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalErr
                 Err(full) => Err(full.into()),
             }
         }
-        Err(e) if e.detail == crate::error::LoadDetail::Syntax => {
-            cx.write(
-                router::WERROR,
-                "\n[PRNTUTIL2] Syntax Error:  Check appropriate syntax for RHS patterns.\n",
-            );
-            Ok(Value::Sym(SYM_FALSE))
-        }
-        Err(crate::error::LoadError {
-            detail: crate::error::LoadDetail::SyntaxOf { part },
-            ..
-        }) => {
-            let mut m: crate::value::TextBuf<96> = crate::value::TextBuf::new();
-            let _ = core::fmt::Write::write_fmt(
-                &mut m,
-                format_args!("\n[PRNTUTIL2] Syntax Error:  Check appropriate syntax for {part}.\n"),
-            );
-            cx.write(router::WERROR, m.as_str());
-            Ok(Value::Sym(SYM_FALSE))
-        }
         Err(e) => {
-            cx.report_load_error("assert-string", text.as_str(), &e);
+            cx.report_fact_text_error("assert-string", text.as_str(), &e);
             Ok(Value::Sym(SYM_FALSE))
         }
     };

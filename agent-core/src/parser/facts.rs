@@ -123,6 +123,12 @@ impl<'s> Parser<'s, '_, '_> {
     /// a call's value there (the `=` is dropped; after it only a call may come).
     #[inline]
     fn fact_value(&mut self) -> PResult<Ix> {
+        if self.constant_facts {
+            let t = self.peek();
+            if matches!(t.tok, Tok::LParen | Tok::Symbol("=")) {
+                return Err(self.err(t, "a constant (load-facts calls no functions)"));
+            }
+        }
         if matches!(self.peek().tok, Tok::Symbol("=")) {
             self.next();
             let t = self.peek();

@@ -119,6 +119,8 @@ pub struct Parser<'s, 'c, 'e> {
     /// `eval`: a construct keyword is read as a function name (CLIPS 6.30's
     /// `[EXPRNPSR3] Missing function declaration for defrule.`), nothing is defined.
     pub commands_only: bool,
+    /// Facts read by `load-facts`: their fields are constants (a call is a syntax error).
+    pub constant_facts: bool,
     /// Loop bodies around the expression being read: `break` needs one.
     pub loop_depth: u16,
     /// `check-syntax`: a construct read whole stops before it is defined, with a
@@ -187,6 +189,7 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
             lhs_field: 0,
             evaluated_now: false,
             commands_only: false,
+            constant_facts: false,
             loop_depth: 0,
             check_only: false,
             complexity: 0,
