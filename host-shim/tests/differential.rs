@@ -423,6 +423,7 @@ differential_programs! {
     p410_or_lookups => "410-or-lookups",
     p450_keyed_or_joins => "450-keyed-or-joins",
     p451_element_join_keys => "451-element-join-keys",
+    p520_left_operand_tests => "520-left-operand-tests",
     p480_testsuite_odds => "480-testsuite-odds",
     p490_address_and_slot_checks => "490-address-and-slot-checks",
     p540_bind_multifield_args => "540-bind-multifield-args",

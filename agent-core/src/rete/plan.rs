@@ -359,7 +359,8 @@ impl Core<'_> {
             // free when `left` is bound already (a loop over its candidates)
             self.bind_left(left);
         }
-        self.run_node(entry.root, depth, left, right_fact)
+        // the root's own dispatch inlined here: one call less per test
+        self.run_inline(entry.root, depth, left, right_fact)
     }
 
     /// Builds the plan of `join` into cache entry `i` (out of line: once per join
@@ -385,7 +386,18 @@ impl Core<'_> {
         self.st.cache.compiled_plans.store(i, entry, &b);
     }
 
+    /// Node `node`'s result (out of line: the composites below a root or an
+    /// `or` member of a root `and`).
+    #[inline(never)]
     fn run_node(&self, node: u8, depth: u8, left: TokenId, right_fact: Ix) -> Option<bool> {
+        self.run_inline(node, depth, left, right_fact)
+    }
+
+    /// `run_node` inlined into its caller: comparisons, and the members of an `and`
+    /// and of an `or` (also one under an `and`) run without a call; deeper
+    /// composites go through `run_node`.
+    #[inline(always)]
+    fn run_inline(&self, node: u8, depth: u8, left: TokenId, right_fact: Ix) -> Option<bool> {
         let plans = &self.st.cache.compiled_plans;
         match plans.nodes[node as usize] {
             Node::Cmp { id, a, b } => self.run_cmp(id, a, b, depth, left, right_fact),
@@ -394,13 +406,17 @@ impl Core<'_> {
             }
             Node::And { first, len } => {
                 for &k in &plans.kids[first as usize..(first + len) as usize] {
-                    // the comparisons inline, the composites through the recursion
+                    // the comparisons and an `or` inline, other composites through
+                    // the recursion
                     let r = match plans.nodes[k as usize] {
                         Node::Cmp { id, a, b } => {
                             self.run_cmp(id, a, b, depth, left, right_fact)?
                         }
                         Node::SameSlots { a, b, negated } => {
                             self.run_same(a, b, negated, depth, left, right_fact)?
+                        }
+                        Node::Or { first, len } => {
+                            self.run_or(first, len, depth, left, right_fact)?
                         }
                         _ => self.run_node(k, depth, left, right_fact)?,
                     };
@@ -410,27 +426,30 @@ impl Core<'_> {
                 }
                 Some(true)
             }
-            Node::Or { first, len } => {
-                for &k in &plans.kids[first as usize..(first + len) as usize] {
-                    let r = match plans.nodes[k as usize] {
-                        Node::Cmp { id, a, b } => {
-                            self.run_cmp(id, a, b, depth, left, right_fact)?
-                        }
-                        Node::SameSlots { a, b, negated } => {
-                            self.run_same(a, b, negated, depth, left, right_fact)?
-                        }
-                        _ => self.run_node(k, depth, left, right_fact)?,
-                    };
-                    if r {
-                        return Some(true);
-                    }
-                }
-                Some(false)
-            }
+            Node::Or { first, len } => self.run_or(first, len, depth, left, right_fact),
             Node::Not { child } => Some(!self.run_node(child, depth, left, right_fact)?),
             // operands, reached only through a `Source::Arith`
             Node::Arith { .. } | Node::Leaf { .. } => None,
         }
+    }
+
+    /// An `or` of kids `first..first + len` (short-circuit, in order).
+    #[inline(always)]
+    fn run_or(&self, first: u8, len: u8, depth: u8, left: TokenId, right_fact: Ix) -> Option<bool> {
+        let plans = &self.st.cache.compiled_plans;
+        for &k in &plans.kids[first as usize..(first + len) as usize] {
+            let r = match plans.nodes[k as usize] {
+                Node::Cmp { id, a, b } => self.run_cmp(id, a, b, depth, left, right_fact)?,
+                Node::SameSlots { a, b, negated } => {
+                    self.run_same(a, b, negated, depth, left, right_fact)?
+                }
+                _ => self.run_node(k, depth, left, right_fact)?,
+            };
+            if r {
+                return Some(true);
+            }
+        }
+        Some(false)
     }
 
     /// The integer value of arithmetic node `node`; None where the evaluator must
@@ -549,7 +568,7 @@ impl Core<'_> {
                 if fact == NONE {
                     return None;
                 }
-                let (cell, len) = self.slot_cell(fact, Ix::from(slot));
+                let (cell, len) = self.plan_slot_cell(fact, slot);
                 match len {
                     Some(len) if (elem as usize) < len as usize => {
                         Some(self.values[cell + 1 + elem as usize])
@@ -567,6 +586,24 @@ impl Core<'_> {
             Source::Arith { node } => {
                 Some(Value::Int(self.run_arith(node, depth, left, right_fact)?))
             }
+        }
+    }
+
+    /// `slot_cell` inlined into the plan's element reads (the root's tests are
+    /// inlined into `compiled_join_test`, which would otherwise call it per element;
+    /// an ordered fact's one multislot needs no walk).
+    #[inline(always)]
+    fn plan_slot_cell(&self, fact: Ix, slot: u8) -> (usize, Option<Ix>) {
+        let mut c = self.facts[fact as usize].start as usize;
+        for _ in 0..slot {
+            match self.values[c] {
+                Value::Multi(m) => c += 1 + m.len as usize,
+                _ => c += 1,
+            }
+        }
+        match self.values[c] {
+            Value::Multi(m) => (c, Some(m.len)),
+            _ => (c, None),
         }
     }
 
