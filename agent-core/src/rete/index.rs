@@ -1279,8 +1279,8 @@ impl Core<'_> {
         }
         let group = if self.joins[j.parent].index_child == join {
             #[cfg(feature = "host-speedups")]
-            if !self.join_mems[j.parent].index_built {
-                self.build_beta_index(j.parent, join);
+            if !self.join_mems[j.parent].index_built && !self.build_beta_index(j.parent, join) {
+                return (parent_mem, 0);
             }
             Some(0)
         } else {
@@ -1355,26 +1355,44 @@ impl Core<'_> {
         if g == XSCAN {
             return None;
         }
-        // (re)build on use: an empty memory gives its groups' buckets up
+        // (re)build on use: an empty memory gives its groups' buckets up; one of a
+        // single partial match is scanned (see `build_beta_index`)
         if g == 0 {
             if !self.join_mems[parent].index_built {
                 let ic = self.joins[parent].index_child;
-                self.build_beta_index(parent, ic);
+                if !self.build_beta_index(parent, ic) {
+                    return None;
+                }
             }
-        } else if self.join_mems[parent].xbuilt & (1 << (g - 1)) == 0 {
-            self.build_extra_group(parent, g as usize);
+        } else if self.join_mems[parent].xbuilt & (1 << (g - 1)) == 0
+            && !self.build_extra_group(parent, g as usize)
+        {
+            return None;
         }
         Some(g as usize)
     }
 
+    /// Host: whether `join`'s (non-empty) memory holds one partial match.
+    #[cfg(feature = "host-speedups")]
+    #[inline(always)]
+    fn single_match(&self, join: JoinId) -> bool {
+        let m = self.join_mems[join].mem;
+        m != TokenId::NONE && self.tokens[m].mem_next == TokenId::NONE
+    }
+
     /// Host: links every partial match of `parent`'s memory into its extra index
-    /// group `g` (out of line: its caller is on every right activation).
+    /// group `g` (out of line: its caller is on every right activation); false, as
+    /// `build_beta_index`, for a memory of one partial match.
     #[cfg(feature = "host-speedups")]
     #[inline(never)]
-    fn build_extra_group(&mut self, parent: JoinId, g: usize) {
+    fn build_extra_group(&mut self, parent: JoinId, g: usize) -> bool {
+        if self.single_match(parent) {
+            return false;
+        }
         let child = self.join_mems[parent].xkey[g - 1];
         self.build_group(parent, child, g);
         self.join_mems[parent].xbuilt |= 1 << (g - 1);
+        true
     }
 
     /// Host: finds or takes the index group for `join` in `parent`'s memory (a
@@ -1447,11 +1465,19 @@ impl Core<'_> {
         }
     }
 
-    /// Host: indexes `join`'s memory for `child` (see `JoinMem::index_built`).
+    /// Host: indexes `join`'s memory for `child` (see `JoinMem::index_built`). False
+    /// for a memory of one partial match, left unindexed: the right activation
+    /// scans it (its one join test is what the bucket's key would save; out of
+    /// line, with the build, so that the check stays off the indexed path).
     #[cfg(feature = "host-speedups")]
-    fn build_beta_index(&mut self, join: JoinId, child: JoinId) {
+    #[inline(never)]
+    fn build_beta_index(&mut self, join: JoinId, child: JoinId) -> bool {
+        if self.single_match(join) {
+            return false;
+        }
         self.build_group(join, child, 0);
         self.join_mems[join].index_built = true;
+        true
     }
 
     /// Host: gives up `join`'s extra index groups (a child goes away; they are
