@@ -576,22 +576,24 @@ impl Core<'_> {
     /// Host: `left_activate` of positive `join` whose alpha node keeps a field for a
     /// `?a | ?b` test (`rhash[nrhash]`). Without a right hash: one index bucket per
     /// alternative (`or_lookup`); with one: its bucket, skipping the candidates the
-    /// test rejects (`or_admits`). False when neither applies (the caller walks
-    /// the candidates as for any join).
+    /// test rejects (`or_admits`). When neither applies it walks the candidates as
+    /// for any join: it ends the left activation either way, so that the usual
+    /// path's reads of the join and its alpha node are not made again after it.
     #[cfg(feature = "host-speedups")]
     #[inline(never)]
-    fn or_left_activate(&mut self, join: JoinId, left: TokenId) -> Result<bool, EvalError> {
+    fn or_left_activate(&mut self, join: JoinId, left: TokenId) -> Result<(), EvalError> {
         let nrhash = self.alphas[self.joins[join].alpha as usize].nrhash;
         let (tests, depth) = self.join_test_fields(join);
         let mut planned = false;
         if nrhash == 0 {
             let Some(mut cur) = self.or_lookup(join, left) else {
-                return Ok(false);
+                let (a, hashed) = self.first_candidate(join, left);
+                return self.left_walk(join, left, a, hashed);
             };
             loop {
                 let a = self.or_next(&mut cur);
                 if a == TokenId::NONE {
-                    return Ok(true);
+                    return Ok(());
                 }
                 if self.join_test_with(join, tests, depth, left, a, &mut planned)? {
                     let t = self.link_token(join, left, a)?;
@@ -602,7 +604,7 @@ impl Core<'_> {
         }
         let (mut a, hashed) = self.first_candidate(join, left);
         let Some(ov) = self.or_values(join, left, NONE) else {
-            return self.left_walk(join, left, a, hashed).map(|()| true);
+            return self.left_walk(join, left, a, hashed);
         };
         while a != TokenId::NONE {
             let next = self.next_candidate(a, hashed);
@@ -615,7 +617,7 @@ impl Core<'_> {
             }
             a = next;
         }
-        Ok(true)
+        Ok(())
     }
 
     /// A positive join's walk over its candidates from `a` (`first_candidate`) for
@@ -663,10 +665,8 @@ impl Core<'_> {
                 #[cfg(feature = "host-speedups")]
                 {
                     let n = &self.alphas[self.joins[join].alpha as usize];
-                    if n.rhash.get(n.nrhash as usize).is_some_and(|&f| f != NONE)
-                        && self.or_left_activate(join, left)?
-                    {
-                        return Ok(());
+                    if n.rhash.get(n.nrhash as usize).is_some_and(|&f| f != NONE) {
+                        return self.or_left_activate(join, left);
                     }
                 }
                 let (a, hashed) = self.first_candidate(join, left);
