@@ -1207,19 +1207,37 @@ impl Core<'_> {
         if self.tokens[t].in_x {
             self.unlink_extra(t);
         }
-        // host: only a linked partial match has a bucket (alpha matches and links
-        // keep `beta_links` NONE), so one load decides the common unindexed case
+        // host: only a partial match linked into its indexed memory's buckets has a
+        // bucket (alpha matches and links keep `beta_links` NONE; `drop_beta_index`
+        // unlinks all before the memory stops being indexed): the link decides
         #[cfg(feature = "wide-index")]
-        if self.bbucket(t) == NONE {
-            return;
+        {
+            let tag = self.bbucket(t);
+            if tag == NONE {
+                return;
+            }
+            debug_assert!(self.tokens[t].kind == TokenKind::Beta);
+            debug_assert!(self.joins[self.tokens[t].owner].index_child != JoinId::NONE);
+            #[cfg(feature = "grow")]
+            let b = self.group_bucket(tag as u32, 0);
+            #[cfg(not(feature = "grow"))]
+            let b = tag as usize;
+            if b < self.amem_buckets.len() {
+                self.chain_unlink(t, b, 0);
+            }
         }
-        let owner = self.tokens[t].owner;
-        if self.tokens[t].kind != TokenKind::Beta || self.joins[owner].index_child == JoinId::NONE {
-            return;
-        }
-        let b = self.bucket_of(t, 0);
-        if b != NONE {
-            self.chain_unlink(t, b as usize, 0);
+        #[cfg(not(feature = "wide-index"))]
+        {
+            let owner = self.tokens[t].owner;
+            if self.tokens[t].kind != TokenKind::Beta
+                || self.joins[owner].index_child == JoinId::NONE
+            {
+                return;
+            }
+            let b = self.bucket_of(t, 0);
+            if b != NONE {
+                self.chain_unlink(t, b as usize, 0);
+            }
         }
     }
 
