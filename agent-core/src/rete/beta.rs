@@ -506,33 +506,17 @@ impl Core<'_> {
     ) -> Result<TokenId, EvalError> {
         let rjoin = self.joins[join].rjoin;
         if rjoin == JoinId::NONE {
-            // host: the join's test fields read and its plan cache checked once
-            // (the image checks per candidate: less code)
-            // host: a keyed join with a `?a | ?b` test (out of line: most have none)
+            // host: a keyed join with a `?a | ?b` test (out of line: most have none;
+            // it ends the search either way, so the usual walk reads the join's
+            // fields once, not again after a call that may have changed them)
             #[cfg(feature = "host-speedups")]
             if hashed && from != TokenId::NONE {
                 let n = &self.alphas[self.joins[join].alpha as usize];
                 if n.rhash.get(n.nrhash as usize).is_some_and(|&f| f != NONE) {
-                    if let Some(r) = self.find_blocker_or(join, left, from)? {
-                        return Ok(r);
-                    }
+                    return self.find_blocker_or(join, left, from);
                 }
             }
-            #[cfg(feature = "host-speedups")]
-            let (tests, depth) = self.join_test_fields(join);
-            #[cfg(feature = "host-speedups")]
-            let mut planned = false;
-            let mut a = from;
-            while a != TokenId::NONE {
-                #[cfg(feature = "host-speedups")]
-                let found = self.join_test_with(join, tests, depth, left, a, &mut planned)?;
-                #[cfg(not(feature = "host-speedups"))]
-                let found = self.join_test(join, left, a)?;
-                if found {
-                    return Ok(a);
-                }
-                a = self.next_candidate(a, hashed);
-            }
+            return self.blocker_walk(join, left, from, hashed);
         } else {
             let parent = self.joins[join].parent;
             let mut r = self.join_mems[rjoin].mem;
@@ -546,9 +530,39 @@ impl Core<'_> {
         Ok(TokenId::NONE)
     }
 
+    /// `find_blocker`'s walk over the candidates of a join fed by an alpha node,
+    /// from `a` (`first_candidate`).
+    #[inline(always)]
+    fn blocker_walk(
+        &mut self,
+        join: JoinId,
+        left: TokenId,
+        mut a: TokenId,
+        hashed: bool,
+    ) -> Result<TokenId, EvalError> {
+        // host: the join's test fields read and its plan cache checked once
+        // (the image checks per candidate: less code)
+        #[cfg(feature = "host-speedups")]
+        let (tests, depth) = self.join_test_fields(join);
+        #[cfg(feature = "host-speedups")]
+        let mut planned = false;
+        while a != TokenId::NONE {
+            #[cfg(feature = "host-speedups")]
+            let found = self.join_test_with(join, tests, depth, left, a, &mut planned)?;
+            #[cfg(not(feature = "host-speedups"))]
+            let found = self.join_test(join, left, a)?;
+            if found {
+                return Ok(a);
+            }
+            a = self.next_candidate(a, hashed);
+        }
+        Ok(TokenId::NONE)
+    }
+
     /// Host: `find_blocker` along a keyed bucket (from `a`) of `join` whose alpha
     /// node keeps a field for a `?a | ?b` test: candidates the test rejects are
-    /// skipped unseen (`or_admits`). None when the test's values cannot be read.
+    /// skipped unseen (`or_admits`); the usual walk when the test's values cannot
+    /// be read.
     #[cfg(feature = "host-speedups")]
     #[inline(never)]
     fn find_blocker_or(
@@ -556,9 +570,9 @@ impl Core<'_> {
         join: JoinId,
         left: TokenId,
         mut a: TokenId,
-    ) -> Result<Option<TokenId>, EvalError> {
+    ) -> Result<TokenId, EvalError> {
         let Some(ov) = self.or_values(join, left, NONE) else {
-            return Ok(None);
+            return self.blocker_walk(join, left, a, true);
         };
         let (tests, depth) = self.join_test_fields(join);
         let mut planned = false;
@@ -566,11 +580,11 @@ impl Core<'_> {
             if self.or_admits(&ov, self.tokens[a].fact)
                 && self.join_test_with(join, tests, depth, left, a, &mut planned)?
             {
-                return Ok(Some(a));
+                return Ok(a);
             }
             a = self.next_candidate(a, true);
         }
-        Ok(Some(TokenId::NONE))
+        Ok(TokenId::NONE)
     }
 
     /// Host: `left_activate` of positive `join` whose alpha node keeps a field for a
