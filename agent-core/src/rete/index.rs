@@ -959,6 +959,12 @@ impl Core<'_> {
         self.set_bprev(t, p)
     }
 
+    // (with wide indices alone the memory's link is read instead)
+    #[cfg(any(
+        feature = "host-speedups",
+        feature = "grow",
+        not(feature = "wide-index")
+    ))]
     #[inline(always)]
     fn gbucket(&self, t: TokenId, g: usize) -> Ix {
         #[cfg(feature = "host-speedups")]
@@ -1172,6 +1178,7 @@ impl Core<'_> {
     }
 
     /// The bucket partial match `t` sits in for group `g` (NONE: none).
+    #[cfg(any(feature = "host-speedups", not(feature = "wide-index")))]
     #[inline(always)]
     fn bucket_of(&self, t: TokenId, g: usize) -> Ix {
         let b = self.gbucket(t, g);
