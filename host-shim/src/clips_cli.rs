@@ -153,6 +153,11 @@ impl Host for CliHost {
             }
         }
         let _ = self.out.write_all(text.as_bytes());
+        // whole lines go out at once, as CLIPS's output does: a command that never
+        // ends (killed by a timeout) leaves what came before it, its echo included
+        if text.ends_with('\n') {
+            let _ = self.out.flush();
+        }
         self.copy_to_dribble(text.as_bytes());
     }
 

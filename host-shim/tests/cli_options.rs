@@ -42,6 +42,11 @@ fn run_within(secs: &str, exe: &[&str], args: &[&str], dir: &Path, stdin: &str) 
 }
 
 fn compare(name: &str, files: &[(&str, &str)], args: &[&str], stdin: &str) {
+    compare_within("10", name, files, args, stdin);
+}
+
+/// `compare` with both runs under a timeout of `secs` seconds.
+fn compare_within(secs: &str, name: &str, files: &[(&str, &str)], args: &[&str], stdin: &str) {
     let dir = scratch(name);
     for (f, text) in files {
         std::fs::write(dir.join(f), text).expect("write program");
@@ -53,8 +58,8 @@ fn compare(name: &str, files: &[(&str, &str)], args: &[&str], stdin: &str) {
         has_clips,
         "real CLIPS 6.30 is required: apt-get install clips"
     );
-    let theirs = run(&["clips"], args, &dir, stdin);
-    let mine = run(&[ours, "clips"], args, &dir, stdin);
+    let theirs = run_within(secs, &["clips"], args, &dir, stdin);
+    let mine = run_within(secs, &[ours, "clips"], args, &dir, stdin);
     let _ = std::fs::remove_dir_all(&dir);
     assert_eq!(
         mine, theirs,
@@ -82,6 +87,23 @@ fn f2_without_exit_then_prompts() {
         &[("p.clp", PROGRAM)],
         &["-f2", "p.clp"],
         "(facts)\n(+ 2 3)\n(exit)\n",
+    );
+}
+
+/// A command that never ends, killed by the timeout: what came before it is on
+/// stdout, its echo included (CLIPS flushes its output; ours sends whole lines).
+#[test]
+fn output_before_a_hang_survives_the_kill() {
+    compare_within(
+        "4",
+        "hang",
+        &[(
+            "hang.clp",
+            "(printout t \"before\" crlf)\n(bind ?x 1)\n(while TRUE do (bind ?x 2))\n\
+             (printout t \"never\" crlf)\n",
+        )],
+        &["-f", "hang.clp"],
+        "",
     );
 }
 
