@@ -446,4 +446,5 @@ differential_programs! {
     p505_retract_unblock_multifield => "505-retract-unblock-multifield",
     p506_retract_unblock_modify => "506-retract-unblock-modify",
     p507_retract_unblock_logical => "507-retract-unblock-logical",
+    p508_undefrule_firing_rule => "508-undefrule-firing-rule",
 }

@@ -596,6 +596,10 @@ fn undefrule(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
             let rule = cx.rules[r as usize];
             let first = (0..cx.st.pools.nrules).find(|&q| cx.rule_here(q, rule.name));
             if !rule.deleted && first == Some(r) {
+                if rule_firing(cx, r) {
+                    unable(cx, Unable::Delete, "defrule", rule.name);
+                    continue;
+                }
                 cx.remove_rule(r);
                 #[cfg(feature = "extras")]
                 cx.st.breaks.remove(rule.name);
@@ -604,6 +608,10 @@ fn undefrule(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         return Ok(Value::Void);
     }
     match find_rule(cx, name) {
+        Some(r) if rule_firing(cx, r) => {
+            unable(cx, Unable::Delete, "defrule", name);
+            Ok(Value::Void)
+        }
         Some(r) => {
             cx.remove_rule(r);
             #[cfg(feature = "extras")]
@@ -615,6 +623,22 @@ fn undefrule(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
             Ok(Value::Void)
         }
     }
+}
+
+/// Whether rule `r` (its first disjunct) is the one whose actions run: CLIPS does
+/// not delete it (`[PRNTUTIL4]`), and the actions go on.
+fn rule_firing(cx: &Core<'_>, mut r: Ix) -> bool {
+    let current = cx.st.agenda.current_rule;
+    if current == NONE {
+        return false;
+    }
+    while r != NONE {
+        if r == current {
+            return true;
+        }
+        r = cx.rules[r as usize].next_disjunct;
+    }
+    false
 }
 
 /// `(matches rule [verbose|succinct|terse])` (`super::matches`).
