@@ -594,17 +594,7 @@ impl Core<'_> {
     /// an ordered fact's one multislot needs no walk).
     #[inline(always)]
     fn plan_slot_cell(&self, fact: Ix, slot: u8) -> (usize, Option<Ix>) {
-        let mut c = self.facts[fact as usize].start as usize;
-        for _ in 0..slot {
-            match self.values[c] {
-                Value::Multi(m) => c += 1 + m.len as usize,
-                _ => c += 1,
-            }
-        }
-        match self.values[c] {
-            Value::Multi(m) => (c, Some(m.len)),
-            _ => (c, None),
-        }
+        self.slot_cell_inline(fact, slot as Ix)
     }
 
     /// A single-field slot of the fact bound at `pat` (None for a multifield).
