@@ -163,16 +163,36 @@ impl<'a, H: Handle, T> Slots<'a, H, T> {
 impl<H: Handle, T> Index<H> for Slots<'_, H, T> {
     type Output = T;
     #[inline(always)]
+    #[cfg_attr(debug_assertions, track_caller)]
     fn index(&self, h: H) -> &T {
-        &self.items[h.ix()]
+        match self.items.get(h.ix()) {
+            Some(x) => x,
+            None => out_of_range(),
+        }
     }
 }
 
 impl<H: Handle, T> IndexMut<H> for Slots<'_, H, T> {
     #[inline(always)]
+    #[cfg_attr(debug_assertions, track_caller)]
     fn index_mut(&mut self, h: H) -> &mut T {
-        &mut self.items[h.ix()]
+        match self.items.get_mut(h.ix()) {
+            Some(x) => x,
+            None => out_of_range(),
+        }
     }
+}
+
+/// A handle past its pool's end, or a compiled (read-only) entry written: a broken
+/// link, never input. One shared call instead of
+/// a bounds-check panic per indexing site, whose code and location record (16 bytes of
+/// read-only data each, hundreds of sites) the image's code budget cannot spare. Debug
+/// builds still report the indexing site (`track_caller`).
+#[cold]
+#[inline(never)]
+#[cfg_attr(debug_assertions, track_caller)]
+pub fn out_of_range() -> ! {
+    panic!("pool handle out of range, or a compiled entry written")
 }
 
 /// A pool's entries, read only (the engine's queries between operations): indexed by
@@ -210,7 +230,11 @@ impl<'a, H: Handle, T> SlotsRef<'a, H, T> {
 impl<H: Handle, T> Index<H> for SlotsRef<'_, H, T> {
     type Output = T;
     #[inline(always)]
+    #[cfg_attr(debug_assertions, track_caller)]
     fn index(&self, h: H) -> &T {
-        &self.items[h.ix()]
+        match self.items.get(h.ix()) {
+            Some(x) => x,
+            None => out_of_range(),
+        }
     }
 }

@@ -178,13 +178,12 @@ impl<T: Copy + 'static, H> RomPool<'_, T, H> {
 impl<T: 'static, H: Handle> core::ops::Index<H> for RomPool<'_, T, H> {
     type Output = T;
     #[inline(always)]
+    #[cfg_attr(debug_assertions, track_caller)]
     fn index(&self, h: H) -> &T {
-        let i = h.ix();
-        #[cfg(feature = "in-place")]
-        if i < self.rom.len() {
-            return &self.rom[i];
+        match self.get(h.ix()) {
+            Some(x) => x,
+            None => crate::handle::out_of_range(),
         }
-        &self.ram[i - self.rom_len()]
     }
 }
 
@@ -193,10 +192,13 @@ impl<T: 'static, H: Handle> core::ops::IndexMut<H> for RomPool<'_, T, H> {
     /// expression pool's caches check [`RomPool::writable`] first; the network is
     /// copied into the arena before its topology changes).
     #[inline(always)]
+    #[cfg_attr(debug_assertions, track_caller)]
     fn index_mut(&mut self, h: H) -> &mut T {
-        let i = h.ix();
-        let rom = self.rom_len();
-        &mut self.ram[i.checked_sub(rom).expect("compiled entries are read-only")]
+        // a compiled entry's place wraps past the arena's end: the same one check
+        match self.ram.get_mut(h.ix().wrapping_sub(self.rom_len())) {
+            Some(x) => x,
+            None => crate::handle::out_of_range(),
+        }
     }
 }
 
@@ -269,12 +271,11 @@ impl<T: 'static, H> Copy for RomRef<'_, T, H> {}
 impl<T: 'static, H: Handle> core::ops::Index<H> for RomRef<'_, T, H> {
     type Output = T;
     #[inline(always)]
+    #[cfg_attr(debug_assertions, track_caller)]
     fn index(&self, h: H) -> &T {
-        let i = h.ix();
-        #[cfg(feature = "in-place")]
-        if i < self.rom.len() {
-            return &self.rom[i];
+        match self.get(h.ix()) {
+            Some(x) => x,
+            None => crate::handle::out_of_range(),
         }
-        &self.ram[i - self.rom_len()]
     }
 }
