@@ -2,7 +2,9 @@
 //! refresh-agenda, set-strategy, list-defrules, ppdefrule, undefrule, matches, load,
 //! batch, save-facts, load-facts.
 
+use super::describe::{ArgType, OnError};
 use super::files::{FileItems, FILE_BUF};
+use super::save_facts::{self, save_facts};
 use super::{Args, Builtin, ANY, SYM_CRLF, SYM_FALSE, SYM_NIL, SYM_TRUE};
 use crate::commands::FactsRead;
 use crate::engine::{watch, Core};
@@ -31,14 +33,23 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("ppdefrule", 1, 1, ppdefrule),
     Builtin::eager("undefrule", 1, 1, undefrule),
     Builtin::eager("matches", 1, 2, matches),
-    Builtin::eager("save-facts", 1, ANY, save_facts),
+    // literal arguments are checked while parsing, as CLIPS's "1*wk"
+    Builtin::eager("save-facts", 1, ANY, save_facts)
+        .args(&[ArgType::SymbolOrString], ArgType::Symbol)
+        .on_error(OnError::False),
     Builtin::eager("time", 0, 0, time),
     Builtin::eager("list-deftemplates", 0, 1, list_deftemplates),
     Builtin::eager("list-deffunctions", 0, 1, list_deffunctions),
     Builtin::eager("get-fact-duplication", 0, 0, get_fact_dup),
 ];
-pub const TABLE: super::Table =
-    super::Table::new(FUNCS).texts(&["symbol with value verbose, succinct, or terse"]);
+pub const TABLE: super::Table = super::Table::new(FUNCS).texts(&[
+    "symbol with value verbose, succinct, or terse",
+    save_facts::T_FILE_NAME,
+    save_facts::T_SYMBOL,
+    save_facts::T_SCOPE,
+    save_facts::T_LOCAL,
+    save_facts::T_VISIBLE,
+]);
 
 fn reset(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
     if cx.st.net.matching > 0 {
@@ -734,35 +745,6 @@ pub(super) fn batch_quiet(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError
     let path = path_arg(cx, a, "batch")?;
     let ok = cx.batch_file_stream(path.as_str(), false)?;
     Ok(Value::Sym(if ok { SYM_TRUE } else { SYM_FALSE }))
-}
-
-fn save_facts(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    let p = cx.arg_lexeme(a, 0, "save-facts")?;
-    let mut path: TextBuf<256> = TextBuf::new();
-    let _ = path.write_str(cx.sym_text(p));
-    let mut first = true;
-    let mut f = cx.st.facts.fact_head;
-    while f != NONE {
-        let mut b: TextBuf<2048> = TextBuf::new();
-        {
-            let (view, _) = cx.split();
-            let _ = view.write_fact_escaped(&mut b, f);
-        }
-        let _ = b.write_char('\n');
-        if cx
-            .host
-            .write_file(path.as_str(), b.as_str().as_bytes(), !first)
-            .is_err()
-        {
-            return Ok(Value::Sym(SYM_FALSE));
-        }
-        first = false;
-        f = cx.facts[f as usize].next;
-    }
-    if first && cx.host.write_file(path.as_str(), b"", false).is_err() {
-        return Ok(Value::Sym(SYM_FALSE));
-    }
-    Ok(Value::Sym(SYM_TRUE))
 }
 
 #[cfg_attr(not(feature = "parser"), allow(dead_code))]

@@ -20,8 +20,10 @@ pub enum ArgType {
     Any,
     Number,
     Integer,
-    /// Symbol or string.
+    /// Symbol, string or instance name (CLIPS's `j`).
     Lexeme,
+    /// Symbol or string (CLIPS's `k`: a file name).
+    SymbolOrString,
     /// A symbol alone (a construct or slot name).
     Symbol,
     Str,
@@ -209,7 +211,9 @@ impl ArgType {
             ArgType::Any => true,
             ArgType::Number => matches!(v, Value::Int(_) | Value::Float(_)),
             ArgType::Integer => matches!(v, Value::Int(_)),
-            ArgType::Lexeme => matches!(v, Value::Sym(_) | Value::Str(_)),
+            ArgType::Lexeme | ArgType::SymbolOrString => {
+                matches!(v, Value::Sym(_) | Value::Str(_))
+            }
             ArgType::Symbol => matches!(v, Value::Sym(_)),
             ArgType::Str => matches!(v, Value::Str(_)),
             ArgType::Multifield | ArgType::FactAddress => false,
@@ -223,6 +227,7 @@ impl ArgType {
             ArgType::Number => "integer or float",
             ArgType::Integer => "integer",
             ArgType::Lexeme => "symbol, string, or instance name",
+            ArgType::SymbolOrString => "symbol or string",
             ArgType::Symbol => "symbol",
             ArgType::Str => "string",
             ArgType::Multifield => "multifield",
@@ -236,7 +241,7 @@ impl ArgType {
             ArgType::Any => "an argument",
             ArgType::Number => "an argument of type integer or float",
             ArgType::Integer => "an argument of type integer",
-            ArgType::Lexeme => "an argument of type symbol or string",
+            ArgType::Lexeme | ArgType::SymbolOrString => "an argument of type symbol or string",
             ArgType::Symbol => "an argument of type symbol",
             ArgType::Str => "an argument of type string",
             ArgType::Multifield => {

@@ -44,6 +44,7 @@ pub mod predicates;
 pub mod pretty;
 pub mod queries;
 pub mod random;
+mod save_facts;
 pub mod strings;
 pub mod syntax;
 pub mod template_slots;
