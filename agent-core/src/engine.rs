@@ -1066,6 +1066,25 @@ impl Core<'_> {
         self.exprs[c as usize].next = child;
     }
 
+    /// Links `SlotVal` node `sv` among the children of fact spec `spec` in slot order:
+    /// CLIPS evaluates a fact's slot values in the template's order, whatever order
+    /// they are written in (`assert_spec` walks them with the defaults).
+    pub fn insert_slot_val(&mut self, spec: Ix, sv: Ix) {
+        let slot = self.exprs[sv as usize].data;
+        let mut prev = NONE;
+        let mut c = self.exprs[spec as usize].first;
+        while c != NONE && self.exprs[c as usize].data < slot {
+            prev = c;
+            c = self.exprs[c as usize].next;
+        }
+        self.exprs[sv as usize].next = c;
+        if prev == NONE {
+            self.exprs[spec as usize].first = sv;
+        } else {
+            self.exprs[prev as usize].next = sv;
+        }
+    }
+
     pub fn checkpoint(&self) -> Checkpoint {
         Checkpoint {
             nsyms: self.st.pools.nsyms,

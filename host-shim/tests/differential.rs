@@ -450,4 +450,5 @@ differential_programs! {
     p506_retract_unblock_modify => "506-retract-unblock-modify",
     p507_retract_unblock_logical => "507-retract-unblock-logical",
     p508_undefrule_firing_rule => "508-undefrule-firing-rule",
+    p570_slot_eval_order => "570-slot-eval-order",
 }

@@ -402,46 +402,23 @@ impl Core<'_> {
         defer: bool,
     ) -> Result<Option<Ix>, EvalError> {
         let nslots = self.templates[tmpl as usize].nslots;
-        // which of the first 64 slots the spec gives; later ones are looked up in it
-        let mut given = 0u64;
+        // CLIPS evaluates given values and defaults alike in the template's slot
+        // order; the spec's values come in that order (`insert_slot_val`)
         let mut sv = self.exprs[spec as usize].first;
-        while sv != NONE {
-            let slot = self.exprs[sv as usize].data;
-            let v = self.slot_value_from(tmpl, slot, self.exprs[sv as usize].first, true)?;
-            self.stack[(base + slot) as usize] = v;
-            if slot < 64 {
-                given |= 1 << slot;
-            }
-            sv = self.exprs[sv as usize].next;
-        }
         for s in 0..nslots {
-            let is_given = if s < 64 {
-                given & 1 << s != 0
+            let v = if sv != NONE && self.exprs[sv as usize].data == s {
+                let first = self.exprs[sv as usize].first;
+                sv = self.exprs[sv as usize].next;
+                self.slot_value_from(tmpl, s, first, true)?
             } else {
-                self.spec_gives(spec, s)
+                self.default_value_for(tmpl, s, true)?
             };
-            if !is_given {
-                let v = self.default_value_for(tmpl, s, true)?;
-                self.stack[(base + s) as usize] = v;
-            }
+            self.stack[(base + s) as usize] = v;
         }
         // Values computed at run time are not checked against the slots' restrictions:
         // CLIPS checks literals while parsing and leaves dynamic constraint checking off.
         self.st.net.defer_next = defer;
         self.assert_slots(tmpl, base as usize)
-    }
-
-    /// Whether the fact spec gives slot `slot` a value.
-    #[cold]
-    fn spec_gives(&self, spec: Ix, slot: Ix) -> bool {
-        let mut sv = self.exprs[spec as usize].first;
-        while sv != NONE {
-            if self.exprs[sv as usize].data == slot {
-                return true;
-            }
-            sv = self.exprs[sv as usize].next;
-        }
-        false
     }
 
     /// Resolves a fact argument: an address or an index.

@@ -97,7 +97,7 @@ impl Core<'_> {
                 return Err(refused("one value for a single-field slot"));
             }
             let sv = self.push_expr(Expr::new(Op::SlotVal, 0, slot))?;
-            self.append_child(spec, sv);
+            self.insert_slot_val(spec, sv);
             self.push_values(sv, values)?;
         }
         let t = self.templates[tmpl as usize];

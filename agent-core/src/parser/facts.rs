@@ -101,7 +101,7 @@ impl<'s> Parser<'s, '_, '_> {
                     let sv = cap!(self, self.cx.push_expr(Expr::new(Op::SlotVal, 0, slot)))?;
                     let def = self.cx.slot_def(tmpl, slot);
                     self.slot_values(sv, &def, st, "assert")?;
-                    self.cx.append_child(spec, sv);
+                    self.cx.insert_slot_val(spec, sv);
                 }
                 _ => return Err(self.err(t, "'(' and a slot name")),
             }
