@@ -296,21 +296,23 @@ impl Core<'_> {
         // rules starting with not/exists/test lose their root-based matches first, join
         // by join in the order they are primed again below (CLIPS's list of them)
         let root_token = self.join_mems[JoinId::ROOT].mem;
-        let mut j = self.joins[JoinId::ROOT].first_child;
-        while j != JoinId::NONE {
-            if self.joins[j].kind != JoinKind::Positive {
-                loop {
-                    let mut c = self.tokens[root_token].first_child;
-                    while c != TokenId::NONE && self.tokens[c].owner != j {
-                        c = self.tokens[c].next_sib;
+        for phase in [false, true] {
+            let mut j = self.joins[JoinId::ROOT].first_child;
+            while j != JoinId::NONE {
+                if self.joins[j].kind.left_primed() == Some(phase) {
+                    loop {
+                        let mut c = self.tokens[root_token].first_child;
+                        while c != TokenId::NONE && self.tokens[c].owner != j {
+                            c = self.tokens[c].next_sib;
+                        }
+                        if c == TokenId::NONE {
+                            break;
+                        }
+                        self.delete_token(c);
                     }
-                    if c == TokenId::NONE {
-                        break;
-                    }
-                    self.delete_token(c);
                 }
+                j = self.joins[j].next_sibling;
             }
-            j = self.joins[j].next_sibling;
         }
         // (any left over, in token order)
         loop {
@@ -358,12 +360,17 @@ impl Core<'_> {
                 self.set_global(g, Value::Void)?;
             }
         }
-        let mut j = self.joins[JoinId::ROOT].first_child;
-        while j != JoinId::NONE {
-            if self.joins[j].kind != JoinKind::Positive {
-                self.left_activate(j, root_token)?;
+        // CLIPS primes the joins fed by no pattern (no CE, a first `test`) first, then
+        // those after a first `not`/`exists` (its right- then left-prime joins), so
+        // the latter's activations are newer; then comes the initial-fact
+        for phase in [false, true] {
+            let mut j = self.joins[JoinId::ROOT].first_child;
+            while j != JoinId::NONE {
+                if self.joins[j].kind.left_primed() == Some(phase) {
+                    self.left_activate(j, root_token)?;
+                }
+                j = self.joins[j].next_sibling;
             }
-            j = self.joins[j].next_sibling;
         }
         if self.st.mode.initial_deffacts {
             self.assert_initial_fact()?;

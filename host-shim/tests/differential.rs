@@ -451,4 +451,5 @@ differential_programs! {
     p507_retract_unblock_logical => "507-retract-unblock-logical",
     p508_undefrule_firing_rule => "508-undefrule-firing-rule",
     p570_slot_eval_order => "570-slot-eval-order",
+    p571_reset_prime_order => "571-reset-prime-order",
 }

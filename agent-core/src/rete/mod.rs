@@ -150,6 +150,20 @@ pub enum JoinKind {
     Terminal,
 }
 
+impl JoinKind {
+    /// For a child of the root, primed at `reset`: Some(false) when fed by no
+    /// pattern (a rule's terminal, a first `test`: CLIPS's right-prime joins),
+    /// Some(true) after a first `not`/`exists` (left-prime joins), None for a pattern.
+    #[inline]
+    pub fn left_primed(self) -> Option<bool> {
+        match self {
+            JoinKind::Negative | JoinKind::Exists => Some(true),
+            JoinKind::Test | JoinKind::Terminal => Some(false),
+            _ => None,
+        }
+    }
+}
+
 #[derive(Clone, Copy, Debug)]
 pub struct Join {
     pub kind: JoinKind,
