@@ -694,10 +694,11 @@ impl Core<'_> {
         }
         let mut fired: u32 = 0;
         let scratch_mark = self.st.frame.scratch_top;
-        let mut limit_reached = false;
+        // whether the run stops after a firing (its limit, a halt, an error)
+        let mut look_next = false;
         loop {
             if limit >= 0 && (fired as i64) >= limit {
-                limit_reached = true;
+                look_next = true;
                 break;
             }
             // the agenda is complete only once owed matches are built: fire nothing
@@ -797,9 +798,11 @@ impl Core<'_> {
                     e.reported = true;
                     return Err(e);
                 }
+                look_next = true;
                 break;
             }
             if self.st.mode.halt {
+                look_next = true;
                 // CLIPS names the halted rule only while rules are watched
                 if self.st.mode.watch & watch::RULES == 0 {
                     break;
@@ -808,15 +811,16 @@ impl Core<'_> {
                 break;
             }
         }
-        // CLIPS looks for the next activation after the last firing the limit allows:
-        // modules left with an empty agenda leave the focus stack then
+        // CLIPS looks for the next activation after every firing, the last one the
+        // limit allows or one that halted or failed too: modules left with an empty
+        // agenda leave the focus stack then
         #[cfg(feature = "modules")]
-        if limit_reached && fired > 0 {
+        if look_next && fired > 0 {
             self.pay_owed()?;
             self.pop_empty_focus();
         }
         #[cfg(not(feature = "modules"))]
-        let _ = limit_reached;
+        let _ = look_next;
         self.st.mode.halt = false;
         Ok(fired)
     }

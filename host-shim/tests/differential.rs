@@ -452,4 +452,5 @@ differential_programs! {
     p508_undefrule_firing_rule => "508-undefrule-firing-rule",
     p570_slot_eval_order => "570-slot-eval-order",
     p571_reset_prime_order => "571-reset-prime-order",
+    p572_halt_pops_empty_focus => "572-halt-pops-empty-focus",
 }
