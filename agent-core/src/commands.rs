@@ -340,8 +340,16 @@ impl Core<'_> {
             self.st.facts.values_top = 0;
         }
         self.st.facts.next_fact_num = 0;
-        // globals back to their initial values
-        for g in 0..self.st.pools.nglobals {
+        // globals back to their initial values, unless `(set-reset-globals FALSE)`
+        #[cfg(feature = "extras")]
+        let nglobals = if self.st.mode.keep_globals {
+            0
+        } else {
+            self.st.pools.nglobals
+        };
+        #[cfg(not(feature = "extras"))]
+        let nglobals = self.st.pools.nglobals;
+        for g in 0..nglobals {
             let init = self.globals[g as usize].init;
             if init != NONE {
                 let v = self.eval(init)?;
@@ -422,6 +430,8 @@ impl Core<'_> {
     /// `(clear)`: everything goes; the environment starts afresh (externals stay).
     pub fn clear(&mut self) -> Result<(), EvalError> {
         let w = self.st.mode.watch;
+        #[cfg(feature = "extras")]
+        let keep_globals = self.st.mode.keep_globals;
         let next = self.st.pools.nexternals;
         let ext_syms = self.st.pools.ext_syms;
         let rom_syms = self.st.rom.symbols;
@@ -566,6 +576,10 @@ impl Core<'_> {
         self.st.pools.ext_syms = ext_syms;
         // CLIPS prints `==> f-0 (initial-fact)` here when facts are watched
         self.st.mode.watch = w;
+        #[cfg(feature = "extras")]
+        {
+            self.st.mode.keep_globals = keep_globals;
+        }
         // CLIPS's clear ends with a reset's focus on MAIN (the stack holds MAIN)
         #[cfg(feature = "modules")]
         self.reset_focus()?;

@@ -501,6 +501,10 @@ pub struct Mode {
     /// is read as `(expand$ ?x)` (agent-core feature `extras`; the byte fits the
     /// struct's padding).
     pub seq_ops: bool,
+    /// `(set-reset-globals FALSE)`: `reset` leaves the defglobals' values as they
+    /// are (set by agent-core feature `extras`; kept across `clear`, as CLIPS keeps
+    /// it; the byte fits the struct's padding).
+    pub keep_globals: bool,
 }
 
 impl Mode {
@@ -522,6 +526,7 @@ impl Mode {
             fact_duplication: false,
             twins_made: false,
             seq_ops: false,
+            keep_globals: false,
         }
     }
 }

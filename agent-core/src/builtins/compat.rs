@@ -447,15 +447,16 @@ fn set_incremental_reset(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError>
     Ok(Value::Sym(SYM_TRUE))
 }
 
-/// `reset` gives every defglobal its initial value back (CLIPS's default, TRUE).
-fn get_reset_globals(_cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
-    Ok(Value::Sym(SYM_TRUE))
+/// Whether `reset` gives every defglobal its initial value back (CLIPS's default,
+/// TRUE).
+fn get_reset_globals(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
+    Ok(Core::bool_value(!cx.st.mode.keep_globals))
 }
+/// Any value but FALSE turns it on; the old setting is returned.
 fn set_reset_globals(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    if is_false(cx.arg(a, 0)) {
-        return Err(refuse(cx, "set-reset-globals", "TRUE"));
-    }
-    Ok(Value::Sym(SYM_TRUE))
+    let old = !cx.st.mode.keep_globals;
+    cx.st.mode.keep_globals = is_false(cx.arg(a, 0));
+    Ok(Core::bool_value(old))
 }
 
 /// What Debian's build of CLIPS 6.30 answers: it was compiled without naming its

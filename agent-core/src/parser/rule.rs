@@ -91,6 +91,8 @@ pub(crate) struct Build {
     pub(crate) logical: u8,
     pub(crate) in_logical: bool,
     pub(crate) plain_seen: bool,
+    /// The next group is one branch's negation of a `(not (or ...))`.
+    pub(crate) split_branch: bool,
     /// `(declare (auto-focus TRUE))` (feature `modules`).
     #[cfg_attr(not(feature = "modules"), allow(dead_code))]
     pub(crate) auto_focus: bool,
@@ -119,6 +121,7 @@ impl Build {
             logical: CE_ROOT,
             in_logical: false,
             plain_seen: false,
+            split_branch: false,
             auto_focus: false,
         }
     }
@@ -126,8 +129,13 @@ impl Build {
     /// Moves to the next combination of `or` branches; false after the last one
     /// (the choices are then all 0 again).
     fn next_choice(&mut self) -> bool {
+        self.next_choice_from(0)
+    }
+
+    /// The same over the `or` CEs from `base` on (those of one negation's body).
+    fn next_choice_from(&mut self, base: usize) -> bool {
         let mut i = self.nor;
-        while i > 0 {
+        while i > base {
             i -= 1;
             self.choice[i] += 1;
             if self.choice[i] < self.counts[i] {
@@ -532,11 +540,8 @@ impl<'s> Parser<'s, '_, '_> {
                     }
                     Tok::Symbol("or") => {
                         self.next();
-                        if ctx != Ctx::Top || b.groups > 0 {
-                            return Err(
-                                self.err(h, "a pattern (or inside not/exists is not supported)")
-                            );
-                        }
+                        // (inside not/exists/forall the enclosing negation reads the
+                        // body once per choice: `split_negation`)
                         let k = b.nor;
                         if k >= MAX_ORS {
                             return Err(self.err(h, "fewer or CEs in one rule"));
@@ -744,7 +749,98 @@ impl<'s> Parser<'s, '_, '_> {
                 return self.ce(b, if nots % 2 == 1 { Ctx::Not } else { Ctx::Exists });
             }
         }
+        if self.free_or_follows(body)? {
+            return self.split_negation(b, nots, body, at);
+        }
         self.group(b, body, nots % 2 == 1, at)
+    }
+
+    /// A quantified body holding an `or` outside any deeper negation. CLIPS moves
+    /// the `or` out of the `and`s around it and turns the innermost negation over it
+    /// into one negation per combination of branches, in the order of `or`
+    /// disjuncts: `(not (or A B))` is `(not A) (not B)`. Under more negations
+    /// (`exists`, `(not (not ...))`) CLIPS 6.30 builds a network whose activation
+    /// order we do not reproduce (and which activates wrongly with two patterns in
+    /// `exists`): refused.
+    fn split_negation(
+        &mut self,
+        b: &mut Build,
+        nots: u8,
+        body: GroupBody,
+        at: Token<'s>,
+    ) -> PResult<()> {
+        if nots > 1 {
+            return Err(self.not_implemented(at, "an or CE under exists or two negations"));
+        }
+        self.negations_per_choice(b, body, at)
+    }
+
+    /// The body read once per combination of its `or` branches, each a negation.
+    fn negations_per_choice(
+        &mut self,
+        b: &mut Build,
+        body: GroupBody,
+        at: Token<'s>,
+    ) -> PResult<()> {
+        let base = b.nor;
+        let start = self.save();
+        loop {
+            self.restore(start.clone());
+            // variables one negation binds are not seen by the next
+            let saved = self.nvars;
+            b.split_branch = true;
+            let r = self.group(b, body, true, at);
+            self.nvars = saved;
+            r?;
+            if !b.next_choice_from(base) {
+                break;
+            }
+            b.nor = base;
+        }
+        b.nor = base;
+        Ok(())
+    }
+
+    /// Whether the quantified body ahead holds an `or` CE outside any deeper
+    /// not/exists/forall (for a forall, in its first CE: the rest is a negation of
+    /// its own). Looks ahead only.
+    fn free_or_follows(&mut self, body: GroupBody) -> PResult<bool> {
+        let save = self.save();
+        let r = self.scan_free_or(body == GroupBody::Forall);
+        self.restore(save);
+        r
+    }
+
+    fn scan_free_or(&mut self, first_only: bool) -> PResult<bool> {
+        loop {
+            let save = self.save();
+            let t = self.next();
+            match t.tok {
+                Tok::RParen | Tok::Eof | Tok::Bad => return Ok(false),
+                Tok::SfVar(_) => {
+                    if self.peek().tok == Tok::Symbol("<-") {
+                        self.next();
+                    }
+                    self.skip_balanced()?;
+                }
+                Tok::LParen => match self.next().tok {
+                    Tok::Symbol("or") => return Ok(true),
+                    Tok::Symbol("and" | "logical") => {
+                        if self.nested(|p| p.scan_free_or(false))? {
+                            return Ok(true);
+                        }
+                    }
+                    _ => {
+                        self.restore(save);
+                        self.skip_balanced()?;
+                    }
+                },
+                _ => return Ok(false),
+            }
+            if first_only {
+                return Ok(false);
+            }
+        }
     }
 
     /// The CEs after the first of `(forall A B...)`: the inner `(not (and B...))`.
@@ -768,6 +864,7 @@ impl<'s> Parser<'s, '_, '_> {
         at: Token<'s>,
     ) -> PResult<()> {
         let (outer, d, gf) = (b.cur, b.depth, b.group_first);
+        let split_branch = core::mem::replace(&mut b.split_branch, false);
         let first = b.n;
         b.groups += 1;
         b.group_first = first as u8;
@@ -794,6 +891,21 @@ impl<'s> Parser<'s, '_, '_> {
             if only.kind == JoinKind::Positive && only.pat.tmpl != NONE {
                 // one pattern and tests on it: a not/exists join on its alpha node
                 b.ces[first].kind = if negated {
+                    JoinKind::Negative
+                } else {
+                    JoinKind::Exists
+                };
+                return Ok(());
+            }
+            if split_branch
+                && matches!(only.kind, JoinKind::Negative | JoinKind::Exists)
+                && only.pat.tmpl != NONE
+                && only.post == NONE
+            {
+                // a branch `(not A)` of `(not (or ...))`: CLIPS folds the two
+                // negations as it folds `(not (not A))`
+                let inner_negated = only.kind == JoinKind::Negative;
+                b.ces[first].kind = if negated != inner_negated {
                     JoinKind::Negative
                 } else {
                     JoinKind::Exists
