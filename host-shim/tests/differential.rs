@@ -435,6 +435,7 @@ differential_programs! {
     p592_save_facts_errors => "592-save-facts-errors",
     p560_or_inside_not_forall => "560-or-inside-not-forall",
     p561_set_reset_globals => "561-set-reset-globals",
+    p562_pp_nested_control => "562-pp-nested-control",
     p470_rhs_rebind_lhs_var => "470-rhs-rebind-lhs-var",
     p472_less_than_delimiter => "472-less-than-delimiter",
     p473_failed_rule_redefinition => "473-failed-rule-redefinition",

@@ -16,6 +16,11 @@ struct Cursor<'a> {
     src: &'a str,
     lx: Lexer<'a>,
     peeked: [Option<Token<'a>>; 2],
+    /// Column of the action or CE being written: a control form nested in a call
+    /// indents its body from there, as CLIPS does (feature `extras`; the agent image
+    /// prints such a form on one line).
+    #[cfg(feature = "extras")]
+    indent: usize,
 }
 
 impl<'a> Cursor<'a> {
@@ -24,6 +29,8 @@ impl<'a> Cursor<'a> {
             src,
             lx: Lexer::new(src),
             peeked: [None, None],
+            #[cfg(feature = "extras")]
+            indent: 3,
         }
     }
 
@@ -83,6 +90,22 @@ fn flat(c: &mut Cursor<'_>, w: &mut dyn Write) -> fmt::Result {
     let mut depth = 1;
     let mut prev = first;
     while depth > 0 {
+        #[cfg(feature = "extras")]
+        if nested_control(c) {
+            if !matches!(
+                prev.tok,
+                Tok::LParen | Tok::Amp | Tok::Bar | Tok::Tilde | Tok::Symbol(":" | "=")
+            ) {
+                w.write_char(' ')?;
+            }
+            let col = c.indent;
+            action(c, w, col)?;
+            prev = Token {
+                tok: Tok::RParen,
+                ..first
+            };
+            continue;
+        }
         let t = c.next();
         match t.tok {
             Tok::Eof | Tok::Bad => return Ok(()),
@@ -105,8 +128,25 @@ fn flat(c: &mut Cursor<'_>, w: &mut dyn Write) -> fmt::Result {
     Ok(())
 }
 
+/// Whether a control form (`if`, `while`, ...) starts here, which CLIPS prints over
+/// several lines even as a call's argument.
+#[cfg(feature = "extras")]
+fn nested_control(c: &mut Cursor<'_>) -> bool {
+    c.peek(0).tok == Tok::LParen
+        && matches!(
+            c.peek(1).tok,
+            Tok::Symbol(
+                "if" | "while" | "loop-for-count" | "progn$" | "foreach" | "progn" | "switch"
+            )
+        )
+}
+
 /// A conditional element starting at column `col`.
 fn ce(c: &mut Cursor<'_>, w: &mut dyn Write, col: usize) -> fmt::Result {
+    #[cfg(feature = "extras")]
+    {
+        c.indent = col;
+    }
     let t0 = c.peek(0);
     if matches!(t0.tok, Tok::SfVar(_)) && is_sym(c.peek(1), "<-") {
         // ?f <- (pattern)
@@ -186,6 +226,17 @@ fn close(c: &mut Cursor<'_>, w: &mut dyn Write) -> fmt::Result {
 
 /// One RHS action starting at column `col`.
 fn action(c: &mut Cursor<'_>, w: &mut dyn Write, col: usize) -> fmt::Result {
+    #[cfg(feature = "extras")]
+    let outer = core::mem::replace(&mut c.indent, col);
+    let r = action_at(c, w, col);
+    #[cfg(feature = "extras")]
+    {
+        c.indent = outer;
+    }
+    r
+}
+
+fn action_at(c: &mut Cursor<'_>, w: &mut dyn Write, col: usize) -> fmt::Result {
     let kw = match (c.peek(0).tok, c.peek(1).tok) {
         (Tok::LParen, Tok::Symbol(k)) => k,
         _ => return flat(c, w),
@@ -272,6 +323,11 @@ fn action(c: &mut Cursor<'_>, w: &mut dyn Write, col: usize) -> fmt::Result {
             c.next();
             c.next();
             w.write_str("(assert ")?;
+            // (a control form in a fact indents from the facts' column)
+            #[cfg(feature = "extras")]
+            {
+                c.indent = col + 8;
+            }
             let mut first = true;
             while c.peek(0).tok == Tok::LParen {
                 if !first {
