@@ -1306,6 +1306,18 @@ impl Core<'_> {
             } else {
                 writeln!(b, "({construct} {module}::{name}")
             };
+        } else if e.detail == LoadDetail::UndefinedVariable {
+            let name = tok.trim_start_matches('$').trim_start_matches('?');
+            let place = if e.construct == "defrule" {
+                "RHS of defrule"
+            } else {
+                "deffunction"
+            };
+            let _ = writeln!(
+                b,
+                "\n[PRCCODE3] Undefined variable {name} referenced in {place}."
+            );
+            self.write_global_echo(b, text, e, true, module);
         } else if let LoadDetail::UndefinedGlobal { whole } = e.detail {
             let _ = writeln!(
                 b,

@@ -255,6 +255,8 @@ const COMMON_TEXTS: &[&str] = &[
     "deftemplate fact",
     "fact-address, fact-index, or the symbol *",
     "fact-address, integer, or symbol",
+    "fact-address or fact-index",
+    "non-void return value",
     "symbol or positive number",
     "defmodule name",
     "watchable symbol",
@@ -695,6 +697,9 @@ pub enum LoadDetail {
     UndefinedGlobal {
         whole: bool,
     },
+    /// `[PRCCODE3]`: a variable (the offending token) read in a rule's actions or a
+    /// deffunction's body that nothing binds.
+    UndefinedVariable,
     /// `[CSTRCPSR3]`: a defmodule importing two constructs of one class (`class`, its
     /// keyword) and name (`name`) from different modules.
     ModuleImportConflict {

@@ -101,6 +101,9 @@ impl Core<'_> {
             .and_then(|t| t.strip_suffix('*'))
             .filter(|t| !t.is_empty());
         let Some(inner) = global else {
+            #[cfg(feature = "parser")]
+            return Ok(self.unbound_prompt_variable(name));
+            #[cfg(not(feature = "parser"))]
             return Err(EvalError::new(EvalErrorKind::UnboundVariable { name }));
         };
         let mut b: crate::value::TextBuf<128> = crate::value::TextBuf::new();
@@ -126,6 +129,27 @@ impl Core<'_> {
         self.write(crate::host::router::WERROR, m.as_str());
         self.st.mode.halting = true;
         Ok(Value::Sym(SYM_FALSE))
+    }
+
+    /// A prompt variable (`?x`, only the parser makes them) never bound: CLIPS's
+    /// `[EVALUATN1]`, and the read gives FALSE with the evaluation error set, so
+    /// the function reading it reports its argument's type as well.
+    #[cfg(feature = "parser")]
+    #[cold]
+    #[inline(never)]
+    fn unbound_prompt_variable(&mut self, name: crate::value::SymId) -> Value {
+        let mut m: crate::value::TextBuf<160> = crate::value::TextBuf::new();
+        let text = self.sym_text(name);
+        let _ = core::fmt::Write::write_fmt(
+            &mut m,
+            format_args!(
+                "[EVALUATN1] Variable {} is unbound\n",
+                text.strip_prefix('?').unwrap_or(text)
+            ),
+        );
+        self.write(crate::host::router::WERROR, m.as_str());
+        self.st.mode.halting = true;
+        Value::Sym(SYM_FALSE)
     }
 
     /// CLIPS's message for an error that stopped deffunction `func`: an unbound local

@@ -105,12 +105,15 @@ fn while_(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
 
 fn loop_for_count(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     let [var, s, e, body] = kids::<4>(cx, call);
+    // a limit read from an unbound variable (FALSE, halting) is no type error
     let start = match cx.eval(s)? {
         Value::Int(i) => i,
+        _ if cx.st.mode.halting => return Ok(Value::Sym(SYM_FALSE)),
         _ => return Err(EvalError::wrong_type("loop-for-count", 1, "integer")),
     };
     let end = match cx.eval(e)? {
         Value::Int(i) => i,
+        _ if cx.st.mode.halting => return Ok(Value::Sym(SYM_FALSE)),
         _ => return Err(EvalError::wrong_type("loop-for-count", 2, "integer")),
     };
     let slot = if cx.exprs[var as usize].op == Op::Local {

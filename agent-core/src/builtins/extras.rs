@@ -691,9 +691,15 @@ fn undefglobal(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 /// `(fact-relation f)`: the template name of a fact (index or address), FALSE when
 /// there is no such fact.
 fn fact_relation(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    Ok(match cx.fact_arg(cx.arg(a, 0)) {
+    let v = cx.arg(a, 0);
+    Ok(match cx.fact_arg(v) {
         Some(f) => Value::Sym(cx.templates[cx.facts[f as usize].tmpl as usize].name),
-        None => Value::Sym(SYM_FALSE),
+        None => {
+            if matches!(v, Value::Sym(_)) {
+                super::facts::report_not_a_fact(cx, "fact-relation");
+            }
+            Value::Sym(SYM_FALSE)
+        }
     })
 }
 
@@ -702,8 +708,10 @@ fn fact_relation(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 fn fact_slot_names(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let fv = cx.arg(a, 0);
     let Some(f) = cx.fact_arg(fv) else {
-        if let Value::Int(n) = fv {
-            cx.write_error_message(EvalError::new(EvalErrorKind::NoSuchFact(n)));
+        match fv {
+            Value::Int(n) => cx.write_error_message(EvalError::new(EvalErrorKind::NoSuchFact(n))),
+            Value::Sym(_) => super::facts::report_not_a_fact(cx, "fact-slot-names"),
+            _ => {}
         }
         return Ok(Value::Sym(SYM_FALSE));
     };

@@ -481,9 +481,17 @@ impl Core<'_> {
             // a stale fact address: CLIPS says FALSE without a message
             (None, None) if matches!(fv, Value::Fact(_)) => return Ok(Value::Sym(SYM_FALSE)),
             (None, None) => {
-                let n = match fv {
-                    Value::Int(i) => i,
-                    _ => -1,
+                let Value::Int(n) = fv else {
+                    // neither a fact nor an index: CLIPS's error halts the actions
+                    let func = if retract_old { "modify" } else { "duplicate" };
+                    // the prompt shows FALSE when a variable gave the value
+                    if matches!(
+                        self.exprs[first as usize].op,
+                        Op::Global | Op::Local | Op::PatVar
+                    ) {
+                        self.set_error_fallback(Value::Sym(SYM_FALSE), None);
+                    }
+                    return Err(EvalError::wrong_type(func, 1, "non-void return value"));
                 };
                 let mut b: crate::value::TextBuf<64> = crate::value::TextBuf::new();
                 let _ = core::fmt::Write::write_fmt(
@@ -741,7 +749,7 @@ fn duplicate(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
 fn fact_slot_value(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let fv = cx.arg(a, 0);
     let Some(f) = cx.fact_arg(fv) else {
-        return Ok(no_such_fact(cx, fv));
+        return no_such_fact(cx, fv);
     };
     let name = cx.arg_lexeme(a, 1, "fact-slot-value")?;
     slot_of_fact(cx, f, name)
@@ -762,7 +770,7 @@ pub(crate) fn slot_value_of(
         _ => cx.fact_arg(fv),
     };
     let Some(f) = held else {
-        return Ok(no_such_fact(cx, fv));
+        return no_such_fact(cx, fv);
     };
     let tmpl = cx.facts[f as usize].tmpl;
     let t = cx.templates[tmpl as usize];
@@ -785,11 +793,20 @@ pub(crate) fn slot_value_of(
 
 /// fact-slot-value of a missing fact: CLIPS prints the missing fact's index, then
 /// returns FALSE (nothing printed for a stale address).
-fn no_such_fact(cx: &mut Core<'_>, fv: Value) -> Value {
-    if let Value::Int(n) = fv {
-        cx.write_error_message(EvalError::new(EvalErrorKind::NoSuchFact(n)));
+fn no_such_fact(cx: &mut Core<'_>, fv: Value) -> Result<Value, EvalError> {
+    match fv {
+        Value::Int(n) => cx.write_error_message(EvalError::new(EvalErrorKind::NoSuchFact(n))),
+        Value::Sym(_) => report_not_a_fact(cx, "fact-slot-value"),
+        Value::Fact(_) => {}
+        _ => {
+            return Err(EvalError::wrong_type(
+                "fact-slot-value",
+                1,
+                "fact-address, integer, or symbol",
+            ))
+        }
     }
-    Value::Sym(SYM_FALSE)
+    Ok(Value::Sym(SYM_FALSE))
 }
 
 fn slot_of_fact(cx: &mut Core<'_>, f: Ix, name: SymId) -> Result<Value, EvalError> {
@@ -835,7 +852,17 @@ fn fact_index(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 }
 
 fn fact_existp(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    Ok(Core::bool_value(cx.fact_arg(cx.arg(a, 0)).is_some()))
+    let v = cx.arg(a, 0);
+    if matches!(v, Value::Sym(_)) {
+        report_not_a_fact(cx, "fact-existp");
+    }
+    Ok(Core::bool_value(cx.fact_arg(v).is_some()))
+}
+
+/// A symbol where a fact function wants a fact (`nil` from an empty query, say):
+/// CLIPS's message, and the function gives FALSE without halting the actions.
+pub(crate) fn report_not_a_fact(cx: &mut Core<'_>, func: &'static str) {
+    cx.write_error_message(EvalError::wrong_type(func, 1, "fact-address or fact-index"));
 }
 
 #[allow(dead_code)]

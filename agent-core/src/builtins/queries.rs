@@ -370,7 +370,8 @@ fn visit(cx: &mut Core<'_>, w: &mut Walk, passed: bool) -> Result<bool, EvalErro
         // the query's temporaries are dead; keep a collected result contiguous
         release_scratch(cx, mark);
         if !ok {
-            return Ok(false);
+            // an error in the test (an unbound variable read as FALSE) ends the query
+            return Ok(cx.st.mode.halting);
         }
     }
     w.found = true;

@@ -178,6 +178,12 @@ impl<'s> Parser<'s, '_, '_> {
                 Err(self.err(t, "a constant (deffacts take no variables)"))
             }
             Scope::Lhs if self.construct == "defrule" => Err(self.unbound_in_lhs(t)),
+            Scope::Frame if matches!(self.construct, "defrule" | "deffunction") => {
+                // CLIPS's `[PRCCODE3]`, echoing the whole construct
+                let mut e = self.err(t, "a bound variable");
+                e.detail = crate::error::LoadDetail::UndefinedVariable;
+                Err(e)
+            }
             _ => Err(self.err(t, "a bound variable")),
         }
     }
