@@ -64,6 +64,11 @@ pub enum WorkloadArg {
     Propagate,
     /// Generated: many rules, few facts, like an agent (--agent-sizes rules).
     Agent,
+    /// Generated: a join keyed on a row with an or of variables on another slot, and a
+    /// not of the same shape (--keyed-or-sizes cells per row).
+    KeyedOr,
+    /// Generated: as keyed-or, keyed on two slots, an or of three (--keyed-or-sizes).
+    Keyed2Or3,
     /// The published Miss Manners (printout between find_seating's modifies) at each
     /// --manners-sizes guest count.
     MannersPub,
@@ -93,7 +98,7 @@ fn parse_puzzle(text: &str) -> Result<usize, String> {
 #[derive(clap::Args, Debug)]
 pub struct Args {
     /// Workloads to run (comma-separated).
-    #[arg(long, value_enum, value_delimiter = ',', default_values = ["llsf", "manners", "join", "negation", "discrim", "join3", "propagate", "agent", "manners-pub", "sudoku", "runbench", "zebra"])]
+    #[arg(long, value_enum, value_delimiter = ',', default_values = ["llsf", "manners", "join", "negation", "discrim", "join3", "propagate", "agent", "keyed-or", "keyed2-or3", "manners-pub", "sudoku", "runbench", "zebra"])]
     pub workloads: Vec<WorkloadArg>,
     /// Seeded LLSF games (seeds 0..N) played in one process per measurement.
     #[arg(long, default_value_t = 10)]
@@ -116,6 +121,9 @@ pub struct Args {
     /// Rule counts of the generated agent-like program (2000 firings each).
     #[arg(long, value_delimiter = ',', default_values_t = [40, 80, 160, 320])]
     pub agent_sizes: Vec<usize>,
+    /// Cells per row of the generated keyed-or programs (800 probes each).
+    #[arg(long, value_delimiter = ',', default_values_t = [25, 100, 400, 1600])]
+    pub keyed_or_sizes: Vec<usize>,
     /// Puzzles of the Debian sudoku example (its file names, `GxG-pN`).
     #[arg(long, value_delimiter = ',', value_parser = parse_puzzle,
           default_values = ["3x3-p1", "3x3-p10", "3x3-p17", "4x4-p1", "4x4-p9", "4x4-p17", "5x5-p1"])]
@@ -175,6 +183,8 @@ impl Args {
                 WorkloadArg::Join3 => (Kind::Join3, &self.join3_sizes[..]),
                 WorkloadArg::Propagate => (Kind::Propagate, &self.propagate_sizes[..]),
                 WorkloadArg::Agent => (Kind::Agent, &self.agent_sizes[..]),
+                WorkloadArg::KeyedOr => (Kind::KeyedOr, &self.keyed_or_sizes[..]),
+                WorkloadArg::Keyed2Or3 => (Kind::Keyed2Or3, &self.keyed_or_sizes[..]),
                 WorkloadArg::MannersPub => (Kind::MannersPublished, &self.manners_sizes[..]),
                 WorkloadArg::Sudoku => (Kind::Sudoku, &self.sudoku_puzzles[..]),
                 WorkloadArg::Runbench => (Kind::SudokuRunbench, &one[..]),
@@ -615,6 +625,8 @@ mod tests {
             (Kind::Join3, 1000),
             (Kind::Propagate, 500),
             (Kind::Agent, 40),
+            (Kind::KeyedOr, 25),
+            (Kind::Keyed2Or3, 25),
         ];
         programs.extend(debian_examples_if_installed());
         for (kind, size) in programs {
@@ -678,6 +690,8 @@ mod tests {
             (Kind::Join3, 1000, true),
             (Kind::Propagate, 500, true),
             (Kind::Agent, 40, true),
+            (Kind::KeyedOr, 25, true),
+            (Kind::Keyed2Or3, 25, true),
         ]
         .into_iter()
         .chain(examples)
@@ -711,7 +725,7 @@ mod tests {
     }
 
     #[test]
-    fn default_arguments_select_all_forty_two_programs() {
+    fn default_arguments_select_all_fifty_programs() {
         use clap::Parser;
         #[derive(clap::Parser)]
         struct Wrapper {
@@ -725,17 +739,19 @@ mod tests {
             .iter()
             .map(Workload::name)
             .collect();
-        assert_eq!(names.len(), 42);
+        assert_eq!(names.len(), 50);
         assert_eq!(names[0], "llsf-10");
         assert_eq!(names[1], "manners-16");
         assert_eq!(names[12], "negation-100000");
         assert_eq!(names[13], "discrim-40");
         assert_eq!(names[28], "agent-320");
-        assert_eq!(names[29], "manners-pub-16");
-        assert_eq!(names[33], "sudoku-3x3-p1");
-        assert_eq!(names[39], "sudoku-5x5-p1");
-        assert_eq!(names[40], "sudoku-runbench");
-        assert_eq!(names[41], "zebra");
+        assert_eq!(names[29], "keyed-or-25");
+        assert_eq!(names[36], "keyed2-or3-1600");
+        assert_eq!(names[37], "manners-pub-16");
+        assert_eq!(names[41], "sudoku-3x3-p1");
+        assert_eq!(names[47], "sudoku-5x5-p1");
+        assert_eq!(names[48], "sudoku-runbench");
+        assert_eq!(names[49], "zebra");
         assert!(Wrapper::try_parse_from(["bench", "--sudoku-puzzles", "3x4-p1"]).is_err());
         assert!(Wrapper::try_parse_from(["bench", "--sudoku-puzzles", "4x4"]).is_err());
         let quick = Wrapper::parse_from(["bench", "--quick", "--workloads", "join3,agent"]);

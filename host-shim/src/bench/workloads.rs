@@ -47,6 +47,12 @@ pub enum Kind {
     Propagate,
     /// Generated: an agent-like state machine (size = rules).
     Agent,
+    /// Generated: a join keyed on a row with `?a|?b` on another slot, and a `not` of
+    /// the same shape (size = cells per row).
+    KeyedOr,
+    /// Generated: as `KeyedOr`, keyed on two slots with `?a|?b|?c` (size = cells per
+    /// row).
+    Keyed2Or3,
 }
 
 impl Kind {
@@ -64,6 +70,8 @@ impl Kind {
             Kind::Join3 => "join3",
             Kind::Propagate => "propagate",
             Kind::Agent => "agent",
+            Kind::KeyedOr => "keyed-or",
+            Kind::Keyed2Or3 => "keyed2-or3",
         }
     }
 
@@ -86,6 +94,8 @@ impl Kind {
             Kind::Join3 => Some(generated::join3_text(size)),
             Kind::Propagate => Some(generated::propagate_text(size)),
             Kind::Agent => Some(generated::agent_text(size)),
+            Kind::KeyedOr => Some(generated::keyed_or_text(size)),
+            Kind::Keyed2Or3 => Some(generated::keyed2_or3_text(size)),
             _ => None,
         }
     }
@@ -133,6 +143,8 @@ impl Kind {
             Kind::Join3 => &["join3 "],
             Kind::Propagate => &["propagate "],
             Kind::Agent => &["agent "],
+            Kind::KeyedOr => &["keyed-or "],
+            Kind::Keyed2Or3 => &["keyed2-or3 "],
         }
     }
 }
