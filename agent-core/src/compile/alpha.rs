@@ -363,8 +363,9 @@ impl Compiler<'_, '_> {
     /// one plain slot with variables bound earlier) reads, or NONE. Kept in
     /// `rhash[nrhash]`: it makes no node of its own (CLIPS has no such hash). The host
     /// indexes a node without a right hash on it, so such a join looks up one bucket
-    /// per alternative (`rete::index`, `or_lookup`); a keyed join skips the
-    /// candidates of its bucket that the test rejects (`or_admits`).
+    /// per alternative (`rete::index`, `or_lookup`); a keyed node's matches are also
+    /// indexed on its key and this field, so a keyed join looks up one bucket per
+    /// alternative too (`or_keyed_cursor`).
     fn or_field(&self, mut t: Ix, p: u8) -> Ix {
         while t != NONE {
             let x = self.cx.exprs[t as usize];
@@ -377,8 +378,8 @@ impl Compiler<'_, '_> {
     }
 
     /// A shared node takes a later pattern's or-test field (`or_field`) when it has
-    /// none; the host indexes the matches of one without a right hash on it (those
-    /// it already holds, oldest first).
+    /// none; the host indexes the matches it already holds on it, oldest first
+    /// (a node with a right hash: in the keyed or-index, `rete::index`).
     fn add_or_field(&mut self, a: Ix, nrhash: usize, field: Ix) {
         if self.cx.network_writable().is_err() {
             return;
@@ -391,6 +392,9 @@ impl Compiler<'_, '_> {
                 self.cx.index_insert(t);
                 t = self.cx.tokens[t].mem_next;
             }
+        } else {
+            // keyed: its matches join the keyed or-index too
+            self.cx.or_index_build(a);
         }
     }
 

@@ -10,6 +10,8 @@
 //! *active* (passed on) while unblocked (`not`) or blocked (`exists`). When the
 //! blocker goes, the next matching right item takes over before anything changes.
 
+#[cfg(feature = "host-speedups")]
+use super::index::OrValues;
 use super::{JoinId, JoinKind, PatBinding, Token, TokenId, TokenKind};
 use crate::engine::Core;
 use crate::error::{CapacityError, EvalError, Pool};
@@ -513,7 +515,7 @@ impl Core<'_> {
             if hashed && from != TokenId::NONE {
                 let n = &self.alphas[self.joins[join].alpha as usize];
                 if n.rhash.get(n.nrhash as usize).is_some_and(|&f| f != NONE) {
-                    return self.find_blocker_or(join, left, from);
+                    return self.find_blocker_or(join, left, from, skip);
                 }
             }
             return self.blocker_walk(join, left, from, hashed);
@@ -560,9 +562,12 @@ impl Core<'_> {
     }
 
     /// Host: `find_blocker` along a keyed bucket (from `a`) of `join` whose alpha
-    /// node keeps a field for a `?a | ?b` test: candidates the test rejects are
-    /// skipped unseen (`or_admits`); the usual walk when the test's values cannot
-    /// be read.
+    /// node keeps a field for a `?a | ?b` test. When the test reads that field, the
+    /// keyed or-index gives one bucket per alternative (`or_keyed_cursor`), merged
+    /// in memory order; a search after blocker `skip` (an alpha match going away)
+    /// goes on with the matches after it, as along its bucket. Else candidates the
+    /// test rejects are skipped unseen (`or_admits`); the usual walk when the
+    /// test's values cannot be read.
     #[cfg(feature = "host-speedups")]
     #[inline(never)]
     fn find_blocker_or(
@@ -570,10 +575,17 @@ impl Core<'_> {
         join: JoinId,
         left: TokenId,
         mut a: TokenId,
+        skip: TokenId,
     ) -> Result<TokenId, EvalError> {
         let Some(ov) = self.or_values(join, left, NONE) else {
             return self.blocker_walk(join, left, a, true);
         };
+        let alpha = self.joins[join].alpha;
+        if self.or_keyed_serves(alpha, &ov) {
+            if let Some(key) = self.left_bucket_key(join, left) {
+                return self.blocker_or_keyed(join, left, alpha, key, &ov, skip);
+            }
+        }
         let (tests, depth) = self.join_test_fields(join);
         let mut planned = false;
         while a != TokenId::NONE {
@@ -585,6 +597,46 @@ impl Core<'_> {
             a = self.next_candidate(a, true);
         }
         Ok(TokenId::NONE)
+    }
+
+    /// Host: `find_blocker_or` through the keyed or-index: the first candidate of
+    /// the alternatives' buckets in memory order (after `skip`'s stamp when `skip`
+    /// is a match of the node, skipping the dying fact's other matches, as the
+    /// walk after a blocker does) that passes the join's tests.
+    #[cfg(feature = "host-speedups")]
+    fn blocker_or_keyed(
+        &mut self,
+        join: JoinId,
+        left: TokenId,
+        alpha: Ix,
+        key: u32,
+        ov: &OrValues,
+        skip: TokenId,
+    ) -> Result<TokenId, EvalError> {
+        let after = (skip != TokenId::NONE
+            && self.tokens[skip].kind == TokenKind::Alpha
+            && self.tokens[skip].alpha() == alpha)
+            .then(|| self.or_stamp_of(skip));
+        let dying = self.st.net.dying;
+        let mut cur = self.or_keyed_cursor(alpha, key, ov);
+        let (tests, depth) = self.join_test_fields(join);
+        let mut planned = false;
+        loop {
+            let a = self.or_next(&mut cur);
+            if a == TokenId::NONE {
+                return Ok(TokenId::NONE);
+            }
+            if let Some(s) = after {
+                if self.or_stamp_of(a) <= s || (dying != NONE && self.tokens[a].fact == dying) {
+                    continue;
+                }
+            }
+            if self.or_keyed_admits(&cur, ov, a)
+                && self.join_test_with(join, tests, depth, left, a, &mut planned)?
+            {
+                return Ok(a);
+            }
+        }
     }
 
     /// Host: `left_activate` of positive `join` whose alpha node keeps a field for a
@@ -616,8 +668,32 @@ impl Core<'_> {
                 }
             }
         }
+        // keyed: one bucket of the keyed or-index per alternative, when the or
+        // test reads the node's field
+        let ov = self.or_values(join, left, NONE);
+        if let Some(ov) = &ov {
+            let alpha = self.joins[join].alpha;
+            if self.or_keyed_serves(alpha, ov) {
+                if let Some(key) = self.left_bucket_key(join, left) {
+                    let mut cur = self.or_keyed_cursor(alpha, key, ov);
+                    loop {
+                        let a = self.or_next(&mut cur);
+                        if a == TokenId::NONE {
+                            return Ok(());
+                        }
+                        if self.or_keyed_admits(&cur, ov, a)
+                            && self.join_test_with(join, tests, depth, left, a, &mut planned)?
+                        {
+                            let t = self.link_token(join, left, a)?;
+                            self.propagate_in(t, join)?;
+                            planned = false;
+                        }
+                    }
+                }
+            }
+        }
         let (mut a, hashed) = self.first_candidate(join, left);
-        let Some(ov) = self.or_values(join, left, NONE) else {
+        let Some(ov) = ov else {
             return self.left_walk(join, left, a, hashed);
         };
         while a != TokenId::NONE {

@@ -94,6 +94,21 @@ fn key_fields(n: &super::AlphaNode) -> usize {
 #[cfg(feature = "host-speedups")]
 pub const OR_WAYS: usize = 4;
 
+/// Host: the part of the beta half of the bucket table (after the extra groups)
+/// whose chains are the keyed or-index: the alpha matches of a node with a right
+/// hash and an or-lookup field, keyed on both (`or_index_link`), linked through
+/// their `token_xlinks[0]` (an alpha match has no extra beta group).
+#[cfg(feature = "host-speedups")]
+const OR_GROUP: usize = XGROUPS + 1;
+
+/// Host: whether alpha node `n` has a right hash and an or-lookup field: its
+/// matches are also in the keyed or-index.
+#[cfg(feature = "host-speedups")]
+#[inline(always)]
+pub(crate) fn keyed_or(n: &super::AlphaNode) -> bool {
+    n.nrhash > 0 && n.rhash.get(n.nrhash as usize).is_some_and(|&f| f != NONE)
+}
+
 /// Host: the values an `?a | ?b` join test lets a field take (`Core::or_values`).
 #[cfg(feature = "host-speedups")]
 pub(crate) struct OrValues {
@@ -109,6 +124,11 @@ pub(crate) struct OrValues {
 pub(crate) struct OrCursor {
     heads: [TokenId; OR_WAYS],
     alpha: Ix,
+    /// The buckets are the keyed or-index's (links in `token_xlinks`).
+    keyed: bool,
+    /// Keyed: what a match with the left token's key keeps in its `parent` (its
+    /// bucket's tag, or the bucket, `index_insert`).
+    kept: Ix,
 }
 
 fn mix(h: u32, x: u32) -> u32 {
@@ -143,6 +163,17 @@ fn alpha_tag(alpha: Ix, key: u32) -> u32 {
     h
 }
 
+/// Host: the hash an alpha match's keyed or-index bucket is taken from (`key`:
+/// its right-hash key mixed with its or field's hash).
+#[cfg(feature = "host-speedups")]
+#[inline(always)]
+fn or_tag(alpha: Ix, key: u32) -> u32 {
+    let h = mix(key, 0x4000_0000 | u32::from(alpha));
+    #[cfg(feature = "grow")]
+    let h = h & TAG;
+    h
+}
+
 /// The hash a partial match's bucket is taken from.
 #[inline(always)]
 fn beta_tag(join: JoinId, key: u32) -> u32 {
@@ -166,7 +197,8 @@ fn group_range(n: usize, g: usize) -> (usize, usize) {
         if g == 0 {
             (half, first.max(1))
         } else {
-            let part = (r - first) / XGROUPS;
+            // the extra groups and the keyed or-index (`OR_GROUP`) share the rest
+            let part = (r - first) / OR_GROUP;
             (half + first + (g - 1) * part, part)
         }
     }
@@ -181,7 +213,7 @@ fn group_range(n: usize, g: usize) -> (usize, usize) {
 #[cfg(feature = "grow")]
 fn group_of_bucket(n: usize, i: usize) -> usize {
     #[cfg(feature = "host-speedups")]
-    for g in 1..=XGROUPS {
+    for g in 1..=OR_GROUP {
         let (first, count) = group_range(n, g);
         if i >= first && i < first + count {
             return g;
@@ -669,6 +701,8 @@ impl Core<'_> {
         let mut cur = OrCursor {
             heads: [TokenId::NONE; OR_WAYS],
             alpha,
+            keyed: false,
+            kept: NONE,
         };
         let mut buckets = [NONE; OR_WAYS];
         let mut n = 0;
@@ -700,9 +734,223 @@ impl Core<'_> {
             }
         }
         if best != TokenId::NONE {
-            cur.heads[at] = self.skip_foreign(self.tokens[best].am_next, cur.alpha);
+            cur.heads[at] = if cur.keyed {
+                self.skip_foreign_or(self.or_link(best, 0), cur.alpha)
+            } else {
+                self.skip_foreign(self.tokens[best].am_next, cur.alpha)
+            };
         }
         best
+    }
+
+    /// Host: a cursor over the keyed or-index of `alpha` (a `keyed_or` node) for a
+    /// left token whose key (its right-hash values) is `key` and whose or test lets
+    /// the field take `ov`'s values: one bucket per distinct bucket of the
+    /// alternatives, merged in memory order by `or_next`.
+    #[cfg(feature = "host-speedups")]
+    pub(crate) fn or_keyed_cursor(&self, alpha: Ix, key: u32, ov: &OrValues) -> OrCursor {
+        #[cfg(not(feature = "grow"))]
+        let kept = self.bucket(alpha, key);
+        #[cfg(feature = "grow")]
+        let kept = alpha_tag(alpha, key) as Ix;
+        let mut cur = OrCursor {
+            heads: [TokenId::NONE; OR_WAYS],
+            alpha,
+            keyed: true,
+            kept,
+        };
+        let mut buckets = [usize::MAX; OR_WAYS];
+        let mut n = 0;
+        for &v in &ov.vals[..ov.n] {
+            let b = self.or_bucket(or_tag(alpha, mix(key, atom_hash(v))));
+            // alternatives in one bucket (equal values, or a collision) visit it once
+            if !buckets[..n].contains(&b) {
+                buckets[n] = b;
+                cur.heads[n] = self.skip_foreign_or(self.amem_buckets[b], alpha);
+                n += 1;
+            }
+        }
+        cur
+    }
+
+    /// Host: whether candidate `a` of keyed cursor `cur` may pass the join's key
+    /// and or tests (`ov`): a match of another key (a collision in the keyed
+    /// or-index: its other bucket differs) or whose field equals no alternative
+    /// fails them, having run only tests that report nothing (`or_values`).
+    #[cfg(feature = "host-speedups")]
+    #[inline(always)]
+    pub(crate) fn or_keyed_admits(&self, cur: &OrCursor, ov: &OrValues, a: TokenId) -> bool {
+        let tk = &self.tokens[a];
+        tk.parent.0 == cur.kept && self.or_admits(ov, tk.fact)
+    }
+
+    /// Host: whether the keyed or-index of `alpha` serves an or test whose values
+    /// are `ov`: the node is `keyed_or`, its field is the one the test reads, and
+    /// the stamps still order its matches.
+    #[cfg(feature = "host-speedups")]
+    #[inline(always)]
+    pub(crate) fn or_keyed_serves(&self, alpha: Ix, ov: &OrValues) -> bool {
+        let n = &self.alphas[alpha as usize];
+        keyed_or(n)
+            && self.st.cache.or_stamp != u32::MAX
+            && self.exprs[n.rhash[n.nrhash as usize] as usize].data
+                == self.exprs[ov.field as usize].data
+    }
+
+    /// Host: the memory-order stamp of alpha match `am` (of a node with an
+    /// or-lookup field; `index_insert`).
+    #[cfg(feature = "host-speedups")]
+    #[inline(always)]
+    pub(crate) fn or_stamp_of(&self, am: TokenId) -> u32 {
+        self.tokens[am].key
+    }
+
+    /// Host: link `k` (0 next, 1 previous, 2 tag) of alpha match `t` in the keyed
+    /// or-index.
+    #[cfg(feature = "host-speedups")]
+    #[inline(always)]
+    fn or_link(&self, t: TokenId, k: usize) -> TokenId {
+        TokenId(self.token_xlinks[t.ix()][0][k])
+    }
+
+    #[cfg(feature = "host-speedups")]
+    #[inline(always)]
+    fn set_or_link(&mut self, t: TokenId, k: usize, v: Ix) {
+        self.token_xlinks[t.ix()][0][k] = v;
+    }
+
+    /// Host: skips keyed or-index entries of other alpha nodes.
+    #[cfg(feature = "host-speedups")]
+    #[inline(always)]
+    fn skip_foreign_or(&self, mut a: TokenId, alpha: Ix) -> TokenId {
+        while a != TokenId::NONE && self.tokens[a].alpha() != alpha {
+            a = self.or_link(a, 0);
+        }
+        a
+    }
+
+    /// Host: the keyed or-index bucket of tag `tag`.
+    #[cfg(feature = "host-speedups")]
+    #[inline(always)]
+    fn or_bucket(&self, tag: u32) -> usize {
+        self.group_bucket(tag, OR_GROUP)
+    }
+
+    /// Host: the hash of the or-lookup field of alpha match `b` of `alpha` (as
+    /// `alpha_key` hashes a field).
+    #[cfg(feature = "host-speedups")]
+    fn or_field_hash(&mut self, alpha: Ix, b: PatBinding) -> u32 {
+        let n = self.alphas[alpha as usize];
+        let e = n.rhash[n.nrhash as usize];
+        if let Some(v) = self.plain_slot_value(b.fact, &self.exprs[e as usize]) {
+            return atom_hash(v);
+        }
+        let (scratch, sp) = (self.st.frame.scratch_top, self.st.frame.sp);
+        let saved = self.st.net.this_pm;
+        self.st.net.this_pm = b;
+        let x = self.exprs[e as usize];
+        let v = self
+            .pattern_var(THIS_PATTERN, x.data, x.first)
+            .unwrap_or(Value::Void);
+        let h = self.value_hash(v);
+        self.st.net.this_pm = saved;
+        (self.st.frame.scratch_top, self.st.frame.sp) = (scratch, sp);
+        h
+    }
+
+    /// Host: appends alpha match `am` of `keyed_or` node `alpha`, whose right-hash
+    /// key is `key`, to its keyed or-index bucket (key and or field), which keeps
+    /// memory order as the node's other bucket does.
+    #[cfg(feature = "host-speedups")]
+    #[inline(never)]
+    fn or_index_link(&mut self, am: TokenId, alpha: Ix, key: u32) {
+        let tk = self.tokens[am];
+        let h = self.or_field_hash(
+            alpha,
+            PatBinding {
+                fact: tk.fact,
+                marks: tk.marks,
+            },
+        );
+        let tag = or_tag(alpha, mix(key, h));
+        let b = self.or_bucket(tag);
+        // (with `grow` the tag, else the bucket, as for beta groups)
+        #[cfg(feature = "grow")]
+        let kept = tag as Ix;
+        #[cfg(not(feature = "grow"))]
+        let kept = b as Ix;
+        self.set_or_link(am, 2, kept);
+        self.set_or_link(am, 0, NONE);
+        let head = self.amem_buckets[b];
+        if head == TokenId::NONE {
+            self.set_or_link(am, 1, am.0);
+            self.amem_buckets[b] = am;
+        } else {
+            let tail = self.or_link(head, 1);
+            self.set_or_link(tail, 0, am.0);
+            self.set_or_link(am, 1, tail.0);
+            self.set_or_link(head, 1, am.0);
+        }
+    }
+
+    /// Host: the keyed or-index bucket alpha match `am` sits in.
+    #[cfg(feature = "host-speedups")]
+    #[inline(always)]
+    fn or_bucket_of(&self, am: TokenId) -> usize {
+        let kept = self.token_xlinks[am.ix()][0][2];
+        #[cfg(feature = "grow")]
+        let b = self.or_bucket(kept as u32);
+        #[cfg(not(feature = "grow"))]
+        let b = kept as usize;
+        b
+    }
+
+    /// Host: takes alpha match `am` out of the keyed or-index.
+    #[cfg(feature = "host-speedups")]
+    #[inline(never)]
+    fn or_index_unlink(&mut self, am: TokenId) {
+        let b = self.or_bucket_of(am);
+        let (next, prev) = (self.or_link(am, 0), self.or_link(am, 1));
+        let head = self.amem_buckets[b];
+        if head == am {
+            self.amem_buckets[b] = next;
+            if next != TokenId::NONE {
+                // the new head keeps the tail
+                self.set_or_link(next, 1, prev.0);
+            }
+        } else {
+            self.set_or_link(prev, 0, next.0);
+            if next != TokenId::NONE {
+                self.set_or_link(next, 1, prev.0);
+            } else {
+                self.set_or_link(head, 1, prev.0);
+            }
+        }
+        self.set_or_link(am, 0, NONE);
+        self.set_or_link(am, 1, NONE);
+    }
+
+    /// Host: a node with a right hash takes an or-lookup field (`compile::alpha`):
+    /// the matches it holds join the keyed or-index, oldest first, with fresh
+    /// memory-order stamps.
+    #[cfg(feature = "host-speedups")]
+    pub(crate) fn or_index_build(&mut self, alpha: Ix) {
+        let mut t = self.alpha_mems[alpha as usize].head;
+        while t != TokenId::NONE {
+            let s = self.st.cache.or_stamp;
+            self.tokens[t].key = s;
+            self.st.cache.or_stamp = s.saturating_add(1);
+            let tk = self.tokens[t];
+            let key = self.alpha_key(
+                alpha,
+                PatBinding {
+                    fact: tk.fact,
+                    marks: tk.marks,
+                },
+            );
+            self.or_index_link(t, alpha, key);
+            t = self.tokens[t].mem_next;
+        }
     }
 
     /// Adds a new alpha match (already in its node's memory) to the index. (Host:
@@ -714,12 +962,18 @@ impl Core<'_> {
             return;
         }
         // host: matches of an or-lookup node get their place in memory order
+        // (a node without a right hash is indexed for its or field alone, so it has one)
         #[cfg(feature = "host-speedups")]
-        if self.alphas[alpha as usize].nrhash == 0 {
-            let s = self.st.cache.or_stamp;
-            self.tokens[am].key = s;
-            self.st.cache.or_stamp = s.saturating_add(1);
-        }
+        let keyed = {
+            let n = &self.alphas[alpha as usize];
+            let with_or = n.rhash.get(n.nrhash as usize).is_some_and(|&f| f != NONE);
+            if with_or {
+                let s = self.st.cache.or_stamp;
+                self.tokens[am].key = s;
+                self.st.cache.or_stamp = s.saturating_add(1);
+            }
+            with_or && n.nrhash > 0
+        };
         let tk = self.tokens[am];
         let key = self.alpha_key(
             alpha,
@@ -746,6 +1000,10 @@ impl Core<'_> {
             self.tokens[am].am_prev = tail;
             self.tokens[head].am_prev = am;
         }
+        #[cfg(feature = "host-speedups")]
+        if keyed {
+            self.or_index_link(am, alpha, key);
+        }
     }
 
     /// Takes an alpha match out of the index.
@@ -760,6 +1018,10 @@ impl Core<'_> {
         let b = self.alpha_bucket_of(b as u32);
         self.amem_buckets[b] = self.am_chain_remove(self.amem_buckets[b], am);
         self.tokens[am].parent = TokenId::NONE;
+        #[cfg(feature = "host-speedups")]
+        if keyed_or(&self.alphas[tk.alpha() as usize]) {
+            self.or_index_unlink(am);
+        }
     }
 
     /// Removes `t` from a chain linked through `am_next`/`am_prev` whose head's
@@ -794,36 +1056,42 @@ impl Core<'_> {
         debug_assert!(self.joins[join].kind != JoinKind::Root);
         let alpha = self.joins[join].alpha;
         if self.alphas[alpha as usize].nrhash > 0 {
-            let (ct, cj, ck) = self.st.cache.key_cache;
-            let key = if ct == left && cj == join {
-                Some(ck)
-            } else {
-                self.bind_for_quick(left);
-                let key = match self.quick_left_key(join, left) {
-                    Some(k) => Some(k),
-                    None => {
-                        self.bind_left(left);
-                        self.left_key(join)
-                    }
-                };
-                #[cfg(feature = "host-speedups")]
-                if let Some(k) = key {
-                    let owner = self.tokens[left].owner;
-                    if self.joins[owner].index_child == join {
-                        let tk = &mut self.tokens[left];
-                        tk.key = k;
-                        tk.has_key = true;
-                    }
-                }
-                key
-            };
-            if let Some(key) = key {
+            if let Some(key) = self.left_bucket_key(join, left) {
                 let b = self.bucket(alpha, key);
                 let a = self.amem_buckets[b as usize];
                 return (self.skip_foreign(a, alpha), true);
             }
         }
         (self.alpha_mems[alpha as usize].head, false)
+    }
+
+    /// The key of left token `left` of keyed `join` (its alpha node has a right
+    /// hash), None when a value cannot be read (then the memory is scanned).
+    // (inlined everywhere: the image's one caller keeps its code as it was)
+    #[inline(always)]
+    pub(crate) fn left_bucket_key(&mut self, join: JoinId, left: TokenId) -> Option<u32> {
+        let (ct, cj, ck) = self.st.cache.key_cache;
+        if ct == left && cj == join {
+            return Some(ck);
+        }
+        self.bind_for_quick(left);
+        let key = match self.quick_left_key(join, left) {
+            Some(k) => Some(k),
+            None => {
+                self.bind_left(left);
+                self.left_key(join)
+            }
+        };
+        #[cfg(feature = "host-speedups")]
+        if let Some(k) = key {
+            let owner = self.tokens[left].owner;
+            if self.joins[owner].index_child == join {
+                let tk = &mut self.tokens[left];
+                tk.key = k;
+                tk.has_key = true;
+            }
+        }
+        key
     }
 
     /// The candidate after `a` (same chain kind as `first_candidate` gave).
@@ -1579,6 +1847,11 @@ impl Core<'_> {
             }
             // each group's chains through its own links
             let g = group_of_bucket(n_old, i);
+            #[cfg(feature = "host-speedups")]
+            if g == OR_GROUP {
+                self.relink_or_chain(head);
+                continue;
+            }
             // partial matches, newest first: from the tail, each put at the head
             let mut t = self.gprev(head, g);
             loop {
@@ -1603,6 +1876,29 @@ impl Core<'_> {
                 }
                 t = prev;
             }
+        }
+    }
+
+    /// Host: moves the alpha matches of an old keyed or-index chain (from `head`,
+    /// oldest first) to their buckets in the new table, each appended by its tag.
+    #[cfg(feature = "host-speedups")]
+    fn relink_or_chain(&mut self, head: TokenId) {
+        let mut t = head;
+        while t != TokenId::NONE {
+            let next = self.or_link(t, 0);
+            let b = self.or_bucket_of(t);
+            let first = self.amem_buckets[b];
+            self.set_or_link(t, 0, NONE);
+            if first == TokenId::NONE {
+                self.set_or_link(t, 1, t.0);
+                self.amem_buckets[b] = t;
+            } else {
+                let tail = self.or_link(first, 1);
+                self.set_or_link(tail, 0, t.0);
+                self.set_or_link(t, 1, tail.0);
+                self.set_or_link(first, 1, t.0);
+            }
+            t = next;
         }
     }
 }
