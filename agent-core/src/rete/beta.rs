@@ -980,6 +980,14 @@ impl Core<'_> {
     /// unblocked (not) or loses its match (exists), as CLIPS does.
     fn unblock(&mut self, t: TokenId, blocker: TokenId) {
         self.unlink_blocked(t);
+        // (host: the image keeps its code bytes and always checks)
+        #[cfg(feature = "host-speedups")]
+        let dying = if self.dying_may_remain(blocker) {
+            self.st.net.dying
+        } else {
+            NONE
+        };
+        #[cfg(not(feature = "host-speedups"))]
         let dying = self.st.net.dying;
         let join = self.tokens[t].owner;
         let left = self.tokens[t].parent;
@@ -1026,6 +1034,20 @@ impl Core<'_> {
                 self.token_leaves(t);
             }
         }
+    }
+
+    /// Whether, during a retract, the dying fact may still have partial matches or
+    /// alpha matches in memory once `blocker` went. Not when `blocker` is the fact's
+    /// last alpha match (most facts have one; an alpha blocker unblocks only in
+    /// `remove_alpha_match`, so it is the dying fact's): its partial matches went
+    /// before the outputs it blocks are unblocked, it left its memory, and the
+    /// fact's earlier matches went whole. A partial-match blocker (not-and) goes
+    /// while its fact's matches are still in place.
+    #[cfg(feature = "host-speedups")]
+    #[inline(always)]
+    fn dying_may_remain(&self, blocker: TokenId) -> bool {
+        let b = &self.tokens[blocker];
+        b.kind != TokenKind::Alpha || b.next_sib != TokenId::NONE
     }
 
     /// Whether partial match `t` or one of its ancestors holds a match of `fact`.
