@@ -1292,6 +1292,8 @@ impl Core<'_> {
             };
         } else if e.detail == LoadDetail::SlotTwice {
             let _ = writeln!(b, "\n[PRNTUTIL5] The slot {tok} has already been parsed.");
+        } else if e.detail == LoadDetail::ModuleSpecifier {
+            let _ = writeln!(b, "\n[MODULDEF1] Illegal use of the module specifier.");
         } else if let LoadDetail::ImportConflict { construct } = e.detail {
             let name = match construct {
                 "defglobal" => tok.trim_start_matches("?*").trim_end_matches('*'),
@@ -1507,6 +1509,7 @@ impl Core<'_> {
                     | LoadDetail::FunctionArity { .. }
                     | LoadDetail::ArgType { .. }
                     | LoadDetail::SlotTwice
+                    | LoadDetail::ModuleSpecifier
             )
         {
             // a rule CLIPS stopped reading, in its conditions or its actions
@@ -1531,6 +1534,7 @@ impl Core<'_> {
                     | LoadDetail::ArgType { .. }
                     | LoadDetail::ReplacesBuiltin
                     | LoadDetail::SlotTwice
+                    | LoadDetail::ModuleSpecifier
             )
         {
             let _ = b.write_str("\nERROR:\n");

@@ -679,6 +679,9 @@ pub enum LoadDetail {
     },
     /// `[PRNTUTIL5]`: a slot given twice in one pattern or fact (at its second name).
     SlotTwice,
+    /// `[MODULDEF1]`: a module specifier on a fact's or pattern's relation name (the
+    /// offending token).
+    ModuleSpecifier,
     /// `[CSTRCPSR3]`: a construct (`construct`, named by the offending token) whose
     /// name clashes with the imports and exports of the modules.
     ImportConflict {

@@ -265,7 +265,6 @@ fn unimplemented_constructs_are_refused() {
         ("(defmodule SENSE (export ?ALL))", 12, "defmodule"),
         ("(deftemplate MAIN::t (slot x))", 14, "module"),
         ("(defrule MAIN::r (good (a 1)) =>)", 10, "module"),
-        ("(defrule r (MAIN::good (a 1)) =>)", 13, "module"),
         (
             "(defrule r (declare (auto-focus TRUE)) (good (a 1)) =>)",
             22,
@@ -287,6 +286,23 @@ fn unimplemented_constructs_are_refused() {
             }
             d => panic!("{bad}: {d:?}"),
         }
+        assert_eq!(e.usage(), before, "leftovers after {bad:?}");
+    }
+    // a module specifier on a relation name: CLIPS 6.30 refuses it ([MODULDEF1]), with
+    // or without modules
+    for (bad, col) in [
+        ("(defrule r (MAIN::good (a 1)) =>)", 13),
+        ("(defrule r (good (a 1)) (not (MAIN::good)) =>)", 31),
+        ("(deffacts d (MAIN::good (a 1)))", 14),
+        ("(defrule r => (assert (MAIN::good (a 1))))", 24),
+    ] {
+        let mut e = Box::new(SmallEngine::new());
+        let h = &mut Quiet;
+        e.load_str(h, "good", GOOD).unwrap();
+        let before = e.usage();
+        let err = e.load_str(h, "bad", bad).unwrap_err();
+        assert_eq!((err.line, err.col), (1, col), "{bad}");
+        assert_eq!(err.detail, LoadDetail::ModuleSpecifier, "{bad}");
         assert_eq!(e.usage(), before, "leftovers after {bad:?}");
     }
     // watch of an item we do not trace, literal or in a variable

@@ -463,4 +463,5 @@ differential_programs! {
     p570_slot_eval_order => "570-slot-eval-order",
     p571_reset_prime_order => "571-reset-prime-order",
     p572_halt_pops_empty_focus => "572-halt-pops-empty-focus",
+    p600_module_specifier_on_fact_name => "600-module-specifier-on-fact-name",
 }

@@ -50,7 +50,8 @@ impl<'s> Parser<'s, '_, '_> {
         let nt = self.next();
         let (module, name) = match nt.tok {
             // `=` and `:` are operators, never a relation name
-            Tok::Symbol(s) if s != "=" && s != ":" => self.qualified_ref(nt, s)?,
+            Tok::Symbol(s) if s.contains("::") => return Err(self.module_specifier(nt)),
+            Tok::Symbol(s) if s != "=" && s != ":" => (self.current_module(), s),
             _ => {
                 return Err(self.syntax_of(
                     nt,
@@ -62,10 +63,6 @@ impl<'s> Parser<'s, '_, '_> {
         let sym = cap!(self, self.cx.intern(name))?;
         let tmpl = match self.template_in(module, sym) {
             Some(t) => t,
-            // (an ordered fact's template is made in the current module only)
-            None if module != self.current_module() => {
-                return Err(self.err(nt, "a deftemplate the module sees ([MODULDEF1])"));
-            }
             None => cap!(self, self.cx.implied_template(sym))?,
         };
         let spec = cap!(self, self.cx.push_expr(Expr::new(Op::FactSpec, 0, tmpl)))?;
@@ -165,6 +162,17 @@ impl<'s> Parser<'s, '_, '_> {
         e.detail = LoadDetail::SlotTwice;
         if self.construct != "command" {
             e.echo_end = st.end as u32;
+        }
+        e
+    }
+
+    /// `[MODULDEF1]` at a fact's or pattern's relation name with a module specifier
+    /// (`MAIN::t`): CLIPS 6.30 takes none there, not even the current module's.
+    pub(super) fn module_specifier(&self, nt: Token<'s>) -> LoadError {
+        let mut e = self.err(nt, "a relation name without a module specifier");
+        e.detail = LoadDetail::ModuleSpecifier;
+        if self.construct != "command" {
+            e.echo_end = nt.end as u32;
         }
         e
     }

@@ -1009,13 +1009,14 @@ impl<'s> Parser<'s, '_, '_> {
     ) -> PResult<()> {
         let nt = self.next();
         let name = match nt.tok {
+            Tok::Symbol(s) if s.contains("::") => return Err(self.module_specifier(nt)),
             Tok::Symbol(s)
                 if !matches!(
                     s,
                     "test" | "not" | "and" | "or" | "exists" | "forall" | "logical" | "=" | ":"
                 ) =>
             {
-                self.qualified_ref(nt, s)?
+                (self.current_module(), s)
             }
             // `=` and `:` are operators, never a relation name (CLIPS's own wording)
             Tok::Symbol("=" | ":") => {
@@ -1035,9 +1036,6 @@ impl<'s> Parser<'s, '_, '_> {
         let sym = cap!(self, self.cx.intern(name))?;
         let tmpl = match self.template_in(module, sym) {
             Some(t) => t,
-            None if module != self.current_module() => {
-                return Err(self.err(nt, "a deftemplate the module sees ([MODULDEF1])"));
-            }
             None if self.peek().tok == Tok::LParen => {
                 // CLIPS reads it as an ordered pattern and stops at the `(`
                 let mut e = self.err(
