@@ -42,6 +42,7 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("fact-relation", 1, 1, fact_relation),
     Builtin::eager("fact-slot-names", 1, 1, fact_slot_names),
     Builtin::eager("ppfact", 1, 3, ppfact),
+    Builtin::eager("type", 1, 1, type_of),
     Builtin::eager("gensym", 0, 0, gensym),
     Builtin::eager("gensym*", 0, 0, gensym_star),
     Builtin::eager("sort", 1, super::ANY, super::evaluate::sort).on_error(super::describe::OnError::False),
@@ -878,6 +879,39 @@ fn next_gensym(cx: &mut Core<'_>) -> TextBuf<24> {
     let _ = write!(b, "gen{}", cx.st.eval.gensym_next);
     cx.st.eval.gensym_next = cx.st.eval.gensym_next.wrapping_add(1);
     b
+}
+
+/// `(type x)`: the CLIPS type name of a value, as CLIPS 6.30 names it. An instance-name
+/// literal `[x]` (a symbol here) and a void value get CLIPS's messages and FALSE: there
+/// are no instances.
+fn type_of(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let name = match cx.arg(a, 0) {
+        Value::Int(_) => "INTEGER",
+        Value::Float(_) => "FLOAT",
+        Value::Str(_) => "STRING",
+        Value::Fact(_) => "FACT-ADDRESS",
+        Value::Multi(_) => "MULTIFIELD",
+        Value::Sym(s) => {
+            let text = cx.sym_text(s);
+            match text.strip_prefix('[').and_then(|t| t.strip_suffix(']')) {
+                Some(inst) => {
+                    let mut b: TextBuf<256> = TextBuf::new();
+                    let _ = writeln!(b, "[INSFUN2] No such instance {inst} in function type.");
+                    cx.write(router::WERROR, b.as_str());
+                    return Ok(Value::Sym(SYM_FALSE));
+                }
+                None => "SYMBOL",
+            }
+        }
+        Value::Void => {
+            cx.write(
+                router::WERROR,
+                "[INSCOM1] Undefined type in function type.\n",
+            );
+            return Ok(Value::Sym(SYM_FALSE));
+        }
+    };
+    Ok(Value::Sym(cx.intern(name)?))
 }
 
 /// `(gensym)`: `gen1`, `gen2`, ... whether or not the symbol is in use.
