@@ -154,7 +154,6 @@ messages! {
     NotTraced = "[NOTIMPL1] robotino-agent does not trace it",
     QueryTooManyVariables = "fact-set query: more than 8 query variables",
     QueryIncomplete = "fact-set query: missing query variables or query",
-    StrCatTooLong = "str-cat: result too long",
     FormatTooLong = "format: result longer than 2048 bytes",
     StringTooLong = "string result longer than 2048 bytes",
     ImplodeTooLong = "implode$: result longer than 2048 bytes",

@@ -465,4 +465,5 @@ differential_programs! {
     p572_halt_pops_empty_focus => "572-halt-pops-empty-focus",
     p600_module_specifier_on_fact_name => "600-module-specifier-on-fact-name",
     p601_type_function => "601-type-function",
+    p602_string_limits => "602-string-limits",
 }

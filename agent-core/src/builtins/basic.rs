@@ -6,7 +6,7 @@ use super::{Args, Builtin, Num, ANY};
 use crate::engine::Core;
 use crate::error::{EvalError, EvalErrorKind};
 use crate::value::Ix;
-use crate::value::{TextBuf, Value, NONE};
+use crate::value::{Value, NONE};
 
 /// Function ids of the two-argument comparisons that `eval` and the quick alpha
 /// tests decide in place: `=`, `<>`, `<`, `<=`, `>`, `>=`, `eq`, `neq`, in this
@@ -31,7 +31,7 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::lazy("and", 2, ANY, and).on_error(OnError::False).total(),
     Builtin::lazy("or", 2, ANY, or).on_error(OnError::False).total(),
     Builtin::eager("not", 1, 1, not).on_error(OnError::False).total(),
-    Builtin::eager("str-cat", 1, ANY, str_cat).on_error(OnError::EmptyString).quiet(),
+    Builtin::eager("str-cat", 1, ANY, super::strings::str_cat).on_error(OnError::EmptyString).quiet(),
 ];
 pub const TABLE: super::Table = super::Table::new(FUNCS);
 
@@ -241,24 +241,6 @@ fn or(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
 }
 fn not(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     Ok(Core::bool_value(!Core::is_true(cx.arg(a, 0))))
-}
-
-fn str_cat(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    let mut b: TextBuf<1024> = TextBuf::new();
-    for i in 0..a.len as usize {
-        let v = cx.arg(a, i);
-        // CLIPS rejects multifields, fact addresses and no value alike (as `sym-cat`)
-        if matches!(v, Value::Multi(_) | Value::Fact(_) | Value::Void) {
-            return Err(EvalError::wrong_type(
-                "str-cat",
-                crate::error::arg_no(i),
-                super::math::T_ATOM,
-            ));
-        }
-        cx.write_plain(&mut b, v)
-            .map_err(|_| EvalError::message(crate::error::Message::StrCatTooLong))?;
-    }
-    Ok(cx.make_string(b.as_str())?)
 }
 
 #[cfg(test)]

@@ -227,7 +227,8 @@ fn directive(
                 Some(p) if p < s.len() => &s[..floor_boundary(s, p)],
                 _ => s,
             };
-            body.write_str(s).map_err(|_| TOO_LONG)?;
+            // padded straight from the symbol table: `body` is too small for long texts
+            return pad(out, spec, s, false).map_err(|_| TOO_LONG);
         }
         b'd' | b'o' | b'x' | b'c' => {
             let n = match v {

@@ -54,16 +54,22 @@ fn same_kind(cx: &mut Core<'_>, like: Value, s: &str) -> Result<Value, EvalError
 }
 
 fn sym_cat(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    // built in the symbol arena (a `Text` here was the image's deepest stack frame)
-    cx.make_lexeme_with(false, a, TEXT_MAX, |view, args, out| {
+    cat(cx, a, false)
+}
+
+pub(super) fn str_cat(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    cat(cx, a, true)
+}
+
+/// `str-cat` (`string`) or `sym-cat`: up to `TEXT_MAX` bytes, built in the symbol arena
+/// (a `Text` here was the image's deepest stack frame; a 1 KiB one cut str-cat short).
+fn cat(cx: &mut Core<'_>, a: Args, string: bool) -> Result<Value, EvalError> {
+    let name = if string { "str-cat" } else { "sym-cat" };
+    cx.make_lexeme_with(string, a, TEXT_MAX, |view, args, out| {
         for (i, &v) in args.iter().enumerate() {
-            // CLIPS rejects multifields and fact addresses alike
+            // CLIPS rejects multifields, fact addresses and no value alike
             if matches!(v, Value::Multi(_) | Value::Fact(_) | Value::Void) {
-                return Err(EvalError::wrong_type(
-                    "sym-cat",
-                    crate::error::arg_no(i),
-                    T_ATOM,
-                ));
+                return Err(EvalError::wrong_type(name, crate::error::arg_no(i), T_ATOM));
             }
             view.write_flat(out, v, false).map_err(|_| TOO_LONG)?;
         }
@@ -283,6 +289,21 @@ mod tests {
             "{out}"
         );
         assert!(!out.contains("-1"), "{out}");
+    }
+
+    #[test]
+    fn str_cat_reaches_the_string_limit_and_names_it() {
+        // 2040 bytes fit (a 1 KiB buffer cut them before); 2050 exceed TEXT_MAX, and the
+        // message gives that limit
+        for f in ["str-cat", "sym-cat"] {
+            let out = run_program(&std::format!(
+                "(deffunction rep (?n) (bind ?r \"\") (loop-for-count ?n (bind ?r ({f} ?r \"0123456789\"))) ?r)\n\
+                 (printout t (str-length (rep 204)) crlf)\n(printout t (str-length (rep 205)) crlf)\n"
+            ));
+            assert!(out.starts_with("2040\n"), "{f}: {out}");
+            assert!(out.contains("longer than 2048 bytes"), "{f}: {out}");
+            assert!(!out.contains("2050"), "{f}: {out}");
+        }
     }
 
     #[test]
