@@ -1106,12 +1106,15 @@ impl Core<'_> {
                 b,
                 "[ARGACCES4] Function {tok} expected {how} {nparams} argument(s)"
             );
-        } else if let LoadDetail::UnknownSlot { template } = e.detail {
+        } else if let LoadDetail::UnknownSlot { template, whole } = e.detail {
             let _ = writeln!(
                 b,
                 "\n[TMPLTDEF1] Invalid slot {tok} not defined in corresponding deftemplate {}.",
                 self.sym_text(template)
             );
+            if whole && e.construct == "defrule" {
+                self.write_global_echo(b, text, e, true, module);
+            }
         } else if e.detail == LoadDetail::MissingFunction {
             let _ = writeln!(b, "\n[EXPRNPSR3] Missing function declaration for {tok}.");
         } else if let LoadDetail::NotInContext { func } = e.detail {
@@ -1267,6 +1270,41 @@ impl Core<'_> {
                 b,
                 "\n[TMPLTFUN1] Fact-indexes can only be used by {command} as a top level command."
             );
+        } else if e.detail == LoadDetail::DefaultSingle {
+            let _ = writeln!(
+                b,
+                "\n[DEFAULT1] The default value for a single field slot must be a single field value"
+            );
+        } else if e.detail == LoadDetail::ReplacesConstruct {
+            let _ = writeln!(
+                b,
+                "[DFFNXPSR1] Deffunctions are not allowed to replace constructs."
+            );
+        } else if e.detail == LoadDetail::SpecialMeaning {
+            let _ = writeln!(
+                b,
+                "\n[PATTERN1] The symbol {tok} has special meaning\nand may not be used as a deftemplate name."
+            );
+        } else if e.detail == LoadDetail::ParameterTwice {
+            let _ = writeln!(b, "[PRCCODE7] Duplicate parameter names not allowed.");
+        } else if e.detail == LoadDetail::ParameterAfterWildcard {
+            let _ = writeln!(
+                b,
+                "[PRCCODE8] No parameters allowed after wildcard parameter."
+            );
+        } else if e.detail == LoadDetail::UndefinedVariable {
+            // CLIPS checks the variables once the construct is read, and shows it whole
+            let name = tok.trim_start_matches('$').trim_start_matches('?');
+            let place = if e.construct == "defrule" {
+                "RHS of defrule"
+            } else {
+                "deffunction"
+            };
+            let _ = writeln!(
+                b,
+                "\n[PRCCODE3] Undefined variable {name} referenced in {place}."
+            );
+            self.write_global_echo(b, text, e, true, module);
         } else if e.detail == LoadDetail::ReplacesBuiltin {
             let _ = writeln!(
                 b,
@@ -1308,18 +1346,6 @@ impl Core<'_> {
             } else {
                 writeln!(b, "({construct} {module}::{name}")
             };
-        } else if e.detail == LoadDetail::UndefinedVariable {
-            let name = tok.trim_start_matches('$').trim_start_matches('?');
-            let place = if e.construct == "defrule" {
-                "RHS of defrule"
-            } else {
-                "deffunction"
-            };
-            let _ = writeln!(
-                b,
-                "\n[PRCCODE3] Undefined variable {name} referenced in {place}."
-            );
-            self.write_global_echo(b, text, e, true, module);
         } else if let LoadDetail::UndefinedGlobal { whole } = e.detail {
             let _ = writeln!(
                 b,
@@ -1510,6 +1536,7 @@ impl Core<'_> {
                     | LoadDetail::ArgType { .. }
                     | LoadDetail::SlotTwice
                     | LoadDetail::ModuleSpecifier
+                    | LoadDetail::UnknownSlot { .. }
             )
         {
             // a rule CLIPS stopped reading, in its conditions or its actions
@@ -1520,6 +1547,12 @@ impl Core<'_> {
             } else {
                 crate::builtins::pretty::write_defrule_lhs_upto(upto, module, b)
             };
+            // an empty `(and)`, `(not)` or `(exists)`: CLIPS read its `)` too
+            if let LoadDetail::SyntaxOf { part } = e.detail {
+                if part.ends_with("conditional element") {
+                    let _ = b.write_char(')');
+                }
+            }
             let _ = b.write_char('\n');
         } else if e.echo_end != 0
             && e.construct == "deffunction"
@@ -1533,8 +1566,12 @@ impl Core<'_> {
                     | LoadDetail::FunctionArity { .. }
                     | LoadDetail::ArgType { .. }
                     | LoadDetail::ReplacesBuiltin
+                    | LoadDetail::ReplacesConstruct
+                    | LoadDetail::ParameterTwice
+                    | LoadDetail::ParameterAfterWildcard
                     | LoadDetail::SlotTwice
                     | LoadDetail::ModuleSpecifier
+                    | LoadDetail::UnknownSlot { .. }
             )
         {
             let _ = b.write_str("\nERROR:\n");

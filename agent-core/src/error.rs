@@ -592,6 +592,9 @@ pub enum LoadDetail {
     /// `[TMPLTDEF1]`: a slot name the template does not have (the offending token).
     UnknownSlot {
         template: Ix,
+        /// In a rule's `modify`/`duplicate`: CLIPS checks those once the rule is
+        /// read, and shows it whole (else up to the slot name).
+        whole: bool,
     },
     /// `[CSTRNCHK1]`: a literal in a slot's `default`/`default-dynamic` (`attribute`)
     /// violates the slot's type (`types`) or allowed values.
@@ -667,6 +670,19 @@ pub enum LoadDetail {
     },
     /// `[DFFNXPSR2]`: a deffunction named like a builtin function.
     ReplacesBuiltin,
+    /// `[DEFAULT1]`: a single-field slot's default with no value or several.
+    DefaultSingle,
+    /// `[DFFNXPSR1]`: a deffunction named like a construct keyword.
+    ReplacesConstruct,
+    /// `[PATTERN1]`: a deftemplate named like a conditional element keyword.
+    SpecialMeaning,
+    /// `[PRCCODE3]`: a variable the actions of a rule or a deffunction's body read
+    /// but nothing binds (the offending token); CLIPS shows the whole construct.
+    UndefinedVariable,
+    /// `[PRCCODE7]`: a deffunction parameter named twice (at the second).
+    ParameterTwice,
+    /// `[PRCCODE8]`: a parameter after the `$?` wildcard parameter (at it).
+    ParameterAfterWildcard,
     /// `[ANALYSIS3]`: one LHS variable used both as `?x` and `$?x` (the offending token).
     MixedVariable,
     /// `[ANALYSIS1]` (`earlier_field` false) or `[ANALYSIS2]`: a fact-address variable
@@ -699,9 +715,6 @@ pub enum LoadDetail {
     UndefinedGlobal {
         whole: bool,
     },
-    /// `[PRCCODE3]`: a variable (the offending token) read in a rule's actions or a
-    /// deffunction's body that nothing binds.
-    UndefinedVariable,
     /// `[CSTRCPSR3]`: a defmodule importing two constructs of one class (`class`, its
     /// keyword) and name (`name`) from different modules.
     ModuleImportConflict {

@@ -488,6 +488,12 @@ pub fn write_deffacts_upto(src: &str, module: &str, w: &mut dyn Write) -> fmt::R
         w.write_str("\n   ")?;
         flat(&mut c, w)?;
     }
+    // an item that is no fact, where CLIPS stopped (`[PRNTUTIL2]` for RHS patterns)
+    if !matches!(c.peek(0).tok, Tok::Eof | Tok::Bad | Tok::RParen) {
+        let t = c.next();
+        w.write_str("\n   ")?;
+        write_token(&c, w, t)?;
+    }
     Ok(())
 }
 

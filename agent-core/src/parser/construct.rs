@@ -13,7 +13,7 @@ use crate::value::{Value, NONE};
 impl<'s> Parser<'s, '_, '_> {
     /// Whether deffacts `d` is the current module's (a redefinition replaces only
     /// that one).
-    fn deffacts_here(&self, d: Ix) -> bool {
+    pub(super) fn deffacts_here(&self, d: Ix) -> bool {
         #[cfg(feature = "modules")]
         return self.cx.module_of_deffacts(d) == self.cx.current_module();
         #[cfg(not(feature = "modules"))]
@@ -24,7 +24,7 @@ impl<'s> Parser<'s, '_, '_> {
     }
 
     /// Whether deffunction `f` is the current module's.
-    fn function_here(&self, f: Ix) -> bool {
+    pub(super) fn function_here(&self, f: Ix) -> bool {
         #[cfg(feature = "modules")]
         return self.cx.module_of_function(f) == self.cx.current_module();
         #[cfg(not(feature = "modules"))]
@@ -60,6 +60,17 @@ impl<'s> Parser<'s, '_, '_> {
             Tok::Symbol(s) => self.construct_name(nt, s)?,
             _ => return Err(self.missing_name(nt, "a deftemplate name")),
         };
+        // CLIPS keeps the conditional elements' keywords out of pattern heads
+        if matches!(
+            name,
+            "not" | "and" | "or" | "test" | "exists" | "forall" | "logical" | "object"
+        ) {
+            let mut e = self.err(nt, "a name that is not a conditional element keyword");
+            e.detail = LoadDetail::SpecialMeaning;
+            // CLIPS shows the deftemplate up to the token after the name
+            e.echo_end = self.peek().end as u32;
+            return Err(e);
+        }
         let sym = cap!(self, self.cx.intern(name))?;
         // CLIPS replaces a deftemplate nothing uses yet, and refuses otherwise
         let replaces = self.cx.find_template(sym);
@@ -82,6 +93,8 @@ impl<'s> Parser<'s, '_, '_> {
             e.detail = LoadDetail::InUse {
                 construct: "deftemplate",
             };
+            // CLIPS shows the deftemplate up to its name
+            e.echo_end = nt.end as u32;
             return Err(e);
         }
         if replaces.is_some() {
@@ -89,6 +102,8 @@ impl<'s> Parser<'s, '_, '_> {
             if let Err(c) = self.cx.network_writable() {
                 return Err(self.cap_err(nt, c));
             }
+            // from here a failure drops the old one too, as in CLIPS
+            self.replacing = sym;
         }
         self.skip_comment();
         let n = self.cx.st.pools.ntemplates as usize;
@@ -195,6 +210,12 @@ impl<'s> Parser<'s, '_, '_> {
             _ => return Err(self.missing_name(nt, "a deffacts name")),
         };
         let sym = cap!(self, self.cx.intern(name))?;
+        // from here a failure drops the old one too, as in CLIPS
+        if (0..self.cx.st.pools.ndeffacts)
+            .any(|d| self.cx.deffacts[d as usize].name == sym && self.deffacts_here(d))
+        {
+            self.replacing = sym;
+        }
         self.skip_comment();
         let holder = cap!(
             self,
@@ -209,7 +230,7 @@ impl<'s> Parser<'s, '_, '_> {
                     let spec = self.fact_spec()?;
                     self.cx.append_child(holder, spec);
                 }
-                _ => return Err(self.err(t, "'(' starting a fact or ')'")),
+                _ => return Err(self.syntax_of(t, "'(' starting a fact or ')'", "RHS patterns")),
             }
         }
         if self.check_only {
@@ -272,6 +293,26 @@ impl<'s> Parser<'s, '_, '_> {
         // CLIPS's own functions cannot be replaced; our geometry extensions can, since a
         // CLIPS program may define a deffunction of that name (rules/clips/stubs.clp
         // does), and a deffunction is looked up before a builtin
+        if matches!(
+            name,
+            "defrule"
+                | "deffunction"
+                | "deftemplate"
+                | "defglobal"
+                | "deffacts"
+                | "defmodule"
+                | "defgeneric"
+                | "defmethod"
+                | "defclass"
+                | "defmessage-handler"
+                | "definstances"
+        ) {
+            let mut e = self.err(nt, "a name that is not a construct keyword");
+            e.detail = LoadDetail::ReplacesConstruct;
+            // CLIPS shows the deffunction up to the token after the name
+            e.echo_end = self.peek().end as u32;
+            return Err(e);
+        }
         let extension = crate::builtins::geometry::FUNCS
             .iter()
             .any(|b| b.name == name);
@@ -322,7 +363,16 @@ impl<'s> Parser<'s, '_, '_> {
             match t.tok {
                 Tok::RParen => break,
                 Tok::SfVar(v) | Tok::MfVar(v) if self.find_var(v).is_some() => {
-                    return Err(self.err(t, "a parameter name not used twice"));
+                    let mut e = self.err(t, "a parameter name not used twice");
+                    e.detail = LoadDetail::ParameterTwice;
+                    e.echo_end = t.end as u32;
+                    return Err(e);
+                }
+                Tok::SfVar(_) | Tok::MfVar(_) if rest => {
+                    let mut e = self.err(t, "the $? wildcard parameter to be last");
+                    e.detail = LoadDetail::ParameterAfterWildcard;
+                    e.echo_end = t.end as u32;
+                    return Err(e);
                 }
                 Tok::SfVar(v) if !rest => {
                     self.new_local(t, v, false)?;
@@ -343,6 +393,10 @@ impl<'s> Parser<'s, '_, '_> {
                     ))
                 }
             }
+        }
+        if existing.is_some() {
+            // from here (the body) a failure drops the old one too, as in CLIPS
+            self.replacing = sym;
         }
         self.cx.funcs[f as usize] = Deffunction {
             name: sym,

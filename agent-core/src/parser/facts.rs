@@ -149,7 +149,12 @@ impl<'s> Parser<'s, '_, '_> {
                 let mut e = self.err(st, "a slot of the template");
                 e.detail = LoadDetail::UnknownSlot {
                     template: self.cx.templates[tmpl as usize].name,
+                    whole: false,
                 };
+                // CLIPS shows a construct up to the slot name
+                if self.construct != "command" {
+                    e.echo_end = st.end as u32;
+                }
                 Err(e)
             }
         }
@@ -339,7 +344,13 @@ impl<'s> Parser<'s, '_, '_> {
                     let sv = cap!(self, self.cx.push_expr(Expr::new(Op::SlotVal, 0, ssym)))?;
                     match tmpl {
                         Some(tmpl) => {
-                            let slot = self.slot_of(tmpl, st)?;
+                            let slot = self.slot_of(tmpl, st).map_err(|mut e| {
+                                if let LoadDetail::UnknownSlot { ref mut whole, .. } = e.detail {
+                                    *whole = true;
+                                    e.echo_end = 0;
+                                }
+                                e
+                            })?;
                             let def = self.cx.slot_def(tmpl, slot);
                             self.slot_values(sv, &def, st, name)?;
                         }

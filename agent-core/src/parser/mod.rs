@@ -603,8 +603,11 @@ impl<'s, 'e> Parser<'s, '_, 'e> {
                         self.cx.st.mode.defining = false;
                         if r.is_err() {
                             self.cx.rollback(self.keep.unwrap_or(cp));
-                            if kw == "defrule" && self.replacing != NONE && !self.check_only {
-                                self.drop_replaced_rule();
+                            if self.replacing != NONE && !self.check_only {
+                                match kw {
+                                    "defrule" => self.drop_replaced_rule(),
+                                    _ => self.drop_replaced(kw),
+                                }
                             }
                         }
                         r.map(|_| Item::Construct)
@@ -647,6 +650,60 @@ impl<'s, 'e> Parser<'s, '_, 'e> {
             self.cx.remove_rule(r);
             #[cfg(feature = "extras")]
             self.cx.st.breaks.remove(name);
+        }
+    }
+
+    /// A deftemplate, deffacts or deffunction that failed after its name was read:
+    /// CLIPS 6.30 has removed the one of that name by then (a deftemplate in use was
+    /// refused before), except a deffunction another construct calls, which stays.
+    #[inline(never)]
+    fn drop_replaced(&mut self, kw: &str) {
+        let name = self.replacing;
+        match kw {
+            "deftemplate" => {
+                let Some(t) = self.cx.find_template(name) else {
+                    return;
+                };
+                if self.cx.template_in_use(t) || self.cx.network_writable().is_err() {
+                    return;
+                }
+                let tm = &mut self.cx.templates[t as usize];
+                tm.name = NONE;
+                tm.implied = true;
+            }
+            "deffacts" => {
+                let n = self.cx.st.pools.ndeffacts as usize;
+                let Some(d) = (0..n)
+                    .find(|&d| self.cx.deffacts[d].name == name && self.deffacts_here(d as Ix))
+                else {
+                    return;
+                };
+                // the later ones move up: `reset` asserts in definition order
+                self.cx.deffacts.copy_within(d + 1..n, d);
+                #[cfg(feature = "modules")]
+                if n <= self.cx.deffacts_module.len() {
+                    self.cx.deffacts_module.copy_within(d + 1..n, d);
+                }
+                self.cx.st.pools.ndeffacts -= 1;
+            }
+            _ => {
+                let n = self.cx.st.pools.nfuncs;
+                let Some(f) = (0..n)
+                    .find(|&f| self.cx.funcs[f as usize].name == name && self.function_here(f))
+                else {
+                    return;
+                };
+                if self.cx.st.eval.in_use > 0 {
+                    return;
+                }
+                if self.cx.deffunction_in_use(f, false) {
+                    // CLIPS keeps it (its parameters) but has freed its actions by
+                    // then: calls return FALSE
+                    self.cx.funcs[f as usize].body = NONE;
+                    return;
+                }
+                self.cx.funcs[f as usize].name = NONE;
+            }
         }
     }
 

@@ -500,7 +500,13 @@ impl<'s> Parser<'s, '_, '_> {
                     "not" | "and" | "or" | "exists" | "forall" | "test" | "logical",
                 ) = self.peek().tok
                 {
-                    return Err(self.err(lp, "a pattern after '<-' (not a conditional element)"));
+                    // CLIPS reads the keyword and the token after it, and shows the rule
+                    // up to there
+                    self.next();
+                    let after = self.peek();
+                    let mut e = self.err(lp, "a pattern after '<-' (not a conditional element)");
+                    e.echo_end = after.end as u32;
+                    return Err(e);
                 }
                 self.pattern(b, ctx, Some((t, fv)))
             }
@@ -526,6 +532,14 @@ impl<'s> Parser<'s, '_, '_> {
                     Tok::Symbol("logical") => self.logical_ce(b, ctx, h),
                     Tok::Symbol("and") => {
                         self.next();
+                        let p = self.peek();
+                        if p.tok == Tok::RParen {
+                            return Err(self.syntax_of(
+                                p,
+                                "a conditional element inside and",
+                                "the and conditional element",
+                            ));
+                        }
                         loop {
                             let p = self.peek();
                             match p.tok {
@@ -735,8 +749,13 @@ impl<'s> Parser<'s, '_, '_> {
         at: Token<'s>,
     ) -> PResult<()> {
         if body != GroupBody::Forall {
-            if self.peek().tok == Tok::RParen {
-                return Err(self.err(at, "a conditional element inside not/exists"));
+            let p = self.peek();
+            if p.tok == Tok::RParen {
+                let part = match at.tok {
+                    Tok::Symbol("exists") => "the exists conditional element",
+                    _ => "the not conditional element",
+                };
+                return Err(self.syntax_of(p, "a conditional element inside not/exists", part));
             }
             if let Some(inner) = self.lone_quantifier_follows() {
                 self.next();

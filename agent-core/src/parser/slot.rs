@@ -276,6 +276,8 @@ impl<'s> Parser<'s, '_, '_> {
         let holder = cap!(self, self.cx.push_expr(Expr::new(Op::Nop, 0, 0)))?;
         let values_at = self.save();
         let mut n = 0 as Ix;
+        // (a single-field slot's second value, where the error is placed)
+        let mut second = at;
         let close = loop {
             let t = self.peek();
             match t.tok {
@@ -284,10 +286,10 @@ impl<'s> Parser<'s, '_, '_> {
                     break t;
                 }
                 Tok::Eof | Tok::Bad => return Err(self.err(t, "')'")),
-                _ if !def.multi && n == 1 => {
-                    return Err(self.err(t, "a single default value for a single-field slot"))
-                }
                 _ => {
+                    if n == 1 {
+                        second = t;
+                    }
                     let a = self.parse_expr()?;
                     self.cx.append_child(holder, a);
                     n += 1;
@@ -296,8 +298,12 @@ impl<'s> Parser<'s, '_, '_> {
         };
         self.scope = save;
         self.evaluated_now = false;
+        // CLIPS reads the attribute whole first, and shows the deftemplate up to it
         if !def.multi && n != 1 {
-            return Err(self.err(at, "exactly one default value for a single-field slot"));
+            let mut e = self.err(second, "exactly one default value for a single-field slot");
+            e.detail = crate::error::LoadDetail::DefaultSingle;
+            e.echo_end = close.end as u32;
+            return Err(e);
         }
         def.default = self.cx.exprs[holder as usize].first;
         def.default_kind = if attribute == "default" {
@@ -418,7 +424,11 @@ impl<'s> Parser<'s, '_, '_> {
                 Tok::Symbol("FLOAT") => types::FLOAT,
                 Tok::Symbol("NUMBER") => types::NUMBER,
                 Tok::Symbol("FACT-ADDRESS") => types::FACT_ADDRESS,
-                _ => return Err(self.err(tt, "a type name")),
+                _ => {
+                    // CLIPS saved a space after the name it did not know
+                    let e = self.attribute_syntax(tt, "a type name", "type attribute");
+                    return Err(echoed(e, tt, EchoTail::SpaceAfter));
+                }
             };
             if mask & bits == bits {
                 return Err(self.attribute_syntax(tt, "a type not named before", "type attribute"));
