@@ -151,8 +151,9 @@ impl<'s> Parser<'s, '_, '_> {
                     template: self.cx.templates[tmpl as usize].name,
                     whole: false,
                 };
-                // CLIPS shows a construct up to the slot name
-                if self.construct != "command" {
+                // CLIPS shows a construct up to the slot name (not a fact that
+                // `assert-string` or `load-facts` reads)
+                if matches!(self.construct, "defrule" | "deffunction" | "deffacts") {
                     e.echo_end = st.end as u32;
                 }
                 Err(e)
