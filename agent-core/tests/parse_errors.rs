@@ -38,7 +38,7 @@ const CASES: &[(&str, u32, u32, &str)] = &[
         "(deftemplate t6 (slot a (default 1 2)))",
         1,
         36,
-        "single default value",
+        "exactly one default value",
     ),
     ("(deftemplate good (slot b))", 1, 14, "not in use"),
     (
