@@ -880,6 +880,14 @@ impl Core<'_> {
         #[cfg(not(feature = "grow"))]
         let kept = b as Ix;
         self.set_or_link(am, 2, kept);
+        self.or_chain_append(b, am);
+    }
+
+    /// Host: appends alpha match `am` to bucket `b`'s keyed or-index chain (its head
+    /// keeps the tail in link 1, so an append touches no other entry).
+    #[cfg(feature = "host-speedups")]
+    #[inline(always)]
+    fn or_chain_append(&mut self, b: usize, am: TokenId) {
         self.set_or_link(am, 0, NONE);
         let head = self.amem_buckets[b];
         if head == TokenId::NONE {
@@ -1887,17 +1895,7 @@ impl Core<'_> {
         while t != TokenId::NONE {
             let next = self.or_link(t, 0);
             let b = self.or_bucket_of(t);
-            let first = self.amem_buckets[b];
-            self.set_or_link(t, 0, NONE);
-            if first == TokenId::NONE {
-                self.set_or_link(t, 1, t.0);
-                self.amem_buckets[b] = t;
-            } else {
-                let tail = self.or_link(first, 1);
-                self.set_or_link(tail, 0, t.0);
-                self.set_or_link(t, 1, tail.0);
-                self.set_or_link(first, 1, t.0);
-            }
+            self.or_chain_append(b, t);
             t = next;
         }
     }
