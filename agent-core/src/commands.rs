@@ -6,7 +6,7 @@ use crate::value::Ix;
 use core::fmt::Write;
 
 use crate::builtins::errors::Fallback;
-use crate::builtins::files::{FileItems, FILE_BUF};
+use crate::builtins::files::{file_buffer, FileItems};
 use crate::builtins::{FIXED_SYMBOLS, SYM_INITIAL_FACT};
 use crate::engine::{watch, Core, Frame};
 use crate::error::{EvalError, EvalErrorKind, LoadDetail, LoadError, Restriction};
@@ -1728,8 +1728,7 @@ impl Core<'_> {
     /// but for errors and the commands' own output. Returns whether the file was read
     /// to its end.
     pub fn batch_file_stream(&mut self, path: &str, echo: bool) -> Result<bool, EvalError> {
-        let mut buf = [0u8; FILE_BUF];
-        let mut file = FileItems::new(path, &mut buf);
+        let mut file = FileItems::new(path, file_buffer());
         if file.open(self).is_err() {
             self.report_unopened_file("batch", path);
             return Ok(false);

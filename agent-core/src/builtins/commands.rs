@@ -3,7 +3,7 @@
 //! batch, save-facts, load-facts.
 
 use super::describe::{ArgType, OnError};
-use super::files::{FileItems, FILE_BUF};
+use super::files::{file_buffer, FileItems};
 use super::save_facts::{self, save_facts};
 use super::{Args, Builtin, ANY, SYM_CRLF, SYM_FALSE, SYM_NIL, SYM_TRUE};
 use crate::commands::FactsRead;
@@ -679,8 +679,7 @@ fn path_arg(cx: &Core<'_>, a: Args, func: &'static str) -> Result<TextBuf<256>, 
 fn load_impl(cx: &mut Core<'_>, a: Args, quiet: bool) -> Result<Value, EvalError> {
     let func = if quiet { "load*" } else { "load" };
     let path = path_arg(cx, a, func)?;
-    let mut buf = [0u8; FILE_BUF];
-    let mut file = FileItems::new(path.as_str(), &mut buf);
+    let mut file = FileItems::new(path.as_str(), file_buffer());
     if file.open(cx).is_err() {
         cx.report_unopened_file(func, path.as_str());
         return Ok(Value::Sym(SYM_FALSE));
@@ -750,8 +749,7 @@ pub(super) fn batch_quiet(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError
 #[cfg_attr(not(feature = "parser"), allow(dead_code))]
 pub(super) fn load_facts(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let path = path_arg(cx, a, "load-facts")?;
-    let mut buf = [0u8; FILE_BUF];
-    let mut file = FileItems::new(path.as_str(), &mut buf);
+    let mut file = FileItems::new(path.as_str(), file_buffer());
     if file.open(cx).is_err() {
         cx.report_unopened_file("load-facts", path.as_str());
         return Ok(Value::Sym(SYM_FALSE));

@@ -4,7 +4,9 @@
 //! The engine has no heap, so a file is streamed through a buffer of [`FILE_BUF`] bytes
 //! with [`Host::read_file_at`](crate::host::Host::read_file_at): any file size works as
 //! long as each single top-level item (a construct or a command) fits the buffer. An
-//! item that does not is an error naming the limit, never silently cut.
+//! item that does not is an error naming the limit, never silently cut. On the host
+//! (`grow`) the buffer doubles instead, up to [`FILE_ITEM_MAX`]: CLIPS's reader has no
+//! item limit, and programs by others hold rules of 40 KB and more.
 
 use core::fmt::Write;
 
@@ -15,8 +17,72 @@ use crate::host::router;
 use crate::lexer::Lexer;
 use crate::value::TextBuf;
 
-/// Size of the stack buffer a file is streamed through; also the largest single item.
+/// Size of the stack buffer a file is streamed through; also the largest single item
+/// where the buffer cannot grow.
 pub const FILE_BUF: usize = 32 * 1024;
+
+/// The largest single item a growing buffer takes (`grow`).
+pub const FILE_ITEM_MAX: usize = 16 * 1024 * 1024;
+
+/// Storage a file is streamed through.
+pub trait FileBuffer {
+    fn bytes(&self) -> &[u8];
+    fn bytes_mut(&mut self) -> &mut [u8];
+    /// Makes room for an item longer than the buffer; false when it cannot.
+    fn enlarge(&mut self) -> bool {
+        false
+    }
+}
+
+impl FileBuffer for &mut [u8] {
+    fn bytes(&self) -> &[u8] {
+        self
+    }
+    fn bytes_mut(&mut self) -> &mut [u8] {
+        self
+    }
+}
+
+impl<const N: usize> FileBuffer for [u8; N] {
+    fn bytes(&self) -> &[u8] {
+        self
+    }
+    fn bytes_mut(&mut self) -> &mut [u8] {
+        self
+    }
+}
+
+#[cfg(feature = "grow")]
+impl FileBuffer for alloc::vec::Vec<u8> {
+    fn bytes(&self) -> &[u8] {
+        self
+    }
+    fn bytes_mut(&mut self) -> &mut [u8] {
+        self
+    }
+    fn enlarge(&mut self) -> bool {
+        let len = self.len();
+        if len >= FILE_ITEM_MAX {
+            return false;
+        }
+        self.resize((len * 2).clamp(FILE_BUF, FILE_ITEM_MAX), 0);
+        true
+    }
+}
+
+/// The buffer `load`, `batch` and `load-facts` read through: fixed on the robot,
+/// growing on the host.
+#[cfg(not(feature = "grow"))]
+pub fn file_buffer() -> [u8; FILE_BUF] {
+    [0; FILE_BUF]
+}
+
+/// The buffer `load`, `batch` and `load-facts` read through: fixed on the robot,
+/// growing on the host.
+#[cfg(feature = "grow")]
+pub fn file_buffer() -> alloc::vec::Vec<u8> {
+    alloc::vec![0; FILE_BUF]
+}
 
 /// Why a file could not be read to its end.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -34,9 +100,9 @@ pub enum FileError {
 }
 
 /// Top-level items of one file, read through `buf`.
-pub struct FileItems<'b> {
+pub struct FileItems<B> {
     path: TextBuf<256>,
-    buf: &'b mut [u8],
+    buf: B,
     /// Unconsumed bytes are `buf[start..end]`.
     start: usize,
     end: usize,
@@ -59,8 +125,8 @@ pub struct Item<'s> {
     pub end_offset: u64,
 }
 
-impl<'b> FileItems<'b> {
-    pub fn new(path: &str, buf: &'b mut [u8]) -> Self {
+impl<B: FileBuffer> FileItems<B> {
+    pub fn new(path: &str, buf: B) -> Self {
         let mut p = TextBuf::new();
         let _ = p.write_str(path);
         FileItems {
@@ -113,7 +179,7 @@ impl<'b> FileItems<'b> {
     ) -> Result<Option<Item<'_>>, FileError> {
         let mut last = false;
         let (a, b, len) = loop {
-            let avail = &self.buf[self.start..self.end];
+            let avail = &self.buf.bytes()[self.start..self.end];
             let valid = match core::str::from_utf8(avail) {
                 Ok(s) => s,
                 Err(e) if e.error_len().is_none() && !self.eof => {
@@ -143,31 +209,35 @@ impl<'b> FileItems<'b> {
                 break (self.start, self.end, self.end - self.start);
             }
             if self.start > 0 {
-                self.buf.copy_within(self.start..self.end, 0);
+                self.buf.bytes_mut().copy_within(self.start..self.end, 0);
                 self.end -= self.start;
                 self.start = 0;
             }
-            if self.end == self.buf.len() {
+            if self.end == self.buf.bytes().len() {
                 // a long run of comments and blank lines is handed out on its own
-                let valid = core::str::from_utf8(&self.buf[..self.end]).unwrap_or_else(|e| {
-                    core::str::from_utf8(&self.buf[..e.valid_up_to()]).unwrap_or("")
+                let head = &self.buf.bytes()[..self.end];
+                let valid = core::str::from_utf8(head).unwrap_or_else(|e| {
+                    core::str::from_utf8(&head[..e.valid_up_to()]).unwrap_or("")
                 });
                 let lead = Lexer::new(valid).next_token().start;
                 let cut = valid[..lead].rfind('\n').map_or(lead, |k| k + 1);
                 if cut > 0 {
                     break (0, cut, cut);
                 }
-                return Err(FileError::ItemTooLarge {
-                    offset: self.offset - self.end as u64,
-                    line: self.lines + 1,
-                    limit: self.buf.len(),
-                });
+                let limit = self.buf.bytes().len();
+                if !self.buf.enlarge() {
+                    return Err(FileError::ItemTooLarge {
+                        offset: self.offset - self.end as u64,
+                        line: self.lines + 1,
+                        limit,
+                    });
+                }
             }
             self.fill(cx)?;
         };
         self.start = b;
         let line_base = self.lines;
-        let text = core::str::from_utf8(&self.buf[a..b]).unwrap_or("");
+        let text = core::str::from_utf8(&self.buf.bytes()[a..b]).unwrap_or("");
         self.lines += text.bytes().filter(|&c| c == b'\n').count() as u32;
         let end_offset = self.offset - (self.end - b) as u64;
         Ok(Some(Item {
@@ -182,7 +252,11 @@ impl<'b> FileItems<'b> {
     fn fill(&mut self, cx: &mut Core<'_>) -> Result<(), FileError> {
         let n = cx
             .host
-            .read_file_at(self.path.as_str(), self.offset, &mut self.buf[self.end..])
+            .read_file_at(
+                self.path.as_str(),
+                self.offset,
+                &mut self.buf.bytes_mut()[self.end..],
+            )
             .map_err(FileError::Io)?;
         if n == 0 {
             self.eof = true;
@@ -263,7 +337,7 @@ mod tests {
         let mut h = OneFile { text: text.into() };
         let mut cx = e.core(&mut h);
         let mut buf = std::vec![0u8; bufsize];
-        let mut f = FileItems::new("x", &mut buf);
+        let mut f = FileItems::new("x", &mut buf[..]);
         let mut out = std::vec::Vec::new();
         while let Some(it) = f.next_item(&mut cx)? {
             out.push((String::from(it.text), it.line_base));
@@ -333,5 +407,33 @@ mod tests {
                 limit: 10
             }
         );
+    }
+
+    /// On the host the buffer doubles for an item longer than it, as CLIPS reads items
+    /// of any length (the sudoku 5x5 puzzles of CLIPS's examples hold a 46 KB rule).
+    #[cfg(feature = "grow")]
+    #[test]
+    fn a_growing_buffer_takes_an_item_longer_than_it() {
+        let mut long = String::from("(a");
+        while long.len() < 3 * FILE_BUF {
+            long.push_str(" xyzzy");
+        }
+        long.push(')');
+        let text = std::format!("(x)\n{long}\n(b 2)\n");
+        let mut e = std::boxed::Box::new(SmallEngine::new());
+        let mut h = OneFile { text: text.clone() };
+        let mut cx = e.core(&mut h);
+        let mut f = FileItems::new("x", file_buffer());
+        let mut got = std::vec::Vec::new();
+        while let Some(it) = f.next_item(&mut cx).unwrap() {
+            got.push(String::from(it.text));
+        }
+        assert_eq!(got.concat(), text);
+        assert_eq!(commands_of(&got), ["(x)", long.as_str(), "(b 2)"]);
+    }
+
+    fn commands_of(items: &[String]) -> std::vec::Vec<String> {
+        let pairs: std::vec::Vec<(String, u32)> = items.iter().map(|t| (t.clone(), 0)).collect();
+        commands(&pairs)
     }
 }
