@@ -19,6 +19,11 @@ use crate::handle::Slots;
 use crate::value::Ix;
 use crate::value::NONE;
 
+/// `Core::dying_reach`: a left pattern has the retracted fact's template.
+const REACH_LEFT: u8 = 1;
+/// `Core::dying_reach`: a pattern below the not join has it.
+const REACH_BELOW: u8 = 2;
+
 impl Core<'_> {
     pub(crate) fn alloc_token(&mut self) -> Result<TokenId, CapacityError> {
         if self.st.pools.token_free != TokenId::NONE {
@@ -1016,10 +1021,20 @@ impl Core<'_> {
             // a retract: CLIPS passes nothing on that holds the fact, and nothing
             // passed on meets it (its matches leave their memories first)
             if dying != NONE {
-                if self.holds_fact(left, dying) {
+                // host: what the fact's template cannot reach is not checked
+                #[cfg(feature = "host-speedups")]
+                let (reach, depths) = self.dying_reach(join, blocker, dying);
+                #[cfg(not(feature = "host-speedups"))]
+                let reach = REACH_LEFT | REACH_BELOW;
+                // (host: the left patterns of its template kept in the bindings)
+                #[cfg(feature = "host-speedups")]
+                if depths != 0 && self.binds_fact(left, depths, dying) {
                     return;
                 }
-                if !self.st.net.dying_hidden {
+                if reach & REACH_LEFT != 0 && self.holds_fact(left, dying) {
+                    return;
+                }
+                if reach & REACH_BELOW != 0 && !self.st.net.dying_hidden {
                     self.hide_dying();
                 }
             }
@@ -1048,6 +1063,92 @@ impl Core<'_> {
     fn dying_may_remain(&self, blocker: TokenId) -> bool {
         let b = &self.tokens[blocker];
         b.kind != TokenKind::Alpha || b.next_sib != TokenId::NONE
+    }
+
+    /// Host: where retracted fact `dying`, whose alpha match `blocker` blocked an
+    /// output of not join `join`, may still be, as bits and pattern depths. A fact
+    /// matches only patterns of its template: a left partial match can hold it
+    /// only at a left pattern of the template of the join's alpha node (at the
+    /// returned depths, which the partial match's bindings keep, or anywhere with
+    /// `REACH_LEFT`), and what the output passes on can meet its other matches only
+    /// if a join below it, or taking its partial matches from the right, has one
+    /// (`REACH_BELOW`). A subnetwork's blocker: both bits. Worked out once per
+    /// network generation (`JoinMem::reach`).
+    #[cfg(feature = "host-speedups")]
+    #[inline(always)]
+    fn dying_reach(&mut self, join: JoinId, blocker: TokenId, dying: Ix) -> (u8, u8) {
+        let b = &self.tokens[blocker];
+        if b.kind != TokenKind::Alpha || b.fact != dying {
+            return (REACH_LEFT | REACH_BELOW, 0);
+        }
+        let jm = &self.join_mems[join];
+        if jm.reach_gen == self.st.net.net_gen {
+            return (jm.reach, jm.reach_depths);
+        }
+        self.work_out_reach(join)
+    }
+
+    /// `dying_reach` for a network generation not seen yet (out of line).
+    #[cfg(feature = "host-speedups")]
+    #[cold]
+    #[inline(never)]
+    fn work_out_reach(&mut self, join: JoinId) -> (u8, u8) {
+        let alpha = self.joins[join].alpha;
+        let (reach, depths) = if alpha == NONE {
+            (REACH_LEFT | REACH_BELOW, 0)
+        } else {
+            let tmpl = self.alphas[alpha as usize].tmpl;
+            let of_tmpl = |cx: &Core<'_>, j: JoinId| {
+                let a = cx.joins[j].alpha;
+                a != NONE && cx.alphas[a as usize].tmpl == tmpl
+            };
+            let (mut reach, mut depths) = (0u8, 0u8);
+            // upwards: a depth written by a join nearer the left partial match
+            // (`seen`) no longer holds an earlier join's fact in the bindings
+            let mut seen = 0u64;
+            let mut p = self.joins[join].parent;
+            while p != JoinId::NONE {
+                let d = self.joins[p].depth as usize;
+                if of_tmpl(self, p) {
+                    if d < super::BIND_W && seen & (1 << d) == 0 {
+                        depths |= 1 << d;
+                    } else {
+                        reach |= REACH_LEFT;
+                    }
+                }
+                seen |= 1u64.checked_shl(d as u32).unwrap_or(0);
+                p = self.joins[p].parent;
+            }
+            // (a walk too deep to follow counts as reaching)
+            if !self.walk_joins(join, false, &mut |cx, j| j == join || !of_tmpl(cx, j)) {
+                reach |= REACH_BELOW;
+            }
+            (reach, depths)
+        };
+        let jm = &mut self.join_mems[join];
+        jm.reach = reach;
+        jm.reach_depths = depths;
+        jm.reach_gen = self.st.net.net_gen;
+        (reach, depths)
+    }
+
+    /// Host: whether partial match `t` binds `fact` at one of the pattern depths
+    /// `depths` (bits below `BIND_W`).
+    #[cfg(feature = "host-speedups")]
+    #[inline(always)]
+    fn binds_fact(&self, t: TokenId, depths: u8, fact: Ix) -> bool {
+        if t == TokenId::NONE {
+            return false;
+        }
+        let binds = &self.tokens[t].binds;
+        let mut m = depths;
+        while m != 0 {
+            if binds.get(m.trailing_zeros() as usize) == Some(&fact) {
+                return true;
+            }
+            m &= m - 1;
+        }
+        false
     }
 
     /// Whether partial match `t` or one of its ancestors holds a match of `fact`.

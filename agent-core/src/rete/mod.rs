@@ -259,6 +259,19 @@ pub struct JoinMem {
     pub plain: bool,
     #[cfg(feature = "wipe")]
     pub plain_gen: u32,
+    /// Host: for a not join fed by an alpha node, what a retract of a fact of that
+    /// node's template can reach (`Core::dying_reach`): bit `REACH_LEFT`, a pattern
+    /// of the template on the left whose fact is not in `Token::binds`; bit
+    /// `REACH_BELOW`, one below the join. Worked out for network generation
+    /// `reach_gen`.
+    #[cfg(feature = "host-speedups")]
+    pub reach: u8,
+    /// Host: the pattern depths left of the join whose facts its left partial
+    /// matches keep in `Token::binds` and that have that template (with `reach`).
+    #[cfg(feature = "host-speedups")]
+    pub reach_depths: u8,
+    #[cfg(feature = "host-speedups")]
+    pub reach_gen: u32,
 }
 
 impl JoinMem {
@@ -280,6 +293,12 @@ impl JoinMem {
         plain: false,
         #[cfg(feature = "wipe")]
         plain_gen: u32::MAX,
+        #[cfg(feature = "host-speedups")]
+        reach: 0,
+        #[cfg(feature = "host-speedups")]
+        reach_depths: 0,
+        #[cfg(feature = "host-speedups")]
+        reach_gen: u32::MAX,
     };
 }
 
