@@ -319,6 +319,14 @@ macro_rules! pool_items {
             pub fn capacities(&self) -> [usize; Pool::COUNT] {
                 [$(self.$first.len(),)*]
             }
+
+            /// Capacity of `pool` alone (`capacities()[pool]` without reading every pool).
+            #[inline]
+            pub fn capacity(&self, pool: Pool) -> usize {
+                match pool {
+                    $(Pool::$variant => self.$first.len(),)*
+                }
+            }
         }
     };
 }

@@ -949,7 +949,7 @@ impl Core<'_> {
     /// that follows reports a pool that stays too small).
     #[cfg(feature = "grow")]
     pub(crate) fn ensure(&mut self, pool: Pool, need: usize) {
-        if need > self.capacities()[pool as usize] {
+        if need > self.capacity(pool) {
             let _ = self.grow(pool, need);
         }
     }
@@ -1056,6 +1056,22 @@ impl Core<'_> {
             Op::Str => Value::Str(x.data),
             _ => Value::Void,
         }
+    }
+
+    /// `append_child` given `last`, the last child of `parent` (NONE: none yet), so
+    /// that a long list is built without walking it; returns the new last child
+    /// (the end of `child`'s own `next` chain).
+    pub fn append_after(&mut self, parent: Ix, last: Ix, child: Ix) -> Ix {
+        if last == NONE {
+            self.append_child(parent, child);
+        } else {
+            self.exprs[last as usize].next = child;
+        }
+        let mut c = child;
+        while self.exprs[c as usize].next != NONE {
+            c = self.exprs[c as usize].next;
+        }
+        c
     }
 
     /// Links `child` as the last child of `parent`.

@@ -179,6 +179,12 @@ impl<'a> Lexer<'a> {
         let mut i = from;
         let mut depth = 0u32;
         while let Some(&c) = b.get(i) {
+            // letters and most symbol characters come after all four that matter
+            // (`"` `(` `)` `;`): one compare passes them
+            if c > b';' {
+                i += 1;
+                continue;
+            }
             match c {
                 b'"' => {
                     i += 1;

@@ -60,11 +60,15 @@ impl crate::engine::Core<'_> {
     /// definition of that name replaces).
     pub fn rule_here(&self, r: Ix, name: SymId) -> bool {
         let rule = &self.rules[r as usize];
+        // the name first: most rules a definition is checked against differ there
+        if rule.name != name || rule.deleted {
+            return false;
+        }
         #[cfg(feature = "modules")]
         if self.rule_tag(r).module != self.current_module() {
             return false;
         }
-        rule.name == name && !rule.deleted
+        true
     }
 }
 

@@ -222,13 +222,15 @@ impl<'s> Parser<'s, '_, '_> {
             self.cx.push_expr(crate::expr::Expr::new(Op::Nop, 0, 0))
         )?;
         self.scope = Scope::Lhs;
+        // (appended through the last: a deffacts of many facts stays linear)
+        let mut last = NONE;
         loop {
             let t = self.next();
             match t.tok {
                 Tok::RParen => break,
                 Tok::LParen => {
                     let spec = self.fact_spec()?;
-                    self.cx.append_child(holder, spec);
+                    last = self.cx.append_after(holder, last, spec);
                 }
                 _ => return Err(self.syntax_of(t, "'(' starting a fact or ')'", "RHS patterns")),
             }

@@ -50,7 +50,7 @@ impl<'s> Parser<'s, '_, '_> {
         let nt = self.next();
         let (module, name) = match nt.tok {
             // `=` and `:` are operators, never a relation name
-            Tok::Symbol(s) if s.contains("::") => return Err(self.module_specifier(nt)),
+            Tok::Symbol(s) if super::has_module_sep(s) => return Err(self.module_specifier(nt)),
             Tok::Symbol(s) if s != "=" && s != ":" => (self.current_module(), s),
             _ => {
                 return Err(self.syntax_of(
@@ -69,6 +69,8 @@ impl<'s> Parser<'s, '_, '_> {
         if self.cx.templates[tmpl as usize].implied {
             let sv = cap!(self, self.cx.push_expr(Expr::new(Op::SlotVal, 0, 0)))?;
             self.cx.append_child(spec, sv);
+            // the last value linked (appending through it: a long fact stays linear)
+            let mut last = NONE;
             loop {
                 let t = self.peek();
                 match t.tok {
@@ -79,7 +81,7 @@ impl<'s> Parser<'s, '_, '_> {
                     Tok::Eof | Tok::Bad => return Err(self.err(t, "')'")),
                     _ => {
                         let v = self.fact_value()?;
-                        self.cx.append_child(sv, v);
+                        last = self.cx.append_after(sv, last, v);
                     }
                 }
             }

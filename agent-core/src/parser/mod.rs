@@ -31,6 +31,13 @@ use crate::rete::MAX_PATTERNS;
 use crate::value::Ix;
 use crate::value::{SymId, NONE};
 
+/// Whether symbol text `s` holds a module separator `::` (a byte scan: on the short
+/// relation names of every fact and pattern cheaper than a substring search).
+#[inline]
+pub(crate) fn has_module_sep(s: &str) -> bool {
+    s.as_bytes().windows(2).any(|w| w == b"::")
+}
+
 /// Most variables visible at once while parsing one construct.
 pub const MAX_VARS: usize = 64;
 

@@ -1028,7 +1028,7 @@ impl<'s> Parser<'s, '_, '_> {
     ) -> PResult<()> {
         let nt = self.next();
         let name = match nt.tok {
-            Tok::Symbol(s) if s.contains("::") => return Err(self.module_specifier(nt)),
+            Tok::Symbol(s) if super::has_module_sep(s) => return Err(self.module_specifier(nt)),
             Tok::Symbol(s)
                 if !matches!(
                     s,
