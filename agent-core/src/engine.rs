@@ -1045,6 +1045,14 @@ impl Core<'_> {
 
     /// Value of a constant node (Int/Float/Sym/Str).
     pub fn const_value(&self, e: Ix) -> Value {
+        self.const_value_inline(e)
+    }
+
+    /// `const_value`, inlined on the host where a call costs more than its body (the
+    /// alpha tests: agent-40's run 11.10 -> 10.94 M instructions, callgrind; inlined
+    /// into `eval` too it made that dearer).
+    #[cfg_attr(feature = "host-speedups", inline(always))]
+    pub(crate) fn const_value_inline(&self, e: Ix) -> Value {
         let x = self.exprs[e as usize];
         match x.op {
             Op::Int => Value::Int(Expr::join_bits(x, self.exprs[e as usize + 1]) as i64),

@@ -379,7 +379,7 @@ impl Core<'_> {
         let v = match x.op {
             Op::Sym => Value::Sym(x.data),
             Op::Str => Value::Str(x.data),
-            Op::Int | Op::Float => self.const_value(e),
+            Op::Int | Op::Float => self.const_value_inline(e),
             Op::Global => self.globals[x.data as usize].value,
             Op::PatVar if x.aux == THIS_PATTERN && x.data != loc::FACT => {
                 let slot = Ix::from(loc::slot(x.data));
@@ -630,7 +630,7 @@ impl Core<'_> {
     #[inline(always)]
     fn leave_alpha_memory(&mut self, am: TokenId, alpha: Ix) -> TokenId {
         let am_next = self.tokens[am].am_next;
-        self.index_remove(am);
+        self.index_remove(am, alpha);
         let tk = &self.tokens[am];
         let (mem_prev, mem_next) = (tk.mem_prev, tk.mem_next);
         if mem_prev != TokenId::NONE {

@@ -1014,20 +1014,20 @@ impl Core<'_> {
         }
     }
 
-    /// Takes an alpha match out of the index.
+    /// Takes alpha match `am` of node `alpha` out of the index.
     #[cfg_attr(feature = "host-speedups", inline(always))]
-    pub(crate) fn index_remove(&mut self, am: TokenId) {
-        let tk = self.tokens[am];
-        if tk.kind != TokenKind::Alpha || !self.alpha_indexed(tk.alpha()) {
+    pub(crate) fn index_remove(&mut self, am: TokenId, alpha: Ix) {
+        debug_assert!(self.tokens[am].kind == TokenKind::Alpha && self.tokens[am].alpha() == alpha);
+        if !self.alpha_indexed(alpha) {
             return;
         }
-        let b = tk.parent.ix();
+        let b = self.tokens[am].parent.ix();
         #[cfg(feature = "grow")]
         let b = self.alpha_bucket_of(b as u32);
         self.amem_buckets[b] = self.am_chain_remove(self.amem_buckets[b], am);
         self.tokens[am].parent = TokenId::NONE;
         #[cfg(feature = "host-speedups")]
-        if keyed_or(&self.alphas[tk.alpha() as usize]) {
+        if keyed_or(&self.alphas[alpha as usize]) {
             self.or_index_unlink(am);
         }
     }
@@ -1624,6 +1624,9 @@ impl Core<'_> {
         }
     }
 
+    /// (Host: inlined into the walks of `first_left`/`next_left`, which call it per
+    /// partial match.)
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     fn skip_other_beta(&self, mut l: TokenId, join: JoinId, g: usize) -> TokenId {
         while l != TokenId::NONE && self.tokens[l].owner != join {
             l = self.gnext(l, g);
