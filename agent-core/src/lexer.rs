@@ -174,17 +174,33 @@ impl<'a> Lexer<'a> {
     /// a local variable: holds `(bind ?x` or `(bind $?x` (not a global `?*x*`) outside
     /// strings and comments. A look far cheaper than reading the tokens, before the
     /// parser reads them twice.
+    /// Where the first `bind` from byte `from` on that may bind a local starts (`(`,
+    /// spaces, `bind`, spaces, `?x` or `$?x`, `x` no global), by the text alone
+    /// (strings and comments not told apart: `binds_a_local_before_close` finds a
+    /// subset); `usize::MAX` when there is none. A substring search, far cheaper per
+    /// byte than that scan.
+    pub fn local_bind_candidate(&self, from: usize) -> usize {
+        let b = self.src.as_bytes();
+        let mut at = from;
+        while let Some(k) = self.src.get(at..).and_then(|t| t.find("bind")) {
+            let p = at + k;
+            let mut q = p;
+            while q > 0 && b[q - 1].is_ascii_whitespace() {
+                q -= 1;
+            }
+            if q > 0 && b[q - 1] == b'(' && binds_a_local(&b[q..]) {
+                return p;
+            }
+            at = p + 4;
+        }
+        usize::MAX
+    }
+
     pub fn binds_a_local_before_close(&self, from: usize) -> bool {
         let b = self.src.as_bytes();
         let mut i = from;
         let mut depth = 0u32;
         while let Some(&c) = b.get(i) {
-            // letters and most symbol characters come after all four that matter
-            // (`"` `(` `)` `;`): one compare passes them
-            if c > b';' {
-                i += 1;
-                continue;
-            }
             match c {
                 b'"' => {
                     i += 1;
@@ -402,6 +418,26 @@ mod tests {
         assert!(!sees("; (bind ?x 1)\n(printout t 1))"));
         assert!(!sees("(binder ?x))"));
         assert!(!sees("(printout t 1)) (defrule r => (bind ?x 1))"));
+    }
+
+    #[test]
+    fn a_local_bind_candidate_covers_every_bind_the_scan_sees() {
+        let cand = |t: &str, from: usize| Lexer::new(t).local_bind_candidate(from);
+        // wherever the scan sees a bind, the search finds one at or after the start
+        for t in [
+            "(printout t ?x) (bind ?x 1))",
+            "(while TRUE (bind\n $?y (create$))))",
+            "( bind ?z 2))",
+        ] {
+            assert!(Lexer::new(t).binds_a_local_before_close(0));
+            assert_ne!(cand(t, 0), usize::MAX, "{t}");
+        }
+        assert_eq!(cand("(printout t ?x) (bind ?x 1))", 0), 17);
+        // none: globals, a longer name, no `(`, or all of them before the start
+        assert_eq!(cand("(bind ?*g* 1)) (binder ?x) bind ?y", 0), usize::MAX);
+        assert_eq!(cand("(bind ?x 1) (printout t 1))", 2), usize::MAX);
+        // text alone: a bind in a string counts (the scan then decides)
+        assert_eq!(cand("(printout t \"(bind ?x 1)\"))", 0), 14);
     }
 
     #[test]

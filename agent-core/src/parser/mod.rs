@@ -140,6 +140,10 @@ pub struct Parser<'s, 'c, 'e> {
     /// Where a failure of the current construct rolls back to when not to its start:
     /// past what its parse-time evaluations created (their effects stay, as in CLIPS).
     pub keep: Option<crate::engine::Checkpoint>,
+    /// `declare_bound_vars`: where the search for a local `bind` last began and what
+    /// it found there (`Lexer::local_bind_candidate`), valid for any later start up to
+    /// that find.
+    bind_hint: (usize, usize),
     /// The first rule the current defrule creates (see `compile::Compiler`).
     pub rule_base: Ix,
     /// The current defrule's name when it replaces a rule of that name (else NONE),
@@ -204,6 +208,7 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
             replacing: NONE,
             alpha_base: 0,
             keep: None,
+            bind_hint: (usize::MAX, usize::MAX),
         }
     }
 
@@ -476,7 +481,17 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
     pub fn declare_bound_vars(&mut self) -> PResult<()> {
         // most actions bind nothing: a scan of the bytes says so
         let from = self.peeked.map_or(self.lex.pos(), |t| t.start);
-        if !self.lex.binds_a_local_before_close(from) {
+        // and most sources have no local `bind` ahead at all: a text search, kept for
+        // the constructs after this one, says so without the scan
+        let (at, hint) = self.bind_hint;
+        let hint = if at <= from && hint >= from {
+            hint
+        } else {
+            let h = self.lex.local_bind_candidate(from);
+            self.bind_hint = (from, h);
+            h
+        };
+        if hint == usize::MAX || !self.lex.binds_a_local_before_close(from) {
             return Ok(());
         }
         let save = self.save();
