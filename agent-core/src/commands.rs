@@ -1426,6 +1426,8 @@ impl Core<'_> {
             );
         } else if e.detail == LoadDetail::DefaultEvaluation {
             // the evaluation error is printed; CLIPS adds only the construct
+        } else if let LoadDetail::Text { text } = e.detail {
+            let _ = writeln!(b, "\n{text}");
         } else if let LoadDetail::SyntaxOf { part } = e.detail {
             let _ = writeln!(
                 b,
@@ -1452,6 +1454,9 @@ impl Core<'_> {
                 text.get(e.start as usize..e.echo_end as usize)
                     .unwrap_or(""),
             );
+            if e.echo_tail == crate::error::EchoTail::SpaceBefore {
+                let _ = b.write_str(" )");
+            }
             let _ = b.write_char('\n');
         }
         // a defmodule CLIPS stopped reading is shown up to the token it stopped at (a
@@ -1502,25 +1507,45 @@ impl Core<'_> {
             && (e.echo_end != 0 || matches!(e.detail, LoadDetail::Constraint { .. }))
         {
             let _ = b.write_str("\nERROR:\n");
-            let upto = text.get(..e.echo_end as usize).unwrap_or(text);
-            let _ = crate::builtins::pretty::write_deffacts_upto(upto, module, b);
+            let _ = write_echo(
+                text,
+                e,
+                module,
+                b,
+                crate::builtins::pretty::write_deffacts_upto,
+            );
+            if e.echo_end == u32::MAX {
+                // the whole deffacts (`[PRNTUTIL6]`)
+                let _ = b.write_char(')');
+            }
             let _ = b.write_char('\n');
-        } else if matches!(
+        } else if (matches!(
             e.detail,
             LoadDetail::Constraint {
                 command: "assert",
                 ..
             }
-        ) && e.construct == "deffunction"
+        ) || (matches!(e.detail, LoadDetail::SingleSlot { .. }) && e.echo_end != 0))
+            && e.construct == "deffunction"
         {
             let _ = b.write_str("\nERROR:\n");
-            let upto = text.get(..e.echo_end as usize).unwrap_or(text);
-            let _ = crate::builtins::pretty::write_deffunction_upto(upto, module, b);
+            let _ = write_echo(
+                text,
+                e,
+                module,
+                b,
+                crate::builtins::pretty::write_deffunction_upto,
+            );
             let _ = b.write_char('\n');
         } else if assert_in_rule {
             let _ = b.write_str("\nERROR:\n");
-            let upto = text.get(..e.echo_end as usize).unwrap_or(text);
-            let _ = crate::builtins::pretty::write_defrule_upto(upto, module, b);
+            let _ = write_echo(
+                text,
+                e,
+                module,
+                b,
+                crate::builtins::pretty::write_defrule_upto,
+            );
             let _ = b.write_char('\n');
         } else if e.echo_end != 0
             && e.construct == "defrule"
@@ -1528,6 +1553,8 @@ impl Core<'_> {
                 e.detail,
                 LoadDetail::Syntax
                     | LoadDetail::SyntaxOf { .. }
+                    | LoadDetail::Text { .. }
+                    | LoadDetail::SingleSlot { .. }
                     | LoadDetail::MissingFunction
                     | LoadDetail::NotInContext { .. }
                     | LoadDetail::SequenceOperator { .. }
@@ -1541,15 +1568,38 @@ impl Core<'_> {
         {
             // a rule CLIPS stopped reading, in its conditions or its actions
             let _ = b.write_str("\nERROR:\n");
-            let upto = text.get(..e.echo_end as usize).unwrap_or(text);
-            let _ = if crate::builtins::pretty::has_arrow(upto) {
-                crate::builtins::pretty::write_defrule_upto(upto, module, b)
+            // (a glued or own-line last token is no `=>` of the rule)
+            let cut = if matches!(
+                e.echo_tail,
+                crate::error::EchoTail::Glued | crate::error::EchoTail::OwnLine
+            ) {
+                e.start.min(e.echo_end)
             } else {
-                crate::builtins::pretty::write_defrule_lhs_upto(upto, module, b)
+                e.echo_end
+            };
+            let upto = text.get(..cut as usize).unwrap_or(text);
+            let _ = if crate::builtins::pretty::has_arrow(upto) {
+                write_echo(
+                    text,
+                    e,
+                    module,
+                    b,
+                    crate::builtins::pretty::write_defrule_upto,
+                )
+            } else {
+                write_echo(
+                    text,
+                    e,
+                    module,
+                    b,
+                    crate::builtins::pretty::write_defrule_lhs_upto,
+                )
             };
             // an empty `(and)`, `(not)` or `(exists)`: CLIPS read its `)` too
             if let LoadDetail::SyntaxOf { part } = e.detail {
-                if part.ends_with("conditional element") {
+                if part.ends_with("conditional element")
+                    && e.echo_tail != crate::error::EchoTail::Glued
+                {
                     let _ = b.write_char(')');
                 }
             }
@@ -1560,6 +1610,7 @@ impl Core<'_> {
                 e.detail,
                 LoadDetail::MissingFunction
                     | LoadDetail::SyntaxOf { .. }
+                    | LoadDetail::Text { .. }
                     | LoadDetail::NotInContext { .. }
                     | LoadDetail::SequenceOperator { .. }
                     | LoadDetail::Arity { .. }
@@ -1575,8 +1626,13 @@ impl Core<'_> {
             )
         {
             let _ = b.write_str("\nERROR:\n");
-            let upto = text.get(..e.echo_end as usize).unwrap_or(text);
-            let _ = crate::builtins::pretty::write_deffunction_upto(upto, module, b);
+            let _ = write_echo(
+                text,
+                e,
+                module,
+                b,
+                crate::builtins::pretty::write_deffunction_upto,
+            );
             let _ = b.write_char('\n');
         } else if e.echo_end != 0
             && e.construct != "defglobal"
@@ -1586,6 +1642,8 @@ impl Core<'_> {
             && (!matches!(
                 e.detail,
                 LoadDetail::MissingFunction
+                    | LoadDetail::SingleSlot { .. }
+                    | LoadDetail::Text { .. }
                     | LoadDetail::NotInContext { .. }
                     | LoadDetail::SyntaxOf { .. }
                     | LoadDetail::SequenceOperator { .. }
@@ -2105,5 +2163,64 @@ fn write_enclosing_call(w: &mut dyn Write, text: &str, at: usize) -> core::fmt::
         if depth == 0 {
             return Ok(());
         }
+    }
+}
+
+/// Writes what CLIPS shows after `ERROR:` for construct text `text` read up to
+/// `e.echo_end` by `write_upto`, joining the last token as `e.echo_tail` says: glued to
+/// the text before it (a second value of a single-field slot: `(a 12(`), or a `)` CLIPS
+/// read where something else was due, one space after the rest (`(declare )`).
+fn write_echo(
+    text: &str,
+    e: &LoadError,
+    module: &str,
+    b: &mut dyn core::fmt::Write,
+    write_upto: fn(&str, &str, &mut dyn core::fmt::Write) -> core::fmt::Result,
+) -> core::fmt::Result {
+    let glued = e.echo_tail == crate::error::EchoTail::Glued && e.start < e.echo_end;
+    let own_line = e.echo_tail == crate::error::EchoTail::OwnLine && e.start < e.echo_end;
+    let cut = if glued || own_line {
+        e.start
+    } else {
+        e.echo_end
+    };
+    let mut last = LastChar {
+        inner: b,
+        last: '\0',
+    };
+    write_upto(text.get(..cut as usize).unwrap_or(text), module, &mut last)?;
+    let spaced = last.last == ' ';
+    if glued {
+        b.write_str(
+            text.get(e.start as usize..e.echo_end as usize)
+                .unwrap_or(""),
+        )?;
+    }
+    if e.echo_tail == crate::error::EchoTail::OwnLine && e.start < e.echo_end {
+        b.write_str("\n   ")?;
+        b.write_str(
+            text.get(e.start as usize..e.echo_end as usize)
+                .unwrap_or(""),
+        )?;
+    }
+    if e.echo_tail == crate::error::EchoTail::SpaceBefore {
+        // (the pretty-printer may have written the space already: `(if `)
+        b.write_str(if spaced { ")" } else { " )" })?;
+    }
+    Ok(())
+}
+
+/// A writer remembering the last character written through it.
+struct LastChar<'a> {
+    inner: &'a mut dyn core::fmt::Write,
+    last: char,
+}
+
+impl core::fmt::Write for LastChar<'_> {
+    fn write_str(&mut self, s: &str) -> core::fmt::Result {
+        if let Some(c) = s.chars().next_back() {
+            self.last = c;
+        }
+        self.inner.write_str(s)
     }
 }

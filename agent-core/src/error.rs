@@ -512,6 +512,9 @@ pub enum EchoTail {
     Glued,
     /// With a space after it: `(allowed-symbols 1 `.
     SpaceAfter,
+    /// The text from the error's `start` as written, on a line of its own after the
+    /// CEs before it: a lone variable where a CE was due (`?x =>`).
+    OwnLine,
 }
 
 /// Which restriction of a slot a value breaks, as `[CSTRNCHK1]` words it.
@@ -564,6 +567,11 @@ pub enum LoadDetail {
     /// field of a RHS pattern") rather than by the construct.
     SyntaxOf {
         part: &'static str,
+    },
+    /// An error CLIPS words as `text` (its id and message, e.g. `[PRNTUTIL10] Salience
+    /// value must be an integer value.`), shown with the construct as a syntax error is.
+    Text {
+        text: &'static str,
     },
     /// `break` outside a loop's body, `return` at the prompt (`[PRCDRPSR2]`).
     NotInContext {

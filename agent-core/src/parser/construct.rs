@@ -131,12 +131,28 @@ impl<'s> Parser<'s, '_, '_> {
                     let multi = match kt.tok {
                         Tok::Symbol("slot") | Tok::Symbol("field") => false,
                         Tok::Symbol("multislot") | Tok::Symbol("multifield") => true,
-                        _ => return Err(self.err(kt, "slot or multislot")),
+                        _ => {
+                            let mut e = self.err(kt, "slot or multislot");
+                            if !matches!(kt.tok, Tok::Eof | Tok::Bad) {
+                                e.echo_end = kt.end as u32;
+                            }
+                            return Err(e);
+                        }
                     };
                     let st = self.next();
                     let sname = match st.tok {
                         Tok::Symbol(s) => s,
-                        _ => return Err(self.err(st, "a slot name")),
+                        // CLIPS shows the deftemplate up to the token (`(slot )`)
+                        _ => {
+                            let mut e = self.err(st, "a slot name");
+                            if !matches!(st.tok, Tok::Eof | Tok::Bad) {
+                                e.echo_end = st.end as u32;
+                                if st.tok == Tok::RParen {
+                                    e.echo_tail = crate::error::EchoTail::SpaceBefore;
+                                }
+                            }
+                            return Err(e);
+                        }
                     };
                     let ssym = cap!(self, self.cx.intern(sname))?;
                     if (first_slot..first_slot + nslots)
@@ -168,7 +184,13 @@ impl<'s> Parser<'s, '_, '_> {
                     self.cx.note_hw(Pool::SlotDefs, s + 1);
                     nslots += 1;
                 }
-                _ => return Err(self.err(t, "'(' starting a slot or ')'")),
+                _ => {
+                    let mut e = self.err(t, "'(' starting a slot or ')'");
+                    if !matches!(t.tok, Tok::Eof | Tok::Bad) {
+                        e.echo_end = t.end as u32;
+                    }
+                    return Err(e);
+                }
             }
         }
         if self.check_only {
@@ -282,6 +304,15 @@ impl<'s> Parser<'s, '_, '_> {
                 self.cx.st.pools.ndeffacts += 1;
                 self.cx.note_hw(Pool::Deffacts, n + 1);
             }
+        }
+        // one named `initial-fact` in MAIN replaces CLIPS's own: `reset` asserts
+        // `(initial-fact)` only if it lists it
+        #[cfg(feature = "modules")]
+        let in_main = module == crate::module::MAIN;
+        #[cfg(not(feature = "modules"))]
+        let in_main = true;
+        if name == "initial-fact" && in_main {
+            self.cx.st.mode.initial_deffacts = false;
         }
         Ok(())
     }
@@ -411,7 +442,10 @@ impl<'s> Parser<'s, '_, '_> {
         #[cfg(feature = "modules")]
         let _ = self.cx.set_function_module(f, self.cx.current_module());
         self.defining_fn = f;
-        let body = self.declare_bound_vars().and_then(|()| self.body_block());
+        let body = self
+            .declare_bound_vars()
+            .and_then(|()| self.body_block())
+            .and_then(|b| self.take_deferred().map(|()| b));
         self.defining_fn = NONE;
         let body = match body {
             Ok(b) if !self.check_only => b,
@@ -498,7 +532,17 @@ impl<'s> Parser<'s, '_, '_> {
                 Tok::Global(name) => {
                     let eq = self.next();
                     if eq.tok != Tok::Symbol("=") {
-                        return Err(self.err(eq, "'=' after the global name"));
+                        // CLIPS shows the global and the token after it (`?*d* )`)
+                        let mut e = self.err(eq, "'=' after the global name");
+                        if !matches!(eq.tok, Tok::Eof | Tok::Bad) {
+                            e.start = t.start as u32;
+                            e.echo_end = eq.end as u32;
+                            if eq.tok == Tok::RParen {
+                                e.echo_end = t.end as u32;
+                                e.echo_tail = crate::error::EchoTail::SpaceBefore;
+                            }
+                        }
+                        return Err(e);
                     }
                     self.evaluated_now = true;
                     let init = self.parse_expr();
@@ -507,6 +551,15 @@ impl<'s> Parser<'s, '_, '_> {
                         Ok(init) => init,
                         Err(e) if matches!(e.detail, LoadDetail::ArgType { .. }) => {
                             return Err(self.global_echoed(e, t, eq))
+                        }
+                        // no value: `(defglobal MAIN ?*b* = )`
+                        Err(mut e)
+                            if matches!(e.detail, LoadDetail::Text { .. })
+                                && e.echo_end <= e.start =>
+                        {
+                            e.start = t.start as u32;
+                            e.echo_end = eq.end as u32;
+                            return Err(e);
                         }
                         Err(e) => return Err(e),
                     };
@@ -574,7 +627,14 @@ impl<'s> Parser<'s, '_, '_> {
                     // a redefined global must not keep an init that is rolled back)
                     self.keep = Some(self.cx.checkpoint());
                 }
-                _ => return Err(self.err(t, "a global variable ?*name*")),
+                _ => {
+                    // CLIPS shows only the token: `(defglobal MAIN 2`
+                    let mut e = self.err(t, "a global variable ?*name*");
+                    if !matches!(t.tok, Tok::Eof | Tok::Bad) {
+                        e.echo_end = t.end as u32;
+                    }
+                    return Err(e);
+                }
             }
         }
     }

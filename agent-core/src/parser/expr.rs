@@ -76,6 +76,16 @@ impl<'s> Parser<'s, '_, '_> {
             }
             Tok::Global(name) => self.global_read(t, name),
             Tok::LParen => self.call(),
+            Tok::RParen => {
+                // CLIPS shows the construct up to the `)`, one space before it
+                let mut e = self.err(t, "an expression");
+                e.detail = crate::error::LoadDetail::Text {
+                    text: "[EXPRNPSR2] Expected a constant, variable, or expression.",
+                };
+                e.echo_end = t.start as u32;
+                e.echo_tail = crate::error::EchoTail::SpaceBefore;
+                Err(e)
+            }
             _ => Err(self.err(t, "an expression")),
         }
     }
@@ -175,14 +185,27 @@ impl<'s> Parser<'s, '_, '_> {
                 cap!(self, e)
             }
             _ if self.construct == "deffacts" => {
-                Err(self.err(t, "a constant (deffacts take no variables)"))
+                // CLIPS checks once the deffacts is read and shows it whole
+                let mut e = self.err(t, "a constant (deffacts take no variables)");
+                e.detail = crate::error::LoadDetail::Text {
+                    text:
+                        "[PRNTUTIL6] Local variables can not be accessed by a deffacts construct.",
+                };
+                e.echo_end = u32::MAX;
+                Err(e)
             }
             Scope::Lhs if self.construct == "defrule" => Err(self.unbound_in_lhs(t)),
             Scope::Frame if matches!(self.construct, "defrule" | "deffunction") => {
-                // CLIPS's `[PRCCODE3]`, echoing the whole construct
+                // CLIPS's `[PRCCODE3]`, echoing the whole construct once it is read
+                // (another error found on the way comes first); the variable reads
+                // as nothing meanwhile: the construct is never kept
                 let mut e = self.err(t, "a bound variable");
                 e.detail = crate::error::LoadDetail::UndefinedVariable;
-                Err(e)
+                if self.deferred.is_none() {
+                    self.deferred = Some(e);
+                }
+                let e = self.cx.push_expr(Expr::new(Op::Nop, 0, 0));
+                cap!(self, e)
             }
             _ => Err(self.err(t, "a bound variable")),
         }
@@ -746,6 +769,7 @@ impl<'s> Parser<'s, '_, '_> {
 
     fn parse_bind(&mut self) -> PResult<Ix> {
         let node = self.builtin_call("bind")?;
+        let name_end = self.consumed_end();
         let t = self.next();
         let name = match t.tok {
             Tok::SfVar(name) | Tok::MfVar(name) => name,
@@ -755,7 +779,15 @@ impl<'s> Parser<'s, '_, '_> {
                 self.args_until_rparen(node)?;
                 return Ok(node);
             }
-            _ => return Err(self.err(t, "a variable")),
+            _ => {
+                // CLIPS shows the construct up to the token (`(bind )` for none)
+                let mut e = self.syntax_of(t, "a variable", "bind function");
+                if t.tok == Tok::RParen {
+                    e.echo_end = name_end as u32;
+                    e.echo_tail = crate::error::EchoTail::SpaceBefore;
+                }
+                return Err(e);
+            }
         };
         if let Some(v) = self.find_var(name).filter(|v| v.rebound != NONE) {
             // an LHS variable the actions bind: its frame slot (`declare_bound_vars`)
@@ -913,6 +945,7 @@ impl<'s> Parser<'s, '_, '_> {
         let node = self.builtin_call("switch")?;
         let e = self.parse_expr()?;
         self.cx.append_child(node, e);
+        let mut default_seen = false;
         loop {
             let t = self.next();
             match t.tok {
@@ -920,19 +953,32 @@ impl<'s> Parser<'s, '_, '_> {
                 Tok::LParen => {
                     let kw = self.next();
                     match kw.tok {
+                        // the default comes last (CLIPS refuses anything after it)
+                        Tok::Symbol("case" | "default") if default_seen => {
+                            return Err(self.syntax_of(
+                                kw,
+                                "')' ending switch (nothing may follow the default)",
+                                "switch function",
+                            ));
+                        }
                         Tok::Symbol("case") => {
                             let case = cap!(self, self.cx.push_expr(Expr::new(Op::Nop, 0, 0)))?;
                             let v = self.parse_expr()?;
                             self.cx.append_child(case, v);
                             let th = self.next();
                             if th.tok != Tok::Symbol("then") {
-                                return Err(self.err(th, "keyword 'then'"));
+                                return Err(self.syntax_of(
+                                    th,
+                                    "keyword 'then'",
+                                    "switch function",
+                                ));
                             }
                             let body = self.action_block()?;
                             self.cx.append_child(case, body);
                             self.cx.append_child(node, case);
                         }
                         Tok::Symbol("default") => {
+                            default_seen = true;
                             let case = cap!(self, self.cx.push_expr(Expr::new(Op::Nop, 1, 0)))?;
                             let body = self.action_block()?;
                             self.cx.append_child(case, body);

@@ -224,8 +224,11 @@ impl<'s> Parser<'s, '_, '_> {
                 }
                 Tok::Eof | Tok::Bad => return Err(self.err(t, "')'")),
                 _ if !def.multi && n == 1 => {
+                    // CLIPS shows the second value's first token glued to the first
                     let mut e = self.err(t, "one value for the single-field slot");
                     e.detail = LoadDetail::SingleSlot { slot: def.name };
+                    e.echo_end = t.end as u32;
+                    e.echo_tail = crate::error::EchoTail::Glued;
                     return Err(e);
                 }
                 _ => {
@@ -265,8 +268,11 @@ impl<'s> Parser<'s, '_, '_> {
             return Err(e);
         }
         if !def.multi && n != 1 {
+            // no value: CLIPS shows the slot as `(a )`
             let mut e = self.err(st, "exactly one value for a single-field slot");
             e.detail = LoadDetail::SingleSlot { slot: def.name };
+            e.echo_end = st.end as u32;
+            e.echo_tail = crate::error::EchoTail::SpaceBefore;
             return Err(e);
         }
         Ok(())

@@ -144,6 +144,9 @@ pub struct Parser<'s, 'c, 'e> {
     /// it found there (`Lexer::local_bind_candidate`), valid for any later start up to
     /// that find.
     bind_hint: (usize, usize),
+    /// `[PRCCODE3]` for a variable nothing binds, held until the construct is read
+    /// whole: CLIPS reports any other error of the construct first.
+    pub deferred: Option<LoadError>,
     /// The first rule the current defrule creates (see `compile::Compiler`).
     pub rule_base: Ix,
     /// The current defrule's name when it replaces a rule of that name (else NONE),
@@ -209,6 +212,7 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
             alpha_base: 0,
             keep: None,
             bind_hint: (usize::MAX, usize::MAX),
+            deferred: None,
         }
     }
 
@@ -227,6 +231,23 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
         match self.peeked.take() {
             Some(t) => t,
             None => self.lex.next_token(),
+        }
+    }
+
+    /// Fails with the error held back for the end of the construct, if any.
+    pub fn take_deferred(&mut self) -> PResult<()> {
+        match self.deferred.take() {
+            Some(e) => Err(e),
+            None => Ok(()),
+        }
+    }
+
+    /// Byte offset just past what was read (a peeked token is not read): where an
+    /// `ERROR:` echo of the text so far ends.
+    pub fn consumed_end(&self) -> usize {
+        match self.peeked {
+            Some(t) => t.start,
+            None => self.lex.pos(),
         }
     }
 
@@ -621,7 +642,14 @@ impl<'s, 'e> Parser<'s, '_, 'e> {
                         self.keep = None;
                         self.replacing = NONE;
                         self.cx.st.mode.defining = true;
+                        self.deferred = None;
                         let r = self.construct_body(kw, start);
+                        // (each construct takes its deferred error before it commits;
+                        // one left here means nothing may stay of the construct)
+                        let r = match (r, self.deferred.take()) {
+                            (Ok(()), Some(e)) => Err(e),
+                            (r, _) => r,
+                        };
                         self.cx.st.mode.defining = false;
                         if r.is_err() {
                             self.cx.rollback(self.keep.unwrap_or(cp));

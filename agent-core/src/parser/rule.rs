@@ -271,10 +271,12 @@ impl<'s> Parser<'s, '_, '_> {
         // soon as it is whole. A syntax error anywhere leaves no network behind.
         let exprs_mark = self.cx.st.pools.nexprs;
         self.read_disjunct(&body_lex, &mut b)?;
+        self.take_deferred()?;
         let several = b.nor > 0;
         if several {
             while b.next_choice() {
                 self.read_disjunct(&body_lex, &mut b)?;
+                self.take_deferred()?;
             }
             // (what a parse-time evaluation created stays: see `eval_now`)
             let keep = self.keep.map_or(0, |k| k.nexprs);
@@ -284,6 +286,7 @@ impl<'s> Parser<'s, '_, '_> {
         loop {
             if several {
                 self.read_disjunct(&body_lex, &mut b)?;
+                self.take_deferred()?;
             }
             if prev_rule != NONE {
                 self.join_marks.push_break();
@@ -411,27 +414,73 @@ impl<'s> Parser<'s, '_, '_> {
         Ok(())
     }
 
+    /// An error in `(declare ...)` as CLIPS reports it: `detail` at token `at`, the rule
+    /// shown up to `echo_end` (and ` )` when `at` is a `)` CLIPS read instead).
+    #[cold]
+    fn declare_error(
+        &self,
+        at: Token<'s>,
+        echo_end: usize,
+        expected: &'static str,
+        detail: crate::error::LoadDetail,
+    ) -> crate::error::LoadError {
+        let mut e = self.err(at, expected);
+        e.detail = detail;
+        e.echo_end = echo_end as u32;
+        if at.tok == Tok::RParen && echo_end <= at.start {
+            e.echo_tail = crate::error::EchoTail::SpaceBefore;
+        }
+        e
+    }
+
     fn declare(&mut self, b: &mut Build) -> PResult<(i32, Ix)> {
+        const DECLARE: crate::error::LoadDetail = crate::error::LoadDetail::SyntaxOf {
+            part: "declare statement",
+        };
         let mut sal = 0;
         let mut sal_expr = NONE;
         let mut seen_salience = false;
+        let mut seen_item = false;
+        let mut prev = self.consumed_end();
         loop {
             let t = self.next();
             match t.tok {
-                Tok::RParen => return Ok((sal, sal_expr)),
+                // `(declare)` declares nothing: CLIPS refuses it
+                Tok::RParen if seen_item => return Ok((sal, sal_expr)),
                 Tok::LParen => {
+                    seen_item = true;
                     let kw = self.next();
                     match kw.tok {
                         Tok::Symbol("salience") if seen_salience => {
-                            return Err(self.err(kw, "one salience declaration only"));
+                            return Err(self.declare_error(
+                                kw,
+                                kw.end,
+                                "one salience declaration only",
+                                crate::error::LoadDetail::Text {
+                                    text: "[PRNTUTIL5] The salience declaration has already been parsed.",
+                                },
+                            ));
                         }
                         Tok::Symbol("salience") => {
                             seen_salience = true;
+                            let vt = self.peek();
+                            if vt.tok == Tok::RParen {
+                                return Err(self.declare_error(
+                                    vt,
+                                    kw.end,
+                                    "an expression (the salience value)",
+                                    crate::error::LoadDetail::Text {
+                                        text: "[EXPRNPSR2] Expected a constant, variable, or expression.",
+                                    },
+                                ));
+                            }
                             let save = self.scope;
                             self.scope = Scope::Frame;
-                            let vt = self.peek();
                             let e = self.parse_expr()?;
                             self.scope = save;
+                            // (a variable nothing binds is not evaluated)
+                            self.take_deferred()?;
+                            let value_end = self.consumed_end();
                             if !matches!(self.cx.exprs[e as usize].op, Op::Int | Op::Float) {
                                 sal_expr = e;
                             }
@@ -443,13 +492,37 @@ impl<'s> Parser<'s, '_, '_> {
                             };
                             sal = match v {
                                 Ok(Value::Int(i)) if (-10000..=10000).contains(&i) => i as i32,
+                                Ok(Value::Int(_)) => {
+                                    return Err(self.declare_error(
+                                        vt,
+                                        value_end,
+                                        "a salience between -10000 and 10000",
+                                        crate::error::LoadDetail::Text {
+                                            text: "[PRNTUTIL9] Salience value out of range -10000 to 10000.",
+                                        },
+                                    ))
+                                }
                                 _ => {
-                                    return Err(self
-                                        .err(vt, "an integer salience between -10000 and 10000"))
+                                    return Err(self.declare_error(
+                                        vt,
+                                        value_end,
+                                        "an integer salience",
+                                        crate::error::LoadDetail::Text {
+                                            text: "[PRNTUTIL10] Salience value must be an integer value.",
+                                        },
+                                    ));
                                 }
                             };
                             b.salience = Some(sal);
-                            self.expect_rparen("')' after the salience")?;
+                            let close = self.next();
+                            if close.tok != Tok::RParen {
+                                return Err(self.declare_error(
+                                    close,
+                                    close.end,
+                                    "')' after the salience",
+                                    DECLARE,
+                                ));
+                            }
                         }
                         #[cfg(feature = "modules")]
                         Tok::Symbol("auto-focus") => {
@@ -457,20 +530,82 @@ impl<'s> Parser<'s, '_, '_> {
                             b.auto_focus = match vt.tok {
                                 Tok::Symbol("TRUE") => true,
                                 Tok::Symbol("FALSE") => false,
-                                _ => return Err(self.err(vt, "TRUE or FALSE for auto-focus")),
+                                _ => {
+                                    return Err(self.declare_error(
+                                        vt,
+                                        vt.end,
+                                        "TRUE or FALSE for auto-focus",
+                                        crate::error::LoadDetail::SyntaxOf {
+                                            part: "auto-focus statement",
+                                        },
+                                    ))
+                                }
                             };
-                            self.expect_rparen("')' after the auto-focus value")?;
+                            let close = self.next();
+                            if close.tok != Tok::RParen {
+                                return Err(self.declare_error(
+                                    close,
+                                    close.end,
+                                    "')' after the auto-focus value",
+                                    DECLARE,
+                                ));
+                            }
                         }
                         #[cfg(not(feature = "modules"))]
                         Tok::Symbol("auto-focus") => {
                             return Err(self.not_implemented(kw, "auto-focus"));
                         }
-                        _ => return Err(self.err(kw, "salience or auto-focus")),
+                        _ => {
+                            return Err(self.declare_error(
+                                kw,
+                                kw.end,
+                                "salience or auto-focus",
+                                DECLARE,
+                            ))
+                        }
                     }
                 }
-                _ => return Err(self.err(t, "'(' or ')' in declare")),
+                _ => {
+                    let echo_end = if t.tok == Tok::RParen { prev } else { t.end };
+                    let mut e = self.declare_error(t, echo_end, "'(' or ')' in declare", DECLARE);
+                    // after an item CLIPS shows the token glued to its `)`
+                    if seen_item && t.tok != Tok::RParen {
+                        e.echo_tail = crate::error::EchoTail::Glued;
+                    }
+                    return Err(e);
+                }
+            }
+            prev = self.consumed_end();
+        }
+    }
+
+    /// `(not A B)`: CLIPS reads the CEs after the first up to the not's `)` and then
+    /// refuses them, showing the rule up to there.
+    #[cold]
+    fn not_with_more_ces(&mut self) -> crate::error::LoadError {
+        let at = self.peek();
+        let mut e = self.syntax_of(
+            at,
+            "')' closing not (one CE only)",
+            "the not conditional element",
+        );
+        let mut depth = 1u32;
+        loop {
+            let t = self.next();
+            match t.tok {
+                Tok::LParen => depth += 1,
+                Tok::RParen => {
+                    depth -= 1;
+                    if depth == 0 {
+                        e.echo_end = t.end as u32;
+                        break;
+                    }
+                }
+                Tok::Eof | Tok::Bad => break,
+                _ => {}
             }
         }
+        e
     }
 
     /// One conditional element.
@@ -484,7 +619,15 @@ impl<'s> Parser<'s, '_, '_> {
             Tok::SfVar(fv) => {
                 let arrow = self.next();
                 if arrow.tok != Tok::Symbol("<-") {
-                    return Err(self.err(arrow, "'<-' after a fact-address variable"));
+                    let mut e = self.syntax_of(
+                        arrow,
+                        "'<-' after a fact-address variable",
+                        "binding patterns",
+                    );
+                    // CLIPS shows the variable and the token after it on one line
+                    e.start = t.start as u32;
+                    e.echo_tail = crate::error::EchoTail::OwnLine;
+                    return Err(e);
                 }
                 if ctx != Ctx::Top || b.groups > 0 {
                     return Err(self.err(
@@ -495,7 +638,10 @@ impl<'s> Parser<'s, '_, '_> {
                 if !b.in_logical {
                     b.plain_seen = true;
                 }
-                let lp = self.expect_lparen("'(' starting a pattern")?;
+                let lp = self.next();
+                if lp.tok != Tok::LParen {
+                    return Err(self.syntax_of(lp, "'(' starting a pattern", "binding patterns"));
+                }
                 if let Tok::Symbol(
                     "not" | "and" | "or" | "exists" | "forall" | "test" | "logical",
                 ) = self.peek().tok
@@ -527,6 +673,9 @@ impl<'s> Parser<'s, '_, '_> {
                         let r = self.quantified(b, Quant::of(kw), h);
                         self.nvars = saved;
                         r?;
+                        if kw == "not" && self.peek().tok == Tok::LParen {
+                            return Err(self.not_with_more_ces());
+                        }
                         self.expect_rparen(Quant::of(kw).closing())
                     }
                     Tok::Symbol("logical") => self.logical_ce(b, ctx, h),
@@ -599,7 +748,27 @@ impl<'s> Parser<'s, '_, '_> {
                         self.next();
                         self.ce_count = self.ce_count.saturating_add(1);
                         self.scope = Scope::Lhs;
+                        let p = self.peek();
+                        if p.tok == Tok::RParen {
+                            // `(test)`: CLIPS wanted a function call and shows `(test )`
+                            let mut e = self.syntax_of(p, "an expression", "function calls");
+                            e.echo_end = h.end as u32;
+                            e.echo_tail = crate::error::EchoTail::SpaceBefore;
+                            return Err(e);
+                        }
                         let e = self.parse_expr()?;
+                        let close = self.peek();
+                        if close.tok != Tok::RParen && close.tok != Tok::Eof {
+                            // a second argument: CLIPS shows the rule up to its first
+                            // token, glued to the expression
+                            let mut e = self.syntax_of(
+                                close,
+                                "')' closing test (it takes one expression)",
+                                "test conditional element",
+                            );
+                            e.echo_tail = crate::error::EchoTail::Glued;
+                            return Err(e);
+                        }
                         self.expect_rparen("')' closing test")?;
                         self.add_complexity(e);
                         self.attach_test_ce(b, e, h)
@@ -1141,8 +1310,33 @@ impl<'s> Parser<'s, '_, '_> {
                         if def.multi {
                             self.multislot_fields(&mut pb, p, slot as u8, st)?;
                         } else {
+                            let empty = self.peek();
+                            if empty.tok == Tok::RParen {
+                                // `(a)`: CLIPS wanted a field and shows `(a )`
+                                let mut e = self.err(empty, "a field for the single-field slot");
+                                e.echo_end = st.end as u32;
+                                e.echo_tail = crate::error::EchoTail::SpaceBefore;
+                                return Err(e);
+                            }
                             let (multi, test) =
                                 self.field(p, loc::new(slot as u8, loc::SINGLE), NONE)?;
+                            let close = self.peek();
+                            if multi && close.tok == Tok::RParen {
+                                // `(a $?y)`: CLIPS read the slot whole, then refused it
+                                let mut e = self
+                                    .err(st, "a single-field constraint for a single-field slot");
+                                e.detail = crate::error::LoadDetail::SingleSlot { slot: def.name };
+                                e.echo_end = close.end as u32;
+                                return Err(e);
+                            }
+                            if !matches!(close.tok, Tok::RParen | Tok::Eof | Tok::Bad) {
+                                // a second field: CLIPS shows the rule up to it
+                                return Err(self.syntax_of(
+                                    close,
+                                    "')' closing the slot (one field in a single-field slot)",
+                                    "deftemplate patterns",
+                                ));
+                            }
                             if multi {
                                 return Err(self
                                     .err(st, "a single-field constraint for a single-field slot"));
@@ -1676,8 +1870,9 @@ impl<'s> Parser<'s, '_, '_> {
                 }
                 None => {
                     let mut e = self.err(t, "a constraint (literal, variable, ~, :( ) or =( ))");
-                    // CLIPS shows the rule up to a `(` where a field was due
-                    if t.tok == Tok::LParen {
+                    // CLIPS shows the rule up to the token where a field was due (a
+                    // `(`, or the `)` after a dangling `&`, `|` or `~`)
+                    if !matches!(t.tok, Tok::Eof | Tok::Bad) {
                         e.echo_end = t.end as u32;
                     }
                     Err(e)

@@ -145,7 +145,10 @@ impl<'s> Parser<'s, '_, '_> {
                     let at = self.next();
                     let attr = match at.tok {
                         Tok::Symbol(s) => s,
-                        _ => return Err(self.err(at, "a slot attribute")),
+                        _ => {
+                            let e = self.err(at, "a slot attribute");
+                            return Err(echoed(e, at, EchoTail::Normal));
+                        }
                     };
                     match attr {
                         "default" | "default-dynamic" => {
@@ -259,13 +262,29 @@ impl<'s> Parser<'s, '_, '_> {
         at: Token<'s>,
         attribute: &'static str,
     ) -> PResult<Option<(ValuesAt<'s>, &'static str)>> {
-        if let Tok::SfVar(v @ ("NONE" | "DERIVE")) = self.peek().tok {
+        let what = if attribute == "default" {
+            "default attribute"
+        } else {
+            "default-dynamic attribute"
+        };
+        let vt = self.peek();
+        if let Tok::SfVar(v @ ("NONE" | "DERIVE")) = vt.tok {
             self.next();
+            if attribute != "default" {
+                // only a static default may be ?NONE or ?DERIVE
+                let e = self.attribute_syntax(vt, "a value (not ?NONE or ?DERIVE)", what);
+                return Err(echoed(e, vt, EchoTail::Normal));
+            }
             def.default_kind = if v == "NONE" {
                 DefaultKind::Required
             } else {
                 DefaultKind::Derived
             };
+            let close = self.peek();
+            if !matches!(close.tok, Tok::RParen | Tok::Eof | Tok::Bad) {
+                let e = self.attribute_syntax(close, "')' after the default", what);
+                return Err(echoed(e, close, EchoTail::Normal));
+            }
             self.expect_rparen("')' after the default")?;
             return Ok(None);
         }
@@ -286,6 +305,11 @@ impl<'s> Parser<'s, '_, '_> {
                     break t;
                 }
                 Tok::Eof | Tok::Bad => return Err(self.err(t, "')'")),
+                // a default cannot read a variable (nothing binds one there)
+                Tok::SfVar(_) | Tok::MfVar(_) => {
+                    let e = self.attribute_syntax(t, "a constant, global or call", what);
+                    return Err(echoed(e, t, EchoTail::Normal));
+                }
                 _ => {
                     if n == 1 {
                         second = t;
@@ -403,7 +427,8 @@ impl<'s> Parser<'s, '_, '_> {
             let tt = self.next();
             let bits = match tt.tok {
                 Tok::RParen if mask == 0 && !variable => {
-                    return Err(self.attribute_syntax(tt, "a type name", "type attribute"))
+                    let e = self.attribute_syntax(tt, "a type name", "type attribute");
+                    return Err(echoed(e, tt, EchoTail::Normal));
                 }
                 Tok::RParen => return Ok(if variable { 0 } else { mask }),
                 // ?VARIABLE stands alone
@@ -415,7 +440,8 @@ impl<'s> Parser<'s, '_, '_> {
                     return Err(self.attribute_syntax(tt, "?VARIABLE alone", "type attribute"))
                 }
                 _ if variable => {
-                    return Err(self.attribute_syntax(tt, "')' after ?VARIABLE", "type attribute"))
+                    let e = self.attribute_syntax(tt, "')' after ?VARIABLE", "type attribute");
+                    return Err(echoed(e, tt, EchoTail::SpaceAfter));
                 }
                 Tok::Symbol("SYMBOL") => types::SYMBOL,
                 Tok::Symbol("STRING") => types::STRING,
