@@ -326,6 +326,9 @@ impl Core<'_> {
             }
             self.delete_token(c);
         }
+        // CLIPS deletes its initial-object between the two
+        #[cfg(feature = "extras")]
+        self.trace_initial_object(false);
         while self.st.facts.fact_head != NONE {
             let f = self.st.facts.fact_head;
             self.retract_fact(f);
@@ -353,6 +356,8 @@ impl Core<'_> {
             let init = self.globals[g as usize].init;
             if init != NONE {
                 let v = self.eval(init)?;
+                #[cfg(feature = "extras")]
+                self.trace_global(g, v);
                 self.set_global(g, v)?;
             }
         }
@@ -380,6 +385,9 @@ impl Core<'_> {
                 j = self.joins[j].next_sibling;
             }
         }
+        // (and makes its initial-object again before its initial-fact)
+        #[cfg(feature = "extras")]
+        self.trace_initial_object(true);
         if self.st.mode.initial_deffacts {
             self.assert_initial_fact()?;
         }
@@ -431,7 +439,7 @@ impl Core<'_> {
     pub fn clear(&mut self) -> Result<(), EvalError> {
         let w = self.st.mode.watch;
         #[cfg(feature = "extras")]
-        let keep_globals = self.st.mode.keep_globals;
+        let (keep_globals, cool_watch) = (self.st.mode.keep_globals, self.st.mode.cool_watch);
         let next = self.st.pools.nexternals;
         let ext_syms = self.st.pools.ext_syms;
         let rom_syms = self.st.rom.symbols;
@@ -579,10 +587,13 @@ impl Core<'_> {
         #[cfg(feature = "extras")]
         {
             self.st.mode.keep_globals = keep_globals;
+            self.st.mode.cool_watch = cool_watch;
         }
         // CLIPS's clear ends with a reset's focus on MAIN (the stack holds MAIN)
         #[cfg(feature = "modules")]
         self.reset_focus()?;
+        #[cfg(feature = "extras")]
+        self.trace_initial_object(true);
         if keep == 0 {
             self.startup()
         } else {

@@ -49,6 +49,20 @@ pub mod watch {
     pub const STATISTICS: u8 = 16;
     /// `(watch focus)` (feature `modules`).
     pub const FOCUS: u8 = 32;
+    /// `(watch globals)`: `:== ?*x* ==> new <== old` (feature `extras`).
+    pub const GLOBALS: u8 = 64;
+    /// `(watch deffunctions)`: `DFN >> f ED:1 (args)` (feature `extras`).
+    pub const DEFFUNCTIONS: u8 = 128;
+
+    /// COOL's watch items (`Mode::cool_watch`, feature `extras`).
+    pub mod cool {
+        pub const INSTANCES: u8 = 1;
+        pub const SLOTS: u8 = 2;
+        pub const MESSAGES: u8 = 4;
+        pub const MESSAGE_HANDLERS: u8 = 8;
+        pub const GENERIC_FUNCTIONS: u8 = 16;
+        pub const METHODS: u8 = 32;
+    }
 }
 
 /// High-water marks (entries in use at most) of every pool.
@@ -353,6 +367,10 @@ pub struct EvalState {
     /// Top-level fact-set queries running (outside a firing): a fact they retract
     /// stays pending, its cells readable by `?f:slot`, until the tuple is done.
     pub query_hold: u16,
+    /// Deffunction calls under way, counted from before their arguments are
+    /// evaluated: CLIPS's evaluation depth (`ED:` in `(watch deffunctions)`).
+    #[cfg(feature = "extras")]
+    pub dfn_depth: u16,
 }
 
 impl EvalState {
@@ -371,6 +389,8 @@ impl EvalState {
             gensym_next: 1,
             command_base: 0,
             query_hold: 0,
+            #[cfg(feature = "extras")]
+            dfn_depth: 0,
         }
     }
 }
@@ -505,6 +525,10 @@ pub struct Mode {
     /// are (set by agent-core feature `extras`; kept across `clear`, as CLIPS keeps
     /// it; the byte fits the struct's padding).
     pub keep_globals: bool,
+    /// COOL's watch items (`watch::cool`), accepted where only `initial-object`
+    /// can make them trace (agent-core feature `extras`).
+    #[cfg(feature = "extras")]
+    pub cool_watch: u8,
 }
 
 impl Mode {
@@ -527,6 +551,8 @@ impl Mode {
             twins_made: false,
             seq_ops: false,
             keep_globals: false,
+            #[cfg(feature = "extras")]
+            cool_watch: 0,
         }
     }
 }

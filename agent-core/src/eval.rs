@@ -540,6 +540,40 @@ impl Core<'_> {
         if self.st.mode.halting {
             return Ok(Value::Sym(SYM_FALSE));
         }
+        // CLIPS counts the call's depth before it evaluates the arguments
+        #[cfg(feature = "extras")]
+        {
+            self.st.eval.dfn_depth += 1;
+            let r = self.call_deffunction_args(func, first_arg);
+            self.st.eval.dfn_depth -= 1;
+            r
+        }
+        #[cfg(not(feature = "extras"))]
+        self.call_deffunction_args(func, first_arg)
+    }
+
+    #[inline(always)]
+    fn call_deffunction_args(&mut self, func: Ix, first_arg: Ix) -> Result<Value, EvalError> {
+        #[cfg(feature = "extras")]
+        let args = match self.push_args(first_arg) {
+            Ok(args) => args,
+            // an argument's error already printed (a deffunction it called halted):
+            // CLIPS adds that it happened in this call's arguments
+            Err(e)
+                if e.reported
+                    && !matches!(
+                        e.kind(),
+                        EvalErrorKind::TooDeep { .. }
+                            | EvalErrorKind::Exit
+                            | EvalErrorKind::Capacity(_)
+                    ) =>
+            {
+                let _ = self.deffunction_args_failed(func);
+                return Err(e);
+            }
+            Err(e) => return Err(e),
+        };
+        #[cfg(not(feature = "extras"))]
         let args = self.push_args(first_arg)?;
         // an argument failed with CLIPS's evaluation error: FALSE, the body not run
         if self.st.mode.halting {
@@ -597,13 +631,19 @@ impl Core<'_> {
                 for i in 0..args.len {
                     self.push_value(self.stack[(args.base + i) as usize])?;
                 }
-                self.apply_deffunction(
-                    f,
-                    Args {
-                        base,
-                        len: args.len,
-                    },
-                )
+                let args = Args {
+                    base,
+                    len: args.len,
+                };
+                #[cfg(feature = "extras")]
+                {
+                    self.st.eval.dfn_depth += 1;
+                    let r = self.apply_deffunction(f, args);
+                    self.st.eval.dfn_depth -= 1;
+                    r
+                }
+                #[cfg(not(feature = "extras"))]
+                self.apply_deffunction(f, args)
             }
             Callee::External(e) => {
                 let ext = self.externals[e as usize];
@@ -618,6 +658,15 @@ impl Core<'_> {
 
     /// Runs deffunction `func` on the arguments `args`, the top of the stack (its frame).
     fn apply_deffunction(&mut self, func: Ix, args: Args) -> Result<Value, EvalError> {
+        #[cfg(feature = "extras")]
+        if self.st.mode.watch & crate::engine::watch::DEFFUNCTIONS != 0 {
+            return self.apply_traced(func, args);
+        }
+        self.apply_untraced(func, args)
+    }
+
+    /// `apply_deffunction` without its trace.
+    pub(crate) fn apply_untraced(&mut self, func: Ix, args: Args) -> Result<Value, EvalError> {
         let df = self.funcs[func as usize];
         let n = args.len as usize;
         let np = df.nparams as usize;

@@ -476,4 +476,7 @@ differential_programs! {
     p600_module_specifier_on_fact_name => "600-module-specifier-on-fact-name",
     p601_type_function => "601-type-function",
     p602_string_limits => "602-string-limits",
+    p660_watch_deffunctions => "660-watch-deffunctions",
+    p661_watch_globals => "661-watch-globals",
+    p662_watch_all => "662-watch-all",
 }

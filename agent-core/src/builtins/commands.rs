@@ -173,8 +173,13 @@ fn agenda(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 pub(crate) enum WatchItem {
     /// An item we trace: its `watch::*` bit.
     Traced(u8),
+    /// A COOL item (`watch::cool` bit): accepted, traced where `initial-object` is.
+    #[cfg(feature = "extras")]
+    Cool(u8),
     All,
-    /// An item CLIPS traces and we do not (refused, see `parser::expr`).
+    /// An item CLIPS traces and we do not (refused, see `parser::expr`; none with
+    /// `extras` and `modules`).
+    #[cfg_attr(all(feature = "extras", feature = "modules"), allow(dead_code))]
     Untraced,
     Unknown,
 }
@@ -191,15 +196,35 @@ pub(crate) fn watch_item(name: &str) -> WatchItem {
         "focus" => WatchItem::Traced(watch::FOCUS),
         #[cfg(not(feature = "modules"))]
         "focus" => WatchItem::Untraced,
-        "globals" | "deffunctions" | "generic-functions" | "methods" | "instances" | "slots"
-        | "messages" | "message-handlers" => WatchItem::Untraced,
+        #[cfg(feature = "extras")]
+        "globals" => WatchItem::Traced(watch::GLOBALS),
+        #[cfg(feature = "extras")]
+        "deffunctions" => WatchItem::Traced(watch::DEFFUNCTIONS),
+        #[cfg(not(feature = "extras"))]
+        "globals" | "deffunctions" => WatchItem::Untraced,
+        #[cfg(feature = "extras")]
+        "instances" => WatchItem::Cool(watch::cool::INSTANCES),
+        #[cfg(feature = "extras")]
+        "slots" => WatchItem::Cool(watch::cool::SLOTS),
+        #[cfg(feature = "extras")]
+        "messages" => WatchItem::Cool(watch::cool::MESSAGES),
+        #[cfg(feature = "extras")]
+        "message-handlers" => WatchItem::Cool(watch::cool::MESSAGE_HANDLERS),
+        #[cfg(feature = "extras")]
+        "generic-functions" => WatchItem::Cool(watch::cool::GENERIC_FUNCTIONS),
+        #[cfg(feature = "extras")]
+        "methods" => WatchItem::Cool(watch::cool::METHODS),
+        #[cfg(not(feature = "extras"))]
+        "generic-functions" | "methods" | "instances" | "slots" | "messages"
+        | "message-handlers" => WatchItem::Untraced,
         _ => WatchItem::Unknown,
     }
 }
 
-/// The trace bits of `watch`/`unwatch`'s items; the parser refused literal items we
-/// do not trace, and one that arrives in a variable is refused here.
-fn watch_bits(cx: &Core<'_>, a: Args, func: &'static str) -> Result<u8, EvalError> {
+/// The trace bits of `watch`/`unwatch`'s items (COOL's, feature `extras`, in the high
+/// byte); the parser refused literal items we do not trace, and one that arrives in a
+/// variable is refused here.
+fn watch_bits(cx: &Core<'_>, a: Args, func: &'static str) -> Result<u16, EvalError> {
     let mut bits = 0;
     if a.len > 1 {
         // construct names after the item
@@ -208,8 +233,10 @@ fn watch_bits(cx: &Core<'_>, a: Args, func: &'static str) -> Result<u8, EvalErro
     for i in 0..a.len as usize {
         let s = cx.arg_lexeme(a, i, func)?;
         bits |= match watch_item(cx.sym_text(s)) {
-            WatchItem::Traced(b) => b,
-            WatchItem::All if func == "unwatch" => 0xFF,
+            WatchItem::Traced(b) => u16::from(b),
+            #[cfg(feature = "extras")]
+            WatchItem::Cool(b) => u16::from(b) << 8,
+            WatchItem::All if func == "unwatch" || ALL_TRACED => 0xFFFF,
             WatchItem::Unknown => {
                 return Err(EvalError::wrong_type(
                     func,
@@ -223,15 +250,26 @@ fn watch_bits(cx: &Core<'_>, a: Args, func: &'static str) -> Result<u8, EvalErro
     Ok(bits)
 }
 
+/// `(watch all)` is taken when every item is (COOL's by `extras`, focus by `modules`).
+pub(crate) const ALL_TRACED: bool = cfg!(all(feature = "extras", feature = "modules"));
+
 fn watch_(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let b = watch_bits(cx, a, "watch")?;
-    cx.st.mode.watch |= b;
+    cx.st.mode.watch |= b as u8;
+    #[cfg(feature = "extras")]
+    {
+        cx.st.mode.cool_watch |= (b >> 8) as u8;
+    }
     Ok(Value::Void)
 }
 
 fn unwatch(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let b = watch_bits(cx, a, "unwatch")?;
-    cx.st.mode.watch &= !b;
+    cx.st.mode.watch &= !(b as u8);
+    #[cfg(feature = "extras")]
+    {
+        cx.st.mode.cool_watch &= !((b >> 8) as u8);
+    }
     Ok(Value::Void)
 }
 

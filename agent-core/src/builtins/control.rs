@@ -331,7 +331,11 @@ fn store_bound(cx: &mut Core<'_>, target: Ix, value: Value) -> Result<(), EvalEr
             let at = (cx.st.frame.bp + t.data) as usize;
             cx.stack[at] = value;
         }
-        Op::Global => cx.set_global(t.data, value)?,
+        Op::Global => {
+            #[cfg(feature = "extras")]
+            cx.trace_global(t.data, value);
+            cx.set_global(t.data, value)?
+        }
         _ => {
             return Err(EvalError::new(EvalErrorKind::UnboundVariable {
                 name: NONE,

@@ -87,21 +87,31 @@ fn state(cx: &Core<'_>, bit: u8) -> &'static str {
     }
 }
 
+/// `on` or `off` for a COOL item (`watch::cool`).
+fn cool_state(cx: &Core<'_>, bit: u8) -> &'static str {
+    if cx.st.mode.cool_watch & bit != 0 {
+        "on"
+    } else {
+        "off"
+    }
+}
+
 /// `(list-watch-items [ITEM [NAME...]])`: every item's state; one item's state and,
 /// for items about constructs, each construct's (by module, or the ones named). A
 /// construct is traced exactly when its item is (`watch` takes no construct names
-/// here; a rule shows its `activations` state under `rules` too, as CLIPS 6.30 does),
-/// and the items we do not trace (`globals`, `deffunctions`, ...) are off. COOL's
-/// items with constructs (`instances`, `slots`, `message-handlers`) are refused.
+/// here; a rule shows its `activations` state under `rules` too, as CLIPS 6.30 does).
+/// COOL's items with constructs (`instances`, `slots`, `message-handlers`: CLIPS
+/// lists its system classes and handlers) are refused.
 fn list_watch_items(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     if a.len == 0 {
         for item in WATCH_ITEMS {
-            let bit = match super::commands::watch_item(item) {
-                WatchItem::Traced(bit) => bit,
-                _ => 0,
+            let on = match super::commands::watch_item(item) {
+                WatchItem::Traced(bit) => state(cx, bit),
+                WatchItem::Cool(bit) => cool_state(cx, bit),
+                _ => "off",
             };
             let mut b: TextBuf<64> = TextBuf::new();
-            let _ = writeln!(b, "{item} = {}", state(cx, bit));
+            let _ = writeln!(b, "{item} = {on}");
             cx.write(router::WDISPLAY, b.as_str());
         }
         return Ok(Value::Void);
@@ -111,12 +121,18 @@ fn list_watch_items(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     };
     let mut name: TextBuf<32> = TextBuf::new();
     let _ = name.write_str(cx.sym_text(item));
-    let bit = match super::commands::watch_item(name.as_str()) {
-        WatchItem::Traced(bit) => bit,
-        WatchItem::Untraced => 0,
+    let (bit, cool) = match super::commands::watch_item(name.as_str()) {
+        WatchItem::Traced(bit) => (bit, 0),
+        WatchItem::Cool(bit) => (0, bit),
+        WatchItem::Untraced => (0, 0),
         WatchItem::All | WatchItem::Unknown => {
             return Err(watch_arg_error(cx, 1, "watchable symbol"))
         }
+    };
+    let item_state = if cool != 0 {
+        cool_state(cx, cool)
+    } else {
+        state(cx, bit)
     };
     // what the item's constructs are, and how CLIPS names their kind
     let kind = match name.as_str() {
@@ -135,7 +151,7 @@ fn list_watch_items(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
                 return Err(EvalError::already_reported());
             }
             let mut b: TextBuf<64> = TextBuf::new();
-            let _ = writeln!(b, "{} = {}", name.as_str(), state(cx, bit));
+            let _ = writeln!(b, "{} = {item_state}", name.as_str());
             cx.write(router::WDISPLAY, b.as_str());
             return Ok(Value::Void);
         }
@@ -149,7 +165,7 @@ fn list_watch_items(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         }
     };
     let mut b: TextBuf<64> = TextBuf::new();
-    let _ = writeln!(b, "{} = {}", name.as_str(), state(cx, bit));
+    let _ = writeln!(b, "{} = {item_state}", name.as_str());
     // CLIPS 6.30 shows a rule's activations trace under `rules` too
     let on = state(
         cx,
@@ -162,7 +178,12 @@ fn list_watch_items(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     cx.write(router::WDISPLAY, b.as_str());
     let Some((kind, kind_name)) = kind else {
         if a.len > 1 {
-            return Err(watch_arg_error(cx, 2, "generic function"));
+            let expected = if name.as_str() == "methods" {
+                "generic function name"
+            } else {
+                "defgeneric"
+            };
+            return Err(watch_arg_error(cx, 2, expected));
         }
         list_modules(cx, |_, _| {});
         return Ok(Value::Void);

@@ -48,6 +48,8 @@ mod save_facts;
 pub mod strings;
 pub mod syntax;
 pub mod template_slots;
+#[cfg(feature = "extras")]
+mod trace;
 
 use crate::engine::Core;
 use crate::error::{CapacityError, EvalError};

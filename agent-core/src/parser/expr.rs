@@ -522,7 +522,12 @@ impl<'s> Parser<'s, '_, '_> {
             let known = k > 1
                 || match crate::builtins::commands::watch_item(self.cx.sym_text(x.data)) {
                     crate::builtins::commands::WatchItem::Traced(_) => continue,
-                    crate::builtins::commands::WatchItem::All if func == "unwatch" => continue,
+                    crate::builtins::commands::WatchItem::Cool(_) => continue,
+                    crate::builtins::commands::WatchItem::All
+                        if func == "unwatch" || crate::builtins::commands::ALL_TRACED =>
+                    {
+                        continue
+                    }
                     crate::builtins::commands::WatchItem::Unknown => false,
                     _ => true,
                 };
