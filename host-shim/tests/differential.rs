@@ -479,4 +479,5 @@ differential_programs! {
     p660_watch_deffunctions => "660-watch-deffunctions",
     p661_watch_globals => "661-watch-globals",
     p662_watch_all => "662-watch-all",
+    p663_implied_templates_kept => "663-implied-templates-kept",
 }

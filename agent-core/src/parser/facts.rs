@@ -63,7 +63,11 @@ impl<'s> Parser<'s, '_, '_> {
         let sym = cap!(self, self.cx.intern(name))?;
         let tmpl = match self.template_in(module, sym) {
             Some(t) => t,
-            None => cap!(self, self.cx.implied_template(sym))?,
+            None => {
+                let t = cap!(self, self.cx.implied_template(sym))?;
+                self.note_implied();
+                t
+            }
         };
         let spec = cap!(self, self.cx.push_expr(Expr::new(Op::FactSpec, 0, tmpl)))?;
         if self.cx.templates[tmpl as usize].implied {

@@ -147,6 +147,9 @@ pub struct Parser<'s, 'c, 'e> {
     /// `[PRCCODE3]` for a variable nothing binds, held until the construct is read
     /// whole: CLIPS reports any other error of the construct first.
     pub deferred: Option<LoadError>,
+    /// Symbols in use (count, bytes) when the current item last made an implied
+    /// template: CLIPS keeps those templates when the item fails (`spare_implied`).
+    pub implied_mark: Option<(Ix, Ix)>,
     /// The first rule the current defrule creates (see `compile::Compiler`).
     pub rule_base: Ix,
     /// The current defrule's name when it replaces a rule of that name (else NONE),
@@ -213,6 +216,7 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
             keep: None,
             bind_hint: (usize::MAX, usize::MAX),
             deferred: None,
+            implied_mark: None,
         }
     }
 
@@ -605,6 +609,7 @@ impl<'s, 'e> Parser<'s, '_, 'e> {
         // (a construct that failed may leave it set)
         self.evaluated_now = false;
         self.loop_depth = 0;
+        self.implied_mark = None;
         let t = self.peek();
         match t.tok {
             Tok::Eof => Ok(Item::End),
@@ -652,7 +657,8 @@ impl<'s, 'e> Parser<'s, '_, 'e> {
                         };
                         self.cx.st.mode.defining = false;
                         if r.is_err() {
-                            self.cx.rollback(self.keep.unwrap_or(cp));
+                            let cp = self.spare_implied(self.keep.unwrap_or(cp));
+                            self.cx.rollback(cp);
                             if self.replacing != NONE && !self.check_only {
                                 match kw {
                                     "defrule" => self.drop_replaced_rule(),
@@ -671,6 +677,7 @@ impl<'s, 'e> Parser<'s, '_, 'e> {
                         match self.parse_expr() {
                             Ok(e) => Ok(Item::Command(e)),
                             Err(err) => {
+                                let cp = self.spare_implied(cp);
                                 self.cx.rollback(cp);
                                 Err(err)
                             }
@@ -755,6 +762,35 @@ impl<'s, 'e> Parser<'s, '_, 'e> {
                 self.cx.funcs[f as usize].name = NONE;
             }
         }
+    }
+
+    /// Notes that an implied template was just made (see `implied_mark`).
+    pub(crate) fn note_implied(&mut self) {
+        self.implied_mark = Some((self.cx.st.pools.nsyms, self.cx.st.pools.sym_bytes));
+    }
+
+    /// Where a failed item rolls back to instead of `cp`: past the implied templates
+    /// it made (the run of them right after `cp`), their slots and names, which CLIPS
+    /// keeps (`list-deftemplates` shows them); `check-syntax` keeps nothing.
+    fn spare_implied(&self, mut cp: crate::engine::Checkpoint) -> crate::engine::Checkpoint {
+        let Some((nsyms, sym_bytes)) = self.implied_mark else {
+            return cp;
+        };
+        if self.check_only {
+            return cp;
+        }
+        let mut t = cp.ntemplates;
+        while t < self.cx.st.pools.ntemplates && self.cx.templates[t as usize].implied {
+            let tm = self.cx.templates[t as usize];
+            cp.nslots = cp.nslots.max(tm.first_slot + tm.nslots);
+            t += 1;
+        }
+        if t > cp.ntemplates {
+            cp.ntemplates = t;
+            cp.nsyms = cp.nsyms.max(nsyms);
+            cp.sym_bytes = cp.sym_bytes.max(sym_bytes);
+        }
+        cp
     }
 
     /// Evaluates a parse-time expression (salience, a global's value). Facts it

@@ -1233,7 +1233,11 @@ impl<'s> Parser<'s, '_, '_> {
                 e.echo_end = self.peek().end as u32;
                 return Err(e);
             }
-            None => cap!(self, self.cx.implied_template(sym))?,
+            None => {
+                let t = cap!(self, self.cx.implied_template(sym))?;
+                self.note_implied();
+                t
+            }
         };
         self.pat_tmpl[p as usize] = tmpl;
         self.ce_count = self.ce_count.saturating_add(1);

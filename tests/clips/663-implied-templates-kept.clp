@@ -1,0 +1,23 @@
+; A construct or command that fails keeps the implied deftemplates its text made
+; before the error (a rule's patterns and asserts, a deffacts' facts), as CLIPS does;
+; check-syntax keeps none.
+(defrule bad (foo 1) (bar ?x) => (printout t (+ a)))
+(list-deftemplates)
+(defrule bad2 (baz 1) (qux ?x&:(+ a)) => )
+(list-deftemplates)
+(deffacts df (d1 1) (d2 (+ a)))
+(list-deftemplates)
+(assert (a1 1) (a2 (+ a)))
+(list-deftemplates)
+(facts)
+(defrule bad3 (zz 1) (test (+ a)) => )
+(defrule okr (p1 ?x) => (assert (rhs1 ?x) (rhs2 (+ a))))
+(list-deftemplates)
+(check-syntax "(defrule x (newt 1) => (+ a))")
+(build "(defrule bb (built 1) => (+ a))")
+(eval "(assert (ev 1) (ev2 (+ a)))")
+(list-deftemplates)
+(assert (foo 1) (bar 2) (zz 3))
+(defrule use (foo ?x) (bar ?y) => (printout t ?x " " ?y crlf))
+(run)
+(exit)
