@@ -480,4 +480,5 @@ differential_programs! {
     p661_watch_globals => "661-watch-globals",
     p662_watch_all => "662-watch-all",
     p663_implied_templates_kept => "663-implied-templates-kept",
+    p664_options => "664-options",
 }

@@ -26,6 +26,7 @@ pub const FUNCS: &[Builtin] = &[
         .args(&[super::describe::ArgType::Multifield], super::describe::ArgType::Any)
         .on_error(super::describe::OnError::False),
     Builtin::lazy("timer", 0, ANY, timer),
+    Builtin::eager("options", 0, 0, options),
     Builtin::eager("save", 1, 1, save).on_error(super::describe::OnError::False),
     Builtin::eager("set-break", 1, 1, set_break)
         .args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any),
@@ -453,6 +454,7 @@ const RESTRICTIONS: &[(&str, &str)] = &[
     ("oddp", "11i"),
     ("open", "23*k"),
     ("operating-system", "00"),
+    ("options", "00"),
     ("or", "2*"),
     ("pi", "00"),
     ("pointerp", "11"),
@@ -996,3 +998,37 @@ impl SaveFile {
         self.put(cx, |cx, w| pp(cx, cx.sym_text(text), w));
     }
 }
+
+/// `(options)`: the compile-time settings of the CLIPS build robotino-agent answers
+/// for, Debian's CLIPS 6.30 (its text, as `operating-system` answers its `UNKNOWN`).
+fn options(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
+    cx.write(router::WDISPLAY, OPTIONS);
+    Ok(Value::Void)
+}
+
+const OPTIONS: &str = "Machine type: Generic \n\
+Defrule construct is ON
+Defmodule construct is ON
+Deftemplate construct is ON
+  Fact-set queries are ON
+  Deffacts construct is ON
+Defglobal construct is ON
+Deffunction construct is ON
+Defgeneric/Defmethod constructs are ON
+Object System is ON
+  Definstances construct is ON
+  Instance-set queries are ON
+  Binary loading of instances is ON
+  Binary saving of instances is ON
+Extended math function package is ON
+Text processing function package is ON
+Bload capability is BLOAD AND BSAVE
+Construct compiler is ON
+I/O function package is ON
+String function package is ON
+Multifield function package is ON
+Debugging function package is ON
+Window Interface flag is OFF
+Developer flag is OFF
+Run time module is OFF
+";
