@@ -90,11 +90,12 @@ fn state(cx: &Core<'_>, bit: u8) -> &'static str {
 
 /// `on` or `off` for a COOL item (`watch::cool`).
 fn cool_state(cx: &Core<'_>, bit: u8) -> &'static str {
+    #[cfg(feature = "extras")]
     if cx.st.mode.cool_watch & bit != 0 {
-        "on"
-    } else {
-        "off"
+        return "on";
     }
+    let _ = (cx, bit);
+    "off"
 }
 
 /// `(list-watch-items [ITEM [NAME...]])`: every item's state; one item's state and,
@@ -108,6 +109,7 @@ fn list_watch_items(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         for item in WATCH_ITEMS {
             let on = match super::commands::watch_item(item) {
                 WatchItem::Traced(bit) => state(cx, bit),
+                #[cfg(feature = "extras")]
                 WatchItem::Cool(bit) => cool_state(cx, bit),
                 _ => "off",
             };
@@ -124,6 +126,7 @@ fn list_watch_items(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let _ = name.write_str(cx.sym_text(item));
     let (bit, cool) = match super::commands::watch_item(name.as_str()) {
         WatchItem::Traced(bit) => (bit, 0),
+        #[cfg(feature = "extras")]
         WatchItem::Cool(bit) => (0, bit),
         WatchItem::Untraced => (0, 0),
         WatchItem::All | WatchItem::Unknown => {
