@@ -305,16 +305,28 @@ fn unimplemented_constructs_are_refused() {
         assert_eq!(err.detail, LoadDetail::ModuleSpecifier, "{bad}");
         assert_eq!(e.usage(), before, "leftovers after {bad:?}");
     }
-    // watch of an item we do not trace, literal or in a variable
+    // watch of an item we do not trace, literal or in a variable: construct names
+    // always; globals, deffunctions and COOL's items without `extras`, focus (and so
+    // all) without `modules`
     let mut e = Box::new(SmallEngine::new());
     let h = &mut Quiet;
     #[cfg(not(feature = "modules"))]
     assert!(e.eval_str(h, "(watch focus)").is_err());
-    for cmd in ["(watch all)", "(watch facts good)", "(unwatch globals)"] {
-        assert!(e.eval_str(h, cmd).is_err(), "{cmd}");
+    assert!(e.eval_str(h, "(watch facts good)").is_err());
+    let traced = cfg!(feature = "extras");
+    let all = cfg!(all(feature = "extras", feature = "modules"));
+    for (cmd, ok) in [
+        ("(watch all)", all),
+        ("(unwatch globals)", traced),
+        ("(watch deffunctions)", traced),
+        ("(watch instances)", traced),
+    ] {
+        assert_eq!(e.eval_str(h, cmd).is_ok(), ok, "{cmd}");
     }
     assert!(e.eval_str(h, "(bind ?w globals)").is_ok());
-    assert!(e.eval_str(h, "(watch ?w)").is_err());
+    assert_eq!(e.eval_str(h, "(watch ?w)").is_ok(), traced);
+    assert!(e.eval_str(h, "(bind ?w facts)").is_ok());
+    assert!(e.eval_str(h, "(watch ?w good)").is_err());
     for cmd in ["(watch facts)", "(unwatch all)", "(watch rules)"] {
         assert!(e.eval_str(h, cmd).is_ok(), "{cmd}");
     }
