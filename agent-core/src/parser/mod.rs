@@ -656,8 +656,9 @@ impl<'s, 'e> Parser<'s, '_, 'e> {
                             (r, _) => r,
                         };
                         self.cx.st.mode.defining = false;
-                        if r.is_err() {
-                            let cp = self.spare_implied(self.keep.unwrap_or(cp));
+                        if let Err(e) = &r {
+                            let cp = self.keep.unwrap_or(cp);
+                            let cp = self.spare_implied(cp, e);
                             self.cx.rollback(cp);
                             if self.replacing != NONE && !self.check_only {
                                 match kw {
@@ -677,7 +678,7 @@ impl<'s, 'e> Parser<'s, '_, 'e> {
                         match self.parse_expr() {
                             Ok(e) => Ok(Item::Command(e)),
                             Err(err) => {
-                                let cp = self.spare_implied(cp);
+                                let cp = self.spare_implied(cp, &err);
                                 self.cx.rollback(cp);
                                 Err(err)
                             }
@@ -771,12 +772,17 @@ impl<'s, 'e> Parser<'s, '_, 'e> {
 
     /// Where a failed item rolls back to instead of `cp`: past the implied templates
     /// it made (the run of them right after `cp`), their slots and names, which CLIPS
-    /// keeps (`list-deftemplates` shows them); `check-syntax` keeps nothing.
-    fn spare_implied(&self, mut cp: crate::engine::Checkpoint) -> crate::engine::Checkpoint {
+    /// keeps (`list-deftemplates` shows them); `check-syntax` keeps nothing, nor an
+    /// item that found a pool full (it leaves the engine as it was).
+    fn spare_implied(
+        &self,
+        mut cp: crate::engine::Checkpoint,
+        err: &LoadError,
+    ) -> crate::engine::Checkpoint {
         let Some((nsyms, sym_bytes)) = self.implied_mark else {
             return cp;
         };
-        if self.check_only {
+        if self.check_only || err.capacity.is_some() {
             return cp;
         }
         let mut t = cp.ntemplates;
