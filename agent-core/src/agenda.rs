@@ -13,6 +13,13 @@ use crate::value::NONE;
 /// How many removed activations one assert or modify can put back in place.
 pub const JOURNAL_LEN: usize = 24;
 
+/// `set-salience-evaluation`'s settings (`Mode::salience_eval`): a rule's salience
+/// expression is evaluated when the rule is defined (and by `refresh-agenda`), also
+/// when each activation is made, or also before each firing (CLIPS's three).
+pub const SALIENCE_WHEN_DEFINED: u8 = 0;
+pub const SALIENCE_WHEN_ACTIVATED: u8 = 1;
+pub const SALIENCE_EVERY_CYCLE: u8 = 2;
+
 /// An activation an assert or modify removed (one that existed before it began): its
 /// rule, what it matched and its creation number, which is its agenda place.
 #[derive(Clone, Copy, Debug)]
@@ -113,6 +120,18 @@ impl Core<'_> {
             Some((_, random)) => random,
             None => crate::builtins::random::next_random(self.st) as u32,
         };
+        // CLIPS evaluates a dynamic salience for each new activation unless it is
+        // evaluated when defined only; asserts are refused meanwhile (it is matching)
+        #[cfg(feature = "extras")]
+        let salience = if self.st.mode.salience_eval != SALIENCE_WHEN_DEFINED {
+            self.st.net.matching += 1;
+            let s = self.evaluate_salience(rule, true);
+            self.st.net.matching -= 1;
+            s?
+        } else {
+            i32::from(self.rules[rule as usize].salience)
+        };
+        #[cfg(not(feature = "extras"))]
         let salience = i32::from(self.rules[rule as usize].salience);
         let next_of_token = self.tokens[token].extra;
         self.acts[a as usize] = Activation {
@@ -192,11 +211,18 @@ impl Core<'_> {
         false
     }
 
-    /// A rule's salience now (global-based saliences are evaluated again).
-    pub(crate) fn rule_salience(&mut self, rule: Ix) -> i32 {
+    /// CLIPS's EvaluateSalience: rule `rule`'s salience expression (if it has one)
+    /// evaluated now; the value becomes the rule's salience. An error, a value that
+    /// is not an integer or one out of -10000..=10000 is reported with `[PRNTUTIL8]`
+    /// and the rule's last salience stays; when `halt`, execution halts as CLIPS's
+    /// evaluation error makes it (a multi-fact assert stops, as after a pattern error).
+    /// A rule read in place whose salience changes is copied first
+    /// (`network_writable`): no room for the copy is a capacity error.
+    pub(crate) fn evaluate_salience(&mut self, rule: Ix, halt: bool) -> Result<i32, CapacityError> {
+        let last = i32::from(self.rules[rule as usize].salience);
         let e = self.rules[rule as usize].salience_expr;
         if e == NONE {
-            return i32::from(self.rules[rule as usize].salience);
+            return Ok(last);
         }
         let (scratch, sp, pm) = (
             self.st.frame.scratch_top,
@@ -209,9 +235,56 @@ impl Core<'_> {
             self.st.frame.sp,
             self.st.net.pm_rhs,
         ) = (scratch, sp, pm);
-        match v {
-            Ok(crate::value::Value::Int(i)) => i.clamp(-10000, 10000) as i32,
-            _ => i32::from(self.rules[rule as usize].salience),
+        let s = match v {
+            Ok(crate::value::Value::Int(i)) if (-10000..=10000).contains(&i) => i as i32,
+            Err(e) => {
+                if let crate::error::EvalErrorKind::Capacity(c) = e.kind() {
+                    return Err(c);
+                }
+                self.report_eval_error(e);
+                self.salience_error(rule, halt);
+                return Ok(last);
+            }
+            Ok(crate::value::Value::Int(_)) => {
+                self.write(
+                    crate::host::router::WERROR,
+                    "\n[PRNTUTIL9] Salience value out of range -10000 to 10000.\n",
+                );
+                self.salience_error(rule, halt);
+                return Ok(last);
+            }
+            Ok(_) => {
+                self.write(
+                    crate::host::router::WERROR,
+                    "\n[PRNTUTIL10] Salience value must be an integer value.\n",
+                );
+                self.salience_error(rule, halt);
+                return Ok(last);
+            }
+        };
+        if s != last {
+            self.network_writable()?;
+            // (in CLIPS's range, checked above)
+            self.rules[rule as usize].salience = s as i16;
+        }
+        Ok(s)
+    }
+
+    /// `[PRNTUTIL8]`: which rule's salience failed (out of line: errors are rare).
+    #[cold]
+    #[inline(never)]
+    fn salience_error(&mut self, rule: Ix, halt: bool) {
+        use core::fmt::Write;
+        let mut b: crate::value::TextBuf<160> = crate::value::TextBuf::new();
+        let _ = writeln!(
+            b,
+            "\n[PRNTUTIL8] This error occurred while evaluating the salience for defrule {}.",
+            self.sym_text(self.rules[rule as usize].name)
+        );
+        self.write(crate::host::router::WERROR, b.as_str());
+        if halt {
+            self.st.net.pattern_error = true;
+            self.st.mode.halting = true;
         }
     }
 
@@ -380,30 +453,56 @@ impl Core<'_> {
         }
     }
 
-    /// `refresh-agenda`: global-based saliences are evaluated again (CLIPS's
-    /// when-defined evaluation otherwise keeps them), then the agenda is re-sorted.
-    /// A rule read in place whose salience changes is copied first
-    /// (`network_writable`): an arena without room for the copy is a capacity error,
-    /// and nothing changed.
-    pub fn reorder_agenda(&mut self) -> Result<(), CapacityError> {
-        for r in 0..self.st.pools.nrules {
-            if self.rules[r as usize].salience_expr != NONE {
-                let s = self.rule_salience(r);
-                // (`rule_salience` keeps it in CLIPS's range)
-                let s = s as i16;
-                if s != self.rules[r as usize].salience {
-                    self.network_writable()?;
-                    self.rules[r as usize].salience = s;
-                }
-            }
-        }
+    /// `refresh-agenda`: the salience of each activation (of module `m`, all when
+    /// None) is evaluated again, in agenda order, whatever the salience evaluation
+    /// setting (CLIPS's RefreshAgenda; a rule without activations keeps its last
+    /// salience), then the agenda is re-sorted. A full arena when a rule read in place
+    /// must be copied is a capacity error (saliences set so far stay, sorted).
+    pub fn reorder_agenda(
+        &mut self,
+        m: Option<crate::module::ModId>,
+    ) -> Result<(), CapacityError> {
+        #[cfg(not(feature = "modules"))]
+        let _ = m;
+        let mut r = Ok(());
         let mut a = self.st.agenda.agenda_head;
         while a != NONE {
-            let rule = self.acts[a as usize].rule;
-            self.acts[a as usize].salience = i32::from(self.rules[rule as usize].salience);
-            a = self.acts[a as usize].next;
+            let x = self.acts[a as usize];
+            #[cfg(feature = "modules")]
+            let here = m.is_none_or(|m| self.activation_in(a, m));
+            // (MAIN is the one module)
+            #[cfg(not(feature = "modules"))]
+            let here = true;
+            if here {
+                match self.evaluate_salience(x.rule, false) {
+                    Ok(s) => self.acts[a as usize].salience = s,
+                    Err(e) => {
+                        r = Err(e);
+                        break;
+                    }
+                }
+            }
+            a = x.next;
         }
         self.resort_agenda();
+        r
+    }
+
+    /// `every-cycle` salience evaluation: after each firing every module's agenda is
+    /// refreshed, module by module (CLIPS's DefmoduleRefreshAgenda).
+    /// Owed matches are built first: the refresh sees the whole agenda.
+    #[cfg(feature = "extras")]
+    pub(crate) fn refresh_every_cycle(&mut self) -> Result<(), crate::error::EvalError> {
+        if self.st.mode.salience_eval != SALIENCE_EVERY_CYCLE {
+            return Ok(());
+        }
+        self.pay_owed()?;
+        #[cfg(feature = "modules")]
+        for m in 0..self.st.modules.nmodules as crate::module::ModId {
+            self.reorder_agenda(Some(m))?;
+        }
+        #[cfg(not(feature = "modules"))]
+        self.reorder_agenda(None)?;
         Ok(())
     }
 

@@ -439,7 +439,11 @@ impl Core<'_> {
     pub fn clear(&mut self) -> Result<(), EvalError> {
         let w = self.st.mode.watch;
         #[cfg(feature = "extras")]
-        let (keep_globals, cool_watch) = (self.st.mode.keep_globals, self.st.mode.cool_watch);
+        let (keep_globals, cool_watch, salience_eval) = (
+            self.st.mode.keep_globals,
+            self.st.mode.cool_watch,
+            self.st.mode.salience_eval,
+        );
         let next = self.st.pools.nexternals;
         let ext_syms = self.st.pools.ext_syms;
         let rom_syms = self.st.rom.symbols;
@@ -586,8 +590,10 @@ impl Core<'_> {
         self.st.mode.watch = w;
         #[cfg(feature = "extras")]
         {
+            // settings CLIPS keeps across clear
             self.st.mode.keep_globals = keep_globals;
             self.st.mode.cool_watch = cool_watch;
+            self.st.mode.salience_eval = salience_eval;
         }
         // CLIPS's clear ends with a reset's focus on MAIN (the stack holds MAIN)
         #[cfg(feature = "modules")]
@@ -824,17 +830,23 @@ impl Core<'_> {
                     return Err(e);
                 }
                 look_next = true;
+                #[cfg(feature = "extras")]
+                self.refresh_every_cycle()?;
                 break;
             }
             if self.st.mode.halt {
                 look_next = true;
                 // CLIPS names the halted rule only while rules are watched
-                if self.st.mode.watch & watch::RULES == 0 {
-                    break;
+                if self.st.mode.watch & watch::RULES != 0 {
+                    self.write_halted_in("defrule", self.rules[rule as usize].name);
                 }
-                self.write_halted_in("defrule", self.rules[rule as usize].name);
+                #[cfg(feature = "extras")]
+                self.refresh_every_cycle()?;
                 break;
             }
+            // CLIPS's every-cycle salience evaluation: after each firing
+            #[cfg(feature = "extras")]
+            self.refresh_every_cycle()?;
         }
         // CLIPS looks for the next activation after every firing, the last one the
         // limit allows or one that halted or failed too: modules left with an empty

@@ -529,6 +529,11 @@ pub struct Mode {
     /// can make them trace (agent-core feature `extras`).
     #[cfg(feature = "extras")]
     pub cool_watch: u8,
+    /// `set-salience-evaluation`: when a rule's salience expression is evaluated
+    /// (`agenda::SALIENCE_*`; agent-core feature `extras`, the image keeps CLIPS's
+    /// default, when-defined).
+    #[cfg(feature = "extras")]
+    pub salience_eval: u8,
 }
 
 impl Mode {
@@ -553,6 +558,7 @@ impl Mode {
             keep_globals: false,
             #[cfg(feature = "extras")]
             cool_watch: 0,
+            salience_eval: crate::agenda::SALIENCE_WHEN_DEFINED,
         }
     }
 }

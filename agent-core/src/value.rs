@@ -70,6 +70,17 @@ impl Value {
     }
 }
 
+/// The name inside an instance name's text `[x]`. CLIPS's instance names are a type
+/// of their own; here they are symbols spelled with their brackets (the lexer makes
+/// them, and `sym-cat` refuses to make such a symbol), so the spelling tells them
+/// apart: string functions see the name without brackets, `symbolp` is FALSE.
+pub fn instance_name_body(text: &str) -> Option<&str> {
+    // (`[]` is a symbol in CLIPS)
+    text.strip_prefix('[')?
+        .strip_suffix(']')
+        .filter(|t| !t.is_empty())
+}
+
 /// A public, borrowed view of a value (for hosts reading facts).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum ValueRef<'a> {

@@ -481,4 +481,9 @@ differential_programs! {
     p662_watch_all => "662-watch-all",
     p663_implied_templates_kept => "663-implied-templates-kept",
     p664_options => "664-options",
+    p625_salience_when_activated => "625-salience-when-activated",
+    p626_salience_every_cycle => "626-salience-every-cycle",
+    p627_salience_errors => "627-salience-errors",
+    p628_str_assert => "628-str-assert",
+    p629_instance_name_strings => "629-instance-name-strings",
 }

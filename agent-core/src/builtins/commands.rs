@@ -469,8 +469,21 @@ fn exit(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     Err(EvalError::new(EvalErrorKind::Exit))
 }
 
-fn refresh_agenda(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
-    cx.reorder_agenda()?;
+/// `(refresh-agenda [MODULE])`: the current module's agenda, MODULE's, or every
+/// module's for `*`.
+fn refresh_agenda(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    // (CLIPS's message: a symbol, not a string)
+    if a.len > 0 && !matches!(cx.arg(a, 0), Value::Sym(_)) {
+        return Err(EvalError::wrong_type("refresh-agenda", 1, "symbol"));
+    }
+    let Some(view) = module_view(cx, a, "refresh-agenda")? else {
+        return Ok(Value::Void);
+    };
+    if view.all {
+        cx.reorder_agenda(None)?;
+    } else {
+        cx.reorder_agenda(Some(view.one))?;
+    }
     Ok(Value::Void)
 }
 

@@ -465,12 +465,20 @@ fn operating_system(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
     Ok(Value::Sym(cx.intern("UNKNOWN")?))
 }
 
-/// Salience is evaluated when a rule is defined (CLIPS's default).
+/// CLIPS's three settings, by `agenda::SALIENCE_*` value.
+#[cfg(feature = "extras")]
+const SALIENCE_EVALUATIONS: [&str; 3] = ["when-defined", "when-activated", "every-cycle"];
+
+/// When a rule's salience expression is evaluated (`agenda::SALIENCE_*`).
+#[cfg(feature = "extras")]
 fn get_salience_evaluation(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
-    Ok(Value::Sym(cx.intern("when-defined")?))
+    let i = usize::from(cx.st.mode.salience_eval);
+    Ok(Value::Sym(cx.intern(SALIENCE_EVALUATIONS[i % 3])?))
 }
+/// The setting before; CLIPS's messages for a value that is not one of the three.
+#[cfg(feature = "extras")]
 fn set_salience_evaluation(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    let when_defined = Value::Sym(cx.intern("when-defined")?);
+    let old = Value::Sym(cx.intern(SALIENCE_EVALUATIONS[usize::from(cx.st.mode.salience_eval) % 3])?);
     let s = match cx.arg(a, 0) {
         Value::Sym(s) => s,
         _ => {
@@ -481,17 +489,18 @@ fn set_salience_evaluation(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalErro
             return Err(EvalError::already_reported());
         }
     };
-    match cx.sym_text(s) {
-        "when-defined" => Ok(when_defined),
-        "when-activated" | "every-cycle" => {
-            Err(refuse(cx, "set-salience-evaluation", "when-defined"))
+    match SALIENCE_EVALUATIONS.iter().position(|&n| n == cx.sym_text(s)) {
+        Some(i) => {
+            // (three settings: the index fits)
+            cx.st.mode.salience_eval = i as u8;
+            Ok(old)
         }
-        _ => {
+        None => {
             cx.write(
                 router::WERROR,
                 "[ARGACCES5] Function set-salience-evaluation expected argument #1 to be of type symbol with value when-defined, when-activated, or every-cycle\n",
             );
-            cx.set_error_fallback(when_defined, None);
+            cx.set_error_fallback(old, None);
             Err(EvalError::new(EvalErrorKind::Reported))
         }
     }
@@ -506,20 +515,10 @@ mod tests {
     /// refused with an error naming the one it has (never accepted and ignored).
     #[test]
     fn settings_other_than_the_one_implemented_are_refused() {
-        for (call, only) in [
-            (
-                "(set-auto-float-dividend FALSE)",
-                "(set-auto-float-dividend TRUE)",
-            ),
-            (
-                "(set-salience-evaluation when-activated)",
-                "(set-salience-evaluation when-defined)",
-            ),
-            (
-                "(set-salience-evaluation every-cycle)",
-                "(set-salience-evaluation when-defined)",
-            ),
-        ] {
+        for (call, only) in [(
+            "(set-auto-float-dividend FALSE)",
+            "(set-auto-float-dividend TRUE)",
+        )] {
             let out = eval_to_string(call);
             assert!(
                 out.contains("[NOTIMPL1]") && out.contains(only),
@@ -527,9 +526,19 @@ mod tests {
             );
         }
         assert_eq!(eval_to_string("(set-auto-float-dividend TRUE)"), "TRUE");
+    }
+
+    /// Each of CLIPS's three salience evaluation settings is kept; the call gives the
+    /// one before.
+    #[test]
+    fn salience_evaluation_settings_are_kept() {
         assert_eq!(
-            eval_to_string("(set-salience-evaluation when-defined)"),
-            "when-defined"
+            eval_to_string(
+                "(create$ (set-salience-evaluation every-cycle) (get-salience-evaluation) \
+                 (set-salience-evaluation when-activated) (set-salience-evaluation when-defined) \
+                 (get-salience-evaluation))"
+            ),
+            "(when-defined every-cycle every-cycle when-activated when-defined)"
         );
     }
 

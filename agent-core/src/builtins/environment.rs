@@ -509,6 +509,7 @@ const RESTRICTIONS: &[(&str, &str)] = &[
     ("sin", "11n"),
     ("sort", "1**w"),
     ("sqrt", "11n"),
+    ("str-assert", "11s"),
     ("str-cat", "1*"),
     ("str-compare", "23*jji"),
     ("str-explode", "11s"),

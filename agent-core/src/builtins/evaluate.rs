@@ -96,8 +96,19 @@ fn eval(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 /// fact, or FALSE (a duplicate, or text that is not a fact).
 #[cfg_attr(not(feature = "extras"), allow(dead_code))]
 pub(super) fn assert_string(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    assert_string_as(cx, a, "assert-string")
+}
+
+/// `str-assert`: CLIPS 6.30's older name of `assert-string` (its messages but the
+/// argument check's name `assert-string`'s, as in CLIPS).
+#[cfg_attr(not(feature = "extras"), allow(dead_code))]
+pub(super) fn str_assert(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    assert_string_as(cx, a, "str-assert")
+}
+
+fn assert_string_as(cx: &mut Core<'_>, a: Args, func: &'static str) -> Result<Value, EvalError> {
     let Value::Str(s) = cx.arg(a, 0) else {
-        return Err(EvalError::wrong_type("assert-string", 1, "string"));
+        return Err(EvalError::wrong_type(func, 1, "string"));
     };
     let text = super::strings::copy_text(cx, s)?;
     // CLIPS refuses a variable (a global is no variable here)

@@ -48,6 +48,7 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("sort", 1, super::ANY, super::evaluate::sort).on_error(super::describe::OnError::False),
     Builtin::eager("funcall", 1, super::ANY, super::evaluate::funcall).on_error(super::describe::OnError::False),
     Builtin::eager("assert-string", 1, 1, super::evaluate::assert_string).on_error(super::describe::OnError::False),
+    Builtin::eager("str-assert", 1, 1, super::evaluate::str_assert).on_error(super::describe::OnError::False),
 ];
 #[cfg(not(feature = "extras"))]
 pub const FUNCS: &[Builtin] = &[];
@@ -893,7 +894,7 @@ fn type_of(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         Value::Multi(_) => "MULTIFIELD",
         Value::Sym(s) => {
             let text = cx.sym_text(s);
-            match text.strip_prefix('[').and_then(|t| t.strip_suffix(']')) {
+            match crate::value::instance_name_body(text) {
                 Some(inst) => {
                     let mut b: TextBuf<256> = TextBuf::new();
                     let _ = writeln!(b, "[INSFUN2] No such instance {inst} in function type.");

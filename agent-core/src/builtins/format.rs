@@ -219,7 +219,12 @@ fn directive(
     match spec.conv {
         b's' => {
             let s = match v {
-                Value::Sym(s) | Value::Str(s) => cx.sym_text(s),
+                // an instance name without its brackets, as CLIPS prints it here
+                Value::Sym(s) => {
+                    let t = cx.sym_text(s);
+                    crate::value::instance_name_body(t).unwrap_or(t)
+                }
+                Value::Str(s) => cx.sym_text(s),
                 _ => return Err(EvalError::wrong_type("format", argno, "symbol or string")),
             };
             let s = match spec.precision {

@@ -107,7 +107,11 @@ pub(super) fn create(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 fn length(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     Ok(Value::Int(match cx.arg(a, 0) {
         Value::Multi(m) => m.len as i64,
-        Value::Sym(s) | Value::Str(s) => cx.sym_text(s).len() as i64,
+        // an instance name is none of the three (CLIPS)
+        Value::Sym(s) if crate::value::instance_name_body(cx.sym_text(s)).is_none() => {
+            cx.sym_text(s).len() as i64
+        }
+        Value::Str(s) => cx.sym_text(s).len() as i64,
         _ => {
             return Err(EvalError::wrong_type(
                 "length$",
@@ -120,7 +124,15 @@ fn length(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 
 fn length_old(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     match cx.arg(a, 0) {
-        Value::Multi(_) | Value::Sym(_) | Value::Str(_) => length(cx, a),
+        Value::Multi(_) | Value::Sym(_) | Value::Str(_) => match length(cx, a) {
+            // (an instance name: `length$`'s message under this name)
+            Err(_) => Err(EvalError::wrong_type(
+                "length",
+                1,
+                "multifield, symbol, or string",
+            )),
+            r => r,
+        },
         _ => Err(EvalError::wrong_type(
             "length",
             1,

@@ -36,14 +36,24 @@ fn integerp(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 fn floatp(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     test(cx, a, |v| matches!(v, Value::Float(_)))
 }
+/// A symbol, not an instance name (`value::instance_name_body`).
+fn plain_symbol(cx: &Core<'_>, v: Value) -> bool {
+    match v {
+        Value::Sym(s) => crate::value::instance_name_body(cx.sym_text(s)).is_none(),
+        _ => false,
+    }
+}
 pub(super) fn symbolp(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    test(cx, a, |v| matches!(v, Value::Sym(_)))
+    Ok(Core::bool_value(plain_symbol(cx, cx.arg(a, 0))))
 }
 fn stringp(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     test(cx, a, |v| matches!(v, Value::Str(_)))
 }
 fn lexemep(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    test(cx, a, |v| matches!(v, Value::Sym(_) | Value::Str(_)))
+    let v = cx.arg(a, 0);
+    Ok(Core::bool_value(
+        matches!(v, Value::Str(_)) || plain_symbol(cx, v),
+    ))
 }
 fn multifieldp(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     test(cx, a, |v| matches!(v, Value::Multi(_)))

@@ -53,8 +53,29 @@ fn same_kind(cx: &mut Core<'_>, like: Value, s: &str) -> Result<Value, EvalError
     })
 }
 
+/// The text a string function sees in lexeme `v` (symbol `s`'s text): an instance
+/// name's without its brackets, as CLIPS (`value::instance_name_body`).
+fn body<'a>(cx: &'a Core<'_>, v: Value, s: SymId) -> &'a str {
+    let t = cx.sym_text(s);
+    match v {
+        Value::Sym(_) => crate::value::instance_name_body(t).unwrap_or(t),
+        _ => t,
+    }
+}
+
+/// A symbol spelled `[x]` would be an instance name here (CLIPS makes a symbol): refused.
 fn sym_cat(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    cat(cx, a, false)
+    let v = cat(cx, a, false)?;
+    if let Value::Sym(s) = v {
+        if crate::value::instance_name_body(cx.sym_text(s)).is_some() {
+            cx.write(
+                router::WERROR,
+                "[NOTIMPL1] robotino-agent cannot make a symbol spelled as an instance name [x]\n",
+            );
+            return Err(EvalError::already_reported());
+        }
+    }
+    Ok(v)
 }
 
 pub(super) fn str_cat(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
@@ -71,7 +92,16 @@ fn cat(cx: &mut Core<'_>, a: Args, string: bool) -> Result<Value, EvalError> {
             if matches!(v, Value::Multi(_) | Value::Fact(_) | Value::Void) {
                 return Err(EvalError::wrong_type(name, crate::error::arg_no(i), T_ATOM));
             }
-            view.write_flat(out, v, false).map_err(|_| TOO_LONG)?;
+            // an instance name is catenated without its brackets (CLIPS)
+            let inner = match v {
+                Value::Sym(s) => crate::value::instance_name_body(view.sym(s)),
+                _ => None,
+            };
+            match inner {
+                Some(t) => out.write_str(t),
+                None => view.write_flat(out, v, false),
+            }
+            .map_err(|_| TOO_LONG)?;
         }
         Ok(())
     })
@@ -79,7 +109,7 @@ fn cat(cx: &mut Core<'_>, a: Args, string: bool) -> Result<Value, EvalError> {
 
 fn str_length(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let s = lexeme_arg(cx, a, 0, "str-length")?;
-    Ok(Value::Int(cx.sym_text(s).chars().count() as i64))
+    Ok(Value::Int(body(cx, cx.arg(a, 0), s).chars().count() as i64))
 }
 
 /// Byte offset of character `k` (0-based) of `s`, or `s.len()` past the end.
@@ -93,9 +123,14 @@ fn sub_string(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let start = int_arg(cx, a, 0, "sub-string")?;
     let end = int_arg(cx, a, 1, "sub-string")?;
     let s = lexeme_arg(cx, a, 2, "sub-string")?;
+    let inst = matches!(cx.arg(a, 2), Value::Sym(_));
     // copied within the symbol arena (a `Text` here was the image's deepest stack frame)
     cx.make_lexeme_with(true, a, TEXT_MAX, |view, _, out| {
         let t = view.sym(s);
+        let t = match inst {
+            true => crate::value::instance_name_body(t).unwrap_or(t),
+            false => t,
+        };
         let nchars = t.chars().count() as i64;
         let (from, to) = (start.max(1), end.min(nchars));
         if from > to {
@@ -114,7 +149,7 @@ fn sub_string(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 fn str_index(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let needle = lexeme_arg(cx, a, 0, "str-index")?;
     let hay = lexeme_arg(cx, a, 1, "str-index")?;
-    let (n, h) = (cx.sym_text(needle), cx.sym_text(hay));
+    let (n, h) = (body(cx, cx.arg(a, 0), needle), body(cx, cx.arg(a, 1), hay));
     if n.is_empty() {
         return Ok(Value::Int(h.chars().count() as i64 + 1));
     }
@@ -164,7 +199,10 @@ fn str_compare(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     } else {
         -1
     };
-    let (p, q) = (cx.sym_text(x).as_bytes(), cx.sym_text(y).as_bytes());
+    let (p, q) = (
+        body(cx, cx.arg(a, 0), x).as_bytes(),
+        body(cx, cx.arg(a, 1), y).as_bytes(),
+    );
     let (p, q) = if limit >= 0 {
         let n = limit as usize;
         (&p[..p.len().min(n)], &q[..q.len().min(n)])
