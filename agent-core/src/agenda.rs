@@ -458,10 +458,7 @@ impl Core<'_> {
     /// setting (CLIPS's RefreshAgenda; a rule without activations keeps its last
     /// salience), then the agenda is re-sorted. A full arena when a rule read in place
     /// must be copied is a capacity error (saliences set so far stay, sorted).
-    pub fn reorder_agenda(
-        &mut self,
-        m: Option<crate::module::ModId>,
-    ) -> Result<(), CapacityError> {
+    pub fn reorder_agenda(&mut self, m: Option<crate::module::ModId>) -> Result<(), CapacityError> {
         #[cfg(not(feature = "modules"))]
         let _ = m;
         let mut r = Ok(());

@@ -478,7 +478,8 @@ fn get_salience_evaluation(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalErr
 /// The setting before; CLIPS's messages for a value that is not one of the three.
 #[cfg(feature = "extras")]
 fn set_salience_evaluation(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    let old = Value::Sym(cx.intern(SALIENCE_EVALUATIONS[usize::from(cx.st.mode.salience_eval) % 3])?);
+    let old =
+        Value::Sym(cx.intern(SALIENCE_EVALUATIONS[usize::from(cx.st.mode.salience_eval) % 3])?);
     let s = match cx.arg(a, 0) {
         Value::Sym(s) => s,
         _ => {
@@ -489,7 +490,10 @@ fn set_salience_evaluation(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalErro
             return Err(EvalError::already_reported());
         }
     };
-    match SALIENCE_EVALUATIONS.iter().position(|&n| n == cx.sym_text(s)) {
+    match SALIENCE_EVALUATIONS
+        .iter()
+        .position(|&n| n == cx.sym_text(s))
+    {
         Some(i) => {
             // (three settings: the index fits)
             cx.st.mode.salience_eval = i as u8;
