@@ -443,6 +443,7 @@ differential_programs! {
     p580_keyed_or_index => "580-keyed-or-index",
     p581_keyed_or_not => "581-keyed-or-not",
     p582_keyed_or_growth => "582-keyed-or-growth",
+    p620_or_ordered_elements => "620-or-ordered-elements",
     p550_failed_redefinitions => "550-failed-redefinitions",
     p551_construct_keyword_names => "551-construct-keyword-names",
     p552_parse_error_echo => "552-parse-error-echo",

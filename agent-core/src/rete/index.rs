@@ -547,7 +547,9 @@ impl Core<'_> {
 
     /// When test `t` of a join at pattern `depth` is `?a | ?b ...`, an or of
     /// equalities of one plain single-field slot of that pattern with plain slots of
-    /// earlier patterns: the expression reading that slot (its first member's).
+    /// earlier patterns (host: or their elements at fixed offsets, as an ordered
+    /// fact's `(triple ?a ?b ?c)`): the expression reading that slot (its first
+    /// member's).
     pub(crate) fn or_of_equalities(&self, t: Ix, depth: u8) -> Option<Ix> {
         let x = self.exprs[t as usize];
         if x.op != Op::Or || x.first == NONE {
@@ -570,7 +572,17 @@ impl Core<'_> {
                 return None;
             }
             let o = self.exprs[this.next as usize];
-            if o.op != Op::PatVar || o.aux >= depth || o.first != NONE || o.data == loc::FACT {
+            if o.op != Op::PatVar || o.aux >= depth || o.data == loc::FACT {
+                return None;
+            }
+            // host: also an element of an earlier ordered fact (or multislot) at a
+            // fixed offset, which `or_values` reads as the plans do (`Source::Elem`)
+            #[cfg(feature = "host-speedups")]
+            if o.first != NONE && self.fixed_elem(&o).is_none() {
+                return None;
+            }
+            #[cfg(not(feature = "host-speedups"))]
+            if o.first != NONE {
                 return None;
             }
             if field == NONE {
@@ -660,7 +672,18 @@ impl Core<'_> {
             if fact == NONE || out.n == OR_WAYS {
                 return None;
             }
-            let v = *self.slot_ref(fact, Ix::from(loc::slot(o.data)));
+            let v = if o.first == NONE {
+                *self.slot_ref(fact, Ix::from(loc::slot(o.data)))
+            } else {
+                // an element at a fixed offset (`or_of_equalities`)
+                let elem = self.fixed_elem(&o)?;
+                match self.slot_cell_inline(fact, Ix::from(loc::slot(o.data))) {
+                    (cell, Some(len)) if (elem as usize) < len as usize => {
+                        self.values[cell + 1 + elem as usize]
+                    }
+                    _ => return None,
+                }
+            };
             if matches!(v, Value::Multi(_)) {
                 return None;
             }
