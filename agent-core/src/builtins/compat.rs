@@ -519,16 +519,11 @@ mod tests {
     /// refused with an error naming the one it has (never accepted and ignored).
     #[test]
     fn settings_other_than_the_one_implemented_are_refused() {
-        for (call, only) in [(
-            "(set-auto-float-dividend FALSE)",
-            "(set-auto-float-dividend TRUE)",
-        )] {
-            let out = eval_to_string(call);
-            assert!(
-                out.contains("[NOTIMPL1]") && out.contains(only),
-                "{call}: {out}"
-            );
-        }
+        let out = eval_to_string("(set-auto-float-dividend FALSE)");
+        assert!(
+            out.contains("[NOTIMPL1]") && out.contains("(set-auto-float-dividend TRUE)"),
+            "{out}"
+        );
         assert_eq!(eval_to_string("(set-auto-float-dividend TRUE)"), "TRUE");
     }
 
