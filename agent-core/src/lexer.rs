@@ -296,8 +296,10 @@ impl<'a> Lexer<'a> {
     }
 
     fn variable(&mut self, multi: bool) -> Tok<'a> {
+        // CLIPS's scanner starts a variable name only with a letter, a non-ASCII
+        // character or `*`: `?1st` is the wildcard `?` and then the symbol `1st`.
         let name = match self.peek() {
-            Some(b) if !is_delim(b) && b != b'<' => self.word(),
+            Some(b) if b.is_ascii_alphabetic() || b >= 0x80 || b == b'*' => self.word(),
             _ => "",
         };
         if name.is_empty() {
@@ -458,6 +460,25 @@ mod tests {
         assert_eq!(t[5], Tok::Symbol("<y"));
         assert_eq!(t[6], Tok::SfWild);
         assert_eq!(t[7], Tok::Symbol("<"));
+    }
+
+    #[test]
+    fn a_variable_name_starts_with_a_letter() {
+        let t = toks("?1st $?2x ?_a ?-b ?é $?Ж ?*");
+        assert_eq!(t[0], Tok::SfWild);
+        assert_eq!(t[1], Tok::Symbol("1st"));
+        assert_eq!(t[2], Tok::MfWild);
+        assert_eq!(t[3], Tok::Symbol("2x"));
+        assert_eq!(t[4], Tok::SfWild);
+        assert_eq!(t[5], Tok::Symbol("_a"));
+        assert_eq!(t[6], Tok::SfWild);
+        assert_eq!(t[7], Tok::Symbol("-b"));
+        let t = toks("?é $?Ж ?* ?4");
+        assert_eq!(t[0], Tok::SfVar("é"));
+        assert_eq!(t[1], Tok::MfVar("Ж"));
+        assert_eq!(t[2], Tok::SfVar("*"));
+        assert_eq!(t[3], Tok::SfWild);
+        assert_eq!(t[4], Tok::Int(4));
     }
 
     #[test]
