@@ -263,8 +263,9 @@ fn floor_boundary(s: &str, mut at: usize) -> usize {
 }
 
 /// Writes `body` justified in the directive's width (zero padding goes after the sign).
+/// The width counts bytes, as C's printf does in CLIPS: `%-6s` of `"año"` (4 bytes) adds 2.
 fn pad(out: &mut dyn Write, spec: Spec, body: &str, numeric: bool) -> core::fmt::Result {
-    let len = body.chars().count();
+    let len = body.len();
     let fill = spec.width.saturating_sub(len);
     if spec.left {
         out.write_str(body)?;
