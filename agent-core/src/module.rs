@@ -372,6 +372,17 @@ impl Core<'_> {
         })
     }
 
+    /// Whether module `m`'s export list names constructs of `class` called `name`
+    /// (`?ALL`, the class's `?ALL`, or the name), whoever defines them: CLIPS's
+    /// `ConstructExported`.
+    pub fn exports_own(&self, m: ModId, class: u8, name: SymId) -> bool {
+        let md = self.module_entry(m);
+        (md.first_port..md.first_port + md.nports).any(|p| {
+            let p = self.port_entry(p);
+            !p.import && p.classes & class != 0 && (p.name == NONE || p.name == name)
+        })
+    }
+
     /// Whether module `m` exports a construct of `class` named `name` that it sees
     /// (what `(import m class name)` needs, `[MODULPSR1]` otherwise).
     pub fn module_exports(&self, m: ModId, class: u8, name: SymId) -> bool {

@@ -347,7 +347,7 @@ impl<'s> Parser<'s, '_, '_> {
         }
         // deffunctions shadow nothing builtin in CLIPS; check user functions first
         if let Some(sym) = self.cx.find_sym(name) {
-            if let Some(f) = self.cx.find_function(sym, module) {
+            if let Some(f) = self.function_named(nt, sym, module) {
                 let call = self.push_call(FnKind::Deffunction, f)?;
                 let n = self.args_until_rparen(call)?;
                 #[cfg(feature = "extras")]
@@ -374,7 +374,10 @@ impl<'s> Parser<'s, '_, '_> {
             }
         }
         if qualified {
-            return Err(self.err(nt, "a deffunction the module sees"));
+            let mut e = self.err(nt, "a deffunction the module sees");
+            e.detail = crate::error::LoadDetail::MissingFunction;
+            e.echo_end = nt.end as u32;
+            return Err(e);
         }
         match builtins::lookup(name) {
             Some((id, b)) => {
@@ -455,6 +458,32 @@ impl<'s> Parser<'s, '_, '_> {
                 Err(e)
             }
         }
+    }
+
+    /// The deffunction a call names. Written `M::f`, CLIPS takes only an `f` that `M`
+    /// itself defines, and only if `M` is the current module or exports it (an import
+    /// of `M`'s does not count, nor does a module that imports `M`).
+    fn function_named(
+        &self,
+        nt: Token<'s>,
+        sym: crate::value::SymId,
+        module: crate::module::ModId,
+    ) -> Option<Ix> {
+        let f = self.cx.find_function(sym, module)?;
+        #[cfg(feature = "modules")]
+        if let Tok::Symbol(s) = nt.tok {
+            if crate::module::split_qualified(s).is_some()
+                && (self.cx.module_of_function(f) != module
+                    || (module != self.current_module()
+                        && !self
+                            .cx
+                            .exports_own(module, crate::module::class::FUNCTION, sym)))
+            {
+                return None;
+            }
+        }
+        let _ = nt;
+        Some(f)
     }
 
     /// CLIPS rejects a literal argument of a type the builtin never takes when it
