@@ -279,6 +279,9 @@ pub struct MatchState {
     pub rhs_pm: [PatBinding; MAX_PATTERNS],
     pub this_pm: PatBinding,
     pub pm_rhs: bool,
+    /// Host: one fact's alpha matches put in CLIPS's order (`rete::mforder`).
+    #[cfg(feature = "grow")]
+    pub mf: crate::rete::MfOrder,
 }
 
 impl MatchState {
@@ -304,6 +307,8 @@ impl MatchState {
             rhs_pm: [PatBinding::EMPTY; MAX_PATTERNS],
             this_pm: PatBinding::EMPTY,
             pm_rhs: false,
+            #[cfg(feature = "grow")]
+            mf: crate::rete::MfOrder::new(),
         }
     }
 }

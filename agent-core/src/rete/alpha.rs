@@ -25,6 +25,16 @@ pub(crate) const MAX_LAYOUTS: usize = 8;
 impl Core<'_> {
     /// Adds a new fact to every alpha memory it matches and propagates.
     pub(crate) fn network_assert(&mut self, fact: Ix) -> Result<(), EvalError> {
+        // host: patterns sharing a multifield node match in CLIPS's order
+        #[cfg(feature = "grow")]
+        if self.needs_mf_order(self.facts[fact as usize].tmpl) {
+            return self.assert_in_mf_order(fact, |cx| cx.visit_alphas(fact));
+        }
+        self.visit_alphas(fact)
+    }
+
+    /// Tests a new fact against every alpha node of its template.
+    fn visit_alphas(&mut self, fact: Ix) -> Result<(), EvalError> {
         // host: only the nodes whose constant the fact holds, and the others
         #[cfg(feature = "host-speedups")]
         if self.for_discriminated_alphas(fact, |cx, a| cx.visit_alpha(a, fact))? {
@@ -226,6 +236,11 @@ impl Core<'_> {
         marks: [u8; MAX_MARKS],
     ) -> Result<(), EvalError> {
         if self.alpha_tests_pass(alpha, fact, tests, marks)? {
+            #[cfg(feature = "grow")]
+            if let Some(p) = self.st.net.mf.pending.as_mut() {
+                p.push((alpha, marks));
+                return Ok(());
+            }
             self.add_alpha_match(alpha, fact, marks)?;
         }
         Ok(())
@@ -538,7 +553,7 @@ impl Core<'_> {
 
     /// (Host: inlined into `match_one`, its one caller on the assert path.)
     #[cfg_attr(feature = "host-speedups", inline(always))]
-    fn add_alpha_match(
+    pub(crate) fn add_alpha_match(
         &mut self,
         alpha: Ix,
         fact: Ix,

@@ -26,6 +26,10 @@ pub const NO_TEMPLATE_DISC: TemplateDisc = TemplateDisc::EMPTY;
 #[cfg(not(feature = "host-speedups"))]
 pub const NO_TEMPLATE_DISC: TemplateDisc = ();
 #[cfg(feature = "grow")]
+pub(crate) mod mforder;
+#[cfg(feature = "grow")]
+pub use mforder::MfOrder;
+#[cfg(feature = "grow")]
 pub(crate) mod order;
 #[cfg(feature = "host-speedups")]
 mod plan;
