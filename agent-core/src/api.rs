@@ -56,6 +56,19 @@ engine_impl! {
         self.st.mode.keep_pp_forms = keep;
     }
 
+    /// How deep function calls may nest (default [`crate::eval::MAX_EVAL_DEPTH`] calls,
+    /// no stack check): a host running the engine on a thread with a large stack lets
+    /// recursions go as deep as CLIPS's (thousands of levels), with `stack_bytes` of
+    /// that stack (less a margin for one level's frames) as a second bound.
+    #[cfg(feature = "grow")]
+    pub fn set_depth_limits(&mut self, calls: u16, stack_bytes: usize) {
+        self.st.eval.limits = crate::eval::DepthLimits {
+            calls,
+            stack_bytes,
+            floor: 0,
+        };
+    }
+
     /// Parses and evaluates one expression/command. A multifield result points into
     /// scratch and is valid until the next call.
     pub fn eval_str(&mut self, host: &mut dyn Host, command: &str) -> Result<Value, EvalError> {

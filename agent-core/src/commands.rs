@@ -175,12 +175,16 @@ impl Parser<'_, '_, '_> {
         if kw == "defglobal" {
             let end = self.lex.pos().max(start);
             let text = self.lex.source().get(start..end).unwrap_or("");
+            // a line per global, written as it comes (a defglobal may define any
+            // number; one buffer for all of them cut the text)
             for name in global_names(text) {
-                let _ = if watched {
-                    writeln!(b, "Defining defglobal: {name}")
+                if watched {
+                    self.cx.write(router::STDOUT, "Defining defglobal: ");
+                    self.cx.write(router::STDOUT, name);
+                    self.cx.write(router::STDOUT, "\n");
                 } else {
-                    b.write_char(':')
-                };
+                    self.cx.write(router::STDOUT, ":");
+                }
             }
             if !watched {
                 self.cx.st.io.progress_printed = true;
@@ -289,6 +293,17 @@ impl Core<'_> {
         r
     }
 
+    /// Removes the activations of token `t`, from the end of its list (its newest).
+    fn remove_activations_newest_first(&mut self, t: TokenId) {
+        while self.tokens[t].extra != NONE {
+            let mut a = self.tokens[t].extra;
+            while self.acts[a as usize].next_of_token != NONE {
+                a = self.acts[a as usize].next_of_token;
+            }
+            self.remove_activation(a);
+        }
+    }
+
     fn reset_inner(&mut self) -> Result<(), EvalError> {
         // the focus stack holds MAIN only, the current module
         #[cfg(feature = "modules")]
@@ -307,6 +322,11 @@ impl Core<'_> {
                         }
                         if c == TokenId::NONE {
                             break;
+                        }
+                        // the rules with no conditions share one join: CLIPS takes
+                        // back their activations last made first
+                        if self.joins[j].kind == JoinKind::Test && self.joins[j].tests == NONE {
+                            self.remove_activations_newest_first(c);
                         }
                         self.delete_token(c);
                     }
@@ -509,6 +529,8 @@ impl Core<'_> {
             self.st.net.pm_rhs,
         );
         let random = self.st.random;
+        #[cfg(feature = "grow")]
+        let limits = self.st.eval.limits;
         // the strategy is a setting: CLIPS keeps it across clear
         let strategy = self.st.agenda.strategy;
         // and so do the batch files running and where their input is
@@ -533,6 +555,10 @@ impl Core<'_> {
             self.st.net.pm_rhs,
         ) = ctx;
         self.st.random = random;
+        #[cfg(feature = "grow")]
+        {
+            self.st.eval.limits = limits;
+        }
         self.st.agenda.strategy = strategy;
         self.st.pools.nexternals = next;
         // keep the symbols naming external functions
@@ -806,14 +832,16 @@ impl Core<'_> {
             let st = &mut *self.st;
             st.eval.returning = false;
             st.eval.breaking = false;
-            // the rule's frame goes; what it left in scratch goes below, at the top level
+            // the rule's frame goes, and what it left in scratch: nothing outside it
+            // refers there (a `run` in a rule's actions fires rules one after another
+            // too); retracted facts are freed at the top level only
             let frame;
             (st.mode.firing, st.net.pm_rhs, frame, st.agenda.current_rule) = saved;
             st.frame.leave(frame);
             if !st.mode.firing {
                 self.free_pending();
-                self.st.frame.scratch_top = scratch_mark;
             }
+            self.st.frame.scratch_top = scratch_mark;
             if self.st.mode.watch & watch::STATISTICS != 0 {
                 stats.sample(self);
             }
@@ -1264,9 +1292,11 @@ impl Core<'_> {
                 "[ARGACCES5] Function {func} expected argument #{arg} to be of type {expected}"
             );
         } else if let LoadDetail::InUse { construct } = e.detail {
+            // named without the module it was written with (`MAIN::a` is `a`)
+            let name = tok.rsplit_once("::").map_or(tok, |(_, n)| n);
             let _ = writeln!(
                 b,
-                "\n[CSTRCPSR4] Cannot redefine {construct} {tok} while it is in use."
+                "\n[CSTRCPSR4] Cannot redefine {construct} {name} while it is in use."
             );
         } else if let LoadDetail::AttributeTwice { attribute } = e.detail {
             let _ = writeln!(

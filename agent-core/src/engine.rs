@@ -376,6 +376,9 @@ pub struct EvalState {
     /// evaluated: CLIPS's evaluation depth (`ED:` in `(watch deffunctions)`).
     #[cfg(feature = "extras")]
     pub dfn_depth: u16,
+    /// How deep calls may nest on the host (kept across `clear`).
+    #[cfg(feature = "grow")]
+    pub limits: crate::eval::DepthLimits,
 }
 
 impl EvalState {
@@ -396,6 +399,8 @@ impl EvalState {
             query_hold: 0,
             #[cfg(feature = "extras")]
             dfn_depth: 0,
+            #[cfg(feature = "grow")]
+            limits: crate::eval::DepthLimits::new(),
         }
     }
 }

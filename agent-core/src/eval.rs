@@ -9,7 +9,41 @@ use crate::value::Ix;
 use crate::value::{MfSpan, Value, NONE};
 
 /// Deepest nesting of function calls (guards the Rust stack against runaway recursion).
+/// With the feature `grow` it is the default of [`DepthLimits`], which a host that runs
+/// the engine on a large stack raises.
 pub const MAX_EVAL_DEPTH: u16 = 200;
+
+/// How deep function calls may nest on the host (feature `grow`): at most `calls`
+/// levels, and (when `stack_bytes` is not 0) within `stack_bytes` of the Rust stack
+/// below the outermost call. The host that raises `calls` runs the engine on a thread
+/// whose stack holds `stack_bytes` and a margin, so a deep recursion ends in the typed
+/// `TooDeep` error wherever the frames of a level are larger (an unoptimised build).
+#[cfg(feature = "grow")]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct DepthLimits {
+    pub calls: u16,
+    pub stack_bytes: usize,
+    /// Lowest stack address calls may reach: set by the outermost call.
+    pub(crate) floor: usize,
+}
+
+#[cfg(feature = "grow")]
+impl DepthLimits {
+    pub const fn new() -> Self {
+        DepthLimits {
+            calls: MAX_EVAL_DEPTH,
+            stack_bytes: 0,
+            floor: 0,
+        }
+    }
+}
+
+#[cfg(feature = "grow")]
+impl Default for DepthLimits {
+    fn default() -> Self {
+        Self::new()
+    }
+}
 
 impl Core<'_> {
     /// Evaluates one expression node.
@@ -488,10 +522,14 @@ impl Core<'_> {
 
     /// Calls the function of call node `e` (whose node `x` the caller has read).
     fn call(&mut self, e: Ix, x: Expr) -> Result<Value, EvalError> {
-        if self.st.eval.eval_depth >= MAX_EVAL_DEPTH {
+        if self.st.eval.eval_depth >= self.max_eval_depth() {
             return Err(EvalError::new(EvalErrorKind::TooDeep {
-                limit: MAX_EVAL_DEPTH,
+                limit: self.max_eval_depth(),
             }));
+        }
+        #[cfg(feature = "grow")]
+        if self.st.eval.limits.stack_bytes != 0 {
+            self.check_stack()?;
         }
         self.st.eval.eval_depth += 1;
         let sp = self.st.frame.sp;
@@ -499,6 +537,79 @@ impl Core<'_> {
         self.st.frame.sp = sp;
         self.st.eval.eval_depth -= 1;
         r
+    }
+
+    /// How deep calls may nest (`MAX_EVAL_DEPTH`, or the host's `DepthLimits`).
+    #[inline(always)]
+    pub(crate) fn max_eval_depth(&self) -> u16 {
+        #[cfg(feature = "grow")]
+        return self.st.eval.limits.calls;
+        #[cfg(not(feature = "grow"))]
+        MAX_EVAL_DEPTH
+    }
+
+    /// The Rust stack check of `DepthLimits`: the outermost call notes how low the
+    /// stack may go, the others stop there (at the depth reached, as its limit).
+    #[cfg(feature = "grow")]
+    #[inline(never)]
+    fn check_stack(&mut self) -> Result<(), EvalError> {
+        let probe = 0u8;
+        let here = core::hint::black_box(&probe) as *const u8 as usize;
+        let l = &mut self.st.eval.limits;
+        if self.st.eval.eval_depth == 0 {
+            l.floor = here.saturating_sub(l.stack_bytes);
+        } else if here < l.floor {
+            return Err(EvalError::new(EvalErrorKind::TooDeep {
+                limit: self.st.eval.eval_depth,
+            }));
+        }
+        Ok(())
+    }
+
+    /// A call of builtin `f` (call node `call`) whose arguments CLIPS evaluates and
+    /// checks one at a time (`str-cat`, `sym-cat`, `format`): `check` looks at each
+    /// argument as it comes (the values so far, and how many the call has), and a
+    /// wrong one stops the call before later arguments run. Otherwise as an eager call.
+    pub(crate) fn call_in_order(
+        &mut self,
+        call: Ix,
+        f: builtins::BuiltinFn,
+        check: builtins::ArgCheck,
+    ) -> Result<Value, EvalError> {
+        let x = self.exprs[call as usize];
+        let b = builtins::get(x.data);
+        let halting = self.st.mode.halting;
+        let base = self.st.frame.sp;
+        let mut total = 0;
+        let mut a = x.first;
+        while a != NONE {
+            total += 1;
+            a = self.exprs[a as usize].next;
+        }
+        a = x.first;
+        while a != NONE {
+            let v = self.eval_operand(a)?;
+            self.push_value(v)?;
+            let args = Args {
+                base,
+                len: self.st.frame.sp - base,
+            };
+            // CLIPS's evaluation error (an unbound global): its error value at once
+            if self.st.mode.halting && !halting {
+                if let Some(v) = self.args_failed(b)? {
+                    return Ok(v);
+                }
+            }
+            check(self, args, total)
+                .map_err(|err| self.classify_type_error(b.name, x.first, err))?;
+            a = self.exprs[a as usize].next;
+        }
+        let args = Args {
+            base,
+            len: self.st.frame.sp - base,
+        };
+        check_arity(b.name, b.min, b.max, args.len)?;
+        f(self, args).map_err(|err| self.classify_type_error(b.name, x.first, err))
     }
 
     fn call_inner(&mut self, e: Ix, x: Expr) -> Result<Value, EvalError> {
@@ -554,6 +665,7 @@ impl Core<'_> {
 
     #[inline(always)]
     fn call_deffunction_args(&mut self, func: Ix, first_arg: Ix) -> Result<Value, EvalError> {
+        let mark = self.st.frame.scratch_top;
         #[cfg(feature = "extras")]
         let args = match self.push_args(first_arg) {
             Ok(args) => args,
@@ -579,7 +691,35 @@ impl Core<'_> {
         if self.st.mode.halting {
             return self.deffunction_args_failed(func);
         }
-        self.apply_deffunction(func, args)
+        let v = self.apply_deffunction(func, args)?;
+        Ok(self.reclaim_call_scratch(mark, v))
+    }
+
+    /// Frees what a deffunction call built in scratch above `mark` (its arguments, its
+    /// body's temporaries), keeping its value: a multifield there is slid down to
+    /// `mark`. Its frame is gone and it could bind nothing of its caller's, so the
+    /// value is all that can point there (globals live in their own region), and a
+    /// recursion or a loop of calls holds no more than the values in use.
+    fn reclaim_call_scratch(&mut self, mark: Ix, v: Value) -> Value {
+        let top = self.st.frame.scratch_top;
+        if top <= mark {
+            return v;
+        }
+        match v {
+            Value::Multi(m) if m.start >= mark && m.start < top => {
+                let (s, n) = (m.start as usize, m.len as usize);
+                self.scratch.copy_within(s..s + n, mark as usize);
+                self.st.frame.scratch_top = mark + m.len;
+                Value::Multi(MfSpan {
+                    start: mark,
+                    len: m.len,
+                })
+            }
+            _ => {
+                self.st.frame.scratch_top = mark;
+                v
+            }
+        }
     }
 
     #[cold]
@@ -604,7 +744,9 @@ impl Core<'_> {
         if let Some((id, b)) = builtins::lookup(name) {
             return match builtins::code_of(self, id, b) {
                 Imp::Eager(f) => Some(Callee::Builtin(b.name, b.min, b.max, f)),
-                Imp::Lazy(_) => None,
+                // called with values, those checked in order are ordinary builtins
+                Imp::Lazy(_) => builtins::in_order_body(b.name)
+                    .map(|f| Callee::Builtin(b.name, b.min, b.max, f)),
             };
         }
         let sym = self.find_sym(name)?;
@@ -635,15 +777,17 @@ impl Core<'_> {
                     base,
                     len: args.len,
                 };
+                let mark = self.st.frame.scratch_top;
                 #[cfg(feature = "extras")]
-                {
+                let r = {
                     self.st.eval.dfn_depth += 1;
                     let r = self.apply_deffunction(f, args);
                     self.st.eval.dfn_depth -= 1;
                     r
-                }
+                };
                 #[cfg(not(feature = "extras"))]
-                self.apply_deffunction(f, args)
+                let r = self.apply_deffunction(f, args);
+                Ok(self.reclaim_call_scratch(mark, r?))
             }
             Callee::External(e) => {
                 let ext = self.externals[e as usize];
@@ -749,6 +893,10 @@ impl Core<'_> {
         else {
             return err;
         };
+        // reported already (in a deffunction `funcall` called): passed on as it is
+        if err.reported {
+            return err;
+        }
         // find argument `arg` (1-based)
         let mut node = first_arg;
         let mut k = 1;

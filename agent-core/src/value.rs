@@ -163,13 +163,13 @@ impl<const N: usize> Write for TextBuf<N> {
     }
 }
 
-/// Writes a float as CLIPS 6.30 does: C's `%.15g`, plus `.0` when the text looks integral.
+/// Writes a float as CLIPS 6.30 does: C's `%.15g`, plus `.0` when the text has no `.`
+/// or `e` (so glibc's `inf` and `-nan` print as `inf.0` and `-nan.0`).
 pub fn write_float(out: &mut dyn Write, x: f64) -> fmt::Result {
-    if x.is_nan() {
-        return out.write_str("nan");
-    }
-    if x.is_infinite() {
-        return out.write_str(if x > 0.0 { "inf" } else { "-inf" });
+    if !x.is_finite() {
+        let sign = if x.is_sign_negative() { "-" } else { "" };
+        let name = if x.is_nan() { "nan" } else { "inf" };
+        return write!(out, "{sign}{name}.0");
     }
     let mut g: TextBuf<48> = TextBuf::new();
     write_g15(&mut g, x)?;

@@ -349,6 +349,15 @@ fn parse_steps(options: &[String]) -> Result<Vec<Step>, String> {
     Ok(steps)
 }
 
+/// The engine thread's stack: deep enough for recursions as deep as CLIPS 6.30 goes
+/// (it crashes near 20,000 levels of a one-line recursive deffunction; our limit of
+/// 65,535 nested calls is about 21,800 such levels). Only the pages used are touched.
+const CLI_STACK: usize = 256 << 20;
+
+/// Stack the engine's depth check leaves unused: the frames above the outermost call
+/// and those of one level (a parse of `eval` or `build` nests 200 levels).
+const CLI_STACK_MARGIN: usize = 32 << 20;
+
 pub fn main(args: Args) -> ExitCode {
     let steps = match parse_steps(&args.options) {
         Ok(s) => s,
@@ -359,15 +368,18 @@ pub fn main(args: Args) -> ExitCode {
     };
     // (`--large-pools` is the same engine: its pools grow)
     let _ = args.large_pools;
-    // a deep stack for deeply nested expressions; only the pages used are touched
     let limit = match args.pool_limit {
         Some(n) => Capacities::uniform(n),
         None => GrowStorage::NO_LIMIT,
     };
     // (the storage is made on the engine's thread, after the thread's own allocations)
     let worker = std::thread::Builder::new()
-        .stack_size(256 << 20)
-        .spawn(move || session(&mut GrowEngine::with_storage(cli_storage(limit)), steps));
+        .stack_size(CLI_STACK)
+        .spawn(move || {
+            let mut engine = GrowEngine::with_storage(cli_storage(limit));
+            engine.set_depth_limits(u16::MAX, CLI_STACK - CLI_STACK_MARGIN);
+            session(&mut engine, steps)
+        });
     match worker.map(|w| w.join()) {
         Ok(Ok(code)) => code,
         _ => ExitCode::FAILURE,

@@ -31,7 +31,7 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::lazy("and", 2, ANY, and).on_error(OnError::False).total(),
     Builtin::lazy("or", 2, ANY, or).on_error(OnError::False).total(),
     Builtin::eager("not", 1, 1, not).on_error(OnError::False).total(),
-    Builtin::eager("str-cat", 1, ANY, super::strings::str_cat).on_error(OnError::EmptyString).quiet(),
+    Builtin::lazy("str-cat", 1, ANY, super::strings::str_cat_in_order).on_error(OnError::EmptyString).quiet(),
 ];
 pub const TABLE: super::Table = super::Table::new(FUNCS);
 

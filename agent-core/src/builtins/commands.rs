@@ -316,14 +316,11 @@ fn printout(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
             cx.write(routed.name(), b.as_str());
             b.clear();
         }
-        match v {
-            Value::Sym(s) if s == SYM_CRLF => {
-                let _ = b.write_char('\n');
+        match special_char(cx, v) {
+            Some(c) => {
+                let _ = b.write_char(c);
             }
-            Value::Sym(s) if cx.sym_text(s) == "tab" => {
-                let _ = b.write_char('\t');
-            }
-            _ => {
+            None => {
                 let len = b.len();
                 if cx.write_printout(&mut b, v).is_err() {
                     // out goes what came before it, then the value (cut past 1 KiB)
@@ -345,6 +342,21 @@ fn printout(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
 /// Expressions whose evaluation calls nothing (so prints nothing).
 /// `printout` of values already evaluated (a call whose arguments expand, see
 /// `environment`): the first names the router.
+/// The character `printout` writes for its special symbols: `crlf`, `tab`, and
+/// `vtab` and `ff` (CLIPS's vertical tab and form feed).
+fn special_char(cx: &Core<'_>, v: Value) -> Option<char> {
+    match v {
+        Value::Sym(s) if s == SYM_CRLF => Some('\n'),
+        Value::Sym(s) => match cx.sym_text(s) {
+            "tab" => Some('\t'),
+            "vtab" => Some('\x0b'),
+            "ff" => Some('\x0c'),
+            _ => None,
+        },
+        _ => None,
+    }
+}
+
 pub(super) fn printout_values(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let name = cx.arg(a, 0);
     if name == Value::Sym(SYM_NIL) || cx.st.mode.halting {
@@ -360,14 +372,11 @@ pub(super) fn printout_values(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalE
             cx.write(routed.name(), b.as_str());
             b.clear();
         }
-        match v {
-            Value::Sym(s) if s == SYM_CRLF => {
-                let _ = b.write_char('\n');
+        match special_char(cx, v) {
+            Some(c) => {
+                let _ = b.write_char(c);
             }
-            Value::Sym(s) if cx.sym_text(s) == "tab" => {
-                let _ = b.write_char('\t');
-            }
-            _ => {
+            None => {
                 let len = b.len();
                 if cx.write_printout(&mut b, v).is_err() {
                     b.truncate(len);
@@ -737,6 +746,9 @@ fn load_impl(cx: &mut Core<'_>, a: Args, quiet: bool) -> Result<Value, EvalError
     }
     let mut ok = true;
     let mut progress = false;
+    // CLIPS's error correction: after an error it skips to the next construct, and
+    // says nothing of what it skips (a bad construct's rest, commands)
+    let mut correcting = false;
     loop {
         let item = match file.next_item(cx) {
             Ok(Some(item)) => item,
@@ -747,17 +759,56 @@ fn load_impl(cx: &mut Core<'_>, a: Args, quiet: bool) -> Result<Value, EvalError
                 break;
             }
         };
+        if !starts_construct(item.text) {
+            // a command, a stray symbol or `)`: one message for a run of them
+            if !correcting {
+                cx.write(
+                    router::WERROR,
+                    "\n[CSTRCPSR1] Expected the beginning of a construct.\n",
+                );
+                correcting = true;
+            }
+            ok = false;
+            continue;
+        }
+        correcting = false;
         if let Err(e) = cx.load_items(item.text, !quiet, &mut progress) {
             cx.st.io.line_base = item.line_base;
             cx.report_load_error(path.as_str(), item.text, &e);
             cx.st.io.line_base = 0;
             ok = false;
+            correcting = true;
         }
     }
     if progress {
         cx.write(router::STDOUT, "\n");
     }
     Ok(Value::Sym(if ok { SYM_TRUE } else { SYM_FALSE }))
+}
+
+/// Whether a file item begins as a construct does, `(` and a construct keyword (those
+/// of CLIPS's object system too, which the parser refuses by name).
+fn starts_construct(text: &str) -> bool {
+    let mut lx = crate::lexer::Lexer::new(text);
+    if lx.next_token().tok != crate::lexer::Tok::LParen {
+        return false;
+    }
+    matches!(
+        lx.next_token().tok,
+        crate::lexer::Tok::Symbol(
+            "deftemplate"
+                | "defrule"
+                | "deffacts"
+                | "deffunction"
+                | "defglobal"
+                | "defmodule"
+                | "defgeneric"
+                | "defmethod"
+                | "defclass"
+                | "defmessage-handler"
+                | "definstances"
+        )
+    )
 }
 
 #[cfg_attr(not(feature = "parser"), allow(dead_code))]

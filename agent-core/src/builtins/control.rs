@@ -65,23 +65,91 @@ fn branch(cx: &mut Core<'_>, p: Ix) -> Result<Value, EvalError> {
     cx.eval(p)
 }
 
-/// Resets scratch to `mark` unless a frame variable still points above it. Globals
-/// need no look: their multifields live in their own region at the top of scratch
-/// (`Core::set_global`), above any temporary.
+/// Frees the scratch above `mark` that nothing refers to any more: the multifields
+/// the stack's variables (and a `return` value on its way out) still hold there are
+/// slid down to `mark`, so a loop that rebinds a variable to a new multifield each time
+/// holds one value's worth, not every iteration's. Only values built after `mark` sit
+/// above it, and while the caller's code (a loop body, a query test) is done, only the
+/// stack and the return value can hold them. Globals need no look: their multifields
+/// live in their own region at the top of scratch (`Core::set_global`).
 pub(super) fn release_scratch(cx: &mut Core<'_>, mark: Ix) {
+    release_scratch_keeping(cx, mark, &mut Value::Void);
+}
+
+/// `release_scratch` that also keeps multifield `keep` (a loop's last value), moved
+/// down with the others.
+pub(super) fn release_scratch_keeping(cx: &mut Core<'_>, mark: Ix, keep: &mut Value) {
     // nothing above the mark (the usual loop body or query test): nothing to scan for
     if cx.st.frame.scratch_top <= mark {
         return;
     }
-    let mut keep = mark;
-    for i in 0..cx.st.frame.sp as usize {
-        if let Value::Multi(m) = cx.stack[i] {
-            keep = keep.max(m.start + m.len);
+    let top = cx.st.frame.scratch_top;
+    let mut dest = mark;
+    // one run of overlapping live cells at a time, lowest first (values may share
+    // cells: `(bind ?y ?x)`, a `rest$` of another)
+    while let Some((s, mut e)) = lowest_live(cx, *keep, dest, top) {
+        while let Some(b) = live_spans(cx, *keep)
+            .filter(|&(a, b)| a < e && b > e)
+            .map(|(_, b)| b)
+            .max()
+        {
+            e = b;
+        }
+        if s > dest {
+            cx.scratch
+                .copy_within(s as usize..e as usize, dest as usize);
+            shift_spans(cx, keep, (s, e), s - dest);
+            dest += e - s;
+        } else {
+            // a run that starts at or below the mark stays where it is
+            dest = dest.max(e);
         }
     }
-    if keep < cx.st.frame.scratch_top {
-        cx.st.frame.scratch_top = keep;
+    cx.st.frame.scratch_top = dest.min(top);
+}
+
+/// The multifields that may point into scratch temporaries (start, end): the stack's,
+/// the value a `return` carries out and `keep`.
+fn live_spans<'a>(cx: &'a Core<'_>, keep: Value) -> impl Iterator<Item = (Ix, Ix)> + 'a {
+    let ret = if cx.st.eval.returning {
+        Some(cx.st.eval.return_value)
+    } else {
+        None
+    };
+    cx.stack[..cx.st.frame.sp as usize]
+        .iter()
+        .copied()
+        .chain(ret)
+        .chain(Some(keep))
+        .filter_map(|v| match v {
+            Value::Multi(m) if m.len > 0 => Some((m.start, m.start + m.len)),
+            _ => None,
+        })
+}
+
+/// The live cells starting lowest among those that end above `dest` and start below
+/// `top` (the globals' region lies above it).
+fn lowest_live(cx: &Core<'_>, keep: Value, dest: Ix, top: Ix) -> Option<(Ix, Ix)> {
+    live_spans(cx, keep)
+        .filter(|&(s, e)| e > dest && s < top)
+        .min_by_key(|&(s, e)| (s, core::cmp::Reverse(e)))
+}
+
+/// Moves every multifield lying in cells `s..e` down by `by` (its cells were copied).
+fn shift_spans(cx: &mut Core<'_>, keep: &mut Value, (s, e): (Ix, Ix), by: Ix) {
+    let moved = |v: &mut Value| {
+        if let Value::Multi(m) = v {
+            if m.len > 0 && m.start >= s && m.start + m.len <= e {
+                m.start -= by;
+            }
+        }
+    };
+    let sp = cx.st.frame.sp as usize;
+    cx.stack[..sp].iter_mut().for_each(moved);
+    if cx.st.eval.returning {
+        moved(&mut cx.st.eval.return_value);
     }
+    moved(keep);
 }
 
 fn while_(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
@@ -105,14 +173,17 @@ fn while_(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
 
 fn loop_for_count(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     let [var, s, e, body] = kids::<4>(cx, call);
-    // a limit read from an unbound variable (FALSE, halting) is no type error
+    // a limit read from an unbound variable (FALSE, halting) is no type error; a
+    // float is truncated as CLIPS's C cast does (out of range: the smallest integer)
     let start = match cx.eval(s)? {
         Value::Int(i) => i,
+        Value::Float(f) => super::math::c_trunc_to_i64(f),
         _ if cx.st.mode.halting => return Ok(Value::Sym(SYM_FALSE)),
         _ => return Err(EvalError::wrong_type("loop-for-count", 1, "integer")),
     };
     let end = match cx.eval(e)? {
         Value::Int(i) => i,
+        Value::Float(f) => super::math::c_trunc_to_i64(f),
         _ if cx.st.mode.halting => return Ok(Value::Sym(SYM_FALSE)),
         _ => return Err(EvalError::wrong_type("loop-for-count", 2, "integer")),
     };
@@ -135,7 +206,7 @@ fn loop_for_count(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
             cx.st.eval.breaking = false;
             break;
         }
-        if cx.st.eval.returning || cx.st.mode.exit {
+        if cx.st.eval.returning || cx.st.mode.exit || i == end {
             break;
         }
         i += 1;
@@ -150,6 +221,19 @@ fn foreach(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
         // CLIPS's evaluation error set (an unbound global): FALSE, no iteration
         _ if cx.st.mode.halting => return Ok(Value::Sym(SYM_FALSE)),
         _ => return Err(EvalError::wrong_type("progn$", 1, "multifield")),
+    };
+    // a global's multifield is iterated as it was: the body may bind the global, which
+    // repacks the globals' region under it (CLIPS keeps the old value alive too)
+    let m = if m.start >= cx.st.frame.scratch_top {
+        let t = cx.scratch_alloc(m.len as usize)?;
+        let s = m.start as usize;
+        cx.scratch.copy_within(s..s + m.len as usize, t as usize);
+        MfSpan {
+            start: t,
+            len: m.len,
+        }
+    } else {
+        m
     };
     let slot = cx.exprs[var as usize].data;
     let mark = cx.st.frame.scratch_top;
@@ -166,8 +250,11 @@ fn foreach(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
         // the last iteration's value is progn$'s (a multifield too, as in CLIPS), so its
         // cells stay; earlier iterations' are freed, so a long loop holds one body's worth
         let done = k + 1 == m.len as usize || cx.st.eval.returning || cx.st.mode.exit;
-        let base = mark.max(m.start + m.len);
-        release_scratch(cx, if done { keep_value(base, last) } else { base });
+        if done {
+            release_scratch_keeping(cx, mark, &mut last);
+        } else {
+            release_scratch(cx, mark);
+        }
         if cx.st.eval.breaking {
             // CLIPS's progn$ left by break has no value (loop-for-count's is FALSE)
             cx.st.eval.breaking = false;
@@ -179,14 +266,6 @@ fn foreach(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
         }
     }
     Ok(last)
-}
-
-/// Scratch mark above `mark` that keeps multifield `v`'s cells alive.
-pub(super) fn keep_value(mark: Ix, v: Value) -> Ix {
-    match v {
-        Value::Multi(m) => mark.max(m.start + m.len),
-        _ => mark,
-    }
 }
 
 fn switch(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {

@@ -654,9 +654,11 @@ fn expansion_call(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
                 super::Imp::Lazy(_) if b.name == "printout" => {
                     super::commands::printout_values(cx, args)
                 }
-                super::Imp::Lazy(_) => {
-                    Err(EvalError::new(crate::error::EvalErrorKind::NoSuchFunction))
-                }
+                // (those lazy to check their arguments in order take values too)
+                super::Imp::Lazy(_) => match super::in_order_body(b.name) {
+                    Some(f) => f(cx, args).map_err(computed_type_error),
+                    None => Err(EvalError::new(crate::error::EvalErrorKind::NoSuchFunction)),
+                },
             }
         }
         k if k == FnKind::Deffunction as u8 => {

@@ -196,6 +196,31 @@ pub(super) fn sort(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let Some(callee) = callee else {
         return Err(EvalError::wrong_type("sort", 1, NOT_A_FUNCTION));
     };
+    // CLIPS refuses a function that cannot take two arguments before sorting, and
+    // goes on (no evaluation error) with FALSE
+    let (min, max, what) = match callee {
+        Callee::Builtin(_, min, max, _) => (min, max, "function name"),
+        Callee::Deffunction(f) => {
+            let d = cx.funcs[f as usize];
+            let max = if d.rest { super::ANY } else { d.nparams };
+            (d.nparams, max, "deffunction name")
+        }
+        Callee::External(e) => {
+            let x = cx.externals[e as usize];
+            (x.min, x.max, "function name")
+        }
+    };
+    if min > 2 || (max != super::ANY && max < 2) {
+        let mut b: crate::value::TextBuf<128> = crate::value::TextBuf::new();
+        let _ = core::fmt::Write::write_fmt(
+            &mut b,
+            format_args!(
+                "[ARGACCES5] Function sort expected argument #1 to be of type {what} expecting two arguments\n"
+            ),
+        );
+        cx.write(router::WERROR, b.as_str());
+        return Ok(Value::Sym(SYM_FALSE));
+    }
     // the values, then as many cells for merging
     let Value::Multi(values) = spliced(cx, a)? else {
         return Ok(Value::Sym(SYM_FALSE));

@@ -19,7 +19,7 @@ use crate::error::{EvalError, EvalErrorKind};
 use crate::host::router;
 use crate::value::{TextBuf, Value};
 
-pub const FUNCS: &[Builtin] = &[Builtin::eager("format", 2, ANY, format)
+pub const FUNCS: &[Builtin] = &[Builtin::lazy("format", 2, ANY, format_in_order)
     .args(&[Any, S], Any)
     .on_error(OnError::EmptyString)];
 pub const TABLE: super::Table = super::Table::new(FUNCS);
@@ -106,7 +106,76 @@ fn arity_error(expected: usize) -> EvalError {
     EvalError::message(crate::error::Message::format_arity(expected))
 }
 
-fn format(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+/// A `format` call: as CLIPS, the control string is checked against the number of
+/// arguments before any directive's argument is evaluated, and each of those is
+/// checked against its directive before the next is evaluated.
+fn format_in_order(cx: &mut Core<'_>, call: crate::value::Ix) -> Result<Value, EvalError> {
+    cx.call_in_order(call, format, format_arg)
+}
+
+/// The newest argument of a `format` call (the last of `a`; `total` in the call).
+fn format_arg(cx: &mut Core<'_>, a: Args, total: usize) -> Result<(), EvalError> {
+    let i = a.len as usize - 1;
+    if i < 1 {
+        return Ok(());
+    }
+    let ctl = match cx.arg(a, 1) {
+        Value::Str(s) => cx.sym_text(s),
+        _ => return Err(EvalError::wrong_type("format", 2, "string")),
+    };
+    if i == 1 {
+        let needed = count_args(ctl);
+        return if needed + 2 == total {
+            Ok(())
+        } else {
+            Err(arity_error(needed + 2))
+        };
+    }
+    let v = cx.arg(a, i);
+    let ok = match nth_conversion(ctl, i - 2) {
+        Some(b's') => matches!(v, Value::Sym(_) | Value::Str(_)),
+        Some(c) if takes_arg(c) => matches!(v, Value::Int(_) | Value::Float(_)),
+        // an invalid directive: `render` reports it
+        _ => true,
+    };
+    if ok {
+        return Ok(());
+    }
+    let expected = if nth_conversion(ctl, i - 2) == Some(b's') {
+        "symbol or string"
+    } else {
+        T_NUMBER
+    };
+    Err(EvalError::wrong_type(
+        "format",
+        crate::error::arg_no(i),
+        expected,
+    ))
+}
+
+/// The conversion of the `n`th directive of `ctl` that takes an argument (counted as
+/// `count_args` counts them).
+fn nth_conversion(ctl: &str, n: usize) -> Option<u8> {
+    let b = ctl.as_bytes();
+    let (mut i, mut k) = (0, 0);
+    while i < b.len() {
+        if b[i] != b'%' {
+            i += 1;
+            continue;
+        }
+        let (spec, used) = parse_spec(&b[i + 1..])?;
+        if !matches!(spec.conv, b'n' | b't' | b'r' | b'%') {
+            if k == n {
+                return Some(spec.conv);
+            }
+            k += 1;
+        }
+        i += 1 + used;
+    }
+    None
+}
+
+pub(super) fn format(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let ctl = match cx.arg(a, 1) {
         Value::Str(s) => s,
         _ => return Err(EvalError::wrong_type("format", 2, "string")),

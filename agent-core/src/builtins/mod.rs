@@ -94,6 +94,21 @@ type TextWriter<'w> =
 pub type BuiltinFn = fn(cx: &mut Core<'_>, args: Args) -> Result<Value, EvalError>;
 /// A lazy builtin: gets the call node; its arguments are the node's children.
 pub type LazyFn = fn(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError>;
+/// The check of each argument of a builtin CLIPS evaluates one argument at a time
+/// (`Core::call_in_order`): the arguments so far (the last is the new one) and how
+/// many the call has.
+pub type ArgCheck = fn(cx: &mut Core<'_>, args: Args, total: usize) -> Result<(), EvalError>;
+
+/// The body of a builtin whose row is lazy only to check its arguments in order
+/// (`Core::call_in_order`), for calls with values (`funcall`, `sort`, `expand$`).
+pub fn in_order_body(name: &str) -> Option<BuiltinFn> {
+    match name {
+        "str-cat" => Some(strings::str_cat),
+        "sym-cat" => Some(strings::sym_cat),
+        "format" => Some(format::format),
+        _ => None,
+    }
+}
 
 #[derive(Clone, Copy)]
 pub enum Imp {

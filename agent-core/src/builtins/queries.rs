@@ -8,7 +8,7 @@
 //! are skipped; facts asserted by them join the iteration as CLIPS's template lists
 //! let them (see `next_of_template`).
 
-use super::control::{keep_value, release_scratch};
+use super::control::{release_scratch, release_scratch_keeping};
 use super::describe::OnError;
 use super::{Builtin, ANY, SYM_FALSE};
 use crate::engine::Core;
@@ -392,7 +392,7 @@ fn visit(cx: &mut Core<'_>, w: &mut Walk, passed: bool) -> Result<bool, EvalErro
             cx.eval_chain(w.q.actions)?
         };
         if w.mode == Mode::All {
-            release_scratch(cx, keep_value(mark, w.last));
+            release_scratch_keeping(cx, mark, &mut w.last);
         }
     }
     Ok(w.mode == Mode::First)
@@ -532,7 +532,7 @@ fn delayed(cx: &mut Core<'_>, call: Ix, top: bool) -> Result<Value, EvalError> {
         } else {
             cx.eval_chain(w.q.actions)?
         };
-        release_scratch(cx, keep_value(mark, last));
+        release_scratch_keeping(cx, mark, &mut last);
         if top && cx.st.facts.pending != NONE && cx.fact_slots_full() {
             // the tuples still to come may name a fact retracted now; freed only when
             // the slots are needed, as the check scans those tuples (per tuple, it

@@ -17,7 +17,7 @@ use crate::value::{SymId, TextBuf, Value};
 
 #[rustfmt::skip]
 pub const FUNCS: &[Builtin] = &[
-    Builtin::eager("sym-cat", 1, super::ANY, sym_cat).on_error(OnError::Nil),
+    Builtin::lazy("sym-cat", 1, super::ANY, sym_cat_in_order).on_error(OnError::Nil),
     Builtin::eager("str-length", 1, 1, str_length).args(&[L], Any).on_error(OnError::MinusOne).body_names(BodyNames::SymbolOrString),
     Builtin::eager("sub-string", 3, 3, sub_string).args(&[I, I, L], Any).on_error(OnError::EmptyString).body_names(BodyNames::SymbolOrString),
     Builtin::eager("str-index", 2, 2, str_index).args(&[L, L], Any).on_error(OnError::False).body_names(BodyNames::SymbolOrString),
@@ -64,7 +64,7 @@ fn body<'a>(cx: &'a Core<'_>, v: Value, s: SymId) -> &'a str {
 }
 
 /// A symbol spelled `[x]` would be an instance name here (CLIPS makes a symbol): refused.
-fn sym_cat(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+pub(super) fn sym_cat(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let v = cat(cx, a, false)?;
     if let Value::Sym(s) = v {
         if crate::value::instance_name_body(cx.sym_text(s)).is_some() {
@@ -80,6 +80,29 @@ fn sym_cat(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 
 pub(super) fn str_cat(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     cat(cx, a, true)
+}
+
+/// `sym-cat` and `str-cat` calls: CLIPS checks each argument as it evaluates it, and
+/// one that cannot be concatenated stops the call before the next runs.
+fn sym_cat_in_order(cx: &mut Core<'_>, call: crate::value::Ix) -> Result<Value, EvalError> {
+    cx.call_in_order(call, sym_cat, |cx, a, _| cat_arg(cx, "sym-cat", a))
+}
+
+pub(super) fn str_cat_in_order(
+    cx: &mut Core<'_>,
+    call: crate::value::Ix,
+) -> Result<Value, EvalError> {
+    cx.call_in_order(call, str_cat, |cx, a, _| cat_arg(cx, "str-cat", a))
+}
+
+/// The newest argument of a `str-cat` or `sym-cat` call (the last of `a`), checked as
+/// `cat` checks them all.
+fn cat_arg(cx: &mut Core<'_>, name: &'static str, a: Args) -> Result<(), EvalError> {
+    let i = a.len as usize - 1;
+    if matches!(cx.arg(a, i), Value::Multi(_) | Value::Fact(_) | Value::Void) {
+        return Err(EvalError::wrong_type(name, crate::error::arg_no(i), T_ATOM));
+    }
+    Ok(())
 }
 
 /// `str-cat` (`string`) or `sym-cat`: up to `TEXT_MAX` bytes, built in the symbol arena

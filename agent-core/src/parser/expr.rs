@@ -863,15 +863,25 @@ impl<'s> Parser<'s, '_, '_> {
             };
             let s = self.new_local(vt, name, false)?;
             var = cap!(self, self.cx.push_expr(Expr::new(Op::Local, 0, s)))?;
+            let at = self.peek();
             let a = self.parse_expr()?;
+            self.loop_bound_literal(at, a)?;
             if self.peek().tok == Tok::RParen {
                 start = cap!(self, self.cx.push_const(Value::Int(1)))?;
                 end = a;
+                self.expect_rparen("')' after the loop range")?;
             } else {
                 start = a;
+                let at = self.peek();
                 end = self.parse_expr()?;
+                // CLIPS checks the end bound after the range's `)`
+                let close = self.peek();
+                self.expect_rparen("')' after the loop range")?;
+                if let Err(mut e) = self.loop_bound_literal(at, end) {
+                    e.echo_end = close.end as u32;
+                    return Err(e);
+                }
             }
-            self.expect_rparen("')' after the loop range")?;
         } else if t.tok == Tok::LParen {
             // `(loop-for-count (+ 1 2) ...)`: the count is a call (its `(` read above);
             // `(1 2)` is neither a range nor a call, and CLIPS refuses it as a bad range
@@ -886,6 +896,7 @@ impl<'s> Parser<'s, '_, '_> {
             var = cap!(self, self.cx.push_expr(Expr::new(Op::Nop, 0, 0)))?;
             start = cap!(self, self.cx.push_const(Value::Int(1)))?;
             end = self.parse_expr()?;
+            self.loop_bound_literal(t, end)?;
         }
         self.cx.append_child(node, var);
         self.cx.append_child(node, start);
@@ -896,6 +907,19 @@ impl<'s> Parser<'s, '_, '_> {
         let body = self.loop_body()?;
         self.cx.append_child(node, body);
         Ok(node)
+    }
+
+    /// A loop count or bound written as a constant must be an integer: CLIPS refuses a
+    /// float, symbol or string there while parsing (a computed float is truncated).
+    fn loop_bound_literal(&self, at: crate::lexer::Token<'s>, e: Ix) -> PResult<()> {
+        match self.cx.exprs[e as usize].op {
+            Op::Float | Op::Sym | Op::Str => Err(self.syntax_of(
+                at,
+                "an integer loop count or bound",
+                "loop-for-count function",
+            )),
+            _ => Ok(()),
+        }
     }
 
     /// `(progn$ (?v list) body)` or `(foreach ?v list body)`; `?v-index` is the next

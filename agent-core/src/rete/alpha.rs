@@ -375,7 +375,7 @@ impl Core<'_> {
                 }
                 // what `call` and `push_args` would refuse or record
                 let sp = self.st.frame.sp as usize + 2;
-                if self.st.eval.eval_depth >= crate::eval::MAX_EVAL_DEPTH || sp > self.stack.len() {
+                if self.st.eval.eval_depth >= self.max_eval_depth() || sp > self.stack.len() {
                     return None;
                 }
                 let a = self.quick_alpha_operand(x.first, fact)?;

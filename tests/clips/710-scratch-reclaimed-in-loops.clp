@@ -1,0 +1,50 @@
+; Multifield temporaries are reclaimed inside loops and calls, not only at the top
+; level: with a multifield global defined first (its cells sit at the top of scratch),
+; loops that rebind a variable to a new multifield, deffunction recursion, rule actions
+; and a run inside actions go on for thousands of steps (scout4 #5).
+(defglobal ?*A* = (create$ a b c))
+(deffunction s ($?e) (create$ ?e y))
+(deffunction t (?n) (loop-for-count (?i 1 ?n) (bind ?x (s 1 2 3))) ?x)
+(t 5000)
+(deffunction w (?n)
+  (bind ?i 0) (bind ?keep (create$ k))
+  (while (< ?i ?n) (bind ?i (+ ?i 1)) (bind ?x (s ?i)) (bind ?y ?x) (bind ?z (rest$ ?x)))
+  (create$ ?keep ?x ?y ?z))
+(w 6000)
+(deffunction p (?n)
+  (bind ?l (create$))
+  (loop-for-count (?i 1 ?n) (bind ?l (create$ ?i)))
+  (bind ?c 0)
+  (progn$ (?v (s 1 2 3 4 5 6 7 8 9 10)) (loop-for-count 500 (bind ?q (s ?v ?l))) (bind ?c (+ ?c (length$ ?q))))
+  (foreach ?v (create$ a b c) (loop-for-count 2000 (bind ?q (create$ ?v ?v))))
+  (create$ ?c ?q))
+(p 3000)
+; a deffunction's own temporaries go when it returns
+(deffunction mk (?n) (bind ?a (create$ 1 2 3 4 5 6 7 8)) (bind ?b (create$ ?a ?a)) (create$ ?n (length$ ?b)))
+(deffunction many (?n) (bind ?r (create$)) (loop-for-count (?i 1 ?n) (bind ?r (mk ?i))) ?r)
+(many 4000)
+; recursion that builds a multifield at every level
+(deffunction count-down (?n) (if (= ?n 0) then (create$ done) else (bind ?x (create$ ?n ?n ?n)) (count-down (- ?n 1))))
+(deffunction again (?n) (loop-for-count ?n (bind ?r (count-down 20))) ?r)
+(again 500)
+; progn$ over a global that its body binds iterates the old value, as CLIPS does
+(progn$ (?v ?*A*) (bind ?*A* (create$ x y z w)) (printout t ?v " "))
+(printout t crlf ?*A* crlf)
+; a multifield returned from inside a loop survives the caller's later temporaries
+(deffunction f () (while TRUE (return (create$ r s t))))
+(deffunction g () (bind ?q (f)) (bind ?z (create$ 1 2 3 4 5 6)) ?q)
+(g)
+(deffunction h () (loop-for-count (?i 3) (bind ?x (create$ ?i ?i)) (if (= ?i 2) then (return ?x))))
+(deffunction k () (bind ?q (h)) (bind ?z (create$ 9 9 9 9 9)) (create$ ?q ?z))
+(k)
+; rule actions: a loop, and a run inside the actions firing many rules
+(deftemplate c (slot n))
+(defrule loop-in-actions (go) => (loop-for-count 3000 (bind ?x (s 1 2))) (printout t "actions " ?x crlf))
+(defrule step ?f <- (c (n ?n&:(< ?n 2000))) => (bind ?m (s ?n ?n ?n)) (modify ?f (n (+ ?n 1))))
+(defrule inner (start) => (assert (c (n 0))) (run) (printout t "inner run done" crlf))
+(assert (go))
+(run)
+(assert (start))
+(run)
+(facts)
+(exit)

@@ -1,0 +1,22 @@
+; sort with a function that cannot take two arguments: CLIPS refuses it before sorting,
+; [ARGACCES5] ... expecting two arguments, and goes on with FALSE (no evaluation error:
+; the deffunction calling it carries on) (scout4 #8).
+(deffunction ordenar-f (?f ?a ?b) (> ?a ?b))
+(deffunction one (?a) TRUE)
+(deffunction any ($?a) (> (nth$ 1 ?a) (nth$ 2 ?a)))
+(deffunction two-opt (?a ?b $?c) (> ?a ?b))
+(deffunction one-opt (?a $?c) (> ?a (nth$ 1 ?c)))
+(sort ordenar-f 3 1 2)
+(sort one 3 1 2)
+(sort any 3 1 2)
+(sort two-opt 3 1 2)
+(sort one-opt 3 1 2)
+(sort not 3 1 2)
+(sort abs 3 1 2)
+(sort + 3 1 2)
+(sort ordenar-f)
+(sort ordenar-f 1)
+(bind ?x (sort ordenar-f 3 1 2))
+(deffunction f () (sort ordenar-f 3 1 2) (printout t "after" crlf))
+(f)
+(exit)

@@ -1,0 +1,25 @@
+; load: a defglobal of many globals prints one "Defining defglobal:" line for each
+; (the text was cut at 256 bytes); commands and stray symbols between constructs get
+; one [CSTRCPSR1] per run of them, none right after a construct's error (CLIPS skips to
+; the next construct) (scout4 #11, #13).
+(open "716-globals.txt" out "w")
+(printout out "(defglobal ?*a1* = 1 ?*a2* = 2 ?*a3* = 3 ?*a4* = 4 ?*a5* = 5 ?*a6* = 6 ?*a7* = 7 ?*a8* = 8" crlf)
+(printout out "  ?*a9* = 9 ?*a10* = 10 ?*a11* = 11 ?*a12* = 12 ?*a13* = 13 ?*a14* = 14 ?*a15* = 15)" crlf)
+(printout out "(deffunction f () (+ ?*a1* ?*a15*))" crlf)
+(close out)
+(watch compilations)
+(load "716-globals.txt")
+(f)
+(unwatch compilations)
+(load "716-globals.txt")
+(watch compilations)
+(open "716-commands.txt" out "w")
+(printout out "(deftemplate a (slot x))" crlf "(reset)" crlf "(assert (a (x 1)))" crlf "(run)" crlf)
+(printout out "(deffacts f (a (x 2)))" crlf "stray-symbol 42 \"str\"" crlf)
+(printout out "(defrule r (a (x ?x)) => (printout t ?x crlf))" crlf ")" crlf "(facts)" crlf)
+(close out)
+(load "716-commands.txt")
+(load* "716-commands.txt")
+(list-deftemplates)
+(list-defrules)
+(exit)
