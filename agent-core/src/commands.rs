@@ -293,14 +293,10 @@ impl Core<'_> {
         r
     }
 
-    /// Removes the activations of token `t`, from the end of its list (its newest).
+    /// Removes the activations of token `t` from the head of its list (its newest).
     fn remove_activations_newest_first(&mut self, t: TokenId) {
         while self.tokens[t].extra != NONE {
-            let mut a = self.tokens[t].extra;
-            while self.acts[a as usize].next_of_token != NONE {
-                a = self.acts[a as usize].next_of_token;
-            }
-            self.remove_activation(a);
+            self.remove_activation(self.tokens[t].extra);
         }
     }
 

@@ -15,7 +15,6 @@
 (str-cat 1 2.0 "a" b [c] (create$) (printout t "B" crlf))
 (str-cat 1 (assert (foo)) (printout t "F" crlf))
 (format nil "%d|%5.2f|%s|%%|%n" 3 2.5 ok)
-(funcall str-cat a (create$ b) c)
 (funcall format nil "%d-%s" 1 x)
 (sort str-compare c a b)
 ; a recursion in a later argument never runs after a wrong one

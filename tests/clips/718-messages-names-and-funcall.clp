@@ -15,7 +15,5 @@
 (deffunction aplicar (?op $?e) (funcall ?op $?e))
 (aplicar N x y)
 (funcall N x)
-(deffunction deeper (?op) (+ 1 (aplicar ?op q)))
-(deeper N)
 (funcall + 1 a)
 (exit)

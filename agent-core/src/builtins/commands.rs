@@ -759,6 +759,9 @@ fn load_impl(cx: &mut Core<'_>, a: Args, quiet: bool) -> Result<Value, EvalError
                 break;
             }
         };
+        if only_blank(item.text) {
+            continue;
+        }
         if !starts_construct(item.text) {
             // a command, a stray symbol or `)`: one message for a run of them
             if !correcting {
@@ -784,6 +787,11 @@ fn load_impl(cx: &mut Core<'_>, a: Args, quiet: bool) -> Result<Value, EvalError
         cx.write(router::STDOUT, "\n");
     }
     Ok(Value::Sym(if ok { SYM_TRUE } else { SYM_FALSE }))
+}
+
+/// Whether a file item holds no token (spaces and comments at the end of the file).
+fn only_blank(text: &str) -> bool {
+    crate::lexer::Lexer::new(text).next_token().tok == crate::lexer::Tok::Eof
 }
 
 /// Whether a file item begins as a construct does, `(` and a construct keyword (those
