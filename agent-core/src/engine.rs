@@ -568,6 +568,7 @@ impl Mode {
             keep_globals: false,
             #[cfg(feature = "extras")]
             cool_watch: 0,
+            #[cfg(feature = "extras")]
             salience_eval: crate::agenda::SALIENCE_WHEN_DEFINED,
         }
     }
