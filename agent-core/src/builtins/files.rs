@@ -432,6 +432,7 @@ mod tests {
         assert_eq!(commands_of(&got), ["(x)", long.as_str(), "(b 2)"]);
     }
 
+    #[cfg(feature = "grow")]
     fn commands_of(items: &[String]) -> std::vec::Vec<String> {
         let pairs: std::vec::Vec<(String, u32)> = items.iter().map(|t| (t.clone(), 0)).collect();
         commands(&pairs)
