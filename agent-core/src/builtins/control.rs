@@ -84,6 +84,39 @@ pub(super) fn release_scratch_keeping(cx: &mut Core<'_>, mark: Ix, keep: &mut Va
         return;
     }
     let top = cx.st.frame.scratch_top;
+    // the usual cases in one look at the stack: nothing live above the mark (a loop
+    // body's temporaries), or one value (a list a loop rebinds each time)
+    let mut one: Option<(Ix, Ix)> = None;
+    let mut several = false;
+    for span in live_spans(cx, *keep).filter(|&(s, e)| e > mark && s < top) {
+        match one {
+            None => one = Some(span),
+            Some(o) if o == span => {}
+            Some(_) => {
+                several = true;
+                break;
+            }
+        }
+    }
+    match one {
+        None => {
+            cx.st.frame.scratch_top = mark;
+            return;
+        }
+        Some((s, e)) if !several => {
+            if s > mark {
+                cx.scratch
+                    .copy_within(s as usize..e as usize, mark as usize);
+                shift_spans(cx, keep, (s, e), s - mark);
+                cx.st.frame.scratch_top = mark + (e - s);
+            } else {
+                // it starts at or below the mark: it stays where it is
+                cx.st.frame.scratch_top = e.max(mark).min(top);
+            }
+            return;
+        }
+        Some(_) => {}
+    }
     let mut dest = mark;
     // one run of overlapping live cells at a time, lowest first (values may share
     // cells: `(bind ?y ?x)`, a `rest$` of another)
