@@ -346,8 +346,14 @@ fn runtime_errors_name_the_limit_function_and_rule() {
         };
         let mut lines = output.lines().map(str::trim_end);
         for w in &wanted {
+            // a line ending in `...` gives the start only (the host's depth limit
+            // depends on the build's stack frames)
+            let matches = |l: &str| match w.strip_suffix("...") {
+                Some(start) => l.starts_with(start),
+                None => l == *w,
+            };
             assert!(
-                lines.any(|l| l == *w),
+                lines.any(matches),
                 "{name}: missing (or out of order) {w:?} in:\n{output}"
             );
         }
