@@ -78,6 +78,10 @@ pub(super) fn release_scratch(cx: &mut Core<'_>, mark: Ix) {
 
 /// `release_scratch` that also keeps multifield `keep` (a loop's last value), moved
 /// down with the others.
+/// Dead scratch cells below a loop's one live value that may stay until they are
+/// reclaimed (see `release_scratch_keeping`).
+const COMPACT_MIN: Ix = 64;
+
 pub(super) fn release_scratch_keeping(cx: &mut Core<'_>, mark: Ix, keep: &mut Value) {
     // nothing above the mark (the usual loop body or query test): nothing to scan for
     if cx.st.frame.scratch_top <= mark {
@@ -86,31 +90,44 @@ pub(super) fn release_scratch_keeping(cx: &mut Core<'_>, mark: Ix, keep: &mut Va
     let top = cx.st.frame.scratch_top;
     // the usual cases in one look at the stack: nothing live above the mark (a loop
     // body's temporaries), or one value (a list a loop rebinds each time)
+    // (a plain loop: this runs per loop iteration and query candidate)
     let mut one: Option<(Ix, Ix)> = None;
     let mut several = false;
-    for span in live_spans(cx, *keep).filter(|&(s, e)| e > mark && s < top) {
-        match one {
-            None => one = Some(span),
-            Some(o) if o == span => {}
-            Some(_) => {
-                several = true;
-                break;
+    let mut note = |v: &Value| {
+        if let Value::Multi(m) = *v {
+            let (s, e) = (m.start, m.start + m.len);
+            if m.len > 0 && e > mark && s < top {
+                match one {
+                    None => one = Some((s, e)),
+                    Some(o) if o == (s, e) => {}
+                    Some(_) => several = true,
+                }
             }
         }
+    };
+    for v in &cx.stack[..cx.st.frame.sp as usize] {
+        note(v);
     }
+    if cx.st.eval.returning {
+        note(&cx.st.eval.return_value);
+    }
+    note(keep);
     match one {
         None => {
             cx.st.frame.scratch_top = mark;
             return;
         }
         Some((s, e)) if !several => {
-            if s > mark {
+            // slide it down only once the dead cells below it are as many as its
+            // own and at least `COMPACT_MIN`: a loop that rebinds a list each time
+            // then copies it a bounded number of times per cell, not per iteration
+            if s > mark && s - mark >= (e - s).max(COMPACT_MIN) {
                 cx.scratch
                     .copy_within(s as usize..e as usize, mark as usize);
                 shift_spans(cx, keep, (s, e), s - mark);
                 cx.st.frame.scratch_top = mark + (e - s);
             } else {
-                // it starts at or below the mark: it stays where it is
+                // it stays where it is (above the mark: with few dead cells below)
                 cx.st.frame.scratch_top = e.max(mark).min(top);
             }
             return;

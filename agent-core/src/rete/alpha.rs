@@ -33,10 +33,12 @@ impl Core<'_> {
         self.visit_alphas(fact)
     }
 
-    /// Tests a new fact against every alpha node of its template. (Inlined: the
-    /// image, without `grow`, has `network_assert` as its one caller and no stack to
-    /// spare for a frame more.)
-    #[inline(always)]
+    /// Tests a new fact against every alpha node of its template. (Inlined in the
+    /// image, without `grow`, which has `network_assert` as its one caller and no
+    /// stack to spare for a frame more; out of line on the host, whose two callers
+    /// would otherwise make LLVM call the per-node closure out of line.)
+    #[cfg_attr(not(feature = "grow"), inline(always))]
+    #[cfg_attr(feature = "grow", inline(never))]
     fn visit_alphas(&mut self, fact: Ix) -> Result<(), EvalError> {
         // host: only the nodes whose constant the fact holds, and the others
         #[cfg(feature = "host-speedups")]
