@@ -373,6 +373,25 @@ pub fn classify_word(w: &str) -> Tok<'_> {
     }
 }
 
+/// Whether `s` is a construct keyword of CLIPS 6.30 (those of its object system too,
+/// which the parser refuses by name): what starts a construct, and no deffunction name.
+pub fn is_construct_keyword(s: &str) -> bool {
+    matches!(
+        s,
+        "deftemplate"
+            | "defrule"
+            | "deffacts"
+            | "deffunction"
+            | "defglobal"
+            | "defmodule"
+            | "defgeneric"
+            | "defmethod"
+            | "defclass"
+            | "defmessage-handler"
+            | "definstances"
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

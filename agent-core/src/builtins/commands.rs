@@ -801,22 +801,7 @@ fn starts_construct(text: &str) -> bool {
     if lx.next_token().tok != crate::lexer::Tok::LParen {
         return false;
     }
-    matches!(
-        lx.next_token().tok,
-        crate::lexer::Tok::Symbol(
-            "deftemplate"
-                | "defrule"
-                | "deffacts"
-                | "deffunction"
-                | "defglobal"
-                | "defmodule"
-                | "defgeneric"
-                | "defmethod"
-                | "defclass"
-                | "defmessage-handler"
-                | "definstances"
-        )
-    )
+    matches!(lx.next_token().tok, crate::lexer::Tok::Symbol(s) if crate::lexer::is_construct_keyword(s))
 }
 
 #[cfg_attr(not(feature = "parser"), allow(dead_code))]

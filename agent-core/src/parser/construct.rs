@@ -326,20 +326,7 @@ impl<'s> Parser<'s, '_, '_> {
         // CLIPS's own functions cannot be replaced; our geometry extensions can, since a
         // CLIPS program may define a deffunction of that name (rules/clips/stubs.clp
         // does), and a deffunction is looked up before a builtin
-        if matches!(
-            name,
-            "defrule"
-                | "deffunction"
-                | "deftemplate"
-                | "defglobal"
-                | "deffacts"
-                | "defmodule"
-                | "defgeneric"
-                | "defmethod"
-                | "defclass"
-                | "defmessage-handler"
-                | "definstances"
-        ) {
+        if crate::lexer::is_construct_keyword(name) {
             let mut e = self.err(nt, "a name that is not a construct keyword");
             e.detail = LoadDetail::ReplacesConstruct;
             // CLIPS shows the deffunction up to the token after the name
