@@ -417,6 +417,18 @@ impl<'s> Parser<'s, '_, '_> {
     /// An error in `(declare ...)` as CLIPS reports it: `detail` at token `at`, the rule
     /// shown up to `echo_end` (and ` )` when `at` is a `)` CLIPS read instead).
     #[cold]
+    /// The `)` that ends a `declare` item, or CLIPS's error naming what was due.
+    fn declare_close(&mut self, expected: &'static str) -> Result<(), crate::error::LoadError> {
+        let close = self.next();
+        if close.tok != Tok::RParen {
+            let detail = crate::error::LoadDetail::SyntaxOf {
+                part: "declare statement",
+            };
+            return Err(self.declare_error(close, close.end, expected, detail));
+        }
+        Ok(())
+    }
+
     fn declare_error(
         &self,
         at: Token<'s>,
@@ -514,15 +526,7 @@ impl<'s> Parser<'s, '_, '_> {
                                 }
                             };
                             b.salience = Some(sal);
-                            let close = self.next();
-                            if close.tok != Tok::RParen {
-                                return Err(self.declare_error(
-                                    close,
-                                    close.end,
-                                    "')' after the salience",
-                                    DECLARE,
-                                ));
-                            }
+                            self.declare_close("')' after the salience")?;
                         }
                         #[cfg(feature = "modules")]
                         Tok::Symbol("auto-focus") => {
@@ -541,15 +545,7 @@ impl<'s> Parser<'s, '_, '_> {
                                     ))
                                 }
                             };
-                            let close = self.next();
-                            if close.tok != Tok::RParen {
-                                return Err(self.declare_error(
-                                    close,
-                                    close.end,
-                                    "')' after the auto-focus value",
-                                    DECLARE,
-                                ));
-                            }
+                            self.declare_close("')' after the auto-focus value")?;
                         }
                         #[cfg(not(feature = "modules"))]
                         Tok::Symbol("auto-focus") => {
