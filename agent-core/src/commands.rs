@@ -1217,12 +1217,21 @@ impl Core<'_> {
             what,
             slot,
             range,
+            call,
         } = e.detail
         {
-            let _ = writeln!(
-                b,
-                "\n[CSTRNCHK1] An expression found in the {attribute} attribute"
-            );
+            // (only the parser finds calls there)
+            let _ = if cfg!(feature = "parser") && call {
+                writeln!(
+                    b,
+                    "\n[CSTRNCHK1] The function return value found in the {attribute} attribute"
+                )
+            } else {
+                writeln!(
+                    b,
+                    "\n[CSTRNCHK1] An expression found in the {attribute} attribute"
+                )
+            };
             self.write_restriction(b, what, range, slot);
         } else if let LoadDetail::PatternConstraint {
             ce,
@@ -1499,10 +1508,18 @@ impl Core<'_> {
         // a defglobal whose initial value failed: from the global to the value's end
         if e.construct == "defglobal" && e.echo_end != 0 {
             let _ = write!(b, "\nERROR:\n(defglobal {module} ");
-            let _ = b.write_str(
-                text.get(e.start as usize..e.echo_end as usize)
-                    .unwrap_or(""),
-            );
+            // an unknown function: from its global (`?*e* = (+ 1 (foo`)
+            #[cfg(feature = "parser")]
+            let from = match e.detail {
+                LoadDetail::MissingFunction => {
+                    crate::builtins::pretty::defglobal_name_before(text, e.start as usize)
+                        .unwrap_or(e.start as usize)
+                }
+                _ => e.start as usize,
+            };
+            #[cfg(not(feature = "parser"))]
+            let from = e.start as usize;
+            let _ = b.write_str(text.get(from..e.echo_end as usize).unwrap_or(""));
             if e.echo_tail == crate::error::EchoTail::SpaceBefore {
                 let _ = b.write_str(" )");
             }

@@ -605,12 +605,14 @@ pub enum LoadDetail {
         whole: bool,
     },
     /// `[CSTRNCHK1]`: a literal in a slot's `default`/`default-dynamic` (`attribute`)
-    /// violates the slot's type (`types`) or allowed values.
+    /// violates the slot's type (`types`) or allowed values; or (`call`) a function
+    /// call there returns a type the slot never holds.
     DefaultConstraint {
         slot: Ix,
         range: Ix,
         attribute: &'static str,
         what: Restriction,
+        call: bool,
     },
     /// `[CSTRNCHK1]`: a literal in a pattern's slot constraint (CE number `ce`)
     /// violates the slot's type (`types`) or allowed values.

@@ -2,6 +2,7 @@
 
 use super::describe::ArgType::Number as N;
 use super::describe::OnError;
+use super::describe::Returns as R;
 use super::{Args, Builtin, Num, ANY};
 use crate::engine::Core;
 use crate::error::{EvalError, EvalErrorKind};
@@ -16,22 +17,22 @@ pub const CMP_LAST: Ix = 11;
 
 #[rustfmt::skip]
 pub const FUNCS: &[Builtin] = &[
-    Builtin::eager("+", 2, ANY, add).args(&[], N).quiet(),
-    Builtin::eager("-", 2, ANY, sub).args(&[], N).quiet(),
-    Builtin::eager("*", 2, ANY, mul).args(&[], N).quiet(),
-    Builtin::eager("/", 2, ANY, div).args(&[], N).on_error(OnError::FloatOne).quiet(),
-    Builtin::eager("=", 2, ANY, num_eq).args(&[], N).on_error(OnError::False).quiet(),
-    Builtin::eager("<>", 2, ANY, num_ne).args(&[], N).on_error(OnError::False).quiet(),
-    Builtin::eager("<", 2, ANY, lt).args(&[], N).on_error(OnError::False).quiet(),
-    Builtin::eager("<=", 2, ANY, le).args(&[], N).on_error(OnError::False).quiet(),
-    Builtin::eager(">", 2, ANY, gt).args(&[], N).on_error(OnError::False).quiet(),
-    Builtin::eager(">=", 2, ANY, ge).args(&[], N).on_error(OnError::False).quiet(),
-    Builtin::eager("eq", 2, ANY, eq).on_error(OnError::False).total(),
-    Builtin::eager("neq", 2, ANY, neq).on_error(OnError::False).total(),
-    Builtin::lazy("and", 2, ANY, and).on_error(OnError::False).total(),
-    Builtin::lazy("or", 2, ANY, or).on_error(OnError::False).total(),
-    Builtin::eager("not", 1, 1, not).on_error(OnError::False).total(),
-    Builtin::lazy("str-cat", 1, ANY, super::strings::str_cat_in_order).on_error(OnError::EmptyString).quiet(),
+    Builtin::eager("+", 2, ANY, add).args(&[], N).quiet().returns(R::Number),
+    Builtin::eager("-", 2, ANY, sub).args(&[], N).quiet().returns(R::Number),
+    Builtin::eager("*", 2, ANY, mul).args(&[], N).quiet().returns(R::Number),
+    Builtin::eager("/", 2, ANY, div).args(&[], N).on_error(OnError::FloatOne).quiet().returns(R::Number),
+    Builtin::eager("=", 2, ANY, num_eq).args(&[], N).on_error(OnError::False).quiet().returns(R::Symbol),
+    Builtin::eager("<>", 2, ANY, num_ne).args(&[], N).on_error(OnError::False).quiet().returns(R::Symbol),
+    Builtin::eager("<", 2, ANY, lt).args(&[], N).on_error(OnError::False).quiet().returns(R::Symbol),
+    Builtin::eager("<=", 2, ANY, le).args(&[], N).on_error(OnError::False).quiet().returns(R::Symbol),
+    Builtin::eager(">", 2, ANY, gt).args(&[], N).on_error(OnError::False).quiet().returns(R::Symbol),
+    Builtin::eager(">=", 2, ANY, ge).args(&[], N).on_error(OnError::False).quiet().returns(R::Symbol),
+    Builtin::eager("eq", 2, ANY, eq).on_error(OnError::False).total().returns(R::Symbol),
+    Builtin::eager("neq", 2, ANY, neq).on_error(OnError::False).total().returns(R::Symbol),
+    Builtin::lazy("and", 2, ANY, and).on_error(OnError::False).total().returns(R::Symbol),
+    Builtin::lazy("or", 2, ANY, or).on_error(OnError::False).total().returns(R::Symbol),
+    Builtin::eager("not", 1, 1, not).on_error(OnError::False).total().returns(R::Symbol),
+    Builtin::lazy("str-cat", 1, ANY, super::strings::str_cat_in_order).on_error(OnError::EmptyString).quiet().returns(R::SymbolOrString),
 ];
 pub const TABLE: super::Table = super::Table::new(FUNCS);
 

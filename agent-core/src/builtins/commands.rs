@@ -2,6 +2,7 @@
 //! refresh-agenda, set-strategy, list-defrules, ppdefrule, undefrule, matches, load,
 //! batch, save-facts, load-facts.
 
+use super::describe::Returns as R;
 use super::describe::{ArgType, OnError};
 use super::files::{file_buffer, FileItems};
 use super::save_facts::{self, save_facts};
@@ -23,7 +24,7 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("agenda", 0, 1, agenda),
     Builtin::eager("watch", 1, ANY, watch_),
     Builtin::eager("unwatch", 1, ANY, unwatch),
-    Builtin::lazy("printout", 1, ANY, printout),
+    Builtin::lazy("printout", 1, ANY, printout).returns(R::Void),
     Builtin::eager("halt", 0, 0, halt),
     Builtin::eager("exit", 0, 1, exit),
     Builtin::eager("refresh-agenda", 0, 1, refresh_agenda),
@@ -37,7 +38,7 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("save-facts", 1, ANY, save_facts)
         .args(&[ArgType::SymbolOrString], ArgType::Symbol)
         .on_error(OnError::False),
-    Builtin::eager("time", 0, 0, time),
+    Builtin::eager("time", 0, 0, time).returns(R::Float),
     Builtin::eager("list-deftemplates", 0, 1, list_deftemplates),
     Builtin::eager("list-deffunctions", 0, 1, list_deffunctions),
     Builtin::eager("get-fact-duplication", 0, 0, get_fact_dup),

@@ -37,6 +37,7 @@ const fn trig(name: &'static str, f: super::BuiltinFn) -> Builtin {
         .args(&[N], Any)
         .on_error(OnError::FloatZero)
         .body_names(BodyNames::Float)
+        .returns(super::describe::Returns::Float)
 }
 
 #[cfg(feature = "extras")]

@@ -33,7 +33,83 @@ pub enum ArgType {
     FactAddress,
 }
 
-/// Most leading argument positions a row types one by one (then every further argument
+/// What a builtin returns, as CLIPS's parser knows it (the return-type letter of its
+/// definition): a call whose result an argument position never takes is refused while
+/// parsing, as a literal is (`(+ 1 (str-cat a))` is `[ARGACCES5]`); a row that says
+/// nothing returns anything. (The byte fits the row's padding: the image's table does
+/// not grow.)
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Returns {
+    /// Anything (`u`): never refused.
+    Any,
+    /// Integer or float (`n`).
+    Number,
+    /// `g`, `i`, `l`.
+    Integer,
+    /// `d`, `f`.
+    Float,
+    /// `w`, `b` (a boolean is a symbol).
+    Symbol,
+    /// `s`.
+    Str,
+    /// Symbol, string or instance name (`j`).
+    Lexeme,
+    /// Symbol or string (`k`).
+    SymbolOrString,
+    /// `m`.
+    Multifield,
+    /// No value (`v`).
+    Void,
+}
+
+/// Bits of the value types a call may give or an argument position may take.
+mod bits {
+    pub const SYMBOL: u16 = 1;
+    pub const STRING: u16 = 2;
+    pub const INTEGER: u16 = 4;
+    pub const FLOAT: u16 = 8;
+    pub const INSTANCE_NAME: u16 = 16;
+    pub const MULTIFIELD: u16 = 32;
+    pub const VOID: u16 = 64;
+    pub const ALL: u16 = u16::MAX;
+}
+
+impl Returns {
+    /// The single-field types a call of this type gives, as a slot's `type` bits
+    /// (`template::types`) for CLIPS's check of a `default-dynamic` call; None where it
+    /// may give anything, a multifield or nothing. CLIPS's check there knows no `g`
+    /// (most integer functions: `str-length`, `div`, `round`) and lets them by, so
+    /// `Integer` is not checked either.
+    pub fn slot_types(self) -> Option<u8> {
+        use crate::template::types;
+        Some(match self {
+            Returns::Number => types::NUMBER,
+            Returns::Float => types::FLOAT,
+            Returns::Symbol => types::SYMBOL,
+            Returns::Str => types::STRING,
+            Returns::Lexeme | Returns::SymbolOrString => types::LEXEME,
+            Returns::Any | Returns::Integer | Returns::Multifield | Returns::Void => return None,
+        })
+    }
+
+    fn types(self) -> u16 {
+        use bits::*;
+        match self {
+            Returns::Any => ALL,
+            Returns::Number => INTEGER | FLOAT,
+            Returns::Integer => INTEGER,
+            Returns::Float => FLOAT,
+            Returns::Symbol => SYMBOL,
+            Returns::Str => STRING,
+            Returns::Lexeme => SYMBOL | STRING | INSTANCE_NAME,
+            Returns::SymbolOrString => SYMBOL | STRING,
+            Returns::Multifield => MULTIFIELD,
+            Returns::Void => VOID,
+        }
+    }
+}
+
+/// Most leading argument positions a row types one by one/// Most leading argument positions a row types one by one (then every further argument
 /// has the `rest` type).
 pub const MAX_TYPED: usize = 3;
 
@@ -168,6 +244,11 @@ impl Builtin {
         self.purity = Purity::Total;
         self
     }
+    /// What the builtin returns, as CLIPS's parser knows it.
+    pub const fn returns(mut self, r: Returns) -> Builtin {
+        self.returns = r;
+        self
+    }
     /// How the body words a computed argument's wrong type.
     pub const fn body_names(mut self, names: BodyNames) -> Builtin {
         self.body_names = names;
@@ -218,6 +299,24 @@ impl ArgType {
             ArgType::Str => matches!(v, Value::Str(_)),
             ArgType::Multifield | ArgType::FactAddress => false,
         }
+    }
+
+    /// Whether a call returning `r` may fit (CLIPS intersects the two types and
+    /// refuses the call when nothing is left).
+    pub fn admits_call(self, r: Returns) -> bool {
+        use bits::*;
+        let takes = match self {
+            // (no call's type is known to exclude a fact address)
+            ArgType::Any | ArgType::FactAddress => ALL,
+            ArgType::Number => INTEGER | FLOAT,
+            ArgType::Integer => INTEGER,
+            ArgType::Lexeme => SYMBOL | STRING | INSTANCE_NAME,
+            ArgType::SymbolOrString => SYMBOL | STRING,
+            ArgType::Symbol => SYMBOL,
+            ArgType::Str => STRING,
+            ArgType::Multifield => MULTIFIELD,
+        };
+        takes & r.types() != 0
     }
 
     /// CLIPS's wording in `[ARGACCES5] ... to be of type WORDING`.
@@ -279,6 +378,23 @@ mod tests {
         assert!(ArgType::Lexeme.admits(Value::Str(3)));
         assert!(!ArgType::Str.admits(Value::Sym(3)));
         assert!(!ArgType::Multifield.admits(Value::Int(1)));
+    }
+
+    #[test]
+    fn calls_are_judged_by_their_return_type() {
+        let r = |name: &str| lookup(name).unwrap().1.returns;
+        assert!(!ArgType::Number.admits_call(r("str-cat")));
+        assert!(ArgType::Integer.admits_call(r("+")));
+        assert!(!ArgType::Integer.admits_call(r("sqrt")));
+        assert!(!ArgType::Multifield.admits_call(r("+")));
+        assert!(!ArgType::Lexeme.admits_call(r("str-length")));
+        assert!(ArgType::Symbol.admits_call(r("str-cat")));
+        assert!(ArgType::Any.admits_call(r("printout")));
+        assert!(!ArgType::Number.admits_call(r("printout")));
+        assert!(ArgType::Number.admits_call(r("nth$")));
+        // CLIPS's slot check lets `g` integers by
+        assert_eq!(r("str-length").slot_types(), None);
+        assert_eq!(r("sqrt").slot_types(), Some(crate::template::types::FLOAT));
     }
 
     #[test]

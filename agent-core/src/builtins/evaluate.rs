@@ -169,7 +169,28 @@ pub(super) fn funcall(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         len: a.len - 1,
     };
     match callee_named(cx, name) {
-        Some(c) => cx.call_values(c, rest),
+        Some(c) => {
+            let r = cx.call_values(c, rest);
+            // a builtin that fails gives funcall its own error value (`""` for
+            // `str-cat`, `nil` for `sym-cat`), unless it recorded one already
+            if let (Err(_), Callee::Builtin(name, ..)) = (&r, c) {
+                let depth = cx.st.eval.eval_depth;
+                let recorded = cx.st.eval.error_fallback.is_some_and(|f| f.depth == depth);
+                let value = super::lookup(name).and_then(|(_, b)| match b.on_error.fallback() {
+                    Some(super::errors::Fallback::Sym("nil")) => Some(Value::Sym(super::SYM_NIL)),
+                    Some(super::errors::Fallback::Str("")) => {
+                        Some(Value::Str(super::SYM_EMPTY_STR))
+                    }
+                    Some(super::errors::Fallback::Int(i)) => Some(Value::Int(i)),
+                    Some(super::errors::Fallback::Float(f)) => Some(Value::Float(f)),
+                    _ => None,
+                });
+                if let (false, Some(v)) = (recorded, value) {
+                    cx.set_error_fallback(v, None);
+                }
+            }
+            r
+        }
         None => Err(EvalError::wrong_type("funcall", 1, NOT_A_FUNCTION)),
     }
 }

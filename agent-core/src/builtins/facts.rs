@@ -2,6 +2,7 @@
 
 use super::describe::ArgType::{Any, FactAddress as F};
 use super::describe::OnError;
+use super::describe::Returns as R;
 use super::{Args, Builtin, ANY, SYM_FALSE, SYM_NIL};
 use crate::engine::Core;
 use crate::error::{EvalError, EvalErrorKind};
@@ -14,12 +15,12 @@ use crate::value::{FactRef, MfSpan, SymId, Value, NONE};
 #[rustfmt::skip]
 pub const FUNCS: &[Builtin] = &[
     Builtin::lazy("assert", 1, ANY, assert),
-    Builtin::eager("retract", 1, ANY, retract),
+    Builtin::eager("retract", 1, ANY, retract).returns(R::Void),
     Builtin::lazy("modify", 1, ANY, modify),
     Builtin::lazy("duplicate", 1, ANY, duplicate),
     Builtin::eager("fact-slot-value", 2, 2, fact_slot_value),
-    Builtin::eager("fact-index", 1, 1, fact_index).args(&[F], Any).on_error(OnError::MinusOne),
-    Builtin::eager("fact-existp", 1, 1, fact_existp),
+    Builtin::eager("fact-index", 1, 1, fact_index).args(&[F], Any).on_error(OnError::MinusOne).returns(R::Integer),
+    Builtin::eager("fact-existp", 1, 1, fact_existp).returns(R::Symbol),
 ];
 pub const TABLE: super::Table = super::Table::new(FUNCS);
 

@@ -9,6 +9,7 @@
 
 use super::describe::ArgType::{Any, Str as S};
 use super::describe::OnError;
+use super::describe::Returns as R;
 use core::fmt::Write;
 
 use super::math::{c_trunc_to_i64, T_NUMBER};
@@ -21,7 +22,8 @@ use crate::value::{TextBuf, Value};
 
 pub const FUNCS: &[Builtin] = &[Builtin::lazy("format", 2, ANY, format_in_order)
     .args(&[Any, S], Any)
-    .on_error(OnError::EmptyString)];
+    .on_error(OnError::EmptyString)
+    .returns(R::Str)];
 pub const TABLE: super::Table = super::Table::new(FUNCS);
 
 const TOO_LONG: EvalError = EvalError::message(crate::error::Message::FormatTooLong);

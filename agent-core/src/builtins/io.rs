@@ -17,6 +17,7 @@
 //! [`Host::read_byte`]: crate::host::Host::read_byte
 //! [`Host::dribble_on`]: crate::host::Host::dribble_on
 
+use super::describe::Returns as R;
 use core::fmt::Write;
 
 use super::commands::{report_unknown_router, ROUTERS};
@@ -30,16 +31,16 @@ use crate::value::{TextBuf, Value};
 #[rustfmt::skip]
 pub const FUNCS: &[Builtin] = &[
     Builtin::eager("read", 0, 1, read),
-    Builtin::eager("readline", 0, 1, readline),
+    Builtin::eager("readline", 0, 1, readline).returns(R::SymbolOrString),
     Builtin::eager("read-number", 0, 1, read_number),
-    Builtin::eager("get-char", 0, 1, get_char),
-    Builtin::eager("put-char", 1, 2, put_char),
-    Builtin::eager("open", 2, 3, open),
-    Builtin::eager("close", 0, 1, close),
-    Builtin::eager("remove", 1, 1, remove),
-    Builtin::eager("rename", 2, 2, rename),
-    Builtin::eager("dribble-on", 1, 1, dribble_on),
-    Builtin::eager("dribble-off", 0, 0, dribble_off),
+    Builtin::eager("get-char", 0, 1, get_char).returns(R::Integer),
+    Builtin::eager("put-char", 1, 2, put_char).returns(R::Void),
+    Builtin::eager("open", 2, 3, open).returns(R::Symbol),
+    Builtin::eager("close", 0, 1, close).returns(R::Symbol),
+    Builtin::eager("remove", 1, 1, remove).returns(R::Symbol),
+    Builtin::eager("rename", 2, 2, rename).returns(R::Symbol),
+    Builtin::eager("dribble-on", 1, 1, dribble_on).returns(R::Symbol),
+    Builtin::eager("dribble-off", 0, 0, dribble_off).returns(R::Symbol),
 ];
 
 pub const TABLE: super::Table = super::Table::new(FUNCS);

@@ -6,6 +6,7 @@
 //! or instance name", ...).
 
 use super::describe::ArgType::{Any, Number as N};
+use super::describe::Returns as R;
 use super::describe::{BodyNames, OnError};
 use super::{Args, Builtin, Num, ANY};
 use crate::engine::Core;
@@ -14,28 +15,28 @@ use crate::value::{SymId, Value};
 
 #[rustfmt::skip]
 pub const FUNCS: &[Builtin] = &[
-    Builtin::eager("div", 2, ANY, div).args(&[], N).on_error(OnError::One).quiet(),
-    Builtin::eager("mod", 2, 2, modulo).args(&[], N).on_error(OnError::Zero).quiet(),
-    Builtin::eager("abs", 1, 1, abs).args(&[N], Any).on_error(OnError::Zero).quiet(),
-    Builtin::eager("min", 2, ANY, min).args(&[], N).quiet(),
-    Builtin::eager("max", 2, ANY, max).args(&[], N).quiet(),
-    Builtin::eager("**", 2, 2, pow).args(&[], N).on_error(OnError::FloatZero).quiet().body_names(BodyNames::Float),
-    Builtin::eager("sqrt", 1, 1, sqrt).args(&[N], Any).on_error(OnError::FloatZero).quiet().body_names(BodyNames::Float),
-    Builtin::eager("round", 1, 1, round).args(&[N], Any).on_error(OnError::Zero).quiet(),
-    Builtin::eager("integer", 1, 1, integer).args(&[N], Any).on_error(OnError::Zero).quiet().body_names(BodyNames::Integer),
-    Builtin::eager("float", 1, 1, float).args(&[N], Any).on_error(OnError::FloatZero).quiet().body_names(BodyNames::Float),
-    Builtin::eager("exp", 1, 1, exp).args(&[N], Any).on_error(OnError::FloatZero).quiet().body_names(BodyNames::Float),
-    Builtin::eager("log", 1, 1, log).args(&[N], Any).on_error(OnError::FloatZero).quiet().body_names(BodyNames::Float),
-    Builtin::eager("log10", 1, 1, log10).args(&[N], Any).on_error(OnError::FloatZero).quiet().body_names(BodyNames::Float),
-    Builtin::eager("pi", 0, 0, pi).quiet(),
-    Builtin::eager("sin", 1, 1, sin).args(&[N], Any).on_error(OnError::FloatZero).quiet().body_names(BodyNames::Float),
-    Builtin::eager("cos", 1, 1, cos).args(&[N], Any).on_error(OnError::FloatZero).quiet().body_names(BodyNames::Float),
-    Builtin::eager("tan", 1, 1, tan).args(&[N], Any).on_error(OnError::FloatZero).quiet().body_names(BodyNames::Float),
-    Builtin::eager("asin", 1, 1, asin).args(&[N], Any).on_error(OnError::FloatZero).quiet().body_names(BodyNames::Float),
-    Builtin::eager("acos", 1, 1, acos).args(&[N], Any).on_error(OnError::FloatZero).quiet().body_names(BodyNames::Float),
-    Builtin::eager("atan", 1, 1, atan).args(&[N], Any).on_error(OnError::FloatZero).quiet().body_names(BodyNames::Float),
-    Builtin::eager("deg-rad", 1, 1, deg_rad).args(&[N], Any).on_error(OnError::FloatZero).quiet().body_names(BodyNames::Float),
-    Builtin::eager("rad-deg", 1, 1, rad_deg).args(&[N], Any).on_error(OnError::FloatZero).quiet().body_names(BodyNames::Float),
+    Builtin::eager("div", 2, ANY, div).args(&[], N).on_error(OnError::One).quiet().returns(R::Integer),
+    Builtin::eager("mod", 2, 2, modulo).args(&[], N).on_error(OnError::Zero).quiet().returns(R::Number),
+    Builtin::eager("abs", 1, 1, abs).args(&[N], Any).on_error(OnError::Zero).quiet().returns(R::Number),
+    Builtin::eager("min", 2, ANY, min).args(&[], N).quiet().returns(R::Number),
+    Builtin::eager("max", 2, ANY, max).args(&[], N).quiet().returns(R::Number),
+    Builtin::eager("**", 2, 2, pow).args(&[], N).on_error(OnError::FloatZero).quiet().body_names(BodyNames::Float).returns(R::Float),
+    Builtin::eager("sqrt", 1, 1, sqrt).args(&[N], Any).on_error(OnError::FloatZero).quiet().body_names(BodyNames::Float).returns(R::Float),
+    Builtin::eager("round", 1, 1, round).args(&[N], Any).on_error(OnError::Zero).quiet().returns(R::Integer),
+    Builtin::eager("integer", 1, 1, integer).args(&[N], Any).on_error(OnError::Zero).quiet().body_names(BodyNames::Integer).returns(R::Integer),
+    Builtin::eager("float", 1, 1, float).args(&[N], Any).on_error(OnError::FloatZero).quiet().body_names(BodyNames::Float).returns(R::Float),
+    Builtin::eager("exp", 1, 1, exp).args(&[N], Any).on_error(OnError::FloatZero).quiet().body_names(BodyNames::Float).returns(R::Float),
+    Builtin::eager("log", 1, 1, log).args(&[N], Any).on_error(OnError::FloatZero).quiet().body_names(BodyNames::Float).returns(R::Float),
+    Builtin::eager("log10", 1, 1, log10).args(&[N], Any).on_error(OnError::FloatZero).quiet().body_names(BodyNames::Float).returns(R::Float),
+    Builtin::eager("pi", 0, 0, pi).quiet().returns(R::Float),
+    Builtin::eager("sin", 1, 1, sin).args(&[N], Any).on_error(OnError::FloatZero).quiet().body_names(BodyNames::Float).returns(R::Float),
+    Builtin::eager("cos", 1, 1, cos).args(&[N], Any).on_error(OnError::FloatZero).quiet().body_names(BodyNames::Float).returns(R::Float),
+    Builtin::eager("tan", 1, 1, tan).args(&[N], Any).on_error(OnError::FloatZero).quiet().body_names(BodyNames::Float).returns(R::Float),
+    Builtin::eager("asin", 1, 1, asin).args(&[N], Any).on_error(OnError::FloatZero).quiet().body_names(BodyNames::Float).returns(R::Float),
+    Builtin::eager("acos", 1, 1, acos).args(&[N], Any).on_error(OnError::FloatZero).quiet().body_names(BodyNames::Float).returns(R::Float),
+    Builtin::eager("atan", 1, 1, atan).args(&[N], Any).on_error(OnError::FloatZero).quiet().body_names(BodyNames::Float).returns(R::Float),
+    Builtin::eager("deg-rad", 1, 1, deg_rad).args(&[N], Any).on_error(OnError::FloatZero).quiet().body_names(BodyNames::Float).returns(R::Float),
+    Builtin::eager("rad-deg", 1, 1, rad_deg).args(&[N], Any).on_error(OnError::FloatZero).quiet().body_names(BodyNames::Float).returns(R::Float),
 ];
 pub const TABLE: super::Table = super::Table::new(FUNCS);
 

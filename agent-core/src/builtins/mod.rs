@@ -143,6 +143,9 @@ pub struct Builtin {
     pub purity: describe::Purity,
     /// How the body words a computed argument's wrong type.
     pub body_names: describe::BodyNames,
+    /// What the call returns, as CLIPS's parser knows it (calls as arguments are
+    /// checked against it).
+    pub returns: describe::Returns,
 }
 
 impl Builtin {
@@ -157,6 +160,7 @@ impl Builtin {
             on_error: describe::OnError::Nothing,
             purity: describe::Purity::Effects,
             body_names: describe::BodyNames::Same,
+            returns: describe::Returns::Any,
         }
     }
     pub const fn eager(name: &'static str, min: u8, max: u8, f: BuiltinFn) -> Builtin {

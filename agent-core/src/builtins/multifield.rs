@@ -6,6 +6,7 @@
 
 use super::describe::ArgType::{Any, Integer as I, Multifield as M, Str as S};
 use super::describe::OnError;
+use super::describe::Returns as R;
 use super::math::{int_arg, T_MULTI};
 use super::strings::{scan_field, Text};
 use super::{Args, Builtin, ANY, SYM_FALSE, SYM_NIL};
@@ -19,23 +20,23 @@ use core::fmt::Write;
 
 #[rustfmt::skip]
 pub const FUNCS: &[Builtin] = &[
-    Builtin::eager("create$", 0, ANY, create).on_error(OnError::EmptyMultifield),
-    Builtin::eager("length$", 1, 1, length),
+    Builtin::eager("create$", 0, ANY, create).on_error(OnError::EmptyMultifield).returns(R::Multifield),
+    Builtin::eager("length$", 1, 1, length).returns(R::Integer),
     // CLIPS 6.30 still accepts the old name
-    Builtin::eager("length", 1, 1, length_old),
+    Builtin::eager("length", 1, 1, length_old).returns(R::Integer),
     Builtin::eager("nth$", 2, 2, nth).args(&[I, M], Any).on_error(OnError::Nil),
     Builtin::eager("member$", 2, 2, member).args(&[Any, M], Any).on_error(OnError::False),
-    Builtin::eager("subsetp", 2, 2, subsetp).args(&[M, M], Any).on_error(OnError::False),
-    Builtin::eager("insert$", 3, ANY, insert).args(&[M, I], Any).on_error(OnError::EmptyMultifield),
-    Builtin::eager("delete$", 3, 3, delete).args(&[M, I, I], Any).on_error(OnError::EmptyMultifield),
-    Builtin::eager("replace$", 4, ANY, replace).args(&[M, I, I], Any).on_error(OnError::EmptyMultifield),
-    Builtin::eager("first$", 1, 1, first).args(&[M], Any).on_error(OnError::EmptyMultifield),
-    Builtin::eager("rest$", 1, 1, rest).args(&[M], Any).on_error(OnError::EmptyMultifield),
-    Builtin::eager("subseq$", 3, 3, subseq).args(&[M, I, I], Any).on_error(OnError::EmptyMultifield),
-    Builtin::eager("implode$", 1, 1, implode).args(&[M], Any).on_error(OnError::EmptyString),
-    Builtin::eager("delete-member$", 2, ANY, delete_member).args(&[M], Any).on_error(OnError::EmptyMultifield),
-    Builtin::eager("replace-member$", 3, ANY, replace_member).args(&[M], Any).on_error(OnError::EmptyMultifield),
-    Builtin::eager("explode$", 1, 1, explode).args(&[S], Any).on_error(OnError::EmptyMultifield),
+    Builtin::eager("subsetp", 2, 2, subsetp).args(&[M, M], Any).on_error(OnError::False).returns(R::Symbol),
+    Builtin::eager("insert$", 3, ANY, insert).args(&[M, I], Any).on_error(OnError::EmptyMultifield).returns(R::Multifield),
+    Builtin::eager("delete$", 3, 3, delete).args(&[M, I, I], Any).on_error(OnError::EmptyMultifield).returns(R::Multifield),
+    Builtin::eager("replace$", 4, ANY, replace).args(&[M, I, I], Any).on_error(OnError::EmptyMultifield).returns(R::Multifield),
+    Builtin::eager("first$", 1, 1, first).args(&[M], Any).on_error(OnError::EmptyMultifield).returns(R::Multifield),
+    Builtin::eager("rest$", 1, 1, rest).args(&[M], Any).on_error(OnError::EmptyMultifield).returns(R::Multifield),
+    Builtin::eager("subseq$", 3, 3, subseq).args(&[M, I, I], Any).on_error(OnError::EmptyMultifield).returns(R::Multifield),
+    Builtin::eager("implode$", 1, 1, implode).args(&[M], Any).on_error(OnError::EmptyString).returns(R::Str),
+    Builtin::eager("delete-member$", 2, ANY, delete_member).args(&[M], Any).on_error(OnError::EmptyMultifield).returns(R::Multifield),
+    Builtin::eager("replace-member$", 3, ANY, replace_member).args(&[M], Any).on_error(OnError::EmptyMultifield).returns(R::Multifield),
+    Builtin::eager("explode$", 1, 1, explode).args(&[S], Any).on_error(OnError::EmptyMultifield).returns(R::Multifield),
 ];
 pub const TABLE: super::Table = super::Table::new(FUNCS);
 

@@ -3,6 +3,7 @@
 
 use super::describe::ArgType::{Any, Integer as I};
 use super::describe::OnError;
+use super::describe::Returns as R;
 use super::math::int_arg;
 use super::{Args, Builtin};
 use crate::engine::Core;
@@ -11,15 +12,15 @@ use crate::value::Value;
 
 #[rustfmt::skip]
 pub const FUNCS: &[Builtin] = &[
-    Builtin::eager("numberp", 1, 1, numberp).on_error(OnError::False).total(),
-    Builtin::eager("integerp", 1, 1, integerp).on_error(OnError::False).total(),
-    Builtin::eager("floatp", 1, 1, floatp).on_error(OnError::False).total(),
-    Builtin::eager("symbolp", 1, 1, symbolp).on_error(OnError::False).total(),
-    Builtin::eager("stringp", 1, 1, stringp).on_error(OnError::False).total(),
-    Builtin::eager("lexemep", 1, 1, lexemep).on_error(OnError::False).total(),
-    Builtin::eager("multifieldp", 1, 1, multifieldp).on_error(OnError::False).total(),
-    Builtin::eager("evenp", 1, 1, evenp).args(&[I], Any).on_error(OnError::False).quiet(),
-    Builtin::eager("oddp", 1, 1, oddp).args(&[I], Any).on_error(OnError::False).quiet(),
+    Builtin::eager("numberp", 1, 1, numberp).on_error(OnError::False).total().returns(R::Symbol),
+    Builtin::eager("integerp", 1, 1, integerp).on_error(OnError::False).total().returns(R::Symbol),
+    Builtin::eager("floatp", 1, 1, floatp).on_error(OnError::False).total().returns(R::Symbol),
+    Builtin::eager("symbolp", 1, 1, symbolp).on_error(OnError::False).total().returns(R::Symbol),
+    Builtin::eager("stringp", 1, 1, stringp).on_error(OnError::False).total().returns(R::Symbol),
+    Builtin::eager("lexemep", 1, 1, lexemep).on_error(OnError::False).total().returns(R::Symbol),
+    Builtin::eager("multifieldp", 1, 1, multifieldp).on_error(OnError::False).total().returns(R::Symbol),
+    Builtin::eager("evenp", 1, 1, evenp).args(&[I], Any).on_error(OnError::False).quiet().returns(R::Symbol),
+    Builtin::eager("oddp", 1, 1, oddp).args(&[I], Any).on_error(OnError::False).quiet().returns(R::Symbol),
 ];
 pub const TABLE: super::Table = super::Table::new(FUNCS);
 

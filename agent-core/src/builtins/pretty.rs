@@ -248,6 +248,15 @@ fn action_at(c: &mut Cursor<'_>, w: &mut dyn Write, col: usize) -> fmt::Result {
             c.next();
             w.write_str("(if ")?;
             flat(c, w)?;
+            // (an `if` CLIPS stopped reading where `then` was due: the token there on
+            // a line of its own; only parse errors show such text)
+            #[cfg(feature = "parser")]
+            if !matches!(c.peek(0).tok, Tok::RParen | Tok::Eof | Tok::Bad)
+                && !is_sym(c.peek(0), "then")
+                && !is_sym(c.peek(0), "else")
+            {
+                action_lines(c, w, body, &[])?;
+            }
             for part in ["then", "else"] {
                 if is_sym(c.peek(0), part) {
                     c.next();
@@ -311,6 +320,12 @@ fn action_at(c: &mut Cursor<'_>, w: &mut dyn Write, col: usize) -> fmt::Result {
                     if is_sym(c.peek(0), "then") {
                         c.next();
                         w.write_str(" then")?;
+                    } else if cfg!(feature = "parser")
+                        && !matches!(c.peek(0).tok, Tok::RParen | Tok::Eof | Tok::Bad)
+                    {
+                        // a case CLIPS stopped reading where `then` was due: on its line
+                        w.write_char(' ')?;
+                        flat(c, w)?;
                     }
                 }
                 action_lines(c, w, body + 3, &[])?;
@@ -495,6 +510,32 @@ pub fn write_deffacts_upto(src: &str, module: &str, w: &mut dyn Write) -> fmt::R
         write_token(&c, w, t)?;
     }
     Ok(())
+}
+
+/// The start of the last global named at the top of the defglobal holding byte `at`
+/// of `src` (the global whose value CLIPS was reading there), if any.
+#[cfg(feature = "parser")]
+pub fn defglobal_name_before(src: &str, at: usize) -> Option<usize> {
+    let mut lx = Lexer::new(src);
+    let mut depth = 0u32;
+    let mut found = None;
+    loop {
+        let t = lx.next_token();
+        if matches!(t.tok, Tok::Eof | Tok::Bad) || t.start >= at {
+            return found;
+        }
+        match t.tok {
+            Tok::LParen => {
+                if depth == 0 {
+                    found = None;
+                }
+                depth += 1;
+            }
+            Tok::RParen => depth = depth.saturating_sub(1),
+            Tok::Global(_) if depth == 1 => found = Some(t.start),
+            _ => {}
+        }
+    }
 }
 
 /// What CLIPS shows after `ERROR:` for a deftemplate it rejected: the construct as

@@ -10,6 +10,7 @@
 //! is 3 ahead), `rng_seeded` whether the ring was initialised.
 
 use super::describe::ArgType::{Any, Integer as I};
+use super::describe::Returns as R;
 use super::math::int_arg;
 use super::{Args, Builtin};
 use crate::engine::{Core, State};
@@ -18,8 +19,8 @@ use crate::value::Value;
 
 #[rustfmt::skip]
 pub const FUNCS: &[Builtin] = &[
-    Builtin::eager("random", 0, 2, random).args(&[], I),
-    Builtin::eager("seed", 1, 1, seed).args(&[I], Any),
+    Builtin::eager("random", 0, 2, random).args(&[], I).returns(R::Integer),
+    Builtin::eager("seed", 1, 1, seed).args(&[I], Any).returns(R::Void),
 ];
 pub const TABLE: super::Table = super::Table::new(FUNCS);
 

@@ -6,6 +6,7 @@
 //! C's `toupper` in the "C" locale does.
 
 use super::describe::ArgType::{Any, Integer as I, Lexeme as L};
+use super::describe::Returns as R;
 use super::describe::{BodyNames, OnError};
 use super::math::{int_arg, lexeme_arg, T_ATOM};
 use super::{Args, Builtin, SYM_FALSE};
@@ -17,13 +18,13 @@ use crate::value::{SymId, TextBuf, Value};
 
 #[rustfmt::skip]
 pub const FUNCS: &[Builtin] = &[
-    Builtin::lazy("sym-cat", 1, super::ANY, sym_cat_in_order).on_error(OnError::Nil),
-    Builtin::eager("str-length", 1, 1, str_length).args(&[L], Any).on_error(OnError::MinusOne).body_names(BodyNames::SymbolOrString),
-    Builtin::eager("sub-string", 3, 3, sub_string).args(&[I, I, L], Any).on_error(OnError::EmptyString).body_names(BodyNames::SymbolOrString),
+    Builtin::lazy("sym-cat", 1, super::ANY, sym_cat_in_order).on_error(OnError::Nil).returns(R::SymbolOrString),
+    Builtin::eager("str-length", 1, 1, str_length).args(&[L], Any).on_error(OnError::MinusOne).body_names(BodyNames::SymbolOrString).returns(R::Integer),
+    Builtin::eager("sub-string", 3, 3, sub_string).args(&[I, I, L], Any).on_error(OnError::EmptyString).body_names(BodyNames::SymbolOrString).returns(R::Str),
     Builtin::eager("str-index", 2, 2, str_index).args(&[L, L], Any).on_error(OnError::False).body_names(BodyNames::SymbolOrString),
-    Builtin::eager("upcase", 1, 1, upcase).args(&[L], Any).on_error(OnError::EmptyString).body_names(BodyNames::SymbolOrString),
-    Builtin::eager("lowcase", 1, 1, lowcase).args(&[L], Any).on_error(OnError::EmptyString).body_names(BodyNames::SymbolOrString),
-    Builtin::eager("str-compare", 2, 3, str_compare).args(&[L, L, I], Any).on_error(OnError::Zero).body_names(BodyNames::SymbolOrString),
+    Builtin::eager("upcase", 1, 1, upcase).args(&[L], Any).on_error(OnError::EmptyString).body_names(BodyNames::SymbolOrString).returns(R::Lexeme),
+    Builtin::eager("lowcase", 1, 1, lowcase).args(&[L], Any).on_error(OnError::EmptyString).body_names(BodyNames::SymbolOrString).returns(R::Lexeme),
+    Builtin::eager("str-compare", 2, 3, str_compare).args(&[L, L, I], Any).on_error(OnError::Zero).body_names(BodyNames::SymbolOrString).returns(R::Integer),
     Builtin::eager("string-to-field", 1, 1, string_to_field).on_error(OnError::ErrorString).body_names(BodyNames::SymbolOrString),
 ];
 pub const TABLE: super::Table = super::Table::new(FUNCS);

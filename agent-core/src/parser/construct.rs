@@ -374,7 +374,11 @@ impl<'s> Parser<'s, '_, '_> {
             }
         };
         let old = self.cx.funcs[f as usize];
-        self.expect_lparen("'(' opening the parameter list")?;
+        // CLIPS's "parameter list" syntax error, the deffunction shown up to the token
+        let open = self.next();
+        if open.tok != Tok::LParen {
+            return Err(self.syntax_of(open, "'(' opening the parameter list", "parameter list"));
+        }
         self.scope = Scope::Frame;
         let mut nparams = 0u8;
         let mut rest = false;
@@ -403,13 +407,14 @@ impl<'s> Parser<'s, '_, '_> {
                     rest = true;
                 }
                 _ => {
-                    return Err(self.err(
+                    return Err(self.syntax_of(
                         t,
                         if rest {
                             "the $? wildcard parameter to be last"
                         } else {
                             "a parameter"
                         },
+                        "parameter list",
                     ))
                 }
             }

@@ -410,6 +410,15 @@ impl<'s> Parser<'s, '_, '_> {
                         return Ok(call);
                     }
                 }
+                // CLIPS reads one value and then wants the `)`
+                if b.name == "return" && n > 1 {
+                    let resume = self.save();
+                    self.restore(args_at);
+                    self.skip_balanced()?;
+                    let at = self.peek();
+                    self.restore(resume);
+                    return Err(self.syntax_of(at, "')' after the value", "return function"));
+                }
                 if crate::eval::check_arity(b.name, b.min, b.max, n).is_err() {
                     let mut e = self.err(nt, arity_text(b.min, b.max));
                     e.detail = crate::error::LoadDetail::Arity {
@@ -487,8 +496,8 @@ impl<'s> Parser<'s, '_, '_> {
     }
 
     /// CLIPS rejects a literal argument of a type the builtin never takes when it
-    /// parses the call; the error points at the argument (`args_at`: where the
-    /// arguments start, to find it again).
+    /// parses the call, and a call whose return type it never takes; the error points
+    /// at the argument (`args_at`: where the arguments start, to find it again).
     fn check_literal_args(
         &mut self,
         func: &'static str,
@@ -498,11 +507,17 @@ impl<'s> Parser<'s, '_, '_> {
         let mut c = self.cx.exprs[call as usize].first;
         let mut k = 0;
         while c != NONE {
-            let op = self.cx.exprs[c as usize].op;
+            let x = self.cx.exprs[c as usize];
             let ty = argtypes::arg_type(func, k);
-            if matches!(op, Op::Int | Op::Float | Op::Sym | Op::Str)
-                && !ty.admits(self.cx.const_value(c))
-            {
+            let refused = match x.op {
+                Op::Int | Op::Float | Op::Sym | Op::Str => !ty.admits(self.cx.const_value(c)),
+                // a builtin's result of a type the position never takes
+                Op::Call if x.aux == FnKind::Builtin as u8 => {
+                    !ty.admits_call(builtins::get(x.data).returns)
+                }
+                _ => false,
+            };
+            if refused {
                 let resume = self.save();
                 self.restore(args_at);
                 for _ in 0..k {
@@ -743,7 +758,7 @@ impl<'s> Parser<'s, '_, '_> {
         self.cx.append_child(node, cond);
         let t = self.next();
         if t.tok != Tok::Symbol("then") {
-            return Err(self.err(t, "keyword 'then'"));
+            return Err(self.syntax_of(t, "keyword 'then'", "if function"));
         }
         let then = self.actions_until(&["else"])?;
         self.cx.append_child(node, then);

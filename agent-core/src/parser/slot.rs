@@ -686,8 +686,31 @@ impl<'s> Parser<'s, '_, '_> {
                         what,
                         slot: def.name,
                         range: def.range,
+                        call: false,
                     };
                     return Err(e);
+                }
+                // a dynamic default's builtin call: its return type against the slot's
+                let x = self.cx.exprs[c as usize];
+                if *attribute == "default-dynamic"
+                    && def.types != 0
+                    && x.op == crate::expr::Op::Call
+                    && x.aux == crate::expr::FnKind::Builtin as u8
+                {
+                    let returns = crate::builtins::get(x.data).returns;
+                    if returns.slot_types().is_some_and(|t| t & def.types == 0) {
+                        let at = self.value_at(values_at.clone(), k)?;
+                        let what = Restriction::Type;
+                        let mut e = self.err(at, expected(what));
+                        e.detail = LoadDetail::DefaultConstraint {
+                            attribute,
+                            what,
+                            slot: def.name,
+                            range: def.range,
+                            call: true,
+                        };
+                        return Err(e);
+                    }
                 }
                 if self.is_literal(c) {
                     literals += 1;
@@ -706,6 +729,7 @@ impl<'s> Parser<'s, '_, '_> {
                     what,
                     slot: def.name,
                     range: def.range,
+                    call: false,
                 };
                 return Err(e);
             }

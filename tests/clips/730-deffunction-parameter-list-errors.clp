@@ -1,0 +1,17 @@
+; a deffunction's malformed parameter list is CLIPS's "parameter list" syntax error,
+; the deffunction shown up to the token; `?1x` is the wildcard `?` and a symbol
+(deffunction f1 (?a ?1x) ?a)
+(deffunction f2 (?a b) ?a)
+(deffunction f3 ?a ?a)
+(deffunction f4 (?a (b)) ?a)
+(deffunction f5 (?a "s") ?a)
+(deffunction f6 (?a $?b ?c) ?a)
+(deffunction f7 (?a ?a) ?a)
+(deffunction f8 (2) 1)
+(bind ?1x 3)
+(deffunction f9 () (bind ?1x 3))
+(defrule r1 => (bind ?1x 3))
+(deffunction ok (?a $?b) (create$ ?a ?b))
+(ok 1 2 3)
+(list-deffunctions)
+(exit)

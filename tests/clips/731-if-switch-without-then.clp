@@ -1,0 +1,16 @@
+; `if` without `then` is CLIPS's "if function" syntax error and a switch case without
+; `then` its "switch function" one, the construct shown up to the token read
+(deffunction g1 (?x) (if (> ?x 1) (printout t "a" crlf)))
+(deffunction g2 (?x) (if (> ?x 1) else 2))
+(deffunction g3 (?x) (switch ?x (case 1 (printout t "a" crlf)) (default 2)))
+(deffunction g4 (?x) (switch ?x (case 1 then (printout t "a" crlf)) (case 2 3)))
+(defrule r1 => (if (> 1 0) (printout t x)))
+(defrule r2 => (switch 1 (case 1 (printout t x))))
+(defrule r3 => (printout t (if TRUE 1)))
+(if (> 1 0) 1)
+(switch 1 (case 1 2))
+(deffunction ok (?x) (if (> ?x 1) then big else small))
+(ok 2)
+(list-deffunctions)
+(rules)
+(exit)

@@ -1,0 +1,16 @@
+; a `default-dynamic` call whose return type the slot's type excludes is
+; `[CSTRNCHK1]` "The function return value found in the default-dynamic attribute"
+(deftemplate t1 (slot a (type INTEGER) (default-dynamic (gensym))))
+(deftemplate t3 (slot a (type SYMBOL) (default-dynamic (+ 1 2))))
+(deftemplate t8 (slot a (type FLOAT) (default-dynamic (str-length "ab"))))
+(deftemplate t9 (slot a (type STRING) (default-dynamic (sym-cat a b))))
+(deftemplate t10 (slot a (type INTEGER) (default-dynamic (sqrt 4))))
+(deftemplate t4 (slot a (type SYMBOL) (default-dynamic (nth$ 1 (create$ a)))))
+(deftemplate t5 (multislot a (type SYMBOL) (default-dynamic (create$ a b))))
+(deftemplate t6 (slot a (allowed-symbols x y) (default-dynamic (+ 1 2))))
+(deftemplate t11 (slot a (type NUMBER) (default-dynamic (div 7 2))))
+(deftemplate t12 (slot a (type SYMBOL STRING) (default-dynamic (str-cat a b))))
+(list-deftemplates)
+(assert (t4) (t5) (t6) (t11) (t12))
+(facts)
+(exit)

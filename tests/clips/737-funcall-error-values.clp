@@ -1,0 +1,12 @@
+; a builtin that fails under funcall gives funcall its own error value
+(funcall str-cat a (create$ b) c)
+(funcall sym-cat a (create$ b) c)
+(funcall + 1 (create$ 2 3))
+(funcall str-length (create$ a))
+(funcall sub-string 1 2 (create$ a))
+(funcall sqrt (create$ 4))
+(funcall upcase (create$ a))
+(funcall create$ a (create$ b c) d)
+(deffunction f () (funcall str-cat x (create$ y)))
+(f)
+(exit)
