@@ -364,6 +364,11 @@ impl Core<'_> {
         }
         self.st.frame.sp = 0;
         self.st.frame.scratch_top = 0;
+        // a deffacts named `initial-fact` replaced CLIPS's own when it was parsed:
+        // `reset` asserts `(initial-fact)` only if it lists it
+        if base.deffacts.iter().any(|d| d.name == crate::builtins::SYM_INITIAL_FACT) {
+            self.st.mode.initial_deffacts = false;
+        }
         self.assert_initial_fact()?;
         // as the parser primed them: rule by rule, each chain from its end upwards (a
         // subnetwork after the join taking it), a shared join with its first rule; the
@@ -434,13 +439,17 @@ impl Core<'_> {
     /// activations are newer than those of every rule defined before it; the network
     /// made them in its own order. Puts them in definition order (by rule, then as
     /// made), each taking the next creation number, and back on the agenda in that
-    /// order (the newest goes first among equal saliences).
+    /// order (the newest goes first among equal saliences). Each partial match's list
+    /// of activations (rules sharing a terminal join: those with no conditions) is
+    /// made again in that order too, newest first as the parser left it: `reset`
+    /// takes them back in its order.
     fn order_activations_as_parsed(&mut self) {
         let mut old = self.st.agenda.agenda_head;
         let mut seq = u32::MAX;
         let mut a = old;
         while a != NONE {
             seq = seq.min(self.acts[a as usize].seq);
+            self.tokens[self.acts[a as usize].token].extra = NONE;
             a = self.acts[a as usize].next;
         }
         self.st.agenda.agenda_head = NONE;
@@ -468,6 +477,9 @@ impl Core<'_> {
             }
             self.acts[best as usize].seq = seq;
             seq = seq.wrapping_add(1);
+            let t = self.acts[best as usize].token;
+            self.acts[best as usize].next_of_token = self.tokens[t].extra;
+            self.tokens[t].extra = best;
             self.agenda_insert(best);
         }
     }

@@ -25,7 +25,8 @@
 //! What loading gives: the state the parser leaves after the same constructs (the
 //! loader rebuilds the start-up matches, f-0 and the rules that start with `not`,
 //! `exists` or `test`, and orders their activations by rule, as the parser primed
-//! them one after another). A rule base
+//! them one after another, each partial match's list of them too; a deffacts named
+//! `initial-fact` replaces CLIPS's own, as when parsed). A rule base
 //! whose parse left facts behind (a global's initial value that asserts) is refused by
 //! the writer, since facts are not part of the compiled form.
 

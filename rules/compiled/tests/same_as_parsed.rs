@@ -153,27 +153,11 @@ fn run_commands(engine: &mut DefaultEngine, text: &str, name: &str) -> String {
     host.out
 }
 
-/// Programs whose compiled form does not yet run as parsed (open items of the CLIPS
-/// fidelity issue; the agent's rules use neither): the name and why.
-const PARSED_ONLY: [(&str, &str); 2] = [
-    (
-        "644-deffacts-initial-fact",
-        "a deffacts named initial-fact replaces the built-in one only when parsed",
-    ),
-    (
-        "717-reset-no-condition-rules-order",
-        "reset takes back no-condition activations newest first only when parsed",
-    ),
-];
-
 #[test]
 fn every_differential_program_runs_the_same_from_its_compiled_constructs() {
     let mut compared = 0;
     let mut differ = Vec::new();
     for (name, base) in programs::CLIPS_PROGRAMS {
-        if PARSED_ONLY.iter().any(|(p, _)| p == name) {
-            continue;
-        }
         let text = std::fs::read_to_string(clips_dir().join(format!("{name}.clp"))).expect("read");
         let base = match base {
             Ok(base) => *base,
