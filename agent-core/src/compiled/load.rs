@@ -366,7 +366,11 @@ impl Core<'_> {
         self.st.frame.scratch_top = 0;
         // a deffacts named `initial-fact` replaced CLIPS's own when it was parsed:
         // `reset` asserts `(initial-fact)` only if it lists it
-        if base.deffacts.iter().any(|d| d.name == crate::builtins::SYM_INITIAL_FACT) {
+        if base
+            .deffacts
+            .iter()
+            .any(|d| d.name == crate::builtins::SYM_INITIAL_FACT)
+        {
             self.st.mode.initial_deffacts = false;
         }
         self.assert_initial_fact()?;
