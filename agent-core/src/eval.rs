@@ -502,13 +502,20 @@ impl Core<'_> {
     /// Evaluates a call's arguments onto the stack (inlined into `call` on the host:
     /// most calls have an argument or two, where the call's own cost showed).
     #[cfg_attr(feature = "host-speedups", inline(always))]
-    fn push_args(&mut self, mut a: Ix) -> Result<Args, EvalError> {
+    fn push_args<const GO_ON: bool>(&mut self, mut a: Ix) -> Result<Args, EvalError> {
         let base = self.st.frame.sp;
         while a != NONE {
             // `$?x` is passed as one multifield argument: CLIPS 6.30 does not expand it
             // into separate arguments (`(length$ $?x)` is the length of ?x)
             let v = match self.eval_operand(a) {
                 Ok(v) => v,
+                // (a builtin's arguments, `GO_ON`: a deffunction that halted gives
+                // FALSE with CLIPS's evaluation error set, and the builtin goes on as
+                // after an unbound global, `Core::args_failed`)
+                Err(e) if GO_ON && self.deffunction_halted(a, &e) => {
+                    self.st.mode.halting = true;
+                    Value::Sym(SYM_FALSE)
+                }
                 Err(e) => {
                     self.note_hw(Pool::EvalStack, self.st.frame.sp as usize);
                     return Err(e);
@@ -524,6 +531,24 @@ impl Core<'_> {
             base,
             len: self.st.frame.sp - base,
         })
+    }
+
+    /// Whether `e` is the error of deffunction call node `a` that halted (reported
+    /// where it happened, with `[PRCCODE4]`).
+    #[cold]
+    #[inline(never)]
+    fn deffunction_halted(&self, a: Ix, e: &EvalError) -> bool {
+        let x = self.exprs[a as usize];
+        e.reported
+            && x.op == Op::Call
+            && x.aux == FnKind::Deffunction as u8
+            && !matches!(
+                e.kind(),
+                EvalErrorKind::TooDeep { .. }
+                    | EvalErrorKind::Exit
+                    | EvalErrorKind::Capacity(_)
+                    | EvalErrorKind::Interrupted
+            )
     }
 
     /// Calls the function of call node `e` (whose node `x` the caller has read).
@@ -634,7 +659,7 @@ impl Core<'_> {
                     Imp::Lazy(f) => f(self, e),
                     Imp::Eager(f) => {
                         let halting = self.st.mode.halting;
-                        let args = self.push_args(x.first)?;
+                        let args = self.push_args::<{ cfg!(feature = "extras") }>(x.first)?;
                         // an argument failed with CLIPS's evaluation error (an
                         // unbound global): most builtins stop with their error value
                         if self.st.mode.halting && !halting {
@@ -648,7 +673,7 @@ impl Core<'_> {
                 }
             }
             k if k == FnKind::External as u8 => {
-                let args = self.push_args(x.first)?;
+                let args = self.push_args::<false>(x.first)?;
                 self.call_values(Callee::External(x.data), args)
             }
             _ => self.call_deffunction(x.data, x.first),
@@ -676,26 +701,30 @@ impl Core<'_> {
     fn call_deffunction_args(&mut self, func: Ix, first_arg: Ix) -> Result<Value, EvalError> {
         let mark = self.st.frame.scratch_top;
         #[cfg(feature = "extras")]
-        let args = match self.push_args(first_arg) {
+        let args = match self.push_args::<false>(first_arg) {
             Ok(args) => args,
-            // an argument's error already printed (a deffunction it called halted):
-            // CLIPS adds that it happened in this call's arguments
-            Err(e)
-                if e.reported
-                    && !matches!(
-                        e.kind(),
-                        EvalErrorKind::TooDeep { .. }
-                            | EvalErrorKind::Exit
-                            | EvalErrorKind::Capacity(_)
-                    ) =>
+            // an argument's error (printed now if a builtin's, already if a deffunction
+            // it called halted): CLIPS adds that it happened in this call's arguments
+            Err(mut e)
+                if !matches!(
+                    e.kind(),
+                    EvalErrorKind::TooDeep { .. }
+                        | EvalErrorKind::Exit
+                        | EvalErrorKind::Capacity(_)
+                        | EvalErrorKind::Interrupted
+                ) =>
             {
+                if !e.reported {
+                    self.write_error_message(e);
+                    e.reported = true;
+                }
                 let _ = self.deffunction_args_failed(func);
                 return Err(e);
             }
             Err(e) => return Err(e),
         };
         #[cfg(not(feature = "extras"))]
-        let args = self.push_args(first_arg)?;
+        let args = self.push_args::<false>(first_arg)?;
         // an argument failed with CLIPS's evaluation error: FALSE, the body not run
         if self.st.mode.halting {
             return self.deffunction_args_failed(func);
