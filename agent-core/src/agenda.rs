@@ -156,7 +156,9 @@ impl Core<'_> {
                 self.push_focus(tag.module)?;
             }
         }
-        if self.st.mode.watch & watch::ACTIVATIONS != 0 {
+        if self.st.mode.watch & watch::ACTIVATIONS != 0
+            && self.rule_traced(watch::ACTIVATIONS, rule)
+        {
             self.print_activation_line("==> Activation ", a);
         }
         Ok(())
@@ -347,7 +349,7 @@ impl Core<'_> {
         if self.st.agenda.act_journal.on {
             self.journal_activation(a);
         }
-        if self.st.mode.watch & watch::ACTIVATIONS != 0 {
+        if self.st.mode.watch & watch::ACTIVATIONS != 0 && self.activation_traced(a) {
             self.print_activation_line("<== Activation ", a);
         }
         self.agenda_unlink(a);

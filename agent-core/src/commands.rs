@@ -455,10 +455,11 @@ impl Core<'_> {
     pub fn clear(&mut self) -> Result<(), EvalError> {
         let w = self.st.mode.watch;
         #[cfg(feature = "extras")]
-        let (keep_globals, cool_watch, salience_eval) = (
+        let (keep_globals, cool_watch, salience_eval, watch_items) = (
             self.st.mode.keep_globals,
             self.st.mode.cool_watch,
             self.st.mode.salience_eval,
+            self.st.watch_names.items,
         );
         let next = self.st.pools.nexternals;
         let ext_syms = self.st.pools.ext_syms;
@@ -616,6 +617,9 @@ impl Core<'_> {
             self.st.mode.keep_globals = keep_globals;
             self.st.mode.cool_watch = cool_watch;
             self.st.mode.salience_eval = salience_eval;
+            // the items stay, the constructs named are gone
+            self.st.watch_names.items = watch_items;
+            self.sync_watch();
         }
         // CLIPS's clear ends with a reset's focus on MAIN (the stack holds MAIN)
         #[cfg(feature = "modules")]
@@ -861,7 +865,7 @@ impl Core<'_> {
             if self.st.mode.halt {
                 look_next = true;
                 // CLIPS names the halted rule only while rules are watched
-                if self.st.mode.watch & watch::RULES != 0 {
+                if self.st.mode.watch & watch::RULES != 0 && self.rule_traced(watch::RULES, rule) {
                     self.write_halted_in("defrule", self.rules[rule as usize].name);
                 }
                 #[cfg(feature = "extras")]

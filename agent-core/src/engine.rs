@@ -667,6 +667,10 @@ pub struct State {
     /// Rules with a breakpoint (`set-break`, feature `extras`).
     #[cfg(feature = "extras")]
     pub breaks: Breaks,
+    /// Constructs traced otherwise than their watch item (`(watch rules r1)`,
+    /// feature `extras`).
+    #[cfg(feature = "extras")]
+    pub watch_names: WatchNames,
     /// Host: joins primed while their parent had partial matches, and their own
     /// order of those (`rete::order`).
     #[cfg(feature = "grow")]
@@ -738,6 +742,137 @@ impl Breaks {
     }
 }
 
+/// The watch items about constructs (facts, rules, activations, deffunctions,
+/// globals) and the constructs traced otherwise than their item. As in CLIPS 6.30
+/// each construct has its own trace flag: `(watch ITEM)` or `(unwatch ITEM)` sets
+/// the item's and every construct's, `(watch ITEM NAME...)` the ones named; a new
+/// construct takes its item's, one defined again keeps its own if its item is off.
+/// Kept here as the constructs whose flag differs from their item's (by item bit,
+/// module and name; `undef*`, `clear` and the whole item forget them), so that
+/// `Mode::watch` has an item's bit while it or any of its constructs is traced: the
+/// engine checks that bit first, the construct only when it is set.
+#[cfg(feature = "extras")]
+#[derive(Clone, Copy)]
+pub struct WatchNames {
+    /// The items' own states (`watch::FACTS`, ...), as `list-watch-items` shows them.
+    pub items: u8,
+    keys: [(u8, crate::module::ModId, SymId); WatchNames::MAX],
+    n: u8,
+}
+
+#[cfg(feature = "extras")]
+impl Default for WatchNames {
+    fn default() -> WatchNames {
+        WatchNames::new()
+    }
+}
+
+#[cfg(feature = "extras")]
+impl WatchNames {
+    /// Most constructs traced otherwise than their item at once.
+    pub const MAX: usize = 64;
+    /// The items about constructs.
+    pub const ITEMS: u8 =
+        watch::FACTS | watch::RULES | watch::ACTIVATIONS | watch::GLOBALS | watch::DEFFUNCTIONS;
+
+    pub const fn new() -> WatchNames {
+        WatchNames {
+            items: 0,
+            keys: [(0, 0, 0); WatchNames::MAX],
+            n: 0,
+        }
+    }
+
+    fn find(&self, bit: u8, m: crate::module::ModId, name: SymId) -> Option<usize> {
+        self.keys[..usize::from(self.n)]
+            .iter()
+            .position(|&k| k == (bit, m, name))
+    }
+
+    /// Whether the construct is traced for item `bit`.
+    pub fn traced(&self, bit: u8, m: crate::module::ModId, name: SymId) -> bool {
+        (self.items & bit != 0) != (self.n != 0 && self.find(bit, m, name).is_some())
+    }
+
+    /// Sets the construct's flag for item `bit`; false when `MAX` differ already.
+    pub fn set(&mut self, bit: u8, m: crate::module::ModId, name: SymId, on: bool) -> bool {
+        let differs = on != (self.items & bit != 0);
+        match self.find(bit, m, name) {
+            Some(i) if !differs => self.remove_at(i),
+            None if differs => {
+                let n = usize::from(self.n);
+                if n == WatchNames::MAX {
+                    return false;
+                }
+                self.keys[n] = (bit, m, name);
+                self.n += 1;
+            }
+            _ => {}
+        }
+        true
+    }
+
+    fn remove_at(&mut self, i: usize) {
+        let n = usize::from(self.n);
+        self.keys.copy_within(i + 1..n, i);
+        self.n -= 1;
+    }
+
+    /// Forgets the constructs named for the items `bits` (each construct is set to
+    /// its item's state).
+    pub fn forget_items(&mut self, bits: u8) {
+        let mut i = 0;
+        while i < usize::from(self.n) {
+            if self.keys[i].0 & bits != 0 {
+                self.remove_at(i);
+            } else {
+                i += 1;
+            }
+        }
+    }
+
+    /// Forgets a construct for the items `bits` (it is gone, or defined again while
+    /// they are on).
+    pub fn forget(&mut self, bits: u8, m: crate::module::ModId, name: SymId) {
+        let mut i = 0;
+        while i < usize::from(self.n) {
+            let k = self.keys[i];
+            if k.0 & bits != 0 && k.1 == m && k.2 == name {
+                self.remove_at(i);
+            } else {
+                i += 1;
+            }
+        }
+    }
+
+    /// `Mode::watch`'s construct bits: the items on, and those with a construct
+    /// traced otherwise.
+    pub fn mode_bits(&self) -> u8 {
+        self.keys[..usize::from(self.n)]
+            .iter()
+            .fold(self.items, |b, k| b | k.0)
+    }
+}
+
+/// Without `extras` a construct is traced exactly when its item is.
+#[cfg(not(feature = "extras"))]
+impl Core<'_> {
+    #[inline(always)]
+    pub(crate) fn fact_line_traced(&self, _fact: Ix) -> bool {
+        true
+    }
+
+    #[inline(always)]
+    pub(crate) fn activation_traced(&self, _a: Ix) -> bool {
+        true
+    }
+
+    #[inline(always)]
+    pub(crate) fn rule_traced(&self, _bit: u8, _r: Ix) -> bool {
+        true
+    }
+}
+
 impl State {
     pub const fn new() -> State {
         State {
@@ -759,6 +894,8 @@ impl State {
             builtin_code: &[],
             #[cfg(feature = "extras")]
             breaks: Breaks::new(),
+            #[cfg(feature = "extras")]
+            watch_names: WatchNames::new(),
             #[cfg(feature = "grow")]
             prime: crate::rete::PrimeOrders::new(),
         }

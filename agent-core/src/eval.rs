@@ -841,7 +841,9 @@ impl Core<'_> {
     /// Runs deffunction `func` on the arguments `args`, the top of the stack (its frame).
     fn apply_deffunction(&mut self, func: Ix, args: Args) -> Result<Value, EvalError> {
         #[cfg(feature = "extras")]
-        if self.st.mode.watch & crate::engine::watch::DEFFUNCTIONS != 0 {
+        if self.st.mode.watch & crate::engine::watch::DEFFUNCTIONS != 0
+            && self.function_traced(func)
+        {
             return self.apply_traced(func, args);
         }
         self.apply_untraced(func, args)

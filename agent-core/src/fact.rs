@@ -691,7 +691,7 @@ impl Core<'_> {
         }
         // an undone assert prints nothing (see `hold`)
         self.hold_traces();
-        if self.st.mode.watch & crate::engine::watch::FACTS != 0 {
+        if self.st.mode.watch & crate::engine::watch::FACTS != 0 && self.fact_line_traced(slot) {
             self.print_fact_line("==> ", slot);
         }
         // CLIPS checks the new fact (dynamic constraint checking) before matching it
@@ -854,7 +854,7 @@ impl Core<'_> {
     /// `retract_fact_held`; `TMS` as for `assert_slots_in`.
     #[cfg_attr(feature = "host-speedups", inline(always))]
     fn retract_fact_in<const TMS: bool>(&mut self, slot: Ix, hold: bool) {
-        if self.st.mode.watch & crate::engine::watch::FACTS != 0 {
+        if self.st.mode.watch & crate::engine::watch::FACTS != 0 && self.fact_line_traced(slot) {
             self.print_fact_line("<== ", slot);
         }
         #[cfg(feature = "logical")]

@@ -263,7 +263,7 @@ impl Core<'_> {
 
     #[inline]
     pub(crate) fn print_fire_line(&mut self, count: u32, rule: Ix, token: TokenId) {
-        if self.st.mode.watch & watch::RULES != 0 {
+        if self.st.mode.watch & watch::RULES != 0 && self.rule_traced(watch::RULES, rule) {
             self.write_fire_line(count, rule, token);
         }
     }

@@ -462,6 +462,8 @@ differential_programs! {
     p736_fact_address_bound_to_a_ce => "736-fact-address-bound-to-a-ce",
     p737_funcall_error_values => "737-funcall-error-values",
     p738_argument_errors_of_deffunction_calls => "738-argument-errors-of-deffunction-calls",
+    p750_watch_construct_names => "750-watch-construct-names",
+    p751_watch_construct_names_modules => "751-watch-construct-names-modules",
     p580_keyed_or_index => "580-keyed-or-index",
     p581_keyed_or_not => "581-keyed-or-not",
     p582_keyed_or_growth => "582-keyed-or-growth",

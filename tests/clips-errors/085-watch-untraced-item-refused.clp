@@ -1,6 +1,6 @@
-; expect: 3:16 expected robotino-agent implements
+; expect: 3:18 expected robotino-agent implements
 ; keeps: 2
-(watch globals g)
+(watch instances USER)
 (defglobal ?*g* = 1)
 (bind ?*g* 2)
 (printout t ?*g* crlf)

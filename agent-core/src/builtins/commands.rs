@@ -255,23 +255,46 @@ fn watch_bits(cx: &Core<'_>, a: Args, func: &'static str) -> Result<u16, EvalErr
 pub(crate) const ALL_TRACED: bool = cfg!(all(feature = "extras", feature = "modules"));
 
 fn watch_(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    #[cfg(feature = "extras")]
+    if a.len > 1 {
+        return super::trace::watch_named(cx, a, "watch", true);
+    }
     let b = watch_bits(cx, a, "watch")?;
     cx.st.mode.watch |= b as u8;
     #[cfg(feature = "extras")]
     {
         cx.st.mode.cool_watch |= (b >> 8) as u8;
+        whole_items(cx, b as u8, true);
     }
     Ok(Value::Void)
 }
 
 fn unwatch(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    #[cfg(feature = "extras")]
+    if a.len > 1 {
+        return super::trace::watch_named(cx, a, "unwatch", false);
+    }
     let b = watch_bits(cx, a, "unwatch")?;
     cx.st.mode.watch &= !(b as u8);
     #[cfg(feature = "extras")]
     {
         cx.st.mode.cool_watch &= !((b >> 8) as u8);
+        whole_items(cx, b as u8, false);
     }
     Ok(Value::Void)
+}
+
+/// An item about constructs set as a whole sets every construct's flag too.
+#[cfg(feature = "extras")]
+fn whole_items(cx: &mut Core<'_>, bits: u8, on: bool) {
+    let items = bits & crate::engine::WatchNames::ITEMS;
+    cx.st.watch_names.forget_items(items);
+    if on {
+        cx.st.watch_names.items |= items;
+    } else {
+        cx.st.watch_names.items &= !items;
+    }
+    cx.sync_watch();
 }
 
 /// `(printout name args...)`, lazy as in CLIPS: nothing is evaluated for `nil` or an
@@ -672,6 +695,8 @@ fn undefrule(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
                     unable(cx, Unable::Delete, "defrule", rule.name);
                     continue;
                 }
+                #[cfg(feature = "extras")]
+                cx.watch_forget(crate::engine::watch::RULES, r, rule.name);
                 cx.remove_rule(r);
                 #[cfg(feature = "extras")]
                 cx.st.breaks.remove(rule.name);
@@ -685,6 +710,8 @@ fn undefrule(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
             Ok(Value::Void)
         }
         Some(r) => {
+            #[cfg(feature = "extras")]
+            cx.watch_forget(crate::engine::watch::RULES, r, cx.rules[r as usize].name);
             cx.remove_rule(r);
             #[cfg(feature = "extras")]
             cx.st.breaks.remove(cx.rules[r as usize].name);

@@ -79,9 +79,14 @@ fn watch_arg_error(cx: &mut Core<'_>, arg: usize, expected: &str) -> EvalError {
     EvalError::already_reported()
 }
 
-/// `on` or `off` for a trace bit.
+/// `on` or `off` for a trace bit (an item's own state).
 fn state(cx: &Core<'_>, bit: u8) -> &'static str {
-    if cx.st.mode.watch & bit != 0 {
+    #[cfg(feature = "extras")]
+    let on =
+        (cx.st.mode.watch & !crate::engine::WatchNames::ITEMS | cx.st.watch_names.items) & bit != 0;
+    #[cfg(not(feature = "extras"))]
+    let on = cx.st.mode.watch & bit != 0;
+    if on {
         "on"
     } else {
         "off"
@@ -99,9 +104,8 @@ fn cool_state(cx: &Core<'_>, bit: u8) -> &'static str {
 }
 
 /// `(list-watch-items [ITEM [NAME...]])`: every item's state; one item's state and,
-/// for items about constructs, each construct's (by module, or the ones named). A
-/// construct is traced exactly when its item is (`watch` takes no construct names
-/// here; a rule shows its `activations` state under `rules` too, as CLIPS 6.30 does).
+/// for items about constructs, each construct's own flag (by module, or the ones
+/// named; a rule shows its `activations` flag under `rules` too, as CLIPS 6.30 does).
 /// COOL's items with constructs (`instances`, `slots`, `message-handlers`: CLIPS
 /// lists its system classes and handlers) are refused.
 fn list_watch_items(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
@@ -170,15 +174,6 @@ fn list_watch_items(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     };
     let mut b: TextBuf<64> = TextBuf::new();
     let _ = writeln!(b, "{} = {item_state}", name.as_str());
-    // CLIPS 6.30 shows a rule's activations trace under `rules` too
-    let on = state(
-        cx,
-        if bit == watch::RULES {
-            watch::ACTIVATIONS
-        } else {
-            bit
-        },
-    );
     cx.write(router::WDISPLAY, b.as_str());
     let Some((kind, kind_name)) = kind else {
         if a.len > 1 {
@@ -198,9 +193,11 @@ fn list_watch_items(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
                 Value::Sym(s) => find_construct(cx, kind, s),
                 _ => None,
             };
-            let Some(s) = found else {
+            let Some(c) = found else {
                 return Err(watch_arg_error(cx, i + 1, kind_name));
             };
+            let s = name_at(cx, kind, c).flatten().unwrap_or(NONE);
+            let on = construct_state(cx, bit, kind, c);
             let mut b: TextBuf<160> = TextBuf::new();
             let _ = writeln!(b, "{} = {on}", cx.sym_text(s));
             cx.write(router::WDISPLAY, b.as_str());
@@ -216,6 +213,7 @@ fn list_watch_items(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
             if owner != m {
                 continue;
             }
+            let on = construct_state(cx, bit, kind, i - 1);
             let mut b: TextBuf<160> = TextBuf::new();
             let _ = writeln!(b, "   {} = {on}", cx.sym_text(s));
             cx.write(router::WDISPLAY, b.as_str());
@@ -241,9 +239,9 @@ fn list_modules(cx: &mut Core<'_>, mut each: impl FnMut(&mut Core<'_>, crate::mo
     }
 }
 
-/// The name (without a module) of the construct of kind `kind` that `name` names
-/// (`MOD::x` or one the current module sees).
-fn find_construct(cx: &mut Core<'_>, kind: Kind, name: SymId) -> Option<SymId> {
+/// The construct of kind `kind` that `name` names (`MOD::x` or one the current module
+/// sees), by index (a rule's first disjunct).
+pub(super) fn find_construct(cx: &mut Core<'_>, kind: Kind, name: SymId) -> Option<Ix> {
     match kind {
         Kind::Deftemplate => {
             #[cfg(feature = "modules")]
@@ -252,19 +250,43 @@ fn find_construct(cx: &mut Core<'_>, kind: Kind, name: SymId) -> Option<SymId> {
                 cx.set_current_module(m);
                 let t = cx.find_template(bare);
                 cx.set_current_module(current);
-                return t.map(|t| cx.templates[t as usize].name);
+                return t;
             }
             cx.find_template(name)
-                .map(|t| cx.templates[t as usize].name)
         }
-        Kind::Defrule => super::commands::find_rule(cx, name).map(|r| cx.rules[r as usize].name),
-        Kind::Deffunction => {
-            find_pp_construct(cx, name, PpKind::Function).map(|f| cx.funcs[f as usize].name)
-        }
-        Kind::Defglobal => {
-            find_pp_construct(cx, name, PpKind::Global).map(|g| cx.globals[g as usize].name)
-        }
+        Kind::Defrule => super::commands::find_rule(cx, name),
+        Kind::Deffunction => find_pp_construct(cx, name, PpKind::Function),
+        Kind::Defglobal => find_pp_construct(cx, name, PpKind::Global),
         Kind::Deffacts => None,
+    }
+}
+
+/// `on` or `off` for construct `i` of `kind` under item `bit` (with `extras`, its own
+/// flag; CLIPS 6.30 shows a rule's activations flag under `rules` too).
+fn construct_state(cx: &Core<'_>, bit: u8, kind: Kind, i: Ix) -> &'static str {
+    let bit = if bit == watch::RULES {
+        watch::ACTIVATIONS
+    } else {
+        bit
+    };
+    #[cfg(feature = "extras")]
+    {
+        let on = match kind {
+            Kind::Deftemplate => cx.fact_traced(i),
+            Kind::Defrule => cx.rule_traced(bit, i),
+            Kind::Deffunction => cx.function_traced(i),
+            _ => cx.global_traced(i),
+        };
+        if on {
+            "on"
+        } else {
+            "off"
+        }
+    }
+    #[cfg(not(feature = "extras"))]
+    {
+        let _ = (kind, i);
+        state(cx, bit)
     }
 }
 

@@ -610,6 +610,7 @@ fn undefine(cx: &mut Core<'_>, a: Args, how: &Undefine) -> Result<Value, EvalErr
             let this = (how.name)(cx, i);
             super::commands::unable(cx, Unable::Delete, how.kind, this);
         } else {
+            forget_watched(cx, how, i);
             (how.remove)(cx, i)?;
         }
         return Ok(Value::Void);
@@ -623,10 +624,27 @@ fn undefine(cx: &mut Core<'_>, a: Args, how: &Undefine) -> Result<Value, EvalErr
         if (how.stays)(cx, i, all) {
             super::commands::unable(cx, Unable::Delete, how.kind, this);
         } else {
+            forget_watched(cx, how, i);
             (how.remove)(cx, i)?;
         }
     }
     Ok(Value::Void)
+}
+
+/// Construct `i` goes: one defined later under its name takes its items' trace flags.
+fn forget_watched(cx: &mut Core<'_>, how: &Undefine, i: Ix) {
+    #[cfg(feature = "extras")]
+    {
+        use crate::engine::watch;
+        let bit = match how.kind {
+            "deftemplate" => watch::FACTS,
+            "deffunction" => watch::DEFFUNCTIONS,
+            _ => watch::GLOBALS,
+        };
+        let name = (how.name)(cx, i);
+        cx.watch_forget(bit, i, name);
+    }
+    let _ = (cx, how, i);
 }
 
 /// `(undeftemplate name)`: a template no fact and no construct uses goes; the

@@ -4,14 +4,102 @@
 #[cfg(feature = "modules")]
 use super::extras::{owner_at, Kind};
 use super::Args;
-use crate::engine::{watch, Core};
+use crate::engine::{watch, Core, WatchNames};
 use crate::error::EvalError;
 use crate::host::{router, RouterWriter};
 use crate::print::print_view;
-use crate::value::{Ix, Value};
+use crate::value::{Ix, SymId, Value};
 use core::fmt::Write;
 
 impl Core<'_> {
+    /// The module of construct `i` of item `bit`'s kind (a template for facts, a
+    /// deffunction, a global, a rule).
+    fn watched_module(&self, bit: u8, i: Ix) -> crate::module::ModId {
+        #[cfg(feature = "modules")]
+        return match bit {
+            watch::FACTS => self.module_of_template(i),
+            watch::DEFFUNCTIONS => self.module_of_function(i),
+            watch::GLOBALS => self.module_of_global(i),
+            _ => self.rule_tag(i).module,
+        };
+        #[cfg(not(feature = "modules"))]
+        {
+            let _ = (bit, i);
+            crate::module::MAIN
+        }
+    }
+
+    /// Whether facts of template `t` are traced (once `watch::FACTS` is set).
+    pub(crate) fn fact_traced(&self, t: Ix) -> bool {
+        let name = self.templates[t as usize].name;
+        self.st
+            .watch_names
+            .traced(watch::FACTS, self.watched_module(watch::FACTS, t), name)
+    }
+
+    /// Whether fact `f`'s lines are traced (once `watch::FACTS` is set).
+    pub(crate) fn fact_line_traced(&self, f: Ix) -> bool {
+        self.fact_traced(self.facts[f as usize].tmpl)
+    }
+
+    /// Whether activation `a`'s lines are traced (once `watch::ACTIVATIONS` is set).
+    pub(crate) fn activation_traced(&self, a: Ix) -> bool {
+        self.rule_traced(watch::ACTIVATIONS, self.acts[a as usize].rule)
+    }
+
+    /// Whether rule `r` is traced for item `bit` (`watch::RULES`: its firings,
+    /// `watch::ACTIVATIONS`: its activations), once the item's bit is set.
+    pub(crate) fn rule_traced(&self, bit: u8, r: Ix) -> bool {
+        let name = self.rules[r as usize].name;
+        self.st
+            .watch_names
+            .traced(bit, self.watched_module(watch::RULES, r), name)
+    }
+
+    /// Whether deffunction `f`'s calls are traced, once `watch::DEFFUNCTIONS` is set.
+    pub(crate) fn function_traced(&self, f: Ix) -> bool {
+        let name = self.funcs[f as usize].name;
+        let m = self.watched_module(watch::DEFFUNCTIONS, f);
+        self.st.watch_names.traced(watch::DEFFUNCTIONS, m, name)
+    }
+
+    /// Whether global `g`'s changes are traced, once `watch::GLOBALS` is set.
+    pub(crate) fn global_traced(&self, g: Ix) -> bool {
+        let name = self.globals[g as usize].name;
+        let m = self.watched_module(watch::GLOBALS, g);
+        self.st.watch_names.traced(watch::GLOBALS, m, name)
+    }
+
+    /// `Mode::watch`'s construct bits again, after `WatchNames` changed.
+    pub(crate) fn sync_watch(&mut self) {
+        let rest = self.st.mode.watch & !WatchNames::ITEMS;
+        self.st.mode.watch = rest | self.st.watch_names.mode_bits();
+    }
+
+    /// A construct named `name` of the current module is defined again: with its
+    /// items (`bits`) on it is traced, else it keeps its own flag (CLIPS 6.30).
+    pub(crate) fn watch_defined_again(&mut self, bits: u8, name: SymId) {
+        let on = self.st.watch_names.items & bits;
+        if on != 0 {
+            let m = self.st_current_module();
+            self.st.watch_names.forget(on, m, name);
+            self.sync_watch();
+        }
+    }
+
+    /// Construct `i` of item `bit`'s kind goes (`undef*`, a failed redefinition): a
+    /// later one of its name takes its items' flags.
+    pub(crate) fn watch_forget(&mut self, bit: u8, i: Ix, name: SymId) {
+        let bits = if bit == watch::RULES {
+            watch::RULES | watch::ACTIVATIONS
+        } else {
+            bit
+        };
+        let m = self.watched_module(bit, i);
+        self.st.watch_names.forget(bits, m, name);
+        self.sync_watch();
+    }
+
     /// `:== ?*x* ==> NEW <== OLD` before global `g` takes `new` (a `bind`, or `reset`
     /// restoring its initial value; defining it prints nothing, as in CLIPS). A
     /// variable bound at the prompt (a hidden global named `?x`) is not traced.
@@ -20,6 +108,9 @@ impl Core<'_> {
             return;
         }
         let name = self.globals[g as usize].name;
+        if !self.global_traced(g) {
+            return;
+        }
         if self.sym_text(name).starts_with('?') {
             return;
         }
@@ -100,6 +191,100 @@ impl Core<'_> {
         }
         let _ = w.write_str(")\n");
     }
+}
+
+/// `(watch ITEM NAME...)` and `(unwatch ITEM NAME...)`: the constructs named (`MOD::x`
+/// or one the current module sees) are traced or not, one after another; the item's
+/// own state stays. As CLIPS 6.30: an item without constructs takes no names
+/// (`[ARGACCES4]`), a name that is no construct of the item's kind stops there
+/// (`[ARGACCES5]`, naming `watch` for `unwatch` too; the ones before it are set).
+/// COOL's items with constructs (instances, slots, message-handlers) are refused:
+/// this engine has no classes.
+pub(super) fn watch_named(
+    cx: &mut Core<'_>,
+    a: Args,
+    func: &'static str,
+    on: bool,
+) -> Result<Value, EvalError> {
+    use super::commands::{watch_item, WatchItem};
+    use super::environment::find_construct;
+    use super::extras::Kind;
+    let item = cx.arg_lexeme(a, 0, func)?;
+    let mut text: crate::value::TextBuf<32> = crate::value::TextBuf::new();
+    let _ = text.write_str(cx.sym_text(item));
+    if let WatchItem::Unknown = watch_item(text.as_str()) {
+        return Err(EvalError::wrong_type(func, 1, "watchable symbol"));
+    }
+    let (bit, kind, kind_name) = match text.as_str() {
+        "facts" => (watch::FACTS, Kind::Deftemplate, "deftemplate"),
+        "rules" => (watch::RULES, Kind::Defrule, "defrule"),
+        "activations" => (watch::ACTIVATIONS, Kind::Defrule, "defrule"),
+        "deffunctions" => (watch::DEFFUNCTIONS, Kind::Deffunction, "deffunction"),
+        "globals" => (watch::GLOBALS, Kind::Defglobal, "defglobal"),
+        // (no generic function exists here: no name is one)
+        "generic-functions" => (0, Kind::Deffacts, "defgeneric"),
+        "methods" => (0, Kind::Deffacts, "generic function name"),
+        "instances" | "slots" | "message-handlers" => {
+            return Err(EvalError::message(crate::error::Message::NotTraced))
+        }
+        _ => {
+            let mut b: crate::value::TextBuf<80> = crate::value::TextBuf::new();
+            let _ = writeln!(
+                b,
+                "[ARGACCES4] Function {func} expected exactly 1 argument(s)"
+            );
+            cx.write(router::WERROR, b.as_str());
+            return Err(EvalError::already_reported());
+        }
+    };
+    for i in 1..a.len as usize {
+        let found = match cx.arg(a, i) {
+            Value::Sym(s) if bit != 0 => find_construct(cx, kind, s),
+            _ => None,
+        };
+        let Some(c) = found else {
+            let mut b: crate::value::TextBuf<128> = crate::value::TextBuf::new();
+            let _ = writeln!(
+                b,
+                "[ARGACCES5] Function watch expected argument #{} to be of type {kind_name}",
+                i + 1
+            );
+            cx.write(router::WERROR, b.as_str());
+            cx.sync_watch();
+            return Err(EvalError::already_reported());
+        };
+        let (m, name) = match kind {
+            Kind::Deftemplate => (
+                cx.watched_module(watch::FACTS, c),
+                cx.templates[c as usize].name,
+            ),
+            Kind::Defrule => (
+                cx.watched_module(watch::RULES, c),
+                cx.rules[c as usize].name,
+            ),
+            Kind::Deffunction => (
+                cx.watched_module(watch::DEFFUNCTIONS, c),
+                cx.funcs[c as usize].name,
+            ),
+            _ => (
+                cx.watched_module(watch::GLOBALS, c),
+                cx.globals[c as usize].name,
+            ),
+        };
+        if !cx.st.watch_names.set(bit, m, name, on) {
+            cx.sync_watch();
+            let mut b: crate::value::TextBuf<128> = crate::value::TextBuf::new();
+            let _ = writeln!(
+                b,
+                "[NOTIMPL1] robotino-agent traces at most {} constructs otherwise than their watch item",
+                WatchNames::MAX
+            );
+            cx.write(router::WERROR, b.as_str());
+            return Err(EvalError::already_reported());
+        }
+    }
+    cx.sync_watch();
+    Ok(Value::Void)
 }
 
 /// What COOL's `initial-object` traces at `reset` and `clear` (this engine has no

@@ -104,6 +104,11 @@ impl<'s> Parser<'s, '_, '_> {
             }
             // from here a failure drops the old one too, as in CLIPS
             self.replacing = sym;
+            #[cfg(feature = "extras")]
+            if !self.check_only {
+                self.cx
+                    .watch_defined_again(crate::engine::watch::FACTS, sym);
+            }
         }
         self.skip_comment();
         let n = self.cx.st.pools.ntemplates as usize;
@@ -422,6 +427,11 @@ impl<'s> Parser<'s, '_, '_> {
         if existing.is_some() {
             // from here (the body) a failure drops the old one too, as in CLIPS
             self.replacing = sym;
+            #[cfg(feature = "extras")]
+            if !self.check_only {
+                self.cx
+                    .watch_defined_again(crate::engine::watch::DEFFUNCTIONS, sym);
+            }
         }
         self.cx.funcs[f as usize] = Deffunction {
             name: sym,
@@ -593,7 +603,12 @@ impl<'s> Parser<'s, '_, '_> {
                         }
                     };
                     let g = match existing {
-                        Some(g) => g as usize,
+                        Some(g) => {
+                            #[cfg(feature = "extras")]
+                            self.cx
+                                .watch_defined_again(crate::engine::watch::GLOBALS, sym);
+                            g as usize
+                        }
                         None => {
                             self.cx.st.pools.nglobals += 1;
                             self.cx.note_hw(Pool::Globals, n + 1);

@@ -546,7 +546,8 @@ impl<'s> Parser<'s, '_, '_> {
     #[cfg(feature = "extras")]
     /// `watch`/`unwatch` items given as literals: one CLIPS does not know is its
     /// `[ARGACCES5]`; one we do not trace (`focus`, `globals`, ...; `all` for `watch`)
-    /// is refused rather than accepted and ignored.
+    /// and classes after a COOL item (`(watch instances USER)`) are refused rather
+    /// than accepted and ignored.
     fn check_watch_items(
         &mut self,
         func: &'static str,
@@ -555,6 +556,8 @@ impl<'s> Parser<'s, '_, '_> {
     ) -> PResult<()> {
         let mut c = self.cx.exprs[call as usize].first;
         let mut k = 0;
+        // COOL's items with constructs: we have no classes to name
+        let mut classes = false;
         while c != NONE {
             let x = self.cx.exprs[c as usize];
             c = x.next;
@@ -562,7 +565,16 @@ impl<'s> Parser<'s, '_, '_> {
             if x.op != Op::Sym && k == 1 {
                 continue;
             }
-            // CLIPS takes construct names after the item (`(watch facts t)`)
+            // construct names after the item (`(watch facts t)`) are looked up when
+            // the command runs, as CLIPS does
+            if k == 1 {
+                classes = matches!(
+                    self.cx.sym_text(x.data),
+                    "instances" | "slots" | "message-handlers"
+                );
+            } else if !classes {
+                continue;
+            }
             let known = k > 1
                 || match crate::builtins::commands::watch_item(self.cx.sym_text(x.data)) {
                     crate::builtins::commands::WatchItem::Traced(_) => continue,

@@ -705,6 +705,8 @@ impl<'s, 'e> Parser<'s, '_, 'e> {
             return;
         }
         if let Some(r) = (0..self.cx.st.pools.nrules).find(|&r| self.cx.rule_here(r, name)) {
+            #[cfg(feature = "extras")]
+            self.cx.watch_forget(crate::engine::watch::RULES, r, name);
             self.cx.remove_rule(r);
             #[cfg(feature = "extras")]
             self.cx.st.breaks.remove(name);
@@ -725,6 +727,8 @@ impl<'s, 'e> Parser<'s, '_, 'e> {
                 if self.cx.template_in_use(t) || self.cx.network_writable().is_err() {
                     return;
                 }
+                #[cfg(feature = "extras")]
+                self.cx.watch_forget(crate::engine::watch::FACTS, t, name);
                 let tm = &mut self.cx.templates[t as usize];
                 tm.name = NONE;
                 tm.implied = true;
@@ -760,6 +764,9 @@ impl<'s, 'e> Parser<'s, '_, 'e> {
                     self.cx.funcs[f as usize].body = NONE;
                     return;
                 }
+                #[cfg(feature = "extras")]
+                self.cx
+                    .watch_forget(crate::engine::watch::DEFFUNCTIONS, f, name);
                 self.cx.funcs[f as usize].name = NONE;
             }
         }

@@ -262,6 +262,12 @@ impl<'s> Parser<'s, '_, '_> {
         self.alpha_base = first_new_alpha;
         let replaces = (0..first_new_rule).any(|r| self.cx.rule_here(r, sym));
         self.replacing = if replaces { sym } else { NONE };
+        #[cfg(feature = "extras")]
+        if replaces && !self.check_only {
+            use crate::engine::watch;
+            self.cx
+                .watch_defined_again(watch::RULES | watch::ACTIVATIONS, sym);
+        }
         let first_new_join = JoinId(self.cx.st.pools.njoins);
         let mut b = Build::new();
         // The syntax stage reads the whole rule before anything is built: a rule with
