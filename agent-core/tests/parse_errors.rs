@@ -314,13 +314,19 @@ fn unimplemented_constructs_are_refused() {
         assert_eq!(e.usage(), before, "leftovers after {bad:?}");
     }
     // watch of an item we do not trace, literal or in a variable: construct names
-    // always; globals, deffunctions and COOL's items without `extras`, focus (and so
-    // all) without `modules`
+    // without `extras` (with it, names of constructs that exist: no template `good`
+    // here), class names after COOL's items always; globals, deffunctions and COOL's
+    // items without `extras`, focus (and so all) without `modules`
     let mut e = Box::new(SmallEngine::new());
     let h = &mut Quiet;
     #[cfg(not(feature = "modules"))]
     assert!(e.eval_str(h, "(watch focus)").is_err());
     assert!(e.eval_str(h, "(watch facts good)").is_err());
+    assert!(e.eval_str(h, "(watch instances USER)").is_err());
+    assert_eq!(
+        e.eval_str(h, "(watch facts initial-fact)").is_ok(),
+        cfg!(feature = "extras")
+    );
     let traced = cfg!(feature = "extras");
     let all = cfg!(all(feature = "extras", feature = "modules"));
     for (cmd, ok) in [
