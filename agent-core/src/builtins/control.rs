@@ -70,10 +70,24 @@ fn branch(cx: &mut Core<'_>, p: Ix) -> Result<Value, EvalError> {
 /// slid down to `mark`, so a loop that rebinds a variable to a new multifield each time
 /// holds one value's worth, not every iteration's. Only values built after `mark` sit
 /// above it, and while the caller's code (a loop body, a query test) is done, only the
-/// stack and the return value can hold them. Globals need no look: their multifields
-/// live in their own region at the top of scratch (`Core::set_global`).
+/// current frame's stack (`live_stack`) and the return value can hold them. Globals
+/// need no look: their multifields live in their own region at the top of scratch
+/// (`Core::set_global`).
+#[cfg_attr(feature = "host-speedups", inline(always))]
 pub(super) fn release_scratch(cx: &mut Core<'_>, mark: Ix) {
-    release_scratch_keeping(cx, mark, &mut Value::Void);
+    // nothing above the mark (the usual loop body or query test): no call
+    if cx.st.frame.scratch_top > mark {
+        release_scratch_keeping(cx, mark, &mut Value::Void);
+    }
+}
+
+/// The stack values that may hold multifields built above a mark taken while the
+/// current frame runs: the frame's own (from `bp`) and what was pushed above it.
+/// The frames below `bp` are its callers', which nothing running now can bind, and
+/// whatever they held was built before the mark, below it.
+fn live_stack<'a>(cx: &'a Core<'_>) -> &'a [Value] {
+    let (bp, sp) = (cx.st.frame.bp as usize, cx.st.frame.sp as usize);
+    &cx.stack[bp.min(sp)..sp]
 }
 
 /// `release_scratch` that also keeps multifield `keep` (a loop's last value), moved
@@ -105,7 +119,7 @@ pub(super) fn release_scratch_keeping(cx: &mut Core<'_>, mark: Ix, keep: &mut Va
             }
         }
     };
-    for v in &cx.stack[..cx.st.frame.sp as usize] {
+    for v in live_stack(cx) {
         note(v);
     }
     if cx.st.eval.returning {
@@ -166,7 +180,7 @@ fn live_spans<'a>(cx: &'a Core<'_>, keep: Value) -> impl Iterator<Item = (Ix, Ix
     } else {
         None
     };
-    cx.stack[..cx.st.frame.sp as usize]
+    live_stack(cx)
         .iter()
         .copied()
         .chain(ret)
@@ -194,8 +208,8 @@ fn shift_spans(cx: &mut Core<'_>, keep: &mut Value, (s, e): (Ix, Ix), by: Ix) {
             }
         }
     };
-    let sp = cx.st.frame.sp as usize;
-    cx.stack[..sp].iter_mut().for_each(moved);
+    let (bp, sp) = (cx.st.frame.bp as usize, cx.st.frame.sp as usize);
+    cx.stack[bp.min(sp)..sp].iter_mut().for_each(moved);
     if cx.st.eval.returning {
         moved(&mut cx.st.eval.return_value);
     }

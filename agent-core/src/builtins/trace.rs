@@ -103,10 +103,18 @@ impl Core<'_> {
     /// `:== ?*x* ==> NEW <== OLD` before global `g` takes `new` (a `bind`, or `reset`
     /// restoring its initial value; defining it prints nothing, as in CLIPS). A
     /// variable bound at the prompt (a hidden global named `?x`) is not traced.
+    /// (The watch check in line: every `bind` of a global asks.)
+    #[inline(always)]
     pub(crate) fn trace_global(&mut self, g: Ix, new: Value) {
-        if self.st.mode.watch & watch::GLOBALS == 0 {
-            return;
+        if self.st.mode.watch & watch::GLOBALS != 0 {
+            self.print_global_trace(g, new);
         }
+    }
+
+    /// `trace_global` while globals are watched.
+    #[cold]
+    #[inline(never)]
+    fn print_global_trace(&mut self, g: Ix, new: Value) {
         let name = self.globals[g as usize].name;
         if !self.global_traced(g) {
             return;

@@ -28,18 +28,25 @@ impl Core<'_> {
         // host: patterns sharing a multifield node match in CLIPS's order
         #[cfg(feature = "grow")]
         if self.needs_mf_order(self.facts[fact as usize].tmpl) {
-            return self.assert_in_mf_order(fact, |cx| cx.visit_alphas(fact));
+            return self.network_assert_mf_order(fact);
         }
-        self.visit_alphas(fact)
+        self.visit_alphas::<false>(fact)
     }
 
-    /// Tests a new fact against every alpha node of its template. (Inlined in the
-    /// image, without `grow`, which has `network_assert` as its one caller and no
-    /// stack to spare for a frame more; out of line on the host, whose two callers
-    /// would otherwise make LLVM call the per-node closure out of line.)
-    #[cfg_attr(not(feature = "grow"), inline(always))]
-    #[cfg_attr(feature = "grow", inline(never))]
-    fn visit_alphas(&mut self, fact: Ix) -> Result<(), EvalError> {
+    /// `network_assert` of a fact whose template needs CLIPS's multifield order (out
+    /// of line: its collection's frame stays off the usual path).
+    #[cfg(feature = "grow")]
+    #[inline(never)]
+    fn network_assert_mf_order(&mut self, fact: Ix) -> Result<(), EvalError> {
+        self.assert_in_mf_order(fact, |cx| cx.visit_alphas::<true>(fact))
+    }
+
+    /// Tests a new fact against every alpha node of its template. Inlined into each
+    /// caller; `MF` only tells the callers apart (the multifield-order collection is
+    /// the other one, on the host), so each has its own per-node closure, which LLVM
+    /// inlines into the discrimination walk of its one caller.
+    #[inline(always)]
+    fn visit_alphas<const MF: bool>(&mut self, fact: Ix) -> Result<(), EvalError> {
         // host: only the nodes whose constant the fact holds, and the others
         #[cfg(feature = "host-speedups")]
         if self.for_discriminated_alphas(fact, |cx, a| cx.visit_alpha(a, fact))? {

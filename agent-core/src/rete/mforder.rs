@@ -51,14 +51,23 @@ impl Default for MfOrder {
 impl Core<'_> {
     /// Whether template `tmpl`'s matches need CLIPS's multifield order (one of its
     /// alpha nodes chooses a multifield's length).
+    /// (The cached answer in line: every assert asks.)
+    #[inline(always)]
     pub(crate) fn needs_mf_order(&mut self, tmpl: Ix) -> bool {
         let gen = self.st.net.net_gen.wrapping_add(1).max(1);
-        let t = tmpl as usize;
-        if let Some(&(g, c)) = self.st.net.mf.choice.get(t) {
+        if let Some(&(g, c)) = self.st.net.mf.choice.get(tmpl as usize) {
             if g == gen {
                 return c;
             }
         }
+        self.find_mf_order(tmpl, gen)
+    }
+
+    /// `needs_mf_order` once per template and network generation `gen`.
+    #[cold]
+    #[inline(never)]
+    fn find_mf_order(&mut self, tmpl: Ix, gen: u32) -> bool {
+        let t = tmpl as usize;
         let mut c = false;
         let mut a = self.templates[t].alpha_head;
         while a != NONE {
