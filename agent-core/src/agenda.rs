@@ -490,11 +490,20 @@ impl Core<'_> {
     /// `every-cycle` salience evaluation: after each firing every module's agenda is
     /// refreshed, module by module (CLIPS's DefmoduleRefreshAgenda).
     /// Owed matches are built first: the refresh sees the whole agenda.
+    /// (The mode check in line: the run loop asks after every firing.)
     #[cfg(feature = "extras")]
+    #[inline(always)]
     pub(crate) fn refresh_every_cycle(&mut self) -> Result<(), crate::error::EvalError> {
         if self.st.mode.salience_eval != SALIENCE_EVERY_CYCLE {
             return Ok(());
         }
+        self.refresh_saliences()
+    }
+
+    /// `refresh_every_cycle` in CLIPS's every-cycle mode.
+    #[cfg(feature = "extras")]
+    #[inline(never)]
+    fn refresh_saliences(&mut self) -> Result<(), crate::error::EvalError> {
         self.pay_owed()?;
         #[cfg(feature = "modules")]
         for m in 0..self.st.modules.nmodules as crate::module::ModId {

@@ -96,6 +96,9 @@ fn live_stack<'a>(cx: &'a Core<'_>) -> &'a [Value] {
 /// reclaimed (see `release_scratch_keeping`).
 const COMPACT_MIN: Ix = 64;
 
+/// (Host: inlined into each loop, whose every iteration runs it; what moves cells is
+/// out of line.)
+#[cfg_attr(feature = "host-speedups", inline(always))]
 pub(super) fn release_scratch_keeping(cx: &mut Core<'_>, mark: Ix, keep: &mut Value) {
     // nothing above the mark (the usual loop body or query test): nothing to scan for
     if cx.st.frame.scratch_top <= mark {
@@ -127,27 +130,35 @@ pub(super) fn release_scratch_keeping(cx: &mut Core<'_>, mark: Ix, keep: &mut Va
     }
     note(keep);
     match one {
-        None => {
-            cx.st.frame.scratch_top = mark;
-            return;
-        }
+        None => cx.st.frame.scratch_top = mark,
         Some((s, e)) if !several => {
             // slide it down only once the dead cells below it are as many as its
             // own and at least `COMPACT_MIN`: a loop that rebinds a list each time
             // then copies it a bounded number of times per cell, not per iteration
             if s > mark && s - mark >= (e - s).max(COMPACT_MIN) {
-                cx.scratch
-                    .copy_within(s as usize..e as usize, mark as usize);
-                shift_spans(cx, keep, (s, e), s - mark);
-                cx.st.frame.scratch_top = mark + (e - s);
+                slide_down(cx, keep, (s, e), mark);
             } else {
                 // it stays where it is (above the mark: with few dead cells below)
                 cx.st.frame.scratch_top = e.max(mark).min(top);
             }
-            return;
         }
-        Some(_) => {}
+        Some(_) => release_several(cx, mark, keep, top),
     }
+}
+
+/// Moves the one live run `s..e` of scratch down to `mark`, the top after it.
+#[inline(never)]
+fn slide_down(cx: &mut Core<'_>, keep: &mut Value, (s, e): (Ix, Ix), mark: Ix) {
+    cx.scratch
+        .copy_within(s as usize..e as usize, mark as usize);
+    shift_spans(cx, keep, (s, e), s - mark);
+    cx.st.frame.scratch_top = mark + (e - s);
+}
+
+/// `release_scratch_keeping` with several live values above `mark`: each run of
+/// them moved down in turn.
+#[inline(never)]
+fn release_several(cx: &mut Core<'_>, mark: Ix, keep: &mut Value, top: Ix) {
     let mut dest = mark;
     // one run of overlapping live cells at a time, lowest first (values may share
     // cells: `(bind ?y ?x)`, a `rest$` of another)

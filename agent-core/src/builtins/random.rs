@@ -49,7 +49,10 @@ fn srandom(st: &mut State, seed: u32) {
     }
 }
 
-/// glibc `random`: front += rear (mod 2^32); the result is front >> 1.
+/// glibc `random`: front += rear (mod 2^32); the result is front >> 1. (Out of line
+/// on the host: inlined into the agenda's insertion, which draws one per activation,
+/// it cost more there than its call.)
+#[cfg_attr(feature = "host-speedups", inline(never))]
 pub(crate) fn next_random(st: &mut State) -> i64 {
     if !st.random.rng_seeded {
         srandom(st, 1);
