@@ -301,7 +301,12 @@ impl Core<'_> {
         let group = self.group_start(a, &mut prev, &mut cur);
         #[cfg(feature = "host-speedups")]
         let mut steps = 0u32;
-        while cur != NONE && !self.goes_before(a, cur) {
+        // host: a place at either end of its own salience group is found at once
+        #[cfg(feature = "host-speedups")]
+        let placed = group != usize::MAX && self.group_place(group, a, &mut prev, &mut cur);
+        #[cfg(not(feature = "host-speedups"))]
+        let placed = false;
+        while !placed && cur != NONE && !self.goes_before(a, cur) {
             prev = cur;
             cur = self.acts[cur as usize].next;
             #[cfg(feature = "host-speedups")]
@@ -738,6 +743,31 @@ impl Core<'_> {
             *prev = if k > 0 { g.groups[k - 1].last } else { NONE };
         }
         k
+    }
+
+    /// Where activation `a` goes when it goes before the first activation of its
+    /// salience group `k` (`cur`, `group_start`'s) or after its last one (the
+    /// breadth strategy's new activations): true when `prev` and `cur` are then its
+    /// place, false when the walk goes on from them. The group is in the order
+    /// `goes_before` gives, so nothing in it is passed over.
+    #[inline(always)]
+    fn group_place(&self, k: usize, a: Ix, prev: &mut Ix, cur: &mut Ix) -> bool {
+        let g = &self.st.agenda.groups;
+        if k >= g.n as usize || g.groups[k].salience != self.acts[a as usize].salience {
+            return false;
+        }
+        if *cur == NONE || self.goes_before(a, *cur) {
+            return true;
+        }
+        let last = g.groups[k].last;
+        if !self.goes_before(a, last) {
+            *prev = last;
+            *cur = self.acts[last as usize].next;
+            return true;
+        }
+        *prev = *cur;
+        *cur = self.acts[*cur as usize].next;
+        false
     }
 
     /// Records activation `a`, just linked between `prev` and `cur`, in the group
