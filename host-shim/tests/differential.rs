@@ -464,6 +464,7 @@ differential_programs! {
     p738_argument_errors_of_deffunction_calls => "738-argument-errors-of-deffunction-calls",
     p750_watch_construct_names => "750-watch-construct-names",
     p751_watch_construct_names_modules => "751-watch-construct-names-modules",
+    p770_logical_name_upper_t => "770-logical-name-upper-t",
     p773_breadth_long_agenda => "773-breadth-long-agenda",
     p580_keyed_or_index => "580-keyed-or-index",
     p581_keyed_or_not => "581-keyed-or-not",

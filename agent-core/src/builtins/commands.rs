@@ -464,7 +464,11 @@ impl Routed {
 /// `[ROUTER1]` (printed here), as in the CLIPS command line.
 pub(super) fn resolve_router(cx: &mut Core<'_>, name: Value) -> Result<Option<Routed>, EvalError> {
     if let Value::Sym(s) | Value::Str(s) = name {
-        let text = cx.sym_text(s);
+        // (CLIPS takes `T` for `t` wherever it reads a logical name)
+        let text = match cx.sym_text(s) {
+            "T" => "t",
+            t => t,
+        };
         if let Some(&(_, r)) = ROUTERS.iter().find(|(n, _)| *n == text) {
             return Ok(r.map(Routed::Engine));
         }

@@ -75,6 +75,17 @@ fn name_text(cx: &mut Core<'_>, v: Value) -> Option<Name> {
     }
 }
 
+/// The logical name a value names: `name_text`, with `T` read as `t` (CLIPS's
+/// `GetLogicalName`).
+fn logical_name(cx: &mut Core<'_>, v: Value) -> Option<Name> {
+    let mut name = name_text(cx, v)?;
+    if name.as_str() == "T" {
+        name.clear();
+        let _ = name.write_str("t");
+    }
+    Some(name)
+}
+
 /// The file the host opened as `name`, if any (`printout` and `format` to it).
 pub(super) fn open_file_name(cx: &mut Core<'_>, name: Value) -> Option<Name> {
     let text = name_text(cx, name)?;
@@ -112,7 +123,7 @@ fn input_arg(cx: &mut Core<'_>, a: Args, func: &str) -> Option<Input> {
         return Some(Input::Stdin);
     }
     let v = cx.arg(a, 0);
-    let Some(name) = name_text(cx, v) else {
+    let Some(name) = logical_name(cx, v) else {
         report_illegal_name(cx, func);
         return None;
     };
@@ -537,7 +548,7 @@ fn no_files(cx: &mut Core<'_>, func: &str) -> Value {
 /// `(open path name [mode])`: TRUE when the host opened the file.
 fn open(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let path = path_arg(cx, a, 0, "open")?;
-    let Some(name) = name_text(cx, cx.arg(a, 1)) else {
+    let Some(name) = logical_name(cx, cx.arg(a, 1)) else {
         report_illegal_name(cx, "open");
         return Ok(truth(false));
     };
@@ -587,9 +598,12 @@ fn close(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     if a.len == 0 {
         return Ok(truth(cx.host.close_all_files()));
     }
-    let Some(name) = name_text(cx, cx.arg(a, 0)) else {
-        report_illegal_name(cx, "close");
-        return Ok(truth(false));
+    let name = match logical_name(cx, cx.arg(a, 0)) {
+        Some(name) if name.as_str() != "t" => name,
+        _ => {
+            report_illegal_name(cx, "close");
+            return Ok(truth(false));
+        }
     };
     Ok(truth(cx.host.close_file(name.as_str())))
 }
