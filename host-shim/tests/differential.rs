@@ -465,6 +465,8 @@ differential_programs! {
     p750_watch_construct_names => "750-watch-construct-names",
     p751_watch_construct_names_modules => "751-watch-construct-names-modules",
     p770_logical_name_upper_t => "770-logical-name-upper-t",
+    p771_assert_syntax_errors => "771-assert-syntax-errors",
+    p772_defrule_without_arrow => "772-defrule-without-arrow",
     p773_breadth_long_agenda => "773-breadth-long-agenda",
     p580_keyed_or_index => "580-keyed-or-index",
     p581_keyed_or_not => "581-keyed-or-not",

@@ -337,15 +337,18 @@ fn action_at(c: &mut Cursor<'_>, w: &mut dyn Write, col: usize) -> fmt::Result {
             // several facts: one per line, aligned under the first
             c.next();
             c.next();
-            w.write_str("(assert ")?;
+            w.write_str("(assert")?;
             // (a control form in a fact indents from the facts' column)
             #[cfg(feature = "extras")]
             {
                 c.indent = col + 8;
             }
+            // (a field that is no fact, which CLIPS stopped reading at, too)
             let mut first = true;
-            while c.peek(0).tok == Tok::LParen {
-                if !first {
+            while !matches!(c.peek(0).tok, Tok::RParen | Tok::Eof | Tok::Bad) {
+                if first {
+                    w.write_char(' ')?;
+                } else {
                     w.write_char('\n')?;
                     spaces(w, col + 8)?;
                 }

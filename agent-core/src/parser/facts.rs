@@ -24,7 +24,10 @@ impl<'s> Parser<'s, '_, '_> {
                     self.cx.append_child(node, spec);
                     n += 1;
                 }
-                _ => return Err(self.err(t, "a fact to assert")),
+                // CLIPS names what it was reading: the command when it has no fact,
+                // its facts otherwise
+                Tok::RParen => return Err(self.syntax_of(t, "a fact to assert", "assert command")),
+                _ => return Err(self.syntax_of(t, "a fact to assert", "RHS patterns")),
             }
         }
     }

@@ -378,6 +378,8 @@ impl<'s> Parser<'s, '_, '_> {
         self.ce_count = 0;
         self.complexity = 0;
         let mut salience = (0i32, NONE);
+        // whether the rule has a declare or a CE before its `=>`
+        let mut read_any = false;
         // (declare (salience N))
         if self.peek().tok == Tok::LParen {
             let save = self.save();
@@ -385,6 +387,7 @@ impl<'s> Parser<'s, '_, '_> {
             if self.peek().tok == Tok::Symbol("declare") {
                 self.next();
                 salience = self.declare(b)?;
+                read_any = true;
             } else {
                 self.restore(save);
             }
@@ -396,12 +399,25 @@ impl<'s> Parser<'s, '_, '_> {
                     self.next();
                     break;
                 }
-                Tok::Eof | Tok::Bad | Tok::RParen => {
-                    return Err(self.err(t, "'=>' or a conditional element"))
+                Tok::RParen => {
+                    // no `=>`: CLIPS shows the rule read, its `)` on a line of its own
+                    // (after the name when there is nothing else)
+                    let mut e = self.err(t, "'=>' or a conditional element");
+                    e.echo_end = t.end as u32;
+                    e.echo_tail = if read_any {
+                        crate::error::EchoTail::OwnLine
+                    } else {
+                        crate::error::EchoTail::Glued
+                    };
+                    return Err(e);
                 }
+                Tok::Eof | Tok::Bad => return Err(self.err(t, "'=>' or a conditional element")),
                 // a `(declare ...)` after a CE is an ordinary pattern for CLIPS 6.30, whose
                 // nested `(` is then a syntax error: declare comes first or not at all
-                _ => self.ce(b, Ctx::Top)?,
+                _ => {
+                    self.ce(b, Ctx::Top)?;
+                    read_any = true;
+                }
             }
         }
         if b.n == 0 {
@@ -778,7 +794,15 @@ impl<'s> Parser<'s, '_, '_> {
                     _ => self.pattern(b, ctx, None),
                 }
             }
-            _ => Err(self.err(t, "a conditional element")),
+            _ => {
+                let mut e = self.err(t, "a conditional element");
+                if ctx == Ctx::Top {
+                    // CLIPS shows the rule read, the token on a line of its own
+                    e.echo_end = t.end as u32;
+                    e.echo_tail = crate::error::EchoTail::OwnLine;
+                }
+                Err(e)
+            }
         }
     }
 

@@ -1,0 +1,18 @@
+; what CLIPS names after an assert that holds no fact or a field that is no
+; fact: the assert command, or its RHS patterns, and the construct up to there
+(assert word)
+(assert)
+(assert (ok 1) word)
+(assert (ok 2) 7)
+(assert (ok 3) ?x)
+(defrule bare-word (go) => (assert done now))
+(defrule empty-assert (go) => (assert))
+(defrule after-a-fact (go) => (printout t "go" crlf) (assert (seen go) "text"))
+(defrule in-an-if (go ?x) => (if (> ?x 1) then (assert big) else (assert (small))))
+(deffunction bare (?x) (assert ?x))
+(deffunction looped () (loop-for-count 3 do (assert 1)))
+(deffunction fine () (assert (fine)))
+(list-defrules)
+(list-deffunctions)
+(facts)
+(exit)
