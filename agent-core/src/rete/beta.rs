@@ -989,34 +989,37 @@ impl Core<'_> {
     /// unblocked (not) or loses its match (exists), as CLIPS does.
     fn unblock(&mut self, t: TokenId, blocker: TokenId) {
         self.unlink_blocked(t);
-        // (host: the image keeps its code bytes and always checks)
-        #[cfg(feature = "host-speedups")]
-        let dying = if self.dying_may_remain(blocker) {
-            self.st.net.dying
-        } else {
-            NONE
-        };
-        #[cfg(not(feature = "host-speedups"))]
-        let dying = self.st.net.dying;
         let join = self.tokens[t].owner;
         let left = self.tokens[t].parent;
-        let (from, hashed) = if self.tokens[blocker].kind == TokenKind::Alpha {
+        // an evaluation error while searching counts as no further blocker
+        let next = if self.tokens[blocker].kind == TokenKind::Alpha {
             // the blocker is the first match in memory order: search on after it,
             // along its index bucket when its node has one (same key as `left`)
             let hashed = self.alphas[self.tokens[blocker].alpha() as usize].nrhash > 0;
             let mut from = self.next_candidate(blocker, hashed);
             // (a retract: another match of the fact in the same node may follow it)
-            while dying != NONE && from != TokenId::NONE && self.tokens[from].fact == dying {
-                from = self.next_candidate(from, hashed);
+            if from != TokenId::NONE {
+                let dying = self.dying_after(blocker);
+                while dying != NONE && from != TokenId::NONE && self.tokens[from].fact == dying {
+                    from = self.next_candidate(from, hashed);
+                }
             }
-            (from, hashed)
+            // host: no candidate left, no search (most unblocks; an alpha blocker's
+            // join has no subnetwork; the image keeps its code bytes)
+            #[cfg(feature = "host-speedups")]
+            let search = from != TokenId::NONE;
+            #[cfg(not(feature = "host-speedups"))]
+            let search = true;
+            if search {
+                self.find_blocker(join, left, from, hashed, blocker)
+                    .unwrap_or(TokenId::NONE)
+            } else {
+                TokenId::NONE
+            }
         } else {
-            (TokenId::NONE, false)
+            self.find_blocker(join, left, TokenId::NONE, false, blocker)
+                .unwrap_or(TokenId::NONE)
         };
-        // an evaluation error while searching counts as no further blocker
-        let next = self
-            .find_blocker(join, left, from, hashed, blocker)
-            .unwrap_or(TokenId::NONE);
         if next != TokenId::NONE {
             self.add_link(t, next);
             return;
@@ -1024,6 +1027,7 @@ impl Core<'_> {
         if self.joins[join].kind == JoinKind::Negative {
             // a retract: CLIPS passes nothing on that holds the fact, and nothing
             // passed on meets it (its matches leave their memories first)
+            let dying = self.dying_after(blocker);
             if dying != NONE {
                 // host: what the fact's template cannot reach is not checked
                 #[cfg(feature = "host-speedups")]
@@ -1053,6 +1057,20 @@ impl Core<'_> {
                 self.token_leaves(t);
             }
         }
+    }
+
+    /// The fact being retracted, while it may still have matches once `blocker` went
+    /// (host: `dying_may_remain`; the image keeps its code bytes and always says it);
+    /// else NONE.
+    #[inline(always)]
+    fn dying_after(&self, blocker: TokenId) -> Ix {
+        #[cfg(feature = "host-speedups")]
+        if !self.dying_may_remain(blocker) {
+            return NONE;
+        }
+        #[cfg(not(feature = "host-speedups"))]
+        let _ = blocker;
+        self.st.net.dying
     }
 
     /// Whether, during a retract, the dying fact may still have partial matches or
