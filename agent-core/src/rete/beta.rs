@@ -989,9 +989,28 @@ impl Core<'_> {
     /// unblocked (not) or loses its match (exists), as CLIPS does.
     fn unblock(&mut self, t: TokenId, blocker: TokenId) {
         self.unlink_blocked(t);
+        // (the image: the fact read once, its code bytes as they were)
+        #[cfg(not(feature = "host-speedups"))]
+        let dying = self.st.net.dying;
         let join = self.tokens[t].owner;
         let left = self.tokens[t].parent;
         // an evaluation error while searching counts as no further blocker
+        #[cfg(not(feature = "host-speedups"))]
+        let next = {
+            let (from, hashed) = if self.tokens[blocker].kind == TokenKind::Alpha {
+                let hashed = self.alphas[self.tokens[blocker].alpha() as usize].nrhash > 0;
+                let mut from = self.next_candidate(blocker, hashed);
+                while dying != NONE && from != TokenId::NONE && self.tokens[from].fact == dying {
+                    from = self.next_candidate(from, hashed);
+                }
+                (from, hashed)
+            } else {
+                (TokenId::NONE, false)
+            };
+            self.find_blocker(join, left, from, hashed, blocker)
+                .unwrap_or(TokenId::NONE)
+        };
+        #[cfg(feature = "host-speedups")]
         let next = if self.tokens[blocker].kind == TokenKind::Alpha {
             // the blocker is the first match in memory order: search on after it,
             // along its index bucket when its node has one (same key as `left`)
@@ -1004,13 +1023,9 @@ impl Core<'_> {
                     from = self.next_candidate(from, hashed);
                 }
             }
-            // host: no candidate left, no search (most unblocks; an alpha blocker's
-            // join has no subnetwork; the image keeps its code bytes)
-            #[cfg(feature = "host-speedups")]
-            let search = from != TokenId::NONE;
-            #[cfg(not(feature = "host-speedups"))]
-            let search = true;
-            if search {
+            // no candidate left: no search (most unblocks; an alpha blocker's join
+            // has no subnetwork)
+            if from != TokenId::NONE {
                 self.find_blocker(join, left, from, hashed, blocker)
                     .unwrap_or(TokenId::NONE)
             } else {
@@ -1027,6 +1042,7 @@ impl Core<'_> {
         if self.joins[join].kind == JoinKind::Negative {
             // a retract: CLIPS passes nothing on that holds the fact, and nothing
             // passed on meets it (its matches leave their memories first)
+            #[cfg(feature = "host-speedups")]
             let dying = self.dying_after(blocker);
             if dying != NONE {
                 // host: what the fact's template cannot reach is not checked
@@ -1059,17 +1075,14 @@ impl Core<'_> {
         }
     }
 
-    /// The fact being retracted, while it may still have matches once `blocker` went
-    /// (host: `dying_may_remain`; the image keeps its code bytes and always says it);
-    /// else NONE.
+    /// Host: the fact being retracted, while it may still have matches once
+    /// `blocker` went (`dying_may_remain`); else NONE.
+    #[cfg(feature = "host-speedups")]
     #[inline(always)]
     fn dying_after(&self, blocker: TokenId) -> Ix {
-        #[cfg(feature = "host-speedups")]
         if !self.dying_may_remain(blocker) {
             return NONE;
         }
-        #[cfg(not(feature = "host-speedups"))]
-        let _ = blocker;
         self.st.net.dying
     }
 
