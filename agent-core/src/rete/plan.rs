@@ -309,6 +309,31 @@ impl PlanBuild {
     }
 }
 
+/// Where a plan reads the facts of the left patterns below `BIND_W`.
+trait LeftFacts: Copy {
+    /// The fact bound at left pattern `pat` (< `BIND_W`), NONE if none.
+    fn fact(self, core: &Core<'_>, pat: u8) -> Ix;
+}
+
+/// A shallow plan's: the left token's own `binds`, found once per test.
+impl LeftFacts for &[Ix; BIND_W] {
+    #[inline(always)]
+    fn fact(self, _: &Core<'_>, pat: u8) -> Ix {
+        self[pat as usize]
+    }
+}
+
+/// A deep plan's: found per read (`left_fact`), as most of its reads go to `lhs_pm`.
+#[derive(Clone, Copy)]
+struct Ancestry(TokenId);
+
+impl LeftFacts for Ancestry {
+    #[inline(always)]
+    fn fact(self, core: &Core<'_>, pat: u8) -> Ix {
+        core.left_fact(self.0, pat)
+    }
+}
+
 const _: () = assert!(POOL_NODES <= UNPLANNED as usize && PLAN_NODES <= POOL_NODES);
 
 impl Source {
@@ -355,12 +380,16 @@ impl Core<'_> {
         if entry.root == UNPLANNED {
             return self.quick_join_test(tests, depth, left, right_fact);
         }
+        // the root's own dispatch inlined here: one call less per test
         if entry.deep {
             // free when `left` is bound already (a loop over its candidates)
             self.bind_left(left);
+            self.run_inline(entry.root, depth, Ancestry(left), right_fact)
+        } else {
+            // the left facts found once per test, not once per slot read
+            let binds = &self.tokens[left].binds;
+            self.run_inline(entry.root, depth, binds, right_fact)
         }
-        // the root's own dispatch inlined here: one call less per test
-        self.run_inline(entry.root, depth, left, right_fact)
     }
 
     /// Builds the plan of `join` into cache entry `i` (out of line: once per join
@@ -389,20 +418,32 @@ impl Core<'_> {
     /// Node `node`'s result (out of line: the composites below a root or an
     /// `or` member of a root `and`).
     #[inline(never)]
-    fn run_node(&self, node: u8, depth: u8, left: TokenId, right_fact: Ix) -> Option<bool> {
-        self.run_inline(node, depth, left, right_fact)
+    fn run_node<L: LeftFacts>(
+        &self,
+        node: u8,
+        depth: u8,
+        binds: L,
+        right_fact: Ix,
+    ) -> Option<bool> {
+        self.run_inline(node, depth, binds, right_fact)
     }
 
     /// `run_node` inlined into its caller: comparisons, and the members of an `and`
     /// and of an `or` (also one under an `and`) run without a call; deeper
     /// composites go through `run_node`.
     #[inline(always)]
-    fn run_inline(&self, node: u8, depth: u8, left: TokenId, right_fact: Ix) -> Option<bool> {
+    fn run_inline<L: LeftFacts>(
+        &self,
+        node: u8,
+        depth: u8,
+        binds: L,
+        right_fact: Ix,
+    ) -> Option<bool> {
         let plans = &self.st.cache.compiled_plans;
         match plans.nodes[node as usize] {
-            Node::Cmp { id, a, b } => self.run_cmp(id, a, b, depth, left, right_fact),
+            Node::Cmp { id, a, b } => self.run_cmp(id, a, b, depth, binds, right_fact),
             Node::SameSlots { a, b, negated } => {
-                self.run_same(a, b, negated, depth, left, right_fact)
+                self.run_same(a, b, negated, depth, binds, right_fact)
             }
             Node::And { first, len } => {
                 for &k in &plans.kids[first as usize..(first + len) as usize] {
@@ -410,15 +451,15 @@ impl Core<'_> {
                     // the recursion
                     let r = match plans.nodes[k as usize] {
                         Node::Cmp { id, a, b } => {
-                            self.run_cmp(id, a, b, depth, left, right_fact)?
+                            self.run_cmp(id, a, b, depth, binds, right_fact)?
                         }
                         Node::SameSlots { a, b, negated } => {
-                            self.run_same(a, b, negated, depth, left, right_fact)?
+                            self.run_same(a, b, negated, depth, binds, right_fact)?
                         }
                         Node::Or { first, len } => {
-                            self.run_or(first, len, depth, left, right_fact)?
+                            self.run_or(first, len, depth, binds, right_fact)?
                         }
-                        _ => self.run_node(k, depth, left, right_fact)?,
+                        _ => self.run_node(k, depth, binds, right_fact)?,
                     };
                     if !r {
                         return Some(false);
@@ -426,8 +467,8 @@ impl Core<'_> {
                 }
                 Some(true)
             }
-            Node::Or { first, len } => self.run_or(first, len, depth, left, right_fact),
-            Node::Not { child } => Some(!self.run_node(child, depth, left, right_fact)?),
+            Node::Or { first, len } => self.run_or(first, len, depth, binds, right_fact),
+            Node::Not { child } => Some(!self.run_node(child, depth, binds, right_fact)?),
             // operands, reached only through a `Source::Arith`
             Node::Arith { .. } | Node::Leaf { .. } => None,
         }
@@ -435,15 +476,22 @@ impl Core<'_> {
 
     /// An `or` of kids `first..first + len` (short-circuit, in order).
     #[inline(always)]
-    fn run_or(&self, first: u8, len: u8, depth: u8, left: TokenId, right_fact: Ix) -> Option<bool> {
+    fn run_or<L: LeftFacts>(
+        &self,
+        first: u8,
+        len: u8,
+        depth: u8,
+        binds: L,
+        right_fact: Ix,
+    ) -> Option<bool> {
         let plans = &self.st.cache.compiled_plans;
         for &k in &plans.kids[first as usize..(first + len) as usize] {
             let r = match plans.nodes[k as usize] {
-                Node::Cmp { id, a, b } => self.run_cmp(id, a, b, depth, left, right_fact)?,
+                Node::Cmp { id, a, b } => self.run_cmp(id, a, b, depth, binds, right_fact)?,
                 Node::SameSlots { a, b, negated } => {
-                    self.run_same(a, b, negated, depth, left, right_fact)?
+                    self.run_same(a, b, negated, depth, binds, right_fact)?
                 }
-                _ => self.run_node(k, depth, left, right_fact)?,
+                _ => self.run_node(k, depth, binds, right_fact)?,
             };
             if r {
                 return Some(true);
@@ -454,16 +502,22 @@ impl Core<'_> {
 
     /// The integer value of arithmetic node `node`; None where the evaluator must
     /// decide (a non-integer operand, a zero divisor).
-    fn run_arith(&self, node: u8, depth: u8, left: TokenId, right_fact: Ix) -> Option<i64> {
+    fn run_arith<L: LeftFacts>(
+        &self,
+        node: u8,
+        depth: u8,
+        binds: L,
+        right_fact: Ix,
+    ) -> Option<i64> {
         let plans = &self.st.cache.compiled_plans;
         let Node::Arith { op, first, len } = plans.nodes[node as usize] else {
             return None;
         };
         let kids = &plans.kids[first as usize..(first + len) as usize];
         let (&k0, rest) = kids.split_first()?;
-        let mut acc = self.arith_operand(k0, depth, left, right_fact)?;
+        let mut acc = self.arith_operand(k0, depth, binds, right_fact)?;
         for &k in rest {
-            let x = self.arith_operand(k, depth, left, right_fact)?;
+            let x = self.arith_operand(k, depth, binds, right_fact)?;
             acc = match op {
                 ArOp::Add => acc.wrapping_add(x),
                 ArOp::Sub => acc.wrapping_sub(x),
@@ -481,44 +535,50 @@ impl Core<'_> {
 
     /// One operand of an arithmetic node, as an integer.
     #[inline(always)]
-    fn arith_operand(&self, k: u8, depth: u8, left: TokenId, right_fact: Ix) -> Option<i64> {
+    fn arith_operand<L: LeftFacts>(
+        &self,
+        k: u8,
+        depth: u8,
+        binds: L,
+        right_fact: Ix,
+    ) -> Option<i64> {
         match self.st.cache.compiled_plans.nodes[k as usize] {
-            Node::Leaf { s } => match self.source_value(s, depth, left, right_fact)? {
+            Node::Leaf { s } => match self.source_value(s, depth, binds, right_fact)? {
                 Value::Int(i) => Some(i),
                 _ => None,
             },
-            Node::Arith { .. } => self.run_arith(k, depth, left, right_fact),
+            Node::Arith { .. } => self.run_arith(k, depth, binds, right_fact),
             _ => None,
         }
     }
 
     /// One planned `eq`/`neq` of two slots.
     #[inline(always)]
-    fn run_same(
+    fn run_same<L: LeftFacts>(
         &self,
         a: (u8, u8),
         b: (u8, u8),
         negated: bool,
         depth: u8,
-        left: TokenId,
+        binds: L,
         right_fact: Ix,
     ) -> Option<bool> {
-        let va = self.plan_cell(a, depth, left, right_fact)?;
-        let vb = self.plan_cell(b, depth, left, right_fact)?;
+        let va = self.plan_cell(a, depth, binds, right_fact)?;
+        let vb = self.plan_cell(b, depth, binds, right_fact)?;
         Some(same_cell(va, vb)? != negated)
     }
 
     /// The cell of single-field slot `slot` of the fact bound at `pat`, where it lies
     /// (a copy of the two values costs more than the comparison); None if unbound.
     #[inline(always)]
-    fn plan_cell(
+    fn plan_cell<L: LeftFacts>(
         &self,
         (pat, slot): (u8, u8),
         depth: u8,
-        left: TokenId,
+        binds: L,
         right_fact: Ix,
     ) -> Option<&Value> {
-        let fact = self.plan_fact(pat, depth, left, right_fact);
+        let fact = self.plan_fact(pat, depth, binds, right_fact);
         if fact == NONE {
             return None;
         }
@@ -527,29 +587,29 @@ impl Core<'_> {
 
     /// One planned comparison.
     #[inline(always)]
-    fn run_cmp(
+    fn run_cmp<L: LeftFacts>(
         &self,
         id: u8,
         a: Source,
         b: Source,
         depth: u8,
-        left: TokenId,
+        binds: L,
         right_fact: Ix,
     ) -> Option<bool> {
-        let va = self.source_value(a, depth, left, right_fact)?;
-        let vb = self.source_value(b, depth, left, right_fact)?;
+        let va = self.source_value(a, depth, binds, right_fact)?;
+        let vb = self.source_value(b, depth, binds, right_fact)?;
         builtins::basic::compare(self, id as Ix, va, vb)
     }
 
     /// The fact bound at pattern `pat`: the right input's at the join's own `depth`,
-    /// else `left`'s (beyond `BIND_W` through `lhs_pm`, which `planned_join_test`
-    /// bound for a deep plan). NONE if none.
+    /// else the left token's, through `binds` (beyond `BIND_W` through `lhs_pm`,
+    /// which `compiled_join_test` bound for a deep plan). NONE if none.
     #[inline(always)]
-    fn plan_fact(&self, pat: u8, depth: u8, left: TokenId, right_fact: Ix) -> Ix {
+    fn plan_fact<L: LeftFacts>(&self, pat: u8, depth: u8, binds: L, right_fact: Ix) -> Ix {
         if pat == depth {
             right_fact
         } else if (pat as usize) < BIND_W {
-            self.left_fact(left, pat)
+            binds.fact(self, pat)
         } else {
             match self.st.net.lhs_pm.get(pat as usize) {
                 Some(b) => b.fact,
@@ -560,11 +620,17 @@ impl Core<'_> {
 
     /// The single-field value a source names; None where the evaluator must look.
     #[inline(always)]
-    fn source_value(&self, s: Source, depth: u8, left: TokenId, right_fact: Ix) -> Option<Value> {
+    fn source_value<L: LeftFacts>(
+        &self,
+        s: Source,
+        depth: u8,
+        binds: L,
+        right_fact: Ix,
+    ) -> Option<Value> {
         match s {
-            Source::Slot { pat, slot } => self.plan_slot_value(pat, slot, depth, left, right_fact),
+            Source::Slot { pat, slot } => self.plan_slot_value(pat, slot, depth, binds, right_fact),
             Source::Elem { pat, slot, elem } => {
-                let fact = self.plan_fact(pat, depth, left, right_fact);
+                let fact = self.plan_fact(pat, depth, binds, right_fact);
                 if fact == NONE {
                     return None;
                 }
@@ -578,13 +644,13 @@ impl Core<'_> {
             }
             Source::Const { e } => Some(self.const_value(e)),
             Source::SlotPlus { pat, slot, delta } => {
-                match self.plan_slot_value(pat, slot, depth, left, right_fact)? {
+                match self.plan_slot_value(pat, slot, depth, binds, right_fact)? {
                     Value::Int(i) => Some(Value::Int(i.wrapping_add(i64::from(delta)))),
                     _ => None,
                 }
             }
             Source::Arith { node } => {
-                Some(Value::Int(self.run_arith(node, depth, left, right_fact)?))
+                Some(Value::Int(self.run_arith(node, depth, binds, right_fact)?))
             }
         }
     }
@@ -599,15 +665,15 @@ impl Core<'_> {
 
     /// A single-field slot of the fact bound at `pat` (None for a multifield).
     #[inline(always)]
-    fn plan_slot_value(
+    fn plan_slot_value<L: LeftFacts>(
         &self,
         pat: u8,
         slot: u8,
         depth: u8,
-        left: TokenId,
+        binds: L,
         right_fact: Ix,
     ) -> Option<Value> {
-        let fact = self.plan_fact(pat, depth, left, right_fact);
+        let fact = self.plan_fact(pat, depth, binds, right_fact);
         if fact == NONE {
             return None;
         }
