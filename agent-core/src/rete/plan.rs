@@ -33,6 +33,9 @@ const COMPILED_PLANS: usize = 64;
 /// Nodes (and child links) the cached plans share. A plan that finds no room empties
 /// the cache first: kept small, the cache costs the engine's start little.
 const POOL_NODES: usize = 255;
+/// Length of the pool arrays: every `u8` index is in bounds, so the plan runner's
+/// reads of nodes and kids need no bounds check (the last entry stays unused).
+const POOL_LEN: usize = 256;
 /// Most nodes one plan holds; joins with more keep the evaluator.
 const PLAN_NODES: usize = 64;
 /// Deepest nesting of `and`/`or`/`not` a plan holds.
@@ -129,8 +132,8 @@ impl PlanEntry {
 /// shared pool of nodes.
 pub struct TestPlans {
     entries: [PlanEntry; COMPILED_PLANS],
-    nodes: [Node; POOL_NODES],
-    kids: [u8; POOL_NODES],
+    nodes: [Node; POOL_LEN],
+    kids: [u8; POOL_LEN],
     nodes_used: u8,
     kids_used: u8,
 }
@@ -138,8 +141,8 @@ pub struct TestPlans {
 impl TestPlans {
     pub const EMPTY: TestPlans = TestPlans {
         entries: [PlanEntry::NONE; COMPILED_PLANS],
-        nodes: [Node::Not { child: 0 }; POOL_NODES],
-        kids: [0; POOL_NODES],
+        nodes: [Node::Not { child: 0 }; POOL_LEN],
+        kids: [0; POOL_LEN],
         nodes_used: 0,
         kids_used: 0,
     };
@@ -334,7 +337,11 @@ impl LeftFacts for Ancestry {
     }
 }
 
-const _: () = assert!(POOL_NODES <= UNPLANNED as usize && PLAN_NODES <= POOL_NODES);
+const _: () = assert!(
+    POOL_NODES <= UNPLANNED as usize
+        && PLAN_NODES <= POOL_NODES
+        && POOL_LEN == u8::MAX as usize + 1
+);
 
 impl Source {
     /// The pattern a source reads (None for a constant or arithmetic, whose
