@@ -615,6 +615,27 @@ impl<'s> Parser<'s, '_, '_> {
 
     /// Checks made when the slot is complete (its attributes come in any order): the
     /// `type` admits every allowed value, and the default's literals fit both.
+    /// A default value the slot's constraints refuse (`[CSTRNCHK1]`; `call`: the value
+    /// is a function call's return type, not a literal).
+    fn default_error(
+        &self,
+        at: Token<'s>,
+        attribute: &'static str,
+        what: Restriction,
+        def: &SlotDef,
+        call: bool,
+    ) -> LoadError {
+        let mut e = self.err(at, expected(what));
+        e.detail = LoadDetail::DefaultConstraint {
+            attribute,
+            what,
+            slot: def.name,
+            range: def.range,
+            call,
+        };
+        e
+    }
+
     fn check_slot(&mut self, def: &SlotDef, seen: &Seen<'s>) -> PResult<()> {
         if def.types != 0 {
             // a type an allowed-... list restricts must be one the slot takes (CLIPS's
@@ -680,15 +701,7 @@ impl<'s> Parser<'s, '_, '_> {
             while c != NONE {
                 if let Some(what) = self.literal_violation(def, c) {
                     let at = self.value_at(values_at.clone(), k)?;
-                    let mut e = self.err(at, expected(what));
-                    e.detail = LoadDetail::DefaultConstraint {
-                        attribute,
-                        what,
-                        slot: def.name,
-                        range: def.range,
-                        call: false,
-                    };
-                    return Err(e);
+                    return Err(self.default_error(at, attribute, what, def, false));
                 }
                 // a dynamic default's builtin call: its return type against the slot's
                 let x = self.cx.exprs[c as usize];
@@ -701,15 +714,7 @@ impl<'s> Parser<'s, '_, '_> {
                     if returns.slot_types().is_some_and(|t| t & def.types == 0) {
                         let at = self.value_at(values_at.clone(), k)?;
                         let what = Restriction::Type;
-                        let mut e = self.err(at, expected(what));
-                        e.detail = LoadDetail::DefaultConstraint {
-                            attribute,
-                            what,
-                            slot: def.name,
-                            range: def.range,
-                            call: true,
-                        };
-                        return Err(e);
+                        return Err(self.default_error(at, attribute, what, def, true));
                     }
                 }
                 if self.is_literal(c) {
@@ -723,15 +728,7 @@ impl<'s> Parser<'s, '_, '_> {
             if def.multi && !self.count_fits(def, literals, open) {
                 let at = self.value_at(values_at.clone(), 0)?;
                 let what = Restriction::Cardinality;
-                let mut e = self.err(at, expected(what));
-                e.detail = LoadDetail::DefaultConstraint {
-                    attribute,
-                    what,
-                    slot: def.name,
-                    range: def.range,
-                    call: false,
-                };
-                return Err(e);
+                return Err(self.default_error(at, attribute, what, def, false));
             }
         }
         Ok(())
