@@ -1631,6 +1631,7 @@ impl Core<'_> {
                     | LoadDetail::Arity { .. }
                     | LoadDetail::FunctionArity { .. }
                     | LoadDetail::ArgType { .. }
+                    | LoadDetail::FactIndexInRule { .. }
                     | LoadDetail::SlotTwice
                     | LoadDetail::ModuleSpecifier
                     | LoadDetail::UnknownSlot { .. }
@@ -1686,6 +1687,7 @@ impl Core<'_> {
                     | LoadDetail::Arity { .. }
                     | LoadDetail::FunctionArity { .. }
                     | LoadDetail::ArgType { .. }
+                    | LoadDetail::FactIndexInRule { .. }
                     | LoadDetail::ReplacesBuiltin
                     | LoadDetail::ReplacesConstruct
                     | LoadDetail::ParameterTwice

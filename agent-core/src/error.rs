@@ -680,7 +680,8 @@ pub enum LoadDetail {
     },
     /// `[DFFNXPSR2]`: a deffunction named like a builtin function.
     ReplacesBuiltin,
-    /// `[DEFAULT1]`: a single-field slot's default with no value or several.
+    /// `[DEFAULT1]`: a single-field slot's default with no value, several, or a
+    /// multifield call.
     DefaultSingle,
     /// `[DFFNXPSR1]`: a deffunction named like a construct keyword.
     ReplacesConstruct,

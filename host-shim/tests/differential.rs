@@ -462,6 +462,8 @@ differential_programs! {
     p736_fact_address_bound_to_a_ce => "736-fact-address-bound-to-a-ce",
     p737_funcall_error_values => "737-funcall-error-values",
     p738_argument_errors_of_deffunction_calls => "738-argument-errors-of-deffunction-calls",
+    p739_modify_target_in_constructs => "739-modify-target-in-constructs",
+    p740_default_multifield_single_slot => "740-default-multifield-single-slot",
     p750_watch_construct_names => "750-watch-construct-names",
     p751_watch_construct_names_modules => "751-watch-construct-names-modules",
     p770_logical_name_upper_t => "770-logical-name-upper-t",

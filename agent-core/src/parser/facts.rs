@@ -327,19 +327,45 @@ impl<'s> Parser<'s, '_, '_> {
         Some(tmpl)
     }
 
+    /// `[ARGACCES5]`: in a rule or deffunction CLIPS takes only a variable as the fact
+    /// `modify`/`duplicate` (`func`) changes; anything else is refused while reading,
+    /// the construct shown up to the target's first token (`at`).
+    fn modify_target_error(&self, func: &'static str, at: Token<'s>) -> LoadError {
+        let mut e = self.err(at, "a fact-address variable");
+        e.detail = LoadDetail::ArgType {
+            func,
+            arg: 1,
+            expected: "non-void return value",
+        };
+        e.echo_end = at.end as u32;
+        e
+    }
+
     /// `(modify ?f (slot v...)...)`: slot values carry the slot *name* symbol (the
     /// template is known only at run time in general). When `?f` is bound to a
     /// deftemplate pattern, slots and literal values are checked now, as CLIPS does.
     pub(super) fn parse_modify(&mut self, name: &'static str) -> PResult<Ix> {
         let node = self.builtin_call(name)?;
         let target_at = self.peek();
+        let in_construct = self.scope != Scope::TopLevel;
+        if in_construct && matches!(target_at.tok, Tok::RParen | Tok::MfVar(_)) {
+            return Err(self.modify_target_error(name, target_at));
+        }
         let f = self.parse_expr()?;
-        if self.scope != Scope::TopLevel && self.cx.exprs[f as usize].op == Op::Int {
-            // `(modify 3 ...)` names a fact by its index: CLIPS allows that only at top
-            // level
-            let mut e = self.err(target_at, "a fact-address (fact indexes only at top level)");
-            e.detail = LoadDetail::FactIndexInRule { command: name };
-            return Err(e);
+        if in_construct {
+            match self.cx.exprs[f as usize].op {
+                // `(modify 3 ...)` names a fact by its index: CLIPS allows that only at
+                // top level
+                Op::Int => {
+                    let mut e =
+                        self.err(target_at, "a fact-address (fact indexes only at top level)");
+                    e.detail = LoadDetail::FactIndexInRule { command: name };
+                    e.echo_end = target_at.end as u32;
+                    return Err(e);
+                }
+                Op::Local | Op::Global | Op::PatVar => {}
+                _ => return Err(self.modify_target_error(name, target_at)),
+            }
         }
         self.cx.append_child(node, f);
         let tmpl = self.target_template(f);

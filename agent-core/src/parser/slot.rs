@@ -322,8 +322,14 @@ impl<'s> Parser<'s, '_, '_> {
         };
         self.scope = save;
         self.evaluated_now = false;
-        // CLIPS reads the attribute whole first, and shows the deftemplate up to it
-        if !def.multi && n != 1 {
+        // CLIPS reads the attribute whole first, and shows the deftemplate up to it; a
+        // builtin call that returns a multifield (`create$`) is refused there as well,
+        // whatever it would give
+        let first = self.cx.exprs[holder as usize].first;
+        if !def.multi && (n != 1 || self.returns_multifield(first)) {
+            if n == 1 {
+                second = self.value_at(values_at.clone(), 0)?;
+            }
             let mut e = self.err(second, "exactly one default value for a single-field slot");
             e.detail = crate::error::LoadDetail::DefaultSingle;
             e.echo_end = close.end as u32;
@@ -339,6 +345,18 @@ impl<'s> Parser<'s, '_, '_> {
             self.evaluate_static_default(def, &values_at, close)?;
         }
         Ok(Some((values_at, attribute)))
+    }
+
+    /// Whether expression `e` is a builtin call CLIPS's parser knows to return a
+    /// multifield (return type `m`).
+    fn returns_multifield(&self, e: Ix) -> bool {
+        let x = self.cx.exprs[e as usize];
+        x.op == Op::Call
+            && x.aux == crate::expr::FnKind::Builtin as u8
+            && matches!(
+                crate::builtins::get(x.data).returns,
+                crate::builtins::describe::Returns::Multifield
+            )
     }
 
     /// CLIPS evaluates a static default's expressions once, when the deftemplate is
