@@ -48,6 +48,22 @@ pub struct Lexer<'a> {
     col: u32,
 }
 
+/// The first `bind` in `b` at or after `at`: a skip on the byte under the needle's
+/// end (its four letters differ), without `str::find`'s searcher set-up per call.
+fn find_bind(b: &[u8], at: usize) -> Option<usize> {
+    let mut i = at;
+    while let Some(&last) = b.get(i + 3) {
+        i += match last {
+            b'd' if b[i..i + 3] == *b"bin" => return Some(i),
+            b'n' => 1,
+            b'i' => 2,
+            b'b' => 3,
+            _ => 4,
+        };
+    }
+    None
+}
+
 /// Whether `text` (after a `(`) starts `bind ?x` or `bind $?x` with `x` no global.
 fn binds_a_local(text: &[u8]) -> bool {
     let mut i = 0;
@@ -182,8 +198,7 @@ impl<'a> Lexer<'a> {
     pub fn local_bind_candidate(&self, from: usize) -> usize {
         let b = self.src.as_bytes();
         let mut at = from;
-        while let Some(k) = self.src.get(at..).and_then(|t| t.find("bind")) {
-            let p = at + k;
+        while let Some(p) = find_bind(b, at) {
             let mut q = p;
             while q > 0 && b[q - 1].is_ascii_whitespace() {
                 q -= 1;
@@ -439,6 +454,27 @@ mod tests {
         assert!(!sees("; (bind ?x 1)\n(printout t 1))"));
         assert!(!sees("(binder ?x))"));
         assert!(!sees("(printout t 1)) (defrule r => (bind ?x 1))"));
+    }
+
+    #[test]
+    fn find_bind_is_the_first_bind_at_or_after_the_start() {
+        let texts = [
+            "",
+            "bin",
+            "bind",
+            "bbind",
+            "bibind",
+            "bnbind x",
+            "dbind",
+            "xbindbind",
+            "(bin d) (bind",
+        ];
+        for t in texts {
+            for at in 0..=t.len() + 1 {
+                let want = t.get(at..).and_then(|r| r.find("bind")).map(|k| at + k);
+                assert_eq!(find_bind(t.as_bytes(), at), want, "{t:?} from {at}");
+            }
+        }
     }
 
     #[test]
