@@ -2251,7 +2251,12 @@ fn write_echo(
 ) -> core::fmt::Result {
     let glued = e.echo_tail == crate::error::EchoTail::Glued && e.start < e.echo_end;
     let own_line = e.echo_tail == crate::error::EchoTail::OwnLine && e.start < e.echo_end;
-    let cut = if glued || own_line {
+    // a rule's own `)` on a line of its own (no `=>`): the writer reads up to it, so a
+    // composite CE just before it keeps its `)`
+    let rule_close = own_line
+        && e.construct == "defrule"
+        && text.get(e.start as usize..e.echo_end as usize) == Some(")");
+    let cut = if (glued || own_line) && !rule_close {
         e.start
     } else {
         e.echo_end

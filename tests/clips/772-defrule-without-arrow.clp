@@ -11,4 +11,10 @@
 (defrule an-equals (a) (b) =)
 (defrule fine (a) => (assert (b)))
 (list-defrules)
+; a composite CE last keeps its ')'
+(defrule a (x) (not (y)))
+(defrule b (or (x) (y)))
+(defrule c (x) (and (y) (z)))
+(defrule d (x) (exists (y)))
+(defrule e (not (x)) (y))
 (exit)
