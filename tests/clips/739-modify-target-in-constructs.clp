@@ -8,6 +8,7 @@
 (deffunction f1 (?f) (modify (+ 1 2) (a 1)))
 (deffunction f2 ($?f) (duplicate $?f (a 1)))
 (defrule r5 ?f <- (t (a 0)) => (modify ?f (a 2)))
+(defrule r6 ?f <- (t) => (modify))
 (defrule r7 ?f <- (t) => (modify 1.5 (a 1)))
 (list-defrules)
 (deffunction f3 (?f) (modify 4 (a 1)))

@@ -337,7 +337,13 @@ impl<'s> Parser<'s, '_, '_> {
             arg: 1,
             expected: "non-void return value",
         };
-        e.echo_end = at.end as u32;
+        if at.tok == Tok::RParen {
+            // no argument: CLIPS shows `(modify )`
+            e.echo_end = at.start as u32;
+            e.echo_tail = crate::error::EchoTail::SpaceBefore;
+        } else {
+            e.echo_end = at.end as u32;
+        }
         e
     }
 
