@@ -821,28 +821,27 @@ impl WatchNames {
     /// Forgets the constructs named for the items `bits` (each construct is set to
     /// its item's state).
     pub fn forget_items(&mut self, bits: u8) {
-        let mut i = 0;
-        while i < usize::from(self.n) {
-            if self.keys[i].0 & bits != 0 {
-                self.remove_at(i);
-            } else {
-                i += 1;
-            }
-        }
+        self.remove_where(|k| k.0 & bits != 0);
     }
 
     /// Forgets a construct for the items `bits` (it is gone, or defined again while
     /// they are on).
     pub fn forget(&mut self, bits: u8, m: crate::module::ModId, name: SymId) {
-        let mut i = 0;
-        while i < usize::from(self.n) {
+        self.remove_where(|k| k.0 & bits != 0 && k.1 == m && k.2 == name);
+    }
+
+    /// Removes the keys `gone` picks, keeping the others in order.
+    fn remove_where(&mut self, gone: impl Fn((u8, crate::module::ModId, SymId)) -> bool) {
+        let mut kept = 0;
+        for i in 0..usize::from(self.n) {
             let k = self.keys[i];
-            if k.0 & bits != 0 && k.1 == m && k.2 == name {
-                self.remove_at(i);
-            } else {
-                i += 1;
+            if !gone(k) {
+                self.keys[kept] = k;
+                kept += 1;
             }
         }
+        // (kept <= n <= MAX = 64, so it fits the u8 count)
+        self.n = kept as u8;
     }
 
     /// `Mode::watch`'s construct bits: the items on, and those with a construct
