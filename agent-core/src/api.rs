@@ -62,11 +62,7 @@ engine_impl! {
     /// that stack (less a margin for one level's frames) as a second bound.
     #[cfg(feature = "grow")]
     pub fn set_depth_limits(&mut self, calls: u16, stack_bytes: usize) {
-        self.st.eval.limits = crate::eval::DepthLimits {
-            calls,
-            stack_bytes,
-            floor: 0,
-        };
+        self.st.eval.limits = crate::eval::DepthLimits::with(calls, stack_bytes);
     }
 
     /// Parses and evaluates one expression/command. A multifield result points into

@@ -25,6 +25,11 @@ pub struct DepthLimits {
     pub stack_bytes: usize,
     /// Lowest stack address calls may reach: set by the outermost call.
     pub(crate) floor: usize,
+    /// One less than the first depth whose calls are checked (`calls`, or
+    /// `STACK_CHECK_FROM` with a stack bound, whichever is lower; 0: every call):
+    /// a call at depth `d` with `d - 1 < quiet` (wrapping, so not the outermost) is
+    /// neither too deep nor near the stack's floor.
+    pub(crate) quiet: u16,
 }
 
 /// Call depth from which `DepthLimits::stack_bytes` is checked: fewer levels stay far
@@ -36,10 +41,21 @@ const STACK_CHECK_FROM: u16 = 128;
 #[cfg(feature = "grow")]
 impl DepthLimits {
     pub const fn new() -> Self {
+        Self::with(MAX_EVAL_DEPTH, 0)
+    }
+
+    /// At most `calls` levels, within `stack_bytes` of the stack (0: unchecked).
+    pub const fn with(calls: u16, stack_bytes: usize) -> Self {
+        let checked = if stack_bytes != 0 && STACK_CHECK_FROM < calls {
+            STACK_CHECK_FROM
+        } else {
+            calls
+        };
         DepthLimits {
-            calls: MAX_EVAL_DEPTH,
-            stack_bytes: 0,
+            calls,
+            stack_bytes,
             floor: 0,
+            quiet: checked.saturating_sub(1),
         }
     }
 }
@@ -553,17 +569,16 @@ impl Core<'_> {
 
     /// Calls the function of call node `e` (whose node `x` the caller has read).
     fn call(&mut self, e: Ix, x: Expr) -> Result<Value, EvalError> {
+        #[cfg(not(feature = "grow"))]
         if self.st.eval.eval_depth >= self.max_eval_depth() {
             return Err(EvalError::new(EvalErrorKind::TooDeep {
                 limit: self.max_eval_depth(),
             }));
         }
-        // (the outermost call notes the floor; only deep calls can come near it)
+        // host: one comparison for the calls that need no check (`DepthLimits::quiet`)
         #[cfg(feature = "grow")]
-        if self.st.eval.limits.stack_bytes != 0
-            && (self.st.eval.eval_depth == 0 || self.st.eval.eval_depth >= STACK_CHECK_FROM)
-        {
-            self.check_stack()?;
+        if self.st.eval.eval_depth.wrapping_sub(1) >= self.st.eval.limits.quiet {
+            self.depth_checks()?;
         }
         self.st.eval.eval_depth += 1;
         let sp = self.st.frame.sp;
@@ -571,6 +586,26 @@ impl Core<'_> {
         self.st.frame.sp = sp;
         self.st.eval.eval_depth -= 1;
         r
+    }
+
+    /// Host: a call's depth checks, for the outermost call and deep ones (see
+    /// `DepthLimits::quiet`): too deep a nesting, and the stack (the outermost call
+    /// notes the floor; only deep calls can come near it).
+    #[cfg(feature = "grow")]
+    #[cold]
+    #[inline(never)]
+    fn depth_checks(&mut self) -> Result<(), EvalError> {
+        if self.st.eval.eval_depth >= self.max_eval_depth() {
+            return Err(EvalError::new(EvalErrorKind::TooDeep {
+                limit: self.max_eval_depth(),
+            }));
+        }
+        if self.st.eval.limits.stack_bytes != 0
+            && (self.st.eval.eval_depth == 0 || self.st.eval.eval_depth >= STACK_CHECK_FROM)
+        {
+            self.check_stack()?;
+        }
+        Ok(())
     }
 
     /// How deep calls may nest (`MAX_EVAL_DEPTH`, or the host's `DepthLimits`).

@@ -88,6 +88,18 @@ impl Core<'_> {
         }
     }
 
+    /// Host: `token_active` for a token of a join of kind `kind`, known to the caller.
+    #[cfg(feature = "host-speedups")]
+    #[inline(always)]
+    fn active_in(&self, t: TokenId, kind: JoinKind) -> bool {
+        let tk = &self.tokens[t];
+        match kind {
+            JoinKind::Negative => !tk.blocked && tk.am_prev == TokenId::NONE,
+            JoinKind::Exists => tk.blocked,
+            _ => true,
+        }
+    }
+
     /// Fills `lhs_pm` with the pattern bindings along a token's ancestry (pattern
     /// depths along an ancestry are contiguous from 0, so every entry up to the
     /// token's depth is written).
@@ -319,10 +331,21 @@ impl Core<'_> {
         if !self.st.prime.joins.is_empty() {
             return self.right_activate_maybe_primed(join, am, all_active);
         }
+        // host: every left token is the parent join's (`first_left` walks its memory
+        // or its bucket, which `next_left_of` skips to its own), so its kind is read
+        // once, and the owner is not read again per token
+        #[cfg(feature = "host-speedups")]
+        let parent_kind = self.joins[j.parent].kind;
         let (mut l, via) = self.first_left(join, am);
         while l != TokenId::NONE {
-            let next = self.next_left(l, via);
-            if all_active || self.token_active(l) {
+            #[cfg(feature = "host-speedups")]
+            let (next, active) = (
+                self.next_left_of(l, via, j.parent),
+                all_active || self.active_in(l, parent_kind),
+            );
+            #[cfg(not(feature = "host-speedups"))]
+            let (next, active) = (self.next_left(l, via), all_active || self.token_active(l));
+            if active {
                 match j.kind {
                     JoinKind::Positive => {
                         if self.join_test(join, l, am)? {

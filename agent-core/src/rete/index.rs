@@ -1635,12 +1635,27 @@ impl Core<'_> {
         (parent_mem, 0)
     }
 
-    /// The partial match after `l` (`via` as `first_left` gave).
+    /// The partial match after `l` (`via` as `first_left` gave). (The host's right
+    /// activations walk with `next_left_in`; the primed walks of `grow` with this.)
+    #[cfg(any(not(feature = "host-speedups"), feature = "grow"))]
     #[cfg_attr(feature = "host-speedups", inline(always))]
     pub(crate) fn next_left(&self, l: TokenId, via: u8) -> TokenId {
         if via > 0 {
             let g = via as usize - 1;
             let owner = self.tokens[l].owner;
+            self.skip_other_beta(self.gnext(l, g), owner, g)
+        } else {
+            self.tokens[l].mem_next
+        }
+    }
+
+    /// Host: `next_left` for a left token `l` of `owner`, known to the caller (the
+    /// right activation's walk: no owner read per token).
+    #[cfg(feature = "host-speedups")]
+    #[inline(always)]
+    pub(crate) fn next_left_of(&self, l: TokenId, via: u8, owner: JoinId) -> TokenId {
+        if via > 0 {
+            let g = via as usize - 1;
             self.skip_other_beta(self.gnext(l, g), owner, g)
         } else {
             self.tokens[l].mem_next
