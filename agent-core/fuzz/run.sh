@@ -18,7 +18,7 @@ secs=${1:-60}
 shift || true
 targets=("$@")
 if [ ${#targets[@]} -eq 0 ]; then
-    targets=(load_str engine_commands payloads)
+    targets=(load_str engine_commands payloads batch api_text compiled_write)
 fi
 
 here=$(cd "$(dirname "$0")" && pwd)
@@ -30,15 +30,23 @@ seed() {
     local t=$1 dir="$here/corpus/$1"
     mkdir -p "$dir"
     case $t in
-        load_str)
+        load_str|batch|compiled_write)
             # the differential and error suites: every construct and error kind
             cp -n "$repo"/tests/clips/*.clp "$repo"/tests/clips-errors/*.clp "$dir"/ 2>/dev/null
+            # but 24,000 firings under the breadth strategy: 3 s a run, a timeout on a
+            # loaded machine, and slow mutants
+            rm -f "$dir"/773-breadth-long-agenda.clp
             ;;
         engine_commands)
             # a few streams: asserts then runs, with modify/retract/reset mixed in
             printf '\x00\x12\x31\x04\x23\x0b\x10\x09\x01\x02\x03\x0c\x0f\x07\x02\x0d' > "$dir/seed-mixed"
             printf '\x00\x10\x21\x00\x21\x32\x00\x32\x13\x06\x2f\x0b\x17\x0e\x02\x0b\x17' > "$dir/seed-rules"
             head -c 600 /dev/urandom > "$dir/seed-random" 2>/dev/null
+            ;;
+        api_text)
+            # facts for assert_str, and one line of each other entry point
+            printf '(item (id 7) (tag a) (parts p q))\n(count (n 3))\n(foo bar 1 2.5 "s")\n.5\n-1\n!(+ 1 (twice 3))\n>(facts)\n+(defrule r (foo $?x) => (retract 1))\n.\n#\n' > "$dir/seed-mixed"
+            printf '(item (id 3) (parts))\n(item (tag b) (id 9))\n.100\n>(agenda)\n!(modify 1 (tag c))\n' > "$dir/seed-items"
             ;;
         payloads)
             for k in 0 1 2 3 4 5 6 7 8 9 10 11; do
@@ -53,14 +61,14 @@ printf '%-18s %12s %10s %8s %s\n' target executions exec/s crashes notes
 for t in "${targets[@]}"; do
     seed "$t"
     extra=()
-    if [ "$t" = load_str ]; then
+    if [ "$t" != engine_commands ] && [ "$t" != payloads ]; then
         extra=(-dict="$here/clips.dict" -max_len=8192)
     fi
     log="$here/artifacts/$t.log"
     mkdir -p "$here/artifacts/$t"
     before=$(ls "$here/artifacts/$t" | grep -c -E '^(crash|oom|timeout|leak)-' || true)
     cargo +nightly fuzz run -O -s none --no-trace-compares "$t" "$here/corpus/$t" -- \
-        -max_total_time="$secs" -timeout=10 -print_final_stats=1 "${extra[@]}" > "$log" 2>&1
+        -max_total_time="$secs" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 "${extra[@]}" > "$log" 2>&1
     rc=$?
     after=$(ls "$here/artifacts/$t" | grep -c -E '^(crash|oom|timeout|leak)-' || true)
     execs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' | tail -1)

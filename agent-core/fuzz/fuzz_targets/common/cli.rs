@@ -1,0 +1,99 @@
+//! What the targets that run text through the command line's engine share: the engine
+//! `robotino-agent clips` makes (a `GrowEngine` with its depth limits, on a thread with
+//! a stack of the same shape), a host with a poll budget, and a small rule base.
+#![allow(dead_code)]
+
+use agent_core::grow::{GrowEngine, GrowStorage};
+use agent_core::{Capacities, Host};
+
+/// How often the host lets the engine poll (one poll per loop iteration or rule
+/// firing) before it interrupts: a text that loops forever ends.
+pub const POLL_BUDGET: u32 = 100_000;
+
+/// Every pool grows to at most this many entries (the CLI's `--pool-limit`): a text
+/// that fills a pool gets the capacity error instead of the machine's memory.
+pub const POOL_LIMIT: usize = 1 << 18;
+
+/// The engine thread's stack and the part of it the depth check leaves unused: the
+/// CLI's margin (`CLI_STACK_MARGIN`, 32 MiB) on a smaller stack, so a deep recursion
+/// touches 32 MiB, not the CLI's 224.
+pub const STACK: usize = 64 << 20;
+pub const STACK_MARGIN: usize = 32 << 20;
+
+/// Drops output (after checking it is what a router may get) and interrupts once
+/// polled `POLL_BUDGET` times.
+#[derive(Default)]
+pub struct Budget {
+    pub polls: u32,
+    pub written: usize,
+}
+
+impl Host for Budget {
+    fn write_str(&mut self, _router: &str, text: &str) {
+        self.written = self.written.saturating_add(text.len());
+    }
+    fn interrupt(&mut self) -> bool {
+        self.polls = self.polls.saturating_add(1);
+        self.polls > POLL_BUDGET
+    }
+}
+
+/// The CLI's engine: pools that start small and grow (to `POOL_LIMIT`), calls nested
+/// as deep as the stack allows.
+pub fn engine() -> Box<GrowEngine> {
+    let storage = GrowStorage::with_limits(GrowStorage::START, Capacities::uniform(POOL_LIMIT));
+    let mut e = Box::new(GrowEngine::with_storage(storage));
+    e.set_depth_limits(u16::MAX, STACK - STACK_MARGIN);
+    e
+}
+
+/// Runs `f` on a thread with the engine stack (as the CLI runs its session).
+pub fn on_engine_stack(f: impl FnOnce() + Send + 'static) {
+    let t = std::thread::Builder::new()
+        .stack_size(STACK)
+        .spawn(f)
+        .expect("engine thread");
+    if t.join().is_err() {
+        // the panic was reported by the thread (libFuzzer's hook aborts before this)
+        std::process::abort();
+    }
+}
+
+/// Panics with `what` if the engine's invariants do not hold.
+pub fn check(e: &mut GrowEngine, what: &str) {
+    if let Err(v) = e.check_invariants() {
+        panic!("after {what}: {v}");
+    }
+}
+
+/// A small valid rule base the command texts run against: templates with defaults and
+/// a multislot, rules with not/exists/test and a modify loop that ends, a deffunction,
+/// globals and deffacts.
+pub const PRELUDE: &str = r#"
+(deftemplate item (slot id (type INTEGER) (default 0)) (slot tag (default none))
+  (multislot parts))
+(deftemplate count (slot n (default 0)))
+(deffacts start (count (n 0)) (item (id 1) (tag a) (parts x y)) (item (id 2) (tag b)))
+(defglobal ?*limit* = 5 ?*seen* = (create$))
+(deffunction twice (?x) (* 2 ?x))
+(defrule step ?c <- (count (n ?n&:(< ?n ?*limit*))) =>
+  (modify ?c (n (+ ?n 1))))
+(defrule pair (item (id ?a) (tag ?t)) (item (id ?b&~?a) (tag ?t)) =>
+  (bind ?*seen* (create$ ?*seen* ?a ?b)))
+(defrule lonely (item (id ?i) (parts $?p)) (not (item (id ?j&:(> ?j ?i)))) =>
+  (printout t lonely " " ?i " " (length$ ?p) crlf))
+(defrule any-parts (exists (item (parts ? $?))) (test (> ?*limit* 0)) =>
+  (printout t (twice ?*limit*) crlf))
+"#;
+
+/// A fresh CLI engine with [`PRELUDE`] loaded and reset.
+pub fn with_prelude(h: &mut Budget) -> Box<GrowEngine> {
+    let mut e = engine();
+    if let Err(err) = e.load_str(h, "prelude", PRELUDE) {
+        panic!("the prelude does not load: {err:?}");
+    }
+    if let Err(err) = e.reset(h) {
+        panic!("the prelude does not reset: {err:?}");
+    }
+    e
+}
