@@ -300,10 +300,9 @@ impl Core<'_> {
         }
     }
 
-    fn reset_inner(&mut self) -> Result<(), EvalError> {
-        // the focus stack holds MAIN only, the current module
-        #[cfg(feature = "modules")]
-        self.reset_focus()?;
+    /// Every fact retracted through the network, as `reset` and `clear` do it (the
+    /// join tests of the nots and exists they unblock run again).
+    fn retract_all_facts(&mut self) {
         // rules starting with not/exists/test lose their root-based matches first, join
         // by join in the order they are primed again below (CLIPS's list of them)
         let root_token = self.join_mems[JoinId::ROOT].mem;
@@ -349,6 +348,14 @@ impl Core<'_> {
             let f = self.st.facts.fact_head;
             self.retract_fact(f);
         }
+    }
+
+    fn reset_inner(&mut self) -> Result<(), EvalError> {
+        // the focus stack holds MAIN only, the current module
+        #[cfg(feature = "modules")]
+        self.reset_focus()?;
+        self.retract_all_facts();
+        let root_token = self.join_mems[JoinId::ROOT].mem;
         // (the partial matches joins were primed with are gone)
         #[cfg(feature = "grow")]
         self.forget_prime_orders();
@@ -454,6 +461,16 @@ impl Core<'_> {
     /// `(clear)`: everything goes; the environment starts afresh (externals stay).
     pub fn clear(&mut self) -> Result<(), EvalError> {
         let w = self.st.mode.watch;
+        // CLIPS retracts the facts through the network first, its traces silenced:
+        // what the join tests of nots and exists print shows
+        self.st.mode.watch = 0;
+        #[cfg(feature = "extras")]
+        let cool_watch = core::mem::take(&mut self.st.mode.cool_watch);
+        self.retract_all_facts();
+        #[cfg(feature = "extras")]
+        {
+            self.st.mode.cool_watch = cool_watch;
+        }
         #[cfg(feature = "extras")]
         let (keep_globals, cool_watch, salience_eval, watch_items) = (
             self.st.mode.keep_globals,

@@ -148,9 +148,9 @@
 //!   only for a new partial match (e.g. after `modify`, which retracts and re-asserts).
 //!
 //! # Not supported yet
-//! As the README's "Not implemented yet" lists them: COOL, `or` under `exists` or
-//! two negations (CLIPS takes it; under one `not` or a `forall` it is expanded as
-//! CLIPS expands it); modules ([`module`]) without the feature `modules`.
+//! As the README's "Not implemented yet" lists them: COOL, an `or` branch of several
+//! CEs under `exists` or two negations (CLIPS takes it; other `or`s under negations are
+//! expanded as CLIPS expands them); modules ([`module`]) without the feature `modules`.
 //! Each is refused where it is read, with a clear message, never accepted and ignored.
 #![no_std]
 // With `u32` indices (`value::Ix`) the widening casts and conversions written for `u16`

@@ -11,8 +11,28 @@ pub mod types {
     pub const INTEGER: u8 = 4;
     pub const FLOAT: u8 = 8;
     pub const FACT_ADDRESS: u8 = 16;
+    /// Instance names (`[x]`: symbols spelled with brackets here, `value::
+    /// instance_name_body`) and instance addresses (no value of ours has that type).
+    pub const INSTANCE_NAME: u8 = 32;
+    pub const INSTANCE_ADDRESS: u8 = 64;
     pub const NUMBER: u8 = INTEGER | FLOAT;
     pub const LEXEME: u8 = SYMBOL | STRING;
+    pub const INSTANCE: u8 = INSTANCE_NAME | INSTANCE_ADDRESS;
+
+    /// The type bit of atom `v` (0 for a multifield or no value); `text` gives a
+    /// symbol's spelling, which tells an instance name from a symbol.
+    pub fn of<'a>(v: crate::value::Value, text: impl FnOnce(crate::value::SymId) -> &'a str) -> u8 {
+        use crate::value::Value;
+        match v {
+            Value::Int(_) => INTEGER,
+            Value::Float(_) => FLOAT,
+            Value::Sym(s) if crate::value::instance_name_body(text(s)).is_some() => INSTANCE_NAME,
+            Value::Sym(_) => SYMBOL,
+            Value::Str(_) => STRING,
+            Value::Fact(_) => FACT_ADDRESS,
+            _ => 0,
+        }
+    }
 }
 
 /// How a slot gets its value when an assert leaves it out.

@@ -517,4 +517,10 @@ differential_programs! {
     p627_salience_errors => "627-salience-errors",
     p628_str_assert => "628-str-assert",
     p629_instance_name_strings => "629-instance-name-strings",
+    p820_or_under_exists => "820-or-under-exists",
+    p821_or_under_exists_marks => "821-or-under-exists-marks",
+    p822_clear_runs_join_tests => "822-clear-runs-join-tests",
+    p823_instance_name_slot_types => "823-instance-name-slot-types",
+    p824_or_under_exists_logical => "824-or-under-exists-logical",
+    p825_or_under_exists_modules => "825-or-under-exists-modules",
 }

@@ -24,17 +24,6 @@ pub const FUNCS: &[Builtin] = &[
 ];
 pub const TABLE: super::Table = super::Table::new(FUNCS);
 
-fn type_bit(v: Value) -> u8 {
-    match v {
-        Value::Int(_) => types::INTEGER,
-        Value::Float(_) => types::FLOAT,
-        Value::Sym(_) => types::SYMBOL,
-        Value::Str(_) => types::STRING,
-        Value::Fact(_) => types::FACT_ADDRESS,
-        _ => 0,
-    }
-}
-
 /// `a < b` for two numbers; false when either is not a number (an unbounded end of
 /// a range, `-oo`/`+oo`).
 fn below(a: Value, b: Value) -> bool {
@@ -45,15 +34,20 @@ fn below(a: Value, b: Value) -> bool {
 }
 
 impl Core<'_> {
+    /// The type bit of atom `v` (`types::of`).
+    pub(crate) fn type_bit(&self, v: Value) -> u8 {
+        types::of(v, |s| self.sym_text(s))
+    }
+
     /// Checks one atom against a slot's type and allowed-value restrictions (the
     /// parser's literal checks; also for a slot not yet stored in a template).
     pub(crate) fn check_atom_def(&self, def: &SlotDef, v: Value) -> Result<(), EvalError> {
-        if def.types != 0 && def.types & type_bit(v) == 0 {
+        if def.types != 0 && def.types & self.type_bit(v) == 0 {
             return Err(EvalError::new(EvalErrorKind::BadSlotValue {
                 reason: crate::error::Message::TypeViolated,
             }));
         }
-        let restricted = def.allowed_kind & (allowed::VALUES | type_bit(v)) != 0;
+        let restricted = def.allowed_kind & (allowed::VALUES | self.type_bit(v)) != 0;
         if def.allowed != NONE && restricted {
             // CLIPS looks for a value of the same type: 1.0 is not 1
             let mut c = def.allowed;
@@ -62,7 +56,7 @@ impl Core<'_> {
                 let eq = match (a, v) {
                     (Value::Int(x), Value::Int(y)) => x == y,
                     (Value::Float(x), Value::Float(y)) => x == y,
-                    _ => type_bit(a) == type_bit(v) && a.same(v),
+                    _ => self.type_bit(a) == self.type_bit(v) && a.same(v),
                 };
                 if eq {
                     return Ok(());
@@ -176,7 +170,7 @@ impl Core<'_> {
         let mut c = def.allowed;
         while c != NONE {
             let v = self.const_value(c);
-            if type_bit(v) == ty {
+            if self.type_bit(v) == ty {
                 return v;
             }
             c = self.exprs[c as usize].next;
@@ -211,6 +205,9 @@ impl Core<'_> {
             self.derived_atom(def, types::INTEGER, Value::Int(0))
         } else if t & types::FLOAT != 0 {
             self.derived_atom(def, types::FLOAT, Value::Float(0.0))
+        } else if t & types::INSTANCE_NAME != 0 {
+            let nil = self.intern("[nil]")?;
+            self.derived_atom(def, types::INSTANCE_NAME, Value::Sym(nil))
         } else {
             Value::Sym(SYM_NIL)
         };

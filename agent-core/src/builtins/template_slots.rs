@@ -32,12 +32,14 @@ pub const FUNCS: &[Builtin] = &[];
 pub const TABLE: super::Table = super::Table::new(FUNCS);
 
 /// CLIPS's type names in the order `deftemplate-slot-types` lists them.
-const TYPE_NAMES: [(u8, &str); 5] = [
+const TYPE_NAMES: [(u8, &str); 7] = [
     (types::FLOAT, "FLOAT"),
     (types::INTEGER, "INTEGER"),
     (types::SYMBOL, "SYMBOL"),
     (types::STRING, "STRING"),
     (types::FACT_ADDRESS, "FACT-ADDRESS"),
+    (types::INSTANCE_ADDRESS, "INSTANCE-ADDRESS"),
+    (types::INSTANCE_NAME, "INSTANCE-NAME"),
 ];
 /// Every type a slot without `(type ...)` takes, as CLIPS lists it.
 const ALL_TYPES: [&str; 8] = [

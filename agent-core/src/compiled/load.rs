@@ -384,12 +384,17 @@ impl Core<'_> {
                 continue;
             }
             let terminal = self.rules[r as usize].terminal;
-            let mut at = 0;
-            while let Some(j) = self.nth_root_start(terminal, JoinId::ROOT, &mut at) {
+            // (the walk counts `at` down as it passes joins: each call starts afresh)
+            let mut k = 0;
+            loop {
+                let mut at = k;
+                let Some(j) = self.nth_root_start(terminal, JoinId::ROOT, &mut at) else {
+                    break;
+                };
                 if !self.earlier_rule_uses(r, j) {
                     self.left_activate(j, root_token)?;
                 }
-                at += 1;
+                k += 1;
             }
         }
         self.order_activations_as_parsed();

@@ -93,6 +93,8 @@ pub(crate) struct Build {
     pub(crate) plain_seen: bool,
     /// The next group is one branch's negation of a `(not (or ...))`.
     pub(crate) split_branch: bool,
+    /// The body a `GroupBody::Split` group splits.
+    split_inner: GroupBody,
     /// `(declare (auto-focus TRUE))` (feature `modules`).
     #[cfg_attr(not(feature = "modules"), allow(dead_code))]
     pub(crate) auto_focus: bool,
@@ -122,6 +124,7 @@ impl Build {
             in_logical: false,
             plain_seen: false,
             split_branch: false,
+            split_inner: GroupBody::One,
             auto_focus: false,
         }
     }
@@ -232,6 +235,9 @@ enum GroupBody {
     Several,
     /// `(forall A B...)`: A, then `(not (and B...))`.
     Forall,
+    /// One negation per combination of the `or` branches of the body
+    /// `Build::split_inner` names (`split_negation`).
+    Split,
 }
 
 /// Where a CE sits: at top level, or inside `not`/`exists`.
@@ -972,10 +978,9 @@ impl<'s> Parser<'s, '_, '_> {
     /// A quantified body holding an `or` outside any deeper negation. CLIPS moves
     /// the `or` out of the `and`s around it and turns the innermost negation over it
     /// into one negation per combination of branches, in the order of `or`
-    /// disjuncts: `(not (or A B))` is `(not A) (not B)`. Under more negations
-    /// (`exists`, `(not (not ...))`) CLIPS 6.30 builds a network whose activation
-    /// order we do not reproduce (and which activates wrongly with two patterns in
-    /// `exists`): refused.
+    /// disjuncts: `(not (or A B))` is `(not A) (not B)`. More negations stay around
+    /// those as one group: `(exists (or A B))`, CLIPS's `(not (not (or A B)))`, is
+    /// `(not (and (not A) (not B)))`.
     fn split_negation(
         &mut self,
         b: &mut Build,
@@ -984,7 +989,10 @@ impl<'s> Parser<'s, '_, '_> {
         at: Token<'s>,
     ) -> PResult<()> {
         if nots > 1 {
-            return Err(self.not_implemented(at, "an or CE under exists or two negations"));
+            b.split_inner = body;
+            // (a lone branch folds into the outer negations as `(not (not A))` does)
+            b.split_branch = true;
+            return self.group(b, GroupBody::Split, (nots - 1) % 2 == 1, at);
         }
         self.negations_per_choice(b, body, at)
     }
@@ -1086,6 +1094,22 @@ impl<'s> Parser<'s, '_, '_> {
             // exactly one CE: (and ...), (not ...), (exists ...)
             GroupBody::One => self.ce(b, Ctx::Top),
             GroupBody::Several => self.ces_to_rparen(b),
+            GroupBody::Split => {
+                let inner = b.split_inner;
+                self.negations_per_choice(b, inner, at).and_then(|()| {
+                    // a branch of several CEs is a negated group inside this one:
+                    // CLIPS 6.30 joins such nested groups with its own errors
+                    // (activations without a match), which we do not reproduce
+                    if b.ces[first..b.n].iter().any(|c| c.right != CE_ROOT) {
+                        Err(self.not_implemented(
+                            at,
+                            "an or CE with a branch of several CEs under exists or two negations",
+                        ))
+                    } else {
+                        Ok(())
+                    }
+                })
+            }
             GroupBody::Forall => {
                 if self.peek().tok == Tok::RParen {
                     Err(self.err(at, "a forall with two conditional elements or more"))

@@ -112,16 +112,6 @@ fn fits_allowed_kind(kind: u8, v: Value) -> bool {
     }
 }
 
-fn type_bit(v: Value) -> u8 {
-    match v {
-        Value::Int(_) => types::INTEGER,
-        Value::Float(_) => types::FLOAT,
-        Value::Sym(_) => types::SYMBOL,
-        Value::Str(_) => types::STRING,
-        _ => 0,
-    }
-}
-
 impl<'s> Parser<'s, '_, '_> {
     /// The attributes of one slot, up to the slot's `)`.
     pub(super) fn slot_attributes(&mut self, mut def: SlotDef) -> PResult<SlotDef> {
@@ -468,14 +458,19 @@ impl<'s> Parser<'s, '_, '_> {
                 Tok::Symbol("FLOAT") => types::FLOAT,
                 Tok::Symbol("NUMBER") => types::NUMBER,
                 Tok::Symbol("FACT-ADDRESS") => types::FACT_ADDRESS,
+                Tok::Symbol("INSTANCE-NAME") => types::INSTANCE_NAME,
+                Tok::Symbol("INSTANCE-ADDRESS") => types::INSTANCE_ADDRESS,
+                Tok::Symbol("INSTANCE") => types::INSTANCE,
                 _ => {
                     // CLIPS saved a space after the name it did not know
                     let e = self.attribute_syntax(tt, "a type name", "type attribute");
                     return Err(echoed(e, tt, EchoTail::SpaceAfter));
                 }
             };
-            if mask & bits == bits {
-                return Err(self.attribute_syntax(tt, "a type not named before", "type attribute"));
+            // (CLIPS refuses a type that overlaps one named before: `INTEGER NUMBER`)
+            if mask & bits != 0 {
+                let e = self.attribute_syntax(tt, "a type not named before", "type attribute");
+                return Err(echoed(e, tt, EchoTail::SpaceAfter));
             }
             mask |= bits;
         }
@@ -655,6 +650,18 @@ impl<'s> Parser<'s, '_, '_> {
     }
 
     fn check_slot(&mut self, def: &SlotDef, seen: &Seen<'s>) -> PResult<()> {
+        // a default derived for an address type alone is CLIPS's `<Dummy Instance>` or
+        // `<Dummy Fact>`, values we do not have
+        let addresses = types::INSTANCE_ADDRESS | types::FACT_ADDRESS;
+        if def.default_kind == DefaultKind::Derived
+            && def.types & addresses != 0
+            && def.types & !addresses == 0
+            && def.allowed == NONE
+            && (!def.multi || self.cx.cardinality_of(def).0 > 0)
+        {
+            let at = self.peek();
+            return Err(self.not_implemented(at, "a derived default of an address type"));
+        }
         if def.types != 0 {
             // a type an allowed-... list restricts must be one the slot takes (CLIPS's
             // order and names); reported at the first value of that list
@@ -684,7 +691,7 @@ impl<'s> Parser<'s, '_, '_> {
                 let mut k = 0;
                 while c != NONE {
                     let v = self.cx.const_value(c);
-                    if def.types & type_bit(v) == 0 {
+                    if def.types & self.cx.type_bit(v) == 0 {
                         let at = self.value_at(values_at.clone(), k)?;
                         let mut e = self.err(at, "allowed values of the slot's type");
                         e.detail = LoadDetail::TypeConflict {
@@ -703,7 +710,7 @@ impl<'s> Parser<'s, '_, '_> {
             while c != NONE {
                 let bound = self.cx.const_value(c);
                 let number = matches!(bound, Value::Int(_) | Value::Float(_));
-                if number && def.types & type_bit(bound) == 0 {
+                if number && def.types & self.cx.type_bit(bound) == 0 {
                     let mut e = self.err(at, "a range of numbers of the slot's type");
                     e.detail = LoadDetail::TypeConflict { attribute: "range" };
                     return Err(e);
