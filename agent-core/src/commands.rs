@@ -549,8 +549,15 @@ impl Core<'_> {
         let strategy = self.st.agenda.strategy;
         // and so do the batch files running and where their input is
         let io = core::mem::take(&mut self.st.io);
+        #[cfg(feature = "extras")]
+        let mut tools = self.st.tools;
         *self.st = crate::engine::State::new();
         self.st.io = io;
+        #[cfg(feature = "extras")]
+        {
+            tools.forget_symbols();
+            self.st.tools = tools;
+        }
         // a compiled rule base's nodes read in place go with the rest
         #[cfg(feature = "in-place")]
         {

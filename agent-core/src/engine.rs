@@ -671,6 +671,9 @@ pub struct State {
     /// feature `extras`).
     #[cfg(feature = "extras")]
     pub watch_names: WatchNames,
+    /// `apropos`'s arguments (feature `extras`; forgotten at `clear`).
+    #[cfg(feature = "extras")]
+    pub tools: crate::builtins::tools::ToolsState,
     /// Host: joins primed while their parent had partial matches, and their own
     /// order of those (`rete::order`).
     #[cfg(feature = "grow")]
@@ -895,6 +898,8 @@ impl State {
             breaks: Breaks::new(),
             #[cfg(feature = "extras")]
             watch_names: WatchNames::new(),
+            #[cfg(feature = "extras")]
+            tools: crate::builtins::tools::ToolsState::new(),
             #[cfg(feature = "grow")]
             prime: crate::rete::PrimeOrders::new(),
         }

@@ -49,6 +49,8 @@ pub mod strings;
 pub mod syntax;
 pub mod template_slots;
 #[cfg(feature = "extras")]
+pub mod tools;
+#[cfg(feature = "extras")]
 mod trace;
 
 use crate::engine::Core;
@@ -220,7 +222,14 @@ pub const TABLES: &[Table] = &[
     IO_TABLE,
     environment::TABLE,
     syntax::TABLE,
+    TOOLS_TABLE,
 ];
+
+/// `apropos` (`tools`): only with the feature `extras`.
+#[cfg(feature = "extras")]
+const TOOLS_TABLE: Table = tools::TABLE;
+#[cfg(not(feature = "extras"))]
+const TOOLS_TABLE: Table = Table::new(&[]);
 
 /// The I/O functions (`io`): only with the feature `parser`, like the other builtins
 /// that lex text at run time.
