@@ -550,12 +550,13 @@ impl Core<'_> {
         // and so do the batch files running and where their input is
         let io = core::mem::take(&mut self.st.io);
         #[cfg(feature = "extras")]
-        let mut tools = self.st.tools;
+        let (text_regions, mut tools) = (self.st.text_regions, self.st.tools);
         *self.st = crate::engine::State::new();
         self.st.io = io;
         #[cfg(feature = "extras")]
         {
             tools.forget_symbols();
+            self.st.text_regions = text_regions;
             self.st.tools = tools;
         }
         // a compiled rule base's nodes read in place go with the rest

@@ -671,6 +671,10 @@ pub struct State {
     /// feature `extras`).
     #[cfg(feature = "extras")]
     pub watch_names: WatchNames,
+    /// The files `fetch` read and their current menus (feature `extras`; kept across
+    /// `clear`, as in CLIPS).
+    #[cfg(feature = "extras")]
+    pub text_regions: crate::builtins::textpro::TextRegions,
     /// `apropos`'s arguments (feature `extras`; forgotten at `clear`).
     #[cfg(feature = "extras")]
     pub tools: crate::builtins::tools::ToolsState,
@@ -898,6 +902,8 @@ impl State {
             breaks: Breaks::new(),
             #[cfg(feature = "extras")]
             watch_names: WatchNames::new(),
+            #[cfg(feature = "extras")]
+            text_regions: crate::builtins::textpro::TextRegions::new(),
             #[cfg(feature = "extras")]
             tools: crate::builtins::tools::ToolsState::new(),
             #[cfg(feature = "grow")]

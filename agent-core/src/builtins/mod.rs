@@ -49,6 +49,8 @@ pub mod strings;
 pub mod syntax;
 pub mod template_slots;
 #[cfg(feature = "extras")]
+pub mod textpro;
+#[cfg(feature = "extras")]
 pub mod tools;
 #[cfg(feature = "extras")]
 mod trace;
@@ -223,6 +225,7 @@ pub const TABLES: &[Table] = &[
     environment::TABLE,
     syntax::TABLE,
     TOOLS_TABLE,
+    TEXTPRO_TABLE,
 ];
 
 /// `apropos` (`tools`): only with the feature `extras`.
@@ -230,6 +233,13 @@ pub const TABLES: &[Table] = &[
 const TOOLS_TABLE: Table = tools::TABLE;
 #[cfg(not(feature = "extras"))]
 const TOOLS_TABLE: Table = Table::new(&[]);
+
+/// External text manipulation (`textpro`: `fetch`, `print-region`, ...): only with
+/// the feature `extras`.
+#[cfg(feature = "extras")]
+const TEXTPRO_TABLE: Table = textpro::TABLE;
+#[cfg(not(feature = "extras"))]
+const TEXTPRO_TABLE: Table = Table::new(&[]);
 
 /// The I/O functions (`io`): only with the feature `parser`, like the other builtins
 /// that lex text at run time.
