@@ -675,7 +675,8 @@ pub struct State {
     /// `clear`, as in CLIPS).
     #[cfg(feature = "extras")]
     pub text_regions: crate::builtins::textpro::TextRegions,
-    /// `apropos`'s arguments (feature `extras`; forgotten at `clear`).
+    /// `set-locale`'s text and `apropos`'s arguments (feature `extras`; kept across
+    /// `clear`).
     #[cfg(feature = "extras")]
     pub tools: crate::builtins::tools::ToolsState,
     /// Host: joins primed while their parent had partial matches, and their own

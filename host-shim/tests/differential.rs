@@ -472,6 +472,7 @@ differential_programs! {
     p773_breadth_long_agenda => "773-breadth-long-agenda",
     p870_apropos => "870-apropos",
     p871_text_regions => "871-text-regions",
+    p872_set_locale => "872-set-locale",
     p580_keyed_or_index => "580-keyed-or-index",
     p581_keyed_or_not => "581-keyed-or-not",
     p582_keyed_or_growth => "582-keyed-or-growth",

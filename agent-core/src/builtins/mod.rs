@@ -228,7 +228,7 @@ pub const TABLES: &[Table] = &[
     TEXTPRO_TABLE,
 ];
 
-/// `apropos` (`tools`): only with the feature `extras`.
+/// `apropos` and `set-locale` (`tools`): only with the feature `extras`.
 #[cfg(feature = "extras")]
 const TOOLS_TABLE: Table = tools::TABLE;
 #[cfg(not(feature = "extras"))]

@@ -1,4 +1,5 @@
-//! CLIPS 6.30's `apropos` (agent-core feature `extras`; the agent image has none).
+//! CLIPS 6.30's `apropos` and `set-locale` (agent-core feature `extras`; the agent
+//! image has neither).
 //!
 //! `apropos` lists, as CLIPS does, the entries of the symbol table whose text contains
 //! its argument, in the order of CLIPS's own hash table (`HashSymbol`: `h = h * 127 +
@@ -9,16 +10,18 @@
 //! COOL's names besides). So the listing matches CLIPS's where the matching names are
 //! the program's constructs, slots and values or functions both engines have.
 
-use super::describe::{ArgType, Returns};
+use super::describe::{ArgType, OnError, Returns};
 use super::{Args, Builtin, BUILTINS, COUNT};
 use crate::engine::Core;
 use crate::error::EvalError;
 use crate::host::router;
-use crate::value::{SymId, Value};
+use crate::value::{SymId, TextBuf, Value};
+use core::fmt::Write;
 
 #[rustfmt::skip]
 pub const FUNCS: &[Builtin] = &[
     Builtin::eager("apropos", 1, 1, apropos).args(&[ArgType::Symbol], ArgType::Any).returns(Returns::Void),
+    Builtin::eager("set-locale", 0, 1, set_locale).on_error(OnError::False),
 ];
 
 pub const TABLE: super::Table = super::Table::new(FUNCS);
@@ -120,9 +123,12 @@ fn apropos(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     Ok(Value::Void)
 }
 
-/// What `apropos` keeps between calls.
+/// The settings and figures of the tools, kept across `clear` as CLIPS keeps them.
 #[derive(Clone, Copy)]
 pub struct ToolsState {
+    /// `set-locale`'s text (CLIPS starts with `C`).
+    locale: [u8; MOST_LOCALE],
+    locale_len: u8,
     /// Symbols `apropos` was given that no one had used before (the last few): CLIPS
     /// frees them after the command, ours stay (forgotten at `clear`).
     forgotten: [SymId; FORGOTTEN],
@@ -133,6 +139,9 @@ pub struct ToolsState {
 /// How many of `apropos`'s own arguments are remembered (`ToolsState::forgotten`).
 const FORGOTTEN: usize = 16;
 
+/// Longest locale name `set-locale` keeps.
+const MOST_LOCALE: usize = 64;
+
 impl Default for ToolsState {
     fn default() -> ToolsState {
         ToolsState::new()
@@ -141,7 +150,11 @@ impl Default for ToolsState {
 
 impl ToolsState {
     pub const fn new() -> ToolsState {
+        let mut locale = [0; MOST_LOCALE];
+        locale[0] = b'C';
         ToolsState {
+            locale,
+            locale_len: 1,
             forgotten: [0; FORGOTTEN],
             nforgotten: 0,
             next_forgotten: 0,
@@ -165,6 +178,37 @@ impl ToolsState {
         self.nforgotten = 0;
         self.next_forgotten = 0;
     }
+}
+
+/// `(set-locale [<string>])`: the locale before, as a string. The engine formats
+/// numbers as CLIPS does in the C locale whatever it is set to (the no_std core has no
+/// C library locale; CLIPS's `format` and float printing follow the one set, which on
+/// Debian's machines, lacking other locales, is the C one's output too).
+fn set_locale(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let new = match a.len {
+        0 => None,
+        _ => match cx.arg(a, 0) {
+            Value::Str(s) => Some(s),
+            _ => return Err(EvalError::wrong_type("set-locale", 1, "string")),
+        },
+    };
+    let t = &cx.st.tools;
+    let mut old: TextBuf<MOST_LOCALE> = TextBuf::new();
+    let _ =
+        old.write_str(core::str::from_utf8(&t.locale[..usize::from(t.locale_len)]).unwrap_or(""));
+    if let Some(s) = new {
+        let text = cx.sym_text(s);
+        if text.len() > MOST_LOCALE {
+            return Err(EvalError::wrong_type("set-locale", 1, "string"));
+        }
+        let n = text.len();
+        let mut buf = [0; MOST_LOCALE];
+        buf[..n].copy_from_slice(text.as_bytes());
+        let t = &mut cx.st.tools;
+        t.locale = buf;
+        t.locale_len = n as u8;
+    }
+    Ok(cx.make_string(old.as_str())?)
 }
 
 #[cfg(test)]
