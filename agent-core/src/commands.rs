@@ -550,14 +550,17 @@ impl Core<'_> {
         // and so do the batch files running and where their input is
         let io = core::mem::take(&mut self.st.io);
         #[cfg(feature = "extras")]
-        let (text_regions, mut tools) = (self.st.text_regions, self.st.tools);
+        let (text_regions, mut tools, mut profile) =
+            (self.st.text_regions, self.st.tools, self.st.profile);
         *self.st = crate::engine::State::new();
         self.st.io = io;
         #[cfg(feature = "extras")]
         {
             tools.forget_symbols();
+            profile.forget_constructs();
             self.st.text_regions = text_regions;
             self.st.tools = tools;
+            self.st.profile = profile;
         }
         // a compiled rule base's nodes read in place go with the rest
         #[cfg(feature = "in-place")]
@@ -842,7 +845,17 @@ impl Core<'_> {
                 Some(self.logical_enter(rule, token))
             };
             if r.is_ok() {
+                #[cfg(feature = "extras")]
+                let profiled = self.profiling(true);
+                #[cfg(feature = "extras")]
+                if profiled {
+                    self.profile_enter(true, rule);
+                }
                 r = self.eval_actions(self.rules[rule as usize].rhs);
+                #[cfg(feature = "extras")]
+                if profiled {
+                    self.profile_leave(true, rule);
+                }
             }
             #[cfg(feature = "logical")]
             if let Some(logical) = logical {

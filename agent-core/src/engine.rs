@@ -679,6 +679,9 @@ pub struct State {
     /// `clear`).
     #[cfg(feature = "extras")]
     pub tools: crate::builtins::tools::ToolsState,
+    /// The profiler (feature `extras`; its settings kept across `clear`).
+    #[cfg(feature = "extras")]
+    pub profile: crate::builtins::profile::Profile,
     /// Host: joins primed while their parent had partial matches, and their own
     /// order of those (`rete::order`).
     #[cfg(feature = "grow")]
@@ -907,6 +910,8 @@ impl State {
             text_regions: crate::builtins::textpro::TextRegions::new(),
             #[cfg(feature = "extras")]
             tools: crate::builtins::tools::ToolsState::new(),
+            #[cfg(feature = "extras")]
+            profile: crate::builtins::profile::Profile::new(),
             #[cfg(feature = "grow")]
             prime: crate::rete::PrimeOrders::new(),
         }

@@ -724,7 +724,14 @@ impl Core<'_> {
         #[cfg(feature = "extras")]
         {
             self.st.eval.dfn_depth += 1;
+            let profiled = self.profiling(false);
+            if profiled {
+                self.profile_enter(false, func);
+            }
             let r = self.call_deffunction_args(func, first_arg);
+            if profiled {
+                self.profile_leave(false, func);
+            }
             self.st.eval.dfn_depth -= 1;
             r
         }

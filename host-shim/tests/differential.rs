@@ -473,6 +473,7 @@ differential_programs! {
     p870_apropos => "870-apropos",
     p871_text_regions => "871-text-regions",
     p872_set_locale => "872-set-locale",
+    p873_profile_settings => "873-profile-settings",
     p580_keyed_or_index => "580-keyed-or-index",
     p581_keyed_or_not => "581-keyed-or-not",
     p582_keyed_or_growth => "582-keyed-or-growth",

@@ -407,7 +407,7 @@ fn write_exp(out: &mut dyn Write, x: f64, p: usize) -> core::fmt::Result {
 }
 
 /// C's `%.pg`: `%e` or `%f` by the exponent, trailing zeros removed.
-fn write_general(out: &mut dyn Write, x: f64, p: usize) -> core::fmt::Result {
+pub(super) fn write_general(out: &mut dyn Write, x: f64, p: usize) -> core::fmt::Result {
     let p = p.max(1);
     let mut t: TextBuf<400> = TextBuf::new();
     write!(t, "{x:.0$e}", p - 1)?;

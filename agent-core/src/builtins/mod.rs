@@ -42,6 +42,8 @@ pub mod modules;
 pub mod multifield;
 pub mod predicates;
 pub mod pretty;
+#[cfg(feature = "extras")]
+pub mod profile;
 pub mod queries;
 pub mod random;
 mod save_facts;
@@ -226,6 +228,7 @@ pub const TABLES: &[Table] = &[
     syntax::TABLE,
     TOOLS_TABLE,
     TEXTPRO_TABLE,
+    PROFILE_TABLE,
 ];
 
 /// `apropos` and `set-locale` (`tools`): only with the feature `extras`.
@@ -240,6 +243,12 @@ const TOOLS_TABLE: Table = Table::new(&[]);
 const TEXTPRO_TABLE: Table = textpro::TABLE;
 #[cfg(not(feature = "extras"))]
 const TEXTPRO_TABLE: Table = Table::new(&[]);
+
+/// The profiler (`profile`): only with the feature `extras`.
+#[cfg(feature = "extras")]
+const PROFILE_TABLE: Table = profile::TABLE;
+#[cfg(not(feature = "extras"))]
+const PROFILE_TABLE: Table = Table::new(&[]);
 
 /// The I/O functions (`io`): only with the feature `parser`, like the other builtins
 /// that lex text at run time.
