@@ -151,7 +151,10 @@ fuzz_target!(|data: &[u8]| {
                     let (r2, c2, m2) = again.decode().unwrap_or_else(|e| panic!("{e}"));
                     assert_eq!((r2, c2, m2.len()), (robot, cycle, msgs.len()));
                     for (a, b) in msgs.iter().zip(&m2) {
-                        assert_eq!((a.seq, &a.kind, &a.resource, &a.data), (b.seq, &b.kind, &b.resource, &b.data));
+                        assert_eq!(
+                            (a.seq, &a.kind, &a.resource, &a.data),
+                            (b.seq, &b.kind, &b.resource, &b.data)
+                        );
                     }
                 }
             }

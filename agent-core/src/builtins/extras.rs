@@ -659,9 +659,7 @@ fn undeftemplate(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         stays: |cx, t, _| t == cx.st.facts.initial_tmpl || cx.template_in_use(t),
         remove: |cx, t| {
             cx.network_writable()?;
-            let tm = &mut cx.templates[t as usize];
-            tm.name = NONE;
-            tm.implied = true;
+            cx.retire_template(t);
             Ok(())
         },
     };

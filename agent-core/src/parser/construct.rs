@@ -218,14 +218,9 @@ impl<'s> Parser<'s, '_, '_> {
         self.cx.st.pools.ntemplates += 1;
         self.cx.note_hw(Pool::Templates, n + 1);
         if let Some(old) = replaces {
-            // Nothing refers to the old entry, so it is retired where it is (indices of
-            // later templates stay valid): no name can find it and listings skip it as
-            // they skip ordered-fact templates. The new one is listed last, as in CLIPS.
-            self.cx.templates[old as usize] = Template {
-                name: NONE,
-                implied: true,
-                ..self.cx.templates[old as usize]
-            };
+            // Nothing refers to the old entry, so it is retired where it is; the new
+            // one is listed last, as in CLIPS.
+            self.cx.retire_template(old);
         }
         Ok(())
     }

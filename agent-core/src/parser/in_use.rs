@@ -59,6 +59,18 @@ impl Core<'_> {
             || self.command_refers(&|x| x.op == Op::FactSpec && x.data == tmpl)
     }
 
+    /// Retires template `t`, which is not in use ([`Self::template_in_use`]), in place
+    /// (indices of later templates stay valid): no name finds it, listings skip it as
+    /// they skip ordered-fact templates, and it lists no alpha nodes. Those of rules
+    /// removed before were emptied and stay unused: only a rule on this template could
+    /// share them again, and none can name it now.
+    pub(crate) fn retire_template(&mut self, t: Ix) {
+        let tm = &mut self.templates[t as usize];
+        tm.name = NONE;
+        tm.implied = true;
+        tm.alpha_head = NONE;
+    }
+
     /// Whether another construct calls deffunction `func` (CLIPS then refuses
     /// `undeffunction`; its own recursive calls do not count, nor, with
     /// `but_functions`, any deffunction's).

@@ -729,9 +729,7 @@ impl<'s, 'e> Parser<'s, '_, 'e> {
                 }
                 #[cfg(feature = "extras")]
                 self.cx.watch_forget(crate::engine::watch::FACTS, t, name);
-                let tm = &mut self.cx.templates[t as usize];
-                tm.name = NONE;
-                tm.implied = true;
+                self.cx.retire_template(t);
             }
             "deffacts" => {
                 let n = self.cx.st.pools.ndeffacts as usize;

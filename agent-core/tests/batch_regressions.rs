@@ -1,0 +1,72 @@
+//! Inputs the `batch` fuzz target (agent-core/fuzz/fuzz_targets/batch.rs) found,
+//! replayed the way it runs them: the same small rule base loaded and reset, the text
+//! run in batch mode, invariants checked, a bounded `run`, invariants again, with a
+//! host that interrupts after the same poll budget. (The target runs the command
+//! line's `GrowEngine`; these findings show on the small fixed engine too.)
+
+use agent_core::{Host, SmallEngine};
+
+struct Budget(u32);
+
+const POLL_BUDGET: u32 = 100_000;
+
+impl Host for Budget {
+    fn write_str(&mut self, _router: &str, _text: &str) {}
+    fn interrupt(&mut self) -> bool {
+        self.0 = self.0.saturating_add(1);
+        self.0 > POLL_BUDGET
+    }
+}
+
+/// The fuzz target's rule base (agent-core/fuzz/fuzz_targets/common/cli.rs).
+const PRELUDE: &str = include_str!("../fuzz/fuzz_targets/common/prelude.clp");
+
+fn replay(name: &str, text: &str) {
+    let h = &mut Budget(0);
+    let mut e = Box::new(SmallEngine::new());
+    e.load_str(h, "prelude", PRELUDE)
+        .expect("the prelude loads");
+    e.reset(h).expect("the prelude resets");
+    e.batch_str(h, text, true);
+    if let Err(v) = e.check_invariants() {
+        panic!("{name}: after batch_str: {v}");
+    }
+    if !e.exited() {
+        h.0 = 0;
+        let r = e.run(h, Some(1_000));
+        if let Err(v) = e.check_invariants() {
+            panic!("{name}: after run ({r:?}): {v}");
+        }
+    }
+}
+
+/// The seed tests/clips/286-modules-undefine.clp after the rule base: a template
+/// whose rule was undefined, then undefined itself, was retired with its alpha nodes
+/// still listed (the invariant check found a nameless template with alpha nodes).
+#[test]
+fn undeftemplate_after_undefrule_after_a_rule_base() {
+    replay(
+        "286-modules-undefine",
+        include_str!("../../tests/clips/286-modules-undefine.clp"),
+    );
+}
+
+/// The same, minimised: the template's rule goes, then the template.
+#[test]
+fn undeftemplate_after_its_rule_went() {
+    replay(
+        "undeftemplate-after-undefrule",
+        "(deftemplate t (slot x))\n(defrule r (t (x ?x)) => )\n(undefrule r)\n(undeftemplate t)\n",
+    );
+}
+
+/// A template redefined after its rule went is retired the same way; the new one's
+/// rule and facts match.
+#[test]
+fn deftemplate_redefined_after_its_rule_went() {
+    replay(
+        "redefinition-after-undefrule",
+        "(deftemplate t (slot x))\n(defrule r (t (x ?x)) => )\n(undefrule r)\n\
+         (deftemplate t (slot y))\n(defrule r2 (t (y ?x)) => )\n(assert (t (y 1)))\n",
+    );
+}
