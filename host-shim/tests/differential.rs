@@ -527,4 +527,5 @@ differential_programs! {
     p823_instance_name_slot_types => "823-instance-name-slot-types",
     p824_or_under_exists_logical => "824-or-under-exists-logical",
     p825_or_under_exists_modules => "825-or-under-exists-modules",
+    p826_or_under_exists_tests_nested_or => "826-or-under-exists-tests-nested-or",
 }
