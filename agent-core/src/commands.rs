@@ -236,30 +236,7 @@ impl Core<'_> {
 /// Byte length of the first complete top-level item in `s` (construct, call or atom),
 /// or None while more input is needed. Leading blanks and comments are included.
 pub fn command_complete(s: &str) -> Option<usize> {
-    let mut lx = Lexer::new(s);
-    let mut depth = 0usize;
-    loop {
-        let t = lx.next_token();
-        match t.tok {
-            Tok::Eof | Tok::Bad => return None,
-            Tok::LParen => depth += 1,
-            Tok::RParen => {
-                if depth == 0 {
-                    return Some(t.end);
-                }
-                depth -= 1;
-                if depth == 0 {
-                    return Some(t.end);
-                }
-            }
-            _ => {
-                if depth == 0 {
-                    // an atom is complete once a delimiter follows it
-                    return if t.end < s.len() { Some(t.end) } else { None };
-                }
-            }
-        }
-    }
+    crate::lexer::item_end(s.as_bytes())
 }
 
 impl Core<'_> {

@@ -86,6 +86,97 @@ fn binds_a_local(text: &[u8]) -> bool {
     rest.get(i) == Some(&b'?') && rest.get(i + 1) != Some(&b'*')
 }
 
+/// Where the blanks and comments from byte `i` of `b` end, as `Lexer` skips them.
+pub fn skip_blanks(b: &[u8], mut i: usize) -> usize {
+    loop {
+        match b.get(i) {
+            Some(c) if c.is_ascii_whitespace() => i += 1,
+            Some(b';') => {
+                while matches!(b.get(i), Some(&c) if c != b'\n') {
+                    i += 1;
+                }
+            }
+            _ => return i,
+        }
+    }
+}
+
+/// Where a word from byte `i` ends (`Lexer::word`).
+fn word_end(b: &[u8], mut i: usize) -> usize {
+    if matches!(b.get(i), Some(&c) if !is_delim(c)) {
+        i += 1;
+    }
+    while matches!(b.get(i), Some(&c) if !is_delim(c) && c != b'<') {
+        i += 1;
+    }
+    i
+}
+
+/// Where a string whose opening quote is at `i` ends (after its closing quote); None
+/// when it does not (`Tok::Bad`).
+fn string_end(b: &[u8], mut i: usize) -> Option<usize> {
+    i += 1;
+    loop {
+        match b.get(i)? {
+            b'\\' => i += 2,
+            b'"' => return Some(i + 1),
+            _ => i += 1,
+        }
+    }
+}
+
+/// Byte length of the first complete top-level item in the text `b` (a list, or an
+/// atom once a character follows it), leading blanks and comments included; None
+/// while more input is needed. What reading it with `Lexer` would find, from the
+/// bytes alone: inside a list only parentheses, strings and comments matter (the
+/// lexer starts a string or a comment at every `"` and `;` outside them).
+pub fn item_end(b: &[u8]) -> Option<usize> {
+    let mut i = skip_blanks(b, 0);
+    let end = match *b.get(i)? {
+        b')' => return Some(i + 1),
+        b'(' => {
+            let mut depth = 0usize;
+            loop {
+                match *b.get(i)? {
+                    b'(' => depth += 1,
+                    b')' => {
+                        depth -= 1;
+                        if depth == 0 {
+                            return Some(i + 1);
+                        }
+                    }
+                    b'"' => {
+                        i = string_end(b, i)?;
+                        continue;
+                    }
+                    b';' => {
+                        i = skip_blanks(b, i);
+                        continue;
+                    }
+                    _ => {}
+                }
+                i += 1;
+            }
+        }
+        b'"' => string_end(b, i)?,
+        b'&' | b'|' | b'~' => i + 1,
+        b'?' | b'$' if b[i] == b'?' || b.get(i + 1) == Some(&b'?') => {
+            let j = if b[i] == b'?' { i + 1 } else { i + 2 };
+            match b.get(j) {
+                Some(&c) if c.is_ascii_alphabetic() || c >= 0x80 || c == b'*' => word_end(b, j),
+                _ => j,
+            }
+        }
+        _ => word_end(b, i),
+    };
+    (end < b.len()).then_some(end)
+}
+
+/// Characters in UTF-8 bytes `b` (the bytes that start one).
+fn chars(b: &[u8]) -> u32 {
+    b.iter().filter(|&&c| (c & 0xC0) != 0x80).count() as u32
+}
+
 fn is_delim(b: u8) -> bool {
     matches!(
         b,
@@ -151,39 +242,65 @@ impl<'a> Lexer<'a> {
         self.src.as_bytes().get(self.pos + 1).copied()
     }
 
+    /// Skips blanks and comments. Byte by byte as `bump` would, but a comment's
+    /// columns are counted only when no newline ends it (a newline sets them anew).
     fn skip_space(&mut self) {
-        while let Some(b) = self.peek() {
-            if b == b';' {
-                while let Some(c) = self.peek() {
-                    if c == b'\n' {
-                        break;
-                    }
-                    self.bump();
+        let b = self.src.as_bytes();
+        let mut i = self.pos;
+        loop {
+            match b.get(i) {
+                Some(b'\n') => {
+                    self.line += 1;
+                    self.col = 1;
+                    i += 1;
                 }
-            } else if b.is_ascii_whitespace() {
-                self.bump();
-            } else {
-                break;
+                Some(b' ' | b'\t' | b'\r' | b'\x0c') => {
+                    self.col += 1;
+                    i += 1;
+                }
+                Some(b';') => {
+                    let s = i;
+                    while matches!(b.get(i), Some(&c) if c != b'\n') {
+                        i += 1;
+                    }
+                    if i == b.len() {
+                        self.col += chars(&b[s..]);
+                    }
+                }
+                _ => break,
             }
         }
+        self.pos = i;
     }
 
     /// A symbol or number: up to a delimiter, or a `<` after its first character (as
     /// in CLIPS, `4<56` is `4` and `<56`, `?f<-` is `?f` and `<-`).
     fn word(&mut self) -> &'a str {
+        let b = self.src.as_bytes();
         let s = self.pos;
+        let mut i = s;
         // (the first character may be `<`: one step before the loop keeps its test
         // as cheap as a delimiter's)
-        if matches!(self.peek(), Some(b) if !is_delim(b)) {
-            self.bump();
+        if matches!(b.get(i), Some(&c) if !is_delim(c)) {
+            i += 1;
         }
-        while let Some(b) = self.peek() {
-            if is_delim(b) || b == b'<' {
+        // no newline (a delimiter) inside: the column moves by the characters, which
+        // are the bytes unless one is not ASCII
+        let mut high = 0u8;
+        while let Some(&c) = b.get(i) {
+            if is_delim(c) || c == b'<' {
                 break;
             }
-            self.bump();
+            high |= c;
+            i += 1;
         }
-        &self.src[s..self.pos]
+        self.col += if (high | b.get(s).copied().unwrap_or(0)) < 0x80 {
+            (i - s) as u32
+        } else {
+            chars(&b[s..i])
+        };
+        self.pos = i;
+        &self.src[s..i]
     }
 
     /// Whether the text from byte `from` to the `)` closing the list it is in may bind
@@ -334,6 +451,10 @@ impl<'a> Lexer<'a> {
 /// Numbers as CLIPS reads them; anything else is a symbol.
 pub fn classify_word(w: &str) -> Tok<'_> {
     let b = w.as_bytes();
+    // (most words start with a letter: no number)
+    if matches!(b.first(), Some(c) if c.is_ascii_alphabetic()) {
+        return Tok::Symbol(w);
+    }
     let digits_start = usize::from(matches!(b.first(), Some(b'+') | Some(b'-')));
     let body = &b[digits_start..];
     if body.is_empty() {
@@ -495,6 +616,76 @@ mod tests {
         assert_eq!(cand("(bind ?x 1) (printout t 1))", 2), usize::MAX);
         // text alone: a bind in a string counts (the scan then decides)
         assert_eq!(cand("(printout t \"(bind ?x 1)\"))", 0), 14);
+    }
+
+    /// `item_end` as the tokens say it: what it replaced.
+    fn item_end_by_tokens(s: &str) -> Option<usize> {
+        let mut lx = Lexer::new(s);
+        let mut depth = 0usize;
+        loop {
+            let t = lx.next_token();
+            match t.tok {
+                Tok::Eof | Tok::Bad => return None,
+                Tok::LParen => depth += 1,
+                Tok::RParen => {
+                    if depth <= 1 {
+                        return Some(t.end);
+                    }
+                    depth -= 1;
+                }
+                _ if depth == 0 => return (t.end < s.len()).then_some(t.end),
+                _ => {}
+            }
+        }
+    }
+
+    #[test]
+    fn an_item_ends_where_its_tokens_do() {
+        let texts = [
+            "(a b)",
+            "  ; c (\n (x \"(\" ; )\n y) z",
+            "(a \"b\\\"c)\" d) e",
+            "(a (b) c",
+            "(a \"b",
+            "atom rest",
+            "atom",
+            "?x<y",
+            "?1 z",
+            "$?rest)",
+            "$a b",
+            "\"str\" x",
+            "\"str\"",
+            "\"open",
+            ") x",
+            "& y",
+            "~",
+            "<<a b",
+            "?*g* 1",
+            "(é \"ü\") ä",
+            "; only a comment",
+            "",
+            "   ",
+            "(a;b)\n c)",
+            "(printout t \"\\\\\" crlf)",
+        ];
+        for t in texts {
+            for k in 0..=t.len() {
+                if let Some(p) = t.get(..k) {
+                    assert_eq!(item_end(p.as_bytes()), item_end_by_tokens(p), "{p:?}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn columns_count_characters_after_comments_and_words() {
+        let mut l = Lexer::new("é ab;x\n  cd ; ü\n\tef ; end");
+        for want in [(1, 1), (1, 3), (2, 3), (3, 2)] {
+            let t = l.next_token();
+            assert_eq!((t.line, t.col), want, "{:?}", t.tok);
+        }
+        let t = l.next_token();
+        assert_eq!((t.tok, t.line, t.col), (Tok::Eof, 3, 10));
     }
 
     #[test]

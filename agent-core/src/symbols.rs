@@ -108,13 +108,19 @@ impl RomSymbols {
 
     /// `find` of a text whose `hash_bytes` is `h`.
     pub(crate) fn find_hashed(&self, s: &str, h: u32) -> Option<SymId> {
+        self.find_bytes(s.as_bytes(), h)
+    }
+
+    /// `find_hashed` of a text given by its bytes.
+    #[inline]
+    fn find_bytes(&self, s: &[u8], h: u32) -> Option<SymId> {
         if self.buckets.is_empty() {
             return None;
         }
         let b = h as usize % self.buckets.len();
         let mut i = self.buckets[b];
         while i != NONE {
-            if self.texts.get(i as usize) == Some(&s) {
+            if self.texts.get(i as usize).map(|t| t.as_bytes()) == Some(s) {
                 return Some(i);
             }
             i = self.next.get(i as usize).copied().unwrap_or(NONE);
@@ -200,7 +206,13 @@ impl Symbols<'_> {
 
     /// `find` of a text whose `hash_bytes` is `h` (interning hashes it once).
     pub fn find_hashed(&self, s: &str, h: u32) -> Option<SymId> {
-        if let Some(i) = self.rom.find_hashed(s, h) {
+        self.find_bytes(s.as_bytes(), h)
+    }
+
+    /// `find_hashed` of a text given by its bytes: an entry's bytes are compared as
+    /// they are (equal bytes are equal texts), with no UTF-8 check per candidate.
+    fn find_bytes(&self, s: &[u8], h: u32) -> Option<SymId> {
+        if let Some(i) = self.rom.find_bytes(s, h) {
             return Some(i);
         }
         if self.buckets.is_empty() {
@@ -210,10 +222,13 @@ impl Symbols<'_> {
         let b = h as usize % self.buckets.len();
         let mut i = self.buckets[b];
         while i != NONE {
-            if self.text(i) == s {
+            let e = self.entries[i as usize - rom];
+            if e.len as usize == s.len()
+                && self.bytes.get(e.start as usize..e.start as usize + s.len()) == Some(s)
+            {
                 return Some(i);
             }
-            i = self.entries[i as usize - rom].next;
+            i = e.next;
         }
         None
     }
@@ -244,10 +259,10 @@ impl Symbols<'_> {
             let s = self
                 .bytes
                 .get(used..used + len)
-                .and_then(|b| core::str::from_utf8(b).ok())
-                .unwrap_or("");
-            let h = hash_bytes(s.as_bytes());
-            (self.find_hashed(s, h), h)
+                .filter(|b| b.is_ascii() || core::str::from_utf8(b).is_ok())
+                .unwrap_or(&[]);
+            let h = hash_bytes(s);
+            (self.find_bytes(s, h), h)
         };
         if let Some(i) = found {
             return Ok(i);

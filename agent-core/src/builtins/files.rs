@@ -10,11 +10,10 @@
 
 use core::fmt::Write;
 
-use crate::commands::command_complete;
 use crate::engine::Core;
 use crate::error::HostIoError;
 use crate::host::router;
-use crate::lexer::Lexer;
+use crate::lexer::{item_end, skip_blanks};
 use crate::value::TextBuf;
 
 /// Size of the stack buffer a file is streamed through; also the largest single item
@@ -106,6 +105,8 @@ pub struct FileItems<B> {
     /// Unconsumed bytes are `buf[start..end]`.
     start: usize,
     end: usize,
+    /// `buf[start..checked]` is known to be UTF-8 (each byte is checked once).
+    checked: usize,
     /// File offset of `buf[end]`.
     offset: u64,
     eof: bool,
@@ -134,6 +135,7 @@ impl<B: FileBuffer> FileItems<B> {
             buf,
             start: 0,
             end: 0,
+            checked: 0,
             offset: 0,
             eof: false,
             lines: 0,
@@ -149,6 +151,7 @@ impl<B: FileBuffer> FileItems<B> {
     pub fn skip_to(&mut self, offset: u64, lines: u32) {
         self.start = 0;
         self.end = 0;
+        self.checked = 0;
         self.offset = offset;
         self.eof = false;
         self.lines += lines;
@@ -179,24 +182,27 @@ impl<B: FileBuffer> FileItems<B> {
     ) -> Result<Option<Item<'_>>, FileError> {
         let mut last = false;
         let (a, b, len) = loop {
-            let avail = &self.buf.bytes()[self.start..self.end];
-            let valid = match core::str::from_utf8(avail) {
-                Ok(s) => s,
+            // the bytes read since the last look (a whole buffer's each time would
+            // check a file's bytes once per item)
+            self.checked = self.checked.max(self.start);
+            match core::str::from_utf8(&self.buf.bytes()[self.checked..self.end]) {
+                Ok(_) => self.checked = self.end,
                 Err(e) if e.error_len().is_none() && !self.eof => {
                     // a character cut by the buffer's end: valid prefix only
-                    core::str::from_utf8(&avail[..e.valid_up_to()]).unwrap_or("")
+                    self.checked += e.valid_up_to();
                 }
                 Err(e) => {
                     return Err(FileError::NotUtf8 {
-                        offset: self.offset - (self.end - self.start - e.valid_up_to()) as u64,
+                        offset: self.offset - (self.end - self.checked - e.valid_up_to()) as u64,
                     })
                 }
-            };
-            if let Some(k) = command_complete(valid) {
+            }
+            let valid = &self.buf.bytes()[self.start..self.checked];
+            if let Some(k) = item_end(valid) {
                 if !whole_lines {
                     break (self.start, self.start + k, k);
                 }
-                match valid[k..].find('\n') {
+                match valid[k..].iter().position(|&c| c == b'\n') {
                     Some(nl) => break (self.start, self.start + k + nl + 1, k),
                     None if self.eof => break (self.start, self.end, k),
                     None => {} // read on to the end of the line
@@ -211,16 +217,17 @@ impl<B: FileBuffer> FileItems<B> {
             if self.start > 0 {
                 self.buf.bytes_mut().copy_within(self.start..self.end, 0);
                 self.end -= self.start;
+                self.checked -= self.start;
                 self.start = 0;
             }
             if self.end == self.buf.bytes().len() {
                 // a long run of comments and blank lines is handed out on its own
-                let head = &self.buf.bytes()[..self.end];
-                let valid = core::str::from_utf8(head).unwrap_or_else(|e| {
-                    core::str::from_utf8(&head[..e.valid_up_to()]).unwrap_or("")
-                });
-                let lead = Lexer::new(valid).next_token().start;
-                let cut = valid[..lead].rfind('\n').map_or(lead, |k| k + 1);
+                let valid = &self.buf.bytes()[..self.checked];
+                let lead = skip_blanks(valid, 0);
+                let cut = valid[..lead]
+                    .iter()
+                    .rposition(|&c| c == b'\n')
+                    .map_or(lead, |k| k + 1);
                 if cut > 0 {
                     break (0, cut, cut);
                 }
