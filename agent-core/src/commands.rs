@@ -1357,10 +1357,18 @@ impl Core<'_> {
                 b,
                 "[DFFNXPSR1] Deffunctions are not allowed to replace constructs."
             );
-        } else if e.detail == LoadDetail::SpecialMeaning {
+        } else if matches!(
+            e.detail,
+            LoadDetail::SpecialMeaning | LoadDetail::RelationKeyword
+        ) {
+            let what = if e.detail == LoadDetail::SpecialMeaning {
+                "deftemplate"
+            } else {
+                "relation"
+            };
             let _ = writeln!(
                 b,
-                "\n[PATTERN1] The symbol {tok} has special meaning\nand may not be used as a deftemplate name."
+                "\n[PATTERN1] The symbol {tok} has special meaning\nand may not be used as a {what} name."
             );
         } else if e.detail == LoadDetail::ParameterTwice {
             let _ = writeln!(b, "[PRCCODE7] Duplicate parameter names not allowed.");
@@ -1525,12 +1533,18 @@ impl Core<'_> {
             );
         }
         // a defglobal whose initial value failed: from the global to the value's end
-        if e.construct == "defglobal" && e.echo_end != 0 {
+        if e.construct == "defglobal" && e.detail == LoadDetail::NoSuchModule {
+            // (no module to name: up to the name it did not find)
+            let _ = writeln!(b, "\nERROR:\n(defglobal {tok}");
+        } else if e.construct == "defglobal" && e.echo_end != 0 {
             let _ = write!(b, "\nERROR:\n(defglobal {module} ");
             // an unknown function: from its global (`?*e* = (+ 1 (foo`)
             #[cfg(feature = "parser")]
             let from = match e.detail {
-                LoadDetail::MissingFunction => {
+                LoadDetail::MissingFunction
+                | LoadDetail::Arity { .. }
+                | LoadDetail::FunctionArity { .. }
+                | LoadDetail::ArgType { .. } => {
                     crate::builtins::pretty::defglobal_name_before(text, e.start as usize)
                         .unwrap_or(e.start as usize)
                 }
@@ -1650,6 +1664,7 @@ impl Core<'_> {
                     | LoadDetail::SlotTwice
                     | LoadDetail::ModuleSpecifier
                     | LoadDetail::UnknownSlot { .. }
+                    | LoadDetail::RelationKeyword
             )
         {
             // a rule CLIPS stopped reading, in its conditions or its actions
@@ -1710,6 +1725,7 @@ impl Core<'_> {
                     | LoadDetail::SlotTwice
                     | LoadDetail::ModuleSpecifier
                     | LoadDetail::UnknownSlot { .. }
+                    | LoadDetail::RelationKeyword
             )
         {
             let _ = b.write_str("\nERROR:\n");
@@ -2266,12 +2282,13 @@ fn write_echo(
 ) -> core::fmt::Result {
     let glued = e.echo_tail == crate::error::EchoTail::Glued && e.start < e.echo_end;
     let own_line = e.echo_tail == crate::error::EchoTail::OwnLine && e.start < e.echo_end;
+    let spaced_tail = e.echo_tail == crate::error::EchoTail::Spaced && e.start < e.echo_end;
     // a rule's own `)` on a line of its own (no `=>`): the writer reads up to it, so a
     // composite CE just before it keeps its `)`
     let rule_close = own_line
         && e.construct == "defrule"
         && text.get(e.start as usize..e.echo_end as usize) == Some(")");
-    let cut = if (glued || own_line) && !rule_close {
+    let cut = if (glued || own_line || spaced_tail) && !rule_close {
         e.start
     } else {
         e.echo_end
@@ -2282,7 +2299,10 @@ fn write_echo(
     };
     write_upto(text.get(..cut as usize).unwrap_or(text), module, &mut last)?;
     let spaced = last.last == ' ';
-    if glued {
+    if spaced_tail && !spaced {
+        b.write_char(' ')?;
+    }
+    if glued || spaced_tail {
         b.write_str(
             text.get(e.start as usize..e.echo_end as usize)
                 .unwrap_or(""),

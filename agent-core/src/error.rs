@@ -515,6 +515,9 @@ pub enum EchoTail {
     /// The text from the error's `start` as written, on a line of its own after the
     /// CEs before it: a lone variable where a CE was due (`?x =>`).
     OwnLine,
+    /// The text from the error's `start` as written, one space after the text before
+    /// it even where a pattern glues it: a constraint's `&` or `|` in a fact (`(a b &`).
+    Spaced,
 }
 
 /// Which restriction of a slot a value breaks, as `[CSTRNCHK1]` words it.
@@ -687,6 +690,9 @@ pub enum LoadDetail {
     ReplacesConstruct,
     /// `[PATTERN1]`: a deftemplate named like a conditional element keyword.
     SpecialMeaning,
+    /// `[PATTERN1]`: a fact (asserted, in a deffacts) whose relation name is a
+    /// conditional element keyword.
+    RelationKeyword,
     /// `[PRCCODE3]`: a variable the actions of a rule or a deffunction's body read
     /// but nothing binds (the offending token); CLIPS shows the whole construct.
     UndefinedVariable,

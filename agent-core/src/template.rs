@@ -204,6 +204,19 @@ pub const NO_PP_TEXT: PpText = crate::value::NONE;
 #[cfg(not(feature = "extras"))]
 pub const NO_PP_TEXT: PpText = ();
 
+/// A deffunction's index at a place in listing order (`list-deffunctions`, `save`,
+/// ...), in a side array by place: CLIPS lists a redefined deffunction last, while
+/// calls keep its index. Only with `extras`, where the listings are; zero-sized
+/// otherwise (the agent image).
+#[cfg(feature = "extras")]
+pub type Listed = Ix;
+#[cfg(not(feature = "extras"))]
+pub type Listed = ();
+#[cfg(feature = "extras")]
+pub const NO_LISTED: Listed = crate::value::NONE;
+#[cfg(not(feature = "extras"))]
+pub const NO_LISTED: Listed = ();
+
 /// A `deffunction`.
 #[derive(Clone, Copy, Debug)]
 pub struct Deffunction {
@@ -239,6 +252,10 @@ impl crate::engine::Core<'_> {
     pub fn global_text(&self, _g: Ix) -> Ix {
         NONE
     }
+
+    pub fn function_listed(&self, p: Ix) -> Ix {
+        p
+    }
 }
 
 /// The kept source texts of deffunctions and defglobals (`PpText`).
@@ -253,6 +270,43 @@ impl crate::engine::Core<'_> {
     pub fn set_function_text(&mut self, f: Ix, text: Ix) {
         if let Some(e) = self.func_text.get_mut(f as usize) {
             *e = text;
+        }
+    }
+
+    /// The deffunction listed at place `p` (`p` itself past the last place or the
+    /// side array's end).
+    pub fn function_listed(&self, p: Ix) -> Ix {
+        let n = self.st.pools.nfuncs;
+        match self.func_listed.get(p as usize) {
+            Some(&f) if p < n && f < n => f,
+            _ => p,
+        }
+    }
+
+    /// Lists deffunction `f` last (a redefinition, as CLIPS moves it), or first
+    /// lists new deffunction `f` (`f` is `nfuncs - 1`).
+    pub fn list_function_last(&mut self, f: Ix) {
+        let n = (self.st.pools.nfuncs as usize).min(self.func_listed.len());
+        let Some(last) = n.checked_sub(1) else {
+            return;
+        };
+        let listed = &mut self.func_listed[..n];
+        let at = listed[..last].iter().position(|&g| g == f).unwrap_or(last);
+        listed.copy_within(at + 1.., at);
+        listed[last] = f;
+    }
+
+    /// Drops the deffunctions from `n` on from the listing order (a failed construct's
+    /// new ones given back; the order of the others stays).
+    pub fn truncate_function_listing(&mut self, from: usize, n: Ix) {
+        let from = from.min(self.func_listed.len());
+        let mut k = 0;
+        for p in 0..from {
+            let f = self.func_listed[p];
+            if f < n {
+                self.func_listed[k] = f;
+                k += 1;
+            }
         }
     }
 

@@ -951,7 +951,9 @@ fn list_deffunctions(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let mut n = 0;
     for m in view.modules(cx) {
         view.head(cx, m);
-        for f in 0..cx.st.pools.nfuncs {
+        for p in 0..cx.st.pools.nfuncs {
+            // (a redefined one is listed last, as in CLIPS)
+            let f = cx.function_listed(p);
             // a removed deffunction keeps its entry, without a name
             let name = cx.funcs[f as usize].name;
             if name == NONE {

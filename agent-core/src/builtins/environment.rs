@@ -5,7 +5,7 @@
 #![cfg_attr(not(feature = "extras"), allow(dead_code))]
 
 use super::commands::WatchItem;
-use super::extras::{find_pp_construct, name_at, owner_at, Kind, PpKind};
+use super::extras::{find_pp_construct, listed_at, name_at, owner_at, Kind, PpKind};
 use super::{Args, Builtin, ANY};
 use crate::engine::{watch, Core};
 use crate::error::EvalError;
@@ -205,15 +205,16 @@ fn list_watch_items(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         return Ok(Value::Void);
     }
     list_modules(cx, |cx, m| {
-        let mut i = 0;
-        while let Some(entry) = name_at(cx, kind, i) {
+        let mut p = 0;
+        while let Some(entry) = name_at(cx, kind, listed_at(cx, kind, p)) {
+            let i = listed_at(cx, kind, p);
             let owner = owner_at(cx, kind, i);
-            i += 1;
+            p += 1;
             let Some(s) = entry else { continue };
             if owner != m {
                 continue;
             }
-            let on = construct_state(cx, bit, kind, i - 1);
+            let on = construct_state(cx, bit, kind, i);
             let mut b: TextBuf<160> = TextBuf::new();
             let _ = writeln!(b, "   {} = {on}", cx.sym_text(s));
             cx.write(router::WDISPLAY, b.as_str());
@@ -901,9 +902,12 @@ fn save(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         path,
         failed: false,
     };
-    for f in 0..cx.st.pools.nfuncs {
+    for p in 0..cx.st.pools.nfuncs {
+        let f = cx.function_listed(p);
         let df = cx.funcs[f as usize];
-        if df.name == NONE {
+        // (CLIPS declares only the ones it has the text of: not one whose
+        // redefinition failed in its actions while another construct calls it)
+        if df.name == NONE || cx.function_text(f) == NONE {
             continue;
         }
         out.put(cx, |cx, w| {
@@ -939,6 +943,10 @@ fn save(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         });
     }
     for t in 0..cx.st.pools.ntemplates {
+        // (one retired by a redefinition keeps its text, but no name)
+        if cx.templates[t as usize].name == NONE {
+            continue;
+        }
         let text = cx.templates[t as usize].text;
         out.put_pp(cx, text, |cx, src, w| {
             super::pretty::write_deftemplate_echo(
@@ -957,7 +965,8 @@ fn save(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
             w.write_char(')')
         });
     }
-    for f in 0..cx.st.pools.nfuncs {
+    for p in 0..cx.st.pools.nfuncs {
+        let f = cx.function_listed(p);
         if cx.funcs[f as usize].name == NONE {
             continue;
         }

@@ -105,6 +105,15 @@ pub(super) fn name_at(cx: &Core<'_>, kind: Kind, i: Ix) -> Option<Option<SymId>>
     }
 }
 
+/// The index of the construct of kind `kind` listed at place `p` (a redefined
+/// deffunction is listed last; the others are listed in index order).
+pub(super) fn listed_at(cx: &Core<'_>, kind: Kind, p: Ix) -> Ix {
+    match kind {
+        Kind::Deffunction => cx.function_listed(p),
+        _ => p,
+    }
+}
+
 /// The module of name number `i` of construct kind `kind` (as `name_at` numbers them).
 pub(super) fn owner_at(cx: &Core<'_>, kind: Kind, i: Ix) -> crate::module::ModId {
     #[cfg(feature = "modules")]
@@ -146,10 +155,10 @@ fn names_list(
     };
     let start = cx.multi_begin();
     for m in view.modules(cx) {
-        let mut i = 0;
-        while let Some(name) = name_at(cx, kind, i) {
-            let owner = owner_at(cx, kind, i);
-            i += 1;
+        let mut p = 0;
+        while let Some(name) = name_at(cx, kind, listed_at(cx, kind, p)) {
+            let owner = owner_at(cx, kind, listed_at(cx, kind, p));
+            p += 1;
             let Some(s) = name else { continue };
             if owner != m {
                 continue;
@@ -195,10 +204,10 @@ fn list_names(
     let mut n = 0;
     for m in view.modules(cx) {
         view.head(cx, m);
-        let mut i = 0;
-        while let Some(name) = name_at(cx, kind, i) {
-            let owner = owner_at(cx, kind, i);
-            i += 1;
+        let mut p = 0;
+        while let Some(name) = name_at(cx, kind, listed_at(cx, kind, p)) {
+            let owner = owner_at(cx, kind, listed_at(cx, kind, p));
+            p += 1;
             let Some(s) = name else { continue };
             if owner != m {
                 continue;

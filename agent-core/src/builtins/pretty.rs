@@ -581,14 +581,21 @@ pub fn write_deftemplate_echo(
     write_head(w, "deftemplate", name, module)?;
     let mut depth = 1u32;
     let mut after_open = false;
+    // (a comment right after the name stays on its line)
+    let mut comment_due = true;
     loop {
         let t = c.next();
         if matches!(t.tok, Tok::Eof | Tok::Bad) {
             break;
         }
         let last = t.end + start >= end;
+        let comment = comment_due && matches!(t.tok, Tok::Str(_));
+        comment_due = false;
+        // a slot, and a second comment or a bare word where a slot is due, start a
+        // line of their own
+        let own_line = depth == 1 && t.tok != Tok::RParen && !comment;
         match t.tok {
-            Tok::LParen if depth == 1 => w.write_str("\n   ")?,
+            _ if own_line => w.write_str("\n   ")?,
             Tok::RParen if last && tail == EchoTail::SpaceBefore => w.write_char(' ')?,
             Tok::RParen => {}
             _ if after_open || (last && tail == EchoTail::Glued) => {}

@@ -274,6 +274,8 @@ impl Core<'_> {
         self.st.pools.nexprs = cp.nexprs;
         self.st.pools.ntemplates = cp.ntemplates;
         self.st.pools.nslots = cp.nslots;
+        #[cfg(feature = "extras")]
+        self.truncate_function_listing(self.st.pools.nfuncs as usize, cp.nfuncs);
         self.st.pools.nfuncs = cp.nfuncs;
         self.st.pools.nglobals = cp.nglobals;
         self.st.pools.ndeffacts = cp.ndeffacts;

@@ -300,6 +300,11 @@ impl Core<'_> {
             for (g, &text) in base.global_texts.iter().enumerate() {
                 self.set_global_text(g as Ix, text);
             }
+            // (index order unless the base says otherwise)
+            let n = base.functions.len().min(self.func_listed.len());
+            for (p, listed) in self.func_listed[..n].iter_mut().enumerate() {
+                *listed = base.function_order.get(p).copied().unwrap_or(p as Ix);
+            }
         }
         self.join_mems[JoinId::ROOT].mem = root_token;
         #[cfg(not(feature = "in-place"))]

@@ -69,6 +69,9 @@ pub struct RuleBase {
     /// (pretty-print forms off, or no `extras`).
     pub function_texts: &'static [Ix],
     pub global_texts: &'static [Ix],
+    /// The deffunctions' indices in listing order (`list-deffunctions`: a redefined
+    /// one is listed last); empty when that is index order.
+    pub function_order: &'static [Ix],
     pub deffacts: &'static [Deffacts],
     /// Names of the host functions, by the index calls of kind `External` hold.
     pub externals: &'static [&'static str],

@@ -85,6 +85,7 @@ fn loader_refuses_an_engine_with_constructs() {
         functions: &[],
         globals: &[],
         function_texts: &[],
+        function_order: &[],
         global_texts: &[],
         deffacts: &[],
         externals: &[],

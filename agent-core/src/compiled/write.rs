@@ -465,7 +465,14 @@ impl Core<'_> {
         let nfuncs = self.st.pools.nfuncs as Ix;
         let nglobals = self.st.pools.nglobals as Ix;
         self.write_texts(out, "function_texts", nfuncs, |f| self.function_text(f))?;
-        self.write_texts(out, "global_texts", nglobals, |g| self.global_text(g))
+        self.write_texts(out, "global_texts", nglobals, |g| self.global_text(g))?;
+        write!(out, "function_order: &[")?;
+        if (0..nfuncs).any(|p| self.function_listed(p) != p) {
+            for p in 0..nfuncs {
+                write!(out, "{}, ", self.function_listed(p))?;
+            }
+        }
+        writeln!(out, "],")
     }
 
     /// `field: &[...]`, the kept source texts of `n` constructs, or `&[]` when none

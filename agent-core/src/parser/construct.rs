@@ -370,6 +370,8 @@ impl<'s> Parser<'s, '_, '_> {
                 }
                 self.cx.st.pools.nfuncs += 1;
                 self.cx.note_hw(Pool::Functions, n + 1);
+                #[cfg(feature = "extras")]
+                self.cx.list_function_last(n as Ix);
                 n as Ix
             }
         };
@@ -426,6 +428,8 @@ impl<'s> Parser<'s, '_, '_> {
             if !self.check_only {
                 self.cx
                     .watch_defined_again(crate::engine::watch::DEFFUNCTIONS, sym);
+                // CLIPS lists it last from here, even when its actions fail
+                self.cx.list_function_last(f);
             }
         }
         self.cx.funcs[f as usize] = Deffunction {
@@ -514,7 +518,13 @@ impl<'s> Parser<'s, '_, '_> {
             #[cfg(feature = "modules")]
             match self.cx.find_module(m) {
                 Some(m) => self.cx.set_current_module(m),
-                None => return Err(self.err(mt, "the name of a defined module")),
+                None => {
+                    // CLIPS's `[PRNTUTIL1]`, the defglobal shown up to the name
+                    let mut e = self.err(mt, "the name of a defined module");
+                    e.detail = LoadDetail::NoSuchModule;
+                    e.echo_end = mt.end as u32;
+                    return Err(e);
+                }
             }
             #[cfg(not(feature = "modules"))]
             if m != "MAIN" {
@@ -546,7 +556,11 @@ impl<'s> Parser<'s, '_, '_> {
                     self.evaluated_now = false;
                     let init = match init {
                         Ok(init) => init,
-                        Err(e) if matches!(e.detail, LoadDetail::ArgType { .. }) => {
+                        // (a literal argument's type: shown up to its call's `)`)
+                        Err(e)
+                            if matches!(e.detail, LoadDetail::ArgType { .. })
+                                && e.echo_end == 0 =>
+                        {
                             return Err(self.global_echoed(e, t, eq))
                         }
                         // no value: `(defglobal MAIN ?*b* = )`
@@ -556,6 +570,11 @@ impl<'s> Parser<'s, '_, '_> {
                         {
                             e.start = t.start as u32;
                             e.echo_end = eq.end as u32;
+                            return Err(e);
+                        }
+                        // a literal as a function name: from the global
+                        Err(mut e) if matches!(e.detail, LoadDetail::Text { .. }) => {
+                            e.start = t.start as u32;
                             return Err(e);
                         }
                         Err(e) => return Err(e),

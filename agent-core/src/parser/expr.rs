@@ -179,7 +179,7 @@ impl<'s> Parser<'s, '_, '_> {
             return cap!(self, e);
         }
         match self.scope {
-            Scope::TopLevel => {
+            _ if self.at_prompt() => {
                 let g = self.toplevel_var(t, name)?;
                 let e = self.cx.push_expr(Expr::new(Op::Global, 0, g));
                 cap!(self, e)
@@ -316,6 +316,17 @@ impl<'s> Parser<'s, '_, '_> {
         let nt = self.next();
         let (module, name) = match nt.tok {
             Tok::Symbol(s) => self.qualified_ref(nt, s)?,
+            // CLIPS's `[EXPRNPSR1]` for a literal there, a construct shown up to it
+            Tok::Int(_) | Tok::IntOverflow(_) | Tok::Float(_) | Tok::Str(_) => {
+                let mut e = self.err(nt, "a function name");
+                e.detail = crate::error::LoadDetail::Text {
+                    text: "[EXPRNPSR1] A function name must be a symbol",
+                };
+                if self.construct != "command" {
+                    e.echo_end = nt.end as u32;
+                }
+                return Err(e);
+            }
             _ => return Err(self.err(nt, "a function name")),
         };
         let qualified = module != self.current_module();
@@ -430,7 +441,7 @@ impl<'s> Parser<'s, '_, '_> {
                     // a construct is shown up to the call's `)`
                     if matches!(
                         self.construct,
-                        "defrule" | "deffunction" | "deftemplate" | "deffacts"
+                        "defrule" | "deffunction" | "deftemplate" | "deffacts" | "defglobal"
                     ) {
                         e.echo_end = self.lex.pos() as u32;
                     }
@@ -531,8 +542,11 @@ impl<'s> Parser<'s, '_, '_> {
                     arg: k as Ix + 1,
                     expected: ty.clips_name(),
                 };
-                // a rule or deffunction is shown up to the call's `)`
-                if matches!(self.construct, "defrule" | "deffunction") {
+                // a construct is shown up to the call's `)`
+                if matches!(
+                    self.construct,
+                    "defrule" | "deffunction" | "deftemplate" | "deffacts" | "defglobal"
+                ) {
                     e.echo_end = self.lex.pos() as u32;
                 }
                 return Err(e);
@@ -718,7 +732,7 @@ impl<'s> Parser<'s, '_, '_> {
         };
         if matches!(
             self.construct,
-            "defrule" | "deffunction" | "deftemplate" | "deffacts"
+            "defrule" | "deffunction" | "deftemplate" | "deffacts" | "defglobal"
         ) {
             e.echo_end = self.lex.pos() as u32;
         }
@@ -798,6 +812,15 @@ impl<'s> Parser<'s, '_, '_> {
         Ok(node)
     }
 
+    /// Whether variables are the prompt's (hidden globals): at top level, and in a
+    /// defglobal's values, which CLIPS evaluates at the prompt (a variable nothing
+    /// bound there is `[EVALUATN1]` when the value is computed; one a value binds
+    /// stays bound).
+    fn at_prompt(&self) -> bool {
+        self.scope == Scope::TopLevel
+            || (self.scope == Scope::Frame && self.construct == "defglobal")
+    }
+
     /// Node for assigning to variable `name`: a frame local (created if new) or, at
     /// top level, a hidden global.
     fn assign_target(&mut self, t: Token<'s>, name: &'s str) -> PResult<Ix> {
@@ -810,7 +833,7 @@ impl<'s> Parser<'s, '_, '_> {
             // RHS holding the new value (a new entry shadows the LHS one)
         }
         match self.scope {
-            Scope::TopLevel => {
+            _ if self.at_prompt() => {
                 let g = self.toplevel_var(t, name)?;
                 let e = self.cx.push_expr(Expr::new(Op::Global, 0, g));
                 cap!(self, e)

@@ -54,6 +54,10 @@ impl<'s> Parser<'s, '_, '_> {
         let (module, name) = match nt.tok {
             // `=` and `:` are operators, never a relation name
             Tok::Symbol(s) if super::has_module_sep(s) => return Err(self.module_specifier(nt)),
+            // CLIPS keeps the conditional elements' keywords out of relation names
+            Tok::Symbol(
+                "not" | "and" | "or" | "test" | "exists" | "forall" | "logical" | "object",
+            ) => return Err(self.relation_keyword(nt)),
             Tok::Symbol(s) if s != "=" && s != ":" => (self.current_module(), s),
             _ => {
                 return Err(self.syntax_of(
@@ -87,7 +91,7 @@ impl<'s> Parser<'s, '_, '_> {
                     }
                     Tok::Eof | Tok::Bad => return Err(self.err(t, "')'")),
                     _ => {
-                        let v = self.fact_value()?;
+                        let v = self.fact_value("RHS patterns")?;
                         last = self.cx.append_after(sv, last, v);
                     }
                 }
@@ -100,6 +104,9 @@ impl<'s> Parser<'s, '_, '_> {
                 Tok::RParen => break,
                 Tok::LParen => {
                     let st = self.next();
+                    if !matches!(st.tok, Tok::Symbol(_)) {
+                        return Err(self.syntax_of(st, "a slot name", "deftemplate pattern"));
+                    }
                     let slot = self.slot_of(tmpl, st)?;
                     if self.slot_given(spec, slot) {
                         return Err(self.slot_twice(st, "a slot not given twice"));
@@ -109,7 +116,7 @@ impl<'s> Parser<'s, '_, '_> {
                     self.slot_values(sv, &def, st, "assert")?;
                     self.cx.insert_slot_val(spec, sv);
                 }
-                _ => return Err(self.err(t, "'(' and a slot name")),
+                _ => return Err(self.syntax_of(t, "'(' and a slot name", "deftemplate pattern")),
             }
         }
         // CLIPS reports a missing required slot at the template name
@@ -125,10 +132,44 @@ impl<'s> Parser<'s, '_, '_> {
         Ok(spec)
     }
 
+    /// `[PATTERN1]` at a fact's relation name that is a conditional element keyword
+    /// (CLIPS shows a construct up to it).
+    #[cold]
+    #[inline(never)]
+    fn relation_keyword(&self, nt: Token<'s>) -> LoadError {
+        let mut e = self.err(
+            nt,
+            "a relation name that is not a conditional element keyword",
+        );
+        e.detail = LoadDetail::RelationKeyword;
+        if matches!(self.construct, "defrule" | "deffunction" | "deffacts") {
+            e.echo_end = nt.end as u32;
+        }
+        e
+    }
+
+    /// CLIPS's syntax error naming `part` at a constraint's `~`, `&` or `|` (token `t`)
+    /// in a fact, shown one space after the value before it.
+    #[cold]
+    #[inline(never)]
+    fn constraint_in_fact(&self, t: Token<'s>, part: &'static str) -> LoadError {
+        let mut e = self.syntax_of(t, "a value (a fact has no constraints)", part);
+        e.echo_tail = crate::error::EchoTail::Spaced;
+        e
+    }
+
     /// One value of a fact: an expression, or `=(call)`, CLIPS's older way of writing
-    /// a call's value there (the `=` is dropped; after it only a call may come).
+    /// a call's value there (the `=` is dropped; after it only a call may come). A
+    /// constraint's `~`, `&` or `|` is CLIPS's syntax error naming `part`.
     #[inline]
-    fn fact_value(&mut self) -> PResult<Ix> {
+    fn fact_value(&mut self, part: &'static str) -> PResult<Ix> {
+        let t = self.peek();
+        if matches!(
+            t.tok,
+            Tok::Amp | Tok::Bar | Tok::Tilde | Tok::SfWild | Tok::MfWild
+        ) {
+            return Err(self.constraint_in_fact(t, part));
+        }
         if self.constant_facts {
             let t = self.peek();
             if matches!(t.tok, Tok::LParen | Tok::Symbol("=")) {
@@ -139,7 +180,10 @@ impl<'s> Parser<'s, '_, '_> {
             self.next();
             let t = self.peek();
             if t.tok != Tok::LParen {
-                return Err(self.syntax_of(t, "a function call after '='", "function calls"));
+                // (CLIPS shows the token glued to the `=`)
+                let mut e = self.syntax_of(t, "a function call after '='", "function calls");
+                e.echo_tail = crate::error::EchoTail::Glued;
+                return Err(e);
             }
         }
         self.parse_expr()
@@ -239,7 +283,7 @@ impl<'s> Parser<'s, '_, '_> {
                     return Err(e);
                 }
                 _ => {
-                    let v = self.fact_value()?;
+                    let v = self.fact_value("deftemplate pattern")?;
                     if let Some(what) = self.literal_violation(def, v) {
                         let mut e = self.err(t, expected(what));
                         e.detail = LoadDetail::Constraint {
@@ -383,7 +427,13 @@ impl<'s> Parser<'s, '_, '_> {
                     let st = self.next();
                     let sname = match st.tok {
                         Tok::Symbol(s) => s,
-                        _ => return Err(self.err(st, "a slot name")),
+                        _ => {
+                            return Err(self.syntax_of(
+                                st,
+                                "a slot name",
+                                "duplicate/modify function",
+                            ))
+                        }
                     };
                     let ssym = cap!(self, self.cx.intern(sname))?;
                     if self.slot_given(node, ssym) {
@@ -402,13 +452,33 @@ impl<'s> Parser<'s, '_, '_> {
                             let def = self.cx.slot_def(tmpl, slot);
                             self.slot_values(sv, &def, st, name)?;
                         }
-                        None => {
-                            self.args_until_rparen(sv)?;
-                        }
+                        None => loop {
+                            let t = self.peek();
+                            match t.tok {
+                                Tok::RParen => {
+                                    self.next();
+                                    break;
+                                }
+                                Tok::Eof | Tok::Bad => return Err(self.err(t, "')'")),
+                                Tok::Amp | Tok::Bar | Tok::Tilde => {
+                                    return Err(self.constraint_in_fact(t, "deftemplate pattern"))
+                                }
+                                _ => {
+                                    let a = self.parse_expr()?;
+                                    self.cx.append_child(sv, a);
+                                }
+                            }
+                        },
                     }
                     self.cx.append_child(node, sv);
                 }
-                _ => return Err(self.err(t, "'(' and a slot name")),
+                _ => {
+                    return Err(self.syntax_of(
+                        t,
+                        "'(' and a slot name",
+                        "duplicate/modify function",
+                    ))
+                }
             }
         }
     }

@@ -758,8 +758,10 @@ impl<'s, 'e> Parser<'s, '_, 'e> {
                 }
                 if self.cx.deffunction_in_use(f, false) {
                     // CLIPS keeps it (its parameters) but has freed its actions by
-                    // then: calls return FALSE
+                    // then, and its text: calls return FALSE, `save` leaves it out
                     self.cx.funcs[f as usize].body = NONE;
+                    #[cfg(feature = "extras")]
+                    self.cx.set_function_text(f, NONE);
                     return;
                 }
                 #[cfg(feature = "extras")]

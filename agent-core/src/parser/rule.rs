@@ -1351,6 +1351,9 @@ impl<'s> Parser<'s, '_, '_> {
                     Tok::RParen => break,
                     Tok::LParen => {
                         let st = self.next();
+                        if !matches!(st.tok, Tok::Symbol(_)) {
+                            return Err(self.syntax_of(st, "a slot name", "deftemplate patterns"));
+                        }
                         let slot = self.slot_of(tmpl, st)?;
                         // (a template has at most 255 slots)
                         let (word, bit) = ((slot as usize / 64) & 3, 1u64 << (slot % 64));
@@ -1405,7 +1408,13 @@ impl<'s> Parser<'s, '_, '_> {
                             )?;
                         }
                     }
-                    _ => return Err(self.err(t, "'(' and a slot name, or ')'")),
+                    _ => {
+                        return Err(self.syntax_of(
+                            t,
+                            "'(' and a slot name, or ')'",
+                            "deftemplate patterns",
+                        ))
+                    }
                 }
             }
         }

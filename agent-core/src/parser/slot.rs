@@ -21,6 +21,9 @@ type ValuesAt<'s> = (Lexer<'s>, Option<Token<'s>>);
 /// What a slot's attribute list has given so far.
 struct Seen<'s> {
     types: bool,
+    /// Whether a `default` or `default-dynamic` was read (`?NONE` and `?DERIVE` too),
+    /// and where its values start (none for those two).
+    default_given: bool,
     default: Option<(ValuesAt<'s>, &'static str)>,
     /// Where each `allowed-...` attribute's values start, by `ALLOWED` index.
     lists: [Option<ValuesAt<'s>>; 7],
@@ -117,6 +120,7 @@ impl<'s> Parser<'s, '_, '_> {
     pub(super) fn slot_attributes(&mut self, mut def: SlotDef) -> PResult<SlotDef> {
         let mut seen = Seen {
             types: false,
+            default_given: false,
             default: None,
             lists: [None, None, None, None, None, None, None],
             range: None,
@@ -142,9 +146,10 @@ impl<'s> Parser<'s, '_, '_> {
                     };
                     match attr {
                         "default" | "default-dynamic" => {
-                            if seen.default.is_some() {
+                            if seen.default_given {
                                 return Err(self.twice(at, "default"));
                             }
+                            seen.default_given = true;
                             let attribute = if attr == "default" {
                                 "default"
                             } else {
@@ -232,7 +237,10 @@ impl<'s> Parser<'s, '_, '_> {
                         }
                     }
                 }
-                _ => return Err(self.err(t, "'(' starting a slot attribute or ')'")),
+                _ => {
+                    let e = self.err(t, "'(' starting a slot attribute or ')'");
+                    return Err(echoed(e, t, EchoTail::Normal));
+                }
             }
         }
     }
@@ -445,7 +453,8 @@ impl<'s> Parser<'s, '_, '_> {
                     continue;
                 }
                 Tok::SfVar("VARIABLE") => {
-                    return Err(self.attribute_syntax(tt, "?VARIABLE alone", "type attribute"))
+                    let e = self.attribute_syntax(tt, "?VARIABLE alone", "type attribute");
+                    return Err(echoed(e, tt, EchoTail::SpaceAfter));
                 }
                 _ if variable => {
                     let e = self.attribute_syntax(tt, "')' after ?VARIABLE", "type attribute");
