@@ -480,6 +480,7 @@ differential_programs! {
     p803_deftemplate_syntax_errors => "803-deftemplate-syntax-errors",
     p804_defglobal_syntax_errors => "804-defglobal-syntax-errors",
     p805_fact_syntax_errors => "805-fact-syntax-errors",
+    p840_pretty_fact_set_queries => "840-pretty-fact-set-queries",
     p580_keyed_or_index => "580-keyed-or-index",
     p581_keyed_or_not => "581-keyed-or-not",
     p582_keyed_or_growth => "582-keyed-or-growth",

@@ -3,7 +3,8 @@
 //! CLIPS re-spaces the tokens it read: one CE per line indented by 3, connective CEs
 //! (`and`/`or`/`not`) with their first CE on the same line and the others aligned below
 //! it, `exists`/`logical` with every CE on a new line, one action per line, and the
-//! bodies of `if`/`while`/`loop-for-count`/`progn$`/`switch` indented by 3 more.
+//! bodies of `if`/`while`/`loop-for-count`/`progn$`/`switch` and the query and actions of
+//! fact-set queries (`do-for-all-facts`, ...) indented by 3 more.
 //! Comments are dropped and numbers printed as CLIPS prints them (`2.50` -> `2.5`).
 
 use core::fmt::{self, Write};
@@ -82,6 +83,12 @@ fn write_token(c: &Cursor<'_>, w: &mut dyn Write, t: Token<'_>) -> fmt::Result {
 
 /// One expression (an atom or a parenthesised list, nested lists included) on one line.
 fn flat(c: &mut Cursor<'_>, w: &mut dyn Write) -> fmt::Result {
+    // a fact-set query as an `if`'s condition or a global's value: over lines as well
+    #[cfg(feature = "extras")]
+    if query_form(c) {
+        let col = c.indent;
+        return action(c, w, col);
+    }
     let first = c.next();
     write_token(c, w, first)?;
     if first.tok != Tok::LParen {
@@ -136,7 +143,35 @@ fn nested_control(c: &mut Cursor<'_>) -> bool {
         && matches!(
             c.peek(1).tok,
             Tok::Symbol(
-                "if" | "while" | "loop-for-count" | "progn$" | "foreach" | "progn" | "switch"
+                "if" | "while"
+                    | "loop-for-count"
+                    | "progn$"
+                    | "foreach"
+                    | "progn"
+                    | "switch"
+                    | "any-factp"
+                    | "find-fact"
+                    | "find-all-facts"
+                    | "do-for-fact"
+                    | "do-for-all-facts"
+                    | "delayed-do-for-all-facts"
+            )
+        )
+}
+
+/// Whether a fact-set query call starts here.
+#[cfg(feature = "extras")]
+fn query_form(c: &mut Cursor<'_>) -> bool {
+    c.peek(0).tok == Tok::LParen
+        && matches!(
+            c.peek(1).tok,
+            Tok::Symbol(
+                "any-factp"
+                    | "find-fact"
+                    | "find-all-facts"
+                    | "do-for-fact"
+                    | "do-for-all-facts"
+                    | "delayed-do-for-all-facts"
             )
         )
 }
@@ -292,6 +327,23 @@ fn action_at(c: &mut Cursor<'_>, w: &mut dyn Write, col: usize) -> fmt::Result {
                 c.next();
                 w.write_str(" do")?;
             }
+            action_lines(c, w, body, &[])?;
+            close(c, w)
+        }
+        // a fact-set query: its restrictions on its line, then the query and each
+        // action on a line of its own, indented by 3 (CLIPS's ParseQueryNoAction and
+        // ParseQueryAction)
+        #[cfg(feature = "extras")]
+        "any-factp"
+        | "find-fact"
+        | "find-all-facts"
+        | "do-for-fact"
+        | "do-for-all-facts"
+        | "delayed-do-for-all-facts" => {
+            c.next();
+            c.next();
+            write!(w, "({kw} ")?;
+            flat(c, w)?;
             action_lines(c, w, body, &[])?;
             close(c, w)
         }

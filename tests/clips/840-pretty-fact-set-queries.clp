@@ -1,0 +1,32 @@
+; fact-set queries as CLIPS pretty-prints them: the restrictions on the call's
+; line, then the query and each action on a line of its own, 3 deeper than the
+; action (or CE, or global) the call is in; also in the echo after ERROR:
+(deftemplate a (slot x))
+(deftemplate b (slot y))
+(deffunction f1 () (do-for-all-facts ((?f a)) TRUE))
+(ppdeffunction f1)
+(deffunction f2 () (do-for-all-facts ((?f a) (?g a b)) (> ?f:x 1) (printout t 1) (printout t 2)) (bind ?x (find-all-facts ((?f a)) (eq ?f:x 1))) (if (any-factp ((?f a)) TRUE) then (do-for-fact ((?f b)) TRUE (printout t ?f)) else (find-fact ((?f b)) TRUE)))
+(ppdeffunction f2)
+(defrule r (a (x ?x)) => (delayed-do-for-all-facts ((?f a)) (= ?f:x ?x) (retract ?f)) (printout t (length$ (find-all-facts ((?q a b)) TRUE)) crlf) (assert (b (y (any-factp ((?f a)) TRUE)))))
+(ppdefrule r)
+(deffunction f3 () (while TRUE do (do-for-fact ((?f a)) TRUE (bind ?x (find-fact ((?g b)) (eq ?g:y ?f:x))))))
+(ppdeffunction f3)
+(deffunction f4 () (do-for-all-facts ((?f a)) TRUE (printout t 1)) 5)
+(ppdeffunction f4)
+(defrule r2 (a (x ?x)) (test (any-factp ((?f a)) (> ?f:x ?x))) (a (x ?y&:(any-factp ((?g a)) TRUE))) => (if (> 1 0) then (loop-for-count 2 (progn$ (?v (find-all-facts ((?h a)) TRUE)) (printout t ?v)))))
+(ppdefrule r2)
+(defglobal ?*g* = (find-all-facts ((?f a)) TRUE))
+(ppdefglobal g)
+(deffunction f5 () (bind ?y (+ 1 (length$ (find-all-facts ((?f a)) (and (> ?f:x 1) (< ?f:x 3)))))))
+(ppdeffunction f5)
+(deffunction f6 () (switch 1 (case 1 then (do-for-fact ((?f b)) TRUE (bind ?x 1)))))
+(ppdeffunction f6)
+; a deffunction refused for an undefined global: echoed the same way
+(deffunction f7 ()
+  (bind ?s "")
+  (do-for-all-facts ((?f a)) TRUE
+    (if (eq ?f:x 1) then (bind ?s (str-cat ?s ?*nowhere*)) else (bind ?s (str-cat ?s "-"))))
+  ?s)
+(assert (a (x 1)) (a (x 2)) (b (y 2)))
+(printout t (f4) " " (f5) crlf)
+(exit)
