@@ -140,49 +140,49 @@ fn float(x: f64) -> Result<Value, EvalError> {
 
 // CLIPS's own inverse hyperbolic formulas (the C library's differ in the last bits)
 fn gen_acosh(x: f64) -> f64 {
-    libm::log(x + libm::sqrt(x * x - 1.0))
+    super::cmath::log(x + libm::sqrt(x * x - 1.0))
 }
 fn gen_asinh(x: f64) -> f64 {
-    libm::log(x + libm::sqrt(x * x + 1.0))
+    super::cmath::log(x + libm::sqrt(x * x + 1.0))
 }
 fn gen_atanh(x: f64) -> f64 {
-    0.5 * libm::log((1.0 + x) / (1.0 - x))
+    0.5 * super::cmath::log((1.0 + x) / (1.0 - x))
 }
 fn gen_asech(x: f64) -> f64 {
-    libm::log(1.0 / x + libm::sqrt(1.0 / (x * x) - 1.0))
+    super::cmath::log(1.0 / x + libm::sqrt(1.0 / (x * x) - 1.0))
 }
 fn gen_acsch(x: f64) -> f64 {
-    libm::log(1.0 / x + libm::sqrt(1.0 / (x * x) + 1.0))
+    super::cmath::log(1.0 / x + libm::sqrt(1.0 / (x * x) + 1.0))
 }
 fn gen_acoth(x: f64) -> f64 {
-    0.5 * libm::log((x + 1.0) / (x - 1.0))
+    0.5 * super::cmath::log((x + 1.0) / (x - 1.0))
 }
 
 fn sinh(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    float(libm::sinh(float_arg(cx, a, "sinh")?))
+    float(super::cmath::sinh(float_arg(cx, a, "sinh")?))
 }
 fn cosh(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    float(libm::cosh(float_arg(cx, a, "cosh")?))
+    float(super::cmath::cosh(float_arg(cx, a, "cosh")?))
 }
 fn tanh(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    float(libm::tanh(float_arg(cx, a, "tanh")?))
+    float(super::cmath::tanh(float_arg(cx, a, "tanh")?))
 }
 fn sech(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    float(1.0 / libm::cosh(float_arg(cx, a, "sech")?))
+    float(1.0 / super::cmath::cosh(float_arg(cx, a, "sech")?))
 }
 fn csch(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let x = float_arg(cx, a, "csch")?;
     if x == 0.0 {
         return singularity(cx, "csch");
     }
-    float(1.0 / libm::sinh(x))
+    float(1.0 / super::cmath::sinh(x))
 }
 fn coth(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let x = float_arg(cx, a, "coth")?;
     if x == 0.0 {
         return singularity(cx, "coth");
     }
-    float(1.0 / libm::tanh(x))
+    float(1.0 / super::cmath::tanh(x))
 }
 fn asinh(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     float(gen_asinh(float_arg(cx, a, "asinh")?))
@@ -223,14 +223,14 @@ fn acoth(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     float(gen_acoth(x))
 }
 fn sec(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    let c = libm::cos(float_arg(cx, a, "sec")?);
+    let c = super::cmath::cos(float_arg(cx, a, "sec")?);
     if near_zero(c) {
         return singularity(cx, "sec");
     }
     float(1.0 / c)
 }
 fn csc(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    let s = libm::sin(float_arg(cx, a, "csc")?);
+    let s = super::cmath::sin(float_arg(cx, a, "csc")?);
     if near_zero(s) {
         return singularity(cx, "csc");
     }
@@ -238,7 +238,7 @@ fn csc(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 }
 fn cot(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let x = float_arg(cx, a, "cot")?;
-    if near_zero(libm::sin(x)) {
+    if near_zero(super::cmath::sin(x)) {
         return singularity(cx, "cot");
     }
     float(1.0 / libm::tan(x))
@@ -248,21 +248,21 @@ fn asec(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     if x < 1.0 && x > -1.0 {
         return domain(cx, "asec");
     }
-    float(libm::acos(1.0 / x))
+    float(super::cmath::acos(1.0 / x))
 }
 fn acsc(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let x = float_arg(cx, a, "acsc")?;
     if x < 1.0 && x > -1.0 {
         return domain(cx, "acsc");
     }
-    float(libm::asin(1.0 / x))
+    float(super::cmath::asin(1.0 / x))
 }
 fn acot(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let x = float_arg(cx, a, "acot")?;
     if x == 0.0 {
         return float(FRAC_PI_2);
     }
-    float(libm::atan(1.0 / x))
+    float(super::cmath::atan(1.0 / x))
 }
 /// 90 degrees are 100 grads.
 fn deg_grad(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {

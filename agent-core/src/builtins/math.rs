@@ -239,7 +239,7 @@ fn pow(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     if (x == 0.0 && y <= 0.0) || (x < 0.0 && libm::trunc(y) != y) {
         return Err(domain_error("**"));
     }
-    Ok(Value::Float(libm::pow(x, y)))
+    Ok(Value::Float(super::cmath::pow(x, y)))
 }
 
 fn sqrt(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
@@ -270,7 +270,7 @@ fn float(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 }
 
 fn exp(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    Ok(Value::Float(libm::exp(float_of(cx, a, 0, "exp")?)))
+    Ok(Value::Float(super::cmath::exp(float_of(cx, a, 0, "exp")?)))
 }
 
 /// Shared checks of `log`/`log10`: zero overflows, negatives are outside the domain.
@@ -291,11 +291,11 @@ fn logarithm(
 }
 
 fn log(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    logarithm(cx, a, "log", libm::log)
+    logarithm(cx, a, "log", super::cmath::log)
 }
 
 fn log10(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    logarithm(cx, a, "log10", libm::log10)
+    logarithm(cx, a, "log10", super::cmath::log10)
 }
 
 fn pi(_cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
@@ -312,22 +312,24 @@ fn unary(
 }
 
 fn sin(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    unary(cx, a, "sin", libm::sin)
+    unary(cx, a, "sin", super::cmath::sin)
 }
 fn cos(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    unary(cx, a, "cos", libm::cos)
+    unary(cx, a, "cos", super::cmath::cos)
 }
-/// CLIPS refuses a tangent whose cosine is within 1e-15 of zero (`(tan (/ (pi) 2))`).
+/// CLIPS refuses a tangent whose cosine is within 1e-15 of zero (`(tan (/ (pi) 2))`),
+/// and divides the sine by that cosine (which is not always `tan`'s value to the last
+/// digit: `(tan 0.6706148272166867)` is 0.793255396321826, `tan` gives ...825).
 fn tan(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let x = float_of(cx, a, 0, "tan")?;
-    let c = libm::cos(x);
+    let c = super::cmath::cos(x);
     if c < 1e-15 && c > -1e-15 {
         return Err(EvalError::message(crate::error::Message::TanSingularity));
     }
-    Ok(Value::Float(libm::tan(x)))
+    Ok(Value::Float(super::cmath::sin(x) / c))
 }
 fn atan(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    unary(cx, a, "atan", libm::atan)
+    unary(cx, a, "atan", super::cmath::atan)
 }
 
 /// `asin`/`acos` are defined on [-1, 1] only.
@@ -340,10 +342,10 @@ fn arc(cx: &Core<'_>, a: Args, func: &'static str, f: fn(f64) -> f64) -> Result<
 }
 
 fn asin(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    arc(cx, a, "asin", libm::asin)
+    arc(cx, a, "asin", super::cmath::asin)
 }
 fn acos(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    arc(cx, a, "acos", libm::acos)
+    arc(cx, a, "acos", super::cmath::acos)
 }
 
 fn deg_rad(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {

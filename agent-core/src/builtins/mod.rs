@@ -20,6 +20,7 @@
 //! A new module is one line in [`TABLES`] besides.
 
 pub mod basic;
+pub mod cmath;
 pub mod commands;
 pub mod compat;
 pub mod control;
