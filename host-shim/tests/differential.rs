@@ -482,6 +482,7 @@ differential_programs! {
     p805_fact_syntax_errors => "805-fact-syntax-errors",
     p840_pretty_fact_set_queries => "840-pretty-fact-set-queries",
     p841_math_as_the_c_library => "841-math-as-the-c-library",
+    p842_funcall_argument_counts => "842-funcall-argument-counts",
     p580_keyed_or_index => "580-keyed-or-index",
     p581_keyed_or_not => "581-keyed-or-not",
     p582_keyed_or_growth => "582-keyed-or-growth",
