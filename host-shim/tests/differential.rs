@@ -483,6 +483,7 @@ differential_programs! {
     p840_pretty_fact_set_queries => "840-pretty-fact-set-queries",
     p841_math_as_the_c_library => "841-math-as-the-c-library",
     p842_funcall_argument_counts => "842-funcall-argument-counts",
+    p843_deftemplate_pattern_fields => "843-deftemplate-pattern-fields",
     p580_keyed_or_index => "580-keyed-or-index",
     p581_keyed_or_not => "581-keyed-or-not",
     p582_keyed_or_growth => "582-keyed-or-growth",

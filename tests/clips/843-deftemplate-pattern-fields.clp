@@ -1,0 +1,22 @@
+; a field where a deftemplate fact or pattern wants a slot, `(person Pedro 45)`
+; for a deftemplate person: "deftemplate pattern" for facts (deffacts, assert),
+; "deftemplate patterns" for a rule's patterns, the construct shown up to the field
+(deftemplate P (slot a) (multislot b))
+(deffacts d1 (P x 1))
+(deffacts d2 (P (a 1)) (P 45))
+(deffacts d3 (P "str"))
+(defrule r1 (P x 1) =>)
+(defrule r2 (a) (P ?x) =>)
+(defrule r3 (P (a 1)) => (assert (P y)))
+(assert (P z))
+(assert (P (a 1)) (P 3.5))
+(defrule r4 (not (P q)) =>)
+(deffacts d4 (P (a 1) x))
+(defrule r5 (P (a 1) 7) =>)
+(deffunction f () (assert (P (b 1 2) w)))
+(list-deffacts)
+(list-defrules)
+(deffacts ok (P (a 2) (b x y)))
+(reset)
+(facts)
+(exit)
