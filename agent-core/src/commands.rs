@@ -713,9 +713,22 @@ impl Core<'_> {
         r
     }
 
+    /// Rule `rule`'s actions timed by the profiler (`builtins::profile`).
+    #[cfg(feature = "extras")]
+    #[cold]
+    #[inline(never)]
+    fn eval_actions_profiled(&mut self, rule: Ix) -> Result<Value, EvalError> {
+        self.profile_enter(true, rule);
+        let r = self.eval_actions(self.rules[rule as usize].rhs);
+        self.profile_leave(true, rule);
+        r
+    }
+
     /// A rule's actions, as `eval_chain`, each marked as the top-level action while it
     /// runs (`State::top_action`, see `rete::defer`). A propagation still deferred at
-    /// the end is built here; its error wins, as it happened first.
+    /// the end is built here; its error wins, as it happened first. (Inlined into the
+    /// run loop, its one caller but for the profiler's.)
+    #[cfg_attr(feature = "extras", inline(always))]
     fn eval_actions(&mut self, mut e: Ix) -> Result<Value, EvalError> {
         let saved = self.st.net.top_action;
         let mut r = Ok(Value::Sym(crate::builtins::SYM_FALSE));
@@ -822,16 +835,16 @@ impl Core<'_> {
                 Some(self.logical_enter(rule, token))
             };
             if r.is_ok() {
+                // (one test of the profiler's mode per firing, its work out of line)
                 #[cfg(feature = "extras")]
-                let profiled = self.profiling(true);
-                #[cfg(feature = "extras")]
-                if profiled {
-                    self.profile_enter(true, rule);
+                if self.profiling(true) {
+                    r = self.eval_actions_profiled(rule);
+                } else {
+                    r = self.eval_actions(self.rules[rule as usize].rhs);
                 }
-                r = self.eval_actions(self.rules[rule as usize].rhs);
-                #[cfg(feature = "extras")]
-                if profiled {
-                    self.profile_leave(true, rule);
+                #[cfg(not(feature = "extras"))]
+                {
+                    r = self.eval_actions(self.rules[rule as usize].rhs);
                 }
             }
             #[cfg(feature = "logical")]

@@ -724,19 +724,28 @@ impl Core<'_> {
         #[cfg(feature = "extras")]
         {
             self.st.eval.dfn_depth += 1;
-            let profiled = self.profiling(false);
-            if profiled {
-                self.profile_enter(false, func);
-            }
-            let r = self.call_deffunction_args(func, first_arg);
-            if profiled {
-                self.profile_leave(false, func);
-            }
+            // (one test of the profiler's mode per call, its work out of line)
+            let r = if self.profiling(false) {
+                self.call_deffunction_profiled(func, first_arg)
+            } else {
+                self.call_deffunction_args(func, first_arg)
+            };
             self.st.eval.dfn_depth -= 1;
             r
         }
         #[cfg(not(feature = "extras"))]
         self.call_deffunction_args(func, first_arg)
+    }
+
+    /// A deffunction's call timed by the profiler (`builtins::profile`).
+    #[cfg(feature = "extras")]
+    #[cold]
+    #[inline(never)]
+    fn call_deffunction_profiled(&mut self, func: Ix, first_arg: Ix) -> Result<Value, EvalError> {
+        self.profile_enter(false, func);
+        let r = self.call_deffunction_args(func, first_arg);
+        self.profile_leave(false, func);
+        r
     }
 
     #[inline(always)]

@@ -59,10 +59,11 @@ struct Frame {
     resumed: f64,
 }
 
-/// Most rules and deffunctions profiled (those with a higher index are not).
-pub const MOST_PROFILED: usize = 256;
+/// Most rules and deffunctions profiled (those with a higher index are not): the
+/// tables are part of every host engine's state, which `clear` builds afresh.
+pub const MOST_PROFILED: usize = 64;
 /// Deepest nesting of profiled constructs (deeper calls are not profiled).
-const MOST_NESTED: usize = 64;
+const MOST_NESTED: usize = 32;
 
 /// CLIPS's profiler state: its mode, its clock and the figures of each rule and
 /// deffunction (by index). CLIPS also profiles COOL's message handlers and, in
