@@ -498,7 +498,7 @@ impl Core<'_> {
         #[cfg(feature = "extras")]
         {
             self.st.breaks = crate::engine::Breaks::new();
-            self.func_text.fill(crate::template::NO_PP_TEXT);
+            self.func_extras.fill(crate::template::NO_FN_EXTRAS);
             self.global_text.fill(crate::template::NO_PP_TEXT);
         }
         #[cfg(feature = "modules")]

@@ -125,10 +125,9 @@ macro_rules! __pool_table {
                 funcs: $crate::template::Deffunction = $crate::template::Deffunction::EMPTY,
                 // modules: the module each deffunction belongs to
                 func_module: $crate::module::ModTag = $crate::module::NO_TAG,
-                // extras: each deffunction's source text, for ppdeffunction
-                func_text: $crate::template::PpText = $crate::template::NO_PP_TEXT,
-                // extras: the deffunctions in listing order (a redefined one goes last)
-                func_listed: $crate::template::Listed = $crate::template::NO_LISTED,
+                // extras: each deffunction's source text, for ppdeffunction, and the
+                // deffunctions in listing order (a redefined one goes last)
+                func_extras: $crate::template::FnExtras = $crate::template::NO_FN_EXTRAS,
             ],
             Globals globals "globals" 128 16 [
                 globals: $crate::template::Global = $crate::template::Global::EMPTY,

@@ -204,18 +204,25 @@ pub const NO_PP_TEXT: PpText = crate::value::NONE;
 #[cfg(not(feature = "extras"))]
 pub const NO_PP_TEXT: PpText = ();
 
-/// A deffunction's index at a place in listing order (`list-deffunctions`, `save`,
-/// ...), in a side array by place: CLIPS lists a redefined deffunction last, while
-/// calls keep its index. Only with `extras`, where the listings are; zero-sized
-/// otherwise (the agent image).
+/// A deffunction's side data, by index, only with `extras` (zero-sized otherwise, the
+/// agent image): its source text (as `PpText`), and the deffunction listed at its
+/// place in listing order (`list-deffunctions`, `save`, ...): CLIPS lists a redefined
+/// deffunction last, while calls keep its index.
 #[cfg(feature = "extras")]
-pub type Listed = Ix;
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FnExtras {
+    pub text: Ix,
+    pub listed: Ix,
+}
 #[cfg(not(feature = "extras"))]
-pub type Listed = ();
+pub type FnExtras = ();
 #[cfg(feature = "extras")]
-pub const NO_LISTED: Listed = crate::value::NONE;
+pub const NO_FN_EXTRAS: FnExtras = FnExtras {
+    text: crate::value::NONE,
+    listed: crate::value::NONE,
+};
 #[cfg(not(feature = "extras"))]
-pub const NO_LISTED: Listed = ();
+pub const NO_FN_EXTRAS: FnExtras = ();
 
 /// A `deffunction`.
 #[derive(Clone, Copy, Debug)]
@@ -263,13 +270,13 @@ impl crate::engine::Core<'_> {
 impl crate::engine::Core<'_> {
     /// Deffunction `f`'s source text (NONE when not kept).
     pub fn function_text(&self, f: Ix) -> Ix {
-        self.func_text.get(f as usize).copied().unwrap_or(NONE)
+        self.func_extras.get(f as usize).map_or(NONE, |e| e.text)
     }
 
     /// Records deffunction `f`'s source text (dropped past the side array's end).
     pub fn set_function_text(&mut self, f: Ix, text: Ix) {
-        if let Some(e) = self.func_text.get_mut(f as usize) {
-            *e = text;
+        if let Some(e) = self.func_extras.get_mut(f as usize) {
+            e.text = text;
         }
     }
 
@@ -277,34 +284,46 @@ impl crate::engine::Core<'_> {
     /// side array's end).
     pub fn function_listed(&self, p: Ix) -> Ix {
         let n = self.st.pools.nfuncs;
-        match self.func_listed.get(p as usize) {
-            Some(&f) if p < n && f < n => f,
+        match self.func_extras.get(p as usize) {
+            Some(e) if p < n && e.listed < n => e.listed,
             _ => p,
+        }
+    }
+
+    /// Sets the deffunction listed at place `p` (a compiled rule base's order).
+    pub fn set_function_listed(&mut self, p: Ix, f: Ix) {
+        if let Some(e) = self.func_extras.get_mut(p as usize) {
+            e.listed = f;
         }
     }
 
     /// Lists deffunction `f` last (a redefinition, as CLIPS moves it), or first
     /// lists new deffunction `f` (`f` is `nfuncs - 1`).
     pub fn list_function_last(&mut self, f: Ix) {
-        let n = (self.st.pools.nfuncs as usize).min(self.func_listed.len());
+        let n = (self.st.pools.nfuncs as usize).min(self.func_extras.len());
         let Some(last) = n.checked_sub(1) else {
             return;
         };
-        let listed = &mut self.func_listed[..n];
-        let at = listed[..last].iter().position(|&g| g == f).unwrap_or(last);
-        listed.copy_within(at + 1.., at);
-        listed[last] = f;
+        let ex = &mut self.func_extras[..n];
+        let at = ex[..last]
+            .iter()
+            .position(|e| e.listed == f)
+            .unwrap_or(last);
+        for p in at..last {
+            ex[p].listed = ex[p + 1].listed;
+        }
+        ex[last].listed = f;
     }
 
     /// Drops the deffunctions from `n` on from the listing order (a failed construct's
     /// new ones given back; the order of the others stays).
     pub fn truncate_function_listing(&mut self, from: usize, n: Ix) {
-        let from = from.min(self.func_listed.len());
+        let from = from.min(self.func_extras.len());
         let mut k = 0;
         for p in 0..from {
-            let f = self.func_listed[p];
+            let f = self.func_extras[p].listed;
             if f < n {
-                self.func_listed[k] = f;
+                self.func_extras[k].listed = f;
                 k += 1;
             }
         }

@@ -301,9 +301,9 @@ impl Core<'_> {
                 self.set_global_text(g as Ix, text);
             }
             // (index order unless the base says otherwise)
-            let n = base.functions.len().min(self.func_listed.len());
-            for (p, listed) in self.func_listed[..n].iter_mut().enumerate() {
-                *listed = base.function_order.get(p).copied().unwrap_or(p as Ix);
+            for p in 0..base.functions.len() {
+                let f = base.function_order.get(p).copied().unwrap_or(p as Ix);
+                self.set_function_listed(p as Ix, f);
             }
         }
         self.join_mems[JoinId::ROOT].mem = root_token;
