@@ -70,3 +70,16 @@ fn deftemplate_redefined_after_its_rule_went() {
          (deftemplate t (slot y))\n(defrule r2 (t (y ?x)) => )\n(assert (t (y 1)))\n",
     );
 }
+
+/// Found by the batch target (a mutated 582-keyed-or-growth.clp): a
+/// `do-for-all-facts` whose test modifies the facts it walks never ended, since a
+/// query's walk did not poll the host; now the poll budget ends it.
+#[test]
+fn query_that_modifies_its_facts_forever_is_interrupted() {
+    replay(
+        "query-modifies-forever",
+        &String::from_utf8_lossy(include_bytes!(
+            "fuzz_regressions/batch-query-modifies-forever.clp"
+        )),
+    );
+}

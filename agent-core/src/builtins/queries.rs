@@ -364,6 +364,11 @@ fn walk(cx: &mut Core<'_>, w: &mut Walk, k: usize) -> Result<bool, EvalError> {
 /// acts on a match; true to stop.
 #[cfg_attr(feature = "host-speedups", inline(always))]
 fn visit(cx: &mut Core<'_>, w: &mut Walk, passed: bool) -> Result<bool, EvalError> {
+    // a test or actions that modify the facts walked can make the walk endless (each
+    // modify puts a fact at the end): the host may stop it, as it stops loops
+    if !passed || (w.act && w.q.actions != NONE) {
+        cx.poll_interrupt()?;
+    }
     if !passed {
         let mark = cx.st.frame.scratch_top;
         let ok = Core::is_true(cx.eval(w.q.test)?);
