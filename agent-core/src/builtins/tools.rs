@@ -51,9 +51,9 @@ fn own_fixed(id: SymId) -> bool {
 /// Whether symbol `id` is the kept source text of a deffunction or defglobal (for
 /// `ppdeffunction`, `ppdefglobal`): no symbol of CLIPS's.
 fn kept_text(cx: &Core<'_>, id: SymId) -> bool {
-    let funcs = &cx.func_text[..(cx.st.pools.nfuncs as usize).min(cx.func_text.len())];
+    let nfuncs = (cx.st.pools.nfuncs as usize).min(cx.func_extras.len());
     let globals = &cx.global_text[..(cx.st.pools.nglobals as usize).min(cx.global_text.len())];
-    funcs.contains(&id) || globals.contains(&id)
+    cx.func_extras[..nfuncs].iter().any(|e| e.text == id) || globals.contains(&id)
 }
 
 /// The text of candidate `origin`: a builtin's name (`0..COUNT`), else symbol
