@@ -68,6 +68,34 @@ enum Source {
     Arith { node: u8 },
 }
 
+/// A single-field cell a plan compares where it lies: slot `slot` of the fact
+/// bound at `pat`, or field `elem` of that multislot (`WHOLE`: the slot itself).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Cell {
+    pat: u8,
+    slot: u8,
+    elem: u8,
+}
+
+/// `Cell::elem` of a whole single-field slot.
+const WHOLE: u8 = u8::MAX;
+
+impl Cell {
+    /// The cell a slot or element source names (None for another source).
+    fn of(s: Source) -> Option<Cell> {
+        match s {
+            Source::Slot { pat, slot } => Some(Cell {
+                pat,
+                slot,
+                elem: WHOLE,
+            }),
+            // an element index of `WHOLE` would read as the slot
+            Source::Elem { pat, slot, elem } if elem != WHOLE => Some(Cell { pat, slot, elem }),
+            _ => None,
+        }
+    }
+}
+
 /// An integer operation of a plan, as its builtin folds its arguments (wrapping).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum ArOp {
@@ -91,6 +119,9 @@ enum Node {
         b: (u8, u8),
         negated: bool,
     },
+    /// `SameSlots` where one side (or both) is a field of a multislot (an ordered
+    /// fact's `(triple ?a ?b ?c)`), compared where it lies.
+    SameCells { a: Cell, b: Cell, negated: bool },
     /// All of `kids[first..first + len]` (short-circuit, in order; the planner puts
     /// members that mostly fail first where that changes no result).
     And { first: u8, len: u8 },
@@ -226,6 +257,58 @@ struct PlanBuild {
 }
 
 impl PlanBuild {
+    /// Moves a shallow plan's reads of the join's own pattern `depth` to `RIGHT`,
+    /// where its `Frame` holds the right fact.
+    fn read_right_at(&mut self, depth: u8) {
+        let pat = |p: u8| if p == depth { RIGHT } else { p };
+        let src = |s: Source| match s {
+            Source::Slot { pat: p, slot } => Source::Slot { pat: pat(p), slot },
+            Source::Elem { pat: p, slot, elem } => Source::Elem {
+                pat: pat(p),
+                slot,
+                elem,
+            },
+            Source::SlotPlus {
+                pat: p,
+                slot,
+                delta,
+            } => Source::SlotPlus {
+                pat: pat(p),
+                slot,
+                delta,
+            },
+            s @ (Source::Const { .. } | Source::Arith { .. }) => s,
+        };
+        let cell = |c: Cell| Cell {
+            pat: pat(c.pat),
+            ..c
+        };
+        for n in &mut self.nodes[..self.used as usize] {
+            *n = match *n {
+                Node::Cmp { id, a, b } => Node::Cmp {
+                    id,
+                    a: src(a),
+                    b: src(b),
+                },
+                Node::SameSlots { a, b, negated } => Node::SameSlots {
+                    a: (pat(a.0), a.1),
+                    b: (pat(b.0), b.1),
+                    negated,
+                },
+                Node::SameCells { a, b, negated } => Node::SameCells {
+                    a: cell(a),
+                    b: cell(b),
+                    negated,
+                },
+                Node::Leaf { s } => Node::Leaf { s: src(s) },
+                other @ (Node::And { .. }
+                | Node::Or { .. }
+                | Node::Not { .. }
+                | Node::Arith { .. }) => other,
+            };
+        }
+    }
+
     fn push(&mut self, node: Node) -> Option<u8> {
         let i = self.used as usize;
         *self.nodes.get_mut(i)? = node;
@@ -254,7 +337,7 @@ impl PlanBuild {
     fn order_class(&self, n: u8) -> Option<u8> {
         let plain = |s: Source| !matches!(s, Source::Arith { .. } | Source::SlotPlus { .. });
         match self.nodes[n as usize] {
-            Node::SameSlots { .. } => Some(1),
+            Node::SameSlots { .. } | Node::SameCells { .. } => Some(1),
             Node::Cmp { id, a, b } if plain(a) && plain(b) => match Ix::from(id) {
                 FN_EQ | FN_NEQ => Some(1),
                 _ => None,
@@ -281,7 +364,7 @@ impl PlanBuild {
     /// Node `n` is an `eq` of two operands.
     fn is_equality(&self, n: u8) -> bool {
         match self.nodes[n as usize] {
-            Node::SameSlots { negated, .. } => !negated,
+            Node::SameSlots { negated, .. } | Node::SameCells { negated, .. } => !negated,
             Node::Cmp { id, .. } => Ix::from(id) == FN_EQ,
             _ => false,
         }
@@ -312,28 +395,88 @@ impl PlanBuild {
     }
 }
 
-/// Where a plan reads the facts of the left patterns below `BIND_W`.
+/// Where a plan reads the facts its patterns bind.
 trait LeftFacts: Copy {
-    /// The fact bound at left pattern `pat` (< `BIND_W`), NONE if none.
-    fn fact(self, core: &Core<'_>, pat: u8) -> Ix;
-}
+    /// The fact bound at pattern `pat` (the right input's at the join's own
+    /// `depth`), NONE if none.
+    fn fact(self, core: &Core<'_>, pat: u8, depth: u8, right_fact: Ix) -> Ix;
 
-/// A shallow plan's: the left token's own `binds`, found once per test.
-impl LeftFacts for &[Ix; BIND_W] {
+    /// The cell of slot `slot` of the fact bound at `pat` (a multislot's is its
+    /// `Multi`); None if unbound.
     #[inline(always)]
-    fn fact(self, _: &Core<'_>, pat: u8) -> Ix {
-        self[pat as usize]
+    fn slot<'c>(
+        self,
+        core: &'c Core<'_>,
+        pat: u8,
+        slot: u8,
+        depth: u8,
+        right_fact: Ix,
+    ) -> Option<&'c Value> {
+        let fact = self.fact(core, pat, depth, right_fact);
+        if fact == NONE {
+            return None;
+        }
+        Some(core.slot_ref(fact, Ix::from(slot)))
+    }
+
+    /// `slot_cell` of slot `slot` of the fact bound at `pat`: its cell and, for a
+    /// multislot, its length; None if unbound.
+    #[inline(always)]
+    fn slot_cell(
+        self,
+        core: &Core<'_>,
+        pat: u8,
+        slot: u8,
+        depth: u8,
+        right_fact: Ix,
+    ) -> Option<(usize, Option<Ix>)> {
+        let fact = self.fact(core, pat, depth, right_fact);
+        if fact == NONE {
+            return None;
+        }
+        Some(core.slot_cell_inline(fact, Ix::from(slot)))
     }
 }
 
-/// A deep plan's: found per read (`left_fact`), as most of its reads go to `lhs_pm`.
+/// Entries of a shallow plan's `Frame` (a power of two: an index is masked, not
+/// checked).
+const FRAME: usize = 2 * BIND_W;
+/// Where a shallow plan reads the join's own pattern (the right fact) in its `Frame`:
+/// the plan's reads of it are moved there when the plan is stored.
+const RIGHT: u8 = BIND_W as u8;
+
+/// A shallow plan's (every pattern it reads below `BIND_W` or the join's own): the
+/// left token's `binds`, then the right fact (at `RIGHT`, repeated to the end), in
+/// one array filled once per test, so a read is one indexed load whichever side it
+/// is on.
+#[derive(Clone, Copy)]
+struct Frame<'a>(&'a [Ix; FRAME]);
+
+impl LeftFacts for Frame<'_> {
+    #[inline(always)]
+    fn fact(self, _: &Core<'_>, pat: u8, _: u8, _: Ix) -> Ix {
+        self.0[pat as usize & (FRAME - 1)]
+    }
+}
+
+/// A deep plan's: found per read, the left ones through `left_fact` (beyond
+/// `BIND_W` through `lhs_pm`, which `compiled_join_test` bound).
 #[derive(Clone, Copy)]
 struct Ancestry(TokenId);
 
 impl LeftFacts for Ancestry {
     #[inline(always)]
-    fn fact(self, core: &Core<'_>, pat: u8) -> Ix {
-        core.left_fact(self.0, pat)
+    fn fact(self, core: &Core<'_>, pat: u8, depth: u8, right_fact: Ix) -> Ix {
+        if pat == depth {
+            right_fact
+        } else if (pat as usize) < BIND_W {
+            core.left_fact(self.0, pat)
+        } else {
+            match core.st.net.lhs_pm.get(pat as usize) {
+                Some(b) => b.fact,
+                None => NONE,
+            }
+        }
     }
 }
 
@@ -341,6 +484,8 @@ const _: () = assert!(
     POOL_NODES <= UNPLANNED as usize
         && PLAN_NODES <= POOL_NODES
         && POOL_LEN == u8::MAX as usize + 1
+        && FRAME > RIGHT as usize
+        && FRAME.is_power_of_two()
 );
 
 impl Source {
@@ -393,9 +538,11 @@ impl Core<'_> {
             self.bind_left(left);
             self.run_inline(entry.root, depth, Ancestry(left), right_fact)
         } else {
-            // the left facts found once per test, not once per slot read
-            let binds = &self.tokens[left].binds;
-            self.run_inline(entry.root, depth, binds, right_fact)
+            // the facts found once per test, not once per slot read (the plan
+            // reads the right fact at `RIGHT`)
+            let mut frame = [right_fact; FRAME];
+            frame[..BIND_W].copy_from_slice(&self.tokens[left].binds);
+            self.run_inline(entry.root, depth, Frame(&frame), right_fact)
         }
     }
 
@@ -419,6 +566,9 @@ impl Core<'_> {
             root,
             deep: b.deep,
         };
+        if !b.deep {
+            b.read_right_at(depth);
+        }
         self.st.cache.compiled_plans.store(i, entry, &b);
     }
 
@@ -452,6 +602,9 @@ impl Core<'_> {
             Node::SameSlots { a, b, negated } => {
                 self.run_same(a, b, negated, depth, binds, right_fact)
             }
+            Node::SameCells { a, b, negated } => {
+                self.run_same_cells(a, b, negated, depth, binds, right_fact)
+            }
             Node::And { first, len } => {
                 for &k in &plans.kids[first as usize..(first + len) as usize] {
                     // the comparisons and an `or` inline, other composites through
@@ -462,6 +615,9 @@ impl Core<'_> {
                         }
                         Node::SameSlots { a, b, negated } => {
                             self.run_same(a, b, negated, depth, binds, right_fact)?
+                        }
+                        Node::SameCells { a, b, negated } => {
+                            self.run_same_cells(a, b, negated, depth, binds, right_fact)?
                         }
                         Node::Or { first, len } => {
                             self.run_or(first, len, depth, binds, right_fact)?
@@ -497,6 +653,9 @@ impl Core<'_> {
                 Node::Cmp { id, a, b } => self.run_cmp(id, a, b, depth, binds, right_fact)?,
                 Node::SameSlots { a, b, negated } => {
                     self.run_same(a, b, negated, depth, binds, right_fact)?
+                }
+                Node::SameCells { a, b, negated } => {
+                    self.run_same_cells(a, b, negated, depth, binds, right_fact)?
                 }
                 _ => self.run_node(k, depth, binds, right_fact)?,
             };
@@ -575,6 +734,43 @@ impl Core<'_> {
         Some(same_cell(va, vb)? != negated)
     }
 
+    /// One planned `eq`/`neq` of two cells, one of them (or both) a multislot's field.
+    #[inline(always)]
+    fn run_same_cells<L: LeftFacts>(
+        &self,
+        a: Cell,
+        b: Cell,
+        negated: bool,
+        depth: u8,
+        binds: L,
+        right_fact: Ix,
+    ) -> Option<bool> {
+        let va = self.plan_field(a, depth, binds, right_fact)?;
+        let vb = self.plan_field(b, depth, binds, right_fact)?;
+        Some(same_cell(va, vb)? != negated)
+    }
+
+    /// The cell `c` names, where it lies; None if its pattern is unbound or the
+    /// multislot has no such field.
+    #[inline(always)]
+    fn plan_field<L: LeftFacts>(
+        &self,
+        c: Cell,
+        depth: u8,
+        binds: L,
+        right_fact: Ix,
+    ) -> Option<&Value> {
+        if c.elem == WHOLE {
+            return binds.slot(self, c.pat, c.slot, depth, right_fact);
+        }
+        match binds.slot_cell(self, c.pat, c.slot, depth, right_fact)? {
+            (cell, Some(len)) if (c.elem as usize) < len as usize => {
+                self.values.get(cell + 1 + c.elem as usize)
+            }
+            _ => None,
+        }
+    }
+
     /// The cell of single-field slot `slot` of the fact bound at `pat`, where it lies
     /// (a copy of the two values costs more than the comparison); None if unbound.
     #[inline(always)]
@@ -585,11 +781,7 @@ impl Core<'_> {
         binds: L,
         right_fact: Ix,
     ) -> Option<&Value> {
-        let fact = self.plan_fact(pat, depth, binds, right_fact);
-        if fact == NONE {
-            return None;
-        }
-        Some(self.slot_ref(fact, Ix::from(slot)))
+        binds.slot(self, pat, slot, depth, right_fact)
     }
 
     /// One planned comparison.
@@ -608,23 +800,6 @@ impl Core<'_> {
         builtins::basic::compare(self, id as Ix, va, vb)
     }
 
-    /// The fact bound at pattern `pat`: the right input's at the join's own `depth`,
-    /// else the left token's, through `binds` (beyond `BIND_W` through `lhs_pm`,
-    /// which `compiled_join_test` bound for a deep plan). NONE if none.
-    #[inline(always)]
-    fn plan_fact<L: LeftFacts>(&self, pat: u8, depth: u8, binds: L, right_fact: Ix) -> Ix {
-        if pat == depth {
-            right_fact
-        } else if (pat as usize) < BIND_W {
-            binds.fact(self, pat)
-        } else {
-            match self.st.net.lhs_pm.get(pat as usize) {
-                Some(b) => b.fact,
-                None => NONE,
-            }
-        }
-    }
-
     /// The single-field value a source names; None where the evaluator must look.
     #[inline(always)]
     fn source_value<L: LeftFacts>(
@@ -637,11 +812,7 @@ impl Core<'_> {
         match s {
             Source::Slot { pat, slot } => self.plan_slot_value(pat, slot, depth, binds, right_fact),
             Source::Elem { pat, slot, elem } => {
-                let fact = self.plan_fact(pat, depth, binds, right_fact);
-                if fact == NONE {
-                    return None;
-                }
-                let (cell, len) = self.plan_slot_cell(fact, slot);
+                let (cell, len) = binds.slot_cell(self, pat, slot, depth, right_fact)?;
                 match len {
                     Some(len) if (elem as usize) < len as usize => {
                         Some(self.values[cell + 1 + elem as usize])
@@ -662,14 +833,6 @@ impl Core<'_> {
         }
     }
 
-    /// `slot_cell` inlined into the plan's element reads (the root's tests are
-    /// inlined into `compiled_join_test`, which would otherwise call it per element;
-    /// an ordered fact's one multislot needs no walk).
-    #[inline(always)]
-    fn plan_slot_cell(&self, fact: Ix, slot: u8) -> (usize, Option<Ix>) {
-        self.slot_cell_inline(fact, slot as Ix)
-    }
-
     /// A single-field slot of the fact bound at `pat` (None for a multifield).
     #[inline(always)]
     fn plan_slot_value<L: LeftFacts>(
@@ -680,11 +843,7 @@ impl Core<'_> {
         binds: L,
         right_fact: Ix,
     ) -> Option<Value> {
-        let fact = self.plan_fact(pat, depth, binds, right_fact);
-        if fact == NONE {
-            return None;
-        }
-        match *self.slot_ref(fact, Ix::from(slot)) {
+        match *binds.slot(self, pat, slot, depth, right_fact)? {
             Value::Multi(_) => None,
             v => Some(v),
         }
@@ -776,13 +935,18 @@ impl Core<'_> {
         }
         let a = self.plan_source(plan, a, depth, 0)?;
         let b = self.plan_source(plan, b, depth, 0)?;
-        if let (Source::Slot { pat: pa, slot: sa }, Source::Slot { pat: pb, slot: sb }) = (a, b) {
-            if id == FN_EQ || id == FN_NEQ {
+        if id == FN_EQ || id == FN_NEQ {
+            let negated = id == FN_NEQ;
+            if let (Source::Slot { pat: pa, slot: sa }, Source::Slot { pat: pb, slot: sb }) = (a, b)
+            {
                 return plan.push(Node::SameSlots {
                     a: (pa, sa),
                     b: (pb, sb),
-                    negated: id == FN_NEQ,
+                    negated,
                 });
+            }
+            if let (Some(a), Some(b)) = (Cell::of(a), Cell::of(b)) {
+                return plan.push(Node::SameCells { a, b, negated });
             }
         }
         plan.push(Node::Cmp {
