@@ -25,6 +25,9 @@ pub(crate) const MAX_LAYOUTS: usize = 8;
 impl Core<'_> {
     /// Adds a new fact to every alpha memory it matches and propagates.
     pub(crate) fn network_assert(&mut self, fact: Ix) -> Result<(), EvalError> {
+        // host: the discrimination index (`visit_alphas`, `needs_mf_order`) is current
+        #[cfg(feature = "host-speedups")]
+        self.ensure_discrimination();
         // host: patterns sharing a multifield node match in CLIPS's order
         #[cfg(feature = "grow")]
         if self.needs_mf_order(self.facts[fact as usize].tmpl) {

@@ -81,6 +81,10 @@ pub struct DiscState {
     pub ntemplates: Ix,
     /// Buckets in use (a power of two).
     pub nbuckets: usize,
+    /// Whether some alpha node chooses a multifield's length (with feature `grow`
+    /// the asserts of its template go in CLIPS's multifield order; when none does,
+    /// as in most networks, an assert asks only this).
+    pub mf_any: bool,
 }
 
 impl DiscState {
@@ -88,6 +92,7 @@ impl DiscState {
         net_gen: None,
         ntemplates: 0,
         nbuckets: 0,
+        mf_any: true,
     };
 }
 
@@ -122,9 +127,8 @@ impl Core<'_> {
     where
         F: FnMut(&mut Self, Ix) -> Result<(), crate::error::EvalError>,
     {
-        if self.st.net.disc.net_gen != Some(self.st.net.net_gen) {
-            self.rebuild_discrimination();
-        }
+        // (`network_assert` made the index current: `ensure_discrimination`)
+        debug_assert!(self.st.net.disc.net_gen == Some(self.st.net.net_gen));
         let tmpl = self.facts[fact as usize].tmpl;
         if tmpl >= self.st.net.disc.ntemplates {
             return Ok(false);
@@ -257,9 +261,20 @@ impl Core<'_> {
         false
     }
 
+    /// Rebuilds the index if the network changed since it was built.
+    #[inline(always)]
+    pub(crate) fn ensure_discrimination(&mut self) {
+        if self.st.net.disc.net_gen != Some(self.st.net.net_gen) {
+            self.rebuild_discrimination();
+        }
+    }
+
     /// Builds the index from the templates' alpha lists.
+    #[cold]
+    #[inline(never)]
     pub(crate) fn rebuild_discrimination(&mut self) {
         let nalpha = self.st.pools.nalpha as usize;
+        let mf_any = self.alphas.iter().take(nalpha).any(|a| a.nmarks > 0);
         let ntemplates = self.st.pools.ntemplates;
         let cap = self.alpha_disc.len();
         let mut nbuckets = 1usize;
@@ -271,6 +286,7 @@ impl Core<'_> {
             net_gen: Some(self.st.net.net_gen),
             ntemplates: 0,
             nbuckets,
+            mf_any,
         };
         if nbuckets == 0 {
             return;

@@ -240,15 +240,15 @@ impl Core<'_> {
 
     /// Alpha buckets are the table's first half, beta buckets the rest, so every
     /// chain holds one kind of token (they link through different fields).
+    /// (A table of one bucket has a half of 0, which `reduce` maps to bucket 0 too.)
     fn bucket(&self, alpha: Ix, key: u32) -> Ix {
-        let half = (self.amem_buckets.len() / 2).max(1);
-        reduce(alpha_tag(alpha, key), half) as Ix
+        reduce(alpha_tag(alpha, key), self.amem_buckets.len() / 2) as Ix
     }
 
     /// With feature `grow`: the bucket of an alpha match's stored tag (`index_insert`).
     #[cfg(feature = "grow")]
     pub(crate) fn alpha_bucket_of(&self, tag: u32) -> usize {
-        reduce(tag, (self.amem_buckets.len() / 2).max(1))
+        reduce(tag, self.amem_buckets.len() / 2)
     }
 
     /// The key of an alpha match of `alpha` (a node with a right hash): its

@@ -54,6 +54,12 @@ impl Core<'_> {
     /// (The cached answer in line: every assert asks.)
     #[inline(always)]
     pub(crate) fn needs_mf_order(&mut self, tmpl: Ix) -> bool {
+        // host: no alpha node chooses a multifield's length (most networks): one test
+        // (`network_assert` made the discrimination index current)
+        #[cfg(feature = "host-speedups")]
+        if !self.st.net.disc.mf_any {
+            return false;
+        }
         let gen = self.st.net.net_gen.wrapping_add(1).max(1);
         if let Some(&(g, c)) = self.st.net.mf.choice.get(tmpl as usize) {
             if g == gen {
