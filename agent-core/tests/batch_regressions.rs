@@ -4,6 +4,9 @@
 //! host that interrupts after the same poll budget. (The target runs the command
 //! line's `GrowEngine`; these findings show on the small fixed engine too.)
 
+// The prelude calls `create$` (extras) and the replay reads CLIPS text (parser).
+#![cfg(all(feature = "extras", feature = "parser"))]
+
 use agent_core::{Host, SmallEngine};
 
 struct Budget(u32);
