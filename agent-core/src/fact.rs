@@ -886,10 +886,18 @@ impl Core<'_> {
         }
     }
 
-    fn release_fact_values(&mut self, slot: Ix) {
+    /// Gives back an unlinked fact's cells when they are the arena's top ones. Facts
+    /// without cells that sat at the old top (the last in the list: starts follow list
+    /// order) move down with it, or they would start past the new top.
+    pub(crate) fn release_fact_values(&mut self, slot: Ix) {
         let f = self.facts[slot as usize];
         if f.start as usize + f.len as usize == self.st.facts.values_top as usize {
             self.st.facts.values_top = f.start;
+            let mut t = self.st.facts.fact_tail;
+            while t != NONE && self.facts[t as usize].start > f.start {
+                self.facts[t as usize].start = f.start;
+                t = self.facts[t as usize].prev;
+            }
         }
     }
 

@@ -3,6 +3,7 @@
 //! run in batch mode, invariants checked, a bounded `run`, invariants again, with a
 //! host that interrupts after the same poll budget. (The target runs the command
 //! line's `GrowEngine`; these findings show on the small fixed engine too.)
+#![cfg(all(feature = "extras", feature = "parser"))]
 
 // The prelude calls `create$` (extras) and the replay reads CLIPS text (parser).
 #![cfg(all(feature = "extras", feature = "parser"))]
@@ -84,5 +85,29 @@ fn query_that_modifies_its_facts_forever_is_interrupted() {
         &String::from_utf8_lossy(include_bytes!(
             "fuzz_regressions/batch-query-modifies-forever.clp"
         )),
+    );
+}
+
+/// Found by the batch target (crash-495fe404): a fact without cells (a template
+/// without slots) asserted after one with cells sits at the arena top; retracting
+/// the one with cells gave the top back and left the empty fact starting past it.
+/// Minimised: `(f)` is f-4 after the rule base, `(g)` f-5.
+#[test]
+fn empty_fact_above_a_retracted_top_fact() {
+    replay(
+        "empty-fact-above-retracted",
+        "(deftemplate g)\n(assert(f)(g))\n(retract 4)",
+    );
+}
+
+/// The same with more cells and two empty facts above them; then the arena grows
+/// from the lowered top again, and a rule retracts the new top fact in a firing.
+#[test]
+fn empty_facts_above_retracted_top_facts() {
+    replay(
+        "empty-facts-above-retracted",
+        "(deftemplate g)\n(deftemplate h)\n(assert (f a b c) (g) (h))\n(retract 4)\n\
+         (retract 6)\n(assert (f x) (h))\n(facts)\n\
+         (defrule drop ?x <- (f $?) (h) => (retract ?x))\n(run)\n(assert (f y) (i))\n",
     );
 }

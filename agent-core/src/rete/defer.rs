@@ -239,9 +239,7 @@ impl Core<'_> {
             self.network_retract(f);
             let fact = self.facts[f as usize];
             self.unlink_fact(f);
-            if fact.start as usize + fact.len as usize == self.st.facts.values_top as usize {
-                self.st.facts.values_top = fact.start;
-            }
+            self.release_fact_values(f);
             self.free_fact_slot(f);
             // nothing was asserted since: its number is the next one again
             if fact.num.wrapping_add(1) == self.st.facts.next_fact_num {
