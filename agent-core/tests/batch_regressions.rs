@@ -3,7 +3,6 @@
 //! run in batch mode, invariants checked, a bounded `run`, invariants again, with a
 //! host that interrupts after the same poll budget. (The target runs the command
 //! line's `GrowEngine`; these findings show on the small fixed engine too.)
-#![cfg(all(feature = "extras", feature = "parser"))]
 
 // The prelude calls `create$` (extras) and the replay reads CLIPS text (parser).
 #![cfg(all(feature = "extras", feature = "parser"))]
