@@ -9,6 +9,15 @@
 
 use agent_core::{Host, SmallEngine};
 
+/// A host that keeps what is written.
+struct Transcript(String);
+
+impl Host for Transcript {
+    fn write_str(&mut self, _router: &str, text: &str) {
+        self.0.push_str(text);
+    }
+}
+
 struct Budget(u32);
 
 const POLL_BUDGET: u32 = 100_000;
@@ -108,5 +117,31 @@ fn empty_facts_above_retracted_top_facts() {
         "(deftemplate g)\n(deftemplate h)\n(assert (f a b c) (g) (h))\n(retract 4)\n\
          (retract 6)\n(assert (f x) (h))\n(facts)\n\
          (defrule drop ?x <- (f $?) (h) => (retract ?x))\n(run)\n(assert (f y) (i))\n",
+    );
+}
+
+/// Found by the batch target (crash-1abcf135): `modify` with a single-field slot
+/// given no value, `(max)`, on a fact a query bound (so the parser could not know
+/// the template) evaluated the slot's empty value chain: an out-of-range expression
+/// handle. Now the modify fails with an error (CLIPS 6.30: TMPLTFUN2, "Attempted to
+/// assert a multifield value into the single field slot") and the fact stays.
+#[test]
+fn modify_single_slot_without_value_in_a_query() {
+    let text = "(deftemplate m (slot max) (multislot tags))\n(assert (m (max 0)))\n\
+                (do-for-fact ((?f m)) TRUE (modify ?f (max) (tags p q)))\n";
+    replay("modify-single-slot-without-value", text);
+    let h = &mut Transcript(String::new());
+    let mut e = Box::new(SmallEngine::new());
+    e.batch_str(h, text, true);
+    assert!(
+        h.0.contains("a single-field slot needs exactly one value"),
+        "{}",
+        h.0
+    );
+    let ms: Vec<_> = e.facts_of("m").collect();
+    assert_eq!(ms.len(), 1);
+    assert_eq!(
+        e.fact_slot(ms[0], "max").map(|v| format!("{v:?}")),
+        Some("Int(0)".to_string())
     );
 }

@@ -241,6 +241,14 @@ impl Core<'_> {
     ) -> Result<Value, EvalError> {
         let multi = self.slot_def(tmpl, slot).multi;
         if !multi {
+            // no value at all, `(modify ?f (x))` on a single-field slot whose template
+            // the parser could not know: CLIPS's TMPLTFUN2 ("a multifield value into
+            // the single field slot"), not an expression to evaluate
+            if e == NONE {
+                return Err(EvalError::new(EvalErrorKind::BadSlotValue {
+                    reason: crate::error::Message::SingleFieldNeedsOneValue,
+                }));
+            }
             // most slot values are constants or variables: the host reads them in
             // place (the image keeps the 370 B of code that inline copy costs)
             #[cfg(feature = "host-speedups")]
