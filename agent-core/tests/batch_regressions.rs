@@ -7,7 +7,10 @@
 // The prelude calls `create$` (extras) and the replay reads CLIPS text (parser).
 #![cfg(all(feature = "extras", feature = "parser"))]
 
+mod common;
+
 use agent_core::{Host, SmallEngine};
+use common::budget::Budget;
 
 /// A host that keeps what is written.
 struct Transcript(String);
@@ -15,18 +18,6 @@ struct Transcript(String);
 impl Host for Transcript {
     fn write_str(&mut self, _router: &str, text: &str) {
         self.0.push_str(text);
-    }
-}
-
-struct Budget(u32);
-
-const POLL_BUDGET: u32 = 100_000;
-
-impl Host for Budget {
-    fn write_str(&mut self, _router: &str, _text: &str) {}
-    fn interrupt(&mut self) -> bool {
-        self.0 = self.0.saturating_add(1);
-        self.0 > POLL_BUDGET
     }
 }
 

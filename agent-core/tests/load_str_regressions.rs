@@ -2,19 +2,10 @@
 //! replayed the way it runs them: load, check invariants, reset, check again, with a
 //! host that interrupts after the same poll budget.
 
-use agent_core::{Host, SmallEngine};
+mod common;
 
-struct Budget(u32);
-
-const POLL_BUDGET: u32 = 100_000;
-
-impl Host for Budget {
-    fn write_str(&mut self, _router: &str, _text: &str) {}
-    fn interrupt(&mut self) -> bool {
-        self.0 = self.0.saturating_add(1);
-        self.0 > POLL_BUDGET
-    }
-}
+use agent_core::SmallEngine;
+use common::budget::Budget;
 
 fn replay(name: &str, data: &[u8]) {
     let text = String::from_utf8_lossy(data);
@@ -217,7 +208,7 @@ fn deffacts_that_clears_at_reset() {
     );
     replay("minimal", b"(deffacts d1 (a (progn (clear) TRUE)))");
     struct Errors(String);
-    impl Host for Errors {
+    impl agent_core::Host for Errors {
         fn write_str(&mut self, router: &str, text: &str) {
             if router == "werror" {
                 self.0.push_str(text);
