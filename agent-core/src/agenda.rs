@@ -418,6 +418,25 @@ impl Core<'_> {
     /// Takes the top activation off the agenda (it fires; refraction keeps it gone).
     pub(crate) fn pop_activation(&mut self) -> Option<(Ix, TokenId)> {
         let a = self.next_activation()?;
+        Some(self.take_activation(a))
+    }
+
+    /// `pop_activation` while the run loop's general path is off (`Mode::run_slow`):
+    /// MAIN is the one module and focused, so the agenda's head fires (an empty
+    /// agenda takes the general way, which pops the focus).
+    #[cfg(any(feature = "extras", feature = "modules", feature = "logical"))]
+    #[inline(always)]
+    pub(crate) fn pop_head(&mut self) -> Option<(Ix, TokenId)> {
+        let a = self.st.agenda.agenda_head;
+        if a == NONE {
+            return self.pop_activation();
+        }
+        Some(self.take_activation(a))
+    }
+
+    /// Takes activation `a` off the agenda: its rule and partial match.
+    #[inline(always)]
+    fn take_activation(&mut self, a: Ix) -> (Ix, TokenId) {
         let x = self.acts[a as usize];
         #[cfg(not(feature = "host-speedups"))]
         self.agenda_unlink(a);
@@ -425,18 +444,21 @@ impl Core<'_> {
         // group, which then keeps others (in line here, the other removals call)
         #[cfg(feature = "host-speedups")]
         {
+            // (one test when no groups are kept, as `group_unlink`)
             let g = &mut self.st.agenda.groups;
-            let e = &mut g.groups[0];
-            if g.kept && g.n > 0 && e.first == a && e.count > 1 {
-                e.first = x.next;
-                e.count -= 1;
-            } else {
-                self.group_unlink(&x, a);
+            if g.kept | g.overflow {
+                let e = &mut g.groups[0];
+                if g.kept && g.n > 0 && e.first == a && e.count > 1 {
+                    e.first = x.next;
+                    e.count -= 1;
+                } else {
+                    self.group_unlink_kept(&x, a);
+                }
             }
             self.agenda_unlink_links(&x);
         }
         self.free_activation(a);
-        Some((x.rule, x.token))
+        (x.rule, x.token)
     }
 
     /// The rule of the activation `pop_activation` would take next (a module with

@@ -651,6 +651,8 @@ impl Core<'_> {
     /// written (EMPTY for a `not` or `exists`) and nothing is cleared first: the RHS
     /// reads no deeper entry, as `bind_left`'s callers read none (one write per
     /// pattern, where clearing all `MAX_PATTERNS` entries cost a loop per firing).
+    /// (In line on the host: the run loop's two paths call it.)
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     fn bind_rhs(&mut self, mut t: TokenId) {
         while t != TokenId::NONE {
             let tk = self.tokens[t];
@@ -767,143 +769,24 @@ impl Core<'_> {
         if self.focus_top().is_none() {
             self.push_focus(crate::module::MAIN)?;
         }
+        #[cfg(any(feature = "extras", feature = "modules", feature = "logical"))]
+        self.refresh_run_slow();
         let mut fired: u32 = 0;
         let scratch_mark = self.st.frame.scratch_top;
-        // whether the run stops after a firing (its limit, a halt, an error)
-        let mut look_next = false;
-        loop {
-            if limit >= 0 && (fired as i64) >= limit {
-                look_next = true;
-                break;
-            }
-            // the agenda is complete only once owed matches are built: fire nothing
-            // before (the error stops the run; retracting facts makes room)
-            self.pay_owed()?;
-            // the host may stop an endless run between firings (`Host::interrupt`)
-            if let Err(e) = self.poll_interrupt() {
-                self.st.mode.halt = false;
-                return Err(e);
-            }
-            // a breakpoint stops the run before its rule fires (not as the first)
-            #[cfg(feature = "extras")]
-            if fired > 0 && !self.st.breaks.is_empty() && self.at_breakpoint() {
-                break;
-            }
-            let (rule, token) = match self.pop_activation() {
-                Some(x) => x,
-                None => break,
-            };
-            fired += 1;
-            self.print_fire_line(fired, rule, token);
-            self.bind_rhs(token);
-            // (one borrow of the state for its stores: through `self.st` each store
-            // made the next field access load the reference again)
-            let st = &mut *self.st;
-            let saved = (
-                st.mode.firing,
-                st.net.pm_rhs,
-                st.frame,
-                st.agenda.current_rule,
-            );
-            st.mode.firing = true;
-            st.net.pm_rhs = true;
-            st.agenda.current_rule = rule;
-            // a halt ends the run, so one left here came from before it (a top-level
-            // command's propagation): the rule's actions run as usual
-            st.mode.halting = false;
-            st.frame.bp = st.frame.sp;
-            // the rule's actions run in its module (with MAIN alone, current already)
-            #[cfg(feature = "modules")]
-            if st.modules.nmodules > 1 {
-                self.set_current_module(self.rule_tag(rule).module);
-            }
-            let nlocals = self.rules[rule as usize].nlocals;
-            // (most rules bind no locals: no room check for them)
-            let mut r = match nlocals {
-                0 => Ok(Value::Void),
-                n => match self.push_voids(usize::from(n)) {
-                    Ok(()) => Ok(Value::Void),
-                    Err(e) => Err(e.into()),
-                },
-            };
-            // the logical support its asserts get (`logical`; nothing to set or keep
-            // for a rule without a logical CE fired outside any logical firing)
-            #[cfg(feature = "logical")]
-            let logical = if self.logical_idle_for(rule) {
-                None
+        // (one compare per firing: no limit is the largest)
+        let max = u64::try_from(limit).unwrap_or(u64::MAX);
+        // whether the run stops after a firing (its limit, a halt, an error); the
+        // loop changes paths when `Mode::run_slow` does
+        let look_next = loop {
+            let end = if self.run_slow() {
+                self.run_loop::<true>(max, &mut fired, scratch_mark, stats)?
             } else {
-                Some(self.logical_enter(rule, token))
+                self.run_loop::<false>(max, &mut fired, scratch_mark, stats)?
             };
-            if r.is_ok() {
-                // (one test of the profiler's mode per firing, its work out of line)
-                #[cfg(feature = "extras")]
-                if self.profiling(true) {
-                    r = self.eval_actions_profiled(rule);
-                } else {
-                    r = self.eval_actions(self.rules[rule as usize].rhs);
-                }
-                #[cfg(not(feature = "extras"))]
-                {
-                    r = self.eval_actions(self.rules[rule as usize].rhs);
-                }
+            if let Some(look_next) = end {
+                break look_next;
             }
-            #[cfg(feature = "logical")]
-            if let Some(logical) = logical {
-                self.logical_leave(logical);
-            }
-            // `(return)` in a rule's actions ends the focus on its module (the topmost
-            // entry of it, which its actions may have covered with other modules)
-            #[cfg(feature = "modules")]
-            if self.st.eval.returning {
-                self.remove_focus(self.rule_tag(rule).module);
-            }
-            let st = &mut *self.st;
-            st.eval.returning = false;
-            st.eval.breaking = false;
-            // the rule's frame goes, and what it left in scratch: nothing outside it
-            // refers there (a `run` in a rule's actions fires rules one after another
-            // too); retracted facts are freed at the top level only
-            let frame;
-            (st.mode.firing, st.net.pm_rhs, frame, st.agenda.current_rule) = saved;
-            st.frame.leave(frame);
-            if !st.mode.firing {
-                self.free_pending();
-            }
-            self.st.frame.scratch_top = scratch_mark;
-            if self.st.mode.watch & watch::STATISTICS != 0 {
-                stats.sample(self);
-            }
-            if let Err(e) = r {
-                if e.kind() == EvalErrorKind::Exit {
-                    return Err(e);
-                }
-                self.report_rhs_error(rule, e);
-                if e.kind() == EvalErrorKind::Interrupted {
-                    // the caller learns the run was stopped; the message is out
-                    self.st.mode.halt = false;
-                    let mut e = e;
-                    e.reported = true;
-                    return Err(e);
-                }
-                look_next = true;
-                #[cfg(feature = "extras")]
-                self.refresh_every_cycle()?;
-                break;
-            }
-            if self.st.mode.halt {
-                look_next = true;
-                // CLIPS names the halted rule only while rules are watched
-                if self.st.mode.watch & watch::RULES != 0 && self.rule_traced(watch::RULES, rule) {
-                    self.write_halted_in("defrule", self.rules[rule as usize].name);
-                }
-                #[cfg(feature = "extras")]
-                self.refresh_every_cycle()?;
-                break;
-            }
-            // CLIPS's every-cycle salience evaluation: after each firing
-            #[cfg(feature = "extras")]
-            self.refresh_every_cycle()?;
-        }
+        };
         // CLIPS looks for the next activation after every firing, the last one the
         // limit allows or one that halted or failed too: modules left with an empty
         // agenda leave the focus stack then
@@ -916,6 +799,233 @@ impl Core<'_> {
         let _ = look_next;
         self.st.mode.halt = false;
         Ok(fired)
+    }
+
+    /// Whether the run loop takes its general path (`Mode::run_slow`).
+    #[inline(always)]
+    fn run_slow(&self) -> bool {
+        #[cfg(any(feature = "extras", feature = "modules", feature = "logical"))]
+        return self.st.mode.run_slow;
+        #[cfg(not(any(feature = "extras", feature = "modules", feature = "logical")))]
+        false
+    }
+
+    /// Something that may turn on a feature the run loop checks per firing happened
+    /// (`Mode::run_slow`): the loop takes its general path until it finds none on.
+    #[cfg(any(feature = "extras", feature = "modules", feature = "logical"))]
+    #[inline(always)]
+    pub(crate) fn note_run_slow(&mut self) {
+        self.st.mode.run_slow = true;
+    }
+
+    /// `Mode::run_slow` from what is on now: a breakpoint, the profiler timing rules,
+    /// every-cycle salience evaluation, a module besides MAIN or an empty focus stack
+    /// (the next activation is looked for module by module), a `logical` CE (a firing
+    /// may give or keep logical support).
+    #[cfg(any(feature = "extras", feature = "modules", feature = "logical"))]
+    #[inline(never)]
+    pub(crate) fn refresh_run_slow(&mut self) {
+        #[allow(unused_mut)]
+        let mut slow = false;
+        #[cfg(feature = "extras")]
+        {
+            slow |= !self.st.breaks.is_empty()
+                || self.profiling(true)
+                || self.st.mode.salience_eval == crate::agenda::SALIENCE_EVERY_CYCLE;
+        }
+        #[cfg(feature = "modules")]
+        {
+            let m = &self.st.modules;
+            slow |= m.nmodules != 1 || m.depth == 0;
+        }
+        #[cfg(feature = "logical")]
+        {
+            slow |= self.st.logical.defined;
+        }
+        self.st.mode.run_slow = slow;
+    }
+
+    /// The run loop on one path: `SLOW` is the general one (`Mode::run_slow`), the
+    /// usual one leaves out what only the features it names need. Returns
+    /// `Some(look_next)` when the run ends (whether CLIPS looks for the next activation
+    /// then, see `run_rules`), None when `Mode::run_slow` changed (the other path
+    /// goes on).
+    #[inline(always)]
+    fn run_loop<const SLOW: bool>(
+        &mut self,
+        max: u64,
+        fired: &mut u32,
+        scratch_mark: Ix,
+        stats: &mut RunStats,
+    ) -> Result<Option<bool>, EvalError> {
+        loop {
+            if u64::from(*fired) >= max {
+                return Ok(Some(true));
+            }
+            // the agenda is complete only once owed matches are built: fire nothing
+            // before (the error stops the run; retracting facts makes room)
+            self.pay_owed()?;
+            // the host may stop an endless run between firings (`Host::interrupt`)
+            if let Err(e) = self.poll_interrupt() {
+                self.st.mode.halt = false;
+                return Err(e);
+            }
+            if self.run_slow() != SLOW {
+                return Ok(None);
+            }
+            if let Some(look_next) = self.run_turn::<SLOW>(fired, scratch_mark, stats)? {
+                return Ok(Some(look_next));
+            }
+        }
+    }
+
+    /// One turn of the run loop (`run_loop`): the next activation fires.
+    /// `Some(look_next)` ends the run.
+    #[inline(always)]
+    fn run_turn<const SLOW: bool>(
+        &mut self,
+        fired: &mut u32,
+        scratch_mark: Ix,
+        stats: &mut RunStats,
+    ) -> Result<Option<bool>, EvalError> {
+        // a breakpoint stops the run before its rule fires (not as the first)
+        #[cfg(feature = "extras")]
+        if SLOW && *fired > 0 && !self.st.breaks.is_empty() && self.at_breakpoint() {
+            return Ok(Some(false));
+        }
+        #[cfg(any(feature = "extras", feature = "modules", feature = "logical"))]
+        let next = if SLOW {
+            self.pop_activation()
+        } else {
+            self.pop_head()
+        };
+        #[cfg(not(any(feature = "extras", feature = "modules", feature = "logical")))]
+        let next = self.pop_activation();
+        let Some((rule, token)) = next else {
+            return Ok(Some(false));
+        };
+        *fired += 1;
+        self.print_fire_line(*fired, rule, token);
+        self.bind_rhs(token);
+        // (one borrow of the state for its stores: through `self.st` each store
+        // made the next field access load the reference again)
+        let st = &mut *self.st;
+        let saved = (
+            st.mode.firing,
+            st.net.pm_rhs,
+            st.frame,
+            st.agenda.current_rule,
+        );
+        st.mode.firing = true;
+        st.net.pm_rhs = true;
+        st.agenda.current_rule = rule;
+        // a halt ends the run, so one left here came from before it (a top-level
+        // command's propagation): the rule's actions run as usual
+        st.mode.halting = false;
+        st.frame.bp = st.frame.sp;
+        // the rule's actions run in its module (with MAIN alone, current already)
+        #[cfg(feature = "modules")]
+        if SLOW && st.modules.nmodules > 1 {
+            self.set_current_module(self.rule_tag(rule).module);
+        }
+        let nlocals = self.rules[rule as usize].nlocals;
+        // (most rules bind no locals: no room check for them)
+        let mut r = match nlocals {
+            0 => Ok(Value::Void),
+            n => match self.push_voids(usize::from(n)) {
+                Ok(()) => Ok(Value::Void),
+                Err(e) => Err(e.into()),
+            },
+        };
+        // the logical support its asserts get (`logical`; nothing to set or keep
+        // for a rule without a logical CE fired outside any logical firing)
+        #[cfg(feature = "logical")]
+        let logical = if !SLOW || self.logical_idle_for(rule) {
+            None
+        } else {
+            Some(self.logical_enter(rule, token))
+        };
+        if r.is_ok() {
+            // (one test of the profiler's mode per firing, its work out of line)
+            #[cfg(feature = "extras")]
+            if SLOW && self.profiling(true) {
+                r = self.eval_actions_profiled(rule);
+            } else {
+                r = self.eval_actions(self.rules[rule as usize].rhs);
+            }
+            #[cfg(not(feature = "extras"))]
+            {
+                r = self.eval_actions(self.rules[rule as usize].rhs);
+            }
+        }
+        #[cfg(feature = "logical")]
+        if let Some(logical) = logical {
+            self.logical_leave(logical);
+        }
+        // `(return)` in a rule's actions ends the focus on its module (the topmost
+        // entry of it, which its actions may have covered with other modules)
+        #[cfg(feature = "modules")]
+        if self.st.eval.returning {
+            self.remove_focus(self.rule_tag(rule).module);
+        }
+        let st = &mut *self.st;
+        st.eval.returning = false;
+        st.eval.breaking = false;
+        // the rule's frame goes, and what it left in scratch: nothing outside it
+        // refers there (a `run` in a rule's actions fires rules one after another
+        // too); retracted facts are freed at the top level only
+        let frame;
+        (st.mode.firing, st.net.pm_rhs, frame, st.agenda.current_rule) = saved;
+        st.frame.leave(frame);
+        if !st.mode.firing {
+            self.free_pending();
+        }
+        self.st.frame.scratch_top = scratch_mark;
+        if self.st.mode.watch & watch::STATISTICS != 0 {
+            stats.sample(self);
+        }
+        if let Err(e) = r {
+            if e.kind() == EvalErrorKind::Exit {
+                return Err(e);
+            }
+            self.report_rhs_error(rule, e);
+            if e.kind() == EvalErrorKind::Interrupted {
+                // the caller learns the run was stopped; the message is out
+                self.st.mode.halt = false;
+                let mut e = e;
+                e.reported = true;
+                return Err(e);
+            }
+            self.every_cycle_after::<SLOW>()?;
+            return Ok(Some(true));
+        }
+        if self.st.mode.halt {
+            // CLIPS names the halted rule only while rules are watched
+            if self.st.mode.watch & watch::RULES != 0 && self.rule_traced(watch::RULES, rule) {
+                self.write_halted_in("defrule", self.rules[rule as usize].name);
+            }
+            self.every_cycle_after::<SLOW>()?;
+            return Ok(Some(true));
+        }
+        // CLIPS's every-cycle salience evaluation: after each firing
+        self.every_cycle_after::<SLOW>()?;
+        // the general path looks again whether the next turn needs it
+        #[cfg(any(feature = "extras", feature = "modules", feature = "logical"))]
+        if SLOW {
+            self.refresh_run_slow();
+        }
+        Ok(None)
+    }
+
+    /// CLIPS's every-cycle salience evaluation after a firing (`refresh_every_cycle`):
+    /// on the usual path only when the actions turned a feature on (`Mode::run_slow`).
+    #[inline(always)]
+    fn every_cycle_after<const SLOW: bool>(&mut self) -> Result<(), EvalError> {
+        #[cfg(feature = "extras")]
+        if SLOW || self.run_slow() {
+            self.refresh_every_cycle()?;
+        }
+        Ok(())
     }
 
     fn report_rhs_error(&mut self, rule: Ix, e: EvalError) {

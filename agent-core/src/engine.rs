@@ -544,6 +544,14 @@ pub struct Mode {
     /// default, when-defined).
     #[cfg(feature = "extras")]
     pub salience_eval: u8,
+    /// The run loop takes its general path (`Core::run_turn`): a feature it checks per
+    /// firing may be on (a breakpoint, the profiler, every-cycle salience evaluation,
+    /// modules or an empty focus stack, a `logical` CE). Whatever may turn one on sets
+    /// it (`Core::note_run_slow`); a turn on the general path and each run recompute
+    /// it (`Core::refresh_run_slow`), so the usual firing tests this byte only. (Not
+    /// in the agent image, which has none of these features.)
+    #[cfg(any(feature = "extras", feature = "modules", feature = "logical"))]
+    pub run_slow: bool,
 }
 
 impl Mode {
@@ -570,6 +578,8 @@ impl Mode {
             cool_watch: 0,
             #[cfg(feature = "extras")]
             salience_eval: crate::agenda::SALIENCE_WHEN_DEFINED,
+            #[cfg(any(feature = "extras", feature = "modules", feature = "logical"))]
+            run_slow: true,
         }
     }
 }

@@ -179,6 +179,8 @@ impl Core<'_> {
     pub(crate) fn set_rule_logical_join(&mut self, rule: Ix, join: JoinId) -> bool {
         if join != JoinId::NONE {
             self.st.logical.defined = true;
+            // (a firing gives logical support on the run loop's general path)
+            self.note_run_slow();
         }
         match self.rule_logical.get_mut(rule as usize) {
             Some(e) => {

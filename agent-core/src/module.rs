@@ -557,6 +557,8 @@ impl Core<'_> {
     pub fn pop_focus(&mut self) -> Option<ModId> {
         let top = self.focus_top()?;
         self.st.modules.depth -= 1;
+        // (an empty stack is given MAIN on the run loop's general path)
+        self.note_run_slow();
         let next = self.focus_top();
         if self.st.mode.watch & crate::engine::watch::FOCUS != 0 {
             let mut b: crate::value::TextBuf<128> = crate::value::TextBuf::new();
@@ -602,6 +604,8 @@ impl Core<'_> {
         }
         self.focus.copy_within(k + 1..d, k);
         self.st.modules.depth -= 1;
+        // (an empty stack is given MAIN on the run loop's general path)
+        self.note_run_slow();
         if self.st.mode.watch & crate::engine::watch::FOCUS != 0 {
             let mut b: crate::value::TextBuf<128> = crate::value::TextBuf::new();
             let _ = core::fmt::Write::write_fmt(

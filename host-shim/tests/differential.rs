@@ -474,6 +474,7 @@ differential_programs! {
     p871_text_regions => "871-text-regions",
     p872_set_locale => "872-set-locale",
     p873_profile_settings => "873-profile-settings",
+    p897_run_features_switched_on_mid_run => "897-run-features-switched-on-mid-run",
     p800_failed_redefinition_each_construct => "800-failed-redefinition-each-construct",
     p801_redefinition_listing_order => "801-redefinition-listing-order",
     p802_deffacts_syntax_errors => "802-deffacts-syntax-errors",

@@ -498,6 +498,8 @@ fn set_salience_evaluation(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalErro
         Some(i) => {
             // (three settings: the index fits)
             cx.st.mode.salience_eval = i as u8;
+            // (the run loop refreshes saliences on its general path)
+            cx.note_run_slow();
             Ok(old)
         }
         None => {

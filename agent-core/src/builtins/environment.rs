@@ -803,6 +803,8 @@ fn set_break(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         cx.write(router::WERROR, b.as_str());
         return Err(EvalError::already_reported());
     }
+    // (the run loop stops at breakpoints on its general path)
+    cx.note_run_slow();
     Ok(Value::Void)
 }
 

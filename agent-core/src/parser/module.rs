@@ -85,6 +85,8 @@ impl<'s> Parser<'s, '_, '_> {
             self.cx.st.modules.main_redefined = true;
         } else {
             self.cx.st.modules.nmodules += 1;
+            // (the run loop looks for activations module by module on its general path)
+            self.cx.note_run_slow();
             self.cx
                 .note_hw(Pool::Modules, self.cx.st.modules.nmodules as usize);
         }
