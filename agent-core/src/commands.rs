@@ -777,6 +777,7 @@ impl Core<'_> {
         let max = u64::try_from(limit).unwrap_or(u64::MAX);
         // whether the run stops after a firing (its limit, a halt, an error); the
         // loop changes paths when `Mode::run_slow` does
+        #[cfg(any(feature = "extras", feature = "modules", feature = "logical"))]
         let look_next = loop {
             let end = if self.run_slow() {
                 self.run_loop::<true>(max, &mut fired, scratch_mark, stats)?
@@ -787,6 +788,11 @@ impl Core<'_> {
                 break look_next;
             }
         };
+        // (one path: the run ends where the loop returns)
+        #[cfg(not(any(feature = "extras", feature = "modules", feature = "logical")))]
+        let look_next = self
+            .run_loop::<false>(max, &mut fired, scratch_mark, stats)?
+            .unwrap_or(true);
         // CLIPS looks for the next activation after every firing, the last one the
         // limit allows or one that halted or failed too: modules left with an empty
         // agenda leave the focus stack then
