@@ -252,9 +252,11 @@ impl Core<'_> {
     ) -> Result<(), EvalError> {
         if self.alpha_tests_pass(alpha, fact, tests, marks)? {
             #[cfg(feature = "grow")]
-            if let Some(p) = self.st.net.mf.pending.as_mut() {
-                p.push((alpha, marks));
-                return Ok(());
+            if self.st.net.mf.collecting {
+                if let Some(p) = self.st.net.mf.pending.as_mut() {
+                    p.push((alpha, marks));
+                    return Ok(());
+                }
             }
             self.add_alpha_match(alpha, fact, marks)?;
         }

@@ -1066,7 +1066,7 @@ impl Core<'_> {
             // a retract: CLIPS passes nothing on that holds the fact, and nothing
             // passed on meets it (its matches leave their memories first)
             #[cfg(feature = "host-speedups")]
-            let dying = self.dying_after(blocker);
+            let dying = self.dying_to_check(join, blocker);
             if dying != NONE {
                 // host: what the fact's template cannot reach is not checked
                 #[cfg(feature = "host-speedups")]
@@ -1107,6 +1107,33 @@ impl Core<'_> {
             return NONE;
         }
         self.st.net.dying
+    }
+
+    /// Host: `dying_after` for the unblocked output of not join `join`, NONE also
+    /// when `blocker` is the dying fact's alpha match and the join's reach, worked
+    /// out for this network generation, is nothing (no pattern left of it or below
+    /// it has the fact's template): `dying_reach` would then ask for no check.
+    #[cfg(feature = "host-speedups")]
+    #[inline(always)]
+    fn dying_to_check(&self, join: JoinId, blocker: TokenId) -> Ix {
+        let dying = self.st.net.dying;
+        if dying == NONE {
+            return NONE;
+        }
+        let b = &self.tokens[blocker];
+        if b.kind == TokenKind::Alpha {
+            // (`dying_may_remain`: the fact's last alpha match)
+            if b.next_sib == TokenId::NONE {
+                return NONE;
+            }
+            if b.fact == dying {
+                let jm = &self.join_mems[join];
+                if jm.reach_gen == self.st.net.net_gen && jm.reach | jm.reach_depths == 0 {
+                    return NONE;
+                }
+            }
+        }
+        dying
     }
 
     /// Whether, during a retract, the dying fact may still have partial matches or

@@ -1654,12 +1654,28 @@ impl Core<'_> {
     #[cfg(feature = "host-speedups")]
     #[inline(always)]
     pub(crate) fn next_left_of(&self, l: TokenId, via: u8, owner: JoinId) -> TokenId {
-        if via > 0 {
-            let g = via as usize - 1;
-            self.skip_other_beta(self.gnext(l, g), owner, g)
-        } else {
-            self.tokens[l].mem_next
+        if via == 0 {
+            return self.tokens[l].mem_next;
         }
+        // group 0 (the index child's, most indexed walks) with a loop of its own:
+        // sharing the extra groups' loop set up their links' address per token
+        if via == 1 {
+            let mut n = self.bnext(l);
+            while n != TokenId::NONE && self.tokens[n].owner != owner {
+                n = self.bnext(n);
+            }
+            return n;
+        }
+        self.next_left_extra(l, via, owner)
+    }
+
+    /// Host: `next_left_of` along an extra group (out of line: its loop kept the
+    /// right activation's registers busy on every walk).
+    #[cfg(feature = "host-speedups")]
+    #[inline(never)]
+    fn next_left_extra(&self, l: TokenId, via: u8, owner: JoinId) -> TokenId {
+        let g = via as usize - 1;
+        self.skip_other_beta(self.gnext(l, g), owner, g)
     }
 
     /// (Host: inlined into the walks of `first_left`/`next_left`, which call it per

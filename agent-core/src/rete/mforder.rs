@@ -28,6 +28,9 @@ type Pending = (Ix, [u8; MAX_MARKS]);
 pub struct MfOrder {
     /// `Some` while a fact's matches are being collected.
     pub pending: Option<Vec<Pending>>,
+    /// `pending.is_some()`, kept beside it: the check every alpha match makes
+    /// (`match_one`) is then one byte compared.
+    pub collecting: bool,
     /// Per template: the network generation last checked (+1; 0 never) and whether
     /// one of its alpha nodes has a multifield choice.
     choice: Vec<(u32, bool)>,
@@ -37,6 +40,7 @@ impl MfOrder {
     pub const fn new() -> MfOrder {
         MfOrder {
             pending: None,
+            collecting: false,
             choice: Vec::new(),
         }
     }
@@ -97,8 +101,10 @@ impl Core<'_> {
     ) -> Result<(), EvalError> {
         // (a pattern test that asserts nests another collection: each keeps its own)
         let outer = self.st.net.mf.pending.replace(Vec::new());
+        self.st.net.mf.collecting = true;
         let r = visit(self);
         let mut got = core::mem::replace(&mut self.st.net.mf.pending, outer).unwrap_or_default();
+        self.st.net.mf.collecting = self.st.net.mf.pending.is_some();
         r?;
         if got.len() > 1 {
             let keyed: Vec<[Option<u8>; PATH_LEN]> =
