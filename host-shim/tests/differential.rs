@@ -539,4 +539,6 @@ differential_programs! {
     p824_or_under_exists_logical => "824-or-under-exists-logical",
     p825_or_under_exists_modules => "825-or-under-exists-modules",
     p826_or_under_exists_tests_nested_or => "826-or-under-exists-tests-nested-or",
+    p890_or_branch_of_several_ces => "890-or-branch-of-several-ces",
+    p891_or_branch_of_several_ces_marks => "891-or-branch-of-several-ces-marks",
 }

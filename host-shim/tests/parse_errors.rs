@@ -510,5 +510,4 @@ malformed_programs! {
     e083_module_specifier_unknown => "083-module-specifier-unknown",
     e084_import_not_exported => "084-import-not-exported",
     e085_watch_untraced_item_refused => "085-watch-untraced-item-refused",
-    e560_or_under_exists_refused => "560-or-under-exists-refused",
 }

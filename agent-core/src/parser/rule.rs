@@ -1096,19 +1096,7 @@ impl<'s> Parser<'s, '_, '_> {
             GroupBody::Several => self.ces_to_rparen(b),
             GroupBody::Split => {
                 let inner = b.split_inner;
-                self.negations_per_choice(b, inner, at).and_then(|()| {
-                    // a branch of several CEs is a negated group inside this one:
-                    // CLIPS 6.30 joins such nested groups with its own errors
-                    // (activations without a match), which we do not reproduce
-                    if b.ces[first..b.n].iter().any(|c| c.right != CE_ROOT) {
-                        Err(self.not_implemented(
-                            at,
-                            "an or CE with a branch of several CEs under exists or two negations",
-                        ))
-                    } else {
-                        Ok(())
-                    }
-                })
+                self.negations_per_choice(b, inner, at)
             }
             GroupBody::Forall => {
                 if self.peek().tok == Tok::RParen {
@@ -1169,6 +1157,52 @@ impl<'s> Parser<'s, '_, '_> {
                 return self.attach_test_ce(b, e, at);
             }
         }
+        let first_of_enclosing = b.groups > 0 && first == gf as usize;
+        if !negated && (first_of_enclosing || self.first_in_chain_is_group(b, outer)) {
+            // CLIPS makes `(not (not (and ...)))` one exists join only when exactly
+            // these two groups begin at its first CE: not when that CE begins a deeper
+            // group too, nor when the group is the first CE of an enclosing one.
+            // Otherwise two negated groups, the inner one alone in the outer one.
+            if b.n + 1 >= MAX_PATTERNS {
+                return Err(self.err(at, "fewer conditional elements"));
+            }
+            b.ces[b.n] = Ce {
+                kind: JoinKind::Negative,
+                depth: d,
+                parent: outer,
+                right: b.cur,
+                first_sub: first as u8,
+                ..CE_EMPTY
+            };
+            b.cur = b.n as u8;
+            b.n += 1;
+            return self.group_node(b, true, d, outer, first, at);
+        }
+        self.group_node(b, negated, d, outer, first, at)
+    }
+
+    /// Whether the chain ending at `b.cur` starts (after `outer`) with a group.
+    fn first_in_chain_is_group(&self, b: &Build, outer: u8) -> bool {
+        let mut c = b.cur;
+        while c != CE_ROOT && b.ces[c as usize].parent != outer {
+            c = b.ces[c as usize].parent;
+        }
+        c != CE_ROOT && {
+            let f = &b.ces[c as usize];
+            f.pat.tmpl == NONE && f.right != CE_ROOT
+        }
+    }
+
+    /// The join from the right closing a group whose subnetwork ends at `b.cur`.
+    fn group_node(
+        &mut self,
+        b: &mut Build,
+        negated: bool,
+        d: u8,
+        outer: u8,
+        first: usize,
+        at: Token<'s>,
+    ) -> PResult<()> {
         if b.n >= MAX_PATTERNS {
             return Err(self.err(at, "fewer conditional elements"));
         }
