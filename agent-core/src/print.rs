@@ -9,6 +9,8 @@ use crate::fact::Fact;
 use crate::host::{router, Host, RouterWriter};
 use crate::rule::{Activation, Rule};
 use crate::template::{SlotDef, Template};
+#[cfg(feature = "extras")]
+use crate::value::FactRef;
 use crate::value::{write_float, SymId, Value, NONE};
 
 /// Read-only view of what printing needs, borrowed next to the host.
@@ -68,6 +70,12 @@ impl View<'_> {
                     out.write_str(self.sym(s))
                 }
             }
+            #[cfg(feature = "extras")]
+            Value::Fact(r) if r.slot == NONE => out.write_str(if r == FactRef::DUMMY_FACT {
+                "<Dummy Fact>"
+            } else {
+                "<Dummy Instance>"
+            }),
             Value::Fact(r) => write!(out, "<Fact-{}>", r.num),
             Value::Multi(m) => {
                 out.write_char('(')?;

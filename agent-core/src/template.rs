@@ -29,6 +29,8 @@ pub mod types {
             Value::Sym(s) if crate::value::instance_name_body(text(s)).is_some() => INSTANCE_NAME,
             Value::Sym(_) => SYMBOL,
             Value::Str(_) => STRING,
+            #[cfg(feature = "extras")]
+            Value::Fact(crate::value::FactRef::DUMMY_INSTANCE) => INSTANCE_ADDRESS,
             Value::Fact(_) => FACT_ADDRESS,
             _ => 0,
         }

@@ -26,6 +26,21 @@ pub struct FactRef {
     pub num: u32,
 }
 
+impl FactRef {
+    /// CLIPS's `<Dummy Fact>`, the derived default of a slot whose one type is
+    /// FACT-ADDRESS: no fact's address (like a retracted fact's).
+    pub const DUMMY_FACT: FactRef = FactRef {
+        slot: NONE,
+        num: u32::MAX,
+    };
+    /// CLIPS's `<Dummy Instance>`, the derived default of an INSTANCE-ADDRESS slot
+    /// (no instances here): an address of type INSTANCE-ADDRESS that no fact has.
+    pub const DUMMY_INSTANCE: FactRef = FactRef {
+        slot: NONE,
+        num: u32::MAX - 1,
+    };
+}
+
 /// A contiguous run of atoms in the multifield scratch area (during evaluation) or,
 /// inside fact storage, a header announcing that `len` atoms follow.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

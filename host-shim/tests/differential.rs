@@ -541,4 +541,5 @@ differential_programs! {
     p826_or_under_exists_tests_nested_or => "826-or-under-exists-tests-nested-or",
     p890_or_branch_of_several_ces => "890-or-branch-of-several-ces",
     p891_or_branch_of_several_ces_marks => "891-or-branch-of-several-ces-marks",
+    p892_dummy_address_defaults => "892-dummy-address-defaults",
 }

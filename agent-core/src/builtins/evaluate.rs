@@ -106,6 +106,28 @@ pub(super) fn str_assert(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError>
     assert_string_as(cx, a, "str-assert")
 }
 
+const VARIABLE_IN_ASSERT_STRING: &str =
+    "\n[PRNTUTIL6] Local variables can not be accessed by the assert-string function.\n";
+
+/// Whether fact spec `spec` leaves out a slot whose default is `<Dummy Fact>`
+/// (CLIPS refuses it as it refuses a variable).
+#[cfg(feature = "extras")]
+fn dummy_fact_left_out(cx: &Core<'_>, spec: Ix) -> bool {
+    let tmpl = cx.exprs[spec as usize].data;
+    let nslots = cx.templates[tmpl as usize].nslots;
+    (0..nslots).any(|slot| {
+        let mut c = cx.exprs[spec as usize].first;
+        while c != crate::value::NONE {
+            let x = cx.exprs[c as usize];
+            if x.op == crate::expr::Op::SlotVal && x.data == slot {
+                return false;
+            }
+            c = x.next;
+        }
+        cx.derives_dummy_fact(&cx.slot_def(tmpl, slot))
+    })
+}
+
 fn assert_string_as(cx: &mut Core<'_>, a: Args, func: &'static str) -> Result<Value, EvalError> {
     let Value::Str(s) = cx.arg(a, 0) else {
         return Err(EvalError::wrong_type(func, 1, "string"));
@@ -116,10 +138,7 @@ fn assert_string_as(cx: &mut Core<'_>, a: Args, func: &'static str) -> Result<Va
     loop {
         match lex.next_token().tok {
             Tok::SfVar(_) | Tok::MfVar(_) => {
-                cx.write(
-                    router::WERROR,
-                    "\n[PRNTUTIL6] Local variables can not be accessed by the assert-string function.\n",
-                );
+                cx.write(router::WERROR, VARIABLE_IN_ASSERT_STRING);
                 return Ok(Value::Sym(SYM_FALSE));
             }
             Tok::Eof | Tok::Bad => break,
@@ -129,6 +148,14 @@ fn assert_string_as(cx: &mut Core<'_>, a: Args, func: &'static str) -> Result<Va
     let cp = cx.checkpoint();
     let mut p = Parser::new(cx, text.as_str());
     let spec = p.expect_lparen("a fact").and_then(|_| p.fact_spec());
+    #[cfg(feature = "extras")]
+    if let Ok(spec) = spec {
+        if dummy_fact_left_out(cx, spec) {
+            cx.st.pools.nexprs = cp.nexprs;
+            cx.write(router::WERROR, VARIABLE_IN_ASSERT_STRING);
+            return Ok(Value::Sym(SYM_FALSE));
+        }
+    }
     let r = match spec {
         Ok(spec) => {
             // a one-fact assert: what `assert` does with it (errors, halts, FALSE)

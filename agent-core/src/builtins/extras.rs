@@ -915,6 +915,14 @@ fn type_of(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         Value::Int(_) => "INTEGER",
         Value::Float(_) => "FLOAT",
         Value::Str(_) => "STRING",
+        Value::Fact(crate::value::FactRef::DUMMY_INSTANCE) => {
+            // CLIPS's `<Dummy Instance>` is no instance: an error that halts
+            cx.write(
+                router::WERROR,
+                "[INSFUN4] Invalid instance-address in function type.\n",
+            );
+            return Err(EvalError::already_reported());
+        }
         Value::Fact(_) => "FACT-ADDRESS",
         Value::Multi(_) => "MULTIFIELD",
         Value::Sym(s) => {

@@ -145,6 +145,17 @@ impl Core<'_> {
         false
     }
 
+    /// Whether a slot left out of a fact gets CLIPS's `<Dummy Fact>` (its one type
+    /// FACT-ADDRESS, no default given): CLIPS refuses that in a deffacts and in
+    /// `assert-string` (`[PRNTUTIL6]`, as for a variable).
+    #[cfg(feature = "extras")]
+    pub(crate) fn derives_dummy_fact(&self, def: &SlotDef) -> bool {
+        def.default_kind == crate::template::DefaultKind::Derived
+            && def.types & types::FACT_ADDRESS != 0
+            && def.types & !types::FACT_ADDRESS == 0
+            && (!def.multi || self.cardinality_of(def).0 > 0)
+    }
+
     /// A multislot's cardinality: the fewest and most fields it takes.
     pub(crate) fn cardinality_of(&self, def: &SlotDef) -> (i64, i64) {
         if def.cardinality == NONE {
@@ -208,6 +219,10 @@ impl Core<'_> {
         } else if t & types::INSTANCE_NAME != 0 {
             let nil = self.intern("[nil]")?;
             self.derived_atom(def, types::INSTANCE_NAME, Value::Sym(nil))
+        } else if cfg!(feature = "extras") && t & types::INSTANCE_ADDRESS != 0 {
+            Value::Fact(crate::value::FactRef::DUMMY_INSTANCE)
+        } else if cfg!(feature = "extras") && t & types::FACT_ADDRESS != 0 {
+            Value::Fact(crate::value::FactRef::DUMMY_FACT)
         } else {
             Value::Sym(SYM_NIL)
         };

@@ -185,14 +185,7 @@ impl<'s> Parser<'s, '_, '_> {
                 cap!(self, e)
             }
             _ if self.construct == "deffacts" => {
-                // CLIPS checks once the deffacts is read and shows it whole
-                let mut e = self.err(t, "a constant (deffacts take no variables)");
-                e.detail = crate::error::LoadDetail::Text {
-                    text:
-                        "[PRNTUTIL6] Local variables can not be accessed by a deffacts construct.",
-                };
-                e.echo_end = u32::MAX;
-                Err(e)
+                Err(self.deffacts_variable(t, "a constant (deffacts take no variables)"))
             }
             Scope::Lhs if self.construct == "defrule" => Err(self.unbound_in_lhs(t)),
             Scope::Frame if matches!(self.construct, "defrule" | "deffunction") => {
@@ -213,6 +206,21 @@ impl<'s> Parser<'s, '_, '_> {
 
     /// CLIPS's `[ANALYSIS4]` for variable `t` read in a rule's conditions before a
     /// pattern binds it (a global the module does not see too): where it is read.
+    /// `[PRNTUTIL6]`: a variable in a deffacts (CLIPS checks once the deffacts is
+    /// read and shows it whole).
+    pub(super) fn deffacts_variable(
+        &self,
+        t: Token<'s>,
+        expected: &'static str,
+    ) -> crate::error::LoadError {
+        let mut e = self.err(t, expected);
+        e.detail = crate::error::LoadDetail::Text {
+            text: "[PRNTUTIL6] Local variables can not be accessed by a deffacts construct.",
+        };
+        e.echo_end = u32::MAX;
+        e
+    }
+
     fn unbound_in_lhs(&self, t: Token<'s>) -> crate::error::LoadError {
         let mut e = self.err(t, "a bound variable");
         e.detail = crate::error::LoadDetail::UnboundInLhs {

@@ -128,6 +128,17 @@ impl<'s> Parser<'s, '_, '_> {
                 e.detail = LoadDetail::RequiredSlot { slot: def.name };
                 return Err(e);
             }
+            #[cfg(feature = "extras")]
+            if self.construct == "deffacts"
+                && !self.slot_given(spec, slot)
+                && self.cx.derives_dummy_fact(&def)
+            {
+                // CLIPS takes the `<Dummy Fact>` default for a variable there
+                return Err(self.deffacts_variable(
+                    nt,
+                    "a value for each FACT-ADDRESS slot (no <Dummy Fact> in deffacts)",
+                ));
+            }
         }
         Ok(spec)
     }

@@ -660,9 +660,10 @@ impl<'s> Parser<'s, '_, '_> {
 
     fn check_slot(&mut self, def: &SlotDef, seen: &Seen<'s>) -> PResult<()> {
         // a default derived for an address type alone is CLIPS's `<Dummy Instance>` or
-        // `<Dummy Fact>`, values we do not have
+        // `<Dummy Fact>`, values only `extras` prints
         let addresses = types::INSTANCE_ADDRESS | types::FACT_ADDRESS;
-        if def.default_kind == DefaultKind::Derived
+        if cfg!(not(feature = "extras"))
+            && def.default_kind == DefaultKind::Derived
             && def.types & addresses != 0
             && def.types & !addresses == 0
             && def.allowed == NONE
