@@ -146,6 +146,7 @@ messages! {
     TypeViolated = "type restriction violated",
     AllowedValuesViolated = "allowed-values restriction violated",
     RangeViolated = "range restriction violated",
+    ClassesViolated = "allowed-classes restriction violated",
     CardinalityViolated = "cardinality restriction violated",
     SingleFieldNeedsOneValue = "a single-field slot needs exactly one value",
     NoDefault = "slot has no default and needs a value",
@@ -531,6 +532,9 @@ pub enum Restriction {
     Range,
     /// "does not satisfy the cardinality restrictions"
     Cardinality,
+    /// "does not match the allowed classes" (an instance name or address where
+    /// `allowed-classes` names classes: there are no instances here)
+    Classes,
 }
 
 impl EvalError {
@@ -546,6 +550,9 @@ impl EvalError {
             EvalErrorKind::BadSlotValue {
                 reason: Message::CardinalityViolated,
             } => Restriction::Cardinality,
+            EvalErrorKind::BadSlotValue {
+                reason: Message::ClassesViolated,
+            } => Restriction::Classes,
             _ => Restriction::Values,
         }
     }

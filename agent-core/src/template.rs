@@ -83,6 +83,10 @@ pub mod allowed {
     pub const INTEGERS: u8 = types::INTEGER;
     pub const FLOATS: u8 = types::FLOAT;
     pub const NUMBERS: u8 = types::NUMBER;
+    pub const INSTANCE_NAMES: u8 = types::INSTANCE_NAME;
+    /// `allowed-classes` with class names (no list of its own; no `allowed-...`
+    /// attribute restricts instance addresses, whose bit this is).
+    pub const CLASSES: u8 = types::INSTANCE_ADDRESS;
 }
 
 impl SlotDef {

@@ -542,4 +542,5 @@ differential_programs! {
     p890_or_branch_of_several_ces => "890-or-branch-of-several-ces",
     p891_or_branch_of_several_ces_marks => "891-or-branch-of-several-ces-marks",
     p892_dummy_address_defaults => "892-dummy-address-defaults",
+    p893_allowed_instance_names_classes => "893-allowed-instance-names-classes",
 }

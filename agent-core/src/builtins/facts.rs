@@ -47,7 +47,8 @@ impl Core<'_> {
                 reason: crate::error::Message::TypeViolated,
             }));
         }
-        let restricted = def.allowed_kind & (allowed::VALUES | self.type_bit(v)) != 0;
+        let restricted =
+            def.allowed_kind & !allowed::CLASSES & (allowed::VALUES | self.type_bit(v)) != 0;
         if def.allowed != NONE && restricted {
             // CLIPS looks for a value of the same type: 1.0 is not 1
             let mut c = def.allowed;
@@ -65,6 +66,13 @@ impl Core<'_> {
             }
             return Err(EvalError::new(EvalErrorKind::BadSlotValue {
                 reason: crate::error::Message::AllowedValuesViolated,
+            }));
+        }
+        // no instance is of a class here: `allowed-classes` refuses every one
+        #[cfg(feature = "extras")]
+        if def.allowed_kind & allowed::CLASSES != 0 && self.type_bit(v) & types::INSTANCE != 0 {
+            return Err(EvalError::new(EvalErrorKind::BadSlotValue {
+                reason: crate::error::Message::ClassesViolated,
             }));
         }
         if def.range != NONE && matches!(v, Value::Int(_) | Value::Float(_)) {
@@ -124,6 +132,7 @@ impl Core<'_> {
             let _ = match what {
                 Restriction::Type => b.write_str("does not match the allowed types"),
                 Restriction::Values => b.write_str("does not match the allowed values"),
+                Restriction::Classes => b.write_str("does not match the allowed classes"),
                 Restriction::Cardinality => {
                     b.write_str("does not satisfy the cardinality restrictions")
                 }

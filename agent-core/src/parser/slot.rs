@@ -26,7 +26,9 @@ struct Seen<'s> {
     default_given: bool,
     default: Option<(ValuesAt<'s>, &'static str)>,
     /// Where each `allowed-...` attribute's values start, by `ALLOWED` index.
-    lists: [Option<ValuesAt<'s>>; 7],
+    lists: [Option<ValuesAt<'s>>; 8],
+    /// `allowed-classes` was given (with class names: `Some(true)`).
+    classes: Option<bool>,
     /// The `range` attribute's name token.
     range: Option<Token<'s>>,
     cardinality: bool,
@@ -93,7 +95,7 @@ fn restricts_numbers(attribute: &str) -> bool {
 }
 
 /// The `allowed-...` attributes: name, kind, and whether a value fits the kind.
-const ALLOWED: [(&str, u8); 7] = [
+const ALLOWED: [(&str, u8); 8] = [
     ("allowed-values", allowed::VALUES),
     ("allowed-symbols", allowed::SYMBOLS),
     ("allowed-strings", allowed::STRINGS),
@@ -101,18 +103,12 @@ const ALLOWED: [(&str, u8); 7] = [
     ("allowed-integers", allowed::INTEGERS),
     ("allowed-floats", allowed::FLOATS),
     ("allowed-numbers", allowed::NUMBERS),
+    ("allowed-instance-names", allowed::INSTANCE_NAMES),
 ];
 
-fn fits_allowed_kind(kind: u8, v: Value) -> bool {
-    match kind {
-        allowed::SYMBOLS => matches!(v, Value::Sym(_)),
-        allowed::STRINGS => matches!(v, Value::Str(_)),
-        allowed::LEXEMES => matches!(v, Value::Sym(_) | Value::Str(_)),
-        allowed::INTEGERS => matches!(v, Value::Int(_)),
-        allowed::FLOATS => matches!(v, Value::Float(_)),
-        allowed::NUMBERS => matches!(v, Value::Int(_) | Value::Float(_)),
-        _ => true,
-    }
+/// Whether a value of type `bit` (`types::of`) fits an `allowed-...` list of `kind`.
+fn fits_allowed_kind(kind: u8, bit: u8) -> bool {
+    kind == allowed::VALUES || kind & bit != 0
 }
 
 impl<'s> Parser<'s, '_, '_> {
@@ -122,7 +118,8 @@ impl<'s> Parser<'s, '_, '_> {
             types: false,
             default_given: false,
             default: None,
-            lists: [None, None, None, None, None, None, None],
+            lists: [None, None, None, None, None, None, None, None],
+            classes: None,
             range: None,
             cardinality: false,
         };
@@ -170,7 +167,8 @@ impl<'s> Parser<'s, '_, '_> {
                                 .copied()
                                 .find(|&(name, _)| name == attr)
                                 .unwrap_or(ALLOWED[0]);
-                            if seen.has(name) {
+                            // (CLIPS 6.30 takes a second allowed-instance-names)
+                            if seen.has(name) && name != "allowed-instance-names" {
                                 return Err(self.twice(at, name));
                             }
                             if let Some(first) = seen.excluded_by(name) {
@@ -187,7 +185,30 @@ impl<'s> Parser<'s, '_, '_> {
                             let values_at = self.save();
                             self.allowed_attribute(&mut def, name, kind)?;
                             if let Some(k) = ALLOWED.iter().position(|&(n, _)| n == name) {
-                                seen.lists[k] = Some(values_at);
+                                if seen.lists[k].is_none() {
+                                    seen.lists[k] = Some(values_at);
+                                }
+                            }
+                        }
+                        "allowed-classes" if cfg!(feature = "extras") => {
+                            if seen.classes.is_some() {
+                                return Err(self.twice(at, "allowed-classes"));
+                            }
+                            if seen.has("allowed-values") {
+                                let mut e = self.err(
+                                    at,
+                                    "attributes that combine (allowed-values stands alone)",
+                                );
+                                e.detail = LoadDetail::AllowedCombined {
+                                    first: "allowed-values",
+                                    second: "allowed-classes",
+                                };
+                                return Err(echoed(e, at, EchoTail::Normal));
+                            }
+                            let named = self.classes_attribute()?;
+                            seen.classes = Some(named);
+                            if named {
+                                def.allowed_kind |= allowed::CLASSES;
                             }
                         }
                         "range" => {
@@ -565,6 +586,7 @@ impl<'s> Parser<'s, '_, '_> {
             "allowed-integers" => "allowed-integers attribute",
             "allowed-floats" => "allowed-floats attribute",
             "allowed-numbers" => "allowed-numbers attribute",
+            "allowed-instance-names" => "allowed-instance-names attribute",
             _ => "allowed-values attribute",
         };
         let holder = cap!(self, self.cx.push_expr(Expr::new(Op::Nop, 0, 0)))?;
@@ -591,7 +613,7 @@ impl<'s> Parser<'s, '_, '_> {
                     return Err(echoed(e, tt, EchoTail::SpaceAfter));
                 }
             };
-            if !fits_allowed_kind(kind, self.cx.const_value(c)) {
+            if !fits_allowed_kind(kind, self.cx.type_bit(self.cx.const_value(c))) {
                 let mut e = self.err(tt, "a value of the type the allowed-... attribute names");
                 e.detail = LoadDetail::AllowedValueType { attribute: name };
                 return Err(echoed(e, tt, EchoTail::SpaceAfter));
@@ -621,6 +643,48 @@ impl<'s> Parser<'s, '_, '_> {
             def.allowed_kind |= kind;
         }
         Ok(())
+    }
+
+    /// `(allowed-classes NAME...)` after its name, or `?VARIABLE` alone: whether
+    /// class names were given (kept for nothing but the check: no classes here).
+    fn classes_attribute(&mut self) -> PResult<bool> {
+        const WHAT: &str = "allowed-classes attribute";
+        let mut names = false;
+        let mut any = false;
+        loop {
+            let tt = self.next();
+            match tt.tok {
+                Tok::RParen if names || any => return Ok(names),
+                Tok::RParen => {
+                    let e = self.attribute_syntax(tt, "at least one class name", WHAT);
+                    return Err(echoed(e, tt, EchoTail::SpaceBefore));
+                }
+                Tok::Symbol(s) if crate::value::instance_name_body(s).is_some() => {
+                    let mut e = self.err(tt, "a class name (a symbol)");
+                    e.detail = LoadDetail::AllowedValueType {
+                        attribute: "allowed-classes",
+                    };
+                    return Err(echoed(e, tt, EchoTail::SpaceAfter));
+                }
+                Tok::SfVar("VARIABLE") if !names && !any => any = true,
+                Tok::Symbol(_) if !any => names = true,
+                Tok::SfVar("VARIABLE") | Tok::Symbol(_) => {
+                    let e = self.attribute_syntax(tt, "class names or ?VARIABLE, not both", WHAT);
+                    return Err(echoed(e, tt, EchoTail::SpaceAfter));
+                }
+                _ if self.literal(tt)?.is_some() => {
+                    let mut e = self.err(tt, "a class name (a symbol)");
+                    e.detail = LoadDetail::AllowedValueType {
+                        attribute: "allowed-classes",
+                    };
+                    return Err(echoed(e, tt, EchoTail::SpaceAfter));
+                }
+                _ => {
+                    let e = self.attribute_syntax(tt, "a class name", WHAT);
+                    return Err(echoed(e, tt, EchoTail::SpaceAfter));
+                }
+            }
+        }
     }
 
     /// A syntax error CLIPS words as "Check appropriate syntax for `what`".
@@ -675,11 +739,12 @@ impl<'s> Parser<'s, '_, '_> {
         if def.types != 0 {
             // a type an allowed-... list restricts must be one the slot takes (CLIPS's
             // order and names); reported at the first value of that list
-            let kinds: [(u8, &str, [usize; 2]); 4] = [
+            let kinds: [(u8, &str, [usize; 2]); 5] = [
                 (types::SYMBOL, "allowed-symbols", [1, 3]),
                 (types::STRING, "allowed-strings", [2, 3]),
                 (types::INTEGER, "allowed-integers/numbers", [4, 6]),
                 (types::FLOAT, "allowed-floats/numbers", [5, 6]),
+                (types::INSTANCE_NAME, "allowed-instance-names", [7, 7]),
             ];
             for (bit, attribute, lists) in kinds {
                 if def.allowed_kind & bit != 0 && def.types & bit == 0 {
@@ -692,6 +757,18 @@ impl<'s> Parser<'s, '_, '_> {
                     e.detail = LoadDetail::TypeConflict { attribute };
                     return Err(e);
                 }
+            }
+            if let (Some(named), true) = (seen.classes, def.types & types::INSTANCE == 0) {
+                // (CLIPS names the attribute so when it has no class names)
+                let attribute = if named {
+                    "allowed-classes"
+                } else {
+                    "allowed-class"
+                };
+                let at = self.peek();
+                let mut e = self.err(at, "a type an allowed class can be");
+                e.detail = LoadDetail::TypeConflict { attribute };
+                return Err(e);
             }
             if let (Some(values_at), true) = (
                 seen.lists[0].clone(),
