@@ -1174,6 +1174,7 @@ impl Core<'_> {
         let _ = match what {
             Restriction::Type => b.write_str("does not match the allowed types"),
             Restriction::Values => b.write_str("does not match the allowed values"),
+            #[cfg(feature = "extras")]
             Restriction::Classes => b.write_str("does not match the allowed classes"),
             Restriction::Cardinality => {
                 b.write_str("does not satisfy the cardinality restrictions")

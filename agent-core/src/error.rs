@@ -146,7 +146,8 @@ messages! {
     TypeViolated = "type restriction violated",
     AllowedValuesViolated = "allowed-values restriction violated",
     RangeViolated = "range restriction violated",
-    ClassesViolated = "allowed-classes restriction violated",
+    /// (`extras` only: `allowed-classes`; `Restriction::Classes` words it)
+    ClassesViolated = "allowed-classes",
     CardinalityViolated = "cardinality restriction violated",
     SingleFieldNeedsOneValue = "a single-field slot needs exactly one value",
     NoDefault = "slot has no default and needs a value",
@@ -533,7 +534,8 @@ pub enum Restriction {
     /// "does not satisfy the cardinality restrictions"
     Cardinality,
     /// "does not match the allowed classes" (an instance name or address where
-    /// `allowed-classes` names classes: there are no instances here)
+    /// `allowed-classes` names classes: there are no instances here; `extras`)
+    #[cfg(feature = "extras")]
     Classes,
 }
 
@@ -550,6 +552,7 @@ impl EvalError {
             EvalErrorKind::BadSlotValue {
                 reason: Message::CardinalityViolated,
             } => Restriction::Cardinality,
+            #[cfg(feature = "extras")]
             EvalErrorKind::BadSlotValue {
                 reason: Message::ClassesViolated,
             } => Restriction::Classes,

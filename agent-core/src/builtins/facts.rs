@@ -47,8 +47,13 @@ impl Core<'_> {
                 reason: crate::error::Message::TypeViolated,
             }));
         }
+        // (`allowed::CLASSES` has no list: only `extras` makes its bit or an instance
+        // address)
+        #[cfg(feature = "extras")]
         let restricted =
             def.allowed_kind & !allowed::CLASSES & (allowed::VALUES | self.type_bit(v)) != 0;
+        #[cfg(not(feature = "extras"))]
+        let restricted = def.allowed_kind & (allowed::VALUES | self.type_bit(v)) != 0;
         if def.allowed != NONE && restricted {
             // CLIPS looks for a value of the same type: 1.0 is not 1
             let mut c = def.allowed;

@@ -500,6 +500,7 @@ pub(super) fn expected(what: Restriction) -> &'static str {
     match what {
         Restriction::Type => "a value of the slot's type",
         Restriction::Values => "one of the slot's allowed values",
+        #[cfg(feature = "extras")]
         Restriction::Classes => "no instance name or address (allowed-classes names classes)",
         Restriction::Range => "a number in the slot's range",
         Restriction::Cardinality => "as many values as the slot's cardinality allows",
