@@ -490,10 +490,10 @@ fn run_step(engine: &mut dyn CliEngine, host: &mut CliHost, step: Step) -> bool 
             // a `batch` run by a start-up file is the command loop's first input
             engine.run_pending_batch(host)
         }
-        Step::Batch { path, echo } => match std::fs::read_to_string(&path) {
-            // streamed by the engine, so that reads from stdin take its lines
-            Ok(_) if echo => engine.batch_path(host, &path),
-            Ok(text) => engine.batch_file_quiet(host, &path, &text),
+        // streamed by the engine, so that reads from stdin take its lines (the items
+        // before bytes that are not UTF-8 run, then the engine reports them)
+        Step::Batch { path, echo: true } => match std::fs::File::open(&path) {
+            Ok(_) => engine.batch_path(host, &path),
             Err(e) => {
                 let _ = host.out.flush();
                 eprintln!("robotino-agent clips: cannot read {path}: {e}");
@@ -501,7 +501,16 @@ fn run_step(engine: &mut dyn CliEngine, host: &mut CliHost, step: Step) -> bool 
                 true
             }
         },
-        Step::Load(path) => match std::fs::read_to_string(&path) {
+        Step::Batch { path, echo: false } => match read_text(&path) {
+            Ok(text) => engine.batch_file_quiet(host, &path, &text),
+            Err(e) => {
+                let _ = host.out.flush();
+                eprintln!("robotino-agent clips: {e}");
+                host.failed = true;
+                true
+            }
+        },
+        Step::Load(path) => match read_text(&path) {
             Ok(text) => {
                 if let Err(e) = engine.load_str(host, &path, &text) {
                     if e.capacity.is_some() || e.expected == agent_core::INPUT_ENDED {
@@ -515,12 +524,29 @@ fn run_step(engine: &mut dyn CliEngine, host: &mut CliHost, step: Step) -> bool 
                 true
             }
             Err(e) => {
-                eprintln!("robotino-agent clips: cannot read {path}: {e}");
+                eprintln!("robotino-agent clips: {e}");
                 host.failed = true;
                 true
             }
         },
     }
+}
+
+/// A file's text; an error names the file, and for bytes that are not UTF-8 (CLIPS
+/// reads bytes, we read UTF-8 text) the line and column of the first.
+fn read_text(path: &str) -> Result<String, String> {
+    let bytes = std::fs::read(path).map_err(|e| format!("cannot read {path}: {e}"))?;
+    String::from_utf8(bytes).map_err(|e| {
+        let at = e.utf8_error().valid_up_to();
+        let bytes = e.as_bytes();
+        let before = std::str::from_utf8(&bytes[..at]).unwrap_or("");
+        let line = before.matches('\n').count() + 1;
+        let col = before.rsplit('\n').next().unwrap_or("").chars().count() + 1;
+        format!(
+            "{path}:{line}:{col}: byte 0x{:02X} is not UTF-8: robotino-agent reads UTF-8 text only",
+            bytes[at]
+        )
+    })
 }
 
 /// The prompt loop on standard input.

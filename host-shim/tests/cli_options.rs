@@ -237,3 +237,36 @@ fn batch_star_inside_actions_and_tests_keeps_the_caller_frame() {
         "",
     );
 }
+
+/// A file that is not UTF-8 (CLIPS reads bytes; we refuse, naming where): `-l` runs
+/// nothing of it and says line and column on stderr; `-f` runs the items before the
+/// first such byte and the engine reports it.
+#[test]
+fn files_not_utf8_are_refused_at_their_first_such_byte() {
+    let dir = scratch("latin1");
+    std::fs::write(
+        dir.join("l.clp"),
+        b"(printout t ok crlf)\n(printout t \"x\xE9y\" crlf)\n(printout t no crlf)\n",
+    )
+    .expect("write program");
+    let ours = env!("CARGO_BIN_EXE_robotino-agent");
+    let out = Command::new("timeout")
+        .args(["10", ours, "clips", "-l", "l.clp"])
+        .current_dir(&dir)
+        .stdin(Stdio::null())
+        .output()
+        .expect("engine output");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("l.clp:2:15: byte 0xE9 is not UTF-8"),
+        "stderr: {err}"
+    );
+    assert!(!out.status.success());
+    let out = run(&[ours, "clips"], &["-f", "l.clp"], &dir, "");
+    assert!(out.contains("\nok\n"), "{out}");
+    assert!(
+        out.contains("file l.clp: byte 0xE9 at line 2, column 15"),
+        "{out}"
+    );
+    assert!(!out.contains("no\n"), "{out}");
+}

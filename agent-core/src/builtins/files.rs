@@ -94,8 +94,14 @@ pub enum FileError {
         line: u32,
         limit: usize,
     },
-    /// Bytes that are not UTF-8, at this byte offset.
-    NotUtf8 { offset: u64 },
+    /// Bytes that are not UTF-8: the first one, its byte offset, 1-based line and
+    /// column (in characters).
+    NotUtf8 {
+        offset: u64,
+        line: u32,
+        col: u32,
+        byte: u8,
+    },
 }
 
 /// Top-level items of one file, read through `buf`.
@@ -112,6 +118,8 @@ pub struct FileItems<B> {
     eof: bool,
     /// Newlines before `buf[start]`.
     lines: u32,
+    /// Characters between the last of those newlines and `buf[start]`.
+    col: u32,
 }
 
 /// One item: its text, the item's own length in it, and the number of newlines in the
@@ -139,6 +147,7 @@ impl<B: FileBuffer> FileItems<B> {
             offset: 0,
             eof: false,
             lines: 0,
+            col: 0,
         }
     }
 
@@ -155,6 +164,7 @@ impl<B: FileBuffer> FileItems<B> {
         self.offset = offset;
         self.eof = false;
         self.lines += lines;
+        self.col = 0;
     }
 
     /// Reads the first bytes, so a missing file is reported before anything runs.
@@ -185,16 +195,14 @@ impl<B: FileBuffer> FileItems<B> {
             // the bytes read since the last look (a whole buffer's each time would
             // check a file's bytes once per item)
             self.checked = self.checked.max(self.start);
+            // where bytes that are not UTF-8 start: the items before them still run
+            let mut bad = false;
             match core::str::from_utf8(&self.buf.bytes()[self.checked..self.end]) {
                 Ok(_) => self.checked = self.end,
-                Err(e) if e.error_len().is_none() && !self.eof => {
-                    // a character cut by the buffer's end: valid prefix only
-                    self.checked += e.valid_up_to();
-                }
                 Err(e) => {
-                    return Err(FileError::NotUtf8 {
-                        offset: self.offset - (self.end - self.checked - e.valid_up_to()) as u64,
-                    })
+                    // (a character cut by the buffer's end: valid prefix only)
+                    self.checked += e.valid_up_to();
+                    bad = e.error_len().is_some() || self.eof;
                 }
             }
             let valid = &self.buf.bytes()[self.start..self.checked];
@@ -204,15 +212,18 @@ impl<B: FileBuffer> FileItems<B> {
                 }
                 match valid[k..].iter().position(|&c| c == b'\n') {
                     Some(nl) => break (self.start, self.start + k + nl + 1, k),
-                    None if self.eof => break (self.start, self.end, k),
+                    None if self.eof && !bad => break (self.start, self.end, k),
                     None => {} // read on to the end of the line
                 }
-            } else if self.eof {
+            } else if self.eof && !bad {
                 if self.start == self.end {
                     return Ok(None);
                 }
                 last = true;
                 break (self.start, self.end, self.end - self.start);
+            }
+            if bad {
+                return Err(self.not_utf8());
             }
             if self.start > 0 {
                 self.buf.bytes_mut().copy_within(self.start..self.end, 0);
@@ -246,6 +257,10 @@ impl<B: FileBuffer> FileItems<B> {
         let line_base = self.lines;
         let text = core::str::from_utf8(&self.buf.bytes()[a..b]).unwrap_or("");
         self.lines += text.bytes().filter(|&c| c == b'\n').count() as u32;
+        self.col = match text.rfind('\n') {
+            Some(p) => text[p + 1..].chars().count() as u32,
+            None => self.col + text.chars().count() as u32,
+        };
         let end_offset = self.offset - (self.end - b) as u64;
         Ok(Some(Item {
             text,
@@ -254,6 +269,24 @@ impl<B: FileBuffer> FileItems<B> {
             last,
             end_offset,
         }))
+    }
+
+    /// The error for the bytes at `buf[checked]`, which are not UTF-8.
+    #[cold]
+    fn not_utf8(&self) -> FileError {
+        let at = self.checked;
+        let before = core::str::from_utf8(&self.buf.bytes()[self.start..at]).unwrap_or("");
+        let newlines = before.bytes().filter(|&c| c == b'\n').count() as u32;
+        let col = match before.rfind('\n') {
+            Some(p) => before[p + 1..].chars().count() as u32,
+            None => self.col + before.chars().count() as u32,
+        };
+        FileError::NotUtf8 {
+            offset: self.offset - (self.end - at) as u64,
+            line: self.lines + newlines + 1,
+            col: col + 1,
+            byte: self.buf.bytes().get(at).copied().unwrap_or(0),
+        }
     }
 
     fn fill(&mut self, cx: &mut Core<'_>) -> Result<(), FileError> {
@@ -304,7 +337,15 @@ impl Core<'_> {
                 b,
                 "the item at line {line} (byte {offset}) is longer than the {limit}-byte buffer."
             ),
-            FileError::NotUtf8 { offset } => writeln!(b, "not UTF-8 text (byte {offset})."),
+            FileError::NotUtf8 {
+                offset,
+                line,
+                col,
+                byte,
+            } => writeln!(
+                b,
+                "byte 0x{byte:02X} at line {line}, column {col} (offset {offset}) is not UTF-8: robotino-agent reads UTF-8 text only."
+            ),
         };
         self.write(router::WERROR, b.as_str());
     }
@@ -365,6 +406,59 @@ mod tests {
             })
             .filter(|c| !c.is_empty())
             .collect()
+    }
+
+    /// A host whose one file is `bytes`.
+    struct OneByteFile(&'static [u8]);
+
+    impl Host for OneByteFile {
+        fn write_str(&mut self, _router: &str, _text: &str) {}
+        fn read_file_at(
+            &mut self,
+            _path: &str,
+            offset: u64,
+            buf: &mut [u8],
+        ) -> Result<usize, HostIoError> {
+            let from = (offset as usize).min(self.0.len());
+            let n = buf.len().min(self.0.len() - from);
+            buf[..n].copy_from_slice(&self.0[from..from + n]);
+            Ok(n)
+        }
+    }
+
+    #[test]
+    fn items_before_bytes_not_utf8_come_then_where_they_are() {
+        // a Latin-1 byte 0xE9 in the third item, after a UTF-8 `é` in the second
+        let text: &[u8] = b"(a 1)\n(b \"\xC3\xA9\")(c \"x\xE9y\")\n(d)\n";
+        for size in [12, 16, 4096] {
+            let mut e = std::boxed::Box::new(SmallEngine::new());
+            let mut h = OneByteFile(text);
+            let mut cx = e.core(&mut h);
+            let mut buf = std::vec![0u8; size];
+            let mut f = FileItems::new("x", &mut buf[..]);
+            let mut got = std::vec::Vec::new();
+            let err = loop {
+                match f.next_item(&mut cx) {
+                    Ok(Some(it)) => got.push(String::from(it.text.trim())),
+                    Ok(None) => panic!("buffer {size}: read past the bad byte"),
+                    Err(e) => break e,
+                }
+            };
+            assert_eq!(got, ["(a 1)", "(b \"é\")"], "buffer {size}");
+            match err {
+                FileError::NotUtf8 {
+                    offset,
+                    line,
+                    col,
+                    byte,
+                } => assert_eq!(
+                    (offset, line, col, byte),
+                    (19, 2, 13, 0xE9),
+                    "buffer {size}"
+                ),
+                _ => panic!("buffer {size}: another error"),
+            }
+        }
     }
 
     #[test]
