@@ -128,6 +128,19 @@ engine_impl! {
         !cx.st.mode.exit
     }
 
+    /// A batch file run last (`batch_path`, or `batch` from a command) ended inside a
+    /// command: its file and the offset where that command starts. As in CLIPS the
+    /// command goes on in what is read next (the prompt's input); taken once.
+    #[cfg(feature = "parser")]
+    pub fn take_batch_carry(&mut self) -> Option<(&str, u64)> {
+        let carry = &mut self.st.io.carry;
+        if !carry.active {
+            return None;
+        }
+        carry.active = false;
+        Some((carry.path.as_str(), carry.offset))
+    }
+
     /// `batch*` of a text: runs its commands without prompts, echo or results (what
     /// `clips -f2 FILE` does). Returns false once `(exit)` ran.
     pub fn batch_file_quiet(&mut self, host: &mut dyn Host, source_name: &str, text: &str) -> bool {

@@ -455,6 +455,13 @@ impl Core<'_> {
             self.st.mode.salience_eval,
             self.st.watch_names.items,
         );
+        #[cfg(feature = "extras")]
+        let (dynamic_checks, fact_duplication, twins_made, seq_ops) = (
+            self.st.mode.dynamic_checks,
+            self.st.mode.fact_duplication,
+            self.st.mode.twins_made,
+            self.st.mode.seq_ops,
+        );
         let next = self.st.pools.nexternals;
         let ext_syms = self.st.pools.ext_syms;
         let rom_syms = self.st.rom.symbols;
@@ -622,6 +629,10 @@ impl Core<'_> {
             self.st.mode.keep_globals = keep_globals;
             self.st.mode.cool_watch = cool_watch;
             self.st.mode.salience_eval = salience_eval;
+            self.st.mode.dynamic_checks = dynamic_checks;
+            self.st.mode.fact_duplication = fact_duplication;
+            self.st.mode.twins_made = twins_made;
+            self.st.mode.seq_ops = seq_ops;
             // the items stay, the constructs named are gone
             self.st.watch_names.items = watch_items;
             self.sync_watch();
@@ -1606,18 +1617,26 @@ impl Core<'_> {
             );
             let _ = crate::builtins::modules::write_defmodule_at(text, e.start as usize, b);
             let _ = b.write_char('\n');
-        } else if let LoadDetail::UnboundInLhs { slot, ce, field } = e.detail {
+        } else if let LoadDetail::UnboundInLhs {
+            slot,
+            ce,
+            field,
+            in_call,
+        } = e.detail
+        {
             // a global is named as CLIPS read it, a variable without the stars
             let _ = match tok.strip_prefix("?*") {
-                Some(g) => write!(
-                    b,
-                    "\n[ANALYSIS4] Variable ?{} found in the expression ",
-                    g.trim_end_matches('*')
-                ),
-                None => write!(b, "\n[ANALYSIS4] Variable {tok} found in the expression "),
+                Some(g) => write!(b, "\n[ANALYSIS4] Variable ?{}", g.trim_end_matches('*')),
+                None => write!(b, "\n[ANALYSIS4] Variable {tok}"),
             };
-            let _ = write_enclosing_call(b, text, e.start as usize);
-            let _ = write!(b, "\nwas referenced in CE #{ce}");
+            if in_call {
+                let _ = b.write_str(" found in the expression ");
+                let _ = write_enclosing_call(b, text, e.start as usize);
+                let _ = b.write_char('\n');
+            } else {
+                let _ = b.write_char(' ');
+            }
+            let _ = write!(b, "was referenced in CE #{ce}");
             let _ = if slot != NONE {
                 write!(b, " slot {}", self.sym_text(slot))
             } else if field != 0 {
@@ -1635,6 +1654,18 @@ impl Core<'_> {
             );
         } else if e.detail == LoadDetail::NoSuchModule {
             let _ = writeln!(b, "[PRNTUTIL1] Unable to find defmodule {tok}.");
+            // a construct named `MOD::name` of a module not defined: shown up to it
+            let rest = text.get(e.end as usize..).unwrap_or("");
+            if matches!(
+                e.construct,
+                "defrule" | "deffacts" | "deftemplate" | "deffunction"
+            ) && rest.starts_with("::")
+            {
+                let end = rest
+                    .find(|c: char| c.is_whitespace() || c == '(' || c == ')')
+                    .unwrap_or(rest.len());
+                let _ = writeln!(b, "\nERROR:\n({} {tok}{}", e.construct, &rest[..end]);
+            }
         } else if let LoadDetail::NotImplemented { what } = e.detail {
             let _ = writeln!(
                 b,
@@ -1694,7 +1725,12 @@ impl Core<'_> {
         if e.construct.starts_with("defmodule")
             && matches!(
                 e.detail,
-                LoadDetail::Syntax | LoadDetail::NoSuchModule | LoadDetail::InUse { .. }
+                LoadDetail::Syntax
+                    | LoadDetail::NoSuchModule
+                    | LoadDetail::InUse { .. }
+                    | LoadDetail::SyntaxOf {
+                        part: "module specifier"
+                    }
             )
         {
             let _ = b.write_str("\nERROR:\n");
@@ -2001,7 +2037,8 @@ impl Core<'_> {
                 }
                 if end >= text.len() {
                     // input ends inside a command: report where it is incomplete
-                    if !only_blank(&text[pos..end]) {
+                    // (`batch*` drops it silently, as CLIPS does)
+                    if !only_blank(&text[pos..end]) && !self.st.io.quiet_results {
                         self.st.io.line_base = line_base;
                         self.exec_command(&text[pos..end], source);
                         self.st.io.line_base = 0;
@@ -2036,6 +2073,10 @@ impl Core<'_> {
         let saved_quiet = self.st.io.quiet_results;
         self.st.io.quiet_results = !echo;
         let mut done = true;
+        #[cfg(feature = "parser")]
+        {
+            self.st.io.carry.active = false;
+        }
         while !self.st.mode.exit {
             let item = match file.next_command(self) {
                 Ok(Some(item)) => item,
@@ -2048,6 +2089,16 @@ impl Core<'_> {
                     break;
                 }
             };
+            // a batch file this one ran ended inside a command, which goes on in this
+            // file's text (CLIPS reads on in the input outside the inner file)
+            #[cfg(feature = "parser")]
+            if self.st.io.carry.active {
+                let (start, line_base) = (item.end_offset - item.text.len() as u64, item.line_base);
+                if let Some((offset, lines)) = self.join_carried(path, start, line_base) {
+                    file.seek(offset, lines);
+                }
+                continue;
+            }
             let command = &item.text[..item.len];
             if echo {
                 // a long comment block comes alone: echoed without a prompt of its own
@@ -2064,7 +2115,15 @@ impl Core<'_> {
                     self.st.io.prompt_shown = true;
                 }
             }
-            if !only_blank(command) {
+            if !only_blank(command) && item.last {
+                // the file ends inside a command: CLIPS reads on in the input outside
+                // the file (`batch*` drops it); nothing is reported
+                let start = item.end_offset - item.text.len() as u64;
+                let line_base = item.line_base;
+                if echo {
+                    self.carry_incomplete(path, command, start, line_base);
+                }
+            } else if !only_blank(command) {
                 self.st.io.line_base = item.line_base;
                 let moved = self.exec_batch_command(command, path, echo, item.end_offset);
                 self.st.io.line_base = 0;
@@ -2076,6 +2135,134 @@ impl Core<'_> {
         self.st.io.quiet_results = saved_quiet;
         self.st.io.batch_depth -= 1;
         Ok(done)
+    }
+
+    /// The command a batch file left unfinished (`BatchIo::carry`) goes on in the
+    /// batch file `path` from offset `start` (`line_base` newlines before it): echoed
+    /// without prompts as it is read, run once the text closes it (the rest of that
+    /// line dropped, as CLIPS's batch mode does). Returns where `path` goes on after
+    /// it; None when the file ended first (the command goes on further out).
+    #[cfg(feature = "parser")]
+    fn join_carried(&mut self, path: &str, start: u64, line_base: u32) -> Option<(u64, u32)> {
+        use crate::builtins::files::FileBuffer;
+        let carry = core::mem::take(&mut self.st.io.carry);
+        let mut join = file_buffer();
+        let mut len = 0usize;
+        // the command so far, from the inner file
+        loop {
+            if len == join.bytes().len() && !join.enlarge() {
+                return None;
+            }
+            let room = &mut join.bytes_mut()[len..];
+            match self
+                .host
+                .read_file_at(carry.path.as_str(), carry.offset + len as u64, room)
+            {
+                Ok(0) => break,
+                Ok(n) => len += n,
+                Err(_) => return None,
+            }
+        }
+        let carried = len;
+        // this file's text from `start`, read the same way, until the command is whole
+        let mut at = start;
+        let end = loop {
+            if let Some(k) = crate::lexer::item_end(&join.bytes()[..len]) {
+                break Some(k);
+            }
+            if len == join.bytes().len() && !join.enlarge() {
+                return None;
+            }
+            let room = &mut join.bytes_mut()[len..];
+            match self.host.read_file_at(path, at, room) {
+                Ok(0) => break None,
+                Ok(n) => {
+                    len += n;
+                    at += n as u64;
+                }
+                Err(_) => return None,
+            }
+        };
+        let text = core::str::from_utf8(&join.bytes()[..len]).ok()?;
+        let Some(k) = end else {
+            // the file ended too: all of it echoed, the command goes on further out
+            self.write(router::STDOUT, &text[carried..]);
+            self.st.io.carry = carry;
+            // (the outermost file: the command goes on at the prompt, unfinished)
+            if self.st.io.batch_depth == 1 {
+                self.st.mode.unrecoverable = true;
+            }
+            return Some((at, line_base + text[carried..].matches('\n').count() as u32));
+        };
+        // echoed to the end of the line the command ends on, which is dropped
+        let upto = match text[k..].find('\n') {
+            Some(nl) => k + nl + 1,
+            None => len,
+        };
+        let from = carried.min(upto);
+        self.write(router::STDOUT, &text[from..upto]);
+        let command = &text[..k];
+        self.exec_command(command, path);
+        let rest = (upto - carried.min(upto)) as u64;
+        Some((
+            start + rest,
+            line_base + text[from..upto].matches('\n').count() as u32,
+        ))
+    }
+
+    /// A batch file with echo ended inside `command` (at file offset `start`): it goes
+    /// on in the outer input (`BatchIo::carry`). CLIPS prints nothing for it; we print
+    /// only our position line (where the command is incomplete), and the command line
+    /// exits non-zero.
+    fn carry_incomplete(&mut self, path: &str, command: &str, start: u64, line_base: u32) {
+        let cp = self.checkpoint();
+        let mut p = Parser::new(self, command);
+        p.check_only = true;
+        let item = p.next_item();
+        if let Ok(Item::Command(_)) = item {
+            self.rollback(cp);
+        }
+        // (a batch file run from another: the command goes on in that file, where it
+        // may close; only the outermost one's end is reported, where input goes on
+        // at the prompt)
+        if self.st.io.batch_depth > 1 {
+            self.set_carry(path, start, line_base);
+            return;
+        }
+        if let Err(e) = item {
+            if e.detail != LoadDetail::Checked {
+                let mut b: TextBuf<400> = TextBuf::new();
+                if !command.ends_with('\n') {
+                    let _ = b.write_char('\n');
+                }
+                let _ = writeln!(
+                    b,
+                    "--> {}:{}:{}: expected {}",
+                    path,
+                    e.line + line_base,
+                    e.col,
+                    e.expected
+                );
+                self.write(router::WERROR, b.as_str());
+            }
+        }
+        self.st.mode.unrecoverable = true;
+        self.set_carry(path, start, line_base);
+    }
+
+    /// Remembers the unfinished command of batch file `path` (`BatchIo::carry`).
+    fn set_carry(&mut self, path: &str, start: u64, line_base: u32) {
+        #[cfg(feature = "parser")]
+        {
+            let carry = &mut self.st.io.carry;
+            carry.active = true;
+            carry.path.clear();
+            let _ = carry.path.write_str(path);
+            carry.offset = start;
+            carry.lines = line_base;
+        }
+        #[cfg(not(feature = "parser"))]
+        let _ = (path, start, line_base);
     }
 
     /// Runs one command of a batch file (`path`) that ends at byte `end`. With `echo`

@@ -421,6 +421,11 @@ pub struct BatchIo {
     /// batch input a line at a time, so they lead the next echoed line.
     #[cfg(feature = "parser")]
     pub unechoed: crate::value::TextBuf<80>,
+    /// A batch file (with echo) ended inside a command: its file and the offset where
+    /// that command starts (`lines`: the newlines before it). As in CLIPS the command
+    /// goes on in the input outside the file (an enclosing batch file, the prompt).
+    #[cfg(feature = "parser")]
+    pub carry: BatchInput,
     /// How many batch files are running inside each other.
     pub batch_depth: u8,
     /// `batch*`: commands print no results.
@@ -446,6 +451,8 @@ impl BatchIo {
             batch_input: BatchInput::new(),
             #[cfg(feature = "parser")]
             unechoed: crate::value::TextBuf::new(),
+            #[cfg(feature = "parser")]
+            carry: BatchInput::new(),
             batch_depth: 0,
             quiet_results: false,
             prompt_shown: false,

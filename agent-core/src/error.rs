@@ -755,6 +755,9 @@ pub enum LoadDetail {
         slot: Ix,
         ce: u8,
         field: u8,
+        /// Read in a call (`:(...)`, `=(...)`, a test), which CLIPS names; else a
+        /// plain constraint (`?x&~?y`).
+        in_call: bool,
     },
     /// `[CSTRCPSR2]`: a construct keyword not followed by a name (the offending
     /// token, `)` when there is nothing).

@@ -396,6 +396,7 @@ trait CliEngine {
     fn exec_command(&mut self, host: &mut dyn Host, text: &str, source: &str) -> bool;
     fn exit_status(&self) -> i32;
     fn hit_unrecoverable(&self) -> bool;
+    fn take_batch_carry(&mut self) -> Option<(String, u64)>;
 }
 
 macro_rules! cli_engine {
@@ -426,6 +427,9 @@ macro_rules! cli_engine {
             }
             fn hit_unrecoverable(&self) -> bool {
                 <$ty>::hit_unrecoverable(self)
+            }
+            fn take_batch_carry(&mut self) -> Option<(String, u64)> {
+                <$ty>::take_batch_carry(self).map(|(p, o)| (p.to_string(), o))
             }
         }
     };
@@ -549,9 +553,22 @@ fn read_text(path: &str) -> Result<String, String> {
     })
 }
 
+/// What a batch file that ended inside a command left of it (CLIPS reads on in the
+/// prompt's input): the file's text from where the command starts.
+fn batch_carry(engine: &mut dyn CliEngine) -> String {
+    let Some((path, offset)) = engine.take_batch_carry() else {
+        return String::new();
+    };
+    let text = std::fs::read(&path).unwrap_or_default();
+    let start = usize::try_from(offset)
+        .unwrap_or(usize::MAX)
+        .min(text.len());
+    String::from_utf8_lossy(&text[start..]).into_owned()
+}
+
 /// The prompt loop on standard input.
 fn interactive(engine: &mut dyn CliEngine, host: &mut CliHost) {
-    let mut buf = String::new();
+    let mut buf = batch_carry(engine);
     loop {
         if buf.trim().is_empty() {
             buf.clear();
@@ -574,6 +591,7 @@ fn interactive(engine: &mut dyn CliEngine, host: &mut CliHost) {
             if !engine.exec_command(host, &cmd, "stdin") {
                 return;
             }
+            buf = batch_carry(engine);
         }
     }
 }

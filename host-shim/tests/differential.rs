@@ -543,4 +543,12 @@ differential_programs! {
     p891_or_branch_of_several_ces_marks => "891-or-branch-of-several-ces-marks",
     p892_dummy_address_defaults => "892-dummy-address-defaults",
     p893_allowed_instance_names_classes => "893-allowed-instance-names-classes",
+    p950_batch_file_ends_inside_command => "950-batch-file-ends-inside-command",
+    p953_construct_name_arguments => "953-construct-name-arguments",
+    p954_clear_keeps_settings => "954-clear-keeps-settings",
+    p955_construct_of_unknown_module => "955-construct-of-unknown-module",
+    p956_fact_function_checks => "956-fact-function-checks",
+    p957_variable_referenced_before_defined => "957-variable-referenced-before-defined",
+    p958_sort_function_argument => "958-sort-function-argument",
+    p959_undefine_star_current_module => "959-undefine-star-current-module",
 }

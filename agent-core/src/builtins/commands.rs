@@ -130,10 +130,13 @@ fn facts(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
                 k += 1;
             }
             _ => {
+                // (a negative integer is no positive number; anything else no integer)
                 let expected = if i == 0 {
                     "symbol or positive number"
-                } else {
+                } else if matches!(cx.arg(a, i), Value::Int(_)) {
                     "positive number"
+                } else {
+                    "integer"
                 };
                 // (the module a first argument named is left)
                 #[cfg(feature = "modules")]
@@ -232,7 +235,7 @@ fn watch_bits(cx: &Core<'_>, a: Args, func: &'static str) -> Result<u16, EvalErr
         return Err(EvalError::message(crate::error::Message::NotTraced));
     }
     for i in 0..a.len as usize {
-        let s = cx.arg_lexeme(a, i, func)?;
+        let s = cx.arg_symbol(a, i, func)?;
         bits |= match watch_item(cx.sym_text(s)) {
             WatchItem::Traced(b) => u16::from(b),
             #[cfg(feature = "extras")]
@@ -558,7 +561,7 @@ fn set_strategy(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 /// Without `extras` (the agent image) the agenda has the depth strategy only.
 #[cfg(not(feature = "extras"))]
 fn set_strategy(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    let s = cx.arg_lexeme(a, 0, "set-strategy")?;
+    let s = cx.arg_symbol(a, 0, "set-strategy")?;
     if cx.sym_text(s) != "depth" {
         return Err(EvalError::message(crate::error::Message::DepthStrategyOnly));
     }
@@ -664,7 +667,7 @@ pub(super) fn unable(cx: &mut Core<'_>, what: Unable, kind: &str, name: Ix) {
 }
 
 fn ppdefrule(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    let name = cx.arg_lexeme(a, 0, "ppdefrule")?;
+    let name = cx.arg_symbol(a, 0, "ppdefrule")?;
     let Some(r) = find_rule(cx, name) else {
         unable(cx, Unable::Find, "defrule", name);
         return Ok(Value::Void);
@@ -680,7 +683,7 @@ fn ppdefrule(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 }
 
 fn undefrule(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    let name = cx.arg_lexeme(a, 0, "undefrule")?;
+    let name = cx.arg_symbol(a, 0, "undefrule")?;
     if cx.st.net.matching > 0 {
         // the network may not change while a test in it runs
         unable(cx, Unable::Delete, "defrule", name);
@@ -688,7 +691,8 @@ fn undefrule(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     }
     // a compiled rule base's network read in place is copied into the arena first
     cx.network_writable()?;
-    if cx.sym_text(name) == "*" {
+    // (a rule named `*` goes alone, as in CLIPS; the next `*` takes all)
+    if cx.sym_text(name) == "*" && find_rule(cx, name).is_none() {
         // the current module's rules in definition order; `remove_rule` takes a
         // rule's first disjunct
         for r in 0..cx.st.pools.nrules {
@@ -746,7 +750,7 @@ fn rule_firing(cx: &Core<'_>, mut r: Ix) -> bool {
 
 /// `(matches rule [verbose|succinct|terse])` (`super::matches`).
 fn matches(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    let name = cx.arg_lexeme(a, 0, "matches")?;
+    let name = cx.arg_symbol(a, 0, "matches")?;
     let Some(r) = find_rule(cx, name) else {
         unable(cx, Unable::Find, "defrule", name);
         return Ok(Value::Sym(SYM_FALSE));
@@ -803,6 +807,13 @@ fn load_impl(cx: &mut Core<'_>, a: Args, quiet: bool) -> Result<Value, EvalError
                 );
                 correcting = true;
             }
+            // skipping, CLIPS's scanner meets the file's end inside a string
+            if item.last && ends_in_string(item.text) {
+                cx.write(
+                    router::WERROR,
+                    "\n[SCANNER1] Encountered End-Of-File while scanning a string\n",
+                );
+            }
             ok = false;
             continue;
         }
@@ -819,6 +830,18 @@ fn load_impl(cx: &mut Core<'_>, a: Args, quiet: bool) -> Result<Value, EvalError
         cx.write(router::STDOUT, "\n");
     }
     Ok(Value::Sym(if ok { SYM_TRUE } else { SYM_FALSE }))
+}
+
+/// Whether text ends inside a string (its last token an unterminated string).
+fn ends_in_string(text: &str) -> bool {
+    let mut lx = crate::lexer::Lexer::new(text);
+    loop {
+        match lx.next_token().tok {
+            crate::lexer::Tok::Eof => return false,
+            crate::lexer::Tok::Bad => return true,
+            _ => {}
+        }
+    }
 }
 
 /// Whether a file item holds no token (spaces and comments at the end of the file).
@@ -1073,7 +1096,17 @@ pub(super) fn module_view(
                 one: current,
             }));
         }
-        let s = cx.arg_lexeme(a, 0, func)?;
+        let s = match cx.arg(a, 0) {
+            Value::Sym(s) => s,
+            // (CLIPS's deffunction listings take any non-symbol for no module's name)
+            _ if !func.contains("deffunction") => {
+                return Err(EvalError::wrong_type(func, 1, "symbol"))
+            }
+            _ => {
+                cx.write_error_message(EvalError::wrong_type(func, 1, "defmodule name"));
+                return Ok(None);
+            }
+        };
         if cx.sym_text(s) == "*" {
             return Ok(Some(ModuleView {
                 all: true,
@@ -1095,7 +1128,16 @@ pub(super) fn module_view(
         if a.len == 0 {
             return Ok(Some(ModuleView { all: false, one }));
         }
-        let s = cx.arg_lexeme(a, 0, func)?;
+        let s = match cx.arg(a, 0) {
+            Value::Sym(s) => s,
+            _ if !func.contains("deffunction") => {
+                return Err(EvalError::wrong_type(func, 1, "symbol"))
+            }
+            _ => {
+                cx.write_error_message(EvalError::wrong_type(func, 1, "defmodule name"));
+                return Ok(None);
+            }
+        };
         match cx.sym_text(s) {
             "*" => Ok(Some(ModuleView { all: true, one })),
             "MAIN" => Ok(Some(ModuleView { all: false, one })),

@@ -368,9 +368,10 @@ fn callee_named(cx: &mut Core<'_>, name: crate::value::SymId) -> Option<Callee> 
 #[cfg_attr(not(feature = "extras"), allow(dead_code))]
 pub(super) fn sort(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     const NOT_A_FUNCTION: &str = "function name, deffunction name, or defgeneric name";
+    // (CLIPS wants a symbol first: anything else is no name at all)
     let callee = match cx.arg(a, 0) {
-        Value::Sym(s) | Value::Str(s) => callee_named(cx, s),
-        _ => None,
+        Value::Sym(s) => callee_named(cx, s),
+        _ => return Err(EvalError::wrong_type("sort", 1, "symbol")),
     };
     let Some(callee) = callee else {
         return Err(EvalError::wrong_type("sort", 1, NOT_A_FUNCTION));

@@ -141,7 +141,8 @@ fn names_list(
     a: Args,
     func: &'static str,
 ) -> Result<Value, EvalError> {
-    if a.len == 1 && !matches!(cx.arg(a, 0), Value::Sym(_)) {
+    // (the deffunction list takes any non-symbol for no module's name: `module_view`)
+    if a.len == 1 && !matches!(cx.arg(a, 0), Value::Sym(_)) && !matches!(kind, Kind::Deffunction) {
         let mut b: TextBuf<120> = TextBuf::new();
         let _ = writeln!(
             b,
@@ -418,7 +419,8 @@ fn write_pp(
 /// ordered fact's implied template or `initial-fact`.
 fn ppdeftemplate(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let name = pp_name(cx, a, "ppdeftemplate", "deftemplate")?;
-    match cx.find_template(name) {
+    // (`MOD::name` is module MOD's own, exported or not, as in CLIPS)
+    match find_pp_construct(cx, name, PpKind::Template) {
         Some(t) => {
             let text = cx.templates[t as usize].text;
             let mut module: TextBuf<64> = TextBuf::new();
@@ -498,6 +500,7 @@ fn ppdefglobal(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 pub(super) enum PpKind {
     Function,
     Global,
+    Template,
 }
 
 /// The deffunction or defglobal `name` names: `MODULE::x` is module MODULE's own `x`
@@ -506,16 +509,19 @@ pub(super) fn find_pp_construct(cx: &mut Core<'_>, name: SymId, kind: PpKind) ->
     let (count, class) = match kind {
         PpKind::Function => (cx.st.pools.nfuncs, crate::module::class::FUNCTION),
         PpKind::Global => (cx.st.pools.nglobals, crate::module::class::GLOBAL),
+        PpKind::Template => (cx.st.pools.ntemplates, crate::module::class::TEMPLATE),
     };
     let name_of = |cx: &Core<'_>, i: Ix| match kind {
         PpKind::Function => cx.funcs[i as usize].name,
         PpKind::Global => cx.globals[i as usize].name,
+        PpKind::Template => cx.templates[i as usize].name,
     };
     #[cfg(feature = "modules")]
     {
         let module_of = |cx: &Core<'_>, i: Ix| match kind {
             PpKind::Function => cx.module_of_function(i),
             PpKind::Global => cx.module_of_global(i),
+            PpKind::Template => cx.module_of_template(i),
         };
         if let Some((m, bare)) = cx.resolve_qualified(name) {
             return (0..count).find(|&i| name_of(cx, i) == bare && module_of(cx, i) == m);
@@ -532,9 +538,33 @@ pub(super) fn find_pp_construct(cx: &mut Core<'_>, name: SymId, kind: PpKind) ->
 }
 
 fn undeffacts(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    let name = cx.arg_lexeme(a, 0, "undeffacts")?;
+    let name = cx.arg_symbol(a, 0, "undeffacts")?;
+    // (a deffacts named `*` goes alone, as in CLIPS; the next `*` takes all)
+    let star = cx.sym_text(name) == "*" && find_deffacts(cx, name).is_none();
     match cx.sym_text(name) {
-        "*" => {
+        // the current module's deffacts, as in CLIPS (the others move up)
+        #[cfg(feature = "modules")]
+        "*" if star => {
+            let current = cx.current_module();
+            let n = cx.st.pools.ndeffacts as usize;
+            let mut kept = 0;
+            for d in 0..n {
+                if cx.module_of_deffacts(d as Ix) == current {
+                    continue;
+                }
+                cx.deffacts[kept] = cx.deffacts[d];
+                if n <= cx.deffacts_module.len() {
+                    cx.deffacts_module[kept] = cx.deffacts_module[d];
+                }
+                kept += 1;
+            }
+            cx.st.pools.ndeffacts = kept as Ix;
+            if current == crate::module::MAIN {
+                cx.st.mode.initial_deffacts = false;
+            }
+        }
+        #[cfg(not(feature = "modules"))]
+        "*" if star => {
             cx.st.pools.ndeffacts = 0;
             cx.st.mode.initial_deffacts = false;
         }
@@ -608,8 +638,9 @@ fn undefine_target(cx: &mut Core<'_>, how: &Undefine, name: SymId) -> Option<Ix>
 /// without a name (indices compiled into other constructs stay valid), as a redefined
 /// template's does.
 fn undefine(cx: &mut Core<'_>, a: Args, how: &Undefine) -> Result<Value, EvalError> {
-    let name = cx.arg_lexeme(a, 0, how.func)?;
-    let all = cx.sym_text(name) == "*";
+    let name = cx.arg_symbol(a, 0, how.func)?;
+    // (one named `*` goes alone, as in CLIPS; the next `*` takes all)
+    let all = cx.sym_text(name) == "*" && undefine_target(cx, how, name).is_none();
     if !all {
         let Some(i) = undefine_target(cx, how, name) else {
             super::commands::unable(cx, Unable::Find, how.kind, name);
@@ -629,6 +660,19 @@ fn undefine(cx: &mut Core<'_>, a: Args, how: &Undefine) -> Result<Value, EvalErr
         let this = (how.name)(cx, i);
         if this == NONE {
             continue;
+        }
+        // `*` is the current module's constructs, as in CLIPS
+        #[cfg(feature = "modules")]
+        {
+            use crate::module::class;
+            let owner = match how.class {
+                class::TEMPLATE => cx.module_of_template(i),
+                class::FUNCTION => cx.module_of_function(i),
+                _ => cx.module_of_global(i),
+            };
+            if owner != cx.current_module() {
+                continue;
+            }
         }
         if (how.stays)(cx, i, all) {
             super::commands::unable(cx, Unable::Delete, how.kind, this);

@@ -783,10 +783,11 @@ fn duplicate(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
 
 fn fact_slot_value(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let fv = cx.arg(a, 0);
+    // (the slot name's type is checked before the fact is looked for)
+    let name = cx.arg_symbol(a, 1, "fact-slot-value")?;
     let Some(f) = cx.fact_arg(fv) else {
         return no_such_fact(cx, fv);
     };
-    let name = cx.arg_lexeme(a, 1, "fact-slot-value")?;
     slot_of_fact(cx, f, name)
 }
 
@@ -846,7 +847,8 @@ fn no_such_fact(cx: &mut Core<'_>, fv: Value) -> Result<Value, EvalError> {
 
 fn slot_of_fact(cx: &mut Core<'_>, f: Ix, name: SymId) -> Result<Value, EvalError> {
     let tmpl = cx.facts[f as usize].tmpl;
-    let slot = if cx.templates[tmpl as usize].implied {
+    // an ordered fact's one slot is `implied`; another name is no slot of it
+    let slot = if cx.templates[tmpl as usize].implied && cx.sym_text(name) == "implied" {
         0
     } else {
         match cx.find_slot(tmpl, name) {
@@ -888,7 +890,8 @@ fn fact_index(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 
 fn fact_existp(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let v = cx.arg(a, 0);
-    if matches!(v, Value::Sym(_)) {
+    // (a negative index is no fact index either)
+    if matches!(v, Value::Sym(_)) || matches!(v, Value::Int(n) if n < 0) {
         report_not_a_fact(cx, "fact-existp");
     }
     Ok(Core::bool_value(cx.fact_arg(v).is_some()))

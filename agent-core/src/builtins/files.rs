@@ -167,6 +167,13 @@ impl<B: FileBuffer> FileItems<B> {
         self.col = 0;
     }
 
+    /// Goes on from file offset `offset`, with `lines` newlines before it (a position
+    /// before or after the one read to).
+    pub fn seek(&mut self, offset: u64, lines: u32) {
+        self.skip_to(offset, 0);
+        self.lines = lines;
+    }
+
     /// Reads the first bytes, so a missing file is reported before anything runs.
     pub fn open(&mut self, cx: &mut Core<'_>) -> Result<(), FileError> {
         self.fill(cx)

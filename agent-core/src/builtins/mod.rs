@@ -497,6 +497,19 @@ impl Core<'_> {
         }
     }
 
+    /// A construct, module or keyword name argument: a symbol only, as CLIPS's
+    /// commands taking a name want it (a string is `[ARGACCES5]` "symbol").
+    pub fn arg_symbol(&self, a: Args, i: usize, func: &'static str) -> Result<SymId, EvalError> {
+        match self.arg(a, i) {
+            Value::Sym(s) => Ok(s),
+            _ => Err(EvalError::wrong_type(
+                func,
+                crate::error::arg_no(i),
+                "symbol",
+            )),
+        }
+    }
+
     /// Multifield argument: its span in scratch.
     pub fn arg_multi(&self, a: Args, i: usize, func: &'static str) -> Result<MfSpan, EvalError> {
         match self.arg(a, i) {

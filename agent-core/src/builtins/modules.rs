@@ -51,7 +51,7 @@ fn module_arg(
     i: usize,
     func: &'static str,
 ) -> Result<Option<ModId>, EvalError> {
-    let s = cx.arg_lexeme(a, i, func)?;
+    let s = cx.arg_symbol(a, i, func)?;
     match cx.find_module(cx.sym_text(s)) {
         Some(m) => Ok(Some(m)),
         None => {

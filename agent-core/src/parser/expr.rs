@@ -109,7 +109,7 @@ impl<'s> Parser<'s, '_, '_> {
     /// deffunction's actions or a `bind` at the prompt (elsewhere our syntax error).
     fn undefined_global(&self, t: Token<'s>, bind: bool) -> crate::error::LoadError {
         if self.scope == Scope::Lhs && self.construct == "defrule" {
-            return self.unbound_in_lhs(t);
+            return self.unbound_in_lhs(t, true);
         }
         let mut e = self.err(t, "a defined global variable");
         let clips = match self.scope {
@@ -187,7 +187,7 @@ impl<'s> Parser<'s, '_, '_> {
             _ if self.construct == "deffacts" => {
                 Err(self.deffacts_variable(t, "a constant (deffacts take no variables)"))
             }
-            Scope::Lhs if self.construct == "defrule" => Err(self.unbound_in_lhs(t)),
+            Scope::Lhs if self.construct == "defrule" => Err(self.unbound_in_lhs(t, true)),
             Scope::Frame if matches!(self.construct, "defrule" | "deffunction") => {
                 // CLIPS's `[PRCCODE3]`, echoing the whole construct once it is read
                 // (another error found on the way comes first); the variable reads
@@ -221,12 +221,13 @@ impl<'s> Parser<'s, '_, '_> {
         e
     }
 
-    fn unbound_in_lhs(&self, t: Token<'s>) -> crate::error::LoadError {
+    pub(super) fn unbound_in_lhs(&self, t: Token<'s>, in_call: bool) -> crate::error::LoadError {
         let mut e = self.err(t, "a bound variable");
         e.detail = crate::error::LoadDetail::UnboundInLhs {
             slot: self.lhs_slot.map_or(NONE, |d| d.name),
             ce: self.ce_count,
             field: self.lhs_field,
+            in_call,
         };
         e
     }

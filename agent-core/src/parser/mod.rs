@@ -285,7 +285,12 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
             start: at.start as u32,
             end: at.end as u32,
             detail: crate::error::LoadDetail::Syntax,
-            echo_end: 0,
+            // the input ended inside a rule or deffunction: CLIPS shows all of it
+            echo_end: if at.tok == Tok::Eof && matches!(self.construct, "defrule" | "deffunction") {
+                at.end as u32
+            } else {
+                0
+            },
             echo_tail: crate::error::EchoTail::Normal,
         }
     }
@@ -394,6 +399,8 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
     pub(super) fn missing_name(&self, at: Token<'s>, expected: &'static str) -> LoadError {
         let mut e = self.err(at, expected);
         e.detail = crate::error::LoadDetail::MissingName;
+        // (no construct to show at the input's end: CSTRCPSR2 shows what it read)
+        e.echo_end = 0;
         e
     }
 

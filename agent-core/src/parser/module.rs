@@ -14,7 +14,10 @@ impl<'s> Parser<'s, '_, '_> {
         let nt = self.next();
         let name = match nt.tok {
             Tok::Symbol(s) if split_qualified(s).is_none() => s,
-            Tok::Symbol(_) => return Err(self.err(nt, "a defmodule name")),
+            // a module specifier in a defmodule's name: CLIPS's "module specifier"
+            Tok::Symbol(_) => {
+                return Err(self.syntax_of(nt, "a defmodule name", "module specifier"))
+            }
             _ => return Err(self.missing_name(nt, "a defmodule name")),
         };
         let slot: ModId = match self.cx.find_module(name) {
@@ -275,9 +278,15 @@ impl<'s> Parser<'s, '_, '_> {
         match split_qualified(name) {
             None => Ok(name),
             Some((m, bare)) => {
-                let Some(m) = self.cx.find_module(m) else {
-                    return Err(self.err(at, "the name of a defined module before '::'"));
+                let Some(found) = self.cx.find_module(m) else {
+                    // CLIPS: `[PRNTUTIL1] Unable to find defmodule M.`, the construct
+                    // shown up to its name
+                    let mut e = self.err(at, "the name of a defined module before '::'");
+                    e.detail = LoadDetail::NoSuchModule;
+                    e.end = e.start + m.len() as u32;
+                    return Err(e);
                 };
+                let m = found;
                 if bare.is_empty() || split_qualified(bare).is_some() {
                     return Err(self.err(at, "a construct name after the module name"));
                 }

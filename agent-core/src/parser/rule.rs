@@ -1938,12 +1938,8 @@ impl<'s> Parser<'s, '_, '_> {
                         return Err(e);
                     }
                     Some(_) => self.var_ref(t, name, false)?,
-                    None => {
-                        return Err(self.err(
-                            t,
-                            "a variable bound before (first use must lead the constraint)",
-                        ))
-                    }
+                    // CLIPS's `[ANALYSIS4]`: referenced before a pattern binds it
+                    None => return Err(self.unbound_in_lhs(t, false)),
                 };
                 let this = self.this_field(p, locv, desc)?;
                 self.node2(Op::Eq2, this, v)

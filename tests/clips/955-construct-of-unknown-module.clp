@@ -1,0 +1,17 @@
+; A construct named `MOD::name` of a module that is not defined: [PRNTUTIL1] Unable to
+; find defmodule MOD, the construct shown up to its name; nothing is defined.
+(watch facts)
+(watch rules)
+(defrule BOGUS::r1 =>)
+(deffacts BOGUS::d1 (a))
+(deftemplate BOGUS::t1 (slot x))
+(deffunction BOGUS::f1 () 1)
+(defmodule A)
+(defrule B::r2 (a ?x) => (printout t ?x crlf))
+(defrule A::r3 (a ?x) => (printout t ?x crlf))
+(get-current-module)
+(list-defrules *)
+(list-deffacts *)
+(list-deftemplates *)
+(list-deffunctions *)
+(exit)
