@@ -10,6 +10,7 @@
 (deffunction f () 1)
 (defmodule M)
 (undefrule "r")
+(undefrule [r])
 (undeffacts "d")
 (undeftemplate "t")
 (undefglobal "g")

@@ -4,6 +4,7 @@
 (sort 8)
 (sort 8.1)
 (sort "a")
+(sort [a])
 (sort a)
 (sort >)
 (sort > 3 2 5 1 2)

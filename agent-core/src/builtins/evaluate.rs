@@ -370,7 +370,10 @@ pub(super) fn sort(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     const NOT_A_FUNCTION: &str = "function name, deffunction name, or defgeneric name";
     // (CLIPS wants a symbol first: anything else is no name at all)
     let callee = match cx.arg(a, 0) {
-        Value::Sym(s) => callee_named(cx, s),
+        // (an instance name `[x]` is no symbol either)
+        Value::Sym(s) if crate::value::instance_name_body(cx.sym_text(s)).is_none() => {
+            callee_named(cx, s)
+        }
         _ => return Err(EvalError::wrong_type("sort", 1, "symbol")),
     };
     let Some(callee) = callee else {

@@ -501,7 +501,8 @@ impl Core<'_> {
     /// commands taking a name want it (a string is `[ARGACCES5]` "symbol").
     pub fn arg_symbol(&self, a: Args, i: usize, func: &'static str) -> Result<SymId, EvalError> {
         match self.arg(a, i) {
-            Value::Sym(s) => Ok(s),
+            // (an instance name `[x]` is no symbol)
+            Value::Sym(s) if crate::value::instance_name_body(self.sym_text(s)).is_none() => Ok(s),
             _ => Err(EvalError::wrong_type(
                 func,
                 crate::error::arg_no(i),
