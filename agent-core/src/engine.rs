@@ -1443,6 +1443,22 @@ impl Core<'_> {
     /// region at the top of scratch (compacted on each store) so it outlives the
     /// command that built it.
     pub fn set_global(&mut self, g: Ix, v: Value) -> Result<(), CapacityError> {
+        self.set_global_with::<false>(g, v)
+    }
+
+    /// `set_global` that first prints the `watch globals` trace of the change (`bind`):
+    /// the watch flag is read here, next to the store, so the caller pays one call.
+    #[cfg(feature = "extras")]
+    pub(crate) fn set_global_traced(&mut self, g: Ix, v: Value) -> Result<(), CapacityError> {
+        self.set_global_with::<true>(g, v)
+    }
+
+    #[inline(always)]
+    fn set_global_with<const TRACE: bool>(&mut self, g: Ix, v: Value) -> Result<(), CapacityError> {
+        #[cfg(feature = "extras")]
+        if TRACE {
+            self.trace_global(g, v);
+        }
         self.st.eval.effects = self.st.eval.effects.wrapping_add(1);
         let len = self.scratch.len();
         let region = len - self.st.eval.gmf_used as usize;

@@ -487,7 +487,8 @@ fn store_bound(cx: &mut Core<'_>, target: Ix, value: Value) -> Result<(), EvalEr
         }
         Op::Global => {
             #[cfg(feature = "extras")]
-            cx.trace_global(t.data, value);
+            cx.set_global_traced(t.data, value)?;
+            #[cfg(not(feature = "extras"))]
             cx.set_global(t.data, value)?
         }
         _ => {
