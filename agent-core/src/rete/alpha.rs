@@ -599,6 +599,9 @@ impl Core<'_> {
             self.tokens[fam].prev_sib = t;
         }
         self.facts[fact as usize].first_am = t;
+        #[cfg(feature = "host-speedups")]
+        self.index_insert_as(t, alpha, PatBinding { fact, marks });
+        #[cfg(not(feature = "host-speedups"))]
         self.index_insert(t);
         let mut j = self.alphas[alpha as usize].succ;
         while j != JoinId::NONE {

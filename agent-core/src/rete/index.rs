@@ -986,9 +986,57 @@ impl Core<'_> {
 
     /// Adds a new alpha match (already in its node's memory) to the index. (Host:
     /// inlined into the alpha match and beta paths, as before the or-lookup stamp.)
-    #[cfg_attr(feature = "host-speedups", inline(always))]
+    #[cfg(feature = "host-speedups")]
+    #[inline(always)]
+    pub(crate) fn index_insert(&mut self, am: TokenId) {
+        let tk = self.tokens[am];
+        let b = PatBinding {
+            fact: tk.fact,
+            marks: tk.marks,
+        };
+        self.index_insert_as(am, tk.alpha(), b);
+    }
+
+    /// Adds a new alpha match (already in its node's memory) to the index. (Image:
+    /// its own copy of `index_insert_as`'s walk, which kept its code as it was.)
+    #[cfg(not(feature = "host-speedups"))]
     pub(crate) fn index_insert(&mut self, am: TokenId) {
         let alpha = self.tokens[am].alpha();
+        if !self.alpha_indexed(alpha) {
+            return;
+        }
+        let tk = self.tokens[am];
+        let key = self.alpha_key(
+            alpha,
+            PatBinding {
+                fact: tk.fact,
+                marks: tk.marks,
+            },
+        );
+        let b = self.bucket(alpha, key);
+        let head = self.amem_buckets[b as usize];
+        #[cfg(not(feature = "grow"))]
+        let kept = b;
+        #[cfg(feature = "grow")]
+        let kept = alpha_tag(alpha, key);
+        self.tokens[am].parent = TokenId(kept);
+        self.tokens[am].am_next = TokenId::NONE;
+        if head == TokenId::NONE {
+            self.tokens[am].am_prev = am;
+            self.amem_buckets[b as usize] = am;
+        } else {
+            let tail = self.tokens[head].am_prev;
+            self.tokens[tail].am_next = am;
+            self.tokens[am].am_prev = tail;
+            self.tokens[head].am_prev = am;
+        }
+    }
+
+    /// `index_insert` for alpha match `am` of node `alpha` binding `b` (host: the
+    /// caller that has just written the token passes these, not read back from it).
+    #[cfg(feature = "host-speedups")]
+    #[inline(always)]
+    pub(crate) fn index_insert_as(&mut self, am: TokenId, alpha: Ix, b: PatBinding) {
         if !self.alpha_indexed(alpha) {
             return;
         }
@@ -1005,14 +1053,7 @@ impl Core<'_> {
             }
             with_or && n.nrhash > 0
         };
-        let tk = self.tokens[am];
-        let key = self.alpha_key(
-            alpha,
-            PatBinding {
-                fact: tk.fact,
-                marks: tk.marks,
-            },
-        );
+        let key = self.alpha_key(alpha, b);
         let b = self.bucket(alpha, key);
         let head = self.amem_buckets[b as usize];
         // (with `grow` the tag the bucket comes from, see `alpha_tag`)
