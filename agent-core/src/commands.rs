@@ -343,6 +343,8 @@ impl Core<'_> {
             self.st.facts.values_top = 0;
         }
         self.st.facts.next_fact_num = 0;
+        #[cfg(feature = "extras")]
+        self.st.timetags.reset();
         // globals back to their initial values, unless `(set-reset-globals FALSE)`
         #[cfg(feature = "extras")]
         let nglobals = if self.st.mode.keep_globals {

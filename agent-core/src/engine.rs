@@ -696,6 +696,10 @@ pub struct State {
     /// `clear`).
     #[cfg(feature = "extras")]
     pub tools: crate::builtins::tools::ToolsState,
+    /// What `timetag` needs to give a fact CLIPS's time tag (feature `extras`; afresh
+    /// at `clear`, rebased at `reset`).
+    #[cfg(feature = "extras")]
+    pub timetags: crate::builtins::tools::Timetags,
     /// The profiler (feature `extras`; its settings kept across `clear`).
     #[cfg(feature = "extras")]
     pub profile: crate::builtins::profile::Profile,
@@ -927,6 +931,8 @@ impl State {
             text_regions: crate::builtins::textpro::TextRegions::new(),
             #[cfg(feature = "extras")]
             tools: crate::builtins::tools::ToolsState::new(),
+            #[cfg(feature = "extras")]
+            timetags: crate::builtins::tools::Timetags::new(),
             #[cfg(feature = "extras")]
             profile: crate::builtins::profile::Profile::new(),
             #[cfg(feature = "grow")]

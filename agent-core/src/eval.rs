@@ -1004,6 +1004,8 @@ impl Core<'_> {
             && !(func == "sort" && expected != "symbol")
             // set-locale checks its argument in its body (CLIPS: no argument types)
             && !(cfg!(feature = "extras") && func == "set-locale")
+            // an unknown item is found in the body, after the symbol passed
+            && !(func == "get-watch-item" && expected == "watchable symbol")
             && matches!(
                 self.exprs[node as usize].op,
                 Op::Int | Op::Float | Op::Sym | Op::Str

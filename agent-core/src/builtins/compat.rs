@@ -2,7 +2,7 @@
 //! its rules call none of them): hyperbolic and reciprocal trigonometry, `deg-grad` and
 //! `grad-deg`, the older names CLIPS still accepts (`!=`, `member`, `nth`, `mv-append`,
 //! `str-explode`, `str-implode`, `mv-subseq`, `mv-delete`, `mv-replace`, `subset`,
-//! `wordp`), `pointerp`, `setgen`, `system` (as Debian builds CLIPS: it runs nothing), `get-`/`set-dynamic-constraint-checking`,
+//! `wordp`, `sequencep`), `pointerp`, `setgen`, `system` (as Debian builds CLIPS: it runs nothing), `get-`/`set-dynamic-constraint-checking`,
 //! `set-fact-duplication`, and the
 //! engine settings this engine has one value of (`get-`/`set-auto-float-dividend`,
 //! `-salience-evaluation`, `-sequence-operator-recognition`,
@@ -72,6 +72,7 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("str-implode", 1, 1, super::multifield::implode).args(&[M], Any).on_error(OnError::EmptyString),
     Builtin::eager("subset", 2, 2, super::multifield::subsetp).args(&[M, M], Any).on_error(OnError::False),
     Builtin::eager("wordp", 1, 1, super::predicates::symbolp).on_error(OnError::False).total(),
+    Builtin::eager("sequencep", 1, 1, super::predicates::multifieldp).on_error(OnError::False).total().returns(super::describe::Returns::Symbol),
     Builtin::eager("mv-subseq", 3, 3, mv_subseq).args(&[I, I, M], Any).on_error(OnError::EmptyMultifield),
     Builtin::eager("mv-delete", 2, 2, mv_delete).args(&[I, M], Any).on_error(OnError::EmptyMultifield),
     Builtin::eager("mv-replace", 3, 3, mv_replace).args(&[I, M], Any).on_error(OnError::EmptyMultifield),

@@ -31,6 +31,9 @@ pub enum ArgType {
     Multifield,
     /// No literal is a fact address.
     FactAddress,
+    /// A fact or an instance: its address, a fact index, an instance name (CLIPS's `h`,
+    /// `timetag`): integers, symbols and instance names among literals.
+    FactOrInstance,
 }
 
 /// What a builtin returns, as CLIPS's parser knows it (the return-type letter of its
@@ -297,6 +300,7 @@ impl ArgType {
             }
             ArgType::Symbol => matches!(v, Value::Sym(_)),
             ArgType::Str => matches!(v, Value::Str(_)),
+            ArgType::FactOrInstance => matches!(v, Value::Int(_) | Value::Sym(_)),
             ArgType::Multifield | ArgType::FactAddress => false,
         }
     }
@@ -315,6 +319,7 @@ impl ArgType {
             ArgType::Symbol => SYMBOL,
             ArgType::Str => STRING,
             ArgType::Multifield => MULTIFIELD,
+            ArgType::FactOrInstance => INTEGER | SYMBOL | INSTANCE_NAME,
         };
         takes & r.types() != 0
     }
@@ -331,6 +336,9 @@ impl ArgType {
             ArgType::Str => "string",
             ArgType::Multifield => "multifield",
             ArgType::FactAddress => "fact-address",
+            ArgType::FactOrInstance => {
+                "instance address, instance name, fact address, integer, or symbol"
+            }
         }
     }
 
@@ -349,6 +357,7 @@ impl ArgType {
             ArgType::FactAddress => {
                 "an argument of type fact-address (a variable or call, not a literal)"
             }
+            ArgType::FactOrInstance => "a fact index or an instance name",
         }
     }
 }

@@ -1,5 +1,5 @@
 //! Environment and debugging commands the agent image leaves out (agent-core feature
-//! `extras`): `list-watch-items`, `get-function-restrictions`, and sequence expansion
+//! `extras`): `list-watch-items`, `get-watch-item`, `get-function-restrictions`, and sequence expansion
 //! (`expand$`, `$?x` with `set-sequence-operator-recognition`).
 // without the feature the table is empty and the functions unused (and not linked)
 #![cfg_attr(not(feature = "extras"), allow(dead_code))]
@@ -19,6 +19,10 @@ use core::fmt::Write;
 pub const FUNCS: &[Builtin] = &[
     Builtin::eager("list-watch-items", 0, ANY, list_watch_items)
         .args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any),
+    Builtin::eager("get-watch-item", 1, 1, get_watch_item)
+        .args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any)
+        .on_error(super::describe::OnError::False)
+        .returns(super::describe::Returns::Symbol),
     Builtin::eager("get-function-restrictions", 1, 1, get_function_restrictions)
         .args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any)
         .on_error(super::describe::OnError::EmptyString),
@@ -223,6 +227,30 @@ fn list_watch_items(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     Ok(Value::Void)
 }
 
+/// `(get-watch-item ITEM)`: whether the item is watched (its own state, whatever its
+/// constructs' flags; `all` is FALSE, as in CLIPS 6.30).
+fn get_watch_item(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let Value::Sym(item) = cx.arg(a, 0) else {
+        return Err(EvalError::wrong_type("get-watch-item", 1, "symbol"));
+    };
+    let mut name: TextBuf<32> = TextBuf::new();
+    let _ = name.write_str(cx.sym_text(item));
+    let on = match super::commands::watch_item(name.as_str()) {
+        WatchItem::Traced(bit) => state(cx, bit) == "on",
+        #[cfg(feature = "extras")]
+        WatchItem::Cool(bit) => cool_state(cx, bit) == "on",
+        WatchItem::Untraced | WatchItem::All => false,
+        WatchItem::Unknown => {
+            return Err(EvalError::wrong_type(
+                "get-watch-item",
+                1,
+                "watchable symbol",
+            ))
+        }
+    };
+    Ok(Core::bool_value(on))
+}
+
 /// Every module's `NAME:` line, each followed by what `each` prints for it.
 fn list_modules(cx: &mut Core<'_>, mut each: impl FnMut(&mut Core<'_>, crate::module::ModId)) {
     #[cfg(feature = "modules")]
@@ -414,6 +442,7 @@ const RESTRICTIONS: &[(&str, &str)] = &[
     ("gensym", "00"),
     ("gensym*", "00"),
     ("get-auto-float-dividend", "00"),
+    ("get-beta-memory-resizing", "00"),
     ("get-char", "*1"),
     ("get-current-module", "00"),
     ("get-deffacts-list", "01w"),
@@ -427,6 +456,7 @@ const RESTRICTIONS: &[(&str, &str)] = &[
     ("get-fact-list", "01w"),
     ("get-focus", "00"),
     ("get-focus-stack", "00"),
+    ("get-function-list", "00"),
     ("get-function-restrictions", "11w"),
     ("get-incremental-reset", "00"),
     ("get-reset-globals", "00"),
@@ -434,6 +464,7 @@ const RESTRICTIONS: &[(&str, &str)] = &[
     ("get-sequence-operator-recognition", "00"),
     ("get-static-constraint-checking", "00"),
     ("get-strategy", "00"),
+    ("get-watch-item", "11w"),
     ("halt", "00"),
     ("if", "0**"),
     ("implode$", "11m"),
@@ -505,6 +536,7 @@ const RESTRICTIONS: &[(&str, &str)] = &[
     ("refresh-agenda", "01w"),
     ("release-mem", "00"),
     ("remove", "11k"),
+    ("remove-break", "*1w"),
     ("rename", "22k"),
     ("replace$", "4**mii"),
     ("replace-member$", "3*um"),
@@ -515,9 +547,13 @@ const RESTRICTIONS: &[(&str, &str)] = &[
     ("round", "11n"),
     ("rules", "01w"),
     ("run", "*1i"),
+    ("save", "11k"),
     ("save-facts", "1*wk"),
     ("seed", "11i"),
+    ("sequencep", "11"),
     ("set-auto-float-dividend", "11"),
+    ("set-beta-memory-resizing", "11"),
+    ("set-break", "11w"),
     ("set-current-module", "11w"),
     ("set-dynamic-constraint-checking", "11"),
     ("set-fact-duplication", "11"),
@@ -528,6 +564,7 @@ const RESTRICTIONS: &[(&str, &str)] = &[
     ("set-static-constraint-checking", "11"),
     ("set-strategy", "11w"),
     ("setgen", "11i"),
+    ("show-breaks", "01w"),
     ("show-defglobals", "01w"),
     ("sin", "11n"),
     ("sort", "1**w"),
@@ -550,12 +587,9 @@ const RESTRICTIONS: &[(&str, &str)] = &[
     ("symbolp", "11"),
     ("system", "1*k"),
     ("tan", "11n"),
-    ("save", "11k"),
-    ("set-break", "11w"),
-    ("remove-break", "*1w"),
-    ("show-breaks", "01w"),
     ("time", "00"),
     ("timer", "**"),
+    ("timetag", "11h"),
     ("undeffacts", "11w"),
     ("undeffunction", "11w"),
     ("undefglobal", "11w"),

@@ -195,6 +195,18 @@ pub(super) fn funcall(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         base: a.base + 1,
         len: a.len - 1,
     };
+    // `and` and `or` take the values as they are (none: TRUE and FALSE)
+    let text = cx.sym_text(name);
+    if text == "and" || text == "or" {
+        let want = text == "or";
+        let hit =
+            (0..rest.len as usize).any(|i| (cx.arg(rest, i) != Value::Sym(SYM_FALSE)) == want);
+        return Ok(Value::Sym(if hit == want {
+            super::SYM_TRUE
+        } else {
+            SYM_FALSE
+        }));
+    }
     match callee_named(cx, name) {
         Some(Callee::Builtin(func, min, max, _))
             if (rest.len as usize) < usize::from(min)
@@ -211,6 +223,7 @@ pub(super) fn funcall(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
                 let recorded = cx.st.eval.error_fallback.is_some_and(|f| f.depth == depth);
                 let value = super::lookup(name).and_then(|(_, b)| match b.on_error.fallback() {
                     Some(super::errors::Fallback::Sym("nil")) => Some(Value::Sym(super::SYM_NIL)),
+
                     Some(super::errors::Fallback::Str("")) => {
                         Some(Value::Str(super::SYM_EMPTY_STR))
                     }
@@ -218,6 +231,15 @@ pub(super) fn funcall(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
                     Some(super::errors::Fallback::Float(f)) => Some(Value::Float(f)),
                     _ => None,
                 });
+                let empty_multi = super::lookup(name)
+                    .is_some_and(|(_, b)| b.on_error == super::describe::OnError::EmptyMultifield);
+                let value = match value {
+                    None if empty_multi => {
+                        let m = cx.multi_begin();
+                        Some(cx.multi_finish(m))
+                    }
+                    v => v,
+                };
                 if let (false, Some(v)) = (recorded, value) {
                     cx.set_error_fallback(v, None);
                 }
@@ -250,6 +272,17 @@ fn funcall_count(
     let truth = |b: bool| Value::Sym(if b { super::SYM_TRUE } else { SYM_FALSE });
     let fallback = |cx: &mut Core<'_>, v: Value| cx.set_error_fallback(v, None);
     match (func, n) {
+        // (its body counts and draws a number all the same)
+        ("random", _) => return super::random::random(cx, rest),
+        ("str-compare", _) => {
+            cx.write(
+                router::WERROR,
+                "[ARGACCES1] Function str-compare expected at least 2 and no more than 3 arguments.\n",
+            );
+            fallback(cx, Value::Int(0));
+            return Err(EvalError::already_reported());
+        }
+        ("mv-subseq" | "mv-delete" | "mv-replace", _) => return mv_count(cx, func, max, rest),
         ("+" | "-", 0) => return Ok(Value::Int(0)),
         ("*" | "div", 0) => return Ok(Value::Int(1)),
         ("/", 0) => return Ok(Value::Float(1.0)),
@@ -293,6 +326,7 @@ fn funcall_count(
         "str-implode" => "implode$",
         "subset" => "subsetp",
         "wordp" => "symbolp",
+        "sequencep" => "multifieldp",
         "rules" => "list-defrules",
         // (CLIPS 6.30 checks this one under its neighbour's name)
         "deftemplate-slot-defaultp" => "deftemplate-slot-existp",
@@ -311,7 +345,7 @@ fn funcall_count(
     );
     cx.write(router::WERROR, b.as_str());
     // a getter still answers; the others give their error value
-    if max == 0 {
+    if max == 0 && func != "get-function-list" {
         if let Some(c) = cx.callee(func) {
             return cx.call_values(
                 c,
@@ -328,6 +362,13 @@ fn funcall_count(
         "min" | "max" => Some(Fallback::Int(0)),
         "length$" | "length" => Some(Fallback::Int(-1)),
         "deftemplate-slot-defaultp" => Some(Fallback::Sym("FALSE")),
+        "get-function-list" => Some(Fallback::EmptyMulti),
+        #[cfg(feature = "extras")]
+        "set-beta-memory-resizing" => Some(Fallback::Sym(if super::tools::beta_resizing(cx) {
+            "TRUE"
+        } else {
+            "FALSE"
+        })),
         _ => super::lookup(func).and_then(|(_, b)| b.on_error.fallback()),
     };
     let value = match value {
@@ -344,6 +385,82 @@ fn funcall_count(
     };
     // an evaluation error, as CLIPS's count check sets it, with the function's value
     cx.set_error_fallback(value, None);
+    Err(EvalError::already_reported())
+}
+
+/// `mv-subseq`, `mv-delete` or `mv-replace` called by `funcall` with a count its
+/// definition refuses: CLIPS's bodies read their arguments one by one and never count
+/// them, so those beyond the last are ignored, a missing one is `[ARGACCES3]` once the
+/// ones before it have their types (and `mv-replace`'s missing value is FALSE).
+#[cfg_attr(not(feature = "extras"), allow(dead_code))]
+fn mv_count(
+    cx: &mut Core<'_>,
+    func: &'static str,
+    max: u8,
+    rest: Args,
+) -> Result<Value, EvalError> {
+    let n = rest.len as usize;
+    let Some(c) = cx.callee(func) else {
+        return Err(EvalError::wrong_type(
+            "funcall",
+            1,
+            "function, deffunction, or generic function name",
+        ));
+    };
+    let m = cx.multi_begin();
+    let empty = cx.multi_finish(m);
+    // (a failing body gives the empty multifield)
+    let or_empty = |cx: &mut Core<'_>, r: Result<Value, EvalError>| {
+        if r.is_err() {
+            cx.set_error_fallback(empty, None);
+        }
+        r
+    };
+    if n >= usize::from(max) {
+        let first = Args {
+            base: rest.base,
+            len: Ix::from(max),
+        };
+        let r = cx.call_values(c, first);
+        return or_empty(cx, r);
+    }
+    // the types the body asks for, in order (the value of `mv-replace` is any)
+    let types: &[bool] = match func {
+        "mv-subseq" => &[false, false, true],
+        _ => &[false, true],
+    };
+    for (i, &multi) in types.iter().enumerate().take(n) {
+        let ok = match cx.arg(rest, i) {
+            Value::Multi(_) => multi,
+            Value::Int(_) => !multi,
+            _ => false,
+        };
+        if !ok {
+            cx.set_error_fallback(empty, None);
+            let what = if multi { "multifield" } else { "integer" };
+            return Err(EvalError::wrong_type(func, i as u8 + 1, what));
+        }
+    }
+    if func == "mv-replace" && n == 2 {
+        // (the value CLIPS's body finds in place of the missing third argument)
+        let base = cx.st.frame.sp;
+        for v in [cx.arg(rest, 0), cx.arg(rest, 1), Value::Sym(SYM_FALSE)] {
+            cx.push_value(v)?;
+        }
+        let r = cx.call_values(c, Args { base, len: 3 });
+        cx.st.frame.sp = base;
+        return or_empty(cx, r);
+    }
+    let mut b: crate::value::TextBuf<160> = crate::value::TextBuf::new();
+    let _ = core::fmt::Write::write_fmt(
+        &mut b,
+        format_args!(
+            "[ARGACCES3] Function RtnUnknown received a request from function {func} for argument #{} which is non-existent\n",
+            n + 1
+        ),
+    );
+    cx.write(router::WERROR, b.as_str());
+    cx.set_error_fallback(empty, None);
     Err(EvalError::already_reported())
 }
 

@@ -56,7 +56,7 @@ fn lexemep(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         matches!(v, Value::Str(_)) || plain_symbol(cx, v),
     ))
 }
-fn multifieldp(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+pub(super) fn multifieldp(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     test(cx, a, |v| matches!(v, Value::Multi(_)))
 }
 

@@ -66,26 +66,36 @@ pub(crate) fn next_random(st: &mut State) -> i64 {
 }
 
 /// `(random)` or `(random lo hi)`: `lo + r mod (hi - lo + 1)` as CLIPS computes it.
-fn random(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+/// CLIPS draws the number before it looks at the arguments: a wrong one still takes a
+/// number and gives it (an argument of the wrong type as an evaluation error, a range
+/// the wrong way round and a wrong count after their message alone).
+pub(super) fn random(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     cx.st.random.observed = true;
-    match a.len {
-        0 => Ok(Value::Int(next_random(cx.st))),
-        2 => {
-            let lo = int_arg(cx, a, 0, "random")?;
-            let hi = int_arg(cx, a, 1, "random")?;
-            if hi < lo {
-                return Err(EvalError::message(crate::error::Message::RandomRange));
-            }
-            let r = next_random(cx.st);
-            let span = hi.wrapping_sub(lo).wrapping_add(1);
-            Ok(Value::Int(if span <= 0 {
-                r
-            } else {
-                lo.wrapping_add(r % span)
-            }))
-        }
-        _ => Err(EvalError::message(crate::error::Message::RandomArity)),
+    if a.len != 0 && a.len != 2 {
+        cx.write_error_message(EvalError::message(crate::error::Message::RandomArity));
     }
+    let r = next_random(cx.st);
+    if a.len != 2 {
+        return Ok(Value::Int(r));
+    }
+    let bounds = int_arg(cx, a, 0, "random").and_then(|lo| Ok((lo, int_arg(cx, a, 1, "random")?)));
+    let (lo, hi) = match bounds {
+        Ok(b) => b,
+        Err(e) => {
+            cx.set_error_fallback(Value::Int(r), None);
+            return Err(e);
+        }
+    };
+    if hi < lo {
+        cx.write_error_message(EvalError::message(crate::error::Message::RandomRange));
+        return Ok(Value::Int(r));
+    }
+    let span = hi.wrapping_sub(lo).wrapping_add(1);
+    Ok(Value::Int(if span <= 0 {
+        r
+    } else {
+        lo.wrapping_add(r % span)
+    }))
 }
 
 /// `(seed n)`: C's `srand((unsigned) n)`; returns no value, as in CLIPS.

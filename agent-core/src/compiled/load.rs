@@ -95,6 +95,18 @@ impl Core<'_> {
             }
         }
         self.copy_network(base);
+        // each rule took a time tag when its text was defined (`builtins::tools`)
+        #[cfg(feature = "extras")]
+        {
+            let nrules = self.st.pools.nrules;
+            let disjuncts = (0..nrules)
+                .filter(|&r| self.rules[r as usize].next_disjunct != crate::value::NONE)
+                .count() as u32;
+            let next = self.st.facts.next_fact_num;
+            self.st
+                .timetags
+                .rules_defined(next, u32::from(nrules) - disjuncts);
+        }
         let watch = self.st.mode.watch;
         self.st.mode.watch = 0;
         let r = self.rebuild_working_memory(base);

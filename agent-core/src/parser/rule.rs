@@ -338,6 +338,12 @@ impl<'s> Parser<'s, '_, '_> {
         }
         // `load` prints "Defining defrule" before the new activations, as CLIPS does
         self.announce();
+        // (CLIPS's incremental reset of the rule takes a time tag)
+        #[cfg(feature = "extras")]
+        {
+            let next = self.cx.st.facts.next_fact_num;
+            self.cx.st.timetags.rules_defined(next, 1);
+        }
         let res = self
             .cx
             .prime_new_rules(first_new_rule, first_new_join, first_new_alpha);
