@@ -95,7 +95,17 @@ impl Core<'_> {
             }
         }
         self.copy_network(base);
-        // each rule took a time tag when its text was defined (`builtins::tools`)
+        let watch = self.st.mode.watch;
+        self.st.mode.watch = 0;
+        let r = self.rebuild_working_memory(base);
+        self.st.mode.watch = watch;
+        if let Err(e) = r {
+            // back to a fresh engine (host functions stay)
+            let _ = self.clear();
+            return Err(CompiledError::Eval(e));
+        }
+        // each rule took a time tag when its text was defined, after initial-fact
+        // (`builtins::tools`)
         #[cfg(feature = "extras")]
         {
             let nrules = self.st.pools.nrules;
@@ -106,15 +116,6 @@ impl Core<'_> {
             self.st
                 .timetags
                 .rules_defined(next, u32::from(nrules) - disjuncts);
-        }
-        let watch = self.st.mode.watch;
-        self.st.mode.watch = 0;
-        let r = self.rebuild_working_memory(base);
-        self.st.mode.watch = watch;
-        if let Err(e) = r {
-            // back to a fresh engine (host functions stay)
-            let _ = self.clear();
-            return Err(CompiledError::Eval(e));
         }
         Ok(())
     }
