@@ -608,10 +608,10 @@ pub struct Caches {
     /// or-lookup field (`rete::index`; saturates, and then or-lookups stop).
     #[cfg(feature = "host-speedups")]
     pub or_stamp: u32,
-    /// Host: recently used joins' first `?a | ?b` test after error-free ones
-    /// (join, its tests, the test or NONE), direct-mapped by join (`rete::index`).
+    /// Host: recently used joins' first `?a | ?b` test after error-free ones and
+    /// its reads, direct-mapped by join (`rete::index`).
     #[cfg(feature = "host-speedups")]
-    pub or_plans: [(JoinId, Ix, Ix); crate::rete::KEY_PLANS],
+    pub or_plans: [crate::rete::OrPlan; crate::rete::KEY_PLANS],
 }
 
 impl Caches {
@@ -625,7 +625,7 @@ impl Caches {
             #[cfg(feature = "host-speedups")]
             or_stamp: 0,
             #[cfg(feature = "host-speedups")]
-            or_plans: [(JoinId::NONE, NONE, NONE); crate::rete::KEY_PLANS],
+            or_plans: [crate::rete::OrPlan::NONE; crate::rete::KEY_PLANS],
         }
     }
 }

@@ -203,6 +203,48 @@ impl Core<'_> {
         am: TokenId,
         planned: &mut bool,
     ) -> Result<bool, EvalError> {
+        self.join_test_skip(join, tests, depth, left, am, planned, NONE)
+    }
+
+    /// Host: `join_test_with` for candidate `am` of an or-lookup, whose or test
+    /// (`OrValues::or`) `or_match` answered `known`: a candidate it fails is
+    /// rejected unseen (the tests before it report nothing, `or_values`), and one it
+    /// passes is tested without it (a compiled plan leaves it out).
+    #[cfg(feature = "host-speedups")]
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn or_join_test(
+        &mut self,
+        join: JoinId,
+        (tests, depth): (Ix, u8),
+        left: TokenId,
+        am: TokenId,
+        planned: &mut bool,
+        ov: &OrValues,
+        known: Option<bool>,
+    ) -> Result<bool, EvalError> {
+        match known {
+            Some(false) => Ok(false),
+            Some(true) => self.join_test_skip(join, tests, depth, left, am, planned, ov.or),
+            None => self.join_test_with(join, tests, depth, left, am, planned),
+        }
+    }
+
+    /// `join_test_with`, where the join's test `skip` (host: a top-level test of the
+    /// chain, NONE for none) is known to hold for `left` and `am`: only a compiled
+    /// plan leaves it out, every other path runs all the tests.
+    #[allow(clippy::too_many_arguments)]
+    #[cfg_attr(feature = "host-speedups", inline(always))]
+    fn join_test_skip(
+        &mut self,
+        join: JoinId,
+        tests: Ix,
+        depth: u8,
+        left: TokenId,
+        am: TokenId,
+        planned: &mut bool,
+        skip: Ix,
+    ) -> Result<bool, EvalError> {
         if tests == NONE {
             return Ok(true);
         }
@@ -212,7 +254,8 @@ impl Core<'_> {
             NONE
         };
         self.bind_for_quick(left);
-        if let Some(r) = self.planned_join_test(join, tests, depth, left, right_fact, planned) {
+        if let Some(r) = self.planned_join_test(join, tests, depth, left, right_fact, planned, skip)
+        {
             return Ok(r);
         }
         // the evaluator may do anything to the cache
@@ -598,7 +641,7 @@ impl Core<'_> {
     /// keyed or-index gives one bucket per alternative (`or_keyed_cursor`), merged
     /// in memory order; a search after blocker `skip` (an alpha match going away)
     /// goes on with the matches after it, as along its bucket. Else candidates the
-    /// test rejects are skipped unseen (`or_admits`); the usual walk when the
+    /// test rejects are skipped unseen (`or_match`); the usual walk when the
     /// test's values cannot be read.
     #[cfg(feature = "host-speedups")]
     #[inline(never)]
@@ -621,9 +664,8 @@ impl Core<'_> {
         let (tests, depth) = self.join_test_fields(join);
         let mut planned = false;
         while a != TokenId::NONE {
-            if self.or_admits(&ov, self.tokens[a].fact)
-                && self.join_test_with(join, tests, depth, left, a, &mut planned)?
-            {
+            let known = self.or_match(&ov, self.tokens[a].fact);
+            if self.or_join_test(join, (tests, depth), left, a, &mut planned, &ov, known)? {
                 return Ok(a);
             }
             a = self.next_candidate(a, true);
@@ -663,9 +705,8 @@ impl Core<'_> {
                     continue;
                 }
             }
-            if self.or_keyed_admits(&cur, ov, a)
-                && self.join_test_with(join, tests, depth, left, a, &mut planned)?
-            {
+            let known = self.or_keyed_match(&cur, ov, a);
+            if self.or_join_test(join, (tests, depth), left, a, &mut planned, ov, known)? {
                 return Ok(a);
             }
         }
@@ -674,7 +715,7 @@ impl Core<'_> {
     /// Host: `left_activate` of positive `join` whose alpha node keeps a field for a
     /// `?a | ?b` test (`rhash[nrhash]`). Without a right hash: one index bucket per
     /// alternative (`or_lookup`); with one: its bucket, skipping the candidates the
-    /// test rejects (`or_admits`). When neither applies it walks the candidates as
+    /// test rejects (`or_match`). When neither applies it walks the candidates as
     /// for any join: it ends the left activation either way, so that the usual
     /// path's reads of the join and its alpha node are not made again after it.
     #[cfg(feature = "host-speedups")]
@@ -713,9 +754,16 @@ impl Core<'_> {
                         if a == TokenId::NONE {
                             return Ok(());
                         }
-                        if self.or_keyed_admits(&cur, ov, a)
-                            && self.join_test_with(join, tests, depth, left, a, &mut planned)?
-                        {
+                        let known = self.or_keyed_match(&cur, ov, a);
+                        if self.or_join_test(
+                            join,
+                            (tests, depth),
+                            left,
+                            a,
+                            &mut planned,
+                            ov,
+                            known,
+                        )? {
                             let t = self.link_token(join, left, a)?;
                             self.propagate_in(t, join)?;
                             planned = false;
@@ -730,9 +778,8 @@ impl Core<'_> {
         };
         while a != TokenId::NONE {
             let next = self.next_candidate(a, hashed);
-            if self.or_admits(&ov, self.tokens[a].fact)
-                && self.join_test_with(join, tests, depth, left, a, &mut planned)?
-            {
+            let known = self.or_match(&ov, self.tokens[a].fact);
+            if self.or_join_test(join, (tests, depth), left, a, &mut planned, &ov, known)? {
                 let t = self.link_token(join, left, a)?;
                 self.propagate_in(t, join)?;
                 planned = false;

@@ -109,9 +109,39 @@ pub(crate) fn keyed_or(n: &super::AlphaNode) -> bool {
     n.nrhash > 0 && n.rhash.get(n.nrhash as usize).is_some_and(|&f| f != NONE)
 }
 
+/// Host: a join's or test worked out once (`Core::or_values`): the join and its
+/// test chain (a reused join id has another one), the first `?a | ?b` test after
+/// error-free ones (NONE: none, or one `or_values` cannot read), the expression
+/// reading the join's field, and where each alternative's value lies: (pattern,
+/// slot, element at a fixed offset or `WHOLE_SLOT` for the plain slot).
+#[cfg(feature = "host-speedups")]
+#[derive(Clone, Copy, Debug)]
+pub struct OrPlan {
+    join: JoinId,
+    tests: Ix,
+    or: Ix,
+    field: Ix,
+    alts: [(u8, u8, u8); OR_WAYS],
+    n: u8,
+}
+
+#[cfg(feature = "host-speedups")]
+impl OrPlan {
+    pub const NONE: OrPlan = OrPlan {
+        join: JoinId::NONE,
+        tests: NONE,
+        or: NONE,
+        field: NONE,
+        alts: [(0, 0, WHOLE_SLOT); OR_WAYS],
+        n: 0,
+    };
+}
+
 /// Host: the values an `?a | ?b` join test lets a field take (`Core::or_values`).
 #[cfg(feature = "host-speedups")]
 pub(crate) struct OrValues {
+    /// The or test (in the join's chain of tests).
+    pub(crate) or: Ix,
     /// The expression reading the field (of the join's pattern).
     field: Ix,
     vals: [Value; OR_WAYS],
@@ -633,51 +663,37 @@ impl Core<'_> {
             let j = &self.joins[join];
             (j.depth, j.tests)
         };
-        // the test is found once per join (direct-mapped cache, as key plans)
+        // the test and its alternatives' reads are found once per join
+        // (direct-mapped cache, as key plans)
         let i = join.ix() % KEY_PLANS;
-        let (cj, ct, mut or) = self.st.cache.or_plans[i];
-        if cj != join || ct != tests {
-            or = NONE;
-            let mut t = tests;
-            while t != NONE {
-                if self.or_of_equalities(t, depth).is_some() {
-                    or = t;
-                    break;
-                }
-                if !self.error_free(t) {
-                    break;
-                }
-                t = self.exprs[t as usize].next;
-            }
-            self.st.cache.or_plans[i] = (join, tests, or);
+        let cached = &self.st.cache.or_plans[i];
+        if cached.join != join || cached.tests != tests {
+            self.st.cache.or_plans[i] = self.or_plan(join, tests, depth);
         }
-        if or == NONE {
+        let plan = self.st.cache.or_plans[i];
+        if plan.or == NONE {
             return None;
         }
-        let field = self.exprs[self.exprs[or as usize].first as usize].first;
-        if want != NONE && self.exprs[field as usize].data != self.exprs[want as usize].data {
+        if want != NONE && self.exprs[plan.field as usize].data != self.exprs[want as usize].data {
             return None;
         }
         self.bind_for_quick(left);
         let mut out = OrValues {
-            field,
+            or: plan.or,
+            field: plan.field,
             vals: [Value::Void; OR_WAYS],
             n: 0,
         };
-        let mut c = self.exprs[or as usize].first;
-        while c != NONE {
-            let this = self.exprs[c as usize].first;
-            let o = self.exprs[self.exprs[this as usize].next as usize];
-            let fact = self.left_fact(left, o.aux);
-            if fact == NONE || out.n == OR_WAYS {
+        for &(pat, slot, elem) in &plan.alts[..plan.n as usize] {
+            let fact = self.left_fact(left, pat);
+            if fact == NONE {
                 return None;
             }
-            let v = if o.first == NONE {
-                *self.slot_ref(fact, Ix::from(loc::slot(o.data)))
+            let v = if elem == WHOLE_SLOT {
+                *self.slot_ref(fact, Ix::from(slot))
             } else {
                 // an element at a fixed offset (`or_of_equalities`)
-                let elem = self.fixed_elem(&o)?;
-                match self.slot_cell_inline(fact, Ix::from(loc::slot(o.data))) {
+                match self.slot_cell_inline(fact, Ix::from(slot)) {
                     (cell, Some(len)) if (elem as usize) < len as usize => {
                         self.values[cell + 1 + elem as usize]
                     }
@@ -689,22 +705,76 @@ impl Core<'_> {
             }
             out.vals[out.n] = v;
             out.n += 1;
-            c = self.exprs[c as usize].next;
         }
         Some(out)
     }
 
-    /// Host: whether a candidate (fact `fact`) may pass the or test of `or_values`
-    /// (true also when its field cannot be read plainly: the tests decide).
+    /// Host: the `OrPlan` of `join` (at `depth`) with test chain `tests`.
+    #[cfg(feature = "host-speedups")]
+    #[inline(never)]
+    fn or_plan(&self, join: JoinId, tests: Ix, depth: u8) -> OrPlan {
+        let none = OrPlan {
+            join,
+            tests,
+            ..OrPlan::NONE
+        };
+        let mut or = NONE;
+        let mut t = tests;
+        while t != NONE {
+            if self.or_of_equalities(t, depth).is_some() {
+                or = t;
+                break;
+            }
+            if !self.error_free(t) {
+                break;
+            }
+            t = self.exprs[t as usize].next;
+        }
+        if or == NONE {
+            return none;
+        }
+        let mut plan = OrPlan {
+            or,
+            field: self.exprs[self.exprs[or as usize].first as usize].first,
+            ..none
+        };
+        let mut c = self.exprs[or as usize].first;
+        while c != NONE {
+            let this = self.exprs[c as usize].first;
+            let o = self.exprs[self.exprs[this as usize].next as usize];
+            // (`or_of_equalities` found every element at a fixed offset)
+            let elem = if o.first == NONE {
+                WHOLE_SLOT
+            } else {
+                match self.fixed_elem(&o) {
+                    Some(e) => e,
+                    None => return none,
+                }
+            };
+            let Some(alt) = plan.alts.get_mut(plan.n as usize) else {
+                // more alternatives than `OrValues` holds
+                return none;
+            };
+            *alt = (o.aux, loc::slot(o.data), elem);
+            plan.n += 1;
+            c = self.exprs[c as usize].next;
+        }
+        plan
+    }
+
+    /// Host: the result of the or test of `or_values` for a candidate (fact
+    /// `fact`): its field read plainly and compared with each alternative as the
+    /// test's `eq`s compare (`values_same`); None when the field cannot be read
+    /// plainly (the tests decide).
     #[cfg(feature = "host-speedups")]
     #[inline(always)]
-    pub(crate) fn or_admits(&self, ov: &OrValues, fact: Ix) -> bool {
-        match self.plain_slot_value(fact, &self.exprs[ov.field as usize]) {
-            Some(v) => ov.vals[..ov.n]
+    pub(crate) fn or_match(&self, ov: &OrValues, fact: Ix) -> Option<bool> {
+        let v = self.plain_slot_value(fact, &self.exprs[ov.field as usize])?;
+        Some(
+            ov.vals[..ov.n]
                 .iter()
                 .any(|&w| crate::builtins::basic::values_same(self, v, w)),
-            None => true,
-        }
+        )
     }
 
     /// Host: where a left token of positive `join` finds its right partners when its
@@ -796,15 +866,18 @@ impl Core<'_> {
         cur
     }
 
-    /// Host: whether candidate `a` of keyed cursor `cur` may pass the join's key
-    /// and or tests (`ov`): a match of another key (a collision in the keyed
-    /// or-index: its other bucket differs) or whose field equals no alternative
-    /// fails them, having run only tests that report nothing (`or_values`).
+    /// Host: for candidate `a` of keyed cursor `cur`, as `or_match` answers: Some(false)
+    /// for a match of another key (a collision in the keyed or-index: its other
+    /// bucket differs), which fails the join's key tests, having run only tests that
+    /// report nothing (`or_values`), else `or_match` of its fact.
     #[cfg(feature = "host-speedups")]
     #[inline(always)]
-    pub(crate) fn or_keyed_admits(&self, cur: &OrCursor, ov: &OrValues, a: TokenId) -> bool {
+    pub(crate) fn or_keyed_match(&self, cur: &OrCursor, ov: &OrValues, a: TokenId) -> Option<bool> {
         let tk = &self.tokens[a];
-        tk.parent.0 == cur.kept && self.or_admits(ov, tk.fact)
+        if tk.parent.0 != cur.kept {
+            return Some(false);
+        }
+        self.or_match(ov, tk.fact)
     }
 
     /// Host: whether the keyed or-index of `alpha` serves an or test whose values

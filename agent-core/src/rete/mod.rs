@@ -4,6 +4,8 @@ pub(crate) mod alpha;
 pub(crate) mod basis;
 mod beta;
 mod index;
+#[cfg(feature = "host-speedups")]
+pub use index::OrPlan;
 pub use index::{KeyPlan, KEY_PLANS};
 mod defer;
 pub use defer::Deferred;

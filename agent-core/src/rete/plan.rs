@@ -8,6 +8,8 @@
 //! constants and `(+ ?x N)`/`(- ?x N)`, integer arithmetic (`+`, `-`, `*`, `mod`) of
 //! those, and `and`/`or`/`not` of those, whether they come from field constraints,
 //! `&:(...)` predicates or `(test ...)` CEs. Everything else keeps the evaluator.
+//! A plan whose slots all lie at fixed offsets in their facts (no multislot before
+//! them in their templates) reads them from each fact's first cell (`Bases`).
 //!
 //! Exactness: the plan runs the tests in the evaluator's order with its
 //! short-circuits (except that within an `and`, an error-free `?x | ?y` goes before
@@ -25,11 +27,17 @@ use crate::engine::Core;
 use crate::expr::{loc, Expr, FnKind, Op};
 use crate::handle::{JoinId, TokenId};
 use crate::rete::quick::same_cell;
+use crate::rete::JoinKind;
 use crate::rete::BIND_W;
 use crate::value::{Ix, Value, NONE};
 
-/// Entries of the compiled plan cache (`Caches::compiled_plans`, direct-mapped by join).
-const COMPILED_PLANS: usize = 64;
+/// Joins of the compiled plan cache (`Caches::compiled_plans`, direct-mapped by join),
+/// each with two entries: its plan at `join % PLAN_JOINS`, and `PLAN_JOINS` after it
+/// its plan without the or test that an or-lookup found to hold
+/// (`compiled_join_test`'s `skip`).
+const PLAN_JOINS: usize = 64;
+/// Entries of the compiled plan cache.
+const COMPILED_PLANS: usize = 2 * PLAN_JOINS;
 /// Nodes (and child links) the cached plans share. A plan that finds no room empties
 /// the cache first: kept small, the cache costs the engine's start little.
 const POOL_NODES: usize = 255;
@@ -138,16 +146,25 @@ enum Node {
 
 const UNPLANNED: u8 = u8::MAX;
 
+/// How a plan finds the facts it reads (`PlanEntry::mode`).
+/// A shallow plan whose reads all lie at fixed offsets: `Bases`.
+const MODE_BASES: u8 = 0;
+/// Another shallow plan (a slot after a multislot, a pattern of unknown template):
+/// `Frame`.
+const MODE_FRAME: u8 = 1;
+/// A plan reading a left pattern at or beyond `BIND_W`, which only the ancestry
+/// walk (`bind_left`) finds: `Ancestry`.
+const MODE_DEEP: u8 = 2;
+
 /// A cache entry: the plan of `join` with test chain `tests` (a reused join id has
 /// another one), `root` its node (`UNPLANNED` when its tests are not all of a
-/// planned shape); `deep` when it reads a left pattern at or beyond `BIND_W`, which
-/// only the ancestry walk (`bind_left`) finds.
+/// planned shape), `mode` one of the `MODE_` constants.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 struct PlanEntry {
     join: JoinId,
     tests: Ix,
     root: u8,
-    deep: bool,
+    mode: u8,
 }
 
 impl PlanEntry {
@@ -155,7 +172,7 @@ impl PlanEntry {
         join: JoinId::NONE,
         tests: NONE,
         root: UNPLANNED,
-        deep: false,
+        mode: MODE_FRAME,
     };
 }
 
@@ -188,9 +205,11 @@ impl TestPlans {
     /// Forgets the plan of `join`, a new join that may reuse an old one's id (its
     /// nodes stay used until the pool is emptied).
     pub fn forget(&mut self, join: JoinId) {
-        let e = &mut self.entries[join.ix() % COMPILED_PLANS];
-        if e.join == join {
-            *e = PlanEntry::NONE;
+        let i = join.ix() % PLAN_JOINS;
+        for e in [i, i + PLAN_JOINS] {
+            if self.entries[e].join == join {
+                self.entries[e] = PlanEntry::NONE;
+            }
         }
     }
 
@@ -397,13 +416,8 @@ impl PlanBuild {
 
 /// Where a plan reads the facts its patterns bind.
 trait LeftFacts: Copy {
-    /// The fact bound at pattern `pat` (the right input's at the join's own
-    /// `depth`), NONE if none.
-    fn fact(self, core: &Core<'_>, pat: u8, depth: u8, right_fact: Ix) -> Ix;
-
-    /// The cell of slot `slot` of the fact bound at `pat` (a multislot's is its
-    /// `Multi`); None if unbound.
-    #[inline(always)]
+    /// The cell of slot `slot` of the fact bound at `pat` (the right input's at the
+    /// join's own `depth`; a multislot's is its `Multi`); None if unbound.
     fn slot<'c>(
         self,
         core: &'c Core<'_>,
@@ -411,17 +425,10 @@ trait LeftFacts: Copy {
         slot: u8,
         depth: u8,
         right_fact: Ix,
-    ) -> Option<&'c Value> {
-        let fact = self.fact(core, pat, depth, right_fact);
-        if fact == NONE {
-            return None;
-        }
-        Some(core.slot_ref(fact, Ix::from(slot)))
-    }
+    ) -> Option<&'c Value>;
 
     /// `slot_cell` of slot `slot` of the fact bound at `pat`: its cell and, for a
     /// multislot, its length; None if unbound.
-    #[inline(always)]
     fn slot_cell(
         self,
         core: &Core<'_>,
@@ -429,20 +436,32 @@ trait LeftFacts: Copy {
         slot: u8,
         depth: u8,
         right_fact: Ix,
-    ) -> Option<(usize, Option<Ix>)> {
-        let fact = self.fact(core, pat, depth, right_fact);
-        if fact == NONE {
-            return None;
-        }
-        Some(core.slot_cell_inline(fact, Ix::from(slot)))
-    }
+    ) -> Option<(usize, Option<Ix>)>;
 }
 
-/// Entries of a shallow plan's `Frame` (a power of two: an index is masked, not
-/// checked).
+/// `LeftFacts::slot` of `fact` (NONE: unbound).
+#[inline(always)]
+fn fact_slot<'c>(core: &'c Core<'_>, fact: Ix, slot: u8) -> Option<&'c Value> {
+    if fact == NONE {
+        return None;
+    }
+    Some(core.slot_ref(fact, Ix::from(slot)))
+}
+
+/// `LeftFacts::slot_cell` of `fact` (NONE: unbound).
+#[inline(always)]
+fn fact_slot_cell(core: &Core<'_>, fact: Ix, slot: u8) -> Option<(usize, Option<Ix>)> {
+    if fact == NONE {
+        return None;
+    }
+    Some(core.slot_cell_inline(fact, Ix::from(slot)))
+}
+
+/// Entries of a shallow plan's `Frame` and `Bases` (a power of two: an index is
+/// masked, not checked).
 const FRAME: usize = 2 * BIND_W;
-/// Where a shallow plan reads the join's own pattern (the right fact) in its `Frame`:
-/// the plan's reads of it are moved there when the plan is stored.
+/// Where a shallow plan reads the join's own pattern (the right fact) in its `Frame`
+/// or `Bases`: the plan's reads of it are moved there when the plan is stored.
 const RIGHT: u8 = BIND_W as u8;
 
 /// A shallow plan's (every pattern it reads below `BIND_W` or the join's own): the
@@ -454,8 +473,80 @@ struct Frame<'a>(&'a [Ix; FRAME]);
 
 impl LeftFacts for Frame<'_> {
     #[inline(always)]
-    fn fact(self, _: &Core<'_>, pat: u8, _: u8, _: Ix) -> Ix {
-        self.0[pat as usize & (FRAME - 1)]
+    fn slot<'c>(self, core: &'c Core<'_>, pat: u8, slot: u8, _: u8, _: Ix) -> Option<&'c Value> {
+        fact_slot(core, self.0[pat as usize & (FRAME - 1)], slot)
+    }
+
+    #[inline(always)]
+    fn slot_cell(
+        self,
+        core: &Core<'_>,
+        pat: u8,
+        slot: u8,
+        _: u8,
+        _: Ix,
+    ) -> Option<(usize, Option<Ix>)> {
+        fact_slot_cell(core, self.0[pat as usize & (FRAME - 1)], slot)
+    }
+}
+
+/// The first cell of a fact not found: beyond every cell (`Bases::cell` adds at
+/// most 2 * 255 + 1 to it without overflow, even with a 32-bit `usize`).
+const NO_BASE: u32 = u32::MAX >> 1;
+
+/// A `MODE_BASES` plan's: the left token's `binds` and the first cell
+/// (`Fact::start`) of the right fact, found once per test (a fact's cells may move
+/// when the arena is compacted: never kept beyond it). Every slot such a plan reads
+/// follows single-field slots only (`Core::fixed_reads`), so slot `s` is the cell
+/// `s` after the fact's first, whether the fact is flat or not.
+#[derive(Clone, Copy)]
+struct Bases<'a> {
+    binds: &'a [Ix; BIND_W],
+    right: u32,
+}
+
+impl Bases<'_> {
+    /// The first cell of fact `f` (`NO_BASE` if none).
+    #[inline(always)]
+    fn base(core: &Core<'_>, f: Ix) -> u32 {
+        match core.facts.get(f as usize) {
+            Some(x) => x.start as u32,
+            None => NO_BASE,
+        }
+    }
+
+    /// The index of cell `slot` of the fact at `pat` (beyond the cells if unbound).
+    #[inline(always)]
+    fn cell(self, core: &Core<'_>, pat: u8, slot: u8) -> usize {
+        let base = if pat == RIGHT {
+            self.right
+        } else {
+            Self::base(core, self.binds[pat as usize & (BIND_W - 1)])
+        };
+        base as usize + slot as usize
+    }
+}
+
+impl LeftFacts for Bases<'_> {
+    #[inline(always)]
+    fn slot<'c>(self, core: &'c Core<'_>, pat: u8, slot: u8, _: u8, _: Ix) -> Option<&'c Value> {
+        core.values.get(self.cell(core, pat, slot))
+    }
+
+    #[inline(always)]
+    fn slot_cell(
+        self,
+        core: &Core<'_>,
+        pat: u8,
+        slot: u8,
+        _: u8,
+        _: Ix,
+    ) -> Option<(usize, Option<Ix>)> {
+        let c = self.cell(core, pat, slot);
+        match core.values.get(c)? {
+            Value::Multi(m) => Some((c, Some(m.len))),
+            _ => Some((c, None)),
+        }
     }
 }
 
@@ -464,7 +555,7 @@ impl LeftFacts for Frame<'_> {
 #[derive(Clone, Copy)]
 struct Ancestry(TokenId);
 
-impl LeftFacts for Ancestry {
+impl Ancestry {
     #[inline(always)]
     fn fact(self, core: &Core<'_>, pat: u8, depth: u8, right_fact: Ix) -> Ix {
         if pat == depth {
@@ -477,6 +568,32 @@ impl LeftFacts for Ancestry {
                 None => NONE,
             }
         }
+    }
+}
+
+impl LeftFacts for Ancestry {
+    #[inline(always)]
+    fn slot<'c>(
+        self,
+        core: &'c Core<'_>,
+        pat: u8,
+        slot: u8,
+        depth: u8,
+        right_fact: Ix,
+    ) -> Option<&'c Value> {
+        fact_slot(core, self.fact(core, pat, depth, right_fact), slot)
+    }
+
+    #[inline(always)]
+    fn slot_cell(
+        self,
+        core: &Core<'_>,
+        pat: u8,
+        slot: u8,
+        depth: u8,
+        right_fact: Ix,
+    ) -> Option<(usize, Option<Ix>)> {
+        fact_slot_cell(core, self.fact(core, pat, depth, right_fact), slot)
     }
 }
 
@@ -523,33 +640,83 @@ impl Core<'_> {
         left: TokenId,
         right_fact: Ix,
     ) -> Option<bool> {
-        let i = join.ix() % COMPILED_PLANS;
+        self.compiled_test_in::<false>(join, tests, depth, left, right_fact, NONE)
+    }
+
+    /// `compiled_join_test` where `or`, the join's or test (`OrValues::or`, a test
+    /// of the chain itself), is known to hold for this pair: a plan of the other
+    /// tests decides (the tests have no side effects, and the evaluator, if it must
+    /// decide, runs them all). A function of its own, so that the usual call passes
+    /// and computes nothing more.
+    #[inline(never)]
+    pub(crate) fn compiled_join_test_or(
+        &mut self,
+        join: JoinId,
+        (tests, depth): (Ix, u8),
+        left: TokenId,
+        right_fact: Ix,
+        or: Ix,
+    ) -> Option<bool> {
+        self.compiled_test_in::<true>(join, tests, depth, left, right_fact, or)
+    }
+
+    /// `compiled_join_test` (`SKIP`: `compiled_join_test_or` of test `skip`).
+    #[inline(always)]
+    fn compiled_test_in<const SKIP: bool>(
+        &mut self,
+        join: JoinId,
+        tests: Ix,
+        depth: u8,
+        left: TokenId,
+        right_fact: Ix,
+        skip: Ix,
+    ) -> Option<bool> {
+        // the join's or test is the same for every left token: one entry holds the
+        // plan without it
+        let i = join.ix() % PLAN_JOINS + if SKIP { PLAN_JOINS } else { 0 };
         let cached = &self.st.cache.compiled_plans.entries[i];
         if cached.join != join || cached.tests != tests {
-            self.cache_test_plan(i, join, tests, depth);
+            self.cache_test_plan(i, join, tests, depth, skip);
         }
         let entry = self.st.cache.compiled_plans.entries[i];
         if entry.root == UNPLANNED {
+            if SKIP {
+                // the usual call (its plan is unplanned too): `quick_join_test` stays
+                // inlined there alone
+                return self.compiled_join_test(join, tests, depth, left, right_fact);
+            }
             return self.quick_join_test(tests, depth, left, right_fact);
         }
         // the root's own dispatch inlined here: one call less per test
-        if entry.deep {
-            // free when `left` is bound already (a loop over its candidates)
-            self.bind_left(left);
-            self.run_inline(entry.root, depth, Ancestry(left), right_fact)
-        } else {
-            // the facts found once per test, not once per slot read (the plan
-            // reads the right fact at `RIGHT`)
-            let mut frame = [right_fact; FRAME];
-            frame[..BIND_W].copy_from_slice(&self.tokens[left].binds);
-            self.run_inline(entry.root, depth, Frame(&frame), right_fact)
+        match entry.mode {
+            MODE_BASES => {
+                // the right fact found once per test, not once per slot read (the
+                // plan reads it at `RIGHT`)
+                let bases = Bases {
+                    binds: &self.tokens[left].binds,
+                    right: Bases::base(self, right_fact),
+                };
+                self.run_inline(entry.root, depth, bases, right_fact)
+            }
+            MODE_FRAME => {
+                // the facts found once per test, not once per slot read (the plan
+                // reads the right fact at `RIGHT`)
+                let mut frame = [right_fact; FRAME];
+                frame[..BIND_W].copy_from_slice(&self.tokens[left].binds);
+                self.run_inline(entry.root, depth, Frame(&frame), right_fact)
+            }
+            _ => {
+                // free when `left` is bound already (a loop over its candidates)
+                self.bind_left(left);
+                self.run_inline(entry.root, depth, Ancestry(left), right_fact)
+            }
         }
     }
 
     /// Builds the plan of `join` into cache entry `i` (out of line: once per join
     /// while it stays cached).
     #[inline(never)]
-    fn cache_test_plan(&mut self, i: usize, join: JoinId, tests: Ix, depth: u8) {
+    fn cache_test_plan(&mut self, i: usize, join: JoinId, tests: Ix, depth: u8, skip: Ix) {
         let mut b = PlanBuild {
             used: 0,
             kids_used: 0,
@@ -558,18 +725,109 @@ impl Core<'_> {
             kids: [0; PLAN_NODES],
         };
         let root = self
-            .plan_chain(&mut b, tests, depth, Chain::And, 0)
+            .plan_chain(&mut b, tests, depth, Chain::And, 0, skip)
             .unwrap_or(UNPLANNED);
+        let mode = if b.deep {
+            MODE_DEEP
+        } else if root != UNPLANNED && self.fixed_reads(&b, join, depth).is_some() {
+            MODE_BASES
+        } else {
+            MODE_FRAME
+        };
         let entry = PlanEntry {
             join,
             tests,
             root,
-            deep: b.deep,
+            mode,
         };
         if !b.deep {
             b.read_right_at(depth);
         }
         self.st.cache.compiled_plans.store(i, entry, &b);
+    }
+
+    /// Some when every read of shallow plan `b` (of `join`, at `depth`) is of a slot
+    /// at a fixed offset in its fact: the template of the facts bound at its pattern
+    /// is known (`read_templates`), and no slot before it there is a multislot
+    /// (whose elements would move it).
+    fn fixed_reads(&self, b: &PlanBuild, join: JoinId, depth: u8) -> Option<()> {
+        let (left, right) = self.read_templates(join);
+        let read = |pat: u8, slot: u8| -> Option<()> {
+            let t = if pat == depth {
+                right
+            } else {
+                *left.get(pat as usize)?
+            };
+            let t = self.templates.get(t as usize)?;
+            if Ix::from(slot) >= t.nslots {
+                return None;
+            }
+            let first = t.first_slot as usize;
+            for i in first..first + slot as usize {
+                if self.slots.get(i)?.multi {
+                    return None;
+                }
+            }
+            Some(())
+        };
+        let src = |s: Source| -> Option<()> {
+            match s {
+                Source::Slot { pat, slot }
+                | Source::Elem { pat, slot, .. }
+                | Source::SlotPlus { pat, slot, .. } => read(pat, slot),
+                Source::Const { .. } | Source::Arith { .. } => Some(()),
+            }
+        };
+        for n in &b.nodes[..b.used as usize] {
+            match *n {
+                Node::Cmp { a, b, .. } => {
+                    src(a)?;
+                    src(b)?;
+                }
+                Node::SameSlots { a, b, .. } => {
+                    read(a.0, a.1)?;
+                    read(b.0, b.1)?;
+                }
+                Node::SameCells { a, b, .. } => {
+                    read(a.pat, a.slot)?;
+                    read(b.pat, b.slot)?;
+                }
+                Node::Leaf { s } => src(s)?,
+                Node::And { .. } | Node::Or { .. } | Node::Not { .. } | Node::Arith { .. } => {}
+            }
+        }
+        Some(())
+    }
+
+    /// The templates of the facts a shallow plan of `join` reads (NONE: unknown):
+    /// at each left pattern below `BIND_W`, the alpha node's of the nearest join at
+    /// that depth on `join`'s path (whose bindings `Token::binds` keeps: a positive
+    /// join's; another binds no fact), and `join`'s own for its right input.
+    fn read_templates(&self, join: JoinId) -> ([Ix; BIND_W], Ix) {
+        let tmpl = |jn: &super::Join| match self.alphas.get(jn.alpha as usize) {
+            Some(a) if jn.rjoin == JoinId::NONE && jn.kind != JoinKind::Root => a.tmpl,
+            _ => NONE,
+        };
+        let own = &self.joins[join];
+        let right = tmpl(own);
+        let mut left = [NONE; BIND_W];
+        let mut seen = 0u32;
+        let mut j = own.parent;
+        while j != JoinId::NONE {
+            let jn = &self.joins[j];
+            if jn.kind == JoinKind::Root {
+                break;
+            }
+            let d = jn.depth as usize;
+            if d < BIND_W && seen & (1 << d) == 0 {
+                seen |= 1 << d;
+                if jn.kind == JoinKind::Positive {
+                    left[d] = tmpl(jn);
+                }
+            }
+            j = jn.parent;
+        }
+        (left, right)
     }
 
     /// Node `node`'s result (out of line: the composites below a root or an
@@ -849,7 +1107,8 @@ impl Core<'_> {
         }
     }
 
-    /// Plans the sibling chain from `first` as one `and`/`or` node.
+    /// Plans the sibling chain from `first` as one `and`/`or` node, without its
+    /// member `skip` (NONE: every member).
     fn plan_chain(
         &self,
         plan: &mut PlanBuild,
@@ -857,6 +1116,7 @@ impl Core<'_> {
         depth: u8,
         chain: Chain,
         level: u8,
+        skip: Ix,
     ) -> Option<u8> {
         if level > PLAN_DEPTH {
             return None;
@@ -865,8 +1125,10 @@ impl Core<'_> {
         let mut len = 0usize;
         let mut t = first;
         while t != NONE {
-            *members.get_mut(len)? = self.plan_test(plan, t, depth, level)?;
-            len += 1;
+            if t != skip {
+                *members.get_mut(len)? = self.plan_test(plan, t, depth, level)?;
+                len += 1;
+            }
             t = self.exprs[t as usize].next;
         }
         if len == 1 {
@@ -891,13 +1153,13 @@ impl Core<'_> {
         match x.op {
             Op::Eq2 => self.plan_cmp(plan, FN_EQ, x.first, depth),
             Op::Call if builtin(FN_AND) => {
-                self.plan_chain(plan, x.first, depth, Chain::And, level + 1)
+                self.plan_chain(plan, x.first, depth, Chain::And, level + 1, NONE)
             }
-            Op::And => self.plan_chain(plan, x.first, depth, Chain::And, level + 1),
+            Op::And => self.plan_chain(plan, x.first, depth, Chain::And, level + 1, NONE),
             Op::Call if builtin(FN_OR) => {
-                self.plan_chain(plan, x.first, depth, Chain::Or, level + 1)
+                self.plan_chain(plan, x.first, depth, Chain::Or, level + 1, NONE)
             }
-            Op::Or => self.plan_chain(plan, x.first, depth, Chain::Or, level + 1),
+            Op::Or => self.plan_chain(plan, x.first, depth, Chain::Or, level + 1, NONE),
             Op::Not => self.plan_not(plan, x.first, depth, level),
             Op::Call if builtin(FN_NOT) => self.plan_not(plan, x.first, depth, level),
             Op::Call

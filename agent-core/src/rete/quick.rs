@@ -100,7 +100,9 @@ impl Core<'_> {
 
     /// `quick_join_test` for the tests of `join` through its cached plan.
     /// `tests` and `depth` are the join's (read by the caller with its other fields);
-    /// `planned`: the plan is known cached (see `join_test_with`), set once it is.
+    /// `planned`: the plan is known cached (see `join_test_with`), set once it is;
+    /// `skip`: a test known to hold, or NONE (see `join_test_skip`).
+    #[allow(clippy::too_many_arguments)]
     #[cfg_attr(feature = "host-speedups", inline(always))]
     pub(crate) fn planned_join_test(
         &mut self,
@@ -110,6 +112,7 @@ impl Core<'_> {
         left: TokenId,
         right_fact: Ix,
         planned: &mut bool,
+        skip: Ix,
     ) -> Option<bool> {
         let i = join.ix() % TEST_PLANS;
         if !*planned {
@@ -124,9 +127,16 @@ impl Core<'_> {
         if plan.n == TestPlan::NONE.n {
             // the host compiles other tests into a plan of its own (`rete::plan`)
             #[cfg(feature = "host-speedups")]
-            return self.compiled_join_test(join, tests, depth, left, right_fact);
+            return if skip == NONE {
+                self.compiled_join_test(join, tests, depth, left, right_fact)
+            } else {
+                self.compiled_join_test_or(join, (tests, depth), left, right_fact, skip)
+            };
             #[cfg(not(feature = "host-speedups"))]
-            return self.quick_join_test(tests, depth, left, right_fact);
+            {
+                let _ = skip;
+                return self.quick_join_test(tests, depth, left, right_fact);
+            }
         }
         for op in &plan.ops[..plan.n as usize] {
             let va = self.planned_var(op.a, depth, left, right_fact)?;
