@@ -1668,6 +1668,10 @@ impl Core<'_> {
                     .unwrap_or(rest.len());
                 let _ = writeln!(b, "\nERROR:\n({} {tok}{}", e.construct, &rest[..end]);
             }
+        } else if e.detail == LoadDetail::NoSuchTemplate {
+            let _ = writeln!(b, "[PRNTUTIL1] Unable to find deftemplate {tok}.");
+        } else if e.detail == LoadDetail::NotACommand {
+            let _ = writeln!(b, "[COMMLINE1] Expected a '(', constant, or variable");
         } else if let LoadDetail::NotImplemented { what } = e.detail {
             let _ = writeln!(
                 b,
@@ -1834,6 +1838,7 @@ impl Core<'_> {
                     | LoadDetail::ModuleSpecifier
                     | LoadDetail::UnknownSlot { .. }
                     | LoadDetail::RelationKeyword
+                    | LoadDetail::NoSuchTemplate
             )
         {
             // a rule CLIPS stopped reading, in its conditions or its actions
@@ -1895,6 +1900,7 @@ impl Core<'_> {
                     | LoadDetail::ModuleSpecifier
                     | LoadDetail::UnknownSlot { .. }
                     | LoadDetail::RelationKeyword
+                    | LoadDetail::NoSuchTemplate
             )
         {
             let _ = b.write_str("\nERROR:\n");

@@ -765,6 +765,12 @@ pub enum LoadDetail {
     /// `[PRNTUTIL1]`: a defmodule importing from a module that does not exist (the
     /// offending token).
     NoSuchModule,
+    /// `[PRNTUTIL1]`: a fact-set query names a template that does not exist (the
+    /// offending token).
+    NoSuchTemplate,
+    /// `[COMMLINE1]`: a token that starts no command at the prompt (`)`, `&`, `|`,
+    /// `~`, a lone `?` or `$?`).
+    NotACommand,
     /// `[NOTIMPL1]` (ours, not CLIPS's): something robotino-agent does not implement
     /// yet (`what`, e.g. "defmodule"), refused rather than accepted and ignored.
     NotImplemented {

@@ -275,6 +275,9 @@ pub(super) fn find_construct(cx: &mut Core<'_>, kind: Kind, name: SymId) -> Opti
         Kind::Deftemplate => {
             #[cfg(feature = "modules")]
             if let Some((m, bare)) = cx.resolve_qualified(name) {
+                if m == crate::module::ModId::MAX {
+                    return None;
+                }
                 let current = cx.current_module();
                 cx.set_current_module(m);
                 let t = cx.find_template(bare);

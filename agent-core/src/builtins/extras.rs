@@ -443,7 +443,12 @@ fn ppdeftemplate(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 /// `(ppdeffacts name)`: the deffacts as CLIPS pretty-prints it.
 fn ppdeffacts(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let name = pp_name(cx, a, "ppdeffacts", "deffacts")?;
-    if cx.sym_text(name) == "initial-fact" && cx.st.mode.initial_deffacts {
+    // CLIPS's own `initial-fact` (also as `MAIN::initial-fact`) prints nothing
+    let bare = match cx.sym_text(name) {
+        "MAIN::initial-fact" => "initial-fact",
+        t => t,
+    };
+    if bare == "initial-fact" && cx.st.mode.initial_deffacts {
         return Ok(Value::Void);
     }
     match find_deffacts(cx, name) {
@@ -647,8 +652,8 @@ fn undefine(cx: &mut Core<'_>, a: Args, how: &Undefine) -> Result<Value, EvalErr
             return Ok(Value::Void);
         };
         if (how.stays)(cx, i, false) {
-            let this = (how.name)(cx, i);
-            super::commands::unable(cx, Unable::Delete, how.kind, this);
+            // (named as given: `MAIN::x` stays `MAIN::x`)
+            super::commands::unable(cx, Unable::Delete, how.kind, name);
         } else {
             forget_watched(cx, how, i);
             (how.remove)(cx, i)?;

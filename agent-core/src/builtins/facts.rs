@@ -286,7 +286,7 @@ impl Core<'_> {
             let v = self.eval(e);
             let v = match v {
                 Ok(v) => v,
-                Err(err) if asserting => self.single_field_failed(err)?,
+                Err(err) if asserting => self.single_field_failed(err, e)?,
                 Err(err) => return Err(err),
             };
             return match v {
@@ -364,7 +364,7 @@ impl Core<'_> {
     /// the assert then stops (`field_error`).
     #[cold]
     #[inline(never)]
-    fn single_field_failed(&mut self, err: EvalError) -> Result<Value, EvalError> {
+    fn single_field_failed(&mut self, err: EvalError, e: Ix) -> Result<Value, EvalError> {
         if matches!(
             err.kind(),
             EvalErrorKind::Capacity(_) | EvalErrorKind::Exit | EvalErrorKind::Interrupted
@@ -372,8 +372,15 @@ impl Core<'_> {
             return Err(err);
         }
         let depth = self.st.eval.eval_depth + 1;
+        #[cfg(not(feature = "extras"))]
+        let _ = e;
         let v = match self.st.eval.error_fallback {
-            Some(fb) if fb.depth == depth && fb.divide_by_zero.is_none() => fb.value,
+            Some(fb) if fb.depth == depth => fb.value,
+            // else the constant the failing builtin returns (`sqrt`'s 0.0; the image
+            // keeps FALSE)
+            #[cfg(feature = "extras")]
+            _ => self.builtin_fallback(e).unwrap_or(Value::Sym(SYM_FALSE)),
+            #[cfg(not(feature = "extras"))]
             _ => Value::Sym(SYM_FALSE),
         };
         self.write_error_message(err);
@@ -382,6 +389,26 @@ impl Core<'_> {
         self.st.eval.field_error = Some(err);
         self.st.mode.halting = true;
         Ok(v)
+    }
+
+    /// The value builtin call `e` returns after a run-time error, when CLIPS's is a
+    /// constant (`builtins::describe::OnError`).
+    #[cfg(feature = "extras")]
+    fn builtin_fallback(&mut self, e: Ix) -> Option<Value> {
+        use crate::builtins::errors::Fallback;
+        use crate::expr::FnKind;
+        let x = self.exprs[e as usize];
+        if x.op != Op::Call || x.aux != FnKind::Builtin as u8 {
+            return None;
+        }
+        Some(match crate::builtins::get(x.data).on_error.fallback()? {
+            Fallback::Int(i) => Value::Int(i),
+            Fallback::Float(f) => Value::Float(f),
+            Fallback::Sym("nil") => Value::Sym(crate::builtins::SYM_NIL),
+            Fallback::Sym(_) => Value::Sym(SYM_FALSE),
+            Fallback::Str("") => Value::Str(super::SYM_EMPTY_STR),
+            Fallback::Str(_) | Fallback::EmptyMulti => return None,
+        })
     }
 
     pub(crate) fn default_value(&mut self, tmpl: Ix, slot: Ix) -> Result<Value, EvalError> {

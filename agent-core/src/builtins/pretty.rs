@@ -83,6 +83,14 @@ fn write_token(c: &Cursor<'_>, w: &mut dyn Write, t: Token<'_>) -> fmt::Result {
 
 /// One expression (an atom or a parenthesised list, nested lists included) on one line.
 fn flat(c: &mut Cursor<'_>, w: &mut dyn Write) -> fmt::Result {
+    flat_as(c, w, false)
+}
+
+/// [`flat`] for a fact or pattern (`fact`: a CE, a deffacts fact), where CLIPS glues a
+/// `=` or `:` to the call after it (`(a =(+ 1 2))`, `?x&:(> ?x 1)`) however it was
+/// written; so in the facts of `assert`, `modify` and `duplicate`, but not among a
+/// call's arguments (`(printout t = (+ 1 2))`).
+fn flat_as(c: &mut Cursor<'_>, w: &mut dyn Write, fact: bool) -> fmt::Result {
     // a fact-set query as an `if`'s condition or a global's value: over lines as well
     #[cfg(feature = "extras")]
     if query_form(c) {
@@ -96,6 +104,11 @@ fn flat(c: &mut Cursor<'_>, w: &mut dyn Write) -> fmt::Result {
     }
     let mut depth = 1;
     let mut prev = first;
+    let mut prev2 = first;
+    // bit d: the list at depth d is a fact or slot; `makes` bit d: its head is a
+    // function whose list arguments are facts (deeper than 63: calls)
+    let mut facts: u64 = u64::from(fact) << 1;
+    let mut makes: u64 = 0;
     while depth > 0 {
         #[cfg(feature = "extras")]
         if nested_control(c) {
@@ -114,10 +127,23 @@ fn flat(c: &mut Cursor<'_>, w: &mut dyn Write) -> fmt::Result {
             continue;
         }
         let t = c.next();
+        let bit = |d: i32| 1u64.checked_shl(d as u32).unwrap_or(0);
+        // a `=` or `:` that is no call's name, in a fact: a constraint or `=(...)`
+        let constraint =
+            matches!(prev.tok, Tok::Symbol(":") | Tok::Symbol("=")) && prev2.tok != Tok::LParen;
+        let in_fact = facts & bit(depth) != 0;
         match t.tok {
             Tok::Eof | Tok::Bad => return Ok(()),
-            Tok::LParen => depth += 1,
+            Tok::LParen => {
+                depth += 1;
+                let is_fact = !constraint && (facts | makes) & bit(depth - 1) != 0;
+                facts = (facts & !bit(depth)) | if is_fact { bit(depth) } else { 0 };
+                makes &= !bit(depth);
+            }
             Tok::RParen => depth -= 1,
+            Tok::Symbol("assert" | "modify" | "duplicate") if prev.tok == Tok::LParen => {
+                makes |= bit(depth);
+            }
             _ => {}
         }
         // constraint syntax stays glued: ?x&~3|4, ?y&:(> ?y 1), =(+ 1 2)
@@ -125,11 +151,12 @@ fn flat(c: &mut Cursor<'_>, w: &mut dyn Write) -> fmt::Result {
             || matches!(prev.tok, Tok::LParen | Tok::Amp | Tok::Bar | Tok::Tilde)
             || (matches!(prev.tok, Tok::Symbol(":") | Tok::Symbol("="))
                 && t.tok == Tok::LParen
-                && t.start == prev.end);
+                && (t.start == prev.end || (constraint && in_fact)));
         if !glued {
             w.write_char(' ')?;
         }
         write_token(c, w, t)?;
+        prev2 = prev;
         prev = t;
     }
     Ok(())
@@ -189,7 +216,7 @@ fn ce(c: &mut Cursor<'_>, w: &mut dyn Write, col: usize) -> fmt::Result {
         write_token(c, w, v)?;
         c.next();
         w.write_str(" <- ")?;
-        return flat(c, w);
+        return flat_as(c, w, true);
     }
     let kw = match c.peek(1).tok {
         Tok::Symbol(k) if t0.tok == Tok::LParen => k,
@@ -198,7 +225,7 @@ fn ce(c: &mut Cursor<'_>, w: &mut dyn Write, col: usize) -> fmt::Result {
     let same_line = match kw {
         "and" | "or" | "not" => true,
         "exists" | "logical" | "forall" => false,
-        _ => return flat(c, w),
+        _ => return flat_as(c, w, true),
     };
     c.next();
     c.next();
@@ -405,7 +432,7 @@ fn action_at(c: &mut Cursor<'_>, w: &mut dyn Write, col: usize) -> fmt::Result {
                     spaces(w, col + 8)?;
                 }
                 first = false;
-                flat(c, w)?;
+                flat_as(c, w, true)?;
             }
             close(c, w)
         }
@@ -556,7 +583,7 @@ pub fn write_deffacts_upto(src: &str, module: &str, w: &mut dyn Write) -> fmt::R
     }
     while c.peek(0).tok == Tok::LParen {
         w.write_str("\n   ")?;
-        flat(&mut c, w)?;
+        flat_as(&mut c, w, true)?;
     }
     // an item that is no fact, where CLIPS stopped (`[PRNTUTIL2]` for RHS patterns)
     if !matches!(c.peek(0).tok, Tok::Eof | Tok::Bad | Tok::RParen) {

@@ -52,6 +52,9 @@ enum Mode {
 /// Per-call iteration state: the current fact of each variable and the collector.
 struct Walk {
     q: Query,
+    /// The query function's name, for its error messages.
+    #[cfg(feature = "extras")]
+    func: &'static str,
     mode: Mode,
     cursor: [FactRef; MAX_VARS],
     /// find-all-facts/find-fact: append matching tuples to the multifield being built.
@@ -209,6 +212,90 @@ fn template_of(cx: &mut Core<'_>, tnode: Ix) -> Option<Ix> {
     Some(t)
 }
 
+/// Most templates one run-time restriction (a variable, a call) may name.
+#[cfg(feature = "extras")]
+const DYN_MAX: usize = 8;
+
+/// The templates a restriction written as an expression names (CLIPS evaluates it
+/// each time the query runs): a symbol, or a multifield of symbols, each naming a
+/// deftemplate. Anything else is CLIPS's `[PRNTUTIL2]` (after `[PRNTUTIL1]` for a
+/// symbol naming none), which ends the query with an error. Host only (`extras`): the
+/// image's rules name their templates.
+#[cfg(feature = "extras")]
+fn dynamic_templates(
+    cx: &mut Core<'_>,
+    tnode: Ix,
+    func: &str,
+    out: &mut [Ix; DYN_MAX],
+) -> Result<usize, EvalError> {
+    let mark = cx.st.frame.scratch_top;
+    let v = cx.eval(tnode);
+    let mut n = 0;
+    let mut bad = None;
+    let mut one = |cx: &mut Core<'_>, v: Value, n: &mut usize| -> bool {
+        let Value::Sym(s) = v else { return false };
+        match cx.find_template(s) {
+            Some(t) if *n < DYN_MAX => {
+                out[*n] = t;
+                *n += 1;
+                true
+            }
+            Some(_) => false,
+            None => {
+                bad = Some(s);
+                false
+            }
+        }
+    };
+    let ok = match v {
+        Err(e) => {
+            release_scratch(cx, mark);
+            return Err(e);
+        }
+        Ok(Value::Multi(m)) => (0..m.len as usize).all(|i| {
+            let item = cx.mf_item(m, i);
+            one(cx, item, &mut n)
+        }),
+        Ok(v) => one(cx, v, &mut n),
+    };
+    release_scratch(cx, mark);
+    if ok {
+        return Ok(n);
+    }
+    let mut b: crate::value::TextBuf<200> = crate::value::TextBuf::new();
+    if let Some(s) = bad {
+        let _ = core::fmt::Write::write_fmt(
+            &mut b,
+            format_args!(
+                "[PRNTUTIL1] Unable to find deftemplate {} in function {func}.\n",
+                cx.sym_text(s)
+            ),
+        );
+    }
+    let _ = core::fmt::Write::write_str(
+        &mut b,
+        "\n[PRNTUTIL2] Syntax Error:  Check appropriate syntax for fact-set query class restrictions.\n",
+    );
+    cx.write(crate::host::router::WERROR, b.as_str());
+    Err(EvalError::already_reported())
+}
+
+/// Checks the restrictions written as expressions before any tuple is visited, as
+/// CLIPS does.
+#[cfg(feature = "extras")]
+fn check_dynamic(cx: &mut Core<'_>, q: &Query, func: &str) -> Result<(), EvalError> {
+    for &var in &q.vars[..q.nvars] {
+        let mut t = cx.exprs[var as usize].first;
+        while t != NONE {
+            if cx.exprs[t as usize].op != crate::expr::Op::Sym {
+                dynamic_templates(cx, t, func, &mut [NONE; DYN_MAX])?;
+            }
+            t = cx.exprs[t as usize].next;
+        }
+    }
+    Ok(())
+}
+
 /// A query test that compares one slot of the innermost variable's fact with a
 /// constant, a local or a global (`(= ?m:index ?i)`, `(eq ?p:name ?from)`): such a
 /// test has no side effects, so the walk decides it in place for each fact and
@@ -312,9 +399,33 @@ fn walk(cx: &mut Core<'_>, w: &mut Walk, k: usize) -> Result<bool, EvalError> {
         None
     };
     let mut tnode = cx.exprs[var as usize].first;
-    while tnode != NONE {
-        let tmpl = template_of(cx, tnode);
-        tnode = cx.exprs[tnode as usize].next;
+    // the templates of a restriction written as an expression, and the next of them
+    #[cfg(feature = "extras")]
+    let mut dynamic = ([NONE; DYN_MAX], 0usize, 0usize);
+    loop {
+        #[cfg(feature = "extras")]
+        let pending = if dynamic.2 < dynamic.1 {
+            dynamic.2 += 1;
+            Some(dynamic.0[dynamic.2 - 1])
+        } else if tnode != NONE && cx.exprs[tnode as usize].op != crate::expr::Op::Sym {
+            dynamic.1 = dynamic_templates(cx, tnode, w.func, &mut dynamic.0)?;
+            dynamic.2 = 0;
+            tnode = cx.exprs[tnode as usize].next;
+            continue;
+        } else {
+            None
+        };
+        #[cfg(not(feature = "extras"))]
+        let pending: Option<Ix> = None;
+        let tmpl = match pending {
+            Some(t) => Some(t),
+            None if tnode == NONE => break,
+            None => {
+                let t = template_of(cx, tnode);
+                tnode = cx.exprs[tnode as usize].next;
+                t
+            }
+        };
         let Some(tmpl) = tmpl else { continue };
         // the slot the quick test reads in this template (none: the evaluator
         // reports the unknown slot)
@@ -326,6 +437,9 @@ fn walk(cx: &mut Core<'_>, w: &mut Walk, k: usize) -> Result<bool, EvalError> {
         };
         let mut prev: Option<Resume> = None;
         while let Some(f) = next_of_template(cx, tmpl, prev) {
+            #[cfg(feature = "extras")]
+            debug_assert!(dynamic.1 > 0 || fact_fits(cx, var, f));
+            #[cfg(not(feature = "extras"))]
             debug_assert!(fact_fits(cx, var, f));
             // (an outer variable the test may read is bound again first)
             rebind_outer(cx, w, k);
@@ -445,13 +559,18 @@ fn hold_end(cx: &mut Core<'_>, (saved, top): (u16, bool)) {
 fn run(
     cx: &mut Core<'_>,
     call: Ix,
+    func: &'static str,
     mode: Mode,
     collect: bool,
     act: bool,
 ) -> Result<Walk, EvalError> {
     let q = parse(cx, call)?;
+    #[cfg(not(feature = "extras"))]
+    let _ = func;
     let mut w = Walk {
         q,
+        #[cfg(feature = "extras")]
+        func,
         mode,
         cursor: [FactRef { slot: NONE, num: 0 }; MAX_VARS],
         collect,
@@ -465,6 +584,8 @@ fn run(
     if cx.st.mode.halting {
         return Ok(w);
     }
+    #[cfg(feature = "extras")]
+    check_dynamic(cx, &w.q, func)?;
     // outside a firing, retracted facts stay readable (`hold_begin`)
     let hold = hold_begin(cx);
     w.hold_top = hold.1;
@@ -474,31 +595,31 @@ fn run(
 }
 
 fn any_factp(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
-    let w = run(cx, call, Mode::First, false, false)?;
+    let w = run(cx, call, "any-factp", Mode::First, false, false)?;
     Ok(Core::bool_value(w.found))
 }
 
 fn find_fact(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     let start = cx.multi_begin();
-    run(cx, call, Mode::First, true, false)?;
+    run(cx, call, "find-fact", Mode::First, true, false)?;
     Ok(cx.multi_finish(start))
 }
 
 /// All matching tuples, flattened: `(<Fact-1> <Fact-2> <Fact-3> <Fact-2>)`.
 fn find_all_facts(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     let start = cx.multi_begin();
-    run(cx, call, Mode::All, true, false)?;
+    run(cx, call, "find-all-facts", Mode::All, true, false)?;
     Ok(cx.multi_finish(start))
 }
 
 /// The value of the last action for the first matching tuple, FALSE without a match.
 fn do_for_fact(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
-    Ok(run(cx, call, Mode::First, false, true)?.last)
+    Ok(run(cx, call, "do-for-fact", Mode::First, false, true)?.last)
 }
 
 /// The value of the last action of the last matching tuple, FALSE without a match.
 fn do_for_all_facts(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
-    Ok(run(cx, call, Mode::All, false, true)?.last)
+    Ok(run(cx, call, "do-for-all-facts", Mode::All, false, true)?.last)
 }
 
 /// Finds every matching tuple first, then runs the actions for each of them, even for
@@ -513,7 +634,7 @@ fn delayed_do_for_all_facts(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalEr
 
 fn delayed(cx: &mut Core<'_>, call: Ix, top: bool) -> Result<Value, EvalError> {
     let start = cx.multi_begin();
-    let w = run(cx, call, Mode::All, true, false)?;
+    let w = run(cx, call, "delayed-do-for-all-facts", Mode::All, true, false)?;
     let tuples = match cx.multi_finish(start) {
         Value::Multi(m) => m,
         _ => return Ok(Value::Sym(SYM_FALSE)),

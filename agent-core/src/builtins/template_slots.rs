@@ -84,7 +84,7 @@ fn template_arg(
             return Err(reported(cx, b.as_str(), fallback));
         }
     };
-    match cx.find_template(name) {
+    match super::environment::find_construct(cx, super::extras::Kind::Deftemplate, name) {
         Some(t) => Ok(t),
         None => {
             let mut b: TextBuf<160> = TextBuf::new();

@@ -813,12 +813,29 @@ impl<'s> Parser<'s, '_, '_> {
         let node = self.builtin_call("while")?;
         let cond = self.parse_expr()?;
         self.cx.append_child(node, cond);
-        if self.peek().tok == Tok::Symbol("do") {
-            self.next();
-        }
+        self.loop_do("while function")?;
         let body = self.loop_body()?;
         self.cx.append_child(node, body);
         Ok(node)
+    }
+
+    /// After a loop's condition or range CLIPS wants `do` or an action's `(`: a word
+    /// (`then`), a constant, a variable or the loop's `)` is a syntax error, shown
+    /// glued to the text before it (`(while (> ?n 0)then`).
+    fn loop_do(&mut self, part: &'static str) -> PResult<()> {
+        let t = self.peek();
+        match t.tok {
+            Tok::Symbol("do") => {
+                self.next();
+                Ok(())
+            }
+            Tok::LParen => Ok(()),
+            _ => {
+                let mut e = self.syntax_of(t, "'do' or an action", part);
+                e.echo_tail = crate::error::EchoTail::Glued;
+                Err(e)
+            }
+        }
     }
 
     /// Whether variables are the prompt's (hidden globals): at top level, and in a
@@ -960,9 +977,7 @@ impl<'s> Parser<'s, '_, '_> {
         self.cx.append_child(node, var);
         self.cx.append_child(node, start);
         self.cx.append_child(node, end);
-        if self.peek().tok == Tok::Symbol("do") {
-            self.next();
-        }
+        self.loop_do("loop-for-count function")?;
         let body = self.loop_body()?;
         self.cx.append_child(node, body);
         Ok(node)
@@ -1129,18 +1144,34 @@ impl<'s> Parser<'s, '_, '_> {
                     let slot = self.new_local(vt, vname, false)?;
                     let var = cap!(self, self.cx.push_expr(Expr::new(Op::Local, 0, slot)))?;
                     loop {
-                        let tt = self.next();
+                        let tt = self.peek();
                         match tt.tok {
-                            Tok::RParen => break,
+                            Tok::RParen => {
+                                self.next();
+                                break;
+                            }
                             Tok::Symbol(tn) => {
+                                self.next();
                                 let sym = cap!(self, self.cx.intern(tn))?;
                                 if self.cx.find_template(sym).is_none() {
-                                    return Err(self.err(tt, "a deftemplate name"));
+                                    // `[PRNTUTIL1]`, the construct up to the name
+                                    let mut e = self.err(tt, "a deftemplate name");
+                                    e.detail = crate::error::LoadDetail::NoSuchTemplate;
+                                    if self.construct != "command" {
+                                        e.echo_end = tt.end as u32;
+                                    }
+                                    return Err(e);
                                 }
                                 let te = cap!(self, self.cx.push_expr(Expr::new(Op::Sym, 0, sym)))?;
                                 self.cx.append_child(var, te);
                             }
-                            _ => return Err(self.err(tt, "a template name")),
+                            Tok::Eof | Tok::Bad => return Err(self.err(tt, "a template name")),
+                            _ => {
+                                // any other expression names its templates when the
+                                // query runs (a symbol or a multifield of them)
+                                let te = self.parse_expr()?;
+                                self.cx.append_child(var, te);
+                            }
                         }
                     }
                     self.cx.append_child(decl, var);

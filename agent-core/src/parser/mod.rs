@@ -696,6 +696,16 @@ impl<'s, 'e> Parser<'s, '_, 'e> {
             _ => {
                 self.scope = Scope::TopLevel;
                 self.construct = "command";
+                if matches!(
+                    t.tok,
+                    Tok::RParen | Tok::Amp | Tok::Bar | Tok::Tilde | Tok::SfWild | Tok::MfWild
+                ) {
+                    // CLIPS's command loop takes only a `(`, a constant or a variable
+                    self.next();
+                    let mut e = self.err(t, "'(', a constant or a variable");
+                    e.detail = crate::error::LoadDetail::NotACommand;
+                    return Err(e);
+                }
                 let e = self.parse_expr()?;
                 Ok(Item::Command(e))
             }
