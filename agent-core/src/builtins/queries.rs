@@ -38,6 +38,20 @@ struct Query {
     /// The query expression and the first action (NONE when there are none).
     test: Ix,
     actions: Ix,
+    /// A template restriction is an expression (the parser marks the declarations).
+    #[cfg(feature = "extras")]
+    dynamic: bool,
+}
+
+/// Whether a restriction of the query is an expression.
+fn query_dynamic(w: &Walk) -> bool {
+    #[cfg(feature = "extras")]
+    return w.q.dynamic;
+    #[cfg(not(feature = "extras"))]
+    {
+        let _ = w;
+        false
+    }
 }
 
 /// What to do with each tuple that satisfies the query.
@@ -84,6 +98,8 @@ fn parse(cx: &Core<'_>, call: Ix) -> Result<Query, EvalError> {
         nvars: 0,
         test,
         actions,
+        #[cfg(feature = "extras")]
+        dynamic: cx.exprs[decl as usize].aux != 0,
     };
     let mut v = cx.exprs[decl as usize].first;
     while v != NONE {
@@ -212,56 +228,52 @@ fn template_of(cx: &mut Core<'_>, tnode: Ix) -> Option<Ix> {
     Some(t)
 }
 
-/// Most templates one run-time restriction (a variable, a call) may name.
+/// Template `at` (0-based) of a restriction written as an expression, which CLIPS
+/// evaluates each time the query runs: a symbol, or a multifield of symbols, each
+/// naming a deftemplate; `None` past the last. Anything else is CLIPS's `[PRNTUTIL2]`
+/// (after `[PRNTUTIL1]` for a symbol naming none), which ends the query with an error.
+/// Host only (`extras`): the image's rules name their templates.
 #[cfg(feature = "extras")]
-const DYN_MAX: usize = 8;
-
-/// The templates a restriction written as an expression names (CLIPS evaluates it
-/// each time the query runs): a symbol, or a multifield of symbols, each naming a
-/// deftemplate. Anything else is CLIPS's `[PRNTUTIL2]` (after `[PRNTUTIL1]` for a
-/// symbol naming none), which ends the query with an error. Host only (`extras`): the
-/// image's rules name their templates.
-#[cfg(feature = "extras")]
-fn dynamic_templates(
+fn dynamic_template_at(
     cx: &mut Core<'_>,
     tnode: Ix,
+    at: usize,
     func: &str,
-    out: &mut [Ix; DYN_MAX],
-) -> Result<usize, EvalError> {
+) -> Result<Option<Ix>, EvalError> {
     let mark = cx.st.frame.scratch_top;
     let v = cx.eval(tnode);
-    let mut n = 0;
-    let mut bad = None;
-    let mut one = |cx: &mut Core<'_>, v: Value, n: &mut usize| -> bool {
-        let Value::Sym(s) = v else { return false };
-        match cx.find_template(s) {
-            Some(t) if *n < DYN_MAX => {
-                out[*n] = t;
-                *n += 1;
-                true
-            }
-            Some(_) => false,
-            None => {
-                bad = Some(s);
-                false
-            }
-        }
-    };
-    let ok = match v {
+    let item = match v {
         Err(e) => {
             release_scratch(cx, mark);
             return Err(e);
         }
-        Ok(Value::Multi(m)) => (0..m.len as usize).all(|i| {
-            let item = cx.mf_item(m, i);
-            one(cx, item, &mut n)
-        }),
-        Ok(v) => one(cx, v, &mut n),
+        Ok(Value::Multi(m)) if at < m.len as usize => cx.mf_item(m, at),
+        Ok(Value::Multi(m))
+            if (0..m.len as usize).all(
+                |i| matches!(cx.mf_item(m, i), Value::Sym(s) if cx.find_template(s).is_some()),
+            ) =>
+        {
+            release_scratch(cx, mark);
+            return Ok(None);
+        }
+        Ok(Value::Multi(m)) => (0..m.len as usize)
+            .map(|i| cx.mf_item(m, i))
+            .find(|v| !matches!(*v, Value::Sym(s) if cx.find_template(s).is_some()))
+            .unwrap_or(Value::Void),
+        Ok(v) if at == 0 => v,
+        Ok(_) => {
+            release_scratch(cx, mark);
+            return Ok(None);
+        }
     };
     release_scratch(cx, mark);
-    if ok {
-        return Ok(n);
-    }
+    let bad = match item {
+        Value::Sym(s) => match cx.find_template(s) {
+            Some(t) => return Ok(Some(t)),
+            None => Some(s),
+        },
+        _ => None,
+    };
     let mut b: crate::value::TextBuf<200> = crate::value::TextBuf::new();
     if let Some(s) = bad {
         let _ = core::fmt::Write::write_fmt(
@@ -281,14 +293,17 @@ fn dynamic_templates(
 }
 
 /// Checks the restrictions written as expressions before any tuple is visited, as
-/// CLIPS does.
+/// CLIPS does (each name of each one).
 #[cfg(feature = "extras")]
 fn check_dynamic(cx: &mut Core<'_>, q: &Query, func: &str) -> Result<(), EvalError> {
     for &var in &q.vars[..q.nvars] {
         let mut t = cx.exprs[var as usize].first;
         while t != NONE {
             if cx.exprs[t as usize].op != crate::expr::Op::Sym {
-                dynamic_templates(cx, t, func, &mut [NONE; DYN_MAX])?;
+                let mut at = 0;
+                while dynamic_template_at(cx, t, at, func)?.is_some() {
+                    at += 1;
+                }
             }
             t = cx.exprs[t as usize].next;
         }
@@ -399,32 +414,33 @@ fn walk(cx: &mut Core<'_>, w: &mut Walk, k: usize) -> Result<bool, EvalError> {
         None
     };
     let mut tnode = cx.exprs[var as usize].first;
-    // the templates of a restriction written as an expression, and the next of them
+    // the next template of a restriction written as an expression
     #[cfg(feature = "extras")]
-    let mut dynamic = ([NONE; DYN_MAX], 0usize, 0usize);
-    loop {
+    let mut dyn_at = 0usize;
+    while tnode != NONE {
         #[cfg(feature = "extras")]
-        let pending = if dynamic.2 < dynamic.1 {
-            dynamic.2 += 1;
-            Some(dynamic.0[dynamic.2 - 1])
-        } else if tnode != NONE && cx.exprs[tnode as usize].op != crate::expr::Op::Sym {
-            dynamic.1 = dynamic_templates(cx, tnode, w.func, &mut dynamic.0)?;
-            dynamic.2 = 0;
-            tnode = cx.exprs[tnode as usize].next;
-            continue;
+        let tmpl = if w.q.dynamic && cx.exprs[tnode as usize].op != crate::expr::Op::Sym {
+            match dynamic_template_at(cx, tnode, dyn_at, w.func)? {
+                Some(t) => {
+                    dyn_at += 1;
+                    Some(t)
+                }
+                None => {
+                    dyn_at = 0;
+                    tnode = cx.exprs[tnode as usize].next;
+                    continue;
+                }
+            }
         } else {
-            None
+            let t = template_of(cx, tnode);
+            tnode = cx.exprs[tnode as usize].next;
+            t
         };
         #[cfg(not(feature = "extras"))]
-        let pending: Option<Ix> = None;
-        let tmpl = match pending {
-            Some(t) => Some(t),
-            None if tnode == NONE => break,
-            None => {
-                let t = template_of(cx, tnode);
-                tnode = cx.exprs[tnode as usize].next;
-                t
-            }
+        let tmpl = {
+            let t = template_of(cx, tnode);
+            tnode = cx.exprs[tnode as usize].next;
+            t
         };
         let Some(tmpl) = tmpl else { continue };
         // the slot the quick test reads in this template (none: the evaluator
@@ -437,10 +453,7 @@ fn walk(cx: &mut Core<'_>, w: &mut Walk, k: usize) -> Result<bool, EvalError> {
         };
         let mut prev: Option<Resume> = None;
         while let Some(f) = next_of_template(cx, tmpl, prev) {
-            #[cfg(feature = "extras")]
-            debug_assert!(dynamic.1 > 0 || fact_fits(cx, var, f));
-            #[cfg(not(feature = "extras"))]
-            debug_assert!(fact_fits(cx, var, f));
+            debug_assert!(query_dynamic(w) || fact_fits(cx, var, f));
             // (an outer variable the test may read is bound again first)
             rebind_outer(cx, w, k);
             let decided = quick_slot.and_then(|(q, slot)| q.decide(cx, f, slot));
@@ -585,7 +598,9 @@ fn run(
         return Ok(w);
     }
     #[cfg(feature = "extras")]
-    check_dynamic(cx, &w.q, func)?;
+    if w.q.dynamic {
+        check_dynamic(cx, &w.q, func)?;
+    }
     // outside a firing, retracted facts stay readable (`hold_begin`)
     let hold = hold_begin(cx);
     w.hold_top = hold.1;

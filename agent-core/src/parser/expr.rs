@@ -1171,6 +1171,7 @@ impl<'s> Parser<'s, '_, '_> {
                                 // query runs (a symbol or a multifield of them)
                                 let te = self.parse_expr()?;
                                 self.cx.append_child(var, te);
+                                self.cx.exprs[decl as usize].aux = 1;
                             }
                         }
                     }
