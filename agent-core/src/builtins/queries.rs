@@ -66,9 +66,6 @@ enum Mode {
 /// Per-call iteration state: the current fact of each variable and the collector.
 struct Walk {
     q: Query,
-    /// The query function's name, for its error messages.
-    #[cfg(feature = "extras")]
-    func: &'static str,
     mode: Mode,
     cursor: [FactRef; MAX_VARS],
     /// find-all-facts/find-fact: append matching tuples to the multifield being built.
@@ -292,6 +289,19 @@ fn dynamic_template_at(
     Err(EvalError::already_reported())
 }
 
+/// The query function a walk runs, for its error messages (told apart by what it does
+/// with the tuples; delayed-do-for-all-facts walks as find-all-facts does).
+#[cfg(feature = "extras")]
+fn walk_func(w: &Walk) -> &'static str {
+    match (w.mode, w.collect, w.act) {
+        (Mode::First, false, false) => "any-factp",
+        (Mode::First, true, _) => "find-fact",
+        (Mode::First, false, true) => "do-for-fact",
+        (Mode::All, true, _) => "find-all-facts",
+        (Mode::All, false, _) => "do-for-all-facts",
+    }
+}
+
 /// Checks the restrictions written as expressions before any tuple is visited, as
 /// CLIPS does (each name of each one).
 #[cfg(feature = "extras")]
@@ -420,7 +430,7 @@ fn walk(cx: &mut Core<'_>, w: &mut Walk, k: usize) -> Result<bool, EvalError> {
     while tnode != NONE {
         #[cfg(feature = "extras")]
         let tmpl = if w.q.dynamic && cx.exprs[tnode as usize].op != crate::expr::Op::Sym {
-            match dynamic_template_at(cx, tnode, dyn_at, w.func)? {
+            match dynamic_template_at(cx, tnode, dyn_at, walk_func(w))? {
                 Some(t) => {
                     dyn_at += 1;
                     Some(t)
@@ -582,8 +592,6 @@ fn run(
     let _ = func;
     let mut w = Walk {
         q,
-        #[cfg(feature = "extras")]
-        func,
         mode,
         cursor: [FactRef { slot: NONE, num: 0 }; MAX_VARS],
         collect,
