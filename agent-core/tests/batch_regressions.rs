@@ -25,7 +25,7 @@ impl Host for Transcript {
 const PRELUDE: &str = include_str!("../fuzz/fuzz_targets/common/prelude.clp");
 
 fn replay(name: &str, text: &str) {
-    let h = &mut Budget(0);
+    let h = &mut Budget::new();
     let mut e = Box::new(SmallEngine::new());
     e.load_str(h, "prelude", PRELUDE)
         .expect("the prelude loads");
@@ -35,7 +35,7 @@ fn replay(name: &str, text: &str) {
         panic!("{name}: after batch_str: {v}");
     }
     if !e.exited() {
-        h.0 = 0;
+        h.rearm();
         let r = e.run(h, Some(1_000));
         if let Err(v) = e.check_invariants() {
             panic!("{name}: after run ({r:?}): {v}");
@@ -134,5 +134,62 @@ fn modify_single_slot_without_value_in_a_query() {
     assert_eq!(
         e.fact_slot(ms[0], "max").map(|v| format!("{v:?}")),
         Some("Int(0)".to_string())
+    );
+}
+
+/// The fuzz target's engine (`cli::engine`: the command line's `GrowEngine`, pools
+/// growing to `--pool-limit` 2^18 entries), the rule base and `replay`'s steps.
+#[cfg(feature = "grow")]
+fn replay_grow(name: &str, text: &str) {
+    use agent_core::grow::{GrowEngine, GrowStorage};
+    use agent_core::Capacities;
+    let storage = GrowStorage::with_limits(GrowStorage::START, Capacities::uniform(1 << 18));
+    let mut e = Box::new(GrowEngine::with_storage(storage));
+    let h = &mut Budget::new();
+    e.load_str(h, "prelude", PRELUDE)
+        .expect("the prelude loads");
+    e.reset(h).expect("the prelude resets");
+    e.batch_str(h, text, true);
+    if let Err(v) = e.check_invariants() {
+        panic!("{name}: after batch_str: {v}");
+    }
+    if !e.exited() {
+        h.rearm();
+        let r = e.run(h, Some(1_000));
+        if let Err(v) = e.check_invariants() {
+            panic!("{name}: after run ({r:?}): {v}");
+        }
+    }
+}
+
+/// Found by the batch target (timeout-332856a4): a rule whose `modify` makes the
+/// fact it matched one field longer fires forever (CLIPS 6.30 too: after 3,000
+/// firings it is still on the agenda), each firing copying a longer multifield; the
+/// 100,000 polls the host allowed were ~5e9 copied fields, minutes past libFuzzer's
+/// timeout. The host's time budget now ends it too, as an interrupt. (On the small
+/// engine the fact arena fills first.)
+#[cfg(feature = "grow")]
+#[test]
+fn multifield_that_grows_each_firing_ends_by_the_time_budget() {
+    let started = std::time::Instant::now();
+    replay_grow(
+        "multifield-grows-forever",
+        &String::from_utf8_lossy(include_bytes!(
+            "fuzz_regressions/batch-multifield-grows-forever.clp"
+        )),
+    );
+    // minimised: one fact, one rule
+    replay_grow(
+        "multifield-grows-forever-min",
+        "(deftemplate inv (slot who) (multislot items))\n\
+         (defrule give ?b <- (inv (who ?q) (items $?qi)) (give ?q ?thing)\n\
+           => (modify ?b (items ?qi ?thing)))\n\
+         (assert (inv (who bob)) (give bob apple))\n(run)\n",
+    );
+    // each replay: at most two time budgets (the text, then the final run)
+    let took = started.elapsed();
+    assert!(
+        took < common::budget::TIME_BUDGET * 8,
+        "the replays took {took:?}"
     );
 }

@@ -10,7 +10,7 @@ use common::budget::Budget;
 fn replay(name: &str, data: &[u8]) {
     let text = String::from_utf8_lossy(data);
     let mut e = Box::new(SmallEngine::new());
-    let h = &mut Budget(0);
+    let h = &mut Budget::new();
     let r = e.load_str(h, "fuzz", &text);
     if let Err(v) = e.check_invariants() {
         panic!("{name}: after load_str ({r:?}): {v}");
@@ -59,7 +59,7 @@ fn deffacts_field_without_a_value() {
     );
     replay("minimal", b"(deffacts d(a\"\"\"\"(printout t)))");
     let mut e = Box::new(SmallEngine::new());
-    let h = &mut Budget(0);
+    let h = &mut Budget::new();
     e.load_str(h, "d", "(deffacts d (a x (printout t)))")
         .expect("loads");
     e.reset(h).expect("resets");
@@ -98,7 +98,7 @@ fn failed_defrule_leaves_a_fact_of_an_unknown_template() {
         b"(defrule r (declare (salience (sym-cat (assert (go 2))))) =>)",
     );
     let mut e = Box::new(SmallEngine::new());
-    let h = &mut Budget(0);
+    let h = &mut Budget::new();
     let r = e.load_str(
         h,
         "t",
@@ -123,7 +123,7 @@ fn failed_defrule_leaves_a_fact_of_an_unknown_template() {
 #[test]
 fn parse_time_evaluation_keeps_pre_existing_state() {
     let mut e = Box::new(SmallEngine::new());
-    let h = &mut Budget(0);
+    let h = &mut Budget::new();
     e.load_str(h, "t", "(defglobal ?*x* = 1)").expect("loads");
     assert!(e
         .load_str(h, "t", "(defglobal ?*x* = (sym-cat abc) ?*a* = 5 ?*y* = )")
@@ -181,7 +181,7 @@ fn deffacts_create_of_a_call_without_a_value() {
     );
     replay("minimal", b"(deffacts \0(=)(d(create$(unwatch S))))");
     let mut e = Box::new(SmallEngine::new());
-    let h = &mut Budget(0);
+    let h = &mut Budget::new();
     assert_eq!(
         e.eval_str(h, "(length$ (create$ a (printout t) b))"),
         Ok(agent_core::Value::Int(2))

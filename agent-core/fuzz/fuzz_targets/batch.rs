@@ -3,7 +3,7 @@
 //! shape) after a small valid rule base: commands, constructs, `run`, `eval`, `build`,
 //! whatever the bytes say. Must return, never panic, and leave a consistent engine;
 //! then the agenda is run (at most `RUN_LIMIT` firings) and checked again. Runaway
-//! loops end by the host's poll budget. Seeds: tests/clips/*.clp.
+//! loops end by the host's budget (polls and time). Seeds: tests/clips/*.clp.
 #![no_main]
 
 #[path = "common/cli.rs"]
@@ -22,7 +22,7 @@ fuzz_target!(|data: &[u8]| {
         e.batch_str(h, &text, true);
         cli::check(&mut e, "batch_str");
         if !e.exited() {
-            h.polls = 0;
+            h.rearm();
             let r = e.run(h, Some(RUN_LIMIT));
             if let Err(v) = e.check_invariants() {
                 panic!("after run ({r:?}): {v}");

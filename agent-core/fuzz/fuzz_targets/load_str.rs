@@ -3,28 +3,18 @@
 //! loaded, also after a `reset`. Seeds: tests/clips/*.clp, tests/clips-errors.
 #![no_main]
 
-use agent_core::{Host, SmallEngine};
+#[path = "common/cli.rs"]
+mod cli;
+
+use agent_core::SmallEngine;
 use libfuzzer_sys::fuzz_target;
-
-/// Drops output and interrupts once polled `POLL_BUDGET` times (one poll per loop
-/// iteration or rule firing), so a text that loops forever at reset ends.
-struct Budget(u32);
-
-const POLL_BUDGET: u32 = 100_000;
-
-impl Host for Budget {
-    fn write_str(&mut self, _router: &str, _text: &str) {}
-    fn interrupt(&mut self) -> bool {
-        self.0 = self.0.saturating_add(1);
-        self.0 > POLL_BUDGET
-    }
-}
 
 fuzz_target!(|data: &[u8]| {
     // invalid UTF-8 is replaced, so byte-level mutations still reach the lexer
     let text = String::from_utf8_lossy(data);
     let mut e = Box::new(SmallEngine::new());
-    let h = &mut Budget(0);
+    // interrupts a text that loops at reset (polls or time: `cli::Budget`)
+    let h = &mut cli::Budget::default();
     let r = e.load_str(h, "fuzz", &text);
     if let Err(v) = e.check_invariants() {
         panic!("after load_str ({r:?}): {v}");

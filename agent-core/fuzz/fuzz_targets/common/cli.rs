@@ -6,9 +6,16 @@
 use agent_core::grow::{GrowEngine, GrowStorage};
 use agent_core::{Capacities, Host};
 
-/// How often the host lets the engine poll (one poll per loop iteration or rule
-/// firing) before it interrupts: a text that loops forever ends.
+/// How often the host lets the engine poll (one poll per loop iteration, rule firing
+/// or deffunction call) before it interrupts: a text that loops forever ends.
 pub const POLL_BUDGET: u32 = 100_000;
+
+/// How long (wall time) the host lets the engine work before it interrupts, counted
+/// from the host's making or `rearm`: a poll counts a step, not its work, and steps
+/// can grow (a loop that copies a multifield one longer each time: 100,000 firings
+/// copied 5e9 fields). Well inside libFuzzer's `-timeout=10` for the two phases a
+/// target may give it (see `rearm`), on a loaded machine.
+pub const TIME_BUDGET: std::time::Duration = std::time::Duration::from_secs(3);
 
 /// Every pool grows to at most this many entries (the CLI's `--pool-limit`): a text
 /// that fills a pool gets the capacity error instead of the machine's memory.
@@ -20,12 +27,32 @@ pub const POOL_LIMIT: usize = 1 << 18;
 pub const STACK: usize = 64 << 20;
 pub const STACK_MARGIN: usize = 32 << 20;
 
-/// Drops output (after checking it is what a router may get) and interrupts once
-/// polled `POLL_BUDGET` times.
-#[derive(Default)]
+/// Drops output (counting it) and interrupts once polled `POLL_BUDGET` times or
+/// `TIME_BUDGET` after it was made or rearmed, whichever comes first. Being stopped
+/// so is a clean end of an input: the engine reports `Interrupted` and must stay
+/// consistent.
 pub struct Budget {
     pub polls: u32,
     pub written: usize,
+    deadline: std::time::Instant,
+}
+
+impl Default for Budget {
+    fn default() -> Self {
+        Budget {
+            polls: 0,
+            written: 0,
+            deadline: std::time::Instant::now() + TIME_BUDGET,
+        }
+    }
+}
+
+impl Budget {
+    /// A new allowance of polls and time, for a next phase of the same input.
+    pub fn rearm(&mut self) {
+        self.polls = 0;
+        self.deadline = std::time::Instant::now() + TIME_BUDGET;
+    }
 }
 
 impl Host for Budget {
@@ -34,7 +61,7 @@ impl Host for Budget {
     }
     fn interrupt(&mut self) -> bool {
         self.polls = self.polls.saturating_add(1);
-        self.polls > POLL_BUDGET
+        self.polls > POLL_BUDGET || std::time::Instant::now() >= self.deadline
     }
 }
 
