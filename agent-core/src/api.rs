@@ -65,6 +65,16 @@ engine_impl! {
         self.st.eval.limits = crate::eval::DepthLimits::with(calls, stack_bytes);
     }
 
+    /// Polls the host (`Host::interrupt`) at each deffunction call too, not only at
+    /// each loop iteration and rule firing: a host that stops runaway programs then
+    /// stops a recursion that branches (`fib` of 45: billions of calls, no loop). Off
+    /// by default (a host whose `interrupt` never stops saves the call); `clear` keeps
+    /// it.
+    #[cfg(feature = "extras")]
+    pub fn set_poll_calls(&mut self, on: bool) {
+        self.st.profile.set_poll_calls(on);
+    }
+
     /// Parses and evaluates one expression/command. A multifield result points into
     /// scratch and is valid until the next call.
     pub fn eval_str(&mut self, host: &mut dyn Host, command: &str) -> Result<Value, EvalError> {

@@ -724,9 +724,10 @@ impl Core<'_> {
         #[cfg(feature = "extras")]
         {
             self.st.eval.dfn_depth += 1;
-            // (one test of the profiler's mode per call, its work out of line)
-            let r = if self.profiling(false) {
-                self.call_deffunction_profiled(func, first_arg)
+            // (one test per call for the profiler and the host's poll, their work out
+            // of line)
+            let r = if self.calls_hooked() {
+                self.call_deffunction_hooked(func, first_arg)
             } else {
                 self.call_deffunction_args(func, first_arg)
             };
@@ -737,11 +738,19 @@ impl Core<'_> {
         self.call_deffunction_args(func, first_arg)
     }
 
-    /// A deffunction's call timed by the profiler (`builtins::profile`).
+    /// A deffunction's call that the host is polled at (`Engine::set_poll_calls`: a
+    /// recursion that branches loops without a loop), or timed by the profiler
+    /// (`builtins::profile`), or both.
     #[cfg(feature = "extras")]
     #[cold]
     #[inline(never)]
-    fn call_deffunction_profiled(&mut self, func: Ix, first_arg: Ix) -> Result<Value, EvalError> {
+    fn call_deffunction_hooked(&mut self, func: Ix, first_arg: Ix) -> Result<Value, EvalError> {
+        if self.st.profile.polls_calls() {
+            self.poll_interrupt()?;
+        }
+        if !self.profiling(false) {
+            return self.call_deffunction_args(func, first_arg);
+        }
         self.profile_enter(false, func);
         let r = self.call_deffunction_args(func, first_arg);
         self.profile_leave(false, func);
@@ -869,6 +878,9 @@ impl Core<'_> {
                 let mark = self.st.frame.scratch_top;
                 #[cfg(feature = "extras")]
                 let r = {
+                    if self.st.profile.polls_calls() {
+                        self.poll_interrupt()?;
+                    }
                     self.st.eval.dfn_depth += 1;
                     let r = self.apply_deffunction(f, args);
                     self.st.eval.dfn_depth -= 1;

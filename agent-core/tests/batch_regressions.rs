@@ -27,6 +27,7 @@ const PRELUDE: &str = include_str!("../fuzz/fuzz_targets/common/prelude.clp");
 fn replay(name: &str, text: &str) {
     let h = &mut Budget::new();
     let mut e = Box::new(SmallEngine::new());
+    e.set_poll_calls(true);
     e.load_str(h, "prelude", PRELUDE)
         .expect("the prelude loads");
     e.reset(h).expect("the prelude resets");
@@ -145,6 +146,7 @@ fn replay_grow(name: &str, text: &str) {
     use agent_core::Capacities;
     let storage = GrowStorage::with_limits(GrowStorage::START, Capacities::uniform(1 << 18));
     let mut e = Box::new(GrowEngine::with_storage(storage));
+    e.set_poll_calls(true);
     let h = &mut Budget::new();
     e.load_str(h, "prelude", PRELUDE)
         .expect("the prelude loads");

@@ -108,6 +108,45 @@ fn huge_loop_for_count_in_deffunction_is_interrupted() {
     assert_usable(&mut e, &mut h);
 }
 
+/// A recursion that branches runs 2^40 calls without a loop: a host that asks for it
+/// (`set_poll_calls`, with `extras`: hosts, not the agent image) is polled at each
+/// deffunction call, direct or through `funcall`, and stops it. Others are not
+/// polled at calls.
+#[cfg(feature = "extras")]
+#[test]
+fn branching_deffunction_recursion_is_interrupted() {
+    let mut e = Box::new(SmallEngine::new());
+    let mut h = Budget::new(1000);
+    e.load_str(
+        &mut h,
+        "g",
+        "(deffunction count-down (?n) (if (> ?n 0) then (count-down (- ?n 1)) else done))",
+    )
+    .expect("loads");
+    let v = e.eval_str(&mut h, "(count-down 20)").expect("returns");
+    assert!(matches!(v, agent_core::Value::Sym(_)), "{v:?}");
+    assert_eq!(h.polls, 0, "calls are not polled by default");
+    e.set_poll_calls(true);
+    e.load_str(
+        &mut h,
+        "f",
+        "(deffunction two (?n) (if (> ?n 0) then (two (- ?n 1)) (two (- ?n 1))))
+         (deffunction two-f (?n) (if (> ?n 0) then (funcall two-f (- ?n 1))
+                                                    (funcall two-f (- ?n 1))))",
+    )
+    .expect("loads");
+    let err = e.eval_str(&mut h, "(two 40)").expect_err("interrupted");
+    assert_eq!(err.kind(), EvalErrorKind::Interrupted);
+    assert_eq!(h.polls, 1001, "polled once per call");
+    e.check_invariants()
+        .expect("invariants after the interrupt");
+    h.rearm();
+    let err = e.eval_str(&mut h, "(two-f 40)").expect_err("interrupted");
+    assert_eq!(err.kind(), EvalErrorKind::Interrupted);
+    assert_eq!(h.polls, 1001, "polled once per call through funcall");
+    assert_usable(&mut e, &mut h);
+}
+
 #[test]
 fn progn_dollar_over_a_long_list_is_interrupted() {
     let mut e = Box::new(SmallEngine::new());

@@ -13,6 +13,7 @@ fuzz_target!(|data: &[u8]| {
     // invalid UTF-8 is replaced, so byte-level mutations still reach the lexer
     let text = String::from_utf8_lossy(data);
     let mut e = Box::new(SmallEngine::new());
+    e.set_poll_calls(true);
     // interrupts a text that loops at reset (polls or time: `cli::Budget`)
     let h = &mut cli::Budget::default();
     let r = e.load_str(h, "fuzz", &text);

@@ -84,6 +84,10 @@ pub struct Profile {
     depth: u8,
     /// Calls nested deeper than `MOST_NESTED`, not profiled.
     skipped: u16,
+    /// The host is polled at each deffunction call (`Engine::set_poll_calls`).
+    poll_calls: bool,
+    /// A deffunction's call goes out of line: profiled or polled (one test per call).
+    calls_hooked: bool,
 }
 
 impl Default for Profile {
@@ -110,7 +114,26 @@ impl Profile {
             }; MOST_NESTED],
             depth: 0,
             skipped: 0,
+            poll_calls: false,
+            calls_hooked: false,
         }
+    }
+
+    /// Whether the host is polled at each deffunction call.
+    #[inline(always)]
+    pub fn polls_calls(&self) -> bool {
+        self.poll_calls
+    }
+
+    /// Polls the host at each deffunction call, or stops.
+    pub fn set_poll_calls(&mut self, on: bool) {
+        self.poll_calls = on;
+        self.rehook();
+    }
+
+    /// After the mode or the poll changed: whether calls go out of line.
+    fn rehook(&mut self) {
+        self.calls_hooked = self.poll_calls || self.mode != Mode::Off;
     }
 
     /// After `clear`: the constructs are gone, with their figures.
@@ -121,6 +144,13 @@ impl Profile {
 }
 
 impl Core<'_> {
+    /// Whether a deffunction's call goes out of line (`Core::call_deffunction_hooked`):
+    /// profiled, or the host polled at it.
+    #[inline(always)]
+    pub(crate) fn calls_hooked(&self) -> bool {
+        self.st.profile.calls_hooked
+    }
+
     /// Whether a rule's firing (`rule`) or a deffunction's call is profiled now.
     #[inline(always)]
     pub(crate) fn profiling(&self, rule: bool) -> bool {
@@ -224,6 +254,7 @@ fn profile(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     p.mode = mode;
     // the run loop times rules on its general path
     cx.note_run_slow();
+    p.rehook();
     Ok(Value::Void)
 }
 

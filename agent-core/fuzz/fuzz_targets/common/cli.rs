@@ -71,6 +71,8 @@ pub fn engine() -> Box<GrowEngine> {
     let storage = GrowStorage::with_limits(GrowStorage::START, Capacities::uniform(POOL_LIMIT));
     let mut e = Box::new(GrowEngine::with_storage(storage));
     e.set_depth_limits(u16::MAX, STACK - STACK_MARGIN);
+    // a recursion that branches (`fib` of 45) ends by the budget too
+    e.set_poll_calls(true);
     e
 }
 
