@@ -100,13 +100,13 @@ pub trait Host {
         true
     }
     /// Polled once per iteration of `while`, `loop-for-count`, `progn$`/`foreach`, of a
-    /// fact-set query's walk, once per rule firing of `run` and (with `extras`: hosts,
-    /// not the agent image) once per deffunction call: returning true stops the current
-    /// execution (as CLIPS's keyboard interrupt does) with `EvalErrorKind::Interrupted`.
-    /// A robot's watchdog or stop button, or a fuzzer's step or time budget, ends
-    /// runaway programs with it.
-    /// The engine stays consistent; it polls again in the next loop, so a host that
-    /// keeps returning true stops every loop until it is rearmed.
+    /// fact-set query's walk, once per rule firing of `run` and, if the host asked
+    /// (`Engine::set_poll_calls`, feature `extras`), once per deffunction call:
+    /// returning true stops the current execution (as CLIPS's keyboard interrupt does)
+    /// with `EvalErrorKind::Interrupted`. A robot's watchdog or stop button, or a
+    /// fuzzer's step or time budget, ends runaway programs with it. The engine stays
+    /// consistent; it polls again in the next loop, so a host that keeps returning
+    /// true stops every loop until it is rearmed.
     fn interrupt(&mut self) -> bool {
         false
     }
