@@ -221,8 +221,23 @@ engine_impl! {
                 return Err(EngineError::Load(e));
             }
         };
+        // the text's values may be calls (and the template's defaults run some): what
+        // they did stays, as in CLIPS, and may use what the text created
+        let parsed = cx.checkpoint();
+        let num = cx.st.facts.next_fact_num;
+        let calls =
+            (before..parsed.nexprs).any(|x| cx.exprs[x as usize].op == crate::expr::Op::Call);
         let r = cx.assert_spec(spec);
-        cx.st.pools.nexprs = before;
+        let now = cx.checkpoint();
+        let built = now.nrules != parsed.nrules
+            || now.nfuncs != parsed.nfuncs
+            || now.ntemplates != parsed.ntemplates
+            || now.nglobals != parsed.nglobals
+            || now.ndeffacts != parsed.ndeffacts;
+        // the fact's expressions go, unless a construct `build` made sits above them
+        if !built {
+            cx.st.pools.nexprs = before;
+        }
         cx.st.frame.scratch_top = 0;
         cx.st.frame.sp = 0;
         match r {
@@ -230,8 +245,11 @@ engine_impl! {
             Ok(None) => Err(EngineError::Duplicate),
             Err(e) => {
                 // leave no trace: symbols (and an implied template) the failed
-                // fact's text created go too
-                cx.rollback(cp);
+                // fact's text created go too, if nothing ran that could keep them (a
+                // fact of that template, a global bound to a symbol, a construct)
+                if !calls && now == parsed && cx.st.facts.next_fact_num == num {
+                    cx.rollback(cp);
+                }
                 Err(e.into())
             }
         }

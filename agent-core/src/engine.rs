@@ -90,7 +90,7 @@ impl Stats {
 }
 
 /// Marks of the append-only pools, to undo a construct that failed halfway.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Checkpoint {
     pub nsyms: Ix,
     pub sym_bytes: Ix,

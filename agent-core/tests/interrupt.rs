@@ -147,6 +147,50 @@ fn branching_deffunction_recursion_is_interrupted() {
     assert_usable(&mut e, &mut h);
 }
 
+/// Found by the api_text target (crash-ab2d9fa7): `assert_str` of a fact whose
+/// values are calls, one asserting a fact, a later one looping until interrupted.
+/// The failed assert rolled back the symbols and implied templates its text created,
+/// `n` among them, while the fact `(n 3)` its call asserted stayed: a fact of a
+/// removed template (the invariant check: per-template fact counts wrong). Now what
+/// the calls did stays (as in CLIPS), and with it what the text created.
+#[test]
+fn assert_str_interrupted_after_its_calls_asserted() {
+    for (text, called) in [
+        ("(it (assert (n 3)) (while TRUE))", "n"),
+        ("(it (assert (it 3)) (loop-for-count 3))", "it"),
+    ] {
+        let mut e = Box::new(SmallEngine::new());
+        let mut h = Budget::new(2);
+        let err = e.assert_str(&mut h, text).expect_err("interrupted");
+        assert!(is_interrupt(&err), "{text}: {err:?}");
+        e.check_invariants()
+            .unwrap_or_else(|v| panic!("{text}: {v}"));
+        let names: Vec<_> = e
+            .facts()
+            .map(|f| e.fact_template_name(f).map(str::to_owned))
+            .collect();
+        assert!(
+            names.iter().any(|n| n.as_deref() == Some(called)),
+            "{text}: the call's fact stays, with its template: {names:?}"
+        );
+        assert_usable(&mut e, &mut h);
+    }
+    // without calls a failed assert still leaves no trace
+    let mut e = Box::new(SmallEngine::new());
+    let mut h = Budget::new(0);
+    e.load_str(
+        &mut h,
+        "t",
+        "(deftemplate d (slot x (default-dynamic (progn (loop-for-count 3) 1))))",
+    )
+    .expect("loads");
+    let facts = e.facts().count();
+    let err = e.assert_str(&mut h, "(d)").expect_err("interrupted");
+    assert!(is_interrupt(&err), "{err:?}");
+    e.check_invariants().expect("invariants");
+    assert_eq!(e.facts().count(), facts);
+}
+
 #[test]
 fn progn_dollar_over_a_long_list_is_interrupted() {
     let mut e = Box::new(SmallEngine::new());
