@@ -252,9 +252,9 @@ fn profile(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         p.last = mode;
     }
     p.mode = mode;
+    p.rehook();
     // the run loop times rules on its general path
     cx.note_run_slow();
-    p.rehook();
     Ok(Value::Void)
 }
 
