@@ -124,3 +124,20 @@ fn host_functions_read_arguments_and_facts_through_their_call() {
     }
     assert_eq!(text, "a string");
 }
+
+/// A call with no value as a single-field slot's value stores `nil`, as in CLIPS
+/// (fuzz `api_text` found the slot left holding no value at all).
+#[test]
+fn assert_str_stores_nil_for_a_call_with_no_value() {
+    let mut engine = Box::new(SmallEngine::new());
+    let mut host = Capture::default();
+    engine
+        .load_str(&mut host, "i.clp", "(deftemplate item (slot id))")
+        .expect("template loads");
+    engine
+        .assert_str(&mut host, "(item (id (printout t said crlf)))")
+        .expect("asserts");
+    assert_eq!(host.0, "said\n");
+    assert_eq!(slot_symbol(&engine, "item", "id"), ["nil"]);
+    engine.check_invariants().expect("invariants");
+}

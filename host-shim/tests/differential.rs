@@ -495,6 +495,7 @@ differential_programs! {
     p913_pp_constraint_glue => "913-pp-constraint-glue",
     p914_query_template_expressions => "914-query-template-expressions",
     p915_slot_value_error => "915-slot-value-error",
+    p940_void_value_in_slot => "940-void-value-in-slot",
     p580_keyed_or_index => "580-keyed-or-index",
     p581_keyed_or_not => "581-keyed-or-not",
     p582_keyed_or_growth => "582-keyed-or-growth",

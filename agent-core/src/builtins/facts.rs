@@ -294,6 +294,8 @@ impl Core<'_> {
                 Value::Multi(_) => Err(EvalError::new(EvalErrorKind::BadSlotValue {
                     reason: crate::error::Message::SingleFieldNeedsOneValue,
                 })),
+                // a call with no value (`printout`, `profile`): CLIPS stores `nil`
+                Value::Void => Ok(Value::Sym(SYM_NIL)),
                 _ => Ok(v),
             };
         }
