@@ -121,6 +121,8 @@ impl<'s> Parser<'s, '_, '_> {
         }
         // CLIPS reports a missing required slot at the template name
         let t = self.cx.templates[tmpl as usize];
+        #[cfg(feature = "extras")]
+        let in_deffacts = self.construct == "deffacts";
         for slot in 0..t.nslots {
             let def = self.cx.slot_def(tmpl, slot);
             if def.default_kind == DefaultKind::Required && !self.slot_given(spec, slot) {
@@ -129,10 +131,7 @@ impl<'s> Parser<'s, '_, '_> {
                 return Err(e);
             }
             #[cfg(feature = "extras")]
-            if self.construct == "deffacts"
-                && !self.slot_given(spec, slot)
-                && self.cx.derives_dummy_fact(&def)
-            {
+            if in_deffacts && self.cx.derives_dummy_fact(&def) && !self.slot_given(spec, slot) {
                 // CLIPS takes the `<Dummy Fact>` default for a variable there
                 return Err(self.deffacts_variable(
                     nt,

@@ -375,15 +375,21 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
         }
     }
 
-    /// Maps a pool error at the current position.
+    /// Maps a pool error at the current position. (Called for every expression node
+    /// the parser makes: the `Ok` case in line, the error out of it.)
+    #[inline(always)]
     pub fn cap_res<T>(&mut self, r: Result<T, CapacityError>) -> PResult<T> {
         match r {
             Ok(v) => Ok(v),
-            Err(c) => {
-                let at = self.peek();
-                Err(self.cap_err(at, c))
-            }
+            Err(c) => Err(self.cap_here(c)),
         }
+    }
+
+    #[cold]
+    #[inline(never)]
+    fn cap_here(&mut self, c: CapacityError) -> LoadError {
+        let at = self.peek();
+        self.cap_err(at, c)
     }
 
     pub fn expect_lparen(&mut self, what: &'static str) -> PResult<Token<'s>> {
