@@ -156,8 +156,8 @@ fn branching_deffunction_recursion_is_interrupted() {
 #[test]
 fn assert_str_interrupted_after_its_calls_asserted() {
     for (text, called) in [
-        ("(it (assert (n 3)) (while TRUE))", "n"),
-        ("(it (assert (it 3)) (loop-for-count 3))", "it"),
+        ("(it (assert (n 3)) (while TRUE do))", "n"),
+        ("(it (assert (it 3)) (loop-for-count 3 do))", "it"),
     ] {
         let mut e = Box::new(SmallEngine::new());
         let mut h = Budget::new(2);
@@ -181,7 +181,7 @@ fn assert_str_interrupted_after_its_calls_asserted() {
     e.load_str(
         &mut h,
         "t",
-        "(deftemplate d (slot x (default-dynamic (progn (loop-for-count 3) 1))))",
+        "(deftemplate d (slot x (default-dynamic (progn (loop-for-count 3 do) 1))))",
     )
     .expect("loads");
     let facts = e.facts().count();
