@@ -608,13 +608,10 @@ impl Core<'_> {
         self.write_cells(tmpl, base, start);
         let h = self.cells_hash(tmpl, start, need);
         let bucket = h as usize % self.fact_buckets.len();
-        // with duplication allowed an equal fact is made again, as in CLIPS
-        let mut d = if self.st.mode.fact_duplication {
-            NONE
-        } else {
-            self.fact_buckets[bucket]
-        };
-        while d != NONE {
+        // with duplication allowed an equal fact is made again, as in CLIPS (tested
+        // only when the bucket holds a fact)
+        let mut d = self.fact_buckets[bucket];
+        while d != NONE && !self.st.mode.fact_duplication {
             let df = self.facts[d as usize];
             if df.tmpl == tmpl
                 && df.len as usize == need
@@ -863,11 +860,14 @@ impl Core<'_> {
         }
         self.st.net.dying = slot;
         self.network_retract(slot);
-        self.st.net.dying = NONE;
-        self.st.net.dying_hidden = false;
+        // one load of the network state for the three accesses (through `self.st`
+        // each store made the compiler load the pointer again)
+        let net = &mut self.st.net;
+        net.dying = NONE;
+        net.dying_hidden = false;
         // what the retract unblocked and could not rebuild on a full pool is owed:
         // the tokens the fact itself freed may be enough now
-        if self.st.net.owed != TokenId::NONE {
+        if net.owed != TokenId::NONE {
             let _ = self.pay_owed();
         }
         self.unlink_fact(slot);
