@@ -38,20 +38,6 @@ struct Query {
     /// The query expression and the first action (NONE when there are none).
     test: Ix,
     actions: Ix,
-    /// A template restriction is an expression (the parser marks the declarations).
-    #[cfg(feature = "extras")]
-    dynamic: bool,
-}
-
-/// Whether a restriction of the query is an expression.
-fn query_dynamic(w: &Walk) -> bool {
-    #[cfg(feature = "extras")]
-    return w.q.dynamic;
-    #[cfg(not(feature = "extras"))]
-    {
-        let _ = w;
-        false
-    }
 }
 
 /// What to do with each tuple that satisfies the query.
@@ -95,8 +81,6 @@ fn parse(cx: &Core<'_>, call: Ix) -> Result<Query, EvalError> {
         nvars: 0,
         test,
         actions,
-        #[cfg(feature = "extras")]
-        dynamic: cx.exprs[decl as usize].aux != 0,
     };
     let mut v = cx.exprs[decl as usize].first;
     while v != NONE {
@@ -303,9 +287,12 @@ fn walk_func(w: &Walk) -> &'static str {
 }
 
 /// Checks the restrictions written as expressions before any tuple is visited, as
-/// CLIPS does (each name of each one).
+/// CLIPS does (each name of each one); `call` is the query's call node, which names
+/// the function for the error messages.
 #[cfg(feature = "extras")]
-fn check_dynamic(cx: &mut Core<'_>, q: &Query, func: &str) -> Result<(), EvalError> {
+#[cold]
+fn check_dynamic(cx: &mut Core<'_>, q: &Query, call: Ix) -> Result<(), EvalError> {
+    let func = super::get(cx.exprs[call as usize].data).name;
     for &var in &q.vars[..q.nvars] {
         let mut t = cx.exprs[var as usize].first;
         while t != NONE {
@@ -339,7 +326,9 @@ struct SlotTest {
 
 impl SlotTest {
     /// The slot test of query test `test` on the variable in frame slot `frame`, if
-    /// the test has that shape.
+    /// the test has that shape. (Inlined into both copies of `walk` on the host, as it
+    /// was into the one: the call costs more than the inlined code.)
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     fn of(cx: &Core<'_>, test: Ix, frame: Ix) -> Option<SlotTest> {
         use super::basic::{CMP_FIRST, CMP_LAST};
         use crate::expr::{FnKind, Op};
@@ -415,7 +404,9 @@ impl SlotTest {
 }
 
 /// Walks the tuples of variables `k..`; returns true to stop the whole walk.
-fn walk(cx: &mut Core<'_>, w: &mut Walk, k: usize) -> Result<bool, EvalError> {
+/// `DYNAMIC`: a restriction of the query is an expression (only then does the walk
+/// look for one; the copy for queries that name their templates has no such test).
+fn walk<const DYNAMIC: bool>(cx: &mut Core<'_>, w: &mut Walk, k: usize) -> Result<bool, EvalError> {
     let var = w.q.vars[k];
     // the innermost variable's facts that fail a slot test are skipped in place
     let quick = if k + 1 == w.q.nvars {
@@ -429,7 +420,7 @@ fn walk(cx: &mut Core<'_>, w: &mut Walk, k: usize) -> Result<bool, EvalError> {
     let mut dyn_at = 0usize;
     while tnode != NONE {
         #[cfg(feature = "extras")]
-        let tmpl = if w.q.dynamic && cx.exprs[tnode as usize].op != crate::expr::Op::Sym {
+        let tmpl = if DYNAMIC && cx.exprs[tnode as usize].op != crate::expr::Op::Sym {
             match dynamic_template_at(cx, tnode, dyn_at, walk_func(w))? {
                 Some(t) => {
                     dyn_at += 1;
@@ -463,7 +454,7 @@ fn walk(cx: &mut Core<'_>, w: &mut Walk, k: usize) -> Result<bool, EvalError> {
         };
         let mut prev: Option<Resume> = None;
         while let Some(f) = next_of_template(cx, tmpl, prev) {
-            debug_assert!(query_dynamic(w) || fact_fits(cx, var, f));
+            debug_assert!(DYNAMIC || fact_fits(cx, var, f));
             // (an outer variable the test may read is bound again first)
             rebind_outer(cx, w, k);
             let decided = quick_slot.and_then(|(q, slot)| q.decide(cx, f, slot));
@@ -481,7 +472,7 @@ fn walk(cx: &mut Core<'_>, w: &mut Walk, k: usize) -> Result<bool, EvalError> {
                 counter: cx.st.facts.next_fact_num,
             });
             let stop = if k + 1 < w.q.nvars {
-                walk(cx, w, k + 1)?
+                walk::<DYNAMIC>(cx, w, k + 1)?
             } else {
                 let stop = visit(cx, w, decided == Some(true))?;
                 if w.hold_top && cx.st.facts.pending != NONE {
@@ -582,14 +573,11 @@ fn hold_end(cx: &mut Core<'_>, (saved, top): (u16, bool)) {
 fn run(
     cx: &mut Core<'_>,
     call: Ix,
-    func: &'static str,
     mode: Mode,
     collect: bool,
     act: bool,
 ) -> Result<Walk, EvalError> {
     let q = parse(cx, call)?;
-    #[cfg(not(feature = "extras"))]
-    let _ = func;
     let mut w = Walk {
         q,
         mode,
@@ -605,44 +593,54 @@ fn run(
     if cx.st.mode.halting {
         return Ok(w);
     }
+    // a restriction written as an expression (the parser marks the declarations)
     #[cfg(feature = "extras")]
-    if w.q.dynamic {
-        check_dynamic(cx, &w.q, func)?;
+    let dynamic = cx.exprs[cx.exprs[call as usize].first as usize].aux != 0;
+    #[cfg(feature = "extras")]
+    if dynamic {
+        check_dynamic(cx, &w.q, call)?;
     }
     // outside a firing, retracted facts stay readable (`hold_begin`)
     let hold = hold_begin(cx);
     w.hold_top = hold.1;
-    let r = walk(cx, &mut w, 0);
+    #[cfg(feature = "extras")]
+    let r = if dynamic {
+        walk::<true>(cx, &mut w, 0)
+    } else {
+        walk::<false>(cx, &mut w, 0)
+    };
+    #[cfg(not(feature = "extras"))]
+    let r = walk::<false>(cx, &mut w, 0);
     hold_end(cx, hold);
     r.map(|_| w)
 }
 
 fn any_factp(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
-    let w = run(cx, call, "any-factp", Mode::First, false, false)?;
+    let w = run(cx, call, Mode::First, false, false)?;
     Ok(Core::bool_value(w.found))
 }
 
 fn find_fact(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     let start = cx.multi_begin();
-    run(cx, call, "find-fact", Mode::First, true, false)?;
+    run(cx, call, Mode::First, true, false)?;
     Ok(cx.multi_finish(start))
 }
 
 /// All matching tuples, flattened: `(<Fact-1> <Fact-2> <Fact-3> <Fact-2>)`.
 fn find_all_facts(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     let start = cx.multi_begin();
-    run(cx, call, "find-all-facts", Mode::All, true, false)?;
+    run(cx, call, Mode::All, true, false)?;
     Ok(cx.multi_finish(start))
 }
 
 /// The value of the last action for the first matching tuple, FALSE without a match.
 fn do_for_fact(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
-    Ok(run(cx, call, "do-for-fact", Mode::First, false, true)?.last)
+    Ok(run(cx, call, Mode::First, false, true)?.last)
 }
 
 /// The value of the last action of the last matching tuple, FALSE without a match.
 fn do_for_all_facts(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
-    Ok(run(cx, call, "do-for-all-facts", Mode::All, false, true)?.last)
+    Ok(run(cx, call, Mode::All, false, true)?.last)
 }
 
 /// Finds every matching tuple first, then runs the actions for each of them, even for
@@ -657,7 +655,7 @@ fn delayed_do_for_all_facts(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalEr
 
 fn delayed(cx: &mut Core<'_>, call: Ix, top: bool) -> Result<Value, EvalError> {
     let start = cx.multi_begin();
-    let w = run(cx, call, "delayed-do-for-all-facts", Mode::All, true, false)?;
+    let w = run(cx, call, Mode::All, true, false)?;
     let tuples = match cx.multi_finish(start) {
         Value::Multi(m) => m,
         _ => return Ok(Value::Sym(SYM_FALSE)),
