@@ -8,7 +8,7 @@ use core::fmt::Write;
 use crate::builtins::errors::Fallback;
 use crate::builtins::files::{file_buffer, FileItems};
 use crate::builtins::{FIXED_SYMBOLS, SYM_INITIAL_FACT};
-use crate::engine::{watch, Core, Frame};
+use crate::engine::{watch, Core, Frame, COMMAND_HOLD};
 use crate::error::{EvalError, EvalErrorKind, LoadDetail, LoadError, Restriction};
 use crate::expr::{FnKind, Op};
 use crate::fact::FactState;
@@ -338,7 +338,7 @@ impl Core<'_> {
         self.forget_prime_orders();
         // a reset in a rule's actions (or a query's body) keeps the retracted facts' cells
         // until that ends: its variables still read the facts they matched
-        if !self.st.mode.firing && self.st.eval.query_hold == 0 {
+        if !self.st.mode.firing && self.st.eval.query_hold & !COMMAND_HOLD == 0 {
             self.free_pending();
             self.st.facts.values_top = 0;
         }
@@ -2354,8 +2354,18 @@ impl Core<'_> {
                 }
                 self.st.eval.literal_error = false;
                 self.st.eval.error_fallback = None;
+                // what the command retracts stays readable until it is done: CLIPS
+                // frees a retracted fact's values between commands only
+                let hold = !self.st.mode.firing && self.st.eval.query_hold == 0;
+                if hold {
+                    self.st.eval.query_hold = COMMAND_HOLD;
+                }
                 if r.is_ok() {
                     r = self.eval(e);
+                }
+                if hold {
+                    self.st.eval.query_hold = 0;
+                    self.free_pending();
                 }
                 match r {
                     Ok(v) => {

@@ -21,6 +21,9 @@ use crate::handle::{JoinId, TokenId};
 use crate::value::Ix;
 use crate::value::{SymId, Value, NONE};
 
+/// `query_hold`'s mark of a command at the prompt (queries count below it).
+pub const COMMAND_HOLD: u16 = 0x8000;
+
 /// A host-registered function.
 #[derive(Clone, Copy)]
 pub struct ExternalEntry {
@@ -370,7 +373,9 @@ pub struct EvalState {
     /// string): what it refers to is in use, as in CLIPS (`undeftemplate` ...).
     pub command_base: Ix,
     /// Top-level fact-set queries running (outside a firing): a fact they retract
-    /// stays pending, its cells readable by `?f:slot`, until the tuple is done.
+    /// stays pending, its cells readable by `?f:slot`, until the tuple is done. A
+    /// command at the prompt adds `COMMAND_HOLD`: what it retracts stays readable
+    /// (`duplicate`, `modify`) until it is done, as in CLIPS.
     pub query_hold: u16,
     /// Deffunction calls under way, counted from before their arguments are
     /// evaluated: CLIPS's evaluation depth (`ED:` in `(watch deffunctions)`).

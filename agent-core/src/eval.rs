@@ -1103,6 +1103,37 @@ mod tests {
         assert!(out.ends_with("1 () FALSE\n2 (u v) FALSE\n"), "{out}");
     }
 
+    /// A command at the prompt keeps what it retracts readable until it is done, as
+    /// CLIPS: `duplicate` and `modify` build from the old values (modify retracting
+    /// nothing). The next command sees no such fact.
+    #[test]
+    fn command_duplicates_and_modifies_a_fact_it_retracted() {
+        let out = run_program(
+            "(deftemplate t (slot a) (slot b) (multislot m))
+             (deffunction rd (?f) (retract ?f) (duplicate ?f (b 2)))
+             (bind ?x (assert (t (a one) (m x y))))
+             (bind ?d (rd ?x))
+             (printout t (fact-slot-value ?d m) crlf)
+             (printout t (progn (retract ?d) (fact-slot-value (modify ?d (b 3)) m)) crlf)
+             (printout t (duplicate ?x (b 4)) crlf)
+             (printout t (find-all-facts ((?f t)) (eq ?f:a one)) crlf)",
+        );
+        assert!(out.ends_with("(x y)\n(x y)\nFALSE\n(<Fact-3>)\n"), "{out}");
+    }
+
+    /// ... but only while there is room: a command retracting and asserting 300 facts
+    /// one by one fits the 128 fact slots (an assert that needs them frees them).
+    #[test]
+    fn command_frees_retracted_facts_when_slots_run_out() {
+        let out = run_program(
+            "(deftemplate a (slot x))
+             (bind ?f (assert (a (x 0))))
+             (loop-for-count (?i 1 300) (retract ?f) (bind ?f (assert (a (x ?i)))))
+             (printout t (find-all-facts ((?g a)) TRUE) crlf)",
+        );
+        assert!(out.ends_with("(<Fact-301>)\n"), "{out}");
+    }
+
     /// A top-level query holds a retracted fact only while a variable is bound to it:
     /// retracting all 100 facts and asserting 100 others fits the 128 fact slots.
     #[test]

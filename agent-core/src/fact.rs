@@ -591,6 +591,16 @@ impl Core<'_> {
         // the assert fails with nothing changed
         self.pay_owed()?;
         let need = self.cells_needed(tmpl, base);
+        // what a command at the prompt retracted is kept readable only while there is
+        // room: an assert that needs it frees it (not a rule's, in its firing)
+        if self.st.eval.query_hold == crate::engine::COMMAND_HOLD
+            && !self.st.mode.firing
+            && self.st.facts.pending != NONE
+            && (self.fact_slots_full()
+                || self.st.facts.values_top as usize + need > self.values.len())
+        {
+            self.free_pending();
+        }
         if self.fact_slots_full() {
             crate::engine::full_pool!(
                 self,

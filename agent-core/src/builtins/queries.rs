@@ -559,7 +559,8 @@ fn hold_begin(cx: &mut Core<'_>) -> (u16, bool) {
         return (saved, false);
     }
     cx.st.eval.query_hold = saved.saturating_add(1);
-    (saved, saved == 0)
+    // (a command at the prompt holds what it retracts too: the query frees it)
+    (saved, saved & !crate::engine::COMMAND_HOLD == 0)
 }
 
 fn hold_end(cx: &mut Core<'_>, (saved, top): (u16, bool)) {

@@ -1,0 +1,41 @@
+; duplicate and modify of a fact already retracted in the same rule firing or the same
+; top-level command: CLIPS builds the new fact from the retracted fact's values (and
+; modify retracts nothing); fact-slot-value, fact-relation, fact-existp and fact-index
+; see no fact there
+(watch facts)
+(watch rules)
+(watch activations)
+(deftemplate t (slot a) (slot b (default 0)) (multislot m))
+(defrule after-retract ?f <- (t (a 1) (b 0)) =>
+  (retract ?f)
+  (printout t "dup: " (duplicate ?f (b 5)) crlf)
+  (printout t "fsv: " (fact-slot-value ?f a) " " (fact-slot-value ?f m) crlf)
+  (printout t "rel: " (fact-relation ?f) " existp: " (fact-existp ?f) " idx: " (fact-index ?f) crlf)
+  (printout t "mod: " (modify ?f (b 6)) crlf)
+  (printout t "dup again: " (duplicate ?f (b 5)) crlf)
+  (printout t "other: " (duplicate ?f (a 11)) crlf))
+(defrule after-modify ?f <- (t (a 2) (b 0)) =>
+  (bind ?g (modify ?f (b 7)))
+  (printout t "dup old: " (duplicate ?f (a 20)) crlf)
+  (printout t "mod old: " (modify ?f (a 21) (m z)) crlf)
+  (printout t "new: " ?g " " (fact-slot-value ?g b) crlf))
+(defrule twice ?f <- (t (a 3) (b 0)) =>
+  (retract ?f)
+  (retract ?f)
+  (printout t "twice: " (modify ?f (b 8)) crlf))
+(deffacts d (t (a 1) (m x "y" 1.5)) (t (a 2)) (t (a 3)))
+(reset)
+(run 20)
+(deffunction retract-dup (?f ?b) (retract ?f) (duplicate ?f (b ?b)))
+(deffunction retract-mod (?f ?b) (retract ?f) (modify ?f (b ?b)))
+(retract-dup (assert (t (a uniq-one) (m "s1" 1.5))) 2)
+(retract-mod (assert (t (a uniq-two) (m "s2" 2.5))) 3)
+(progn (bind ?x (assert (t (a uniq-three)))) (retract ?x) (duplicate ?x (b 4)))
+(progn (bind ?x (assert (t (a uniq-four)))) (retract ?x) (loop-for-count (?i 3) (bind ?s (str-cat ?i))) (modify ?x (b 5)))
+(progn (bind ?x (assert (t (a uniq-five)))) (bind ?y (modify ?x (b 1))) (duplicate ?x (b 2)))
+(bind ?z (assert (t (a uniq-six))))
+(progn (retract ?z) (fact-slot-value ?z a))
+(duplicate 1 (b 9))
+(modify 2 (b 9))
+(facts)
+(exit)
