@@ -480,6 +480,7 @@ differential_programs! {
     p882_timetag => "882-timetag",
     p883_funcall_and_or_runtime_counts => "883-funcall-and-or-runtime-counts",
     p884_duplicate_modify_retracted_fact => "884-duplicate-modify-retracted-fact",
+    p885_modify_duplicate_target_parse => "885-modify-duplicate-target-parse",
     p800_failed_redefinition_each_construct => "800-failed-redefinition-each-construct",
     p801_redefinition_listing_order => "801-redefinition-listing-order",
     p802_deffacts_syntax_errors => "802-deffacts-syntax-errors",

@@ -381,9 +381,9 @@ impl<'s> Parser<'s, '_, '_> {
         Some(tmpl)
     }
 
-    /// `[ARGACCES5]`: in a rule or deffunction CLIPS takes only a variable as the fact
-    /// `modify`/`duplicate` (`func`) changes; anything else is refused while reading,
-    /// the construct shown up to the target's first token (`at`).
+    /// `[ARGACCES5]`: CLIPS takes only a variable (or, at top level, a fact index) as
+    /// the fact `modify`/`duplicate` (`func`) changes; anything else is refused while
+    /// reading, a construct shown up to the target's first token (`at`).
     fn modify_target_error(&self, func: &'static str, at: Token<'s>) -> LoadError {
         let mut e = self.err(at, "a fact-address variable");
         e.detail = LoadDetail::ArgType {
@@ -391,7 +391,10 @@ impl<'s> Parser<'s, '_, '_> {
             arg: 1,
             expected: "non-void return value",
         };
-        if at.tok == Tok::RParen {
+        if self.scope == Scope::TopLevel {
+            // a command at the prompt is not shown
+            e.echo_end = 0;
+        } else if at.tok == Tok::RParen {
             // no argument: CLIPS shows `(modify )`
             e.echo_end = at.start as u32;
             e.echo_tail = crate::error::EchoTail::SpaceBefore;
@@ -408,24 +411,24 @@ impl<'s> Parser<'s, '_, '_> {
         let node = self.builtin_call(name)?;
         let target_at = self.peek();
         let in_construct = self.scope != Scope::TopLevel;
-        if in_construct && matches!(target_at.tok, Tok::RParen | Tok::MfVar(_)) {
+        // (a call is refused at its `(`: CLIPS reads no further)
+        if matches!(target_at.tok, Tok::RParen | Tok::LParen | Tok::MfVar(_)) {
             return Err(self.modify_target_error(name, target_at));
         }
         let f = self.parse_expr()?;
-        if in_construct {
-            match self.cx.exprs[f as usize].op {
-                // `(modify 3 ...)` names a fact by its index: CLIPS allows that only at
-                // top level
-                Op::Int => {
-                    let mut e =
-                        self.err(target_at, "a fact-address (fact indexes only at top level)");
-                    e.detail = LoadDetail::FactIndexInRule { command: name };
-                    e.echo_end = target_at.end as u32;
-                    return Err(e);
-                }
-                Op::Local | Op::Global | Op::PatVar => {}
-                _ => return Err(self.modify_target_error(name, target_at)),
+        // a variable (`?h:slot` too) or, at top level, a fact index: anything else (a
+        // call, a constant) CLIPS refuses while reading, at the prompt too
+        match self.cx.exprs[f as usize].op {
+            // `(modify 3 ...)` names a fact by its index: CLIPS allows that only at
+            // top level
+            Op::Int if in_construct => {
+                let mut e = self.err(target_at, "a fact-address (fact indexes only at top level)");
+                e.detail = LoadDetail::FactIndexInRule { command: name };
+                e.echo_end = target_at.end as u32;
+                return Err(e);
             }
+            Op::Int | Op::Local | Op::Global | Op::PatVar | Op::QSlot => {}
+            _ => return Err(self.modify_target_error(name, target_at)),
         }
         self.cx.append_child(node, f);
         let tmpl = self.target_template(f);
