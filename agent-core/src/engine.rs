@@ -524,6 +524,10 @@ pub struct Mode {
     /// `reset` is going on: the deffacts and globals it evaluates may not `clear`,
     /// which would wipe the templates, facts and deffacts under it.
     pub resetting: bool,
+    /// An assert, modify or duplicate is evaluating its fact's values: a `clear` among
+    /// them would retire the template the fact is being made of (CLIPS refuses it, the
+    /// template being in use; the byte fits the struct's padding).
+    pub asserting: bool,
     /// The `initial-fact` deffacts is defined (`undeffacts` removes it): `reset`
     /// asserts `(initial-fact)`.
     pub initial_deffacts: bool,
@@ -579,6 +583,7 @@ impl Mode {
             firing: false,
             defining: false,
             resetting: false,
+            asserting: false,
             initial_deffacts: true,
             keep_pp_forms: true,
             dynamic_checks: false,

@@ -141,3 +141,65 @@ fn assert_str_stores_nil_for_a_call_with_no_value() {
     assert_eq!(slot_symbol(&engine, "item", "id"), ["nil"]);
     engine.check_invariants().expect("invariants");
 }
+
+/// A `clear` among a fact's values is refused, as CLIPS refuses it (the template is in
+/// use), and the fact is made: fuzz `api_text` found `(e (clear))` clearing the template
+/// away under the fact being asserted (crash-6411a743, the per-template counts broken).
+#[test]
+fn a_clear_among_a_facts_values_is_refused() {
+    let mut engine = Box::new(SmallEngine::new());
+    let mut host = Capture::default();
+    engine
+        .load_str(&mut host, "i.clp", "(deftemplate item (slot id))")
+        .expect("template loads");
+    engine
+        .assert_str(&mut host, "(e (clear))")
+        .expect("asserts");
+    engine
+        .check_invariants()
+        .expect("invariants after assert_str");
+    engine
+        .assert_str(&mut host, "(item (id (progn (clear) 3)))")
+        .expect("asserts");
+    engine
+        .check_invariants()
+        .expect("invariants after assert_str");
+    for text in [
+        "(assert (e (clear)) (f 1))",
+        "(modify 2 (id (clear)))",
+        "(duplicate 4 (id (progn (clear) 5)))",
+    ] {
+        engine.eval_str(&mut host, text).expect(text);
+        engine.check_invariants().expect(text);
+    }
+    let refusal = "[CONSTRCT1] Some constructs are still in use. Clear cannot continue.\n";
+    assert_eq!(host.0, refusal.repeat(5));
+    let names: Vec<_> = engine
+        .facts()
+        .filter_map(|f| engine.fact_template_name(f).map(str::to_owned))
+        .collect();
+    // (e) once (the second is a duplicate), (f 1), the modified item (f-4, id nil),
+    // its duplicate (id 5)
+    assert_eq!(names, ["initial-fact", "e", "f", "item", "item"]);
+    assert_eq!(slot_symbol(&engine, "item", "id"), ["nil"]);
+}
+
+/// A `clear` in a fact-set query's actions is refused too (CLIPS: the template is in
+/// use): it wiped the facts the walk was going through.
+#[test]
+fn a_clear_in_a_fact_set_query_is_refused() {
+    let mut engine = Box::new(SmallEngine::new());
+    let mut host = Capture::default();
+    engine
+        .load_str(&mut host, "i.clp", "(deftemplate item (slot id))")
+        .expect("template loads");
+    for text in ["(item (id 1))", "(item (id 2))"] {
+        engine.assert_str(&mut host, text).expect(text);
+    }
+    let text = "(do-for-all-facts ((?f item)) TRUE (printout t ?f:id crlf) (clear))";
+    engine.eval_str(&mut host, text).expect(text);
+    engine.check_invariants().expect(text);
+    let refusal = "[CONSTRCT1] Some constructs are still in use. Clear cannot continue.\n";
+    assert_eq!(host.0, format!("1\n{refusal}2\n{refusal}"));
+    assert_eq!(engine.facts_of("item").count(), 2);
+}

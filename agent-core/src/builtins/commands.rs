@@ -67,12 +67,15 @@ fn reset(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
 }
 
 fn clear(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
-    // a firing rule, a running deffunction, a construct being parsed or a reset
-    // would go on with its pools wiped under it
+    // a firing rule, a running deffunction, a construct being parsed, a reset, a
+    // fact being made or a fact-set query's walk would go on with its pools wiped
+    // under it
     if cx.st.mode.firing
         || cx.st.eval.in_use > 0
+        || cx.st.eval.query_hold > 0
         || cx.st.mode.defining
         || cx.st.mode.resetting
+        || cx.st.mode.asserting
         || cx.st.net.matching > 0
     {
         cx.write(

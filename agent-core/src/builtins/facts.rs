@@ -453,7 +453,10 @@ impl Core<'_> {
         let nslots = self.templates[tmpl as usize].nslots;
         let base = self.st.frame.sp;
         self.push_voids(nslots as usize)?;
+        // the values' calls may not `clear` the template away (`Mode::asserting`)
+        let was = core::mem::replace(&mut self.st.mode.asserting, true);
         let r = self.assert_spec_inner(spec, tmpl, base, defer);
+        self.st.mode.asserting = was;
         self.st.frame.sp = base;
         r
     }
@@ -520,6 +523,19 @@ impl Core<'_> {
     }
 
     fn modify_or_duplicate(&mut self, call: Ix, retract_old: bool) -> Result<Value, EvalError> {
+        // the values' calls may not `clear` the fact and its template away
+        // (`Mode::asserting`)
+        let was = core::mem::replace(&mut self.st.mode.asserting, true);
+        let r = self.modify_or_duplicate_inner(call, retract_old);
+        self.st.mode.asserting = was;
+        r
+    }
+
+    fn modify_or_duplicate_inner(
+        &mut self,
+        call: Ix,
+        retract_old: bool,
+    ) -> Result<Value, EvalError> {
         let first = self.exprs[call as usize].first;
         let fv = self.eval(first)?;
         // a waiting propagation (`rete::defer`) lets only this modify's retract go

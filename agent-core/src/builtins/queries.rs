@@ -564,7 +564,7 @@ fn hold_begin(cx: &mut Core<'_>) -> (u16, bool) {
 }
 
 fn hold_end(cx: &mut Core<'_>, (saved, top): (u16, bool)) {
-    // restored, not decremented: a `clear` in the actions resets the state
+    // restored, not decremented
     cx.st.eval.query_hold = saved;
     if top {
         cx.free_pending();
