@@ -72,7 +72,7 @@ fn clear(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
     // under it
     if cx.st.mode.firing
         || cx.st.eval.in_use > 0
-        || cx.st.eval.query_hold > 0
+        || (cx.st.eval.query_hold & !crate::engine::COMMAND_HOLD) > 0
         || cx.st.mode.defining
         || cx.st.mode.resetting
         || cx.st.mode.asserting
