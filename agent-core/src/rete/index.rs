@@ -1071,7 +1071,7 @@ impl Core<'_> {
     }
 
     /// Adds a new alpha match (already in its node's memory) to the index. (Image:
-    /// its own copy of `index_insert_as`'s walk, which kept its code as it was.)
+    /// without the or-lookup stamp, reading the match's values from its token.)
     #[cfg(not(feature = "host-speedups"))]
     pub(crate) fn index_insert(&mut self, am: TokenId) {
         let alpha = self.tokens[am].alpha();
@@ -1086,8 +1086,15 @@ impl Core<'_> {
                 marks: tk.marks,
             },
         );
+        self.bucket_link(am, alpha, key);
+    }
+
+    /// Links alpha match `am` of node `alpha` into its bucket for `key`, at the end.
+    #[inline(always)]
+    fn bucket_link(&mut self, am: TokenId, alpha: Ix, key: u32) {
         let b = self.bucket(alpha, key);
         let head = self.amem_buckets[b as usize];
+        // (with `grow` the tag the bucket comes from, see `alpha_tag`)
         #[cfg(not(feature = "grow"))]
         let kept = b;
         #[cfg(feature = "grow")]
@@ -1113,9 +1120,8 @@ impl Core<'_> {
         if !self.alpha_indexed(alpha) {
             return;
         }
-        // host: matches of an or-lookup node get their place in memory order
+        // matches of an or-lookup node get their place in memory order
         // (a node without a right hash is indexed for its or field alone, so it has one)
-        #[cfg(feature = "host-speedups")]
         let keyed = {
             let n = &self.alphas[alpha as usize];
             let with_or = n.rhash.get(n.nrhash as usize).is_some_and(|&f| f != NONE);
@@ -1127,25 +1133,7 @@ impl Core<'_> {
             with_or && n.nrhash > 0
         };
         let key = self.alpha_key(alpha, b);
-        let b = self.bucket(alpha, key);
-        let head = self.amem_buckets[b as usize];
-        // (with `grow` the tag the bucket comes from, see `alpha_tag`)
-        #[cfg(not(feature = "grow"))]
-        let kept = b;
-        #[cfg(feature = "grow")]
-        let kept = alpha_tag(alpha, key);
-        self.tokens[am].parent = TokenId(kept);
-        self.tokens[am].am_next = TokenId::NONE;
-        if head == TokenId::NONE {
-            self.tokens[am].am_prev = am;
-            self.amem_buckets[b as usize] = am;
-        } else {
-            let tail = self.tokens[head].am_prev;
-            self.tokens[tail].am_next = am;
-            self.tokens[am].am_prev = tail;
-            self.tokens[head].am_prev = am;
-        }
-        #[cfg(feature = "host-speedups")]
+        self.bucket_link(am, alpha, key);
         if keyed {
             self.or_index_link(am, alpha, key);
         }
