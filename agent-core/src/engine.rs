@@ -381,6 +381,15 @@ pub struct EvalState {
     /// evaluated: CLIPS's evaluation depth (`ED:` in `(watch deffunctions)`).
     #[cfg(feature = "extras")]
     pub dfn_depth: u16,
+    /// An argument of the builtin being called failed (its message printed, its
+    /// fallback pushed, see `Core::arg_failed`): the arguments' base on the stack and
+    /// the failed one's index, `NONE` when none.
+    #[cfg(feature = "extras")]
+    pub failed_arg: (Ix, Ix),
+    /// The arguments after a failed one are being evaluated, CLIPS's evaluation error
+    /// set: builtins that check it stop with their error value (`(sqrt 4)` is 0.0).
+    #[cfg(feature = "extras")]
+    pub arg_error: bool,
     /// How deep calls may nest on the host (kept across `clear`).
     #[cfg(feature = "grow")]
     pub limits: crate::eval::DepthLimits,
@@ -404,6 +413,10 @@ impl EvalState {
             query_hold: 0,
             #[cfg(feature = "extras")]
             dfn_depth: 0,
+            #[cfg(feature = "extras")]
+            failed_arg: (0, NONE),
+            #[cfg(feature = "extras")]
+            arg_error: false,
             #[cfg(feature = "grow")]
             limits: crate::eval::DepthLimits::new(),
         }

@@ -528,10 +528,16 @@ impl Core<'_> {
                 // (a builtin's arguments, `GO_ON`: a deffunction that halted gives
                 // FALSE with CLIPS's evaluation error set, and the builtin goes on as
                 // after an unbound global, `Core::args_failed`)
+                #[cfg(not(feature = "extras"))]
                 Err(e) if GO_ON && self.deffunction_halted(a, &e) => {
                     self.st.mode.halting = true;
                     Value::Sym(SYM_FALSE)
                 }
+                // a builtin's call failed, or a deffunction's halted: its value after
+                // the error goes on (the builtin called decides how,
+                // `Core::builtin_after_failed_arg`)
+                #[cfg(feature = "extras")]
+                Err(e) if GO_ON => return self.arg_failed(base, a, e),
                 Err(e) => {
                     self.note_hw(Pool::EvalStack, self.st.frame.sp as usize);
                     return Err(e);
@@ -547,6 +553,186 @@ impl Core<'_> {
             base,
             len: self.st.frame.sp - base,
         })
+    }
+
+    /// Whether CLIPS's evaluation error is set by an earlier argument of a call under
+    /// way (`EvalState::arg_error`).
+    #[inline(always)]
+    fn arg_error(&self) -> bool {
+        #[cfg(feature = "extras")]
+        return self.st.eval.arg_error;
+        #[cfg(not(feature = "extras"))]
+        false
+    }
+
+    /// The value call `a` (an argument, a value to bind) gives in CLIPS after failing
+    /// with `e`: CLIPS's function prints its message (now), returns its fallback and
+    /// sets the evaluation error (`State::halting`, set here), and the function
+    /// evaluating it goes on with that value. The fallback is the one the builtin
+    /// recorded (`set_error_fallback`, consumed here), else its row's constant, else
+    /// FALSE; a deffunction that halted gives FALSE. `e` comes back for what is no
+    /// function's error (a full pool, `exit`, an interrupt, too deep a nesting, an
+    /// unbound variable) and for other nodes.
+    #[cfg(feature = "extras")]
+    #[cold]
+    #[inline(never)]
+    pub(crate) fn value_after_error(&mut self, a: Ix, e: EvalError) -> Result<Value, EvalError> {
+        if self.deffunction_halted(a, &e) {
+            self.st.mode.halting = true;
+            return Ok(Value::Sym(SYM_FALSE));
+        }
+        let x = self.exprs[a as usize];
+        if x.op != Op::Call
+            || x.aux != FnKind::Builtin as u8
+            || matches!(
+                e.kind(),
+                EvalErrorKind::TooDeep { .. }
+                    | EvalErrorKind::Exit
+                    | EvalErrorKind::Capacity(_)
+                    | EvalErrorKind::Interrupted
+                    | EvalErrorKind::UnboundVariable { .. }
+            )
+        {
+            return Err(e);
+        }
+        self.write_error_message(e);
+        let depth = self.st.eval.eval_depth + 1;
+        let v = match self.st.eval.error_fallback.take() {
+            Some(fb) if fb.depth == depth => {
+                // `/` went on with 0 for a bad divisor
+                if let Some(func) = fb.divide_by_zero {
+                    self.write_error_message(EvalError::new(EvalErrorKind::DivideByZero { func }));
+                }
+                fb.value
+            }
+            _ => match builtins::get(x.data).on_error.fallback() {
+                Some(fb) => self.fallback_value(fb)?,
+                None => Value::Sym(SYM_FALSE),
+            },
+        };
+        self.st.mode.halting = true;
+        Ok(v)
+    }
+
+    /// Argument `a` (the builtin's arguments from `base`) failed with `e`: its value
+    /// after the error is pushed and noted (`EvalState::failed_arg`) for
+    /// `builtin_after_failed_arg`, and `e` (reported) stops `push_args`.
+    #[cfg(feature = "extras")]
+    #[cold]
+    #[inline(never)]
+    fn arg_failed(&mut self, base: Ix, a: Ix, e: EvalError) -> Result<Args, EvalError> {
+        let v = match self.value_after_error(a, e) {
+            Ok(v) => v,
+            Err(e) => {
+                self.note_hw(Pool::EvalStack, self.st.frame.sp as usize);
+                return Err(e);
+            }
+        };
+        self.push_value(v)?;
+        self.st.eval.failed_arg = (base, self.st.frame.sp - 1 - base);
+        let mut e = e;
+        e.reported = true;
+        Err(e)
+    }
+
+    /// Builtin call `x` (body `f`) after an argument failed (`arg_failed`), or after
+    /// `push_args` failed otherwise (`e` then comes back): as CLIPS's function, it
+    /// evaluates the rest of its arguments and computes its value with the failed
+    /// one's (arithmetic, comparisons, `eq`, the type predicates, see
+    /// `errors::goes_on_after_error`), or stops with its error value (its row's
+    /// constant; `min` and `max` the best so far, 0 for none). The value is recorded
+    /// as its fallback (`set_error_fallback`) for the caller, and the call fails with
+    /// the reported `e` (or its own error), CLIPS's evaluation error set until the
+    /// command, action or test is done. `halting`: the state before the call.
+    #[cfg(feature = "extras")]
+    #[cold]
+    #[inline(never)]
+    fn builtin_after_failed_arg(
+        &mut self,
+        x: Expr,
+        f: builtins::BuiltinFn,
+        halting: bool,
+        e: EvalError,
+    ) -> Result<Value, EvalError> {
+        let (base, at) = core::mem::replace(&mut self.st.eval.failed_arg, (0, NONE));
+        if at == NONE {
+            return Err(e);
+        }
+        let b = builtins::get(x.data);
+        let r = self.value_after_failed_arg(x, f, b, base, at);
+        self.st.mode.halting = halting;
+        match r {
+            Ok(v) => {
+                self.set_error_fallback(v, None);
+                Err(e)
+            }
+            Err(err) => Err(err),
+        }
+    }
+
+    /// `builtin_after_failed_arg`'s value of builtin `b` (call `x`, body `f`, its
+    /// arguments so far from `base`, argument `at` the failed one).
+    #[cfg(feature = "extras")]
+    fn value_after_failed_arg(
+        &mut self,
+        x: Expr,
+        f: builtins::BuiltinFn,
+        b: &builtins::Builtin,
+        base: Ix,
+        at: Ix,
+    ) -> Result<Value, EvalError> {
+        if !builtins::errors::goes_on_after_error(b) {
+            if let Some(v) = self.args_failed(b)? {
+                return Ok(v);
+            }
+            if matches!(b.name, "min" | "max") {
+                if at == 0 {
+                    return Ok(Value::Int(0));
+                }
+                return f(self, Args { base, len: at });
+            }
+        }
+        // the arguments after it; arithmetic and numeric comparisons stop at one
+        // that is no number (their body reports it, the last one it sees)
+        let numeric = b.signature.get(0) == builtins::describe::ArgType::Number;
+        let mut a = x.first;
+        for _ in 0..=at {
+            a = self.exprs[a as usize].next;
+        }
+        let was = core::mem::replace(&mut self.st.eval.arg_error, true);
+        let r = self.push_rest_after_error(a, numeric);
+        self.st.eval.arg_error = was;
+        let stopped = r?;
+        let args = Args {
+            base,
+            len: self.st.frame.sp - base,
+        };
+        if !stopped {
+            check_arity(b.name, b.min, b.max, args.len)?;
+        }
+        f(self, args).map_err(|err| self.classify_type_error(b.name, x.first, err))
+    }
+
+    /// Evaluates and pushes the arguments from `a` on, CLIPS's evaluation error set:
+    /// another that fails gives its value after the error as well. `numeric`: none is
+    /// evaluated after one (or the value on top) that is no number; whether it stopped
+    /// early.
+    #[cfg(feature = "extras")]
+    fn push_rest_after_error(&mut self, mut a: Ix, numeric: bool) -> Result<bool, EvalError> {
+        let is_num = |v: Value| matches!(v, Value::Int(_) | Value::Float(_));
+        while a != NONE {
+            if numeric && !is_num(self.stack[self.st.frame.sp as usize - 1]) {
+                return Ok(true);
+            }
+            self.st.eval.arg_error = true;
+            let v = match self.eval_operand(a) {
+                Ok(v) => v,
+                Err(e) => self.value_after_error(a, e)?,
+            };
+            self.push_value(v)?;
+            a = self.exprs[a as usize].next;
+        }
+        Ok(false)
     }
 
     /// Whether `e` is the error of deffunction call node `a` that halted (reported
@@ -664,7 +850,7 @@ impl Core<'_> {
                 len: self.st.frame.sp - base,
             };
             // CLIPS's evaluation error (an unbound global): its error value at once
-            if self.st.mode.halting && !halting {
+            if self.st.mode.halting && (!halting || self.arg_error()) {
                 if let Some(v) = self.args_failed(b)? {
                     return Ok(v);
                 }
@@ -694,10 +880,16 @@ impl Core<'_> {
                     Imp::Lazy(f) => f(self, e),
                     Imp::Eager(f) => {
                         let halting = self.st.mode.halting;
-                        let args = self.push_args::<{ cfg!(feature = "extras") }>(x.first)?;
+                        #[cfg(feature = "extras")]
+                        let args = match self.push_args::<true>(x.first) {
+                            Ok(args) => args,
+                            Err(err) => return self.builtin_after_failed_arg(x, f, halting, err),
+                        };
+                        #[cfg(not(feature = "extras"))]
+                        let args = self.push_args::<false>(x.first)?;
                         // an argument failed with CLIPS's evaluation error (an
                         // unbound global): most builtins stop with their error value
-                        if self.st.mode.halting && !halting {
+                        if self.st.mode.halting && (!halting || self.arg_error()) {
                             if let Some(v) = self.args_failed(b)? {
                                 return Ok(v);
                             }

@@ -564,4 +564,6 @@ differential_programs! {
     p957_variable_referenced_before_defined => "957-variable-referenced-before-defined",
     p958_sort_function_argument => "958-sort-function-argument",
     p959_undefine_star_current_module => "959-undefine-star-current-module",
+    p970_error_inside_expression_values => "970-error-inside-expression-values",
+    p971_error_inside_expression_actions => "971-error-inside-expression-actions",
 }

@@ -380,6 +380,16 @@ fn bind(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     let mut spliced = false;
     while a != NONE {
         let pos = cx.st.frame.scratch_top;
+        #[cfg(feature = "extras")]
+        let mut v = match cx.eval(a) {
+            Ok(v) => v,
+            Err(e) => {
+                let several =
+                    cx.exprs[target as usize].next != a || cx.exprs[a as usize].next != NONE;
+                return bind_failed(cx, target, start, a, e, several);
+            }
+        };
+        #[cfg(not(feature = "extras"))]
         let mut v = cx.eval(a)?;
         match v {
             // a multifield the argument built in scratch above `pos` (an LHS multifield
@@ -443,10 +453,47 @@ fn bind(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
 #[cfg(feature = "host-speedups")]
 fn bind_one(cx: &mut Core<'_>, target: Ix, a: Ix) -> Result<Value, EvalError> {
     let start = cx.multi_begin();
-    let value = cx.eval_operand(a)?;
+    let value = match cx.eval_operand(a) {
+        Ok(v) => v,
+        #[cfg(feature = "extras")]
+        Err(e) => return bind_failed(cx, target, start, a, e, false),
+        #[cfg(not(feature = "extras"))]
+        Err(e) => return Err(e),
+    };
     let value = keep_bound(cx, start, value)?;
     store_bound(cx, target, value)?;
     Ok(value)
+}
+
+/// `bind` whose value `a` (from scratch mark `start`) failed with `e`: CLIPS binds
+/// the value the failing call returned (`Core::value_after_error`), the empty
+/// multifield when there were `several` values, and `bind` returns it (recorded as
+/// its fallback) with the evaluation error set: the command or actions stop.
+#[cfg(feature = "extras")]
+#[cold]
+#[inline(never)]
+fn bind_failed(
+    cx: &mut Core<'_>,
+    target: Ix,
+    start: Ix,
+    a: Ix,
+    e: EvalError,
+    several: bool,
+) -> Result<Value, EvalError> {
+    let halting = cx.st.mode.halting;
+    let v = cx.value_after_error(a, e)?;
+    cx.st.mode.halting = halting;
+    let v = if several {
+        cx.st.frame.scratch_top = start;
+        cx.multi_finish(start)
+    } else {
+        keep_bound(cx, start, v)?
+    };
+    store_bound(cx, target, v)?;
+    cx.set_error_fallback(v, None);
+    let mut e = e;
+    e.reported = true;
+    Err(e)
 }
 
 /// The value `bind` stores for argument value `v`, evaluated above scratch mark

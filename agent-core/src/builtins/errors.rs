@@ -81,6 +81,14 @@ const READ_FAILED_ARGUMENTS: &[&str] = &[
     "fact-index",
 ];
 
+/// Whether builtin `b` evaluates its arguments after one failed (CLIPS's evaluation
+/// error set) and computes its value with the failed one's fallback: those of
+/// `READ_FAILED_ARGUMENTS`. The others check each argument as it comes and stop.
+#[cfg(feature = "extras")]
+pub(crate) fn goes_on_after_error(b: &super::Builtin) -> bool {
+    READ_FAILED_ARGUMENTS.contains(&b.name)
+}
+
 impl Core<'_> {
     /// What builtin `b` gives when evaluating its arguments set CLIPS's evaluation
     /// error: most check it after each argument and return their constant error value
@@ -106,5 +114,23 @@ impl Core<'_> {
                 self.multi_finish(start)
             }
         }))
+    }
+
+    /// Constant fallback `fb` as a value (as `args_failed` makes it).
+    #[cfg(feature = "extras")]
+    pub(crate) fn fallback_value(
+        &mut self,
+        fb: Fallback,
+    ) -> Result<Value, crate::error::EvalError> {
+        Ok(match fb {
+            Fallback::Int(i) => Value::Int(i),
+            Fallback::Float(f) => Value::Float(f),
+            Fallback::Sym(s) => Value::Sym(self.intern(s)?),
+            Fallback::Str(s) => Value::Str(self.intern(s)?),
+            Fallback::EmptyMulti => {
+                let start = self.multi_begin();
+                self.multi_finish(start)
+            }
+        })
     }
 }

@@ -538,6 +538,10 @@ impl Core<'_> {
     ) -> Result<Value, EvalError> {
         let first = self.exprs[call as usize].first;
         let fv = self.eval(first)?;
+        #[cfg(feature = "extras")]
+        {
+            self.st.eval.field_error = None;
+        }
         // a waiting propagation (`rete::defer`) lets only this modify's retract go
         // first, and only when nothing can tell
         if self.st.net.deferred.fact != NONE
@@ -626,8 +630,14 @@ impl Core<'_> {
                 let slot = self
                     .find_slot(tmpl, sym)
                     .ok_or_else(|| EvalError::new(EvalErrorKind::NoSuchSlot))?;
-                // unchecked, as in CLIPS (see assert)
-                let v = self.slot_value_from(tmpl, slot, self.exprs[sv as usize].first, false)?;
+                // unchecked, as in CLIPS (see assert); a failed single-field value is
+                // kept on the host, as CLIPS keeps it (see `single_field_failed`)
+                let v = self.slot_value_from(
+                    tmpl,
+                    slot,
+                    self.exprs[sv as usize].first,
+                    cfg!(feature = "extras"),
+                )?;
                 self.stack[(base + slot) as usize] = v;
                 sv = self.exprs[sv as usize].next;
             }
@@ -690,6 +700,13 @@ impl Core<'_> {
             Some(f) => Value::Fact(self.fact_ref(f)),
             None => Value::Sym(SYM_FALSE),
         };
+        // a value failed: the fact is changed all the same, then the actions stop
+        #[cfg(feature = "extras")]
+        if let Some(mut err) = self.st.eval.field_error.take() {
+            err.reported = true;
+            self.set_error_fallback(v, None);
+            return Err(err);
+        }
         if self.st.net.pattern_error {
             return halt_after_network_error(self, v);
         }
