@@ -519,6 +519,9 @@ impl Core<'_> {
         }
         let join = self.tokens[t].owner;
         if self.join_mems[join].mem == t {
+            // host: in its bucket already, unless the index's build left it out
+            #[cfg(feature = "host-speedups")]
+            self.index_left_out(t, join);
             return;
         }
         // host: a partial match whose index is its group-0 bucket alone stays in that

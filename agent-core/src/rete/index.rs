@@ -1909,7 +1909,11 @@ impl Core<'_> {
 
     /// Links every partial match of `join`'s memory into index group `g`, keyed by
     /// `child`'s tests. Oldest first, each at its bucket's head: the buckets get
-    /// memory order, as if every match had been indexed when it came.
+    /// memory order, as if every match had been indexed when it came. Group 0 of a
+    /// not join leaves its blocked outputs out: a right activation skips them (they
+    /// pass nothing on), and the one that unblocks them puts them in
+    /// (`move_to_front`, `index_left_out`). Most outputs of a not join filled before
+    /// its first right activation are blocked (negation-1000: 450 of 499).
     #[cfg(feature = "host-speedups")]
     #[inline(always)]
     fn build_group(&mut self, join: JoinId, child: JoinId, g: usize) {
@@ -1919,9 +1923,25 @@ impl Core<'_> {
             last = t;
             t = self.tokens[t].mem_next;
         }
+        let skip_blocked = g == 0 && self.joins[join].kind == JoinKind::Negative;
         while last != TokenId::NONE {
-            self.beta_index_link(last, join, child, g);
+            if !(skip_blocked && self.tokens[last].blocked) {
+                self.beta_index_link(last, join, child, g);
+            }
             last = self.tokens[last].mem_prev;
+        }
+    }
+
+    /// Host: puts not output `t`, unblocked at the head of `join`'s memory, in the
+    /// group-0 bucket the index's build left it out of (`build_group`).
+    #[cfg(feature = "host-speedups")]
+    #[inline(always)]
+    pub(crate) fn index_left_out(&mut self, t: TokenId, join: JoinId) {
+        if self.join_mems[join].index_built && self.gbucket(t, 0) == NONE {
+            let child = self.joins[join].index_child;
+            if child != JoinId::NONE {
+                self.beta_index_link(t, join, child, 0);
+            }
         }
     }
 
