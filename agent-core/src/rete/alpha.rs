@@ -641,8 +641,19 @@ impl Core<'_> {
             }
         }
         if blocks != TokenId::NONE {
+            // (host: `am` is the blocker of its list's head, and what the unblocks
+            // ask of it is read here once)
+            #[cfg(feature = "host-speedups")]
+            let known = super::beta::AlphaBlocker {
+                last: next_sib == TokenId::NONE,
+                fact,
+                hashed: self.alphas[alpha as usize].nrhash > 0,
+            };
             while self.tokens[am].blocks != TokenId::NONE {
                 let k = self.tokens[am].blocks;
+                #[cfg(feature = "host-speedups")]
+                self.unblock_alpha_head(k, am, known);
+                #[cfg(not(feature = "host-speedups"))]
                 self.remove_link(k);
             }
         }

@@ -24,6 +24,28 @@ const REACH_LEFT: u8 = 1;
 /// `Core::dying_reach`: a pattern below the not join has it.
 const REACH_BELOW: u8 = 2;
 
+/// Host: what `unblock` asks of an alpha blocker, when its caller knows it
+/// (`unblock_alpha_head`).
+#[cfg(feature = "host-speedups")]
+#[derive(Clone, Copy)]
+pub(crate) struct AlphaBlocker {
+    /// Whether it is its fact's last alpha match (`next_sib == NONE`).
+    pub(crate) last: bool,
+    /// Its fact.
+    pub(crate) fact: Ix,
+    /// Whether its node has a right hash.
+    pub(crate) hashed: bool,
+}
+
+#[cfg(feature = "host-speedups")]
+type Known = Option<AlphaBlocker>;
+#[cfg(feature = "host-speedups")]
+const KNOWN_NONE: Known = None;
+#[cfg(not(feature = "host-speedups"))]
+type Known = ();
+#[cfg(not(feature = "host-speedups"))]
+const KNOWN_NONE: Known = ();
+
 impl Core<'_> {
     pub(crate) fn alloc_token(&mut self) -> Result<TokenId, CapacityError> {
         if self.st.pools.token_free != TokenId::NONE {
@@ -1040,6 +1062,7 @@ impl Core<'_> {
     }
 
     /// The blocker of blocked output `t`: back along the list to its head.
+    #[cfg(not(feature = "host-speedups"))]
     fn blocker_of(&self, t: TokenId) -> TokenId {
         let mut c = t;
         loop {
@@ -1052,15 +1075,35 @@ impl Core<'_> {
     }
 
     /// Blocked output `t` loses its blocker (`t` from the blocker's `blocks`
-    /// list; O(1) for its head, as retracts take them).
+    /// list; O(1) for its head, as retracts take them). (Host:
+    /// `unblock_alpha_head`.)
+    #[cfg(not(feature = "host-speedups"))]
     pub(crate) fn remove_link(&mut self, t: TokenId) {
         let blocker = self.blocker_of(t);
         self.unblock(t, blocker);
     }
 
+    /// Host: `remove_link` for `t`, the head of alpha match `am`'s list while `am`
+    /// leaves (`remove_alpha_match`): `am` is its blocker, and what the unblock asks
+    /// of it (`AlphaBlocker`) is read once for every output it blocks.
+    #[cfg(feature = "host-speedups")]
+    #[inline(always)]
+    pub(crate) fn unblock_alpha_head(&mut self, t: TokenId, am: TokenId, known: AlphaBlocker) {
+        self.unblock_in(t, am, Some(known));
+    }
+
     /// The blocker of output `t` goes away: `t` gets the next blocker, or is
     /// unblocked (not) or loses its match (exists), as CLIPS does.
+    #[inline(always)]
     fn unblock(&mut self, t: TokenId, blocker: TokenId) {
+        self.unblock_in(t, blocker, KNOWN_NONE);
+    }
+
+    /// `unblock`; host: with `known` what `dying_known` needs of an alpha blocker
+    /// (None: `dying_to_check` reads it).
+    fn unblock_in(&mut self, t: TokenId, blocker: TokenId, known: Known) {
+        #[cfg(not(feature = "host-speedups"))]
+        let () = known;
         self.unlink_blocked(t);
         // (the image: the fact read once, its code bytes as they were)
         #[cfg(not(feature = "host-speedups"))]
@@ -1083,11 +1126,17 @@ impl Core<'_> {
             self.find_blocker(join, left, from, hashed, blocker)
                 .unwrap_or(TokenId::NONE)
         };
+        // (an alpha blocker: whether its node has a right hash)
         #[cfg(feature = "host-speedups")]
-        let next = if self.tokens[blocker].kind == TokenKind::Alpha {
+        let alpha_hashed = match known {
+            Some(k) => Some(k.hashed),
+            None => (self.tokens[blocker].kind == TokenKind::Alpha)
+                .then(|| self.alphas[self.tokens[blocker].alpha() as usize].nrhash > 0),
+        };
+        #[cfg(feature = "host-speedups")]
+        let next = if let Some(hashed) = alpha_hashed {
             // the blocker is the first match in memory order: search on after it,
             // along its index bucket when its node has one (same key as `left`)
-            let hashed = self.alphas[self.tokens[blocker].alpha() as usize].nrhash > 0;
             let mut from = self.next_candidate(blocker, hashed);
             // (a retract: another match of the fact in the same node may follow it)
             if from != TokenId::NONE {
@@ -1116,7 +1165,10 @@ impl Core<'_> {
             // a retract: CLIPS passes nothing on that holds the fact, and nothing
             // passed on meets it (its matches leave their memories first)
             #[cfg(feature = "host-speedups")]
-            let dying = self.dying_to_check(join, blocker);
+            let dying = match known {
+                Some(k) => self.dying_known(join, k.last, k.fact),
+                None => self.dying_to_check(join, blocker),
+            };
             if dying != NONE {
                 // host: what the fact's template cannot reach is not checked
                 #[cfg(feature = "host-speedups")]
@@ -1157,6 +1209,24 @@ impl Core<'_> {
             return NONE;
         }
         self.st.net.dying
+    }
+
+    /// Host: `dying_to_check` for an alpha blocker whose `next_sib == NONE` is `last`
+    /// and whose fact is `fact` (`unblock_alpha_head`).
+    #[cfg(feature = "host-speedups")]
+    #[inline(always)]
+    fn dying_known(&self, join: JoinId, last: bool, fact: Ix) -> Ix {
+        let dying = self.st.net.dying;
+        if dying == NONE || last {
+            return NONE;
+        }
+        if fact == dying {
+            let jm = &self.join_mems[join];
+            if jm.reach_gen == self.st.net.net_gen && jm.reach | jm.reach_depths == 0 {
+                return NONE;
+            }
+        }
+        dying
     }
 
     /// Host: `dying_after` for the unblocked output of not join `join`, NONE also
