@@ -647,7 +647,6 @@ impl Core<'_> {
             let known = super::beta::AlphaBlocker {
                 last: next_sib == TokenId::NONE,
                 fact,
-                hashed: self.alphas[alpha as usize].nrhash > 0,
             };
             while self.tokens[am].blocks != TokenId::NONE {
                 let k = self.tokens[am].blocks;

@@ -33,8 +33,6 @@ pub(crate) struct AlphaBlocker {
     pub(crate) last: bool,
     /// Its fact.
     pub(crate) fact: Ix,
-    /// Whether its node has a right hash.
-    pub(crate) hashed: bool,
 }
 
 #[cfg(feature = "host-speedups")]
@@ -533,6 +531,9 @@ impl Core<'_> {
 
     /// A not/exists output that becomes active goes to the front of its memory: CLIPS
     /// copies it into its successors' memories only now, so they meet it as newest.
+    /// (Host: inlined up to the check for a token at the front already, most of the
+    /// calls in llsf-10, which then cost no call; `move_to_front_rest` out of line.)
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     fn move_to_front(&mut self, t: TokenId) {
         // host: it enters its successors' memories now (`rete::order`)
         #[cfg(feature = "grow")]
@@ -543,9 +544,19 @@ impl Core<'_> {
         if self.join_mems[join].mem == t {
             // host: in its bucket already, unless the index's build left it out
             #[cfg(feature = "host-speedups")]
-            self.index_left_out(t, join);
+            if self.left_out(t, join) {
+                self.index_left_out(t, join);
+            }
             return;
         }
+        self.move_to_front_rest(t, join);
+    }
+
+    /// `move_to_front` for `t`, of `join`, not at the front of its memory. (The
+    /// image: one function, as before.)
+    #[cfg_attr(feature = "host-speedups", inline(never))]
+    #[cfg_attr(not(feature = "host-speedups"), inline(always))]
+    fn move_to_front_rest(&mut self, t: TokenId, join: JoinId) {
         // host: a partial match whose index is its group-0 bucket alone stays in that
         // bucket (its key, so its tag, is the same): taken out here, put back at the
         // head below, as `beta_index_insert` would (see `index_front_take`)
@@ -1126,17 +1137,11 @@ impl Core<'_> {
             self.find_blocker(join, left, from, hashed, blocker)
                 .unwrap_or(TokenId::NONE)
         };
-        // (an alpha blocker: whether its node has a right hash)
         #[cfg(feature = "host-speedups")]
-        let alpha_hashed = match known {
-            Some(k) => Some(k.hashed),
-            None => (self.tokens[blocker].kind == TokenKind::Alpha)
-                .then(|| self.alphas[self.tokens[blocker].alpha() as usize].nrhash > 0),
-        };
-        #[cfg(feature = "host-speedups")]
-        let next = if let Some(hashed) = alpha_hashed {
+        let next = if self.tokens[blocker].kind == TokenKind::Alpha {
             // the blocker is the first match in memory order: search on after it,
             // along its index bucket when its node has one (same key as `left`)
+            let hashed = self.alphas[self.tokens[blocker].alpha() as usize].nrhash > 0;
             let mut from = self.next_candidate(blocker, hashed);
             // (a retract: another match of the fact in the same node may follow it)
             if from != TokenId::NONE {

@@ -1923,25 +1923,39 @@ impl Core<'_> {
             last = t;
             t = self.tokens[t].mem_next;
         }
-        let skip_blocked = g == 0 && self.joins[join].kind == JoinKind::Negative;
-        while last != TokenId::NONE {
-            if !(skip_blocked && self.tokens[last].blocked) {
-                self.beta_index_link(last, join, child, g);
+        // (two loops: the other joins' build pays no check per partial match)
+        if g == 0 && self.joins[join].kind == JoinKind::Negative {
+            while last != TokenId::NONE {
+                if !self.tokens[last].blocked {
+                    self.beta_index_link(last, join, child, g);
+                }
+                last = self.tokens[last].mem_prev;
             }
+            return;
+        }
+        while last != TokenId::NONE {
+            self.beta_index_link(last, join, child, g);
             last = self.tokens[last].mem_prev;
         }
     }
 
-    /// Host: puts not output `t`, unblocked at the head of `join`'s memory, in the
-    /// group-0 bucket the index's build left it out of (`build_group`).
+    /// Host: whether not output `t`, unblocked at the head of `join`'s memory, is
+    /// out of the group-0 bucket it belongs in (`build_group` left it out).
     #[cfg(feature = "host-speedups")]
     #[inline(always)]
+    pub(crate) fn left_out(&self, t: TokenId, join: JoinId) -> bool {
+        self.join_mems[join].index_built && self.gbucket(t, 0) == NONE
+    }
+
+    /// Host: puts `left_out` not output `t` of `join` in its group-0 bucket (out of
+    /// line: `move_to_front` stays as it was without it).
+    #[cfg(feature = "host-speedups")]
+    #[cold]
+    #[inline(never)]
     pub(crate) fn index_left_out(&mut self, t: TokenId, join: JoinId) {
-        if self.join_mems[join].index_built && self.gbucket(t, 0) == NONE {
-            let child = self.joins[join].index_child;
-            if child != JoinId::NONE {
-                self.beta_index_link(t, join, child, 0);
-            }
+        let child = self.joins[join].index_child;
+        if child != JoinId::NONE {
+            self.beta_index_link(t, join, child, 0);
         }
     }
 
