@@ -1909,11 +1909,7 @@ impl Core<'_> {
 
     /// Links every partial match of `join`'s memory into index group `g`, keyed by
     /// `child`'s tests. Oldest first, each at its bucket's head: the buckets get
-    /// memory order, as if every match had been indexed when it came. Group 0 of a
-    /// not join leaves its blocked outputs out: a right activation skips them (they
-    /// pass nothing on), and the one that unblocks them puts them in
-    /// (`move_to_front`, `index_left_out`). Most outputs of a not join filled before
-    /// its first right activation are blocked (negation-1000: 450 of 499).
+    /// memory order, as if every match had been indexed when it came.
     #[cfg(feature = "host-speedups")]
     #[inline(always)]
     fn build_group(&mut self, join: JoinId, child: JoinId, g: usize) {
@@ -1923,16 +1919,6 @@ impl Core<'_> {
             last = t;
             t = self.tokens[t].mem_next;
         }
-        // (two loops: the other joins' build pays no check per partial match)
-        if g == 0 && self.joins[join].kind == JoinKind::Negative {
-            while last != TokenId::NONE {
-                if !self.tokens[last].blocked {
-                    self.beta_index_link(last, join, child, g);
-                }
-                last = self.tokens[last].mem_prev;
-            }
-            return;
-        }
         while last != TokenId::NONE {
             self.beta_index_link(last, join, child, g);
             last = self.tokens[last].mem_prev;
@@ -1940,7 +1926,7 @@ impl Core<'_> {
     }
 
     /// Host: whether not output `t`, unblocked at the head of `join`'s memory, is
-    /// out of the group-0 bucket it belongs in (`build_group` left it out).
+    /// out of the group-0 bucket it belongs in (`build_group_active` left it out).
     #[cfg(feature = "host-speedups")]
     #[inline(always)]
     pub(crate) fn left_out(&self, t: TokenId, join: JoinId) -> bool {
@@ -1969,9 +1955,36 @@ impl Core<'_> {
         if self.single_match(join) {
             return false;
         }
-        self.build_group(join, child, 0);
+        if self.joins[join].kind == JoinKind::Negative {
+            self.build_group_active(join, child);
+        } else {
+            self.build_group(join, child, 0);
+        }
         self.join_mems[join].index_built = true;
         true
+    }
+
+    /// Host: `build_group` for group 0 of not join `join`, leaving its blocked
+    /// outputs out: a right activation skips them (they pass nothing on), and the
+    /// unblock that activates one puts it in (`move_to_front`, `index_left_out`).
+    /// Most outputs of a not join filled before its first right activation are
+    /// blocked (negation-1000: 450 of 499). (Out of line: the other joins' build
+    /// loop stays as it was.)
+    #[cfg(feature = "host-speedups")]
+    #[inline(never)]
+    fn build_group_active(&mut self, join: JoinId, child: JoinId) {
+        let mut t = self.join_mems[join].mem;
+        let mut last = TokenId::NONE;
+        while t != TokenId::NONE {
+            last = t;
+            t = self.tokens[t].mem_next;
+        }
+        while last != TokenId::NONE {
+            if !self.tokens[last].blocked {
+                self.beta_index_link(last, join, child, 0);
+            }
+            last = self.tokens[last].mem_prev;
+        }
     }
 
     /// Host: gives up `join`'s extra index groups (a child goes away; they are
