@@ -509,6 +509,7 @@ impl Core<'_> {
             self.st.breaks = crate::engine::Breaks::new();
             self.func_extras.fill(crate::template::NO_FN_EXTRAS);
             self.global_text.fill(crate::template::NO_PP_TEXT);
+            self.slot_facets.fill(crate::template::NO_PP_TEXT);
         }
         #[cfg(feature = "modules")]
         {
@@ -1471,6 +1472,9 @@ impl Core<'_> {
                 b,
                 "\n[PRNTUTIL5] The {attribute} attribute has already been parsed."
             );
+        } else if let LoadDetail::FacetTwice { multi } = e.detail {
+            let what = if multi { "multifacet" } else { "facet" };
+            let _ = writeln!(b, "\n[PRNTUTIL5] The {what} {tok} has already been parsed.");
         } else if let LoadDetail::AllowedCombined { first, second } = e.detail {
             let _ = writeln!(
                 b,

@@ -84,6 +84,9 @@ macro_rules! __pool_table {
             ],
             SlotDefs slot_defs "slot definitions" 1024 64 [
                 slots: $crate::template::SlotDef = $crate::template::SlotDef::EMPTY,
+                // extras: each slot's `facet`/`multifacet` attributes (a chain of
+                // `template::facet` nodes), for `deftemplate-slot-facet-value`
+                slot_facets: $crate::template::PpText = $crate::template::NO_PP_TEXT,
             ],
             Rules rules "rules" 512 32 [
                 rules: $crate::rule::Rule = $crate::rule::Rule::EMPTY,

@@ -673,6 +673,11 @@ pub enum LoadDetail {
     AttributeTwice {
         attribute: &'static str,
     },
+    /// `[PRNTUTIL5]`: a slot's facet named twice (at its second name; `multi`: the
+    /// second is a `multifacet`).
+    FacetTwice {
+        multi: bool,
+    },
     /// `[CSTRNPSR3]`: `allowed-values` combined with another `allowed-...` attribute.
     AllowedCombined {
         first: &'static str,

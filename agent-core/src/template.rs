@@ -266,6 +266,10 @@ impl crate::engine::Core<'_> {
         NONE
     }
 
+    pub fn slot_facets(&self, _s: Ix) -> Ix {
+        NONE
+    }
+
     pub fn function_listed(&self, p: Ix) -> Ix {
         p
     }
@@ -346,4 +350,30 @@ impl crate::engine::Core<'_> {
             *e = text;
         }
     }
+
+    /// Slot definition `s`'s first facet node ([`facet`]; NONE: none).
+    pub fn slot_facets(&self, s: Ix) -> Ix {
+        self.slot_facets.get(s as usize).copied().unwrap_or(NONE)
+    }
+
+    /// Records slot definition `s`'s facets (false past the side array's end).
+    pub fn set_slot_facets(&mut self, s: Ix, first: Ix) -> bool {
+        match self.slot_facets.get_mut(s as usize) {
+            Some(e) => {
+                *e = first;
+                true
+            }
+            None => first == NONE,
+        }
+    }
+}
+
+/// A slot's `(facet NAME VALUE)` and `(multifacet NAME VALUE...)` attributes (agent-core
+/// feature `extras`; kept for `deftemplate-slot-facet-existp`/`-value`, which CLIPS 6.30
+/// answers from them and nothing else reads): one `Op::Sym` node per facet, `data` its
+/// name, `aux` [`facet::MULTI`] for a multifacet, `first` its chain of constant nodes,
+/// `next` the slot's next facet.
+pub mod facet {
+    /// `aux` of a multifacet's node: its value is the multifield of its constants.
+    pub const MULTI: u8 = 1;
 }

@@ -403,6 +403,8 @@ const RESTRICTIONS: &[(&str, &str)] = &[
     ("deftemplate-slot-default-value", "22w"),
     ("deftemplate-slot-defaultp", "22w"),
     ("deftemplate-slot-existp", "22w"),
+    ("deftemplate-slot-facet-existp", "33w"),
+    ("deftemplate-slot-facet-value", "33w"),
     ("deftemplate-slot-multip", "22w"),
     ("deftemplate-slot-names", "11z"),
     ("deftemplate-slot-range", "22w"),

@@ -25,6 +25,8 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("deftemplate-slot-allowed-values", 2, 2, slot_allowed_values).args(&[Y, Y], Any),
     Builtin::eager("deftemplate-slot-range", 2, 2, slot_range).args(&[Y, Y], Any),
     Builtin::eager("deftemplate-slot-cardinality", 2, 2, slot_cardinality).args(&[Y, Y], Any),
+    Builtin::eager("deftemplate-slot-facet-existp", 3, 3, slot_facet_existp).args(&[Y, Y, Y], Any),
+    Builtin::eager("deftemplate-slot-facet-value", 3, 3, slot_facet_value).args(&[Y, Y, Y], Any),
     Builtin::eager("rules", 0, 1, super::commands::list_defrules),
 ];
 #[cfg(not(feature = "extras"))]
@@ -302,6 +304,87 @@ fn slot_cardinality(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     bounds_value(cx, def.cardinality, "0")
 }
 
+/// The facet node (`template::facet`) that arguments 1-3 name, as CLIPS 6.30 looks it
+/// up for both facet functions: an argument of another type is `[ARGACCES5]` (under
+/// `deftemplate-slot-facet-existp`'s name for both, as CLIPS words it) and an evaluation
+/// error; a template not found is `[PRNTUTIL1]` but no error; an ordered-fact template,
+/// a slot or facet it does not have are none found, without a message.
+fn facet_of(cx: &mut Core<'_>, a: Args) -> Result<Ix, EvalError> {
+    const FUNC: &str = "deftemplate-slot-facet-existp";
+    let false_ = Value::Sym(SYM_FALSE);
+    let name = match cx.arg(a, 0) {
+        Value::Sym(s) => s,
+        _ => {
+            return Err(reported(
+                cx,
+                "[ARGACCES5] Function deftemplate-slot-facet-existp expected argument #1 to be of type deftemplate name\n",
+                false_,
+            ))
+        }
+    };
+    let Some(t) = super::environment::find_construct(cx, super::extras::Kind::Deftemplate, name)
+    else {
+        let mut b: TextBuf<160> = TextBuf::new();
+        let _ = writeln!(
+            b,
+            "[PRNTUTIL1] Unable to find deftemplate {}.",
+            cx.sym_text(name)
+        );
+        cx.write(router::WERROR, b.as_str());
+        return Ok(NONE);
+    };
+    for k in 1..3 {
+        if !matches!(cx.arg(a, k), Value::Sym(_)) {
+            let mut b: TextBuf<160> = TextBuf::new();
+            let _ = writeln!(
+                b,
+                "[ARGACCES5] Function {FUNC} expected argument #{} to be of type symbol",
+                k + 1
+            );
+            return Err(reported(cx, b.as_str(), false_));
+        }
+    }
+    let (Value::Sym(slot), Value::Sym(facet)) = (cx.arg(a, 1), cx.arg(a, 2)) else {
+        return Ok(NONE);
+    };
+    if cx.templates[t as usize].implied {
+        return Ok(NONE);
+    }
+    let Some(s) = cx.find_slot(t, slot) else {
+        return Ok(NONE);
+    };
+    let mut f = cx.slot_facets(cx.templates[t as usize].first_slot + s);
+    while f != NONE && cx.exprs[f as usize].data != facet {
+        f = cx.exprs[f as usize].next;
+    }
+    Ok(f)
+}
+
+/// Whether the slot has the facet (`facet` or `multifacet`); FALSE after an error.
+fn slot_facet_existp(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    Ok(Core::bool_value(facet_of(cx, a)? != NONE))
+}
+
+/// A facet's value, a multifacet's multifield of values; FALSE for none.
+fn slot_facet_value(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let f = facet_of(cx, a)?;
+    if f == NONE {
+        return Ok(Value::Sym(SYM_FALSE));
+    }
+    let x = cx.exprs[f as usize];
+    if x.aux != crate::template::facet::MULTI {
+        return Ok(cx.const_value(x.first));
+    }
+    let start = cx.multi_begin();
+    let mut e = x.first;
+    while e != NONE {
+        let v = cx.const_value(e);
+        cx.multi_push(v)?;
+        e = cx.exprs[e as usize].next;
+    }
+    Ok(cx.multi_finish(start))
+}
+
 #[cfg(all(test, feature = "extras"))]
 mod tests {
     use crate::testutil::run_program;
@@ -322,5 +405,47 @@ mod tests {
             out, "FALSE\n()\n(2 +oo)\n(-oo +oo)\n(1 3)\n(0 +oo)\n",
             "{out}"
         );
+    }
+
+    #[test]
+    fn facets_are_the_slots_own_and_survive_a_failed_redefinition() {
+        let out = run_program(
+            "(deftemplate t (slot a (facet f 1)) (multislot b (multifacet f x \"y\") (facet g 2.5)))\n\
+             (deftemplate u (slot a (facet h 9)) (slot a))\n\
+             (deftemplate t (slot a (facet f 3) (facet f 4)))\n\
+             (printout t (deftemplate-slot-facet-value t a f) crlf)\n\
+             (printout t (deftemplate-slot-facet-value t b f) crlf)\n\
+             (printout t (deftemplate-slot-facet-value t b g) crlf)\n\
+             (printout t (deftemplate-slot-facet-existp t a g) crlf)\n\
+             (printout t (deftemplate-slot-facet-value t b h) crlf)\n\
+             (deftemplate v (slot a) (slot b (facet k 5)))\n\
+             (printout t (deftemplate-slot-facet-existp v a h) crlf)\n\
+             (printout t (deftemplate-slot-facet-value v b k) crlf)\n",
+        );
+        assert!(
+            out.contains("[PRNTUTIL5] The facet f has already been parsed."),
+            "{out}"
+        );
+        assert!(
+            out.ends_with("1\n(x \"y\")\n2.5\nFALSE\nFALSE\nFALSE\n5\n"),
+            "{out}"
+        );
+    }
+
+    #[test]
+    fn join_activity_and_constructs_to_c_are_refused_as_not_implemented() {
+        for call in [
+            "(join-activity r)",
+            "(join-activity-reset)",
+            "(constructs-to-c f 1)",
+        ] {
+            let out = run_program(&std::format!("{call}\n(printout t ok crlf)\n"));
+            assert!(
+                out.contains("[NOTIMPL1] robotino-agent does not implement")
+                    && !out.contains("EXPRNPSR3")
+                    && out.ends_with("ok\n"),
+                "{call}: {out}"
+            );
+        }
     }
 }

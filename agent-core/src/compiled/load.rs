@@ -313,6 +313,9 @@ impl Core<'_> {
             for (g, &text) in base.global_texts.iter().enumerate() {
                 self.set_global_text(g as Ix, text);
             }
+            for (s, &first) in base.slot_facets.iter().enumerate() {
+                self.set_slot_facets(s as Ix, first);
+            }
             // (index order unless the base says otherwise)
             for p in 0..base.functions.len() {
                 let f = base.function_order.get(p).copied().unwrap_or(p as Ix);

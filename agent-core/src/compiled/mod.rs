@@ -69,6 +69,9 @@ pub struct RuleBase {
     /// (pretty-print forms off, or no `extras`).
     pub function_texts: &'static [Ix],
     pub global_texts: &'static [Ix],
+    /// Each slot definition's first facet node (`template::facet`, NONE for none), by
+    /// index; empty when no slot has one (or without `extras`).
+    pub slot_facets: &'static [Ix],
     /// The deffunctions' indices in listing order (`list-deffunctions`: a redefined
     /// one is listed last); empty when that is index order.
     pub function_order: &'static [Ix],

@@ -87,6 +87,7 @@ fn loader_refuses_an_engine_with_constructs() {
         function_texts: &[],
         function_order: &[],
         global_texts: &[],
+        slot_facets: &[],
         deffacts: &[],
         externals: &[],
         trie_ids: 0,

@@ -466,6 +466,8 @@ impl Core<'_> {
         let nglobals = self.st.pools.nglobals as Ix;
         self.write_texts(out, "function_texts", nfuncs, |f| self.function_text(f))?;
         self.write_texts(out, "global_texts", nglobals, |g| self.global_text(g))?;
+        let nslots = self.st.pools.nslots as Ix;
+        self.write_texts(out, "slot_facets", nslots, |s| self.slot_facets(s))?;
         write!(out, "function_order: &[")?;
         if (0..nfuncs).any(|p| self.function_listed(p) != p) {
             for p in 0..nfuncs {

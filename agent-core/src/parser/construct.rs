@@ -179,12 +179,21 @@ impl<'s> Parser<'s, '_, '_> {
                         let c = cap(Pool::SlotDefs, self.cx.slots.len());
                         return Err(self.cap_err(st, c));
                     }
-                    let def = self.slot_attributes(SlotDef {
-                        name: ssym,
-                        multi,
-                        ..SlotDef::EMPTY
-                    })?;
+                    let mut facets = NONE;
+                    let def = self.slot_attributes(
+                        SlotDef {
+                            name: ssym,
+                            multi,
+                            ..SlotDef::EMPTY
+                        },
+                        &mut facets,
+                    )?;
                     self.cx.slots[s] = def;
+                    #[cfg(feature = "extras")]
+                    if !self.cx.set_slot_facets(s as Ix, facets) {
+                        let c = cap(Pool::SlotDefs, self.cx.slots.len());
+                        return Err(self.cap_err(st, c));
+                    }
                     self.cx.st.pools.nslots += 1;
                     self.cx.note_hw(Pool::SlotDefs, s + 1);
                     nslots += 1;

@@ -112,8 +112,15 @@ fn fits_allowed_kind(kind: u8, bit: u8) -> bool {
 }
 
 impl<'s> Parser<'s, '_, '_> {
-    /// The attributes of one slot, up to the slot's `)`.
-    pub(super) fn slot_attributes(&mut self, mut def: SlotDef) -> PResult<SlotDef> {
+    /// The attributes of one slot, up to the slot's `)`; its facets (`facet`,
+    /// `multifacet`, with `extras`) chained from `facets`.
+    pub(super) fn slot_attributes(
+        &mut self,
+        mut def: SlotDef,
+        facets: &mut Ix,
+    ) -> PResult<SlotDef> {
+        #[cfg(not(feature = "extras"))]
+        let _ = facets;
         let mut seen = Seen {
             types: false,
             default_given: false,
@@ -189,6 +196,10 @@ impl<'s> Parser<'s, '_, '_> {
                                     seen.lists[k] = Some(values_at);
                                 }
                             }
+                        }
+                        #[cfg(feature = "extras")]
+                        "facet" | "multifacet" => {
+                            self.facet_attribute(attr == "multifacet", facets)?;
                         }
                         "allowed-classes" if cfg!(feature = "extras") => {
                             if seen.classes.is_some() {
@@ -642,6 +653,66 @@ impl<'s> Parser<'s, '_, '_> {
             }
             def.allowed_kind |= kind;
         }
+        Ok(())
+    }
+
+    /// `(facet NAME VALUE)` or `(multifacet NAME VALUE...)` after its name, as CLIPS
+    /// 6.30 reads them: a symbol naming a facet the slot does not have yet, then
+    /// constants, exactly one for a facet. Put first in the chain at `facets`
+    /// (`template::facet`).
+    #[cfg(feature = "extras")]
+    fn facet_attribute(&mut self, multi: bool, facets: &mut Ix) -> PResult<()> {
+        let what = if multi {
+            "multifacet attribute"
+        } else {
+            "facet attribute"
+        };
+        let nt = self.next();
+        let Tok::Symbol(name) = nt.tok else {
+            let e = self.attribute_syntax(nt, "a facet name (a symbol)", what);
+            // (CLIPS saved a space before the token it read)
+            let tail = if nt.tok == Tok::RParen {
+                EchoTail::SpaceBefore
+            } else {
+                EchoTail::Normal
+            };
+            return Err(echoed(e, nt, tail));
+        };
+        let sym = cap!(self, self.cx.intern(name))?;
+        let mut f = *facets;
+        while f != NONE {
+            let x = self.cx.exprs[f as usize];
+            if x.data == sym {
+                let mut e = self.err(nt, "a facet name not used before in this slot");
+                e.detail = LoadDetail::FacetTwice { multi };
+                return Err(echoed(e, nt, EchoTail::Normal));
+            }
+            f = x.next;
+        }
+        let aux = if multi {
+            crate::template::facet::MULTI
+        } else {
+            0
+        };
+        let head = cap!(self, self.cx.push_expr(Expr::new(Op::Sym, aux, sym)))?;
+        let mut n = 0;
+        loop {
+            let tt = self.next();
+            if tt.tok == Tok::RParen && (multi || n == 1) {
+                break;
+            }
+            let c = match self.literal(tt)? {
+                Some(c) if multi || n == 0 => c,
+                _ => {
+                    let e = self.attribute_syntax(tt, "one constant value", what);
+                    return Err(echoed(e, tt, EchoTail::Normal));
+                }
+            };
+            self.cx.append_child(head, c);
+            n += 1;
+        }
+        self.cx.exprs[head as usize].next = *facets;
+        *facets = head;
         Ok(())
     }
 
