@@ -458,11 +458,12 @@ impl Core<'_> {
             self.st.watch_names.items,
         );
         #[cfg(feature = "extras")]
-        let (dynamic_checks, fact_duplication, twins_made, seq_ops) = (
+        let (dynamic_checks, fact_duplication, twins_made, seq_ops, no_incremental_reset) = (
             self.st.mode.dynamic_checks,
             self.st.mode.fact_duplication,
             self.st.mode.twins_made,
             self.st.mode.seq_ops,
+            self.st.mode.no_incremental_reset,
         );
         let next = self.st.pools.nexternals;
         let ext_syms = self.st.pools.ext_syms;
@@ -636,6 +637,7 @@ impl Core<'_> {
             self.st.mode.fact_duplication = fact_duplication;
             self.st.mode.twins_made = twins_made;
             self.st.mode.seq_ops = seq_ops;
+            self.st.mode.no_incremental_reset = no_incremental_reset;
             // the items stay, the constructs named are gone
             self.st.watch_names.items = watch_items;
             self.sync_watch();
@@ -1565,6 +1567,11 @@ impl Core<'_> {
             let _ = writeln!(b, "\n[PRNTUTIL5] The slot {tok} has already been parsed.");
         } else if e.detail == LoadDetail::ModuleSpecifier {
             let _ = writeln!(b, "\n[MODULDEF1] Illegal use of the module specifier.");
+        } else if e.detail == LoadDetail::ImpliedConflict {
+            let _ = writeln!(
+                b,
+                "\n[CSTRCPSR3] Cannot define implied deftemplate {tok} because of an import/export conflict."
+            );
         } else if let LoadDetail::ImportConflict { construct } = e.detail {
             let name = match construct {
                 "defglobal" => tok.trim_start_matches("?*").trim_end_matches('*'),
@@ -1690,6 +1697,22 @@ impl Core<'_> {
                 b,
                 "\n[PRNTUTIL2] Syntax Error:  Check appropriate syntax for {part}."
             );
+        } else if let LoadDetail::Query { what, func } = e.detail {
+            let _ = match what {
+                1 => writeln!(
+                    b,
+                    "[FACTQPSR1] Duplicate fact member variable name in function {func}."
+                ),
+                2 => writeln!(
+                    b,
+                    "[FACTQPSR2] Binds are not allowed in fact-set query in function {func}."
+                ),
+                _ => writeln!(
+                    b,
+                    "[FACTQPSR3] Cannot rebind fact-set member variable {} in function {func}.",
+                    tok.trim_start_matches(['?', '$'])
+                ),
+            };
         } else if e.construct == "command" {
             {
                 let _ = writeln!(
@@ -1702,6 +1725,12 @@ impl Core<'_> {
                 b,
                 "\n[PRNTUTIL2] Syntax Error:  Check appropriate syntax for {}.",
                 e.construct
+            );
+        }
+        if e.query_syntax {
+            let _ = writeln!(
+                b,
+                "\n[PRNTUTIL2] Syntax Error:  Check appropriate syntax for fact-set query function."
             );
         }
         // a defglobal whose initial value failed: from the global to the value's end
@@ -1843,6 +1872,8 @@ impl Core<'_> {
                     | LoadDetail::UnknownSlot { .. }
                     | LoadDetail::RelationKeyword
                     | LoadDetail::NoSuchTemplate
+                    | LoadDetail::Query { .. }
+                    | LoadDetail::ImpliedConflict
             )
         {
             // a rule CLIPS stopped reading, in its conditions or its actions
@@ -1905,6 +1936,8 @@ impl Core<'_> {
                     | LoadDetail::UnknownSlot { .. }
                     | LoadDetail::RelationKeyword
                     | LoadDetail::NoSuchTemplate
+                    | LoadDetail::Query { .. }
+                    | LoadDetail::ImpliedConflict
             )
         {
             let _ = b.write_str("\nERROR:\n");
@@ -1929,6 +1962,8 @@ impl Core<'_> {
                     | LoadDetail::NotInContext { .. }
                     | LoadDetail::SyntaxOf { .. }
                     | LoadDetail::SequenceOperator { .. }
+                    | LoadDetail::Query { .. }
+                    | LoadDetail::ImpliedConflict
             ) || e.construct == "deftemplate")
         {
             let _ = b.write_str("\nERROR:\n");
@@ -2654,6 +2689,9 @@ fn write_echo(
             text.get(e.start as usize..e.echo_end as usize)
                 .unwrap_or(""),
         )?;
+    }
+    if e.echo_tail == crate::error::EchoTail::OpenParen {
+        b.write_char('(')?;
     }
     if e.echo_tail == crate::error::EchoTail::SpaceBefore {
         // (the pretty-printer may have written the space already: `(if `)

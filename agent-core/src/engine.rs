@@ -568,6 +568,12 @@ pub struct Mode {
     /// can make them trace (agent-core feature `extras`).
     #[cfg(feature = "extras")]
     pub cool_watch: u8,
+    /// `(set-incremental-reset FALSE)`: a rule defined while facts exist is not
+    /// matched against them (its new joins and alpha nodes start empty) until the
+    /// next `reset` (agent-core feature `extras`; kept across `clear`, as CLIPS keeps
+    /// it).
+    #[cfg(feature = "extras")]
+    pub no_incremental_reset: bool,
     /// `set-salience-evaluation`: when a rule's salience expression is evaluated
     /// (`agenda::SALIENCE_*`; agent-core feature `extras`, the image keeps CLIPS's
     /// default, when-defined).
@@ -606,6 +612,8 @@ impl Mode {
             keep_globals: false,
             #[cfg(feature = "extras")]
             cool_watch: 0,
+            #[cfg(feature = "extras")]
+            no_incremental_reset: false,
             #[cfg(feature = "extras")]
             salience_eval: crate::agenda::SALIENCE_WHEN_DEFINED,
             #[cfg(any(feature = "extras", feature = "modules", feature = "logical"))]

@@ -500,6 +500,9 @@ pub struct LoadError {
     /// 0 when we do not show it.
     pub echo_end: u32,
     pub echo_tail: EchoTail,
+    /// An error in a fact-set query's actions: CLIPS then adds its syntax error for
+    /// the query (`[PRNTUTIL2] ... fact-set query function.`).
+    pub query_syntax: bool,
 }
 
 /// How CLIPS's `ERROR:` text joins the token at which it stopped (its pretty-print
@@ -514,6 +517,9 @@ pub enum EchoTail {
     Glued,
     /// With a space after it: `(allowed-symbols 1 `.
     SpaceAfter,
+    /// Followed by a `(`: a fact-set query's action CLIPS stopped reading (its
+    /// pretty-print buffer backs up over the last token and adds the action's `(`).
+    OpenParen,
     /// The text from the error's `start` as written, on a line of its own after the
     /// CEs before it: a lone variable where a CE was due (`?x =>`).
     OwnLine,
@@ -729,6 +735,16 @@ pub enum LoadDetail {
     /// `[MODULDEF1]`: a module specifier on a fact's or pattern's relation name (the
     /// offending token).
     ModuleSpecifier,
+    /// `[FACTQPSR1]` (`what` 1: a query variable declared twice), `[FACTQPSR2]` (2: a
+    /// `bind` in the query's condition) or `[FACTQPSR3]` (3: a query variable, the
+    /// offending token, bound in the actions) in fact-set query function `func`.
+    Query {
+        what: u8,
+        func: &'static str,
+    },
+    /// `[CSTRCPSR3]`: an ordered fact or pattern (its relation name the offending
+    /// token) whose implied deftemplate would clash with the imports and exports.
+    ImpliedConflict,
     /// `[CSTRCPSR3]`: a construct (`construct`, named by the offending token) whose
     /// name clashes with the imports and exports of the modules.
     ImportConflict {

@@ -569,4 +569,12 @@ differential_programs! {
     p960_slot_facets => "960-slot-facets",
     p961_slot_facet_errors => "961-slot-facet-errors",
     p962_slot_facet_tokens => "962-slot-facet-tokens",
+    p990_printout_illegal_logical_name => "990-printout-illegal-logical-name",
+    p991_commands_nested_in_expressions => "991-commands-nested-in-expressions",
+    p992_fact_set_query_syntax_errors => "992-fact-set-query-syntax-errors",
+    p993_modify_duplicate_unknown_slot => "993-modify-duplicate-unknown-slot",
+    p994_undeftemplate_initial_fact => "994-undeftemplate-initial-fact",
+    p995_incremental_reset_off => "995-incremental-reset-off",
+    p996_implied_template_import_conflict => "996-implied-template-import-conflict",
+    p997_expand_called_alone => "997-expand-called-alone",
 }

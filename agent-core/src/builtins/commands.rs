@@ -17,30 +17,30 @@ use core::fmt::Write;
 
 #[rustfmt::skip]
 pub const FUNCS: &[Builtin] = &[
-    Builtin::eager("reset", 0, 0, reset),
-    Builtin::eager("clear", 0, 0, clear),
-    Builtin::eager("run", 0, 1, run),
-    Builtin::eager("facts", 0, 4, facts),
-    Builtin::eager("agenda", 0, 1, agenda),
-    Builtin::eager("watch", 1, ANY, watch_),
-    Builtin::eager("unwatch", 1, ANY, unwatch),
+    Builtin::eager("reset", 0, 0, reset).returns(super::describe::Returns::Void),
+    Builtin::eager("clear", 0, 0, clear).returns(super::describe::Returns::Void),
+    Builtin::eager("run", 0, 1, run).returns(super::describe::Returns::Void),
+    Builtin::eager("facts", 0, 4, facts).returns(super::describe::Returns::Void),
+    Builtin::eager("agenda", 0, 1, agenda).returns(super::describe::Returns::Void),
+    Builtin::eager("watch", 1, ANY, watch_).returns(super::describe::Returns::Void),
+    Builtin::eager("unwatch", 1, ANY, unwatch).returns(super::describe::Returns::Void),
     Builtin::lazy("printout", 1, ANY, printout).returns(R::Void),
-    Builtin::eager("halt", 0, 0, halt),
-    Builtin::eager("exit", 0, 1, exit),
-    Builtin::eager("refresh-agenda", 0, 1, refresh_agenda),
+    Builtin::eager("halt", 0, 0, halt).returns(super::describe::Returns::Void),
+    Builtin::eager("exit", 0, 1, exit).returns(R::Void),
+    Builtin::eager("refresh-agenda", 0, 1, refresh_agenda).returns(super::describe::Returns::Void),
     Builtin::eager("set-strategy", 1, 1, set_strategy),
     Builtin::eager("get-strategy", 0, 0, get_strategy),
-    Builtin::eager("list-defrules", 0, 1, list_defrules),
-    Builtin::eager("ppdefrule", 1, 1, ppdefrule),
-    Builtin::eager("undefrule", 1, 1, undefrule),
+    Builtin::eager("list-defrules", 0, 1, list_defrules).returns(super::describe::Returns::Void),
+    Builtin::eager("ppdefrule", 1, 1, ppdefrule).returns(super::describe::Returns::Void),
+    Builtin::eager("undefrule", 1, 1, undefrule).returns(super::describe::Returns::Void),
     Builtin::eager("matches", 1, 2, matches),
     // literal arguments are checked while parsing, as CLIPS's "1*wk"
     Builtin::eager("save-facts", 1, ANY, save_facts)
         .args(&[ArgType::SymbolOrString], ArgType::Symbol)
         .on_error(OnError::False),
     Builtin::eager("time", 0, 0, time).returns(R::Float),
-    Builtin::eager("list-deftemplates", 0, 1, list_deftemplates),
-    Builtin::eager("list-deffunctions", 0, 1, list_deffunctions),
+    Builtin::eager("list-deftemplates", 0, 1, list_deftemplates).returns(super::describe::Returns::Void),
+    Builtin::eager("list-deffunctions", 0, 1, list_deffunctions).returns(super::describe::Returns::Void),
     Builtin::eager("get-fact-duplication", 0, 0, get_fact_dup),
 ];
 pub const TABLE: super::Table = super::Table::new(FUNCS).texts(&[
@@ -313,9 +313,11 @@ fn printout(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     if name == Value::Sym(SYM_NIL) || cx.st.mode.halting {
         return Ok(Value::Void);
     }
-    let routed = match resolve_router(cx, name) {
+    let routed = match resolve_router(cx, name, "printout") {
         Ok(Some(r)) => r,
         Ok(None) => return Ok(Value::Void),
+        // an illegal name halts (`[IOFUN1]`)
+        Err(e) if e.reported => return Err(e),
         // CLIPS's printout reports the name and carries on with nothing printed
         Err(_) => return Ok(Value::Void),
     };
@@ -392,8 +394,10 @@ pub(super) fn printout_values(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalE
     if name == Value::Sym(SYM_NIL) || cx.st.mode.halting {
         return Ok(Value::Void);
     }
-    let Ok(Some(routed)) = resolve_router(cx, name) else {
-        return Ok(Value::Void);
+    let routed = match resolve_router(cx, name, "printout") {
+        Ok(Some(r)) => r,
+        Err(e) if e.reported => return Err(e),
+        _ => return Ok(Value::Void),
     };
     let mut b: TextBuf<1024> = TextBuf::new();
     for i in 1..a.len as usize {
@@ -468,7 +472,20 @@ impl Routed {
 /// Where output to a CLIPS logical name goes: `Some(router)`, or `None` for `stdin`
 /// (output to it is dropped). A name that is no router and no open file is
 /// `[ROUTER1]` (printed here), as in the CLIPS command line.
-pub(super) fn resolve_router(cx: &mut Core<'_>, name: Value) -> Result<Option<Routed>, EvalError> {
+///
+/// A value that cannot be a logical name (a multifield, a fact address) is `[IOFUN1]`
+/// for `func`, an error that halts what runs (CLIPS's `GetLogicalName` gives NULL).
+pub(super) fn resolve_router(
+    cx: &mut Core<'_>,
+    name: Value,
+    func: &str,
+) -> Result<Option<Routed>, EvalError> {
+    if matches!(name, Value::Multi(_) | Value::Fact(_) | Value::Void) {
+        cx.write(router::WERROR, "[IOFUN1] Illegal logical name used for ");
+        cx.write(router::WERROR, func);
+        cx.write(router::WERROR, " function.\n");
+        return Err(EvalError::already_reported());
+    }
     if let Value::Sym(s) | Value::Str(s) = name {
         // (CLIPS takes `T` for `t` wherever it reads a logical name)
         let text = match cx.sym_text(s) {

@@ -63,7 +63,7 @@ pub const FUNCS: &[Builtin] = &[
     trig("acot", acot),
     trig("deg-grad", deg_grad),
     trig("grad-deg", grad_deg),
-    Builtin::eager("system", 1, ANY, system).args(&[], L),
+    Builtin::eager("system", 1, ANY, system).args(&[], L).returns(super::describe::Returns::Void),
     Builtin::eager("!=", 2, ANY, super::basic::num_ne).args(&[], N).on_error(OnError::False).quiet(),
     Builtin::eager("mv-append", 0, ANY, super::multifield::create).on_error(OnError::EmptyMultifield),
     Builtin::eager("member", 2, 2, super::multifield::member).args(&[Any, M], Any).on_error(OnError::False),
@@ -429,24 +429,26 @@ fn set_static_constraint_checking(cx: &mut Core<'_>, a: Args) -> Result<Value, E
     Ok(Value::Sym(SYM_TRUE))
 }
 
-/// A rule defined while facts exist is matched against them at once (CLIPS's default,
-/// TRUE).
-fn get_incremental_reset(_cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
-    Ok(Value::Sym(SYM_TRUE))
+/// Whether a rule defined while facts exist is matched against them at once (CLIPS's
+/// default, TRUE).
+fn get_incremental_reset(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
+    Ok(Core::bool_value(!cx.st.mode.no_incremental_reset))
 }
+/// Any value but FALSE turns it on; the old setting is returned. With FALSE a new
+/// rule starts unmatched: its new joins and alpha nodes see only later facts, until
+/// `reset`.
 fn set_incremental_reset(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let old = Core::bool_value(!cx.st.mode.no_incremental_reset);
     if (0..cx.st.pools.nrules).any(|r| !cx.rules[r as usize].deleted) {
         // CLIPS checks this first, whatever the value, and returns the old one
         cx.write(
             router::WERROR,
             "[INCRRSET1] The incremental reset behavior cannot be changed with rules loaded.\n",
         );
-        return Ok(Value::Sym(SYM_TRUE));
+        return Ok(old);
     }
-    if is_false(cx.arg(a, 0)) {
-        return Err(refuse(cx, "set-incremental-reset", "TRUE"));
-    }
-    Ok(Value::Sym(SYM_TRUE))
+    cx.st.mode.no_incremental_reset = is_false(cx.arg(a, 0));
+    Ok(old)
 }
 
 /// Whether `reset` gives every defglobal its initial value back (CLIPS's default,

@@ -29,6 +29,8 @@ pub enum ArgType {
     Str,
     /// No literal is a multifield.
     Multifield,
+    /// A multifield, symbol or string (CLIPS's `q`: `length$`).
+    Sequence,
     /// No literal is a fact address.
     FactAddress,
     /// A fact or an instance: its address, a fact index, an instance name (CLIPS's `h`,
@@ -300,6 +302,7 @@ impl ArgType {
             }
             ArgType::Symbol => matches!(v, Value::Sym(_)),
             ArgType::Str => matches!(v, Value::Str(_)),
+            ArgType::Sequence => matches!(v, Value::Sym(_) | Value::Str(_) | Value::Multi(_)),
             ArgType::FactOrInstance => matches!(v, Value::Int(_) | Value::Sym(_)),
             ArgType::Multifield | ArgType::FactAddress => false,
         }
@@ -319,6 +322,7 @@ impl ArgType {
             ArgType::Symbol => SYMBOL,
             ArgType::Str => STRING,
             ArgType::Multifield => MULTIFIELD,
+            ArgType::Sequence => MULTIFIELD | SYMBOL | STRING,
             ArgType::FactOrInstance => INTEGER | SYMBOL | INSTANCE_NAME,
         };
         takes & r.types() != 0
@@ -335,6 +339,7 @@ impl ArgType {
             ArgType::Symbol => "symbol",
             ArgType::Str => "string",
             ArgType::Multifield => "multifield",
+            ArgType::Sequence => "multifield, symbol, or string",
             ArgType::FactAddress => "fact-address",
             ArgType::FactOrInstance => {
                 "instance address, instance name, fact address, integer, or symbol"
@@ -358,6 +363,7 @@ impl ArgType {
                 "an argument of type fact-address (a variable or call, not a literal)"
             }
             ArgType::FactOrInstance => "a fact index or an instance name",
+            ArgType::Sequence => "an argument of type multifield, symbol, or string",
         }
     }
 }

@@ -18,7 +18,7 @@ use core::fmt::Write;
 #[rustfmt::skip]
 pub const FUNCS: &[Builtin] = &[
     Builtin::eager("list-watch-items", 0, ANY, list_watch_items)
-        .args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any),
+        .args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any).returns(super::describe::Returns::Void),
     Builtin::eager("get-watch-item", 1, 1, get_watch_item)
         .args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any)
         .on_error(super::describe::OnError::False)
@@ -26,20 +26,20 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("get-function-restrictions", 1, 1, get_function_restrictions)
         .args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any)
         .on_error(super::describe::OnError::EmptyString),
-    Builtin::eager("expand$", 1, 1, expand)
+    Builtin::lazy("expand$", 1, 1, expand)
         .args(&[super::describe::ArgType::Multifield], super::describe::ArgType::Any)
         .on_error(super::describe::OnError::False),
     Builtin::lazy("timer", 0, ANY, timer),
-    Builtin::eager("options", 0, 0, options),
+    Builtin::eager("options", 0, 0, options).returns(super::describe::Returns::Void),
     Builtin::eager("save", 1, 1, save).on_error(super::describe::OnError::False),
     Builtin::eager("set-break", 1, 1, set_break)
-        .args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any),
+        .args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any).returns(super::describe::Returns::Void),
     Builtin::eager("remove-break", 0, 1, remove_break)
-        .args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any),
+        .args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any).returns(super::describe::Returns::Void),
     Builtin::eager("show-breaks", 0, 1, show_breaks)
-        .args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any),
+        .args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any).returns(super::describe::Returns::Void),
     Builtin::eager("refresh", 1, 1, refresh)
-        .args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any),
+        .args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any).returns(super::describe::Returns::Void),
     // made by the parser only (no text names it): a call whose arguments expand
     Builtin::lazy("(expansion-call)", 1, 1, expansion_call),
 ];
@@ -609,7 +609,9 @@ const RESTRICTIONS: &[(&str, &str)] = &[
 
 /// `expand$` outside the arguments of a function call (the parser turns it into a
 /// sequence expansion everywhere else): CLIPS's `[MISCFUN1]`, and FALSE.
-fn expand(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
+/// `expand$` called itself (not among a call's arguments): CLIPS's `[MISCFUN1]`,
+/// its argument not evaluated.
+fn expand(cx: &mut Core<'_>, _call: Ix) -> Result<Value, EvalError> {
     cx.write(
         router::WERROR,
         "[MISCFUN1] expand$ must be used in the argument list of a function call.\n",

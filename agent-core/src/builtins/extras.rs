@@ -28,20 +28,20 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("get-defrule-list", 0, 1, get_defrule_list),
     Builtin::eager("get-fact-list", 0, 1, get_fact_list)
         .on_error(super::describe::OnError::EmptyMultifield),
-    Builtin::eager("list-deffacts", 0, 1, list_deffacts),
-    Builtin::eager("list-defglobals", 0, 1, list_defglobals),
-    Builtin::eager("show-defglobals", 0, 1, show_defglobals).args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any),
-    Builtin::eager("undeffacts", 1, 1, undeffacts),
-    Builtin::eager("ppdeftemplate", 1, 1, ppdeftemplate).args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any),
-    Builtin::eager("ppdeffacts", 1, 1, ppdeffacts).args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any),
-    Builtin::eager("ppdeffunction", 1, 1, ppdeffunction).args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any),
-    Builtin::eager("ppdefglobal", 1, 1, ppdefglobal).args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any),
-    Builtin::eager("undeftemplate", 1, 1, undeftemplate),
-    Builtin::eager("undeffunction", 1, 1, undeffunction),
-    Builtin::eager("undefglobal", 1, 1, undefglobal),
+    Builtin::eager("list-deffacts", 0, 1, list_deffacts).returns(super::describe::Returns::Void),
+    Builtin::eager("list-defglobals", 0, 1, list_defglobals).returns(super::describe::Returns::Void),
+    Builtin::eager("show-defglobals", 0, 1, show_defglobals).args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any).returns(super::describe::Returns::Void),
+    Builtin::eager("undeffacts", 1, 1, undeffacts).returns(super::describe::Returns::Void),
+    Builtin::eager("ppdeftemplate", 1, 1, ppdeftemplate).args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any).returns(super::describe::Returns::Void),
+    Builtin::eager("ppdeffacts", 1, 1, ppdeffacts).args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any).returns(super::describe::Returns::Void),
+    Builtin::eager("ppdeffunction", 1, 1, ppdeffunction).args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any).returns(super::describe::Returns::Void),
+    Builtin::eager("ppdefglobal", 1, 1, ppdefglobal).args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any).returns(super::describe::Returns::Void),
+    Builtin::eager("undeftemplate", 1, 1, undeftemplate).returns(super::describe::Returns::Void),
+    Builtin::eager("undeffunction", 1, 1, undeffunction).returns(super::describe::Returns::Void),
+    Builtin::eager("undefglobal", 1, 1, undefglobal).returns(super::describe::Returns::Void),
     Builtin::eager("fact-relation", 1, 1, fact_relation).returns(super::describe::Returns::Symbol),
     Builtin::eager("fact-slot-names", 1, 1, fact_slot_names),
-    Builtin::eager("ppfact", 1, 3, ppfact),
+    Builtin::eager("ppfact", 1, 3, ppfact).returns(super::describe::Returns::Void),
     Builtin::eager("type", 1, 1, type_of),
     Builtin::eager("gensym", 0, 0, gensym).returns(super::describe::Returns::Symbol),
     Builtin::eager("gensym*", 0, 0, gensym_star).returns(super::describe::Returns::Symbol),
@@ -714,10 +714,19 @@ fn undeftemplate(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         class: crate::module::class::TEMPLATE,
         count: |cx| cx.st.pools.ntemplates,
         name: |cx, t| cx.templates[t as usize].name,
-        stays: |cx, t, _| t == cx.st.facts.initial_tmpl || cx.template_in_use(t),
+        // `initial-fact` stays while its deffacts does (CLIPS's deffacts of it is a
+        // construct using it); without that, a fact or a rule of it
+        stays: |cx, t, _| {
+            (t == cx.st.facts.initial_tmpl && cx.st.mode.initial_deffacts) || cx.template_in_use(t)
+        },
         remove: |cx, t| {
             cx.network_writable()?;
             cx.retire_template(t);
+            // (`clear` makes it again; an assert of `(initial-fact)` makes an
+            // ordered template of the name)
+            if t == cx.st.facts.initial_tmpl {
+                cx.st.facts.initial_tmpl = NONE;
+            }
             Ok(())
         },
     };
@@ -841,7 +850,7 @@ fn ppfact(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
                 return Err(EvalError::already_reported());
             }
             Value::Sym(s) | Value::Str(s) if cx.sym_text(s) == "nil" => return Ok(Value::Void),
-            name => match super::commands::resolve_router(cx, name)? {
+            name => match super::commands::resolve_router(cx, name, "ppfact")? {
                 Some(to) => to,
                 None => return Ok(Value::Void),
             },

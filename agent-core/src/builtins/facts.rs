@@ -522,6 +522,32 @@ impl Core<'_> {
         true
     }
 
+    /// `[TMPLTDEF1]` for a slot `modify`/`duplicate` names that template `tmpl` lacks:
+    /// FALSE, the actions halted.
+    #[cold]
+    fn bad_slot(&mut self, tmpl: Ix, slot: SymId) -> EvalError {
+        #[cfg(feature = "extras")]
+        {
+            let mut m: crate::value::TextBuf<200> = crate::value::TextBuf::new();
+            let _ = core::fmt::Write::write_fmt(
+                &mut m,
+                format_args!(
+                    "\n[TMPLTDEF1] Invalid slot {} not defined in corresponding deftemplate {}.\n",
+                    self.sym_text(slot),
+                    self.sym_text(self.templates[tmpl as usize].name)
+                ),
+            );
+            self.write(router::WERROR, m.as_str());
+            self.set_error_fallback(Value::Sym(SYM_FALSE), None);
+            EvalError::already_reported()
+        }
+        #[cfg(not(feature = "extras"))]
+        {
+            let _ = (tmpl, slot);
+            EvalError::new(EvalErrorKind::NoSuchSlot)
+        }
+    }
+
     fn modify_or_duplicate(&mut self, call: Ix, retract_old: bool) -> Result<Value, EvalError> {
         // the values' calls may not `clear` the fact and its template away
         // (`Mode::asserting`)
@@ -565,14 +591,17 @@ impl Core<'_> {
             // a stale fact address: CLIPS says FALSE without a message
             (None, None) if matches!(fv, Value::Fact(_)) => return Ok(Value::Sym(SYM_FALSE)),
             (None, None) => {
-                let Value::Int(n) = fv else {
+                let Value::Int(n @ 0..) = fv else {
                     // neither a fact nor an index: CLIPS's error halts the actions
                     let func = if retract_old { "modify" } else { "duplicate" };
-                    // the prompt shows FALSE when a variable gave the value
-                    if matches!(
-                        self.exprs[first as usize].op,
-                        Op::Global | Op::Local | Op::PatVar
-                    ) {
+                    // the prompt shows FALSE when a variable or a negative index gave
+                    // the value
+                    if matches!(fv, Value::Int(_))
+                        || matches!(
+                            self.exprs[first as usize].op,
+                            Op::Global | Op::Local | Op::PatVar
+                        )
+                    {
                         self.set_error_fallback(Value::Sym(SYM_FALSE), None);
                     }
                     return Err(EvalError::wrong_type(func, 1, "non-void return value"));
@@ -586,10 +615,20 @@ impl Core<'_> {
                 return Ok(Value::Sym(SYM_FALSE));
             }
         };
-        if self.templates[self.facts[old as usize].tmpl as usize].implied {
-            // an ordered fact has no slots to change: CLIPS gives FALSE, says nothing
-            // and evaluates no slot value
-            return Ok(Value::Sym(SYM_FALSE));
+        let tmpl = self.facts[old as usize].tmpl;
+        if self.templates[tmpl as usize].implied {
+            // `initial-fact` is a deftemplate of no slots in CLIPS: any slot is
+            // `[TMPLTDEF1]`, none makes a copy
+            let sv = self.exprs[first as usize].next;
+            if self.templates[tmpl as usize].name == super::SYM_INITIAL_FACT {
+                if sv != NONE {
+                    return Err(self.bad_slot(tmpl, self.exprs[sv as usize].data));
+                }
+            } else {
+                // an ordered fact has no slots to change: CLIPS gives FALSE, says
+                // nothing and evaluates no slot value
+                return Ok(Value::Sym(SYM_FALSE));
+            }
         }
         if self.st.net.matching > 0 {
             // a modify is a retract, then an assert: CLIPS refuses both
@@ -599,7 +638,6 @@ impl Core<'_> {
             self.write(router::WERROR, NO_ASSERT_WHILE_MATCHING);
             return Ok(Value::Sym(SYM_FALSE));
         }
-        let tmpl = self.facts[old as usize].tmpl;
         let nslots = self.templates[tmpl as usize].nslots;
         // matches an earlier retract owes come first: the retract below must free
         // room for the old fact's return, not for old debts
@@ -627,17 +665,12 @@ impl Core<'_> {
             let mut sv = self.exprs[first as usize].next;
             while sv != NONE {
                 let sym = self.exprs[sv as usize].data;
-                let slot = self
-                    .find_slot(tmpl, sym)
-                    .ok_or_else(|| EvalError::new(EvalErrorKind::NoSuchSlot))?;
+                let Some(slot) = self.find_slot(tmpl, sym) else {
+                    return Err(self.bad_slot(tmpl, sym));
+                };
                 // unchecked, as in CLIPS (see assert); a failed single-field value is
                 // kept on the host, as CLIPS keeps it (see `single_field_failed`)
-                let v = self.slot_value_from(
-                    tmpl,
-                    slot,
-                    self.exprs[sv as usize].first,
-                    cfg!(feature = "extras"),
-                )?;
+                let v = self.slot_value_from(tmpl, slot, self.exprs[sv as usize].first, cfg!(feature = "extras"))?;
                 self.stack[(base + slot) as usize] = v;
                 sv = self.exprs[sv as usize].next;
             }
@@ -850,7 +883,7 @@ fn fact_slot_value(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let Some(f) = cx.fact_arg(fv) else {
         return no_such_fact(cx, fv);
     };
-    slot_of_fact(cx, f, name)
+    slot_of_fact(cx, f, name, false)
 }
 
 /// `?v:slot`: `(fact-slot-value ?v slot)` with its arguments at hand. `node` (the
@@ -886,7 +919,7 @@ pub(crate) fn slot_value_of(
             return Ok(cx.fact_slot_value(f, s)?);
         }
     }
-    slot_of_fact(cx, f, name)
+    slot_of_fact(cx, f, name, true)
 }
 
 /// fact-slot-value of a missing fact: CLIPS prints the missing fact's index, then
@@ -907,7 +940,9 @@ fn no_such_fact(cx: &mut Core<'_>, fv: Value) -> Result<Value, EvalError> {
     Ok(Value::Sym(SYM_FALSE))
 }
 
-fn slot_of_fact(cx: &mut Core<'_>, f: Ix, name: SymId) -> Result<Value, EvalError> {
+/// Slot `name` of fact `f`; a slot the fact lacks is FALSE after CLIPS's message,
+/// `[INSFUN3]` for a query's `?v:slot` (`query`), else `[TMPLTDEF1]`.
+fn slot_of_fact(cx: &mut Core<'_>, f: Ix, name: SymId, query: bool) -> Result<Value, EvalError> {
     let tmpl = cx.facts[f as usize].tmpl;
     // an ordered fact's one slot is `implied`; another name is no slot of it
     let slot = if cx.templates[tmpl as usize].implied && cx.sym_text(name) == "implied" {
@@ -916,7 +951,7 @@ fn slot_of_fact(cx: &mut Core<'_>, f: Ix, name: SymId) -> Result<Value, EvalErro
         match cx.find_slot(tmpl, name) {
             Some(s) => s,
             None => {
-                report_invalid_slot(cx, tmpl, name);
+                report_invalid_slot(cx, tmpl, name, query);
                 return Ok(Value::Sym(SYM_FALSE));
             }
         }
@@ -928,16 +963,26 @@ fn slot_of_fact(cx: &mut Core<'_>, f: Ix, name: SymId) -> Result<Value, EvalErro
 /// read (`?f:slot`).
 #[cold]
 #[inline(never)]
-fn report_invalid_slot(cx: &mut Core<'_>, tmpl: Ix, name: SymId) {
+fn report_invalid_slot(cx: &mut Core<'_>, tmpl: Ix, name: SymId, query: bool) {
     let mut b: crate::value::TextBuf<256> = crate::value::TextBuf::new();
-    let _ = core::fmt::Write::write_fmt(
-        &mut b,
-        format_args!(
-            "[TMPLTDEF1] Invalid slot {} not defined in corresponding deftemplate {}.\n",
-            cx.sym_text(name),
-            cx.sym_text(cx.templates[tmpl as usize].name)
-        ),
-    );
+    let _ = if query {
+        core::fmt::Write::write_fmt(
+            &mut b,
+            format_args!(
+                "[INSFUN3] No such slot {} in function fact-set query.\n",
+                cx.sym_text(name)
+            ),
+        )
+    } else {
+        core::fmt::Write::write_fmt(
+            &mut b,
+            format_args!(
+                "[TMPLTDEF1] Invalid slot {} not defined in corresponding deftemplate {}.\n",
+                cx.sym_text(name),
+                cx.sym_text(cx.templates[tmpl as usize].name)
+            ),
+        )
+    };
     cx.write(router::WERROR, b.as_str());
 }
 

@@ -186,9 +186,11 @@ pub(super) fn format(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     // CLIPS checks the router before the arguments
     let dest = match cx.arg(a, 0) {
         Value::Sym(SYM_NIL) => None,
-        name => match super::commands::resolve_router(cx, name)? {
-            Some(r) => Some(r),
-            None => return Ok(cx.make_string("")?),
+        name => match super::commands::resolve_router(cx, name, "format") {
+            Ok(Some(r)) => Some(r),
+            // an illegal name halts; an unknown router is reported and gives ""
+            Err(e) if e.reported => return Err(e),
+            Ok(None) | Err(_) => return Ok(cx.make_string("")?),
         },
     };
     let needed = count_args(control.as_str());

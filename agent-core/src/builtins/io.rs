@@ -505,8 +505,9 @@ fn put_char(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         ));
     };
     let routed = if a.len == 2 {
-        match super::commands::resolve_router(cx, cx.arg(a, 0)) {
+        match super::commands::resolve_router(cx, cx.arg(a, 0), "put-char") {
             Ok(Some(r)) => r,
+            Err(e) if e.reported => return Err(e),
             Ok(None) | Err(_) => return Ok(Value::Void),
         }
     } else {

@@ -13,8 +13,8 @@ use core::fmt::Write;
 #[cfg(feature = "logical")]
 #[rustfmt::skip]
 pub const FUNCS: &[Builtin] = &[
-    Builtin::eager("dependencies", 1, 1, dependencies),
-    Builtin::eager("dependents", 1, 1, dependents),
+    Builtin::eager("dependencies", 1, 1, dependencies).returns(super::describe::Returns::Void),
+    Builtin::eager("dependents", 1, 1, dependents).returns(super::describe::Returns::Void),
 ];
 #[cfg(not(feature = "logical"))]
 pub const FUNCS: &[Builtin] = &[];

@@ -21,7 +21,7 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("mem-used", 0, 0, mem_used),
     Builtin::eager("mem-requests", 0, 0, mem_requests),
     Builtin::eager("release-mem", 0, 0, release_mem),
-    Builtin::eager("conserve-mem", 1, 1, conserve_mem),
+    Builtin::eager("conserve-mem", 1, 1, conserve_mem).returns(super::describe::Returns::Void),
 ];
 pub const TABLE: super::Table = super::Table::new(FUNCS);
 

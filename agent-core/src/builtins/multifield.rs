@@ -21,9 +21,9 @@ use core::fmt::Write;
 #[rustfmt::skip]
 pub const FUNCS: &[Builtin] = &[
     Builtin::eager("create$", 0, ANY, create).on_error(OnError::EmptyMultifield).returns(R::Multifield),
-    Builtin::eager("length$", 1, 1, length).returns(R::Integer),
+    Builtin::eager("length$", 1, 1, length).args(&[super::describe::ArgType::Sequence], super::describe::ArgType::Any).returns(R::Integer),
     // CLIPS 6.30 still accepts the old name
-    Builtin::eager("length", 1, 1, length_old).returns(R::Integer),
+    Builtin::eager("length", 1, 1, length_old).args(&[super::describe::ArgType::Sequence], super::describe::ArgType::Any).returns(R::Integer),
     Builtin::eager("nth$", 2, 2, nth).args(&[I, M], Any).on_error(OnError::Nil),
     Builtin::eager("member$", 2, 2, member).args(&[Any, M], Any).on_error(OnError::False),
     Builtin::eager("subsetp", 2, 2, subsetp).args(&[M, M], Any).on_error(OnError::False).returns(R::Symbol),

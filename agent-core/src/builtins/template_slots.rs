@@ -27,7 +27,7 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("deftemplate-slot-cardinality", 2, 2, slot_cardinality).args(&[Y, Y], Any),
     Builtin::eager("deftemplate-slot-facet-existp", 3, 3, slot_facet_existp).args(&[Y, Y, Y], Any),
     Builtin::eager("deftemplate-slot-facet-value", 3, 3, slot_facet_value).args(&[Y, Y, Y], Any),
-    Builtin::eager("rules", 0, 1, super::commands::list_defrules),
+    Builtin::eager("rules", 0, 1, super::commands::list_defrules).returns(super::describe::Returns::Void),
 ];
 #[cfg(not(feature = "extras"))]
 pub const FUNCS: &[Builtin] = &[];

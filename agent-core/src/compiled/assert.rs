@@ -23,6 +23,7 @@ fn refused(expected: &'static str) -> EngineError {
         detail: crate::error::LoadDetail::Syntax,
         echo_end: 0,
         echo_tail: crate::error::EchoTail::Normal,
+        query_syntax: false,
     })
 }
 

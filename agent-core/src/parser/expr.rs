@@ -415,7 +415,7 @@ impl<'s> Parser<'s, '_, '_> {
                 let args_at = self.save();
                 let n = if b.syntax == Syntax::Query {
                     self.loop_depth += 1;
-                    let r = self.query_args(call);
+                    let r = self.query_args(call, b.name);
                     self.loop_depth -= 1;
                     r?
                 } else {
@@ -887,7 +887,18 @@ impl<'s> Parser<'s, '_, '_> {
         let name_end = self.consumed_end();
         let t = self.next();
         let name = match t.tok {
-            Tok::SfVar(name) | Tok::MfVar(name) => name,
+            Tok::SfVar(name) | Tok::MfVar(name) => {
+                self.binds = self.binds.wrapping_add(1);
+                let (lo, hi) = self.query_vars;
+                if self.query_rebind.is_none()
+                    && self.vars[lo..hi.min(self.nvars)]
+                        .iter()
+                        .any(|v| v.name == name)
+                {
+                    self.query_rebind = Some(t);
+                }
+                name
+            }
             Tok::Global(name) => {
                 let target = self.global_ref(t, name)?;
                 self.cx.append_child(node, target);
@@ -1130,27 +1141,48 @@ impl<'s> Parser<'s, '_, '_> {
     }
 
     /// Fact-set query arguments: `((?v tmpl...)...)` then ordinary expressions, where
-    /// `?v:slot` reads a slot of the bound fact.
-    fn query_args(&mut self, call: Ix) -> PResult<Ix> {
+    /// `?v:slot` reads a slot of the bound fact. Errors as CLIPS's `factqpsr.c` gives
+    /// them: `[PRNTUTIL2] ... fact-set query function.` for the query's own syntax
+    /// (and after an error in its actions), `[FACTQPSR1-3]`.
+    fn query_args(&mut self, call: Ix, func: &'static str) -> PResult<Ix> {
+        const PART: &str = "fact-set query function";
         let decl = cap!(self, self.cx.push_expr(Expr::new(Op::Nop, 0, 0)))?;
         self.cx.append_child(call, decl);
-        self.expect_lparen("'(' opening the query variables")?;
+        let t = self.next();
+        if t.tok != Tok::LParen {
+            return Err(self.syntax_of(t, "'(' opening the query variables", PART));
+        }
         let saved_vars = self.nvars;
+        let mut first = true;
         loop {
             let t = self.next();
             match t.tok {
-                Tok::RParen => break,
+                Tok::RParen if !first => break,
                 Tok::LParen => {
                     let vt = self.next();
                     let vname = match vt.tok {
                         Tok::SfVar(n) => n,
-                        _ => return Err(self.err(vt, "a query variable")),
+                        _ => return Err(self.syntax_of(vt, "a query variable", PART)),
                     };
+                    if self.vars[saved_vars..self.nvars]
+                        .iter()
+                        .any(|v| v.name == vname)
+                    {
+                        let mut e = self.err(vt, "a query variable not declared before");
+                        e.detail = crate::error::LoadDetail::Query { what: 1, func };
+                        e.echo_end = vt.end as u32;
+                        return Err(e);
+                    }
                     let slot = self.new_local(vt, vname, false)?;
                     let var = cap!(self, self.cx.push_expr(Expr::new(Op::Local, 0, slot)))?;
+                    let mut names = 0;
                     loop {
                         let tt = self.peek();
                         match tt.tok {
+                            Tok::RParen if names == 0 => {
+                                self.next();
+                                return Err(self.syntax_of(tt, "a template name", PART));
+                            }
                             Tok::RParen => {
                                 self.next();
                                 break;
@@ -1179,15 +1211,91 @@ impl<'s> Parser<'s, '_, '_> {
                                 self.cx.exprs[decl as usize].aux = 1;
                             }
                         }
+                        names += 1;
                     }
                     self.cx.append_child(decl, var);
                 }
-                _ => return Err(self.err(t, "'(' and a query variable")),
+                _ => return Err(self.syntax_of(t, "'(' and a query variable", PART)),
+            }
+            first = false;
+        }
+        // the condition: no `bind` in it (`[FACTQPSR2]`)
+        let t = self.peek();
+        if matches!(t.tok, Tok::RParen) {
+            self.next();
+            return Err(self.syntax_of(t, "the query's condition", PART));
+        }
+        let binds = self.binds;
+        let cond = self.parse_expr()?;
+        self.cx.append_child(call, cond);
+        if self.binds != binds {
+            let end = self.consumed_end();
+            let at = self.peek();
+            let mut e = self.err(at, "a condition without bind");
+            e.detail = crate::error::LoadDetail::Query { what: 2, func };
+            e.echo_end = end as u32;
+            return Err(e);
+        }
+        let mut n = 2;
+        if !func.starts_with("do-for") && !func.starts_with("delayed-do-for") {
+            // any-factp, find-first-fact, find-all-facts: the `)` after the condition
+            let t = self.next();
+            if t.tok != Tok::RParen {
+                let mut e = self.syntax_of(t, "')' after the query's condition", PART);
+                e.echo_tail = crate::error::EchoTail::Glued;
+                return Err(e);
+            }
+        } else {
+            // the actions; an error there is followed by the query's syntax error,
+            // the construct shown as CLIPS's pretty-print buffer holds it then
+            let outer = (self.query_vars, self.query_rebind.take());
+            self.query_vars = (saved_vars, self.nvars);
+            let r = self.query_actions(call);
+            let rebind = core::mem::replace(&mut self.query_rebind, outer.1);
+            self.query_vars = outer.0;
+            n += match r {
+                Ok(k) => k,
+                // (the input ending there is no syntax error: CLIPS waits for more;
+                // an undefined global or variable CLIPS finds once the construct is
+                // read whole)
+                Err(e)
+                    if e.expected == super::INPUT_ENDED
+                        || matches!(
+                            e.detail,
+                            crate::error::LoadDetail::UndefinedGlobal { whole: true }
+                                | crate::error::LoadDetail::UndefinedVariable
+                        ) =>
+                {
+                    return Err(e)
+                }
+                Err(mut e) => {
+                    e.query_syntax = true;
+                    if e.echo_end != 0 {
+                        let upto = self.lex.source().get(..e.echo_end as usize).unwrap_or("");
+                        if e.detail == crate::error::LoadDetail::MissingFunction {
+                            e.echo_end = e.start;
+                        } else if upto.ends_with(')') {
+                            e.echo_end -= 1;
+                            e.echo_tail = crate::error::EchoTail::OpenParen;
+                        }
+                    }
+                    return Err(e);
+                }
+            };
+            if let Some(vt) = rebind {
+                let mut e = self.err(vt, "no bind of a query variable");
+                e.detail = crate::error::LoadDetail::Query { what: 3, func };
+                e.echo_end = self.consumed_end() as u32;
+                return Err(e);
             }
         }
-        let n = self.args_until_rparen(call)?;
         self.nvars = saved_vars;
-        Ok(n + 1)
+        Ok(n)
+    }
+
+    /// A fact-set query's actions up to its `)`: their count.
+    fn query_actions(&mut self, call: Ix) -> PResult<Ix> {
+        self.args_until_rparen(call)
     }
 
     /// `?v:slot` inside a query: `(fact-slot-value ?v slot)`.

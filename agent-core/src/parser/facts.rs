@@ -71,6 +71,8 @@ impl<'s> Parser<'s, '_, '_> {
         let tmpl = match self.template_in(module, sym) {
             Some(t) => t,
             None => {
+                #[cfg(feature = "modules")]
+                self.implied_conflict(nt, module, sym)?;
                 let t = cap!(self, self.cx.implied_template(sym))?;
                 self.note_implied();
                 t

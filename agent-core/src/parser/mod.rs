@@ -156,6 +156,13 @@ pub struct Parser<'s, 'c, 'e> {
     /// and the first alpha node it creates (see `compile::Compiler`).
     pub replacing: SymId,
     pub alpha_base: Ix,
+    /// Local `bind`s read so far: CLIPS refuses one in a fact-set query's condition
+    /// (`[FACTQPSR2]`).
+    pub binds: u16,
+    /// The variables (`vars` indices) of the fact-set query whose actions are being
+    /// read, and the first `bind` of one of them there (`[FACTQPSR3]`).
+    pub query_vars: (usize, usize),
+    pub query_rebind: Option<Token<'s>>,
 }
 
 pub type PResult<T> = Result<T, LoadError>;
@@ -217,6 +224,9 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
             bind_hint: (usize::MAX, usize::MAX),
             deferred: None,
             implied_mark: None,
+            binds: 0,
+            query_vars: (0, 0),
+            query_rebind: None,
         }
     }
 
@@ -292,6 +302,7 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
                 0
             },
             echo_tail: crate::error::EchoTail::Normal,
+            query_syntax: false,
         }
     }
 
@@ -320,6 +331,32 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
             detail: crate::error::LoadDetail::ImportConflict { construct },
             ..self.err(at, "a name no module's imports or exports clash with")
         }
+    }
+
+    /// `[CSTRCPSR3]` when an implied deftemplate named `sym` (the relation name at
+    /// `at`) cannot be made in `module` because of the imports and exports.
+    #[cfg(feature = "modules")]
+    pub fn implied_conflict(
+        &self,
+        at: Token<'s>,
+        module: crate::module::ModId,
+        sym: SymId,
+    ) -> PResult<()> {
+        if !self
+            .cx
+            .import_conflict(crate::module::class::TEMPLATE, module, sym)
+        {
+            return Ok(());
+        }
+        let mut e = self.err(
+            at,
+            "a relation name no module's imports or exports clash with",
+        );
+        e.detail = crate::error::LoadDetail::ImpliedConflict;
+        if self.construct != "command" {
+            e.echo_end = at.end as u32;
+        }
+        Err(e)
     }
 
     /// A name token: one with a module specifier (`MAIN::x`) is refused, as modules are

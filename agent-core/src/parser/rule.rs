@@ -344,6 +344,11 @@ impl<'s> Parser<'s, '_, '_> {
             let next = self.cx.st.facts.next_fact_num;
             self.cx.st.timetags.rules_defined(next, 1);
         }
+        // without incremental reset the new rule waits for the next `reset`
+        #[cfg(feature = "extras")]
+        if self.cx.st.mode.no_incremental_reset {
+            return Ok(());
+        }
         let res = self
             .cx
             .prime_new_rules(first_new_rule, first_new_join, first_new_alpha);
@@ -1312,6 +1317,10 @@ impl<'s> Parser<'s, '_, '_> {
         }
         let p = b.depth;
         let sym = cap!(self, self.cx.intern(name))?;
+        #[cfg(feature = "modules")]
+        if self.template_in(module, sym).is_none() {
+            self.implied_conflict(nt, module, sym)?;
+        }
         let tmpl = match self.template_in(module, sym) {
             Some(t) => t,
             None if self.peek().tok == Tok::LParen => {

@@ -1,0 +1,26 @@
+; expand$ outside a call's arguments: called itself it is [MISCFUN1] without
+; evaluating its argument (FALSE); in bind, create$ and arithmetic it expands; in a
+; slot value, if, progn or a deffunction's body it is [EXPRNPSR4] while reading
+(watch facts)
+(watch rules)
+(bind ?a (create$ 1 2))
+(expand$ ?a)
+(expand$ (create$ a b))
+(expand$ ?unbound)
+(expand$ (progn (printout t "not evaluated" crlf) (create$ 1)))
+(bind ?b (expand$ ?a))
+?b
+(deftemplate t (slot s) (multislot m))
+(assert (t (s (expand$ ?a))))
+(assert (t (m (expand$ ?a))))
+(assert (q (expand$ ?a)))
+(facts)
+(deffunction f () (expand$ (create$ 1 2)))
+(deffunction g ($?x) (bind ?y (expand$ ?x)) ?y)
+(g 1 2)
+(create$ (expand$ ?a))
+(+ (expand$ (create$ 1 2)) 3)
+(if (expand$ (create$ TRUE)) then 1 else 2)
+(progn (expand$ ?a))
+(eval "(expand$ (create$ 1 2))")
+(exit)
