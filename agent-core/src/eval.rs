@@ -1142,7 +1142,13 @@ impl Core<'_> {
         let saved_bp = self.st.frame.bp;
         self.st.frame.bp = args.base;
         self.st.eval.in_use += 1;
-        let r = self.eval_chain(df.body);
+        let was_halting = self.st.mode.halting;
+        let mut r = self.eval_chain(df.body);
+        // an error that set CLIPS's evaluation error without coming back as one (a
+        // slot the fact lacks) halts the deffunction too
+        if r.is_ok() && self.st.mode.halting && !was_halting {
+            r = Err(EvalError::already_reported());
+        }
         self.st.eval.in_use -= 1;
         self.st.frame.bp = saved_bp;
         // CLIPS reports an error inside a deffunction where it happens and adds which

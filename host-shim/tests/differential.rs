@@ -577,4 +577,5 @@ differential_programs! {
     p995_incremental_reset_off => "995-incremental-reset-off",
     p996_implied_template_import_conflict => "996-implied-template-import-conflict",
     p997_expand_called_alone => "997-expand-called-alone",
+    p998_slot_read_errors_halt => "998-slot-read-errors-halt",
 }

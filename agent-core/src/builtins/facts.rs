@@ -952,6 +952,8 @@ fn slot_of_fact(cx: &mut Core<'_>, f: Ix, name: SymId, query: bool) -> Result<Va
             Some(s) => s,
             None => {
                 report_invalid_slot(cx, tmpl, name, query);
+                // FALSE with CLIPS's evaluation error set: it halts what runs
+                cx.st.mode.halting = true;
                 return Ok(Value::Sym(SYM_FALSE));
             }
         }

@@ -524,6 +524,10 @@ fn visit(cx: &mut Core<'_>, w: &mut Walk, passed: bool) -> Result<bool, EvalErro
         } else {
             cx.eval_chain(w.q.actions)?
         };
+        // an error in the actions (CLIPS's evaluation error) makes the query FALSE
+        if cx.st.mode.halting {
+            w.last = Value::Sym(SYM_FALSE);
+        }
         if w.mode == Mode::All {
             release_scratch_keeping(cx, mark, &mut w.last);
         }

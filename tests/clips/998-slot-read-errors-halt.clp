@@ -1,0 +1,22 @@
+; a slot read the fact lacks (?v:slot in a query: [INSFUN3]; fact-slot-value:
+; [TMPLTDEF1]) gives FALSE with CLIPS's evaluation error set: the actions of the
+; deffunction or query halt; a fact-set query whose actions met an error is FALSE
+(watch facts)
+(watch rules)
+(deftemplate a (slot x))
+(assert (a (x 1)) (a (x 2)))
+(deffunction g () (do-for-all-facts ((?f a)) TRUE (printout t ?f:y crlf)) (printout t "after" crlf))
+(g)
+(deffunction g2 () (do-for-all-facts ((?f a)) TRUE (printout t (fact-slot-value ?f y) crlf)) (printout t "after" crlf))
+(g2)
+(deffunction g3 () (printout t (fact-slot-value 1 y) crlf) (printout t "after" crlf))
+(g3)
+(do-for-fact ((?f a)) TRUE (printout t ?*nope* crlf))
+(do-for-all-facts ((?f a)) TRUE (printout t ?*nope* crlf))
+(do-for-all-facts ((?f a)) TRUE (printout t ?f:y crlf) (printout t "next" crlf))
+(do-for-all-facts ((?f a)) TRUE (printout t ?f:x crlf))
+(fact-slot-value 1 y)
+(fact-slot-value 1 x)
+(defrule r (a (x 1)) => (printout t (fact-slot-value 2 zz) crlf) (printout t "rule goes on" crlf))
+(run)
+(exit)
