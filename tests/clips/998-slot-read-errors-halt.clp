@@ -15,6 +15,7 @@
 (do-for-all-facts ((?f a)) TRUE (printout t ?*nope* crlf))
 (do-for-all-facts ((?f a)) TRUE (printout t ?f:y crlf) (printout t "next" crlf))
 (do-for-all-facts ((?f a)) TRUE (printout t ?f:x crlf))
+(do-for-all-facts ((?f a)) TRUE (printout t "v " ?f:x " " ?f:y crlf))
 (fact-slot-value 1 y)
 (fact-slot-value 1 x)
 (defrule r (a (x 1)) => (printout t (fact-slot-value 2 zz) crlf) (printout t "rule goes on" crlf))

@@ -329,7 +329,9 @@ fn printout(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
         // what a call prints must follow what is printed before it (a global read
         // may print `[GLOBLDEF1]`)
         let op = cx.exprs[a as usize].op;
-        if (!is_leaf(op) || op == crate::expr::Op::Global) && !b.is_empty() {
+        if (!is_leaf(op) || matches!(op, crate::expr::Op::Global | crate::expr::Op::QSlot))
+            && !b.is_empty()
+        {
             cx.write(routed.name(), b.as_str());
             b.clear();
         }
