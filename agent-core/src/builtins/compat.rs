@@ -432,13 +432,24 @@ fn set_static_constraint_checking(cx: &mut Core<'_>, a: Args) -> Result<Value, E
 /// Whether a rule defined while facts exist is matched against them at once (CLIPS's
 /// default, TRUE).
 fn get_incremental_reset(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
-    Ok(Core::bool_value(!cx.st.mode.no_incremental_reset))
+    Ok(Core::bool_value(!no_incremental_reset(cx)))
+}
+
+/// `(set-incremental-reset FALSE)` is in force (the image has only CLIPS's default).
+fn no_incremental_reset(cx: &Core<'_>) -> bool {
+    #[cfg(feature = "extras")]
+    return cx.st.mode.no_incremental_reset;
+    #[cfg(not(feature = "extras"))]
+    {
+        let _ = cx;
+        false
+    }
 }
 /// Any value but FALSE turns it on; the old setting is returned. With FALSE a new
 /// rule starts unmatched: its new joins and alpha nodes see only later facts, until
 /// `reset`.
 fn set_incremental_reset(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    let old = Core::bool_value(!cx.st.mode.no_incremental_reset);
+    let old = Core::bool_value(!no_incremental_reset(cx));
     if (0..cx.st.pools.nrules).any(|r| !cx.rules[r as usize].deleted) {
         // CLIPS checks this first, whatever the value, and returns the old one
         cx.write(
@@ -447,7 +458,14 @@ fn set_incremental_reset(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError>
         );
         return Ok(old);
     }
-    cx.st.mode.no_incremental_reset = is_false(cx.arg(a, 0));
+    #[cfg(feature = "extras")]
+    {
+        cx.st.mode.no_incremental_reset = is_false(cx.arg(a, 0));
+    }
+    #[cfg(not(feature = "extras"))]
+    if is_false(cx.arg(a, 0)) {
+        return Err(refuse(cx, "set-incremental-reset", "TRUE"));
+    }
     Ok(old)
 }
 

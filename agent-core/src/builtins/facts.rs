@@ -618,9 +618,13 @@ impl Core<'_> {
         let tmpl = self.facts[old as usize].tmpl;
         if self.templates[tmpl as usize].implied {
             // `initial-fact` is a deftemplate of no slots in CLIPS: any slot is
-            // `[TMPLTDEF1]`, none makes a copy
-            let sv = self.exprs[first as usize].next;
-            if self.templates[tmpl as usize].name == super::SYM_INITIAL_FACT {
+            // `[TMPLTDEF1]`, none makes a copy (host only: the image's code budget)
+            #[cfg(feature = "extras")]
+            let initial = self.templates[tmpl as usize].name == super::SYM_INITIAL_FACT;
+            #[cfg(not(feature = "extras"))]
+            let initial = false;
+            if initial {
+                let sv = self.exprs[first as usize].next;
                 if sv != NONE {
                     return Err(self.bad_slot(tmpl, self.exprs[sv as usize].data));
                 }
@@ -967,6 +971,12 @@ fn slot_of_fact(cx: &mut Core<'_>, f: Ix, name: SymId, query: bool) -> Result<Va
 #[inline(never)]
 fn report_invalid_slot(cx: &mut Core<'_>, tmpl: Ix, name: SymId, query: bool) {
     let mut b: crate::value::TextBuf<256> = crate::value::TextBuf::new();
+    // (the image, whose code budget is tight, words both as `[TMPLTDEF1]`)
+    #[cfg(not(feature = "extras"))]
+    let query = {
+        let _ = query;
+        false
+    };
     let _ = if query {
         core::fmt::Write::write_fmt(
             &mut b,
