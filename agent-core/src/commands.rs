@@ -1905,14 +1905,8 @@ impl Core<'_> {
                     crate::builtins::pretty::write_defrule_lhs_upto,
                 )
             };
-            // an empty `(and)`, `(not)` or `(exists)`: CLIPS read its `)` too
-            if let LoadDetail::SyntaxOf { part } = e.detail {
-                if part.ends_with("conditional element")
-                    && e.echo_tail != crate::error::EchoTail::Glued
-                {
-                    let _ = b.write_char(')');
-                }
-            }
+            // (an empty `(and)`, `(not)` or `(exists)`: the writer shows the `)` CLIPS
+            // read too)
             let _ = b.write_char('\n');
         } else if e.echo_end != 0
             && e.construct == "deffunction"

@@ -11,9 +11,11 @@
 
 use core::mem::size_of;
 
+use super::describe::ArgType;
 use super::{Args, Builtin};
 use crate::engine::Core;
 use crate::error::EvalError;
+use crate::host::router;
 use crate::value::Value;
 
 #[rustfmt::skip]
@@ -21,7 +23,9 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("mem-used", 0, 0, mem_used),
     Builtin::eager("mem-requests", 0, 0, mem_requests),
     Builtin::eager("release-mem", 0, 0, release_mem),
-    Builtin::eager("conserve-mem", 1, 1, conserve_mem).returns(super::describe::Returns::Void),
+    Builtin::eager("conserve-mem", 1, 1, conserve_mem)
+        .args(&[ArgType::Symbol], ArgType::Any)
+        .returns(super::describe::Returns::Void),
 ];
 pub const TABLE: super::Table = super::Table::new(FUNCS);
 
@@ -98,7 +102,22 @@ fn release_mem(_cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
     Ok(Value::Int(0))
 }
 
-fn conserve_mem(_cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
+/// `on` or `off` (nothing to conserve here); CLIPS's messages for anything else: another
+/// symbol is reported without an error (a deffunction goes on), another type is an error.
+fn conserve_mem(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let Value::Sym(s) = cx.arg(a, 0) else {
+        cx.write(
+            router::WERROR,
+            "[ARGACCES5] Function conserve-mem expected argument #1 to be of type symbol\n",
+        );
+        return Err(EvalError::already_reported());
+    };
+    if !matches!(cx.sym_text(s), "on" | "off") {
+        cx.write(
+            router::WERROR,
+            "[ARGACCES5] Function conserve-mem expected argument #1 to be of type symbol with value on or off\n",
+        );
+    }
     Ok(Value::Void)
 }
 

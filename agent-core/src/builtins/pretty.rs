@@ -232,11 +232,13 @@ fn ce(c: &mut Cursor<'_>, w: &mut dyn Write, col: usize) -> fmt::Result {
     write!(w, "({kw}")?;
     let inner = col + 5;
     let mut first = true;
+    let mut closed = false;
     loop {
         let t = c.peek(0);
         match t.tok {
             Tok::RParen => {
                 c.next();
+                closed = true;
                 break;
             }
             Tok::Eof | Tok::Bad => break,
@@ -251,8 +253,8 @@ fn ce(c: &mut Cursor<'_>, w: &mut dyn Write, col: usize) -> fmt::Result {
         first = false;
         ce(c, w, inner)?;
     }
-    // a rule shown up to where CLIPS stopped reading it ends inside the CE
-    if c.peek(0).tok == Tok::Eof {
+    // a rule shown up to where CLIPS stopped reading it may end inside the CE
+    if !closed && c.peek(0).tok == Tok::Eof {
         return Ok(());
     }
     w.write_char(')')

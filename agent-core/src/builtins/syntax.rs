@@ -59,13 +59,21 @@ fn check_syntax(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     p.check_only = true;
     let item = p.next_item();
     let extraneous = p.peek().tok != Tok::Eof;
+    let warned = p.warned_overflow;
+    // CLIPS returns the warnings reading a construct printed (a command's are lost)
+    let mut warning = Value::Sym(SYM_FALSE);
     let failed = match item {
         // read whole (a command's expressions go again; a construct rolled itself back)
         Ok(Item::Command(_)) => {
             cx.rollback(cp);
             None
         }
-        Err(e) if e.detail == LoadDetail::Checked => None,
+        Err(e) if e.detail == LoadDetail::Checked => {
+            if warned {
+                warning = cx.make_string(crate::parser::OVERFLOW_WARNING)?;
+            }
+            None
+        }
         Err(e) => Some(e),
         // (not in check_only mode: every construct stops before it is defined)
         Ok(Item::Construct) | Ok(Item::End) => None,
@@ -73,14 +81,19 @@ fn check_syntax(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let Some(e) = failed else {
         return Ok(if extraneous {
             cx.make_symbol("EXTRANEOUS-INPUT-AFTER-LAST-PARENTHESIS")?
+        } else if warned && construct {
+            cx.make_multi(&[Value::Sym(SYM_FALSE), warning])?
         } else {
             Value::Sym(SYM_FALSE)
         });
     };
+    if warned && construct {
+        warning = cx.make_string(crate::parser::OVERFLOW_WARNING)?;
+    }
     let mut b: TextBuf<4096> = TextBuf::new();
     cx.format_load_error("check-syntax", text, &e, &mut b, false);
     let message = cx.make_string(b.as_str())?;
-    Ok(cx.make_multi(&[message, Value::Sym(SYM_FALSE)])?)
+    Ok(cx.make_multi(&[message, warning])?)
 }
 
 #[cfg(all(test, feature = "extras", feature = "parser"))]

@@ -35,10 +35,12 @@ impl<'s> Parser<'s, '_, '_> {
         let r = match t.tok {
             Tok::Int(i) => self.cx.push_const(Value::Int(i)),
             Tok::IntOverflow(i) => {
-                self.cx.write(
-                    crate::host::router::WWARNING,
-                    "[SCANNER1] WARNING: Over or underflow of long long integer.\n",
-                );
+                if self.check_only {
+                    self.warned_overflow = true;
+                } else {
+                    self.cx
+                        .write(crate::host::router::WWARNING, super::OVERFLOW_WARNING);
+                }
                 self.cx.push_const(Value::Int(i))
             }
             Tok::Float(f) => self.cx.push_const(Value::Float(f)),

@@ -58,7 +58,11 @@ impl<'s> Parser<'s, '_, '_> {
             Tok::Symbol(
                 "not" | "and" | "or" | "test" | "exists" | "forall" | "logical" | "object",
             ) => return Err(self.relation_keyword(nt)),
-            Tok::Symbol(s) if s != "=" && s != ":" => (self.current_module(), s),
+            Tok::Symbol(s)
+                if s != "=" && s != ":" && crate::value::instance_name_body(s).is_none() =>
+            {
+                (self.current_module(), s)
+            }
             _ => {
                 return Err(self.syntax_of(
                     nt,

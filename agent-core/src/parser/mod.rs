@@ -17,6 +17,9 @@ macro_rules! cap {
 
 mod construct;
 mod expr;
+
+/// CLIPS's warning for an integer literal beyond 64 bits (clamped).
+pub const OVERFLOW_WARNING: &str = "[SCANNER1] WARNING: Over or underflow of long long integer.\n";
 mod facts;
 mod in_use;
 #[cfg(feature = "modules")]
@@ -135,6 +138,9 @@ pub struct Parser<'s, 'c, 'e> {
     /// back: nothing stays, no old construct is replaced); a defglobal's values are not
     /// evaluated.
     pub check_only: bool,
+    /// `check_only` mode read an integer beyond 64 bits: CLIPS's `[SCANNER1]` warning,
+    /// which `check-syntax` returns instead of printing.
+    pub warned_overflow: bool,
     /// CLIPS's specificity of the rule (disjunct) being read (see `rule::Complexity`).
     pub complexity: u16,
     /// Where a failure of the current construct rolls back to when not to its start:
@@ -216,6 +222,7 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
             constant_facts: false,
             loop_depth: 0,
             check_only: false,
+            warned_overflow: false,
             complexity: 0,
             rule_base: 0,
             replacing: NONE,

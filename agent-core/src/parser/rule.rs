@@ -9,7 +9,7 @@ use super::{PResult, Parser, Scope, VarEntry, VarKind};
 use crate::compile::alpha::ZERO_LEN;
 use crate::expr::{loc, Expr, Op};
 use crate::handle::JoinId;
-use crate::lexer::{Tok, Token};
+use crate::lexer::{Lexer, Tok, Token};
 use crate::rete::{JoinKind, MAX_MARKS, MAX_PATTERNS, MAX_RHASH, PATH_LEN, THIS_PATTERN};
 use crate::value::Ix;
 use crate::value::{Value, NONE};
@@ -643,6 +643,25 @@ impl<'s> Parser<'s, '_, '_> {
         e
     }
 
+    /// Whether byte `at` of the source is inside a CE of the rule around it (`and`,
+    /// `not`, ...), not at the rule's own level (error path only: lexes the source up
+    /// to there).
+    fn inside_group_ce(&self, at: usize) -> bool {
+        let mut lx = Lexer::new(self.lex.source());
+        let mut depth = 0u32;
+        loop {
+            let t = lx.next_token();
+            if t.start >= at || matches!(t.tok, Tok::Eof | Tok::Bad) {
+                return depth > 1;
+            }
+            match t.tok {
+                Tok::LParen => depth += 1,
+                Tok::RParen => depth = depth.saturating_sub(1),
+                _ => {}
+            }
+        }
+    }
+
     /// One conditional element.
     fn ce(&mut self, b: &mut Build, ctx: Ctx) -> PResult<()> {
         self.nested(|p| p.ce_inner(b, ctx))
@@ -660,8 +679,14 @@ impl<'s> Parser<'s, '_, '_> {
                         "binding patterns",
                     );
                     // CLIPS shows the variable and the token after it on one line
+                    // (inside a group CE where its next CE would go, a `)` one space
+                    // after it)
                     e.start = t.start as u32;
                     e.echo_tail = crate::error::EchoTail::OwnLine;
+                    if arrow.tok == Tok::RParen && self.inside_group_ce(t.start) {
+                        e.echo_end = t.end as u32;
+                        e.echo_tail = crate::error::EchoTail::SpaceBefore;
+                    }
                     return Err(e);
                 }
                 if ctx != Ctx::Top || b.groups > 0 {
@@ -738,6 +763,14 @@ impl<'s> Parser<'s, '_, '_> {
                     }
                     Tok::Symbol("or") => {
                         self.next();
+                        let p = self.peek();
+                        if p.tok == Tok::RParen {
+                            return Err(self.syntax_of(
+                                p,
+                                "a conditional element inside or",
+                                "the or conditional element",
+                            ));
+                        }
                         // (inside not/exists/forall the enclosing negation reads the
                         // body once per choice: `split_negation`)
                         let k = b.nor;
@@ -813,9 +846,10 @@ impl<'s> Parser<'s, '_, '_> {
             }
             _ => {
                 let mut e = self.err(t, "a conditional element");
-                if ctx == Ctx::Top {
-                    // CLIPS shows the rule read, the token on a line of its own
-                    e.echo_end = t.end as u32;
+                // CLIPS shows the rule read, the token on a line of its own (inside a
+                // `not`, `and`, ...: where the group's next CE would go)
+                e.echo_end = t.end as u32;
+                if !self.inside_group_ce(t.start) {
                     e.echo_tail = crate::error::EchoTail::OwnLine;
                 }
                 Err(e)
@@ -1297,7 +1331,7 @@ impl<'s> Parser<'s, '_, '_> {
                 if !matches!(
                     s,
                     "test" | "not" | "and" | "or" | "exists" | "forall" | "logical" | "=" | ":"
-                ) =>
+                ) && crate::value::instance_name_body(s).is_none() =>
             {
                 (self.current_module(), s)
             }
@@ -1309,7 +1343,15 @@ impl<'s> Parser<'s, '_, '_> {
                     "the field field of a pattern",
                 ))
             }
-            _ => return Err(self.err(nt, "a template or relation name")),
+            Tok::Eof | Tok::Bad => return Err(self.err(nt, "a template or relation name")),
+            // a number, string, instance name, variable, wildcard, `(`, `)`, `~`, `&`, `|`
+            _ => {
+                return Err(self.syntax_of(
+                    nt,
+                    "a template or relation name",
+                    "the first field of a pattern",
+                ))
+            }
         };
         let (module, name) = name;
         if b.n >= MAX_PATTERNS || b.depth as usize >= MAX_PATTERNS {
@@ -1324,7 +1366,11 @@ impl<'s> Parser<'s, '_, '_> {
         let tmpl = match self.template_in(module, sym) {
             Some(t) => t,
             None if self.peek().tok == Tok::LParen => {
-                // CLIPS reads it as an ordered pattern and stops at the `(`
+                // CLIPS reads it as an ordered pattern and stops at the `(`: the
+                // implied template it made for the name stays
+                if self.cx.implied_template(sym).is_ok() {
+                    self.note_implied();
+                }
                 let mut e = self.err(
                     nt,
                     "a deftemplate name (no such template for a slot pattern)",

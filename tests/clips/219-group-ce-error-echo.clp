@@ -1,0 +1,32 @@
+; A token where a CE is due after or inside a group CE (and, or, not, exists, forall):
+; CLIPS's ERROR: text keeps the group's `)` it read, and a token inside a group goes
+; where the group's next CE would (a `)` after a lone variable one space after it); an
+; empty `(or)` is "the or conditional element"; a slot pattern of an unknown template
+; leaves the implied template CLIPS made for its name.
+(defrule a1 (exists (b ?x) (c ?x)) foo =>)
+(defrule a2 (not (b)) foo =>)
+(defrule a3 (and (b) (c)) foo =>)
+(defrule a4 (exists (b ?x)) foo =>)
+(defrule a5 (or (b) (c)) foo =>)
+(defrule a6 (not (and (a ?x) 56)) =>)
+(defrule a7 (and (a ?x) 56) =>)
+(defrule a8 (or (a ?x) "s") =>)
+(defrule a10 (forall (a ?x) (b ?x) (c ?x)) 5 =>)
+(defrule b1 (not 56) =>)
+(defrule b2 (exists 56) =>)
+(defrule b3 (and 56) =>)
+(defrule b4 (or (a) (and (b) ?x)) =>)
+(defrule b5 (exists) =>)
+(defrule b6 (not) =>)
+(defrule b7 (and) =>)
+(defrule b8 (a) (not (b) (c)) =>)
+(defrule b9 (a) (or) =>)
+(defrule b10 (a) (or (b) (or)) =>)
+(defrule b11 (not (or)) =>)
+(defrule b12 (a) (exists (b) (c)) ?y =>)
+(defrule b13 (a) ?y =>)
+(defrule c1 ?f1 <- (status (valve open)) ?f2 <- (close-valve) => (retract ?f2))
+(defrule c2 (a) (not (b (x 1))) =>)
+(list-deftemplates)
+(list-defrules)
+(exit)

@@ -1,0 +1,5 @@
+(load "electrnc.clp")
+(load "circuit2.clp")
+(reset)
+(run)
+(exit)

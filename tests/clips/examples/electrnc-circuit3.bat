@@ -1,0 +1,5 @@
+(load "electrnc.clp")
+(load "circuit3.clp")
+(reset)
+(run)
+(exit)
