@@ -1540,6 +1540,17 @@ impl Core<'_> {
                 "\n[PRCCODE3] Undefined variable {name} referenced in {place}."
             );
             self.write_global_echo(b, text, e, true, module);
+        } else if let LoadDetail::LogicalOrder { gap } = e.detail {
+            let _ = writeln!(
+                b,
+                "{}",
+                if gap {
+                    "\n[RULEPSR2] Gaps may not exist between logical CEs"
+                } else {
+                    "\n[RULEPSR1] Logical CEs must be placed first in a rule"
+                }
+            );
+            self.write_global_echo(b, text, e, true, module);
         } else if e.detail == LoadDetail::ReplacesBuiltin {
             let _ = writeln!(
                 b,

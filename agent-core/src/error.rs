@@ -717,6 +717,11 @@ pub enum LoadDetail {
     /// `[PRCCODE3]`: a variable the actions of a rule or a deffunction's body read
     /// but nothing binds (the offending token); CLIPS shows the whole construct.
     UndefinedVariable,
+    /// `[RULEPSR1]` (a logical CE after another CE) or, `gap`, `[RULEPSR2]` (after a
+    /// CE that follows logical ones); CLIPS shows the whole rule.
+    LogicalOrder {
+        gap: bool,
+    },
     /// `[PRCCODE7]`: a deffunction parameter named twice (at the second).
     ParameterTwice,
     /// `[PRCCODE8]`: a parameter after the `$?` wildcard parameter (at it).

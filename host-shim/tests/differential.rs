@@ -368,6 +368,7 @@ differential_programs! {
     p217_memory_commands => "217-memory-commands",
     p218_angle_conversions => "218-angle-conversions",
     p219_group_ce_error_echo => "219-group-ce-error-echo",
+    p220_logical_ce_order => "220-logical-ce-order",
     p230_alpha_constant_discrimination => "230-alpha-constant-discrimination",
     p240_logical_basic => "240-logical-basic",
     p241_logical_self_retract => "241-logical-self-retract",

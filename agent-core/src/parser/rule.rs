@@ -868,14 +868,20 @@ impl<'s> Parser<'s, '_, '_> {
             ));
         }
         if b.plain_seen {
-            return Err(self.err(
+            // CLIPS checks the order once the rule is read, and shows it whole
+            let gap = b.logical != CE_ROOT;
+            let mut e = self.err(
                 h,
-                if b.logical == CE_ROOT {
-                    "no logical CE here (logical CEs must be placed first in a rule)"
-                } else {
+                if gap {
                     "no logical CE here (gaps may not exist between logical CEs)"
+                } else {
+                    "no logical CE here (logical CEs must be placed first in a rule)"
                 },
-            ));
+            );
+            e.detail = crate::error::LoadDetail::LogicalOrder { gap };
+            if self.deferred.is_none() {
+                self.deferred = Some(e);
+            }
         }
         self.next();
         b.in_logical = true;
