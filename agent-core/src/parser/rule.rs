@@ -767,7 +767,7 @@ impl<'s> Parser<'s, '_, '_> {
                         if p.tok == Tok::RParen {
                             return Err(self.syntax_of(
                                 p,
-                                "a conditional element inside or",
+                                "a pattern or other CE inside or",
                                 "the or conditional element",
                             ));
                         }
