@@ -298,8 +298,9 @@ fn foreach(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
         _ => return Err(EvalError::wrong_type("progn$", 1, "multifield")),
     };
     // a global's multifield is iterated as it was: the body may bind the global, which
-    // repacks the globals' region under it (CLIPS keeps the old value alive too)
-    let m = if m.start >= cx.st.frame.scratch_top {
+    // repacks the globals' region under it (CLIPS keeps the old value alive too); an
+    // empty one has no cells to keep (no iteration reads any)
+    let m = if m.len > 0 && m.start >= cx.st.frame.scratch_top {
         let t = cx.scratch_alloc(m.len as usize)?;
         let s = m.start as usize;
         cx.scratch.copy_within(s..s + m.len as usize, t as usize);
