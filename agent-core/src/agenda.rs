@@ -149,8 +149,9 @@ impl Core<'_> {
         // a replayed activation has its old number back, hence its old place
         self.agenda_insert(a);
         // an auto-focus rule's module is focused first (CLIPS prints it first)
+        // (the tag is looked up only once some rule has auto-focus)
         #[cfg(feature = "modules")]
-        {
+        if self.st.modules.any_auto_focus {
             let tag = self.rule_tag(rule);
             if tag.auto_focus {
                 self.push_focus(tag.module)?;

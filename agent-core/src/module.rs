@@ -146,6 +146,9 @@ pub struct ModuleState {
     pub depth: Ix,
     /// MAIN may be redefined once after start-up or `clear`.
     pub main_redefined: bool,
+    /// Some rule was defined with `(auto-focus TRUE)` (since start-up or `clear`): a
+    /// new activation looks up its rule's tag only then.
+    pub any_auto_focus: bool,
 }
 
 #[cfg(feature = "modules")]
@@ -157,6 +160,7 @@ impl ModuleState {
             current: MAIN,
             depth: 1,
             main_redefined: false,
+            any_auto_focus: false,
         }
     }
 }
@@ -259,6 +263,9 @@ impl Core<'_> {
     /// tag is not MAIN's (the rule pool's room is checked before a rule is made, so
     /// only the MAIN rules of a compiled rule base read in place have none).
     pub fn set_rule_tag(&mut self, r: Ix, tag: RuleTag) -> bool {
+        if tag.auto_focus {
+            self.st.modules.any_auto_focus = true;
+        }
         set_tag(self.rule_module, r, tag, NO_RULE_TAG)
     }
 

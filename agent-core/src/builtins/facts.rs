@@ -270,6 +270,13 @@ impl Core<'_> {
     ) -> Result<Value, EvalError> {
         let multi = self.slot_def(tmpl, slot).multi;
         if !multi {
+            // host: a symbol, the commonest value, is the slot's value as it is
+            #[cfg(feature = "host-speedups")]
+            if let Some(x) = self.exprs.get(e as usize) {
+                if x.op == Op::Sym {
+                    return Ok(Value::Sym(x.data));
+                }
+            }
             // no value at all, `(modify ?f (x))` on a single-field slot whose template
             // the parser could not know: CLIPS's TMPLTFUN2 ("a multifield value into
             // the single field slot"), not an expression to evaluate
