@@ -294,20 +294,18 @@ impl Core<'_> {
     /// Inserts before the first activation it goes before (`goes_before`).
     #[cfg_attr(feature = "host-speedups", inline(always))]
     pub(crate) fn agenda_insert(&mut self, a: Ix) {
+        // host: kept salience groups are a walk of their own (out of line: long
+        // agendas only), the short agenda's walk counts its steps only
+        #[cfg(feature = "host-speedups")]
+        if self.st.agenda.groups.kept {
+            self.agenda_insert_grouped(a);
+            return;
+        }
         let mut prev = NONE;
         let mut cur = self.st.agenda.agenda_head;
-        // host: from the first activation of no higher salience (those before it
-        // all go first), found through the salience groups
-        #[cfg(feature = "host-speedups")]
-        let group = self.group_start(a, &mut prev, &mut cur);
         #[cfg(feature = "host-speedups")]
         let mut steps = 0u32;
-        // host: a place at either end of its own salience group is found at once
-        #[cfg(feature = "host-speedups")]
-        let placed = group != usize::MAX && self.group_place(group, a, &mut prev, &mut cur);
-        #[cfg(not(feature = "host-speedups"))]
-        let placed = false;
-        while !placed && cur != NONE && !self.goes_before(a, cur) {
+        while cur != NONE && !self.goes_before(a, cur) {
             prev = cur;
             cur = self.acts[cur as usize].next;
             #[cfg(feature = "host-speedups")]
@@ -315,8 +313,40 @@ impl Core<'_> {
                 steps += 1;
             }
         }
+        self.agenda_link(a, prev, cur);
         #[cfg(feature = "host-speedups")]
+        if steps > GROUP_WALK {
+            self.build_groups();
+        }
+    }
+
+    /// `agenda_insert` while the salience groups are kept.
+    #[cfg(feature = "host-speedups")]
+    #[inline(never)]
+    fn agenda_insert_grouped(&mut self, a: Ix) {
+        let mut prev = NONE;
+        let mut cur = self.st.agenda.agenda_head;
+        // from the first activation of no higher salience (those before it all go
+        // first), found through the salience groups
+        let group = self.group_start(a, &mut prev, &mut cur);
+        let mut steps = 0u32;
+        // a place at either end of its own salience group is found at once
+        let placed = group != usize::MAX && self.group_place(group, a, &mut prev, &mut cur);
+        while !placed && cur != NONE && !self.goes_before(a, cur) {
+            prev = cur;
+            cur = self.acts[cur as usize].next;
+            steps += 1;
+        }
         self.group_insert(group, a, prev, cur);
+        self.agenda_link(a, prev, cur);
+        if steps > GROUP_WALK && group == usize::MAX {
+            self.build_groups();
+        }
+    }
+
+    /// Links activation `a` into the agenda between `prev` and `cur`.
+    #[inline(always)]
+    fn agenda_link(&mut self, a: Ix, prev: Ix, cur: Ix) {
         self.acts[a as usize].prev = prev;
         self.acts[a as usize].next = cur;
         if cur != NONE {
@@ -328,10 +358,6 @@ impl Core<'_> {
             self.st.agenda.agenda_head = a;
         }
         self.st.agenda.agenda_len += 1;
-        #[cfg(feature = "host-speedups")]
-        if steps > GROUP_WALK && group == usize::MAX {
-            self.build_groups();
-        }
     }
 
     #[cfg_attr(feature = "host-speedups", inline(always))]

@@ -261,6 +261,25 @@ impl Core<'_> {
     /// multislot (all values spliced), else the single value.
     /// (`asserting`: for a fact being asserted, where a failed single-field value is
     /// kept, see `single_field_failed`)
+    /// `slot_value_from` with, on the host, a symbol for a single-field slot (the
+    /// commonest value) taken as it is, without the call.
+    #[inline(always)]
+    fn slot_value_quick(
+        &mut self,
+        tmpl: Ix,
+        slot: Ix,
+        e: Ix,
+        asserting: bool,
+    ) -> Result<Value, EvalError> {
+        #[cfg(feature = "host-speedups")]
+        if let Some(x) = self.exprs.get(e as usize) {
+            if x.op == Op::Sym && !self.slot_def(tmpl, slot).multi {
+                return Ok(Value::Sym(x.data));
+            }
+        }
+        self.slot_value_from(tmpl, slot, e, asserting)
+    }
+
     fn slot_value_from(
         &mut self,
         tmpl: Ix,
@@ -270,13 +289,6 @@ impl Core<'_> {
     ) -> Result<Value, EvalError> {
         let multi = self.slot_def(tmpl, slot).multi;
         if !multi {
-            // host: a symbol, the commonest value, is the slot's value as it is
-            #[cfg(feature = "host-speedups")]
-            if let Some(x) = self.exprs.get(e as usize) {
-                if x.op == Op::Sym {
-                    return Ok(Value::Sym(x.data));
-                }
-            }
             // no value at all, `(modify ?f (x))` on a single-field slot whose template
             // the parser could not know: CLIPS's TMPLTFUN2 ("a multifield value into
             // the single field slot"), not an expression to evaluate
@@ -483,7 +495,7 @@ impl Core<'_> {
             let v = if sv != NONE && self.exprs[sv as usize].data == s {
                 let first = self.exprs[sv as usize].first;
                 sv = self.exprs[sv as usize].next;
-                self.slot_value_from(tmpl, s, first, true)?
+                self.slot_value_quick(tmpl, s, first, true)?
             } else {
                 self.default_value_for(tmpl, s, true)?
             };
@@ -681,7 +693,7 @@ impl Core<'_> {
                 };
                 // unchecked, as in CLIPS (see assert); a failed single-field value is
                 // kept on the host, as CLIPS keeps it (see `single_field_failed`)
-                let v = self.slot_value_from(tmpl, slot, self.exprs[sv as usize].first, cfg!(feature = "extras"))?;
+                let v = self.slot_value_quick(tmpl, slot, self.exprs[sv as usize].first, cfg!(feature = "extras"))?;
                 self.stack[(base + slot) as usize] = v;
                 sv = self.exprs[sv as usize].next;
             }
