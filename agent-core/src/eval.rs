@@ -867,6 +867,46 @@ impl Core<'_> {
         f(self, args).map_err(|err| self.classify_type_error(b.name, x.first, err))
     }
 
+    /// Host: `call_in_order` of `str-cat` or `sym-cat` (builtin `f`, called `name`),
+    /// whose check of each argument (an atom: no multifield, fact address or void)
+    /// is made here in line, without counting the arguments first.
+    #[cfg(feature = "host-speedups")]
+    pub(crate) fn cat_in_order(
+        &mut self,
+        call: Ix,
+        f: builtins::BuiltinFn,
+        name: &'static str,
+        type_name: &'static str,
+    ) -> Result<Value, EvalError> {
+        let x = self.exprs[call as usize];
+        let b = builtins::get(x.data);
+        let halting = self.st.mode.halting;
+        let base = self.st.frame.sp;
+        let mut a = x.first;
+        while a != NONE {
+            let v = self.eval_operand(a)?;
+            self.push_value(v)?;
+            // CLIPS's evaluation error (an unbound global): its error value at once
+            if self.st.mode.halting && !halting {
+                if let Some(v) = self.args_failed(b)? {
+                    return Ok(v);
+                }
+            }
+            if matches!(v, Value::Multi(_) | Value::Fact(_) | Value::Void) {
+                let i = (self.st.frame.sp - base) as usize - 1;
+                let err = EvalError::wrong_type(name, crate::error::arg_no(i), type_name);
+                return Err(self.classify_type_error(b.name, x.first, err));
+            }
+            a = self.exprs[a as usize].next;
+        }
+        let args = Args {
+            base,
+            len: self.st.frame.sp - base,
+        };
+        check_arity(b.name, b.min, b.max, args.len)?;
+        f(self, args).map_err(|err| self.classify_type_error(b.name, x.first, err))
+    }
+
     fn call_inner(&mut self, e: Ix, x: Expr) -> Result<Value, EvalError> {
         match x.aux {
             k if k == FnKind::Builtin as u8 => {

@@ -86,6 +86,9 @@ pub(super) fn str_cat(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 /// `sym-cat` and `str-cat` calls: CLIPS checks each argument as it evaluates it, and
 /// one that cannot be concatenated stops the call before the next runs.
 fn sym_cat_in_order(cx: &mut Core<'_>, call: crate::value::Ix) -> Result<Value, EvalError> {
+    #[cfg(feature = "host-speedups")]
+    return cx.cat_in_order(call, sym_cat, "sym-cat", T_ATOM);
+    #[cfg(not(feature = "host-speedups"))]
     cx.call_in_order(call, sym_cat, |cx, a, _| cat_arg(cx, "sym-cat", a))
 }
 
@@ -93,11 +96,15 @@ pub(super) fn str_cat_in_order(
     cx: &mut Core<'_>,
     call: crate::value::Ix,
 ) -> Result<Value, EvalError> {
+    #[cfg(feature = "host-speedups")]
+    return cx.cat_in_order(call, str_cat, "str-cat", T_ATOM);
+    #[cfg(not(feature = "host-speedups"))]
     cx.call_in_order(call, str_cat, |cx, a, _| cat_arg(cx, "str-cat", a))
 }
 
 /// The newest argument of a `str-cat` or `sym-cat` call (the last of `a`), checked as
 /// `cat` checks them all.
+#[cfg_attr(feature = "host-speedups", allow(dead_code))]
 fn cat_arg(cx: &mut Core<'_>, name: &'static str, a: Args) -> Result<(), EvalError> {
     let i = a.len as usize - 1;
     if matches!(cx.arg(a, i), Value::Multi(_) | Value::Fact(_) | Value::Void) {
