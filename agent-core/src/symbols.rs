@@ -156,6 +156,23 @@ impl<'a> SymTexts<'a> {
             .unwrap_or("")
     }
 
+    /// Symbol `id`'s bytes as stored (its text's, empty where `text` is empty),
+    /// without reading them as UTF-8 first.
+    #[cfg(feature = "host-speedups")]
+    #[inline]
+    pub fn text_bytes(&self, id: SymId) -> &'a [u8] {
+        let rom = self.rom.len();
+        if (id as usize) < rom {
+            return self.rom.texts[id as usize].as_bytes();
+        }
+        let Some(e) = self.entries.get(id as usize - rom) else {
+            return &[];
+        };
+        self.bytes
+            .get(e.start as usize..e.start as usize + e.len as usize)
+            .unwrap_or(&[])
+    }
+
     /// Whether symbol `id`'s text is `text` (as `text(id) == text`, without checking
     /// the bytes are UTF-8 first: bytes equal to a `str`'s are).
     #[inline]
