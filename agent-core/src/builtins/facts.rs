@@ -257,10 +257,6 @@ impl Core<'_> {
         Ok(self.multi_finish(start))
     }
 
-    /// Evaluates value expressions (a chain) into one slot value: a multifield for a
-    /// multislot (all values spliced), else the single value.
-    /// (`asserting`: for a fact being asserted, where a failed single-field value is
-    /// kept, see `single_field_failed`)
     /// `slot_value_from` with, on the host, a symbol for a single-field slot (the
     /// commonest value `modify` gives) taken as it is, without the call. (Not for
     /// `assert`, whose values are mostly variables: join3-1000 paid 28 a fact.)
@@ -281,6 +277,10 @@ impl Core<'_> {
         self.slot_value_from(tmpl, slot, e, asserting)
     }
 
+    /// Evaluates value expressions (a chain) into one slot value: a multifield for a
+    /// multislot (all values spliced), else the single value.
+    /// (`asserting`: for a fact being asserted, where a failed single-field value is
+    /// kept, see `single_field_failed`)
     fn slot_value_from(
         &mut self,
         tmpl: Ix,
