@@ -5,7 +5,6 @@
 mod bench;
 mod clips_cli;
 mod game;
-mod large_engine;
 mod sim;
 
 use clap::{Parser, Subcommand};

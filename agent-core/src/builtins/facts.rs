@@ -694,7 +694,12 @@ impl Core<'_> {
                 };
                 // unchecked, as in CLIPS (see assert); a failed single-field value is
                 // kept on the host, as CLIPS keeps it (see `single_field_failed`)
-                let v = self.slot_value_quick(tmpl, slot, self.exprs[sv as usize].first, cfg!(feature = "extras"))?;
+                let v = self.slot_value_quick(
+                    tmpl,
+                    slot,
+                    self.exprs[sv as usize].first,
+                    cfg!(feature = "extras"),
+                )?;
                 self.stack[(base + slot) as usize] = v;
                 sv = self.exprs[sv as usize].next;
             }

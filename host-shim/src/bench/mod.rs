@@ -204,10 +204,9 @@ impl Args {
 }
 
 pub fn main(args: Args) -> ExitCode {
-    // Our engines keep all storage inline: build them on a thread with a big stack
-    // (room for the large engine of the in-process column).
+    // The sim's engines keep their storage inline: run on a thread with their stack.
     let worker = std::thread::Builder::new()
-        .stack_size(crate::large_engine::LARGE_ENGINE_THREAD_STACK)
+        .stack_size(crate::sim::game::ENGINE_THREAD_STACK)
         .spawn(move || run(&args));
     let outcome = match worker.map(|w| w.join()) {
         Ok(Ok(outcome)) => outcome,
@@ -701,10 +700,8 @@ mod tests {
             let reference = clips.measure(&files, &plan);
             let in_thread = files.clone();
             let in_plan = plan.clone();
-            // the bench engine passes through the stack on its way into the box (twice
-            // in a debug build): its own stack size, not the default engine's
             let ours = std::thread::Builder::new()
-                .stack_size(crate::large_engine::LARGE_ENGINE_THREAD_STACK)
+                .stack_size(crate::sim::game::ENGINE_THREAD_STACK)
                 .spawn(move || OursInProcess::new().measure(&in_thread, &in_plan))
                 .expect("engine thread starts")
                 .join()

@@ -13,8 +13,8 @@
 use super::measure::{result_lines, Contender, Measurement, Plan, ProgramFiles};
 use super::process::median;
 use super::workloads::{self, Kind};
-use crate::large_engine::LargeEngine;
 use crate::sim::game::Player;
+use agent_core::grow::{GrowEngine, GrowStorage};
 use agent_core::Host;
 use std::path::Path;
 use std::time::{Duration, Instant};
@@ -34,11 +34,12 @@ pub trait InProcessEngine {
     fn memory_bytes(&self) -> Option<u64>;
 }
 
-/// The in-process engine: [`LargeEngine`], whose pools hold the biggest workloads
-/// (manners-128, join and negation at 10^5 facts). Its size costs nothing measured:
-/// the engine is built before the clock starts, and memory is counted from high-water
-/// marks, not capacities.
-pub type BenchEngine = LargeEngine;
+/// The in-process engine: the CLI's [`GrowEngine`], whose pools start at the host's
+/// capacities and double when full, so no workload runs out of a pool (the fixed
+/// large-pool engine used before ran out of tokens on sudoku-4x4-p9 and of symbol
+/// bytes on join3-8000). It is built before the clock starts; memory is counted from
+/// high-water marks, not capacities.
+pub type BenchEngine = GrowEngine;
 
 /// Collects what the engine prints to `t`; everything else (warnings, errors) is kept
 /// apart so a failing program can say why.
@@ -191,13 +192,14 @@ pub fn arena_bytes(stats: &agent_core::Stats) -> (u64, u64) {
     (used, capacity)
 }
 
-/// A fresh bench engine. Builds about 110 MiB of inline arrays: call on a thread with
-/// [`crate::large_engine::LARGE_ENGINE_THREAD_STACK`] (the bench command runs on one).
+/// A fresh bench engine (its pools on the heap, growing without a limit below the
+/// index type's).
 pub fn new_engine() -> Option<Box<dyn InProcessEngine>> {
     Some(Box::new(Ours {
-        engine: Box::new(BenchEngine::with_storage(
-            crate::large_engine::LargeStorage::new(),
-        )),
+        engine: Box::new(BenchEngine::with_storage(GrowStorage::with_limits(
+            agent_core::Capacities::HOST,
+            GrowStorage::NO_LIMIT,
+        ))),
         host: CaptureHost::default(),
     }))
 }
