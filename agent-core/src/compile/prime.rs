@@ -66,7 +66,7 @@ impl Core<'_> {
             while a != NONE {
                 if a >= first {
                     if let Some(tests) = self.quick_tests(self.alphas[a as usize].tests, f) {
-                        self.match_alpha(a, f, tests)?;
+                        self.match_alpha::<false>(a, f, tests)?;
                     }
                 }
                 a = self.alphas[a as usize].next_in_tmpl;

@@ -52,21 +52,22 @@ impl Core<'_> {
     fn visit_alphas<const MF: bool>(&mut self, fact: Ix) -> Result<(), EvalError> {
         // host: only the nodes whose constant the fact holds, and the others
         #[cfg(feature = "host-speedups")]
-        if self.for_discriminated_alphas(fact, |cx, a| cx.visit_alpha(a, fact))? {
+        if self.for_discriminated_alphas(fact, |cx, a| cx.visit_alpha::<MF>(a, fact))? {
             return Ok(());
         }
         let tmpl = self.facts[fact as usize].tmpl;
         let mut a = self.templates[tmpl as usize].alpha_head;
         while a != NONE {
-            self.visit_alpha(a, fact)?;
+            self.visit_alpha::<MF>(a, fact)?;
             a = self.alphas[a as usize].next_in_tmpl;
         }
         Ok(())
     }
 
-    /// Tests a new fact against one alpha node of its template and propagates a match.
+    /// Tests a new fact against one alpha node of its template and propagates a match
+    /// (`MF`: in the multifield-order collection, see `match_one`).
     #[cfg_attr(feature = "host-speedups", inline(always))]
-    fn visit_alpha(&mut self, a: Ix, fact: Ix) -> Result<(), EvalError> {
+    fn visit_alpha<const MF: bool>(&mut self, a: Ix, fact: Ix) -> Result<(), EvalError> {
         // a node whose rules are gone stays listed (ids and order) but is empty
         // and stays so: matches there would take tokens for nothing (and a
         // modify's old fact would need more room to come back than it freed)
@@ -79,9 +80,9 @@ impl Core<'_> {
                 // one call
                 #[cfg(feature = "host-speedups")]
                 if self.alphas[a as usize].desc == NONE && self.alphas[a as usize].nmarks == 0 {
-                    return self.match_one(a, fact, tests, [0; MAX_MARKS]);
+                    return self.match_one::<MF>(a, fact, tests, [0; MAX_MARKS]);
                 }
-                self.match_alpha(a, fact, tests)?;
+                self.match_alpha::<MF>(a, fact, tests)?;
             }
         }
         Ok(())
@@ -128,12 +129,18 @@ impl Core<'_> {
 
     /// Runs one alpha node over one fact, creating an alpha match per segmentation;
     /// `tests` are the node's tests left for the evaluator (see `quick_tests`).
-    pub(crate) fn match_alpha(&mut self, alpha: Ix, fact: Ix, tests: Ix) -> Result<(), EvalError> {
+    /// `MF` as for `match_one`.
+    pub(crate) fn match_alpha<const MF: bool>(
+        &mut self,
+        alpha: Ix,
+        fact: Ix,
+        tests: Ix,
+    ) -> Result<(), EvalError> {
         let node = &self.alphas[alpha as usize];
         if node.desc == NONE && node.nmarks == 0 {
             // no multislot constraints (most patterns): one segmentation, nothing to lay out
             let mut marks = [0u8; MAX_MARKS];
-            return self.enumerate_marks(
+            return self.enumerate_marks::<MF>(
                 alpha,
                 fact,
                 tests,
@@ -172,7 +179,7 @@ impl Core<'_> {
                 s = sd.next;
             }
             let mut marks = [0u8; MAX_MARKS];
-            return self.enumerate_marks(
+            return self.enumerate_marks::<MF>(
                 alpha,
                 fact,
                 tests,
@@ -200,12 +207,12 @@ impl Core<'_> {
         }
         let nmarks = self.alphas[alpha as usize].nmarks as usize;
         let mut marks = [0u8; MAX_MARKS];
-        self.enumerate_marks(alpha, fact, tests, &lay[..n], &slack, &mut marks, 0, nmarks)
+        self.enumerate_marks::<MF>(alpha, fact, tests, &lay[..n], &slack, &mut marks, 0, nmarks)
     }
 
     /// Tries every segmentation; CLIPS tries longer leading multifields first.
     #[allow(clippy::too_many_arguments)]
-    fn enumerate_marks(
+    fn enumerate_marks<const MF: bool>(
         &mut self,
         alpha: Ix,
         fact: Ix,
@@ -217,7 +224,7 @@ impl Core<'_> {
         nmarks: usize,
     ) -> Result<(), EvalError> {
         if i == nmarks {
-            return self.match_one(alpha, fact, tests, *marks);
+            return self.match_one::<MF>(alpha, fact, tests, *marks);
         }
         // the slot this mark belongs to, and what earlier marks of it used
         let mut room = 0 as Ix;
@@ -235,15 +242,18 @@ impl Core<'_> {
         }
         for m in (0..=room).rev() {
             marks[i] = m as u8;
-            self.enumerate_marks(alpha, fact, tests, lay, slack, marks, i + 1, nmarks)?;
+            self.enumerate_marks::<MF>(alpha, fact, tests, lay, slack, marks, i + 1, nmarks)?;
         }
         marks[i] = 0;
         Ok(())
     }
 
     /// One segmentation of `fact` for `alpha`: an alpha match if the tests pass.
+    /// `MF`: called from `network_assert_mf_order`'s walk, where the matches are
+    /// collected (`rete::mforder`); only that walk collects (a fact cannot come while
+    /// a pattern test runs), so the others leave the check out.
     #[cfg_attr(feature = "host-speedups", inline(never))]
-    fn match_one(
+    fn match_one<const MF: bool>(
         &mut self,
         alpha: Ix,
         fact: Ix,
@@ -252,7 +262,7 @@ impl Core<'_> {
     ) -> Result<(), EvalError> {
         if self.alpha_tests_pass(alpha, fact, tests, marks)? {
             #[cfg(feature = "grow")]
-            if self.st.net.mf.collecting {
+            if MF && self.st.net.mf.collecting {
                 if let Some(p) = self.st.net.mf.pending.as_mut() {
                     p.push((alpha, marks));
                     return Ok(());
@@ -263,6 +273,8 @@ impl Core<'_> {
         Ok(())
     }
 
+    /// (Host: inlined into both `match_one`s, as into the one before `MF`.)
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     fn alpha_tests_pass(
         &mut self,
         alpha: Ix,
