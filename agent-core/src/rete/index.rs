@@ -568,8 +568,12 @@ impl Core<'_> {
     #[inline(always)]
     pub(crate) fn alpha_indexed(&self, alpha: Ix) -> bool {
         let n = &self.alphas[alpha as usize];
+        // (a right hash's fields come first in `rhash`, the or field after them, so
+        // this is `nrhash > 0 || rhash[0] != NONE` in one test)
         #[cfg(feature = "host-speedups")]
-        let indexed = n.nrhash > 0 || n.rhash[0] != NONE;
+        let indexed = n.rhash[0] != NONE;
+        #[cfg(feature = "host-speedups")]
+        debug_assert!(n.nrhash == 0 || indexed);
         #[cfg(not(feature = "host-speedups"))]
         let indexed = n.nrhash > 0;
         indexed
