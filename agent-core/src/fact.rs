@@ -593,8 +593,9 @@ impl Core<'_> {
         let need = self.cells_needed(tmpl, base);
         // what a command at the prompt retracted is kept readable only while there is
         // room: an assert that needs it frees it (not a rule's, in its firing)
-        if self.st.eval.query_hold == crate::engine::COMMAND_HOLD
-            && !self.st.mode.firing
+        // (`firing` first: a rule's asserts, most, decide on one test)
+        if !self.st.mode.firing
+            && self.st.eval.query_hold == crate::engine::COMMAND_HOLD
             && self.st.facts.pending != NONE
             && (self.fact_slots_full()
                 || self.st.facts.values_top as usize + need > self.values.len())
