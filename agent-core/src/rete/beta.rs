@@ -382,6 +382,14 @@ impl Core<'_> {
     #[cfg_attr(feature = "host-speedups", inline(always))]
     pub(crate) fn right_activate(&mut self, join: JoinId, am: TokenId) -> Result<(), EvalError> {
         let j = self.joins[join];
+        // host: no partial match on the left (often: a fact of a later pattern came
+        // first) meets nothing, before the primed-order check below: a primed join's
+        // walk would find none of its partial matches live either (its entry then
+        // goes on its next right activation or `prune_prime_orders`, not here)
+        #[cfg(feature = "host-speedups")]
+        if self.join_mems[j.parent].mem == TokenId::NONE {
+            return Ok(());
+        }
         // the left tokens are all the parent join's: only not/exists outputs can
         // be inactive
         let all_active = !matches!(
