@@ -1714,9 +1714,10 @@ impl Core<'_> {
             }
             Some(0)
         } else {
-            // (a child without a right hash has no key: it scans)
+            // (a child without a right hash has no key: it scans; so does one without
+            // tests, tested first as the join is at hand: `key_plan` finds no key)
             #[cfg(feature = "host-speedups")]
-            let g = if self.alphas[j.alpha as usize].nrhash > 0 {
+            let g = if j.tests != NONE && self.alphas[j.alpha as usize].nrhash > 0 {
                 self.extra_group(j.parent, join)
             } else {
                 None
