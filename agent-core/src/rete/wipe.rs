@@ -69,14 +69,22 @@ impl Core<'_> {
     /// partial matches' parents are not being removed (the top memory), so they leave
     /// their parents' child lists.
     fn wipe_memory(&mut self, join: JoinId, parents_stay: bool) {
-        let mut t = self.join_mems[join].mem;
-        while t != TokenId::NONE {
-            let next = self.tokens[t].mem_next;
-            if parents_stay {
-                self.leave_parent(t);
-            }
-            self.wipe_token(t);
-            t = next;
+        let t = self.join_mems[join].mem;
+        // host: a memory with no index built and no extra group has none of its
+        // partial matches in a bucket (`JoinMem::index_built`, `JoinMem::xbuilt`)
+        #[cfg(feature = "host-speedups")]
+        let indexed = {
+            let jm = &self.join_mems[join];
+            jm.index_built || jm.xbuilt != 0
+        };
+        #[cfg(not(feature = "host-speedups"))]
+        let indexed = true;
+        // (one loop each way: the unindexed one, the usual kind, then sets up for its
+        // walk only what it reads)
+        if indexed {
+            self.wipe_tokens(t, parents_stay, true);
+        } else {
+            self.wipe_tokens(t, parents_stay, false);
         }
         let jm = &mut self.join_mems[join];
         jm.mem = TokenId::NONE;
@@ -98,6 +106,19 @@ impl Core<'_> {
         }
     }
 
+    /// Frees the partial matches of a memory from `t` on (see `wipe_memory`).
+    #[inline(always)]
+    fn wipe_tokens(&mut self, mut t: TokenId, parents_stay: bool, indexed: bool) {
+        while t != TokenId::NONE {
+            let next = self.tokens[t].mem_next;
+            if parents_stay {
+                self.leave_parent(t);
+            }
+            self.wipe_token(t, indexed);
+            t = next;
+        }
+    }
+
     /// Takes partial match `t` off its parent's child list.
     fn leave_parent(&mut self, t: TokenId) {
         let tk = &self.tokens[t];
@@ -109,9 +130,9 @@ impl Core<'_> {
 
     /// Frees partial match `t` of a memory being emptied, taking it off the lists that
     /// stay: its alpha match's children, its blocker's list, its index bucket, and its
-    /// activations off the agenda.
+    /// activations off the agenda (`indexed`: its memory may have it in a bucket).
     #[inline(always)]
-    fn wipe_token(&mut self, t: TokenId) {
+    fn wipe_token(&mut self, t: TokenId, indexed: bool) {
         let tk = &self.tokens[t];
         debug_assert!(tk.kind == TokenKind::Beta && tk.blocks == TokenId::NONE);
         let (am, am_prev, am_next) = (tk.am, tk.am_prev, tk.am_next);
@@ -125,7 +146,9 @@ impl Core<'_> {
             let a = self.tokens[t].extra;
             self.remove_activation(a);
         }
-        self.beta_index_remove(t);
+        if indexed {
+            self.beta_index_remove(t);
+        }
         // (a wipe runs only while truth maintenance is idle: `wipe_successors`)
         #[cfg(feature = "logical")]
         debug_assert!(!self.logical_in_use());
