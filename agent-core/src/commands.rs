@@ -1694,6 +1694,8 @@ impl Core<'_> {
             let _ = writeln!(b, "[PRNTUTIL1] Unable to find deftemplate {tok}.");
         } else if e.detail == LoadDetail::NotACommand {
             let _ = writeln!(b, "[COMMLINE1] Expected a '(', constant, or variable");
+        } else if e.detail == LoadDetail::ExpectedCommand {
+            let _ = writeln!(b, "[COMMLINE2] Expected a command.");
         } else if let LoadDetail::NotImplemented { what } = e.detail {
             let _ = writeln!(
                 b,

@@ -797,6 +797,9 @@ pub enum LoadDetail {
     /// `[COMMLINE1]`: a token that starts no command at the prompt (`)`, `&`, `|`,
     /// `~`, a lone `?` or `$?`).
     NotACommand,
+    /// `[COMMLINE2]`: a command's `(` followed by no function name (a constant, a
+    /// variable, another `(`...).
+    ExpectedCommand,
     /// `[NOTIMPL1]` (ours, not CLIPS's): something robotino-agent does not implement
     /// yet (`what`, e.g. "defmodule"), refused rather than accepted and ignored.
     NotImplemented {

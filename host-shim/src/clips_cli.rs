@@ -75,6 +75,9 @@ enum OpenFile {
     Read {
         file: std::io::BufReader<std::fs::File>,
         back: Option<u8>,
+        /// The file's end was read: it stays ended (C's stdio keeps the end-of-file
+        /// flag), even if a writer adds to the file after.
+        ended: bool,
     },
     Write(std::io::BufWriter<std::fs::File>),
 }
@@ -144,7 +147,11 @@ impl Host for CliHost {
         if !self.files.is_empty() {
             match self.files.get_mut(router) {
                 Some(OpenFile::Write(f)) => {
+                    // out at once, as CLIPS's file writes are: a reader of the same
+                    // file sees them before the file is closed (and after a rule
+                    // halted before its close)
                     let _ = f.write_all(text.as_bytes());
+                    let _ = f.flush();
                     return;
                 }
                 // as CLIPS's fprintf to a file opened for reading: nothing written
@@ -193,6 +200,7 @@ impl Host for CliHost {
             OpenMode::Read => OpenFile::Read {
                 file: std::io::BufReader::new(file),
                 back: None,
+                ended: false,
             },
             OpenMode::Write | OpenMode::Append => OpenFile::Write(std::io::BufWriter::new(file)),
         };
@@ -238,13 +246,19 @@ impl Host for CliHost {
             return Ok(b);
         }
         match self.files.get_mut(name) {
-            Some(OpenFile::Read { file, back }) => {
+            Some(OpenFile::Read { file, back, ended }) => {
                 if let Some(b) = back.take() {
                     return Ok(Some(b));
                 }
+                if *ended {
+                    return Ok(None);
+                }
                 let mut b = [0u8; 1];
                 match file.read(&mut b) {
-                    Ok(0) => Ok(None),
+                    Ok(0) => {
+                        *ended = true;
+                        Ok(None)
+                    }
                     Ok(_) => Ok(Some(b[0])),
                     Err(_) => Err(HostIoError::Other),
                 }
@@ -569,11 +583,16 @@ fn batch_carry(engine: &mut dyn CliEngine) -> String {
 /// The prompt loop on standard input.
 fn interactive(engine: &mut dyn CliEngine, host: &mut CliHost) {
     let mut buf = batch_carry(engine);
+    // a prompt comes at the start and after each command, not after a blank line
+    let mut done_command = true;
     loop {
         if buf.trim().is_empty() {
             buf.clear();
-            host.write_str("stdout", "CLIPS> ");
+            if done_command {
+                host.write_str("stdout", "CLIPS> ");
+            }
         }
+        done_command = false;
         let _ = host.out.flush();
         let mut line = String::new();
         // a byte a read gave back went into the dribble file when it was read
@@ -592,6 +611,7 @@ fn interactive(engine: &mut dyn CliEngine, host: &mut CliHost) {
                 return;
             }
             buf = batch_carry(engine);
+            done_command = true;
         }
     }
 }

@@ -90,6 +90,19 @@ fn f2_without_exit_then_prompts() {
     );
 }
 
+/// A prompt comes at the start and after each command: a blank line (or one of
+/// blanks) typed at the prompt prints none, before a command, inside one or after
+/// a constant whose line had more on it.
+#[test]
+fn blank_lines_at_the_prompt_print_no_prompt() {
+    compare(
+        "blank-lines",
+        &[],
+        &[],
+        "\n\n1\n\n2\n   \n(+ 1\n\n2)\n\n\"a\" b\n\n(exit)\n",
+    );
+}
+
 /// A command that never ends, killed by the timeout: what came before it is on
 /// stdout, its echo included (CLIPS flushes its output; ours sends whole lines).
 #[test]

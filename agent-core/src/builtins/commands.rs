@@ -19,7 +19,7 @@ use core::fmt::Write;
 pub const FUNCS: &[Builtin] = &[
     Builtin::eager("reset", 0, 0, reset).returns(super::describe::Returns::Void),
     Builtin::eager("clear", 0, 0, clear).returns(super::describe::Returns::Void),
-    Builtin::eager("run", 0, 1, run).returns(super::describe::Returns::Void),
+    Builtin::eager("run", 0, 1, run).args(&[ArgType::Integer], ArgType::Any).returns(super::describe::Returns::Void),
     Builtin::eager("facts", 0, 4, facts).returns(super::describe::Returns::Void),
     Builtin::eager("agenda", 0, 1, agenda).returns(super::describe::Returns::Void),
     Builtin::eager("watch", 1, ANY, watch_).returns(super::describe::Returns::Void),

@@ -67,7 +67,9 @@ pub(super) fn num_arg(
     }
 }
 
-/// A strict integer argument: CLIPS rejects `1.0` where an index is expected.
+/// An integer argument. A literal `1.0` where an index is expected is refused when
+/// the call is parsed; a float computed at run time is taken truncated, as CLIPS's
+/// `ArgTypeCheck(INTEGER)` converts it (`(nth$ ?x ...)` with `?x` 2.0 is the 2nd).
 pub(super) fn int_arg(
     cx: &Core<'_>,
     a: Args,
@@ -76,6 +78,7 @@ pub(super) fn int_arg(
 ) -> Result<i64, EvalError> {
     match cx.arg(a, i) {
         Value::Int(x) => Ok(x),
+        Value::Float(x) => Ok(x as i64),
         _ => Err(EvalError::wrong_type(
             func,
             crate::error::arg_no(i),

@@ -327,8 +327,10 @@ impl<'s> Parser<'s, '_, '_> {
         let nt = self.next();
         let (module, name) = match nt.tok {
             Tok::Symbol(s) => self.qualified_ref(nt, s)?,
-            // CLIPS's `[EXPRNPSR1]` for a literal there, a construct shown up to it
-            Tok::Int(_) | Tok::IntOverflow(_) | Tok::Float(_) | Tok::Str(_) => {
+            Tok::Eof | Tok::Bad => return Err(self.err(nt, "a function name")),
+            // CLIPS's `[EXPRNPSR1]` for anything else there (a literal, a variable,
+            // `(`, `)`, `&`...), a construct shown up to it
+            _ => {
                 let mut e = self.err(nt, "a function name");
                 e.detail = crate::error::LoadDetail::Text {
                     text: "[EXPRNPSR1] A function name must be a symbol",
@@ -338,7 +340,6 @@ impl<'s> Parser<'s, '_, '_> {
                 }
                 return Err(e);
             }
-            _ => return Err(self.err(nt, "a function name")),
         };
         let qualified = module != self.current_module();
         let (form, node) = match name {

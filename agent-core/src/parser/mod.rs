@@ -731,6 +731,12 @@ impl<'s, 'e> Parser<'s, '_, 'e> {
                         self.restore(save_lex);
                         self.scope = Scope::TopLevel;
                         self.construct = "command";
+                        if !matches!(head.tok, Tok::Symbol(_) | Tok::Eof | Tok::Bad) {
+                            // CLIPS's command loop: `(` and no function name
+                            let mut e = self.err(head, "a function name");
+                            e.detail = crate::error::LoadDetail::ExpectedCommand;
+                            return Err(e);
+                        }
                         let cp = self.cx.checkpoint();
                         match self.parse_expr() {
                             Ok(e) => Ok(Item::Command(e)),

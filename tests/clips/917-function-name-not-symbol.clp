@@ -1,0 +1,33 @@
+; `(` must be followed by a function name. In a command's arguments, a
+; deffunction, a rule's actions or a test, anything else there (a variable, a
+; global, a wildcard, `(`, `)`, `&`, a constant) is [EXPRNPSR1] "A function
+; name must be a symbol", the construct shown up to that token; at the start of
+; a command it is [COMMLINE2] "Expected a command." (no blank line before it).
+(+ (?x) 1)
+(+ (?*g*))
+(+ ($?x))
+(+ ((+ 1 2)))
+(+ ())
+(+ (& 1))
+(+ (~ 1))
+(+ (?))
+(+ ("a"))
+(while (?it hasNext) (printout t x))
+(if (?x) then 1)
+(deffunction f () (?x 1))
+(deffunction f2 () (+ 1 (?x 1)))
+(deffunction f3 () (+ ((+ 1 2))))
+(deffunction f4 () ())
+(defrule r => (?x 1))
+(defrule r2 (a ?x) (test (?x)) =>)
+(?x 1)
+($?x 1)
+(?*g*)
+(1 2)
+("a" 2)
+((+ 1 2))
+(())
+(list-deffunctions)
+(rules)
+(+ 1 2)
+(exit)

@@ -1,0 +1,31 @@
+; A float computed at run time where an integer argument is wanted is taken
+; truncated toward zero (CLIPS's ArgTypeCheck converts it): nth$, subseq$,
+; delete$, replace$, insert$, sub-string, evenp/oddp, str-compare's length,
+; random, the mv- functions. A float literal there is refused when the call is
+; read (run's count too).
+(defglobal ?*f* = 2.0 ?*g* = 2.9 ?*h* = 3.5 ?*n* = -1.5)
+(nth$ ?*f* (create$ a b c))
+(nth$ (+ 1 0.9) (create$ a b c))
+(nth$ ?*n* (create$ a b))
+(subseq$ (create$ a b c d) ?*f* ?*g*)
+(delete$ (create$ a b c d) ?*f* ?*g*)
+(replace$ (create$ a b c d) ?*f* ?*g* x)
+(insert$ (create$ a b c d) ?*g* x)
+(sub-string ?*f* ?*g* "hello")
+(evenp ?*f*)
+(oddp ?*h*)
+(str-compare "abc" "abd" ?*f*)
+(random ?*f* ?*g*)
+(mv-subseq ?*f* ?*g* (create$ a b c))
+(mv-delete ?*f* (create$ a b c))
+(mv-replace ?*f* (create$ a b c) x)
+(deffunction pick (?list ?i) (nth$ (/ ?i 2) ?list))
+(pick (create$ p q r) 4)
+(pick (create$ p q r) 5)
+(deffacts d (a) (b) (c))
+(reset)
+(nth$ 2.0 (create$ a b c))
+(subseq$ (create$ a b c) 1 2.5)
+(run 1.5)
+(run ?*f*)
+(exit)
