@@ -86,12 +86,7 @@ const CASES: &[(&str, u32, u32, &str)] = &[
         "between -10000 and 10000",
     ),
     ("(defrule r13 ?f (a) =>)", 1, 17, "'<-'"),
-    (
-        "(defrule r14 (a) (or) =>)",
-        1,
-        21,
-        "pattern or CE inside or",
-    ),
+    ("(defrule r14 (a) (or) =>)", 1, 21, "CE inside or"),
     ("(defrule r15 (a ?x) => (bind))", 1, 29, "variable"),
     (
         "(defrule r16 (a) => (if (> 1 0) (printout t x)))",
