@@ -355,10 +355,11 @@ fn without_implied_templates(after: &Snapshot, before: &Snapshot) -> Snapshot {
         listings.push_str(&line);
         listings.push('\n');
     }
+    // (counted from the pools: builds without the listing commands list nothing)
     let mut usage = after.usage;
-    let k = implied as agent_core::Ix;
+    let k = usage.templates.saturating_sub(before.usage.templates);
     if k > 0
-        && usage.templates == before.usage.templates + k
+        && (implied == 0 || implied as agent_core::Ix == k)
         && usage.slot_defs == before.usage.slot_defs + k
         && usage.symbols >= before.usage.symbols + k
     {
