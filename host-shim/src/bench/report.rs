@@ -544,11 +544,11 @@ and `(reset)` are out; *whole* is the complete process. CLIPS 6.30 is the Debian
 command (`clips -f2 FILE`). CLIPS 6.4 is PyPI `clipspy`, driven by \
 `tests/bench/clipspy_run.py`: its wall times are `run()` and load+reset+run timed inside \
 Python, its instruction counts are of the whole Python process (so *whole* includes the \
-interpreter). Ours runs as `robotino-agent clips -f2 FILE` (CLI column; a program that \
-exhausts a pool of that default engine is measured again, in full, with \
-`robotino-agent clips --large-pools -f2 FILE`, whose pools hold the largest workloads) and \
-in-process through `bench::ours::InProcessEngine` (always the large-pool engine, built \
-before the clock starts). Both are host builds with `u32` pool indices (feature \
+interpreter). Ours runs as `robotino-agent clips -f2 FILE` (CLI column; its pools grow, so \
+no program runs out of one; `--large-pools` is an alias of the same engine) and \
+in-process through `bench::ours::InProcessEngine` (the CLI's growing engine, built \
+before the clock starts; CLIPS 6.4's callgrind runs use one fixed Python hash seed, \
+so that its run phase, a difference of two processes, is not noise). Both are host builds with `u32` pool indices (feature \
 `wide-index`, with `host-speedups`), so in-process memory counts 4-byte links; the agent image keeps 2-byte \
 ones. Rules fired come from `(watch statistics)` (CLI) or \
 the `run()` return value. Results agree when the programs' result lines are equal (Manners: \
