@@ -1918,6 +1918,14 @@ impl Core<'_> {
     #[cfg(feature = "host-speedups")]
     #[inline(always)]
     fn build_group(&mut self, join: JoinId, child: JoinId, g: usize) {
+        self.build_group_of::<false>(join, child, g);
+    }
+
+    /// `build_group`; `ACTIVE_ONLY`: leaves blocked partial matches out (see
+    /// `build_group_active`).
+    #[cfg(feature = "host-speedups")]
+    #[inline(always)]
+    fn build_group_of<const ACTIVE_ONLY: bool>(&mut self, join: JoinId, child: JoinId, g: usize) {
         let mut t = self.join_mems[join].mem;
         let mut last = TokenId::NONE;
         while t != TokenId::NONE {
@@ -1925,7 +1933,9 @@ impl Core<'_> {
             t = self.tokens[t].mem_next;
         }
         while last != TokenId::NONE {
-            self.beta_index_link(last, join, child, g);
+            if !ACTIVE_ONLY || !self.tokens[last].blocked {
+                self.beta_index_link(last, join, child, g);
+            }
             last = self.tokens[last].mem_prev;
         }
     }
@@ -1978,18 +1988,7 @@ impl Core<'_> {
     #[cfg(feature = "host-speedups")]
     #[inline(never)]
     fn build_group_active(&mut self, join: JoinId, child: JoinId) {
-        let mut t = self.join_mems[join].mem;
-        let mut last = TokenId::NONE;
-        while t != TokenId::NONE {
-            last = t;
-            t = self.tokens[t].mem_next;
-        }
-        while last != TokenId::NONE {
-            if !self.tokens[last].blocked {
-                self.beta_index_link(last, join, child, 0);
-            }
-            last = self.tokens[last].mem_prev;
-        }
+        self.build_group_of::<true>(join, child, 0);
     }
 
     /// Host: gives up `join`'s extra index groups (a child goes away; they are

@@ -83,9 +83,9 @@ impl Core<'_> {
         #[cfg(not(feature = "host-speedups"))]
         let indexed = true;
         if !indexed {
-            self.wipe_unindexed_tokens(t, parents_stay);
+            self.wipe_tokens::<false>(t, parents_stay);
         } else if t != TokenId::NONE {
-            self.wipe_indexed_tokens(t, parents_stay);
+            self.wipe_tokens::<true>(t, parents_stay);
         }
         let jm = &mut self.join_mems[join];
         jm.mem = TokenId::NONE;
@@ -107,29 +107,16 @@ impl Core<'_> {
         }
     }
 
-    /// Frees the partial matches of a memory from `t` on (see `wipe_memory`).
+    /// Frees the partial matches of a memory from `t` on (see `wipe_memory`);
+    /// `INDEXED`: the memory may have them in index buckets.
     #[inline(never)]
-    fn wipe_indexed_tokens(&mut self, mut t: TokenId, parents_stay: bool) {
+    fn wipe_tokens<const INDEXED: bool>(&mut self, mut t: TokenId, parents_stay: bool) {
         while t != TokenId::NONE {
             let next = self.tokens[t].mem_next;
             if parents_stay {
                 self.leave_parent(t);
             }
-            self.wipe_token(t, true);
-            t = next;
-        }
-    }
-
-    /// Frees the partial matches of an unindexed memory from `t` on (see
-    /// `wipe_memory`).
-    #[inline(never)]
-    fn wipe_unindexed_tokens(&mut self, mut t: TokenId, parents_stay: bool) {
-        while t != TokenId::NONE {
-            let next = self.tokens[t].mem_next;
-            if parents_stay {
-                self.leave_parent(t);
-            }
-            self.wipe_token(t, false);
+            self.wipe_token(t, INDEXED);
             t = next;
         }
     }
