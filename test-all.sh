@@ -22,11 +22,22 @@ readonly I586=i586-unknown-linux-gnu
 readonly NO_STD_TARGET=x86_64-unknown-none
 readonly APT_PACKAGES=(qemu-user gcc-multilib clips binutils)
 readonly TARGET_DIR="${CARGO_TARGET_DIR:-target}"
+# A clean clone gains nothing from incremental caches; they only cost disk.
+export CARGO_INCREMENTAL="${CARGO_INCREMENTAL:-0}"
 
 SUMMARY=()
 FAILED=0
 PASSED=0
 STAGE_NOTE=""
+
+# disk_report: the target dir's size and the free space on its file system.
+disk_report() {
+    local used free where=.
+    [[ -d "$TARGET_DIR" ]] && where="$TARGET_DIR"
+    used=$(du -sm "$TARGET_DIR" 2>/dev/null | cut -f1)
+    free=$(df -Pm "$where" 2>/dev/null | awk 'NR == 2 { print $4 }')
+    echo "${TARGET_DIR}: ${used:-0} MB used, ${free:-?} MB free"
+}
 
 # run_stage NAME FUNCTION: runs one stage, times it, records the outcome.
 run_stage() {
@@ -45,6 +56,8 @@ run_stage() {
     end=$(date +%s.%N)
     local secs
     secs=$(awk -v a="$start" -v b="$end" 'BEGIN { printf "%.1f", b - a }')
+    # Disk is a resource CI can run out of: show what the target dir holds after each stage.
+    echo "target dir $(disk_report)"
     echo "==== stage ${name}: ${status} in ${secs} s${STAGE_NOTE:+ (${STAGE_NOTE})}"
     SUMMARY+=("$(printf '%-26s %-7s %8s s  %s' "$name" "$status" "$secs" "$STAGE_NOTE")")
 }
