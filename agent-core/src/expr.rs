@@ -28,6 +28,8 @@ pub enum Op {
     PatVar,
     /// Strict equality of the two children (literal and variable constraints).
     Eq2,
+    /// All children hold. `aux` [`NAMES_FIELD`] in an alpha test's root: `data` is the
+    /// locator (`loc`) of the field whose constraint the test is (else `aux` 0).
     And,
     Or,
     Not,
@@ -51,6 +53,11 @@ pub enum Op {
     /// A query variable of fact-set functions or a free node.
     Nop,
 }
+
+/// `aux` of an alpha test's `And` root that names the field of its constraint, which
+/// `[FACTMCH1]` reports (the parser's `name_field`: tests that read another field
+/// first, or none).
+pub const NAMES_FIELD: u8 = 1;
 
 /// What a `Call` node calls.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

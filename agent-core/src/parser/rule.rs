@@ -1500,7 +1500,9 @@ impl<'s> Parser<'s, '_, '_> {
                                     .err(st, "a single-field constraint for a single-field slot"));
                             }
                             let at = match test {
-                                Some(e) => self.classify(&mut pb, p, e),
+                                Some(e) => {
+                                    self.classify(&mut pb, p, e, loc::new(slot as u8, loc::SINGLE))
+                                }
                                 None => NONE,
                             };
                             pb.record(loc::new(slot as u8, loc::SINGLE), at, false);
@@ -1588,7 +1590,7 @@ impl<'s> Parser<'s, '_, '_> {
                     )?;
                     self.cx.append_child(ps, el);
                     let at = match test {
-                        Some(e) => self.classify(pb, p, e),
+                        Some(e) => self.classify(pb, p, e, loc::new(slot, i)),
                         None => NONE,
                     };
                     pb.record(loc::new(slot, i), at, multi);
@@ -1647,10 +1649,17 @@ impl<'s> Parser<'s, '_, '_> {
     /// leading a field) is read from that field by the rest of the pattern, so
     /// `?x&:(> ?x 1)` is tested in the alpha node and only `?x`'s equality in the join.
     /// Returns the alpha node's part of the test, else NONE.
-    fn classify(&mut self, pb: &mut PatBuild, p: u8, e: Ix) -> Ix {
+    /// `l`: the field (locator) whose constraint `e` is.
+    fn classify(&mut self, pb: &mut PatBuild, p: u8, e: Ix, l: Ix) -> Ix {
         let x = self.cx.exprs[e as usize];
         if x.op != Op::And {
-            return self.classify_one(pb, p, e, true);
+            let t = self.classify_one(pb, p, e, false);
+            if t == NONE {
+                return NONE;
+            }
+            let t = self.name_field(t, l);
+            self.push_alpha_test(pb, t);
+            return t;
         }
         // the conjuncts, detached; the alpha ones regrouped under `e`
         let (mut alpha, mut alast, mut n) = (NONE, NONE, 0);
@@ -1667,15 +1676,48 @@ impl<'s> Parser<'s, '_, '_> {
         match n {
             0 => NONE,
             1 => {
-                self.push_alpha_test(pb, alpha);
-                alpha
+                let t = self.name_field(alpha, l);
+                self.push_alpha_test(pb, t);
+                t
             }
             _ => {
                 self.cx.exprs[e as usize].first = alpha;
-                self.push_alpha_test(pb, e);
-                e
+                let t = self.name_field(e, l);
+                self.push_alpha_test(pb, t);
+                t
             }
         }
+    }
+
+    /// Alpha test `t` of field `l`, naming that field if `[FACTMCH1]` would not find it:
+    /// CLIPS reports a test that errors at the slot (ordered fact: the field) holding
+    /// its constraint, the engine at the first field the test reads
+    /// (`Core::failed_field`). A test that reads another field first, or none, gets an
+    /// `And` root that names `l` (`expr::NAMES_FIELD`): its own (an `&` chain's) or a
+    /// new one above it. It stays unnamed when the expression pool is full.
+    fn name_field(&mut self, t: Ix, l: Ix) -> Ix {
+        // a template's slot is named whichever of its elements the test reads
+        let elem_too = self.lhs_slot.is_none();
+        match self.cx.failed_field(t) {
+            Some((s, el)) if s == loc::slot(l) && (!elem_too || el == loc::elem(l)) => {
+                return t;
+            }
+            _ => {}
+        }
+        let x = self.cx.exprs[t as usize];
+        if x.op == Op::And && x.aux == 0 {
+            self.cx.exprs[t as usize].aux = crate::expr::NAMES_FIELD;
+            self.cx.exprs[t as usize].data = l;
+            return t;
+        }
+        let root = Expr {
+            op: Op::And,
+            aux: crate::expr::NAMES_FIELD,
+            data: l,
+            first: t,
+            next: NONE,
+        };
+        self.cx.push_expr(root).unwrap_or(t)
     }
 
     /// One conjunct of a field's test: aliases noted and applied (see `classify`), then

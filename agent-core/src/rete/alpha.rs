@@ -527,13 +527,17 @@ impl Core<'_> {
         }
     }
 
-    /// The field (slot, element) of the pattern's first variable in test `e`: the
-    /// field the failing constraint belongs to, as CLIPS names it.
-    fn failed_field(&self, e: Ix) -> Option<(u8, u8)> {
+    /// The field (slot, element) the failing constraint `e` belongs to, as CLIPS names
+    /// it: the one its root names (`expr::NAMES_FIELD`), else the pattern's first
+    /// variable in it.
+    pub(crate) fn failed_field(&self, e: Ix) -> Option<(u8, u8)> {
         if e == NONE {
             return None;
         }
         let x = self.exprs[e as usize];
+        if x.op == Op::And && x.aux == crate::expr::NAMES_FIELD {
+            return Some((loc::slot(x.data), loc::elem(x.data)));
+        }
         if x.op == Op::PatVar && x.aux == THIS_PATTERN && x.data != loc::FACT {
             return Some((loc::slot(x.data), loc::elem(x.data)));
         }

@@ -1,0 +1,20 @@
+; A pattern test that errors is reported at the slot (or ordered field) whose
+; constraint holds it, whatever variables the test reads: several slots with tests,
+; a multislot element, an ordered fact, a test reading an earlier slot's variable.
+(deftemplate it (slot id) (slot w) (multislot m))
+(defglobal ?*s* = a)
+(defrule a (it (id ?i&:(> ?i 0)) (w ?w&:(progn (+ ?*s* 1) TRUE))) =>)
+(assert (it (id 9) (w q)))
+(undefrule a)
+(defrule b (it (id ?i) (m ?x ?y&:(> ?i ?*s*))) =>)
+(assert (it (id 8) (m 1 2)))
+(undefrule b)
+(defrule c (it (id ?i) (w ?w) (m $? ?z&:(progn (+ ?*s* ?i) TRUE))) =>)
+(assert (it (id 7) (m 3)))
+(undefrule c)
+(defrule d (o ?a ?b&:(progn (+ ?*s* 1) TRUE) ?c) =>)
+(assert (o 1 2 3))
+(undefrule d)
+(defrule e (it (w ?w) (id ?i&:(> ?w 1))) =>)
+(assert (it (id 6) (w q)))
+(exit)
