@@ -56,7 +56,7 @@ pub enum Op {
 
 /// `aux` of an alpha test's `And` root that names the field of its constraint, which
 /// `[FACTMCH1]` reports (the parser's `name_field`: tests that read another field
-/// first, or none).
+/// first, or none; read with feature `extras`, which the image leaves out).
 pub const NAMES_FIELD: u8 = 1;
 
 /// What a `Call` node calls.

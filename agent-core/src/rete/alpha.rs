@@ -529,12 +529,14 @@ impl Core<'_> {
 
     /// The field (slot, element) the failing constraint `e` belongs to, as CLIPS names
     /// it: the one its root names (`expr::NAMES_FIELD`), else the pattern's first
-    /// variable in it.
+    /// variable in it. (The image, without `extras`, reads no names: the check would
+    /// cost its code budget.)
     pub(crate) fn failed_field(&self, e: Ix) -> Option<(u8, u8)> {
         if e == NONE {
             return None;
         }
         let x = self.exprs[e as usize];
+        #[cfg(feature = "extras")]
         if x.op == Op::And && x.aux == crate::expr::NAMES_FIELD {
             return Some((loc::slot(x.data), loc::elem(x.data)));
         }
