@@ -581,6 +581,8 @@ differential_programs! {
     p962_slot_facet_tokens => "962-slot-facet-tokens",
     p963_error_slot_of_test_several_shapes => "963-error-slot-of-test-several-shapes",
     p964_error_slot_of_test_more_shapes => "964-error-slot-of-test-more-shapes",
+    p965_retract_order_after_priming_more => "965-retract-order-after-priming-more",
+    p966_retract_order_after_priming_not => "966-retract-order-after-priming-not",
     p990_printout_illegal_logical_name => "990-printout-illegal-logical-name",
     p991_commands_nested_in_expressions => "991-commands-nested-in-expressions",
     p992_fact_set_query_syntax_errors => "992-fact-set-query-syntax-errors",

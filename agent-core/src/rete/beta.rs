@@ -1592,7 +1592,9 @@ impl Core<'_> {
         }
     }
 
-    /// `deactivate` for every successor of `join`, oldest first.
+    /// `deactivate` for every successor of `join`, oldest first. Host: those primed
+    /// after `t` was made first, the latest primed first (CLIPS's copies of `t` that
+    /// priming made are the newest children of its parents, see `rete::order`).
     fn take_back_all(&mut self, t: TokenId, join: JoinId) {
         // the successors in walking order; the first few kept, as most joins have
         // one or two, the rest walked to again
@@ -1605,7 +1607,17 @@ impl Core<'_> {
             }
             n += 1;
         }
+        #[cfg(feature = "grow")]
+        let primed = if self.st.prime.joins.is_empty() {
+            0
+        } else {
+            self.take_back_primed(t, &first[..n.min(first.len())])
+        };
         for i in (0..n).rev() {
+            #[cfg(feature = "grow")]
+            if i < first.len() && primed & (1 << i) != 0 {
+                continue;
+            }
             let (c, from_right) = if i < first.len() {
                 first[i]
             } else {
@@ -1619,6 +1631,32 @@ impl Core<'_> {
                 s
             };
             self.take_back(t, c, from_right);
+        }
+    }
+
+    /// Host: takes back what `t` passed on to those of successors `succ` that were
+    /// primed after it was made, the latest primed first; returns them as bits.
+    #[cfg(feature = "grow")]
+    #[inline(never)]
+    fn take_back_primed(&mut self, t: TokenId, succ: &[(JoinId, bool)]) -> u8 {
+        let mut done = 0u8;
+        loop {
+            let mut latest: Option<(u32, usize)> = None;
+            for (i, &(c, from_right)) in succ.iter().enumerate() {
+                if from_right || done & (1 << i) != 0 {
+                    continue;
+                }
+                if let Some(born) = self.primed_after(c, t) {
+                    if latest.is_none_or(|(b, _)| born > b) {
+                        latest = Some((born, i));
+                    }
+                }
+            }
+            let Some((_, i)) = latest else {
+                return done;
+            };
+            done |= 1 << i;
+            self.take_back(t, succ[i].0, false);
         }
     }
 

@@ -141,6 +141,14 @@ impl Core<'_> {
         tk.kind == TokenKind::Beta && self.seq_of(t) == seq && tk.owner == parent
     }
 
+    /// When `join` was primed (its entry's `born`) if partial match `t` of its parent
+    /// existed then (its copy in CLIPS's memory of `join` is younger than `t`).
+    pub(crate) fn primed_after(&self, join: JoinId, t: TokenId) -> Option<u32> {
+        let k = self.st.prime.find(join)?;
+        let born = self.st.prime.joins[k].born;
+        (self.seq_of(t) < born).then_some(born)
+    }
+
     /// The primed-order entry of `join`, if it has one.
     #[inline(always)]
     pub(crate) fn primed_entry(&self, join: JoinId) -> Option<usize> {
