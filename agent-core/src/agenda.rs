@@ -217,8 +217,10 @@ impl Core<'_> {
     /// CLIPS's EvaluateSalience: rule `rule`'s salience expression (if it has one)
     /// evaluated now; the value becomes the rule's salience. An error, a value that
     /// is not an integer or one out of -10000..=10000 is reported with `[PRNTUTIL8]`
-    /// and the rule's last salience stays; when `halt`, execution halts as CLIPS's
-    /// evaluation error makes it (a multi-fact assert stops, as after a pattern error).
+    /// and the rule's last salience stays; execution halts as CLIPS's evaluation
+    /// error makes it (a refresh goes on, a deffunction in a later salience is FALSE;
+    /// a run stops after the refresh); when `halt` (an activation being made), as after
+    /// a pattern error (a multi-fact assert stops).
     /// A rule read in place whose salience changes is copied first
     /// (`network_writable`): no room for the copy is a capacity error.
     pub(crate) fn evaluate_salience(&mut self, rule: Ix, halt: bool) -> Result<i32, CapacityError> {
@@ -285,10 +287,12 @@ impl Core<'_> {
             self.sym_text(self.rules[rule as usize].name)
         );
         self.write(crate::host::router::WERROR, b.as_str());
+        // CLIPS's evaluation error halts execution (a deffunction called in a later
+        // salience is FALSE); while an activation is made, as a pattern error
         if halt {
             self.st.net.pattern_error = true;
-            self.st.mode.halting = true;
         }
+        self.st.mode.halting = true;
     }
 
     /// Inserts before the first activation it goes before (`goes_before`).

@@ -1029,8 +1029,11 @@ impl Core<'_> {
             self.every_cycle_after::<SLOW>()?;
             return Ok(Some(true));
         }
-        // CLIPS's every-cycle salience evaluation: after each firing
-        self.every_cycle_after::<SLOW>()?;
+        // CLIPS's every-cycle salience evaluation: after each firing (a salience that
+        // failed halts the run)
+        if self.every_cycle_after::<SLOW>()? {
+            return Ok(Some(true));
+        }
         // the general path looks again whether the next turn needs it
         #[cfg(any(feature = "extras", feature = "modules", feature = "logical"))]
         if SLOW {
@@ -1041,13 +1044,15 @@ impl Core<'_> {
 
     /// CLIPS's every-cycle salience evaluation after a firing (`refresh_every_cycle`):
     /// on the usual path only when the actions turned a feature on (`Mode::run_slow`).
+    /// Whether a salience's error halted execution.
     #[inline(always)]
-    fn every_cycle_after<const SLOW: bool>(&mut self) -> Result<(), EvalError> {
+    fn every_cycle_after<const SLOW: bool>(&mut self) -> Result<bool, EvalError> {
         #[cfg(feature = "extras")]
         if SLOW || self.run_slow() {
             self.refresh_every_cycle()?;
+            return Ok(self.st.mode.halting);
         }
-        Ok(())
+        Ok(false)
     }
 
     fn report_rhs_error(&mut self, rule: Ix, e: EvalError) {
@@ -1887,6 +1892,7 @@ impl Core<'_> {
                     | LoadDetail::NoSuchTemplate
                     | LoadDetail::Query { .. }
                     | LoadDetail::ImpliedConflict
+                    | LoadDetail::DefaultEvaluation
             )
         {
             // a rule CLIPS stopped reading, in its conditions or its actions

@@ -340,6 +340,12 @@ impl Core<'_> {
             }
             e = self.exprs[e as usize].next;
         }
+        // (host: one that halted on the way, a salience's error in `refresh-agenda`,
+        // is FALSE too)
+        #[cfg(feature = "extras")]
+        if self.st.mode.halting {
+            v = Value::Sym(SYM_FALSE);
+        }
         Ok(v)
     }
 

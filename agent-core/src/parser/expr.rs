@@ -850,9 +850,12 @@ impl<'s> Parser<'s, '_, '_> {
     /// defglobal's values, which CLIPS evaluates at the prompt (a variable nothing
     /// bound there is `[EVALUATN1]` when the value is computed; one a value binds
     /// stays bound).
+    /// (a rule's salience is evaluated as it is read, its variables the prompt's)
     fn at_prompt(&self) -> bool {
         self.scope == Scope::TopLevel
-            || (self.scope == Scope::Frame && self.construct == "defglobal")
+            || (self.scope == Scope::Frame
+                && (self.construct == "defglobal"
+                    || (self.evaluated_now && self.construct == "defrule")))
     }
 
     /// Node for assigning to variable `name`: a frame local (created if new) or, at

@@ -98,6 +98,8 @@ pub(crate) struct Build {
     /// `(declare (auto-focus TRUE))` (feature `modules`).
     #[cfg_attr(not(feature = "modules"), allow(dead_code))]
     pub(crate) auto_focus: bool,
+    /// The rule's name (for `[PRNTUTIL8]` when its salience fails as it is read).
+    pub(crate) name: crate::value::SymId,
 }
 
 impl Build {
@@ -126,6 +128,7 @@ impl Build {
             split_branch: false,
             split_inner: GroupBody::One,
             auto_focus: false,
+            name: NONE,
         }
     }
 
@@ -276,6 +279,7 @@ impl<'s> Parser<'s, '_, '_> {
         }
         let first_new_join = JoinId(self.cx.st.pools.njoins);
         let mut b = Build::new();
+        b.name = sym;
         // The syntax stage reads the whole rule before anything is built: a rule with
         // `or` is one disjunct per combination of branches, each read with its own
         // variables and pattern numbers, so all of them are read once first (their
@@ -484,6 +488,31 @@ impl<'s> Parser<'s, '_, '_> {
         e
     }
 
+    /// A salience whose evaluation failed: CLIPS prints the error and `[PRNTUTIL8]`,
+    /// then the rule up to the value after `ERROR:`.
+    #[cold]
+    fn salience_failed(
+        &mut self,
+        err: crate::error::EvalError,
+        rule: crate::value::SymId,
+        value_end: usize,
+    ) -> crate::error::LoadError {
+        use core::fmt::Write;
+        self.cx.write_error_message(err);
+        let mut b: crate::value::TextBuf<160> = crate::value::TextBuf::new();
+        let _ = writeln!(
+            b,
+            "\n[PRNTUTIL8] This error occurred while evaluating the salience for defrule {}.",
+            self.cx.sym_text(rule)
+        );
+        self.cx.write(crate::host::router::WERROR, b.as_str());
+        let at = self.lex.token_at(value_end.saturating_sub(1));
+        let mut e = self.err(at, "a salience that evaluates");
+        e.detail = crate::error::LoadDetail::DefaultEvaluation;
+        e.echo_end = value_end as u32;
+        e
+    }
+
     fn declare(&mut self, b: &mut Build) -> PResult<(i32, Ix)> {
         const DECLARE: crate::error::LoadDetail = crate::error::LoadDetail::SyntaxOf {
             part: "declare statement",
@@ -525,10 +554,16 @@ impl<'s> Parser<'s, '_, '_> {
                                     },
                                 ));
                             }
+                            // evaluated as it is read: globals by name (`[GLOBLDEF1]`
+                            // when unseen), variables the prompt's (CLIPS's
+                            // `[EVALUATN1]` when unbound)
                             let save = self.scope;
                             self.scope = Scope::Frame;
-                            let e = self.parse_expr()?;
+                            self.evaluated_now = true;
+                            let e = self.parse_expr();
+                            self.evaluated_now = false;
                             self.scope = save;
+                            let e = e?;
                             // (a variable nothing binds is not evaluated)
                             self.take_deferred()?;
                             let value_end = self.consumed_end();
@@ -543,6 +578,9 @@ impl<'s> Parser<'s, '_, '_> {
                             };
                             sal = match v {
                                 Ok(Value::Int(i)) if (-10000..=10000).contains(&i) => i as i32,
+                                Err(err) if !err.is_capacity() => {
+                                    return Err(self.salience_failed(err, b.name, value_end));
+                                }
                                 Ok(Value::Int(_)) => {
                                     return Err(self.declare_error(
                                         vt,
