@@ -327,6 +327,20 @@ impl Core<'_> {
         }
     }
 
+    /// `reset`'s priming of the joins under the root, in CLIPS's order.
+    fn prime_from_root(&mut self, root_token: TokenId) -> Result<(), EvalError> {
+        for phase in [false, true] {
+            let mut j = self.joins[JoinId::ROOT].first_child;
+            while j != JoinId::NONE {
+                if self.joins[j].kind.left_primed() == Some(phase) {
+                    self.left_activate(j, root_token)?;
+                }
+                j = self.joins[j].next_sibling;
+            }
+        }
+        Ok(())
+    }
+
     fn reset_inner(&mut self) -> Result<(), EvalError> {
         // the focus stack holds MAIN only, the current module
         #[cfg(feature = "modules")]
@@ -377,16 +391,17 @@ impl Core<'_> {
         }
         // CLIPS primes the joins fed by no pattern (no CE, a first `test`) first, then
         // those after a first `not`/`exists` (its right- then left-prime joins), so
-        // the latter's activations are newer; then comes the initial-fact
-        for phase in [false, true] {
-            let mut j = self.joins[JoinId::ROOT].first_child;
-            while j != JoinId::NONE {
-                if self.joins[j].kind.left_primed() == Some(phase) {
-                    self.left_activate(j, root_token)?;
-                }
-                j = self.joins[j].next_sibling;
-            }
+        // the latter's activations are newer; then comes the initial-fact. Their tests
+        // run outside its join operations: they may assert and retract facts, which
+        // go through the whole network at once (host)
+        #[cfg(feature = "extras")]
+        let free = core::mem::replace(&mut self.st.net.matching_free, self.st.net.matching + 1);
+        let r = self.prime_from_root(root_token);
+        #[cfg(feature = "extras")]
+        {
+            self.st.net.matching_free = free;
         }
+        r?;
         // (and makes its initial-object again before its initial-fact)
         #[cfg(feature = "extras")]
         self.trace_initial_object(true);

@@ -262,6 +262,11 @@ pub struct MatchState {
     /// `clear` or to `reset` until they are done (the checks sit in those builtins and
     /// in `Core::assert_spec`).
     pub matching: u16,
+    /// Host: the `matching` level up to which facts may change all the same: 1 while
+    /// `reset` primes the joins fed by no pattern (CLIPS runs a first `test`, and
+    /// one after a first `not`/`exists`, outside its join operations then).
+    #[cfg(feature = "extras")]
+    pub matching_free: u16,
     /// Network generation: changes whenever joins are added or unlinked (cached
     /// per-template facts about the network, `rete::defer`, are renewed then).
     pub net_gen: u32,
@@ -288,6 +293,16 @@ pub struct MatchState {
 }
 
 impl MatchState {
+    /// Whether facts may not be asserted, retracted or modified now: a pattern or join
+    /// test runs (CLIPS is pattern-matching), beyond `matching_free`.
+    #[inline(always)]
+    pub fn changes_refused(&self) -> bool {
+        #[cfg(feature = "extras")]
+        return self.matching > self.matching_free;
+        #[cfg(not(feature = "extras"))]
+        return self.matching > 0;
+    }
+
     pub const fn new() -> MatchState {
         MatchState {
             owed: TokenId::NONE,
@@ -299,6 +314,8 @@ impl MatchState {
             failed_test: NONE,
             pattern_error: false,
             matching: 0,
+            #[cfg(feature = "extras")]
+            matching_free: 0,
             net_gen: 0,
             #[cfg(feature = "host-speedups")]
             disc: crate::rete::DiscState::EMPTY,

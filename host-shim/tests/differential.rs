@@ -579,6 +579,7 @@ differential_programs! {
     p972_salience_declare_errors => "972-salience-declare-errors",
     p973_salience_refresh_errors_halt => "973-salience-refresh-errors-halt",
     p974_multislot_cardinality_literals => "974-multislot-cardinality-literals",
+    p975_test_ce_side_effects_at_reset => "975-test-ce-side-effects-at-reset",
     p960_slot_facets => "960-slot-facets",
     p961_slot_facet_errors => "961-slot-facet-errors",
     p962_slot_facet_tokens => "962-slot-facet-tokens",

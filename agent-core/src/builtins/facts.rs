@@ -465,7 +465,7 @@ impl Core<'_> {
     fn assert_spec_deferring(&mut self, spec: Ix, defer: bool) -> Result<Option<Ix>, EvalError> {
         // no fact may come while a pattern or join test runs (`State::matching`): CLIPS
         // says so and the assert gives FALSE
-        if self.st.net.matching > 0 {
+        if self.st.net.changes_refused() {
             self.write(router::WERROR, NO_ASSERT_WHILE_MATCHING);
             return Ok(None);
         }
@@ -654,7 +654,7 @@ impl Core<'_> {
                 return Ok(Value::Sym(SYM_FALSE));
             }
         }
-        if self.st.net.matching > 0 {
+        if self.st.net.changes_refused() {
             // a modify is a retract, then an assert: CLIPS refuses both
             if retract_old {
                 self.write(router::WERROR, NO_RETRACT_WHILE_MATCHING);
@@ -839,7 +839,7 @@ fn retract(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         let v = cx.arg(a, i);
         if let Value::Sym(s) = v {
             if cx.sym_text(s) == "*" {
-                if cx.st.net.matching > 0 {
+                if cx.st.net.changes_refused() {
                     // CLIPS refuses each fact (and, unlike here, tries again forever)
                     let mut f = cx.st.facts.fact_head;
                     while f != NONE {
@@ -856,7 +856,7 @@ fn retract(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
             }
         }
         match cx.fact_arg(v) {
-            Some(_) if cx.st.net.matching > 0 => {
+            Some(_) if cx.st.net.changes_refused() => {
                 cx.write(router::WERROR, NO_RETRACT_WHILE_MATCHING)
             }
             Some(f) => cx.retract_fact(f),
