@@ -1251,10 +1251,13 @@ impl Core<'_> {
             node = self.exprs[node as usize].next;
             k += 1;
         }
+        // `length` runs `length$`'s body, whose messages say `length$`; a literal
+        // is refused while parsing, under the name typed
+        let old_length = func == "length$" && called == "length";
         // format checks its directives' arguments in its body, literal or not, and
         // funcall and sort the function they call
         let literal = node != NONE
-            && func == called
+            && (func == called || old_length)
             && !(func == "format" && arg > 2)
             && !(func == "funcall" && expected != "symbol or string")
             && !(func == "sort" && expected != "symbol")
@@ -1267,6 +1270,9 @@ impl Core<'_> {
                 Op::Int | Op::Float | Op::Sym | Op::Str
             );
         self.st.eval.literal_error = literal;
+        if literal && old_length {
+            return EvalError::wrong_type("length", arg, expected);
+        }
         if literal {
             return err;
         }

@@ -370,6 +370,7 @@ differential_programs! {
     p218_angle_conversions => "218-angle-conversions",
     p219_group_ce_error_echo => "219-group-ce-error-echo",
     p220_logical_ce_order => "220-logical-ce-order",
+    p223_length_of_no_sequence => "223-length-of-no-sequence",
     p230_alpha_constant_discrimination => "230-alpha-constant-discrimination",
     p240_logical_basic => "240-logical-basic",
     p241_logical_self_retract => "241-logical-self-retract",

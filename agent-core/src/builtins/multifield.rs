@@ -21,9 +21,9 @@ use core::fmt::Write;
 #[rustfmt::skip]
 pub const FUNCS: &[Builtin] = &[
     Builtin::eager("create$", 0, ANY, create).on_error(OnError::EmptyMultifield).returns(R::Multifield),
-    Builtin::eager("length$", 1, 1, length).args(&[super::describe::ArgType::Sequence], super::describe::ArgType::Any).returns(R::Integer),
-    // CLIPS 6.30 still accepts the old name
-    Builtin::eager("length", 1, 1, length_old).args(&[super::describe::ArgType::Sequence], super::describe::ArgType::Any).returns(R::Integer),
+    Builtin::eager("length$", 1, 1, length).args(&[super::describe::ArgType::Sequence], super::describe::ArgType::Any).on_error(OnError::MinusOne).returns(R::Integer),
+    // CLIPS 6.30 still accepts the old name (its body's messages say `length$`)
+    Builtin::eager("length", 1, 1, length).args(&[super::describe::ArgType::Sequence], super::describe::ArgType::Any).on_error(OnError::MinusOne).returns(R::Integer),
     Builtin::eager("nth$", 2, 2, nth).args(&[I, M], Any).on_error(OnError::Nil),
     Builtin::eager("member$", 2, 2, member).args(&[Any, M], Any).on_error(OnError::False),
     Builtin::eager("subsetp", 2, 2, subsetp).args(&[M, M], Any).on_error(OnError::False).returns(R::Symbol),
@@ -107,7 +107,8 @@ pub(super) fn create(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     Ok(cx.multi_finish(start))
 }
 
-/// Elements of a multifield; for a symbol or string CLIPS answers its length in bytes.
+/// Elements of a multifield; for a symbol or string CLIPS answers its length in bytes;
+/// -1 after the error for another value.
 fn length(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     Ok(Value::Int(match cx.arg(a, 0) {
         Value::Multi(m) => m.len as i64,
@@ -124,25 +125,6 @@ fn length(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
             ))
         }
     }))
-}
-
-fn length_old(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    match cx.arg(a, 0) {
-        Value::Multi(_) | Value::Sym(_) | Value::Str(_) => match length(cx, a) {
-            // (an instance name: `length$`'s message under this name)
-            Err(_) => Err(EvalError::wrong_type(
-                "length",
-                1,
-                "multifield, symbol, or string",
-            )),
-            r => r,
-        },
-        _ => Err(EvalError::wrong_type(
-            "length",
-            1,
-            "multifield, symbol, or string",
-        )),
-    }
 }
 
 /// `(nth$ i m)`: element `i` (1-based) or `nil` when out of range.
