@@ -371,6 +371,7 @@ differential_programs! {
     p219_group_ce_error_echo => "219-group-ce-error-echo",
     p220_logical_ce_order => "220-logical-ce-order",
     p223_length_of_no_sequence => "223-length-of-no-sequence",
+    p224_instance_name_logical_name => "224-instance-name-logical-name",
     p230_alpha_constant_discrimination => "230-alpha-constant-discrimination",
     p240_logical_basic => "240-logical-basic",
     p241_logical_self_retract => "241-logical-self-retract",

@@ -493,8 +493,12 @@ pub(super) fn resolve_router(
         return Err(EvalError::already_reported());
     }
     if let Value::Sym(s) | Value::Str(s) = name {
+        let text = cx.sym_text(s);
+        // an instance name `[t]` names the router `t` (host only)
+        #[cfg(feature = "extras")]
+        let text = crate::value::instance_name_body(text).unwrap_or(text);
         // (CLIPS takes `T` for `t` wherever it reads a logical name)
-        let text = match cx.sym_text(s) {
+        let text = match text {
             "T" => "t",
             t => t,
         };
@@ -513,6 +517,17 @@ pub(super) fn resolve_router(
 /// `[ROUTER1]`: no router takes this logical name.
 pub(super) fn report_unknown_router(cx: &mut Core<'_>, name: Value) {
     cx.write(router::WERROR, "[ROUTER1] Logical name ");
+    // (an instance name without its brackets, host only)
+    #[cfg(feature = "extras")]
+    if let Value::Sym(s) = name {
+        if let Some(inner) = crate::value::instance_name_body(cx.sym_text(s)) {
+            let mut b: TextBuf<256> = TextBuf::new();
+            let _ = b.write_str(inner);
+            cx.write(router::WERROR, b.as_str());
+            cx.write(router::WERROR, " was not recognized by any routers\n");
+            return;
+        }
+    }
     cx.print_value(router::WERROR, name, false);
     cx.write(router::WERROR, " was not recognized by any routers\n");
 }

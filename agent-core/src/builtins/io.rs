@@ -63,9 +63,16 @@ enum Input {
     File(Name),
 }
 
-/// The text a value names a logical name by, or None for values that cannot be one.
+/// The text a value names a logical name by, or None for values that cannot be one
+/// (an instance name's is the name inside its brackets).
 fn name_text(cx: &mut Core<'_>, v: Value) -> Option<Name> {
     match v {
+        #[cfg(feature = "extras")]
+        Value::Sym(s) if crate::value::instance_name_body(cx.sym_text(s)).is_some() => {
+            let mut b = Name::new();
+            let _ = b.write_str(crate::value::instance_name_body(cx.sym_text(s))?);
+            Some(b)
+        }
         Value::Sym(_) | Value::Str(_) | Value::Int(_) | Value::Float(_) => {
             let mut b = Name::new();
             cx.write_printout(&mut b, v).ok()?;
