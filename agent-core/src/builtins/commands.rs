@@ -20,7 +20,7 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("reset", 0, 0, reset).returns(super::describe::Returns::Void),
     Builtin::eager("clear", 0, 0, clear).returns(super::describe::Returns::Void),
     Builtin::eager("run", 0, 1, run).args(&[ArgType::Integer], ArgType::Any).returns(super::describe::Returns::Void),
-    Builtin::eager("facts", 0, 4, facts).returns(super::describe::Returns::Void),
+    Builtin::eager("facts", 0, 4, facts).args(&[super::describe::ArgType::Any], super::describe::ArgType::Integer).returns(super::describe::Returns::Void),
     Builtin::eager("agenda", 0, 1, agenda).returns(super::describe::Returns::Void),
     Builtin::eager("watch", 1, ANY, watch_).returns(super::describe::Returns::Void),
     Builtin::eager("unwatch", 1, ANY, unwatch).returns(super::describe::Returns::Void),
@@ -104,7 +104,8 @@ fn run(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     Ok(Value::Void)
 }
 
-/// `(facts [module] [start [end [max]]])`: the numbers must be integers >= 0.
+/// `(facts [module] [start [end [max]]])`: the numbers must be integers >= 0 (after
+/// the first, a float is taken truncated, as CLIPS does).
 fn facts(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let mut nums = [-1i64; 3];
     let mut k = 0;
@@ -132,11 +133,15 @@ fn facts(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
                 nums[k] = n;
                 k += 1;
             }
+            Value::Float(f) if i > 0 && k < 3 && super::math::c_trunc_to_i64(f) >= 0 => {
+                nums[k] = super::math::c_trunc_to_i64(f);
+                k += 1;
+            }
             _ => {
                 // (a negative integer is no positive number; anything else no integer)
                 let expected = if i == 0 {
                     "symbol or positive number"
-                } else if matches!(cx.arg(a, i), Value::Int(_)) {
+                } else if matches!(cx.arg(a, i), Value::Int(_) | Value::Float(_)) {
                     "positive number"
                 } else {
                     "integer"
@@ -144,6 +149,10 @@ fn facts(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
                 // (the module a first argument named is left)
                 #[cfg(feature = "modules")]
                 cx.set_current_module(current);
+                // an unbound variable read (reported): CLIPS lists nothing, silently
+                if i > 0 && cx.st.mode.halting {
+                    return Ok(Value::Void);
+                }
                 return Err(EvalError::wrong_type(
                     "facts",
                     crate::error::arg_no(i),

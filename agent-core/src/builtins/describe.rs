@@ -31,8 +31,11 @@ pub enum ArgType {
     Multifield,
     /// A multifield, symbol or string (CLIPS's `q`: `length$`).
     Sequence,
-    /// No literal is a fact address.
+    /// No literal is a fact address (CLIPS's `y`).
     FactAddress,
+    /// A fact address, fact index or symbol (CLIPS's `z`: the fact functions):
+    /// integers and symbols among literals.
+    FactOrIndex,
     /// A fact or an instance: its address, a fact index, an instance name (CLIPS's `h`,
     /// `timetag`): integers, symbols and instance names among literals.
     FactOrInstance,
@@ -76,6 +79,7 @@ mod bits {
     pub const INSTANCE_NAME: u16 = 16;
     pub const MULTIFIELD: u16 = 32;
     pub const VOID: u16 = 64;
+    pub const FACT_ADDRESS: u16 = 128;
     pub const ALL: u16 = u16::MAX;
 }
 
@@ -303,7 +307,9 @@ impl ArgType {
             ArgType::Symbol => matches!(v, Value::Sym(_)),
             ArgType::Str => matches!(v, Value::Str(_)),
             ArgType::Sequence => matches!(v, Value::Sym(_) | Value::Str(_) | Value::Multi(_)),
-            ArgType::FactOrInstance => matches!(v, Value::Int(_) | Value::Sym(_)),
+            ArgType::FactOrInstance | ArgType::FactOrIndex => {
+                matches!(v, Value::Int(_) | Value::Sym(_))
+            }
             ArgType::Multifield | ArgType::FactAddress => false,
         }
     }
@@ -313,8 +319,10 @@ impl ArgType {
     pub fn admits_call(self, r: Returns) -> bool {
         use bits::*;
         let takes = match self {
-            // (no call's type is known to exclude a fact address)
-            ArgType::Any | ArgType::FactAddress => ALL,
+            ArgType::Any => ALL,
+            // (only calls that may give anything give a fact address)
+            ArgType::FactAddress => FACT_ADDRESS,
+            ArgType::FactOrIndex => FACT_ADDRESS | INTEGER | SYMBOL,
             ArgType::Number => INTEGER | FLOAT,
             ArgType::Integer => INTEGER,
             ArgType::Lexeme => SYMBOL | STRING | INSTANCE_NAME,
@@ -323,7 +331,7 @@ impl ArgType {
             ArgType::Str => STRING,
             ArgType::Multifield => MULTIFIELD,
             ArgType::Sequence => MULTIFIELD | SYMBOL | STRING,
-            ArgType::FactOrInstance => INTEGER | SYMBOL | INSTANCE_NAME,
+            ArgType::FactOrInstance => FACT_ADDRESS | INTEGER | SYMBOL | INSTANCE_NAME,
         };
         takes & r.types() != 0
     }
@@ -341,6 +349,7 @@ impl ArgType {
             ArgType::Multifield => "multifield",
             ArgType::Sequence => "multifield, symbol, or string",
             ArgType::FactAddress => "fact-address",
+            ArgType::FactOrIndex => "fact-address, integer, or symbol",
             ArgType::FactOrInstance => {
                 "instance address, instance name, fact address, integer, or symbol"
             }
@@ -363,6 +372,7 @@ impl ArgType {
                 "an argument of type fact-address (a variable or call, not a literal)"
             }
             ArgType::FactOrInstance => "a fact index or an instance name",
+            ArgType::FactOrIndex => "a fact index or a fact-address variable",
             ArgType::Sequence => "an argument of type multifield, symbol, or string",
         }
     }

@@ -39,9 +39,9 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("undeftemplate", 1, 1, undeftemplate).returns(super::describe::Returns::Void),
     Builtin::eager("undeffunction", 1, 1, undeffunction).returns(super::describe::Returns::Void),
     Builtin::eager("undefglobal", 1, 1, undefglobal).returns(super::describe::Returns::Void),
-    Builtin::eager("fact-relation", 1, 1, fact_relation).returns(super::describe::Returns::Symbol),
-    Builtin::eager("fact-slot-names", 1, 1, fact_slot_names),
-    Builtin::eager("ppfact", 1, 3, ppfact).returns(super::describe::Returns::Void),
+    Builtin::eager("fact-relation", 1, 1, fact_relation).args(&[super::describe::ArgType::FactOrIndex], super::describe::ArgType::Any).returns(super::describe::Returns::Symbol),
+    Builtin::eager("fact-slot-names", 1, 1, fact_slot_names).args(&[super::describe::ArgType::FactOrIndex], super::describe::ArgType::Any),
+    Builtin::eager("ppfact", 1, 3, ppfact).args(&[super::describe::ArgType::FactOrIndex], super::describe::ArgType::Any).returns(super::describe::Returns::Void),
     Builtin::eager("type", 1, 1, type_of),
     Builtin::eager("gensym", 0, 0, gensym).returns(super::describe::Returns::Symbol),
     Builtin::eager("gensym*", 0, 0, gensym_star).returns(super::describe::Returns::Symbol),
@@ -780,7 +780,7 @@ fn fact_relation(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     Ok(match cx.fact_arg(v) {
         Some(f) => Value::Sym(cx.templates[cx.facts[f as usize].tmpl as usize].name),
         None => {
-            if matches!(v, Value::Sym(_)) {
+            if !super::facts::is_fact_or_index(v) {
                 super::facts::report_not_a_fact(cx, "fact-relation");
             }
             Value::Sym(SYM_FALSE)
@@ -794,9 +794,11 @@ fn fact_slot_names(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let fv = cx.arg(a, 0);
     let Some(f) = cx.fact_arg(fv) else {
         match fv {
-            Value::Int(n) => cx.write_error_message(EvalError::new(EvalErrorKind::NoSuchFact(n))),
-            Value::Sym(_) => super::facts::report_not_a_fact(cx, "fact-slot-names"),
-            _ => {}
+            Value::Int(n @ 0..) => {
+                cx.write_error_message(EvalError::new(EvalErrorKind::NoSuchFact(n)))
+            }
+            Value::Fact(_) => {}
+            _ => super::facts::report_not_a_fact(cx, "fact-slot-names"),
         }
         return Ok(Value::Sym(SYM_FALSE));
     };
@@ -826,18 +828,15 @@ fn ppfact(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         return match fv {
             // a retracted fact's address prints nothing
             Value::Fact(_) => Ok(Value::Void),
-            Value::Int(n) if n >= 0 => {
+            Value::Int(n @ 0..) => {
                 cx.write_error_message(EvalError::new(EvalErrorKind::NoSuchFact(n)));
                 Ok(Value::Void)
             }
-            Value::Sym(_) | Value::Int(_) => {
-                Err(EvalError::wrong_type("ppfact", 1, T_FACT_OR_INDEX))
+            // (CLIPS's message; the actions go on)
+            _ => {
+                super::facts::report_not_a_fact(cx, "ppfact");
+                Ok(Value::Void)
             }
-            _ => Err(EvalError::wrong_type(
-                "ppfact",
-                1,
-                "fact-address, integer, or symbol",
-            )),
         };
     };
     let to = if a.len > 1 {

@@ -1,6 +1,6 @@
 //! Fact functions: assert, retract, modify, duplicate, fact-slot-value, fact-index.
 
-use super::describe::ArgType::{Any, FactAddress as F};
+use super::describe::ArgType::{Any, FactAddress as F, FactOrIndex as Z, Symbol};
 use super::describe::OnError;
 use super::describe::Returns as R;
 use super::{Args, Builtin, ANY, SYM_FALSE, SYM_NIL};
@@ -15,12 +15,12 @@ use crate::value::{FactRef, MfSpan, SymId, Value, NONE};
 #[rustfmt::skip]
 pub const FUNCS: &[Builtin] = &[
     Builtin::lazy("assert", 1, ANY, assert),
-    Builtin::eager("retract", 1, ANY, retract).returns(R::Void),
+    Builtin::eager("retract", 1, ANY, retract).args(&[], Z).returns(R::Void),
     Builtin::lazy("modify", 1, ANY, modify),
     Builtin::lazy("duplicate", 1, ANY, duplicate),
-    Builtin::eager("fact-slot-value", 2, 2, fact_slot_value),
+    Builtin::eager("fact-slot-value", 2, 2, fact_slot_value).args(&[Z, Symbol], Any),
     Builtin::eager("fact-index", 1, 1, fact_index).args(&[F], Any).on_error(OnError::MinusOne).returns(R::Integer),
-    Builtin::eager("fact-existp", 1, 1, fact_existp).returns(R::Symbol),
+    Builtin::eager("fact-existp", 1, 1, fact_existp).args(&[Z], Any).returns(R::Symbol),
 ];
 pub const TABLE: super::Table = super::Table::new(FUNCS);
 
@@ -834,7 +834,11 @@ const NO_RETRACT_WHILE_MATCHING: &str =
 const NO_ASSERT_WHILE_MATCHING: &str =
     "\n[FACTMNGR2] Facts may not be asserted during pattern-matching\n";
 
+/// `(retract f ...)`: each fact (address or index) retracted; `*` all of them. An
+/// argument of another type is reported and the others still retracted (then the
+/// error halts what runs); a negative index is reported and ends the call.
 fn retract(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    let mut failed = false;
     for i in 0..a.len as usize {
         let v = cx.arg(a, i);
         if let Value::Sym(s) = v {
@@ -863,24 +867,17 @@ fn retract(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
             // a stale fact address was retracted already: nothing to do (as CLIPS)
             None if matches!(v, Value::Fact(_)) => {}
             None => {
-                let n = match v {
-                    Value::Fact(r) => r.num as i64,
-                    Value::Int(n) => n,
-                    // CLIPS's restriction names these for a float or a string
-                    Value::Sym(_) => {
-                        return Err(EvalError::wrong_type(
-                            "retract",
-                            crate::error::arg_no(i),
-                            "fact-address, fact-index, or the symbol *",
-                        ))
+                let Value::Int(n @ 0..) = v else {
+                    cx.write_error_message(EvalError::wrong_type(
+                        "retract",
+                        crate::error::arg_no(i),
+                        "fact-address, fact-index, or the symbol *",
+                    ));
+                    if matches!(v, Value::Int(_)) {
+                        break;
                     }
-                    _ => {
-                        return Err(EvalError::wrong_type(
-                            "retract",
-                            crate::error::arg_no(i),
-                            "fact-address, integer, or symbol",
-                        ))
-                    }
+                    failed = true;
+                    continue;
                 };
                 let mut b: crate::value::TextBuf<64> = crate::value::TextBuf::new();
                 let _ = core::fmt::Write::write_fmt(
@@ -894,6 +891,9 @@ fn retract(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     // matches the retracts unblocked but found no room for are owed (see
     // `Core::pay_owed`): reported here, as the right-hand side's error
     cx.pay_owed()?;
+    if failed {
+        return Err(EvalError::already_reported());
+    }
     Ok(Value::Void)
 }
 
@@ -955,16 +955,9 @@ pub(crate) fn slot_value_of(
 /// returns FALSE (nothing printed for a stale address).
 fn no_such_fact(cx: &mut Core<'_>, fv: Value) -> Result<Value, EvalError> {
     match fv {
-        Value::Int(n) => cx.write_error_message(EvalError::new(EvalErrorKind::NoSuchFact(n))),
-        Value::Sym(_) => report_not_a_fact(cx, "fact-slot-value"),
+        Value::Int(n @ 0..) => cx.write_error_message(EvalError::new(EvalErrorKind::NoSuchFact(n))),
         Value::Fact(_) => {}
-        _ => {
-            return Err(EvalError::wrong_type(
-                "fact-slot-value",
-                1,
-                "fact-address, integer, or symbol",
-            ))
-        }
+        _ => report_not_a_fact(cx, "fact-slot-value"),
     }
     Ok(Value::Sym(SYM_FALSE))
 }
@@ -1034,15 +1027,20 @@ fn fact_index(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 
 fn fact_existp(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let v = cx.arg(a, 0);
-    // (a negative index is no fact index either)
-    if matches!(v, Value::Sym(_)) || matches!(v, Value::Int(n) if n < 0) {
+    if !is_fact_or_index(v) {
         report_not_a_fact(cx, "fact-existp");
     }
     Ok(Core::bool_value(cx.fact_arg(v).is_some()))
 }
 
-/// A symbol where a fact function wants a fact (`nil` from an empty query, say):
-/// CLIPS's message, and the function gives FALSE without halting the actions.
+/// A fact address or a fact index (a negative index is none, nor is a float).
+pub(crate) fn is_fact_or_index(v: Value) -> bool {
+    matches!(v, Value::Fact(_) | Value::Int(0..))
+}
+
+/// A value that is no fact where a fact function wants one (`nil` from an empty query,
+/// a float, a negative index): CLIPS's message, and the function gives FALSE without
+/// halting the actions.
 pub(crate) fn report_not_a_fact(cx: &mut Core<'_>, func: &'static str) {
     cx.write_error_message(EvalError::wrong_type(func, 1, "fact-address or fact-index"));
 }
