@@ -2427,6 +2427,10 @@ impl Core<'_> {
                 if hold {
                     self.st.eval.query_hold = COMMAND_HOLD;
                 }
+                // a variable alone is printed even when it holds a void value (an
+                // empty line, as CLIPS's command loop does); read before the command
+                // runs, as a `clear` lets its nodes go
+                let bare_variable = matches!(self.exprs[e as usize].op, Op::Global | Op::Local);
                 if r.is_ok() {
                     r = self.eval(e);
                 }
@@ -2436,7 +2440,7 @@ impl Core<'_> {
                 }
                 match r {
                     Ok(v) => {
-                        if v != Value::Void && !self.st.io.quiet_results {
+                        if (v != Value::Void || bare_variable) && !self.st.io.quiet_results {
                             self.print_value(router::STDOUT, v, true);
                             self.write(router::STDOUT, "\n");
                         }

@@ -76,8 +76,8 @@ impl Core<'_> {
             Op::Local => self.local(e, x),
             Op::Global => {
                 let v = self.globals[x.data as usize].value;
-                if matches!(v, Value::Void) {
-                    return self.unbound_global(x.data);
+                if matches!(v, Value::Void | Value::BoundVoid) {
+                    return self.unbound_global(x.data, v);
                 }
                 Ok(v)
             }
@@ -115,23 +115,27 @@ impl Core<'_> {
         }
     }
 
-    /// A frame local's value; one the parser marked as maybe unbound (bound only
-    /// inside a condition or loop: `aux` 1, its name in the payload node after it) is
-    /// an error while unbound, an LHS variable the actions bind (`aux` 2) its LHS value.
+    /// A frame local's value (see `void_local` for one holding none).
     #[inline(always)]
     fn local(&mut self, e: Ix, x: Expr) -> Result<Value, EvalError> {
         let v = self.stack[(self.st.frame.bp + x.data) as usize];
-        if x.aux != 0 && matches!(v, Value::Void) {
-            return self.unbound_local(e, x);
+        if matches!(v, Value::Void | Value::BoundVoid) {
+            return self.void_local(e, x, v);
         }
         Ok(v)
     }
 
-    /// An unbound local: an LHS variable the actions bind (`aux` 2) has its LHS value
-    /// until then (CLIPS's fallback), another is an error.
+    /// A local holding no value: bound to a void value (`Value::BoundVoid`), that
+    /// value; unbound, one the parser proved bound is void as well; one it marked as
+    /// maybe unbound (bound only inside a condition or loop: `aux` 1, its name in the
+    /// payload node after it) is an error, an LHS variable the actions bind (`aux` 2)
+    /// has its LHS value until then (CLIPS's fallback).
     #[cold]
     #[inline(never)]
-    fn unbound_local(&mut self, e: Ix, x: Expr) -> Result<Value, EvalError> {
+    fn void_local(&mut self, e: Ix, x: Expr, v: Value) -> Result<Value, EvalError> {
+        if x.aux == 0 || matches!(v, Value::BoundVoid) {
+            return Ok(Value::Void);
+        }
         if x.aux == 2 {
             return self.pattern_var_of(self.exprs[x.first as usize]);
         }
@@ -139,11 +143,15 @@ impl Core<'_> {
         Err(EvalError::new(EvalErrorKind::UnboundVariable { name }))
     }
 
-    /// A global holding no value: a prompt variable (`?x`, hidden global `?x`) never
-    /// bound is CLIPS's `[EVALUATN1]`; a defglobal gives its value.
+    /// A global holding no value `v`: bound to a void value, that value; a prompt
+    /// variable (`?x`, hidden global `?x`) never bound is CLIPS's `[EVALUATN1]`; a
+    /// defglobal gives its value.
     #[cold]
     #[inline(never)]
-    fn unbound_global(&mut self, g: Ix) -> Result<Value, EvalError> {
+    fn unbound_global(&mut self, g: Ix, v: Value) -> Result<Value, EvalError> {
+        if matches!(v, Value::BoundVoid) {
+            return Ok(Value::Void);
+        }
         let name = self.globals[g as usize].name;
         let text = self.sym_text(name);
         if !text.starts_with('?') {
@@ -170,6 +178,9 @@ impl Core<'_> {
             .map(|d| self.globals[d as usize].value)
             .filter(|v| !matches!(v, Value::Void))
         {
+            if matches!(v, Value::BoundVoid) {
+                return Ok(Value::Void);
+            }
             return Ok(v);
         }
         // none: `[GLOBLDEF1]`, and the read gives FALSE with CLIPS's evaluation error

@@ -82,7 +82,7 @@ fn mix(h: u32, x: u64) -> u32 {
 
 pub(crate) fn value_hash(h: u32, v: Value) -> u32 {
     match v {
-        Value::Void => mix(h, 0),
+        Value::Void | Value::BoundVoid => mix(h, 0),
         Value::Int(i) => mix(h ^ 1, i as u64),
         Value::Float(f) => mix(h ^ 2, f.to_bits()),
         Value::Sym(s) => mix(h ^ 3, s as u64),

@@ -150,7 +150,7 @@ impl<'a> FactView<'a> {
             Value::Str(s) => ValueRef::String(self.text(s)),
             Value::Fact(r) => ValueRef::Fact(r.num),
             Value::Multi(m) => ValueRef::Multi(m.len),
-            Value::Void => ValueRef::Void,
+            Value::Void | Value::BoundVoid => ValueRef::Void,
         }
     }
 

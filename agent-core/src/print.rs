@@ -59,7 +59,7 @@ impl View<'_> {
     /// A value as CLIPS prints results: strings quoted, multifields in parentheses.
     pub fn write_value(&self, out: &mut dyn Write, v: Value, quote: bool) -> fmt::Result {
         match v {
-            Value::Void => Ok(()),
+            Value::Void | Value::BoundVoid => Ok(()),
             Value::Int(i) => write!(out, "{i}"),
             Value::Float(f) => write_float(out, f),
             Value::Sym(s) => out.write_str(self.sym(s)),

@@ -53,6 +53,11 @@ pub struct MfSpan {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Value {
     Void,
+    /// Only in a variable's storage (a frame local, a global): the variable is bound
+    /// to a void value (`(bind ?x (printout ...))`), which CLIPS keeps; reading it
+    /// gives `Void`, while a `Void` in storage means unbound. Declared next to `Void`
+    /// so that one comparison of the tag tells both apart from every value.
+    BoundVoid,
     Int(i64),
     Float(f64),
     Sym(SymId),

@@ -370,6 +370,7 @@ differential_programs! {
     p218_angle_conversions => "218-angle-conversions",
     p219_group_ce_error_echo => "219-group-ce-error-echo",
     p220_logical_ce_order => "220-logical-ce-order",
+    p221_bind_void_value => "221-bind-void-value",
     p222_fact_index_floats => "222-fact-index-floats",
     p223_length_of_no_sequence => "223-length-of-no-sequence",
     p224_instance_name_logical_name => "224-instance-name-logical-name",

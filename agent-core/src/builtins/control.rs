@@ -414,6 +414,8 @@ fn bind(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
                 }
                 spliced = true;
             }
+            // (a call without a value adds nothing)
+            Value::Void => cx.st.frame.scratch_top = pos,
             _ => {
                 cx.st.frame.scratch_top = pos;
                 cx.multi_push(v)?
@@ -437,14 +439,16 @@ fn bind(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
         if init != NONE {
             let v = cx.eval(init)?;
             let v = keep_bound(cx, start, v)?;
-            store_bound(cx, target, v)?;
+            store_bound(cx, target, bound(v))?;
             return Ok(v);
         }
         Value::Void
     } else {
         cx.multi_finish(start)
     };
-    store_bound(cx, target, value)?;
+    // (no value unbinds a local or prompt variable)
+    let stored = if n == 0 { value } else { bound(value) };
+    store_bound(cx, target, stored)?;
     Ok(if n == 0 { Value::Sym(SYM_FALSE) } else { value })
 }
 
@@ -462,7 +466,7 @@ fn bind_one(cx: &mut Core<'_>, target: Ix, a: Ix) -> Result<Value, EvalError> {
         Err(e) => return Err(e),
     };
     let value = keep_bound(cx, start, value)?;
-    store_bound(cx, target, value)?;
+    store_bound(cx, target, bound(value))?;
     Ok(value)
 }
 
@@ -490,7 +494,7 @@ fn bind_failed(
     } else {
         keep_bound(cx, start, v)?
     };
-    store_bound(cx, target, v)?;
+    store_bound(cx, target, bound(v))?;
     cx.set_error_fallback(v, None);
     let mut e = e;
     e.reported = true;
@@ -522,6 +526,18 @@ fn keep_bound(cx: &mut Core<'_>, start: Ix, v: Value) -> Result<Value, EvalError
         start
     };
     Ok(v)
+}
+
+/// What a variable bound to `v` holds: a void value (a `printout`, a deffunction
+/// returning nothing) binds it as CLIPS does (`Value::BoundVoid`), as `Void` in
+/// storage is "unbound".
+#[inline(always)]
+fn bound(v: Value) -> Value {
+    if matches!(v, Value::Void) {
+        Value::BoundVoid
+    } else {
+        v
+    }
 }
 
 /// Stores `bind`'s value in its target, a local frame slot or a global.

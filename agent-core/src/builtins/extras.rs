@@ -994,7 +994,7 @@ fn type_of(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
                 None => "SYMBOL",
             }
         }
-        Value::Void => {
+        Value::Void | Value::BoundVoid => {
             cx.write(
                 router::WERROR,
                 "[INSCOM1] Undefined type in function type.\n",

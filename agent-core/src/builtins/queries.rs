@@ -395,7 +395,7 @@ impl SlotTest {
             _ => cx.const_value(self.other),
         };
         // an unbound variable: the evaluator reports it
-        if matches!(w, Value::Void) {
+        if matches!(w, Value::Void | Value::BoundVoid) {
             return None;
         }
         let (a, b) = if self.slot_first { (v, w) } else { (w, v) };

@@ -457,7 +457,9 @@ impl Core<'_> {
                 Value::Str(s) => write!(out, "Value::Str({s})")?,
                 // multifields live in scratch, fact addresses in working memory: the
                 // loader evaluates the initial value again
-                Value::Multi(_) | Value::Fact(_) | Value::Void => write!(out, "Value::Void")?,
+                Value::Multi(_) | Value::Fact(_) | Value::Void | Value::BoundVoid => {
+                    write!(out, "Value::Void")?
+                }
             }
             writeln!(out, ", init: {} }},", I(g.init))?;
         }

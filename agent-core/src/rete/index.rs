@@ -24,7 +24,7 @@ use crate::value::{Ix, Value, NONE};
 #[inline(always)]
 fn atom_hash(v: Value) -> u32 {
     match v {
-        Value::Void | Value::Multi(_) => 1,
+        Value::Void | Value::BoundVoid | Value::Multi(_) => 1,
         Value::Int(i) => mix(2, i as u32 ^ (i >> 32) as u32),
         Value::Float(f) => {
             let bits = if f == 0.0 { 0 } else { f.to_bits() };
