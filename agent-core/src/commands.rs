@@ -538,6 +538,21 @@ impl Core<'_> {
             self.modules.fill(crate::module::NO_MODULE);
         }
         let hw = self.st.pools.hw;
+        // a `clear` inside a larger command (`(eq (clear) 1)`, `(progn (clear) (build
+        // ...))`, a batch file's run from the prompt) leaves the expression nodes and
+        // symbols in place, the running command's and those before them (a compiled
+        // rule base's read in place, too): the command goes on reading its own at the
+        // same indices, and what it defines next goes after them. A lone `(clear)` at
+        // the prompt lets them all go.
+        let keep_exprs = (self.st.eval.eval_depth > 1).then_some((
+            self.st.pools.nexprs,
+            self.st.eval.command_base,
+            #[cfg(feature = "in-place")]
+            self.st.rom.exprs,
+            #[cfg(not(feature = "in-place"))]
+            (),
+            (self.st.pools.nsyms, self.st.pools.sym_bytes),
+        ));
         // what is running goes on: its frame, nesting and firing, and the generator
         let ctx = (
             self.st.frame,
@@ -557,6 +572,14 @@ impl Core<'_> {
             (self.st.text_regions, self.st.tools, self.st.profile);
         *self.st = crate::engine::State::new();
         self.st.io = io;
+        if let Some(kept) = keep_exprs {
+            self.st.pools.nexprs = kept.0;
+            self.st.eval.command_base = kept.1;
+            #[cfg(feature = "in-place")]
+            {
+                self.st.rom.exprs = kept.2;
+            }
+        }
         #[cfg(feature = "extras")]
         {
             tools.forget_symbols();
@@ -589,57 +612,64 @@ impl Core<'_> {
         }
         self.st.agenda.strategy = strategy;
         self.st.pools.nexternals = next;
-        // keep the symbols naming external functions
-        for b in self.sym_buckets.iter_mut() {
-            *b = NONE;
-        }
-        let keep = ext_syms;
-        if !rom_syms.is_empty() {
-            // they were a compiled rule base's, read in place (the engine had them in
-            // its arena before it loaded the rule base, so they fit)
-            let mut top = 0usize;
-            for i in 0..keep as usize {
-                let t = rom_syms.texts.get(i).copied().unwrap_or("").as_bytes();
-                if i >= self.sym_entries.len() {
-                    return Err(crate::engine::cap(
-                        crate::error::Pool::Symbols,
-                        self.sym_entries.len(),
-                    )
-                    .into());
-                }
-                if top + t.len() > self.sym_bytes.len() {
-                    return Err(crate::engine::cap(
-                        crate::error::Pool::SymbolBytes,
-                        self.sym_bytes.len(),
-                    )
-                    .into());
-                }
-                self.sym_bytes[top..top + t.len()].copy_from_slice(t);
-                self.sym_entries[i] = crate::symbols::SymEntry {
-                    start: top as Ix,
-                    len: t.len() as Ix,
-                    next: NONE,
-                };
-                top += t.len();
-            }
-        }
-        for i in 0..keep {
-            let e = self.sym_entries[i as usize];
-            let text_start = e.start as usize;
-            let h = crate::symbols::hash_bytes(
-                &self.sym_bytes[text_start..text_start + e.len as usize],
-            ) as usize
-                % self.sym_buckets.len();
-            self.sym_entries[i as usize].next = self.sym_buckets[h];
-            self.sym_buckets[h] = i;
-        }
-        self.st.pools.nsyms = keep;
-        self.st.pools.sym_bytes = if keep == 0 {
-            0
+        if let Some(kept) = keep_exprs {
+            // the running command's symbols stay too (with all the others)
+            self.st.rom.symbols = rom_syms;
+            (self.st.pools.nsyms, self.st.pools.sym_bytes) = kept.3;
+            self.st.pools.ext_syms = ext_syms;
         } else {
-            self.sym_entries[keep as usize - 1].start + self.sym_entries[keep as usize - 1].len
-        };
-        self.st.pools.ext_syms = ext_syms;
+            // keep the symbols naming external functions
+            for b in self.sym_buckets.iter_mut() {
+                *b = NONE;
+            }
+            let keep = ext_syms;
+            if !rom_syms.is_empty() {
+                // they were a compiled rule base's, read in place (the engine had them in
+                // its arena before it loaded the rule base, so they fit)
+                let mut top = 0usize;
+                for i in 0..keep as usize {
+                    let t = rom_syms.texts.get(i).copied().unwrap_or("").as_bytes();
+                    if i >= self.sym_entries.len() {
+                        return Err(crate::engine::cap(
+                            crate::error::Pool::Symbols,
+                            self.sym_entries.len(),
+                        )
+                        .into());
+                    }
+                    if top + t.len() > self.sym_bytes.len() {
+                        return Err(crate::engine::cap(
+                            crate::error::Pool::SymbolBytes,
+                            self.sym_bytes.len(),
+                        )
+                        .into());
+                    }
+                    self.sym_bytes[top..top + t.len()].copy_from_slice(t);
+                    self.sym_entries[i] = crate::symbols::SymEntry {
+                        start: top as Ix,
+                        len: t.len() as Ix,
+                        next: NONE,
+                    };
+                    top += t.len();
+                }
+            }
+            for i in 0..keep {
+                let e = self.sym_entries[i as usize];
+                let text_start = e.start as usize;
+                let h = crate::symbols::hash_bytes(
+                    &self.sym_bytes[text_start..text_start + e.len as usize],
+                ) as usize
+                    % self.sym_buckets.len();
+                self.sym_entries[i as usize].next = self.sym_buckets[h];
+                self.sym_buckets[h] = i;
+            }
+            self.st.pools.nsyms = keep;
+            self.st.pools.sym_bytes = if keep == 0 {
+                0
+            } else {
+                self.sym_entries[keep as usize - 1].start + self.sym_entries[keep as usize - 1].len
+            };
+            self.st.pools.ext_syms = ext_syms;
+        }
         // CLIPS prints `==> f-0 (initial-fact)` here when facts are watched
         self.st.mode.watch = w;
         #[cfg(feature = "extras")]
@@ -662,7 +692,7 @@ impl Core<'_> {
         self.reset_focus()?;
         #[cfg(feature = "extras")]
         self.trace_initial_object(true);
-        if keep == 0 {
+        if ext_syms == 0 {
             self.startup()
         } else {
             self.startup_after_clear()

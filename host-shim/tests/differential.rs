@@ -375,6 +375,7 @@ differential_programs! {
     p223_length_of_no_sequence => "223-length-of-no-sequence",
     p224_instance_name_logical_name => "224-instance-name-logical-name",
     p230_alpha_constant_discrimination => "230-alpha-constant-discrimination",
+    p231_run_inside_a_call => "231-run-inside-a-call",
     p240_logical_basic => "240-logical-basic",
     p241_logical_self_retract => "241-logical-self-retract",
     p242_logical_not_exists_modify => "242-logical-not-exists-modify",

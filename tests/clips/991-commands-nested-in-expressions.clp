@@ -30,6 +30,8 @@
 (abs (halt))
 (list-deftemplates)
 (facts)
+(defrule go => (printout t "fired" crlf))
+(str-cat (run))
 (create$ (reset) 1)
 (+ 1 (progn (reset) 2))
 (eq (clear) 1)
