@@ -543,8 +543,9 @@ impl Core<'_> {
         // symbols in place, the running command's and those before them (a compiled
         // rule base's read in place, too): the command goes on reading its own at the
         // same indices, and what it defines next goes after them. A lone `(clear)` at
-        // the prompt lets them all go.
-        let keep_exprs = (self.st.eval.eval_depth > 1).then_some((
+        // the prompt lets them all go. (Only commands run from text nest a clear: the
+        // image, without the parser, has none.)
+        let keep_exprs = (cfg!(feature = "parser") && self.st.eval.eval_depth > 1).then_some((
             self.st.pools.nexprs,
             self.st.eval.command_base,
             #[cfg(feature = "in-place")]
