@@ -262,11 +262,14 @@ impl Core<'_> {
 
     /// `(reset)`.
     pub fn reset(&mut self) -> Result<(), EvalError> {
-        // a deffacts or global that calls `clear` is refused (builtins/commands.rs)
-        let outer = self.st.mode.resetting;
+        // a deffacts or global that calls `clear` is refused (builtins/commands.rs);
+        // one that calls `reset` does nothing, as CLIPS ignores a reset under way
+        if self.st.mode.resetting {
+            return Ok(());
+        }
         self.st.mode.resetting = true;
         let r = self.reset_inner();
-        self.st.mode.resetting = outer;
+        self.st.mode.resetting = false;
         r
     }
 

@@ -631,6 +631,39 @@ impl Core<'_> {
         Ok(v)
     }
 
+    /// The constant value call `a` gives after failing with `e`, for the caller's own
+    /// fallback (an `if` branch): FALSE for a deffunction that halted, a builtin's
+    /// row constant when it recorded none (`set_error_fallback`, left for the caller
+    /// to read), None otherwise (no function's error, or no value: nothing printed).
+    #[cfg(feature = "extras")]
+    pub(crate) fn fallback_after_error(&mut self, a: Ix, e: &EvalError) -> Option<Value> {
+        if self.deffunction_halted(a, e) {
+            return Some(Value::Sym(SYM_FALSE));
+        }
+        let x = self.exprs[a as usize];
+        let depth = self.st.eval.eval_depth + 1;
+        if x.op != Op::Call
+            || x.aux != FnKind::Builtin as u8
+            || matches!(
+                e.kind(),
+                EvalErrorKind::TooDeep { .. }
+                    | EvalErrorKind::Exit
+                    | EvalErrorKind::Capacity(_)
+                    | EvalErrorKind::Interrupted
+                    | EvalErrorKind::UnboundVariable { .. }
+            )
+            || self
+                .st
+                .eval
+                .error_fallback
+                .is_some_and(|fb| fb.depth == depth)
+        {
+            return None;
+        }
+        let fb = builtins::get(x.data).on_error.fallback()?;
+        self.fallback_value(fb).ok()
+    }
+
     /// Argument `a` (the builtin's arguments from `base`) failed with `e`: its value
     /// after the error is pushed and noted (`EvalState::failed_arg`) for
     /// `builtin_after_failed_arg`, and `e` (reported) stops `push_args`.

@@ -44,13 +44,50 @@ fn progn(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
 
 fn if_(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     let [c, t, e] = kids::<3>(cx, call);
-    if Core::is_true(cx.eval(c)?) {
-        branch(cx, t)
+    // CLIPS goes on with a failed condition's error value (its evaluation error set:
+    // a lone action still runs, `State::halting`)
+    #[cfg(feature = "extras")]
+    let cond = match cx.eval(c) {
+        Ok(v) => v,
+        Err(err) => cx.value_after_error(c, err)?,
+    };
+    #[cfg(not(feature = "extras"))]
+    let cond = cx.eval(c)?;
+    let p = if Core::is_true(cond) {
+        t
     } else if e != NONE {
-        branch(cx, e)
+        e
     } else {
-        Ok(Value::Sym(SYM_FALSE))
+        return Ok(Value::Sym(SYM_FALSE));
+    };
+    #[cfg(feature = "extras")]
+    return branch(cx, p).map_err(|err| branch_failed(cx, p, err));
+    #[cfg(not(feature = "extras"))]
+    branch(cx, p)
+}
+
+/// An `if` branch `p` failed with `err`: CLIPS's `if` returns the value the branch
+/// gave after its error, which the command line prints (`(if TRUE then (str-cat
+/// (run)))` prints `""`), so its fallback becomes the `if`'s (`set_error_fallback`).
+#[cfg(feature = "extras")]
+#[cold]
+#[inline(never)]
+fn branch_failed(cx: &mut Core<'_>, p: Ix, err: EvalError) -> EvalError {
+    let x = cx.exprs[p as usize];
+    let progn = x.op == Op::Call && x.aux == FnKind::Builtin as u8 && x.data == super::ID_PROGN;
+    let a = if progn && x.first != NONE && cx.exprs[x.first as usize].next == NONE {
+        x.first
+    } else {
+        p
+    };
+    let depth = cx.st.eval.eval_depth;
+    if let Some(v) = cx.fallback_after_error(a, &err) {
+        cx.set_error_fallback(v, None);
+    } else if let Some(mut fb) = cx.st.eval.error_fallback.filter(|fb| fb.depth == depth + 1) {
+        fb.depth = depth;
+        cx.st.eval.error_fallback = Some(fb);
     }
+    err
 }
 
 /// An `if` branch, parsed as a progn of its actions. CLIPS keeps a progn only around

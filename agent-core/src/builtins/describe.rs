@@ -230,6 +230,8 @@ pub enum BodyNames {
     Float,
     /// "integer" for "integer or float".
     Integer,
+    /// "file name" for "symbol or string" (`open`, `remove`, `rename`, `dribble-on`).
+    FileName,
 }
 
 impl Builtin {
@@ -271,6 +273,7 @@ impl Builtin {
             BodyNames::SymbolOrString if expected == T_LEXEME => "symbol or string",
             BodyNames::Float if expected == T_NUMBER => "float",
             BodyNames::Integer if expected == T_NUMBER => "integer",
+            BodyNames::FileName if expected == "symbol or string" => "file name",
             _ => expected,
         }
     }

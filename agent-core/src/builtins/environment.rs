@@ -612,6 +612,11 @@ const RESTRICTIONS: &[(&str, &str)] = &[
 /// `expand$` called itself (not among a call's arguments): CLIPS's `[MISCFUN1]`,
 /// its argument not evaluated.
 fn expand(cx: &mut Core<'_>, _call: Ix) -> Result<Value, EvalError> {
+    expand_outside_call(cx)
+}
+
+/// CLIPS's `[MISCFUN1]` for an `expand$` (or `$?x`) that is no call's argument.
+pub(crate) fn expand_outside_call(cx: &mut Core<'_>) -> Result<Value, EvalError> {
     cx.write(
         router::WERROR,
         "[MISCFUN1] expand$ must be used in the argument list of a function call.\n",
@@ -638,6 +643,7 @@ pub(crate) fn expanded_call(cx: &Core<'_>, x: Expr) -> Expr {
 fn expansion_call(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     let inner = cx.exprs[call as usize].first;
     let x = cx.exprs[inner as usize];
+    let halting = cx.st.mode.halting;
     // the expansions' multifields, in order, from `parts`
     let parts = cx.st.frame.sp;
     let mut count: usize = 0;
@@ -645,17 +651,25 @@ fn expansion_call(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     while c != NONE {
         let e = cx.exprs[c as usize];
         if is_expansion(e) {
+            let halting = cx.st.mode.halting;
             match cx.eval(e.first)? {
-                Value::Multi(m) => {
+                Value::Multi(m) if cx.st.mode.halting == halting => {
                     count += m.len as usize;
                     cx.push_value(Value::Multi(m))?;
                 }
+                // one that failed (an unbound global, reported) or is no multifield
+                // stands for one argument that sets the evaluation error when it
+                // is read (CLIPS's `(set-evaluation-error)`), as FALSE (Void here)
                 _ => {
-                    cx.write(
-                        router::WERROR,
-                        "[ARGACCES5] Function expand$ expected argument #1 to be of type multifield\n",
-                    );
-                    return Err(EvalError::already_reported());
+                    if cx.st.mode.halting == halting {
+                        cx.write(
+                            router::WERROR,
+                            "[ARGACCES5] Function expand$ expected argument #1 to be of type multifield\n",
+                        );
+                    }
+                    cx.st.mode.halting = halting;
+                    count += 1;
+                    cx.push_value(Value::Void)?;
                 }
             }
         } else {
@@ -692,10 +706,16 @@ fn expansion_call(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     while c != NONE {
         let e = cx.exprs[c as usize];
         if is_expansion(e) {
-            if let Value::Multi(m) = cx.stack[part as usize] {
-                for k in 0..m.len as usize {
-                    let v = cx.mf_item(m, k);
-                    cx.push_value(v)?;
+            match cx.stack[part as usize] {
+                Value::Multi(m) => {
+                    for k in 0..m.len as usize {
+                        let v = cx.mf_item(m, k);
+                        cx.push_value(v)?;
+                    }
+                }
+                _ => {
+                    cx.st.mode.halting = true;
+                    cx.push_value(Value::Sym(super::SYM_FALSE))?;
                 }
             }
             part += 1;
@@ -713,6 +733,12 @@ fn expansion_call(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     match x.aux {
         k if k == FnKind::Builtin as u8 => {
             let b = super::get(x.data);
+            // an argument set the evaluation error: most stop with their error value
+            if cx.st.mode.halting && !halting {
+                if let Some(v) = cx.args_failed(b)? {
+                    return Ok(v);
+                }
+            }
             match super::code_of(cx, x.data, b) {
                 super::Imp::Eager(f) => f(cx, args).map_err(computed_type_error),
                 super::Imp::Lazy(_) if b.name == "printout" => {

@@ -55,6 +55,11 @@ fn eval(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let item = p.next_item();
     let nlocals = p.nlocals;
     let r = match item {
+        // `$?x` alone is CLIPS's `expand$` outside a call: `[MISCFUN1]`
+        #[cfg(feature = "extras")]
+        Ok(Item::Command(e)) if cx.exprs[e as usize].op == crate::expr::Op::Expand => {
+            super::environment::expand_outside_call(cx)
+        }
         Ok(Item::Command(e)) => {
             // a frame for the command's own loop/query variables
             let outer = cx.st.frame;
@@ -71,6 +76,16 @@ fn eval(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
             cx.st.frame.leave(outer);
             r
         }
+        // nothing to evaluate: CLIPS's parser wants an expression
+        #[cfg(feature = "extras")]
+        Ok(Item::End) => {
+            cx.write(
+                crate::host::router::WERROR,
+                "\n[EXPRNPSR2] Expected a constant, variable, or expression.\n",
+            );
+            Err(EvalError::already_reported())
+        }
+        #[cfg(not(feature = "extras"))]
         Ok(Item::End) => Ok(Value::Sym(SYM_FALSE)),
         Ok(Item::Construct) => Ok(Value::Sym(SYM_FALSE)),
         Err(e) => {

@@ -18,6 +18,11 @@
 //! [`Host::dribble_on`]: crate::host::Host::dribble_on
 
 use super::describe::Returns as R;
+use super::describe::{ArgType, BodyNames, OnError};
+
+/// A file name: a symbol or a string (CLIPS's `k`).
+const FILE: ArgType = ArgType::SymbolOrString;
+const ANY_ARG: ArgType = ArgType::Any;
 use core::fmt::Write;
 
 use super::commands::{report_unknown_router, ROUTERS};
@@ -35,11 +40,11 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("read-number", 0, 1, read_number),
     Builtin::eager("get-char", 0, 1, get_char).returns(R::Integer),
     Builtin::eager("put-char", 1, 2, put_char).returns(R::Void),
-    Builtin::eager("open", 2, 3, open).returns(R::Symbol),
+    Builtin::eager("open", 2, 3, open).returns(R::Symbol).args(&[FILE], ANY_ARG).on_error(OnError::False).body_names(BodyNames::FileName),
     Builtin::eager("close", 0, 1, close).returns(R::Symbol),
-    Builtin::eager("remove", 1, 1, remove).returns(R::Symbol),
-    Builtin::eager("rename", 2, 2, rename).returns(R::Symbol),
-    Builtin::eager("dribble-on", 1, 1, dribble_on).returns(R::Symbol),
+    Builtin::eager("remove", 1, 1, remove).returns(R::Symbol).args(&[], FILE).on_error(OnError::False).body_names(BodyNames::FileName),
+    Builtin::eager("rename", 2, 2, rename).returns(R::Symbol).args(&[], FILE).on_error(OnError::False).body_names(BodyNames::FileName),
+    Builtin::eager("dribble-on", 1, 1, dribble_on).returns(R::Symbol).args(&[], FILE).on_error(OnError::False).body_names(BodyNames::FileName),
     Builtin::eager("dribble-off", 0, 0, dribble_off).returns(R::Symbol),
 ];
 
@@ -536,6 +541,10 @@ fn truth(ok: bool) -> Value {
 /// A file name argument (symbol or string), copied out.
 fn path_arg(cx: &mut Core<'_>, a: Args, i: usize, func: &'static str) -> Result<Name, EvalError> {
     match cx.arg(a, i) {
+        // (an instance name `[x]` is no symbol)
+        Value::Sym(s) if crate::value::instance_name_body(cx.sym_text(s)).is_some() => Err(
+            EvalError::wrong_type(func, crate::error::arg_no(i), "symbol or string"),
+        ),
         v @ (Value::Sym(_) | Value::Str(_)) => name_text(cx, v).ok_or_else(|| {
             EvalError::wrong_type(func, crate::error::arg_no(i), "symbol or string")
         }),

@@ -67,12 +67,16 @@ impl<'s> Parser<'s, '_, '_> {
         match t.tok {
             Tok::SfVar(name) => self.var_ref(t, name, false),
             Tok::MfVar(name) => {
-                let v = self.var_ref(t, name, true)?;
                 // with sequence-operator recognition `$?x` expands (`aux` 1), as
-                // `(expand$ ?x)` does; else it is `?x`
+                // `(expand$ ?x)` does; else it is `?x`. `$?*g*` (the global's value)
+                // always expands in CLIPS 6.30.
+                let (v, expands) = match name.strip_prefix('*').and_then(|n| n.strip_suffix('*')) {
+                    Some(g) if !g.is_empty() => (self.global_read(t, g)?, true),
+                    _ => (self.var_ref(t, name, true)?, self.cx.st.mode.seq_ops),
+                };
                 let e = self.cx.push_expr(Expr {
                     first: v,
-                    ..Expr::new(Op::Expand, u8::from(self.cx.st.mode.seq_ops), 0)
+                    ..Expr::new(Op::Expand, u8::from(expands), 0)
                 });
                 cap!(self, e)
             }

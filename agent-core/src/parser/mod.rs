@@ -752,10 +752,15 @@ impl<'s, 'e> Parser<'s, '_, 'e> {
             _ => {
                 self.scope = Scope::TopLevel;
                 self.construct = "command";
-                if matches!(
-                    t.tok,
-                    Tok::RParen | Tok::Amp | Tok::Bar | Tok::Tilde | Tok::SfWild | Tok::MfWild
-                ) {
+                // (`$?*g*` too, though `$?x` is read)
+                let mf_global = matches!(t.tok, Tok::MfVar(n)
+                    if !self.commands_only && n.len() > 1 && n.starts_with('*') && n.ends_with('*'));
+                if mf_global
+                    || matches!(
+                        t.tok,
+                        Tok::RParen | Tok::Amp | Tok::Bar | Tok::Tilde | Tok::SfWild | Tok::MfWild
+                    )
+                {
                     // CLIPS's command loop takes only a `(`, a constant or a variable
                     self.next();
                     let mut e = self.err(t, "'(', a constant or a variable");

@@ -1,0 +1,31 @@
+; an `if` whose condition or branch fails: CLIPS goes on with the condition's error
+; value, and the `if` returns the value its branch gave after the error, which the
+; prompt prints (a lone action's own fallback, FALSE for several actions).
+(watch facts)
+(watch rules)
+(if TRUE then (str-cat (assert (x))))
+(if FALSE then 1 else (str-cat (assert (y))))
+(if TRUE then (printout t "a" crlf) (str-cat (assert (z))))
+(if TRUE then (str-length (assert (w))) 7)
+(if (str-cat (assert (c1))) then one else two)
+(if (sym-cat (assert (c2))) then (printout t "then runs" crlf) else two)
+(if (sym-cat (assert (c3))) then (printout t "not" crlf) (printout t "printed" crlf))
+(if TRUE then (if TRUE then (str-cat (assert (n1)))))
+(if TRUE then (+ 1 (eval (str-cat (assert (n2))))))
+(if TRUE then (abs (assert (n3))))
+(str-length (if TRUE then (str-cat (assert (n4)))))
+(deffunction f (?x) (if ?x then (str-cat (assert (in-f))) else (sym-cat (assert (else-f)))))
+(f TRUE)
+(f FALSE)
+(deffunction g () (str-cat (assert (in-g))))
+(if TRUE then (g))
+(if TRUE then (g) 1)
+(defrule r
+   (go ?v)
+   =>
+   (printout t "before " (if (eq ?v 1) then (str-cat (assert (rhs ?v))) else ok) crlf)
+   (printout t "after" crlf))
+(assert (go 1) (go 2))
+(run)
+(facts)
+(exit)
