@@ -275,6 +275,9 @@ pub struct MatchState {
     pub disc: crate::rete::DiscState,
     /// The fact whose propagation waits for a retract to go first (`rete::defer`).
     pub deferred: crate::rete::Deferred,
+    /// What `printout` wrote while a propagation waited (`rete::defer`).
+    #[cfg(feature = "defer")]
+    pub held_print: crate::rete::HeldPrint,
     /// The right-hand-side action being evaluated at the top level (NONE outside a
     /// firing), and whether the assert it makes now may be deferred.
     pub top_action: Ix,
@@ -320,6 +323,8 @@ impl MatchState {
             #[cfg(feature = "host-speedups")]
             disc: crate::rete::DiscState::EMPTY,
             deferred: crate::rete::Deferred::NONE,
+            #[cfg(feature = "defer")]
+            held_print: crate::rete::HeldPrint::EMPTY,
             top_action: NONE,
             defer_next: false,
             lhs_pm: [PatBinding::EMPTY; MAX_PATTERNS],

@@ -287,6 +287,7 @@ differential_programs! {
     p103_group_rule_added_later => "103-group-rule-added-later",
     p104_unblocked_not_order => "104-unblocked-not-order",
     p115_progn_over_rebound_globals => "115-progn-over-rebound-globals",
+    p116_printout_between_modifies => "116-printout-between-modifies",
     p120_printout_multifield_values => "120-printout-multifield-values",
     p121_str_index_substring_edges => "121-str-index-substring-edges",
     p122_format_flags => "122-format-flags",

@@ -322,6 +322,12 @@ fn printout(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     if name == Value::Sym(SYM_NIL) || cx.st.mode.halting {
         return Ok(Value::Void);
     }
+    // a propagation waiting (`rete::defer`, this printout may wait): a name that is
+    // none of the engine's routers builds it first (its report or file come after)
+    #[cfg(feature = "defer")]
+    if cx.st.net.deferred.fact != NONE && engine_router(cx, name).is_none() {
+        cx.flush_deferred()?;
+    }
     let routed = match resolve_router(cx, name, "printout") {
         Ok(Some(r)) => r,
         Ok(None) => return Ok(Value::Void),
@@ -341,7 +347,11 @@ fn printout(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
         if (!is_leaf(op) || matches!(op, crate::expr::Op::Global | crate::expr::Op::QSlot))
             && !b.is_empty()
         {
-            cx.write(routed.name(), b.as_str());
+            if let Err(e) = printout_write(cx, &routed, b.as_str()) {
+                r = Err(e);
+                b.clear();
+                break;
+            }
             b.clear();
         }
         let v = match cx.eval(a) {
@@ -356,7 +366,11 @@ fn printout(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
         }
         // room for a crlf or tab; a value that does not fit goes out alone
         if b.len() > 900 {
-            cx.write(routed.name(), b.as_str());
+            if let Err(e) = printout_write(cx, &routed, b.as_str()) {
+                r = Err(e);
+                b.clear();
+                break;
+            }
             b.clear();
         }
         match special_char(cx, v) {
@@ -368,7 +382,11 @@ fn printout(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
                 if cx.write_printout(&mut b, v).is_err() {
                     // out goes what came before it, then the value (cut past 1 KiB)
                     b.truncate(len);
-                    cx.write(routed.name(), b.as_str());
+                    if let Err(e) = printout_write(cx, &routed, b.as_str()) {
+                        r = Err(e);
+                        b.clear();
+                        break;
+                    }
                     b.clear();
                     let _ = cx.write_printout(&mut b, v);
                 }
@@ -376,10 +394,47 @@ fn printout(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
         }
         a = cx.exprs[a as usize].next;
     }
-    cx.write(routed.name(), b.as_str());
+    if let Err(e) = printout_write(cx, &routed, b.as_str()) {
+        r = Err(e);
+    }
     // what the arguments built goes, unless a variable bound there holds it
     super::control::release_scratch(cx, mark);
     r
+}
+
+/// `printout`'s text to its router. While a propagation waits (`rete::defer`) text for
+/// an engine router is held until it is built; text that does not fit, or goes to a
+/// file, builds it first (its error stops the printout with nothing more printed).
+#[inline(always)]
+fn printout_write(cx: &mut Core<'_>, routed: &Routed, text: &str) -> Result<(), EvalError> {
+    #[cfg(feature = "defer")]
+    if cx.st.net.deferred.fact != NONE {
+        if text.is_empty() {
+            return Ok(());
+        }
+        if let Routed::Engine(router) = *routed {
+            if cx.hold_print(router, text) {
+                return Ok(());
+            }
+        }
+        cx.flush_deferred()?;
+    }
+    cx.write(routed.name(), text);
+    Ok(())
+}
+
+/// The engine router a logical name names (`t`, `stdout`, ...; None for any other
+/// name, a file's or an unknown one), as `resolve_router` finds it without a report.
+#[cfg(feature = "defer")]
+fn engine_router(cx: &Core<'_>, name: Value) -> Option<Option<&'static str>> {
+    let (Value::Sym(s) | Value::Str(s)) = name else {
+        return None;
+    };
+    let text = match cx.sym_text(s) {
+        "T" => "t",
+        t => t,
+    };
+    ROUTERS.iter().find(|(n, _)| *n == text).map(|&(_, r)| r)
 }
 
 /// Expressions whose evaluation calls nothing (so prints nothing).

@@ -416,6 +416,9 @@ pub fn is_quiet(id: Ix) -> bool {
 /// deferred propagation waiting (`rete::defer`).
 pub const ID_ASSERT: Ix = builtin_id("assert");
 pub const ID_MODIFY: Ix = builtin_id("modify");
+/// Id of `printout`: a top-level one of leaves may run while a propagation waits, its
+/// text held until the propagation is built (`rete::defer`).
+pub const ID_PRINTOUT: Ix = builtin_id("printout");
 /// Id of `progn`: an `if` branch is one (see `control::branch`).
 pub const ID_PROGN: Ix = builtin_id("progn");
 

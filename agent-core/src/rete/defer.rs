@@ -23,7 +23,15 @@
 //! a top-level action of a rule's right-hand side (an `assert` or `modify` there), and
 //! any other function call, the next assert, a retract that may not overtake, and the
 //! end of the actions build it first (`flush_deferred`). So between an assert and its
-//! propagation only leaves are read and at most one overtaking retract runs.
+//! propagation only leaves are read, at most one overtaking retract runs, and
+//! `printout`s of leaves write (people put one between the two modifies).
+//!
+//! Such a `printout` (its router and arguments constants, variables and bound
+//! globals, so it reads no fact and prints nothing but its text) writes into a held
+//! buffer (`HeldPrint`): the text goes out once the propagation is built, and is
+//! dropped when building it fails, as the eager order would have failed before the
+//! printout ran. Text that does not fit, or goes to a file, builds the propagation
+//! first and is written at once.
 //!
 //! A full pool found while building the deferred matches undoes that assert (a
 //! modify's old fact comes back), and the error stops the actions where it was found,
@@ -64,6 +72,25 @@ impl Deferred {
     pub const NONE: Deferred = Deferred {
         fact: NONE,
         old: None,
+    };
+}
+
+/// Bytes of `printout` text held while a propagation waits (a few lines).
+#[cfg(feature = "defer")]
+pub const HELD_PRINT_BYTES: usize = 256;
+
+/// `printout` text written while a propagation waits, to one of the engine's routers.
+#[cfg(feature = "defer")]
+pub struct HeldPrint {
+    pub router: &'static str,
+    pub text: crate::value::TextBuf<HELD_PRINT_BYTES>,
+}
+
+#[cfg(feature = "defer")]
+impl HeldPrint {
+    pub const EMPTY: HeldPrint = HeldPrint {
+        router: "",
+        text: crate::value::TextBuf::new(),
     };
 }
 
@@ -122,12 +149,62 @@ impl Core<'_> {
     /// that could see the propagation missing or print before what it prints
     /// (`assert_slots` builds it first, a modify's retract may overtake it; an error
     /// of the arguments is reported after the actions, once it is built).
+    ///
+    /// Or a `printout` of leaves (`printout_may_wait`), whose text is held.
     pub(crate) fn may_wait_for(&self, e: Ix) -> bool {
         let x = self.exprs[e as usize];
         x.op == Op::Call
             && x.aux == FnKind::Builtin as u8
-            && (x.data == crate::builtins::ID_ASSERT || x.data == crate::builtins::ID_MODIFY)
-            && self.calls_only(x.first, crate::builtins::is_quiet)
+            && (((x.data == crate::builtins::ID_ASSERT || x.data == crate::builtins::ID_MODIFY)
+                && self.calls_only(x.first, crate::builtins::is_quiet))
+                || (x.data == crate::builtins::ID_PRINTOUT && self.printout_may_wait(x.first)))
+    }
+
+    /// Whether a `printout` with router and arguments from `e` on reads only leaves
+    /// that print nothing and cannot fail but as values: constants, variables, and
+    /// globals holding a value (an unbound one prints `[GLOBLDEF1]`).
+    fn printout_may_wait(&self, mut e: Ix) -> bool {
+        while e != NONE {
+            let x = self.exprs[e as usize];
+            let leaf = match x.op {
+                Op::Int | Op::Float | Op::Sym | Op::Str | Op::Local | Op::PatVar => true,
+                Op::Global => !matches!(
+                    self.globals[x.data as usize].value,
+                    crate::value::Value::Void
+                ),
+                _ => false,
+            };
+            if !leaf {
+                return false;
+            }
+            e = x.next;
+        }
+        true
+    }
+
+    /// `printout` text for engine router `router` while a propagation waits: held
+    /// (true) when it fits after what is held already (for the same router).
+    pub(crate) fn hold_print(&mut self, router: &'static str, text: &str) -> bool {
+        let h = &mut self.st.net.held_print;
+        if !h.text.is_empty() && h.router != router {
+            return false;
+        }
+        if h.text.len() + text.len() > HELD_PRINT_BYTES {
+            return false;
+        }
+        h.router = router;
+        core::fmt::Write::write_str(&mut h.text, text).is_ok()
+    }
+
+    /// The held `printout` text goes out (the propagation was built) or is dropped.
+    fn release_print(&mut self, keep: bool) {
+        if self.st.net.held_print.text.is_empty() {
+            return;
+        }
+        let h = core::mem::replace(&mut self.st.net.held_print, HeldPrint::EMPTY);
+        if keep {
+            self.write(h.router, h.text.as_str());
+        }
     }
 
     /// Whether the expression chain from `e` (and everything below it) calls only
@@ -148,17 +225,28 @@ impl Core<'_> {
     }
 
     /// Whether the assert or modify `call` should defer its propagation: it is the
-    /// top-level action and the next action is a modify that may wait for it, whose
-    /// retract may go first (anything else would build it at once, so deferring
-    /// would only cost).
+    /// top-level action and the next action (past `printout`s that may wait) is a
+    /// modify that may wait for it, whose retract may go first (anything else would
+    /// build it at once, so deferring would only cost).
     pub(crate) fn defer_worth(&self, call: Ix) -> bool {
         if call != self.st.net.top_action {
             return false;
         }
-        let n = self.exprs[call as usize].next;
-        n != NONE
-            && self.exprs[n as usize].data == crate::builtins::ID_MODIFY
-            && self.may_wait_for(n)
+        let mut n = self.exprs[call as usize].next;
+        while n != NONE {
+            let x = self.exprs[n as usize];
+            if x.op == Op::Call && x.aux == FnKind::Builtin as u8 {
+                if x.data == crate::builtins::ID_MODIFY {
+                    return self.may_wait_for(n);
+                }
+                if x.data == crate::builtins::ID_PRINTOUT && self.printout_may_wait(x.first) {
+                    n = x.next;
+                    continue;
+                }
+            }
+            return false;
+        }
+        false
     }
 
     /// Whether the assert of a top-level action, a fact of template `tmpl`, may leave
@@ -257,10 +345,13 @@ impl Core<'_> {
                 }
             }
             self.release_traces(false);
+            // the eager order failed before the printouts ran
+            self.release_print(false);
             return Err(e);
         }
         self.journal_end(mark);
         self.release_traces(true);
+        self.release_print(true);
         Ok(())
     }
 }
@@ -306,10 +397,14 @@ mod tests {
         (0..n).map(|i| std::format!("(item (id {i})) ")).collect()
     }
 
+    /// An action between two modifies that builds a waiting propagation first (a
+    /// function call), giving the eager order.
+    const EAGER: &str = "(bind ?z (+ 0 0))";
+
     /// A counter's modify followed by a control fact's modify: the counter's new fact
     /// meets the partial matches only after the control fact's retract removed them,
-    /// with the agenda and facts of the eager order (a `printout` between the two
-    /// actions keeps that order, as it builds the propagation first).
+    /// with the agenda and facts of the eager order (`EAGER` between the two actions
+    /// keeps that order).
     fn counter_program(between: &str, items: usize, watch: &str) -> String {
         let facts = item_facts(items);
         run_program(&std::format!(
@@ -334,7 +429,7 @@ mod tests {
     #[test]
     fn overtaking_retract_keeps_the_eager_result() {
         let deferred = counter_program("", 3, "");
-        let eager = counter_program("(printout t \"\")", 3, "");
+        let eager = counter_program(EAGER, 3, "");
         assert_eq!(deferred, eager);
         assert!(deferred.contains("(cnt (c 3))"), "{deferred}");
         // and with every activation traced (no deferral at all)
@@ -350,7 +445,7 @@ mod tests {
     #[test]
     fn full_pool_at_the_deferred_propagation_undoes_both_modifies() {
         let deferred = counter_program("", 20, "");
-        let eager = counter_program("(printout t \"\")", 20, "");
+        let eager = counter_program(EAGER, 20, "");
         assert!(deferred.contains("[ERROR] out of "), "{deferred}");
         let split = |out: &str| {
             let (facts, agenda) = out
@@ -397,8 +492,74 @@ mod tests {
             deferred.contains("(cnt (c 1))") && deferred.contains("(ctx (s end))"),
             "{deferred}"
         );
-        let eager = program("(printout t \"\")");
+        let eager = program(EAGER);
         assert!(eager.contains("[ERROR] out of "), "{eager}");
+    }
+
+    /// A `printout` of leaves between the two modifies waits with the propagation: its
+    /// text is held and goes out once the propagation is built, so the output is the
+    /// eager order's; so is that of one holding too much text (it builds the
+    /// propagation first) and of one to a router that is none of the engine's (its
+    /// report comes after the propagation, as in the eager order).
+    #[test]
+    fn printout_between_the_modifies_prints_in_the_eager_order() {
+        let long = "x".repeat(300);
+        for between in [
+            "(printout t \"between \" ?c \" \" ?i crlf)",
+            "(printout t \"a \" ?c) (printout t \" b\" crlf)",
+            "(printout t a crlf) (printout wdisplay b crlf)",
+            &std::format!("(printout t \"{long}\" crlf)"),
+            "(printout nosuch ?c crlf)",
+        ] {
+            let deferred = counter_program(between, 3, "");
+            let eager = counter_program(&std::format!("{EAGER} {between}"), 3, "");
+            assert_eq!(deferred, eager, "{between}");
+            assert!(deferred.contains("c3i0"), "{deferred}");
+        }
+        let out = counter_program("(printout t \"between \" ?c \" \" ?i crlf)", 3, "");
+        assert!(out.contains("between 2 "), "{out}");
+    }
+
+    /// The deferred matches do not fit: the text of the `printout` that waited with
+    /// them is dropped, as the eager order stops at the counter's modify before the
+    /// printout runs; the earlier firings' text stands.
+    #[test]
+    fn full_pool_drops_the_held_printout() {
+        let between = "(printout t \"between \" ?c crlf)";
+        let deferred = counter_program(between, 20, "");
+        let eager = counter_program(&std::format!("{EAGER} {between}"), 20, "");
+        assert!(deferred.contains("[ERROR] out of "), "{deferred}");
+        let head = |out: &str| String::from(out.split_once("For a total of").map_or(out, |p| p.0));
+        assert_eq!(head(&deferred), head(&eager));
+        assert!(deferred.contains("between 0\n"), "{deferred}");
+        assert!(!deferred.contains("between 1\n"), "{deferred}");
+    }
+
+    /// A `printout` between the modifies lets the retract overtake as well: the
+    /// 20 x 20 matches of `big` are never made, and its text is printed.
+    #[test]
+    fn overtaking_retract_past_a_printout_saves_the_matches() {
+        let items = item_facts(20);
+        let out = run_program(&std::format!(
+            "(defglobal ?*out* = t)
+             (deftemplate cnt (slot c))
+             (deftemplate ctx (slot s))
+             (deftemplate item (slot id))
+             (deffacts d (cnt (c 0)) (ctx (s go)) {items})
+             (defrule step ?x <- (ctx (s go)) ?n <- (cnt (c ?c))
+               => (modify ?n (c (+ ?c 1))) (printout ?*out* step \" \" ?c crlf)
+                  (modify ?x (s end)))
+             (defrule big (ctx (s go)) (cnt (c ?c&~0)) (item (id ?i)) (item (id ?j)) =>)
+             (reset)
+             (run)
+             (facts)"
+        ));
+        assert!(!out.contains("[ERROR]"), "{out}");
+        assert!(out.contains("step 0\n"), "{out}");
+        assert!(
+            out.contains("(cnt (c 1))") && out.contains("(ctx (s end))"),
+            "{out}"
+        );
     }
 
     /// A join test that can fail (`>` of a symbol) keeps the eager order: the counter's

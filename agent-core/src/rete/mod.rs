@@ -9,6 +9,8 @@ pub use index::OrPlan;
 pub use index::{KeyPlan, KEY_PLANS};
 mod defer;
 pub use defer::Deferred;
+#[cfg(feature = "defer")]
+pub use defer::HeldPrint;
 #[cfg(feature = "host-speedups")]
 pub(crate) mod discrim;
 #[cfg(feature = "host-speedups")]
