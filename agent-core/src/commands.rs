@@ -358,6 +358,7 @@ impl Core<'_> {
         if !self.st.mode.firing && self.st.eval.query_hold & !COMMAND_HOLD == 0 {
             self.free_pending();
             self.st.facts.values_top = 0;
+            self.forget_free_cells();
         }
         self.st.facts.next_fact_num = 0;
         #[cfg(feature = "extras")]

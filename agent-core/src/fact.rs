@@ -261,54 +261,54 @@ impl Core<'_> {
         (0..len).all(|i| self.values[a + i].same(self.values[b + i]))
     }
 
-    /// Moves live and pending facts' values down to close gaps, in one pass: the live
-    /// list is in cell order (each fact's cells after the previous one's, checked by
-    /// `check_invariants`), and pending facts keep their place between live ones.
+    /// Packs the cells of live and pending facts down to the bottom of the arena, in
+    /// cell order, and drops the cells free fact slots kept (see `free_fact_slot`).
+    /// Cells are not in list order (a new fact may take a freed fact's cells), so the
+    /// facts with cells are first chained through `prev` and sorted by start (merge
+    /// sort, no storage); the live list's `prev` links are rebuilt after.
     fn compact_values(&mut self) {
-        let mut dst = 0usize;
-        let mut live = self.st.facts.fact_head;
-        loop {
-            // the pending fact with the lowest start below the next live one goes first
-            let live_start = if live == NONE {
-                usize::MAX
-            } else {
-                self.facts[live as usize].start as usize
-            };
-            let mut best = NONE;
-            let mut p = self.st.facts.pending;
-            while p != NONE {
-                let x = self.facts[p as usize];
-                let s = x.start as usize;
-                // one without cells needs no room (and would be picked forever)
-                if x.len != 0
-                    && s >= dst
-                    && s < live_start
-                    && (best == NONE || s < self.facts[best as usize].start as usize)
-                {
-                    best = p;
+        self.forget_free_cells();
+        let mut chain = NONE;
+        for list in [self.st.facts.fact_head, self.st.facts.pending] {
+            let mut f = list;
+            while f != NONE {
+                let x = &mut self.facts[f as usize];
+                if x.len != 0 {
+                    x.prev = chain;
+                    chain = f;
                 }
-                p = x.next;
+                f = x.next;
             }
-            let f = if best != NONE {
-                best
-            } else if live != NONE {
-                let f = live;
-                live = self.facts[live as usize].next;
-                f
-            } else {
-                break;
-            };
-            let (s, l) = (
-                self.facts[f as usize].start as usize,
-                self.facts[f as usize].len as usize,
-            );
+        }
+        let mut f = sort_by_start(self.facts, chain);
+        let mut dst = 0usize;
+        while f != NONE {
+            let x = self.facts[f as usize];
+            let (s, l) = (x.start as usize, x.len as usize);
             if s != dst {
                 self.values.copy_within(s..s + l, dst);
                 self.facts[f as usize].start = dst as Ix;
             }
             dst += l;
+            f = x.prev;
         }
         self.st.facts.values_top = dst as Ix;
+        let (mut p, mut f) = (NONE, self.st.facts.fact_head);
+        while f != NONE {
+            self.facts[f as usize].prev = p;
+            p = f;
+            f = self.facts[f as usize].next;
+        }
+    }
+
+    /// Free fact slots give up the cells they kept: the arena below the top is
+    /// reused or packed (compaction, `reset`).
+    pub(crate) fn forget_free_cells(&mut self) {
+        let mut f = self.st.pools.fact_free;
+        while f != NONE {
+            self.facts[f as usize].len = 0;
+            f = self.facts[f as usize].next;
+        }
     }
 
     /// Reserves `n` cells at the top of the value arena (compacting if needed).
@@ -334,6 +334,21 @@ impl Core<'_> {
             }
         }
         Ok(self.st.facts.values_top as usize)
+    }
+
+    /// The cells a new fact of `need` cells can take without the arena top: those
+    /// the free slot it will get kept from its last fact, if enough (they were that
+    /// fact's, now garbage: `free_fact_slot`). So the facts a firing retracts make
+    /// room for those the next one asserts without compaction, which costs in
+    /// proportion to the fact base.
+    #[inline]
+    fn reusable_cells(&self, need: usize) -> Option<usize> {
+        let s = self.st.pools.fact_free;
+        if s == NONE || need == 0 {
+            return None;
+        }
+        let f = &self.facts[s as usize];
+        (f.len as usize >= need).then_some(f.start as usize)
     }
 
     /// Value cells a fact made from per-slot values on the stack at `base` takes.
@@ -406,7 +421,11 @@ impl Core<'_> {
         let hold = self.st.mode.firing || (self.st.eval.query_hold > 0 && !slots_full);
         let need = self.cells_needed(tmpl, base);
         let cap_v = self.values.len().min(NONE as usize);
-        if self.st.facts.values_top as usize + need <= cap_v {
+        // in a firing the retract holds the old fact and frees no slot: the new fact
+        // takes the free slot's cells the assert will find (`reusable_cells`)
+        if self.st.facts.values_top as usize + need <= cap_v
+            || (self.st.mode.firing && self.reusable_cells(need).is_some())
+        {
             return Ok(hold);
         }
         // what compaction would leave: the cells of live and pending facts
@@ -447,59 +466,35 @@ impl Core<'_> {
         } else {
             self.facts[prev as usize].next
         };
-        // where its cells belong in list order (compaction walks the list)
-        let lo = if prev == NONE {
-            0
-        } else {
-            let p = self.facts[prev as usize];
-            p.start as usize + p.len as usize
-        };
-        let hi = if next == NONE {
-            self.st.facts.values_top as usize
-        } else {
-            self.facts[next as usize].start as usize
-        };
         let (start, len) = match self.facts[slot as usize].state {
             FactState::Pending => {
                 remove_from_list(self.facts, &mut self.st.facts.pending, slot);
                 let f = self.facts[slot as usize];
-                // its cells stayed in order; a fact without cells may have been
-                // left behind by compaction
-                (if f.len == 0 { hi as Ix } else { f.start }, f.len)
+                // its cells stayed where they were (compaction moves pending facts)
+                (f.start, f.len)
             }
             FactState::Free => {
                 remove_from_list(self.facts, &mut self.st.pools.fact_free, slot);
                 let need = self.cells_needed(saved.tmpl, base);
-                // its old cells, unless a compaction closed the gap meanwhile
-                let at = if self.st.facts.pending == NONE && hi.saturating_sub(lo) >= need {
-                    lo
+                // the cells the slot kept, if enough (off the free list, a slot
+                // keeps none: compaction would not know them)
+                let kept = self.facts[slot as usize];
+                self.facts[slot as usize].len = 0;
+                let at = if need == 0 {
+                    0
+                } else if kept.len as usize >= need {
+                    kept.start as usize
                 } else {
-                    let top = match self.reserve_cells(need) {
-                        Ok(s) => s,
+                    match self.reserve_cells(need) {
+                        Ok(s) => {
+                            self.st.facts.values_top = (s + need) as Ix;
+                            s
+                        }
                         Err(e) => {
                             self.free_fact_slot(slot);
                             return Err(e.into());
                         }
-                    };
-                    // room where the later facts' cells begin: those move up
-                    let at = if next == NONE {
-                        top
-                    } else {
-                        self.facts[next as usize].start as usize
-                    };
-                    self.values.copy_within(at..top, at + need);
-                    for list in [next, self.st.facts.pending] {
-                        let mut f = list;
-                        while f != NONE {
-                            let x = &mut self.facts[f as usize];
-                            if x.start as usize >= at {
-                                x.start += need as Ix;
-                            }
-                            f = x.next;
-                        }
                     }
-                    self.st.facts.values_top = (top + need) as Ix;
-                    at
                 };
                 self.write_cells(saved.tmpl, base, at);
                 (at as Ix, need as Ix)
@@ -598,7 +593,8 @@ impl Core<'_> {
             && self.st.eval.query_hold == crate::engine::COMMAND_HOLD
             && self.st.facts.pending != NONE
             && (self.fact_slots_full()
-                || self.st.facts.values_top as usize + need > self.values.len())
+                || (self.st.facts.values_top as usize + need > self.values.len()
+                    && self.reusable_cells(need).is_none()))
         {
             self.free_pending();
         }
@@ -615,7 +611,14 @@ impl Core<'_> {
         if TMS {
             self.support_room()?;
         }
-        let start = self.reserve_cells(need)?;
+        // the cells the free slot kept, else new ones at the top (none: start 0, so
+        // the fact never ends past the top when that comes down)
+        let reused = self.reusable_cells(need);
+        let start = match reused {
+            Some(s) => s,
+            None if need == 0 => 0,
+            None => self.reserve_cells(need)?,
+        };
         self.write_cells(tmpl, base, start);
         let h = self.cells_hash(tmpl, start, need);
         let bucket = h as usize % self.fact_buckets.len();
@@ -643,6 +646,7 @@ impl Core<'_> {
             return Ok(None);
         }
         // allocate the fact slot
+        // (the free slot `reusable_cells` looked at: nothing freed one since)
         let slot = if self.st.pools.fact_free != NONE {
             let s = self.st.pools.fact_free;
             self.st.pools.fact_free = self.facts[s as usize].next;
@@ -651,7 +655,9 @@ impl Core<'_> {
             self.st.pools.facts_used += 1;
             self.st.pools.facts_used - 1
         };
-        self.st.facts.values_top = (start + need) as Ix;
+        if reused.is_none() && need != 0 {
+            self.st.facts.values_top = (start + need) as Ix;
+        }
         let num = self.st.facts.next_fact_num;
         self.st.facts.next_fact_num += 1;
         self.st.eval.effects = self.st.eval.effects.wrapping_add(1);
@@ -732,9 +738,15 @@ impl Core<'_> {
             }
             self.network_retract(slot);
             self.unlink_fact(slot);
+            // cells from the top go back to it; reused ones stay the slot's
+            if reused.is_none() {
+                self.facts[slot as usize].len = 0;
+                if need != 0 {
+                    self.st.facts.values_top = start as Ix;
+                }
+            }
             self.free_fact_slot(slot);
             self.st.facts.next_fact_num = num;
-            self.st.facts.values_top = start as Ix;
             let _ = self.pay_owed();
             self.journal_end(mark);
             self.release_traces(false);
@@ -836,6 +848,10 @@ impl Core<'_> {
         }
     }
 
+    /// Puts a fact slot on the free list. It keeps `start` and `len`: its cells are
+    /// garbage the next fact to take the slot may reuse (`reusable_cells`), until
+    /// compaction or a reset drops them (`forget_free_cells`). Cells that are no
+    /// longer its own must have been given up (`len` 0) before.
     pub(crate) fn free_fact_slot(&mut self, slot: Ix) {
         self.facts[slot as usize].state = FactState::Free;
         self.facts[slot as usize].next = self.st.pools.fact_free;
@@ -897,18 +913,14 @@ impl Core<'_> {
         }
     }
 
-    /// Gives back an unlinked fact's cells when they are the arena's top ones. Facts
-    /// without cells that sat at the old top (the last in the list: starts follow list
-    /// order) move down with it, or they would start past the new top.
+    /// Gives back an unlinked fact's cells when they are the arena's top ones (the
+    /// slot then keeps none; else it keeps them for its next fact, `free_fact_slot`).
+    /// Facts without cells start at 0, so none ends past the new top.
     pub(crate) fn release_fact_values(&mut self, slot: Ix) {
-        let f = self.facts[slot as usize];
-        if f.start as usize + f.len as usize == self.st.facts.values_top as usize {
+        let f = &mut self.facts[slot as usize];
+        if f.len != 0 && f.start as usize + f.len as usize == self.st.facts.values_top as usize {
             self.st.facts.values_top = f.start;
-            let mut t = self.st.facts.fact_tail;
-            while t != NONE && self.facts[t as usize].start > f.start {
-                self.facts[t as usize].start = f.start;
-                t = self.facts[t as usize].prev;
-            }
+            f.len = 0;
         }
     }
 
@@ -929,6 +941,58 @@ impl Core<'_> {
 
 use crate::template::{SlotDef, Template, TemplateMem};
 use crate::value::SymId;
+
+/// Sorts a list of facts chained through `prev` by cell start (bottom-up merge sort
+/// of the list, as in S. Tatham's list merge sort: O(n log n), no storage); returns
+/// the new head.
+fn sort_by_start(facts: &mut [Fact], mut list: Ix) -> Ix {
+    let mut k = 1usize;
+    loop {
+        let (mut p, mut tail, mut merges) = (list, NONE, 0usize);
+        list = NONE;
+        while p != NONE {
+            merges += 1;
+            // p: a run of up to k facts; q: the next run
+            let (mut q, mut psize) = (p, 0usize);
+            while psize < k && q != NONE {
+                psize += 1;
+                q = facts[q as usize].prev;
+            }
+            let mut qsize = k;
+            while psize > 0 || (qsize > 0 && q != NONE) {
+                let take_p = psize > 0
+                    && (qsize == 0
+                        || q == NONE
+                        || facts[p as usize].start <= facts[q as usize].start);
+                let e = if take_p {
+                    let e = p;
+                    p = facts[p as usize].prev;
+                    psize -= 1;
+                    e
+                } else {
+                    let e = q;
+                    q = facts[q as usize].prev;
+                    qsize -= 1;
+                    e
+                };
+                if tail == NONE {
+                    list = e;
+                } else {
+                    facts[tail as usize].prev = e;
+                }
+                tail = e;
+            }
+            p = q;
+        }
+        if tail != NONE {
+            facts[tail as usize].prev = NONE;
+        }
+        if merges <= 1 {
+            return list;
+        }
+        k *= 2;
+    }
+}
 
 /// Unlinks `slot` from a singly linked list of fact slots chained through `next`
 /// (the free list or the pending list).

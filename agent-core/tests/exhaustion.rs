@@ -1252,8 +1252,8 @@ fn failed_modify_and_assert_print_no_watch_traces() {
     e.consistent();
 }
 
-/// A failed modify of a fact that is not the newest puts its cells back in list order,
-/// the order compaction walks: a later compaction keeps every fact's values. (Found by
+/// A failed modify of a fact that is not the newest puts its cells back where no other
+/// fact's are: a later compaction keeps every fact's values. (Found by
 /// `engine_commands`: the old fact came back at the top of the value arena, and the
 /// next compaction copied it over the cells of the first fact.)
 #[cfg(feature = "parser")]
@@ -1326,4 +1326,64 @@ fn compaction_in_a_firing_passes_a_retracted_fact_without_slots() {
         listing(&mut *e),
         "f-0     (initial-fact)\nf-2     (pad 1)\nf-4     (b 1 2 3 4 5 6 7)\nFor a total of 3 facts.\n"
     );
+}
+
+/// A fact a firing retracts leaves its slot its cells; the next firing's new fact
+/// takes both: a rule that retracts one fact and asserts one of the same size per
+/// firing keeps the arena top where the first firing left it (no compaction, whose
+/// cost grows with the fact base). (initial-fact) takes one cell, each (n x) two.
+#[cfg(feature = "parser")]
+#[test]
+fn firings_reuse_the_cells_of_the_facts_they_retracted() {
+    let h = &mut Capture::default();
+    let mut e = engine!(fact_values = 8);
+    e.load_str(
+        h,
+        "t",
+        "(defrule step ?f <- (n ?x&:(< ?x 50)) => (retract ?f) (assert (n (+ ?x 1))))",
+    )
+    .unwrap();
+    e.assert_str(h, "(n 0)").unwrap();
+    assert_eq!(e.run(h, None).unwrap(), 50);
+    e.consistent();
+    assert_eq!(
+        listing(&mut *e),
+        "f-0     (initial-fact)\nf-51    (n 50)\nFor a total of 2 facts.\n"
+    );
+    // the first firing's new fact took cells 3-4 (its retracted one was still
+    // readable), every later one the cells the previous firing's retract left
+    assert_eq!(e.stats().get(Pool::FactValues).0, 5);
+}
+
+/// A new fact in a freed fact's cells sits before older facts in the arena: a later
+/// compaction packs the facts by cell position, not by list order, and keeps every
+/// fact's values.
+#[cfg(feature = "parser")]
+#[test]
+fn compaction_after_reused_cells_keeps_every_fact() {
+    let h = &mut Capture::default();
+    // (initial-fact) one cell, (a 1) to (d 1) two each
+    let mut e = engine!(fact_values = 16);
+    let a = e.assert_str(h, "(a 1)").unwrap();
+    let b = e.assert_str(h, "(b 1)").unwrap();
+    e.assert_str(h, "(c 1)").unwrap();
+    e.retract(h, a).unwrap();
+    // (d 1) takes the cells (a 1) left, below (c 1)'s
+    e.assert_str(h, "(d 1)").unwrap();
+    e.assert_str(h, "(e 1 2 3 4)").unwrap();
+    e.consistent();
+    // too big for the two cells (b 1) leaves: 12 + 6 cells do not fit, compaction
+    // leaves 10
+    e.retract(h, b).unwrap();
+    e.assert_str(h, "(f 1 2 3 4 5)").unwrap();
+    e.consistent();
+    assert_eq!(
+        listing(&mut *e),
+        "f-0     (initial-fact)\nf-3     (c 1)\nf-4     (d 1)\nf-5     (e 1 2 3 4)\n\
+         f-6     (f 1 2 3 4 5)\nFor a total of 5 facts.\n"
+    );
+    // full now: the next fact runs out, and nothing changed
+    let r = e.assert_str(h, "(g 1)");
+    assert_eq!(cap_of(&r.unwrap_err()), full(Pool::FactValues, 16));
+    e.consistent();
 }

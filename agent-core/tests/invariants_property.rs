@@ -148,9 +148,9 @@ fn fuzz_found_undone_modify_loses_its_fact() {
 /// number's place in the fact list but its cells at the top of the value arena, and
 /// compaction, which walks the list moving each fact down to where the previous one
 /// ended, later copied that fact over the cells of the next ones. Fixed in
-/// `Core::restore_fact` (the cells go back in list order); `check_invariants` now
-/// checks that order ("fact cells not after the previous fact's"), which flags this
-/// stream at the failed modify itself. Minimal form: exhaustion.rs
+/// `Core::restore_fact` (the cells went back in list order; since free slots keep
+/// their cells for reuse, compaction sorts by cell position instead, and
+/// `check_invariants` checks that no two facts' cells overlap). Minimal form: exhaustion.rs
 /// `failed_modify_of_an_old_fact_then_compaction_keeps_every_fact`.
 #[test]
 fn fuzz_found_run_leaves_a_fact_in_the_wrong_hash_bucket() {

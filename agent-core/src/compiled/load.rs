@@ -272,6 +272,7 @@ impl Core<'_> {
         }
         self.free_pending();
         self.st.facts.values_top = 0;
+        self.forget_free_cells();
         self.st.facts.next_fact_num = 0;
         let root_token = self.join_mems[JoinId::ROOT].mem;
 
