@@ -308,6 +308,7 @@ differential_programs! {
     p137_eval_build_run_limits => "137-eval-build-run-limits",
     p138_rhs_runtime_errors => "138-rhs-runtime-errors",
     p139_watch_statistics => "139-watch-statistics",
+    p140_fact_cell_reuse => "140-fact-cell-reuse",
     p150_bind_lhs_variable => "150-bind-lhs-variable",
     p151_redefinitions => "151-redefinitions",
     p152_halt_watched_or_not => "152-halt-watched-or-not",
