@@ -203,3 +203,46 @@ fn a_clear_in_a_fact_set_query_is_refused() {
     assert_eq!(host.0, format!("1\n{refusal}2\n{refusal}"));
     assert_eq!(engine.facts_of("item").count(), 2);
 }
+
+/// Records each piece of text the engine hands the host.
+#[derive(Default)]
+struct Pieces(Vec<String>);
+
+impl Host for Pieces {
+    fn write_str(&mut self, _router: &str, text: &str) {
+        self.0.push(text.to_string());
+    }
+}
+
+/// `printout` hands the host its text in one piece when no argument prints anything
+/// (a bound global prints nothing when read), and flushes what it has before an
+/// argument that prints (an unbound global's `[GLOBLDEF1]`), so that comes after it.
+#[test]
+fn printout_writes_its_text_whole_unless_an_argument_prints() {
+    let mut engine = Box::new(SmallEngine::new());
+    let mut host = Pieces::default();
+    engine
+        .load_str(&mut host, "g.clp", "(defglobal ?*n* = 3)")
+        .expect("global loads");
+    host.0.clear();
+    engine.exec_command(
+        &mut host,
+        "(printout t \"n \" ?*n* \" and \" ?*n* crlf)",
+        "t",
+    );
+    assert_eq!(host.0, ["n 3 and 3\n"]);
+
+    host.0.clear();
+    engine.exec_command(&mut host, "(printout t \"A\" ?*zz* \"B\" crlf)", "t");
+    assert_eq!(
+        host.0.first().map(String::as_str),
+        Some("A"),
+        "{:?}",
+        host.0
+    );
+    assert!(
+        host.0.get(1).is_some_and(|s| s.starts_with("[GLOBLDEF1]")),
+        "{:?}",
+        host.0
+    );
+}
