@@ -118,12 +118,55 @@ impl Stdin {
     }
 }
 
+/// What `CliHost::out` buffers for: a file on a copy of standard output's descriptor,
+/// so that a flushed line is one `write` and nothing more. Through std's `Stdout` it
+/// was buffered a second time behind a lock (a `LineWriter`): a flush took a second
+/// lock, a search for the last newline and a second flush (join-100's two lines of
+/// run-phase output cost 500 instructions more, callgrind). Std's `Stdout` where the
+/// descriptor cannot be copied (closed: std's stdout drops what is written to it).
+enum StdoutSink {
+    #[cfg(unix)]
+    Fd(std::fs::File),
+    Std(std::io::Stdout),
+}
+
+impl StdoutSink {
+    fn open() -> Self {
+        #[cfg(unix)]
+        {
+            use std::os::fd::AsFd;
+            if let Ok(fd) = std::io::stdout().as_fd().try_clone_to_owned() {
+                return StdoutSink::Fd(std::fs::File::from(fd));
+            }
+        }
+        StdoutSink::Std(std::io::stdout())
+    }
+}
+
+impl Write for StdoutSink {
+    fn write(&mut self, buf: &[u8]) -> std::io::Result<usize> {
+        match self {
+            #[cfg(unix)]
+            StdoutSink::Fd(f) => f.write(buf),
+            StdoutSink::Std(s) => s.write(buf),
+        }
+    }
+
+    fn flush(&mut self) -> std::io::Result<()> {
+        match self {
+            #[cfg(unix)]
+            StdoutSink::Fd(_) => Ok(()),
+            StdoutSink::Std(s) => s.flush(),
+        }
+    }
+}
+
 /// Host for the command line: every router goes to stdout (and to the dribble file,
 /// with what is typed, while `dribble-on` has one open), but the logical names of files
 /// `open` opened; files via std::fs.
 struct CliHost {
     started: std::time::Instant,
-    out: std::io::BufWriter<std::io::Stdout>,
+    out: std::io::BufWriter<StdoutSink>,
     /// A `-f`/`-f2`/`-l` file could not be read, or a `-l` file hit something
     /// unrecoverable: the process exits non-zero (`exit_code`).
     failed: bool,
@@ -453,7 +496,7 @@ cli_engine!(GrowEngine);
 fn session(engine: &mut dyn CliEngine, steps: Vec<Step>) -> ExitCode {
     let mut host = CliHost {
         started: std::time::Instant::now(),
-        out: std::io::BufWriter::new(std::io::stdout()),
+        out: std::io::BufWriter::new(StdoutSink::open()),
         failed: false,
         files: HashMap::new(),
         stdin: Stdin {
