@@ -1539,7 +1539,7 @@ impl<'s> Parser<'s, '_, '_> {
                             }
                             let at = match test {
                                 Some(e) => {
-                                    self.classify(&mut pb, p, e, loc::new(slot as u8, loc::SINGLE))
+                                    self.classify(&mut pb, p, e, loc::new(slot as u8, loc::SINGLE))?
                                 }
                                 None => NONE,
                             };
@@ -1628,7 +1628,7 @@ impl<'s> Parser<'s, '_, '_> {
                     )?;
                     self.cx.append_child(ps, el);
                     let at = match test {
-                        Some(e) => self.classify(pb, p, e, loc::new(slot, i)),
+                        Some(e) => self.classify(pb, p, e, loc::new(slot, i))?,
                         None => NONE,
                     };
                     pb.record(loc::new(slot, i), at, multi);
@@ -1688,16 +1688,16 @@ impl<'s> Parser<'s, '_, '_> {
     /// `?x&:(> ?x 1)` is tested in the alpha node and only `?x`'s equality in the join.
     /// Returns the alpha node's part of the test, else NONE.
     /// `l`: the field (locator) whose constraint `e` is.
-    fn classify(&mut self, pb: &mut PatBuild, p: u8, e: Ix, l: Ix) -> Ix {
+    fn classify(&mut self, pb: &mut PatBuild, p: u8, e: Ix, l: Ix) -> PResult<Ix> {
         let x = self.cx.exprs[e as usize];
         if x.op != Op::And {
             let t = self.classify_one(pb, p, e, false);
             if t == NONE {
-                return NONE;
+                return Ok(NONE);
             }
-            let t = self.name_field(t, l);
+            let t = self.name_field(t, l)?;
             self.push_alpha_test(pb, t);
-            return t;
+            return Ok(t);
         }
         // the conjuncts, detached; the alpha ones regrouped under `e`
         let (mut alpha, mut alast, mut n) = (NONE, NONE, 0);
@@ -1711,20 +1711,20 @@ impl<'s> Parser<'s, '_, '_> {
             }
             c = next;
         }
-        match n {
+        Ok(match n {
             0 => NONE,
             1 => {
-                let t = self.name_field(alpha, l);
+                let t = self.name_field(alpha, l)?;
                 self.push_alpha_test(pb, t);
                 t
             }
             _ => {
                 self.cx.exprs[e as usize].first = alpha;
-                let t = self.name_field(e, l);
+                let t = self.name_field(e, l)?;
                 self.push_alpha_test(pb, t);
                 t
             }
-        }
+        })
     }
 
     /// Alpha test `t` of field `l`, naming that field if `[FACTMCH1]` would not find it:
@@ -1732,13 +1732,13 @@ impl<'s> Parser<'s, '_, '_> {
     /// its constraint, the engine at the first field the test reads
     /// (`Core::failed_field`). A test that reads another field first, or none, gets an
     /// `And` root that names `l` (`expr::NAMES_FIELD`): its own (an `&` chain's) or a
-    /// new one above it. It stays unnamed when the expression pool is full.
-    fn name_field(&mut self, t: Ix, l: Ix) -> Ix {
+    /// new one above it (a full expression pool is the rule's error, as for any node).
+    fn name_field(&mut self, t: Ix, l: Ix) -> PResult<Ix> {
         // a template's slot is named whichever of its elements the test reads
         let elem_too = self.lhs_slot.is_none();
         match self.cx.failed_field(t) {
             Some((s, el)) if s == loc::slot(l) && (!elem_too || el == loc::elem(l)) => {
-                return t;
+                return Ok(t);
             }
             _ => {}
         }
@@ -1746,7 +1746,7 @@ impl<'s> Parser<'s, '_, '_> {
         if x.op == Op::And && x.aux == 0 {
             self.cx.exprs[t as usize].aux = crate::expr::NAMES_FIELD;
             self.cx.exprs[t as usize].data = l;
-            return t;
+            return Ok(t);
         }
         let root = Expr {
             op: Op::And,
@@ -1755,7 +1755,7 @@ impl<'s> Parser<'s, '_, '_> {
             first: t,
             next: NONE,
         };
-        self.cx.push_expr(root).unwrap_or(t)
+        cap!(self, self.cx.push_expr(root))
     }
 
     /// One conjunct of a field's test: aliases noted and applied (see `classify`), then
