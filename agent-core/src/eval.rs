@@ -599,17 +599,7 @@ impl Core<'_> {
             return Ok(Value::Sym(SYM_FALSE));
         }
         let x = self.exprs[a as usize];
-        if x.op != Op::Call
-            || x.aux != FnKind::Builtin as u8
-            || matches!(
-                e.kind(),
-                EvalErrorKind::TooDeep { .. }
-                    | EvalErrorKind::Exit
-                    | EvalErrorKind::Capacity(_)
-                    | EvalErrorKind::Interrupted
-                    | EvalErrorKind::UnboundVariable { .. }
-            )
-        {
+        if !gives_value_after_error(&x, &e) {
             return Err(e);
         }
         self.write_error_message(e);
@@ -642,16 +632,7 @@ impl Core<'_> {
         }
         let x = self.exprs[a as usize];
         let depth = self.st.eval.eval_depth + 1;
-        if x.op != Op::Call
-            || x.aux != FnKind::Builtin as u8
-            || matches!(
-                e.kind(),
-                EvalErrorKind::TooDeep { .. }
-                    | EvalErrorKind::Exit
-                    | EvalErrorKind::Capacity(_)
-                    | EvalErrorKind::Interrupted
-                    | EvalErrorKind::UnboundVariable { .. }
-            )
+        if !gives_value_after_error(&x, e)
             || self
                 .st
                 .eval
@@ -1364,6 +1345,24 @@ impl crate::engine::State {
 }
 
 // the tests evaluate builtins, whose code only `parser` links (`builtins::BUILTINS`)
+/// Whether call `x`, failing with `e`, goes on with a value after its error message, as
+/// CLIPS's builtins do: not past the depth limit, `exit`, a full pool, an interrupt or
+/// an unbound variable, and never for a deffunction's or a construct's call.
+#[cfg(feature = "extras")]
+#[inline]
+fn gives_value_after_error(x: &Expr, e: &EvalError) -> bool {
+    x.op == Op::Call
+        && x.aux == FnKind::Builtin as u8
+        && !matches!(
+            e.kind(),
+            EvalErrorKind::TooDeep { .. }
+                | EvalErrorKind::Exit
+                | EvalErrorKind::Capacity(_)
+                | EvalErrorKind::Interrupted
+                | EvalErrorKind::UnboundVariable { .. }
+        )
+}
+
 #[cfg(all(test, feature = "parser"))]
 mod tests {
     extern crate std;
