@@ -264,23 +264,37 @@ impl Core<'_> {
     /// Packs the cells of live and pending facts down to the bottom of the arena, in
     /// cell order, and drops the cells free fact slots kept (see `free_fact_slot`).
     /// Cells are not in list order (a new fact may take a freed fact's cells), so the
-    /// facts with cells are first chained through `prev` and sorted by start (merge
-    /// sort, no storage); the live list's `prev` links are rebuilt after.
+    /// facts with cells are first chained through `prev` and, unless already in cell
+    /// order, sorted by start (merge sort, no storage); the live list's `prev` links
+    /// are rebuilt after.
     fn compact_values(&mut self) {
         self.forget_free_cells();
-        let mut chain = NONE;
+        // chained in list order: while no fact took another's cells (a load, a run
+        // without retracts) that is cell order already, and the sort is skipped
+        let (mut chain, mut tail, mut sorted, mut last) = (NONE, NONE, true, 0);
         for list in [self.st.facts.fact_head, self.st.facts.pending] {
             let mut f = list;
             while f != NONE {
-                let x = &mut self.facts[f as usize];
+                let x = self.facts[f as usize];
                 if x.len != 0 {
-                    x.prev = chain;
-                    chain = f;
+                    self.facts[f as usize].prev = NONE;
+                    if tail == NONE {
+                        chain = f;
+                    } else {
+                        self.facts[tail as usize].prev = f;
+                    }
+                    tail = f;
+                    sorted &= x.start >= last;
+                    last = x.start;
                 }
                 f = x.next;
             }
         }
-        let mut f = sort_by_start(self.facts, chain);
+        let mut f = if sorted {
+            chain
+        } else {
+            sort_by_start(self.facts, chain)
+        };
         let mut dst = 0usize;
         while f != NONE {
             let x = self.facts[f as usize];
