@@ -205,6 +205,11 @@ impl<'a> Lexer<'a> {
     /// The token starting at byte `start` of the source, with its line and column (for
     /// an error found after the reader has moved on).
     pub fn token_at(&self, start: usize) -> Token<'a> {
+        // a byte inside a character (a caller's `end - 1`) reads from its first byte
+        let mut start = start.min(self.src.len());
+        while !self.src.is_char_boundary(start) {
+            start -= 1;
+        }
         let before = self.src.as_bytes().get(..start).unwrap_or(&[]);
         let line_start = before
             .iter()
@@ -212,7 +217,7 @@ impl<'a> Lexer<'a> {
             .map_or(0, |i| i + 1);
         let mut at = Lexer {
             src: self.src,
-            pos: start.min(self.src.len()),
+            pos: start,
             line: 1 + before.iter().filter(|&&b| b == b'\n').count() as u32,
             col: 1 + before[line_start..]
                 .iter()

@@ -195,3 +195,24 @@ fn multifield_that_grows_each_firing_ends_by_the_time_budget() {
         "the replays took {took:?}"
     );
 }
+
+/// Found by `batch`: a salience value that fails to evaluate and ends in a character
+/// of more than one byte (`?*f*` then U+FFFD from the fuzzer's bytes) made the error
+/// report read its token from inside that character (`token_at(end - 1)`), a panic.
+/// The report now reads from the character's first byte.
+#[test]
+fn salience_error_at_a_value_ending_in_a_multibyte_character() {
+    let text = "(defrule r7 (declare (salience ?*f*\u{FFFD})) => (printout t r7 crlf))\n\
+                (defrule r8 (declare (salience ?*g*é)) =>)\n\
+                (printout t \"rules: \" (length$ (get-defrule-list)) crlf)\n";
+    replay("salience-multibyte-end", text);
+    let h = &mut Transcript(String::new());
+    let mut e = Box::new(SmallEngine::new());
+    e.batch_str(h, text, true);
+    assert!(h.0.contains("[PRNTUTIL8]"), "{}", h.0);
+    assert!(
+        h.0.contains("rules: 0\n"),
+        "a failed rule must not exist: {}",
+        h.0
+    );
+}
