@@ -307,6 +307,10 @@ impl Core<'_> {
             f = x.prev;
         }
         self.st.facts.values_top = dst as Ix;
+        #[cfg(feature = "grow")]
+        {
+            self.st.facts.freed = 0;
+        }
         let (mut p, mut f) = (NONE, self.st.facts.fact_head);
         while f != NONE {
             self.facts[f as usize].prev = p;
@@ -329,6 +333,23 @@ impl Core<'_> {
     fn reserve_cells(&mut self, n: usize) -> Result<usize, CapacityError> {
         let cap_v = self.values.len().min(NONE as usize);
         if self.st.facts.values_top as usize + n > cap_v {
+            // a compaction that would leave the live cells over three quarters full
+            // is followed by growth: grow at once and skip its walk over every fact
+            // (the freed cells stay until a later compaction)
+            #[cfg(feature = "grow")]
+            {
+                let top = self.st.facts.values_top as usize;
+                let live = top.saturating_sub(self.st.facts.freed);
+                if self.grows()
+                    && live + n > cap_v - cap_v / 4
+                    && self
+                        .grow(Pool::FactValues, (top + n).max(cap_v + 1))
+                        .is_ok()
+                    && top + n <= self.values.len().min(NONE as usize)
+                {
+                    return Ok(top);
+                }
+            }
             self.compact_values();
             // growing once the live cells fill three quarters keeps compaction rare
             #[cfg(feature = "grow")]
@@ -497,6 +518,11 @@ impl Core<'_> {
                 let at = if need == 0 {
                     0
                 } else if kept.len as usize >= need {
+                    // garbage no more (`FactList::freed`)
+                    #[cfg(feature = "grow")]
+                    {
+                        self.st.facts.freed -= need;
+                    }
                     kept.start as usize
                 } else {
                     match self.reserve_cells(need) {
@@ -672,6 +698,11 @@ impl Core<'_> {
         if reused.is_none() && need != 0 {
             self.st.facts.values_top = (start + need) as Ix;
         }
+        // the free slot's kept cells it takes are garbage no more (`FactList::freed`)
+        #[cfg(feature = "grow")]
+        if reused.is_some() {
+            self.st.facts.freed -= need;
+        }
         let num = self.st.facts.next_fact_num;
         self.st.facts.next_fact_num += 1;
         self.st.eval.effects = self.st.eval.effects.wrapping_add(1);
@@ -752,11 +783,17 @@ impl Core<'_> {
             }
             self.network_retract(slot);
             self.unlink_fact(slot);
-            // cells from the top go back to it; reused ones stay the slot's
+            // cells from the top go back to it; reused ones stay the slot's, garbage
+            // again (`FactList::freed`)
             if reused.is_none() {
                 self.facts[slot as usize].len = 0;
                 if need != 0 {
                     self.st.facts.values_top = start as Ix;
+                }
+            } else {
+                #[cfg(feature = "grow")]
+                {
+                    self.st.facts.freed += need;
                 }
             }
             self.free_fact_slot(slot);
@@ -935,6 +972,13 @@ impl Core<'_> {
         if f.len != 0 && f.start as usize + f.len as usize == self.st.facts.values_top as usize {
             self.st.facts.values_top = f.start;
             f.len = 0;
+        } else {
+            // the slot keeps them below the top: garbage until a new fact takes them
+            // or a compaction drops them (`FactList::freed`)
+            #[cfg(feature = "grow")]
+            {
+                self.st.facts.freed += f.len as usize;
+            }
         }
     }
 
@@ -943,6 +987,12 @@ impl Core<'_> {
         while self.st.facts.pending != NONE {
             let s = self.st.facts.pending;
             self.st.facts.pending = self.facts[s as usize].next;
+            // its cells are garbage now (`FactList::freed`; counted in the loop, so
+            // that a firing which retracted nothing pays nothing)
+            #[cfg(feature = "grow")]
+            {
+                self.st.facts.freed += self.facts[s as usize].len as usize;
+            }
             self.free_fact_slot(s);
         }
     }

@@ -376,7 +376,7 @@ impl Core<'_> {
         };
         self.rebind(pool, storage);
         match (pool, grown_heads) {
-            (Pool::Facts, Some(old)) => self.rehash_facts(old),
+            (Pool::Facts, Some(_)) => self.rehash_facts(),
             (Pool::Symbols, Some(_)) => self.rehash_symbols(),
             _ => {}
         }
@@ -389,37 +389,16 @@ impl Core<'_> {
         self.grower.storage.is_some()
     }
 
-    /// Puts every fact of the duplicate index's first `old` buckets in its bucket of
-    /// the table's length now (the facts' order in a chain does not matter).
-    fn rehash_facts(&mut self, old: usize) {
-        let mut heads = Vec::new();
-        if heads.try_reserve_exact(old).is_err() {
-            // keep the old table's chains: they are all in its first `old` buckets,
-            // but lookups hash over the new length; rebuild from the fact list instead
-            return self.rehash_facts_from_list();
-        }
-        heads.extend_from_slice(&self.fact_buckets[..old]);
+    /// Builds the duplicate index again for its length now from the live fact list
+    /// (the index holds exactly the live facts; their order in a chain does not
+    /// matter): one step per fact, with no copy of the old heads and no walk over
+    /// the empty buckets of a table twice as long as its pool.
+    fn rehash_facts(&mut self) {
         self.fact_buckets.fill(NONE);
-        for head in heads {
-            let mut f = head;
-            while f != NONE {
-                let next = self.facts[f as usize].hash_next;
-                self.link_fact_hash(f);
-                f = next;
-            }
-        }
-    }
-
-    /// `rehash_facts` without room for a copy of the heads: every fact in the
-    /// duplicate index is live or pending, so both lists give them all.
-    fn rehash_facts_from_list(&mut self) {
-        self.fact_buckets.fill(NONE);
-        for list in [self.st.facts.fact_head, self.st.facts.pending] {
-            let mut f = list;
-            while f != NONE {
-                self.link_fact_hash(f);
-                f = self.facts[f as usize].next;
-            }
+        let mut f = self.st.facts.fact_head;
+        while f != NONE {
+            self.link_fact_hash(f);
+            f = self.facts[f as usize].next;
         }
     }
 
@@ -613,6 +592,67 @@ mod tests {
             "(printout t (length$ (find-all-facts ((?f n)) TRUE)) crlf)",
         );
         assert_eq!(out.trim(), "199");
+    }
+
+    #[test]
+    fn a_full_value_arena_compacts_if_that_frees_a_quarter_and_else_grows_at_once() {
+        let mut e = Box::new(GrowEngine::with_storage(GrowStorage::new()));
+        let cells = |e: &GrowEngine| e.stats().get(Pool::FactValues).1 as usize;
+        let start = cells(&e);
+        assert_eq!(start, Capacities::SMALL.fact_values);
+        // (the loops' own results are printed before the line asked for)
+        let last = |out: &str| String::from(out.trim().lines().last().unwrap_or(""));
+        let ok = |e: &mut GrowEngine| {
+            if let Err(v) = e.check_invariants() {
+                panic!("{v}");
+            }
+        };
+        // one cell a fact: nearly fill the arena, then retract the oldest nine in
+        // ten (their cells are garbage below the top)
+        let fill = start as i64 - 24;
+        let out = run(
+            &mut e,
+            &format!(
+                "(deftemplate n (slot x))
+                 (loop-for-count (?i 1 {fill}) (assert (n (x ?i))))
+                 (do-for-all-facts ((?f n)) (<= ?f:x {}) (retract ?f))",
+                fill * 9 / 10
+            ),
+        );
+        assert!(!out.contains("out of "), "{out}");
+        ok(&mut e);
+        // the arena fills again: compaction frees most of it, so it does not grow
+        let out = run(
+            &mut e,
+            "(loop-for-count (?i 1 100) (assert (n (x (+ 100000 ?i)))))
+             (printout t (length$ (find-all-facts ((?f n)) TRUE)) crlf)",
+        );
+        ok(&mut e);
+        assert_eq!(last(&out), format!("{}", fill - fill * 9 / 10 + 100));
+        assert_eq!(cells(&e), start, "compaction made room");
+        // facts never retracted: each time it fills it grows (no compaction could
+        // free a quarter), and every fact keeps its values
+        let out = run(
+            &mut e,
+            "(loop-for-count (?i 1 5000) (assert (n (x (- 0 ?i)))))
+             (printout t (length$ (find-all-facts ((?f n)) TRUE)) \" \"
+                 (+ 0 (fact-slot-value (nth$ 1 (find-fact ((?f n)) (= ?f:x -4321))) x)) crlf)",
+        );
+        ok(&mut e);
+        assert_eq!(
+            last(&out),
+            format!("{} -4321", fill - fill * 9 / 10 + 100 + 5000)
+        );
+        assert!(cells(&e) > 5000, "{}", cells(&e));
+        // and retracting them all leaves an arena that compaction empties
+        let out = run(
+            &mut e,
+            "(do-for-all-facts ((?f n)) TRUE (retract ?f))
+             (loop-for-count (?i 1 10) (assert (n (x ?i))))
+             (printout t (length$ (find-all-facts ((?f n)) TRUE)) crlf)",
+        );
+        ok(&mut e);
+        assert_eq!(last(&out), "10");
     }
 
     #[test]
