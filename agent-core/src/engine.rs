@@ -182,14 +182,6 @@ pub struct FactList {
     pub initial_tmpl: Ix,
     /// A modify's old fact while its new one is asserted, for a deferral to keep.
     pub modify_old: Option<(Ix, crate::fact::Fact)>,
-    /// Cells below `values_top` that no live or pending fact holds, i.e. what a
-    /// compaction would reclaim: those free fact slots keep for their next fact and
-    /// those no slot keeps any more (counted where a freed fact's cells stay below
-    /// the top, taken off where a new fact takes kept cells, zero after a compaction
-    /// or reset). A growing arena that compaction could not leave a quarter free
-    /// grows without compacting (`Core::reserve_cells`).
-    #[cfg(feature = "grow")]
-    pub freed: usize,
 }
 
 impl FactList {
@@ -203,8 +195,6 @@ impl FactList {
             next_fact_num: 0,
             initial_tmpl: NONE,
             modify_old: None,
-            #[cfg(feature = "grow")]
-            freed: 0,
         }
     }
 }

@@ -307,16 +307,27 @@ impl Core<'_> {
             f = x.prev;
         }
         self.st.facts.values_top = dst as Ix;
-        #[cfg(feature = "grow")]
-        {
-            self.st.facts.freed = 0;
-        }
         let (mut p, mut f) = (NONE, self.st.facts.fact_head);
         while f != NONE {
             self.facts[f as usize].prev = p;
             p = f;
             f = self.facts[f as usize].next;
         }
+    }
+
+    /// The cells of live and pending facts: what a compaction leaves (the rest
+    /// below the top, kept by free slots or by none, it reclaims).
+    #[cfg(feature = "grow")]
+    fn held_cells(&self) -> usize {
+        let mut held = 0usize;
+        for list in [self.st.facts.fact_head, self.st.facts.pending] {
+            let mut f = list;
+            while f != NONE {
+                held += self.facts[f as usize].len as usize;
+                f = self.facts[f as usize].next;
+            }
+        }
+        held
     }
 
     /// Free fact slots give up the cells they kept: the arena below the top is
@@ -333,15 +344,16 @@ impl Core<'_> {
     fn reserve_cells(&mut self, n: usize) -> Result<usize, CapacityError> {
         let cap_v = self.values.len().min(NONE as usize);
         if self.st.facts.values_top as usize + n > cap_v {
-            // a compaction that would leave the live cells over three quarters full
-            // is followed by growth: grow at once and skip its walk over every fact
-            // (the freed cells stay until a later compaction)
+            // a compaction that would leave the held cells over three quarters full
+            // is followed by growth: grow at once and skip its sort and copy (the
+            // garbage stays until a later compaction). Counting the held cells here
+            // (a walk of the fact lists, rarer than asserts by a quarter of the
+            // arena) costs the asserts and retracts nothing.
             #[cfg(feature = "grow")]
             {
                 let top = self.st.facts.values_top as usize;
-                let live = top.saturating_sub(self.st.facts.freed);
                 if self.grows()
-                    && live + n > cap_v - cap_v / 4
+                    && self.held_cells() + n > cap_v - cap_v / 4
                     && self
                         .grow(Pool::FactValues, (top + n).max(cap_v + 1))
                         .is_ok()
@@ -518,11 +530,6 @@ impl Core<'_> {
                 let at = if need == 0 {
                     0
                 } else if kept.len as usize >= need {
-                    // garbage no more (`FactList::freed`)
-                    #[cfg(feature = "grow")]
-                    {
-                        self.st.facts.freed -= need;
-                    }
                     kept.start as usize
                 } else {
                     match self.reserve_cells(need) {
@@ -698,11 +705,6 @@ impl Core<'_> {
         if reused.is_none() && need != 0 {
             self.st.facts.values_top = (start + need) as Ix;
         }
-        // the free slot's kept cells it takes are garbage no more (`FactList::freed`)
-        #[cfg(feature = "grow")]
-        if reused.is_some() {
-            self.st.facts.freed -= need;
-        }
         let num = self.st.facts.next_fact_num;
         self.st.facts.next_fact_num += 1;
         self.st.eval.effects = self.st.eval.effects.wrapping_add(1);
@@ -783,17 +785,11 @@ impl Core<'_> {
             }
             self.network_retract(slot);
             self.unlink_fact(slot);
-            // cells from the top go back to it; reused ones stay the slot's, garbage
-            // again (`FactList::freed`)
+            // cells from the top go back to it; reused ones stay the slot's
             if reused.is_none() {
                 self.facts[slot as usize].len = 0;
                 if need != 0 {
                     self.st.facts.values_top = start as Ix;
-                }
-            } else {
-                #[cfg(feature = "grow")]
-                {
-                    self.st.facts.freed += need;
                 }
             }
             self.free_fact_slot(slot);
@@ -972,13 +968,6 @@ impl Core<'_> {
         if f.len != 0 && f.start as usize + f.len as usize == self.st.facts.values_top as usize {
             self.st.facts.values_top = f.start;
             f.len = 0;
-        } else {
-            // the slot keeps them below the top: garbage until a new fact takes them
-            // or a compaction drops them (`FactList::freed`)
-            #[cfg(feature = "grow")]
-            {
-                self.st.facts.freed += f.len as usize;
-            }
         }
     }
 
@@ -987,12 +976,6 @@ impl Core<'_> {
         while self.st.facts.pending != NONE {
             let s = self.st.facts.pending;
             self.st.facts.pending = self.facts[s as usize].next;
-            // its cells are garbage now (`FactList::freed`; counted in the loop, so
-            // that a firing which retracted nothing pays nothing)
-            #[cfg(feature = "grow")]
-            {
-                self.st.facts.freed += self.facts[s as usize].len as usize;
-            }
             self.free_fact_slot(s);
         }
     }

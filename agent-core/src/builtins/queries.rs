@@ -548,11 +548,6 @@ fn release_held(cx: &mut Core<'_>, keep: &[FactRef], vals: core::ops::Range<usiz
             cx.facts[p as usize].next = cx.st.facts.pending;
             cx.st.facts.pending = p;
         } else {
-            // its cells are garbage now (`FactList::freed`)
-            #[cfg(feature = "grow")]
-            {
-                cx.st.facts.freed += f.len as usize;
-            }
             cx.free_fact_slot(p);
         }
         p = f.next;

@@ -273,10 +273,6 @@ impl Core<'_> {
         self.free_pending();
         self.st.facts.values_top = 0;
         self.forget_free_cells();
-        #[cfg(feature = "grow")]
-        {
-            self.st.facts.freed = 0;
-        }
         self.st.facts.next_fact_num = 0;
         let root_token = self.join_mems[JoinId::ROOT].mem;
 
