@@ -278,6 +278,14 @@ pub struct MatchState {
     /// What `printout` wrote while a propagation waited (`rete::defer`).
     #[cfg(feature = "defer")]
     pub held_print: crate::rete::HeldPrint,
+    /// Host: facts whose propagation waits before `deferred`'s, oldest first, and
+    /// how much held `printout` text each found (`rete::defer`).
+    #[cfg(feature = "defer")]
+    pub queued: [crate::rete::Queued; crate::rete::QUEUED_MAX],
+    #[cfg(feature = "defer")]
+    pub nqueued: u8,
+    #[cfg(feature = "defer")]
+    pub deferred_held: u16,
     /// The right-hand-side action being evaluated at the top level (NONE outside a
     /// firing), and whether the assert it makes now may be deferred.
     pub top_action: Ix,
@@ -325,6 +333,12 @@ impl MatchState {
             deferred: crate::rete::Deferred::NONE,
             #[cfg(feature = "defer")]
             held_print: crate::rete::HeldPrint::EMPTY,
+            #[cfg(feature = "defer")]
+            queued: [crate::rete::Queued::NONE; crate::rete::QUEUED_MAX],
+            #[cfg(feature = "defer")]
+            nqueued: 0,
+            #[cfg(feature = "defer")]
+            deferred_held: 0,
             top_action: NONE,
             defer_next: false,
             lhs_pm: [PatBinding::EMPTY; MAX_PATTERNS],

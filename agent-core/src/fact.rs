@@ -625,8 +625,9 @@ impl Core<'_> {
         }
         let defer = core::mem::take(&mut self.st.net.defer_next);
         // a deferred propagation (`rete::defer`) belongs to an earlier assert: built
-        // first, or the assert fails with nothing changed
-        if self.st.net.deferred.fact != NONE {
+        // first, or the assert fails with nothing changed (unless this fact's waits
+        // behind it)
+        if self.st.net.deferred.fact != NONE && !(defer && self.may_queue(tmpl)) {
             self.flush_deferred()?;
         }
         // matches an earlier removal still owes come first: without room for them
@@ -760,10 +761,8 @@ impl Core<'_> {
         let defer = !(self.st.mode.dynamic_checks && self.report_violation(slot)) && defer;
         if defer && self.may_defer(tmpl) {
             // the propagation waits for the next action (`rete::defer`)
-            self.st.net.deferred = crate::rete::Deferred {
-                fact: slot,
-                old: self.st.facts.modify_old.take(),
-            };
+            let old = self.st.facts.modify_old.take();
+            self.defer_fact(slot, old);
             self.release_traces(true);
             return Ok(Some(slot));
         }

@@ -288,6 +288,7 @@ differential_programs! {
     p104_unblocked_not_order => "104-unblocked-not-order",
     p115_progn_over_rebound_globals => "115-progn-over-rebound-globals",
     p116_printout_between_modifies => "116-printout-between-modifies",
+    p117_asserts_before_control_modify => "117-asserts-before-control-modify",
     p120_printout_multifield_values => "120-printout-multifield-values",
     p121_str_index_substring_edges => "121-str-index-substring-edges",
     p122_format_flags => "122-format-flags",

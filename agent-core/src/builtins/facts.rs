@@ -725,14 +725,20 @@ impl Core<'_> {
             // a propagation the retract overtook (`rete::defer`) is built now; if it
             // fails, this modify's journal lacks the activations the overtaken
             // assert's retract removed: its undo rebuilds every one as the newest
-            let r = match self.flush_deferred() {
+            // (host: unless the new fact's waits behind it, `rete::Queued`)
+            // the new fact's propagation may wait for the next action's retract
+            let defer = self.defer_worth(call);
+            let flushed = if defer && self.may_queue(tmpl) {
+                Ok(())
+            } else {
+                self.flush_deferred()
+            };
+            let r = match flushed {
                 Err(e) => {
                     self.st.agenda.act_journal.overflow = true;
                     Err(e)
                 }
                 Ok(()) => {
-                    // the new fact's propagation may wait for the next action's retract
-                    let defer = self.defer_worth(call);
                     if defer {
                         self.st.facts.modify_old = Some((old, old_fact));
                     }
@@ -743,6 +749,13 @@ impl Core<'_> {
                 }
             };
             if r.is_err() {
+                // facts that waited for this retract (`rete::Queued`: the new fact
+                // found no room before it could join them) are built first, as the
+                // eager order built them before the retract
+                #[cfg(feature = "defer")]
+                if self.st.net.deferred.fact != NONE {
+                    let _ = self.flush_deferred();
+                }
                 // the network ran out of room (tokens, activations): the new fact is
                 // gone again; the old one comes back with the room its retract freed
                 // (if that fails too, it stays retracted and the first error is

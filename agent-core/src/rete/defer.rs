@@ -26,6 +26,14 @@
 //! propagation only leaves are read, at most one overtaking retract runs, and
 //! `printout`s of leaves write (people put one between the two modifies).
 //!
+//! Host: several facts may wait at once (`Queued`, at most `QUEUED_MAX` before the
+//! newest): an assert whose next actions, past asserts and printouts that may wait,
+//! reach a modify that may wait, joins the facts already waiting instead of building
+//! them (Miss Manners' `find_seating` asserts a seating, a path and a chosen fact
+//! before its two modifies). They are built oldest first, so each meets the ones
+//! before it as in the eager order; a retract that may overtake one may overtake all
+//! (it names none of them, and each had total tests when it was deferred).
+//!
 //! Such a `printout` (its router and arguments constants, variables and bound
 //! globals, so it reads no fact and prints nothing but its text) writes into a held
 //! buffer (`HeldPrint`): the text goes out once the propagation is built, and is
@@ -36,7 +44,10 @@
 //! A full pool found while building the deferred matches undoes that assert (a
 //! modify's old fact comes back), and the error stops the actions where it was found,
 //! as it would have stopped them at the assert; the overtaking retract is part of a
-//! modify whose own failure path puts its old fact back.
+//! modify whose own failure path puts its old fact back. The facts that waited behind
+//! the failing one go as if never asserted (their numbers are the next ones again,
+//! their modifies' old facts come back), and only the text held before the failing
+//! assert is written.
 
 #[cfg(feature = "defer")]
 use super::JoinKind;
@@ -72,6 +83,28 @@ impl Deferred {
     pub const NONE: Deferred = Deferred {
         fact: NONE,
         old: None,
+    };
+}
+
+/// Host: how many facts may wait before the newest (`State::deferred`): a rule's
+/// asserts ahead of its modifies (Miss Manners' `find_seating` makes three).
+#[cfg(feature = "defer")]
+pub const QUEUED_MAX: usize = 4;
+
+/// A fact waiting before the newest, with the length of the held `printout` text
+/// when it was asserted (what the eager order printed before that assert).
+#[cfg(feature = "defer")]
+#[derive(Clone, Copy, Debug)]
+pub struct Queued {
+    pub d: Deferred,
+    pub held: u16,
+}
+
+#[cfg(feature = "defer")]
+impl Queued {
+    pub const NONE: Queued = Queued {
+        d: Deferred::NONE,
+        held: 0,
     };
 }
 
@@ -198,13 +231,16 @@ impl Core<'_> {
         core::fmt::Write::write_str(&mut h.text, text).is_ok()
     }
 
-    /// The held `printout` text goes out (the propagation was built) or is dropped.
-    fn release_print(&mut self, keep: bool) {
+    /// The held `printout` text goes out up to byte `keep` (what the eager order
+    /// printed before the propagation that failed; all of it when every one was
+    /// built), the rest is dropped.
+    fn release_print(&mut self, keep: usize) {
         if self.st.net.held_print.text.is_empty() {
             return;
         }
-        let h = core::mem::replace(&mut self.st.net.held_print, HeldPrint::EMPTY);
-        if keep {
+        let mut h = core::mem::replace(&mut self.st.net.held_print, HeldPrint::EMPTY);
+        h.text.truncate(keep);
+        if !h.text.is_empty() {
             self.write(h.router, h.text.as_str());
         }
     }
@@ -245,28 +281,95 @@ impl Core<'_> {
         if data == crate::builtins::ID_MODIFY {
             return self.may_wait_for(n);
         }
+        if data == crate::builtins::ID_ASSERT {
+            // most asserts followed by an assert are followed by neither after that
+            // (`(assert ...) (assert ...) (bind ...)`): no call for them
+            let m = self.exprs[n as usize].next;
+            return m != NONE
+                && matches!(
+                    self.exprs[m as usize].data,
+                    crate::builtins::ID_MODIFY
+                        | crate::builtins::ID_ASSERT
+                        | crate::builtins::ID_PRINTOUT
+                )
+                && self.worth_past_printouts(n);
+        }
         data == crate::builtins::ID_PRINTOUT && self.worth_past_printouts(n)
     }
 
-    /// `defer_worth` from action `n` on, a `printout`: past the printouts that may
-    /// wait, a modify that may wait.
+    /// `defer_worth` from action `n` on, a `printout` or an `assert`: past the
+    /// printouts and asserts that may wait (the asserts' facts wait too, `Queued`),
+    /// a modify that may wait.
     #[inline(never)]
     fn worth_past_printouts(&self, mut n: Ix) -> bool {
+        // first by the builtins' ids alone: most action lists (`(assert ...)
+        // (assert ...) (bind ...)`) reach no modify, and need no closer look
+        let mut m = n;
+        loop {
+            if m == NONE {
+                return false;
+            }
+            let x = &self.exprs[m as usize];
+            if x.op != Op::Call || x.aux != FnKind::Builtin as u8 {
+                return false;
+            }
+            if x.data == crate::builtins::ID_MODIFY {
+                break;
+            }
+            if x.data != crate::builtins::ID_PRINTOUT && x.data != crate::builtins::ID_ASSERT {
+                return false;
+            }
+            m = x.next;
+        }
         while n != NONE {
             let x = self.exprs[n as usize];
             if x.data == crate::builtins::ID_MODIFY {
                 return self.may_wait_for(n);
             }
-            if !(x.data == crate::builtins::ID_PRINTOUT
-                && x.op == Op::Call
+            if !(x.op == Op::Call
                 && x.aux == FnKind::Builtin as u8
-                && self.printout_may_wait(x.first))
+                && ((x.data == crate::builtins::ID_PRINTOUT && self.printout_may_wait(x.first))
+                    || (x.data == crate::builtins::ID_ASSERT
+                        && self.calls_only(x.first, crate::builtins::is_quiet))))
             {
                 return false;
             }
             n = x.next;
         }
         false
+    }
+
+    /// Whether the assert of a top-level action, a fact of template `tmpl` whose
+    /// propagation may wait (`defer_worth`), may join the ones already waiting
+    /// (`Queued`) rather than build them first: one is waiting, there is room, and
+    /// `may_defer`. (Not with dynamic constraint checking, which may refuse the
+    /// deferral only once the fact is made.)
+    #[inline(never)]
+    pub(crate) fn may_queue(&mut self, tmpl: Ix) -> bool {
+        #[cfg(feature = "extras")]
+        if self.st.mode.dynamic_checks {
+            return false;
+        }
+        self.st.net.deferred.fact != NONE
+            && (self.st.net.nqueued as usize) < QUEUED_MAX
+            && self.may_defer(tmpl)
+    }
+
+    /// The fact of a top-level assert or modify waits (`may_defer` held): behind the
+    /// ones waiting already (`may_queue` held then).
+    #[inline(never)]
+    pub(crate) fn defer_fact(&mut self, fact: Ix, old: Option<(Ix, Fact)>) {
+        let held = self.st.net.held_print.text.len() as u16;
+        if self.st.net.deferred.fact != NONE {
+            let n = self.st.net.nqueued as usize;
+            self.st.net.queued[n] = Queued {
+                d: self.st.net.deferred,
+                held: self.st.net.deferred_held,
+            };
+            self.st.net.nqueued += 1;
+        }
+        self.st.net.deferred = Deferred { fact, old };
+        self.st.net.deferred_held = held;
     }
 
     /// Whether the assert of a top-level action, a fact of template `tmpl`, may leave
@@ -305,6 +408,9 @@ impl Core<'_> {
         // `waiting == old` check builds it first
         if waiting == NONE
             || waiting == old
+            || self.st.net.queued[..self.st.net.nqueued as usize]
+                .iter()
+                .any(|q| q.d.fact == old)
             || call != self.st.net.top_action
             || self.st.mode.watch & (watch::FACTS | watch::ACTIVATIONS) != 0
             || self.st.net.owed != TokenId::NONE
@@ -331,48 +437,79 @@ impl Core<'_> {
         self.flush_waiting()
     }
 
-    /// `flush_deferred` of a waiting propagation.
+    /// `flush_deferred` of waiting propagations, oldest first.
     #[inline(never)]
     fn flush_waiting(&mut self) -> Result<(), EvalError> {
-        let d = self.st.net.deferred;
+        let n = self.st.net.nqueued as usize;
+        let queued = self.st.net.queued;
+        let last = Queued {
+            d: self.st.net.deferred,
+            held: self.st.net.deferred_held,
+        };
         self.st.net.deferred = Deferred::NONE;
-        let f = d.fact;
-        self.hold_traces();
-        let mark = self.journal_begin();
-        let r = self.network_assert(f).and_then(|()| self.pay_owed());
-        self.journal_pause();
-        if let Err(e) = r {
-            // as a failed assert: what the fact built goes, then the fact itself
-            self.journal_replay(mark);
-            self.network_retract(f);
-            let fact = self.facts[f as usize];
-            self.unlink_fact(f);
-            self.release_fact_values(f);
-            self.free_fact_slot(f);
-            // nothing was asserted since: its number is the next one again
+        self.st.net.nqueued = 0;
+        let at = |i: usize| if i < n { queued[i] } else { last };
+        for i in 0..=n {
+            let f = at(i).d.fact;
+            self.hold_traces();
+            let mark = self.journal_begin();
+            let r = self.network_assert(f).and_then(|()| self.pay_owed());
+            self.journal_pause();
+            if let Err(e) = r {
+                self.undo_waiting(i, n, &at, mark);
+                self.release_traces(false);
+                // the eager order failed before the later printouts ran
+                self.release_print(at(i).held as usize);
+                return Err(e);
+            }
+            self.journal_end(mark);
+            self.release_traces(true);
+        }
+        self.release_print(usize::MAX);
+        Ok(())
+    }
+
+    /// The propagation of waiting fact `i` (of `0..=n`, `at`) failed: undone as a
+    /// failed assert, with the facts after it, never propagated, as if never made
+    /// (the eager order stopped at its assert); the old facts of their modifies come
+    /// back.
+    #[inline(never)]
+    fn undo_waiting(
+        &mut self,
+        i: usize,
+        n: usize,
+        at: &dyn Fn(usize) -> Queued,
+        mark: crate::agenda::JournalMark,
+    ) {
+        // as a failed assert: what the fact built goes, then the facts themselves,
+        // newest first
+        let f = at(i).d.fact;
+        self.journal_replay(mark);
+        self.network_retract(f);
+        for j in (i..=n).rev() {
+            let g = at(j).d.fact;
+            let fact = self.facts[g as usize];
+            self.unlink_fact(g);
+            self.release_fact_values(g);
+            self.free_fact_slot(g);
+            // nothing else was asserted since: its number is the next one again
             if fact.num.wrapping_add(1) == self.st.facts.next_fact_num {
                 self.st.facts.next_fact_num = fact.num;
             }
-            let _ = self.pay_owed();
-            // the old fact's removed activations were journaled by its own modify,
-            // which is over: they come back as the newest (replay off)
-            self.journal_end(mark);
-            if let Some((old, saved)) = d.old {
+        }
+        let _ = self.pay_owed();
+        // the old facts' removed activations were journaled by their own modifies,
+        // which are over: they come back as the newest (replay off)
+        self.journal_end(mark);
+        for j in (i..=n).rev() {
+            if let Some((old, saved)) = at(j).d.old {
                 // held since its retract (a firing holds retracted facts): its cells
                 // are there, so no stacked values are needed
                 if self.restore_fact(old, saved, 0).is_ok() {
                     let _ = self.pay_owed();
                 }
             }
-            self.release_traces(false);
-            // the eager order failed before the printouts ran
-            self.release_print(false);
-            return Err(e);
         }
-        self.journal_end(mark);
-        self.release_traces(true);
-        self.release_print(true);
-        Ok(())
     }
 }
 
@@ -398,6 +535,16 @@ impl Core<'_> {
     #[inline(always)]
     pub(crate) fn may_wait_for(&self, _e: Ix) -> bool {
         false
+    }
+
+    #[inline(always)]
+    pub(crate) fn may_queue(&mut self, _tmpl: Ix) -> bool {
+        false
+    }
+
+    #[inline(always)]
+    pub(crate) fn defer_fact(&mut self, fact: Ix, old: Option<(Ix, Fact)>) {
+        self.st.net.deferred = Deferred { fact, old };
     }
 
     #[inline(always)]
@@ -580,6 +727,106 @@ mod tests {
             out.contains("(cnt (c 1))") && out.contains("(ctx (s end))"),
             "{out}"
         );
+    }
+
+    /// Two asserts, a counter's modify and a control fact's modify, with `printout`s
+    /// between (`between` after each action but the last): the asserts' facts wait
+    /// too (`Queued`). `wide` needs 20 x 20 matches for the second mark at 2.
+    fn marks_program(between: [&str; 3], items: usize) -> String {
+        let facts = item_facts(items);
+        let [b1, b2, b3] = between;
+        run_program(&std::format!(
+            "(deftemplate cnt (slot c))
+             (deftemplate ctx (slot s))
+             (deftemplate item (slot id))
+             (deftemplate mark (slot c) (slot k))
+             (deffacts d (cnt (c 0)) (ctx (s go)) {facts})
+             (defrule step ?x <- (ctx (s go)) ?n <- (cnt (c ?c&~3))
+               => (assert (mark (c ?c) (k a))) {b1} (assert (mark (c ?c) (k b)))
+                  (assert (mark (c ?c) (k a))) {b2} (modify ?n (c (+ ?c 1))) {b3}
+                  (modify ?x (s back)))
+             (defrule back ?x <- (ctx (s back)) => (modify ?x (s go)))
+             (defrule wide (mark (c 2) (k b)) (item (id ?i)) (item (id ?j)) =>)
+             (defrule under (ctx (s go)) (mark (c ?c) (k ?k)) (item (id ?i)) =>)
+             (defrule count (declare (salience -5)) (mark (c ?c) (k ?k)) (item (id ?i)) =>
+               (printout t c ?c k ?k i ?i crlf))
+             (reset)
+             (run)
+             (facts)
+             (agenda)"
+        ))
+    }
+
+    /// The asserts' facts wait with the counter's for the control fact's retract:
+    /// the output (fact numbers, a repeated assert making none, the printouts, the
+    /// firing order, the agenda) is the eager order's.
+    #[test]
+    fn asserts_before_the_modifies_wait_with_the_eager_result() {
+        let prints = [
+            "(printout t p1 crlf)",
+            "(printout t p2 crlf)",
+            "(printout t p3 crlf)",
+        ];
+        let deferred = marks_program(prints, 3);
+        let eager = marks_program(
+            prints
+                .map(|p| std::format!("{EAGER} {p}"))
+                .each_ref()
+                .map(|s| s.as_str()),
+            3,
+        );
+        assert_eq!(deferred, eager);
+        assert!(deferred.contains("(mark (c 2) (k b))"), "{deferred}");
+        assert!(deferred.contains("c2kbi0"), "{deferred}");
+        let plain = marks_program(["", "", ""], 3);
+        let plain_eager = marks_program([EAGER, EAGER, EAGER], 3);
+        assert_eq!(plain, plain_eager);
+    }
+
+    /// The second waiting fact's matches do not fit: it and the facts after it are
+    /// undone (the counter's old fact comes back, the control fact's modify is
+    /// undone), the first mark stays, and only the text printed before the failing
+    /// assert is written, as in the eager order. The activations are the eager
+    /// order's, but for the firing rule's own match: the eager order never retracted
+    /// the counter and the control fact; brought back here, they come back as after
+    /// a journal overflow, all newest, the firing match too.
+    #[test]
+    fn full_pool_at_a_queued_fact_undoes_the_rest() {
+        let prints = [
+            "(printout t p1 crlf)",
+            "(printout t p2 crlf)",
+            "(printout t p3 crlf)",
+        ];
+        let deferred = marks_program(prints, 20);
+        let eager = marks_program(
+            prints
+                .map(|p| std::format!("{EAGER} {p}"))
+                .each_ref()
+                .map(|s| s.as_str()),
+            20,
+        );
+        assert!(deferred.contains("[ERROR] out of "), "{deferred}");
+        let split = |out: &str| {
+            let (facts, agenda) = out.split_once("For a total of").unwrap_or((out, ""));
+            let mut acts: std::vec::Vec<String> = agenda
+                .lines()
+                .filter(|l| !l.contains("activations.") && !l.contains("step: f-32,f-30"))
+                .map(String::from)
+                .collect();
+            acts.sort();
+            (String::from(facts), acts)
+        };
+        assert_eq!(split(&deferred), split(&eager));
+        assert!(deferred.contains("step: f-32,f-30"), "{deferred}");
+        assert!(
+            deferred.contains("(mark (c 2) (k a))")
+                && !deferred.contains("(mark (c 2) (k b))")
+                && deferred.contains("(cnt (c 2))")
+                && deferred.contains("(ctx (s go))"),
+            "{deferred}"
+        );
+        assert_eq!(deferred.matches("p1\n").count(), 3, "{deferred}");
+        assert_eq!(deferred.matches("p2\n").count(), 2, "{deferred}");
     }
 
     /// A join test that can fail (`>` of a symbol) keeps the eager order: the counter's

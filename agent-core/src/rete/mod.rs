@@ -10,7 +10,7 @@ pub use index::{KeyPlan, KEY_PLANS};
 mod defer;
 pub use defer::Deferred;
 #[cfg(feature = "defer")]
-pub use defer::HeldPrint;
+pub use defer::{HeldPrint, Queued, QUEUED_MAX};
 #[cfg(feature = "host-speedups")]
 pub(crate) mod discrim;
 #[cfg(feature = "host-speedups")]
