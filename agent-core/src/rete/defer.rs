@@ -783,6 +783,39 @@ mod tests {
         assert_eq!(plain, plain_eager);
     }
 
+    /// The asserts ahead of the modifies wait too: the control fact's retract goes
+    /// first, so the first mark meets no partial matches under it; the eager order
+    /// (an action between the asserts builds the first) runs out of room for the
+    /// 20 x 20 matches of `big`.
+    #[test]
+    fn queued_asserts_save_the_matches_the_retract_would_remove() {
+        let program = |between: &str| {
+            let items = item_facts(20);
+            run_program(&std::format!(
+                "(deftemplate cnt (slot c))
+                 (deftemplate ctx (slot s))
+                 (deftemplate item (slot id))
+                 (deftemplate mark (slot c) (slot k))
+                 (deffacts d (cnt (c 0)) (ctx (s go)) {items})
+                 (defrule step ?x <- (ctx (s go)) ?n <- (cnt (c ?c))
+                   => (assert (mark (c ?c) (k a))) {between} (assert (mark (c ?c) (k b)))
+                      (modify ?n (c (+ ?c 1))) (modify ?x (s end)))
+                 (defrule big (ctx (s go)) (mark (k a)) (item (id ?i)) (item (id ?j)) =>)
+                 (reset)
+                 (run)
+                 (facts)"
+            ))
+        };
+        let deferred = program("");
+        assert!(!deferred.contains("[ERROR]"), "{deferred}");
+        assert!(
+            deferred.contains("(mark (c 0) (k b))") && deferred.contains("(ctx (s end))"),
+            "{deferred}"
+        );
+        let eager = program(EAGER);
+        assert!(eager.contains("[ERROR] out of "), "{eager}");
+    }
+
     /// The second waiting fact's matches do not fit: it and the facts after it are
     /// undone (the counter's old fact comes back, the control fact's modify is
     /// undone), the first mark stays, and only the text printed before the failing
