@@ -317,7 +317,6 @@ impl Core<'_> {
 
     /// The cells of live and pending facts: what a compaction leaves (the rest
     /// below the top, kept by free slots or by none, it reclaims).
-    #[cfg(feature = "grow")]
     fn held_cells(&self) -> usize {
         let mut held = 0usize;
         for list in [self.st.facts.fact_head, self.st.facts.pending] {
@@ -476,14 +475,7 @@ impl Core<'_> {
             return Ok(hold);
         }
         // what compaction would leave: the cells of live and pending facts
-        let mut used = 0usize;
-        for list in [self.st.facts.fact_head, self.st.facts.pending] {
-            let mut f = list;
-            while f != NONE {
-                used += self.facts[f as usize].len as usize;
-                f = self.facts[f as usize].next;
-            }
-        }
+        let mut used = self.held_cells();
         if !hold {
             used -= self.facts[old as usize].len as usize;
         }
