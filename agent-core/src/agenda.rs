@@ -241,7 +241,8 @@ impl Core<'_> {
             self.st.net.pm_rhs,
         ) = (scratch, sp, pm);
         let s = match v {
-            Ok(crate::value::Value::Int(i)) if (-10000..=10000).contains(&i) => i as i32,
+            // (CLIPS keeps a C `int` of the value, then checks it)
+            Ok(crate::value::Value::Int(i)) if (-10000..=10000).contains(&(i as i32)) => i as i32,
             Err(e) => {
                 if let crate::error::EvalErrorKind::Capacity(c) = e.kind() {
                     return Err(c);

@@ -1813,15 +1813,27 @@ impl Core<'_> {
                 LoadDetail::MissingFunction
                 | LoadDetail::Arity { .. }
                 | LoadDetail::FunctionArity { .. }
-                | LoadDetail::ArgType { .. } => {
+                | LoadDetail::ArgType { .. }
+                | LoadDetail::FactIndexInRule { .. } => {
                     crate::builtins::pretty::defglobal_name_before(text, e.start as usize)
-                        .unwrap_or(e.start as usize)
                 }
-                _ => e.start as usize,
+                _ => None,
             };
             #[cfg(not(feature = "parser"))]
-            let from = e.start as usize;
-            let _ = b.write_str(text.get(from..e.echo_end as usize).unwrap_or(""));
+            let from: Option<usize> = None;
+            let upto = text.get(..e.echo_end as usize).unwrap_or("");
+            let _ = match from {
+                // (as CLIPS's pretty-print buffer holds it: `(duplicate (`)
+                #[cfg(feature = "parser")]
+                Some(from) => crate::builtins::pretty::write_defglobal_value_upto(
+                    upto.get(from..).unwrap_or(""),
+                    b,
+                ),
+                _ => b.write_str(upto.get(e.start as usize..).unwrap_or("")),
+            };
+            if e.echo_tail == crate::error::EchoTail::OpenParen {
+                let _ = b.write_char('(');
+            }
             if e.echo_tail == crate::error::EchoTail::SpaceBefore {
                 let _ = b.write_str(" )");
             }

@@ -770,6 +770,11 @@ pub struct State {
     /// The profiler (feature `extras`; its settings kept across `clear`).
     #[cfg(feature = "extras")]
     pub profile: crate::builtins::profile::Profile,
+    /// `check-syntax` (feature `extras`): while it reads its text, what the parser
+    /// writes to the error and warning routers (a salience or static default that
+    /// fails as it is read) goes here, to be returned in its message as CLIPS does.
+    #[cfg(feature = "extras")]
+    pub capture: Option<crate::value::TextBuf<2048>>,
     /// Host: joins primed while their parent had partial matches, and their own
     /// order of those (`rete::order`).
     #[cfg(feature = "grow")]
@@ -1002,6 +1007,8 @@ impl State {
             timetags: crate::builtins::tools::Timetags::new(),
             #[cfg(feature = "extras")]
             profile: crate::builtins::profile::Profile::new(),
+            #[cfg(feature = "extras")]
+            capture: None,
             #[cfg(feature = "grow")]
             prime: crate::rete::PrimeOrders::new(),
         }

@@ -180,6 +180,14 @@ impl Core<'_> {
     }
 
     pub fn write(&mut self, router: &str, text: &str) {
+        #[cfg(feature = "extras")]
+        if let Some(c) = self.st.capture.as_mut() {
+            if router == router::WERROR || router == router::WWARNING {
+                // (a message longer than the buffer is cut: output only)
+                let _ = core::fmt::Write::write_str(c, text);
+                return;
+            }
+        }
         self.spill_traces();
         self.host.write_str(router, text);
     }

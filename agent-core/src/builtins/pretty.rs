@@ -596,6 +596,28 @@ pub fn write_deffacts_upto(src: &str, module: &str, w: &mut dyn Write) -> fmt::R
     Ok(())
 }
 
+/// What CLIPS shows after `ERROR:` of a defglobal whose value it stopped reading
+/// where `src` (from the global's name on) ends: `?*x* = (f 1 (`, tokens as its
+/// pretty-print buffer joins them, control forms over lines.
+#[cfg(feature = "parser")]
+pub fn write_defglobal_value_upto(src: &str, w: &mut dyn Write) -> fmt::Result {
+    let mut c = Cursor::new(src);
+    let name = c.next();
+    write_token(&c, w, name)?;
+    while !matches!(c.peek(0).tok, Tok::Eof | Tok::Bad) {
+        w.write_char(' ')?;
+        // (a control form's actions on lines of their own)
+        #[cfg(feature = "extras")]
+        if nested_control(&mut c) {
+            let col = c.indent;
+            action(&mut c, w, col)?;
+            continue;
+        }
+        flat(&mut c, w)?;
+    }
+    Ok(())
+}
+
 /// The start of the last global named at the top of the defglobal holding byte `at`
 /// of `src` (the global whose value CLIPS was reading there), if any.
 #[cfg(feature = "parser")]

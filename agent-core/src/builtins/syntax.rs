@@ -55,11 +55,15 @@ fn check_syntax(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         return Err(EvalError::new(EvalErrorKind::Reported));
     }
     let cp = cx.checkpoint();
+    // what reading it prints as errors (a salience evaluated as it is read) goes
+    // into the message, as in CLIPS (a check inside a check keeps the outer's text)
+    let outer = cx.st.capture.replace(TextBuf::new());
     let mut p = Parser::new(cx, text);
     p.check_only = true;
     let item = p.next_item();
     let extraneous = p.peek().tok != Tok::Eof;
     let warned = p.warned_overflow;
+    let printed = core::mem::replace(&mut cx.st.capture, outer).unwrap_or_default();
     // CLIPS returns the warnings reading a construct printed (a command's are lost)
     let mut warning = Value::Sym(SYM_FALSE);
     let failed = match item {
@@ -91,6 +95,7 @@ fn check_syntax(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         warning = cx.make_string(crate::parser::OVERFLOW_WARNING)?;
     }
     let mut b: TextBuf<4096> = TextBuf::new();
+    let _ = core::fmt::Write::write_str(&mut b, printed.as_str());
     cx.format_load_error("check-syntax", text, &e, &mut b, false);
     let message = cx.make_string(b.as_str())?;
     Ok(cx.make_multi(&[message, warning])?)

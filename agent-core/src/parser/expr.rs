@@ -425,6 +425,11 @@ impl<'s> Parser<'s, '_, '_> {
                     let r = self.query_args(call, b.name);
                     self.loop_depth -= 1;
                     r?
+                } else if b.name == "progn" {
+                    self.args_until_rparen(call).map_err(|mut e| {
+                        self.back_up_action(&mut e);
+                        e
+                    })?
                 } else {
                     self.args_until_rparen(call)?
                 };
@@ -1051,7 +1056,10 @@ impl<'s> Parser<'s, '_, '_> {
             if self.peek().tok == Tok::Symbol("do") {
                 self.next();
             }
-            let body = self.loop_body()?;
+            let body = self.loop_body().map_err(|mut e| {
+                self.back_up_action(&mut e);
+                e
+            })?;
             self.cx.append_child(node, body);
             return Ok(node);
         }
@@ -1076,7 +1084,10 @@ impl<'s> Parser<'s, '_, '_> {
         if self.peek().tok == Tok::Symbol("do") {
             self.next();
         }
-        let body = self.loop_body()?;
+        let body = self.loop_body().map_err(|mut e| {
+            self.back_up_action(&mut e);
+            e
+        })?;
         self.cx.append_child(node, body);
         Ok(node)
     }
@@ -1280,15 +1291,7 @@ impl<'s> Parser<'s, '_, '_> {
                 }
                 Err(mut e) => {
                     e.query_syntax = true;
-                    if e.echo_end != 0 {
-                        let upto = self.lex.source().get(..e.echo_end as usize).unwrap_or("");
-                        if e.detail == crate::error::LoadDetail::MissingFunction {
-                            e.echo_end = e.start;
-                        } else if upto.ends_with(')') {
-                            e.echo_end -= 1;
-                            e.echo_tail = crate::error::EchoTail::OpenParen;
-                        }
-                    }
+                    self.back_up_action(&mut e);
                     return Err(e);
                 }
             };
@@ -1301,6 +1304,45 @@ impl<'s> Parser<'s, '_, '_> {
         }
         self.nvars = saved_vars;
         Ok(n)
+    }
+
+    /// An error in an action of `progn`, `progn$`, `foreach` or a fact-set query: the
+    /// parser holding the actions backs up its pretty-print buffer over the last two
+    /// things saved and adds the action's `(`, so CLIPS shows `(modify(` for `(modify
+    /// 1`, `(+ 1(` for `(+ 1)`, and a missing function's `(` alone. Once only, at the
+    /// innermost such form (CLIPS's backups then undo nothing more).
+    fn back_up_action(&self, e: &mut crate::error::LoadError) {
+        use crate::error::{EchoTail, LoadDetail};
+        if e.echo_end == 0
+            || e.echo_tail == EchoTail::OpenParen
+            || e.expected == super::INPUT_ENDED
+            || matches!(
+                e.detail,
+                LoadDetail::UndefinedGlobal { whole: true } | LoadDetail::UndefinedVariable
+            )
+        {
+            return;
+        }
+        let src = self.lex.source();
+        let upto = src.get(..e.echo_end as usize).unwrap_or("");
+        if e.detail == LoadDetail::MissingFunction {
+            e.echo_end = e.echo_end.min(e.start);
+        } else if upto.ends_with(')') {
+            e.echo_end -= 1;
+            e.echo_tail = EchoTail::OpenParen;
+        } else if matches!(
+            e.detail,
+            LoadDetail::FactIndexInRule { .. }
+                | LoadDetail::ArgType {
+                    expected: "non-void return value",
+                    ..
+                }
+        ) {
+            // `modify`/`duplicate` refusing their target: up to the function's name
+            let before = src.get(..e.start as usize).unwrap_or("");
+            e.echo_end = before.trim_end().len() as u32;
+            e.echo_tail = EchoTail::OpenParen;
+        }
     }
 
     /// A fact-set query's actions up to its `)`: their count.

@@ -434,6 +434,8 @@ impl<'s> Parser<'s, '_, '_> {
                 return Err(e);
             }
             Op::Int | Op::Local | Op::Global | Op::PatVar | Op::QSlot => {}
+            // a variable nothing binds: CLIPS's `[PRCCODE3]` once the construct is read
+            Op::Nop if matches!(target_at.tok, Tok::SfVar(_)) && self.deferred.is_some() => {}
             _ => return Err(self.modify_target_error(name, target_at)),
         }
         self.cx.append_child(node, f);

@@ -577,7 +577,11 @@ impl<'s> Parser<'s, '_, '_> {
                                 None => self.eval_now(e),
                             };
                             sal = match v {
-                                Ok(Value::Int(i)) if (-10000..=10000).contains(&i) => i as i32,
+                                // CLIPS keeps a C `int` of the value, then checks it
+                                // (4294967297 is 1)
+                                Ok(Value::Int(i)) if (-10000..=10000).contains(&(i as i32)) => {
+                                    i as i32
+                                }
                                 Err(err) if !err.is_capacity() => {
                                     return Err(self.salience_failed(err, b.name, value_end));
                                 }
