@@ -595,6 +595,7 @@ differential_programs! {
     p985_check_syntax_salience_errors => "985-check-syntax-salience-errors",
     p986_modify_index_echo_in_progn => "986-modify-index-echo-in-progn",
     p987_salience_kept_as_int => "987-salience-kept-as-int",
+    p988_function_restrictions_more => "988-function-restrictions-more",
     p960_slot_facets => "960-slot-facets",
     p961_slot_facet_errors => "961-slot-facet-errors",
     p962_slot_facet_tokens => "962-slot-facet-tokens",
