@@ -596,6 +596,7 @@ differential_programs! {
     p986_modify_index_echo_in_progn => "986-modify-index-echo-in-progn",
     p987_salience_kept_as_int => "987-salience-kept-as-int",
     p988_function_restrictions_more => "988-function-restrictions-more",
+    p989_build_and_literal_argument_types => "989-build-and-literal-argument-types",
     p960_slot_facets => "960-slot-facets",
     p961_slot_facet_errors => "961-slot-facet-errors",
     p962_slot_facet_tokens => "962-slot-facet-tokens",

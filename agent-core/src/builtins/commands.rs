@@ -1003,7 +1003,7 @@ pub(super) fn batch(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 /// `batch*`: runs the file's commands at once, without prompts, echo or results.
 #[cfg_attr(not(feature = "parser"), allow(dead_code))]
 pub(super) fn batch_quiet(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    let path = path_arg(cx, a, "batch")?;
+    let path = path_arg(cx, a, "batch*")?;
     let ok = cx.batch_file_stream(path.as_str(), false)?;
     Ok(Value::Sym(if ok { SYM_TRUE } else { SYM_FALSE }))
 }

@@ -17,9 +17,7 @@
 // without the feature the table is empty and the functions unused (and not linked)
 #![cfg_attr(not(feature = "extras"), allow(dead_code, unused_imports))]
 
-use super::describe::ArgType::{
-    Any, Integer as I, Lexeme as L, Multifield as M, Number as N, Str as S,
-};
+use super::describe::ArgType::{Any, Integer as I, Multifield as M, Number as N, Str as S};
 use super::describe::{BodyNames, OnError};
 use super::math::{int_arg, num_arg};
 use super::multifield::{index_error, multi_arg, push_flat, push_range, slice};
@@ -63,7 +61,7 @@ pub const FUNCS: &[Builtin] = &[
     trig("acot", acot),
     trig("deg-grad", deg_grad),
     trig("grad-deg", grad_deg),
-    Builtin::eager("system", 1, ANY, system).args(&[], L).returns(super::describe::Returns::Void),
+    Builtin::eager("system", 1, ANY, system).args(&[], super::describe::ArgType::SymbolOrString).returns(super::describe::Returns::Void),
     Builtin::eager("!=", 2, ANY, super::basic::num_ne).args(&[], N).on_error(OnError::False).quiet(),
     Builtin::eager("mv-append", 0, ANY, super::multifield::create).on_error(OnError::EmptyMultifield),
     Builtin::eager("member", 2, 2, super::multifield::member).args(&[Any, M], Any).on_error(OnError::False),

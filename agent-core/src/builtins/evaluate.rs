@@ -19,7 +19,8 @@ use crate::value::{Ix, Value};
 #[cfg(feature = "parser")]
 #[rustfmt::skip]
 pub const FUNCS: &[Builtin] = &[
-    Builtin::eager("eval", 1, 1, eval).on_error(OnError::False),
+    Builtin::eager("eval", 1, 1, eval).on_error(OnError::False)
+        .args(&[super::describe::ArgType::SymbolOrString], super::describe::ArgType::Any),
     Builtin::eager("build", 1, 1, build),
     Builtin::eager("load", 1, 1, super::commands::load),
     Builtin::eager("load*", 1, 1, super::commands::load_quiet),
@@ -639,12 +640,61 @@ fn build(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     if cx.st.net.matching > 0 {
         return Ok(Value::Sym(SYM_FALSE));
     }
-    match cx.load_text(text.as_str(), false) {
+    // CLIPS reads one construct: text that does not start with one is FALSE without
+    // a message, and what follows the construct is not read
+    let Some(end) = first_construct(text.as_str()) else {
+        return Ok(Value::Sym(SYM_FALSE));
+    };
+    let text = text.as_str().get(..end).unwrap_or(text.as_str());
+    match cx.load_text(text, false) {
         Ok(n) if n > 0 => Ok(Value::Sym(SYM_TRUE)),
         Ok(_) => Ok(Value::Sym(SYM_FALSE)),
         Err(e) => {
-            cx.report_load_error("build", text.as_str(), &e);
+            cx.report_load_error("build", text, &e);
             Ok(Value::Sym(SYM_FALSE))
+        }
+    }
+}
+
+/// Where the construct `text` starts with ends (the whole text when it does not end),
+/// or None when `text` does not start with `(` and a construct keyword.
+fn first_construct(text: &str) -> Option<usize> {
+    let mut lx = crate::lexer::Lexer::new(text);
+    if lx.next_token().tok != Tok::LParen {
+        return None;
+    }
+    let Tok::Symbol(kw) = lx.next_token().tok else {
+        return None;
+    };
+    if !matches!(
+        kw,
+        "deftemplate"
+            | "defrule"
+            | "deffacts"
+            | "deffunction"
+            | "defglobal"
+            | "defmodule"
+            | "defgeneric"
+            | "defmethod"
+            | "defclass"
+            | "definstances"
+            | "defmessage-handler"
+    ) {
+        return None;
+    }
+    let mut depth = 1u32;
+    loop {
+        let t = lx.next_token();
+        match t.tok {
+            Tok::Eof | Tok::Bad => return Some(text.len()),
+            Tok::LParen => depth += 1,
+            Tok::RParen => {
+                depth -= 1;
+                if depth == 0 {
+                    return Some(t.end);
+                }
+            }
+            _ => {}
         }
     }
 }

@@ -45,10 +45,14 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("type", 1, 1, type_of),
     Builtin::eager("gensym", 0, 0, gensym).returns(super::describe::Returns::Symbol),
     Builtin::eager("gensym*", 0, 0, gensym_star).returns(super::describe::Returns::Symbol),
-    Builtin::eager("sort", 1, super::ANY, super::evaluate::sort).on_error(super::describe::OnError::False),
-    Builtin::eager("funcall", 1, super::ANY, super::evaluate::funcall).on_error(super::describe::OnError::False),
-    Builtin::eager("assert-string", 1, 1, super::evaluate::assert_string).on_error(super::describe::OnError::False),
-    Builtin::eager("str-assert", 1, 1, super::evaluate::str_assert).on_error(super::describe::OnError::False),
+    Builtin::eager("sort", 1, super::ANY, super::evaluate::sort).on_error(super::describe::OnError::False)
+        .args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any),
+    Builtin::eager("funcall", 1, super::ANY, super::evaluate::funcall).on_error(super::describe::OnError::False)
+        .args(&[super::describe::ArgType::SymbolOrString], super::describe::ArgType::Any),
+    Builtin::eager("assert-string", 1, 1, super::evaluate::assert_string).on_error(super::describe::OnError::False)
+        .args(&[super::describe::ArgType::Str], super::describe::ArgType::Any),
+    Builtin::eager("str-assert", 1, 1, super::evaluate::str_assert).on_error(super::describe::OnError::False)
+        .args(&[super::describe::ArgType::Str], super::describe::ArgType::Any),
 ];
 #[cfg(not(feature = "extras"))]
 pub const FUNCS: &[Builtin] = &[];

@@ -509,12 +509,15 @@ fn batch_byte(cx: &mut Core<'_>) -> Result<Option<u8>, EvalError> {
 /// `(put-char [name] code)`: writes the character with that code.
 fn put_char(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let code_at = a.len as usize - 1;
-    let Value::Int(code) = cx.arg(a, code_at) else {
-        return Err(EvalError::wrong_type(
+    // (a float is cut to an integer, as C's cast in CLIPS)
+    let code = match cx.arg(a, code_at) {
+        Value::Int(code) => code,
+        Value::Float(f) => f as i64,
+        _ => return Err(EvalError::wrong_type(
             "put-char",
             crate::error::arg_no(code_at),
             "integer",
-        ));
+        )),
     };
     let routed = if a.len == 2 {
         match super::commands::resolve_router(cx, cx.arg(a, 0), "put-char") {

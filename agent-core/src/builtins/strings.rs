@@ -25,7 +25,8 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("upcase", 1, 1, upcase).args(&[L], Any).on_error(OnError::EmptyString).body_names(BodyNames::SymbolOrString).returns(R::Lexeme),
     Builtin::eager("lowcase", 1, 1, lowcase).args(&[L], Any).on_error(OnError::EmptyString).body_names(BodyNames::SymbolOrString).returns(R::Lexeme),
     Builtin::eager("str-compare", 2, 3, str_compare).args(&[L, L, I], Any).on_error(OnError::Zero).body_names(BodyNames::SymbolOrString).returns(R::Integer),
-    Builtin::eager("string-to-field", 1, 1, string_to_field).on_error(OnError::ErrorString).body_names(BodyNames::SymbolOrString),
+    Builtin::eager("string-to-field", 1, 1, string_to_field).on_error(OnError::ErrorString).body_names(BodyNames::SymbolOrString)
+        .args(&[super::describe::ArgType::Lexeme], super::describe::ArgType::Any),
 ];
 pub const TABLE: super::Table = super::Table::new(FUNCS);
 

@@ -15,7 +15,8 @@ use core::fmt::Write;
 #[cfg(feature = "extras")]
 #[rustfmt::skip]
 pub const FUNCS: &[Builtin] = &[
-    Builtin::eager("deftemplate-slot-names", 1, 1, slot_names),
+    Builtin::eager("deftemplate-slot-names", 1, 1, slot_names)
+        .args(&[super::describe::ArgType::FactOrIndex], super::describe::ArgType::Any),
     Builtin::eager("deftemplate-slot-existp", 2, 2, slot_existp).args(&[Y, Y], Any),
     Builtin::eager("deftemplate-slot-multip", 2, 2, slot_multip).args(&[Y, Y], Any),
     Builtin::eager("deftemplate-slot-singlep", 2, 2, slot_singlep).args(&[Y, Y], Any),

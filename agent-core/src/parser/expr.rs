@@ -330,7 +330,10 @@ impl<'s> Parser<'s, '_, '_> {
     fn call(&mut self) -> PResult<Ix> {
         let nt = self.next();
         let (module, name) = match nt.tok {
-            Tok::Symbol(s) => self.qualified_ref(nt, s)?,
+            // (an instance name `[x]` is no function name: `[EXPRNPSR1]` below)
+            Tok::Symbol(s) if crate::value::instance_name_body(s).is_none() => {
+                self.qualified_ref(nt, s)?
+            }
             Tok::Eof | Tok::Bad => return Err(self.err(nt, "a function name")),
             // CLIPS's `[EXPRNPSR1]` for anything else there (a literal, a variable,
             // `(`, `)`, `&`...), a construct shown up to it

@@ -731,8 +731,13 @@ impl<'s, 'e> Parser<'s, '_, 'e> {
                         self.restore(save_lex);
                         self.scope = Scope::TopLevel;
                         self.construct = "command";
-                        if !matches!(head.tok, Tok::Symbol(_) | Tok::Eof | Tok::Bad) {
-                            // CLIPS's command loop: `(` and no function name
+                        let instance_name = matches!(head.tok, Tok::Symbol(s)
+                            if crate::value::instance_name_body(s).is_some());
+                        if instance_name
+                            || !matches!(head.tok, Tok::Symbol(_) | Tok::Eof | Tok::Bad)
+                        {
+                            // CLIPS's command loop: `(` and no function name (an
+                            // instance name `[x]` is none)
                             let mut e = self.err(head, "a function name");
                             e.detail = crate::error::LoadDetail::ExpectedCommand;
                             return Err(e);
