@@ -3,7 +3,14 @@
 ; ([COMMLINE2] at a command's start, [EXPRNPSR1] in an expression); literal arguments
 ; of the wrong type refused while read (no value printed) for eval, sort, funcall,
 ; assert-string, str-assert, string-to-field, deftemplate-slot-names, system; batch*
-; named in its own errors; put-char of a float
+; named in its own errors; put-char of a float. Computed arguments of the wrong type
+; (from deffunctions) as CLIPS's bodies word them: "file name" and FALSE (batch,
+; batch*, load, load*, load-facts, save), "defrule name" and the other construct names
+; (ppdefrule, undef*), "rule name" (refresh), set-break; FALSE after build, fetch,
+; toss, focus, matches; the setting kept and returned by set-strategy,
+; set-salience-evaluation, set-sequence-operator-recognition,
+; set-profile-percent-threshold; str-assert's body naming assert-string; system;
+; a construct name of the wrong type sets no error: the rule's actions go on
 (watch facts)
 (watch rules)
 (build "zz")
@@ -52,4 +59,49 @@
 (put-char t 10)
 (put-char abc)
 (put-char "A")
+(deffunction mf () (create$ a b))
+(deffunction fl () 1.5)
+(deffunction st () "zz")
+(deffunction sy () abc)
+(batch (mf))
+(batch* (fl))
+(load (mf))
+(load* (fl))
+(load-facts (mf))
+(save (fl))
+(ppdefrule (mf))
+(ppdefrule (create$ a b))
+(undefrule (st))
+(undefrule "zz")
+(undeffacts (fl))
+(undeftemplate (st))
+(undeffunction (mf))
+(undefglobal (fl))
+(refresh (st))
+(set-break (mf))
+(build (mf))
+(build (create$ a b))
+(fetch (fl))
+(toss (mf))
+(focus (st))
+(focus (create$ a b))
+(matches (fl))
+(set-strategy breadth)
+(set-strategy (st))
+(get-strategy)
+(set-strategy depth)
+(set-salience-evaluation (mf))
+(set-sequence-operator-recognition (st))
+(get-sequence-operator-recognition)
+(set-profile-percent-threshold 5)
+(set-profile-percent-threshold (st))
+(set-profile-percent-threshold 0)
+(str-assert (sy))
+(str-assert (mf))
+(assert-string (fl))
+(system (st) 1)
+(system "echo" (fl))
+(system a b)
+(defrule uses => (printout t 1 crlf) (undefrule (st)) (printout t 2 crlf) (ppdeftemplate (st)) (printout t 3 crlf) (undeffacts (st)) (printout t 4 crlf) (ppdefrule (st)) (printout t 5 crlf) (refresh (st)) (printout t 6 crlf) (ppdeffacts (st)) (printout t 7 crlf) (undeffunction (st)) (printout t 8 crlf) (set-break (st)) (printout t 9 crlf))
+(run)
 (exit)

@@ -28,12 +28,13 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("halt", 0, 0, halt).returns(super::describe::Returns::Void),
     Builtin::eager("exit", 0, 1, exit).returns(R::Void),
     Builtin::eager("refresh-agenda", 0, 1, refresh_agenda).returns(super::describe::Returns::Void),
-    Builtin::eager("set-strategy", 1, 1, set_strategy),
+    Builtin::eager("set-strategy", 1, 1, set_strategy)
+        .args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any),
     Builtin::eager("get-strategy", 0, 0, get_strategy),
     Builtin::eager("list-defrules", 0, 1, list_defrules).returns(super::describe::Returns::Void),
-    Builtin::eager("ppdefrule", 1, 1, ppdefrule).returns(super::describe::Returns::Void),
-    Builtin::eager("undefrule", 1, 1, undefrule).returns(super::describe::Returns::Void),
-    Builtin::eager("matches", 1, 2, matches),
+    Builtin::eager("ppdefrule", 1, 1, ppdefrule).returns(super::describe::Returns::Void).args(&[], super::describe::ArgType::Symbol),
+    Builtin::eager("undefrule", 1, 1, undefrule).returns(super::describe::Returns::Void).args(&[], super::describe::ArgType::Symbol),
+    Builtin::eager("matches", 1, 2, matches).on_error(super::describe::OnError::False).args(&[], super::describe::ArgType::Symbol),
     // literal arguments are checked while parsing, as CLIPS's "1*wk"
     Builtin::eager("save-facts", 1, ANY, save_facts)
         .args(&[ArgType::SymbolOrString], ArgType::Symbol)
@@ -650,7 +651,11 @@ fn set_strategy(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
                 router::WERROR,
                 "[ARGACCES5] Function set-strategy expected argument #1 to be of type symbol\n",
             );
-            return Err(EvalError::already_reported());
+            // (a computed value: the strategy stays, its name returned; a literal is
+            // refused while read)
+            let current = Value::Sym(cx.intern(cx.strategy().name())?);
+            cx.set_error_fallback(current, None);
+            return Err(EvalError::new(EvalErrorKind::Reported));
         }
     };
     match Strategy::from_name(cx.sym_text(s)) {
@@ -779,7 +784,9 @@ pub(super) fn unable(cx: &mut Core<'_>, what: Unable, kind: &str, name: Ix) {
 }
 
 fn ppdefrule(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    let name = cx.arg_symbol(a, 0, "ppdefrule")?;
+    let Some(name) = construct_name(cx, a, "ppdefrule", "defrule") else {
+        return Ok(Value::Void);
+    };
     let Some(r) = find_rule(cx, name) else {
         unable(cx, Unable::Find, "defrule", name);
         return Ok(Value::Void);
@@ -794,8 +801,42 @@ fn ppdefrule(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     Ok(Value::Void)
 }
 
+/// A construct name argument as CLIPS's `GetConstructName` checks it: a computed
+/// value that is no symbol is reported (`kind` name) but sets no error, so the actions
+/// holding the call go on (a literal is refused while read).
+pub(super) fn construct_name(
+    cx: &mut Core<'_>,
+    a: Args,
+    func: &str,
+    kind: &str,
+) -> Option<crate::value::SymId> {
+    match cx.arg(a, 0) {
+        Value::Sym(s) if crate::value::instance_name_body(cx.sym_text(s)).is_none() => Some(s),
+        v => {
+            // (an instance name `[x]`, most often typed, as CLIPS's parser words it)
+            let symbol = matches!(v, Value::Sym(_));
+            let mut b: TextBuf<120> = TextBuf::new();
+            let _ = if symbol {
+                writeln!(
+                    b,
+                    "[ARGACCES5] Function {func} expected argument #1 to be of type symbol"
+                )
+            } else {
+                writeln!(
+                    b,
+                    "[ARGACCES5] Function {func} expected argument #1 to be of type {kind} name"
+                )
+            };
+            cx.write(router::WERROR, b.as_str());
+            None
+        }
+    }
+}
+
 fn undefrule(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    let name = cx.arg_symbol(a, 0, "undefrule")?;
+    let Some(name) = construct_name(cx, a, "undefrule", "defrule") else {
+        return Ok(Value::Void);
+    };
     if cx.st.net.matching > 0 {
         // the network may not change while a test in it runs
         unable(cx, Unable::Delete, "defrule", name);

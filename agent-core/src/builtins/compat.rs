@@ -411,6 +411,15 @@ fn get_sequence_operator_recognition(cx: &mut Core<'_>, _a: Args) -> Result<Valu
 /// Any value but FALSE turns recognition on; the old setting is returned.
 fn set_sequence_operator_recognition(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let old = cx.st.mode.seq_ops;
+    // (a computed value that is no symbol: the setting stays, its value returned)
+    if !matches!(cx.arg(a, 0), Value::Sym(_)) {
+        cx.set_error_fallback(Core::bool_value(old), None);
+        return Err(EvalError::wrong_type(
+            "set-sequence-operator-recognition",
+            1,
+            "symbol",
+        ));
+    }
     cx.st.mode.seq_ops = !is_false(cx.arg(a, 0));
     Ok(Core::bool_value(old))
 }
@@ -507,7 +516,9 @@ fn set_salience_evaluation(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalErro
                 router::WERROR,
                 "[ARGACCES5] Function set-salience-evaluation expected argument #1 to be of type symbol\n",
             );
-            return Err(EvalError::already_reported());
+            // (the setting's value, as CLIPS returns it)
+            cx.set_error_fallback(old, None);
+            return Err(EvalError::new(crate::error::EvalErrorKind::Reported));
         }
     };
     match SALIENCE_EVALUATIONS
@@ -581,7 +592,17 @@ mod tests {
 /// `(system ARG...)`: Debian's CLIPS 6.30 is built without a system call; it says so
 /// and returns nothing, and so does this one (a host command from a rule base is not
 /// something the engine offers).
-fn system(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
+fn system(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    // (each argument checked first, a computed one too)
+    for i in 0..a.len as usize {
+        if !matches!(cx.arg(a, i), Value::Sym(_) | Value::Str(_)) {
+            return Err(EvalError::wrong_type(
+                "system",
+                crate::error::arg_no(i),
+                "symbol or string",
+            ));
+        }
+    }
     cx.write(
         router::STDOUT,
         "System function not fully defined for this system.\n",

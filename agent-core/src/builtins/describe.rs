@@ -260,6 +260,13 @@ impl Builtin {
         self.returns = r;
         self
     }
+    /// A file name argument as `load`, `batch`, `save` and the others check it: a
+    /// symbol or string, a computed one of another type worded "file name", FALSE.
+    pub const fn file_name(self) -> Builtin {
+        self.args(&[ArgType::SymbolOrString], ArgType::Any)
+            .on_error(OnError::False)
+            .body_names(BodyNames::FileName)
+    }
     /// How the body words a computed argument's wrong type.
     pub const fn body_names(mut self, names: BodyNames) -> Builtin {
         self.body_names = names;

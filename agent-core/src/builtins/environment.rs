@@ -31,7 +31,7 @@ pub const FUNCS: &[Builtin] = &[
         .on_error(super::describe::OnError::False),
     Builtin::lazy("timer", 0, ANY, timer),
     Builtin::eager("options", 0, 0, options).returns(super::describe::Returns::Void),
-    Builtin::eager("save", 1, 1, save).on_error(super::describe::OnError::False),
+    Builtin::eager("save", 1, 1, save).file_name(),
     Builtin::eager("set-break", 1, 1, set_break)
         .args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any).returns(super::describe::Returns::Void),
     Builtin::eager("remove-break", 0, 1, remove_break)
@@ -892,6 +892,9 @@ fn break_rule(cx: &mut Core<'_>, a: Args) -> Option<crate::value::SymId> {
 /// `(set-break RULE)`: a run stops before firing the rule (unless it fires first).
 #[cfg(feature = "extras")]
 fn set_break(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    if !matches!(cx.arg(a, 0), Value::Sym(_)) {
+        return Err(EvalError::wrong_type("set-break", 1, "symbol"));
+    }
     let Some(rule) = break_rule(cx, a) else {
         return Ok(Value::Void);
     };
@@ -937,6 +940,11 @@ fn remove_break(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 #[cfg(feature = "extras")]
 fn refresh(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let Value::Sym(name) = cx.arg(a, 0) else {
+        // (a literal is refused while read; the actions go on)
+        cx.write(
+            router::WERROR,
+            "[ARGACCES5] Function refresh expected argument #1 to be of type rule name\n",
+        );
         return Ok(Value::Void);
     };
     match super::commands::find_rule(cx, name) {
@@ -983,12 +991,8 @@ fn show_breaks(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 /// FALSE when the file cannot be written.
 fn save(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let (Value::Sym(s) | Value::Str(s)) = cx.arg(a, 0) else {
-        // (as CLIPS words it, with no value after it)
-        cx.write(
-            router::WERROR,
-            "[ARGACCES5] Function save expected argument #1 to be of type symbol or string\n",
-        );
-        return Ok(Value::Void);
+        // (a literal is refused while read; a computed one is a "file name", FALSE)
+        return Err(EvalError::wrong_type("save", 1, "symbol or string"));
     };
     let mut path: TextBuf<256> = TextBuf::new();
     let _ = path.write_str(cx.sym_text(s));

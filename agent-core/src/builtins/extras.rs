@@ -31,14 +31,14 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("list-deffacts", 0, 1, list_deffacts).returns(super::describe::Returns::Void),
     Builtin::eager("list-defglobals", 0, 1, list_defglobals).returns(super::describe::Returns::Void),
     Builtin::eager("show-defglobals", 0, 1, show_defglobals).args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any).returns(super::describe::Returns::Void),
-    Builtin::eager("undeffacts", 1, 1, undeffacts).returns(super::describe::Returns::Void),
+    Builtin::eager("undeffacts", 1, 1, undeffacts).returns(super::describe::Returns::Void).args(&[], super::describe::ArgType::Symbol),
     Builtin::eager("ppdeftemplate", 1, 1, ppdeftemplate).args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any).returns(super::describe::Returns::Void),
     Builtin::eager("ppdeffacts", 1, 1, ppdeffacts).args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any).returns(super::describe::Returns::Void),
     Builtin::eager("ppdeffunction", 1, 1, ppdeffunction).args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any).returns(super::describe::Returns::Void),
     Builtin::eager("ppdefglobal", 1, 1, ppdefglobal).args(&[super::describe::ArgType::Symbol], super::describe::ArgType::Any).returns(super::describe::Returns::Void),
-    Builtin::eager("undeftemplate", 1, 1, undeftemplate).returns(super::describe::Returns::Void),
-    Builtin::eager("undeffunction", 1, 1, undeffunction).returns(super::describe::Returns::Void),
-    Builtin::eager("undefglobal", 1, 1, undefglobal).returns(super::describe::Returns::Void),
+    Builtin::eager("undeftemplate", 1, 1, undeftemplate).returns(super::describe::Returns::Void).args(&[], super::describe::ArgType::Symbol),
+    Builtin::eager("undeffunction", 1, 1, undeffunction).returns(super::describe::Returns::Void).args(&[], super::describe::ArgType::Symbol),
+    Builtin::eager("undefglobal", 1, 1, undefglobal).returns(super::describe::Returns::Void).args(&[], super::describe::ArgType::Symbol),
     Builtin::eager("fact-relation", 1, 1, fact_relation).args(&[super::describe::ArgType::FactOrIndex], super::describe::ArgType::Any).returns(super::describe::Returns::Symbol),
     Builtin::eager("fact-slot-names", 1, 1, fact_slot_names).args(&[super::describe::ArgType::FactOrIndex], super::describe::ArgType::Any),
     Builtin::eager("ppfact", 1, 3, ppfact).args(&[super::describe::ArgType::FactOrIndex], super::describe::ArgType::Any).returns(super::describe::Returns::Void),
@@ -388,19 +388,8 @@ fn show_defglobals(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 /// `(undeffacts name)` or `(undeffacts *)`: the deffacts goes; facts it asserted stay.
 /// The symbol argument of a `ppdef*` command, or ARGACCES5 as CLIPS words it when the
 /// value is known only at run time (a literal is checked while parsing: "symbol").
-fn pp_name(cx: &mut Core<'_>, a: Args, func: &str, kind: &str) -> Result<SymId, EvalError> {
-    match cx.arg(a, 0) {
-        Value::Sym(s) => Ok(s),
-        _ => {
-            let mut b: TextBuf<120> = TextBuf::new();
-            let _ = writeln!(
-                b,
-                "[ARGACCES5] Function {func} expected argument #1 to be of type {kind} name"
-            );
-            cx.write(router::WERROR, b.as_str());
-            Err(EvalError::already_reported())
-        }
-    }
+fn pp_name(cx: &mut Core<'_>, a: Args, func: &str, kind: &str) -> Option<SymId> {
+    super::commands::construct_name(cx, a, func, kind)
 }
 
 /// Writes a construct's pretty-printed form, made by `pp` from its source text (none
@@ -422,7 +411,9 @@ fn write_pp(
 /// `(ppdeftemplate name)`: the deftemplate as CLIPS pretty-prints it; nothing for an
 /// ordered fact's implied template or `initial-fact`.
 fn ppdeftemplate(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    let name = pp_name(cx, a, "ppdeftemplate", "deftemplate")?;
+    let Some(name) = pp_name(cx, a, "ppdeftemplate", "deftemplate") else {
+        return Ok(Value::Void);
+    };
     // (`MOD::name` is module MOD's own, exported or not, as in CLIPS)
     match find_pp_construct(cx, name, PpKind::Template) {
         Some(t) => {
@@ -446,7 +437,9 @@ fn ppdeftemplate(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 
 /// `(ppdeffacts name)`: the deffacts as CLIPS pretty-prints it.
 fn ppdeffacts(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    let name = pp_name(cx, a, "ppdeffacts", "deffacts")?;
+    let Some(name) = pp_name(cx, a, "ppdeffacts", "deffacts") else {
+        return Ok(Value::Void);
+    };
     // CLIPS's own `initial-fact` (also as `MAIN::initial-fact`) prints nothing
     let bare = match cx.sym_text(name) {
         "MAIN::initial-fact" => "initial-fact",
@@ -472,7 +465,9 @@ fn ppdeffacts(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 
 /// `(ppdeffunction name)`: the deffunction as CLIPS pretty-prints it.
 fn ppdeffunction(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    let name = pp_name(cx, a, "ppdeffunction", "deffunction")?;
+    let Some(name) = pp_name(cx, a, "ppdeffunction", "deffunction") else {
+        return Ok(Value::Void);
+    };
     match find_pp_construct(cx, name, PpKind::Function) {
         Some(f) => {
             let text = cx.function_text(f);
@@ -490,7 +485,9 @@ fn ppdeffunction(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 /// `(ppdefglobal name)` (without `?*`..`*`): the variable as CLIPS pretty-prints it,
 /// `(defglobal MODULE ?*name* = value)`.
 fn ppdefglobal(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    let name = pp_name(cx, a, "ppdefglobal", "defglobal")?;
+    let Some(name) = pp_name(cx, a, "ppdefglobal", "defglobal") else {
+        return Ok(Value::Void);
+    };
     match find_pp_construct(cx, name, PpKind::Global) {
         Some(g) => {
             let text = cx.global_text(g);
@@ -547,7 +544,9 @@ pub(super) fn find_pp_construct(cx: &mut Core<'_>, name: SymId, kind: PpKind) ->
 }
 
 fn undeffacts(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    let name = cx.arg_symbol(a, 0, "undeffacts")?;
+    let Some(name) = super::commands::construct_name(cx, a, "undeffacts", "deffacts") else {
+        return Ok(Value::Void);
+    };
     // (a deffacts named `*` goes alone, as in CLIPS; the next `*` takes all)
     let star = cx.sym_text(name) == "*" && find_deffacts(cx, name).is_none();
     match cx.sym_text(name) {
@@ -647,7 +646,9 @@ fn undefine_target(cx: &mut Core<'_>, how: &Undefine, name: SymId) -> Option<Ix>
 /// without a name (indices compiled into other constructs stay valid), as a redefined
 /// template's does.
 fn undefine(cx: &mut Core<'_>, a: Args, how: &Undefine) -> Result<Value, EvalError> {
-    let name = cx.arg_symbol(a, 0, how.func)?;
+    let Some(name) = super::commands::construct_name(cx, a, how.func, how.kind) else {
+        return Ok(Value::Void);
+    };
     // (one named `*` goes alone, as in CLIPS; the next `*` takes all)
     let all = cx.sym_text(name) == "*" && undefine_target(cx, how, name).is_none();
     if !all {

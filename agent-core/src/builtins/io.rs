@@ -513,11 +513,13 @@ fn put_char(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let code = match cx.arg(a, code_at) {
         Value::Int(code) => code,
         Value::Float(f) => f as i64,
-        _ => return Err(EvalError::wrong_type(
-            "put-char",
-            crate::error::arg_no(code_at),
-            "integer",
-        )),
+        _ => {
+            return Err(EvalError::wrong_type(
+                "put-char",
+                crate::error::arg_no(code_at),
+                "integer",
+            ))
+        }
     };
     let routed = if a.len == 2 {
         match super::commands::resolve_router(cx, cx.arg(a, 0), "put-char") {

@@ -19,7 +19,7 @@ use core::fmt::Write;
 #[cfg(feature = "modules")]
 #[rustfmt::skip]
 pub const FUNCS: &[Builtin] = &[
-    Builtin::eager("focus", 1, ANY, focus),
+    Builtin::eager("focus", 1, ANY, focus).on_error(super::describe::OnError::False).args(&[], super::describe::ArgType::Symbol),
     Builtin::eager("get-focus", 0, 0, get_focus),
     Builtin::eager("get-focus-stack", 0, 0, get_focus_stack),
     Builtin::eager("list-focus-stack", 0, 0, list_focus_stack).returns(super::describe::Returns::Void),

@@ -277,7 +277,15 @@ fn get_profile_percent_threshold(cx: &mut Core<'_>, _a: Args) -> Result<Value, E
 /// `(set-profile-percent-threshold <number>)`: the threshold before, or -1.0 for a
 /// number outside 0..=100 (CLIPS's value after its error).
 fn set_profile_percent_threshold(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    let n = cx.arg_num(a, 0, "set-profile-percent-threshold")?.as_f64();
+    // (a computed value of another type: the threshold stays, returned)
+    let current = Value::Float(cx.st.profile.threshold);
+    let n = match cx.arg_num(a, 0, "set-profile-percent-threshold") {
+        Ok(n) => n.as_f64(),
+        Err(e) => {
+            cx.set_error_fallback(current, None);
+            return Err(e);
+        }
+    };
     if !(0.0..=100.0).contains(&n) {
         cx.write(
             router::WERROR,

@@ -57,13 +57,18 @@ fn check_syntax(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let cp = cx.checkpoint();
     // what reading it prints as errors (a salience evaluated as it is read) goes
     // into the message, as in CLIPS (a check inside a check keeps the outer's text)
+    #[cfg(feature = "extras")]
     let outer = cx.st.capture.replace(TextBuf::new());
     let mut p = Parser::new(cx, text);
     p.check_only = true;
     let item = p.next_item();
     let extraneous = p.peek().tok != Tok::Eof;
     let warned = p.warned_overflow;
+    #[cfg(feature = "extras")]
     let printed = core::mem::replace(&mut cx.st.capture, outer).unwrap_or_default();
+    // (without `extras` there is no check-syntax to call this)
+    #[cfg(not(feature = "extras"))]
+    let printed: TextBuf<8> = TextBuf::new();
     // CLIPS returns the warnings reading a construct printed (a command's are lost)
     let mut warning = Value::Sym(SYM_FALSE);
     let failed = match item {

@@ -30,8 +30,8 @@ use core::fmt::Write;
 
 #[rustfmt::skip]
 pub const FUNCS: &[Builtin] = &[
-    Builtin::eager("fetch", 1, 1, fetch).args(&[ArgType::SymbolOrString], ArgType::Any),
-    Builtin::eager("toss", 1, 1, toss).args(&[ArgType::SymbolOrString], ArgType::Any).returns(Returns::Symbol),
+    Builtin::eager("fetch", 1, 1, fetch).args(&[ArgType::SymbolOrString], ArgType::Any).on_error(super::describe::OnError::False),
+    Builtin::eager("toss", 1, 1, toss).args(&[ArgType::SymbolOrString], ArgType::Any).returns(Returns::Symbol).on_error(super::describe::OnError::False),
     Builtin::eager("print-region", 2, super::ANY, print_region).args(&[ArgType::Symbol, ArgType::SymbolOrString], ArgType::Any).returns(Returns::Symbol),
     Builtin::eager("get-region", 1, super::ANY, get_region).args(&[ArgType::SymbolOrString], ArgType::Any).returns(Returns::Str),
 ];
