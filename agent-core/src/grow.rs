@@ -376,8 +376,8 @@ impl Core<'_> {
         };
         self.rebind(pool, storage);
         match (pool, grown_heads) {
-            (Pool::Facts, Some(_)) => self.rehash_facts(),
-            (Pool::Symbols, Some(_)) => self.rehash_symbols(),
+            (Pool::Facts, Some(was)) => self.rehash_facts(was),
+            (Pool::Symbols, Some(was)) => self.rehash_symbols(was),
             _ => {}
         }
         Ok(())
@@ -393,8 +393,9 @@ impl Core<'_> {
     /// (the index holds exactly the live facts; their order in a chain does not
     /// matter): one step per fact, with no copy of the old heads and no walk over
     /// the empty buckets of a table twice as long as its pool.
-    fn rehash_facts(&mut self) {
-        self.fact_buckets.fill(NONE);
+    /// The heads past `was`, the old length, are empty already (`grow_heads`).
+    fn rehash_facts(&mut self, was: usize) {
+        self.fact_buckets[..was].fill(NONE);
         let mut f = self.st.facts.fact_head;
         while f != NONE {
             self.link_fact_hash(f);
@@ -415,9 +416,10 @@ impl Core<'_> {
     }
 
     /// Builds the symbol table's buckets again for its length now, newest symbol at
-    /// each bucket's head (as interning leaves them; `Symbols::truncate` needs it).
-    fn rehash_symbols(&mut self) {
-        self.sym_buckets.fill(NONE);
+    /// each bucket's head (as interning leaves them; `Symbols::truncate` needs it);
+    /// the heads past `was`, the old length, are empty already (`grow_heads`).
+    fn rehash_symbols(&mut self, was: usize) {
+        self.sym_buckets[..was].fill(NONE);
         let rom = self.st.rom.symbols.len();
         let count = (self.st.pools.nsyms as usize).saturating_sub(rom);
         for k in 0..count {
@@ -447,10 +449,12 @@ impl Core<'_> {
         old.extend_from_slice(&self.amem_buckets[..]);
         // SAFETY: as in `rebind`: the storage this `Core` was made from.
         let s = unsafe { &mut *storage.as_ptr() };
-        if grow_heads(&mut s.amem_buckets, 2 * self.tokens.len(), TokenId::NONE).is_none() {
+        let Some(was) = grow_heads(&mut s.amem_buckets, 2 * self.tokens.len(), TokenId::NONE)
+        else {
             return;
-        }
-        s.amem_buckets.fill(TokenId::NONE);
+        };
+        // (the heads past the old ones are empty already)
+        s.amem_buckets[..was].fill(TokenId::NONE);
         self.rebind(Pool::Tokens, storage);
         self.relink_token_index(&old);
     }
@@ -518,6 +522,10 @@ mod tests {
             !out.contains("out of "),
             "the growing engine ran out: {out}"
         );
+        // (its hash tables rebuilt as they grew: every entry in its bucket)
+        if let Err(v) = grown.check_invariants() {
+            panic!("{v}");
+        }
         assert!(out.contains("hits "), "{out}");
         // every pool it outgrew grew, and the start was the small one
         let stats = grown.stats();
