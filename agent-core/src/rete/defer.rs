@@ -729,6 +729,25 @@ mod tests {
         );
     }
 
+    /// `marks_program` with a `printout` after each action but the last, as is
+    /// (deferred) and with `EAGER` before each `printout` (eager).
+    fn printing_marks_programs(items: usize) -> (String, String) {
+        let prints = [
+            "(printout t p1 crlf)",
+            "(printout t p2 crlf)",
+            "(printout t p3 crlf)",
+        ];
+        let deferred = marks_program(prints, items);
+        let eager = marks_program(
+            prints
+                .map(|p| std::format!("{EAGER} {p}"))
+                .each_ref()
+                .map(|s| s.as_str()),
+            items,
+        );
+        (deferred, eager)
+    }
+
     /// Two asserts, a counter's modify and a control fact's modify, with `printout`s
     /// between (`between` after each action but the last): the asserts' facts wait
     /// too (`Queued`). `wide` needs 20 x 20 matches for the second mark at 2.
@@ -762,19 +781,7 @@ mod tests {
     /// firing order, the agenda) is the eager order's.
     #[test]
     fn asserts_before_the_modifies_wait_with_the_eager_result() {
-        let prints = [
-            "(printout t p1 crlf)",
-            "(printout t p2 crlf)",
-            "(printout t p3 crlf)",
-        ];
-        let deferred = marks_program(prints, 3);
-        let eager = marks_program(
-            prints
-                .map(|p| std::format!("{EAGER} {p}"))
-                .each_ref()
-                .map(|s| s.as_str()),
-            3,
-        );
+        let (deferred, eager) = printing_marks_programs(3);
         assert_eq!(deferred, eager);
         assert!(deferred.contains("(mark (c 2) (k b))"), "{deferred}");
         assert!(deferred.contains("c2kbi0"), "{deferred}");
@@ -825,19 +832,7 @@ mod tests {
     /// a journal overflow, all newest, the firing match too.
     #[test]
     fn full_pool_at_a_queued_fact_undoes_the_rest() {
-        let prints = [
-            "(printout t p1 crlf)",
-            "(printout t p2 crlf)",
-            "(printout t p3 crlf)",
-        ];
-        let deferred = marks_program(prints, 20);
-        let eager = marks_program(
-            prints
-                .map(|p| std::format!("{EAGER} {p}"))
-                .each_ref()
-                .map(|s| s.as_str()),
-            20,
-        );
+        let (deferred, eager) = printing_marks_programs(20);
         assert!(deferred.contains("[ERROR] out of "), "{deferred}");
         let split = |out: &str| {
             let (facts, agenda) = out.split_once("For a total of").unwrap_or((out, ""));
