@@ -775,13 +775,7 @@ impl Core<'_> {
         e.reported
             && x.op == Op::Call
             && x.aux == FnKind::Deffunction as u8
-            && !matches!(
-                e.kind(),
-                EvalErrorKind::TooDeep { .. }
-                    | EvalErrorKind::Exit
-                    | EvalErrorKind::Capacity(_)
-                    | EvalErrorKind::Interrupted
-            )
+            && !stops_all_functions(e)
     }
 
     /// Calls the function of call node `e` (whose node `x` the caller has read).
@@ -1028,15 +1022,7 @@ impl Core<'_> {
             Ok(args) => args,
             // an argument's error (printed now if a builtin's, already if a deffunction
             // it called halted): CLIPS adds that it happened in this call's arguments
-            Err(mut e)
-                if !matches!(
-                    e.kind(),
-                    EvalErrorKind::TooDeep { .. }
-                        | EvalErrorKind::Exit
-                        | EvalErrorKind::Capacity(_)
-                        | EvalErrorKind::Interrupted
-                ) =>
-            {
+            Err(mut e) if !stops_all_functions(&e) => {
                 if !e.reported {
                     self.write_error_message(e);
                     e.reported = true;
@@ -1344,25 +1330,33 @@ impl crate::engine::State {
     }
 }
 
-// the tests evaluate builtins, whose code only `parser` links (`builtins::BUILTINS`)
+/// Whether `e` is no function's error but stops every function it passes through:
+/// too deep a nesting, `exit`, a full pool or an interrupt. No call goes on after it
+/// with a value, and no deffunction adds a message of its own.
+#[inline(always)]
+fn stops_all_functions(e: &EvalError) -> bool {
+    matches!(
+        e.kind(),
+        EvalErrorKind::TooDeep { .. }
+            | EvalErrorKind::Exit
+            | EvalErrorKind::Capacity(_)
+            | EvalErrorKind::Interrupted
+    )
+}
+
 /// Whether call `x`, failing with `e`, goes on with a value after its error message, as
-/// CLIPS's builtins do: not past the depth limit, `exit`, a full pool, an interrupt or
-/// an unbound variable, and never for a deffunction's or a construct's call.
+/// CLIPS's builtins do: not for what stops all functions (`stops_all_functions`) or an
+/// unbound variable, and never for a deffunction's or a construct's call.
 #[cfg(feature = "extras")]
 #[inline]
 fn gives_value_after_error(x: &Expr, e: &EvalError) -> bool {
     x.op == Op::Call
         && x.aux == FnKind::Builtin as u8
-        && !matches!(
-            e.kind(),
-            EvalErrorKind::TooDeep { .. }
-                | EvalErrorKind::Exit
-                | EvalErrorKind::Capacity(_)
-                | EvalErrorKind::Interrupted
-                | EvalErrorKind::UnboundVariable { .. }
-        )
+        && !stops_all_functions(e)
+        && !matches!(e.kind(), EvalErrorKind::UnboundVariable { .. })
 }
 
+// the tests evaluate builtins, whose code only `parser` links (`builtins::BUILTINS`)
 #[cfg(all(test, feature = "parser"))]
 mod tests {
     extern crate std;
