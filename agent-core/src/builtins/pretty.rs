@@ -442,14 +442,35 @@ fn action_at(c: &mut Cursor<'_>, w: &mut dyn Write, col: usize) -> fmt::Result {
     }
 }
 
-/// `(KEYWORD MODULE::name`: a name written with its module keeps it; another is in
-/// `module`, the one the construct was defined in.
-fn write_head(w: &mut dyn Write, keyword: &str, name: &str, module: &str) -> fmt::Result {
+/// `(KEYWORD MODULE::name`, for the construct whose source `c` starts at (left after
+/// its name): a name written with its module keeps it; another is in `module`, the
+/// one the construct was defined in.
+fn write_head(c: &mut Cursor<'_>, w: &mut dyn Write, keyword: &str, module: &str) -> fmt::Result {
+    c.next(); // (
+    c.next(); // the keyword
+    let name = c.next();
+    let name = c.text(name);
     if crate::module::split_qualified(name).is_some() {
         write!(w, "({keyword} {name}")
     } else {
         write!(w, "({keyword} {module}::{name}")
     }
+}
+
+/// `write_head`, and the construct's comment if it has one, on the same line.
+fn write_head_comment(
+    c: &mut Cursor<'_>,
+    w: &mut dyn Write,
+    keyword: &str,
+    module: &str,
+) -> fmt::Result {
+    write_head(c, w, keyword, module)?;
+    if let Tok::Str(_) = c.peek(0).tok {
+        let t = c.next();
+        w.write_char(' ')?;
+        write_token(c, w, t)?;
+    }
+    Ok(())
 }
 
 /// Writes the pretty-printed form of the defrule whose source is `src`.
@@ -462,16 +483,7 @@ pub fn write_defrule(src: &str, module: &str, w: &mut dyn Write) -> fmt::Result 
 /// `)`: what CLIPS shows after `ERROR:` for a rule it stopped reading where `src` ends.
 pub fn write_defrule_upto(src: &str, module: &str, w: &mut dyn Write) -> fmt::Result {
     let mut c = Cursor::new(src);
-    c.next(); // (
-    c.next(); // defrule
-    let name = c.next();
-    let name = c.text(name);
-    write_head(w, "defrule", name, module)?;
-    if let Tok::Str(_) = c.peek(0).tok {
-        let t = c.next();
-        w.write_char(' ')?;
-        write_token(&c, w, t)?;
-    }
+    write_head_comment(&mut c, w, "defrule", module)?;
     loop {
         let t = c.peek(0);
         match t.tok {
@@ -509,16 +521,7 @@ pub fn has_arrow(src: &str) -> bool {
 /// where `src` ends (inside a CE): the head, the comment, and the CEs one per line.
 pub fn write_defrule_lhs_upto(src: &str, module: &str, w: &mut dyn Write) -> fmt::Result {
     let mut c = Cursor::new(src);
-    c.next(); // (
-    c.next(); // defrule
-    let name = c.next();
-    let name = c.text(name);
-    write_head(w, "defrule", name, module)?;
-    if let Tok::Str(_) = c.peek(0).tok {
-        let t = c.next();
-        w.write_char(' ')?;
-        write_token(&c, w, t)?;
-    }
+    write_head_comment(&mut c, w, "defrule", module)?;
     while !matches!(c.peek(0).tok, Tok::Eof | Tok::Bad | Tok::RParen) {
         w.write_str("\n   ")?;
         ce(&mut c, w, 3)?;
@@ -554,16 +557,7 @@ pub fn write_defglobal(src: &str, module: &str, w: &mut dyn Write) -> fmt::Resul
 /// ends: `(deffunction MAIN::name`, the parameters on a line, one action per line.
 pub fn write_deffunction_upto(src: &str, module: &str, w: &mut dyn Write) -> fmt::Result {
     let mut c = Cursor::new(src);
-    c.next(); // (
-    c.next(); // deffunction
-    let name = c.next();
-    let name = c.text(name);
-    write_head(w, "deffunction", name, module)?;
-    if let Tok::Str(_) = c.peek(0).tok {
-        let t = c.next();
-        w.write_char(' ')?;
-        write_token(&c, w, t)?;
-    }
+    write_head_comment(&mut c, w, "deffunction", module)?;
     w.write_str("\n   ")?;
     flat(&mut c, w)?;
     action_lines(&mut c, w, 3, &[])
@@ -573,16 +567,7 @@ pub fn write_deffunction_upto(src: &str, module: &str, w: &mut dyn Write) -> fmt
 /// ends: `(deffacts MAIN::name`, then each fact on a line of its own indented by 3.
 pub fn write_deffacts_upto(src: &str, module: &str, w: &mut dyn Write) -> fmt::Result {
     let mut c = Cursor::new(src);
-    c.next(); // (
-    c.next(); // deffacts
-    let name = c.next();
-    let name = c.text(name);
-    write_head(w, "deffacts", name, module)?;
-    if let Tok::Str(_) = c.peek(0).tok {
-        let t = c.next();
-        w.write_char(' ')?;
-        write_token(&c, w, t)?;
-    }
+    write_head_comment(&mut c, w, "deffacts", module)?;
     while c.peek(0).tok == Tok::LParen {
         w.write_str("\n   ")?;
         flat_as(&mut c, w, true)?;
@@ -677,11 +662,7 @@ pub fn write_deftemplate_echo(
         }
     }
     let mut c = Cursor::new(src.get(start..end).unwrap_or(""));
-    c.next(); // (
-    c.next(); // deftemplate
-    let name = c.next();
-    let name = c.text(name);
-    write_head(w, "deftemplate", name, module)?;
+    write_head(&mut c, w, "deftemplate", module)?;
     let mut depth = 1u32;
     let mut after_open = false;
     // (a comment right after the name stays on its line)
