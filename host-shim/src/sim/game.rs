@@ -196,17 +196,7 @@ impl Player {
                 self.strategy.name()
             )));
         }
-        self.eval(if trace {
-            "(watch rules)"
-        } else {
-            "(unwatch rules)"
-        })?;
-        self.engine
-            .reset(&mut self.host)
-            .map_err(|e| SimError::Engine {
-                during: "(reset)".into(),
-                message: e.to_string(),
-            })?;
+        self.watch_and_reset(trace)?;
         self.eval("(retract *)")?;
         for fact in snapshot
             .facts
@@ -259,6 +249,21 @@ impl Player {
         beliefs
     }
 
+    /// Rules watched (`trace`) or not, then `(reset)`: the start of a game.
+    fn watch_and_reset(&mut self, trace: bool) -> Result<(), SimError> {
+        self.eval(if trace {
+            "(watch rules)"
+        } else {
+            "(unwatch rules)"
+        })?;
+        self.engine
+            .reset(&mut self.host)
+            .map_err(|e| SimError::Engine {
+                during: "(reset)".into(),
+                message: e.to_string(),
+            })
+    }
+
     fn eval(&mut self, command: &str) -> Result<(), SimError> {
         self.engine
             .eval_str(&mut self.host, command)
@@ -280,17 +285,7 @@ impl Player {
         setup
             .write_clips(&mut text)
             .map_err(|e| SimError::Input(format!("writing the setup: {e}")))?;
-        self.eval(if trace {
-            "(watch rules)"
-        } else {
-            "(unwatch rules)"
-        })?;
-        self.engine
-            .reset(&mut self.host)
-            .map_err(|e| SimError::Engine {
-                during: "(reset)".into(),
-                message: e.to_string(),
-            })?;
+        self.watch_and_reset(trace)?;
         for fact in rules::setup::fact_lines(&text) {
             self.assert_fact(fact, "the setup fact")?;
         }

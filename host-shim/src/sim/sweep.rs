@@ -443,16 +443,7 @@ pub fn main(args: Args) -> ExitCode {
     }
     let mut failed = false;
     for config in configs {
-        let bar = if args.quiet {
-            ProgressBar::hidden()
-        } else {
-            ProgressBar::new(u64::from(count))
-        };
-        if let Ok(style) =
-            ProgressStyle::with_template("{bar:40} {pos}/{len} games  {per_sec}  eta {eta}")
-        {
-            bar.set_style(style);
-        }
+        let bar = progress_bar(args.quiet, count);
         let started = Instant::now();
         let result = play_all(config, count, threads, &|| bar.inc(1));
         bar.finish_and_clear();
@@ -487,14 +478,9 @@ pub fn main(args: Args) -> ExitCode {
     }
 }
 
-/// `sweep --robots N`.
-fn team_main(args: &Args, count: u32, threads: usize) -> ExitCode {
-    let config = SweepConfig {
-        strategy: args.strategy,
-        clock_off: args.clock_off,
-        fault_rate: 0,
-    };
-    let bar = if args.quiet {
+/// The bar of a sweep of `count` games (hidden with `--quiet`).
+fn progress_bar(quiet: bool, count: u32) -> ProgressBar {
+    let bar = if quiet {
         ProgressBar::hidden()
     } else {
         ProgressBar::new(u64::from(count))
@@ -504,6 +490,17 @@ fn team_main(args: &Args, count: u32, threads: usize) -> ExitCode {
     {
         bar.set_style(style);
     }
+    bar
+}
+
+/// `sweep --robots N`.
+fn team_main(args: &Args, count: u32, threads: usize) -> ExitCode {
+    let config = SweepConfig {
+        strategy: args.strategy,
+        clock_off: args.clock_off,
+        fault_rate: 0,
+    };
+    let bar = progress_bar(args.quiet, count);
     let started = Instant::now();
     let result = super::team::sweep_team(config, args.robots, count, threads, &|| bar.inc(1));
     bar.finish_and_clear();
