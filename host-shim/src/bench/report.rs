@@ -89,6 +89,9 @@ fn best<T: Copy + Ord>(values: impl Iterator<Item = Option<T>>) -> Option<T> {
     values.flatten().min()
 }
 
+/// Reads one figure of a measurement.
+type Pick<T> = fn(&Measurement) -> Reading<T>;
+
 /// `reference ÷ ours` to two decimals, i.e. how many times fewer ours needs.
 pub fn ratio_text(reference: Option<f64>, ours: Option<f64>) -> String {
     match (reference, ours) {
@@ -372,6 +375,37 @@ impl Report {
         md
     }
 
+    /// A table of each workload's two regions (`run`, `whole`, read by `regions`): each
+    /// engine's reading (`show`) and the best CLIPS's over ours (as `f64`).
+    fn region_table<T: Copy + Ord>(
+        &self,
+        md: &mut String,
+        regions: [(&str, Pick<T>); 2],
+        show: impl Fn(&T) -> String,
+        as_f64: impl Fn(T) -> f64,
+    ) {
+        Self::table_header(
+            md,
+            &["workload", "region"],
+            &self.names(),
+            &["best CLIPS ÷ ours"],
+        );
+        for row in &self.rows {
+            for (region, pick) in regions {
+                let cells: Vec<String> =
+                    row.measured.iter().map(|m| cell(&pick(m), &show)).collect();
+                let (clips, ours) = self.best_pair(row, |m| pick(m).ok());
+                let ratio = ratio_text(clips.map(&as_f64), ours.map(&as_f64));
+                let _ = writeln!(
+                    md,
+                    "| {} | {region} | {} | {ratio} |",
+                    row.workload.name(),
+                    cells.join(" | ")
+                );
+            }
+        }
+    }
+
     /// The whole `BENCHMARKS.md`.
     pub fn markdown(&self) -> String {
         let names = self.names();
@@ -429,71 +463,28 @@ impl Report {
         }
 
         let _ = writeln!(md, "\n## Instructions (callgrind)\n");
-        Self::table_header(
+        self.region_table(
             &mut md,
-            &["workload", "region"],
-            &names,
-            &["best CLIPS ÷ ours"],
+            [
+                ("run", |m| m.instr_run.clone()),
+                ("whole", |m| m.instr_whole.clone()),
+            ],
+            |&v| millions(v),
+            |v| v as f64,
         );
-        for row in &self.rows {
-            for (region, pick) in [
-                (
-                    "run",
-                    (|m: &Measurement| m.instr_run.clone()) as fn(&Measurement) -> Reading<u64>,
-                ),
-                ("whole", |m: &Measurement| m.instr_whole.clone()),
-            ] {
-                let cells: Vec<String> = row
-                    .measured
-                    .iter()
-                    .map(|m| cell(&pick(m), |&v| millions(v)))
-                    .collect();
-                let (clips, ours) = self.best_pair(row, |m| pick(m).ok());
-                let ratio = ratio_text(clips.map(|v| v as f64), ours.map(|v| v as f64));
-                let _ = writeln!(
-                    md,
-                    "| {} | {region} | {} | {ratio} |",
-                    row.workload.name(),
-                    cells.join(" | ")
-                );
-            }
-        }
 
         md.push_str(&self.per_firing_markdown());
 
         let _ = writeln!(md, "\n## Wall time (median of {})\n", self.plan.reps);
-        Self::table_header(
+        self.region_table(
             &mut md,
-            &["workload", "region"],
-            &names,
-            &["best CLIPS ÷ ours"],
+            [
+                ("run", |m| m.wall_run.clone()),
+                ("whole", |m| m.wall_whole.clone()),
+            ],
+            |&d| duration_text(d),
+            |d| d.as_secs_f64(),
         );
-        for row in &self.rows {
-            for (region, pick) in [
-                (
-                    "run",
-                    (|m: &Measurement| m.wall_run.clone()) as fn(&Measurement) -> Reading<Duration>,
-                ),
-                ("whole", |m: &Measurement| m.wall_whole.clone()),
-            ] {
-                let cells: Vec<String> = row
-                    .measured
-                    .iter()
-                    .map(|m| cell(&pick(m), |&d| duration_text(d)))
-                    .collect();
-                let (clips, ours) = self.best_pair(row, |m| pick(m).ok());
-                let ratio = ratio_text(
-                    clips.map(|d| d.as_secs_f64()),
-                    ours.map(|d| d.as_secs_f64()),
-                );
-                let _ = writeln!(
-                    md,
-                    "| {} | {region} | {} | {ratio} |",
-                    row.workload.name(),
-                    cells.join(" | ")
-                );
-            }
-        }
 
         let _ = writeln!(md, "\n## Memory\n");
         let _ = writeln!(md, "Engine code and static data:\n");
