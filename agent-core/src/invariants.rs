@@ -18,9 +18,9 @@
 //! - the symbol table: texts packed in order, hash chains complete, no duplicates;
 //! - the construct pools and the evaluation state at rest.
 //!
-//! It only reads; it costs O(pool sizes) (the fact cell overlap check: a walk of the
-//! facts per 8,192 cells of the value arena), so it is for debugging, not for the
-//! robot's control loop.
+//! It only reads; it costs O(pool sizes) (the fact cell overlap check walks the facts
+//! once per 8,192 cells of the value arena, the join checks the join lists once per
+//! 8,192 joins), so it is for debugging, not for the robot's control loop.
 
 use crate::handle::{JoinId, TokenId};
 use crate::value::Ix;
@@ -29,7 +29,7 @@ use core::fmt;
 use crate::engine::{Core, Engine};
 use crate::fact::FactState;
 use crate::host::NullHost;
-use crate::rete::{JoinKind, TokenKind};
+use crate::rete::{Join, JoinKind, TokenKind};
 use crate::value::{Value, NONE};
 
 /// A broken invariant: what is wrong and at which pool entry.
@@ -55,6 +55,43 @@ fn fail<T>(what: &'static str, at: usize) -> Result<T, Violation> {
         what,
         at: at as u32,
     })
+}
+
+/// Entries a window of `MARK_WINDOW` indices wide marks at a time: the checker has no
+/// storage of its own, and comparing every pair of entries instead (fact cells that
+/// overlap, joins missing from lists) took most of a 9,000-fact test's time.
+const MARK_WINDOW: usize = 8192;
+
+/// A bitmap of the indices `low..low + MARK_WINDOW` of a pool.
+struct Marks {
+    low: usize,
+    bits: [u64; MARK_WINDOW / 64],
+}
+
+impl Marks {
+    fn new(low: usize) -> Marks {
+        Marks {
+            low,
+            bits: [0; MARK_WINDOW / 64],
+        }
+    }
+
+    /// Marks `i` if it is in the window; whether it was marked before.
+    fn mark(&mut self, i: usize) -> bool {
+        let Some(k) = i.checked_sub(self.low).filter(|&k| k < MARK_WINDOW) else {
+            return false;
+        };
+        let (word, bit) = (k / 64, 1u64 << (k % 64));
+        let was = self.bits[word] & bit != 0;
+        self.bits[word] |= bit;
+        was
+    }
+
+    /// Whether `i` (in the window) is marked.
+    fn has(&self, i: usize) -> bool {
+        let k = i - self.low;
+        self.bits[k / 64] & (1u64 << (k % 64)) != 0
+    }
 }
 
 /// The entry a violation names: a pool index, typed or not.
@@ -472,76 +509,82 @@ impl Core<'_> {
                 j
             );
         }
-        for j in 1..st.pools.njoins {
-            let j = JoinId(j);
-            let jn = self.joins[j];
-            if jn.refs == 0 {
-                ensure!(
-                    self.join_mems[j].mem == TokenId::NONE,
-                    "removed join still holds partial matches",
-                    j
-                );
-                ensure!(
-                    !self.child_listed(jn.parent, j),
-                    "removed join still under its parent",
-                    j
-                );
-                ensure!(
-                    jn.alpha == NONE || !self.succ_listed(jn.alpha, j),
-                    "removed join still fed by its alpha node",
-                    j
-                );
-                continue;
-            }
-            ensure!(jn.kind != JoinKind::Root, "second root join", j);
-            ensure!(
-                jn.parent.0 < st.pools.njoins,
-                "join parent past the pool",
-                j
-            );
-            ensure!(
-                self.joins[jn.parent].refs > 0,
-                "live join under a removed parent",
-                j
-            );
-            ensure!(
-                self.child_listed(jn.parent, j),
-                "join missing from its parent's children",
-                j
-            );
-            match jn.kind {
-                JoinKind::Negative | JoinKind::Exists if jn.rjoin != JoinId::NONE => {
-                    // not/exists over several CEs: fed by a subnetwork's last join
-                    ensure!(
-                        jn.rjoin.0 < st.pools.njoins,
-                        "join from the right past the pool",
-                        j
-                    );
-                    let mut r = self.joins[jn.rjoin].rsucc;
-                    let mut steps = 0usize;
-                    while r != JoinId::NONE && r != j && steps <= st.pools.njoins as usize {
-                        r = self.joins[r].alpha_next;
-                        steps += 1;
-                    }
-                    ensure!(r == j, "join missing from its right input's successors", j);
-                }
-                JoinKind::Positive | JoinKind::Negative | JoinKind::Exists => {
-                    ensure!(jn.alpha < st.pools.nalpha, "join without its alpha node", j);
-                    ensure!(
-                        self.succ_listed(jn.alpha, j),
-                        "join missing from its alpha node's successors",
-                        j
-                    );
-                }
-                JoinKind::Terminal => {
+        let njoins = st.pools.njoins as usize;
+        // the joins listed under their parent and fed by their alpha node, a window
+        // of the pool at a time
+        for low in (1..njoins).step_by(MARK_WINDOW) {
+            let (under_parent, fed) = self.listed_joins(low);
+            for j in low..(low + MARK_WINDOW).min(njoins) {
+                let j = JoinId::at(j);
+                let jn = self.joins[j];
+                if jn.refs == 0 {
                     ensure!(
                         self.join_mems[j].mem == TokenId::NONE,
-                        "terminal join holds partial matches",
+                        "removed join still holds partial matches",
                         j
                     );
-                    ensure!(jn.rule < st.pools.nrules, "terminal join without a rule", j);
+                    ensure!(
+                        !under_parent.has(j.0 as usize),
+                        "removed join still under its parent",
+                        j
+                    );
+                    ensure!(
+                        jn.alpha == NONE || !fed.has(j.0 as usize),
+                        "removed join still fed by its alpha node",
+                        j
+                    );
+                    continue;
                 }
-                _ => {}
+                ensure!(jn.kind != JoinKind::Root, "second root join", j);
+                ensure!(
+                    jn.parent.0 < st.pools.njoins,
+                    "join parent past the pool",
+                    j
+                );
+                ensure!(
+                    self.joins[jn.parent].refs > 0,
+                    "live join under a removed parent",
+                    j
+                );
+                ensure!(
+                    under_parent.has(j.0 as usize),
+                    "join missing from its parent's children",
+                    j
+                );
+                match jn.kind {
+                    JoinKind::Negative | JoinKind::Exists if jn.rjoin != JoinId::NONE => {
+                        // not/exists over several CEs: fed by a subnetwork's last join
+                        ensure!(
+                            jn.rjoin.0 < st.pools.njoins,
+                            "join from the right past the pool",
+                            j
+                        );
+                        let mut r = self.joins[jn.rjoin].rsucc;
+                        let mut steps = 0usize;
+                        while r != JoinId::NONE && r != j && steps <= st.pools.njoins as usize {
+                            r = self.joins[r].alpha_next;
+                            steps += 1;
+                        }
+                        ensure!(r == j, "join missing from its right input's successors", j);
+                    }
+                    JoinKind::Positive | JoinKind::Negative | JoinKind::Exists => {
+                        ensure!(jn.alpha < st.pools.nalpha, "join without its alpha node", j);
+                        ensure!(
+                            fed.has(j.0 as usize),
+                            "join missing from its alpha node's successors",
+                            j
+                        );
+                    }
+                    JoinKind::Terminal => {
+                        ensure!(
+                            self.join_mems[j].mem == TokenId::NONE,
+                            "terminal join holds partial matches",
+                            j
+                        );
+                        ensure!(jn.rule < st.pools.nrules, "terminal join without a rule", j);
+                    }
+                    _ => {}
+                }
             }
         }
         for r in 0..st.pools.nrules {
@@ -578,30 +621,38 @@ impl Core<'_> {
         Ok(())
     }
 
-    fn child_listed(&self, parent: JoinId, child: JoinId) -> bool {
-        let mut c = self.joins[parent].first_child;
-        let mut steps = 0usize;
-        while c != JoinId::NONE && steps <= self.st.pools.njoins as usize {
-            if c == child {
-                return true;
+    /// The joins of the window from `low` listed under their parent (`first_child`,
+    /// `next_sibling`), and those listed among their alpha node's successors
+    /// (`succ`, `alpha_next`). A list is read for as many steps as there are joins.
+    fn listed_joins(&self, low: usize) -> (Marks, Marks) {
+        let n = self.st.pools.njoins as usize;
+        let walk = |head: JoinId, next: fn(&Join) -> JoinId, on: &mut dyn FnMut(JoinId)| {
+            let mut c = head;
+            let mut steps = 0usize;
+            while c != JoinId::NONE && (c.0 as usize) < n && steps <= n {
+                on(c);
+                c = next(&self.joins[c]);
+                steps += 1;
             }
-            c = self.joins[c].next_sibling;
-            steps += 1;
+        };
+        let mut under_parent = Marks::new(low);
+        for p in 0..n {
+            let p = JoinId::at(p);
+            walk(self.joins[p].first_child, |x| x.next_sibling, &mut |c| {
+                if self.joins[c].parent == p {
+                    under_parent.mark(c.0 as usize);
+                }
+            });
         }
-        false
-    }
-
-    fn succ_listed(&self, alpha: Ix, join: JoinId) -> bool {
-        let mut c = self.alphas[alpha as usize].succ;
-        let mut steps = 0usize;
-        while c != JoinId::NONE && steps <= self.st.pools.njoins as usize {
-            if c == join {
-                return true;
-            }
-            c = self.joins[c].alpha_next;
-            steps += 1;
+        let mut fed = Marks::new(low);
+        for a in 0..self.st.pools.nalpha {
+            walk(self.alphas[a as usize].succ, |x| x.alpha_next, &mut |c| {
+                if self.joins[c].alpha == a {
+                    fed.mark(c.0 as usize);
+                }
+            });
         }
-        false
+        (under_parent, fed)
     }
 
     /// Counts a singly linked list, failing on a cycle (more steps than `bound`).
@@ -879,28 +930,16 @@ impl Core<'_> {
             let Some((_, e)) = cells(i) else { continue };
             ensure!(e <= top, "kept fact cells past the arena top", i);
         }
-        // disjoint: each fact marks its cells in a bitmap of a window of the arena (no
-        // storage here), a window after the other (comparing all pairs of facts took
-        // most of a 9,000-fact test's time once the twin check above did not)
-        const WINDOW: usize = 8192;
-        let mut marks = [0u64; WINDOW / 64];
-        let mut low = 0;
-        while low < top {
-            let high = (low + WINDOW).min(top);
-            marks.fill(0);
+        // disjoint: each fact marks its cells, a window of the arena after the other
+        for low in (0..top).step_by(MARK_WINDOW) {
+            let high = (low + MARK_WINDOW).min(top);
+            let mut marks = Marks::new(low);
             for i in 0..used {
                 let Some((s, e)) = cells(i) else { continue };
                 for c in s.max(low)..e.min(high) {
-                    let (word, bit) = ((c - low) / 64, 1u64 << ((c - low) % 64));
-                    ensure!(
-                        marks[word] & bit == 0,
-                        "fact cells overlap another fact's",
-                        i
-                    );
-                    marks[word] |= bit;
+                    ensure!(!marks.mark(c), "fact cells overlap another fact's", i);
                 }
             }
-            low = high;
         }
         Ok(())
     }
@@ -1488,7 +1527,7 @@ mod tests {
     #[test]
     fn corruption_is_detected() {
         type Damage = fn(&mut crate::engine::Core<'_>);
-        let cases: [(&str, Damage); 11] = [
+        let cases: [(&str, Damage); 13] = [
             ("free tokens not all on the free list", |cx| {
                 cx.st.pools.tokens_used += 1
             }),
@@ -1532,6 +1571,14 @@ mod tests {
                 for b in cx.fact_buckets.iter_mut() {
                     *b = NONE;
                 }
+            }),
+            ("join missing from its parent's children", |cx| {
+                let p = cx.joins[crate::handle::JoinId::at(1)].parent;
+                cx.joins[p].first_child = crate::handle::JoinId::NONE;
+            }),
+            ("join missing from its alpha node's successors", |cx| {
+                let a = cx.joins[crate::handle::JoinId::at(1)].alpha;
+                cx.alphas[a as usize].succ = crate::handle::JoinId::NONE;
             }),
             ("symbols missing from the hash chains", |cx| {
                 let b = cx.sym_buckets.iter().position(|&b| b != NONE).unwrap();
