@@ -713,13 +713,7 @@ pub(super) fn list_defrules(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalErr
         }
     }
     if n > 0 {
-        let mut b: TextBuf<64> = TextBuf::new();
-        let _ = writeln!(
-            b,
-            "For a total of {n} defrule{}.",
-            if n == 1 { "" } else { "s" }
-        );
-        cx.write(router::WDISPLAY, b.as_str());
+        write_total(cx, n, "defrule");
     }
     Ok(Value::Void)
 }
@@ -1109,13 +1103,7 @@ fn list_deftemplates(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     if n == 0 {
         return Ok(Value::Void);
     }
-    let mut b: TextBuf<64> = TextBuf::new();
-    let _ = writeln!(
-        b,
-        "For a total of {n} deftemplate{}.",
-        if n == 1 { "" } else { "s" }
-    );
-    cx.write(router::WDISPLAY, b.as_str());
+    write_total(cx, n, "deftemplate");
     Ok(Value::Void)
 }
 
@@ -1149,14 +1137,19 @@ fn list_deffunctions(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     if n == 0 {
         return Ok(Value::Void); // CLIPS lists nothing, not even the total
     }
+    write_total(cx, n, "deffunction");
+    Ok(Value::Void)
+}
+
+/// `For a total of N WHATs.` after a listing (`list-defrules` and the like).
+pub(crate) fn write_total(cx: &mut Core<'_>, n: usize, what: &str) {
     let mut b: TextBuf<64> = TextBuf::new();
     let _ = writeln!(
         b,
-        "For a total of {n} deffunction{}.",
+        "For a total of {n} {what}{}.",
         if n == 1 { "" } else { "s" }
     );
     cx.write(router::WDISPLAY, b.as_str());
-    Ok(Value::Void)
 }
 
 fn get_fact_dup(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {

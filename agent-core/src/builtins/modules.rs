@@ -162,13 +162,7 @@ fn list_defmodules(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
         let _ = writeln!(b, "{}", cx.module_name(m as ModId));
         cx.write(router::WDISPLAY, b.as_str());
     }
-    let mut b: TextBuf<64> = TextBuf::new();
-    let _ = writeln!(
-        b,
-        "For a total of {n} defmodule{}.",
-        if n == 1 { "" } else { "s" }
-    );
-    cx.write(router::WDISPLAY, b.as_str());
+    super::commands::write_total(cx, n as usize, "defmodule");
     Ok(Value::Void)
 }
 
