@@ -264,9 +264,15 @@ pub struct MatchState {
     pub matching: u16,
     /// Host: the `matching` level up to which facts may change all the same: 1 while
     /// `reset` primes the joins fed by no pattern (CLIPS runs a first `test`, and
-    /// one after a first `not`/`exists`, outside its join operations then).
+    /// one after a first `not`/`exists`, outside its join operations then), and
+    /// while a new rule's joins fed by older ones are primed (its incremental reset).
     #[cfg(feature = "extras")]
     pub matching_free: u16,
+    /// Host: while a new rule is primed (CLIPS's incremental reset), its first alpha
+    /// node (NONE otherwise): a fact asserted meanwhile meets only the alpha nodes
+    /// from there on, the new rule's (`Core::prime_new_rules`).
+    #[cfg(feature = "extras")]
+    pub ir_alpha: Ix,
     /// Network generation: changes whenever joins are added or unlinked (cached
     /// per-template facts about the network, `rete::defer`, are renewed then).
     pub net_gen: u32,
@@ -314,6 +320,18 @@ impl MatchState {
         return self.matching > 0;
     }
 
+    /// Whether facts may not be retracted (nor modified) now: `changes_refused`, or a
+    /// new rule is primed (its tests may assert, as in CLIPS; a retract then, which
+    /// CLIPS lets remove matches but not add those of the `not`s it unblocks in
+    /// older rules, is refused here).
+    #[inline(always)]
+    pub fn retracts_refused(&self) -> bool {
+        #[cfg(feature = "extras")]
+        return self.changes_refused() || self.ir_alpha != NONE;
+        #[cfg(not(feature = "extras"))]
+        return self.changes_refused();
+    }
+
     pub const fn new() -> MatchState {
         MatchState {
             owed: TokenId::NONE,
@@ -327,6 +345,8 @@ impl MatchState {
             matching: 0,
             #[cfg(feature = "extras")]
             matching_free: 0,
+            #[cfg(feature = "extras")]
+            ir_alpha: NONE,
             net_gen: 0,
             #[cfg(feature = "host-speedups")]
             disc: crate::rete::DiscState::EMPTY,

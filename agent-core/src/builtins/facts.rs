@@ -654,7 +654,12 @@ impl Core<'_> {
                 return Ok(Value::Sym(SYM_FALSE));
             }
         }
-        if self.st.net.changes_refused() {
+        let refused = if retract_old {
+            self.st.net.retracts_refused()
+        } else {
+            self.st.net.changes_refused()
+        };
+        if refused {
             // a modify is a retract, then an assert: CLIPS refuses both
             if retract_old {
                 self.write(router::WERROR, NO_RETRACT_WHILE_MATCHING);
@@ -856,7 +861,7 @@ fn retract(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         let v = cx.arg(a, i);
         if let Value::Sym(s) = v {
             if cx.sym_text(s) == "*" {
-                if cx.st.net.changes_refused() {
+                if cx.st.net.retracts_refused() {
                     // CLIPS refuses each fact (and, unlike here, tries again forever)
                     let mut f = cx.st.facts.fact_head;
                     while f != NONE {
@@ -873,7 +878,7 @@ fn retract(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
             }
         }
         match cx.fact_arg(v) {
-            Some(_) if cx.st.net.changes_refused() => {
+            Some(_) if cx.st.net.retracts_refused() => {
                 cx.write(router::WERROR, NO_RETRACT_WHILE_MATCHING)
             }
             Some(f) => cx.retract_fact(f),

@@ -61,17 +61,23 @@ impl Core<'_> {
         let mut f = self.st.facts.fact_head;
         while f != NONE {
             let next = self.facts[f as usize].next;
-            let tmpl = self.facts[f as usize].tmpl;
-            let mut a = self.templates[tmpl as usize].alpha_head;
-            while a != NONE {
-                if a >= first {
-                    if let Some(tests) = self.quick_tests(self.alphas[a as usize].tests, f) {
-                        self.match_alpha::<false>(a, f, tests)?;
-                    }
-                }
-                a = self.alphas[a as usize].next_in_tmpl;
-            }
+            self.prime_fact(f, first)?;
             f = next;
+        }
+        Ok(())
+    }
+
+    /// Drives one fact through the alpha nodes numbered `first` and up.
+    pub(crate) fn prime_fact(&mut self, f: Ix, first: Ix) -> Result<(), EvalError> {
+        let tmpl = self.facts[f as usize].tmpl;
+        let mut a = self.templates[tmpl as usize].alpha_head;
+        while a != NONE {
+            if a >= first {
+                if let Some(tests) = self.quick_tests(self.alphas[a as usize].tests, f) {
+                    self.match_alpha::<false>(a, f, tests)?;
+                }
+            }
+            a = self.alphas[a as usize].next_in_tmpl;
         }
         Ok(())
     }

@@ -25,6 +25,12 @@ pub(crate) const MAX_LAYOUTS: usize = 8;
 impl Core<'_> {
     /// Adds a new fact to every alpha memory it matches and propagates.
     pub(crate) fn network_assert(&mut self, fact: Ix) -> Result<(), EvalError> {
+        // host: a fact a new rule's test asserts while the rule is primed meets only
+        // the rule's new alpha nodes, as in CLIPS's incremental reset
+        #[cfg(feature = "extras")]
+        if self.st.net.ir_alpha != NONE {
+            return self.prime_fact(fact, self.st.net.ir_alpha);
+        }
         // host: the discrimination index (`visit_alphas`, `needs_mf_order`) is current
         #[cfg(feature = "host-speedups")]
         self.ensure_discrimination();

@@ -1,0 +1,30 @@
+; A test CE of a rule defined while facts exist runs while CLIPS primes the rule
+; (its incremental reset) and may assert: the new fact meets only the patterns new
+; to that rule. Older rules never see it (nor a pattern the new rule shares with
+; them), a new pattern sees it twice (once when asserted, once when the existing
+; facts are driven through the new patterns); retract and reset treat it as any fact
+(watch facts)
+(watch rules)
+(watch activations)
+(deffacts d (a 1) (a 2))
+(defrule old (b ?x) => (printout t "old " ?x crlf))
+(defrule old2 (a ?x) (b ?y) => (printout t "old2 " ?x " " ?y crlf))
+(defrule oldnot (a ?x) (not (b ?x)) => (printout t "oldnot " ?x crlf))
+(reset)
+(agenda)
+(defrule shared (a ?x) (test (assert (b ?x))) (b ?y) => (printout t "shared " ?x " " ?y crlf))
+(facts)
+(agenda)
+(defrule later (b ?x) => (printout t "later " ?x crlf))
+(agenda)
+(defrule own (a ?x) (test (assert (c ?x))) (c ?y) => (printout t "own " ?x " " ?y crlf))
+(agenda)
+(matches own)
+(retract 3)
+(assert (c 3))
+(agenda)
+(run)
+(reset)
+(facts)
+(agenda)
+(exit)
