@@ -82,3 +82,33 @@ impl Core<'_> {
         Ok(())
     }
 }
+
+#[cfg(all(test, feature = "parser"))]
+mod tests {
+    use crate::testutil::run_program;
+
+    /// A test's assert while a rule is primed: the fact meets the new rule's own
+    /// patterns only (host), else it is refused as during any pattern-matching.
+    #[test]
+    fn a_test_asserting_while_a_rule_is_defined() {
+        let out = run_program(
+            "(defrule old (b ?x) => (printout t \"old \" ?x crlf))\n\
+             (defrule old2 (a ?x) => )\n\
+             (assert (a 1))\n\
+             (defrule new (a ?x) (test (assert (b ?x) (c ?x))) (c ?y) => (printout t \"new \" ?y crlf))\n\
+             (run)\n(facts)\n",
+        );
+        #[cfg(feature = "extras")]
+        assert!(
+            out.contains("new 1\nnew 1\nf-0")
+                && !out.contains("old")
+                && out.contains("(b 1)\nf-3     (c 1)\n"),
+            "{out}"
+        );
+        #[cfg(not(feature = "extras"))]
+        assert!(
+            out.contains("[FACTMNGR2]") && !out.contains("(b 1)"),
+            "{out}"
+        );
+    }
+}
