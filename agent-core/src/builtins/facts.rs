@@ -654,11 +654,15 @@ impl Core<'_> {
                 return Ok(Value::Sym(SYM_FALSE));
             }
         }
+        // (host: `duplicate` may assert while a rule is primed, `modify` may not)
+        #[cfg(feature = "extras")]
         let refused = if retract_old {
             self.st.net.retracts_refused()
         } else {
             self.st.net.changes_refused()
         };
+        #[cfg(not(feature = "extras"))]
+        let refused = self.st.net.changes_refused();
         if refused {
             // a modify is a retract, then an assert: CLIPS refuses both
             if retract_old {

@@ -48,6 +48,12 @@ impl Core<'_> {
         let free = core::mem::replace(&mut self.st.net.matching_free, self.st.net.matching + 1);
         #[cfg(feature = "extras")]
         let ir = core::mem::replace(&mut self.st.net.ir_alpha, first_alpha);
+        // (host: a stale discrimination index sends an assert to `network_assert`'s
+        // slower path, which asks for `ir_alpha`; it stays stale until that is NONE)
+        #[cfg(all(feature = "extras", feature = "host-speedups"))]
+        {
+            self.st.net.disc.net_gen = None;
+        }
         let mut r = Ok(());
         for rule in first_rule..self.st.pools.nrules {
             let t = self.rules[rule as usize].terminal;

@@ -25,15 +25,22 @@ pub(crate) const MAX_LAYOUTS: usize = 8;
 impl Core<'_> {
     /// Adds a new fact to every alpha memory it matches and propagates.
     pub(crate) fn network_assert(&mut self, fact: Ix) -> Result<(), EvalError> {
-        // host: a fact a new rule's test asserts while the rule is primed meets only
-        // the rule's new alpha nodes, as in CLIPS's incremental reset
-        #[cfg(feature = "extras")]
+        // host: the discrimination index (`visit_alphas`, `needs_mf_order`) is made
+        // current; a fact a new rule's test asserts while the rule is primed meets
+        // only the rule's new alpha nodes, as in CLIPS's incremental reset (the index
+        // is kept stale meanwhile, so the usual path tests nothing more)
+        #[cfg(feature = "host-speedups")]
+        if self.st.net.disc.net_gen != Some(self.st.net.net_gen) {
+            #[cfg(feature = "extras")]
+            if self.st.net.ir_alpha != NONE {
+                return self.prime_fact(fact, self.st.net.ir_alpha);
+            }
+            self.rebuild_discrimination();
+        }
+        #[cfg(all(feature = "extras", not(feature = "host-speedups")))]
         if self.st.net.ir_alpha != NONE {
             return self.prime_fact(fact, self.st.net.ir_alpha);
         }
-        // host: the discrimination index (`visit_alphas`, `needs_mf_order`) is current
-        #[cfg(feature = "host-speedups")]
-        self.ensure_discrimination();
         // host: patterns sharing a multifield node match in CLIPS's order
         #[cfg(feature = "grow")]
         if self.needs_mf_order(self.facts[fact as usize].tmpl) {

@@ -127,7 +127,7 @@ impl Core<'_> {
     where
         F: FnMut(&mut Self, Ix) -> Result<(), crate::error::EvalError>,
     {
-        // (`network_assert` made the index current: `ensure_discrimination`)
+        // (`network_assert` made the index current)
         debug_assert!(self.st.net.disc.net_gen == Some(self.st.net.net_gen));
         let tmpl = self.facts[fact as usize].tmpl;
         if tmpl >= self.st.net.disc.ntemplates {
@@ -259,14 +259,6 @@ impl Core<'_> {
             o = self.alphas[o as usize].next_in_tmpl;
         }
         false
-    }
-
-    /// Rebuilds the index if the network changed since it was built.
-    #[inline(always)]
-    pub(crate) fn ensure_discrimination(&mut self) {
-        if self.st.net.disc.net_gen != Some(self.st.net.net_gen) {
-            self.rebuild_discrimination();
-        }
     }
 
     /// Builds the index from the templates' alpha lists.
