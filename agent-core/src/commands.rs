@@ -400,10 +400,13 @@ impl Core<'_> {
         // go through the whole network at once (host)
         #[cfg(feature = "extras")]
         let free = core::mem::replace(&mut self.st.net.matching_free, self.st.net.matching + 1);
+        #[cfg(feature = "extras")]
+        let rfree = core::mem::replace(&mut self.st.net.retract_free, self.st.net.matching + 1);
         let r = self.prime_from_root(root_token);
         #[cfg(feature = "extras")]
         {
             self.st.net.matching_free = free;
+            self.st.net.retract_free = rfree;
         }
         r?;
         // (and makes its initial-object again before its initial-fact)

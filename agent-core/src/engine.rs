@@ -268,6 +268,9 @@ pub struct MatchState {
     /// while a new rule's joins fed by older ones are primed (its incremental reset).
     #[cfg(feature = "extras")]
     pub matching_free: u16,
+    /// Host: the same for retracts (and modifies): only `reset`'s priming raises it.
+    #[cfg(feature = "extras")]
+    pub retract_free: u16,
     /// Host: while a new rule is primed (CLIPS's incremental reset), its first alpha
     /// node (NONE otherwise): a fact asserted meanwhile meets only the alpha nodes
     /// from there on, the new rule's (`Core::prime_new_rules`).
@@ -320,14 +323,14 @@ impl MatchState {
         return self.matching > 0;
     }
 
-    /// Whether facts may not be retracted (nor modified) now: `changes_refused`, or a
-    /// new rule is primed (its tests may assert, as in CLIPS; a retract then, which
-    /// CLIPS lets remove matches but not add those of the `not`s it unblocks in
-    /// older rules, is refused here).
+    /// Whether facts may not be retracted (nor modified) now: as `changes_refused`,
+    /// beyond `retract_free`, which a new rule's priming does not raise (its tests
+    /// may assert, as in CLIPS; a retract then, which CLIPS lets remove matches but
+    /// not add those of the `not`s it unblocks in older rules, is refused here).
     #[inline(always)]
     pub fn retracts_refused(&self) -> bool {
         #[cfg(feature = "extras")]
-        return self.changes_refused() || self.ir_alpha != NONE;
+        return self.matching > self.retract_free;
         #[cfg(not(feature = "extras"))]
         return self.changes_refused();
     }
@@ -345,6 +348,8 @@ impl MatchState {
             matching: 0,
             #[cfg(feature = "extras")]
             matching_free: 0,
+            #[cfg(feature = "extras")]
+            retract_free: 0,
             #[cfg(feature = "extras")]
             ir_alpha: NONE,
             net_gen: 0,
