@@ -998,11 +998,14 @@ impl Core<'_> {
         // command's propagation): the rule's actions run as usual
         st.mode.halting = false;
         st.frame.bp = st.frame.sp;
-        // the rule's actions run in its module (with MAIN alone, current already)
+        // the rule's actions run in its module (with MAIN alone, current already), and
+        // the module current before them is current again after them
         #[cfg(feature = "modules")]
-        if SLOW && st.modules.nmodules > 1 {
-            self.set_current_module(self.rule_tag(rule).module);
-        }
+        let outer_module = if SLOW {
+            self.enter_module(self.rule_tag(rule).module)
+        } else {
+            None
+        };
         let nlocals = self.rules[rule as usize].nlocals;
         // (most rules bind no locals: no room check for them)
         let mut r = match nlocals {
@@ -1037,6 +1040,8 @@ impl Core<'_> {
         if let Some(logical) = logical {
             self.logical_leave(logical);
         }
+        #[cfg(feature = "modules")]
+        self.leave_module(outer_module);
         // `(return)` in a rule's actions ends the focus on its module (the topmost
         // entry of it, which its actions may have covered with other modules)
         #[cfg(feature = "modules")]

@@ -1199,8 +1199,14 @@ impl Core<'_> {
         let saved_bp = self.st.frame.bp;
         self.st.frame.bp = args.base;
         self.st.eval.in_use += 1;
+        // CLIPS runs the body in the deffunction's module and then makes the module
+        // current before the call current again (`EvaluateProcActions`)
+        #[cfg(feature = "modules")]
+        let outer_module = self.enter_module(self.module_of_function(func));
         let was_halting = self.st.mode.halting;
         let mut r = self.eval_chain(df.body);
+        #[cfg(feature = "modules")]
+        self.leave_module(outer_module);
         // an error that set CLIPS's evaluation error without coming back as one (a
         // slot the fact lacks) halts the deffunction too
         if r.is_ok() && self.st.mode.halting && !was_halting {

@@ -337,6 +337,31 @@ impl Core<'_> {
         self.st.modules.current = m;
     }
 
+    /// Makes `m` current for a rule's or deffunction's actions, as CLIPS's
+    /// `EvaluateProcActions` does; returns the module to make current again after them
+    /// (`leave_module`). With MAIN alone, nothing to change or restore.
+    #[cfg(feature = "modules")]
+    #[inline]
+    pub fn enter_module(&mut self, m: ModId) -> Option<ModId> {
+        if self.st.modules.nmodules <= 1 {
+            return None;
+        }
+        let outer = self.st.modules.current;
+        self.st.modules.current = m;
+        Some(outer)
+    }
+
+    /// After the actions `enter_module` began: the module current before them is
+    /// current again, whatever they changed it to (a `reset`, `focus` or
+    /// `set-current-module` in them).
+    #[cfg(feature = "modules")]
+    #[inline]
+    pub fn leave_module(&mut self, outer: Option<ModId>) {
+        if let Some(m) = outer {
+            self.st.modules.current = m;
+        }
+    }
+
     /// Whether a construct of class `class` named `name` defined in `owner` can be used
     /// in module `from`: its own, or imported from a module exporting it (a module
     /// exports what it sees, its imports too). `depth` bounds the walk (a MAIN

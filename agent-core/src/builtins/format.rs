@@ -1,11 +1,12 @@
 //! Builtin `format`: C-style formatting as CLIPS 6.30 does it.
 //!
 //! `(format <router> <control> <arg>*)` returns the formatted string and prints it to
-//! the router unless the router is `nil`. Directives: `%d %o %x %c` (integers; floats
-//! are truncated), `%f %e %g` (floats; integers converted), `%s` (symbols and strings),
-//! `%n` newline, `%t` tab, `%r` carriage return, `%%`. A directive may carry `-` (left
-//! justify), a width (a leading `0` pads with zeros) and `.precision`; CLIPS rejects
-//! the other C flags (`+`, space, `#`) and length modifiers with `[IOFUN3]`.
+//! the router unless the router is `nil`. Directives: `%d %u %o %x %c` (integers; floats
+//! are truncated; `%u`, host only, prints a negative's 64-bit two's complement),
+//! `%f %e %g` (floats; integers converted), `%s` (symbols and strings), `%n` newline,
+//! `%t` tab, `%r` carriage return, `%%`. A directive may carry `-` (left justify), a
+//! width (a leading `0` pads with zeros) and `.precision`; CLIPS rejects the other C
+//! flags (`+`, space, `#`) and length modifiers with `[IOFUN3]`.
 
 use super::describe::ArgType::{Any, Str as S};
 use super::describe::OnError;
@@ -38,9 +39,11 @@ struct Spec {
     conv: u8,
 }
 
-/// Conversions that consume an argument.
+/// Conversions that consume an argument (`%u` with `extras` only: the agent image,
+/// short of code, rejects it as it did before CLIPS's `%u` was known to us).
 fn takes_arg(conv: u8) -> bool {
     matches!(conv, b'd' | b'o' | b'x' | b'c' | b'f' | b'e' | b'g' | b's')
+        || (cfg!(feature = "extras") && conv == b'u')
 }
 
 /// Parses the directive after a `%` at `ctl[at..]`; returns it and the bytes used.
@@ -308,7 +311,7 @@ fn directive(
             // padded straight from the symbol table: `body` is too small for long texts
             return pad(out, spec, s, false).map_err(|_| TOO_LONG);
         }
-        b'd' | b'o' | b'x' | b'c' => {
+        b'd' | b'u' | b'o' | b'x' | b'c' => {
             let n = match v {
                 Value::Int(i) => i,
                 Value::Float(f) => c_trunc_to_i64(f),
@@ -365,13 +368,16 @@ fn spaces(out: &mut dyn Write, n: usize, c: char) -> core::fmt::Result {
     Ok(())
 }
 
-/// `%d %o %x %c` of a 64-bit integer (octal and hex of negatives as two's complement).
+/// `%d %u %o %x %c` of a 64-bit integer (unsigned, octal and hex of negatives as two's
+/// complement).
 fn write_integer(out: &mut dyn Write, spec: Spec, n: i64) -> core::fmt::Result {
     let min_digits = spec.precision.unwrap_or(1);
     match spec.conv {
         b'c' => out.write_char(char::from(n as u8)),
         b'o' => write!(out, "{:01$o}", n as u64, min_digits),
         b'x' => write!(out, "{:01$x}", n as u64, min_digits),
+        #[cfg(feature = "extras")]
+        b'u' => write!(out, "{:01$}", n as u64, min_digits),
         _ => {
             if n < 0 {
                 out.write_char('-')?;

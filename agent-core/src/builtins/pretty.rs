@@ -112,10 +112,13 @@ fn flat_as(c: &mut Cursor<'_>, w: &mut dyn Write, fact: bool) -> fmt::Result {
     while depth > 0 {
         #[cfg(feature = "extras")]
         if nested_control(c) {
-            if !matches!(
-                prev.tok,
-                Tok::LParen | Tok::Amp | Tok::Bar | Tok::Tilde | Tok::Symbol(":" | "=")
-            ) {
+            // (a `=` or `:` glued to it only as a constraint in a fact, as below)
+            let after_constraint = matches!(prev.tok, Tok::Symbol(":" | "="))
+                && prev2.tok != Tok::LParen
+                && facts & 1u64.checked_shl(depth as u32).unwrap_or(0) != 0;
+            if !matches!(prev.tok, Tok::LParen | Tok::Amp | Tok::Bar | Tok::Tilde)
+                && !after_constraint
+            {
                 w.write_char(' ')?;
             }
             let col = c.indent;
@@ -146,12 +149,15 @@ fn flat_as(c: &mut Cursor<'_>, w: &mut dyn Write, fact: bool) -> fmt::Result {
             }
             _ => {}
         }
-        // constraint syntax stays glued: ?x&~3|4, ?y&:(> ?y 1), =(+ 1 2)
+        // constraint syntax stays glued: ?x&~3|4, ?y&:(> ?y 1), =(+ 1 2); a `=` or `:`
+        // glued to a call elsewhere (a call's name, as in `(=(+ 1 1) 2)`, or an argument)
+        // is printed with a space after it, as CLIPS prints it
         let glued = matches!(t.tok, Tok::RParen | Tok::Amp | Tok::Bar)
             || matches!(prev.tok, Tok::LParen | Tok::Amp | Tok::Bar | Tok::Tilde)
             || (matches!(prev.tok, Tok::Symbol(":") | Tok::Symbol("="))
                 && t.tok == Tok::LParen
-                && (t.start == prev.end || (constraint && in_fact)));
+                && constraint
+                && in_fact);
         if !glued {
             w.write_char(' ')?;
         }
@@ -733,6 +739,24 @@ mod tests {
         assert_eq!(
             pp("(defrule r ?f <- (a  ?x&~3|4  $?rest) (c ?y&:(> ?y 1)&~5) => (printout t 2.50 crlf))"),
             "(defrule MAIN::r\n   ?f <- (a ?x&~3|4 $?rest)\n   (c ?y&:(> ?y 1)&~5)\n   =>\n   (printout t 2.5 crlf))"
+        );
+    }
+
+    /// Transcribed from CLIPS 6.30: a `=` or `:` glued to the call after it stays glued
+    /// only as a constraint in a pattern or fact.
+    #[test]
+    fn equals_glued_to_a_call_is_spaced_outside_facts() {
+        assert_eq!(
+            pp("(defrule r (test (=(+ 1 1) 2)) (b =(+ 1 1)) => (assert (e =(+ 1 1))) (printout t =(+ 1 2) :(+ 1 2)) (if (=(+ 1 1) 2) then (halt)))"),
+            "(defrule MAIN::r
+   (test (= (+ 1 1) 2))
+   (b =(+ 1 1))
+   =>
+   (assert (e =(+ 1 1)))
+   (printout t = (+ 1 2) : (+ 1 2))
+   (if (= (+ 1 1) 2)
+      then
+      (halt)))"
         );
     }
 
