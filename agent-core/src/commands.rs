@@ -872,6 +872,12 @@ impl Core<'_> {
         }
         #[cfg(not(feature = "modules"))]
         let _ = look_next;
+        // CLIPS: the current focus's module is current when the run finishes (an empty
+        // stack leaves the module the last firing's actions were restored to)
+        #[cfg(feature = "modules")]
+        if let Some(top) = self.focus_top() {
+            self.set_current_module(top);
+        }
         self.st.mode.halt = false;
         Ok(fired)
     }

@@ -584,8 +584,8 @@ impl Core<'_> {
         Ok(())
     }
 
-    /// Pops the focus stack's top (`<== Focus M to N` while watched); the current
-    /// module follows the new top when it was the popped one.
+    /// Pops the focus stack's top (`<== Focus M to N` while watched); the new top's
+    /// module becomes current.
     pub fn pop_focus(&mut self) -> Option<ModId> {
         let top = self.focus_top()?;
         self.st.modules.depth -= 1;
@@ -610,10 +610,10 @@ impl Core<'_> {
             };
             self.write(crate::host::router::STDOUT, b.as_str());
         }
+        // (CLIPS's `RemoveFocus`: the new top's module is current, whatever was; the
+        // module a rule's actions made current is restored after them, `leave_module`)
         if let Some(n) = next {
-            if self.st.modules.current == top {
-                self.st.modules.current = n;
-            }
+            self.st.modules.current = n;
         }
         Some(top)
     }

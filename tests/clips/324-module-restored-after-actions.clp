@@ -1,7 +1,8 @@
 ; A rule's actions and a deffunction's body run in their own module, and the module
 ; current before them is current again after them, whatever they made current
 ; (set-current-module, focus, reset). When the run then empties the focus stack,
-; that module stays current.
+; that module stays current. Popping the focus stack makes the new top's module
+; current, whatever was current.
 (defmodule MAIN (export ?ALL))
 (deftemplate go (slot n))
 (defmodule A (import MAIN ?ALL) (export ?ALL))
@@ -55,4 +56,12 @@
 (run)
 (get-current-module)
 (get-focus-stack)
+(clear-focus-stack)
+(focus B A)
+(set-current-module MAIN)
+(pop-focus)
+(get-current-module)
+(get-focus-stack)
+(pop-focus)
+(get-current-module)
 (exit)
