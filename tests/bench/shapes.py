@@ -1,0 +1,482 @@
+#!/usr/bin/env python3
+"""Small generated programs of shapes the main bench lacks, measured in three engines.
+
+    python3 tests/bench/shapes.py emit DIR [--only SHAPE ...]
+    python3 tests/bench/shapes.py measure DIR OURS_BIN [--only SHAPE ...] [--no-c64]
+
+`emit` writes DIR/<shape>-<size>/ with program.clp (constructs only, as the bench's
+clipspy driver wants them), full.bat.clp (load*, reset, run, exit) and norun.bat.clp
+(the same without run).
+
+`measure` counts instructions with callgrind, run phase = full - norun and whole process:
+  CLIPS 6.30   `clips -f2 full.bat.clp` / `norun.bat.clp`
+  CLIPS 6.4.2  clipspy's own library (`_clips.abi3.so`) driven by a 20-line C program
+               (tests/bench/c64run.c): CreateEnvironment, Load, Reset, Run, the calls the
+               bench's clipspy driver makes, without the 288 M instructions and the
+               minute per run of starting Python under valgrind. Its whole-process
+               figure is therefore lower than the bench's (harder for us, never easier).
+  ours         `OURS_BIN clips -f2 full.bat.clp` / `norun.bat.clp`
+and checks that the three engines print the same text. Prints a markdown table; ratio =
+best CLIPS / ours (above 1 means we use fewer instructions).
+
+Every program's data is asserted by rules during the run (an init rule or a chain of
+firings), so the run phase matches and fires; `deffacts` loads its data at reset.
+"""
+
+import argparse
+import os
+import re
+import subprocess
+import sys
+import tempfile
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+CLIPS64_SO_HINT = "clips/_clips.abi3.so"
+
+COLORS = ["red", "green", "blue", "yellow", "black", "white", "plum"]
+
+
+def lcg(seed):
+    """Deterministic pseudo-random numbers (the same in every Python)."""
+    state = seed & 0xFFFFFFFF
+    while True:
+        state = (state * 1103515245 + 12345) & 0x7FFFFFFF
+        yield state >> 8
+
+
+def report_rule(*globals_):
+    parts = " ".join('"%s=" ?*%s* " "' % (g, g) for g in globals_)
+    return "(defrule zz-report (declare (salience -1000)) => (printout t %s crlf))\n" % parts
+
+
+def defglobals(*names):
+    return "".join("(defglobal ?*%s* = 0)\n" % n for n in names)
+
+
+# --- shapes -----------------------------------------------------------------------------
+
+
+def mfwild(n):
+    """Multifield slots and ordered facts with `$?` wildcards, member$ and length$ tests."""
+    rnd = lcg(n)
+    out = [defglobals("red", "redblue", "green", "ends", "long", "pos", "pair")]
+    out.append("(deftemplate bag (slot id) (multislot items))\n")
+    asserts = []
+    for i in range(n):
+        items = [COLORS[next(rnd) % len(COLORS)] for _ in range(3 + next(rnd) % 6)]
+        asserts.append("(assert (bag (id %d) (items %s)))" % (i, " ".join(items)))
+        asserts.append("(assert (tag %d %s))" % (i, " ".join(items[:3])))
+    out.append("(defrule init => %s)\n" % "\n  ".join(asserts))
+    out.append(
+        """(defrule has-red (bag (id ?i) (items $? red $?)) => (bind ?*red* (+ ?*red* 1)))
+(defrule red-then-blue (bag (id ?i) (items $? red $? blue $?)) => (bind ?*redblue* (+ ?*redblue* 1)))
+(defrule member-green (bag (id ?i) (items $?all)) (test (member$ green ?all)) => (bind ?*green* (+ ?*green* 1)))
+(defrule same-ends (bag (id ?i) (items ?x $? ?x)) => (bind ?*ends* (+ ?*ends* 1)))
+(defrule long-bag (bag (id ?i) (items $?a&:(> (length$ ?a) 5))) => (bind ?*long* (+ ?*long* 1)))
+(defrule yellow-pos (bag (id ?i) (items $?b yellow $?)) => (bind ?*pos* (+ ?*pos* (length$ ?b))))
+(defrule tag-pair (tag ?i ?x $?) (bag (id ?i) (items $? ?x ?x $?)) => (bind ?*pair* (+ ?*pair* 1)))
+"""
+    )
+    out.append(report_rule("red", "redblue", "green", "ends", "long", "pos", "pair"))
+    return "".join(out)
+
+
+def testce(n):
+    """`test` CEs with arithmetic and string functions over a join of every pair."""
+    out = [defglobals("pairs", "words", "tri")]
+    asserts = ["(assert (num %d))" % i for i in range(1, n + 1)]
+    words = ["alpha", "beta", "gamma", "delta", "apple", "anchor", "zeta", "axe", "omega"]
+    asserts += ['(assert (word "%s%d"))' % (words[i % len(words)], i) for i in range(n)]
+    out.append("(defrule init => %s)\n" % "\n  ".join(asserts))
+    out.append(
+        """(defrule pair (num ?x) (num ?y&:(> ?y ?x)) (test (= (mod (+ (* ?x ?x) ?y) 7) 0))
+  => (bind ?*pairs* (+ ?*pairs* 1)))
+(defrule tri (num ?x) (num ?y&:(> ?y ?x)) (test (and (< (+ ?x ?y) 40) (evenp (+ ?x ?y))))
+  => (bind ?*tri* (+ ?*tri* 1)))
+(defrule a-word (word ?w) (test (eq (sub-string 1 1 ?w) "a")) (test (> (str-length ?w) 5))
+  => (bind ?*words* (+ ?*words* (str-length ?w))))
+"""
+    )
+    out.append(report_rule("pairs", "words", "tri"))
+    return "".join(out)
+
+
+def deffunc(n):
+    """Deffunctions with while and loop-for-count loops called from a right-hand side."""
+    return (
+        defglobals("acc", "steps")
+        + """(deffunction collatz (?n)
+  (bind ?s 0)
+  (while (> ?n 1) do
+    (if (evenp ?n) then (bind ?n (div ?n 2)) else (bind ?n (+ (* 3 ?n) 1)))
+    (bind ?s (+ ?s 1)))
+  ?s)
+(deffunction sumsq (?n)
+  (bind ?t 0)
+  (loop-for-count (?i 1 ?n) do (bind ?t (+ ?t (* ?i ?i))))
+  ?t)
+(deffunction classify (?k)
+  (switch (mod ?k 4)
+    (case 0 then zero)
+    (case 1 then one)
+    (case 2 then two)
+    (default other)))
+(deffacts start (count 1))
+(defrule step
+  ?f <- (count ?k&:(<= ?k %d))
+  =>
+  (retract ?f)
+  (bind ?*steps* (+ ?*steps* (collatz ?k)))
+  (bind ?*acc* (+ ?*acc* (sumsq (mod ?k 13))))
+  (if (eq (classify ?k) two) then (bind ?*acc* (- ?*acc* 1)))
+  (assert (count (+ ?k 1))))
+"""
+        % n
+        + report_rule("acc", "steps")
+    )
+
+
+def modify(n):
+    """Heavy modify of a 12-slot template; other rules watch single slots."""
+    out = [defglobals("low", "far", "zone")]
+    out.append(
+        """(deftemplate robot (slot name) (slot steps (default 0)) (slot x (default 0)) (slot y (default 0))
+  (slot heading (default 0)) (slot battery (default 100)) (slot zone (default z0))
+  (slot load (default none)) (slot state (default idle)) (slot speed (default 1))
+  (slot errors (default 0)) (slot goal (default none)))
+(deftemplate zone-info (slot id) (slot cost))
+"""
+    )
+    asserts = ["(assert (robot (name r%d) (x %d)))" % (i, i) for i in range(4)]
+    asserts += ["(assert (zone-info (id z%d) (cost %d)))" % (i, i * 3) for i in range(5)]
+    out.append("(defrule init => %s)\n" % "\n  ".join(asserts))
+    out.append(
+        """(defrule move
+  ?r <- (robot (name ?n) (steps ?s&:(< ?s %d)) (x ?x) (y ?y) (battery ?b&:(>= ?b 10)))
+  =>
+  (modify ?r (steps (+ ?s 1)) (x (+ ?x 1)) (y (- ?y 1)) (battery (- ?b 3))
+             (zone (sym-cat z (mod (+ ?x ?s) 5))) (heading (mod (* ?s 30) 360))))
+(defrule recharge
+  ?r <- (robot (battery ?b&:(< ?b 10)))
+  =>
+  (bind ?*low* (+ ?*low* 1))
+  (modify ?r (battery 100) (state charging)))
+(defrule far-away (robot (name ?n) (x ?x&:(> ?x 100)) (state ?st&~far))
+  => (bind ?*far* (+ ?*far* 1)))
+(defrule in-zone (robot (name ?n) (zone ?z)) (zone-info (id ?z) (cost ?c&:(> ?c 6)))
+  => (bind ?*zone* (+ ?*zone* ?c)))
+"""
+        % (n // 4)
+    )
+    out.append(report_rule("low", "far", "zone"))
+    return "".join(out)
+
+
+def existsforall(n):
+    """`exists` and `forall` over tasks finished one by one."""
+    groups = max(n // 10, 1)
+    out = [defglobals("done", "groups", "busy")]
+    asserts = ["(assert (group g%d))" % g for g in range(groups)]
+    asserts += [
+        "(assert (task (id %d) (group g%d) (skill %s)))" % (i, i % groups, ["a", "b", "c"][i % 3])
+        for i in range(n)
+    ]
+    asserts += ["(assert (worker w%d %s))" % (w, ["a", "b", "c"][w % 3]) for w in range(6)]
+    out.append("(deftemplate task (slot id) (slot group) (slot skill) (slot state (default open)))\n")
+    out.append("(defrule init => %s)\n" % "\n  ".join(asserts))
+    out.append(
+        """(defrule finish
+  ?t <- (task (id ?i) (state open))
+  =>
+  (modify ?t (state done))
+  (assert (done ?i))
+  (bind ?*done* (+ ?*done* 1)))
+(defrule group-done
+  (group ?g)
+  (forall (task (group ?g) (id ?i)) (done ?i))
+  =>
+  (bind ?*groups* (+ ?*groups* 1)))
+(defrule worker-busy
+  (declare (salience 10))
+  (worker ?w ?s)
+  (exists (task (skill ?s) (state open)))
+  =>
+  (bind ?*busy* (+ ?*busy* 1)))
+(defrule all-open (declare (salience 20)) (not (task (state done))) (exists (task)) =>
+  (printout t "all open" crlf))
+"""
+    )
+    out.append(report_rule("done", "groups", "busy"))
+    return "".join(out)
+
+
+def strout(n):
+    """Output per firing built with str-cat, sym-cat and format."""
+    return (
+        defglobals("len")
+        + """(deffacts start (count 1))
+(defrule step
+  ?f <- (count ?k&:(<= ?k %d))
+  =>
+  (retract ?f)
+  (bind ?s (str-cat "item-" ?k "-" (mod ?k 7)))
+  (bind ?*len* (+ ?*len* (str-length ?s)))
+  (printout t ?s " " (sym-cat a ?k b) (format nil " %%5d %%-8s|%%6.2f" ?k ?s (/ ?k 3)) crlf)
+  (printout t (upcase ?s) " " (str-index "-" ?s) " " (sub-string 2 4 ?s) crlf)
+  (assert (count (+ ?k 1))))
+"""
+        % n
+        + report_rule("len")
+    )
+
+
+def factquery(n):
+    """Fact-set queries (do-for-all-facts, find-all-facts, any-factp, find-fact) in a RHS."""
+    rnd = lcg(n + 7)
+    asserts = [
+        "(assert (item (id %d) (w %d) (kind %s)))" % (i, next(rnd) % 100, "abc"[next(rnd) % 3])
+        for i in range(n)
+    ]
+    return (
+        defglobals("sum", "cnt", "any", "first")
+        + "(deftemplate item (slot id) (slot w) (slot kind))\n"
+        + "(defrule init => %s (assert (query 1)))\n" % "\n  ".join(asserts)
+        + """(defrule query
+  ?q <- (query ?k&:(<= ?k 40))
+  =>
+  (retract ?q)
+  (do-for-all-facts ((?f item)) (> ?f:w (* ?k 2)) (bind ?*sum* (+ ?*sum* ?f:w)))
+  (bind ?*cnt* (+ ?*cnt* (length$ (find-all-facts ((?f item)) (eq ?f:kind (nth$ (+ 1 (mod ?k 3)) (create$ a b c)))))))
+  (if (any-factp ((?f item)) (= ?f:w ?k)) then (bind ?*any* (+ ?*any* 1)))
+  (bind ?ff (find-fact ((?f item)) (> ?f:w (- 99 ?k))))
+  (if (> (length$ ?ff) 0) then (bind ?*first* (+ ?*first* (fact-slot-value (nth$ 1 ?ff) id))))
+  (assert (query (+ ?k 1))))
+"""
+        + report_rule("sum", "cnt", "any", "first")
+    )
+
+
+def salience(n):
+    """A deep salience chain: 20 rules per tick, each updating a global."""
+    out = [defglobals("a", "b"), "(deffacts start (tick 1))\n"]
+    for level in range(20):
+        out.append(
+            "(defrule s%02d (declare (salience %d)) (tick ?k) => (bind ?*a* (+ ?*a* %d)) (bind ?*b* (mod (+ ?*b* ?k) 1000)))\n"
+            % (level, 100 - level * 5, level)
+        )
+    out.append(
+        "(defrule next (declare (salience -50)) ?f <- (tick ?k&:(< ?k %d)) => (retract ?f) (assert (tick (+ ?k 1))))\n"
+        % max(n // 21, 1)
+    )
+    out.append(report_rule("a", "b"))
+    return "".join(out)
+
+
+def ordered(n):
+    """Ordered facts with 12 fields; rules test constants on different fields and join."""
+    rnd = lcg(n + 3)
+    syms = ["a", "b", "c", "d"]
+    asserts = []
+    for i in range(n):
+        fields = [syms[next(rnd) % 4] for _ in range(6)] + [str(next(rnd) % 50) for _ in range(5)]
+        asserts.append("(assert (rec %d %s))" % (i, " ".join(fields)))
+    out = [defglobals("r1", "r2", "r3", "r4", "r5", "j")]
+    out.append("(defrule init => %s)\n" % "\n  ".join(asserts))
+    out.append(
+        """(defrule o1 (rec ?i a ? ? b ? ? $?) => (bind ?*r1* (+ ?*r1* 1)))
+(defrule o2 (rec ?i ? c ? ? d ? ?n&:(> ?n 25) $?) => (bind ?*r2* (+ ?*r2* 1)))
+(defrule o3 (rec ?i ?x ?x ?x ? ? ? $?) => (bind ?*r3* (+ ?*r3* 1)))
+(defrule o4 (rec ?i ? ? ? ? ? a ? ? ? ? 7) => (bind ?*r4* (+ ?*r4* 1)))
+(defrule o5 (rec ?i b ? ? ? ? ? ?v ?v $?) => (bind ?*r5* (+ ?*r5* 1)))
+(defrule oj (rec ?i d d ? ? ? ? ?v $?) (rec ?j&:(< ?i ?j) ? ? d d ? ? ?v $?) => (bind ?*j* (+ ?*j* 1)))
+"""
+    )
+    out.append(report_rule("r1", "r2", "r3", "r4", "r5", "j"))
+    return "".join(out)
+
+
+def deffacts(n):
+    """A large deffacts load (at reset), then rules over it."""
+    rnd = lcg(n + 11)
+    out = [defglobals("hot", "pair")]
+    out.append("(deftemplate reading (slot sensor) (slot t) (slot value))\n")
+    facts = []
+    for i in range(n):
+        facts.append("(reading (sensor s%d) (t %d) (value %d))" % (i % 50, i // 50, next(rnd) % 1000))
+        if i % 4 == 0:
+            facts.append("(link s%d s%d)" % (i % 50, (i * 7) % 50))
+    for start in range(0, len(facts), 500):
+        out.append("(deffacts data%d\n  %s)\n" % (start // 500, "\n  ".join(facts[start:start + 500])))
+    out.append(
+        """(defrule hot (reading (sensor ?s) (value ?v&:(> ?v 990))) => (bind ?*hot* (+ ?*hot* 1)))
+(defrule linked-hot (link ?a ?b&~?a) (reading (sensor ?a) (t 0) (value ?v&:(> ?v 900)))
+  => (bind ?*pair* (+ ?*pair* 1)))
+"""
+    )
+    out.append(report_rule("hot", "pair"))
+    return "".join(out)
+
+
+def countdown(n):
+    """A bare loop: retract and assert one counter per firing, a switch on the right."""
+    return (
+        defglobals("x")
+        + """(deffacts start (count %d))
+(defrule down
+  ?f <- (count ?n&:(> ?n 0))
+  =>
+  (retract ?f)
+  (switch (mod ?n 3)
+    (case 0 then (bind ?*x* (+ ?*x* 1)))
+    (case 1 then (bind ?*x* (- ?*x* 2)))
+    (default (bind ?*x* (* ?*x* 1))))
+  (assert (count (- ?n 1))))
+"""
+        % n
+        + report_rule("x")
+    )
+
+
+def agenda(n):
+    """Many activations created and withdrawn: a control fact gates a wide join."""
+    out = [defglobals("fired", "seen")]
+    asserts = ["(assert (part %d %s))" % (i, "abcd"[i % 4]) for i in range(n)]
+    out.append("(defrule init => %s (assert (phase 1)))\n" % "\n  ".join(asserts))
+    out.append(
+        """(defrule look (phase ?p&:(<= ?p 10)) (part ?i ?k) (not (seen ?i ?p))
+  => (bind ?*seen* (+ ?*seen* 1)) (assert (seen ?i ?p)))
+(defrule advance (declare (salience -10)) ?f <- (phase ?p&:(<= ?p 10))
+  => (bind ?*fired* (+ ?*fired* 1)) (retract ?f) (assert (phase (+ ?p 1))))
+"""
+    )
+    out.append(report_rule("fired", "seen"))
+    return "".join(out)
+
+
+SHAPES = {
+    "mfwild": (mfwild, [100, 400, 1600]),
+    "testce": (testce, [30, 60, 120]),
+    "deffunc": (deffunc, [200, 800, 3200]),
+    "modify": (modify, [400, 1600, 6400]),
+    "existsforall": (existsforall, [50, 200, 800]),
+    "strout": (strout, [200, 800, 3200]),
+    "factquery": (factquery, [50, 200, 800]),
+    "salience": (salience, [500, 2000, 8000]),
+    "ordered": (ordered, [200, 800, 3200]),
+    "deffacts": (deffacts, [1000, 4000, 16000]),
+    "countdown": (countdown, [1000, 4000, 16000]),
+    "agenda": (agenda, [50, 200, 800]),
+}
+
+
+def emit(out_dir, only):
+    rows = []
+    for name, (make, sizes) in SHAPES.items():
+        if only and name not in only:
+            continue
+        for size in sizes:
+            row = "%s-%d" % (name, size)
+            d = os.path.join(out_dir, row)
+            os.makedirs(d, exist_ok=True)
+            program = os.path.join(d, "program.clp")
+            with open(program, "w") as f:
+                f.write(make(size))
+            for phase, run in (("full", "(run)\n"), ("norun", "")):
+                with open(os.path.join(d, phase + ".bat.clp"), "w") as f:
+                    f.write('(load* "%s")\n(reset)\n%s(exit)\n' % (program, run))
+            rows.append((name, size, d))
+    return rows
+
+
+# --- measuring --------------------------------------------------------------------------
+
+
+def callgrind(cmd, cwd):
+    res = subprocess.run(
+        ["valgrind", "--tool=callgrind", "--callgrind-out-file=/dev/null"] + cmd,
+        cwd=cwd, capture_output=True, text=True, timeout=3600,
+    )
+    found = re.search(r"Collected : (\d+)", res.stderr)
+    if not found:
+        raise RuntimeError("no callgrind count for %s: %s" % (cmd, res.stderr[-500:]))
+    return int(found.group(1))
+
+
+def plain(cmd, cwd):
+    return subprocess.run(cmd, cwd=cwd, capture_output=True, text=True, timeout=600).stdout
+
+
+def build_c64(scratch):
+    """The C driver of clipspy's library; None when python, clipspy or gcc is missing."""
+    try:
+        info = subprocess.run(
+            ["python3", "-c",
+             "import sys, sysconfig, clips._clips as c; print(c.__file__); "
+             "print(sysconfig.get_config_var('LIBDIR')); print(sysconfig.get_config_var('LDVERSION'))"],
+            capture_output=True, text=True, check=True,
+        ).stdout.split()
+        so, libdir, ldversion = info
+        exe = os.path.join(scratch, "c64run")
+        subprocess.run(
+            ["gcc", "-O2", '-DCLIPS_SO="%s"' % so, "-o", exe, os.path.join(HERE, "c64run.c"),
+             "-ldl", "-L" + libdir, "-Wl,--no-as-needed", "-lpython" + ldversion,
+             "-Wl,-rpath," + libdir],
+            check=True,
+        )
+        return exe
+    except (subprocess.CalledProcessError, OSError, ValueError) as err:
+        print("no CLIPS 6.4 driver: %s" % err, file=sys.stderr)
+        return None
+
+
+def measure(rows, ours, c64):
+    engines = [("6.30", lambda d, p: ["clips", "-f2", os.path.join(d, p + ".bat.clp")])]
+    if c64:
+        engines.append(("6.4.2", lambda d, p: [c64, os.path.join(d, "program.clp")] + ([] if p == "full" else ["norun"])))
+    engines.append(("ours", lambda d, p: [ours, "clips", "-f2", os.path.join(d, p + ".bat.clp")]))
+    print("| shape | size | 6.30 run | 6.4.2 run | ours run | run ratio | 6.30 whole | 6.4.2 whole | ours whole | whole ratio | same output |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    for name, size, d in rows:
+        runs, wholes, outputs = {}, {}, {}
+        for label, cmd in engines:
+            full = callgrind(cmd(d, "full"), d)
+            norun = callgrind(cmd(d, "norun"), d)
+            runs[label], wholes[label] = full - norun, full
+            outputs[label] = plain(cmd(d, "full"), d)
+        # CLIPS 6.30's command loop echoes nothing in -f2; compare the printed text.
+        texts = {k: v.strip() for k, v in outputs.items()}
+        same = len(set(texts.values())) == 1
+        best_run = min(v for k, v in runs.items() if k != "ours")
+        best_whole = min(v for k, v in wholes.items() if k != "ours")
+        fmt = lambda v: "%.2f M" % (v / 1e6)
+        print(
+            "| %s | %d | %s | %s | %s | %.2f | %s | %s | %s | %.2f | %s |"
+            % (name, size, fmt(runs["6.30"]), fmt(runs.get("6.4.2", 0)), fmt(runs["ours"]),
+               best_run / max(runs["ours"], 1), fmt(wholes["6.30"]), fmt(wholes.get("6.4.2", 0)),
+               fmt(wholes["ours"]), best_whole / max(wholes["ours"], 1),
+               "yes" if same else "NO: " + " / ".join("%s %r" % (k, v[-80:]) for k, v in texts.items())),
+            flush=True,
+        )
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    sub = parser.add_subparsers(dest="cmd", required=True)
+    e = sub.add_parser("emit")
+    e.add_argument("dir")
+    e.add_argument("--only", nargs="*")
+    m = sub.add_parser("measure")
+    m.add_argument("dir")
+    m.add_argument("ours")
+    m.add_argument("--only", nargs="*")
+    m.add_argument("--no-c64", action="store_true")
+    args = parser.parse_args()
+    rows = emit(os.path.abspath(args.dir), args.only)
+    if args.cmd == "measure":
+        with tempfile.TemporaryDirectory() as scratch:
+            c64 = None if args.no_c64 else build_c64(scratch)
+            measure(rows, os.path.abspath(args.ours), c64)
+
+
+if __name__ == "__main__":
+    main()
