@@ -303,8 +303,15 @@ impl Core<'_> {
     #[inline(never)]
     fn worth_past_printouts(&self, mut n: Ix) -> bool {
         // first by the builtins' ids alone: most action lists (`(assert ...)
-        // (assert ...) (bind ...)`) reach no modify, and need no closer look
+        // (assert ...) (bind ...)`) reach no modify, and need no closer look. The walk
+        // stops after `SCAN_MAX` actions: past more than `QUEUED_MAX` asserts the fact
+        // could not wait until the modify anyway (the queue is full there and builds
+        // it), and held printouts are few. So a long list of asserts (an init rule
+        // asserting hundreds of facts) costs each of them a few steps, not the rest of
+        // the list (quadratic).
+        const SCAN_MAX: usize = 2 * QUEUED_MAX;
         let mut m = n;
+        let mut budget = SCAN_MAX;
         loop {
             if m == NONE {
                 return false;
@@ -317,6 +324,10 @@ impl Core<'_> {
                 break;
             }
             if x.data != crate::builtins::ID_PRINTOUT && x.data != crate::builtins::ID_ASSERT {
+                return false;
+            }
+            budget -= 1;
+            if budget == 0 {
                 return false;
             }
             m = x.next;
