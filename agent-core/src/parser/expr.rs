@@ -309,6 +309,9 @@ impl<'s> Parser<'s, '_, '_> {
     /// Parses arguments until `)`, appending them to `call`; returns their count.
     pub fn args_until_rparen(&mut self, call: Ix) -> PResult<Ix> {
         let mut n = 0;
+        // the last child so far: appending walks on from it, not from the first (a
+        // right-hand side of hundreds of asserts was quadratic to read)
+        let mut tail = NONE;
         loop {
             let t = self.peek();
             match t.tok {
@@ -319,7 +322,15 @@ impl<'s> Parser<'s, '_, '_> {
                 Tok::Eof | Tok::Bad => return Err(self.err(t, "')'")),
                 _ => {
                     let a = self.parse_expr()?;
-                    self.cx.append_child(call, a);
+                    if tail == NONE {
+                        self.cx.append_child(call, a);
+                    } else {
+                        while self.cx.exprs[tail as usize].next != NONE {
+                            tail = self.cx.exprs[tail as usize].next;
+                        }
+                        self.cx.exprs[tail as usize].next = a;
+                    }
+                    tail = a;
                     n += 1;
                 }
             }
