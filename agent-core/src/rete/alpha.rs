@@ -22,6 +22,27 @@ struct SlotLayout {
 /// Multislots with constraints one pattern may have (the parser refuses more).
 pub(crate) const MAX_LAYOUTS: usize = 8;
 
+/// Host: an alpha test decided under some of a segmentation's marks (`mark_test`).
+#[cfg(feature = "host-speedups")]
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum MarkTest {
+    True,
+    False,
+    /// side-effect free, but reads an element a mark not yet set places
+    Later,
+    /// not one the quick path reads: the evaluator decides
+    Unknown,
+}
+
+/// Host: an operand of `mark_test`.
+#[cfg(feature = "host-speedups")]
+#[derive(Clone, Copy)]
+enum MarkOperand {
+    Value(Value),
+    Later,
+    Unknown,
+}
+
 impl Core<'_> {
     /// Adds a new fact to every alpha memory it matches and propagates.
     pub(crate) fn network_assert(&mut self, fact: Ix) -> Result<(), EvalError> {
@@ -255,10 +276,174 @@ impl Core<'_> {
         }
         for m in (0..=room).rev() {
             marks[i] = m as u8;
+            // host: the tests this mark decides run now, as CLIPS tests element by
+            // element, so a constant that fails drops every segmentation after it
+            #[cfg(feature = "host-speedups")]
+            let tests = match self.mark_tests(tests, fact, marks, i + 1) {
+                Some(rest) => rest,
+                None => continue,
+            };
             self.enumerate_marks::<MF>(alpha, fact, tests, lay, slack, marks, i + 1, nmarks)?;
         }
         marks[i] = 0;
         Ok(())
+    }
+
+    /// Host: the node's tests `tests` once marks `..fixed` are set: None when one
+    /// decides false (no segmentation with these marks matches), else the tests left
+    /// for later, after those decided true. Tests are read in order while each is a
+    /// side-effect-free comparison (`mark_test`); one that needs a later mark is
+    /// passed over (it cannot fail with an error or write anything, so a false test
+    /// after it decides the same), the first the quick path cannot read stops.
+    #[cfg(feature = "host-speedups")]
+    fn mark_tests(&self, tests: Ix, fact: Ix, marks: &[u8; MAX_MARKS], fixed: usize) -> Option<Ix> {
+        let (mut t, mut rest, mut prefix) = (tests, tests, true);
+        while t != NONE {
+            match self.mark_test(t, fact, marks, fixed) {
+                MarkTest::True => {}
+                MarkTest::False => return None,
+                MarkTest::Later => prefix = false,
+                MarkTest::Unknown => break,
+            }
+            t = self.exprs[t as usize].next;
+            if prefix {
+                rest = t;
+            }
+        }
+        Some(rest)
+    }
+
+    /// Host: alpha test `e` (`Eq2`, `Not`, `And`, `Or` of constants, globals and
+    /// single fields of `fact`) with marks `..fixed` set, as the evaluator would
+    /// decide it once every mark is set.
+    #[cfg(feature = "host-speedups")]
+    fn mark_test(&self, e: Ix, fact: Ix, marks: &[u8; MAX_MARKS], fixed: usize) -> MarkTest {
+        let x = self.exprs[e as usize];
+        match x.op {
+            Op::Eq2 => {
+                let a = self.mark_operand(x.first, fact, marks, fixed);
+                let b = self.mark_operand(self.exprs[x.first as usize].next, fact, marks, fixed);
+                match (a, b) {
+                    (MarkOperand::Unknown, _) | (_, MarkOperand::Unknown) => MarkTest::Unknown,
+                    (MarkOperand::Value(a), MarkOperand::Value(b)) => {
+                        // neither is a multifield: `values_same` is `same`
+                        if a.same(b) {
+                            MarkTest::True
+                        } else {
+                            MarkTest::False
+                        }
+                    }
+                    _ => MarkTest::Later,
+                }
+            }
+            Op::Not => match self.mark_test(x.first, fact, marks, fixed) {
+                MarkTest::True => MarkTest::False,
+                MarkTest::False => MarkTest::True,
+                r => r,
+            },
+            Op::And | Op::Or => {
+                let (want, hit) = if x.op == Op::Or {
+                    (MarkTest::True, true)
+                } else {
+                    (MarkTest::False, false)
+                };
+                let mut later = false;
+                let mut c = x.first;
+                while c != NONE {
+                    match self.mark_test(c, fact, marks, fixed) {
+                        MarkTest::Unknown => return MarkTest::Unknown,
+                        MarkTest::Later => later = true,
+                        r if r == want => return want,
+                        _ => {}
+                    }
+                    c = self.exprs[c as usize].next;
+                }
+                match (later, hit) {
+                    (true, _) => MarkTest::Later,
+                    (false, true) => MarkTest::False,
+                    (false, false) => MarkTest::True,
+                }
+            }
+            _ => MarkTest::Unknown,
+        }
+    }
+
+    /// Host: an operand of `mark_test`: a single-field element of a multislot of
+    /// `fact` read at its offset under marks `..fixed` (`Later` while a mark it
+    /// depends on is not set), else as `quick_alpha_operand` reads it.
+    #[cfg(feature = "host-speedups")]
+    fn mark_operand(&self, e: Ix, fact: Ix, marks: &[u8; MAX_MARKS], fixed: usize) -> MarkOperand {
+        let x = self.exprs[e as usize];
+        let elem = loc::elem(x.data);
+        if x.op != Op::PatVar
+            || x.aux != THIS_PATTERN
+            || x.data == loc::FACT
+            || elem == loc::SINGLE
+            || x.first == NONE
+        {
+            return match self.quick_alpha_operand(e, fact) {
+                Some(v) => MarkOperand::Value(v),
+                None => MarkOperand::Unknown,
+            };
+        }
+        let ps = self.exprs[x.first as usize];
+        let (cell, mlen) = self.slot_cell(fact, Ix::from(loc::slot(x.data)));
+        let Some(len) = mlen else {
+            return MarkOperand::Unknown;
+        };
+        let len = len as usize;
+        // the slot's layout, as `pattern_var` lays it out
+        let (mut nfixed, mut multis) = (0usize, 0usize);
+        let mut c = ps.first;
+        while c != NONE {
+            let ex = &self.exprs[c as usize];
+            if ex.aux == 1 {
+                multis += 1;
+            } else {
+                nfixed += 1;
+            }
+            c = ex.next;
+        }
+        let slack = len.saturating_sub(nfixed);
+        let first_mark = ps.aux as usize;
+        let (mut pos, mut mi, mut i) = (0usize, 0usize, 0u8);
+        let mut c = ps.first;
+        while c != NONE {
+            let ex = &self.exprs[c as usize];
+            let is_multi = ex.aux == 1;
+            if i == elem {
+                if is_multi || pos >= len {
+                    return MarkOperand::Unknown;
+                }
+                return match self.values[cell + 1 + pos] {
+                    Value::Multi(_) => MarkOperand::Unknown,
+                    v => MarkOperand::Value(v),
+                };
+            }
+            if is_multi {
+                if mi + 1 < multis {
+                    let k = first_mark + mi;
+                    if k >= fixed || k >= MAX_MARKS {
+                        return MarkOperand::Later;
+                    }
+                    pos += marks[k] as usize;
+                } else {
+                    // the last multifield takes what the others left
+                    let end = first_mark + multis - 1;
+                    if end > fixed || end > MAX_MARKS {
+                        return MarkOperand::Later;
+                    }
+                    let used: usize = marks[first_mark..end].iter().map(|&m| m as usize).sum();
+                    pos += slack.saturating_sub(used);
+                }
+                mi += 1;
+            } else {
+                pos += 1;
+            }
+            i += 1;
+            c = ex.next;
+        }
+        MarkOperand::Unknown
     }
 
     /// One segmentation of `fact` for `alpha`: an alpha match if the tests pass.
