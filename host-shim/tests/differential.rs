@@ -419,6 +419,7 @@ differential_programs! {
     p350_check_syntax => "350-check-syntax",
     p351_parse_time_argument_checks => "351-parse-time-argument-checks",
     p352_long_action_lists => "352-long-action-lists",
+    p353_multifield_segment_prune => "353-multifield-segment-prune",
     p281_modules_defglobals => "281-modules-defglobals",
     p282_modules_import_conflicts => "282-modules-import-conflicts",
     p283_modules_get_lists => "283-modules-get-lists",

@@ -392,58 +392,55 @@ impl Core<'_> {
             return MarkOperand::Unknown;
         };
         let len = len as usize;
-        // the slot's layout, as `pattern_var` lays it out
-        let (mut nfixed, mut multis) = (0usize, 0usize);
-        let mut c = ps.first;
-        while c != NONE {
-            let ex = &self.exprs[c as usize];
-            if ex.aux == 1 {
-                multis += 1;
-            } else {
-                nfixed += 1;
-            }
-            c = ex.next;
-        }
-        let slack = len.saturating_sub(nfixed);
-        let first_mark = ps.aux as usize;
-        let (mut pos, mut mi, mut i) = (0usize, 0usize, 0u8);
+        // the element's offset, as `pattern_var` lays the slot out: a multifield
+        // before it but the slot's last takes its mark (`ps.aux` is the slot's
+        // first); the elements after the last one are all single and counted
+        // from the slot's end, whatever the marks
+        let mut k = ps.aux as usize;
+        let (mut pos, mut i) = (0usize, 0u8);
         let mut c = ps.first;
         while c != NONE {
             let ex = &self.exprs[c as usize];
             let is_multi = ex.aux == 1;
             if i == elem {
-                if is_multi || pos >= len {
+                if is_multi {
                     return MarkOperand::Unknown;
                 }
-                return match self.values[cell + 1 + pos] {
-                    Value::Multi(_) => MarkOperand::Unknown,
-                    v => MarkOperand::Value(v),
-                };
+                break;
             }
             if is_multi {
-                if mi + 1 < multis {
-                    let k = first_mark + mi;
-                    if k >= fixed || k >= MAX_MARKS {
-                        return MarkOperand::Later;
-                    }
-                    pos += marks[k] as usize;
-                } else {
-                    // the last multifield takes what the others left
-                    let end = first_mark + multis - 1;
-                    if end > fixed || end > MAX_MARKS {
-                        return MarkOperand::Later;
-                    }
-                    let used: usize = marks[first_mark..end].iter().map(|&m| m as usize).sum();
-                    pos += slack.saturating_sub(used);
+                let (mut d, mut after) = (ex.next, 0usize);
+                while d != NONE && self.exprs[d as usize].aux != 1 {
+                    after += 1;
+                    d = self.exprs[d as usize].next;
                 }
-                mi += 1;
+                if d == NONE {
+                    // the last multifield: `elem` is one of the `after` fields
+                    let back = after - usize::from(elem - i - 1).min(after);
+                    pos = match len.checked_sub(back) {
+                        Some(p) => p,
+                        None => return MarkOperand::Unknown,
+                    };
+                    break;
+                }
+                if k >= fixed || k >= MAX_MARKS {
+                    return MarkOperand::Later;
+                }
+                pos += marks[k] as usize;
+                k += 1;
             } else {
                 pos += 1;
             }
             i += 1;
             c = ex.next;
         }
-        MarkOperand::Unknown
+        if c == NONE || pos >= len {
+            return MarkOperand::Unknown;
+        }
+        match self.values[cell + 1 + pos] {
+            Value::Multi(_) => MarkOperand::Unknown,
+            v => MarkOperand::Value(v),
+        }
     }
 
     /// One segmentation of `fact` for `alpha`: an alpha match if the tests pass.
