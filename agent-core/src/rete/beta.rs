@@ -641,7 +641,23 @@ impl Core<'_> {
         } else {
             let parent = self.joins[join].parent;
             let mut r = self.join_mems[rjoin].mem;
+            // host: a partial match extending `left` binds the facts `left` binds
+            // (`Token::binds`: copied from the parent, only deeper patterns added),
+            // so one binding another fact there is passed over without its walk up
+            #[cfg(feature = "host-speedups")]
+            let lb = match left {
+                TokenId::NONE => [NONE; super::BIND_W],
+                l => self.tokens[l].binds,
+            };
             while r != TokenId::NONE {
+                #[cfg(feature = "host-speedups")]
+                {
+                    let rb = &self.tokens[r].binds;
+                    if lb.iter().zip(rb).any(|(&l, &b)| l != NONE && l != b) {
+                        r = self.tokens[r].mem_next;
+                        continue;
+                    }
+                }
                 if r != skip && self.token_active(r) && self.ancestor_in(r, parent) == left {
                     return Ok(r);
                 }
