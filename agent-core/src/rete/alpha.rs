@@ -372,6 +372,7 @@ impl Core<'_> {
     /// `fact` read at its offset under marks `..fixed` (`Later` while a mark it
     /// depends on is not set), else as `quick_alpha_operand` reads it.
     #[cfg(feature = "host-speedups")]
+    #[inline(always)]
     fn mark_operand(&self, e: Ix, fact: Ix, marks: &[u8; MAX_MARKS], fixed: usize) -> MarkOperand {
         let x = self.exprs[e as usize];
         let elem = loc::elem(x.data);
@@ -387,7 +388,7 @@ impl Core<'_> {
             };
         }
         let ps = self.exprs[x.first as usize];
-        let (cell, mlen) = self.slot_cell(fact, Ix::from(loc::slot(x.data)));
+        let (cell, mlen) = self.slot_cell_inline(fact, Ix::from(loc::slot(x.data)));
         let Some(len) = mlen else {
             return MarkOperand::Unknown;
         };
