@@ -627,42 +627,84 @@ impl Core<'_> {
     ) -> Result<TokenId, EvalError> {
         let rjoin = self.joins[join].rjoin;
         if rjoin == JoinId::NONE {
-            // host: a keyed join with a `?a | ?b` test (out of line: most have none;
-            // it ends the search either way, so the usual walk reads the join's
-            // fields once, not again after a call that may have changed them)
+            return self.find_alpha_blocker(join, left, from, hashed, skip);
+        }
+        self.find_sub_blocker(join, rjoin, left, skip)
+    }
+
+    /// `find_blocker` for a join fed by an alpha node.
+    #[inline(always)]
+    fn find_alpha_blocker(
+        &mut self,
+        join: JoinId,
+        left: TokenId,
+        from: TokenId,
+        hashed: bool,
+        skip: TokenId,
+    ) -> Result<TokenId, EvalError> {
+        #[cfg(not(feature = "host-speedups"))]
+        let _ = skip;
+        // host: a keyed join with a `?a | ?b` test (out of line: most have none;
+        // it ends the search either way, so the usual walk reads the join's
+        // fields once, not again after a call that may have changed them)
+        #[cfg(feature = "host-speedups")]
+        if hashed && from != TokenId::NONE {
+            let n = &self.alphas[self.joins[join].alpha as usize];
+            if n.rhash.get(n.nrhash as usize).is_some_and(|&f| f != NONE) {
+                return self.find_blocker_or(join, left, from, skip);
+            }
+        }
+        self.blocker_walk(join, left, from, hashed)
+    }
+
+    /// `find_blocker` for a join fed by a subnetwork `rjoin`: its first active
+    /// partial match extending `left` (skipping `skip`), in memory order. (Host: out
+    /// of line, so the usual alpha-fed search inlined in `left_activate` stays lean.)
+    #[cfg_attr(feature = "host-speedups", inline(never))]
+    #[cfg_attr(not(feature = "host-speedups"), inline(always))]
+    fn find_sub_blocker(
+        &mut self,
+        join: JoinId,
+        rjoin: JoinId,
+        left: TokenId,
+        skip: TokenId,
+    ) -> Result<TokenId, EvalError> {
+        self.sub_blocker_walk(join, rjoin, left, skip)
+    }
+
+    /// `find_sub_blocker`'s walk (host: inlined into `unblock_in`, where it cost less
+    /// than the call).
+    #[inline(always)]
+    fn sub_blocker_walk(
+        &mut self,
+        join: JoinId,
+        rjoin: JoinId,
+        left: TokenId,
+        skip: TokenId,
+    ) -> Result<TokenId, EvalError> {
+        let parent = self.joins[join].parent;
+        let mut r = self.join_mems[rjoin].mem;
+        // host: a partial match extending `left` binds the facts `left` binds
+        // (`Token::binds`: copied from the parent, only deeper patterns added),
+        // so one binding another fact there is passed over without its walk up
+        #[cfg(feature = "host-speedups")]
+        let lb = match left {
+            TokenId::NONE => [NONE; super::BIND_W],
+            l => self.tokens[l].binds,
+        };
+        while r != TokenId::NONE {
             #[cfg(feature = "host-speedups")]
-            if hashed && from != TokenId::NONE {
-                let n = &self.alphas[self.joins[join].alpha as usize];
-                if n.rhash.get(n.nrhash as usize).is_some_and(|&f| f != NONE) {
-                    return self.find_blocker_or(join, left, from, skip);
+            {
+                let rb = &self.tokens[r].binds;
+                if lb.iter().zip(rb).any(|(&l, &b)| l != NONE && l != b) {
+                    r = self.tokens[r].mem_next;
+                    continue;
                 }
             }
-            return self.blocker_walk(join, left, from, hashed);
-        } else {
-            let parent = self.joins[join].parent;
-            let mut r = self.join_mems[rjoin].mem;
-            // host: a partial match extending `left` binds the facts `left` binds
-            // (`Token::binds`: copied from the parent, only deeper patterns added),
-            // so one binding another fact there is passed over without its walk up
-            #[cfg(feature = "host-speedups")]
-            let lb = match left {
-                TokenId::NONE => [NONE; super::BIND_W],
-                l => self.tokens[l].binds,
-            };
-            while r != TokenId::NONE {
-                #[cfg(feature = "host-speedups")]
-                {
-                    let rb = &self.tokens[r].binds;
-                    if lb.iter().zip(rb).any(|(&l, &b)| l != NONE && l != b) {
-                        r = self.tokens[r].mem_next;
-                        continue;
-                    }
-                }
-                if r != skip && self.token_active(r) && self.ancestor_in(r, parent) == left {
-                    return Ok(r);
-                }
-                r = self.tokens[r].mem_next;
+            if r != skip && self.token_active(r) && self.ancestor_in(r, parent) == left {
+                return Ok(r);
             }
+            r = self.tokens[r].mem_next;
         }
         Ok(TokenId::NONE)
     }
@@ -1175,16 +1217,23 @@ impl Core<'_> {
                 }
             }
             // no candidate left: no search (most unblocks; an alpha blocker's join
-            // has no subnetwork)
+            // has no subnetwork, so the search is the alpha-fed one)
             if from != TokenId::NONE {
-                self.find_blocker(join, left, from, hashed, blocker)
+                debug_assert!(self.joins[join].rjoin == JoinId::NONE);
+                self.find_alpha_blocker(join, left, from, hashed, blocker)
                     .unwrap_or(TokenId::NONE)
             } else {
                 TokenId::NONE
             }
         } else {
-            self.find_blocker(join, left, TokenId::NONE, false, blocker)
-                .unwrap_or(TokenId::NONE)
+            // a partial match of the join's subnetwork
+            let rjoin = self.joins[join].rjoin;
+            if rjoin != JoinId::NONE {
+                self.sub_blocker_walk(join, rjoin, left, blocker)
+                    .unwrap_or(TokenId::NONE)
+            } else {
+                TokenId::NONE
+            }
         };
         if next != TokenId::NONE {
             self.add_link(t, next);
