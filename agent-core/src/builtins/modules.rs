@@ -180,7 +180,7 @@ fn get_defmodule_list(cx: &mut Core<'_>, _a: Args) -> Result<Value, EvalError> {
 /// own, tokens one space apart (`(defmodule MAIN)` for the MAIN made at start-up).
 #[cfg(feature = "modules")]
 fn ppdefmodule(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    if construct_name(cx, a, "ppdefmodule", "defmodule").is_none() {
+    if super::commands::construct_name(cx, a, "ppdefmodule", "defmodule").is_none() {
         return Ok(Value::Void);
     }
     let Some(m) = module_arg(cx, a, 0, "ppdefmodule")? else {
@@ -195,30 +195,6 @@ fn ppdefmodule(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         cx.write(router::WDISPLAY, b.as_str());
     }
     Ok(Value::Void)
-}
-
-/// The symbol argument 0 of a construct function, or None with CLIPS's
-/// `[ARGACCES5] ... of type KIND name` printed (a message only, not an error: the
-/// function returns its value for a name not found).
-#[cfg(feature = "modules")]
-fn construct_name(
-    cx: &mut Core<'_>,
-    a: Args,
-    func: &str,
-    kind: &str,
-) -> Option<crate::value::SymId> {
-    match cx.arg(a, 0) {
-        Value::Sym(s) => Some(s),
-        _ => {
-            let mut b: TextBuf<120> = TextBuf::new();
-            let _ = writeln!(
-                b,
-                "[ARGACCES5] Function {func} expected argument #1 to be of type {kind} name"
-            );
-            cx.write(router::WERROR, b.as_str());
-            None
-        }
-    }
 }
 
 /// A construct class whose module `*-module` names.
@@ -244,7 +220,7 @@ fn construct_module(
     kind: &str,
     class: Construct,
 ) -> Result<Value, EvalError> {
-    let Some(name) = construct_name(cx, a, func, kind) else {
+    let Some(name) = super::commands::construct_name(cx, a, func, kind) else {
         return Ok(Value::Sym(SYM_FALSE));
     };
     let text = cx.sym_text(name);
