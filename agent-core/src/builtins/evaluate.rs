@@ -670,20 +670,7 @@ fn first_construct(text: &str) -> Option<usize> {
     let Tok::Symbol(kw) = lx.next_token().tok else {
         return None;
     };
-    if !matches!(
-        kw,
-        "deftemplate"
-            | "defrule"
-            | "deffacts"
-            | "deffunction"
-            | "defglobal"
-            | "defmodule"
-            | "defgeneric"
-            | "defmethod"
-            | "defclass"
-            | "definstances"
-            | "defmessage-handler"
-    ) {
+    if !crate::lexer::is_construct_keyword(kw) {
         return None;
     }
     let mut depth = 1u32;
