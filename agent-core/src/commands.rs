@@ -1493,6 +1493,7 @@ impl Core<'_> {
                 "\n[RULECSTR1] Variable {tok} in CE #{ce} slot {}\nhas constraint conflicts which make the pattern unmatchable.",
                 self.sym_text(slot)
             );
+        } else if write_rhs_argument_type(&mut *b, text, tok, e, self.st.mode.seq_ops) {
         } else if let LoadDetail::MinAboveMax { cardinality } = e.detail {
             let what = if cardinality { "cardinality" } else { "range" };
             let _ = writeln!(
@@ -1878,7 +1879,7 @@ impl Core<'_> {
         }
         // CLIPS checks modify/duplicate slot values and the patterns' constraints once
         // the whole rule is read, and then shows the rule it rejected
-        if matches!(
+        if (matches!(
             e.detail,
             LoadDetail::Constraint {
                 command: "modify" | "duplicate",
@@ -1887,7 +1888,8 @@ impl Core<'_> {
                 | LoadDetail::VariableConflict { .. }
                 | LoadDetail::AddressBound { .. }
                 | LoadDetail::MixedVariable
-        ) && e.construct == "defrule"
+        ) || is_rhs_argument_type(e))
+            && e.construct == "defrule"
         {
             let _ = b.write_str("\nERROR:\n");
             let _ = crate::builtins::pretty::write_defrule(text, module, b);
@@ -2806,4 +2808,53 @@ impl core::fmt::Write for LastChar<'_> {
         }
         self.inner.write_str(s)
     }
+}
+
+/// Whether load error `e` is a `[RULECSTR3]` (`parser::rhs_types`).
+fn is_rhs_argument_type(e: &LoadError) -> bool {
+    #[cfg(feature = "extras")]
+    return matches!(e.detail, LoadDetail::RhsArgumentType { .. });
+    #[cfg(not(feature = "extras"))]
+    {
+        let _ = e;
+        false
+    }
+}
+
+/// Writes CLIPS's `[RULECSTR3]` message of load error `e` when it is one (`tok`: the
+/// variable), and says so.
+fn write_rhs_argument_type(
+    b: &mut dyn Write,
+    text: &str,
+    tok: &str,
+    e: &LoadError,
+    seq_ops: bool,
+) -> bool {
+    #[cfg(feature = "extras")]
+    if let LoadDetail::RhsArgumentType {
+        call_start,
+        call_end,
+        arg,
+        passes,
+    } = e.detail
+    {
+        let f = crate::parser::rhs_types::Found {
+            var_start: e.start as usize,
+            var_end: e.end as usize,
+            arg,
+            call_start: call_start as usize,
+            call_end: call_end as usize,
+            passes,
+        };
+        let _ = write!(
+            b,
+            "\n[RULECSTR3] Previous variable bindings of ?{} caused the type restrictions\nfor argument #{arg} of the expression ",
+            tok.trim_start_matches('$').trim_start_matches('?'),
+        );
+        let _ = crate::parser::rhs_types::write_expression(b, text, &f, seq_ops);
+        let _ = b.write_str("\nfound in the rule's RHS to be violated.\n");
+        return true;
+    }
+    let _ = (b, text, tok, e, seq_ops);
+    false
 }

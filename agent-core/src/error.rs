@@ -647,6 +647,16 @@ pub enum LoadDetail {
         slot: Ix,
         ce: u8,
     },
+    /// `[RULECSTR3]`: a variable whose bindings leave it no value argument `arg` of the
+    /// call at `call_start..call_end` (of the text) takes, in a rule's actions (the
+    /// offending token is the variable); `passes` as `parser::rhs_types::Found` has it.
+    #[cfg(feature = "extras")]
+    RhsArgumentType {
+        call_start: u32,
+        call_end: u32,
+        arg: u16,
+        passes: u8,
+    },
     /// `[CSTRNPSR2]`: a range's (or a cardinality's, `cardinality`) minimum above its
     /// maximum.
     MinAboveMax {

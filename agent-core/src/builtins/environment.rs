@@ -362,6 +362,15 @@ fn get_function_restrictions(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalEr
     Ok(cx.make_string(r.as_str())?)
 }
 
+/// CLIPS 6.30's restriction string of builtin `name` (None for one CLIPS does not have
+/// or gives none).
+pub(crate) fn restriction_of(name: &str) -> Option<&'static str> {
+    RESTRICTIONS
+        .iter()
+        .find(|(n, _)| *n == name)
+        .map(|&(_, r)| r)
+}
+
 /// CLIPS 6.30's restriction strings of the functions it shares with us (what its
 /// `get-function-restrictions` prints for each).
 const RESTRICTIONS: &[(&str, &str)] = &[

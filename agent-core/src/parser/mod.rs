@@ -24,6 +24,8 @@ mod facts;
 mod in_use;
 #[cfg(feature = "modules")]
 mod module;
+#[cfg(feature = "extras")]
+pub(crate) mod rhs_types;
 pub(crate) mod rule;
 mod slot;
 
@@ -95,6 +97,10 @@ pub struct Parser<'s, 'c, 'e> {
     /// What each LHS variable (by `vars` index) can still hold after the slots it
     /// stood in so far: CLIPS refuses a rule where that is nothing (`[RULECSTR1]`).
     pub var_cstr: [VarCstr; MAX_VARS],
+    /// The types (`template::types` bits) the literal and `=(...)` constraints of each
+    /// LHS variable's fields leave it, for CLIPS's `[RULECSTR3]` (`rhs_types`).
+    #[cfg(feature = "extras")]
+    pub var_lit: [u8; MAX_VARS],
     pub nvars: usize,
     pub nlocals: Ix,
     pub scope: Scope,
@@ -205,6 +211,8 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
                 rebound: NONE,
             }; MAX_VARS],
             var_cstr: [VarCstr::ANY; MAX_VARS],
+            #[cfg(feature = "extras")]
+            var_lit: [0xFF; MAX_VARS],
             nvars: 0,
             nlocals: 0,
             scope: Scope::TopLevel,
@@ -532,6 +540,10 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
             rebound: NONE,
         };
         self.var_cstr[self.nvars] = VarCstr::ANY;
+        #[cfg(feature = "extras")]
+        {
+            self.var_lit[self.nvars] = 0xFF;
+        }
         self.nvars += 1;
         Ok(())
     }

@@ -450,7 +450,11 @@ impl<'s> Parser<'s, '_, '_> {
         }
         self.scope = Scope::Frame;
         self.declare_bound_vars()?;
+        #[cfg(feature = "extras")]
+        let rhs_from = self.consumed_end();
         b.rhs = self.body_block()?;
+        #[cfg(feature = "extras")]
+        self.check_rhs_types(rhs_from)?;
         b.sal = salience;
         b.nlocals = self.nlocals.min(255) as u8;
         b.complexity = self.complexity;
@@ -1946,6 +1950,10 @@ impl<'s> Parser<'s, '_, '_> {
             self.next();
             let e = self.or_constraint(p, locv, desc, &mut multi)?;
             self.add_complexity(e);
+            #[cfg(feature = "extras")]
+            if let Tok::SfVar(name) = t.tok {
+                self.narrow_by_literals(name, e);
+            }
             return Ok((multi, Some(e)));
         }
         let e = self.or_constraint(p, locv, desc, &mut multi)?;
@@ -1955,6 +1963,8 @@ impl<'s> Parser<'s, '_, '_> {
         if let Tok::SfVar(name) = t.tok {
             if self.cx.exprs[e as usize].op != Op::Or {
                 self.narrow_var(t, name)?;
+                #[cfg(feature = "extras")]
+                self.narrow_by_literals(name, e);
             }
         }
         Ok((multi, Some(e)))
@@ -2194,5 +2204,132 @@ impl Complexity {
             c = cx.exprs[c as usize].next;
         }
         sum
+    }
+}
+
+/// What CLIPS's `[RULECSTR3]` check of the actions needs to know of the rule being read.
+#[cfg(feature = "extras")]
+impl super::rhs_types::Names for Parser<'_, '_, '_> {
+    fn lhs(&self, name: &str) -> Option<super::rhs_types::Rec> {
+        use super::rhs_types::Rec;
+        let i = self.vars[..self.nvars]
+            .iter()
+            .rposition(|v| v.name == name && matches!(v.kind, VarKind::Pat { .. }))?;
+        let v = self.vars[i];
+        Some(match v.kind {
+            VarKind::Pat { loc: l, .. } if l == loc::FACT => Rec::FACT_ADDRESS,
+            _ if v.multi => Rec::MULTIFIELD_VAR,
+            _ => match self.var_cstr[i].types & self.var_lit[i] {
+                // (CLIPS refuses such a pattern before: `[RULECSTR1]`, `[CSTRNCHK1]`)
+                0 => Rec::ANY,
+                k => Rec::slot_types(k),
+            },
+        })
+    }
+
+    fn is_template(&self, name: &str) -> bool {
+        (0..self.cx.st.pools.ntemplates).any(|i| {
+            let t = &self.cx.templates[i as usize];
+            !t.implied && self.cx.sym_text(t.name) == name
+        })
+    }
+
+    fn seq_ops(&self) -> bool {
+        self.cx.st.mode.seq_ops
+    }
+}
+
+#[cfg(feature = "extras")]
+impl Parser<'_, '_, '_> {
+    /// Narrows what single-field LHS variable `name` can hold by the literals and
+    /// `=(...)` calls of constraint `e` of a field it leads (`?x&abc|1`): CLIPS's
+    /// record of the variable, which its `[RULECSTR3]` check reads.
+    fn narrow_by_literals(&mut self, name: &str, e: Ix) {
+        let Some(i) = self.vars[..self.nvars].iter().rposition(|v| v.name == name) else {
+            return;
+        };
+        if self.vars[i].multi {
+            return;
+        }
+        self.var_lit[i] &= self.literal_types(e);
+    }
+
+    /// The types (`template::types` bits, 0xFF for any) constraint `e` allows by its
+    /// literals and `=(...)` calls (variables, negations and predicates allow any).
+    fn literal_types(&self, e: Ix) -> u8 {
+        use crate::builtins::describe::Returns;
+        use crate::template::types as t;
+        let x = self.cx.exprs[e as usize];
+        let children = |all: bool| {
+            let mut acc = if all { 0xFF } else { 0 };
+            let mut c = x.first;
+            while c != NONE {
+                let k = self.literal_types(c);
+                acc = if all { acc & k } else { acc | k };
+                c = self.cx.exprs[c as usize].next;
+            }
+            acc
+        };
+        match x.op {
+            Op::Or => children(false),
+            Op::And => children(true),
+            Op::Eq2 => {
+                let this = x.first;
+                let v = if this == NONE {
+                    NONE
+                } else {
+                    self.cx.exprs[this as usize].next
+                };
+                if v == NONE {
+                    return 0xFF;
+                }
+                let y = self.cx.exprs[v as usize];
+                match y.op {
+                    Op::Int | Op::Float | Op::Sym | Op::Str => {
+                        match t::of(self.cx.const_value(v), |s| self.cx.sym_text(s)) {
+                            0 => 0xFF,
+                            k => k,
+                        }
+                    }
+                    Op::Call if y.aux == crate::expr::FnKind::Builtin as u8 => {
+                        match crate::builtins::get(y.data).returns {
+                            Returns::Number => t::NUMBER,
+                            Returns::Integer => t::INTEGER,
+                            Returns::Float => t::FLOAT,
+                            Returns::Symbol => t::SYMBOL,
+                            Returns::Str => t::STRING,
+                            Returns::Lexeme => t::LEXEME | t::INSTANCE_NAME,
+                            Returns::SymbolOrString => t::LEXEME,
+                            Returns::Any | Returns::Multifield | Returns::Void => 0xFF,
+                        }
+                    }
+                    _ => 0xFF,
+                }
+            }
+            _ => 0xFF,
+        }
+    }
+}
+
+#[cfg(feature = "extras")]
+impl Parser<'_, '_, '_> {
+    /// CLIPS's `[RULECSTR3]` once the actions (from `from` on) are read: a variable
+    /// passed to a builtin that takes no value it can hold (`rhs_types`).
+    fn check_rhs_types(&mut self, from: usize) -> PResult<()> {
+        let src = self.lex.source();
+        let to = self.consumed_end();
+        let Some(f) = super::rhs_types::check(src, from, to, &*self) else {
+            return Ok(());
+        };
+        let t = self.lex.token_at(f.var_start);
+        let mut e = self.err(t, "a variable whose bindings fit the argument");
+        e.end = f.var_end as u32;
+        e.detail = crate::error::LoadDetail::RhsArgumentType {
+            call_start: f.call_start as u32,
+            call_end: f.call_end as u32,
+            arg: f.arg,
+            passes: f.passes,
+        };
+        Err(e)
     }
 }

@@ -1,0 +1,816 @@
+//! CLIPS 6.30's `[RULECSTR3]`: once a rule is read, each variable passed straight to a
+//! builtin in its actions must be able to hold a value of a type that argument takes
+//! (host only, feature `extras`).
+//!
+//! CLIPS keeps for each variable a constraint record: what its LHS binding allows (the
+//! slots' types it stands in, a fact address for `?f <- (...)`, a multifield for `$?x`),
+//! united with what every `bind` of it in the actions gives (the type of a literal, a
+//! builtin's return type, anything for a variable or a deffunction call; only the first
+//! value of a `bind` counts, and binds after the call in the text count too). That record
+//! is intersected with the argument's restriction (`get-function-restrictions`'s letter
+//! for the position); the rule is refused when nothing is left (`(bind ?x abc) (+ ?x 1)`,
+//! `(t (s ?v))` with `s` a SYMBOL slot and `(+ ?v 1)`, a multifield variable where a
+//! single value goes, a single value where a multifield goes). Loop and fact-set query
+//! variables are not checked (CLIPS replaces them by calls), nor arguments of
+//! deffunctions, nor values inside `assert`/`modify` facts.
+//!
+//! The check reads the actions' text again (the expression tree has lost the variables'
+//! names) with CLIPS's view of its structure.
+
+use core::fmt::{self, Write};
+
+use crate::builtins::describe::Returns;
+use crate::lexer::{Lexer, Tok, Token};
+
+// the type flags of a constraint record
+const SYM: u16 = 1;
+const STR: u16 = 2;
+const INT: u16 = 4;
+const FLT: u16 = 8;
+const INAME: u16 = 16;
+const IADDR: u16 = 32;
+const FADDR: u16 = 64;
+const EADDR: u16 = 128;
+const VOID: u16 = 256;
+const ALL_TYPES: u16 = 511;
+
+/// The part of CLIPS's constraint record its `UnmatchableConstraint` looks at (allowed
+/// values, ranges and cardinalities never empty a record here).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Rec {
+    any: bool,
+    types: u16,
+    single: bool,
+    multi: bool,
+}
+
+impl Rec {
+    /// CLIPS's fresh record: any single value.
+    pub const ANY: Rec = Rec {
+        any: true,
+        types: 0,
+        single: true,
+        multi: false,
+    };
+    /// Anything, a multifield too (a variable's or deffunction's value).
+    pub const ANYTHING: Rec = Rec {
+        any: true,
+        types: 0,
+        single: true,
+        multi: true,
+    };
+    /// A multifield LHS variable (`$?x`).
+    pub const MULTIFIELD_VAR: Rec = Rec {
+        any: false,
+        types: 0,
+        single: true,
+        multi: true,
+    };
+    /// A fact-address variable (`?f <- (...)`).
+    pub const FACT_ADDRESS: Rec = Rec::of(FADDR);
+
+    const fn of(types: u16) -> Rec {
+        Rec {
+            any: false,
+            types,
+            single: true,
+            multi: false,
+        }
+    }
+
+    /// A single-field LHS variable whose slots allow `types` (`template::types` bits,
+    /// 0xFF for any).
+    pub fn slot_types(types: u8) -> Rec {
+        use crate::template::types as t;
+        if types == 0xFF {
+            return Rec::ANY;
+        }
+        let pairs = [
+            (t::SYMBOL, SYM),
+            (t::STRING, STR),
+            (t::INTEGER, INT),
+            (t::FLOAT, FLT),
+            (t::FACT_ADDRESS, FADDR),
+            (t::INSTANCE_NAME, INAME),
+            (t::INSTANCE_ADDRESS, IADDR),
+        ];
+        let mut r = 0;
+        for (from, to) in pairs {
+            if types & from != 0 {
+                r |= to;
+            }
+        }
+        Rec::of(r)
+    }
+
+    /// CLIPS's `ArgumentTypeToConstraintRecord` of restriction letter `c`.
+    fn of_argument(c: u8) -> Rec {
+        let types = match c {
+            b'a' => EADDR,
+            b'e' => SYM | INAME | IADDR,
+            b'd' | b'f' => FLT,
+            b'g' => INT | FLT | SYM,
+            b'h' => FADDR | INT | SYM | INAME | IADDR,
+            b'i' | b'l' => INT,
+            b'j' => SYM | STR | INAME,
+            b'k' => SYM | STR,
+            b'n' => INT | FLT,
+            b'o' => INAME,
+            b'p' => INAME | SYM,
+            b's' => STR,
+            b'w' => SYM,
+            b'x' => IADDR,
+            b'y' => FADDR,
+            b'z' => SYM | FADDR | INT,
+            b'v' => VOID,
+            b'm' => {
+                return Rec {
+                    any: false,
+                    types: 0,
+                    single: false,
+                    multi: true,
+                }
+            }
+            b'q' => {
+                return Rec {
+                    multi: true,
+                    ..Rec::of(SYM | STR)
+                }
+            }
+            // `u` and anything we do not know
+            _ => return Rec::ANYTHING,
+        };
+        Rec::of(types)
+    }
+
+    /// CLIPS's `FunctionCallToConstraintRecord`: what a call of a builtin returning
+    /// `r` gives.
+    pub fn of_call(r: Returns) -> Rec {
+        Rec::of(match r {
+            Returns::Any => return Rec::ANYTHING,
+            Returns::Number => INT | FLT,
+            Returns::Integer => INT,
+            Returns::Float => FLT,
+            Returns::Symbol => SYM,
+            Returns::Str => STR,
+            Returns::Lexeme => SYM | STR | INAME,
+            Returns::SymbolOrString => SYM | STR,
+            Returns::Void => VOID,
+            Returns::Multifield => {
+                return Rec {
+                    any: false,
+                    types: 0,
+                    single: false,
+                    multi: true,
+                }
+            }
+        })
+    }
+
+    /// A literal's record (`[x]` is an instance name).
+    fn of_literal(t: Tok<'_>) -> Rec {
+        Rec::of(match t {
+            Tok::Int(_) | Tok::IntOverflow(_) => INT,
+            Tok::Float(_) => FLT,
+            Tok::Str(_) => STR,
+            Tok::Symbol(s) if crate::value::instance_name_body(s).is_some() => INAME,
+            _ => SYM,
+        })
+    }
+
+    /// CLIPS's `UnionConstraints` (None: no record).
+    fn union(a: Option<Rec>, b: Option<Rec>) -> Rec {
+        match (a, b) {
+            (None, None) => Rec::ANY,
+            (Some(x), None) | (None, Some(x)) => x,
+            (Some(x), Some(y)) => {
+                let any = x.any || y.any;
+                Rec {
+                    any,
+                    types: if any { 0 } else { x.types | y.types },
+                    single: x.single || y.single,
+                    multi: x.multi || y.multi,
+                }
+            }
+        }
+    }
+
+    /// CLIPS's `IntersectConstraints`.
+    fn intersect(x: Rec, y: Rec) -> Rec {
+        if x.multi != y.multi && x.single != y.single {
+            return Rec {
+                any: false,
+                types: 0,
+                single: true,
+                multi: false,
+            };
+        }
+        let expand = |r: Rec| if r.any { ALL_TYPES } else { r.types };
+        let any = x.any && y.any;
+        Rec {
+            any,
+            types: if any { 0 } else { expand(x) & expand(y) },
+            single: x.single && y.single,
+            multi: x.multi && y.multi,
+        }
+    }
+
+    /// CLIPS's `UnmatchableConstraint`.
+    fn unmatchable(self) -> bool {
+        !self.any && self.types == 0 && !self.multi
+    }
+}
+
+/// CLIPS's `GetNthRestriction`: the letter of argument `n` (1-based) in restriction
+/// string `r` (`u`, anything, without one).
+fn nth_restriction(r: Option<&str>, n: usize) -> u8 {
+    let Some(r) = r.map(str::as_bytes) else {
+        return b'u';
+    };
+    if r.len() < 3 {
+        return b'u';
+    }
+    let c = r.get(n + 2).copied().unwrap_or(r[2]);
+    if c == b'*' {
+        b'u'
+    } else {
+        c
+    }
+}
+
+/// What the check needs to know of the world around the rule.
+pub trait Names {
+    /// The record of LHS variable `name` (None when the LHS does not bind it).
+    fn lhs(&self, name: &str) -> Option<Rec>;
+    /// Whether `name` is a deftemplate (its facts have slots).
+    fn is_template(&self, name: &str) -> bool;
+    /// Sequence-operator recognition: `$?x` in a call is `(expand$ ?x)`.
+    fn seq_ops(&self) -> bool;
+}
+
+/// A violation: the variable token (as offsets in the text), the argument's number,
+/// the call's text and how many parses of CLIPS's enclosed it (see `write_expression`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Found {
+    pub var_start: usize,
+    pub var_end: usize,
+    pub arg: u16,
+    pub call_start: usize,
+    pub call_end: usize,
+    pub passes: u8,
+}
+
+const MAX_BINDS: usize = 64;
+const MAX_SHADOW: usize = 32;
+
+struct Walk<'a, 'n, N: Names> {
+    lx: Lexer<'a>,
+    peeked: Option<Token<'a>>,
+    names: &'n N,
+    /// Variables bound by `bind` in the actions: CLIPS's `BindInfo` list.
+    binds: [(&'a str, Option<Rec>); MAX_BINDS],
+    nbinds: usize,
+    /// Loop and query variables in scope (not checked).
+    shadow: [&'a str; MAX_SHADOW],
+    nshadow: usize,
+}
+
+/// `Err(Some)`: a violation; `Err(None)`: the text ended or could not be followed
+/// (the parser read it already, so nothing is reported).
+type Step<T> = Result<T, Option<Found>>;
+
+const QUERIES: &[&str] = &[
+    "any-factp",
+    "find-fact",
+    "find-all-facts",
+    "do-for-fact",
+    "do-for-all-facts",
+    "delayed-do-for-all-facts",
+];
+
+impl<'a, N: Names> Walk<'a, '_, N> {
+    fn peek(&mut self) -> Token<'a> {
+        if self.peeked.is_none() {
+            self.peeked = Some(self.lx.next_token());
+        }
+        self.peeked.unwrap_or_else(|| self.lx.next_token())
+    }
+
+    fn next(&mut self) -> Step<Token<'a>> {
+        let t = match self.peeked.take() {
+            Some(t) => t,
+            None => self.lx.next_token(),
+        };
+        match t.tok {
+            Tok::Eof | Tok::Bad => Err(None),
+            _ => Ok(t),
+        }
+    }
+
+    /// Skips the rest of a parenthesised group whose `(` was read.
+    fn skip_group(&mut self) -> Step<()> {
+        let mut depth = 1u32;
+        while depth > 0 {
+            match self.next()?.tok {
+                Tok::LParen => depth += 1,
+                Tok::RParen => depth -= 1,
+                _ => {}
+            }
+        }
+        Ok(())
+    }
+
+    // ---- pass 1: the binds ----
+
+    fn collect_binds(&mut self) -> Step<()> {
+        let mut prev_paren = false;
+        loop {
+            let t = self.next()?;
+            let after_paren = prev_paren;
+            prev_paren = t.tok == Tok::LParen;
+            if !(after_paren && t.tok == Tok::Symbol("bind")) {
+                continue;
+            }
+            let (Tok::SfVar(name) | Tok::MfVar(name)) = self.next()?.tok else {
+                continue;
+            };
+            let v = self.peek();
+            let rec = match v.tok {
+                Tok::RParen => None,
+                Tok::LParen => {
+                    self.next()?;
+                    let head = self.peek();
+                    Some(self.call_record(head))
+                }
+                Tok::SfVar(_) | Tok::MfVar(_) | Tok::Global(_) => Some(Rec::ANYTHING),
+                t => Some(Rec::of_literal(t)),
+            };
+            prev_paren = v.tok == Tok::LParen;
+            self.add_bind(name, rec);
+        }
+    }
+
+    /// What a call (its `(` read, `head` its name) gives as a `bind`'s value: a
+    /// builtin's return type; anything for a deffunction or a call whose arguments
+    /// expand (CLIPS's `(expansion-call)`).
+    fn call_record(&self, head: Token<'a>) -> Rec {
+        let Tok::Symbol(name) = head.tok else {
+            return Rec::ANYTHING;
+        };
+        let Some((_, b)) = crate::builtins::lookup(name) else {
+            return Rec::ANYTHING;
+        };
+        // its arguments (after the name, peeked already): does one expand?
+        let mut lx = self.lx.clone();
+        let mut depth = 0u32;
+        loop {
+            let t = lx.next_token();
+            match t.tok {
+                Tok::LParen => depth += 1,
+                Tok::RParen if depth == 0 => break,
+                Tok::RParen => depth -= 1,
+                Tok::Eof | Tok::Bad => break,
+                Tok::MfVar(n) if depth == 0 && (is_global(n) || self.names.seq_ops()) => {
+                    return Rec::ANYTHING;
+                }
+                _ => {}
+            }
+        }
+        Rec::of_call(b.returns)
+    }
+
+    /// CLIPS's `AddBindName`: a new name keeps its record, a known one unites it with
+    /// the new record (a `bind` of no value adds nothing).
+    fn add_bind(&mut self, name: &'a str, rec: Option<Rec>) {
+        if let Some(b) = self.binds[..self.nbinds].iter_mut().find(|b| b.0 == name) {
+            if rec.is_some() {
+                b.1 = Some(Rec::union(rec, b.1));
+            }
+            return;
+        }
+        if self.nbinds < MAX_BINDS {
+            self.binds[self.nbinds] = (name, rec);
+            self.nbinds += 1;
+        }
+    }
+
+    // ---- pass 2: the calls ----
+
+    /// Actions up to and with the `)` that ends them.
+    fn actions(&mut self, passes: u8) -> Step<()> {
+        loop {
+            let t = self.next()?;
+            match t.tok {
+                Tok::RParen => return Ok(()),
+                Tok::LParen => self.form(t, passes)?,
+                _ => {}
+            }
+        }
+    }
+
+    /// Actions up to a `)` or one of the symbols `stop` (left unread).
+    fn block(&mut self, passes: u8, stop: &[&str]) -> Step<()> {
+        loop {
+            let t = self.peek();
+            match t.tok {
+                Tok::RParen => return Ok(()),
+                Tok::Symbol(s) if stop.contains(&s) => return Ok(()),
+                _ => {
+                    let t = self.next()?;
+                    if t.tok == Tok::LParen {
+                        self.form(t, passes)?;
+                    }
+                }
+            }
+        }
+    }
+
+    /// One argument that is no checked variable: a nested form is walked.
+    fn arg(&mut self, passes: u8) -> Step<()> {
+        let t = self.next()?;
+        if t.tok == Tok::LParen {
+            self.form(t, passes)?;
+        }
+        Ok(())
+    }
+
+    fn shadowed(&self, name: &str) -> bool {
+        name.contains(':') || self.shadow[..self.nshadow].contains(&name)
+    }
+
+    fn push_shadow(&mut self, name: &'a str) {
+        if self.nshadow < MAX_SHADOW {
+            self.shadow[self.nshadow] = name;
+            self.nshadow += 1;
+        }
+    }
+
+    /// A parenthesised form (its `(` is `open`); `passes`: the parses of CLIPS that
+    /// enclose it.
+    fn form(&mut self, open: Token<'a>, passes: u8) -> Step<()> {
+        let head = self.next()?;
+        let Tok::Symbol(name) = head.tok else {
+            return self.skip_group();
+        };
+        let inner = passes.saturating_add(1);
+        let saved = self.nshadow;
+        let r = match name {
+            "bind" => {
+                self.next()?;
+                self.rest_args(inner)
+            }
+            "if" => {
+                self.arg(inner)?;
+                if self.peek().tok == Tok::Symbol("then") {
+                    self.next()?;
+                }
+                self.block(inner.saturating_add(1), &["else"])?;
+                if self.peek().tok == Tok::Symbol("else") {
+                    self.next()?;
+                    self.block(inner.saturating_add(1), &[])?;
+                }
+                self.actions(inner)
+            }
+            "while" => {
+                self.arg(inner)?;
+                if self.peek().tok == Tok::Symbol("do") {
+                    self.next()?;
+                }
+                self.block(inner.saturating_add(1), &[])?;
+                self.actions(inner)
+            }
+            "loop-for-count" | "progn$" | "foreach" => {
+                self.loop_head(name, inner)?;
+                if self.peek().tok == Tok::Symbol("do") {
+                    self.next()?;
+                }
+                self.block(inner.saturating_add(1), &[])?;
+                self.actions(inner)
+            }
+            "switch" => {
+                self.arg(inner)?;
+                loop {
+                    let t = self.next()?;
+                    match t.tok {
+                        Tok::RParen => break Ok(()),
+                        Tok::LParen => {
+                            // `(case VALUE then ACTIONS)` or `(default ACTIONS)`
+                            if self.next()?.tok == Tok::Symbol("case") {
+                                self.arg(inner)?;
+                                if self.peek().tok == Tok::Symbol("then") {
+                                    self.next()?;
+                                }
+                            }
+                            self.actions(inner.saturating_add(1))?;
+                        }
+                        _ => {}
+                    }
+                }
+            }
+            "assert" => loop {
+                let t = self.next()?;
+                match t.tok {
+                    Tok::RParen => break Ok(()),
+                    Tok::LParen => self.fact(inner)?,
+                    _ => {}
+                }
+            },
+            "modify" | "duplicate" => {
+                self.arg(inner)?;
+                self.slots(inner)
+            }
+            "progn" => self.actions(inner.saturating_add(1)),
+            _ if QUERIES.contains(&name) => {
+                // `((?f t) (?g u ...) ...)`: the query variables
+                if self.next()?.tok == Tok::LParen {
+                    loop {
+                        let t = self.next()?;
+                        match t.tok {
+                            Tok::RParen => break,
+                            Tok::LParen => {
+                                if let Tok::SfVar(v) = self.peek().tok {
+                                    self.push_shadow(v);
+                                }
+                                self.skip_group()?;
+                            }
+                            _ => {}
+                        }
+                    }
+                }
+                self.block(inner, &[])?;
+                self.actions(inner)
+            }
+            _ => match crate::builtins::lookup(name) {
+                Some((_, b)) => self.call(open, b.name, inner, passes),
+                // a deffunction's arguments are not checked, calls among them are
+                None => self.rest_args(inner),
+            },
+        };
+        self.nshadow = saved;
+        r
+    }
+
+    /// The loop variable part of `loop-for-count`, `progn$` or `foreach`.
+    fn loop_head(&mut self, name: &str, passes: u8) -> Step<()> {
+        let t = self.peek();
+        if name == "foreach" {
+            if let Tok::SfVar(v) = t.tok {
+                self.next()?;
+                self.arg(passes)?;
+                self.push_shadow(v);
+                return Ok(());
+            }
+            return self.arg(passes);
+        }
+        if t.tok != Tok::LParen {
+            return self.arg(passes);
+        }
+        let open = self.next()?;
+        match self.peek().tok {
+            Tok::SfVar(v) => {
+                self.next()?;
+                // the range or list is read before the variable is known
+                self.block(passes, &[])?;
+                self.next()?;
+                self.push_shadow(v);
+                Ok(())
+            }
+            _ => self.form(open, passes),
+        }
+    }
+
+    /// A fact of `assert` (its `(` read): a template's slots or an ordered fact's
+    /// fields.
+    fn fact(&mut self, passes: u8) -> Step<()> {
+        let head = self.next()?;
+        match head.tok {
+            Tok::Symbol(rel) if self.names.is_template(rel) => self.slots(passes),
+            Tok::RParen => Ok(()),
+            _ => self.rest_args(passes),
+        }
+    }
+
+    /// `(slot value...)` groups up to the `)` that ends them.
+    fn slots(&mut self, passes: u8) -> Step<()> {
+        loop {
+            let t = self.next()?;
+            match t.tok {
+                Tok::RParen => return Ok(()),
+                Tok::LParen => {
+                    self.next()?;
+                    self.rest_args(passes)?;
+                }
+                _ => {}
+            }
+        }
+    }
+
+    /// Arguments up to the `)`, none of them checked.
+    fn rest_args(&mut self, passes: u8) -> Step<()> {
+        loop {
+            let t = self.next()?;
+            match t.tok {
+                Tok::RParen => return Ok(()),
+                Tok::LParen => self.form(t, passes)?,
+                _ => {}
+            }
+        }
+    }
+
+    /// A builtin's arguments, each variable checked against its restriction.
+    fn call(&mut self, open: Token<'a>, func: &str, inner: u8, passes: u8) -> Step<()> {
+        let restrictions = crate::builtins::environment::restriction_of(func);
+        let mut n = 0usize;
+        loop {
+            let t = self.next()?;
+            let (name, letter) = match t.tok {
+                Tok::RParen => return Ok(()),
+                Tok::LParen => {
+                    n += 1;
+                    self.form(t, inner)?;
+                    continue;
+                }
+                Tok::SfVar(v) => (v, nth_restriction(restrictions, n + 1)),
+                // `$?x` is `?x` here, or with sequence-operator recognition the
+                // argument of an `expand$` (`m`)
+                Tok::MfVar(v) if !is_global(v) && !self.names.seq_ops() => {
+                    (v, nth_restriction(restrictions, n + 1))
+                }
+                Tok::MfVar(v) if !is_global(v) => (v, b'm'),
+                _ => {
+                    n += 1;
+                    continue;
+                }
+            };
+            n += 1;
+            if self.shadowed(name) || !self.violates(name, letter) {
+                continue;
+            }
+            let end = self.call_end(open)?;
+            let expand = matches!(t.tok, Tok::MfVar(_)) && self.names.seq_ops();
+            return Err(Some(Found {
+                var_start: t.start,
+                var_end: t.end,
+                arg: if expand { 1 } else { n as u16 },
+                call_start: if expand { t.start } else { open.start },
+                call_end: if expand { t.end } else { end },
+                passes: if expand { inner } else { passes },
+            }));
+        }
+    }
+
+    /// Where the call whose `(` is `open` ends (the rest of it read).
+    fn call_end(&mut self, open: Token<'a>) -> Step<usize> {
+        let _ = open;
+        let mut depth = 1u32;
+        loop {
+            let t = self.next()?;
+            match t.tok {
+                Tok::LParen => depth += 1,
+                Tok::RParen => {
+                    depth -= 1;
+                    if depth == 0 {
+                        return Ok(t.end);
+                    }
+                }
+                _ => {}
+            }
+        }
+    }
+
+    /// CLIPS's `CheckArgumentForConstraintError` for variable `name` as an argument
+    /// of restriction letter `letter`.
+    fn violates(&self, name: &str, letter: u8) -> bool {
+        let lhs = self.names.lhs(name);
+        let bound = self.binds[..self.nbinds]
+            .iter()
+            .find(|b| b.0 == name)
+            .and_then(|b| b.1);
+        let held = Rec::union(bound, lhs);
+        Rec::intersect(held, Rec::of_argument(letter)).unmatchable()
+    }
+}
+
+fn is_global(name: &str) -> bool {
+    name.len() > 2 && name.starts_with('*') && name.ends_with('*')
+}
+
+/// Checks the actions in `src[from..to]` (the rule's text after `=>`, its closing `)`
+/// included).
+pub fn check<N: Names>(src: &str, from: usize, to: usize, names: &N) -> Option<Found> {
+    let text = src.get(from..to)?;
+    let mut w = Walk {
+        lx: Lexer::new(text),
+        peeked: None,
+        names,
+        binds: [("", None); MAX_BINDS],
+        nbinds: 0,
+        shadow: [""; MAX_SHADOW],
+        nshadow: 0,
+    };
+    if let Err(Some(f)) = w.collect_binds() {
+        return Some(f);
+    }
+    w.lx = Lexer::new(text);
+    w.peeked = None;
+    match w.actions(1) {
+        // (the offsets were the text's: make them the source's)
+        Err(Some(f)) => Some(Found {
+            var_start: f.var_start + from,
+            var_end: f.var_end + from,
+            call_start: f.call_start + from,
+            call_end: f.call_end + from,
+            ..f
+        }),
+        _ => None,
+    }
+}
+
+/// Writes the call of `f` as CLIPS's `PrintExpression` does in the message: tokens
+/// one space apart, `$?x` as `?x` (or `(expand$ ?x)` with sequence-operator
+/// recognition), a global `?*g*` as `?g`, `$?*g*` as `(expand$ ?g)`, and a call with
+/// an expanding argument inside `((expansion-call) ...)` once for each parse of CLIPS
+/// around it (its own, each enclosing call's and action block's).
+pub fn write_expression(w: &mut dyn Write, src: &str, f: &Found, seq_ops: bool) -> fmt::Result {
+    let Some(text) = src.get(f.call_start..f.call_end) else {
+        return Ok(());
+    };
+    let lx = Lexer::new(text);
+    let mut p = Printer {
+        lx,
+        src: text,
+        seq_ops,
+    };
+    let t = p.lx.next_token();
+    p.item(w, t, f.passes, true)
+}
+
+struct Printer<'a> {
+    lx: Lexer<'a>,
+    src: &'a str,
+    seq_ops: bool,
+}
+
+impl<'a> Printer<'a> {
+    fn item(&mut self, w: &mut dyn Write, t: Token<'a>, passes: u8, top: bool) -> fmt::Result {
+        match t.tok {
+            Tok::LParen => self.group(w, passes, top),
+            Tok::Int(i) | Tok::IntOverflow(i) => write!(w, "{i}"),
+            Tok::Float(x) => crate::value::write_float(w, x),
+            Tok::SfVar(v) => write!(w, "?{v}"),
+            Tok::Global(g) => write!(w, "?{g}"),
+            Tok::MfVar(v) if is_global(v) => write!(w, "(expand$ ?{})", &v[1..v.len() - 1]),
+            Tok::MfVar(v) if self.seq_ops => write!(w, "(expand$ ?{v})"),
+            Tok::MfVar(v) => write!(w, "?{v}"),
+            _ => w.write_str(self.src.get(t.start..t.end).unwrap_or("")),
+        }
+    }
+
+    /// A parenthesised group (its `(` read): a call whose arguments expand is wrapped
+    /// (the top call, the one of the message, is not).
+    fn group(&mut self, w: &mut dyn Write, passes: u8, top: bool) -> fmt::Result {
+        // read the group's tokens ahead to see whether one of its arguments expands
+        let mut ahead = self.lx.clone();
+        let mut depth = 0u32;
+        let mut expands = false;
+        loop {
+            let t = ahead.next_token();
+            match t.tok {
+                Tok::LParen => depth += 1,
+                Tok::RParen if depth == 0 => break,
+                Tok::RParen => depth -= 1,
+                Tok::Eof | Tok::Bad => break,
+                Tok::MfVar(v) if depth == 0 && (is_global(v) || self.seq_ops) => expands = true,
+                _ => {}
+            }
+        }
+        let wraps = if expands && !top {
+            passes.saturating_add(1)
+        } else {
+            0
+        };
+        for _ in 0..wraps {
+            w.write_str("((expansion-call) ")?;
+        }
+        w.write_char('(')?;
+        let mut first = true;
+        loop {
+            let t = self.lx.next_token();
+            match t.tok {
+                Tok::RParen | Tok::Eof | Tok::Bad => break,
+                _ => {
+                    if !first {
+                        w.write_char(' ')?;
+                    }
+                    first = false;
+                    self.item(w, t, passes.saturating_add(1), false)?;
+                }
+            }
+        }
+        w.write_char(')')?;
+        for _ in 0..wraps {
+            w.write_char(')')?;
+        }
+        Ok(())
+    }
+}

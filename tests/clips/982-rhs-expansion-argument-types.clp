@@ -1,0 +1,25 @@
+; [RULECSTR3] with sequence expansion: `$?*g*` among a call's arguments is always
+; `(expand$ ?g)` (a call holding one printed inside `((expansion-call) ...)` once for
+; each parse around it), `$?x` is `?x` unless sequence-operator recognition is on
+(watch facts)
+(watch rules)
+(defglobal ?*g* = (create$ 1 2))
+(defrule mixed (a $?x) => (printout t (+ $?x $?*g*) crlf))
+(defrule mixed-second (a $?x) => (printout t (+ $?*g* $?x) crlf))
+(defrule global-single (a $?x) => (printout t (str-cat ?x ?*g*) crlf) (+ ?x ?*g*))
+(defrule nested-expansion (a $?x) => (+ ?x (str-cat $?*g*)))
+(defrule nested-deeper (a $?x) => (printout t (+ ?x (str-cat $?*g*)) crlf))
+(defrule nested-call (a $?x) => (+ ?x (abs (str-cat $?*g*))))
+(defrule nested-if (a $?x) => (if TRUE then (+ ?x (str-cat $?*g*))))
+; accepted, and run
+(defrule ok-global (a $?x) => (printout t (+ $?*g* 1) " " (create$ $?x $?*g*) crlf))
+(reset)
+(assert (a 5))
+(run)
+(set-sequence-operator-recognition TRUE)
+(defrule seq-ok (a $?x) => (printout t (+ $?x 1) crlf))
+(defrule seq-bound (a ?y) => (bind ?z abc) (printout t (+ $?z 1) crlf))
+(set-sequence-operator-recognition FALSE)
+(list-defrules)
+(run)
+(exit)
