@@ -1493,7 +1493,7 @@ impl Core<'_> {
                 "\n[RULECSTR1] Variable {tok} in CE #{ce} slot {}\nhas constraint conflicts which make the pattern unmatchable.",
                 self.sym_text(slot)
             );
-        } else if write_rhs_argument_type(&mut *b, text, tok, e, self.st.mode.seq_ops) {
+        } else if write_rhs_argument_type(self, &mut *b, text, tok, e) {
         } else if let LoadDetail::MinAboveMax { cardinality } = e.detail {
             let what = if cardinality { "cardinality" } else { "range" };
             let _ = writeln!(
@@ -2813,7 +2813,10 @@ impl core::fmt::Write for LastChar<'_> {
 /// Whether load error `e` is a `[RULECSTR3]` (`parser::rhs_types`).
 fn is_rhs_argument_type(e: &LoadError) -> bool {
     #[cfg(feature = "extras")]
-    return matches!(e.detail, LoadDetail::RhsArgumentType { .. });
+    return matches!(
+        e.detail,
+        LoadDetail::RhsArgumentType { .. } | LoadDetail::LhsArgumentType { .. }
+    );
     #[cfg(not(feature = "extras"))]
     {
         let _ = e;
@@ -2824,12 +2827,14 @@ fn is_rhs_argument_type(e: &LoadError) -> bool {
 /// Writes CLIPS's `[RULECSTR3]` message of load error `e` when it is one (`tok`: the
 /// variable), and says so.
 fn write_rhs_argument_type(
+    cx: &Core<'_>,
     b: &mut dyn Write,
     text: &str,
     tok: &str,
     e: &LoadError,
-    seq_ops: bool,
 ) -> bool {
+    #[cfg(feature = "extras")]
+    let seq_ops = cx.st.mode.seq_ops;
     #[cfg(feature = "extras")]
     if let LoadDetail::RhsArgumentType {
         call_start,
@@ -2855,6 +2860,39 @@ fn write_rhs_argument_type(
         let _ = b.write_str("\nfound in the rule's RHS to be violated.\n");
         return true;
     }
-    let _ = (b, text, tok, e, seq_ops);
+    #[cfg(feature = "extras")]
+    if let LoadDetail::LhsArgumentType {
+        call_start,
+        call_end,
+        slot,
+        arg,
+        ce,
+        field,
+    } = e.detail
+    {
+        let f = crate::parser::rhs_types::Found {
+            var_start: e.start as usize,
+            var_end: e.end as usize,
+            arg,
+            call_start: call_start as usize,
+            call_end: call_end as usize,
+            passes: 0,
+        };
+        let _ = write!(
+            b,
+            "\n[RULECSTR2] Previous variable bindings of ?{} caused the type restrictions\nfor argument #{arg} of the expression ",
+            tok.trim_start_matches('$').trim_start_matches('?'),
+        );
+        let _ = crate::parser::rhs_types::write_expression(b, text, &f, seq_ops);
+        let _ = write!(b, "\nfound in CE #{ce}");
+        if slot != crate::value::NONE {
+            let _ = write!(b, " slot {}", cx.sym_text(slot));
+        } else if field > 0 {
+            let _ = write!(b, " field #{field}");
+        }
+        let _ = b.write_str(" to be violated.\n");
+        return true;
+    }
+    let _ = (cx, b, text, tok, e);
     false
 }

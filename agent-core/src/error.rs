@@ -650,6 +650,17 @@ pub enum LoadDetail {
     /// `[RULECSTR3]`: a variable whose bindings leave it no value argument `arg` of the
     /// call at `call_start..call_end` (of the text) takes, in a rule's actions (the
     /// offending token is the variable); `passes` as `parser::rhs_types::Found` has it.
+    /// `[RULECSTR2]`: the same in a test CE or `:`/`=` constraint of CE `ce` (in
+    /// template slot `slot`, else field `field` of an ordered pattern, 0 for a test).
+    #[cfg(feature = "extras")]
+    LhsArgumentType {
+        call_start: u32,
+        call_end: u32,
+        slot: Ix,
+        arg: u16,
+        ce: u8,
+        field: u8,
+    },
     #[cfg(feature = "extras")]
     RhsArgumentType {
         call_start: u32,

@@ -609,6 +609,7 @@ differential_programs! {
     p981_rhs_lhs_variable_types => "981-rhs-lhs-variable-types",
     p982_rhs_expansion_argument_types => "982-rhs-expansion-argument-types",
     p983_rhs_literal_constraint_types => "983-rhs-literal-constraint-types",
+    p984_lhs_test_argument_types => "984-lhs-test-argument-types",
     p960_slot_facets => "960-slot-facets",
     p961_slot_facet_errors => "961-slot-facet-errors",
     p962_slot_facet_tokens => "962-slot-facet-tokens",

@@ -101,6 +101,23 @@ pub struct Parser<'s, 'c, 'e> {
     /// LHS variable's fields leave it, for CLIPS's `[RULECSTR3]` (`rhs_types`).
     #[cfg(feature = "extras")]
     pub var_lit: [u8; MAX_VARS],
+    /// The test CEs and `:`/`=` constraints of the rule (disjunct) being read, for
+    /// CLIPS's `[RULECSTR2]` once its LHS is whole (`rhs_types::LhsCheck`).
+    #[cfg(feature = "extras")]
+    pub lhs_checks: [rhs_types::LhsCheck; rhs_types::MAX_LHS_CHECKS],
+    #[cfg(feature = "extras")]
+    pub nlhs_checks: usize,
+    /// When each LHS variable was added (a count of `add_var`s), and the count so far:
+    /// a check noted earlier sees only variables older than it (not those of a `not`
+    /// read after it in slots its own ones had).
+    #[cfg(feature = "extras")]
+    pub var_serial: [u32; MAX_VARS],
+    #[cfg(feature = "extras")]
+    pub var_count: u32,
+    /// While a `[RULECSTR2]` check runs: the variables it sees (`vars` below this index,
+    /// added before this count).
+    #[cfg(feature = "extras")]
+    pub lhs_limit: Option<(usize, u32)>,
     pub nvars: usize,
     pub nlocals: Ix,
     pub scope: Scope,
@@ -213,6 +230,16 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
             var_cstr: [VarCstr::ANY; MAX_VARS],
             #[cfg(feature = "extras")]
             var_lit: [0xFF; MAX_VARS],
+            #[cfg(feature = "extras")]
+            lhs_checks: [rhs_types::LhsCheck::EMPTY; rhs_types::MAX_LHS_CHECKS],
+            #[cfg(feature = "extras")]
+            nlhs_checks: 0,
+            #[cfg(feature = "extras")]
+            var_serial: [0; MAX_VARS],
+            #[cfg(feature = "extras")]
+            var_count: 0,
+            #[cfg(feature = "extras")]
+            lhs_limit: None,
             nvars: 0,
             nlocals: 0,
             scope: Scope::TopLevel,
@@ -543,6 +570,8 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
         #[cfg(feature = "extras")]
         {
             self.var_lit[self.nvars] = 0xFF;
+            self.var_serial[self.nvars] = self.var_count;
+            self.var_count = self.var_count.wrapping_add(1);
         }
         self.nvars += 1;
         Ok(())

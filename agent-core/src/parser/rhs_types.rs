@@ -260,6 +260,34 @@ pub struct Found {
     pub passes: u8,
 }
 
+/// A test CE or `:`/`=` constraint to check once the LHS is read (`[RULECSTR2]`): its
+/// text, its CE, the template slot's name or the field of an ordered pattern.
+#[derive(Clone, Copy, Debug)]
+pub struct LhsCheck {
+    pub start: u32,
+    pub end: u32,
+    pub slot: crate::value::Ix,
+    pub ce: u8,
+    pub field: u8,
+    /// The variables it sees (see `Parser::lhs_limit`).
+    pub nvars: u16,
+    pub serial: u32,
+}
+
+impl LhsCheck {
+    pub const EMPTY: LhsCheck = LhsCheck {
+        start: 0,
+        end: 0,
+        slot: crate::value::NONE,
+        ce: 0,
+        field: 0,
+        nvars: 0,
+        serial: 0,
+    };
+}
+
+pub const MAX_LHS_CHECKS: usize = 32;
+
 const MAX_BINDS: usize = 64;
 const MAX_SHADOW: usize = 32;
 
@@ -273,6 +301,8 @@ struct Walk<'a, 'n, N: Names> {
     /// Loop and query variables in scope (not checked).
     shadow: [&'a str; MAX_SHADOW],
     nshadow: usize,
+    /// Checking a condition (`[RULECSTR2]`): multifield variables are not checked.
+    lhs: bool,
 }
 
 /// `Err(Some)`: a violation; `Err(None)`: the text ended or could not be followed
@@ -643,7 +673,10 @@ impl<'a, N: Names> Walk<'a, '_, N> {
                 }
             };
             n += 1;
-            if self.shadowed(name) || !self.violates(name, letter) {
+            if self.shadowed(name) || (self.lhs && self.is_multifield(name)) {
+                continue;
+            }
+            if !self.violates(name, letter) {
                 continue;
             }
             let end = self.call_end(open)?;
@@ -678,6 +711,10 @@ impl<'a, N: Names> Walk<'a, '_, N> {
         }
     }
 
+    fn is_multifield(&self, name: &str) -> bool {
+        self.names.lhs(name) == Some(Rec::MULTIFIELD_VAR)
+    }
+
     /// CLIPS's `CheckArgumentForConstraintError` for variable `name` as an argument
     /// of restriction letter `letter`.
     fn violates(&self, name: &str, letter: u8) -> bool {
@@ -707,6 +744,7 @@ pub fn check<N: Names>(src: &str, from: usize, to: usize, names: &N) -> Option<F
         nbinds: 0,
         shadow: [""; MAX_SHADOW],
         nshadow: 0,
+        lhs: false,
     };
     if let Err(Some(f)) = w.collect_binds() {
         return Some(f);
@@ -715,6 +753,36 @@ pub fn check<N: Names>(src: &str, from: usize, to: usize, names: &N) -> Option<F
     w.peeked = None;
     match w.actions(1) {
         // (the offsets were the text's: make them the source's)
+        Err(Some(f)) => Some(Found {
+            var_start: f.var_start + from,
+            var_end: f.var_end + from,
+            call_start: f.call_start + from,
+            call_end: f.call_end + from,
+            ..f
+        }),
+        _ => None,
+    }
+}
+
+/// Checks the condition expression in `src[from..to]` (a test CE's or a `:`/`=`
+/// constraint's call) with the LHS records alone.
+pub fn check_lhs<N: Names>(src: &str, from: usize, to: usize, names: &N) -> Option<Found> {
+    let text = src.get(from..to)?;
+    let mut w = Walk {
+        lx: Lexer::new(text),
+        peeked: None,
+        names,
+        binds: [("", None); MAX_BINDS],
+        nbinds: 0,
+        shadow: [""; MAX_SHADOW],
+        nshadow: 0,
+        lhs: true,
+    };
+    let open = w.next().ok()?;
+    if open.tok != Tok::LParen {
+        return None;
+    }
+    match w.form(open, 0) {
         Err(Some(f)) => Some(Found {
             var_start: f.var_start + from,
             var_end: f.var_end + from,

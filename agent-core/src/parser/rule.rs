@@ -397,6 +397,10 @@ impl<'s> Parser<'s, '_, '_> {
     /// One disjunct: LHS (with the current or-choices), RHS.
     fn rule_body(&mut self, b: &mut Build) -> PResult<()> {
         self.ce_count = 0;
+        #[cfg(feature = "extras")]
+        {
+            self.nlhs_checks = 0;
+        }
         self.complexity = 0;
         let mut salience = (0i32, NONE);
         // whether the rule has a declare or a CE before its `=>`
@@ -453,6 +457,8 @@ impl<'s> Parser<'s, '_, '_> {
         #[cfg(feature = "extras")]
         let rhs_from = self.consumed_end();
         b.rhs = self.body_block()?;
+        #[cfg(feature = "extras")]
+        self.check_lhs_types()?;
         #[cfg(feature = "extras")]
         self.check_rhs_types(rhs_from)?;
         b.sal = salience;
@@ -870,7 +876,11 @@ impl<'s> Parser<'s, '_, '_> {
                             e.echo_tail = crate::error::EchoTail::SpaceBefore;
                             return Err(e);
                         }
+                        #[cfg(feature = "extras")]
+                        let from = self.offset();
                         let e = self.parse_expr()?;
+                        #[cfg(feature = "extras")]
+                        self.note_lhs_check(from, NONE, 0);
                         let close = self.peek();
                         if close.tok != Tok::RParen && close.tok != Tok::Eof {
                             // a second argument: CLIPS shows the rule up to its first
@@ -2070,12 +2080,20 @@ impl<'s> Parser<'s, '_, '_> {
             Tok::Symbol(":") if self.peek().tok == Tok::LParen => {
                 let save = self.scope;
                 self.scope = Scope::Lhs;
+                #[cfg(feature = "extras")]
+                let from = self.offset();
                 let e = self.parse_expr()?;
+                #[cfg(feature = "extras")]
+                self.note_field_check(from);
                 self.scope = save;
                 Ok(e)
             }
             Tok::Symbol("=") if self.peek().tok == Tok::LParen => {
+                #[cfg(feature = "extras")]
+                let from = self.offset();
                 let e = self.parse_expr()?;
+                #[cfg(feature = "extras")]
+                self.note_field_check(from);
                 let this = self.this_field(p, locv, desc)?;
                 self.node2(Op::Eq2, this, e)
             }
@@ -2212,9 +2230,13 @@ impl Complexity {
 impl super::rhs_types::Names for Parser<'_, '_, '_> {
     fn lhs(&self, name: &str) -> Option<super::rhs_types::Rec> {
         use super::rhs_types::Rec;
-        let i = self.vars[..self.nvars]
+        let (n, serial) = self.lhs_limit.unwrap_or((self.nvars, u32::MAX));
+        let i = self.vars[..n.min(self.vars.len())]
             .iter()
-            .rposition(|v| v.name == name && matches!(v.kind, VarKind::Pat { .. }))?;
+            .zip(&self.var_serial)
+            .rposition(|(v, &s)| {
+                v.name == name && matches!(v.kind, VarKind::Pat { .. }) && s < serial
+            })?;
         let v = self.vars[i];
         Some(match v.kind {
             VarKind::Pat { loc: l, .. } if l == loc::FACT => Rec::FACT_ADDRESS,
@@ -2313,6 +2335,61 @@ impl Parser<'_, '_, '_> {
 
 #[cfg(feature = "extras")]
 impl Parser<'_, '_, '_> {
+    /// Notes the expression just read (from `from` on) of CE `ce_count` for CLIPS's
+    /// `[RULECSTR2]` check (`slot`: the template slot's name, else `field` of an
+    /// ordered pattern, 0 in a test CE).
+    fn note_lhs_check(&mut self, from: usize, slot: Ix, field: u8) {
+        if self.nlhs_checks < super::rhs_types::MAX_LHS_CHECKS {
+            self.lhs_checks[self.nlhs_checks] = super::rhs_types::LhsCheck {
+                start: from as u32,
+                end: self.consumed_end() as u32,
+                slot,
+                ce: self.ce_count,
+                field,
+                nvars: self.nvars as u16,
+                serial: self.var_count,
+            };
+            self.nlhs_checks += 1;
+        }
+    }
+
+    /// [`Parser::note_lhs_check`] of a `:` or `=` constraint of the field being read.
+    fn note_field_check(&mut self, from: usize) {
+        match self.lhs_slot {
+            Some(def) => self.note_lhs_check(from, def.name, 0),
+            None => self.note_lhs_check(from, NONE, self.lhs_field),
+        }
+    }
+
+    /// CLIPS's `[RULECSTR2]` once the LHS is read: a variable passed straight to a
+    /// builtin in a test CE or `:`/`=` constraint whose argument takes no value the
+    /// variable's patterns let it hold.
+    fn check_lhs_types(&mut self) -> PResult<()> {
+        let src = self.lex.source();
+        for k in 0..self.nlhs_checks {
+            let c = self.lhs_checks[k];
+            self.lhs_limit = Some((c.nvars as usize, c.serial));
+            let found = super::rhs_types::check_lhs(src, c.start as usize, c.end as usize, &*self);
+            self.lhs_limit = None;
+            let Some(f) = found else {
+                continue;
+            };
+            let t = self.lex.token_at(f.var_start);
+            let mut e = self.err(t, "a variable whose patterns fit the argument");
+            e.end = f.var_end as u32;
+            e.detail = crate::error::LoadDetail::LhsArgumentType {
+                call_start: f.call_start as u32,
+                call_end: f.call_end as u32,
+                slot: c.slot,
+                arg: f.arg,
+                ce: c.ce,
+                field: c.field,
+            };
+            return Err(e);
+        }
+        Ok(())
+    }
+
     /// CLIPS's `[RULECSTR3]` once the actions (from `from` on) are read: a variable
     /// passed to a builtin that takes no value it can hold (`rhs_types`).
     fn check_rhs_types(&mut self, from: usize) -> PResult<()> {
