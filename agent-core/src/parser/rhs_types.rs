@@ -14,8 +14,11 @@
 //! variables are not checked (CLIPS replaces them by calls), nor arguments of
 //! deffunctions, nor values inside `assert`/`modify` facts.
 //!
-//! The check reads the actions' text again (the expression tree has lost the variables'
-//! names) with CLIPS's view of its structure.
+//! `[RULECSTR2]` is the same check, without binds, of the calls in test CEs and `:`/`=`
+//! constraints once the LHS is read (multifield variables are not checked there).
+//!
+//! The check reads the text again (the expression tree has lost the variables' names)
+//! with CLIPS's view of its structure.
 
 use core::fmt::{self, Write};
 
@@ -320,10 +323,7 @@ const QUERIES: &[&str] = &[
 
 impl<'a, N: Names> Walk<'a, '_, N> {
     fn peek(&mut self) -> Token<'a> {
-        if self.peeked.is_none() {
-            self.peeked = Some(self.lx.next_token());
-        }
-        self.peeked.unwrap_or_else(|| self.lx.next_token())
+        *self.peeked.get_or_insert_with(|| self.lx.next_token())
     }
 
     fn next(&mut self) -> Step<Token<'a>> {
@@ -679,7 +679,7 @@ impl<'a, N: Names> Walk<'a, '_, N> {
             if !self.violates(name, letter) {
                 continue;
             }
-            let end = self.call_end(open)?;
+            let end = self.call_end()?;
             let expand = matches!(t.tok, Tok::MfVar(_)) && self.names.seq_ops();
             return Err(Some(Found {
                 var_start: t.start,
@@ -692,9 +692,8 @@ impl<'a, N: Names> Walk<'a, '_, N> {
         }
     }
 
-    /// Where the call whose `(` is `open` ends (the rest of it read).
-    fn call_end(&mut self, open: Token<'a>) -> Step<usize> {
-        let _ = open;
+    /// Where the call being read ends (the rest of it read).
+    fn call_end(&mut self) -> Step<usize> {
         let mut depth = 1u32;
         loop {
             let t = self.next()?;
