@@ -365,9 +365,11 @@ fn get_function_restrictions(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalEr
 /// CLIPS 6.30's restriction string of builtin `name` (None for one CLIPS does not have
 /// or gives none).
 pub(crate) fn restriction_of(name: &str) -> Option<&'static str> {
+    // (the table is sorted by name: a test below holds it so)
     RESTRICTIONS
-        .iter()
-        .find(|(n, _)| *n == name)
+        .binary_search_by(|&(n, _)| n.cmp(name))
+        .ok()
+        .and_then(|i| RESTRICTIONS.get(i))
         .map(|&(_, r)| r)
 }
 
@@ -1186,3 +1188,16 @@ Window Interface flag is OFF
 Developer flag is OFF
 Run time module is OFF
 ";
+
+#[cfg(all(test, feature = "extras"))]
+mod tests {
+    #[test]
+    fn restrictions_are_sorted_for_the_binary_search() {
+        let t = super::RESTRICTIONS;
+        assert!(t.windows(2).all(|w| w[0].0 < w[1].0));
+        for &(n, r) in t {
+            assert_eq!(super::restriction_of(n), Some(r));
+        }
+        assert_eq!(super::restriction_of("no-such-function"), None);
+    }
+}

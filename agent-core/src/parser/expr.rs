@@ -65,20 +65,34 @@ impl<'s> Parser<'s, '_, '_> {
             return Ok(c);
         }
         match t.tok {
-            Tok::SfVar(name) => self.var_ref(t, name, false),
+            Tok::SfVar(name) => {
+                let e = self.var_ref(t, name, false)?;
+                #[cfg(feature = "extras")]
+                {
+                    self.arg_var = Some((e, name, false));
+                }
+                Ok(e)
+            }
             Tok::MfVar(name) => {
                 // with sequence-operator recognition `$?x` expands (`aux` 1), as
                 // `(expand$ ?x)` does; else it is `?x`. `$?*g*` (the global's value)
                 // always expands in CLIPS 6.30.
-                let (v, expands) = match name.strip_prefix('*').and_then(|n| n.strip_suffix('*')) {
-                    Some(g) if !g.is_empty() => (self.global_read(t, g)?, true),
-                    _ => (self.var_ref(t, name, true)?, self.cx.st.mode.seq_ops),
-                };
+                let (v, expands, global) =
+                    match name.strip_prefix('*').and_then(|n| n.strip_suffix('*')) {
+                        Some(g) if !g.is_empty() => (self.global_read(t, g)?, true, true),
+                        _ => (self.var_ref(t, name, true)?, self.cx.st.mode.seq_ops, false),
+                    };
                 let e = self.cx.push_expr(Expr {
                     first: v,
                     ..Expr::new(Op::Expand, u8::from(expands), 0)
                 });
-                cap!(self, e)
+                let e = cap!(self, e)?;
+                #[cfg(feature = "extras")]
+                if !global {
+                    self.arg_var = Some((e, name, true));
+                }
+                let _ = global;
+                Ok(e)
             }
             Tok::Global(name) => self.global_read(t, name),
             Tok::LParen => self.call(),
@@ -337,6 +351,68 @@ impl<'s> Parser<'s, '_, '_> {
         }
     }
 
+    /// [`Parser::args_until_rparen`] of a builtin `func`'s call, noting each variable
+    /// passed straight to an argument that restricts it (`rhs_types::Cand`).
+    #[cfg(feature = "extras")]
+    fn builtin_args(&mut self, call: Ix, func: &'static str) -> PResult<Ix> {
+        if func == "progn" {
+            return self.args_until_rparen(call);
+        }
+        let mut n = 0;
+        loop {
+            let t = self.peek();
+            match t.tok {
+                Tok::RParen => {
+                    self.next();
+                    return Ok(n);
+                }
+                Tok::Eof | Tok::Bad => return Err(self.err(t, "')'")),
+                _ => {
+                    self.arg_var = None;
+                    let a = self.parse_expr()?;
+                    self.cx.append_child(call, a);
+                    n += 1;
+                    if let Some((e, name, mf)) = self.arg_var.take() {
+                        if e == a && !name.contains(':') {
+                            self.note_cand(func, n as usize, name, mf);
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    #[cfg(feature = "extras")]
+    fn note_cand(&mut self, func: &'static str, n: usize, name: &'s str, mf: bool) {
+        let letter = super::rhs_types::letter_of(func, n, mf, self.cx.st.mode.seq_ops);
+        if letter == b'u' {
+            return;
+        }
+        match self.cands.get_mut(self.ncands) {
+            Some(c) => {
+                *c = super::rhs_types::Cand { name, letter };
+                self.ncands += 1;
+            }
+            None => self.notes_overflow = true,
+        }
+    }
+
+    /// Notes the first value of a `bind` of `name` (about to be read) for
+    /// `rhs_types::may_fail`.
+    #[cfg(feature = "extras")]
+    fn note_bind(&mut self, name: &'s str) {
+        let first = self.peek().tok;
+        let lex = &self.lex;
+        let value = super::rhs_types::bind_value(first, || lex.clone().next_token().tok);
+        match self.bind_notes.get_mut(self.nbind_notes) {
+            Some(b) => {
+                *b = super::rhs_types::BindNote { name, value };
+                self.nbind_notes += 1;
+            }
+            None => self.notes_overflow = true,
+        }
+    }
+
     /// `(name args...)` after the `(`.
     fn call(&mut self) -> PResult<Ix> {
         let nt = self.next();
@@ -445,7 +521,11 @@ impl<'s> Parser<'s, '_, '_> {
                         e
                     })?
                 } else {
-                    self.args_until_rparen(call)?
+                    #[cfg(feature = "extras")]
+                    let n = self.builtin_args(call, b.name)?;
+                    #[cfg(not(feature = "extras"))]
+                    let n = self.args_until_rparen(call)?;
+                    n
                 };
                 // arguments that expand are counted and typed when the call runs
                 #[cfg(feature = "extras")]
@@ -948,6 +1028,8 @@ impl<'s> Parser<'s, '_, '_> {
             // an LHS variable the actions bind: its frame slot (`declare_bound_vars`)
             let target = cap!(self, self.cx.push_expr(Expr::new(Op::Local, 0, v.rebound)))?;
             self.cx.append_child(node, target);
+            #[cfg(feature = "extras")]
+            self.note_bind(name);
             self.args_until_rparen(node)?;
             return Ok(node);
         }
@@ -956,12 +1038,16 @@ impl<'s> Parser<'s, '_, '_> {
             // it is a run-time error, as in CLIPS)
             let target = self.assign_target(t, name)?;
             self.cx.append_child(node, target);
+            #[cfg(feature = "extras")]
+            self.note_bind(name);
             self.args_until_rparen(node)?;
             return Ok(node);
         }
         // rebinding an LHS variable: the value's `?x` is still the LHS one
         // (`(bind ?x (+ ?x 1))`); the RHS local that shadows it starts after
         let values = cap!(self, self.cx.push_expr(Expr::new(Op::Nop, 0, 0)))?;
+        #[cfg(feature = "extras")]
+        self.note_bind(name);
         self.args_until_rparen(values)?;
         let target = self.assign_target(t, name)?;
         self.cx.append_child(node, target);

@@ -118,6 +118,22 @@ pub struct Parser<'s, 'c, 'e> {
     /// added before this count).
     #[cfg(feature = "extras")]
     pub lhs_limit: Option<(usize, u32)>,
+    /// What the `[RULECSTR3]`/`[RULECSTR2]` checks need, noted while the rule is read
+    /// (`rhs_types::may_fail`): the variables passed straight to restricting builtin
+    /// arguments, the actions' `bind`s, whether either overflowed (then the text is
+    /// walked), and the variable the last expression read was (its node, name, `$?`).
+    #[cfg(feature = "extras")]
+    pub cands: [rhs_types::Cand<'s>; rhs_types::MAX_CANDS],
+    #[cfg(feature = "extras")]
+    pub ncands: usize,
+    #[cfg(feature = "extras")]
+    pub bind_notes: [rhs_types::BindNote<'s>; rhs_types::MAX_BIND_NOTES],
+    #[cfg(feature = "extras")]
+    pub nbind_notes: usize,
+    #[cfg(feature = "extras")]
+    pub notes_overflow: bool,
+    #[cfg(feature = "extras")]
+    pub arg_var: Option<(Ix, &'s str, bool)>,
     pub nvars: usize,
     pub nlocals: Ix,
     pub scope: Scope,
@@ -240,6 +256,18 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
             var_count: 0,
             #[cfg(feature = "extras")]
             lhs_limit: None,
+            #[cfg(feature = "extras")]
+            cands: [rhs_types::Cand::EMPTY; rhs_types::MAX_CANDS],
+            #[cfg(feature = "extras")]
+            ncands: 0,
+            #[cfg(feature = "extras")]
+            bind_notes: [rhs_types::BindNote::EMPTY; rhs_types::MAX_BIND_NOTES],
+            #[cfg(feature = "extras")]
+            nbind_notes: 0,
+            #[cfg(feature = "extras")]
+            notes_overflow: false,
+            #[cfg(feature = "extras")]
+            arg_var: None,
             nvars: 0,
             nlocals: 0,
             scope: Scope::TopLevel,

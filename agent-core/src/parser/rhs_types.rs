@@ -18,7 +18,13 @@
 //! constraints once the LHS is read (multifield variables are not checked there).
 //!
 //! The check reads the text again (the expression tree has lost the variables' names)
-//! with CLIPS's view of its structure.
+//! with CLIPS's view of its structure, but only for a rule that can fail it: while the
+//! parser reads the rule it notes each variable passed straight to a builtin argument
+//! that restricts it ([`Cand`]) and the first value of each `bind` ([`BindNote`]);
+//! [`may_fail`] runs the constraint logic over those notes, and only when it finds a
+//! violation is the text read again (for the message's call, and CLIPS's order). The
+//! notes give each variable at most the record the text gives it (a call whose
+//! arguments expand counts as its builtin's return type), so a rule they pass passes.
 
 use core::fmt::{self, Write};
 
@@ -275,6 +281,8 @@ pub struct LhsCheck {
     /// The variables it sees (see `Parser::lhs_limit`).
     pub nvars: u16,
     pub serial: u32,
+    /// The noted candidates (`Parser::cands`) up to its end.
+    pub cands_end: u8,
 }
 
 impl LhsCheck {
@@ -286,10 +294,103 @@ impl LhsCheck {
         field: 0,
         nvars: 0,
         serial: 0,
+        cands_end: 0,
     };
 }
 
 pub const MAX_LHS_CHECKS: usize = 32;
+
+/// A variable passed straight to a builtin argument of restriction letter `letter`
+/// (never `u`), noted while the parser reads it.
+#[derive(Clone, Copy, Debug)]
+pub struct Cand<'s> {
+    pub name: &'s str,
+    pub letter: u8,
+}
+
+impl Cand<'_> {
+    pub const EMPTY: Cand<'static> = Cand {
+        name: "",
+        letter: 0,
+    };
+}
+
+pub const MAX_CANDS: usize = 24;
+
+/// The first value of a `bind` of `name` in the actions, noted while the parser reads
+/// it: none, a literal's or variable's record, or a call (its name, looked up when
+/// needed).
+#[derive(Clone, Copy, Debug)]
+pub enum BindValue<'s> {
+    None,
+    Rec(Rec),
+    Call(&'s str),
+}
+
+#[derive(Clone, Copy, Debug)]
+pub struct BindNote<'s> {
+    pub name: &'s str,
+    pub value: BindValue<'s>,
+}
+
+impl BindNote<'_> {
+    pub const EMPTY: BindNote<'static> = BindNote {
+        name: "",
+        value: BindValue::None,
+    };
+}
+
+pub const MAX_BIND_NOTES: usize = 16;
+
+/// The record of the first value of a `bind` (its token `first`; for a call, `head`
+/// reads the token after the `(`): what the text walk's `collect_binds` gives, a call
+/// whose arguments expand aside.
+pub fn bind_value<'s>(first: Tok<'s>, head: impl FnOnce() -> Tok<'s>) -> BindValue<'s> {
+    match first {
+        Tok::RParen => BindValue::None,
+        Tok::LParen => match head() {
+            Tok::Symbol(name) => BindValue::Call(name),
+            _ => BindValue::Rec(Rec::ANYTHING),
+        },
+        Tok::SfVar(_) | Tok::MfVar(_) | Tok::Global(_) => BindValue::Rec(Rec::ANYTHING),
+        t => BindValue::Rec(Rec::of_literal(t)),
+    }
+}
+
+/// The restriction letter of argument `n` (1-based) of builtin `func` for a variable
+/// passed there (`mf`: written `$?x`), `u` when it is not checked.
+pub fn letter_of(func: &str, n: usize, mf: bool, seq_ops: bool) -> u8 {
+    if mf && seq_ops {
+        return b'm';
+    }
+    nth_restriction(crate::builtins::environment::restriction_of(func), n)
+}
+
+/// Whether one of the noted candidates violates its argument's restriction: the
+/// actions' (`binds` their `bind`s) or, with `binds` None, a condition's (multifield
+/// variables are not checked there). When not, the text walk would find nothing.
+pub fn may_fail<N: Names>(cands: &[Cand<'_>], binds: Option<&[BindNote<'_>]>, names: &N) -> bool {
+    cands.iter().any(|c| {
+        let lhs = names.lhs(c.name);
+        let bound = match binds {
+            None if lhs == Some(Rec::MULTIFIELD_VAR) => return false,
+            None => None,
+            Some(binds) => binds
+                .iter()
+                .filter(|b| b.name == c.name)
+                .fold(None, |acc, b| match b.value {
+                    BindValue::None => acc,
+                    BindValue::Rec(r) => Some(Rec::union(Some(r), acc)),
+                    BindValue::Call(f) => {
+                        let r = crate::builtins::lookup(f)
+                            .map_or(Rec::ANYTHING, |(_, b)| Rec::of_call(b.returns));
+                        Some(Rec::union(Some(r), acc))
+                    }
+                }),
+        };
+        Rec::intersect(Rec::union(bound, lhs), Rec::of_argument(c.letter)).unmatchable()
+    })
+}
 
 const MAX_BINDS: usize = 64;
 const MAX_SHADOW: usize = 32;

@@ -400,6 +400,9 @@ impl<'s> Parser<'s, '_, '_> {
         #[cfg(feature = "extras")]
         {
             self.nlhs_checks = 0;
+            self.ncands = 0;
+            self.nbind_notes = 0;
+            self.notes_overflow = false;
         }
         self.complexity = 0;
         let mut salience = (0i32, NONE);
@@ -455,12 +458,15 @@ impl<'s> Parser<'s, '_, '_> {
         self.scope = Scope::Frame;
         self.declare_bound_vars()?;
         #[cfg(feature = "extras")]
-        let rhs_from = self.consumed_end();
+        let (rhs_from, rhs_cands) = {
+            self.nbind_notes = 0;
+            (self.consumed_end(), self.ncands)
+        };
         b.rhs = self.body_block()?;
         #[cfg(feature = "extras")]
         self.check_lhs_types()?;
         #[cfg(feature = "extras")]
-        self.check_rhs_types(rhs_from)?;
+        self.check_rhs_types(rhs_from, rhs_cands)?;
         b.sal = salience;
         b.nlocals = self.nlocals.min(255) as u8;
         b.complexity = self.complexity;
@@ -2348,6 +2354,7 @@ impl Parser<'_, '_, '_> {
                 field,
                 nvars: self.nvars as u16,
                 serial: self.var_count,
+                cands_end: self.ncands as u8,
             };
             self.nlhs_checks += 1;
         }
@@ -2366,10 +2373,26 @@ impl Parser<'_, '_, '_> {
     /// variable's patterns let it hold.
     fn check_lhs_types(&mut self) -> PResult<()> {
         let src = self.lex.source();
+        let mut cands_from = 0;
         for k in 0..self.nlhs_checks {
             let c = self.lhs_checks[k];
+            let cands_to = (c.cands_end as usize).min(self.ncands);
+            let cands = cands_from.min(cands_to)..cands_to;
+            cands_from = cands_to;
             self.lhs_limit = Some((c.nvars as usize, c.serial));
-            let found = super::rhs_types::check_lhs(src, c.start as usize, c.end as usize, &*self);
+            // the text is read again only when the notes show a violation
+            let may_fail =
+                self.notes_overflow || super::rhs_types::may_fail(&self.cands[cands], None, &*self);
+            let found = if may_fail {
+                super::rhs_types::check_lhs(src, c.start as usize, c.end as usize, &*self)
+            } else {
+                debug_assert!(
+                    super::rhs_types::check_lhs(src, c.start as usize, c.end as usize, &*self)
+                        .is_none(),
+                    "the notes missed a [RULECSTR2]"
+                );
+                None
+            };
             self.lhs_limit = None;
             let Some(f) = found else {
                 continue;
@@ -2392,9 +2415,19 @@ impl Parser<'_, '_, '_> {
 
     /// CLIPS's `[RULECSTR3]` once the actions (from `from` on) are read: a variable
     /// passed to a builtin that takes no value it can hold (`rhs_types`).
-    fn check_rhs_types(&mut self, from: usize) -> PResult<()> {
+    fn check_rhs_types(&mut self, from: usize, cands_from: usize) -> PResult<()> {
         let src = self.lex.source();
         let to = self.consumed_end();
+        let cands = &self.cands[cands_from.min(self.ncands)..self.ncands];
+        let binds = &self.bind_notes[..self.nbind_notes];
+        // the text is read again only when the notes show a violation
+        if !self.notes_overflow && !super::rhs_types::may_fail(cands, Some(binds), &*self) {
+            debug_assert!(
+                super::rhs_types::check(src, from, to, &*self).is_none(),
+                "the notes missed a [RULECSTR3]"
+            );
+            return Ok(());
+        }
         let Some(f) = super::rhs_types::check(src, from, to, &*self) else {
             return Ok(());
         };
