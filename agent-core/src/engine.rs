@@ -780,6 +780,11 @@ pub struct State {
     /// feature `extras`).
     #[cfg(feature = "extras")]
     pub watch_names: WatchNames,
+    /// What the parser notes of the rule it reads for CLIPS's `[RULECSTR3]`/`[RULECSTR2]`
+    /// checks (feature `extras`; here, not in the parser, so that a parser starts
+    /// without filling it).
+    #[cfg(feature = "extras")]
+    pub rule_notes: crate::parser::rhs_types::RuleNotes,
     /// The files `fetch` read and their current menus (feature `extras`; kept across
     /// `clear`, as in CLIPS).
     #[cfg(feature = "extras")]
@@ -1024,6 +1029,8 @@ impl State {
             breaks: Breaks::new(),
             #[cfg(feature = "extras")]
             watch_names: WatchNames::new(),
+            #[cfg(feature = "extras")]
+            rule_notes: crate::parser::rhs_types::RuleNotes::new(),
             #[cfg(feature = "extras")]
             text_regions: crate::builtins::textpro::TextRegions::new(),
             #[cfg(feature = "extras")]

@@ -385,32 +385,21 @@ impl<'s> Parser<'s, '_, '_> {
     #[cfg(feature = "extras")]
     fn note_cand(&mut self, func: &'static str, n: usize, name: &'s str, mf: bool) {
         let letter = super::rhs_types::letter_of(func, n, mf, self.cx.st.mode.seq_ops);
-        if letter == b'u' {
-            return;
-        }
-        match self.cands.get_mut(self.ncands) {
-            Some(c) => {
-                *c = super::rhs_types::Cand { name, letter };
-                self.ncands += 1;
-            }
-            None => self.notes_overflow = true,
+        if letter != b'u' {
+            let src = self.lex.source();
+            self.cx.st.rule_notes.note_cand(src, name, letter);
         }
     }
 
     /// Notes the first value of a `bind` of `name` (about to be read) for
-    /// `rhs_types::may_fail`.
+    /// `rhs_types::RuleNotes`.
     #[cfg(feature = "extras")]
     fn note_bind(&mut self, name: &'s str) {
         let first = self.peek().tok;
+        let src = self.lex.source();
         let lex = &self.lex;
-        let value = super::rhs_types::bind_value(first, || lex.clone().next_token().tok);
-        match self.bind_notes.get_mut(self.nbind_notes) {
-            Some(b) => {
-                *b = super::rhs_types::BindNote { name, value };
-                self.nbind_notes += 1;
-            }
-            None => self.notes_overflow = true,
-        }
+        let value = super::rhs_types::bind_value(src, first, || lex.clone().next_token().tok);
+        self.cx.st.rule_notes.note_bind(src, name, value);
     }
 
     /// `(name args...)` after the `(`.

@@ -97,41 +97,17 @@ pub struct Parser<'s, 'c, 'e> {
     /// What each LHS variable (by `vars` index) can still hold after the slots it
     /// stood in so far: CLIPS refuses a rule where that is nothing (`[RULECSTR1]`).
     pub var_cstr: [VarCstr; MAX_VARS],
-    /// The types (`template::types` bits) the literal and `=(...)` constraints of each
-    /// LHS variable's fields leave it, for CLIPS's `[RULECSTR3]` (`rhs_types`).
-    #[cfg(feature = "extras")]
-    pub var_lit: [u8; MAX_VARS],
-    /// The test CEs and `:`/`=` constraints of the rule (disjunct) being read, for
-    /// CLIPS's `[RULECSTR2]` once its LHS is whole (`rhs_types::LhsCheck`).
-    #[cfg(feature = "extras")]
-    pub lhs_checks: [rhs_types::LhsCheck; rhs_types::MAX_LHS_CHECKS],
-    #[cfg(feature = "extras")]
-    pub nlhs_checks: usize,
-    /// When each LHS variable was added (a count of `add_var`s), and the count so far:
-    /// a check noted earlier sees only variables older than it (not those of a `not`
-    /// read after it in slots its own ones had).
-    #[cfg(feature = "extras")]
-    pub var_serial: [u32; MAX_VARS],
+    /// The count of `add_var`s so far (`rhs_types::RuleNotes::var_serial`): a check
+    /// noted earlier sees only variables older than it (not those of a `not` read after
+    /// it in slots its own ones had).
     #[cfg(feature = "extras")]
     pub var_count: u32,
     /// While a `[RULECSTR2]` check runs: the variables it sees (`vars` below this index,
     /// added before this count).
     #[cfg(feature = "extras")]
     pub lhs_limit: Option<(usize, u32)>,
-    /// What the `[RULECSTR3]`/`[RULECSTR2]` checks need, noted while the rule is read
-    /// (`rhs_types::may_fail`): the variables passed straight to restricting builtin
-    /// arguments, the actions' `bind`s, whether either overflowed (then the text is
-    /// walked), and the variable the last expression read was (its node, name, `$?`).
-    #[cfg(feature = "extras")]
-    pub cands: [rhs_types::Cand<'s>; rhs_types::MAX_CANDS],
-    #[cfg(feature = "extras")]
-    pub ncands: usize,
-    #[cfg(feature = "extras")]
-    pub bind_notes: [rhs_types::BindNote<'s>; rhs_types::MAX_BIND_NOTES],
-    #[cfg(feature = "extras")]
-    pub nbind_notes: usize,
-    #[cfg(feature = "extras")]
-    pub notes_overflow: bool,
+    /// The variable the last expression read was (its node, name, written `$?`), for
+    /// `rhs_types::RuleNotes`.
     #[cfg(feature = "extras")]
     pub arg_var: Option<(Ix, &'s str, bool)>,
     pub nvars: usize,
@@ -245,27 +221,9 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
             }; MAX_VARS],
             var_cstr: [VarCstr::ANY; MAX_VARS],
             #[cfg(feature = "extras")]
-            var_lit: [0xFF; MAX_VARS],
-            #[cfg(feature = "extras")]
-            lhs_checks: [rhs_types::LhsCheck::EMPTY; rhs_types::MAX_LHS_CHECKS],
-            #[cfg(feature = "extras")]
-            nlhs_checks: 0,
-            #[cfg(feature = "extras")]
-            var_serial: [0; MAX_VARS],
-            #[cfg(feature = "extras")]
             var_count: 0,
             #[cfg(feature = "extras")]
             lhs_limit: None,
-            #[cfg(feature = "extras")]
-            cands: [rhs_types::Cand::EMPTY; rhs_types::MAX_CANDS],
-            #[cfg(feature = "extras")]
-            ncands: 0,
-            #[cfg(feature = "extras")]
-            bind_notes: [rhs_types::BindNote::EMPTY; rhs_types::MAX_BIND_NOTES],
-            #[cfg(feature = "extras")]
-            nbind_notes: 0,
-            #[cfg(feature = "extras")]
-            notes_overflow: false,
             #[cfg(feature = "extras")]
             arg_var: None,
             nvars: 0,
@@ -597,8 +555,8 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
         self.var_cstr[self.nvars] = VarCstr::ANY;
         #[cfg(feature = "extras")]
         {
-            self.var_lit[self.nvars] = 0xFF;
-            self.var_serial[self.nvars] = self.var_count;
+            self.cx.st.rule_notes.var_lit[self.nvars] = 0xFF;
+            self.cx.st.rule_notes.var_serial[self.nvars] = self.var_count;
             self.var_count = self.var_count.wrapping_add(1);
         }
         self.nvars += 1;

@@ -300,61 +300,207 @@ impl LhsCheck {
 
 pub const MAX_LHS_CHECKS: usize = 32;
 
+/// A name noted as offsets in the source text being read.
+#[derive(Clone, Copy, Debug)]
+pub struct Span {
+    start: u32,
+    len: u32,
+}
+
+impl Span {
+    const EMPTY: Span = Span { start: 0, len: 0 };
+
+    /// `s`, a slice of `src`, as offsets (None when it is not one).
+    fn of(src: &str, s: &str) -> Option<Span> {
+        let start = (s.as_ptr() as usize).checked_sub(src.as_ptr() as usize)?;
+        if start.checked_add(s.len())? > src.len() {
+            return None;
+        }
+        Some(Span {
+            start: u32::try_from(start).ok()?,
+            len: u32::try_from(s.len()).ok()?,
+        })
+    }
+
+    fn text(self, src: &str) -> &str {
+        src.get(self.start as usize..(self.start as usize).saturating_add(self.len as usize))
+            .unwrap_or("")
+    }
+}
+
 /// A variable passed straight to a builtin argument of restriction letter `letter`
 /// (never `u`), noted while the parser reads it.
 #[derive(Clone, Copy, Debug)]
-pub struct Cand<'s> {
-    pub name: &'s str,
-    pub letter: u8,
-}
-
-impl Cand<'_> {
-    pub const EMPTY: Cand<'static> = Cand {
-        name: "",
-        letter: 0,
-    };
+struct Cand {
+    name: Span,
+    letter: u8,
 }
 
 pub const MAX_CANDS: usize = 24;
 
-/// The first value of a `bind` of `name` in the actions, noted while the parser reads
-/// it: none, a literal's or variable's record, or a call (its name, looked up when
-/// needed).
+/// The first value of a `bind` in the actions, noted while the parser reads it: none,
+/// a literal's or variable's record, or a call (its name, looked up when needed).
 #[derive(Clone, Copy, Debug)]
-pub enum BindValue<'s> {
+pub enum BindValue {
     None,
     Rec(Rec),
-    Call(&'s str),
+    Call(Span),
 }
 
 #[derive(Clone, Copy, Debug)]
-pub struct BindNote<'s> {
-    pub name: &'s str,
-    pub value: BindValue<'s>,
-}
-
-impl BindNote<'_> {
-    pub const EMPTY: BindNote<'static> = BindNote {
-        name: "",
-        value: BindValue::None,
-    };
+struct BindNote {
+    name: Span,
+    value: BindValue,
 }
 
 pub const MAX_BIND_NOTES: usize = 16;
 
+/// What the checks need of the rule being read, noted while the parser reads it (kept
+/// in the engine's state, host only, so that a parser starts without filling it): the
+/// test CEs and `:`/`=` constraints to check, the variables passed straight to
+/// restricting builtin arguments, the actions' `bind`s, and what the LHS variables'
+/// literals leave them and when they were added (by `vars` index).
+pub struct RuleNotes {
+    pub lhs_checks: [LhsCheck; MAX_LHS_CHECKS],
+    pub nlhs_checks: usize,
+    cands: [Cand; MAX_CANDS],
+    pub ncands: usize,
+    binds: [BindNote; MAX_BIND_NOTES],
+    nbinds: usize,
+    /// A note did not fit (the text is walked then).
+    overflow: bool,
+    /// The text the offsets are in (its address and length).
+    src: (usize, usize),
+    /// The types (`template::types` bits) the literal and `=(...)` constraints of each
+    /// LHS variable's fields leave it.
+    pub var_lit: [u8; super::MAX_VARS],
+    /// When each LHS variable was added (a count of `add_var`s).
+    pub var_serial: [u32; super::MAX_VARS],
+}
+
+impl Default for RuleNotes {
+    fn default() -> RuleNotes {
+        RuleNotes::new()
+    }
+}
+
+impl RuleNotes {
+    pub const fn new() -> RuleNotes {
+        RuleNotes {
+            lhs_checks: [LhsCheck::EMPTY; MAX_LHS_CHECKS],
+            nlhs_checks: 0,
+            cands: [Cand {
+                name: Span::EMPTY,
+                letter: 0,
+            }; MAX_CANDS],
+            ncands: 0,
+            binds: [BindNote {
+                name: Span::EMPTY,
+                value: BindValue::None,
+            }; MAX_BIND_NOTES],
+            nbinds: 0,
+            overflow: false,
+            src: (0, 0),
+            var_lit: [0xFF; super::MAX_VARS],
+            var_serial: [0; super::MAX_VARS],
+        }
+    }
+
+    /// Starts the notes of a rule (disjunct) read from `src`.
+    pub fn reset(&mut self, src: &str) {
+        self.nlhs_checks = 0;
+        self.ncands = 0;
+        self.nbinds = 0;
+        self.overflow = false;
+        self.src = (src.as_ptr() as usize, src.len());
+    }
+
+    /// Forgets the `bind`s noted so far (the actions start).
+    pub fn clear_binds(&mut self) {
+        self.nbinds = 0;
+    }
+
+    /// Notes variable `name` (of `src`) passed to an argument of restriction `letter`.
+    pub fn note_cand(&mut self, src: &str, name: &str, letter: u8) {
+        match (self.cands.get_mut(self.ncands), Span::of(src, name)) {
+            (Some(c), Some(name)) => {
+                *c = Cand { name, letter };
+                self.ncands += 1;
+            }
+            _ => self.overflow = true,
+        }
+    }
+
+    /// Notes a `bind` of `name` (of `src`) whose first value is `value`.
+    pub fn note_bind(&mut self, src: &str, name: &str, value: Option<BindValue>) {
+        match (self.binds.get_mut(self.nbinds), Span::of(src, name), value) {
+            (Some(b), Some(name), Some(value)) => {
+                *b = BindNote { name, value };
+                self.nbinds += 1;
+            }
+            _ => self.overflow = true,
+        }
+    }
+
+    /// Whether one of the candidates `cands` (of `src`) violates its argument's
+    /// restriction: the actions' (with their `bind`s) or, without `binds`, a
+    /// condition's (multifield variables are not checked there). When not, the text
+    /// walk would find nothing.
+    pub fn may_fail<N: Names>(
+        &self,
+        src: &str,
+        cands: core::ops::Range<usize>,
+        with_binds: bool,
+        names: &N,
+    ) -> bool {
+        if self.overflow || self.src != (src.as_ptr() as usize, src.len()) {
+            return true;
+        }
+        let Some(cands) = self.cands.get(cands) else {
+            return true;
+        };
+        let binds = self.binds.get(..self.nbinds).unwrap_or(&[]);
+        cands.iter().any(|c| {
+            let name = c.name.text(src);
+            let lhs = names.lhs(name);
+            let bound = match with_binds {
+                false if lhs == Some(Rec::MULTIFIELD_VAR) => return false,
+                false => None,
+                true => binds
+                    .iter()
+                    .filter(|b| b.name.text(src) == name)
+                    .fold(None, |acc, b| match b.value {
+                        BindValue::None => acc,
+                        BindValue::Rec(r) => Some(Rec::union(Some(r), acc)),
+                        BindValue::Call(f) => {
+                            let r = crate::builtins::lookup(f.text(src))
+                                .map_or(Rec::ANYTHING, |(_, b)| Rec::of_call(b.returns));
+                            Some(Rec::union(Some(r), acc))
+                        }
+                    }),
+            };
+            Rec::intersect(Rec::union(bound, lhs), Rec::of_argument(c.letter)).unmatchable()
+        })
+    }
+}
+
 /// The record of the first value of a `bind` (its token `first`; for a call, `head`
 /// reads the token after the `(`): what the text walk's `collect_binds` gives, a call
-/// whose arguments expand aside.
-pub fn bind_value<'s>(first: Tok<'s>, head: impl FnOnce() -> Tok<'s>) -> BindValue<'s> {
-    match first {
+/// whose arguments expand aside (None: not a slice of `src`).
+pub fn bind_value<'s>(
+    src: &str,
+    first: Tok<'s>,
+    head: impl FnOnce() -> Tok<'s>,
+) -> Option<BindValue> {
+    Some(match first {
         Tok::RParen => BindValue::None,
         Tok::LParen => match head() {
-            Tok::Symbol(name) => BindValue::Call(name),
+            Tok::Symbol(name) => BindValue::Call(Span::of(src, name)?),
             _ => BindValue::Rec(Rec::ANYTHING),
         },
         Tok::SfVar(_) | Tok::MfVar(_) | Tok::Global(_) => BindValue::Rec(Rec::ANYTHING),
         t => BindValue::Rec(Rec::of_literal(t)),
-    }
+    })
 }
 
 /// The restriction letter of argument `n` (1-based) of builtin `func` for a variable
@@ -364,32 +510,6 @@ pub fn letter_of(func: &str, n: usize, mf: bool, seq_ops: bool) -> u8 {
         return b'm';
     }
     nth_restriction(crate::builtins::environment::restriction_of(func), n)
-}
-
-/// Whether one of the noted candidates violates its argument's restriction: the
-/// actions' (`binds` their `bind`s) or, with `binds` None, a condition's (multifield
-/// variables are not checked there). When not, the text walk would find nothing.
-pub fn may_fail<N: Names>(cands: &[Cand<'_>], binds: Option<&[BindNote<'_>]>, names: &N) -> bool {
-    cands.iter().any(|c| {
-        let lhs = names.lhs(c.name);
-        let bound = match binds {
-            None if lhs == Some(Rec::MULTIFIELD_VAR) => return false,
-            None => None,
-            Some(binds) => binds
-                .iter()
-                .filter(|b| b.name == c.name)
-                .fold(None, |acc, b| match b.value {
-                    BindValue::None => acc,
-                    BindValue::Rec(r) => Some(Rec::union(Some(r), acc)),
-                    BindValue::Call(f) => {
-                        let r = crate::builtins::lookup(f)
-                            .map_or(Rec::ANYTHING, |(_, b)| Rec::of_call(b.returns));
-                        Some(Rec::union(Some(r), acc))
-                    }
-                }),
-        };
-        Rec::intersect(Rec::union(bound, lhs), Rec::of_argument(c.letter)).unmatchable()
-    })
 }
 
 const MAX_BINDS: usize = 64;

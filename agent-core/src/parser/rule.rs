@@ -399,10 +399,8 @@ impl<'s> Parser<'s, '_, '_> {
         self.ce_count = 0;
         #[cfg(feature = "extras")]
         {
-            self.nlhs_checks = 0;
-            self.ncands = 0;
-            self.nbind_notes = 0;
-            self.notes_overflow = false;
+            let src = self.lex.source();
+            self.cx.st.rule_notes.reset(src);
         }
         self.complexity = 0;
         let mut salience = (0i32, NONE);
@@ -459,8 +457,8 @@ impl<'s> Parser<'s, '_, '_> {
         self.declare_bound_vars()?;
         #[cfg(feature = "extras")]
         let (rhs_from, rhs_cands) = {
-            self.nbind_notes = 0;
-            (self.consumed_end(), self.ncands)
+            self.cx.st.rule_notes.clear_binds();
+            (self.consumed_end(), self.cx.st.rule_notes.ncands)
         };
         b.rhs = self.body_block()?;
         #[cfg(feature = "extras")]
@@ -2239,7 +2237,7 @@ impl super::rhs_types::Names for Parser<'_, '_, '_> {
         let (n, serial) = self.lhs_limit.unwrap_or((self.nvars, u32::MAX));
         let i = self.vars[..n.min(self.vars.len())]
             .iter()
-            .zip(&self.var_serial)
+            .zip(&self.cx.st.rule_notes.var_serial)
             .rposition(|(v, &s)| {
                 v.name == name && matches!(v.kind, VarKind::Pat { .. }) && s < serial
             })?;
@@ -2247,7 +2245,7 @@ impl super::rhs_types::Names for Parser<'_, '_, '_> {
         Some(match v.kind {
             VarKind::Pat { loc: l, .. } if l == loc::FACT => Rec::FACT_ADDRESS,
             _ if v.multi => Rec::MULTIFIELD_VAR,
-            _ => match self.var_cstr[i].types & self.var_lit[i] {
+            _ => match self.var_cstr[i].types & self.cx.st.rule_notes.var_lit[i] {
                 // (CLIPS refuses such a pattern before: `[RULECSTR1]`, `[CSTRNCHK1]`)
                 0 => Rec::ANY,
                 k => Rec::slot_types(k),
@@ -2279,7 +2277,8 @@ impl Parser<'_, '_, '_> {
         if self.vars[i].multi {
             return;
         }
-        self.var_lit[i] &= self.literal_types(e);
+        let k = self.literal_types(e);
+        self.cx.st.rule_notes.var_lit[i] &= k;
     }
 
     /// The types (`template::types` bits, 0xFF for any) constraint `e` allows by its
@@ -2345,18 +2344,20 @@ impl Parser<'_, '_, '_> {
     /// `[RULECSTR2]` check (`slot`: the template slot's name, else `field` of an
     /// ordered pattern, 0 in a test CE).
     fn note_lhs_check(&mut self, from: usize, slot: Ix, field: u8) {
-        if self.nlhs_checks < super::rhs_types::MAX_LHS_CHECKS {
-            self.lhs_checks[self.nlhs_checks] = super::rhs_types::LhsCheck {
+        let end = self.consumed_end() as u32;
+        let notes = &mut self.cx.st.rule_notes;
+        if let Some(c) = notes.lhs_checks.get_mut(notes.nlhs_checks) {
+            *c = super::rhs_types::LhsCheck {
                 start: from as u32,
-                end: self.consumed_end() as u32,
+                end,
                 slot,
                 ce: self.ce_count,
                 field,
                 nvars: self.nvars as u16,
                 serial: self.var_count,
-                cands_end: self.ncands as u8,
+                cands_end: notes.ncands as u8,
             };
-            self.nlhs_checks += 1;
+            notes.nlhs_checks += 1;
         }
     }
 
@@ -2374,15 +2375,16 @@ impl Parser<'_, '_, '_> {
     fn check_lhs_types(&mut self) -> PResult<()> {
         let src = self.lex.source();
         let mut cands_from = 0;
-        for k in 0..self.nlhs_checks {
-            let c = self.lhs_checks[k];
-            let cands_to = (c.cands_end as usize).min(self.ncands);
+        for k in 0..self.cx.st.rule_notes.nlhs_checks {
+            let Some(&c) = self.cx.st.rule_notes.lhs_checks.get(k) else {
+                break;
+            };
+            let cands_to = c.cands_end as usize;
             let cands = cands_from.min(cands_to)..cands_to;
             cands_from = cands_to;
             self.lhs_limit = Some((c.nvars as usize, c.serial));
             // the text is read again only when the notes show a violation
-            let may_fail =
-                self.notes_overflow || super::rhs_types::may_fail(&self.cands[cands], None, &*self);
+            let may_fail = self.cx.st.rule_notes.may_fail(src, cands, false, &*self);
             let found = if may_fail {
                 super::rhs_types::check_lhs(src, c.start as usize, c.end as usize, &*self)
             } else {
@@ -2418,10 +2420,10 @@ impl Parser<'_, '_, '_> {
     fn check_rhs_types(&mut self, from: usize, cands_from: usize) -> PResult<()> {
         let src = self.lex.source();
         let to = self.consumed_end();
-        let cands = &self.cands[cands_from.min(self.ncands)..self.ncands];
-        let binds = &self.bind_notes[..self.nbind_notes];
+        let notes = &self.cx.st.rule_notes;
+        let cands = cands_from.min(notes.ncands)..notes.ncands;
         // the text is read again only when the notes show a violation
-        if !self.notes_overflow && !super::rhs_types::may_fail(cands, Some(binds), &*self) {
+        if !notes.may_fail(src, cands, true, &*self) {
             debug_assert!(
                 super::rhs_types::check(src, from, to, &*self).is_none(),
                 "the notes missed a [RULECSTR3]"
