@@ -373,6 +373,60 @@ pub(crate) fn restriction_of(name: &str) -> Option<&'static str> {
         .map(|&(_, r)| r)
 }
 
+/// [`restriction_of`] by builtin id, read once at compile time.
+#[cfg(feature = "extras")]
+pub(crate) fn restriction_of_id(id: crate::value::Ix) -> Option<&'static str> {
+    let i = *RESTRICTION_BY_ID.get(id as usize)?;
+    RESTRICTIONS.get(i as usize).map(|&(_, r)| r)
+}
+
+/// The index in [`RESTRICTIONS`] of each builtin's restriction string (by id; `u8::MAX`
+/// for none).
+#[cfg(feature = "extras")]
+static RESTRICTION_BY_ID: [u8; super::COUNT] = {
+    const fn cmp(a: &str, b: &str) -> core::cmp::Ordering {
+        let (a, b) = (a.as_bytes(), b.as_bytes());
+        let mut i = 0;
+        while i < a.len() && i < b.len() {
+            if a[i] != b[i] {
+                return if a[i] < b[i] {
+                    core::cmp::Ordering::Less
+                } else {
+                    core::cmp::Ordering::Greater
+                };
+            }
+            i += 1;
+        }
+        if a.len() < b.len() {
+            core::cmp::Ordering::Less
+        } else if a.len() > b.len() {
+            core::cmp::Ordering::Greater
+        } else {
+            core::cmp::Ordering::Equal
+        }
+    }
+    let rows = super::flatten::<{ super::COUNT }>();
+    let mut out = [u8::MAX; super::COUNT];
+    let mut i = 0;
+    while i < super::COUNT {
+        // a binary search of the sorted table
+        let (mut lo, mut hi) = (0, RESTRICTIONS.len());
+        while lo < hi {
+            let mid = (lo + hi) / 2;
+            match cmp(RESTRICTIONS[mid].0, rows[i].name) {
+                core::cmp::Ordering::Less => lo = mid + 1,
+                core::cmp::Ordering::Greater => hi = mid,
+                core::cmp::Ordering::Equal => {
+                    out[i] = mid as u8;
+                    break;
+                }
+            }
+        }
+        i += 1;
+    }
+    out
+};
+
 /// CLIPS 6.30's restriction strings of the functions it shares with us (what its
 /// `get-function-restrictions` prints for each).
 const RESTRICTIONS: &[(&str, &str)] = &[
@@ -1199,5 +1253,10 @@ mod tests {
             assert_eq!(super::restriction_of(n), Some(r));
         }
         assert_eq!(super::restriction_of("no-such-function"), None);
+        assert!(t.len() < usize::from(u8::MAX));
+        for (id, b) in crate::builtins::BUILTINS.iter().enumerate() {
+            let id = id as crate::value::Ix;
+            assert_eq!(super::restriction_of_id(id), super::restriction_of(b.name));
+        }
     }
 }

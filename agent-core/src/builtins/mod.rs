@@ -300,7 +300,7 @@ pub(crate) const fn error_texts<const N: usize>(common: &[&'static str]) -> [&'s
     out
 }
 
-const fn flatten<const N: usize>() -> [Builtin; N] {
+pub(crate) const fn flatten<const N: usize>() -> [Builtin; N] {
     let mut out = [basic::FUNCS[0]; N];
     let (mut t, mut k) = (0, 0);
     while t < TABLES.len() {

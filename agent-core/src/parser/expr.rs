@@ -65,34 +65,20 @@ impl<'s> Parser<'s, '_, '_> {
             return Ok(c);
         }
         match t.tok {
-            Tok::SfVar(name) => {
-                let e = self.var_ref(t, name, false)?;
-                #[cfg(feature = "extras")]
-                {
-                    self.arg_var = Some((e, name, false));
-                }
-                Ok(e)
-            }
+            Tok::SfVar(name) => self.var_ref(t, name, false),
             Tok::MfVar(name) => {
                 // with sequence-operator recognition `$?x` expands (`aux` 1), as
                 // `(expand$ ?x)` does; else it is `?x`. `$?*g*` (the global's value)
                 // always expands in CLIPS 6.30.
-                let (v, expands, global) =
-                    match name.strip_prefix('*').and_then(|n| n.strip_suffix('*')) {
-                        Some(g) if !g.is_empty() => (self.global_read(t, g)?, true, true),
-                        _ => (self.var_ref(t, name, true)?, self.cx.st.mode.seq_ops, false),
-                    };
+                let (v, expands) = match name.strip_prefix('*').and_then(|n| n.strip_suffix('*')) {
+                    Some(g) if !g.is_empty() => (self.global_read(t, g)?, true),
+                    _ => (self.var_ref(t, name, true)?, self.cx.st.mode.seq_ops),
+                };
                 let e = self.cx.push_expr(Expr {
                     first: v,
                     ..Expr::new(Op::Expand, u8::from(expands), 0)
                 });
-                let e = cap!(self, e)?;
-                #[cfg(feature = "extras")]
-                if !global {
-                    self.arg_var = Some((e, name, true));
-                }
-                let _ = global;
-                Ok(e)
+                cap!(self, e)
             }
             Tok::Global(name) => self.global_read(t, name),
             Tok::LParen => self.call(),
@@ -351,43 +337,41 @@ impl<'s> Parser<'s, '_, '_> {
         }
     }
 
-    /// [`Parser::args_until_rparen`] of a builtin `func`'s call, noting each variable
-    /// passed straight to an argument that restricts it (`rhs_types::Cand`).
+    /// [`Parser::args_until_rparen`] of the call of builtin `func` (its id `id`), noting
+    /// each variable passed straight to an argument that restricts it
+    /// (`rhs_types::RuleNotes`).
     #[cfg(feature = "extras")]
-    fn builtin_args(&mut self, call: Ix, func: &'static str) -> PResult<Ix> {
+    fn builtin_args(&mut self, call: Ix, id: Ix, func: &'static str) -> PResult<Ix> {
         if func == "progn" {
             return self.args_until_rparen(call);
         }
         let mut n = 0;
         loop {
             let t = self.peek();
-            match t.tok {
+            let var = match t.tok {
                 Tok::RParen => {
                     self.next();
                     return Ok(n);
                 }
                 Tok::Eof | Tok::Bad => return Err(self.err(t, "')'")),
-                _ => {
-                    self.arg_var = None;
-                    let a = self.parse_expr()?;
-                    self.cx.append_child(call, a);
-                    n += 1;
-                    if let Some((e, name, mf)) = self.arg_var.take() {
-                        if e == a && !name.contains(':') {
-                            self.note_cand(func, n as usize, name, mf);
-                        }
-                    }
+                // (a global `$?*g*` is none, nor `?x:slot` of a query)
+                Tok::SfVar(v) if !v.contains(':') => Some((v, false)),
+                Tok::MfVar(v) if !(v.len() > 2 && v.starts_with('*') && v.ends_with('*')) => {
+                    Some((v, true))
+                }
+                _ => None,
+            };
+            let a = self.parse_expr()?;
+            self.cx.append_child(call, a);
+            n += 1;
+            if let Some((name, mf)) = var {
+                let seq_ops = self.cx.st.mode.seq_ops;
+                let letter = super::rhs_types::letter_of(id, n as usize, mf, seq_ops);
+                if letter != b'u' {
+                    let src = self.lex.source();
+                    self.cx.st.rule_notes.note_cand(src, name, letter);
                 }
             }
-        }
-    }
-
-    #[cfg(feature = "extras")]
-    fn note_cand(&mut self, func: &'static str, n: usize, name: &'s str, mf: bool) {
-        let letter = super::rhs_types::letter_of(func, n, mf, self.cx.st.mode.seq_ops);
-        if letter != b'u' {
-            let src = self.lex.source();
-            self.cx.st.rule_notes.note_cand(src, name, letter);
         }
     }
 
@@ -511,7 +495,7 @@ impl<'s> Parser<'s, '_, '_> {
                     })?
                 } else {
                     #[cfg(feature = "extras")]
-                    let n = self.builtin_args(call, b.name)?;
+                    let n = self.builtin_args(call, id, b.name)?;
                     #[cfg(not(feature = "extras"))]
                     let n = self.args_until_rparen(call)?;
                     n

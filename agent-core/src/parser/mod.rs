@@ -106,10 +106,6 @@ pub struct Parser<'s, 'c, 'e> {
     /// added before this count).
     #[cfg(feature = "extras")]
     pub lhs_limit: Option<(usize, u32)>,
-    /// The variable the last expression read was (its node, name, written `$?`), for
-    /// `rhs_types::RuleNotes`.
-    #[cfg(feature = "extras")]
-    pub arg_var: Option<(Ix, &'s str, bool)>,
     pub nvars: usize,
     pub nlocals: Ix,
     pub scope: Scope,
@@ -224,8 +220,6 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
             var_count: 0,
             #[cfg(feature = "extras")]
             lhs_limit: None,
-            #[cfg(feature = "extras")]
-            arg_var: None,
             nvars: 0,
             nlocals: 0,
             scope: Scope::TopLevel,

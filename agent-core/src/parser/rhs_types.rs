@@ -20,9 +20,10 @@
 //! The check reads the text again (the expression tree has lost the variables' names)
 //! with CLIPS's view of its structure, but only for a rule that can fail it: while the
 //! parser reads the rule it notes each variable passed straight to a builtin argument
-//! that restricts it ([`Cand`]) and the first value of each `bind` ([`BindNote`]);
-//! [`may_fail`] runs the constraint logic over those notes, and only when it finds a
-//! violation is the text read again (for the message's call, and CLIPS's order). The
+//! that restricts it and the first value of each `bind` ([`RuleNotes`]);
+//! [`RuleNotes::may_fail`] runs the constraint logic over those notes, and only when it
+//! finds a violation is the text read again (for the message's call, and CLIPS's
+//! order). The
 //! notes give each variable at most the record the text gives it (a call whose
 //! arguments expand counts as its builtin's return type), so a rule they pass passes.
 
@@ -503,13 +504,13 @@ pub fn bind_value<'s>(
     })
 }
 
-/// The restriction letter of argument `n` (1-based) of builtin `func` for a variable
-/// passed there (`mf`: written `$?x`), `u` when it is not checked.
-pub fn letter_of(func: &str, n: usize, mf: bool, seq_ops: bool) -> u8 {
+/// The restriction letter of argument `n` (1-based) of the builtin of id `func` for a
+/// variable passed there (`mf`: written `$?x`), `u` when it is not checked.
+pub fn letter_of(func: crate::value::Ix, n: usize, mf: bool, seq_ops: bool) -> u8 {
     if mf && seq_ops {
         return b'm';
     }
-    nth_restriction(crate::builtins::environment::restriction_of(func), n)
+    nth_restriction(crate::builtins::environment::restriction_of_id(func), n)
 }
 
 const MAX_BINDS: usize = 64;
