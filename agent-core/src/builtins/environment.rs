@@ -349,7 +349,10 @@ fn get_function_restrictions(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalEr
         super::commands::unable(cx, super::commands::Unable::Find, "function", name);
         return Err(EvalError::already_reported());
     };
-    if let Some(&(_, r)) = RESTRICTIONS.iter().find(|(n, _)| *n == text.as_str()) {
+    if let Some(&(_, r)) = RESTRICTIONS_AT_RUN
+        .iter()
+        .find(|(n, _)| *n == text.as_str())
+    {
         return Ok(cx.make_string(r)?);
     }
     let mut r: TextBuf<8> = TextBuf::new();
@@ -366,10 +369,10 @@ fn get_function_restrictions(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalEr
 /// or gives none).
 pub(crate) fn restriction_of(name: &str) -> Option<&'static str> {
     // (the table is sorted by name: a test below holds it so)
-    RESTRICTIONS
+    RESTRICTIONS_AT_RUN
         .binary_search_by(|&(n, _)| n.cmp(name))
         .ok()
-        .and_then(|i| RESTRICTIONS.get(i))
+        .and_then(|i| RESTRICTIONS_AT_RUN.get(i))
         .map(|&(_, r)| r)
 }
 
@@ -377,7 +380,7 @@ pub(crate) fn restriction_of(name: &str) -> Option<&'static str> {
 #[cfg(feature = "extras")]
 pub(crate) fn restriction_of_id(id: crate::value::Ix) -> Option<&'static str> {
     let i = *RESTRICTION_BY_ID.get(id as usize)?;
-    RESTRICTIONS.get(i as usize).map(|&(_, r)| r)
+    RESTRICTIONS_AT_RUN.get(i as usize).map(|&(_, r)| r)
 }
 
 /// The index in [`RESTRICTIONS`] of each builtin's restriction string (by id; `u8::MAX`
@@ -429,6 +432,10 @@ static RESTRICTION_BY_ID: [u8; super::COUNT] = {
 
 /// CLIPS 6.30's restriction strings of the functions it shares with us (what its
 /// `get-function-restrictions` prints for each).
+/// [`RESTRICTIONS`] as the code reads it: one copy of the table (each use of a `const`
+/// may have its own, each pointer in it a relocation when the program starts).
+static RESTRICTIONS_AT_RUN: &[(&str, &str)] = RESTRICTIONS;
+
 const RESTRICTIONS: &[(&str, &str)] = &[
     ("!=", "2*n"),
     ("*", "2*n"),
