@@ -50,6 +50,9 @@ pub const FUNCS: &[Builtin] = &[
 pub const ID_EXPAND: Ix = super::builtin_id("expand$");
 #[cfg(feature = "extras")]
 pub const ID_EXPANSION_CALL: Ix = super::builtin_id("(expansion-call)");
+/// Id of `progn` (its arguments are actions, not checked by `parser::rhs_types`).
+#[cfg(feature = "extras")]
+pub const ID_PROGN: Ix = super::builtin_id("progn");
 #[cfg(not(feature = "extras"))]
 pub const FUNCS: &[Builtin] = &[];
 pub const TABLE: super::Table = super::Table::new(FUNCS);

@@ -337,12 +337,12 @@ impl<'s> Parser<'s, '_, '_> {
         }
     }
 
-    /// [`Parser::args_until_rparen`] of the call of builtin `func` (its id `id`), noting
+    /// [`Parser::args_until_rparen`] of the call of the builtin of id `id`, noting
     /// each variable passed straight to an argument that restricts it
     /// (`rhs_types::RuleNotes`).
     #[cfg(feature = "extras")]
-    fn builtin_args(&mut self, call: Ix, id: Ix, func: &'static str) -> PResult<Ix> {
-        if func == "progn" {
+    fn builtin_args(&mut self, call: Ix, id: Ix) -> PResult<Ix> {
+        if id == crate::builtins::environment::ID_PROGN {
             return self.args_until_rparen(call);
         }
         let mut n = 0;
@@ -495,7 +495,7 @@ impl<'s> Parser<'s, '_, '_> {
                     })?
                 } else {
                     #[cfg(feature = "extras")]
-                    let n = self.builtin_args(call, id, b.name)?;
+                    let n = self.builtin_args(call, id)?;
                     #[cfg(not(feature = "extras"))]
                     let n = self.args_until_rparen(call)?;
                     n

@@ -457,6 +457,9 @@ impl RuleNotes {
         if self.overflow || self.src != (src.as_ptr() as usize, src.len()) {
             return true;
         }
+        if cands.is_empty() {
+            return false;
+        }
         let Some(cands) = self.cands.get(cands) else {
             return true;
         };
