@@ -81,10 +81,12 @@ impl Value {
         matches!(self, Value::Multi(_))
     }
 
-    /// CLIPS's `eq`: same type and same value (1 and 1.0 differ).
+    /// CLIPS's `eq`: same type and same value (1 and 1.0 differ). Floats are the
+    /// same when CLIPS's float table would give one entry: equal and of the same
+    /// bits, so 0.0 and -0.0 differ (a NaN is never the same).
     pub fn same(self, other: Value) -> bool {
         match (self, other) {
-            (Value::Float(a), Value::Float(b)) => a == b,
+            (Value::Float(a), Value::Float(b)) => a == b && a.to_bits() == b.to_bits(),
             _ => self == other,
         }
     }

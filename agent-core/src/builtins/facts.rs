@@ -61,7 +61,6 @@ impl Core<'_> {
                 let a = self.const_value(c);
                 let eq = match (a, v) {
                     (Value::Int(x), Value::Int(y)) => x == y,
-                    (Value::Float(x), Value::Float(y)) => x == y,
                     _ => self.type_bit(a) == self.type_bit(v) && a.same(v),
                 };
                 if eq {
