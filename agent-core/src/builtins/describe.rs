@@ -175,6 +175,9 @@ pub enum OnError {
     /// recorded by the builtin itself, `Core::set_error_fallback`), or nothing observed.
     Nothing,
     False,
+    /// `TRUE` (`check-syntax`; host only).
+    #[cfg(feature = "extras")]
+    True,
     Nil,
     Zero,
     One,
@@ -192,6 +195,8 @@ impl OnError {
         Some(match self {
             OnError::Nothing => return None,
             OnError::False => Fallback::Sym("FALSE"),
+            #[cfg(feature = "extras")]
+            OnError::True => Fallback::Sym("TRUE"),
             OnError::Nil => Fallback::Sym("nil"),
             OnError::Zero => Fallback::Int(0),
             OnError::One => Fallback::Int(1),

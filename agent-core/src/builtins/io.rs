@@ -506,7 +506,7 @@ fn batch_byte(cx: &mut Core<'_>) -> Result<Option<u8>, EvalError> {
     Ok(Some(b[0]))
 }
 
-/// `(put-char [name] code)`: writes the character with that code.
+/// `(put-char [name] code)`: writes the character of the code's low byte.
 fn put_char(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let code_at = a.len as usize - 1;
     // (a float is cut to an integer, as C's cast in CLIPS)
@@ -530,10 +530,10 @@ fn put_char(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     } else {
         super::commands::Routed::Engine(router::STDOUT)
     };
-    let Some(ch) = u32::try_from(code).ok().and_then(char::from_u32) else {
-        report_input(cx, "put-char", "the code is no character");
-        return Err(EvalError::already_reported());
-    };
+    // CLIPS's `putc` writes the code's low byte, whatever the code (-3 is 0xFD, 321
+    // is `A`); a byte from 0x80 up goes out as its Latin-1 character (hosts take
+    // text), as `format`'s `%c`
+    let ch = char::from(code as u8);
     let mut b = [0u8; 4];
     cx.write(routed.name(), ch.encode_utf8(&mut b));
     Ok(Value::Void)

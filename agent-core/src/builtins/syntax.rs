@@ -14,8 +14,10 @@ use crate::value::{TextBuf, Value};
 #[cfg(all(feature = "extras", feature = "parser"))]
 #[rustfmt::skip]
 pub const FUNCS: &[Builtin] = &[
+    // (a computed argument of the wrong type: CLIPS's error, then TRUE)
     Builtin::eager("check-syntax", 1, 1, check_syntax)
-        .args(&[super::describe::ArgType::Str], super::describe::ArgType::Any),
+        .args(&[super::describe::ArgType::Str], super::describe::ArgType::Any)
+        .on_error(super::describe::OnError::True),
 ];
 #[cfg(not(all(feature = "extras", feature = "parser")))]
 pub const FUNCS: &[Builtin] = &[];

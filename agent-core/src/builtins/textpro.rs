@@ -651,8 +651,10 @@ fn print_region(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 
 /// `(get-region <file> <topic>*)`: the entry's lines as one string ("" when none).
 fn get_region(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    // a computed file name of another type: "" and no message, as CLIPS (a literal
+    // one is refused as the call is read)
     if !matches!(cx.arg(a, 0), Value::Sym(_) | Value::Str(_)) {
-        return Err(EvalError::wrong_type("get-region", 1, "symbol or string"));
+        return Ok(cx.make_string("")?);
     }
     let mut tree = Tree::new();
     let mut text: TextBuf<MOST_REGION> = TextBuf::new();
