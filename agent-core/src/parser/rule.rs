@@ -1962,11 +1962,17 @@ impl<'s> Parser<'s, '_, '_> {
                 return Ok((multi, None));
             }
             self.next();
+            #[cfg(feature = "extras")]
+            let from = self.offset();
             let e = self.or_constraint(p, locv, desc, &mut multi)?;
             self.add_complexity(e);
             #[cfg(feature = "extras")]
             if let Tok::SfVar(name) = t.tok {
                 self.narrow_by_literals(name, e);
+                if self.cx.exprs[e as usize].op != Op::Or {
+                    let to = self.offset();
+                    self.narrow_through_vars(t, name, from, to)?;
+                }
             }
             return Ok((multi, Some(e)));
         }
@@ -2014,6 +2020,13 @@ impl<'s> Parser<'s, '_, '_> {
             }
         }
         self.var_cstr[i] = c;
+        self.check_var_cstr(t, i, def.name)
+    }
+
+    /// `[RULECSTR1]` when what LHS variable `i` (at token `t`, in slot `slot`) can
+    /// hold is nothing: no type left, or only numbers and an empty range.
+    fn check_var_cstr(&self, t: Token<'s>, i: usize, slot: Ix) -> PResult<()> {
+        let c = self.var_cstr[i];
         let numbers_only = c.types & !crate::template::types::NUMBER == 0;
         let empty_range = c.lo != NONE
             && c.hi != NONE
@@ -2025,9 +2038,73 @@ impl<'s> Parser<'s, '_, '_> {
             let mut e = self.err(t, "a variable whose slots can hold a common value");
             e.detail = crate::error::LoadDetail::VariableConflict {
                 ce: self.ce_count,
-                slot: def.name,
+                slot,
             };
             return Err(e);
+        }
+        Ok(())
+    }
+
+    /// `?x&?y` in a slot: CLIPS's record of `?x` takes in that of each variable the
+    /// constraint (text `from..to`, no `|`) equates it with, as `&` terms of their own
+    /// (not under `~`, not in calls): `[RULECSTR1]` for `?x` when nothing is left.
+    #[cfg(feature = "extras")]
+    fn narrow_through_vars(
+        &mut self,
+        t: Token<'s>,
+        name: &str,
+        from: usize,
+        to: usize,
+    ) -> PResult<()> {
+        // (in an ordered fact's field `?x` takes `?y`'s record, no conflict yet)
+        let slot = self.lhs_slot.map(|d| d.name);
+        let Some(i) = self.vars[..self.nvars].iter().rposition(|v| v.name == name) else {
+            return Ok(());
+        };
+        let Some(text) = self.lex.source().get(from..to) else {
+            return Ok(());
+        };
+        let mut lx = Lexer::new(text);
+        let mut depth = 0u32;
+        let mut negated = false;
+        loop {
+            let tok = lx.next_token().tok;
+            match tok {
+                Tok::Eof | Tok::Bad => break,
+                Tok::LParen => depth += 1,
+                Tok::RParen => depth = depth.saturating_sub(1),
+                Tok::Bar if depth == 0 => return Ok(()),
+                Tok::SfVar(other) if depth == 0 && !negated => {
+                    let j = self.vars[..self.nvars]
+                        .iter()
+                        .rposition(|v| v.name == other);
+                    if let Some(j) = j.filter(|&j| j != i && !self.vars[j].multi) {
+                        let o = self.var_cstr[j];
+                        let mut c = self.var_cstr[i];
+                        c.types &= o.types;
+                        let num =
+                            |cx: &crate::engine::Core<'_>, e: Ix| cx.const_value(e).as_number();
+                        if o.lo != NONE
+                            && (c.lo == NONE
+                                || matches!((num(self.cx, o.lo), num(self.cx, c.lo)), (Some(a), Some(b)) if a > b))
+                        {
+                            c.lo = o.lo;
+                        }
+                        if o.hi != NONE
+                            && (c.hi == NONE
+                                || matches!((num(self.cx, o.hi), num(self.cx, c.hi)), (Some(a), Some(b)) if a < b))
+                        {
+                            c.hi = o.hi;
+                        }
+                        self.var_cstr[i] = c;
+                        if let Some(slot) = slot {
+                            self.check_var_cstr(t, i, slot)?;
+                        }
+                    }
+                }
+                _ => {}
+            }
+            negated = depth == 0 && tok == Tok::Tilde;
         }
         Ok(())
     }
