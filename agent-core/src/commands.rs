@@ -1626,6 +1626,11 @@ impl Core<'_> {
                 b,
                 "[DFFNXPSR2] Deffunctions are not allowed to replace external functions."
             );
+        } else if cfg!(feature = "extras") && is_mixed_constraint(e) {
+            let _ = writeln!(
+                b,
+                "\n[PATTERN2] Single and multifield constraints cannot be mixed in a field constraint"
+            );
         } else if e.detail == LoadDetail::MixedVariable {
             let name = tok.trim_start_matches('$').trim_start_matches('?');
             let _ = writeln!(
@@ -1950,28 +1955,29 @@ impl Core<'_> {
             let _ = b.write_char('\n');
         } else if e.echo_end != 0
             && e.construct == "defrule"
-            && matches!(
-                e.detail,
-                LoadDetail::Syntax
-                    | LoadDetail::SyntaxOf { .. }
-                    | LoadDetail::Text { .. }
-                    | LoadDetail::SingleSlot { .. }
-                    | LoadDetail::MissingFunction
-                    | LoadDetail::NotInContext { .. }
-                    | LoadDetail::SequenceOperator { .. }
-                    | LoadDetail::Arity { .. }
-                    | LoadDetail::FunctionArity { .. }
-                    | LoadDetail::ArgType { .. }
-                    | LoadDetail::FactIndexInRule { .. }
-                    | LoadDetail::SlotTwice
-                    | LoadDetail::ModuleSpecifier
-                    | LoadDetail::UnknownSlot { .. }
-                    | LoadDetail::RelationKeyword
-                    | LoadDetail::NoSuchTemplate
-                    | LoadDetail::Query { .. }
-                    | LoadDetail::ImpliedConflict
-                    | LoadDetail::DefaultEvaluation
-            )
+            && (is_mixed_constraint(e)
+                || matches!(
+                    e.detail,
+                    LoadDetail::Syntax
+                        | LoadDetail::SyntaxOf { .. }
+                        | LoadDetail::Text { .. }
+                        | LoadDetail::SingleSlot { .. }
+                        | LoadDetail::MissingFunction
+                        | LoadDetail::NotInContext { .. }
+                        | LoadDetail::SequenceOperator { .. }
+                        | LoadDetail::Arity { .. }
+                        | LoadDetail::FunctionArity { .. }
+                        | LoadDetail::ArgType { .. }
+                        | LoadDetail::FactIndexInRule { .. }
+                        | LoadDetail::SlotTwice
+                        | LoadDetail::ModuleSpecifier
+                        | LoadDetail::UnknownSlot { .. }
+                        | LoadDetail::RelationKeyword
+                        | LoadDetail::NoSuchTemplate
+                        | LoadDetail::Query { .. }
+                        | LoadDetail::ImpliedConflict
+                        | LoadDetail::DefaultEvaluation
+                ))
         {
             // a rule CLIPS stopped reading, in its conditions or its actions
             let _ = b.write_str("\nERROR:\n");
@@ -2895,4 +2901,15 @@ fn write_rhs_argument_type(
     }
     let _ = (cx, b, text, tok, e);
     false
+}
+
+/// `[PATTERN2]` (`LoadDetail::MixedConstraint`, host only).
+fn is_mixed_constraint(e: &LoadError) -> bool {
+    #[cfg(feature = "extras")]
+    return e.detail == LoadDetail::MixedConstraint;
+    #[cfg(not(feature = "extras"))]
+    {
+        let _ = e;
+        false
+    }
 }

@@ -749,6 +749,10 @@ pub enum LoadDetail {
     ParameterAfterWildcard,
     /// `[ANALYSIS3]`: one LHS variable used both as `?x` and `$?x` (the offending token).
     MixedVariable,
+    /// `[PATTERN2]`: a field constraint mixing a `=(...)` of a multifield function
+    /// with a variable or literal (host only: the image does not check).
+    #[cfg(feature = "extras")]
+    MixedConstraint,
     /// `[ANALYSIS1]` (`earlier_field` false) or `[ANALYSIS2]`: a fact-address variable
     /// (the offending token) bound in CE #`ce` that an earlier CE bound already, to a
     /// fact or to a field.

@@ -1967,6 +1967,8 @@ impl<'s> Parser<'s, '_, '_> {
             let e = self.or_constraint(p, locv, desc, &mut multi)?;
             self.add_complexity(e);
             #[cfg(feature = "extras")]
+            self.check_mixed_constraint(e, !multi)?;
+            #[cfg(feature = "extras")]
             if let Tok::SfVar(name) = t.tok {
                 self.narrow_by_literals(name, e);
                 if self.cx.exprs[e as usize].op != Op::Or {
@@ -1978,6 +1980,8 @@ impl<'s> Parser<'s, '_, '_> {
         }
         let e = self.or_constraint(p, locv, desc, &mut multi)?;
         self.add_complexity(e);
+        #[cfg(feature = "extras")]
+        self.check_mixed_constraint(e, false)?;
         // a bound variable leading the constraint (not one of `|` alternatives) must
         // fit this slot too
         if let Tok::SfVar(name) = t.tok {
@@ -2343,7 +2347,63 @@ impl super::rhs_types::Names for Parser<'_, '_, '_> {
 }
 
 #[cfg(feature = "extras")]
-impl Parser<'_, '_, '_> {
+impl<'s> Parser<'s, '_, '_> {
+    /// CLIPS's `[PATTERN2]`: field constraint `e` (after a leading single-field
+    /// variable when `single`) both compares the field with a `=(...)` call of a
+    /// function returning a multifield and with a variable or literal (`?x&=(create$
+    /// a)`, `abc|=(create$ a)`); predicates `:(...)` count as neither. Reported at
+    /// the token after the constraint, which CLIPS shows.
+    fn check_mixed_constraint(&mut self, e: Ix, single: bool) -> PResult<()> {
+        let (s, m) = self.constraint_kinds(e);
+        if m && (s || single) {
+            let at = self.peek();
+            let mut err = self.err(at, "no mix of single and multifield constraints");
+            err.detail = crate::error::LoadDetail::MixedConstraint;
+            err.echo_end = at.end as u32;
+            return Err(err);
+        }
+        Ok(())
+    }
+
+    /// (compares with a variable or literal, with a multifield `=(...)`) in `e`.
+    fn constraint_kinds(&self, e: Ix) -> (bool, bool) {
+        use crate::builtins::describe::Returns;
+        let x = self.cx.exprs[e as usize];
+        match x.op {
+            Op::Or | Op::And | Op::Not => {
+                let (mut s, mut m) = (false, false);
+                let mut c = x.first;
+                while c != NONE {
+                    let (a, b) = self.constraint_kinds(c);
+                    s |= a;
+                    m |= b;
+                    c = self.cx.exprs[c as usize].next;
+                }
+                (s, m)
+            }
+            Op::Eq2 => {
+                let v = if x.first == NONE {
+                    NONE
+                } else {
+                    self.cx.exprs[x.first as usize].next
+                };
+                if v == NONE {
+                    return (false, false);
+                }
+                let y = self.cx.exprs[v as usize];
+                match y.op {
+                    Op::Call => {
+                        let multi = y.aux == crate::expr::FnKind::Builtin as u8
+                            && crate::builtins::get(y.data).returns == Returns::Multifield;
+                        (false, multi)
+                    }
+                    _ => (true, false),
+                }
+            }
+            _ => (false, false),
+        }
+    }
+
     /// Narrows what single-field LHS variable `name` can hold by the literals and
     /// `=(...)` calls of constraint `e` of a field it leads (`?x&abc|1`): CLIPS's
     /// record of the variable, which its `[RULECSTR3]` check reads.
