@@ -1626,6 +1626,7 @@ impl Core<'_> {
                 b,
                 "[DFFNXPSR2] Deffunctions are not allowed to replace external functions."
             );
+        } else if write_literal_conflict(self, &mut *b, tok, e) {
         } else if cfg!(feature = "extras") && is_mixed_constraint(e) {
             let _ = writeln!(
                 b,
@@ -1893,7 +1894,8 @@ impl Core<'_> {
                 | LoadDetail::VariableConflict { .. }
                 | LoadDetail::AddressBound { .. }
                 | LoadDetail::MixedVariable
-        ) || is_rhs_argument_type(e))
+        ) || is_rhs_argument_type(e)
+            || is_literal_conflict(e))
             && e.construct == "defrule"
         {
             let _ = b.write_str("\nERROR:\n");
@@ -2907,6 +2909,47 @@ fn write_rhs_argument_type(
 fn is_mixed_constraint(e: &LoadError) -> bool {
     #[cfg(feature = "extras")]
     return e.detail == LoadDetail::MixedConstraint;
+    #[cfg(not(feature = "extras"))]
+    {
+        let _ = e;
+        false
+    }
+}
+
+/// `[RULECSTR1]` of a field's conflicting literals (`LoadDetail::LiteralConflict`,
+/// host only): whether it was one.
+fn write_literal_conflict(cx: &Core<'_>, b: &mut dyn Write, tok: &str, e: &LoadError) -> bool {
+    #[cfg(feature = "extras")]
+    if let LoadDetail::LiteralConflict {
+        ce,
+        slot,
+        field,
+        var,
+    } = e.detail
+    {
+        let _ = if var {
+            write!(b, "\n[RULECSTR1] Variable {tok} in CE #{ce} ")
+        } else {
+            write!(b, "\n[RULECSTR1] Pattern #{ce} ")
+        };
+        let _ = if slot == NONE {
+            writeln!(b, "field #{field}")
+        } else {
+            writeln!(b, "slot {}", cx.sym_text(slot))
+        };
+        let _ = writeln!(
+            b,
+            "has constraint conflicts which make the pattern unmatchable."
+        );
+        return true;
+    }
+    let _ = (cx, b, tok, e);
+    false
+}
+
+fn is_literal_conflict(e: &LoadError) -> bool {
+    #[cfg(feature = "extras")]
+    return matches!(e.detail, LoadDetail::LiteralConflict { .. });
     #[cfg(not(feature = "extras"))]
     {
         let _ = e;

@@ -753,6 +753,17 @@ pub enum LoadDetail {
     /// with a variable or literal (host only: the image does not check).
     #[cfg(feature = "extras")]
     MixedConstraint,
+    /// `[RULECSTR1]` of one field constraint whose literals conflict (`abc&~abc`,
+    /// `abc&def`): in CE `ce`, slot `slot` (NONE: field `field` of an ordered
+    /// pattern), on the leading variable when `var` (the offending token), else on the
+    /// pattern (host only).
+    #[cfg(feature = "extras")]
+    LiteralConflict {
+        ce: u8,
+        slot: Ix,
+        field: u8,
+        var: bool,
+    },
     /// `[ANALYSIS1]` (`earlier_field` false) or `[ANALYSIS2]`: a fact-address variable
     /// (the offending token) bound in CE #`ce` that an earlier CE bound already, to a
     /// fact or to a field.

@@ -1969,6 +1969,8 @@ impl<'s> Parser<'s, '_, '_> {
             #[cfg(feature = "extras")]
             self.check_mixed_constraint(e, !multi)?;
             #[cfg(feature = "extras")]
+            self.check_literal_conflict(t, e, matches!(t.tok, Tok::SfVar(_)))?;
+            #[cfg(feature = "extras")]
             if let Tok::SfVar(name) = t.tok {
                 self.narrow_by_literals(name, e);
                 if self.cx.exprs[e as usize].op != Op::Or {
@@ -1982,6 +1984,8 @@ impl<'s> Parser<'s, '_, '_> {
         self.add_complexity(e);
         #[cfg(feature = "extras")]
         self.check_mixed_constraint(e, false)?;
+        #[cfg(feature = "extras")]
+        self.check_literal_conflict(t, e, false)?;
         // a bound variable leading the constraint (not one of `|` alternatives) must
         // fit this slot too
         if let Tok::SfVar(name) = t.tok {
@@ -2363,6 +2367,65 @@ impl<'s> Parser<'s, '_, '_> {
             return Err(err);
         }
         Ok(())
+    }
+
+    /// CLIPS's `[RULECSTR1]` for one field constraint `e` without `|` whose `&` terms
+    /// compare the field with two different literals (`abc&def`, `1&1.0`) or with a
+    /// literal and its negation (`abc&~abc`): on the leading variable `t` when `var`,
+    /// else on the pattern.
+    fn check_literal_conflict(&mut self, t: Token<'s>, e: Ix, var: bool) -> PResult<()> {
+        let x = self.cx.exprs[e as usize];
+        if x.op != Op::And {
+            return Ok(());
+        }
+        // the literal a term compares with, and whether it is negated
+        let literal = |p: &Self, c: Ix| -> Option<(Value, bool)> {
+            let mut y = p.cx.exprs[c as usize];
+            let negated = y.op == Op::Not;
+            if negated {
+                y = p.cx.exprs[y.first as usize];
+            }
+            if y.op != Op::Eq2 || y.first == NONE {
+                return None;
+            }
+            let v = p.cx.exprs[y.first as usize].next;
+            if v == NONE {
+                return None;
+            }
+            match p.cx.exprs[v as usize].op {
+                Op::Int | Op::Float | Op::Sym | Op::Str => Some((p.cx.const_value(v), negated)),
+                _ => None,
+            }
+        };
+        let mut conflict = false;
+        let mut a = x.first;
+        while a != NONE && !conflict {
+            if let Some((va, na)) = literal(self, a) {
+                let mut b = self.cx.exprs[a as usize].next;
+                while b != NONE {
+                    if let Some((vb, nb)) = literal(self, b) {
+                        let same = va.same(vb);
+                        if (!na && !nb && !same) || (na != nb && same) {
+                            conflict = true;
+                            break;
+                        }
+                    }
+                    b = self.cx.exprs[b as usize].next;
+                }
+            }
+            a = self.cx.exprs[a as usize].next;
+        }
+        if !conflict {
+            return Ok(());
+        }
+        let mut err = self.err(t, "a field constraint its literals can meet");
+        err.detail = crate::error::LoadDetail::LiteralConflict {
+            ce: self.ce_count,
+            slot: self.lhs_slot.map_or(NONE, |d| d.name),
+            field: self.lhs_field,
+            var,
+        };
+        Err(err)
     }
 
     /// (compares with a variable or literal, with a multifield `=(...)`) in `e`.
