@@ -102,6 +102,9 @@ pub struct Parser<'s, 'c, 'e> {
     /// it in slots its own ones had).
     #[cfg(feature = "extras")]
     pub var_count: u32,
+    /// `not`, `exists` and `forall` CEs around the one being read.
+    #[cfg(feature = "extras")]
+    pub quant_depth: u8,
     /// While a `[RULECSTR2]` check runs: the variables it sees (`vars` below this index,
     /// added before this count).
     #[cfg(feature = "extras")]
@@ -218,6 +221,8 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
             var_cstr: [VarCstr::ANY; MAX_VARS],
             #[cfg(feature = "extras")]
             var_count: 0,
+            #[cfg(feature = "extras")]
+            quant_depth: 0,
             #[cfg(feature = "extras")]
             lhs_limit: None,
             nvars: 0,
@@ -551,6 +556,7 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
         {
             self.cx.st.rule_notes.var_lit[self.nvars] = 0xFF;
             self.cx.st.rule_notes.var_serial[self.nvars] = self.var_count;
+            self.cx.st.rule_notes.var_test[self.nvars] = 0xFF;
             self.var_count = self.var_count.wrapping_add(1);
         }
         self.nvars += 1;

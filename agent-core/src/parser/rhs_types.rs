@@ -113,6 +113,35 @@ impl Rec {
         Rec::of(r)
     }
 
+    /// The `template::types` bits of a record of single values (0xFF: any, or
+    /// nothing a slot could hold).
+    fn template_types(self) -> u8 {
+        use crate::template::types as t;
+        if self.any || !self.single {
+            return 0xFF;
+        }
+        let pairs = [
+            (SYM, t::SYMBOL),
+            (STR, t::STRING),
+            (INT, t::INTEGER),
+            (FLT, t::FLOAT),
+            (FADDR, t::FACT_ADDRESS),
+            (INAME, t::INSTANCE_NAME),
+            (IADDR, t::INSTANCE_ADDRESS),
+        ];
+        let mut r = 0;
+        for (from, to) in pairs {
+            if self.types & from != 0 {
+                r |= to;
+            }
+        }
+        if r == 0 {
+            0xFF
+        } else {
+            r
+        }
+    }
+
     /// CLIPS's `ArgumentTypeToConstraintRecord` of restriction letter `c`.
     fn of_argument(c: u8) -> Rec {
         let types = match c {
@@ -377,6 +406,12 @@ pub struct RuleNotes {
     pub var_lit: [u8; super::MAX_VARS],
     /// When each LHS variable was added (a count of `add_var`s).
     pub var_serial: [u32; super::MAX_VARS],
+    /// The types (`template::types` bits) the builtins' arguments each LHS variable is
+    /// passed to in test CEs and `:`/`=` constraints (outside `not`, `exists`,
+    /// `forall`) leave it: CLIPS's `[RULECSTR1]` of a later slot reads them.
+    pub var_test: [u8; super::MAX_VARS],
+    /// The candidates noted before the last LHS check (those after it are its own).
+    pub checked_cands: usize,
 }
 
 impl Default for RuleNotes {
@@ -404,6 +439,8 @@ impl RuleNotes {
             src: (0, 0),
             var_lit: [0xFF; super::MAX_VARS],
             var_serial: [0; super::MAX_VARS],
+            var_test: [0xFF; super::MAX_VARS],
+            checked_cands: 0,
         }
     }
 
@@ -413,7 +450,37 @@ impl RuleNotes {
         self.ncands = 0;
         self.nbinds = 0;
         self.overflow = false;
+        self.checked_cands = 0;
         self.src = (src.as_ptr() as usize, src.len());
+    }
+
+    /// Calls `f` with the name (of `src`) and the types (`template::types` bits, 0xFF
+    /// for any) its argument allows of each candidate noted from `from` on; false when
+    /// a note did not fit (the text is walked then).
+    pub fn cand_types<'a>(
+        &self,
+        src: &'a str,
+        from: usize,
+        mut f: impl FnMut(&'a str, u8),
+    ) -> bool {
+        if self.overflow || self.src != (src.as_ptr() as usize, src.len()) {
+            return false;
+        }
+        let Some(cands) = self.cands.get(from.min(self.ncands)..self.ncands) else {
+            return false;
+        };
+        for c in cands {
+            f(
+                c.name.text(src),
+                Rec::of_argument(c.letter).template_types(),
+            );
+        }
+        true
+    }
+
+    /// Whether a note did not fit.
+    pub fn overflow(&self) -> bool {
+        self.overflow
     }
 
     /// Forgets the `bind`s noted so far (the actions start).
@@ -985,6 +1052,57 @@ pub fn check<N: Names>(src: &str, from: usize, to: usize, names: &N) -> Option<F
             ..f
         }),
         _ => None,
+    }
+}
+
+/// Calls `f` with each single-field variable (not a global) passed straight to a
+/// builtin in the expression `src[from..to]`, at any depth, and the types
+/// (`template::types` bits, 0xFF for any) that argument's restriction letter allows.
+pub fn argument_types<'a>(src: &'a str, from: usize, to: usize, mut f: impl FnMut(&'a str, u8)) {
+    const DEPTH: usize = 32;
+    let Some(text) = src.get(from..to) else {
+        return;
+    };
+    let mut lx = Lexer::new(text);
+    // per open call: its restriction string and the arguments seen
+    let mut calls: [(Option<&'static str>, usize); DEPTH] = [(None, 0); DEPTH];
+    let mut depth = 0usize;
+    let mut after_open = false;
+    loop {
+        let t = lx.next_token();
+        match t.tok {
+            Tok::Eof | Tok::Bad => return,
+            Tok::LParen => {
+                if depth > 0 && depth <= DEPTH {
+                    calls[depth - 1].1 += 1;
+                }
+                depth += 1;
+                if depth <= DEPTH {
+                    calls[depth - 1] = (None, 0);
+                }
+                after_open = true;
+                continue;
+            }
+            Tok::RParen => depth = depth.saturating_sub(1),
+            Tok::Symbol(head) if after_open => {
+                if depth > 0 && depth <= DEPTH {
+                    calls[depth - 1].0 = crate::builtins::environment::restriction_of(head);
+                }
+            }
+            _ if depth == 0 || depth > DEPTH => {}
+            Tok::SfVar(v) if !is_global(v) => {
+                let c = &mut calls[depth - 1];
+                c.1 += 1;
+                if c.0.is_some() {
+                    f(
+                        v,
+                        Rec::of_argument(nth_restriction(c.0, c.1)).template_types(),
+                    );
+                }
+            }
+            _ => calls[depth - 1].1 += 1,
+        }
+        after_open = false;
     }
 }
 

@@ -786,7 +786,15 @@ impl<'s> Parser<'s, '_, '_> {
                         self.next();
                         // variables bound inside are not seen after it
                         let saved = self.nvars;
+                        #[cfg(feature = "extras")]
+                        {
+                            self.quant_depth = self.quant_depth.saturating_add(1);
+                        }
                         let r = self.quantified(b, Quant::of(kw), h);
+                        #[cfg(feature = "extras")]
+                        {
+                            self.quant_depth = self.quant_depth.saturating_sub(1);
+                        }
                         self.nvars = saved;
                         r?;
                         if kw == "not" && self.peek().tok == Tok::LParen {
@@ -2034,7 +2042,12 @@ impl<'s> Parser<'s, '_, '_> {
     /// `[RULECSTR1]` when what LHS variable `i` (at token `t`, in slot `slot`) can
     /// hold is nothing: no type left, or only numbers and an empty range.
     fn check_var_cstr(&self, t: Token<'s>, i: usize, slot: Ix) -> PResult<()> {
-        let c = self.var_cstr[i];
+        #[allow(unused_mut)]
+        let mut c = self.var_cstr[i];
+        #[cfg(feature = "extras")]
+        {
+            c.types &= self.cx.st.rule_notes.var_test[i];
+        }
         let numbers_only = c.types & !crate::template::types::NUMBER == 0;
         let empty_range = c.lo != NONE
             && c.hi != NONE
@@ -2105,6 +2118,7 @@ impl<'s> Parser<'s, '_, '_> {
                             c.hi = o.hi;
                         }
                         self.var_cstr[i] = c;
+                        self.cx.st.rule_notes.var_test[i] &= self.cx.st.rule_notes.var_test[j];
                         if let Some(slot) = slot {
                             self.check_var_cstr(t, i, slot)?;
                         }
@@ -2544,12 +2558,16 @@ impl Parser<'_, '_, '_> {
     /// `[RULECSTR2]` check (`slot`: the template slot's name, else `field` of an
     /// ordered pattern, 0 in a test CE).
     fn note_lhs_check(&mut self, from: usize, slot: Ix, field: u8) {
-        let end = self.consumed_end() as u32;
+        let end = self.consumed_end();
+        if self.quant_depth == 0 {
+            self.narrow_by_arguments(from, end);
+        }
         let notes = &mut self.cx.st.rule_notes;
+        notes.checked_cands = notes.ncands;
         if let Some(c) = notes.lhs_checks.get_mut(notes.nlhs_checks) {
             *c = super::rhs_types::LhsCheck {
                 start: from as u32,
-                end,
+                end: end as u32,
                 slot,
                 ce: self.ce_count,
                 field,
@@ -2558,6 +2576,35 @@ impl Parser<'_, '_, '_> {
                 cands_end: notes.ncands as u8,
             };
             notes.nlhs_checks += 1;
+        }
+    }
+
+    /// Narrows `var_test` of each single-field LHS variable passed straight to a
+    /// builtin (at any depth) in the call `from..to` of the text by that argument's
+    /// restriction (`(> ?x 1)`: a number): from the candidates noted while it was
+    /// read, or the text when they did not fit.
+    fn narrow_by_arguments(&mut self, from: usize, to: usize) {
+        let src = self.lex.source();
+        let notes = &self.cx.st.rule_notes;
+        if notes.ncands == notes.checked_cands && !notes.overflow() {
+            return;
+        }
+        let mut found: [(&str, u8); 16] = [("", 0xFF); 16];
+        let mut n = 0;
+        let mut add = |name, types| {
+            if n < found.len() {
+                found[n] = (name, types);
+                n += 1;
+            }
+        };
+        if !notes.cand_types(src, notes.checked_cands, &mut add) {
+            super::rhs_types::argument_types(src, from, to, add);
+        }
+        for &(name, types) in &found[..n] {
+            let i = self.vars[..self.nvars].iter().rposition(|v| v.name == name);
+            if let Some(i) = i.filter(|&i| !self.vars[i].multi) {
+                self.cx.st.rule_notes.var_test[i] &= types;
+            }
         }
     }
 
