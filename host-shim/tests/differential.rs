@@ -530,6 +530,7 @@ differential_programs! {
     p926_single_multifield_constraint_mix => "926-single-multifield-constraint-mix",
     p927_field_literal_conflict => "927-field-literal-conflict",
     p928_test_argument_types_later_slots => "928-test-argument-types-later-slots",
+    p929_lhs_check_bindings_before => "929-lhs-check-bindings-before",
     p940_void_value_in_slot => "940-void-value-in-slot",
     p580_keyed_or_index => "580-keyed-or-index",
     p581_keyed_or_not => "581-keyed-or-not",

@@ -105,10 +105,15 @@ pub struct Parser<'s, 'c, 'e> {
     /// `not`, `exists` and `forall` CEs around the one being read.
     #[cfg(feature = "extras")]
     pub quant_depth: u8,
-    /// While a `[RULECSTR2]` check runs: the variables it sees (`vars` below this index,
-    /// added before this count).
+    /// No CE read yet inside the innermost of them: a test CE there still narrows
+    /// `var_test` (CLIPS moves it out of the group).
     #[cfg(feature = "extras")]
-    pub lhs_limit: Option<(usize, u32)>,
+    pub quant_first: bool,
+    /// While a `[RULECSTR2]` check runs: the variables it sees (`vars` below this index,
+    /// added before this count) and its candidates, which keep the types their
+    /// variables had as it was read (`rhs_types::RuleNotes::keep_types`).
+    #[cfg(feature = "extras")]
+    pub lhs_limit: Option<(usize, u32, (usize, usize))>,
     pub nvars: usize,
     pub nlocals: Ix,
     pub scope: Scope,
@@ -223,6 +228,8 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
             var_count: 0,
             #[cfg(feature = "extras")]
             quant_depth: 0,
+            #[cfg(feature = "extras")]
+            quant_first: false,
             #[cfg(feature = "extras")]
             lhs_limit: None,
             nvars: 0,

@@ -364,6 +364,10 @@ impl Span {
 struct Cand {
     name: Span,
     letter: u8,
+    /// The types (`template::types` bits) the variable had as the LHS check it is in
+    /// was read (`RuleNotes::keep_types`): CLIPS's `[RULECSTR2]` reads the bindings
+    /// before the check, not the slots after.
+    then: u8,
 }
 
 pub const MAX_CANDS: usize = 24;
@@ -428,6 +432,7 @@ impl RuleNotes {
             cands: [Cand {
                 name: Span::EMPTY,
                 letter: 0,
+                then: 0xFF,
             }; MAX_CANDS],
             ncands: 0,
             binds: [BindNote {
@@ -478,6 +483,32 @@ impl RuleNotes {
         true
     }
 
+    /// The name (of `src`) of candidate `k`.
+    pub fn cand_name<'a>(&self, src: &'a str, k: usize) -> Option<&'a str> {
+        self.cands
+            .get(k..self.ncands)?
+            .first()
+            .map(|c| c.name.text(src))
+    }
+
+    /// Keeps in candidate `k` the types (`template::types` bits) its variable has as the
+    /// LHS check it is in is noted (that check reads them).
+    pub fn keep_types(&mut self, k: usize, types: u8) {
+        if let Some(c) = self.cands.get_mut(k) {
+            c.then = types;
+        }
+    }
+
+    /// The types kept (`keep_types`) for variable `name` by the candidates `cands` (of
+    /// `src`), None when none is of it.
+    pub fn kept_types(&self, src: &str, cands: (usize, usize), name: &str) -> Option<u8> {
+        let cands = self.cands.get(cands.0..cands.1.min(self.ncands))?;
+        cands
+            .iter()
+            .find(|c| c.name.text(src) == name)
+            .map(|c| c.then)
+    }
+
     /// Whether a note did not fit.
     pub fn overflow(&self) -> bool {
         self.overflow
@@ -492,7 +523,11 @@ impl RuleNotes {
     pub fn note_cand(&mut self, src: &str, name: &str, letter: u8) {
         match (self.cands.get_mut(self.ncands), Span::of(src, name)) {
             (Some(c), Some(name)) => {
-                *c = Cand { name, letter };
+                *c = Cand {
+                    name,
+                    letter,
+                    then: 0xFF,
+                };
                 self.ncands += 1;
             }
             _ => self.overflow = true,

@@ -720,7 +720,12 @@ impl<'s> Parser<'s, '_, '_> {
 
     /// One conditional element.
     fn ce(&mut self, b: &mut Build, ctx: Ctx) -> PResult<()> {
-        self.nested(|p| p.ce_inner(b, ctx))
+        let r = self.nested(|p| p.ce_inner(b, ctx));
+        #[cfg(feature = "extras")]
+        {
+            self.quant_first = false;
+        }
+        r
     }
 
     fn ce_inner(&mut self, b: &mut Build, ctx: Ctx) -> PResult<()> {
@@ -789,6 +794,7 @@ impl<'s> Parser<'s, '_, '_> {
                         #[cfg(feature = "extras")]
                         {
                             self.quant_depth = self.quant_depth.saturating_add(1);
+                            self.quant_first = true;
                         }
                         let r = self.quantified(b, Quant::of(kw), h);
                         #[cfg(feature = "extras")]
@@ -2328,12 +2334,39 @@ impl Complexity {
     }
 }
 
+#[cfg(feature = "extras")]
+impl Parser<'_, '_, '_> {
+    /// The types (`template::types` bits) LHS variable `i` (named `name`) can hold: as
+    /// the check of candidates `cands` was read when one of them kept them, else now.
+    fn var_types(&self, i: usize, name: &str, cands: (usize, usize)) -> u8 {
+        let notes = &self.cx.st.rule_notes;
+        let src = self.lex.source();
+        match notes.kept_types(src, cands, name) {
+            Some(k) => k,
+            None => self.var_cstr[i].types & notes.var_lit[i],
+        }
+    }
+
+    /// The types (`template::types` bits) the innermost LHS variable `name` can hold
+    /// now (0xFF for none).
+    fn var_types_now(&self, name: &str) -> u8 {
+        let notes = &self.cx.st.rule_notes;
+        let i = self.vars[..self.nvars]
+            .iter()
+            .rposition(|v| v.name == name && matches!(v.kind, VarKind::Pat { .. }));
+        match i {
+            Some(i) => self.var_cstr[i].types & notes.var_lit[i],
+            None => 0xFF,
+        }
+    }
+}
+
 /// What CLIPS's `[RULECSTR3]` check of the actions needs to know of the rule being read.
 #[cfg(feature = "extras")]
 impl super::rhs_types::Names for Parser<'_, '_, '_> {
     fn lhs(&self, name: &str) -> Option<super::rhs_types::Rec> {
         use super::rhs_types::Rec;
-        let (n, serial) = self.lhs_limit.unwrap_or((self.nvars, u32::MAX));
+        let (n, serial, cands) = self.lhs_limit.unwrap_or((self.nvars, u32::MAX, (0, 0)));
         let i = self.vars[..n.min(self.vars.len())]
             .iter()
             .zip(&self.cx.st.rule_notes.var_serial)
@@ -2344,7 +2377,7 @@ impl super::rhs_types::Names for Parser<'_, '_, '_> {
         Some(match v.kind {
             VarKind::Pat { loc: l, .. } if l == loc::FACT => Rec::FACT_ADDRESS,
             _ if v.multi => Rec::MULTIFIELD_VAR,
-            _ => match self.var_cstr[i].types & self.cx.st.rule_notes.var_lit[i] {
+            _ => match self.var_types(i, name, cands) {
                 // (CLIPS refuses such a pattern before: `[RULECSTR1]`, `[CSTRNCHK1]`)
                 0 => Rec::ANY,
                 k => Rec::slot_types(k),
@@ -2559,8 +2592,22 @@ impl Parser<'_, '_, '_> {
     /// ordered pattern, 0 in a test CE).
     fn note_lhs_check(&mut self, from: usize, slot: Ix, field: u8) {
         let end = self.consumed_end();
-        if self.quant_depth == 0 {
+        // (a test CE first in a `not`, `exists` or `forall` group too: CLIPS moves it
+        // out of the group)
+        let test_ce = slot == NONE && field == 0;
+        if self.quant_depth == 0 || (test_ce && self.quant_first) {
             self.narrow_by_arguments(from, end);
+        }
+        // CLIPS's [RULECSTR2] reads the types the variables have here
+        if self.cx.st.rule_notes.ncands != self.cx.st.rule_notes.checked_cands {
+            let src = self.lex.source();
+            for k in self.cx.st.rule_notes.checked_cands..self.cx.st.rule_notes.ncands {
+                let Some(name) = self.cx.st.rule_notes.cand_name(src, k) else {
+                    break;
+                };
+                let types = self.var_types_now(name);
+                self.cx.st.rule_notes.keep_types(k, types);
+            }
         }
         let notes = &mut self.cx.st.rule_notes;
         notes.checked_cands = notes.ncands;
@@ -2629,7 +2676,7 @@ impl Parser<'_, '_, '_> {
             let cands_to = c.cands_end as usize;
             let cands = cands_from.min(cands_to)..cands_to;
             cands_from = cands_to;
-            self.lhs_limit = Some((c.nvars as usize, c.serial));
+            self.lhs_limit = Some((c.nvars as usize, c.serial, (cands.start, cands.end)));
             // the text is read again only when the notes show a violation
             let may_fail = self.cx.st.rule_notes.may_fail(src, cands, false, &*self);
             let found = if may_fail {
