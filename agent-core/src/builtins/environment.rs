@@ -386,10 +386,10 @@ pub(crate) fn restriction_of_id(id: crate::value::Ix) -> Option<&'static str> {
     RESTRICTIONS_AT_RUN.get(i as usize).map(|&(_, r)| r)
 }
 
-/// The index in [`RESTRICTIONS`] of each builtin's restriction string (by id; `u8::MAX`
+/// The index in [`RESTRICTIONS`] of each builtin's restriction string (by id; `u16::MAX`
 /// for none).
 #[cfg(feature = "extras")]
-static RESTRICTION_BY_ID: [u8; super::COUNT] = {
+static RESTRICTION_BY_ID: [u16; super::COUNT] = {
     const fn cmp(a: &str, b: &str) -> core::cmp::Ordering {
         let (a, b) = (a.as_bytes(), b.as_bytes());
         let mut i = 0;
@@ -412,7 +412,7 @@ static RESTRICTION_BY_ID: [u8; super::COUNT] = {
         }
     }
     let rows = super::flatten::<{ super::COUNT }>();
-    let mut out = [u8::MAX; super::COUNT];
+    let mut out = [u16::MAX; super::COUNT];
     let mut i = 0;
     while i < super::COUNT {
         // a binary search of the sorted table
@@ -423,7 +423,7 @@ static RESTRICTION_BY_ID: [u8; super::COUNT] = {
                 core::cmp::Ordering::Less => lo = mid + 1,
                 core::cmp::Ordering::Greater => hi = mid,
                 core::cmp::Ordering::Equal => {
-                    out[i] = mid as u8;
+                    out[i] = mid as u16;
                     break;
                 }
             }
@@ -1263,7 +1263,7 @@ mod tests {
             assert_eq!(super::restriction_of(n), Some(r));
         }
         assert_eq!(super::restriction_of("no-such-function"), None);
-        assert!(t.len() < usize::from(u8::MAX));
+        assert!(t.len() < usize::from(u16::MAX));
         for (id, b) in crate::builtins::BUILTINS.iter().enumerate() {
             let id = id as crate::value::Ix;
             assert_eq!(super::restriction_of_id(id), super::restriction_of(b.name));

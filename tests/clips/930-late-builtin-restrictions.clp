@@ -1,0 +1,16 @@
+;; restrictions of the builtins late in CLIPS's name order (sym-cat .. wordp) are theirs:
+;; accepted calls with variables of fitting types, refused ones that do not fit
+(deftemplate n (slot v (type INTEGER)))
+(deftemplate s (slot v (type SYMBOL)))
+(defrule a1 (s (v ?x)) => (printout t (sym-cat ?x a) (upcase ?x) (symbolp ?x) (wordp ?x) (type ?x) crlf))
+(defrule a2 (n (v ?x)) => (printout t (tan ?x) (tanh ?x) (sym-cat ?x) crlf))
+(defrule a3 (s (v ?x)) => (toss ?x) (printout t (sub-string 1 2 ?x) crlf))
+(defrule a4 (s (v ?x)) (test (sym-cat ?x ?x)) (test (wordp ?x)) =>)
+(defrule r1 (s (v ?x)) => (printout t (tan ?x) crlf))
+(defrule r2 (n (v ?x)) => (printout t (upcase ?x) crlf))
+(defrule r3 (n (v ?x)) (test (tanh ?x)) (test (upcase ?x)) =>)
+(defrule r4 (s (v ?x)) => (toss ?x) (timetag ?x))
+(rules)
+(assert (s (v abc)) (n (v 1)))
+(run)
+(exit)
