@@ -105,6 +105,9 @@ pub struct Parser<'s, 'c, 'e> {
     /// `not`, `exists` and `forall` CEs around the one being read.
     #[cfg(feature = "extras")]
     pub quant_depth: u8,
+    /// Inside such a CE: the variables bound before the outermost one (`vars` below
+    /// this index, whose records its slots do not narrow); 0 outside.
+    pub quant_base: usize,
     /// No CE read yet inside the innermost of them: a test CE there still narrows
     /// `var_test` (CLIPS moves it out of the group).
     #[cfg(feature = "extras")]
@@ -228,6 +231,7 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
             var_count: 0,
             #[cfg(feature = "extras")]
             quant_depth: 0,
+            quant_base: 0,
             #[cfg(feature = "extras")]
             quant_first: false,
             #[cfg(feature = "extras")]

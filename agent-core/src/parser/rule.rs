@@ -791,6 +791,12 @@ impl<'s> Parser<'s, '_, '_> {
                         self.next();
                         // variables bound inside are not seen after it
                         let saved = self.nvars;
+                        // nor do the slots they stand in narrow the variables bound
+                        // before it (CLIPS propagates nothing out of it)
+                        let base = self.quant_base;
+                        if base == 0 {
+                            self.quant_base = saved;
+                        }
                         #[cfg(feature = "extras")]
                         {
                             self.quant_depth = self.quant_depth.saturating_add(1);
@@ -801,6 +807,7 @@ impl<'s> Parser<'s, '_, '_> {
                         {
                             self.quant_depth = self.quant_depth.saturating_sub(1);
                         }
+                        self.quant_base = base;
                         self.nvars = saved;
                         r?;
                         if kw == "not" && self.peek().tok == Tok::LParen {
@@ -2041,8 +2048,14 @@ impl<'s> Parser<'s, '_, '_> {
                 }
             }
         }
-        self.var_cstr[i] = c;
-        self.check_var_cstr(t, i, def.name)
+        let old = core::mem::replace(&mut self.var_cstr[i], c);
+        let r = self.check_var_cstr(t, i, def.name);
+        // (a variable bound before a `not`, `exists` or `forall` it stands in keeps
+        // its record after it)
+        if i < self.quant_base {
+            self.var_cstr[i] = old;
+        }
+        r
     }
 
     /// `[RULECSTR1]` when what LHS variable `i` (at token `t`, in slot `slot`) can
@@ -2123,11 +2136,18 @@ impl<'s> Parser<'s, '_, '_> {
                         {
                             c.hi = o.hi;
                         }
-                        self.var_cstr[i] = c;
+                        let old = core::mem::replace(&mut self.var_cstr[i], c);
+                        let test = self.cx.st.rule_notes.var_test[i];
                         self.cx.st.rule_notes.var_test[i] &= self.cx.st.rule_notes.var_test[j];
-                        if let Some(slot) = slot {
-                            self.check_var_cstr(t, i, slot)?;
+                        let r = match slot {
+                            Some(slot) => self.check_var_cstr(t, i, slot),
+                            None => Ok(()),
+                        };
+                        if i < self.quant_base {
+                            self.var_cstr[i] = old;
+                            self.cx.st.rule_notes.var_test[i] = test;
                         }
+                        r?;
                     }
                 }
                 _ => {}
@@ -2522,6 +2542,10 @@ impl<'s> Parser<'s, '_, '_> {
             return;
         };
         if self.vars[i].multi {
+            return;
+        }
+        // (not for a variable bound before the `not`, `exists` or `forall` read)
+        if i < self.quant_base {
             return;
         }
         let k = self.literal_types(e);
