@@ -479,35 +479,41 @@ fn templates_and_slot_defs_at_load_and_assert() {
 /// primed and a rollback has matches to undo), then checks recovery after `clear`.
 macro_rules! rule_pool_case {
     ($pool:expr, $cap:expr, $e:expr) => {{
-        let (pool, cap) = ($pool, $cap);
-        let h = &mut Capture::default();
-        let mut e = $e;
-        e.load_str(h, "t", "(deftemplate p (slot x) (slot y))")
-            .unwrap();
-        for i in 0..4 {
-            e.assert_str(h, &format!("(p (x {i}) (y {}))", i % 2))
+        // Each case is a function of its own: in a debug build one frame would hold
+        // every case's engine at once, past a test thread's 2 MB stack.
+        #[inline(never)]
+        fn case() {
+            let (pool, cap) = ($pool, $cap);
+            let h = &mut Capture::default();
+            let mut e = $e;
+            e.load_str(h, "t", "(deftemplate p (slot x) (slot y))")
                 .unwrap();
+            for i in 0..4 {
+                e.assert_str(h, &format!("(p (x {i}) (y {}))", i % 2))
+                    .unwrap();
+            }
+            let c = load_until_full(&mut *e, |e, i| {
+                let text = match pool {
+                    Pool::Rules => format!("(defrule r{i} (p (x ?x)) =>)"),
+                    Pool::AlphaNodes | Pool::AlphaMemories => {
+                        format!("(defrule r{i} (p (x {i}) (y ?y)) =>)")
+                    }
+                    _ => format!("(defrule r{i} (p (x ?x)) (p (y ?x)) (q {i}) =>)"),
+                };
+                e.load_str(h, "t", &text)
+            });
+            assert_eq!(c, full(pool, cap));
+            // still matches and fires
+            e.assert_str(h, "(p (x 0) (y 9))").unwrap();
+            e.assert_str(h, "(q 0)").unwrap();
+            assert!(e.run(h, None).unwrap() > 0);
+            e.consistent();
+            // clearing gives the room back
+            e.clear(h).unwrap();
+            e.load_str(h, "t", "(defrule again (p ?x) =>)").unwrap();
+            e.consistent();
         }
-        let c = load_until_full(&mut *e, |e, i| {
-            let text = match pool {
-                Pool::Rules => format!("(defrule r{i} (p (x ?x)) =>)"),
-                Pool::AlphaNodes | Pool::AlphaMemories => {
-                    format!("(defrule r{i} (p (x {i}) (y ?y)) =>)")
-                }
-                _ => format!("(defrule r{i} (p (x ?x)) (p (y ?x)) (q {i}) =>)"),
-            };
-            e.load_str(h, "t", &text)
-        });
-        assert_eq!(c, full(pool, cap));
-        // still matches and fires
-        e.assert_str(h, "(p (x 0) (y 9))").unwrap();
-        e.assert_str(h, "(q 0)").unwrap();
-        assert!(e.run(h, None).unwrap() > 0);
-        e.consistent();
-        // clearing gives the room back
-        e.clear(h).unwrap();
-        e.load_str(h, "t", "(defrule again (p ?x) =>)").unwrap();
-        e.consistent();
+        case();
     }};
 }
 
