@@ -1274,6 +1274,12 @@ impl Core<'_> {
             }
             Restriction::Range => b.write_str("does not fall in the allowed range"),
         };
+        // (a field of an ordered pattern: its number in `range`, host only)
+        #[cfg(feature = "extras")]
+        if slot == NONE {
+            let _ = writeln!(b, " for field #{range}.");
+            return;
+        }
         let _ = writeln!(b, " for slot {}.", self.sym_text(slot));
     }
 

@@ -568,6 +568,7 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
             self.cx.st.rule_notes.var_lit[self.nvars] = 0xFF;
             self.cx.st.rule_notes.var_serial[self.nvars] = self.var_count;
             self.cx.st.rule_notes.var_test[self.nvars] = 0xFF;
+            self.cx.st.rule_notes.var_val[self.nvars] = None;
             self.var_count = self.var_count.wrapping_add(1);
         }
         self.nvars += 1;

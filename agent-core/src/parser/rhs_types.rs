@@ -416,6 +416,8 @@ pub struct RuleNotes {
     pub var_test: [u8; super::MAX_VARS],
     /// The candidates noted before the last LHS check (those after it are its own).
     pub checked_cands: usize,
+    /// The literal each LHS variable's fields gave it (`?x&abc`), if any.
+    pub var_val: [Option<crate::value::Value>; super::MAX_VARS],
 }
 
 impl Default for RuleNotes {
@@ -446,6 +448,7 @@ impl RuleNotes {
             var_serial: [0; super::MAX_VARS],
             var_test: [0xFF; super::MAX_VARS],
             checked_cands: 0,
+            var_val: [None; super::MAX_VARS],
         }
     }
 

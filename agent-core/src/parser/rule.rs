@@ -1994,6 +1994,7 @@ impl<'s> Parser<'s, '_, '_> {
             #[cfg(feature = "extras")]
             if let Tok::SfVar(name) = t.tok {
                 self.narrow_by_literals(name, e);
+                self.note_var_value(name, e);
                 if self.cx.exprs[e as usize].op != Op::Or {
                     let to = self.offset();
                     self.narrow_through_vars(t, name, from, to)?;
@@ -2006,6 +2007,15 @@ impl<'s> Parser<'s, '_, '_> {
         #[cfg(feature = "extras")]
         self.check_mixed_constraint(e, false)?;
         #[cfg(feature = "extras")]
+        if let Tok::SfVar(name) = t.tok {
+            // (not `?x|...`: the variable is one alternative)
+            let x = self.cx.exprs[e as usize];
+            if x.op != Op::Or || (x.first != NONE && self.cx.exprs[x.first as usize].op == Op::And)
+            {
+                self.check_literals_of_var(t, name, e)?;
+            }
+        }
+        #[cfg(feature = "extras")]
         self.check_literal_conflict(t, e, false)?;
         // a bound variable leading the constraint (not one of `|` alternatives) must
         // fit this slot too
@@ -2014,6 +2024,8 @@ impl<'s> Parser<'s, '_, '_> {
                 self.narrow_var(t, name)?;
                 #[cfg(feature = "extras")]
                 self.narrow_by_literals(name, e);
+                #[cfg(feature = "extras")]
+                self.note_var_value(name, e);
             }
         }
         Ok((multi, Some(e)))
@@ -2065,7 +2077,7 @@ impl<'s> Parser<'s, '_, '_> {
         let mut c = self.var_cstr[i];
         #[cfg(feature = "extras")]
         {
-            c.types &= self.cx.st.rule_notes.var_test[i];
+            c.types &= self.cx.st.rule_notes.var_test[i] & self.cx.st.rule_notes.var_lit[i];
         }
         let numbers_only = c.types & !crate::template::types::NUMBER == 0;
         let empty_range = c.lo != NONE
@@ -2550,6 +2562,119 @@ impl<'s> Parser<'s, '_, '_> {
         }
         let k = self.literal_types(e);
         self.cx.st.rule_notes.var_lit[i] &= k;
+    }
+
+    /// Calls `f` with each literal term of field constraint `e` (through `&`, `|`
+    /// and `~`) and whether it is negated.
+    fn literal_terms(&self, e: Ix, negated: bool, f: &mut impl FnMut(Value, bool)) {
+        let x = self.cx.exprs[e as usize];
+        match x.op {
+            Op::Or | Op::And => {
+                let mut c = x.first;
+                while c != NONE {
+                    self.literal_terms(c, negated, f);
+                    c = self.cx.exprs[c as usize].next;
+                }
+            }
+            Op::Not if x.first != NONE => self.literal_terms(x.first, !negated, f),
+            Op::Eq2 if x.first != NONE => {
+                let v = self.cx.exprs[x.first as usize].next;
+                if v != NONE
+                    && matches!(
+                        self.cx.exprs[v as usize].op,
+                        Op::Int | Op::Float | Op::Sym | Op::Str
+                    )
+                {
+                    f(self.cx.const_value(v), negated);
+                }
+            }
+            _ => {}
+        }
+    }
+
+    /// Notes the literal a constraint `e` (no `|`) led by single-field variable `name`
+    /// gives it (`abc` of `?x&abc`), outside `not`, `exists` and `forall` for a
+    /// variable bound before it (`RuleNotes::var_val`).
+    fn note_var_value(&mut self, name: &str, e: Ix) {
+        let Some(i) = self.vars[..self.nvars].iter().rposition(|v| v.name == name) else {
+            return;
+        };
+        if self.vars[i].multi || i < self.quant_base || self.cx.exprs[e as usize].op == Op::Or {
+            return;
+        }
+        if self.cx.st.rule_notes.var_val[i].is_some() {
+            return;
+        }
+        let mut found = None;
+        self.literal_terms(e, false, &mut |v, negated| {
+            if !negated && found.is_none() {
+                found = Some(v);
+            }
+        });
+        self.cx.st.rule_notes.var_val[i] = found;
+    }
+
+    /// CLIPS's `[CSTRNCHK1]` of a literal in field constraint `e` led by variable
+    /// `name` (at token `t`) bound before: each literal (negated too) must fit the
+    /// types the variable has (its slots, literals, tests, and this slot's) and the
+    /// value a literal gave it; then `[RULECSTR1]` when `~` takes that value away.
+    fn check_literals_of_var(&mut self, t: Token<'s>, name: &str, e: Ix) -> PResult<()> {
+        let Some(i) = self.vars[..self.nvars].iter().rposition(|v| v.name == name) else {
+            return Ok(());
+        };
+        if self.vars[i].multi || !matches!(self.vars[i].kind, VarKind::Pat { .. }) {
+            return Ok(());
+        }
+        let notes = &self.cx.st.rule_notes;
+        let mut types = self.var_cstr[i].types & notes.var_lit[i] & notes.var_test[i];
+        // (a fact-address variable: an address)
+        if matches!(self.vars[i].kind, VarKind::Pat { loc: l, .. } if l == loc::FACT) {
+            types &=
+                crate::template::types::FACT_ADDRESS | crate::template::types::INSTANCE_ADDRESS;
+        }
+        let def = self.lhs_slot;
+        if let Some(d) = def.filter(|d| d.types != 0) {
+            types &= d.types;
+        }
+        let value = notes.var_val[i];
+        let mut what = None;
+        let mut removed = false;
+        self.literal_terms(e, false, &mut |v, negated| {
+            if what.is_some() {
+                return;
+            }
+            let k = crate::template::types::of(v, |s| self.cx.sym_text(s));
+            if k != 0 && k & types == 0 {
+                what = Some(crate::error::Restriction::Type);
+            } else if value.is_some_and(|x| {
+                !(x.same(v) && k == crate::template::types::of(x, |s| self.cx.sym_text(s)))
+            }) {
+                what = Some(crate::error::Restriction::Values);
+            } else if negated && value.is_some() {
+                removed = true;
+            }
+        });
+        if let Some(what) = what {
+            let mut err = self.err(t, expected(what));
+            err.detail = crate::error::LoadDetail::PatternConstraint {
+                ce: self.ce_count,
+                what,
+                slot: def.map_or(NONE, |d| d.name),
+                range: def.map_or(Ix::from(self.lhs_field), |d| d.range),
+            };
+            return Err(err);
+        }
+        if removed && self.cx.exprs[e as usize].op != Op::Or {
+            let mut err = self.err(t, "a field constraint its literals can meet");
+            err.detail = crate::error::LoadDetail::LiteralConflict {
+                ce: self.ce_count,
+                slot: def.map_or(NONE, |d| d.name),
+                field: self.lhs_field,
+                var: true,
+            };
+            return Err(err);
+        }
+        Ok(())
     }
 
     /// The types (`template::types` bits, 0xFF for any) constraint `e` allows by its
