@@ -462,36 +462,20 @@ impl RuleNotes {
         self.src = (src.as_ptr() as usize, src.len());
     }
 
-    /// Calls `f` with the name (of `src`) and the types (`template::types` bits, 0xFF
-    /// for any) its argument allows of each candidate noted from `from` on; false when
-    /// a note did not fit (the text is walked then).
-    pub fn cand_types<'a>(
-        &self,
-        src: &'a str,
-        from: usize,
-        mut f: impl FnMut(&'a str, u8),
-    ) -> bool {
-        if self.overflow || self.src != (src.as_ptr() as usize, src.len()) {
-            return false;
-        }
-        let Some(cands) = self.cands.get(from.min(self.ncands)..self.ncands) else {
-            return false;
-        };
-        for c in cands {
-            f(
-                c.name.text(src),
-                Rec::of_argument(c.letter).template_types(),
-            );
-        }
-        true
-    }
-
     /// The name (of `src`) of candidate `k`.
     pub fn cand_name<'a>(&self, src: &'a str, k: usize) -> Option<&'a str> {
         self.cands
             .get(k..self.ncands)?
             .first()
             .map(|c| c.name.text(src))
+    }
+
+    /// The types (`template::types` bits, 0xFF for any) candidate `k`'s argument
+    /// allows.
+    pub fn cand_arg_types(&self, k: usize) -> u8 {
+        self.cands
+            .get(k)
+            .map_or(0xFF, |c| Rec::of_argument(c.letter).template_types())
     }
 
     /// Keeps in candidate `k` the types (`template::types` bits) its variable has as the

@@ -1995,7 +1995,7 @@ impl<'s> Parser<'s, '_, '_> {
             if let Tok::SfVar(name) = t.tok {
                 self.narrow_by_literals(name, e);
                 self.note_var_value(name, e);
-                if self.cx.exprs[e as usize].op != Op::Or {
+                if self.has_variable_term(e) {
                     let to = self.offset();
                     self.narrow_through_vars(t, name, from, to)?;
                 }
@@ -2378,19 +2378,6 @@ impl Parser<'_, '_, '_> {
             None => self.var_cstr[i].types & notes.var_lit[i],
         }
     }
-
-    /// The types (`template::types` bits) the innermost LHS variable `name` can hold
-    /// now (0xFF for none).
-    fn var_types_now(&self, name: &str) -> u8 {
-        let notes = &self.cx.st.rule_notes;
-        let i = self.vars[..self.nvars]
-            .iter()
-            .rposition(|v| v.name == name && matches!(v.kind, VarKind::Pat { .. }));
-        match i {
-            Some(i) => self.var_cstr[i].types & notes.var_lit[i],
-            None => 0xFF,
-        }
-    }
 }
 
 /// What CLIPS's `[RULECSTR3]` check of the actions needs to know of the rule being read.
@@ -2562,6 +2549,32 @@ impl<'s> Parser<'s, '_, '_> {
         }
         let k = self.literal_types(e);
         self.cx.st.rule_notes.var_lit[i] &= k;
+    }
+
+    /// Whether field constraint `e` (no `|`) has a variable among its `&` terms
+    /// (`?y` of `?x&?y`).
+    fn has_variable_term(&self, e: Ix) -> bool {
+        let var_term = |c: Ix| {
+            let y = self.cx.exprs[c as usize];
+            y.op == Op::Eq2
+                && y.first != NONE
+                && matches!(self.cx.exprs[y.first as usize].next, v if v != NONE
+                    && self.cx.exprs[v as usize].op == Op::PatVar)
+        };
+        let x = self.cx.exprs[e as usize];
+        match x.op {
+            Op::And => {
+                let mut c = x.first;
+                while c != NONE {
+                    if var_term(c) {
+                        return true;
+                    }
+                    c = self.cx.exprs[c as usize].next;
+                }
+                false
+            }
+            _ => var_term(e),
+        }
     }
 
     /// Calls `f` with each literal term of field constraint `e` (through `&`, `|`
@@ -2744,18 +2757,32 @@ impl Parser<'_, '_, '_> {
         // (a test CE first in a `not`, `exists` or `forall` group too: CLIPS moves it
         // out of the group)
         let test_ce = slot == NONE && field == 0;
-        if self.quant_depth == 0 || (test_ce && self.quant_first) {
-            self.narrow_by_arguments(from, end);
+        let narrow = self.quant_depth == 0 || (test_ce && self.quant_first);
+        if narrow && self.cx.st.rule_notes.overflow() {
+            self.narrow_by_text(from, end);
         }
-        // CLIPS's [RULECSTR2] reads the types the variables have here
-        if self.cx.st.rule_notes.ncands != self.cx.st.rule_notes.checked_cands {
-            let src = self.lex.source();
-            for k in self.cx.st.rule_notes.checked_cands..self.cx.st.rule_notes.ncands {
-                let Some(name) = self.cx.st.rule_notes.cand_name(src, k) else {
-                    break;
-                };
-                let types = self.var_types_now(name);
-                self.cx.st.rule_notes.keep_types(k, types);
+        // each candidate: its argument's types narrow `var_test` (see
+        // `narrow_by_text`), and it keeps the types its variable has here, which
+        // CLIPS's [RULECSTR2] reads
+        let src = self.lex.source();
+        for k in self.cx.st.rule_notes.checked_cands..self.cx.st.rule_notes.ncands {
+            let notes = &self.cx.st.rule_notes;
+            let Some(name) = notes.cand_name(src, k) else {
+                break;
+            };
+            let i = self.vars[..self.nvars]
+                .iter()
+                .rposition(|v| v.name == name && matches!(v.kind, VarKind::Pat { .. }));
+            let Some(i) = i else {
+                self.cx.st.rule_notes.keep_types(k, 0xFF);
+                continue;
+            };
+            let kept = self.var_cstr[i].types & notes.var_lit[i];
+            let arg = notes.cand_arg_types(k);
+            let notes = &mut self.cx.st.rule_notes;
+            notes.keep_types(k, kept);
+            if narrow && !notes.overflow() && !self.vars[i].multi {
+                notes.var_test[i] &= arg;
             }
         }
         let notes = &mut self.cx.st.rule_notes;
@@ -2777,25 +2804,18 @@ impl Parser<'_, '_, '_> {
 
     /// Narrows `var_test` of each single-field LHS variable passed straight to a
     /// builtin (at any depth) in the call `from..to` of the text by that argument's
-    /// restriction (`(> ?x 1)`: a number): from the candidates noted while it was
-    /// read, or the text when they did not fit.
-    fn narrow_by_arguments(&mut self, from: usize, to: usize) {
+    /// restriction (`(> ?x 1)`: a number), reading the text (when the candidates noted
+    /// while it was read did not fit).
+    fn narrow_by_text(&mut self, from: usize, to: usize) {
         let src = self.lex.source();
-        let notes = &self.cx.st.rule_notes;
-        if notes.ncands == notes.checked_cands && !notes.overflow() {
-            return;
-        }
         let mut found: [(&str, u8); 16] = [("", 0xFF); 16];
         let mut n = 0;
-        let mut add = |name, types| {
+        super::rhs_types::argument_types(src, from, to, |name, types| {
             if n < found.len() {
                 found[n] = (name, types);
                 n += 1;
             }
-        };
-        if !notes.cand_types(src, notes.checked_cands, &mut add) {
-            super::rhs_types::argument_types(src, from, to, add);
-        }
+        });
         for &(name, types) in &found[..n] {
             let i = self.vars[..self.nvars].iter().rposition(|v| v.name == name);
             if let Some(i) = i.filter(|&i| !self.vars[i].multi) {
