@@ -346,6 +346,8 @@ impl<'s> Parser<'s, '_, '_> {
             return self.args_until_rparen(call);
         }
         let mut n = 0;
+        // (appended after the last child, as `args_until_rparen`)
+        let mut tail = NONE;
         loop {
             let t = self.peek();
             let var = match t.tok {
@@ -362,7 +364,15 @@ impl<'s> Parser<'s, '_, '_> {
                 _ => None,
             };
             let a = self.parse_expr()?;
-            self.cx.append_child(call, a);
+            if tail == NONE {
+                self.cx.append_child(call, a);
+            } else {
+                while self.cx.exprs[tail as usize].next != NONE {
+                    tail = self.cx.exprs[tail as usize].next;
+                }
+                self.cx.exprs[tail as usize].next = a;
+            }
+            tail = a;
             n += 1;
             if let Some((name, mf)) = var {
                 let seq_ops = self.cx.st.mode.seq_ops;
