@@ -105,6 +105,10 @@ pub struct Parser<'s, 'c, 'e> {
     /// `not`, `exists` and `forall` CEs around the one being read.
     #[cfg(feature = "extras")]
     pub quant_depth: u8,
+    /// The field constraint being read has a `=(...)` call giving a multifield (an
+    /// unbound variable after it is CLIPS's `[PATTERN2]`).
+    #[cfg(feature = "extras")]
+    pub field_mf_call: bool,
     /// Inside such a CE: the variables bound before the outermost one (`vars` below
     /// this index, whose records its slots do not narrow); 0 outside.
     pub quant_base: usize,
@@ -232,6 +236,8 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
             #[cfg(feature = "extras")]
             quant_depth: 0,
             quant_base: 0,
+            #[cfg(feature = "extras")]
+            field_mf_call: false,
             #[cfg(feature = "extras")]
             quant_first: false,
             #[cfg(feature = "extras")]

@@ -1944,6 +1944,10 @@ impl<'s> Parser<'s, '_, '_> {
     /// One field constraint: returns (is multifield, test expression).
     fn field(&mut self, p: u8, locv: Ix, desc: Ix) -> PResult<(bool, Option<Ix>)> {
         let t = self.peek();
+        #[cfg(feature = "extras")]
+        {
+            self.field_mf_call = false;
+        }
         let mut multi = false;
         let mut bound_first = false;
         match t.tok {
@@ -2234,7 +2238,14 @@ impl<'s> Parser<'s, '_, '_> {
                 let from = self.offset();
                 let e = self.parse_expr()?;
                 #[cfg(feature = "extras")]
-                self.note_field_check(from);
+                {
+                    self.note_field_check(from);
+                    let y = self.cx.exprs[e as usize];
+                    self.field_mf_call |= y.op == Op::Call
+                        && y.aux == crate::expr::FnKind::Builtin as u8
+                        && crate::builtins::get(y.data).returns
+                            == crate::builtins::describe::Returns::Multifield;
+                }
                 let this = self.this_field(p, locv, desc)?;
                 self.node2(Op::Eq2, this, e)
             }
@@ -2258,7 +2269,16 @@ impl<'s> Parser<'s, '_, '_> {
                         return Err(e);
                     }
                     Some(_) => self.var_ref(t, name, false)?,
-                    // CLIPS's `[ANALYSIS4]`: referenced before a pattern binds it
+                    // CLIPS's `[ANALYSIS4]`: referenced before a pattern binds it (its
+                    // `[PATTERN2]` first, after a `=(...)` giving a multifield)
+                    #[cfg(feature = "extras")]
+                    None if self.field_mf_call => {
+                        let at = self.constraint_end();
+                        let mut err = self.err(at, "no mix of single and multifield constraints");
+                        err.detail = crate::error::LoadDetail::MixedConstraint;
+                        err.echo_end = at.end as u32;
+                        return Err(err);
+                    }
                     None => return Err(self.unbound_in_lhs(t, false)),
                 };
                 let this = self.this_field(p, locv, desc)?;
@@ -2549,6 +2569,39 @@ impl<'s> Parser<'s, '_, '_> {
         }
         let k = self.literal_types(e);
         self.cx.st.rule_notes.var_lit[i] &= k;
+    }
+
+    /// The token after the field constraint being read (the rest of its `&`/`|` terms
+    /// skipped), which CLIPS's `[PATTERN2]` shows the rule up to.
+    fn constraint_end(&mut self) -> Token<'s> {
+        let first = self.peek();
+        if !matches!(first.tok, Tok::Amp | Tok::Bar) {
+            return first;
+        }
+        let mut lx = self.lex.clone();
+        loop {
+            let mut t = lx.next_token();
+            while t.tok == Tok::Tilde {
+                t = lx.next_token();
+            }
+            if matches!(t.tok, Tok::Symbol(":" | "=")) {
+                let mut depth = 0u32;
+                loop {
+                    let u = lx.next_token();
+                    match u.tok {
+                        Tok::LParen => depth += 1,
+                        Tok::RParen if depth <= 1 => break,
+                        Tok::RParen => depth -= 1,
+                        Tok::Eof | Tok::Bad => return u,
+                        _ => {}
+                    }
+                }
+            }
+            let n = lx.next_token();
+            if !matches!(n.tok, Tok::Amp | Tok::Bar) {
+                return n;
+            }
+        }
     }
 
     /// Whether field constraint `e` (no `|`) has a variable among its `&` terms
