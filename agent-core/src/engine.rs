@@ -268,7 +268,8 @@ pub struct MatchState {
     /// while a new rule's joins fed by older ones are primed (its incremental reset).
     #[cfg(feature = "extras")]
     pub matching_free: u16,
-    /// Host: the same for retracts (and modifies): only `reset`'s priming raises it.
+    /// Host: the same for retracts (and modifies): only `reset`'s priming raises it
+    /// (to `matching_free`'s level: it is never above `matching_free`).
     #[cfg(feature = "extras")]
     pub retract_free: u16,
     /// Host: while a new rule is primed (CLIPS's incremental reset), its first alpha

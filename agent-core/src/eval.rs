@@ -1161,6 +1161,18 @@ impl Core<'_> {
         self.apply_untraced(func, args)
     }
 
+    /// Deffunction `func`'s body `body` run in its module, the module current before
+    /// it current again after it (`apply_untraced` with more than one module).
+    #[cfg(feature = "modules")]
+    #[cold]
+    #[inline(never)]
+    fn eval_body_in_module(&mut self, func: Ix, body: Ix) -> Result<Value, EvalError> {
+        let outer_module = self.enter_module(self.module_of_function(func));
+        let r = self.eval_chain(body);
+        self.leave_module(outer_module);
+        r
+    }
+
     /// `apply_deffunction` without its trace.
     pub(crate) fn apply_untraced(&mut self, func: Ix, args: Args) -> Result<Value, EvalError> {
         let df = self.funcs[func as usize];
@@ -1199,14 +1211,18 @@ impl Core<'_> {
         let saved_bp = self.st.frame.bp;
         self.st.frame.bp = args.base;
         self.st.eval.in_use += 1;
-        // CLIPS runs the body in the deffunction's module and then makes the module
-        // current before the call current again (`EvaluateProcActions`)
-        #[cfg(feature = "modules")]
-        let outer_module = self.enter_module(self.module_of_function(func));
         let was_halting = self.st.mode.halting;
-        let mut r = self.eval_chain(df.body);
+        // CLIPS runs the body in the deffunction's module and then makes the module
+        // current before the call current again (`EvaluateProcActions`): with MAIN
+        // alone, nothing to change (out of line, the usual call keeps no module)
         #[cfg(feature = "modules")]
-        self.leave_module(outer_module);
+        let mut r = if self.st.modules.nmodules > 1 {
+            self.eval_body_in_module(func, df.body)
+        } else {
+            self.eval_chain(df.body)
+        };
+        #[cfg(not(feature = "modules"))]
+        let mut r = self.eval_chain(df.body);
         // an error that set CLIPS's evaluation error without coming back as one (a
         // slot the fact lacks) halts the deffunction too
         if r.is_ok() && self.st.mode.halting && !was_halting {

@@ -653,13 +653,13 @@ impl Core<'_> {
                 return Ok(Value::Sym(SYM_FALSE));
             }
         }
-        // (host: `duplicate` may assert while a rule is primed, `modify` may not)
+        // (host: `duplicate` may assert while a rule is primed, `modify` may not; the
+        // level `modify` may not pass is the lower one, so the usual path reads one)
         #[cfg(feature = "extras")]
-        let refused = if retract_old {
-            self.st.net.retracts_refused()
-        } else {
-            self.st.net.changes_refused()
-        };
+        let refused =
+            self.st.net.retracts_refused() && (retract_old || self.st.net.changes_refused());
+        #[cfg(feature = "extras")]
+        debug_assert!(self.st.net.retract_free <= self.st.net.matching_free);
         #[cfg(not(feature = "extras"))]
         let refused = self.st.net.changes_refused();
         if refused {

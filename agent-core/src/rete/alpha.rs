@@ -47,16 +47,11 @@ impl Core<'_> {
     /// Adds a new fact to every alpha memory it matches and propagates.
     pub(crate) fn network_assert(&mut self, fact: Ix) -> Result<(), EvalError> {
         // host: the discrimination index (`visit_alphas`, `needs_mf_order`) is made
-        // current; a fact a new rule's test asserts while the rule is primed meets
-        // only the rule's new alpha nodes, as in CLIPS's incremental reset (the index
-        // is kept stale meanwhile, so the usual path tests nothing more)
+        // current first (`network_assert_stale`, out of line: the usual path only
+        // tests that it is; a new rule's priming keeps it stale)
         #[cfg(feature = "host-speedups")]
         if self.st.net.disc.net_gen != Some(self.st.net.net_gen) {
-            #[cfg(feature = "extras")]
-            if self.st.net.ir_alpha != NONE {
-                return self.prime_fact(fact, self.st.net.ir_alpha);
-            }
-            self.rebuild_discrimination();
+            return self.network_assert_stale(fact);
         }
         #[cfg(all(feature = "extras", not(feature = "host-speedups")))]
         if self.st.net.ir_alpha != NONE {
@@ -68,6 +63,22 @@ impl Core<'_> {
             return self.network_assert_mf_order(fact);
         }
         self.visit_alphas::<false>(fact)
+    }
+
+    /// Host: `network_assert` while the discrimination index is stale: a fact a new
+    /// rule's test asserts while the rule is primed meets only the rule's new alpha
+    /// nodes, as in CLIPS's incremental reset (the index is kept stale meanwhile);
+    /// otherwise the index is rebuilt and the fact goes the usual way.
+    #[cfg(feature = "host-speedups")]
+    #[cold]
+    #[inline(never)]
+    fn network_assert_stale(&mut self, fact: Ix) -> Result<(), EvalError> {
+        #[cfg(feature = "extras")]
+        if self.st.net.ir_alpha != NONE {
+            return self.prime_fact(fact, self.st.net.ir_alpha);
+        }
+        self.rebuild_discrimination();
+        self.network_assert(fact)
     }
 
     /// `network_assert` of a fact whose template needs CLIPS's multifield order (out
