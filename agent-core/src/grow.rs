@@ -57,6 +57,20 @@ macro_rules! heads {
     };
 }
 
+/// `$zeroed` for the pools whose entries are [`ZeroFree`] (they grow into zeroed
+/// memory), else `$plain`.
+macro_rules! zeroed_or {
+    (tokens, $zeroed:expr, $plain:expr) => {
+        $zeroed
+    };
+    (facts, $zeroed:expr, $plain:expr) => {
+        $zeroed
+    };
+    ($other:ident, $zeroed:expr, $plain:expr) => {
+        $plain
+    };
+}
+
 /// Doubles the bucket heads `v` (new ones `empty`) until there are `at_least`; the old
 /// length if they grew (the old heads stay in front), `None` if they were long enough
 /// or the allocator refuses.
@@ -78,6 +92,107 @@ fn grow_heads<T: Clone>(v: &mut Buf<T>, at_least: usize, empty: T) -> Option<usi
 enum Buf<T: 'static> {
     Seed(&'static mut [T]),
     Heap(Vec<T>),
+    /// A heap vector whose room past its length (up to its capacity) is all-zero
+    /// bytes, never written: the pools of [`ZeroFree`] entries (the tokens and the
+    /// facts) grow into it without writing or copying (`extend_zeroed`).
+    Zeroed(Vec<T>),
+}
+
+/// Entries whose all-zero bytes are a valid value that their pool reads as an entry
+/// never handed out (its kind or state `Free`, as `Token::EMPTY`'s and `Fact::EMPTY`'s,
+/// for the invariant checks and `clear`; every allocation writes the whole entry
+/// before anything reads it, `alloc_token`'s callers and `assert_slots`). Such a pool
+/// grows into memory the allocator hands out zeroed, reserved ahead
+/// ([`ZEROED_RESERVE`] bytes): large zeroed allocations are fresh pages of the
+/// operating system, zero without a write and resident only once touched, so a
+/// growth neither fills the new entries nor copies the old ones.
+///
+/// # Safety
+/// All-zero bytes must be a valid value of the type, and the type must not be
+/// zero-sized.
+unsafe trait ZeroFree: Copy {}
+
+// SAFETY: every field of a `Token` is an integer, a `bool`, an array of `u8` or of
+// `Ix`, a handle (a tuple struct of one `Ix`) or a `TokenKind` (`repr(u8)`, `Free`
+// = 0, checked below): zero bytes are a valid value of each. `zero_free_fields` lists
+// the fields without `..`, so a field added later fails to compile until this proof
+// is looked at again. Not zero-sized (checked below).
+unsafe impl ZeroFree for crate::rete::Token {}
+// SAFETY: as for `Token`: integers, `Ix`, a `bool`, a `TokenId` and a `FactState`
+// (`repr(u8)`, `Free` = 0, checked below); listed in `zero_free_fields`.
+unsafe impl ZeroFree for crate::fact::Fact {}
+
+const _: () = assert!(
+    crate::rete::TokenKind::Free as u8 == 0
+        && crate::fact::FactState::Free as u8 == 0
+        && core::mem::size_of::<crate::rete::Token>() > 0
+        && core::mem::size_of::<crate::fact::Fact>() > 0
+);
+
+/// The address space a pool of [`ZeroFree`] entries reserves when it first grows
+/// (or its limit's worth, if less): it grows within it without moving. Untouched,
+/// it costs no resident memory.
+pub const ZEROED_RESERVE: usize = 1 << 30;
+
+/// A vector of `from`'s entries with room for `room` in all, the room past them
+/// zeroed by the allocator; `None` if the allocator refuses (or `room` is 0 or less
+/// than `from`).
+fn zeroed_vec<T: ZeroFree>(room: usize, from: &[T]) -> Option<Vec<T>> {
+    if room == 0 || room < from.len() {
+        return None;
+    }
+    let layout = core::alloc::Layout::array::<T>(room).ok()?;
+    // SAFETY: `layout` is not zero-sized (`room` > 0 and `T` is not zero-sized,
+    // `ZeroFree`).
+    let p = unsafe { alloc::alloc::alloc_zeroed(layout) }.cast::<T>();
+    if p.is_null() {
+        return None;
+    }
+    // SAFETY: `p` is a fresh allocation of the global allocator for `room` entries
+    // of `T` (the layout `Vec` uses for that capacity), aligned for `T`, and does
+    // not overlap `from`; its first `from.len()` (<= `room`) entries are written from
+    // `from` (`T: Copy`) before the vector takes them as its length.
+    unsafe {
+        core::ptr::copy_nonoverlapping(from.as_ptr(), p, from.len());
+        Some(Vec::from_raw_parts(p, from.len(), room))
+    }
+}
+
+impl<T: ZeroFree> Buf<T> {
+    /// Makes room for `len` entries in zeroed memory (the reserve, or `limit`
+    /// entries if fewer, or `len` if more), the entries unchanged: nothing to do if
+    /// there is room, else one copy of the entries to a fresh zeroed allocation.
+    fn reserve_zeroed(&mut self, len: usize, limit: usize) -> Result<(), ()> {
+        if let Buf::Zeroed(v) = self {
+            if v.capacity() >= len {
+                return Ok(());
+            }
+        }
+        let room = (ZEROED_RESERVE / core::mem::size_of::<T>())
+            .min(limit)
+            .max(len);
+        let v = zeroed_vec(room, self)
+            .or_else(|| zeroed_vec(len, self))
+            .ok_or(())?;
+        *self = Buf::Zeroed(v);
+        Ok(())
+    }
+
+    /// Makes it `len` entries long in the room `reserve_zeroed` made, the new
+    /// entries all-zero bytes (as they are); unchanged if there is no such room.
+    fn extend_zeroed(&mut self, len: usize) {
+        if let Buf::Zeroed(v) = self {
+            if v.len() < len && len <= v.capacity() {
+                // SAFETY: the entries from `v.len()` to the capacity are all-zero
+                // bytes: the allocator zeroed them (`zeroed_vec`) and nothing wrote
+                // them since (the vector is reached only as a slice of its length:
+                // it is never pushed to, extended or shrunk, and `reserve` makes a
+                // `Heap` of it before it could reallocate). All-zero bytes are a
+                // valid `T` (`ZeroFree`), and `len` is within the capacity.
+                unsafe { v.set_len(len) };
+            }
+        }
+    }
 }
 
 impl<T: Clone> Buf<T> {
@@ -85,6 +200,15 @@ impl<T: Clone> Buf<T> {
     /// first) without changing the entries.
     fn reserve(&mut self, len: usize) -> Result<(), ()> {
         match self {
+            Buf::Zeroed(v) if v.capacity() >= len => Ok(()),
+            Buf::Zeroed(v) => {
+                // (as a `Heap`: a reallocation's room is not zeroed)
+                let mut v = core::mem::take(v);
+                let extra = len.saturating_sub(v.len());
+                let r = v.try_reserve_exact(extra).map_err(|_| ());
+                *self = Buf::Heap(v);
+                r
+            }
             Buf::Heap(v) => {
                 let extra = len.saturating_sub(v.len());
                 v.try_reserve_exact(extra).map_err(|_| ())
@@ -107,6 +231,7 @@ impl<T: Clone> Buf<T> {
                 v.resize(len, empty);
             }
         }
+        // (a `Zeroed` one is resized only by `extend_zeroed`)
     }
 }
 
@@ -115,7 +240,7 @@ impl<T> core::ops::Deref for Buf<T> {
     fn deref(&self) -> &[T] {
         match self {
             Buf::Seed(s) => s,
-            Buf::Heap(v) => v,
+            Buf::Heap(v) | Buf::Zeroed(v) => v,
         }
     }
 }
@@ -124,7 +249,7 @@ impl<T> core::ops::DerefMut for Buf<T> {
     fn deref_mut(&mut self) -> &mut [T] {
         match self {
             Buf::Seed(s) => s,
-            Buf::Heap(v) => v,
+            Buf::Heap(v) | Buf::Zeroed(v) => v,
         }
     }
 }
@@ -221,12 +346,15 @@ macro_rules! grow_items {
             fn resize(&mut self, pool: Pool, len: usize) -> Result<(), ()> {
                 match pool {
                     $(Pool::$variant => {
+                        let limit = self.limits[Pool::$variant as usize];
                         // all or nothing: reserve every array before changing one
-                        self.$first.reserve(len)?;
+                        zeroed_or!($first, self.$first.reserve_zeroed(len, limit),
+                            { let _ = limit; self.$first.reserve(len) })?;
                         $(if heads!($arr).is_none() {
                             self.$arr.reserve(len)?;
                         })*
-                        self.$first.resize(len, $fempty);
+                        zeroed_or!($first, self.$first.extend_zeroed(len),
+                            self.$first.resize(len, $fempty));
                         $(if heads!($arr).is_none() {
                             self.$arr.resize(len, $aempty);
                         })*
@@ -687,6 +815,123 @@ mod tests {
             })
             .and_then(|t| t.join().map_err(|_| std::io::Error::other("test failed")))
             .unwrap();
+    }
+
+    #[test]
+    fn zero_free_fields() {
+        use crate::fact::{Fact, FactState};
+        use crate::handle::JoinId;
+        use crate::rete::{Token, TokenKind, MAX_MARKS};
+        use crate::value::Ix;
+        // every field named with its type (no `..`): a field added or changed fails
+        // to compile here until the `ZeroFree` proofs cover it
+        let Token {
+            kind,
+            blocked,
+            marks,
+            owner,
+            fact,
+            am,
+            parent,
+            first_child,
+            next_sib,
+            prev_sib,
+            am_next,
+            am_prev,
+            mem_next,
+            mem_prev,
+            extra,
+            blocks,
+            #[cfg(feature = "wide-index")]
+            beta_links,
+            #[cfg(feature = "host-speedups")]
+            binds,
+            #[cfg(feature = "host-speedups")]
+            has_key,
+            #[cfg(feature = "host-speedups")]
+            in_x,
+            #[cfg(feature = "host-speedups")]
+            key,
+        } = Token::EMPTY;
+        let _: (TokenKind, bool, [u8; MAX_MARKS], JoinId, Ix, Ix) =
+            (kind, blocked, marks, owner, fact, extra);
+        let _: [TokenId; 10] = [
+            am,
+            parent,
+            first_child,
+            next_sib,
+            prev_sib,
+            am_next,
+            am_prev,
+            mem_next,
+            mem_prev,
+            blocks,
+        ];
+        #[cfg(feature = "wide-index")]
+        let _: [Ix; 2] = beta_links;
+        #[cfg(feature = "host-speedups")]
+        let _: ([Ix; crate::rete::BIND_W], bool, bool, u32) = (binds, has_key, in_x, key);
+        let Fact {
+            num,
+            tmpl,
+            start,
+            len,
+            next,
+            prev,
+            hash_next,
+            first_am,
+            state,
+            flat,
+            #[cfg(feature = "host-speedups")]
+            hash,
+        } = Fact::EMPTY;
+        let _: (u32, [Ix; 6], TokenId, FactState, bool) = (
+            num,
+            [tmpl, start, len, next, prev, hash_next],
+            first_am,
+            state,
+            flat,
+        );
+        #[cfg(feature = "host-speedups")]
+        let _: u32 = hash;
+    }
+
+    #[test]
+    fn the_token_and_fact_pools_grow_in_place_into_free_entries() {
+        use crate::fact::FactState;
+        use crate::rete::TokenKind;
+        let mut s = GrowStorage::new();
+        let start = s.tokens.len();
+        s.resize(Pool::Tokens, 2 * start).unwrap();
+        let at = s.tokens.as_ptr();
+        s.resize(Pool::Tokens, 8 * start).unwrap();
+        s.resize(Pool::Facts, 4 * s.facts.len()).unwrap();
+        // within the reserve: not moved, the new entries free (zero), the old kept
+        assert_eq!(s.tokens.as_ptr(), at);
+        assert_eq!(s.tokens.len(), 8 * start);
+        assert!(s.tokens.iter().all(|t| t.kind == TokenKind::Free));
+        assert!(s.tokens[start..].iter().all(|t| t.next_sib.0 == 0));
+        assert!(s.tokens[..start]
+            .iter()
+            .all(|t| t.next_sib == TokenId::NONE));
+        assert!(s.facts.iter().all(|f| f.state == FactState::Free));
+        // the per-entry arrays beside them grow with their empty value
+        assert_eq!(s.token_deps.len(), 8 * start);
+        assert!(s.token_deps.iter().all(|&d| d == crate::logical::NO_DEPS));
+        // a limit under the reserve bounds it
+        let mut s = GrowStorage::with_limits(
+            Capacities::SMALL,
+            Capacities {
+                tokens: 3 * Capacities::SMALL.tokens,
+                ..GrowStorage::NO_LIMIT
+            },
+        );
+        s.resize(Pool::Tokens, 2 * Capacities::SMALL.tokens)
+            .unwrap();
+        match &s.tokens {
+            Buf::Zeroed(v) => assert_eq!(v.capacity(), 3 * Capacities::SMALL.tokens),
+            _ => panic!("not grown into zeroed memory"),
+        }
     }
 
     #[test]
