@@ -57,8 +57,10 @@ macro_rules! heads {
     };
 }
 
-/// `$zeroed` for the pools whose entries are [`ZeroFree`] (they grow into zeroed
-/// memory), else `$plain`.
+/// `$zeroed` for the arrays whose entries are [`ZeroFree`] (they grow into zeroed
+/// memory), else `$plain`: the token and fact pools, and (host speed-ups) the side
+/// arrays of theirs that the engine writes before it reads (a fact's template list
+/// links, a partial match's extra index links).
 macro_rules! zeroed_or {
     (tokens, $zeroed:expr, $plain:expr) => {
         $zeroed
@@ -66,8 +68,49 @@ macro_rules! zeroed_or {
     (facts, $zeroed:expr, $plain:expr) => {
         $zeroed
     };
+    (fact_tlinks, $zeroed:expr, $plain:expr) => {
+        zeroed_or!(@speedups $zeroed, $plain)
+    };
+    (token_xlinks, $zeroed:expr, $plain:expr) => {
+        zeroed_or!(@speedups $zeroed, $plain)
+    };
+    (token_deps, $zeroed:expr, $plain:expr) => {
+        zeroed_or!(@logical $zeroed, $plain)
+    };
+    (fact_deps, $zeroed:expr, $plain:expr) => {
+        zeroed_or!(@logical $zeroed, $plain)
+    };
+    (@logical $zeroed:expr, $plain:expr) => {{
+        #[cfg(feature = "logical")]
+        let r = $zeroed;
+        #[cfg(not(feature = "logical"))]
+        let r = $plain;
+        r
+    }};
+    (@speedups $zeroed:expr, $plain:expr) => {{
+        #[cfg(feature = "host-speedups")]
+        let r = $zeroed;
+        #[cfg(not(feature = "host-speedups"))]
+        let r = $plain;
+        r
+    }};
     ($other:ident, $zeroed:expr, $plain:expr) => {
         $plain
+    };
+}
+
+/// Whether the new entries of a side array that grows into zeroed memory get their
+/// empty value (`$deps`, for the support list heads: once a rule with `logical`
+/// exists), or stay zero (the arrays written before they are read).
+macro_rules! fills {
+    (token_deps, $deps:expr) => {
+        $deps
+    };
+    (fact_deps, $deps:expr) => {
+        $deps
+    };
+    ($other:ident, $deps:expr) => {
+        false
     };
 }
 
@@ -93,15 +136,17 @@ enum Buf<T: 'static> {
     Seed(&'static mut [T]),
     Heap(Vec<T>),
     /// A heap vector whose room past its length (up to its capacity) is all-zero
-    /// bytes, never written: the pools of [`ZeroFree`] entries (the tokens and the
-    /// facts) grow into it without writing or copying (`extend_zeroed`).
+    /// bytes, never written: the arrays of [`ZeroFree`] entries (the tokens and the
+    /// facts, and side arrays of theirs) grow into it without writing or copying
+    /// (`extend_zeroed`).
     Zeroed(Vec<T>),
 }
 
 /// Entries whose all-zero bytes are a valid value that their pool reads as an entry
 /// never handed out (its kind or state `Free`, as `Token::EMPTY`'s and `Fact::EMPTY`'s,
 /// for the invariant checks and `clear`; every allocation writes the whole entry
-/// before anything reads it, `alloc_token`'s callers and `assert_slots`). Such a pool
+/// before anything reads it, `alloc_token`'s callers and `assert_slots`), or that a
+/// side array of those pools never reads as it is (see each `impl`). Such an array
 /// grows into memory the allocator hands out zeroed, reserved ahead
 /// ([`ZEROED_RESERVE`] bytes): large zeroed allocations are fresh pages of the
 /// operating system, zero without a write and resident only once touched, so a
@@ -121,6 +166,22 @@ unsafe impl ZeroFree for crate::rete::Token {}
 // SAFETY: as for `Token`: integers, `Ix`, a `bool`, a `TokenId` and a `FactState`
 // (`repr(u8)`, `Free` = 0, checked below); listed in `zero_free_fields`.
 unsafe impl ZeroFree for crate::fact::Fact {}
+// SAFETY: arrays of `Ix` (integers), not zero-sized. The engine writes an entry
+// before it reads it: a fact's links when it is asserted or restored (`assert_slots`,
+// `tmpl_link`), a partial match's when it enters its first extra index group (`in_x`),
+// an alpha match's when it enters the keyed or-index; a freed entry is reused as it
+// was left, so no read relies on the empty value a fill wrote.
+#[cfg(feature = "host-speedups")]
+unsafe impl ZeroFree for crate::fact::TemplateLinks {}
+// SAFETY: as for `TemplateLinks`.
+#[cfg(feature = "host-speedups")]
+unsafe impl ZeroFree for crate::rete::XLinks {}
+// SAFETY: an integer (`Deps`, the support list heads), not zero-sized. Nothing reads
+// them before a rule with `logical` exists (every reader checks `defined`, or `live`,
+// 0 until then); `set_rule_logical_join` sets each to `NO_DEPS` then, and growth after
+// that fills the new ones (`fills`).
+#[cfg(feature = "logical")]
+unsafe impl ZeroFree for crate::value::Ix {}
 
 const _: () = assert!(
     crate::rete::TokenKind::Free as u8 == 0
@@ -341,22 +402,39 @@ macro_rules! grow_items {
                 [$(self.$first.len(),)*]
             }
 
-            /// Makes every array of `pool` `len` entries long (new entries empty), or
-            /// changes nothing if the allocator refuses.
-            fn resize(&mut self, pool: Pool, len: usize) -> Result<(), ()> {
+            /// Makes every array of `pool` `len` entries long (new entries empty, but
+            /// those of the support list heads zero unless `fill_deps`, and those of
+            /// the arrays written before they are read zero), or changes nothing if
+            /// the allocator refuses.
+            fn resize(&mut self, pool: Pool, len: usize, fill_deps: bool) -> Result<(), ()> {
                 match pool {
                     $(Pool::$variant => {
                         let limit = self.limits[Pool::$variant as usize];
                         // all or nothing: reserve every array before changing one
                         zeroed_or!($first, self.$first.reserve_zeroed(len, limit),
                             { let _ = limit; self.$first.reserve(len) })?;
+                        // (a side array reserves as many entries as its pool)
+                        let _side = limit
+                            .min(ZEROED_RESERVE / core::mem::size_of::<$fty>().max(1));
                         $(if heads!($arr).is_none() {
-                            self.$arr.reserve(len)?;
+                            zeroed_or!($arr, self.$arr.reserve_zeroed(len, _side),
+                                self.$arr.reserve(len))?;
                         })*
                         zeroed_or!($first, self.$first.extend_zeroed(len),
                             self.$first.resize(len, $fempty));
                         $(if heads!($arr).is_none() {
-                            self.$arr.resize(len, $aempty);
+                            zeroed_or!($arr, {
+                                let old = self.$arr.len();
+                                self.$arr.extend_zeroed(len);
+                                if fills!($arr, fill_deps) {
+                                    for e in self.$arr[old..].iter_mut() {
+                                        *e = $aempty;
+                                    }
+                                }
+                            }, {
+                                let _ = fill_deps;
+                                self.$arr.resize(len, $aempty)
+                            });
                         })*
                     })*
                 }
@@ -494,7 +572,13 @@ impl Core<'_> {
             return Err(full);
         }
         let len = (need - rom).max(ram.saturating_mul(2)).min(limit);
-        s.resize(pool, len).map_err(|()| full)?;
+        // the support list heads are read only once a rule with `logical` exists
+        // (`set_rule_logical_join` empties them then)
+        #[cfg(feature = "logical")]
+        let fill_deps = self.st.logical.defined;
+        #[cfg(not(feature = "logical"))]
+        let fill_deps = false;
+        s.resize(pool, len, fill_deps).map_err(|()| full)?;
         // hash tables: twice as many buckets as entries (a table that cannot grow
         // keeps its chains, longer)
         let grown_heads = match pool {
@@ -894,6 +978,10 @@ mod tests {
         );
         #[cfg(feature = "host-speedups")]
         let _: u32 = hash;
+        // the side arrays that are `ZeroFree` (host speed-ups): arrays of `Ix`
+        #[cfg(feature = "host-speedups")]
+        let _: ([Ix; 2], [[Ix; 3]; crate::rete::XGROUPS]) =
+            (crate::fact::NO_TEMPLATE_LINKS, crate::rete::NO_XLINKS);
     }
 
     #[test]
@@ -902,10 +990,10 @@ mod tests {
         use crate::rete::TokenKind;
         let mut s = GrowStorage::new();
         let start = s.tokens.len();
-        s.resize(Pool::Tokens, 2 * start).unwrap();
+        s.resize(Pool::Tokens, 2 * start, true).unwrap();
         let at = s.tokens.as_ptr();
-        s.resize(Pool::Tokens, 8 * start).unwrap();
-        s.resize(Pool::Facts, 4 * s.facts.len()).unwrap();
+        s.resize(Pool::Tokens, 8 * start, true).unwrap();
+        s.resize(Pool::Facts, 4 * s.facts.len(), true).unwrap();
         // within the reserve: not moved, the new entries free (zero), the old kept
         assert_eq!(s.tokens.as_ptr(), at);
         assert_eq!(s.tokens.len(), 8 * start);
@@ -915,9 +1003,30 @@ mod tests {
             .iter()
             .all(|t| t.next_sib == TokenId::NONE));
         assert!(s.facts.iter().all(|f| f.state == FactState::Free));
-        // the per-entry arrays beside them grow with their empty value
+        // the arrays beside them grow in place too: the support heads with their
+        // empty value when told (`fill_deps`, else zero), the arrays written before
+        // they are read (host speed-ups) zero
         assert_eq!(s.token_deps.len(), 8 * start);
         assert!(s.token_deps.iter().all(|&d| d == crate::logical::NO_DEPS));
+        #[cfg(feature = "host-speedups")]
+        {
+            assert_eq!(s.token_xlinks.len(), 8 * start);
+            assert_eq!(s.fact_tlinks.len(), s.facts.len());
+            assert!(matches!(s.token_xlinks, Buf::Zeroed(_)));
+            assert!(matches!(s.fact_tlinks, Buf::Zeroed(_)));
+            let at = s.token_xlinks.as_ptr();
+            s.resize(Pool::Tokens, 16 * start, true).unwrap();
+            assert_eq!(s.token_xlinks.as_ptr(), at);
+        }
+        #[cfg(feature = "logical")]
+        {
+            let was = s.token_deps.len();
+            s.resize(Pool::Tokens, 2 * was, false).unwrap();
+            assert!(s.token_deps[..was]
+                .iter()
+                .all(|&d| d == crate::logical::NO_DEPS));
+            assert!(s.token_deps[was..].iter().all(|&d| d == 0));
+        }
         // a limit under the reserve bounds it
         let mut s = GrowStorage::with_limits(
             Capacities::SMALL,
@@ -926,11 +1035,40 @@ mod tests {
                 ..GrowStorage::NO_LIMIT
             },
         );
-        s.resize(Pool::Tokens, 2 * Capacities::SMALL.tokens)
+        s.resize(Pool::Tokens, 2 * Capacities::SMALL.tokens, true)
             .unwrap();
         match &s.tokens {
             Buf::Zeroed(v) => assert_eq!(v.capacity(), 3 * Capacities::SMALL.tokens),
             _ => panic!("not grown into zeroed memory"),
+        }
+    }
+
+    #[cfg(feature = "logical")]
+    #[test]
+    fn support_heads_grown_before_a_logical_rule_are_emptied_when_it_comes() {
+        let mut e = Box::new(GrowEngine::with_storage(GrowStorage::new()));
+        let mut p = String::from("(defrule seen (a ?x) =>)\n");
+        for i in 0..2000 {
+            p.push_str(&format!("(assert (a {i}))\n"));
+        }
+        p.push_str("(run)\n(dependencies 1900)\n");
+        let out = run(&mut e, &p);
+        assert!(out.ends_with("None\n"), "{out}");
+        // grown while no logical rule existed (their support heads left zero)
+        let stats = e.stats();
+        assert!(stats.get(Pool::Facts).1 as usize > Capacities::SMALL.facts);
+        assert!(stats.get(Pool::Tokens).1 as usize > Capacities::SMALL.tokens);
+        let out = run(
+            &mut e,
+            "(defrule l (logical (a ?x)) (test (>= ?x 1990)) => (assert (b ?x)))\n\
+             (run)\n(printout t (length$ (find-all-facts ((?f b)) TRUE)) crlf)\n\
+             (retract 1996)\n\
+             (printout t (length$ (find-all-facts ((?f b)) TRUE)) crlf)\n\
+             (dependencies 1900)\n",
+        );
+        assert_eq!(out, "10\n9\nNone\n");
+        if let Err(v) = e.check_invariants() {
+            panic!("{v}");
         }
     }
 

@@ -186,6 +186,12 @@ impl Core<'_> {
             "logical firing state left set",
             0
         );
+        // before a rule with `logical` exists the list heads are not kept (growing
+        // storage leaves them zero)
+        if !l.defined {
+            ensure!(l.live == 0, "support without a logical rule", l.live);
+            return Ok(());
+        }
         let mut n = 0usize;
         for (f, &head) in self.fact_deps.iter().enumerate() {
             let mut s = head;

@@ -178,6 +178,17 @@ impl Core<'_> {
     /// the table.
     pub(crate) fn set_rule_logical_join(&mut self, rule: Ix, join: JoinId) -> bool {
         if join != JoinId::NONE {
+            // growing storage leaves the support list heads of grown entries zero
+            // until now (nothing reads them before): empty them, once (`defined` is
+            // never reset). Unwritten till then, each array is its first entries'
+            // `NO_DEPS` (a seed's or `clear`'s), then the zero ones it grew by.
+            #[cfg(feature = "grow")]
+            if !self.st.logical.defined && self.grows() {
+                let from = self.token_deps.partition_point(|&d| d == NONE);
+                self.token_deps[from..].fill(NONE);
+                let from = self.fact_deps.partition_point(|&d| d == NONE);
+                self.fact_deps[from..].fill(NONE);
+            }
             self.st.logical.defined = true;
             // (a firing gives logical support on the run loop's general path)
             self.note_run_slow();
@@ -566,7 +577,12 @@ impl Core<'_> {
     /// `(dependencies fact)`: the partial matches supporting the fact, one per line,
     /// or `None`.
     pub(crate) fn print_dependencies(&mut self, fact: Ix) {
-        let mut s = self.fact_deps[fact as usize];
+        // (no support before a rule with `logical` exists: the heads are not kept)
+        let mut s = if self.st.logical.defined {
+            self.fact_deps[fact as usize]
+        } else {
+            NONE
+        };
         if s == NONE {
             self.write(crate::host::router::WDISPLAY, "None\n");
             return;
@@ -586,7 +602,12 @@ impl Core<'_> {
     pub(crate) fn print_dependents(&mut self, fact: Ix) {
         let mut b: crate::value::TextBuf<512> = crate::value::TextBuf::new();
         let mut found = false;
-        let mut f = self.st.facts.fact_head;
+        // (no support before a rule with `logical` exists: the heads are not kept)
+        let mut f = if self.st.logical.defined {
+            self.st.facts.fact_head
+        } else {
+            NONE
+        };
         while f != NONE {
             let mut s = self.fact_deps[f as usize];
             while s != NONE {
