@@ -1143,6 +1143,53 @@ impl Core<'_> {
         }
     }
 
+    /// Host: CLIPS 6.30 keeps the memory of a pattern with a right hash as a list of
+    /// buckets, one per hash value, in the order the buckets were made (a bucket left
+    /// empty is dropped, a later match of its value makes a new one at the end), each
+    /// bucket's matches oldest first; `matches` and a join primed from the memory
+    /// read it so. New match `t` of node `alpha`, just put at the end of the memory
+    /// and of its index bucket, moves to after the last match of its own bucket (the
+    /// last one of the chain with its tag), if there is one.
+    #[cfg(all(feature = "grow", feature = "host-speedups"))]
+    pub(crate) fn bucket_order(&mut self, t: TokenId, alpha: Ix) {
+        let tag = self.tokens[t].parent;
+        if tag == TokenId::NONE {
+            return;
+        }
+        let head = self.amem_buckets[self.alpha_bucket_of(tag.0 as u32)];
+        let mut p = self.tokens[t].am_prev;
+        let last = loop {
+            if p == t || p == TokenId::NONE {
+                return;
+            }
+            let pk = self.tokens[p];
+            if pk.parent == tag && pk.alpha() == alpha {
+                break p;
+            }
+            if p == head {
+                return;
+            }
+            p = pk.am_prev;
+        };
+        let prev = self.tokens[t].mem_prev;
+        if prev == last || prev == TokenId::NONE {
+            return;
+        }
+        // out of the memory's end (`t` is its tail)...
+        self.tokens[prev].mem_next = TokenId::NONE;
+        self.alpha_mems[alpha as usize].tail = prev;
+        // ...and in after the bucket's last match
+        let next = self.tokens[last].mem_next;
+        self.tokens[t].mem_prev = last;
+        self.tokens[t].mem_next = next;
+        self.tokens[last].mem_next = t;
+        if next != TokenId::NONE {
+            self.tokens[next].mem_prev = t;
+        } else {
+            self.alpha_mems[alpha as usize].tail = t;
+        }
+    }
+
     /// Takes alpha match `am` of node `alpha` out of the index.
     #[cfg_attr(feature = "host-speedups", inline(always))]
     pub(crate) fn index_remove(&mut self, am: TokenId, alpha: Ix) {
