@@ -417,6 +417,7 @@ differential_programs! {
     p324_module_restored_after_actions => "324-module-restored-after-actions",
     p325_pp_equals_glued_to_call => "325-pp-equals-glued-to-call",
     p326_matches_hashed_alpha_buckets => "326-matches-hashed-alpha-buckets",
+    p327_lone_mf_wildcard_in_single_slot => "327-lone-mf-wildcard-in-single-slot",
     p350_check_syntax => "350-check-syntax",
     p351_parse_time_argument_checks => "351-parse-time-argument-checks",
     p352_long_action_lists => "352-long-action-lists",

@@ -1557,6 +1557,26 @@ impl<'s> Parser<'s, '_, '_> {
                                 e.echo_tail = crate::error::EchoTail::SpaceBefore;
                                 return Err(e);
                             }
+                            if empty.tok == Tok::MfWild {
+                                // `(a $?)`: CLIPS reads a lone `$?` in a single-field
+                                // slot as `?` (anything after it, `&` too, is refused)
+                                self.next();
+                                let close = self.peek();
+                                if !matches!(close.tok, Tok::RParen | Tok::Eof | Tok::Bad) {
+                                    // shown one space after the `$?`: `(v $? &`
+                                    let mut e = self.syntax_of(
+                                        close,
+                                        "')' closing the slot after a lone '$?'",
+                                        "deftemplate patterns",
+                                    );
+                                    e.echo_end = close.end as u32;
+                                    e.echo_tail = crate::error::EchoTail::Spaced;
+                                    return Err(e);
+                                }
+                                pb.record(loc::new(slot as u8, loc::SINGLE), NONE, false);
+                                self.expect_rparen("')' closing the slot after a lone '$?'")?;
+                                continue;
+                            }
                             let (multi, test) =
                                 self.field(p, loc::new(slot as u8, loc::SINGLE), NONE)?;
                             let close = self.peek();
@@ -1566,6 +1586,18 @@ impl<'s> Parser<'s, '_, '_> {
                                     .err(st, "a single-field constraint for a single-field slot");
                                 e.detail = crate::error::LoadDetail::SingleSlot { slot: def.name };
                                 e.echo_end = close.end as u32;
+                                return Err(e);
+                            }
+                            if multi && !matches!(close.tok, Tok::RParen | Tok::Eof | Tok::Bad) {
+                                // `(a $?x b)`: CLIPS refuses the multifield variable
+                                // once it has read the token after it, glued to it
+                                let mut e = self.err(
+                                    close,
+                                    "a single-field constraint for a single-field slot",
+                                );
+                                e.detail = crate::error::LoadDetail::SingleSlot { slot: def.name };
+                                e.echo_end = close.end as u32;
+                                e.echo_tail = crate::error::EchoTail::Glued;
                                 return Err(e);
                             }
                             if !matches!(close.tok, Tok::RParen | Tok::Eof | Tok::Bad) {
