@@ -828,10 +828,6 @@ impl Core<'_> {
         self.index_insert_as(t, alpha, PatBinding { fact, marks });
         #[cfg(not(feature = "host-speedups"))]
         self.index_insert(t);
-        #[cfg(all(feature = "grow", feature = "host-speedups"))]
-        if self.alphas[alpha as usize].nrhash > 0 {
-            self.bucket_order(t, alpha);
-        }
         let mut j = self.alphas[alpha as usize].succ;
         while j != JoinId::NONE {
             // remember how far propagation got, so a rollback undoes only that

@@ -1090,12 +1090,13 @@ impl Core<'_> {
                 marks: tk.marks,
             },
         );
-        self.bucket_link(am, alpha, key);
+        let _ = self.bucket_link(am, alpha, key);
     }
 
-    /// Links alpha match `am` of node `alpha` into its bucket for `key`, at the end.
+    /// Links alpha match `am` of node `alpha` into its bucket for `key`, at the end;
+    /// returns the chain's tail before (NONE: `am` is the chain's first).
     #[inline(always)]
-    fn bucket_link(&mut self, am: TokenId, alpha: Ix, key: u32) {
+    fn bucket_link(&mut self, am: TokenId, alpha: Ix, key: u32) -> TokenId {
         let b = self.bucket(alpha, key);
         let head = self.amem_buckets[b as usize];
         // (with `grow` the tag the bucket comes from, see `alpha_tag`)
@@ -1108,11 +1109,13 @@ impl Core<'_> {
         if head == TokenId::NONE {
             self.tokens[am].am_prev = am;
             self.amem_buckets[b as usize] = am;
+            TokenId::NONE
         } else {
             let tail = self.tokens[head].am_prev;
             self.tokens[tail].am_next = am;
             self.tokens[am].am_prev = tail;
             self.tokens[head].am_prev = am;
+            tail
         }
     }
 
@@ -1126,7 +1129,7 @@ impl Core<'_> {
         }
         // matches of an or-lookup node get their place in memory order
         // (a node without a right hash is indexed for its or field alone, so it has one)
-        let keyed = {
+        let (keyed, hashed) = {
             let n = &self.alphas[alpha as usize];
             let with_or = n.rhash.get(n.nrhash as usize).is_some_and(|&f| f != NONE);
             if with_or {
@@ -1134,10 +1137,25 @@ impl Core<'_> {
                 self.tokens[am].key = s;
                 self.st.cache.or_stamp = s.saturating_add(1);
             }
-            with_or && n.nrhash > 0
+            (with_or && n.nrhash > 0, n.nrhash > 0)
         };
         let key = self.alpha_key(alpha, b);
-        self.bucket_link(am, alpha, key);
+        let before = self.bucket_link(am, alpha, key);
+        #[cfg(feature = "grow")]
+        if hashed && before != TokenId::NONE {
+            // (most often the chain's previous tail is of the same bucket, and often
+            // it is the memory's previous tail too: nothing to move)
+            let (b, a) = (&self.tokens[before], &self.tokens[am]);
+            if b.parent == a.parent && b.owner == a.owner {
+                if a.mem_prev != before {
+                    self.bucket_move_after(am, alpha, before);
+                }
+            } else {
+                self.bucket_order(am, alpha, before);
+            }
+        }
+        #[cfg(not(feature = "grow"))]
+        let _ = (hashed, before);
         if keyed {
             self.or_index_link(am, alpha, key);
         }
@@ -1150,14 +1168,13 @@ impl Core<'_> {
     /// read it so. New match `t` of node `alpha`, just put at the end of the memory
     /// and of its index bucket, moves to after the last match of its own bucket (the
     /// last one of the chain with its tag), if there is one.
+    /// `before`: the chain's tail before `t` joined it (not NONE).
     #[cfg(all(feature = "grow", feature = "host-speedups"))]
-    pub(crate) fn bucket_order(&mut self, t: TokenId, alpha: Ix) {
+    #[inline(never)]
+    fn bucket_order(&mut self, t: TokenId, alpha: Ix, before: TokenId) {
         let tag = self.tokens[t].parent;
-        if tag == TokenId::NONE {
-            return;
-        }
-        let head = self.amem_buckets[self.alpha_bucket_of(tag.0 as u32)];
-        let mut p = self.tokens[t].am_prev;
+        let head = self.amem_buckets[self.alpha_bucket_of(tag.0)];
+        let mut p = before;
         let last = loop {
             if p == t || p == TokenId::NONE {
                 return;
@@ -1171,8 +1188,18 @@ impl Core<'_> {
             }
             p = pk.am_prev;
         };
+        if self.tokens[t].mem_prev != last {
+            self.bucket_move_after(t, alpha, last);
+        }
+    }
+
+    /// Host: moves new match `t` of node `alpha` (the memory's tail) to just after
+    /// `last`, an earlier match of its memory (`bucket_order`).
+    #[cfg(all(feature = "grow", feature = "host-speedups"))]
+    #[inline(never)]
+    fn bucket_move_after(&mut self, t: TokenId, alpha: Ix, last: TokenId) {
         let prev = self.tokens[t].mem_prev;
-        if prev == last || prev == TokenId::NONE {
+        if prev == TokenId::NONE {
             return;
         }
         // out of the memory's end (`t` is its tail)...
