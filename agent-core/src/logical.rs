@@ -13,7 +13,12 @@
 //! A fact asserted with no logical support in force (at the top level, or by a rule
 //! without `logical`) is unconditional: asserting it again that way drops the support
 //! it had; a logical rule re-asserting an unconditional fact adds none. A logical rule
-//! whose partial match went during its own actions asserts nothing more.
+//! whose partial match went during its own actions gives no support any more: when the
+//! match went with the fact of the logical group's last pattern (CLIPS unlinks that
+//! partial match from its parents) its actions assert nothing more, else (it went as a
+//! descendant of a partial match that went, or a `not` was blocked, an `exists` lost
+//! its last match: CLIPS keeps its parent links) they assert new facts without support,
+//! unconditional ones.
 //!
 //! Off (feature `logical`, and capacity 0) in the agent image: its rules use no
 //! `logical`, and the per-token and per-fact list heads cost a word each.
@@ -101,8 +106,12 @@ pub struct LogicalState {
     /// successor whose copy of it gives the support.
     pub bind: TokenId,
     pub bind_succ: JoinId,
-    /// That partial match went during the rule's actions: they assert nothing more.
+    /// That partial match went during the rule's actions: they give no support.
     pub gone: bool,
+    /// It went with the fact its logical join matched (`remove_alpha_match`; CLIPS's
+    /// `AddLogicalDependencies` finds its parent links cut): the actions assert no new
+    /// fact. Without it, after `gone`, new facts are asserted unsupported.
+    pub cut: bool,
     /// The unsupported stack is being retracted (nested operations leave it to that).
     pub forcing: bool,
     /// Partial matches go with their rule (`undefrule`, a redefinition): the facts
@@ -126,6 +135,7 @@ impl LogicalState {
             bind: TokenId::NONE,
             bind_succ: JoinId::NONE,
             gone: false,
+            cut: false,
             forcing: false,
             detach: false,
             defined: false,
@@ -148,6 +158,7 @@ pub struct LogicalFrame {
     bind: TokenId,
     bind_succ: JoinId,
     gone: bool,
+    cut: bool,
 }
 
 #[cfg(feature = "logical")]
@@ -224,6 +235,7 @@ impl Core<'_> {
             bind: self.st.logical.bind,
             bind_succ: self.st.logical.bind_succ,
             gone: self.st.logical.gone,
+            cut: self.st.logical.cut,
         };
         let succ = self.rule_logical_join(rule);
         let join = if succ == JoinId::NONE {
@@ -247,6 +259,7 @@ impl Core<'_> {
         self.st.logical.bind_succ = succ;
         // a logical rule whose partial match cannot be found supports nothing
         self.st.logical.gone = join != JoinId::NONE && t == TokenId::NONE;
+        self.st.logical.cut = self.st.logical.gone;
         saved
     }
 
@@ -255,13 +268,29 @@ impl Core<'_> {
         self.st.logical.bind = saved.bind;
         self.st.logical.bind_succ = saved.bind_succ;
         self.st.logical.gone = saved.gone;
+        self.st.logical.cut = saved.cut;
     }
 
     /// Whether an assert may create a fact: not when the firing rule's logical partial
-    /// match went during its actions (CLIPS creates nothing then).
+    /// match went with its own fact during the actions (`LogicalState::cut`; CLIPS
+    /// creates nothing then).
     #[inline(always)]
     pub(crate) fn logical_may_assert(&self) -> bool {
-        !self.st.logical.gone
+        !self.st.logical.cut
+    }
+
+    /// Alpha match `am`'s partial match `c` is deleted with it (`remove_alpha_match`):
+    /// whether it is the firing rule's logical partial match, which then goes `cut`
+    /// (`logical_cut_after`).
+    #[inline(always)]
+    pub(crate) fn logical_cut_before(&self, c: TokenId) -> bool {
+        self.st.logical.bind == c && c != TokenId::NONE
+    }
+
+    /// After deleting a partial match `logical_cut_before` named.
+    #[inline(always)]
+    pub(crate) fn logical_cut_after(&mut self) {
+        self.st.logical.cut = true;
     }
 
     /// Whether there is room for the support an assert may add now.

@@ -849,7 +849,16 @@ impl Core<'_> {
         // blocks, which look for another blocker: CLIPS's order
         while self.tokens[am].first_child != TokenId::NONE {
             let c = self.tokens[am].first_child;
+            // the firing rule's logical partial match going with its own fact: CLIPS
+            // unlinks it from its parents (`PosEntryRetractAlpha`), and the actions
+            // assert nothing more (as a descendant, or blocked, they go on unsupported)
+            #[cfg(feature = "logical")]
+            let cut = self.logical_cut_before(c);
             self.delete_token(c);
+            #[cfg(feature = "logical")]
+            if cut {
+                self.logical_cut_after();
+            }
         }
         // out of its memory and bucket before the outputs it blocks are unblocked: a
         // later pattern of their rule may share this node, and what they pass on must
