@@ -92,6 +92,10 @@ pub type RuleLogical = ();
 #[cfg(not(feature = "logical"))]
 pub const NO_RULE_LOGICAL: RuleLogical = ();
 
+/// How many facts `LogicalState::held` keeps.
+#[cfg(feature = "logical")]
+pub const HELD: usize = 8;
+
 /// The engine's truth-maintenance state.
 #[cfg(feature = "logical")]
 #[derive(Clone, Copy, Debug)]
@@ -112,6 +116,12 @@ pub struct LogicalState {
     /// `AddLogicalDependencies` finds its parent links cut): the actions assert no new
     /// fact. Without it, after `gone`, new facts are asserted unsupported.
     pub cut: bool,
+    /// Supported facts asserted again after `gone` (not `cut`): CLIPS links them to the
+    /// dead partial match until the firing ends (`FlushGarbagePartialMatches`), so one
+    /// losing its other supports meanwhile stays, unconditional (`held`, up to
+    /// `HELD` facts; `nheld` of them).
+    pub held: [Ix; HELD],
+    pub nheld: u8,
     /// The unsupported stack is being retracted (nested operations leave it to that).
     pub forcing: bool,
     /// Partial matches go with their rule (`undefrule`, a redefinition): the facts
@@ -136,6 +146,8 @@ impl LogicalState {
             bind_succ: JoinId::NONE,
             gone: false,
             cut: false,
+            held: [NONE; HELD],
+            nheld: 0,
             forcing: false,
             detach: false,
             defined: false,
@@ -269,6 +281,13 @@ impl Core<'_> {
         self.st.logical.bind_succ = saved.bind_succ;
         self.st.logical.gone = saved.gone;
         self.st.logical.cut = saved.cut;
+        // the firing's dead partial match is flushed: its links go, retracting nothing
+        self.st.logical.nheld = 0;
+    }
+
+    fn is_held(&self, fact: Ix) -> bool {
+        let l = &self.st.logical;
+        l.held[..l.nheld as usize].contains(&fact)
     }
 
     /// Whether an assert may create a fact: not when the firing rule's logical partial
@@ -322,8 +341,17 @@ impl Core<'_> {
     pub(crate) fn support_existing_fact(&mut self, fact: Ix) {
         let t = self.st.logical.bind;
         if t == TokenId::NONE {
-            if !self.st.logical.gone {
+            let l = &mut self.st.logical;
+            if !l.gone {
                 self.drop_fact_supports(fact);
+            } else if !l.cut
+                && self.fact_deps[fact as usize] != NONE
+                && (l.nheld as usize) < HELD
+                && !l.held[..l.nheld as usize].contains(&fact)
+            {
+                // linked to the dead partial match until the firing ends
+                l.held[l.nheld as usize] = fact;
+                l.nheld += 1;
             }
             return;
         }
@@ -381,6 +409,13 @@ impl Core<'_> {
     /// stack.
     #[inline(always)]
     pub(crate) fn fact_leaves(&mut self, fact: Ix) {
+        if self.st.logical.nheld != 0 {
+            let l = &mut self.st.logical;
+            if let Some(i) = l.held[..l.nheld as usize].iter().position(|&f| f == fact) {
+                l.nheld -= 1;
+                l.held[i] = l.held[l.nheld as usize];
+            }
+        }
         if self.st.logical.live == 0 {
             return;
         }
@@ -519,7 +554,10 @@ impl Core<'_> {
                     p = n;
                 }
             }
-            if self.fact_deps[fact as usize] == NONE && !self.st.logical.detach {
+            if self.fact_deps[fact as usize] == NONE
+                && !self.st.logical.detach
+                && !self.is_held(fact)
+            {
                 // the entry itself goes on the unsupported stack
                 self.supports[s as usize] = crate::logical::Support {
                     token: TokenId::NONE,
