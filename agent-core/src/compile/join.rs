@@ -280,12 +280,15 @@ impl Compiler<'_, '_> {
                 index_child: JoinId::NONE,
             };
             self.cx.join_mems[j] = JoinMem::EMPTY;
-            // a join from the right comes right after its subnetwork's first join
-            // among the parent's children: the subnetwork sees a new left token first.
-            // Not at the root, whose one token only `reset` passes on: there CLIPS
-            // primes the joins newest first (its list of left-primed first joins).
+            // a join from the right comes second among the parent's children, right
+            // after the newest: its subnetwork's first join when that is new (the
+            // subnetwork sees a new left token first), another when it shares an older
+            // one (CLIPS then passes a new left token to the join from the right
+            // before the subnetwork: a transient activation). Not at the root, whose
+            // one token only `reset` passes on: there CLIPS primes the joins newest
+            // first (its list of left-primed first joins).
             let after = if rjoin != JoinId::NONE && parent != JoinId::ROOT {
-                jid[ce.first_sub as usize]
+                self.cx.joins[parent].first_child
             } else {
                 JoinId::NONE
             };

@@ -42,10 +42,8 @@ pub(crate) struct Ce {
     pub(crate) depth: u8,
     /// Left input: index of the CE before it in its chain, or CE_ROOT.
     pub(crate) parent: u8,
-    /// Join from the right: index of the subnetwork's last CE (else CE_ROOT) and
-    /// of its first one.
+    /// Join from the right: index of the subnetwork's last CE (else CE_ROOT).
     pub(crate) right: u8,
-    pub(crate) first_sub: u8,
 }
 
 const CE_EMPTY: Ce = Ce {
@@ -60,7 +58,6 @@ const CE_EMPTY: Ce = Ce {
     depth: 0,
     parent: CE_ROOT,
     right: CE_ROOT,
-    first_sub: CE_ROOT,
 };
 
 pub(crate) struct Build {
@@ -1303,14 +1300,13 @@ impl<'s> Parser<'s, '_, '_> {
                 depth: d,
                 parent: outer,
                 right: b.cur,
-                first_sub: first as u8,
                 ..CE_EMPTY
             };
             b.cur = b.n as u8;
             b.n += 1;
-            return self.group_node(b, true, d, outer, first, at);
+            return self.group_node(b, true, d, outer, at);
         }
-        self.group_node(b, negated, d, outer, first, at)
+        self.group_node(b, negated, d, outer, at)
     }
 
     /// Whether the chain ending at `b.cur` starts (after `outer`) with a group.
@@ -1332,7 +1328,6 @@ impl<'s> Parser<'s, '_, '_> {
         negated: bool,
         d: u8,
         outer: u8,
-        first: usize,
         at: Token<'s>,
     ) -> PResult<()> {
         if b.n >= MAX_PATTERNS {
@@ -1347,7 +1342,6 @@ impl<'s> Parser<'s, '_, '_> {
             depth: d,
             parent: outer,
             right: b.cur,
-            first_sub: first as u8,
             ..CE_EMPTY
         };
         b.cur = b.n as u8;
@@ -1656,7 +1650,6 @@ impl<'s> Parser<'s, '_, '_> {
             depth: b.depth,
             parent: b.cur,
             right: CE_ROOT,
-            first_sub: CE_ROOT,
         };
         b.cur = b.n as u8;
         b.n += 1;
