@@ -446,6 +446,7 @@ differential_programs! {
     p411_logical_support_lost_in_actions => "411-logical-support-lost-in-actions",
     p412_logical_reassert_after_support_lost => "412-logical-reassert-after-support-lost",
     p413_join_from_right_after_shared_join => "413-join-from-right-after-shared-join",
+    p414_join_from_right_free_subnetwork => "414-join-from-right-free-subnetwork",
     p450_keyed_or_joins => "450-keyed-or-joins",
     p451_element_join_keys => "451-element-join-keys",
     p520_left_operand_tests => "520-left-operand-tests",

@@ -500,9 +500,23 @@ impl Core<'_> {
     }
 
     /// A partial match `r` of a subnetwork became active: it blocks the output of
-    /// the not/exists join `join` for the left token it extends.
+    /// the not/exists join `join` for the left token it extends (host: for every left
+    /// token, in memory order, when the subnetwork is free: `sub_is_free`).
     fn right_activate_beta(&mut self, join: JoinId, r: TokenId) -> Result<(), EvalError> {
         let parent = self.joins[join].parent;
+        #[cfg(feature = "grow")]
+        if self.sub_is_free(join) {
+            let mut l = self.join_mems[parent].mem;
+            while l != TokenId::NONE {
+                let next = self.tokens[l].mem_next;
+                let t = self.output_of(l, join);
+                if t != TokenId::NONE && !self.tokens[t].blocked {
+                    self.block(t, r)?;
+                }
+                l = next;
+            }
+            return Ok(());
+        }
         let l = self.ancestor_in(r, parent);
         if l == TokenId::NONE {
             return Ok(());
@@ -612,6 +626,65 @@ impl Core<'_> {
         TokenId::NONE
     }
 
+    /// Host: whether the subnetwork feeding join from the right `join` reads no
+    /// variable of the patterns before it. CLIPS's join then has no test, and
+    /// `drive.c` checks no descent either: any of the subnetwork's partial matches
+    /// blocks every left partial match (which one, and the order of what a group
+    /// unblocks, show in the activations). (One whose subnetwork shares variables
+    /// blocks those agreeing on them in CLIPS; here only its own: not reproduced.)
+    #[cfg(feature = "grow")]
+    fn sub_is_free(&self, join: JoinId) -> bool {
+        let j = &self.joins[join];
+        let parent = j.parent;
+        if parent == JoinId::ROOT || j.rjoin == JoinId::NONE {
+            return false;
+        }
+        !self.sub_reads_outer(j.rjoin, parent, self.joins[parent].depth)
+    }
+
+    /// Host: whether a join on the path from `last` up to (not including) `stop`, or
+    /// of a subnetwork nested there, reads a pattern variable of pattern `outer` or an
+    /// earlier one (true when the path does not reach `stop`).
+    #[cfg(feature = "grow")]
+    fn sub_reads_outer(&self, last: JoinId, stop: JoinId, outer: u8) -> bool {
+        let mut s = last;
+        while s != stop {
+            if s == JoinId::NONE || s == JoinId::ROOT {
+                return true;
+            }
+            let sj = &self.joins[s];
+            if self.reads_outer(sj.tests, outer)
+                || self.reads_outer(sj.post, outer)
+                || (sj.rjoin != JoinId::NONE && self.sub_reads_outer(sj.rjoin, sj.parent, outer))
+            {
+                return true;
+            }
+            s = sj.parent;
+        }
+        false
+    }
+
+    /// Host: whether the expression chain from `e` reads a pattern variable of
+    /// pattern `outer` or an earlier one.
+    #[cfg(feature = "grow")]
+    fn reads_outer(&self, mut e: Ix, outer: u8) -> bool {
+        while e != NONE {
+            let x = self.exprs[e as usize];
+            if x.op == crate::expr::Op::PatVar {
+                if x.aux <= outer {
+                    return true;
+                }
+            } else if !matches!(x.op, crate::expr::Op::Int | crate::expr::Op::Float)
+                && x.first != NONE
+                && self.reads_outer(x.first, outer)
+            {
+                return true;
+            }
+            e = x.next;
+        }
+        false
+    }
+
     /// The first right item blocking the output of not/exists `join` for left token
     /// `left`: alpha matches from `from` on (memory order; `hashed`: along its index
     /// bucket), or active partial matches
@@ -684,6 +757,26 @@ impl Core<'_> {
     ) -> Result<TokenId, EvalError> {
         let parent = self.joins[join].parent;
         let mut r = self.join_mems[rjoin].mem;
+        // host: a free subnetwork's first active partial match blocks any left token
+        // (not one holding the fact being retracted: CLIPS's `PartialMatchWillBeDeleted`)
+        // (oldest first: CLIPS's right memory of a join from the right appends)
+        #[cfg(feature = "grow")]
+        if self.sub_is_free(join) {
+            let dying = self.st.net.dying;
+            while r != TokenId::NONE && self.tokens[r].mem_next != TokenId::NONE {
+                r = self.tokens[r].mem_next;
+            }
+            while r != TokenId::NONE {
+                if r != skip
+                    && self.token_active(r)
+                    && (dying == NONE || !self.holds_fact(r, dying))
+                {
+                    return Ok(r);
+                }
+                r = self.tokens[r].mem_prev;
+            }
+            return Ok(TokenId::NONE);
+        }
         // host: a partial match extending `left` binds the facts `left` binds
         // (`Token::binds`: copied from the parent, only deeper patterns added),
         // so one binding another fact there is passed over without its walk up
