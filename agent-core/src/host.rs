@@ -22,6 +22,21 @@ pub trait Host {
     /// Output to a router (see `router`); `printout` to other logical names passes them
     /// through unchanged.
     fn write_str(&mut self, router: &str, text: &str);
+    /// Raw bytes to a router: `put-char`'s byte, which CLIPS writes as it is (a code of
+    /// 128-255 is no UTF-8 text on its own). The default, for hosts whose output is
+    /// text, writes UTF-8 as text and any other byte as the character of its code.
+    #[cfg(feature = "parser")]
+    fn write_bytes(&mut self, router: &str, bytes: &[u8]) {
+        match core::str::from_utf8(bytes) {
+            Ok(text) => self.write_str(router, text),
+            Err(_) => {
+                for &b in bytes {
+                    let mut buf = [0u8; 4];
+                    self.write_str(router, char::from(b).encode_utf8(&mut buf));
+                }
+            }
+        }
+    }
     /// Reads a whole file into `buf`, returning its length (`TooLarge` when it does not
     /// fit).
     fn read_file(&mut self, _path: &str, _buf: &mut [u8]) -> Result<usize, HostIoError> {

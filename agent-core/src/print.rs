@@ -192,6 +192,28 @@ impl Core<'_> {
         self.host.write_str(router, text);
     }
 
+    /// Writes raw bytes to a router (`put-char`): text when they are UTF-8, else through
+    /// [`Host::write_bytes`] (a capture of error output takes each byte as the
+    /// character of its code).
+    #[cfg(feature = "parser")]
+    pub(crate) fn write_bytes(&mut self, router: &str, bytes: &[u8]) {
+        if let Ok(text) = core::str::from_utf8(bytes) {
+            self.write(router, text);
+            return;
+        }
+        #[cfg(feature = "extras")]
+        if let Some(c) = self.st.capture.as_mut() {
+            if router == router::WERROR || router == router::WWARNING {
+                for &b in bytes {
+                    let _ = core::fmt::Write::write_char(c, char::from(b));
+                }
+                return;
+            }
+        }
+        self.spill_traces();
+        self.host.write_bytes(router, bytes);
+    }
+
     /// Splits into a printing view and a writer for watch traces (see `hold`).
     fn split_trace(&mut self) -> (View<'_>, crate::hold::TraceWriter<'_>) {
         (

@@ -185,15 +185,16 @@ impl CliHost {
     }
 }
 
-impl Host for CliHost {
-    fn write_str(&mut self, router: &str, text: &str) {
+impl CliHost {
+    /// Output to a router, bytes as they are (`put-char` writes bytes that are no UTF-8).
+    fn write_raw(&mut self, router: &str, text: &[u8]) {
         if !self.files.is_empty() {
             match self.files.get_mut(router) {
                 Some(OpenFile::Write(f)) => {
                     // out at once, as CLIPS's file writes are: a reader of the same
                     // file sees them before the file is closed (and after a rule
                     // halted before its close)
-                    let _ = f.write_all(text.as_bytes());
+                    let _ = f.write_all(text);
                     let _ = f.flush();
                     return;
                 }
@@ -202,13 +203,23 @@ impl Host for CliHost {
                 None => {}
             }
         }
-        let _ = self.out.write_all(text.as_bytes());
+        let _ = self.out.write_all(text);
         // whole lines go out at once, as CLIPS's output does: a command that never
         // ends (killed by a timeout) leaves what came before it, its echo included
-        if text.ends_with('\n') {
+        if text.ends_with(b"\n") {
             let _ = self.out.flush();
         }
-        self.copy_to_dribble(text.as_bytes());
+        self.copy_to_dribble(text);
+    }
+}
+
+impl Host for CliHost {
+    fn write_str(&mut self, router: &str, text: &str) {
+        self.write_raw(router, text.as_bytes());
+    }
+
+    fn write_bytes(&mut self, router: &str, bytes: &[u8]) {
+        self.write_raw(router, bytes);
     }
 
     fn dribble_on(&mut self, path: &str) -> Result<(), HostIoError> {

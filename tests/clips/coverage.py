@@ -34,7 +34,7 @@ ROOT = os.path.dirname(os.path.dirname(HERE))
 
 # (section, title, kind, names). kind: construct, ce, rule (rule property), slot (slot
 # attribute), attr (constraint attribute), module, strategy, watch, lname (logical
-# name), fn (function or command called).
+# name), mode (`open`'s mode string), fn (function or command called).
 SECTIONS = [
     ("3", "Deftemplate construct", "construct", ["deftemplate"]),
     ("3", "Deftemplate construct: slots and defaults", "slot",
@@ -79,6 +79,8 @@ SECTIONS = [
     ("12.4.2", "Common I/O functions", "fn",
      ["open", "close", "printout", "read", "readline", "format", "rename", "remove",
       "get-char", "read-number", "set-locale"]),
+    ("12.4.2", "Common I/O functions: open's modes", "mode",
+     ["r", "w", "a", "rb", "wb", "ab"]),
     ("12.5.1", "Standard math functions", "fn",
      ["+", "-", "*", "/", "div", "max", "min", "abs", "float", "integer"]),
     ("12.5.2", "Extended math functions", "fn",
@@ -451,6 +453,8 @@ class Walker:
             ln = args[1] if name in ("open", "ppfact") and len(args) > 1 else args[0]
             if isinstance(ln, Sym):
                 self.hit("lname", ln)
+        if name == "open" and len(args) > 2 and isinstance(args[2], Str):
+            self.hit("mode", args[2])
         if name in ("eval", "build", "check-syntax"):
             for c in args:
                 if isinstance(c, Str):

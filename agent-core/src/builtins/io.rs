@@ -506,7 +506,7 @@ fn batch_byte(cx: &mut Core<'_>) -> Result<Option<u8>, EvalError> {
     Ok(Some(b[0]))
 }
 
-/// `(put-char [name] code)`: writes the character of the code's low byte.
+/// `(put-char [name] code)`: writes the byte with that code.
 fn put_char(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let code_at = a.len as usize - 1;
     // (a float is cut to an integer, as C's cast in CLIPS)
@@ -530,12 +530,10 @@ fn put_char(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     } else {
         super::commands::Routed::Engine(router::STDOUT)
     };
-    // CLIPS's `putc` writes the code's low byte, whatever the code (-3 is 0xFD, 321
-    // is `A`); a byte from 0x80 up goes out as its Latin-1 character (hosts take
-    // text), as `format`'s `%c`
-    let ch = char::from(code as u8);
-    let mut b = [0u8; 4];
-    cx.write(routed.name(), ch.encode_utf8(&mut b));
+    // one byte, the code's low 8 bits, as CLIPS's `(char)` cast: 128-255 (and -128..-1)
+    // are raw bytes, not the UTF-8 of a character; 256 is 0, 321 is `A`
+    let byte = code as u8;
+    cx.write_bytes(routed.name(), &[byte]);
     Ok(Value::Void)
 }
 

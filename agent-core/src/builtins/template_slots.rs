@@ -434,11 +434,13 @@ mod tests {
     }
 
     #[test]
-    fn join_activity_and_constructs_to_c_are_refused_as_not_implemented() {
+    fn join_activity_constructs_to_c_bload_and_bsave_are_refused_as_not_implemented() {
         for call in [
             "(join-activity r)\n(printout t ok crlf)\n",
             "(join-activity-reset)\n(printout t ok crlf)\n",
             "(constructs-to-c f 1)\n(printout t ok crlf)\n",
+            "(bload \"x.bin\")\n(printout t ok crlf)\n",
+            "(bsave \"x.bin\")\n(printout t ok crlf)\n",
         ] {
             let out = run_program(call);
             assert!(

@@ -1477,6 +1477,9 @@ fn not_implemented_function(name: &str) -> Option<&'static str> {
         "constructs-to-c" => {
             Some("C code generation (a rule base compiles to Rust: rules-compiled)")
         }
+        "bload" | "bsave" => Some(
+            "CLIPS's binary images, dumps of its own memory layout (a rule base compiles to Rust: rules-compiled)",
+        ),
         _ => None,
     }
 }
