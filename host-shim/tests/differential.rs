@@ -568,6 +568,7 @@ differential_programs! {
     p436_sin_cos_and_every_logical_name => "436-sin-cos-and-every-logical-name",
     p437_put_char_writes_one_raw_byte => "437-put-char-writes-one-raw-byte",
     p438_open_binary_modes => "438-open-binary-modes",
+    p439_matches_verbosity => "439-matches-verbosity",
     p500_retract_unblock_skips_dying => "500-retract-unblock-skips-dying",
     p501_retract_unblock_dying_lhs => "501-retract-unblock-dying-lhs",
     p502_retract_unblock_subnetwork => "502-retract-unblock-subnetwork",

@@ -304,17 +304,20 @@ fn list_disjunct(cx: &mut Core<'_>, rule: Ix, detail: Detail, totals: &mut [i64;
 /// matches, partial matches, activations) as a multifield.
 pub(super) fn matches(cx: &mut Core<'_>, a: Args, first: Ix) -> Result<Value, EvalError> {
     let detail = if a.len > 1 {
-        let w = cx.arg_lexeme(a, 1, "matches")?;
+        let w = cx.arg_symbol(a, 1, "matches")?;
         match cx.sym_text(w) {
             "verbose" => Detail::Verbose,
             "succinct" => Detail::Succinct,
             "terse" => Detail::Terse,
             _ => {
-                return Err(EvalError::wrong_type(
+                // said, and FALSE is the command's value: CLIPS's body sets no
+                // evaluation error here (the actions go on)
+                cx.write_error_message(EvalError::wrong_type(
                     "matches",
                     2,
                     "symbol with value verbose, succinct, or terse",
-                ))
+                ));
+                return Ok(Value::Sym(super::SYM_FALSE));
             }
         }
     } else {
