@@ -569,6 +569,8 @@ differential_programs! {
     p437_put_char_writes_one_raw_byte => "437-put-char-writes-one-raw-byte",
     p438_open_binary_modes => "438-open-binary-modes",
     p439_matches_verbosity => "439-matches-verbosity",
+    p440_eval_variables_and_type_of_instances => "440-eval-variables-and-type-of-instances",
+    p441_eval_syntax_messages => "441-eval-syntax-messages",
     p500_retract_unblock_skips_dying => "500-retract-unblock-skips-dying",
     p501_retract_unblock_dying_lhs => "501-retract-unblock-dying-lhs",
     p502_retract_unblock_subnetwork => "502-retract-unblock-subnetwork",

@@ -15,6 +15,7 @@ use crate::host::router;
 use crate::lexer::Tok;
 use crate::parser::{Item, Parser};
 use crate::value::{Ix, Value};
+use core::fmt::Write;
 
 #[cfg(feature = "parser")]
 #[rustfmt::skip]
@@ -56,11 +57,21 @@ fn eval(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     p.commands_only = true;
     let item = p.next_item();
     let nlocals = p.nlocals;
+    let prompt_reads = p.prompt_reads;
     let r = match item {
         // `$?x` alone is CLIPS's `expand$` outside a call: `[MISCFUN1]`
         #[cfg(feature = "extras")]
         Ok(Item::Command(e)) if cx.exprs[e as usize].op == crate::expr::Op::Expand => {
             super::environment::expand_outside_call(cx)
+        }
+        // a variable the text reads but does not bind itself (a loop's or a query's
+        // are its own): CLIPS's eval sees none of the caller's, the prompt's included
+        Ok(Item::Command(_)) if prompt_reads > 0 => {
+            cx.write(
+                crate::host::router::WERROR,
+                "[STRNGFUN2] Some variables could not be accessed by the eval function.\n",
+            );
+            Err(EvalError::already_reported())
         }
         Ok(Item::Command(e)) => {
             // a frame for the command's own loop/query variables
@@ -91,7 +102,10 @@ fn eval(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         Ok(Item::End) => Ok(Value::Sym(SYM_FALSE)),
         Ok(Item::Construct) => Ok(Value::Sym(SYM_FALSE)),
         Err(e) => {
-            cx.report_load_error("eval", text, &e);
+            match eval_syntax_message(cx, text, &e) {
+                Some(m) => write_eval_syntax_message(cx, m),
+                None => cx.report_load_error("eval", text, &e),
+            }
             Err(EvalError::new(EvalErrorKind::Reported))
         }
     };
@@ -106,6 +120,143 @@ fn eval(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         cx.st.pools.nexprs = cp.nexprs;
     }
     r
+}
+
+/// What CLIPS's `eval`, which reads an expression and not a command, says where our
+/// command reader's message would be the prompt's (`[COMMLINE1]`, `[COMMLINE2]`) or
+/// about text that ended inside a call ("for the command"); None to keep ours.
+#[derive(Clone, Copy)]
+enum EvalSyntax {
+    /// `[EXPRNPSR2] Expected a constant, variable, or expression.`
+    Expression,
+    /// `[EXPRNPSR1] A function name must be a symbol`
+    FunctionName,
+    /// `[PRNTUTIL2] ... for NAME function.` (`if`, `while`, `switch`)
+    Special(&'static str),
+    /// `[PRNTUTIL2] ... for RHS patterns.` (`assert`)
+    RhsPatterns,
+}
+
+fn eval_syntax_message(
+    cx: &Core<'_>,
+    text: &str,
+    e: &crate::error::LoadError,
+) -> Option<EvalSyntax> {
+    let mut b: crate::value::TextBuf<4096> = crate::value::TextBuf::new();
+    cx.format_load_error("eval", text, e, &mut b, false);
+    let ours = b.as_str();
+    if ours.contains("[COMMLINE1]") {
+        return Some(EvalSyntax::Expression);
+    }
+    if ours.contains("[COMMLINE2]") {
+        return Some(EvalSyntax::FunctionName);
+    }
+    if !ours.contains("Check appropriate syntax for the command.") {
+        return None;
+    }
+    // a connective where an argument is due
+    if matches!(
+        text.get(e.start as usize..e.end as usize),
+        Some("&" | "|" | "~")
+    ) {
+        return Some(EvalSyntax::Expression);
+    }
+    // the calls still open where the text ends: the innermost's name, the one around
+    // it, whether anything followed the innermost's name, and the last token
+    let (mut inner, mut outer, mut after_name, mut last_open) = ("", "", false, false);
+    let mut depth = 0usize;
+    let bytes = text.as_bytes();
+    let mut i = 0;
+    while i < bytes.len() {
+        let c = bytes[i];
+        match c {
+            b';' => {
+                while i < bytes.len() && bytes[i] != b'\n' {
+                    i += 1;
+                }
+                continue;
+            }
+            b'"' => {
+                i += 1;
+                while i < bytes.len() && bytes[i] != b'"' {
+                    i += if bytes[i] == b'\\' { 2 } else { 1 };
+                }
+                i += 1;
+                after_name = true;
+                last_open = false;
+                continue;
+            }
+            b'(' => {
+                let start = i + 1;
+                let mut end = start;
+                while end < bytes.len() && !b" \t\r\n()\";&|~".contains(&bytes[end]) {
+                    end += 1;
+                }
+                outer = inner;
+                inner = text.get(start..end).unwrap_or("");
+                depth += 1;
+                after_name = false;
+                last_open = start == end;
+                i = end;
+                continue;
+            }
+            b')' => {
+                // (the name around a closed call is no longer known: only the
+                // innermost open call matters, and a closed one makes its caller the
+                // innermost with something after its name)
+                depth = depth.saturating_sub(1);
+                inner = outer;
+                outer = "";
+                after_name = true;
+                last_open = false;
+            }
+            b' ' | b'\t' | b'\r' | b'\n' => {}
+            _ => {
+                after_name = true;
+                last_open = false;
+                while i < bytes.len() && !b" \t\r\n()\";".contains(&bytes[i]) {
+                    i += 1;
+                }
+                continue;
+            }
+        }
+        i += 1;
+    }
+    if depth == 0 {
+        return None;
+    }
+    if last_open {
+        return Some(EvalSyntax::FunctionName);
+    }
+    Some(match inner {
+        "if" | "while" | "switch" if !after_name => EvalSyntax::Expression,
+        "if" => EvalSyntax::Special("if"),
+        "while" => EvalSyntax::Special("while"),
+        "switch" => EvalSyntax::Special("switch"),
+        "assert" => EvalSyntax::RhsPatterns,
+        _ if outer == "assert" => EvalSyntax::RhsPatterns,
+        // (their own readers end differently in CLIPS: ours is kept)
+        "progn" | "progn$" | "foreach" | "loop-for-count" | "modify" | "duplicate" => return None,
+        _ => EvalSyntax::Expression,
+    })
+}
+
+fn write_eval_syntax_message(cx: &mut Core<'_>, m: EvalSyntax) {
+    let mut b: crate::value::TextBuf<128> = crate::value::TextBuf::new();
+    let _ = match m {
+        EvalSyntax::Expression => {
+            b.write_str("\n[EXPRNPSR2] Expected a constant, variable, or expression.\n")
+        }
+        EvalSyntax::FunctionName => b.write_str("\n[EXPRNPSR1] A function name must be a symbol\n"),
+        EvalSyntax::Special(name) => write!(
+            b,
+            "\n[PRNTUTIL2] Syntax Error:  Check appropriate syntax for {name} function.\n"
+        ),
+        EvalSyntax::RhsPatterns => {
+            b.write_str("\n[PRNTUTIL2] Syntax Error:  Check appropriate syntax for RHS patterns.\n")
+        }
+    };
+    cx.write(router::WERROR, b.as_str());
 }
 
 /// `(assert-string "(point (x 1))")`: asserts the first fact the string writes (its

@@ -42,7 +42,7 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("fact-relation", 1, 1, fact_relation).args(&[super::describe::ArgType::FactOrIndex], super::describe::ArgType::Any).returns(super::describe::Returns::Symbol),
     Builtin::eager("fact-slot-names", 1, 1, fact_slot_names).args(&[super::describe::ArgType::FactOrIndex], super::describe::ArgType::Any),
     Builtin::eager("ppfact", 1, 3, ppfact).args(&[super::describe::ArgType::FactOrIndex], super::describe::ArgType::Any).returns(super::describe::Returns::Void),
-    Builtin::eager("type", 1, 1, type_of),
+    Builtin::eager("type", 1, 1, type_of).on_error(super::describe::OnError::False),
     Builtin::eager("gensym", 0, 0, gensym).returns(super::describe::Returns::Symbol),
     Builtin::eager("gensym*", 0, 0, gensym_star).returns(super::describe::Returns::Symbol),
     Builtin::eager("sort", 1, super::ANY, super::evaluate::sort).on_error(super::describe::OnError::False)
@@ -970,8 +970,9 @@ fn next_gensym(cx: &mut Core<'_>) -> TextBuf<24> {
 }
 
 /// `(type x)`: the CLIPS type name of a value, as CLIPS 6.30 names it. An instance-name
-/// literal `[x]` (a symbol here) and a void value get CLIPS's messages and FALSE: there
-/// are no instances.
+/// literal `[x]` (a symbol here) is `INITIAL-OBJECT` for COOL's `initial-object`, else
+/// CLIPS's `[INSFUN2]`, an error that halts: there are no other instances. A void
+/// value gets CLIPS's message and FALSE.
 fn type_of(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let name = match cx.arg(a, 0) {
         Value::Int(_) => "INTEGER",
@@ -990,11 +991,14 @@ fn type_of(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         Value::Sym(s) => {
             let text = cx.sym_text(s);
             match crate::value::instance_name_body(text) {
+                // COOL's `initial-object`, CLIPS's one instance without classes
+                Some("initial-object" | "MAIN::initial-object") => "INITIAL-OBJECT",
                 Some(inst) => {
                     let mut b: TextBuf<256> = TextBuf::new();
                     let _ = writeln!(b, "[INSFUN2] No such instance {inst} in function type.");
                     cx.write(router::WERROR, b.as_str());
-                    return Ok(Value::Sym(SYM_FALSE));
+                    // an error that halts; FALSE at the prompt (`on_error`)
+                    return Err(EvalError::already_reported());
                 }
                 None => "SYMBOL",
             }

@@ -186,6 +186,9 @@ impl<'s> Parser<'s, '_, '_> {
         }
         match self.scope {
             _ if self.at_prompt() => {
+                if self.commands_only {
+                    self.prompt_reads = self.prompt_reads.saturating_add(1);
+                }
                 let g = self.toplevel_var(t, name)?;
                 let e = self.cx.push_expr(Expr::new(Op::Global, 0, g));
                 cap!(self, e)

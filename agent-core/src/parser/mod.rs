@@ -155,6 +155,9 @@ pub struct Parser<'s, 'c, 'e> {
     /// `eval`: a construct keyword is read as a function name (CLIPS 6.30's
     /// `[EXPRNPSR3] Missing function declaration for defrule.`), nothing is defined.
     pub commands_only: bool,
+    /// Reads of the prompt's variables (`?x`, `$?x`, not a loop's or query's own) seen
+    /// with `commands_only`: `eval` refuses them, as CLIPS's `[STRNGFUN2]`.
+    pub prompt_reads: u16,
     /// Facts read by `load-facts`: their fields are constants (a call is a syntax error).
     pub constant_facts: bool,
     /// Loop bodies around the expression being read: `break` needs one.
@@ -256,6 +259,7 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
             lhs_field: 0,
             evaluated_now: false,
             commands_only: false,
+            prompt_reads: 0,
             constant_facts: false,
             loop_depth: 0,
             check_only: false,

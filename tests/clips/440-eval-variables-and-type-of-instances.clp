@@ -1,0 +1,36 @@
+; eval sees no variable but the ones its text binds in a loop or a query: a read of
+; the prompt's, a rule's or a deffunction's variable (or ?x bound earlier in the same
+; text) is [STRNGFUN2], an error that halts (FALSE at the prompt); a bind alone is
+; fine. type of an instance name: INITIAL-OBJECT for COOL's initial-object, else
+; [INSFUN2], an error that halts (FALSE at the prompt).
+(watch facts)
+(watch rules)
+(assert (a 1))
+(printout t (eval "?x") crlf)
+(bind ?x 5)
+(printout t (eval "?x") crlf)
+(eval "?x")
+(eval "(+ ?x 1)")
+(eval "(progn (bind ?x 1) ?x)")
+(eval "(bind ?x 1)")
+(eval "(loop-for-count (?i 1 2) (printout t ?i crlf))")
+(eval "(loop-for-count (?i 1 2) do (bind ?z ?i))")
+(eval "(progn$ (?v (create$ a b)) (printout t ?v crlf))")
+(eval "(foreach ?v (create$ a b) (printout t ?v-index crlf))")
+(eval "(do-for-all-facts ((?f a)) TRUE (printout t ?f:implied crlf))")
+(eval "(any-factp ((?f a)) (eq ?f:implied (create$ 1)))")
+(eval "(create$ $?x)")
+(eval "(switch 1 (case 1 then ?q))")
+(defglobal ?*g* = 4)
+(eval "?*g*")
+(defrule r2 (a ?y) => (printout t (eval "?y") crlf) (printout t after crlf))
+(run)
+(deffunction f (?q) (eval "?q"))
+(f 1)
+(type [i])
+(bind ?t (type [i]))
+?t
+(printout t (type [initial-object]) " " (type [MAIN::initial-object]) crlf)
+(defrule r => (printout t "a" crlf) (printout t (type [zz]) crlf) (printout t "b" crlf))
+(run)
+(exit)
