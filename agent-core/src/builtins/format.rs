@@ -96,6 +96,11 @@ fn count_args(ctl: &str) -> usize {
                     // CLIPS counts every directive but %n %t %r %% (even invalid ones)
                     n += usize::from(!matches!(spec.conv, b'n' | b't' | b'r' | b'%'));
                     i += 1 + used;
+                    // `%5%`: the second `%` starts the next directive (host only)
+                    #[cfg(feature = "extras")]
+                    if spec.conv == b'%' && used > 1 {
+                        i -= 1;
+                    }
                 }
                 None => break,
             }
@@ -104,6 +109,46 @@ fn count_args(ctl: &str) -> usize {
         }
     }
     n
+}
+
+/// The byte range of the control string's first invalid directive (`%z`, `%+d`,
+/// `%5z`), which CLIPS reports while it counts the directives, before it compares
+/// their number with the arguments (host only, feature `extras`: the agent image
+/// reports it as it renders, after the count).
+#[cfg(feature = "extras")]
+fn first_bad_flag(ctl: &str) -> Option<(usize, usize)> {
+    let b = ctl.as_bytes();
+    let mut i = 0;
+    while i < b.len() {
+        if b[i] != b'%' {
+            i += 1;
+            continue;
+        }
+        let (spec, used) = parse_spec(&b[i + 1..])?;
+        if spec.conv == b'%' && used > 1 {
+            // `%5%`: unfinished, text; the second `%` starts the next directive
+            i += used;
+            continue;
+        }
+        let ok = matches!(spec.conv, b'n' | b't' | b'r' | b'%') || takes_arg(spec.conv);
+        if !ok {
+            return Some((i, i + 1 + used));
+        }
+        i += 1 + used;
+    }
+    None
+}
+
+/// `[IOFUN3]` for the directive at `flag` of `ctl`; the error that ends the call.
+fn report_bad_flag(cx: &mut Core<'_>, ctl: &str, flag: (usize, usize)) -> EvalError {
+    let mut m: TextBuf<128> = TextBuf::new();
+    let _ = writeln!(
+        m,
+        "[IOFUN3] Invalid format flag \"{}\" specified in format function.",
+        ctl.get(flag.0..flag.1).unwrap_or("%")
+    );
+    cx.write(router::WERROR, m.as_str());
+    EvalError::new(EvalErrorKind::Reported)
 }
 
 /// CLIPS's arity message names the exact count the control string needs.
@@ -129,6 +174,12 @@ fn format_arg(cx: &mut Core<'_>, a: Args, total: usize) -> Result<(), EvalError>
         _ => return Err(EvalError::wrong_type("format", 2, "string")),
     };
     if i == 1 {
+        #[cfg(feature = "extras")]
+        if let Some(flag) = first_bad_flag(ctl) {
+            let mut copy: TextBuf<128> = TextBuf::new();
+            let _ = copy.write_str(ctl.get(flag.0..flag.1).unwrap_or("%"));
+            return Err(report_bad_flag(cx, copy.as_str(), (0, copy.as_str().len())));
+        }
         let needed = count_args(ctl);
         return if needed + 2 == total {
             Ok(())
@@ -176,6 +227,10 @@ fn nth_conversion(ctl: &str, n: usize) -> Option<u8> {
             k += 1;
         }
         i += 1 + used;
+        #[cfg(feature = "extras")]
+        if spec.conv == b'%' && used > 1 {
+            i -= 1;
+        }
     }
     None
 }
@@ -196,6 +251,10 @@ pub(super) fn format(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
             Ok(None) | Err(_) => return Ok(cx.make_string("")?),
         },
     };
+    #[cfg(feature = "extras")]
+    if let Some(flag) = first_bad_flag(control.as_str()) {
+        return Err(report_bad_flag(cx, control.as_str(), flag));
+    }
     let needed = count_args(control.as_str());
     if needed + 2 != a.len as usize {
         return Err(arity_error(needed + 2));
@@ -203,13 +262,7 @@ pub(super) fn format(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let mut out = Text::new();
     if let Err(bad) = render(cx, a, control.as_str(), &mut out) {
         if let RenderError::BadFlag(flag) = bad {
-            let mut m: TextBuf<128> = TextBuf::new();
-            let _ = writeln!(
-                m,
-                "[IOFUN3] Invalid format flag \"{}\" specified in format function.",
-                control.as_str().get(flag.0..flag.1).unwrap_or("%")
-            );
-            cx.write(router::WERROR, m.as_str());
+            return Err(report_bad_flag(cx, control.as_str(), flag));
         }
         return Err(bad.into());
     }
@@ -267,6 +320,14 @@ fn render(cx: &Core<'_>, a: Args, ctl: &str, out: &mut Text) -> Result<(), Rende
             b't' => out.write_char('\t'),
             b'r' => out.write_char('\r'),
             b'%' if used == 1 => out.write_char('%'),
+            // `%5%`: CLIPS's directive ends unfinished before the second `%`, which
+            // starts the next one; the unfinished one is text (host only)
+            #[cfg(feature = "extras")]
+            b'%' => {
+                lit = start;
+                i -= 1;
+                Ok(())
+            }
             c if takes_arg(c) => {
                 let v = cx.arg(a, next_arg);
                 let argno = crate::error::arg_no(next_arg);

@@ -149,6 +149,23 @@ fn input_arg(cx: &mut Core<'_>, a: Args, func: &str) -> Option<Input> {
     None
 }
 
+/// The opened file argument `a` names, if it names one (nothing reported otherwise:
+/// `input_arg` then says what is wrong).
+#[cfg(feature = "extras")]
+fn input_arg_peek(cx: &mut Core<'_>, a: Args) -> Option<Input> {
+    if a.len == 0 {
+        return None;
+    }
+    let v = cx.arg(a, 0);
+    let name = logical_name(cx, v)?;
+    if matches!(v, Value::Sym(_) | Value::Str(_)) && matches!(name.as_str(), "t" | "stdin") {
+        return None;
+    }
+    cx.host
+        .is_open_file(name.as_str())
+        .then_some(Input::File(name))
+}
+
 /// After a name that is no input: CLIPS halts the actions running (a deffunction's,
 /// a rule's, a `progn`), but at the prompt the read function's value is printed.
 fn halted_with(cx: &mut Core<'_>, text: &str) -> Result<Value, EvalError> {
@@ -414,12 +431,68 @@ fn read(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     read_from(cx, a, "read")
 }
 
-/// `read-number`: `read`, but anything but a number (or the end) is a read error.
+/// `read-number`: `read`, but anything but a number (or the end) is a read error. From
+/// a file, as CLIPS's own scan: the characters up to a blank, which it takes too (no
+/// comment, string or parenthesis ends the token: `12)` is no number).
 fn read_number(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+    #[cfg(feature = "extras")]
+    if let Some(Input::File(name)) = input_arg_peek(cx, a) {
+        return read_number_from_file(cx, name.as_str());
+    }
     let v = read_from(cx, a, "read-number")?;
     match v {
         Value::Int(_) | Value::Float(_) => Ok(v),
         Value::Sym(s) if cx.sym_text(s) == "EOF" => Ok(v),
+        _ => Ok(cx.make_string(READ_ERROR)?),
+    }
+}
+
+/// `read-number` from an opened file: skips blanks, takes the characters up to the
+/// next blank (and the blank), and reads them as a number only if they are one whole.
+#[cfg(feature = "extras")]
+fn read_number_from_file(cx: &mut Core<'_>, name: &str) -> Result<Value, EvalError> {
+    let mut tok = Line::new();
+    let mut b = loop {
+        match cx.host.read_byte(name) {
+            Ok(Some(b)) if b.is_ascii_whitespace() => {}
+            Ok(b) => break b,
+            Err(e) => return Err(host_error(cx, "read-number", e)),
+        }
+    };
+    if b.is_none() {
+        return Ok(cx.make_symbol("EOF")?);
+    }
+    while let Some(c) = b.filter(|c| !c.is_ascii_whitespace()) {
+        if !tok.push(&[c]) {
+            return Err(too_long(cx, "read-number"));
+        }
+        b = cx
+            .host
+            .read_byte(name)
+            .map_err(|e| host_error(cx, "read-number", e))?;
+    }
+    let text = &tok.buf[..tok.len];
+    // C's strtod, which CLIPS reads it with, takes hexadecimal too: a float
+    let (sign, digits) = match text.split_first() {
+        Some((b'-', rest)) => (-1.0, rest),
+        Some((b'+', rest)) => (1.0, rest),
+        _ => (1.0, text),
+    };
+    if let Some(hex) = digits
+        .strip_prefix(b"0x")
+        .or_else(|| digits.strip_prefix(b"0X"))
+        .filter(|h| !h.is_empty() && h.iter().all(u8::is_ascii_hexdigit))
+    {
+        let x = hex.iter().fold(0.0f64, |x, &c| {
+            x * 16.0 + f64::from(char::from(c).to_digit(16).unwrap_or(0))
+        });
+        return Ok(Value::Float(sign * x));
+    }
+    let numeric = text
+        .iter()
+        .all(|c| c.is_ascii_digit() || matches!(c, b'+' | b'-' | b'.' | b'e' | b'E'));
+    match field_of(cx, &tok, "read-number")? {
+        v @ (Value::Int(_) | Value::Float(_)) if numeric => Ok(v),
         _ => Ok(cx.make_string(READ_ERROR)?),
     }
 }
