@@ -17,7 +17,10 @@ clipspy driver wants them), full.bat.clp (load*, reset, run, exit) and norun.bat
                figure is therefore lower than the bench's (harder for us, never easier).
   ours         `OURS_BIN clips -f2 full.bat.clp` / `norun.bat.clp`
 and checks that the three engines print the same text. Prints a markdown table; ratio =
-best CLIPS / ours (above 1 means we use fewer instructions).
+best CLIPS / ours (above 1 means we use fewer instructions). Then a growth table: per
+shape and engine, run-phase instructions per rule fired at the largest size over the same
+at the smallest (issue 22: ours may grow no faster than CLIPS's); the firings are CLIPS
+6.4.2's Run() result (or CLIPS 6.30's FIRE lines without the 6.4 driver).
 
 Every program's data is asserted by rules during the run (an init rule or a chain of
 firings), so the run phase matches and fires; `deffacts` loads its data at reset.
@@ -353,6 +356,296 @@ def agenda(n):
     return "".join(out)
 
 
+# --- round 2 ----------------------------------------------------------------------------
+
+
+def logical(n):
+    """`logical` support chains: derived facts lose their support as sources are retracted."""
+    groups = 10
+    out = [defglobals("d1", "d3", "gone")]
+    out.append("(deftemplate src (slot id) (slot grp))\n")
+    asserts = ["(assert (grp-on %d))" % g for g in range(groups)]
+    asserts += ["(assert (src (id %d) (grp %d)))" % (i, i % groups) for i in range(n)]
+    out.append("(defrule init => %s)\n" % "\n  ".join(asserts))
+    out.append(
+        """(defrule derive1 (logical (src (id ?i) (grp ?g))) => (assert (d1 ?i ?g)) (bind ?*d1* (+ ?*d1* 1)))
+(defrule derive2 (logical (d1 ?i ?g) (grp-on ?g)) => (assert (d2 ?i)))
+(defrule derive3 (logical (d2 ?i) (not (veto ?i))) => (assert (d3 ?i)))
+(defrule count-d3 (d3 ?i) => (bind ?*d3* (+ ?*d3* 1)))
+(defrule veto (declare (salience -5)) (d3 ?i&:(= (mod ?i 7) 0)) (not (veto ?i)) => (assert (veto ?i)))
+(defrule drop (declare (salience -10)) ?s <- (src (id ?i&:(= (mod ?i 3) 0))) => (retract ?s))
+(defrule group-off (declare (salience -20)) ?g <- (grp-on ?x&:(< ?x 5)) => (retract ?g))
+(defrule lost (declare (salience -30)) (src (id ?i)) (not (d2 ?i)) => (bind ?*gone* (+ ?*gone* 1)))
+(defrule zz-count (declare (salience -900)) =>
+  (printout t (length$ (find-all-facts ((?f d1)) TRUE)) " " (length$ (find-all-facts ((?f d2)) TRUE))
+     " " (length$ (find-all-facts ((?f d3)) TRUE)) crlf))
+"""
+    )
+    out.append(report_rule("d1", "d3", "gone"))
+    return "".join(out)
+
+
+def modules(n):
+    """Modules with focus, return, auto-focus and per-module agendas over job stages."""
+    rounds = 10
+    rnd = lcg(n + 5)
+    asserts = [
+        "(assert (job (id %d) (round %d) (v %d)))" % (i, i % rounds, next(rnd) % 100) for i in range(n)
+    ]
+    return (
+        """(defmodule MAIN (export ?ALL))
+(deftemplate job (slot id) (slot round) (slot stage (default 0)) (slot v))
+(defglobal ?*sense* = 0 ?*plan* = 0 ?*act* = 0 ?*ret* = 0 ?*alarm* = 0 ?*h* = 0)
+"""
+        + "(defrule init => %s (assert (round 0)))\n" % "\n  ".join(asserts)
+        + """(defrule next-round ?r <- (round ?k&:(< ?k %d)) =>
+  (retract ?r) (assert (round (+ ?k 1))) (focus SENSE PLAN ACT))
+(defrule zz-report (declare (salience -1000)) =>
+  (printout t ?*sense* " " ?*plan* " " ?*act* " " ?*ret* " " ?*alarm* " " ?*h* crlf))
+(defmodule SENSE (import MAIN ?ALL))
+(defrule SENSE::see ?j <- (job (id ?i) (round ?k) (stage 0)) (round ?r&:(= ?k (- ?r 1))) =>
+  (bind ?*sense* (+ ?*sense* 1)) (bind ?*h* (mod (+ (* ?*h* 31) ?i) 1000003)) (modify ?j (stage 1)))
+(defmodule PLAN (import MAIN ?ALL))
+(defrule PLAN::plan ?j <- (job (id ?i) (stage 1) (v ?v)) =>
+  (bind ?*plan* (+ ?*plan* 1)) (bind ?*h* (mod (+ (* ?*h* 17) ?i) 1000003)) (modify ?j (stage 2)))
+(defrule PLAN::hurry (declare (salience 10)) ?j <- (job (id ?i&:(= (mod ?i 13) 0)) (stage 1))
+  (round ?r&:(= (mod ?r 3) 0)) =>
+  (bind ?*ret* (+ ?*ret* 1)) (modify ?j (stage 2)) (return))
+(defmodule ACT (import MAIN ?ALL))
+(defrule ACT::act ?j <- (job (id ?i) (stage 2)) =>
+  (bind ?*act* (+ ?*act* 1)) (bind ?*h* (mod (+ (* ?*h* 7) ?i) 1000003)) (modify ?j (stage 3)))
+(defmodule ALARM (import MAIN ?ALL))
+(defrule ALARM::alarm (declare (auto-focus TRUE)) (job (id ?i) (stage 3) (v ?v&:(> ?v 90))) =>
+  (bind ?*alarm* (+ ?*alarm* 1)) (bind ?*h* (mod (+ (* ?*h* 3) ?i) 1000003)))
+"""
+        % rounds
+    )
+
+
+def strategy(name):
+    def make(n):
+        """A large agenda under one conflict resolution strategy; the firing order is hashed."""
+        rnd = lcg(n + 13)
+        asserts = ["(set-strategy %s)" % name]
+        asserts += ["(assert (item %d %d))" % (i, next(rnd) % 100) for i in range(n)]
+        asserts += ["(assert (kind %s))" % k for k in ("a", "b", "c")]
+        return (
+            defglobals("h", "pick", "pair", "hit")
+            + "(defrule init (declare (salience 100)) => %s)\n" % "\n  ".join(asserts)
+            + """(defrule pick (item ?i ?w) (kind ?k) (test (> ?w 30)) =>
+  (bind ?*pick* (+ ?*pick* 1)) (bind ?*h* (mod (+ (* ?*h* 31) ?i) 1000003)))
+(defrule pair (item ?i ?w) (item ?j&:(= ?j (+ ?i 1)) ?v&:(> ?v ?w)) =>
+  (bind ?*pair* (+ ?*pair* 1)) (bind ?*h* (mod (+ (* ?*h* 7) ?j) 1000003)))
+(defrule hit ?f <- (item ?i ?w&:(> ?w 70)) =>
+  (retract ?f) (assert (hit ?i)) (bind ?*hit* (+ ?*hit* 1)) (bind ?*h* (mod (+ (* ?*h* 3) ?i) 1000003)))
+(defrule rehit (hit ?i) (kind a) => (bind ?*h* (mod (+ (* ?*h* 5) ?i) 1000003)))
+"""
+            + report_rule("h", "pick", "pair", "hit")
+        )
+
+    make.__doc__ = "A large agenda under the %s strategy; the firing order is hashed." % name
+    return make
+
+
+def orce(n):
+    """`or` CEs, alone, inside `and`, under `not`, with facts retracted as the run goes."""
+    rnd = lcg(n + 17)
+    asserts = []
+    for i in range(n):
+        kind = ["smoke", "heat", "water", "none"][next(rnd) % 4]
+        asserts.append("(assert (sensor (id %d) (kind %s) (v %d)))" % (i, kind, next(rnd) % 100))
+        r = next(rnd) % 6
+        if r == 0:
+            asserts.append("(assert (ok %d))" % i)
+        elif r == 1:
+            asserts.append("(assert (maybe %d))" % i)
+        elif r == 2:
+            asserts.append("(assert (maybe %d) (confirm %d))" % (i, i))
+        elif r == 3:
+            asserts.append("(assert (bad %d))" % i)
+    return (
+        defglobals("alarm", "either", "clean", "gone")
+        + "(deftemplate sensor (slot id) (slot kind) (slot v))\n"
+        + "(defrule init => %s)\n" % "\n  ".join(asserts)
+        + """(defrule alarm (or (sensor (kind smoke) (v ?v&:(> ?v 50))) (sensor (kind heat) (v ?v&:(> ?v 80))))
+  => (bind ?*alarm* (+ ?*alarm* ?v)))
+(defrule either (sensor (id ?i)) (or (ok ?i) (and (maybe ?i) (confirm ?i))) => (bind ?*either* (+ ?*either* 1)))
+(defrule clean (sensor (id ?i) (kind ~none)) (not (or (bad ?i) (maybe ?i))) => (bind ?*clean* (+ ?*clean* 1)))
+(defrule drop (declare (salience -10)) (or ?f <- (ok ?i) ?f <- (confirm ?i)) (test (= (mod ?i 2) 0)) =>
+  (retract ?f) (bind ?*gone* (+ ?*gone* 1)))
+(defrule unbad (declare (salience -20)) ?f <- (bad ?i&:(= (mod ?i 3) 0)) => (retract ?f))
+"""
+        + report_rule("alarm", "either", "clean", "gone")
+    )
+
+
+def notand(n):
+    """Nested `not (and ...)` over a graph whose marks are set one firing at a time."""
+    rnd = lcg(n + 19)
+    nodes = max(n // 4, 4)
+    asserts = ["(assert (node %d))" % i for i in range(nodes)]
+    edges = set()
+    for _ in range(n):
+        a, b = next(rnd) % nodes, next(rnd) % nodes
+        if a != b and (a, b) not in edges:
+            edges.add((a, b))
+            asserts.append("(assert (edge %d %d))" % (a, b))
+    return (
+        defglobals("lonely", "nocycle", "allmarked", "marks")
+        + "(defrule init => %s (assert (mark-next 0)))\n" % "\n  ".join(asserts)
+        + """(defrule lonely (node ?a) (not (and (edge ?a ?b) (node ?b))) => (bind ?*lonely* (+ ?*lonely* 1)))
+(defrule no-cycle (node ?a) (not (and (edge ?a ?b) (edge ?b ?a))) => (bind ?*nocycle* (+ ?*nocycle* 1)))
+(defrule all-marked (node ?a) (mark ?a) (not (and (edge ?a ?b) (not (mark ?b)))) =>
+  (bind ?*allmarked* (+ ?*allmarked* 1)))
+(defrule mark (declare (salience -10)) ?f <- (mark-next ?k) (node ?k) =>
+  (retract ?f) (assert (mark ?k) (mark-next (+ ?k 1))) (bind ?*marks* (+ ?*marks* 1)))
+"""
+        + report_rule("lonely", "nocycle", "allmarked", "marks")
+    )
+
+
+def mflist(n):
+    """Multifield functions in actions on lists of 60-120 fields (explode$, subseq$, ...)."""
+    return (
+        "(defglobal ?*l* = (create$ 1 2 3 4 5) ?*sum* = 0 ?*hits* = 0 ?*len* = 0)\n"
+        + """(deffacts start (count 1))
+(defrule step ?f <- (count ?k&:(<= ?k %d)) =>
+  (retract ?f)
+  (bind ?*l* (insert$ ?*l* 1 (mod (* ?k 7) 101)))
+  (if (> (length$ ?*l*) 120) then (bind ?*l* (subseq$ ?*l* 1 60)))
+  (bind ?s (implode$ ?*l*))
+  (bind ?m (explode$ ?s))
+  (bind ?*len* (+ ?*len* (str-length ?s)))
+  (bind ?*sum* (+ ?*sum* (nth$ (+ 1 (mod ?k (length$ ?m))) ?m)))
+  (if (member$ (mod ?k 101) ?m) then (bind ?*hits* (+ ?*hits* 1)))
+  (bind ?r (replace$ (rest$ ?m) 1 2 (first$ ?m)))
+  (bind ?*sum* (+ ?*sum* (length$ (delete$ ?r 1 1)) (nth$ 1 (subseq$ ?m 2 3))))
+  (assert (count (+ ?k 1))))
+"""
+        % n
+        + report_rule("sum", "hits", "len")
+    )
+
+
+def strbuild(n):
+    """Strings built in a while loop with str-cat, sym-cat and sub-string, then matched."""
+    return (
+        defglobals("long", "a0", "cmp", "n")
+        + """(deffacts start (count 1))
+(defrule step ?f <- (count ?k&:(<= ?k %d)) =>
+  (retract ?f)
+  (bind ?s "") (bind ?i 0)
+  (while (< ?i (+ 2 (mod ?k 9))) do
+    (bind ?s (str-cat ?s (sub-string (+ 1 (mod (+ ?i ?k) 8)) (+ 1 (mod (+ ?i ?k) 8)) "abcdefgh") ?i))
+    (bind ?i (+ ?i 1)))
+  (assert (word ?k (sym-cat w ?s) ?s))
+  (assert (count (+ ?k 1))))
+(defrule long (word ?k ?w ?s&:(> (str-length ?s) 12)) => (bind ?*long* (+ ?*long* 1)))
+(defrule a0 (word ?k ?w ?s) (test (str-index "a0" ?s)) => (bind ?*a0* (+ ?*a0* (str-index "a0" ?s))))
+(defrule cmp (word ?k ?w ?s) (word ?j&:(= ?j (+ ?k 1)) ?w2 ?s2&:(< (str-compare ?s ?s2) 0)) =>
+  (bind ?*cmp* (+ ?*cmp* 1)))
+(defrule up (word ?k ?w ?s) (test (eq (upcase (sub-string 1 1 ?s)) "C")) =>
+  (bind ?*n* (+ ?*n* (str-length (str-cat (upcase ?s) (lowcase ?w))))))
+"""
+        % n
+        + report_rule("long", "a0", "cmp", "n")
+    )
+
+
+def partials(n):
+    """Many partial matches in a 3-pattern join, then the middle facts retracted one by one."""
+    heads = 20
+    out = [defglobals("tri", "pairs", "gone")]
+    asserts = ["(assert (a %d))" % i for i in range(heads)]
+    asserts += ["(assert (b %d %d))" % (i % heads, i) for i in range(n)]
+    asserts += ["(assert (c %d %d))" % (j, j % 3) for j in range(0, n, 5)]
+    out.append("(defrule init => %s)\n" % "\n  ".join(asserts))
+    out.append(
+        """(defrule tri (a ?x) (b ?x ?y) (c ?y ?z) => (bind ?*tri* (+ ?*tri* 1)))
+(defrule pairs (a ?x) (b ?x ?y) (b ?x ?z&:(= ?z (+ ?y %d))) => (bind ?*pairs* (+ ?*pairs* 1)))
+(defrule kill (declare (salience -10)) ?f <- (b ?x ?y) => (retract ?f) (bind ?*gone* (+ ?*gone* 1)))
+(defrule kill-a (declare (salience -20)) ?f <- (a ?x) => (retract ?f))
+"""
+        % heads
+    )
+    out.append(report_rule("tri", "pairs", "gone"))
+    return "".join(out)
+
+
+def widemod(n):
+    """A 24-slot template; each firing modifies one slot; rules watch other slots."""
+    rnd = lcg(n + 23)
+    slots = " ".join("(slot s%d)" % k for k in range(1, 23))
+    out = [defglobals("w5", "pair", "hi")]
+    out.append("(deftemplate rec (slot id) %s (slot n (default 0)))\n" % slots)
+    asserts = []
+    for i in range(16):
+        vals = " ".join("(s%d %s)" % (k, "abc"[next(rnd) % 3]) for k in range(1, 23))
+        asserts.append("(assert (rec (id %d) %s))" % (i, vals))
+    out.append("(defrule init => %s)\n" % "\n  ".join(asserts))
+    out.append(
+        """(defrule bump ?r <- (rec (id ?i) (n ?n&:(< ?n %d))) => (modify ?r (n (+ ?n 1))))
+(defrule watch-s5 (declare (salience 5)) (rec (id ?i) (s5 a) (s9 ?x&~c)) => (bind ?*w5* (+ ?*w5* 1)))
+(defrule pair (declare (salience 5)) (rec (id ?i) (s1 ?x) (s2 b)) (rec (id ?j&:(< ?i ?j)) (s1 ?x) (s3 ~a)) => (bind ?*pair* (+ ?*pair* 1)))
+(defrule hi (declare (salience 5)) (rec (id ?i) (s20 c) (n ?n&:(= (mod ?n 10) 0))) => (bind ?*hi* (+ ?*hi* 1)))
+"""
+        % (n // 16)
+    )
+    out.append(report_rule("w5", "pair", "hi"))
+    return "".join(out)
+
+
+def dftest(n):
+    """`test` CEs calling deffunctions with while loops; globals updated on every firing."""
+    asserts = ["(assert (num %d))" % i for i in range(2, n + 2)]
+    return (
+        defglobals("primes", "twins", "dig", "calls")
+        + """(deffunction prime (?n)
+  (bind ?*calls* (+ ?*calls* 1))
+  (bind ?d 2)
+  (while (<= (* ?d ?d) ?n) do
+    (if (= (mod ?n ?d) 0) then (return FALSE))
+    (bind ?d (+ ?d 1)))
+  TRUE)
+(deffunction digsum (?n)
+  (bind ?s 0)
+  (while (> ?n 0) do (bind ?s (+ ?s (mod ?n 10))) (bind ?n (div ?n 10)))
+  ?s)
+"""
+        + "(defrule init => %s)\n" % "\n  ".join(asserts)
+        + """(defrule prime (num ?x) (test (prime ?x)) => (bind ?*primes* (+ ?*primes* 1)) (assert (prime ?x)))
+(defrule twin (prime ?x) (prime ?y&:(= ?y (+ ?x 2))) => (bind ?*twins* (+ ?*twins* 1)))
+(defrule dig (num ?x) (test (= (digsum ?x) 10)) => (bind ?*dig* (+ ?*dig* ?x)))
+"""
+        + report_rule("primes", "twins", "dig", "calls")
+    )
+
+
+def nestquery(n):
+    """Nested do-for-all-facts and a two-template fact-set query in a right-hand side."""
+    rnd = lcg(n + 29)
+    asserts = [
+        "(assert (item (id %d) (w %d) (kind %d)))" % (i, next(rnd) % 100, next(rnd) % 4) for i in range(n)
+    ]
+    asserts += ["(assert (link (from %d) (to %d)))" % (i, (i * 7) % n) for i in range(0, n, 3)]
+    return (
+        defglobals("c", "l", "m")
+        + "(deftemplate item (slot id) (slot w) (slot kind))\n(deftemplate link (slot from) (slot to))\n"
+        + "(defrule init => %s (assert (query 1)))\n" % "\n  ".join(asserts)
+        + """(defrule query ?q <- (query ?k&:(<= ?k 12)) =>
+  (retract ?q)
+  (do-for-all-facts ((?a item)) (= ?a:kind (mod ?k 4))
+    (do-for-all-facts ((?b item)) (and (= ?b:kind ?a:kind) (> ?b:w (+ ?a:w 40)))
+      (bind ?*c* (+ ?*c* 1))))
+  (do-for-all-facts ((?a item) (?l link)) (and (= ?l:from ?a:id) (> ?a:w (* ?k 7)))
+    (bind ?*l* (+ ?*l* ?l:to)))
+  (bind ?*m* (+ ?*m* (length$ (find-all-facts ((?a item)) (= ?a:w ?k)))))
+  (assert (query (+ ?k 1))))
+"""
+        + report_rule("c", "l", "m")
+    )
+
+
 SHAPES = {
     "mfwild": (mfwild, [100, 400, 1600]),
     "testce": (testce, [30, 60, 120]),
@@ -366,6 +659,20 @@ SHAPES = {
     "deffacts": (deffacts, [1000, 4000, 16000]),
     "countdown": (countdown, [1000, 4000, 16000]),
     "agenda": (agenda, [50, 200, 800]),
+    # round 2
+    "logical": (logical, [100, 400, 1600]),
+    "modules": (modules, [100, 400, 1600]),
+    "lex": (strategy("lex"), [50, 200, 800]),
+    "mea": (strategy("mea"), [50, 200, 800]),
+    "breadth": (strategy("breadth"), [50, 200, 800]),
+    "orce": (orce, [100, 400, 1600]),
+    "notand": (notand, [100, 400, 1600]),
+    "mflist": (mflist, [200, 800, 3200]),
+    "strbuild": (strbuild, [200, 800, 3200]),
+    "partials": (partials, [100, 400, 1600]),
+    "widemod": (widemod, [400, 1600, 6400]),
+    "dftest": (dftest, [200, 800, 3200]),
+    "nestquery": (nestquery, [50, 200, 800]),
 }
 
 
@@ -429,13 +736,53 @@ def build_c64(scratch):
         return None
 
 
+def fired_count(d, c64):
+    """Rules fired in the run: CLIPS 6.4.2's Run() result, or CLIPS 6.30's FIRE lines."""
+    if c64:
+        res = subprocess.run([c64, os.path.join(d, "program.clp")], cwd=d, capture_output=True,
+                             text=True, timeout=600)
+        found = re.search(r"fired (\d+)", res.stderr)
+        if found:
+            return int(found.group(1))
+    batch = os.path.join(d, "watch.bat.clp")
+    with open(batch, "w") as f:
+        f.write('(load* "%s")\n(reset)\n(watch rules)\n(run)\n(exit)\n' % os.path.join(d, "program.clp"))
+    out = plain(["clips", "-f2", batch], d)
+    return sum(1 for line in out.splitlines() if line.startswith("FIRE"))
+
+
+def growth_table(results):
+    """Instructions per firing (run phase) at the largest size over the smallest, per engine."""
+    print()
+    print("| shape | sizes | fired | 6.30 growth | 6.4.2 growth | ours growth | ours / better CLIPS growth |")
+    print("|---|---|---|---|---|---|---|")
+    by_shape = {}
+    for name, size, fired, runs in results:
+        by_shape.setdefault(name, []).append((size, fired, runs))
+    for name, rows in by_shape.items():
+        rows.sort()
+        (s0, f0, r0), (s1, f1, r1) = rows[0], rows[-1]
+        grow = {}
+        for label in r0:
+            small = r0[label] / max(f0, 1)
+            grow[label] = (r1[label] / max(f1, 1)) / max(small, 1e-9)
+        best = min(v for k, v in grow.items() if k != "ours")
+        print(
+            "| %s | %d-%d | %d-%d | %.2f | %s | %.2f | %.2f |"
+            % (name, s0, s1, f0, f1, grow["6.30"],
+               "%.2f" % grow["6.4.2"] if "6.4.2" in grow else "-", grow["ours"], grow["ours"] / best),
+            flush=True,
+        )
+
+
 def measure(rows, ours, c64):
     engines = [("6.30", lambda d, p: ["clips", "-f2", os.path.join(d, p + ".bat.clp")])]
     if c64:
         engines.append(("6.4.2", lambda d, p: [c64, os.path.join(d, "program.clp")] + ([] if p == "full" else ["norun"])))
     engines.append(("ours", lambda d, p: [ours, "clips", "-f2", os.path.join(d, p + ".bat.clp")]))
-    print("| shape | size | 6.30 run | 6.4.2 run | ours run | run ratio | 6.30 whole | 6.4.2 whole | ours whole | whole ratio | same output |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    print("| shape | size | fired | 6.30 run | 6.4.2 run | ours run | run ratio | 6.30 whole | 6.4.2 whole | ours whole | whole ratio | same output |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
+    results = []
     for name, size, d in rows:
         runs, wholes, outputs = {}, {}, {}
         for label, cmd in engines:
@@ -448,15 +795,18 @@ def measure(rows, ours, c64):
         same = len(set(texts.values())) == 1
         best_run = min(v for k, v in runs.items() if k != "ours")
         best_whole = min(v for k, v in wholes.items() if k != "ours")
+        fired = fired_count(d, c64)
+        results.append((name, size, fired, runs))
         fmt = lambda v: "%.2f M" % (v / 1e6)
         print(
-            "| %s | %d | %s | %s | %s | %.2f | %s | %s | %s | %.2f | %s |"
-            % (name, size, fmt(runs["6.30"]), fmt(runs.get("6.4.2", 0)), fmt(runs["ours"]),
+            "| %s | %d | %d | %s | %s | %s | %.2f | %s | %s | %s | %.2f | %s |"
+            % (name, size, fired, fmt(runs["6.30"]), fmt(runs.get("6.4.2", 0)), fmt(runs["ours"]),
                best_run / max(runs["ours"], 1), fmt(wholes["6.30"]), fmt(wholes.get("6.4.2", 0)),
                fmt(wholes["ours"]), best_whole / max(wholes["ours"], 1),
                "yes" if same else "NO: " + " / ".join("%s %r" % (k, v[-80:]) for k, v in texts.items())),
             flush=True,
         )
+    growth_table(results)
 
 
 def main():
