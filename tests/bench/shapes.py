@@ -434,7 +434,7 @@ def strategy(name):
             + "(defrule init (declare (salience 100)) => %s)\n" % "\n  ".join(asserts)
             + """(defrule pick (item ?i ?w) (kind ?k) (test (> ?w 30)) =>
   (bind ?*pick* (+ ?*pick* 1)) (bind ?*h* (mod (+ (* ?*h* 31) ?i) 1000003)))
-(defrule pair (item ?i ?w) (item ?j&:(= ?j (+ ?i 1)) ?v&:(> ?v ?w)) =>
+(defrule pair (item ?i ?w) (item ?j&:(> ?j ?i) ?w) =>
   (bind ?*pair* (+ ?*pair* 1)) (bind ?*h* (mod (+ (* ?*h* 7) ?j) 1000003)))
 (defrule hit ?f <- (item ?i ?w&:(> ?w 70)) =>
   (retract ?f) (assert (hit ?i)) (bind ?*hit* (+ ?*hit* 1)) (bind ?*h* (mod (+ (* ?*h* 3) ?i) 1000003)))
@@ -672,7 +672,7 @@ SHAPES = {
     "partials": (partials, [100, 400, 1600]),
     "widemod": (widemod, [400, 1600, 6400]),
     "dftest": (dftest, [200, 800, 3200]),
-    "nestquery": (nestquery, [50, 200, 800]),
+    "nestquery": (nestquery, [50, 150, 450]),
 }
 
 
