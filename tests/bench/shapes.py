@@ -668,7 +668,7 @@ SHAPES = {
     "orce": (orce, [100, 400, 1600]),
     "notand": (notand, [100, 400, 1600]),
     "mflist": (mflist, [200, 800, 3200]),
-    "strbuild": (strbuild, [200, 800, 3200]),
+    "strbuild": (strbuild, [100, 200, 400]),
     "partials": (partials, [100, 400, 1600]),
     "widemod": (widemod, [400, 1600, 6400]),
     "dftest": (dftest, [200, 800, 3200]),

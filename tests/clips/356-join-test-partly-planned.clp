@@ -1,0 +1,28 @@
+; join tests whose and/or mixes comparisons of slots and integers with calls the test
+; plan does not hold (str-compare, a deffunction that prints, a call that fails): the
+; comparisons before such a call decide alone when they fail (and) or hold (or); the
+; call runs, prints and fails exactly where CLIPS runs it
+(watch rules)
+(deffunction noisy (?a ?b) (printout t "noisy " ?a " " ?b crlf) (> ?a ?b))
+(deftemplate w (slot k) (slot s))
+(defrule next-smaller (w (k ?k) (s ?s)) (w (k ?j&:(= ?j (+ ?k 1))) (s ?s2&:(< (str-compare ?s ?s2) 0)))
+  => (printout t "next-smaller " ?k " " ?j crlf))
+(defrule loud (w (k ?k)) (w (k ?j&:(and (> ?j ?k) (< ?j (+ ?k 3)) (noisy ?j ?k))))
+  => (printout t "loud " ?k " " ?j crlf))
+(defrule either (w (k ?k) (s ?s)) (w (k ?j&~?k) (s ?t&:(or (= ?j (* ?k 2)) (eq (sub-string 1 1 ?t) (sub-string 1 1 ?s)))))
+  => (printout t "either " ?k " " ?j crlf))
+(defrule bad (w (k ?k) (s ?s)) (w (k ?j) (s ?t)) (test (and (= ?j (+ ?k 2)) (> (str-length ?t) (+ ?s 1))))
+  => (printout t "bad " ?k " " ?j crlf))
+(defrule neg (w (k ?k)) (w (k ?j&:(not (or (<> ?j (- ?k 1)) (noisy ?k ?j)))))
+  => (printout t "neg " ?k " " ?j crlf))
+(reset)
+(assert (w (k 1) (s "pear")))
+(assert (w (k 2) (s "apple")))
+(assert (w (k 3) (s "plum")))
+(assert (w (k 4) (s "quince")))
+(assert (w (k 6) (s "peach")))
+(run)
+(assert (w (k 5) (s "apricot")))
+(assert (w (k 8) (s "fig")))
+(run)
+(exit)
