@@ -440,59 +440,70 @@ impl Core<'_> {
             i += 1;
             c = ex.next;
         }
-        // walk the slot's element list to find the element's offset and length
-        let first_mark = ps.aux as usize;
-        let (mut fixed, mut multis) = (0usize, 0usize);
+        self.element_after_multi(b, cell, len, ps, elem)
+    }
+
+    /// `pattern_var` of element `elem` of a slot (cell `cell`, `len` fields) with a
+    /// multifield at or before it: one walk over the slot's elements gives the singles
+    /// and multifields before it and how many of each the slot has (the last
+    /// multifield's length is what the others and the singles leave). Out of line, so
+    /// the usual case above stays a short call.
+    #[inline(never)]
+    fn element_after_multi(
+        &mut self,
+        b: PatBinding,
+        cell: usize,
+        len: usize,
+        ps: Expr,
+        elem: u8,
+    ) -> Result<Value, EvalError> {
+        let (mut fixed, mut multis, mut i) = (0usize, 0usize, 0u8);
+        let mut at = None;
         let mut c = ps.first;
         while c != NONE {
-            if self.exprs[c as usize].aux == 1 {
+            let ex = self.exprs[c as usize];
+            let is_multi = ex.aux == 1;
+            if i == elem {
+                at = Some((fixed, multis, is_multi));
+            }
+            if is_multi {
                 multis += 1;
             } else {
                 fixed += 1;
             }
-            c = self.exprs[c as usize].next;
+            i += 1;
+            c = ex.next;
         }
-        let slack = len.saturating_sub(fixed);
-        let sum_marks: usize = if multis >= 2 {
-            b.marks[first_mark..first_mark + multis - 1]
-                .iter()
-                .map(|&m| m as usize)
-                .sum()
-        } else {
-            0
+        let Some((fixed_before, multis_before, is_multi)) = at else {
+            return Err(EvalError::new(EvalErrorKind::UnboundVariable {
+                name: NONE,
+            }));
         };
+        let first_mark = ps.aux as usize;
+        let slack = len.saturating_sub(fixed);
         let mlen_of = |mi: usize| -> usize {
             if multis == 1 {
                 slack
             } else if mi + 1 < multis {
                 b.marks[first_mark + mi] as usize
             } else {
-                slack.saturating_sub(sum_marks)
+                let others: usize = b.marks[first_mark..first_mark + mi]
+                    .iter()
+                    .map(|&m| m as usize)
+                    .sum();
+                slack.saturating_sub(others)
             }
         };
-        let (mut pos, mut mi, mut i) = (0usize, 0usize, 0u8);
-        let mut c = ps.first;
-        while c != NONE {
-            let is_multi = self.exprs[c as usize].aux == 1;
-            if i == elem {
-                return if is_multi {
-                    Ok(self.copy_to_scratch(cell + 1 + pos, mlen_of(mi))?)
-                } else {
-                    Ok(self.values[cell + 1 + pos])
-                };
-            }
-            if is_multi {
-                pos += mlen_of(mi);
-                mi += 1;
-            } else {
-                pos += 1;
-            }
-            i += 1;
-            c = self.exprs[c as usize].next;
+        let pos = fixed_before
+            + match multis_before {
+                0 => 0,
+                _ => (0..multis_before).map(mlen_of).sum::<usize>(),
+            };
+        if is_multi {
+            Ok(self.copy_to_scratch(cell + 1 + pos, mlen_of(multis_before))?)
+        } else {
+            Ok(self.values[cell + 1 + pos])
         }
-        Err(EvalError::new(EvalErrorKind::UnboundVariable {
-            name: NONE,
-        }))
     }
 
     /// `?v:slot` (an `Op::QSlot` node); inlined on the host, where most are read in

@@ -452,6 +452,7 @@ differential_programs! {
     p414_join_from_right_free_subnetwork => "414-join-from-right-free-subnetwork",
     p450_keyed_or_joins => "450-keyed-or-joins",
     p451_element_join_keys => "451-element-join-keys",
+    p452_mf_var_offsets => "452-mf-var-offsets",
     p520_left_operand_tests => "520-left-operand-tests",
     p480_testsuite_odds => "480-testsuite-odds",
     p490_address_and_slot_checks => "490-address-and-slot-checks",

@@ -107,8 +107,16 @@ impl Core<'_> {
         self.st.net.mf.collecting = self.st.net.mf.pending.is_some();
         r?;
         if got.len() > 1 {
-            let keyed: Vec<[Option<u8>; PATH_LEN]> =
-                got.iter().map(|&(a, _)| self.choice_levels(a)).collect();
+            // a node's matches come one after another (its segmentations): its choice
+            // levels are worked out once for them
+            let mut keyed: Vec<[Option<u8>; PATH_LEN]> = Vec::with_capacity(got.len());
+            let mut last = (NONE, [None; PATH_LEN]);
+            for &(a, _) in &got {
+                if a != last.0 {
+                    last = (a, self.choice_levels(a));
+                }
+                keyed.push(last.1);
+            }
             let mut idx: Vec<usize> = (0..got.len()).collect();
             idx.sort_by(|&i, &j| self.mf_cmp(got[i], &keyed[i], got[j], &keyed[j]));
             let sorted: Vec<Pending> = idx.iter().map(|&i| got[i]).collect();
