@@ -242,3 +242,23 @@ fn printout_prints_each_value_once_and_whole() {
         }
     });
 }
+
+/// The static type checks of a rule (CLIPS's `[RULECSTR2]`) note each test CE and
+/// `:`/`=` constraint; past the 256 noted, the rule is refused, not loaded unchecked.
+#[cfg(feature = "extras")]
+#[test]
+fn a_rule_holds_256_constraint_checks_and_refuses_the_257th() {
+    with_big_stack(|| {
+        let rule = |n: usize| {
+            let checks: String = (0..n).map(|i| format!("&:(neq ?x {i})")).collect();
+            format!("(defrule r{n} (a ?x{checks}) =>)")
+        };
+        let mut e = engine();
+        let h = &mut Quiet;
+        e.load_str(h, "r", &rule(256)).unwrap();
+        let before = e.usage();
+        let err = e.load_str(h, "r", &rule(257)).unwrap_err();
+        assert!(err.expected.contains("at most 256 test CEs"), "{err:?}");
+        assert_eq!(e.usage(), before);
+    });
+}

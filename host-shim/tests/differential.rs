@@ -563,6 +563,7 @@ differential_programs! {
     p470_rhs_rebind_lhs_var => "470-rhs-rebind-lhs-var",
     p472_less_than_delimiter => "472-less-than-delimiter",
     p473_failed_rule_redefinition => "473-failed-rule-redefinition",
+    p474_lhs_checks_past_32 => "474-lhs-checks-past-32",
     p430_refresh_basics => "430-refresh-basics",
     p431_refresh_ces => "431-refresh-ces",
     p432_refresh_strategies => "432-refresh-strategies",

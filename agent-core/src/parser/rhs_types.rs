@@ -328,7 +328,9 @@ impl LhsCheck {
     };
 }
 
-pub const MAX_LHS_CHECKS: usize = 32;
+/// Test CEs and `:`/`=` constraints one rule may hold (host only): a rule with more is
+/// refused with an error, never accepted unchecked.
+pub const MAX_LHS_CHECKS: usize = 256;
 
 /// A name noted as offsets in the source text being read.
 #[derive(Clone, Copy, Debug)]

@@ -2876,8 +2876,9 @@ impl Parser<'_, '_, '_> {
                 serial: self.var_count,
                 cands_end: notes.ncands as u8,
             };
-            notes.nlhs_checks += 1;
         }
+        // counted past the capacity too: `check_lhs_types` refuses such a rule
+        notes.nlhs_checks = notes.nlhs_checks.saturating_add(1);
     }
 
     /// Narrows `var_test` of each single-field LHS variable passed straight to a
@@ -2915,6 +2916,15 @@ impl Parser<'_, '_, '_> {
     /// variable's patterns let it hold.
     fn check_lhs_types(&mut self) -> PResult<()> {
         let src = self.lex.source();
+        let notes = &self.cx.st.rule_notes;
+        if notes.nlhs_checks > super::rhs_types::MAX_LHS_CHECKS {
+            let last = notes.lhs_checks[super::rhs_types::MAX_LHS_CHECKS - 1];
+            let t = self.lex.token_at(last.end as usize);
+            return Err(self.err(
+                t,
+                "at most 256 test CEs and `:` or `=` constraints in one rule",
+            ));
+        }
         let mut cands_from = 0;
         for k in 0..self.cx.st.rule_notes.nlhs_checks {
             let Some(&c) = self.cx.st.rule_notes.lhs_checks.get(k) else {
