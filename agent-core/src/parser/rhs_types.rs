@@ -299,6 +299,20 @@ pub struct Found {
     pub passes: u8,
 }
 
+impl Found {
+    /// The violation with its offsets moved `by` bytes on: from a text's offsets to
+    /// those of the source the text was cut from at `by`.
+    fn moved_by(self, by: usize) -> Found {
+        Found {
+            var_start: self.var_start + by,
+            var_end: self.var_end + by,
+            call_start: self.call_start + by,
+            call_end: self.call_end + by,
+            ..self
+        }
+    }
+}
+
 /// A test CE or `:`/`=` constraint to check once the LHS is read (`[RULECSTR2]`): its
 /// text, its CE, the template slot's name or the field of an ordered pattern.
 #[derive(Clone, Copy, Debug)]
@@ -637,7 +651,22 @@ const QUERIES: &[&str] = &[
     "delayed-do-for-all-facts",
 ];
 
-impl<'a, N: Names> Walk<'a, '_, N> {
+impl<'a, 'n, N: Names> Walk<'a, 'n, N> {
+    /// A walk of `text` from its start, no `bind` or loop variable seen yet; `lhs`:
+    /// checking a condition (`[RULECSTR2]`), else actions (`[RULECSTR3]`).
+    fn new(text: &'a str, names: &'n N, lhs: bool) -> Self {
+        Walk {
+            lx: Lexer::new(text),
+            peeked: None,
+            names,
+            binds: [("", None); MAX_BINDS],
+            nbinds: 0,
+            shadow: [""; MAX_SHADOW],
+            nshadow: 0,
+            lhs,
+        }
+    }
+
     fn peek(&mut self) -> Token<'a> {
         *self.peeked.get_or_insert_with(|| self.lx.next_token())
     }
@@ -1051,30 +1080,14 @@ fn is_global(name: &str) -> bool {
 /// included).
 pub fn check<N: Names>(src: &str, from: usize, to: usize, names: &N) -> Option<Found> {
     let text = src.get(from..to)?;
-    let mut w = Walk {
-        lx: Lexer::new(text),
-        peeked: None,
-        names,
-        binds: [("", None); MAX_BINDS],
-        nbinds: 0,
-        shadow: [""; MAX_SHADOW],
-        nshadow: 0,
-        lhs: false,
-    };
+    let mut w = Walk::new(text, names, false);
     if let Err(Some(f)) = w.collect_binds() {
         return Some(f);
     }
     w.lx = Lexer::new(text);
     w.peeked = None;
     match w.actions(1) {
-        // (the offsets were the text's: make them the source's)
-        Err(Some(f)) => Some(Found {
-            var_start: f.var_start + from,
-            var_end: f.var_end + from,
-            call_start: f.call_start + from,
-            call_end: f.call_end + from,
-            ..f
-        }),
+        Err(Some(f)) => Some(f.moved_by(from)),
         _ => None,
     }
 }
@@ -1134,28 +1147,13 @@ pub fn argument_types<'a>(src: &'a str, from: usize, to: usize, mut f: impl FnMu
 /// constraint's call) with the LHS records alone.
 pub fn check_lhs<N: Names>(src: &str, from: usize, to: usize, names: &N) -> Option<Found> {
     let text = src.get(from..to)?;
-    let mut w = Walk {
-        lx: Lexer::new(text),
-        peeked: None,
-        names,
-        binds: [("", None); MAX_BINDS],
-        nbinds: 0,
-        shadow: [""; MAX_SHADOW],
-        nshadow: 0,
-        lhs: true,
-    };
+    let mut w = Walk::new(text, names, true);
     let open = w.next().ok()?;
     if open.tok != Tok::LParen {
         return None;
     }
     match w.form(open, 0) {
-        Err(Some(f)) => Some(Found {
-            var_start: f.var_start + from,
-            var_end: f.var_end + from,
-            call_start: f.call_start + from,
-            call_end: f.call_end + from,
-            ..f
-        }),
+        Err(Some(f)) => Some(f.moved_by(from)),
         _ => None,
     }
 }
