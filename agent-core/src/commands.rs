@@ -1499,7 +1499,7 @@ impl Core<'_> {
                 "\n[RULECSTR1] Variable {tok} in CE #{ce} slot {}\nhas constraint conflicts which make the pattern unmatchable.",
                 self.sym_text(slot)
             );
-        } else if write_rhs_argument_type(self, &mut *b, text, tok, e) {
+        } else if write_argument_type(self, &mut *b, text, tok, e) {
         } else if let LoadDetail::MinAboveMax { cardinality } = e.detail {
             let what = if cardinality { "cardinality" } else { "range" };
             let _ = writeln!(
@@ -2838,9 +2838,9 @@ fn is_rhs_argument_type(e: &LoadError) -> bool {
     }
 }
 
-/// Writes CLIPS's `[RULECSTR3]` message of load error `e` when it is one (`tok`: the
-/// variable), and says so.
-fn write_rhs_argument_type(
+/// Writes CLIPS's `[RULECSTR3]` (actions) or `[RULECSTR2]` (conditions) message of
+/// load error `e` when it is one (`tok`: the variable), and says so.
+fn write_argument_type(
     cx: &Core<'_>,
     b: &mut dyn Write,
     text: &str,
@@ -2848,15 +2848,23 @@ fn write_rhs_argument_type(
     e: &LoadError,
 ) -> bool {
     #[cfg(feature = "extras")]
-    let seq_ops = cx.st.mode.seq_ops;
-    #[cfg(feature = "extras")]
-    if let LoadDetail::RhsArgumentType {
-        call_start,
-        call_end,
-        arg,
-        passes,
-    } = e.detail
     {
+        // (the call, the argument and the parses around it, as `rhs_types` found them)
+        let (code, call_start, call_end, arg, passes) = match e.detail {
+            LoadDetail::RhsArgumentType {
+                call_start,
+                call_end,
+                arg,
+                passes,
+            } => ("RULECSTR3", call_start, call_end, arg, passes),
+            LoadDetail::LhsArgumentType {
+                call_start,
+                call_end,
+                arg,
+                ..
+            } => ("RULECSTR2", call_start, call_end, arg, 0),
+            _ => return false,
+        };
         let f = crate::parser::rhs_types::Found {
             var_start: e.start as usize,
             var_end: e.end as usize,
@@ -2867,48 +2875,31 @@ fn write_rhs_argument_type(
         };
         let _ = write!(
             b,
-            "\n[RULECSTR3] Previous variable bindings of ?{} caused the type restrictions\nfor argument #{arg} of the expression ",
+            "\n[{code}] Previous variable bindings of ?{} caused the type restrictions\nfor argument #{arg} of the expression ",
             tok.trim_start_matches('$').trim_start_matches('?'),
         );
-        let _ = crate::parser::rhs_types::write_expression(b, text, &f, seq_ops);
-        let _ = b.write_str("\nfound in the rule's RHS to be violated.\n");
-        return true;
-    }
-    #[cfg(feature = "extras")]
-    if let LoadDetail::LhsArgumentType {
-        call_start,
-        call_end,
-        slot,
-        arg,
-        ce,
-        field,
-    } = e.detail
-    {
-        let f = crate::parser::rhs_types::Found {
-            var_start: e.start as usize,
-            var_end: e.end as usize,
-            arg,
-            call_start: call_start as usize,
-            call_end: call_end as usize,
-            passes: 0,
-        };
-        let _ = write!(
-            b,
-            "\n[RULECSTR2] Previous variable bindings of ?{} caused the type restrictions\nfor argument #{arg} of the expression ",
-            tok.trim_start_matches('$').trim_start_matches('?'),
-        );
-        let _ = crate::parser::rhs_types::write_expression(b, text, &f, seq_ops);
-        let _ = write!(b, "\nfound in CE #{ce}");
-        if slot != crate::value::NONE {
-            let _ = write!(b, " slot {}", cx.sym_text(slot));
-        } else if field > 0 {
-            let _ = write!(b, " field #{field}");
+        let _ = crate::parser::rhs_types::write_expression(b, text, &f, cx.st.mode.seq_ops);
+        if let LoadDetail::LhsArgumentType {
+            slot, ce, field, ..
+        } = e.detail
+        {
+            let _ = write!(b, "\nfound in CE #{ce}");
+            if slot != crate::value::NONE {
+                let _ = write!(b, " slot {}", cx.sym_text(slot));
+            } else if field > 0 {
+                let _ = write!(b, " field #{field}");
+            }
+            let _ = b.write_str(" to be violated.\n");
+        } else {
+            let _ = b.write_str("\nfound in the rule's RHS to be violated.\n");
         }
-        let _ = b.write_str(" to be violated.\n");
-        return true;
+        true
     }
-    let _ = (cx, b, text, tok, e);
-    false
+    #[cfg(not(feature = "extras"))]
+    {
+        let _ = (cx, b, text, tok, e);
+        false
+    }
 }
 
 /// `[PATTERN2]` (`LoadDetail::MixedConstraint`, host only).
