@@ -312,8 +312,7 @@ impl<'s> Parser<'s, '_, '_> {
     /// Parses arguments until `)`, appending them to `call`; returns their count.
     pub fn args_until_rparen(&mut self, call: Ix) -> PResult<Ix> {
         let mut n = 0;
-        // the last child so far: appending walks on from it, not from the first (a
-        // right-hand side of hundreds of asserts was quadratic to read)
+        // the last child so far (`append_arg`)
         let mut tail = NONE;
         loop {
             let t = self.peek();
@@ -325,19 +324,28 @@ impl<'s> Parser<'s, '_, '_> {
                 Tok::Eof | Tok::Bad => return Err(self.err(t, "')'")),
                 _ => {
                     let a = self.parse_expr()?;
-                    if tail == NONE {
-                        self.cx.append_child(call, a);
-                    } else {
-                        while self.cx.exprs[tail as usize].next != NONE {
-                            tail = self.cx.exprs[tail as usize].next;
-                        }
-                        self.cx.exprs[tail as usize].next = a;
-                    }
-                    tail = a;
+                    self.append_arg(call, &mut tail, a);
                     n += 1;
                 }
             }
         }
+    }
+
+    /// Appends argument `a` to `call`'s children after `tail`, the last child so far
+    /// (`NONE` before the first), and makes `a` the last: appending walks on from the
+    /// last child, not from the first (a right-hand side of hundreds of asserts was
+    /// quadratic to read).
+    #[inline]
+    fn append_arg(&mut self, call: Ix, tail: &mut Ix, a: Ix) {
+        if *tail == NONE {
+            self.cx.append_child(call, a);
+        } else {
+            while self.cx.exprs[*tail as usize].next != NONE {
+                *tail = self.cx.exprs[*tail as usize].next;
+            }
+            self.cx.exprs[*tail as usize].next = a;
+        }
+        *tail = a;
     }
 
     /// [`Parser::args_until_rparen`] of the call of the builtin of id `id`, noting
@@ -349,7 +357,7 @@ impl<'s> Parser<'s, '_, '_> {
             return self.args_until_rparen(call);
         }
         let mut n = 0;
-        // (appended after the last child, as `args_until_rparen`)
+        // the last child so far (`append_arg`)
         let mut tail = NONE;
         loop {
             let t = self.peek();
@@ -367,15 +375,7 @@ impl<'s> Parser<'s, '_, '_> {
                 _ => None,
             };
             let a = self.parse_expr()?;
-            if tail == NONE {
-                self.cx.append_child(call, a);
-            } else {
-                while self.cx.exprs[tail as usize].next != NONE {
-                    tail = self.cx.exprs[tail as usize].next;
-                }
-                self.cx.exprs[tail as usize].next = a;
-            }
-            tail = a;
+            self.append_arg(call, &mut tail, a);
             n += 1;
             if let Some((name, mf)) = var {
                 let seq_ops = self.cx.st.mode.seq_ops;
