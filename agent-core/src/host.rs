@@ -25,6 +25,8 @@ pub trait Host {
     /// Raw bytes to a router: `put-char`'s byte, which CLIPS writes as it is (a code of
     /// 128-255 is no UTF-8 text on its own). The default, for hosts whose output is
     /// text, writes UTF-8 as text and any other byte as the character of its code.
+    /// (With `parser`: its one caller, `put-char`, is in `builtins::io`, which needs
+    /// the reader and which the agent image leaves out.)
     #[cfg(feature = "parser")]
     fn write_bytes(&mut self, router: &str, bytes: &[u8]) {
         match core::str::from_utf8(bytes) {

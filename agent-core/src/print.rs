@@ -194,7 +194,7 @@ impl Core<'_> {
 
     /// Writes raw bytes to a router (`put-char`): text when they are UTF-8, else through
     /// [`Host::write_bytes`] (a capture of error output takes each byte as the
-    /// character of its code).
+    /// character of its code). With `parser`, as its one caller (`builtins::io`).
     #[cfg(feature = "parser")]
     pub(crate) fn write_bytes(&mut self, router: &str, bytes: &[u8]) {
         if let Ok(text) = core::str::from_utf8(bytes) {
