@@ -279,6 +279,36 @@ fn program(seed: u64, watch_activations: bool) -> String {
 
 const MODULES: [&str; 4] = ["MAIN", "A", "B", "C"];
 
+/// Rule `r{k}` of `module` with its conditions and actions, after drawing its
+/// `declare`: a salience of -2..2 in two rules in five, `auto-focus` with chance
+/// `auto_focus` (the draws of `module_rule` and `combined_rule`).
+fn module_defrule(
+    rng: &mut Rng,
+    auto_focus: f64,
+    module: &str,
+    k: u32,
+    ces: &[String],
+    actions: &[String],
+) -> String {
+    let mut declare = Vec::new();
+    if rng.unit() < 0.4 {
+        declare.push(format!("(salience {})", rng.int(0, 4) as i32 - 2));
+    }
+    if rng.unit() < auto_focus {
+        declare.push("(auto-focus TRUE)".to_string());
+    }
+    let declare = if declare.is_empty() {
+        String::new()
+    } else {
+        format!("(declare {}) ", declare.join(" "))
+    };
+    format!(
+        "(defrule {module}::r{k} {declare}{} => {})",
+        ces.join(" "),
+        actions.join(" ")
+    )
+}
+
 /// One rule of a modules program: `r{k}` in a module of `MODULES`, a `ctx` pattern and a
 /// body as `rule` draws them, perhaps `auto-focus` and a salience, and 1-4 actions among
 /// modify, assert, printout, `focus`, `return` and `pop-focus`.
@@ -338,23 +368,7 @@ fn module_rule(rng: &mut Rng, k: u32) -> String {
             actions.push("(pop-focus)".to_string());
         }
     }
-    let mut declare = Vec::new();
-    if rng.unit() < 0.4 {
-        declare.push(format!("(salience {})", rng.int(0, 4) as i32 - 2));
-    }
-    if rng.unit() < 0.3 {
-        declare.push("(auto-focus TRUE)".to_string());
-    }
-    let declare = if declare.is_empty() {
-        String::new()
-    } else {
-        format!("(declare {}) ", declare.join(" "))
-    };
-    format!(
-        "(defrule {module}::r{k} {declare}{} => {})",
-        ces.join(" "),
-        actions.join(" ")
-    )
+    module_defrule(rng, 0.3, module, k, &ces, &actions)
 }
 
 /// The modules program for `seed` (see the module documentation), from a generator of
@@ -623,23 +637,7 @@ fn combined_rule(rng: &mut Rng, k: u32) -> String {
             actions.push("(pop-focus)".to_string());
         }
     }
-    let mut declare = Vec::new();
-    if rng.unit() < 0.4 {
-        declare.push(format!("(salience {})", rng.int(0, 4) as i32 - 2));
-    }
-    if rng.unit() < 0.25 {
-        declare.push("(auto-focus TRUE)".to_string());
-    }
-    let declare = if declare.is_empty() {
-        String::new()
-    } else {
-        format!("(declare {}) ", declare.join(" "))
-    };
-    format!(
-        "(defrule {module}::r{k} {declare}{} => {})",
-        ces.join(" "),
-        actions.join(" ")
-    )
+    module_defrule(rng, 0.25, module, k, &ces, &actions)
 }
 
 /// The combined program for `seed` (from a generator of its own): modules with templates
