@@ -207,10 +207,14 @@ impl Core<'_> {
             // `NO_DEPS` (a seed's or `clear`'s), then the zero ones it grew by.
             #[cfg(feature = "grow")]
             if !self.st.logical.defined && self.grows() {
-                let from = self.token_deps.partition_point(|&d| d == NONE);
-                self.token_deps[from..].fill(NONE);
-                let from = self.fact_deps.partition_point(|&d| d == NONE);
-                self.fact_deps[from..].fill(NONE);
+                let from = self.token_deps.partition_point(|&d| d == NO_DEPS);
+                // (the split holds only if nothing wrote a head before: check it)
+                debug_assert!(self.token_deps[from..].iter().all(|&d| d == 0));
+                self.token_deps[from..].fill(NO_DEPS);
+                let from = self.fact_deps.partition_point(|&d| d == NO_DEPS);
+                // (the split holds only if nothing wrote a head before: check it)
+                debug_assert!(self.fact_deps[from..].iter().all(|&d| d == 0));
+                self.fact_deps[from..].fill(NO_DEPS);
             }
             self.st.logical.defined = true;
             // (a firing gives logical support on the run loop's general path)
