@@ -287,12 +287,14 @@ impl<T: Clone> Buf<T> {
     /// Makes it `len` entries long, new ones `empty`; unchanged if the allocator
     /// refuses (callers reserve first, so it does not).
     fn resize(&mut self, len: usize, empty: T) {
+        // a `Zeroed` one is resized only by `extend_zeroed`: here it would stay as it
+        // is when its room is enough, and turn `Heap` and grow when not
+        debug_assert!(!matches!(self, Buf::Zeroed(_)), "resize of a Zeroed array");
         if self.reserve(len).is_ok() {
             if let Buf::Heap(v) = self {
                 v.resize(len, empty);
             }
         }
-        // (a `Zeroed` one is resized only by `extend_zeroed`)
     }
 }
 
