@@ -286,6 +286,7 @@ differential_programs! {
     p102_nested_not_exists => "102-nested-not-exists",
     p103_group_rule_added_later => "103-group-rule-added-later",
     p104_unblocked_not_order => "104-unblocked-not-order",
+    p105_notand_unblock_order => "105-notand-unblock-order",
     p115_progn_over_rebound_globals => "115-progn-over-rebound-globals",
     p116_printout_between_modifies => "116-printout-between-modifies",
     p117_asserts_before_control_modify => "117-asserts-before-control-modify",

@@ -777,6 +777,15 @@ impl Core<'_> {
             }
             return Ok(TokenId::NONE);
         }
+        // host: the partial matches extending `left`, found down its child lists
+        // (not the whole memory): none or one active decides; with more, the
+        // memory walk below picks the first in memory order, as CLIPS does
+        #[cfg(feature = "host-speedups")]
+        if left != TokenId::NONE {
+            if let Some(r) = self.sub_only_candidate(parent, rjoin, left, skip) {
+                return Ok(r);
+            }
+        }
         // host: a partial match extending `left` binds the facts `left` binds
         // (`Token::binds`: copied from the parent, only deeper patterns added),
         // so one binding another fact there is passed over without its walk up
@@ -800,6 +809,69 @@ impl Core<'_> {
             r = self.tokens[r].mem_next;
         }
         Ok(TokenId::NONE)
+    }
+
+    /// Host: the one active partial match of subnetwork join `rjoin` (skipping
+    /// `skip`) extending `left` of join `parent`, found down the child lists
+    /// through the subnetwork's joins: `Some(NONE)` when there is none, `None`
+    /// when there are several (or the subnetwork is deeper than 8 joins).
+    #[cfg(feature = "host-speedups")]
+    #[inline(never)]
+    fn sub_only_candidate(
+        &self,
+        parent: JoinId,
+        rjoin: JoinId,
+        left: TokenId,
+        skip: TokenId,
+    ) -> Option<TokenId> {
+        let mut path = [JoinId::NONE; 8];
+        let mut n = 0;
+        let mut s = rjoin;
+        while s != parent {
+            if s == JoinId::NONE || s == JoinId::ROOT || n == path.len() {
+                return None;
+            }
+            path[n] = s;
+            n += 1;
+            s = self.joins[s].parent;
+        }
+        let path = &mut path[..n];
+        path.reverse();
+        let mut found = TokenId::NONE;
+        self.sub_candidates(path, left, skip, &mut found)
+            .then_some(found)
+    }
+
+    /// Host: `sub_only_candidate`'s search below `t` along `path` (the joins
+    /// still to go down): false once a second active one is seen.
+    #[cfg(feature = "host-speedups")]
+    fn sub_candidates(
+        &self,
+        path: &[JoinId],
+        t: TokenId,
+        skip: TokenId,
+        found: &mut TokenId,
+    ) -> bool {
+        let Some((&j, rest)) = path.split_first() else {
+            return true;
+        };
+        let mut c = self.tokens[t].first_child;
+        while c != TokenId::NONE {
+            if self.tokens[c].owner == j {
+                if !rest.is_empty() {
+                    if !self.sub_candidates(rest, c, skip, found) {
+                        return false;
+                    }
+                } else if c != skip && self.token_active(c) {
+                    if *found != TokenId::NONE {
+                        return false;
+                    }
+                    *found = c;
+                }
+            }
+            c = self.tokens[c].next_sib;
+        }
+        true
     }
 
     /// `find_blocker`'s walk over the candidates of a join fed by an alpha node,
