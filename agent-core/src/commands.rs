@@ -2182,6 +2182,10 @@ impl Core<'_> {
                     self.st.io.line_base = line_base;
                     self.exec_command(&text[pos..pos + k], source);
                     self.st.io.line_base = 0;
+                    #[cfg(feature = "parser")]
+                    if self.st.io.quiet_results {
+                        self.flush_bind_list();
+                    }
                     if !self.st.mode.firing && self.st.eval.eval_depth == 0 {
                         self.debug_check("after a batch command");
                     }
@@ -2279,6 +2283,10 @@ impl Core<'_> {
                 self.st.io.line_base = item.line_base;
                 let moved = self.exec_batch_command(command, path, echo, item.end_offset);
                 self.st.io.line_base = 0;
+                #[cfg(feature = "parser")]
+                if !echo {
+                    self.flush_bind_list();
+                }
                 if let Some((offset, lines)) = moved {
                     file.skip_to(offset, lines);
                 }
@@ -2442,6 +2450,19 @@ impl Core<'_> {
         let _ = (echo, end);
         self.exec_command(command, path);
         None
+    }
+
+    /// `batch*` (and `clips -f2`) forgets the variables top-level `bind`s set once each
+    /// of its commands ran, those bound at the prompt before it too (CLIPS's
+    /// `FlushBindList`); `batch` and the prompt keep them.
+    #[cfg(feature = "parser")]
+    fn flush_bind_list(&mut self) {
+        for g in 0..self.st.pools.nglobals as usize {
+            let t = self.sym_text(self.globals[g].name);
+            if t.starts_with('?') && !t.starts_with("?*") {
+                self.globals[g].value = Value::Void;
+            }
+        }
     }
 
     /// Runs the file a `batch` command asked for, as the next input of the command loop.

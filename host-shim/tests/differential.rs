@@ -578,6 +578,7 @@ differential_programs! {
     p440_eval_variables_and_type_of_instances => "440-eval-variables-and-type-of-instances",
     p441_eval_syntax_messages => "441-eval-syntax-messages",
     p442_read_number_from_file_and_format_flags => "442-read-number-from-file-and-format-flags",
+    p443_batch_star_forgets_bound_variables => "443-batch-star-forgets-bound-variables",
     p500_retract_unblock_skips_dying => "500-retract-unblock-skips-dying",
     p501_retract_unblock_dying_lhs => "501-retract-unblock-dying-lhs",
     p502_retract_unblock_subnetwork => "502-retract-unblock-subnetwork",
