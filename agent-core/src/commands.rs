@@ -1730,10 +1730,11 @@ impl Core<'_> {
             in_call,
         } = e.detail
         {
-            // a global is named as CLIPS read it, a variable without the stars
+            // a global is named as CLIPS read it, a variable without the stars, a
+            // multifield one without its `$`
             let _ = match tok.strip_prefix("?*") {
                 Some(g) => write!(b, "\n[ANALYSIS4] Variable ?{}", g.trim_end_matches('*')),
-                None => write!(b, "\n[ANALYSIS4] Variable {tok}"),
+                None => write!(b, "\n[ANALYSIS4] Variable {}", tok.trim_start_matches('$')),
             };
             if in_call {
                 let _ = b.write_str(" found in the expression ");

@@ -105,10 +105,15 @@ pub struct Parser<'s, 'c, 'e> {
     /// `not`, `exists` and `forall` CEs around the one being read.
     #[cfg(feature = "extras")]
     pub quant_depth: u8,
-    /// The field constraint being read has a `=(...)` call giving a multifield (an
-    /// unbound variable after it is CLIPS's `[PATTERN2]`).
+    /// The field constraint being read has a multifield part so far: a `=(...)` call
+    /// giving a multifield, a `$?x` binding it or a `$?y` term (mixed with a single
+    /// part, `field_sf`, it is CLIPS's `[PATTERN2]`).
     #[cfg(feature = "extras")]
     pub field_mf_call: bool,
+    /// The field constraint being read has a single-field part so far: a literal, a
+    /// `?x` binding it or a `?y` term.
+    #[cfg(feature = "extras")]
+    pub field_sf: bool,
     /// Inside such a CE: the variables bound before the outermost one (`vars` below
     /// this index, whose records its slots do not narrow); 0 outside.
     pub quant_base: usize,
@@ -241,6 +246,8 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
             quant_base: 0,
             #[cfg(feature = "extras")]
             field_mf_call: false,
+            #[cfg(feature = "extras")]
+            field_sf: false,
             #[cfg(feature = "extras")]
             quant_first: false,
             #[cfg(feature = "extras")]

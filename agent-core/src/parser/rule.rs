@@ -1972,6 +1972,7 @@ impl<'s> Parser<'s, '_, '_> {
         #[cfg(feature = "extras")]
         {
             self.field_mf_call = false;
+            self.field_sf = false;
         }
         let mut multi = false;
         let mut bound_first = false;
@@ -1992,6 +1993,11 @@ impl<'s> Parser<'s, '_, '_> {
                 if !multi {
                     self.narrow_var(t, name)?;
                 }
+                #[cfg(feature = "extras")]
+                {
+                    self.field_mf_call = multi;
+                    self.field_sf = !multi;
+                }
                 bound_first = true;
             }
             Tok::SfWild | Tok::MfWild => {
@@ -2006,6 +2012,14 @@ impl<'s> Parser<'s, '_, '_> {
                 // `?x|...`: CLIPS reports the constraint after the bar
                 self.next();
                 self.or_constraint(p, locv, desc, &mut multi)?;
+                // CLIPS reads the variable as an alternative: `[PATTERN2]` when the
+                // field mixes single and multifield parts (`$?x|b`), else
+                // `[ANALYSIS4]` as it was bound nowhere before
+                #[cfg(feature = "extras")]
+                if matches!(t.tok, Tok::SfVar(_) | Tok::MfVar(_)) {
+                    self.check_mixed_constraint(NONE, false)?;
+                    return Err(self.unbound_in_lhs(t, false));
+                }
                 return Err(self.err(t, "a constraint ('|' cannot follow a binding variable)"));
             }
             if self.peek().tok != Tok::Amp {
@@ -2266,10 +2280,17 @@ impl<'s> Parser<'s, '_, '_> {
                 {
                     self.note_field_check(from);
                     let y = self.cx.exprs[e as usize];
-                    self.field_mf_call |= y.op == Op::Call
-                        && y.aux == crate::expr::FnKind::Builtin as u8
-                        && crate::builtins::get(y.data).returns
-                            == crate::builtins::describe::Returns::Multifield;
+                    // a builtin giving anything (`nth$`) is neither part
+                    let returns = if y.aux == crate::expr::FnKind::Builtin as u8 {
+                        crate::builtins::get(y.data).returns
+                    } else {
+                        crate::builtins::describe::Returns::Symbol
+                    };
+                    if y.op == Op::Call {
+                        use crate::builtins::describe::Returns;
+                        self.field_mf_call |= returns == Returns::Multifield;
+                        self.field_sf |= !matches!(returns, Returns::Multifield | Returns::Any);
+                    }
                 }
                 let this = self.this_field(p, locv, desc)?;
                 self.node2(Op::Eq2, this, e)
@@ -2284,6 +2305,14 @@ impl<'s> Parser<'s, '_, '_> {
                 if is_mf {
                     *multi = true;
                 }
+                #[cfg(feature = "extras")]
+                let mixed = {
+                    let (sf, mf) = (self.field_sf || !is_mf, self.field_mf_call || is_mf);
+                    let (sf, mf) = self.field_kinds_ahead(sf, mf);
+                    self.field_sf |= !is_mf;
+                    self.field_mf_call |= is_mf;
+                    sf && mf
+                };
                 let v = match self.find_var(name) {
                     Some(var) if var.multi != is_mf && matches!(var.kind, VarKind::Pat { .. }) => {
                         let mut e = self.err(
@@ -2297,7 +2326,7 @@ impl<'s> Parser<'s, '_, '_> {
                     // CLIPS's `[ANALYSIS4]`: referenced before a pattern binds it (its
                     // `[PATTERN2]` first, after a `=(...)` giving a multifield)
                     #[cfg(feature = "extras")]
-                    None if self.field_mf_call => {
+                    None if mixed => {
                         let at = self.constraint_end();
                         let mut err = self.err(at, "no mix of single and multifield constraints");
                         err.detail = crate::error::LoadDetail::MixedConstraint;
@@ -2311,6 +2340,10 @@ impl<'s> Parser<'s, '_, '_> {
             }
             _ => match self.literal(t)? {
                 Some(c) => {
+                    #[cfg(feature = "extras")]
+                    {
+                        self.field_sf = true;
+                    }
                     if let Some(def) = self.lhs_slot {
                         if let Some(what) = self.literal_violation(&def, c) {
                             let mut e = self.err(t, expected(what));
@@ -2469,8 +2502,12 @@ impl<'s> Parser<'s, '_, '_> {
     /// a)`, `abc|=(create$ a)`); predicates `:(...)` count as neither. Reported at
     /// the token after the constraint, which CLIPS shows.
     fn check_mixed_constraint(&mut self, e: Ix, single: bool) -> PResult<()> {
-        let (s, m) = self.constraint_kinds(e);
-        if m && (s || single) {
+        let (s, m) = if e == NONE {
+            (false, false)
+        } else {
+            self.constraint_kinds(e)
+        };
+        if (m && (s || single)) || (self.field_sf && self.field_mf_call) {
             let at = self.peek();
             let mut err = self.err(at, "no mix of single and multifield constraints");
             err.detail = crate::error::LoadDetail::MixedConstraint;
@@ -2594,6 +2631,57 @@ impl<'s> Parser<'s, '_, '_> {
         }
         let k = self.literal_types(e);
         self.cx.st.rule_notes.var_lit[i] &= k;
+    }
+
+    /// Whether the rest of the field constraint being read (its `&`/`|` terms after
+    /// the next token) adds a single-field part (a literal, a `?y`) or a multifield
+    /// one (a `$?y`, a `=(...)` call giving a multifield) to `sf` and `mf`: CLIPS
+    /// reads the whole field before it looks for unbound variables.
+    fn field_kinds_ahead(&mut self, mut sf: bool, mut mf: bool) -> (bool, bool) {
+        if !matches!(self.peek().tok, Tok::Amp | Tok::Bar) {
+            return (sf, mf);
+        }
+        let mut lx = self.lex.clone();
+        loop {
+            let mut t = lx.next_token();
+            while t.tok == Tok::Tilde {
+                t = lx.next_token();
+            }
+            match t.tok {
+                Tok::Symbol(op @ (":" | "=")) => {
+                    if lx.next_token().tok != Tok::LParen {
+                        return (sf, mf);
+                    }
+                    if let Tok::Symbol(f) = lx.next_token().tok {
+                        use crate::builtins::describe::Returns;
+                        // (not a builtin: a deffunction, a single field)
+                        let returns =
+                            crate::builtins::lookup(f).map_or(Returns::Symbol, |(_, b)| b.returns);
+                        if op == "=" {
+                            mf |= returns == Returns::Multifield;
+                            sf |= !matches!(returns, Returns::Multifield | Returns::Any);
+                        }
+                    }
+                    let mut depth = 1u32;
+                    while depth > 0 {
+                        match lx.next_token().tok {
+                            Tok::LParen => depth += 1,
+                            Tok::RParen => depth -= 1,
+                            Tok::Eof | Tok::Bad => return (sf, mf),
+                            _ => {}
+                        }
+                    }
+                }
+                Tok::MfVar(_) => mf = true,
+                Tok::SfVar(_) | Tok::Symbol(_) | Tok::Str(_) | Tok::Int(_) | Tok::Float(_) => {
+                    sf = true
+                }
+                _ => return (sf, mf),
+            }
+            if !matches!(lx.next_token().tok, Tok::Amp | Tok::Bar) {
+                return (sf, mf);
+            }
+        }
     }
 
     /// The token after the field constraint being read (the rest of its `&`/`|` terms
