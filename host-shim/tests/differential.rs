@@ -580,6 +580,7 @@ differential_programs! {
     p442_read_number_from_file_and_format_flags => "442-read-number-from-file-and-format-flags",
     p443_batch_star_forgets_bound_variables => "443-batch-star-forgets-bound-variables",
     p444_mixed_single_and_multifield_constraints => "444-mixed-single-and-multifield-constraints",
+    p445_eval_text_ending_inside_loop_and_progn => "445-eval-text-ending-inside-loop-and-progn",
     p500_retract_unblock_skips_dying => "500-retract-unblock-skips-dying",
     p501_retract_unblock_dying_lhs => "501-retract-unblock-dying-lhs",
     p502_retract_unblock_subnetwork => "502-retract-unblock-subnetwork",

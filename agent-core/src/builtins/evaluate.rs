@@ -131,7 +131,7 @@ enum EvalSyntax {
     Expression,
     /// `[EXPRNPSR1] A function name must be a symbol`
     FunctionName,
-    /// `[PRNTUTIL2] ... for NAME function.` (`if`, `while`, `switch`)
+    /// `[PRNTUTIL2] ... for NAME function.` (`if`, `while`, `switch`, `loop-for-count`)
     Special(&'static str),
     /// `[PRNTUTIL2] ... for RHS patterns.` (`assert`)
     RhsPatterns,
@@ -228,15 +228,31 @@ fn eval_syntax_message(
     if last_open {
         return Some(EvalSyntax::FunctionName);
     }
+    let progn = |name: &str| matches!(name, "progn" | "progn$" | "foreach");
+    if progn(inner) {
+        // CLIPS's reader of their actions stops at the text's end without a word: the
+        // text then runs (not ours, kept), or the call around it reports
+        if depth == 1 || progn(outer) {
+            return None;
+        }
+        return eval_syntax_of(outer, true, "");
+    }
+    eval_syntax_of(inner, after_name, outer)
+}
+
+/// `eval_syntax_message` for text that ended in a call of `inner` (inside a call of
+/// `outer`), with something after its name when `after_name`.
+fn eval_syntax_of(inner: &str, after_name: bool, outer: &str) -> Option<EvalSyntax> {
     Some(match inner {
         "if" | "while" | "switch" if !after_name => EvalSyntax::Expression,
         "if" => EvalSyntax::Special("if"),
         "while" => EvalSyntax::Special("while"),
         "switch" => EvalSyntax::Special("switch"),
+        "loop-for-count" => EvalSyntax::Special("loop-for-count"),
         "assert" => EvalSyntax::RhsPatterns,
         _ if outer == "assert" => EvalSyntax::RhsPatterns,
-        // (their own readers end differently in CLIPS: ours is kept)
-        "progn" | "progn$" | "foreach" | "loop-for-count" | "modify" | "duplicate" => return None,
+        // (their own reader ends differently in CLIPS: ours is kept)
+        "modify" | "duplicate" => return None,
         _ => EvalSyntax::Expression,
     })
 }
