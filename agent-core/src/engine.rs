@@ -216,6 +216,10 @@ pub struct AgendaState {
     /// Host: where each salience's activations lie on the agenda (see `agenda`).
     #[cfg(feature = "host-speedups")]
     pub groups: crate::agenda::SalienceGroups,
+    /// Host: each activation's recency list by activation index, worked out when it
+    /// is inserted while the strategy is lex or mea (`strategy::RecencyCache`).
+    #[cfg(all(feature = "extras", feature = "grow"))]
+    pub recency: alloc::vec::Vec<crate::strategy::RecencyCache>,
 }
 
 impl AgendaState {
@@ -229,6 +233,8 @@ impl AgendaState {
             strategy: 0,
             #[cfg(feature = "host-speedups")]
             groups: crate::agenda::SalienceGroups::EMPTY,
+            #[cfg(all(feature = "extras", feature = "grow"))]
+            recency: alloc::vec::Vec::new(),
         }
     }
 }

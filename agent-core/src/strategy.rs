@@ -80,13 +80,58 @@ const MAX_SLOTS: usize = crate::rete::MAX_PATTERNS;
 
 /// An activation's matched fact numbers for lex and mea: most recent first, a slot
 /// without a fact as 0 (below every fact), and the first pattern's fact.
-struct Recency {
+#[derive(Clone, Copy)]
+pub(crate) struct Recency {
     sorted: [u32; MAX_SLOTS],
     n: usize,
     first: Option<u32>,
 }
 
+/// Host: an activation's `Recency`, kept aside (`AgendaState::recency`) while the
+/// strategy is lex or mea, with the creation number and partial match of the
+/// activation it belongs to: an entry whose activation is not the one now at its
+/// index is not read (the list is worked out again).
+#[cfg(all(feature = "extras", feature = "grow"))]
+#[derive(Clone, Copy)]
+pub struct RecencyCache {
+    seq: u32,
+    token: crate::handle::TokenId,
+    rec: Recency,
+}
+
 impl Core<'_> {
+    /// Host: keeps activation `a`'s recency list aside (lex and mea read it there
+    /// instead of walking its partial match at every comparison, as CLIPS keeps
+    /// an activation's sorted time tags).
+    #[cfg(all(feature = "extras", feature = "grow"))]
+    #[inline(never)]
+    pub(crate) fn keep_recency(&mut self, a: Ix) {
+        let act = self.acts[a as usize];
+        let entry = RecencyCache {
+            seq: act.seq,
+            token: act.token,
+            rec: self.recency(act.token),
+        };
+        let cache = &mut self.st.agenda.recency;
+        let i = a as usize;
+        if i >= cache.len() {
+            cache.resize(i + 1, entry);
+        }
+        cache[i] = entry;
+    }
+
+    /// Activation `a`'s recency list if kept aside (host, lex and mea).
+    #[inline(always)]
+    fn kept_recency(&self, _ix: Ix, _a: &crate::rule::Activation) -> Option<&Recency> {
+        #[cfg(all(feature = "extras", feature = "grow"))]
+        if let Some(c) = self.st.agenda.recency.get(_ix as usize) {
+            if c.seq == _a.seq && c.token == _a.token {
+                return Some(&c.rec);
+            }
+        }
+        None
+    }
+
     /// The strategy in force.
     pub fn strategy(&self) -> Strategy {
         Strategy::from_u8(self.st.agenda.strategy)
@@ -124,7 +169,21 @@ impl Core<'_> {
             Strategy::Simplicity => complexity(&ax).cmp(&complexity(&ay)),
             Strategy::Random => random_key(&ax).cmp(&random_key(&ay)),
             Strategy::Lex | Strategy::Mea => {
-                let (rx, ry) = (self.recency(ax.token), self.recency(ay.token));
+                let (wx, wy);
+                let rx = match self.kept_recency(x, &ax) {
+                    Some(r) => r,
+                    None => {
+                        wx = self.recency(ax.token);
+                        &wx
+                    }
+                };
+                let ry = match self.kept_recency(y, &ay) {
+                    Some(r) => r,
+                    None => {
+                        wy = self.recency(ay.token);
+                        &wy
+                    }
+                };
                 if strategy == Strategy::Mea && rx.first != ry.first {
                     // a fact beats no fact; the more recent fact goes first
                     return ry.first.cmp(&rx.first);
