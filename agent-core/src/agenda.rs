@@ -299,15 +299,6 @@ impl Core<'_> {
     /// Inserts before the first activation it goes before (`goes_before`).
     #[cfg_attr(feature = "host-speedups", inline(always))]
     pub(crate) fn agenda_insert(&mut self, a: Ix) {
-        // host: lex and mea compare the recency lists kept aside (out of line)
-        #[cfg(all(feature = "extras", feature = "grow"))]
-        {
-            use crate::strategy::Strategy;
-            let s = self.st.agenda.strategy;
-            if s == Strategy::Lex as u8 || s == Strategy::Mea as u8 {
-                self.keep_recency(a);
-            }
-        }
         // host: kept salience groups are a walk of their own (out of line: long
         // agendas only), the short agenda's walk counts its steps only
         #[cfg(feature = "host-speedups")]

@@ -216,10 +216,6 @@ pub struct AgendaState {
     /// Host: where each salience's activations lie on the agenda (see `agenda`).
     #[cfg(feature = "host-speedups")]
     pub groups: crate::agenda::SalienceGroups,
-    /// Host: each activation's recency list by activation index, worked out when it
-    /// is inserted while the strategy is lex or mea (`strategy::RecencyCache`).
-    #[cfg(all(feature = "extras", feature = "grow"))]
-    pub recency: alloc::vec::Vec<crate::strategy::RecencyCache>,
 }
 
 impl AgendaState {
@@ -233,8 +229,6 @@ impl AgendaState {
             strategy: 0,
             #[cfg(feature = "host-speedups")]
             groups: crate::agenda::SalienceGroups::EMPTY,
-            #[cfg(all(feature = "extras", feature = "grow"))]
-            recency: alloc::vec::Vec::new(),
         }
     }
 }
@@ -816,6 +810,10 @@ pub struct State {
     /// order of those (`rete::order`).
     #[cfg(feature = "grow")]
     pub prime: crate::rete::PrimeOrders,
+    /// Host: activations' recency lists by activation index, worked out the first
+    /// time lex or mea compares them (`strategy::RecencyCache`).
+    #[cfg(all(feature = "extras", feature = "grow"))]
+    pub recency: core::cell::RefCell<alloc::vec::Vec<Option<crate::strategy::RecencyCache>>>,
 }
 
 /// The names of the rules with a breakpoint (`set-break`): a run stops before firing
@@ -1050,6 +1048,8 @@ impl State {
             capture: None,
             #[cfg(feature = "grow")]
             prime: crate::rete::PrimeOrders::new(),
+            #[cfg(all(feature = "extras", feature = "grow"))]
+            recency: core::cell::RefCell::new(alloc::vec::Vec::new()),
         }
     }
 }

@@ -87,10 +87,12 @@ pub(crate) struct Recency {
     first: Option<u32>,
 }
 
-/// Host: an activation's `Recency`, kept aside (`AgendaState::recency`) while the
-/// strategy is lex or mea, with the creation number and partial match of the
-/// activation it belongs to: an entry whose activation is not the one now at its
-/// index is not read (the list is worked out again).
+/// Host: an activation's `Recency`, kept aside (`State::recency`, by activation
+/// index) from the first time lex or mea compares it, as CLIPS keeps an activation's
+/// sorted time tags; with the creation number and partial match of the activation it
+/// belongs to: an entry whose activation is not the one now at its index is worked
+/// out again. (Only an undo's activation takes an old creation number, for a partial
+/// match of the same facts: the same list.)
 #[cfg(all(feature = "extras", feature = "grow"))]
 #[derive(Clone, Copy)]
 pub struct RecencyCache {
@@ -100,38 +102,6 @@ pub struct RecencyCache {
 }
 
 impl Core<'_> {
-    /// Host: keeps activation `a`'s recency list aside (lex and mea read it there
-    /// instead of walking its partial match at every comparison, as CLIPS keeps
-    /// an activation's sorted time tags).
-    #[cfg(all(feature = "extras", feature = "grow"))]
-    #[inline(never)]
-    pub(crate) fn keep_recency(&mut self, a: Ix) {
-        let act = self.acts[a as usize];
-        let entry = RecencyCache {
-            seq: act.seq,
-            token: act.token,
-            rec: self.recency(act.token),
-        };
-        let cache = &mut self.st.agenda.recency;
-        let i = a as usize;
-        if i >= cache.len() {
-            cache.resize(i + 1, entry);
-        }
-        cache[i] = entry;
-    }
-
-    /// Activation `a`'s recency list if kept aside (host, lex and mea).
-    #[inline(always)]
-    fn kept_recency(&self, _ix: Ix, _a: &crate::rule::Activation) -> Option<&Recency> {
-        #[cfg(all(feature = "extras", feature = "grow"))]
-        if let Some(c) = self.st.agenda.recency.get(_ix as usize) {
-            if c.seq == _a.seq && c.token == _a.token {
-                return Some(&c.rec);
-            }
-        }
-        None
-    }
-
     /// The strategy in force.
     pub fn strategy(&self) -> Strategy {
         Strategy::from_u8(self.st.agenda.strategy)
@@ -168,36 +138,47 @@ impl Core<'_> {
             Strategy::Complexity => complexity(&ay).cmp(&complexity(&ax)),
             Strategy::Simplicity => complexity(&ax).cmp(&complexity(&ay)),
             Strategy::Random => random_key(&ax).cmp(&random_key(&ay)),
-            Strategy::Lex | Strategy::Mea => {
-                let (wx, wy);
-                let rx = match self.kept_recency(x, &ax) {
-                    Some(r) => r,
-                    None => {
-                        wx = self.recency(ax.token);
-                        &wx
-                    }
-                };
-                let ry = match self.kept_recency(y, &ay) {
-                    Some(r) => r,
-                    None => {
-                        wy = self.recency(ay.token);
-                        &wy
-                    }
-                };
-                if strategy == Strategy::Mea && rx.first != ry.first {
-                    // a fact beats no fact; the more recent fact goes first
-                    return ry.first.cmp(&rx.first);
+            Strategy::Lex | Strategy::Mea => self
+                .compare_recency(strategy, x, &ax, y, &ay)
+                .then_with(|| complexity(&ay).cmp(&complexity(&ax))),
+        }
+    }
+
+    /// Lex's or mea's order of the facts `x` and `y` matched: Less when `x` goes
+    /// first. Host: the lists kept aside (`RecencyCache`), worked out on first use.
+    fn compare_recency(
+        &self,
+        strategy: Strategy,
+        x: Ix,
+        ax: &crate::rule::Activation,
+        y: Ix,
+        ay: &crate::rule::Activation,
+    ) -> core::cmp::Ordering {
+        #[cfg(all(feature = "extras", feature = "grow"))]
+        if let Ok(mut cache) = self.st.recency.try_borrow_mut() {
+            let (i, j) = (x as usize, y as usize);
+            let need = i.max(j) + 1;
+            let len = cache.len();
+            if len < need {
+                cache.resize(need.max(2 * len), None);
+            }
+            for (k, a) in [(i, ax), (j, ay)] {
+                let kept = matches!(cache[k], Some(c) if c.seq == a.seq && c.token == a.token);
+                if !kept {
+                    cache[k] = Some(RecencyCache {
+                        seq: a.seq,
+                        token: a.token,
+                        rec: self.recency(a.token),
+                    });
                 }
-                let shared = rx.n.min(ry.n);
-                for i in 0..shared {
-                    if rx.sorted[i] != ry.sorted[i] {
-                        return ry.sorted[i].cmp(&rx.sorted[i]);
-                    }
-                }
-                ry.n.cmp(&rx.n)
-                    .then_with(|| complexity(&ay).cmp(&complexity(&ax)))
+            }
+            if let (Some(cx), Some(cy)) = (&cache[i], &cache[j]) {
+                return recency_order(strategy, &cx.rec, &cy.rec);
             }
         }
+        #[cfg(not(all(feature = "extras", feature = "grow")))]
+        let _ = (x, y);
+        recency_order(strategy, &self.recency(ax.token), &self.recency(ay.token))
     }
 
     /// The recency list of a partial match (see `Recency`).
@@ -226,6 +207,21 @@ impl Core<'_> {
             first,
         }
     }
+}
+
+/// Lex's or mea's order of two recency lists: Less when `rx`'s goes first.
+fn recency_order(strategy: Strategy, rx: &Recency, ry: &Recency) -> core::cmp::Ordering {
+    if strategy == Strategy::Mea && rx.first != ry.first {
+        // a fact beats no fact; the more recent fact goes first
+        return ry.first.cmp(&rx.first);
+    }
+    let shared = rx.n.min(ry.n);
+    for i in 0..shared {
+        if rx.sorted[i] != ry.sorted[i] {
+            return ry.sorted[i].cmp(&rx.sorted[i]);
+        }
+    }
+    ry.n.cmp(&rx.n)
 }
 
 #[cfg(feature = "extras")]
