@@ -452,6 +452,7 @@ differential_programs! {
     p412_logical_reassert_after_support_lost => "412-logical-reassert-after-support-lost",
     p413_join_from_right_after_shared_join => "413-join-from-right-after-shared-join",
     p414_join_from_right_free_subnetwork => "414-join-from-right-free-subnetwork",
+    p415_join_from_right_after_another => "415-join-from-right-after-another",
     p450_keyed_or_joins => "450-keyed-or-joins",
     p451_element_join_keys => "451-element-join-keys",
     p452_mf_var_offsets => "452-mf-var-offsets",

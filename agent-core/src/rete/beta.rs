@@ -627,17 +627,35 @@ impl Core<'_> {
     }
 
     /// Host: whether the subnetwork feeding join from the right `join` reads no
-    /// variable of the patterns before it. CLIPS's join then has no test, and
+    /// variable of the patterns before it, or `join` follows another join from the
+    /// right on its left path whose subnetwork does (program 415; out of line: the
+    /// walks of plain nots inline its callers). CLIPS's join then has no test, and
     /// `drive.c` checks no descent either: any of the subnetwork's partial matches
     /// blocks every left partial match (which one, and the order of what a group
     /// unblocks, show in the activations). (One whose subnetwork shares variables
     /// blocks those agreeing on them in CLIPS; here only its own: not reproduced.)
     #[cfg(feature = "grow")]
+    #[inline(never)]
     fn sub_is_free(&self, join: JoinId) -> bool {
         let j = &self.joins[join];
         let parent = j.parent;
         if parent == JoinId::ROOT || j.rjoin == JoinId::NONE {
             return false;
+        }
+        // CLIPS 6.30 gives no test either to a join from the right that follows
+        // another one on its left path whose subnetwork reads variables of the
+        // patterns before it: there any subnetwork match blocks every left match,
+        // whatever the variables it shares (program 415)
+        let mut s = parent;
+        while s != JoinId::ROOT && s != JoinId::NONE {
+            let sj = &self.joins[s];
+            if sj.rjoin != JoinId::NONE
+                && sj.parent != JoinId::ROOT
+                && self.sub_reads_outer(sj.rjoin, sj.parent, self.joins[sj.parent].depth)
+            {
+                return true;
+            }
+            s = sj.parent;
         }
         !self.sub_reads_outer(j.rjoin, parent, self.joins[parent].depth)
     }
