@@ -311,6 +311,7 @@ differential_programs! {
     p138_rhs_runtime_errors => "138-rhs-runtime-errors",
     p139_watch_statistics => "139-watch-statistics",
     p140_fact_cell_reuse => "140-fact-cell-reuse",
+    p141_join_test_partial_plan_tail => "141-join-test-partial-plan-tail",
     p150_bind_lhs_variable => "150-bind-lhs-variable",
     p151_redefinitions => "151-redefinitions",
     p152_halt_watched_or_not => "152-halt-watched-or-not",

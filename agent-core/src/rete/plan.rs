@@ -7,7 +7,9 @@
 //! again, `~?x`, `?a | ?b`), `eq`/`neq`/`=`/`<>`/`<`/`<=`/`>`/`>=` of variables,
 //! constants and `(+ ?x N)`/`(- ?x N)`, integer arithmetic (`+`, `-`, `*`, `mod`) of
 //! those, and `and`/`or`/`not` of those, whether they come from field constraints,
-//! `&:(...)` predicates or `(test ...)` CEs. Everything else keeps the evaluator.
+//! `&:(...)` predicates or `(test ...)` CEs. Everything else keeps the evaluator; an
+//! `and`/`or` member of another shape after one of these is `Node::Evaluator`, which
+//! sends the pair to the evaluator only when the members before it do not decide.
 //! A plan whose slots all lie at fixed offsets in their facts (no multislot before
 //! them in their templates) reads them from each fact's first cell (`Bases`).
 //!
@@ -142,6 +144,10 @@ enum Node {
     Arith { op: ArOp, first: u8, len: u8 },
     /// An operand of an `Arith` node.
     Leaf { s: Source },
+    /// A member of an `and`/`or` the plan cannot hold: reached, it answers None
+    /// (the evaluator decides, from the start), so that the members before it
+    /// still decide without the evaluator when they fail (`and`) or hold (`or`).
+    Evaluator,
 }
 
 const UNPLANNED: u8 = u8::MAX;
@@ -213,7 +219,8 @@ impl TestPlans {
         }
     }
 
-    /// Stores built plan `b` for entry `i`, emptying the pool first if it lacks room.
+    /// Stores built plan `b` for entry `i`, emptying the pool first if it lacks room
+    /// (a partial plan, one with a `Node::Evaluator`, is stored unplanned instead).
     fn store(&mut self, i: usize, mut entry: PlanEntry, b: &PlanBuild) {
         if entry.root == UNPLANNED {
             self.entries[i] = entry;
@@ -221,6 +228,14 @@ impl TestPlans {
         }
         let (n, k) = (b.used as usize, b.kids_used as usize);
         if self.nodes_used as usize + n > POOL_NODES || self.kids_used as usize + k > POOL_NODES {
+            if b.partial {
+                // a partial plan evicts no other: its join keeps the evaluator
+                self.entries[i] = PlanEntry {
+                    root: UNPLANNED,
+                    ..entry
+                };
+                return;
+            }
             self.clear();
         }
         // POOL_NODES <= 256 and the sums fit: every index stays a u8
@@ -271,6 +286,8 @@ struct PlanBuild {
     used: u8,
     kids_used: u8,
     deep: bool,
+    /// The plan holds a `Node::Evaluator`.
+    partial: bool,
     nodes: [Node; PLAN_NODES],
     kids: [u8; PLAN_NODES],
 }
@@ -323,7 +340,8 @@ impl PlanBuild {
                 other @ (Node::And { .. }
                 | Node::Or { .. }
                 | Node::Not { .. }
-                | Node::Arith { .. }) => other,
+                | Node::Arith { .. }
+                | Node::Evaluator) => other,
             };
         }
     }
@@ -721,6 +739,7 @@ impl Core<'_> {
             used: 0,
             kids_used: 0,
             deep: false,
+            partial: false,
             nodes: [Node::Not { child: 0 }; PLAN_NODES],
             kids: [0; PLAN_NODES],
         };
@@ -793,7 +812,11 @@ impl Core<'_> {
                     read(b.pat, b.slot)?;
                 }
                 Node::Leaf { s } => src(s)?,
-                Node::And { .. } | Node::Or { .. } | Node::Not { .. } | Node::Arith { .. } => {}
+                Node::And { .. }
+                | Node::Or { .. }
+                | Node::Not { .. }
+                | Node::Arith { .. }
+                | Node::Evaluator => {}
             }
         }
         Some(())
@@ -890,8 +913,9 @@ impl Core<'_> {
             }
             Node::Or { first, len } => self.run_or(first, len, depth, binds, right_fact),
             Node::Not { child } => Some(!self.run_node(child, depth, binds, right_fact)?),
-            // operands, reached only through a `Source::Arith`
-            Node::Arith { .. } | Node::Leaf { .. } => None,
+            // operands, reached only through a `Source::Arith`; a member the
+            // evaluator decides
+            Node::Arith { .. } | Node::Leaf { .. } | Node::Evaluator => None,
         }
     }
 
@@ -1124,9 +1148,30 @@ impl Core<'_> {
         let mut members = [0u8; PLAN_NODES];
         let mut len = 0usize;
         let mut t = first;
+        // (a member the plan cannot hold after one it holds: `Node::Evaluator`, and
+        // the chain ends there; a chain that would start with one is not planned, it
+        // would never decide)
+        let mut planned = false;
         while t != NONE {
             if t != skip {
-                *members.get_mut(len)? = self.plan_test(plan, t, depth, level)?;
+                let mark = (plan.used, plan.kids_used, plan.deep);
+                let m = match self.plan_test(plan, t, depth, level) {
+                    Some(m) => {
+                        planned = true;
+                        m
+                    }
+                    None if planned => {
+                        // reached, it ends the plan: the members after it never
+                        // run (the nodes the member left behind are dropped)
+                        (plan.used, plan.kids_used, plan.deep) = mark;
+                        *members.get_mut(len)? = plan.push(Node::Evaluator)?;
+                        plan.partial = true;
+                        len += 1;
+                        break;
+                    }
+                    None => return None,
+                };
+                *members.get_mut(len)? = m;
                 len += 1;
             }
             t = self.exprs[t as usize].next;
