@@ -190,6 +190,10 @@ pub struct TestPlans {
     kids: [u8; POOL_LEN],
     nodes_used: u8,
     kids_used: u8,
+    /// The pool ran out of room since the network was built: partial plans (with a
+    /// `Node::Evaluator`) are no longer stored, so that they never make the plans
+    /// of a network with many joins be built again and again.
+    crowded: bool,
 }
 
 impl TestPlans {
@@ -199,10 +203,17 @@ impl TestPlans {
         kids: [0; POOL_LEN],
         nodes_used: 0,
         kids_used: 0,
+        crowded: false,
     };
 
     /// Forgets every plan (the network was replaced).
     pub fn clear(&mut self) {
+        self.empty();
+        self.crowded = false;
+    }
+
+    /// Forgets every plan and frees the pool.
+    fn empty(&mut self) {
         self.entries = [PlanEntry::NONE; COMPILED_PLANS];
         self.nodes_used = 0;
         self.kids_used = 0;
@@ -220,23 +231,25 @@ impl TestPlans {
     }
 
     /// Stores built plan `b` for entry `i`, emptying the pool first if it lacks room
-    /// (a partial plan, one with a `Node::Evaluator`, is stored unplanned instead).
+    /// (a partial plan, one with a `Node::Evaluator`, is stored unplanned instead,
+    /// and so is every partial plan once the pool is `crowded`: its join keeps the
+    /// evaluator).
     fn store(&mut self, i: usize, mut entry: PlanEntry, b: &PlanBuild) {
+        let full = |p: &Self| {
+            p.nodes_used as usize + b.used as usize > POOL_NODES
+                || p.kids_used as usize + b.kids_used as usize > POOL_NODES
+        };
+        if entry.root != UNPLANNED && b.partial && (self.crowded || full(self)) {
+            entry.root = UNPLANNED;
+        }
         if entry.root == UNPLANNED {
             self.entries[i] = entry;
             return;
         }
         let (n, k) = (b.used as usize, b.kids_used as usize);
-        if self.nodes_used as usize + n > POOL_NODES || self.kids_used as usize + k > POOL_NODES {
-            if b.partial {
-                // a partial plan evicts no other: its join keeps the evaluator
-                self.entries[i] = PlanEntry {
-                    root: UNPLANNED,
-                    ..entry
-                };
-                return;
-            }
-            self.clear();
+        if full(self) {
+            self.empty();
+            self.crowded = true;
         }
         // POOL_NODES <= 256 and the sums fit: every index stays a u8
         let (nb, kb) = (self.nodes_used, self.kids_used);
