@@ -8,8 +8,8 @@
 //! constants and `(+ ?x N)`/`(- ?x N)`, integer arithmetic (`+`, `-`, `*`, `mod`) of
 //! those, and `and`/`or`/`not` of those, whether they come from field constraints,
 //! `&:(...)` predicates or `(test ...)` CEs. Everything else keeps the evaluator; an
-//! `and`/`or` member of another shape after one of these is `Node::Evaluator`, which
-//! sends the pair to the evaluator only when the members before it do not decide.
+//! `and` member of another shape after one of these is `Node::Evaluator`, which
+//! sends the pair to the evaluator only when the members before it all hold.
 //! A plan whose slots all lie at fixed offsets in their facts (no multislot before
 //! them in their templates) reads them from each fact's first cell (`Bases`).
 //!
@@ -144,9 +144,9 @@ enum Node {
     Arith { op: ArOp, first: u8, len: u8 },
     /// An operand of an `Arith` node.
     Leaf { s: Source },
-    /// A member of an `and`/`or` the plan cannot hold: reached, it answers None
-    /// (the evaluator decides, from the start), so that the members before it
-    /// still decide without the evaluator when they fail (`and`) or hold (`or`).
+    /// A member of an `and` the plan cannot hold: reached, it answers None (the
+    /// evaluator decides, from the start), so that the members before it still
+    /// decide without the evaluator when one fails.
     Evaluator,
 }
 
@@ -1173,7 +1173,9 @@ impl Core<'_> {
                         planned = true;
                         m
                     }
-                    None if planned => {
+                    // (in an `and` only: an `or` whose planned members mostly
+                    // fail would send most pairs to the evaluator after them)
+                    None if planned && matches!(chain, Chain::And) => {
                         // reached, it ends the plan: the members after it never
                         // run (the nodes the member left behind are dropped)
                         (plan.used, plan.kids_used, plan.deep) = mark;
