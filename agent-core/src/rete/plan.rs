@@ -1175,7 +1175,11 @@ impl Core<'_> {
                     }
                     // (in an `and` only: an `or` whose planned members mostly
                     // fail would send most pairs to the evaluator after them)
-                    None if planned && matches!(chain, Chain::And) => {
+                    // (none once the pool is crowded: `store` would drop it)
+                    None if planned
+                        && matches!(chain, Chain::And)
+                        && !self.st.cache.compiled_plans.crowded =>
+                    {
                         // reached, it ends the plan: the members after it never
                         // run (the nodes the member left behind are dropped)
                         (plan.used, plan.kids_used, plan.deep) = mark;
