@@ -310,7 +310,19 @@ impl Core<'_> {
         let mut cur = self.st.agenda.agenda_head;
         #[cfg(feature = "host-speedups")]
         let mut steps = 0u32;
-        while cur != NONE && !self.goes_before(a, cur) {
+        #[cfg(feature = "host-speedups")]
+        let mut walked = false;
+        // host: lex and mea walk with the kept recency lists (`recency_walk`)
+        #[cfg(all(feature = "host-speedups", feature = "extras", feature = "grow"))]
+        if is_recency(self.st.agenda.strategy) {
+            if let Some(n) = self.recency_walk(a, &mut prev, &mut cur) {
+                steps = n;
+                walked = true;
+            }
+        }
+        #[cfg(not(feature = "host-speedups"))]
+        let walked = false;
+        while !walked && cur != NONE && !self.goes_before(a, cur) {
             prev = cur;
             cur = self.acts[cur as usize].next;
             #[cfg(feature = "host-speedups")]
@@ -336,7 +348,14 @@ impl Core<'_> {
         let group = self.group_start(a, &mut prev, &mut cur);
         let mut steps = 0u32;
         // a place at either end of its own salience group is found at once
-        let placed = group != usize::MAX && self.group_place(group, a, &mut prev, &mut cur);
+        let mut placed = group != usize::MAX && self.group_place(group, a, &mut prev, &mut cur);
+        #[cfg(all(feature = "extras", feature = "grow"))]
+        if !placed && is_recency(self.st.agenda.strategy) {
+            if let Some(n) = self.recency_walk(a, &mut prev, &mut cur) {
+                steps = n;
+                placed = true;
+            }
+        }
         while !placed && cur != NONE && !self.goes_before(a, cur) {
             prev = cur;
             cur = self.acts[cur as usize].next;
@@ -739,6 +758,13 @@ pub const SALIENCE_GROUPS: usize = 16;
 /// salience groups (until the agenda empties): a short agenda is walked, free of upkeep.
 #[cfg(feature = "host-speedups")]
 const GROUP_WALK: u32 = 32;
+
+/// Whether strategy number `s` is lex or mea (`Core::recency_walk`'s).
+#[cfg(all(feature = "host-speedups", feature = "extras", feature = "grow"))]
+#[inline(always)]
+fn is_recency(s: u8) -> bool {
+    s == crate::strategy::Strategy::Lex as u8 || s == crate::strategy::Strategy::Mea as u8
+}
 
 /// One salience's run of activations on the agenda (which is sorted by salience).
 #[cfg(feature = "host-speedups")]

@@ -181,6 +181,87 @@ impl Core<'_> {
         recency_order(strategy, &self.recency(ax.token), &self.recency(ay.token))
     }
 
+    /// Host, lex and mea: `agenda_insert`'s walk for activation `a` from `cur` (`prev`
+    /// the one before it), past every activation `a` does not go before
+    /// (`goes_before`'s order), the kept lists borrowed once and compared inline.
+    /// Returns the steps taken, or None (nothing moved) when the lists are borrowed.
+    #[cfg(all(feature = "extras", feature = "grow"))]
+    #[inline(never)]
+    pub(crate) fn recency_walk(&self, a: Ix, prev: &mut Ix, cur: &mut Ix) -> Option<u32> {
+        let mut cache = self.st.recency.try_borrow_mut().ok()?;
+        let mea = self.strategy() == Strategy::Mea;
+        let aa = self.acts[a as usize];
+        let need = self.acts.len();
+        if cache.len() < need {
+            cache.resize(need, None);
+        }
+        let ra = self.kept_recency(&mut cache, a, &aa);
+        let ca = self.rules[aa.rule as usize].complexity;
+        let mut steps = 0u32;
+        while *cur != crate::value::NONE {
+            let c = *cur;
+            let ac = self.acts[c as usize];
+            if ac.salience != aa.salience {
+                if aa.salience > ac.salience {
+                    break;
+                }
+            } else {
+                let rc = match cache.get(c as usize) {
+                    Some(Some(k)) if k.seq == ac.seq && k.token == ac.token => k.rec,
+                    _ => self.kept_recency(&mut cache, c, &ac),
+                };
+                let mut by_key = if mea && ra.first != rc.first {
+                    rc.first.cmp(&ra.first)
+                } else {
+                    recency_order(Strategy::Lex, &ra, &rc)
+                };
+                if by_key == core::cmp::Ordering::Equal {
+                    by_key = self.rules[ac.rule as usize].complexity.cmp(&ca);
+                }
+                let before = match by_key {
+                    core::cmp::Ordering::Less => true,
+                    core::cmp::Ordering::Greater => false,
+                    core::cmp::Ordering::Equal => (aa.seq.wrapping_sub(ac.seq) as i32) < 0,
+                };
+                if before {
+                    break;
+                }
+            }
+            *prev = c;
+            *cur = ac.next;
+            steps += 1;
+        }
+        Some(steps)
+    }
+
+    /// Host: activation `k`'s kept recency list, worked out (and kept) when the entry
+    /// is not its own.
+    #[cfg(all(feature = "extras", feature = "grow"))]
+    #[inline(always)]
+    fn kept_recency(
+        &self,
+        cache: &mut alloc::vec::Vec<Option<RecencyCache>>,
+        k: Ix,
+        a: &crate::rule::Activation,
+    ) -> Recency {
+        let k = k as usize;
+        if let Some(Some(c)) = cache.get(k) {
+            if c.seq == a.seq && c.token == a.token {
+                return c.rec;
+            }
+        }
+        let rec = self.recency(a.token);
+        if cache.len() <= k {
+            cache.resize(k + 1, None);
+        }
+        cache[k] = Some(RecencyCache {
+            seq: a.seq,
+            token: a.token,
+            rec,
+        });
+        rec
+    }
+
     /// The recency list of a partial match (see `Recency`).
     fn recency(&self, token: crate::handle::TokenId) -> Recency {
         // fact numbers by pattern slot, walking the partial match up to the root; fact
