@@ -13,6 +13,10 @@ use crate::value::NONE;
 /// How many removed activations one assert or modify can put back in place.
 pub const JOURNAL_LEN: usize = 24;
 
+/// `ModuleState::fmod` while no module's agenda start is known.
+#[cfg(all(feature = "modules", feature = "host-speedups"))]
+pub const NO_FOCUS_CACHE: u16 = u16::MAX;
+
 /// `set-salience-evaluation`'s settings (`Mode::salience_eval`): a rule's salience
 /// expression is evaluated when the rule is defined (and by `refresh-agenda`), also
 /// when each activation is made, or also before each firing (CLIPS's three).
@@ -149,13 +153,11 @@ impl Core<'_> {
         // a replayed activation has its old number back, hence its old place
         self.agenda_insert(a);
         // an auto-focus rule's module is focused first (CLIPS prints it first)
-        // (the tag is looked up only once some rule has auto-focus)
+        // (the tag is looked up only once some rule has auto-focus); a module's
+        // known agenda start kept
         #[cfg(feature = "modules")]
-        if self.st.modules.any_auto_focus {
-            let tag = self.rule_tag(rule);
-            if tag.auto_focus {
-                self.push_focus(tag.module)?;
-            }
+        if self.st.modules.add_hooks != 0 {
+            self.activation_module_hooks(rule, a)?;
         }
         if self.st.mode.watch & watch::ACTIVATIONS != 0
             && self.rule_traced(watch::ACTIVATIONS, rule)
@@ -384,6 +386,67 @@ impl Core<'_> {
         self.st.agenda.agenda_len += 1;
     }
 
+    /// `add_activation`'s module work, out of line (`ModuleState::add_hooks`): a
+    /// module's known agenda start kept, an auto-focus rule's module focused.
+    #[cfg(feature = "modules")]
+    #[cold]
+    #[inline(never)]
+    fn activation_module_hooks(&mut self, rule: Ix, a: Ix) -> Result<(), CapacityError> {
+        #[cfg(not(feature = "host-speedups"))]
+        let _ = a;
+        #[cfg(feature = "host-speedups")]
+        if self.st.modules.add_hooks & crate::module::HOOK_FOCUS_CACHE != 0 {
+            self.focus_cache_add(a);
+        }
+        if self.st.modules.add_hooks & crate::module::HOOK_AUTO_FOCUS != 0 {
+            let tag = self.rule_tag(rule);
+            if tag.auto_focus {
+                self.push_focus(tag.module)?;
+            }
+        }
+        Ok(())
+    }
+
+    /// New activation `a` while a module's agenda start is known: one of that
+    /// module's that goes before the start is its first now.
+    #[cfg(all(feature = "modules", feature = "host-speedups"))]
+    fn focus_cache_add(&mut self, a: Ix) {
+        let m = self.st.modules.fmod as crate::module::ModId;
+        if self.activation_in(a, m) {
+            // (a start a retract took stays as it is: `focused_head` walks then)
+            let h = self.st.modules.fhead;
+            if h == NONE || (self.focus_cache_live(h) && self.goes_before(a, h)) {
+                self.focus_cache_set(a);
+            }
+        }
+    }
+
+    /// Whether the known agenda start `h` (not NONE) is still the activation it was.
+    #[cfg(all(feature = "modules", feature = "host-speedups"))]
+    #[inline(always)]
+    fn focus_cache_live(&self, h: Ix) -> bool {
+        let x = &self.acts[h as usize];
+        x.rule != NONE && x.seq == self.st.modules.fseq
+    }
+
+    /// The known agenda start becomes `a` (NONE: the module has no activation).
+    #[cfg(all(feature = "modules", feature = "host-speedups"))]
+    #[inline(always)]
+    fn focus_cache_set(&mut self, a: Ix) {
+        self.st.modules.fhead = a;
+        if a != NONE {
+            self.st.modules.fseq = self.acts[a as usize].seq;
+        }
+    }
+
+    /// Forgets the known agenda start (the agenda is rebuilt).
+    #[cfg(all(feature = "modules", feature = "host-speedups"))]
+    pub(crate) fn focus_cache_clear(&mut self) {
+        self.st.modules.fmod = NO_FOCUS_CACHE;
+        self.st.modules.fhead = NONE;
+        self.st.modules.add_hooks &= !crate::module::HOOK_FOCUS_CACHE;
+    }
+
     #[cfg_attr(feature = "host-speedups", inline(always))]
     fn agenda_unlink(&mut self, a: Ix) {
         let x = self.acts[a as usize];
@@ -468,8 +531,28 @@ impl Core<'_> {
 
     /// Takes the top activation off the agenda (it fires; refraction keeps it gone).
     pub(crate) fn pop_activation(&mut self) -> Option<(Ix, TokenId)> {
+        #[cfg(all(feature = "modules", feature = "host-speedups"))]
+        let a = match self.single_module_head() {
+            Some(a) => a,
+            None => self.focused_pop_head()?,
+        };
+        #[cfg(not(all(feature = "modules", feature = "host-speedups")))]
         let a = self.next_activation()?;
         Some(self.take_activation(a))
+    }
+
+    /// `focused_head` for `pop_activation`: the focused module's known agenda start
+    /// fires, so its others lie after it (out of line: the one-module way stays as
+    /// it was).
+    #[cfg(all(feature = "modules", feature = "host-speedups"))]
+    #[inline(never)]
+    fn focused_pop_head(&mut self) -> Option<Ix> {
+        let a = self.focused_head()?;
+        if a == self.st.modules.fhead {
+            let next = self.acts[a as usize].next;
+            self.focus_cache_set(next);
+        }
+        Some(a)
     }
 
     /// `pop_activation` while the run loop's general path is off (`Mode::run_slow`):
@@ -543,9 +626,31 @@ impl Core<'_> {
         }
         loop {
             let m = self.focus_top()?;
+            // from the module's known agenda start while it is still on the agenda
+            // (a retract may have taken it: its entry is free, or made again with
+            // another number), else from the agenda's head
+            #[cfg(feature = "host-speedups")]
+            let h = self.st.modules.fhead;
+            #[cfg(feature = "host-speedups")]
+            let mut a = if self.st.modules.fmod == u16::from(m)
+                && (h == NONE || self.focus_cache_live(h))
+            {
+                h
+            } else {
+                self.st.agenda.agenda_head
+            };
+            #[cfg(not(feature = "host-speedups"))]
             let mut a = self.st.agenda.agenda_head;
             while a != NONE && !self.activation_in(a, m) {
                 a = self.acts[a as usize].next;
+            }
+            // known from now on (kept by `add_activation` and `pop_activation`), with
+            // more modules than MAIN only: MAIN alone never walks
+            #[cfg(feature = "host-speedups")]
+            if self.st.modules.nmodules > 1 {
+                self.st.modules.fmod = u16::from(m);
+                self.focus_cache_set(a);
+                self.st.modules.add_hooks |= crate::module::HOOK_FOCUS_CACHE;
             }
             if a != NONE {
                 return Some(a);
@@ -619,6 +724,8 @@ impl Core<'_> {
         let mut list = self.st.agenda.agenda_head;
         self.st.agenda.agenda_head = NONE;
         self.st.agenda.agenda_len = 0;
+        #[cfg(all(feature = "modules", feature = "host-speedups"))]
+        self.focus_cache_clear();
         #[cfg(feature = "host-speedups")]
         self.st.agenda.groups.reset();
         while list != NONE {

@@ -146,10 +146,31 @@ pub struct ModuleState {
     pub depth: Ix,
     /// MAIN may be redefined once after start-up or `clear`.
     pub main_redefined: bool,
-    /// Some rule was defined with `(auto-focus TRUE)` (since start-up or `clear`): a
-    /// new activation looks up its rule's tag only then.
-    pub any_auto_focus: bool,
+    /// What a new activation does beyond the agenda (`HOOK_*` bits): nothing
+    /// unless some rule was defined with `(auto-focus TRUE)` (since start-up or
+    /// `clear`: its rule's tag is looked up only then) or a module's agenda start
+    /// is known (`ModuleState::fhead`).
+    pub add_hooks: u8,
+    /// Where module `fmod`'s agenda begins, so the focused module's next activation is
+    /// found without walking past other modules' (`focused_head`): every activation of
+    /// `fmod` lies at or after `fhead` in the agenda (NONE: it has none) while the
+    /// activation there is the one numbered `fseq`; the first of them when
+    /// `focused_head` left it. `fmod` is `NO_FOCUS_CACHE` while nothing is known:
+    /// always with one module.
+    #[cfg(feature = "host-speedups")]
+    pub fhead: Ix,
+    #[cfg(feature = "host-speedups")]
+    pub fseq: u32,
+    #[cfg(feature = "host-speedups")]
+    pub fmod: u16,
 }
+
+/// `ModuleState::add_hooks`: some rule has auto-focus.
+#[cfg(feature = "modules")]
+pub const HOOK_AUTO_FOCUS: u8 = 1;
+/// `ModuleState::add_hooks`: a module's agenda start is known.
+#[cfg(all(feature = "modules", feature = "host-speedups"))]
+pub const HOOK_FOCUS_CACHE: u8 = 2;
 
 #[cfg(feature = "modules")]
 impl ModuleState {
@@ -160,7 +181,13 @@ impl ModuleState {
             current: MAIN,
             depth: 1,
             main_redefined: false,
-            any_auto_focus: false,
+            add_hooks: 0,
+            #[cfg(feature = "host-speedups")]
+            fhead: crate::value::NONE,
+            #[cfg(feature = "host-speedups")]
+            fseq: 0,
+            #[cfg(feature = "host-speedups")]
+            fmod: crate::agenda::NO_FOCUS_CACHE,
         }
     }
 }
@@ -264,7 +291,7 @@ impl Core<'_> {
     /// only the MAIN rules of a compiled rule base read in place have none).
     pub fn set_rule_tag(&mut self, r: Ix, tag: RuleTag) -> bool {
         if tag.auto_focus {
-            self.st.modules.any_auto_focus = true;
+            self.st.modules.add_hooks |= HOOK_AUTO_FOCUS;
         }
         set_tag(self.rule_module, r, tag, NO_RULE_TAG)
     }

@@ -487,6 +487,8 @@ impl Core<'_> {
         self.st.agenda.agenda_len = 0;
         #[cfg(feature = "host-speedups")]
         self.st.agenda.groups.reset();
+        #[cfg(all(feature = "modules", feature = "host-speedups"))]
+        self.focus_cache_clear();
         let key = |x: &crate::rule::Activation| (x.rule, x.seq);
         while old != NONE {
             let mut best = old;
