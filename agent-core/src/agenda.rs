@@ -312,19 +312,7 @@ impl Core<'_> {
         let mut cur = self.st.agenda.agenda_head;
         #[cfg(feature = "host-speedups")]
         let mut steps = 0u32;
-        #[cfg(feature = "host-speedups")]
-        let mut walked = false;
-        // host: lex and mea walk with the kept recency lists (`recency_walk`)
-        #[cfg(all(feature = "host-speedups", feature = "extras", feature = "grow"))]
-        if is_recency(self.st.agenda.strategy) {
-            if let Some(n) = self.recency_walk(a, &mut prev, &mut cur) {
-                steps = n;
-                walked = true;
-            }
-        }
-        #[cfg(not(feature = "host-speedups"))]
-        let walked = false;
-        while !walked && cur != NONE && !self.goes_before(a, cur) {
+        while cur != NONE && !self.goes_before(a, cur) {
             prev = cur;
             cur = self.acts[cur as usize].next;
             #[cfg(feature = "host-speedups")]
