@@ -338,14 +338,18 @@ impl Core<'_> {
         let group = self.group_start(a, &mut prev, &mut cur);
         let mut steps = 0u32;
         // a place at either end of its own salience group is found at once
-        let mut placed = group != usize::MAX && self.group_place(group, a, &mut prev, &mut cur);
+        let placed = group != usize::MAX && self.group_place(group, a, &mut prev, &mut cur);
+        // lex and mea walk with the kept recency lists (`recency_walk`)
         #[cfg(all(feature = "extras", feature = "grow"))]
-        if !placed && is_recency(self.st.agenda.strategy) {
-            if let Some(n) = self.recency_walk(a, &mut prev, &mut cur) {
-                steps = n;
-                placed = true;
-            }
-        }
+        let placed = placed
+            || (is_recency(self.st.agenda.strategy)
+                && match self.recency_walk(a, &mut prev, &mut cur) {
+                    Some(n) => {
+                        steps = n;
+                        true
+                    }
+                    None => false,
+                });
         while !placed && cur != NONE && !self.goes_before(a, cur) {
             prev = cur;
             cur = self.acts[cur as usize].next;
