@@ -820,6 +820,15 @@ impl<'a, 'n, N: Names> Walk<'a, 'n, N> {
         }
     }
 
+    /// The body of `if`, `while` and the loops: an optional `then`/`do` keyword, then
+    /// actions up to one of `stop`.
+    fn keyword_block(&mut self, keyword: &str, inner: u8, stop: &[&str]) -> Step<()> {
+        if self.peek().tok == Tok::Symbol(keyword) {
+            self.next()?;
+        }
+        self.block(inner.saturating_add(1), stop)
+    }
+
     /// A parenthesised form (its `(` is `open`); `passes`: the parses of CLIPS that
     /// enclose it.
     fn form(&mut self, open: Token<'a>, passes: u8) -> Step<()> {
@@ -836,10 +845,7 @@ impl<'a, 'n, N: Names> Walk<'a, 'n, N> {
             }
             "if" => {
                 self.arg(inner)?;
-                if self.peek().tok == Tok::Symbol("then") {
-                    self.next()?;
-                }
-                self.block(inner.saturating_add(1), &["else"])?;
+                self.keyword_block("then", inner, &["else"])?;
                 if self.peek().tok == Tok::Symbol("else") {
                     self.next()?;
                     self.block(inner.saturating_add(1), &[])?;
@@ -848,18 +854,12 @@ impl<'a, 'n, N: Names> Walk<'a, 'n, N> {
             }
             "while" => {
                 self.arg(inner)?;
-                if self.peek().tok == Tok::Symbol("do") {
-                    self.next()?;
-                }
-                self.block(inner.saturating_add(1), &[])?;
+                self.keyword_block("do", inner, &[])?;
                 self.actions(inner)
             }
             "loop-for-count" | "progn$" | "foreach" => {
                 self.loop_head(name, inner)?;
-                if self.peek().tok == Tok::Symbol("do") {
-                    self.next()?;
-                }
-                self.block(inner.saturating_add(1), &[])?;
+                self.keyword_block("do", inner, &[])?;
                 self.actions(inner)
             }
             "switch" => {
