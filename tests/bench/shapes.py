@@ -646,6 +646,348 @@ def nestquery(n):
     )
 
 
+# --- round 4 (p35) ----------------------------------------------------------------------
+
+
+def recurse(n):
+    """Recursive deffunctions (fib, gcd, an accumulator) called from a right-hand side."""
+    return (
+        defglobals("fib", "g", "d")
+        + """(deffunction fib (?n) (if (< ?n 2) then ?n else (+ (fib (- ?n 1)) (fib (- ?n 2)))))
+(deffunction gcd (?a ?b) (if (= ?b 0) then ?a else (gcd ?b (mod ?a ?b))))
+(deffunction walk (?n ?acc)
+  (if (= ?n 0) then (return ?acc))
+  (walk (- ?n 1) (+ ?acc (mod (* ?n ?n) 7))))
+(deffacts start (count 1))
+(defrule step ?f <- (count ?k&:(<= ?k %d)) =>
+  (retract ?f)
+  (bind ?*fib* (+ ?*fib* (fib (mod ?k 11))))
+  (bind ?*g* (+ ?*g* (gcd (* ?k 12) (+ ?k 18))))
+  (bind ?*d* (+ ?*d* (walk (mod ?k 30) 0)))
+  (assert (count (+ ?k 1))))
+"""
+        % n
+        + report_rule("fib", "g", "d")
+    )
+
+
+def rhsloop(n):
+    """Right-hand sides with nested loop-for-count, while and if, and many local binds."""
+    return (
+        defglobals("a", "b", "c")
+        + """(deffacts start (count 1))
+(defrule step ?f <- (count ?k&:(<= ?k %d)) =>
+  (retract ?f)
+  (bind ?x 0) (bind ?y 1) (bind ?z (mod ?k 5))
+  (loop-for-count (?i 1 (+ 2 (mod ?k 4))) do
+    (loop-for-count (?j ?i 4) do
+      (if (evenp (+ ?i ?j)) then (bind ?x (+ ?x (* ?i ?j)))
+       else (if (> ?j 2) then (bind ?y (mod (* ?y 3) 101)) else (bind ?z (+ ?z 1))))))
+  (bind ?w ?k)
+  (while (> ?w 9) do (bind ?w (div ?w 3)) (bind ?z (+ ?z 1)))
+  (bind ?*a* (+ ?*a* ?x)) (bind ?*b* (mod (+ ?*b* ?y) 100003)) (bind ?*c* (+ ?*c* ?z ?w))
+  (assert (count (+ ?k 1))))
+"""
+        % n
+        + report_rule("a", "b", "c")
+    )
+
+
+def globals_(n):
+    """Globals read in pattern and test CEs while the right-hand sides change them."""
+    rnd = lcg(n + 31)
+    return (
+        """(defglobal ?*lo* = 20 ?*hi* = 80 ?*step* = 3 ?*mode* = fast ?*off* = 5)
+(defglobal ?*band* = 0 ?*fast* = 0 ?*sum* = 0 ?*t* = 0)
+(deftemplate reading (slot id) (slot v) (slot mode))
+(deffacts start (tick 0))
+(defrule tick ?f <- (tick ?k&:(< ?k %d)) =>
+  (retract ?f)
+  (bind ?v (mod (+ (* ?k 7) %d) 100))
+  (bind ?m (if (evenp ?k) then fast else slow))
+  (assert (reading (id ?k) (v ?v) (mode ?m)))
+  (if (= (mod ?k 10) 0) then (bind ?*lo* (+ 15 (mod ?k 11))) (bind ?*mode* (if (eq ?*mode* fast) then slow else fast)))
+  (bind ?*t* (+ ?*t* ?*step*))
+  (assert (tick (+ ?k 1))))
+(defrule in-band (reading (id ?i) (v ?v&:(>= ?v ?*lo*)&:(<= ?v ?*hi*))) =>
+  (bind ?*band* (+ ?*band* 1)))
+(defrule mode (reading (id ?i) (mode ?m&:(eq ?m ?*mode*))) => (bind ?*fast* (+ ?*fast* 1)))
+(defrule near (reading (id ?i) (v ?v)) (reading (id ?j&:(= ?j (+ ?i 1))) (v ?w))
+  (test (< (abs (- ?v ?w)) (+ ?*off* ?*step*))) =>
+  (bind ?*sum* (+ ?*sum* ?v ?w ?*off*)))
+"""
+        % (n, next(rnd) % 50)
+        + report_rule("band", "fast", "sum", "t", "lo")
+    )
+
+
+def dynsal(n):
+    """Salience from globals re-evaluated every cycle (set-salience-evaluation every-cycle)."""
+    return (
+        defglobals("pa", "pb", "pc", "h", "na", "nb", "nc")
+        + """(deftemplate job (slot id) (slot kind))
+(defrule init (declare (salience 1000)) =>
+  (set-salience-evaluation every-cycle)
+  (loop-for-count (?i 1 %d) do (assert (job (id ?i) (kind (nth$ (+ 1 (mod ?i 3)) (create$ a b c)))))))
+(defrule do-a (declare (salience ?*pa*)) ?j <- (job (id ?i) (kind a)) =>
+  (retract ?j) (bind ?*na* (+ ?*na* 1)) (bind ?*h* (mod (+ (* ?*h* 31) ?i) 1000003))
+  (bind ?*pa* (- ?*pa* 2)) (bind ?*pb* (+ ?*pb* 1)))
+(defrule do-b (declare (salience (+ ?*pb* 1))) ?j <- (job (id ?i) (kind b)) =>
+  (retract ?j) (bind ?*nb* (+ ?*nb* 1)) (bind ?*h* (mod (+ (* ?*h* 17) ?i) 1000003))
+  (bind ?*pb* (- ?*pb* 3)) (bind ?*pc* (+ ?*pc* 2)))
+(defrule do-c (declare (salience ?*pc*)) ?j <- (job (id ?i) (kind c)) =>
+  (retract ?j) (bind ?*nc* (+ ?*nc* 1)) (bind ?*h* (mod (+ (* ?*h* 7) ?i) 1000003))
+  (bind ?*pc* (- ?*pc* 4)) (bind ?*pa* (+ ?*pa* 3)))
+"""
+        % n
+        + report_rule("h", "na", "nb", "nc", "pa", "pb", "pc")
+    )
+
+
+def assertstr(n):
+    """Facts built as text with str-cat and asserted with assert-string, then matched."""
+    return (
+        defglobals("obs", "pair", "len")
+        + """(deftemplate note (slot id) (slot tag) (slot text))
+(deffacts start (count 1))
+(defrule step ?f <- (count ?k&:(<= ?k %d)) =>
+  (retract ?f)
+  (assert-string (str-cat "(obs " ?k " s" (mod ?k 5) " \\"t" (mod (* ?k 7) 13) "\\")"))
+  (assert-string (str-cat "(note (id " ?k ") (tag " (sym-cat g (mod ?k 4)) ") (text \\"n" ?k "\\"))"))
+  (assert (count (+ ?k 1))))
+(defrule obs (obs ?k s3 ?t) => (bind ?*obs* (+ ?*obs* 1)))
+(defrule pair (obs ?k ?s ?t) (note (id ?k) (tag g1) (text ?x)) =>
+  (bind ?*pair* (+ ?*pair* 1)) (bind ?*len* (+ ?*len* (str-length ?x) (str-length ?t))))
+"""
+        % n
+        + report_rule("obs", "pair", "len")
+    )
+
+
+def defaults(n):
+    """Many templates with default and default-dynamic slots, asserted with few slots given."""
+    kinds = 12
+    out = [defglobals("seq", "sum", "hit")]
+    for t in range(kinds):
+        out.append(
+            "(deftemplate t%d (slot id) (slot a (default %d)) (slot b (default-dynamic (+ ?*seq* %d)))\n"
+            "  (slot c (type SYMBOL) (default k%d)) (multislot m (default x%d y z)) (slot d (type INTEGER)))\n"
+            % (t, t * 3, t, t % 3, t)
+        )
+    out.append("(deffacts start (count 1))\n")
+    cases = "\n    ".join("(case %d then (assert (t%d (id ?k))))" % (t, t) for t in range(kinds))
+    out.append(
+        """(defrule step ?f <- (count ?k&:(<= ?k %d)) =>
+  (retract ?f)
+  (bind ?*seq* (+ ?*seq* 1))
+  (switch (mod ?k %d)
+    %s)
+  (assert (count (+ ?k 1))))
+"""
+        % (n, kinds, cases)
+    )
+    for t in range(kinds):
+        out.append(
+            "(defrule r%d (t%d (id ?i) (a ?a) (b ?b) (c k%d) (m x%d $?r) (d ?d)) =>\n"
+            "  (bind ?*sum* (+ ?*sum* ?a ?b ?d (length$ ?r))) (bind ?*hit* (+ ?*hit* 1)))\n"
+            % (t, t, t % 3, t)
+        )
+    out.append(report_rule("seq", "sum", "hit"))
+    return "".join(out)
+
+
+def chain(n):
+    """A cycle of 8 rules, each firing asserting what the next matches, 4 tokens in flight."""
+    stages = 8
+    out = [defglobals("laps", "h")]
+    out += ["(deftemplate s%d (slot id) (slot lap) (slot v))\n" % s for s in range(stages)]
+    out.append("(deffacts start %s)\n" % " ".join("(s0 (id %d) (lap 0) (v %d))" % (t, t) for t in range(4)))
+    for s in range(stages):
+        nxt = (s + 1) % stages
+        lap = "(+ ?l 1)" if nxt == 0 else "?l"
+        guard = "&:(< ?l %d)" % (n // 4) if s == 0 else ""
+        out.append(
+            "(defrule st%d ?f <- (s%d (id ?i) (lap ?l%s) (v ?v)) =>\n"
+            "  (retract ?f) (bind ?*h* (mod (+ (* ?*h* %d) ?v ?i) 1000003))\n"
+            "  (assert (s%d (id ?i) (lap %s) (v (mod (+ ?v %d) 97)))))\n"
+            % (s, s, guard, 3 + s * 2, nxt, lap, s + 1)
+        )
+    out.append("(defrule lap (declare (salience 5)) (s0 (id 0) (lap ?l&~0)) => (bind ?*laps* (+ ?*laps* 1)))\n")
+    out.append(report_rule("laps", "h"))
+    return "".join(out)
+
+
+def manypat(n):
+    """Rules of 6-10 patterns over a few dozen facts; a tick fact re-joins them."""
+    rnd = lcg(n + 37)
+    facts = []
+    for rel in "abcdefgh":
+        seen = set()
+        while len(seen) < 6:
+            seen.add((next(rnd) % 6, next(rnd) % 6))
+        facts += ["(%s %d %d)" % (rel, x, y) for x, y in sorted(seen)]
+    return (
+        defglobals("p6", "p8", "p10", "ticks")
+        + "(deffacts data %s (tick 0))\n" % " ".join(facts)
+        + """(defrule p6 (tick ?t) (a ?x1 ?x2) (b ?x2 ?x3) (c ?x3 ?x4) (d ?x4 ?x5) (e ?x5 ?x1) =>
+  (bind ?*p6* (+ ?*p6* 1)))
+(defrule p8 (a ?x1 ?x2) (b ?x2 ?x3) (c ?x3 ?x4) (d ?x4 ?x5) (e ?x5 ?x6) (f ?x6 ?x7) (g ?x7 ?x1) (tick ?t) =>
+  (bind ?*p8* (+ ?*p8* ?t)))
+(defrule p10 (tick ?t) (a ?x1 ?x2) (h ?x2 ?x1) (b ?x2 ?x3) (c ?x3 ?x4&~?x1) (d ?x4 ?x5) (f ?x5 ?x6)
+  (g ?x6 ?x7) (h ?x7 ?x8) (e ?x8 ?x9&:(< ?x9 4)) =>
+  (bind ?*p10* (+ ?*p10* 1)))
+(defrule tick (declare (salience -10)) ?f <- (tick ?t&:(< ?t %d)) =>
+  (retract ?f) (bind ?*ticks* (+ ?*ticks* 1)) (assert (tick (+ ?t 1))))
+"""
+        % n
+        + report_rule("p6", "p8", "p10", "ticks")
+    )
+
+
+def testarith(n):
+    """`test` CEs with arithmetic over variables of three joined patterns."""
+    rnd = lcg(n + 41)
+    asserts = ["(assert (pt (id %d) (x %d) (y %d)))" % (i, next(rnd) % 50, next(rnd) % 50) for i in range(n)]
+    asserts += ["(assert (w %d %d))" % (i, next(rnd) % 9 + 1) for i in range(n // 2)]
+    return (
+        defglobals("tri", "near", "f")
+        + "(deftemplate pt (slot id) (slot x) (slot y))\n"
+        + "(defrule init => %s)\n" % "\n  ".join(asserts)
+        + """(defrule near (pt (id ?i) (x ?x1) (y ?y1)) (pt (id ?j&:(> ?j ?i)) (x ?x2) (y ?y2))
+  (test (< (+ (* (- ?x1 ?x2) (- ?x1 ?x2)) (* (- ?y1 ?y2) (- ?y1 ?y2))) 40)) =>
+  (bind ?*near* (+ ?*near* 1)))
+(defrule tri (pt (id ?i) (x ?a)) (w ?i ?k) (pt (id ?j&:(> ?j ?i)) (x ?b))
+  (test (= (mod (+ ?a (* ?b ?k) (max ?a ?b)) 13) 0))
+  (test (or (> (/ ?a ?k) 2.5) (< (min ?b ?k) 3))) =>
+  (bind ?*tri* (+ ?*tri* 1)))
+(defrule f (pt (id ?i) (x ?x) (y ?y)) (test (> (float (+ ?x ?y)) (* 1.5 (abs (- ?x ?y))))) =>
+  (bind ?*f* (+ ?*f* 1)))
+"""
+        + report_rule("tri", "near", "f")
+    )
+
+
+def fmtout(n):
+    """printout-heavy firings: format with widths, precisions, %e/%g/%x/%o, and crlf."""
+    return (
+        """(deffacts start (count 1))
+(defrule step ?f <- (count ?k&:(<= ?k %d)) =>
+  (retract ?f)
+  (bind ?v (/ (* ?k 7.25) 3))
+  (printout t (format nil "%%-6d|%%8.3f|%%10s|%%-5s|" ?k ?v (sym-cat n ?k) (str-cat "s" (mod ?k 9))) crlf)
+  (format t "%%4d %%e %%g %%x %%o%%n" (mod ?k 1000) ?v (* ?v 1000) ?k ?k)
+  (printout t "k=" ?k " v=" ?v " half=" (/ ?k 2) " int=" (integer ?v) tab "end" crlf)
+  (assert (count (+ ?k 1))))
+"""
+        % n
+    )
+
+
+def mfslot(n):
+    """Multislot templates changed by modify with replace$, insert$, subseq$, create$."""
+    rnd = lcg(n + 43)
+    asserts = [
+        "(assert (queue (id %d) (items %s)))"
+        % (q, " ".join(COLORS[next(rnd) % len(COLORS)] for _ in range(4 + q % 4)))
+        for q in range(8)
+    ]
+    return (
+        defglobals("rot", "red", "sum", "len")
+        + "(deftemplate queue (slot id) (slot n (default 0)) (multislot items))\n"
+        + "(defrule init => %s)\n" % "\n  ".join(asserts)
+        + """(defrule rotate ?q <- (queue (id ?i) (n ?n&:(< ?n %d)) (items ?first $?rest)) =>
+  (bind ?*rot* (+ ?*rot* 1))
+  (bind ?new (create$ ?rest ?first))
+  (if (> (length$ ?new) 9) then (bind ?new (subseq$ ?new 2 (length$ ?new))))
+  (if (= (mod ?n 5) 0) then (bind ?new (insert$ ?new 2 (nth$ (+ 1 (mod ?n 7)) (create$ red green blue yellow black white plum)))))
+  (if (member$ plum ?new) then (bind ?new (replace$ ?new (member$ plum ?new) (member$ plum ?new) red)))
+  (modify ?q (n (+ ?n 1)) (items ?new)))
+(defrule red-head (declare (salience 5)) (queue (id ?i) (items red $?)) => (bind ?*red* (+ ?*red* 1)))
+(defrule text (declare (salience 5)) (queue (id ?i) (n ?n&:(= (mod ?n 10) 0)) (items $?all)) =>
+  (bind ?s (implode$ ?all))
+  (bind ?*len* (+ ?*len* (str-length ?s) (length$ (explode$ ?s)))))
+(defrule middle (declare (salience 5)) (queue (id ?i) (items ? ?x $? ?x ?)) => (bind ?*sum* (+ ?*sum* ?i)))
+"""
+        % (n // 8)
+        + report_rule("rot", "red", "sum", "len")
+    )
+
+
+def strfun(n):
+    """String and symbol functions in patterns: str-compare, str-index, upcase, sym-cat."""
+    rnd = lcg(n + 47)
+    syll = ["ka", "lo", "mi", "ne", "ro", "su", "ta", "vi"]
+    asserts = []
+    for i in range(n):
+        w = "".join(syll[next(rnd) % 8] for _ in range(2 + next(rnd) % 3))
+        asserts.append('(assert (word %d "%s" %s))' % (i, w, w))
+    return (
+        defglobals("cmp", "idx", "up", "sym", "sub")
+        + "(defrule init => %s)\n" % "\n  ".join(asserts)
+        + """(defrule cmp (word ?i ?s ?) (word ?j&:(= ?j (+ ?i 1)) ?t&:(> (str-compare ?s ?t) 0) ?) =>
+  (bind ?*cmp* (+ ?*cmp* 1)))
+(defrule idx (word ?i ?s&:(str-index "ro" ?s) ?) => (bind ?*idx* (+ ?*idx* (str-index "ro" ?s))))
+(defrule up (word ?i ?s ?y&:(eq (upcase ?y) (sym-cat (upcase (sub-string 1 2 ?s)) (upcase (sub-string 3 (str-length ?s) ?s))))) =>
+  (bind ?*up* (+ ?*up* 1)))
+(defrule sym (word ?i ?s ?y) (test (eq (sym-cat ?y -x) (string-to-field (str-cat ?s "-x")))) =>
+  (bind ?*sym* (+ ?*sym* 1)))
+(defrule sub (word ?i ?s ?) (word ?j&~?i ?t&:(eq (sub-string 1 4 ?s) (sub-string 1 4 ?t)) ?) =>
+  (bind ?*sub* (+ ?*sub* 1)))
+"""
+        + report_rule("cmp", "idx", "up", "sym", "sub")
+    )
+
+
+def longmod(n):
+    """A 14-slot template modified in 12 slots at a time by a pipeline of stage rules."""
+    slots = ["a", "b", "c", "d", "e", "f", "g", "h", "i", "j", "k", "l"]
+    tmpl = " ".join("(slot %s (default 0))" % s for s in slots)
+    out = [defglobals("laps", "h")]
+    out.append("(deftemplate part (slot id) (slot stage (default 0)) %s (slot lap (default 0)))\n" % tmpl)
+    out.append("(deffacts start %s)\n" % " ".join("(part (id %d))" % p for p in range(6)))
+    for st in range(4):
+        binds = " ".join("(%s ?%s)" % (s, s) for s in slots)
+        sets = " ".join("(%s (+ ?%s %d))" % (s, s, (k + st) % 5 + 1) for k, s in enumerate(slots))
+        guard = "&:(< ?lap %d)" % (n // 6) if st == 0 else ""
+        nxt = (st + 1) % 4
+        lap = "(+ ?lap 1)" if nxt == 0 else "?lap"
+        out.append(
+            "(defrule stage%d ?p <- (part (id ?id) (stage %d) (lap ?lap%s) %s) =>\n"
+            "  (modify ?p (stage %d) (lap %s) %s))\n" % (st, st, guard, binds, nxt, lap, sets)
+        )
+    out.append(
+        """(defrule watch (part (id ?id) (stage 2) (a ?a) (l ?l&:(> ?l ?a))) =>
+  (bind ?*h* (mod (+ (* ?*h* 31) ?l ?id) 1000003)))
+(defrule lapped (part (id ?id) (stage 0) (lap ?lap&~0) (c ?c)) => (bind ?*laps* (+ ?*laps* 1)))
+"""
+    )
+    out.append(report_rule("laps", "h"))
+    return "".join(out)
+
+
+def growforall(n):
+    """`forall` and `exists` re-decided as the fact base grows one fact per firing."""
+    return (
+        defglobals("all", "ex", "none", "add")
+        + """(deftemplate item (slot id) (slot grp) (slot ok))
+(deffacts start (next 0))
+(defrule add ?f <- (next ?k&:(< ?k %d)) =>
+  (retract ?f) (bind ?*add* (+ ?*add* 1))
+  (assert (item (id ?k) (grp (mod ?k 5)) (ok (if (= (mod ?k 7) 3) then no else yes))))
+  (if (= (mod ?k 4) 0) then (assert (check ?k)))
+  (assert (next (+ ?k 1))))
+(defrule all-ok (check ?c) (forall (item (id ?i&:(< ?i ?c)) (grp 1)) (item (id ?i) (ok yes))) =>
+  (bind ?*all* (+ ?*all* 1)))
+(defrule some-bad (check ?c) (exists (item (id ?i&:(< ?i ?c)) (ok no))) =>
+  (bind ?*ex* (+ ?*ex* 1)))
+(defrule none-grp (check ?c) (not (item (grp 4) (id ?i&:(> ?i ?c)))) =>
+  (bind ?*none* (+ ?*none* 1)))
+"""
+        % n
+        + report_rule("all", "ex", "none", "add")
+    )
+
+
 SHAPES = {
     "mfwild": (mfwild, [100, 400, 1600]),
     "testce": (testce, [30, 60, 120]),
@@ -673,6 +1015,21 @@ SHAPES = {
     "widemod": (widemod, [400, 1600, 6400]),
     "dftest": (dftest, [200, 800, 3200]),
     "nestquery": (nestquery, [50, 150, 450]),
+    # round 4 (p35)
+    "recurse": (recurse, [100, 400, 1600]),
+    "rhsloop": (rhsloop, [250, 1000, 4000]),
+    "globals": (globals_, [100, 300, 900]),
+    "dynsal": (dynsal, [50, 200, 600]),
+    "assertstr": (assertstr, [100, 400, 1600]),
+    "defaults": (defaults, [250, 1000, 4000]),
+    "chain": (chain, [200, 800, 3200]),
+    "manypat": (manypat, [50, 200, 800]),
+    "testarith": (testarith, [30, 60, 120]),
+    "fmtout": (fmtout, [100, 400, 1600]),
+    "mfslot": (mfslot, [200, 800, 3200]),
+    "strfun": (strfun, [50, 100, 200]),
+    "longmod": (longmod, [120, 480, 1920]),
+    "growforall": (growforall, [50, 200, 800]),
 }
 
 
