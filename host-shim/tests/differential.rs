@@ -427,6 +427,7 @@ differential_programs! {
     p354_lex_mea_recency_keys => "354-lex-mea-recency-keys",
     p355_module_agenda_starts => "355-module-agenda-starts",
     p356_join_test_partly_planned => "356-join-test-partly-planned",
+    p898_sub_string_ascii => "898-sub-string-ascii",
     p357_lex_mea_kept_recency => "357-lex-mea-kept-recency",
     p281_modules_defglobals => "281-modules-defglobals",
     p282_modules_import_conflicts => "282-modules-import-conflicts",

@@ -149,6 +149,18 @@ fn str_length(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     Ok(Value::Int(body(cx, cx.arg(a, 0), s).chars().count() as i64))
 }
 
+/// A symbol's stored bytes `b` when they are all ASCII, without the brackets of an
+/// instance name when `inst` (as `instance_name_body`); None otherwise.
+#[cfg(feature = "host-speedups")]
+#[inline(always)]
+fn ascii_body(b: &[u8], inst: bool) -> Option<&[u8]> {
+    let b = match b {
+        [b'[', body @ .., b']'] if inst && !body.is_empty() => body,
+        _ => b,
+    };
+    b.is_ascii().then_some(b)
+}
+
 /// Byte offset of character `k` (0-based) of `s`, or `s.len()` past the end.
 fn char_offset(s: &str, k: usize) -> usize {
     s.char_indices().nth(k).map_or(s.len(), |(i, _)| i)
@@ -163,6 +175,19 @@ fn sub_string(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let inst = matches!(cx.arg(a, 2), Value::Sym(_));
     // copied within the symbol arena (a `Text` here was the image's deepest stack frame)
     cx.make_lexeme_with(true, a, TEXT_MAX, |view, _, out| {
+        // host: an ASCII text's characters are its bytes, so the positions index the
+        // bytes without reading the text as UTF-8 or counting its characters
+        #[cfg(feature = "host-speedups")]
+        if let Some(t) = ascii_body(view.syms.text_bytes(s), inst) {
+            let (from, to) = (start.max(1), end.min(t.len() as i64));
+            if from > to {
+                return Ok(());
+            }
+            let part = &t[from as usize - 1..to as usize];
+            // SAFETY: `part` is ASCII (`ascii_body`), and ASCII bytes are UTF-8.
+            let part = unsafe { core::str::from_utf8_unchecked(part) };
+            return out.write_str(part).map_err(|_| TOO_LONG);
+        }
         let t = view.sym(s);
         let t = match inst {
             true => crate::value::instance_name_body(t).unwrap_or(t),
@@ -396,6 +421,12 @@ mod tests {
             ("(sub-string 4 4 \"abc\")", "\"\""),
             ("(sub-string 1 1 \"\u{e4}b\")", "\"\u{e4}\""),
             ("(sub-string 1 2 sym)", "\"sy\""),
+            // brackets kept in a string, not in an instance name; non-ASCII by characters
+            ("(sub-string 1 2 \"[ab]\")", "\"[a\""),
+            ("(sub-string 2 3 [abc])", "\"bc\""),
+            ("(sub-string 2 2 [])", "\"]\""),
+            ("(sub-string 2 4 \"x\u{e4}y\u{e4}z\")", "\"\u{e4}y\u{e4}\""),
+            ("(sub-string 5 5 \"x\u{e4}y\u{e4}z\")", "\"z\""),
         ]);
         assert!(eval_to_string("(sub-string (float 1) 2 \"abc\")").contains("type integer"));
     }

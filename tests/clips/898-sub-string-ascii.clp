@@ -1,0 +1,21 @@
+; sub-string over ASCII and non-ASCII texts, strings, symbols and instance names, in
+; joins and on the right: positions count characters (an ASCII text's are its bytes),
+; clamp to the text, and an instance name's brackets are not characters of it
+(watch rules)
+(deftemplate w (slot k) (slot s))
+(defrule same-head (w (k ?k) (s ?s)) (w (k ?j&~?k) (s ?t&:(eq (sub-string 1 3 ?s) (sub-string 1 3 ?t))))
+  => (printout t "same-head " ?k " " ?j " " (sub-string 1 3 ?t) crlf))
+(defrule tail (w (k ?k) (s ?s&:(> (str-length ?s) 4)))
+  => (printout t "tail " ?k " [" (sub-string 4 100 ?s) "] [" (sub-string 0 2 ?s) "] [" (sub-string 3 2 ?s) "]" crlf))
+(reset)
+(assert (w (k 1) (s "pear")))
+(assert (w (k 2) (s peach)))
+(assert (w (k 3) (s "pärchen")))
+(assert (w (k 4) (s "peär")))
+(assert (w (k 5) (s "[pea]")))
+(assert (w (k 6) (s "ab")))
+(assert (w (k 7) (s "")))
+(run)
+(printout t (sub-string 2 3 [abc]) "|" (sub-string 1 9 [x]) "|" (sub-string 2 2 []) "|" (sub-string 1 2 "[ab]") "|" (sub-string 2 5 "xäyäz") "|" (sub-string 5 5 "xäyäz") crlf)
+(printout t (sub-string 1 1 "") "|" (sub-string -3 -1 "abc") "|" (sub-string 3 3 abc) "|" (sub-string 1 3 "a b") crlf)
+(exit)
