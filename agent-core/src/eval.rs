@@ -586,7 +586,7 @@ impl Core<'_> {
     /// Whether CLIPS's evaluation error is set by an earlier argument of a call under
     /// way (`EvalState::arg_error`).
     #[inline(always)]
-    fn arg_error(&self) -> bool {
+    pub(crate) fn arg_error(&self) -> bool {
         #[cfg(feature = "extras")]
         return self.st.eval.arg_error;
         #[cfg(not(feature = "extras"))]

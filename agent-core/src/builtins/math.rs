@@ -18,8 +18,8 @@ pub const FUNCS: &[Builtin] = &[
     Builtin::eager("div", 2, ANY, div).args(&[], N).on_error(OnError::One).quiet().returns(R::Integer),
     Builtin::eager("mod", 2, 2, modulo).args(&[], N).on_error(OnError::Zero).quiet().returns(R::Number),
     Builtin::eager("abs", 1, 1, abs).args(&[N], Any).on_error(OnError::Zero).quiet().returns(R::Number),
-    Builtin::eager("min", 2, ANY, min).args(&[], N).quiet().returns(R::Number),
-    Builtin::eager("max", 2, ANY, max).args(&[], N).quiet().returns(R::Number),
+    Builtin::lazy("min", 2, ANY, min_in_order).args(&[], N).quiet().returns(R::Number),
+    Builtin::lazy("max", 2, ANY, max_in_order).args(&[], N).quiet().returns(R::Number),
     Builtin::eager("**", 2, 2, pow).args(&[], N).on_error(OnError::FloatZero).quiet().body_names(BodyNames::Float).returns(R::Float),
     Builtin::eager("sqrt", 1, 1, sqrt).args(&[N], Any).on_error(OnError::FloatZero).quiet().body_names(BodyNames::Float).returns(R::Float),
     Builtin::eager("round", 1, 1, round).args(&[N], Any).on_error(OnError::Zero).quiet().returns(R::Integer),
@@ -226,12 +226,73 @@ fn extremum(
     Ok(best.value())
 }
 
-fn min(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+pub(super) fn min(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     extremum(cx, a, "min", less)
 }
 
-fn max(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
+pub(super) fn max(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     extremum(cx, a, "max", |x, best| less(best, x))
+}
+
+fn min_in_order(cx: &mut Core<'_>, call: crate::value::Ix) -> Result<Value, EvalError> {
+    extremum_in_order(cx, call, "min", less)
+}
+
+fn max_in_order(cx: &mut Core<'_>, call: crate::value::Ix) -> Result<Value, EvalError> {
+    extremum_in_order(cx, call, "max", |x, best| less(best, x))
+}
+
+/// `min`/`max` of call `call` as CLIPS's bodies run them (`ArgTypeCheck` per
+/// argument): each argument is evaluated and checked before the next runs, and one
+/// that sets CLIPS's evaluation error (an unbound global, a failing call) stops the
+/// call with the best so far (0 for none) and no `[ARGACCES5]`
+/// (`(max 4 ?*u* (printout t x))` is 4 and prints nothing).
+fn extremum_in_order(
+    cx: &mut Core<'_>,
+    call: crate::value::Ix,
+    func: &'static str,
+    better: fn(Num, Num) -> bool,
+) -> Result<Value, EvalError> {
+    let halting = cx.st.mode.halting;
+    let mut best: Option<Num> = None;
+    let mut a = cx.exprs[call as usize].first;
+    let mut i = 0;
+    let so_far = |best: Option<Num>| best.map_or(Value::Int(0), Num::value);
+    while a != crate::value::NONE {
+        let v = match cx.eval_operand(a) {
+            Ok(v) => v,
+            #[cfg(feature = "extras")]
+            Err(e) => {
+                // its message and value (CLIPS's evaluation error set)
+                cx.value_after_error(a, e)?;
+                cx.st.mode.halting = halting;
+                cx.set_error_fallback(so_far(best), None);
+                let mut e = e;
+                e.reported = true;
+                return Err(e);
+            }
+            #[cfg(not(feature = "extras"))]
+            Err(e) => return Err(e),
+        };
+        if cx.st.mode.halting && (!halting || cx.arg_error()) {
+            return Ok(so_far(best));
+        }
+        let x = match v {
+            Value::Int(x) => Num::Int(x),
+            Value::Float(x) => Num::Float(x),
+            _ => {
+                cx.set_error_fallback(so_far(best), None);
+                // (a literal of another type was refused as the call was read)
+                return Err(EvalError::wrong_type(func, crate::error::arg_no(i), T_NUMBER));
+            }
+        };
+        if best.is_none_or(|b| better(x, b)) {
+            best = Some(x);
+        }
+        i += 1;
+        a = cx.exprs[a as usize].next;
+    }
+    Ok(so_far(best))
 }
 
 /// `**` always yields a float; `0 ** y<=0` and a negative base with a fractional

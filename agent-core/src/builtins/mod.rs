@@ -113,6 +113,8 @@ pub fn in_order_body(name: &str) -> Option<BuiltinFn> {
         "str-cat" => Some(strings::str_cat),
         "sym-cat" => Some(strings::sym_cat),
         "format" => Some(format::format),
+        "min" => Some(math::min),
+        "max" => Some(math::max),
         _ => None,
     }
 }
