@@ -290,8 +290,15 @@ impl Core<'_> {
             return None;
         }
         let b = self.exprs[a as usize].next;
-        if b == NONE
-            || self.exprs[b as usize].next != NONE
+        if b == NONE {
+            return None;
+        }
+        // host: three or more arguments are evaluated one at a time, as CLIPS does
+        #[cfg(feature = "extras")]
+        if self.exprs[b as usize].next != NONE {
+            return Some(self.compare_in_order(x));
+        }
+        if self.exprs[b as usize].next != NONE
             || !leaf(self.exprs[a as usize].op)
             || !leaf(self.exprs[b as usize].op)
         {
@@ -581,6 +588,75 @@ impl Core<'_> {
             base,
             len: self.st.frame.sp - base,
         })
+    }
+
+    /// A comparison (`=` .. `neq`) of three or more arguments as CLIPS's bodies run it:
+    /// each argument is evaluated and checked when its turn comes, and the first pair
+    /// that fails the comparison ends the call with FALSE, the arguments after it not
+    /// evaluated (`(< 2 1 (bind ?*x* 1))` binds nothing; an unbound global there is not
+    /// read). A number argument of another type is `[ARGACCES5]` (FALSE); an argument
+    /// that failed goes on with its value after the error, as `push_args` would.
+    #[cfg(feature = "extras")]
+    #[cold]
+    #[inline(never)]
+    fn compare_in_order(&mut self, x: Expr) -> Result<Value, EvalError> {
+        let id = x.data;
+        let numeric = id - builtins::basic::CMP_FIRST < 6;
+        let halting = self.st.mode.halting;
+        let was = self.st.eval.arg_error;
+        let mut failed: Option<EvalError> = None;
+        let (mut first, mut prev) = (Value::Void, Value::Void);
+        let mut a = x.first;
+        let mut k = 0;
+        let r = loop {
+            if a == NONE {
+                break Ok(true);
+            }
+            let v = match self.eval_operand(a) {
+                Ok(v) => v,
+                Err(e) => match self.value_after_error(a, e) {
+                    Ok(v) => {
+                        let mut e = e;
+                        e.reported = true;
+                        failed = Some(e);
+                        self.st.eval.arg_error = true;
+                        v
+                    }
+                    Err(e) => break Err(e),
+                },
+            };
+            if numeric && !matches!(v, Value::Int(_) | Value::Float(_)) {
+                let name = builtins::get(id).name;
+                let err = EvalError::wrong_type(name, crate::error::arg_no(k), "integer or float");
+                break Err(self.classify_type_error(name, x.first, err));
+            }
+            if k == 0 {
+                first = v;
+            } else {
+                // `=`, `<>`, `eq`, `neq` compare the first with each other, the
+                // orderings each neighbouring pair
+                let lhs = if matches!(id - builtins::basic::CMP_FIRST, 2..=5) {
+                    prev
+                } else {
+                    first
+                };
+                if builtins::basic::compare(self, id, lhs, v) != Some(true) {
+                    break Ok(false);
+                }
+            }
+            prev = v;
+            k += 1;
+            a = self.exprs[a as usize].next;
+        };
+        self.st.eval.arg_error = was;
+        let Some(e) = failed else {
+            return r.map(Core::bool_value);
+        };
+        // an argument failed: the value goes to the caller as this call's fallback
+        self.st.mode.halting = halting;
+        let v = Core::bool_value(r?);
+        self.set_error_fallback(v, None);
+        Err(e)
     }
 
     /// Whether CLIPS's evaluation error is set by an earlier argument of a call under

@@ -527,6 +527,7 @@ differential_programs! {
     p842_funcall_argument_counts => "842-funcall-argument-counts",
     p843_deftemplate_pattern_fields => "843-deftemplate-pattern-fields",
     p844_min_max_stop_at_an_error => "844-min-max-stop-at-an-error",
+    p845_comparisons_stop_at_false => "845-comparisons-stop-at-false",
     p910_loop_needs_do => "910-loop-needs-do",
     p911_commline_not_a_command => "911-commline-not-a-command",
     p912_module_qualified_template => "912-module-qualified-template",

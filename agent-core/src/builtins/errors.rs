@@ -76,6 +76,7 @@ const READ_FAILED_ARGUMENTS: &[&str] = &[
     ">=",
     "=",
     "<>",
+    "!=",
     "fact-existp",
     "retract",
     "fact-index",
