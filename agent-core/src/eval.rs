@@ -590,6 +590,17 @@ impl Core<'_> {
         })
     }
 
+    /// How many arguments follow from `a` on.
+    #[cfg(feature = "extras")]
+    fn count_args(&self, mut a: Ix) -> usize {
+        let mut n = 0;
+        while a != NONE {
+            n += 1;
+            a = self.exprs[a as usize].next;
+        }
+        n
+    }
+
     /// A comparison (`=` .. `neq`) of three or more arguments as CLIPS's bodies run it:
     /// each argument is evaluated and checked when its turn comes, and the first pair
     /// that fails the comparison ends the call with FALSE, the arguments after it not
@@ -799,7 +810,9 @@ impl Core<'_> {
         base: Ix,
         at: Ix,
     ) -> Result<Value, EvalError> {
-        if !builtins::errors::goes_on_after_error(b) {
+        if !builtins::errors::goes_on_after_error(b)
+            && !builtins::errors::value_argument(b, at as usize, self.count_args(x.first))
+        {
             if let Some(v) = self.args_failed(b)? {
                 return Ok(v);
             }
@@ -1042,8 +1055,14 @@ impl Core<'_> {
                         // an argument failed with CLIPS's evaluation error (an
                         // unbound global): most builtins stop with their error value
                         if self.st.mode.halting && (!halting || self.arg_error()) {
-                            if let Some(v) = self.args_failed(b)? {
-                                return Ok(v);
+                            #[cfg(feature = "extras")]
+                            let stops = !builtins::errors::values_failed(self, b, args);
+                            #[cfg(not(feature = "extras"))]
+                            let stops = true;
+                            if stops {
+                                if let Some(v) = self.args_failed(b)? {
+                                    return Ok(v);
+                                }
                             }
                         }
                         check_arity(b.name, b.min, b.max, args.len)?;

@@ -528,6 +528,7 @@ differential_programs! {
     p843_deftemplate_pattern_fields => "843-deftemplate-pattern-fields",
     p844_min_max_stop_at_an_error => "844-min-max-stop-at-an-error",
     p845_comparisons_stop_at_false => "845-comparisons-stop-at-false",
+    p846_insert_replace_failed_value => "846-insert-replace-failed-value",
     p910_loop_needs_do => "910-loop-needs-do",
     p911_commline_not_a_command => "911-commline-not-a-command",
     p912_module_qualified_template => "912-module-qualified-template",

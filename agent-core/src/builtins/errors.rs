@@ -90,6 +90,39 @@ pub(crate) fn goes_on_after_error(b: &super::Builtin) -> bool {
     READ_FAILED_ARGUMENTS.contains(&b.name)
 }
 
+/// Whether argument `at` (0-based) of builtin `b`, called with `n` arguments, is the
+/// one value `insert$` or `replace$` puts in (after the multifield and the indices):
+/// CLIPS reads a single value without checking its evaluation error, so one that
+/// failed (an unbound global, a failing call) goes in as the value it gave
+/// (`(insert$ ?m 1 ?*u*)` is `(FALSE a b)`), where a failed multifield or index stops
+/// the call. (Of several values, CLIPS's `insert$` then gives the multifield
+/// unchanged, which we do not reproduce: both give `()`.)
+#[cfg(feature = "extras")]
+pub(crate) fn value_argument(b: &super::Builtin, at: usize, n: usize) -> bool {
+    match b.name {
+        "insert$" => at == 2 && n == 3,
+        "replace$" => at == 3 && n == 4,
+        _ => false,
+    }
+}
+
+/// `value_argument` for an argument that set the evaluation error without failing
+/// (an unbound global read as FALSE) among arguments `a` all evaluated: the
+/// multifield and indices before the values have their types, so the error came
+/// from a value (an index call that gave a number with the error set is taken for
+/// a value as well).
+#[cfg(feature = "extras")]
+pub(crate) fn values_failed(cx: &Core<'_>, b: &super::Builtin, a: super::Args) -> bool {
+    let first_value = match b.name {
+        "insert$" => 2,
+        "replace$" => 3,
+        _ => return false,
+    };
+    a.len as usize == first_value + 1
+        && matches!(cx.arg(a, 0), Value::Multi(_))
+        && (1..first_value).all(|i| matches!(cx.arg(a, i), Value::Int(_) | Value::Float(_)))
+}
+
 impl Core<'_> {
     /// What builtin `b` gives when evaluating its arguments set CLIPS's evaluation
     /// error: most check it after each argument and return their constant error value

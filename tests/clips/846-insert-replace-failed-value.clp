@@ -1,0 +1,22 @@
+; insert$ and replace$ read their one value argument without checking the
+; evaluation error: a value that failed (an unbound global, a failing call, a
+; deffunction that halted) goes in as the value it gave; a failed multifield or
+; index stops the call with ()
+(defglobal ?*g* = 0)
+(bind ?m (create$ a b))
+(insert$ ?m 1 ?*u*)
+(insert$ ?m 1 (+ 1 (/ 4 0)))
+(replace$ ?m 1 1 ?*u*)
+(replace$ ?m 1 2 x (+ 1 (/ 4 0)) y)
+(insert$ ?m ?*u* x)
+(replace$ ?m 1 ?*u* x)
+(replace$ ?m (+ 1 (/ 4 0)) 1 x)
+(deffunction bad () (+ 1 (nth$ 5 (create$ a))))
+(insert$ ?m 3 (bad))
+(length$ (insert$ ?m 1 ?*u*))
+(deffunction f (?l) (printout t (insert$ ?l 1 (bad)) crlf) (printout t after crlf))
+(f ?m)
+(defrule r => (bind ?x (replace$ (create$ 1 2 3) 2 2 (bad))) (printout t ?x crlf))
+(reset)
+(run)
+(exit)
