@@ -112,6 +112,8 @@ pub(crate) fn value_argument(b: &super::Builtin, at: usize, n: usize) -> bool {
 /// from a value (an index call that gave a number with the error set is taken for
 /// a value as well).
 #[cfg(feature = "extras")]
+#[cold]
+#[inline(never)]
 pub(crate) fn values_failed(cx: &Core<'_>, b: &super::Builtin, a: super::Args) -> bool {
     let first_value = match b.name {
         "insert$" => 2,
