@@ -283,7 +283,11 @@ fn extremum_in_order(
             _ => {
                 cx.set_error_fallback(so_far(best), None);
                 // (a literal of another type was refused as the call was read)
-                return Err(EvalError::wrong_type(func, crate::error::arg_no(i), T_NUMBER));
+                return Err(EvalError::wrong_type(
+                    func,
+                    crate::error::arg_no(i),
+                    T_NUMBER,
+                ));
             }
         };
         if best.is_none_or(|b| better(x, b)) {
