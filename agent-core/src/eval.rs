@@ -451,10 +451,11 @@ impl Core<'_> {
     }
 
     /// `pattern_var` of element `elem` of a slot (cell `cell`, `len` fields) with a
-    /// multifield at or before it: one walk over the slot's elements gives the singles
-    /// and multifields before it and how many of each the slot has (the last
-    /// multifield's length is what the others and the singles leave). Out of line, so
-    /// the usual case above stays a short call.
+    /// multifield at or before it, in one walk over the slot's elements up to it: a
+    /// multifield but the slot's last takes its mark (`ps.aux` is the slot's first);
+    /// the last one's length is what the others and the singles leave, so the
+    /// elements after it are counted from the slot's end. Out of line, so the usual
+    /// case above stays a short call.
     #[inline(never)]
     fn element_after_multi(
         &mut self,
@@ -464,53 +465,53 @@ impl Core<'_> {
         ps: Expr,
         elem: u8,
     ) -> Result<Value, EvalError> {
-        let (mut fixed, mut multis, mut i) = (0usize, 0usize, 0u8);
-        let mut at = None;
+        let (mut pos, mut k, mut i) = (0usize, ps.aux as usize, 0u8);
         let mut c = ps.first;
         while c != NONE {
             let ex = self.exprs[c as usize];
-            let is_multi = ex.aux == 1;
+            if ex.aux != 1 {
+                if i == elem {
+                    return Ok(self.values[cell + 1 + pos]);
+                }
+                pos += 1;
+                i += 1;
+                c = ex.next;
+                continue;
+            }
+            // the singles after this multifield, up to the next one
+            let (mut d, mut after) = (ex.next, 0usize);
+            while d != NONE && self.exprs[d as usize].aux != 1 {
+                after += 1;
+                d = self.exprs[d as usize].next;
+            }
+            if d == NONE {
+                // the slot's last multifield
+                let rest = len.saturating_sub(pos + after);
+                if i == elem {
+                    return Ok(self.copy_to_scratch(cell + 1 + pos, rest)?);
+                }
+                let j = usize::from(elem - i - 1);
+                if j >= after {
+                    break;
+                }
+                return Ok(self.values[cell + 1 + pos + rest + j]);
+            }
+            let m = usize::from(b.marks.get(k).copied().unwrap_or(0));
             if i == elem {
-                at = Some((fixed, multis, is_multi));
+                return Ok(self.copy_to_scratch(cell + 1 + pos, m)?);
             }
-            if is_multi {
-                multis += 1;
-            } else {
-                fixed += 1;
+            let j = usize::from(elem - i - 1);
+            if j < after {
+                return Ok(self.values[cell + 1 + pos + m + j]);
             }
-            i += 1;
-            c = ex.next;
+            pos += m + after;
+            k += 1;
+            i += 1 + after as u8;
+            c = d;
         }
-        let Some((fixed_before, multis_before, is_multi)) = at else {
-            return Err(EvalError::new(EvalErrorKind::UnboundVariable {
-                name: NONE,
-            }));
-        };
-        let first_mark = ps.aux as usize;
-        let slack = len.saturating_sub(fixed);
-        let mlen_of = |mi: usize| -> usize {
-            if multis == 1 {
-                slack
-            } else if mi + 1 < multis {
-                b.marks[first_mark + mi] as usize
-            } else {
-                let others: usize = b.marks[first_mark..first_mark + mi]
-                    .iter()
-                    .map(|&m| m as usize)
-                    .sum();
-                slack.saturating_sub(others)
-            }
-        };
-        let pos = fixed_before
-            + match multis_before {
-                0 => 0,
-                _ => (0..multis_before).map(mlen_of).sum::<usize>(),
-            };
-        if is_multi {
-            Ok(self.copy_to_scratch(cell + 1 + pos, mlen_of(multis_before))?)
-        } else {
-            Ok(self.values[cell + 1 + pos])
-        }
+        Err(EvalError::new(EvalErrorKind::UnboundVariable {
+            name: NONE,
+        }))
     }
 
     /// `?v:slot` (an `Op::QSlot` node); inlined on the host, where most are read in

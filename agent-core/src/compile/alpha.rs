@@ -202,11 +202,20 @@ impl Compiler<'_, '_> {
                 // found (fields before and after) and the length test
                 let mut h = mix16(0x51ed_270b, k as u32);
                 h = mix16(h, u32::from(m) | u32::from(k == last) << 1);
-                h = mix16(h, sfb | mfb << 8);
-                h = mix16(
-                    h,
-                    (nsf - sfb - u32::from(!m)) | (nmf - mfb - u32::from(m)) << 8,
-                );
+                if m && t == NONE && nmf > 1 {
+                    // a multifield node among several, without a test: CLIPS's
+                    // `FindPatternNode` compares its place and the single fields
+                    // left after it, not how many multifields follow
+                    // (`(p $?a ?x $?b ?y $?c)` and `(p $?a ?x ?x $?c)` share their
+                    // first node; a slot's only multifield is no such node)
+                    h = mix16(h, nsf - sfb);
+                } else {
+                    h = mix16(h, sfb | mfb << 8);
+                    h = mix16(
+                        h,
+                        (nsf - sfb - u32::from(!m)) | (nmf - mfb - u32::from(m)) << 8,
+                    );
+                }
                 if k == 0 {
                     h = mix16(h, length_test);
                 }

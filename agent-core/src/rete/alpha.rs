@@ -17,6 +17,57 @@ struct SlotLayout {
     fixed: Ix,
     multis: u8,
     first_mark: u8,
+    /// Host: where each of the slot's first `SEG_ELEMS` pattern elements lies under
+    /// the marks (`ElemAt`), worked out once per fact and node rather than by a walk
+    /// over the elements per test and segmentation (`mark_operand`).
+    #[cfg(feature = "host-speedups")]
+    at: [ElemAt; SEG_ELEMS],
+    /// Host: the slot's cell in the fact and its length (`match_alpha`).
+    #[cfg(feature = "host-speedups")]
+    cell: usize,
+    #[cfg(feature = "host-speedups")]
+    len: Ix,
+}
+
+/// Host: pattern elements per slot `SlotLayout::at` places (the rest are walked).
+#[cfg(feature = "host-speedups")]
+const SEG_ELEMS: usize = 16;
+
+/// Host: where a single-field pattern element lies in its slot: `base` plus the
+/// lengths of the slot's first `marks` multifields (their marks), or, after the slot's
+/// last multifield, `base` fields before the slot's end (`marks == FROM_END`).
+#[cfg(feature = "host-speedups")]
+#[derive(Clone, Copy)]
+struct ElemAt {
+    base: u8,
+    marks: u8,
+}
+
+#[cfg(feature = "host-speedups")]
+const FROM_END: u8 = 0xFE;
+/// Host: `ElemAt::marks` of a multifield element (not a single field's place).
+#[cfg(feature = "host-speedups")]
+const MULTI_ELEM: u8 = 0xFF;
+
+#[cfg(feature = "host-speedups")]
+const NO_ELEM: ElemAt = ElemAt {
+    base: 0,
+    marks: MULTI_ELEM,
+};
+
+impl SlotLayout {
+    const EMPTY: SlotLayout = SlotLayout {
+        slot: 0,
+        fixed: 0,
+        multis: 0,
+        first_mark: 0,
+        #[cfg(feature = "host-speedups")]
+        at: [NO_ELEM; SEG_ELEMS],
+        #[cfg(feature = "host-speedups")]
+        cell: 0,
+        #[cfg(feature = "host-speedups")]
+        len: 0,
+    };
 }
 
 /// Multislots with constraints one pattern may have (the parser refuses more).
@@ -162,7 +213,10 @@ impl Core<'_> {
                 fixed,
                 multis,
                 first_mark: marks,
+                ..SlotLayout::EMPTY
             };
+            #[cfg(feature = "host-speedups")]
+            self.place_elements(&mut out[n], sd.first);
             if multis >= 2 {
                 marks += multis - 1;
             }
@@ -170,6 +224,38 @@ impl Core<'_> {
             s = sd.next;
         }
         n
+    }
+
+    /// Host: `l.at` for the slot's elements from `first` (`l.multis` counted).
+    #[cfg(feature = "host-speedups")]
+    fn place_elements(&self, l: &mut SlotLayout, first: Ix) {
+        let (mut e, mut i, mut fixed, mut seen) = (first, 0usize, 0u8, 0u8);
+        let mut after_last = l.fixed as usize;
+        while e != NONE && i < SEG_ELEMS {
+            let x = &self.exprs[e as usize];
+            l.at[i] = if x.aux == 1 {
+                seen += 1;
+                NO_ELEM
+            } else if seen == l.multis && seen > 0 {
+                // after the last multifield: counted from the slot's end
+                let back = after_last.min(u8::MAX as usize) as u8;
+                after_last = after_last.saturating_sub(1);
+                fixed += 1;
+                ElemAt {
+                    base: back,
+                    marks: FROM_END,
+                }
+            } else {
+                after_last = after_last.saturating_sub(1);
+                fixed += 1;
+                ElemAt {
+                    base: fixed - 1,
+                    marks: seen,
+                }
+            };
+            i += 1;
+            e = x.next;
+        }
     }
 
     /// Runs one alpha node over one fact, creating an alpha match per segmentation;
@@ -224,6 +310,16 @@ impl Core<'_> {
                 s = sd.next;
             }
             let mut marks = [0u8; MAX_MARKS];
+            // the fields after a slot's one multifield are counted from its end:
+            // tests on them are decided here rather than by the evaluator
+            let tests = if tests == NONE {
+                tests
+            } else {
+                match self.mark_tests(tests, fact, &[], &marks, 0) {
+                    Some(rest) => rest,
+                    None => return Ok(()),
+                }
+            };
             return self.enumerate_marks::<MF>(
                 alpha,
                 fact,
@@ -235,20 +331,24 @@ impl Core<'_> {
                 0,
             );
         }
-        let mut lay = [SlotLayout {
-            slot: 0,
-            fixed: 0,
-            multis: 0,
-            first_mark: 0,
-        }; MAX_LAYOUTS];
+        let mut lay = [SlotLayout::EMPTY; MAX_LAYOUTS];
         let n = self.layouts(alpha, &mut lay);
         let mut slack = [0 as Ix; MAX_LAYOUTS];
-        for (i, l) in lay[..n].iter().enumerate() {
-            let len = self.slot_cell(fact, l.slot).1.unwrap_or(1);
+        for (i, l) in lay[..n].iter_mut().enumerate() {
+            let (cell, mlen) = self.slot_cell(fact, l.slot);
+            let len = mlen.unwrap_or(1);
             if len < l.fixed || (l.multis == 0 && len != l.fixed) {
                 return Ok(());
             }
             slack[i] = len - l.fixed;
+            #[cfg(feature = "host-speedups")]
+            {
+                // (a slot that is no multifield is not placed: `len` 0 reads nothing)
+                l.cell = cell;
+                l.len = mlen.unwrap_or(0);
+            }
+            #[cfg(not(feature = "host-speedups"))]
+            let _ = cell;
         }
         let nmarks = self.alphas[alpha as usize].nmarks as usize;
         let mut marks = [0u8; MAX_MARKS];
@@ -290,7 +390,7 @@ impl Core<'_> {
             // host: the tests this mark decides run now, as CLIPS tests element by
             // element, so a constant that fails drops every segmentation after it
             #[cfg(feature = "host-speedups")]
-            let tests = match self.mark_tests(tests, fact, marks, i + 1) {
+            let tests = match self.mark_tests(tests, fact, lay, marks, i + 1) {
                 Some(rest) => rest,
                 None => continue,
             };
@@ -307,10 +407,17 @@ impl Core<'_> {
     /// passed over (it cannot fail with an error or write anything, so a false test
     /// after it decides the same), the first the quick path cannot read stops.
     #[cfg(feature = "host-speedups")]
-    fn mark_tests(&self, tests: Ix, fact: Ix, marks: &[u8; MAX_MARKS], fixed: usize) -> Option<Ix> {
+    fn mark_tests(
+        &mut self,
+        tests: Ix,
+        fact: Ix,
+        lay: &[SlotLayout],
+        marks: &[u8; MAX_MARKS],
+        fixed: usize,
+    ) -> Option<Ix> {
         let (mut t, mut rest, mut prefix) = (tests, tests, true);
         while t != NONE {
-            match self.mark_test(t, fact, marks, fixed) {
+            match self.mark_test(t, fact, lay, marks, fixed) {
                 MarkTest::True => {}
                 MarkTest::False => return None,
                 MarkTest::Later => prefix = false,
@@ -324,16 +431,26 @@ impl Core<'_> {
         Some(rest)
     }
 
-    /// Host: alpha test `e` (`Eq2`, `Not`, `And`, `Or` of constants, globals and
-    /// single fields of `fact`) with marks `..fixed` set, as the evaluator would
-    /// decide it once every mark is set.
+    /// Host: alpha test `e` (`Eq2`, a comparison builtin `=` .. `neq` with two
+    /// arguments, `Not`, `And`, `Or` of constants, globals and single fields of
+    /// `fact`) with marks `..fixed` set, as the evaluator would decide it once every
+    /// mark is set. A comparison is decided as soon as the marks placing its fields
+    /// are set, as CLIPS tests a field's constraint when the pattern network reaches
+    /// it: a failing one drops every segmentation of the marks after it.
     #[cfg(feature = "host-speedups")]
-    fn mark_test(&self, e: Ix, fact: Ix, marks: &[u8; MAX_MARKS], fixed: usize) -> MarkTest {
+    fn mark_test(
+        &mut self,
+        e: Ix,
+        fact: Ix,
+        lay: &[SlotLayout],
+        marks: &[u8; MAX_MARKS],
+        fixed: usize,
+    ) -> MarkTest {
         let x = self.exprs[e as usize];
         match x.op {
             Op::Eq2 => {
-                let a = self.mark_operand(x.first, fact, marks, fixed);
-                let b = self.mark_operand(self.exprs[x.first as usize].next, fact, marks, fixed);
+                let a = self.mark_operand(x.first, fact, lay, marks, fixed);
+                let b = self.mark_operand(self.exprs[x.first as usize].next, fact, lay, marks, fixed);
                 match (a, b) {
                     (MarkOperand::Unknown, _) | (_, MarkOperand::Unknown) => MarkTest::Unknown,
                     (MarkOperand::Value(a), MarkOperand::Value(b)) => {
@@ -347,7 +464,7 @@ impl Core<'_> {
                     _ => MarkTest::Later,
                 }
             }
-            Op::Not => match self.mark_test(x.first, fact, marks, fixed) {
+            Op::Not => match self.mark_test(x.first, fact, lay, marks, fixed) {
                 MarkTest::True => MarkTest::False,
                 MarkTest::False => MarkTest::True,
                 r => r,
@@ -361,7 +478,7 @@ impl Core<'_> {
                 let mut later = false;
                 let mut c = x.first;
                 while c != NONE {
-                    match self.mark_test(c, fact, marks, fixed) {
+                    match self.mark_test(c, fact, lay, marks, fixed) {
                         MarkTest::Unknown => return MarkTest::Unknown,
                         MarkTest::Later => later = true,
                         r if r == want => return want,
@@ -375,6 +492,47 @@ impl Core<'_> {
                     (false, false) => MarkTest::True,
                 }
             }
+            Op::Call
+                if x.aux == FnKind::Builtin as u8
+                    && (CMP_FIRST..=CMP_LAST).contains(&x.data)
+                    && x.first != NONE =>
+            {
+                let second = self.exprs[x.first as usize].next;
+                if second == NONE || self.exprs[second as usize].next != NONE {
+                    return MarkTest::Unknown;
+                }
+                // what `call` and `push_args` would refuse or record (as
+                // `quick_alpha_test`)
+                let sp = self.st.frame.sp as usize + 2;
+                if self.st.eval.eval_depth >= self.max_eval_depth() || sp > self.stack.len() {
+                    return MarkTest::Unknown;
+                }
+                let a = self.mark_operand(x.first, fact, lay, marks, fixed);
+                let b = self.mark_operand(second, fact, lay, marks, fixed);
+                match (a, b) {
+                    (MarkOperand::Value(a), MarkOperand::Value(b)) => {
+                        match crate::builtins::basic::compare(self, x.data, a, b) {
+                            Some(r) => {
+                                self.note_hw(crate::error::Pool::EvalStack, sp);
+                                if r {
+                                    MarkTest::True
+                                } else {
+                                    MarkTest::False
+                                }
+                            }
+                            // a number compared with something else: the evaluator
+                            // reports it
+                            None => MarkTest::Unknown,
+                        }
+                    }
+                    (MarkOperand::Unknown, _) | (_, MarkOperand::Unknown) => MarkTest::Unknown,
+                    // `eq` and `neq` cannot fail, so a later test may be decided
+                    // before them; a numeric one may fail once its fields are
+                    // placed, and the tests after it wait for it
+                    _ if x.data >= CMP_FIRST + 6 => MarkTest::Later,
+                    _ => MarkTest::Unknown,
+                }
+            }
             _ => MarkTest::Unknown,
         }
     }
@@ -384,7 +542,14 @@ impl Core<'_> {
     /// depends on is not set), else as `quick_alpha_operand` reads it.
     #[cfg(feature = "host-speedups")]
     #[inline(always)]
-    fn mark_operand(&self, e: Ix, fact: Ix, marks: &[u8; MAX_MARKS], fixed: usize) -> MarkOperand {
+    fn mark_operand(
+        &self,
+        e: Ix,
+        fact: Ix,
+        lay: &[SlotLayout],
+        marks: &[u8; MAX_MARKS],
+        fixed: usize,
+    ) -> MarkOperand {
         let x = self.exprs[e as usize];
         let elem = loc::elem(x.data);
         if x.op != Op::PatVar
@@ -397,6 +562,32 @@ impl Core<'_> {
                 Some(v) => MarkOperand::Value(v),
                 None => MarkOperand::Unknown,
             };
+        }
+        // the slot's places worked out for this fact (`place_elements`)
+        let slot = Ix::from(loc::slot(x.data));
+        if let Some(l) = lay.iter().find(|l| l.slot == slot) {
+            if let Some(at) = l.at.get(elem as usize) {
+                let len = l.len as usize;
+                let pos = match at.marks {
+                    MULTI_ELEM => return MarkOperand::Unknown,
+                    FROM_END => len.wrapping_sub(at.base as usize),
+                    0 => at.base as usize,
+                    k => {
+                        let (f, k) = (l.first_mark as usize, k as usize);
+                        if f + k > fixed || f + k > MAX_MARKS {
+                            return MarkOperand::Later;
+                        }
+                        at.base as usize + marks[f..f + k].iter().map(|&m| m as usize).sum::<usize>()
+                    }
+                };
+                if pos >= len {
+                    return MarkOperand::Unknown;
+                }
+                return match self.values[l.cell + 1 + pos] {
+                    Value::Multi(_) => MarkOperand::Unknown,
+                    v => MarkOperand::Value(v),
+                };
+            }
         }
         let ps = self.exprs[x.first as usize];
         let (cell, mlen) = self.slot_cell_inline(fact, Ix::from(loc::slot(x.data)));
@@ -1037,12 +1228,7 @@ mod tests {
             let mut f = c.st.facts.fact_head;
             while f != NONE {
                 let fits = c.facts[f as usize].tmpl == node.tmpl && {
-                    let mut lay = [SlotLayout {
-                        slot: 0,
-                        fixed: 0,
-                        multis: 0,
-                        first_mark: 0,
-                    }; MAX_LAYOUTS];
+                    let mut lay = [SlotLayout::EMPTY; MAX_LAYOUTS];
                     let n = c.layouts(a as Ix, &mut lay);
                     lay[..n].iter().all(|l| {
                         let len = c.slot_cell(f, l.slot).1.unwrap_or(1);
@@ -1086,6 +1272,111 @@ mod tests {
             decided >= 30 && declined >= 10 && firsts >= 10,
             "{decided} {declined} {firsts}"
         );
+    }
+
+    /// Host: for every segmentation of every fact a node with multifields admits, and
+    /// every number of its marks set, the tests the marks decide (`mark_tests`)
+    /// agree with the evaluator: None only where the evaluator says false, and the
+    /// tests left give what all of them give, errors included.
+    #[cfg(feature = "host-speedups")]
+    #[test]
+    fn mark_tests_agree_with_the_evaluator() {
+        let mut e = Box::new(SmallEngine::new());
+        let h = &mut NullHost;
+        e.load_str(
+            h,
+            "t",
+            "(defglobal ?*lim* = 3)
+             (deftemplate p (slot x) (multislot m) (multislot n))
+             (defrule r1 (p (m $?a ?x $?b ?y&:(> ?x ?y) $?c)) =>)
+             (defrule r2 (p (m $? ?x&:(< ?x ?*lim*) $? ?y&:(eq ?y ?x) $?)) =>)
+             (defrule r3 (p (m $? ?x $? ?y&:(<= ?y ?x)|:(= ?y 0) $?) (n $? ?z&:(<> ?z 2) $?)) =>)
+             (defrule r4 (p (m $?a ?x ?y&:(>= ?y ?x))) =>)
+             (defrule r5 (p (m ?f $? ?l&:(neq ?l ?f)) (n $? a $? ?q&:(> ?q 1))) =>)
+             (defrule r6 (p (m $? ?x $? ?y&:(> (+ ?x 0) ?y) $?)) =>)
+             (defrule r7 (v $? ?x $? ?y&:(< ?x ?y)&:(> ?y 2) $? ?z&:(neq ?z ?y)) =>)",
+        )
+        .unwrap();
+        for f in [
+            "(p (x 1) (m 3 1 2 a 2.0) (n a 2 0))",
+            "(p (m) (n))",
+            "(p (m 1) (n a 5))",
+            "(p (m b 2 b 1.5 7) (n 1 a 3 a 0))",
+            "(v 1 x 3 0.5 4 4)",
+            "(v 2 2)",
+        ] {
+            e.assert_str(h, f).unwrap();
+        }
+        let mut c = e.core(h);
+        let (mut decided, mut segs) = (0, 0);
+        for a in 0..c.alphas.len() {
+            let node = c.alphas[a];
+            if !node.live || node.desc == NONE {
+                continue;
+            }
+            let nmarks = node.nmarks as usize;
+            let mut f = c.st.facts.fact_head;
+            while f != NONE {
+                let next = c.facts[f as usize].next;
+                let Some(tests) = (c.facts[f as usize].tmpl == node.tmpl)
+                    .then(|| c.quick_tests(node.tests, f))
+                    .flatten()
+                else {
+                    f = next;
+                    continue;
+                };
+                let mut lay = [SlotLayout::EMPTY; MAX_LAYOUTS];
+                let n = c.layouts(a as Ix, &mut lay);
+                let mut fits = true;
+                for l in lay[..n].iter_mut() {
+                    let (cell, mlen) = c.slot_cell(f, l.slot);
+                    let len = mlen.unwrap_or(1);
+                    fits &= len >= l.fixed && (l.multis > 0 || len == l.fixed);
+                    l.cell = cell;
+                    l.len = mlen.unwrap_or(0);
+                }
+                // every marks vector (each mark up to 7) within its slot's slack
+                for code in 0..8usize.pow(nmarks as u32) {
+                    let mut marks = [0u8; MAX_MARKS];
+                    for (i, m) in marks.iter_mut().enumerate().take(nmarks) {
+                        *m = (code / 8usize.pow(i as u32) % 8) as u8;
+                    }
+                    let ok = fits
+                        && lay[..n].iter().all(|l| {
+                            let f0 = l.first_mark as usize;
+                            let k = (l.multis as usize).saturating_sub(1);
+                            let used: Ix = marks[f0..f0 + k].iter().map(|&m| m as Ix).sum();
+                            used + l.fixed <= l.len.max(l.fixed)
+                        });
+                    if !ok {
+                        continue;
+                    }
+                    segs += 1;
+                    let mut eval = |c: &mut Core<'_>, t: Ix| {
+                        c.st.net.this_pm = PatBinding { fact: f, marks };
+                        let r = c.eval_tests(t).map_err(|e| e.is_capacity());
+                        c.st.net.this_pm = PatBinding::EMPTY;
+                        r
+                    };
+                    let general = eval(&mut c, tests);
+                    for fixed in 0..=nmarks {
+                        match c.mark_tests(tests, f, &lay[..n], &marks, fixed) {
+                            None => {
+                                assert_eq!(general, Ok(false), "alpha {a} fact {f} {marks:?} {fixed}");
+                                decided += 1;
+                            }
+                            Some(rest) => {
+                                decided += usize::from(rest != tests);
+                                let r = eval(&mut c, rest);
+                                assert_eq!(r, general, "alpha {a} fact {f} {marks:?} {fixed}");
+                            }
+                        }
+                    }
+                }
+                f = next;
+            }
+        }
+        assert!(decided >= 100 && segs >= 100, "{decided} {segs}");
     }
 
     /// The forms the quick path leaves to the evaluator.

@@ -1,0 +1,20 @@
+; Several rules whose patterns share multifield wildcards on one template: the order
+; of their activations (segmentations tried longest first, newer patterns first) with
+; predicates on the segment variables deciding which segmentations match.
+(watch activations)
+(defrule r1 (v $?a ?x $?b ?y&:(> ?y ?x) $?c)
+  => (printout t "r1 " ?x " " ?y " a=" $?a " b=" $?b " c=" $?c crlf))
+(defrule r2 (v $?a ?x&:(< ?x 5) $?b)
+  => (printout t "r2 " ?x " a=" $?a " b=" $?b crlf))
+(defrule r3 (v $? ?x $? ?x $?)
+  => (printout t "r3 " ?x crlf))
+(defrule r4 (v $?a ?x $?b ?y&:(<> ?y ?x) $?c ?z&:(>= ?z ?y))
+  => (printout t "r4 " ?x " " ?y " " ?z " b=" $?b " c=" $?c crlf))
+(defrule r5 (v $?a ?x $?b ?y&:(eq ?y ?x) $?c)
+  => (printout t "r5 " ?x " a=" $?a " b=" $?b " c=" $?c crlf))
+(assert (v 3 1 4 1 5))
+(assert (v 2.5 2 7 2.5))
+(assert (v 9))
+(assert (v))
+(run)
+(exit)

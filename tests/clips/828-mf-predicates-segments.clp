@@ -1,0 +1,26 @@
+; Comparison predicates on fields placed by several multifields: decided once the
+; fields are placed, with integers and floats mixed, globals, `eq`/`neq` on
+; symbols and strings, and the `and`/`or`/`not` forms of constraints.
+(defglobal ?*lim* = 4)
+(defrule lt (n $?a ?x $?b ?y&:(< ?x ?y ?*lim*) $?c)
+  => (printout t "lt " ?x " " ?y " " (length$ ?a) (length$ ?b) (length$ ?c) crlf))
+(defrule eqf (n $?a ?x $?b ?y&:(= ?x ?y) $?c)
+  => (printout t "eqf " ?x " " ?y crlf))
+(defrule orc (n $?a ?x&:(> ?x 8)|:(< ?x 0) $?b ?y&~?x&:(>= ?y 1.5) $?c)
+  => (printout t "orc " ?x " " ?y " b=" $?b crlf))
+(defrule notc (n $?a ?x $?b ?y&:(not (<= ?y ?x)) $?c ?z&:(> ?z ?y))
+  => (printout t "notc " ?x " " ?y " " ?z crlf))
+(defrule syms (s $? ?x $? ?y&:(neq ?x ?y)&:(eq ?y b "b") $?)
+  => (printout t "syms " ?x " " ?y crlf))
+(defrule syms2 (s $? ?x&:(neq ?x a) $? ?y&:(eq ?y ?x) $?)
+  => (printout t "syms2 " ?x crlf))
+(deffacts d
+  (n 1 2.0 3 -1 9 1.5 2)
+  (n 2 2)
+  (s a b "b" a c b))
+(reset)
+(run)
+(bind ?*lim* 10)
+(assert (n 5 1 7 2.0))
+(run)
+(exit)

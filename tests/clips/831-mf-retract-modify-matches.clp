@@ -1,0 +1,25 @@
+; Facts with many segmentation matches retracted and modified while their
+; activations are on the agenda: sorting by swaps (two rules competing), a modify of
+; a multislot that keeps some matches, and retracts from a rule's actions.
+(deftemplate lst (slot name) (multislot vals))
+(defrule swap ?f <- (lst (name ?n) (vals $?p ?x $?m ?y&:(> ?x ?y) $?e))
+  => (modify ?f (vals $?p ?y $?m ?x $?e))
+     (printout t ?n " swap " ?x " " ?y crlf))
+(defrule drop-dup (declare (salience 5)) ?f <- (lst (name ?n) (vals $?p ?x ?x $?e))
+  => (modify ?f (vals $?p ?x $?e))
+     (printout t ?n " drop " ?x crlf))
+(defrule kill (declare (salience 10)) ?k <- (kill ?n) ?f <- (lst (name ?n) (vals $? 0 $?))
+  => (retract ?k ?f) (printout t "killed " ?n crlf))
+(defrule done (declare (salience -10)) (lst (name ?n) (vals $?v))
+  => (printout t ?n " done " $?v crlf))
+(deffacts d
+  (lst (name a) (vals 5 3 3 9 1 4))
+  (lst (name b) (vals 2 0 1))
+  (lst (name c) (vals 7 7 7 1)))
+(watch activations)
+(reset)
+(run 3)
+(assert (kill b))
+(run)
+(facts)
+(exit)

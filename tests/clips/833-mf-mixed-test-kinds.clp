@@ -1,0 +1,23 @@
+; Segment variables with tests the quick path cannot read (a function call, a
+; three-argument comparison, arithmetic) before and after comparisons it can: the
+; order they are tried in, their errors, and the matches they leave.
+(defrule a (v $? ?x&:(numberp ?x) $? ?y&:(> ?y ?x) $?)
+  => (printout t "a " ?x " " ?y crlf))
+(defrule b (v $? ?x $? ?y&:(> (+ ?x 1) ?y 0) $?)
+  => (printout t "b " ?x " " ?y crlf))
+(defrule c (v $? ?x $? ?y&:(= ?y (* ?x 2))&:(< ?x ?y) $?)
+  => (printout t "c " ?x " " ?y crlf))
+(defrule d (v $?a ?x $?b ?y&:(< ?x ?y)&:(symbolp ?y) $?c)
+  => (printout t "d " ?x " " ?y crlf))
+(assert (v 1 2 4 3 8))
+(run)
+(undefrule a)
+(undefrule b)
+(undefrule c)
+(assert (v 3 q 2 6))
+(run)
+(defrule e (w $? ?x $? ?y&:(< ?x ?y)&:(> ?y 2) $?)
+  => (printout t "e " ?x " " ?y crlf))
+(assert (w 1 x 3 0.5 4))
+(run)
+(exit)
