@@ -310,16 +310,6 @@ impl Core<'_> {
                 s = sd.next;
             }
             let mut marks = [0u8; MAX_MARKS];
-            // the fields after a slot's one multifield are counted from its end:
-            // tests on them are decided here rather than by the evaluator
-            let tests = if tests == NONE {
-                tests
-            } else {
-                match self.mark_tests(tests, fact, &[], &marks, 0) {
-                    Some(rest) => rest,
-                    None => return Ok(()),
-                }
-            };
             return self.enumerate_marks::<MF>(
                 alpha,
                 fact,
