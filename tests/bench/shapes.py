@@ -988,6 +988,64 @@ def growforall(n):
     )
 
 
+def mfsort(n):
+    """Sorting one list by swaps, `$?p ?x $?m ?y&:(> ?x ?y) $?f` (every pair of fields a
+    segmentation), one swap per firing; then the sorted list read by `$?` around a
+    variable with a predicate."""
+    rnd = lcg(n)
+    nums = " ".join(str(next(rnd) % 100) for _ in range(n))
+    return (
+        defglobals("swaps", "ups")
+        + "(defrule init => (assert (v %s)))\n" % nums
+        + """(defrule swap ?h <- (v $?p ?x $?m ?y&:(> ?x ?y) $?f) =>
+  (retract ?h) (bind ?*swaps* (+ ?*swaps* 1)) (assert (v $?p ?y $?m ?x $?f)))
+(defrule up (declare (salience -10)) (v $?a ?x ?y&:(< ?x ?y) $?b) =>
+  (bind ?*ups* (+ ?*ups* (length$ ?a))))
+(defrule show (declare (salience -20)) (v $?all) => (printout t (length$ ?all) crlf))
+"""
+        + report_rule("swaps", "ups")
+    )
+
+
+def mfscan(n):
+    """Several `$?` in a template's multislot around constants, variables and
+    predicates (pairs of rising error codes, rising triples, a repeated field), joined
+    with probe facts on an element between two `$?`; the logs asserted by a chain."""
+    rnd = lcg(n)
+    logs = []
+    for i in range(4):
+        ev = []
+        for _ in range(n):
+            r = next(rnd) % 10
+            if r < 2:
+                ev.append("err %d" % (next(rnd) % 50))
+            elif r < 4:
+                ev.append("warn")
+            else:
+                ev.append(str(next(rnd) % 100))
+        nums = " ".join(str(next(rnd) % 1000) for _ in range(n // 2))
+        logs.append("(log (id %d) (ev %s) (nums %s))" % (i, " ".join(ev), nums))
+    probes = " ".join("(probe %d)" % (next(rnd) % 100) for _ in range(n // 2))
+    return (
+        defglobals("rise", "tri", "rep", "hit", "warns")
+        + "(deftemplate log (slot id) (multislot ev) (multislot nums))\n"
+        + "(defrule init => (assert %s))\n" % " ".join(logs)
+        + "(defrule probes (log (id 3)) => (assert %s))\n" % probes
+        + """(defrule rise (log (id ?i) (ev $? err ?c $? err ?d&:(> ?d ?c) $?)) =>
+  (bind ?*rise* (+ ?*rise* 1)))
+(defrule tri (log (id ?i) (nums $? ?x $? ?y&:(> ?y ?x) $? ?z&:(> ?z ?y) $?)) =>
+  (bind ?*tri* (+ ?*tri* 1)))
+(defrule rep (log (id ?i) (ev $?a ?x $?b ?x $?)) (test (< (length$ ?b) 3)) =>
+  (bind ?*rep* (+ ?*rep* 1)))
+(defrule hit (probe ?q) (log (id ?i) (ev $?a ?q $?)) =>
+  (bind ?*hit* (+ ?*hit* (length$ ?a))))
+(defrule warns (log (id ?i) (ev $? warn ?w&:(neq ?w warn) $? warn $?)) =>
+  (bind ?*warns* (+ ?*warns* 1)))
+"""
+        + report_rule("rise", "tri", "rep", "hit", "warns")
+    )
+
+
 SHAPES = {
     "mfwild": (mfwild, [100, 400, 1600]),
     "testce": (testce, [30, 60, 120]),
@@ -1030,6 +1088,9 @@ SHAPES = {
     "strfun": (strfun, [50, 100, 200]),
     "longmod": (longmod, [120, 480, 1920]),
     "growforall": (growforall, [50, 200, 800]),
+    # several `$?` in one multislot (branch p34)
+    "mfsort": (mfsort, [8, 16, 24, 32]),
+    "mfscan": (mfscan, [10, 20, 40, 80]),
 }
 
 
