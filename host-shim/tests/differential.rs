@@ -553,6 +553,7 @@ differential_programs! {
     p931_not_exists_keep_outer_records => "931-not-exists-keep-outer-records",
     p932_literals_of_bound_variables => "932-literals-of-bound-variables",
     p933_pattern2_before_unbound => "933-pattern2-before-unbound",
+    p934_div_in_join_tests => "934-div-in-join-tests",
     p940_void_value_in_slot => "940-void-value-in-slot",
     p580_keyed_or_index => "580-keyed-or-index",
     p581_keyed_or_not => "581-keyed-or-not",

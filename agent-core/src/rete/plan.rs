@@ -5,7 +5,7 @@
 //! A join's tests are worked out once into a small tree of direct comparisons over
 //! the slots of the facts the partial match binds: variable comparisons (`?x` used
 //! again, `~?x`, `?a | ?b`), `eq`/`neq`/`=`/`<>`/`<`/`<=`/`>`/`>=` of variables,
-//! constants and `(+ ?x N)`/`(- ?x N)`, integer arithmetic (`+`, `-`, `*`, `mod`) of
+//! constants and `(+ ?x N)`/`(- ?x N)`, integer arithmetic (`+`, `-`, `*`, `mod`, `div`) of
 //! those, and `and`/`or`/`not` of those, whether they come from field constraints,
 //! `&:(...)` predicates or `(test ...)` CEs. Everything else keeps the evaluator; an
 //! `and` member of another shape after one of these is `Node::Evaluator`, which
@@ -114,6 +114,8 @@ enum ArOp {
     Mul,
     /// `mod`: the remainder with C's sign rule (two arguments).
     Mod,
+    /// `div`: the quotient truncated toward zero, folded left as the builtin does.
+    Div,
 }
 
 /// One node of a plan. Composite nodes name their children through `kids`; all
@@ -989,6 +991,12 @@ impl Core<'_> {
                     }
                     acc.wrapping_rem(x)
                 }
+                ArOp::Div => {
+                    if x == 0 {
+                        return None;
+                    }
+                    acc.wrapping_div(x)
+                }
             };
         }
         Some(acc)
@@ -1314,6 +1322,7 @@ impl Core<'_> {
             FN_SUB => ArOp::Sub,
             FN_MUL => ArOp::Mul,
             id if builtins::get(id).name == "mod" => ArOp::Mod,
+            id if builtins::get(id).name == "div" => ArOp::Div,
             _ => return None,
         };
         let mut members = [0u8; PLAN_NODES];
