@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """Small generated programs of shapes the main bench lacks, measured in three engines.
 
-    python3 tests/bench/shapes.py emit DIR [--only SHAPE ...]
-    python3 tests/bench/shapes.py measure DIR OURS_BIN [--only SHAPE ...] [--no-c64]
+    python3 tests/bench/shapes.py emit DIR [--only SHAPE ...] [--sizes N ...]
+    python3 tests/bench/shapes.py measure DIR OURS_BIN [--only SHAPE ...] [--no-c64] [--sizes N ...]
 
 `emit` writes DIR/<shape>-<size>/ with program.clp (constructs only, as the bench's
 clipspy driver wants them), full.bat.clp (load*, reset, run, exit) and norun.bat.clp
@@ -1094,12 +1094,12 @@ SHAPES = {
 }
 
 
-def emit(out_dir, only):
+def emit(out_dir, only, sizes_=None):
     rows = []
     for name, (make, sizes) in SHAPES.items():
         if only and name not in only:
             continue
-        for size in sizes:
+        for size in sizes_ or sizes:
             row = "%s-%d" % (name, size)
             d = os.path.join(out_dir, row)
             os.makedirs(d, exist_ok=True)
@@ -1233,13 +1233,15 @@ def main():
     e = sub.add_parser("emit")
     e.add_argument("dir")
     e.add_argument("--only", nargs="*")
+    e.add_argument("--sizes", nargs="*", type=int, help="these sizes instead of the shape's own")
     m = sub.add_parser("measure")
     m.add_argument("dir")
     m.add_argument("ours")
     m.add_argument("--only", nargs="*")
     m.add_argument("--no-c64", action="store_true")
+    m.add_argument("--sizes", nargs="*", type=int, help="these sizes instead of the shape's own")
     args = parser.parse_args()
-    rows = emit(os.path.abspath(args.dir), args.only)
+    rows = emit(os.path.abspath(args.dir), args.only, args.sizes)
     if args.cmd == "measure":
         with tempfile.TemporaryDirectory() as scratch:
             c64 = None if args.no_c64 else build_c64(scratch)
