@@ -1,0 +1,30 @@
+; A negated group holding a negated pattern (all neighbours marked), with the marks
+; asserted and retracted one at a time: each mark blocks subnetwork matches of
+; other nodes, which re-links or unblocks their outputs; retracting a mark brings
+; the subnetwork matches back in a new memory order.
+(deftemplate mark (slot id))
+(defrule all-marked (node ?a) (mark (id ?a)) (not (and (edge ?a ?b) (not (mark (id ?b))))) =>
+  (printout t "all-marked " ?a crlf))
+(defrule none-marked (node ?a) (not (and (edge ?a ?b) (mark (id ?b)))) => (printout t "none-marked " ?a crlf))
+(defrule cyc (node ?a) (exists (and (edge ?a ?b) (edge ?b ?a) (not (mark (id ?b))))) => (printout t "cyc " ?a crlf))
+(watch activations)
+(assert (node 1) (node 2) (node 3) (node 4))
+(assert (edge 1 2) (edge 1 3) (edge 1 4) (edge 2 1) (edge 2 3) (edge 3 1) (edge 4 2) (edge 4 3))
+(assert (mark (id 1)))
+(agenda)
+(assert (mark (id 3)))
+(agenda)
+(assert (mark (id 2)))
+(agenda)
+(assert (mark (id 4)))
+(agenda)
+(retract 14)
+(agenda)
+(retract 15)
+(agenda)
+(assert (mark (id 2)))
+(agenda)
+(retract 13)
+(agenda)
+(run)
+(exit)
