@@ -814,6 +814,16 @@ pub struct State {
     /// time lex or mea compares them (`strategy::RecencyCache`).
     #[cfg(all(feature = "extras", feature = "grow"))]
     pub recency: core::cell::RefCell<alloc::vec::Vec<Option<crate::strategy::RecencyCache>>>,
+    /// Host: partial matches' stamps by token index (`rete::Stamp`), allocated
+    /// once a join feeds a join from the right; `stamp` the last one given, and
+    /// `stamps_off` set once the allocator refused (blocker searches then walk the
+    /// memory).
+    #[cfg(feature = "grow")]
+    pub stamps: alloc::vec::Vec<crate::rete::Stamp>,
+    #[cfg(feature = "grow")]
+    pub stamp: crate::rete::Stamp,
+    #[cfg(feature = "grow")]
+    pub stamps_off: bool,
 }
 
 /// The names of the rules with a breakpoint (`set-break`): a run stops before firing
@@ -1050,6 +1060,12 @@ impl State {
             prime: crate::rete::PrimeOrders::new(),
             #[cfg(all(feature = "extras", feature = "grow"))]
             recency: core::cell::RefCell::new(alloc::vec::Vec::new()),
+            #[cfg(feature = "grow")]
+            stamps: alloc::vec::Vec::new(),
+            #[cfg(feature = "grow")]
+            stamp: 0,
+            #[cfg(feature = "grow")]
+            stamps_off: false,
         }
     }
 }

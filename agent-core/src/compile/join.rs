@@ -301,6 +301,12 @@ impl Compiler<'_, '_> {
             }
             self.cx.note_children(parent);
             if rjoin != JoinId::NONE {
+                // host: a join that comes to feed one from the right gets its
+                // partial matches stamped (`rete::Stamp`: kept only since)
+                #[cfg(feature = "grow")]
+                if self.cx.joins[rjoin].rsucc == JoinId::NONE {
+                    self.cx.restamp_memory(rjoin);
+                }
                 self.cx.joins[j].alpha_next = self.cx.joins[rjoin].rsucc;
                 self.cx.joins[rjoin].rsucc = j;
             }

@@ -635,8 +635,24 @@ impl Core<'_> {
     /// unblocks, show in the activations). (One whose subnetwork shares variables
     /// blocks those agreeing on them in CLIPS; here only its own: not reproduced.)
     #[cfg(feature = "grow")]
+    #[inline(always)]
+    fn sub_is_free(&mut self, join: JoinId) -> bool {
+        let jm = &self.join_mems[join];
+        if jm.free_gen == self.st.net.net_gen {
+            return jm.free;
+        }
+        let free = self.work_out_free(join);
+        let jm = &mut self.join_mems[join];
+        jm.free = free;
+        jm.free_gen = self.st.net.net_gen;
+        free
+    }
+
+    /// `sub_is_free` for a network generation not seen yet (out of line).
+    #[cfg(feature = "grow")]
+    #[cold]
     #[inline(never)]
-    fn sub_is_free(&self, join: JoinId) -> bool {
+    fn work_out_free(&self, join: JoinId) -> bool {
         let j = &self.joins[join];
         let parent = j.parent;
         if parent == JoinId::ROOT || j.rjoin == JoinId::NONE {
@@ -796,11 +812,11 @@ impl Core<'_> {
             return Ok(TokenId::NONE);
         }
         // host: the partial matches extending `left`, found down its child lists
-        // (not the whole memory): none or one active decides; with more, the
-        // memory walk below picks the first in memory order, as CLIPS does
-        #[cfg(feature = "host-speedups")]
+        // (not the whole memory): the first in memory order among the active ones
+        // is the one last put at the front (`rete::Stamp`), as CLIPS's walk finds
+        #[cfg(all(feature = "host-speedups", feature = "grow"))]
         if left != TokenId::NONE {
-            if let Some(r) = self.sub_only_candidate(parent, rjoin, left, skip) {
+            if let Some(r) = self.sub_first_candidate(parent, rjoin, left, skip) {
                 return Ok(r);
             }
         }
@@ -829,19 +845,23 @@ impl Core<'_> {
         Ok(TokenId::NONE)
     }
 
-    /// Host: the one active partial match of subnetwork join `rjoin` (skipping
-    /// `skip`) extending `left` of join `parent`, found down the child lists
-    /// through the subnetwork's joins: `Some(NONE)` when there is none, `None`
-    /// when there are several (or the subnetwork is deeper than 8 joins).
-    #[cfg(feature = "host-speedups")]
+    /// Host: the first in memory order of the active partial matches of subnetwork
+    /// join `rjoin` (skipping `skip`) extending `left` of join `parent`, found down
+    /// the child lists through the subnetwork's joins: the one with the newest
+    /// stamp (NONE when there is none), `None` when the subnetwork is deeper than
+    /// 8 joins or the stamps are off.
+    #[cfg(all(feature = "host-speedups", feature = "grow"))]
     #[inline(never)]
-    fn sub_only_candidate(
+    fn sub_first_candidate(
         &self,
         parent: JoinId,
         rjoin: JoinId,
         left: TokenId,
         skip: TokenId,
     ) -> Option<TokenId> {
+        if self.st.stamps_off {
+            return None;
+        }
         let mut path = [JoinId::NONE; 8];
         let mut n = 0;
         let mut s = rjoin;
@@ -855,41 +875,116 @@ impl Core<'_> {
         }
         let path = &mut path[..n];
         path.reverse();
-        let mut found = TokenId::NONE;
-        self.sub_candidates(path, left, skip, &mut found)
-            .then_some(found)
+        let mut found = (TokenId::NONE, 0);
+        self.sub_candidates(path, left, skip, &mut found);
+        Some(found.0)
     }
 
-    /// Host: `sub_only_candidate`'s search below `t` along `path` (the joins
-    /// still to go down): false once a second active one is seen.
-    #[cfg(feature = "host-speedups")]
+    /// Host: `sub_first_candidate`'s search below `t` along `path` (the joins
+    /// still to go down), keeping in `found` the active one with the newest stamp.
+    #[cfg(all(feature = "host-speedups", feature = "grow"))]
     fn sub_candidates(
         &self,
         path: &[JoinId],
         t: TokenId,
         skip: TokenId,
-        found: &mut TokenId,
-    ) -> bool {
+        found: &mut (TokenId, crate::rete::Stamp),
+    ) {
         let Some((&j, rest)) = path.split_first() else {
-            return true;
+            return;
         };
         let mut c = self.tokens[t].first_child;
         while c != TokenId::NONE {
             if self.tokens[c].owner == j {
                 if !rest.is_empty() {
-                    if !self.sub_candidates(rest, c, skip, found) {
-                        return false;
-                    }
+                    self.sub_candidates(rest, c, skip, found);
                 } else if c != skip && self.token_active(c) {
-                    if *found != TokenId::NONE {
-                        return false;
+                    let s = self.stamp_of(c);
+                    if found.0 == TokenId::NONE || s > found.1 {
+                        *found = (c, s);
                     }
-                    *found = c;
                 }
             }
             c = self.tokens[c].next_sib;
         }
-        true
+    }
+
+    /// Host: the stamp of `t` (0 if it has none).
+    #[cfg(feature = "grow")]
+    #[inline(always)]
+    fn stamp_of(&self, t: TokenId) -> crate::rete::Stamp {
+        self.st.stamps.get(t.ix()).copied().unwrap_or(0)
+    }
+
+    /// Host: `t` goes (went just now) to the front of its memory: it gets the next
+    /// stamp. (Once the count is used up, the memories feeding joins from the right
+    /// are numbered again in their order.)
+    #[cfg(feature = "grow")]
+    #[inline(always)]
+    pub(crate) fn stamp_front(&mut self, t: TokenId) {
+        let s = self.st.stamp.wrapping_add(1);
+        if s == 0 {
+            self.restamp_all();
+        } else {
+            self.st.stamp = s;
+        }
+        self.set_stamp(t, self.st.stamp);
+    }
+
+    /// Host: sets the stamp of `t`, the array grown to hold it first.
+    #[cfg(feature = "grow")]
+    #[inline(always)]
+    fn set_stamp(&mut self, t: TokenId, s: crate::rete::Stamp) {
+        match self.st.stamps.get_mut(t.ix()) {
+            Some(x) => *x = s,
+            None => self.grow_stamps(t, s),
+        }
+    }
+
+    /// Host: `set_stamp` past the array's end: doubles it (or switches the stamps
+    /// off, for good, if the allocator refuses).
+    #[cfg(feature = "grow")]
+    #[cold]
+    #[inline(never)]
+    fn grow_stamps(&mut self, t: TokenId, s: crate::rete::Stamp) {
+        let stamps = &mut self.st.stamps;
+        let want = (t.ix() + 1).max(2 * stamps.len()).max(1024);
+        if self.st.stamps_off || stamps.try_reserve_exact(want - stamps.len()).is_err() {
+            self.st.stamps_off = true;
+            return;
+        }
+        stamps.resize(want, 0);
+        stamps[t.ix()] = s;
+    }
+
+    /// Host: stamps every memory feeding a join from the right afresh, from 1 up.
+    #[cfg(feature = "grow")]
+    #[cold]
+    #[inline(never)]
+    fn restamp_all(&mut self) {
+        self.st.stamp = 0;
+        for j in 0..self.st.pools.njoins {
+            let j = JoinId(j);
+            if self.joins[j].rsucc != JoinId::NONE {
+                self.restamp_memory(j);
+            }
+        }
+    }
+
+    /// Host: stamps the partial matches of `join`'s memory in its order (the last
+    /// first), as if each had gone to the front in turn: when the join comes to
+    /// feed a join from the right (its matches were not stamped as they came).
+    #[cfg(feature = "grow")]
+    pub(crate) fn restamp_memory(&mut self, join: JoinId) {
+        let mut r = self.join_mems[join].mem;
+        while r != TokenId::NONE && self.tokens[r].mem_next != TokenId::NONE {
+            r = self.tokens[r].mem_next;
+        }
+        while r != TokenId::NONE {
+            self.st.stamp = self.st.stamp.wrapping_add(1).max(1);
+            self.set_stamp(r, self.st.stamp);
+            r = self.tokens[r].mem_prev;
+        }
     }
 
     /// `find_blocker`'s walk over the candidates of a join fed by an alpha node,
@@ -1159,6 +1254,11 @@ impl Core<'_> {
                 if (b == TokenId::NONE) == (kind == JoinKind::Negative) {
                     if self.st.net.defer_nots && kind == JoinKind::Negative {
                         // see `defer_nots`: a later pattern of the same fact may block it
+                        // (host: stamped as it went to the front, for joins from the right)
+                        #[cfg(feature = "grow")]
+                        if self.joins[join].rsucc != JoinId::NONE {
+                            self.stamp_front(t);
+                        }
                         self.owe(t, false);
                     } else {
                         self.propagate_in(t, join)?;
@@ -1641,6 +1741,11 @@ impl Core<'_> {
     /// the error), so no match is lost and no rule fires on an incomplete agenda.
     fn propagate_or_owe(&mut self, t: TokenId) {
         if self.st.net.defer_nots {
+            // (host: stamped as it went to the front, for joins from the right)
+            #[cfg(feature = "grow")]
+            if self.joins[self.tokens[t].owner].rsucc != JoinId::NONE {
+                self.stamp_front(t);
+            }
             self.owe(t, false);
             return;
         }
@@ -1749,7 +1854,13 @@ impl Core<'_> {
         while self.st.net.owed != TokenId::NONE {
             let t = self.st.net.owed;
             self.unowe(t);
-            if let Err(e) = self.propagate(t) {
+            // host: it went to the front when it was owed (or before), not now
+            #[cfg(feature = "grow")]
+            let stamp = self.stamp_of(t);
+            let r = self.propagate(t);
+            #[cfg(feature = "grow")]
+            self.set_stamp(t, stamp);
+            if let Err(e) = r {
                 if e.is_capacity() {
                     self.deactivate(t);
                     self.owe(t, true);
@@ -1789,6 +1900,11 @@ impl Core<'_> {
             }
             return Ok(());
         }
+        // host: it went to the front of its memory just now (a new partial match,
+        // or a not/exists output unblocked/blocked); first, as its successors may
+        // search this memory
+        #[cfg(feature = "grow")]
+        self.stamp_front(t);
         let mut it = Successors::of(self, join);
         while let Some((c, from_right)) = it.next(self) {
             if from_right {

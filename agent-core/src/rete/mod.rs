@@ -280,6 +280,13 @@ pub struct JoinMem {
     pub reach_depths: u8,
     #[cfg(feature = "host-speedups")]
     pub reach_gen: u32,
+    /// Host: `Core::sub_is_free` of the join, worked out for network generation
+    /// `free_gen` (read on every subnetwork match made active and every blocker
+    /// search; it walks the subnetwork's tests).
+    #[cfg(feature = "grow")]
+    pub free: bool,
+    #[cfg(feature = "grow")]
+    pub free_gen: u32,
 }
 
 impl JoinMem {
@@ -307,6 +314,10 @@ impl JoinMem {
         reach_depths: 0,
         #[cfg(feature = "host-speedups")]
         reach_gen: u32::MAX,
+        #[cfg(feature = "grow")]
+        free: false,
+        #[cfg(feature = "grow")]
+        free_gen: u32::MAX,
     };
 }
 
@@ -416,6 +427,15 @@ impl Token {
         key: 0,
     };
 }
+
+/// Host: when a partial match of a join feeding joins from the right was last put at
+/// the front of its memory (a count, `State::stamp`; 0: never): among the active
+/// ones, memory order is newest stamp first, so a blocker search picks the first in
+/// memory order among the few extending its left partial match without walking the
+/// memory (`Core::sub_first_candidate`). Kept in `State::stamps`, not in the token
+/// pool, so that programs without such joins do not carry them.
+#[cfg(feature = "grow")]
+pub type Stamp = u32;
 
 /// Host: a partial match's links in its memory's extra index groups (next, previous,
 /// bucket; as `beta_links` for the first group), in a side array of the token pool
