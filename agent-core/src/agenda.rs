@@ -336,6 +336,15 @@ impl Core<'_> {
         // from the first activation of no higher salience (those before it all go
         // first), found through the salience groups
         let group = self.group_start(a, &mut prev, &mut cur);
+        // lex and mea: the place from the ordered index when it is on
+        #[cfg(all(feature = "extras", feature = "grow"))]
+        if self.st.recency_index.on && is_recency(self.st.agenda.strategy) {
+            if let Some((p, c)) = self.rindex_insert(a) {
+                self.group_insert(group, a, p, c);
+                self.agenda_link(a, p, c);
+                return;
+            }
+        }
         let mut steps = 0u32;
         // a place at either end of its own salience group is found at once
         let placed = group != usize::MAX && self.group_place(group, a, &mut prev, &mut cur);
@@ -1044,6 +1053,8 @@ impl Core<'_> {
             a = x.next;
         }
         g.kept = true;
+        #[cfg(all(feature = "extras", feature = "grow"))]
+        self.rindex_build();
     }
 
     /// Takes activation `x` (`a`, still linked) out of its group.
@@ -1059,6 +1070,10 @@ impl Core<'_> {
     /// agenda never comes here).
     #[inline(never)]
     fn group_unlink_kept(&mut self, x: &crate::rule::Activation, a: Ix) {
+        #[cfg(all(feature = "extras", feature = "grow"))]
+        if self.st.recency_index.on && self.st.agenda.groups.kept {
+            self.rindex_remove(x, a);
+        }
         let g = &mut self.st.agenda.groups;
         if !g.kept {
             if self.st.agenda.agenda_len == 1 {

@@ -824,6 +824,9 @@ pub struct State {
     pub stamp: crate::rete::Stamp,
     #[cfg(feature = "grow")]
     pub stamps_off: bool,
+    /// Host: lex and mea's ordered index of the agenda (`strategy::RecencyIndex`).
+    #[cfg(all(feature = "extras", feature = "grow"))]
+    pub recency_index: crate::strategy::RecencyIndex,
 }
 
 /// The names of the rules with a breakpoint (`set-break`): a run stops before firing
@@ -1066,6 +1069,8 @@ impl State {
             stamp: 0,
             #[cfg(feature = "grow")]
             stamps_off: false,
+            #[cfg(all(feature = "extras", feature = "grow"))]
+            recency_index: crate::strategy::RecencyIndex::new(),
         }
     }
 }

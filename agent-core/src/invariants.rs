@@ -1427,6 +1427,23 @@ impl Core<'_> {
             "salience group without activations",
             groups.n
         );
+        // host, lex and mea: the ordered index is the agenda reversed, but for fired
+        // heads still at its end (`strategy::RecencyIndex`)
+        #[cfg(all(feature = "extras", feature = "grow", feature = "host-speedups"))]
+        if groups.kept && self.st.recency_index.on {
+            let v = &self.st.recency_index.v;
+            let live = |e: &(Ix, u32)| {
+                let x = &self.acts[e.0 as usize];
+                x.rule != NONE && x.seq == e.1
+            };
+            let n = v.iter().rposition(live).map_or(0, |k| k + 1);
+            ensure!(n == on_agenda, "lex/mea index length wrong", n);
+            let mut a = self.st.agenda.agenda_head;
+            for e in v[..n].iter().rev() {
+                ensure!(e.0 == a && live(e), "lex/mea index out of agenda order", e.0);
+                a = self.acts[a as usize].next;
+            }
+        }
         ensure!(
             on_agenda + free == used,
             "activation accounting does not add up",

@@ -101,6 +101,197 @@ pub struct RecencyCache {
     rec: Recency,
 }
 
+/// Host: under lex and mea, while the salience groups are kept (`agenda`), the
+/// agenda's activations in reverse order (the head last) with their creation
+/// numbers, so a new activation's place is found by a binary search over the kept
+/// recency lists instead of a walk (CLIPS walks its salience group; a new
+/// activation whose first fact is old walks far under mea). Every agenda change
+/// while the groups are kept goes through it, but one: the head that fires is left
+/// at the end and dropped the next time the index is used (`rindex_trim`: its entry
+/// is no longer the activation there). Anything unexpected turns it off; the walk
+/// (`recency_walk`) takes over until the groups are built again.
+#[cfg(all(feature = "extras", feature = "grow"))]
+pub struct RecencyIndex {
+    pub on: bool,
+    pub v: alloc::vec::Vec<(Ix, u32)>,
+}
+
+#[cfg(all(feature = "extras", feature = "grow"))]
+impl RecencyIndex {
+    pub const fn new() -> RecencyIndex {
+        RecencyIndex {
+            on: false,
+            v: alloc::vec::Vec::new(),
+        }
+    }
+}
+
+#[cfg(all(feature = "extras", feature = "grow"))]
+impl Default for RecencyIndex {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+/// Host: whether activation `aa` (recency list `ra`, its rule's complexity `ca`)
+/// goes before `ac` (`rc`, `cc`) under lex (`mea` false) or mea: `goes_before`'s
+/// order over kept lists.
+#[cfg(all(feature = "extras", feature = "grow"))]
+#[inline(always)]
+fn kept_before(
+    mea: bool,
+    aa: &crate::rule::Activation,
+    ra: &Recency,
+    ca: u16,
+    ac: &crate::rule::Activation,
+    rc: &Recency,
+    cc: u16,
+) -> bool {
+    if aa.salience != ac.salience {
+        return aa.salience > ac.salience;
+    }
+    let mut by_key = if mea && ra.first != rc.first {
+        rc.first.cmp(&ra.first)
+    } else {
+        recency_order(Strategy::Lex, ra, rc)
+    };
+    if by_key == core::cmp::Ordering::Equal {
+        by_key = cc.cmp(&ca);
+    }
+    match by_key {
+        core::cmp::Ordering::Less => true,
+        core::cmp::Ordering::Greater => false,
+        core::cmp::Ordering::Equal => (aa.seq.wrapping_sub(ac.seq) as i32) < 0,
+    }
+}
+
+#[cfg(all(feature = "extras", feature = "grow", feature = "host-speedups"))]
+impl Core<'_> {
+    /// Drops the fired activations left at the index's end (see `RecencyIndex`).
+    #[inline(always)]
+    fn rindex_trim(&mut self) {
+        let v = &mut self.st.recency_index.v;
+        while let Some(&(x, seq)) = v.last() {
+            let ax = &self.acts[x as usize];
+            if ax.rule != crate::value::NONE && ax.seq == seq {
+                break;
+            }
+            v.pop();
+        }
+    }
+
+    /// How many of the index's entries activation `a` goes before (its place), by
+    /// a binary search; None when some entry's list is not kept.
+    fn rindex_search(&self, a: Ix) -> Option<usize> {
+        let mut cache = self.st.recency.try_borrow_mut().ok()?;
+        let need = self.acts.len();
+        if cache.len() < need {
+            cache.resize(need, None);
+        }
+        let aa = self.acts[a as usize];
+        let ra = self.kept_recency(&mut cache, a, &aa);
+        let ca = self.rules[aa.rule as usize].complexity;
+        let mea = self.strategy() == Strategy::Mea;
+        let v = &self.st.recency_index.v;
+        let (mut lo, mut hi) = (0usize, v.len());
+        while lo < hi {
+            let mid = lo + (hi - lo) / 2;
+            let c = v[mid].0;
+            let ac = &self.acts[c as usize];
+            let rc = match cache.get(c as usize) {
+                Some(Some(k)) if k.seq == ac.seq && k.token == ac.token => &k.rec,
+                _ => return None,
+            };
+            let cc = self.rules[ac.rule as usize].complexity;
+            if kept_before(mea, &aa, &ra, ca, ac, rc, cc) {
+                lo = mid + 1;
+            } else {
+                hi = mid;
+            }
+        }
+        Some(lo)
+    }
+
+    /// New activation `a`'s place (the activations before and after it) from the
+    /// index, which takes it in; None (the index turned off) when it cannot say.
+    #[inline(never)]
+    pub(crate) fn rindex_insert(&mut self, a: Ix) -> Option<(Ix, Ix)> {
+        self.rindex_trim();
+        let found = self.rindex_search(a);
+        let ix = &mut self.st.recency_index;
+        let Some(k) = found else {
+            ix.on = false;
+            return None;
+        };
+        let cur = if k > 0 { ix.v[k - 1].0 } else { crate::value::NONE };
+        let prev = ix.v.get(k).map_or(crate::value::NONE, |e| e.0);
+        // the two must be neighbours on the agenda
+        let linked = if prev == crate::value::NONE {
+            self.st.agenda.agenda_head == cur
+        } else {
+            self.acts[prev as usize].next == cur
+        };
+        if !linked {
+            ix.on = false;
+            return None;
+        }
+        ix.v.insert(k, (a, self.acts[a as usize].seq));
+        Some((prev, cur))
+    }
+
+    /// Activation `a` (`x`, still linked) leaves the index.
+    #[inline(never)]
+    pub(crate) fn rindex_remove(&mut self, x: &crate::rule::Activation, a: Ix) {
+        self.rindex_trim();
+        let at = self.rindex_search(a).filter(|&k| {
+            self.st.recency_index.v.get(k) == Some(&(a, x.seq))
+        });
+        let ix = &mut self.st.recency_index;
+        let at = at.or_else(|| ix.v.iter().rposition(|e| *e == (a, x.seq)));
+        match at {
+            Some(k) => {
+                ix.v.remove(k);
+            }
+            None => ix.on = false,
+        }
+    }
+
+    /// Builds the index from the agenda when the strategy is lex or mea (the
+    /// salience groups are being built), every list kept.
+    pub(crate) fn rindex_build(&mut self) {
+        self.st.recency_index.on = false;
+        self.st.recency_index.v.clear();
+        let s = self.strategy();
+        if s != Strategy::Lex && s != Strategy::Mea {
+            return;
+        }
+        {
+            let Ok(mut cache) = self.st.recency.try_borrow_mut() else {
+                return;
+            };
+            let need = self.acts.len();
+            if cache.len() < need {
+                cache.resize(need, None);
+            }
+            let mut a = self.st.agenda.agenda_head;
+            while a != crate::value::NONE {
+                let x = self.acts[a as usize];
+                self.kept_recency(&mut cache, a, &x);
+                a = x.next;
+            }
+        }
+        let mut a = self.st.agenda.agenda_head;
+        let ix = &mut self.st.recency_index;
+        while a != crate::value::NONE {
+            let x = &self.acts[a as usize];
+            ix.v.push((a, x.seq));
+            a = x.next;
+        }
+        ix.v.reverse();
+        ix.on = true;
+    }
+}
+
 impl Core<'_> {
     /// The strategy in force.
     pub fn strategy(&self) -> Strategy {

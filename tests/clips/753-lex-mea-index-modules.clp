@@ -1,0 +1,30 @@
+; two modules' agendas long enough for the host's ordered lex/mea index, focus
+; switches, auto-focus, retracts in the middle and a strategy switch while focused
+(defmodule MAIN (export ?ALL))
+(deftemplate item (slot i) (slot w))
+(defrule MAIN::mk ?g <- (go ?n) =>
+  (retract ?g)
+  (loop-for-count (?i 1 ?n) (assert (item (i ?i) (w (mod (* ?i 3) 7))))))
+(defrule MAIN::a (item (i ?i) (w ?w)) (item (i ?j&:(> ?j ?i)) (w ?w)) =>
+  (printout t "a " ?i " " ?j crlf))
+(defrule MAIN::b (declare (salience 3)) (item (i ?i) (w 5)) => (printout t "b " ?i crlf))
+(defmodule W (import MAIN ?ALL))
+(defrule W::c (item (i ?i) (w 2)) (item (i ?j&:(< ?j ?i)) (w 2)) => (printout t "c " ?i " " ?j crlf))
+(defrule W::d (declare (auto-focus TRUE)) (item (i ?i&:(= (mod ?i 11) 0))) =>
+  (printout t "d " ?i crlf))
+(defrule W::e ?f <- (item (i ?i&:(= (mod ?i 13) 0)) (w ?w)) => (retract ?f) (printout t "e " ?i crlf))
+(set-current-module MAIN)
+(set-strategy mea)
+(reset)
+(assert (go 45))
+(run 40)
+(focus W)
+(run 15)
+(set-strategy lex)
+(run 15)
+(focus W)
+(assert (item (i 100) (w 2)) (item (i 101) (w 2)))
+(run 20)
+(set-strategy mea)
+(run)
+(exit)
