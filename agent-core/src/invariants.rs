@@ -1440,7 +1440,11 @@ impl Core<'_> {
             ensure!(n == on_agenda, "lex/mea index length wrong", n);
             let mut a = self.st.agenda.agenda_head;
             for e in v[..n].iter().rev() {
-                ensure!(e.0 == a && live(e), "lex/mea index out of agenda order", e.0);
+                ensure!(
+                    e.0 == a && live(e),
+                    "lex/mea index out of agenda order",
+                    e.0
+                );
                 a = self.acts[a as usize].next;
             }
         }

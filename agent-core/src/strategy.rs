@@ -136,7 +136,7 @@ impl Default for RecencyIndex {
 /// Host: whether activation `aa` (recency list `ra`, its rule's complexity `ca`)
 /// goes before `ac` (`rc`, `cc`) under lex (`mea` false) or mea: `goes_before`'s
 /// order over kept lists.
-#[cfg(all(feature = "extras", feature = "grow"))]
+#[cfg(all(feature = "extras", feature = "grow", feature = "host-speedups"))]
 #[inline(always)]
 fn kept_before(
     mea: bool,
@@ -181,15 +181,20 @@ impl Core<'_> {
     }
 
     /// How many of the index's entries activation `a` goes before (its place), by
-    /// a binary search; None when some entry's list is not kept.
-    fn rindex_search(&self, a: Ix) -> Option<usize> {
+    /// a binary search; None when some entry's list is not kept (`a`'s is worked
+    /// out when `fill`: a new activation's; one leaving may be losing its match).
+    fn rindex_search(&self, a: Ix, fill: bool) -> Option<usize> {
         let mut cache = self.st.recency.try_borrow_mut().ok()?;
         let need = self.acts.len();
         if cache.len() < need {
             cache.resize(need, None);
         }
         let aa = self.acts[a as usize];
-        let ra = self.kept_recency(&mut cache, a, &aa);
+        let ra = match cache.get(a as usize) {
+            Some(Some(k)) if k.seq == aa.seq && k.token == aa.token => k.rec,
+            _ if fill => self.kept_recency(&mut cache, a, &aa),
+            _ => return None,
+        };
         let ca = self.rules[aa.rule as usize].complexity;
         let mea = self.strategy() == Strategy::Mea;
         let v = &self.st.recency_index.v;
@@ -217,13 +222,17 @@ impl Core<'_> {
     #[inline(never)]
     pub(crate) fn rindex_insert(&mut self, a: Ix) -> Option<(Ix, Ix)> {
         self.rindex_trim();
-        let found = self.rindex_search(a);
+        let found = self.rindex_search(a, true);
         let ix = &mut self.st.recency_index;
         let Some(k) = found else {
             ix.on = false;
             return None;
         };
-        let cur = if k > 0 { ix.v[k - 1].0 } else { crate::value::NONE };
+        let cur = if k > 0 {
+            ix.v[k - 1].0
+        } else {
+            crate::value::NONE
+        };
         let prev = ix.v.get(k).map_or(crate::value::NONE, |e| e.0);
         // the two must be neighbours on the agenda
         let linked = if prev == crate::value::NONE {
@@ -243,9 +252,9 @@ impl Core<'_> {
     #[inline(never)]
     pub(crate) fn rindex_remove(&mut self, x: &crate::rule::Activation, a: Ix) {
         self.rindex_trim();
-        let at = self.rindex_search(a).filter(|&k| {
-            self.st.recency_index.v.get(k) == Some(&(a, x.seq))
-        });
+        let at = self
+            .rindex_search(a, false)
+            .filter(|&k| self.st.recency_index.v.get(k) == Some(&(a, x.seq)));
         let ix = &mut self.st.recency_index;
         let at = at.or_else(|| ix.v.iter().rposition(|e| *e == (a, x.seq)));
         match at {

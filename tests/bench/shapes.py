@@ -1062,8 +1062,8 @@ SHAPES = {
     # round 2
     "logical": (logical, [100, 400, 1600]),
     "modules": (modules, [100, 400, 1600]),
-    "lex": (strategy("lex"), [50, 200, 800]),
-    "mea": (strategy("mea"), [50, 200, 800]),
+    "lex": (strategy("lex"), [50, 200, 800, 1600]),
+    "mea": (strategy("mea"), [50, 200, 800, 1600]),
     "breadth": (strategy("breadth"), [50, 200, 800]),
     "orce": (orce, [100, 400, 1600]),
     "notand": (notand, [100, 400, 1600]),
