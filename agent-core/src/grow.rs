@@ -58,7 +58,7 @@ macro_rules! heads {
 }
 
 /// `$zeroed` for the arrays whose entries are [`ZeroFree`] (they grow into zeroed
-/// memory), else `$plain`: the token and fact pools, and (host speed-ups) the side
+/// memory), else `$plain`: the token and fact pools, the fact value arena, and (host speed-ups) the side
 /// arrays of theirs that the engine writes before it reads (a fact's template list
 /// links, a partial match's extra index links).
 macro_rules! zeroed_or {
@@ -66,6 +66,9 @@ macro_rules! zeroed_or {
         $zeroed
     };
     (facts, $zeroed:expr, $plain:expr) => {
+        $zeroed
+    };
+    (values, $zeroed:expr, $plain:expr) => {
         $zeroed
     };
     (fact_tlinks, $zeroed:expr, $plain:expr) => {
@@ -166,6 +169,22 @@ unsafe impl ZeroFree for crate::rete::Token {}
 // SAFETY: as for `Token`: integers, `Ix`, a `bool`, a `TokenId` and a `FactState`
 // (`repr(u8)`, `Free` = 0, checked below); listed in `zero_free_fields`.
 unsafe impl ZeroFree for crate::fact::Fact {}
+// SAFETY: all-zero bytes are `Value::Void` (`ZERO_VALUE` below: the compiler rejects a
+// constant whose bytes are no valid value, and the assertion names the variant), the
+// value a new cell of the fact value arena had when growth filled it; not zero-sized.
+// The arena's cells past its top are written before they are read anyway
+// (`reserve_cells`, then `write_cells`).
+unsafe impl ZeroFree for crate::value::Value {}
+
+/// A value of all-zero bytes (see `ZeroFree for Value`).
+const ZERO_VALUE: crate::value::Value = {
+    const N: usize = core::mem::size_of::<crate::value::Value>();
+    // SAFETY: const evaluation checks that the bytes are a valid `Value` (an invalid
+    // tag fails to compile); they are of the same size.
+    unsafe { core::mem::transmute::<[u8; N], crate::value::Value>([0u8; N]) }
+};
+const _: () = assert!(matches!(ZERO_VALUE, crate::value::Value::Void));
+
 // SAFETY: arrays of `Ix` (integers), not zero-sized. The engine writes an entry
 // before it reads it: a fact's links when it is asserted or restored (`assert_slots`,
 // `tmpl_link`), a partial match's when it enters its first extra index group (`in_x`),
@@ -188,6 +207,7 @@ const _: () = assert!(
         && crate::fact::FactState::Free as u8 == 0
         && core::mem::size_of::<crate::rete::Token>() > 0
         && core::mem::size_of::<crate::fact::Fact>() > 0
+        && core::mem::size_of::<crate::value::Value>() > 0
 );
 
 /// The address space a pool of [`ZeroFree`] entries reserves when it first grows
