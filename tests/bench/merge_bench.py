@@ -380,7 +380,9 @@ def check(text):
             continue
         worse = [header[i + 1] for i, v in enumerate(g) if i + 1 < ours and v is not None
                  and mine > v]
-        state = "above " + " and ".join(worse) if worse else "not above CLIPS"
+        measured = [v for v in g[:ours - 1] if v is not None]
+        state = ("above " + " and ".join(worse) if worse
+                 else "not above CLIPS" if measured else "CLIPS not measured")
         lines.append(f"{c[0]}: ours {mine:.2f}x vs {', '.join(f'{header[i + 1]} {v}' for i, v in enumerate(c[1:ours]))}: {state}")
     return "\n".join(lines)
 
