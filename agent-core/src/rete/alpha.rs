@@ -208,13 +208,16 @@ impl Core<'_> {
                 }
                 e = self.exprs[e as usize].next;
             }
-            out[n] = SlotLayout {
+            // Without host-speedups every field is named here.
+            #[allow(clippy::needless_update)]
+            let layout = SlotLayout {
                 slot: sd.data,
                 fixed,
                 multis,
                 first_mark: marks,
                 ..SlotLayout::EMPTY
             };
+            out[n] = layout;
             #[cfg(feature = "host-speedups")]
             self.place_elements(&mut out[n], sd.first);
             if multis >= 2 {
@@ -440,7 +443,8 @@ impl Core<'_> {
         match x.op {
             Op::Eq2 => {
                 let a = self.mark_operand(x.first, fact, lay, marks, fixed);
-                let b = self.mark_operand(self.exprs[x.first as usize].next, fact, lay, marks, fixed);
+                let b =
+                    self.mark_operand(self.exprs[x.first as usize].next, fact, lay, marks, fixed);
                 match (a, b) {
                     (MarkOperand::Unknown, _) | (_, MarkOperand::Unknown) => MarkTest::Unknown,
                     (MarkOperand::Value(a), MarkOperand::Value(b)) => {
@@ -567,7 +571,8 @@ impl Core<'_> {
                         if f + k > fixed || f + k > MAX_MARKS {
                             return MarkOperand::Later;
                         }
-                        at.base as usize + marks[f..f + k].iter().map(|&m| m as usize).sum::<usize>()
+                        at.base as usize
+                            + marks[f..f + k].iter().map(|&m| m as usize).sum::<usize>()
                     }
                 };
                 if pos >= len {
@@ -1342,7 +1347,7 @@ mod tests {
                         continue;
                     }
                     segs += 1;
-                    let mut eval = |c: &mut Core<'_>, t: Ix| {
+                    let eval = |c: &mut Core<'_>, t: Ix| {
                         c.st.net.this_pm = PatBinding { fact: f, marks };
                         let r = c.eval_tests(t).map_err(|e| e.is_capacity());
                         c.st.net.this_pm = PatBinding::EMPTY;
@@ -1352,7 +1357,11 @@ mod tests {
                     for fixed in 0..=nmarks {
                         match c.mark_tests(tests, f, &lay[..n], &marks, fixed) {
                             None => {
-                                assert_eq!(general, Ok(false), "alpha {a} fact {f} {marks:?} {fixed}");
+                                assert_eq!(
+                                    general,
+                                    Ok(false),
+                                    "alpha {a} fact {f} {marks:?} {fixed}"
+                                );
                                 decided += 1;
                             }
                             Some(rest) => {
