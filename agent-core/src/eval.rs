@@ -382,14 +382,40 @@ impl Core<'_> {
     #[cfg_attr(feature = "host-speedups", inline(always))]
     fn pattern_var_of(&mut self, x: Expr) -> Result<Value, EvalError> {
         #[cfg(feature = "host-speedups")]
-        if loc::elem(x.data) == loc::SINGLE && x.data != loc::FACT {
+        if x.data != loc::FACT {
             let fact = self.binding(x.aux).fact;
             if fact != NONE {
                 let f = &self.facts[fact as usize];
-                if f.flat {
-                    let v = self.values[(f.start + Ix::from(loc::slot(x.data))) as usize];
-                    if !v.is_multi() {
-                        return Ok(v);
+                let elem = loc::elem(x.data);
+                if elem == loc::SINGLE {
+                    if f.flat {
+                        let v = self.values[(f.start + Ix::from(loc::slot(x.data))) as usize];
+                        if !v.is_multi() {
+                            return Ok(v);
+                        }
+                    }
+                } else if loc::slot(x.data) == 0 && x.first != NONE {
+                    // slot 0 (an ordered fact's one multislot) is the fact's first cell:
+                    // an element with only single-field ones before it is at its index,
+                    // read here without `slot_cell` and the call
+                    let start = f.start as usize;
+                    if let Value::Multi(m) = self.values[start] {
+                        let mut c = self.exprs[x.first as usize].first;
+                        let mut i = 0u8;
+                        while c != NONE {
+                            let ex = self.exprs[c as usize];
+                            if ex.aux == 1 {
+                                break;
+                            }
+                            if i == elem {
+                                if Ix::from(i) < m.len {
+                                    return Ok(self.values[start + 1 + i as usize]);
+                                }
+                                break;
+                            }
+                            i += 1;
+                            c = ex.next;
+                        }
                     }
                 }
             }
