@@ -173,6 +173,29 @@ fn sub_string(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let end = int_arg(cx, a, 1, "sub-string")?;
     let s = lexeme_arg(cx, a, 2, "sub-string")?;
     let inst = matches!(cx.arg(a, 2), Value::Sym(_));
+    // host: an ASCII cut that is a symbol already (a cut taken again, as a join test
+    // does per pair) is found from its bytes where they are, not written out first
+    #[cfg(feature = "host-speedups")]
+    {
+        let syms = cx.syms();
+        let texts = crate::symbols::SymTexts {
+            rom: syms.rom,
+            entries: &*syms.entries,
+            bytes: &*syms.bytes,
+        };
+        if let Some(t) = ascii_body(texts.text_bytes(s), inst) {
+            let (from, to) = (start.max(1), end.min(t.len() as i64));
+            let part = match from > to {
+                true => &t[..0],
+                false => &t[from as usize - 1..to as usize],
+            };
+            // SAFETY: `part` is ASCII (`ascii_body`), and ASCII bytes are UTF-8.
+            let part = unsafe { core::str::from_utf8_unchecked(part) };
+            if let Some(id) = syms.find(part) {
+                return Ok(Value::Str(id));
+            }
+        }
+    }
     // copied within the symbol arena (a `Text` here was the image's deepest stack frame)
     cx.make_lexeme_with(true, a, TEXT_MAX, |view, _, out| {
         // host: an ASCII text's characters are its bytes, so the positions index the
