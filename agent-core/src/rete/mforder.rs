@@ -31,6 +31,12 @@ pub struct MfOrder {
     /// `pending.is_some()`, kept beside it: the check every alpha match makes
     /// (`match_one`) is then one byte compared.
     pub collecting: bool,
+    /// An emptied collection kept for the next fact, so collecting does not
+    /// allocate (and regrow) a vector per fact.
+    spare: Vec<Pending>,
+    /// Per alpha node: the network generation (+1; 0 never) its `choice_levels`
+    /// were worked out in, and them (they cost a walk of the pattern's slots).
+    levels: Vec<(u32, [Option<u8>; PATH_LEN])>,
     /// Per template: the network generation last checked (+1; 0 never) and whether
     /// one of its alpha nodes has a multifield choice.
     choice: Vec<(u32, bool)>,
@@ -41,6 +47,8 @@ impl MfOrder {
         MfOrder {
             pending: None,
             collecting: false,
+            spare: Vec::new(),
+            levels: Vec::new(),
             choice: Vec::new(),
         }
     }
@@ -100,7 +108,8 @@ impl Core<'_> {
         visit: impl FnOnce(&mut Self) -> Result<(), EvalError>,
     ) -> Result<(), EvalError> {
         // (a pattern test that asserts nests another collection: each keeps its own)
-        let outer = self.st.net.mf.pending.replace(Vec::new());
+        let fresh = core::mem::take(&mut self.st.net.mf.spare);
+        let outer = self.st.net.mf.pending.replace(fresh);
         self.st.net.mf.collecting = true;
         let r = visit(self);
         let mut got = core::mem::replace(&mut self.st.net.mf.pending, outer).unwrap_or_default();
@@ -108,24 +117,63 @@ impl Core<'_> {
         r?;
         if got.len() > 1 {
             // a node's matches come one after another (its segmentations): its choice
-            // levels are worked out once for them
-            let mut keyed: Vec<[Option<u8>; PATH_LEN]> = Vec::with_capacity(got.len());
-            let mut last = (NONE, [None; PATH_LEN]);
+            // levels are looked up once for them
+            let mut last = NONE;
             for &(a, _) in &got {
-                if a != last.0 {
-                    last = (a, self.choice_levels(a));
+                if a != last {
+                    self.cache_choice_levels(a);
+                    last = a;
                 }
-                keyed.push(last.1);
             }
-            let mut idx: Vec<usize> = (0..got.len()).collect();
-            idx.sort_by(|&i, &j| self.mf_cmp(got[i], &keyed[i], got[j], &keyed[j]));
-            let sorted: Vec<Pending> = idx.iter().map(|&i| got[i]).collect();
-            got = sorted;
+            if !self.one_node_in_order(&got) {
+                let lv = &self.st.net.mf.levels;
+                got.sort_by(|&x, &y| self.mf_cmp(x, &lv[x.0 as usize].1, y, &lv[y.0 as usize].1));
+            }
         }
-        for (a, marks) in got {
+        for &(a, marks) in &got {
             self.add_alpha_match(a, fact, marks)?;
         }
+        got.clear();
+        self.st.net.mf.spare = got;
         Ok(())
+    }
+
+    /// Whether `got` (2 or more matches) are all one node's and already in CLIPS's
+    /// order, so sorting would keep them as they are: a node's segmentations come
+    /// longer leading multifields first (`enumerate_marks`), the order `mf_cmp` asks
+    /// for, so one pattern with several `$?` (the usual case) needs no sort.
+    fn one_node_in_order(&self, got: &[Pending]) -> bool {
+        let a = got[0].0;
+        if got.iter().any(|&(b, _)| b != a) {
+            return false;
+        }
+        // the marks compared, level by level (`mf_cmp` with equal keys)
+        let levels = self.st.net.mf.levels[a as usize].1;
+        let n = self.alphas[a as usize].key_len as usize;
+        got.windows(2).all(|w| {
+            for &i in levels[..n].iter().flatten() {
+                let (p, q) = (w[0].1[i as usize], w[1].1[i as usize]);
+                if p != q {
+                    return p > q;
+                }
+            }
+            true
+        })
+    }
+
+    /// Makes `levels[a]` hold alpha node `a`'s `choice_levels` for this network.
+    fn cache_choice_levels(&mut self, a: Ix) {
+        let gen = self.st.net.net_gen.wrapping_add(1).max(1);
+        let i = a as usize;
+        if self.st.net.mf.levels.get(i).is_some_and(|&(g, _)| g == gen) {
+            return;
+        }
+        let l = self.choice_levels(a);
+        let v = &mut self.st.net.mf.levels;
+        if v.len() <= i {
+            v.resize(i + 1, (0, [None; PATH_LEN]));
+        }
+        v[i] = (gen, l);
     }
 
     /// CLIPS's order of two alpha matches (see the module docs).
