@@ -637,6 +637,8 @@ differential_programs! {
     p831_mf_retract_modify_matches => "831-mf-retract-modify-matches",
     p832_mf_sort_by_swaps_order => "832-mf-sort-by-swaps-order",
     p833_mf_mixed_test_kinds => "833-mf-mixed-test-kinds",
+    p834_mf_order_rules_change => "834-mf-order-rules-change",
+    p835_mf_order_two_multislots => "835-mf-order-two-multislots",
     p890_or_branch_of_several_ces => "890-or-branch-of-several-ces",
     p891_or_branch_of_several_ces_marks => "891-or-branch-of-several-ces-marks",
     p892_dummy_address_defaults => "892-dummy-address-defaults",
