@@ -7,7 +7,7 @@
 set -u
 bin=${1:?usage: quickdiff.sh /abs/path/robotino-agent [PROGRAM.clp ...]}
 shift
-here=$(cd "$(dirname "$0")" && pwd)
+here=$(cd "$(dirname "$(readlink -f "$0")")" && pwd)
 if [ $# -eq 0 ]; then set -- "$here"/[0-9]*.clp; fi
 scratch=$(mktemp -d)
 trap 'rm -rf "$scratch"' EXIT
