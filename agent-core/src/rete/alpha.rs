@@ -1175,16 +1175,23 @@ mod tests {
     use crate::host::NullHost;
     use std::boxed::Box;
 
+    /// An engine with `text` loaded and `facts` asserted.
+    fn loaded(text: &str, facts: &[&str]) -> Box<SmallEngine> {
+        let mut e = Box::new(SmallEngine::new());
+        let h = &mut NullHost;
+        e.load_str(h, "t", text).unwrap();
+        for f in facts {
+            e.assert_str(h, f).unwrap();
+        }
+        e
+    }
+
     /// For every alpha test and fact of its template that the node's layout admits,
     /// the quick path either declines or agrees with the evaluator; the forms it
     /// must decline (function calls, multifields, type errors) do go to it.
     #[test]
     fn quick_alpha_tests_agree_with_the_evaluator() {
-        let mut e = Box::new(SmallEngine::new());
-        let h = &mut NullHost;
-        e.load_str(
-            h,
-            "t",
+        let mut e = loaded(
             "(defglobal ?*lim* = 3 ?*mf* = (create$ 1 2))
              (deftemplate p (slot x) (slot y) (multislot m))
              (defrule r1 (p (x a) (y ~b)) =>)
@@ -1197,22 +1204,20 @@ mod tests {
              (defrule r8 (p (x ?x&:(< ?x 3))) =>)
              (defrule r9 (p (m $? d)) =>)
              (defrule r10 (p (m c ?z&:(eq ?z 2))) =>)",
-        )
-        .unwrap();
-        for f in [
-            "(p (x a) (y b) (m))",
-            "(p (x a) (y 2) (m c 2))",
-            "(p (x b) (y 3.0) (m c 3))",
-            "(p (x 1) (y 7) (m x))",
-            "(p (x 2) (y zz) (m c 2 d))",
-            "(state IDLE)",
-            "(state BUSY)",
-            "(state GONE)",
-            "(state)",
-            "(p (x a) (y 2) (m c))",
-        ] {
-            e.assert_str(h, f).unwrap();
-        }
+            &[
+                "(p (x a) (y b) (m))",
+                "(p (x a) (y 2) (m c 2))",
+                "(p (x b) (y 3.0) (m c 3))",
+                "(p (x 1) (y 7) (m x))",
+                "(p (x 2) (y zz) (m c 2 d))",
+                "(state IDLE)",
+                "(state BUSY)",
+                "(state GONE)",
+                "(state)",
+                "(p (x a) (y 2) (m c))",
+            ],
+        );
+        let h = &mut NullHost;
         let mut c = e.core(h);
         let (mut decided, mut declined, mut firsts) = (0, 0, 0);
         for a in 0..c.alphas.len() {
@@ -1276,11 +1281,7 @@ mod tests {
     #[cfg(feature = "host-speedups")]
     #[test]
     fn mark_tests_agree_with_the_evaluator() {
-        let mut e = Box::new(SmallEngine::new());
-        let h = &mut NullHost;
-        e.load_str(
-            h,
-            "t",
+        let mut e = loaded(
             "(defglobal ?*lim* = 3)
              (deftemplate p (slot x) (multislot m) (multislot n))
              (defrule r1 (p (m $?a ?x $?b ?y&:(> ?x ?y) $?c)) =>)
@@ -1290,18 +1291,16 @@ mod tests {
              (defrule r5 (p (m ?f $? ?l&:(neq ?l ?f)) (n $? a $? ?q&:(> ?q 1))) =>)
              (defrule r6 (p (m $? ?x $? ?y&:(> (+ ?x 0) ?y) $?)) =>)
              (defrule r7 (v $? ?x $? ?y&:(< ?x ?y)&:(> ?y 2) $? ?z&:(neq ?z ?y)) =>)",
-        )
-        .unwrap();
-        for f in [
-            "(p (x 1) (m 3 1 2 a 2.0) (n a 2 0))",
-            "(p (m) (n))",
-            "(p (m 1) (n a 5))",
-            "(p (m b 2 b 1.5 7) (n 1 a 3 a 0))",
-            "(v 1 x 3 0.5 4 4)",
-            "(v 2 2)",
-        ] {
-            e.assert_str(h, f).unwrap();
-        }
+            &[
+                "(p (x 1) (m 3 1 2 a 2.0) (n a 2 0))",
+                "(p (m) (n))",
+                "(p (m 1) (n a 5))",
+                "(p (m b 2 b 1.5 7) (n 1 a 3 a 0))",
+                "(v 1 x 3 0.5 4 4)",
+                "(v 2 2)",
+            ],
+        );
+        let h = &mut NullHost;
         let mut c = e.core(h);
         let (mut decided, mut segs) = (0, 0);
         for a in 0..c.alphas.len() {
@@ -1381,19 +1380,15 @@ mod tests {
     /// The forms the quick path leaves to the evaluator.
     #[test]
     fn quick_alpha_tests_decline_what_they_cannot_decide() {
-        let mut e = Box::new(SmallEngine::new());
-        let h = &mut NullHost;
-        e.load_str(
-            h,
-            "t",
+        let mut e = loaded(
             "(defglobal ?*mf* = (create$ 1 2))
              (deftemplate p (slot x) (multislot m))
              (defrule len (p (m $?m&:(> (length$ ?m) 0))) =>)
              (defrule glob (p (x ?x&:(eq ?x ?*mf*))) =>)
              (defrule typ (p (x ?x&:(< ?x 3))) =>)",
-        )
-        .unwrap();
-        e.assert_str(h, "(p (x sym) (m 1))").unwrap();
+            &["(p (x sym) (m 1))"],
+        );
+        let h = &mut NullHost;
         let mut c = e.core(h);
         let f = c.st.facts.fact_head;
         let mut n = 0;
