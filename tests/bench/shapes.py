@@ -3,6 +3,7 @@
 
     python3 tests/bench/shapes.py emit DIR [--only SHAPE ...] [--sizes N ...]
     python3 tests/bench/shapes.py measure DIR OURS_BIN [--only SHAPE ...] [--no-c64] [--sizes N ...]
+        [--cache CACHE_DIR] [--jobs N] [--ends-first]
 
 `emit` writes DIR/<shape>-<size>/ with program.clp (constructs only, as the bench's
 clipspy driver wants them), full.bat.clp (load*, reset, run, exit) and norun.bat.clp
@@ -22,16 +23,35 @@ shape and engine, run-phase instructions per rule fired at the largest size over
 at the smallest (issue 22: ours may grow no faster than CLIPS's); the firings are CLIPS
 6.4.2's Run() result (or CLIPS 6.30's FIRE lines without the 6.4 driver).
 
+`--cache CACHE_DIR` keeps the CLIPS 6.30 and 6.4.2 figures (run, whole, rules fired and a
+hash of the printed text) as one small JSON file per row and engine, named
+`<shape>-<size>-<engine>-<hash>.json`; the hash covers the program text, both batch texts
+(with DIR replaced by a placeholder, so any DIR hits the same entries) and the engine's
+identity (sha256 of /usr/bin/clips and its libclips, or of clipspy's `_clips.abi3.so` and
+c64run.c; valgrind's version). A changed shape, size or CLIPS build misses and is
+measured again; ours is never cached. Files are written to a temporary name and renamed,
+so several processes may share the directory, and a killed run keeps every finished row.
+No cache by default. `--jobs N` measures N rows at once; every row is printed to stderr as
+it completes (with the seconds since the start) and stdout keeps the table in row order.
+`--ends-first` starts every shape's smallest and largest sizes before the sizes between
+them (what the growth table needs first).
+
 Every program's data is asserted by rules during the run (an init rule or a chain of
 firings), so the run phase matches and fires; `deffacts` loads its data at reset.
 """
 
 import argparse
+import concurrent.futures
+import hashlib
+import json
 import os
 import re
+import shutil
 import subprocess
 import sys
 import tempfile
+import threading
+import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 CLIPS64_SO_HINT = "clips/_clips.abi3.so"
@@ -1116,7 +1136,8 @@ def emit(out_dir, only, sizes_=None):
 # --- measuring --------------------------------------------------------------------------
 
 
-def callgrind(cmd, cwd):
+def callgrind_run(cmd, cwd):
+    """(instructions, stdout, stderr) of one run under callgrind."""
     res = subprocess.run(
         ["valgrind", "--tool=callgrind", "--callgrind-out-file=/dev/null"] + cmd,
         cwd=cwd, capture_output=True, text=True, timeout=3600,
@@ -1124,7 +1145,11 @@ def callgrind(cmd, cwd):
     found = re.search(r"Collected : (\d+)", res.stderr)
     if not found:
         raise RuntimeError("no callgrind count for %s: %s" % (cmd, res.stderr[-500:]))
-    return int(found.group(1))
+    return int(found.group(1)), res.stdout, res.stderr
+
+
+def callgrind(cmd, cwd):
+    return callgrind_run(cmd, cwd)[0]
 
 
 def plain(cmd, cwd):
@@ -1148,25 +1173,106 @@ def build_c64(scratch):
              "-Wl,-rpath," + libdir],
             check=True,
         )
+        build_c64.so = so
         return exe
     except (subprocess.CalledProcessError, OSError, ValueError) as err:
         print("no CLIPS 6.4 driver: %s" % err, file=sys.stderr)
         return None
 
 
-def fired_count(d, c64):
-    """Rules fired in the run: CLIPS 6.4.2's Run() result, or CLIPS 6.30's FIRE lines."""
-    if c64:
-        res = subprocess.run([c64, os.path.join(d, "program.clp")], cwd=d, capture_output=True,
-                             text=True, timeout=600)
-        found = re.search(r"fired (\d+)", res.stderr)
-        if found:
-            return int(found.group(1))
+def fired_watch(d):
+    """Rules fired in the run by CLIPS 6.30's FIRE lines (when there is no 6.4 driver)."""
     batch = os.path.join(d, "watch.bat.clp")
     with open(batch, "w") as f:
         f.write('(load* "%s")\n(reset)\n(watch rules)\n(run)\n(exit)\n' % os.path.join(d, "program.clp"))
     out = plain(["clips", "-f2", batch], d)
     return sum(1 for line in out.splitlines() if line.startswith("FIRE"))
+
+
+# --- cache of the CLIPS figures ---------------------------------------------------------
+
+
+def file_digest(path):
+    h = hashlib.sha256()
+    with open(path, "rb") as f:
+        for block in iter(lambda: f.read(1 << 20), b""):
+            h.update(block)
+    return h.hexdigest()
+
+
+def engine_ids(c64):
+    """What makes a CLIPS engine's counts what they are: its binaries, its driver, valgrind."""
+    vg = subprocess.run(["valgrind", "--version"], capture_output=True, text=True).stdout.strip()
+    clips = shutil.which("clips") or "clips"
+    ids = {"6.30": {"valgrind": vg, "clips": file_digest(os.path.realpath(clips))}}
+    # The 6.30 binary is a small front end; the engine is its shared library.
+    try:
+        ldd = subprocess.run(["ldd", clips], capture_output=True, text=True).stdout
+        lib = re.search(r"libclips\S*\s+=>\s+(\S+)", ldd)
+        if lib:
+            ids["6.30"]["libclips"] = file_digest(os.path.realpath(lib.group(1)))
+    except OSError:
+        pass
+    if c64:
+        ids["6.4.2"] = {"valgrind": vg, "so": file_digest(build_c64.so),
+                        "driver": file_digest(os.path.join(HERE, "c64run.c"))}
+    ids["fired"] = ids.get("6.4.2", ids["6.30"])
+    return ids
+
+
+class Cache:
+    """CLIPS 6.30 and 6.4.2 results (deterministic) as one small JSON file per row and
+    engine, named by a hash of the engine's identity, the program text and the batch
+    texts. The emit directory's path is replaced by a placeholder before hashing, so the
+    cache serves any DIR (the count differs from a run in another DIR by the few
+    instructions of reading a longer or shorter path). Written as a temporary file then
+    renamed, so processes sharing the directory never read half a file."""
+
+    def __init__(self, path, ids):
+        self.path = path
+        self.ids = ids
+        self.hits = self.misses = 0
+        self.lock = threading.Lock()
+        if path:
+            os.makedirs(path, exist_ok=True)
+
+    def key(self, label, d):
+        texts = []
+        for name in ("program.clp", "full.bat.clp", "norun.bat.clp"):
+            with open(os.path.join(d, name)) as f:
+                texts.append(f.read().replace(d, "@DIR@"))
+        blob = json.dumps([label, self.ids[label], texts], sort_keys=True)
+        return hashlib.sha256(blob.encode()).hexdigest()
+
+    def get(self, label, d, compute):
+        if not self.path:
+            return compute()
+        key = self.key(label, d)
+        file = os.path.join(self.path, "%s-%s-%s.json" % (os.path.basename(d), label, key[:24]))
+        try:
+            with open(file) as f:
+                entry = json.load(f)
+            if entry.get("key") == key:
+                with self.lock:
+                    self.hits += 1
+                return entry["result"]
+        except (OSError, ValueError, KeyError):
+            pass
+        result = compute()
+        entry = {"key": key, "engine": label, "row": os.path.basename(d), "dir": d,
+                 "ids": self.ids[label], "result": result}
+        fd, tmp = tempfile.mkstemp(dir=self.path, prefix=".tmp-", suffix=".json")
+        with os.fdopen(fd, "w") as f:
+            json.dump(entry, f, indent=1, sort_keys=True)
+        os.replace(tmp, file)
+        with self.lock:
+            self.misses += 1
+        return result
+
+
+def text_summary(stdout):
+    text = stdout.strip()
+    return {"sha256": hashlib.sha256(text.encode()).hexdigest(), "tail": text[-80:]}
 
 
 def growth_table(results):
@@ -1179,6 +1285,8 @@ def growth_table(results):
         by_shape.setdefault(name, []).append((size, fired, runs))
     for name, rows in by_shape.items():
         rows.sort()
+        if len(rows) < 2:
+            continue
         (s0, f0, r0), (s1, f1, r1) = rows[0], rows[-1]
         grow = {}
         for label in r0:
@@ -1193,38 +1301,86 @@ def growth_table(results):
         )
 
 
-def measure(rows, ours, c64):
+def measure_row(d, engines, c64, cache):
+    runs, wholes, texts = {}, {}, {}
+    fired = None
+    for label, cmd in engines:
+        def compute(cmd=cmd):
+            full, out, err = callgrind_run(cmd(d, "full"), d)
+            norun = callgrind(cmd(d, "norun"), d)
+            result = {"run": full - norun, "whole": full, "output": text_summary(out)}
+            found = re.search(r"fired (\d+)", err)
+            if found:
+                result["fired"] = int(found.group(1))
+            return result
+
+        result = compute() if label == "ours" else cache.get(label, d, compute)
+        runs[label], wholes[label] = result["run"], result["whole"]
+        # CLIPS 6.30's command loop echoes nothing in -f2; compare the printed text.
+        texts[label] = result["output"]
+        if label == "6.4.2":
+            fired = result.get("fired")
+    if fired is None:
+        fired = cache.get("fired", d, lambda: fired_watch(d))
+    return fired, runs, wholes, texts
+
+
+def format_row(name, size, fired, runs, wholes, texts):
+    same = len(set(t["sha256"] for t in texts.values())) == 1
+    best_run = min(v for k, v in runs.items() if k != "ours")
+    best_whole = min(v for k, v in wholes.items() if k != "ours")
+    fmt = lambda v: "%.2f M" % (v / 1e6)
+    return "| %s | %d | %d | %s | %s | %s | %.2f | %s | %s | %s | %.2f | %s |" % (
+        name, size, fired, fmt(runs["6.30"]), fmt(runs.get("6.4.2", 0)), fmt(runs["ours"]),
+        best_run / max(runs["ours"], 1), fmt(wholes["6.30"]), fmt(wholes.get("6.4.2", 0)),
+        fmt(wholes["ours"]), best_whole / max(wholes["ours"], 1),
+        "yes" if same else "NO: " + " / ".join("%s %r" % (k, v["tail"]) for k, v in texts.items()))
+
+
+def ends_first(rows):
+    """Row indices: every shape's smallest size, then its largest, then the sizes between,
+    so that an interrupted run has what the growth table needs."""
+    sizes = {}
+    for name, size, _ in rows:
+        sizes.setdefault(name, []).append(size)
+    rank = lambda name, size: 0 if size == min(sizes[name]) else 1 if size == max(sizes[name]) else 2
+    return sorted(range(len(rows)), key=lambda i: (rank(rows[i][0], rows[i][1]), i))
+
+
+def measure(rows, ours, c64, cache=None, jobs=1, order=None):
+    """Rows are measured by `jobs` workers (started in `order`, default as given); each row
+    is printed to stderr as it completes and the table on stdout keeps the rows' order (a
+    row as soon as all before it are done)."""
+    cache = cache or Cache(None, {})
     engines = [("6.30", lambda d, p: ["clips", "-f2", os.path.join(d, p + ".bat.clp")])]
     if c64:
         engines.append(("6.4.2", lambda d, p: [c64, os.path.join(d, "program.clp")] + ([] if p == "full" else ["norun"])))
     engines.append(("ours", lambda d, p: [ours, "clips", "-f2", os.path.join(d, p + ".bat.clp")]))
     print("| shape | size | fired | 6.30 run | 6.4.2 run | ours run | run ratio | 6.30 whole | 6.4.2 whole | ours whole | whole ratio | same output |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
-    results = []
-    for name, size, d in rows:
-        runs, wholes, outputs = {}, {}, {}
-        for label, cmd in engines:
-            full = callgrind(cmd(d, "full"), d)
-            norun = callgrind(cmd(d, "norun"), d)
-            runs[label], wholes[label] = full - norun, full
-            outputs[label] = plain(cmd(d, "full"), d)
-        # CLIPS 6.30's command loop echoes nothing in -f2; compare the printed text.
-        texts = {k: v.strip() for k, v in outputs.items()}
-        same = len(set(texts.values())) == 1
-        best_run = min(v for k, v in runs.items() if k != "ours")
-        best_whole = min(v for k, v in wholes.items() if k != "ours")
-        fired = fired_count(d, c64)
-        results.append((name, size, fired, runs))
-        fmt = lambda v: "%.2f M" % (v / 1e6)
-        print(
-            "| %s | %d | %d | %s | %s | %s | %.2f | %s | %s | %s | %.2f | %s |"
-            % (name, size, fired, fmt(runs["6.30"]), fmt(runs.get("6.4.2", 0)), fmt(runs["ours"]),
-               best_run / max(runs["ours"], 1), fmt(wholes["6.30"]), fmt(wholes.get("6.4.2", 0)),
-               fmt(wholes["ours"]), best_whole / max(wholes["ours"], 1),
-               "yes" if same else "NO: " + " / ".join("%s %r" % (k, v[-80:]) for k, v in texts.items())),
-            flush=True,
-        )
-    growth_table(results)
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|", flush=True)
+    results, lines = [None] * len(rows), [None] * len(rows)
+    printed = 0
+    started = time.time()
+    with concurrent.futures.ThreadPoolExecutor(max_workers=max(jobs, 1)) as pool:
+        futures = {pool.submit(measure_row, rows[i][2], engines, c64, cache): i
+                   for i in (order or range(len(rows)))}
+        for future in concurrent.futures.as_completed(futures):
+            i = futures[future]
+            name, size, _ = rows[i]
+            try:
+                fired, runs, wholes, texts = future.result()
+            except (RuntimeError, OSError, subprocess.TimeoutExpired) as err:
+                lines[i] = "| %s | %d | failed: %s |" % (name, size, str(err)[:200].replace("\n", " "))
+            else:
+                results[i] = (name, size, fired, runs)
+                lines[i] = format_row(name, size, fired, runs, wholes, texts)
+            print("[%5.0f s] %s" % (time.time() - started, lines[i]), file=sys.stderr, flush=True)
+            while printed < len(rows) and lines[printed] is not None:
+                print(lines[printed], flush=True)
+                printed += 1
+    growth_table([r for r in results if r])
+    if cache.path:
+        print("cache %s: %d hits, %d new" % (cache.path, cache.hits, cache.misses), file=sys.stderr)
 
 
 def main():
@@ -1240,12 +1396,19 @@ def main():
     m.add_argument("--only", nargs="*")
     m.add_argument("--no-c64", action="store_true")
     m.add_argument("--sizes", nargs="*", type=int, help="these sizes instead of the shape's own")
+    m.add_argument("--cache", metavar="CACHE_DIR",
+                   help="keep and reuse CLIPS 6.30 and 6.4.2 results here (ours is always measured)")
+    m.add_argument("--jobs", type=int, default=1, help="rows measured in parallel")
+    m.add_argument("--ends-first", action="store_true",
+                   help="start every shape's smallest and largest sizes before the others")
     args = parser.parse_args()
     rows = emit(os.path.abspath(args.dir), args.only, args.sizes)
     if args.cmd == "measure":
         with tempfile.TemporaryDirectory() as scratch:
             c64 = None if args.no_c64 else build_c64(scratch)
-            measure(rows, os.path.abspath(args.ours), c64)
+            cache = Cache(os.path.abspath(args.cache) if args.cache else None, engine_ids(c64))
+            order = ends_first(rows) if args.ends_first else None
+            measure(rows, os.path.abspath(args.ours), c64, cache, args.jobs, order)
 
 
 if __name__ == "__main__":
