@@ -3,7 +3,8 @@
 
     python3 tests/bench/shapes.py emit DIR [--only SHAPE ...] [--sizes N ...]
     python3 tests/bench/shapes.py measure DIR OURS_BIN [--only SHAPE ...] [--no-c64] [--sizes N ...]
-        [--cache CACHE_DIR] [--jobs N] [--ends-first]
+        [--cache CACHE_DIR] [--jobs N] [--ends-first] [--rows FILE]
+    python3 tests/bench/shapes.py table FILE ...
 
 `emit` writes DIR/<shape>-<size>/ with program.clp (constructs only, as the bench's
 clipspy driver wants them), full.bat.clp (load*, reset, run, exit) and norun.bat.clp
@@ -34,7 +35,9 @@ so several processes may share the directory, and a killed run keeps every finis
 No cache by default. `--jobs N` measures N rows at once; every row is printed to stderr as
 it completes (with the seconds since the start) and stdout keeps the table in row order.
 `--ends-first` starts every shape's smallest and largest sizes before the sizes between
-them (what the growth table needs first).
+them (what the growth table needs first). `--rows FILE` appends each finished row's exact
+figures to FILE as a JSON line; `shapes.py table FILE ...` prints both tables from such
+files (the rows of an interrupted run, or of several runs put together).
 
 Every program's data is asserted by rules during the run (an init rule or a chain of
 firings), so the run phase matches and fires; `deffacts` loads its data at reset.
@@ -1347,10 +1350,11 @@ def ends_first(rows):
     return sorted(range(len(rows)), key=lambda i: (rank(rows[i][0], rows[i][1]), i))
 
 
-def measure(rows, ours, c64, cache=None, jobs=1, order=None):
+def measure(rows, ours, c64, cache=None, jobs=1, order=None, rows_file=None):
     """Rows are measured by `jobs` workers (started in `order`, default as given); each row
     is printed to stderr as it completes and the table on stdout keeps the rows' order (a
-    row as soon as all before it are done)."""
+    row as soon as all before it are done). With `rows_file`, each row's exact figures are
+    appended to it as one JSON line as soon as the row is done (`table` prints them)."""
     cache = cache or Cache(None, {})
     engines = [("6.30", lambda d, p: ["clips", "-f2", os.path.join(d, p + ".bat.clp")])]
     if c64:
@@ -1374,6 +1378,10 @@ def measure(rows, ours, c64, cache=None, jobs=1, order=None):
             else:
                 results[i] = (name, size, fired, runs)
                 lines[i] = format_row(name, size, fired, runs, wholes, texts)
+                if rows_file:
+                    with open(rows_file, "a") as f:
+                        f.write(json.dumps({"shape": name, "size": size, "fired": fired, "runs": runs,
+                                            "wholes": wholes, "texts": texts, "ours": ours}) + "\n")
             print("[%5.0f s] %s" % (time.time() - started, lines[i]), file=sys.stderr, flush=True)
             while printed < len(rows) and lines[printed] is not None:
                 print(lines[printed], flush=True)
@@ -1381,6 +1389,28 @@ def measure(rows, ours, c64, cache=None, jobs=1, order=None):
     growth_table([r for r in results if r])
     if cache.path:
         print("cache %s: %d hits, %d new" % (cache.path, cache.hits, cache.misses), file=sys.stderr)
+
+
+def table(files):
+    """The two tables from JSON lines written by `measure --rows`, in SHAPES order; a row
+    measured more than once: its last line."""
+    latest = {}
+    for path in files:
+        with open(path) as f:
+            for line in f:
+                if line.strip():
+                    r = json.loads(line)
+                    latest[(r["shape"], r["size"])] = r
+    names = list(SHAPES)
+    key = lambda k: (names.index(k[0]) if k[0] in names else len(names), k[0], k[1])
+    print("| shape | size | fired | 6.30 run | 6.4.2 run | ours run | run ratio | 6.30 whole | 6.4.2 whole | ours whole | whole ratio | same output |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
+    results = []
+    for k in sorted(latest, key=key):
+        r = latest[k]
+        print(format_row(r["shape"], r["size"], r["fired"], r["runs"], r["wholes"], r["texts"]))
+        results.append((r["shape"], r["size"], r["fired"], r["runs"]))
+    growth_table(results)
 
 
 def main():
@@ -1401,14 +1431,20 @@ def main():
     m.add_argument("--jobs", type=int, default=1, help="rows measured in parallel")
     m.add_argument("--ends-first", action="store_true",
                    help="start every shape's smallest and largest sizes before the others")
+    m.add_argument("--rows", metavar="FILE", help="append each row's exact figures to FILE (JSON lines)")
+    t = sub.add_parser("table", help="print the tables from `measure --rows` files")
+    t.add_argument("files", nargs="+")
     args = parser.parse_args()
+    if args.cmd == "table":
+        table(args.files)
+        return
     rows = emit(os.path.abspath(args.dir), args.only, args.sizes)
     if args.cmd == "measure":
         with tempfile.TemporaryDirectory() as scratch:
             c64 = None if args.no_c64 else build_c64(scratch)
             cache = Cache(os.path.abspath(args.cache) if args.cache else None, engine_ids(c64))
             order = ends_first(rows) if args.ends_first else None
-            measure(rows, os.path.abspath(args.ours), c64, cache, args.jobs, order)
+            measure(rows, os.path.abspath(args.ours), c64, cache, args.jobs, order, args.rows)
 
 
 if __name__ == "__main__":
