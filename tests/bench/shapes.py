@@ -35,7 +35,8 @@ so several processes may share the directory, and a killed run keeps every finis
 No cache by default. `--jobs N` measures N rows at once; every row is printed to stderr as
 it completes (with the seconds since the start) and stdout keeps the table in row order.
 `--ends-first` starts every shape's smallest and largest sizes before the sizes between
-them (what the growth table needs first). `--rows FILE` appends each finished row's exact
+them (what the growth table needs first); rows are started in the order `--only` names
+the shapes (list the cheap ones first to have most shapes by a deadline). `--rows FILE` appends each finished row's exact
 figures to FILE as a JSON line; `shapes.py table FILE ...` prints both tables from such
 files (the rows of an interrupted run, or of several runs put together).
 
@@ -1118,10 +1119,13 @@ SHAPES = {
 
 
 def emit(out_dir, only, sizes_=None):
+    """Rows in SHAPES order, or in the order `only` names the shapes."""
     rows = []
-    for name, (make, sizes) in SHAPES.items():
-        if only and name not in only:
-            continue
+    unknown = [name for name in only or [] if name not in SHAPES]
+    if unknown:
+        raise SystemExit("unknown shapes: %s" % " ".join(unknown))
+    for name in dict.fromkeys(only or SHAPES):
+        make, sizes = SHAPES[name]
         for size in sizes_ or sizes:
             row = "%s-%d" % (name, size)
             d = os.path.join(out_dir, row)
