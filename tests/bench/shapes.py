@@ -36,9 +36,10 @@ No cache by default. `--jobs N` measures N rows at once; every row is printed to
 it completes (with the seconds since the start) and stdout keeps the table in row order.
 `--ends-first` starts every shape's smallest and largest sizes before the sizes between
 them (what the growth table needs first); rows are started in the order `--only` names
-the shapes (list the cheap ones first to have most shapes by a deadline). `--rows FILE` appends each finished row's exact
-figures to FILE as a JSON line; `shapes.py table FILE ...` prints both tables from such
-files (the rows of an interrupted run, or of several runs put together).
+the shapes (list the cheap ones first to have most shapes by a deadline). `--rows FILE`
+appends each finished row's exact figures to FILE as a JSON line; `shapes.py table
+FILE ...` prints both tables from such files (the rows of an interrupted run, or of
+several runs put together; a row in several: its last line).
 
 Every program's data is asserted by rules during the run (an init rule or a chain of
 firings), so the run phase matches and fires; `deffacts` loads its data at reset.
