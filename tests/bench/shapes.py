@@ -1071,6 +1071,274 @@ def mfscan(n):
     )
 
 
+# --- round 5 (branch g7) ----------------------------------------------------------------
+
+
+def perm(rnd, n):
+    """A pseudo-random permutation of 0..n-1 (Fisher-Yates over `lcg`)."""
+    p = list(range(n))
+    for i in range(n - 1, 0, -1):
+        j = next(rnd) % (i + 1)
+        p[i], p[j] = p[j], p[i]
+    return p
+
+
+def deepjoin(n):
+    """A 7-pattern join chain linked by variables over n facts per relation (one full
+    match per start), the relations asserted interleaved so every memory grows."""
+    rnd = lcg(n + 7)
+    perms = [perm(rnd, n) for _ in range(6)]
+    asserts = []
+    for i in range(n):
+        asserts.append("(assert (e0 %d %d))" % (i, i))
+        for k in range(6):
+            asserts.append("(assert (e%d %d %d))" % (k + 1, i, perms[k][i]))
+        # a dead end per relation: a key nothing else carries
+        asserts.append("(assert (e%d %d %d))" % (1 + i % 6, n + i, i))
+    return (
+        defglobals("full", "odd", "h")
+        + "(defrule init => %s)\n" % "\n  ".join(asserts)
+        + """(defrule full (e0 ?s ?a) (e1 ?a ?b) (e2 ?b ?c) (e3 ?c ?d) (e4 ?d ?e) (e5 ?e ?f) (e6 ?f ?g) =>
+  (bind ?*full* (+ ?*full* 1)) (bind ?*h* (mod (+ (* ?*h* 31) ?g) 1000003)))
+(defrule odd (e1 ?a ?b) (e2 ?b ?c) (e3 ?c ?d&:(= (mod ?d 2) 1)) (e4 ?d ?a) =>
+  (bind ?*odd* (+ ?*odd* 1)))
+"""
+        + report_rule("full", "odd", "h")
+    )
+
+
+def skewjoin(n):
+    """Joins on a variable whose values are skewed: 7 of 8 items share key 0, so one
+    hash bucket holds most facts; the second join variable (the id) decides."""
+    asserts = []
+    for i in range(n):
+        key = 0 if i % 8 else i
+        asserts.append("(assert (item %d %d))" % (i, key))
+        if i % 3:
+            asserts.append("(assert (tag %d %d %s))" % (key, i, COLORS[i % 4]))
+    asserts += ["(assert (owner %d o%d))" % (k, k) for k in range(0, n, 8)]
+    return (
+        defglobals("tagged", "owned", "red", "untagged")
+        + "(defrule init => %s)\n" % "\n  ".join(asserts)
+        + """(defrule tagged (item ?i ?k) (tag ?k ?i ?c) => (bind ?*tagged* (+ ?*tagged* 1)))
+(defrule owned (item ?i ?k) (owner ?k ?o) => (bind ?*owned* (+ ?*owned* 1)))
+(defrule red (tag ?k ?i red) (item ?i ?k) (owner ?k ?o) => (bind ?*red* (+ ?*red* 1)))
+(defrule untagged (declare (salience -10)) (item ?i ?k) (not (tag ?k ?i ?)) =>
+  (bind ?*untagged* (+ ?*untagged* 1)))
+"""
+        + report_rule("tagged", "owned", "red", "untagged")
+    )
+
+
+def manyexists(n):
+    """Eight rules of `exists` on different keys (a slot join, a constant, a
+    predicate), decided as offers arrive and re-decided as they are withdrawn."""
+    rnd = lcg(n + 3)
+    asserts = ["(assert (ask (id %d) (kind k%d) (lvl %d)))" % (i, i % 5, next(rnd) % 10) for i in range(n)]
+    asserts += [
+        "(assert (offer (id %d) (kind k%d) (lvl %d) (by s%d)))" % (i % n, next(rnd) % 5, next(rnd) % 10, next(rnd) % 4)
+        for i in range(3 * n)
+    ]
+    return (
+        defglobals("e1", "e2", "e3", "e4", "e5", "e6", "e7", "e8", "gone")
+        + "(deftemplate ask (slot id) (slot kind) (slot lvl))\n"
+        + "(deftemplate offer (slot id) (slot kind) (slot lvl) (slot by))\n"
+        + "(defrule init => %s (assert (drop 0)))\n" % "\n  ".join(asserts)
+        + """(defrule e1 (ask (id ?i)) (exists (offer (id ?i))) => (bind ?*e1* (+ ?*e1* 1)))
+(defrule e2 (ask (kind ?k)) (exists (offer (kind ?k) (by s0))) => (bind ?*e2* (+ ?*e2* 1)))
+(defrule e3 (ask (id ?i) (kind ?k)) (exists (offer (id ?i) (kind ?k))) => (bind ?*e3* (+ ?*e3* 1)))
+(defrule e4 (ask (id ?i) (lvl ?l)) (exists (offer (id ?i) (lvl ?m&:(> ?m ?l)))) => (bind ?*e4* (+ ?*e4* 1)))
+(defrule e5 (ask (id ?i) (lvl 3)) (exists (offer (id ?i) (by s1))) => (bind ?*e5* (+ ?*e5* 1)))
+(defrule e6 (ask (id ?i)) (exists (offer (id ?i) (by s2) (lvl ?m&:(< ?m 5)))) => (bind ?*e6* (+ ?*e6* 1)))
+(defrule e7 (ask (id ?i) (kind k2)) (exists (offer (id ?i) (kind ~k2))) => (bind ?*e7* (+ ?*e7* 1)))
+(defrule e8 (ask (id ?i)) (exists (offer (id ?i) (by s3)) (offer (id ?i) (by s0))) => (bind ?*e8* (+ ?*e8* 1)))
+(defrule drop (declare (salience -10)) ?d <- (drop ?j) ?o <- (offer (id ?j)) =>
+  (retract ?o) (bind ?*gone* (+ ?*gone* 1)))
+(defrule next (declare (salience -20)) ?d <- (drop ?j&:(< ?j %d)) =>
+  (retract ?d) (assert (drop (+ ?j 2))))
+(defrule lost (declare (salience -30)) (ask (id ?i)) (not (offer (id ?i))) =>
+  (bind ?*gone* (+ ?*gone* 100)))
+"""
+        % n
+        + report_rule("e1", "e2", "e3", "e4", "e5", "e6", "e7", "e8", "gone")
+    )
+
+
+def rangejoin(n):
+    """`test` CEs comparing numbers across joins: windows (lo < v < hi) and near
+    pairs, which no hash can serve, over n values."""
+    rnd = lcg(n + 11)
+    asserts = ["(assert (val %d %d))" % (i, next(rnd) % (4 * n)) for i in range(n)]
+    asserts += ["(assert (win %d %d))" % (w, w * 40) for w in range(n // 10)]
+    return (
+        defglobals("inwin", "near", "chain")
+        + "(defrule init => %s)\n" % "\n  ".join(asserts)
+        + """(defrule inwin (win ?w ?lo) (val ?i ?v) (test (and (>= ?v ?lo) (< ?v (+ ?lo 40)))) =>
+  (bind ?*inwin* (+ ?*inwin* 1)))
+(defrule near (val ?i ?a) (val ?j&:(> ?j ?i) ?b) (test (< (abs (- ?a ?b)) 2)) =>
+  (bind ?*near* (+ ?*near* 1)))
+(defrule chain (val ?i ?a) (val ?j ?b&:(> ?b ?a)) (test (< ?b (+ ?a 3))) (val ?k ?c&:(> ?c ?b))
+  (test (< ?c (+ ?b 3))) => (bind ?*chain* (+ ?*chain* 1)))
+"""
+        + report_rule("inwin", "near", "chain")
+    )
+
+
+def reassert(n):
+    """Retract and assert again the same fact content, and asserts of facts already
+    present (duplicates: no new fact), as the fact base holds n facts."""
+    asserts = ["(assert (data %d %s %d))" % (i, COLORS[i % 7], i * 3) for i in range(n)]
+    asserts += ["(assert (rec (id %d) (c %s) (v %d)))" % (i, COLORS[i % 5], i) for i in range(n)]
+    return (
+        defglobals("dup", "again", "seen")
+        + "(deftemplate rec (slot id) (slot c) (slot v))\n"
+        + "(defrule init => %s (assert (step 0)))\n" % "\n  ".join(asserts)
+        + """(defrule step ?s <- (step ?k&:(< ?k %d)) ?d <- (data ?k ?c ?v) ?r <- (rec (id ?k) (c ?rc) (v ?rv)) =>
+  (retract ?s ?d ?r)
+  (assert (data ?k ?c ?v))
+  (assert (rec (id ?k) (c ?rc) (v ?rv)))
+  (assert (data ?k ?c ?v))
+  (assert (rec (id (div ?k 2)) (c ?rc) (v (div ?k 2))))
+  (assert (data (div ?k 3) ?c (* 3 (div ?k 3))))
+  (bind ?*dup* (+ ?*dup* 1))
+  (assert (step (+ ?k 1))))
+(defrule again (data ?k ?c ?v) (rec (id ?k) (c red)) => (bind ?*again* (+ ?*again* 1)))
+(defrule seen (declare (salience -5)) (data ?k&:(= (mod ?k 5) 0) ?c ?v) => (bind ?*seen* (+ ?*seen* 1)))
+(defrule zz-count (declare (salience -900)) =>
+  (printout t (length$ (find-all-facts ((?f data)) TRUE)) " " (length$ (find-all-facts ((?f rec)) TRUE)) crlf))
+"""
+        % n
+        + report_rule("dup", "again", "seen")
+    )
+
+
+def wideglobal(n):
+    """A 20-slot template; rules test one slot each against a global (in a pattern
+    predicate and in a `test` CE) while right-hand sides move the globals."""
+    rnd = lcg(n + 17)
+    slots = ["s%d" % i for i in range(20)]
+    asserts = [
+        "(assert (w (id %d) %s))" % (i, " ".join("(%s %d)" % (s, next(rnd) % 100) for s in slots))
+        for i in range(n)
+    ]
+    rules = []
+    for r in range(10):
+        s = slots[2 * r + 1]
+        if r % 2:
+            rules.append(
+                "(defrule g%d (w (id ?i) (%s ?v&:(> ?v ?*t%d*))) => (bind ?*c%d* (+ ?*c%d* 1)) (bind ?*t%d* (mod (+ ?*t%d* 7) 100)))\n"
+                % (r, s, r, r, r, (r + 1) % 10, (r + 1) % 10)
+            )
+        else:
+            rules.append(
+                "(defrule g%d (w (id ?i) (%s ?v) (s0 ?z)) (test (< ?v (+ ?*t%d* ?z))) => (bind ?*c%d* (+ ?*c%d* 1)))\n"
+                % (r, s, r, r, r)
+            )
+    return (
+        defglobals(*(["t%d" % r for r in range(10)] + ["c%d" % r for r in range(10)]))
+        + "(deftemplate w (slot id) %s)\n" % " ".join("(slot %s)" % s for s in slots)
+        + "(defrule init => (bind ?*t1* 50) (bind ?*t4* 30) %s)\n" % "\n  ".join(asserts)
+        + "".join(rules)
+        + report_rule(*["c%d" % r for r in range(10)])
+    )
+
+
+def bigagenda(n):
+    """Thousands of activations pending at once over 9 saliences; firings add more
+    at every salience, so each insertion lands in a large agenda."""
+    sal = [-40, -30, -20, -10, 0, 10, 20, 30, 40]
+    asserts = ["(assert (p %d))" % i for i in range(n)]
+    rules = []
+    for k, s in enumerate(sal):
+        rules.append(
+            "(defrule r%d (declare (salience %d)) (p ?i&:(<> (mod ?i 9) %d)) => (bind ?*h* (mod (+ (* ?*h* 31) ?i %d) 1000003))%s)\n"
+            % (k, s, k, k, " (assert (q ?i))" if k == 8 else "")
+        )
+    rules.append(
+        "(defrule q1 (declare (salience 35)) (q ?i&:(= (mod ?i 3) 0)) => (bind ?*h* (mod (+ (* ?*h* 7) ?i) 1000003)))\n"
+        "(defrule q2 (declare (salience -35)) (q ?i) => (bind ?*q* (+ ?*q* 1)))\n"
+    )
+    return (
+        defglobals("h", "q")
+        + "(defrule init (declare (salience 100)) => %s)\n" % "\n  ".join(asserts)
+        + "".join(rules)
+        + report_rule("h", "q")
+    )
+
+
+def heldmod(n):
+    """`modify` of facts that many rules' joins hold: each object is joined by 8
+    rules (with refs, tags, a control fact and each other); a walk modifies them."""
+    asserts = []
+    for i in range(n):
+        asserts.append("(assert (obj (id %d) (grp %d) (val 0)))" % (i, i % 10))
+        asserts.append("(assert (ref %d %d))" % (i, (i * 7) % n))
+        asserts.append("(assert (tag %d %s))" % (i, COLORS[i % 3]))
+    return (
+        defglobals("h", "m")
+        + "(deftemplate obj (slot id) (slot grp) (slot val))\n"
+        + "(defrule init => %s (assert (walk 0)) (assert (mode on)))\n" % "\n  ".join(asserts)
+        + """(defrule walk ?w <- (walk ?k&:(< ?k %d)) ?o <- (obj (id ?k) (val ?v)) =>
+  (retract ?w) (modify ?o (val (+ ?v 1))) (bind ?*m* (+ ?*m* 1)) (assert (walk (+ ?k 1))))
+(defrule h1 (obj (id ?i) (val 1)) (ref ?i ?j) (obj (id ?j) (val ?w)) => (bind ?*h* (mod (+ (* ?*h* 3) ?i ?w) 1000003)))
+(defrule h2 (obj (id ?i) (grp ?g)) (tag ?i red) (mode on) => (bind ?*h* (mod (+ ?*h* ?g) 1000003)))
+(defrule h3 (obj (id ?i) (grp ?g) (val ?v&:(> ?v 0))) (tag ?i ~blue) => (bind ?*h* (mod (+ (* ?*h* 5) ?i) 1000003)))
+(defrule h4 (mode on) (obj (id ?i) (val ?v)) (not (tag ?i blue)) (ref ?i ?j&:(> ?j ?i)) => (bind ?*h* (mod (+ ?*h* ?j) 1000003)))
+(defrule h5 (obj (id ?i) (grp 3) (val ?v)) (ref ?j ?i) => (bind ?*h* (mod (+ (* ?*h* 7) ?j) 1000003)))
+(defrule h6 (obj (id ?i) (val ?v)) (exists (ref ?i ?)) (tag ?i green) => (bind ?*h* (mod (+ ?*h* 11) 1000003)))
+(defrule h7 (obj (id ?i) (val 0)) (ref ?i ?j) => (bind ?*h* (mod (+ ?*h* 13) 1000003)))
+(defrule h8 (obj (id ?i) (grp ?g) (val ?v)) (obj (id ?j&:(= ?j (+ ?i 1))) (grp ?g2) (val ?v)) => (bind ?*h* (mod (+ ?*h* ?g2) 1000003)))
+"""
+        % n
+        + report_rule("h", "m")
+    )
+
+
+def mfgrow(n):
+    """A multislot grown by one element per firing (modify with create$), matched by
+    `$?` patterns around constants and variables against the growing list."""
+    return (
+        defglobals("a", "b", "c", "d")
+        + "(deftemplate hist (slot id) (multislot xs))\n"
+        + "(defrule init => (assert (hist (id 1))) (assert (hist (id 2))) (assert (want 3)) (assert (want 17)))\n"
+        + """(defrule grow ?h <- (hist (id ?id) (xs $?x&:(< (length$ ?x) %d))) =>
+  (modify ?h (xs (create$ $?x (mod (+ (* (length$ ?x) 7) ?id) 23)))))
+(defrule has-want (hist (id ?id) (xs $? ?w $?)) (want ?w) => (bind ?*a* (+ ?*a* 1)))
+(defrule ends (hist (id ?id) (xs ?f $? ?l&:(> ?l ?f))) => (bind ?*b* (+ ?*b* 1)))
+(defrule last-two (hist (xs $? ?x ?x)) => (bind ?*c* (+ ?*c* 1)))
+(defrule zero (hist (id 2) (xs $?p 0 $?)) => (bind ?*d* (+ ?*d* (length$ ?p))))
+"""
+        % n
+        + report_rule("a", "b", "c", "d")
+    )
+
+
+def modrules(n):
+    """Five modules of n rules each (constant tests on a kind), focused in turn;
+    jobs pass through every module, one rule per module matching each."""
+    mods = ["M%d" % m for m in range(5)]
+    jobs = 200
+    out = [
+        "(defmodule MAIN (export ?ALL))\n",
+        "(deftemplate job (slot id) (slot kind) (slot stage (default 0)))\n",
+        "(defglobal ?*h* = 0 ?*n* = 0)\n",
+        "(defrule init => %s (assert (round 0)))\n"
+        % " ".join("(assert (job (id %d) (kind k%d)))" % (i, (i * 37) % n) for i in range(jobs)),
+        "(defrule next ?r <- (round ?k&:(< ?k 3)) => (retract ?r) (assert (round (+ ?k 1))) (focus %s))\n"
+        % " ".join(mods),
+        "(defrule zz-report (declare (salience -1000)) => (printout t ?*h* \" \" ?*n* crlf))\n",
+    ]
+    for m, mod in enumerate(mods):
+        out.append("(defmodule %s (import MAIN ?ALL))\n" % mod)
+        for r in range(n):
+            out.append(
+                "(defrule %s::r%d ?j <- (job (id ?i) (kind k%d) (stage %d)) (round ?k) =>"
+                " (bind ?*n* (+ ?*n* 1)) (bind ?*h* (mod (+ (* ?*h* %d) ?i %d) 1000003)) (modify ?j (stage %d)))\n"
+                % (mod, r, r, m + 5 * 0, 3 + m, r, (m + 1) % 5)
+            )
+    return "".join(out)
+
+
 SHAPES = {
     "mfwild": (mfwild, [100, 400, 1600]),
     "testce": (testce, [30, 60, 120]),
@@ -1116,6 +1384,17 @@ SHAPES = {
     # several `$?` in one multislot (branch p34)
     "mfsort": (mfsort, [8, 16, 24, 32]),
     "mfscan": (mfscan, [10, 20, 40, 80]),
+    # round 5 (g7)
+    "deepjoin": (deepjoin, [100, 200, 400, 800]),
+    "skewjoin": (skewjoin, [100, 200, 400, 800]),
+    "manyexists": (manyexists, [50, 100, 200, 400]),
+    "rangejoin": (rangejoin, [50, 100, 200, 400]),
+    "reassert": (reassert, [100, 200, 400, 800]),
+    "wideglobal": (wideglobal, [50, 100, 200, 400]),
+    "bigagenda": (bigagenda, [100, 200, 400, 800]),
+    "heldmod": (heldmod, [50, 100, 200, 400]),
+    "mfgrow": (mfgrow, [25, 50, 100, 200]),
+    "modrules": (modrules, [10, 20, 40, 80]),
 }
 
 
