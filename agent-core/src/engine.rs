@@ -280,6 +280,11 @@ pub struct MatchState {
     /// Network generation: changes whenever joins are added or unlinked (cached
     /// per-template facts about the network, `rete::defer`, are renewed then).
     pub net_gen: u32,
+    /// Whether a join fed from the right (a `not`/`exists` over a subnetwork) may
+    /// have been built since the last `clear` (`rete::wipe`: without one, every
+    /// subtree may be wiped whole, with no walk per join).
+    #[cfg(feature = "wipe")]
+    pub from_right: bool,
     /// Host: what the constant-test discrimination index was built for (`rete::discrim`).
     #[cfg(feature = "host-speedups")]
     pub disc: crate::rete::DiscState,
@@ -354,6 +359,8 @@ impl MatchState {
             #[cfg(feature = "extras")]
             ir_alpha: NONE,
             net_gen: 0,
+            #[cfg(feature = "wipe")]
+            from_right: false,
             #[cfg(feature = "host-speedups")]
             disc: crate::rete::DiscState::EMPTY,
             deferred: crate::rete::Deferred::NONE,

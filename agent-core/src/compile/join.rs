@@ -309,6 +309,10 @@ impl Compiler<'_, '_> {
                 }
                 self.cx.joins[j].alpha_next = self.cx.joins[rjoin].rsucc;
                 self.cx.joins[rjoin].rsucc = j;
+                #[cfg(feature = "wipe")]
+                {
+                    self.cx.st.net.from_right = true;
+                }
             }
             self.cx.choose_index_child(parent, j);
             jid[i] = j;

@@ -370,6 +370,10 @@ impl Core<'_> {
         for j in 0..self.st.pools.njoins {
             let j = JoinId(j);
             self.note_children(j);
+            #[cfg(feature = "wipe")]
+            if self.joins[j].rsucc != JoinId::NONE {
+                self.st.net.from_right = true;
+            }
         }
     }
 

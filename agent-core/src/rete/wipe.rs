@@ -52,8 +52,12 @@ impl Core<'_> {
     }
 
     /// Whether no join from `join` down feeds a join from the right (remembered per
-    /// network generation).
+    /// network generation). None does while no join from the right was built: then
+    /// no walk (it cost each rule's first wipe as much as a firing's matching).
     fn subtree_plain(&mut self, join: JoinId) -> bool {
+        if !self.st.net.from_right {
+            return true;
+        }
         let jn = &self.join_mems[join];
         if jn.plain_gen == self.st.net.net_gen {
             return jn.plain;
