@@ -209,4 +209,56 @@ mod tests {
         assert!(wiped.contains("FIRE"), "{wiped}");
         assert_eq!(after(wiped), after(one_by_one));
     }
+
+    /// A control fact's match whose memories below feed a `not (and ...)` from the
+    /// right: once such a join is built no memory there is emptied whole, and after
+    /// a `clear` a program without one wipes again: both leave what one-by-one
+    /// deletion (a traced run) leaves.
+    #[test]
+    fn memories_feeding_a_join_from_the_right_are_not_wiped() {
+        let rules = "(deftemplate ctx (slot s))
+             (deftemplate it (slot id))
+             (deftemplate mk (slot id))
+             (deffacts d (ctx (s a)) (it (id 1)) (it (id 2)) (it (id 3)) (mk (id 2)))
+             (defrule step-a ?c <- (ctx (s a)) (it (id ?i))
+               (not (and (mk (id ?i)) (it (id ?j&:(> ?j ?i)))))
+               => (modify ?c (s b)))
+             (defrule step-b ?c <- (ctx (s b)) (it (id ?i)) (not (mk (id ?i))) =>
+               (assert (mk (id ?i))) (modify ?c (s a)))";
+        let plain = "(deftemplate ctx (slot s))
+             (deftemplate it (slot id))
+             (deffacts d (ctx (s a)) (it (id 1)) (it (id 2)))
+             (defrule flip ?c <- (ctx (s ?s)) (it (id ?i)) =>
+               (modify ?c (s (if (eq ?s a) then b else a))))";
+        let program = |watch: &str| {
+            run_program(&std::format!(
+                "{rules}
+                 {watch}
+                 (reset)
+                 (run 10)
+                 (printout t \"--\" crlf)
+                 (facts)
+                 (agenda)
+                 (clear)
+                 {plain}
+                 {watch}
+                 (reset)
+                 (run 7)
+                 (printout t \"--\" crlf)
+                 (facts)
+                 (agenda)"
+            ))
+        };
+        let after = |out: String| {
+            out.lines()
+                .filter(|l| !l.starts_with("==> Activation") && !l.starts_with("<== Activation"))
+                .collect::<std::vec::Vec<_>>()
+                .join("\n")
+        };
+        let wiped = program("(watch rules)");
+        let one_by_one = program("(watch rules)\n(watch activations)");
+        assert!(wiped.matches("FIRE").count() >= 10, "{wiped}");
+        assert!(wiped.contains("step-b") && wiped.contains("flip"), "{wiped}");
+        assert_eq!(after(wiped), after(one_by_one));
+    }
 }

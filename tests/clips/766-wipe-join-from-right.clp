@@ -1,0 +1,31 @@
+; A control fact whose rule's memories feed a not (and ...) from the right is
+; modified over and over (its memories go match by match), then after a clear a
+; program without such a join (its memories may go whole).
+(deftemplate ctx (slot s))
+(deftemplate it (slot id))
+(deftemplate mk (slot id))
+(deffacts d (ctx (s a)) (it (id 1)) (it (id 2)) (it (id 3)) (mk (id 2)))
+(defrule step-a ?c <- (ctx (s a)) (it (id ?i))
+  (not (and (mk (id ?i)) (it (id ?j&:(> ?j ?i)))))
+  => (modify ?c (s b)))
+(defrule step-b ?c <- (ctx (s b)) (it (id ?i)) (not (mk (id ?i))) =>
+  (assert (mk (id ?i))) (modify ?c (s a)))
+(watch rules)
+(reset)
+(run 10)
+(printout t "--" crlf)
+(facts)
+(agenda)
+(clear)
+(deftemplate ctx (slot s))
+(deftemplate it (slot id))
+(deffacts d (ctx (s a)) (it (id 1)) (it (id 2)))
+(defrule flip ?c <- (ctx (s ?s)) (it (id ?i)) =>
+  (modify ?c (s (if (eq ?s a) then b else a))))
+(watch rules)
+(reset)
+(run 7)
+(printout t "--" crlf)
+(facts)
+(agenda)
+(exit)
