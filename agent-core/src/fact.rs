@@ -329,6 +329,17 @@ impl Core<'_> {
         held
     }
 
+    /// At most `held_cells`, in one step per template instead of one per fact: a
+    /// fact holds a cell per slot at least (a multislot one more per field), so a
+    /// template's live facts hold its slot count times their number or more. Without
+    /// multislot fields or pending facts it is `held_cells`.
+    #[cfg(feature = "grow")]
+    fn held_cells_at_least(&self) -> usize {
+        (0..self.st.pools.ntemplates as usize)
+            .map(|t| self.templates[t].nslots as usize * self.tmpl_mems[t].nfacts as usize)
+            .sum()
+    }
+
     /// Free fact slots give up the cells they kept: the arena below the top is
     /// reused or packed (compaction, `reset`).
     pub(crate) fn forget_free_cells(&mut self) {
@@ -347,12 +358,14 @@ impl Core<'_> {
             // is followed by growth: grow at once and skip its sort and copy (the
             // garbage stays until a later compaction). Counting the held cells here
             // (a walk of the fact lists, rarer than asserts by a quarter of the
-            // arena) costs the asserts and retracts nothing.
+            // arena) costs the asserts and retracts nothing. The walk is skipped when
+            // the live facts' slots alone show it (after asserts without retracts).
             #[cfg(feature = "grow")]
             {
                 let top = self.st.facts.values_top as usize;
+                let full = cap_v - cap_v / 4;
                 if self.grows()
-                    && self.held_cells() + n > cap_v - cap_v / 4
+                    && (self.held_cells_at_least() + n > full || self.held_cells() + n > full)
                     && self
                         .grow(Pool::FactValues, (top + n).max(cap_v + 1))
                         .is_ok()
