@@ -630,23 +630,32 @@ impl Core<'_> {
     /// The heads past `was`, the old length, are empty already (`grow_heads`).
     fn rehash_facts(&mut self, was: usize) {
         self.fact_buckets[..was].fill(NONE);
-        let mut f = self.st.facts.fact_head;
-        while f != NONE {
-            self.link_fact_hash(f);
-            f = self.facts[f as usize].next;
+        // grown from the host's length by doubling, the table is a power of two
+        // long: the remainder is then the hash's low bits (no division per fact)
+        let n = self.fact_buckets.len();
+        if n.is_power_of_two() {
+            self.link_all_facts(|h| h as usize & (n - 1));
+        } else {
+            self.link_all_facts(|h| h as usize % n);
         }
     }
 
-    /// Puts fact `f` at the head of its duplicate-index bucket.
-    fn link_fact_hash(&mut self, f: crate::value::Ix) {
-        let fact = self.facts[f as usize];
-        #[cfg(feature = "host-speedups")]
-        let h = fact.hash;
-        #[cfg(not(feature = "host-speedups"))]
-        let h = self.cells_hash(fact.tmpl, fact.start as usize, fact.len as usize);
-        let b = h as usize % self.fact_buckets.len();
-        self.facts[f as usize].hash_next = self.fact_buckets[b];
-        self.fact_buckets[b] = f;
+    /// Puts every live fact at the head of its duplicate-index bucket, `bucket` of
+    /// its hash (the remainder by the table's length).
+    #[inline(always)]
+    fn link_all_facts(&mut self, bucket: impl Fn(u32) -> usize) {
+        let mut f = self.st.facts.fact_head;
+        while f != NONE {
+            let fact = self.facts[f as usize];
+            #[cfg(feature = "host-speedups")]
+            let h = fact.hash;
+            #[cfg(not(feature = "host-speedups"))]
+            let h = self.cells_hash(fact.tmpl, fact.start as usize, fact.len as usize);
+            let b = bucket(h);
+            self.facts[f as usize].hash_next = self.fact_buckets[b];
+            self.fact_buckets[b] = f;
+            f = fact.next;
+        }
     }
 
     /// Builds the symbol table's buckets again for its length now, newest symbol at
