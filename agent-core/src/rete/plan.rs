@@ -6,7 +6,9 @@
 //! the slots of the facts the partial match binds: variable comparisons (`?x` used
 //! again, `~?x`, `?a | ?b`), `eq`/`neq`/`=`/`<>`/`<`/`<=`/`>`/`>=` of variables,
 //! constants and `(+ ?x N)`/`(- ?x N)`, integer arithmetic (`+`, `-`, `*`, `mod`, `div`) of
-//! those, and `and`/`or`/`not` of those, whether they come from field constraints,
+//! those, `eq`/`neq` of `sub-string` cuts with constant bounds of such variables
+//! (compared as bytes, without making the cut a symbol), and `and`/`or`/`not` of
+//! those, whether they come from field constraints,
 //! `&:(...)` predicates or `(test ...)` CEs. Everything else keeps the evaluator; an
 //! `and` member of another shape after one of these is `Node::Evaluator`, which
 //! sends the pair to the evaluator only when the members before it all hold.
@@ -60,6 +62,8 @@ const FN_NEQ: Ix = CMP_FIRST + 7;
 const FN_AND: Ix = 12;
 const FN_OR: Ix = 13;
 const FN_NOT: Ix = 14;
+/// `sub-string`, whose cuts `Node::Text` compares where they lie.
+const FN_SUB_STRING: Ix = builtins::builtin_id("sub-string");
 
 /// Where a compared value comes from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -106,6 +110,16 @@ impl Cell {
     }
 }
 
+/// An operand of `Node::Text`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Text {
+    /// `(sub-string from to ?x)` of cell `c` (a string, symbol or instance name),
+    /// the bounds integer constants.
+    Cut { c: Cell, from: i16, to: i16 },
+    /// A slot, element or constant: equal to a cut only as a string of its bytes.
+    Plain(Source),
+}
+
 /// An integer operation of a plan, as its builtin folds its arguments (wrapping).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum ArOp {
@@ -146,6 +160,11 @@ enum Node {
     Arith { op: ArOp, first: u8, len: u8 },
     /// An operand of an `Arith` node.
     Leaf { s: Source },
+    /// `eq` (`neq` when `negated`) of two text operands, one of them (or both) a
+    /// `sub-string` cut: an ASCII cut is compared as bytes (the builtin's cut of
+    /// an ASCII text is its bytes, and equal strings are one symbol); another
+    /// text, or a non-lexeme, answers None.
+    Text { a: Text, b: Text, negated: bool },
     /// A member of an `and` the plan cannot hold: reached, it answers None (the
     /// evaluator decides, from the start), so that the members before it still
     /// decide without the evaluator when one fails.
@@ -352,6 +371,21 @@ impl PlanBuild {
                     negated,
                 },
                 Node::Leaf { s } => Node::Leaf { s: src(s) },
+                Node::Text { a, b, negated } => {
+                    let text = |t: Text| match t {
+                        Text::Cut { c, from, to } => Text::Cut {
+                            c: cell(c),
+                            from,
+                            to,
+                        },
+                        Text::Plain(s) => Text::Plain(src(s)),
+                    };
+                    Node::Text {
+                        a: text(a),
+                        b: text(b),
+                        negated,
+                    }
+                }
                 other @ (Node::And { .. }
                 | Node::Or { .. }
                 | Node::Not { .. }
@@ -827,6 +861,14 @@ impl Core<'_> {
                     read(b.pat, b.slot)?;
                 }
                 Node::Leaf { s } => src(s)?,
+                Node::Text { a, b, .. } => {
+                    for t in [a, b] {
+                        match t {
+                            Text::Cut { c, .. } => read(c.pat, c.slot)?,
+                            Text::Plain(s) => src(s)?,
+                        }
+                    }
+                }
                 Node::And { .. }
                 | Node::Or { .. }
                 | Node::Not { .. }
@@ -928,6 +970,7 @@ impl Core<'_> {
             }
             Node::Or { first, len } => self.run_or(first, len, depth, binds, right_fact),
             Node::Not { child } => Some(!self.run_node(child, depth, binds, right_fact)?),
+            Node::Text { a, b, negated } => self.run_text(a, b, negated, depth, binds, right_fact),
             // operands, reached only through a `Source::Arith`; a member the
             // evaluator decides
             Node::Arith { .. } | Node::Leaf { .. } | Node::Evaluator => None,
@@ -1085,6 +1128,64 @@ impl Core<'_> {
         right_fact: Ix,
     ) -> Option<&Value> {
         binds.slot(self, pat, slot, depth, right_fact)
+    }
+
+    /// One planned `eq`/`neq` of text operands (`Node::Text`).
+    #[inline(never)]
+    fn run_text<L: LeftFacts>(
+        &self,
+        a: Text,
+        b: Text,
+        negated: bool,
+        depth: u8,
+        binds: L,
+        right_fact: Ix,
+    ) -> Option<bool> {
+        let ta = self.text_operand(a, depth, binds, right_fact)?;
+        let tb = self.text_operand(b, depth, binds, right_fact)?;
+        let same = matches!((ta, tb), (Some(x), Some(y)) if x == y);
+        Some(same != negated)
+    }
+
+    /// A text operand's bytes: Some(None) for a value no string equals (not a
+    /// string), None where the evaluator must look (an unbound or multifield
+    /// variable, a cut of a non-lexeme, which the builtin reports, or of a text
+    /// that is not ASCII, whose characters are not its bytes).
+    #[inline(always)]
+    fn text_operand<L: LeftFacts>(
+        &self,
+        t: Text,
+        depth: u8,
+        binds: L,
+        right_fact: Ix,
+    ) -> Option<Option<&[u8]>> {
+        match t {
+            Text::Cut { c, from, to } => {
+                // as `sub-string`: an instance name is cut without its brackets
+                let (id, inst) = match *self.plan_field(c, depth, binds, right_fact)? {
+                    Value::Sym(id) => (id, true),
+                    Value::Str(id) => (id, false),
+                    _ => return None,
+                };
+                let b = self.sym_texts().text_bytes(id);
+                let b = match b {
+                    [b'[', body @ .., b']'] if inst && !body.is_empty() => body,
+                    _ => b,
+                };
+                if !b.is_ascii() {
+                    return None;
+                }
+                let (from, to) = (i64::from(from).max(1), i64::from(to).min(b.len() as i64));
+                Some(Some(match from > to {
+                    true => &b[..0],
+                    false => &b[from as usize - 1..to as usize],
+                }))
+            }
+            Text::Plain(s) => match self.source_value(s, depth, binds, right_fact)? {
+                Value::Str(id) => Some(Some(self.sym_texts().text_bytes(id))),
+                _ => Some(None),
+            },
+        }
     }
 
     /// One planned comparison.
@@ -1267,6 +1368,32 @@ impl Core<'_> {
         if b == NONE || self.exprs[b as usize].next != NONE {
             return None;
         }
+        if id == FN_EQ || id == FN_NEQ {
+            let (ca, cb) = (self.plan_cut(plan, a, depth), self.plan_cut(plan, b, depth));
+            if ca.is_some() || cb.is_some() {
+                let text = |plan: &mut PlanBuild, cut: Option<Text>, e: Ix| match cut {
+                    Some(t) => Some(t),
+                    None => match self.plan_simple_source(e, depth)? {
+                        s @ (Source::Slot { .. } | Source::Elem { .. } | Source::Const { .. }) => {
+                            if let Some(p) = s.pat() {
+                                if p != depth && p as usize >= BIND_W {
+                                    plan.deep = true;
+                                }
+                            }
+                            Some(Text::Plain(s))
+                        }
+                        _ => None,
+                    },
+                };
+                let ta = text(plan, ca, a)?;
+                let tb = text(plan, cb, b)?;
+                return plan.push(Node::Text {
+                    a: ta,
+                    b: tb,
+                    negated: id == FN_NEQ,
+                });
+            }
+        }
         let a = self.plan_source(plan, a, depth, 0)?;
         let b = self.plan_source(plan, b, depth, 0)?;
         if id == FN_EQ || id == FN_NEQ {
@@ -1288,6 +1415,35 @@ impl Core<'_> {
             a,
             b,
         })
+    }
+
+    /// `(sub-string from to ?x)` with integer constant bounds (within 16 bits) of
+    /// a single-field slot or element variable, as a `Text::Cut`.
+    fn plan_cut(&self, plan: &mut PlanBuild, e: Ix, depth: u8) -> Option<Text> {
+        let x = self.exprs[e as usize];
+        if x.op != Op::Call || x.aux != FnKind::Builtin as u8 || x.data != FN_SUB_STRING {
+            return None;
+        }
+        let bound = |ix: Ix| -> Option<(i16, Ix)> {
+            if ix == NONE || self.exprs[ix as usize].op != Op::Int {
+                return None;
+            }
+            let Value::Int(i) = self.const_value(ix) else {
+                return None;
+            };
+            Some((i16::try_from(i).ok()?, self.exprs[ix as usize].next))
+        };
+        let (from, next) = bound(x.first)?;
+        let (to, var) = bound(next)?;
+        if var == NONE || self.exprs[var as usize].next != NONE {
+            return None;
+        }
+        let v = self.exprs[var as usize];
+        if v.op != Op::PatVar {
+            return None;
+        }
+        let c = Cell::of(self.plan_source(plan, var, depth, 0)?)?;
+        Some(Text::Cut { c, from, to })
     }
 
     /// The source of an operand: a single-field slot variable, a constant, a slot
