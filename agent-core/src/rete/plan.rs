@@ -5,7 +5,7 @@
 //! A join's tests are worked out once into a small tree of direct comparisons over
 //! the slots of the facts the partial match binds: variable comparisons (`?x` used
 //! again, `~?x`, `?a | ?b`), `eq`/`neq`/`=`/`<>`/`<`/`<=`/`>`/`>=` of variables,
-//! constants and `(+ ?x N)`/`(- ?x N)`, integer arithmetic (`+`, `-`, `*`, `mod`, `div`) of
+//! constants and `(+ ?x N)`/`(- ?x N)` (of a slot or an ordered fact's field), integer arithmetic (`+`, `-`, `*`, `mod`, `div`) of
 //! those, `eq`/`neq` of `sub-string` cuts with constant bounds of such variables
 //! (compared as bytes, without making the cut a symbol), and `and`/`or`/`not` of
 //! those, whether they come from field constraints,
@@ -78,6 +78,14 @@ enum Source {
     /// An integer slot plus `delta` (wrapping, as the builtins' `+`/`-`; a delta
     /// beyond 32 bits keeps the evaluator, so the node stays small).
     SlotPlus { pat: u8, slot: u8, delta: i32 },
+    /// `SlotPlus` of field `elem` of multislot `slot` (an ordered fact's field, at
+    /// a fixed offset as `Elem`'s).
+    ElemPlus {
+        pat: u8,
+        slot: u8,
+        elem: u8,
+        delta: i32,
+    },
     /// The integer result of arithmetic node `node` (`Node::Arith`).
     Arith { node: u8 },
 }
@@ -347,6 +355,17 @@ impl PlanBuild {
                 slot,
                 delta,
             },
+            Source::ElemPlus {
+                pat: p,
+                slot,
+                elem,
+                delta,
+            } => Source::ElemPlus {
+                pat: pat(p),
+                slot,
+                elem,
+                delta,
+            },
             s @ (Source::Const { .. } | Source::Arith { .. }) => s,
         };
         let cell = |c: Cell| Cell {
@@ -421,7 +440,12 @@ impl PlanBuild {
     /// join's hash key, which its candidates pass). `eq`/`neq` of single-field
     /// slots, elements and constants never report an error.
     fn order_class(&self, n: u8) -> Option<u8> {
-        let plain = |s: Source| !matches!(s, Source::Arith { .. } | Source::SlotPlus { .. });
+        let plain = |s: Source| {
+            !matches!(
+                s,
+                Source::Arith { .. } | Source::SlotPlus { .. } | Source::ElemPlus { .. }
+            )
+        };
         match self.nodes[n as usize] {
             Node::SameSlots { .. } | Node::SameCells { .. } => Some(1),
             Node::Cmp { id, a, b } if plain(a) && plain(b) => match Ix::from(id) {
@@ -677,9 +701,10 @@ impl Source {
     /// operands are checked as they are planned).
     fn pat(self) -> Option<u8> {
         match self {
-            Source::Slot { pat, .. } | Source::Elem { pat, .. } | Source::SlotPlus { pat, .. } => {
-                Some(pat)
-            }
+            Source::Slot { pat, .. }
+            | Source::Elem { pat, .. }
+            | Source::SlotPlus { pat, .. }
+            | Source::ElemPlus { pat, .. } => Some(pat),
             Source::Const { .. } | Source::Arith { .. } => None,
         }
     }
@@ -842,7 +867,8 @@ impl Core<'_> {
             match s {
                 Source::Slot { pat, slot }
                 | Source::Elem { pat, slot, .. }
-                | Source::SlotPlus { pat, slot, .. } => read(pat, slot),
+                | Source::SlotPlus { pat, slot, .. }
+                | Source::ElemPlus { pat, slot, .. } => read(pat, slot),
                 Source::Const { .. } | Source::Arith { .. } => Some(()),
             }
         };
@@ -1225,6 +1251,20 @@ impl Core<'_> {
                 }
             }
             Source::Const { e } => Some(self.const_value(e)),
+            Source::ElemPlus {
+                pat,
+                slot,
+                elem,
+                delta,
+            } => {
+                let (cell, len) = binds.slot_cell(self, pat, slot, depth, right_fact)?;
+                match (len, self.values.get(cell + 1 + elem as usize)) {
+                    (Some(len), Some(&Value::Int(i))) if (elem as usize) < len as usize => {
+                        Some(Value::Int(i.wrapping_add(i64::from(delta))))
+                    }
+                    _ => None,
+                }
+            }
             Source::SlotPlus { pat, slot, delta } => {
                 match self.plan_slot_value(pat, slot, depth, binds, right_fact)? {
                     Value::Int(i) => Some(Value::Int(i.wrapping_add(i64::from(delta)))),
@@ -1553,6 +1593,18 @@ impl Core<'_> {
                 } else {
                     delta
                 };
+                // (an ordered fact's field: `ElemPlus`)
+                if var.first != NONE {
+                    let Source::Elem { pat, slot, elem } = self.plan_elem(&var, depth)? else {
+                        return None;
+                    };
+                    return Some(Source::ElemPlus {
+                        pat,
+                        slot,
+                        elem,
+                        delta,
+                    });
+                }
                 let (pat, slot) = self.plan_slot(&var, depth)?;
                 Some(Source::SlotPlus { pat, slot, delta })
             }
