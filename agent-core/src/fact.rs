@@ -38,6 +38,12 @@ pub struct Fact {
     /// hashing them again (4 bytes per fact the image does without).
     #[cfg(feature = "host-speedups")]
     pub hash: u32,
+    /// Host: entries of the logical unsupported stack naming this fact (`u16::MAX`:
+    /// too many to count, the stack is searched), so that a retract searches the
+    /// stack only for a fact on it (a walk per retract grew with the stack). In
+    /// padding.
+    #[cfg(all(feature = "host-speedups", feature = "logical"))]
+    pub unsupported: u16,
 }
 
 /// Host speed-up: a fact's next and previous live fact of its template
@@ -67,6 +73,8 @@ impl Fact {
         flat: false,
         #[cfg(feature = "host-speedups")]
         hash: 0,
+        #[cfg(all(feature = "host-speedups", feature = "logical"))]
+        unsupported: 0,
     };
 }
 
@@ -567,6 +575,8 @@ impl Core<'_> {
             flat: len == self.templates[saved.tmpl as usize].nslots,
             #[cfg(feature = "host-speedups")]
             hash: h,
+            #[cfg(all(feature = "host-speedups", feature = "logical"))]
+            unsupported: 0,
             ..saved
         };
         self.fact_buckets[bucket] = slot;
@@ -727,6 +737,8 @@ impl Core<'_> {
             flat: need == self.templates[tmpl as usize].nslots as usize,
             #[cfg(feature = "host-speedups")]
             hash: h,
+            #[cfg(all(feature = "host-speedups", feature = "logical"))]
+            unsupported: 0,
         };
         self.fact_buckets[bucket] = slot;
         self.st.facts.facts_live += 1;

@@ -999,6 +999,8 @@ mod tests {
             flat,
             #[cfg(feature = "host-speedups")]
             hash,
+            #[cfg(all(feature = "host-speedups", feature = "logical"))]
+                unsupported: _,
         } = Fact::EMPTY;
         let _: (u32, [Ix; 6], TokenId, FactState, bool) = (
             num,

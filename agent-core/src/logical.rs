@@ -425,6 +425,14 @@ impl Core<'_> {
         }
         self.drop_fact_supports(fact);
         // (only its own retraction takes a fact off the stack early)
+        #[cfg(feature = "host-speedups")]
+        {
+            let on = &mut self.facts[fact as usize].unsupported;
+            if *on == 0 {
+                return;
+            }
+            *on = 0;
+        }
         let mut p = NONE;
         let mut s = self.st.logical.unsupported;
         while s != NONE {
@@ -571,6 +579,11 @@ impl Core<'_> {
                     next_of_fact: NONE,
                 };
                 self.st.logical.unsupported = s;
+                #[cfg(feature = "host-speedups")]
+                {
+                    let on = &mut self.facts[fact as usize].unsupported;
+                    *on = on.saturating_add(1);
+                }
             } else {
                 self.free_support(s);
             }
@@ -597,6 +610,13 @@ impl Core<'_> {
             let fact = self.supports[s as usize].fact;
             self.st.logical.unsupported = self.supports[s as usize].next_of_token;
             self.free_support(s);
+            #[cfg(feature = "host-speedups")]
+            {
+                let on = &mut self.facts[fact as usize].unsupported;
+                if *on != u16::MAX {
+                    *on = on.saturating_sub(1);
+                }
+            }
             if self.facts[fact as usize].state == crate::fact::FactState::Live {
                 self.retract_fact(fact);
             }

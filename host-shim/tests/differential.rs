@@ -511,6 +511,7 @@ differential_programs! {
     p772_defrule_without_arrow => "772-defrule-without-arrow",
     p773_breadth_long_agenda => "773-breadth-long-agenda",
     p780_substring_join_tests => "780-substring-join-tests",
+    p781_logical_unsupported_chains => "781-logical-unsupported-chains",
     p786_not_and_blocker_order => "786-not-and-blocker-order",
     p787_not_and_nested_not_marks => "787-not-and-nested-not-marks",
     p788_not_and_modify => "788-not-and-modify",
