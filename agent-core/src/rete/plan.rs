@@ -118,16 +118,6 @@ impl Cell {
     }
 }
 
-/// An operand of `Node::Text`.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Text {
-    /// `(sub-string from to ?x)` of cell `c` (a string, symbol or instance name),
-    /// the bounds integer constants.
-    Cut { c: Cell, from: i16, to: i16 },
-    /// A slot, element or constant: equal to a cut only as a string of its bytes.
-    Plain(Source),
-}
-
 /// An integer operation of a plan, as its builtin folds its arguments (wrapping).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum ArOp {
@@ -168,11 +158,16 @@ enum Node {
     Arith { op: ArOp, first: u8, len: u8 },
     /// An operand of an `Arith` node.
     Leaf { s: Source },
-    /// `eq` (`neq` when `negated`) of two text operands, one of them (or both) a
-    /// `sub-string` cut: an ASCII cut is compared as bytes (the builtin's cut of
-    /// an ASCII text is its bytes, and equal strings are one symbol); another
-    /// text, or a non-lexeme, answers None.
-    Text { a: Text, b: Text, negated: bool },
+    /// `eq` (`neq` when `negated`) of text operands `a` and `b` (nodes: each a
+    /// `Cut`, or a `Leaf` of a slot, element or constant, equal to a cut only as a
+    /// string of its bytes), one of them (or both) a cut: an ASCII cut is compared
+    /// as bytes (the builtin's cut of an ASCII text is its bytes, and equal
+    /// strings are one symbol); another text, or a non-lexeme, answers None.
+    /// (Operands as nodes: a wider `Node` made every plan's reads dearer.)
+    Text { a: u8, b: u8, negated: bool },
+    /// An operand of `Text`: `(sub-string from to ?x)` of cell `c` (a string,
+    /// symbol or instance name), the bounds integer constants.
+    Cut { c: Cell, from: i16, to: i16 },
     /// A member of an `and` the plan cannot hold: reached, it answers None (the
     /// evaluator decides, from the start), so that the members before it still
     /// decide without the evaluator when one fails.
@@ -302,6 +297,11 @@ impl TestPlans {
                     len,
                 },
                 Node::Leaf { s } => Node::Leaf { s: s.shifted(nb) },
+                Node::Text { a, b, negated } => Node::Text {
+                    a: a + nb,
+                    b: b + nb,
+                    negated,
+                },
                 Node::Cmp { id, a, b } => Node::Cmp {
                     id,
                     a: a.shifted(nb),
@@ -390,22 +390,13 @@ impl PlanBuild {
                     negated,
                 },
                 Node::Leaf { s } => Node::Leaf { s: src(s) },
-                Node::Text { a, b, negated } => {
-                    let text = |t: Text| match t {
-                        Text::Cut { c, from, to } => Text::Cut {
-                            c: cell(c),
-                            from,
-                            to,
-                        },
-                        Text::Plain(s) => Text::Plain(src(s)),
-                    };
-                    Node::Text {
-                        a: text(a),
-                        b: text(b),
-                        negated,
-                    }
-                }
+                Node::Cut { c, from, to } => Node::Cut {
+                    c: cell(c),
+                    from,
+                    to,
+                },
                 other @ (Node::And { .. }
+                | Node::Text { .. }
                 | Node::Or { .. }
                 | Node::Not { .. }
                 | Node::Arith { .. }
@@ -887,15 +878,9 @@ impl Core<'_> {
                     read(b.pat, b.slot)?;
                 }
                 Node::Leaf { s } => src(s)?,
-                Node::Text { a, b, .. } => {
-                    for t in [a, b] {
-                        match t {
-                            Text::Cut { c, .. } => read(c.pat, c.slot)?,
-                            Text::Plain(s) => src(s)?,
-                        }
-                    }
-                }
-                Node::And { .. }
+                Node::Cut { c, .. } => read(c.pat, c.slot)?,
+                Node::Text { .. }
+                | Node::And { .. }
                 | Node::Or { .. }
                 | Node::Not { .. }
                 | Node::Arith { .. }
@@ -999,7 +984,7 @@ impl Core<'_> {
             Node::Text { a, b, negated } => self.run_text(a, b, negated, depth, binds, right_fact),
             // operands, reached only through a `Source::Arith`; a member the
             // evaluator decides
-            Node::Arith { .. } | Node::Leaf { .. } | Node::Evaluator => None,
+            Node::Arith { .. } | Node::Leaf { .. } | Node::Cut { .. } | Node::Evaluator => None,
         }
     }
 
@@ -1160,8 +1145,8 @@ impl Core<'_> {
     #[inline(never)]
     fn run_text<L: LeftFacts>(
         &self,
-        a: Text,
-        b: Text,
+        a: u8,
+        b: u8,
         negated: bool,
         depth: u8,
         binds: L,
@@ -1180,13 +1165,13 @@ impl Core<'_> {
     #[inline(always)]
     fn text_operand<L: LeftFacts>(
         &self,
-        t: Text,
+        k: u8,
         depth: u8,
         binds: L,
         right_fact: Ix,
     ) -> Option<Option<&[u8]>> {
-        match t {
-            Text::Cut { c, from, to } => {
+        match self.st.cache.compiled_plans.nodes[k as usize] {
+            Node::Cut { c, from, to } => {
                 // as `sub-string`: an instance name is cut without its brackets
                 let (id, inst) = match *self.plan_field(c, depth, binds, right_fact)? {
                     Value::Sym(id) => (id, true),
@@ -1207,10 +1192,11 @@ impl Core<'_> {
                     false => &b[from as usize - 1..to as usize],
                 }))
             }
-            Text::Plain(s) => match self.source_value(s, depth, binds, right_fact)? {
+            Node::Leaf { s } => match self.source_value(s, depth, binds, right_fact)? {
                 Value::Str(id) => Some(Some(self.sym_texts().text_bytes(id))),
                 _ => Some(None),
             },
+            _ => None,
         }
     }
 
@@ -1411,8 +1397,8 @@ impl Core<'_> {
         if id == FN_EQ || id == FN_NEQ {
             let (ca, cb) = (self.plan_cut(plan, a, depth), self.plan_cut(plan, b, depth));
             if ca.is_some() || cb.is_some() {
-                let text = |plan: &mut PlanBuild, cut: Option<Text>, e: Ix| match cut {
-                    Some(t) => Some(t),
+                let text = |plan: &mut PlanBuild, cut: Option<Node>, e: Ix| match cut {
+                    Some(t) => plan.push(t),
                     None => match self.plan_simple_source(e, depth)? {
                         s @ (Source::Slot { .. } | Source::Elem { .. } | Source::Const { .. }) => {
                             if let Some(p) = s.pat() {
@@ -1420,7 +1406,7 @@ impl Core<'_> {
                                     plan.deep = true;
                                 }
                             }
-                            Some(Text::Plain(s))
+                            plan.push(Node::Leaf { s })
                         }
                         _ => None,
                     },
@@ -1458,8 +1444,8 @@ impl Core<'_> {
     }
 
     /// `(sub-string from to ?x)` with integer constant bounds (within 16 bits) of
-    /// a single-field slot or element variable, as a `Text::Cut`.
-    fn plan_cut(&self, plan: &mut PlanBuild, e: Ix, depth: u8) -> Option<Text> {
+    /// a single-field slot or element variable, as a `Node::Cut` (not pushed yet).
+    fn plan_cut(&self, plan: &mut PlanBuild, e: Ix, depth: u8) -> Option<Node> {
         let x = self.exprs[e as usize];
         if x.op != Op::Call || x.aux != FnKind::Builtin as u8 || x.data != FN_SUB_STRING {
             return None;
@@ -1483,7 +1469,7 @@ impl Core<'_> {
             return None;
         }
         let c = Cell::of(self.plan_source(plan, var, depth, 0)?)?;
-        Some(Text::Cut { c, from, to })
+        Some(Node::Cut { c, from, to })
     }
 
     /// The source of an operand: a single-field slot variable, a constant, a slot
