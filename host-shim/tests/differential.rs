@@ -566,6 +566,7 @@ differential_programs! {
     p932_literals_of_bound_variables => "932-literals-of-bound-variables",
     p933_pattern2_before_unbound => "933-pattern2-before-unbound",
     p934_div_in_join_tests => "934-div-in-join-tests",
+    p791_printout_long_multifield => "791-printout-long-multifield",
     p940_void_value_in_slot => "940-void-value-in-slot",
     p580_keyed_or_index => "580-keyed-or-index",
     p581_keyed_or_not => "581-keyed-or-not",

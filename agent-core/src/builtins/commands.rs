@@ -388,7 +388,7 @@ fn printout(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
             None => {
                 let len = b.len();
                 if cx.write_printout(&mut b, v).is_err() {
-                    // out goes what came before it, then the value (cut past 1 KiB)
+                    // out goes what came before it, then the value
                     b.truncate(len);
                     if let Err(e) = printout_write(cx, &routed, b.as_str()) {
                         r = Err(e);
@@ -396,7 +396,16 @@ fn printout(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
                         break;
                     }
                     b.clear();
-                    let _ = cx.write_printout(&mut b, v);
+                    #[cfg(not(feature = "extras"))]
+                    let _ = cx.write_printout(&mut b, v); // cut past 1 KiB
+                    // in pieces of 1 KiB, each written anew past the last (CLIPS prints
+                    // a multifield of any length whole)
+                    #[cfg(feature = "extras")]
+                    if let Err(e) = printout_long(cx, &routed, &mut b, v) {
+                        r = Err(e);
+                        b.clear();
+                        break;
+                    }
                 }
             }
         }
@@ -408,6 +417,49 @@ fn printout(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
     // what the arguments built goes, unless a variable bound there holds it
     super::control::release_scratch(cx, mark);
     r
+}
+
+/// A value too long for `printout`'s buffer, written to its router in pieces; the last
+/// piece is left in `b` (text may follow it).
+#[cfg(feature = "extras")]
+#[inline(never)]
+fn printout_long(
+    cx: &mut Core<'_>,
+    routed: &Routed,
+    b: &mut TextBuf<1024>,
+    v: Value,
+) -> Result<(), EvalError> {
+    let mut done = 0;
+    loop {
+        let full = cx.write_printout(&mut Past { skip: done, out: b }, v).is_err();
+        if !full || b.is_empty() {
+            return Ok(());
+        }
+        done += b.len();
+        printout_write(cx, routed, b.as_str())?;
+        b.clear();
+    }
+}
+
+/// Writes into `out` the text after its first `skip` bytes. Each piece `TextBuf` took
+/// ends on a character boundary of one `write_str`'s text, so `skip` always lands on one.
+#[cfg(feature = "extras")]
+struct Past<'a> {
+    skip: usize,
+    out: &'a mut TextBuf<1024>,
+}
+
+#[cfg(feature = "extras")]
+impl core::fmt::Write for Past<'_> {
+    fn write_str(&mut self, s: &str) -> core::fmt::Result {
+        if self.skip >= s.len() {
+            self.skip -= s.len();
+            return Ok(());
+        }
+        let rest = s.get(self.skip..).unwrap_or("");
+        self.skip = 0;
+        self.out.write_str(rest)
+    }
 }
 
 /// `printout`'s text to its router. While a propagation waits (`rete::defer`) text for
