@@ -223,12 +223,38 @@ impl Core<'_> {
         };
         match kw {
             "defrule" => (0..self.st.pools.nrules).any(|r| self.rule_here(r, id)),
-            "deffacts" => {
-                (0..self.st.pools.ndeffacts).any(|d| self.deffacts[d as usize].name == id)
-            }
-            "deffunction" => (0..self.st.pools.nfuncs).any(|f| self.funcs[f as usize].name == id),
+            // one of that name in another module is another construct (CLIPS says
+            // "Defining"); one the module sees by import is a conflict, refused later
+            "deffacts" => (0..self.st.pools.ndeffacts)
+                .any(|d| self.deffacts[d as usize].name == id && self.deffacts_here(d)),
+            "deffunction" => (0..self.st.pools.nfuncs)
+                .any(|f| self.funcs[f as usize].name == id && self.function_here(f)),
             "deftemplate" => self.find_template(id).is_some(),
             _ => false,
+        }
+    }
+}
+
+impl Core<'_> {
+    /// Whether deffacts `d` is the current module's.
+    fn deffacts_here(&self, d: Ix) -> bool {
+        #[cfg(feature = "modules")]
+        return self.module_of_deffacts(d) == self.current_module();
+        #[cfg(not(feature = "modules"))]
+        {
+            let _ = d;
+            true
+        }
+    }
+
+    /// Whether deffunction `f` is the current module's.
+    fn function_here(&self, f: Ix) -> bool {
+        #[cfg(feature = "modules")]
+        return self.module_of_function(f) == self.current_module();
+        #[cfg(not(feature = "modules"))]
+        {
+            let _ = f;
+            true
         }
     }
 }

@@ -567,6 +567,7 @@ differential_programs! {
     p933_pattern2_before_unbound => "933-pattern2-before-unbound",
     p934_div_in_join_tests => "934-div-in-join-tests",
     p791_printout_long_multifield => "791-printout-long-multifield",
+    p792_load_same_name_other_module => "792-load-same-name-other-module",
     p940_void_value_in_slot => "940-void-value-in-slot",
     p580_keyed_or_index => "580-keyed-or-index",
     p581_keyed_or_not => "581-keyed-or-not",
