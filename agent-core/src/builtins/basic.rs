@@ -15,6 +15,43 @@ use crate::value::{Value, NONE};
 pub const CMP_FIRST: Ix = 4;
 pub const CMP_LAST: Ix = 11;
 
+/// Function ids of `+`, `-`, `*` (in this order, from `ARITH_FIRST`), whose two-number
+/// calls `eval` computes in place on the host (`num_arith`); below `CMP_FIRST`.
+#[cfg(feature = "host-speedups")]
+pub const ARITH_FIRST: Ix = super::builtin_id("+");
+#[cfg(feature = "host-speedups")]
+const _: () = assert!(
+    super::builtin_id("-") == ARITH_FIRST + 1
+        && super::builtin_id("*") == ARITH_FIRST + 2
+        && ARITH_FIRST + 2 < CMP_FIRST
+);
+
+/// `+`, `-` or `*` (`id`, from `ARITH_FIRST`) of two numbers `p`, `q` (Int or Float),
+/// as `fold` computes it: integers wrap, a float makes the result a float.
+#[cfg(feature = "host-speedups")]
+#[inline(always)]
+pub(crate) fn num_arith(id: Ix, p: Value, q: Value) -> Value {
+    let op = id - ARITH_FIRST;
+    if let (Value::Int(p), Value::Int(q)) = (p, q) {
+        return Value::Int(match op {
+            0 => p.wrapping_add(q),
+            1 => p.wrapping_sub(q),
+            _ => p.wrapping_mul(q),
+        });
+    }
+    let f = |v: Value| match v {
+        Value::Int(i) => i as f64,
+        Value::Float(x) => x,
+        _ => 0.0,
+    };
+    let (p, q) = (f(p), f(q));
+    Value::Float(match op {
+        0 => p + q,
+        1 => p - q,
+        _ => p * q,
+    })
+}
+
 #[rustfmt::skip]
 pub const FUNCS: &[Builtin] = &[
     Builtin::eager("+", 2, ANY, add).args(&[], N).quiet().returns(R::Number),
