@@ -15,7 +15,9 @@
 //! A host that wants the fixed host engine's start at no cost makes a [`HostSeed`] a
 //! `static` (built at compile time: its entries are the program's initialized data, so
 //! starting fills nothing and touches only the pages a program uses) and starts from it
-//! ([`GrowStorage::from_seed`]); a pool's first growth copies its seed arrays to the heap.
+//! ([`GrowStorage::from_seed`]); a pool's first growth copies its seed arrays to the heap
+//! (but the token pool's array, the largest, starts in a zeroed reserve there: it
+//! grows without a copy).
 //!
 //! The hash tables over the pools start at the fixed host engine's length and keep
 //! twice as many buckets as their pool has entries: the fact and symbol tables are
@@ -240,6 +242,20 @@ fn zeroed_vec<T: ZeroFree>(room: usize, from: &[T]) -> Option<Vec<T>> {
 }
 
 impl<T: ZeroFree> Buf<T> {
+    /// `len` all-zero entries at the start of a fresh zeroed reserve (as
+    /// `reserve_zeroed` makes on a first growth, `limit` capping it), or `None` if
+    /// the allocator refuses: a seeded pool of such entries starts here instead of in
+    /// its seed, so that growing past the seed copies nothing (its first growth
+    /// copied the whole seed, 32,768 tokens, once a program needed one more).
+    fn zeroed_start(len: usize, limit: usize) -> Option<Self> {
+        let room = (ZEROED_RESERVE / core::mem::size_of::<T>())
+            .min(limit)
+            .max(len);
+        let mut b = Buf::Zeroed(zeroed_vec(room, &[])?);
+        b.extend_zeroed(len);
+        Some(b)
+    }
+
     /// Makes room for `len` entries in zeroed memory (the reserve, or `limit`
     /// entries if fewer, or `len` if more), the entries unchanged: nothing to do if
     /// there is room, else one copy of the entries to a fresh zeroed allocation.
@@ -337,6 +353,26 @@ impl<T> core::ops::DerefMut for Buf<T> {
     }
 }
 
+/// A seeded side array's start (`GrowStorage::from_seed`): the token pool's extra index
+/// links in a zeroed reserve of `side` entries (`Buf::zeroed_start`), the others in
+/// their seed.
+macro_rules! zero_start {
+    (token_xlinks, $seeded:expr, $n:expr, $side:expr) => {{
+        #[cfg(feature = "host-speedups")]
+        let b = Buf::zeroed_start($n, $side).unwrap_or_else(|| Buf::Seed($seeded));
+        #[cfg(not(feature = "host-speedups"))]
+        let b = {
+            let _ = ($n, $side);
+            Buf::Seed($seeded)
+        };
+        b
+    }};
+    ($other:ident, $seeded:expr, $n:expr, $side:expr) => {{
+        let _ = ($n, $side);
+        Buf::Seed($seeded)
+    }};
+}
+
 macro_rules! grow_items {
     ($(
         $variant:ident $cap:ident $name:literal $host:literal $small:literal [
@@ -400,7 +436,9 @@ macro_rules! grow_items {
 
             /// Pools that start in `seed` (the fixed host engine's lengths, or `limit`
             /// where that is less) and grow up to `limit` entries each (at most
-            /// [`INDEX_LIMIT`]); allocates nothing until a pool grows. The seed's
+            /// [`INDEX_LIMIT`]). The token pool's array starts in a zeroed reserve
+            /// instead (address space, resident once touched), unless the allocator
+            /// refuses; the others allocate nothing until their pool grows. The seed's
             /// entries must be empty ([`HostSeed::new`]): it is used as it is.
             pub fn from_seed(seed: &'static mut HostSeed, limit: Capacities) -> Self {
                 let limits = limit.to_array().map(|l| l.min(INDEX_LIMIT));
@@ -408,13 +446,32 @@ macro_rules! grow_items {
                 GrowStorage {
                     limits,
                     $(
-                        $first: Buf::Seed(&mut seed.$first[..start[Pool::$variant as usize]
-                            .min(limits[Pool::$variant as usize])]),
-                        $($arr: Buf::Seed({
+                        $first: {
                             let n = start[Pool::$variant as usize]
                                 .min(limits[Pool::$variant as usize]);
-                            &mut seed.$arr[..heads!($arr).map_or(n, |h| n.max(h))]
-                        }),)*
+                            let limit = limits[Pool::$variant as usize];
+                            // the token pool starts in a zeroed reserve (its first
+                            // growth's copy, see `zeroed_start`; an allocation at every
+                            // start costs ~800 instructions, so the smaller pools keep
+                            // their seeds)
+                            zeroed_or!($first,
+                                if Pool::$variant == Pool::Tokens {
+                                    Buf::zeroed_start(n, limit)
+                                        .unwrap_or_else(|| Buf::Seed(&mut seed.$first[..n]))
+                                } else {
+                                    Buf::Seed(&mut seed.$first[..n])
+                                },
+                                { let _ = limit; Buf::Seed(&mut seed.$first[..n]) })
+                        },
+                        $($arr: {
+                            let n = start[Pool::$variant as usize]
+                                .min(limits[Pool::$variant as usize]);
+                            let seeded = &mut seed.$arr[..heads!($arr).map_or(n, |h| n.max(h))];
+                            // and the partial matches' extra index links (a copy
+                            // three times the tokens' in instructions: `rep movsb`)
+                            zero_start!($arr, seeded, n, limits[Pool::$variant as usize]
+                                .min(ZEROED_RESERVE / core::mem::size_of::<$fty>().max(1)))
+                        },)*
                     )*
                 }
             }
@@ -803,6 +860,13 @@ mod tests {
         let seed = Box::leak(Box::new(HostSeed::new()));
         let seeded = GrowStorage::from_seed(seed, GrowStorage::NO_LIMIT);
         assert_eq!(seeded.lens(), Capacities::HOST.to_array());
+        // the tokens start in a zeroed reserve (their growth copies nothing), the
+        // facts and the bucket heads in the seed
+        assert!(matches!(seeded.tokens, Buf::Zeroed(_)));
+        #[cfg(feature = "host-speedups")]
+        assert!(matches!(seeded.token_xlinks, Buf::Zeroed(_)));
+        assert!(matches!(seeded.facts, Buf::Seed(_)));
+        assert!(matches!(seeded.amem_buckets, Buf::Seed(_)));
         let mut seeded = Box::new(GrowEngine::with_storage(seeded));
         assert_eq!(run(&mut seeded, &program), expected);
         assert!(seeded.stats().get(Pool::Facts).1 as usize > Capacities::HOST.facts);
