@@ -890,6 +890,30 @@ impl Core<'_> {
         skip: TokenId,
         found: &mut (TokenId, crate::rete::Stamp),
     ) {
+        // two joins to go (the usual `not (and A B)`): both levels walked here, the
+        // last join's kind read once, without a call per partial match of the first
+        if let [j, last] = *path {
+            let kind = self.joins[last].kind;
+            let mut c = self.tokens[t].first_child;
+            while c != TokenId::NONE {
+                let tc = &self.tokens[c];
+                if tc.owner == j {
+                    let mut g = tc.first_child;
+                    while g != TokenId::NONE {
+                        let tg = &self.tokens[g];
+                        if tg.owner == last && g != skip && self.active_in(g, kind) {
+                            let s = self.stamp_of(g);
+                            if found.0 == TokenId::NONE || s > found.1 {
+                                *found = (g, s);
+                            }
+                        }
+                        g = tg.next_sib;
+                    }
+                }
+                c = tc.next_sib;
+            }
+            return;
+        }
         let Some((&j, rest)) = path.split_first() else {
             return;
         };
