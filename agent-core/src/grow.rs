@@ -353,20 +353,11 @@ impl<T> core::ops::DerefMut for Buf<T> {
     }
 }
 
-/// A seeded side array's start (`GrowStorage::from_seed`): the token pool's extra index
-/// links in a zeroed reserve of `side` entries (`Buf::zeroed_start`), the others in
-/// their seed.
+/// A seeded side array's start (`GrowStorage::from_seed`): in its seed. (The token
+/// pool's extra index links in a zeroed reserve saved growforall-800 ~0.9 M
+/// instructions, but the second allocation at every start cost join-100's whole run
+/// +0.06 %.)
 macro_rules! zero_start {
-    (token_xlinks, $seeded:expr, $n:expr, $side:expr) => {{
-        #[cfg(feature = "host-speedups")]
-        let b = Buf::zeroed_start($n, $side).unwrap_or_else(|| Buf::Seed($seeded));
-        #[cfg(not(feature = "host-speedups"))]
-        let b = {
-            let _ = ($n, $side);
-            Buf::Seed($seeded)
-        };
-        b
-    }};
     ($other:ident, $seeded:expr, $n:expr, $side:expr) => {{
         let _ = ($n, $side);
         Buf::Seed($seeded)
@@ -467,8 +458,6 @@ macro_rules! grow_items {
                             let n = start[Pool::$variant as usize]
                                 .min(limits[Pool::$variant as usize]);
                             let seeded = &mut seed.$arr[..heads!($arr).map_or(n, |h| n.max(h))];
-                            // and the partial matches' extra index links (a copy
-                            // three times the tokens' in instructions: `rep movsb`)
                             zero_start!($arr, seeded, n, limits[Pool::$variant as usize]
                                 .min(ZEROED_RESERVE / core::mem::size_of::<$fty>().max(1)))
                         },)*
@@ -863,8 +852,6 @@ mod tests {
         // the tokens start in a zeroed reserve (their growth copies nothing), the
         // facts and the bucket heads in the seed
         assert!(matches!(seeded.tokens, Buf::Zeroed(_)));
-        #[cfg(feature = "host-speedups")]
-        assert!(matches!(seeded.token_xlinks, Buf::Zeroed(_)));
         assert!(matches!(seeded.facts, Buf::Seed(_)));
         assert!(matches!(seeded.amem_buckets, Buf::Seed(_)));
         let mut seeded = Box::new(GrowEngine::with_storage(seeded));
