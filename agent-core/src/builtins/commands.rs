@@ -398,8 +398,8 @@ fn printout(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
                     b.clear();
                     #[cfg(not(feature = "extras"))]
                     let _ = cx.write_printout(&mut b, v); // cut past 1 KiB
-                    // in pieces of 1 KiB, each written anew past the last (CLIPS prints
-                    // a multifield of any length whole)
+                                                          // in pieces of 1 KiB, each written anew past the last (CLIPS prints
+                                                          // a multifield of any length whole)
                     #[cfg(feature = "extras")]
                     if let Err(e) = printout_long(cx, &routed, &mut b, v) {
                         r = Err(e);
@@ -431,7 +431,9 @@ fn printout_long(
 ) -> Result<(), EvalError> {
     let mut done = 0;
     loop {
-        let full = cx.write_printout(&mut Past { skip: done, out: b }, v).is_err();
+        let full = cx
+            .write_printout(&mut Past { skip: done, out: b }, v)
+            .is_err();
         if !full || b.is_empty() {
             return Ok(());
         }

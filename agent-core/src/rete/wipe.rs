@@ -258,7 +258,10 @@ mod tests {
         let wiped = program("(watch rules)");
         let one_by_one = program("(watch rules)\n(watch activations)");
         assert!(wiped.matches("FIRE").count() >= 10, "{wiped}");
-        assert!(wiped.contains("step-b") && wiped.contains("flip"), "{wiped}");
+        assert!(
+            wiped.contains("step-b") && wiped.contains("flip"),
+            "{wiped}"
+        );
         assert_eq!(after(wiped), after(one_by_one));
     }
 }
