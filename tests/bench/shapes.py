@@ -4,6 +4,8 @@
     python3 tests/bench/shapes.py emit DIR [--only SHAPE ...] [--sizes N ...]
     python3 tests/bench/shapes.py measure DIR OURS_BIN [--only SHAPE ...] [--no-c64] [--sizes N ...]
         [--cache CACHE_DIR] [--jobs N] [--ends-first] [--rows FILE]
+    python3 tests/bench/shapes.py measure-dirs DIR ... OURS_BIN [--no-c64] [--cache CACHE_DIR]
+        [--jobs N] [--ends-first] [--rows FILE]
     python3 tests/bench/shapes.py table FILE ...
 
 `emit` writes DIR/<shape>-<size>/ with program.clp (constructs only, as the bench's
@@ -40,6 +42,15 @@ the shapes (list the cheap ones first to have most shapes by a deadline). `--row
 appends each finished row's exact figures to FILE as a JSON line; `shapes.py table
 FILE ...` prints both tables from such files (the rows of an interrupted run, or of
 several runs put together; a row in several: its last line).
+
+`measure-dirs` measures rows already on disk in the same layout (program.clp,
+full.bat.clp, norun.bat.clp), such as `robotino-agent bench --emit-only --work-dir DIR`
+writes them: each DIR is a row directory or holds row directories, named
+`<shape>-<size>` (a name without a size is size 0). The engines, cache, `--rows` and tables
+are `measure`'s. The bench's batches `(watch statistics)`, whose lines 6.30 and ours print
+and the 6.4.2 driver does not, so for such rows the same-output check leaves out those
+lines (`N rules fired`, `... mean number of ...`, run time); the run-phase counts keep
+them, as the bench's own 6.30 figures do.
 
 Every program's data is asserted by rules during the run (an init rule or a chain of
 firings), so the run phase matches and fires; `deffacts` loads its data at reset.
@@ -1557,7 +1568,13 @@ class Cache:
         return result
 
 
-def text_summary(stdout):
+STATISTICS = re.compile(
+    r"^(\d+ rules fired.*|\d+ mean number of .*|Run time is .*|[\d.]+ rules per second.*)$")
+
+
+def text_summary(stdout, strip_statistics=False):
+    if strip_statistics:
+        stdout = "\n".join(line for line in stdout.splitlines() if not STATISTICS.match(line.strip()))
     text = stdout.strip()
     return {"sha256": hashlib.sha256(text.encode()).hexdigest(), "tail": text[-80:]}
 
@@ -1588,14 +1605,20 @@ def growth_table(results):
         )
 
 
+def watches_statistics(d):
+    with open(os.path.join(d, "full.bat.clp")) as f:
+        return "(watch statistics)" in f.read()
+
+
 def measure_row(d, engines, c64, cache):
     runs, wholes, texts = {}, {}, {}
     fired = None
+    strip = watches_statistics(d)
     for label, cmd in engines:
         def compute(cmd=cmd):
             full, out, err = callgrind_run(cmd(d, "full"), d)
             norun = callgrind(cmd(d, "norun"), d)
-            result = {"run": full - norun, "whole": full, "output": text_summary(out)}
+            result = {"run": full - norun, "whole": full, "output": text_summary(out, strip)}
             found = re.search(r"fired (\d+)", err)
             if found:
                 result["fired"] = int(found.group(1))
@@ -1697,6 +1720,29 @@ def table(files):
     growth_table(results)
 
 
+def row_dirs(dirs):
+    """(shape, size, dir) of row directories named <shape>-<size>: each of `dirs` is one or
+    holds them; sorted by shape, then size."""
+    rows = []
+    for top in dirs:
+        top = os.path.abspath(top)
+        if os.path.exists(os.path.join(top, "program.clp")):
+            candidates = [top]
+        else:
+            candidates = [os.path.join(top, n) for n in sorted(os.listdir(top))]
+        for d in candidates:
+            if not all(os.path.exists(os.path.join(d, n))
+                       for n in ("program.clp", "full.bat.clp", "norun.bat.clp")):
+                continue
+            base = os.path.basename(d)
+            found = re.match(r"^(.*)-(\d+)$", base)
+            name, size = (found.group(1), int(found.group(2))) if found else (base, 0)
+            rows.append((name, size, d))
+    if not rows:
+        raise SystemExit("no row directories (program.clp, full.bat.clp, norun.bat.clp) in %s" % " ".join(dirs))
+    return sorted(rows, key=lambda r: (r[0], r[1]))
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     sub = parser.add_subparsers(dest="cmd", required=True)
@@ -1716,14 +1762,27 @@ def main():
     m.add_argument("--ends-first", action="store_true",
                    help="start every shape's smallest and largest sizes before the others")
     m.add_argument("--rows", metavar="FILE", help="append each row's exact figures to FILE (JSON lines)")
+    md = sub.add_parser("measure-dirs", help="measure rows already on disk (e.g. bench --emit-only)")
+    md.add_argument("dirs", nargs="+", metavar="DIR")
+    md.add_argument("ours")
+    md.add_argument("--no-c64", action="store_true")
+    md.add_argument("--cache", metavar="CACHE_DIR",
+                    help="keep and reuse CLIPS 6.30 and 6.4.2 results here (ours is always measured)")
+    md.add_argument("--jobs", type=int, default=1, help="rows measured in parallel")
+    md.add_argument("--ends-first", action="store_true",
+                    help="start every shape's smallest and largest sizes before the others")
+    md.add_argument("--rows", metavar="FILE", help="append each row's exact figures to FILE (JSON lines)")
     t = sub.add_parser("table", help="print the tables from `measure --rows` files")
     t.add_argument("files", nargs="+")
     args = parser.parse_args()
     if args.cmd == "table":
         table(args.files)
         return
-    rows = emit(os.path.abspath(args.dir), args.only, args.sizes)
-    if args.cmd == "measure":
+    if args.cmd == "measure-dirs":
+        rows = row_dirs(args.dirs)
+    else:
+        rows = emit(os.path.abspath(args.dir), args.only, args.sizes)
+    if args.cmd in ("measure", "measure-dirs"):
         with tempfile.TemporaryDirectory() as scratch:
             c64 = None if args.no_c64 else build_c64(scratch)
             cache = Cache(os.path.abspath(args.cache) if args.cache else None, engine_ids(c64))
