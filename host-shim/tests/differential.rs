@@ -569,6 +569,8 @@ differential_programs! {
     p934_div_in_join_tests => "934-div-in-join-tests",
     p791_printout_long_multifield => "791-printout-long-multifield",
     p792_load_same_name_other_module => "792-load-same-name-other-module",
+    p793_eq_of_whole_multislots => "793-eq-of-whole-multislots",
+    p794_eq_of_multifield_segments => "794-eq-of-multifield-segments",
     p940_void_value_in_slot => "940-void-value-in-slot",
     p580_keyed_or_index => "580-keyed-or-index",
     p581_keyed_or_not => "581-keyed-or-not",

@@ -102,6 +102,18 @@ struct Cell {
 /// `Cell::elem` of a whole single-field slot.
 const WHOLE: u8 = u8::MAX;
 
+/// The fields a multifield variable binds (`$?p` of `(puzzle $?p)`, `(a ?x $?r ?y)`),
+/// read where they lie: multislot `slot` of the fact bound at `pat` without its first
+/// `before` and last `after` fields (the variable is its slot's only multifield, so
+/// the singles around it fix its bounds).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Seg {
+    pat: u8,
+    slot: u8,
+    before: u8,
+    after: u8,
+}
+
 impl Cell {
     /// The cell a slot or element source names (None for another source).
     fn of(s: Source) -> Option<Cell> {
@@ -146,6 +158,10 @@ enum Node {
     /// `SameSlots` where one side (or both) is a field of a multislot (an ordered
     /// fact's `(triple ?a ?b ?c)`), compared where it lies.
     SameCells { a: Cell, b: Cell, negated: bool },
+    /// `eq` (`neq` when `negated`) of two multifield variables: the same length and
+    /// every field the same (`eq` of two multifields), compared where they lie, not
+    /// copied for the evaluator.
+    SameSegs { a: Seg, b: Seg, negated: bool },
     /// All of `kids[first..first + len]` (short-circuit, in order; the planner puts
     /// members that mostly fail first where that changes no result).
     And { first: u8, len: u8 },
@@ -389,6 +405,17 @@ impl PlanBuild {
                     b: cell(b),
                     negated,
                 },
+                Node::SameSegs { a, b, negated } => Node::SameSegs {
+                    a: Seg {
+                        pat: pat(a.pat),
+                        ..a
+                    },
+                    b: Seg {
+                        pat: pat(b.pat),
+                        ..b
+                    },
+                    negated,
+                },
                 Node::Leaf { s } => Node::Leaf { s: src(s) },
                 Node::Cut { c, from, to } => Node::Cut {
                     c: cell(c),
@@ -438,7 +465,7 @@ impl PlanBuild {
             )
         };
         match self.nodes[n as usize] {
-            Node::SameSlots { .. } | Node::SameCells { .. } => Some(1),
+            Node::SameSlots { .. } | Node::SameCells { .. } | Node::SameSegs { .. } => Some(1),
             Node::Cmp { id, a, b } if plain(a) && plain(b) => match Ix::from(id) {
                 FN_EQ | FN_NEQ => Some(1),
                 _ => None,
@@ -465,7 +492,9 @@ impl PlanBuild {
     /// Node `n` is an `eq` of two operands.
     fn is_equality(&self, n: u8) -> bool {
         match self.nodes[n as usize] {
-            Node::SameSlots { negated, .. } | Node::SameCells { negated, .. } => !negated,
+            Node::SameSlots { negated, .. }
+            | Node::SameCells { negated, .. }
+            | Node::SameSegs { negated, .. } => !negated,
             Node::Cmp { id, .. } => Ix::from(id) == FN_EQ,
             _ => false,
         }
@@ -877,6 +906,10 @@ impl Core<'_> {
                     read(a.pat, a.slot)?;
                     read(b.pat, b.slot)?;
                 }
+                Node::SameSegs { a, b, .. } => {
+                    read(a.pat, a.slot)?;
+                    read(b.pat, b.slot)?;
+                }
                 Node::Leaf { s } => src(s)?,
                 Node::Cut { c, .. } => read(c.pat, c.slot)?,
                 Node::Text { .. }
@@ -953,6 +986,9 @@ impl Core<'_> {
             }
             Node::SameCells { a, b, negated } => {
                 self.run_same_cells(a, b, negated, depth, binds, right_fact)
+            }
+            Node::SameSegs { a, b, negated } => {
+                self.run_same_segs(a, b, negated, depth, binds, right_fact)
             }
             Node::And { first, len } => {
                 for &k in &plans.kids[first as usize..(first + len) as usize] {
@@ -1105,6 +1141,41 @@ impl Core<'_> {
         let va = self.plan_field(a, depth, binds, right_fact)?;
         let vb = self.plan_field(b, depth, binds, right_fact)?;
         Some(same_cell(va, vb)? != negated)
+    }
+
+    /// One planned `eq`/`neq` of two multifield variables (`Node::SameSegs`), as
+    /// `eq` compares two multifields: the lengths, then field by field.
+    #[inline(never)]
+    fn run_same_segs<L: LeftFacts>(
+        &self,
+        a: Seg,
+        b: Seg,
+        negated: bool,
+        depth: u8,
+        binds: L,
+        right_fact: Ix,
+    ) -> Option<bool> {
+        let xa = self.seg_fields(a, depth, binds, right_fact)?;
+        let xb = self.seg_fields(b, depth, binds, right_fact)?;
+        let same = xa.len() == xb.len() && xa.iter().zip(xb).all(|(va, vb)| va.same(*vb));
+        Some(same != negated)
+    }
+
+    /// The fields segment `s` names, where they lie; None if its pattern is unbound
+    /// or the slot is not a multislot holding its singles.
+    #[inline(always)]
+    fn seg_fields<L: LeftFacts>(
+        &self,
+        s: Seg,
+        depth: u8,
+        binds: L,
+        right_fact: Ix,
+    ) -> Option<&[Value]> {
+        let (cell, len) = binds.slot_cell(self, s.pat, s.slot, depth, right_fact)?;
+        let len = len? as usize;
+        let from = cell + 1 + s.before as usize;
+        let to = (cell + 1 + len).checked_sub(s.after as usize)?;
+        self.values.get(from..to.max(from))
     }
 
     /// The cell `c` names, where it lies; None if its pattern is unbound or the
@@ -1395,6 +1466,18 @@ impl Core<'_> {
             return None;
         }
         if id == FN_EQ || id == FN_NEQ {
+            if let (Some(sa), Some(sb)) = (self.plan_seg(a, depth), self.plan_seg(b, depth)) {
+                for p in [sa.pat, sb.pat] {
+                    if p != depth && p as usize >= BIND_W {
+                        plan.deep = true;
+                    }
+                }
+                return plan.push(Node::SameSegs {
+                    a: sa,
+                    b: sb,
+                    negated: id == FN_NEQ,
+                });
+            }
             let (ca, cb) = (self.plan_cut(plan, a, depth), self.plan_cut(plan, b, depth));
             if ca.is_some() || cb.is_some() {
                 let text = |plan: &mut PlanBuild, cut: Option<Node>, e: Ix| match cut {
@@ -1440,6 +1523,47 @@ impl Core<'_> {
             id: u8::try_from(id).ok()?,
             a,
             b,
+        })
+    }
+
+    /// The segment of a multifield variable operand (`$?p`, an `Expand` that does
+    /// not splice, of a pattern variable), when it is its slot's only multifield
+    /// element, of a pattern at or above the join's `depth`.
+    fn plan_seg(&self, e: Ix, depth: u8) -> Option<Seg> {
+        let mut x = self.exprs[e as usize];
+        if x.op == Op::Expand && x.aux == 0 && x.first != NONE {
+            x = self.exprs[x.first as usize];
+        }
+        let elem = loc::elem(x.data);
+        if x.op != Op::PatVar
+            || x.data == loc::FACT
+            || elem == loc::SINGLE
+            || x.first == NONE
+            || x.aux > depth
+        {
+            return None;
+        }
+        // the slot's elements (`aux` 1: a multifield): the variable's must be its
+        // only multifield
+        let (mut i, mut multis, mut is_multi) = (0u8, 0u8, false);
+        let mut c = self.exprs[x.first as usize].first;
+        while c != NONE {
+            let ex = self.exprs[c as usize];
+            if ex.aux == 1 {
+                multis += 1;
+                is_multi |= i == elem;
+            }
+            i = i.checked_add(1)?;
+            c = ex.next;
+        }
+        if multis != 1 || !is_multi || elem >= i {
+            return None;
+        }
+        Some(Seg {
+            pat: x.aux,
+            slot: loc::slot(x.data),
+            before: elem,
+            after: i - elem - 1,
         })
     }
 
