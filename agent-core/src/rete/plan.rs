@@ -114,6 +114,39 @@ struct Seg {
     after: u8,
 }
 
+/// `Cell::elem` of a `Seg` stored as a `Node::Cut` (an operand of `Text`, whose
+/// runner is out of line: a node kind of its own in the plan runner's dispatch made
+/// every other plan's tests dearer).
+const SEG: u8 = u8::MAX - 1;
+
+impl Seg {
+    /// The segment as a `Text` operand node.
+    fn node(self) -> Node {
+        Node::Cut {
+            c: Cell {
+                pat: self.pat,
+                slot: self.slot,
+                elem: SEG,
+            },
+            from: i16::from(self.before),
+            to: i16::from(self.after),
+        }
+    }
+
+    /// The segment operand node `n` holds (None: another node).
+    fn of(n: Node) -> Option<Seg> {
+        match n {
+            Node::Cut { c, from, to } if c.elem == SEG => Some(Seg {
+                pat: c.pat,
+                slot: c.slot,
+                before: u8::try_from(from).ok()?,
+                after: u8::try_from(to).ok()?,
+            }),
+            _ => None,
+        }
+    }
+}
+
 impl Cell {
     /// The cell a slot or element source names (None for another source).
     fn of(s: Source) -> Option<Cell> {
@@ -123,8 +156,9 @@ impl Cell {
                 slot,
                 elem: WHOLE,
             }),
-            // an element index of `WHOLE` would read as the slot
-            Source::Elem { pat, slot, elem } if elem != WHOLE => Some(Cell { pat, slot, elem }),
+            // an element index of `WHOLE` would read as the slot, one of `SEG` as a
+            // segment
+            Source::Elem { pat, slot, elem } if elem < SEG => Some(Cell { pat, slot, elem }),
             _ => None,
         }
     }
@@ -158,10 +192,6 @@ enum Node {
     /// `SameSlots` where one side (or both) is a field of a multislot (an ordered
     /// fact's `(triple ?a ?b ?c)`), compared where it lies.
     SameCells { a: Cell, b: Cell, negated: bool },
-    /// `eq` (`neq` when `negated`) of two multifield variables: the same length and
-    /// every field the same (`eq` of two multifields), compared where they lie, not
-    /// copied for the evaluator.
-    SameSegs { a: Seg, b: Seg, negated: bool },
     /// All of `kids[first..first + len]` (short-circuit, in order; the planner puts
     /// members that mostly fail first where that changes no result).
     And { first: u8, len: u8 },
@@ -405,17 +435,6 @@ impl PlanBuild {
                     b: cell(b),
                     negated,
                 },
-                Node::SameSegs { a, b, negated } => Node::SameSegs {
-                    a: Seg {
-                        pat: pat(a.pat),
-                        ..a
-                    },
-                    b: Seg {
-                        pat: pat(b.pat),
-                        ..b
-                    },
-                    negated,
-                },
                 Node::Leaf { s } => Node::Leaf { s: src(s) },
                 Node::Cut { c, from, to } => Node::Cut {
                     c: cell(c),
@@ -465,7 +484,7 @@ impl PlanBuild {
             )
         };
         match self.nodes[n as usize] {
-            Node::SameSlots { .. } | Node::SameCells { .. } | Node::SameSegs { .. } => Some(1),
+            Node::SameSlots { .. } | Node::SameCells { .. } => Some(1),
             Node::Cmp { id, a, b } if plain(a) && plain(b) => match Ix::from(id) {
                 FN_EQ | FN_NEQ => Some(1),
                 _ => None,
@@ -492,9 +511,7 @@ impl PlanBuild {
     /// Node `n` is an `eq` of two operands.
     fn is_equality(&self, n: u8) -> bool {
         match self.nodes[n as usize] {
-            Node::SameSlots { negated, .. }
-            | Node::SameCells { negated, .. }
-            | Node::SameSegs { negated, .. } => !negated,
+            Node::SameSlots { negated, .. } | Node::SameCells { negated, .. } => !negated,
             Node::Cmp { id, .. } => Ix::from(id) == FN_EQ,
             _ => false,
         }
@@ -906,10 +923,6 @@ impl Core<'_> {
                     read(a.pat, a.slot)?;
                     read(b.pat, b.slot)?;
                 }
-                Node::SameSegs { a, b, .. } => {
-                    read(a.pat, a.slot)?;
-                    read(b.pat, b.slot)?;
-                }
                 Node::Leaf { s } => src(s)?,
                 Node::Cut { c, .. } => read(c.pat, c.slot)?,
                 Node::Text { .. }
@@ -986,9 +999,6 @@ impl Core<'_> {
             }
             Node::SameCells { a, b, negated } => {
                 self.run_same_cells(a, b, negated, depth, binds, right_fact)
-            }
-            Node::SameSegs { a, b, negated } => {
-                self.run_same_segs(a, b, negated, depth, binds, right_fact)
             }
             Node::And { first, len } => {
                 for &k in &plans.kids[first as usize..(first + len) as usize] {
@@ -1143,9 +1153,9 @@ impl Core<'_> {
         Some(same_cell(va, vb)? != negated)
     }
 
-    /// One planned `eq`/`neq` of two multifield variables (`Node::SameSegs`), as
-    /// `eq` compares two multifields: the lengths, then field by field.
-    #[inline(never)]
+    /// One planned `eq`/`neq` of two multifield variables (`Seg::node` operands of
+    /// a `Text`), as `eq` compares two multifields: the lengths, then field by field.
+    #[inline(always)]
     fn run_same_segs<L: LeftFacts>(
         &self,
         a: Seg,
@@ -1223,6 +1233,10 @@ impl Core<'_> {
         binds: L,
         right_fact: Ix,
     ) -> Option<bool> {
+        let nodes = &self.st.cache.compiled_plans.nodes;
+        if let (Some(sa), Some(sb)) = (Seg::of(nodes[a as usize]), Seg::of(nodes[b as usize])) {
+            return self.run_same_segs(sa, sb, negated, depth, binds, right_fact);
+        }
         let ta = self.text_operand(a, depth, binds, right_fact)?;
         let tb = self.text_operand(b, depth, binds, right_fact)?;
         let same = matches!((ta, tb), (Some(x), Some(y)) if x == y);
@@ -1472,9 +1486,11 @@ impl Core<'_> {
                         plan.deep = true;
                     }
                 }
-                return plan.push(Node::SameSegs {
-                    a: sa,
-                    b: sb,
+                let a = plan.push(sa.node())?;
+                let b = plan.push(sb.node())?;
+                return plan.push(Node::Text {
+                    a,
+                    b,
                     negated: id == FN_NEQ,
                 });
             }
