@@ -1743,6 +1743,17 @@ def row_dirs(dirs):
     return sorted(rows, key=lambda r: (r[0], r[1]))
 
 
+def add_measure_options(p):
+    """The options `measure` and `measure-dirs` share."""
+    p.add_argument("--no-c64", action="store_true")
+    p.add_argument("--cache", metavar="CACHE_DIR",
+                   help="keep and reuse CLIPS 6.30 and 6.4.2 results here (ours is always measured)")
+    p.add_argument("--jobs", type=int, default=1, help="rows measured in parallel")
+    p.add_argument("--ends-first", action="store_true",
+                   help="start every shape's smallest and largest sizes before the others")
+    p.add_argument("--rows", metavar="FILE", help="append each row's exact figures to FILE (JSON lines)")
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     sub = parser.add_subparsers(dest="cmd", required=True)
@@ -1754,24 +1765,12 @@ def main():
     m.add_argument("dir")
     m.add_argument("ours")
     m.add_argument("--only", nargs="*")
-    m.add_argument("--no-c64", action="store_true")
     m.add_argument("--sizes", nargs="*", type=int, help="these sizes instead of the shape's own")
-    m.add_argument("--cache", metavar="CACHE_DIR",
-                   help="keep and reuse CLIPS 6.30 and 6.4.2 results here (ours is always measured)")
-    m.add_argument("--jobs", type=int, default=1, help="rows measured in parallel")
-    m.add_argument("--ends-first", action="store_true",
-                   help="start every shape's smallest and largest sizes before the others")
-    m.add_argument("--rows", metavar="FILE", help="append each row's exact figures to FILE (JSON lines)")
+    add_measure_options(m)
     md = sub.add_parser("measure-dirs", help="measure rows already on disk (e.g. bench --emit-only)")
     md.add_argument("dirs", nargs="+", metavar="DIR")
     md.add_argument("ours")
-    md.add_argument("--no-c64", action="store_true")
-    md.add_argument("--cache", metavar="CACHE_DIR",
-                    help="keep and reuse CLIPS 6.30 and 6.4.2 results here (ours is always measured)")
-    md.add_argument("--jobs", type=int, default=1, help="rows measured in parallel")
-    md.add_argument("--ends-first", action="store_true",
-                    help="start every shape's smallest and largest sizes before the others")
-    md.add_argument("--rows", metavar="FILE", help="append each row's exact figures to FILE (JSON lines)")
+    add_measure_options(md)
     t = sub.add_parser("table", help="print the tables from `measure --rows` files")
     t.add_argument("files", nargs="+")
     args = parser.parse_args()
