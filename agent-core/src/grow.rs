@@ -17,7 +17,10 @@
 //! starting fills nothing and touches only the pages a program uses) and starts from it
 //! ([`GrowStorage::from_seed`]); a pool's first growth copies its seed arrays to the heap
 //! (but the token pool's array, the largest, starts in a zeroed reserve there: it
-//! grows without a copy).
+//! grows without a copy). A host that can map zeroed pages and make a mapping longer
+//! without copying ([`ZeroPages`], Linux's `mmap` and `mremap`) starts the arrays of
+//! zero-free entries in such mappings instead ([`GrowStorage::from_seed_in`]): then no
+//! growth of theirs copies or fills, the first included.
 //!
 //! The hash tables over the pools start at the fixed host engine's length and keep
 //! twice as many buckets as their pool has entries: the fact and symbol tables are
@@ -71,6 +74,11 @@ macro_rules! zeroed_or {
         $zeroed
     };
     (values, $zeroed:expr, $plain:expr) => {
+        $zeroed
+    };
+    // (a scratch cell is written before it is read; all-zero bytes are `Void`, the
+    // value growth filled new cells with)
+    (scratch, $zeroed:expr, $plain:expr) => {
         $zeroed
     };
     (fact_tlinks, $zeroed:expr, $plain:expr) => {
@@ -145,6 +153,61 @@ enum Buf<T: 'static> {
     /// facts, and side arrays of theirs) grow into it without writing or copying
     /// (`extend_zeroed`).
     Zeroed(Vec<T>),
+    /// As `Zeroed`, in memory of the host's [`ZeroPages`]: `len` entries in `bytes`
+    /// of it, those past `len` all-zero bytes never written. Grows by the host's
+    /// `grow` (which moves pages, not bytes) and is unmapped when dropped.
+    Mapped {
+        p: NonNull<T>,
+        len: usize,
+        bytes: usize,
+        pages: ZeroPages,
+    },
+}
+
+/// Zero-filled memory a host maps for the arrays of [`ZeroFree`] entries and can make
+/// longer without copying them (on Linux: anonymous `mmap`, grown by `mremap`, which
+/// moves page table entries, not bytes). A seeded storage given one
+/// ([`GrowStorage::from_seed_in`]) starts those arrays there instead of in their seeds:
+/// starting touches none of their pages, and a pool's growth past the fixed host
+/// engine's length (its first included, which copied the whole seed) neither copies
+/// nor fills them.
+#[derive(Clone, Copy)]
+pub struct ZeroPages {
+    map: fn(usize) -> *mut u8,
+    grow: unsafe fn(*mut u8, usize, usize) -> *mut u8,
+    unmap: unsafe fn(*mut u8, usize),
+}
+
+impl ZeroPages {
+    /// The host's three calls.
+    ///
+    /// # Safety
+    /// `map(n)` (`n` > 0) returns null or the start of `n` bytes of fresh memory, every
+    /// byte zero, readable and writable, aligned to at least 16, that nothing else
+    /// uses until `unmap`. `grow(p, old, new)` (`p` of a mapping of `old` bytes made by
+    /// `map` or `grow`, `new` > `old`) returns null, the mapping unchanged, or the
+    /// start of a mapping of `new` bytes (maybe elsewhere; the old one is then gone),
+    /// aligned as `map`'s, whose first `old` bytes are the old mapping's and the rest
+    /// zero. `unmap(p, n)`
+    /// frees a mapping of `n` bytes made by `map` or `grow`.
+    pub const unsafe fn new(
+        map: fn(usize) -> *mut u8,
+        grow: unsafe fn(*mut u8, usize, usize) -> *mut u8,
+        unmap: unsafe fn(*mut u8, usize),
+    ) -> Self {
+        ZeroPages { map, grow, unmap }
+    }
+}
+
+impl<T: 'static> Drop for Buf<T> {
+    fn drop(&mut self) {
+        if let Buf::Mapped { p, bytes, pages, .. } = *self {
+            // SAFETY: `p` is a mapping of `bytes` bytes made by `pages` (`Buf::mapped`,
+            // `reserve_zeroed`), reached only through this array, whose entries
+            // (`ZeroFree`: `Copy`) need no drop.
+            unsafe { (pages.unmap)(p.as_ptr().cast(), bytes) }
+        }
+    }
 }
 
 /// Entries whose all-zero bytes are a valid value that their pool reads as an entry
@@ -242,6 +305,28 @@ fn zeroed_vec<T: ZeroFree>(room: usize, from: &[T]) -> Option<Vec<T>> {
 }
 
 impl<T: ZeroFree> Buf<T> {
+    /// `len` all-zero entries in a fresh mapping of `pages` with room for exactly
+    /// them, or `None` if the host refuses.
+    fn mapped(len: usize, pages: ZeroPages) -> Option<Self> {
+        let bytes = len.checked_mul(core::mem::size_of::<T>())?;
+        if bytes == 0 {
+            return None;
+        }
+        let raw = (pages.map)(bytes);
+        let p = NonNull::new(raw.cast::<T>())?;
+        if raw.align_offset(core::mem::align_of::<T>()) != 0 {
+            // SAFETY: a mapping of `bytes` just made by `pages`, not used.
+            unsafe { (pages.unmap)(raw, bytes) };
+            return None;
+        }
+        Some(Buf::Mapped {
+            p,
+            len,
+            bytes,
+            pages,
+        })
+    }
+
     /// `len` all-zero entries at the start of a fresh zeroed reserve (as
     /// `reserve_zeroed` makes on a first growth, `limit` capping it), or `None` if
     /// the allocator refuses: a seeded pool of such entries starts here instead of in
@@ -260,10 +345,30 @@ impl<T: ZeroFree> Buf<T> {
     /// entries if fewer, or `len` if more), the entries unchanged: nothing to do if
     /// there is room, else one copy of the entries to a fresh zeroed allocation.
     fn reserve_zeroed(&mut self, len: usize, limit: usize) -> Result<(), ()> {
-        if let Buf::Zeroed(v) = self {
-            if v.capacity() >= len {
-                return Ok(());
+        match self {
+            Buf::Zeroed(v) if v.capacity() >= len => return Ok(()),
+            Buf::Mapped { p, bytes, pages, .. } => {
+                let size = core::mem::size_of::<T>();
+                if *bytes / size >= len {
+                    return Ok(());
+                }
+                // made longer by the host, the entries where they are (or moved with
+                // their pages); if it refuses, copied as below
+                if let Some(new) = len.checked_mul(size) {
+                    // SAFETY: `p` is a mapping of `bytes` bytes made by `pages`, and
+                    // `new` is more; nothing borrows the array's entries now (`grow`
+                    // rebinds the pool's slices after this).
+                    let q = unsafe { (pages.grow)(p.as_ptr().cast(), *bytes, new) };
+                    if let Some(q) = NonNull::new(q.cast::<T>()) {
+                        // (aligned as `map`'s: `ZeroPages::new`, and `mapped` checked
+                        // that `T` needs no more)
+                        *p = q;
+                        *bytes = new;
+                        return Ok(());
+                    }
+                }
             }
+            _ => {}
         }
         let room = (ZEROED_RESERVE / core::mem::size_of::<T>())
             .min(limit)
@@ -278,6 +383,13 @@ impl<T: ZeroFree> Buf<T> {
     /// Makes it `len` entries long in the room `reserve_zeroed` made, the new
     /// entries all-zero bytes (as they are); unchanged if there is no such room.
     fn extend_zeroed(&mut self, len: usize) {
+        if let Buf::Mapped { len: l, bytes, .. } = self {
+            // the entries up to `bytes` are all-zero bytes, never written (`mapped`,
+            // `reserve_zeroed`): valid `T`s (`ZeroFree`)
+            if *l < len && len <= *bytes / core::mem::size_of::<T>() {
+                *l = len;
+            }
+        }
         if let Buf::Zeroed(v) = self {
             if v.len() < len && len <= v.capacity() {
                 // SAFETY: the entries from `v.len()` to the capacity are all-zero
@@ -310,6 +422,17 @@ impl<T: Clone> Buf<T> {
                 let extra = len.saturating_sub(v.len());
                 v.try_reserve_exact(extra).map_err(|_| ())
             }
+            Buf::Mapped { bytes, .. } if *bytes / core::mem::size_of::<T>().max(1) >= len => {
+                Ok(())
+            }
+            Buf::Mapped { .. } => {
+                // (as a `Heap`, as a `Zeroed` that outgrows its room)
+                let mut v = Vec::new();
+                v.try_reserve_exact(len.max(self.len())).map_err(|_| ())?;
+                v.extend_from_slice(self);
+                *self = Buf::Heap(v);
+                Ok(())
+            }
             Buf::Seed(seed) => {
                 let mut v = Vec::new();
                 v.try_reserve_exact(len.max(seed.len())).map_err(|_| ())?;
@@ -325,7 +448,10 @@ impl<T: Clone> Buf<T> {
     fn resize(&mut self, len: usize, empty: T) {
         // a `Zeroed` one is resized only by `extend_zeroed`: here it would stay as it
         // is when its room is enough, and turn `Heap` and grow when not
-        debug_assert!(!matches!(self, Buf::Zeroed(_)), "resize of a Zeroed array");
+        debug_assert!(
+            !matches!(self, Buf::Zeroed(_) | Buf::Mapped { .. }),
+            "resize of a Zeroed array"
+        );
         if self.reserve(len).is_ok() {
             if let Buf::Heap(v) = self {
                 v.resize(len, empty);
@@ -340,6 +466,10 @@ impl<T> core::ops::Deref for Buf<T> {
         match self {
             Buf::Seed(s) => s,
             Buf::Heap(v) | Buf::Zeroed(v) => v,
+            // SAFETY: `p` points at `bytes` >= `len` entries' worth of the array's
+            // mapping, aligned for `T` (`mapped`), the first `len` valid `T`s (written,
+            // or all-zero bytes: `ZeroFree`), reached only through this array.
+            Buf::Mapped { p, len, .. } => unsafe { core::slice::from_raw_parts(p.as_ptr(), *len) },
         }
     }
 }
@@ -349,18 +479,43 @@ impl<T> core::ops::DerefMut for Buf<T> {
         match self {
             Buf::Seed(s) => s,
             Buf::Heap(v) | Buf::Zeroed(v) => v,
+            // SAFETY: as in `deref`; `&mut self` makes this the only view.
+            Buf::Mapped { p, len, .. } => unsafe {
+                core::slice::from_raw_parts_mut(p.as_ptr(), *len)
+            },
         }
     }
 }
 
-/// A seeded side array's start (`GrowStorage::from_seed`): in its seed. (The token
-/// pool's extra index links in a zeroed reserve saved growforall-800 ~0.9 M
-/// instructions, but the second allocation at every start cost join-100's whole run
-/// +0.06 %.)
+/// A seeded side array's start (`GrowStorage::seeded`): in a mapping of the host's
+/// [`ZeroPages`] if it gives one and the entries are zero-free, else in its seed. (The
+/// token pool's extra index links in a zeroed reserve of the allocator saved
+/// growforall-800 ~0.9 M instructions, but the second allocation at every start cost
+/// join-100's whole run +0.06 %; a mapping costs a system call, a few instructions.)
 macro_rules! zero_start {
-    ($other:ident, $seeded:expr, $n:expr, $side:expr) => {{
-        let _ = ($n, $side);
+    // the support list heads keep their seed, whose heads are `NO_DEPS` already: in
+    // zeroed pages they would be filled (written) once a rule with `logical` exists
+    (token_deps, $pages:expr, $seeded:expr, $n:expr, $side:expr) => {{
+        let _ = (&$pages, $n, $side);
         Buf::Seed($seeded)
+    }};
+    (fact_deps, $pages:expr, $seeded:expr, $n:expr, $side:expr) => {{
+        let _ = (&$pages, $n, $side);
+        Buf::Seed($seeded)
+    }};
+    ($arr:ident, $pages:expr, $seeded:expr, $n:expr, $side:expr) => {{
+        let _ = $side;
+        zeroed_or!(
+            $arr,
+            match ($pages).and_then(|pg| Buf::mapped($n, pg)) {
+                Some(b) => b,
+                None => Buf::Seed($seeded),
+            },
+            {
+                let _ = (&$pages, $n);
+                Buf::Seed($seeded)
+            }
+        )
     }};
 }
 
@@ -432,6 +587,26 @@ macro_rules! grow_items {
             /// refuses; the others allocate nothing until their pool grows. The seed's
             /// entries must be empty ([`HostSeed::new`]): it is used as it is.
             pub fn from_seed(seed: &'static mut HostSeed, limit: Capacities) -> Self {
+                Self::seeded(seed, limit, None)
+            }
+
+            /// [`from_seed`](Self::from_seed), but the arrays of zero-free entries (the
+            /// token, fact and fact value pools, multifield scratch and side arrays of
+            /// theirs) start in fresh mappings of `pages` (those the host refuses as
+            /// `from_seed` starts them): their growth then copies nothing.
+            pub fn from_seed_in(
+                seed: &'static mut HostSeed,
+                limit: Capacities,
+                pages: ZeroPages,
+            ) -> Self {
+                Self::seeded(seed, limit, Some(pages))
+            }
+
+            fn seeded(
+                seed: &'static mut HostSeed,
+                limit: Capacities,
+                pages: Option<ZeroPages>,
+            ) -> Self {
                 let limits = limit.to_array().map(|l| l.min(INDEX_LIMIT));
                 let start = Capacities::HOST.to_array();
                 GrowStorage {
@@ -446,11 +621,13 @@ macro_rules! grow_items {
                             // start costs ~800 instructions, so the smaller pools keep
                             // their seeds)
                             zeroed_or!($first,
-                                if Pool::$variant == Pool::Tokens {
-                                    Buf::zeroed_start(n, limit)
-                                        .unwrap_or_else(|| Buf::Seed(&mut seed.$first[..n]))
-                                } else {
-                                    Buf::Seed(&mut seed.$first[..n])
+                                match pages.and_then(|pg| Buf::mapped(n, pg)) {
+                                    Some(b) => b,
+                                    None if Pool::$variant == Pool::Tokens => {
+                                        Buf::zeroed_start(n, limit)
+                                            .unwrap_or_else(|| Buf::Seed(&mut seed.$first[..n]))
+                                    }
+                                    None => Buf::Seed(&mut seed.$first[..n]),
                                 },
                                 { let _ = limit; Buf::Seed(&mut seed.$first[..n]) })
                         },
@@ -458,7 +635,7 @@ macro_rules! grow_items {
                             let n = start[Pool::$variant as usize]
                                 .min(limits[Pool::$variant as usize]);
                             let seeded = &mut seed.$arr[..heads!($arr).map_or(n, |h| n.max(h))];
-                            zero_start!($arr, seeded, n, limits[Pool::$variant as usize]
+                            zero_start!($arr, pages, seeded, n, limits[Pool::$variant as usize]
                                 .min(ZEROED_RESERVE / core::mem::size_of::<$fty>().max(1)))
                         },)*
                     )*
@@ -768,6 +945,37 @@ mod tests {
         host.out
     }
 
+    /// Zeroed pages for the tests from the global allocator: `grow` moves a mapping
+    /// (a fresh zeroed one, the old bytes copied in), as `mremap` may.
+    const TEST_PAGES: ZeroPages = {
+        fn layout(bytes: usize) -> core::alloc::Layout {
+            core::alloc::Layout::from_size_align(bytes, 16).unwrap()
+        }
+        fn map(bytes: usize) -> *mut u8 {
+            // SAFETY: `bytes` > 0 (`ZeroPages::new`'s contract)
+            unsafe { alloc::alloc::alloc_zeroed(layout(bytes)) }
+        }
+        unsafe fn grow(p: *mut u8, old: usize, new: usize) -> *mut u8 {
+            let q = map(new);
+            if !q.is_null() {
+                // SAFETY: `p` holds `old` bytes (the contract), `q` `new` > `old`;
+                // distinct allocations; `p` was allocated by `map` with that layout
+                unsafe {
+                    core::ptr::copy_nonoverlapping(p, q, old);
+                    alloc::alloc::dealloc(p, layout(old));
+                }
+            }
+            q
+        }
+        unsafe fn unmap(p: *mut u8, bytes: usize) {
+            // SAFETY: allocated by `map` or `grow` with this layout (the contract)
+            unsafe { alloc::alloc::dealloc(p, layout(bytes)) }
+        }
+        // SAFETY: zeroed allocations aligned to 16; `grow` keeps the bytes and zeroes
+        // the rest (`alloc_zeroed`), and frees the old one only when it succeeds
+        unsafe { ZeroPages::new(map, grow, unmap) }
+    };
+
     /// A program past the fixed host engine's pools: 4,500 `n` facts and as many `m`
     /// ones (of 4,096 facts), 520 rules (of 512), joins on a shared variable (the token
     /// index grows under them) and a `not` per rule, with the agenda printed so the
@@ -857,6 +1065,21 @@ mod tests {
         let mut seeded = Box::new(GrowEngine::with_storage(seeded));
         assert_eq!(run(&mut seeded, &program), expected);
         assert!(seeded.stats().get(Pool::Facts).1 as usize > Capacities::HOST.facts);
+        // started in mapped pages, the zero-free arrays grow there (no copy, no
+        // fill: the test's `grow` moves them, as `mremap` may) and it runs the same
+        let seed = Box::leak(Box::new(HostSeed::new()));
+        let mapped = GrowStorage::from_seed_in(seed, GrowStorage::NO_LIMIT, TEST_PAGES);
+        assert!(matches!(mapped.tokens, Buf::Mapped { .. }));
+        assert!(matches!(mapped.facts, Buf::Mapped { .. }));
+        assert!(matches!(mapped.scratch, Buf::Mapped { .. }));
+        assert!(matches!(mapped.amem_buckets, Buf::Seed(_)));
+        let mut mapped = Box::new(GrowEngine::with_storage(mapped));
+        assert_eq!(run(&mut mapped, &program), expected);
+        assert!(mapped.stats().get(Pool::Facts).1 as usize > Capacities::HOST.facts);
+        if let Err(v) = mapped.check_invariants() {
+            panic!("{v}");
+        }
+        drop(mapped);
         // and a default (fixed host) engine runs out on it
         let mut small = Box::new(DefaultEngine::new());
         assert!(run(&mut small, &program).contains("out of "));

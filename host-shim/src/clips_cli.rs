@@ -50,9 +50,63 @@ static CLI_SEED: static_cell::ConstStaticCell<HostSeed> =
 /// heap at the same capacities; no pool grows past `limit` entries.
 fn cli_storage(limit: Capacities) -> GrowStorage {
     match CLI_SEED.try_take() {
+        #[cfg(target_os = "linux")]
+        Some(seed) => GrowStorage::from_seed_in(seed, limit, zero_pages::PAGES),
+        #[cfg(not(target_os = "linux"))]
         Some(seed) => GrowStorage::from_seed(seed, limit),
         None => GrowStorage::with_limits(Capacities::HOST, limit),
     }
+}
+
+/// Anonymous mappings for the pools' zero-free arrays (`ZeroPages`): fresh pages are
+/// zero and resident only once touched, and `mremap` makes one longer by moving its
+/// page table entries, so a pool's growth copies none of its entries.
+#[cfg(target_os = "linux")]
+mod zero_pages {
+    use agent_core::grow::ZeroPages;
+
+    fn map(bytes: usize) -> *mut u8 {
+        // SAFETY: a new private anonymous mapping; no memory of ours is touched.
+        let p = unsafe {
+            libc::mmap(
+                core::ptr::null_mut(),
+                bytes,
+                libc::PROT_READ | libc::PROT_WRITE,
+                libc::MAP_PRIVATE | libc::MAP_ANONYMOUS,
+                -1,
+                0,
+            )
+        };
+        if p == libc::MAP_FAILED {
+            core::ptr::null_mut()
+        } else {
+            p.cast()
+        }
+    }
+
+    /// # Safety
+    /// `p` is a mapping of `old` bytes made by `map` or `grow`.
+    unsafe fn grow(p: *mut u8, old: usize, new: usize) -> *mut u8 {
+        // SAFETY: the caller's mapping; on failure it stays as it was.
+        let q = unsafe { libc::mremap(p.cast(), old, new, libc::MREMAP_MAYMOVE) };
+        if q == libc::MAP_FAILED {
+            core::ptr::null_mut()
+        } else {
+            q.cast()
+        }
+    }
+
+    /// # Safety
+    /// `p` is a mapping of `bytes` bytes made by `map` or `grow`, not used after.
+    unsafe fn unmap(p: *mut u8, bytes: usize) {
+        // SAFETY: the caller's mapping, which nothing uses any more.
+        unsafe { libc::munmap(p.cast(), bytes) };
+    }
+
+    // SAFETY: `mmap` of private anonymous memory gives zeroed pages, page-aligned,
+    // that nothing else uses; `mremap` with MREMAP_MAYMOVE keeps the contents (moved
+    // with their pages), the new part zero, or fails leaving the mapping as it was.
+    pub const PAGES: ZeroPages = unsafe { ZeroPages::new(map, grow, unmap) };
 }
 
 /// The banner line of the Debian build of CLIPS 6.30 this command line imitates.
