@@ -510,4 +510,6 @@ malformed_programs! {
     e083_module_specifier_unknown => "083-module-specifier-unknown",
     e084_import_not_exported => "084-import-not-exported",
     e085_watch_untraced_item_refused => "085-watch-untraced-item-refused",
+    e806_defmethod_refused => "806-defmethod-refused",
+    e807_defclass_refused => "807-defclass-refused",
 }

@@ -388,6 +388,7 @@ fn slot_facet_value(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 
 #[cfg(all(test, feature = "extras"))]
 mod tests {
+    extern crate std;
     use crate::testutil::run_program;
 
     #[test]
@@ -448,6 +449,26 @@ mod tests {
                     && !out.contains("EXPRNPSR3")
                     && out.ends_with("ok\n"),
                 "{call}: {out}"
+            );
+        }
+    }
+
+    #[test]
+    fn object_and_generic_function_constructs_are_refused_as_not_implemented() {
+        // each refused by its own name, the program going on after it
+        for (construct, what) in [
+            ("(defclass A (is-a USER))", "objects (COOL): defclass"),
+            ("(definstances i (a of A))", "objects (COOL): definstances"),
+            ("(defmessage-handler A m () 1)", "objects (COOL): defmessage-handler"),
+            ("(defgeneric g)", "generic functions: defgeneric"),
+            ("(defmethod g ((?x NUMBER)) (* ?x 2))", "generic functions: defmethod"),
+        ] {
+            let out = run_program(&std::format!("{construct}\n(printout t ok crlf)\n"));
+            assert!(
+                out.contains(&std::format!("[NOTIMPL1] robotino-agent does not implement {what}"))
+                    && !out.contains("EXPRNPSR3")
+                    && out.ends_with("ok\n"),
+                "{construct}: {out}"
             );
         }
     }
