@@ -10,7 +10,9 @@
 
 `emit` writes DIR/<shape>-<size>/ with program.clp (constructs only, as the bench's
 clipspy driver wants them), full.bat.clp (load*, reset, run, exit) and norun.bat.clp
-(the same without run).
+(the same without run). The batches load `program.clp` by its relative name and every
+engine is run in the row's directory with relative arguments, so no path's length enters
+a measurement (it moved ours' string-output rows by up to 1.3 %, SHAPES.md).
 
 `measure` counts instructions with callgrind, run phase = full - norun and whole process:
   CLIPS 6.30   `clips -f2 full.bat.clp` / `norun.bat.clp`
@@ -1424,9 +1426,11 @@ def emit(out_dir, only, sizes_=None):
             program = os.path.join(d, "program.clp")
             with open(program, "w") as f:
                 f.write(make(size))
+            # relative to the row's directory (every engine runs there): the same text,
+            # so the same symbol arena layout, for every DIR and every size (see below)
             for phase, run in (("full", "(run)\n"), ("norun", "")):
                 with open(os.path.join(d, phase + ".bat.clp"), "w") as f:
-                    f.write('(load* "%s")\n(reset)\n%s(exit)\n' % (program, run))
+                    f.write('(load* "program.clp")\n(reset)\n%s(exit)\n' % run)
             rows.append((name, size, d))
     return rows
 
@@ -1538,7 +1542,10 @@ class Cache:
         texts = []
         for name in ("program.clp", "full.bat.clp", "norun.bat.clp"):
             with open(os.path.join(d, name)) as f:
-                texts.append(f.read().replace(d, "@DIR@"))
+                text = f.read().replace(d, "@DIR@")
+            # `emit`'s relative load path: the key of the same batch with DIR's path,
+            # so entries made before `emit` wrote relative paths still serve
+            texts.append(text.replace('(load* "program.clp")', '(load* "@DIR@/program.clp")'))
         blob = json.dumps([label, self.ids[label], texts], sort_keys=True)
         return hashlib.sha256(blob.encode()).hexdigest()
 
@@ -1663,10 +1670,14 @@ def measure(rows, ours, c64, cache=None, jobs=1, order=None, rows_file=None):
     row as soon as all before it are done). With `rows_file`, each row's exact figures are
     appended to it as one JSON line as soon as the row is done (`table` prints them)."""
     cache = cache or Cache(None, {})
-    engines = [("6.30", lambda d, p: ["clips", "-f2", os.path.join(d, p + ".bat.clp")])]
+    # Every engine runs in the row's directory with relative file names: a path's length
+    # is in no engine's memory layout (ours keeps the load path's text in its symbol
+    # arena, so the strings made after it start at other offsets, and checking them as
+    # UTF-8 costs per firing with their alignment; SHAPES.md).
+    engines = [("6.30", lambda d, p: ["clips", "-f2", p + ".bat.clp"])]
     if c64:
-        engines.append(("6.4.2", lambda d, p: [c64, os.path.join(d, "program.clp")] + ([] if p == "full" else ["norun"])))
-    engines.append(("ours", lambda d, p: [ours, "clips", "-f2", os.path.join(d, p + ".bat.clp")]))
+        engines.append(("6.4.2", lambda d, p: [c64, "program.clp"] + ([] if p == "full" else ["norun"])))
+    engines.append(("ours", lambda d, p: [ours, "clips", "-f2", p + ".bat.clp"]))
     print("| shape | size | fired | 6.30 run | 6.4.2 run | ours run | run ratio | 6.30 whole | 6.4.2 whole | ours whole | whole ratio | same output |")
     print("|---|---|---|---|---|---|---|---|---|---|---|---|", flush=True)
     results, lines = [None] * len(rows), [None] * len(rows)
