@@ -682,6 +682,8 @@ impl Core<'_> {
                         start: top as Ix,
                         len: t.len() as Ix,
                         next: NONE,
+                        #[cfg(feature = "grow")]
+                        hash: crate::symbols::hash_bytes(t),
                     };
                     top += t.len();
                 }

@@ -884,14 +884,16 @@ impl Core<'_> {
     /// Builds the symbol table's buckets again for its length now, newest symbol at
     /// each bucket's head (as interning leaves them; `Symbols::truncate` needs it);
     /// the heads past `was`, the old length, are empty already (`grow_heads`).
+    /// Each entry keeps its text's hash (`SymEntry::hash`): a program that makes new
+    /// strings as it runs grows the table often, and hashing every text again at each
+    /// doubling cost it as much per firing as some of its builtins.
     fn rehash_symbols(&mut self, was: usize) {
         self.sym_buckets[..was].fill(NONE);
         let rom = self.st.rom.symbols.len();
         let count = (self.st.pools.nsyms as usize).saturating_sub(rom);
+        let n = self.sym_buckets.len();
         for k in 0..count {
-            let e = self.sym_entries[k];
-            let text = &self.sym_bytes[e.start as usize..e.start as usize + e.len as usize];
-            let b = crate::symbols::hash_bytes(text) as usize % self.sym_buckets.len();
+            let b = self.sym_entries[k].hash as usize % n;
             self.sym_entries[k].next = self.sym_buckets[b];
             self.sym_buckets[b] = (rom + k) as crate::value::Ix;
         }
@@ -1178,6 +1180,33 @@ mod tests {
         );
         ok(&mut e);
         assert_eq!(last(&out), "10");
+    }
+
+    #[test]
+    fn symbols_made_while_the_table_grows_are_found_again() {
+        let mut e = Box::new(GrowEngine::with_storage(GrowStorage::new()));
+        let start = e.stats().get(Pool::Symbols).1 as usize;
+        // several doublings of the table (each puts the symbols in new buckets by the
+        // hash each entry kept), then every text made again must be the same symbol:
+        // one in a wrong bucket would be interned a second time, and `eq` say FALSE
+        let n = 8 * start;
+        let out = run(
+            &mut e,
+            &format!(
+                "(defglobal ?*miss* = 0)
+                 (loop-for-count (?i 1 {n}) (sym-cat s ?i) (str-cat \"t\" ?i))
+                 (loop-for-count (?i 1 {n})
+                   (if (or (neq (sym-cat s ?i) (string-to-field (str-cat \"s\" ?i)))
+                           (neq (str-cat \"t\" ?i) (sub-string 2 20 (str-cat \"-t\" ?i))))
+                    then (bind ?*miss* (+ ?*miss* 1))))
+                 (printout t \"miss \" ?*miss* crlf)"
+            ),
+        );
+        assert_eq!(out.trim().lines().last(), Some("miss 0"), "{out}");
+        assert!(e.stats().get(Pool::Symbols).1 as usize >= 2 * n);
+        if let Err(v) = e.check_invariants() {
+            panic!("{v}");
+        }
     }
 
     #[test]

@@ -372,8 +372,11 @@ impl Core<'_> {
                 );
                 let e = self.sym_entries[i as usize - rom];
                 let text = &self.sym_bytes[e.start as usize..(e.start + e.len) as usize];
-                let home = crate::symbols::hash_bytes(text) as usize % self.sym_buckets.len();
+                let h = crate::symbols::hash_bytes(text);
+                let home = h as usize % self.sym_buckets.len();
                 ensure!(home == b, "symbol in the wrong hash bucket", i);
+                #[cfg(feature = "grow")]
+                ensure!(e.hash == h, "symbol's kept hash is not its text's", i);
                 chained += 1;
                 steps += 1;
                 ensure!(steps <= n, "symbol hash chain has a cycle", b);

@@ -30,6 +30,10 @@ pub struct SymEntry {
     pub len: Ix,
     /// Next entry in the same hash bucket.
     pub next: Ix,
+    /// With `grow`: the text's [`hash_bytes`], so a table that grows puts its symbols in
+    /// their new buckets without reading their texts again (`Core::rehash_symbols`).
+    #[cfg(feature = "grow")]
+    pub hash: u32,
 }
 
 impl SymEntry {
@@ -37,6 +41,8 @@ impl SymEntry {
         start: 0,
         len: 0,
         next: NONE,
+        #[cfg(feature = "grow")]
+        hash: 0,
     };
 }
 
@@ -318,6 +324,8 @@ impl Symbols<'_> {
             start: used as Ix,
             len: len as Ix,
             next: self.buckets[b],
+            #[cfg(feature = "grow")]
+            hash: h,
         };
         self.buckets[b] = n as Ix;
         *self.count += 1;
