@@ -359,6 +359,20 @@ impl Core<'_> {
                     }
                     None => false,
                 });
+        // a re-sort inserts the activations in their old order, so one after another
+        // of a group often goes a little after the one before (a group whose old
+        // saliences differed: two rules' activations by recency): the walk starts at
+        // that one when it goes first (the group is in `goes_before` order)
+        let h = self.st.agenda.groups.hint;
+        if !placed
+            && h != NONE
+            && group != usize::MAX
+            && self.acts[h as usize].salience == self.acts[a as usize].salience
+            && self.goes_before(h, a)
+        {
+            prev = h;
+            cur = self.acts[h as usize].next;
+        }
         while !placed && cur != NONE && !self.goes_before(a, cur) {
             prev = cur;
             cur = self.acts[cur as usize].next;
@@ -732,7 +746,15 @@ impl Core<'_> {
         while list != NONE {
             let next = self.acts[list as usize].next;
             self.agenda_insert(list);
+            #[cfg(feature = "host-speedups")]
+            {
+                self.st.agenda.groups.hint = list;
+            }
             list = next;
+        }
+        #[cfg(feature = "host-speedups")]
+        {
+            self.st.agenda.groups.hint = NONE;
         }
     }
 
@@ -897,6 +919,9 @@ pub struct SalienceGroups {
     pub kept: bool,
     /// More saliences than entries: not tried again until the agenda empties.
     pub overflow: bool,
+    /// While `resort_agenda` inserts again: the activation it inserted last (else
+    /// NONE), where a walk in its salience group may start (`agenda_insert_grouped`).
+    pub hint: Ix,
 }
 
 #[cfg(feature = "host-speedups")]
@@ -911,6 +936,7 @@ impl SalienceGroups {
         n: 0,
         kept: false,
         overflow: false,
+        hint: NONE,
     };
 
     /// Stops keeping the groups (the agenda emptied or was rebuilt).
