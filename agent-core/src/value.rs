@@ -133,21 +133,32 @@ impl<const N: usize> TextBuf<N> {
             len: 0,
         }
     }
-    pub fn as_str(&self) -> &str {
+    /// The initialised bytes, `buf[..len]`.
+    fn bytes(&self) -> &[u8] {
         // SAFETY: `write_str` initialises `buf[..len]` before it raises `len`, and
-        // nothing else raises it (`clear` only lowers it), so the first `len` bytes
-        // are initialised; `len <= N`, so the slice stays inside `buf`.
-        let bytes =
-            unsafe { core::slice::from_raw_parts(self.buf.as_ptr().cast::<u8>(), self.len) };
-        // Only whole UTF-8 sequences are ever pushed (see write_str), so this cannot fail.
-        core::str::from_utf8(bytes).unwrap_or("")
+        // nothing else raises it (`clear` and `truncate` only lower it), so the first
+        // `len` bytes are initialised; `len <= N`, so the slice stays inside `buf`.
+        unsafe { core::slice::from_raw_parts(self.buf.as_ptr().cast::<u8>(), self.len) }
+    }
+    pub fn as_str(&self) -> &str {
+        // SAFETY: `buf[..len]` is whole UTF-8 sequences: `write_str` pushes a prefix
+        // of a `str` cut at a char boundary, `clear` lowers `len` to 0 and `truncate`
+        // to a sequence's start. (Checking them again cost every text built here a
+        // pass over its bytes.)
+        unsafe { core::str::from_utf8_unchecked(self.bytes()) }
     }
     pub fn clear(&mut self) {
         self.len = 0;
     }
-    /// Back to an earlier length (one `len` returned), dropping what came after.
+    /// Back to an earlier length (one `len` returned), dropping what came after; a
+    /// length inside a character goes back to that character's start.
     pub fn truncate(&mut self, len: usize) {
-        self.len = self.len.min(len);
+        let mut len = self.len.min(len);
+        let bytes = self.bytes();
+        while len > 0 && len < bytes.len() && bytes[len] & 0xC0 == 0x80 {
+            len -= 1;
+        }
+        self.len = len;
     }
     pub fn len(&self) -> usize {
         self.len
@@ -303,5 +314,25 @@ mod tests {
         assert_eq!(f(123456789012345678.0).as_str(), "1.23456789012346e+17");
         assert_eq!(f(0.001).as_str(), "0.001");
         assert_eq!(f(-2.25).as_str(), "-2.25");
+    }
+
+    #[test]
+    fn a_text_buffer_holds_whole_characters_only() {
+        use core::fmt::Write as _;
+        // a write past the end keeps the characters that fit whole
+        let mut b: TextBuf<5> = TextBuf::new();
+        assert!(b.write_str("ab\u{e9}\u{e9}").is_err());
+        assert_eq!(b.as_str(), "ab\u{e9}");
+        // a length inside a character goes back to its start
+        b.truncate(3);
+        assert_eq!((b.as_str(), b.len()), ("ab", 2));
+        let mut b: TextBuf<16> = TextBuf::new();
+        b.write_str("x\u{20ac}y").unwrap();
+        for (cut, want) in [(4, "x\u{20ac}"), (3, "x"), (2, "x"), (1, "x"), (9, "x\u{20ac}y")] {
+            let mut c: TextBuf<16> = TextBuf::new();
+            c.write_str(b.as_str()).unwrap();
+            c.truncate(cut);
+            assert_eq!(c.as_str(), want, "cut at {cut}");
+        }
     }
 }

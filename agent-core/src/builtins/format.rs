@@ -408,8 +408,8 @@ fn pad(out: &mut dyn Write, spec: Spec, body: &str, numeric: bool) -> core::fmt:
         out.write_str(body)?;
         return spaces(out, fill, ' ');
     }
-    let finite = !body.contains("inf") && !body.contains("nan");
-    if spec.zero && numeric && finite {
+    // (the text searches only for a zero-padded number: most directives have no `0`)
+    if spec.zero && numeric && !body.contains("inf") && !body.contains("nan") {
         let (sign, digits) = match body.as_bytes().first() {
             Some(b'-') => body.split_at(1),
             _ => ("", body),
