@@ -60,7 +60,11 @@ pub const MAX_MARKS: usize = 4;
 pub const PATH_LEN: usize = 6;
 /// Path locator of the placeholder node of a pattern without tested fields.
 pub const EMPTY_PATH: Ix = 0xFFFE;
-/// Most pattern-level CEs in one rule.
+/// Most pattern-level CEs in one rule. Hosts allow 64 (a connect-four board shown by
+/// one rule of 43 patterns, lu1smgb/UGR-IC 4enraya.clp); the image keeps 32, its RAM.
+#[cfg(feature = "grow")]
+pub const MAX_PATTERNS: usize = 64;
+#[cfg(not(feature = "grow"))]
 pub const MAX_PATTERNS: usize = 32;
 /// Pattern depths whose facts a partial match keeps a copy of on the host
 /// (`Token::binds`); deeper ones are read by walking the ancestry.
