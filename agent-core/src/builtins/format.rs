@@ -260,16 +260,36 @@ pub(super) fn format(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         return Err(arity_error(needed + 2));
     }
     let mut out = Text::new();
-    if let Err(bad) = render(cx, a, control.as_str(), &mut out) {
+    let done = render(cx, a, control.as_str(), &mut out);
+    // host: a result past the buffer is rendered again into one that grows (CLIPS
+    // builds any length); the symbol storage, growing too, is then the limit
+    #[cfg(feature = "grow")]
+    if matches!(done, Err(RenderError::Eval(e)) if e == TOO_LONG) {
+        let mut long = alloc::string::String::new();
+        let done = render(cx, a, control.as_str(), &mut long);
+        return format_done(cx, control.as_str(), dest, done, &long);
+    }
+    format_done(cx, control.as_str(), dest, done, out.as_str())
+}
+
+/// `format`'s result: rendering's error, or `text` written to `dest` and returned.
+fn format_done(
+    cx: &mut Core<'_>,
+    control: &str,
+    dest: Option<super::commands::Routed>,
+    done: Result<(), RenderError>,
+    text: &str,
+) -> Result<Value, EvalError> {
+    if let Err(bad) = done {
         if let RenderError::BadFlag(flag) = bad {
-            return Err(report_bad_flag(cx, control.as_str(), flag));
+            return Err(report_bad_flag(cx, control, flag));
         }
         return Err(bad.into());
     }
     if let Some(r) = dest {
-        cx.write(r.name(), out.as_str());
+        cx.write(r.name(), text);
     }
-    Ok(cx.make_string(out.as_str())?)
+    Ok(cx.make_string(text)?)
 }
 
 /// Why rendering a control string stopped.
@@ -296,7 +316,12 @@ impl From<RenderError> for EvalError {
 }
 
 /// Expands `ctl` with the call's arguments (from argument 3 on) into `out`.
-fn render(cx: &Core<'_>, a: Args, ctl: &str, out: &mut Text) -> Result<(), RenderError> {
+fn render<W: Write>(
+    cx: &Core<'_>,
+    a: Args,
+    ctl: &str,
+    out: &mut W,
+) -> Result<(), RenderError> {
     let b = ctl.as_bytes();
     let (mut i, mut lit, mut next_arg) = (0, 0, 2usize);
     while i < b.len() {
@@ -344,12 +369,12 @@ fn render(cx: &Core<'_>, a: Args, ctl: &str, out: &mut Text) -> Result<(), Rende
 }
 
 /// Formats one argument-consuming directive.
-fn directive(
+fn directive<W: Write>(
     cx: &Core<'_>,
     spec: Spec,
     v: Value,
     argno: u8,
-    out: &mut Text,
+    out: &mut W,
 ) -> Result<(), EvalError> {
     let mut body: TextBuf<400> = TextBuf::new();
     let numeric = spec.conv != b's' && spec.conv != b'c';

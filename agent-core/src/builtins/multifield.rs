@@ -353,12 +353,21 @@ fn subseq(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 pub(super) fn implode(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let m = multi_arg(cx, a, 0, "implode$")?;
     let mut b = Text::new();
-    write_implode(cx, m, &mut b)
-        .map_err(|_| EvalError::message(crate::error::Message::ImplodeTooLong))?;
+    let done = write_implode(cx, m, &mut b);
+    // host: a result past the buffer is written again into one that grows (CLIPS
+    // builds any length); the symbol storage, growing too, is then the limit
+    #[cfg(feature = "grow")]
+    if done.is_err() {
+        let mut long = alloc::string::String::new();
+        write_implode(cx, m, &mut long)
+            .map_err(|_| EvalError::message(crate::error::Message::ImplodeTooLong))?;
+        return Ok(cx.make_string(&long)?);
+    }
+    done.map_err(|_| EvalError::message(crate::error::Message::ImplodeTooLong))?;
     Ok(cx.make_string(b.as_str())?)
 }
 
-fn write_implode(cx: &Core<'_>, m: MfSpan, b: &mut Text) -> core::fmt::Result {
+fn write_implode<W: core::fmt::Write>(cx: &Core<'_>, m: MfSpan, b: &mut W) -> core::fmt::Result {
     for k in 0..m.len as usize {
         if k > 0 {
             b.write_char(' ')?;

@@ -1,0 +1,21 @@
+; str-cat, sym-cat, implode$ and format build results past 2048 bytes, as CLIPS
+; builds any length (hosts grow their symbol storage to hold them)
+(deffunction grow (?s ?n) (bind ?r ?s) (loop-for-count ?n (bind ?r (str-cat ?r ?r))) ?r)
+(defglobal ?*a* = (grow "abcdefgh" 9))
+(str-length ?*a*)
+(str-length (str-cat ?*a* "-" ?*a*))
+(sub-string 4090 4100 (str-cat ?*a* "|" ?*a*))
+(str-length (sym-cat ?*a* x ?*a*))
+(str-length (implode$ (create$ ?*a* ?*a* ?*a*)))
+(sub-string 4095 4110 (implode$ (create$ ?*a* ?*a* ?*a*)))
+(str-length (format nil "%s+%s" ?*a* ?*a*))
+(sub-string 4090 4100 (format nil "%s+%s" ?*a* ?*a*))
+(str-length (grow "x" 16))
+(eq (str-cat ?*a* ?*a*) (grow "abcdefgh" 10))
+(defrule long
+   (text ?t&:(> (str-length ?t) 3000))
+   =>
+   (printout t (str-length ?t) " " (sub-string 1 10 ?t) crlf))
+(assert (text (str-cat ?*a* ?*a*)))
+(run)
+(exit)
