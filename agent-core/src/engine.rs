@@ -462,6 +462,10 @@ pub struct EvalState {
     /// How deep calls may nest on the host (kept across `clear`).
     #[cfg(feature = "grow")]
     pub limits: crate::eval::DepthLimits,
+    /// The first fixed limit of the image (and of engines without `grow`) that this
+    /// engine went past, for `write_compiled` to refuse what the image cannot hold.
+    #[cfg(feature = "grow")]
+    pub past_image: Option<&'static str>,
 }
 
 impl EvalState {
@@ -488,6 +492,8 @@ impl EvalState {
             arg_error: false,
             #[cfg(feature = "grow")]
             limits: crate::eval::DepthLimits::new(),
+            #[cfg(feature = "grow")]
+            past_image: None,
         }
     }
 }

@@ -385,7 +385,7 @@ impl Core<'_> {
     /// the one before it), past every activation `a` does not go before
     /// (`goes_before`'s order), the kept lists borrowed once and compared inline.
     /// Returns the steps taken, or None (nothing moved) when the lists are borrowed.
-    #[cfg(all(feature = "extras", feature = "grow"))]
+    #[cfg(all(feature = "extras", feature = "grow", feature = "host-speedups"))]
     #[inline(never)]
     pub(crate) fn recency_walk(&self, a: Ix, prev: &mut Ix, cur: &mut Ix) -> Option<u32> {
         let mut cache = self.st.recency.try_borrow_mut().ok()?;
@@ -436,7 +436,7 @@ impl Core<'_> {
 
     /// Host: activation `k`'s kept recency list, worked out (and kept) when the entry
     /// is not its own.
-    #[cfg(all(feature = "extras", feature = "grow"))]
+    #[cfg(all(feature = "extras", feature = "grow", feature = "host-speedups"))]
     #[inline(always)]
     fn kept_recency(
         &self,

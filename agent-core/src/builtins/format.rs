@@ -267,6 +267,10 @@ pub(super) fn format(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     if matches!(done, Err(RenderError::Eval(e)) if e == TOO_LONG) {
         let mut long = alloc::string::String::new();
         let done = render(cx, a, control.as_str(), &mut long);
+        cx.st
+            .eval
+            .past_image
+            .get_or_insert(super::strings::PAST_TEXT_MAX);
         return format_done(cx, control.as_str(), dest, done, &long);
     }
     format_done(cx, control.as_str(), dest, done, out.as_str())
@@ -316,12 +320,7 @@ impl From<RenderError> for EvalError {
 }
 
 /// Expands `ctl` with the call's arguments (from argument 3 on) into `out`.
-fn render<W: Write>(
-    cx: &Core<'_>,
-    a: Args,
-    ctl: &str,
-    out: &mut W,
-) -> Result<(), RenderError> {
+fn render<W: Write>(cx: &Core<'_>, a: Args, ctl: &str, out: &mut W) -> Result<(), RenderError> {
     let b = ctl.as_bytes();
     let (mut i, mut lit, mut next_arg) = (0, 0, 2usize);
     while i < b.len() {

@@ -600,6 +600,13 @@ impl Core<'_> {
         #[cfg(feature = "grow")]
         self.symbol_room(0);
         let id = self.syms().intern_tail(len)?;
+        #[cfg(feature = "grow")]
+        if len > strings::TEXT_MAX {
+            self.st
+                .eval
+                .past_image
+                .get_or_insert(strings::PAST_TEXT_MAX);
+        }
         self.note_hw(crate::error::Pool::Symbols, self.st.pools.nsyms as usize);
         self.note_hw(
             crate::error::Pool::SymbolBytes,

@@ -361,6 +361,10 @@ pub(super) fn implode(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         let mut long = alloc::string::String::new();
         write_implode(cx, m, &mut long)
             .map_err(|_| EvalError::message(crate::error::Message::ImplodeTooLong))?;
+        cx.st
+            .eval
+            .past_image
+            .get_or_insert(super::strings::PAST_TEXT_MAX);
         return Ok(cx.make_string(&long)?);
     }
     done.map_err(|_| EvalError::message(crate::error::Message::ImplodeTooLong))?;

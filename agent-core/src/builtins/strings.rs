@@ -41,6 +41,11 @@ const CAT_MAX: usize = TEXT_MAX;
 #[cfg(feature = "grow")]
 const CAT_MAX: usize = crate::value::Ix::MAX as usize;
 
+/// What an engine with `grow` went past when it built a string longer than the
+/// image's `TEXT_MAX` (see `EvalState::past_image`).
+#[cfg(feature = "grow")]
+pub(crate) const PAST_TEXT_MAX: &str = "a string built longer than 2048 bytes (the image's limit)";
+
 const TOO_LONG: EvalError = EvalError::message(crate::error::Message::StringTooLong);
 
 /// Copies a symbol's text out of the table, so the table can be written afterwards.

@@ -362,6 +362,16 @@ impl Compiler<'_, '_> {
             text: NONE,
             complexity: b.complexity,
         };
+        #[cfg(feature = "grow")]
+        if b.n > crate::rete::IMAGE_MAX_PATTERNS
+            || b.depth as usize > crate::rete::IMAGE_MAX_PATTERNS
+        {
+            self.cx
+                .st
+                .eval
+                .past_image
+                .get_or_insert("a rule of more than 32 conditional elements (the image's limit)");
+        }
         // the join where the rule's logical CEs end (`logical`)
         #[cfg(feature = "logical")]
         {

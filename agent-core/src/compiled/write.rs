@@ -27,6 +27,10 @@ pub enum WriteError {
     /// A defmodule besides the MAIN made at start-up: a compiled rule base keeps no
     /// modules (its constructs are all MAIN's, as the agent image has them).
     Modules,
+    /// An engine with `grow` took a construct past one of the image's fixed limits
+    /// (named): the image could not hold the rule base, nor would an engine without
+    /// `grow` have loaded the same constructs.
+    PastImageLimit(&'static str),
 }
 
 impl From<fmt::Error> for WriteError {
@@ -52,6 +56,10 @@ impl fmt::Display for WriteError {
             WriteError::Modules => write!(
                 f,
                 "a defmodule besides MAIN: compiled rule bases hold the MAIN module only"
+            ),
+            WriteError::PastImageLimit(what) => write!(
+                f,
+                "{what}: compiled rule bases keep the image's fixed limits"
             ),
         }
     }
@@ -80,6 +88,21 @@ struct I(Ix);
 impl fmt::Display for I {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         if self.0 == NONE {
+            f.write_str("N")
+        } else {
+            write!(f, "{}", self.0)
+        }
+    }
+}
+
+/// 16 bits of a constant, written as they are (`0xFFFF` too, which a narrow build's
+/// NONE equals); a wide build's NONE, which no 16 bits equal (a payload node that
+/// holds no constant), as `N`, so the text is the same from either width.
+struct Bits(Ix);
+
+impl fmt::Display for Bits {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if u64::from(self.0) > 0xFFFF {
             f.write_str("N")
         } else {
             write!(f, "{}", self.0)
@@ -166,6 +189,10 @@ impl Core<'_> {
         #[cfg(feature = "modules")]
         if self.st.modules.nmodules > 1 || self.st.modules.nports > 0 {
             return Err(WriteError::Modules);
+        }
+        #[cfg(feature = "grow")]
+        if let Some(what) = self.st.eval.past_image {
+            return Err(WriteError::PastImageLimit(what));
         }
         let mut f = self.st.facts.fact_head;
         while f != NONE {
@@ -419,13 +446,13 @@ impl Core<'_> {
             } else if matches!(x.op, Op::Payload | Op::Int | Op::Float | Op::PatVar) {
                 // 16 bits of a constant, or a field locator (`loc::FACT` is 0xFFFF in
                 // every index width): never an index, so never `N`
-                write!(out, "{}", x.data)?;
+                write!(out, "{}", Bits(x.data))?;
             } else {
                 write!(out, "{}", I(x.data))?;
             }
             if x.op == Op::Payload {
                 // the other 32 bits of the constant
-                writeln!(out, ", {}, {}),", x.first, x.next)?;
+                writeln!(out, ", {}, {}),", Bits(x.first), Bits(x.next))?;
             } else {
                 writeln!(out, ", {}, {}),", I(x.first), I(x.next))?;
             }

@@ -65,7 +65,10 @@ pub const EMPTY_PATH: Ix = 0xFFFE;
 #[cfg(feature = "grow")]
 pub const MAX_PATTERNS: usize = 64;
 #[cfg(not(feature = "grow"))]
-pub const MAX_PATTERNS: usize = 32;
+pub const MAX_PATTERNS: usize = IMAGE_MAX_PATTERNS;
+/// The image's (and every engine's without `grow`) most CEs in one rule: a compiled
+/// rule base, written on the host, holds no rule past it.
+pub const IMAGE_MAX_PATTERNS: usize = 32;
 /// Pattern depths whose facts a partial match keeps a copy of on the host
 /// (`Token::binds`); deeper ones are read by walking the ancestry.
 #[cfg(feature = "host-speedups")]

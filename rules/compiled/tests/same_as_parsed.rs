@@ -165,11 +165,13 @@ fn every_differential_program_runs_the_same_from_its_compiled_constructs() {
                 // only parse-time effects keep a program's constructs from compiling, and
                 // the logical CE and defmodules, which compiled rule bases refuse (no
                 // truth maintenance or modules in the image: the robot's rules use
-                // neither)
+                // neither), and what the host (`grow`) takes past the image's fixed
+                // limits (a rule of 43 patterns, a global's string of 4 KiB)
                 assert!(
                     why.contains("left facts")
                         || why.contains("no truth maintenance")
-                        || why.contains("MAIN module only"),
+                        || why.contains("MAIN module only")
+                        || why.contains("the image's fixed limits"),
                     "{name}: {why}"
                 );
                 continue;
