@@ -425,7 +425,7 @@ fn floor_boundary(s: &str, mut at: usize) -> usize {
 
 /// Writes `body` justified in the directive's width (zero padding goes after the sign).
 /// The width counts bytes, as C's printf does in CLIPS: `%-6s` of `"año"` (4 bytes) adds 2.
-fn pad(out: &mut dyn Write, spec: Spec, body: &str, numeric: bool) -> core::fmt::Result {
+fn pad<W: Write>(out: &mut W, spec: Spec, body: &str, numeric: bool) -> core::fmt::Result {
     let len = body.len();
     let fill = spec.width.saturating_sub(len);
     if spec.left {
@@ -446,7 +446,7 @@ fn pad(out: &mut dyn Write, spec: Spec, body: &str, numeric: bool) -> core::fmt:
     out.write_str(body)
 }
 
-fn spaces(out: &mut dyn Write, n: usize, c: char) -> core::fmt::Result {
+fn spaces<W: Write>(out: &mut W, n: usize, c: char) -> core::fmt::Result {
     for _ in 0..n {
         out.write_char(c)?;
     }

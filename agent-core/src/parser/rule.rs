@@ -90,6 +90,7 @@ impl core::ops::Index<usize> for Ces {
 
 #[cfg(feature = "grow")]
 impl core::ops::IndexMut<usize> for Ces {
+    #[inline]
     fn index_mut(&mut self, i: usize) -> &mut Ce {
         self.reach(i + 1);
         &mut self.0[i]
@@ -161,7 +162,8 @@ impl Build {
             #[cfg(not(feature = "grow"))]
             ces: [CE_EMPTY; MAX_PATTERNS],
             #[cfg(feature = "grow")]
-            ces: Ces(alloc::vec::Vec::new()),
+            // room for most rules' CEs at once (no growing step by step)
+            ces: Ces(alloc::vec::Vec::with_capacity(8)),
             n: 0,
             cur: CE_ROOT,
             depth: 0,
