@@ -40,7 +40,7 @@ fn source_arg(
     cx: &Core<'_>,
     a: Args,
     func: &'static str,
-) -> Result<super::strings::Text, EvalError> {
+) -> Result<super::strings::Copied, EvalError> {
     match cx.arg(a, 0) {
         Value::Sym(s) | Value::Str(s) => super::strings::copy_text(cx, s),
         _ => Err(EvalError::wrong_type(func, 1, "symbol or string")),

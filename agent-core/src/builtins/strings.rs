@@ -48,10 +48,39 @@ pub(crate) const PAST_TEXT_MAX: &str = "a string built longer than 2048 bytes (t
 
 const TOO_LONG: EvalError = EvalError::message(crate::error::Message::StringTooLong);
 
+/// A symbol's text copied out of the table (`copy_text`): up to `TEXT_MAX` bytes in
+/// the image; on hosts a longer one on the heap (CLIPS reads any length).
+#[cfg(not(feature = "grow"))]
+pub(super) type Copied = Text;
+
+#[cfg(feature = "grow")]
+pub(super) enum Copied {
+    Short(Text),
+    Long(alloc::string::String),
+}
+
+#[cfg(feature = "grow")]
+impl Copied {
+    pub(super) fn as_str(&self) -> &str {
+        match self {
+            Copied::Short(t) => t.as_str(),
+            Copied::Long(s) => s.as_str(),
+        }
+    }
+}
+
 /// Copies a symbol's text out of the table, so the table can be written afterwards.
-pub(super) fn copy_text(cx: &Core<'_>, id: SymId) -> Result<Text, EvalError> {
+pub(super) fn copy_text(cx: &Core<'_>, id: SymId) -> Result<Copied, EvalError> {
     let mut b = Text::new();
-    core::fmt::Write::write_str(&mut b, cx.sym_text(id)).map_err(|_| TOO_LONG)?;
+    let text = cx.sym_text(id);
+    #[cfg(feature = "grow")]
+    if text.len() > TEXT_MAX {
+        return Ok(Copied::Long(alloc::string::String::from(text)));
+    }
+    core::fmt::Write::write_str(&mut b, text).map_err(|_| TOO_LONG)?;
+    #[cfg(feature = "grow")]
+    return Ok(Copied::Short(b));
+    #[cfg(not(feature = "grow"))]
     Ok(b)
 }
 
@@ -209,7 +238,7 @@ fn sub_string(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
         }
     }
     // copied within the symbol arena (a `Text` here was the image's deepest stack frame)
-    cx.make_lexeme_with(true, a, TEXT_MAX, |view, _, out| {
+    cx.make_lexeme_with(true, a, CAT_MAX, |view, _, out| {
         // host: an ASCII text's characters are its bytes, so the positions index the
         // bytes without reading the text as UTF-8 or counting its characters
         #[cfg(feature = "host-speedups")]
@@ -264,6 +293,17 @@ fn change_case(
 ) -> Result<Value, EvalError> {
     let s = lexeme_arg(cx, a, 0, func)?;
     let text = copy_text(cx, s)?;
+    let like = cx.arg(a, 0);
+    // host: a text past the buffer is changed in a copy that grows (CLIPS any length)
+    #[cfg(feature = "grow")]
+    if text.as_str().len() > TEXT_MAX {
+        let mut out = alloc::string::String::from(text.as_str());
+        match upper {
+            true => out.make_ascii_uppercase(),
+            false => out.make_ascii_lowercase(),
+        }
+        return same_kind(cx, like, &out);
+    }
     let mut out = Text::new();
     for ch in text.as_str().chars() {
         let c = if upper {
@@ -274,7 +314,6 @@ fn change_case(
         let mut tmp = [0u8; 4];
         push_str(&mut out, c.encode_utf8(&mut tmp))?;
     }
-    let like = cx.arg(a, 0);
     same_kind(cx, like, out.as_str())
 }
 
@@ -356,8 +395,15 @@ pub(super) fn scan_field(
     }))
 }
 
-/// A string literal's contents with `\x` escapes resolved to `x`.
-fn unescape(raw: &str) -> Result<Text, EvalError> {
+/// A string literal's contents with `\x` escapes resolved to `x` (on hosts one past
+/// `TEXT_MAX` bytes on the heap).
+fn unescape(raw: &str) -> Result<Copied, EvalError> {
+    #[cfg(feature = "grow")]
+    if raw.len() > TEXT_MAX {
+        let mut b = alloc::string::String::new();
+        unescape_into(raw, &mut b).map_err(|_| TOO_LONG)?;
+        return Ok(Copied::Long(b));
+    }
     let mut b = Text::new();
     let mut escaped = false;
     for ch in raw.chars() {
@@ -369,7 +415,25 @@ fn unescape(raw: &str) -> Result<Text, EvalError> {
             escaped = true;
         }
     }
+    #[cfg(feature = "grow")]
+    return Ok(Copied::Short(b));
+    #[cfg(not(feature = "grow"))]
     Ok(b)
+}
+
+/// `unescape` into a text that grows (hosts).
+#[cfg(feature = "grow")]
+fn unescape_into(raw: &str, b: &mut alloc::string::String) -> core::fmt::Result {
+    let mut escaped = false;
+    for ch in raw.chars() {
+        if escaped || ch != '\\' {
+            b.push(ch);
+            escaped = false;
+        } else {
+            escaped = true;
+        }
+    }
+    Ok(())
 }
 
 // the tests evaluate builtins, whose code only `parser` links (`builtins::BUILTINS`)

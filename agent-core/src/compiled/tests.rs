@@ -69,6 +69,53 @@ fn refuses_logical_rules() {
     assert_eq!(e.write_compiled("m", "t", &mut out), Ok(()));
 }
 
+/// What an engine with `grow` takes past the image's fixed limits is refused, naming
+/// the limit: a rule of 33 CEs (32 are written), a string built past 2048 bytes, a
+/// string literal past 1024.
+#[cfg(all(feature = "grow", feature = "parser"))]
+#[test]
+fn refuses_what_went_past_the_images_limits() {
+    // (the engine is built on the stack before it is boxed, in unoptimised builds)
+    let written = |text: &str| {
+        let text = String::from(text);
+        std::thread::Builder::new()
+            .stack_size(64 << 20)
+            .spawn(move || {
+                let mut e = std::boxed::Box::new(crate::DefaultEngine::new());
+                e.load_str(&mut crate::NullHost, "t", &text).unwrap();
+                e.write_compiled("m", "t", &mut String::new())
+            })
+            .unwrap()
+            .join()
+            .unwrap()
+    };
+    let rule = |n: usize| {
+        let lhs: String = (0..n).map(|i| std::format!("(c {i} ?v{i}) ")).collect();
+        std::format!("(defrule r {lhs} => (printout t ?v0 crlf))")
+    };
+    assert_eq!(written(&rule(32)), Ok(()));
+    assert!(
+        matches!(written(&rule(33)), Err(WriteError::PastImageLimit(w)) if w.contains("32 conditional")),
+        "{:?}",
+        written(&rule(33))
+    );
+    let long = "x".repeat(1100);
+    assert_eq!(
+        written(&std::format!("(defglobal ?*g* = \"{long}\")")).map_err(|_| ()),
+        Err(())
+    );
+    assert_eq!(written(&std::format!("(defglobal ?*g* = (str-cat {long} {long}))"))
+        .map_err(|e| std::format!("{e}")), Err(std::format!(
+        "a string built longer than 2048 bytes (the image's limit): compiled rule bases keep the image's fixed limits")));
+    let short = "x".repeat(1000);
+    assert_eq!(
+        written(&std::format!(
+            "(defglobal ?*g* = (str-cat \"{short}\" {short}))"
+        )),
+        Ok(())
+    );
+}
+
 #[test]
 fn loader_refuses_an_engine_with_constructs() {
     static EMPTY: RuleBase = RuleBase {

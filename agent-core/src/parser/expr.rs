@@ -13,18 +13,49 @@ impl<'s> Parser<'s, '_, '_> {
     pub fn string_const(&mut self, t: Token<'s>, raw: &str) -> PResult<Ix> {
         let mut b: TextBuf<1024> = TextBuf::new();
         let mut esc = false;
+        let mut fits = true;
         for ch in raw.chars() {
             if esc || ch != '\\' {
                 let mut tmp = [0u8; 4];
                 if core::fmt::Write::write_str(&mut b, ch.encode_utf8(&mut tmp)).is_err() {
-                    return Err(self.err(t, "a string literal of at most 1024 bytes"));
+                    fits = false;
+                    break;
                 }
                 esc = false;
             } else {
                 esc = true;
             }
         }
+        if !fits {
+            // host: a longer literal unescaped into a buffer that grows (CLIPS reads
+            // any length); the image's parser, and engines without `grow`, refuse it
+            #[cfg(feature = "grow")]
+            {
+                let _ = t;
+                return self.long_string_const(raw);
+            }
+            #[cfg(not(feature = "grow"))]
+            return Err(self.err(t, "a string literal of at most 1024 bytes"));
+        }
         let id = self.cx.intern(b.as_str());
+        let id = cap!(self, id)?;
+        let e = self.cx.push_expr(Expr::new(Op::Str, 0, id));
+        cap!(self, e)
+    }
+
+    /// `string_const` for a literal past 1024 bytes (host).
+    #[cfg(feature = "grow")]
+    #[inline(never)]
+    fn long_string_const(&mut self, raw: &str) -> PResult<Ix> {
+        let mut b = alloc::string::String::new();
+        // (a String takes any length)
+        let _ = unescape_into(raw, &mut b);
+        self.cx
+            .st
+            .eval
+            .past_image
+            .get_or_insert("a string literal longer than 1024 bytes (the image's limit)");
+        let id = self.cx.intern(&b);
         let id = cap!(self, id)?;
         let e = self.cx.push_expr(Expr::new(Op::Str, 0, id));
         cap!(self, e)
@@ -1489,4 +1520,20 @@ fn not_implemented_function(name: &str) -> Option<&'static str> {
         "defgeneric" | "defmethod" => Some("generic functions"),
         _ => None,
     }
+}
+
+/// A string literal's contents `raw` with `\"` and `\\` unescaped, into `out` (the
+/// long literals' way: `string_const`'s own loop is the common one's).
+#[cfg(feature = "grow")]
+fn unescape_into(raw: &str, out: &mut impl core::fmt::Write) -> core::fmt::Result {
+    let mut esc = false;
+    for ch in raw.chars() {
+        if esc || ch != '\\' {
+            out.write_char(ch)?;
+            esc = false;
+        } else {
+            esc = true;
+        }
+    }
+    Ok(())
 }
