@@ -293,7 +293,6 @@ fn change_case(
 ) -> Result<Value, EvalError> {
     let s = lexeme_arg(cx, a, 0, func)?;
     let text = copy_text(cx, s)?;
-    let like = cx.arg(a, 0);
     // host: a text past the buffer is changed in a copy that grows (CLIPS any length)
     #[cfg(feature = "grow")]
     if text.as_str().len() > TEXT_MAX {
@@ -302,6 +301,7 @@ fn change_case(
             true => out.make_ascii_uppercase(),
             false => out.make_ascii_lowercase(),
         }
+        let like = cx.arg(a, 0);
         return same_kind(cx, like, &out);
     }
     let mut out = Text::new();
@@ -314,6 +314,7 @@ fn change_case(
         let mut tmp = [0u8; 4];
         push_str(&mut out, c.encode_utf8(&mut tmp))?;
     }
+    let like = cx.arg(a, 0);
     same_kind(cx, like, out.as_str())
 }
 
