@@ -53,7 +53,9 @@ const TOO_LONG: EvalError = EvalError::message(crate::error::Message::StringTooL
 #[cfg(not(feature = "grow"))]
 pub(super) type Copied = Text;
 
+// (the short text stays on the stack, as in the image: no heap for the common case)
 #[cfg(feature = "grow")]
+#[allow(clippy::large_enum_variant)]
 pub(super) enum Copied {
     Short(Text),
     Long(alloc::string::String),
