@@ -22,6 +22,10 @@ impl Core<'_> {
             if a != NONE {
                 self.joins[j].alpha_next = self.alphas[a as usize].succ;
                 self.alphas[a as usize].succ = j;
+                #[cfg(all(feature = "grow", feature = "host-speedups"))]
+                if self.twin_joinable(j) {
+                    self.st.prime.set_twin_alpha(a);
+                }
             }
         }
     }

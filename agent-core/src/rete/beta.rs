@@ -398,8 +398,9 @@ impl Core<'_> {
         );
         // host: a join primed while its parent had partial matches meets those in
         // its own order (`rete::order`)
+        // (host: or the new alpha match may have an older twin, `twin_blocks`)
         #[cfg(feature = "grow")]
-        if !self.st.prime.joins.is_empty() {
+        if self.st.prime.slow != 0 {
             return self.right_activate_maybe_primed(join, am, all_active);
         }
         // host: every left token is the parent join's (`first_left` walks its memory
@@ -442,8 +443,9 @@ impl Core<'_> {
         Ok(())
     }
 
-    /// Host: `right_activate` while some join keeps a primed order (`rete::order`):
-    /// out of line, so that the usual walk stays as it was without it.
+    /// Host: `right_activate` while some join keeps a primed order (`rete::order`),
+    /// or for an alpha match that may have an older twin (`twin_blocks`): out of
+    /// line, so that the usual walk stays as it was without them.
     #[cfg(feature = "grow")]
     #[cold]
     #[inline(never)]
@@ -453,6 +455,17 @@ impl Core<'_> {
         am: TokenId,
         all_active: bool,
     ) -> Result<(), EvalError> {
+        #[cfg(feature = "host-speedups")]
+        if self.st.prime.slow & super::order::SLOW_TWIN != 0 {
+            let tw = self.st.prime.twin;
+            if tw.0 != am || tw.1 == join {
+                // the last join it was marked for, or left from an earlier match
+                self.st.prime.slow &= !super::order::SLOW_TWIN;
+            }
+            if tw.0 == am && self.twin_blocks(join, am) {
+                return Ok(());
+            }
+        }
         if let Some(k) = self.primed_entry(join) {
             return self.right_activate_primed(join, am, k, all_active);
         }

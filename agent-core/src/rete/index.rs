@@ -305,6 +305,125 @@ impl Core<'_> {
         key
     }
 
+    /// Host: new alpha match `am` of node `alpha` has an older match of its node and
+    /// key just before it in its bucket chain: if a successor not/exists join may
+    /// skip its walk (`twin_joinable`, its left memory not empty), marks `am` for
+    /// the right activations (`SLOW_TWIN`), up to the last such join (the
+    /// successors are visited in list order).
+    #[cfg(all(feature = "grow", feature = "host-speedups"))]
+    #[cold]
+    #[inline(never)]
+    fn twin_mark(&mut self, am: TokenId, alpha: Ix) {
+        let mut last = JoinId::NONE;
+        let mut j = self.alphas[alpha as usize].succ;
+        while j != JoinId::NONE {
+            let jn = &self.joins[j];
+            if matches!(jn.kind, JoinKind::Negative | JoinKind::Exists)
+                && self.join_mems[jn.parent].mem != TokenId::NONE
+                && self.twin_joinable(j)
+            {
+                last = j;
+            }
+            j = self.joins[j].alpha_next;
+        }
+        if last != JoinId::NONE {
+            self.st.prime.slow |= super::order::SLOW_TWIN;
+            self.st.prime.twin = (am, last);
+        }
+    }
+
+    /// Host: whether `join` is a not/exists join fed by an alpha node with a right
+    /// hash whose tests are only equalities of this pattern's fields with earlier
+    /// patterns' fields (`twin_blocks`).
+    #[cfg(all(feature = "grow", feature = "host-speedups"))]
+    pub(crate) fn twin_joinable(&self, join: JoinId) -> bool {
+        let j = self.joins[join];
+        if !matches!(j.kind, JoinKind::Negative | JoinKind::Exists)
+            || j.tests == NONE
+            || j.rjoin != JoinId::NONE
+            || j.alpha == NONE
+            || self.alphas[j.alpha as usize].nrhash == 0
+        {
+            return false;
+        }
+        let mut t = j.tests;
+        while t != NONE {
+            let x = self.exprs[t as usize];
+            if x.op != Op::Eq2 || x.first == NONE {
+                return false;
+            }
+            let this = self.exprs[x.first as usize];
+            if this.op != Op::PatVar || this.aux != j.depth || this.next == NONE {
+                return false;
+            }
+            let o = self.exprs[this.next as usize];
+            if o.op != Op::PatVar || o.aux >= j.depth || o.next != NONE {
+                return false;
+            }
+            t = x.next;
+        }
+        true
+    }
+
+    /// Host: whether new alpha match `am` on the right of `join` can block nothing
+    /// new, so that its walk of the left memory (which would meet only outputs
+    /// blocked already, or failing its tests) is not needed: `join` is a not/exists
+    /// join fed by `am`'s node whose tests are only equalities of this pattern's
+    /// fields with earlier patterns' fields, and `am`'s predecessor in its index
+    /// bucket chain is an older match of the node (linked, so right-activated, before
+    /// it) with the same values in those fields. Every left partial match `am`
+    /// passes, that match passes too, so its output has a blocker already (CLIPS
+    /// walks them, skipping each blocked output). Asked only for an alpha match whose
+    /// bucket predecessor had its tag when it was linked (`PrimeOrders::twin_am`).
+    #[cfg(all(feature = "grow", feature = "host-speedups"))]
+    #[inline(never)]
+    pub(crate) fn twin_blocks(&mut self, join: JoinId, am: TokenId) -> bool {
+        if !self.twin_joinable(join) {
+            return false;
+        }
+        let j = self.joins[join];
+        // the predecessor links back to `am` (a chain head's `am_prev` is the tail)
+        let a = self.tokens[am];
+        let r = a.am_prev;
+        if a.kind != TokenKind::Alpha || r == TokenId::NONE || r == am {
+            return false;
+        }
+        let rk = self.tokens[r];
+        rk.kind == TokenKind::Alpha
+            && rk.am_next == am
+            && rk.parent == a.parent
+            && rk.alpha() == j.alpha
+            && a.alpha() == j.alpha
+            && self.same_test_fields(j.tests, am, r)
+    }
+
+    /// Host: whether alpha matches `a` and `b` read the same values in the fields
+    /// that equality tests `tests` read from this pattern (`twin_blocks`).
+    #[cfg(all(feature = "grow", feature = "host-speedups"))]
+    fn same_test_fields(&mut self, tests: Ix, a: TokenId, b: TokenId) -> bool {
+        let (scratch, sp) = (self.st.frame.scratch_top, self.st.frame.sp);
+        let saved = self.st.net.this_pm;
+        let (ta, tb) = (self.tokens[a], self.tokens[b]);
+        let mut same = true;
+        let mut t = tests;
+        while same && t != NONE {
+            let x = self.exprs[t as usize];
+            let this = self.exprs[x.first as usize];
+            self.st.net.this_pm = PatBinding { fact: ta.fact, marks: ta.marks };
+            let va = self.pattern_var(THIS_PATTERN, this.data, this.first);
+            self.st.net.this_pm = PatBinding { fact: tb.fact, marks: tb.marks };
+            let vb = self.pattern_var(THIS_PATTERN, this.data, this.first);
+            same = match (va, vb) {
+                (Ok(p), Ok(q)) => crate::builtins::basic::values_same(self, p, q),
+                _ => false,
+            };
+            t = x.next;
+        }
+        self.st.net.this_pm = saved;
+        (self.st.frame.scratch_top, self.st.frame.sp) = (scratch, sp);
+        same
+    }
+
     /// The values a left token gives `join`'s key, in test order: for each of the
     /// join's equality tests between this pattern's variable and an earlier one (at
     /// most `limit`), the earlier variable's value as `eval` reads it (`lhs_pm` must
@@ -1149,6 +1268,11 @@ impl Core<'_> {
             if b.parent == a.parent && b.owner == a.owner {
                 if a.mem_prev != before {
                     self.bucket_move_after(am, alpha, before);
+                }
+                // host: `before` is an older match of the node with `am`'s key: the
+                // right activations ask whether it blocks all `am` could (`twin_blocks`)
+                if self.st.prime.twin_alpha(alpha) {
+                    self.twin_mark(am, alpha);
                 }
             } else {
                 self.bucket_order(am, alpha, before);

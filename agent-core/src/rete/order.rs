@@ -29,7 +29,7 @@ use super::{JoinKind, TokenKind, MAX_RHASH};
 use crate::engine::Core;
 use crate::error::EvalError;
 use crate::handle::{JoinId, TokenId};
-use crate::value::{Value, NONE};
+use crate::value::{Ix, Value, NONE};
 
 /// A join primed while its parent had partial matches.
 pub struct Primed {
@@ -40,6 +40,13 @@ pub struct Primed {
     pub order: Vec<(TokenId, u32)>,
 }
 
+/// `PrimeOrders::slow`: some join keeps a primed order (`joins` is not empty).
+pub const SLOW_PRIMED: u8 = 1;
+/// `PrimeOrders::slow`: the alpha match `twin_am` may have an older twin
+/// (`Core::twin_blocks`; the bit may outlive its match: the id is compared).
+#[cfg(feature = "host-speedups")]
+pub const SLOW_TWIN: u8 = 2;
+
 /// The primed joins and the stamps (`State::prime`).
 pub struct PrimeOrders {
     /// The next stamp (above every stamp given; 0 is no stamp).
@@ -47,6 +54,19 @@ pub struct PrimeOrders {
     pub joins: Vec<Primed>,
     /// Each token's stamp (by id; missing entries read as 0).
     pub stamps: Vec<u32>,
+    /// `SLOW_*` bits: whether a right activation takes the way out of line
+    /// (`right_activate_maybe_primed`); one byte, so that programs with neither pay
+    /// one test for both.
+    pub slow: u8,
+    /// Host: the alpha match `SLOW_TWIN` is for, and the last of its node's
+    /// successor joins that may skip its walk (`Core::twin_mark`).
+    #[cfg(feature = "host-speedups")]
+    pub twin: (TokenId, JoinId),
+    /// Host: alpha nodes (by id modulo 256) that feed a not/exists join that may
+    /// skip walks (`Core::twin_joinable`): only their matches are asked about twins
+    /// (a shared bit, or one left by a removed rule, only costs a question).
+    #[cfg(feature = "host-speedups")]
+    pub twin_alphas: [bool; 256],
 }
 
 impl PrimeOrders {
@@ -55,7 +75,34 @@ impl PrimeOrders {
             clock: 1,
             joins: Vec::new(),
             stamps: Vec::new(),
+            slow: 0,
+            #[cfg(feature = "host-speedups")]
+            twin: (TokenId::NONE, JoinId::NONE),
+            #[cfg(feature = "host-speedups")]
+            twin_alphas: [false; 256],
         }
+    }
+
+    /// Keeps `SLOW_PRIMED` with `joins` (after each change of it).
+    fn joins_changed(&mut self) {
+        if self.joins.is_empty() {
+            self.slow &= !SLOW_PRIMED;
+        } else {
+            self.slow |= SLOW_PRIMED;
+        }
+    }
+
+    /// Host: whether alpha node `alpha` may feed a `twin_joinable` join.
+    #[cfg(feature = "host-speedups")]
+    #[inline(always)]
+    pub fn twin_alpha(&self, alpha: Ix) -> bool {
+        self.twin_alphas[alpha as u8 as usize]
+    }
+
+    /// Host: alpha node `alpha` feeds a `twin_joinable` join.
+    #[cfg(feature = "host-speedups")]
+    pub fn set_twin_alpha(&mut self, alpha: Ix) {
+        self.twin_alphas[alpha as u8 as usize] = true;
     }
 
     fn find(&self, join: JoinId) -> Option<usize> {
@@ -132,6 +179,7 @@ impl Core<'_> {
     /// Drops the primed orders (every partial match went: `clear`, `reset`).
     pub(crate) fn forget_prime_orders(&mut self) {
         self.st.prime.joins.clear();
+        self.st.prime.joins_changed();
     }
 
     /// Whether entry `(t, seq)` of a primed join under `parent` is still its
@@ -266,6 +314,7 @@ impl Core<'_> {
             }
             None => self.st.prime.joins.push(Primed { join, born, order }),
         }
+        self.st.prime.joins_changed();
         for t in seq {
             // (a token priming took back meanwhile is not fed)
             if self.tokens[t].kind == TokenKind::Beta
@@ -295,6 +344,7 @@ impl Core<'_> {
                 self.st.prime.joins.swap_remove(k);
             }
         }
+        self.st.prime.joins_changed();
     }
 
     /// `right_activate`'s walk for a primed join (entry `k`): the partial matches
@@ -343,6 +393,7 @@ impl Core<'_> {
         }
         if live == 0 && k < self.st.prime.joins.len() {
             self.st.prime.joins.swap_remove(k);
+            self.st.prime.joins_changed();
         }
         Ok(())
     }
