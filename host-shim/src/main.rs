@@ -40,7 +40,26 @@ enum Command {
     Sweep(sim::sweep::Args),
 }
 
+// `robotino-agent clips ...` alone: the command line of the one subcommand that runs
+// CLIPS programs, so that starting one builds no other subcommand's arguments (clap
+// builds every subcommand's before it parses: code and text pages an empty program
+// touched, and instructions every program ran).
+#[derive(Parser)]
+#[command(
+    name = "robotino-agent clips",
+    bin_name = "robotino-agent clips",
+    about = "A CLIPS-like command line (`-f FILE`, `-f2 FILE`, `-l FILE`, or interactive)."
+)]
+struct ClipsCli {
+    #[command(flatten)]
+    args: clips_cli::Args,
+}
+
 fn main() -> ExitCode {
+    if std::env::args_os().nth(1).is_some_and(|a| a == "clips") {
+        // (the subcommand's name stands where clap expects the program's)
+        return clips_cli::main(ClipsCli::parse_from(std::env::args_os().skip(1)).args);
+    }
     let cli = Cli::parse();
     match cli.command {
         Command::Clips(args) => clips_cli::main(args),
