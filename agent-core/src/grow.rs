@@ -556,6 +556,23 @@ macro_rules! grow_items {
                     )*
                 }
             }
+
+            /// Writes each array's first entry (with the empty value it holds), so
+            /// that the first page of each is copied on that write: a first read of a
+            /// page of a seed in the program's initialized data maps it from the file
+            /// with its neighbours (fault-around), a first write copies that page only.
+            pub fn touch_first(&mut self) {
+                // (volatile: the value is the one there, a store the compiler keeps)
+                // SAFETY: writes of valid values to entries of the seed's arrays, each
+                // one reached through `&mut self` (every array has an entry: the host
+                // engine's capacities are not zero).
+                unsafe {
+                    $(
+                        core::ptr::write_volatile(&mut self.$first[0], $fempty);
+                        $(core::ptr::write_volatile(&mut self.$arr[0], $aempty);)*
+                    )*
+                }
+            }
         }
 
         impl GrowStorage {

@@ -51,9 +51,15 @@ static CLI_SEED: static_cell::ConstStaticCell<HostSeed> =
 fn cli_storage(limit: Capacities) -> GrowStorage {
     match CLI_SEED.try_take() {
         #[cfg(target_os = "linux")]
-        Some(seed) => GrowStorage::from_seed_in(seed, limit, zero_pages::PAGES),
+        Some(seed) => {
+            seed.touch_first();
+            GrowStorage::from_seed_in(seed, limit, zero_pages::PAGES)
+        }
         #[cfg(not(target_os = "linux"))]
-        Some(seed) => GrowStorage::from_seed(seed, limit),
+        Some(seed) => {
+            seed.touch_first();
+            GrowStorage::from_seed(seed, limit)
+        }
         None => GrowStorage::with_limits(Capacities::HOST, limit),
     }
 }
