@@ -201,7 +201,10 @@ impl ZeroPages {
 
 impl<T: 'static> Drop for Buf<T> {
     fn drop(&mut self) {
-        if let Buf::Mapped { p, bytes, pages, .. } = *self {
+        if let Buf::Mapped {
+            p, bytes, pages, ..
+        } = *self
+        {
             // SAFETY: `p` is a mapping of `bytes` bytes made by `pages` (`Buf::mapped`,
             // `reserve_zeroed`), reached only through this array, whose entries
             // (`ZeroFree`: `Copy`) need no drop.
@@ -347,7 +350,9 @@ impl<T: ZeroFree> Buf<T> {
     fn reserve_zeroed(&mut self, len: usize, limit: usize) -> Result<(), ()> {
         match self {
             Buf::Zeroed(v) if v.capacity() >= len => return Ok(()),
-            Buf::Mapped { p, bytes, pages, .. } => {
+            Buf::Mapped {
+                p, bytes, pages, ..
+            } => {
                 let size = core::mem::size_of::<T>();
                 if *bytes / size >= len {
                     return Ok(());
@@ -422,9 +427,7 @@ impl<T: Clone> Buf<T> {
                 let extra = len.saturating_sub(v.len());
                 v.try_reserve_exact(extra).map_err(|_| ())
             }
-            Buf::Mapped { bytes, .. } if *bytes / core::mem::size_of::<T>().max(1) >= len => {
-                Ok(())
-            }
+            Buf::Mapped { bytes, .. } if *bytes / core::mem::size_of::<T>().max(1) >= len => Ok(()),
             Buf::Mapped { .. } => {
                 // (as a `Heap`, as a `Zeroed` that outgrows its room)
                 let mut v = Vec::new();

@@ -328,7 +328,13 @@ mod tests {
         assert_eq!((b.as_str(), b.len()), ("ab", 2));
         let mut b: TextBuf<16> = TextBuf::new();
         b.write_str("x\u{20ac}y").unwrap();
-        for (cut, want) in [(4, "x\u{20ac}"), (3, "x"), (2, "x"), (1, "x"), (9, "x\u{20ac}y")] {
+        for (cut, want) in [
+            (4, "x\u{20ac}"),
+            (3, "x"),
+            (2, "x"),
+            (1, "x"),
+            (9, "x\u{20ac}y"),
+        ] {
             let mut c: TextBuf<16> = TextBuf::new();
             c.write_str(b.as_str()).unwrap();
             c.truncate(cut);

@@ -459,14 +459,21 @@ mod tests {
         for (construct, what) in [
             ("(defclass A (is-a USER))", "objects (COOL): defclass"),
             ("(definstances i (a of A))", "objects (COOL): definstances"),
-            ("(defmessage-handler A m () 1)", "objects (COOL): defmessage-handler"),
+            (
+                "(defmessage-handler A m () 1)",
+                "objects (COOL): defmessage-handler",
+            ),
             ("(defgeneric g)", "generic functions: defgeneric"),
-            ("(defmethod g ((?x NUMBER)) (* ?x 2))", "generic functions: defmethod"),
+            (
+                "(defmethod g ((?x NUMBER)) (* ?x 2))",
+                "generic functions: defmethod",
+            ),
         ] {
             let out = run_program(&std::format!("{construct}\n(printout t ok crlf)\n"));
             assert!(
-                out.contains(&std::format!("[NOTIMPL1] robotino-agent does not implement {what}"))
-                    && !out.contains("EXPRNPSR3")
+                out.contains(&std::format!(
+                    "[NOTIMPL1] robotino-agent does not implement {what}"
+                )) && !out.contains("EXPRNPSR3")
                     && out.ends_with("ok\n"),
                 "{construct}: {out}"
             );

@@ -409,9 +409,15 @@ impl Core<'_> {
         while same && t != NONE {
             let x = self.exprs[t as usize];
             let this = self.exprs[x.first as usize];
-            self.st.net.this_pm = PatBinding { fact: ta.fact, marks: ta.marks };
+            self.st.net.this_pm = PatBinding {
+                fact: ta.fact,
+                marks: ta.marks,
+            };
             let va = self.pattern_var(THIS_PATTERN, this.data, this.first);
-            self.st.net.this_pm = PatBinding { fact: tb.fact, marks: tb.marks };
+            self.st.net.this_pm = PatBinding {
+                fact: tb.fact,
+                marks: tb.marks,
+            };
             let vb = self.pattern_var(THIS_PATTERN, this.data, this.first);
             same = match (va, vb) {
                 (Ok(p), Ok(q)) => crate::builtins::basic::values_same(self, p, q),
