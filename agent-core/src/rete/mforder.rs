@@ -177,7 +177,7 @@ impl Core<'_> {
     /// patterns sharing a multifield node, each with many segmentations, made every
     /// assert's sort grow with the square of the fact's length). False, `got`
     /// unchanged, if a run is out of order or there are too many runs.
-    fn merge_node_runs(&mut self, got: &mut Vec<Pending>) -> bool {
+    fn merge_node_runs(&mut self, got: &mut [Pending]) -> bool {
         /// Beyond this many runs a sort compares less than the merges.
         const MAX_RUNS: usize = 8;
         let mut ends = [0usize; MAX_RUNS];

@@ -29,7 +29,9 @@ use super::{JoinKind, TokenKind, MAX_RHASH};
 use crate::engine::Core;
 use crate::error::EvalError;
 use crate::handle::{JoinId, TokenId};
-use crate::value::{Ix, Value, NONE};
+#[cfg(feature = "host-speedups")]
+use crate::value::Ix;
+use crate::value::{Value, NONE};
 
 /// A join primed while its parent had partial matches.
 pub struct Primed {
