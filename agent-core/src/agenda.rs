@@ -331,6 +331,15 @@ impl Core<'_> {
     #[cfg(feature = "host-speedups")]
     #[inline(never)]
     fn agenda_insert_grouped(&mut self, a: Ix) {
+        // the two places found at once come first (the lex/mea index, when on,
+        // records every insertion: the general way)
+        #[cfg(all(feature = "extras", feature = "grow"))]
+        let indexed = self.st.recency_index.on && is_recency(self.st.agenda.strategy);
+        #[cfg(not(all(feature = "extras", feature = "grow")))]
+        let indexed = false;
+        if !indexed && self.group_insert_quick(a) {
+            return;
+        }
         let mut prev = NONE;
         let mut cur = self.st.agenda.agenda_head;
         // from the first activation of no higher salience (those before it all go
@@ -1005,6 +1014,62 @@ impl Core<'_> {
         false
     }
 
+    /// `agenda_insert_grouped`'s places found at once, whatever the strategy: first
+    /// in its salience group (depth's new activations), or as a group of its own
+    /// between the higher and lower ones. Links `a` there and returns true, else
+    /// (or with no room for a group) changes nothing. Short and straight: a long
+    /// agenda's insertions should cost what a short one's cost.
+    #[inline(always)]
+    fn group_insert_quick(&mut self, a: Ix) -> bool {
+        let s = self.acts[a as usize].salience;
+        let g = &self.st.agenda.groups;
+        let n = g.n as usize;
+        let k = g.position(s);
+        let (prev, cur);
+        if k < n && g.groups[k].salience == s {
+            let (first, last) = (g.groups[k].first, g.groups[k].last);
+            let at_first = self.goes_before(a, first);
+            if at_first {
+                (prev, cur) = (self.acts[first as usize].prev, first);
+            } else if !self.goes_before(a, last) {
+                // after its last: breadth's new activations, and a re-sort's
+                // insertions in their old order
+                (prev, cur) = (last, self.acts[last as usize].next);
+            } else {
+                return false;
+            }
+            let e = &mut self.st.agenda.groups.groups[k];
+            if at_first {
+                e.first = a;
+            } else {
+                e.last = a;
+            }
+            e.count += 1;
+        } else {
+            if n >= SALIENCE_GROUPS {
+                return false;
+            }
+            prev = if k > 0 { g.groups[k - 1].last } else { NONE };
+            cur = if k < n { g.groups[k].first } else { NONE };
+            let g = &mut self.st.agenda.groups;
+            // (few groups: moved one by one, no call)
+            let mut i = n;
+            while i > k {
+                g.groups[i] = g.groups[i - 1];
+                i -= 1;
+            }
+            g.groups[k] = SalienceGroup {
+                salience: s,
+                first: a,
+                last: a,
+                count: 1,
+            };
+            g.n += 1;
+        }
+        self.agenda_link(a, prev, cur);
+        true
+    }
+
     /// Records activation `a`, just linked between `prev` and `cur`, in the group
     /// at position `k` (`group_start`'s).
     #[inline(always)]
@@ -1118,7 +1183,10 @@ impl Core<'_> {
         let e = &mut g.groups[k];
         e.count = e.count.saturating_sub(1);
         if e.count == 0 {
-            g.groups.copy_within(k + 1..n, k);
+            // (few groups: moved one by one, no call)
+            for i in k + 1..n {
+                g.groups[i - 1] = g.groups[i];
+            }
             g.n -= 1;
             return;
         }

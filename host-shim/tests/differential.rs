@@ -657,6 +657,7 @@ differential_programs! {
     p892_dummy_address_defaults => "892-dummy-address-defaults",
     p893_allowed_instance_names_classes => "893-allowed-instance-names-classes",
     p899_ordered_field_vars_in_tests => "899-ordered-field-vars-in-tests",
+    p813_kept_groups_places => "813-kept-groups-places",
     p900_sub_string_cuts_found_or_new => "900-sub-string-cuts-found-or-new",
     p950_batch_file_ends_inside_command => "950-batch-file-ends-inside-command",
     p953_construct_name_arguments => "953-construct-name-arguments",
