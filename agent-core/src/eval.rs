@@ -1703,4 +1703,35 @@ mod tests {
         // 126 + (initial-fact) leave one slot: the first modify holds the old fact
         assert!(out.ends_with("1\n<Fact-128>\n127\nFALSE\n127 2\n"), "{out}");
     }
+
+    /// `bind` values and single-field slot values that are `+`, `-`, `*` of two
+    /// numbers (on the host `quick_arith`, or any path that computes them in place)
+    /// give the builtin's values, integer and float; a global holding no number fails as the
+    /// builtin does (CLIPS 6.30's message; `bind` then stores 0, the error value).
+    #[test]
+    fn arithmetic_bind_and_slot_values_as_the_builtin() {
+        let out = run_program(
+            "(defglobal ?*i* = 5 ?*f* = 1.5 ?*s* = abc ?*r* = 0)
+             (deftemplate p (slot x))
+             (defrule step ?p <- (p (x ?x&:(< ?x 3)))
+                => (bind ?*r* (* ?*r* 2)) (bind ?y (- ?x ?*f*)) (modify ?p (x (+ ?x 1)))
+                   (printout t ?x \" \" ?y crlf))
+             (bind ?*r* (+ ?*i* 1))
+             (printout t ?*r* crlf)
+             (bind ?*r* (- ?*i* ?*f*))
+             (printout t ?*r* crlf)
+             (printout t ?*r* \" \" (+ ?*r* 1) crlf)
+             (assert (p (x (* ?*i* 0))))
+             (run)
+             (printout t ?*r* crlf)
+             (bind ?*r* (+ ?*s* 1))
+             (printout t ?*r* crlf)\n",
+        );
+        assert!(
+            out.ends_with(
+                "6\n6\n3.5\n3.5\n3.5 4.5\n<Fact-1>\n0 -1.5\n1 -0.5\n2 0.5\n28.0\n[ARGACCES5] Function + expected argument #1 to be of type integer or float\n0\n0\n"
+            ),
+            "{out}"
+        );
+    }
 }

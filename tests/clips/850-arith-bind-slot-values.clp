@@ -1,0 +1,25 @@
+; `+`, `-`, `*` of two numbers as a bind value or a single-field slot value, at the
+; top level and in a rule's actions: globals, locals, pattern variables and
+; constants, integers and floats; a global holding a symbol fails as the builtin
+; does, in a rule the actions stop there.
+(defglobal ?*i* = 5 ?*f* = 1.5 ?*s* = abc ?*r* = 0 ?*big* = 9223372036854775807)
+(deftemplate p (slot x) (slot y (default 0)))
+(defrule step ?p <- (p (x ?x&:(< ?x 3)) (y ?y))
+   => (bind ?*r* (* ?*r* 2)) (bind ?z (- ?x ?*f*)) (modify ?p (x (+ ?x 1)) (y (* ?y ?z)))
+      (printout t ?x " " ?z " " ?*r* crlf))
+(defrule bad (p (x 3)) => (bind ?*r* (- ?*s* 1)) (printout t "not reached" crlf))
+(watch globals)
+(bind ?*r* (+ ?*i* 1))
+(bind ?*r* (- ?*i* ?*f*))
+(bind ?*r* (+ ?*big* 1))
+(bind ?*r* (* 2 ?*f*))
+(unwatch globals)
+(assert (p (x (* ?*i* 0)) (y (+ 1 ?*f*))))
+(run)
+(facts)
+(printout t ?*r* crlf)
+(bind ?*r* (+ ?*s* 1))
+(printout t ?*r* crlf)
+(deffunction f (?a) (bind ?b (* ?a ?a)) (bind ?b (- ?b ?a)) ?b)
+(printout t (f 7) " " (f 2.5) crlf)
+(exit)
