@@ -250,7 +250,10 @@ stage_no_std() {
         return 1
     fi
     local image_features
-    image_features=$(cargo tree -e features -i agent-core -p agent-image --target "$I586") || return 1
+    # Only the image's own (normal) dependencies: a build script that links agent-core
+    # with grow (rules-compiled's writer) runs on the host and puts nothing in the image.
+    image_features=$(cargo tree -e features,no-build,no-dev -i agent-core -p agent-image \
+        --target "$I586") || return 1
     if grep -q 'feature "grow"' <<<"$image_features"; then
         echo "$image_features"
         echo "the agent image enables agent-core's grow feature (alloc)" >&2
