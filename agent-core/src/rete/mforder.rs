@@ -34,8 +34,6 @@ pub struct MfOrder {
     /// An emptied collection kept for the next fact, so collecting does not
     /// allocate (and regrow) a vector per fact.
     spare: Vec<Pending>,
-    /// Room for merging a fact's runs of matches (`merge_node_runs`), kept likewise.
-    merged: Vec<Pending>,
     /// Per alpha node: the network generation (+1; 0 never) its `choice_levels`
     /// were worked out in, and them (they cost a walk of the pattern's slots).
     levels: Vec<(u32, [Option<u8>; PATH_LEN])>,
@@ -50,7 +48,6 @@ impl MfOrder {
             pending: None,
             collecting: false,
             spare: Vec::new(),
-            merged: Vec::new(),
             levels: Vec::new(),
             choice: Vec::new(),
         }
@@ -128,7 +125,7 @@ impl Core<'_> {
                     last = a;
                 }
             }
-            if !self.one_node_in_order(&got) && !self.merge_node_runs(&mut got) {
+            if !self.one_node_in_order(&got) {
                 let lv = &self.st.net.mf.levels;
                 got.sort_by(|&x, &y| self.mf_cmp(x, &lv[x.0 as usize].1, y, &lv[y.0 as usize].1));
             }
@@ -150,16 +147,10 @@ impl Core<'_> {
         if got.iter().any(|&(b, _)| b != a) {
             return false;
         }
-        self.run_in_order(got)
-    }
-
-    /// Whether `run`, matches of one node, is in CLIPS's order (`mf_cmp` with equal
-    /// keys: the marks compared level by level).
-    fn run_in_order(&self, run: &[Pending]) -> bool {
-        let a = run[0].0;
+        // the marks compared, level by level (`mf_cmp` with equal keys)
         let levels = self.st.net.mf.levels[a as usize].1;
         let n = self.alphas[a as usize].key_len as usize;
-        run.windows(2).all(|w| {
+        got.windows(2).all(|w| {
             for &i in levels[..n].iter().flatten() {
                 let (p, q) = (w[0].1[i as usize], w[1].1[i as usize]);
                 if p != q {
@@ -168,56 +159,6 @@ impl Core<'_> {
             }
             true
         })
-    }
-
-    /// Puts `got` in CLIPS's order by merging its runs, when each run of one node's
-    /// matches (they come node by node, each node's segmentations in its own order)
-    /// is in order already: a stable merge of sorted runs is what a stable sort makes,
-    /// in steps linear in the matches rather than a sort's `m log m` (several
-    /// patterns sharing a multifield node, each with many segmentations, made every
-    /// assert's sort grow with the square of the fact's length). False, `got`
-    /// unchanged, if a run is out of order or there are too many runs.
-    fn merge_node_runs(&mut self, got: &mut [Pending]) -> bool {
-        /// Beyond this many runs a sort compares less than the merges.
-        const MAX_RUNS: usize = 8;
-        let mut ends = [0usize; MAX_RUNS];
-        let mut runs = 0;
-        let mut start = 0;
-        for i in 1..=got.len() {
-            if i == got.len() || got[i].0 != got[start].0 {
-                if runs == MAX_RUNS || !self.run_in_order(&got[start..i]) {
-                    return false;
-                }
-                ends[runs] = i;
-                runs += 1;
-                start = i;
-            }
-        }
-        let mut out = core::mem::take(&mut self.st.net.mf.merged);
-        let lv = &self.st.net.mf.levels;
-        // runs merged in turn into the front of `got`: `got[..ends[r - 1]]` is sorted
-        for r in 1..runs {
-            let (mid, end) = (ends[r - 1], ends[r]);
-            out.clear();
-            let (mut i, mut j) = (0, mid);
-            while i < mid && j < end {
-                let (x, y) = (got[i], got[j]);
-                // the later run's match first only if it sorts strictly before
-                if self.mf_cmp(y, &lv[y.0 as usize].1, x, &lv[x.0 as usize].1) == Ordering::Less {
-                    out.push(y);
-                    j += 1;
-                } else {
-                    out.push(x);
-                    i += 1;
-                }
-            }
-            out.extend_from_slice(&got[i..mid]);
-            out.extend_from_slice(&got[j..end]);
-            got[..end].copy_from_slice(&out);
-        }
-        out.clear();
-        self.st.net.mf.merged = out;
-        true
     }
 
     /// Makes `levels[a]` hold alpha node `a`'s `choice_levels` for this network.
