@@ -915,6 +915,20 @@ pub struct SalienceGroup {
     pub count: Ix,
 }
 
+#[cfg(feature = "host-speedups")]
+impl SalienceGroup {
+    /// The group of one activation `a` of salience `salience`.
+    #[inline(always)]
+    const fn one(salience: i32, a: Ix) -> Self {
+        SalienceGroup {
+            salience,
+            first: a,
+            last: a,
+            count: 1,
+        }
+    }
+}
+
 /// Host: the agenda's salience groups, highest salience first, so an activation is
 /// inserted by a walk of its own salience's run only (as CLIPS's salience groups),
 /// not of every activation of a higher salience before it. Kept only once an
@@ -1058,12 +1072,7 @@ impl Core<'_> {
                 g.groups[i] = g.groups[i - 1];
                 i -= 1;
             }
-            g.groups[k] = SalienceGroup {
-                salience: s,
-                first: a,
-                last: a,
-                count: 1,
-            };
+            g.groups[k] = SalienceGroup::one(s, a);
             g.n += 1;
         }
         self.agenda_link(a, prev, cur);
@@ -1102,12 +1111,7 @@ impl Core<'_> {
             return;
         }
         g.groups.copy_within(k..n, k + 1);
-        g.groups[k] = SalienceGroup {
-            salience: s,
-            first: a,
-            last: a,
-            count: 1,
-        };
+        g.groups[k] = SalienceGroup::one(s, a);
         g.n += 1;
     }
 
@@ -1133,12 +1137,7 @@ impl Core<'_> {
                 g.overflow = true;
                 return;
             } else {
-                g.groups[n] = SalienceGroup {
-                    salience: x.salience,
-                    first: a,
-                    last: a,
-                    count: 1,
-                };
+                g.groups[n] = SalienceGroup::one(x.salience, a);
                 g.n += 1;
             }
             a = x.next;
