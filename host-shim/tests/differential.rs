@@ -508,6 +508,7 @@ differential_programs! {
     p750_watch_construct_names => "750-watch-construct-names",
     p751_watch_construct_names_modules => "751-watch-construct-names-modules",
     p766_wipe_join_from_right => "766-wipe-join-from-right",
+    p767_rhs_type_loop_variables => "767-rhs-type-loop-variables",
     p762_two_integer_arithmetic => "762-two-integer-arithmetic",
     p770_logical_name_upper_t => "770-logical-name-upper-t",
     p771_assert_syntax_errors => "771-assert-syntax-errors",

@@ -1162,7 +1162,9 @@ pub fn check_lhs<N: Names>(src: &str, from: usize, to: usize, names: &N) -> Opti
 /// one space apart, `$?x` as `?x` (or `(expand$ ?x)` with sequence-operator
 /// recognition), a global `?*g*` as `?g`, `$?*g*` as `(expand$ ?g)`, and a call with
 /// an expanding argument inside `((expansion-call) ...)` once for each parse of CLIPS
-/// around it (its own, each enclosing call's and action block's).
+/// around it (its own, each enclosing call's and action block's); a deffunction call
+/// as nothing, and a variable of an enclosing loop as the call CLIPS put in its place
+/// ([`LoopScope`]).
 pub fn write_expression(w: &mut dyn Write, src: &str, f: &Found, seq_ops: bool) -> fmt::Result {
     let Some(text) = src.get(f.call_start..f.call_end) else {
         return Ok(());
@@ -1172,15 +1174,118 @@ pub fn write_expression(w: &mut dyn Write, src: &str, f: &Found, seq_ops: bool) 
         lx,
         src: text,
         seq_ops,
+        loops: LoopScope::at(src, f.call_start),
     };
     let t = p.lx.next_token();
     p.item(w, t, f.passes, true)
+}
+
+/// How many enclosing loops one message's call can name (more are not looked up).
+const MAX_LOOPS: usize = 16;
+
+/// The `loop-for-count`, `progn$` and `foreach` groups open at the message's call, outer
+/// first: CLIPS has replaced each of their variables by a call, printed as
+/// `((get-loop-count) D)`, `((get-progn$-field) D)` or `((get-progn$-index) D)`, D
+/// counting the loops of the same kind between the variable's one and the call.
+struct LoopScope<'a> {
+    /// (progn$-like, the variable's name or "") per enclosing loop
+    open: [(bool, &'a str); MAX_LOOPS],
+    len: usize,
+}
+
+impl<'a> LoopScope<'a> {
+    /// The loops open at `at` in the rule (or deffunction) whose text ends there.
+    fn at(src: &'a str, at: usize) -> Self {
+        let mut sc = LoopScope {
+            open: [(false, ""); MAX_LOOPS],
+            len: 0,
+        };
+        let upto = src.get(..at).unwrap_or("");
+        let Some(start) = upto.rfind("(defrule") else {
+            return sc;
+        };
+        let text = &upto[start..];
+        let mut lx = Lexer::new(text);
+        // per open group: whether it is a loop (an entry of `open`)
+        let mut groups = [false; 64];
+        let mut depth = 0usize;
+        loop {
+            let t = lx.next_token();
+            match t.tok {
+                Tok::Eof | Tok::Bad => break,
+                Tok::RParen => {
+                    if depth > 0 {
+                        depth -= 1;
+                        if depth < groups.len() && groups[depth] {
+                            sc.len = sc.len.saturating_sub(1);
+                        }
+                    }
+                }
+                Tok::LParen => {
+                    let mut ahead = lx.clone();
+                    let head = ahead.next_token().tok;
+                    let kind = match head {
+                        Tok::Symbol("loop-for-count") => Some(false),
+                        Tok::Symbol("progn$") | Tok::Symbol("foreach") => Some(true),
+                        _ => None,
+                    };
+                    let is_loop = kind.is_some() && sc.len < MAX_LOOPS;
+                    if let (true, Some(k)) = (is_loop, kind) {
+                        let name = match (head, ahead.next_token().tok) {
+                            (Tok::Symbol("foreach"), Tok::SfVar(v)) => v,
+                            (_, Tok::LParen) => match ahead.next_token().tok {
+                                Tok::SfVar(v) => v,
+                                _ => "",
+                            },
+                            _ => "",
+                        };
+                        sc.open[sc.len] = (k, name);
+                        sc.len += 1;
+                    }
+                    if depth < groups.len() {
+                        groups[depth] = is_loop;
+                    }
+                    depth += 1;
+                }
+                _ => {}
+            }
+        }
+        sc
+    }
+
+    /// CLIPS's call in place of variable `v` when a loop binds it.
+    fn write_var(&self, w: &mut dyn Write, v: &str) -> Option<fmt::Result> {
+        for i in (0..self.len).rev() {
+            let (progn, name) = self.open[i];
+            if name.is_empty() {
+                continue;
+            }
+            let what = if v == name {
+                if progn {
+                    "get-progn$-field"
+                } else {
+                    "get-loop-count"
+                }
+            } else if progn && v.strip_suffix("-index") == Some(name) {
+                "get-progn$-index"
+            } else {
+                continue;
+            };
+            let d = self.open[i + 1..self.len]
+                .iter()
+                .filter(|o| o.0 == progn)
+                .count();
+            return Some(write!(w, "(({what}) {d})"));
+        }
+        None
+    }
 }
 
 struct Printer<'a> {
     lx: Lexer<'a>,
     src: &'a str,
     seq_ops: bool,
+    loops: LoopScope<'a>,
 }
 
 impl<'a> Printer<'a> {
@@ -1189,7 +1294,10 @@ impl<'a> Printer<'a> {
             Tok::LParen => self.group(w, passes, top),
             Tok::Int(i) | Tok::IntOverflow(i) => write!(w, "{i}"),
             Tok::Float(x) => crate::value::write_float(w, x),
-            Tok::SfVar(v) => write!(w, "?{v}"),
+            Tok::SfVar(v) => match self.loops.write_var(w, v) {
+                Some(r) => r,
+                None => write!(w, "?{v}"),
+            },
             Tok::Global(g) => write!(w, "?{g}"),
             Tok::MfVar(v) if is_global(v) => write!(w, "(expand$ ?{})", &v[1..v.len() - 1]),
             Tok::MfVar(v) if self.seq_ops => write!(w, "(expand$ ?{v})"),
@@ -1201,6 +1309,22 @@ impl<'a> Printer<'a> {
     /// A parenthesised group (its `(` read): a call whose arguments expand is wrapped
     /// (the top call, the one of the message, is not).
     fn group(&mut self, w: &mut dyn Write, passes: u8, top: bool) -> fmt::Result {
+        // a deffunction call prints as nothing (CLIPS's `PrintExpression` writes no
+        // text for one)
+        if let Tok::Symbol(name) = self.lx.clone().next_token().tok {
+            if !top && crate::builtins::lookup(name).is_none() {
+                let mut depth = 0u32;
+                loop {
+                    match self.lx.next_token().tok {
+                        Tok::LParen => depth += 1,
+                        Tok::RParen if depth == 0 => return Ok(()),
+                        Tok::RParen => depth -= 1,
+                        Tok::Eof | Tok::Bad => return Ok(()),
+                        _ => {}
+                    }
+                }
+            }
+        }
         // read the group's tokens ahead to see whether one of its arguments expands
         let mut ahead = self.lx.clone();
         let mut depth = 0u32;
