@@ -1213,12 +1213,10 @@ impl<'a> LoopScope<'a> {
             let t = lx.next_token();
             match t.tok {
                 Tok::Eof | Tok::Bad => break,
-                Tok::RParen => {
-                    if depth > 0 {
-                        depth -= 1;
-                        if depth < groups.len() && groups[depth] {
-                            sc.len = sc.len.saturating_sub(1);
-                        }
+                Tok::RParen if depth > 0 => {
+                    depth -= 1;
+                    if depth < groups.len() && groups[depth] {
+                        sc.len = sc.len.saturating_sub(1);
                     }
                 }
                 Tok::LParen => {
