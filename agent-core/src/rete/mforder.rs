@@ -11,6 +11,14 @@
 //! the fact's template has such a choice, the fact's matches are collected, sorted
 //! into CLIPS's order (path level by level: the newer node first, then at a choice
 //! level the longer length first; a path before its extensions), then added.
+//!
+//! The order is a lexicographic one over a few small numbers per match, so each match
+//! gets it as one integer (`NodeKey`): the node's place among its template's nodes
+//! level by level, and at a choice level its length, longer first. Sorting compares
+//! integers, and a fact whose matches came in order (often: one node, or nodes whose
+//! matches do not interleave) is only checked. `mf_cmp` decides where the integer
+//! cannot (a template with more nodes than a level's field holds, or nodes sharing
+//! a path level where one chooses a length and the other does not).
 
 use alloc::vec::Vec;
 use core::cmp::Ordering;
@@ -21,8 +29,45 @@ use crate::error::EvalError;
 use crate::expr::loc;
 use crate::value::{Ix, NONE};
 
-/// One alpha match waiting to be added: the node and the multifield lengths.
-type Pending = (Ix, [u8; MAX_MARKS]);
+/// One alpha match waiting to be added: its order key (`NodeKey::key`, filled in
+/// once the fact's matches are all collected), the node and the multifield lengths.
+type Pending = (u128, Ix, [u8; MAX_MARKS]);
+
+/// Bits of one path level in an order key: the node's place among its template's
+/// nodes sharing the path up to the level (`PLACE_BITS`, +1: 0 is "no such level",
+/// which puts a path before its extensions), then the level's multifield length,
+/// inverted (longer first), at a choice level. `PATH_LEN` levels fit in 128 bits.
+const PLACE_BITS: u32 = 13;
+const LEVEL_BITS: u32 = PLACE_BITS + 8;
+const _: () = assert!(PATH_LEN as u32 * LEVEL_BITS <= 128);
+
+/// A node's part of its matches' order keys, for one network generation.
+#[derive(Clone, Copy)]
+struct NodeKey {
+    /// The places, level by level.
+    base: u128,
+    /// Per choice level: the mark holding its length and the level's shift.
+    marks: [(u8, u8); PATH_LEN],
+    n: u8,
+}
+
+impl NodeKey {
+    const EMPTY: NodeKey = NodeKey {
+        base: 0,
+        marks: [(0, 0); PATH_LEN],
+        n: 0,
+    };
+
+    /// The order key of the node's match with `marks`.
+    #[inline(always)]
+    fn key(&self, marks: &[u8; MAX_MARKS]) -> u128 {
+        let mut k = self.base;
+        for &(i, shift) in &self.marks[..self.n as usize] {
+            k |= u128::from(255 - marks[i as usize & (MAX_MARKS - 1)]) << shift;
+        }
+        k
+    }
+}
 
 /// The collected matches and which templates need collecting (`MatchState::mf`).
 pub struct MfOrder {
@@ -37,6 +82,11 @@ pub struct MfOrder {
     /// Per alpha node: the network generation (+1; 0 never) its `choice_levels`
     /// were worked out in, and them (they cost a walk of the pattern's slots).
     levels: Vec<(u32, [Option<u8>; PATH_LEN])>,
+    /// Per alpha node: the network generation (+1) its `NodeKey` was made in, and it.
+    keys: Vec<(u32, NodeKey)>,
+    /// Per template: the network generation (+1) its nodes' keys were made in, and
+    /// whether they order its matches (else `mf_cmp` does).
+    keyed: Vec<(u32, bool)>,
     /// Per template: the network generation last checked (+1; 0 never) and whether
     /// one of its alpha nodes has a multifield choice.
     choice: Vec<(u32, bool)>,
@@ -49,6 +99,8 @@ impl MfOrder {
             collecting: false,
             spare: Vec::new(),
             levels: Vec::new(),
+            keys: Vec::new(),
+            keyed: Vec::new(),
             choice: Vec::new(),
         }
     }
@@ -115,11 +167,11 @@ impl Core<'_> {
         let mut got = core::mem::replace(&mut self.st.net.mf.pending, outer).unwrap_or_default();
         self.st.net.mf.collecting = self.st.net.mf.pending.is_some();
         r?;
-        if got.len() > 1 {
+        if got.len() > 1 && !self.order_by_keys(&mut got) {
             // a node's matches come one after another (its segmentations): its choice
             // levels are looked up once for them
             let mut last = NONE;
-            for &(a, _) in &got {
+            for &(_, a, _) in &got {
                 if a != last {
                     self.cache_choice_levels(a);
                     last = a;
@@ -127,10 +179,13 @@ impl Core<'_> {
             }
             if !self.one_node_in_order(&got) {
                 let lv = &self.st.net.mf.levels;
-                got.sort_by(|&x, &y| self.mf_cmp(x, &lv[x.0 as usize].1, y, &lv[y.0 as usize].1));
+                got.sort_by(|x, y| {
+                    let (a, b) = ((x.1, x.2), (y.1, y.2));
+                    self.mf_cmp(a, &lv[a.0 as usize].1, b, &lv[b.0 as usize].1)
+                });
             }
         }
-        for &(a, marks) in &got {
+        for &(_, a, marks) in &got {
             self.add_alpha_match(a, fact, marks)?;
         }
         got.clear();
@@ -143,8 +198,8 @@ impl Core<'_> {
     /// longer leading multifields first (`enumerate_marks`), the order `mf_cmp` asks
     /// for, so one pattern with several `$?` (the usual case) needs no sort.
     fn one_node_in_order(&self, got: &[Pending]) -> bool {
-        let a = got[0].0;
-        if got.iter().any(|&(b, _)| b != a) {
+        let a = got[0].1;
+        if got.iter().any(|&(_, b, _)| b != a) {
             return false;
         }
         // the marks compared, level by level (`mf_cmp` with equal keys)
@@ -152,13 +207,116 @@ impl Core<'_> {
         let n = self.alphas[a as usize].key_len as usize;
         got.windows(2).all(|w| {
             for &i in levels[..n].iter().flatten() {
-                let (p, q) = (w[0].1[i as usize], w[1].1[i as usize]);
+                let (p, q) = (w[0].2[i as usize], w[1].2[i as usize]);
                 if p != q {
                     return p > q;
                 }
             }
             true
         })
+    }
+
+    /// Puts `got` (2 or more matches of one fact) in CLIPS's order by their order
+    /// keys: false, `got` unchanged, where the keys cannot tell (`NodeKey`).
+    fn order_by_keys(&mut self, got: &mut [Pending]) -> bool {
+        let tmpl = self.alphas[got[0].1 as usize].tmpl;
+        let gen = self.st.net.net_gen.wrapping_add(1).max(1);
+        let ok = match self.st.net.mf.keyed.get(tmpl as usize) {
+            Some(&(g, ok)) if g == gen => ok,
+            _ => self.make_node_keys(tmpl, gen),
+        };
+        if !ok {
+            return false;
+        }
+        // a node's matches come one after another: its key is read once for them
+        let keys = &self.st.net.mf.keys;
+        let (mut last, mut nk) = (NONE, NodeKey::EMPTY);
+        let (mut prev, mut sorted) = (0u128, true);
+        for p in got.iter_mut() {
+            if p.1 != last {
+                last = p.1;
+                nk = keys[last as usize].1;
+            }
+            p.0 = nk.key(&p.2);
+            sorted &= prev <= p.0;
+            prev = p.0;
+        }
+        if !sorted {
+            // stable: matches of nodes on one CLIPS node keep the order they came in
+            got.sort_by_key(|p| p.0);
+        }
+        true
+    }
+
+    /// Makes the `NodeKey`s of template `tmpl`'s alpha nodes for network generation
+    /// `gen`; whether they order its matches. (Once per template and network.)
+    #[cold]
+    #[inline(never)]
+    fn make_node_keys(&mut self, tmpl: Ix, gen: u32) -> bool {
+        let mut nodes = Vec::new();
+        let mut a = self.templates[tmpl as usize].alpha_head;
+        while a != NONE {
+            nodes.push(a);
+            a = self.alphas[a as usize].next_in_tmpl;
+        }
+        // CLIPS's order of the nodes' paths (`mf_cmp` on equal marks): level by
+        // level the newer network node first, a path before its extensions; the
+        // nodes sharing a path up to a level then lie together
+        nodes.sort_by(|&x, &y| {
+            let (x, y) = (&self.alphas[x as usize], &self.alphas[y as usize]);
+            let (lx, ly) = (x.key_len as usize, y.key_len as usize);
+            for l in 0..lx.min(ly) {
+                if x.key[l] != y.key[l] {
+                    return y.key[l].cmp(&x.key[l]);
+                }
+            }
+            lx.cmp(&ly)
+        });
+        let mut ok = nodes.len() < (1 << PLACE_BITS) - 1;
+        let mut places = [0u32; PATH_LEN];
+        let mut prev: Option<(Ix, [Option<u8>; PATH_LEN])> = None;
+        for (i, &a) in nodes.iter().enumerate() {
+            if !ok {
+                break;
+            }
+            let node = self.alphas[a as usize];
+            let choice = self.choice_levels(a);
+            let mut nk = NodeKey::EMPTY;
+            let n = (node.key_len as usize).min(PATH_LEN);
+            for l in 0..n {
+                // the place of the first node sharing the path up to this level
+                let shared = prev.and_then(|(p, pc)| {
+                    let o = &self.alphas[p as usize];
+                    (o.key_len as usize > l && o.key[..=l] == node.key[..=l]).then_some(pc[l])
+                });
+                match shared {
+                    Some(pc) => {
+                        // one CLIPS node: it chooses a length for all or for none
+                        ok &= pc.is_some() == choice[l].is_some();
+                    }
+                    None => places[l] = i as u32 + 1,
+                }
+                let shift = 128 - LEVEL_BITS * (l as u32 + 1);
+                nk.base |= u128::from(places[l]) << (shift + 8);
+                if let Some(m) = choice[l] {
+                    ok &= (m as usize) < MAX_MARKS;
+                    nk.marks[nk.n as usize] = (m, shift as u8);
+                    nk.n += 1;
+                }
+            }
+            let v = &mut self.st.net.mf.keys;
+            if v.len() <= a as usize {
+                v.resize(a as usize + 1, (0, NodeKey::EMPTY));
+            }
+            v[a as usize] = (gen, nk);
+            prev = Some((a, choice));
+        }
+        let v = &mut self.st.net.mf.keyed;
+        if v.len() <= tmpl as usize {
+            v.resize(tmpl as usize + 1, (0, false));
+        }
+        v[tmpl as usize] = (gen, ok);
+        ok
     }
 
     /// Makes `levels[a]` hold alpha node `a`'s `choice_levels` for this network.
@@ -179,9 +337,9 @@ impl Core<'_> {
     /// CLIPS's order of two alpha matches (see the module docs).
     fn mf_cmp(
         &self,
-        (a, ma): Pending,
+        (a, ma): (Ix, [u8; MAX_MARKS]),
         ca: &[Option<u8>; PATH_LEN],
-        (b, mb): Pending,
+        (b, mb): (Ix, [u8; MAX_MARKS]),
         cb: &[Option<u8>; PATH_LEN],
     ) -> Ordering {
         let (x, y) = (&self.alphas[a as usize], &self.alphas[b as usize]);
