@@ -49,6 +49,10 @@ struct NodeKey {
     /// Per choice level: the mark holding its length and the level's shift.
     marks: [(u8, u8); PATH_LEN],
     n: u8,
+    /// The node's segmentations come in key order: its choice levels' marks are
+    /// its first marks, in order (`enumerate_marks` tries marks in index order,
+    /// each longest first, so their lengths fall lexicographically).
+    mono: bool,
 }
 
 impl NodeKey {
@@ -56,6 +60,7 @@ impl NodeKey {
         base: 0,
         marks: [(0, 0); PATH_LEN],
         n: 0,
+        mono: true,
     };
 
     /// The order key of the node's match with `marks`.
@@ -167,23 +172,8 @@ impl Core<'_> {
         let mut got = core::mem::replace(&mut self.st.net.mf.pending, outer).unwrap_or_default();
         self.st.net.mf.collecting = self.st.net.mf.pending.is_some();
         r?;
-        if got.len() > 1 && !self.order_by_keys(&mut got) {
-            // a node's matches come one after another (its segmentations): its choice
-            // levels are looked up once for them
-            let mut last = NONE;
-            for &(_, a, _) in &got {
-                if a != last {
-                    self.cache_choice_levels(a);
-                    last = a;
-                }
-            }
-            if !self.one_node_in_order(&got) {
-                let lv = &self.st.net.mf.levels;
-                got.sort_by(|x, y| {
-                    let (a, b) = ((x.1, x.2), (y.1, y.2));
-                    self.mf_cmp(a, &lv[a.0 as usize].1, b, &lv[b.0 as usize].1)
-                });
-            }
+        if got.len() > 1 {
+            self.put_in_mf_order(&mut got);
         }
         for &(_, a, marks) in &got {
             self.add_alpha_match(a, fact, marks)?;
@@ -216,6 +206,32 @@ impl Core<'_> {
         })
     }
 
+    /// Puts a fact's matches `got` (2 or more) in CLIPS's order. (Out of line: the
+    /// loop adding them takes the successor joins' walks in line, whose code is
+    /// the hot one and must not pay for this.)
+    #[inline(never)]
+    fn put_in_mf_order(&mut self, got: &mut [Pending]) {
+        if self.order_by_keys(got) {
+            return;
+        }
+        // a node's matches come one after another (its segmentations): its choice
+        // levels are looked up once for them
+        let mut last = NONE;
+        for &(_, a, _) in got.iter() {
+            if a != last {
+                self.cache_choice_levels(a);
+                last = a;
+            }
+        }
+        if !self.one_node_in_order(got) {
+            let lv = &self.st.net.mf.levels;
+            got.sort_by(|x, y| {
+                let (a, b) = ((x.1, x.2), (y.1, y.2));
+                self.mf_cmp(a, &lv[a.0 as usize].1, b, &lv[b.0 as usize].1)
+            });
+        }
+    }
+
     /// Puts `got` (2 or more matches of one fact) in CLIPS's order by their order
     /// keys: false, `got` unchanged, where the keys cannot tell (`NodeKey`).
     fn order_by_keys(&mut self, got: &mut [Pending]) -> bool {
@@ -228,20 +244,41 @@ impl Core<'_> {
         if !ok {
             return false;
         }
-        // a node's matches come one after another: its key is read once for them
+        // a node's matches come one after another (its segmentations): its key is
+        // read once for them; when they come in key order (`NodeKey::mono`) only
+        // the ends of its run are compared with the neighbouring runs
         let keys = &self.st.net.mf.keys;
-        let (mut last, mut nk) = (NONE, NodeKey::EMPTY);
-        let (mut prev, mut sorted) = (0u128, true);
-        for p in got.iter_mut() {
-            if p.1 != last {
-                last = p.1;
-                nk = keys[last as usize].1;
+        let (mut prev, mut sorted, mut i) = (0u128, true, 0);
+        while sorted && i < got.len() {
+            let a = got[i].1;
+            let nk = keys[a as usize].1;
+            let mut j = i + 1;
+            while j < got.len() && got[j].1 == a {
+                j += 1;
             }
-            p.0 = nk.key(&p.2);
-            sorted &= prev <= p.0;
-            prev = p.0;
+            if nk.mono {
+                let first = nk.key(&got[i].2);
+                sorted = prev <= first;
+                prev = nk.key(&got[j - 1].2);
+            } else {
+                for p in &got[i..j] {
+                    let k = nk.key(&p.2);
+                    sorted &= prev <= k;
+                    prev = k;
+                }
+            }
+            i = j;
         }
         if !sorted {
+            let mut last = NONE;
+            let mut nk = NodeKey::EMPTY;
+            for p in got.iter_mut() {
+                if p.1 != last {
+                    last = p.1;
+                    nk = keys[last as usize].1;
+                }
+                p.0 = nk.key(&p.2);
+            }
             // stable: matches of nodes on one CLIPS node keep the order they came in
             got.sort_by_key(|p| p.0);
         }
@@ -300,6 +337,7 @@ impl Core<'_> {
                 nk.base |= u128::from(places[l]) << (shift + 8);
                 if let Some(m) = choice[l] {
                     ok &= (m as usize) < MAX_MARKS;
+                    nk.mono &= m == nk.n;
                     nk.marks[nk.n as usize] = (m, shift as u8);
                     nk.n += 1;
                 }
