@@ -317,7 +317,12 @@ impl Core<'_> {
                 break;
             }
             let node = self.alphas[a as usize];
-            let choice = self.choice_levels(a);
+            // (a node without marks chooses no length: its slots are not walked)
+            let choice = if node.nmarks == 0 {
+                [None; PATH_LEN]
+            } else {
+                self.choice_levels(a)
+            };
             let mut nk = NodeKey::EMPTY;
             let n = (node.key_len as usize).min(PATH_LEN);
             for l in 0..n {
@@ -438,5 +443,94 @@ impl Core<'_> {
             }
         }
         out
+    }
+}
+
+#[cfg(all(test, feature = "parser"))]
+mod tests {
+    extern crate std;
+    use super::*;
+    use crate::engine::SmallEngine;
+    use crate::host::NullHost;
+    use std::boxed::Box;
+
+    /// For every template, the order keys put every node's segmentations (each mark
+    /// 0..=3; a node's come together, longest first, as `enumerate_marks` yields
+    /// them), the nodes in several orders, where `mf_cmp`'s stable sort does.
+    #[test]
+    fn order_keys_agree_with_mf_cmp() {
+        let mut e = Box::new(SmallEngine::new());
+        let h = &mut NullHost;
+        e.load_str(
+            h,
+            "t",
+            "(deftemplate c (slot id) (multislot r) (multislot s))
+             (defrule a (c (r $?p ?v $?f)) =>)
+             (defrule b (c (id 1) (r $?p ?x $?m ?y $?f)) =>)
+             (defrule d (c (r $?p ?x $?m ?y&:(> ?x ?y) $?f)) =>)
+             (defrule e (c (r ?h $?m ?l)) =>)
+             (defrule f (c (r $? ?x $?) (s $?q ?x $?)) =>)
+             (defrule g (c (s $?a ?x $?b) (r $? 3 $? ?y $?)) =>)
+             (defrule h (c (r $?a ?x $?b ?y $?c ?z $?d)) =>)
+             (defrule i (v $?p ?x $?m ?y $?f) =>)
+             (defrule j (v $? a $?) =>)
+             (defrule k (v $? b $? ?z) =>)
+             (defrule l (v ?k $?p ?x $?f) =>)",
+        )
+        .unwrap();
+        let mut c = e.core(h);
+        let (mut checked, mut sorted_by_keys) = (0, 0);
+        for tmpl in 0..c.templates.len() as Ix {
+            let mut runs: Vec<Vec<Pending>> = Vec::new();
+            let mut a = c.templates[tmpl as usize].alpha_head;
+            while a != NONE {
+                let n = c.alphas[a as usize].nmarks as usize;
+                let mut run = Vec::new();
+                for code in (0..4u32.pow(n as u32)).rev() {
+                    let mut marks = [0u8; MAX_MARKS];
+                    for (i, m) in marks.iter_mut().enumerate().take(n) {
+                        *m = (code / 4u32.pow((n - 1 - i) as u32) % 4) as u8;
+                    }
+                    run.push((0, a, marks));
+                }
+                runs.push(run);
+                a = c.alphas[a as usize].next_in_tmpl;
+            }
+            if runs.len() < 2 {
+                continue;
+            }
+            // the nodes in list order, reversed, and rotated
+            let mut orders = Vec::new();
+            for k in 0..4 {
+                let mut r = runs.clone();
+                match k {
+                    0 => {}
+                    1 => r.reverse(),
+                    _ => r.rotate_left(k - 1),
+                }
+                orders.push(r.concat());
+            }
+            for mut got in orders {
+                let mut want = got.clone();
+                for &(_, a, _) in &want {
+                    c.cache_choice_levels(a);
+                }
+                let lv = &c.st.net.mf.levels;
+                want.sort_by(|x, y| {
+                    let (a, b) = ((x.1, x.2), (y.1, y.2));
+                    c.mf_cmp(a, &lv[a.0 as usize].1, b, &lv[b.0 as usize].1)
+                });
+                if c.order_by_keys(&mut got) {
+                    sorted_by_keys += 1;
+                }
+                let strip = |v: &[Pending]| v.iter().map(|p| (p.1, p.2)).collect::<Vec<_>>();
+                assert_eq!(strip(&got), strip(&want), "template {tmpl}");
+                checked += 1;
+            }
+        }
+        assert!(
+            checked >= 6 && sorted_by_keys == checked,
+            "{checked} {sorted_by_keys}"
+        );
     }
 }
