@@ -261,6 +261,56 @@ impl Core<'_> {
         }
     }
 
+    /// Host: `eval_operand` for a value that is stored (`bind`'s, a single-field
+    /// slot's), where counters and coordinates are computed (`(bind ?*n* (+ ?*n* 1))`,
+    /// `(x (+ ?x 1))`): `+`, `-`, `*` go to `arith_value`, other nodes as operands.
+    /// (Only these callers: a test in `eval_operand` itself, inlined at every operand
+    /// site, made other rows dearer.)
+    #[cfg(all(feature = "host-speedups", feature = "grow"))]
+    #[inline(always)]
+    pub(crate) fn eval_value_operand(&mut self, e: Ix) -> Result<Value, EvalError> {
+        let x = self.exprs[e as usize];
+        match x.op {
+            Op::Sym => Ok(Value::Sym(x.data)),
+            Op::Str => Ok(Value::Str(x.data)),
+            Op::Int => Ok(Value::Int(
+                Expr::join_bits(x, self.exprs[e as usize + 1]) as i64
+            )),
+            Op::Local => self.local(e, x),
+            Op::PatVar => self.pattern_var_of(x),
+            Op::QSlot => self.query_slot(e, x),
+            // (two compares for other calls)
+            Op::Call
+                if x.aux == FnKind::Builtin as u8
+                    && x.data.wrapping_sub(builtins::basic::ARITH_FIRST) < 3 =>
+            {
+                self.arith_value(e, x)
+            }
+            _ => self.eval(e),
+        }
+    }
+
+    /// Host: the arithmetic call `e` (node `x`) of `eval_value_operand` as `call`
+    /// makes it, without the evaluator's frame: computed in place (`quick_arith`)
+    /// when the call needs no depth check, else the builtin is called (not asking
+    /// `quick_arith` again after it declined).
+    #[cfg(all(feature = "host-speedups", feature = "grow"))]
+    #[inline(never)]
+    fn arith_value(&mut self, e: Ix, x: Expr) -> Result<Value, EvalError> {
+        if self.st.eval.eval_depth.wrapping_sub(1) >= self.st.eval.limits.quiet {
+            return self.eval(e);
+        }
+        if let Some(v) = self.quick_arith(x) {
+            return Ok(v);
+        }
+        self.st.eval.eval_depth += 1;
+        let sp = self.st.frame.sp;
+        let r = self.call_builtin(e, x);
+        self.st.frame.sp = sp;
+        self.st.eval.eval_depth -= 1;
+        r
+    }
+
     /// A two-argument comparison (`=` .. `neq`, see `basic::CMP_FIRST`) of leaves
     /// (constants and variables, which call nothing), the commonest calls in query
     /// and `if` conditions: the operands are read in place and numbers or `eq` are
@@ -423,6 +473,10 @@ impl Core<'_> {
         Ok(v)
     }
 
+    /// The partial match entry pattern `pat` reads. (Host: in line everywhere, as in
+    /// the evaluator; called, it cost `arith_value` and `quick_arith` a frame per
+    /// pattern variable.)
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     fn binding(&self, pat: u8) -> PatBinding {
         if pat == THIS_PATTERN {
             self.st.net.this_pm
@@ -1133,41 +1187,49 @@ impl Core<'_> {
                         return Ok(v);
                     }
                 }
-                let b = builtins::get(x.data);
-                match builtins::code_of(self, x.data, b) {
-                    Imp::Lazy(f) => f(self, e),
-                    Imp::Eager(f) => {
-                        let halting = self.st.mode.halting;
-                        #[cfg(feature = "extras")]
-                        let args = match self.push_args::<true>(x.first) {
-                            Ok(args) => args,
-                            Err(err) => return self.builtin_after_failed_arg(x, f, halting, err),
-                        };
-                        #[cfg(not(feature = "extras"))]
-                        let args = self.push_args::<false>(x.first)?;
-                        // an argument failed with CLIPS's evaluation error (an
-                        // unbound global): most builtins stop with their error value
-                        if self.st.mode.halting && (!halting || self.arg_error()) {
-                            #[cfg(feature = "extras")]
-                            let stops = !builtins::errors::values_failed(self, b, args);
-                            #[cfg(not(feature = "extras"))]
-                            let stops = true;
-                            if stops {
-                                if let Some(v) = self.args_failed(b)? {
-                                    return Ok(v);
-                                }
-                            }
-                        }
-                        check_arity(b.name, b.min, b.max, args.len)?;
-                        f(self, args).map_err(|err| self.classify_type_error(b.name, x.first, err))
-                    }
-                }
+                self.call_builtin(e, x)
             }
             k if k == FnKind::External as u8 => {
                 let args = self.push_args::<false>(x.first)?;
                 self.call_values(Callee::External(x.data), args)
             }
             _ => self.call_deffunction(x.data, x.first),
+        }
+    }
+
+    /// The builtin call `e` (node `x`) past `call_inner`'s quick paths: a lazy builtin
+    /// gets the node, an eager one its evaluated arguments. (In line in `call_inner`;
+    /// the host's `arith_value` calls it for an arithmetic `quick_arith` declined.)
+    #[inline(always)]
+    fn call_builtin(&mut self, e: Ix, x: Expr) -> Result<Value, EvalError> {
+        let b = builtins::get(x.data);
+        match builtins::code_of(self, x.data, b) {
+            Imp::Lazy(f) => f(self, e),
+            Imp::Eager(f) => {
+                let halting = self.st.mode.halting;
+                #[cfg(feature = "extras")]
+                let args = match self.push_args::<true>(x.first) {
+                    Ok(args) => args,
+                    Err(err) => return self.builtin_after_failed_arg(x, f, halting, err),
+                };
+                #[cfg(not(feature = "extras"))]
+                let args = self.push_args::<false>(x.first)?;
+                // an argument failed with CLIPS's evaluation error (an
+                // unbound global): most builtins stop with their error value
+                if self.st.mode.halting && (!halting || self.arg_error()) {
+                    #[cfg(feature = "extras")]
+                    let stops = !builtins::errors::values_failed(self, b, args);
+                    #[cfg(not(feature = "extras"))]
+                    let stops = true;
+                    if stops {
+                        if let Some(v) = self.args_failed(b)? {
+                            return Ok(v);
+                        }
+                    }
+                }
+                check_arity(b.name, b.min, b.max, args.len)?;
+                f(self, args).map_err(|err| self.classify_type_error(b.name, x.first, err))
+            }
         }
     }
 

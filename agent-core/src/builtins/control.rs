@@ -495,7 +495,11 @@ fn bind(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
 #[cfg(feature = "host-speedups")]
 fn bind_one(cx: &mut Core<'_>, target: Ix, a: Ix) -> Result<Value, EvalError> {
     let start = cx.multi_begin();
-    let value = match cx.eval_operand(a) {
+    #[cfg(feature = "grow")]
+    let value = cx.eval_value_operand(a);
+    #[cfg(not(feature = "grow"))]
+    let value = cx.eval_operand(a);
+    let value = match value {
         Ok(v) => v,
         #[cfg(feature = "extras")]
         Err(e) => return bind_failed(cx, target, start, a, e, false),
