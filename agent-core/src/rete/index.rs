@@ -2077,7 +2077,7 @@ impl Core<'_> {
         if j.rjoin == JoinId::NONE
             && j.alpha != NONE
             && self.alphas[j.alpha as usize].nrhash > 0
-            && plan.n != KeyPlan::NONE.n
+            && (plan.n != KeyPlan::NONE.n || self.segment_keyed(join))
         {
             let ic = self.joins[parent].index_child;
             if ic != JoinId::NONE && self.same_key(ic, &plan) {
@@ -2102,6 +2102,44 @@ impl Core<'_> {
             *e = (join, group);
         }
         group
+    }
+
+    /// Host: whether `join` has no key plan only because some of the earlier
+    /// variables its equality tests compare with are bound inside segments (after a
+    /// multifield of their slot, `(rango $? ?v $?)`): `left_key` reads those once per
+    /// partial match through its bindings' multifield marks, so an extra index group
+    /// keyed on them spares the right activations a scan of the whole memory (each
+    /// pair's test re-walking the segments). Such a group is the join's own
+    /// (`same_key` shares none without a plan).
+    #[cfg(feature = "host-speedups")]
+    fn segment_keyed(&self, join: JoinId) -> bool {
+        let j = self.joins[join];
+        let nrhash = self.alphas[j.alpha as usize].nrhash;
+        let (mut n, mut seg) = (0u8, false);
+        let mut t = j.tests;
+        while t != NONE && n < nrhash {
+            let x = self.exprs[t as usize];
+            if x.op == Op::Eq2 && x.first != NONE {
+                let this = self.exprs[x.first as usize];
+                if this.op == Op::PatVar && this.aux == j.depth && this.next != NONE {
+                    let o = self.exprs[this.next as usize];
+                    if o.op == Op::PatVar && o.aux != j.depth {
+                        if o.aux > j.depth || o.data == loc::FACT {
+                            return false;
+                        }
+                        if o.first != NONE && self.fixed_elem(&o).is_none() {
+                            if loc::elem(o.data) == loc::SINGLE {
+                                return false;
+                            }
+                            seg = true;
+                        }
+                        n += 1;
+                    }
+                }
+            }
+            t = x.next;
+        }
+        seg && n == nrhash
     }
 
     /// Host: whether `join`'s key plan reads the fields (and elements) `plan` reads,
