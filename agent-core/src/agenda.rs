@@ -792,6 +792,29 @@ impl Core<'_> {
     /// a rebuild).
     fn token_basis(&self, token: TokenId) -> u32 {
         let mut h = 0x9E37_79B9u32;
+        // host: the facts per depth are the partial match's `binds` (NONE at a
+        // not/exists/test level, as the walk's `None`): the same hash without the walk
+        // up its ancestry, which every activation a modify's retract removes pays
+        // (the journal)
+        #[cfg(feature = "host-speedups")]
+        {
+            let tk = &self.tokens[token];
+            let j = &self.joins[tk.owner];
+            let depth = j.depth as usize;
+            if j.kind != crate::rete::JoinKind::Root && depth < crate::rete::BIND_W {
+                for d in (0..=depth).rev() {
+                    let f = tk.binds[d];
+                    let num = if f == NONE {
+                        u32::MAX
+                    } else {
+                        self.facts[f as usize].num
+                    };
+                    h = (h ^ d as u32).wrapping_mul(0x0100_0193);
+                    h = (h ^ num).wrapping_mul(0x0100_0193).rotate_left(5);
+                }
+                return h;
+            }
+        }
         for (depth, num) in self.basis(token) {
             h = (h ^ depth as u32).wrapping_mul(0x0100_0193);
             h = (h ^ num.unwrap_or(u32::MAX))

@@ -57,11 +57,20 @@ pub(crate) fn next_random(st: &mut State) -> i64 {
     if !st.random.rng_seeded {
         srandom(st, 1);
     }
-    let rear = st.random.rng_pos as usize % DEG;
-    let front = (rear + SEP) % DEG;
+    // (`rng_pos` stays below `DEG`: the pointers wrap by a compare, not a division,
+    // as every activation draws one)
+    let mut rear = st.random.rng_pos as usize;
+    if rear >= DEG {
+        rear %= DEG;
+    }
+    let front = if rear + SEP >= DEG {
+        rear + SEP - DEG
+    } else {
+        rear + SEP
+    };
     let sum = (st.random.rng_glibc[front] as u32).wrapping_add(st.random.rng_glibc[rear] as u32);
     st.random.rng_glibc[front] = sum as i32;
-    st.random.rng_pos = ((rear + 1) % DEG) as u8;
+    st.random.rng_pos = if rear + 1 == DEG { 0 } else { rear as u8 + 1 };
     i64::from(sum >> 1)
 }
 
