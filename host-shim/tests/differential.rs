@@ -506,6 +506,7 @@ differential_programs! {
     p738_argument_errors_of_deffunction_calls => "738-argument-errors-of-deffunction-calls",
     p739_modify_target_in_constructs => "739-modify-target-in-constructs",
     p740_default_multifield_single_slot => "740-default-multifield-single-slot",
+    p741_random_draws_across_modifies => "741-random-draws-across-modifies",
     p750_watch_construct_names => "750-watch-construct-names",
     p751_watch_construct_names_modules => "751-watch-construct-names-modules",
     p766_wipe_join_from_right => "766-wipe-join-from-right",
