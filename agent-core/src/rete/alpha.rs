@@ -766,6 +766,11 @@ impl Core<'_> {
                 // neither is a multifield: `values_same` is `same`
                 Some(a.same(b))
             }
+            // host: a field unequal to a symbol (`~far`) decided in line, without the
+            // recursive call (as `And`/`Or` below)
+            #[cfg(feature = "host-speedups")]
+            Op::Not => Some(!self.quick_first_test(x.first, fact)?),
+            #[cfg(not(feature = "host-speedups"))]
             Op::Not => Some(!self.quick_alpha_test(x.first, fact)?),
             Op::And | Op::Or => {
                 let want = x.op == Op::Or;
