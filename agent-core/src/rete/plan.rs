@@ -231,6 +231,74 @@ const MODE_FRAME: u8 = 1;
 /// A plan reading a left pattern at or beyond `BIND_W`, which only the ancestry
 /// walk (`bind_left`) finds: `Ancestry`.
 const MODE_DEEP: u8 = 2;
+/// A `MODE_BASES` plan that is one numeric comparison of two cells
+/// (`?i&:(< ?i ?c)`), run as its `FlatPlan` (`TestPlans::flats`). Its entry's `root`
+/// reads `UNPLANNED`, so that the other plans' dispatch stays as it is: only the
+/// rare unplanned entries look at this mode.
+const MODE_FLAT: u8 = 3;
+
+/// `FlatPlan::test`: the orderings of two integers that pass, bits 0, 1, 2 for
+/// `Less`, `Equal`, `Greater` (`(x > y) - (x < y) + 1`).
+const FLAT_LT: u8 = 1;
+const FLAT_EQ: u8 = 2;
+const FLAT_GT: u8 = 4;
+
+/// A `MODE_FLAT` plan: comparison `test` of cells `a` and `b` (the right fact's at
+/// `RIGHT`), decided in place for two integers; any other pair (a float, a
+/// non-number, a cell not found) goes to its compiled plan at `root`, which
+/// decides it as before (and the evaluator reports what it must). A call costs
+/// two thirds of the compiled plan's (`growforall`'s `?i&:(< ?i ?c)`). (A form
+/// with the left cell first, each read without the side test, saved a tenth
+/// more but moved the other plans' registers: zebra +0.3 %.)
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct FlatPlan {
+    test: u8,
+    root: u8,
+    a: Cell,
+    b: Cell,
+}
+
+impl FlatPlan {
+    const NONE: FlatPlan = FlatPlan {
+        test: 0,
+        root: UNPLANNED,
+        a: Cell {
+            pat: 0,
+            slot: 0,
+            elem: WHOLE,
+        },
+        b: Cell {
+            pat: 0,
+            slot: 0,
+            elem: WHOLE,
+        },
+    };
+
+    /// The flat form of plan `b` (its reads of the right fact at `RIGHT`) whose
+    /// root is `root` there and `stored` in the pool, if it is one numeric
+    /// comparison of two cells.
+    fn of(b: &PlanBuild, root: u8, stored: u8) -> Option<FlatPlan> {
+        let Some(&Node::Cmp { id, a, b }) = b.nodes.get(root as usize) else {
+            return None;
+        };
+        let test = match Ix::from(id).checked_sub(CMP_FIRST)? {
+            0 => FLAT_EQ,
+            1 => FLAT_LT | FLAT_GT,
+            2 => FLAT_LT,
+            3 => FLAT_LT | FLAT_EQ,
+            4 => FLAT_GT,
+            5 => FLAT_GT | FLAT_EQ,
+            // `eq`/`neq`: `run_inline`'s compare of any two values costs no more
+            _ => return None,
+        };
+        Some(FlatPlan {
+            test,
+            root: stored,
+            a: Cell::of(a)?,
+            b: Cell::of(b)?,
+        })
+    }
+}
 
 /// A cache entry: the plan of `join` with test chain `tests` (a reused join id has
 /// another one), `root` its node (`UNPLANNED` when its tests are not all of a
@@ -256,6 +324,9 @@ impl PlanEntry {
 /// shared pool of nodes.
 pub struct TestPlans {
     entries: [PlanEntry; COMPILED_PLANS],
+    /// The flat form of each usual entry's plan, read while its mode is
+    /// `MODE_FLAT`.
+    flats: [FlatPlan; PLAN_JOINS],
     nodes: [Node; POOL_LEN],
     kids: [u8; POOL_LEN],
     nodes_used: u8,
@@ -269,6 +340,7 @@ pub struct TestPlans {
 impl TestPlans {
     pub const EMPTY: TestPlans = TestPlans {
         entries: [PlanEntry::NONE; COMPILED_PLANS],
+        flats: [FlatPlan::NONE; PLAN_JOINS],
         nodes: [Node::Not { child: 0 }; POOL_LEN],
         kids: [0; POOL_LEN],
         nodes_used: 0,
@@ -814,6 +886,9 @@ impl Core<'_> {
                 // inlined there alone
                 return self.compiled_join_test(join, tests, depth, left, right_fact);
             }
+            if entry.mode == MODE_FLAT {
+                return self.flat_join_test(i, depth, left, right_fact);
+            }
             return self.quick_join_test(tests, depth, left, right_fact);
         }
         // the root's own dispatch inlined here: one call less per test
@@ -874,6 +949,76 @@ impl Core<'_> {
             b.read_right_at(depth);
         }
         self.st.cache.compiled_plans.store(i, entry, &b);
+        // a usual entry's complete plan reading fixed offsets: its flat form, if it
+        // has one
+        if i < PLAN_JOINS && mode == MODE_BASES && root != UNPLANNED && !b.partial {
+            let plans = &mut self.st.cache.compiled_plans;
+            let stored = plans.entries[i].root;
+            if stored != UNPLANNED {
+                if let Some(f) = FlatPlan::of(&b, root, stored) {
+                    plans.flats[i] = f;
+                    plans.entries[i].root = UNPLANNED;
+                    plans.entries[i].mode = MODE_FLAT;
+                }
+            }
+        }
+    }
+
+    /// The tests of the join whose usual entry `i` holds a `MODE_FLAT` plan, for
+    /// left token `left` and right fact `right_fact` (as `compiled_join_test`).
+    #[inline(always)]
+    fn flat_join_test(&self, i: usize, depth: u8, left: TokenId, right_fact: Ix) -> Option<bool> {
+        // read in place, field by field (a copy of the plan is unpacked by shifts)
+        let f = &self.st.cache.compiled_plans.flats[i & (PLAN_JOINS - 1)];
+        let binds = &self.tokens[left].binds;
+        let a = self.flat_cell(f.a.pat, f.a.slot, f.a.elem, binds, right_fact);
+        let b = self.flat_cell(f.b.pat, f.b.slot, f.b.elem, binds, right_fact);
+        if let (Some(&Value::Int(x)), Some(&Value::Int(y))) = (a, b) {
+            let o = u32::from(x > y) + 1 - u32::from(x < y);
+            return Some(f.test >> o & 1 != 0);
+        }
+        self.flat_undecided(f.root, depth, left, right_fact)
+    }
+
+    /// The cell of a `FlatPlan` (`Cell`'s fields; as `Bases` reads it), None if not
+    /// found.
+    #[inline(always)]
+    fn flat_cell(
+        &self,
+        pat: u8,
+        slot: u8,
+        elem: u8,
+        binds: &[Ix; BIND_W],
+        right_fact: Ix,
+    ) -> Option<&Value> {
+        let fact = if pat == RIGHT {
+            right_fact
+        } else {
+            binds[pat as usize & (BIND_W - 1)]
+        };
+        let at = self.facts.get(fact as usize)?.start as usize + slot as usize;
+        let v = self.values.get(at)?;
+        if elem == WHOLE {
+            return Some(v);
+        }
+        match v {
+            Value::Multi(m) if (elem as usize) < m.len as usize => {
+                self.values.get(at + 1 + elem as usize)
+            }
+            _ => None,
+        }
+    }
+
+    /// A `MODE_FLAT` plan's pair its flat form does not decide: its compiled plan
+    /// at `root` decides, as a `MODE_BASES` one (out of line: rare).
+    #[cold]
+    #[inline(never)]
+    fn flat_undecided(&self, root: u8, depth: u8, left: TokenId, right_fact: Ix) -> Option<bool> {
+        let bases = Bases {
+            binds: &self.tokens[left].binds,
+            right: Bases::base(self, right_fact),
+        };
+        self.run_inline(root, depth, bases, right_fact)
     }
 
     /// Some when every read of shallow plan `b` (of `join`, at `depth`) is of a slot
