@@ -495,6 +495,7 @@ differential_programs! {
     p717_reset_no_condition_rules_order => "717-reset-no-condition-rules-order",
     p718_messages_names_and_funcall => "718-messages-names-and-funcall",
     p719_twin_blockers => "719-twin-blockers",
+    p720_flat_join_comparisons => "720-flat-join-comparisons",
     p730_deffunction_parameter_list_errors => "730-deffunction-parameter-list-errors",
     p731_if_switch_without_then => "731-if-switch-without-then",
     p732_defglobal_missing_function_echo => "732-defglobal-missing-function-echo",
