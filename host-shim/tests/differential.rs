@@ -582,6 +582,7 @@ differential_programs! {
     p705_rule_of_43_patterns => "705-rule-of-43-patterns",
     p706_long_built_strings => "706-long-built-strings",
     p707_long_string_literals => "707-long-string-literals",
+    p759_constructs_of_80_variables => "759-constructs-of-80-variables",
     p940_void_value_in_slot => "940-void-value-in-slot",
     p580_keyed_or_index => "580-keyed-or-index",
     p581_keyed_or_not => "581-keyed-or-not",

@@ -43,8 +43,82 @@ pub(crate) fn has_module_sep(s: &str) -> bool {
     s.as_bytes().windows(2).any(|w| w == b"::")
 }
 
-/// Most variables visible at once while parsing one construct.
-pub const MAX_VARS: usize = 64;
+/// Most variables visible at once while parsing one construct: 64 in the image; on
+/// hosts (`grow`) as many as fit in memory (CLIPS has no limit), the tables growing
+/// as variables are added ([`VarTable`]).
+#[cfg(not(feature = "grow"))]
+pub const MAX_VARS: usize = IMAGE_MAX_VARS;
+#[cfg(feature = "grow")]
+pub const MAX_VARS: usize = usize::MAX;
+/// The image's (and every engine's without `grow`) most variables in one construct.
+pub const IMAGE_MAX_VARS: usize = 64;
+
+/// A table with an entry per variable (by `vars` index): in the image a fixed array.
+#[cfg(not(feature = "grow"))]
+pub type VarTable<T> = [T; MAX_VARS];
+
+/// On hosts a vector grown to the entries written, so a parser starts without filling
+/// a table and a construct may name any number of variables; an entry never written
+/// reads as `fill`, as the array's initial one.
+#[cfg(feature = "grow")]
+pub struct VarTable<T> {
+    v: alloc::vec::Vec<T>,
+    fill: T,
+}
+
+#[cfg(feature = "grow")]
+impl<T: Copy> VarTable<T> {
+    pub const fn new(fill: T) -> Self {
+        VarTable {
+            v: alloc::vec::Vec::new(),
+            fill,
+        }
+    }
+}
+
+#[cfg(feature = "grow")]
+impl<T> core::ops::Deref for VarTable<T> {
+    type Target = [T];
+    fn deref(&self) -> &[T] {
+        &self.v
+    }
+}
+
+#[cfg(feature = "grow")]
+impl<T> core::ops::Index<usize> for VarTable<T> {
+    type Output = T;
+    fn index(&self, i: usize) -> &T {
+        self.v.get(i).unwrap_or(&self.fill)
+    }
+}
+
+#[cfg(feature = "grow")]
+impl<T: Copy> core::ops::IndexMut<usize> for VarTable<T> {
+    fn index_mut(&mut self, i: usize) -> &mut T {
+        if self.v.len() <= i {
+            self.v.resize(i + 1, self.fill);
+        }
+        &mut self.v[i]
+    }
+}
+
+#[cfg(feature = "grow")]
+impl<T> core::ops::Index<core::ops::RangeTo<usize>> for VarTable<T> {
+    type Output = [T];
+    fn index(&self, r: core::ops::RangeTo<usize>) -> &[T] {
+        // entries below a count of variables were all written
+        &self.v[..r.end.min(self.v.len())]
+    }
+}
+
+#[cfg(feature = "grow")]
+impl<T> core::ops::Index<core::ops::Range<usize>> for VarTable<T> {
+    type Output = [T];
+    fn index(&self, r: core::ops::Range<usize>) -> &[T] {
+        let end = r.end.min(self.v.len());
+        &self.v[r.start.min(end)..end]
+    }
+}
 
 /// Deepest nesting the reader follows (expressions, conditional elements, `~`
 /// chains): the reader recurses per level, so input must not decide how deep. An
@@ -78,6 +152,16 @@ pub struct VarEntry<'s> {
     pub rebound: Ix,
 }
 
+impl VarEntry<'_> {
+    const EMPTY: Self = VarEntry {
+        name: "",
+        kind: VarKind::Local(0),
+        multi: false,
+        unbound_name: NONE,
+        rebound: NONE,
+    };
+}
+
 /// Where expressions are being parsed, which decides how unknown variables resolve.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Scope {
@@ -93,10 +177,10 @@ pub struct Parser<'s, 'c, 'e> {
     pub lex: Lexer<'s>,
     peeked: Option<Token<'s>>,
     pub cx: &'c mut Core<'e>,
-    pub vars: [VarEntry<'s>; MAX_VARS],
+    pub vars: VarTable<VarEntry<'s>>,
     /// What each LHS variable (by `vars` index) can still hold after the slots it
     /// stood in so far: CLIPS refuses a rule where that is nothing (`[RULECSTR1]`).
-    pub var_cstr: [VarCstr; MAX_VARS],
+    pub var_cstr: VarTable<VarCstr>,
     /// The count of `add_var`s so far (`rhs_types::RuleNotes::var_serial`): a check
     /// noted earlier sees only variables older than it (not those of a `not` read after
     /// it in slots its own ones had).
@@ -231,14 +315,14 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
             lex: Lexer::new(src),
             peeked: None,
             cx,
-            vars: [VarEntry {
-                name: "",
-                kind: VarKind::Local(0),
-                multi: false,
-                unbound_name: NONE,
-                rebound: NONE,
-            }; MAX_VARS],
+            #[cfg(not(feature = "grow"))]
+            vars: [VarEntry::EMPTY; MAX_VARS],
+            #[cfg(feature = "grow")]
+            vars: VarTable::new(VarEntry::EMPTY),
+            #[cfg(not(feature = "grow"))]
             var_cstr: [VarCstr::ANY; MAX_VARS],
+            #[cfg(feature = "grow")]
+            var_cstr: VarTable::new(VarCstr::ANY),
             #[cfg(feature = "extras")]
             var_count: 0,
             #[cfg(feature = "extras")]
@@ -571,6 +655,14 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
     ) -> PResult<()> {
         if self.nvars >= MAX_VARS {
             return Err(self.err(at, "fewer variables in one construct"));
+        }
+        #[cfg(feature = "grow")]
+        if self.nvars >= IMAGE_MAX_VARS {
+            self.cx
+                .st
+                .eval
+                .past_image
+                .get_or_insert("a construct of more than 64 variables (the image's limit)");
         }
         self.vars[self.nvars] = VarEntry {
             name,

@@ -423,17 +423,17 @@ pub struct RuleNotes {
     src: (usize, usize),
     /// The types (`template::types` bits) the literal and `=(...)` constraints of each
     /// LHS variable's fields leave it.
-    pub var_lit: [u8; super::MAX_VARS],
+    pub var_lit: super::VarTable<u8>,
     /// When each LHS variable was added (a count of `add_var`s).
-    pub var_serial: [u32; super::MAX_VARS],
+    pub var_serial: super::VarTable<u32>,
     /// The types (`template::types` bits) the builtins' arguments each LHS variable is
     /// passed to in test CEs and `:`/`=` constraints (outside `not`, `exists`,
     /// `forall`) leave it: CLIPS's `[RULECSTR1]` of a later slot reads them.
-    pub var_test: [u8; super::MAX_VARS],
+    pub var_test: super::VarTable<u8>,
     /// The candidates noted before the last LHS check (those after it are its own).
     pub checked_cands: usize,
     /// The literal each LHS variable's fields gave it (`?x&abc`), if any.
-    pub var_val: [Option<crate::value::Value>; super::MAX_VARS],
+    pub var_val: super::VarTable<Option<crate::value::Value>>,
 }
 
 impl Default for RuleNotes {
@@ -460,11 +460,23 @@ impl RuleNotes {
             nbinds: 0,
             overflow: false,
             src: (0, 0),
+            #[cfg(not(feature = "grow"))]
             var_lit: [0xFF; super::MAX_VARS],
+            #[cfg(feature = "grow")]
+            var_lit: super::VarTable::new(0xFF),
+            #[cfg(not(feature = "grow"))]
             var_serial: [0; super::MAX_VARS],
+            #[cfg(feature = "grow")]
+            var_serial: super::VarTable::new(0),
+            #[cfg(not(feature = "grow"))]
             var_test: [0xFF; super::MAX_VARS],
+            #[cfg(feature = "grow")]
+            var_test: super::VarTable::new(0xFF),
             checked_cands: 0,
+            #[cfg(not(feature = "grow"))]
             var_val: [None; super::MAX_VARS],
+            #[cfg(feature = "grow")]
+            var_val: super::VarTable::new(None),
         }
     }
 

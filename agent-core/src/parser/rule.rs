@@ -2525,7 +2525,7 @@ impl super::rhs_types::Names for Parser<'_, '_, '_> {
         let (n, serial, cands) = self.lhs_limit.unwrap_or((self.nvars, u32::MAX, (0, 0)));
         let i = self.vars[..n.min(self.vars.len())]
             .iter()
-            .zip(&self.cx.st.rule_notes.var_serial)
+            .zip(self.cx.st.rule_notes.var_serial.iter())
             .rposition(|(v, &s)| {
                 v.name == name && matches!(v.kind, VarKind::Pat { .. }) && s < serial
             })?;
