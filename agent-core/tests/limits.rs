@@ -296,3 +296,40 @@ fn a_rule_holds_256_constraint_checks_and_refuses_the_257th() {
         assert_eq!(e.usage(), before);
     });
 }
+
+/// Hosts (`grow`) read expressions as deep as calls may nest (`set_depth_limits`),
+/// and stop at the stack bound the host gives, with an error, not an overflow.
+#[cfg(all(feature = "parser", feature = "grow"))]
+#[test]
+fn hosts_read_expressions_as_deep_as_calls_may_nest() {
+    with_big_stack(|| {
+        let nest = |n: usize| format!("{}0{}", "(+ 1 ".repeat(n), ")".repeat(n));
+        let mut e = engine();
+        let h = &mut Quiet;
+        // the default: the image's 200 levels
+        let def = |n: usize| format!("(deffunction g () {})", nest(n));
+        let err = e.load_str(h, "g", &def(300)).unwrap_err();
+        assert!(err.expected.contains("200 levels of nesting"), "{err:?}");
+        assert!(e.eval_str(h, &nest(300)).is_err());
+        e.set_depth_limits(1000, 0);
+        assert_eq!(
+            e.eval_str(h, &nest(990)).unwrap(),
+            agent_core::Value::Int(990)
+        );
+        e.load_str(h, "f", &format!("(deffunction f () {})", nest(900)))
+            .unwrap();
+        assert_eq!(e.eval_str(h, "(f)").unwrap(), agent_core::Value::Int(900));
+        let err = e.load_str(h, "g", &def(1001)).unwrap_err();
+        assert!(err.expected.contains("call limit"), "{err:?}");
+        assert!(e.eval_str(h, &nest(1001)).is_err());
+        // a stack bound of 4 MiB (of the thread's 64) ends a deeper text in an error
+        e.set_depth_limits(u16::MAX, 4 << 20);
+        let err = e.load_str(h, "g", &def(60_000)).unwrap_err();
+        assert!(err.expected.contains("stack's room"), "{err:?}");
+        assert!(e.eval_str(h, &nest(60_000)).is_err());
+        assert_eq!(
+            e.eval_str(h, &nest(250)).unwrap(),
+            agent_core::Value::Int(250)
+        );
+    });
+}

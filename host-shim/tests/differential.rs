@@ -583,6 +583,7 @@ differential_programs! {
     p706_long_built_strings => "706-long-built-strings",
     p707_long_string_literals => "707-long-string-literals",
     p759_constructs_of_80_variables => "759-constructs-of-80-variables",
+    p760_expressions_nested_300_deep => "760-expressions-nested-300-deep",
     p940_void_value_in_slot => "940-void-value-in-slot",
     p580_keyed_or_index => "580-keyed-or-index",
     p581_keyed_or_not => "581-keyed-or-not",

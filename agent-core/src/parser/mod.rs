@@ -227,6 +227,9 @@ pub struct Parser<'s, 'c, 'e> {
     pub lhs_slot: Option<crate::template::SlotDef>,
     /// Current recursion depth of the reader (see `MAX_NESTING`).
     depth: u16,
+    /// Host: the lowest stack address the reader may reach (see `deep_nesting`).
+    #[cfg(feature = "grow")]
+    stack_floor: usize,
     /// `depth` where the actions of the rule or deffunction being read start: a
     /// `bind` deeper than one level below it is conditional (see `VarEntry`).
     pub body_depth: u16,
@@ -345,6 +348,8 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
             pat_tmpl: [NONE; MAX_PATTERNS],
             lhs_slot: None,
             depth: 0,
+            #[cfg(feature = "grow")]
+            stack_floor: 0,
             body_depth: 0,
             ce_count: 0,
             lhs_field: 0,
@@ -628,14 +633,62 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
     /// Runs one recursive step of the reader, refusing input nested deeper than
     /// `MAX_NESTING` (an error at the token where the limit is reached).
     pub fn nested<T>(&mut self, step: impl FnOnce(&mut Self) -> PResult<T>) -> PResult<T> {
+        #[cfg(not(feature = "grow"))]
         if self.depth >= MAX_NESTING {
             let at = self.peek();
             return Err(self.err(at, "at most 200 levels of nesting"));
+        }
+        // host: the checks from the image's depth on (`deep_nesting`)
+        #[cfg(feature = "grow")]
+        if self.depth >= MAX_NESTING {
+            self.deep_nesting()?;
         }
         self.depth += 1;
         let r = step(self);
         self.depth -= 1;
         r
+    }
+
+    /// Host: how deep the reader may go past `MAX_NESTING`. As deep as calls may nest
+    /// (`DepthLimits::calls`: an expression nested deeper could not run; 200 unless
+    /// the host raised it, as the CLI does), and, when the host bounds the stack
+    /// (`DepthLimits::stack_bytes`), no lower than its floor: that of the running
+    /// evaluation, if one reads this text (`eval`, `build`, `load`), else the stack
+    /// bound below where the reader passed the image's depth. CLIPS 6.30 has no limit
+    /// and overflows its stack (near 17,000 levels in an 8 MiB stack).
+    #[cfg(feature = "grow")]
+    #[cold]
+    #[inline(never)]
+    fn deep_nesting(&mut self) -> PResult<()> {
+        let l = self.cx.st.eval.limits;
+        if self.depth >= l.calls.max(MAX_NESTING) {
+            let at = self.peek();
+            return Err(if l.calls > MAX_NESTING {
+                self.err(at, "fewer levels of nesting (the evaluator's call limit)")
+            } else {
+                self.err(at, "at most 200 levels of nesting")
+            });
+        }
+        self.cx
+            .st
+            .eval
+            .past_image
+            .get_or_insert("more than 200 levels of nesting (the image's limit)");
+        if l.stack_bytes != 0 {
+            let probe = 0u8;
+            let here = core::hint::black_box(&probe) as *const u8 as usize;
+            if self.depth == MAX_NESTING {
+                self.stack_floor = if self.cx.st.eval.eval_depth > 0 {
+                    l.floor
+                } else {
+                    here.saturating_sub(l.stack_bytes)
+                };
+            } else if here < self.stack_floor {
+                let at = self.peek();
+                return Err(self.err(at, "fewer levels of nesting (the stack's room)"));
+            }
+        }
+        Ok(())
     }
 
     pub fn find_var(&self, name: &str) -> Option<VarEntry<'s>> {
