@@ -510,6 +510,10 @@ malformed_programs! {
     e083_module_specifier_unknown => "083-module-specifier-unknown",
     e084_import_not_exported => "084-import-not-exported",
     e085_watch_untraced_item_refused => "085-watch-untraced-item-refused",
+    e086_pattern_of_6_multifield_variables => "086-pattern-of-6-multifield-variables",
+    e087_template_of_256_slots => "087-template-of-256-slots",
+    e088_rule_of_65_patterns => "088-rule-of-65-patterns",
+    e089_deffunction_of_256_locals => "089-deffunction-of-256-locals",
     e806_defmethod_refused => "806-defmethod-refused",
     e807_defclass_refused => "807-defclass-refused",
 }
