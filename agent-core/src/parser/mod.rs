@@ -74,6 +74,16 @@ impl<T: Copy> VarTable<T> {
             fill,
         }
     }
+
+    /// Grows to hold entry `i`: to the image's 64 entries at first, then by doubling,
+    /// so a table is resized once per construct of up to 64 variables (growing by
+    /// one entry per variable cost zebra's load +0.3 %).
+    #[cold]
+    #[inline(never)]
+    fn reach(&mut self, i: usize) {
+        let n = (i + 1).max(IMAGE_MAX_VARS).max(self.v.len() * 2);
+        self.v.resize(n, self.fill);
+    }
 }
 
 #[cfg(feature = "grow")]
@@ -96,7 +106,7 @@ impl<T> core::ops::Index<usize> for VarTable<T> {
 impl<T: Copy> core::ops::IndexMut<usize> for VarTable<T> {
     fn index_mut(&mut self, i: usize) -> &mut T {
         if self.v.len() <= i {
-            self.v.resize(i + 1, self.fill);
+            self.reach(i);
         }
         &mut self.v[i]
     }
