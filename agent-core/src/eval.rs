@@ -451,6 +451,42 @@ impl Core<'_> {
         }
     }
 
+    /// Host: the value leaf `e` holds, read without side effects: a constant, a bound
+    /// local or global, a single field of a flat fact's slot (a rule's variable), or
+    /// `?v:slot` of a query variable other than the one in frame slot `own`, read in
+    /// place (`cached_query_slot`). None for anything the evaluator must read (and
+    /// maybe report). Fact-set queries decide their tests with it
+    /// (`queries::QuickTest`).
+    #[cfg(feature = "host-speedups")]
+    pub(crate) fn pure_leaf(&self, e: Ix, own: Ix) -> Option<Value> {
+        let x = self.exprs[e as usize];
+        let v = match x.op {
+            Op::Int | Op::Float | Op::Sym | Op::Str => return Some(self.const_value_inline(e)),
+            Op::Local if x.data != own => self.stack[(self.st.frame.bp + x.data) as usize],
+            Op::Global => self.globals[x.data as usize].value,
+            Op::PatVar if x.data != loc::FACT && loc::elem(x.data) == loc::SINGLE => {
+                let fact = self.binding(x.aux).fact;
+                if fact == NONE {
+                    return None;
+                }
+                let f = &self.facts[fact as usize];
+                if !f.flat {
+                    return None;
+                }
+                self.values[(f.start + Ix::from(loc::slot(x.data))) as usize]
+            }
+            Op::QSlot if x.data != own => {
+                let fv = self.stack[(self.st.frame.bp + x.data) as usize];
+                return self.cached_query_slot(fv, self.exprs[x.first as usize].data, x.aux);
+            }
+            _ => return None,
+        };
+        match v {
+            Value::Void | Value::BoundVoid | Value::Multi(_) => None,
+            v => Some(v),
+        }
+    }
+
     /// Evaluates a chain of actions; the value of the last one is the result.
     /// Stops early while a `return`/`break` unwinds.
     #[cfg_attr(feature = "host-speedups", inline(always))]
@@ -665,7 +701,12 @@ impl Core<'_> {
     /// `?v:slot` in the usual case, read in place: a readable fact, the slot cached in
     /// `aux` (see `slot_value_of`) and one cell per slot; None for anything else.
     #[cfg_attr(feature = "host-speedups", inline(always))]
-    fn cached_query_slot(&self, fv: Value, name: crate::value::SymId, aux: u8) -> Option<Value> {
+    pub(crate) fn cached_query_slot(
+        &self,
+        fv: Value,
+        name: crate::value::SymId,
+        aux: u8,
+    ) -> Option<Value> {
         let (Value::Fact(r), k) = (fv, Ix::from(aux)) else {
             return None;
         };

@@ -435,6 +435,7 @@ differential_programs! {
     p754_lex_mea_index_saliences => "754-lex-mea-index-saliences",
     p755_mea_index_first_pattern => "755-mea-index-first-pattern",
     p758_resort_salience_ties => "758-resort-salience-ties",
+    p746_query_hoisted_operands => "746-query-hoisted-operands",
     p281_modules_defglobals => "281-modules-defglobals",
     p282_modules_import_conflicts => "282-modules-import-conflicts",
     p283_modules_get_lists => "283-modules-get-lists",

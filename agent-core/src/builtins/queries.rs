@@ -313,6 +313,7 @@ fn check_dynamic(cx: &mut Core<'_>, q: &Query, call: Ix) -> Result<(), EvalError
 /// test has no side effects, so the walk decides it in place for each fact and
 /// binds only the facts that pass. A fact it cannot decide (a multifield value, a
 /// non-number for `=`, which the builtin reports) goes to the evaluator.
+#[cfg(not(feature = "host-speedups"))]
 #[derive(Clone, Copy)]
 struct SlotTest {
     /// Comparison builtin id (`basic::CMP_FIRST..=CMP_LAST`).
@@ -324,6 +325,7 @@ struct SlotTest {
     slot_first: bool,
 }
 
+#[cfg(not(feature = "host-speedups"))]
 impl SlotTest {
     /// The slot test of query test `test` on the variable in frame slot `frame`, if
     /// the test has that shape. (Inlined into both copies of `walk` on the host, as it
@@ -403,17 +405,255 @@ impl SlotTest {
     }
 }
 
+/// Host: most comparisons in one quick test (the conjuncts of an `and`).
+#[cfg(feature = "host-speedups")]
+const MAX_CONJ: usize = 4;
+
+/// Host: how deep a hoisted operand's calls nest (`pure_value`).
+#[cfg(feature = "host-speedups")]
+const PURE_DEPTH: u8 = 4;
+
+/// Host: a query test the walk decides in place for each fact of the innermost
+/// variable, binding only the facts that pass: a two-argument comparison, or an `and`
+/// of them, whose operands are the variable's own slots (read from the fact) or
+/// operands without side effects that do not depend on the fact (`pure_value`:
+/// constants, variables, other query variables' slots, `+ - * mod` of them). Such an
+/// operand has the same value for every fact until something runs (the test's own
+/// evaluation, or the actions): it is computed once and kept until then, where the
+/// evaluator computed it for every fact. `and` stops at the first comparison that
+/// fails, as the evaluator's does; anything the comparisons cannot decide (a
+/// multifield, a non-number for `>`, an unbound variable, an error the evaluator
+/// reports) goes to the evaluator for that fact.
+#[cfg(feature = "host-speedups")]
+#[derive(Clone, Copy)]
+struct QuickTest {
+    conj: [Cmp; MAX_CONJ],
+    n: usize,
+    /// The variable's frame slot.
+    frame: Ix,
+}
+
+/// Host: one comparison of a `QuickTest`: builtin `cmp` of operand nodes `opnd`,
+/// each the own variable's slot (`own`, by the name in the `QSlot` node) or not.
+#[cfg(feature = "host-speedups")]
+#[derive(Clone, Copy)]
+struct Cmp {
+    cmp: Ix,
+    opnd: [Ix; 2],
+    own: [bool; 2],
+}
+
+/// Host: a `QuickTest`'s slot indexes in one template, per comparison and operand.
+#[cfg(feature = "host-speedups")]
+type QuickSlots = [[Ix; 2]; MAX_CONJ];
+
+/// Host: the operands a `QuickTest` computed (`Value::Void`: not yet, or again).
+#[cfg(feature = "host-speedups")]
+type QuickCache = [[Value; 2]; MAX_CONJ];
+
+#[cfg(feature = "host-speedups")]
+const AND_ID: Ix = super::builtin_id("and");
+#[cfg(feature = "host-speedups")]
+const MOD_ID: Ix = super::builtin_id("mod");
+
+/// Host: does operand `e` have a shape `pure_value` can compute (for variable frame
+/// slot `own`, which it must not read)?
+#[cfg(feature = "host-speedups")]
+fn pure_shape(cx: &Core<'_>, e: Ix, own: Ix, depth: u8) -> bool {
+    use crate::expr::{FnKind, Op};
+    let x = cx.exprs[e as usize];
+    match x.op {
+        Op::Int | Op::Float | Op::Sym | Op::Str | Op::Global | Op::PatVar => true,
+        Op::Local | Op::QSlot => x.data != own,
+        Op::Call if depth > 0 && x.aux == FnKind::Builtin as u8 => {
+            if x.data.wrapping_sub(super::basic::ARITH_FIRST) >= 3 && x.data != MOD_ID {
+                return false;
+            }
+            let a = x.first;
+            if a == NONE {
+                return false;
+            }
+            let b = cx.exprs[a as usize].next;
+            b != NONE
+                && cx.exprs[b as usize].next == NONE
+                && pure_shape(cx, a, own, depth - 1)
+                && pure_shape(cx, b, own, depth - 1)
+        }
+        _ => false,
+    }
+}
+
+/// Host: the value of operand `e` of `pure_shape`, computed without side effects as
+/// the evaluator would compute it; None where the evaluator could fail or report
+/// (an unbound variable, a non-number for arithmetic, `mod` by zero) or has work
+/// this does not do (a multifield, floats for `mod`).
+#[cfg(feature = "host-speedups")]
+fn pure_value(cx: &Core<'_>, e: Ix, own: Ix) -> Option<Value> {
+    let x = cx.exprs[e as usize];
+    if x.op != crate::expr::Op::Call {
+        return cx.pure_leaf(e, own);
+    }
+    let a = x.first;
+    let p = pure_value(cx, a, own)?;
+    let q = pure_value(cx, cx.exprs[a as usize].next, own)?;
+    if x.data == MOD_ID {
+        return match (p, q) {
+            (Value::Int(p), Value::Int(q)) if q != 0 => Some(Value::Int(p.wrapping_rem(q))),
+            _ => None,
+        };
+    }
+    match (p, q) {
+        (Value::Int(_) | Value::Float(_), Value::Int(_) | Value::Float(_)) => {
+            Some(super::basic::num_arith(x.data, p, q))
+        }
+        _ => None,
+    }
+}
+
+#[cfg(feature = "host-speedups")]
+impl QuickTest {
+    /// The quick test of query test `test` on the variable in frame slot `frame`, if
+    /// the test has that shape.
+    fn of(cx: &Core<'_>, test: Ix, frame: Ix) -> Option<QuickTest> {
+        use crate::expr::{FnKind, Op};
+        let mut q = QuickTest {
+            conj: [Cmp {
+                cmp: 0,
+                opnd: [NONE; 2],
+                own: [false; 2],
+            }; MAX_CONJ],
+            n: 0,
+            frame,
+        };
+        let x = cx.exprs[test as usize];
+        let is_and = x.op == Op::And
+            || (x.op == Op::Call && x.aux == FnKind::Builtin as u8 && x.data == AND_ID);
+        let mut c = if is_and { x.first } else { test };
+        while c != NONE {
+            if q.n == MAX_CONJ {
+                return None;
+            }
+            q.conj[q.n] = Self::comparison(cx, c, frame)?;
+            q.n += 1;
+            c = if is_and {
+                cx.exprs[c as usize].next
+            } else {
+                NONE
+            };
+        }
+        (q.n > 0).then_some(q)
+    }
+
+    /// Comparison `c` as a `Cmp`, if it has that shape.
+    fn comparison(cx: &Core<'_>, c: Ix, frame: Ix) -> Option<Cmp> {
+        use super::basic::{CMP_FIRST, CMP_LAST};
+        use crate::expr::{FnKind, Op};
+        let x = cx.exprs[c as usize];
+        if x.op != Op::Call
+            || x.aux != FnKind::Builtin as u8
+            || !(CMP_FIRST..=CMP_LAST).contains(&x.data)
+            || x.first == NONE
+        {
+            return None;
+        }
+        let a = x.first;
+        let b = cx.exprs[a as usize].next;
+        if b == NONE || cx.exprs[b as usize].next != NONE {
+            return None;
+        }
+        let mut out = Cmp {
+            cmp: x.data,
+            opnd: [a, b],
+            own: [false; 2],
+        };
+        for j in 0..2 {
+            let n = cx.exprs[out.opnd[j] as usize];
+            out.own[j] = n.op == Op::QSlot && n.data == frame;
+            if !out.own[j] && !pure_shape(cx, out.opnd[j], frame, PURE_DEPTH) {
+                return None;
+            }
+        }
+        Some(out)
+    }
+
+    /// The slots the test reads in template `tmpl`; None (the evaluator decides, and
+    /// reports an unknown slot) for one it lacks or an implied template.
+    fn slots_in(&self, cx: &Core<'_>, tmpl: Ix) -> Option<QuickSlots> {
+        if cx.templates[tmpl as usize].implied {
+            return None;
+        }
+        let mut s = [[0; 2]; MAX_CONJ];
+        for (i, c) in self.conj[..self.n].iter().enumerate() {
+            for j in 0..2 {
+                if c.own[j] {
+                    let name = cx.exprs[cx.exprs[c.opnd[j] as usize].first as usize].data;
+                    s[i][j] = cx.find_slot(tmpl, name)?;
+                }
+            }
+        }
+        Some(s)
+    }
+
+    /// The test's result for live fact `f` (slots `slots` of its template); None when
+    /// the evaluator must decide. Computes the operands not yet in `cache`.
+    #[inline(always)]
+    fn decide(
+        &self,
+        cx: &Core<'_>,
+        f: Ix,
+        slots: &QuickSlots,
+        cache: &mut QuickCache,
+    ) -> Option<bool> {
+        let fact = &cx.facts[f as usize];
+        if !fact.flat {
+            return None;
+        }
+        for (i, c) in self.conj[..self.n].iter().enumerate() {
+            let mut v = [Value::Void; 2];
+            for j in 0..2 {
+                v[j] = if c.own[j] {
+                    let x = cx.values[(fact.start + slots[i][j]) as usize];
+                    if x.is_multi() {
+                        return None;
+                    }
+                    x
+                } else {
+                    if matches!(cache[i][j], Value::Void) {
+                        cache[i][j] = pure_value(cx, c.opnd[j], self.frame)?;
+                    }
+                    cache[i][j]
+                };
+            }
+            if !super::basic::compare(cx, c.cmp, v[0], v[1])? {
+                return Some(false);
+            }
+        }
+        Some(true)
+    }
+}
+
 /// Walks the tuples of variables `k..`; returns true to stop the whole walk.
 /// `DYNAMIC`: a restriction of the query is an expression (only then does the walk
 /// look for one; the copy for queries that name their templates has no such test).
 fn walk<const DYNAMIC: bool>(cx: &mut Core<'_>, w: &mut Walk, k: usize) -> Result<bool, EvalError> {
     let var = w.q.vars[k];
     // the innermost variable's facts that fail a slot test are skipped in place
+    #[cfg(not(feature = "host-speedups"))]
     let quick = if k + 1 == w.q.nvars {
         SlotTest::of(cx, w.q.test, cx.exprs[var as usize].data)
     } else {
         None
     };
+    #[cfg(feature = "host-speedups")]
+    let quick = if k + 1 == w.q.nvars {
+        QuickTest::of(cx, w.q.test, cx.exprs[var as usize].data)
+    } else {
+        None
+    };
+    // the quick test's operands computed so far (none after a visit: the test's
+    // evaluation or the actions may have changed what they read)
+    #[cfg(feature = "host-speedups")]
+    let mut cache: QuickCache = [[Value::Void; 2]; MAX_CONJ];
     let mut tnode = cx.exprs[var as usize].first;
     // the next template of a restriction written as an expression
     #[cfg(feature = "extras")]
@@ -446,18 +686,27 @@ fn walk<const DYNAMIC: bool>(cx: &mut Core<'_>, w: &mut Walk, k: usize) -> Resul
         let Some(tmpl) = tmpl else { continue };
         // the slot the quick test reads in this template (none: the evaluator
         // reports the unknown slot)
+        #[cfg(not(feature = "host-speedups"))]
         let quick_slot = match quick {
             Some(q) if !cx.templates[tmpl as usize].implied => {
                 cx.find_slot(tmpl, q.name).map(|s| (q, s))
             }
             _ => None,
         };
+        #[cfg(feature = "host-speedups")]
+        let quick_slot = quick.and_then(|q| q.slots_in(cx, tmpl).map(|s| (q, s)));
         let mut prev: Option<Resume> = None;
         while let Some(f) = next_of_template(cx, tmpl, prev) {
             debug_assert!(DYNAMIC || fact_fits(cx, var, f));
             // (an outer variable the test may read is bound again first)
             rebind_outer(cx, w, k);
+            #[cfg(not(feature = "host-speedups"))]
             let decided = quick_slot.and_then(|(q, slot)| q.decide(cx, f, slot));
+            #[cfg(feature = "host-speedups")]
+            let decided = match &quick_slot {
+                Some((q, slots)) => q.decide(cx, f, slots, &mut cache),
+                None => None,
+            };
             if decided == Some(false) {
                 // as after a visit whose test failed: nothing ran, nothing to stop for
                 prev = Some(Resume {
@@ -467,6 +716,11 @@ fn walk<const DYNAMIC: bool>(cx: &mut Core<'_>, w: &mut Walk, k: usize) -> Resul
                 continue;
             }
             bind(cx, w, k, f);
+            // (a tuple the quick test passed, without actions, runs nothing)
+            #[cfg(feature = "host-speedups")]
+            if decided != Some(true) || (w.act && w.q.actions != NONE) || k + 1 < w.q.nvars {
+                cache = [[Value::Void; 2]; MAX_CONJ];
+            }
             prev = Some(Resume {
                 fact: w.cursor[k],
                 counter: cx.st.facts.next_fact_num,
