@@ -313,7 +313,6 @@ fn check_dynamic(cx: &mut Core<'_>, q: &Query, call: Ix) -> Result<(), EvalError
 /// test has no side effects, so the walk decides it in place for each fact and
 /// binds only the facts that pass. A fact it cannot decide (a multifield value, a
 /// non-number for `=`, which the builtin reports) goes to the evaluator.
-#[cfg(not(feature = "host-speedups"))]
 #[derive(Clone, Copy)]
 struct SlotTest {
     /// Comparison builtin id (`basic::CMP_FIRST..=CMP_LAST`).
@@ -325,7 +324,6 @@ struct SlotTest {
     slot_first: bool,
 }
 
-#[cfg(not(feature = "host-speedups"))]
 impl SlotTest {
     /// The slot test of query test `test` on the variable in frame slot `frame`, if
     /// the test has that shape. (Inlined into both copies of `walk` on the host, as it
@@ -516,6 +514,11 @@ impl QuickTest {
     /// the test has that shape.
     fn of(cx: &Core<'_>, test: Ix, frame: Ix) -> Option<QuickTest> {
         use crate::expr::{FnKind, Op};
+        let x = cx.exprs[test as usize];
+        // (most tests of other shapes end here, before the work below)
+        if x.op != Op::Call && x.op != Op::And {
+            return None;
+        }
         let mut q = QuickTest {
             conj: [Cmp {
                 cmp: 0,
@@ -525,7 +528,6 @@ impl QuickTest {
             n: 0,
             frame,
         };
-        let x = cx.exprs[test as usize];
         let is_and = x.op == Op::And
             || (x.op == Op::Call && x.aux == FnKind::Builtin as u8 && x.data == AND_ID);
         let mut c = if is_and { x.first } else { test };
@@ -635,19 +637,32 @@ impl QuickTest {
 /// Walks the tuples of variables `k..`; returns true to stop the whole walk.
 /// `DYNAMIC`: a restriction of the query is an expression (only then does the walk
 /// look for one; the copy for queries that name their templates has no such test).
-fn walk<const DYNAMIC: bool>(cx: &mut Core<'_>, w: &mut Walk, k: usize) -> Result<bool, EvalError> {
+/// `MULTI` (host): the innermost variable's walk with a `QuickTest` (a copy of its
+/// own, so that the others' loop pays nothing for it).
+fn walk<const DYNAMIC: bool, const MULTI: bool>(
+    cx: &mut Core<'_>,
+    w: &mut Walk,
+    k: usize,
+) -> Result<bool, EvalError> {
     let var = w.q.vars[k];
     // the innermost variable's facts that fail a slot test are skipped in place
-    #[cfg(not(feature = "host-speedups"))]
-    let quick = if k + 1 == w.q.nvars {
+    let quick = if !MULTI && k + 1 == w.q.nvars {
         SlotTest::of(cx, w.q.test, cx.exprs[var as usize].data)
     } else {
         None
     };
+    // host: a test of another shape the walk can decide (the slot test, the
+    // commonest, keeps its own cheaper path)
     #[cfg(feature = "host-speedups")]
-    let quick = if k + 1 == w.q.nvars {
+    let quick_multi = if MULTI {
         QuickTest::of(cx, w.q.test, cx.exprs[var as usize].data)
     } else {
+        if k + 1 == w.q.nvars
+            && quick.is_none()
+            && QuickTest::of(cx, w.q.test, cx.exprs[var as usize].data).is_some()
+        {
+            return walk::<DYNAMIC, true>(cx, w, k);
+        }
         None
     };
     // the quick test's operands computed so far (none after a visit: the test's
@@ -686,7 +701,6 @@ fn walk<const DYNAMIC: bool>(cx: &mut Core<'_>, w: &mut Walk, k: usize) -> Resul
         let Some(tmpl) = tmpl else { continue };
         // the slot the quick test reads in this template (none: the evaluator
         // reports the unknown slot)
-        #[cfg(not(feature = "host-speedups"))]
         let quick_slot = match quick {
             Some(q) if !cx.templates[tmpl as usize].implied => {
                 cx.find_slot(tmpl, q.name).map(|s| (q, s))
@@ -694,18 +708,20 @@ fn walk<const DYNAMIC: bool>(cx: &mut Core<'_>, w: &mut Walk, k: usize) -> Resul
             _ => None,
         };
         #[cfg(feature = "host-speedups")]
-        let quick_slot = quick.and_then(|q| q.slots_in(cx, tmpl).map(|s| (q, s)));
+        let multi_slots = match &quick_multi {
+            Some(q) => q.slots_in(cx, tmpl),
+            None => None,
+        };
         let mut prev: Option<Resume> = None;
         while let Some(f) = next_of_template(cx, tmpl, prev) {
             debug_assert!(DYNAMIC || fact_fits(cx, var, f));
             // (an outer variable the test may read is bound again first)
             rebind_outer(cx, w, k);
-            #[cfg(not(feature = "host-speedups"))]
             let decided = quick_slot.and_then(|(q, slot)| q.decide(cx, f, slot));
             #[cfg(feature = "host-speedups")]
-            let decided = match &quick_slot {
-                Some((q, slots)) => q.decide(cx, f, slots, &mut cache),
-                None => None,
+            let decided = match (&quick_multi, &multi_slots) {
+                (Some(q), Some(slots)) => q.decide(cx, f, slots, &mut cache),
+                _ => decided,
             };
             if decided == Some(false) {
                 // as after a visit whose test failed: nothing ran, nothing to stop for
@@ -718,7 +734,7 @@ fn walk<const DYNAMIC: bool>(cx: &mut Core<'_>, w: &mut Walk, k: usize) -> Resul
             bind(cx, w, k, f);
             // (a tuple the quick test passed, without actions, runs nothing)
             #[cfg(feature = "host-speedups")]
-            if decided != Some(true) || (w.act && w.q.actions != NONE) || k + 1 < w.q.nvars {
+            if quick_multi.is_some() && (decided != Some(true) || (w.act && w.q.actions != NONE)) {
                 cache = [[Value::Void; 2]; MAX_CONJ];
             }
             prev = Some(Resume {
@@ -726,7 +742,7 @@ fn walk<const DYNAMIC: bool>(cx: &mut Core<'_>, w: &mut Walk, k: usize) -> Resul
                 counter: cx.st.facts.next_fact_num,
             });
             let stop = if k + 1 < w.q.nvars {
-                walk::<DYNAMIC>(cx, w, k + 1)?
+                walk::<DYNAMIC, false>(cx, w, k + 1)?
             } else {
                 let stop = visit(cx, w, decided == Some(true))?;
                 if w.hold_top && cx.st.facts.pending != NONE {
@@ -864,12 +880,12 @@ fn run(
     w.hold_top = hold.1;
     #[cfg(feature = "extras")]
     let r = if dynamic {
-        walk::<true>(cx, &mut w, 0)
+        walk::<true, false>(cx, &mut w, 0)
     } else {
-        walk::<false>(cx, &mut w, 0)
+        walk::<false, false>(cx, &mut w, 0)
     };
     #[cfg(not(feature = "extras"))]
-    let r = walk::<false>(cx, &mut w, 0);
+    let r = walk::<false, false>(cx, &mut w, 0);
     hold_end(cx, hold);
     r.map(|_| w)
 }
