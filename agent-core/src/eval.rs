@@ -464,7 +464,17 @@ impl Core<'_> {
             Op::Int | Op::Float | Op::Sym | Op::Str => return Some(self.const_value_inline(e)),
             Op::Local if x.data != own => self.stack[(self.st.frame.bp + x.data) as usize],
             Op::Global => self.globals[x.data as usize].value,
-            Op::PatVar => self.pattern_var_in_place(x)?,
+            Op::PatVar if x.data != loc::FACT && loc::elem(x.data) == loc::SINGLE => {
+                let fact = self.binding(x.aux).fact;
+                if fact == NONE {
+                    return None;
+                }
+                let f = &self.facts[fact as usize];
+                if !f.flat {
+                    return None;
+                }
+                self.values[(f.start + Ix::from(loc::slot(x.data))) as usize]
+            }
             Op::QSlot if x.data != own => {
                 let fv = self.stack[(self.st.frame.bp + x.data) as usize];
                 return self.cached_query_slot(fv, self.exprs[x.first as usize].data, x.aux);
@@ -513,62 +523,48 @@ impl Core<'_> {
         }
     }
 
-    /// Host: `pattern_var_of`'s in-place read of node `x` (a single-field slot of a
-    /// flat fact, or an element of an ordered fact's fields), without side effects;
-    /// None for anything `pattern_var` must read.
-    #[cfg(feature = "host-speedups")]
-    #[inline(always)]
-    fn pattern_var_in_place(&self, x: Expr) -> Option<Value> {
-        if x.data == loc::FACT {
-            return None;
-        }
-        let fact = self.binding(x.aux).fact;
-        if fact == NONE {
-            return None;
-        }
-        let f = &self.facts[fact as usize];
-        let elem = loc::elem(x.data);
-        if elem == loc::SINGLE {
-            if f.flat {
-                let v = self.values[(f.start + Ix::from(loc::slot(x.data))) as usize];
-                if !v.is_multi() {
-                    return Some(v);
-                }
-            }
-        } else if loc::slot(x.data) == 0 && x.first != NONE {
-            // slot 0 (an ordered fact's one multislot) is the fact's first cell:
-            // an element with only single-field ones before it is at its index,
-            // read here without `slot_cell` and the call
-            let start = f.start as usize;
-            if let Value::Multi(m) = self.values[start] {
-                let mut c = self.exprs[x.first as usize].first;
-                let mut i = 0u8;
-                while c != NONE {
-                    let ex = self.exprs[c as usize];
-                    if ex.aux == 1 {
-                        break;
-                    }
-                    if i == elem {
-                        if Ix::from(i) < m.len {
-                            return Some(self.values[start + 1 + i as usize]);
-                        }
-                        break;
-                    }
-                    i += 1;
-                    c = ex.next;
-                }
-            }
-        }
-        None
-    }
-
     /// `pattern_var` of node `x`, its commonest case (a single-field slot of a flat
     /// fact) read in place on the host, without the call.
     #[cfg_attr(feature = "host-speedups", inline(always))]
     fn pattern_var_of(&mut self, x: Expr) -> Result<Value, EvalError> {
         #[cfg(feature = "host-speedups")]
-        if let Some(v) = self.pattern_var_in_place(x) {
-            return Ok(v);
+        if x.data != loc::FACT {
+            let fact = self.binding(x.aux).fact;
+            if fact != NONE {
+                let f = &self.facts[fact as usize];
+                let elem = loc::elem(x.data);
+                if elem == loc::SINGLE {
+                    if f.flat {
+                        let v = self.values[(f.start + Ix::from(loc::slot(x.data))) as usize];
+                        if !v.is_multi() {
+                            return Ok(v);
+                        }
+                    }
+                } else if loc::slot(x.data) == 0 && x.first != NONE {
+                    // slot 0 (an ordered fact's one multislot) is the fact's first cell:
+                    // an element with only single-field ones before it is at its index,
+                    // read here without `slot_cell` and the call
+                    let start = f.start as usize;
+                    if let Value::Multi(m) = self.values[start] {
+                        let mut c = self.exprs[x.first as usize].first;
+                        let mut i = 0u8;
+                        while c != NONE {
+                            let ex = self.exprs[c as usize];
+                            if ex.aux == 1 {
+                                break;
+                            }
+                            if i == elem {
+                                if Ix::from(i) < m.len {
+                                    return Ok(self.values[start + 1 + i as usize]);
+                                }
+                                break;
+                            }
+                            i += 1;
+                            c = ex.next;
+                        }
+                    }
+                }
+            }
         }
         self.pattern_var(x.aux, x.data, x.first)
     }
