@@ -585,11 +585,11 @@ impl QuickTest {
             return None;
         }
         let mut s = [[0; 2]; MAX_CONJ];
-        for (i, c) in self.conj[..self.n].iter().enumerate() {
-            for j in 0..2 {
+        for (c, si) in self.conj[..self.n].iter().zip(s.iter_mut()) {
+            for (j, slot) in si.iter_mut().enumerate() {
                 if c.own[j] {
                     let name = cx.exprs[cx.exprs[c.opnd[j] as usize].first as usize].data;
-                    s[i][j] = cx.find_slot(tmpl, name)?;
+                    *slot = cx.find_slot(tmpl, name)?;
                 }
             }
         }
