@@ -657,7 +657,7 @@ impl Core<'_> {
             #[cfg(feature = "grow")]
             if MF && self.st.net.mf.collecting {
                 if let Some(p) = self.st.net.mf.pending.as_mut() {
-                    p.push((0, alpha, marks));
+                    p.push((alpha, marks));
                     return Ok(());
                 }
             }

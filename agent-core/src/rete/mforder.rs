@@ -29,9 +29,9 @@ use crate::error::EvalError;
 use crate::expr::loc;
 use crate::value::{Ix, NONE};
 
-/// One alpha match waiting to be added: its order key (`NodeKey::key`, filled in
-/// once the fact's matches are all collected), the node and the multifield lengths.
-type Pending = (u128, Ix, [u8; MAX_MARKS]);
+/// One alpha match waiting to be added: the node and the multifield lengths. (Kept
+/// small: every collected match is one; order keys are made only for a sort.)
+type Pending = (Ix, [u8; MAX_MARKS]);
 
 /// Bits of one path level in an order key: the node's place among its template's
 /// nodes sharing the path up to the level (`PLACE_BITS`, +1: 0 is "no such level",
@@ -87,6 +87,14 @@ pub struct MfOrder {
     /// Per alpha node: the network generation (+1; 0 never) its `choice_levels`
     /// were worked out in, and them (they cost a walk of the pattern's slots).
     levels: Vec<(u32, [Option<u8>; PATH_LEN])>,
+    /// Per alpha node: the network generation (+1) `mono` was worked out in and
+    /// whether its segmentations come in CLIPS's order (`NodeKey::mono`): a fact
+    /// matching one node only (the usual case) then needs neither keys nor a check.
+    mono: Vec<(u32, bool)>,
+    /// Storage kept for `make_node_keys`' node list and a sort's keyed matches, so
+    /// neither allocates per template or fact.
+    nodes: Vec<Ix>,
+    keyed_got: Vec<(u128, Pending)>,
     /// Per alpha node: the network generation (+1) its `NodeKey` was made in, and it.
     keys: Vec<(u32, NodeKey)>,
     /// Per template: the network generation (+1) its nodes' keys were made in, and
@@ -104,6 +112,9 @@ impl MfOrder {
             collecting: false,
             spare: Vec::new(),
             levels: Vec::new(),
+            mono: Vec::new(),
+            nodes: Vec::new(),
+            keyed_got: Vec::new(),
             keys: Vec::new(),
             keyed: Vec::new(),
             choice: Vec::new(),
@@ -175,7 +186,7 @@ impl Core<'_> {
         if got.len() > 1 {
             self.put_in_mf_order(&mut got);
         }
-        for &(_, a, marks) in &got {
+        for &(a, marks) in &got {
             self.add_alpha_match(a, fact, marks)?;
         }
         got.clear();
@@ -188,8 +199,8 @@ impl Core<'_> {
     /// longer leading multifields first (`enumerate_marks`), the order `mf_cmp` asks
     /// for, so one pattern with several `$?` (the usual case) needs no sort.
     fn one_node_in_order(&self, got: &[Pending]) -> bool {
-        let a = got[0].1;
-        if got.iter().any(|&(_, b, _)| b != a) {
+        let a = got[0].0;
+        if got.iter().any(|&(b, _)| b != a) {
             return false;
         }
         // the marks compared, level by level (`mf_cmp` with equal keys)
@@ -197,7 +208,7 @@ impl Core<'_> {
         let n = self.alphas[a as usize].key_len as usize;
         got.windows(2).all(|w| {
             for &i in levels[..n].iter().flatten() {
-                let (p, q) = (w[0].2[i as usize], w[1].2[i as usize]);
+                let (p, q) = (w[0].1[i as usize], w[1].1[i as usize]);
                 if p != q {
                     return p > q;
                 }
@@ -211,13 +222,20 @@ impl Core<'_> {
     /// the hot one and must not pay for this.)
     #[inline(never)]
     fn put_in_mf_order(&mut self, got: &mut [Pending]) {
+        // one node's matches only: in order when its choice levels read its first
+        // marks in order (no keys needed, so a template whose facts each match one
+        // node never makes them)
+        let a = got[0].0;
+        if got.iter().all(|&(b, _)| b == a) && self.node_mono(a) {
+            return;
+        }
         if self.order_by_keys(got) {
             return;
         }
         // a node's matches come one after another (its segmentations): its choice
         // levels are looked up once for them
         let mut last = NONE;
-        for &(_, a, _) in got.iter() {
+        for &(a, _) in got.iter() {
             if a != last {
                 self.cache_choice_levels(a);
                 last = a;
@@ -225,17 +243,50 @@ impl Core<'_> {
         }
         if !self.one_node_in_order(got) {
             let lv = &self.st.net.mf.levels;
-            got.sort_by(|x, y| {
-                let (a, b) = ((x.1, x.2), (y.1, y.2));
-                self.mf_cmp(a, &lv[a.0 as usize].1, b, &lv[b.0 as usize].1)
-            });
+            got.sort_by(|x, y| self.mf_cmp(*x, &lv[x.0 as usize].1, *y, &lv[y.0 as usize].1));
         }
+    }
+
+    /// Whether alpha node `a`'s segmentations come in CLIPS's order (`NodeKey::mono`),
+    /// cached per network generation.
+    fn node_mono(&mut self, a: Ix) -> bool {
+        // one mark (the usual `$? x $?`): its only choice level reads mark 0, so
+        // no walk of the pattern's slots is needed
+        if self.alphas[a as usize].nmarks <= 1 {
+            return true;
+        }
+        let gen = self.st.net.net_gen.wrapping_add(1).max(1);
+        let i = a as usize;
+        if let Some(&(g, m)) = self.st.net.mf.mono.get(i) {
+            if g == gen {
+                return m;
+            }
+        }
+        self.find_node_mono(a, gen)
+    }
+
+    #[cold]
+    #[inline(never)]
+    fn find_node_mono(&mut self, a: Ix, gen: u32) -> bool {
+        let mut n = 0u8;
+        let mut mono = true;
+        for m in self.choice_levels(a).iter().flatten() {
+            mono &= *m == n;
+            n += 1;
+        }
+        let i = a as usize;
+        let v = &mut self.st.net.mf.mono;
+        if v.len() <= i {
+            v.resize(i + 1, (0, false));
+        }
+        v[i] = (gen, mono);
+        mono
     }
 
     /// Puts `got` (2 or more matches of one fact) in CLIPS's order by their order
     /// keys: false, `got` unchanged, where the keys cannot tell (`NodeKey`).
     fn order_by_keys(&mut self, got: &mut [Pending]) -> bool {
-        let tmpl = self.alphas[got[0].1 as usize].tmpl;
+        let tmpl = self.alphas[got[0].0 as usize].tmpl;
         let gen = self.st.net.net_gen.wrapping_add(1).max(1);
         let ok = match self.st.net.mf.keyed.get(tmpl as usize) {
             Some(&(g, ok)) if g == gen => ok,
@@ -250,19 +301,19 @@ impl Core<'_> {
         let keys = &self.st.net.mf.keys;
         let (mut prev, mut sorted, mut i) = (0u128, true, 0);
         while sorted && i < got.len() {
-            let a = got[i].1;
+            let a = got[i].0;
             let nk = keys[a as usize].1;
             let mut j = i + 1;
-            while j < got.len() && got[j].1 == a {
+            while j < got.len() && got[j].0 == a {
                 j += 1;
             }
             if nk.mono {
-                let first = nk.key(&got[i].2);
+                let first = nk.key(&got[i].1);
                 sorted = prev <= first;
-                prev = nk.key(&got[j - 1].2);
+                prev = nk.key(&got[j - 1].1);
             } else {
                 for p in &got[i..j] {
-                    let k = nk.key(&p.2);
+                    let k = nk.key(&p.1);
                     sorted &= prev <= k;
                     prev = k;
                 }
@@ -270,17 +321,24 @@ impl Core<'_> {
             i = j;
         }
         if !sorted {
+            let mut kg = core::mem::take(&mut self.st.net.mf.keyed_got);
+            let keys = &self.st.net.mf.keys;
             let mut last = NONE;
             let mut nk = NodeKey::EMPTY;
-            for p in got.iter_mut() {
-                if p.1 != last {
-                    last = p.1;
+            kg.clear();
+            for &p in got.iter() {
+                if p.0 != last {
+                    last = p.0;
                     nk = keys[last as usize].1;
                 }
-                p.0 = nk.key(&p.2);
+                kg.push((nk.key(&p.1), p));
             }
             // stable: matches of nodes on one CLIPS node keep the order they came in
-            got.sort_by_key(|p| p.0);
+            kg.sort_by_key(|p| p.0);
+            for (g, k) in got.iter_mut().zip(&kg) {
+                *g = k.1;
+            }
+            self.st.net.mf.keyed_got = kg;
         }
         true
     }
@@ -290,7 +348,8 @@ impl Core<'_> {
     #[cold]
     #[inline(never)]
     fn make_node_keys(&mut self, tmpl: Ix, gen: u32) -> bool {
-        let mut nodes = Vec::new();
+        let mut nodes = core::mem::take(&mut self.st.net.mf.nodes);
+        nodes.clear();
         let mut a = self.templates[tmpl as usize].alpha_head;
         while a != NONE {
             nodes.push(a);
@@ -359,6 +418,7 @@ impl Core<'_> {
             v.resize(tmpl as usize + 1, (0, false));
         }
         v[tmpl as usize] = (gen, ok);
+        self.st.net.mf.nodes = nodes;
         ok
     }
 
@@ -380,9 +440,9 @@ impl Core<'_> {
     /// CLIPS's order of two alpha matches (see the module docs).
     fn mf_cmp(
         &self,
-        (a, ma): (Ix, [u8; MAX_MARKS]),
+        (a, ma): Pending,
         ca: &[Option<u8>; PATH_LEN],
-        (b, mb): (Ix, [u8; MAX_MARKS]),
+        (b, mb): Pending,
         cb: &[Option<u8>; PATH_LEN],
     ) -> Ordering {
         let (x, y) = (&self.alphas[a as usize], &self.alphas[b as usize]);
@@ -491,7 +551,7 @@ mod tests {
                     for (i, m) in marks.iter_mut().enumerate().take(n) {
                         *m = (code / 4u32.pow((n - 1 - i) as u32) % 4) as u8;
                     }
-                    run.push((0, a, marks));
+                    run.push((a, marks));
                 }
                 runs.push(run);
                 a = c.alphas[a as usize].next_in_tmpl;
@@ -512,22 +572,49 @@ mod tests {
             }
             for mut got in orders {
                 let mut want = got.clone();
-                for &(_, a, _) in &want {
+                for &(a, _) in &want {
                     c.cache_choice_levels(a);
                 }
                 let lv = &c.st.net.mf.levels;
-                want.sort_by(|x, y| {
-                    let (a, b) = ((x.1, x.2), (y.1, y.2));
-                    c.mf_cmp(a, &lv[a.0 as usize].1, b, &lv[b.0 as usize].1)
-                });
+                want.sort_by(|x, y| c.mf_cmp(*x, &lv[x.0 as usize].1, *y, &lv[y.0 as usize].1));
                 if c.order_by_keys(&mut got) {
                     sorted_by_keys += 1;
                 }
-                let strip = |v: &[Pending]| v.iter().map(|p| (p.1, p.2)).collect::<Vec<_>>();
-                assert_eq!(strip(&got), strip(&want), "template {tmpl}");
+                assert_eq!(got, want, "template {tmpl}");
                 checked += 1;
             }
         }
+        // a node's own segmentations, alone: `node_mono` (which spares the sort and
+        // the keys) only where `mf_cmp`'s sort keeps them as they come
+        let mut monos = 0;
+        for a in 0..c.alphas.len() as Ix {
+            let n = c.alphas[a as usize].nmarks as usize;
+            if n == 0 {
+                continue;
+            }
+            let mut got: Vec<Pending> = Vec::new();
+            for code in (0..4u32.pow(n as u32)).rev() {
+                let mut marks = [0u8; MAX_MARKS];
+                for (i, m) in marks.iter_mut().enumerate().take(n) {
+                    *m = (code / 4u32.pow((n - 1 - i) as u32) % 4) as u8;
+                }
+                got.push((a, marks));
+            }
+            c.cache_choice_levels(a);
+            let mut want = got.clone();
+            let lv = &c.st.net.mf.levels;
+            want.sort_by(|x, y| c.mf_cmp(*x, &lv[x.0 as usize].1, *y, &lv[y.0 as usize].1));
+            if c.node_mono(a) {
+                assert_eq!(got, want, "node {a}");
+                monos += 1;
+            }
+            // the one-mark shortcut agrees with the walk
+            let gen = c.st.net.net_gen.wrapping_add(1).max(1);
+            assert!(n > 1 || c.find_node_mono(a, gen), "node {a}");
+            c.put_in_mf_order(&mut got);
+            assert_eq!(got, want, "node {a}");
+        }
+        assert!(monos >= 8, "{monos}");
         assert!(
             checked >= 6 && sorted_by_keys == checked,
             "{checked} {sorted_by_keys}"
