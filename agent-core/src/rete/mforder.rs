@@ -225,8 +225,10 @@ impl Core<'_> {
         // one node's matches only: in order when its choice levels read its first
         // marks in order (no keys needed, so a template whose facts each match one
         // node never makes them)
+        // (a node's matches lie together, so several nodes' are told at the ends
+        // without a walk over the first node's)
         let a = got[0].0;
-        if got.iter().all(|&(b, _)| b == a) && self.node_mono(a) {
+        if got[got.len() - 1].0 == a && got.iter().all(|&(b, _)| b == a) && self.node_mono(a) {
             return;
         }
         if self.order_by_keys(got) {
