@@ -66,6 +66,9 @@ struct Walk {
     /// The outermost query outside a firing: it frees the facts its tuples retracted
     /// (see `Core::query_hold`) once no variable is bound to them.
     hold_top: bool,
+    /// Host: the shape of the query test (`classify_test`).
+    #[cfg(feature = "host-speedups")]
+    shape: u8,
 }
 
 fn parse(cx: &Core<'_>, call: Ix) -> Result<Query, EvalError> {
@@ -376,6 +379,25 @@ impl SlotTest {
         })
     }
 
+    /// Host: the slot test of query test `test`, known to have that shape
+    /// (`classify_test`): of the two operands, the slot is the one `QSlot` node (the
+    /// other, a leaf, is none).
+    #[cfg(feature = "host-speedups")]
+    #[inline(always)]
+    fn of_known(cx: &Core<'_>, test: Ix) -> SlotTest {
+        let x = cx.exprs[test as usize];
+        let a = x.first;
+        let b = cx.exprs[a as usize].next;
+        let slot_first = cx.exprs[a as usize].op == crate::expr::Op::QSlot;
+        let (qslot, other) = if slot_first { (a, b) } else { (b, a) };
+        SlotTest {
+            cmp: x.data,
+            name: cx.exprs[cx.exprs[qslot as usize].first as usize].data,
+            other,
+            slot_first,
+        }
+    }
+
     /// The test's result for live fact `f` of template `tmpl` whose slot `slot`
     /// it reads; None when the evaluator must decide.
     #[cfg_attr(feature = "host-speedups", inline(always))]
@@ -634,6 +656,46 @@ impl QuickTest {
     }
 }
 
+/// The parser's mark on a query's declarations node (`aux`): a restriction is written
+/// as an expression.
+#[cfg(feature = "extras")]
+const DYNAMIC_MARK: u8 = 1;
+
+/// Host: the shape of a query's test for its innermost variable, kept in bits 1-2
+/// of the declarations node's `aux` once known (0: not yet), so that a call node
+/// classifies its test once, not on every call: a `SlotTest`, another `QuickTest`,
+/// or neither.
+#[cfg(feature = "host-speedups")]
+const SHAPE_SLOT: u8 = 1 << 1;
+#[cfg(feature = "host-speedups")]
+const SHAPE_QUICK: u8 = 2 << 1;
+#[cfg(feature = "host-speedups")]
+const SHAPE_NONE: u8 = 3 << 1;
+#[cfg(feature = "host-speedups")]
+pub(crate) const SHAPE_MASK: u8 = 3 << 1;
+
+/// Host: the shape of query `q`'s test (call node `call`), classified on its first
+/// call. The nodes a shape depends on (the test's, the variables' frame slots) do
+/// not change while the call node lives; a reused node starts again from 0.
+#[cfg(feature = "host-speedups")]
+#[inline(never)]
+fn classify_test(cx: &mut Core<'_>, call: Ix, q: &Query) -> u8 {
+    let decl = cx.exprs[call as usize].first;
+    let frame = cx.exprs[q.vars[q.nvars - 1] as usize].data;
+    let s = if SlotTest::of(cx, q.test, frame).is_some() {
+        SHAPE_SLOT
+    } else if QuickTest::of(cx, q.test, frame).is_some() {
+        SHAPE_QUICK
+    } else {
+        SHAPE_NONE
+    };
+    // (a compiled rule base's nodes read in place keep no shape: classified per call)
+    if cx.exprs.writable(decl as usize) {
+        cx.exprs[decl as usize].aux |= s;
+    }
+    s
+}
+
 /// Walks the tuples of variables `k..`; returns true to stop the whole walk.
 /// `DYNAMIC`: a restriction of the query is an expression (only then does the walk
 /// look for one; the copy for queries that name their templates has no such test).
@@ -647,22 +709,24 @@ fn walk<const DYNAMIC: bool, const MULTI: bool>(
     let var = w.q.vars[k];
     // the innermost variable's facts that fail a slot test are skipped in place
     let quick = if !MULTI && k + 1 == w.q.nvars {
+        // host: a test of another shape the walk can decide goes to the copy of
+        // `walk` with a `QuickTest` (the slot test, the commonest, keeps its own
+        // cheaper path); the shape is known once per call node (`classify_test`)
+        #[cfg(feature = "host-speedups")]
+        match w.shape {
+            SHAPE_SLOT => Some(SlotTest::of_known(cx, w.q.test)),
+            SHAPE_QUICK => return walk::<DYNAMIC, true>(cx, w, k),
+            _ => None,
+        }
+        #[cfg(not(feature = "host-speedups"))]
         SlotTest::of(cx, w.q.test, cx.exprs[var as usize].data)
     } else {
         None
     };
-    // host: a test of another shape the walk can decide (the slot test, the
-    // commonest, keeps its own cheaper path)
     #[cfg(feature = "host-speedups")]
     let quick_multi = if MULTI {
         QuickTest::of(cx, w.q.test, cx.exprs[var as usize].data)
     } else {
-        if k + 1 == w.q.nvars
-            && quick.is_none()
-            && QuickTest::of(cx, w.q.test, cx.exprs[var as usize].data).is_some()
-        {
-            return walk::<DYNAMIC, true>(cx, w, k);
-        }
         None
     };
     // the quick test's operands computed so far (none after a visit: the test's
@@ -863,14 +927,25 @@ fn run(
         last: Value::Sym(SYM_FALSE),
         base: cx.st.frame.scratch_top,
         hold_top: false,
+        #[cfg(feature = "host-speedups")]
+        shape: SHAPE_NONE,
     };
     // while CLIPS halts, a query tests no fact set: nothing found, no action run
     if cx.st.mode.halting {
         return Ok(w);
     }
     // a restriction written as an expression (the parser marks the declarations)
+    #[cfg(any(feature = "extras", feature = "host-speedups"))]
+    let flags = cx.exprs[cx.exprs[call as usize].first as usize].aux;
     #[cfg(feature = "extras")]
-    let dynamic = cx.exprs[cx.exprs[call as usize].first as usize].aux != 0;
+    let dynamic = flags & DYNAMIC_MARK != 0;
+    #[cfg(feature = "host-speedups")]
+    {
+        w.shape = flags & SHAPE_MASK;
+        if w.shape == 0 {
+            w.shape = classify_test(cx, call, &w.q);
+        }
+    }
     #[cfg(feature = "extras")]
     if dynamic {
         check_dynamic(cx, &w.q, call)?;

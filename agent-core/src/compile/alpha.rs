@@ -516,8 +516,13 @@ fn key_before(a: &[Ix], b: &[Ix]) -> bool {
 /// A node's `aux` as far as it is part of the expression: a query slot read
 /// (`slot_value_of`) and a query variable's template name (`queries::template_of`)
 /// keep a lookup cache there, which a run fills in and which must not keep an
-/// identical pattern or test from sharing the node.
+/// identical pattern or test from sharing the node; so does a query's declarations
+/// node (host: the test's shape, `queries::SHAPE_MASK`).
 pub(crate) fn shape_aux(x: crate::expr::Expr) -> u8 {
+    #[cfg(feature = "host-speedups")]
+    if x.op == Op::Nop {
+        return x.aux & !crate::builtins::queries::SHAPE_MASK;
+    }
     if matches!(x.op, Op::QSlot | Op::Sym) {
         0
     } else {
