@@ -434,7 +434,8 @@ impl Compiler<'_, '_> {
 
     fn expr_eq(&self, a: Ix, b: Ix) -> bool {
         let (x, y) = (self.cx.exprs[a as usize], self.cx.exprs[b as usize]);
-        if x.op != y.op || shape_aux(x) != shape_aux(y) || x.data != y.data {
+        // Equal aux bytes (the usual case) need no masking.
+        if x.op != y.op || (x.aux != y.aux && shape_aux(x) != shape_aux(y)) || x.data != y.data {
             return false;
         }
         match x.op {
@@ -519,15 +520,14 @@ fn key_before(a: &[Ix], b: &[Ix]) -> bool {
 /// identical pattern or test from sharing the node; so does a query's declarations
 /// node (host: the test's shape, `queries::SHAPE_MASK`).
 pub(crate) fn shape_aux(x: crate::expr::Expr) -> u8 {
-    #[cfg(feature = "host-speedups")]
-    if x.op == Op::Nop {
-        return x.aux & !crate::builtins::queries::SHAPE_MASK;
-    }
-    if matches!(x.op, Op::QSlot | Op::Sym) {
-        0
-    } else {
-        x.aux
-    }
+    // One mask, so the common case costs one test (this runs per node compared).
+    let keep = match x.op {
+        Op::QSlot | Op::Sym => 0,
+        #[cfg(feature = "host-speedups")]
+        Op::Nop => !crate::builtins::queries::SHAPE_MASK,
+        _ => 0xFF,
+    };
+    x.aux & keep
 }
 
 fn mix16(h: u32, x: u32) -> u32 {

@@ -270,11 +270,9 @@ impl Core<'_> {
     #[cold]
     #[inline(never)]
     fn find_node_mono(&mut self, a: Ix, gen: u32) -> bool {
-        let mut n = 0u8;
         let mut mono = true;
-        for m in self.choice_levels(a).iter().flatten() {
+        for (m, n) in self.choice_levels(a).iter().flatten().zip(0u8..) {
             mono &= *m == n;
-            n += 1;
         }
         let i = a as usize;
         let v = &mut self.st.net.mf.mono;
