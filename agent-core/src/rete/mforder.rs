@@ -128,6 +128,25 @@ impl Default for MfOrder {
     }
 }
 
+/// Entry `i` of a per-generation cache (`MfOrder`'s per-node and per-template
+/// vectors) when it was made in network generation `gen` (+1).
+#[inline(always)]
+fn gen_cached<T: Copy>(v: &[(u32, T)], i: usize, gen: u32) -> Option<T> {
+    match v.get(i) {
+        Some(&(g, x)) if g == gen => Some(x),
+        _ => None,
+    }
+}
+
+/// Makes entry `i` of a per-generation cache `x`, made in generation `gen` (+1); the
+/// vector grows with entries of no generation (`empty`) to reach it.
+fn gen_store<T: Copy>(v: &mut Vec<(u32, T)>, i: usize, gen: u32, x: T, empty: T) {
+    if v.len() <= i {
+        v.resize(i + 1, (0, empty));
+    }
+    v[i] = (gen, x);
+}
+
 impl Core<'_> {
     /// Whether template `tmpl`'s matches need CLIPS's multifield order (one of its
     /// alpha nodes chooses a multifield's length).
@@ -141,10 +160,8 @@ impl Core<'_> {
             return false;
         }
         let gen = self.st.net.net_gen.wrapping_add(1).max(1);
-        if let Some(&(g, c)) = self.st.net.mf.choice.get(tmpl as usize) {
-            if g == gen {
-                return c;
-            }
+        if let Some(c) = gen_cached(&self.st.net.mf.choice, tmpl as usize, gen) {
+            return c;
         }
         self.find_mf_order(tmpl, gen)
     }
@@ -160,11 +177,7 @@ impl Core<'_> {
             c |= self.alphas[a as usize].nmarks > 0;
             a = self.alphas[a as usize].next_in_tmpl;
         }
-        let v = &mut self.st.net.mf.choice;
-        if v.len() <= t {
-            v.resize(t + 1, (0, false));
-        }
-        v[t] = (gen, c);
+        gen_store(&mut self.st.net.mf.choice, t, gen, c, false);
         c
     }
 
@@ -258,11 +271,8 @@ impl Core<'_> {
             return true;
         }
         let gen = self.st.net.net_gen.wrapping_add(1).max(1);
-        let i = a as usize;
-        if let Some(&(g, m)) = self.st.net.mf.mono.get(i) {
-            if g == gen {
-                return m;
-            }
+        if let Some(m) = gen_cached(&self.st.net.mf.mono, a as usize, gen) {
+            return m;
         }
         self.find_node_mono(a, gen)
     }
@@ -274,12 +284,7 @@ impl Core<'_> {
         for (m, n) in self.choice_levels(a).iter().flatten().zip(0u8..) {
             mono &= *m == n;
         }
-        let i = a as usize;
-        let v = &mut self.st.net.mf.mono;
-        if v.len() <= i {
-            v.resize(i + 1, (0, false));
-        }
-        v[i] = (gen, mono);
+        gen_store(&mut self.st.net.mf.mono, a as usize, gen, mono, false);
         mono
     }
 
@@ -288,9 +293,9 @@ impl Core<'_> {
     fn order_by_keys(&mut self, got: &mut [Pending]) -> bool {
         let tmpl = self.alphas[got[0].0 as usize].tmpl;
         let gen = self.st.net.net_gen.wrapping_add(1).max(1);
-        let ok = match self.st.net.mf.keyed.get(tmpl as usize) {
-            Some(&(g, ok)) if g == gen => ok,
-            _ => self.make_node_keys(tmpl, gen),
+        let ok = match gen_cached(&self.st.net.mf.keyed, tmpl as usize, gen) {
+            Some(ok) => ok,
+            None => self.make_node_keys(tmpl, gen),
         };
         if !ok {
             return false;
@@ -406,18 +411,10 @@ impl Core<'_> {
                     nk.n += 1;
                 }
             }
-            let v = &mut self.st.net.mf.keys;
-            if v.len() <= a as usize {
-                v.resize(a as usize + 1, (0, NodeKey::EMPTY));
-            }
-            v[a as usize] = (gen, nk);
+            gen_store(&mut self.st.net.mf.keys, a as usize, gen, nk, NodeKey::EMPTY);
             prev = Some((a, choice));
         }
-        let v = &mut self.st.net.mf.keyed;
-        if v.len() <= tmpl as usize {
-            v.resize(tmpl as usize + 1, (0, false));
-        }
-        v[tmpl as usize] = (gen, ok);
+        gen_store(&mut self.st.net.mf.keyed, tmpl as usize, gen, ok, false);
         self.st.net.mf.nodes = nodes;
         ok
     }
@@ -426,15 +423,11 @@ impl Core<'_> {
     fn cache_choice_levels(&mut self, a: Ix) {
         let gen = self.st.net.net_gen.wrapping_add(1).max(1);
         let i = a as usize;
-        if self.st.net.mf.levels.get(i).is_some_and(|&(g, _)| g == gen) {
+        if gen_cached(&self.st.net.mf.levels, i, gen).is_some() {
             return;
         }
         let l = self.choice_levels(a);
-        let v = &mut self.st.net.mf.levels;
-        if v.len() <= i {
-            v.resize(i + 1, (0, [None; PATH_LEN]));
-        }
-        v[i] = (gen, l);
+        gen_store(&mut self.st.net.mf.levels, i, gen, l, [None; PATH_LEN]);
     }
 
     /// CLIPS's order of two alpha matches (see the module docs).
