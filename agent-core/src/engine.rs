@@ -1601,8 +1601,24 @@ impl Core<'_> {
 
     /// `set_global` that first prints the `watch globals` trace of the change (`bind`):
     /// the watch flag is read here, next to the store, so the caller pays one call.
+    /// (Host: a single-field value stored while globals are not watched, the usual
+    /// counter `bind`, in line in its one caller; the rest out of line.)
     #[cfg(feature = "extras")]
+    #[cfg_attr(feature = "host-speedups", inline(always))]
     pub(crate) fn set_global_traced(&mut self, g: Ix, v: Value) -> Result<(), CapacityError> {
+        #[cfg(feature = "host-speedups")]
+        if !matches!(v, Value::Multi(_)) && self.st.mode.watch & watch::GLOBALS == 0 {
+            self.st.eval.effects = self.st.eval.effects.wrapping_add(1);
+            self.globals[g as usize].value = v;
+            return Ok(());
+        }
+        self.set_global_traced_general(g, v)
+    }
+
+    /// `set_global_traced` past its in-line case.
+    #[cfg(feature = "extras")]
+    #[cfg_attr(feature = "host-speedups", inline(never))]
+    fn set_global_traced_general(&mut self, g: Ix, v: Value) -> Result<(), CapacityError> {
         self.set_global_with::<true>(g, v)
     }
 

@@ -266,9 +266,11 @@ impl Core<'_> {
     /// `(x (+ ?x 1))`): `+`, `-`, `*` go to `arith_value`, other nodes as operands.
     /// (Only these callers: a test in `eval_operand` itself, inlined at every operand
     /// site, made other rows dearer.)
+    /// `IN`: the in-place arithmetic is in line at this site too (`bind`'s, where a
+    /// counter's firing paid two call frames for it), else called (`arith_value`).
     #[cfg(all(feature = "host-speedups", feature = "grow"))]
     #[inline(always)]
-    pub(crate) fn eval_value_operand(&mut self, e: Ix) -> Result<Value, EvalError> {
+    pub(crate) fn eval_value_operand<const IN: bool>(&mut self, e: Ix) -> Result<Value, EvalError> {
         let x = self.exprs[e as usize];
         match x.op {
             Op::Sym => Ok(Value::Sym(x.data)),
@@ -284,6 +286,12 @@ impl Core<'_> {
                 if x.aux == FnKind::Builtin as u8
                     && x.data.wrapping_sub(builtins::basic::ARITH_FIRST) < 3 =>
             {
+                // (a call that needs no depth check: `arith_value`'s first case)
+                if IN && self.st.eval.eval_depth.wrapping_sub(1) < self.st.eval.limits.quiet {
+                    if let Some(v) = self.quick_arith_in(x) {
+                        return Ok(v);
+                    }
+                }
                 self.arith_value(e, x)
             }
             _ => self.eval(e),
@@ -405,6 +413,13 @@ impl Core<'_> {
     #[cfg(feature = "host-speedups")]
     #[inline(never)]
     fn quick_arith(&mut self, x: Expr) -> Option<Value> {
+        self.quick_arith_in(x)
+    }
+
+    /// `quick_arith` in line (`eval_value_operand`'s `bind` site).
+    #[cfg(feature = "host-speedups")]
+    #[inline(always)]
+    fn quick_arith_in(&mut self, x: Expr) -> Option<Value> {
         if x.data.wrapping_sub(builtins::basic::ARITH_FIRST) >= 3 || x.first == NONE {
             return None;
         }

@@ -496,7 +496,7 @@ fn bind(cx: &mut Core<'_>, call: Ix) -> Result<Value, EvalError> {
 fn bind_one(cx: &mut Core<'_>, target: Ix, a: Ix) -> Result<Value, EvalError> {
     let start = cx.multi_begin();
     #[cfg(feature = "grow")]
-    let value = cx.eval_value_operand(a);
+    let value = cx.eval_value_operand::<true>(a);
     #[cfg(not(feature = "grow"))]
     let value = cx.eval_operand(a);
     let value = match value {

@@ -300,7 +300,7 @@ impl Core<'_> {
             // most slot values are constants or variables: the host reads them in
             // place (the image keeps the 370 B of code that inline copy costs)
             #[cfg(all(feature = "host-speedups", feature = "grow"))]
-            let v = self.eval_value_operand(e);
+            let v = self.eval_value_operand::<false>(e);
             #[cfg(all(feature = "host-speedups", not(feature = "grow")))]
             let v = self.eval_operand(e);
             #[cfg(not(feature = "host-speedups"))]
