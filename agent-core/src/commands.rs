@@ -841,7 +841,14 @@ impl Core<'_> {
                     break;
                 }
             }
-            r = self.eval(e);
+            #[cfg(all(feature = "host-speedups", feature = "grow"))]
+            {
+                r = self.eval_action(e);
+            }
+            #[cfg(not(all(feature = "host-speedups", feature = "grow")))]
+            {
+                r = self.eval(e);
+            }
             // a network error that did not come back as one (a retract's join test)
             // halts the actions too
             if r.is_ok() && self.st.mode.halting {

@@ -266,6 +266,31 @@ impl Core<'_> {
     /// `(x (+ ?x 1))`): `+`, `-`, `*` go to `arith_value`, other nodes as operands.
     /// (Only these callers: a test in `eval_operand` itself, inlined at every operand
     /// site, made other rows dearer.)
+    /// Host: a rule's top-level action (`eval_actions`). A call of a lazy builtin
+    /// past the comparisons and arithmetic (`assert`, `modify`, `bind`, `printout`,
+    /// `if`, ...) that needs no depth check goes to its code as `call` sends it,
+    /// without the evaluator's frame and dispatch; anything else is evaluated.
+    #[cfg(all(feature = "host-speedups", feature = "grow"))]
+    #[inline(always)]
+    pub(crate) fn eval_action(&mut self, e: Ix) -> Result<Value, EvalError> {
+        let x = self.exprs[e as usize];
+        if matches!(x.op, Op::Call)
+            && x.aux == FnKind::Builtin as u8
+            && x.data > builtins::basic::CMP_LAST
+            && self.st.eval.eval_depth.wrapping_sub(1) < self.st.eval.limits.quiet
+        {
+            if let Imp::Lazy(f) = builtins::code_of(self, x.data, builtins::get(x.data)) {
+                self.st.eval.eval_depth += 1;
+                let sp = self.st.frame.sp;
+                let r = f(self, e);
+                self.st.frame.sp = sp;
+                self.st.eval.eval_depth -= 1;
+                return r;
+            }
+        }
+        self.eval(e)
+    }
+
     /// `IN`: the in-place arithmetic is in line at this site too (`bind`'s, where a
     /// counter's firing paid two call frames for it), else called (`arith_value`).
     #[cfg(all(feature = "host-speedups", feature = "grow"))]
@@ -291,6 +316,7 @@ impl Core<'_> {
                     if let Some(v) = self.quick_arith_in(x) {
                         return Ok(v);
                     }
+                    return self.arith_call(e, x);
                 }
                 self.arith_value(e, x)
             }
@@ -311,6 +337,14 @@ impl Core<'_> {
         if let Some(v) = self.quick_arith(x) {
             return Ok(v);
         }
+        self.arith_call(e, x)
+    }
+
+    /// `arith_value`'s call of the builtin, once `quick_arith` declined (not asked
+    /// again by `bind`'s site, which took it in line).
+    #[cfg(all(feature = "host-speedups", feature = "grow"))]
+    #[inline(never)]
+    fn arith_call(&mut self, e: Ix, x: Expr) -> Result<Value, EvalError> {
         self.st.eval.eval_depth += 1;
         let sp = self.st.frame.sp;
         let r = self.call_builtin(e, x);
