@@ -187,8 +187,28 @@ impl<'s> Parser<'s, '_, '_> {
                 let e = self.cx.push_expr(Expr::new(Op::Global, 0, g));
                 cap!(self, e)
             }
-            None => Err(self.undefined_global(t, false)),
+            None => self.defer_undefined_global(t),
         }
+    }
+
+    /// An undefined global read in a rule's conditions or actions or a deffunction's
+    /// body: CLIPS resolves those once the construct is read whole, so an error
+    /// found later in the text comes first (`[EXPRNPSR3]` for a missing function
+    /// after it, say); the read is nothing meanwhile (the construct is never kept).
+    fn defer_undefined_global(&mut self, t: Token<'s>) -> PResult<Ix> {
+        let deferrable = match self.scope {
+            Scope::Lhs | Scope::Frame => matches!(self.construct, "defrule" | "deffunction"),
+            Scope::TopLevel => false,
+        };
+        if !deferrable || self.evaluated_now {
+            return Err(self.undefined_global(t, false));
+        }
+        let e = self.undefined_global(t, false);
+        if self.deferred.is_none() {
+            self.deferred = Some(e);
+        }
+        let e = self.cx.push_expr(Expr::new(Op::Nop, 0, 0));
+        cap!(self, e)
     }
 
     /// A variable reference node.
@@ -227,7 +247,16 @@ impl<'s> Parser<'s, '_, '_> {
             _ if self.construct == "deffacts" => {
                 Err(self.deffacts_variable(t, "a constant (deffacts take no variables)"))
             }
-            Scope::Lhs if self.construct == "defrule" => Err(self.unbound_in_lhs(t, true)),
+            Scope::Lhs if self.construct == "defrule" => {
+                // CLIPS's `[ANALYSIS4]` comes from its analysis of the rule read whole
+                // (a syntax error later in the rule comes first)
+                let e = self.unbound_in_lhs(t, true);
+                if self.deferred.is_none() {
+                    self.deferred = Some(e);
+                }
+                let e = self.cx.push_expr(Expr::new(Op::Nop, 0, 0));
+                cap!(self, e)
+            }
             Scope::Frame if matches!(self.construct, "defrule" | "deffunction") => {
                 // CLIPS's `[PRCCODE3]`, echoing the whole construct once it is read
                 // (another error found on the way comes first); the variable reads

@@ -2392,7 +2392,15 @@ impl<'s> Parser<'s, '_, '_> {
                         err.echo_end = at.end as u32;
                         return Err(err);
                     }
-                    None => return Err(self.unbound_in_lhs(t, false)),
+                    // (held back to the end of the rule, as CLIPS's analysis finds
+                    // it once the rule is read whole; the field tests nothing here)
+                    None => {
+                        let e = self.unbound_in_lhs(t, false);
+                        if self.deferred.is_none() {
+                            self.deferred = Some(e);
+                        }
+                        cap!(self, self.cx.push_expr(Expr::new(Op::Nop, 0, 0)))?
+                    }
                 };
                 let this = self.this_field(p, locv, desc)?;
                 self.node2(Op::Eq2, this, v)

@@ -1,0 +1,32 @@
+; An undefined global read in a deffunction's body or a rule's conditions or actions is
+; resolved by CLIPS once the construct is read whole: an error found later in its text
+; (a missing function, a bad argument, a syntax error) is the one reported; alone it is
+; [GLOBLPSR1] (actions) or [ANALYSIS4] (conditions) with the construct echoed whole.
+; (A Jess program run in CLIPS used an unset global before its `for` loops.)
+; A local variable read unbound behaves alike, and the first of the two in the text wins.
+(deffunction d1 (?a) (printout t ?*missing* crlf) (frobnicate ?a))
+(deffunction d2 (?a) (printout t ?*missing* crlf) (* ?a 2))
+(deffunction d3 (?a) (while (< ?a ?*missing*) do (frobnicate)) (+ ?*other* 1))
+(deffunction d4 (?a) (printout t ?*missing*) (- ?a b))
+(deffunction d5 (?a) (printout t ?*missing*) (switch))
+(deffunction d6 (?a) (printout t ?unset) (printout t ?*missing*))
+(deffunction d7 (?a) (printout t ?*missing*) (printout t ?unset))
+(deffunction d8 (?a) (bind ?*missing* ?a) (frobnicate))
+(defrule s1 (item ?v) => (printout t ?*missing* crlf) (frobnicate ?v))
+(defrule s2 (item ?v) => (printout t ?*missing* crlf) (+ ?v 1))
+(defrule s3 (item ?v&:(> ?v ?*missing*)) => (frobnicate))
+(defrule s4 (item ?v&:(> ?v ?w)) => (frobnicate))
+(defrule s5 (item ?v) (test (> ?v ?w)) (other (frobnicate)) =>)
+(defrule s6 (item ?v&:(> ?v ?*missing*)) => (printout t ?*other*))
+(defrule s7 (item ?v&:(> ?v ?w)) =>)
+(defrule s8 (item ?v) => (printout t ?unset) (printout t ?*missing*))
+(defrule s9 (item ?v ~?w) => (frobnicate))
+(defglobal ?*limit* = 2)
+(deffunction ok (?a) (> ?a ?*limit*))
+(defrule fine (item ?v&:(ok ?v)) => (printout t "item " ?v " over " ?*limit* crlf))
+(list-deffunctions)
+(list-defrules)
+(reset)
+(assert (item 1) (item 3))
+(run)
+(exit)
