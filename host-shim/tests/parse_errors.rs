@@ -514,6 +514,7 @@ malformed_programs! {
     e087_template_of_256_slots => "087-template-of-256-slots",
     e088_rule_of_65_patterns => "088-rule-of-65-patterns",
     e089_deffunction_of_256_locals => "089-deffunction-of-256-locals",
+    e095_undefined_global_before_missing_function => "095-undefined-global-before-missing-function",
     e806_defmethod_refused => "806-defmethod-refused",
     e807_defclass_refused => "807-defclass-refused",
 }
