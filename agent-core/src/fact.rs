@@ -690,7 +690,15 @@ impl Core<'_> {
         let mut d = self.fact_buckets[bucket];
         while d != NONE && !self.st.mode.fact_duplication {
             let df = self.facts[d as usize];
-            if df.tmpl == tmpl
+            // host: a fact keeps its full hash, so only an equal one is compared cell
+            // by cell (a chain's other facts, of the same template and length in most
+            // programs, lengthen as the fact base grows)
+            #[cfg(feature = "host-speedups")]
+            let same_hash = df.hash == h;
+            #[cfg(not(feature = "host-speedups"))]
+            let same_hash = true;
+            if same_hash
+                && df.tmpl == tmpl
                 && df.len as usize == need
                 && self.cells_equal(df.start as usize, start, need)
             {
