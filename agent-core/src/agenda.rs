@@ -418,31 +418,54 @@ impl Core<'_> {
     fn activation_module_hooks(&mut self, rule: Ix, a: Ix) -> Result<(), CapacityError> {
         #[cfg(not(feature = "host-speedups"))]
         let _ = a;
+        // (every hook needs the rule's module: looked up once)
+        let tag = self.rule_tag(rule);
         #[cfg(feature = "host-speedups")]
-        if self.st.modules.add_hooks & crate::module::HOOK_FOCUS_CACHE != 0 {
-            self.focus_cache_add(a);
-        }
-        if self.st.modules.add_hooks & crate::module::HOOK_AUTO_FOCUS != 0 {
-            let tag = self.rule_tag(rule);
-            if tag.auto_focus {
-                self.push_focus(tag.module)?;
+        {
+            let hooks = self.st.modules.add_hooks;
+            if hooks & crate::module::HOOK_FOCUS_CACHE != 0 {
+                self.focus_cache_add(a, tag.module);
             }
+            if hooks & crate::module::HOOK_COUNT != 0 {
+                let n = &mut self.st.modules.acts_in[usize::from(tag.module)];
+                *n = n.saturating_add(1);
+            }
+        }
+        if self.st.modules.add_hooks & crate::module::HOOK_AUTO_FOCUS != 0 && tag.auto_focus {
+            self.push_focus(tag.module)?;
         }
         Ok(())
     }
 
-    /// New activation `a` while a module's agenda start is known: one of that
-    /// module's that goes before the start is its first now.
+    /// New activation `a` (of module `of`) while a module's agenda start is known:
+    /// one of that module's that goes before the start is its first now.
     #[cfg(all(feature = "modules", feature = "host-speedups"))]
-    fn focus_cache_add(&mut self, a: Ix) {
-        let m = self.st.modules.fmod as crate::module::ModId;
-        if self.activation_in(a, m) {
+    fn focus_cache_add(&mut self, a: Ix, of: crate::module::ModId) {
+        if u16::from(of) == self.st.modules.fmod {
             // (a start a retract took stays as it is: `focused_head` walks then)
             let h = self.st.modules.fhead;
             if h == NONE || (self.focus_cache_live(h) && self.goes_before(a, h)) {
                 self.focus_cache_set(a);
             }
         }
+    }
+
+    /// From the second module on: activations are counted per module
+    /// (`ModuleState::acts_in`), those on the agenda now first.
+    #[cfg(all(feature = "modules", feature = "host-speedups"))]
+    pub(crate) fn start_module_counts(&mut self) {
+        if self.st.modules.add_hooks & crate::module::HOOK_COUNT != 0 {
+            return;
+        }
+        self.st.modules.acts_in = [0; 256];
+        let mut a = self.st.agenda.agenda_head;
+        while a != NONE {
+            let m = self.rule_tag(self.acts[a as usize].rule).module;
+            let n = &mut self.st.modules.acts_in[usize::from(m)];
+            *n = n.saturating_add(1);
+            a = self.acts[a as usize].next;
+        }
+        self.st.modules.add_hooks |= crate::module::HOOK_COUNT;
     }
 
     /// Whether the known agenda start `h` (not NONE) is still the activation it was.
@@ -576,6 +599,11 @@ impl Core<'_> {
             let next = self.acts[a as usize].next;
             self.focus_cache_set(next);
         }
+        // (it fires: its module's count leaves it; `focused_head` found it there)
+        if self.st.modules.add_hooks & crate::module::HOOK_COUNT != 0 {
+            let n = &mut self.st.modules.acts_in[usize::from(self.st.modules.head_mod)];
+            *n = n.saturating_sub(1);
+        }
         Some(a)
     }
 
@@ -650,6 +678,14 @@ impl Core<'_> {
         }
         loop {
             let m = self.focus_top()?;
+            // a module counted with none has none: no walk past the others'
+            #[cfg(feature = "host-speedups")]
+            if self.st.modules.add_hooks & crate::module::HOOK_COUNT != 0
+                && self.st.modules.acts_in[usize::from(m)] == 0
+            {
+                self.pop_focus();
+                continue;
+            }
             // from the module's known agenda start while it is still on the agenda
             // (a retract may have taken it: its entry is free, or made again with
             // another number), else from the agenda's head
@@ -677,7 +713,17 @@ impl Core<'_> {
                 self.st.modules.add_hooks |= crate::module::HOOK_FOCUS_CACHE;
             }
             if a != NONE {
+                #[cfg(feature = "host-speedups")]
+                {
+                    self.st.modules.head_mod = m;
+                }
                 return Some(a);
+            }
+            // (the walk began at the agenda's head or where all of `m`'s lie: it has
+            // none, whatever retracts left its count at)
+            #[cfg(feature = "host-speedups")]
+            {
+                self.st.modules.acts_in[usize::from(m)] = 0;
             }
             self.pop_focus();
         }

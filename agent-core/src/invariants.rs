@@ -1461,6 +1461,19 @@ impl Core<'_> {
             "agenda length wrong",
             self.st.agenda.agenda_len
         );
+        // host, several modules: no module has more activations than counted
+        #[cfg(all(feature = "modules", feature = "host-speedups"))]
+        if self.st.modules.add_hooks & crate::module::HOOK_COUNT != 0 {
+            let mut have = [0u32; 256];
+            let mut a = self.st.agenda.agenda_head;
+            while a != NONE {
+                have[usize::from(self.rule_tag(self.acts[a as usize].rule).module)] += 1;
+                a = self.acts[a as usize].next;
+            }
+            for (m, (&h, &c)) in have.iter().zip(self.st.modules.acts_in.iter()).enumerate() {
+                ensure!(h <= c, "module has more activations than counted", m as Ix);
+            }
+        }
         // and every activation listed under a match is on the agenda (counted above)
         let mut listed = 0usize;
         for tk in self.tokens.as_slice()[..self.st.pools.tokens_used as usize].iter() {

@@ -163,6 +163,17 @@ pub struct ModuleState {
     pub fseq: u32,
     #[cfg(feature = "host-speedups")]
     pub fmod: u16,
+    /// Host, while `HOOK_COUNT` is set (from the second module on): per module, at
+    /// least as many activations as it has on the agenda (every new one counts, one
+    /// that fires leaves its count, one a retract takes stays counted until a walk of
+    /// `focused_head` finds the module has none). A count of 0 proves the module has
+    /// none, so focusing it walks no other module's activations (CLIPS keeps an agenda
+    /// per module).
+    #[cfg(feature = "host-speedups")]
+    pub acts_in: [u32; 256],
+    /// Host: the module of the activation `focused_head` gave last.
+    #[cfg(feature = "host-speedups")]
+    pub head_mod: ModId,
 }
 
 /// `ModuleState::add_hooks`: some rule has auto-focus.
@@ -171,6 +182,9 @@ pub const HOOK_AUTO_FOCUS: u8 = 1;
 /// `ModuleState::add_hooks`: a module's agenda start is known.
 #[cfg(all(feature = "modules", feature = "host-speedups"))]
 pub const HOOK_FOCUS_CACHE: u8 = 2;
+/// `ModuleState::add_hooks`: activations are counted per module (`acts_in`).
+#[cfg(all(feature = "modules", feature = "host-speedups"))]
+pub const HOOK_COUNT: u8 = 4;
 
 #[cfg(feature = "modules")]
 impl ModuleState {
@@ -188,6 +202,10 @@ impl ModuleState {
             fseq: 0,
             #[cfg(feature = "host-speedups")]
             fmod: crate::agenda::NO_FOCUS_CACHE,
+            #[cfg(feature = "host-speedups")]
+            acts_in: [0; 256],
+            #[cfg(feature = "host-speedups")]
+            head_mod: MAIN,
         }
     }
 }

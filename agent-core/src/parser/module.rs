@@ -88,6 +88,8 @@ impl<'s> Parser<'s, '_, '_> {
             self.cx.st.modules.main_redefined = true;
         } else {
             self.cx.st.modules.nmodules += 1;
+            #[cfg(feature = "host-speedups")]
+            self.cx.start_module_counts();
             // (the run loop looks for activations module by module on its general path)
             self.cx.note_run_slow();
             self.cx
