@@ -514,6 +514,7 @@ differential_programs! {
     p766_wipe_join_from_right => "766-wipe-join-from-right",
     p767_rhs_type_loop_variables => "767-rhs-type-loop-variables",
     p762_two_integer_arithmetic => "762-two-integer-arithmetic",
+    p761_abs_join_tests => "761-abs-join-tests",
     p770_logical_name_upper_t => "770-logical-name-upper-t",
     p771_assert_syntax_errors => "771-assert-syntax-errors",
     p772_defrule_without_arrow => "772-defrule-without-arrow",

@@ -5,7 +5,7 @@
 //! A join's tests are worked out once into a small tree of direct comparisons over
 //! the slots of the facts the partial match binds: variable comparisons (`?x` used
 //! again, `~?x`, `?a | ?b`), `eq`/`neq`/`=`/`<>`/`<`/`<=`/`>`/`>=` of variables,
-//! constants and `(+ ?x N)`/`(- ?x N)` (of a slot or an ordered fact's field), integer arithmetic (`+`, `-`, `*`, `mod`, `div`) of
+//! constants and `(+ ?x N)`/`(- ?x N)` (of a slot or an ordered fact's field), integer arithmetic (`+`, `-`, `*`, `mod`, `div`, `abs`) of
 //! those, `eq`/`neq` of `sub-string` cuts with constant bounds of such variables
 //! (compared as bytes, without making the cut a symbol), and `and`/`or`/`not` of
 //! those, whether they come from field constraints,
@@ -64,6 +64,8 @@ const FN_OR: Ix = 13;
 const FN_NOT: Ix = 14;
 /// `sub-string`, whose cuts `Node::Text` compares where they lie.
 const FN_SUB_STRING: Ix = builtins::builtin_id("sub-string");
+/// `abs`, an `ArOp::Abs` node (its id compared: no name compared per call planned).
+const FN_ABS: Ix = builtins::builtin_id("abs");
 
 /// Where a compared value comes from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -174,6 +176,8 @@ enum ArOp {
     Mod,
     /// `div`: the quotient truncated toward zero, folded left as the builtin does.
     Div,
+    /// `abs` of its one argument (wrapping, as the builtin).
+    Abs,
 }
 
 /// One node of a plan. Composite nodes name their children through `kids`; all
@@ -1224,6 +1228,9 @@ impl Core<'_> {
         let kids = &plans.kids[first as usize..(first + len) as usize];
         let (&k0, rest) = kids.split_first()?;
         let mut acc = self.arith_operand(k0, depth, binds, right_fact)?;
+        if op == ArOp::Abs {
+            return Some(acc.wrapping_abs());
+        }
         for &k in rest {
             let x = self.arith_operand(k, depth, binds, right_fact)?;
             acc = match op {
@@ -1242,6 +1249,8 @@ impl Core<'_> {
                     }
                     acc.wrapping_div(x)
                 }
+                // (one argument: answered above)
+                ArOp::Abs => return None,
             };
         }
         Some(acc)
@@ -1774,8 +1783,8 @@ impl Core<'_> {
         self.plan_arith(plan, e, depth, level)
     }
 
-    /// Integer arithmetic `(+ ...)`, `(- ...)`, `(* ...)`, `(mod a b)` of plannable
-    /// operands, as an `Arith` node.
+    /// Integer arithmetic `(+ ...)`, `(- ...)`, `(* ...)`, `(mod a b)`, `(div ...)`,
+    /// `(abs a)` of plannable operands, as an `Arith` node.
     fn plan_arith(&self, plan: &mut PlanBuild, e: Ix, depth: u8, level: u8) -> Option<Source> {
         if level >= PLAN_DEPTH {
             return None;
@@ -1790,6 +1799,7 @@ impl Core<'_> {
             FN_MUL => ArOp::Mul,
             id if builtins::get(id).name == "mod" => ArOp::Mod,
             id if builtins::get(id).name == "div" => ArOp::Div,
+            FN_ABS => ArOp::Abs,
             _ => return None,
         };
         let mut members = [0u8; PLAN_NODES];
@@ -1806,7 +1816,7 @@ impl Core<'_> {
             a = self.exprs[a as usize].next;
         }
         // the builtins' arities (a call of another is the evaluator's to report)
-        if len < 2 || (op == ArOp::Mod && len != 2) {
+        if (op == ArOp::Abs) != (len == 1) || (op == ArOp::Mod && len != 2) {
             return None;
         }
         let first = plan.reserve_kids(len)?;
@@ -1931,5 +1941,6 @@ mod tests {
         assert_eq!(name(FN_AND), "and");
         assert_eq!(name(FN_OR), "or");
         assert_eq!(name(FN_NOT), "not");
+        assert_eq!(name(FN_ABS), "abs");
     }
 }

@@ -1,0 +1,21 @@
+; abs in join tests (pattern predicates and test CEs): integers of either sign,
+; nested arithmetic, a float or a symbol where the test needs an integer
+(deftemplate p (slot id) (slot x))
+(deffacts d
+  (v 0 10) (v 1 -10) (v 2 11) (v 3 -9) (v 4 12.0) (v 5 -12)
+  (p (id 1) (x 5)) (p (id 2) (x -3)) (p (id 3) (x 7)) (p (id 4) (x -6))
+  (p (id 5) (x 2.5)) (p (id 6) (x 4)) (p (id 7) (x abc)) (p (id 8) (x 9)))
+(defrule close (p (id ?i) (x ?a)) (p (id ?j&:(> ?j ?i)) (x ?b&:(numberp ?b)))
+  (test (and (numberp ?a) (< (abs (- ?a ?b)) 3)))
+  => (printout t "close " ?i " " ?j crlf))
+(defrule mirror (v ?i ?a) (v ?j&~?i ?b&:(= (abs ?a) (abs ?b)))
+  => (printout t "mirror " ?i " " ?j crlf))
+(defrule within (v ?i ?a) (v ?j&:(> ?j ?i) ?b)
+  (test (<= (abs (+ ?a ?b)) (abs (* 2 (- ?j ?i)))))
+  => (printout t "within " ?i " " ?j crlf))
+(defrule bad (p (id ?i) (x ?a)) (p (id ?j&:(= ?j (+ ?i 1))) (x ?b))
+  (test (> (abs (- ?a ?b)) 4))
+  => (printout t "far " ?i " " ?j crlf))
+(reset)
+(run)
+(exit)
