@@ -305,6 +305,13 @@ impl Core<'_> {
         } else {
             PatBinding::EMPTY
         };
+        // host: tests of fields bound after multifields, read by the marks just bound
+        #[cfg(feature = "host-speedups")]
+        if self.st.cache.compiled_plans.marked_any {
+            if let Some(r) = self.marked_join_test(join, j.tests, j.depth) {
+                return Ok(r);
+            }
+        }
         match self.eval_lhs_tests(j.tests) {
             // CLIPS reports a failing join test and takes it as false (a not CE's as
             // true: the fact blocks); the assert goes on, then execution halts

@@ -482,6 +482,11 @@ impl Core<'_> {
     /// hold the left token's bindings. None when a value cannot be read: then the
     /// whole memory is scanned.
     fn left_key(&mut self, join: JoinId) -> Option<u32> {
+        // host: fields some multifield moves, read by the marks
+        #[cfg(feature = "host-speedups")]
+        if let Some(k) = self.marks_left_key(join) {
+            return Some(k);
+        }
         let nrhash = self.alphas[self.joins[join].alpha as usize].nrhash;
         let mut key = 0x5bd1_e995u32;
         let mut ok = true;
@@ -491,6 +496,20 @@ impl Core<'_> {
         });
         if !ok || found != nrhash {
             return None;
+        }
+        Some(key)
+    }
+
+    /// Host: `left_key` through the join's `MarkKey` (`lhs_pm` bound), None when
+    /// the evaluator must compute it (out of line: the evaluator's path).
+    #[cfg(feature = "host-speedups")]
+    #[inline(never)]
+    fn marks_left_key(&mut self, join: JoinId) -> Option<u32> {
+        let p = self.mark_key(join)?;
+        let mut key = 0x5bd1_e995u32;
+        for &(pat, slot, r) in p.reads.get(..p.n as usize)? {
+            let v = self.seg_field(self.st.net.lhs_pm.get(pat as usize)?, slot, r)?;
+            key = mix(key, atom_hash(v));
         }
         Some(key)
     }

@@ -33,6 +33,7 @@ use crate::handle::{JoinId, TokenId};
 use crate::rete::quick::same_cell;
 use crate::rete::JoinKind;
 use crate::rete::BIND_W;
+use crate::rete::{PatBinding, MAX_RHASH};
 use crate::value::{Ix, Value, NONE};
 
 /// Joins of the compiled plan cache (`Caches::compiled_plans`, direct-mapped by join),
@@ -240,6 +241,70 @@ const MODE_DEEP: u8 = 2;
 /// reads `UNPLANNED`, so that the other plans' dispatch stays as it is: only the
 /// rare unplanned entries look at this mode.
 const MODE_FLAT: u8 = 3;
+/// A plan reading a field bound after a multifield of its slot (`$? ?x $?`), found
+/// by its pattern's multifield marks, which only `join_test_eval` binds (in
+/// `lhs_pm`): it runs there (`marked_join_test`), read by `Marked`. Its root is kept
+/// in its `flats` entry's `root` (unused in this mode), the entry's `root` reads
+/// `UNPLANNED`: the usual path's dispatch and runners stay as they are (a `Source`
+/// variant of its own made every other plan's runner dearer: zebra +0.66 %, r12j),
+/// and the cache is no larger (side tables, copied with the engine's state as it
+/// starts, cost every program 10 k instructions).
+const MODE_MARKS: u8 = 4;
+
+/// `Source::ElemPlus::elem` of a field bound after a multifield, in a `MODE_MARKS`
+/// plan only (`plan_elem` leaves the number to it): its `delta` is the field's
+/// `SegRead` (`SegRead::packed`).
+const SEG_ELEM: u8 = 240;
+
+/// Where a field lies in its multislot: `base` fields plus the lengths of the
+/// pattern's multifields `mark..mark + n` (its marks) from the slot's start (`n` 0:
+/// a fixed offset), or (`n` of `FROM_END`) `base` fields before the slot's end
+/// (after the slot's last multifield, which has no mark), as `pattern_var` finds it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct SegRead {
+    base: u8,
+    mark: u8,
+    n: u8,
+}
+
+/// `SegRead::n` of a field after its slot's last multifield.
+const FROM_END: u8 = u8::MAX;
+/// `SegRead::n` of a whole single-field slot (`MarkKey`).
+const WHOLE_READ: u8 = u8::MAX - 1;
+
+impl SegRead {
+    const NONE: SegRead = SegRead {
+        base: 0,
+        mark: 0,
+        n: 0,
+    };
+
+    /// The read as an `ElemPlus` delta (24 bits, not negative).
+    fn packed(self) -> i32 {
+        i32::from(self.base) | i32::from(self.mark) << 8 | i32::from(self.n) << 16
+    }
+
+    fn unpacked(d: i32) -> SegRead {
+        SegRead {
+            base: d as u8,
+            mark: (d >> 8) as u8,
+            n: (d >> 16) as u8,
+        }
+    }
+}
+
+/// A join's left key read by the marks, for a join whose key fields some
+/// multifield moves (`$? ?x $?`), which `index`'s `KeyPlan` leaves to the
+/// evaluator: `left_key`, after `bind_left`, reads them from `lhs_pm`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct MarkKey {
+    /// Fields read.
+    pub(crate) n: u8,
+    /// Per field: its pattern, slot and place in the slot.
+    pub(crate) reads: [(u8, u8, SegRead); MAX_RHASH],
+}
+
+const _: () = assert!(SEG_ELEM < SEG);
 
 /// `FlatPlan::test`: the orderings of two integers that pass, bits 0, 1, 2 for
 /// `Less`, `Equal`, `Greater` (`(x > y) - (x < y) + 1`).
@@ -339,6 +404,9 @@ pub struct TestPlans {
     /// `Node::Evaluator`) are no longer stored, so that they never make the plans
     /// of a network with many joins be built again and again.
     crowded: bool,
+    /// A `MODE_MARKS` plan was stored since the network was built: only then does
+    /// `join_test_eval` look for one (a look per test cost llsf's run +0.05 %).
+    pub(crate) marked_any: bool,
 }
 
 impl TestPlans {
@@ -350,12 +418,14 @@ impl TestPlans {
         nodes_used: 0,
         kids_used: 0,
         crowded: false,
+        marked_any: false,
     };
 
     /// Forgets every plan (the network was replaced).
     pub fn clear(&mut self) {
         self.empty();
         self.crowded = false;
+        self.marked_any = false;
     }
 
     /// Forgets every plan and frees the pool.
@@ -450,6 +520,8 @@ struct PlanBuild {
     used: u8,
     kids_used: u8,
     deep: bool,
+    /// The plan reads fields bound after multifields (`MODE_MARKS`).
+    marks: bool,
     /// The plan holds a `Node::Evaluator`.
     partial: bool,
     nodes: [Node; PLAN_NODES],
@@ -641,6 +713,36 @@ trait LeftFacts: Copy {
         depth: u8,
         right_fact: Ix,
     ) -> Option<(usize, Option<Ix>)>;
+
+    /// `Marked` alone: its plans read `SEG_ELEM` fields (see `source_value`), the
+    /// others' code has no such arm.
+    const MARKED: bool = false;
+}
+
+/// A `MODE_MARKS` plan's: every pattern's fact and marks as `join_test_eval` bound
+/// them in `lhs_pm`, the join's own included.
+#[derive(Clone, Copy)]
+struct Marked;
+
+impl LeftFacts for Marked {
+    #[inline(always)]
+    fn slot<'c>(self, core: &'c Core<'_>, pat: u8, slot: u8, _: u8, _: Ix) -> Option<&'c Value> {
+        fact_slot(core, core.st.net.lhs_pm.get(pat as usize)?.fact, slot)
+    }
+
+    #[inline(always)]
+    fn slot_cell(
+        self,
+        core: &Core<'_>,
+        pat: u8,
+        slot: u8,
+        _: u8,
+        _: Ix,
+    ) -> Option<(usize, Option<Ix>)> {
+        fact_slot_cell(core, core.st.net.lhs_pm.get(pat as usize)?.fact, slot)
+    }
+
+    const MARKED: bool = true;
 }
 
 /// `LeftFacts::slot` of `fact` (NONE: unbound).
@@ -929,6 +1031,7 @@ impl Core<'_> {
             used: 0,
             kids_used: 0,
             deep: false,
+            marks: false,
             partial: false,
             nodes: [Node::Not { child: 0 }; PLAN_NODES],
             kids: [0; PLAN_NODES],
@@ -936,7 +1039,9 @@ impl Core<'_> {
         let root = self
             .plan_chain(&mut b, tests, depth, Chain::And, 0, skip)
             .unwrap_or(UNPLANNED);
-        let mode = if b.deep {
+        let mode = if b.marks && root != UNPLANNED {
+            MODE_MARKS
+        } else if b.deep {
             MODE_DEEP
         } else if root != UNPLANNED && self.fixed_reads(&b, join, depth).is_some() {
             MODE_BASES
@@ -949,6 +1054,17 @@ impl Core<'_> {
             root,
             mode,
         };
+        if mode == MODE_MARKS {
+            let plans = &mut self.st.cache.compiled_plans;
+            plans.store(i, entry, &b);
+            // run by `marked_join_test` alone (a skip entry's not at all)
+            let root = core::mem::replace(&mut plans.entries[i].root, UNPLANNED);
+            if let Some(f) = plans.flats.get_mut(i) {
+                f.root = root;
+                plans.marked_any = true;
+            }
+            return;
+        }
         if !b.deep {
             b.read_right_at(depth);
         }
@@ -1023,6 +1139,34 @@ impl Core<'_> {
             right: Bases::base(self, right_fact),
         };
         self.run_inline(root, depth, bases, right_fact)
+    }
+
+    /// The tests of `join` (its chain `tests`, at `depth`) through its compiled
+    /// plan when that reads fields bound after multifields (`MODE_MARKS`), once
+    /// `join_test_eval` has bound every pattern's fact and marks in `lhs_pm`:
+    /// Some(result), or None when the evaluator must decide. Only a plan the usual
+    /// path cached runs. (Out of line: the evaluator's path stays as it was.)
+    #[inline(never)]
+    pub(crate) fn marked_join_test(&self, join: JoinId, tests: Ix, depth: u8) -> Option<bool> {
+        let i = join.ix() % PLAN_JOINS;
+        let entry = &self.st.cache.compiled_plans.entries[i];
+        if entry.mode != MODE_MARKS || entry.join != join || entry.tests != tests {
+            return None;
+        }
+        let root = self.st.cache.compiled_plans.flats.get(i)?.root;
+        if root == UNPLANNED {
+            return None;
+        }
+        self.run_inline(root, depth, Marked, NONE)
+    }
+
+    /// The field of multislot `slot` of pattern `pat` that a `Marked` plan's
+    /// `SEG_ELEM` read of `delta` names (in line in `Marked`'s runner alone, the
+    /// only one with the arm: out of line it cost s01b a third of its run).
+    #[inline(always)]
+    fn seg_elem_value(&self, pat: u8, slot: u8, delta: i32) -> Option<Value> {
+        let b = self.st.net.lhs_pm.get(pat as usize)?;
+        self.seg_field(b, slot, SegRead::unpacked(delta))
     }
 
     /// Some when every read of shallow plan `b` (of `join`, at `depth`) is of a slot
@@ -1482,6 +1626,10 @@ impl Core<'_> {
                 elem,
                 delta,
             } => {
+                // (`Marked` alone: the other runners have no such arm)
+                if L::MARKED && elem == SEG_ELEM {
+                    return self.seg_elem_value(pat, slot, delta);
+                }
                 let (cell, len) = binds.slot_cell(self, pat, slot, depth, right_fact)?;
                 match (len, self.values.get(cell + 1 + elem as usize)) {
                     (Some(len), Some(&Value::Int(i))) if (elem as usize) < len as usize => {
@@ -1541,7 +1689,7 @@ impl Core<'_> {
         let mut planned = false;
         while t != NONE {
             if t != skip {
-                let mark = (plan.used, plan.kids_used, plan.deep);
+                let mark = (plan.used, plan.kids_used, plan.deep, plan.marks);
                 let m = match self.plan_test(plan, t, depth, level) {
                     Some(m) => {
                         planned = true;
@@ -1556,7 +1704,7 @@ impl Core<'_> {
                     {
                         // reached, it ends the plan: the members after it never
                         // run (the nodes the member left behind are dropped)
-                        (plan.used, plan.kids_used, plan.deep) = mark;
+                        (plan.used, plan.kids_used, plan.deep, plan.marks) = mark;
                         *members.get_mut(len)? = plan.push(Node::Evaluator)?;
                         plan.partial = true;
                         len += 1;
@@ -1780,7 +1928,164 @@ impl Core<'_> {
             }
             return Some(s);
         }
+        if let Some(s) = self.plan_seg_elem(plan, e, depth) {
+            return Some(s);
+        }
         self.plan_arith(plan, e, depth, level)
+    }
+
+    /// A single-field pattern variable bound after a multifield of its slot (of a
+    /// pattern at or above the join's `depth`), as a `SEG_ELEM` read (the plan
+    /// becomes `MODE_MARKS`).
+    fn plan_seg_elem(&self, plan: &mut PlanBuild, e: Ix, depth: u8) -> Option<Source> {
+        let x = self.exprs[e as usize];
+        if x.op != Op::PatVar || x.aux > depth {
+            return None;
+        }
+        let r = self.seg_read(&x)?;
+        // (a field at a fixed offset is `plan_elem`'s)
+        if r.n == 0 {
+            return None;
+        }
+        plan.marks = true;
+        Some(Source::ElemPlus {
+            pat: x.aux,
+            slot: loc::slot(x.data),
+            elem: SEG_ELEM,
+            delta: r.packed(),
+        })
+    }
+
+    /// Where single-field pattern variable `x`, an element of a multislot, lies in
+    /// it (`SegRead::n` 0: at a fixed offset, no multifield before it), as
+    /// `pattern_var` finds it; None for another variable, or one after more
+    /// multifields than the marks keep.
+    pub(crate) fn seg_read(&self, x: &Expr) -> Option<SegRead> {
+        let elem = loc::elem(x.data);
+        if x.first == NONE || x.data == loc::FACT || elem == loc::SINGLE {
+            return None;
+        }
+        let desc = self.exprs[x.first as usize];
+        if desc.op != Op::PatSlot {
+            return None;
+        }
+        // singles and multifields before the element, and whether one follows it
+        let (mut i, mut singles, mut multis, mut after) = (0u8, 0u8, 0u8, false);
+        let mut c = desc.first;
+        while c != NONE {
+            let ex = self.exprs[c as usize];
+            let multi = ex.aux == 1;
+            match i.cmp(&elem) {
+                core::cmp::Ordering::Less if multi => multis += 1,
+                core::cmp::Ordering::Less => singles += 1,
+                core::cmp::Ordering::Equal if multi => return None,
+                core::cmp::Ordering::Equal => {}
+                core::cmp::Ordering::Greater => after |= multi,
+            }
+            i = i.checked_add(1)?;
+            c = ex.next;
+        }
+        if elem >= i {
+            return None;
+        }
+        Some(if multis == 0 {
+            SegRead {
+                base: singles,
+                mark: 0,
+                n: 0,
+            }
+        } else if after {
+            // before the slot's last multifield: each one before it has its mark
+            if desc.aux as usize + multis as usize > crate::rete::MAX_MARKS {
+                return None;
+            }
+            SegRead {
+                base: singles,
+                mark: desc.aux,
+                n: multis,
+            }
+        } else {
+            // after the last one: counted from the slot's end
+            SegRead {
+                base: i - elem,
+                mark: 0,
+                n: FROM_END,
+            }
+        })
+    }
+
+    /// The field `r` names in slot `slot` of the fact `b` binds, with `b`'s marks
+    /// (`WHOLE_READ`: the slot itself, a single-field one); None if unbound or not
+    /// there.
+    #[inline(always)]
+    pub(crate) fn seg_field(&self, b: &PatBinding, slot: u8, r: SegRead) -> Option<Value> {
+        if r.n == WHOLE_READ {
+            return match *fact_slot(self, b.fact, slot)? {
+                Value::Multi(_) => None,
+                v => Some(v),
+            };
+        }
+        let (cell, len) = fact_slot_cell(self, b.fact, slot)?;
+        let len = len? as usize;
+        let at = if r.n == FROM_END {
+            len.checked_sub(r.base as usize)?
+        } else {
+            let lens = b
+                .marks
+                .get(r.mark as usize..r.mark as usize + r.n as usize)?;
+            r.base as usize + lens.iter().map(|&m| m as usize).sum::<usize>()
+        };
+        if at >= len {
+            return None;
+        }
+        self.values.get(cell + 1 + at).copied()
+    }
+
+    /// The `MarkKey` of `join`: the fields `each_left_key_value` evaluates, each a
+    /// single-field slot or an element `seg_read` finds; None if one is another.
+    /// (Worked out per key: a cache of them made the engine's state larger, which
+    /// every program pays as it starts; the evaluator's walk costs more.)
+    pub(crate) fn mark_key(&self, join: JoinId) -> Option<MarkKey> {
+        let j = &self.joins[join];
+        let nrhash = self.alphas[j.alpha as usize].nrhash;
+        let mut p = MarkKey {
+            n: 0,
+            reads: [(0, 0, SegRead::NONE); MAX_RHASH],
+        };
+        let mut t = j.tests;
+        while t != NONE && p.n < nrhash {
+            let x = self.exprs[t as usize];
+            if x.op == Op::Eq2 && x.first != NONE {
+                let this = self.exprs[x.first as usize];
+                let other = this.next;
+                if this.op == Op::PatVar
+                    && this.aux == j.depth
+                    && other != NONE
+                    && self.exprs[other as usize].op == Op::PatVar
+                    && self.exprs[other as usize].aux != j.depth
+                {
+                    let o = self.exprs[other as usize];
+                    if o.aux > j.depth || o.data == loc::FACT {
+                        return None;
+                    }
+                    let r = if o.first == NONE {
+                        if loc::elem(o.data) != loc::SINGLE {
+                            return None;
+                        }
+                        SegRead {
+                            n: WHOLE_READ,
+                            ..SegRead::NONE
+                        }
+                    } else {
+                        self.seg_read(&o)?
+                    };
+                    *p.reads.get_mut(p.n as usize)? = (o.aux, loc::slot(o.data), r);
+                    p.n += 1;
+                }
+            }
+            t = x.next;
+        }
+        (p.n == nrhash).then_some(p)
     }
 
     /// Integer arithmetic `(+ ...)`, `(- ...)`, `(* ...)`, `(mod a b)`, `(div ...)`,
@@ -1899,7 +2204,8 @@ impl Core<'_> {
         if x.data == loc::FACT || x.aux > depth {
             return None;
         }
-        let elem = self.fixed_elem(x)?;
+        // (`SEG_ELEM` is `plan_seg_elem`'s; fields that far are rare)
+        let elem = self.fixed_elem(x).filter(|&e| e < SEG_ELEM)?;
         Some(Source::Elem {
             pat: x.aux,
             slot: loc::slot(x.data),
