@@ -281,7 +281,7 @@ impl SegRead {
 
     /// The read as an `ElemPlus` delta (24 bits, not negative).
     fn packed(self) -> i32 {
-        i32::from(self.base) | i32::from(self.mark) << 8 | i32::from(self.n) << 16
+        i32::from(self.base) | (i32::from(self.mark) << 8) | (i32::from(self.n) << 16)
     }
 
     fn unpacked(d: i32) -> SegRead {
