@@ -411,7 +411,13 @@ impl Core<'_> {
                     nk.n += 1;
                 }
             }
-            gen_store(&mut self.st.net.mf.keys, a as usize, gen, nk, NodeKey::EMPTY);
+            gen_store(
+                &mut self.st.net.mf.keys,
+                a as usize,
+                gen,
+                nk,
+                NodeKey::EMPTY,
+            );
             prev = Some((a, choice));
         }
         gen_store(&mut self.st.net.mf.keyed, tmpl as usize, gen, ok, false);
