@@ -974,6 +974,11 @@ impl Core<'_> {
         scratch_mark: Ix,
         stats: &mut RunStats,
     ) -> Result<Option<bool>, EvalError> {
+        // (asked once per path: a host that never interrupts costs no call per firing)
+        #[cfg(feature = "host-speedups")]
+        let poll = !self.host.never_interrupts();
+        #[cfg(not(feature = "host-speedups"))]
+        let poll = true;
         loop {
             if u64::from(*fired) >= max {
                 return Ok(Some(true));
@@ -982,9 +987,11 @@ impl Core<'_> {
             // before (the error stops the run; retracting facts makes room)
             self.pay_owed()?;
             // the host may stop an endless run between firings (`Host::interrupt`)
-            if let Err(e) = self.poll_interrupt() {
-                self.st.mode.halt = false;
-                return Err(e);
+            if poll {
+                if let Err(e) = self.poll_interrupt() {
+                    self.st.mode.halt = false;
+                    return Err(e);
+                }
             }
             if self.run_slow() != SLOW {
                 return Ok(None);

@@ -127,6 +127,13 @@ pub trait Host {
     fn interrupt(&mut self) -> bool {
         false
     }
+    /// True when `interrupt` always returns false (feature `host-speedups`): `run`
+    /// asks once and then leaves out its per-firing poll. A host that may stop a run
+    /// keeps the default (false); the loops inside a rule's actions poll either way.
+    #[cfg(feature = "host-speedups")]
+    fn never_interrupts(&self) -> bool {
+        false
+    }
 }
 
 /// How `open` opens a file: CLIPS's modes `"r"`, `"w"`, `"a"` (and their `b` forms,

@@ -447,6 +447,10 @@ impl Host for CliHost {
     fn time(&mut self) -> f64 {
         self.started.elapsed().as_secs_f64()
     }
+    // (no stop button here: `run` skips its per-firing poll)
+    fn never_interrupts(&self) -> bool {
+        true
+    }
 }
 
 fn parse_steps(options: &[String]) -> Result<Vec<Step>, String> {

@@ -57,6 +57,10 @@ impl Host for CaptureHost {
             self.other.push_str(text);
         }
     }
+    // (no stop button here: `run` skips its per-firing poll)
+    fn never_interrupts(&self) -> bool {
+        true
+    }
 }
 
 /// Our engine in a box, driven through the public API.

@@ -56,6 +56,10 @@ impl Host for TextHost {
     fn write_str(&mut self, _router: &str, text: &str) {
         self.output.push_str(text);
     }
+    // (no stop button here: `run` skips its per-firing poll)
+    fn never_interrupts(&self) -> bool {
+        true
+    }
 }
 
 /// An engine with its host.

@@ -84,6 +84,10 @@ impl Host for GameHost {
             _ => Err(HostIoError::Other),
         }
     }
+    // (no stop button here: `run` skips its per-firing poll)
+    fn never_interrupts(&self) -> bool {
+        true
+    }
 }
 
 /// An engine with a strategy's game files loaded, ready to play setups.

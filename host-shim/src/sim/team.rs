@@ -39,6 +39,10 @@ struct WorldHost;
 
 impl Host for WorldHost {
     fn write_str(&mut self, _router: &str, _text: &str) {}
+    // (no stop button here: `run` skips its per-firing poll)
+    fn never_interrupts(&self) -> bool {
+        true
+    }
 }
 
 /// One skill a robot carried out.

@@ -69,6 +69,10 @@ impl Host for MemberHost {
             self.output.push_str(text);
         }
     }
+    // (no stop button here: `run` skips its per-firing poll)
+    fn never_interrupts(&self) -> bool {
+        true
+    }
 }
 
 /// Most rule firings one step may take: message handling fires a few rules per message;
