@@ -19,8 +19,13 @@ for program in "$@"; do
     total=$((total + 1))
     (cd "$scratch" && timeout 60 "$bin" clips -f "$program" < /dev/null 2>/dev/null) \
         | tail -n +2 | grep -av -E '^--> .*: expected ' > "$scratch.ours"
+    status=${PIPESTATUS[0]}
     tail -n +2 "$golden" > "$scratch.clips"
-    if ! cmp -s "$scratch.ours" "$scratch.clips"; then
+    # a hang is a crash, even when the golden transcript stops where ours does
+    if [ "$status" -eq 124 ]; then
+        differ=$((differ + 1))
+        echo "TIMEOUT: $(basename "$program")"
+    elif ! cmp -s "$scratch.ours" "$scratch.clips"; then
         differ=$((differ + 1))
         echo "DIFFERS: $(basename "$program")"
     fi
