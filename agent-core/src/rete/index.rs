@@ -430,6 +430,25 @@ impl Core<'_> {
         same
     }
 
+    /// For join test `x` of the join at `depth`, when it is a key test (`(eq ?own
+    /// ?earlier)`: a variable of the join's own pattern against one of another
+    /// pattern), the other variable's expression. The one reading of a key test,
+    /// shared by the key plans, the evaluator's key and the marks' key.
+    #[inline(always)]
+    pub(crate) fn key_test_other(&self, x: &crate::expr::Expr, depth: u8) -> Option<Ix> {
+        if x.op != Op::Eq2 || x.first == NONE {
+            return None;
+        }
+        let this = self.exprs[x.first as usize];
+        let other = this.next;
+        (this.op == Op::PatVar
+            && this.aux == depth
+            && other != NONE
+            && self.exprs[other as usize].op == Op::PatVar
+            && self.exprs[other as usize].aux != depth)
+            .then_some(other)
+    }
+
     /// The values a left token gives `join`'s key, in test order: for each of the
     /// join's equality tests between this pattern's variable and an earlier one (at
     /// most `limit`), the earlier variable's value as `eval` reads it (`lhs_pm` must
@@ -453,19 +472,10 @@ impl Core<'_> {
         let mut t = j.tests;
         while t != NONE && found < limit {
             let x = self.exprs[t as usize];
-            if x.op == Op::Eq2 && x.first != NONE {
-                let this = self.exprs[x.first as usize];
-                let other = this.next;
-                if this.op == Op::PatVar
-                    && this.aux == j.depth
-                    && other != NONE
-                    && self.exprs[other as usize].op == Op::PatVar
-                    && self.exprs[other as usize].aux != j.depth
-                {
-                    let v = self.eval(other);
-                    f(self, v);
-                    found += 1;
-                }
+            if let Some(other) = self.key_test_other(&x, j.depth) {
+                let v = self.eval(other);
+                f(self, v);
+                found += 1;
             }
             t = x.next;
         }
@@ -633,31 +643,26 @@ impl Core<'_> {
         let mut t = j.tests;
         while t != NONE && plan.n < nrhash {
             let x = self.exprs[t as usize];
-            if x.op == Op::Eq2 && x.first != NONE {
-                let this = self.exprs[x.first as usize];
-                if this.op == Op::PatVar && this.aux == j.depth && this.next != NONE {
-                    let o = self.exprs[this.next as usize];
-                    if o.op == Op::PatVar && o.aux != j.depth {
-                        if o.aux > j.depth || o.data == loc::FACT {
-                            return unplanned;
-                        }
-                        if o.first != NONE {
-                            // host: an element at a fixed offset
-                            #[cfg(feature = "host-speedups")]
-                            match self.fixed_elem(&o) {
-                                Some(e) => {
-                                    plan.elems[plan.n as usize] = e;
-                                    plan.elem = true;
-                                }
-                                None => return unplanned,
-                            }
-                            #[cfg(not(feature = "host-speedups"))]
-                            return unplanned;
-                        }
-                        plan.vars[plan.n as usize] = (o.aux, loc::slot(o.data));
-                        plan.n += 1;
-                    }
+            if let Some(other) = self.key_test_other(&x, j.depth) {
+                let o = self.exprs[other as usize];
+                if o.aux > j.depth || o.data == loc::FACT {
+                    return unplanned;
                 }
+                if o.first != NONE {
+                    // host: an element at a fixed offset
+                    #[cfg(feature = "host-speedups")]
+                    match self.fixed_elem(&o) {
+                        Some(e) => {
+                            plan.elems[plan.n as usize] = e;
+                            plan.elem = true;
+                        }
+                        None => return unplanned,
+                    }
+                    #[cfg(not(feature = "host-speedups"))]
+                    return unplanned;
+                }
+                plan.vars[plan.n as usize] = (o.aux, loc::slot(o.data));
+                plan.n += 1;
             }
             t = x.next;
         }

@@ -2055,33 +2055,24 @@ impl Core<'_> {
         let mut t = j.tests;
         while t != NONE && p.n < nrhash {
             let x = self.exprs[t as usize];
-            if x.op == Op::Eq2 && x.first != NONE {
-                let this = self.exprs[x.first as usize];
-                let other = this.next;
-                if this.op == Op::PatVar
-                    && this.aux == j.depth
-                    && other != NONE
-                    && self.exprs[other as usize].op == Op::PatVar
-                    && self.exprs[other as usize].aux != j.depth
-                {
-                    let o = self.exprs[other as usize];
-                    if o.aux > j.depth || o.data == loc::FACT {
+            if let Some(other) = self.key_test_other(&x, j.depth) {
+                let o = self.exprs[other as usize];
+                if o.aux > j.depth || o.data == loc::FACT {
+                    return None;
+                }
+                let r = if o.first == NONE {
+                    if loc::elem(o.data) != loc::SINGLE {
                         return None;
                     }
-                    let r = if o.first == NONE {
-                        if loc::elem(o.data) != loc::SINGLE {
-                            return None;
-                        }
-                        SegRead {
-                            n: WHOLE_READ,
-                            ..SegRead::NONE
-                        }
-                    } else {
-                        self.seg_read(&o)?
-                    };
-                    *p.reads.get_mut(p.n as usize)? = (o.aux, loc::slot(o.data), r);
-                    p.n += 1;
-                }
+                    SegRead {
+                        n: WHOLE_READ,
+                        ..SegRead::NONE
+                    }
+                } else {
+                    self.seg_read(&o)?
+                };
+                *p.reads.get_mut(p.n as usize)? = (o.aux, loc::slot(o.data), r);
+                p.n += 1;
             }
             t = x.next;
         }
