@@ -341,6 +341,37 @@ stage_zenoh_team() {
         cargo test --manifest-path team-link/Cargo.toml --no-fail-fast
 }
 
+# ---------------------------------------------------------------------------------------
+# Disk. CI's machine may have little of it: one run stopped in stage 10 with 3.5 GB used
+# by the target dir. Between stages, outputs that no later stage reads are deleted. Cargo
+# rebuilds whatever a later stage does need, so deleting too much would cost time, never
+# change a result.
+
+# drop_test_executables DIR: the test binaries in DIR/deps (19-40 MB each, dozens of them).
+# Binaries cargo uplifted into DIR (robotino-agent, robotino-sim, which stage 10 runs) are
+# hard links of theirs and stay; proc-macro libraries (.so) stay.
+drop_test_executables() {
+    local dir="$1"
+    [[ -d "$dir/deps" ]] || return 0
+    find "$dir/deps" -maxdepth 1 -type f -perm -u+x ! -name '*.so' -delete
+}
+
+# drop_dirs NAME...: target-dir subdirectories no later stage reads.
+drop_dirs() {
+    local name
+    for name in "$@"; do
+        rm -rf "${TARGET_DIR:?}/$name"
+    done
+}
+
+# prune NOTE COMMAND...: runs one of the two above and reports what is left.
+prune() {
+    local note="$1"
+    shift
+    "$@"
+    echo "pruned ${note}: target dir $(disk_report)"
+}
+
 run_stage "0 prerequisites" stage_prerequisites
 if ((FAILED > 0)); then
     echo "prerequisites missing: no other stage can run" >&2
@@ -349,12 +380,15 @@ fi
 run_stage "1 cargo fmt --check" stage_fmt
 run_stage "2 clippy -D warnings" stage_clippy
 run_stage "3 host tests" stage_host_tests
+prune "stage 3's test binaries" drop_test_executables "$TARGET_DIR/debug"
 run_stage "4 i586 tests (qemu)" stage_i586_tests
 run_stage "5 no_std proof" stage_no_std
+prune "stages 4-5's builds" drop_dirs "$I586/debug" "$NO_STD_TARGET"
 run_stage "6 agent image (qemu)" stage_image
 run_stage "7 footprint gate" stage_footprint
 run_stage "8 instruction-set + contents gate" stage_isa
 run_stage "9 i586 game (qemu)" stage_i586_game
+prune "the i586, image and release builds" drop_dirs "$I586" release image
 run_stage "10 team over Zenoh" stage_zenoh_team
 
 echo
