@@ -381,6 +381,7 @@ run_stage "1 cargo fmt --check" stage_fmt
 run_stage "2 clippy -D warnings" stage_clippy
 run_stage "3 host tests" stage_host_tests
 prune "stage 3's test binaries" drop_test_executables "$TARGET_DIR/debug"
+prune "stage 3's scratch files (an oversize image build: 150 MB)" drop_dirs tmp
 run_stage "4 i586 tests (qemu)" stage_i586_tests
 run_stage "5 no_std proof" stage_no_std
 prune "stages 4-5's builds" drop_dirs "$I586/debug" "$NO_STD_TARGET"
