@@ -654,7 +654,7 @@ impl Core<'_> {
         } else {
             // keep the symbols naming external functions
             for b in self.sym_buckets.iter_mut() {
-                *b = NONE;
+                *b = crate::symbols::Head::EMPTY;
             }
             let keep = ext_syms;
             if !rom_syms.is_empty() {
@@ -695,8 +695,8 @@ impl Core<'_> {
                     &self.sym_bytes[text_start..text_start + e.len as usize],
                 ) as usize
                     % self.sym_buckets.len();
-                self.sym_entries[i as usize].next = self.sym_buckets[h];
-                self.sym_buckets[h] = i;
+                self.sym_entries[i as usize].next = self.sym_buckets[h].get();
+                self.sym_buckets[h] = crate::symbols::Head::of(i);
             }
             self.st.pools.nsyms = keep;
             self.st.pools.sym_bytes = if keep == 0 {

@@ -62,7 +62,7 @@ macro_rules! __pool_table {
             ],
             Symbols symbols "symbols" 4096 256 [
                 sym_entries: $crate::symbols::SymEntry = $crate::symbols::SymEntry::EMPTY,
-                sym_buckets: $crate::value::Ix = $crate::value::NONE,
+                sym_buckets: $crate::symbols::Head = $crate::symbols::Head::EMPTY,
             ],
             // the host holds the text of deftemplates and deffacts for ppdeftemplate and
             // ppdeffacts here too: the rule scenarios with referee and sim need ~50 KiB;

@@ -76,6 +76,17 @@ macro_rules! zeroed_or {
     (values, $zeroed:expr, $plain:expr) => {
         $zeroed
     };
+    // the symbol table: its entries and bytes past the used ones are written before
+    // they are read, its bucket heads' empty value is all-zero bytes (`Head`)
+    (sym_entries, $zeroed:expr, $plain:expr) => {
+        $zeroed
+    };
+    (sym_bytes, $zeroed:expr, $plain:expr) => {
+        $zeroed
+    };
+    (sym_buckets, $zeroed:expr, $plain:expr) => {
+        $zeroed
+    };
     // (a scratch cell is written before it is read; all-zero bytes are `Void`, the
     // value growth filled new cells with)
     (scratch, $zeroed:expr, $plain:expr) => {
@@ -141,6 +152,36 @@ fn grow_heads<T: Clone>(v: &mut Buf<T>, at_least: usize, empty: T) -> Option<usi
     }
     v.reserve(len).ok()?;
     v.resize(len, empty);
+    Some(old)
+}
+
+/// Replaces the bucket heads `v` by all-empty ones (all-zero bytes: [`ZeroFree`]),
+/// doubled from its length until there are `at_least`, in fresh zeroed memory (a new
+/// mapping of the host's pages if `v` is in one, else the allocator's): no head is
+/// copied or written, the rehash that follows links only the live entries. The old
+/// length if it grew; `None` (`v` as it was) if it was long enough or no memory came.
+fn fresh_heads<T: ZeroFree>(v: &mut Buf<T>, at_least: usize) -> Option<usize> {
+    let old = v.len();
+    if old >= at_least {
+        return None;
+    }
+    let mut len = old.max(2);
+    while len < at_least {
+        len = len.saturating_mul(2);
+    }
+    let mapped = match v {
+        Buf::Mapped { pages, .. } => Buf::mapped(len, *pages),
+        _ => None,
+    };
+    let fresh = match mapped {
+        Some(b) => b,
+        None => {
+            let mut b = Buf::Zeroed(zeroed_vec(len, &[])?);
+            b.extend_zeroed(len);
+            b
+        }
+    };
+    *v = fresh;
     Some(old)
 }
 
@@ -243,6 +284,23 @@ unsafe impl ZeroFree for crate::fact::Fact {}
 // The arena's cells past its top are written before they are read anyway
 // (`reserve_cells`, then `write_cells`).
 unsafe impl ZeroFree for crate::value::Value {}
+
+// SAFETY: integers (`Ix`, a `u32` hash), not zero-sized. Entries past the symbol
+// count are never read (every id in a chain or a value is below it); an entry is
+// written whole when its symbol is made (`Symbols::add_entry`).
+unsafe impl ZeroFree for crate::symbols::SymEntry {}
+// SAFETY: a byte. The arena's bytes past the used ones are written before they are
+// read (`Symbols::add_new`, `TailWriter`).
+unsafe impl ZeroFree for u8 {}
+// SAFETY: an `Ix` (`repr(transparent)`), not zero-sized; with `grow` all-zero bytes
+// are `Head::EMPTY` (the complement of `NONE`), checked below.
+unsafe impl ZeroFree for crate::symbols::Head {}
+const _: () = assert!(crate::symbols::Head::EMPTY.get() == NONE);
+const _: () = assert!({
+    // SAFETY: an `Ix` of zero bytes is a valid `Head` (`repr(transparent)`)
+    let z = unsafe { core::mem::transmute::<crate::value::Ix, crate::symbols::Head>(0) };
+    z.get() == NONE
+});
 
 /// A value of all-zero bytes (see `ZeroFree for Value`).
 const ZERO_VALUE: crate::value::Value = {
@@ -655,6 +713,7 @@ macro_rules! grow_items {
                             let n = start[Pool::$variant as usize]
                                 .min(limits[Pool::$variant as usize]);
                             let seeded = &mut seed.$arr[..heads!($arr).map_or(n, |h| n.max(h))];
+                            let n = seeded.len();
                             zero_start!($arr, pages, seeded, n, limits[Pool::$variant as usize]
                                 .min(ZEROED_RESERVE / core::mem::size_of::<$fty>().max(1)))
                         },)*
@@ -848,13 +907,13 @@ impl Core<'_> {
         // keeps its chains, longer)
         let grown_heads = match pool {
             Pool::Facts => grow_heads(&mut s.fact_buckets, 2 * len, NONE),
-            Pool::Symbols => grow_heads(&mut s.sym_buckets, 2 * len, NONE),
+            Pool::Symbols => fresh_heads(&mut s.sym_buckets, 2 * len),
             _ => None,
         };
         self.rebind(pool, storage);
         match (pool, grown_heads) {
             (Pool::Facts, Some(was)) => self.rehash_facts(was),
-            (Pool::Symbols, Some(was)) => self.rehash_symbols(was),
+            (Pool::Symbols, Some(_)) => self.rehash_symbols(),
             _ => {}
         }
         Ok(())
@@ -903,19 +962,19 @@ impl Core<'_> {
 
     /// Builds the symbol table's buckets again for its length now, newest symbol at
     /// each bucket's head (as interning leaves them; `Symbols::truncate` needs it);
-    /// the heads past `was`, the old length, are empty already (`grow_heads`).
+    /// every head is empty already (`fresh_heads`: fresh zeroed memory, none
+    /// written), so only the live entries are visited.
     /// Each entry keeps its text's hash (`SymEntry::hash`): a program that makes new
     /// strings as it runs grows the table often, and hashing every text again at each
     /// doubling cost it as much per firing as some of its builtins.
-    fn rehash_symbols(&mut self, was: usize) {
-        self.sym_buckets[..was].fill(NONE);
+    fn rehash_symbols(&mut self) {
         let rom = self.st.rom.symbols.len();
         let count = (self.st.pools.nsyms as usize).saturating_sub(rom);
         let n = self.sym_buckets.len();
         for k in 0..count {
             let b = self.sym_entries[k].hash as usize % n;
-            self.sym_entries[k].next = self.sym_buckets[b];
-            self.sym_buckets[b] = (rom + k) as crate::value::Ix;
+            self.sym_entries[k].next = self.sym_buckets[b].get();
+            self.sym_buckets[b] = crate::symbols::Head::of((rom + k) as crate::value::Ix);
         }
     }
 

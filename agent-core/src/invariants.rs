@@ -362,7 +362,7 @@ impl Core<'_> {
         // every entry is in the chain of its bucket, exactly once overall
         let mut chained = 0usize;
         for (b, &head) in self.sym_buckets.iter().enumerate() {
-            let mut i = head;
+            let mut i = head.get();
             let mut steps = 0usize;
             while i != NONE {
                 ensure!(
@@ -393,7 +393,7 @@ impl Core<'_> {
             let e = self.sym_entries[i];
             let text = &self.sym_bytes[e.start as usize..(e.start + e.len) as usize];
             let b = crate::symbols::hash_bytes(text) as usize % self.sym_buckets.len();
-            let mut j = self.sym_buckets[b];
+            let mut j = self.sym_buckets[b].get();
             while j != NONE {
                 let f = self.sym_entries[j as usize - rom];
                 if &self.sym_bytes[f.start as usize..(f.start + f.len) as usize] == text {
@@ -1624,8 +1624,9 @@ mod tests {
                 cx.alphas[a as usize].succ = crate::handle::JoinId::NONE;
             }),
             ("symbols missing from the hash chains", |cx| {
-                let b = cx.sym_buckets.iter().position(|&b| b != NONE).unwrap();
-                cx.sym_buckets[b] = NONE;
+                let empty = crate::symbols::Head::EMPTY;
+                let b = cx.sym_buckets.iter().position(|&b| b != empty).unwrap();
+                cx.sym_buckets[b] = empty;
             }),
             ("agenda not in strategy order among equal salience", |cx| {
                 let a = cx.st.agenda.agenda_head;

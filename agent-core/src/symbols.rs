@@ -46,6 +46,39 @@ impl SymEntry {
     };
 }
 
+/// The head of a symbol hash bucket: the newest symbol's id in the bucket, or none.
+/// With `grow` it holds the id's complement, so the empty head is all-zero bytes and a
+/// table grows into zeroed memory (fresh pages) without writing one head
+/// (`Core::rehash_symbols`); without it, the id itself (the robot's table is fixed).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(transparent)]
+pub struct Head(Ix);
+
+impl Head {
+    /// No symbol in the bucket.
+    pub const EMPTY: Head = Head::of(NONE);
+
+    /// The head that names `id` (`NONE`: [`Head::EMPTY`]).
+    #[inline(always)]
+    pub const fn of(id: Ix) -> Head {
+        #[cfg(feature = "grow")]
+        let h = Head(!id);
+        #[cfg(not(feature = "grow"))]
+        let h = Head(id);
+        h
+    }
+
+    /// The id this head names, `NONE` for an empty bucket.
+    #[inline(always)]
+    pub const fn get(self) -> Ix {
+        #[cfg(feature = "grow")]
+        let id = !self.0;
+        #[cfg(not(feature = "grow"))]
+        let id = self.0;
+        id
+    }
+}
+
 /// FNV-1a over bytes; cheap and good enough for bucket spreading. `const`, so a
 /// compiled rule base's hash chains are worked out when it compiles ([`SymbolIndex`]).
 pub const fn hash_bytes(b: &[u8]) -> u32 {
@@ -206,8 +239,8 @@ impl<'a> SymTexts<'a> {
 pub struct Symbols<'a> {
     pub rom: RomSymbols,
     pub entries: &'a mut [SymEntry],
-    /// Bucket heads; same length as `entries`.
-    pub buckets: &'a mut [Ix],
+    /// Bucket heads; at least as many as `entries`.
+    pub buckets: &'a mut [Head],
     pub bytes: &'a mut [u8],
     pub count: &'a mut Ix,
     pub bytes_used: &'a mut Ix,
@@ -243,7 +276,7 @@ impl Symbols<'_> {
         }
         let rom = self.rom.len();
         let b = h as usize % self.buckets.len();
-        let mut i = self.buckets[b];
+        let mut i = self.buckets[b].get();
         while i != NONE {
             let e = self.entries[i as usize - rom];
             if e.len as usize == s.len()
@@ -323,11 +356,11 @@ impl Symbols<'_> {
         self.entries[n - self.rom.len()] = SymEntry {
             start: used as Ix,
             len: len as Ix,
-            next: self.buckets[b],
+            next: self.buckets[b].get(),
             #[cfg(feature = "grow")]
             hash: h,
         };
-        self.buckets[b] = n as Ix;
+        self.buckets[b] = Head::of(n as Ix);
         *self.count += 1;
         *self.bytes_used += len as Ix;
         n as SymId
@@ -343,9 +376,11 @@ impl Symbols<'_> {
         // (the compiled symbols stay)
         let count = count.max(rom as Ix);
         for b in self.buckets.iter_mut() {
-            while *b != NONE && *b >= count {
-                *b = self.entries[*b as usize - rom].next;
+            let mut i = b.get();
+            while i != NONE && i >= count {
+                i = self.entries[i as usize - rom].next;
             }
+            *b = Head::of(i);
         }
         *self.count = count;
         *self.bytes_used = bytes_used;

@@ -236,7 +236,7 @@ impl Core<'_> {
     #[cfg(feature = "in-place")]
     fn read_symbols_in_place(&mut self, base: &RuleBase) {
         for b in self.sym_buckets.iter_mut() {
-            *b = NONE;
+            *b = crate::symbols::Head::EMPTY;
         }
         self.st.rom.symbols = crate::symbols::RomSymbols {
             texts: base.symbols,
