@@ -376,11 +376,9 @@ impl Symbols<'_> {
         // (the compiled symbols stay)
         let count = count.max(rom as Ix);
         for b in self.buckets.iter_mut() {
-            let mut i = b.get();
-            while i != NONE && i >= count {
-                i = self.entries[i as usize - rom].next;
+            while b.get() != NONE && b.get() >= count {
+                *b = Head::of(self.entries[b.get() as usize - rom].next);
             }
-            *b = Head::of(i);
         }
         *self.count = count;
         *self.bytes_used = bytes_used;
