@@ -1047,6 +1047,12 @@ impl Core<'_> {
         let (tests, depth) = self.join_test_fields(join);
         #[cfg(feature = "host-speedups")]
         let mut planned = false;
+        // grow: the walk's key tag and node read once (`next_blocker_candidate`)
+        #[cfg(feature = "grow")]
+        let (tag, alpha) = match a {
+            TokenId::NONE => (0, NONE),
+            _ => (self.tokens[a].parent.0, self.tokens[a].alpha()),
+        };
         while a != TokenId::NONE {
             #[cfg(feature = "host-speedups")]
             let found = self.join_test_with(join, tests, depth, left, a, &mut planned)?;
@@ -1055,7 +1061,18 @@ impl Core<'_> {
             if found {
                 return Ok(a);
             }
-            a = self.next_candidate(a, hashed);
+            #[cfg(feature = "grow")]
+            {
+                a = if hashed {
+                    self.skip_other_key(self.tokens[a].am_next, alpha, tag)
+                } else {
+                    self.tokens[a].mem_next
+                };
+            }
+            #[cfg(not(feature = "grow"))]
+            {
+                a = self.next_candidate(a, hashed);
+            }
         }
         Ok(TokenId::NONE)
     }
@@ -1284,7 +1301,7 @@ impl Core<'_> {
                 // the bucket is looked up before the output token exists: its
                 // index insert would evict `left`'s key from the key cache
                 let (from, hashed) = if self.joins[join].rjoin == JoinId::NONE {
-                    self.first_candidate(join, left)
+                    self.first_blocker_candidate(join, left)
                 } else {
                     (TokenId::NONE, false)
                 };
@@ -1535,12 +1552,12 @@ impl Core<'_> {
             // the blocker is the first match in memory order: search on after it,
             // along its index bucket when its node has one (same key as `left`)
             let hashed = self.alphas[self.tokens[blocker].alpha() as usize].nrhash > 0;
-            let mut from = self.next_candidate(blocker, hashed);
+            let mut from = self.next_blocker_candidate(blocker, hashed);
             // (a retract: another match of the fact in the same node may follow it)
             if from != TokenId::NONE {
                 let dying = self.dying_after(blocker);
                 while dying != NONE && from != TokenId::NONE && self.tokens[from].fact == dying {
-                    from = self.next_candidate(from, hashed);
+                    from = self.next_blocker_candidate(from, hashed);
                 }
             }
             // no candidate left: no search (most unblocks; an alpha blocker's join

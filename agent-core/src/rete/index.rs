@@ -1382,7 +1382,12 @@ impl Core<'_> {
         #[cfg(feature = "grow")]
         let b = self.alpha_bucket_of(b as u32);
         self.amem_buckets[b] = self.am_chain_remove(self.amem_buckets[b], am);
-        self.tokens[am].parent = TokenId::NONE;
+        // (with `grow` the tag stays: a search for the next blocker after a match
+        // going away goes on along its bucket with it, `next_candidate`)
+        #[cfg(not(feature = "grow"))]
+        {
+            self.tokens[am].parent = TokenId::NONE;
+        }
         #[cfg(feature = "host-speedups")]
         if keyed_or(&self.alphas[alpha as usize]) {
             self.or_index_unlink(am);
@@ -1418,10 +1423,40 @@ impl Core<'_> {
     /// whole memory.
     #[cfg_attr(feature = "host-speedups", inline(always))]
     pub(crate) fn first_candidate(&mut self, join: JoinId, left: TokenId) -> (TokenId, bool) {
+        self.first_candidate_in::<false>(join, left)
+    }
+
+    /// `first_candidate` for the search of a not/exists join's blocker: with
+    /// feature `grow` the first match of the left token's key (`skip_other_key`),
+    /// then `next_blocker_candidate`. A blocker search stops at its first match,
+    /// so every entry of another key it visits costs it a test; a positive join's
+    /// walk visits its key's matches (most entries, where the table is not crowded)
+    /// and keeps the one check.
+    #[cfg_attr(feature = "host-speedups", inline(always))]
+    pub(crate) fn first_blocker_candidate(
+        &mut self,
+        join: JoinId,
+        left: TokenId,
+    ) -> (TokenId, bool) {
+        self.first_candidate_in::<true>(join, left)
+    }
+
+    #[inline(always)]
+    fn first_candidate_in<const BY_KEY: bool>(
+        &mut self,
+        join: JoinId,
+        left: TokenId,
+    ) -> (TokenId, bool) {
         debug_assert!(self.joins[join].kind != JoinKind::Root);
         let alpha = self.joins[join].alpha;
         if self.alphas[alpha as usize].nrhash > 0 {
             if let Some(key) = self.left_bucket_key(join, left) {
+                #[cfg(feature = "grow")]
+                if BY_KEY {
+                    let tag = alpha_tag(alpha, key);
+                    let a = self.amem_buckets[self.alpha_bucket_of(tag)];
+                    return (self.skip_other_key(a, alpha, tag), true);
+                }
                 let b = self.bucket(alpha, key);
                 let a = self.amem_buckets[b as usize];
                 return (self.skip_foreign(a, alpha), true);
@@ -1467,6 +1502,37 @@ impl Core<'_> {
         } else {
             self.tokens[a].mem_next
         }
+    }
+
+    /// `next_candidate` for a blocker search (`first_blocker_candidate`): with
+    /// feature `grow` also past matches of other keys than `a`'s (its tag, kept
+    /// while it goes away, is the left token's: `a` passed the equality tests, or
+    /// is the first of the key).
+    #[inline(always)]
+    pub(crate) fn next_blocker_candidate(&self, a: TokenId, hashed: bool) -> TokenId {
+        #[cfg(feature = "grow")]
+        if hashed {
+            let tk = &self.tokens[a];
+            return self.skip_other_key(tk.am_next, tk.alpha(), tk.parent.0);
+        }
+        self.next_candidate(a, hashed)
+    }
+
+    /// With feature `grow`: skips bucket entries of other alpha nodes and of other
+    /// keys (their tag, kept in `parent`, differs from `tag`: a collision in the
+    /// bucket, whose equality tests fail, having run only what a larger table would
+    /// not have run either).
+    #[cfg(feature = "grow")]
+    #[inline(always)]
+    pub(crate) fn skip_other_key(&self, mut a: TokenId, alpha: Ix, tag: u32) -> TokenId {
+        while a != TokenId::NONE {
+            let tk = &self.tokens[a];
+            if tk.parent.0 == tag && tk.alpha() == alpha {
+                break;
+            }
+            a = tk.am_next;
+        }
+        a
     }
 
     /// Skips bucket entries of other alpha nodes.
