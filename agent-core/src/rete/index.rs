@@ -1508,6 +1508,7 @@ impl Core<'_> {
     /// feature `grow` also past matches of other keys than `a`'s (its tag, kept
     /// while it goes away, is the left token's: `a` passed the equality tests, or
     /// is the first of the key).
+    #[cfg(feature = "host-speedups")]
     #[inline(always)]
     pub(crate) fn next_blocker_candidate(&self, a: TokenId, hashed: bool) -> TokenId {
         #[cfg(feature = "grow")]
