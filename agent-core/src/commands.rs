@@ -371,6 +371,10 @@ impl Core<'_> {
     }
 
     fn reset_inner(&mut self) -> Result<(), EvalError> {
+        // what the scratch area held before stays: a reset in a deffunction or a rule's
+        // actions returns to a caller (a top-level `foreach`, say) that still reads its
+        // multifields there
+        let scratch_mark = self.st.frame.scratch_top;
         // the focus stack holds MAIN only, the current module
         #[cfg(feature = "modules")]
         self.reset_focus()?;
@@ -481,7 +485,7 @@ impl Core<'_> {
         if self.st.modules.nmodules > 1 {
             self.set_current_module(crate::module::MAIN);
         }
-        self.st.frame.scratch_top = 0;
+        self.st.frame.scratch_top = scratch_mark;
         Ok(())
     }
 
@@ -2711,6 +2715,17 @@ mod tests {
              (reset)\n(assert (m (max 5)))\n(run)\n",
         );
         assert!(out.contains("d=5"), "got {out}");
+    }
+
+    #[test]
+    fn reset_in_a_deffunction_keeps_the_callers_multifields() {
+        // the loop's list and the multifield argument live in scratch while the
+        // command runs: the reset and the asserts after it must not take them
+        let out = run_program(
+            "(deffunction t ($?m) (reset) (assert (q 1 2 3 4 5 6)) (printout t ?m crlf))\n\
+             (foreach ?x (create$ a b c) (t ?x k l))\n",
+        );
+        assert_eq!(out, "(a k l)\n(b k l)\n(c k l)\n");
     }
 
     #[test]
