@@ -172,6 +172,77 @@ pub fn item_end(b: &[u8]) -> Option<usize> {
     (end < b.len()).then_some(end)
 }
 
+/// Host: where `item_end_resumed`'s walk through an unfinished list stopped: the
+/// byte it goes on from and the list depth there (`at` 0: nothing walked yet; a walk
+/// stops only after the list's opening parenthesis, so never at 0).
+#[cfg(feature = "host-speedups")]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct ItemScan {
+    at: usize,
+    depth: usize,
+}
+
+#[cfg(feature = "host-speedups")]
+impl ItemScan {
+    /// A new item: nothing walked yet.
+    pub const NEW: ItemScan = ItemScan { at: 0, depth: 0 };
+}
+
+/// Host: `item_end` of a text that grows between calls (a file read piece by piece),
+/// with the same result. `scan` keeps how far the walk through an unfinished list
+/// got (stopping before a string or comment that may go on), so each byte of a long
+/// item is walked about once, not once per piece read: `load` of a 100 KB rule
+/// walked it once per 4 KB read, quadratic. `b` must be the text of the call that
+/// left `scan` with bytes added at its end; `ItemScan::NEW` for another item.
+#[cfg(feature = "host-speedups")]
+pub fn item_end_resumed(b: &[u8], scan: &mut ItemScan) -> Option<usize> {
+    let (mut i, mut depth) = (scan.at, scan.depth);
+    if i == 0 {
+        i = skip_blanks(b, 0);
+        if *b.get(i)? != b'(' {
+            // an atom or a stray `)`: short, nothing to keep
+            return item_end(b);
+        }
+    }
+    loop {
+        let Some(&c) = b.get(i) else {
+            *scan = ItemScan { at: i, depth };
+            return None;
+        };
+        match c {
+            b'(' => depth += 1,
+            b')' => {
+                depth -= 1;
+                if depth == 0 {
+                    return Some(i + 1);
+                }
+            }
+            b'"' => match string_end(b, i) {
+                Some(j) => {
+                    i = j;
+                    continue;
+                }
+                None => {
+                    *scan = ItemScan { at: i, depth };
+                    return None;
+                }
+            },
+            b';' => {
+                let j = skip_blanks(b, i);
+                if j >= b.len() {
+                    // the comment (or blanks after it) may go on
+                    *scan = ItemScan { at: i, depth };
+                    return None;
+                }
+                i = j;
+                continue;
+            }
+            _ => {}
+        }
+        i += 1;
+    }
+}
+
 /// Characters in UTF-8 bytes `b` (the bytes that start one).
 fn chars(b: &[u8]) -> u32 {
     b.iter().filter(|&&c| (c & 0xC0) != 0x80).count() as u32
@@ -677,6 +748,42 @@ mod tests {
             for k in 0..=t.len() {
                 if let Some(p) = t.get(..k) {
                     assert_eq!(item_end(p.as_bytes()), item_end_by_tokens(p), "{p:?}");
+                }
+            }
+        }
+    }
+
+    /// Host: a text read piece by piece (prefixes growing by 1 to 4 bytes), the
+    /// resumed walk gives `item_end` of each prefix, strings, comments and escapes
+    /// cut anywhere included.
+    #[cfg(feature = "host-speedups")]
+    #[test]
+    fn a_resumed_item_end_is_item_end_of_each_prefix() {
+        let texts = [
+            "(a b)",
+            "  ; c (\n (x \"(\" ; )\n y) z",
+            "(a \"b\\\"c)\" d) e",
+            "(a (b) c",
+            "(a \"b",
+            "atom rest",
+            "\"str\" x",
+            ") x",
+            "(é \"ü\") ä",
+            "(a;b)\n c)",
+            "(a ; one ( \n ; two )\n (b \"x;y\" (c)) ; ) \n ) tail",
+            "(printout t \"\\\\\" crlf)",
+            "(defrule r (x ?a) => (assert (y \"))\" ?a)) ; (\n (z))\n",
+        ];
+        for t in texts {
+            let b = t.as_bytes();
+            for step in 1..=4 {
+                let mut scan = ItemScan::NEW;
+                let mut k = 0;
+                while k < b.len() {
+                    k = (k + step).min(b.len());
+                    let want = item_end(&b[..k]);
+                    // (and on past the end found: a reader wanting the line's rest)
+                    assert_eq!(item_end_resumed(&b[..k], &mut scan), want, "{t:?} to {k}");
                 }
             }
         }

@@ -13,7 +13,7 @@ use core::fmt::Write;
 use crate::engine::Core;
 use crate::error::HostIoError;
 use crate::host::router;
-use crate::lexer::{item_end, skip_blanks};
+use crate::lexer::skip_blanks;
 use crate::value::TextBuf;
 
 /// Size of the stack buffer a file is streamed through; also the largest single item
@@ -120,6 +120,10 @@ pub struct FileItems<B> {
     lines: u32,
     /// Characters between the last of those newlines and `buf[start]`.
     col: u32,
+    /// Host: how far the walk through the item at `buf[start..]` got (positions from
+    /// `start`: they stay when the buffer's bytes move to its front).
+    #[cfg(feature = "host-speedups")]
+    scan: crate::lexer::ItemScan,
 }
 
 /// One item: its text, the item's own length in it, and the number of newlines in the
@@ -148,6 +152,8 @@ impl<B: FileBuffer> FileItems<B> {
             eof: false,
             lines: 0,
             col: 0,
+            #[cfg(feature = "host-speedups")]
+            scan: crate::lexer::ItemScan::NEW,
         }
     }
 
@@ -165,6 +171,10 @@ impl<B: FileBuffer> FileItems<B> {
         self.eof = false;
         self.lines += lines;
         self.col = 0;
+        #[cfg(feature = "host-speedups")]
+        {
+            self.scan = crate::lexer::ItemScan::NEW;
+        }
     }
 
     /// Goes on from file offset `offset`, with `lines` newlines before it (a position
@@ -213,7 +223,12 @@ impl<B: FileBuffer> FileItems<B> {
                 }
             }
             let valid = &self.buf.bytes()[self.start..self.checked];
-            if let Some(k) = item_end(valid) {
+            // host: a long item's walk goes on where the last read's stopped
+            #[cfg(feature = "host-speedups")]
+            let found = crate::lexer::item_end_resumed(valid, &mut self.scan);
+            #[cfg(not(feature = "host-speedups"))]
+            let found = crate::lexer::item_end(valid);
+            if let Some(k) = found {
                 if !whole_lines {
                     break (self.start, self.start + k, k);
                 }
@@ -260,6 +275,11 @@ impl<B: FileBuffer> FileItems<B> {
             }
             self.fill(cx)?;
         };
+        // (the next item's walk starts afresh)
+        #[cfg(feature = "host-speedups")]
+        {
+            self.scan = crate::lexer::ItemScan::NEW;
+        }
         self.start = b;
         let line_base = self.lines;
         let text = core::str::from_utf8(&self.buf.bytes()[a..b]).unwrap_or("");
