@@ -133,7 +133,7 @@ fn divide_by_zero(func: &'static str) -> EvalError {
 /// C's `(long long) x` on x86: out-of-range values and NaN become `i64::MIN` (the
 /// "integer indefinite" of both SSE `cvttsd2si` and x87 `fistp`), which is what CLIPS
 /// prints for `(integer 1e30)`. Rust's `as` would saturate instead.
-pub(super) fn c_trunc_to_i64(x: f64) -> i64 {
+pub(crate) fn c_trunc_to_i64(x: f64) -> i64 {
     const LIMIT: f64 = 9_223_372_036_854_775_808.0; // 2^63
     if x.is_nan() || !(-LIMIT..LIMIT).contains(&x) {
         i64::MIN
@@ -197,7 +197,7 @@ fn abs(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 }
 
 /// Numeric order of two CLIPS numbers (ints compared exactly).
-fn less(p: Num, q: Num) -> bool {
+pub(crate) fn less(p: Num, q: Num) -> bool {
     match (p, q) {
         (Num::Int(x), Num::Int(y)) => x < y,
         (x, y) => x.as_f64() < y.as_f64(),

@@ -27,6 +27,7 @@
 
 use crate::builtins;
 use crate::builtins::basic::{CMP_FIRST, CMP_LAST};
+use crate::builtins::Num;
 use crate::engine::Core;
 use crate::expr::{loc, Expr, FnKind, Op};
 use crate::handle::{JoinId, TokenId};
@@ -67,6 +68,13 @@ const FN_NOT: Ix = 14;
 const FN_SUB_STRING: Ix = builtins::builtin_id("sub-string");
 /// `abs`, an `ArOp::Abs` node (its id compared: no name compared per call planned).
 const FN_ABS: Ix = builtins::builtin_id("abs");
+/// `/`, `min`, `max`, `float`, `mod`, `div`: `ArOp` nodes.
+const FN_SLASH: Ix = builtins::builtin_id("/");
+const FN_MIN: Ix = builtins::builtin_id("min");
+const FN_MAX: Ix = builtins::builtin_id("max");
+const FN_FLOAT: Ix = builtins::builtin_id("float");
+const FN_MOD: Ix = builtins::builtin_id("mod");
+const FN_DIV: Ix = builtins::builtin_id("div");
 
 /// Where a compared value comes from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -167,18 +175,29 @@ impl Cell {
     }
 }
 
-/// An integer operation of a plan, as its builtin folds its arguments (wrapping).
+/// An arithmetic operation of a plan, as its builtin folds its arguments: integers
+/// wrap, a float operand makes the rest of the fold float (`+`, `-`, `*`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum ArOp {
     Add,
     Sub,
     Mul,
-    /// `mod`: the remainder with C's sign rule (two arguments).
+    /// `mod`: the remainder with C's sign rule (two arguments); of a float,
+    /// `a - trunc(a / b) * b`.
     Mod,
-    /// `div`: the quotient truncated toward zero, folded left as the builtin does.
+    /// `div`: the quotient truncated toward zero, folded left as the builtin does
+    /// (a float operand truncated first).
     Div,
     /// `abs` of its one argument (wrapping, as the builtin).
     Abs,
+    /// `/`: always a float, folded left.
+    Slash,
+    /// `min`: the first least argument, with its own type.
+    Min,
+    /// `max`: the first greatest argument, with its own type.
+    Max,
+    /// `float` of its one argument.
+    Float,
 }
 
 /// One node of a plan. Composite nodes name their children through `kids`; all
@@ -204,8 +223,8 @@ enum Node {
     Or { first: u8, len: u8 },
     /// Not `child`.
     Not { child: u8 },
-    /// `op` folded over the integers of `kids[first..first + len]` (each a `Leaf`
-    /// or an `Arith`); a non-integer or a zero divisor answers None.
+    /// `op` folded over the numbers of `kids[first..first + len]` (each a `Leaf`
+    /// or an `Arith`); a non-number or a zero divisor answers None.
     Arith { op: ArOp, first: u8, len: u8 },
     /// An operand of an `Arith` node.
     Leaf { s: Source },
@@ -1356,15 +1375,15 @@ impl Core<'_> {
         Some(false)
     }
 
-    /// The integer value of arithmetic node `node`; None where the evaluator must
-    /// decide (a non-integer operand, a zero divisor).
+    /// The value of arithmetic node `node`, as its builtin computes it; None where
+    /// the evaluator must decide (a non-number operand, a zero divisor).
     fn run_arith<L: LeftFacts>(
         &self,
         node: u8,
         depth: u8,
         binds: L,
         right_fact: Ix,
-    ) -> Option<i64> {
+    ) -> Option<Num> {
         let plans = &self.st.cache.compiled_plans;
         let Node::Arith { op, first, len } = plans.nodes[node as usize] else {
             return None;
@@ -1372,35 +1391,33 @@ impl Core<'_> {
         let kids = &plans.kids[first as usize..(first + len) as usize];
         let (&k0, rest) = kids.split_first()?;
         let mut acc = self.arith_operand(k0, depth, binds, right_fact)?;
-        if op == ArOp::Abs {
-            return Some(acc.wrapping_abs());
+        match op {
+            ArOp::Abs => {
+                return Some(match acc {
+                    Num::Int(i) => Num::Int(i.wrapping_abs()),
+                    // negated only below zero, so -0.0 stays -0.0
+                    Num::Float(f) => Num::Float(if f < 0.0 { -f } else { f }),
+                });
+            }
+            ArOp::Float => return Some(Num::Float(acc.as_f64())),
+            ArOp::Slash => acc = Num::Float(acc.as_f64()),
+            ArOp::Div => acc = Num::Int(div_operand(acc)),
+            _ => {}
         }
         for &k in rest {
             let x = self.arith_operand(k, depth, binds, right_fact)?;
-            acc = match op {
-                ArOp::Add => acc.wrapping_add(x),
-                ArOp::Sub => acc.wrapping_sub(x),
-                ArOp::Mul => acc.wrapping_mul(x),
-                ArOp::Mod => {
-                    if x == 0 {
-                        return None;
-                    }
-                    acc.wrapping_rem(x)
-                }
-                ArOp::Div => {
-                    if x == 0 {
-                        return None;
-                    }
-                    acc.wrapping_div(x)
-                }
-                // (one argument: answered above)
-                ArOp::Abs => return None,
+            acc = match (op, acc, x) {
+                (ArOp::Add, Num::Int(p), Num::Int(q)) => Num::Int(p.wrapping_add(q)),
+                (ArOp::Sub, Num::Int(p), Num::Int(q)) => Num::Int(p.wrapping_sub(q)),
+                (ArOp::Mul, Num::Int(p), Num::Int(q)) => Num::Int(p.wrapping_mul(q)),
+                (ArOp::Mod, Num::Int(p), Num::Int(q)) if q != 0 => Num::Int(p.wrapping_rem(q)),
+                _ => float_step(op, acc, x)?,
             };
         }
         Some(acc)
     }
 
-    /// One operand of an arithmetic node, as an integer.
+    /// One operand of an arithmetic node, as a number.
     #[inline(always)]
     fn arith_operand<L: LeftFacts>(
         &self,
@@ -1408,10 +1425,11 @@ impl Core<'_> {
         depth: u8,
         binds: L,
         right_fact: Ix,
-    ) -> Option<i64> {
+    ) -> Option<Num> {
         match self.st.cache.compiled_plans.nodes[k as usize] {
             Node::Leaf { s } => match self.source_value(s, depth, binds, right_fact)? {
-                Value::Int(i) => Some(i),
+                Value::Int(i) => Some(Num::Int(i)),
+                Value::Float(f) => Some(Num::Float(f)),
                 _ => None,
             },
             Node::Arith { .. } => self.run_arith(k, depth, binds, right_fact),
@@ -1644,9 +1662,7 @@ impl Core<'_> {
                     _ => None,
                 }
             }
-            Source::Arith { node } => {
-                Some(Value::Int(self.run_arith(node, depth, binds, right_fact)?))
-            }
+            Source::Arith { node } => Some(self.run_arith(node, depth, binds, right_fact)?.value()),
         }
     }
 
@@ -2079,8 +2095,9 @@ impl Core<'_> {
         (p.n == nrhash).then_some(p)
     }
 
-    /// Integer arithmetic `(+ ...)`, `(- ...)`, `(* ...)`, `(mod a b)`, `(div ...)`,
-    /// `(abs a)` of plannable operands, as an `Arith` node.
+    /// Arithmetic `(+ ...)`, `(- ...)`, `(* ...)`, `(/ ...)`, `(mod a b)`, `(div ...)`,
+    /// `(min ...)`, `(max ...)`, `(abs a)`, `(float a)` of plannable operands, as an
+    /// `Arith` node.
     fn plan_arith(&self, plan: &mut PlanBuild, e: Ix, depth: u8, level: u8) -> Option<Source> {
         if level >= PLAN_DEPTH {
             return None;
@@ -2093,9 +2110,13 @@ impl Core<'_> {
             FN_ADD => ArOp::Add,
             FN_SUB => ArOp::Sub,
             FN_MUL => ArOp::Mul,
-            id if builtins::get(id).name == "mod" => ArOp::Mod,
-            id if builtins::get(id).name == "div" => ArOp::Div,
+            FN_SLASH => ArOp::Slash,
+            FN_MOD => ArOp::Mod,
+            FN_DIV => ArOp::Div,
             FN_ABS => ArOp::Abs,
+            FN_MIN => ArOp::Min,
+            FN_MAX => ArOp::Max,
+            FN_FLOAT => ArOp::Float,
             _ => return None,
         };
         let mut members = [0u8; PLAN_NODES];
@@ -2112,7 +2133,8 @@ impl Core<'_> {
             a = self.exprs[a as usize].next;
         }
         // the builtins' arities (a call of another is the evaluator's to report)
-        if (op == ArOp::Abs) != (len == 1) || (op == ArOp::Mod && len != 2) {
+        let one = matches!(op, ArOp::Abs | ArOp::Float);
+        if one != (len == 1) || (op == ArOp::Mod && len != 2) {
             return None;
         }
         let first = plan.reserve_kids(len)?;
@@ -2216,6 +2238,69 @@ impl Core<'_> {
     }
 }
 
+/// `div`'s reading of an operand: a float truncated as C converts it.
+#[inline(always)]
+fn div_operand(n: Num) -> i64 {
+    match n {
+        Num::Int(i) => i,
+        Num::Float(f) => builtins::math::c_trunc_to_i64(f),
+    }
+}
+
+/// One step of `run_arith`'s fold other than two integers added, subtracted or
+/// multiplied: `acc` op `x` as the builtin computes it; None for a zero divisor
+/// (the builtin reports it). Out of line: the integer steps stay small.
+#[inline(never)]
+fn float_step(op: ArOp, acc: Num, x: Num) -> Option<Num> {
+    Some(match op {
+        ArOp::Add => Num::Float(acc.as_f64() + x.as_f64()),
+        ArOp::Sub => Num::Float(acc.as_f64() - x.as_f64()),
+        ArOp::Mul => Num::Float(acc.as_f64() * x.as_f64()),
+        ArOp::Slash => {
+            let q = x.as_f64();
+            if q == 0.0 {
+                return None;
+            }
+            Num::Float(acc.as_f64() / q)
+        }
+        ArOp::Mod => {
+            if x.as_f64() == 0.0 {
+                return None;
+            }
+            match (acc, x) {
+                (Num::Int(p), Num::Int(q)) => Num::Int(p.wrapping_rem(q)),
+                (p, q) => {
+                    let (p, q) = (p.as_f64(), q.as_f64());
+                    Num::Float(p - libm::trunc(p / q) * q)
+                }
+            }
+        }
+        ArOp::Div => {
+            let d = div_operand(x);
+            if d == 0 {
+                return None;
+            }
+            Num::Int(div_operand(acc).wrapping_div(d))
+        }
+        ArOp::Min => {
+            if builtins::math::less(x, acc) {
+                x
+            } else {
+                acc
+            }
+        }
+        ArOp::Max => {
+            if builtins::math::less(acc, x) {
+                x
+            } else {
+                acc
+            }
+        }
+        // (one argument: answered before the fold)
+        ArOp::Abs | ArOp::Float => return None,
+    })
+}
+
 /// Which connective a chain of tests is.
 #[derive(Clone, Copy)]
 enum Chain {
@@ -2239,5 +2324,45 @@ mod tests {
         assert_eq!(name(FN_OR), "or");
         assert_eq!(name(FN_NOT), "not");
         assert_eq!(name(FN_ABS), "abs");
+        assert_eq!(name(FN_SLASH), "/");
+        assert_eq!(name(FN_MIN), "min");
+        assert_eq!(name(FN_MAX), "max");
+        assert_eq!(name(FN_FLOAT), "float");
+        assert_eq!(name(FN_MOD), "mod");
+        assert_eq!(name(FN_DIV), "div");
+    }
+
+    /// Join tests with `/`, `min`, `max`, `float`, `abs` and float constants are
+    /// planned whole (no `Node::Evaluator`, no unplanned entry), and decide as the
+    /// evaluator does.
+    #[test]
+    fn float_arithmetic_tests_are_planned_whole() {
+        extern crate std;
+        let mut e = std::boxed::Box::new(crate::engine::SmallEngine::new());
+        let mut h = crate::testutil::CaptureHost::default();
+        e.batch_str(
+            &mut h,
+            "(deftemplate pt (slot id) (slot x))
+             (defrule tri (pt (id ?i) (x ?a)) (w ?i ?k) (pt (id ?j&:(> ?j ?i)) (x ?b))
+               (test (= (mod (+ ?a (* ?b ?k) (max ?a ?b)) 13) 0))
+               (test (or (> (/ ?a ?k) 2.5) (< (min ?b ?k) 3)))
+               (test (> (float (+ ?a ?b)) (* 0.5 (abs (- ?a ?b)))))
+               => (printout t tri \" \" ?i \" \" ?j crlf))
+             (assert (pt (id 1) (x 5)) (pt (id 2) (x 4)) (pt (id 3) (x 1.5)) (w 1 2) (w 2 1))
+             (run)",
+            false,
+        );
+        assert!(h.out.ends_with("tri 1 3\n"), "{}", h.out);
+        let core = e.core(&mut h);
+        let plans = &core.st.cache.compiled_plans;
+        let entries = plans.entries.iter().filter(|x| x.join != JoinId::NONE);
+        let mut planned = 0;
+        for x in entries {
+            assert!(x.root != UNPLANNED || x.mode == MODE_FLAT, "{x:?}");
+            planned += 1;
+        }
+        assert!(planned > 0);
+        let used = &plans.nodes[..plans.nodes_used as usize];
+        assert!(!used.contains(&Node::Evaluator), "{used:?}");
     }
 }
