@@ -69,13 +69,15 @@ fn reported(cx: &mut Core<'_>, text: &str, fallback: Value) -> EvalError {
 }
 
 /// The named template (argument 1), as `func` looks it up: a symbol naming a defined
-/// template.
+/// template. An argument of another type is `[ARGACCES5]` and an evaluation error; a
+/// template not found is `[PRNTUTIL1]` but no error (`Ok(None)`: the function returns
+/// its fallback, FALSE or `()`, and the caller's evaluation goes on, as in CLIPS 6.30).
 fn template_arg(
     cx: &mut Core<'_>,
     a: Args,
     func: &'static str,
     fallback: Value,
-) -> Result<Ix, EvalError> {
+) -> Result<Option<Ix>, EvalError> {
     let name = match cx.arg(a, 0) {
         Value::Sym(s) => s,
         _ => {
@@ -88,7 +90,7 @@ fn template_arg(
         }
     };
     match super::environment::find_construct(cx, super::extras::Kind::Deftemplate, name) {
-        Some(t) => Ok(t),
+        Some(t) => Ok(Some(t)),
         None => {
             let mut b: TextBuf<160> = TextBuf::new();
             let _ = writeln!(
@@ -96,7 +98,8 @@ fn template_arg(
                 "[PRNTUTIL1] Unable to find deftemplate {}.",
                 cx.sym_text(name)
             );
-            Err(reported(cx, b.as_str(), fallback))
+            cx.write(router::WERROR, b.as_str());
+            Ok(None)
         }
     }
 }
@@ -129,17 +132,19 @@ fn slot_name_arg(
 }
 
 /// Template and slot (arguments 1 and 2); a missing slot is `[TMPLTDEF1]` followed by
-/// `fallback`.
+/// `fallback`, an evaluation error; a template not found is `Ok(None)` (`template_arg`).
 fn slot_arg(
     cx: &mut Core<'_>,
     a: Args,
     func: &'static str,
     fallback: Value,
-) -> Result<(Ix, Ix), EvalError> {
-    let t = template_arg(cx, a, func, fallback)?;
+) -> Result<Option<(Ix, Ix)>, EvalError> {
+    let Some(t) = template_arg(cx, a, func, fallback)? else {
+        return Ok(None);
+    };
     let name = slot_name_arg(cx, a, func, fallback)?;
     match find_slot(cx, t, name) {
-        Some(s) => Ok((t, s)),
+        Some(s) => Ok(Some((t, s))),
         None => {
             let mut b: TextBuf<200> = TextBuf::new();
             let _ = write!(b, "[TMPLTDEF1] Invalid slot ");
@@ -156,7 +161,9 @@ fn slot_arg(
 }
 
 fn slot_names(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    let t = template_arg(cx, a, "deftemplate-slot-names", Value::Sym(SYM_FALSE))?;
+    let Some(t) = template_arg(cx, a, "deftemplate-slot-names", Value::Sym(SYM_FALSE))? else {
+        return Ok(Value::Sym(SYM_FALSE));
+    };
     let start = cx.multi_begin();
     if t != cx.st.facts.initial_tmpl {
         let tm = cx.templates[t as usize];
@@ -171,34 +178,43 @@ fn slot_names(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 /// FALSE for a missing slot, without a message.
 fn slot_existp(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let false_ = Value::Sym(SYM_FALSE);
-    let t = template_arg(cx, a, "deftemplate-slot-existp", false_)?;
+    let Some(t) = template_arg(cx, a, "deftemplate-slot-existp", false_)? else {
+        return Ok(false_);
+    };
     let name = slot_name_arg(cx, a, "deftemplate-slot-existp", false_)?;
     Ok(Core::bool_value(find_slot(cx, t, name).is_some()))
 }
 
+/// The slot's definition; `Ok(None)` for a template not found (the function then
+/// returns its fallback).
 fn def_of(
     cx: &mut Core<'_>,
     a: Args,
     func: &'static str,
     fallback: Value,
-) -> Result<SlotDef, EvalError> {
-    let (t, s) = slot_arg(cx, a, func, fallback)?;
-    Ok(cx.slot_def(t, s))
+) -> Result<Option<SlotDef>, EvalError> {
+    Ok(slot_arg(cx, a, func, fallback)?.map(|(t, s)| cx.slot_def(t, s)))
 }
 
 fn slot_multip(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    let def = def_of(cx, a, "deftemplate-slot-multip", Value::Sym(SYM_FALSE))?;
+    let Some(def) = def_of(cx, a, "deftemplate-slot-multip", Value::Sym(SYM_FALSE))? else {
+        return Ok(Value::Sym(SYM_FALSE));
+    };
     Ok(Core::bool_value(def.multi))
 }
 
 fn slot_singlep(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    let def = def_of(cx, a, "deftemplate-slot-singlep", Value::Sym(SYM_FALSE))?;
+    let Some(def) = def_of(cx, a, "deftemplate-slot-singlep", Value::Sym(SYM_FALSE))? else {
+        return Ok(Value::Sym(SYM_FALSE));
+    };
     Ok(Core::bool_value(!def.multi))
 }
 
 /// `static` (a `default`, or none given), `dynamic`, or FALSE for `?NONE`.
 fn slot_defaultp(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    let def = def_of(cx, a, "deftemplate-slot-defaultp", Value::Sym(SYM_FALSE))?;
+    let Some(def) = def_of(cx, a, "deftemplate-slot-defaultp", Value::Sym(SYM_FALSE))? else {
+        return Ok(Value::Sym(SYM_FALSE));
+    };
     Ok(match def.default_kind {
         DefaultKind::Required => Value::Sym(SYM_FALSE),
         DefaultKind::Dynamic => Value::Sym(cx.intern("dynamic")?),
@@ -209,12 +225,15 @@ fn slot_defaultp(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 /// The value an assert would give the slot (a dynamic default is evaluated now);
 /// `?NONE` for a slot that must be given.
 fn slot_default_value(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
-    let (t, s) = slot_arg(
+    let Some((t, s)) = slot_arg(
         cx,
         a,
         "deftemplate-slot-default-value",
         Value::Sym(SYM_FALSE),
-    )?;
+    )?
+    else {
+        return Ok(Value::Sym(SYM_FALSE));
+    };
     if cx.slot_def(t, s).default_kind == DefaultKind::Required {
         return Ok(Value::Sym(cx.intern("?NONE")?));
     }
@@ -230,7 +249,9 @@ fn slot_default_value(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 
 fn slot_types(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let fallback = empty_multi(cx);
-    let def = def_of(cx, a, "deftemplate-slot-types", fallback)?;
+    let Some(def) = def_of(cx, a, "deftemplate-slot-types", fallback)? else {
+        return Ok(fallback);
+    };
     let start = cx.multi_begin();
     if def.types == 0 {
         for name in ALL_TYPES {
@@ -251,7 +272,9 @@ fn slot_types(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 /// The `allowed-...` values, or FALSE when the slot has none.
 fn slot_allowed_values(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let fallback = empty_multi(cx);
-    let def = def_of(cx, a, "deftemplate-slot-allowed-values", fallback)?;
+    let Some(def) = def_of(cx, a, "deftemplate-slot-allowed-values", fallback)? else {
+        return Ok(fallback);
+    };
     if def.allowed == NONE {
         return Ok(Value::Sym(SYM_FALSE));
     }
@@ -288,7 +311,9 @@ fn bounds_value(cx: &mut Core<'_>, bounds: Ix, default_min: &str) -> Result<Valu
 /// unbounded end).
 fn slot_range(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let fallback = empty_multi(cx);
-    let def = def_of(cx, a, "deftemplate-slot-range", fallback)?;
+    let Some(def) = def_of(cx, a, "deftemplate-slot-range", fallback)? else {
+        return Ok(fallback);
+    };
     if def.types != 0 && def.types & types::NUMBER == 0 {
         return Ok(Value::Sym(SYM_FALSE));
     }
@@ -298,7 +323,9 @@ fn slot_range(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
 /// `()` for a single-field slot, else its cardinality (`+oo` for no maximum).
 fn slot_cardinality(cx: &mut Core<'_>, a: Args) -> Result<Value, EvalError> {
     let fallback = empty_multi(cx);
-    let def = def_of(cx, a, "deftemplate-slot-cardinality", fallback)?;
+    let Some(def) = def_of(cx, a, "deftemplate-slot-cardinality", fallback)? else {
+        return Ok(fallback);
+    };
     if !def.multi {
         return Ok(empty_multi(cx));
     }
