@@ -239,20 +239,6 @@ fn group_range(n: usize, g: usize) -> (usize, usize) {
     }
 }
 
-/// The index group whose buckets hold bucket `i` of a table of `n` heads.
-#[cfg(feature = "grow")]
-fn group_of_bucket(n: usize, i: usize) -> usize {
-    #[cfg(feature = "host-speedups")]
-    for g in 1..=OR_GROUP {
-        let (first, count) = group_range(n, g);
-        if i >= first && i < first + count {
-            return g;
-        }
-    }
-    let _ = (n, i);
-    0
-}
-
 impl Core<'_> {
     /// A hash of a value consistent with `values_same` (the join tests' equality).
     fn value_hash(&self, v: Value) -> u32 {
@@ -2391,41 +2377,50 @@ impl Core<'_> {
                 t = next;
             }
         }
-        let n_old = old.len();
-        for (i, &head) in old.iter().enumerate().skip(old_half.min(n_old)) {
-            if head == TokenId::NONE {
-                continue;
-            }
-            // each group's chains through its own links
-            let g = group_of_bucket(n_old, i);
-            #[cfg(feature = "host-speedups")]
-            if g == OR_GROUP {
-                self.relink_or_chain(head);
-                continue;
-            }
-            // partial matches, newest first: from the tail, each put at the head
-            let mut t = self.gprev(head, g);
-            loop {
-                let prev = if t == head {
-                    TokenId::NONE
-                } else {
-                    self.gprev(t, g)
-                };
-                let b = self.group_bucket(self.gbucket(t, g) as u32, g);
-                let first = self.amem_buckets[b];
-                self.set_gnext(t, first, g);
-                if first == TokenId::NONE {
-                    self.set_gprev(t, t, g);
-                } else {
-                    let tail = self.gprev(first, g);
-                    self.set_gprev(t, tail, g);
-                    self.set_gprev(first, t, g);
+        // group by group, each group's range of the old and the new table read once
+        // (not per token: the table's fields may alias the tokens' for the compiler)
+        let (n_old, n_new) = (old.len(), self.amem_buckets.len());
+        #[cfg(feature = "host-speedups")]
+        let groups = OR_GROUP;
+        #[cfg(not(feature = "host-speedups"))]
+        let groups = 0;
+        for g in 0..=groups {
+            let (first, count) = group_range(n_old, g);
+            let (start, end) = (first.max(old_half), (first + count).min(n_old));
+            let (new_first, new_count) = group_range(n_new, g);
+            for &head in old.get(start..end).unwrap_or(&[]) {
+                if head == TokenId::NONE {
+                    continue;
                 }
-                self.amem_buckets[b] = t;
-                if prev == TokenId::NONE {
-                    break;
+                #[cfg(feature = "host-speedups")]
+                if g == OR_GROUP {
+                    self.relink_or_chain(head);
+                    continue;
                 }
-                t = prev;
+                // partial matches, newest first: from the tail, each put at the head
+                let mut t = self.gprev(head, g);
+                loop {
+                    let prev = if t == head {
+                        TokenId::NONE
+                    } else {
+                        self.gprev(t, g)
+                    };
+                    let b = new_first + reduce(self.gbucket(t, g) as u32, new_count);
+                    let first = self.amem_buckets[b];
+                    self.set_gnext(t, first, g);
+                    if first == TokenId::NONE {
+                        self.set_gprev(t, t, g);
+                    } else {
+                        let tail = self.gprev(first, g);
+                        self.set_gprev(t, tail, g);
+                        self.set_gprev(first, t, g);
+                    }
+                    self.amem_buckets[b] = t;
+                    if prev == TokenId::NONE {
+                        break;
+                    }
+                    t = prev;
+                }
             }
         }
     }
