@@ -1166,6 +1166,10 @@ impl Core<'_> {
         let (tests, depth) = self.join_test_fields(join);
         let mut planned = false;
         if nrhash == 0 {
+            // an empty memory: nothing to look up
+            if self.alpha_mems[self.joins[join].alpha as usize].head == TokenId::NONE {
+                return Ok(());
+            }
             let Some(mut cur) = self.or_lookup(join, left) else {
                 let (a, hashed) = self.first_candidate(join, left);
                 return self.left_walk(join, left, a, hashed);
@@ -1182,8 +1186,14 @@ impl Core<'_> {
                 }
             }
         }
-        // keyed: one bucket of the keyed or-index per alternative, when the or
-        // test reads the node's field
+        // keyed: the key's bucket first, the usual walk's start: empty (most often
+        // when the memory is small), no alternative can have a match
+        let (first, hashed) = self.first_candidate(join, left);
+        if first == TokenId::NONE {
+            return Ok(());
+        }
+        // one bucket of the keyed or-index per alternative, when the or test reads
+        // the node's field
         let ov = self.or_values(join, left, NONE);
         if let Some(ov) = &ov {
             let alpha = self.joins[join].alpha;
@@ -1213,7 +1223,7 @@ impl Core<'_> {
                 }
             }
         }
-        let (mut a, hashed) = self.first_candidate(join, left);
+        let mut a = first;
         let Some(ov) = ov else {
             return self.left_walk(join, left, a, hashed);
         };

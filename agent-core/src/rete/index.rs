@@ -121,6 +121,9 @@ pub struct OrPlan {
     tests: Ix,
     or: Ix,
     field: Ix,
+    /// Where the field lies in the join's pattern's fact: its slot, and its element
+    /// at a fixed offset or `WHOLE_SLOT`.
+    at: (u8, u8),
     alts: [(u8, u8, u8); OR_WAYS],
     n: u8,
 }
@@ -132,6 +135,7 @@ impl OrPlan {
         tests: NONE,
         or: NONE,
         field: NONE,
+        at: (0, WHOLE_SLOT),
         alts: [(0, 0, WHOLE_SLOT); OR_WAYS],
         n: 0,
     };
@@ -144,6 +148,8 @@ pub(crate) struct OrValues {
     pub(crate) or: Ix,
     /// The expression reading the field (of the join's pattern).
     field: Ix,
+    /// `OrPlan::at`.
+    at: (u8, u8),
     vals: [Value; OR_WAYS],
     n: usize,
 }
@@ -271,6 +277,10 @@ impl Core<'_> {
     /// right-hash field values.
     fn alpha_key(&mut self, alpha: Ix, b: PatBinding) -> u32 {
         if let Some(key) = self.quick_alpha_key(alpha, b.fact) {
+            return key;
+        }
+        #[cfg(feature = "host-speedups")]
+        if let Some(key) = self.elem_alpha_key(alpha, b.fact) {
             return key;
         }
         let (scratch, sp) = (self.st.frame.scratch_top, self.st.frame.sp);
@@ -698,6 +708,38 @@ impl Core<'_> {
         Some(key)
     }
 
+    /// Host: `quick_alpha_key` where a field is an element at a fixed offset (an
+    /// ordered fact's), read there too (out of line: the plain slots' path stays
+    /// as it is).
+    #[cfg(feature = "host-speedups")]
+    #[inline(never)]
+    fn elem_alpha_key(&self, alpha: Ix, fact: Ix) -> Option<u32> {
+        let n = &self.alphas[alpha as usize];
+        let mut key = 0x5bd1_e995u32;
+        for &e in &n.rhash[..key_fields(n)] {
+            let v = self.key_field_value(fact, &self.exprs[e as usize])?;
+            key = mix(key, atom_hash(v));
+        }
+        Some(key)
+    }
+
+    /// Host: the value a right-hash (or or-lookup) field `x` of a pattern reads in
+    /// `fact`, read straight from the fact: a plain single-field slot, or an element
+    /// at a fixed offset of a multislot (an ordered fact's field); None for another
+    /// field (after a multifield), which `pattern_var` reads.
+    #[cfg(feature = "host-speedups")]
+    #[inline(always)]
+    fn key_field_value(&self, fact: Ix, x: &crate::expr::Expr) -> Option<Value> {
+        if x.first == NONE {
+            return self.plain_slot_value(fact, x);
+        }
+        if x.data == loc::FACT {
+            return None;
+        }
+        let elem = self.fixed_elem(x)?;
+        self.field_at(fact, (loc::slot(x.data), elem))
+    }
+
     /// Whether alpha node `alpha`'s matches are in the index: it has a right hash,
     /// or (host) an or-lookup field (`compile::alpha` `or_field`).
     #[inline(always)]
@@ -715,10 +757,11 @@ impl Core<'_> {
     }
 
     /// When test `t` of a join at pattern `depth` is `?a | ?b ...`, an or of
-    /// equalities of one plain single-field slot of that pattern with plain slots of
-    /// earlier patterns (host: or their elements at fixed offsets, as an ordered
-    /// fact's `(triple ?a ?b ?c)`): the expression reading that slot (its first
-    /// member's).
+    /// equalities of one plain single-field slot of that pattern (host: or an
+    /// element at a fixed offset, as an ordered fact's `(rel ?a|?b ?x)`) with plain
+    /// slots of earlier patterns (host: or their elements at fixed offsets, as an
+    /// ordered fact's `(triple ?a ?b ?c)`): the expression reading that field (its
+    /// first member's).
     pub(crate) fn or_of_equalities(&self, t: Ix, depth: u8) -> Option<Ix> {
         let x = self.exprs[t as usize];
         if x.op != Op::Or || x.first == NONE {
@@ -734,7 +777,7 @@ impl Core<'_> {
             let this = self.exprs[e.first as usize];
             if this.op != Op::PatVar
                 || this.aux != depth
-                || this.first != NONE
+                || !self.own_field_read(&this)
                 || this.data == loc::FACT
                 || this.next == NONE
             {
@@ -762,6 +805,18 @@ impl Core<'_> {
             c = e.next;
         }
         Some(field)
+    }
+
+    /// Whether a join's or-lookup can read field `x` of its own pattern: a plain
+    /// slot (host: or an element at a fixed offset, an ordered fact's `(rel ?a|?b
+    /// ?x)`, which the index and `or_match` read there).
+    #[inline(always)]
+    fn own_field_read(&self, x: &crate::expr::Expr) -> bool {
+        #[cfg(feature = "host-speedups")]
+        let read = x.first == NONE || self.fixed_elem(x).is_some();
+        #[cfg(not(feature = "host-speedups"))]
+        let read = x.first == NONE;
+        read
     }
 
     /// Whether test `t` reports no error whatever the fact: `eq` of pattern
@@ -820,6 +875,7 @@ impl Core<'_> {
         let mut out = OrValues {
             or: plan.or,
             field: plan.field,
+            at: plan.at,
             vals: [Value::Void; OR_WAYS],
             n: 0,
         };
@@ -872,9 +928,21 @@ impl Core<'_> {
         if or == NONE {
             return none;
         }
+        let field = self.exprs[self.exprs[or as usize].first as usize].first;
+        let f = self.exprs[field as usize];
+        let elem = if f.first == NONE {
+            WHOLE_SLOT
+        } else {
+            // (`or_of_equalities` found it at a fixed offset)
+            match self.fixed_elem(&f) {
+                Some(e) => e,
+                None => return none,
+            }
+        };
         let mut plan = OrPlan {
             or,
-            field: self.exprs[self.exprs[or as usize].first as usize].first,
+            field,
+            at: (loc::slot(f.data), elem),
             ..none
         };
         let mut c = self.exprs[or as usize].first;
@@ -901,6 +969,29 @@ impl Core<'_> {
         plan
     }
 
+    /// Host: field `(slot, elem)` of `fact` (`elem` an element at a fixed offset, or
+    /// `WHOLE_SLOT` for the slot itself) when it is a single field there; None when
+    /// it is not (a multislot read whole, an element beyond its multislot's end).
+    #[cfg(feature = "host-speedups")]
+    #[inline(always)]
+    pub(crate) fn field_at(&self, fact: Ix, (slot, elem): (u8, u8)) -> Option<Value> {
+        if fact == NONE {
+            return None;
+        }
+        if elem == WHOLE_SLOT {
+            return self.plain_slot(fact, Ix::from(slot));
+        }
+        match self.slot_cell_inline(fact, Ix::from(slot)) {
+            (cell, Some(len)) if (elem as usize) < len as usize => {
+                match self.values[cell + 1 + elem as usize] {
+                    Value::Multi(_) => None,
+                    v => Some(v),
+                }
+            }
+            _ => None,
+        }
+    }
+
     /// Host: the result of the or test of `or_values` for a candidate (fact
     /// `fact`): its field read plainly and compared with each alternative as the
     /// test's `eq`s compare (`values_same`); None when the field cannot be read
@@ -908,7 +999,7 @@ impl Core<'_> {
     #[cfg(feature = "host-speedups")]
     #[inline(always)]
     pub(crate) fn or_match(&self, ov: &OrValues, fact: Ix) -> Option<bool> {
-        let v = self.plain_slot_value(fact, &self.exprs[ov.field as usize])?;
+        let v = self.field_at(fact, ov.at)?;
         Some(
             ov.vals[..ov.n]
                 .iter()
@@ -1077,7 +1168,7 @@ impl Core<'_> {
     fn or_field_hash(&mut self, alpha: Ix, b: PatBinding) -> u32 {
         let n = self.alphas[alpha as usize];
         let e = n.rhash[n.nrhash as usize];
-        if let Some(v) = self.plain_slot_value(b.fact, &self.exprs[e as usize]) {
+        if let Some(v) = self.key_field_value(b.fact, &self.exprs[e as usize]) {
             return atom_hash(v);
         }
         let (scratch, sp) = (self.st.frame.scratch_top, self.st.frame.sp);
