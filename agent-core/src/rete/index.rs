@@ -17,6 +17,8 @@ use crate::engine::Core;
 use crate::error::EvalError;
 use crate::expr::{loc, Op};
 use crate::handle::{JoinId, TokenId};
+#[cfg(feature = "host-speedups")]
+use crate::rete::plan::SegRead;
 use crate::value::{Ix, Value, NONE};
 
 /// `Core::value_hash` of a single-field value (no multifield to walk; callers
@@ -60,7 +62,17 @@ pub struct KeyPlan {
     /// Host: some field reads an element (`elems`): `elem_left_key` computes the key.
     #[cfg(feature = "host-speedups")]
     pub elem: bool,
+    /// Host, of an unplanned key (`n` is `NONE.n`): 0, or the join's `MarkKey` laid
+    /// out by `marks_left_key` (`cache_marks_key`): its fields in `vars` and, as
+    /// `SegRead` bytes, `elems`, or `NO_MARKS` when it has none that fits (the
+    /// padding holds it: the entry is no larger).
+    #[cfg(feature = "host-speedups")]
+    pub marks: u8,
 }
+
+/// `KeyPlan::marks` of a join whose key not even the marks read.
+#[cfg(feature = "host-speedups")]
+const NO_MARKS: u8 = u8::MAX;
 
 /// `KeyPlan::elems` of a field that is a whole single-field slot.
 #[cfg(feature = "host-speedups")]
@@ -76,6 +88,8 @@ impl KeyPlan {
         elems: [WHOLE_SLOT; MAX_RHASH],
         #[cfg(feature = "host-speedups")]
         elem: false,
+        #[cfg(feature = "host-speedups")]
+        marks: 0,
     };
 }
 
@@ -511,6 +525,30 @@ impl Core<'_> {
     #[cfg(feature = "host-speedups")]
     #[inline(never)]
     fn marks_left_key(&mut self, join: JoinId) -> Option<u32> {
+        // laid out once in the join's key-plan entry, which `quick_left_key` filled
+        // just now with a plan that is `NONE` (a planned key's rare misses, and an
+        // entry another join took, go the old way: their code as it was)
+        let i = join.ix() % KEY_PLANS;
+        let plan = &self.st.cache.key_plans[i];
+        if plan.n == KeyPlan::NONE.n && plan.join == join && plan.tests == self.joins[join].tests {
+            if plan.marks == 0 {
+                self.cache_marks_key(i, join);
+            }
+            let plan = &self.st.cache.key_plans[i];
+            if plan.marks == NO_MARKS {
+                // the evaluator's
+                return None;
+            }
+            let mut key = 0x5bd1_e995u32;
+            for (&(pat, slot), &r) in plan.vars.iter().zip(&plan.elems).take(plan.marks as usize) {
+                let b = self.st.net.lhs_pm.get(pat as usize)?;
+                let v = self.seg_field(b, slot, SegRead::of_byte(r))?;
+                key = mix(key, atom_hash(v));
+            }
+            return Some(key);
+        }
+        // a planned key the plan could not read (a multifield where it expects a
+        // single field, a pattern beyond the token's binds): worked out here
         let p = self.mark_key(join)?;
         let mut key = 0x5bd1_e995u32;
         for &(pat, slot, r) in p.reads.get(..p.n as usize)? {
@@ -592,6 +630,37 @@ impl Core<'_> {
             }
         }
         Some(key)
+    }
+
+    /// Host: `join`'s `MarkKey` laid out in its key-plan entry `i`, whose plan leaves
+    /// the key to the evaluator (out of line: once per entry).
+    #[cfg(feature = "host-speedups")]
+    #[cold]
+    #[inline(never)]
+    fn cache_marks_key(&mut self, i: usize, join: JoinId) {
+        let plan = KeyPlan {
+            marks: NO_MARKS,
+            ..self.st.cache.key_plans[i]
+        };
+        let marks = match self.mark_key(join) {
+            Some(p) if p.n > 0 => p,
+            _ => {
+                self.st.cache.key_plans[i] = plan;
+                return;
+            }
+        };
+        let mut laid = plan;
+        for (k, &(pat, slot, r)) in marks.reads.iter().enumerate().take(marks.n as usize) {
+            let Some(b) = r.to_byte() else {
+                // a read the byte cannot hold: the evaluator's
+                self.st.cache.key_plans[i] = plan;
+                return;
+            };
+            laid.vars[k] = (pat, slot);
+            laid.elems[k] = b;
+        }
+        laid.marks = marks.n;
+        self.st.cache.key_plans[i] = laid;
     }
 
     /// `quick_left_key` for a key plan (cache entry `i`) that reads a pattern at or
