@@ -111,7 +111,13 @@ impl Compiler<'_, '_> {
             key_len: pat.path_len,
             rhash: pat.rhash,
             nrhash: pat.nrhash,
+            #[cfg(feature = "host-speedups")]
+            elem_key: false,
         };
+        #[cfg(feature = "host-speedups")]
+        {
+            self.cx.alphas[n].elem_key = self.cx.elem_keyed(n as Ix);
+        }
         self.assign_trie_key(tmpl, n as Ix, pat.alone);
         self.insert_alpha_sorted(tmpl, n as Ix);
         self.cx.st.pools.nalpha += 1;
@@ -394,6 +400,10 @@ impl Compiler<'_, '_> {
             return;
         }
         self.cx.alphas[a as usize].rhash[nrhash] = field;
+        #[cfg(feature = "host-speedups")]
+        {
+            self.cx.alphas[a as usize].elem_key = self.cx.elem_keyed(a);
+        }
         #[cfg(feature = "host-speedups")]
         if nrhash == 0 {
             let mut t = self.cx.alpha_mems[a as usize].head;

@@ -389,7 +389,7 @@ impl Core<'_> {
                 out,
                 "AlphaNode {{ tmpl: {}, desc: {}, tests: {}, next_in_tmpl: {}, succ: {}, \
                  nmarks: {}, live: {}, path_loc: {}, path_test: {}, \
-                 key: {}, key_len: {}, rhash: {}, nrhash: {} }},",
+                 key: {}, key_len: {}, rhash: {}, nrhash: {}, ..AlphaNode::EMPTY }},",
                 I(a.tmpl),
                 I(a.desc),
                 I(a.tests),

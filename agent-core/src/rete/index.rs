@@ -294,8 +294,10 @@ impl Core<'_> {
             return key;
         }
         #[cfg(feature = "host-speedups")]
-        if let Some(key) = self.elem_alpha_key(alpha, b.fact) {
-            return key;
+        if self.alphas[alpha as usize].elem_key {
+            if let Some(key) = self.elem_alpha_key(alpha, b.fact) {
+                return key;
+            }
         }
         let (scratch, sp) = (self.st.frame.scratch_top, self.st.frame.sp);
         let saved = self.st.net.this_pm;
@@ -790,6 +792,31 @@ impl Core<'_> {
             key = mix(key, atom_hash(v));
         }
         Some(key)
+    }
+
+    /// Host: whether node `alpha`'s key has a field at a fixed offset of a multislot
+    /// (an ordered fact's) and every other field plain or so too: only then can
+    /// `elem_alpha_key` serve it, when `quick_alpha_key` cannot.
+    #[cfg(feature = "host-speedups")]
+    pub(crate) fn elem_keyed(&self, alpha: Ix) -> bool {
+        let n = &self.alphas[alpha as usize];
+        let mut elem = false;
+        for &e in &n.rhash[..key_fields(n)] {
+            if e == NONE {
+                return false;
+            }
+            let x = &self.exprs[e as usize];
+            if x.data == loc::FACT {
+                return false;
+            }
+            if x.first != NONE {
+                if self.fixed_elem(x).is_none() {
+                    return false;
+                }
+                elem = true;
+            }
+        }
+        elem
     }
 
     /// Host: the value a right-hash (or or-lookup) field `x` of a pattern reads in

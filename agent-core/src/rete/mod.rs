@@ -113,6 +113,12 @@ pub struct AlphaNode {
     /// only here apart, which decides the order facts visit them.
     pub rhash: [Ix; MAX_RHASH],
     pub nrhash: u8,
+    /// Host: whether `alpha_key` may read the key in place when a field is an
+    /// element at a fixed offset (`index::elem_keyed`, decided when the fields are):
+    /// a key with a field no in-place read serves (a `$?rest`) goes to the
+    /// evaluator without trying.
+    #[cfg(feature = "host-speedups")]
+    pub elem_key: bool,
 }
 
 impl AlphaNode {
@@ -130,6 +136,8 @@ impl AlphaNode {
         key_len: 0,
         rhash: [NONE; MAX_RHASH],
         nrhash: 0,
+        #[cfg(feature = "host-speedups")]
+        elem_key: false,
     };
 }
 
