@@ -58,7 +58,8 @@ impl Compiler<'_, '_> {
         let nrhash = pat.nrhash as usize;
         let mut a = self.cx.templates[tmpl as usize].alpha_head;
         while a != NONE && !pat.alone {
-            let n = self.cx.alphas[a as usize];
+            // (read in place: a template's nodes are walked for every pattern on it)
+            let n = &self.cx.alphas[a as usize];
             if n.live
                 && !self.old_only_alpha(a)
                 && self.chain_eq(n.desc, pat.desc)
