@@ -307,9 +307,11 @@ impl Core<'_> {
                 self.alpha_disc[a as usize].key = key;
                 // distinct constants count: nodes that all want the same one gain
                 // nothing from a lookup
-                let new_key = !self.earlier_has_key(t, a, at, key);
-                if let Some(c) = counted.iter_mut().find(|c| c.0 == at || c.0 == NO_LOC) {
-                    *c = (at, c.1 + usize::from(new_key));
+                if let Some(i) = counted.iter().position(|c| c.0 == at || c.0 == NO_LOC) {
+                    // (only whether a slot reaches KEY_MIN matters: past it, no walk
+                    // over the earlier nodes, which made this quadratic in them)
+                    let new_key = counted[i].1 < KEY_MIN && !self.earlier_has_key(t, a, at, key);
+                    counted[i] = (at, counted[i].1 + usize::from(new_key));
                 }
             }
             a = self.alphas[a as usize].next_in_tmpl;
