@@ -57,9 +57,16 @@ impl Compiler<'_, '_> {
         let tmpl = pat.tmpl;
         let nrhash = pat.nrhash as usize;
         let mut a = self.cx.templates[tmpl as usize].alpha_head;
+        #[cfg(feature = "host-speedups")]
+        let sig = self.share_sig(pat);
         while a != NONE && !pat.alone {
             // (read in place: a template's nodes are walked for every pattern on it)
             let n = &self.cx.alphas[a as usize];
+            #[cfg(feature = "host-speedups")]
+            if n.share_sig != sig && n.share_sig != 0 {
+                a = n.next_in_tmpl;
+                continue;
+            }
             if n.live
                 && !self.old_only_alpha(a)
                 && self.chain_eq(n.desc, pat.desc)
@@ -114,6 +121,8 @@ impl Compiler<'_, '_> {
             nrhash: pat.nrhash,
             #[cfg(feature = "host-speedups")]
             elem_key: false,
+            #[cfg(feature = "host-speedups")]
+            share_sig: sig,
         };
         #[cfg(feature = "host-speedups")]
         {
@@ -276,20 +285,24 @@ impl Compiler<'_, '_> {
     fn assign_trie_key(&mut self, tmpl: Ix, n: Ix, alone: bool) {
         let me = self.cx.alphas[n as usize];
         let mut key = [0 as Ix; PATH_LEN];
+        // a level given a new id leaves no node with the same prefix below it
+        let mut fresh = false;
         for lvl in 0..me.key_len as usize {
             let mut id = 0;
-            let mut a = if alone {
+            let mut a = if alone || fresh {
                 NONE
             } else {
                 self.cx.templates[tmpl as usize].alpha_head
             };
             while a != NONE {
-                let o = self.cx.alphas[a as usize];
+                // (read in place, the level's own test first: every node of the
+                // template is walked per level)
+                let o = &self.cx.alphas[a as usize];
                 if o.key_len as usize > lvl
-                    && !self.old_only_alpha(a)
-                    && o.key[..lvl] == key[..lvl]
-                    && o.path_loc[lvl] == me.path_loc[lvl]
                     && o.path_test[lvl] == me.path_test[lvl]
+                    && o.path_loc[lvl] == me.path_loc[lvl]
+                    && o.key[..lvl] == key[..lvl]
+                    && !self.old_only_alpha(a)
                 {
                     id = o.key[lvl];
                     break;
@@ -299,6 +312,7 @@ impl Compiler<'_, '_> {
             if id == 0 {
                 self.cx.st.pools.trie_ids = self.cx.st.pools.trie_ids.wrapping_add(1).max(1);
                 id = self.cx.st.pools.trie_ids;
+                fresh = true;
             }
             key[lvl] = id;
         }
@@ -329,13 +343,15 @@ impl Compiler<'_, '_> {
     /// Keeps a template's alpha nodes in pattern-network order: depth first, newer
     /// sibling nodes first, a pattern's own node before longer ones.
     fn insert_alpha_sorted(&mut self, tmpl: Ix, n: Ix) {
-        let me = self.cx.alphas[n as usize];
+        let me = &self.cx.alphas[n as usize];
+        let mine = &me.key[..me.key_len as usize];
         let mut prev = NONE;
         let mut a = self.cx.templates[tmpl as usize].alpha_head;
         while a != NONE {
-            let o = self.cx.alphas[a as usize];
+            // (read in place: a template's nodes are walked for each new one)
+            let o = &self.cx.alphas[a as usize];
             // an equal path is the same CLIPS node, whose newest joins come first
-            if !key_before(&o.key[..o.key_len as usize], &me.key[..me.key_len as usize]) {
+            if !key_before(&o.key[..o.key_len as usize], mine) {
                 break;
             }
             prev = a;
@@ -430,6 +446,52 @@ impl Compiler<'_, '_> {
                     );
                     p.aux == q.aux && p.data == q.data && self.chain_eq(p.first, q.first)
                 }))
+    }
+
+    /// Host: a hash of what `find_or_make_alpha` compares (the descriptor and test
+    /// chains as `chain_eq` sees them, the right-hash fields as `same_field` does):
+    /// patterns it finds equal hash equal. Never 0.
+    #[cfg(feature = "host-speedups")]
+    fn share_sig(&self, pat: &PatIr) -> u32 {
+        let mut h = mix16(0x2545_f491, u32::from(pat.nrhash));
+        h = self.chain_sig(h, pat.desc);
+        h = mix16(h, 0x5a5a);
+        h = self.chain_sig(h, pat.atests);
+        for &e in &pat.rhash[..pat.nrhash as usize] {
+            let x = self.cx.exprs[e as usize];
+            h = mix16(h, u32::from(x.data));
+            if x.first != NONE {
+                let p = self.cx.exprs[x.first as usize];
+                h = mix16(mix16(h, u32::from(p.aux)), u32::from(p.data));
+                h = self.chain_sig(h, p.first);
+            }
+        }
+        h.max(1)
+    }
+
+    /// Host: `share_sig` of a chain, what `expr_eq` compares of each member (a
+    /// number's value is left out: `expr_eq` compares values, not their cells).
+    #[cfg(feature = "host-speedups")]
+    fn chain_sig(&self, mut h: u32, mut c: Ix) -> u32 {
+        while c != NONE {
+            let x = self.cx.exprs[c as usize];
+            h = mix16(h, x.op as u32);
+            h = mix16(h, u32::from(shape_aux(x)));
+            h = mix16(h, u32::from(x.data));
+            match x.op {
+                Op::Int | Op::Float => {}
+                Op::PatVar => {
+                    if x.first != NONE {
+                        let p = self.cx.exprs[x.first as usize];
+                        h = mix16(mix16(h, u32::from(p.aux)), u32::from(p.data));
+                        h = self.chain_sig(h, p.first);
+                    }
+                }
+                _ => h = self.chain_sig(h, x.first),
+            }
+            c = x.next;
+        }
+        h
     }
 
     pub(crate) fn chain_eq(&self, mut a: Ix, mut b: Ix) -> bool {

@@ -238,13 +238,15 @@ impl Compiler<'_, '_> {
                 let mut c = self.cx.joins[parent].first_child;
                 let mut found = JoinId::NONE;
                 while c != JoinId::NONE {
-                    let cj = self.cx.joins[c];
-                    if cj.refs > 0
-                        && (!replacing || cj.refs > self.replaced_uses(name, c))
+                    // (read in place, the pattern first: the root's children are
+                    // every rule's first join, walked for each new rule)
+                    let cj = &self.cx.joins[c];
+                    if cj.alpha == ce.alpha
+                        && cj.refs > 0
                         && cj.kind == ce.kind
-                        && cj.alpha == ce.alpha
                         && cj.rjoin == rjoin
                         && cj.depth == ce.depth
+                        && (!replacing || cj.refs > self.replaced_uses(name, c))
                         && self.chain_eq(cj.tests, ce.jtests)
                         && self.chain_eq(cj.post, ce.post)
                     {

@@ -119,6 +119,11 @@ pub struct AlphaNode {
     /// evaluator without trying.
     #[cfg(feature = "host-speedups")]
     pub elem_key: bool,
+    /// Host: a hash of what sharing compares (`compile::alpha` `share_sig`), never 0
+    /// for a node the compiler made (0: unknown, compared in full), so finding an
+    /// identical node passes the others over at one comparison each.
+    #[cfg(feature = "host-speedups")]
+    pub share_sig: u32,
 }
 
 impl AlphaNode {
@@ -138,6 +143,8 @@ impl AlphaNode {
         nrhash: 0,
         #[cfg(feature = "host-speedups")]
         elem_key: false,
+        #[cfg(feature = "host-speedups")]
+        share_sig: 0,
     };
 }
 
