@@ -69,6 +69,20 @@ impl RunStats {
 /// How deep `batch` files may run inside each other (each level holds a file buffer).
 const MAX_BATCH_DEPTH: u8 = 8;
 
+/// Where the echo of a batch item `text` (a command of `len` bytes, then the rest of
+/// its line) stops until the command ran: the start of the command's last line, when
+/// the first line end after the command is a `\r` ending the item's `\r\n` (CLIPS
+/// runs the command at the `\r` and echoes that line at the `\n`). None otherwise.
+#[cfg(feature = "parser")]
+fn crlf_held_line(text: &str, len: usize) -> Option<usize> {
+    let tail = text.get(len..)?;
+    let r = tail.find(['\r', '\n'])?;
+    if &tail[r..] != "\r\n" {
+        return None;
+    }
+    Some(text[..len].rfind('\n').map_or(0, |k| k + 1))
+}
+
 /// Whether text holds only blanks and comments.
 fn only_blank(s: &str) -> bool {
     Lexer::new(s).next_token().tok == Tok::Eof
@@ -2303,6 +2317,17 @@ impl Core<'_> {
                 continue;
             }
             let command = &item.text[..item.len];
+            // CLIPS runs a command at the first `\r` or `\n` after it, but echoes the
+            // batch file's text only at each `\n`: a line ending in `\r\n` runs before
+            // its last line is echoed, which then follows the next prompt
+            #[cfg(feature = "parser")]
+            let held = if echo && !item.last && !only_blank(command) {
+                crlf_held_line(item.text, item.len)
+            } else {
+                None
+            };
+            #[cfg(not(feature = "parser"))]
+            let held: Option<usize> = None;
             if echo {
                 // a long comment block comes alone: echoed without a prompt of its own
                 let blank = only_blank(command);
@@ -2311,7 +2336,10 @@ impl Core<'_> {
                 }
                 #[cfg(feature = "parser")]
                 self.flush_unechoed();
-                self.write(router::STDOUT, item.text);
+                self.write(
+                    router::STDOUT,
+                    &item.text[..held.unwrap_or(item.text.len())],
+                );
                 // CLIPS prompted for a command the file's end cut short: the next
                 // command read (from the outer input) goes without a prompt
                 if blank && item.last {
@@ -2333,6 +2361,16 @@ impl Core<'_> {
                 #[cfg(feature = "parser")]
                 if !echo {
                     self.flush_bind_list();
+                }
+                if let Some(h) = held {
+                    // (exit) closes the file before its `\n` is read: echoed without it
+                    if self.st.mode.exit {
+                        self.write(router::STDOUT, &item.text[h..item.text.len() - 1]);
+                    } else {
+                        self.write(router::STDOUT, "CLIPS> ");
+                        self.st.io.prompt_shown = true;
+                        self.write(router::STDOUT, &item.text[h..]);
+                    }
                 }
                 if let Some((offset, lines)) = moved {
                     file.skip_to(offset, lines);
