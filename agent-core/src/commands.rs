@@ -83,6 +83,17 @@ fn crlf_held_line(text: &str, len: usize) -> Option<usize> {
     Some(text[..len].rfind('\n').map_or(0, |k| k + 1))
 }
 
+/// How much of `rest` (the text after a command) CLIPS's command loop takes with the
+/// command: up to its first line end, `\r\n`, `\n` or a lone `\r` (CLIPS tests a
+/// command for completeness at either character), or all of it.
+fn line_end_after(rest: &str) -> usize {
+    match rest.find(['\r', '\n']) {
+        Some(r) if rest[r..].starts_with("\r\n") => r + 2,
+        Some(r) => r + 1,
+        None => rest.len(),
+    }
+}
+
 /// Whether text holds only blanks and comments.
 fn only_blank(s: &str) -> bool {
     Lexer::new(s).next_token().tok == Tok::Eof
@@ -2229,39 +2240,34 @@ impl Core<'_> {
             if echo && !core::mem::take(&mut self.st.io.prompt_shown) {
                 self.write(router::STDOUT, "CLIPS> ");
             }
-            let mut end = pos;
-            loop {
-                let line_end = match text[end..].find('\n') {
-                    Some(k) => end + k + 1,
-                    None => text.len(),
-                };
-                if echo {
-                    self.write(router::STDOUT, &text[end..line_end]);
+            // the command is complete at the first line end after its item, a `\r` as
+            // well as a `\n` as CLIPS reads lines (one walk from `pos`: testing each
+            // longer prefix again walked a construct of n lines n times)
+            let found = command_complete(&text[pos..]);
+            let end = match found {
+                Some(k) => pos + k + line_end_after(&text[pos + k..]),
+                None => text.len(),
+            };
+            if echo {
+                self.write(router::STDOUT, &text[pos..end]);
+            }
+            if let Some(k) = found {
+                self.st.io.line_base = line_base;
+                self.exec_command(&text[pos..pos + k], source);
+                self.st.io.line_base = 0;
+                #[cfg(feature = "parser")]
+                if self.st.io.quiet_results {
+                    self.flush_bind_list();
                 }
-                end = line_end;
-                if let Some(k) = command_complete(&text[pos..end]) {
-                    self.st.io.line_base = line_base;
-                    self.exec_command(&text[pos..pos + k], source);
-                    self.st.io.line_base = 0;
-                    #[cfg(feature = "parser")]
-                    if self.st.io.quiet_results {
-                        self.flush_bind_list();
-                    }
-                    if !self.st.mode.firing && self.st.eval.eval_depth == 0 {
-                        self.debug_check("after a batch command");
-                    }
-                    break;
+                if !self.st.mode.firing && self.st.eval.eval_depth == 0 {
+                    self.debug_check("after a batch command");
                 }
-                if end >= text.len() {
-                    // input ends inside a command: report where it is incomplete
-                    // (`batch*` drops it silently, as CLIPS does)
-                    if !only_blank(&text[pos..end]) && !self.st.io.quiet_results {
-                        self.st.io.line_base = line_base;
-                        self.exec_command(&text[pos..end], source);
-                        self.st.io.line_base = 0;
-                    }
-                    break;
-                }
+            } else if !only_blank(&text[pos..end]) && !self.st.io.quiet_results {
+                // input ends inside a command: report where it is incomplete
+                // (`batch*` drops it silently, as CLIPS does)
+                self.st.io.line_base = line_base;
+                self.exec_command(&text[pos..end], source);
+                self.st.io.line_base = 0;
             }
             line_base += text[pos..end].bytes().filter(|&b| b == b'\n').count() as u32;
             pos = end;
@@ -2795,6 +2801,22 @@ mod tests {
         assert_eq!(
             h.out,
             "CLIPS> (+ 1 2) (+ 3 4)\n3\nCLIPS> ; c\n(assert (a))\n<Fact-1>\n"
+        );
+    }
+
+    /// CLIPS's command loop ends a line at `\r` too: a file with old Mac line ends (or
+    /// a `\r` between two commands) runs every command, as `clips -f2` does; the rest
+    /// of a line after a command is dropped up to the `\r` only.
+    #[test]
+    fn batch_quiet_ends_lines_at_carriage_returns() {
+        let mut e = std::boxed::Box::new(crate::engine::SmallEngine::new());
+        let mut h = crate::testutil::CaptureHost::default();
+        let text = "(deftemplate a\r  (slot x))\r(assert (a (x 1))) (+ 1 2)\r\
+                    (printout t \"a\" crlf)\r(printout t \"b\" crlf)\r\n(facts)\r";
+        e.batch_file_quiet(&mut h, "t.clp", text);
+        assert_eq!(
+            h.out,
+            "a\nb\nf-0     (initial-fact)\nf-1     (a (x 1))\nFor a total of 2 facts.\n"
         );
     }
 }

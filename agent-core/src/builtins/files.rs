@@ -232,10 +232,18 @@ impl<B: FileBuffer> FileItems<B> {
                 if !whole_lines {
                     break (self.start, self.start + k, k);
                 }
-                match valid[k..].iter().position(|&c| c == b'\n') {
-                    Some(nl) => break (self.start, self.start + k + nl + 1, k),
-                    None if self.eof && !bad => break (self.start, self.end, k),
-                    None => {} // read on to the end of the line
+                // a line ends at `\n`, or at a `\r` not followed by one (CLIPS tests a
+                // command for completeness at either); `\r\n` stays whole
+                match valid[k..].iter().position(|&c| c == b'\n' || c == b'\r') {
+                    Some(nl) if valid[k + nl] == b'\n' => {
+                        break (self.start, self.start + k + nl + 1, k)
+                    }
+                    Some(nl) if k + nl + 1 < valid.len() => {
+                        let n = usize::from(valid[k + nl + 1] == b'\n');
+                        break (self.start, self.start + k + nl + 1 + n, k);
+                    }
+                    Some(_) | None if self.eof && !bad => break (self.start, self.end, k),
+                    _ => {} // read on to the end of the line (or past a final `\r`)
                 }
             } else if self.eof && !bad {
                 if self.start == self.end {
