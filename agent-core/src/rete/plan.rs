@@ -31,7 +31,7 @@ use crate::builtins::Num;
 use crate::engine::Core;
 use crate::expr::{loc, Expr, FnKind, Op};
 use crate::handle::{JoinId, TokenId};
-use crate::rete::quick::same_cell;
+use crate::rete::quick::{marked_test_plan, same_cell, TestPlan, TEST_PLANS};
 use crate::rete::JoinKind;
 use crate::rete::BIND_W;
 use crate::rete::{PatBinding, MAX_RHASH};
@@ -1203,7 +1203,7 @@ impl Core<'_> {
     /// Some(result), or None when the evaluator must decide. Only a plan the usual
     /// path cached runs. (Out of line: the evaluator's path stays as it was.)
     #[inline(never)]
-    pub(crate) fn marked_join_test(&self, join: JoinId, tests: Ix, depth: u8) -> Option<bool> {
+    pub(crate) fn marked_join_test(&mut self, join: JoinId, tests: Ix, depth: u8) -> Option<bool> {
         let i = join.ix() % PLAN_JOINS;
         let entry = &self.st.cache.compiled_plans.entries[i];
         if entry.mode != MODE_MARKS || entry.join != join || entry.tests != tests {
@@ -1212,6 +1212,14 @@ impl Core<'_> {
         let root = self.st.cache.compiled_plans.flats.get(i)?.root;
         if root == UNPLANNED {
             return None;
+        }
+        // the join's test plan, if cached as `quick`'s unplanned one, sends its
+        // next pairs here at once (`quick`'s walk would read the plain slots only
+        // to give up at the first field after a multifield); set here, off the
+        // join loops, whose code stays as it was
+        let t = &mut self.st.cache.test_plans[join.ix() % TEST_PLANS];
+        if t.n == TestPlan::NONE.n && t.join == join && t.tests == tests {
+            *t = marked_test_plan(join, tests);
         }
         self.run_inline(root, depth, Marked, NONE)
     }

@@ -43,6 +43,33 @@ pub struct TestPlan {
     pub ops: [TestOp; PLAN_TESTS],
 }
 
+/// Host: the one op of the `TestPlan` of a join whose compiled plan is a marked
+/// one (`marked_test_plan`): it reads pattern `u8::MAX`, which no token binds
+/// (`left_fact` answers NONE beyond `Token::binds`), so `planned_join_test` answers
+/// None at once and the join's pairs go straight to `join_test_eval`, where
+/// `marked_join_test` runs the plan. Decided once per cached test plan: the path of
+/// every other join stays as it was, and no pair first walks the plain slots of
+/// its tests only to give up at a field after a multifield.
+#[cfg(feature = "host-speedups")]
+const TO_EVALUATOR: TestOp = TestOp {
+    negated: false,
+    a: (u8::MAX, 0),
+    b: (u8::MAX, 0),
+};
+
+/// Host: the `TestPlan` of `join` (chain `tests`) whose compiled plan is a marked
+/// one: `TO_EVALUATOR` alone. (Set by `marked_join_test`, off the join loops:
+/// their code stays as it was.)
+#[cfg(feature = "host-speedups")]
+pub(crate) fn marked_test_plan(join: JoinId, tests: Ix) -> TestPlan {
+    TestPlan {
+        join,
+        tests,
+        n: 1,
+        ops: [TO_EVALUATOR; PLAN_TESTS],
+    }
+}
+
 impl TestPlan {
     pub const NONE: TestPlan = TestPlan {
         join: JoinId::NONE,
