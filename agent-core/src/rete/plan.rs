@@ -783,7 +783,18 @@ struct Marked;
 impl LeftFacts for Marked {
     #[inline(always)]
     fn slot<'c>(self, core: &'c Core<'_>, pat: u8, slot: u8, _: u8, _: Ix) -> Option<&'c Value> {
-        fact_slot(core, core.st.net.lhs_pm.get(pat as usize)?.fact, slot)
+        // the walk over the slots in line (`slot_ref` calls `slot_cell`, out of
+        // line: a marked plan's facts hold multifields, the walk is the usual case)
+        let fact = core.st.net.lhs_pm.get(pat as usize)?.fact;
+        if fact == NONE {
+            return None;
+        }
+        let f = core.facts.get(fact as usize)?;
+        if f.flat {
+            return core.values.get(f.start as usize + slot as usize);
+        }
+        core.values
+            .get(core.slot_cell_inline(fact, Ix::from(slot)).0)
     }
 
     #[inline(always)]
