@@ -832,7 +832,7 @@ pub struct State {
     /// `stamps_off` set once the allocator refused (blocker searches then walk the
     /// memory).
     #[cfg(feature = "grow")]
-    pub stamps: alloc::vec::Vec<crate::rete::Stamp>,
+    pub stamps: crate::grow::ZeroedU32,
     #[cfg(feature = "grow")]
     pub stamp: crate::rete::Stamp,
     #[cfg(feature = "grow")]
@@ -1077,7 +1077,7 @@ impl State {
             #[cfg(all(feature = "extras", feature = "grow"))]
             recency: core::cell::RefCell::new(alloc::vec::Vec::new()),
             #[cfg(feature = "grow")]
-            stamps: alloc::vec::Vec::new(),
+            stamps: crate::grow::ZeroedU32::new(),
             #[cfg(feature = "grow")]
             stamp: 0,
             #[cfg(feature = "grow")]

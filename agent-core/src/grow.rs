@@ -155,6 +155,31 @@ fn grow_heads<T: Clone>(v: &mut Buf<T>, at_least: usize, empty: T) -> Option<usi
     Some(old)
 }
 
+/// Bucket heads, all `empty`, doubled from `old` until there are `at_least`; `None` if
+/// `old` is enough or the allocator refuses. Filled by a loop of vector stores of a
+/// value the compiler does not see (`black_box`): as a `memset` (which `resize` or
+/// `fill` of a constant become), a fill of that size is `rep stosb`, an instruction
+/// per byte (growforall-800: 0.5 M instructions for its one growth's heads).
+fn empty_heads<T: Copy>(old: usize, at_least: usize, empty: T) -> Option<Vec<T>> {
+    if old >= at_least {
+        return None;
+    }
+    let mut len = old.max(2);
+    while len < at_least {
+        len = len.saturating_mul(2);
+    }
+    let mut v = Vec::new();
+    v.try_reserve_exact(len).ok()?;
+    let empty = core::hint::black_box(empty);
+    for slot in v.spare_capacity_mut().iter_mut().take(len) {
+        slot.write(empty);
+    }
+    // SAFETY: the first `len` entries (within the capacity reserved) were written
+    // just now.
+    unsafe { v.set_len(len) };
+    Some(v)
+}
+
 /// Replaces the bucket heads `v` by all-empty ones (all-zero bytes: [`ZeroFree`]),
 /// doubled from its length until there are `at_least`, in fresh zeroed memory (a new
 /// mapping of the host's pages if `v` is in one, else the allocator's): no head is
@@ -362,6 +387,96 @@ fn zeroed_vec<T: ZeroFree>(room: usize, from: &[T]) -> Option<Vec<T>> {
     unsafe {
         core::ptr::copy_nonoverlapping(from.as_ptr(), p, from.len());
         Some(Vec::from_raw_parts(p, from.len(), room))
+    }
+}
+
+/// Host: an array of `u32` entries by token (stamps: `State::stamps`,
+/// `PrimeOrders::stamps`) that grows into memory the allocator zeroed, reserved
+/// ahead for as many entries as the token pool's zeroed reserve holds tokens
+/// (address space, resident once touched): a growth neither fills nor copies
+/// (growforall-800: the doubling stamps filled 0.5 M instructions' worth of
+/// zeros). Entries past its length are all-zero bytes, never written: it is
+/// reached only as a slice of its length, and `clear` drops the vector.
+pub struct ZeroedU32 {
+    v: Vec<u32>,
+}
+
+impl ZeroedU32 {
+    /// No entries, nothing allocated.
+    pub const fn new() -> Self {
+        ZeroedU32 { v: Vec::new() }
+    }
+
+    /// Makes it at least `len` entries long, the new ones 0; false (unchanged) if
+    /// the allocator refuses.
+    #[cold]
+    #[inline(never)]
+    pub fn grow_to(&mut self, len: usize) -> bool {
+        if len <= self.v.len() {
+            return true;
+        }
+        if len > self.v.capacity() {
+            let room = (ZEROED_RESERVE / core::mem::size_of::<crate::rete::Token>()).max(len);
+            let Some(v) = Self::zeroed(room, &self.v).or_else(|| Self::zeroed(len, &self.v))
+            else {
+                return false;
+            };
+            self.v = v;
+        }
+        // SAFETY: the entries from the length to the capacity are all-zero bytes (a
+        // valid `u32`): the allocator zeroed them (`zeroed`) and nothing wrote them
+        // since (the vector is reached only as a slice of its length; it is never
+        // pushed to or shrunk, and `clear` replaces it); `len` is within the capacity.
+        unsafe { self.v.set_len(len) };
+        true
+    }
+
+    /// No entries again (the memory given back).
+    pub fn clear(&mut self) {
+        self.v = Vec::new();
+    }
+
+    /// A vector of `from`'s entries with room for `room`, the room past them zeroed
+    /// by the allocator; `None` if it refuses.
+    fn zeroed(room: usize, from: &[u32]) -> Option<Vec<u32>> {
+        let layout = core::alloc::Layout::array::<u32>(room).ok()?;
+        if layout.size() == 0 || room < from.len() {
+            return None;
+        }
+        // SAFETY: `layout` is not zero-sized (checked).
+        let p = unsafe { alloc::alloc::alloc_zeroed(layout) }.cast::<u32>();
+        if p.is_null() {
+            return None;
+        }
+        // SAFETY: `p` is a fresh allocation of the global allocator for `room`
+        // `u32`s (the layout `Vec` uses for that capacity), aligned, not overlapping
+        // `from`, whose `from.len()` (<= `room`) entries are copied in before the
+        // vector takes them as its length.
+        unsafe {
+            core::ptr::copy_nonoverlapping(from.as_ptr(), p, from.len());
+            Some(Vec::from_raw_parts(p, from.len(), room))
+        }
+    }
+}
+
+impl Default for ZeroedU32 {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl core::ops::Deref for ZeroedU32 {
+    type Target = [u32];
+    #[inline(always)]
+    fn deref(&self) -> &[u32] {
+        &self.v
+    }
+}
+
+impl core::ops::DerefMut for ZeroedU32 {
+    #[inline(always)]
+    fn deref_mut(&mut self) -> &mut [u32] {
+        &mut self.v
     }
 }
 
@@ -988,20 +1103,16 @@ impl Core<'_> {
         let Some(storage) = self.grower.storage else {
             return;
         };
-        let have = self.amem_buckets.len();
-        let mut old = Vec::new();
-        if old.try_reserve_exact(have).is_err() {
-            return;
-        }
-        old.extend_from_slice(&self.amem_buckets[..]);
         // SAFETY: as in `rebind`: the storage this `Core` was made from.
         let s = unsafe { &mut *storage.as_ptr() };
-        let Some(was) = grow_heads(&mut s.amem_buckets, 2 * self.tokens.len(), TokenId::NONE)
+        // new heads, every one empty, in a new vector; the old ones kept where they
+        // are for the relink (growforall-800: copying them out and filling the old
+        // ones again cost 0.26 M instructions of its one growth)
+        let Some(fresh) = empty_heads(s.amem_buckets.len(), 2 * self.tokens.len(), TokenId::NONE)
         else {
             return;
         };
-        // (the heads past the old ones are empty already)
-        s.amem_buckets[..was].fill(TokenId::NONE);
+        let old = core::mem::replace(&mut s.amem_buckets, Buf::Heap(fresh));
         self.rebind(Pool::Tokens, storage);
         self.relink_token_index(&old);
     }

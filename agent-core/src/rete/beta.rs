@@ -993,11 +993,10 @@ impl Core<'_> {
     fn grow_stamps(&mut self, t: TokenId, s: crate::rete::Stamp) {
         let stamps = &mut self.st.stamps;
         let want = (t.ix() + 1).max(2 * stamps.len()).max(1024);
-        if self.st.stamps_off || stamps.try_reserve_exact(want - stamps.len()).is_err() {
+        if self.st.stamps_off || !stamps.grow_to(want) {
             self.st.stamps_off = true;
             return;
         }
-        stamps.resize(want, 0);
         stamps[t.ix()] = s;
     }
 

@@ -55,7 +55,7 @@ pub struct PrimeOrders {
     pub clock: u32,
     pub joins: Vec<Primed>,
     /// Each token's stamp (by id; missing entries read as 0).
-    pub stamps: Vec<u32>,
+    pub stamps: crate::grow::ZeroedU32,
     /// `SLOW_*` bits: whether a right activation takes the way out of line
     /// (`right_activate_maybe_primed`); one byte, so that programs with neither pay
     /// one test for both.
@@ -76,7 +76,7 @@ impl PrimeOrders {
         PrimeOrders {
             clock: 1,
             joins: Vec::new(),
-            stamps: Vec::new(),
+            stamps: crate::grow::ZeroedU32::new(),
             slow: 0,
             #[cfg(feature = "host-speedups")]
             twin: (TokenId::NONE, JoinId::NONE),
@@ -156,11 +156,10 @@ impl Core<'_> {
             // (room for the whole pool at once; a refused allocation loses the
             // orders, which are then CLIPS's no more, never the stamps' meaning)
             let want = self.tokens.len().max(i + 1);
-            if p.stamps.try_reserve(want - p.stamps.len()).is_err() {
+            if !p.stamps.grow_to(want) {
                 p.joins.clear();
                 return;
             }
-            p.stamps.resize(want, 0);
         }
         p.stamps[i] = p.clock;
         p.clock = p.clock.wrapping_add(1);
