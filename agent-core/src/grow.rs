@@ -45,8 +45,8 @@ pub const INDEX_LIMIT: usize = NONE as usize - 1;
 
 /// The starting length of an array that is a hash table's bucket heads (`Some`: at
 /// least the fixed host engine's, so a small program's chains are no longer there;
-/// grown to twice its pool's length by `grow_heads`, not with the pool), or `None` for
-/// an array with one entry per pool entry.
+/// grown to twice its pool's length by `grow_heads` or `empty_heads`, not with the
+/// pool), or `None` for an array with one entry per pool entry.
 macro_rules! heads {
     (fact_buckets) => {
         Some(Capacities::HOST.facts)
@@ -417,8 +417,7 @@ impl ZeroedU32 {
         }
         if len > self.v.capacity() {
             let room = (ZEROED_RESERVE / core::mem::size_of::<crate::rete::Token>()).max(len);
-            let Some(v) = Self::zeroed(room, &self.v).or_else(|| Self::zeroed(len, &self.v))
-            else {
+            let Some(v) = Self::zeroed(room, &self.v).or_else(|| Self::zeroed(len, &self.v)) else {
                 return false;
             };
             self.v = v;
