@@ -73,7 +73,6 @@ const MAX_BATCH_DEPTH: u8 = 8;
 /// its line) stops until the command ran: the start of the command's last line, when
 /// the first line end after the command is a `\r` ending the item's `\r\n` (CLIPS
 /// runs the command at the `\r` and echoes that line at the `\n`). None otherwise.
-#[cfg(feature = "parser")]
 fn crlf_held_line(text: &str, len: usize) -> Option<usize> {
     let tail = text.get(len..)?;
     let r = tail.find(['\r', '\n'])?;
@@ -2326,14 +2325,11 @@ impl Core<'_> {
             // CLIPS runs a command at the first `\r` or `\n` after it, but echoes the
             // batch file's text only at each `\n`: a line ending in `\r\n` runs before
             // its last line is echoed, which then follows the next prompt
-            #[cfg(feature = "parser")]
             let held = if echo && !item.last && !only_blank(command) {
                 crlf_held_line(item.text, item.len)
             } else {
                 None
             };
-            #[cfg(not(feature = "parser"))]
-            let held: Option<usize> = None;
             if echo {
                 // a long comment block comes alone: echoed without a prompt of its own
                 let blank = only_blank(command);
