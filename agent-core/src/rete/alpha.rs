@@ -531,6 +531,54 @@ impl Core<'_> {
         }
     }
 
+    /// Host: an operand of `mark_test` that is `+`, `-` or `*` of two operands it
+    /// reads as numbers (`(= ?dx (- ?x 1))` on fields of a segmented slot), worked
+    /// out as the evaluator's quick path does (`num_arith`); Unknown for any other
+    /// call, a non-number (the evaluator reports it) or a call the evaluator's depth
+    /// or stack limit would refuse inside the comparison.
+    #[cfg(feature = "host-speedups")]
+    #[inline(never)]
+    fn mark_arith(
+        &self,
+        x: crate::expr::Expr,
+        fact: Ix,
+        lay: &[SlotLayout],
+        marks: &[u8; MAX_MARKS],
+        fixed: usize,
+    ) -> MarkOperand {
+        use crate::builtins::basic::{num_arith, ARITH_FIRST};
+        if x.aux != FnKind::Builtin as u8
+            || x.data.wrapping_sub(ARITH_FIRST) >= 3
+            || x.first == NONE
+        {
+            return MarkOperand::Unknown;
+        }
+        let second = self.exprs[x.first as usize].next;
+        if second == NONE || self.exprs[second as usize].next != NONE {
+            return MarkOperand::Unknown;
+        }
+        // inside the comparison: one level deeper, its first argument pushed
+        if self.st.eval.eval_depth + 1 >= self.max_eval_depth()
+            || self.st.frame.sp as usize + 3 > self.stack.len()
+        {
+            return MarkOperand::Unknown;
+        }
+        let num = |o: MarkOperand| match o {
+            MarkOperand::Value(v @ (Value::Int(_) | Value::Float(_))) => MarkOperand::Value(v),
+            MarkOperand::Value(_) => MarkOperand::Unknown,
+            o => o,
+        };
+        let a = num(self.mark_operand(x.first, fact, lay, marks, fixed));
+        let b = num(self.mark_operand(second, fact, lay, marks, fixed));
+        match (a, b) {
+            (MarkOperand::Value(p), MarkOperand::Value(q)) => {
+                MarkOperand::Value(num_arith(x.data, p, q))
+            }
+            (MarkOperand::Unknown, _) | (_, MarkOperand::Unknown) => MarkOperand::Unknown,
+            _ => MarkOperand::Later,
+        }
+    }
+
     /// Host: an operand of `mark_test`: a single-field element of a multislot of
     /// `fact` read at its offset under marks `..fixed` (`Later` while a mark it
     /// depends on is not set), else as `quick_alpha_operand` reads it.
@@ -545,6 +593,9 @@ impl Core<'_> {
         fixed: usize,
     ) -> MarkOperand {
         let x = self.exprs[e as usize];
+        if x.op == Op::Call {
+            return self.mark_arith(x, fact, lay, marks, fixed);
+        }
         let elem = loc::elem(x.data);
         if x.op != Op::PatVar
             || x.aux != THIS_PATTERN
