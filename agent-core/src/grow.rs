@@ -317,6 +317,10 @@ unsafe impl ZeroFree for crate::symbols::SymEntry {}
 // SAFETY: a byte. The arena's bytes past the used ones are written before they are
 // read (`Symbols::add_new`, `TailWriter`).
 unsafe impl ZeroFree for u8 {}
+// SAFETY: an integer, not zero-sized; all-zero is the stamp 0 (`ZeroedU32`). (With
+// `logical` and `wide-index`, `Ix` is `u32` and has its impl below.)
+#[cfg(not(all(feature = "logical", feature = "wide-index")))]
+unsafe impl ZeroFree for u32 {}
 // SAFETY: an `Ix` (`repr(transparent)`), not zero-sized; with `grow` all-zero bytes
 // are `Head::EMPTY` (the complement of `NONE`), checked below.
 unsafe impl ZeroFree for crate::symbols::Head {}
@@ -417,7 +421,7 @@ impl ZeroedU32 {
         }
         if len > self.v.capacity() {
             let room = (ZEROED_RESERVE / core::mem::size_of::<crate::rete::Token>()).max(len);
-            let Some(v) = Self::zeroed(room, &self.v).or_else(|| Self::zeroed(len, &self.v)) else {
+            let Some(v) = zeroed_vec(room, &self.v).or_else(|| zeroed_vec(len, &self.v)) else {
                 return false;
             };
             self.v = v;
@@ -433,28 +437,6 @@ impl ZeroedU32 {
     /// No entries again (the memory given back).
     pub fn clear(&mut self) {
         self.v = Vec::new();
-    }
-
-    /// A vector of `from`'s entries with room for `room`, the room past them zeroed
-    /// by the allocator; `None` if it refuses.
-    fn zeroed(room: usize, from: &[u32]) -> Option<Vec<u32>> {
-        let layout = core::alloc::Layout::array::<u32>(room).ok()?;
-        if layout.size() == 0 || room < from.len() {
-            return None;
-        }
-        // SAFETY: `layout` is not zero-sized (checked).
-        let p = unsafe { alloc::alloc::alloc_zeroed(layout) }.cast::<u32>();
-        if p.is_null() {
-            return None;
-        }
-        // SAFETY: `p` is a fresh allocation of the global allocator for `room`
-        // `u32`s (the layout `Vec` uses for that capacity), aligned, not overlapping
-        // `from`, whose `from.len()` (<= `room`) entries are copied in before the
-        // vector takes them as its length.
-        unsafe {
-            core::ptr::copy_nonoverlapping(from.as_ptr(), p, from.len());
-            Some(Vec::from_raw_parts(p, from.len(), room))
-        }
     }
 }
 
