@@ -275,6 +275,12 @@ const MODE_MARKS: u8 = 4;
 /// `SegRead` (`SegRead::packed`).
 const SEG_ELEM: u8 = 240;
 
+/// A `MODE_MARKS` plan's slot number with this bit set names a slot at a fixed
+/// offset in its fact (`PlanBuild::flag_fixed_slots`): `Marked` reads it at the
+/// fact's first cell plus the slot (the bit cleared). The other runners never see
+/// it: only `Marked` runs such plans.
+const FIXED_SLOT: u8 = 0x80;
+
 /// Where a field lies in its multislot: `base` fields plus the lengths of the
 /// pattern's multifields `mark..mark + n` (its marks) from the slot's start (`n` 0:
 /// a fixed offset), or (`n` of `FROM_END`) `base` fields before the slot's end
@@ -655,6 +661,95 @@ impl PlanBuild {
         }
     }
 
+    /// A `MODE_MARKS` plan's reads of a slot at a fixed offset in its fact
+    /// (`fixed(pat, slot)`: only single-field slots before it in the template of
+    /// the facts bound at `pat`) get `FIXED_SLOT` in their slot number, so that
+    /// `Marked` reads them at the fact's first cell plus the slot, without a walk
+    /// over the slots (the plan's facts hold multifields). False if a read's slot
+    /// is `FIXED_SLOT` or beyond (it would read as flagged): the plan is dropped.
+    fn flag_fixed_slots(&mut self, fixed: impl Fn(u8, u8) -> bool) -> bool {
+        let fits = core::cell::Cell::new(true);
+        let flag = |pat: u8, slot: u8| -> u8 {
+            if slot >= FIXED_SLOT {
+                fits.set(false);
+                slot
+            } else if fixed(pat, slot) {
+                slot | FIXED_SLOT
+            } else {
+                slot
+            }
+        };
+        let src = |s: Source| match s {
+            Source::Slot { pat, slot } => Source::Slot {
+                pat,
+                slot: flag(pat, slot),
+            },
+            Source::Elem { pat, slot, elem } => Source::Elem {
+                pat,
+                slot: flag(pat, slot),
+                elem,
+            },
+            Source::SlotPlus { pat, slot, delta } => Source::SlotPlus {
+                pat,
+                slot: flag(pat, slot),
+                delta,
+            },
+            Source::ElemPlus {
+                pat,
+                slot,
+                elem,
+                delta,
+            } => Source::ElemPlus {
+                pat,
+                slot: flag(pat, slot),
+                elem,
+                delta,
+            },
+            s @ (Source::Const { .. } | Source::Arith { .. }) => s,
+        };
+        for n in &mut self.nodes[..self.used as usize] {
+            *n = match *n {
+                Node::Cmp { id, a, b } => Node::Cmp {
+                    id,
+                    a: src(a),
+                    b: src(b),
+                },
+                Node::SameSlots { a, b, negated } => Node::SameSlots {
+                    a: (a.0, flag(a.0, a.1)),
+                    b: (b.0, flag(b.0, b.1)),
+                    negated,
+                },
+                Node::SameCells { a, b, negated } => Node::SameCells {
+                    a: Cell {
+                        slot: flag(a.pat, a.slot),
+                        ..a
+                    },
+                    b: Cell {
+                        slot: flag(b.pat, b.slot),
+                        ..b
+                    },
+                    negated,
+                },
+                Node::Leaf { s } => Node::Leaf { s: src(s) },
+                Node::Cut { c, from, to } => Node::Cut {
+                    c: Cell {
+                        slot: flag(c.pat, c.slot),
+                        ..c
+                    },
+                    from,
+                    to,
+                },
+                other @ (Node::And { .. }
+                | Node::Text { .. }
+                | Node::Or { .. }
+                | Node::Not { .. }
+                | Node::Arith { .. }
+                | Node::Evaluator) => other,
+            };
+        }
+        fits.get()
+    }
+
     fn push(&mut self, node: Node) -> Option<u8> {
         let i = self.used as usize;
         *self.nodes.get_mut(i)? = node;
@@ -790,8 +885,11 @@ impl LeftFacts for Marked {
             return None;
         }
         let f = core.facts.get(fact as usize)?;
-        if f.flat {
-            return core.values.get(f.start as usize + slot as usize);
+        // (a slot number below `FIXED_SLOT` is the slot itself)
+        if f.flat || slot & FIXED_SLOT != 0 {
+            return core
+                .values
+                .get(f.start as usize + (slot & !FIXED_SLOT) as usize);
         }
         core.values
             .get(core.slot_cell_inline(fact, Ix::from(slot)).0)
@@ -806,7 +904,11 @@ impl LeftFacts for Marked {
         _: u8,
         _: Ix,
     ) -> Option<(usize, Option<Ix>)> {
-        fact_slot_cell(core, core.st.net.lhs_pm.get(pat as usize)?.fact, slot)
+        let fact = core.st.net.lhs_pm.get(pat as usize)?.fact;
+        if slot & FIXED_SLOT != 0 {
+            return fixed_slot_cell(core, fact, slot & !FIXED_SLOT);
+        }
+        fact_slot_cell(core, fact, slot)
     }
 
     const MARKED: bool = true;
@@ -819,6 +921,20 @@ fn fact_slot<'c>(core: &'c Core<'_>, fact: Ix, slot: u8) -> Option<&'c Value> {
         return None;
     }
     Some(core.slot_ref(fact, Ix::from(slot)))
+}
+
+/// `LeftFacts::slot_cell` of `fact` (NONE: unbound) for a slot at a fixed offset
+/// in it (`FIXED_SLOT`), read at its first cell plus `slot`, without a walk.
+#[inline(always)]
+fn fixed_slot_cell(core: &Core<'_>, fact: Ix, slot: u8) -> Option<(usize, Option<Ix>)> {
+    if fact == NONE {
+        return None;
+    }
+    let c = core.facts.get(fact as usize)?.start as usize + slot as usize;
+    Some(match core.values.get(c)? {
+        Value::Multi(m) => (c, Some(m.len)),
+        _ => (c, None),
+    })
 }
 
 /// `LeftFacts::slot_cell` of `fact` (NONE: unbound).
@@ -1122,6 +1238,19 @@ impl Core<'_> {
             mode,
         };
         if mode == MODE_MARKS {
+            let mut entry = entry;
+            let (left, right) = self.read_templates(join);
+            let fixed = |pat: u8, slot: u8| {
+                let t = if pat == depth {
+                    right
+                } else {
+                    left.get(pat as usize).copied().unwrap_or(NONE)
+                };
+                self.slot_at_fixed_offset(t, slot)
+            };
+            if !b.flag_fixed_slots(fixed) {
+                entry.root = UNPLANNED;
+            }
             let plans = &mut self.st.cache.compiled_plans;
             plans.store(i, entry, &b);
             // run by `marked_join_test` alone (a skip entry's not at all)
@@ -1241,7 +1370,13 @@ impl Core<'_> {
     #[inline(always)]
     fn seg_elem_value(&self, pat: u8, slot: u8, delta: i32) -> Option<Value> {
         let b = self.st.net.lhs_pm.get(pat as usize)?;
-        self.seg_field(b, slot, SegRead::unpacked(delta))
+        let r = SegRead::unpacked(delta);
+        if slot & FIXED_SLOT == 0 || r.n == WHOLE_READ {
+            return self.seg_field(b, slot & !FIXED_SLOT, r);
+        }
+        // the multislot at a fixed offset: no walk over the slots before it
+        let (cell, len) = fixed_slot_cell(self, b.fact, slot & !FIXED_SLOT)?;
+        self.seg_field_at(b, cell, len?, r)
     }
 
     /// Some when every read of shallow plan `b` (of `join`, at `depth`) is of a slot
@@ -1256,17 +1391,7 @@ impl Core<'_> {
             } else {
                 *left.get(pat as usize)?
             };
-            let t = self.templates.get(t as usize)?;
-            if Ix::from(slot) >= t.nslots {
-                return None;
-            }
-            let first = t.first_slot as usize;
-            for i in first..first + slot as usize {
-                if self.slots.get(i)?.multi {
-                    return None;
-                }
-            }
-            Some(())
+            self.slot_at_fixed_offset(t, slot).then_some(())
         };
         let src = |s: Source| -> Option<()> {
             match s {
@@ -1302,6 +1427,19 @@ impl Core<'_> {
             }
         }
         Some(())
+    }
+
+    /// Slot `slot` of template `t` (NONE: unknown) follows single-field slots only,
+    /// so it is the cell `slot` after its fact's first.
+    fn slot_at_fixed_offset(&self, t: Ix, slot: u8) -> bool {
+        let Some(t) = self.templates.get(t as usize) else {
+            return false;
+        };
+        if Ix::from(slot) >= t.nslots {
+            return false;
+        }
+        let first = t.first_slot as usize;
+        (first..first + slot as usize).all(|i| self.slots.get(i).is_some_and(|s| !s.multi))
     }
 
     /// The templates of the facts a shallow plan of `join` reads (NONE: unknown):
@@ -2098,7 +2236,14 @@ impl Core<'_> {
             };
         }
         let (cell, len) = fact_slot_cell(self, b.fact, slot)?;
-        let len = len? as usize;
+        self.seg_field_at(b, cell, len?, r)
+    }
+
+    /// `seg_field`'s field `r` of the multislot at `cell` holding `len` fields
+    /// (`r` not `WHOLE_READ`).
+    #[inline(always)]
+    fn seg_field_at(&self, b: &PatBinding, cell: usize, len: Ix, r: SegRead) -> Option<Value> {
+        let len = len as usize;
         let at = if r.n == FROM_END {
             len.checked_sub(r.base as usize)?
         } else {
