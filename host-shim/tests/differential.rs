@@ -592,6 +592,7 @@ differential_programs! {
     p700_segment_key_groups => "700-segment-key-groups",
     p701_segment_or_tests => "701-segment-or-tests",
     p702_segment_test_edges => "702-segment-test-edges",
+    p703_marked_fixed_slots => "703-marked-fixed-slots",
     p705_rule_of_43_patterns => "705-rule-of-43-patterns",
     p706_long_built_strings => "706-long-built-strings",
     p707_long_string_literals => "707-long-string-literals",
