@@ -21,6 +21,13 @@
   =>
   (printout t "box-alone " ?i " " ?v crlf))
 
+; both fields after multifields, slots before the multislot compared (eq, neq)
+(defrule row-box-only
+  (cell (id ?i) (row ?r) (box ?b) (cands $?p ?v $?f&:(> (+ (length$ ?p) (length$ ?f)) 0)))
+  (not (cell (row ?r) (box ~?b) (cands $?p2 ?v $?f2)))
+  =>
+  (printout t "row-box-only " ?i " " ?v crlf))
+
 ; another template whose row/col lie after a multislot: the same slot numbers
 ; are not at fixed offsets there
 (defrule mark-hit
