@@ -1371,12 +1371,29 @@ impl Core<'_> {
     fn seg_elem_value(&self, pat: u8, slot: u8, delta: i32) -> Option<Value> {
         let b = self.st.net.lhs_pm.get(pat as usize)?;
         let r = SegRead::unpacked(delta);
-        if slot & FIXED_SLOT == 0 || r.n == WHOLE_READ {
-            return self.seg_field(b, slot & !FIXED_SLOT, r);
+        if slot & FIXED_SLOT == 0 {
+            return self.seg_field(b, slot, r);
         }
         // the multislot at a fixed offset: no walk over the slots before it
         let (cell, len) = fixed_slot_cell(self, b.fact, slot & !FIXED_SLOT)?;
-        self.seg_field_at(b, cell, len?, r)
+        let len = len? as usize;
+        // (a plan's read is never `WHOLE_READ`: as another `n`, beyond the marks,
+        // it would find no field)
+        let at = match r.n {
+            FROM_END => len.checked_sub(r.base as usize)?,
+            // after one multifield (`$?a ?x`), the usual case
+            1 => r.base as usize + *b.marks.get(r.mark as usize)? as usize,
+            _ => {
+                let lens = b
+                    .marks
+                    .get(r.mark as usize..r.mark as usize + r.n as usize)?;
+                r.base as usize + lens.iter().map(|&m| m as usize).sum::<usize>()
+            }
+        };
+        if at >= len {
+            return None;
+        }
+        self.values.get(cell + 1 + at).copied()
     }
 
     /// Some when every read of shallow plan `b` (of `join`, at `depth`) is of a slot
@@ -2236,14 +2253,7 @@ impl Core<'_> {
             };
         }
         let (cell, len) = fact_slot_cell(self, b.fact, slot)?;
-        self.seg_field_at(b, cell, len?, r)
-    }
-
-    /// `seg_field`'s field `r` of the multislot at `cell` holding `len` fields
-    /// (`r` not `WHOLE_READ`).
-    #[inline(always)]
-    fn seg_field_at(&self, b: &PatBinding, cell: usize, len: Ix, r: SegRead) -> Option<Value> {
-        let len = len as usize;
+        let len = len? as usize;
         let at = if r.n == FROM_END {
             len.checked_sub(r.base as usize)?
         } else {
