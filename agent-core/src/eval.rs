@@ -67,6 +67,14 @@ impl Default for DepthLimits {
     }
 }
 
+/// Where an LHS variable's value lies in the fact cells (`values`): one field, or a
+/// segment of `len` fields (a multifield, which reading copies to scratch).
+#[derive(Clone, Copy)]
+pub(crate) enum Place {
+    One(usize),
+    Seg(usize, usize),
+}
+
 impl Core<'_> {
     /// Evaluates one expression node.
     pub fn eval(&mut self, e: Ix) -> Result<Value, EvalError> {
@@ -85,6 +93,18 @@ impl Core<'_> {
             Op::QSlot => self.query_slot(e, x),
             Op::Expand => self.eval(x.first),
             Op::Eq2 => {
+                #[cfg(feature = "host-speedups")]
+                {
+                    let a = self.exprs[x.first as usize];
+                    if a.op == Op::PatVar {
+                        let b = self.exprs[a.next as usize];
+                        if b.op == Op::PatVar {
+                            if let Some(same) = self.same_places(a, b) {
+                                return Ok(Core::bool_value(same));
+                            }
+                        }
+                    }
+                }
                 let a = self.eval_operand(x.first)?;
                 let b = self.eval_operand(self.exprs[x.first as usize].next)?;
                 Ok(Core::bool_value(builtins::basic::values_same(self, a, b)))
@@ -672,11 +692,8 @@ impl Core<'_> {
     }
 
     /// `pattern_var` of element `elem` of a slot (cell `cell`, `len` fields) with a
-    /// multifield at or before it, in one walk over the slot's elements up to it: a
-    /// multifield but the slot's last takes its mark (`ps.aux` is the slot's first);
-    /// the last one's length is what the others and the singles leave, so the
-    /// elements after it are counted from the slot's end. Out of line, so the usual
-    /// case above stays a short call.
+    /// multifield at or before it (see `place_after_multi`). Out of line, so the
+    /// usual case above stays a short call.
     #[inline(never)]
     fn element_after_multi(
         &mut self,
@@ -686,13 +703,36 @@ impl Core<'_> {
         ps: Expr,
         elem: u8,
     ) -> Result<Value, EvalError> {
+        match self.place_after_multi(b, cell, len, ps, elem) {
+            Some(Place::One(c)) => Ok(self.values[c]),
+            Some(Place::Seg(c, n)) => Ok(self.copy_to_scratch(c, n)?),
+            None => Err(EvalError::new(EvalErrorKind::UnboundVariable {
+                name: NONE,
+            })),
+        }
+    }
+
+    /// Where element `elem` of a slot (cell `cell`, `len` fields, pattern
+    /// descriptor `ps`) lies, in one walk over the slot's elements up to it: a
+    /// multifield but the slot's last takes its mark (`ps.aux` is the slot's first);
+    /// the last one's length is what the others and the singles leave, so the
+    /// elements after it are counted from the slot's end. None: no such element.
+    #[inline(always)]
+    fn place_after_multi(
+        &self,
+        b: PatBinding,
+        cell: usize,
+        len: usize,
+        ps: Expr,
+        elem: u8,
+    ) -> Option<Place> {
         let (mut pos, mut k, mut i) = (0usize, ps.aux as usize, 0u8);
         let mut c = ps.first;
         while c != NONE {
             let ex = self.exprs[c as usize];
             if ex.aux != 1 {
                 if i == elem {
-                    return Ok(self.values[cell + 1 + pos]);
+                    return Some(Place::One(cell + 1 + pos));
                 }
                 pos += 1;
                 i += 1;
@@ -709,30 +749,79 @@ impl Core<'_> {
                 // the slot's last multifield
                 let rest = len.saturating_sub(pos + after);
                 if i == elem {
-                    return Ok(self.copy_to_scratch(cell + 1 + pos, rest)?);
+                    return Some(Place::Seg(cell + 1 + pos, rest));
                 }
                 let j = usize::from(elem - i - 1);
                 if j >= after {
-                    break;
+                    return None;
                 }
-                return Ok(self.values[cell + 1 + pos + rest + j]);
+                return Some(Place::One(cell + 1 + pos + rest + j));
             }
             let m = usize::from(b.marks.get(k).copied().unwrap_or(0));
             if i == elem {
-                return Ok(self.copy_to_scratch(cell + 1 + pos, m)?);
+                return Some(Place::Seg(cell + 1 + pos, m));
             }
             let j = usize::from(elem - i - 1);
             if j < after {
-                return Ok(self.values[cell + 1 + pos + m + j]);
+                return Some(Place::One(cell + 1 + pos + m + j));
             }
             pos += m + after;
             k += 1;
             i += 1 + after as u8;
             c = d;
         }
-        Err(EvalError::new(EvalErrorKind::UnboundVariable {
-            name: NONE,
-        }))
+        None
+    }
+
+    /// Host: where LHS variable (`pattern_var`'s arguments) lies in its fact's
+    /// cells; None when its pattern binds no fact or it names the fact itself.
+    #[cfg(feature = "host-speedups")]
+    #[inline(always)]
+    pub(crate) fn pattern_place(&self, pat: u8, locator: Ix, desc_slot: Ix) -> Option<Place> {
+        let b = self.binding(pat);
+        if b.fact == NONE || locator == loc::FACT {
+            return None;
+        }
+        let slot = Ix::from(loc::slot(locator));
+        let f = &self.facts[b.fact as usize];
+        let (cell, mlen) = if f.flat {
+            let c = (f.start + slot) as usize;
+            match self.values[c] {
+                Value::Multi(m) => (c, Some(m.len)),
+                _ => (c, None),
+            }
+        } else {
+            self.slot_cell_inline(b.fact, slot)
+        };
+        let Some(len) = mlen else {
+            return Some(Place::One(cell));
+        };
+        let elem = loc::elem(locator);
+        if elem == loc::SINGLE || desc_slot == NONE {
+            return Some(Place::Seg(cell + 1, len as usize));
+        }
+        let ps = self.exprs[desc_slot as usize];
+        self.place_after_multi(b, cell, len as usize, ps, elem)
+    }
+
+    /// Host: `Eq2` of two LHS variables (`$?rest` in two patterns, `?g` after a
+    /// multifield in both) compared where they lie, a multifield without its copy
+    /// to scratch; None when either is not a field of a bound fact.
+    #[cfg(feature = "host-speedups")]
+    #[inline(never)]
+    fn same_places(&self, a: Expr, b: Expr) -> Option<bool> {
+        let pa = self.pattern_place(a.aux, a.data, a.first)?;
+        match (pa, self.pattern_place(b.aux, b.data, b.first)?) {
+            (Place::One(p), Place::One(q)) => Some(builtins::basic::values_same(
+                self,
+                self.values[p],
+                self.values[q],
+            )),
+            (Place::Seg(p, m), Place::Seg(q, n)) => {
+                Some(m == n && (0..m).all(|k| self.values[p + k].same(self.values[q + k])))
+            }
+            _ => None,
+        }
     }
 
     /// `?v:slot` (an `Op::QSlot` node); inlined on the host, where most are read in

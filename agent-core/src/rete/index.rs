@@ -15,6 +15,8 @@ use super::{JoinKind, PatBinding, TokenKind, MAX_RHASH, THIS_PATTERN};
 use super::{XGROUPS, XMAP, XSCAN};
 use crate::engine::Core;
 use crate::error::EvalError;
+#[cfg(feature = "host-speedups")]
+use crate::eval::Place;
 use crate::expr::{loc, Op};
 use crate::handle::{JoinId, TokenId};
 #[cfg(feature = "host-speedups")]
@@ -263,15 +265,31 @@ impl Core<'_> {
     /// A hash of a value consistent with `values_same` (the join tests' equality).
     fn value_hash(&self, v: Value) -> u32 {
         match v {
-            Value::Multi(p) => {
-                let mut h = mix(7, u32::from(p.len));
-                for k in 0..p.len as usize {
-                    h = mix(h, self.value_hash(self.mf_item(p, k)));
-                }
-                h
-            }
+            Value::Multi(p) => self.items_hash(p.len as usize, |k| self.mf_item(p, k)),
             v => atom_hash(v),
         }
+    }
+
+    /// `value_hash` of a multifield of `len` fields, field `k` given by `item`.
+    #[inline(always)]
+    fn items_hash(&self, len: usize, item: impl Fn(usize) -> Value) -> u32 {
+        let mut h = mix(7, len as u32);
+        for k in 0..len {
+            h = mix(h, self.value_hash(item(k)));
+        }
+        h
+    }
+
+    /// Host: `value_hash` of the value an LHS variable (`pattern_var`'s arguments)
+    /// reads, hashed where it lies (a multifield without its copy to scratch); None
+    /// when the evaluator must read it.
+    #[cfg(feature = "host-speedups")]
+    #[inline(always)]
+    fn place_hash(&self, pat: u8, locator: Ix, desc_slot: Ix) -> Option<u32> {
+        Some(match self.pattern_place(pat, locator, desc_slot)? {
+            Place::One(c) => self.value_hash(self.values[c]),
+            Place::Seg(c, n) => self.items_hash(n, |k| self.values[c + k]),
+        })
     }
 
     /// Alpha buckets are the table's first half, beta buckets the rest, so every
@@ -306,6 +324,11 @@ impl Core<'_> {
         let mut key = 0x5bd1_e995u32;
         for &e in &n.rhash[..key_fields(&n)] {
             let x = self.exprs[e as usize];
+            #[cfg(feature = "host-speedups")]
+            if let Some(h) = self.place_hash(THIS_PATTERN, x.data, x.first) {
+                key = mix(key, h);
+                continue;
+            }
             // an unreadable field hashes as nothing; the join tests decide anyway
             let v = self
                 .pattern_var(THIS_PATTERN, x.data, x.first)
@@ -509,6 +532,10 @@ impl Core<'_> {
         if let Some(k) = self.marks_left_key(join) {
             return Some(k);
         }
+        #[cfg(feature = "host-speedups")]
+        if let Some(k) = self.place_left_key(join) {
+            return Some(k);
+        }
         let nrhash = self.alphas[self.joins[join].alpha as usize].nrhash;
         let mut key = 0x5bd1_e995u32;
         let mut ok = true;
@@ -520,6 +547,34 @@ impl Core<'_> {
             return None;
         }
         Some(key)
+    }
+
+    /// Host: `left_key` with each value hashed where it lies (`place_hash`: a
+    /// multifield such as `$?rest` without its copy); None when one needs the
+    /// evaluator.
+    #[cfg(feature = "host-speedups")]
+    fn place_left_key(&mut self, join: JoinId) -> Option<u32> {
+        let j = self.joins[join];
+        let nrhash = self.alphas[j.alpha as usize].nrhash;
+        let pm = core::mem::replace(&mut self.st.net.pm_rhs, false);
+        let mut key = 0x5bd1_e995u32;
+        let mut found = 0;
+        let mut t = j.tests;
+        while t != NONE && found < nrhash {
+            let x = self.exprs[t as usize];
+            if let Some(other) = self.key_test_other(&x, j.depth) {
+                let o = self.exprs[other as usize];
+                let Some(h) = self.place_hash(o.aux, o.data, o.first) else {
+                    self.st.net.pm_rhs = pm;
+                    return None;
+                };
+                key = mix(key, h);
+                found += 1;
+            }
+            t = x.next;
+        }
+        self.st.net.pm_rhs = pm;
+        (found == nrhash).then_some(key)
     }
 
     /// Host: `left_key` through the join's `MarkKey` (`lhs_pm` bound), None when
