@@ -67,6 +67,19 @@ impl Default for DepthLimits {
     }
 }
 
+/// Host: the id of `length$`, which `compare_lengths` computes.
+#[cfg(feature = "host-speedups")]
+const LENGTH_ID: Ix = builtins::builtin_id("length$");
+
+/// An operand `quick_compare` reads without a call.
+#[inline(always)]
+fn is_leaf(op: Op) -> bool {
+    matches!(
+        op,
+        Op::Sym | Op::Str | Op::Int | Op::Float | Op::Local | Op::Global | Op::PatVar | Op::QSlot
+    )
+}
+
 /// Where an LHS variable's value lies in the fact cells (`values`): one field, or a
 /// segment of `len` fields (a multifield, which reading copies to scratch).
 #[derive(Clone, Copy)]
@@ -384,19 +397,6 @@ impl Core<'_> {
     // every nested call pays in stack
     #[cfg_attr(not(feature = "host-speedups"), inline(never))]
     fn quick_compare(&mut self, x: Expr) -> Option<Result<Value, EvalError>> {
-        let leaf = |op: Op| {
-            matches!(
-                op,
-                Op::Sym
-                    | Op::Str
-                    | Op::Int
-                    | Op::Float
-                    | Op::Local
-                    | Op::Global
-                    | Op::PatVar
-                    | Op::QSlot
-            )
-        };
         let a = x.first;
         if a == NONE {
             return None;
@@ -411,9 +411,12 @@ impl Core<'_> {
             return Some(self.compare_in_order(x));
         }
         if self.exprs[b as usize].next != NONE
-            || !leaf(self.exprs[a as usize].op)
-            || !leaf(self.exprs[b as usize].op)
+            || !is_leaf(self.exprs[a as usize].op)
+            || !is_leaf(self.exprs[b as usize].op)
         {
+            #[cfg(feature = "host-speedups")]
+            return self.compare_lengths(x, a, b);
+            #[cfg(not(feature = "host-speedups"))]
             return None;
         }
         let sp = self.st.frame.sp as usize;
@@ -489,6 +492,82 @@ impl Core<'_> {
         }
         self.note_hw(Pool::EvalStack, sp);
         Some(builtins::basic::num_arith(x.data, p, q))
+    }
+
+    /// Host: `quick_compare` of two operands one or both of which are a `length$`
+    /// that `quick_length` computes, the others leaves (`(> (length$ $?l) 0)`,
+    /// `(>= (length$ ?a) (length$ $?b))`); None for anything else, or values that
+    /// are not numbers (the builtin reports them). The lengths are read first: they
+    /// have no side effects and cannot fail.
+    #[cfg(feature = "host-speedups")]
+    #[inline(never)]
+    fn compare_lengths(&mut self, x: Expr, a: Ix, b: Ix) -> Option<Result<Value, EvalError>> {
+        let length = |cx: &mut Self, e: Ix| -> Option<Option<Value>> {
+            let y = cx.exprs[e as usize];
+            if is_leaf(y.op) {
+                Some(None)
+            } else if y.op == Op::Call && y.aux == FnKind::Builtin as u8 && y.data == LENGTH_ID {
+                cx.quick_length(y).map(Some)
+            } else {
+                None
+            }
+        };
+        if self.exprs[b as usize].next != NONE {
+            return None;
+        }
+        let (la, lb) = (length(self, a)?, length(self, b)?);
+        let sp = self.st.frame.sp as usize;
+        if sp + 2 > self.stack.len() {
+            return None;
+        }
+        let va = match la {
+            Some(v) => v,
+            None => match self.eval_operand(a) {
+                Ok(v) => v,
+                Err(err) => {
+                    self.note_hw(Pool::EvalStack, sp);
+                    return Some(Err(err));
+                }
+            },
+        };
+        let vb = match lb {
+            Some(v) => v,
+            None => match self.eval_operand(b) {
+                Ok(v) => v,
+                Err(err) => {
+                    self.note_hw(Pool::EvalStack, sp + 1);
+                    return Some(Err(err));
+                }
+            },
+        };
+        let r = builtins::basic::compare(self, x.data, va, vb)?;
+        self.note_hw(Pool::EvalStack, sp + 2);
+        Some(Ok(Core::bool_value(r)))
+    }
+
+    /// Host: `length$` (call node `x`) of an LHS variable's multifield, read where
+    /// the multifield lies in its fact, without the copy to scratch the argument's
+    /// evaluation makes; None for anything else, which the builtin computes.
+    #[cfg(feature = "host-speedups")]
+    #[inline(always)]
+    fn quick_length(&mut self, x: Expr) -> Option<Value> {
+        if x.first == NONE || self.st.mode.halting {
+            return None;
+        }
+        let mut v = self.exprs[x.first as usize];
+        if v.next != NONE {
+            return None;
+        }
+        if v.op == Op::Expand && v.aux == 0 && v.first != NONE {
+            v = self.exprs[v.first as usize];
+        }
+        if v.op != Op::PatVar {
+            return None;
+        }
+        match self.pattern_place(v.aux, v.data, v.first)? {
+            Place::Seg(_, n) => Some(Value::Int(n as i64)),
+            Place::One(_) => None,
+        }
     }
 
     /// Host: the number leaf `e` holds (`quick_arith`), read without side effects;

@@ -56,14 +56,14 @@ const PLAN_NODES: usize = 64;
 const PLAN_DEPTH: u8 = 4;
 
 /// Builtin ids of table 0 (`builtins::basic::FUNCS`) the plan knows, checked by a test.
-const FN_ADD: Ix = 0;
-const FN_SUB: Ix = 1;
-const FN_MUL: Ix = 2;
+const FN_ADD: Ix = builtins::builtin_id("+");
+const FN_SUB: Ix = builtins::builtin_id("-");
+const FN_MUL: Ix = builtins::builtin_id("*");
 const FN_EQ: Ix = CMP_FIRST + 6;
 const FN_NEQ: Ix = CMP_FIRST + 7;
-const FN_AND: Ix = 12;
-const FN_OR: Ix = 13;
-const FN_NOT: Ix = 14;
+const FN_AND: Ix = builtins::builtin_id("and");
+const FN_OR: Ix = builtins::builtin_id("or");
+const FN_NOT: Ix = builtins::builtin_id("not");
 /// `sub-string`, whose cuts `Node::Text` compares where they lie.
 const FN_SUB_STRING: Ix = builtins::builtin_id("sub-string");
 /// `abs`, an `ArOp::Abs` node (its id compared: no name compared per call planned).
