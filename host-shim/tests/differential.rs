@@ -597,6 +597,7 @@ differential_programs! {
     p705_rule_of_43_patterns => "705-rule-of-43-patterns",
     p706_long_built_strings => "706-long-built-strings",
     p707_long_string_literals => "707-long-string-literals",
+    p709_later_unequal_symbol_tests => "709-later-unequal-symbol-tests",
     p759_constructs_of_80_variables => "759-constructs-of-80-variables",
     p760_expressions_nested_300_deep => "760-expressions-nested-300-deep",
     p940_void_value_in_slot => "940-void-value-in-slot",
