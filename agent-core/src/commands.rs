@@ -416,6 +416,8 @@ impl Core<'_> {
         }
         self.st.facts.next_fact_num = 0;
         #[cfg(feature = "extras")]
+        self.forget_pattern_error();
+        #[cfg(feature = "extras")]
         self.st.timetags.reset();
         // globals back to their initial values, unless `(set-reset-globals FALSE)`
         #[cfg(feature = "extras")]

@@ -257,6 +257,22 @@ pub struct MatchState {
     pub failed_test: Ix,
     /// A pattern test failed with an error during the current assert.
     pub pattern_error: bool,
+    /// Host: the fact (and its number) whose test in CLIPS's pattern-network node
+    /// `err_alpha`'s path level `err_level` failed with an error: every alpha node
+    /// sharing that node is done with the fact, as CLIPS tests a shared node once
+    /// (`rete::alpha`, `pattern_error_prunes`). `err_fact` NONE: none.
+    #[cfg(feature = "extras")]
+    pub err_fact: Ix,
+    #[cfg(feature = "extras")]
+    pub err_num: u32,
+    #[cfg(feature = "extras")]
+    pub err_alpha: Ix,
+    #[cfg(feature = "extras")]
+    pub err_level: u8,
+    /// Host: the fact passed the tests up to `err_level` instead (a node whose
+    /// multislot length failed tested them, `rete::alpha` `tests_before_length`).
+    #[cfg(feature = "extras")]
+    pub err_pass: bool,
     /// Pattern or join tests running (nested): CLIPS is pattern-matching, and refuses
     /// to assert, retract, modify or duplicate facts, to build or remove rules, to
     /// `clear` or to `reset` until they are done (the checks sit in those builtins and
@@ -351,6 +367,16 @@ impl MatchState {
             hold: crate::hold::TraceHold::EMPTY,
             failed_test: NONE,
             pattern_error: false,
+            #[cfg(feature = "extras")]
+            err_fact: NONE,
+            #[cfg(feature = "extras")]
+            err_num: 0,
+            #[cfg(feature = "extras")]
+            err_alpha: NONE,
+            #[cfg(feature = "extras")]
+            err_level: 0,
+            #[cfg(feature = "extras")]
+            err_pass: false,
             matching: 0,
             #[cfg(feature = "extras")]
             matching_free: 0,

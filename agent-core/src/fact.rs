@@ -818,6 +818,8 @@ impl Core<'_> {
             }
             self.free_fact_slot(slot);
             self.st.facts.next_fact_num = num;
+            #[cfg(feature = "extras")]
+            self.forget_pattern_error();
             let _ = self.pay_owed();
             self.journal_end(mark);
             self.release_traces(false);

@@ -69,6 +69,9 @@ impl Core<'_> {
 
     /// Drives one fact through the alpha nodes numbered `first` and up.
     pub(crate) fn prime_fact(&mut self, f: Ix, first: Ix) -> Result<(), EvalError> {
+        // the fact meets the new rule's nodes afresh, shared ones too (CLIPS)
+        #[cfg(feature = "extras")]
+        self.forget_pattern_error();
         let tmpl = self.facts[f as usize].tmpl;
         let mut a = self.templates[tmpl as usize].alpha_head;
         while a != NONE {

@@ -274,6 +274,8 @@ impl Core<'_> {
         self.st.facts.values_top = 0;
         self.forget_free_cells();
         self.st.facts.next_fact_num = 0;
+        #[cfg(feature = "extras")]
+        self.forget_pattern_error();
         let root_token = self.join_mems[JoinId::ROOT].mem;
 
         for m in self.tmpl_mems.iter_mut() {

@@ -307,6 +307,10 @@ impl Core<'_> {
                 }
                 let len = self.slot_cell(fact, sd.data).1.unwrap_or(1);
                 if len < fixed || (!multi && len != fixed) {
+                    #[cfg(feature = "extras")]
+                    if tests != NONE {
+                        return self.tests_before_length(alpha, fact, tests);
+                    }
                     return Ok(());
                 }
                 n += 1;
@@ -331,6 +335,10 @@ impl Core<'_> {
             let (cell, mlen) = self.slot_cell(fact, l.slot);
             let len = mlen.unwrap_or(1);
             if len < l.fixed || (l.multis == 0 && len != l.fixed) {
+                #[cfg(feature = "extras")]
+                if tests != NONE {
+                    return self.tests_before_length(alpha, fact, tests);
+                }
                 return Ok(());
             }
             slack[i] = len - l.fixed;
@@ -730,6 +738,18 @@ impl Core<'_> {
         if t == NONE {
             return Ok(true);
         }
+        // host: a node sharing the CLIPS node whose test failed with an error on
+        // this fact is not tested again
+        #[cfg(feature = "extras")]
+        let t = if self.st.net.err_fact == fact {
+            match self.shared_tests_left(alpha, fact, t) {
+                Some(NONE) => return Ok(true),
+                Some(t) => t,
+                None => return Ok(false),
+            }
+        } else {
+            t
+        };
         let saved = self.st.net.this_pm;
         self.st.net.this_pm = PatBinding { fact, marks };
         let r = self.eval_tests(t);
@@ -942,13 +962,270 @@ impl Core<'_> {
             }
         }
         self.write(crate::host::router::WERROR, b.as_str());
-        // every rule using the pattern, and the pattern's position in it
+        // host: every alpha node sharing the CLIPS node whose test failed (in the
+        // template's order, CLIPS's), and the fact is done with them all
+        #[cfg(feature = "extras")]
+        if let Some(level) = self.error_level(alpha) {
+            let num = self.facts[fact as usize].num;
+            let n = &mut self.st.net;
+            (n.err_fact, n.err_num, n.err_alpha, n.err_level) = (fact, num, alpha, level as u8);
+            n.err_pass = false;
+            let mut a = self.templates[self.facts[fact as usize].tmpl as usize].alpha_head;
+            while a != NONE {
+                if self.shares_level(a, alpha, level) && !self.ends_above(a, level) {
+                    self.write_alpha_rules(a);
+                }
+                a = self.alphas[a as usize].next_in_tmpl;
+            }
+            self.write(crate::host::router::WERROR, "\n");
+            return;
+        }
+        self.write_alpha_rules(alpha);
+        self.write(crate::host::router::WERROR, "\n");
+    }
+
+    /// Every rule using alpha node `alpha`'s pattern, and the pattern's position in it.
+    fn write_alpha_rules(&mut self, alpha: Ix) {
         let mut j = self.alphas[alpha as usize].succ;
         while j != JoinId::NONE {
             self.write_rules_below(j, self.joins[j].depth as usize + 1);
             j = self.joins[j].alpha_next;
         }
-        self.write(crate::host::router::WERROR, "\n");
+    }
+
+    /// Host: the level of alpha node `alpha`'s path (CLIPS's pattern-network node)
+    /// whose test `failed_test` is, when CLIPS tests it once per fact: a level
+    /// before any multifield choice (a multifield among several in its slot: the
+    /// levels from there on are tested per length). None: not known (a path cut
+    /// short, a test naming no field).
+    #[cfg(feature = "extras")]
+    fn error_level(&self, alpha: Ix) -> Option<usize> {
+        let level = self.test_level(alpha, self.st.net.failed_test)?;
+        let node = &self.alphas[alpha as usize];
+        if (0..=level).any(|l| self.choice_level(alpha, node.path_loc[l])) {
+            return None;
+        }
+        Some(level)
+    }
+
+    /// Host: whether path locator `at` of alpha node `alpha` is a multifield element
+    /// of a slot with several.
+    #[cfg(feature = "extras")]
+    fn choice_level(&self, alpha: Ix, at: Ix) -> bool {
+        let (slot, elem) = (Ix::from(loc::slot(at)), loc::elem(at));
+        let mut s = self.alphas[alpha as usize].desc;
+        while s != NONE {
+            let sd = self.exprs[s as usize];
+            if sd.data == slot {
+                let (mut e, mut k, mut multis, mut multi) = (sd.first, 0u8, 0u8, false);
+                while e != NONE {
+                    let x = self.exprs[e as usize];
+                    multis += u8::from(x.aux == 1);
+                    if k == elem {
+                        multi = x.aux == 1;
+                    }
+                    k = k.wrapping_add(1);
+                    e = x.next;
+                }
+                return multi && multis >= 2;
+            }
+            s = sd.next;
+        }
+        false
+    }
+
+    /// Host: whether another pattern's path ends on alpha node `a`'s path at level
+    /// `level` or below it, before `a`'s end: CLIPS traces an error to the rules of
+    /// a node where patterns end and not further down (`[FACTMCH1]`).
+    #[cfg(feature = "extras")]
+    fn ends_above(&self, a: Ix, level: usize) -> bool {
+        let x = &self.alphas[a as usize];
+        let len = x.key_len as usize;
+        let tmpl = x.tmpl;
+        let mut b = self.templates[tmpl as usize].alpha_head;
+        while b != NONE {
+            let y = &self.alphas[b as usize];
+            let n = y.key_len as usize;
+            if y.live && n > level && n < len && y.key[..n] == x.key[..n] {
+                return true;
+            }
+            b = y.next_in_tmpl;
+        }
+        false
+    }
+
+    /// Host: whether alpha node `a` passes through level `level` of `b`'s path (the
+    /// same CLIPS pattern-network node: the same node ids up to there).
+    #[cfg(feature = "extras")]
+    fn shares_level(&self, a: Ix, b: Ix, level: usize) -> bool {
+        let (x, y) = (&self.alphas[a as usize], &self.alphas[b as usize]);
+        x.live && x.key_len as usize > level && x.key[..=level] == y.key[..=level]
+    }
+
+    /// Host: whether alpha node `alpha` passes through the CLIPS node `err_fact`
+    /// (here `fact`) was last tested at.
+    #[cfg(feature = "extras")]
+    fn memo_applies(&self, alpha: Ix, fact: Ix) -> bool {
+        let n = &self.st.net;
+        n.err_fact == fact
+            && n.err_num == self.facts[fact as usize].num
+            && n.err_alpha != NONE
+            && (n.err_alpha as usize) < self.alphas.len()
+            && self.shares_level(alpha, n.err_alpha, n.err_level as usize)
+    }
+
+    /// Host: alpha node `alpha`'s tests `t` left to run on `fact` (`err_fact`):
+    /// None when the fact failed (with an error) at a CLIPS node the node passes
+    /// through, as CLIPS tested it once and went no further below it; the tests
+    /// after that node's level when the fact passed it; else `t`.
+    #[cfg(feature = "extras")]
+    #[cold]
+    #[inline(never)]
+    fn shared_tests_left(&self, alpha: Ix, fact: Ix, mut t: Ix) -> Option<Ix> {
+        if !self.memo_applies(alpha, fact) {
+            return Some(t);
+        }
+        if !self.st.net.err_pass {
+            return None;
+        }
+        let level = self.st.net.err_level as usize;
+        while t != NONE && self.test_level(alpha, t).is_some_and(|l| l <= level) {
+            t = self.exprs[t as usize].next;
+        }
+        Some(t)
+    }
+
+    /// Host: the level of alpha node `alpha`'s path test `t` is on.
+    #[cfg(feature = "extras")]
+    fn test_level(&self, alpha: Ix, t: Ix) -> Option<usize> {
+        let (slot, elem) = self.failed_field(t)?;
+        let at = loc::new(slot, elem);
+        let node = &self.alphas[alpha as usize];
+        (0..node.key_len as usize)
+            .rev()
+            .find(|&l| node.path_loc[l] == at)
+    }
+
+    /// Host: forgets the fact a pattern test failed on (`err_fact`): its number may
+    /// be given again (a reset, a failed assert) or its nodes tested again (a new
+    /// rule's priming).
+    #[cfg(feature = "extras")]
+    pub(crate) fn forget_pattern_error(&mut self) {
+        self.st.net.err_fact = NONE;
+    }
+
+    /// Host: a fact whose multislot is too short or too long for alpha node `alpha`
+    /// (`match_alpha`): CLIPS tests the slot's length at the slot's first node of
+    /// the pattern's path, so the node's tests `tests` (those the quick path left)
+    /// on levels before the first such slot run first, for their errors and
+    /// effects; the fact does not match either way.
+    #[cfg(feature = "extras")]
+    #[cold]
+    #[inline(never)]
+    fn tests_before_length(&mut self, alpha: Ix, fact: Ix, tests: Ix) -> Result<(), EvalError> {
+        let node = self.alphas[alpha as usize];
+        if node.nmarks != 0 {
+            return Ok(());
+        }
+        // the first level of a slot whose length fails
+        let mut first = usize::MAX;
+        let mut s = node.desc;
+        while s != NONE {
+            let sd = self.exprs[s as usize];
+            let (mut fixed, mut multi) = (0 as Ix, false);
+            let mut e = sd.first;
+            while e != NONE {
+                let x = &self.exprs[e as usize];
+                if x.aux == 1 {
+                    multi = true;
+                } else {
+                    fixed += 1;
+                }
+                e = x.next;
+            }
+            let len = self.slot_cell(fact, sd.data).1.unwrap_or(1);
+            if len < fixed || (!multi && len != fixed) {
+                let l = (0..node.key_len as usize)
+                    .find(|&l| Ix::from(loc::slot(node.path_loc[l])) == sd.data);
+                match l {
+                    Some(l) => first = first.min(l),
+                    // a level cut off the path: not known where
+                    None => return Ok(()),
+                }
+            }
+            s = sd.next;
+        }
+        if first == usize::MAX {
+            return Ok(());
+        }
+        // the tests (in the path's order) on levels before it
+        let (mut end, mut last) = (tests, 0);
+        while end != NONE {
+            match self.test_level(alpha, end) {
+                Some(l) if l < first => {
+                    last = l;
+                    end = self.exprs[end as usize].next;
+                }
+                _ => break,
+            }
+        }
+        if end == tests || self.memo_applies(alpha, fact) {
+            return Ok(());
+        }
+        // a node visited before this one through the same CLIPS nodes tested them
+        let ir = self.st.net.ir_alpha;
+        let mut b = self.templates[self.facts[fact as usize].tmpl as usize].alpha_head;
+        while b != alpha && b != NONE {
+            if (ir == NONE || b >= ir) && self.shares_level(b, alpha, last) {
+                return Ok(());
+            }
+            b = self.alphas[b as usize].next_in_tmpl;
+        }
+        let saved = self.st.net.this_pm;
+        self.st.net.this_pm = PatBinding {
+            fact,
+            marks: [0; MAX_MARKS],
+        };
+        let (scratch, sp) = (self.st.frame.scratch_top, self.st.frame.sp);
+        self.st.net.matching += 1;
+        let mut r = Ok(());
+        let mut t = tests;
+        // the level the fact got to, and whether it passed it
+        let (mut level, mut pass) = (last, true);
+        while t != end {
+            let v = self.eval(t);
+            self.st.frame.scratch_top = scratch;
+            self.st.frame.sp = sp;
+            match v {
+                Err(e) => {
+                    self.st.net.failed_test = t;
+                    r = Err(e);
+                    break;
+                }
+                Ok(v) if v == Value::Sym(crate::builtins::SYM_FALSE) => {
+                    (level, pass) = (self.test_level(alpha, t).unwrap_or(last), false);
+                    break;
+                }
+                Ok(_) => {}
+            }
+            t = self.exprs[t as usize].next;
+        }
+        self.st.net.matching -= 1;
+        self.st.net.this_pm = saved;
+        if r.is_ok() {
+            // the nodes after this one sharing those levels are done with them
+            let num = self.facts[fact as usize].num;
+            let n = &mut self.st.net;
+            (n.err_fact, n.err_num, n.err_alpha) = (fact, num, alpha);
+            (n.err_level, n.err_pass) = (level as u8, pass);
+        }
+        match r {
+            Err(e) if !e.is_capacity() => {
+                self.report_pattern_error(alpha, fact, e);
+                Ok(())
+            }
+            r => r,
+        }
     }
 
     /// `      Of pattern #N in rule R` for every rule whose network passes through

@@ -506,6 +506,8 @@ impl Core<'_> {
             // nothing else was asserted since: its number is the next one again
             if fact.num.wrapping_add(1) == self.st.facts.next_fact_num {
                 self.st.facts.next_fact_num = fact.num;
+                #[cfg(feature = "extras")]
+                self.forget_pattern_error();
             }
         }
         let _ = self.pay_owed();

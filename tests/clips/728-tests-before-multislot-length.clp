@@ -1,0 +1,35 @@
+; CLIPS tests a multislot's length at the slot's node of the pattern network, in the
+; order the pattern names its slots: a test on a slot named before the multislot runs
+; (with its errors and effects) even when the multislot's length fails the pattern,
+; and once for all the patterns sharing it; one named after the multislot does not
+; run then. New rules (incremental reset), a reset with deffacts, `test` CEs, patterns
+; inside `not` and `exists`, and (watch rules) around it.
+(deftemplate t (slot x) (slot y) (multislot m))
+(deffunction p (?v) (printout t "test " ?v crlf) TRUE)
+(defrule a (t (x ?x&:(p ?x)) (m b $?)) => (printout t "a" crlf))
+(defrule b (t (x ?x&:(p ?x)) (m c d $?)) => (printout t "b" crlf))
+(assert (t (x 2) (y 1) (m)))
+(assert (t (x 3) (y 1) (m b)))
+(run)
+(defrule f (t (m a) (x ?x&:(> ?x 2))) => (printout t "f" crlf))
+(defrule g (t (y 9) (x ?x&:(> ?x 2))) => (printout t "g" crlf))
+(defrule h (t (x ?x&:(> ?x 2)) (m a)) => (printout t "h" crlf))
+(assert (t (x abc) (y 10)))
+(assert (t (x abc) (y 9) (m a b)))
+(run)
+(clear)
+(deftemplate t (slot x) (slot y) (multislot m))
+(defrule n1 (go) (not (t (x ?x&:(> ?x 2)) (m a))) => (printout t "n1" crlf))
+(defrule n2 (go) (exists (t (x ?x&:(> ?x 2)) (m b c))) => (printout t "n2" crlf))
+(defrule n3 (t (x ?x&:(> ?x 2)) (m $?q)) (test (> (length$ ?q) 0)) => (printout t "n3" crlf))
+(defrule n4 (t (x ?x) (y ?y&:(> ?y ?x)) (m a)) => (printout t "n4" crlf))
+(defrule n5 (t (x ?x) (y ?y&:(> ?y ?x)) (m a b)) => (printout t "n5" crlf))
+(deffacts f (go) (t (x abc) (m)) (t (x abc) (m a)) (t (x 5) (m b c))
+  (t (x 1) (y q) (m)) (t (x 1) (y 2) (m a)))
+(watch rules)
+(reset)
+(run)
+(unwatch rules)
+(reset)
+(agenda)
+(exit)
