@@ -994,44 +994,17 @@ impl Core<'_> {
     }
 
     /// Host: the level of alpha node `alpha`'s path (CLIPS's pattern-network node)
-    /// whose test `failed_test` is, when CLIPS tests it once per fact: a level
-    /// before any multifield choice (a multifield among several in its slot: the
-    /// levels from there on are tested per length). None: not known (a path cut
-    /// short, a test naming no field).
+    /// whose test `failed_test` is, when CLIPS tests it once per fact: a node
+    /// without multifield choices (a multifield among several in a slot, whose
+    /// levels CLIPS tests per length; such a node may also serve patterns naming
+    /// its slots in another order, whose paths differ from its own). None: not
+    /// known (also a path cut short, a test naming no field).
     #[cfg(feature = "extras")]
     fn error_level(&self, alpha: Ix) -> Option<usize> {
-        let level = self.test_level(alpha, self.st.net.failed_test)?;
-        let node = &self.alphas[alpha as usize];
-        if (0..=level).any(|l| self.choice_level(alpha, node.path_loc[l])) {
+        if self.alphas[alpha as usize].nmarks != 0 {
             return None;
         }
-        Some(level)
-    }
-
-    /// Host: whether path locator `at` of alpha node `alpha` is a multifield element
-    /// of a slot with several.
-    #[cfg(feature = "extras")]
-    fn choice_level(&self, alpha: Ix, at: Ix) -> bool {
-        let (slot, elem) = (Ix::from(loc::slot(at)), loc::elem(at));
-        let mut s = self.alphas[alpha as usize].desc;
-        while s != NONE {
-            let sd = self.exprs[s as usize];
-            if sd.data == slot {
-                let (mut e, mut k, mut multis, mut multi) = (sd.first, 0u8, 0u8, false);
-                while e != NONE {
-                    let x = self.exprs[e as usize];
-                    multis += u8::from(x.aux == 1);
-                    if k == elem {
-                        multi = x.aux == 1;
-                    }
-                    k = k.wrapping_add(1);
-                    e = x.next;
-                }
-                return multi && multis >= 2;
-            }
-            s = sd.next;
-        }
-        false
+        self.test_level(alpha, self.st.net.failed_test)
     }
 
     /// Host: whether another pattern's path ends on alpha node `a`'s path at level
