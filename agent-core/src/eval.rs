@@ -67,9 +67,14 @@ impl Default for DepthLimits {
     }
 }
 
-/// Host: the id of `length$`, which `compare_lengths` computes.
+/// Host: ids of builtins the host decides in place (`compare_lengths`,
+/// `quick_join_tests`).
 #[cfg(feature = "host-speedups")]
 const LENGTH_ID: Ix = builtins::builtin_id("length$");
+#[cfg(feature = "host-speedups")]
+const MEMBER_ID: Ix = builtins::builtin_id("member$");
+#[cfg(feature = "host-speedups")]
+const NOT_ID: Ix = builtins::builtin_id("not");
 
 /// An operand `quick_compare` reads without a call.
 #[inline(always)]
@@ -543,6 +548,104 @@ impl Core<'_> {
         let r = builtins::basic::compare(self, x.data, va, vb)?;
         self.note_hw(Pool::EvalStack, sp + 2);
         Some(Ok(Core::bool_value(r)))
+    }
+
+    /// Host: a join's tests (chain `tests`, `lhs_pm` bound) decided in order while
+    /// each is a `member$` of an atom in an LHS variable's multifield, the `not` of
+    /// one, or an `Eq2` of two LHS variables, read where the fields lie (`(member$
+    /// ?goal ?top)` of a segment): Err(whether all hold) when decided, else Ok(the
+    /// first test left for the evaluator). These tests have no side effects and
+    /// cannot fail, so deciding them first changes nothing the evaluator does.
+    #[cfg(feature = "host-speedups")]
+    pub(crate) fn quick_join_tests(&mut self, tests: Ix) -> Result<Ix, bool> {
+        if self.st.mode.halting {
+            return Ok(tests);
+        }
+        let pm = core::mem::replace(&mut self.st.net.pm_rhs, false);
+        let mut t = tests;
+        let r = loop {
+            if t == NONE {
+                break Err(true);
+            }
+            let x = self.exprs[t as usize];
+            match self.in_place_join_test(x) {
+                Some(true) => t = x.next,
+                Some(false) => break Err(false),
+                None => break Ok(t),
+            }
+        };
+        self.st.net.pm_rhs = pm;
+        r
+    }
+
+    /// One test of `quick_join_tests`, None when the evaluator must decide it.
+    #[cfg(feature = "host-speedups")]
+    fn in_place_join_test(&self, x: Expr) -> Option<bool> {
+        match x.op {
+            Op::Eq2 => {
+                let a = self.exprs[x.first as usize];
+                let b = self.exprs[a.next as usize];
+                if a.op != Op::PatVar || b.op != Op::PatVar {
+                    return None;
+                }
+                self.same_places(a, b)
+            }
+            Op::Call if x.aux == FnKind::Builtin as u8 && x.data == MEMBER_ID => {
+                Some(self.quick_member(x)?.is_some())
+            }
+            Op::Call if x.aux == FnKind::Builtin as u8 && x.data == NOT_ID => {
+                if x.first == NONE {
+                    return None;
+                }
+                let y = self.exprs[x.first as usize];
+                if y.next != NONE
+                    || y.op != Op::Call
+                    || y.aux != FnKind::Builtin as u8
+                    || y.data != MEMBER_ID
+                {
+                    return None;
+                }
+                Some(self.quick_member(y)?.is_none())
+            }
+            _ => None,
+        }
+    }
+
+    /// Host: `member$` (call node `x`) of an atom (an LHS variable's field, a
+    /// symbol or string) in an LHS variable's multifield, read in place: Some(the
+    /// 0-based position found, or None), or None when the builtin must decide.
+    #[cfg(feature = "host-speedups")]
+    fn quick_member(&self, x: Expr) -> Option<Option<usize>> {
+        if x.first == NONE {
+            return None;
+        }
+        let a = self.exprs[x.first as usize];
+        if a.next == NONE {
+            return None;
+        }
+        let needle = match a.op {
+            Op::PatVar => match self.pattern_place(a.aux, a.data, a.first)? {
+                Place::One(c) => self.values[c],
+                Place::Seg(..) => return None,
+            },
+            Op::Sym => Value::Sym(a.data),
+            Op::Str => Value::Str(a.data),
+            _ => return None,
+        };
+        let mut v = self.exprs[a.next as usize];
+        if needle.is_multi() || v.next != NONE {
+            return None;
+        }
+        if v.op == Op::Expand && v.aux == 0 && v.first != NONE {
+            v = self.exprs[v.first as usize];
+        }
+        if v.op != Op::PatVar {
+            return None;
+        }
+        let Place::Seg(c, n) = self.pattern_place(v.aux, v.data, v.first)? else {
+            return None;
+        };
+        Some((0..n).find(|&k| self.values[c + k].same(needle)))
     }
 
     /// Host: `length$` (call node `x`) of an LHS variable's multifield, read where

@@ -1,9 +1,9 @@
 ; Multifield LHS variables read where they lie in the fact (host speed-ups):
 ; equality of two of them in a join (`$?rest` in two patterns, a field after a
-; multifield in both), the hash keys of such joins, and `length$` of one in a
-; comparison, against the evaluator's answers (empty segments, a float that is
-; not the integer, strings, `member$` beside them, `$?x` and `?x` forms, a
-; `length$` of a single field).
+; multifield in both), the hash keys of such joins, `length$` of one in a
+; comparison, `member$` and its `not` in joins, against the evaluator's answers
+; (empty segments, a float that is not the integer, strings, `$?x` and `?x`
+; forms, a `length$` of a single field).
 (deftemplate stack (multislot items) (slot tag))
 (deftemplate want (multislot items))
 (defrule same-tail
@@ -35,6 +35,12 @@
   (stack (items $?i&:(member$ ?x ?i)) (tag ?t))
   =>
   (printout t "member-join " ?x " in " ?t " at " (member$ ?x $?i) crlf))
+(defrule not-member-join
+  (want (items ?w $?))
+  (goal ?x $?)
+  (stack (items $?i&:(not (member$ ?x $?i))) (tag ?t&~s5))
+  =>
+  (printout t "not-member-join " ?w " " ?x " " ?t crlf))
 (defrule member-not
   (want (items $?w))
   (stack (items $?i&:(not (member$ "s" $?i))) (tag ?t))

@@ -312,7 +312,16 @@ impl Core<'_> {
                 return Ok(r);
             }
         }
-        match self.eval_lhs_tests(j.tests) {
+        // host: `member$` of a segment and equal multifields, read in place; the
+        // evaluator takes the tests from the first it must decide
+        #[cfg(feature = "host-speedups")]
+        let tests = match self.quick_join_tests(j.tests) {
+            Ok(rest) => rest,
+            Err(r) => return Ok(r),
+        };
+        #[cfg(not(feature = "host-speedups"))]
+        let tests = j.tests;
+        match self.eval_lhs_tests(tests) {
             // CLIPS reports a failing join test and takes it as false (a not CE's as
             // true: the fact blocks); the assert goes on, then execution halts
             Err(e) if !e.is_capacity() => {
