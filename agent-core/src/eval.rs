@@ -419,9 +419,12 @@ impl Core<'_> {
             || !is_leaf(self.exprs[a as usize].op)
             || !is_leaf(self.exprs[b as usize].op)
         {
+            // host: a `length$` operand (checked here: the call's frame cost the
+            // other comparisons of calls 30-80 instructions each)
             #[cfg(feature = "host-speedups")]
-            return self.compare_lengths(x, a, b);
-            #[cfg(not(feature = "host-speedups"))]
+            if self.length_call(a) || self.length_call(b) {
+                return self.compare_lengths(x, a, b);
+            }
             return None;
         }
         let sp = self.st.frame.sp as usize;
@@ -499,6 +502,14 @@ impl Core<'_> {
         Some(builtins::basic::num_arith(x.data, p, q))
     }
 
+    /// Host: whether node `e` calls `length$`.
+    #[cfg(feature = "host-speedups")]
+    #[inline(always)]
+    fn length_call(&self, e: Ix) -> bool {
+        let y = self.exprs[e as usize];
+        y.op == Op::Call && y.data == LENGTH_ID && y.aux == FnKind::Builtin as u8
+    }
+
     /// Host: `quick_compare` of two operands one or both of which are a `length$`
     /// that `quick_length` computes, the others leaves (`(> (length$ $?l) 0)`,
     /// `(>= (length$ ?a) (length$ $?b))`); None for anything else, or values that
@@ -557,10 +568,25 @@ impl Core<'_> {
     /// first test left for the evaluator). These tests have no side effects and
     /// cannot fail, so deciding them first changes nothing the evaluator does.
     #[cfg(feature = "host-speedups")]
+    #[inline(always)]
     pub(crate) fn quick_join_tests(&mut self, tests: Ix) -> Result<Ix, bool> {
-        if self.st.mode.halting {
+        // only a first test of these forms calls (the call's frame, in line, cost
+        // the evaluator's other joins a third more)
+        let Some(&x) = self.exprs.get(tests as usize) else {
+            return Ok(tests);
+        };
+        let worth =
+            x.op == Op::Eq2 || (x.op == Op::Call && (x.data == MEMBER_ID || x.data == NOT_ID));
+        if !worth || self.st.mode.halting {
             return Ok(tests);
         }
+        self.quick_join_chain(tests)
+    }
+
+    /// `quick_join_tests` past its first check.
+    #[cfg(feature = "host-speedups")]
+    #[inline(never)]
+    fn quick_join_chain(&mut self, tests: Ix) -> Result<Ix, bool> {
         let pm = core::mem::replace(&mut self.st.net.pm_rhs, false);
         let mut t = tests;
         let r = loop {
