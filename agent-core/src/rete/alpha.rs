@@ -294,19 +294,7 @@ impl Core<'_> {
             let mut n = 0;
             while s != NONE && n < 8 {
                 let sd = self.exprs[s as usize];
-                let (mut fixed, mut multi) = (0 as Ix, false);
-                let mut e = sd.first;
-                while e != NONE {
-                    let x = &self.exprs[e as usize];
-                    if x.aux == 1 {
-                        multi = true;
-                    } else {
-                        fixed += 1;
-                    }
-                    e = x.next;
-                }
-                let len = self.slot_cell(fact, sd.data).1.unwrap_or(1);
-                if len < fixed || (!multi && len != fixed) {
+                if self.slot_length_fails(fact, sd) {
                     #[cfg(feature = "extras")]
                     if tests != NONE {
                         return self.tests_before_length(alpha, fact, tests);
@@ -764,6 +752,27 @@ impl Core<'_> {
         }
     }
 
+    /// Whether `fact`'s slot of descriptor `sd` (a `PatSlot`) has a length its
+    /// elements cannot take: fewer fields than its single-field elements, or another
+    /// number of them when it has no multifield.
+    #[cfg(any(feature = "host-speedups", feature = "extras"))]
+    #[inline(always)]
+    fn slot_length_fails(&self, fact: Ix, sd: crate::expr::Expr) -> bool {
+        let (mut fixed, mut multi) = (0 as Ix, false);
+        let mut e = sd.first;
+        while e != NONE {
+            let x = &self.exprs[e as usize];
+            if x.aux == 1 {
+                multi = true;
+            } else {
+                fixed += 1;
+            }
+            e = x.next;
+        }
+        let len = self.slot_cell(fact, sd.data).1.unwrap_or(1);
+        len < fixed || (!multi && len != fixed)
+    }
+
     /// A node's tests `tests` run on `fact` by the quick path, in order, before any
     /// segmentation (they read no marks): None when one is false, else the tests
     /// left for the evaluator, from the first one the quick path cannot decide
@@ -1105,19 +1114,7 @@ impl Core<'_> {
         let mut s = node.desc;
         while s != NONE {
             let sd = self.exprs[s as usize];
-            let (mut fixed, mut multi) = (0 as Ix, false);
-            let mut e = sd.first;
-            while e != NONE {
-                let x = &self.exprs[e as usize];
-                if x.aux == 1 {
-                    multi = true;
-                } else {
-                    fixed += 1;
-                }
-                e = x.next;
-            }
-            let len = self.slot_cell(fact, sd.data).1.unwrap_or(1);
-            if len < fixed || (!multi && len != fixed) {
+            if self.slot_length_fails(fact, sd) {
                 let l = (0..node.key_len as usize)
                     .find(|&l| Ix::from(loc::slot(node.path_loc[l])) == sd.data);
                 match l {
