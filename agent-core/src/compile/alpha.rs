@@ -68,6 +68,7 @@ impl Compiler<'_, '_> {
                 continue;
             }
             if n.live
+                && same_path(n, pat)
                 && !self.old_only_alpha(a)
                 && self.chain_eq(n.desc, pat.desc)
                 && self.chain_eq(n.tests, pat.atests)
@@ -448,8 +449,9 @@ impl Compiler<'_, '_> {
                 }))
     }
 
-    /// Host: a hash of what `find_or_make_alpha` compares (the descriptor and test
-    /// chains as `chain_eq` sees them, the right-hash fields as `same_field` does):
+    /// Host: a hash of what `find_or_make_alpha` compares besides the path (the
+    /// descriptor and test chains as `chain_eq` sees them, the right-hash fields as
+    /// `same_field` does):
     /// patterns it finds equal hash equal. Never 0.
     #[cfg(feature = "host-speedups")]
     fn share_sig(&self, pat: &PatIr) -> u32 {
@@ -576,6 +578,19 @@ pub(crate) const ZERO_LEN: u8 = 0xFE;
 /// Path test of a selector node on a single-field slot (`expr_hash` is never 1).
 const SELECTOR: Ix = 1;
 
+/// Whether alpha node `n` ends where pattern `pat` does in CLIPS's pattern network:
+/// the same nodes in the same order (CLIPS builds a pattern's nodes in the order it
+/// names its slots, so patterns testing the same fields in another order do not
+/// share a node, and facts visit them apart).
+/// (Level by level: every rule base has many identical patterns, which all come
+/// here; slice comparisons would call `memcmp` twice for each.)
+fn same_path(n: &AlphaNode, pat: &PatIr) -> bool {
+    let len = pat.path_len as usize;
+    n.key_len == pat.path_len
+        && (0..len.min(PATH_LEN))
+            .all(|l| n.path_test[l] == pat.path_test[l] && n.path_loc[l] == pat.path_loc[l])
+}
+
 /// Depth-first order of pattern-network paths: at the first differing level the
 /// newer node (higher id) goes first; a path goes before its extensions.
 fn key_before(a: &[Ix], b: &[Ix]) -> bool {
@@ -605,4 +620,38 @@ pub(crate) fn shape_aux(x: crate::expr::Expr) -> u8 {
 
 fn mix16(h: u32, x: u32) -> u32 {
     (h ^ x).wrapping_mul(0x0100_0193).rotate_left(7)
+}
+
+#[cfg(all(test, feature = "parser"))]
+mod tests {
+    extern crate std;
+    use crate::engine::SmallEngine;
+    use crate::host::NullHost;
+    use std::boxed::Box;
+
+    /// Patterns with the same tests share a node only when they name the slots in
+    /// the same order (CLIPS's path); the one naming them in another order has its
+    /// own node, which a fact visits first (the newer path).
+    #[test]
+    fn patterns_naming_slots_in_another_order_have_own_nodes() {
+        let mut e = Box::new(SmallEngine::new());
+        let h = &mut NullHost;
+        e.load_str(
+            h,
+            "t",
+            "(deftemplate t (slot x) (multislot m))
+             (defrule a (t (x ?x&:(> ?x 2)) (m $?p ?q $?r)) =>)
+             (defrule b (t (m $?p ?q $?r) (x ?x&:(> ?x 2))) =>)
+             (defrule c (t (x ?x&:(> ?x 2)) (m $?p ?q $?r)) =>)",
+        )
+        .unwrap();
+        let c = e.core(h);
+        assert_eq!(c.st.pools.nalpha, 2);
+        let (a, b) = (&c.alphas[0], &c.alphas[1]);
+        assert_ne!(a.path_loc[0], b.path_loc[0]);
+        // a and c share node 0, b's node comes first in the template's order
+        let head = c.templates[a.tmpl as usize].alpha_head;
+        assert_eq!(head, 1);
+        assert_eq!(b.next_in_tmpl, 0);
+    }
 }
