@@ -521,6 +521,7 @@ differential_programs! {
     p748_crlf_batch_echo => "748-crlf-batch-echo",
     p749_arith_in_segmented_tests => "749-arith-in-segmented-tests",
     p768_multifield_vars_in_place => "768-multifield-vars-in-place",
+    p764_salience_groups_at_the_head => "764-salience-groups-at-the-head",
     p726_or_own_ordered_elements => "726-or-own-ordered-elements",
     p750_watch_construct_names => "750-watch-construct-names",
     p751_watch_construct_names_modules => "751-watch-construct-names-modules",
