@@ -627,6 +627,7 @@ mod tests {
     extern crate std;
     use crate::engine::SmallEngine;
     use crate::host::NullHost;
+    use crate::value::NONE;
     use std::boxed::Box;
 
     /// Patterns with the same tests share a node only when they name the slots in
@@ -653,5 +654,30 @@ mod tests {
         let head = c.templates[a.tmpl as usize].alpha_head;
         assert_eq!(head, 1);
         assert_eq!(b.next_in_tmpl, 0);
+    }
+    /// A multislot constrained by one multifield without a test of its own matches
+    /// every value, so the pattern shares the node (and the first join) of a pattern
+    /// that leaves the slot out, as in CLIPS; with a test on it, it has its own node.
+    #[test]
+    fn lone_multifield_shares_the_node_of_a_pattern_leaving_the_slot_out() {
+        let mut e = Box::new(SmallEngine::new());
+        let h = &mut NullHost;
+        e.load_str(
+            h,
+            "t",
+            "(deftemplate t (multislot m) (slot x))
+             (defrule a (t (x ?x)) =>)
+             (defrule b (t (m $?p) (x ?x)) =>)
+             (defrule c (t (m $?) (x ?x)) =>)
+             (defrule d (t (m $?p&:(> (length$ ?p) 1))) =>)",
+        )
+        .unwrap();
+        let c = e.core(h);
+        assert_eq!(c.st.pools.nalpha, 2);
+        assert_eq!(c.alphas[0].desc, NONE);
+        assert_ne!(c.alphas[1].desc, NONE);
+        // the root; a, b and c share their first join (CLIPS's `+j`, `=j`, `=j`) and
+        // have one join of their own each (`+j`); d has two
+        assert_eq!(c.st.pools.njoins, 1 + (1 + 3) + 2);
     }
 }

@@ -1731,6 +1731,8 @@ impl<'s> Parser<'s, '_, '_> {
         )?;
         let mut i = 0u8;
         let mut multis = 0u8;
+        // whether an element has a test of the alpha node's own
+        let mut tested = false;
         loop {
             let t = self.peek();
             match t.tok {
@@ -1759,6 +1761,7 @@ impl<'s> Parser<'s, '_, '_> {
                         None => NONE,
                     };
                     pb.record(loc::new(slot, i), at, multi);
+                    tested |= at != NONE;
                     multis += u8::from(multi);
                     i += 1;
                 }
@@ -1788,6 +1791,14 @@ impl<'s> Parser<'s, '_, '_> {
             if pb.marks as usize > MAX_MARKS {
                 return Err(self.err(at, "at most 5 multifield variables in one pattern"));
             }
+        }
+        if i == 1 && multis == 1 && !tested {
+            // one multifield and no test of the node's own (`(l $?x)`, `(l $?)`) matches
+            // every value, as a slot the pattern leaves out: CLIPS makes no node for it
+            // (`RemoveUnneededSlots`), so the pattern shares its node and joins with
+            // patterns that do not name the slot. `$?x` is read through its own
+            // descriptor `ps`, which the node does not need.
+            return Ok(());
         }
         if pb.desc == NONE {
             pb.desc = ps;
