@@ -2141,6 +2141,12 @@ impl<'s> Parser<'s, '_, '_> {
                 self.note_var_value(name, e);
             }
         }
+        // (regrouped after the checks above, which read the literals as before)
+        let e = if matches!(t.tok, Tok::SfVar(_) | Tok::MfVar(_)) {
+            self.lead_var_first(e)?
+        } else {
+            e
+        };
         Ok((multi, Some(e)))
     }
 
@@ -2286,6 +2292,33 @@ impl<'s> Parser<'s, '_, '_> {
     fn add_complexity(&mut self, e: Ix) {
         let c = Complexity::of(self.cx, e);
         self.complexity = self.complexity.saturating_add(c);
+    }
+
+    /// A bound variable leading a field and followed by `&` is a constraint of its own,
+    /// whatever follows: CLIPS reads `?x&a|b` as `?x&(a|b)`, not `(?x&a)|b`. Regroups
+    /// `e` as read by precedence (`Or(And(?x, ..), ..)`) into `And(?x, Or(.., ..))`.
+    fn lead_var_first(&mut self, e: Ix) -> PResult<Ix> {
+        let or = self.cx.exprs[e as usize];
+        if or.op != Op::Or || self.cx.exprs[or.first as usize].op != Op::And {
+            return Ok(e);
+        }
+        let and = or.first;
+        let var = self.cx.exprs[and as usize].first;
+        let rest = self.cx.exprs[var as usize].next;
+        // the first alternative without the variable: one term, or an `&` of several
+        let alt = if self.cx.exprs[rest as usize].next == NONE {
+            rest
+        } else {
+            let a = cap!(self, self.cx.push_expr(Expr::new(Op::And, 0, 0)))?;
+            self.cx.exprs[a as usize].first = rest;
+            a
+        };
+        self.cx.exprs[alt as usize].next = self.cx.exprs[and as usize].next;
+        self.cx.exprs[e as usize].first = alt;
+        self.cx.exprs[e as usize].next = NONE;
+        self.cx.exprs[var as usize].next = e;
+        self.cx.exprs[and as usize].next = NONE;
+        Ok(and)
     }
 
     fn or_constraint(&mut self, p: u8, locv: Ix, desc: Ix, multi: &mut bool) -> PResult<Ix> {
