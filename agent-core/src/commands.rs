@@ -333,13 +333,17 @@ impl Core<'_> {
     /// Every fact retracted through the network, as `reset` and `clear` do it (the
     /// join tests of the nots and exists they unblock run again).
     fn retract_all_facts(&mut self) {
-        // rules starting with not/exists/test lose their root-based matches first, join
-        // by join in the order they are primed again below (CLIPS's list of them)
+        // rules starting with not/test lose their root-based matches first, join by join
+        // in the order they are primed again below (CLIPS's list of them); a first
+        // `exists` keeps its own until its facts are retracted, which take back the
+        // activations fact by fact
         let root_token = self.join_mems[JoinId::ROOT].mem;
         for phase in [false, true] {
             let mut j = self.joins[JoinId::ROOT].first_child;
             while j != JoinId::NONE {
-                if self.joins[j].kind.left_primed() == Some(phase) {
+                if self.joins[j].kind.left_primed() == Some(phase)
+                    && self.joins[j].kind != JoinKind::Exists
+                {
                     loop {
                         let mut c = self.tokens[root_token].first_child;
                         while c != TokenId::NONE && self.tokens[c].owner != j {
@@ -362,7 +366,11 @@ impl Core<'_> {
         // (any left over, in token order)
         loop {
             let mut c = self.tokens[root_token].first_child;
-            while c != TokenId::NONE && self.joins[self.tokens[c].owner].kind == JoinKind::Positive
+            while c != TokenId::NONE
+                && matches!(
+                    self.joins[self.tokens[c].owner].kind,
+                    JoinKind::Positive | JoinKind::Exists
+                )
             {
                 c = self.tokens[c].next_sib;
             }
@@ -377,6 +385,17 @@ impl Core<'_> {
         while self.st.facts.fact_head != NONE {
             let f = self.st.facts.fact_head;
             self.retract_fact(f);
+        }
+        // (the first `exists`' matches, with nothing left under them)
+        loop {
+            let mut c = self.tokens[root_token].first_child;
+            while c != TokenId::NONE && self.joins[self.tokens[c].owner].kind != JoinKind::Exists {
+                c = self.tokens[c].next_sib;
+            }
+            if c == TokenId::NONE {
+                break;
+            }
+            self.delete_token(c);
         }
     }
 

@@ -524,6 +524,7 @@ differential_programs! {
     p764_salience_groups_at_the_head => "764-salience-groups-at-the-head",
     p784_lone_multifield_shares_node => "784-lone-multifield-shares-node",
     p777_bound_var_and_or => "777-bound-var-and-or",
+    p778_reset_first_exists => "778-reset-first-exists",
     p726_or_own_ordered_elements => "726-or-own-ordered-elements",
     p750_watch_construct_names => "750-watch-construct-names",
     p751_watch_construct_names_modules => "751-watch-construct-names-modules",
