@@ -170,7 +170,7 @@ def gen(seed):
         return "(p 1)", set(), set()
 
     def test_ce(bound_s, bound_m):
-        if bound_m and r.random() < 0.4:
+        if bound_m and (r.random() < 0.4 or not bound_s):
             m = r.choice(sorted(bound_m))
             return f"(test (> (length$ {m}) {r.randint(0, 2)}))"
         vs = sorted(bound_s)

@@ -70,7 +70,7 @@ impl Compiler<'_, '_> {
             if n.live
                 && same_path(n, pat)
                 && !self.old_only_alpha(a)
-                && self.chain_eq(n.desc, pat.desc)
+                && self.desc_eq(n.desc, pat.desc, nrhash == 0)
                 && self.chain_eq(n.tests, pat.atests)
                 && n.nrhash == pat.nrhash
                 && (0..nrhash).all(|i| self.same_field(n.rhash[i], pat.rhash[i]))
@@ -218,6 +218,18 @@ impl Compiler<'_, '_> {
                 // what CLIPS compares: position, kind, end of slot, how the value is
                 // found (fields before and after) and the length test
                 let mut h = mix16(0x51ed_270b, k as u32);
+                if t == NONE && !(m && nmf > 1) {
+                    // the first element, kept for the slot's length test alone: a
+                    // single-field node (CLIPS makes the slot's only multifield one)
+                    // that reads no field, so where the multifield stands is no part
+                    // of it (`(o ?x $?)` and `(o $? ?y)` share it)
+                    h = mix16(h, u32::from(k == last) << 1);
+                    h = mix16(h, length_test);
+                    tail = path.field(l, None, ((h ^ (h >> 16)) & 0xFFFF) as Ix);
+                    sfb += u32::from(!m);
+                    mfb += u32::from(m);
+                    continue;
+                }
                 h = mix16(h, u32::from(m) | u32::from(k == last) << 1);
                 if m && t == NONE && nmf > 1 {
                     // a multifield node among several, without a test: CLIPS's
@@ -456,7 +468,21 @@ impl Compiler<'_, '_> {
     #[cfg(feature = "host-speedups")]
     fn share_sig(&self, pat: &PatIr) -> u32 {
         let mut h = mix16(0x2545_f491, u32::from(pat.nrhash));
-        h = self.chain_sig(h, pat.desc);
+        if pat.nrhash == 0 {
+            // (what `desc_eq` compares loosely: a slot's shape, not its elements)
+            let mut d = pat.desc;
+            while d != NONE {
+                let x = self.cx.exprs[d as usize];
+                h = mix16(mix16(h, u32::from(x.data)), u32::from(x.aux));
+                match self.slot_shape(d) {
+                    Some((f, m)) => h = mix16(h, u32::from(f) | u32::from(m) << 8),
+                    None => h = self.chain_sig(h, x.first),
+                }
+                d = x.next;
+            }
+        } else {
+            h = self.chain_sig(h, pat.desc);
+        }
         h = mix16(h, 0x5a5a);
         h = self.chain_sig(h, pat.atests);
         for &e in &pat.rhash[..pat.nrhash as usize] {
@@ -494,6 +520,54 @@ impl Compiler<'_, '_> {
             c = x.next;
         }
         h
+    }
+
+    /// Whether two patterns' slot descriptors lay a fact out alike for the node: equal,
+    /// or (`loose`: no right hash reads a field through them) slot by slot equal but
+    /// for where the elements of a slot with at most one multifield stand. Such a
+    /// slot's layout only makes the node's length test (tested elements are placed
+    /// by the node's path), and CLIPS's node compares that test alone:
+    /// `(o ?x $?)` and `(o $? ?y)` share it. Variables are read through their own
+    /// descriptors.
+    fn desc_eq(&self, mut a: Ix, mut b: Ix, loose: bool) -> bool {
+        if !loose {
+            return self.chain_eq(a, b);
+        }
+        while a != NONE && b != NONE {
+            if !self.expr_eq(a, b) {
+                let (x, y) = (self.cx.exprs[a as usize], self.cx.exprs[b as usize]);
+                if x.op != y.op || x.aux != y.aux || x.data != y.data {
+                    return false;
+                }
+                match (self.slot_shape(a), self.slot_shape(b)) {
+                    (Some(p), Some(q)) if p == q => {}
+                    _ => return false,
+                }
+            }
+            a = self.cx.exprs[a as usize].next;
+            b = self.cx.exprs[b as usize].next;
+        }
+        a == NONE && b == NONE
+    }
+
+    /// A slot descriptor's single elements and multifields when it has at most one
+    /// multifield (the length test its layout makes), else None.
+    fn slot_shape(&self, d: Ix) -> Option<(u8, u8)> {
+        let (mut fixed, mut multis) = (0u8, 0u8);
+        let mut e = self.cx.exprs[d as usize].first;
+        while e != NONE {
+            let x = self.cx.exprs[e as usize];
+            if x.op != Op::PatElem {
+                return None;
+            }
+            if x.aux == 1 {
+                multis += 1;
+            } else {
+                fixed = fixed.wrapping_add(1);
+            }
+            e = x.next;
+        }
+        (multis <= 1).then_some((fixed, multis))
     }
 
     pub(crate) fn chain_eq(&self, mut a: Ix, mut b: Ix) -> bool {

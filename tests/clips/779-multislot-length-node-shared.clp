@@ -1,0 +1,32 @@
+; A multislot whose only multifield has no test of its own, and whose first element
+; has none either, gets one node from CLIPS: the slot's length test (the multifield
+; made a single-field node, untested fields dropped). Patterns that differ only in
+; where the multifield stands share that node and their first join (=j), and
+; activations come in the order the shared node gives.
+(deftemplate a (multislot k) (slot x (default 0)))
+(deftemplate b (slot x (default 0)))
+(open "rules779.clp" out "w")
+(printout out "(defrule r1 (o ?x $?) =>)" crlf)
+(printout out "(defrule r2 (o $? ?y) =>)" crlf)
+(printout out "(defrule r3 (o ?x ?y $?) =>)" crlf)
+(printout out "(defrule r4 (o $? ?x ?y) (b) =>)" crlf)
+(printout out "(defrule r5 (o ?x $? ?y) (b) =>)" crlf)
+(printout out "(defrule r6 (o $?a ?x $?b) =>)" crlf)
+(printout out "(defrule r7 (o ?x&:(> ?x 1) $?) =>)" crlf)
+(printout out "(defrule r8 (o $? ?x&:(> ?x 1)) =>)" crlf)
+(printout out "(defrule r9 (a (k ?z $?) (x ?w)) =>)" crlf)
+(printout out "(defrule r10 (a (x ?w) (k $?n ?z)) (b) =>)" crlf)
+(printout out "(defrule r11 (or (a (k ?z) (x 1)) (a (k $? ?z))) =>)" crlf)
+(printout out "(defrule r12 (b (x ?z)) (o $? ?z) =>)" crlf)
+(printout out "(defrule r13 (b (x ?z)) (o ?z $?) =>)" crlf)
+(printout out "(defrule r14 (b (x ?z)) (not (o ?z $?)) =>)" crlf)
+(close out)
+(watch compilations)
+(watch activations)
+(assert (o 1) (a (k 1 2) (x 1)))
+(load "rules779.clp")
+(assert (o 2 3 2) (b (x 2)) (a (k 3) (x 1)) (o 3 1))
+(agenda)
+(retract 1)
+(run)
+(exit)
