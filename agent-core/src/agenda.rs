@@ -967,6 +967,14 @@ pub const SALIENCE_GROUPS: usize = 16;
 #[cfg(feature = "host-speedups")]
 const GROUP_WALK: u32 = 32;
 
+/// Host: a removal (one that is not the quick firing of the first group's first
+/// activation, `take_activation`) that leaves at most this many activations stops
+/// keeping the salience groups: their upkeep costs more than a walk of a short
+/// agenda, and an agenda kept non-empty by a low-salience activation would keep them
+/// for good. Below `GROUP_WALK`: they come back only once the agenda is long again.
+#[cfg(feature = "host-speedups")]
+const GROUP_SHORT: Ix = 16;
+
 /// Whether strategy number `s` is lex or mea (`Core::recency_walk`'s).
 #[cfg(all(feature = "host-speedups", feature = "extras", feature = "grow"))]
 #[inline(always)]
@@ -1001,7 +1009,7 @@ impl SalienceGroup {
 /// Host: the agenda's salience groups, highest salience first, so an activation is
 /// inserted by a walk of its own salience's run only (as CLIPS's salience groups),
 /// not of every activation of a higher salience before it. Kept only once an
-/// insertion walked far (`GROUP_WALK`), until the agenda empties.
+/// insertion walked far (`GROUP_WALK`), until the agenda is short again (`GROUP_SHORT`).
 #[cfg(feature = "host-speedups")]
 #[derive(Clone, Copy, Debug)]
 pub struct SalienceGroups {
@@ -1233,15 +1241,13 @@ impl Core<'_> {
         if self.st.recency_index.on && self.st.agenda.groups.kept {
             self.rindex_remove(x, a);
         }
+        // short again (`a` still counted): walked as a short agenda is
         let g = &mut self.st.agenda.groups;
-        if !g.kept {
-            if self.st.agenda.agenda_len == 1 {
-                g.reset();
-            }
+        if self.st.agenda.agenda_len <= GROUP_SHORT + 1 {
+            g.reset();
             return;
         }
-        if self.st.agenda.agenda_len == 1 {
-            g.reset();
+        if !g.kept {
             return;
         }
         let n = g.n as usize;

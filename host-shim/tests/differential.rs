@@ -526,6 +526,7 @@ differential_programs! {
     p777_bound_var_and_or => "777-bound-var-and-or",
     p778_reset_first_exists => "778-reset-first-exists",
     p779_multislot_length_node_shared => "779-multislot-length-node-shared",
+    p765_salience_groups_short_again => "765-salience-groups-short-again",
     p726_or_own_ordered_elements => "726-or-own-ordered-elements",
     p750_watch_construct_names => "750-watch-construct-names",
     p751_watch_construct_names_modules => "751-watch-construct-names-modules",

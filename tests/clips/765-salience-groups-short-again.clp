@@ -1,0 +1,35 @@
+; A long agenda keeps its salience groups (an insertion walked past many
+; activations of a higher salience); it fires down until it is short again, and a
+; removal then drops the groups (a short agenda is walked); activations of every
+; salience come while it is short, then it grows long again (the groups are built
+; again) and activations come and go at its head and in its middle.
+(defrule lo (declare (salience -5)) (l ?x) => (printout t "l" ?x " "))
+(defrule mid (m ?x) =>
+  (printout t "m" ?x " ")
+  (if (= (mod ?x 3) 0) then (assert (h ?x)))
+  (if (and (< ?x 60) (= (mod ?x 4) 0)) then (assert (m (+ ?x 100)))))
+(defrule hi (declare (salience 10)) (h ?x) => (printout t "h" ?x " ")
+  (if (= (mod ?x 5) 0) then (assert (l (+ ?x 1000)))))
+(defrule top (declare (salience 20)) (t ?x) => (printout t "t" ?x " "))
+(reset)
+(loop-for-count (?i 1 36) do (assert (m ?i)))
+(loop-for-count (?i 1 34) do (assert (l ?i)))
+(run 90)
+(printout t crlf)
+(agenda)
+(assert (t 1) (h 501) (l 77) (m 78) (h 60) (m 9))
+(run 4)
+(printout t crlf)
+(agenda)
+(loop-for-count (?i 200 236) do (assert (m ?i)))
+(loop-for-count (?i 300 334) do (assert (l ?i)))
+(run 10)
+(printout t crlf)
+(assert (t 2) (h 502) (l 78))
+(retract 130)
+(run 5)
+(printout t crlf)
+(run)
+(printout t crlf)
+(agenda)
+(exit)
