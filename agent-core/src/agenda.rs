@@ -1022,6 +1022,10 @@ pub struct SalienceGroups {
     /// While `resort_agenda` inserts again: the activation it inserted last (else
     /// NONE), where a walk in its salience group may start (`agenda_insert_grouped`).
     pub hint: Ix,
+    /// Given up for a short agenda (`GROUP_SHORT`) since the agenda last emptied.
+    pub dropped: bool,
+    /// Built again after such a drop: kept until the agenda empties.
+    pub rebuilt: bool,
 }
 
 #[cfg(feature = "host-speedups")]
@@ -1037,6 +1041,8 @@ impl SalienceGroups {
         kept: false,
         overflow: false,
         hint: NONE,
+        dropped: false,
+        rebuilt: false,
     };
 
     /// Stops keeping the groups (the agenda emptied or was rebuilt).
@@ -1045,6 +1051,8 @@ impl SalienceGroups {
         self.kept = false;
         self.overflow = false;
         self.n = 0;
+        self.dropped = false;
+        self.rebuilt = false;
     }
 
     /// The first group of salience at most `s` (`n` if none).
@@ -1220,6 +1228,7 @@ impl Core<'_> {
             a = x.next;
         }
         g.kept = true;
+        g.rebuilt = g.dropped;
         #[cfg(all(feature = "extras", feature = "grow"))]
         self.rindex_build();
     }
@@ -1243,8 +1252,14 @@ impl Core<'_> {
         }
         // short again (`a` still counted): walked as a short agenda is
         let g = &mut self.st.agenda.groups;
-        if self.st.agenda.agenda_len <= GROUP_SHORT + 1 {
+        let len = self.st.agenda.agenda_len;
+        if len <= GROUP_SHORT + 1 && (len == 1 || !g.rebuilt) {
+            // (an agenda that grew long again after a drop keeps them until it
+            // empties: one that swings between short and long would build them again
+            // and again)
+            let dropped = len != 1;
             g.reset();
+            g.dropped = dropped;
             return;
         }
         if !g.kept {
