@@ -971,7 +971,8 @@ const GROUP_WALK: u32 = 32;
 /// activation, `take_activation`) that leaves at most this many activations stops
 /// keeping the salience groups: their upkeep costs more than a walk of a short
 /// agenda, and an agenda kept non-empty by a low-salience activation would keep them
-/// for good. Below `GROUP_WALK`: they come back only once the agenda is long again.
+/// for good. Below `GROUP_WALK`: they come back only once the agenda is long again,
+/// and are then kept until it empties (`SalienceGroups::short`).
 #[cfg(feature = "host-speedups")]
 const GROUP_SHORT: Ix = 16;
 
@@ -1022,10 +1023,11 @@ pub struct SalienceGroups {
     /// While `resort_agenda` inserts again: the activation it inserted last (else
     /// NONE), where a walk in its salience group may start (`agenda_insert_grouped`).
     pub hint: Ix,
-    /// Given up for a short agenda (`GROUP_SHORT`) since the agenda last emptied.
-    pub dropped: bool,
-    /// Built again after such a drop: kept until the agenda empties.
-    pub rebuilt: bool,
+    /// A removal that leaves fewer activations than this gives the groups up:
+    /// `GROUP_SHORT + 1`, or 1 (only once the agenda empties) after they were given
+    /// up for a short agenda once (an agenda that swings between short and long
+    /// would build them again and again).
+    pub short: Ix,
 }
 
 #[cfg(feature = "host-speedups")]
@@ -1041,8 +1043,7 @@ impl SalienceGroups {
         kept: false,
         overflow: false,
         hint: NONE,
-        dropped: false,
-        rebuilt: false,
+        short: GROUP_SHORT + 1,
     };
 
     /// Stops keeping the groups (the agenda emptied or was rebuilt).
@@ -1051,8 +1052,7 @@ impl SalienceGroups {
         self.kept = false;
         self.overflow = false;
         self.n = 0;
-        self.dropped = false;
-        self.rebuilt = false;
+        self.short = GROUP_SHORT + 1;
     }
 
     /// The first group of salience at most `s` (`n` if none).
@@ -1228,7 +1228,6 @@ impl Core<'_> {
             a = x.next;
         }
         g.kept = true;
-        g.rebuilt = g.dropped;
         #[cfg(all(feature = "extras", feature = "grow"))]
         self.rindex_build();
     }
@@ -1253,13 +1252,12 @@ impl Core<'_> {
         // short again (`a` still counted): walked as a short agenda is
         let g = &mut self.st.agenda.groups;
         let len = self.st.agenda.agenda_len;
-        if len <= GROUP_SHORT + 1 && (len == 1 || !g.rebuilt) {
-            // (an agenda that grew long again after a drop keeps them until it
-            // empties: one that swings between short and long would build them again
-            // and again)
-            let dropped = len != 1;
+        if len <= g.short {
+            // (once given up for a short agenda, groups built again are kept until
+            // the agenda empties; so is an overflow)
+            let short = if len == 1 { GROUP_SHORT + 1 } else { 1 };
             g.reset();
-            g.dropped = dropped;
+            g.short = short;
             return;
         }
         if !g.kept {
