@@ -360,6 +360,17 @@ impl Core<'_> {
         if i == nmarks {
             return self.match_one::<MF>(alpha, fact, tests, *marks);
         }
+        // host: the tests on the path's levels before mark `i`'s node run now, once
+        // for the marks chosen so far, as CLIPS tests them before it chooses there
+        #[cfg(feature = "extras")]
+        let tests = if tests != NONE {
+            match self.tests_before_mark(alpha, fact, tests, marks, i)? {
+                Some(t) => t,
+                None => return Ok(()),
+            }
+        } else {
+            tests
+        };
         // the slot this mark belongs to, and what earlier marks of it used
         let mut room = 0 as Ix;
         for (k, l) in lay.iter().enumerate() {
@@ -1003,17 +1014,157 @@ impl Core<'_> {
     }
 
     /// Host: the level of alpha node `alpha`'s path (CLIPS's pattern-network node)
-    /// whose test `failed_test` is, when CLIPS tests it once per fact: a node
-    /// without multifield choices (a multifield among several in a slot, whose
-    /// levels CLIPS tests per length; such a node may also serve patterns naming
-    /// its slots in another order, whose paths differ from its own). None: not
-    /// known (also a path cut short, a test naming no field).
+    /// whose test `failed_test` is, when CLIPS tests it once per fact: a level
+    /// before the path's first multifield choice (a multifield among several in a
+    /// slot: CLIPS tests the levels after it per length). None: not known (also a
+    /// path cut short, a test naming no field).
     #[cfg(feature = "extras")]
     fn error_level(&self, alpha: Ix) -> Option<usize> {
-        if self.alphas[alpha as usize].nmarks != 0 {
+        let level = self.test_level(alpha, self.st.net.failed_test)?;
+        if self.alphas[alpha as usize].nmarks != 0 && level >= self.mark_level(alpha, 0)? {
             return None;
         }
-        self.test_level(alpha, self.st.net.failed_test)
+        Some(level)
+    }
+
+    /// Host: the level of alpha node `alpha`'s path where CLIPS chooses the length
+    /// of mark `i`'s multifield (the node of that element; marks count a pattern's
+    /// multislots in the order it names them, as its path does). None: cut off the
+    /// path, or no such mark.
+    #[cfg(feature = "extras")]
+    fn mark_level(&self, alpha: Ix, i: usize) -> Option<usize> {
+        let node = &self.alphas[alpha as usize];
+        let mut first = 0usize;
+        let mut s = node.desc;
+        while s != NONE {
+            let sd = self.exprs[s as usize];
+            let mut multis = 0usize;
+            let mut e = sd.first;
+            while e != NONE {
+                multis += usize::from(self.exprs[e as usize].aux == 1);
+                e = self.exprs[e as usize].next;
+            }
+            if multis >= 2 && i < first + multis - 1 {
+                // the slot's (i - first)th multifield element
+                let (mut e, mut k, mut seen) = (sd.first, 0u8, 0usize);
+                while e != NONE {
+                    if self.exprs[e as usize].aux == 1 {
+                        if seen == i - first {
+                            let at = loc::new(u8::try_from(sd.data).ok()?, k);
+                            return (0..node.key_len as usize).find(|&l| node.path_loc[l] == at);
+                        }
+                        seen += 1;
+                    }
+                    k = k.checked_add(1)?;
+                    e = self.exprs[e as usize].next;
+                }
+                return None;
+            }
+            if multis >= 2 {
+                first += multis - 1;
+            }
+            s = sd.next;
+        }
+        None
+    }
+
+    /// Host: the tests `tests` of alpha node `alpha` (those left, in the path's
+    /// order) on levels before mark `i`'s node, run on `fact` with marks `..i` set,
+    /// once for all the choices of the marks after (`enumerate_marks`): CLIPS tests
+    /// a pattern's nodes before one where it chooses a multifield's length once per
+    /// choice made above them. None: the fact fails the node (an error is
+    /// reported); else the tests left. Before the first choice the fact is tested
+    /// once (per fact and CLIPS node, `err_fact`, as `tests_before_length`).
+    #[cfg(feature = "extras")]
+    #[cold]
+    #[inline(never)]
+    fn tests_before_mark(
+        &mut self,
+        alpha: Ix,
+        fact: Ix,
+        tests: Ix,
+        marks: &[u8; MAX_MARKS],
+        i: usize,
+    ) -> Result<Option<Ix>, EvalError> {
+        let Some(choice) = self.mark_level(alpha, i) else {
+            return Ok(Some(tests));
+        };
+        let mut end = tests;
+        let mut last = 0;
+        while end != NONE {
+            match self.test_level(alpha, end) {
+                Some(l) if l < choice => {
+                    last = l;
+                    end = self.exprs[end as usize].next;
+                }
+                _ => break,
+            }
+        }
+        if end == tests {
+            return Ok(Some(tests));
+        }
+        let mut t = tests;
+        let num = self.facts[fact as usize].num;
+        let memo = i == 0 && self.st.net.err_fact == fact && self.st.net.err_num == num;
+        if memo && self.memo_applies(alpha, fact) {
+            // a node visited before this one tested some of these levels
+            if !self.st.net.err_pass {
+                return Ok(None);
+            }
+            let level = self.st.net.err_level as usize;
+            while t != end && self.test_level(alpha, t).is_some_and(|l| l <= level) {
+                t = self.exprs[t as usize].next;
+            }
+            if t == end {
+                return Ok(Some(end));
+            }
+        }
+        let saved = self.st.net.this_pm;
+        self.st.net.this_pm = PatBinding {
+            fact,
+            marks: *marks,
+        };
+        let (scratch, sp) = (self.st.frame.scratch_top, self.st.frame.sp);
+        self.st.net.matching += 1;
+        let mut r = Ok(true);
+        let mut level = last;
+        while t != end {
+            let v = self.eval(t);
+            self.st.frame.scratch_top = scratch;
+            self.st.frame.sp = sp;
+            match v {
+                Err(e) => {
+                    self.st.net.failed_test = t;
+                    r = Err(e);
+                    break;
+                }
+                Ok(v) if v == Value::Sym(crate::builtins::SYM_FALSE) => {
+                    level = self.test_level(alpha, t).unwrap_or(last);
+                    r = Ok(false);
+                    break;
+                }
+                Ok(_) => {}
+            }
+            t = self.exprs[t as usize].next;
+        }
+        self.st.net.matching -= 1;
+        self.st.net.this_pm = saved;
+        match r {
+            Ok(pass) => {
+                if i == 0 && !memo {
+                    // the nodes after this one sharing those levels are done with them
+                    let n = &mut self.st.net;
+                    (n.err_fact, n.err_num, n.err_alpha) = (fact, num, alpha);
+                    (n.err_level, n.err_pass) = (level as u8, pass);
+                }
+                Ok(pass.then_some(end))
+            }
+            Err(e) if !e.is_capacity() => {
+                self.report_pattern_error(alpha, fact, e);
+                Ok(None)
+            }
+            Err(e) => Err(e),
+        }
     }
 
     /// Host: whether another pattern's path ends on alpha node `a`'s path at level
@@ -1106,11 +1257,15 @@ impl Core<'_> {
     #[inline(never)]
     fn tests_before_length(&mut self, alpha: Ix, fact: Ix, tests: Ix) -> Result<(), EvalError> {
         let node = self.alphas[alpha as usize];
-        if node.nmarks != 0 {
-            return Ok(());
-        }
-        // the first level of a slot whose length fails
+        // the first level of a slot whose length fails (or of the first multifield
+        // choice before it: tests after one run per choice, and none is made here)
         let mut first = usize::MAX;
+        if node.nmarks != 0 {
+            match self.mark_level(alpha, 0) {
+                Some(l) => first = l,
+                None => return Ok(()),
+            }
+        }
         let mut s = node.desc;
         while s != NONE {
             let sd = self.exprs[s as usize];
