@@ -1068,6 +1068,98 @@ impl Core<'_> {
         None
     }
 
+    /// Host: `tests_before_length` when the multislot whose length fails (its first
+    /// level `failing`) comes after multifield choices: the choices of the slots
+    /// before it are made as `enumerate_marks` makes them, and the tests on levels
+    /// before `failing` run as there (`tests_before_mark`); the fact matches no
+    /// segmentation.
+    #[cfg(feature = "extras")]
+    #[cold]
+    #[inline(never)]
+    fn choices_before_length(
+        &mut self,
+        alpha: Ix,
+        fact: Ix,
+        tests: Ix,
+        failing: usize,
+    ) -> Result<(), EvalError> {
+        let mut lay = [SlotLayout::EMPTY; MAX_LAYOUTS];
+        let n = self.layouts(alpha, &mut lay);
+        let mut slack = [0 as Ix; MAX_LAYOUTS];
+        // the marks of the slots before the failing one
+        let mut marks_before = 0;
+        for (i, l) in lay[..n].iter().enumerate() {
+            let len = self.slot_cell(fact, l.slot).1.unwrap_or(1);
+            if len < l.fixed || (l.multis == 0 && len != l.fixed) {
+                break;
+            }
+            slack[i] = len - l.fixed;
+            if l.multis >= 2 {
+                marks_before = l.first_mark as usize + l.multis as usize - 1;
+            }
+        }
+        let mut marks = [0u8; MAX_MARKS];
+        self.choices_before(
+            alpha,
+            fact,
+            tests,
+            &lay[..n],
+            &slack,
+            &mut marks,
+            0,
+            marks_before,
+            failing,
+        )
+    }
+
+    /// Host: `choices_before_length`'s walk over marks `i..k`, then the tests on
+    /// levels before `failing`.
+    #[cfg(feature = "extras")]
+    #[allow(clippy::too_many_arguments)]
+    fn choices_before(
+        &mut self,
+        alpha: Ix,
+        fact: Ix,
+        tests: Ix,
+        lay: &[SlotLayout],
+        slack: &[Ix; MAX_LAYOUTS],
+        marks: &mut [u8; MAX_MARKS],
+        i: usize,
+        k: usize,
+        failing: usize,
+    ) -> Result<(), EvalError> {
+        if tests == NONE {
+            return Ok(());
+        }
+        if i == k {
+            self.tests_before_level(alpha, fact, tests, marks, failing, false)?;
+            return Ok(());
+        }
+        let tests = match self.tests_before_mark(alpha, fact, tests, marks, i)? {
+            Some(t) => t,
+            None => return Ok(()),
+        };
+        let mut room = 0 as Ix;
+        for (s, l) in lay.iter().enumerate() {
+            let f = l.first_mark as usize;
+            let cnt = if l.multis >= 2 {
+                l.multis as usize - 1
+            } else {
+                0
+            };
+            if i >= f && i < f + cnt {
+                let used: Ix = marks[f..i].iter().map(|&m| m as Ix).sum();
+                room = slack[s].saturating_sub(used).min(255);
+            }
+        }
+        for m in (0..=room).rev() {
+            marks[i] = m as u8;
+            self.choices_before(alpha, fact, tests, lay, slack, marks, i + 1, k, failing)?;
+        }
+        marks[i] = 0;
+        Ok(())
+    }
+
     /// Host: the tests `tests` of alpha node `alpha` (those left, in the path's
     /// order) on levels before mark `i`'s node, run on `fact` with marks `..i` set,
     /// once for all the choices of the marks after (`enumerate_marks`): CLIPS tests
@@ -1086,9 +1178,24 @@ impl Core<'_> {
         marks: &[u8; MAX_MARKS],
         i: usize,
     ) -> Result<Option<Ix>, EvalError> {
-        let Some(choice) = self.mark_level(alpha, i) else {
-            return Ok(Some(tests));
-        };
+        match self.mark_level(alpha, i) {
+            Some(choice) => self.tests_before_level(alpha, fact, tests, marks, choice, i == 0),
+            None => Ok(Some(tests)),
+        }
+    }
+
+    /// Host: `tests_before_mark` up to level `choice`; `first`: no choice is made
+    /// before it (the fact is tested once, the per-fact memo applies).
+    #[cfg(feature = "extras")]
+    fn tests_before_level(
+        &mut self,
+        alpha: Ix,
+        fact: Ix,
+        tests: Ix,
+        marks: &[u8; MAX_MARKS],
+        choice: usize,
+        first: bool,
+    ) -> Result<Option<Ix>, EvalError> {
         let mut end = tests;
         let mut last = 0;
         while end != NONE {
@@ -1105,7 +1212,7 @@ impl Core<'_> {
         }
         let mut t = tests;
         let num = self.facts[fact as usize].num;
-        let memo = i == 0 && self.st.net.err_fact == fact && self.st.net.err_num == num;
+        let memo = first && self.st.net.err_fact == fact && self.st.net.err_num == num;
         if memo && self.memo_applies(alpha, fact) {
             // a node visited before this one tested some of these levels
             if !self.st.net.err_pass {
@@ -1151,7 +1258,7 @@ impl Core<'_> {
         self.st.net.this_pm = saved;
         match r {
             Ok(pass) => {
-                if i == 0 && !memo {
+                if first && !memo {
                     // the nodes after this one sharing those levels are done with them
                     let n = &mut self.st.net;
                     (n.err_fact, n.err_num, n.err_alpha) = (fact, num, alpha);
@@ -1257,15 +1364,8 @@ impl Core<'_> {
     #[inline(never)]
     fn tests_before_length(&mut self, alpha: Ix, fact: Ix, tests: Ix) -> Result<(), EvalError> {
         let node = self.alphas[alpha as usize];
-        // the first level of a slot whose length fails (or of the first multifield
-        // choice before it: tests after one run per choice, and none is made here)
+        // the first level of a slot whose length fails
         let mut first = usize::MAX;
-        if node.nmarks != 0 {
-            match self.mark_level(alpha, 0) {
-                Some(l) => first = l,
-                None => return Ok(()),
-            }
-        }
         let mut s = node.desc;
         while s != NONE {
             let sd = self.exprs[s as usize];
@@ -1282,6 +1382,16 @@ impl Core<'_> {
         }
         if first == usize::MAX {
             return Ok(());
+        }
+        if node.nmarks != 0 {
+            // multifield choices before it: the tests after one run per choice
+            match self.mark_level(alpha, 0) {
+                Some(c) if c < first => {
+                    return self.choices_before_length(alpha, fact, tests, first)
+                }
+                Some(_) => {}
+                None => return Ok(()),
+            }
         }
         // the tests (in the path's order) on levels before it
         let (mut end, mut last) = (tests, 0);
