@@ -431,6 +431,7 @@ differential_programs! {
     p727_shared_pattern_node_error => "727-shared-pattern-node-error",
     p728_tests_before_multislot_length => "728-tests-before-multislot-length",
     p729_slot_order_own_nodes => "729-slot-order-own-nodes",
+    p795_tests_before_length_long_path => "795-tests-before-length-long-path",
     p796_tests_before_multifield_choice => "796-tests-before-multifield-choice",
     p898_sub_string_ascii => "898-sub-string-ascii",
     p357_lex_mea_kept_recency => "357-lex-mea-kept-recency",

@@ -124,11 +124,19 @@ impl Compiler<'_, '_> {
             elem_key: false,
             #[cfg(feature = "host-speedups")]
             share_sig: sig,
+            #[cfg(feature = "extras")]
+            stage: AlphaNode::EMPTY.stage,
+            #[cfg(feature = "extras")]
+            stage_from: AlphaNode::EMPTY.stage_from,
+            #[cfg(feature = "extras")]
+            stage_end: AlphaNode::EMPTY.stage_end,
         };
         #[cfg(feature = "host-speedups")]
         {
             self.cx.alphas[n].elem_key = self.cx.elem_keyed(n as Ix);
         }
+        #[cfg(feature = "extras")]
+        self.cx.set_stage(n as Ix);
         self.assign_trie_key(tmpl, n as Ix, pat.alone);
         self.insert_alpha_sorted(tmpl, n as Ix);
         self.cx.st.pools.nalpha += 1;

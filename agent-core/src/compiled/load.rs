@@ -326,6 +326,11 @@ impl Core<'_> {
             }
         }
         self.join_mems[JoinId::ROOT].mem = root_token;
+        // host: which tests are staged (`set_stage`; nodes read in place stage all)
+        #[cfg(all(feature = "extras", not(feature = "in-place")))]
+        for a in 0..base.alphas.len() {
+            self.set_stage(a as Ix);
+        }
         #[cfg(not(feature = "in-place"))]
         for e in 0..base.exprs.len() {
             let x = self.exprs[e];

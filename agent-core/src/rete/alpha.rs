@@ -1,6 +1,8 @@
 //! Alpha side: matching one fact against the patterns of its template, keeping alpha
 //! memories, and telling successor joins about new and removed alpha matches.
 
+#[cfg(feature = "extras")]
+use super::STAGE_LENGTH;
 use super::{PatBinding, Token, TokenKind, MAX_MARKS, THIS_PATTERN};
 use crate::builtins::basic::{CMP_FIRST, CMP_LAST};
 use crate::engine::Core;
@@ -274,7 +276,7 @@ impl Core<'_> {
         if node.desc == NONE && node.nmarks == 0 {
             // no multislot constraints (most patterns): one segmentation, nothing to lay out
             let mut marks = [0u8; MAX_MARKS];
-            return self.enumerate_marks::<MF>(
+            return self.enumerate_marks::<MF, false>(
                 alpha,
                 fact,
                 tests,
@@ -296,7 +298,7 @@ impl Core<'_> {
                 let sd = self.exprs[s as usize];
                 if self.slot_length_fails(fact, sd) {
                     #[cfg(feature = "extras")]
-                    if tests != NONE {
+                    if tests != NONE && self.alphas[alpha as usize].stage & STAGE_LENGTH != 0 {
                         return self.tests_before_length(alpha, fact, tests);
                     }
                     return Ok(());
@@ -305,7 +307,7 @@ impl Core<'_> {
                 s = sd.next;
             }
             let mut marks = [0u8; MAX_MARKS];
-            return self.enumerate_marks::<MF>(
+            return self.enumerate_marks::<MF, false>(
                 alpha,
                 fact,
                 tests,
@@ -324,7 +326,7 @@ impl Core<'_> {
             let len = mlen.unwrap_or(1);
             if len < l.fixed || (l.multis == 0 && len != l.fixed) {
                 #[cfg(feature = "extras")]
-                if tests != NONE {
+                if tests != NONE && self.alphas[alpha as usize].stage & STAGE_LENGTH != 0 {
                     return self.tests_before_length(alpha, fact, tests);
                 }
                 return Ok(());
@@ -341,12 +343,34 @@ impl Core<'_> {
         }
         let nmarks = self.alphas[alpha as usize].nmarks as usize;
         let mut marks = [0u8; MAX_MARKS];
-        self.enumerate_marks::<MF>(alpha, fact, tests, &lay[..n], &slack, &mut marks, 0, nmarks)
+        #[cfg(feature = "extras")]
+        if tests != NONE && self.alphas[alpha as usize].stage & !STAGE_LENGTH != 0 {
+            return self.enumerate_marks::<MF, true>(
+                alpha,
+                fact,
+                tests,
+                &lay[..n],
+                &slack,
+                &mut marks,
+                0,
+                nmarks,
+            );
+        }
+        self.enumerate_marks::<MF, false>(
+            alpha,
+            fact,
+            tests,
+            &lay[..n],
+            &slack,
+            &mut marks,
+            0,
+            nmarks,
+        )
     }
 
     /// Tries every segmentation; CLIPS tries longer leading multifields first.
     #[allow(clippy::too_many_arguments)]
-    fn enumerate_marks<const MF: bool>(
+    fn enumerate_marks<const MF: bool, const STAGE: bool>(
         &mut self,
         alpha: Ix,
         fact: Ix,
@@ -362,8 +386,9 @@ impl Core<'_> {
         }
         // host: the tests on the path's levels before mark `i`'s node run now, once
         // for the marks chosen so far, as CLIPS tests them before it chooses there
+        // (`STAGE`: the node has tests that may fail with an error or act there)
         #[cfg(feature = "extras")]
-        let tests = if tests != NONE {
+        let tests = if STAGE && tests != NONE && self.stage_at(alpha, tests, i) {
             match self.tests_before_mark(alpha, fact, tests, marks, i)? {
                 Some(t) => t,
                 None => return Ok(()),
@@ -394,7 +419,16 @@ impl Core<'_> {
                 Some(rest) => rest,
                 None => continue,
             };
-            self.enumerate_marks::<MF>(alpha, fact, tests, lay, slack, marks, i + 1, nmarks)?;
+            self.enumerate_marks::<MF, STAGE>(
+                alpha,
+                fact,
+                tests,
+                lay,
+                slack,
+                marks,
+                i + 1,
+                nmarks,
+            )?;
         }
         marks[i] = 0;
         Ok(())
@@ -1027,10 +1061,116 @@ impl Core<'_> {
         Some(level)
     }
 
+    /// Host: whether alpha test `e` may fail with an error or act (print, change
+    /// anything): all but constants, globals, fields of the fact and their equality
+    /// (`Eq2`, `eq`, `neq`), numeric comparisons of numbers, `not`, `and`, `or` of
+    /// such. Tests that cannot are not staged (`set_stage`): run any number of times
+    /// in any order, they show nothing.
+    #[cfg(feature = "extras")]
+    fn test_acts(&self, e: Ix) -> bool {
+        let x = self.exprs[e as usize];
+        let children = |cx: &Self| {
+            let mut c = x.first;
+            while c != NONE {
+                if cx.test_acts(c) {
+                    return true;
+                }
+                c = cx.exprs[c as usize].next;
+            }
+            false
+        };
+        match x.op {
+            Op::Int | Op::Float | Op::Sym | Op::Str | Op::Global | Op::PatVar => false,
+            Op::Eq2 | Op::And | Op::Or | Op::Not | Op::Expand => children(self),
+            Op::Call
+                if x.aux == FnKind::Builtin as u8 && (CMP_FIRST..=CMP_LAST).contains(&x.data) =>
+            {
+                if x.data >= CMP_FIRST + 6 {
+                    // `eq`, `neq`
+                    return children(self);
+                }
+                // a numeric comparison of numbers
+                let mut c = x.first;
+                while c != NONE {
+                    if !matches!(self.exprs[c as usize].op, Op::Int | Op::Float) {
+                        return true;
+                    }
+                    c = self.exprs[c as usize].next;
+                }
+                false
+            }
+            _ => true,
+        }
+    }
+
+    /// Host: works out alpha node `alpha`'s `stage`, `stage_from` and `stage_end`
+    /// (see `AlphaNode`) from its tests and path, when it is made.
+    #[cfg(feature = "extras")]
+    pub(crate) fn set_stage(&mut self, alpha: Ix) {
+        let node = self.alphas[alpha as usize];
+        let mut stage = 0u8;
+        let (mut from, mut end) = ([NONE; MAX_MARKS], [NONE; MAX_MARKS]);
+        let mut t = node.tests;
+        while t != NONE {
+            if self.test_level(alpha, t).is_some() && self.test_acts(t) {
+                stage |= STAGE_LENGTH;
+            }
+            t = self.exprs[t as usize].next;
+        }
+        for i in 0..(node.nmarks as usize).min(MAX_MARKS) {
+            let Some(choice) = self.mark_level(alpha, i) else {
+                continue;
+            };
+            let before = |cx: &Self, t: Ix| cx.test_level(alpha, t).is_some_and(|l| l < choice);
+            // the last acting test on a level before the choice
+            let (mut last, mut t) = (NONE, node.tests);
+            while t != NONE {
+                if before(self, t) && self.test_acts(t) {
+                    last = t;
+                }
+                t = self.exprs[t as usize].next;
+            }
+            if last == NONE {
+                continue;
+            }
+            stage |= 1 << i;
+            let f = self.exprs[last as usize].next;
+            let mut e = f;
+            while e != NONE && before(self, e) {
+                e = self.exprs[e as usize].next;
+            }
+            (from[i], end[i]) = (f, e);
+        }
+        let n = &mut self.alphas[alpha as usize];
+        (n.stage, n.stage_from, n.stage_end) = (stage, from, end);
+    }
+
+    /// Host: whether the tests left `tests` of alpha node `alpha` may hold one
+    /// that acts on a level before mark `i`'s node (`stage`): not when they start
+    /// after the last such one, before the first test not before the node.
+    #[cfg(feature = "extras")]
+    #[inline(always)]
+    fn stage_at(&self, alpha: Ix, tests: Ix, i: usize) -> bool {
+        let n = &self.alphas[alpha as usize];
+        if i >= MAX_MARKS || n.stage & (1 << i) == 0 {
+            return false;
+        }
+        let (mut t, end) = (n.stage_from[i], n.stage_end[i]);
+        loop {
+            if t == tests {
+                return false;
+            }
+            if t == end || t == NONE {
+                return true;
+            }
+            t = self.exprs[t as usize].next;
+        }
+    }
+
     /// Host: the level of alpha node `alpha`'s path where CLIPS chooses the length
     /// of mark `i`'s multifield (the node of that element; marks count a pattern's
-    /// multislots in the order it names them, as its path does). None: cut off the
-    /// path, or no such mark.
+    /// multislots in the order it names them, as its path does). `PATH_LEN` when
+    /// cut off a full path (after every level it keeps); None: no such mark.
     #[cfg(feature = "extras")]
     fn mark_level(&self, alpha: Ix, i: usize) -> Option<usize> {
         let node = &self.alphas[alpha as usize];
@@ -1051,7 +1191,11 @@ impl Core<'_> {
                     if self.exprs[e as usize].aux == 1 {
                         if seen == i - first {
                             let at = loc::new(u8::try_from(sd.data).ok()?, k);
-                            return (0..node.key_len as usize).find(|&l| node.path_loc[l] == at);
+                            let n = node.key_len as usize;
+                            // (not on a full path: cut off it, after all its levels)
+                            return (0..n)
+                                .find(|&l| node.path_loc[l] == at)
+                                .or((n == crate::rete::PATH_LEN).then_some(crate::rete::PATH_LEN));
                         }
                         seen += 1;
                     }
@@ -1374,7 +1518,11 @@ impl Core<'_> {
                     .find(|&l| Ix::from(loc::slot(node.path_loc[l])) == sd.data);
                 match l {
                     Some(l) => first = first.min(l),
-                    // a level cut off the path: not known where
+                    // cut off a full path: after all its levels
+                    None if node.key_len as usize == crate::rete::PATH_LEN => {
+                        first = first.min(crate::rete::PATH_LEN)
+                    }
+                    // not known where
                     None => return Ok(()),
                 }
             }
@@ -1968,5 +2116,38 @@ mod tests {
             }
         }
         assert_eq!(n, 3);
+    }
+
+    /// `set_stage`: equality and `eq`/`neq` tests are never staged; a call that may
+    /// fail or act is, for the marks whose nodes come after it on the path and for
+    /// a slot's length test; the tests left after it need no staging.
+    #[cfg(feature = "extras")]
+    #[test]
+    fn stage_marks_only_tests_that_may_act() {
+        let mut e = loaded(
+            "(deftemplate t (slot x) (slot y) (multislot m))
+             (deffunction p (?v) TRUE)
+             (defrule eqs (t (m $? red $? blue $?)) =>)
+             (defrule neqs (t (x ?x&~2&:(neq ?x a)) (m $?a ?b $?c)) =>)
+             (defrule before (t (y ?y&:(< ?y 3)) (m $?a ?b $?c)) =>)
+             (defrule after (t (m $?a ?b $?c) (y ?y&:(< ?y 3))) =>)
+             (defrule between (t (m $?a ?b&:(p ?b) $?c ?d $?e)) =>)",
+            &[],
+        );
+        let h = &mut NullHost;
+        let c = e.core(h);
+        let nodes: std::vec::Vec<_> = (0..c.alphas.len()).filter(|&a| c.alphas[a].live).collect();
+        assert_eq!(nodes.len(), 5);
+        let stage: std::vec::Vec<_> = nodes.iter().map(|&a| c.alphas[a].stage).collect();
+        assert_eq!(
+            stage,
+            [0, 0, 1 | STAGE_LENGTH, STAGE_LENGTH, 2 | STAGE_LENGTH]
+        );
+        let b = nodes[4] as Ix;
+        let t = c.alphas[b as usize].tests;
+        assert!(!c.stage_at(b, t, 0));
+        assert!(c.stage_at(b, t, 1));
+        assert!(!c.stage_at(b, c.alphas[b as usize].stage_end[1], 1));
+        assert!(c.stage_at(nodes[2] as Ix, c.alphas[nodes[2]].tests, 0));
     }
 }

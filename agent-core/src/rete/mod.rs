@@ -124,7 +124,26 @@ pub struct AlphaNode {
     /// identical node passes the others over at one comparison each.
     #[cfg(feature = "host-speedups")]
     pub share_sig: u32,
+    /// Host: bit `i` (a segmentation mark): a test that may fail with an error or
+    /// act (`alpha::test_acts`) lies on a level of the path before mark `i`'s node,
+    /// so `enumerate_marks` runs the tests before that node once per earlier choice
+    /// (`tests_before_mark`); bit [`STAGE_LENGTH`]: one lies on a known level
+    /// (`tests_before_length`). Worked out when the node is made (`set_stage`); all
+    /// set until then (a compiled rule base's nodes).
+    #[cfg(feature = "extras")]
+    pub stage: u8,
+    /// Host: per mark `i` of `stage`: the tests after the last acting one before
+    /// mark `i`'s node and the first test not before it: tests left that start from
+    /// one of those up to that one have none left to stage there (`stage_at`).
+    #[cfg(feature = "extras")]
+    pub stage_from: [Ix; MAX_MARKS],
+    #[cfg(feature = "extras")]
+    pub stage_end: [Ix; MAX_MARKS],
 }
+
+/// Host: `AlphaNode::stage`'s bit for tests before a slot's length test.
+#[cfg(feature = "extras")]
+pub const STAGE_LENGTH: u8 = 0x80;
 
 impl AlphaNode {
     pub const EMPTY: AlphaNode = AlphaNode {
@@ -145,6 +164,12 @@ impl AlphaNode {
         elem_key: false,
         #[cfg(feature = "host-speedups")]
         share_sig: 0,
+        #[cfg(feature = "extras")]
+        stage: 0xFF,
+        #[cfg(feature = "extras")]
+        stage_from: [NONE; MAX_MARKS],
+        #[cfg(feature = "extras")]
+        stage_end: [NONE; MAX_MARKS],
     };
 }
 
