@@ -790,6 +790,8 @@ impl Core<'_> {
         match r {
             // CLIPS reports a failing pattern test and treats it as not matching
             Err(e) if !e.is_capacity() => {
+                #[cfg(all(feature = "grow", feature = "extras"))]
+                self.matches_before_error(alpha, fact, &marks)?;
                 self.report_pattern_error(alpha, fact, e);
                 Ok(false)
             }
@@ -1107,23 +1109,36 @@ impl Core<'_> {
     /// (see `AlphaNode`) from its tests and path, when it is made.
     #[cfg(feature = "extras")]
     pub(crate) fn set_stage(&mut self, alpha: Ix) {
-        let node = self.alphas[alpha as usize];
+        let (tests, nmarks) = {
+            let n = &self.alphas[alpha as usize];
+            (n.tests, n.nmarks as usize)
+        };
         let mut stage = 0u8;
         let (mut from, mut end) = ([NONE; MAX_MARKS], [NONE; MAX_MARKS]);
-        let mut t = node.tests;
+        // (most nodes: no test acts, no level is looked up)
+        let mut t = tests;
+        while t != NONE && !self.test_acts(t) {
+            t = self.exprs[t as usize].next;
+        }
+        if t == NONE {
+            let n = &mut self.alphas[alpha as usize];
+            (n.stage, n.stage_from, n.stage_end) = (0, from, end);
+            return;
+        }
+        let mut t = tests;
         while t != NONE {
             if self.test_level(alpha, t).is_some() && self.test_acts(t) {
                 stage |= STAGE_LENGTH;
             }
             t = self.exprs[t as usize].next;
         }
-        for i in 0..(node.nmarks as usize).min(MAX_MARKS) {
+        for i in 0..nmarks.min(MAX_MARKS) {
             let Some(choice) = self.mark_level(alpha, i) else {
                 continue;
             };
             let before = |cx: &Self, t: Ix| cx.test_level(alpha, t).is_some_and(|l| l < choice);
             // the last acting test on a level before the choice
-            let (mut last, mut t) = (NONE, node.tests);
+            let (mut last, mut t) = (NONE, tests);
             while t != NONE {
                 if before(self, t) && self.test_acts(t) {
                     last = t;
@@ -1411,6 +1426,8 @@ impl Core<'_> {
                 Ok(pass.then_some(end))
             }
             Err(e) if !e.is_capacity() => {
+                #[cfg(feature = "grow")]
+                self.matches_before_error(alpha, fact, marks)?;
                 self.report_pattern_error(alpha, fact, e);
                 Ok(None)
             }
@@ -1481,7 +1498,7 @@ impl Core<'_> {
 
     /// Host: the level of alpha node `alpha`'s path test `t` is on.
     #[cfg(feature = "extras")]
-    fn test_level(&self, alpha: Ix, t: Ix) -> Option<usize> {
+    pub(crate) fn test_level(&self, alpha: Ix, t: Ix) -> Option<usize> {
         let (slot, elem) = self.failed_field(t)?;
         let at = loc::new(slot, elem);
         let node = &self.alphas[alpha as usize];
@@ -1604,6 +1621,8 @@ impl Core<'_> {
         }
         match r {
             Err(e) if !e.is_capacity() => {
+                #[cfg(feature = "grow")]
+                self.matches_before_error(alpha, fact, &[0; MAX_MARKS])?;
                 self.report_pattern_error(alpha, fact, e);
                 Ok(())
             }

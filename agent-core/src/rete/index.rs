@@ -320,9 +320,19 @@ impl Core<'_> {
         let (scratch, sp) = (self.st.frame.scratch_top, self.st.frame.sp);
         let saved = self.st.net.this_pm;
         self.st.net.this_pm = b;
-        let n = self.alphas[alpha as usize];
+        // host: the fields read, not a copy of the node (a call to copy it there)
+        #[cfg(not(feature = "extras"))]
+        let (rhash, nkey) = {
+            let n = self.alphas[alpha as usize];
+            (n.rhash, key_fields(&n))
+        };
+        #[cfg(feature = "extras")]
+        let (rhash, nkey) = {
+            let n = &self.alphas[alpha as usize];
+            (n.rhash, key_fields(n))
+        };
         let mut key = 0x5bd1_e995u32;
-        for &e in &n.rhash[..key_fields(&n)] {
+        for &e in &rhash[..nkey] {
             let x = self.exprs[e as usize];
             #[cfg(feature = "host-speedups")]
             if let Some(h) = self.place_hash(THIS_PATTERN, x.data, x.first) {
@@ -1317,7 +1327,7 @@ impl Core<'_> {
     /// `alpha_key` hashes a field).
     #[cfg(feature = "host-speedups")]
     fn or_field_hash(&mut self, alpha: Ix, b: PatBinding) -> u32 {
-        let n = self.alphas[alpha as usize];
+        let n = &self.alphas[alpha as usize];
         let e = n.rhash[n.nrhash as usize];
         if let Some(v) = self.key_field_value(b.fact, &self.exprs[e as usize]) {
             return atom_hash(v);

@@ -262,6 +262,93 @@ impl Core<'_> {
         }
     }
 
+    /// Host: before a pattern test of alpha node `x` fails on `fact` with an error
+    /// (`failed_test`, under lengths `mx`) while the fact's matches are collected:
+    /// the collected matches CLIPS's network reaches before that test's node enter
+    /// now, in its order, as CLIPS reports the error when it gets there; the others
+    /// stay collected.
+    #[cfg(feature = "extras")]
+    #[cold]
+    #[inline(never)]
+    pub(crate) fn matches_before_error(
+        &mut self,
+        x: Ix,
+        fact: Ix,
+        mx: &[u8; MAX_MARKS],
+    ) -> Result<(), EvalError> {
+        if !self.st.net.mf.collecting {
+            return Ok(());
+        }
+        let Some(level) = self.test_level(x, self.st.net.failed_test) else {
+            return Ok(());
+        };
+        let Some(p) = self.st.net.mf.pending.as_mut() else {
+            return Ok(());
+        };
+        if p.is_empty() {
+            return Ok(());
+        }
+        let mut got = core::mem::take(p);
+        if got.len() > 1 {
+            self.put_in_mf_order(&mut got);
+        }
+        self.cache_choice_levels(x);
+        for i in 0..got.len() {
+            self.cache_choice_levels(got[i].0);
+        }
+        let lv = &self.st.net.mf.levels;
+        let cx = lv[x as usize].1;
+        let k = got
+            .iter()
+            .position(|&m| !self.mf_before(m, &lv[m.0 as usize].1, x, mx, &cx, level))
+            .unwrap_or(got.len());
+        let rest = got.split_off(k);
+        if let Some(p) = self.st.net.mf.pending.as_mut() {
+            *p = rest;
+        }
+        for &(a, marks) in &got {
+            self.add_alpha_match(a, fact, marks)?;
+        }
+        Ok(())
+    }
+
+    /// Host: whether CLIPS's network reaches alpha match `(a, ma)` (choice levels
+    /// `ca`) before it tests level `level` of node `x`'s path with lengths `mx`
+    /// (choice levels `cx`): `mf_cmp` up to that level.
+    #[cfg(feature = "extras")]
+    fn mf_before(
+        &self,
+        (a, ma): Pending,
+        ca: &[Option<u8>; PATH_LEN],
+        x: Ix,
+        mx: &[u8; MAX_MARKS],
+        cx: &[Option<u8>; PATH_LEN],
+        level: usize,
+    ) -> bool {
+        let (p, q) = (&self.alphas[a as usize], &self.alphas[x as usize]);
+        for l in 0..=level.min(PATH_LEN - 1) {
+            if l >= p.key_len as usize {
+                // a's path ends above the level: its match comes at its last node
+                return true;
+            }
+            if l >= q.key_len as usize {
+                return false;
+            }
+            if p.key[l] != q.key[l] {
+                // the newer node first
+                return p.key[l] > q.key[l];
+            }
+            if let (Some(i), Some(j)) = (ca[l], cx[l]) {
+                let (u, v) = (ma.get(i as usize), mx.get(j as usize));
+                if u != v {
+                    // the longer multifield first
+                    return u > v;
+                }
+            }
+        }
+        false
+    }
+
     /// Whether alpha node `a`'s segmentations come in CLIPS's order (`NodeKey::mono`),
     /// cached per network generation.
     fn node_mono(&mut self, a: Ix) -> bool {
