@@ -293,8 +293,8 @@ impl Core<'_> {
             self.put_in_mf_order(&mut got);
         }
         self.cache_choice_levels(x);
-        for i in 0..got.len() {
-            self.cache_choice_levels(got[i].0);
+        for &(a, _) in &got {
+            self.cache_choice_levels(a);
         }
         let lv = &self.st.net.mf.levels;
         let cx = lv[x as usize].1;
