@@ -1109,12 +1109,19 @@ impl Core<'_> {
     /// (see `AlphaNode`) from its tests and path, when it is made.
     #[cfg(feature = "extras")]
     pub(crate) fn set_stage(&mut self, alpha: Ix) {
-        let (tests, nmarks) = {
+        let (tests, nmarks, desc) = {
             let n = &self.alphas[alpha as usize];
-            (n.tests, n.nmarks as usize)
+            (n.tests, n.nmarks as usize, n.desc)
         };
         let mut stage = 0u8;
         let (mut from, mut end) = ([NONE; MAX_MARKS], [NONE; MAX_MARKS]);
+        // (a node without multislot constraints has no length test and no choice to
+        // stage tests before: most nodes, decided without looking at the tests)
+        if desc == NONE && nmarks == 0 {
+            let n = &mut self.alphas[alpha as usize];
+            (n.stage, n.stage_from, n.stage_end) = (0, from, end);
+            return;
+        }
         // (most nodes: no test acts, no level is looked up)
         let mut t = tests;
         while t != NONE && !self.test_acts(t) {
