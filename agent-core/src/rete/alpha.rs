@@ -318,6 +318,37 @@ impl Core<'_> {
                 0,
             );
         }
+        // host: a node with tests that may fail with an error or act before one of
+        // its multifield choices runs them per choice (decided when it is made)
+        #[cfg(feature = "extras")]
+        if node.stage & !STAGE_LENGTH != 0 {
+            return self.match_staged::<MF>(alpha, fact, tests);
+        }
+        self.match_marks::<MF, false>(alpha, fact, tests)
+    }
+
+    /// Host: `match_marks` for a node whose tests are staged (`AlphaNode::stage`),
+    /// out of line.
+    #[cfg(feature = "extras")]
+    #[inline(never)]
+    fn match_staged<const MF: bool>(
+        &mut self,
+        alpha: Ix,
+        fact: Ix,
+        tests: Ix,
+    ) -> Result<(), EvalError> {
+        self.match_marks::<MF, true>(alpha, fact, tests)
+    }
+
+    /// `match_alpha` of a node with multifield choices: the slots laid out, their
+    /// lengths checked, every segmentation tried (`STAGE`: as `enumerate_marks`).
+    #[inline(always)]
+    fn match_marks<const MF: bool, const STAGE: bool>(
+        &mut self,
+        alpha: Ix,
+        fact: Ix,
+        tests: Ix,
+    ) -> Result<(), EvalError> {
         let mut lay = [SlotLayout::EMPTY; MAX_LAYOUTS];
         let n = self.layouts(alpha, &mut lay);
         let mut slack = [0 as Ix; MAX_LAYOUTS];
@@ -343,20 +374,7 @@ impl Core<'_> {
         }
         let nmarks = self.alphas[alpha as usize].nmarks as usize;
         let mut marks = [0u8; MAX_MARKS];
-        #[cfg(feature = "extras")]
-        if tests != NONE && self.alphas[alpha as usize].stage & !STAGE_LENGTH != 0 {
-            return self.enumerate_marks::<MF, true>(
-                alpha,
-                fact,
-                tests,
-                &lay[..n],
-                &slack,
-                &mut marks,
-                0,
-                nmarks,
-            );
-        }
-        self.enumerate_marks::<MF, false>(
+        self.enumerate_marks::<MF, STAGE>(
             alpha,
             fact,
             tests,
@@ -791,7 +809,7 @@ impl Core<'_> {
             // CLIPS reports a failing pattern test and treats it as not matching
             Err(e) if !e.is_capacity() => {
                 #[cfg(all(feature = "grow", feature = "extras"))]
-                self.matches_before_error(alpha, fact, &marks)?;
+                self.matches_before_error(alpha, fact, marks)?;
                 self.report_pattern_error(alpha, fact, e);
                 Ok(false)
             }
@@ -1434,7 +1452,7 @@ impl Core<'_> {
             }
             Err(e) if !e.is_capacity() => {
                 #[cfg(feature = "grow")]
-                self.matches_before_error(alpha, fact, marks)?;
+                self.matches_before_error(alpha, fact, *marks)?;
                 self.report_pattern_error(alpha, fact, e);
                 Ok(None)
             }
@@ -1629,7 +1647,7 @@ impl Core<'_> {
         match r {
             Err(e) if !e.is_capacity() => {
                 #[cfg(feature = "grow")]
-                self.matches_before_error(alpha, fact, &[0; MAX_MARKS])?;
+                self.matches_before_error(alpha, fact, [0; MAX_MARKS])?;
                 self.report_pattern_error(alpha, fact, e);
                 Ok(())
             }

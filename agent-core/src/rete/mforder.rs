@@ -274,7 +274,7 @@ impl Core<'_> {
         &mut self,
         x: Ix,
         fact: Ix,
-        mx: &[u8; MAX_MARKS],
+        mx: [u8; MAX_MARKS],
     ) -> Result<(), EvalError> {
         if !self.st.net.mf.collecting {
             return Ok(());
@@ -300,7 +300,7 @@ impl Core<'_> {
         let cx = lv[x as usize].1;
         let k = got
             .iter()
-            .position(|&m| !self.mf_before(m, &lv[m.0 as usize].1, x, mx, &cx, level))
+            .position(|&m| !self.mf_before(m, &lv[m.0 as usize].1, x, &mx, &cx, level))
             .unwrap_or(got.len());
         let rest = got.split_off(k);
         if let Some(p) = self.st.net.mf.pending.as_mut() {
