@@ -1088,26 +1088,16 @@ impl Core<'_> {
     /// in any order, they show nothing.
     #[cfg(feature = "extras")]
     fn test_acts(&self, e: Ix) -> bool {
-        let x = self.exprs[e as usize];
-        let children = |cx: &Self| {
-            let mut c = x.first;
-            while c != NONE {
-                if cx.test_acts(c) {
-                    return true;
-                }
-                c = cx.exprs[c as usize].next;
-            }
-            false
-        };
+        let x = &self.exprs[e as usize];
         match x.op {
             Op::Int | Op::Float | Op::Sym | Op::Str | Op::Global | Op::PatVar => false,
-            Op::Eq2 | Op::And | Op::Or | Op::Not | Op::Expand => children(self),
+            Op::Eq2 | Op::And | Op::Or | Op::Not | Op::Expand => self.any_acts(x.first),
             Op::Call
                 if x.aux == FnKind::Builtin as u8 && (CMP_FIRST..=CMP_LAST).contains(&x.data) =>
             {
                 if x.data >= CMP_FIRST + 6 {
                     // `eq`, `neq`
-                    return children(self);
+                    return self.any_acts(x.first);
                 }
                 // a numeric comparison of numbers
                 let mut c = x.first;
@@ -1123,61 +1113,127 @@ impl Core<'_> {
         }
     }
 
-    /// Host: works out alpha node `alpha`'s `stage`, `stage_from` and `stage_end`
-    /// (see `AlphaNode`) from its tests and path, when it is made.
+    /// Host: whether any of the arguments from `c` on may act (`test_acts`); the
+    /// leaves (most: fields and constants) are told apart here, without a call.
     #[cfg(feature = "extras")]
+    #[inline]
+    fn any_acts(&self, mut c: Ix) -> bool {
+        while c != NONE {
+            let y = &self.exprs[c as usize];
+            let leaf = matches!(
+                y.op,
+                Op::Int | Op::Float | Op::Sym | Op::Str | Op::Global | Op::PatVar
+            );
+            if !leaf && self.test_acts(c) {
+                return true;
+            }
+            c = y.next;
+        }
+        false
+    }
+
+    /// Host: works out alpha node `alpha`'s `stage`, `stage_from` and `stage_end`
+    /// (see `AlphaNode`) from its tests and path, when it is made. A node without
+    /// multislot constraints (most) has no length test and no choice to stage tests
+    /// before: decided here, in line, without looking at its tests.
+    #[cfg(feature = "extras")]
+    #[inline(always)]
     pub(crate) fn set_stage(&mut self, alpha: Ix) {
-        let (tests, nmarks, desc) = {
+        let n = &mut self.alphas[alpha as usize];
+        if n.desc == NONE && n.nmarks == 0 {
+            // (`stage_from` and `stage_end` are read only for a mark staged)
+            n.stage = 0;
+            return;
+        }
+        self.set_stage_tested(alpha);
+    }
+
+    /// Host: `set_stage` of a node with multislot constraints: most have no test
+    /// that acts, and no level is looked up.
+    #[cfg(feature = "extras")]
+    #[inline(never)]
+    fn set_stage_tested(&mut self, alpha: Ix) {
+        let (tests, nmarks) = {
             let n = &self.alphas[alpha as usize];
-            (n.tests, n.nmarks as usize, n.desc)
+            (n.tests, n.nmarks as usize)
         };
-        let mut stage = 0u8;
-        let (mut from, mut end) = ([NONE; MAX_MARKS], [NONE; MAX_MARKS]);
-        // (a node without multislot constraints has no length test and no choice to
-        // stage tests before: most nodes, decided without looking at the tests)
-        if desc == NONE && nmarks == 0 {
-            let n = &mut self.alphas[alpha as usize];
-            (n.stage, n.stage_from, n.stage_end) = (0, from, end);
+        if !self.tests_act(tests) {
+            self.alphas[alpha as usize].stage = 0;
             return;
         }
-        // (most nodes: no test acts, no level is looked up)
-        let mut t = tests;
-        while t != NONE && !self.test_acts(t) {
-            t = self.exprs[t as usize].next;
-        }
-        if t == NONE {
-            let n = &mut self.alphas[alpha as usize];
-            (n.stage, n.stage_from, n.stage_end) = (0, from, end);
-            return;
-        }
-        let mut t = tests;
+        self.work_out_stage(alpha, tests, nmarks);
+    }
+
+    /// Host: whether any test of the chain `tests` may act (`test_acts`), with the
+    /// commonest, a field's equality to a constant, told without a call.
+    #[cfg(feature = "extras")]
+    fn tests_act(&self, mut t: Ix) -> bool {
         while t != NONE {
-            if self.test_level(alpha, t).is_some() && self.test_acts(t) {
+            let x = &self.exprs[t as usize];
+            let acts = if x.op == Op::Eq2 {
+                self.any_acts(x.first)
+            } else {
+                self.test_acts(t)
+            };
+            if acts {
+                return true;
+            }
+            t = x.next;
+        }
+        false
+    }
+
+    /// Host: `set_stage` of a node with a test that may act. Each test's level and
+    /// whether it acts are looked up once (the first `STAGE_TESTS` tests; a longer
+    /// chain's others as they come).
+    #[cfg(feature = "extras")]
+    #[inline(never)]
+    fn work_out_stage(&mut self, alpha: Ix, tests: Ix, nmarks: usize) {
+        const STAGE_TESTS: usize = 16;
+        // per test: its level, and the level again if it acts
+        let look_up = |cx: &Self, t: Ix| {
+            let l = cx.test_level(alpha, t);
+            (l, l.filter(|_| cx.test_acts(t)))
+        };
+        let mut known = [(None, None); STAGE_TESTS];
+        let mut stage = 0u8;
+        let (mut t, mut k) = (tests, 0);
+        while t != NONE {
+            let (l, a) = look_up(self, t);
+            if k < STAGE_TESTS {
+                known[k] = (l, a);
+            }
+            if a.is_some() {
                 stage |= STAGE_LENGTH;
             }
-            t = self.exprs[t as usize].next;
+            (t, k) = (self.exprs[t as usize].next, k + 1);
         }
+        let look = |cx: &Self, t: Ix, k: usize| match known.get(k) {
+            Some(&v) => v,
+            None => look_up(cx, t),
+        };
+        let (mut from, mut end) = ([NONE; MAX_MARKS], [NONE; MAX_MARKS]);
         for i in 0..nmarks.min(MAX_MARKS) {
             let Some(choice) = self.mark_level(alpha, i) else {
                 continue;
             };
-            let before = |cx: &Self, t: Ix| cx.test_level(alpha, t).is_some_and(|l| l < choice);
             // the last acting test on a level before the choice
-            let (mut last, mut t) = (NONE, tests);
+            let (mut last, mut last_k, mut t, mut k) = (NONE, 0, tests, 0);
             while t != NONE {
-                if before(self, t) && self.test_acts(t) {
-                    last = t;
+                if look(self, t, k).1.is_some_and(|l| l < choice) {
+                    (last, last_k) = (t, k);
                 }
-                t = self.exprs[t as usize].next;
+                (t, k) = (self.exprs[t as usize].next, k + 1);
             }
             if last == NONE {
                 continue;
             }
             stage |= 1 << i;
+            // the first test after it not on a level before the choice
             let f = self.exprs[last as usize].next;
-            let mut e = f;
-            while e != NONE && before(self, e) {
-                e = self.exprs[e as usize].next;
+            let (mut e, mut k) = (f, last_k + 1);
+            while e != NONE && look(self, e, k).0.is_some_and(|l| l < choice) {
+                (e, k) = (self.exprs[e as usize].next, k + 1);
             }
             (from[i], end[i]) = (f, e);
         }
