@@ -30,6 +30,19 @@ const RULES: &str = r#"
 (defrule top (declare (salience 20)) (t ?x) => (printout t "t" ?x " "))
 "#;
 
+/// Loads `RULES`, resets and asserts 36 (m) facts then 34 (l) facts: every (l)
+/// insertion walks past the 36 (m) activations. The transcript starts empty.
+fn fill<S: agent_core::Storage>(e: &mut agent_core::Engine<S>, h: &mut Transcript) {
+    e.load_str(h, "rules", RULES).expect("the rules load");
+    e.reset(h).expect("reset");
+    e.batch_str(
+        h,
+        "(loop-for-count (?i 1 36) do (assert (m ?i)))\n(loop-for-count (?i 1 34) do (assert (l ?i)))\n",
+        false,
+    );
+    h.0.clear();
+}
+
 /// Runs `n` firings one at a time, the invariants checked after each.
 fn step<S: agent_core::Storage>(
     e: &mut agent_core::Engine<S>,
@@ -68,15 +81,7 @@ fn salience_groups_hold_as_the_head_comes_and_goes() {
     assert_eq!(runs.len(), 4, "the transcript's runs");
     let h = &mut Transcript(String::new());
     let mut e = Box::new(SmallEngine::new());
-    e.load_str(h, "rules", RULES).expect("the rules load");
-    e.reset(h).expect("reset");
-    // every (l) insertion walks past the 36 (m) activations
-    e.batch_str(
-        h,
-        "(loop-for-count (?i 1 36) do (assert (m ?i)))\n(loop-for-count (?i 1 34) do (assert (l ?i)))\n",
-        false,
-    );
-    h.0.clear();
+    fill(&mut e, h);
     step(&mut e, h, 12, "first");
     assert_eq!(h.0, runs[0], "the first firings");
     e.batch_str(h, "(assert (t 1))\n(assert (h 500))\n", false);
@@ -120,14 +125,7 @@ fn short_again() {
     assert_eq!(runs.len(), 5, "the transcript's runs");
     let h = &mut Transcript(String::new());
     let mut e = Box::new(DefaultEngine::new());
-    e.load_str(h, "rules", RULES).expect("the rules load");
-    e.reset(h).expect("reset");
-    e.batch_str(
-        h,
-        "(loop-for-count (?i 1 36) do (assert (m ?i)))\n(loop-for-count (?i 1 34) do (assert (l ?i)))\n",
-        false,
-    );
-    h.0.clear();
+    fill(&mut e, h);
     // down to 7 activations
     step(&mut e, h, 90, "long");
     assert_eq!(h.0, runs[0], "the long agenda's firings");

@@ -415,19 +415,7 @@ impl Core<'_> {
             tests
         };
         // the slot this mark belongs to, and what earlier marks of it used
-        let mut room = 0 as Ix;
-        for (k, l) in lay.iter().enumerate() {
-            let f = l.first_mark as usize;
-            let cnt = if l.multis >= 2 {
-                l.multis as usize - 1
-            } else {
-                0
-            };
-            if i >= f && i < f + cnt {
-                let used: Ix = marks[f..i].iter().map(|&m| m as Ix).sum();
-                room = slack[k].saturating_sub(used).min(255);
-            }
-        }
+        let room = mark_room(lay, slack, marks, i);
         for m in (0..=room).rev() {
             marks[i] = m as u8;
             // host: the tests this mark decides run now, as CLIPS tests element by
@@ -1379,19 +1367,7 @@ impl Core<'_> {
             Some(t) => t,
             None => return Ok(()),
         };
-        let mut room = 0 as Ix;
-        for (s, l) in lay.iter().enumerate() {
-            let f = l.first_mark as usize;
-            let cnt = if l.multis >= 2 {
-                l.multis as usize - 1
-            } else {
-                0
-            };
-            if i >= f && i < f + cnt {
-                let used: Ix = marks[f..i].iter().map(|&m| m as Ix).sum();
-                room = slack[s].saturating_sub(used).min(255);
-            }
-        }
+        let room = mark_room(lay, slack, marks, i);
         for m in (0..=room).rev() {
             marks[i] = m as u8;
             self.choices_before(alpha, fact, tests, lay, slack, marks, i + 1, k, failing)?;
@@ -1980,6 +1956,32 @@ impl Core<'_> {
             self.remove_alpha_match(am);
         }
     }
+}
+
+/// How many elements mark `i` may take: what its slot's multifields have left
+/// (`slack`) after the marks before it in that slot (at most 255; 0 for a mark of
+/// no slot's choice).
+#[inline(always)]
+fn mark_room(
+    lay: &[SlotLayout],
+    slack: &[Ix; MAX_LAYOUTS],
+    marks: &[u8; MAX_MARKS],
+    i: usize,
+) -> Ix {
+    let mut room = 0 as Ix;
+    for (k, l) in lay.iter().enumerate() {
+        let f = l.first_mark as usize;
+        let cnt = if l.multis >= 2 {
+            l.multis as usize - 1
+        } else {
+            0
+        };
+        if i >= f && i < f + cnt {
+            let used: Ix = marks[f..i].iter().map(|&m| m as Ix).sum();
+            room = slack[k].saturating_sub(used).min(255);
+        }
+    }
+    room
 }
 
 // the tests evaluate builtins, whose code only `parser` links (`builtins::BUILTINS`)
