@@ -1442,38 +1442,8 @@ impl Core<'_> {
                 return Ok(Some(end));
             }
         }
-        let saved = self.st.net.this_pm;
-        self.st.net.this_pm = PatBinding {
-            fact,
-            marks: *marks,
-        };
-        let (scratch, sp) = (self.st.frame.scratch_top, self.st.frame.sp);
-        self.st.net.matching += 1;
-        let mut r = Ok(true);
-        let mut level = last;
-        while t != end {
-            let v = self.eval(t);
-            self.st.frame.scratch_top = scratch;
-            self.st.frame.sp = sp;
-            match v {
-                Err(e) => {
-                    self.st.net.failed_test = t;
-                    r = Err(e);
-                    break;
-                }
-                Ok(v) if v == Value::Sym(crate::builtins::SYM_FALSE) => {
-                    level = self.test_level(alpha, t).unwrap_or(last);
-                    r = Ok(false);
-                    break;
-                }
-                Ok(_) => {}
-            }
-            t = self.exprs[t as usize].next;
-        }
-        self.st.net.matching -= 1;
-        self.st.net.this_pm = saved;
-        match r {
-            Ok(pass) => {
+        match self.run_tests_to(alpha, fact, *marks, t, end, last) {
+            Ok((level, pass)) => {
                 if first && !memo {
                     // the nodes after this one sharing those levels are done with them
                     let n = &mut self.st.net;
@@ -1638,17 +1608,44 @@ impl Core<'_> {
             }
             b = self.alphas[b as usize].next_in_tmpl;
         }
+        // the level the fact got to, and whether it passed it
+        match self.run_tests_to(alpha, fact, [0; MAX_MARKS], tests, end, last) {
+            Ok((level, pass)) => {
+                // the nodes after this one sharing those levels are done with them
+                let num = self.facts[fact as usize].num;
+                let n = &mut self.st.net;
+                (n.err_fact, n.err_num, n.err_alpha) = (fact, num, alpha);
+                (n.err_level, n.err_pass) = (level as u8, pass);
+                Ok(())
+            }
+            Err(e) if !e.is_capacity() => {
+                #[cfg(feature = "grow")]
+                self.matches_before_error(alpha, fact, [0; MAX_MARKS])?;
+                self.report_pattern_error(alpha, fact, e);
+                Ok(())
+            }
+            Err(e) => Err(e),
+        }
+    }
+
+    /// Host: runs alpha node `alpha`'s tests from `t` up to `end` on `fact` with
+    /// `marks`, as its match would, until one fails or raises an error (kept in
+    /// `failed_test`): the level reached (`last` when all pass) and whether all did.
+    #[cfg(feature = "extras")]
+    fn run_tests_to(
+        &mut self,
+        alpha: Ix,
+        fact: Ix,
+        marks: [u8; MAX_MARKS],
+        mut t: Ix,
+        end: Ix,
+        last: usize,
+    ) -> Result<(usize, bool), EvalError> {
         let saved = self.st.net.this_pm;
-        self.st.net.this_pm = PatBinding {
-            fact,
-            marks: [0; MAX_MARKS],
-        };
+        self.st.net.this_pm = PatBinding { fact, marks };
         let (scratch, sp) = (self.st.frame.scratch_top, self.st.frame.sp);
         self.st.net.matching += 1;
-        let mut r = Ok(());
-        let mut t = tests;
-        // the level the fact got to, and whether it passed it
-        let (mut level, mut pass) = (last, true);
+        let mut r = Ok((last, true));
         while t != end {
             let v = self.eval(t);
             self.st.frame.scratch_top = scratch;
@@ -1660,7 +1657,7 @@ impl Core<'_> {
                     break;
                 }
                 Ok(v) if v == Value::Sym(crate::builtins::SYM_FALSE) => {
-                    (level, pass) = (self.test_level(alpha, t).unwrap_or(last), false);
+                    r = Ok((self.test_level(alpha, t).unwrap_or(last), false));
                     break;
                 }
                 Ok(_) => {}
@@ -1669,22 +1666,7 @@ impl Core<'_> {
         }
         self.st.net.matching -= 1;
         self.st.net.this_pm = saved;
-        if r.is_ok() {
-            // the nodes after this one sharing those levels are done with them
-            let num = self.facts[fact as usize].num;
-            let n = &mut self.st.net;
-            (n.err_fact, n.err_num, n.err_alpha) = (fact, num, alpha);
-            (n.err_level, n.err_pass) = (level as u8, pass);
-        }
-        match r {
-            Err(e) if !e.is_capacity() => {
-                #[cfg(feature = "grow")]
-                self.matches_before_error(alpha, fact, [0; MAX_MARKS])?;
-                self.report_pattern_error(alpha, fact, e);
-                Ok(())
-            }
-            r => r,
-        }
+        r
     }
 
     /// `      Of pattern #N in rule R` for every rule whose network passes through
