@@ -1260,6 +1260,21 @@ impl Core<'_> {
                     b,
                     "[ARGACCES5] Function {func} expected argument #{arg} to be of type {expected}"
                 );
+                // host: `/` and `div` go on with 0 for the bad divisor, and so divide by
+                // zero: the call just failed records it (`set_error_fallback`), told
+                // here once (the prompt's fallback and a caller's value after the
+                // error tell it otherwise)
+                #[cfg(feature = "extras")]
+                if let Some(fb) = self.st.eval.error_fallback.as_mut() {
+                    if fb.depth == self.st.eval.eval_depth + 1 {
+                        if let Some(func) = fb.divide_by_zero.take() {
+                            let _ = writeln!(
+                                b,
+                                "[PRNTUTIL7] Attempt to divide by zero in {func} function."
+                            );
+                        }
+                    }
+                }
             }
             EvalErrorKind::DivideByZero { func } => {
                 let _ = writeln!(

@@ -476,9 +476,9 @@ pub struct EvalState {
     /// evaluated: CLIPS's evaluation depth (`ED:` in `(watch deffunctions)`).
     #[cfg(feature = "extras")]
     pub dfn_depth: u16,
-    /// An argument of the builtin being called failed (its message printed, its
-    /// fallback pushed, see `Core::arg_failed`): the arguments' base on the stack and
-    /// the failed one's index, `NONE` when none.
+    /// An argument of the builtin being called failed (see `Core::arg_failed`; the
+    /// ones before it pushed): the arguments' base on the stack and the failed one's
+    /// node, `NONE` when none.
     #[cfg(feature = "extras")]
     pub failed_arg: (Ix, Ix),
     /// The arguments after a failed one are being evaluated, CLIPS's evaluation error

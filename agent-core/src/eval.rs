@@ -1267,24 +1267,18 @@ impl Core<'_> {
         self.fallback_value(fb).ok()
     }
 
-    /// Argument `a` (the builtin's arguments from `base`) failed with `e`: its value
-    /// after the error is pushed and noted (`EvalState::failed_arg`) for
-    /// `builtin_after_failed_arg`, and `e` (reported) stops `push_args`.
+    /// Argument `a` (the builtin's arguments from `base`, the ones before it pushed)
+    /// failed with `e`: noted (`EvalState::failed_arg`) for `builtin_after_failed_arg`,
+    /// which decides whether CLIPS evaluated it at all and what it gives, and `e`
+    /// stops `push_args`.
     #[cfg(feature = "extras")]
     #[cold]
     #[inline(never)]
     fn arg_failed(&mut self, base: Ix, a: Ix, e: EvalError) -> Result<Args, EvalError> {
-        let v = match self.value_after_error(a, e) {
-            Ok(v) => v,
-            Err(e) => {
-                self.note_hw(Pool::EvalStack, self.st.frame.sp as usize);
-                return Err(e);
-            }
-        };
-        self.push_value(v)?;
-        self.st.eval.failed_arg = (base, self.st.frame.sp - 1 - base);
-        let mut e = e;
-        e.reported = true;
+        self.st.eval.failed_arg = (base, a);
+        // (opaque to the optimiser, as the message it printed here made it: what it
+        // may change decides how the evaluator's loop around its call is compiled)
+        core::hint::black_box(&mut *self);
         Err(e)
     }
 
@@ -1297,6 +1291,11 @@ impl Core<'_> {
     /// as its fallback (`set_error_fallback`) for the caller, and the call fails with
     /// the reported `e` (or its own error), CLIPS's evaluation error set until the
     /// command, action or test is done. `halting`: the state before the call.
+    ///
+    /// A numeric builtin (`+`, `/`, `=`, ...) whose earlier argument ends its
+    /// arguments in CLIPS (`ends_numbers`) never evaluated this one: its error (an
+    /// argument that prints nothing before it fails, else the call is a twin,
+    /// `builtins::ordered`) is dropped and the body reports the earlier one.
     #[cfg(feature = "extras")]
     #[cold]
     #[inline(never)]
@@ -1307,11 +1306,29 @@ impl Core<'_> {
         halting: bool,
         e: EvalError,
     ) -> Result<Value, EvalError> {
-        let (base, at) = core::mem::replace(&mut self.st.eval.failed_arg, (0, NONE));
-        if at == NONE {
+        let (base, a) = core::mem::replace(&mut self.st.eval.failed_arg, (0, NONE));
+        if a == NONE {
             return Err(e);
         }
+        let at = self.st.frame.sp - base;
         let b = builtins::get(x.data);
+        if b.signature.numbers_after_lead() && !stops_all_functions(&e) {
+            if let Some(k) = self.numbers_end(x.data, base, at) {
+                self.drop_error_fallback();
+                self.st.frame.sp = base + k + 1;
+                return self.numeric_args_done(x, f, b, halting, base, false);
+            }
+        }
+        let v = match self.value_after_error(a, e) {
+            Ok(v) => v,
+            Err(e) => {
+                self.note_hw(Pool::EvalStack, self.st.frame.sp as usize);
+                return Err(e);
+            }
+        };
+        self.push_value(v)?;
+        let mut e = e;
+        e.reported = true;
         let r = self.value_after_failed_arg(x, f, b, base, at);
         self.st.mode.halting = halting;
         match r {
@@ -1320,6 +1337,28 @@ impl Core<'_> {
                 Err(e)
             }
             Err(err) => Err(err),
+        }
+    }
+
+    /// The first of the `n` values from `base` (a numeric builtin `id`'s first
+    /// arguments) that ends its arguments in CLIPS (`ends_numbers`).
+    #[cfg(feature = "extras")]
+    fn numbers_end(&self, id: Ix, base: Ix, n: Ix) -> Option<Ix> {
+        (0..n).find(|&i| ends_numbers(id, self.stack[(base + i) as usize], i))
+    }
+
+    /// Forgets the fallback a call that failed recorded (`set_error_fallback`): CLIPS
+    /// never evaluated it.
+    #[cfg(feature = "extras")]
+    fn drop_error_fallback(&mut self) {
+        let depth = self.st.eval.eval_depth + 1;
+        if self
+            .st
+            .eval
+            .error_fallback
+            .is_some_and(|fb| fb.depth == depth)
+        {
+            self.st.eval.error_fallback = None;
         }
     }
 
@@ -1349,13 +1388,13 @@ impl Core<'_> {
         }
         // the arguments after it; arithmetic and numeric comparisons stop at one
         // that is no number (their body reports it, the last one it sees)
-        let numeric = b.signature.get(0) == builtins::describe::ArgType::Number;
+        let numeric = b.signature.numbers_after_lead().then_some(x.data);
         let mut a = x.first;
         for _ in 0..=at {
             a = self.exprs[a as usize].next;
         }
         let was = core::mem::replace(&mut self.st.eval.arg_error, true);
-        let r = self.push_rest_after_error(a, numeric);
+        let r = self.push_rest_after_error(a, base, numeric);
         self.st.eval.arg_error = was;
         let stopped = r?;
         let args = Args {
@@ -1368,15 +1407,21 @@ impl Core<'_> {
         f(self, args).map_err(|err| self.classify_type_error(b.name, x.first, err))
     }
 
-    /// Evaluates and pushes the arguments from `a` on, CLIPS's evaluation error set:
-    /// another that fails gives its value after the error as well. `numeric`: none is
-    /// evaluated after one (or the value on top) that is no number; whether it stopped
-    /// early.
+    /// Evaluates and pushes the arguments from `a` on (of a call whose arguments are
+    /// pushed from `base`), CLIPS's evaluation error set: another that fails gives its
+    /// value after the error as well. `numeric`: the numeric builtin called, which
+    /// takes no argument after one (or the value on top) that is no number or a zero
+    /// divisor (`ends_numbers`); whether it stopped early.
     #[cfg(feature = "extras")]
-    fn push_rest_after_error(&mut self, mut a: Ix, numeric: bool) -> Result<bool, EvalError> {
-        let is_num = |v: Value| matches!(v, Value::Int(_) | Value::Float(_));
+    fn push_rest_after_error(
+        &mut self,
+        mut a: Ix,
+        base: Ix,
+        numeric: Option<Ix>,
+    ) -> Result<bool, EvalError> {
         while a != NONE {
-            if numeric && !is_num(self.stack[self.st.frame.sp as usize - 1]) {
+            let top = self.st.frame.sp - 1;
+            if numeric.is_some_and(|id| ends_numbers(id, self.stack[top as usize], top - base)) {
                 return Ok(true);
             }
             self.st.eval.arg_error = true;
@@ -1618,6 +1663,105 @@ impl Core<'_> {
                 f(self, args).map_err(|err| self.classify_type_error(b.name, x.first, err))
             }
         }
+    }
+
+    /// A call of a numeric builtin's twin (`builtins::ordered`: the parser found a
+    /// later argument that could print or change something), as CLIPS runs the
+    /// original: its arguments one at a time (`call_numeric`; a comparison of three or
+    /// more as `compare_in_order`).
+    #[inline(never)]
+    pub(crate) fn call_ordered(&mut self, call: Ix) -> Result<Value, EvalError> {
+        let mut x = self.exprs[call as usize];
+        x.data = builtins::ordered::original_of(x.data);
+        let b = builtins::get(x.data);
+        let Imp::Eager(f) = builtins::code_of(self, x.data, b) else {
+            return Err(EvalError::new(EvalErrorKind::NoSuchFunction));
+        };
+        #[cfg(feature = "extras")]
+        if x.data.wrapping_sub(builtins::basic::CMP_FIRST) < 6 && self.count_args(x.first) > 2 {
+            return self.compare_in_order(x);
+        }
+        self.call_numeric(x, f, b)
+    }
+
+    /// `call_builtin` of call `x` of numeric builtin `b` (body `f`: `+`, `/`, `=`,
+    /// `div`, `mod`, ...), whose arguments CLIPS's body takes one at a time
+    /// (`GetNumericArgument`): one that is no number, or a zero divisor of `/` or
+    /// `div`, is the last evaluated (`(+ ?s (bind ?*g* 1))` with `?s` a symbol binds
+    /// nothing), and the body then reports it. An argument that fails goes on as in
+    /// `call_builtin`.
+    fn call_numeric(
+        &mut self,
+        x: Expr,
+        f: builtins::BuiltinFn,
+        b: &builtins::Builtin,
+    ) -> Result<Value, EvalError> {
+        let halting = self.st.mode.halting;
+        let base = self.st.frame.sp;
+        let mut a = x.first;
+        while a != NONE {
+            // (`eval`, not the operand fast path `eval_operand`: these calls are few,
+            // and the image's code budget is tight)
+            let v = match self.eval(a) {
+                Ok(v) => v,
+                #[cfg(feature = "extras")]
+                Err(e) => {
+                    let err = match self.arg_failed(base, a, e) {
+                        Ok(_) => EvalError::already_reported(),
+                        Err(err) => err,
+                    };
+                    return self.builtin_after_failed_arg(x, f, halting, err);
+                }
+                #[cfg(not(feature = "extras"))]
+                Err(e) => {
+                    self.note_hw(Pool::EvalStack, self.st.frame.sp as usize);
+                    return Err(e);
+                }
+            };
+            let at = self.st.frame.sp - base;
+            self.push_value(v)?;
+            a = self.exprs[a as usize].next;
+            if a != NONE && ends_numbers(x.data, v, at) {
+                break;
+            }
+        }
+        self.numeric_args_done(x, f, b, halting, base, a == NONE)
+    }
+
+    /// `call_numeric` once its arguments are on the stack from `base` (`all`: every
+    /// one, else it stopped at the last): as `call_builtin` after `push_args`, without
+    /// the count check for a call that stopped.
+    #[inline(never)]
+    fn numeric_args_done(
+        &mut self,
+        x: Expr,
+        f: builtins::BuiltinFn,
+        b: &builtins::Builtin,
+        halting: bool,
+        base: Ix,
+        all: bool,
+    ) -> Result<Value, EvalError> {
+        self.note_hw(Pool::EvalStack, self.st.frame.sp as usize);
+        let args = Args {
+            base,
+            len: self.st.frame.sp - base,
+        };
+        // an argument failed with CLIPS's evaluation error (an unbound global)
+        if self.st.mode.halting && (!halting || self.arg_error()) {
+            #[cfg(feature = "extras")]
+            let stops = !builtins::errors::values_failed(self, b, args);
+            #[cfg(not(feature = "extras"))]
+            let stops = true;
+            if stops {
+                if let Some(v) = self.args_failed(b)? {
+                    return Ok(v);
+                }
+            }
+        }
+        if all {
+            check_arity(b.name, b.min, b.max, args.len)?;
+        }
+        f(self, args).map_err(|err| self.classify_type_error(b.name, x.first, err))
     }
 
     fn call_deffunction(&mut self, func: Ix, first_arg: Ix) -> Result<Value, EvalError> {
@@ -1997,6 +2141,25 @@ impl Core<'_> {
 impl crate::engine::State {
     pub fn halt_now(&self) -> bool {
         self.mode.exit
+    }
+}
+
+/// Whether numeric builtin `id` (`Signature::numbers_after_lead`) takes no argument
+/// after `v`, its argument `at` (0-based), as CLIPS's bodies run: they stop at one that
+/// is no number (`[ARGACCES5]`), `/` and `div` also at a zero divisor (`div`'s
+/// truncated to an integer).
+#[inline(always)]
+pub(crate) fn ends_numbers(id: Ix, v: Value, at: Ix) -> bool {
+    const SLASH: Ix = builtins::builtin_id("/");
+    const DIV: Ix = builtins::builtin_id("div");
+    match v {
+        Value::Int(i) => i == 0 && at > 0 && (id == SLASH || id == DIV),
+        Value::Float(f) => {
+            at > 0
+                && ((id == SLASH && f == 0.0)
+                    || (id == DIV && builtins::math::c_trunc_to_i64(f) == 0))
+        }
+        _ => true,
     }
 }
 

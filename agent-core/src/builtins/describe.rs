@@ -157,6 +157,14 @@ impl Signature {
         s
     }
 
+    /// Whether every argument from the lead on is a number (`+`, `/`, `=`, `div`,
+    /// `mod`, ...): CLIPS's bodies take such arguments one at a time
+    /// (`GetNumericArgument`), see `builtins::ordered`.
+    #[inline(always)]
+    pub const fn numbers_after_lead(&self) -> bool {
+        self.nlead == 0 && matches!(self.rest, ArgType::Number)
+    }
+
     /// The type of argument `index` (0-based).
     pub fn get(&self, index: usize) -> ArgType {
         if index < self.nlead as usize {

@@ -41,6 +41,7 @@ pub mod math;
 pub mod memory;
 pub mod modules;
 pub mod multifield;
+pub mod ordered;
 pub mod predicates;
 pub mod pretty;
 #[cfg(feature = "extras")]
@@ -232,6 +233,8 @@ pub const TABLES: &[Table] = &[
     TOOLS_TABLE,
     TEXTPRO_TABLE,
     PROFILE_TABLE,
+    // last: its twins share their originals' names (`builtin_id` finds the originals)
+    ordered::TABLE,
 ];
 
 /// `apropos` and `set-locale` (`tools`): only with the feature `extras`.

@@ -110,6 +110,7 @@ pub struct Sizes {
 /// What generated code uses: `use agent_core::compiled::gen::*;`.
 pub mod gen {
     pub use super::{RuleBase, Sizes};
+    pub use crate::builtins::ordered::ordered_twin;
     pub use crate::builtins::{builtin_id, code_for, Imp, COUNT};
     pub use crate::expr::{Expr, Op};
     pub use crate::handle::JoinId;

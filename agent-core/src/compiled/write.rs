@@ -259,24 +259,30 @@ impl Core<'_> {
         Ok(())
     }
 
-    /// Whether some node calls builtin `id`.
+    /// Whether some node calls builtin `id`, or its twin (`builtins::ordered`, which
+    /// runs the original's code).
     fn calls_builtin(&self, id: usize) -> bool {
+        let twin = crate::builtins::ordered::twin_of(id as Ix).map_or(usize::MAX, |t| t as usize);
         (0..self.st.pools.nexprs as usize).any(|e| {
             let x = self.exprs[e];
-            x.op == Op::Call && x.aux == FnKind::Builtin as u8 && x.data as usize == id
+            x.op == Op::Call
+                && x.aux == FnKind::Builtin as u8
+                && (x.data as usize == id || x.data as usize == twin)
         })
     }
 
-    /// A constant per builtin called: `const B12: Ix = builtin_id("str-cat");`.
+    /// A constant per builtin called: `const B12: Ix = builtin_id("str-cat");`, a twin
+    /// named by its original: `const B201: Ix = ordered_twin(builtin_id("+"));`.
     fn write_builtin_ids(&self, out: &mut dyn Write) -> fmt::Result {
         let n = crate::builtins::BUILTINS.len();
         for id in 0..n {
             if self.calls_builtin(id) {
-                writeln!(
-                    out,
-                    "const B{id}: Ix = builtin_id({:?});",
-                    crate::builtins::get(id as Ix).name
-                )?;
+                let name = crate::builtins::get(id as Ix).name;
+                if crate::builtins::ordered::is_twin(id as Ix) {
+                    writeln!(out, "const B{id}: Ix = ordered_twin(builtin_id({name:?}));")?;
+                } else {
+                    writeln!(out, "const B{id}: Ix = builtin_id({name:?});")?;
+                }
             }
         }
         Ok(())

@@ -616,7 +616,7 @@ impl<'s> Parser<'s, '_, '_> {
                     return Ok(call);
                 }
                 if b.syntax == Syntax::Plain {
-                    self.check_literal_args(b.name, call, args_at)?;
+                    self.check_literal_args(b.name, id, call, args_at)?;
                 }
                 Ok(call)
             }
@@ -675,12 +675,20 @@ impl<'s> Parser<'s, '_, '_> {
     /// CLIPS rejects a literal argument of a type the builtin never takes when it
     /// parses the call, and a call whose return type it never takes; the error points
     /// at the argument (`args_at`: where the arguments start, to find it again).
+    ///
+    /// A numeric builtin's call (`id`) whose later argument is more than a constant or
+    /// a variable goes on to `order_numeric_args`; one of constants and variables only
+    /// is noted (`quiet_numeric`).
     fn check_literal_args(
         &mut self,
         func: &'static str,
+        id: Ix,
         call: Ix,
         args_at: (Lexer<'s>, Option<Token<'s>>),
     ) -> PResult<()> {
+        // what the arguments are besides constants and variables (`order_numeric_args`):
+        // 1 the first, 2 a later one, 4 a later quiet numeric call (`quiet_numeric`)
+        let mut more = 0u8;
         let mut c = self.cx.exprs[call as usize].first;
         let mut k = 0;
         while c != NONE {
@@ -690,9 +698,20 @@ impl<'s> Parser<'s, '_, '_> {
                 Op::Int | Op::Float | Op::Sym | Op::Str => !ty.admits(self.cx.const_value(c)),
                 // a builtin's result of a type the position never takes
                 Op::Call if x.aux == FnKind::Builtin as u8 => {
+                    more |= if k == 0 {
+                        1
+                    } else if c == self.quiet_numeric {
+                        4
+                    } else {
+                        2
+                    };
                     !ty.admits_call(builtins::get(x.data).returns)
                 }
-                _ => false,
+                Op::Local | Op::PatVar => false,
+                _ => {
+                    more |= if k == 0 { 1 } else { 2 };
+                    false
+                }
             };
             if refused {
                 let resume = self.save();
@@ -719,6 +738,13 @@ impl<'s> Parser<'s, '_, '_> {
             }
             c = self.cx.exprs[c as usize].next;
             k += 1;
+        }
+        if more == 0 {
+            if builtins::ordered::has_twin(id) {
+                self.quiet_numeric = call;
+            }
+        } else if more & 2 != 0 && builtins::ordered::has_twin(id) {
+            self.order_numeric_args(call);
         }
         Ok(())
     }
@@ -786,6 +812,78 @@ impl<'s> Parser<'s, '_, '_> {
             return Err(e);
         }
         Ok(())
+    }
+
+    /// A call of a numeric builtin (`+`, `=`, `div`, ...) whose later argument could
+    /// print or change something (not `quiet_operand`) after an argument that could
+    /// end CLIPS's evaluation of them (`may_end_numbers`) becomes a call of its twin,
+    /// which takes its arguments in CLIPS's order (`builtins::ordered`). Other calls
+    /// keep the eager path: their arguments cannot tell.
+    #[inline(never)]
+    fn order_numeric_args(&mut self, call: Ix) {
+        let x = self.cx.exprs[call as usize];
+        let (mut c, mut at, mut may_end) = (x.first, 0, false);
+        while c != NONE {
+            if may_end && c != self.quiet_numeric && !self.quiet_operand(c, true) {
+                if let Some(twin) = builtins::ordered::twin_of(x.data) {
+                    self.cx.exprs[call as usize].data = twin;
+                }
+                return;
+            }
+            may_end = may_end || self.may_end_numbers(x.data, c, at);
+            at += 1;
+            c = self.cx.exprs[c as usize].next;
+        }
+    }
+
+    /// Whether argument `at` (node `c`) of numeric builtin `id` may end its arguments
+    /// in CLIPS (`eval::ends_numbers`) once evaluated without an error: a constant that
+    /// does, a variable, a call of no number (a deffunction, a builtin returning
+    /// another type), or any call as a divisor of `/` or `div`.
+    fn may_end_numbers(&self, id: Ix, c: Ix, at: Ix) -> bool {
+        let y = self.cx.exprs[c as usize];
+        match y.op {
+            Op::Int | Op::Float | Op::Sym | Op::Str => {
+                crate::eval::ends_numbers(id, self.cx.const_value(c), at)
+            }
+            Op::Call if y.aux == FnKind::Builtin as u8 => {
+                use crate::builtins::describe::Returns;
+                const SLASH: Ix = builtins::builtin_id("/");
+                const DIV: Ix = builtins::builtin_id("div");
+                (at > 0 && (id == SLASH || id == DIV))
+                    || !matches!(
+                        builtins::get(y.data).returns,
+                        Returns::Number | Returns::Integer | Returns::Float
+                    )
+            }
+            _ => true,
+        }
+    }
+
+    /// Whether node `c` prints and changes nothing when it is evaluated, and fails, if
+    /// it does, with an error it leaves to its caller: a constant, a local or LHS
+    /// variable, a defglobal (not a prompt variable or an undefined `?*g*`, which print
+    /// when unbound), and (`call`) a quiet builtin's call of those.
+    fn quiet_operand(&self, c: Ix, call: bool) -> bool {
+        let y = self.cx.exprs[c as usize];
+        match y.op {
+            Op::Int | Op::Float | Op::Sym | Op::Str | Op::Local | Op::PatVar => true,
+            Op::Global => !self
+                .cx
+                .sym_text(self.cx.globals[y.data as usize].name)
+                .starts_with('?'),
+            Op::Call if call && y.aux == FnKind::Builtin as u8 && builtins::is_quiet(y.data) => {
+                let mut d = y.first;
+                while d != NONE {
+                    if !self.quiet_operand(d, false) {
+                        return false;
+                    }
+                    d = self.cx.exprs[d as usize].next;
+                }
+                true
+            }
+            _ => false,
+        }
     }
 
     /// Turns the `(expand$ X)` arguments of call `node` into sequence expansions

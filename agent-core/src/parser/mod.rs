@@ -275,6 +275,11 @@ pub struct Parser<'s, 'c, 'e> {
     pub constant_facts: bool,
     /// Loop bodies around the expression being read: `break` needs one.
     pub loop_depth: u16,
+    /// The last numeric call read whose arguments are all constants and variables
+    /// (`NONE` for none; set back for each item: a construct that failed frees its
+    /// nodes, a part read again is read alike): as a later argument it prints and
+    /// changes nothing (`Parser::order_numeric_args`), known without a look at it.
+    pub(crate) quiet_numeric: Ix,
     /// `check-syntax`: a construct read whole stops before it is defined, with a
     /// [`LoadDetail::Checked`](crate::error::LoadDetail::Checked) "error" (rolled
     /// back: nothing stays, no old construct is replaced); a defglobal's values are not
@@ -379,6 +384,7 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
             prompt_reads: 0,
             constant_facts: false,
             loop_depth: 0,
+            quiet_numeric: crate::value::NONE,
             check_only: false,
             warned_overflow: false,
             complexity: 0,
@@ -892,6 +898,7 @@ impl<'s, 'e> Parser<'s, '_, 'e> {
         // (a construct that failed may leave it set)
         self.evaluated_now = false;
         self.loop_depth = 0;
+        self.quiet_numeric = NONE;
         self.implied_mark = None;
         let t = self.peek();
         match t.tok {
