@@ -358,6 +358,15 @@ impl Core<'_> {
                 }
                 self.arith_value(e, x)
             }
+            // a twin of `+`, `-` or `*` (`builtins::ordered`) that needs no depth check:
+            // called as `call` would, without the evaluator's frame
+            Op::Call
+                if x.aux == FnKind::Builtin as u8
+                    && x.data.wrapping_sub(builtins::ordered::FIRST) < 3
+                    && self.st.eval.eval_depth.wrapping_sub(1) < self.st.eval.limits.quiet =>
+            {
+                self.arith_call(e, x)
+            }
             _ => self.eval(e),
         }
     }
@@ -1741,9 +1750,9 @@ impl Core<'_> {
         base: Ix,
         all: bool,
     ) -> Result<Value, EvalError> {
-        self.note_hw(Pool::EvalStack, self.st.frame.sp as usize);
         // host: `+`, `-` or `*` of two numbers, neither of which failed: computed here as
-        // the builtin's fold would (`quick_arith`'s sum), without its call
+        // the builtin's fold would (`quick_arith`'s sum), without its call (this
+        // function kept small, the rest out of line: `numeric_args_call`)
         #[cfg(feature = "host-speedups")]
         if all
             && self.st.frame.sp == base + 2
@@ -1754,9 +1763,27 @@ impl Core<'_> {
             if matches!(p, Value::Int(_) | Value::Float(_))
                 && matches!(q, Value::Int(_) | Value::Float(_))
             {
+                self.note_hw(Pool::EvalStack, base as usize + 2);
                 return Ok(builtins::basic::num_arith(x.data, p, q));
             }
         }
+        self.numeric_args_call(x, f, b, halting, base, all)
+    }
+
+    /// `numeric_args_done`'s call of the builtin's body (in line in the image, where
+    /// `numeric_args_done` has nothing before it).
+    #[cfg_attr(feature = "host-speedups", inline(never))]
+    #[cfg_attr(not(feature = "host-speedups"), inline(always))]
+    fn numeric_args_call(
+        &mut self,
+        x: Expr,
+        f: builtins::BuiltinFn,
+        b: &builtins::Builtin,
+        halting: bool,
+        base: Ix,
+        all: bool,
+    ) -> Result<Value, EvalError> {
+        self.note_hw(Pool::EvalStack, self.st.frame.sp as usize);
         let args = Args {
             base,
             len: self.st.frame.sp - base,
