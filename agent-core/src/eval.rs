@@ -365,10 +365,47 @@ impl Core<'_> {
                     && x.data.wrapping_sub(builtins::ordered::FIRST) < 3
                     && self.st.eval.eval_depth.wrapping_sub(1) < self.st.eval.limits.quiet =>
             {
+                if let Some(v) = self.quick_twin_arith(x) {
+                    return Ok(v);
+                }
                 self.arith_call(e, x)
             }
             _ => self.eval(e),
         }
+    }
+
+    /// Host: a twin of `+`, `-` or `*` (call `x`) of two operands that `pure_leaf`
+    /// reads as numbers without side effects (`(+ ?*sum* ?f:w)` in a query's action):
+    /// both are evaluated in CLIPS as well, so the order cannot show; computed in place
+    /// as `quick_arith` does. None (nothing read that could fail or print) otherwise.
+    #[cfg(all(feature = "host-speedups", feature = "grow"))]
+    #[inline(never)]
+    fn quick_twin_arith(&mut self, x: Expr) -> Option<Value> {
+        let a = x.first;
+        if a == NONE {
+            return None;
+        }
+        let b = self.exprs[a as usize].next;
+        if b == NONE || self.exprs[b as usize].next != NONE {
+            return None;
+        }
+        let p = self.pure_leaf(a, NONE)?;
+        let q = self.pure_leaf(b, NONE)?;
+        if !matches!(p, Value::Int(_) | Value::Float(_))
+            || !matches!(q, Value::Int(_) | Value::Float(_))
+        {
+            return None;
+        }
+        let sp = self.st.frame.sp as usize + 2;
+        if sp > self.stack.len() {
+            return None;
+        }
+        self.note_hw(Pool::EvalStack, sp);
+        Some(builtins::basic::num_arith(
+            builtins::ordered::original_of(x.data),
+            p,
+            q,
+        ))
     }
 
     /// Host: the arithmetic call `e` (node `x`) of `eval_value_operand` as `call`
