@@ -385,8 +385,14 @@ impl Core<'_> {
         if a == NONE {
             return None;
         }
-        let b = self.exprs[a as usize].next;
-        if b == NONE || self.exprs[b as usize].next != NONE {
+        let xa = self.exprs[a as usize];
+        let b = xa.next;
+        if b == NONE {
+            return None;
+        }
+        // (both leaves, checked before either is read: `(+ ?s (f ?n))` goes on at once)
+        let xb = self.exprs[b as usize];
+        if xb.next != NONE || !is_leaf(xa.op) || !is_leaf(xb.op) {
             return None;
         }
         let p = self.pure_leaf(a, NONE)?;
