@@ -8,6 +8,10 @@ use crate::lexer::{Lexer, Tok, Token};
 use crate::value::Ix;
 use crate::value::{TextBuf, Value, NONE};
 
+/// `length$`, whose call of a multifield variable is a quiet operand (`quiet_operand`).
+#[cfg(feature = "host-speedups")]
+const LENGTH_ID: Ix = builtins::builtin_id("length$");
+
 impl<'s> Parser<'s, '_, '_> {
     /// Interns a string literal's contents with `\"` and `\\` unescaped.
     pub fn string_const(&mut self, t: Token<'s>, raw: &str) -> PResult<Ix> {
@@ -872,6 +876,17 @@ impl<'s> Parser<'s, '_, '_> {
                 .cx
                 .sym_text(self.cx.globals[y.data as usize].name)
                 .starts_with('?'),
+            // host: `(length$ ?l)` of an LHS multifield variable reads a multifield's
+            // length: nothing to fail on or print beyond the variable's own read
+            #[cfg(feature = "host-speedups")]
+            Op::Call
+                if call
+                    && y.aux == FnKind::Builtin as u8
+                    && y.data == LENGTH_ID
+                    && self.multifield_pat_var(y.first) =>
+            {
+                true
+            }
             Op::Call if call && y.aux == FnKind::Builtin as u8 && builtins::is_quiet(y.data) => {
                 let mut d = y.first;
                 while d != NONE {
@@ -884,6 +899,35 @@ impl<'s> Parser<'s, '_, '_> {
             }
             _ => false,
         }
+    }
+
+    /// Host: whether node `c` reads an LHS multifield variable (`$?l`, as `?l` in
+    /// the actions), whose value is always a multifield.
+    #[cfg(feature = "host-speedups")]
+    fn multifield_pat_var(&self, c: Ix) -> bool {
+        if c == NONE {
+            return false;
+        }
+        let y = self.cx.exprs[c as usize];
+        if y.op != Op::PatVar || y.next != NONE || y.data == crate::expr::loc::FACT {
+            return false;
+        }
+        let mut found = false;
+        for v in &self.vars[..self.nvars] {
+            if v.kind
+                == (VarKind::Pat {
+                    pat: y.aux,
+                    loc: y.data,
+                    desc: y.first,
+                })
+            {
+                if !v.multi || v.rebound != NONE {
+                    return false;
+                }
+                found = true;
+            }
+        }
+        found
     }
 
     /// Turns the `(expand$ X)` arguments of call `node` into sequence expansions
