@@ -1,7 +1,6 @@
 //! Expressions: constants, variables, function calls and the special forms.
 
 use super::{PResult, Parser, Scope, VarKind};
-use crate::builtins::describe as argtypes;
 use crate::builtins::{self, Syntax};
 use crate::expr::{Expr, FnKind, Op};
 use crate::lexer::{Lexer, Tok, Token};
@@ -620,7 +619,7 @@ impl<'s> Parser<'s, '_, '_> {
                     return Ok(call);
                 }
                 if b.syntax == Syntax::Plain {
-                    self.check_literal_args(b.name, id, call, args_at)?;
+                    self.check_literal_args(b, id, call, args_at)?;
                 }
                 Ok(call)
             }
@@ -680,16 +679,20 @@ impl<'s> Parser<'s, '_, '_> {
     /// parses the call, and a call whose return type it never takes; the error points
     /// at the argument (`args_at`: where the arguments start, to find it again).
     ///
+    /// The types are builtin `b`'s (row `id`, found by its name: the row
+    /// `describe::arg_type` would find again for each argument).
+    ///
     /// A numeric builtin's call (`id`) whose later argument is more than a constant or
     /// a variable goes on to `order_numeric_args`; one of constants and variables only
     /// is noted (`quiet_numeric`).
     fn check_literal_args(
         &mut self,
-        func: &'static str,
+        b: &'static builtins::Builtin,
         id: Ix,
         call: Ix,
         args_at: (Lexer<'s>, Option<Token<'s>>),
     ) -> PResult<()> {
+        let (func, sig) = (b.name, &b.signature);
         // what the arguments are besides constants and variables (`order_numeric_args`):
         // 1 the first, 2 a later one, 4 a later quiet numeric call (`quiet_numeric`)
         let mut more = 0u8;
@@ -697,7 +700,7 @@ impl<'s> Parser<'s, '_, '_> {
         let mut k = 0;
         while c != NONE {
             let x = self.cx.exprs[c as usize];
-            let ty = argtypes::arg_type(func, k);
+            let ty = sig.get(k);
             let refused = match x.op {
                 Op::Int | Op::Float | Op::Sym | Op::Str => !ty.admits(self.cx.const_value(c)),
                 // a builtin's result of a type the position never takes
