@@ -2242,7 +2242,8 @@ pub(crate) fn ends_numbers(id: Ix, v: Value, at: Ix) -> bool {
         Value::Float(f) => {
             at > 0
                 && ((id == SLASH && f == 0.0)
-                    || (id == DIV && builtins::math::c_trunc_to_i64(f) == 0))
+                    // (`div` truncates: 0 exactly for -1 < f < 1, never for NaN)
+                    || (id == DIV && f > -1.0 && f < 1.0))
         }
         _ => true,
     }
@@ -2279,6 +2280,41 @@ fn gives_value_after_error(x: &Expr, e: &EvalError) -> bool {
 mod tests {
     extern crate std;
     use crate::testutil::run_program;
+
+    /// `div`'s zero divisor in `ends_numbers` (a float compared with -1 and 1) is the
+    /// one its body finds (`c_trunc_to_i64` of it is 0), NaN and huge values included;
+    /// `/` stops at 0.0 and -0.0 only, neither at the first argument.
+    #[test]
+    fn div_ends_at_a_float_that_truncates_to_zero() {
+        use super::{builtins, ends_numbers, Value};
+        let (div, slash) = (builtins::builtin_id("div"), builtins::builtin_id("/"));
+        for f in [
+            0.0,
+            -0.0,
+            0.5,
+            -0.5,
+            0.999_999,
+            -0.999_999,
+            1.0,
+            -1.0,
+            1.5,
+            -1.5,
+            1e300,
+            -1e300,
+            9.3e18,
+            -9.3e18,
+            f64::NAN,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::MIN_POSITIVE,
+            -f64::MIN_POSITIVE,
+        ] {
+            let zero = builtins::math::c_trunc_to_i64(f) == 0;
+            assert_eq!(ends_numbers(div, Value::Float(f), 1), zero, "div {f}");
+            assert!(!ends_numbers(div, Value::Float(f), 0), "div first {f}");
+            assert_eq!(ends_numbers(slash, Value::Float(f), 1), f == 0.0, "/ {f}");
+        }
+    }
 
     /// `?f:slot` read in place (flat facts, slot cached) gives what `fact-slot-value`
     /// gives, including where it must not: a multislot, a fact of another template
