@@ -434,6 +434,9 @@ impl Core<'_> {
             self.forget_free_cells();
         }
         self.st.facts.next_fact_num = 0;
+        // (every join is older than the facts to come)
+        #[cfg(feature = "grow")]
+        self.st.prime.join_born.iter_mut().for_each(|b| *b = 0);
         #[cfg(feature = "extras")]
         self.forget_pattern_error();
         #[cfg(feature = "extras")]

@@ -26,6 +26,38 @@ impl Core<'_> {
                 if self.twin_joinable(j) {
                     self.st.prime.set_twin_alpha(a);
                 }
+                #[cfg(feature = "grow")]
+                {
+                    let prime = &mut self.st.prime;
+                    if prime.join_born.len() <= j.ix() {
+                        prime.join_born.resize(j.ix() + 1, 0);
+                        prime.rejoins.resize(j.ix() + 1, false);
+                    }
+                    prime.join_born[j.ix()] = self.st.facts.next_fact_num;
+                    // (only a positive join's partial matches join an alpha match:
+                    // not/exists outputs are no children of one)
+                    let mut rejoin = false;
+                    let mut p = if self.joins[j].kind == JoinKind::Positive {
+                        self.joins[j].parent
+                    } else {
+                        JoinId::NONE
+                    };
+                    while p != JoinId::NONE {
+                        if self.joins[p].alpha == a {
+                            rejoin = true;
+                            break;
+                        }
+                        p = self.joins[p].parent;
+                    }
+                    // (a join id reused by a later rule gets its own answer)
+                    let prime = &mut self.st.prime;
+                    prime.rejoins[j.ix()] = rejoin;
+                    if rejoin {
+                        prime.self_joined[a as u8 as usize] = true;
+                        prime.any_self = true;
+                        prime.placed = true;
+                    }
+                }
             }
         }
     }

@@ -1807,6 +1807,12 @@ impl Core<'_> {
         let alpha = self.tokens[am].alpha();
         // partial matches built on it (newest first), then the not/exists outputs it
         // blocks, which look for another blocker: CLIPS's order
+        // (host: with CLIPS's copies of partial matches to place among them, out of
+        // line: `remove_alpha_children_placed`)
+        #[cfg(feature = "grow")]
+        if self.st.prime.placed {
+            self.remove_alpha_children_placed(am, alpha);
+        }
         while self.tokens[am].first_child != TokenId::NONE {
             let c = self.tokens[am].first_child;
             // the firing rule's logical partial match going with its own fact: CLIPS
@@ -1861,6 +1867,39 @@ impl Core<'_> {
         // (an alpha match carries no logical support)
         debug_assert!(self.tokens[am].kind == TokenKind::Alpha);
         self.release_token(am);
+    }
+
+    /// Host: `remove_alpha_match`'s deletion of the partial matches built on `am`
+    /// (of node `alpha`), each after what CLIPS's newer copies of older ones passed
+    /// on (`take_back_primed_before`, `take_back_newer_copies`).
+    #[cfg(feature = "grow")]
+    #[inline(never)]
+    fn remove_alpha_children_placed(&mut self, am: TokenId, alpha: Ix) {
+        let primed = !self.st.prime.joins.is_empty();
+        let self_joined = self.st.prime.self_joined(alpha);
+        if !primed && !self_joined {
+            return;
+        }
+        while self.tokens[am].first_child != TokenId::NONE {
+            let c = self.tokens[am].first_child;
+            if primed {
+                self.take_back_primed_before(c);
+            }
+            if self_joined {
+                self.take_back_newer_copies(c, am);
+            }
+            if self.tokens[am].first_child != c {
+                // (gone with what was taken back)
+                continue;
+            }
+            #[cfg(feature = "logical")]
+            let cut = self.logical_cut_before(c);
+            self.delete_token(c);
+            #[cfg(feature = "logical")]
+            if cut {
+                self.logical_cut_after();
+            }
+        }
     }
 
     /// Takes alpha match `am` of node `alpha` out of its memory and bucket; returns

@@ -1995,6 +1995,102 @@ impl Core<'_> {
         Ok(())
     }
 
+    /// Host: before alpha match child `x` goes (the newest left), for a node some
+    /// of whose joins take its matches again further down (`self_joined`): the
+    /// copies CLIPS made of `x`'s ancestors on the same alpha match for their
+    /// successors walked after the one `x` descends through, when `x` was built in
+    /// that same walk. CLIPS copies a partial match for each successor as the walk
+    /// reaches it, each copy a child of the alpha match; a retract takes back the
+    /// alpha match's children newest first, each with what it passed on. Ours
+    /// is one partial match, as old as its first copy, so what its later copies
+    /// passed on goes here, newest first (the farthest ancestor's first).
+    #[cfg(feature = "grow")]
+    #[inline(never)]
+    pub(super) fn take_back_newer_copies(&mut self, x: TokenId, am: TokenId) {
+        // (only a partial match of a join taking this node again has such ancestors)
+        let rejoins = &self.st.prime.rejoins;
+        if !rejoins.get(self.tokens[x].owner.ix()).is_some_and(|&r| r) {
+            return;
+        }
+        // up from `x`: the newest fact joined on the right below each ancestor, and
+        // the latest join made; an ancestor on the same alpha match whose own facts
+        // are none older is one `x` was built in the walk of (nearest first)
+        let mut found = [(TokenId::NONE, JoinId::NONE); 8];
+        let mut n = 0;
+        let (mut below, mut born) = (0u32, 0u32);
+        let mut c = x;
+        loop {
+            let tk = &self.tokens[c];
+            if tk.am != TokenId::NONE {
+                below = below.max(self.facts[self.tokens[tk.am].fact as usize].num);
+            }
+            born = born.max(self.join_born(tk.owner));
+            let p = tk.parent;
+            if p == TokenId::NONE || self.tokens[p].kind != TokenKind::Beta {
+                break;
+            }
+            if self.tokens[p].am == am {
+                let own = self.newest_fact_of(p);
+                if below <= own && born <= own {
+                    if n == found.len() {
+                        // (more than kept: the plain order stands)
+                        return;
+                    }
+                    found[n] = (p, tk.owner);
+                    n += 1;
+                }
+            }
+            c = p;
+        }
+        // the farthest ancestor's later copies are the newest
+        for &(t, via) in found[..n].iter().rev() {
+            let mut succ = [(JoinId::NONE, false); 8];
+            let mut k = 0;
+            let mut at = None;
+            let mut it = Successors::of(self, self.tokens[t].owner);
+            while let Some(s) = it.next(self) {
+                if k == succ.len() {
+                    break;
+                }
+                if s.0 == via && !s.1 {
+                    at = Some(k);
+                }
+                succ[k] = s;
+                k += 1;
+            }
+            let Some(at) = at else {
+                continue;
+            };
+            for &(s, from_right) in succ[at + 1..k].iter().rev() {
+                if from_right || self.passed_on_to(t, s) {
+                    self.take_back(t, s, from_right);
+                }
+            }
+        }
+    }
+
+    /// Host: `next_fact_num` when `join` was made (0: before every fact there is).
+    #[cfg(feature = "grow")]
+    #[inline(always)]
+    fn join_born(&self, join: JoinId) -> u32 {
+        self.st.prime.join_born.get(join.ix()).copied().unwrap_or(0)
+    }
+
+    /// The newest fact partial match `t` holds (its number).
+    #[cfg(feature = "grow")]
+    fn newest_fact_of(&self, t: TokenId) -> u32 {
+        let mut newest = 0;
+        let mut c = t;
+        while c != TokenId::NONE && self.tokens[c].kind == TokenKind::Beta {
+            let a = self.tokens[c].am;
+            if a != TokenId::NONE {
+                newest = newest.max(self.facts[self.tokens[a].fact as usize].num);
+            }
+            c = self.tokens[c].parent;
+        }
+        newest
+    }
+
     /// Takes back what a token passed on, successor by successor in the order
     /// CLIPS created its copies (oldest successor first): a rule end loses the
     /// activation, a child join the partial matches built on the token, a join from
@@ -2075,6 +2171,67 @@ impl Core<'_> {
             };
             self.take_back(t, c, from_right);
         }
+    }
+
+    /// Host: before alpha match child `c` goes (the newest left), what its older
+    /// siblings passed on to successors primed after `c` was made, the latest primed
+    /// first: CLIPS's copy of a sibling for such a successor is a child of the alpha
+    /// match newer than `c` (see `take_back_newer_copies`).
+    #[cfg(feature = "grow")]
+    #[inline(never)]
+    pub(super) fn take_back_primed_before(&mut self, c: TokenId) {
+        let made = self.seq_of(c);
+        loop {
+            let mut latest: Option<(u32, TokenId, JoinId)> = None;
+            let mut t = self.tokens[c].am_next;
+            while t != TokenId::NONE {
+                let tk = &self.tokens[t];
+                if tk.extra != NONE || tk.first_child != TokenId::NONE {
+                    let mut s = self.joins[tk.owner].first_child;
+                    while s != JoinId::NONE {
+                        if let Some(born) = self.primed_after(s, t) {
+                            if born > made
+                                && latest.is_none_or(|(b, ..)| born > b)
+                                && self.passed_on_to(t, s)
+                            {
+                                latest = Some((born, t, s));
+                            }
+                        }
+                        s = self.joins[s].next_sibling;
+                    }
+                }
+                t = self.tokens[t].am_next;
+            }
+            let Some((_, t, s)) = latest else {
+                return;
+            };
+            self.take_back(t, s, false);
+        }
+    }
+
+    /// Whether partial match `t` passed something on to successor `s` that is still
+    /// there: an activation of its rule, or a partial match.
+    #[cfg(feature = "grow")]
+    fn passed_on_to(&self, t: TokenId, s: JoinId) -> bool {
+        let sj = &self.joins[s];
+        if sj.kind == JoinKind::Terminal {
+            let mut a = self.tokens[t].extra;
+            while a != NONE {
+                if self.acts[a as usize].rule == sj.rule {
+                    return true;
+                }
+                a = self.acts[a as usize].next_of_token;
+            }
+            return false;
+        }
+        let mut k = self.tokens[t].first_child;
+        while k != TokenId::NONE {
+            if self.tokens[k].owner == s {
+                return true;
+            }
+            k = self.tokens[k].next_sib;
+        }
+        false
     }
 
     /// Host: takes back what `t` passed on to those of successors `succ` that were
@@ -2384,5 +2541,72 @@ impl Successors {
             self.right = cx.joins[c].alpha_next;
             Some((c, true))
         }
+    }
+}
+
+/// (host: the image keeps the plain order, `Core::take_back_newer_copies`)
+#[cfg(all(test, feature = "grow"))]
+mod tests {
+    extern crate std;
+    use crate::testutil::run_program;
+    use std::string::String;
+    use std::vec::Vec;
+
+    /// The rules of the `<== Activation` lines of a transcript, in order.
+    fn removed(out: &str) -> Vec<String> {
+        out.lines()
+            .filter_map(|l| l.strip_prefix("<== Activation"))
+            .map(|l| l.split_whitespace().take(2).collect::<Vec<_>>().join(" "))
+            .collect()
+    }
+
+    #[test]
+    fn a_retract_takes_back_a_shared_joins_rule_ends_newest_first() {
+        // r1 ends at the join r0 goes on from: r0's activation is made first (its
+        // join was walked first), so CLIPS takes back r1's first
+        let out = run_program(
+            "(deftemplate a (slot y))
+             (watch activations)
+             (defrule r1 (a) =>)
+             (defrule r0 (a) (a) =>)
+             (assert (a (y 3)))
+             (retract 1)",
+        );
+        assert_eq!(removed(&out), ["0 r1:", "0 r0:"], "{out}");
+    }
+
+    #[test]
+    fn a_rule_end_primed_later_goes_before_older_partial_matches() {
+        // r1 is defined after the fact: its activation is the newest
+        let out = run_program(
+            "(deftemplate a (slot y))
+             (watch activations)
+             (defrule r0 (a) (a) =>)
+             (assert (a (y 3)))
+             (defrule r1 (a) =>)
+             (retract 1)",
+        );
+        assert_eq!(removed(&out), ["0 r1:", "0 r0:"], "{out}");
+    }
+
+    #[test]
+    fn what_a_shared_join_built_on_other_facts_goes_after_its_own_fact() {
+        // r4's second join took f-1 twice (a child of f-1's alpha match, made
+        // before r2's activation), then f-2 on later asserts: those go last
+        let out = run_program(
+            "(deftemplate a (slot k))
+             (watch activations)
+             (defrule r2 (a) =>)
+             (defrule r4 (a) (a) =>)
+             (assert (a (k 1)))
+             (assert (a (k 2)))
+             (retract 1)",
+        );
+        let got: Vec<&str> = out
+            .lines()
+            .filter(|l| l.starts_with("<== Activation") && l.contains("f-1"))
+            .map(|l| l.rsplit(' ').next().unwrap_or(""))
+            .collect();
+        assert_eq!(got, ["f-2,f-1", "f-1", "f-1,f-1", "f-1,f-2"], "{out}");
     }
 }

@@ -29,7 +29,6 @@ use super::{JoinKind, TokenKind, MAX_RHASH};
 use crate::engine::Core;
 use crate::error::EvalError;
 use crate::handle::{JoinId, TokenId};
-#[cfg(feature = "host-speedups")]
 use crate::value::Ix;
 use crate::value::{Value, NONE};
 
@@ -69,6 +68,22 @@ pub struct PrimeOrders {
     /// (a shared bit, or one left by a removed rule, only costs a question).
     #[cfg(feature = "host-speedups")]
     pub twin_alphas: [bool; 256],
+    /// Alpha nodes (by id modulo 256) one of whose joins has an earlier join of the
+    /// same node among its ancestors: their matches' retracts look for partial
+    /// matches built on the same alpha match twice (`Core::take_back_newer_copies`).
+    pub self_joined: [bool; 256],
+    /// Each join's `next_fact_num` when it was made (by id; 0, or missing: before
+    /// every fact there is, as after a reset): a partial match built through a
+    /// join made after an ancestor's facts was not built in that ancestor's walk.
+    pub join_born: Vec<u32>,
+    /// By join id: the join takes matches of an alpha node one of its ancestors
+    /// takes too (see `self_joined`).
+    pub rejoins: Vec<bool>,
+    /// Some alpha node is `self_joined`.
+    pub any_self: bool,
+    /// A retract places CLIPS's copies among an alpha match's partial matches
+    /// (`Core::remove_alpha_children_placed`): `any_self`, or a primed order kept.
+    pub placed: bool,
 }
 
 impl PrimeOrders {
@@ -82,6 +97,11 @@ impl PrimeOrders {
             twin: (TokenId::NONE, JoinId::NONE),
             #[cfg(feature = "host-speedups")]
             twin_alphas: [false; 256],
+            self_joined: [false; 256],
+            join_born: Vec::new(),
+            rejoins: Vec::new(),
+            any_self: false,
+            placed: false,
         }
     }
 
@@ -92,6 +112,7 @@ impl PrimeOrders {
         } else {
             self.slow |= SLOW_PRIMED;
         }
+        self.placed = self.any_self || !self.joins.is_empty();
     }
 
     /// Host: whether alpha node `alpha` may feed a `twin_joinable` join.
@@ -105,6 +126,12 @@ impl PrimeOrders {
     #[cfg(feature = "host-speedups")]
     pub fn set_twin_alpha(&mut self, alpha: Ix) {
         self.twin_alphas[alpha as u8 as usize] = true;
+    }
+
+    /// Whether alpha node `alpha` may be `self_joined`.
+    #[inline(always)]
+    pub fn self_joined(&self, alpha: Ix) -> bool {
+        self.self_joined[alpha as u8 as usize]
     }
 
     fn find(&self, join: JoinId) -> Option<usize> {
@@ -173,7 +200,7 @@ impl Core<'_> {
 
     /// A token's stamp (0: none).
     #[inline(always)]
-    fn seq_of(&self, t: TokenId) -> u32 {
+    pub(super) fn seq_of(&self, t: TokenId) -> u32 {
         self.st.prime.stamps.get(t.ix()).copied().unwrap_or(0)
     }
 
