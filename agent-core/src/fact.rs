@@ -600,7 +600,7 @@ impl Core<'_> {
         let r = self.network_assert(slot);
         self.st.net.defer_nots = false;
         if let Err(e) = r {
-            self.network_retract(slot);
+            self.network_retract_checked(slot);
             self.unlink_fact(slot);
             self.release_fact_values(slot);
             self.free_fact_slot(slot);
@@ -807,7 +807,7 @@ impl Core<'_> {
             if TMS {
                 self.fact_leaves(slot);
             }
-            self.network_retract(slot);
+            self.network_retract_checked(slot);
             self.unlink_fact(slot);
             // cells from the top go back to it; reused ones stay the slot's
             if reused.is_none() {
@@ -940,8 +940,14 @@ impl Core<'_> {
     /// Retracts a live fact; `hold` keeps its slot and cells readable (pending).
     #[cfg_attr(feature = "host-speedups", inline(always))]
     pub(crate) fn retract_fact_held(&mut self, slot: Ix, hold: bool) {
-        // (as `assert_slots`: no support to drop or retract before a `logical` rule)
-        #[cfg(feature = "logical")]
+        // (as `assert_slots`: no support to drop or retract before a `logical` rule;
+        // host: one test for that and for CLIPS's copies to place, which also take
+        // the slow path, so the plain path's code stays as it is)
+        #[cfg(all(feature = "logical", feature = "grow"))]
+        if !self.st.prime.slow_retract {
+            return self.retract_fact_in::<false>(slot, hold);
+        }
+        #[cfg(all(feature = "logical", not(feature = "grow")))]
         if !self.st.logical.defined {
             return self.retract_fact_in::<false>(slot, hold);
         }
@@ -959,7 +965,11 @@ impl Core<'_> {
             self.fact_leaves(slot);
         }
         self.st.net.dying = slot;
-        self.network_retract(slot);
+        if TMS {
+            self.network_retract_checked(slot);
+        } else {
+            self.network_retract(slot);
+        }
         // one load of the network state for the three accesses (through `self.st`
         // each store made the compiler load the pointer again)
         let net = &mut self.st.net;

@@ -217,6 +217,11 @@ impl Core<'_> {
                 self.fact_deps[from..].fill(NO_DEPS);
             }
             self.st.logical.defined = true;
+            #[cfg(feature = "grow")]
+            {
+                self.st.prime.logical = true;
+                self.st.prime.slow_retract = true;
+            }
             // (a firing gives logical support on the run loop's general path)
             self.note_run_slow();
         }

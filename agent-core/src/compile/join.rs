@@ -30,14 +30,19 @@ impl Core<'_> {
                 {
                     let prime = &mut self.st.prime;
                     if prime.join_born.len() <= j.ix() {
-                        prime.join_born.resize(j.ix() + 1, 0);
-                        prime.rejoins.resize(j.ix() + 1, false);
+                        // (in steps, not one join at a time)
+                        let len = (j.ix() + 1).next_power_of_two().max(64);
+                        prime.join_born.resize(len, 0);
+                        prime.rejoins.resize(len, false);
                     }
                     prime.join_born[j.ix()] = self.st.facts.next_fact_num;
                     // (only a positive join's partial matches join an alpha match:
-                    // not/exists outputs are no children of one)
+                    // not/exists outputs are no children of one; an ancestor taking
+                    // the node is among its other successors)
                     let mut rejoin = false;
-                    let mut p = if self.joins[j].kind == JoinKind::Positive {
+                    let mut p = if self.joins[j].kind == JoinKind::Positive
+                        && self.joins[j].alpha_next != JoinId::NONE
+                    {
                         self.joins[j].parent
                     } else {
                         JoinId::NONE
@@ -56,6 +61,7 @@ impl Core<'_> {
                         prime.self_joined[a as u8 as usize] = true;
                         prime.any_self = true;
                         prime.placed = true;
+                        prime.slow_retract = true;
                     }
                 }
             }

@@ -187,6 +187,8 @@ impl Core<'_> {
     }
 
     /// Removes everything a fact built in the network.
+    /// (host: only where no copies are placed, `PrimeOrders::slow_retract`; else
+    /// `network_retract_checked`)
     pub(crate) fn network_retract(&mut self, fact: Ix) {
         while self.facts[fact as usize].first_am != TokenId::NONE {
             let am = self.facts[fact as usize].first_am;
@@ -1807,12 +1809,6 @@ impl Core<'_> {
         let alpha = self.tokens[am].alpha();
         // partial matches built on it (newest first), then the not/exists outputs it
         // blocks, which look for another blocker: CLIPS's order
-        // (host: with CLIPS's copies of partial matches to place among them, out of
-        // line: `remove_alpha_children_placed`)
-        #[cfg(feature = "grow")]
-        if self.st.prime.placed {
-            self.remove_alpha_children_placed(am, alpha);
-        }
         while self.tokens[am].first_child != TokenId::NONE {
             let c = self.tokens[am].first_child;
             // the firing rule's logical partial match going with its own fact: CLIPS
@@ -1869,17 +1865,61 @@ impl Core<'_> {
         self.release_token(am);
     }
 
+    /// `network_retract`, host: placing CLIPS's copies of partial matches where
+    /// some are (`PrimeOrders::placed`).
+    pub(crate) fn network_retract_checked(&mut self, fact: Ix) {
+        #[cfg(feature = "grow")]
+        if self.st.prime.placed && self.removal_order_shows() {
+            return self.network_retract_placed(fact);
+        }
+        self.network_retract(fact);
+    }
+
+    /// Whether the order in which a retract deletes partial matches can show: in
+    /// `watch activations`, in the facts that lose logical support, or in the
+    /// outputs unblocked by a join from the right (or paid when owed). Else the
+    /// deleted partial matches just go, and any order gives the same run (as for
+    /// `wipe_successors`).
+    #[cfg(feature = "grow")]
+    fn removal_order_shows(&self) -> bool {
+        self.st.mode.watch & crate::engine::watch::ACTIVATIONS != 0
+            || self.st.net.from_right
+            || self.st.net.owed != TokenId::NONE
+            || {
+                #[cfg(feature = "logical")]
+                let l = self.logical_in_use();
+                #[cfg(not(feature = "logical"))]
+                let l = false;
+                l
+            }
+    }
+
+    /// Host: `network_retract` where CLIPS's copies of partial matches are placed
+    /// among an alpha match's children: those go first, then the rest as usual.
+    #[cfg(feature = "grow")]
+    #[inline(never)]
+    fn network_retract_placed(&mut self, fact: Ix) {
+        let primed = !self.st.prime.joins.is_empty();
+        while self.facts[fact as usize].first_am != TokenId::NONE {
+            let am = self.facts[fact as usize].first_am;
+            let tk = &self.tokens[am];
+            // (nothing to place without partial matches built on it)
+            if tk.first_child != TokenId::NONE {
+                let self_joined = self.st.prime.self_joined(tk.alpha());
+                if primed || self_joined {
+                    self.remove_alpha_children_placed(am, primed, self_joined);
+                }
+            }
+            self.remove_alpha_match(am);
+        }
+    }
+
     /// Host: `remove_alpha_match`'s deletion of the partial matches built on `am`
     /// (of node `alpha`), each after what CLIPS's newer copies of older ones passed
     /// on (`take_back_primed_before`, `take_back_newer_copies`).
     #[cfg(feature = "grow")]
     #[inline(never)]
-    fn remove_alpha_children_placed(&mut self, am: TokenId, alpha: Ix) {
-        let primed = !self.st.prime.joins.is_empty();
-        let self_joined = self.st.prime.self_joined(alpha);
-        if !primed && !self_joined {
-            return;
-        }
+    fn remove_alpha_children_placed(&mut self, am: TokenId, primed: bool, self_joined: bool) {
         while self.tokens[am].first_child != TokenId::NONE {
             let c = self.tokens[am].first_child;
             if primed {

@@ -496,7 +496,7 @@ impl Core<'_> {
         // newest first
         let f = at(i).d.fact;
         self.journal_replay(mark);
-        self.network_retract(f);
+        self.network_retract_checked(f);
         for j in (i..=n).rev() {
             let g = at(j).d.fact;
             let fact = self.facts[g as usize];

@@ -84,6 +84,10 @@ pub struct PrimeOrders {
     /// A retract places CLIPS's copies among an alpha match's partial matches
     /// (`Core::remove_alpha_children_placed`): `any_self`, or a primed order kept.
     pub placed: bool,
+    /// A `logical` rule was defined (`LogicalState::defined`).
+    pub logical: bool,
+    /// `placed` or `logical`: a retract takes the slow path (`Core::retract_fact_held`).
+    pub slow_retract: bool,
 }
 
 impl PrimeOrders {
@@ -102,6 +106,8 @@ impl PrimeOrders {
             rejoins: Vec::new(),
             any_self: false,
             placed: false,
+            logical: false,
+            slow_retract: false,
         }
     }
 
@@ -113,6 +119,7 @@ impl PrimeOrders {
             self.slow |= SLOW_PRIMED;
         }
         self.placed = self.any_self || !self.joins.is_empty();
+        self.slow_retract = self.placed || self.logical;
     }
 
     /// Host: whether alpha node `alpha` may feed a `twin_joinable` join.
