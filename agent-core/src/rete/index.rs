@@ -350,6 +350,23 @@ impl Core<'_> {
         key
     }
 
+    /// The key of alpha match `am` of node `alpha` (a node with a right hash), as
+    /// `alpha_key` computes it. Host: the one kept at its insert (`has_key`), so
+    /// the fact's fields are not read again on every right activation.
+    #[inline(always)]
+    fn kept_alpha_key(&mut self, alpha: Ix, am: TokenId) -> u32 {
+        let tk = &self.tokens[am];
+        #[cfg(feature = "host-speedups")]
+        if tk.has_key {
+            return tk.key;
+        }
+        let b = PatBinding {
+            fact: tk.fact,
+            marks: tk.marks,
+        };
+        self.alpha_key(alpha, b)
+    }
+
     /// Host: new alpha match `am` of node `alpha` has an older match of its node and
     /// key just before it in its bucket chain: if a successor not/exists join may
     /// skip its walk (`twin_joinable`, its left memory not empty), marks `am` for
@@ -1433,7 +1450,9 @@ impl Core<'_> {
         let mut t = self.alpha_mems[alpha as usize].head;
         while t != TokenId::NONE {
             let s = self.st.cache.or_stamp;
+            // (the stamp takes the place of a kept key)
             self.tokens[t].key = s;
+            self.tokens[t].has_key = false;
             self.st.cache.or_stamp = s.saturating_add(1);
             let tk = self.tokens[t];
             let key = self.alpha_key(
@@ -1527,6 +1546,13 @@ impl Core<'_> {
             (with_or && n.nrhash > 0, n.nrhash > 0)
         };
         let key = self.alpha_key(alpha, b);
+        // kept for the right activations' bucket lookups (`kept_alpha_key`); an or
+        // node's matches keep their memory-order stamp there instead
+        if hashed && !keyed {
+            let tk = &mut self.tokens[am];
+            tk.key = key;
+            tk.has_key = true;
+        }
         let before = self.bucket_link(am, alpha, key);
         #[cfg(feature = "grow")]
         if hashed && before != TokenId::NONE {
@@ -2260,14 +2286,7 @@ impl Core<'_> {
             g
         };
         if let Some(g) = group {
-            let tk = self.tokens[am];
-            let key = self.alpha_key(
-                j.alpha,
-                PatBinding {
-                    fact: tk.fact,
-                    marks: tk.marks,
-                },
-            );
+            let key = self.kept_alpha_key(j.alpha, am);
             let b = self.beta_bucket(j.parent, key, g);
             let first = self.skip_other_beta(self.amem_buckets[b as usize], j.parent, g);
             return (first, g as u8 + 1);
