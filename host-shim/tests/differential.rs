@@ -697,6 +697,8 @@ differential_programs! {
     p835_mf_order_two_multislots => "835-mf-order-two-multislots",
     p850_arith_bind_slot_values => "850-arith-bind-slot-values",
     p851_undefined_global_held_back => "851-undefined-global-held-back",
+    p858_retract_right_primed_subnet => "858-retract-right-primed-subnet",
+    p859_retract_right_primed_modify => "859-retract-right-primed-modify",
     p890_or_branch_of_several_ces => "890-or-branch-of-several-ces",
     p891_or_branch_of_several_ces_marks => "891-or-branch-of-several-ces-marks",
     p892_dummy_address_defaults => "892-dummy-address-defaults",

@@ -137,6 +137,12 @@ impl Core<'_> {
                 && jn.alpha >= self.st.net.ir_alpha;
             #[cfg(not(feature = "extras"))]
             let own_first = false;
+            // host: a new join from the right on an old subnetwork gets CLIPS's copies
+            // of its partial matches now (`rete::order`)
+            #[cfg(feature = "grow")]
+            if j >= first_new && jn.rjoin != JoinId::NONE && jn.rjoin < first_new {
+                self.note_right_primed(j);
+            }
             if j >= first_new
                 && jn.parent < first_new
                 && !own_first

@@ -2243,10 +2243,10 @@ impl Core<'_> {
         loop {
             let mut latest: Option<(u32, usize)> = None;
             for (i, &(c, from_right)) in succ.iter().enumerate() {
-                if from_right || done & (1 << i) != 0 {
+                if done & (1 << i) != 0 {
                     continue;
                 }
-                if let Some(born) = self.primed_after(c, t) {
+                if let Some(born) = self.primed_after(c, t, from_right) {
                     if latest.is_none_or(|(b, _)| born > b) {
                         latest = Some((born, i));
                     }
@@ -2256,7 +2256,7 @@ impl Core<'_> {
                 return done;
             };
             done |= 1 << i;
-            self.take_back(t, succ[i].0, false);
+            self.take_back(t, succ[i].0, succ[i].1);
         }
     }
 

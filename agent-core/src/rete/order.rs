@@ -39,9 +39,15 @@ pub struct Primed {
     pub born: u32,
     /// Those partial matches (and their stamps) in the join's order, first first.
     pub order: Vec<(TokenId, u32)>,
+    /// A join from the right primed while its subnetwork's end had partial matches
+    /// (`order`: those, unordered): CLIPS's copies of them in its right memory are
+    /// younger than every copy their walk made (`take_back_primed`). Such an entry
+    /// orders no memory.
+    pub right: bool,
 }
 
-/// `PrimeOrders::slow`: some join keeps a primed order (`joins` is not empty).
+/// `PrimeOrders::slow`: some join keeps a primed order (`joins` holds an entry that
+/// is not `right`).
 pub const SLOW_PRIMED: u8 = 1;
 /// `PrimeOrders::slow`: the alpha match `twin_am` may have an older twin
 /// (`Core::twin_blocks`; the bit may outlive its match: the id is compared).
@@ -113,7 +119,8 @@ impl PrimeOrders {
 
     /// Keeps `SLOW_PRIMED` with `joins` (after each change of it).
     fn joins_changed(&mut self) {
-        if self.joins.is_empty() {
+        // (entries of joins from the right order no memory: stamps only)
+        if self.joins.iter().all(|p| p.right) {
             self.slow &= !SLOW_PRIMED;
         } else {
             self.slow |= SLOW_PRIMED;
@@ -141,8 +148,14 @@ impl PrimeOrders {
         self.self_joined[alpha as u8 as usize]
     }
 
+    /// The left-memory order entry of `join`.
     fn find(&self, join: JoinId) -> Option<usize> {
-        self.joins.iter().position(|p| p.join == join)
+        self.joins.iter().position(|p| p.join == join && !p.right)
+    }
+
+    /// The right-memory entry of join from the right `join`.
+    fn find_right(&self, join: JoinId) -> Option<usize> {
+        self.joins.iter().position(|p| p.join == join && p.right)
     }
 }
 
@@ -225,9 +238,14 @@ impl Core<'_> {
     }
 
     /// When `join` was primed (its entry's `born`) if partial match `t` of its parent
-    /// existed then (its copy in CLIPS's memory of `join` is younger than `t`).
-    pub(crate) fn primed_after(&self, join: JoinId, t: TokenId) -> Option<u32> {
-        let k = self.st.prime.find(join)?;
+    /// (for a join from the right, `from_right`: of its subnetwork's end) existed then
+    /// (its copy in CLIPS's memory of `join` is younger than `t`).
+    pub(crate) fn primed_after(&self, join: JoinId, t: TokenId, from_right: bool) -> Option<u32> {
+        let k = if from_right {
+            self.st.prime.find_right(join)?
+        } else {
+            self.st.prime.find(join)?
+        };
         let born = self.st.prime.joins[k].born;
         (self.seq_of(t) < born).then_some(born)
     }
@@ -347,7 +365,12 @@ impl Core<'_> {
                 self.st.prime.joins[k].born = born;
                 self.st.prime.joins[k].order = order;
             }
-            None => self.st.prime.joins.push(Primed { join, born, order }),
+            None => self.st.prime.joins.push(Primed {
+                join,
+                born,
+                order,
+                right: false,
+            }),
         }
         self.st.prime.joins_changed();
         for t in seq {
@@ -362,6 +385,37 @@ impl Core<'_> {
         Ok(true)
     }
 
+    /// Notes new join from the right `join` as primed now (CLIPS's
+    /// `PrimeJoinFromRightMemory`), if its subnetwork's end (old) has partial
+    /// matches: their copies CLIPS makes for it are younger than the others.
+    pub(crate) fn note_right_primed(&mut self, join: JoinId) {
+        let rjoin = self.joins[join].rjoin;
+        let mut order = Vec::new();
+        let mut l = self.join_mems[rjoin].mem;
+        while l != TokenId::NONE {
+            order.push((l, self.seq_of(l)));
+            l = self.tokens[l].mem_next;
+        }
+        if order.is_empty() {
+            return;
+        }
+        self.prune_prime_orders();
+        let born = self.st.prime.clock;
+        match self.st.prime.find_right(join) {
+            Some(k) => {
+                self.st.prime.joins[k].born = born;
+                self.st.prime.joins[k].order = order;
+            }
+            None => self.st.prime.joins.push(Primed {
+                join,
+                born,
+                order,
+                right: true,
+            }),
+        }
+        self.st.prime.joins_changed();
+    }
+
     /// Drops the entries of joins that are gone and of those whose primed partial
     /// matches all went.
     fn prune_prime_orders(&mut self) {
@@ -370,7 +424,11 @@ impl Core<'_> {
             let e = &self.st.prime.joins[k];
             let j = e.join;
             let alive = j.0 < self.st.pools.njoins && self.joins[j].refs > 0 && {
-                let parent = self.joins[j].parent;
+                let parent = if e.right {
+                    self.joins[j].rjoin
+                } else {
+                    self.joins[j].parent
+                };
                 e.order.iter().any(|&(t, s)| self.primed_live(t, s, parent))
             };
             if alive {
