@@ -2062,7 +2062,7 @@ impl Core<'_> {
                 continue;
             };
             for &(s, from_right) in succ[at + 1..k].iter().rev() {
-                if from_right || self.passed_on_to(t, s) {
+                if self.passed_on_to(t, s, from_right) {
                     self.take_back(t, s, from_right);
                 }
             }
@@ -2182,37 +2182,49 @@ impl Core<'_> {
     pub(super) fn take_back_primed_before(&mut self, c: TokenId) {
         let made = self.seq_of(c);
         loop {
-            let mut latest: Option<(u32, TokenId, JoinId)> = None;
+            let mut latest: Option<(u32, TokenId, JoinId, bool)> = None;
             let mut t = self.tokens[c].am_next;
             while t != TokenId::NONE {
                 let tk = &self.tokens[t];
-                if tk.extra != NONE || tk.first_child != TokenId::NONE {
-                    let mut s = self.joins[tk.owner].first_child;
-                    while s != JoinId::NONE {
-                        if let Some(born) = self.primed_after(s, t) {
+                if tk.extra != NONE || tk.first_child != TokenId::NONE || tk.blocks != TokenId::NONE
+                {
+                    let mut it = Successors::of(self, tk.owner);
+                    while let Some((s, from_right)) = it.next(self) {
+                        if let Some(born) = self.primed_after(s, t, from_right) {
                             if born > made
                                 && latest.is_none_or(|(b, ..)| born > b)
-                                && self.passed_on_to(t, s)
+                                && self.passed_on_to(t, s, from_right)
                             {
-                                latest = Some((born, t, s));
+                                latest = Some((born, t, s, from_right));
                             }
                         }
-                        s = self.joins[s].next_sibling;
                     }
                 }
                 t = self.tokens[t].am_next;
             }
-            let Some((_, t, s)) = latest else {
+            let Some((_, t, s, from_right)) = latest else {
                 return;
             };
-            self.take_back(t, s, false);
+            self.take_back(t, s, from_right);
         }
     }
 
     /// Whether partial match `t` passed something on to successor `s` that is still
-    /// there: an activation of its rule, or a partial match.
+    /// there: an activation of its rule, or a partial match; for a join from the
+    /// right (`from_right`), an output of `s` it blocks.
     #[cfg(feature = "grow")]
-    fn passed_on_to(&self, t: TokenId, s: JoinId) -> bool {
+    fn passed_on_to(&self, t: TokenId, s: JoinId, from_right: bool) -> bool {
+        if from_right {
+            // (outputs of `s` it blocks)
+            let mut k = self.tokens[t].blocks;
+            while k != TokenId::NONE {
+                if self.tokens[k].owner == s {
+                    return true;
+                }
+                k = self.tokens[k].am_next;
+            }
+            return false;
+        }
         let sj = &self.joins[s];
         if sj.kind == JoinKind::Terminal {
             let mut a = self.tokens[t].extra;
