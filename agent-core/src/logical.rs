@@ -513,6 +513,20 @@ impl Core<'_> {
         }
     }
 
+    /// Whether partial match `t`'s copy for successor `succ` supports a fact.
+    #[cfg(feature = "grow")]
+    pub(crate) fn copy_supports(&self, t: TokenId, succ: JoinId) -> bool {
+        let mut s = self.token_deps.get(t.ix()).copied().unwrap_or(NONE);
+        while s != NONE {
+            let e = &self.supports[s as usize];
+            if e.succ == succ {
+                return true;
+            }
+            s = e.next_of_token;
+        }
+        false
+    }
+
     /// Every copy of `t` goes: their supports in the order CLIPS made the copies (the
     /// oldest successor first, as `deactivate` takes back what they passed on).
     #[inline(never)]

@@ -2210,8 +2210,9 @@ impl Core<'_> {
     }
 
     /// Whether partial match `t` passed something on to successor `s` that is still
-    /// there: an activation of its rule, or a partial match; for a join from the
-    /// right (`from_right`), an output of `s` it blocks.
+    /// there: an activation of its rule, or a partial match, or logical support of
+    /// its copy for `s`; for a join from the right (`from_right`), an output of `s`
+    /// it blocks.
     #[cfg(feature = "grow")]
     fn passed_on_to(&self, t: TokenId, s: JoinId, from_right: bool) -> bool {
         if from_right {
@@ -2234,14 +2235,20 @@ impl Core<'_> {
                 }
                 a = self.acts[a as usize].next_of_token;
             }
-            return false;
-        }
-        let mut k = self.tokens[t].first_child;
-        while k != TokenId::NONE {
-            if self.tokens[k].owner == s {
-                return true;
+        } else {
+            let mut k = self.tokens[t].first_child;
+            while k != TokenId::NONE {
+                if self.tokens[k].owner == s {
+                    return true;
+                }
+                k = self.tokens[k].next_sib;
             }
-            k = self.tokens[k].next_sib;
+        }
+        // (the copy itself still holds logical support it gave: a fired rule's, or
+        // one whose logical CEs end at `t`'s join)
+        #[cfg(feature = "logical")]
+        if self.logical_in_use() {
+            return self.copy_supports(t, s);
         }
         false
     }
