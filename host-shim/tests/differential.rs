@@ -538,6 +538,7 @@ differential_programs! {
     p745_compat_function_return_types => "745-compat-function-return-types",
     p757_retract_order_shared_rule_end => "757-retract-order-shared-rule-end",
     p763_logical_self_join_retract_order => "763-logical-self-join-retract-order",
+    p769_logical_shared_join_copy_support => "769-logical-shared-join-copy-support",
     p726_or_own_ordered_elements => "726-or-own-ordered-elements",
     p750_watch_construct_names => "750-watch-construct-names",
     p751_watch_construct_names_modules => "751-watch-construct-names-modules",
