@@ -6,10 +6,12 @@
 # listed and their programs kept in ${TMPDIR:-/tmp}/order_fuzz. Seeds whose program
 # CLIPS reports an error for (`[CSTRNCHK1]` on literals a variable carries from slot to
 # slot, say: errors are a class of their own) are counted apart, not compared.
-# Usage: tests/clips/order_fuzz.sh BINARY FROM TO   (exit 1 when any differs)
+# With KIND `logical`, the programs are logical_fuzz.py's (logical support over self
+# joins, rules defined before and after the facts).
+# Usage: tests/clips/order_fuzz.sh BINARY FROM TO [order|logical]   (exit 1 when any differs)
 set -u
 here=$(cd "$(dirname "$0")" && pwd)
-bin=$(cd "$(dirname "$1")" && pwd)/$(basename "$1"); from=$2; to=$3
+bin=$(cd "$(dirname "$1")" && pwd)/$(basename "$1"); from=$2; to=$3; kind=${4:-order}
 command -v clips >/dev/null 2>&1 || { echo "order_fuzz.sh: real CLIPS 6.30 (\`clips\`) is not installed" >&2; exit 2; }
 scratch=$(mktemp -d)
 keep=${TMPDIR:-/tmp}/order_fuzz
@@ -17,7 +19,7 @@ mkdir -p "$keep"
 fail=0
 skip=0
 for s in $(seq "$from" "$to"); do
-    python3 "$here/order_fuzz.py" "$s" > "$scratch/p.clp"
+    python3 "$here/${kind}_fuzz.py" "$s" > "$scratch/p.clp"
     rm -f "$scratch"/rules*.clp
     (cd "$scratch" && timeout 10 clips -f2 p.clp < /dev/null > c.out 2>&1)
     if grep -q '\[[A-Z]*[0-9][0-9]*\]' "$scratch/c.out"; then
@@ -27,11 +29,11 @@ for s in $(seq "$from" "$to"); do
     rm -f "$scratch"/rules*.clp
     (cd "$scratch" && timeout 10 "$bin" clips -f2 p.clp < /dev/null > o.out 2>&1)
     if ! cmp -s "$scratch/c.out" "$scratch/o.out"; then
-        echo "differs: seed $s ($keep/order-$s.clp)"
-        cp "$scratch/p.clp" "$keep/order-$s.clp"
+        echo "differs: seed $s ($keep/$kind-$s.clp)"
+        cp "$scratch/p.clp" "$keep/$kind-$s.clp"
         fail=$((fail + 1))
     fi
 done
 rm -rf "$scratch"
-echo "order fuzz $from..$to: $fail differ ($skip with a CLIPS error, not compared)"
+echo "$kind fuzz $from..$to: $fail differ ($skip with a CLIPS error, not compared)"
 [ "$fail" -eq 0 ]
