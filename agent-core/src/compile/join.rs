@@ -27,44 +27,51 @@ impl Core<'_> {
                     self.st.prime.set_twin_alpha(a);
                 }
                 #[cfg(feature = "grow")]
-                {
-                    let prime = &mut self.st.prime;
-                    if prime.join_born.len() <= j.ix() {
-                        // (in steps, not one join at a time)
-                        let len = (j.ix() + 1).next_power_of_two().max(64);
-                        prime.join_born.resize(len, 0);
-                        prime.rejoins.resize(len, false);
-                    }
-                    prime.join_born[j.ix()] = self.st.facts.next_fact_num;
-                    // (only a positive join's partial matches join an alpha match:
-                    // not/exists outputs are no children of one; an ancestor taking
-                    // the node is among its other successors)
-                    let mut rejoin = false;
-                    let mut p = if self.joins[j].kind == JoinKind::Positive
-                        && self.joins[j].alpha_next != JoinId::NONE
-                    {
-                        self.joins[j].parent
-                    } else {
-                        JoinId::NONE
-                    };
-                    while p != JoinId::NONE {
-                        if self.joins[p].alpha == a {
-                            rejoin = true;
-                            break;
-                        }
-                        p = self.joins[p].parent;
-                    }
-                    // (a join id reused by a later rule gets its own answer)
-                    let prime = &mut self.st.prime;
-                    prime.rejoins[j.ix()] = rejoin;
-                    if rejoin {
-                        prime.self_joined[a as u8 as usize] = true;
-                        prime.any_self = true;
-                        prime.placed = true;
-                        prime.slow_retract = true;
-                    }
-                }
+                self.note_placing(j, a);
             }
+        }
+    }
+
+    /// Host: what a retract needs to place CLIPS's copies of `j`'s partial matches
+    /// (`PrimeOrders::join_born`, `rejoins`, `self_joined`): `j`, a join of alpha
+    /// node `a`, was just hooked to it (after its older successors), when loaded
+    /// from compiled constructs too.
+    #[cfg(feature = "grow")]
+    pub(crate) fn note_placing(&mut self, j: JoinId, a: Ix) {
+        let prime = &mut self.st.prime;
+        if prime.join_born.len() <= j.ix() {
+            // (in steps, not one join at a time)
+            let len = (j.ix() + 1).next_power_of_two().max(64);
+            prime.join_born.resize(len, 0);
+            prime.rejoins.resize(len, false);
+        }
+        prime.join_born[j.ix()] = self.st.facts.next_fact_num;
+        // (only a positive join's partial matches join an alpha match:
+        // not/exists outputs are no children of one; an ancestor taking
+        // the node is among its other successors)
+        let mut rejoin = false;
+        let mut p = if self.joins[j].kind == JoinKind::Positive
+            && self.joins[j].alpha_next != JoinId::NONE
+        {
+            self.joins[j].parent
+        } else {
+            JoinId::NONE
+        };
+        while p != JoinId::NONE {
+            if self.joins[p].alpha == a {
+                rejoin = true;
+                break;
+            }
+            p = self.joins[p].parent;
+        }
+        // (a join id reused by a later rule gets its own answer)
+        let prime = &mut self.st.prime;
+        prime.rejoins[j.ix()] = rejoin;
+        if rejoin {
+            prime.self_joined[a as u8 as usize] = true;
+            prime.any_self = true;
+            prime.placed = true;
+            prime.slow_retract = true;
         }
     }
 

@@ -377,6 +377,11 @@ impl Core<'_> {
         for j in 0..self.st.pools.njoins {
             let j = JoinId(j);
             self.note_children(j);
+            // (in id order: each join after its node's older successors, as parsed)
+            #[cfg(feature = "grow")]
+            if self.joins[j].alpha != NONE {
+                self.note_placing(j, self.joins[j].alpha);
+            }
             #[cfg(feature = "wipe")]
             if self.joins[j].rsucc != JoinId::NONE {
                 self.st.net.from_right = true;
