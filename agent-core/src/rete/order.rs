@@ -148,6 +148,31 @@ impl PrimeOrders {
         self.self_joined[alpha as u8 as usize]
     }
 
+    /// Records `join` as primed now with `order` (its left memory's, or for a join
+    /// from the right, `right`, its subnetwork end's partial matches), replacing an
+    /// entry it had.
+    fn set_primed(&mut self, join: JoinId, order: Vec<(TokenId, u32)>, right: bool) {
+        let born = self.clock;
+        let k = if right {
+            self.find_right(join)
+        } else {
+            self.find(join)
+        };
+        match k {
+            Some(k) => {
+                self.joins[k].born = born;
+                self.joins[k].order = order;
+            }
+            None => self.joins.push(Primed {
+                join,
+                born,
+                order,
+                right,
+            }),
+        }
+        self.joins_changed();
+    }
+
     /// The left-memory order entry of `join`.
     fn find(&self, join: JoinId) -> Option<usize> {
         self.joins.iter().position(|p| p.join == join && !p.right)
@@ -358,21 +383,8 @@ impl Core<'_> {
             keyed.sort_by_key(|&(b, _)| b);
             seq = keyed.iter().map(|&(_, t)| t).collect();
         }
-        let born = self.st.prime.clock;
         let order: Vec<(TokenId, u32)> = seq.iter().rev().map(|&t| (t, self.seq_of(t))).collect();
-        match self.st.prime.find(join) {
-            Some(k) => {
-                self.st.prime.joins[k].born = born;
-                self.st.prime.joins[k].order = order;
-            }
-            None => self.st.prime.joins.push(Primed {
-                join,
-                born,
-                order,
-                right: false,
-            }),
-        }
-        self.st.prime.joins_changed();
+        self.st.prime.set_primed(join, order, false);
         for t in seq {
             // (a token priming took back meanwhile is not fed)
             if self.tokens[t].kind == TokenKind::Beta
@@ -400,20 +412,7 @@ impl Core<'_> {
             return;
         }
         self.prune_prime_orders();
-        let born = self.st.prime.clock;
-        match self.st.prime.find_right(join) {
-            Some(k) => {
-                self.st.prime.joins[k].born = born;
-                self.st.prime.joins[k].order = order;
-            }
-            None => self.st.prime.joins.push(Primed {
-                join,
-                born,
-                order,
-                right: true,
-            }),
-        }
-        self.st.prime.joins_changed();
+        self.st.prime.set_primed(join, order, true);
     }
 
     /// Drops the entries of joins that are gone and of those whose primed partial
