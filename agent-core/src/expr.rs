@@ -47,8 +47,10 @@ pub enum Op {
     /// Second half of a 64-bit constant (never evaluated).
     Payload,
     /// `?v:slot` of a local (query) variable: `data` its frame slot, `first` a `Sym`
-    /// node naming the slot, `aux` a cache (see `builtins::facts::slot_value_of`). Same result as `(fact-slot-value ?v slot)` without the
-    /// call's argument stack and dispatch (queries read slots in their inner loop).
+    /// node naming the slot (its `aux` 1: every template of `?v` has it, the parser's
+    /// mark of a quiet operand), `aux` a cache (see `builtins::facts::slot_value_of`).
+    /// Same result as `(fact-slot-value ?v slot)` without the call's argument stack and
+    /// dispatch (queries read slots in their inner loop).
     QSlot,
     /// A query variable of fact-set functions or a free node.
     Nop,

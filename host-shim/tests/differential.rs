@@ -574,6 +574,7 @@ differential_programs! {
     p803_deftemplate_syntax_errors => "803-deftemplate-syntax-errors",
     p804_defglobal_syntax_errors => "804-defglobal-syntax-errors",
     p805_fact_syntax_errors => "805-fact-syntax-errors",
+    p806_query_slot_operands_in_order => "806-query-slot-operands-in-order",
     p808_mf_order_segments_modify => "808-mf-order-segments-modify",
     p840_pretty_fact_set_queries => "840-pretty-fact-set-queries",
     p841_math_as_the_c_library => "841-math-as-the-c-library",

@@ -11,6 +11,10 @@ use crate::value::{TextBuf, Value, NONE};
 #[cfg(feature = "host-speedups")]
 const LENGTH_ID: Ix = builtins::builtin_id("length$");
 
+/// `aux` of the `Sym` node under a `QSlot` (`?v:slot`): every template of `?v` has the
+/// slot, so the read is a quiet operand (`Parser::slot_in_every_template`).
+const QSLOT_QUIET: u8 = 1;
+
 impl<'s> Parser<'s, '_, '_> {
     /// Interns a string literal's contents with `\"` and `\\` unescaped.
     pub fn string_const(&mut self, t: Token<'s>, raw: &str) -> PResult<Ix> {
@@ -829,6 +833,16 @@ impl<'s> Parser<'s, '_, '_> {
     #[inline(never)]
     fn order_numeric_args(&mut self, call: Ix) {
         let x = self.cx.exprs[call as usize];
+        // host: `+`, `-` or `*` of two operands, one a query's slot read: the twin,
+        // whose in-place fold reads query slots (`Core::quick_twin_arith`; the plain
+        // call's `quick_arith`, on every rule's path, does not)
+        #[cfg(all(feature = "host-speedups", feature = "grow"))]
+        if x.data.wrapping_sub(builtins::basic::ARITH_FIRST) < 3 && self.query_slot_pair(x.first) {
+            if let Some(twin) = builtins::ordered::twin_of(x.data) {
+                self.cx.exprs[call as usize].data = twin;
+            }
+            return;
+        }
         let (mut c, mut at, mut may_end) = (x.first, 0, false);
         while c != NONE {
             if may_end && c != self.quiet_numeric && !self.quiet_operand(c, true) {
@@ -841,6 +855,20 @@ impl<'s> Parser<'s, '_, '_> {
             at += 1;
             c = self.cx.exprs[c as usize].next;
         }
+    }
+
+    /// Host: whether the arguments from `a` are two, one of them `?v:slot`.
+    #[cfg(all(feature = "host-speedups", feature = "grow"))]
+    fn query_slot_pair(&self, a: Ix) -> bool {
+        if a == NONE {
+            return false;
+        }
+        let (p, b) = (self.cx.exprs[a as usize], self.cx.exprs[a as usize].next);
+        if b == NONE {
+            return false;
+        }
+        let q = self.cx.exprs[b as usize];
+        q.next == NONE && (p.op == Op::QSlot || q.op == Op::QSlot)
     }
 
     /// Whether argument `at` (node `c`) of numeric builtin `id` may end its arguments
@@ -875,6 +903,7 @@ impl<'s> Parser<'s, '_, '_> {
         let y = self.cx.exprs[c as usize];
         match y.op {
             Op::Int | Op::Float | Op::Sym | Op::Str | Op::Local | Op::PatVar => true,
+            Op::QSlot => self.cx.exprs[y.first as usize].aux == QSLOT_QUIET,
             Op::Global => !self
                 .cx
                 .sym_text(self.cx.globals[y.data as usize].name)
@@ -1457,6 +1486,15 @@ impl<'s> Parser<'s, '_, '_> {
     /// them: `[PRNTUTIL2] ... fact-set query function.` for the query's own syntax
     /// (and after an error in its actions), `[FACTQPSR1-3]`.
     fn query_args(&mut self, call: Ix, func: &'static str) -> PResult<Ix> {
+        let outer = self.query_decl;
+        let r = self.query_args_in(call, func);
+        self.query_decl = outer;
+        r
+    }
+
+    /// `query_args` once the enclosing query's declarations are saved: this query's
+    /// declarations node becomes the innermost (`query_decl`) when they are read.
+    fn query_args_in(&mut self, call: Ix, func: &'static str) -> PResult<Ix> {
         const PART: &str = "fact-set query function";
         let decl = cap!(self, self.cx.push_expr(Expr::new(Op::Nop, 0, 0)))?;
         self.cx.append_child(call, decl);
@@ -1531,6 +1569,8 @@ impl<'s> Parser<'s, '_, '_> {
             }
             first = false;
         }
+        self.cx.exprs[decl as usize].data = self.query_decl;
+        self.query_decl = decl;
         // the condition: no `bind` in it (`[FACTQPSR2]`)
         let t = self.peek();
         if matches!(t.tok, Tok::RParen) {
@@ -1641,6 +1681,44 @@ impl<'s> Parser<'s, '_, '_> {
         self.args_until_rparen(call)
     }
 
+    /// Whether query variable `frame` (a frame slot of a query being read) ranges over
+    /// templates named in its declaration, each with slot `slot`: then `?v:slot` finds
+    /// its slot in any fact it reads and prints nothing (a missing slot is an error
+    /// at run time, `[INSFUN3]`; names given as an expression are known only then).
+    fn slot_in_every_template(&self, frame: Ix, slot: Ix) -> bool {
+        let mut d = self.query_decl;
+        while d != NONE {
+            let mut v = self.cx.exprs[d as usize].first;
+            while v != NONE {
+                let var = self.cx.exprs[v as usize];
+                if var.data == frame {
+                    let mut t = var.first;
+                    let mut any = false;
+                    while t != NONE {
+                        let name = self.cx.exprs[t as usize];
+                        let Some(tmpl) = (name.op == Op::Sym)
+                            .then(|| self.cx.find_template(name.data))
+                            .flatten()
+                        else {
+                            return false;
+                        };
+                        if self.cx.templates[tmpl as usize].implied
+                            || self.cx.find_slot(tmpl, slot).is_none()
+                        {
+                            return false;
+                        }
+                        any = true;
+                        t = name.next;
+                    }
+                    return any;
+                }
+                v = var.next;
+            }
+            d = self.cx.exprs[d as usize].data;
+        }
+        false
+    }
+
     /// `?v:slot` inside a query: `(fact-slot-value ?v slot)`.
     pub fn query_slot_ref(&mut self, t: Token<'s>, var: &'s str, slot: &'s str) -> PResult<Ix> {
         let v = self.var_ref(t, var, false)?;
@@ -1649,7 +1727,12 @@ impl<'s> Parser<'s, '_, '_> {
         if vx.op == Op::Local {
             // reuse the variable's node: it becomes the slot read
             self.cx.exprs[v as usize] = Expr::new(Op::QSlot, 0, vx.data);
-            let s = cap!(self, self.cx.push_expr(Expr::new(Op::Sym, 0, sym)))?;
+            let quiet = if self.slot_in_every_template(vx.data, sym) {
+                QSLOT_QUIET
+            } else {
+                0
+            };
+            let s = cap!(self, self.cx.push_expr(Expr::new(Op::Sym, quiet, sym)))?;
             self.cx.append_child(v, s);
             return Ok(v);
         }

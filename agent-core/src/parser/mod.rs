@@ -280,6 +280,10 @@ pub struct Parser<'s, 'c, 'e> {
     /// nodes, a part read again is read alike): as a later argument it prints and
     /// changes nothing (`Parser::order_numeric_args`), known without a look at it.
     pub(crate) quiet_numeric: Ix,
+    /// The declarations node of the innermost fact-set query being read (`NONE`
+    /// outside one); each such node's `data` names the enclosing query's (set back for
+    /// each item, as `quiet_numeric`). `?v:slot` looks up `?v`'s templates there.
+    pub(crate) query_decl: Ix,
     /// `check-syntax`: a construct read whole stops before it is defined, with a
     /// [`LoadDetail::Checked`](crate::error::LoadDetail::Checked) "error" (rolled
     /// back: nothing stays, no old construct is replaced); a defglobal's values are not
@@ -385,6 +389,7 @@ impl<'s, 'c, 'e> Parser<'s, 'c, 'e> {
             constant_facts: false,
             loop_depth: 0,
             quiet_numeric: crate::value::NONE,
+            query_decl: crate::value::NONE,
             check_only: false,
             warned_overflow: false,
             complexity: 0,
@@ -899,6 +904,7 @@ impl<'s, 'e> Parser<'s, '_, 'e> {
         self.evaluated_now = false;
         self.loop_depth = 0;
         self.quiet_numeric = NONE;
+        self.query_decl = NONE;
         self.implied_mark = None;
         let t = self.peek();
         match t.tok {
