@@ -321,6 +321,9 @@ pub struct MatchState {
     /// firing), and whether the assert it makes now may be deferred.
     pub top_action: Ix,
     pub defer_next: bool,
+    /// Host: `worth_past_printouts`'s last walk (`rete::ScanRun`).
+    #[cfg(all(feature = "defer", feature = "host-speedups"))]
+    pub scan: crate::rete::ScanRun,
     /// Pattern bindings for network tests (`lhs`) and the firing rule (`rhs`).
     pub lhs_pm: [PatBinding; MAX_PATTERNS],
     /// The partial match whose whole ancestry `lhs_pm` holds (NONE if none): then
@@ -400,6 +403,8 @@ impl MatchState {
             deferred_held: 0,
             top_action: NONE,
             defer_next: false,
+            #[cfg(all(feature = "defer", feature = "host-speedups"))]
+            scan: crate::rete::ScanRun::NONE,
             lhs_pm: [PatBinding::EMPTY; MAX_PATTERNS],
             lhs_of: TokenId::NONE,
             rhs_pm: [PatBinding::EMPTY; MAX_PATTERNS],

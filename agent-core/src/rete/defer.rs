@@ -91,6 +91,28 @@ impl Deferred {
 #[cfg(feature = "defer")]
 pub const QUEUED_MAX: usize = 4;
 
+/// Host: what `worth_past_printouts`'s last walk by the builtins' ids found: the
+/// `len` actions from `from` on, up to `end`, are all asserts or printouts. The
+/// next assert's walk (from the action after `from`) starts at `end`: an action
+/// list of asserts (an init rule's hundreds) then costs a step per assert, not
+/// `SCAN_MAX`.
+#[cfg(all(feature = "defer", feature = "host-speedups"))]
+#[derive(Clone, Copy, Debug)]
+pub struct ScanRun {
+    pub from: Ix,
+    pub end: Ix,
+    pub len: u8,
+}
+
+#[cfg(all(feature = "defer", feature = "host-speedups"))]
+impl ScanRun {
+    pub const NONE: ScanRun = ScanRun {
+        from: NONE,
+        end: NONE,
+        len: 0,
+    };
+}
+
 /// A fact waiting before the newest, with the length of the held `printout` text
 /// when it was asserted (what the eager order printed before that assert).
 #[cfg(feature = "defer")]
@@ -269,7 +291,7 @@ impl Core<'_> {
     // (inlined into `assert` and `modify`, as when it was smaller: out of line it
     // cost propagate-500 +0.15 %; the walk past printouts is out of line)
     #[inline(always)]
-    pub(crate) fn defer_worth(&self, call: Ix) -> bool {
+    pub(crate) fn defer_worth(&mut self, call: Ix) -> bool {
         if call != self.st.net.top_action {
             return false;
         }
@@ -301,7 +323,7 @@ impl Core<'_> {
     /// printouts and asserts that may wait (the asserts' facts wait too, `Queued`),
     /// a modify that may wait.
     #[inline(never)]
-    fn worth_past_printouts(&self, mut n: Ix) -> bool {
+    fn worth_past_printouts(&mut self, mut n: Ix) -> bool {
         // first by the builtins' ids alone: most action lists (`(assert ...)
         // (assert ...) (bind ...)`) reach no modify, and need no closer look. The walk
         // stops after `SCAN_MAX` actions: past more than `QUEUED_MAX` asserts the fact
@@ -312,6 +334,26 @@ impl Core<'_> {
         const SCAN_MAX: usize = 2 * QUEUED_MAX;
         let mut m = n;
         let mut budget = SCAN_MAX;
+        // host: the last walk's run, when `n` is the action after its start, is
+        // known (a stale run, of actions made again since, can only answer false:
+        // no deferral, what the image always answers; the walk past the ids below
+        // checks every action from `n` itself)
+        #[cfg(feature = "host-speedups")]
+        let mut len = 0u8;
+        #[cfg(feature = "host-speedups")]
+        {
+            let r = self.st.net.scan;
+            let made = self.st.pools.nexprs as usize;
+            if r.len > 1
+                && (r.from as usize) < made
+                && (r.end == NONE || (r.end as usize) < made)
+                && self.exprs[r.from as usize].next == n
+            {
+                len = r.len - 1;
+                m = r.end;
+                budget -= len as usize;
+            }
+        }
         loop {
             if m == NONE {
                 return false;
@@ -327,10 +369,23 @@ impl Core<'_> {
                 return false;
             }
             budget -= 1;
+            let next = x.next;
+            #[cfg(feature = "host-speedups")]
+            {
+                len += 1;
+            }
             if budget == 0 {
+                #[cfg(feature = "host-speedups")]
+                {
+                    self.st.net.scan = ScanRun {
+                        from: n,
+                        end: next,
+                        len,
+                    };
+                }
                 return false;
             }
-            m = x.next;
+            m = next;
         }
         while n != NONE {
             let x = self.exprs[n as usize];

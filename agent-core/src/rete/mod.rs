@@ -9,6 +9,8 @@ pub use index::OrPlan;
 pub use index::{KeyPlan, KEY_PLANS};
 mod defer;
 pub use defer::Deferred;
+#[cfg(all(feature = "defer", feature = "host-speedups"))]
+pub use defer::ScanRun;
 #[cfg(feature = "defer")]
 pub use defer::{HeldPrint, Queued, QUEUED_MAX};
 #[cfg(feature = "host-speedups")]
