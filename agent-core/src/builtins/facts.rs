@@ -323,7 +323,12 @@ impl Core<'_> {
         // evaluate first (values may build scratch), then gather
         let base = self.st.frame.sp;
         while e != NONE {
-            let v = match self.eval(e) {
+            // (host: each field read in place too, an ordered fact's most of all)
+            #[cfg(all(feature = "host-speedups", feature = "grow"))]
+            let v = self.eval_value_operand::<false>(e);
+            #[cfg(not(all(feature = "host-speedups", feature = "grow")))]
+            let v = self.eval(e);
+            let v = match v {
                 Ok(v) => v,
                 Err(err)
                     if !matches!(
