@@ -1326,6 +1326,33 @@ def mfgrow(n):
     )
 
 
+def queryjoin(n):
+    """Fact-set queries over two variables whose test compares slots of both (an audit
+    of n employees against departments and against each other), run by a rule per
+    round from a deffunction."""
+    rnd = lcg(n + 23)
+    asserts = [
+        "(assert (emp (id %d) (dept %d) (pay %d) (age %d)))"
+        % (i, i % 10, 1000 + next(rnd) % 8000, 20 + next(rnd) % 45)
+        for i in range(n)
+    ]
+    asserts += ["(assert (dept (id %d) (cap %d)))" % (d, 3000 + next(rnd) % 5000) for d in range(10)]
+    return (
+        defglobals("over", "pairs")
+        + "(deftemplate emp (slot id) (slot dept) (slot pay) (slot age))\n"
+        + "(deftemplate dept (slot id) (slot cap))\n"
+        + "(defrule init => %s (assert (round 30)))\n" % "\n  ".join(asserts)
+        + """(deffunction audit (?limit)
+  (do-for-all-facts ((?e emp) (?d dept)) (and (= ?e:dept ?d:id) (> ?e:pay ?d:cap) (< ?e:age ?limit))
+    (bind ?*over* (+ ?*over* 1)))
+  (do-for-all-facts ((?a emp) (?b emp)) (and (= ?a:dept ?b:dept) (< ?a:age ?b:age) (> ?a:pay ?b:pay))
+    (bind ?*pairs* (+ ?*pairs* 1))))
+(defrule round ?r <- (round ?k&:(<= ?k 60)) => (retract ?r) (audit ?k) (assert (round (+ ?k 10))))
+"""
+        + report_rule("over", "pairs")
+    )
+
+
 def modrules(n):
     """Five modules of n rules each (constant tests on a kind), focused in turn;
     jobs pass through every module, one rule per module matching each."""
@@ -1408,6 +1435,8 @@ SHAPES = {
     "heldmod": (heldmod, [50, 100, 200, 400]),
     "mfgrow": (mfgrow, [25, 50, 100, 200]),
     "modrules": (modrules, [10, 20, 40, 80]),
+    # session 22: two-variable fact-set queries
+    "queryjoin": (queryjoin, [50, 100, 200, 400]),
 }
 
 
