@@ -689,16 +689,20 @@ impl Core<'_> {
         // only when the bucket holds a fact)
         let mut d = self.fact_buckets[bucket];
         while d != NONE && !self.st.mode.fact_duplication {
-            let df = self.facts[d as usize];
             // host: a fact keeps its full hash, so only an equal one is compared cell
             // by cell (a chain's other facts, of the same template and length in most
-            // programs, lengthen as the fact base grows)
+            // programs, lengthen as the fact base grows); its other fields are read
+            // only then, not copied at every step
             #[cfg(feature = "host-speedups")]
-            let same_hash = df.hash == h;
-            #[cfg(not(feature = "host-speedups"))]
-            let same_hash = true;
-            if same_hash
-                && df.tmpl == tmpl
+            {
+                let df = &self.facts[d as usize];
+                if df.hash != h {
+                    d = df.hash_next;
+                    continue;
+                }
+            }
+            let df = self.facts[d as usize];
+            if df.tmpl == tmpl
                 && df.len as usize == need
                 && self.cells_equal(df.start as usize, start, need)
             {

@@ -1559,6 +1559,9 @@ impl Core<'_> {
             // (most often the chain's previous tail is of the same bucket, and often
             // it is the memory's previous tail too: nothing to move)
             let (b, a) = (&self.tokens[before], &self.tokens[am]);
+            // (`before` the chain's head, whose `am_prev` is the tail, `am` now: it was
+            // the chain's only match, of another key, so `am` stays the memory's tail)
+            let before_only = b.am_prev == am;
             if b.parent == a.parent && b.owner == a.owner {
                 if a.mem_prev != before {
                     self.bucket_move_after(am, alpha, before);
@@ -1568,7 +1571,7 @@ impl Core<'_> {
                 if self.st.prime.twin_alpha(alpha) {
                     self.twin_mark(am, alpha);
                 }
-            } else {
+            } else if !before_only {
                 self.bucket_order(am, alpha, before);
             }
         }
