@@ -48,8 +48,10 @@ pub const INDEX_LIMIT: usize = NONE as usize - 1;
 /// grown to twice its pool's length by `empty_heads` or `fresh_heads`, not with the
 /// pool), or `None` for an array with one entry per pool entry.
 macro_rules! heads {
+    // (two per fact, as growth keeps them: with one per fact the duplicate check's
+    // chains of a program near the host's 4,096 facts were twice as long)
     (fact_buckets) => {
-        Some(Capacities::HOST.facts)
+        Some(2 * Capacities::HOST.facts)
     };
     (sym_buckets) => {
         Some(Capacities::HOST.symbols)
@@ -59,6 +61,17 @@ macro_rules! heads {
     };
     ($other:ident) => {
         None::<usize>
+    };
+}
+
+/// The length of a [`HostSeed`] array: its bucket heads' start (`heads!`) if longer
+/// than its pool's host length, else that.
+macro_rules! seed_len {
+    ($arr:ident, $cap:ident) => {
+        match heads!($arr) {
+            Some(h) if h > Capacities::HOST.$cap => h,
+            _ => Capacities::HOST.$cap,
+        }
     };
 }
 
@@ -705,7 +718,7 @@ macro_rules! grow_items {
         pub struct HostSeed {
             $(
                 $first: [$fty; Capacities::HOST.$cap],
-                $($arr: [$aty; Capacities::HOST.$cap],)*
+                $($arr: [$aty; seed_len!($arr, $cap)],)*
             )*
         }
 
@@ -716,7 +729,7 @@ macro_rules! grow_items {
                 HostSeed {
                     $(
                         $first: [$fempty; Capacities::HOST.$cap],
-                        $($arr: [$aempty; Capacities::HOST.$cap],)*
+                        $($arr: [$aempty; seed_len!($arr, $cap)],)*
                     )*
                 }
             }
