@@ -56,8 +56,11 @@ macro_rules! heads {
     (sym_buckets) => {
         Some(Capacities::HOST.symbols)
     };
+    // (two per token, as `grow_token_index` keeps them: with one per token the beta
+    // index's group of a program near the host's 32,768 tokens had chains of other
+    // joins' partial matches to skip)
     (amem_buckets) => {
-        Some(Capacities::HOST.tokens)
+        Some(2 * Capacities::HOST.tokens)
     };
     ($other:ident) => {
         None::<usize>
