@@ -531,6 +531,7 @@ differential_programs! {
     p765_salience_groups_short_again => "765-salience-groups-short-again",
     p810_twin_arith_at_bind => "810-twin-arith-at-bind",
     p811_length_of_multifield_var_in_order => "811-length-of-multifield-var-in-order",
+    p812_chain_under_last_match => "812-chain-under-last-match",
     p743_numeric_arguments_in_order => "743-numeric-arguments-in-order",
     p744_numeric_arguments_in_order_rules => "744-numeric-arguments-in-order-rules",
     p704_numeric_arguments_quiet_later => "704-numeric-arguments-quiet-later",

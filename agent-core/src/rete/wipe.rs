@@ -29,6 +29,12 @@ impl Core<'_> {
         if self.alpha_mems[alpha as usize].head != am || self.tokens[am].mem_next != TokenId::NONE {
             return;
         }
+        // partial matches in a chain (each with one child at most, like a job's match
+        // under one rule) go one by one for the same work without a memory walk per
+        // join: a wipe pays where memories hold several
+        if self.chain_below(am) {
+            return;
+        }
         if self.st.mode.watch & watch::ACTIVATIONS != 0 || self.st.net.owed != TokenId::NONE {
             return;
         }
@@ -48,6 +54,29 @@ impl Core<'_> {
                 self.wipe_memory(j, true);
             }
             j = next;
+        }
+    }
+
+    /// Whether the partial matches built on alpha match `am` and all below them form
+    /// one chain (none, or one whose every partial match has one child at most).
+    #[inline(always)]
+    fn chain_below(&self, am: TokenId) -> bool {
+        let mut t = self.tokens[am].first_child;
+        if t == TokenId::NONE {
+            return true;
+        }
+        if self.tokens[t].am_next != TokenId::NONE {
+            return false;
+        }
+        loop {
+            let c = self.tokens[t].first_child;
+            if c == TokenId::NONE {
+                return true;
+            }
+            if self.tokens[c].next_sib != TokenId::NONE {
+                return false;
+            }
+            t = c;
         }
     }
 
